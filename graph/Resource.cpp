@@ -1,0 +1,39 @@
+#include "graph/Resource.h"
+
+#include <cassert>
+
+namespace inkgraph {
+
+int bytesPerPixel(Format format)
+{
+    switch (format) {
+    case Format::RGBA32F: return 16;
+    case Format::R32F: return 4;
+    case Format::RGBA8: return 4;
+    case Format::R8: return 1;
+    }
+    assert(false && "bytesPerPixel(): unknown Format");
+    return 0;
+}
+
+std::string_view formatName(Format format)
+{
+    switch (format) {
+    case Format::RGBA32F: return "rgba32f";
+    case Format::R32F: return "r32f";
+    case Format::RGBA8: return "rgba8";
+    case Format::R8: return "r8";
+    }
+    assert(false && "formatName(): unknown Format");
+    return "unknown";
+}
+
+ResourceName ResourceName::split(std::string_view resource)
+{
+    const std::size_t dot = resource.find('.');
+    if (dot == std::string_view::npos || resource.find('.', dot + 1) != std::string_view::npos)
+        return {};
+    return {std::string(resource.substr(0, dot)), std::string(resource.substr(dot + 1))};
+}
+
+} // namespace inkgraph

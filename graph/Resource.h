@@ -1,0 +1,38 @@
+#pragma once
+/** @file Resource descriptions the graph reasons about. No GL: gl/ maps Format to GLenum. */
+
+#include <string>
+#include <string_view>
+
+namespace inkgraph {
+
+enum class Format {
+    RGBA32F, ///< four float32 channels
+    R32F,    ///< one float32 channel
+    RGBA8,   ///< four unorm8 channels (final colour)
+    R8,      ///< one unorm8 channel (line masks)
+};
+
+/** Bytes per pixel, and a short name ("rgba32f") for plans and manifests. */
+int bytesPerPixel(Format format);
+std::string_view formatName(Format format);
+
+/** Every graph texture is frame-sized, scaled by `scale` (supersampling renders data buffers larger). */
+struct TextureDesc {
+    Format format = Format::RGBA32F;
+    int scale = 1;
+    bool operator==(const TextureDesc&) const = default;
+};
+
+/** Whether a written field must be produced, or only when something consumes it. */
+enum class Need { Required, Optional };
+
+/** "gbuffer.normal" -> {"gbuffer", "normal"}; a name without exactly one dot gives empty parts. */
+struct ResourceName {
+    std::string pass;
+    std::string field;
+    static ResourceName split(std::string_view resource);
+    std::string joined() const { return pass + "." + field; }
+};
+
+} // namespace inkgraph

@@ -1,0 +1,101 @@
+#include "graph/Resource.h"
+
+#include "graph/Pass.h"
+
+#include <gtest/gtest.h>
+
+namespace inkgraph {
+namespace {
+
+TEST(GraphResourceTest, BytesPerPixel)
+{
+    EXPECT_EQ(bytesPerPixel(Format::RGBA32F), 16);
+    EXPECT_EQ(bytesPerPixel(Format::R32F), 4);
+    EXPECT_EQ(bytesPerPixel(Format::RGBA8), 4);
+    EXPECT_EQ(bytesPerPixel(Format::R8), 1);
+}
+
+TEST(GraphResourceTest, FormatName)
+{
+    EXPECT_EQ(formatName(Format::RGBA32F), "rgba32f");
+    EXPECT_EQ(formatName(Format::R32F), "r32f");
+    EXPECT_EQ(formatName(Format::RGBA8), "rgba8");
+    EXPECT_EQ(formatName(Format::R8), "r8");
+}
+
+TEST(GraphResourceTest, TextureDescDefaultsAndEquality)
+{
+    const TextureDesc desc;
+    EXPECT_EQ(desc.format, Format::RGBA32F);
+    EXPECT_EQ(desc.scale, 1);
+    EXPECT_EQ(desc, (TextureDesc{Format::RGBA32F, 1}));
+    EXPECT_NE(desc, (TextureDesc{Format::RGBA32F, 2}));
+    EXPECT_NE(desc, (TextureDesc{Format::R8, 1}));
+}
+
+TEST(GraphResourceTest, SplitAWellFormedName)
+{
+    const ResourceName name = ResourceName::split("gbuffer.normal");
+    EXPECT_EQ(name.pass, "gbuffer");
+    EXPECT_EQ(name.field, "normal");
+    EXPECT_EQ(name.joined(), "gbuffer.normal");
+}
+
+TEST(GraphResourceTest, SplitWithoutExactlyOneDotGivesEmptyParts)
+{
+    for (const char* bad : {"normal", "", "gbuffer.normal.x", "a..b"}) {
+        SCOPED_TRACE(bad);
+        const ResourceName name = ResourceName::split(bad);
+        EXPECT_TRUE(name.pass.empty());
+        EXPECT_TRUE(name.field.empty());
+    }
+}
+
+TEST(GraphResourceTest, SplitKeepsEmptySidesOfTheDot)
+{
+    const ResourceName leading = ResourceName::split(".normal");
+    EXPECT_EQ(leading.pass, "");
+    EXPECT_EQ(leading.field, "normal");
+    const ResourceName trailing = ResourceName::split("gbuffer.");
+    EXPECT_EQ(trailing.pass, "gbuffer");
+    EXPECT_EQ(trailing.field, "");
+}
+
+TEST(GraphPassBuilderTest, RecordsReadsWritesAndSideEffect)
+{
+    PassBuilder builder("cel");
+    EXPECT_EQ(builder.passName(), "cel");
+    EXPECT_FALSE(builder.hasSideEffect());
+
+    builder.read("gbuffer.normal");
+    builder.read("shademap.ramp");
+    builder.write("color", {Format::RGBA8, 1});
+    builder.write("mask", {Format::R8, 2}, Need::Optional);
+    builder.markSideEffect();
+
+    ASSERT_EQ(builder.reads().size(), 2u);
+    EXPECT_EQ(builder.reads()[0].resource, "gbuffer.normal");
+    EXPECT_EQ(builder.reads()[1].resource, "shademap.ramp");
+    ASSERT_EQ(builder.writes().size(), 2u);
+    EXPECT_EQ(builder.writes()[0].field, "color");
+    EXPECT_EQ(builder.writes()[0].desc, (TextureDesc{Format::RGBA8, 1}));
+    EXPECT_EQ(builder.writes()[0].need, Need::Required);
+    EXPECT_EQ(builder.writes()[1].field, "mask");
+    EXPECT_EQ(builder.writes()[1].desc.scale, 2);
+    EXPECT_EQ(builder.writes()[1].need, Need::Optional);
+    EXPECT_TRUE(builder.hasSideEffect());
+}
+
+TEST(GraphPassBuilderTest, MalformedWritesAreRecordedAsGivenNotThrown)
+{
+    // compile() reports these together with every other problem, so declare() must not throw.
+    PassBuilder builder("cel");
+    EXPECT_NO_THROW(builder.write("hull.color", {}));
+    EXPECT_NO_THROW(builder.write("", {}));
+    ASSERT_EQ(builder.writes().size(), 2u);
+    EXPECT_EQ(builder.writes()[0].field, "hull.color");
+    EXPECT_EQ(builder.writes()[1].field, "");
+}
+
+} // namespace
+} // namespace inkgraph
