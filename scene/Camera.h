@@ -1,0 +1,50 @@
+#pragma once
+/** @file The camera of one still: where it comes from (flags, the file, or auto-framing) and its matrices.
+ *  Conventions: right-handed world, OpenGL lookAt and perspective (the camera looks down -Z in view space). */
+
+#include "scene/Scene.h"
+
+#include <glm/glm.hpp>
+
+#include <optional>
+#include <string>
+
+namespace inkgraph {
+
+/** What the user asked for; every unset field falls back to the glTF camera, then to auto-framing. */
+struct CameraRequest {
+    std::optional<glm::dvec3> eye;
+    std::optional<glm::dvec3> target;
+    glm::dvec3 up{0.0, 1.0, 0.0};
+    std::optional<double> fovYDegrees; ///< vertical field of view; default 35
+    int width = 1024;
+    int height = 1024;
+};
+
+struct Camera {
+    glm::dvec3 eye{0.0, 0.0, 1.0};
+    glm::dvec3 target{0.0};
+    glm::dvec3 up{0.0, 1.0, 0.0};
+    double fovYDegrees = 35.0;
+    double zNear = 0.01;
+    double zFar = 100.0;
+    int width = 1024;
+    int height = 1024;
+    std::string source; ///< "flags", "gltf" or "auto-framed"
+
+    double aspect() const { return double(width) / double(height); }
+    glm::dmat4 viewMatrix() const;       ///< glm::lookAt(eye, target, up)
+    glm::dmat4 projectionMatrix() const; ///< glm::perspective(fovY, aspect, zNear, zFar)
+    /** Focal length in pixels along y: (height/2) / tan(fovY/2). */
+    double focalPixels() const;
+};
+
+/** Resolves a camera. Precedence per field: the request, then the scene's glTF camera, then auto-framing, which
+ *  looks at the bounding-sphere centre from +Z (tilted slightly from above) at the distance where the sphere fits
+ *  the smaller field of view with a 5% margin. Near and far are fitted to the bounding sphere: far = distance to the
+ *  centre + radius (x1.01); near = max(distance - radius, far x 1e-4) (x0.99), so the sphere is never clipped when
+ *  the eye is outside it. Throws std::invalid_argument for eye == target, up parallel to the view direction,
+ *  fov outside (0, 180), or a non-positive size. */
+Camera resolveCamera(const CameraRequest& request, const Scene& scene);
+
+} // namespace inkgraph

@@ -1,0 +1,493 @@
+/** @file glTF 2.0 (.gltf JSON and .glb) through the packaged tinygltf. tinygltf parses and resolves buffers; this file
+ *  walks the node hierarchy, bounds-checks every accessor it reads (tinygltf does not), bakes node transforms into
+ *  world space and picks up the first perspective camera and the first directional KHR_lights_punctual light. */
+
+#include "scene/FormatReaders.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+namespace inkgraph::detail {
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian; add byte swapping");
+
+/** tinygltf decodes textures by default; the renderer uses none, so skip the work (and stb's failure modes). */
+bool skipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+                       void*) {
+    return true;
+}
+
+std::vector<std::string> splitLines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) {
+            end = text.size();
+        }
+        std::string line = text.substr(start, end - start);
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) {
+            line.pop_back();
+        }
+        if (!line.empty()) {
+            lines.push_back(std::move(line));
+        }
+        start = end + 1;
+    }
+    return lines;
+}
+
+std::string joinLines(const std::string& text) {
+    std::string joined;
+    for (const std::string& line : splitLines(text)) {
+        joined += (joined.empty() ? "" : "; ") + line;
+    }
+    return joined;
+}
+
+const char* modeName(int mode) {
+    switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "POINTS";
+    case TINYGLTF_MODE_LINE: return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+    default: return "unknown";
+    }
+}
+
+glm::dmat4 localTransform(const tinygltf::Node& node) {
+    if (node.matrix.size() == 16) {
+        return glm::make_mat4(node.matrix.data()); // both column-major
+    }
+    glm::dmat4 transform(1.0);
+    if (node.translation.size() == 3) {
+        transform = glm::translate(transform, glm::make_vec3(node.translation.data()));
+    }
+    if (node.rotation.size() == 4) {
+        const glm::dquat rotation(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]); // xyzw
+        transform *= glm::mat4_cast(glm::normalize(rotation));
+    }
+    if (node.scale.size() == 3) {
+        transform = glm::scale(transform, glm::make_vec3(node.scale.data()));
+    }
+    return transform;
+}
+
+/** A bounds-checked window on an accessor's elements. */
+struct AccessorData {
+    const unsigned char* first = nullptr;
+    std::size_t stride = 0;
+    std::size_t count = 0;
+    int componentType = 0;
+
+    const unsigned char* element(std::size_t index) const { return first + index * stride; }
+};
+
+class GltfWalker {
+public:
+    GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out)
+        : mPath(path), mModel(model), mOut(out), mOnPath(model.nodes.size(), false) {}
+
+    void walk() {
+        checkRequiredExtensions();
+        for (int root : rootNodes()) {
+            visit(root, glm::dmat4(1.0));
+        }
+        if (mOut.meshes.empty() && mSkippedPrimitives > 0) {
+            throwLoadError(mPath, "no triangles: all " + std::to_string(mSkippedPrimitives) +
+                                      " primitives are non-triangle (points or lines)");
+        }
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& problem) const { throwLoadError(mPath, problem); }
+
+    /** Geometry compression changes what accessors mean, so reading such a file without it would give garbage;
+     *  other required extensions (materials, textures) only affect looks this renderer does not use. */
+    void checkRequiredExtensions() {
+        static const std::array<std::string_view, 3> unsupportedGeometry = {
+            "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization"};
+        for (const std::string& extension : mModel.extensionsRequired) {
+            if (std::ranges::find(unsupportedGeometry, extension) != unsupportedGeometry.end()) {
+                fail("requires the unsupported extension " + extension);
+            }
+            if (extension != "KHR_lights_punctual") {
+                mOut.warnings.push_back("required extension " + extension + " ignored");
+            }
+        }
+    }
+
+    std::vector<int> rootNodes() const {
+        if (!mModel.scenes.empty()) {
+            const bool validDefault =
+                mModel.defaultScene >= 0 && std::size_t(mModel.defaultScene) < mModel.scenes.size();
+            return mModel.scenes[validDefault ? std::size_t(mModel.defaultScene) : 0].nodes;
+        }
+        // No scenes: every node that is nobody's child is a root.
+        std::vector<bool> isChild(mModel.nodes.size(), false);
+        for (const tinygltf::Node& node : mModel.nodes) {
+            for (int child : node.children) {
+                if (child >= 0 && std::size_t(child) < isChild.size()) {
+                    isChild[std::size_t(child)] = true;
+                }
+            }
+        }
+        std::vector<int> roots;
+        for (std::size_t i = 0; i < mModel.nodes.size(); ++i) {
+            if (!isChild[i]) {
+                roots.push_back(int(i));
+            }
+        }
+        return roots;
+    }
+
+    void visit(int nodeIndex, const glm::dmat4& parentWorld) {
+        if (nodeIndex < 0 || std::size_t(nodeIndex) >= mModel.nodes.size()) {
+            fail("node index " + std::to_string(nodeIndex) + " out of range (file has " +
+                 std::to_string(mModel.nodes.size()) + " nodes)");
+        }
+        if (mOnPath[std::size_t(nodeIndex)]) {
+            fail("node " + std::to_string(nodeIndex) + " is its own ancestor (cycle in the node hierarchy)");
+        }
+        const tinygltf::Node& node = mModel.nodes[std::size_t(nodeIndex)];
+        const glm::dmat4 world = parentWorld * localTransform(node);
+
+        if (node.mesh >= 0) {
+            addMesh(node, world);
+        }
+        if (node.camera >= 0) {
+            addCamera(node, world);
+        }
+        addLight(node, world);
+
+        mOnPath[std::size_t(nodeIndex)] = true;
+        for (int child : node.children) {
+            visit(child, world);
+        }
+        mOnPath[std::size_t(nodeIndex)] = false;
+    }
+
+    void addCamera(const tinygltf::Node& node, const glm::dmat4& world) {
+        if (std::size_t(node.camera) >= mModel.cameras.size()) {
+            fail("camera index " + std::to_string(node.camera) + " out of range");
+        }
+        const tinygltf::Camera& camera = mModel.cameras[std::size_t(node.camera)];
+        if (camera.type != "perspective") {
+            mOut.warnings.push_back("camera '" + camera.name + "' of type '" + camera.type +
+                                    "' ignored (only perspective cameras are used)");
+            return;
+        }
+        if (mOut.camera) {
+            return; // the first one wins
+        }
+        SceneCamera result;
+        result.eye = glm::dvec3(world[3]);
+        result.forward = glm::normalize(glm::dvec3(world * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
+        result.up = glm::normalize(glm::dvec3(world * glm::dvec4(0.0, 1.0, 0.0, 0.0)));
+        result.fovYDegrees = glm::degrees(camera.perspective.yfov);
+        if (camera.perspective.aspectRatio > 0.0) {
+            result.aspectRatio = camera.perspective.aspectRatio;
+        }
+        if (!std::isfinite(result.eye.x + result.eye.y + result.eye.z) ||
+            !std::isfinite(result.forward.x + result.forward.y + result.forward.z) ||
+            !std::isfinite(result.up.x + result.up.y + result.up.z)) {
+            fail("camera '" + camera.name + "' has a degenerate or non-finite node transform");
+        }
+        mOut.camera = result;
+    }
+
+    void addLight(const tinygltf::Node& node, const glm::dmat4& world) {
+        const auto extension = node.extensions.find("KHR_lights_punctual");
+        if (extension == node.extensions.end() || !extension->second.IsObject() || !extension->second.Has("light") ||
+            !extension->second.Get("light").IsNumber()) {
+            return;
+        }
+        const int lightIndex = extension->second.Get("light").GetNumberAsInt();
+        if (lightIndex < 0 || std::size_t(lightIndex) >= mModel.lights.size()) {
+            fail("KHR_lights_punctual light index " + std::to_string(lightIndex) + " out of range");
+        }
+        const tinygltf::Light& light = mModel.lights[std::size_t(lightIndex)];
+        if (light.type != "directional") {
+            mOut.warnings.push_back("KHR_lights_punctual " + light.type + " light '" + light.name +
+                                    "' ignored (only directional lights are used)");
+            return;
+        }
+        if (mOut.light) {
+            return;
+        }
+        DirectionalLight result;
+        // The light shines down its local -Z, so the direction from the surface toward it is the node's +Z.
+        result.towardLight = glm::normalize(glm::dvec3(world * glm::dvec4(0.0, 0.0, 1.0, 0.0)));
+        if (light.color.size() >= 3) {
+            result.color = glm::dvec3(light.color[0], light.color[1], light.color[2]);
+        }
+        result.intensity = light.intensity;
+        if (!std::isfinite(result.towardLight.x + result.towardLight.y + result.towardLight.z)) {
+            fail("light '" + light.name + "' has a degenerate or non-finite node transform");
+        }
+        mOut.light = result;
+    }
+
+    void addMesh(const tinygltf::Node& node, const glm::dmat4& world) {
+        if (std::size_t(node.mesh) >= mModel.meshes.size()) {
+            fail("mesh index " + std::to_string(node.mesh) + " out of range");
+        }
+        const tinygltf::Mesh& mesh = mModel.meshes[std::size_t(node.mesh)];
+        const std::string baseName = !node.name.empty()   ? node.name
+                                     : !mesh.name.empty() ? mesh.name
+                                                          : "mesh " + std::to_string(node.mesh);
+        for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
+            const std::string name =
+                mesh.primitives.size() == 1 ? baseName : baseName + " primitive " + std::to_string(i);
+            addPrimitive(mesh.primitives[i], name, world);
+        }
+    }
+
+    AccessorData accessorData(int accessorIndex, int expectedType, const std::string& role) const {
+        if (accessorIndex < 0 || std::size_t(accessorIndex) >= mModel.accessors.size()) {
+            fail(role + " accessor index " + std::to_string(accessorIndex) + " out of range");
+        }
+        const tinygltf::Accessor& accessor = mModel.accessors[std::size_t(accessorIndex)];
+        const std::string label = role + " accessor " + std::to_string(accessorIndex);
+        if (accessor.sparse.isSparse) {
+            fail(label + ": sparse accessors are not supported");
+        }
+        if (accessor.type != expectedType) {
+            fail(label + ": unexpected element type");
+        }
+        const int componentBytes = tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType));
+        const int components = tinygltf::GetNumComponentsInType(std::uint32_t(accessor.type));
+        if (componentBytes <= 0 || components <= 0) {
+            fail(label + ": invalid component type");
+        }
+        if (accessor.bufferView < 0 || std::size_t(accessor.bufferView) >= mModel.bufferViews.size()) {
+            fail(label + ": missing or out-of-range buffer view");
+        }
+        const tinygltf::BufferView& view = mModel.bufferViews[std::size_t(accessor.bufferView)];
+        if (view.buffer < 0 || std::size_t(view.buffer) >= mModel.buffers.size()) {
+            fail(label + ": buffer view " + std::to_string(accessor.bufferView) + " has an out-of-range buffer");
+        }
+        const std::vector<unsigned char>& buffer = mModel.buffers[std::size_t(view.buffer)].data;
+        if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
+            fail("buffer view " + std::to_string(accessor.bufferView) + " (offset " + std::to_string(view.byteOffset) +
+                 ", length " + std::to_string(view.byteLength) + ") exceeds its buffer of " +
+                 std::to_string(buffer.size()) + " bytes");
+        }
+
+        AccessorData data;
+        data.componentType = accessor.componentType;
+        data.count = accessor.count;
+        const std::size_t elementBytes = std::size_t(componentBytes) * std::size_t(components);
+        data.stride = view.byteStride != 0 ? view.byteStride : elementBytes;
+        if (data.stride < elementBytes) {
+            fail(label + ": byte stride " + std::to_string(data.stride) + " is smaller than an element");
+        }
+        if (data.count == 0) {
+            return data;
+        }
+        // Last byte read: offset + stride * (count - 1) + elementBytes, checked without overflow.
+        const std::size_t available = view.byteLength;
+        const bool fits = accessor.byteOffset <= available && elementBytes <= available - accessor.byteOffset &&
+                          (data.count - 1) <= (available - accessor.byteOffset - elementBytes) / data.stride;
+        if (!fits) {
+            fail(label + " (" + std::to_string(data.count) + " elements from offset " +
+                 std::to_string(accessor.byteOffset) + ") reads past the end of buffer view " +
+                 std::to_string(accessor.bufferView) + " (" + std::to_string(available) + " bytes)");
+        }
+        data.first = buffer.data() + view.byteOffset + accessor.byteOffset;
+        return data;
+    }
+
+    std::vector<glm::vec3> readVec3(int accessorIndex, const std::string& role) const {
+        const AccessorData data = accessorData(accessorIndex, TINYGLTF_TYPE_VEC3, role);
+        if (data.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+            fail(role + " accessor " + std::to_string(accessorIndex) + ": only float components are supported");
+        }
+        std::vector<glm::vec3> values(data.count);
+        for (std::size_t i = 0; i < data.count; ++i) {
+            std::memcpy(&values[i], data.element(i), sizeof(glm::vec3));
+            if (!std::isfinite(values[i].x) || !std::isfinite(values[i].y) || !std::isfinite(values[i].z)) {
+                fail(role + " accessor " + std::to_string(accessorIndex) + " element " + std::to_string(i) +
+                     ": non-finite coordinate");
+            }
+        }
+        return values;
+    }
+
+    std::vector<std::uint32_t> readIndices(int accessorIndex, std::size_t vertexCount) const {
+        const AccessorData data = accessorData(accessorIndex, TINYGLTF_TYPE_SCALAR, "index");
+        std::vector<std::uint32_t> indices(data.count);
+        for (std::size_t i = 0; i < data.count; ++i) {
+            const unsigned char* element = data.element(i);
+            switch (data.componentType) {
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: indices[i] = *element; break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                std::uint16_t value = 0;
+                std::memcpy(&value, element, sizeof value);
+                indices[i] = value;
+                break;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&indices[i], element, sizeof(std::uint32_t)); break;
+            default:
+                fail("index accessor " + std::to_string(accessorIndex) +
+                     ": component type must be unsigned byte, short or int");
+            }
+            if (indices[i] >= vertexCount) {
+                fail("index accessor " + std::to_string(accessorIndex) + " element " + std::to_string(i) + ": index " +
+                     std::to_string(indices[i]) + " out of range (primitive has " + std::to_string(vertexCount) +
+                     " vertices)");
+            }
+        }
+        return indices;
+    }
+
+    /** Triangles of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN index sequence, all wound like the first. */
+    std::vector<glm::uvec3> triangulate(int mode, const std::vector<std::uint32_t>& v, const std::string& name) {
+        std::vector<glm::uvec3> triangles;
+        const std::size_t n = v.size();
+        if (mode == TINYGLTF_MODE_TRIANGLES) {
+            if (n % 3 != 0) {
+                mOut.warnings.push_back("'" + name + "': " + std::to_string(n % 3) +
+                                        " trailing indices of an incomplete triangle ignored");
+            }
+            triangles.reserve(n / 3);
+            for (std::size_t i = 0; i + 2 < n; i += 3) {
+                triangles.emplace_back(v[i], v[i + 1], v[i + 2]);
+            }
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            // Every other strip triangle swaps its last two corners to keep the strip's winding.
+            for (std::size_t i = 0; i + 2 < n; ++i) {
+                if (i % 2 == 0) {
+                    triangles.emplace_back(v[i], v[i + 1], v[i + 2]);
+                } else {
+                    triangles.emplace_back(v[i], v[i + 2], v[i + 1]);
+                }
+            }
+        } else { // TRIANGLE_FAN
+            for (std::size_t i = 1; i + 1 < n; ++i) {
+                triangles.emplace_back(v[0], v[i], v[i + 1]);
+            }
+        }
+        return triangles;
+    }
+
+    void addPrimitive(const tinygltf::Primitive& primitive, const std::string& name, const glm::dmat4& world) {
+        const int mode = primitive.mode;
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+            ++mSkippedPrimitives;
+            mOut.warnings.push_back("'" + name + "': non-triangle primitive (mode " + std::to_string(mode) + ", " +
+                                    modeName(mode) + ") skipped");
+            return;
+        }
+        const auto positionAttribute = primitive.attributes.find("POSITION");
+        if (positionAttribute == primitive.attributes.end()) {
+            mOut.warnings.push_back("'" + name + "': primitive without POSITION skipped");
+            return;
+        }
+
+        RawMesh mesh;
+        mesh.name = name;
+        mesh.positions = readVec3(positionAttribute->second, "POSITION");
+        const std::size_t vertexCount = mesh.positions.size();
+        const auto normalAttribute = primitive.attributes.find("NORMAL");
+        if (normalAttribute != primitive.attributes.end()) {
+            mesh.normals = readVec3(normalAttribute->second, "NORMAL");
+            if (mesh.normals.size() != vertexCount) {
+                fail("'" + name + "': NORMAL has " + std::to_string(mesh.normals.size()) +
+                     " elements but POSITION has " + std::to_string(vertexCount));
+            }
+        }
+
+        std::vector<std::uint32_t> indices;
+        if (primitive.indices >= 0) {
+            indices = readIndices(primitive.indices, vertexCount);
+        } else {
+            indices.resize(vertexCount);
+            for (std::size_t i = 0; i < vertexCount; ++i) {
+                indices[i] = std::uint32_t(i);
+            }
+        }
+        mesh.triangles = triangulate(mode, indices, name);
+
+        // Bake the node transform; normals use the inverse transpose so non-uniform scale keeps them perpendicular.
+        const glm::dmat3 linear(world);
+        const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
+        for (glm::vec3& position : mesh.positions) {
+            position = glm::vec3(world * glm::dvec4(glm::dvec3(position), 1.0));
+            if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) {
+                fail("'" + name + "': node transform produces non-finite positions");
+            }
+        }
+        for (glm::vec3& normal : mesh.normals) {
+            const glm::dvec3 transformed = normalMatrix * glm::dvec3(normal);
+            const double length = glm::length(transformed);
+            normal = length > 0.0 && std::isfinite(length) ? glm::vec3(transformed / length) : glm::vec3(0.0f);
+        }
+        // A mirroring transform turns counter-clockwise into clockwise; swap two corners to keep fronts outward.
+        if (glm::determinant(linear) < 0.0) {
+            for (glm::uvec3& triangle : mesh.triangles) {
+                std::swap(triangle.y, triangle.z);
+            }
+        }
+
+        if (primitive.material >= 0 && std::size_t(primitive.material) < mModel.materials.size()) {
+            const std::vector<double>& factor =
+                mModel.materials[std::size_t(primitive.material)].pbrMetallicRoughness.baseColorFactor;
+            if (factor.size() == 4) {
+                mesh.baseColor = glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
+            }
+        }
+        mOut.meshes.push_back(std::move(mesh));
+    }
+
+    const std::string& mPath;
+    const tinygltf::Model& mModel;
+    RawScene& mOut;
+    std::vector<bool> mOnPath; ///< nodes on the current root-to-node path, to detect cycles
+    std::size_t mSkippedPrimitives = 0;
+};
+
+} // namespace
+
+RawScene readGltf(const std::string& path, bool binary) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(&skipImageDecoding, nullptr);
+    tinygltf::Model model;
+    std::string error;
+    std::string warning;
+    const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
+                               : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+    if (!loaded) {
+        throwLoadError(path, std::string(binary ? "invalid GLB" : "invalid glTF") + ": " +
+                                 (error.empty() ? "tinygltf gave no reason" : joinLines(error)));
+    }
+
+    RawScene scene;
+    scene.format = binary ? "glb" : "gltf";
+    // tinygltf also reports recoverable problems (e.g. chunk padding) through `error` while still succeeding.
+    for (const std::string* messages : {&warning, &error}) {
+        for (std::string& line : splitLines(*messages)) {
+            scene.warnings.push_back("tinygltf: " + std::move(line));
+        }
+    }
+    GltfWalker(path, model, scene).walk();
+    if (scene.meshes.empty()) {
+        throwLoadError(path, "no triangles in the file");
+    }
+    return scene;
+}
+
+} // namespace inkgraph::detail

@@ -1,0 +1,68 @@
+#pragma once
+/** @file Geometry clean-up shared by every loader: welding, degenerate removal and smooth normals.
+ *  Exposed (rather than hidden in a .cpp) so tests and procedural meshes can use the same code paths. */
+
+#include "scene/Scene.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+
+/** An axis-aligned box; empty (min > max) until a point is added. */
+struct BoundingBox {
+    glm::dvec3 min{std::numeric_limits<double>::max()};
+    glm::dvec3 max{std::numeric_limits<double>::lowest()};
+
+    void add(const glm::dvec3& point) {
+        min = glm::min(min, point);
+        max = glm::max(max, point);
+    }
+    bool empty() const { return min.x > max.x; }
+    double diagonal() const { return empty() ? 0.0 : glm::length(max - min); }
+    glm::dvec3 center() const { return (min + max) * 0.5; }
+};
+
+BoundingBox computeBoundingBox(std::span<const glm::vec3> positions);
+
+/** Result of weldVertices(): the vertices to keep and where every input vertex went. */
+struct WeldMap {
+    std::vector<std::uint32_t> kept;     ///< input index of each output vertex, in first-seen order
+    std::vector<std::uint32_t> outputOf; ///< output index of each input vertex
+};
+
+/** Merges vertices closer than `distance` (absolute). When `normals` is not empty (one per position), two vertices
+ *  merge only if their normals also agree, so hard edges keep their split normals. Uses a hash grid with cells of
+ *  ~2.5 x distance and checks the 8 cells that can hold a match, so points straddling a cell border still merge.
+ *  Greedy: each vertex joins the first earlier representative within reach. */
+WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals, double distance);
+
+/** Area-weighted smooth normals: every vertex sums the unnormalised cross products of its triangles. A vertex whose
+ *  sum vanishes (e.g. two opposite faces) takes the normal of one incident face, or (0,0,1) if all are degenerate. */
+std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions,
+                                            std::span<const glm::uvec3> triangles);
+
+/** Removes triangles with a repeated index or an area at most `minArea`; returns how many were removed. */
+std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
+                                    double minArea);
+
+/** A mesh as a loader reads it: world-space, not welded, normals optional (empty or one per position). */
+struct RawMesh {
+    std::string name;
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::uvec3> triangles;
+    glm::vec4 baseColor{0.8f, 0.8f, 0.8f, 1.0f};
+};
+
+/** Turns a raw mesh into a clean Mesh: welds within options.weldTolerance x modelDiagonal, drops degenerate
+ *  triangles (area <= 1e-14 x modelDiagonal^2) and unreferenced vertices, normalises the file's normals (zero ones
+ *  are recomputed) or computes smooth ones. Adds its counts to `report`. The result may have no triangles. */
+Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options, LoadReport& report);
+
+} // namespace inkgraph

@@ -1,0 +1,255 @@
+/** @file STL, binary and ASCII. Facet normals are ignored (often wrong or zero in the wild); loadScene() computes
+ *  smooth normals after welding the three separate corners each facet carries. */
+
+#include "scene/FormatReaders.h"
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+
+namespace inkgraph::detail {
+
+namespace {
+
+constexpr std::size_t kBinaryHeaderBytes = 80;
+constexpr std::size_t kBinaryPreambleBytes = kBinaryHeaderBytes + 4; // header + uint32 triangle count
+constexpr std::size_t kBinaryTriangleBytes = 50;                     // normal, 3 corners, uint16 attribute
+
+template <typename T>
+T readLittleEndian(const char* bytes) {
+    static_assert(sizeof(T) == 4);
+    std::uint32_t raw = 0;
+    std::memcpy(&raw, bytes, sizeof raw);
+    if constexpr (std::endian::native == std::endian::big) {
+        raw = ((raw & 0xFFu) << 24) | ((raw & 0xFF00u) << 8) | ((raw >> 8) & 0xFF00u) | (raw >> 24);
+    }
+    return std::bit_cast<T>(raw);
+}
+
+std::string meshNameFor(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+RawScene readBinary(const std::string& path, std::string_view content, std::uint32_t triangleCount) {
+    RawScene scene;
+    scene.format = "stl-binary";
+    RawMesh mesh;
+    mesh.name = meshNameFor(path);
+    // The caller checked the file holds every declared triangle, so this reservation is bounded by the file size.
+    mesh.positions.reserve(std::size_t(triangleCount) * 3);
+    mesh.triangles.reserve(triangleCount);
+    const char* record = content.data() + kBinaryPreambleBytes;
+    for (std::uint32_t triangle = 0; triangle < triangleCount; ++triangle, record += kBinaryTriangleBytes) {
+        const char* corners = record + 12; // skip the facet normal
+        for (int corner = 0; corner < 3; ++corner) {
+            glm::vec3 position;
+            for (int axis = 0; axis < 3; ++axis) {
+                position[axis] = readLittleEndian<float>(corners + 12 * corner + 4 * axis);
+            }
+            if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) {
+                throwLoadError(path, "triangle " + std::to_string(triangle) + ": non-finite vertex coordinate");
+            }
+            mesh.positions.push_back(position);
+        }
+        const auto first = std::uint32_t(3 * triangle);
+        mesh.triangles.emplace_back(first, first + 1, first + 2);
+    }
+    scene.meshes.push_back(std::move(mesh));
+    return scene;
+}
+
+/** Where the ASCII parser gave up; kept separate so the caller can still report a binary interpretation. */
+struct AsciiFailure {
+    std::size_t line = 0;
+    std::string problem;
+};
+
+/** Whitespace tokenizer that tracks line numbers. */
+class Tokenizer {
+public:
+    explicit Tokenizer(std::string_view text) : mText(text) {}
+
+    /** The next token, or an empty view at the end. */
+    std::string_view next() {
+        skipWhitespace();
+        const std::size_t start = mPosition;
+        while (mPosition < mText.size() && !std::isspace(static_cast<unsigned char>(mText[mPosition]))) {
+            ++mPosition;
+        }
+        return mText.substr(start, mPosition - start);
+    }
+
+    void skipRestOfLine() {
+        while (mPosition < mText.size() && mText[mPosition] != '\n') {
+            ++mPosition;
+        }
+    }
+
+    std::size_t line() const { return mLine; }
+
+private:
+    void skipWhitespace() {
+        while (mPosition < mText.size() && std::isspace(static_cast<unsigned char>(mText[mPosition]))) {
+            if (mText[mPosition] == '\n') {
+                ++mLine;
+            }
+            ++mPosition;
+        }
+    }
+
+    std::string_view mText;
+    std::size_t mPosition = 0;
+    std::size_t mLine = 1;
+};
+
+bool equalsIgnoringCase(std::string_view a, std::string_view b) {
+    if (a.size() != b.size()) {
+        return false;
+    }
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/** Parses `solid ... facet normal n n n / outer loop / vertex x y z (3+) / endloop / endfacet ... endsolid`, several
+ *  solids allowed. Loops with more than three vertices are fan-triangulated. */
+std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, std::vector<std::string>& warnings) {
+    // Text never holds NUL bytes while binary STL nearly always does (zero floats, zero attribute words): this
+    // catches a binary file whose header starts with "solid" before its bytes are misread as tokens.
+    if (const std::size_t nul = content.find('\0'); nul != std::string_view::npos) {
+        const auto line = std::size_t(std::count(content.begin(), content.begin() + std::ptrdiff_t(nul), '\n')) + 1;
+        return AsciiFailure{line, "binary data (NUL byte) in text"};
+    }
+    Tokenizer tokens(content);
+    enum class State { OutsideSolid, InSolid, InFacet, InLoop, AfterLoop };
+    State state = State::OutsideSolid;
+    std::size_t loopStart = 0; // index in mesh.positions of the current loop's first vertex
+
+    auto failure = [&](std::string problem) { return AsciiFailure{tokens.line(), std::move(problem)}; };
+    auto readNumber = [&](float& value) -> bool {
+        std::string_view token = tokens.next();
+        if (!token.empty() && token.front() == '+') {
+            token.remove_prefix(1);
+        }
+        const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+        return error == std::errc() && end == token.data() + token.size();
+    };
+
+    for (std::string_view token = tokens.next(); !token.empty(); token = tokens.next()) {
+        if (equalsIgnoringCase(token, "solid") && state == State::OutsideSolid) {
+            tokens.skipRestOfLine(); // the solid's name
+            state = State::InSolid;
+        } else if (equalsIgnoringCase(token, "endsolid") && state == State::InSolid) {
+            tokens.skipRestOfLine();
+            state = State::OutsideSolid;
+        } else if (equalsIgnoringCase(token, "facet") && state == State::InSolid) {
+            if (!equalsIgnoringCase(tokens.next(), "normal")) {
+                return failure("expected 'normal' after 'facet'");
+            }
+            float ignored = 0.0f;
+            for (int axis = 0; axis < 3; ++axis) {
+                if (!readNumber(ignored)) {
+                    return failure("cannot read facet normal");
+                }
+            }
+            state = State::InFacet;
+        } else if (equalsIgnoringCase(token, "outer") && state == State::InFacet) {
+            if (!equalsIgnoringCase(tokens.next(), "loop")) {
+                return failure("expected 'loop' after 'outer'");
+            }
+            loopStart = mesh.positions.size();
+            state = State::InLoop;
+        } else if (equalsIgnoringCase(token, "vertex") && state == State::InLoop) {
+            glm::vec3 position;
+            for (int axis = 0; axis < 3; ++axis) {
+                if (!readNumber(position[axis])) {
+                    return failure("cannot read vertex coordinate");
+                }
+            }
+            if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) {
+                return failure("non-finite vertex coordinate");
+            }
+            mesh.positions.push_back(position);
+        } else if (equalsIgnoringCase(token, "endloop") && state == State::InLoop) {
+            const std::size_t loopSize = mesh.positions.size() - loopStart;
+            if (loopSize < 3) {
+                return failure("facet loop has " + std::to_string(loopSize) + " vertices (needs 3)");
+            }
+            for (std::size_t i = 1; i + 1 < loopSize; ++i) {
+                mesh.triangles.emplace_back(loopStart, loopStart + i, loopStart + i + 1);
+            }
+            state = State::AfterLoop;
+        } else if (equalsIgnoringCase(token, "endfacet") && state == State::AfterLoop) {
+            state = State::InSolid;
+        } else {
+            return failure("unexpected '" + std::string(token.substr(0, 40)) + "'");
+        }
+    }
+    if (state == State::InSolid) {
+        warnings.push_back("ASCII STL ends without 'endsolid' (truncated?)");
+    } else if (state != State::OutsideSolid) {
+        return failure("unexpected end of file inside a facet");
+    }
+    return std::nullopt;
+}
+
+bool startsWithSolid(std::string_view content) {
+    std::size_t start = 0;
+    while (start < content.size() && std::isspace(static_cast<unsigned char>(content[start]))) {
+        ++start;
+    }
+    return content.size() - start >= 5 && equalsIgnoringCase(content.substr(start, 5), "solid");
+}
+
+} // namespace
+
+RawScene readStl(const std::string& path, std::string_view content) {
+    const bool hasBinaryPreamble = content.size() >= kBinaryPreambleBytes;
+    const std::uint32_t declaredTriangles =
+        hasBinaryPreamble ? readLittleEndian<std::uint32_t>(content.data() + kBinaryHeaderBytes) : 0;
+    const std::uint64_t binarySize = kBinaryPreambleBytes + std::uint64_t(declaredTriangles) * kBinaryTriangleBytes;
+    const std::string binaryClaim = "its binary header declares " + std::to_string(declaredTriangles) + " triangles (" +
+                                    std::to_string(binarySize) + " bytes) but the file has " +
+                                    std::to_string(content.size()) + " bytes";
+
+    // The size test comes first: binary exporters often start the free-form header with "solid" too.
+    if (hasBinaryPreamble && binarySize == content.size()) {
+        return readBinary(path, content, declaredTriangles);
+    }
+    if (startsWithSolid(content)) {
+        RawScene scene;
+        scene.format = "stl-ascii";
+        RawMesh mesh;
+        mesh.name = meshNameFor(path);
+        const std::optional<AsciiFailure> failure = parseAscii(content, mesh, scene.warnings);
+        if (!failure) {
+            scene.meshes.push_back(std::move(mesh));
+            return scene;
+        }
+        if (!hasBinaryPreamble) {
+            throwLoadErrorAtLine(path, failure->line, "invalid ASCII STL: " + failure->problem);
+        }
+        throwLoadError(path, "neither ASCII STL (line " + std::to_string(failure->line) + ": " + failure->problem +
+                                 ") nor binary STL (" + binaryClaim + ")");
+    }
+    if (!hasBinaryPreamble) {
+        throwLoadError(path, "not an STL file: " + std::to_string(content.size()) +
+                                 " bytes are too few for a binary STL (84-byte preamble) and there is no 'solid' line");
+    }
+    if (binarySize > content.size()) {
+        throwLoadError(path, "truncated binary STL: " + binaryClaim);
+    }
+    RawScene scene = readBinary(path, content, declaredTriangles);
+    scene.warnings.push_back("binary STL: " + std::to_string(content.size() - binarySize) +
+                             " bytes after the last triangle ignored");
+    return scene;
+}
+
+} // namespace inkgraph::detail

@@ -1,0 +1,257 @@
+#include "scene/Camera.h"
+
+#include "scene/Procedural.h"
+
+#include "SceneTestSupport.h"
+
+#include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
+
+#include <cmath>
+
+namespace inkgraph {
+namespace {
+
+void expectNear(const glm::dvec3& actual, const glm::dvec3& expected, double tolerance = 1e-9) {
+    EXPECT_NEAR(actual.x, expected.x, tolerance);
+    EXPECT_NEAR(actual.y, expected.y, tolerance);
+    EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+Scene sphereScene(glm::vec3 center = {3, -2, 5}, float radius = 2.0f) {
+    return makeScene(makeUvSphere(center, radius, 48, 24));
+}
+
+glm::dvec4 toClip(const Camera& camera, const glm::dvec3& point) {
+    return camera.projectionMatrix() * camera.viewMatrix() * glm::dvec4(point, 1.0);
+}
+
+/** Points of the sphere that bound its image: the 6 axis extremes and the silhouette circle seen from the eye. */
+std::vector<glm::dvec3> outlinePoints(const BoundingSphere& sphere, const glm::dvec3& eye) {
+    std::vector<glm::dvec3> points;
+    for (int axis = 0; axis < 3; ++axis) {
+        glm::dvec3 offset(0.0);
+        offset[axis] = sphere.radius;
+        points.push_back(sphere.center + offset);
+        points.push_back(sphere.center - offset);
+    }
+    const double distance = glm::length(sphere.center - eye);
+    const glm::dvec3 w = (sphere.center - eye) / distance;
+    const glm::dvec3 u = glm::normalize(glm::cross(w, std::abs(w.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0)));
+    const glm::dvec3 v = glm::cross(w, u);
+    const glm::dvec3 circleCenter = sphere.center - w * (sphere.radius * sphere.radius / distance);
+    const double circleRadius =
+        sphere.radius * std::sqrt(distance * distance - sphere.radius * sphere.radius) / distance;
+    for (int i = 0; i < 72; ++i) {
+        const double angle = 2.0 * glm::pi<double>() * i / 72.0;
+        points.push_back(circleCenter + circleRadius * (std::cos(angle) * u + std::sin(angle) * v));
+    }
+    return points;
+}
+
+template <typename Function>
+std::string invalidArgumentMessage(Function&& function) {
+    try {
+        function();
+    } catch (const std::invalid_argument& error) {
+        return error.what();
+    }
+    ADD_FAILURE() << "expected std::invalid_argument";
+    return {};
+}
+
+TEST(Camera, AutoFramingFitsTheWholeBoundingSphere) {
+    const Scene scene = sphereScene();
+    const BoundingSphere sphere = computeBoundingSphere(scene);
+    for (const glm::ivec2 size : {glm::ivec2(1024, 1024), glm::ivec2(1920, 1080), glm::ivec2(600, 1000)}) {
+        for (const double fov : {20.0, 35.0, 70.0}) {
+            CameraRequest request;
+            request.width = size.x;
+            request.height = size.y;
+            request.fovYDegrees = fov;
+            const Camera camera = resolveCamera(request, scene);
+            SCOPED_TRACE(testing::Message() << size.x << "x" << size.y << ", fov " << fov);
+
+            EXPECT_EQ(camera.source, "auto-framed");
+            expectNear(camera.target, sphere.center);
+            expectNear(glm::normalize(camera.eye - camera.target), glm::normalize(glm::dvec3(0.0, 0.25, 1.0)));
+
+            double largest = 0.0;
+            for (const glm::dvec3& point : outlinePoints(sphere, camera.eye)) {
+                const glm::dvec4 clip = toClip(camera, point);
+                ASSERT_GT(clip.w, 0.0);
+                const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+                EXPECT_LE(std::abs(ndc.x), 1.0);
+                EXPECT_LE(std::abs(ndc.y), 1.0);
+                EXPECT_LE(std::abs(ndc.z), 1.0);
+                largest = std::max({largest, std::abs(ndc.x), std::abs(ndc.y)});
+            }
+            // The 5% margin: the sphere fills about 1/1.05 of the narrower half-extent, not much less.
+            EXPECT_GT(largest, 0.9);
+            EXPECT_LT(largest, 0.99);
+        }
+    }
+}
+
+TEST(Camera, ClipPlanesEncloseTheSphere) {
+    const Scene scene = sphereScene();
+    const BoundingSphere sphere = computeBoundingSphere(scene);
+    const Camera camera = resolveCamera({}, scene);
+    const double distance = glm::length(camera.eye - sphere.center);
+    EXPECT_GT(camera.zNear, 0.0);
+    EXPECT_LT(camera.zNear, distance - sphere.radius);
+    EXPECT_GT(camera.zFar, distance + sphere.radius);
+    EXPECT_NEAR(camera.zFar, (distance + sphere.radius) * 1.01, 1e-9);
+    EXPECT_NEAR(camera.zNear, (distance - sphere.radius) * 0.99, 1e-9);
+}
+
+TEST(Camera, EyeInsideTheSphereGetsATinyNearPlane) {
+    const Scene scene = sphereScene({0, 0, 0}, 10.0f);
+    CameraRequest request;
+    request.eye = glm::dvec3(1, 0, 0);
+    request.target = glm::dvec3(1, 0, -1);
+    const Camera camera = resolveCamera(request, scene);
+    EXPECT_NEAR(camera.zFar, (1.0 + 10.0) * 1.01, 1e-5);
+    EXPECT_DOUBLE_EQ(camera.zNear, camera.zFar * 1e-4);
+}
+
+TEST(Camera, RequestedEyeAndTargetAreHonoured) {
+    const Scene scene = sphereScene();
+    const BoundingSphere sphere = computeBoundingSphere(scene);
+
+    CameraRequest both;
+    both.eye = glm::dvec3(20, 1, 2);
+    both.target = glm::dvec3(0, 1, 0);
+    both.up = glm::dvec3(0, 0, 1);
+    both.fovYDegrees = 50.0;
+    both.width = 640;
+    both.height = 480;
+    const Camera camera = resolveCamera(both, scene);
+    EXPECT_EQ(camera.source, "flags");
+    EXPECT_EQ(camera.eye, *both.eye);
+    EXPECT_EQ(camera.target, *both.target);
+    EXPECT_EQ(camera.up, both.up);
+    EXPECT_EQ(camera.fovYDegrees, 50.0);
+    EXPECT_EQ(camera.width, 640);
+    EXPECT_EQ(camera.height, 480);
+
+    CameraRequest eyeOnly;
+    eyeOnly.eye = glm::dvec3(0, 0, 30);
+    const Camera aimed = resolveCamera(eyeOnly, scene);
+    EXPECT_EQ(aimed.source, "flags");
+    expectNear(aimed.target, sphere.center);
+    EXPECT_EQ(aimed.fovYDegrees, 35.0);
+
+    CameraRequest targetOnly;
+    targetOnly.target = glm::dvec3(1, 1, 1);
+    const Camera placed = resolveCamera(targetOnly, scene);
+    EXPECT_EQ(placed.source, "auto-framed");
+    EXPECT_EQ(placed.target, *targetOnly.target);
+    const Camera framed = resolveCamera({}, scene);
+    expectNear(placed.eye - placed.target, framed.eye - framed.target); // the same offset as auto-framing
+}
+
+TEST(Camera, GltfCameraIsUsedWithoutFlags) {
+    Scene scene = sphereScene({0, 0, 0}, 1.0f);
+    SceneCamera fileCamera;
+    fileCamera.eye = glm::dvec3(0, 0, 8);
+    fileCamera.forward = glm::normalize(glm::dvec3(0.1, 0, -1));
+    fileCamera.up = glm::dvec3(1, 0, 0); // rolled 90 degrees
+    fileCamera.fovYDegrees = 22.0;
+    scene.camera = fileCamera;
+
+    const Camera camera = resolveCamera({}, scene);
+    EXPECT_EQ(camera.source, "gltf");
+    EXPECT_EQ(camera.eye, fileCamera.eye);
+    expectNear(glm::normalize(camera.target - camera.eye), fileCamera.forward);
+    EXPECT_EQ(camera.up, fileCamera.up);
+    EXPECT_EQ(camera.fovYDegrees, 22.0);
+
+    CameraRequest fovOnly;
+    fovOnly.fovYDegrees = 40.0;
+    const Camera widened = resolveCamera(fovOnly, scene);
+    EXPECT_EQ(widened.source, "gltf");
+    EXPECT_EQ(widened.fovYDegrees, 40.0);
+
+    // An explicit eye replaces the file's placement; the file's lens still applies.
+    CameraRequest eye;
+    eye.eye = glm::dvec3(5, 0, 0);
+    const Camera moved = resolveCamera(eye, scene);
+    EXPECT_EQ(moved.source, "flags");
+    EXPECT_EQ(moved.up, glm::dvec3(0, 1, 0));
+    expectNear(moved.target, glm::dvec3(0.0), 1e-6);
+    EXPECT_EQ(moved.fovYDegrees, 22.0);
+}
+
+TEST(Camera, InvalidRequestsThrow) {
+    const Scene scene = sphereScene();
+    const auto expectInvalid = [&](const CameraRequest& request, const char* what) {
+        const std::string message = invalidArgumentMessage([&] { resolveCamera(request, scene); });
+        EXPECT_EQ(message.rfind("resolveCamera():", 0), 0u) << what << ": " << message;
+    };
+    CameraRequest same;
+    same.eye = glm::dvec3(1, 2, 3);
+    same.target = glm::dvec3(1, 2, 3);
+    expectInvalid(same, "eye == target");
+
+    CameraRequest parallel;
+    parallel.eye = glm::dvec3(0, 10, 0);
+    parallel.target = glm::dvec3(0, 0, 0);
+    expectInvalid(parallel, "up parallel to the view");
+
+    CameraRequest zeroUp;
+    zeroUp.up = glm::dvec3(0.0);
+    expectInvalid(zeroUp, "zero up");
+
+    for (const double fov : {0.0, -10.0, 180.0, 200.0, std::nan("")}) {
+        CameraRequest badFov;
+        badFov.fovYDegrees = fov;
+        expectInvalid(badFov, "fov");
+    }
+    CameraRequest noWidth;
+    noWidth.width = 0;
+    expectInvalid(noWidth, "width");
+    CameraRequest negativeHeight;
+    negativeHeight.height = -4;
+    expectInvalid(negativeHeight, "height");
+
+    EXPECT_THROW(resolveCamera({}, Scene{}), SceneError);
+}
+
+TEST(Camera, FocalLengthInPixels) {
+    Camera camera;
+    camera.height = 1000;
+    camera.fovYDegrees = 90.0;
+    EXPECT_NEAR(camera.focalPixels(), 500.0, 1e-9);
+    camera.height = 1024;
+    camera.fovYDegrees = 35.0;
+    EXPECT_NEAR(camera.focalPixels(), 512.0 / std::tan(glm::radians(17.5)), 1e-9);
+}
+
+TEST(Camera, ViewMatrixPutsTheEyeAtTheOriginLookingDownMinusZ) {
+    CameraRequest request;
+    request.eye = glm::dvec3(4, 5, 6);
+    request.target = glm::dvec3(-1, 2, 0);
+    const Camera camera = resolveCamera(request, sphereScene());
+    const glm::dmat4 view = camera.viewMatrix();
+    expectNear(glm::dvec3(view * glm::dvec4(camera.eye, 1.0)), glm::dvec3(0.0));
+    const double distance = glm::length(camera.target - camera.eye);
+    expectNear(glm::dvec3(view * glm::dvec4(camera.target, 1.0)), glm::dvec3(0.0, 0.0, -distance));
+    // Up stays up: a point above the eye along world +y lands in the upper half of view space.
+    EXPECT_GT((view * glm::dvec4(camera.eye + glm::dvec3(0, 1, 0), 1.0)).y, 0.0);
+}
+
+TEST(Camera, ProjectionMapsNearAndFarToTheDepthRange) {
+    const Camera camera = resolveCamera({}, sphereScene());
+    const glm::dmat4 projection = camera.projectionMatrix();
+    const glm::dvec4 nearPoint = projection * glm::dvec4(0.0, 0.0, -camera.zNear, 1.0);
+    const glm::dvec4 farPoint = projection * glm::dvec4(0.0, 0.0, -camera.zFar, 1.0);
+    EXPECT_NEAR(nearPoint.z / nearPoint.w, -1.0, 1e-9);
+    EXPECT_NEAR(farPoint.z / farPoint.w, 1.0, 1e-9);
+    // Vertical extent at distance 1 is tan(fov/2).
+    const glm::dvec4 top = projection * glm::dvec4(0.0, std::tan(glm::radians(camera.fovYDegrees) / 2.0), -1.0, 1.0);
+    EXPECT_NEAR(top.y / top.w, 1.0, 1e-9);
+}
+
+} // namespace
+} // namespace inkgraph

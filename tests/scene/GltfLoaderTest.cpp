@@ -1,0 +1,331 @@
+#include "scene/Camera.h"
+#include "scene/Scene.h"
+
+#include "SceneTestSupport.h"
+
+#include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
+
+#include <cmath>
+
+namespace inkgraph {
+namespace {
+
+using test::GltfWriter;
+using test::TempFile;
+
+void expectNear(const glm::dvec3& actual, const glm::dvec3& expected, double tolerance = 1e-6) {
+    EXPECT_NEAR(actual.x, expected.x, tolerance);
+    EXPECT_NEAR(actual.y, expected.y, tolerance);
+    EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+/** One mesh with one primitive on one node, in the default scene. */
+std::string singleNode(const std::string& primitive, const std::string& nodeExtras = "") {
+    return "\"meshes\": [{\"name\": \"shape\", \"primitives\": [" + primitive +
+           "]}], "
+           "\"nodes\": [{\"mesh\": 0" +
+           nodeExtras + "}], \"scenes\": [{\"nodes\": [0]}], \"scene\": 0";
+}
+
+const std::vector<glm::vec3> kUnitTriangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+
+TEST(GltfLoader, TriangleStripKeepsItsWinding) {
+    // A zig-zag strip of 5 vertices in the z=0 plane: triangles 0-1-2, 1-3-2 (odd: last two swapped), 2-3-4, all +z.
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 2, 0}});
+    const TempFile file(
+        "strip.gltf",
+        writer.gltf(singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}, \"mode\": 5}")));
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.report.format, "gltf");
+    EXPECT_EQ(scene.report.trianglesRead, 3u);
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    const Mesh& mesh = scene.meshes[0];
+    EXPECT_EQ(mesh.triangleCount(), 3u);
+    EXPECT_EQ(mesh.positions.size(), 5u);
+    EXPECT_EQ(mesh.name, "shape");
+    for (const glm::uvec3& triangle : mesh.triangles) {
+        EXPECT_NEAR(test::triangleCross(mesh, triangle).z, 1.0, 1e-9); // each has area 1/2, facing +z
+    }
+    for (const glm::vec3& normal : mesh.normals) {
+        EXPECT_EQ(normal, glm::vec3(0, 0, 1));
+    }
+}
+
+TEST(GltfLoader, IndexedTriangleFanWithByteIndices) {
+    // A hexagon: centre plus six rim vertices counter-clockwise; the fan closes by repeating the first rim vertex.
+    std::vector<glm::vec3> hexagon = {{0, 0, 0}};
+    for (int i = 0; i < 6; ++i) {
+        const float angle = float(i) * glm::pi<float>() / 3.0f;
+        hexagon.emplace_back(std::cos(angle), std::sin(angle), 0.0f);
+    }
+    GltfWriter writer;
+    const int positions = writer.addVec3(hexagon);
+    const int indices = writer.addIndices({0, 1, 2, 3, 4, 5, 6, 1}, 1);
+    const TempFile file("fan.glb",
+                        writer.glb(singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+                                              "}, \"indices\": " + std::to_string(indices) + ", \"mode\": 6}")));
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.report.format, "glb");
+    const Mesh& mesh = scene.meshes.at(0);
+    EXPECT_EQ(mesh.triangleCount(), 6u);
+    EXPECT_EQ(mesh.positions.size(), 7u);
+    for (const glm::uvec3& triangle : mesh.triangles) {
+        EXPECT_GT(test::triangleCross(mesh, triangle).z, 0.0);
+    }
+}
+
+TEST(GltfLoader, ShortAndIntIndicesGiveTheSameMesh) {
+    for (int bytes : {2, 4}) {
+        GltfWriter writer;
+        const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+        const int indices = writer.addIndices({0, 1, 2, 0, 2, 3}, bytes);
+        const TempFile file("quad.gltf",
+                            writer.gltf(singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+                                                   "}, \"indices\": " + std::to_string(indices) + "}")));
+        const Mesh mesh = loadScene(file.path()).meshes.at(0);
+        EXPECT_EQ(mesh.triangles, (std::vector<glm::uvec3>{{0, 1, 2}, {0, 2, 3}})) << bytes << "-byte indices";
+    }
+}
+
+TEST(GltfLoader, NodeTransformsAreBakedIntoWorldSpace) {
+    // Parent translates by (10, 0, 0); child scales by 2 and translates by (0, 1, 0) in the parent's frame.
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const std::string body =
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+        "}}]}], "
+        "\"nodes\": [{\"name\": \"parent\", \"translation\": [10, 0, 0], \"children\": [1]},"
+        "            {\"name\": \"child\", \"mesh\": 0, \"translation\": [0, 1, 0], \"scale\": [2, 2, 2]}], "
+        "\"scenes\": [{\"nodes\": [0]}]";
+    const TempFile file("transform.gltf", writer.gltf(body));
+    const Mesh mesh = loadScene(file.path()).meshes.at(0);
+    EXPECT_EQ(mesh.name, "child");
+    ASSERT_EQ(mesh.positions.size(), 3u);
+    EXPECT_EQ(mesh.positions[0], glm::vec3(10, 1, 0));
+    EXPECT_EQ(mesh.positions[1], glm::vec3(12, 1, 0));
+    EXPECT_EQ(mesh.positions[2], glm::vec3(10, 3, 0));
+}
+
+TEST(GltfLoader, MatrixTransformAndMirroringKeepFrontFaces) {
+    // A column-major matrix mirroring x and translating by (0, 0, 5); the file's +z normals must stay +z and the
+    // triangle must still face them.
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const int normals = writer.addVec3({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+    const std::string primitive = "{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+                                  ", \"NORMAL\": " + std::to_string(normals) + "}}";
+    const TempFile file("mirror.gltf",
+                        writer.gltf(singleNode(primitive, ", \"matrix\": [-1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,5,1]")));
+    const Scene scene = loadScene(file.path());
+    const Mesh& mesh = scene.meshes.at(0);
+    EXPECT_FALSE(scene.report.normalsComputed);
+    EXPECT_EQ(mesh.positions[1], glm::vec3(-1, 0, 5));
+    for (const glm::vec3& normal : mesh.normals) {
+        EXPECT_EQ(normal, glm::vec3(0, 0, 1));
+    }
+    EXPECT_GT(test::triangleCross(mesh, mesh.triangles.at(0)).z, 0.0);
+}
+
+TEST(GltfLoader, NonUniformScaleUsesInverseTransposeForNormals) {
+    // A 45-degree slope scaled by 2 in x: the transformed normal of (1, 1, 0)/sqrt2 is (1/2, 1, 0) normalised.
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {0, 0, 1}, {1, -1, 0}}); // wound to face the normal
+    const glm::vec3 n = glm::normalize(glm::vec3(1, 1, 0));
+    const int normals = writer.addVec3({n, n, n});
+    const std::string primitive = "{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+                                  ", \"NORMAL\": " + std::to_string(normals) + "}}";
+    const TempFile file("scaled_normals.gltf", writer.gltf(singleNode(primitive, ", \"scale\": [2, 1, 1]")));
+    const Mesh mesh = loadScene(file.path()).meshes.at(0);
+    expectNear(glm::dvec3(mesh.normals.at(0)), glm::normalize(glm::dvec3(0.5, 1.0, 0.0)));
+}
+
+TEST(GltfLoader, BaseColorFactorIsRead) {
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const std::string primitive = "{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}";
+    const std::string body =
+        "\"materials\": [{\"pbrMetallicRoughness\": {\"baseColorFactor\": [0.1, 0.2, 0.3, 0.4]}}], "
+        "\"meshes\": [{\"primitives\": [" +
+        primitive + ", \"material\": 0}, " + primitive +
+        "}]}], "
+        "\"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}]";
+    const TempFile file("material.gltf", writer.gltf(body));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 2u);
+    EXPECT_EQ(scene.meshes[0].baseColor, glm::vec4(0.1f, 0.2f, 0.3f, 0.4f));
+    EXPECT_EQ(scene.meshes[1].baseColor, glm::vec4(0.8f, 0.8f, 0.8f, 1.0f)); // no material: the default grey
+}
+
+TEST(GltfLoader, PerspectiveCameraIsRead) {
+    // Camera at (1, 2, 10) turned 90 degrees about +y: it looks down -x, up stays +y.
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const double s = std::sqrt(0.5);
+    const std::string body =
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+        "}}]}], "
+        "\"cameras\": [{\"type\": \"orthographic\", \"orthographic\": {\"xmag\": 1, \"ymag\": 1, \"znear\": 0.1, "
+        "\"zfar\": 10}}, {\"type\": \"perspective\", \"perspective\": {\"yfov\": 0.5, \"aspectRatio\": 1.5, "
+        "\"znear\": 0.1}}], "
+        "\"nodes\": [{\"mesh\": 0}, {\"camera\": 0}, {\"camera\": 1, \"translation\": [1, 2, 10], "
+        "\"rotation\": [0, " +
+        std::to_string(s) + ", 0, " + std::to_string(s) +
+        "]}], "
+        "\"scenes\": [{\"nodes\": [0, 1, 2]}]";
+    const TempFile file("camera.gltf", writer.gltf(body));
+    const Scene scene = loadScene(file.path());
+    ASSERT_TRUE(scene.camera.has_value());
+    expectNear(scene.camera->eye, {1, 2, 10});
+    expectNear(scene.camera->forward, {-1, 0, 0});
+    expectNear(scene.camera->up, {0, 1, 0});
+    EXPECT_NEAR(scene.camera->fovYDegrees, 0.5 * 180.0 / glm::pi<double>(), 1e-9);
+    ASSERT_TRUE(scene.camera->aspectRatio.has_value());
+    EXPECT_DOUBLE_EQ(*scene.camera->aspectRatio, 1.5);
+    const bool warnedAboutOrthographic =
+        std::any_of(scene.report.warnings.begin(), scene.report.warnings.end(),
+                    [](const std::string& warning) { return warning.find("orthographic") != std::string::npos; });
+    EXPECT_TRUE(warnedAboutOrthographic);
+
+    const Camera camera = resolveCamera({}, scene);
+    EXPECT_EQ(camera.source, "gltf");
+    expectNear(camera.eye, {1, 2, 10});
+    expectNear(glm::normalize(camera.target - camera.eye), {-1, 0, 0});
+}
+
+TEST(GltfLoader, DirectionalLightPointsTowardTheLight) {
+    // The light node is turned -90 degrees about +x, so it shines along -y: toward the light is +y.
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const double s = std::sqrt(0.5);
+    const std::string body = "\"extensionsUsed\": [\"KHR_lights_punctual\"], "
+                             "\"extensions\": {\"KHR_lights_punctual\": {\"lights\": [{\"type\": \"point\"}, "
+                             "{\"type\": \"directional\", \"color\": [1, 0.5, 0.25], \"intensity\": 3}]}}, "
+                             "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
+                             std::to_string(positions) +
+                             "}}]}], "
+                             "\"nodes\": [{\"mesh\": 0}, {\"extensions\": {\"KHR_lights_punctual\": {\"light\": 0}}}, "
+                             "{\"rotation\": [" +
+                             std::to_string(-s) + ", 0, 0, " + std::to_string(s) +
+                             "], "
+                             "\"extensions\": {\"KHR_lights_punctual\": {\"light\": 1}}}], "
+                             "\"scenes\": [{\"nodes\": [0, 1, 2]}]";
+    const TempFile file("light.glb", writer.glb(body));
+    const Scene scene = loadScene(file.path());
+    ASSERT_TRUE(scene.light.has_value());
+    expectNear(scene.light->towardLight, {0, 1, 0});
+    expectNear(scene.light->color, {1, 0.5, 0.25});
+    EXPECT_DOUBLE_EQ(scene.light->intensity, 3.0);
+}
+
+TEST(GltfLoader, DefaultSceneSelectsTheRoots) {
+    GltfWriter writer;
+    const int small = writer.addVec3(kUnitTriangle);
+    const int large = writer.addVec3({{0, 0, 0}, {5, 0, 0}, {0, 5, 0}});
+    const std::string body =
+        "\"meshes\": [{\"name\": \"small\", \"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(small) +
+        "}}]}, {\"name\": \"large\", \"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(large) +
+        "}}]}], "
+        "\"nodes\": [{\"mesh\": 0}, {\"mesh\": 1}], \"scenes\": [{\"nodes\": [0]}, {\"nodes\": [1]}], \"scene\": 1";
+    const TempFile file("scenes.gltf", writer.gltf(body));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.meshes[0].name, "large");
+}
+
+TEST(GltfLoader, PointsOnlyFileHasNoTriangles) {
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const TempFile file(
+        "points.gltf",
+        writer.gltf(singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}, \"mode\": 0}")));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("no triangles"), std::string::npos) << message;
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+}
+
+TEST(GltfLoader, NonTrianglePrimitivesBesideTrianglesAreSkippedWithAWarning) {
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const std::string attributes = "{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}";
+    const TempFile file("mixed.gltf", writer.gltf(singleNode(attributes + ", \"mode\": 1}, " + attributes + "}")));
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.triangleCount(), 1u);
+    ASSERT_EQ(scene.report.warnings.size(), 1u);
+    EXPECT_NE(scene.report.warnings[0].find("non-triangle primitive"), std::string::npos);
+}
+
+TEST(GltfLoader, TruncatedGlbNamesTheFile) {
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const std::string glb =
+        writer.glb(singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}}"));
+    const TempFile file("half.glb", glb.substr(0, glb.size() / 2));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_EQ(message.rfind("loadScene(): '", 0), 0u) << message;
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+}
+
+TEST(GltfLoader, NonFinitePositionIsAnError) {
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {std::nanf(""), 0, 0}, {0, 1, 0}});
+    const TempFile file("nan.gltf",
+                        writer.gltf(singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}}")));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("non-finite"), std::string::npos) << message;
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+}
+
+TEST(GltfLoader, AccessorReadingPastItsBufferViewIsAnError) {
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    writer.setAccessorCount(positions, 4);
+    const TempFile file("overrun.gltf",
+                        writer.gltf(singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}}")));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("past the end"), std::string::npos) << message;
+}
+
+TEST(GltfLoader, IndexOutOfRangeIsAnError) {
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const int indices = writer.addIndices({0, 1, 3}, 2);
+    const TempFile file("bad_index.glb",
+                        writer.glb(singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+                                              "}, \"indices\": " + std::to_string(indices) + "}")));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("index 3 out of range"), std::string::npos) << message;
+}
+
+TEST(GltfLoader, ExternalBufferIsResolvedNextToTheGltf) {
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const TempFile buffer("triangle.bin", writer.binary());
+    const TempFile file(
+        "external.gltf",
+        writer.gltfWithExternalBuffer(singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}}"),
+                                      buffer.fileName()));
+    EXPECT_EQ(loadScene(file.path()).triangleCount(), 1u);
+}
+
+TEST(GltfLoader, RequiredGeometryCompressionIsAnError) {
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const TempFile file("draco.gltf",
+                        writer.gltf("\"extensionsUsed\": [\"KHR_draco_mesh_compression\"], "
+                                    "\"extensionsRequired\": [\"KHR_draco_mesh_compression\"], " +
+                                    singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}}")));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("KHR_draco_mesh_compression"), std::string::npos) << message;
+}
+
+TEST(GltfLoader, InvalidJsonIsAnError) {
+    const TempFile file("broken.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+    EXPECT_NE(message.find("invalid glTF"), std::string::npos) << message;
+}
+
+} // namespace
+} // namespace inkgraph

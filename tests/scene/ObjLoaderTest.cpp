@@ -1,0 +1,264 @@
+#include "scene/Scene.h"
+
+#include "SceneTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <sstream>
+
+namespace inkgraph {
+namespace {
+
+using test::TempFile;
+
+std::string cubeObj(bool negativeIndices = false) {
+    std::ostringstream obj;
+    obj << "# cube with quad faces\n";
+    for (const glm::vec3& corner : test::cubeCorners()) {
+        obj << "v " << corner.x << ' ' << corner.y << ' ' << corner.z << '\n';
+    }
+    const int count = int(test::cubeCorners().size());
+    for (const glm::uvec4& quad : test::cubeQuads()) {
+        obj << 'f';
+        for (int corner = 0; corner < 4; ++corner) {
+            const int index = int(quad[corner]);
+            obj << ' ' << (negativeIndices ? index - count - 1 : index);
+        }
+        obj << '\n';
+    }
+    return obj.str();
+}
+
+std::size_t findVertex(const Mesh& mesh, glm::vec3 position) {
+    const auto it = std::find(mesh.positions.begin(), mesh.positions.end(), position);
+    EXPECT_NE(it, mesh.positions.end()) << "no vertex at (" << position.x << ", " << position.y << ", " << position.z
+                                        << ")";
+    return std::size_t(it - mesh.positions.begin());
+}
+
+TEST(ObjLoader, CubeOfQuadsGivesTwelveTrianglesOnEightVertices) {
+    const TempFile file("cube.obj", cubeObj());
+    const Scene scene = loadScene(file.path());
+
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    const Mesh& mesh = scene.meshes[0];
+    EXPECT_EQ(mesh.triangleCount(), 12u);
+    EXPECT_EQ(mesh.positions.size(), 8u);
+    EXPECT_EQ(scene.report.format, "obj");
+    EXPECT_EQ(scene.report.trianglesRead, 12u);
+    EXPECT_EQ(scene.report.verticesBeforeWeld, 8u);
+    EXPECT_EQ(scene.report.verticesAfterWeld, 8u);
+    EXPECT_EQ(scene.report.degenerateDropped, 0u);
+    EXPECT_TRUE(scene.report.normalsComputed);
+    EXPECT_FALSE(scene.camera.has_value());
+    EXPECT_FALSE(scene.light.has_value());
+    test::expectOutwardWinding(mesh, glm::dvec3(0.0));
+    test::expectUnitNormals(mesh);
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        EXPECT_GT(glm::dot(mesh.normals[i], mesh.positions[i]), 0.5f) << "normal of vertex " << i << " points inward";
+    }
+}
+
+TEST(ObjLoader, SmoothNormalsAreAreaWeighted) {
+    // Fan triangulation gives corner (-1,-1,-1) both triangles of each of its three faces: a symmetric normal.
+    // Corner (1,1,-1) gets both triangles of the -z face but one each of +y and +x, so area weighting tilts its
+    // normal toward -z: (4, 4, -8) / |.|. An angle-weighted or per-face average would not.
+    const TempFile file("weighted.obj", cubeObj());
+    const Mesh mesh = loadScene(file.path()).meshes.at(0);
+
+    const glm::vec3 symmetric = mesh.normals[findVertex(mesh, {-1, -1, -1})];
+    const glm::vec3 expectedSymmetric = glm::normalize(glm::vec3(-1, -1, -1));
+    const glm::vec3 tilted = mesh.normals[findVertex(mesh, {1, 1, -1})];
+    const glm::vec3 expectedTilted = glm::normalize(glm::vec3(1, 1, -2));
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_NEAR(symmetric[axis], expectedSymmetric[axis], 1e-6);
+        EXPECT_NEAR(tilted[axis], expectedTilted[axis], 1e-6);
+    }
+}
+
+TEST(ObjLoader, NegativeIndicesMatchPositiveOnes) {
+    const TempFile positive("positive.obj", cubeObj(false));
+    const TempFile negative("negative.obj", cubeObj(true));
+    const Mesh a = loadScene(positive.path()).meshes.at(0);
+    const Mesh b = loadScene(negative.path()).meshes.at(0);
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_EQ(a.triangles, b.triangles);
+}
+
+TEST(ObjLoader, NegativeIndicesAreRelativeToTheCurrentLine) {
+    // Each face refers to the three vertices just above it.
+    const TempFile file("relative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n"
+                                        "v 5 0 0\nv 6 0 0\nv 5 1 0\nf -3 -2 -1\n");
+    const Mesh mesh = loadScene(file.path()).meshes.at(0);
+    ASSERT_EQ(mesh.triangleCount(), 2u);
+    EXPECT_EQ(mesh.positions.size(), 6u);
+    EXPECT_EQ(mesh.positions[mesh.triangles[1].x], glm::vec3(5, 0, 0));
+    EXPECT_EQ(mesh.positions[mesh.triangles[1].z], glm::vec3(5, 1, 0));
+}
+
+TEST(ObjLoader, FileNormalsArePreservedAndKeepHardEdgesSplit) {
+    // The cube with one normal per face (v//vn): each corner has three normals, so 24 vertices survive welding.
+    std::ostringstream obj;
+    for (const glm::vec3& corner : test::cubeCorners()) {
+        obj << "v " << corner.x << ' ' << corner.y << ' ' << corner.z << '\n';
+    }
+    const std::vector<glm::vec3> faceNormals = {{0, 0, -1}, {0, 0, 1}, {0, -1, 0}, {0, 1, 0}, {-1, 0, 0}, {1, 0, 0}};
+    for (const glm::vec3& n : faceNormals) {
+        obj << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
+    }
+    for (std::size_t face = 0; face < 6; ++face) {
+        const glm::uvec4& quad = test::cubeQuads()[face];
+        obj << "f " << quad.x << "//" << face + 1 << ' ' << quad.y << "//" << face + 1 << ' ' << quad.z << "//"
+            << face + 1 << ' ' << quad.w << "//" << face + 1 << '\n';
+    }
+    const TempFile file("hard.obj", obj.str());
+    const Scene scene = loadScene(file.path());
+    const Mesh& mesh = scene.meshes.at(0);
+
+    EXPECT_FALSE(scene.report.normalsComputed);
+    EXPECT_EQ(mesh.triangleCount(), 12u);
+    EXPECT_EQ(mesh.positions.size(), 24u);
+    for (const glm::uvec3& triangle : mesh.triangles) {
+        const glm::vec3 faceNormal = glm::vec3(glm::normalize(test::triangleCross(mesh, triangle)));
+        for (int corner = 0; corner < 3; ++corner) {
+            EXPECT_EQ(mesh.normals[triangle[corner]], faceNormal);
+        }
+    }
+}
+
+TEST(ObjLoader, AcceptsTextureCoordinateFormsCommentsCrlfAndObjectNames) {
+    const TempFile file("forms.obj",
+                        "# comment\r\nmtllib none.mtl\r\no thing\r\nv 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nv 0 1 0\r\n"
+                        "vt 0 0\r\nvt 1 0\r\nvt 1 1\r\nvn 0 0 2\r\ng group\r\nusemtl m\r\ns off\r\n"
+                        "f 1/1/1 2/2/1 3/3/1\r\n"
+                        "f 1/1/1 3/3/1 4/1/1\r\n");
+    const Scene scene = loadScene(file.path());
+    const Mesh& mesh = scene.meshes.at(0);
+    EXPECT_EQ(mesh.name, "thing");
+    EXPECT_EQ(mesh.triangleCount(), 2u);
+    EXPECT_EQ(mesh.positions.size(), 4u);
+    for (const glm::vec3& normal : mesh.normals) {
+        EXPECT_EQ(normal, glm::vec3(0, 0, 1)); // normalised from the file's (0, 0, 2)
+    }
+
+    const TempFile uvOnly("uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+    const Scene uvScene = loadScene(uvOnly.path());
+    EXPECT_EQ(uvScene.triangleCount(), 1u);
+    EXPECT_TRUE(uvScene.report.normalsComputed);
+    EXPECT_EQ(uvScene.meshes.at(0).normals.at(0), glm::vec3(0, 0, 1));
+}
+
+TEST(ObjLoader, PentagonIsFanTriangulated) {
+    const TempFile file("pentagon.obj", "v 0 0 0\nv 2 0 0\nv 3 1 0\nv 1 2 0\nv -1 1 0\nf 1 2 3 4 5\n");
+    const Mesh mesh = loadScene(file.path()).meshes.at(0);
+    EXPECT_EQ(mesh.triangleCount(), 3u);
+    for (const glm::uvec3& triangle : mesh.triangles) {
+        EXPECT_GT(test::triangleCross(mesh, triangle).z, 0.0);
+    }
+}
+
+TEST(ObjLoader, ForwardReferencedVerticesAreAccepted) {
+    const TempFile file("forward.obj", "f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    EXPECT_EQ(loadScene(file.path()).triangleCount(), 1u);
+}
+
+TEST(ObjLoader, NonFiniteCoordinateNamesFileAndLine) {
+    const TempFile file("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_EQ(message.rfind("loadScene(): '", 0), 0u) << message;
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+    EXPECT_NE(message.find("line 3"), std::string::npos) << message;
+    EXPECT_NE(message.find("non-finite"), std::string::npos) << message;
+
+    const TempFile infinite("inf.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n"); // overflows float
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(infinite.path()); }).find("line 2"), std::string::npos);
+}
+
+TEST(ObjLoader, IndexOutOfRangeIsAnErrorWithLine) {
+    const TempFile file("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 9\n");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+    EXPECT_NE(message.find("line 5"), std::string::npos) << message;
+    EXPECT_NE(message.find("out of range"), std::string::npos) << message;
+    EXPECT_NE(message.find("file has 3 vertices"), std::string::npos) << message;
+
+    const TempFile relative("relative_range.obj", "v 0 0 0\nv 1 0 0\nf -1 -2 -4\n");
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(relative.path()); }).find("line 3"), std::string::npos);
+
+    const TempFile normal("normal_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n");
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(normal.path()); }).find("normal index 2"), std::string::npos);
+}
+
+TEST(ObjLoader, ZeroIndexIsAnError) {
+    const TempFile file("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("line 4"), std::string::npos) << message;
+    EXPECT_NE(message.find("index 0"), std::string::npos) << message;
+}
+
+TEST(ObjLoader, MalformedStatementsAreErrors) {
+    const TempFile shortVertex("short.obj", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(shortVertex.path()); }).find("line 1"), std::string::npos);
+    const TempFile garbage("garbage.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(garbage.path()); }).find("line 4"), std::string::npos);
+    const TempFile twoCorners("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(twoCorners.path()); }).find("needs at least 3"),
+              std::string::npos);
+}
+
+TEST(ObjLoader, EmptyFileOrNoFacesIsAnError) {
+    const TempFile empty("empty.obj", "");
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(empty.path()); }).find("no triangles"), std::string::npos);
+    const TempFile pointsOnly("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n");
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(pointsOnly.path()); }).find("no triangles"), std::string::npos);
+}
+
+TEST(ObjLoader, MissingFileNamesThePath) {
+    const std::string path = (std::filesystem::temp_directory_path() / "inkgraph_no_such_model.obj").string();
+    const std::string message = test::sceneErrorMessage([&] { loadScene(path); });
+    EXPECT_NE(message.find("not found"), std::string::npos) << message;
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+}
+
+TEST(ObjLoader, DegenerateTrianglesAreDroppedAndCounted) {
+    // Triangle 2 repeats a position under another index (welded into a repeated index); triangle 3 is collinear.
+    const TempFile file("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 0 0\nv 2 0 0\n"
+                                          "f 1 2 3\nf 1 2 4\nf 1 2 5\n");
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.report.trianglesRead, 3u);
+    EXPECT_EQ(scene.report.degenerateDropped, 2u);
+    EXPECT_EQ(scene.triangleCount(), 1u);
+    EXPECT_EQ(scene.vertexCount(), 3u); // the welded duplicate and the unused collinear vertex are gone
+    EXPECT_EQ(scene.report.verticesBeforeWeld, 5u);
+    EXPECT_EQ(scene.report.verticesAfterWeld, 3u);
+
+    const TempFile allDegenerate("all_degenerate.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(allDegenerate.path()); }).find("degenerate"), std::string::npos);
+}
+
+TEST(ObjLoader, StanfordBunnyLoadsWithExactCounts) {
+    const std::string path = test::sourcePath("models/bunny_c3d_70k.obj");
+    const auto start = std::chrono::steady_clock::now();
+    const Scene scene = loadScene(path);
+    const double milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    RecordProperty("load_ms", std::to_string(milliseconds));
+
+    EXPECT_EQ(scene.report.format, "obj");
+    EXPECT_EQ(scene.report.trianglesRead, 69451u);
+    EXPECT_EQ(scene.report.degenerateDropped, 0u);
+    EXPECT_EQ(scene.triangleCount(), 69451u);
+    EXPECT_EQ(scene.report.verticesBeforeWeld, 35947u);
+    // 1,113 of the file's vertices are referenced by no face; no two referenced ones coincide.
+    EXPECT_EQ(scene.report.verticesAfterWeld, 34834u);
+    EXPECT_EQ(scene.vertexCount(), 34834u);
+    EXPECT_TRUE(scene.report.normalsComputed);
+    EXPECT_TRUE(scene.report.warnings.empty());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    test::expectUnitNormals(scene.meshes[0]);
+}
+
+} // namespace
+} // namespace inkgraph

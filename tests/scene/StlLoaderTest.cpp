@@ -1,0 +1,161 @@
+#include "scene/Scene.h"
+
+#include "SceneTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <sstream>
+
+namespace inkgraph {
+namespace {
+
+using test::TempFile;
+
+void appendU32(std::string& out, std::uint32_t value) {
+    char bytes[4];
+    std::memcpy(bytes, &value, 4);
+    out.append(bytes, 4);
+}
+
+void appendFloat(std::string& out, float value) {
+    char bytes[4];
+    std::memcpy(bytes, &value, 4);
+    out.append(bytes, 4);
+}
+
+/** A binary STL of the given triangle soup; facet normals are written as zero, as some exporters do. */
+std::string binaryStl(const std::vector<glm::vec3>& soup, std::string header = "inkgraph test") {
+    header.resize(80, ' ');
+    std::string out = header;
+    appendU32(out, std::uint32_t(soup.size() / 3));
+    for (std::size_t i = 0; i < soup.size(); i += 3) {
+        for (int k = 0; k < 3; ++k) {
+            appendFloat(out, 0.0f);
+        }
+        for (std::size_t corner = i; corner < i + 3; ++corner) {
+            appendFloat(out, soup[corner].x);
+            appendFloat(out, soup[corner].y);
+            appendFloat(out, soup[corner].z);
+        }
+        out.append(2, '\0');
+    }
+    return out;
+}
+
+std::string asciiStl(const std::vector<glm::vec3>& soup) {
+    std::ostringstream out;
+    out.precision(9);
+    out << "solid cube\n";
+    for (std::size_t i = 0; i < soup.size(); i += 3) {
+        out << "  facet normal 0 0 0\n    outer loop\n";
+        for (std::size_t corner = i; corner < i + 3; ++corner) {
+            out << "      vertex " << soup[corner].x << ' ' << soup[corner].y << ' ' << soup[corner].z << '\n';
+        }
+        out << "    endloop\n  endfacet\n";
+    }
+    out << "endsolid cube\n";
+    return out.str();
+}
+
+void expectWeldedCube(const Scene& scene) {
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    const Mesh& mesh = scene.meshes[0];
+    EXPECT_EQ(scene.report.trianglesRead, 12u);
+    EXPECT_EQ(scene.report.verticesBeforeWeld, 36u);
+    EXPECT_EQ(scene.report.verticesAfterWeld, 8u);
+    EXPECT_EQ(mesh.triangleCount(), 12u);
+    EXPECT_EQ(mesh.positions.size(), 8u);
+    EXPECT_TRUE(scene.report.normalsComputed);
+    test::expectOutwardWinding(mesh, glm::dvec3(0.0));
+    test::expectUnitNormals(mesh);
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        EXPECT_GT(glm::dot(mesh.normals[i], mesh.positions[i]), 0.5f);
+    }
+}
+
+TEST(StlLoader, BinaryCubeWeldsToEightVertices) {
+    const TempFile file("cube.stl", binaryStl(test::cubeTriangleSoup()));
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.report.format, "stl-binary");
+    expectWeldedCube(scene);
+}
+
+TEST(StlLoader, AsciiCubeWeldsToEightVertices) {
+    const TempFile file("cube_ascii.STL", asciiStl(test::cubeTriangleSoup())); // extension case does not matter
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.report.format, "stl-ascii");
+    expectWeldedCube(scene);
+}
+
+TEST(StlLoader, BinaryWhoseHeaderStartsWithSolidIsStillBinary) {
+    const TempFile file("solid_header.stl", binaryStl(test::cubeTriangleSoup(), "solid exported by a binary writer"));
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.report.format, "stl-binary");
+    expectWeldedCube(scene);
+}
+
+TEST(StlLoader, TruncatedBinaryIsRejectedBeforeAllocating) {
+    std::string bytes(80, 'x');
+    appendU32(bytes, 1'000'000);
+    bytes.resize(200, '\0');
+    const TempFile file("truncated.stl", bytes);
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+    EXPECT_NE(message.find("truncated"), std::string::npos) << message;
+    EXPECT_NE(message.find("1000000 triangles"), std::string::npos) << message;
+    EXPECT_NE(message.find("200 bytes"), std::string::npos) << message;
+}
+
+TEST(StlLoader, TruncatedBinaryWithSolidHeaderReportsBothReadings) {
+    std::string bytes = binaryStl(test::cubeTriangleSoup(), "solid but binary");
+    bytes.resize(bytes.size() - 30);
+    const TempFile file("solid_truncated.stl", bytes);
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("ASCII"), std::string::npos) << message;
+    EXPECT_NE(message.find("12 triangles"), std::string::npos) << message;
+}
+
+TEST(StlLoader, TrailingBytesAfterBinaryTrianglesAreIgnoredWithAWarning) {
+    const TempFile file("padded.stl", binaryStl(test::cubeTriangleSoup()) + std::string(16, '\0'));
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.triangleCount(), 12u);
+    ASSERT_EQ(scene.report.warnings.size(), 1u);
+    EXPECT_NE(scene.report.warnings[0].find("16 bytes"), std::string::npos);
+}
+
+TEST(StlLoader, NonFiniteCoordinatesAreErrors) {
+    std::vector<glm::vec3> soup = test::cubeTriangleSoup();
+    soup[7].y = std::nanf("");
+    const TempFile binary("nan.stl", binaryStl(soup));
+    const std::string binaryMessage = test::sceneErrorMessage([&] { loadScene(binary.path()); });
+    EXPECT_NE(binaryMessage.find("non-finite"), std::string::npos) << binaryMessage;
+    EXPECT_NE(binaryMessage.find("triangle 2"), std::string::npos) << binaryMessage;
+
+    const TempFile ascii("nan_ascii.stl",
+                         "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 inf 0\n"
+                         "endloop\nendfacet\nendsolid s\n");
+    const std::string asciiMessage = test::sceneErrorMessage([&] { loadScene(ascii.path()); });
+    EXPECT_NE(asciiMessage.find("line 6"), std::string::npos) << asciiMessage;
+    EXPECT_NE(asciiMessage.find("non-finite"), std::string::npos) << asciiMessage;
+}
+
+TEST(StlLoader, MalformedAsciiNamesTheLine) {
+    const TempFile file("broken.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertx 1 0 0\n");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("line 5"), std::string::npos) << message;
+    EXPECT_NE(message.find("vertx"), std::string::npos) << message;
+}
+
+TEST(StlLoader, EmptyOrTinyFilesAreErrors) {
+    const TempFile emptySolid("empty_solid.stl", "solid nothing\nendsolid nothing\n");
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(emptySolid.path()); }).find("no triangles"), std::string::npos);
+    const TempFile zeroTriangles("zero.stl", binaryStl({}));
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(zeroTriangles.path()); }).find("no triangles"),
+              std::string::npos);
+    const TempFile tiny("tiny.stl", "abc");
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(tiny.path()); }).find("not an STL"), std::string::npos);
+}
+
+} // namespace
+} // namespace inkgraph
