@@ -1,0 +1,111 @@
+#include "gl/GlObjects.h"
+
+#include <stdexcept>
+
+namespace inkgraph {
+
+void labelObject(GLenum identifier, GLuint id, std::string_view label) {
+    // GL_KHR_debug is core in 4.3; labels longer than GL_MAX_LABEL_LENGTH (>= 256) would be an error.
+    const auto length = static_cast<GLsizei>(std::min<std::size_t>(label.size(), 255));
+    glObjectLabel(identifier, id, length, label.data());
+}
+
+GlFormat glFormatOf(Format format) {
+    switch (format) {
+    case Format::RGBA32F: return {GL_RGBA32F, GL_RGBA, GL_FLOAT, 4};
+    case Format::R32F: return {GL_R32F, GL_RED, GL_FLOAT, 1};
+    case Format::RGBA8: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
+    case Format::R8: return {GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1};
+    }
+    throw std::logic_error("glFormatOf(): unknown format");
+}
+
+GlTexture::GlTexture(Format format, int width, int height, std::string_view label)
+    : mFormat(format), mWidth(width), mHeight(height), mLabel(label) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    mHandle = GlHandle<TextureDeleter>(id);
+    glTextureStorage2D(id, 1, glFormatOf(format).internalFormat, width, height);
+    // Data textures are sampled texel-exactly: never blend a normal or a depth with its neighbour.
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    labelObject(GL_TEXTURE, id, label);
+}
+
+void GlTexture::relabel(std::string_view label) {
+    mLabel = label;
+    labelObject(GL_TEXTURE, id(), label);
+}
+
+GlDepthTexture::GlDepthTexture(int width, int height, std::string_view label) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    mHandle = GlHandle<TextureDeleter>(id);
+    glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, width, height);
+    labelObject(GL_TEXTURE, id, label);
+}
+
+GlFramebuffer::GlFramebuffer(std::string_view label) : mLabel(label) {
+    GLuint id = 0;
+    glCreateFramebuffers(1, &id);
+    mHandle = GlHandle<FramebufferDeleter>(id);
+    labelObject(GL_FRAMEBUFFER, id, label);
+}
+
+void GlFramebuffer::attachColor(int slot, const GlTexture& texture) {
+    glNamedFramebufferTexture(id(), GL_COLOR_ATTACHMENT0 + slot, texture.id(), 0);
+}
+
+void GlFramebuffer::attachDepth(const GlDepthTexture& depth) {
+    glNamedFramebufferTexture(id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+}
+
+void GlFramebuffer::finish(const std::vector<int>& drawSlots) {
+    std::vector<GLenum> buffers;
+    for (int slot : drawSlots) buffers.push_back(GL_COLOR_ATTACHMENT0 + slot);
+    glNamedFramebufferDrawBuffers(id(), static_cast<GLsizei>(buffers.size()), buffers.data());
+    const GLenum status = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("GlFramebuffer::finish(): framebuffer '" + mLabel + "' is incomplete (status 0x" +
+                                 std::to_string(status) + ")");
+}
+
+void GlFramebuffer::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, id()); }
+
+GlBuffer::GlBuffer(const void* data, std::size_t byteCount, std::string_view label) : mByteCount(byteCount) {
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    mHandle = GlHandle<BufferDeleter>(id);
+    glNamedBufferStorage(id, static_cast<GLsizeiptr>(byteCount), data, 0);
+    labelObject(GL_BUFFER, id, label);
+}
+
+GlVertexArray::GlVertexArray(std::string_view label) {
+    GLuint id = 0;
+    glCreateVertexArrays(1, &id);
+    mHandle = GlHandle<VertexArrayDeleter>(id);
+    labelObject(GL_VERTEX_ARRAY, id, label);
+}
+
+void GlVertexArray::setVec3Attribute(GLuint location, const GlBuffer& buffer) {
+    glVertexArrayVertexBuffer(id(), location, buffer.id(), 0, 3 * sizeof(float));
+    glVertexArrayAttribFormat(id(), location, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(id(), location, location);
+    glEnableVertexArrayAttrib(id(), location);
+}
+
+void GlVertexArray::setIndexBuffer(const GlBuffer& buffer) { glVertexArrayElementBuffer(id(), buffer.id()); }
+
+void GlVertexArray::bind() const { glBindVertexArray(id()); }
+
+GlProgram::GlProgram(GLuint id, std::string label) : mHandle(id), mLabel(std::move(label)) {
+    labelObject(GL_PROGRAM, id, mLabel);
+}
+
+void GlProgram::use() const { glUseProgram(id()); }
+
+GLint GlProgram::uniform(const char* name) const { return glGetUniformLocation(id(), name); }
+
+} // namespace inkgraph

@@ -1,0 +1,108 @@
+#pragma once
+/** @file One move-only wrapper per GL object kind we use, each labelled at creation. */
+
+#include "gl/GlHandle.h"
+#include "graph/Resource.h"
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace inkgraph {
+
+/** GL storage for a graph Format. */
+struct GlFormat {
+    GLenum internalFormat;
+    GLenum pixelFormat;
+    GLenum pixelType;
+    int channelCount;
+};
+GlFormat glFormatOf(Format format);
+
+/** An immutable-storage 2-D texture, one level, nearest filtering, clamped to the edge. */
+class GlTexture {
+public:
+    explicit GlTexture(NoCreateTag) {}
+    GlTexture(Format format, int width, int height, std::string_view label);
+
+    GLuint id() const { return mHandle.id(); }
+    Format format() const { return mFormat; }
+    int width() const { return mWidth; }
+    int height() const { return mHeight; }
+    const std::string& label() const { return mLabel; }
+    /** Re-labels a pooled texture for the resource now using it. */
+    void relabel(std::string_view label);
+
+private:
+    GlHandle<TextureDeleter> mHandle;
+    Format mFormat = Format::RGBA8;
+    int mWidth = 0;
+    int mHeight = 0;
+    std::string mLabel;
+};
+
+/** A depth attachment private to a pass (never a graph resource). */
+class GlDepthTexture {
+public:
+    GlDepthTexture(int width, int height, std::string_view label);
+    GLuint id() const { return mHandle.id(); }
+
+private:
+    GlHandle<TextureDeleter> mHandle;
+};
+
+/** A framebuffer with up to 8 colour attachments and an optional depth attachment. */
+class GlFramebuffer {
+public:
+    explicit GlFramebuffer(std::string_view label);
+    GLuint id() const { return mHandle.id(); }
+    void attachColor(int slot, const GlTexture& texture);
+    void attachDepth(const GlDepthTexture& depth);
+    /** Sets draw buffers to the attached slots in order and throws if the framebuffer is incomplete. */
+    void finish(const std::vector<int>& drawSlots);
+    void bind() const;
+
+private:
+    GlHandle<FramebufferDeleter> mHandle;
+    std::string mLabel;
+};
+
+class GlBuffer {
+public:
+    GlBuffer(const void* data, std::size_t byteCount, std::string_view label);
+    GLuint id() const { return mHandle.id(); }
+    std::size_t byteCount() const { return mByteCount; }
+
+private:
+    GlHandle<BufferDeleter> mHandle;
+    std::size_t mByteCount = 0;
+};
+
+class GlVertexArray {
+public:
+    explicit GlVertexArray(std::string_view label);
+    GLuint id() const { return mHandle.id(); }
+    /** Binds `buffer` as a tightly packed float vec3 attribute at `location`. */
+    void setVec3Attribute(GLuint location, const GlBuffer& buffer);
+    void setIndexBuffer(const GlBuffer& buffer);
+    void bind() const;
+
+private:
+    GlHandle<VertexArrayDeleter> mHandle;
+};
+
+class GlProgram {
+public:
+    GlProgram(GLuint id, std::string label);
+    GLuint id() const { return mHandle.id(); }
+    void use() const;
+    /** Uniform location by name; -1 (ignored by glUniform) when the compiler removed it. */
+    GLint uniform(const char* name) const;
+
+private:
+    GlHandle<ProgramDeleter> mHandle;
+    std::string mLabel;
+};
+
+} // namespace inkgraph

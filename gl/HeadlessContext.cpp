@@ -1,0 +1,246 @@
+#include "gl/HeadlessContext.h"
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+
+namespace inkgraph {
+namespace {
+
+const char* const kInstallHint =
+    "Install Mesa's EGL and drivers (apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri) for CPU rendering, or "
+    "NVIDIA's driver with its EGL vendor file (10_nvidia.json in /usr/share/glvnd/egl_vendor.d). "
+    "Run with EGL_LOG_LEVEL=debug (Mesa) or __EGL_VENDOR_LIBRARY_DEBUG=1 (glvnd) to see more.";
+
+bool hasExtension(const char* extensionList, const char* name) {
+    if (extensionList == nullptr) return false;
+    const std::size_t length = std::strlen(name);
+    for (const char* at = std::strstr(extensionList, name); at != nullptr; at = std::strstr(at + 1, name)) {
+        const bool startsWord = at == extensionList || at[-1] == ' ';
+        const bool endsWord = at[length] == ' ' || at[length] == '\0';
+        if (startsWord && endsWord) return true;
+    }
+    return false;
+}
+
+std::string eglErrorName(EGLint error) {
+    switch (error) {
+    case EGL_SUCCESS: return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    default: {
+        char buffer[32];
+        std::snprintf(buffer, sizeof buffer, "0x%04X", static_cast<unsigned>(error));
+        return buffer;
+    }
+    }
+}
+
+EglPlatform platformFromEnvironment(EglPlatform requested) {
+    const char* value = std::getenv("INKGRAPH_EGL_PLATFORM");
+    if (requested != EglPlatform::Any || value == nullptr || *value == '\0') return requested;
+    if (std::strcmp(value, "device") == 0) return EglPlatform::Device;
+    if (std::strcmp(value, "surfaceless") == 0) return EglPlatform::Surfaceless;
+    throw HeadlessContextError(std::string("HeadlessContext(): INKGRAPH_EGL_PLATFORM='") + value +
+                               "' is not one of 'device', 'surfaceless'");
+}
+
+void GLAPIENTRY printDebugMessage(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message,
+                                  const void*) {
+    if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
+    std::fprintf(stderr, "inkgraph: GL %s: %s\n", type == GL_DEBUG_TYPE_ERROR ? "error" : "message", message);
+}
+
+// One attempt at a display: initialise, pick a config and make a 4.5 core context current without a surface.
+struct Attempt {
+    EGLDisplay display = EGL_NO_DISPLAY;
+    EGLContext context = EGL_NO_CONTEXT;
+    std::string failure;
+};
+
+Attempt tryDisplay(EGLDisplay display, bool debug) {
+    Attempt attempt;
+    if (display == EGL_NO_DISPLAY) {
+        attempt.failure = "eglGetPlatformDisplayEXT failed (" + eglErrorName(eglGetError()) + ")";
+        return attempt;
+    }
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(display, &major, &minor)) {
+        attempt.failure = "eglInitialize failed (" + eglErrorName(eglGetError()) + ")";
+        return attempt;
+    }
+    const char* displayExtensions = eglQueryString(display, EGL_EXTENSIONS);
+    if (!hasExtension(displayExtensions, "EGL_KHR_surfaceless_context")) {
+        attempt.failure = "the display lacks EGL_KHR_surfaceless_context";
+        eglTerminate(display);
+        return attempt;
+    }
+    if (!eglBindAPI(EGL_OPENGL_API)) {
+        attempt.failure = "eglBindAPI(EGL_OPENGL_API) failed: the driver has no desktop OpenGL";
+        eglTerminate(display);
+        return attempt;
+    }
+    const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0, EGL_NONE};
+    EGLConfig config = nullptr;
+    EGLint configCount = 0;
+    if (!eglChooseConfig(display, configAttributes, &config, 1, &configCount) || configCount == 0) {
+        if (!hasExtension(displayExtensions, "EGL_KHR_no_config_context")) {
+            attempt.failure = "no EGL config renders desktop OpenGL";
+            eglTerminate(display);
+            return attempt;
+        }
+        config = EGL_NO_CONFIG_KHR;
+    }
+    // Core 4.5 but not forward-compatible: glLineWidth > 1 stays legal for Lander's outline pass.
+    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                        4,
+                                        EGL_CONTEXT_MINOR_VERSION,
+                                        5,
+                                        EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                        EGL_CONTEXT_OPENGL_DEBUG,
+                                        debug ? EGL_TRUE : EGL_FALSE,
+                                        EGL_NONE};
+    EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
+    if (context == EGL_NO_CONTEXT) {
+        attempt.failure = "eglCreateContext(OpenGL 4.5 core) failed (" + eglErrorName(eglGetError()) + ")";
+        eglTerminate(display);
+        return attempt;
+    }
+    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+        attempt.failure = "eglMakeCurrent without a surface failed (" + eglErrorName(eglGetError()) + ")";
+        eglDestroyContext(display, context);
+        eglTerminate(display);
+        return attempt;
+    }
+    attempt.display = display;
+    attempt.context = context;
+    return attempt;
+}
+
+bool isSoftwareDevice(EGLDeviceEXT device) {
+    return hasExtension(eglQueryDeviceStringEXT(device, EGL_EXTENSIONS), "EGL_MESA_device_software");
+}
+
+} // namespace
+
+HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) {
+    const EglPlatform platform = platformFromEnvironment(options.platform);
+    const char* debugVariable = std::getenv("INKGRAPH_GL_DEBUG");
+    const bool debug = options.debugOutput || (debugVariable != nullptr && std::strcmp(debugVariable, "1") == 0);
+
+    // libepoxy aborts the process on the first EGL call when no libEGL can be loaded, so ask it first.
+    if (!epoxy_has_egl())
+        throw HeadlessContextError(std::string("HeadlessContext(): libEGL.so.1 could not be loaded. ") + kInstallHint);
+    const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!hasExtension(clientExtensions, "EGL_EXT_platform_base"))
+        throw HeadlessContextError(
+            std::string("HeadlessContext(): the EGL client extensions lack EGL_EXT_platform_base, so no display "
+                        "can be made without a window system. ") +
+            kInstallHint);
+
+    std::vector<std::string> failures;
+    Attempt chosen;
+
+    if (platform != EglPlatform::Surfaceless) {
+        if (!hasExtension(clientExtensions, "EGL_EXT_platform_device") ||
+            !hasExtension(clientExtensions, "EGL_EXT_device_enumeration")) {
+            failures.push_back("device platform: EGL_EXT_platform_device or EGL_EXT_device_enumeration missing");
+        } else {
+            EGLDeviceEXT devices[16];
+            EGLint deviceCount = 0;
+            if (!eglQueryDevicesEXT(16, devices, &deviceCount) || deviceCount == 0) {
+                failures.push_back("device platform: no EGL device found");
+            }
+            // Hardware devices first: Mesa also lists a software device (llvmpipe) on GPU machines.
+            std::vector<EGLDeviceEXT> ordered;
+            for (EGLint i = 0; i < deviceCount; ++i)
+                if (!isSoftwareDevice(devices[i])) ordered.push_back(devices[i]);
+            for (EGLint i = 0; i < deviceCount; ++i)
+                if (isSoftwareDevice(devices[i])) ordered.push_back(devices[i]);
+            for (std::size_t i = 0; i < ordered.size() && chosen.context == EGL_NO_CONTEXT; ++i) {
+                EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, ordered[i], nullptr);
+                Attempt attempt = tryDisplay(display, debug);
+                if (attempt.context != EGL_NO_CONTEXT) {
+                    chosen = attempt;
+                    mPlatform = "device";
+                } else {
+                    failures.push_back("device platform, device " + std::to_string(i) + ": " + attempt.failure);
+                }
+            }
+        }
+    }
+    if (chosen.context == EGL_NO_CONTEXT && platform != EglPlatform::Device) {
+        if (!hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
+            failures.push_back("surfaceless platform: EGL_MESA_platform_surfaceless missing");
+        } else {
+            EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+            Attempt attempt = tryDisplay(display, debug);
+            if (attempt.context != EGL_NO_CONTEXT) {
+                chosen = attempt;
+                mPlatform = "surfaceless";
+            } else {
+                failures.push_back("surfaceless platform: " + attempt.failure);
+            }
+        }
+    }
+    if (chosen.context == EGL_NO_CONTEXT) {
+        std::ostringstream message;
+        message << "HeadlessContext(): no OpenGL 4.5 core context could be made without a display. Tried:";
+        for (const std::string& failure : failures) message << "\n  - " << failure;
+        message << "\n" << kInstallHint;
+        throw HeadlessContextError(message.str());
+    }
+    mDisplay = chosen.display;
+    mContext = chosen.context;
+
+    auto glString = [](GLenum name) {
+        const auto* text = reinterpret_cast<const char*>(glGetString(name));
+        return std::string(text != nullptr ? text : "?");
+    };
+    mVendor = glString(GL_VENDOR);
+    mRenderer = glString(GL_RENDERER);
+    mVersion = glString(GL_VERSION);
+    GLfloat lineWidthRange[2] = {1.0f, 1.0f};
+    glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, lineWidthRange);
+    mMaxLineWidth = lineWidthRange[1];
+    if (epoxy_gl_version() < 45) {
+        const std::string found = describe();
+        releaseEgl();
+        throw HeadlessContextError("HeadlessContext(): OpenGL 4.5 is required, the driver gave " + found);
+    }
+    if (debug) {
+        glEnable(GL_DEBUG_OUTPUT);
+        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+        glDebugMessageCallback(printDebugMessage, nullptr);
+    }
+}
+
+HeadlessContext::~HeadlessContext() { releaseEgl(); }
+
+void HeadlessContext::releaseEgl() {
+    if (mDisplay == nullptr) return;
+    eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (mContext != nullptr) eglDestroyContext(mDisplay, mContext);
+    eglTerminate(mDisplay);
+    eglReleaseThread();
+    mDisplay = nullptr;
+    mContext = nullptr;
+}
+
+std::string HeadlessContext::describe() const {
+    return mRenderer + " / " + mVersion + " (" + mVendor + ") via EGL " + mPlatform + " platform";
+}
+
+} // namespace inkgraph

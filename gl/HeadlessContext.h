@@ -1,0 +1,58 @@
+#pragma once
+/** @file An OpenGL 4.5 core context with no window and no X server, through EGL.
+ *  Tries the EGL device platform first (what NVIDIA machines use; hardware devices before Mesa's software device),
+ *  then Mesa's surfaceless platform. The context is not forward-compatible, so wide lines stay available. */
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+
+/** No display or context could be made. The message names what is missing and how to see more. */
+class HeadlessContextError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+enum class EglPlatform { Any, Device, Surfaceless };
+
+struct HeadlessContextOptions {
+    EglPlatform platform = EglPlatform::Any; ///< INKGRAPH_EGL_PLATFORM=device|surfaceless overrides Any
+    bool debugOutput = false;                ///< KHR_debug messages to stderr (INKGRAPH_GL_DEBUG=1 also enables)
+};
+
+/** Owns the EGL display and context; make it the first member of an app or fixture so it outlives every GL
+ *  object. One at a time per process: EGL displays are shared, and destroying one terminates its display. */
+class HeadlessContext {
+public:
+    /** Creates the context and makes it current on this thread. Throws HeadlessContextError. */
+    explicit HeadlessContext(const HeadlessContextOptions& options = {});
+    ~HeadlessContext();
+    HeadlessContext(const HeadlessContext&) = delete;
+    HeadlessContext& operator=(const HeadlessContext&) = delete;
+
+    /** "device" or "surfaceless" */
+    const std::string& platform() const { return mPlatform; }
+    /** GL_VENDOR, GL_RENDERER, GL_VERSION of the current context. */
+    const std::string& vendor() const { return mVendor; }
+    const std::string& renderer() const { return mRenderer; }
+    const std::string& version() const { return mVersion; }
+    /** e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Core Profile) Mesa 22.3.6 via EGL device platform" */
+    std::string describe() const;
+    /** The largest width of aliased lines, GL_ALIASED_LINE_WIDTH_RANGE[1]. */
+    float maxLineWidth() const { return mMaxLineWidth; }
+
+private:
+    void releaseEgl();
+
+    void* mDisplay = nullptr;
+    void* mContext = nullptr;
+    std::string mPlatform;
+    std::string mVendor;
+    std::string mRenderer;
+    std::string mVersion;
+    float mMaxLineWidth = 1.0f;
+};
+
+} // namespace inkgraph

@@ -1,0 +1,20 @@
+#pragma once
+/** @file GL textures <-> cv::Mat. The ONLY place where GL's bottom-left origin is flipped to the top-left origin
+ *  of images and OpenCV (row 0 at the top). Kernels and files never see GL conventions. */
+
+#include "gl/GlObjects.h"
+
+#include <opencv2/core.hpp>
+
+namespace inkgraph {
+
+/** OpenCV type for a graph format: CV_32FC4, CV_32FC1, CV_8UC4, CV_8UC1. */
+int cvTypeOf(Format format);
+
+/** Reads the whole texture; row 0 of the result is the TOP row of the image. */
+cv::Mat readTexture(const GlTexture& texture);
+
+/** Uploads `image` (row 0 = top) into a texture of the same size and matching type. Throws on a mismatch. */
+void uploadImage(GlTexture& texture, const cv::Mat& image);
+
+} // namespace inkgraph

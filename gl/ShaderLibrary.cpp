@@ -1,0 +1,92 @@
+#include "gl/ShaderLibrary.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace inkgraph {
+namespace {
+
+std::string joinDefines(const std::vector<std::string>& defines) {
+    std::string joined;
+    for (const std::string& define : defines) joined += (joined.empty() ? "" : ", ") + define;
+    return joined.empty() ? "none" : joined;
+}
+
+} // namespace
+
+std::filesystem::path ShaderLibrary::defaultDirectory() {
+    if (const char* fromEnvironment = std::getenv("INKGRAPH_SHADER_DIR"); fromEnvironment && *fromEnvironment)
+        return fromEnvironment;
+    return INKGRAPH_SHADER_DIR;
+}
+
+ShaderLibrary::ShaderLibrary(std::filesystem::path directory) : mDirectory(std::move(directory)) {
+    if (!std::filesystem::is_directory(mDirectory))
+        throw std::runtime_error("ShaderLibrary(): shader directory '" + mDirectory.string() +
+                                 "' does not exist (set INKGRAPH_SHADER_DIR to the shaders/ folder)");
+}
+
+const std::string& ShaderLibrary::source(const std::string& relativePath) {
+    auto found = mSources.find(relativePath);
+    if (found != mSources.end()) return found->second;
+    const std::filesystem::path path = mDirectory / relativePath;
+    std::ifstream file(path, std::ios::binary);
+    if (!file)
+        throw std::runtime_error("ShaderLibrary::source(): cannot read shader '" + path.string() + "'");
+    std::ostringstream text;
+    text << file.rdbuf();
+    return mSources.emplace(relativePath, text.str()).first->second;
+}
+
+GLuint ShaderLibrary::compileStage(const ProgramDesc& desc, GLenum stage, const std::string& file) {
+    std::string text = "#version 450 core\n";
+    // Snippets may hold stage-specific code (e.g. the fullscreen-triangle vertex function).
+    text += stage == GL_VERTEX_SHADER ? "#define INKGRAPH_VERTEX_STAGE 1\n" : "#define INKGRAPH_FRAGMENT_STAGE 1\n";
+    for (const std::string& define : desc.defines) text += "#define " + define + "\n";
+    for (const std::string& snippet : desc.snippets) text += source(snippet) + "\n";
+    // Reset line numbers so compiler messages point into the stage file itself.
+    text += "#line 1\n" + source(file);
+
+    GlHandle<ShaderDeleter> shader(glCreateShader(stage));
+    const char* pointer = text.c_str();
+    glShaderSource(shader.id(), 1, &pointer, nullptr);
+    glCompileShader(shader.id());
+    GLint compiled = GL_FALSE;
+    glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &compiled);
+    if (compiled != GL_TRUE) {
+        GLint logLength = 0;
+        glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &logLength);
+        std::string log(static_cast<std::size_t>(std::max(logLength, 1)), '\0');
+        glGetShaderInfoLog(shader.id(), logLength, nullptr, log.data());
+        throw std::runtime_error("ShaderLibrary::build(): '" + file + "' failed to compile (program '" + desc.label +
+                                 "', defines: " + joinDefines(desc.defines) + "):\n" + log);
+    }
+    return shader.release();
+}
+
+GlProgram ShaderLibrary::build(const ProgramDesc& desc) {
+    GlHandle<ShaderDeleter> vertex(compileStage(desc, GL_VERTEX_SHADER, desc.vertexFile));
+    GlHandle<ShaderDeleter> fragment(compileStage(desc, GL_FRAGMENT_SHADER, desc.fragmentFile));
+    GlProgram program(glCreateProgram(), desc.label);
+    glAttachShader(program.id(), vertex.id());
+    glAttachShader(program.id(), fragment.id());
+    glLinkProgram(program.id());
+    glDetachShader(program.id(), vertex.id());
+    glDetachShader(program.id(), fragment.id());
+    GLint linked = GL_FALSE;
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &linked);
+    if (linked != GL_TRUE) {
+        GLint logLength = 0;
+        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &logLength);
+        std::string log(static_cast<std::size_t>(std::max(logLength, 1)), '\0');
+        glGetProgramInfoLog(program.id(), logLength, nullptr, log.data());
+        throw std::runtime_error("ShaderLibrary::build(): program '" + desc.label + "' ('" + desc.vertexFile +
+                                 "' + '" + desc.fragmentFile + "', defines: " + joinDefines(desc.defines) +
+                                 ") failed to link:\n" + log);
+    }
+    return program;
+}
+
+} // namespace inkgraph
