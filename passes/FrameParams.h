@@ -1,0 +1,26 @@
+#pragma once
+/** @file Per-still parameters every pass may read: camera, light, background. Owned by the app and referenced by the
+ *  passes it constructs; set before the graph executes. */
+
+#include "scene/Camera.h"
+
+#include <glm/glm.hpp>
+
+namespace inkgraph {
+
+struct FrameParams {
+    Camera camera;
+    /** World centre that GPU positions are stored relative to (the bounding-sphere centre), so view transforms of
+     *  far-from-origin models are computed in double and not lost to float cancellation. */
+    glm::dvec3 worldOrigin{0.0};
+    glm::dvec3 towardLightWorld{0.0, 0.0, 1.0}; ///< unit
+    glm::vec4 background{1.0f, 1.0f, 1.0f, 1.0f}; ///< display RGBA of the paper behind the model
+
+    /** View matrix for positions stored relative to worldOrigin, computed in double then rounded. */
+    glm::mat4 viewFromModel() const;
+    glm::mat4 clipFromView() const;
+    /** Light direction in view space (unit). */
+    glm::vec3 towardLightView() const;
+};
+
+} // namespace inkgraph

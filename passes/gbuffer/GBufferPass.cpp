@@ -1,0 +1,101 @@
+#include "passes/gbuffer/GBufferPass.h"
+
+#include "gl/GraphExecutor.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace inkgraph {
+
+const std::vector<GBufferPass::Field>& GBufferPass::fields() {
+    static const std::vector<Field> kFields = {
+        {"normal", Format::RGBA32F, "NORMAL"},  {"view", Format::RGBA32F, "VIEW"},
+        {"wVec", Format::RGBA32F, "WVEC"},      {"nDotV", Format::R32F, "NDOTV"},
+        {"depth", Format::R32F, "DEPTH"},       {"coverage", Format::R8, "COVERAGE"},
+        {"baseColor", Format::RGBA8, "BASECOLOR"},
+    };
+    return kFields;
+}
+
+GBufferPass::GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame)
+    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame) {}
+
+void GBufferPass::declare(PassBuilder& builder) const {
+    for (const Field& field : fields()) builder.write(field.name, {field.format}, Need::Optional);
+}
+
+GlProgram& GBufferPass::programFor(const std::vector<std::string>& defines) {
+    std::string key;
+    for (const std::string& define : defines) key += define + ";";
+    auto& program = mPrograms[key];
+    if (!program)
+        program = std::make_unique<GlProgram>(mShaders.build(
+            {mName, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", defines, {}}));
+    return *program;
+}
+
+std::vector<std::string> GBufferPass::definesFor(const PassContext& context) {
+    std::vector<std::string> defines;
+    int slot = 0;
+    for (const Field& field : fields()) {
+        if (!context.isLive(field.name)) continue;
+        defines.push_back(std::string("OUT_") + field.define + " 1");
+        defines.push_back(std::string("LOC_") + field.define + " " + std::to_string(slot++));
+    }
+    return defines;
+}
+
+void GBufferPass::prepare(PassContext& context) {
+    programFor(definesFor(context));
+    mScene.meshes();
+}
+
+void GBufferPass::execute(PassContext& context) {
+    GlPassContext& gl = GlPassContext::from(context);
+    const int width = gl.width();
+    const int height = gl.height();
+
+    GlFramebuffer framebuffer(mName);
+    std::vector<int> drawSlots;
+    for (const Field& field : fields()) {
+        if (!gl.isLive(field.name)) continue;
+        const int slot = static_cast<int>(drawSlots.size());
+        framebuffer.attachColor(slot, gl.outputTexture(field.name));
+        drawSlots.push_back(slot);
+    }
+    GlDepthTexture depth(width, height, mName + " depth test");
+    framebuffer.attachDepth(depth);
+    framebuffer.finish(drawSlots);
+
+    GlProgram& program = programFor(definesFor(context));
+    framebuffer.bind();
+    glViewport(0, 0, width, height);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (int slot : drawSlots) glClearBufferfv(GL_COLOR, slot, zero);
+    const float farDepth = 1.0f;
+    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_CULL_FACE); // open meshes show their insides through holes
+    glDisable(GL_BLEND);
+
+    const glm::mat4 viewFromModel = mFrame.viewFromModel();
+    const glm::mat3 viewNormalFromModel = glm::inverseTranspose(glm::mat3(viewFromModel));
+    const glm::mat4 clipFromView = mFrame.clipFromView();
+    program.use();
+    glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
+    glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
+    glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    const GLint baseColorLocation = program.uniform("baseColor");
+    for (const GpuScene::DrawMesh& mesh : mScene.meshes()) {
+        glUniform4fv(baseColorLocation, 1, glm::value_ptr(mesh.baseColor));
+        mesh.vertexArray.bind();
+        glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDisable(GL_DEPTH_TEST);
+}
+
+} // namespace inkgraph

@@ -1,0 +1,62 @@
+// G-buffer: float32 view-space quantities. Only the live outputs are declared (OUT_* and LOC_* defines come from
+// GBufferPass), so nothing is computed or stored for a buffer no pass reads.
+in vec3 viewPosition;
+in vec3 viewNormal;
+
+uniform vec4 baseColor;
+
+#ifdef OUT_NORMAL
+layout(location = LOC_NORMAL) out vec4 outNormal;
+#endif
+#ifdef OUT_VIEW
+layout(location = LOC_VIEW) out vec4 outView;
+#endif
+#ifdef OUT_WVEC
+layout(location = LOC_WVEC) out vec4 outWVec;
+#endif
+#ifdef OUT_NDOTV
+layout(location = LOC_NDOTV) out float outNDotV;
+#endif
+#ifdef OUT_DEPTH
+layout(location = LOC_DEPTH) out float outDepth;
+#endif
+#ifdef OUT_COVERAGE
+layout(location = LOC_COVERAGE) out float outCoverage;
+#endif
+#ifdef OUT_BASECOLOR
+layout(location = LOC_BASECOLOR) out vec4 outBaseColor;
+#endif
+
+void main() {
+    // Interpolated normals are renormalised per fragment; seen from behind (open meshes, holes) the surface is
+    // two-sided, so the normal turns toward the viewer's side.
+    float normalLength = length(viewNormal);
+    vec3 n = normalLength > 0.0 ? viewNormal / normalLength : vec3(0.0, 0.0, 1.0);
+    if (!gl_FrontFacing) n = -n;
+    // Unit vector from the surface to the eye (the eye is the view-space origin).
+    float distanceToEye = length(viewPosition);
+    vec3 v = distanceToEye > 0.0 ? -viewPosition / distanceToEye : vec3(0.0, 0.0, 1.0);
+    float nDotV = dot(n, v);
+#ifdef OUT_NORMAL
+    outNormal = vec4(n, 1.0);
+#endif
+#ifdef OUT_VIEW
+    outView = vec4(v, 1.0);
+#endif
+#ifdef OUT_WVEC
+    // Unnormalised: |w| = sin(theta). Never normalised here, so w -> 0 (frontal surfaces) stays finite.
+    outWVec = vec4(v - nDotV * n, 1.0);
+#endif
+#ifdef OUT_NDOTV
+    outNDotV = nDotV;
+#endif
+#ifdef OUT_DEPTH
+    outDepth = -viewPosition.z;
+#endif
+#ifdef OUT_COVERAGE
+    outCoverage = 1.0;
+#endif
+#ifdef OUT_BASECOLOR
+    outBaseColor = vec4(baseColor.rgb, 1.0);
+#endif
+}

@@ -1,0 +1,17 @@
+// G-buffer: transforms to view space; positions arrive relative to the scene's bounding-sphere centre.
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+
+uniform mat4 viewFromModel;
+uniform mat3 viewNormalFromModel; // inverse-transpose of viewFromModel's upper 3x3
+uniform mat4 clipFromView;
+
+out vec3 viewPosition;
+out vec3 viewNormal;
+
+void main() {
+    vec4 position = viewFromModel * vec4(inPosition, 1.0);
+    viewPosition = position.xyz;
+    viewNormal = viewNormalFromModel * inNormal;
+    gl_Position = clipFromView * position;
+}
