@@ -1,0 +1,133 @@
+#include "app/ImageFiles.h"
+
+#include "app/ImageIoModule.h"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
+#include <future>
+#include <mutex>
+#include <system_error>
+
+namespace inkgraph {
+namespace {
+
+void renameIntoPlace(const std::filesystem::path& temporary, const std::filesystem::path& path) {
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error) {
+        std::filesystem::remove(temporary, error);
+        throw FileError("writeFile(): cannot move the finished file into place as '" + path.string() + "': " +
+                        error.message());
+    }
+}
+
+/** Where the OpenImageIO module is: INKGRAPH_IMAGEIO_MODULE, else beside the executable, else the build tree. */
+std::vector<std::filesystem::path> moduleCandidates() {
+    std::vector<std::filesystem::path> candidates;
+    if (const char* fromEnvironment = std::getenv("INKGRAPH_IMAGEIO_MODULE"); fromEnvironment && *fromEnvironment)
+        candidates.emplace_back(fromEnvironment);
+    std::error_code error;
+    const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (!error) candidates.push_back(executable.parent_path() / INKGRAPH_IMAGEIO_MODULE_NAME);
+    candidates.emplace_back(INKGRAPH_IMAGEIO_MODULE_PATH);
+    return candidates;
+}
+
+/** Loads the module; the result (functions, or the reason it failed) is kept for the whole process. */
+struct LoadedModule {
+    const ImageIoFunctions* functions = nullptr;
+    std::string failure;
+};
+
+LoadedModule loadModule() {
+    LoadedModule loaded;
+    for (const std::filesystem::path& candidate : moduleCandidates()) {
+        if (!std::filesystem::exists(candidate)) continue;
+        // Never unloaded: OpenImageIO keeps global state until exit.
+        void* handle = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (handle == nullptr) {
+            loaded.failure += std::string("\n  - ") + dlerror();
+            continue;
+        }
+        using Entry = const ImageIoFunctions* (*)();
+        auto entry = reinterpret_cast<Entry>(dlsym(handle, "inkgraph_image_io_functions"));
+        if (entry == nullptr || entry()->version != kImageIoVersion) {
+            loaded.failure += "\n  - '" + candidate.string() + "' is not an inkgraph image module of this version";
+            continue;
+        }
+        loaded.functions = entry();
+        return loaded;
+    }
+    if (loaded.failure.empty()) loaded.failure = " (none of the places it is looked for exists)";
+    return loaded;
+}
+
+std::shared_future<LoadedModule>& moduleFuture() {
+    static std::once_flag started;
+    static std::shared_future<LoadedModule> future;
+    std::call_once(started, [] { future = std::async(std::launch::async, loadModule).share(); });
+    return future;
+}
+
+const ImageIoFunctions& imageIo() {
+    const LoadedModule& loaded = moduleFuture().get();
+    if (loaded.functions == nullptr)
+        throw FileError("imageIo(): cannot load the OpenImageIO module '" + std::string(INKGRAPH_IMAGEIO_MODULE_NAME) +
+                        "' (install libopenimageio2.4, or set INKGRAPH_IMAGEIO_MODULE to its path):" + loaded.failure);
+    return *loaded.functions;
+}
+
+} // namespace
+
+void preloadImageIo() { moduleFuture(); }
+
+std::filesystem::path temporarySibling(const std::filesystem::path& path) {
+    static std::atomic<int> counter{0};
+    const std::string name = "." + path.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                             std::to_string(counter++) + path.extension().string();
+    return path.parent_path() / name;
+}
+
+void requireImageWriter(const std::filesystem::path& path) {
+    if (!imageIo().hasWriter(path.string()))
+        throw FileError("writeImage(): '" + path.string() + "': no image format for the extension '" +
+                        path.extension().string() + "' (use .png, .exr, .tif or .jpg)");
+}
+
+void writeImage(const std::filesystem::path& path, const cv::Mat& image) {
+    const std::filesystem::path temporary = temporarySibling(path);
+    std::string error;
+    if (!imageIo().writeImage(path.string(), temporary.string(), image, error)) {
+        std::error_code ignored;
+        std::filesystem::remove(temporary, ignored);
+        throw FileError("writeImage(): cannot write '" + path.string() + "': " + error);
+    }
+    renameIntoPlace(temporary, path);
+}
+
+cv::Mat readImage(const std::filesystem::path& path) {
+    cv::Mat image;
+    std::string error;
+    if (!imageIo().readImage(path.string(), image, error))
+        throw FileError("readImage(): cannot read '" + path.string() + "': " + error);
+    return image;
+}
+
+void writeTextFile(const std::filesystem::path& path, const std::string& text) {
+    const std::filesystem::path temporary = temporarySibling(path);
+    {
+        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+        if (!(file << text) || !file.flush()) {
+            std::error_code ignored;
+            std::filesystem::remove(temporary, ignored);
+            throw FileError("writeTextFile(): cannot write '" + path.string() + "'");
+        }
+    }
+    renameIntoPlace(temporary, path);
+}
+
+} // namespace inkgraph

@@ -1,0 +1,41 @@
+#pragma once
+/** @file Image and text files, all through OpenImageIO, each written under a temporary name in the target folder
+ *  and renamed into place, so a failed run never leaves a half-written file.
+ *  Images are cv::Mat with row 0 at the top and channels in RGBA order (not OpenCV's BGR). OpenImageIO itself is
+ *  behind app/ImageIoModule.h. */
+
+#include <opencv2/core.hpp>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace inkgraph {
+
+/** Writing or reading a file failed; the message names the file and the reason. */
+class FileError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/** Starts loading the OpenImageIO module on a background thread (see app/ImageIoModule.h), so its ~0.2 s of
+ *  dynamic linking overlaps other work. Optional: every function below loads it on first use anyway. */
+void preloadImageIo();
+
+/** Writes CV_8UC1/CV_8UC4 as 8-bit and CV_32FC1/CV_32FC4 as float32 (EXR keeps float; PNG would quantise, so
+ *  float images must go to .exr or .tif). The format follows the extension. */
+void writeImage(const std::filesystem::path& path, const cv::Mat& image);
+
+/** Throws FileError unless OpenImageIO has a writer for the extension of `path` (checked before rendering). */
+void requireImageWriter(const std::filesystem::path& path);
+
+/** Reads any image OpenImageIO knows into CV_8UCn (8-bit files) or CV_32FCn (everything else). */
+cv::Mat readImage(const std::filesystem::path& path);
+
+/** Writes text under a temporary name and renames it into place. */
+void writeTextFile(const std::filesystem::path& path, const std::string& text);
+
+/** A sibling of `path` with the same extension, unique to this process: "final.png" -> ".final.tmp-1234.png". */
+std::filesystem::path temporarySibling(const std::filesystem::path& path);
+
+} // namespace inkgraph

@@ -1,0 +1,28 @@
+#pragma once
+/** @file The boundary between inkgraph and OpenImageIO. Debian's OpenImageIO links about 260 libraries, and the
+ *  dynamic loader spends ~0.2 s resolving their symbols: more than rendering the default model takes. So the OIIO
+ *  code lives in a module (libinkgraph_imageio.so) that app/ImageFiles loads with dlopen on a background thread
+ *  while the scene loads and renders. The boundary is plain: no exception crosses it, errors come back as text. */
+
+#include <opencv2/core.hpp>
+
+#include <string>
+
+namespace inkgraph {
+
+struct ImageIoFunctions {
+    int version;
+    /** Writes `image` to `temporaryPath` in the format of `formatPath`'s extension. */
+    bool (*writeImage)(const std::string& formatPath, const std::string& temporaryPath, const cv::Mat& image,
+                       std::string& error);
+    bool (*readImage)(const std::string& path, cv::Mat& image, std::string& error);
+    /** True when a writer exists for the extension of `path`. */
+    bool (*hasWriter)(const std::string& path);
+};
+
+inline constexpr int kImageIoVersion = 1;
+
+} // namespace inkgraph
+
+/** The module's only export. */
+extern "C" const inkgraph::ImageIoFunctions* inkgraph_image_io_functions();

@@ -1,0 +1,33 @@
+#pragma once
+/** @file `inkgraph render`: load, frame, build the graph, compile, execute, write. */
+
+#include "app/Options.h"
+
+#include <iosfwd>
+#include <stdexcept>
+
+namespace inkgraph {
+
+/** Exit codes of the command line (README "Errors and exit codes"). */
+enum ExitCode : int {
+    kExitOk = 0,
+    kExitInternal = 1,
+    kExitUsage = 2,
+    kExitBadInput = 3,
+    kExitNoGl = 4,
+    kExitOutput = 5,
+};
+
+/** Renders as the options say. `out` receives --print-plan, `log` the progress lines. Throws the layer's own
+ *  exceptions (SceneError, HeadlessContextError, FileError, UsageError, GraphError); runCommandLine maps them to
+ *  exit codes. */
+void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& log);
+
+/** The whole CLI: parses argv, runs, catches once, prints "inkgraph: <message>" to `err`, returns the exit code. */
+int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::ostream& err);
+
+/** The file name --dump gives a resource: "gbuffer.normal" -> "normal.exr", the shading colour -> "shading.png",
+ *  "composite.final" -> "final.png", "<type>.lines" -> "lines-<type>.png"; others "<pass>-<field>.exr|png". */
+std::string dumpFileName(const std::string& resource, bool isFloat, const std::string& shadingResource);
+
+} // namespace inkgraph
