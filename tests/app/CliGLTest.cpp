@@ -1,0 +1,231 @@
+// The real `inkgraph` executable as a user runs it: dump and read back, stats, exit codes, messages, and no
+// half-written files. Needs a GL context (llvmpipe in CI) for the rendering cases.
+#include "app/ImageFiles.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+
+namespace inkgraph {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string readText(const fs::path& path) {
+    std::ifstream file(path);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        directory = fs::temp_directory_path() /
+                    ("inkgraph-cli-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
+        fs::remove_all(directory);
+        fs::create_directories(directory);
+    }
+    void TearDown() override {
+        if (!HasFailure()) fs::remove_all(directory);
+    }
+
+    /** Runs the executable through the shell; `environment` is prefixed ("A=1 B=2"). */
+    CliRun run(const std::string& arguments, const std::string& environment = "") {
+        const fs::path outFile = directory / "stdout.txt";
+        const fs::path errFile = directory / "stderr.txt";
+        const std::string command = "cd '" + directory.string() + "' && env LP_NUM_THREADS=1 " + environment + " '" +
+                                    INKGRAPH_EXECUTABLE + "' " + arguments + " > '" + outFile.string() + "' 2> '" +
+                                    errFile.string() + "' < /dev/null";
+        const int status = std::system(command.c_str());
+        CliRun result;
+        result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        result.out = readText(outFile);
+        result.err = readText(errFile);
+        fs::remove(outFile);
+        fs::remove(errFile);
+        return result;
+    }
+
+    /** Files in the test folder other than the given ones, to prove nothing half-written was left. */
+    std::vector<std::string> listFiles(const fs::path& folder) {
+        std::vector<std::string> names;
+        for (const auto& entry : fs::directory_iterator(folder)) names.push_back(entry.path().filename().string());
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+
+    static std::string model(const std::string& name) {
+        return "'" + (fs::path(INKGRAPH_SOURCE_ROOT) / "models" / name).string() + "'";
+    }
+
+    fs::path directory;
+};
+
+TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
+    const CliRun result = run("render " + model("spot_c3d.obj") +
+                           " -o final.png --size 96x64 --dump dump --request 'gbuffer.*' --stats stats.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+
+    const cv::Mat normal = readImage(directory / "dump" / "normal.exr");
+    ASSERT_EQ(normal.type(), CV_32FC4);
+    ASSERT_EQ(normal.size(), cv::Size(96, 64));
+    const cv::Mat nDotV = readImage(directory / "dump" / "ndotv.exr");
+    ASSERT_EQ(nDotV.type(), CV_32FC1);
+    const cv::Mat depth = readImage(directory / "dump" / "depth.exr");
+    ASSERT_EQ(depth.type(), CV_32FC1);
+    const cv::Mat w = readImage(directory / "dump" / "w.exr");
+    const cv::Mat view = readImage(directory / "dump" / "view.exr");
+    const cv::Mat coverage = readImage(directory / "dump" / "coverage.png");
+    ASSERT_EQ(coverage.type(), CV_8UC1);
+    // The files agree with each other: covered pixels have unit normals, n.v = dot(n, v), |w|^2 + (n.v)^2 = 1 and a
+    // positive depth; background pixels are zero.
+    int covered = 0;
+    for (int row = 0; row < 64; ++row) {
+        for (int col = 0; col < 96; ++col) {
+            const cv::Vec4f n = normal.at<cv::Vec4f>(row, col);
+            const cv::Vec4f v = view.at<cv::Vec4f>(row, col);
+            const cv::Vec4f wv = w.at<cv::Vec4f>(row, col);
+            const float d = nDotV.at<float>(row, col);
+            if (coverage.at<uchar>(row, col) == 0) {
+                ASSERT_EQ(n[3], 0.0f);
+                ASSERT_EQ(depth.at<float>(row, col), 0.0f);
+                continue;
+            }
+            ++covered;
+            ASSERT_EQ(n[3], 1.0f) << "alpha carries coverage";
+            ASSERT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0f, 1e-4f);
+            ASSERT_NEAR(n[0] * v[0] + n[1] * v[1] + n[2] * v[2], d, 1e-5f);
+            ASSERT_NEAR(wv[0] * wv[0] + wv[1] * wv[1] + wv[2] * wv[2] + d * d, 1.0f, 1e-4f);
+            ASSERT_GT(depth.at<float>(row, col), 0.0f);
+        }
+    }
+    EXPECT_GT(covered, 500);
+
+    const cv::Mat finalImage = readImage(directory / "final.png");
+    EXPECT_EQ(finalImage.type(), CV_8UC4);
+    EXPECT_EQ(cv::norm(finalImage, readImage(directory / "dump" / "final.png"), cv::NORM_INF), 0.0);
+    EXPECT_TRUE(fs::exists(directory / "dump" / "shading.png"));
+
+    const auto manifest = nlohmann::json::parse(readText(directory / "dump" / "manifest.json"));
+    EXPECT_EQ(manifest["size"], nlohmann::json::array({96, 64}));
+    EXPECT_EQ(manifest["camera"]["source"], "auto-framed");
+    EXPECT_EQ(manifest["camera"]["view_matrix"].size(), 4u);
+    std::map<std::string, std::string> fileToResource;
+    for (const auto& file : manifest["files"]) fileToResource[file["file"]] = file["resource"];
+    EXPECT_EQ(fileToResource["normal.exr"], "gbuffer.normal");
+    EXPECT_EQ(fileToResource["w.exr"], "gbuffer.wVec");
+    EXPECT_EQ(fileToResource["shading.png"], "lambert.color");
+    EXPECT_EQ(fileToResource["final.png"], "composite.final");
+    EXPECT_EQ(manifest["passes"].size(), 3u);
+
+    const auto stats = nlohmann::json::parse(readText(directory / "stats.json"));
+    EXPECT_EQ(stats["passes"][0]["name"], "gbuffer");
+    EXPECT_GT(stats["passes"][0]["ms"].get<double>(), 0.0);
+    EXPECT_EQ(stats["scene"]["triangles"], 5856);
+    EXPECT_TRUE(stats["culled"].empty());
+    // No temporary names left anywhere.
+    for (const std::string& name : listFiles(directory / "dump")) EXPECT_EQ(name.find(".tmp-"), std::string::npos);
+}
+
+TEST_F(Cli, DumpingNeverChangesWhatRuns) {
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o a.png --size 48x48 --stats plain.json").exitCode, 0);
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o b.png --size 48x48 --stats dumped.json --dump d").exitCode,
+              0);
+    const auto plain = nlohmann::json::parse(readText(directory / "plain.json"));
+    const auto dumped = nlohmann::json::parse(readText(directory / "dumped.json"));
+    ASSERT_EQ(plain["passes"].size(), dumped["passes"].size());
+    for (std::size_t i = 0; i < plain["passes"].size(); ++i)
+        EXPECT_EQ(plain["passes"][i]["name"], dumped["passes"][i]["name"]);
+    // Lambert needs only the normal and the base colour: nothing else of the G-buffer is computed or dumped.
+    EXPECT_EQ(listFiles(directory / "d"),
+              (std::vector<std::string>{"basecolor.png", "final.png", "manifest.json", "normal.exr", "shading.png"}));
+    EXPECT_EQ(cv::norm(readImage(directory / "a.png"), readImage(directory / "b.png"), cv::NORM_INF), 0.0);
+}
+
+TEST_F(Cli, ShadingNoneCullsTheShadingPassWithAReason) {
+    const CliRun result = run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --shading none --stats s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+    ASSERT_EQ(stats["passes"].size(), 1u);
+    EXPECT_EQ(stats["passes"][0]["name"], "composite");
+    std::set<std::string> culled;
+    for (const auto& pass : stats["culled"]) {
+        culled.insert(pass["name"].get<std::string>());
+        EXPECT_FALSE(pass["reason"].get<std::string>().empty());
+    }
+    EXPECT_EQ(culled, (std::set<std::string>{"gbuffer", "lambert"}));
+    // Paper only: every pixel white.
+    const cv::Mat image = readImage(directory / "a.png");
+    EXPECT_EQ(cv::countNonZero(image.reshape(1) != 255), 0);
+}
+
+TEST_F(Cli, PrintPlanWithoutOutputNeedsNoGl) {
+    // No EGL vendor at all: --print-plan alone still works, because no context is made.
+    const CliRun result = run("render " + model("spot_c3d.obj") + " --print-plan",
+                           "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_NE(result.out.find("gbuffer"), std::string::npos);
+    EXPECT_NE(result.out.find("lambert"), std::string::npos);
+    EXPECT_NE(result.out.find("composite"), std::string::npos);
+}
+
+TEST_F(Cli, NoEglDisplayIsAClearErrorNotACrash) {
+    const CliRun result = run("render " + model("spot_c3d.obj") + " -o a.png --size 16x16",
+                           "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl.json");
+    EXPECT_EQ(result.exitCode, 4) << result.err;
+    EXPECT_NE(result.err.find("libegl-mesa0"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("EGL_LOG_LEVEL=debug"), std::string::npos) << result.err;
+    EXPECT_FALSE(fs::exists(directory / "a.png"));
+}
+
+TEST_F(Cli, BadInputExitCodesAndMessages) {
+    CliRun missing = run("render nowhere.obj -o a.png");
+    EXPECT_EQ(missing.exitCode, 3);
+    EXPECT_NE(missing.err.find("nowhere.obj"), std::string::npos) << missing.err;
+
+    std::ofstream(directory / "nan.obj") << "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n";
+    CliRun nan = run("render nan.obj -o a.png");
+    EXPECT_EQ(nan.exitCode, 3);
+    EXPECT_NE(nan.err.find("nan.obj"), std::string::npos) << nan.err;
+
+    CliRun badSize = run("render " + model("spot_c3d.obj") + " -o a.png --size 0x5");
+    EXPECT_EQ(badSize.exitCode, 2);
+    EXPECT_NE(badSize.err.find("--size"), std::string::npos);
+
+    CliRun noFolder = run("render " + model("spot_c3d.obj") + " -o missing/folder/a.png --size 16x16");
+    EXPECT_EQ(noFolder.exitCode, 5);
+    EXPECT_NE(noFolder.err.find("missing/folder/a.png"), std::string::npos) << noFolder.err;
+
+    CliRun badExtension = run("render " + model("spot_c3d.obj") + " -o a.docx --size 16x16");
+    EXPECT_EQ(badExtension.exitCode, 5);
+    EXPECT_NE(badExtension.err.find("'.docx'"), std::string::npos) << badExtension.err;
+
+    std::ofstream(directory / "blocker") << "a file where a folder is expected";
+    CliRun badDump = run("render " + model("spot_c3d.obj") + " -o a.png --size 16x16 --dump blocker/sub");
+    EXPECT_EQ(badDump.exitCode, 5);
+    EXPECT_NE(badDump.err.find("blocker/sub"), std::string::npos) << badDump.err;
+
+    CliRun badRequest = run("render " + model("spot_c3d.obj") + " -o a.png --size 16x16 --request gbuffer.nothing");
+    EXPECT_EQ(badRequest.exitCode, 2);
+    EXPECT_NE(badRequest.err.find("'gbuffer.nothing'"), std::string::npos) << badRequest.err;
+
+    // Nothing was written by any failed run, not even under a temporary name.
+    EXPECT_EQ(listFiles(directory), (std::vector<std::string>{"blocker", "nan.obj"}));
+}
+
+} // namespace
+} // namespace inkgraph

@@ -1,0 +1,115 @@
+// The GL layer on a real headless context: both EGL platforms, the one flip point, the texture pool, shader errors.
+#include "gl/GlObjects.h"
+#include "gl/HeadlessContext.h"
+#include "gl/Readback.h"
+#include "gl/ShaderLibrary.h"
+#include "gl/TexturePool.h"
+#include "tests/support/GlTestContext.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace inkgraph {
+namespace {
+
+TEST(HeadlessContext, DevicePlatformGivesCore45) {
+    test::releaseSharedGlContext();
+    HeadlessContext context({EglPlatform::Device, false});
+    EXPECT_EQ(context.platform(), "device");
+    GLint major = 0, minor = 0, profile = 0, flags = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+    glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
+    EXPECT_GE(major * 10 + minor, 45);
+    EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
+    EXPECT_FALSE(flags & GL_CONTEXT_FLAG_FORWARD_COMPATIBLE_BIT) << "wide lines need a non-forward-compatible context";
+    EXPECT_GT(context.maxLineWidth(), 1.0f);
+}
+
+TEST(HeadlessContext, SurfacelessPlatformGivesCore45) {
+    test::releaseSharedGlContext();
+    HeadlessContext context({EglPlatform::Surfaceless, false});
+    EXPECT_EQ(context.platform(), "surfaceless");
+    EXPECT_GE(epoxy_gl_version(), 45);
+    EXPECT_NE(context.describe().find("surfaceless"), std::string::npos);
+}
+
+TEST(Readback, RowZeroIsTheTopOfTheImage) {
+    test::sharedGlContext();
+    cv::Mat image(3, 2, CV_32FC1);
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 2; ++col) image.at<float>(row, col) = float(10 * row + col);
+    GlTexture texture(Format::R32F, 2, 3, "readback test");
+    uploadImage(texture, image);
+    // GL stores the bottom row first: our top row (row 0) must be GL's last row.
+    float raw[6] = {};
+    glGetTextureImage(texture.id(), 0, GL_RED, GL_FLOAT, sizeof raw, raw);
+    EXPECT_EQ(raw[0], 20.0f);
+    EXPECT_EQ(raw[4], 0.0f);
+    const cv::Mat back = readTexture(texture);
+    EXPECT_EQ(cv::norm(back, image, cv::NORM_INF), 0.0);
+    EXPECT_THROW(uploadImage(texture, cv::Mat(2, 2, CV_32FC1)), std::invalid_argument);
+}
+
+TEST(Readback, FloatValuesAreUnclamped) {
+    test::sharedGlContext();
+    cv::Mat image(1, 1, CV_32FC4, cv::Scalar(-3.5, 1e6, 0.125, 42.0));
+    GlTexture texture(Format::RGBA32F, 1, 1, "unclamped");
+    uploadImage(texture, image);
+    EXPECT_EQ(readTexture(texture).at<cv::Vec4f>(0, 0), cv::Vec4f(-3.5f, 1e6f, 0.125f, 42.0f));
+}
+
+TEST(TexturePool, ReusesOnlyMatchingTextures) {
+    test::sharedGlContext();
+    TexturePool pool;
+    GlTexture first = pool.acquire(Format::R32F, 8, 8, "a");
+    const GLuint firstId = first.id();
+    pool.release(std::move(first));
+    GlTexture other = pool.acquire(Format::RGBA32F, 8, 8, "b"); // different format: new texture
+    GlTexture again = pool.acquire(Format::R32F, 8, 8, "c");    // same key: reused and relabelled
+    EXPECT_EQ(again.id(), firstId);
+    EXPECT_EQ(again.label(), "c");
+    EXPECT_EQ(pool.createdCount(), 2u);
+    EXPECT_EQ(pool.reusedCount(), 1u);
+}
+
+TEST(GlHandle, MoveTransfersOwnership) {
+    test::sharedGlContext();
+    GlTexture texture(Format::R8, 4, 4, "moved");
+    const GLuint id = texture.id();
+    GlTexture moved = std::move(texture);
+    EXPECT_EQ(moved.id(), id);
+    EXPECT_EQ(texture.id(), 0u); // NOLINT(bugprone-use-after-move): the moved-from state is what is tested
+    EXPECT_TRUE(glIsTexture(id));
+}
+
+TEST(ShaderLibrary, CompileErrorNamesFileAndDefines) {
+    test::sharedGlContext();
+    const std::filesystem::path directory =
+        std::filesystem::temp_directory_path() / ("inkgraph-shader-test-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(directory / "broken");
+    std::ofstream(directory / "broken" / "ok.vert") << "void main() { gl_Position = vec4(0.0); }\n";
+    std::ofstream(directory / "broken" / "bad.frag") << "out vec4 color;\nvoid main() { color = undefinedThing; }\n";
+    ShaderLibrary library(directory);
+    try {
+        library.build({"broken", "broken/ok.vert", "broken/bad.frag", {"FLAVOUR 2"}, {}});
+        FAIL() << "a broken shader must throw";
+    } catch (const std::runtime_error& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("ShaderLibrary::build()"), std::string::npos) << message;
+        EXPECT_NE(message.find("'broken/bad.frag'"), std::string::npos) << message;
+        EXPECT_NE(message.find("FLAVOUR 2"), std::string::npos) << message;
+    }
+    EXPECT_THROW(library.build({"missing", "broken/none.vert", "broken/bad.frag", {}, {}}), std::runtime_error);
+    std::filesystem::remove_all(directory);
+}
+
+TEST(ShaderLibrary, MissingDirectoryIsAnError) {
+    EXPECT_THROW(ShaderLibrary("/nonexistent/inkgraph/shaders"), std::runtime_error);
+}
+
+} // namespace
+} // namespace inkgraph

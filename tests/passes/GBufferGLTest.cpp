@@ -1,0 +1,182 @@
+// G-buffer of an analytic sphere against ray-cast ground truth: normals (angular error in degrees), n.v, |w|,
+// linear depth and coverage, plus optional-output culling. Needs a GL context (llvmpipe in CI).
+#include "gl/GraphExecutor.h"
+#include "gl/ShaderLibrary.h"
+#include "graph/GraphCompiler.h"
+#include "passes/FrameParams.h"
+#include "passes/GpuScene.h"
+#include "passes/gbuffer/GBufferPass.h"
+#include "scene/Camera.h"
+#include "scene/Procedural.h"
+#include "tests/support/GlTestContext.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+constexpr int kSize = 256;
+constexpr double kRadius = 1.0;
+constexpr double kDistance = 4.0;
+constexpr double kFovDegrees = 35.0;
+
+/** The exact surface under a pixel centre, by ray casting the sphere in double (view space, eye at the origin). */
+struct AnalyticHit {
+    glm::dvec3 normal;
+    glm::dvec3 view;
+    double depth;
+};
+
+std::optional<AnalyticHit> castPixel(int col, int row) {
+    const double tanHalf = std::tan(glm::radians(kFovDegrees) / 2.0);
+    // Row 0 is the top of the image; pixel centres sit at (col + 0.5, row + 0.5).
+    const double ndcX = 2.0 * (col + 0.5) / kSize - 1.0;
+    const double ndcY = 1.0 - 2.0 * (row + 0.5) / kSize;
+    const glm::dvec3 direction = glm::normalize(glm::dvec3(ndcX * tanHalf, ndcY * tanHalf, -1.0));
+    const glm::dvec3 center(0.0, 0.0, -kDistance);
+    const double b = glm::dot(direction, center);
+    const double discriminant = b * b - (glm::dot(center, center) - kRadius * kRadius);
+    if (discriminant < 0.0) return std::nullopt;
+    const glm::dvec3 hit = direction * (b - std::sqrt(discriminant));
+    return AnalyticHit{(hit - center) / kRadius, -glm::normalize(hit), -hit.z};
+}
+
+/** Distance in pixels from a pixel centre to the analytic silhouette circle (radius f R / sqrt(d^2 - R^2)). */
+double pixelsFromSilhouette(int col, int row) {
+    const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
+    const double radius = focal * kRadius / std::sqrt(kDistance * kDistance - kRadius * kRadius);
+    const double dx = col + 0.5 - kSize / 2.0;
+    const double dy = row + 0.5 - kSize / 2.0;
+    return std::abs(std::sqrt(dx * dx + dy * dy) - radius);
+}
+
+class GBufferSphere : public ::testing::Test {
+protected:
+    void SetUp() override {
+        test::sharedGlContext();
+        scene = makeScene(makeUvSphere({0.0f, 0.0f, 0.0f}, float(kRadius), 512, 256));
+        CameraRequest request;
+        request.eye = glm::dvec3(0.0, 0.0, kDistance);
+        request.target = glm::dvec3(0.0);
+        request.fovYDegrees = kFovDegrees;
+        request.width = kSize;
+        request.height = kSize;
+        frame.camera = resolveCamera(request, scene);
+        frame.worldOrigin = glm::dvec3(0.0);
+    }
+
+    /** Compiles the single G-buffer pass for `requested` and runs it; returns the plan. */
+    Plan render(const std::vector<std::string>& requested) {
+        gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+        pass = std::make_unique<GBufferPass>("gbuffer", shaders, *gpuScene, frame);
+        Plan plan = compile({pass.get()}, requested);
+        executor.run(plan, {pass.get()}, {kSize, kSize, false});
+        return plan;
+    }
+
+    Scene scene;
+    FrameParams frame;
+    ShaderLibrary shaders;
+    TexturePool pool;
+    GraphExecutor executor{pool};
+    std::unique_ptr<GpuScene> gpuScene;
+    std::unique_ptr<GBufferPass> pass;
+};
+
+TEST_F(GBufferSphere, MatchesRayCastSphere) {
+    render({"gbuffer.normal", "gbuffer.view", "gbuffer.wVec", "gbuffer.nDotV", "gbuffer.depth", "gbuffer.coverage"});
+    ResourceStore& store = executor.store();
+    const cv::Mat& normal = store.image("gbuffer.normal");
+    const cv::Mat& view = store.image("gbuffer.view");
+    const cv::Mat& wVec = store.image("gbuffer.wVec");
+    const cv::Mat& nDotV = store.image("gbuffer.nDotV");
+    const cv::Mat& depth = store.image("gbuffer.depth");
+    const cv::Mat& coverage = store.image("gbuffer.coverage");
+    ASSERT_EQ(normal.type(), CV_32FC4);
+    ASSERT_EQ(nDotV.type(), CV_32FC1);
+    ASSERT_EQ(coverage.type(), CV_8UC1);
+
+    std::vector<double> angleErrors;
+    double maxNDotVError = 0.0, maxViewError = 0.0, maxDepthError = 0.0, maxWError = 0.0;
+    int comparedPixels = 0;
+    for (int row = 0; row < kSize; ++row) {
+        for (int col = 0; col < kSize; ++col) {
+            const std::optional<AnalyticHit> truth = castPixel(col, row);
+            const bool covered = coverage.at<uchar>(row, col) == 255;
+            // Pixels within a pixel of the silhouette may go either way (the mesh is a polygon); elsewhere coverage
+            // must match the analytic disc exactly.
+            if (pixelsFromSilhouette(col, row) > 1.0) {
+                ASSERT_EQ(covered, truth.has_value()) << "coverage at col " << col << ", row " << row;
+            }
+            if (!covered) {
+                ASSERT_EQ(depth.at<float>(row, col), 0.0f) << "background depth at " << col << "," << row;
+                continue;
+            }
+            if (!truth || pixelsFromSilhouette(col, row) <= 2.0) continue;
+            const cv::Vec4f n = normal.at<cv::Vec4f>(row, col);
+            const glm::dvec3 measured(n[0], n[1], n[2]);
+            EXPECT_EQ(n[3], 1.0f);
+            const double cosine = std::clamp(glm::dot(glm::normalize(measured), truth->normal), -1.0, 1.0);
+            angleErrors.push_back(glm::degrees(std::acos(cosine)));
+            const cv::Vec4f v = view.at<cv::Vec4f>(row, col);
+            maxViewError = std::max(maxViewError, glm::length(glm::dvec3(v[0], v[1], v[2]) - truth->view));
+            const double trueNDotV = glm::dot(truth->normal, truth->view);
+            maxNDotVError = std::max(maxNDotVError, std::abs(double(nDotV.at<float>(row, col)) - trueNDotV));
+            maxDepthError = std::max(maxDepthError, std::abs(double(depth.at<float>(row, col)) - truth->depth));
+            // |w| = sin(theta) and w is tangent: |w|^2 + (n.v)^2 = 1.
+            const cv::Vec4f w = wVec.at<cv::Vec4f>(row, col);
+            const double wLengthSquared = double(w[0]) * w[0] + double(w[1]) * w[1] + double(w[2]) * w[2];
+            const double measuredNDotV = nDotV.at<float>(row, col);
+            maxWError = std::max(maxWError, std::abs(wLengthSquared + measuredNDotV * measuredNDotV - 1.0));
+            ++comparedPixels;
+        }
+    }
+    // The disc covers about pi * 66^2 pixels at this size; most of them must be compared.
+    ASSERT_GT(comparedPixels, 12000);
+    std::sort(angleErrors.begin(), angleErrors.end());
+    const double medianAngle = angleErrors[angleErrors.size() / 2];
+    const double maxAngle = angleErrors.back();
+    // 512 x 256 segments: the faceted surface deviates by R(1 - cos(pi/512)) ~ 2e-5 and interpolated normals by
+    // under 0.01 degree (measured on llvmpipe: median 0.0009, max 0.0096); a wrong matrix, a flip or a half-pixel
+    // shift gives errors of degrees.
+    EXPECT_LT(medianAngle, 0.005) << "median normal error in degrees";
+    EXPECT_LT(maxAngle, 0.05) << "max normal error in degrees";
+    EXPECT_LT(maxViewError, 1e-3);
+    EXPECT_LT(maxNDotVError, 5e-3);
+    EXPECT_LT(maxDepthError, 1e-3) << "linear depth error in world units (depth about 3)";
+    EXPECT_LT(maxWError, 1e-5);
+    RecordProperty("median_normal_error_degrees", std::to_string(medianAngle));
+    RecordProperty("max_normal_error_degrees", std::to_string(maxAngle));
+}
+
+TEST_F(GBufferSphere, ComputesOnlyRequestedOptionalOutputs) {
+    const Plan plan = render({"gbuffer.nDotV"});
+    const PlannedPass* planned = plan.findPass("gbuffer");
+    ASSERT_NE(planned, nullptr);
+    EXPECT_EQ(planned->liveWrites, std::vector<std::string>{"gbuffer.nDotV"});
+    EXPECT_EQ(planned->deadOptionalWrites.size(), GBufferPass::fields().size() - 1);
+    EXPECT_EQ(executor.store().names(), std::vector<std::string>{"gbuffer.nDotV"});
+    // n.v at the centre of a frontal sphere is 1 (the eye looks straight at the surface).
+    const cv::Mat& nDotV = executor.store().image("gbuffer.nDotV");
+    EXPECT_NEAR(nDotV.at<float>(kSize / 2, kSize / 2), 1.0f, 1e-3f);
+}
+
+TEST_F(GBufferSphere, ImageRowZeroIsTheTop) {
+    // Light the top of the sphere only through geometry: the view-space normal's y is positive in the upper half.
+    render({"gbuffer.normal"});
+    const cv::Mat& normal = executor.store().image("gbuffer.normal");
+    const int center = kSize / 2;
+    EXPECT_GT(normal.at<cv::Vec4f>(center - 40, center)[1], 0.2f) << "upper half must face up (+y)";
+    EXPECT_LT(normal.at<cv::Vec4f>(center + 40, center)[1], -0.2f);
+    EXPECT_LT(normal.at<cv::Vec4f>(center, center - 40)[0], -0.2f) << "left half must face left (-x)";
+}
+
+} // namespace
+} // namespace inkgraph

@@ -1,0 +1,49 @@
+// postfx/Composite on synthetic layers; no GL.
+#include "postfx/Composite.h"
+
+#include <gtest/gtest.h>
+
+namespace inkgraph {
+namespace {
+
+TEST(Composite, PaperAloneWithoutShading) {
+    CompositeInputs inputs;
+    inputs.size = {5, 3};
+    inputs.paper = {1.0f, 0.5f, 0.0f, 1.0f};
+    const cv::Mat result = compositeFinal(inputs);
+    ASSERT_EQ(result.type(), CV_8UC4);
+    ASSERT_EQ(result.size(), cv::Size(5, 3));
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 5; ++col) EXPECT_EQ(result.at<cv::Vec4b>(row, col), cv::Vec4b(255, 128, 0, 255));
+}
+
+TEST(Composite, ShadingOverPaperByAlpha) {
+    CompositeInputs inputs;
+    inputs.size = {3, 1};
+    inputs.paper = {1.0f, 1.0f, 1.0f, 1.0f};
+    inputs.shading = cv::Mat(1, 3, CV_8UC4);
+    inputs.shading.at<cv::Vec4b>(0, 0) = {10, 20, 30, 255}; // covered: the shading itself
+    inputs.shading.at<cv::Vec4b>(0, 1) = {10, 20, 30, 0};   // background: paper
+    inputs.shading.at<cv::Vec4b>(0, 2) = {0, 0, 0, 128};    // half: halfway to white
+    const cv::Mat result = compositeFinal(inputs);
+    EXPECT_EQ(result.at<cv::Vec4b>(0, 0), cv::Vec4b(10, 20, 30, 255));
+    EXPECT_EQ(result.at<cv::Vec4b>(0, 1), cv::Vec4b(255, 255, 255, 255));
+    EXPECT_EQ(result.at<cv::Vec4b>(0, 2), cv::Vec4b(127, 127, 127, 255));
+}
+
+TEST(Composite, RejectsWrongLayers) {
+    CompositeInputs inputs;
+    inputs.size = {4, 4};
+    inputs.shading = cv::Mat(4, 4, CV_32FC4);
+    EXPECT_THROW(compositeFinal(inputs), std::invalid_argument);
+    inputs.shading = cv::Mat(2, 4, CV_8UC4);
+    EXPECT_THROW(compositeFinal(inputs), std::invalid_argument);
+    inputs.shading.release();
+    inputs.paper = {2.0f, 0.0f, 0.0f, 1.0f};
+    EXPECT_THROW(compositeFinal(inputs), std::invalid_argument);
+    inputs.size = {0, 4};
+    EXPECT_THROW(compositeFinal(inputs), std::invalid_argument);
+}
+
+} // namespace
+} // namespace inkgraph

@@ -1,0 +1,58 @@
+#include "tests/support/ImageCompare.h"
+
+#include "app/ImageFiles.h"
+
+#include <cstdlib>
+#include <sstream>
+
+namespace inkgraph::test {
+
+std::filesystem::path testOutputDirectory(const std::string& testName) {
+    return std::filesystem::path(INKGRAPH_BINARY_ROOT) / "test-output" / testName;
+}
+
+std::filesystem::path sourceRoot() { return INKGRAPH_SOURCE_ROOT_DIR; }
+
+bool updatingGoldens() {
+    const char* value = std::getenv("INKGRAPH_UPDATE_GOLDEN");
+    return value != nullptr && std::string(value) == "1";
+}
+
+::testing::AssertionResult imagesNear(const cv::Mat& actual, const cv::Mat& expected, ImageTolerance tolerance,
+                                      const std::string& testName, const std::string& resourceName) {
+    if (actual.size() != expected.size() || actual.channels() != expected.channels())
+        return ::testing::AssertionFailure()
+               << resourceName << ": size or channels differ: actual " << actual.cols << "x" << actual.rows << "x"
+               << actual.channels() << ", expected " << expected.cols << "x" << expected.rows << "x"
+               << expected.channels();
+    cv::Mat actualFloat, expectedFloat, difference;
+    actual.convertTo(actualFloat, CV_32F);
+    expected.convertTo(expectedFloat, CV_32F);
+    cv::absdiff(actualFloat, expectedFloat, difference);
+    double maxAbs = 0.0;
+    cv::minMaxLoc(difference.reshape(1), nullptr, &maxAbs);
+    // A pixel is an outlier when any of its channels is beyond maxAbs.
+    cv::Mat perPixelMax;
+    cv::reduce(difference.reshape(1, static_cast<int>(difference.total())), perPixelMax, 1, cv::REDUCE_MAX);
+    const double outliers = cv::countNonZero(perPixelMax > tolerance.maxAbs) / double(difference.total());
+    const cv::Scalar channelMeans = cv::mean(difference);
+    double meanAbs = 0.0;
+    for (int c = 0; c < difference.channels(); ++c) meanAbs += channelMeans[c] / difference.channels();
+    // NaN anywhere fails too: comparisons with NaN are false, so test for "within" rather than "beyond".
+    const bool withinMax = outliers <= tolerance.outlierFraction;
+    const bool withinMean = meanAbs <= tolerance.meanAbs;
+    const bool finite = cv::checkRange(actualFloat);
+    if (withinMax && withinMean && finite) return ::testing::AssertionSuccess();
+
+    const std::filesystem::path directory = testOutputDirectory(testName);
+    std::filesystem::create_directories(directory);
+    writeImage(directory / (resourceName + ".actual.exr"), actualFloat);
+    writeImage(directory / (resourceName + ".diff.exr"), difference);
+    return ::testing::AssertionFailure() << resourceName << ": max |diff| " << maxAbs << ", " << outliers * 100.0
+                                         << "% of pixels beyond " << tolerance.maxAbs << " (allowed "
+                                         << tolerance.outlierFraction * 100.0 << "%), mean |diff| " << meanAbs << " (allowed "
+                                         << tolerance.meanAbs << ")" << (finite ? "" : ", NaN or Inf in actual")
+                                         << "; wrote " << directory.string();
+}
+
+} // namespace inkgraph::test
