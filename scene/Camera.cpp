@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace inkgraph {
@@ -11,8 +12,11 @@ namespace inkgraph {
 namespace {
 
 constexpr double kDefaultFovYDegrees = 35.0;
-/** Auto-framing looks from +Z, raised a little so tops of models read as tops. */
-const glm::dvec3 kAutoFrameDirection = glm::normalize(glm::dvec3(0.0, 0.25, 1.0));
+const glm::dvec3 kDefaultUp(0.0, 1.0, 0.0);
+/** Auto-framing looks from the model's front, raised by this much of the up vector so tops of models read as tops. */
+constexpr double kAutoFrameLift = 0.25;
+/** When world +Z lies this close to up (|Z . u| above it), the front is world -Y instead (Z-up CAD and STL models). */
+constexpr double kMaxFrontAlongUp = 0.9;
 constexpr double kFramingMargin = 1.05;
 /** Near never drops below far x this, which bounds depth-buffer precision loss when the eye is close or inside. */
 constexpr double kMinNearOverFar = 1e-4;
@@ -21,10 +25,36 @@ bool isFinite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(
 
 [[noreturn]] void invalid(const std::string& problem) { throw std::invalid_argument("resolveCamera(): " + problem); }
 
+/** "x,y,z", the syntax of the vector flags. */
+std::string formatVector(const glm::dvec3& v) {
+    std::ostringstream text;
+    text << v.x << ',' << v.y << ',' << v.z;
+    return text.str();
+}
+
+std::string formatNumber(double value) {
+    std::ostringstream text;
+    text << value;
+    return text.str();
+}
+
 /** Distance at which a sphere of `radius` fits the narrower of the vertical and horizontal fields of view. */
 double framingDistance(double radius, double fovYRadians, double aspect) {
     const double fovXRadians = 2.0 * std::atan(std::tan(fovYRadians / 2.0) * aspect);
     return kFramingMargin * radius / std::sin(std::min(fovYRadians, fovXRadians) / 2.0);
+}
+
+/** Unit direction from the target toward the auto-framed eye: the front (world +Z, or world -Y when +Z is nearly
+ *  along up) made perpendicular to up, then lifted by kAutoFrameLift x up. `up` must be non-zero and finite. For up
+ *  (0, 1, 0) every step is exact, giving exactly normalize(0, 0.25, 1). */
+glm::dvec3 autoFrameDirection(const glm::dvec3& up) {
+    const glm::dvec3 u = glm::normalize(up);
+    glm::dvec3 front(0.0, 0.0, 1.0);
+    if (std::abs(glm::dot(front, u)) > kMaxFrontAlongUp) {
+        front = glm::dvec3(0.0, -1.0, 0.0); // |Y . u| < sqrt(1 - 0.9^2) here, so the projection below is not short
+    }
+    const glm::dvec3 horizontal = glm::normalize(front - glm::dot(front, u) * u);
+    return glm::normalize(horizontal + kAutoFrameLift * u);
 }
 
 } // namespace
@@ -39,13 +69,17 @@ double Camera::focalPixels() const { return (double(height) / 2.0) / std::tan(gl
 
 Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     if (request.width <= 0 || request.height <= 0) {
-        invalid("image size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
-                " must be positive");
+        invalid("the image size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
+                " (--size) must be positive");
     }
-    if ((request.eye && !isFinite(*request.eye)) || (request.target && !isFinite(*request.target)) ||
-        !isFinite(request.up)) {
-        invalid("eye, target and up must be finite");
-    }
+    const auto requireFinite = [](const std::optional<glm::dvec3>& vector, const char* flag) {
+        if (vector && !isFinite(*vector)) {
+            invalid(std::string(flag) + " " + formatVector(*vector) + " must be finite");
+        }
+    };
+    requireFinite(request.eye, "--eye");
+    requireFinite(request.target, "--target");
+    requireFinite(request.up, "--up");
 
     Camera camera;
     camera.width = request.width;
@@ -58,20 +92,39 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
                                              : kDefaultFovYDegrees;
     const SceneCamera* fileCamera = !request.eye && scene.camera ? &*scene.camera : nullptr;
     if (!std::isfinite(camera.fovYDegrees) || camera.fovYDegrees <= 0.0 || camera.fovYDegrees >= 180.0) {
-        invalid("vertical field of view " + std::to_string(camera.fovYDegrees) + " degrees is outside (0, 180)");
+        const std::string fov = formatNumber(camera.fovYDegrees);
+        invalid(request.fovYDegrees
+                    ? "the vertical field of view (--fov " + fov + ") is outside (0, 180) degrees"
+                    : "the glTF camera's vertical field of view " + fov + " degrees is outside (0, 180); set --fov");
+    }
+
+    // Unset, up follows the glTF camera when that camera places the view; an explicit --up always wins.
+    camera.up = request.up ? *request.up : fileCamera ? fileCamera->up : kDefaultUp;
+    const std::string upText = request.up ? "--up " + formatVector(camera.up)
+                               : fileCamera
+                                   ? "the glTF camera's up " + formatVector(camera.up) + "; override it with --up"
+                                   : "the default " + formatVector(camera.up) + " without --up";
+    if (!(glm::length(camera.up) > 0.0)) {
+        invalid("the up vector (" + upText + ") is zero");
     }
 
     const BoundingSphere sphere = computeBoundingSphere(scene);
+    const std::string centreText = "the model's bounding-sphere centre (" + formatVector(sphere.center) + ")";
     // A point-sized scene still needs a usable framing distance.
     const double radius = sphere.radius > 0.0 ? sphere.radius : 1.0;
-    const glm::dvec3 autoFrameOffset =
-        kAutoFrameDirection * framingDistance(radius, glm::radians(camera.fovYDegrees), camera.aspect());
 
+    // Each branch also says, for the error messages below, where its eye, target and view direction come from.
+    std::string eyeText;
+    std::string targetText;
+    std::string viewText;
     if (request.eye) {
         camera.eye = *request.eye;
         camera.target = request.target ? *request.target : sphere.center;
-        camera.up = request.up;
         camera.source = "flags";
+        eyeText = "the eye (--eye " + formatVector(camera.eye) + ")";
+        targetText = request.target ? "the target (--target " + formatVector(camera.target) + ") coincide"
+                                    : "the target coincide; without --target the target is " + centreText;
+        viewText = "from --eye to " + (request.target ? std::string("--target") : centreText);
     } else if (fileCamera) {
         camera.eye = fileCamera->eye;
         if (request.target) {
@@ -81,23 +134,31 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
             const double depth = glm::length(sphere.center - fileCamera->eye);
             camera.target = fileCamera->eye + fileCamera->forward * (depth > 0.0 ? depth : 1.0);
         }
-        camera.up = fileCamera->up;
         camera.source = "gltf";
+        eyeText = "the glTF camera's eye (" + formatVector(camera.eye) + "; override it with --eye)";
+        targetText = request.target ? "the target (--target " + formatVector(camera.target) + ") coincide"
+                                    : "its target coincide";
+        viewText = request.target ? "from the glTF camera's eye to --target"
+                                  : "the glTF camera's forward " + formatVector(fileCamera->forward);
     } else {
         camera.target = request.target ? *request.target : sphere.center;
-        camera.eye = camera.target + autoFrameOffset;
-        camera.up = request.up;
+        camera.eye = camera.target + autoFrameDirection(camera.up) *
+                                         framingDistance(radius, glm::radians(camera.fovYDegrees), camera.aspect());
         camera.source = "auto-framed";
+        eyeText = "the auto-framed eye (" + formatVector(camera.eye) + ")";
+        targetText = (request.target ? "the target (--target " + formatVector(camera.target) + ")"
+                                     : "the target, " + centreText + ",") +
+                     " coincide: the model is too small for its distance from the origin; set --eye";
+        viewText = "the auto-framing direction";
     }
 
     const glm::dvec3 view = camera.target - camera.eye;
     const double viewLength = glm::length(view);
     if (!(viewLength > 1e-12 * std::max(1.0, glm::length(camera.eye)))) {
-        invalid("eye and target coincide");
+        invalid(eyeText + " and " + targetText);
     }
-    const double upLength = glm::length(camera.up);
-    if (!(upLength > 0.0) || glm::length(glm::cross(view / viewLength, camera.up / upLength)) < 1e-6) {
-        invalid("up vector is zero or parallel to the view direction");
+    if (glm::length(glm::cross(view / viewLength, glm::normalize(camera.up))) < 1e-6) {
+        invalid("the up vector (" + upText + ") is parallel to the view direction (" + viewText + ")");
     }
 
     // Fit the clip planes to the bounding sphere so nothing is clipped and depth precision is spent on the model.

@@ -15,7 +15,9 @@ namespace inkgraph {
 struct CameraRequest {
     std::optional<glm::dvec3> eye;
     std::optional<glm::dvec3> target;
-    glm::dvec3 up{0.0, 1.0, 0.0};
+    /** World up (--up). Unset: the glTF camera's up when that camera is used, else (0, 1, 0). Set, it also wins over
+     *  the glTF camera's up, and auto-framing looks at the model from a side chosen relative to it. */
+    std::optional<glm::dvec3> up;
     std::optional<double> fovYDegrees; ///< vertical field of view; default 35
     int width = 1024;
     int height = 1024;
@@ -40,11 +42,14 @@ struct Camera {
 };
 
 /** Resolves a camera. Precedence per field: the request, then the scene's glTF camera, then auto-framing, which
- *  looks at the bounding-sphere centre from +Z (tilted slightly from above) at the distance where the sphere fits
- *  the smaller field of view with a 5% margin. Near and far are fitted to the bounding sphere: far = distance to the
- *  centre + radius (x1.01); near = max(distance - radius, far x 1e-4) (x0.99), so the sphere is never clipped when
- *  the eye is outside it. Throws std::invalid_argument for eye == target, up parallel to the view direction,
- *  fov outside (0, 180), or a non-positive size. */
+ *  looks at the bounding-sphere centre at the distance where the sphere fits the smaller field of view with a 5%
+ *  margin, from the direction normalize(h + 0.25 u): u is the unit up, h the unit horizontal toward world +Z (or
+ *  toward world -Y when |Z . u| > 0.9, so Z-up models are seen from the front), i.e. from the front and slightly
+ *  above; for the default up (0, 1, 0) that is normalize(0, 0.25, 1). Near and far are fitted to the bounding
+ *  sphere: far = distance to the centre + radius (x1.01); near = max(distance - radius, far x 1e-4) (x0.99), so the
+ *  sphere is never clipped when the eye is outside it. Throws std::invalid_argument, with a message that names the
+ *  flags involved (--eye, --target, --up, --fov, --size), for eye == target, a zero up or one parallel to the view
+ *  direction, fov outside (0, 180), non-finite vectors, or a non-positive size. */
 Camera resolveCamera(const CameraRequest& request, const Scene& scene);
 
 } // namespace inkgraph

@@ -4,6 +4,7 @@
 
 #include "scene/FormatReaders.h"
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -15,7 +16,10 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <cstdlib>
 #include <filesystem>
+#include <iomanip>
+#include <sstream>
 
 namespace inkgraph::detail {
 
@@ -85,6 +89,20 @@ glm::dmat4 localTransform(const tinygltf::Node& node) {
     return transform;
 }
 
+/** The shortest text that reads back as `value` (e.g. 0.5, 3.1415926535897936, inf), for messages. */
+std::string formatNumber(double value) {
+    std::string text;
+    for (int precision = 6; precision <= 17; ++precision) {
+        std::ostringstream candidate;
+        candidate << std::setprecision(precision) << value;
+        text = candidate.str();
+        if (!std::isfinite(value) || std::strtod(text.c_str(), nullptr) == value) {
+            break;
+        }
+    }
+    return text;
+}
+
 /** A bounds-checked window on an accessor's elements. */
 struct AccessorData {
     const unsigned char* first = nullptr;
@@ -98,12 +116,28 @@ struct AccessorData {
 class GltfWalker {
 public:
     GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out)
-        : mPath(path), mModel(model), mOut(out), mOnPath(model.nodes.size(), false) {}
+        : mPath(path), mModel(model), mOut(out), mReached(model.nodes.size(), false) {}
 
     void walk() {
         checkRequiredExtensions();
-        for (int root : rootNodes()) {
-            visit(root, glm::dmat4(1.0));
+        // Depth-first with an explicit stack (a deep hierarchy must not overflow the call stack), in the order the
+        // recursive walk would take: roots and children are pushed in reverse so the first is handled first.
+        std::vector<PendingNode> pending;
+        const std::vector<int> roots = rootNodes();
+        for (auto root = roots.rbegin(); root != roots.rend(); ++root) {
+            claimRoot(*root);
+            pending.push_back({*root, glm::dmat4(1.0)});
+        }
+        while (!pending.empty()) {
+            const PendingNode next = pending.back();
+            pending.pop_back();
+            const tinygltf::Node& node = mModel.nodes[std::size_t(next.index)];
+            const glm::dmat4 world = next.parentWorld * localTransform(node);
+            visit(node, world);
+            for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
+                claimChild(next.index, *child);
+                pending.push_back({*child, world});
+            }
         }
         if (mOut.meshes.empty() && mSkippedPrimitives > 0) {
             throwLoadError(mPath, "no triangles: all " + std::to_string(mSkippedPrimitives) +
@@ -153,17 +187,39 @@ private:
         return roots;
     }
 
-    void visit(int nodeIndex, const glm::dmat4& parentWorld) {
+    /** A node waiting to be visited, with its parent's world transform. */
+    struct PendingNode {
+        int index = 0;
+        glm::dmat4 parentWorld{1.0};
+    };
+
+    void checkNodeIndex(int nodeIndex, const std::string& referrer) const {
         if (nodeIndex < 0 || std::size_t(nodeIndex) >= mModel.nodes.size()) {
-            fail("node index " + std::to_string(nodeIndex) + " out of range (file has " +
+            fail(referrer + ": node index " + std::to_string(nodeIndex) + " out of range (file has " +
                  std::to_string(mModel.nodes.size()) + " nodes)");
         }
-        if (mOnPath[std::size_t(nodeIndex)]) {
-            fail("node " + std::to_string(nodeIndex) + " is its own ancestor (cycle in the node hierarchy)");
-        }
-        const tinygltf::Node& node = mModel.nodes[std::size_t(nodeIndex)];
-        const glm::dmat4 world = parentWorld * localTransform(node);
+    }
 
+    void claimRoot(int nodeIndex) {
+        checkNodeIndex(nodeIndex, "scene");
+        if (mReached[std::size_t(nodeIndex)]) {
+            fail("scene: node " + std::to_string(nodeIndex) + " is listed more than once as a root");
+        }
+        mReached[std::size_t(nodeIndex)] = true;
+    }
+
+    /** glTF 2.0 requires a strict forest: every node has at most one parent and no node is its own ancestor. Marking
+     *  each node the first time it is reached, and rejecting a second time, enforces both and keeps the walk linear
+     *  (shared children would otherwise be expanded once per path, exponentially often). */
+    void claimChild(int parentIndex, int nodeIndex) {
+        checkNodeIndex(nodeIndex, "node " + std::to_string(parentIndex) + " children");
+        if (mReached[std::size_t(nodeIndex)]) {
+            fail("node " + std::to_string(nodeIndex) + " has more than one parent (or is in a cycle)");
+        }
+        mReached[std::size_t(nodeIndex)] = true;
+    }
+
+    void visit(const tinygltf::Node& node, const glm::dmat4& world) {
         if (node.mesh >= 0) {
             addMesh(node, world);
         }
@@ -171,12 +227,12 @@ private:
             addCamera(node, world);
         }
         addLight(node, world);
+    }
 
-        mOnPath[std::size_t(nodeIndex)] = true;
-        for (int child : node.children) {
-            visit(child, world);
-        }
-        mOnPath[std::size_t(nodeIndex)] = false;
+    /** "camera 2 'main'", or "camera 2" for an unnamed one. */
+    std::string cameraLabel(int cameraIndex) const {
+        const std::string& name = mModel.cameras[std::size_t(cameraIndex)].name;
+        return "camera " + std::to_string(cameraIndex) + (name.empty() ? "" : " '" + name + "'");
     }
 
     void addCamera(const tinygltf::Node& node, const glm::dmat4& world) {
@@ -185,25 +241,36 @@ private:
         }
         const tinygltf::Camera& camera = mModel.cameras[std::size_t(node.camera)];
         if (camera.type != "perspective") {
-            mOut.warnings.push_back("camera '" + camera.name + "' of type '" + camera.type +
+            mOut.warnings.push_back(cameraLabel(node.camera) + " of type '" + camera.type +
                                     "' ignored (only perspective cameras are used)");
             return;
         }
         if (mOut.camera) {
             return; // the first one wins
         }
+        const std::string label = cameraLabel(node.camera);
         SceneCamera result;
         result.eye = glm::dvec3(world[3]);
         result.forward = glm::normalize(glm::dvec3(world * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
         result.up = glm::normalize(glm::dvec3(world * glm::dvec4(0.0, 1.0, 0.0, 0.0)));
-        result.fovYDegrees = glm::degrees(camera.perspective.yfov);
-        if (camera.perspective.aspectRatio > 0.0) {
-            result.aspectRatio = camera.perspective.aspectRatio;
+        // Checked here, not left to resolveCamera(): a bad lens is a problem of the file, not of the flags.
+        const double yfov = camera.perspective.yfov;
+        if (!std::isfinite(yfov) || yfov <= 0.0 || yfov >= glm::pi<double>()) {
+            fail(label + ": perspective yfov " + formatNumber(yfov) + " radians is outside (0, pi)");
+        }
+        result.fovYDegrees = glm::degrees(yfov);
+        // tinygltf leaves a missing aspectRatio at 0, so 0 reads as "not given"; any other invalid value is noted.
+        const double aspectRatio = camera.perspective.aspectRatio;
+        if (std::isfinite(aspectRatio) && aspectRatio > 0.0) {
+            result.aspectRatio = aspectRatio;
+        } else if (aspectRatio != 0.0) {
+            mOut.warnings.push_back(label + ": aspectRatio " + formatNumber(aspectRatio) +
+                                    " ignored (must be finite and > 0)");
         }
         if (!std::isfinite(result.eye.x + result.eye.y + result.eye.z) ||
             !std::isfinite(result.forward.x + result.forward.y + result.forward.z) ||
             !std::isfinite(result.up.x + result.up.y + result.up.z)) {
-            fail("camera '" + camera.name + "' has a degenerate or non-finite node transform");
+            fail(label + " has a degenerate or non-finite node transform");
         }
         mOut.camera = result;
     }
@@ -456,7 +523,7 @@ private:
     const std::string& mPath;
     const tinygltf::Model& mModel;
     RawScene& mOut;
-    std::vector<bool> mOnPath; ///< nodes on the current root-to-node path, to detect cycles
+    std::vector<bool> mReached; ///< nodes already reached by the walk; reaching one again is an error
     std::size_t mSkippedPrimitives = 0;
 };
 

@@ -66,6 +66,7 @@ RawScene readBinary(const std::string& path, std::string_view content, std::uint
 struct AsciiFailure {
     std::size_t line = 0;
     std::string problem;
+    bool binaryData = false; ///< the content holds bytes text never does (NUL), so it is no text at all
 };
 
 /** Whitespace tokenizer that tracks line numbers. */
@@ -125,7 +126,7 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, 
     // catches a binary file whose header starts with "solid" before its bytes are misread as tokens.
     if (const std::size_t nul = content.find('\0'); nul != std::string_view::npos) {
         const auto line = std::size_t(std::count(content.begin(), content.begin() + std::ptrdiff_t(nul), '\n')) + 1;
-        return AsciiFailure{line, "binary data (NUL byte) in text"};
+        return AsciiFailure{line, "binary data (NUL byte) in text", true};
     }
     Tokenizer tokens(content);
     enum class State { OutsideSolid, InSolid, InFacet, InLoop, AfterLoop };
@@ -215,9 +216,17 @@ RawScene readStl(const std::string& path, std::string_view content) {
     const std::uint32_t declaredTriangles =
         hasBinaryPreamble ? readLittleEndian<std::uint32_t>(content.data() + kBinaryHeaderBytes) : 0;
     const std::uint64_t binarySize = kBinaryPreambleBytes + std::uint64_t(declaredTriangles) * kBinaryTriangleBytes;
+    // Every declared triangle is present; extra bytes after them are tolerated (some exporters pad).
+    const bool binaryFits = hasBinaryPreamble && binarySize <= content.size();
     const std::string binaryClaim = "its binary header declares " + std::to_string(declaredTriangles) + " triangles (" +
                                     std::to_string(binarySize) + " bytes) but the file has " +
                                     std::to_string(content.size()) + " bytes";
+    const auto readBinaryWithTrailingBytes = [&](const std::string& what) {
+        RawScene scene = readBinary(path, content, declaredTriangles);
+        scene.warnings.push_back(what + ": " + std::to_string(content.size() - binarySize) +
+                                 " bytes after the last triangle ignored");
+        return scene;
+    };
 
     // The size test comes first: binary exporters often start the free-form header with "solid" too.
     if (hasBinaryPreamble && binarySize == content.size()) {
@@ -233,8 +242,16 @@ RawScene readStl(const std::string& path, std::string_view content) {
             scene.meshes.push_back(std::move(mesh));
             return scene;
         }
-        if (!hasBinaryPreamble) {
+        // Real text that fails past its 'solid' line is broken ASCII: its bytes 80-83 read as a triangle count mean
+        // nothing (text bytes make that count over 150 million). Binary data (NUL bytes), or a failure on the first
+        // line, is taken for a binary file whose header happens to start with "solid".
+        const bool looksLikeText = !failure->binaryData && failure->line > 1;
+        if (!hasBinaryPreamble || looksLikeText) {
             throwLoadErrorAtLine(path, failure->line, "invalid ASCII STL: " + failure->problem);
+        }
+        // Complete as binary: the same reading as a binary file whose header does not start with "solid".
+        if (binaryFits) {
+            return readBinaryWithTrailingBytes("binary STL (its header starts with 'solid' but it is not ASCII STL)");
         }
         throwLoadError(path, "neither ASCII STL (line " + std::to_string(failure->line) + ": " + failure->problem +
                                  ") nor binary STL (" + binaryClaim + ")");
@@ -243,13 +260,10 @@ RawScene readStl(const std::string& path, std::string_view content) {
         throwLoadError(path, "not an STL file: " + std::to_string(content.size()) +
                                  " bytes are too few for a binary STL (84-byte preamble) and there is no 'solid' line");
     }
-    if (binarySize > content.size()) {
+    if (!binaryFits) {
         throwLoadError(path, "truncated binary STL: " + binaryClaim);
     }
-    RawScene scene = readBinary(path, content, declaredTriangles);
-    scene.warnings.push_back("binary STL: " + std::to_string(content.size() - binarySize) +
-                             " bytes after the last triangle ignored");
-    return scene;
+    return readBinaryWithTrailingBytes("binary STL");
 }
 
 } // namespace inkgraph::detail

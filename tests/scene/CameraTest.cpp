@@ -130,7 +130,7 @@ TEST(Camera, RequestedEyeAndTargetAreHonoured) {
     EXPECT_EQ(camera.source, "flags");
     EXPECT_EQ(camera.eye, *both.eye);
     EXPECT_EQ(camera.target, *both.target);
-    EXPECT_EQ(camera.up, both.up);
+    EXPECT_EQ(camera.up, *both.up);
     EXPECT_EQ(camera.fovYDegrees, 50.0);
     EXPECT_EQ(camera.width, 640);
     EXPECT_EQ(camera.height, 480);
@@ -216,6 +216,151 @@ TEST(Camera, InvalidRequestsThrow) {
     expectInvalid(negativeHeight, "height");
 
     EXPECT_THROW(resolveCamera({}, Scene{}), SceneError);
+}
+
+/** Every outline point of the bounding sphere projects inside the image and the depth range. */
+void expectSphereInsideTheFrustum(const Camera& camera, const BoundingSphere& sphere) {
+    for (const glm::dvec3& point : outlinePoints(sphere, camera.eye)) {
+        const glm::dvec4 clip = toClip(camera, point);
+        ASSERT_GT(clip.w, 0.0);
+        const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+        EXPECT_LE(std::abs(ndc.x), 1.0);
+        EXPECT_LE(std::abs(ndc.y), 1.0);
+        EXPECT_LE(std::abs(ndc.z), 1.0);
+    }
+}
+
+TEST(Camera, AutoFramingWithTheDefaultUpKeepsItsDirection) {
+    const Scene scene = sphereScene();
+    const glm::dvec3 expected = glm::normalize(glm::dvec3(0.0, 0.25, 1.0));
+    CameraRequest explicitUp;
+    explicitUp.up = glm::dvec3(0, 1, 0);
+    for (const CameraRequest& request : {CameraRequest{}, explicitUp}) {
+        const Camera camera = resolveCamera(request, scene);
+        EXPECT_EQ(camera.up, glm::dvec3(0, 1, 0));
+        expectNear(glm::normalize(camera.eye - camera.target), expected, 1e-12);
+    }
+    // A scaled up vector means the same up.
+    CameraRequest scaledUp;
+    scaledUp.up = glm::dvec3(0, 7, 0);
+    const Camera scaled = resolveCamera(scaledUp, scene);
+    expectNear(glm::normalize(scaled.eye - scaled.target), expected, 1e-12);
+}
+
+TEST(Camera, AutoFramingWithZUpLooksFromTheFront) {
+    // Z-up models (CAD, STL) are seen from -Y, raised a little toward +Z, like Blender's front view.
+    const Scene scene = sphereScene();
+    const BoundingSphere sphere = computeBoundingSphere(scene);
+    CameraRequest request;
+    request.up = glm::dvec3(0, 0, 1);
+    const Camera camera = resolveCamera(request, scene);
+    EXPECT_EQ(camera.source, "auto-framed");
+    EXPECT_EQ(camera.up, glm::dvec3(0, 0, 1));
+    expectNear(camera.target, sphere.center);
+    expectNear(glm::normalize(camera.eye - sphere.center), glm::normalize(glm::dvec3(0.0, -1.0, 0.25)), 1e-12);
+    // Up stays up in the image: the model's top (+Z) is above its centre on screen.
+    const glm::dvec4 top = toClip(camera, sphere.center + glm::dvec3(0, 0, sphere.radius));
+    EXPECT_GT(top.y / top.w, 0.0);
+}
+
+TEST(Camera, AutoFramingFitsTheSphereForAnyUp) {
+    const Scene scene = sphereScene();
+    const BoundingSphere sphere = computeBoundingSphere(scene);
+    for (const glm::dvec3 up :
+         {glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), glm::dvec3(1, 0, 0), glm::dvec3(1, 1, 0), glm::dvec3(0, 0.25, 1),
+          glm::dvec3(0, -1, 0), glm::dvec3(0, 0, -1), glm::dvec3(-2, 3, 0.5), glm::dvec3(0.3, 0, 1)}) {
+        SCOPED_TRACE(testing::Message() << "up " << up.x << "," << up.y << "," << up.z);
+        CameraRequest request;
+        request.up = up;
+        request.width = 1280;
+        request.height = 720;
+        const Camera camera = resolveCamera(request, scene); // never "parallel"
+        EXPECT_EQ(camera.source, "auto-framed");
+        EXPECT_EQ(camera.up, up);
+        // The same slight elevation as the default framing: 0.25 along up before normalising.
+        const glm::dvec3 direction = glm::normalize(camera.eye - sphere.center);
+        EXPECT_NEAR(glm::dot(direction, glm::normalize(up)), 0.25 / std::sqrt(1.0625), 1e-9);
+        expectSphereInsideTheFrustum(camera, sphere);
+    }
+}
+
+TEST(Camera, RequestedUpWinsOverTheGltfCameraUp) {
+    Scene scene = sphereScene({0, 0, 0}, 1.0f);
+    SceneCamera fileCamera;
+    fileCamera.eye = glm::dvec3(0, 0, 8);
+    fileCamera.forward = glm::dvec3(0, 0, -1);
+    fileCamera.up = glm::dvec3(1, 0, 0); // rolled 90 degrees
+    scene.camera = fileCamera;
+
+    EXPECT_EQ(resolveCamera({}, scene).up, fileCamera.up); // unset: the file's up
+
+    CameraRequest upright;
+    upright.up = glm::dvec3(0, 1, 0);
+    const Camera camera = resolveCamera(upright, scene);
+    EXPECT_EQ(camera.source, "gltf");
+    EXPECT_EQ(camera.eye, fileCamera.eye);
+    expectNear(glm::normalize(camera.target - camera.eye), fileCamera.forward);
+    EXPECT_EQ(camera.up, glm::dvec3(0, 1, 0));
+    // The view is not rolled any more: world +y is image up.
+    EXPECT_GT((camera.viewMatrix() * glm::dvec4(0, 1, 0, 1)).y, 0.0);
+
+    CameraRequest alongForward;
+    alongForward.up = glm::dvec3(0, 0, 1);
+    const std::string message = invalidArgumentMessage([&] { resolveCamera(alongForward, scene); });
+    EXPECT_NE(message.find("--up 0,0,1"), std::string::npos) << message;
+    EXPECT_NE(message.find("parallel"), std::string::npos) << message;
+    EXPECT_NE(message.find("glTF camera's forward"), std::string::npos) << message;
+}
+
+TEST(Camera, ErrorMessagesNameTheFlags) {
+    const Scene scene = sphereScene();
+    const BoundingSphere sphere = computeBoundingSphere(scene);
+
+    CameraRequest eyeOnCentre;
+    eyeOnCentre.eye = sphere.center;
+    std::string message = invalidArgumentMessage([&] { resolveCamera(eyeOnCentre, scene); });
+    EXPECT_EQ(message.rfind("resolveCamera(): the eye (--eye ", 0), 0u) << message;
+    EXPECT_NE(message.find("without --target"), std::string::npos) << message;
+    EXPECT_NE(message.find("bounding-sphere centre (3,-2,5)"), std::string::npos) << message;
+
+    CameraRequest same;
+    same.eye = glm::dvec3(1, 2, 3);
+    same.target = glm::dvec3(1, 2, 3);
+    message = invalidArgumentMessage([&] { resolveCamera(same, scene); });
+    EXPECT_NE(message.find("--eye 1,2,3"), std::string::npos) << message;
+    EXPECT_NE(message.find("--target 1,2,3"), std::string::npos) << message;
+    EXPECT_NE(message.find("coincide"), std::string::npos) << message;
+
+    CameraRequest lookingDown; // the default up is parallel to a view straight down
+    lookingDown.eye = glm::dvec3(0, 10, 0);
+    lookingDown.target = glm::dvec3(0, 0, 0);
+    message = invalidArgumentMessage([&] { resolveCamera(lookingDown, scene); });
+    EXPECT_NE(message.find("--up"), std::string::npos) << message;
+    EXPECT_NE(message.find("parallel to the view direction (from --eye to --target)"), std::string::npos) << message;
+
+    CameraRequest parallelUp;
+    parallelUp.eye = glm::dvec3(3, -2, 20);
+    parallelUp.up = glm::dvec3(0, 0, -2);
+    message = invalidArgumentMessage([&] { resolveCamera(parallelUp, scene); });
+    EXPECT_NE(message.find("(--up 0,0,-2)"), std::string::npos) << message;
+    EXPECT_NE(message.find("parallel"), std::string::npos) << message;
+
+    CameraRequest zeroUp;
+    zeroUp.up = glm::dvec3(0.0);
+    message = invalidArgumentMessage([&] { resolveCamera(zeroUp, scene); });
+    EXPECT_NE(message.find("--up 0,0,0"), std::string::npos) << message;
+    EXPECT_NE(message.find("zero"), std::string::npos) << message;
+
+    CameraRequest wideFov;
+    wideFov.fovYDegrees = 200.0;
+    message = invalidArgumentMessage([&] { resolveCamera(wideFov, scene); });
+    EXPECT_NE(message.find("--fov 200"), std::string::npos) << message;
+
+    CameraRequest nanEye;
+    nanEye.eye = glm::dvec3(0, std::nan(""), 0);
+    message = invalidArgumentMessage([&] { resolveCamera(nanEye, scene); });
+    EXPECT_NE(message.find("--eye"), std::string::npos) << message;
+    EXPECT_NE(message.find("finite"), std::string::npos) << message;
 }
 
 TEST(Camera, FocalLengthInPixels) {

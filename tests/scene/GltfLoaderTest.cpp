@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace inkgraph {
@@ -318,6 +320,126 @@ TEST(GltfLoader, RequiredGeometryCompressionIsAnError) {
                                     singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}}")));
     const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
     EXPECT_NE(message.find("KHR_draco_mesh_compression"), std::string::npos) << message;
+}
+
+/** A triangle mesh and `nodes` (JSON objects), with node 0 the only root of the default scene. */
+std::string nodeHierarchy(GltfWriter& writer, const std::vector<std::string>& nodes) {
+    const int positions = writer.addVec3(kUnitTriangle);
+    std::string list;
+    for (const std::string& node : nodes) {
+        list += (list.empty() ? "" : ", ") + node;
+    }
+    return writer.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+                       "}}]}], \"nodes\": [" + list + "], \"scenes\": [{\"nodes\": [0]}], \"scene\": 0");
+}
+
+TEST(GltfLoader, DeepNodeChainLoadsWithoutExhaustingTheStack) {
+    // 30,000 nested nodes, each moving its subtree by +1 in x; the mesh hangs on the deepest one.
+    constexpr int kDepth = 30'000;
+    std::vector<std::string> nodes;
+    nodes.reserve(kDepth);
+    for (int i = 0; i + 1 < kDepth; ++i) {
+        nodes.push_back("{\"translation\": [1, 0, 0], \"children\": [" + std::to_string(i + 1) + "]}");
+    }
+    nodes.push_back("{\"name\": \"deepest\", \"translation\": [1, 0, 0], \"mesh\": 0}");
+    GltfWriter writer;
+    const TempFile file("deep.gltf", nodeHierarchy(writer, nodes));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.meshes[0].name, "deepest");
+    EXPECT_EQ(scene.meshes[0].positions.at(0), glm::vec3(float(kDepth), 0, 0));
+}
+
+TEST(GltfLoader, SharedChildrenAreRejectedWithoutExpandingEveryPath) {
+    // Node i lists node i+1 twice: 2^40 paths if every path were walked.
+    std::vector<std::string> nodes;
+    for (int i = 0; i + 1 < 40; ++i) {
+        nodes.push_back("{\"children\": [" + std::to_string(i + 1) + ", " + std::to_string(i + 1) + "]}");
+    }
+    nodes.push_back("{\"mesh\": 0}");
+    GltfWriter writer;
+    const TempFile file("shared.gltf", nodeHierarchy(writer, nodes));
+    const auto start = std::chrono::steady_clock::now();
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+    EXPECT_EQ(message.rfind("loadScene(): '" + file.path() + "'", 0), 0u) << message;
+    EXPECT_NE(message.find("node 1 has more than one parent (or is in a cycle)"), std::string::npos) << message;
+
+    // Two different parents of one node.
+    GltfWriter twoParents;
+    const TempFile diamond("diamond.gltf", nodeHierarchy(twoParents, {"{\"children\": [1, 2]}", "{\"children\": [3]}",
+                                                                      "{\"children\": [3]}", "{\"mesh\": 0}"}));
+    const std::string diamondMessage = test::sceneErrorMessage([&] { loadScene(diamond.path()); });
+    EXPECT_NE(diamondMessage.find("node 3 has more than one parent"), std::string::npos) << diamondMessage;
+}
+
+TEST(GltfLoader, CyclesAreRejected) {
+    GltfWriter loop;
+    const TempFile file("cycle.gltf", nodeHierarchy(loop, {"{\"mesh\": 0, \"children\": [1]}", "{\"children\": [2]}",
+                                                           "{\"children\": [1]}"}));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+    EXPECT_NE(message.find("node 1 has more than one parent (or is in a cycle)"), std::string::npos) << message;
+
+    GltfWriter self;
+    const TempFile selfFile("self.gltf", nodeHierarchy(self, {"{\"mesh\": 0, \"children\": [0]}"}));
+    const std::string selfMessage = test::sceneErrorMessage([&] { loadScene(selfFile.path()); });
+    EXPECT_NE(selfMessage.find("node 0 has more than one parent (or is in a cycle)"), std::string::npos) << selfMessage;
+}
+
+TEST(GltfLoader, ChildIndexOutOfRangeIsAnError) {
+    GltfWriter writer;
+    const TempFile file("bad_child.gltf", nodeHierarchy(writer, {"{\"mesh\": 0, \"children\": [7]}"}));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+    EXPECT_NE(message.find("node index 7 out of range (file has 1 nodes)"), std::string::npos) << message;
+}
+
+/** A triangle at the origin and a perspective camera "lens" with the given perspective members, on node 1. */
+std::string cameraFile(const std::string& perspective) {
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    return writer.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+                       "}}]}], \"cameras\": [{\"type\": \"perspective\", \"name\": \"lens\", \"perspective\": {" +
+                       perspective +
+                       ", \"znear\": 0.1}}], \"nodes\": [{\"mesh\": 0}, {\"camera\": 0, \"translation\": [0, 0, 5]}], "
+                       "\"scenes\": [{\"nodes\": [0, 1]}]");
+}
+
+TEST(GltfLoader, CameraYfovOutsideZeroToPiIsAnError) {
+    for (const char* yfov : {"0", "-0.5", "3.1416", "4", "1e300"}) {
+        SCOPED_TRACE(yfov);
+        const TempFile file("bad_yfov.gltf", cameraFile("\"yfov\": " + std::string(yfov)));
+        const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+        EXPECT_EQ(message.rfind("loadScene(): '" + file.path() + "'", 0), 0u) << message;
+        EXPECT_NE(message.find("camera 0 'lens'"), std::string::npos) << message;
+        EXPECT_NE(message.find("yfov"), std::string::npos) << message;
+        EXPECT_NE(message.find("(0, pi)"), std::string::npos) << message;
+    }
+    // JSON cannot spell infinity; an overflowing literal is rejected as a file problem too.
+    const TempFile overflow("overflow_yfov.gltf", cameraFile("\"yfov\": 1e999"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(overflow.path()); });
+    EXPECT_NE(message.find(overflow.fileName()), std::string::npos) << message;
+
+    const TempFile valid("good_yfov.gltf", cameraFile("\"yfov\": 3.14"));
+    EXPECT_NEAR(loadScene(valid.path()).camera.value().fovYDegrees, glm::degrees(3.14), 1e-9);
+}
+
+TEST(GltfLoader, InvalidCameraAspectRatioIsIgnoredWithAWarning) {
+    const TempFile file("bad_aspect.gltf", cameraFile("\"yfov\": 0.5, \"aspectRatio\": -1.5"));
+    const Scene scene = loadScene(file.path());
+    ASSERT_TRUE(scene.camera.has_value());
+    EXPECT_FALSE(scene.camera->aspectRatio.has_value());
+    const bool warned = std::any_of(scene.report.warnings.begin(), scene.report.warnings.end(), [](const auto& w) {
+        return w.find("camera 0 'lens'") != std::string::npos &&
+               w.find("aspectRatio -1.5 ignored") != std::string::npos;
+    });
+    EXPECT_TRUE(warned);
+
+    const TempFile missing("no_aspect.gltf", cameraFile("\"yfov\": 0.5"));
+    const Scene noAspect = loadScene(missing.path());
+    EXPECT_FALSE(noAspect.camera.value().aspectRatio.has_value());
+    EXPECT_TRUE(noAspect.report.warnings.empty());
 }
 
 TEST(GltfLoader, InvalidJsonIsAnError) {

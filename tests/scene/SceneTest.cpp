@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <filesystem>
+
 namespace inkgraph {
 namespace {
 
@@ -27,6 +30,17 @@ TEST(SceneLoad, DirectoryIsNotAModel) {
     const std::string message = test::sceneErrorMessage([&] { loadScene(directory.string()); });
     std::filesystem::remove(directory);
     EXPECT_NE(message.find("not a regular file"), std::string::npos) << message;
+}
+
+TEST(SceneLoad, OverlongFileNameIsASceneErrorNamingTheFile) {
+    // 300 characters exceed NAME_MAX (255): stat() fails with ENAMETOOLONG rather than ENOENT.
+    for (const char* extension : {".stl", ".obj", ".gltf", ".glb"}) {
+        const std::string path =
+            (std::filesystem::temp_directory_path() / (std::string(300 - std::strlen(extension), 'n') + extension))
+                .string();
+        const std::string message = test::sceneErrorMessage([&] { loadScene(path); });
+        EXPECT_EQ(message.rfind("loadScene(): '" + path + "': ", 0), 0u) << message;
+    }
 }
 
 TEST(SceneLoad, GlbContentInAGltfFileIsReadAsBinary) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -122,6 +123,43 @@ TEST(StlLoader, TrailingBytesAfterBinaryTrianglesAreIgnoredWithAWarning) {
     EXPECT_EQ(scene.triangleCount(), 12u);
     ASSERT_EQ(scene.report.warnings.size(), 1u);
     EXPECT_NE(scene.report.warnings[0].find("16 bytes"), std::string::npos);
+}
+
+TEST(StlLoader, TrailingBytesAfterBinaryWithSolidHeaderAreIgnoredLikeAnyBinary) {
+    // The same file loads whether or not its free-form header starts with "solid".
+    for (const std::string header : {"inkgraph test", "solid exported by a padding writer"}) {
+        SCOPED_TRACE(header);
+        const TempFile file("padded_solid.stl", binaryStl(test::cubeTriangleSoup(), header) + std::string(16, '\0'));
+        const Scene scene = loadScene(file.path());
+        EXPECT_EQ(scene.report.format, "stl-binary");
+        expectWeldedCube(scene);
+        ASSERT_EQ(scene.report.warnings.size(), 1u);
+        EXPECT_NE(scene.report.warnings[0].find("16 bytes after the last triangle ignored"), std::string::npos)
+            << scene.report.warnings[0];
+    }
+}
+
+TEST(StlLoader, MalformedAsciiPastTheFirstLineReportsTheAsciiErrorNotABinaryReading) {
+    // Long enough for a binary preamble, whose "triangle count" would be text bytes.
+    std::string text = asciiStl(test::cubeTriangleSoup());
+    const std::size_t typo = text.find("endloop", text.find("endloop") + 1); // the second facet's
+    ASSERT_NE(typo, std::string::npos);
+    text.replace(typo, 7, "endlop");
+    const std::size_t line = std::size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(typo), '\n')) + 1;
+    ASSERT_EQ(line, 14u);
+    const TempFile file("typo.stl", text);
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_EQ(message.rfind("loadScene(): '" + file.path() + "' line 14: invalid ASCII STL", 0), 0u) << message;
+    EXPECT_NE(message.find("endlop"), std::string::npos) << message;
+    EXPECT_EQ(message.find("binary"), std::string::npos) << message;
+    EXPECT_EQ(message.find("declares"), std::string::npos) << message;
+
+    // Truncated text: the error is the ASCII one at the last line.
+    const std::string cut = asciiStl(test::cubeTriangleSoup()).substr(0, 300);
+    const TempFile truncated("cut.stl", cut);
+    const std::string cutMessage = test::sceneErrorMessage([&] { loadScene(truncated.path()); });
+    EXPECT_NE(cutMessage.find("invalid ASCII STL"), std::string::npos) << cutMessage;
+    EXPECT_EQ(cutMessage.find("declares"), std::string::npos) << cutMessage;
 }
 
 TEST(StlLoader, NonFiniteCoordinatesAreErrors) {
