@@ -1,5 +1,7 @@
 #include "gl/GlObjects.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
 namespace inkgraph {
@@ -8,6 +10,22 @@ void labelObject(GLenum identifier, GLuint id, std::string_view label) {
     // GL_KHR_debug is core in 4.3; labels longer than GL_MAX_LABEL_LENGTH (>= 256) would be an error.
     const auto length = static_cast<GLsizei>(std::min<std::size_t>(label.size(), 255));
     glObjectLabel(identifier, id, length, label.data());
+}
+
+std::string glErrorName(GLenum error) {
+    switch (error) {
+    case GL_NO_ERROR: return "GL_NO_ERROR";
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    default: {
+        char buffer[16];
+        std::snprintf(buffer, sizeof buffer, "0x%04X", error);
+        return buffer;
+    }
+    }
 }
 
 GlFormat glFormatOf(Format format) {
@@ -26,6 +44,10 @@ GlTexture::GlTexture(Format format, int width, int height, std::string_view labe
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     mHandle = GlHandle<TextureDeleter>(id);
     glTextureStorage2D(id, 1, glFormatOf(format).internalFormat, width, height);
+    if (const GLenum error = glGetError(); error != GL_NO_ERROR)
+        throw std::runtime_error("GlTexture(): cannot allocate " + std::to_string(width) + "x" + std::to_string(height) +
+                                 " " + std::string(formatName(format)) + " texture '" + std::string(label) + "' (" +
+                                 glErrorName(error) + ")");
     // Data textures are sampled texel-exactly: never blend a normal or a depth with its neighbour.
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -44,6 +66,10 @@ GlDepthTexture::GlDepthTexture(int width, int height, std::string_view label) {
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     mHandle = GlHandle<TextureDeleter>(id);
     glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, width, height);
+    if (const GLenum error = glGetError(); error != GL_NO_ERROR)
+        throw std::runtime_error("GlDepthTexture(): cannot allocate " + std::to_string(width) + "x" +
+                                 std::to_string(height) + " depth texture '" + std::string(label) + "' (" +
+                                 glErrorName(error) + ")");
     labelObject(GL_TEXTURE, id, label);
 }
 
@@ -68,8 +94,8 @@ void GlFramebuffer::finish(const std::vector<int>& drawSlots) {
     glNamedFramebufferDrawBuffers(id(), static_cast<GLsizei>(buffers.size()), buffers.data());
     const GLenum status = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw std::runtime_error("GlFramebuffer::finish(): framebuffer '" + mLabel + "' is incomplete (status 0x" +
-                                 std::to_string(status) + ")");
+        throw std::runtime_error("GlFramebuffer::finish(): framebuffer '" + mLabel + "' is incomplete (status " +
+                                 glErrorName(status) + ")");
 }
 
 void GlFramebuffer::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, id()); }

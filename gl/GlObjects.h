@@ -11,6 +11,9 @@
 
 namespace inkgraph {
 
+/** "GL_OUT_OF_MEMORY" and the like, or the number in hex. */
+std::string glErrorName(GLenum error);
+
 /** GL storage for a graph Format. */
 struct GlFormat {
     GLenum internalFormat;

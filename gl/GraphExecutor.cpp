@@ -15,10 +15,19 @@ double nowMilliseconds() {
     return std::chrono::duration<double, std::milli>(Clock::now().time_since_epoch()).count();
 }
 
-std::string hex(GLenum value) {
-    char buffer[16];
-    std::snprintf(buffer, sizeof buffer, "0x%04X", value);
-    return buffer;
+
+/** Back to GL's defaults for what passes touch, so no pass depends on what the one before it left bound. */
+void resetPassState() {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glUseProgram(0);
+    glBindVertexArray(0);
+    glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glLineWidth(1.0f);
+    for (GLuint unit = 0; unit < 8; ++unit) glBindTextureUnit(unit, 0);
 }
 
 } // namespace
@@ -197,9 +206,10 @@ std::vector<PassTiming> GraphExecutor::run(const Plan& plan, const std::vector<P
         // Waiting here makes the milliseconds mean the pass's own work, not whatever the driver queued.
         glFinish();
         timings[index].milliseconds = nowMilliseconds() - start;
+        resetPassState();
 
         if (const GLenum error = glGetError(); error != GL_NO_ERROR)
-            throw std::runtime_error("GraphExecutor::run(): pass '" + planned.name + "' raised GL error " + hex(error));
+            throw std::runtime_error("GraphExecutor::run(): pass '" + planned.name + "' raised " + glErrorName(error));
         for (const std::string& written : planned.liveWrites)
             if (!mStore.contains(written))
                 throw std::logic_error("GraphExecutor::run(): pass '" + planned.name + "' did not write its live output '" +

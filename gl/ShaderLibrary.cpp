@@ -1,5 +1,6 @@
 #include "gl/ShaderLibrary.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -14,6 +15,18 @@ std::string joinDefines(const std::vector<std::string>& defines) {
     return joined.empty() ? "none" : joined;
 }
 
+/** The info log of a shader or program, through the matching pair of GL getters. */
+template <class GetInteger, class GetLog>
+std::string infoLog(GLuint object, GetInteger getInteger, GetLog getLog) {
+    GLint length = 0;
+    getInteger(object, GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+    GLsizei written = 0;
+    getLog(object, length, &written, log.data());
+    log.resize(static_cast<std::size_t>(std::max(written, 0)));
+    return log;
+}
+
 } // namespace
 
 std::filesystem::path ShaderLibrary::defaultDirectory() {
@@ -22,11 +35,7 @@ std::filesystem::path ShaderLibrary::defaultDirectory() {
     return INKGRAPH_SHADER_DIR;
 }
 
-ShaderLibrary::ShaderLibrary(std::filesystem::path directory) : mDirectory(std::move(directory)) {
-    if (!std::filesystem::is_directory(mDirectory))
-        throw std::runtime_error("ShaderLibrary(): shader directory '" + mDirectory.string() +
-                                 "' does not exist (set INKGRAPH_SHADER_DIR to the shaders/ folder)");
-}
+ShaderLibrary::ShaderLibrary(std::filesystem::path directory) : mDirectory(std::move(directory)) {}
 
 const std::string& ShaderLibrary::source(const std::string& relativePath) {
     auto found = mSources.find(relativePath);
@@ -34,7 +43,8 @@ const std::string& ShaderLibrary::source(const std::string& relativePath) {
     const std::filesystem::path path = mDirectory / relativePath;
     std::ifstream file(path, std::ios::binary);
     if (!file)
-        throw std::runtime_error("ShaderLibrary::source(): cannot read shader '" + path.string() + "'");
+        throw std::runtime_error("ShaderLibrary::source(): cannot read shader '" + path.string() +
+                                 "' (set INKGRAPH_SHADER_DIR to the shaders/ folder of the source tree)");
     std::ostringstream text;
     text << file.rdbuf();
     return mSources.emplace(relativePath, text.str()).first->second;
@@ -56,10 +66,7 @@ GLuint ShaderLibrary::compileStage(const ProgramDesc& desc, GLenum stage, const 
     GLint compiled = GL_FALSE;
     glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &compiled);
     if (compiled != GL_TRUE) {
-        GLint logLength = 0;
-        glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &logLength);
-        std::string log(static_cast<std::size_t>(std::max(logLength, 1)), '\0');
-        glGetShaderInfoLog(shader.id(), logLength, nullptr, log.data());
+        const std::string log = infoLog(shader.id(), glGetShaderiv, glGetShaderInfoLog);
         throw std::runtime_error("ShaderLibrary::build(): '" + file + "' failed to compile (program '" + desc.label +
                                  "', defines: " + joinDefines(desc.defines) + "):\n" + log);
     }
@@ -78,10 +85,7 @@ GlProgram ShaderLibrary::build(const ProgramDesc& desc) {
     GLint linked = GL_FALSE;
     glGetProgramiv(program.id(), GL_LINK_STATUS, &linked);
     if (linked != GL_TRUE) {
-        GLint logLength = 0;
-        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &logLength);
-        std::string log(static_cast<std::size_t>(std::max(logLength, 1)), '\0');
-        glGetProgramInfoLog(program.id(), logLength, nullptr, log.data());
+        const std::string log = infoLog(program.id(), glGetProgramiv, glGetProgramInfoLog);
         throw std::runtime_error("ShaderLibrary::build(): program '" + desc.label + "' ('" + desc.vertexFile +
                                  "' + '" + desc.fragmentFile + "', defines: " + joinDefines(desc.defines) +
                                  ") failed to link:\n" + log);

@@ -25,6 +25,7 @@ public:
     /** INKGRAPH_SHADER_DIR from the environment if set, else the source tree's shaders/ (a compile definition). */
     static std::filesystem::path defaultDirectory();
 
+    /** Reads nothing yet: a missing folder is reported by the first build(), so plans compile without shaders. */
     explicit ShaderLibrary(std::filesystem::path directory = defaultDirectory());
 
     /** Compiles and links; throws std::runtime_error naming the file, stage, defines and the info log. */

@@ -66,7 +66,7 @@ public:
     virtual ~PassContext() = default;
     /** True when this pass's field (e.g. "normal") is consumed or requested in the plan. */
     virtual bool isLive(std::string_view field) const = 0;
-    /** The frame size this pass renders at (frame size x the field's scale). */
+    /** The frame size (the output image's size). A field with a scale is larger: see the backend's widthOf(). */
     virtual int width() const = 0;
     virtual int height() const = 0;
 };

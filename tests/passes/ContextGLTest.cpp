@@ -107,8 +107,38 @@ TEST(ShaderLibrary, CompileErrorNamesFileAndDefines) {
     std::filesystem::remove_all(directory);
 }
 
-TEST(ShaderLibrary, MissingDirectoryIsAnError) {
-    EXPECT_THROW(ShaderLibrary("/nonexistent/inkgraph/shaders"), std::runtime_error);
+TEST(ShaderLibrary, MissingDirectoryIsAnErrorOnFirstBuild) {
+    test::sharedGlContext();
+    ShaderLibrary library("/nonexistent/inkgraph/shaders");
+    try {
+        library.build({"x", "a/a.vert", "a/a.frag", {}, {}});
+        FAIL() << "a missing shader folder must throw";
+    } catch (const std::runtime_error& error) {
+        EXPECT_NE(std::string(error.what()).find("/nonexistent/inkgraph/shaders/a/a.vert"), std::string::npos);
+        EXPECT_NE(std::string(error.what()).find("INKGRAPH_SHADER_DIR"), std::string::npos);
+    }
+}
+
+TEST(Readback, LargeTexturesGoInBands) {
+    test::sharedGlContext();
+    // 5000 rows of 4096 RGBA32F texels (320 MiB) take several 64 MiB bands; rows must land flipped and in order.
+    cv::Mat image(5000, 4096, CV_32FC4);
+    for (int row = 0; row < image.rows; ++row) image.row(row).setTo(cv::Scalar(row, -row, 0.5, 1));
+    GlTexture texture(Format::RGBA32F, image.cols, image.rows, "banded");
+    uploadImage(texture, image);
+    float bottomRow[4] = {};
+    glGetTextureSubImage(texture.id(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof bottomRow, bottomRow);
+    EXPECT_EQ(bottomRow[0], 4999.0f) << "GL row 0 is the image's last row";
+    const cv::Mat back = readTexture(texture);
+    EXPECT_EQ(cv::norm(back, image, cv::NORM_INF), 0.0);
+}
+
+TEST(GlTexture, AllocationFailureIsAnErrorNotACrash) {
+    test::sharedGlContext();
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    EXPECT_THROW(GlTexture(Format::R8, maxSize + 1, 1, "too wide"), std::runtime_error);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)) << "the error was consumed by the check";
 }
 
 } // namespace
