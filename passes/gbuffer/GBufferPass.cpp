@@ -30,7 +30,7 @@ GlProgram& GBufferPass::programFor(const std::vector<std::string>& defines) {
     auto& program = mPrograms[key];
     if (!program)
         program = std::make_unique<GlProgram>(mShaders.build(
-            {mName, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", defines, {}}));
+            {mName, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", defines, {"common/color.glsl"}}));
     return *program;
 }
 
@@ -52,13 +52,15 @@ void GBufferPass::prepare(PassContext& context) {
 
 void GBufferPass::execute(PassContext& context) {
     GlPassContext& gl = GlPassContext::from(context);
-    const int width = gl.width();
-    const int height = gl.height();
-
     GlFramebuffer framebuffer(mName);
     std::vector<int> drawSlots;
+    int width = 0;
+    int height = 0;
     for (const Field& field : fields()) {
         if (!gl.isLive(field.name)) continue;
+        // Every field shares one scale, so any live field gives the size of the attachments.
+        width = gl.widthOf(field.name);
+        height = gl.heightOf(field.name);
         const int slot = static_cast<int>(drawSlots.size());
         framebuffer.attachColor(slot, gl.outputTexture(field.name));
         drawSlots.push_back(slot);

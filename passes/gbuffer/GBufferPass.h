@@ -9,7 +9,7 @@
  *  | gbuffer.nDotV      | r32f    | optional | n . v                                                             |
  *  | gbuffer.depth      | r32f    | optional | linear view depth (distance along -z in view space), 0 off-model  |
  *  | gbuffer.coverage   | r8      | optional | 255 where the model covers the pixel centre                       |
- *  | gbuffer.baseColor  | rgba8   | optional | linear material base colour, a = coverage                         |
+ *  | gbuffer.baseColor  | rgba8   | optional | sRGB-encoded material base colour, a = coverage                         |
  *
  *  Reads: nothing from the graph; the meshes come from GpuScene. Background pixels are all zero.
  *  Only live outputs are bound as draw buffers, and the shader is compiled with matching OUT_* defines. */

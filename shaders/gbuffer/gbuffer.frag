@@ -3,7 +3,7 @@
 in vec3 viewPosition;
 in vec3 viewNormal;
 
-uniform vec4 baseColor;
+uniform vec4 baseColor; // linear
 
 #ifdef OUT_NORMAL
 layout(location = LOC_NORMAL) out vec4 outNormal;
@@ -57,6 +57,6 @@ void main() {
     outCoverage = 1.0;
 #endif
 #ifdef OUT_BASECOLOR
-    outBaseColor = vec4(baseColor.rgb, 1.0);
+    outBaseColor = vec4(encodeSrgb(baseColor.rgb), 1.0);
 #endif
 }
