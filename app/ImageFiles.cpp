@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <cstdlib>
 #include <fstream>
 #include <future>
@@ -46,7 +48,8 @@ struct LoadedModule {
 LoadedModule loadModule() {
     LoadedModule loaded;
     for (const std::filesystem::path& candidate : moduleCandidates()) {
-        if (!std::filesystem::exists(candidate)) continue;
+        std::error_code missing;
+        if (!std::filesystem::exists(candidate, missing)) continue;
         // Never unloaded: OpenImageIO keeps global state until exit.
         void* handle = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (handle == nullptr) {
@@ -86,9 +89,10 @@ const ImageIoFunctions& imageIo() {
 void preloadImageIo() { moduleFuture(); }
 
 std::filesystem::path temporarySibling(const std::filesystem::path& path) {
+    // Short and fixed in length, so a final name near NAME_MAX still has a valid temporary name.
     static std::atomic<int> counter{0};
-    const std::string name = "." + path.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                             std::to_string(counter++) + path.extension().string();
+    const std::string name = ".inkgraph-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".tmp" +
+                             path.extension().string();
     return path.parent_path() / name;
 }
 
@@ -109,6 +113,14 @@ void writeImage(const std::filesystem::path& path, const cv::Mat& image) {
     renameIntoPlace(temporary, path);
 }
 
+std::string imageFilePixelType(const std::filesystem::path& path) {
+    std::string type;
+    std::string error;
+    if (!imageIo().pixelType(path.string(), type, error))
+        throw FileError("imageFilePixelType(): cannot read '" + path.string() + "': " + error);
+    return type;
+}
+
 cv::Mat readImage(const std::filesystem::path& path) {
     cv::Mat image;
     std::string error;
@@ -122,9 +134,10 @@ void writeTextFile(const std::filesystem::path& path, const std::string& text) {
     {
         std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
         if (!(file << text) || !file.flush()) {
+            const std::string reason = std::strerror(errno);
             std::error_code ignored;
             std::filesystem::remove(temporary, ignored);
-            throw FileError("writeTextFile(): cannot write '" + path.string() + "'");
+            throw FileError("writeTextFile(): cannot write '" + path.string() + "': " + reason);
         }
     }
     renameIntoPlace(temporary, path);

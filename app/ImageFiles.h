@@ -32,10 +32,13 @@ void requireImageWriter(const std::filesystem::path& path);
 /** Reads any image OpenImageIO knows into CV_8UCn (8-bit files) or CV_32FCn (everything else). */
 cv::Mat readImage(const std::filesystem::path& path);
 
+/** The pixel type stored in the file itself, e.g. "uint8", "half", "float" (readImage converts, this does not). */
+std::string imageFilePixelType(const std::filesystem::path& path);
+
 /** Writes text under a temporary name and renames it into place. */
 void writeTextFile(const std::filesystem::path& path, const std::string& text);
 
-/** A sibling of `path` with the same extension, unique to this process: "final.png" -> ".final.tmp-1234.png". */
+/** A sibling of `path` with the same extension, unique to this process: "final.png" -> ".inkgraph-1234-0.tmp.png". */
 std::filesystem::path temporarySibling(const std::filesystem::path& path);
 
 } // namespace inkgraph

@@ -18,9 +18,11 @@ struct ImageIoFunctions {
     bool (*readImage)(const std::string& path, cv::Mat& image, std::string& error);
     /** True when a writer exists for the extension of `path`. */
     bool (*hasWriter)(const std::string& path);
+    /** The file's own pixel type ("uint8", "half", "float", ...). */
+    bool (*pixelType)(const std::string& path, std::string& type, std::string& error);
 };
 
-inline constexpr int kImageIoVersion = 1;
+inline constexpr int kImageIoVersion = 2;
 
 } // namespace inkgraph
 

@@ -3,6 +3,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <vector>
+
 namespace inkgraph {
 namespace {
 
@@ -27,10 +29,23 @@ bool writeWithOiio(const std::string& formatPath, const std::string& temporaryPa
         error = "no image format for this extension (" + OIIO::geterror() + ")";
         return false;
     }
-    OIIO::ImageSpec spec(image.cols, image.rows, image.channels(), type);
-    if (image.channels() == 4) spec.alpha_channel = 3;
-    if (type == OIIO::TypeDesc::UINT8) spec.attribute("png:compressionLevel", 3); // 2x faster than 6, ~same size
-    const cv::Mat contiguous = image.isContinuous() ? image : image.clone();
+    cv::Mat contiguous = image.isContinuous() ? image : image.clone();
+    // JPEG has no alpha: our pictures are opaque, so the alpha channel is simply left out.
+    if (contiguous.channels() == 4 && !output->supports("alpha")) {
+        cv::Mat rgb;
+        std::vector<cv::Mat> channels;
+        cv::split(contiguous, channels);
+        channels.pop_back();
+        cv::merge(channels, rgb);
+        contiguous = rgb;
+    }
+    OIIO::ImageSpec spec(contiguous.cols, contiguous.rows, contiguous.channels(), type);
+    if (contiguous.channels() == 4) spec.alpha_channel = 3;
+    // 8-bit images are display colour (sRGB); float images are linear data (normals, depths). Alpha is coverage,
+    // never premultiplied, so OIIO must not (un)premultiply it.
+    spec.attribute("oiio:ColorSpace", type == OIIO::TypeDesc::UINT8 ? "sRGB" : "Linear");
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    if (type == OIIO::TypeDesc::UINT8) spec.attribute("png:compressionLevel", 3); // faster than 6, about as small
     if (!output->open(temporaryPath, spec) || !output->write_image(type, contiguous.data) || !output->close()) {
         error = output->geterror();
         return false;
@@ -39,7 +54,9 @@ bool writeWithOiio(const std::string& formatPath, const std::string& temporaryPa
 }
 
 bool readWithOiio(const std::string& path, cv::Mat& image, std::string& error) {
-    auto input = OIIO::ImageInput::open(path);
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto input = OIIO::ImageInput::open(path, &config);
     if (!input) {
         error = OIIO::geterror();
         return false;
@@ -61,7 +78,17 @@ bool readWithOiio(const std::string& path, cv::Mat& image, std::string& error) {
 
 bool hasOiioWriter(const std::string& path) { return OIIO::ImageOutput::create(path) != nullptr; }
 
-const ImageIoFunctions kFunctions = {kImageIoVersion, writeWithOiio, readWithOiio, hasOiioWriter};
+bool pixelTypeWithOiio(const std::string& path, std::string& type, std::string& error) {
+    auto input = OIIO::ImageInput::open(path);
+    if (!input) {
+        error = OIIO::geterror();
+        return false;
+    }
+    type = input->spec().format.c_str();
+    return true;
+}
+
+const ImageIoFunctions kFunctions = {kImageIoVersion, writeWithOiio, readWithOiio, hasOiioWriter, pixelTypeWithOiio};
 
 } // namespace
 } // namespace inkgraph

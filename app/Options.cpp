@@ -1,6 +1,10 @@
 #include "app/Options.h"
 
+#include "graph/Resource.h"
+
 #include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -9,6 +13,9 @@ namespace inkgraph {
 namespace {
 
 constexpr int kMaxImageSide = 16384;
+constexpr double kMinFovDegrees = 0.01;
+constexpr double kMaxFovDegrees = 179.0;
+const std::vector<std::string> kOutputExtensions = {".png", ".exr", ".tif", ".tiff", ".jpg", ".jpeg"};
 
 double parseNumber(const std::string& flag, const std::string& text) {
     double value = 0.0;
@@ -76,8 +83,18 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
             if (i + 1 >= arguments.size()) throw UsageError(argument + ": missing value");
             return arguments[++i];
         };
+        if (argument == "--help" || argument == "-h") {
+            options.help = true;
+            return options;
+        }
         if (argument == "-o" || argument == "--output") {
             options.outputPath = value();
+            std::string extension = std::filesystem::path(options.outputPath).extension().string();
+            std::transform(extension.begin(), extension.end(), extension.begin(),
+                           [](unsigned char c) { return char(std::tolower(c)); });
+            if (std::find(kOutputExtensions.begin(), kOutputExtensions.end(), extension) == kOutputExtensions.end())
+                throw UsageError("-o: '" + options.outputPath + "' has no picture extension I write (use .png, .exr, "
+                                 ".tif or .jpg)");
         } else if (argument == "--size") {
             parseSize(value(), options.width, options.height);
         } else if (argument == "--eye") {
@@ -86,10 +103,11 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
             options.target = parseVector(argument, value());
         } else if (argument == "--up") {
             options.up = parseVector(argument, value());
-            if (glm::length(options.up) == 0.0) throw UsageError("--up: the up vector must not be zero");
+            if (glm::length(*options.up) == 0.0) throw UsageError("--up: the up vector must not be zero");
         } else if (argument == "--fov") {
             const double fov = parseNumber(argument, value());
-            if (!(fov > 0.0 && fov < 180.0)) throw UsageError("--fov: degrees must lie in (0, 180), got " + arguments[i]);
+            if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
+                throw UsageError("--fov: degrees must lie in [0.01, 179], got " + arguments[i]);
             options.fovYDegrees = fov;
         } else if (argument == "--light") {
             const glm::dvec3 light = parseVector(argument, value());
@@ -119,7 +137,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
             options.background = color;
         } else if (argument == "--request") {
             for (const std::string& resource : splitList(value(), ',')) {
-                if (resource.find('.') == std::string::npos || resource.front() == '.' || resource.back() == '.')
+                const ResourceName name = ResourceName::split(resource);
+                if (name.pass.empty() || name.field.empty())
                     throw UsageError("--request: '" + resource + "' is not a resource name like 'gbuffer.normal' "
                                      "or 'gbuffer.*'");
                 options.extraOutputs.push_back(resource);
@@ -153,6 +172,9 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
         throw UsageError("missing -o OUT.png (or --print-plan / --graphviz to only show the plan)");
     if (options.eye && options.target && *options.eye == *options.target)
         throw UsageError("--eye and --target must differ");
+    const bool renders = !options.outputPath.empty() || !options.dumpDirectory.empty();
+    if (!options.statsPath.empty() && !renders)
+        throw UsageError("--stats needs -o or --dump: with --print-plan alone nothing is rendered or timed");
     return options;
 }
 
@@ -162,13 +184,15 @@ std::string renderHelp() {
 Renders one still of MODEL (.gltf, .glb, .obj, .stl) with no window or display (EGL).
 
 Output
-  -o, --output FILE      the final picture (.png; .exr, .tif, .jpg also work)
+  -o, --output FILE      the final picture: .png, .exr, .tif or .jpg
   --size WxH             image size in pixels (default 1024x1024, at most 16384 a side)
-  --dump DIR             also write every buffer the plan computed: normal.exr, view.exr, w.exr (float32 RGBA,
-                         alpha = coverage), ndotv.exr, depth.exr (float32), coverage.png, basecolor.png,
-                         shading.png, final.png, lines-<type>.png, and manifest.json
-  --request LIST         keep extra graph outputs, comma-separated: 'gbuffer.wVec', or 'gbuffer.*' for all
-                         (requesting is what makes a pass compute a buffer; dumping alone never does)
+  --dump DIR             also write every buffer the plan computed, and manifest.json. What is computed follows
+                         from the request: Lambert needs normal.exr and basecolor.png; add --request 'gbuffer.*'
+                         for view.exr, w.exr (float32 RGBA, alpha = coverage), ndotv.exr, depth.exr (float32),
+                         coverage.png. Also shading.png, final.png, lines-<type>.png. DIR is replaced as a whole:
+                         it must be new, empty, or an earlier dump (it holds an inkgraph manifest.json)
+  --request LIST         compute and keep extra graph outputs, comma-separated: 'gbuffer.wVec', or 'gbuffer.*'
+                         for all of them (requesting is what makes a pass compute a buffer; dumping never does)
   --stats FILE.json      timings per pass, culled passes with reasons, scene and GL facts
   --print-plan           print the compiled render plan (without -o, print it and stop: no GL needed)
   --graphviz FILE.dot    write the plan as a Graphviz graph (culled passes dashed)
@@ -177,8 +201,9 @@ Output
 Camera (right-handed world, OpenGL lookAt/perspective; default: the glTF camera, else auto-framed)
   --eye X,Y,Z            camera position
   --target X,Y,Z         point looked at (default: the model's bounding-sphere centre)
-  --up X,Y,Z             up direction (default 0,1,0)
-  --fov DEG              vertical field of view in degrees (default 35)
+  --up X,Y,Z             up direction (default: the glTF camera's, else 0,1,0); auto-framing looks from the
+                         front, slightly above, as this up defines it
+  --fov DEG              vertical field of view in degrees, 0.01 to 179 (default 35)
 
 Look
   --shading MODE         none | lambert (default lambert)
@@ -199,7 +224,7 @@ std::string mainHelp() {
     return R"(inkgraph - headless anime- and comic-style renderer
 
 Usage:
-  inkgraph render MODEL -o OUT.png [options]   render one still (see: inkgraph render --help)
+  inkgraph render MODEL -o OUT.png [options]   render one still (see: inkgraph help render)
   inkgraph --version                           print the version
   inkgraph --help                              this text
 )";

@@ -25,7 +25,7 @@ struct RenderOptions {
     int height = 1024;
     std::optional<glm::dvec3> eye;
     std::optional<glm::dvec3> target;
-    glm::dvec3 up{0.0, 1.0, 0.0};
+    std::optional<glm::dvec3> up;           ///< default: the glTF camera's, else 0,1,0
     std::optional<double> fovYDegrees;      ///< default 35 unless the glTF camera says otherwise
     std::optional<glm::dvec3> towardLight;  ///< world direction toward the light
     ShadingMode shading = ShadingMode::Lambert;
@@ -38,13 +38,15 @@ struct RenderOptions {
     bool printPlan = false;
     std::string eglPlatform = "auto";       ///< auto, device, surfaceless
     bool quiet = false;
+    bool help = false;                      ///< --help or -h in a flag's place: print help, do nothing else
 };
 
 /** Line types this build knows (later issues add contour, suggestive, silhouette, ...). */
 const std::vector<std::string>& knownLineTypes();
 std::string shadingModeName(ShadingMode mode);
 
-/** Parses the arguments after "render". Throws UsageError with a message naming the flag and the bad value. */
+/** Parses the arguments after "render". Throws UsageError with a message naming the flag and the bad value.
+ *  --help (or -h) where a flag may stand stops parsing and sets `help`; as the value of a flag it is just a value. */
 RenderOptions parseRenderOptions(const std::vector<std::string>& arguments);
 
 /** The text of `inkgraph render --help`. */

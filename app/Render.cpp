@@ -1,6 +1,8 @@
 #include "app/Render.h"
 
 #include "app/ImageFiles.h"
+#include "app/OutputFiles.h"
+#include "app/StillGraph.h"
 #include "gl/GraphExecutor.h"
 #include "gl/HeadlessContext.h"
 #include "gl/ShaderLibrary.h"
@@ -8,9 +10,6 @@
 #include "graph/GraphCompiler.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
-#include "passes/composite/CompositePass.h"
-#include "passes/gbuffer/GBufferPass.h"
-#include "passes/lambert/LambertPass.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
 
@@ -20,7 +19,6 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
-#include <memory>
 #include <optional>
 #include <set>
 
@@ -45,6 +43,9 @@ Json matrixRows(const glm::dmat4& matrix) {
 
 Json vectorJson(const glm::dvec3& value) { return Json::array({value.x, value.y, value.z}); }
 
+/** JSON text; a path that is not valid UTF-8 gets U+FFFD in place of the bad bytes rather than failing the run. */
+std::string jsonText(const Json& json) { return json.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
+
 /** Default key light: from the upper left, behind the camera, fixed in view space so every auto-framed still is lit
  *  the same way. */
 glm::dvec3 defaultLight(const Camera& camera) {
@@ -52,84 +53,67 @@ glm::dvec3 defaultLight(const Camera& camera) {
     return glm::normalize(glm::transpose(glm::dmat3(camera.viewMatrix())) * towardLightView);
 }
 
-/** The passes of one still, in registration order. Every pass is registered; the compiler culls what the request
- *  does not need, so the stats say why a pass did not run. */
-struct PassSet {
-    std::vector<std::unique_ptr<Pass>> owned;
-    std::string shadingResource; ///< the colour the composite reads, or empty
-
-    std::vector<const Pass*> view() const {
-        std::vector<const Pass*> passes;
-        for (const auto& pass : owned) passes.push_back(pass.get());
-        return passes;
-    }
-    std::vector<Pass*> mutableView() const {
-        std::vector<Pass*> passes;
-        for (const auto& pass : owned) passes.push_back(pass.get());
-        return passes;
-    }
-};
-
-PassSet buildPasses(const RenderOptions& options, ShaderLibrary& shaders, GpuScene& gpuScene, const FrameParams& frame) {
-    PassSet set;
-    set.owned.push_back(std::make_unique<GBufferPass>("gbuffer", shaders, gpuScene, frame));
-    set.owned.push_back(
-        std::make_unique<LambertPass>("lambert", shaders, frame, "gbuffer.normal", "gbuffer.baseColor"));
-    if (options.shading == ShadingMode::Lambert) set.shadingResource = "lambert.color";
-    set.owned.push_back(std::make_unique<CompositePass>("composite", frame, set.shadingResource));
-    return set;
+/** Bytes the plan holds at its peak, as an upper bound: every live texture at once, plus the G-buffer's depth
+ *  attachment, plus a CPU copy of each when everything is kept for dumping. */
+std::size_t estimatePlanBytes(const Plan& plan, int width, int height, bool keepAll) {
+    std::size_t bytes = std::size_t(width) * std::size_t(height) * 4; // depth test attachment
+    for (const PlannedResource& resource : plan.resources)
+        bytes += std::size_t(width) * std::size_t(height) * std::size_t(resource.desc.scale * resource.desc.scale) *
+                 std::size_t(bytesPerPixel(resource.desc.format)) * (keepAll ? 2 : 1);
+    return bytes;
 }
 
-/** "gbuffer.*" -> every field gbuffer declares; plain names must be declared by some pass. */
-std::vector<std::string> expandRequests(const std::vector<std::string>& requests, const PassSet& passes) {
-    std::map<std::string, std::vector<std::string>> fieldsOfPass;
-    for (const Pass* pass : passes.view()) {
-        PassBuilder builder{std::string(pass->name())};
-        pass->declare(builder);
-        for (const auto& write : builder.writes())
-            fieldsOfPass[builder.passName()].push_back(builder.passName() + "." + write.field);
+/** Refuses sizes that would fail deep inside the driver: one texture of 2 GiB or more (GL's byte counts are 32-bit),
+ *  or a plan above the memory bound. Both name --size, the cause. */
+void checkFrameBudget(const Plan& plan, const RenderOptions& options) {
+    for (const PlannedResource& resource : plan.resources) {
+        const std::size_t textureBytes = std::size_t(options.width) * std::size_t(options.height) *
+                                         std::size_t(resource.desc.scale * resource.desc.scale) *
+                                         std::size_t(bytesPerPixel(resource.desc.format));
+        if (textureBytes >= kMaxTextureBytes)
+            throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+                             " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
+                             " MiB; one buffer must stay under 2048 MiB (at most about 11585x11585 for float RGBA)");
     }
-    std::vector<std::string> expanded;
-    for (const std::string& request : requests) {
-        const ResourceName name = ResourceName::split(request);
-        auto pass = fieldsOfPass.find(name.pass);
-        if (pass == fieldsOfPass.end()) throw UsageError("--request: no pass named '" + name.pass + "' in this graph");
-        if (name.field == "*") {
-            expanded.insert(expanded.end(), pass->second.begin(), pass->second.end());
-        } else if (std::find(pass->second.begin(), pass->second.end(), request) != pass->second.end()) {
-            expanded.push_back(request);
-        } else {
-            std::string known;
-            for (const std::string& resource : pass->second) known += (known.empty() ? "" : ", ") + resource;
-            throw UsageError("--request: pass '" + name.pass + "' writes no '" + request + "' (it writes " + known +
-                             ")");
-        }
-    }
-    return expanded;
+    const std::size_t planBytes = estimatePlanBytes(plan, options.width, options.height, !options.dumpDirectory.empty());
+    if (planBytes > kMaxPlanBytes)
+        throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+                         " needs about " + std::to_string(planBytes >> 20) + " MiB for the buffers this plan keeps; " +
+                         "the bound is " + std::to_string(kMaxPlanBytes >> 20) +
+                         " MiB (make the image smaller, or request or dump fewer buffers)");
 }
 
-void ensureWritableDirectory(const std::filesystem::path& directory, const std::string& what) {
-    std::error_code error;
-    std::filesystem::create_directories(directory, error);
-    if (error || !std::filesystem::is_directory(directory))
-        throw FileError("renderStill(): cannot create the " + what + " folder '" + directory.string() + "'" +
-                        (error ? ": " + error.message() : ""));
-    // A probe file is the only reliable test of writability (permissions, read-only mounts, ACLs).
-    const std::filesystem::path probe = temporarySibling(directory / "probe.tmp");
-    try {
-        writeTextFile(probe, "");
-    } catch (const FileError&) {
-        throw FileError("renderStill(): the " + what + " folder '" + directory.string() + "' is not writable");
-    }
-    std::filesystem::remove(probe, error);
+/** Makes a context and checks the frame against what the driver can allocate. */
+void checkDriverLimits(const RenderOptions& options) {
+    GLint maxTextureSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
+    GLint maxViewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+    const int limit = std::min(maxTextureSize, std::min(maxViewport[0], maxViewport[1]));
+    if (options.width > limit || options.height > limit)
+        throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+                         " exceeds this driver's largest render target side, " + std::to_string(limit));
+}
+
+Json describeCamera(const Camera& camera) {
+    return {{"source", camera.source},
+            {"eye", vectorJson(camera.eye)},
+            {"target", vectorJson(camera.target)},
+            {"up", vectorJson(camera.up)},
+            {"fov_y_degrees", camera.fovYDegrees},
+            {"near", camera.zNear},
+            {"far", camera.zFar},
+            {"focal_pixels", camera.focalPixels()},
+            {"view_matrix", matrixRows(camera.viewMatrix())},
+            {"projection_matrix", matrixRows(camera.projectionMatrix())}};
 }
 
 } // namespace
 
 std::string dumpFileName(const std::string& resource, bool isFloat, const std::string& shadingResource) {
     static const std::map<std::string, std::string> kFixedNames = {
-        {"gbuffer.normal", "normal.exr"},     {"gbuffer.view", "view.exr"},   {"gbuffer.wVec", "w.exr"},
-        {"gbuffer.nDotV", "ndotv.exr"},       {"gbuffer.depth", "depth.exr"}, {"gbuffer.coverage", "coverage.png"},
+        {"gbuffer.normal", "normal.exr"},       {"gbuffer.view", "view.exr"},   {"gbuffer.wVec", "w.exr"},
+        {"gbuffer.nDotV", "ndotv.exr"},         {"gbuffer.depth", "depth.exr"}, {"gbuffer.coverage", "coverage.png"},
         {"gbuffer.baseColor", "basecolor.png"}, {"composite.final", "final.png"},
     };
     if (auto fixed = kFixedNames.find(resource); fixed != kFixedNames.end()) return fixed->second;
@@ -143,19 +127,24 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     const auto processStart = std::chrono::steady_clock::now();
     // Declared first so it is destroyed last, after every GL object below.
     std::optional<HeadlessContext> context;
+    const bool renders = !options.outputPath.empty() || !options.dumpDirectory.empty();
     // OpenImageIO's ~0.2 s of dynamic linking overlaps loading the model. (Not rendering: on llvmpipe, LLVM's symbol
     // look-ups wait for the dynamic loader's lock, so they would queue behind it.)
-    if (!options.outputPath.empty() || !options.dumpDirectory.empty()) preloadImageIo();
+    if (renders) preloadImageIo();
+
+    // Every output place is checked before any work, so a run that cannot finish touches nothing.
+    OutputPlan outputs(options);
+    outputs.checkAll();
 
     const auto loadStart = std::chrono::steady_clock::now();
     const Scene scene = loadScene(options.modelPath);
     const double loadMs = millisecondsSince(loadStart);
-    if (!options.quiet)
+    if (!options.quiet) {
         log << "inkgraph: loaded '" << options.modelPath << "': " << scene.triangleCount() << " triangles, "
             << scene.vertexCount() << " vertices (" << scene.report.degenerateDropped << " degenerate dropped) in "
             << loadMs << " ms\n";
-    for (const std::string& warning : scene.report.warnings)
-        if (!options.quiet) log << "inkgraph: warning: " << warning << "\n";
+        for (const std::string& warning : scene.report.warnings) log << "inkgraph: warning: " << warning << "\n";
+    }
 
     const BoundingSphere sphere = computeBoundingSphere(scene);
     CameraRequest request;
@@ -169,7 +158,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     try {
         camera = resolveCamera(request, scene);
     } catch (const std::invalid_argument& error) {
-        throw UsageError(error.what());
+        throw UsageError(error.what()); // the loader has validated the file's camera: what is left is the flags
     }
 
     FrameParams frame;
@@ -182,29 +171,23 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
 
     ShaderLibrary shaders;
     GpuScene gpuScene(scene, sphere.center);
-    const PassSet passes = buildPasses(options, shaders, gpuScene, frame);
+    const StillGraph graph = buildStillGraph(options.shading, shaders, gpuScene, frame);
 
-    std::vector<std::string> requested = {"composite.final"};
-    for (const std::string& extra : expandRequests(options.extraOutputs, passes))
+    std::vector<std::string> requested = {graph.finalResource};
+    for (const std::string& extra : expandWildcards(options.extraOutputs, graph))
         if (std::find(requested.begin(), requested.end(), extra) == requested.end()) requested.push_back(extra);
-    const Plan plan = compile(passes.view(), requested);
+    std::optional<Plan> compiled;
+    try {
+        compiled = compile(graph.view(), requested);
+    } catch (const GraphError& error) {
+        // The registered passes are consistent (tests/graph, tests/app); a problem here comes from --request.
+        throw UsageError(std::string("--request: ") + error.what());
+    }
+    const Plan& plan = *compiled;
     if (options.printPlan) out << plan.describe();
     if (!options.graphvizPath.empty()) writeTextFile(options.graphvizPath, plan.graphviz());
-    if (options.outputPath.empty() && options.dumpDirectory.empty()) return;
-
-    // Fail before rendering if an output cannot be written.
-    if (!options.outputPath.empty()) {
-        const std::filesystem::path parent = std::filesystem::absolute(options.outputPath).parent_path();
-        if (!std::filesystem::is_directory(parent))
-            throw FileError("renderStill(): the folder of '" + options.outputPath + "' does not exist");
-        if (std::filesystem::is_directory(options.outputPath))
-            throw FileError("renderStill(): -o '" + options.outputPath + "' is a folder; give a file name");
-        // Common extensions need no look-up; anything else asks OpenImageIO now rather than after rendering.
-        static const std::set<std::string> kKnownExtensions = {".png", ".exr", ".tif", ".tiff", ".jpg", ".jpeg"};
-        if (kKnownExtensions.count(std::filesystem::path(options.outputPath).extension().string()) == 0)
-            requireImageWriter(options.outputPath);
-    }
-    if (!options.dumpDirectory.empty()) ensureWritableDirectory(options.dumpDirectory, "--dump");
+    if (!renders) return;
+    checkFrameBudget(plan, options);
 
     HeadlessContextOptions contextOptions;
     if (options.eglPlatform == "device") contextOptions.platform = EglPlatform::Device;
@@ -213,6 +196,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     context.emplace(contextOptions);
     const double contextMs = millisecondsSince(contextStart);
     if (!options.quiet) log << "inkgraph: " << context->describe() << "\n";
+    checkDriverLimits(options);
 
     TexturePool pool;
     GraphExecutor executor(pool);
@@ -220,11 +204,11 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     executeOptions.frameWidth = options.width;
     executeOptions.frameHeight = options.height;
     executeOptions.keepAllResources = !options.dumpDirectory.empty();
-    const std::vector<PassTiming> timings = executor.run(plan, passes.mutableView(), executeOptions);
+    const std::vector<PassTiming> timings = executor.run(plan, graph.mutableView(), executeOptions);
 
     const auto writeStart = std::chrono::steady_clock::now();
     ResourceStore& store = executor.store();
-    if (!options.outputPath.empty()) writeImage(options.outputPath, store.image("composite.final"));
+    if (!options.outputPath.empty()) writeImage(options.outputPath, store.image(graph.finalResource));
 
     Json passTimes = Json::array();
     for (const PassTiming& timing : timings)
@@ -232,16 +216,18 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
             {{"name", timing.pass}, {"ms", timing.milliseconds}, {"prepare_ms", timing.prepareMilliseconds}});
 
     if (!options.dumpDirectory.empty()) {
-        const std::filesystem::path directory(options.dumpDirectory);
+        DumpFolder dump(options.dumpDirectory);
         Json files = Json::array();
         std::set<std::string> usedNames;
         for (const PlannedResource& resource : plan.resources) {
             if (!store.contains(resource.name)) continue;
             const bool isFloat = resource.desc.format == Format::RGBA32F || resource.desc.format == Format::R32F;
-            const std::string fileName = dumpFileName(resource.name, isFloat, passes.shadingResource);
+            const std::string fileName = dumpFileName(resource.name, isFloat, graph.shadingResource);
             if (!usedNames.insert(fileName).second)
                 throw std::logic_error("renderStill(): two resources dump to '" + fileName + "'");
-            writeImage(directory / fileName, store.image(resource.name));
+            writeImage(dump.path(fileName), store.image(resource.name));
+            // Written buffers are not needed again: freeing them keeps the dump's peak memory to one copy.
+            if (resource.name != graph.finalResource) store.release(resource.name);
             files.push_back({{"file", fileName},
                              {"resource", resource.name},
                              {"pass", resource.writer},
@@ -253,21 +239,13 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
         manifest["model"] = options.modelPath;
         manifest["size"] = {options.width, options.height};
         manifest["conventions"] = "right-handed world; OpenGL lookAt/perspective; row 0 at the top; pixel centres at "
-                                  "(col+0.5, row+0.5); matrices as rows";
-        manifest["camera"] = {{"source", camera.source},
-                              {"eye", vectorJson(camera.eye)},
-                              {"target", vectorJson(camera.target)},
-                              {"up", vectorJson(camera.up)},
-                              {"fov_y_degrees", camera.fovYDegrees},
-                              {"near", camera.zNear},
-                              {"far", camera.zFar},
-                              {"focal_pixels", camera.focalPixels()},
-                              {"view_matrix", matrixRows(camera.viewMatrix())},
-                              {"projection_matrix", matrixRows(camera.projectionMatrix())}};
+                                  "(col+0.5, row+0.5); matrices as rows; 8-bit images sRGB, float images linear data";
+        manifest["camera"] = describeCamera(camera);
         manifest["toward_light_world"] = vectorJson(frame.towardLightWorld);
         manifest["files"] = files;
         manifest["passes"] = passTimes;
-        writeTextFile(directory / "manifest.json", manifest.dump(2) + "\n");
+        writeTextFile(dump.path("manifest.json"), jsonText(manifest));
+        dump.commit();
     }
 
     if (!options.statsPath.empty()) {
@@ -284,6 +262,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
                           {"vertices_before_weld", scene.report.verticesBeforeWeld},
                           {"normals_computed", scene.report.normalsComputed}};
         stats["size"] = {options.width, options.height};
+        stats["camera_source"] = camera.source;
         stats["gl"] = {{"platform", context->platform()},
                        {"renderer", context->renderer()},
                        {"version", context->version()},
@@ -295,8 +274,10 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
         stats["write_ms"] = millisecondsSince(writeStart);
         stats["textures_created"] = pool.createdCount();
         stats["textures_reused"] = pool.reusedCount();
+        stats["estimated_peak_mib"] = double(estimatePlanBytes(plan, options.width, options.height,
+                                                               !options.dumpDirectory.empty())) / (1 << 20);
         stats["total_ms"] = millisecondsSince(processStart);
-        writeTextFile(options.statsPath, stats.dump(2) + "\n");
+        writeTextFile(options.statsPath, jsonText(stats));
     }
     if (!options.quiet) {
         log << "inkgraph: rendered " << options.width << "x" << options.height << " in "
@@ -308,9 +289,13 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
 
 int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
     std::vector<std::string> arguments(argv + std::min(argc, 1), argv + argc);
-    if (arguments.empty() || arguments[0] == "--help" || arguments[0] == "-h" || arguments[0] == "help") {
-        (arguments.empty() ? err : out) << mainHelp();
-        return arguments.empty() ? kExitUsage : kExitOk;
+    if (arguments.empty()) {
+        err << mainHelp();
+        return kExitUsage;
+    }
+    if (arguments[0] == "--help" || arguments[0] == "-h" || arguments[0] == "help") {
+        out << (arguments.size() > 1 && arguments[1] == "render" ? renderHelp() : mainHelp());
+        return kExitOk;
     }
     if (arguments[0] == "--version") {
         out << "inkgraph " << INKGRAPH_VERSION << "\n";
@@ -321,16 +306,16 @@ int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::os
         return kExitUsage;
     }
     arguments.erase(arguments.begin());
-    if (std::find(arguments.begin(), arguments.end(), "--help") != arguments.end() ||
-        std::find(arguments.begin(), arguments.end(), "-h") != arguments.end()) {
-        out << renderHelp();
-        return kExitOk;
-    }
     try {
-        renderStill(parseRenderOptions(arguments), out, err);
+        const RenderOptions options = parseRenderOptions(arguments);
+        if (options.help) {
+            out << renderHelp();
+            return kExitOk;
+        }
+        renderStill(options, out, err);
         return kExitOk;
     } catch (const UsageError& error) {
-        err << "inkgraph: " << error.what() << "\n(see: inkgraph render --help)\n";
+        err << "inkgraph: " << error.what() << "\n(see: inkgraph help render)\n";
         return kExitUsage;
     } catch (const SceneError& error) {
         err << "inkgraph: " << error.what() << "\n";

@@ -4,15 +4,10 @@
 //     outputs Lambert needs and with all seven;
 //   - the Lambert and composite passes at 1024x1024.
 // Times are the pass's own execute() up to glFinish (manual time), which is what --stats reports.
+#include "app/StillGraph.h"
 #include "gl/GraphExecutor.h"
 #include "gl/HeadlessContext.h"
-#include "gl/ShaderLibrary.h"
 #include "graph/GraphCompiler.h"
-#include "passes/FrameParams.h"
-#include "passes/GpuScene.h"
-#include "passes/composite/CompositePass.h"
-#include "passes/gbuffer/GBufferPass.h"
-#include "passes/lambert/LambertPass.h"
 #include "scene/Camera.h"
 #include "scene/Procedural.h"
 
@@ -38,13 +33,13 @@ Scene sphereScene(int triangleCount) {
     return makeScene(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 2 * rings, rings));
 }
 
-/** One scene with its passes, compiled for `requested`, ready to run repeatedly. */
+/** One scene with the CLI's passes, compiled for `requested`, ready to run repeatedly. */
 struct Bench {
     Scene scene;
     FrameParams frame;
     ShaderLibrary shaders;
     std::unique_ptr<GpuScene> gpuScene;
-    std::vector<std::unique_ptr<Pass>> passes;
+    StillGraph graph;
     TexturePool pool;
     GraphExecutor executor{pool};
     Plan plan;
@@ -57,19 +52,13 @@ struct Bench {
         frame.camera = resolveCamera(request, scene);
         frame.worldOrigin = computeBoundingSphere(scene).center;
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
-        passes.push_back(std::make_unique<GBufferPass>("gbuffer", shaders, *gpuScene, frame));
-        passes.push_back(std::make_unique<LambertPass>("lambert", shaders, frame, "gbuffer.normal", "gbuffer.baseColor"));
-        passes.push_back(std::make_unique<CompositePass>("composite", frame, "lambert.color"));
-        std::vector<const Pass*> view;
-        for (const auto& pass : passes) view.push_back(pass.get());
-        plan = compile(view, requested);
+        graph = buildStillGraph(ShadingMode::Lambert, shaders, *gpuScene, frame);
+        plan = compile(graph.view(), requested);
     }
 
     /** Runs the plan and returns the execute() milliseconds of `passName`. */
     double run(const std::string& passName) {
-        std::vector<Pass*> view;
-        for (const auto& pass : passes) view.push_back(pass.get());
-        for (const PassTiming& timing : executor.run(plan, view, {kFrameSize, kFrameSize, false}))
+        for (const PassTiming& timing : executor.run(plan, graph.mutableView(), {kFrameSize, kFrameSize, false}))
             if (timing.pass == passName) return timing.milliseconds;
         return 0.0;
     }

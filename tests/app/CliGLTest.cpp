@@ -80,6 +80,10 @@ TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
                            " -o final.png --size 96x64 --dump dump --request 'gbuffer.*' --stats stats.json");
     ASSERT_EQ(result.exitCode, 0) << result.err;
 
+    // float32 in the files themselves, not converted on reading.
+    for (const char* file : {"normal.exr", "view.exr", "w.exr", "ndotv.exr", "depth.exr"})
+        EXPECT_EQ(imageFilePixelType(directory / "dump" / file), "float") << file;
+    EXPECT_EQ(imageFilePixelType(directory / "dump" / "coverage.png"), "uint8");
     const cv::Mat normal = readImage(directory / "dump" / "normal.exr");
     ASSERT_EQ(normal.type(), CV_32FC4);
     ASSERT_EQ(normal.size(), cv::Size(96, 64));
@@ -102,11 +106,15 @@ TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
             const float d = nDotV.at<float>(row, col);
             if (coverage.at<uchar>(row, col) == 0) {
                 ASSERT_EQ(n[3], 0.0f);
+                ASSERT_EQ(v[3], 0.0f);
+                ASSERT_EQ(wv[3], 0.0f);
                 ASSERT_EQ(depth.at<float>(row, col), 0.0f);
                 continue;
             }
             ++covered;
             ASSERT_EQ(n[3], 1.0f) << "alpha carries coverage";
+            ASSERT_EQ(v[3], 1.0f);
+            ASSERT_EQ(wv[3], 1.0f);
             ASSERT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0f, 1e-4f);
             ASSERT_NEAR(n[0] * v[0] + n[1] * v[1] + n[2] * v[2], d, 1e-5f);
             ASSERT_NEAR(wv[0] * wv[0] + wv[1] * wv[1] + wv[2] * wv[2] + d * d, 1.0f, 1e-4f);
@@ -154,6 +162,43 @@ TEST_F(Cli, DumpingNeverChangesWhatRuns) {
     EXPECT_EQ(listFiles(directory / "d"),
               (std::vector<std::string>{"basecolor.png", "final.png", "manifest.json", "normal.exr", "shading.png"}));
     EXPECT_EQ(cv::norm(readImage(directory / "a.png"), readImage(directory / "b.png"), cv::NORM_INF), 0.0);
+}
+
+TEST_F(Cli, DumpReplacesAnEarlierDumpWhole) {
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 32x32 --dump d --request 'gbuffer.*'").exitCode, 0);
+    EXPECT_TRUE(fs::exists(directory / "d" / "w.exr"));
+    const CliRun second = run("render " + model("spot_c3d.obj") + " --size 48x48 --dump d --shading none");
+    ASSERT_EQ(second.exitCode, 0) << second.err;
+    // Nothing of the first run is left beside the second run's files, and no staging folder either.
+    EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"final.png", "manifest.json"}));
+    EXPECT_EQ(listFiles(directory), (std::vector<std::string>{"d"}));
+    EXPECT_EQ(readImage(directory / "d" / "final.png").size(), cv::Size(48, 48));
+}
+
+TEST_F(Cli, DumpRefusesAFolderOfOtherFiles) {
+    fs::create_directories(directory / "mine");
+    std::ofstream(directory / "mine" / "notes.txt") << "precious";
+    const CliRun result = run("render " + model("spot_c3d.obj") + " --size 16x16 --dump mine");
+    EXPECT_EQ(result.exitCode, 5);
+    EXPECT_NE(result.err.find("--dump 'mine'"), std::string::npos) << result.err;
+    EXPECT_EQ(listFiles(directory / "mine"), std::vector<std::string>{"notes.txt"});
+}
+
+TEST_F(Cli, AwkwardPathsAndFormats) {
+    // A model path that is not UTF-8 still gives valid JSON (the bad bytes become U+FFFD).
+    fs::copy_file(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "spot_c3d.obj", directory / "caf\xe9.obj");
+    const CliRun latin1 = run("render 'caf\xe9.obj' -o a.png --size 16x16 --stats s.json");
+    ASSERT_EQ(latin1.exitCode, 0) << latin1.err;
+    EXPECT_NO_THROW(nlohmann::json::parse(readText(directory / "s.json")));
+
+    // A long final name still has a valid temporary name.
+    const std::string longName(240, 'n');
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o " + longName + ".png --size 16x16").exitCode, 0);
+    EXPECT_TRUE(fs::exists(directory / (longName + ".png")));
+
+    // JPEG has no alpha: the opaque picture is written as RGB.
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o a.jpg --size 16x16").exitCode, 0);
+    EXPECT_EQ(readImage(directory / "a.jpg").channels(), 3);
 }
 
 TEST_F(Cli, ShadingNoneCullsTheShadingPassWithAReason) {
@@ -211,10 +256,20 @@ TEST_F(Cli, BadInputExitCodesAndMessages) {
     EXPECT_NE(noFolder.err.find("missing/folder/a.png"), std::string::npos) << noFolder.err;
 
     CliRun badExtension = run("render " + model("spot_c3d.obj") + " -o a.docx --size 16x16");
-    EXPECT_EQ(badExtension.exitCode, 5);
-    EXPECT_NE(badExtension.err.find("'.docx'"), std::string::npos) << badExtension.err;
+    EXPECT_EQ(badExtension.exitCode, 2);
+    EXPECT_NE(badExtension.err.find("'a.docx'"), std::string::npos) << badExtension.err;
 
+    // An output that cannot be written stops the run before anything is rendered or written.
     std::ofstream(directory / "blocker") << "a file where a folder is expected";
+    CliRun badStats = run("render " + model("spot_c3d.obj") + " -o a.png --size 16x16 --stats blocker/s.json");
+    EXPECT_EQ(badStats.exitCode, 5);
+    EXPECT_NE(badStats.err.find("--stats 'blocker/s.json'"), std::string::npos) << badStats.err;
+    EXPECT_FALSE(fs::exists(directory / "a.png")) << "-o must not be written when --stats cannot be";
+
+    CliRun huge = run("render " + model("spot_c3d.obj") + " -o a.png --size 16384x16384 --request gbuffer.normal");
+    EXPECT_EQ(huge.exitCode, 2);
+    EXPECT_NE(huge.err.find("--size 16384x16384"), std::string::npos) << huge.err;
+
     CliRun badDump = run("render " + model("spot_c3d.obj") + " -o a.png --size 16x16 --dump blocker/sub");
     EXPECT_EQ(badDump.exitCode, 5);
     EXPECT_NE(badDump.err.find("blocker/sub"), std::string::npos) << badDump.err;

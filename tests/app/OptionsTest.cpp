@@ -24,7 +24,7 @@ TEST(Options, Defaults) {
     EXPECT_EQ(options.outputPath, "out.png");
     EXPECT_EQ(options.width, 1024);
     EXPECT_EQ(options.height, 1024);
-    EXPECT_EQ(options.up, glm::dvec3(0, 1, 0));
+    EXPECT_FALSE(options.up.has_value());
     EXPECT_FALSE(options.fovYDegrees.has_value());
     EXPECT_EQ(options.shading, ShadingMode::Lambert);
     EXPECT_TRUE(options.lines.empty());
@@ -41,7 +41,7 @@ TEST(Options, EveryValue) {
     EXPECT_EQ(options.height, 480);
     EXPECT_EQ(*options.eye, glm::dvec3(1, 2, 3));
     EXPECT_EQ(*options.target, glm::dvec3(0, 0.5, -1e-3));
-    EXPECT_EQ(options.up, glm::dvec3(0, 0, 1));
+    EXPECT_EQ(*options.up, glm::dvec3(0, 0, 1));
     EXPECT_EQ(*options.fovYDegrees, 50.0);
     EXPECT_EQ(*options.towardLight, glm::dvec3(0, 0, 1)) << "the light direction is normalised";
     EXPECT_EQ(options.shading, ShadingMode::None);
@@ -64,6 +64,10 @@ TEST(Options, MalformedValuesNameTheFlag) {
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--eye", "1,nan,2"}).find("--eye"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--fov", "180"}).find("--fov"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--fov", "-5"}).find("--fov"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--fov", "1e-300"}).find("--fov"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.docx"}).find("'x.docx'"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--request", "a.b.c"}).find("'a.b.c'"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "--print-plan", "--stats", "s.json"}).find("--stats"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "toon"}).find("'toon'"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour"}).find("'contour'"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--light", "0,0,0"}).find("--light"), std::string::npos);
@@ -82,6 +86,13 @@ TEST(Options, MalformedValuesNameTheFlag) {
 
 TEST(Options, PrintPlanAloneNeedsNoOutput) {
     EXPECT_NO_THROW(parse({"m.obj", "--print-plan"}));
+}
+
+TEST(Options, HelpWhereAFlagStandsStopsParsing) {
+    EXPECT_TRUE(parse({"m.obj", "-h", "--size", "bad"}).help);
+    EXPECT_TRUE(parse({"--help"}).help) << "no model needed for help";
+    EXPECT_NE(usageMessage({"m.obj", "--size", "bad", "--help"}).find("--size"), std::string::npos)
+        << "a bad value before --help is still reported";
 }
 
 TEST(DumpFileName, FixedNamesForTheIssueFiles) {
@@ -108,6 +119,15 @@ TEST(CommandLine, HelpAndUsageExitCodes) {
     EXPECT_NE(err.str().find("unknown command 'paint'"), std::string::npos);
     const char* badFlag[] = {"inkgraph", "render", "m.obj", "-o", "x.png", "--size", "wide"};
     EXPECT_EQ(runCommandLine(7, badFlag, out, err), kExitUsage);
+    std::ostringstream helpOut;
+    const char* helpRender[] = {"inkgraph", "help", "render"};
+    EXPECT_EQ(runCommandLine(3, helpRender, helpOut, err), kExitOk);
+    EXPECT_NE(helpOut.str().find("--size WxH"), std::string::npos);
+    // As the value of -o, "--help" is a (bad) file name, not a request for help.
+    std::ostringstream valueOut, valueErr;
+    const char* helpAsValue[] = {"inkgraph", "render", "m.obj", "-o", "--help"};
+    EXPECT_EQ(runCommandLine(5, helpAsValue, valueOut, valueErr), kExitUsage);
+    EXPECT_EQ(valueOut.str(), "");
 }
 
 } // namespace

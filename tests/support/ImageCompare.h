@@ -19,9 +19,14 @@ struct ImageTolerance {
     double outlierFraction = 0.0;
 };
 
-/** Compares two images of the same size and channel count (8-bit values are compared on the 0..255 scale). */
+/** Pixels within one pixel of a coverage boundary (CV_8UC1, 255 there): where outliers may fall. */
+cv::Mat coverageEdges(const cv::Mat& coverage);
+
+/** Compares two images of the same size and channel count (8-bit values are compared on the 0..255 scale).
+ *  With `outlierZone` (CV_8UC1), every pixel beyond maxAbs must lie inside it. */
 ::testing::AssertionResult imagesNear(const cv::Mat& actual, const cv::Mat& expected, ImageTolerance tolerance,
-                                      const std::string& testName, const std::string& resourceName);
+                                      const std::string& testName, const std::string& resourceName,
+                                      const cv::Mat& outlierZone = cv::Mat());
 
 /** Folder the failing comparisons write to. */
 std::filesystem::path testOutputDirectory(const std::string& testName);
