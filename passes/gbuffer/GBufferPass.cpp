@@ -65,8 +65,14 @@ void GBufferPass::execute(PassContext& context) {
         framebuffer.attachColor(slot, gl.outputTexture(field.name));
         drawSlots.push_back(slot);
     }
-    GlDepthTexture depth(width, height, mName + " depth test");
-    framebuffer.attachDepth(depth);
+    // The depth attachment is the pass's own; kept between runs of the same size (batches, benchmarks).
+    if (!mDepth || mDepthWidth != width || mDepthHeight != height) {
+        mDepth.reset();
+        mDepth = std::make_unique<GlDepthTexture>(width, height, mName + " depth test");
+        mDepthWidth = width;
+        mDepthHeight = height;
+    }
+    framebuffer.attachDepth(*mDepth);
     framebuffer.finish(drawSlots);
 
     GlProgram& program = programFor(definesFor(context));
