@@ -1,15 +1,16 @@
 #include "app/ImageFiles.h"
 
 #include "app/ImageIoModule.h"
+#include "app/TemporaryFiles.h"
 
 #include <dlfcn.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <cstdlib>
-#include <fstream>
 #include <future>
 #include <mutex>
 #include <system_error>
@@ -22,9 +23,11 @@ void renameIntoPlace(const std::filesystem::path& temporary, const std::filesyst
     std::filesystem::rename(temporary, path, error);
     if (error) {
         std::filesystem::remove(temporary, error);
+        forgetTemporary(temporary);
         throw FileError("writeFile(): cannot move the finished file into place as '" + path.string() + "': " +
                         error.message());
     }
+    forgetTemporary(temporary);
 }
 
 /** Where the OpenImageIO module is: INKGRAPH_IMAGEIO_MODULE, else beside the executable, else the build tree. */
@@ -96,20 +99,44 @@ std::filesystem::path temporarySibling(const std::filesystem::path& path) {
     return path.parent_path() / name;
 }
 
-void requireImageWriter(const std::filesystem::path& path) {
-    if (!imageIo().hasWriter(path.string()))
-        throw FileError("writeImage(): '" + path.string() + "': no image format for the extension '" +
-                        path.extension().string() + "' (use .png, .exr, .tif or .jpg)");
+void writeBytes(const std::filesystem::path& destination, const void* data, std::size_t byteCount,
+                const std::string& shownName) {
+    // O_EXCL: a temporary name that exists is someone else's file, never ours to overwrite.
+    const int descriptor = ::open(destination.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (descriptor < 0)
+        throw FileError("writeFile(): cannot create '" + shownName + "': " + std::strerror(errno));
+    registerTemporary(destination);
+    const auto* bytes = static_cast<const char*>(data);
+    std::size_t written = 0;
+    int failure = 0;
+    while (written < byteCount && failure == 0) {
+        const ssize_t result = ::write(descriptor, bytes + written, byteCount - written);
+        if (result > 0) written += std::size_t(result);
+        else if (result < 0 && errno != EINTR) failure = errno;
+        else if (result == 0) failure = EIO;
+    }
+    // fsync before the rename: after a crash the final name holds the whole file or the old one, never a prefix.
+    if (failure == 0 && ::fsync(descriptor) != 0) failure = errno;
+    if (::close(descriptor) != 0 && failure == 0) failure = errno;
+    if (failure != 0) {
+        ::unlink(destination.c_str());
+        forgetTemporary(destination);
+        throw FileError("writeFile(): cannot write '" + shownName + "': " + std::strerror(failure));
+    }
+}
+
+void writeImageTo(const std::filesystem::path& destination, const std::filesystem::path& finalPath,
+                  const cv::Mat& image) {
+    std::vector<unsigned char> encoded;
+    std::string error;
+    if (!imageIo().encodeImage(finalPath.string(), image, encoded, error))
+        throw FileError("writeImage(): cannot write '" + finalPath.string() + "': " + error);
+    writeBytes(destination, encoded.data(), encoded.size(), finalPath.string());
 }
 
 void writeImage(const std::filesystem::path& path, const cv::Mat& image) {
     const std::filesystem::path temporary = temporarySibling(path);
-    std::string error;
-    if (!imageIo().writeImage(path.string(), temporary.string(), image, error)) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        throw FileError("writeImage(): cannot write '" + path.string() + "': " + error);
-    }
+    writeImageTo(temporary, path, image);
     renameIntoPlace(temporary, path);
 }
 
@@ -131,15 +158,7 @@ cv::Mat readImage(const std::filesystem::path& path) {
 
 void writeTextFile(const std::filesystem::path& path, const std::string& text) {
     const std::filesystem::path temporary = temporarySibling(path);
-    {
-        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-        if (!(file << text) || !file.flush()) {
-            const std::string reason = std::strerror(errno);
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            throw FileError("writeTextFile(): cannot write '" + path.string() + "': " + reason);
-        }
-    }
+    writeBytes(temporary, text.data(), text.size(), path.string());
     renameIntoPlace(temporary, path);
 }
 

@@ -22,12 +22,20 @@ public:
  *  dynamic linking overlaps other work. Optional: every function below loads it on first use anyway. */
 void preloadImageIo();
 
-/** Writes CV_8UC1/CV_8UC4 as 8-bit and CV_32FC1/CV_32FC4 as float32 (EXR keeps float; PNG would quantise, so
- *  float images must go to .exr or .tif). The format follows the extension. */
+/** Writes CV_8UC1/CV_8UC4 as 8-bit sRGB and CV_32FC1/CV_32FC4 as float32 (EXR keeps float; PNG would quantise, so
+ *  float images must go to .exr or .tif); an 8-bit picture written as EXR is converted to linear float. The format
+ *  follows the extension. Encoded in memory, written under a temporary name, synced, renamed into place. */
 void writeImage(const std::filesystem::path& path, const cv::Mat& image);
 
-/** Throws FileError unless OpenImageIO has a writer for the extension of `path` (checked before rendering). */
-void requireImageWriter(const std::filesystem::path& path);
+/** Encodes `image` in the format of `finalPath`'s extension and writes it to `destination` (a new file, created
+ *  exclusively, synced to disk); errors name `finalPath`. For callers that rename later (app/OutputFiles). */
+void writeImageTo(const std::filesystem::path& destination, const std::filesystem::path& finalPath,
+                  const cv::Mat& image);
+
+/** Writes bytes to a new file (O_EXCL), checking every write, then fsync and close; on failure removes it and throws
+ *  FileError naming `shownName`. */
+void writeBytes(const std::filesystem::path& destination, const void* data, std::size_t byteCount,
+                const std::string& shownName);
 
 /** Reads any image OpenImageIO knows into CV_8UCn (8-bit files) or CV_32FCn (everything else). */
 cv::Mat readImage(const std::filesystem::path& path);

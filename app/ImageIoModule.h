@@ -7,22 +7,22 @@
 #include <opencv2/core.hpp>
 
 #include <string>
+#include <vector>
 
 namespace inkgraph {
 
 struct ImageIoFunctions {
     int version;
-    /** Writes `image` to `temporaryPath` in the format of `formatPath`'s extension. */
-    bool (*writeImage)(const std::string& formatPath, const std::string& temporaryPath, const cv::Mat& image,
-                       std::string& error);
+    /** Encodes `image` in memory in the format of `formatPath`'s extension. The caller writes the bytes: OIIO's
+     *  writers do not all report I/O errors (libpng's is ignored, libjpeg's exits the process), memory never fails. */
+    bool (*encodeImage)(const std::string& formatPath, const cv::Mat& image, std::vector<unsigned char>& bytes,
+                        std::string& error);
     bool (*readImage)(const std::string& path, cv::Mat& image, std::string& error);
-    /** True when a writer exists for the extension of `path`. */
-    bool (*hasWriter)(const std::string& path);
     /** The file's own pixel type ("uint8", "half", "float", ...). */
     bool (*pixelType)(const std::string& path, std::string& type, std::string& error);
 };
 
-inline constexpr int kImageIoVersion = 2;
+inline constexpr int kImageIoVersion = 3;
 
 } // namespace inkgraph
 

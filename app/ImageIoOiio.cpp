@@ -1,7 +1,10 @@
 // The OpenImageIO side of app/ImageIoModule.h, built as the module libinkgraph_imageio.so.
 #include "app/ImageIoModule.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+
+#include <cmath>
 
 #include <vector>
 
@@ -16,37 +19,60 @@ OIIO::TypeDesc oiioTypeOf(int depth) {
     }
 }
 
-bool writeWithOiio(const std::string& formatPath, const std::string& temporaryPath, const cv::Mat& image,
-                   std::string& error) {
-    const OIIO::TypeDesc type = oiioTypeOf(image.depth());
-    if (image.empty() || type == OIIO::TypeDesc::UNKNOWN) {
+/** 8-bit sRGB colour as linear float, for float formats (EXR): readers take EXR values as linear light. */
+cv::Mat linearFromSrgb(const cv::Mat& image) {
+    float table[256];
+    for (int code = 0; code < 256; ++code) {
+        const double encoded = code / 255.0;
+        table[code] = float(encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4));
+    }
+    cv::Mat linear(image.size(), CV_MAKETYPE(CV_32F, image.channels()));
+    const int colorChannels = image.channels() == 4 ? 3 : image.channels();
+    for (int row = 0; row < image.rows; ++row) {
+        const uchar* in = image.ptr<uchar>(row);
+        float* out = linear.ptr<float>(row);
+        for (int i = 0; i < image.cols * image.channels(); ++i)
+            out[i] = i % image.channels() < colorChannels ? table[in[i]] : in[i] / 255.0f; // alpha stays linear
+    }
+    return linear;
+}
+
+bool encodeWithOiio(const std::string& formatPath, const cv::Mat& image, std::vector<unsigned char>& bytes,
+                    std::string& error) {
+    if (image.empty() || oiioTypeOf(image.depth()) == OIIO::TypeDesc::UNKNOWN) {
         error = "only non-empty 8-bit or float32 images are written";
         return false;
     }
-    // The writer is chosen by the final name's extension; the temporary name keeps the same extension anyway.
     auto output = OIIO::ImageOutput::create(formatPath);
     if (!output) {
         error = "no image format for this extension (" + OIIO::geterror() + ")";
         return false;
     }
-    cv::Mat contiguous = image.isContinuous() ? image : image.clone();
+    cv::Mat pixels = image.isContinuous() ? image : image.clone();
     // JPEG has no alpha: our pictures are opaque, so the alpha channel is simply left out.
-    if (contiguous.channels() == 4 && !output->supports("alpha")) {
-        cv::Mat rgb;
+    if (pixels.channels() == 4 && !output->supports("alpha")) {
         std::vector<cv::Mat> channels;
-        cv::split(contiguous, channels);
+        cv::split(pixels, channels);
         channels.pop_back();
-        cv::merge(channels, rgb);
-        contiguous = rgb;
+        cv::merge(channels, pixels);
     }
-    OIIO::ImageSpec spec(contiguous.cols, contiguous.rows, contiguous.channels(), type);
-    if (contiguous.channels() == 4) spec.alpha_channel = 3;
-    // 8-bit images are display colour (sRGB); float images are linear data (normals, depths). Alpha is coverage,
-    // never premultiplied, so OIIO must not (un)premultiply it.
+    const bool floatFormat = std::string(output->format_name()) == "openexr";
+    if (floatFormat && pixels.depth() == CV_8U) pixels = linearFromSrgb(pixels);
+    const OIIO::TypeDesc type = oiioTypeOf(pixels.depth());
+    OIIO::ImageSpec spec(pixels.cols, pixels.rows, pixels.channels(), type);
+    if (pixels.channels() == 4) spec.alpha_channel = 3;
+    // 8-bit images are display colour (sRGB); float images are linear (light, or data such as normals and depths).
+    // Alpha is coverage, never premultiplied, so OIIO must not (un)premultiply it.
     spec.attribute("oiio:ColorSpace", type == OIIO::TypeDesc::UINT8 ? "sRGB" : "Linear");
     spec.attribute("oiio:UnassociatedAlpha", 1);
     if (type == OIIO::TypeDesc::UINT8) spec.attribute("png:compressionLevel", 3); // faster than 6, about as small
-    if (!output->open(temporaryPath, spec) || !output->write_image(type, contiguous.data) || !output->close()) {
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    bytes.clear();
+    if (!output->supports("ioproxy") || !output->set_ioproxy(&memory)) {
+        error = std::string("the ") + output->format_name() + " writer cannot write to memory";
+        return false;
+    }
+    if (!output->open(formatPath, spec) || !output->write_image(type, pixels.data) || !output->close()) {
         error = output->geterror();
         return false;
     }
@@ -76,8 +102,6 @@ bool readWithOiio(const std::string& path, cv::Mat& image, std::string& error) {
     return true;
 }
 
-bool hasOiioWriter(const std::string& path) { return OIIO::ImageOutput::create(path) != nullptr; }
-
 bool pixelTypeWithOiio(const std::string& path, std::string& type, std::string& error) {
     auto input = OIIO::ImageInput::open(path);
     if (!input) {
@@ -88,7 +112,7 @@ bool pixelTypeWithOiio(const std::string& path, std::string& type, std::string& 
     return true;
 }
 
-const ImageIoFunctions kFunctions = {kImageIoVersion, writeWithOiio, readWithOiio, hasOiioWriter, pixelTypeWithOiio};
+const ImageIoFunctions kFunctions = {kImageIoVersion, encodeWithOiio, readWithOiio, pixelTypeWithOiio};
 
 } // namespace
 } // namespace inkgraph

@@ -81,6 +81,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
         const std::string& argument = arguments[i];
         auto value = [&]() -> const std::string& {
             if (i + 1 >= arguments.size()) throw UsageError(argument + ": missing value");
+            if (arguments[i + 1].empty()) throw UsageError(argument + ": empty value");
             return arguments[++i];
         };
         if (argument == "--help" || argument == "-h") {
@@ -189,8 +190,8 @@ Output
   --dump DIR             also write every buffer the plan computed, and manifest.json. What is computed follows
                          from the request: Lambert needs normal.exr and basecolor.png; add --request 'gbuffer.*'
                          for view.exr, w.exr (float32 RGBA, alpha = coverage), ndotv.exr, depth.exr (float32),
-                         coverage.png. Also shading.png, final.png, lines-<type>.png. DIR is replaced as a whole:
-                         it must be new, empty, or an earlier dump (it holds an inkgraph manifest.json)
+                         coverage.png. Also shading.png, final.png, lines-<type>.png. An earlier dump in DIR is
+                         replaced once everything is written; DIR must be new, empty, or hold exactly an earlier dump
   --request LIST         compute and keep extra graph outputs, comma-separated: 'gbuffer.wVec', or 'gbuffer.*'
                          for all of them (requesting is what makes a pass compute a buffer; dumping never does)
   --stats FILE.json      timings per pass, culled passes with reasons, scene and GL facts

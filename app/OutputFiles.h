@@ -1,45 +1,61 @@
 #pragma once
-/** @file Where a run's outputs go, checked before any work, and the --dump folder, replaced as a whole when the run
- *  has written everything (a failed run leaves the old folder, or none, never a mix of two runs). */
+/** @file Every output of one run as a transaction. The constructor checks every output place before any work;
+ *  files are then staged under temporary names and only commit() puts them in place, so a run that fails at any
+ *  point changes none of the user's files (and a signal removes what was staged: app/TemporaryFiles.h).
+ *  --dump DIR is filled from a staging folder inside DIR: at commit the previous dump's files are removed and the
+ *  new ones moved in, the manifest last, under a lock on DIR so parallel runs never mix. */
 
 #include "app/Options.h"
 
+#include <opencv2/core.hpp>
+
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace inkgraph {
 
-class OutputPlan {
+class OutputSet {
 public:
-    explicit OutputPlan(const RenderOptions& options) : mOptions(options) {}
+    /** Throws UsageError when outputs collide (with each other, with the model, or inside --dump DIR) and FileError
+     *  when an output place cannot be written, naming the flag and the path. May create DIR (removed again if the
+     *  run fails). */
+    explicit OutputSet(const RenderOptions& options);
+    ~OutputSet();
+    OutputSet(const OutputSet&) = delete;
+    OutputSet& operator=(const OutputSet&) = delete;
 
-    /** Throws FileError naming the flag and the path when -o, --stats, --graphviz or --dump cannot be written:
-     *  a missing or unwritable folder, a folder where a file is expected, a --dump folder holding other files. */
-    void checkAll() const;
+    void stageFinalImage(const cv::Mat& image);   ///< -o
+    void stageStats(const std::string& json);     ///< --stats
+    void stageGraphviz(const std::string& dot);   ///< --graphviz
+    void stageDumpImage(const std::string& fileName, const cv::Mat& image);
+    void stageDumpManifest(const std::string& json);
 
-private:
-    const RenderOptions& mOptions;
-};
-
-class DumpFolder {
-public:
-    /** Files are written into a hidden sibling of `directory` until commit(). */
-    explicit DumpFolder(std::filesystem::path directory);
-    ~DumpFolder();
-    DumpFolder(const DumpFolder&) = delete;
-    DumpFolder& operator=(const DumpFolder&) = delete;
-
-    std::filesystem::path path(const std::string& fileName) const { return mStaging / fileName; }
-    /** Puts the new folder in place of the old one (if any) and removes the old one. */
+    /** Moves everything staged into place. */
     void commit();
 
 private:
-    std::filesystem::path mDirectory;
+    struct Staged {
+        std::filesystem::path temporary;
+        std::filesystem::path destination;
+    };
+    void stageFile(const std::filesystem::path& destination, const cv::Mat* image, const std::string* text);
+    void checkDumpFolder();
+    void commitDump();
+
+    const RenderOptions& mOptions;
+    std::vector<Staged> mFiles;          ///< -o, --stats, --graphviz
+    std::vector<std::string> mDumpNames; ///< staged in mStaging, manifest.json last
+    std::filesystem::path mDumpDirectory;
     std::filesystem::path mStaging;
+    std::vector<std::filesystem::path> mCreatedFolders; ///< outermost last; removed if the run fails
     bool mCommitted = false;
 };
 
-/** True when `directory` is a folder written by --dump: it holds a manifest.json with an "inkgraph" entry. */
-bool isInkgraphDump(const std::filesystem::path& directory);
+/** The files an earlier --dump wrote into `directory` (from its manifest.json, which is included), or nothing when
+ *  `directory` holds anything else: then it is not ours to replace. Staging folders of running inkgraph processes
+ *  are ignored. */
+std::optional<std::vector<std::string>> earlierDumpFiles(const std::filesystem::path& directory);
 
 } // namespace inkgraph

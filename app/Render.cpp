@@ -3,6 +3,7 @@
 #include "app/ImageFiles.h"
 #include "app/OutputFiles.h"
 #include "app/StillGraph.h"
+#include "app/TemporaryFiles.h"
 #include "gl/GraphExecutor.h"
 #include "gl/HeadlessContext.h"
 #include "gl/ShaderLibrary.h"
@@ -21,6 +22,8 @@
 #include <map>
 #include <optional>
 #include <set>
+
+#include <unistd.h>
 
 namespace inkgraph {
 namespace {
@@ -63,24 +66,36 @@ std::size_t estimatePlanBytes(const Plan& plan, int width, int height, bool keep
     return bytes;
 }
 
+/** Half the machine's memory, the bound on what one plan may keep (at least 1 GiB). */
+std::size_t planMemoryBound() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES);
+    const long pageSize = ::sysconf(_SC_PAGE_SIZE);
+    const std::size_t physical = pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : 0;
+    return std::max<std::size_t>(physical / 2, std::size_t(1) << 30);
+}
+
+/** llvmpipe stores textures in 64x64 tiles, so a side is rounded up before its size is judged. */
+std::size_t paddedSide(int side) { return (std::size_t(side) + 63) / 64 * 64; }
+
 /** Refuses sizes that would fail deep inside the driver: one texture of 2 GiB or more (GL's byte counts are 32-bit),
  *  or a plan above the memory bound. Both name --size, the cause. */
 void checkFrameBudget(const Plan& plan, const RenderOptions& options) {
     for (const PlannedResource& resource : plan.resources) {
-        const std::size_t textureBytes = std::size_t(options.width) * std::size_t(options.height) *
-                                         std::size_t(resource.desc.scale * resource.desc.scale) *
+        const std::size_t textureBytes = paddedSide(options.width * resource.desc.scale) *
+                                         paddedSide(options.height * resource.desc.scale) *
                                          std::size_t(bytesPerPixel(resource.desc.format));
         if (textureBytes >= kMaxTextureBytes)
             throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
                              " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
-                             " MiB; one buffer must stay under 2048 MiB (at most about 11585x11585 for float RGBA)");
+                             " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
     }
     const std::size_t planBytes = estimatePlanBytes(plan, options.width, options.height, !options.dumpDirectory.empty());
-    if (planBytes > kMaxPlanBytes)
+    const std::size_t bound = planMemoryBound();
+    if (planBytes > bound)
         throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
                          " needs about " + std::to_string(planBytes >> 20) + " MiB for the buffers this plan keeps; " +
-                         "the bound is " + std::to_string(kMaxPlanBytes >> 20) +
-                         " MiB (make the image smaller, or request or dump fewer buffers)");
+                         "the bound is " + std::to_string(bound >> 20) +
+                         " MiB, half this machine's memory (make the image smaller, or request or dump fewer buffers)");
 }
 
 /** Makes a context and checks the frame against what the driver can allocate. */
@@ -132,9 +147,8 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     // look-ups wait for the dynamic loader's lock, so they would queue behind it.)
     if (renders) preloadImageIo();
 
-    // Every output place is checked before any work, so a run that cannot finish touches nothing.
-    OutputPlan outputs(options);
-    outputs.checkAll();
+    // Every output place is checked before any work; outputs are staged and put in place only at the end.
+    OutputSet outputs(options);
 
     const auto loadStart = std::chrono::steady_clock::now();
     const Scene scene = loadScene(options.modelPath);
@@ -185,8 +199,11 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     }
     const Plan& plan = *compiled;
     if (options.printPlan) out << plan.describe();
-    if (!options.graphvizPath.empty()) writeTextFile(options.graphvizPath, plan.graphviz());
-    if (!renders) return;
+    if (!options.graphvizPath.empty()) outputs.stageGraphviz(plan.graphviz());
+    if (!renders) {
+        outputs.commit();
+        return;
+    }
     checkFrameBudget(plan, options);
 
     HeadlessContextOptions contextOptions;
@@ -204,11 +221,17 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     executeOptions.frameWidth = options.width;
     executeOptions.frameHeight = options.height;
     executeOptions.keepAllResources = !options.dumpDirectory.empty();
-    const std::vector<PassTiming> timings = executor.run(plan, graph.mutableView(), executeOptions);
+    std::vector<PassTiming> timings;
+    try {
+        timings = executor.run(plan, graph.mutableView(), executeOptions);
+    } catch (const GlOutOfMemoryError& error) {
+        throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+                         ": the driver ran out of memory (" + error.what() + "); make the image smaller");
+    }
 
     const auto writeStart = std::chrono::steady_clock::now();
     ResourceStore& store = executor.store();
-    if (!options.outputPath.empty()) writeImage(options.outputPath, store.image(graph.finalResource));
+    if (!options.outputPath.empty()) outputs.stageFinalImage(store.image(graph.finalResource));
 
     Json passTimes = Json::array();
     for (const PassTiming& timing : timings)
@@ -216,7 +239,6 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
             {{"name", timing.pass}, {"ms", timing.milliseconds}, {"prepare_ms", timing.prepareMilliseconds}});
 
     if (!options.dumpDirectory.empty()) {
-        DumpFolder dump(options.dumpDirectory);
         Json files = Json::array();
         std::set<std::string> usedNames;
         for (const PlannedResource& resource : plan.resources) {
@@ -225,7 +247,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
             const std::string fileName = dumpFileName(resource.name, isFloat, graph.shadingResource);
             if (!usedNames.insert(fileName).second)
                 throw std::logic_error("renderStill(): two resources dump to '" + fileName + "'");
-            writeImage(dump.path(fileName), store.image(resource.name));
+            outputs.stageDumpImage(fileName, store.image(resource.name));
             // Written buffers are not needed again: freeing them keeps the dump's peak memory to one copy.
             if (resource.name != graph.finalResource) store.release(resource.name);
             files.push_back({{"file", fileName},
@@ -244,8 +266,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
         manifest["toward_light_world"] = vectorJson(frame.towardLightWorld);
         manifest["files"] = files;
         manifest["passes"] = passTimes;
-        writeTextFile(dump.path("manifest.json"), jsonText(manifest));
-        dump.commit();
+        outputs.stageDumpManifest(jsonText(manifest));
     }
 
     if (!options.statsPath.empty()) {
@@ -277,8 +298,9 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
         stats["estimated_peak_mib"] = double(estimatePlanBytes(plan, options.width, options.height,
                                                                !options.dumpDirectory.empty())) / (1 << 20);
         stats["total_ms"] = millisecondsSince(processStart);
-        writeTextFile(options.statsPath, jsonText(stats));
+        outputs.stageStats(jsonText(stats));
     }
+    outputs.commit();
     if (!options.quiet) {
         log << "inkgraph: rendered " << options.width << "x" << options.height << " in "
             << millisecondsSince(processStart) << " ms";
@@ -294,7 +316,11 @@ int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::os
         return kExitUsage;
     }
     if (arguments[0] == "--help" || arguments[0] == "-h" || arguments[0] == "help") {
-        out << (arguments.size() > 1 && arguments[1] == "render" ? renderHelp() : mainHelp());
+        if (arguments.size() > 1 && arguments[1] != "render") {
+            err << "inkgraph: no help on '" << arguments[1] << "' (topics: render)\n";
+            return kExitUsage;
+        }
+        out << (arguments.size() > 1 ? renderHelp() : mainHelp());
         return kExitOk;
     }
     if (arguments[0] == "--version") {
@@ -306,6 +332,7 @@ int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::os
         return kExitUsage;
     }
     arguments.erase(arguments.begin());
+    removeTemporariesOnSignals();
     try {
         const RenderOptions options = parseRenderOptions(arguments);
         if (options.help) {

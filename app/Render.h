@@ -21,9 +21,6 @@ enum ExitCode : int {
 
 /** One buffer must stay under 2 GiB: GL's byte counts are 32-bit (llvmpipe refuses larger RGBA32F targets). */
 inline constexpr std::size_t kMaxTextureBytes = std::size_t(2) << 30;
-/** The memory bound of one still: every live buffer of the plan together (with CPU copies when dumping). The
- *  project's machines have 24 GiB; this leaves room for the driver's own copies. */
-inline constexpr std::size_t kMaxPlanBytes = std::size_t(8) << 30;
 
 /** Renders as the options say. `out` receives --print-plan, `log` the progress lines. Throws the layer's own
  *  exceptions (SceneError, HeadlessContextError, FileError, UsageError, GraphError); runCommandLine maps them to

@@ -5,6 +5,17 @@
 #include <stdexcept>
 
 namespace inkgraph {
+namespace {
+
+/** Throws for a failed allocation: GlOutOfMemoryError when the driver ran out of memory. */
+void checkAllocation(const char* function, const std::string& what, GLenum error) {
+    if (error == GL_NO_ERROR) return;
+    const std::string message = std::string(function) + ": cannot allocate " + what + " (" + glErrorName(error) + ")";
+    if (error == GL_OUT_OF_MEMORY) throw GlOutOfMemoryError(message);
+    throw std::runtime_error(message);
+}
+
+} // namespace
 
 void labelObject(GLenum identifier, GLuint id, std::string_view label) {
     // GL_KHR_debug is core in 4.3; labels longer than GL_MAX_LABEL_LENGTH (>= 256) would be an error.
@@ -44,10 +55,10 @@ GlTexture::GlTexture(Format format, int width, int height, std::string_view labe
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     mHandle = GlHandle<TextureDeleter>(id);
     glTextureStorage2D(id, 1, glFormatOf(format).internalFormat, width, height);
-    if (const GLenum error = glGetError(); error != GL_NO_ERROR)
-        throw std::runtime_error("GlTexture(): cannot allocate " + std::to_string(width) + "x" + std::to_string(height) +
-                                 " " + std::string(formatName(format)) + " texture '" + std::string(label) + "' (" +
-                                 glErrorName(error) + ")");
+    checkAllocation("GlTexture()",
+                    std::to_string(width) + "x" + std::to_string(height) + " " + std::string(formatName(format)) +
+                        " texture '" + std::string(label) + "'",
+                    glGetError());
     // Data textures are sampled texel-exactly: never blend a normal or a depth with its neighbour.
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -66,10 +77,9 @@ GlDepthTexture::GlDepthTexture(int width, int height, std::string_view label) {
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     mHandle = GlHandle<TextureDeleter>(id);
     glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, width, height);
-    if (const GLenum error = glGetError(); error != GL_NO_ERROR)
-        throw std::runtime_error("GlDepthTexture(): cannot allocate " + std::to_string(width) + "x" +
-                                 std::to_string(height) + " depth texture '" + std::string(label) + "' (" +
-                                 glErrorName(error) + ")");
+    checkAllocation("GlDepthTexture()",
+                    std::to_string(width) + "x" + std::to_string(height) + " depth texture '" + std::string(label) + "'",
+                    glGetError());
     labelObject(GL_TEXTURE, id, label);
 }
 

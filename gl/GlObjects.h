@@ -5,11 +5,18 @@
 #include "graph/Resource.h"
 
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace inkgraph {
+
+/** The driver could not allocate a texture: the frame is too large for this machine. */
+class GlOutOfMemoryError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
 
 /** "GL_OUT_OF_MEMORY" and the like, or the number in hex. */
 std::string glErrorName(GLenum error);

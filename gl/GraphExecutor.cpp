@@ -200,6 +200,8 @@ std::vector<PassTiming> GraphExecutor::run(const Plan& plan, const std::vector<P
         const double start = nowMilliseconds();
         try {
             ordered[index]->execute(context);
+        } catch (const GlOutOfMemoryError& error) {
+            throw GlOutOfMemoryError("GraphExecutor::run(): pass '" + planned.name + "': " + error.what());
         } catch (const std::exception& error) {
             throw std::runtime_error("GraphExecutor::run(): pass '" + planned.name + "' failed: " + error.what());
         }

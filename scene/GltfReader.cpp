@@ -15,11 +15,15 @@
 #include <array>
 #include <bit>
 #include <cmath>
-#include <cstring>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <sstream>
+#include <string_view>
 
 namespace inkgraph::detail {
 
@@ -527,9 +531,48 @@ private:
     std::size_t mSkippedPrimitives = 0;
 };
 
+/** Deepest nesting of arrays and objects in JSON text, outside strings. */
+std::size_t jsonNestingDepth(std::string_view text) {
+    std::size_t depth = 0;
+    std::size_t deepest = 0;
+    bool inString = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (inString) {
+            if (c == '\\') ++i;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+/** tinygltf parses JSON recursively, so absurd nesting would overflow the stack: glTF itself nests a few levels, and
+ *  extras rarely more than a dozen. Checked before tinygltf sees the file. */
+void rejectDeepJson(const std::string& path, bool binary) {
+    constexpr std::size_t kMaxJsonDepth = 256;
+    std::ifstream file(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    std::string_view json = text;
+    if (binary && text.size() >= 20) {
+        // GLB: 12-byte header, then the JSON chunk's length, type, and text.
+        std::uint32_t chunkLength = 0;
+        std::memcpy(&chunkLength, text.data() + 12, sizeof chunkLength);
+        json = std::string_view(text).substr(20, chunkLength);
+    }
+    if (jsonNestingDepth(json) > kMaxJsonDepth)
+        throwLoadError(path, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+}
+
 } // namespace
 
 RawScene readGltf(const std::string& path, bool binary) {
+    rejectDeepJson(path, binary);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skipImageDecoding, nullptr);
     tinygltf::Model model;

@@ -145,8 +145,9 @@ TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
     EXPECT_GT(stats["passes"][0]["ms"].get<double>(), 0.0);
     EXPECT_EQ(stats["scene"]["triangles"], 5856);
     EXPECT_TRUE(stats["culled"].empty());
-    // No temporary names left anywhere.
-    for (const std::string& name : listFiles(directory / "dump")) EXPECT_EQ(name.find(".tmp-"), std::string::npos);
+    // No temporary or staging names left anywhere.
+    for (const std::string& name : listFiles(directory / "dump")) EXPECT_NE(name.rfind(".inkgraph-", 0), 0u) << name;
+    for (const std::string& name : listFiles(directory)) EXPECT_NE(name.rfind(".inkgraph-", 0), 0u) << name;
 }
 
 TEST_F(Cli, DumpingNeverChangesWhatRuns) {
@@ -173,6 +174,46 @@ TEST_F(Cli, DumpReplacesAnEarlierDumpWhole) {
     EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"final.png", "manifest.json"}));
     EXPECT_EQ(listFiles(directory), (std::vector<std::string>{"d"}));
     EXPECT_EQ(readImage(directory / "d" / "final.png").size(), cv::Size(48, 48));
+}
+
+TEST_F(Cli, DumpIntoAnExistingFolderKeepsTheFolder) {
+    // "d/." and a folder given by a trailing slash both name the folder itself; it is filled in place.
+    fs::create_directories(directory / "d");
+    fs::permissions(directory / "d", fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec);
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 16x16 --dump d/.").exitCode, 0);
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 16x16 --dump d/ --shading none").exitCode, 0);
+    EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"final.png", "manifest.json"}));
+    EXPECT_EQ(fs::status(directory / "d").permissions() & fs::perms::all,
+              fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec)
+        << "the folder's own permissions survive a dump";
+}
+
+TEST_F(Cli, CollidingOutputsAreRefusedBeforeAnyWork) {
+    fs::copy_file(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "spot_c3d.obj", directory / "m.obj");
+    const auto modelSize = fs::file_size(directory / "m.obj");
+    CliRun statsOnModel = run("render m.obj -o a.png --size 16x16 --stats m.obj");
+    EXPECT_EQ(statsOnModel.exitCode, 2);
+    EXPECT_NE(statsOnModel.err.find("is the model itself"), std::string::npos) << statsOnModel.err;
+    EXPECT_EQ(fs::file_size(directory / "m.obj"), modelSize);
+
+    CliRun same = run("render m.obj -o a.png --size 16x16 --graphviz ./a.png");
+    EXPECT_EQ(same.exitCode, 2);
+    EXPECT_NE(same.err.find("name the same file"), std::string::npos) << same.err;
+
+    CliRun inside = run("render m.obj -o d/a.png --size 16x16 --dump d");
+    EXPECT_EQ(inside.exitCode, 2);
+    EXPECT_NE(inside.err.find("lies inside --dump 'd'"), std::string::npos) << inside.err;
+    EXPECT_EQ(listFiles(directory), (std::vector<std::string>{"m.obj"}));
+}
+
+TEST_F(Cli, AFailedWriteLeavesNothingBehind) {
+    // A 2 KiB file-size limit: the picture cannot be written. The run must say so and leave no file, not even the
+    // dump folder it created (earlier, libpng's error went unnoticed and a truncated PNG was renamed into place).
+    const CliRun result = run("render " + model("spot_c3d.obj") + " -o a.png --size 256x256 --dump d --stats s.json",
+                              "sh -c 'ulimit -f 4; exec \"$0\" \"$@\"'");
+    EXPECT_EQ(result.exitCode, 5) << result.err;
+    EXPECT_NE(result.err.find("File too large"), std::string::npos) << result.err;
+    EXPECT_EQ(listFiles(directory), std::vector<std::string>{});
 }
 
 TEST_F(Cli, DumpRefusesAFolderOfOtherFiles) {

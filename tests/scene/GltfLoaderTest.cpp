@@ -442,6 +442,18 @@ TEST(GltfLoader, InvalidCameraAspectRatioIsIgnoredWithAWarning) {
     EXPECT_TRUE(noAspect.report.warnings.empty());
 }
 
+TEST(GltfLoader, AbsurdlyNestedJsonIsAnErrorNotAStackOverflow) {
+    // 30,000 nested arrays in "extras" overflowed tinygltf's recursive parser (SIGSEGV) before the depth check.
+    const std::string nested = std::string(30000, '[') + std::string(30000, ']');
+    const TempFile file("nested.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"extras\": " + nested + "}");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("nested deeper than"), std::string::npos) << message;
+    // Brackets inside strings do not count.
+    const TempFile quoted("quoted.gltf", "{\"asset\": {\"version\": \"2.0\", \"generator\": \"" +
+                                             std::string(1000, '[') + "\"}}");
+    EXPECT_EQ(test::sceneErrorMessage([&] { loadScene(quoted.path()); }).find("nested deeper"), std::string::npos);
+}
+
 TEST(GltfLoader, InvalidJsonIsAnError) {
     const TempFile file("broken.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [");
     const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });

@@ -1,0 +1,21 @@
+#pragma once
+/** @file Temporary files and folders of this process, removed if it is interrupted (SIGINT, SIGTERM, SIGHUP), so
+ *  that a stopped run leaves nothing behind. Paths are kept in a fixed table so the signal handler can walk it
+ *  with async-signal-safe calls only (unlink, rmdir). */
+
+#include <filesystem>
+
+namespace inkgraph {
+
+/** Remembers a file or an (eventually empty) folder to remove on a signal. Newer entries are removed first. */
+void registerTemporary(const std::filesystem::path& path);
+/** Forgets it: it was renamed into place or removed. */
+void forgetTemporary(const std::filesystem::path& path);
+/** Installs the handlers (idempotent); a signal then removes what is registered and ends the process as the signal
+ *  would have. SIGXFSZ is ignored, so a write past the file-size limit fails with EFBIG and is reported. */
+void removeTemporariesOnSignals();
+
+/** True when `name` is one of ours (".inkgraph-<pid>-...") and that process no longer runs: left by a killed run. */
+bool isStaleTemporary(const std::string& name);
+
+} // namespace inkgraph
