@@ -18,6 +18,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -154,7 +155,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     const Scene scene = loadScene(options.modelPath);
     const double loadMs = millisecondsSince(loadStart);
     if (!options.quiet) {
-        log << "inkgraph: loaded '" << options.modelPath << "': " << scene.triangleCount() << " triangles, "
+        log << std::fixed << std::setprecision(1) << "inkgraph: loaded '" << options.modelPath << "': " << scene.triangleCount() << " triangles, "
             << scene.vertexCount() << " vertices (" << scene.report.degenerateDropped << " degenerate dropped) in "
             << loadMs << " ms\n";
         for (const std::string& warning : scene.report.warnings) log << "inkgraph: warning: " << warning << "\n";
