@@ -60,6 +60,22 @@ std::string invalidArgumentMessage(Function&& function) {
     return {};
 }
 
+/** Every outline point of the bounding sphere projects inside the image and the depth range; returns the largest
+ *  |x| or |y| they reach in normalised device coordinates. */
+double expectSphereInsideTheFrustum(const Camera& camera, const BoundingSphere& sphere) {
+    double largest = 0.0;
+    for (const glm::dvec3& point : outlinePoints(sphere, camera.eye)) {
+        const glm::dvec4 clip = toClip(camera, point);
+        EXPECT_GT(clip.w, 0.0);
+        const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+        EXPECT_LE(std::abs(ndc.x), 1.0);
+        EXPECT_LE(std::abs(ndc.y), 1.0);
+        EXPECT_LE(std::abs(ndc.z), 1.0);
+        largest = std::max({largest, std::abs(ndc.x), std::abs(ndc.y)});
+    }
+    return largest;
+}
+
 TEST(Camera, AutoFramingFitsTheWholeBoundingSphere) {
     const Scene scene = sphereScene();
     const BoundingSphere sphere = computeBoundingSphere(scene);
@@ -76,16 +92,7 @@ TEST(Camera, AutoFramingFitsTheWholeBoundingSphere) {
             expectNear(camera.target, sphere.center);
             expectNear(glm::normalize(camera.eye - camera.target), glm::normalize(glm::dvec3(0.0, 0.25, 1.0)));
 
-            double largest = 0.0;
-            for (const glm::dvec3& point : outlinePoints(sphere, camera.eye)) {
-                const glm::dvec4 clip = toClip(camera, point);
-                ASSERT_GT(clip.w, 0.0);
-                const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
-                EXPECT_LE(std::abs(ndc.x), 1.0);
-                EXPECT_LE(std::abs(ndc.y), 1.0);
-                EXPECT_LE(std::abs(ndc.z), 1.0);
-                largest = std::max({largest, std::abs(ndc.x), std::abs(ndc.y)});
-            }
+            const double largest = expectSphereInsideTheFrustum(camera, sphere);
             // The 5% margin: the sphere fills about 1/1.05 of the narrower half-extent, not much less.
             EXPECT_GT(largest, 0.9);
             EXPECT_LT(largest, 0.99);
@@ -218,17 +225,6 @@ TEST(Camera, InvalidRequestsThrow) {
     EXPECT_THROW(resolveCamera({}, Scene{}), SceneError);
 }
 
-/** Every outline point of the bounding sphere projects inside the image and the depth range. */
-void expectSphereInsideTheFrustum(const Camera& camera, const BoundingSphere& sphere) {
-    for (const glm::dvec3& point : outlinePoints(sphere, camera.eye)) {
-        const glm::dvec4 clip = toClip(camera, point);
-        ASSERT_GT(clip.w, 0.0);
-        const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
-        EXPECT_LE(std::abs(ndc.x), 1.0);
-        EXPECT_LE(std::abs(ndc.y), 1.0);
-        EXPECT_LE(std::abs(ndc.z), 1.0);
-    }
-}
 
 TEST(Camera, AutoFramingWithTheDefaultUpKeepsItsDirection) {
     const Scene scene = sphereScene();
