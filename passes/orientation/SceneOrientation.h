@@ -1,0 +1,78 @@
+#pragma once
+/** @file The seed-000 CPU face orientation of every mesh, computed and uploaded the first time a pass that runs asks
+ *  for it (the comic fill draws the front sets, the back-face outline the back sets). With the Standard method the
+ *  GPU culls and nothing is computed here. */
+
+#include "gl/GlObjects.h"
+#include "passes/FrameParams.h"
+#include "passes/GpuScene.h"
+#include "scene/FaceOrientation.h"
+#include "scene/Scene.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+
+struct OrientationSettings {
+    FaceOrientationMethod method = FaceOrientationMethod::Standard;
+    ViewVectorMode viewVector = ViewVectorMode::Exact;
+    int frontRule = 3;
+    double shininess = 32.0;
+};
+
+/** Per-method numbers for --stats (seed 000 Figure 8, plus holes and time). */
+struct OrientationReport {
+    std::string method;
+    std::string viewVector;          ///< what was used: "exact" or "constant"
+    bool fellBack = false;           ///< constant asked for, exact used
+    std::string fallBackReason;
+    double sinAlpha = 0.0;
+    double betaMaxDegrees = 0.0;     ///< largest over the meshes
+    double cutoff = 0.0;
+    std::size_t triangles = 0;
+    std::size_t vertices = 0;
+    std::size_t frontTriangles = 0;  ///< Standard: the exact per-face count
+    std::size_t frontVertices = 0;   ///< Standard: vertices of exact front triangles
+    std::size_t exactFrontTriangles = 0;
+    std::size_t missedTriangles = 0; ///< holes against exact classification
+    double markMilliseconds = 0.0;   ///< CPU marking and lighting (0 for Standard)
+    double uploadMilliseconds = 0.0;
+};
+
+class SceneOrientation {
+public:
+    /** One per mesh of the scene, in GpuScene's order. */
+    struct MeshSets {
+        GlBuffer shadeCoords;      ///< vec2 per vertex, location kShadeCoordLocation
+        GlBuffer frontIndices;
+        GlBuffer backIndices;
+        GlVertexArray frontArray;  ///< positions + normals (GpuScene's buffers) + shadeCoords, frontIndices
+        GlVertexArray backArray;   ///< positions + normals, backIndices
+        GLsizei frontIndexCount;
+        GLsizei backIndexCount;
+    };
+    static constexpr GLuint kShadeCoordLocation = 2;
+
+    /** Keeps references; computes nothing until sets() or report() is called. */
+    SceneOrientation(const Scene& scene, GpuScene& gpuScene, const FrameParams& frame, OrientationSettings settings);
+
+    bool usesCpuMarking() const { return mSettings.method != FaceOrientationMethod::Standard; }
+    const OrientationSettings& settings() const { return mSettings; }
+    /** CPU methods: marks, lights and uploads on the first call. Throws std::logic_error for Standard. */
+    const std::vector<MeshSets>& sets();
+    /** The numbers for --stats; for Standard counts the exact front share on the CPU (only when asked). */
+    const OrientationReport& report();
+
+private:
+    const Scene& mScene;
+    GpuScene& mGpuScene;
+    const FrameParams& mFrame;
+    OrientationSettings mSettings;
+    std::vector<MeshSets> mSets;
+    std::optional<OrientationReport> mReport;
+    bool mComputed = false;
+};
+
+} // namespace inkgraph

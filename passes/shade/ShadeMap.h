@@ -1,0 +1,35 @@
+#pragma once
+/** @file Shade maps (Lander's 1-D shade texture, seed 000's 2-D shade map) as CPU images. No GL here: the shading
+ *  pass uploads them with nearest filtering, clamped to the edge.
+ *
+ *  Axes. Column = diffuse, left (dark) to right (lit). For cel (1-D, one row) the column axis is the half-Lambert
+ *  term q = (n.l + 1)/2 of seed 003; for comic (2-D) it is Lander's s = max(n.l, 0). Row = specular
+ *  t = max(r.v, 0)^shininess for comic: the bottom row is t = 0, the top row t = 1 (as the map is drawn). Texel
+ *  i = min(floor(u N), N - 1). Texels are sRGB colours multiplied with the material's base colour. */
+
+#include <opencv2/core.hpp>
+
+#include <string>
+
+namespace inkgraph {
+
+struct ShadeMap {
+    cv::Mat texels;     ///< CV_8UC4 sRGB, row 0 at the top; 1 row for a 1-D map
+    std::string source; ///< "builtin:bands-5", or the file it came from
+
+    bool isOneDimensional() const { return texels.rows == 1; }
+};
+
+/** N even bands over the half-Lambert axis, levels i/(N-1) (grey). N = 5 is seed 003's cel default
+ *  {0, .25, .5, .75, 1} with borders at q = .2, .4, .6, .8. Throws std::invalid_argument unless 2 <= N <= 256. */
+ShadeMap makeBandShadeMap(int bands);
+
+/** The default comic map: two tones and a highlight (grey, so the material colour shows through). */
+ShadeMap makeDefaultComicShadeMap();
+
+/** Checks an image read from `source` (any channel count from 1 to 4, 8-bit) and converts it to a ShadeMap:
+ *  grey -> rgb, alpha ignored. Throws std::invalid_argument naming `source` when it is empty, larger than
+ *  4096 a side, or (with `requireOneRow`) has more than one row. */
+ShadeMap shadeMapFromImage(const cv::Mat& image, const std::string& source, bool requireOneRow);
+
+} // namespace inkgraph

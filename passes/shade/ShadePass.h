@@ -1,0 +1,76 @@
+#pragma once
+/** @file Forward shading of the meshes: every shading model of seeds 000 and 003 in one pass, chosen at construction.
+ *  Draws the meshes itself with its own depth attachment, so a plan without lines needs no G-buffer.
+ *
+ *  | resource      | format | need     | content                                                            |
+ *  |---------------|--------|----------|--------------------------------------------------------------------|
+ *  | reads         |        |          | nothing from the graph (meshes from GpuScene, sets from             |
+ *  |               |        |          | SceneOrientation for the CPU face-orientation methods)              |
+ *  | <name>.color  | rgba8  | required | sRGB colour, a = coverage (0 off the model)                        |
+ *
+ *  Models (docs/algorithms.md §1, §3; n, l, v unit, v surface -> eye, r = reflect(-l, n)):
+ *  - flat:    face normal from the derivatives of the view position, ambient + diffuse
+ *  - gouraud: ambient + diffuse per vertex, colour interpolated
+ *  - lambert: ambient + diffuse per fragment, interpolated normals
+ *  - phong:   ambient + diffuse + specular max(r.v, 0)^n per fragment, specular 0 where n.l <= 0
+ *  - cel:     1-D shade map indexed by the half-Lambert q = (n.l + 1)/2 per fragment
+ *  - comic:   2-D shade map indexed by (max(n.l, 0), max(r.v, 0)^n) per fragment, specular 0 where n.l <= 0;
+ *             with a constant view vector the specular term uses V_c; with a CPU face-orientation method the
+ *             front sets are drawn with the per-vertex (s, t) the CPU computed (seed 000, Listing 1)
+ *  Shininess 0 gives specular 1 (where n.l > 0); large shininess is evaluated as exp(n log(r.v)) with log(r.v) from
+ *  |r - v|^2, so 1e6 gives neither NaN nor speckle. */
+
+#include "gl/GlObjects.h"
+#include "gl/ShaderLibrary.h"
+#include "graph/Pass.h"
+#include "passes/FrameParams.h"
+#include "passes/GpuScene.h"
+#include "passes/orientation/SceneOrientation.h"
+#include "passes/shade/ShadeMap.h"
+#include "scene/FaceOrientation.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace inkgraph {
+
+enum class ShadingModel { Flat, Gouraud, Lambert, Phong, Cel, Comic };
+
+struct ShadeSettings {
+    ShadingModel model = ShadingModel::Cel;
+    double shininess = 32.0;          ///< phong and comic; >= 0
+    float ambient = 0.15f;            ///< flat, gouraud, lambert, phong
+    float specularStrength = 0.5f;    ///< phong: white specular weight
+    ViewVectorChoice view;            ///< comic: constant or exact (from chooseViewVector())
+};
+
+class ShadePass : public Pass {
+public:
+    /** `shadeMap` is required for cel and comic (a copy is uploaded in prepare()). `orientation` may be null; when it
+     *  uses CPU marking (comic only), the pass draws its front sets. */
+    ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
+              ShadeSettings settings, std::optional<ShadeMap> shadeMap, SceneOrientation* orientation);
+    ~ShadePass() override;
+
+    std::string_view name() const override { return mName; }
+    void declare(PassBuilder& builder) const override;
+    void prepare(PassContext& context) override;
+    void execute(PassContext& context) override;
+
+private:
+    std::string mName;
+    ShaderLibrary& mShaders;
+    GpuScene& mScene;
+    const FrameParams& mFrame;
+    ShadeSettings mSettings;
+    std::optional<ShadeMap> mShadeMap;
+    SceneOrientation* mOrientation;
+    std::unique_ptr<GlProgram> mProgram;
+    GLuint mShadeTexture = 0; // owned; replace with an RAII GL texture wrapper in the implementation
+    std::unique_ptr<GlDepthTexture> mDepth;
+    int mDepthWidth = 0;
+    int mDepthHeight = 0;
+};
+
+} // namespace inkgraph
