@@ -4,31 +4,66 @@
 #include <string>
 
 namespace inkgraph {
+namespace {
+
+bool isUnitColor(const cv::Vec4f& color) {
+    for (int channel = 0; channel < 4; ++channel)
+        if (!(color[channel] >= 0.0f && color[channel] <= 1.0f)) return false;
+    return true;
+}
+
+cv::Vec4b toBytes(const cv::Vec4f& color) {
+    return {cv::saturate_cast<uchar>(color[0] * 255.0f + 0.5f), cv::saturate_cast<uchar>(color[1] * 255.0f + 0.5f),
+            cv::saturate_cast<uchar>(color[2] * 255.0f + 0.5f), cv::saturate_cast<uchar>(color[3] * 255.0f + 0.5f)};
+}
+
+std::string sizeText(cv::Size size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
+
+/** "over" in 8 bits with rounding: top x alpha + bottom x (255 - alpha), alpha in 0..255. */
+uchar over(int top, int bottom, int alpha) { return static_cast<uchar>((top * alpha + bottom * (255 - alpha) + 127) / 255); }
+
+} // namespace
 
 cv::Mat compositeFinal(const CompositeInputs& inputs) {
     if (inputs.size.width <= 0 || inputs.size.height <= 0)
         throw std::invalid_argument("compositeFinal(): output size must be positive");
-    for (int channel = 0; channel < 4; ++channel)
-        if (!(inputs.paper[channel] >= 0.0f && inputs.paper[channel] <= 1.0f))
-            throw std::invalid_argument("compositeFinal(): 'paper' channels must lie in [0, 1]");
-    const cv::Vec4b paper(cv::saturate_cast<uchar>(inputs.paper[0] * 255.0f + 0.5f),
-                          cv::saturate_cast<uchar>(inputs.paper[1] * 255.0f + 0.5f),
-                          cv::saturate_cast<uchar>(inputs.paper[2] * 255.0f + 0.5f),
-                          cv::saturate_cast<uchar>(inputs.paper[3] * 255.0f + 0.5f));
-    cv::Mat result(inputs.size, CV_8UC4, cv::Scalar(paper[0], paper[1], paper[2], paper[3]));
-    if (inputs.shading.empty()) return result;
+    if (!isUnitColor(inputs.paper)) throw std::invalid_argument("compositeFinal(): 'paper' channels must lie in [0, 1]");
+    if (!inputs.shading.empty() && (inputs.shading.type() != CV_8UC4 || inputs.shading.size() != inputs.size))
+        throw std::invalid_argument("compositeFinal(): 'shading' must be CV_8UC4 of " + sizeText(inputs.size));
+    for (const LineLayer& layer : inputs.lines) {
+        if (layer.mask.type() != CV_8UC1 || layer.mask.size() != inputs.size)
+            throw std::invalid_argument("compositeFinal(): line layer '" + layer.name + "' must be CV_8UC1 of " +
+                                        sizeText(inputs.size));
+        if (!isUnitColor(layer.color))
+            throw std::invalid_argument("compositeFinal(): line layer '" + layer.name +
+                                        "' colour channels must lie in [0, 1]");
+    }
 
-    if (inputs.shading.type() != CV_8UC4 || inputs.shading.size() != inputs.size)
-        throw std::invalid_argument("compositeFinal(): 'shading' must be CV_8UC4 of " +
-                                    std::to_string(inputs.size.width) + "x" + std::to_string(inputs.size.height));
-    for (int row = 0; row < result.rows; ++row) {
-        const auto* shading = inputs.shading.ptr<cv::Vec4b>(row);
-        auto* out = result.ptr<cv::Vec4b>(row);
-        for (int col = 0; col < result.cols; ++col) {
-            const int alpha = shading[col][3];
-            for (int channel = 0; channel < 3; ++channel)
-                out[col][channel] = static_cast<uchar>((shading[col][channel] * alpha + paper[channel] * (255 - alpha) + 127) / 255);
-            out[col][3] = static_cast<uchar>(alpha + (paper[3] * (255 - alpha) + 127) / 255);
+    const cv::Vec4b paper = toBytes(inputs.paper);
+    cv::Mat result(inputs.size, CV_8UC4, cv::Scalar(paper[0], paper[1], paper[2], paper[3]));
+    if (!inputs.shading.empty()) {
+        for (int row = 0; row < result.rows; ++row) {
+            const auto* shading = inputs.shading.ptr<cv::Vec4b>(row);
+            auto* out = result.ptr<cv::Vec4b>(row);
+            for (int col = 0; col < result.cols; ++col) {
+                const int alpha = shading[col][3];
+                for (int channel = 0; channel < 3; ++channel)
+                    out[col][channel] = over(shading[col][channel], paper[channel], alpha);
+                out[col][3] = static_cast<uchar>(alpha + (paper[3] * (255 - alpha) + 127) / 255);
+            }
+        }
+    }
+    for (const LineLayer& layer : inputs.lines) {
+        const cv::Vec4b color = toBytes(layer.color);
+        for (int row = 0; row < result.rows; ++row) {
+            const uchar* mask = layer.mask.ptr<uchar>(row);
+            auto* out = result.ptr<cv::Vec4b>(row);
+            for (int col = 0; col < result.cols; ++col) {
+                if (mask[col] == 0) continue;
+                const int alpha = (mask[col] * color[3] + 127) / 255;
+                for (int channel = 0; channel < 3; ++channel) out[col][channel] = over(color[channel], out[col][channel], alpha);
+                out[col][3] = static_cast<uchar>(alpha + (out[col][3] * (255 - alpha) + 127) / 255);
+            }
         }
     }
     return result;

@@ -45,5 +45,48 @@ TEST(Composite, RejectsWrongLayers) {
     EXPECT_THROW(compositeFinal(inputs), std::invalid_argument);
 }
 
+TEST(Composite, LineLayersOverShadingInOrder) {
+    CompositeInputs inputs;
+    inputs.size = {4, 1};
+    inputs.paper = {1.0f, 1.0f, 1.0f, 1.0f};
+    inputs.shading = cv::Mat(1, 4, CV_8UC4, cv::Scalar(100, 100, 100, 255));
+    cv::Mat first(1, 4, CV_8UC1, cv::Scalar(0));
+    first.at<uchar>(0, 1) = 255; // full line: the line colour
+    first.at<uchar>(0, 2) = 255;
+    first.at<uchar>(0, 3) = 51;  // partial coverage: 20% of the way from the shading to the line colour
+    cv::Mat second(1, 4, CV_8UC1, cv::Scalar(0));
+    second.at<uchar>(0, 2) = 255; // drawn after the first: on top
+    inputs.lines.push_back({"first", first, {0.0f, 0.0f, 0.0f, 1.0f}});
+    inputs.lines.push_back({"second", second, {1.0f, 0.0f, 0.0f, 1.0f}});
+    const cv::Mat result = compositeFinal(inputs);
+    EXPECT_EQ(result.at<cv::Vec4b>(0, 0), cv::Vec4b(100, 100, 100, 255)) << "no line: the shading";
+    EXPECT_EQ(result.at<cv::Vec4b>(0, 1), cv::Vec4b(0, 0, 0, 255));
+    EXPECT_EQ(result.at<cv::Vec4b>(0, 2), cv::Vec4b(255, 0, 0, 255)) << "the later layer wins";
+    EXPECT_EQ(result.at<cv::Vec4b>(0, 3), cv::Vec4b(80, 80, 80, 255));
+}
+
+TEST(Composite, LineColourAlphaScalesTheMask) {
+    CompositeInputs inputs;
+    inputs.size = {1, 1};
+    inputs.paper = {1.0f, 1.0f, 1.0f, 1.0f};
+    inputs.lines.push_back({"half", cv::Mat(1, 1, CV_8UC1, cv::Scalar(255)), {0.0f, 0.0f, 0.0f, 0.5f}});
+    EXPECT_EQ(compositeFinal(inputs).at<cv::Vec4b>(0, 0), cv::Vec4b(127, 127, 127, 255));
+}
+
+TEST(Composite, RejectsWrongLineLayersByName) {
+    CompositeInputs inputs;
+    inputs.size = {4, 4};
+    inputs.lines.push_back({"outline", cv::Mat(4, 4, CV_8UC4), {0.0f, 0.0f, 0.0f, 1.0f}});
+    try {
+        compositeFinal(inputs);
+        FAIL() << "a 4-channel mask was accepted";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_NE(std::string(error.what()).find("'outline'"), std::string::npos) << error.what();
+    }
+    inputs.lines[0].mask = cv::Mat(4, 4, CV_8UC1, cv::Scalar(0));
+    inputs.lines[0].color = {0.0f, 0.0f, 1.5f, 1.0f};
+    EXPECT_THROW(compositeFinal(inputs), std::invalid_argument);
+}
+
 } // namespace
 } // namespace inkgraph
