@@ -63,22 +63,109 @@ std::string joined(const std::vector<std::string>& items) {
 } // namespace
 
 const std::vector<std::string>& knownLineTypes() {
-    static const std::vector<std::string> kLineTypes;
+    static const std::vector<std::string> kLineTypes = {"outline", "silhouette"};
     return kLineTypes;
 }
 
-std::string shadingModeName(ShadingMode mode) {
-    switch (mode) {
-    case ShadingMode::None: return "none";
-    case ShadingMode::Lambert: return "lambert";
+namespace {
+
+const std::vector<std::pair<std::string, ShadingMode>> kShadingModes = {
+    {"none", ShadingMode::None},       {"flat", ShadingMode::Flat}, {"gouraud", ShadingMode::Gouraud},
+    {"lambert", ShadingMode::Lambert}, {"phong", ShadingMode::Phong}, {"cel", ShadingMode::Cel},
+    {"comic", ShadingMode::Comic},
+};
+const std::vector<std::pair<std::string, FaceOrientationMethod>> kOrientationMethods = {
+    {"standard", FaceOrientationMethod::Standard},
+    {"during-triangles", FaceOrientationMethod::DuringTriangles},
+    {"during-vertices", FaceOrientationMethod::DuringVertices},
+    {"after-vertices", FaceOrientationMethod::AfterVertices},
+};
+constexpr double kMaxShininess = 1e6;
+constexpr double kMaxLineWidthPixels = 256.0;
+
+template <typename Value>
+Value parseChoice(const std::string& flag, const std::string& text,
+                  const std::vector<std::pair<std::string, Value>>& choices) {
+    std::string names;
+    for (const auto& [name, value] : choices) {
+        if (name == text) return value;
+        names += (names.empty() ? "" : ", ") + name;
     }
+    throw UsageError(flag + ": unknown value '" + text + "' (available: " + names + ")");
+}
+
+int parseWholeNumber(const std::string& flag, const std::string& text, int low, int high) {
+    const double value = parseNumber(flag, text);
+    if (value != std::floor(value) || value < low || value > high)
+        throw UsageError(flag + ": expected a whole number from " + std::to_string(low) + " to " +
+                         std::to_string(high) + ", got '" + text + "'");
+    return static_cast<int>(value);
+}
+
+/** R,G,B or R,G,B,A with channels in [0, 1]. */
+glm::dvec4 parseColor(const std::string& flag, const std::string& text) {
+    const std::vector<std::string> parts = splitList(text, ',');
+    if (parts.size() != 3 && parts.size() != 4)
+        throw UsageError(flag + ": expected R,G,B or R,G,B,A with channels in [0,1], got '" + text + "'");
+    glm::dvec4 color(0.0, 0.0, 0.0, 1.0);
+    for (std::size_t channel = 0; channel < parts.size(); ++channel) {
+        color[int(channel)] = parseNumber(flag, parts[channel]);
+        if (color[int(channel)] < 0.0 || color[int(channel)] > 1.0)
+            throw UsageError(flag + ": channels must lie in [0, 1], got '" + text + "'");
+    }
+    return color;
+}
+
+/** "--outline-width" -> {"outline", "width"} when the type is known; nullopt otherwise. */
+std::optional<std::pair<std::string, std::string>> lineStyleFlag(const std::string& argument) {
+    for (const std::string& type : knownLineTypes())
+        for (const char* property : {"width", "color"})
+            if (argument == "--" + type + "-" + property) return std::make_pair(type, std::string(property));
+    return std::nullopt;
+}
+
+/** Flags that only mean something with some shading modes are refused elsewhere, so a typo'd mode is not silently
+ *  rendered without the look the user asked for. */
+void checkShadingFlags(const RenderOptions& options, const std::vector<std::string>& given) {
+    auto wasGiven = [&](const char* flag) { return std::find(given.begin(), given.end(), flag) != given.end(); };
+    const std::string mode = shadingModeName(options.shading);
+    auto refuse = [&](const char* flag, const char* appliesTo) {
+        throw UsageError(std::string(flag) + " has no effect with --shading " + mode + " (it applies to " +
+                         appliesTo + ")");
+    };
+    const bool specular = options.shading == ShadingMode::Phong || options.shading == ShadingMode::Comic;
+    if (wasGiven("--shininess") && !specular) refuse("--shininess", "phong and comic");
+    if (wasGiven("--bands") && options.shading != ShadingMode::Cel) refuse("--bands", "cel");
+    if (wasGiven("--shademap") && !usesShadeMap(options.shading)) refuse("--shademap", "cel and comic");
+    if (wasGiven("--bands") && wasGiven("--shademap"))
+        throw UsageError("--bands and --shademap both choose the cel shade map: give one");
+    for (const char* flag : {"--view-vector", "--face-orientation", "--front-rule"})
+        if (wasGiven(flag) && options.shading != ShadingMode::Comic) refuse(flag, "comic");
+    const bool vertexMethod = options.faceOrientation == FaceOrientationMethod::DuringVertices ||
+                              options.faceOrientation == FaceOrientationMethod::AfterVertices;
+    if (wasGiven("--front-rule") && !vertexMethod)
+        throw UsageError("--front-rule applies to --face-orientation during-vertices and after-vertices, not '" +
+                         faceOrientationMethodName(options.faceOrientation) + "'");
+}
+
+} // namespace
+
+std::string shadingModeName(ShadingMode mode) {
+    for (const auto& [name, value] : kShadingModes)
+        if (value == mode) return name;
     return "?";
 }
 
+bool usesShadeMap(ShadingMode mode) { return mode == ShadingMode::Cel || mode == ShadingMode::Comic; }
+
 RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
     RenderOptions options;
+    for (const std::string& type : knownLineTypes()) options.lineStyles[type] = LineStyle{};
+    std::vector<std::string> givenFlags;
+    std::vector<std::pair<std::string, std::string>> styledLineTypes; // flag, line type
     for (std::size_t i = 0; i < arguments.size(); ++i) {
         const std::string& argument = arguments[i];
+        if (!argument.empty() && argument[0] == '-') givenFlags.push_back(argument);
         auto value = [&]() -> const std::string& {
             if (i + 1 >= arguments.size()) throw UsageError(argument + ": missing value");
             if (arguments[i + 1].empty()) throw UsageError(argument + ": empty value");
@@ -115,10 +202,37 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
             if (glm::length(light) == 0.0) throw UsageError("--light: the direction must not be zero");
             options.towardLight = glm::normalize(light);
         } else if (argument == "--shading") {
-            const std::string& mode = value();
-            if (mode == "none") options.shading = ShadingMode::None;
-            else if (mode == "lambert") options.shading = ShadingMode::Lambert;
-            else throw UsageError("--shading: unknown mode '" + mode + "' (available: none, lambert)");
+            options.shading = parseChoice(argument, value(), kShadingModes);
+        } else if (argument == "--shininess") {
+            options.shininess = parseNumber(argument, value());
+            if (options.shininess < 0.0 || options.shininess > kMaxShininess)
+                throw UsageError("--shininess: expected a number from 0 to 1e6, got '" + arguments[i] + "'");
+        } else if (argument == "--bands") {
+            options.bands = parseWholeNumber(argument, value(), 2, 256);
+        } else if (argument == "--shademap") {
+            options.shadeMapPath = value();
+        } else if (argument == "--view-vector") {
+            options.viewVector = parseChoice<ViewVectorMode>(
+                argument, value(), {{"exact", ViewVectorMode::Exact}, {"constant", ViewVectorMode::Constant}});
+        } else if (argument == "--face-orientation") {
+            options.faceOrientation = parseChoice(argument, value(), kOrientationMethods);
+        } else if (argument == "--front-rule") {
+            options.frontRule = parseWholeNumber(argument, value(), 1, 3);
+        } else if (auto styleFlag = lineStyleFlag(argument)) {
+            LineStyle& style = options.lineStyles[styleFlag->first];
+            if (styleFlag->second == "color") {
+                style.color = parseColor(argument, value());
+            } else {
+                style.widthPixels = parseNumber(argument, value());
+                if (!(style.widthPixels > 0.0 && style.widthPixels <= kMaxLineWidthPixels))
+                    throw UsageError(argument + ": pixels must be above 0 and at most 256, got '" + arguments[i] + "'");
+            }
+            styledLineTypes.emplace_back(argument, styleFlag->first);
+        } else if (argument == "--silhouette-object-width") {
+            options.silhouetteObjectWidth = parseNumber(argument, value());
+            if (!(*options.silhouetteObjectWidth > 0.0))
+                throw UsageError("--silhouette-object-width: model units must be above 0, got '" + arguments[i] + "'");
+            styledLineTypes.emplace_back(argument, "silhouette");
         } else if (argument == "--lines") {
             const std::string& list = value();
             options.lines.clear();
@@ -128,6 +242,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
                 if (std::find(known.begin(), known.end(), type) == known.end())
                     throw UsageError("--lines: unknown line type '" + type + "' (available: " + joined(known) +
                                      "; or 'none')");
+                if (std::find(options.lines.begin(), options.lines.end(), type) != options.lines.end())
+                    throw UsageError("--lines: '" + type + "' is listed twice");
                 options.lines.push_back(type);
             }
         } else if (argument == "--background") {
@@ -168,6 +284,10 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
         }
     }
     if (options.modelPath.empty()) throw UsageError("missing MODEL (a .gltf, .glb, .obj or .stl file)");
+    checkShadingFlags(options, givenFlags);
+    for (const auto& [flag, type] : styledLineTypes)
+        if (std::find(options.lines.begin(), options.lines.end(), type) == options.lines.end())
+            throw UsageError(flag + ": the '" + type + "' line type is not drawn (add it to --lines)");
     if (options.outputPath.empty() && !options.printPlan && options.dumpDirectory.empty() &&
         options.graphvizPath.empty())
         throw UsageError("missing -o OUT.png (or --print-plan / --graphviz to only show the plan)");
@@ -207,11 +327,40 @@ Camera (right-handed world, OpenGL lookAt/perspective; default: the glTF camera,
   --fov DEG              vertical field of view in degrees, 0.01 to 179 (default 35)
 
 Look
-  --shading MODE         none | lambert (default lambert)
+  --shading MODE         cel (default) | comic | flat | gouraud | lambert | phong | none
+                           cel: 1-D shade map indexed by the half-Lambert (n.l + 1)/2; default: seed 003's five
+                                bands {0, .25, .5, .75, 1} x the material colour
+                           comic: 2-D shade map indexed by diffuse max(n.l, 0) (across) and specular
+                                max(r.v, 0)^shininess (up), seed 000
+                           flat, gouraud, lambert: ambient + diffuse per face, per vertex, per pixel
+                           phong: ambient + diffuse + white specular per pixel
+  --shininess N          specular exponent for phong and comic, 0 to 1e6 (default 32)
+  --bands N              cel: N even bands, 2 to 256
+  --shademap FILE        cel: a one-row image; comic: a 2-D image (left dark -> right lit, bottom no highlight
+                         -> top full highlight); 8-bit, at most 4096 a side; multiplied with the material colour
+  --view-vector V        comic: exact (default, per pixel) | constant (seed 000's V_c toward the bounding-sphere
+                         centre; falls back to exact when the eye is inside or within 2 radii of the sphere)
+  --face-orientation M   comic: standard (default: the GPU culls and lights per pixel) | during-triangles |
+                         during-vertices | after-vertices (seed 000's CPU marking with per-vertex lighting;
+                         --stats reports front shares, holes and milliseconds)
+  --front-rule R         during-vertices, after-vertices: a triangle is front when 3 (R=1), 2 (R=2) or 1 (R=3,
+                         default) of its vertices are front
   --light X,Y,Z          world direction toward the light (default: the glTF directional light, else from
                          the upper left behind the camera)
-  --lines LIST           comma-separated line types, or none (default none)
   --background R,G,B     paper colour, channels in [0,1] (default 1,1,1)
+
+Lines
+  --lines LIST           comma-separated line types, or none (default none):
+                           outline: Lander's back faces drawn as thick wireframe behind the fill (seed 000)
+                           silhouette: the inflated hull (seed 003), offset along position-welded smooth
+                                normals so hard edges do not crack it
+                         each is written to lines-<type>.png by --dump; silhouette is drawn over outline
+  --TYPE-width PX        line width in pixels, above 0 up to 256 (default 2), constant across distance, field
+                         of view and resolution (for outline: the width showing outside the silhouette)
+  --TYPE-color R,G,B[,A] line colour, channels in [0,1] (default 0,0,0)
+  --silhouette-object-width D
+                         offset the hull by D model units instead (the width then shrinks with distance)
+  Outline and silhouette draw nothing when the eye is inside the model (they would flood the picture).
 
 System
   --egl-platform P       auto | device | surfaceless (default auto: device first, then surfaceless)

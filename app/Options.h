@@ -1,8 +1,11 @@
 #pragma once
 /** @file The `inkgraph render` command line: parsing and help. No GL, no files touched. */
 
+#include "scene/FaceOrientation.h"
+
 #include <glm/glm.hpp>
 
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -16,7 +19,13 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-enum class ShadingMode { None, Lambert };
+enum class ShadingMode { None, Flat, Gouraud, Lambert, Phong, Cel, Comic };
+
+/** How one line type is drawn: --<type>-width and --<type>-color. */
+struct LineStyle {
+    double widthPixels = 2.0;
+    glm::dvec4 color{0.0, 0.0, 0.0, 1.0}; ///< display RGBA in [0,1]
+};
 
 struct RenderOptions {
     std::string modelPath;
@@ -28,8 +37,16 @@ struct RenderOptions {
     std::optional<glm::dvec3> up;           ///< default: the glTF camera's, else 0,1,0
     std::optional<double> fovYDegrees;      ///< default 35 unless the glTF camera says otherwise
     std::optional<glm::dvec3> towardLight;  ///< world direction toward the light
-    ShadingMode shading = ShadingMode::Lambert;
-    std::vector<std::string> lines;         ///< line types; empty = none
+    ShadingMode shading = ShadingMode::Cel;
+    double shininess = 32.0;                ///< phong and comic, [0, 1e6]
+    std::optional<int> bands;               ///< cel: N even bands (default: seed 003's five)
+    std::string shadeMapPath;               ///< cel (one row) or comic (2-D) PNG; empty = built-in map
+    ViewVectorMode viewVector = ViewVectorMode::Exact;                         ///< comic
+    FaceOrientationMethod faceOrientation = FaceOrientationMethod::Standard; ///< comic
+    int frontRule = 3;                      ///< comic with during-vertices or after-vertices
+    std::vector<std::string> lines;         ///< line types in drawing order; empty = none
+    std::map<std::string, LineStyle> lineStyles; ///< one per known line type (defaults filled in)
+    std::optional<double> silhouetteObjectWidth; ///< model units: the hull is offset in object space
     glm::dvec3 background{1.0, 1.0, 1.0};
     std::vector<std::string> extraOutputs;  ///< --request: extra graph resources kept and dumped ("gbuffer.*")
     std::string dumpDirectory;
@@ -41,9 +58,10 @@ struct RenderOptions {
     bool help = false;                      ///< --help or -h in a flag's place: print help, do nothing else
 };
 
-/** Line types this build knows (later issues add contour, suggestive, silhouette, ...). */
+/** Line types this build knows, in the order they are composited (later ones on top). */
 const std::vector<std::string>& knownLineTypes();
 std::string shadingModeName(ShadingMode mode);
+bool usesShadeMap(ShadingMode mode);
 
 /** Parses the arguments after "render". Throws UsageError with a message naming the flag and the bad value.
  *  --help (or -h) where a flag may stand stops parsing and sets `help`; as the value of a flag it is just a value. */

@@ -90,10 +90,13 @@ OutputSet::OutputSet(const RenderOptions& options) : mOptions(options) {
 
     // Collisions first: they are mistakes in the command line, whatever the file system says.
     const fs::path model = resolved(options.modelPath);
+    const fs::path shadeMap = options.shadeMapPath.empty() ? fs::path() : resolved(options.shadeMapPath);
     for (std::size_t i = 0; i < files.size(); ++i) {
         const fs::path path = resolved(files[i].path);
         if (path == model)
             throw UsageError(files[i].flag + " '" + files[i].path + "' is the model itself; choose another file");
+        if (!shadeMap.empty() && path == shadeMap)
+            throw UsageError(files[i].flag + " '" + files[i].path + "' is the --shademap itself; choose another file");
         for (std::size_t j = i + 1; j < files.size(); ++j)
             if (path == resolved(files[j].path))
                 throw UsageError(files[i].flag + " and " + files[j].flag + " name the same file '" + files[i].path +

@@ -11,6 +11,9 @@
 #include "graph/GraphCompiler.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/outline/OutlinePass.h"
+#include "passes/shade/ShadeMap.h"
+#include "passes/silhouette/SilhouettePass.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
 
@@ -124,6 +127,72 @@ Json describeCamera(const Camera& camera) {
             {"projection_matrix", matrixRows(camera.projectionMatrix())}};
 }
 
+/** --shademap, read and checked before any GL work. Problems are input errors (exit 3) naming the flag and the file. */
+ShadeMap loadShadeMapFile(const RenderOptions& options) {
+    const std::string& path = options.shadeMapPath;
+    cv::Mat image;
+    try {
+        image = readImage(path);
+    } catch (const FileError& error) {
+        throw InputFileError(std::string("--shademap: ") + error.what());
+    }
+    if (image.depth() != CV_8U)
+        throw InputFileError("--shademap: '" + path + "' stores " + imageFilePixelType(path) +
+                             " pixels; a shade map is an 8-bit image (PNG)");
+    try {
+        return shadeMapFromImage(image, path, options.shading == ShadingMode::Cel);
+    } catch (const std::invalid_argument& error) {
+        throw InputFileError(std::string("--shademap: ") + error.what());
+    }
+}
+
+Json describeLook(const RenderOptions& options, const StillGraph& graph) {
+    Json look;
+    look["shading"] = shadingModeName(options.shading);
+    if (options.shading == ShadingMode::Phong || options.shading == ShadingMode::Comic)
+        look["shininess"] = options.shininess;
+    if (usesShadeMap(options.shading))
+        look["shademap"] = !options.shadeMapPath.empty()         ? options.shadeMapPath
+                           : options.shading == ShadingMode::Cel ? "builtin:bands-" + std::to_string(options.bands.value_or(5))
+                                                                 : std::string("builtin:comic");
+    Json lines = Json::array();
+    for (const std::string& type : knownLineTypes()) {
+        if (std::find(options.lines.begin(), options.lines.end(), type) == options.lines.end()) continue;
+        const LineStyle& style = options.lineStyles.at(type);
+        Json line = {{"type", type},
+                     {"width_pixels", style.widthPixels},
+                     {"color", Json::array({style.color.r, style.color.g, style.color.b, style.color.a})}};
+        if (type == "silhouette" && options.silhouetteObjectWidth) line["object_width"] = *options.silhouetteObjectWidth;
+        if (type == "silhouette" && graph.silhouette) line["skipped_eye_inside"] = graph.silhouette->skippedEyeInside();
+        if (type == "outline" && graph.outline) line["skipped_eye_inside"] = graph.outline->skippedEyeInside();
+        lines.push_back(line);
+    }
+    look["lines"] = lines;
+    return look;
+}
+
+/** Seed 000's numbers (Figure 8 plus holes and time) for --stats; only for comic, where the methods apply. */
+Json describeOrientation(SceneOrientation& orientation) {
+    const OrientationReport& report = orientation.report();
+    return {{"method", report.method},
+            {"view_vector", report.viewVector},
+            {"fell_back_to_exact", report.fellBack},
+            {"fall_back_reason", report.fallBackReason},
+            {"sin_alpha", report.sinAlpha},
+            {"beta_max_degrees", report.betaMaxDegrees},
+            {"cutoff", report.cutoff},
+            {"triangles", report.triangles},
+            {"vertices", report.vertices},
+            {"front_triangles", report.frontTriangles},
+            {"front_vertices", report.frontVertices},
+            {"front_triangle_share", report.triangles ? double(report.frontTriangles) / double(report.triangles) : 0.0},
+            {"front_vertex_share", report.vertices ? double(report.frontVertices) / double(report.vertices) : 0.0},
+            {"exact_front_triangles", report.exactFrontTriangles},
+            {"missed_triangles", report.missedTriangles},
+            {"mark_ms", report.markMilliseconds},
+            {"upload_ms", report.uploadMilliseconds}};
+}
+
 } // namespace
 
 std::string dumpFileName(const std::string& resource, bool isFloat, const std::string& shadingResource) {
@@ -150,6 +219,8 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
 
     // Every output place is checked before any work; outputs are staged and put in place only at the end.
     OutputSet outputs(options);
+    std::optional<ShadeMap> shadeMap;
+    if (!options.shadeMapPath.empty()) shadeMap = loadShadeMapFile(options);
 
     const auto loadStart = std::chrono::steady_clock::now();
     const Scene scene = loadScene(options.modelPath);
@@ -186,7 +257,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
 
     ShaderLibrary shaders;
     GpuScene gpuScene(scene, sphere.center);
-    const StillGraph graph = buildStillGraph(options.shading, shaders, gpuScene, frame);
+    const StillGraph graph = buildStillGraph({options, shaders, scene, sphere, gpuScene, frame, std::move(shadeMap)});
 
     std::vector<std::string> requested = {graph.finalResource};
     for (const std::string& extra : expandWildcards(options.extraOutputs, graph))
@@ -265,6 +336,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
                                   "(col+0.5, row+0.5); matrices as rows; 8-bit images sRGB, float images linear data";
         manifest["camera"] = describeCamera(camera);
         manifest["toward_light_world"] = vectorJson(frame.towardLightWorld);
+        manifest["look"] = describeLook(options, graph);
         manifest["files"] = files;
         manifest["passes"] = passTimes;
         outputs.stageDumpManifest(jsonText(manifest));
@@ -291,6 +363,8 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
                        {"vendor", context->vendor()}};
         stats["load_ms"] = loadMs;
         stats["context_ms"] = contextMs;
+        stats["look"] = describeLook(options, graph);
+        if (options.shading == ShadingMode::Comic) stats["face_orientation"] = describeOrientation(*graph.orientation);
         stats["passes"] = passTimes;
         stats["culled"] = culled;
         stats["write_ms"] = millisecondsSince(writeStart);
@@ -346,6 +420,9 @@ int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::os
         err << "inkgraph: " << error.what() << "\n(see: inkgraph help render)\n";
         return kExitUsage;
     } catch (const SceneError& error) {
+        err << "inkgraph: " << error.what() << "\n";
+        return kExitBadInput;
+    } catch (const InputFileError& error) {
         err << "inkgraph: " << error.what() << "\n";
         return kExitBadInput;
     } catch (const HeadlessContextError& error) {

@@ -9,6 +9,13 @@
 
 namespace inkgraph {
 
+/** An input file other than the model (--shademap) is missing or unusable; exit code 3 like a bad model. The message
+ *  names the flag and the file. */
+class InputFileError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
 /** Exit codes of the command line (README "Errors and exit codes"). */
 enum ExitCode : int {
     kExitOk = 0,
@@ -23,7 +30,7 @@ enum ExitCode : int {
 inline constexpr std::size_t kMaxTextureBytes = std::size_t(2) << 30;
 
 /** Renders as the options say. `out` receives --print-plan, `log` the progress lines. Throws the layer's own
- *  exceptions (SceneError, HeadlessContextError, FileError, UsageError, GraphError); runCommandLine maps them to
+ *  exceptions (SceneError, InputFileError, HeadlessContextError, FileError, UsageError, GraphError); runCommandLine maps them to
  *  exit codes. */
 void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& log);
 

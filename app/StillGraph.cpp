@@ -2,7 +2,11 @@
 
 #include "passes/composite/CompositePass.h"
 #include "passes/gbuffer/GBufferPass.h"
-#include "passes/lambert/LambertPass.h"
+#include "passes/outline/OutlinePass.h"
+#include "passes/shade/ShadePass.h"
+#include "passes/silhouette/SilhouettePass.h"
+
+#include <algorithm>
 
 namespace inkgraph {
 
@@ -18,13 +22,76 @@ std::vector<Pass*> StillGraph::mutableView() const {
     return result;
 }
 
-StillGraph buildStillGraph(ShadingMode shading, ShaderLibrary& shaders, GpuScene& gpuScene, const FrameParams& frame) {
+namespace {
+
+ShadingModel shadingModelOf(ShadingMode mode) {
+    switch (mode) {
+    case ShadingMode::Flat: return ShadingModel::Flat;
+    case ShadingMode::Gouraud: return ShadingModel::Gouraud;
+    case ShadingMode::Lambert: return ShadingModel::Lambert;
+    case ShadingMode::Phong: return ShadingModel::Phong;
+    case ShadingMode::Cel: return ShadingModel::Cel;
+    case ShadingMode::Comic: return ShadingModel::Comic;
+    case ShadingMode::None: break;
+    }
+    throw std::logic_error("shadingModelOf(): --shading none has no shading model");
+}
+
+cv::Vec4f displayColor(const glm::dvec4& color) {
+    return cv::Vec4f(float(color.r), float(color.g), float(color.b), float(color.a));
+}
+
+} // namespace
+
+StillGraph buildStillGraph(const StillGraphSetup& setup) {
+    const RenderOptions& options = setup.options;
     StillGraph graph;
-    graph.passes.push_back(std::make_unique<GBufferPass>("gbuffer", shaders, gpuScene, frame));
+    const bool comic = options.shading == ShadingMode::Comic;
+
+    OrientationSettings orientationSettings;
+    orientationSettings.method = comic ? options.faceOrientation : FaceOrientationMethod::Standard;
+    orientationSettings.viewVector = options.viewVector;
+    orientationSettings.frontRule = options.frontRule;
+    orientationSettings.shininess = options.shininess;
+    graph.orientation =
+        std::make_unique<SceneOrientation>(setup.scene, setup.gpuScene, setup.frame, orientationSettings);
+    SceneOrientation* cpuOrientation = graph.orientation->usesCpuMarking() ? graph.orientation.get() : nullptr;
+
+    graph.passes.push_back(std::make_unique<GBufferPass>("gbuffer", setup.shaders, setup.gpuScene, setup.frame));
+
+    if (options.shading != ShadingMode::None) {
+        ShadeSettings settings;
+        settings.model = shadingModelOf(options.shading);
+        settings.shininess = options.shininess;
+        if (comic)
+            settings.view = chooseViewVector(options.viewVector, setup.frame.camera.eye, setup.sphere.center,
+                                             setup.sphere.radius);
+        std::optional<ShadeMap> shadeMap = setup.shadeMap;
+        if (!shadeMap && options.shading == ShadingMode::Cel) shadeMap = makeBandShadeMap(options.bands.value_or(5));
+        if (!shadeMap && comic) shadeMap = makeDefaultComicShadeMap();
+        graph.passes.push_back(std::make_unique<ShadePass>("shade", setup.shaders, setup.gpuScene, setup.frame,
+                                                           settings, std::move(shadeMap), cpuOrientation));
+        graph.shadingResource = "shade.color";
+    }
+
+    // Both line passes are always registered: one the composite does not read is culled, and --stats says so.
+    auto outline = std::make_unique<OutlinePass>("outline", setup.shaders, setup.gpuScene, setup.frame,
+                                                 float(options.lineStyles.at("outline").widthPixels), cpuOrientation);
+    graph.outline = outline.get();
+    graph.passes.push_back(std::move(outline));
+    HullSettings hull;
+    hull.widthPixels = float(options.lineStyles.at("silhouette").widthPixels);
+    if (options.silhouetteObjectWidth) hull.objectWidth = float(*options.silhouetteObjectWidth);
+    auto silhouette = std::make_unique<SilhouettePass>("silhouette", setup.shaders, setup.gpuScene, setup.frame, hull);
+    graph.silhouette = silhouette.get();
+    graph.passes.push_back(std::move(silhouette));
+
+    std::vector<CompositePass::LineInput> lines;
+    for (const std::string& type : knownLineTypes())
+        if (std::find(options.lines.begin(), options.lines.end(), type) != options.lines.end())
+            lines.push_back({type + ".lines", displayColor(options.lineStyles.at(type).color)});
     graph.passes.push_back(
-        std::make_unique<LambertPass>("lambert", shaders, frame, "gbuffer.normal", "gbuffer.baseColor"));
-    if (shading == ShadingMode::Lambert) graph.shadingResource = "lambert.color";
-    graph.passes.push_back(std::make_unique<CompositePass>("composite", frame, graph.shadingResource));
+        std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
     return graph;
 }
 

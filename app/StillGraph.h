@@ -7,23 +7,45 @@
 #include "graph/Pass.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/orientation/SceneOrientation.h"
+#include "passes/shade/ShadeMap.h"
+#include "scene/Scene.h"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace inkgraph {
 
+class OutlinePass;
+class SilhouettePass;
+
+/** What buildStillGraph() needs; every reference must outlive the graph. */
+struct StillGraphSetup {
+    const RenderOptions& options;
+    ShaderLibrary& shaders;
+    const Scene& scene;
+    BoundingSphere sphere;
+    GpuScene& gpuScene;
+    const FrameParams& frame;
+    std::optional<ShadeMap> shadeMap; ///< --shademap as read; empty: the built-in map of the mode
+};
+
 struct StillGraph {
+    /** Declared before the passes, which point at it, so it is destroyed after them. */
+    std::unique_ptr<SceneOrientation> orientation;
     std::vector<std::unique_ptr<Pass>> passes;
-    std::string shadingResource; ///< the colour the composite reads ("lambert.color"), or empty for --shading none
+    std::string shadingResource; ///< the colour the composite reads ("shade.color"), or empty for --shading none
     std::string finalResource = "composite.final";
+    OutlinePass* outline = nullptr;       ///< for --stats
+    SilhouettePass* silhouette = nullptr; ///< for --stats
 
     std::vector<const Pass*> view() const;
     std::vector<Pass*> mutableView() const;
 };
 
-StillGraph buildStillGraph(ShadingMode shading, ShaderLibrary& shaders, GpuScene& gpuScene, const FrameParams& frame);
+StillGraph buildStillGraph(const StillGraphSetup& setup);
 
 /** "gbuffer.*" -> every field the pass "gbuffer" declares; other names pass through for compile() to check. Throws
  *  UsageError for a wildcard on a pass the graph does not have. */

@@ -5,11 +5,13 @@
 
 namespace inkgraph {
 
-CompositePass::CompositePass(std::string name, const FrameParams& frame, std::string shading)
-    : mName(std::move(name)), mFrame(frame), mShading(std::move(shading)) {}
+CompositePass::CompositePass(std::string name, const FrameParams& frame, std::string shading,
+                             std::vector<LineInput> lines)
+    : mName(std::move(name)), mFrame(frame), mShading(std::move(shading)), mLines(std::move(lines)) {}
 
 void CompositePass::declare(PassBuilder& builder) const {
     if (!mShading.empty()) builder.read(mShading);
+    for (const LineInput& line : mLines) builder.read(line.resource);
     builder.write("final", {Format::RGBA8});
 }
 
@@ -19,6 +21,8 @@ void CompositePass::execute(PassContext& context) {
     inputs.size = cv::Size(gl.width(), gl.height());
     inputs.paper = cv::Vec4f(mFrame.background.r, mFrame.background.g, mFrame.background.b, mFrame.background.a);
     if (!mShading.empty()) inputs.shading = gl.inputImage(mShading);
+    for (const LineInput& line : mLines)
+        inputs.lines.push_back({ResourceName::split(line.resource).pass, gl.inputImage(line.resource), line.color});
     gl.outputImage("final") = compositeFinal(inputs);
 }
 

@@ -26,9 +26,102 @@ TEST(Options, Defaults) {
     EXPECT_EQ(options.height, 1024);
     EXPECT_FALSE(options.up.has_value());
     EXPECT_FALSE(options.fovYDegrees.has_value());
-    EXPECT_EQ(options.shading, ShadingMode::Lambert);
+    EXPECT_EQ(options.shading, ShadingMode::Cel) << "cel is the default look";
+    EXPECT_EQ(options.shininess, 32.0);
+    EXPECT_FALSE(options.bands.has_value());
+    EXPECT_EQ(options.viewVector, ViewVectorMode::Exact);
+    EXPECT_EQ(options.faceOrientation, FaceOrientationMethod::Standard);
+    EXPECT_EQ(options.frontRule, 3);
     EXPECT_TRUE(options.lines.empty());
+    for (const std::string& type : knownLineTypes()) {
+        EXPECT_EQ(options.lineStyles.at(type).widthPixels, 2.0) << type;
+        EXPECT_EQ(options.lineStyles.at(type).color, glm::dvec4(0, 0, 0, 1)) << type;
+    }
     EXPECT_FALSE(options.printPlan);
+}
+
+TEST(Options, ShadingModesAndTheirFlags) {
+    for (const char* mode : {"none", "flat", "gouraud", "lambert", "phong", "cel", "comic"})
+        EXPECT_EQ(shadingModeName(parse({"m.obj", "-o", "x.png", "--shading", mode}).shading), mode);
+    const RenderOptions comic =
+        parse({"m.obj", "-o", "x.png", "--shading", "comic", "--shininess", "0", "--shademap", "map.png",
+               "--view-vector", "constant", "--face-orientation", "during-vertices", "--front-rule", "1"});
+    EXPECT_EQ(comic.shininess, 0.0);
+    EXPECT_EQ(comic.shadeMapPath, "map.png");
+    EXPECT_EQ(comic.viewVector, ViewVectorMode::Constant);
+    EXPECT_EQ(comic.faceOrientation, FaceOrientationMethod::DuringVertices);
+    EXPECT_EQ(comic.frontRule, 1);
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--shading", "phong", "--shininess", "1e6"}).shininess, 1e6);
+    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--bands", "3"}).bands, 3) << "cel is the default, so --bands applies";
+}
+
+TEST(Options, ShadingFlagsWithoutEffectAreRefused) {
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shininess", "8"}).find("--shininess has no effect with "
+                                                                                "--shading cel"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "comic", "--bands", "4"}).find("--bands"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "phong", "--shademap", "a.png"}).find("--shademap"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--bands", "4", "--shademap", "a.png"}).find("give one"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--view-vector", "constant"}).find("--view-vector"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "comic", "--front-rule", "2"}).find("'standard'"),
+              std::string::npos)
+        << "the rule needs a vertex method";
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "comic", "--face-orientation", "during-triangles",
+                            "--front-rule", "2"})
+                  .find("--front-rule"),
+              std::string::npos);
+}
+
+TEST(Options, ShadingValuesOutOfRange) {
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "phong", "--shininess", "-1"}).find("--shininess"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "phong", "--shininess", "2e6"}).find("1e6"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--bands", "1"}).find("--bands"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--bands", "2.5"}).find("'2.5'"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--bands", "257"}).find("256"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "comic", "--face-orientation", "sideways"})
+                  .find("'sideways'"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "comic", "--face-orientation", "after-vertices",
+                            "--front-rule", "4"})
+                  .find("--front-rule"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "comic", "--view-vector", "approx"}).find("'approx'"),
+              std::string::npos);
+}
+
+TEST(Options, LineTypesAndTheirStyles) {
+    const RenderOptions options =
+        parse({"m.obj", "-o", "x.png", "--lines", "silhouette,outline", "--silhouette-width", "3.5",
+               "--outline-color", "1,0,0", "--silhouette-color", "0,0,1,0.5", "--silhouette-object-width", "0.02"});
+    EXPECT_EQ(options.lines, (std::vector<std::string>{"silhouette", "outline"}));
+    EXPECT_EQ(options.lineStyles.at("silhouette").widthPixels, 3.5);
+    EXPECT_EQ(options.lineStyles.at("silhouette").color, glm::dvec4(0, 0, 1, 0.5));
+    EXPECT_EQ(options.lineStyles.at("outline").color, glm::dvec4(1, 0, 0, 1));
+    EXPECT_EQ(options.lineStyles.at("outline").widthPixels, 2.0);
+    EXPECT_EQ(*options.silhouetteObjectWidth, 0.02);
+
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--outline-width", "3"}).find("'outline' line type is not drawn"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--silhouette-object-width", "1"}).find("--silhouette-object-width"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-width", "0"}).find("above 0"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-width", "300"}).find("256"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-color", "1,0"}).find("R,G,B"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-color", "1,0,2"}).find("[0, 1]"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline,outline"}).find("twice"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "silhouette", "--silhouette-object-width", "-1"})
+                  .find("above 0"),
+              std::string::npos);
 }
 
 TEST(Options, EveryValue) {
@@ -101,8 +194,9 @@ TEST(DumpFileName, FixedNamesForTheIssueFiles) {
     EXPECT_EQ(dumpFileName("gbuffer.wVec", true, ""), "w.exr");
     EXPECT_EQ(dumpFileName("gbuffer.nDotV", true, ""), "ndotv.exr");
     EXPECT_EQ(dumpFileName("gbuffer.depth", true, ""), "depth.exr");
-    EXPECT_EQ(dumpFileName("lambert.color", false, "lambert.color"), "shading.png");
-    EXPECT_EQ(dumpFileName("composite.final", false, "lambert.color"), "final.png");
+    EXPECT_EQ(dumpFileName("shade.color", false, "shade.color"), "shading.png");
+    EXPECT_EQ(dumpFileName("composite.final", false, "shade.color"), "final.png");
+    EXPECT_EQ(dumpFileName("silhouette.lines", false, "shade.color"), "lines-silhouette.png");
     EXPECT_EQ(dumpFileName("contour.lines", false, ""), "lines-contour.png");
     EXPECT_EQ(dumpFileName("other.thing", true, ""), "other-thing.exr");
 }
