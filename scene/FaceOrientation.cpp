@@ -457,6 +457,19 @@ std::size_t countExactFrontTriangles(const Mesh& mesh, const glm::dvec3& eye) {
     return count;
 }
 
+std::size_t countExactFrontVertices(const Mesh& mesh, const glm::dvec3& eye) {
+    const glm::vec3* positions = mesh.positions.data();
+    std::vector<std::uint8_t> used(mesh.positions.size(), 0);
+    for (const glm::uvec3& triangle : mesh.triangles) {
+        if (isExactFront(positions, triangle, eye)) {
+            used[triangle.x] = 1;
+            used[triangle.y] = 1;
+            used[triangle.z] = 1;
+        }
+    }
+    return std::size_t(std::count(used.begin(), used.end(), std::uint8_t(1)));
+}
+
 std::size_t countMissedTriangles(const Mesh& mesh, const glm::dvec3& eye,
                                  const std::vector<glm::uvec3>& frontTriangles) {
     // Both lists are in mesh order, so one merge walk finds which triangles are front without a per-triangle flag.

@@ -91,6 +91,9 @@ MeshOrientation orientMesh(const Mesh& mesh, const OrientationMeshData& data, co
  *  `missedTriangles` and for the Standard method's share in the stats. */
 std::size_t countExactFrontTriangles(const Mesh& mesh, const glm::dvec3& eye);
 
+/** Vertices used by at least one exact front triangle (the Standard method's lit vertices in the stats). */
+std::size_t countExactFrontVertices(const Mesh& mesh, const glm::dvec3& eye);
+
 /** Exact front triangles that are not in `frontTriangles`, which must list triangles of `mesh` in the mesh's order
  *  (as orientMesh() returns them). */
 std::size_t countMissedTriangles(const Mesh& mesh, const glm::dvec3& eye,

@@ -174,13 +174,16 @@ TEST(DeriveOrientationData, RejectsMissingNormals) {
     }
 }
 
-TEST(CountExactFrontTriangles, CubeAndTriangleByHand) {
+TEST(CountExactFront, CubeAndTriangleByHand) {
     const Mesh cube = makeCube();
     EXPECT_EQ(countExactFrontTriangles(cube, {0, 0, 5}), 2u);     // the +z face
     EXPECT_EQ(countExactFrontTriangles(cube, {5, 5, 5}), 6u);     // three faces
     EXPECT_EQ(countExactFrontTriangles(cube, {5, 0, 0.5}), 2u);   // +x only: z = 0.5 is inside the z slab
     EXPECT_EQ(countExactFrontTriangles(cube, {0, 0, 0}), 0u);     // inside a closed mesh nothing faces the eye
     EXPECT_EQ(countExactFrontTriangles(cube, {0, 0, 1}), 0u);     // on the +z plane: grazing is not front
+    EXPECT_EQ(countExactFrontVertices(cube, {0, 0, 5}), 4u);
+    EXPECT_EQ(countExactFrontVertices(cube, {5, 5, 5}), 7u);      // all but the far corner
+    EXPECT_EQ(countExactFrontVertices(cube, {0, 0, 0}), 0u);
 
     Mesh triangle;
     triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}; // counter-clockwise seen from +z
