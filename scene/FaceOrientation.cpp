@@ -92,6 +92,7 @@ struct ViewTerms {
     glm::dvec3 towardLight{0.0};  ///< unit L
     double constantDotLV = 0.0;   ///< L.V_c, once per call (seed 000 §3.6)
     double shininess = 0.0;
+    std::uint32_t wholeShininess = 0; ///< the shininess when it is a whole number in [1, 1024], else 0
 };
 
 /** The cut-off and the two thresholds derived from it. */
@@ -121,15 +122,35 @@ Cutoff cutoffFor(const OrientationRequest& request, double betaMaxRadians, bool 
     return {cutoff, cutoff + kCutoffSlack, -cutoff};
 }
 
+/** Whole shininess values up to this are raised by repeated squaring (at most 10 squarings and 10 products, a few
+ *  ulp from std::pow and several times cheaper); larger or fractional ones use std::pow. */
+constexpr double kMaxSquaringShininess = 1024.0;
+
+/** base^shininess for base in (0, 1]; `wholeShininess` > 0 selects repeated squaring. */
+inline double specularPower(double base, double shininess, std::uint32_t wholeShininess) {
+    if (wholeShininess == 0) {
+        return std::pow(base, shininess);
+    }
+    double power = 1.0;
+    for (std::uint32_t n = wholeShininess; n != 0; n >>= 1) {
+        if (n & 1u) {
+            power *= base;
+        }
+        base *= base;
+    }
+    return power;
+}
+
 /** (s, t) of Listing 1 for unit N, L and V (V eye -> point), with the paper's R.V = L.V - 2 (N.L)(N.V)
  *  (docs/algorithms.md §1.3; the same number as the textbook r.v with v = -V). */
-inline glm::vec2 shadeCoord(double dotNL, double dotNV, double dotLV, double shininess) {
+inline glm::vec2 shadeCoord(double dotNL, double dotNV, double dotLV, double shininess, std::uint32_t wholeShininess) {
     if (!(dotNL > 0.0)) {
         return glm::vec2(0.0f); // no diffuse and, as in Phong's gate, no specular
     }
     // Clamped before the power: a negative base is undefined, and rounding above 1 would grow with the exponent.
     const double dotRV = std::clamp(dotLV - 2.0 * dotNL * dotNV, 0.0, 1.0);
-    const double specular = shininess == 0.0 ? 1.0 : (dotRV > 0.0 ? std::pow(dotRV, shininess) : 0.0);
+    const double specular =
+        shininess == 0.0 ? 1.0 : (dotRV > 0.0 ? specularPower(dotRV, shininess, wholeShininess) : 0.0);
     return {float(std::min(dotNL, 1.0)), float(specular)};
 }
 
@@ -139,7 +160,7 @@ inline glm::dvec3 viewAt(const ViewTerms& terms, const glm::vec3& position) {
 
 inline glm::vec2 lightVertex(const ViewTerms& terms, const glm::dvec3& normal, const glm::dvec3& view, double dotNV) {
     const double dotLV = terms.constant ? terms.constantDotLV : glm::dot(terms.towardLight, view);
-    return shadeCoord(glm::dot(normal, terms.towardLight), dotNV, dotLV, terms.shininess);
+    return shadeCoord(glm::dot(normal, terms.towardLight), dotNV, dotLV, terms.shininess, terms.wholeShininess);
 }
 
 /** Listing 1's vertex loop body: orientation, and lighting only for front vertices. Returns the flags. */
@@ -267,6 +288,10 @@ ViewTerms viewTermsFor(const OrientationRequest& request) {
         invalid(function, "'towardLight' must be a finite, non-zero direction");
     }
     terms.shininess = request.shininess;
+    if (request.shininess >= 1.0 && request.shininess <= kMaxSquaringShininess &&
+        request.shininess == std::floor(request.shininess)) {
+        terms.wholeShininess = std::uint32_t(request.shininess);
+    }
     terms.constant = request.view.constant;
     if (terms.constant) {
         terms.constantView = normalizedOrZero(request.view.constantView);
@@ -400,7 +425,8 @@ ViewVectorChoice chooseViewVector(ViewVectorMode requested, const glm::dvec3& ey
     return choice;
 }
 
-MeshOrientation orientMesh(const Mesh& mesh, const OrientationMeshData& data, const OrientationRequest& request) {
+void orientMesh(const Mesh& mesh, const OrientationMeshData& data, const OrientationRequest& request,
+                MeshOrientation& result) {
     constexpr const char* function = "orientMesh()";
     if (request.method == FaceOrientationMethod::Standard) {
         invalid(function, "the 'standard' method runs on the GPU; pick a CPU method");
@@ -424,11 +450,14 @@ MeshOrientation orientMesh(const Mesh& mesh, const OrientationMeshData& data, co
     const bool faceTest = request.method == FaceOrientationMethod::DuringTriangles;
     const Cutoff cutoff = cutoffFor(request, data.betaMaxRadians, faceTest);
 
-    MeshOrientation result;
     result.cutoff = cutoff.reported;
     result.betaMaxRadians = data.betaMaxRadians;
+    result.frontVertexCount = 0;
+    result.missedTriangles = 0;
     result.shadeCoords.assign(mesh.positions.size(), glm::vec2(0.0f));
     // Worst case for each list; only the pages written are ever touched, so the unused capacity costs no time.
+    result.frontTriangles.clear();
+    result.backTriangles.clear();
     result.frontTriangles.reserve(mesh.triangles.size());
     result.backTriangles.reserve(mesh.triangles.size());
 
@@ -445,6 +474,11 @@ MeshOrientation orientMesh(const Mesh& mesh, const OrientationMeshData& data, co
     case FaceOrientationMethod::Standard:
         break;
     }
+}
+
+MeshOrientation orientMesh(const Mesh& mesh, const OrientationMeshData& data, const OrientationRequest& request) {
+    MeshOrientation result;
+    orientMesh(mesh, data, request, result);
     return result;
 }
 

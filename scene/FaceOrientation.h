@@ -86,6 +86,9 @@ struct MeshOrientation {
  *  Throws std::invalid_argument for Standard, a rule outside 1..3, a negative or NaN shininess, a non-finite eye, a
  *  zero or non-finite light direction, or `data` that does not match the mesh. */
 MeshOrientation orientMesh(const Mesh& mesh, const OrientationMeshData& data, const OrientationRequest& request);
+/** The same into `result`, reusing its capacity: a caller that orients every frame allocates its lists only once. */
+void orientMesh(const Mesh& mesh, const OrientationMeshData& data, const OrientationRequest& request,
+                MeshOrientation& result);
 
 /** Exact per-face classification (n_f.(P - E) < 0 with P the triangle's first vertex, in double), the reference for
  *  `missedTriangles` and for the Standard method's share in the stats. */

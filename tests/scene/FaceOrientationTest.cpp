@@ -378,6 +378,27 @@ TEST(FaceOrientationShares, VertexMethodsAgreeExactly) {
     }
 }
 
+TEST(FaceOrientationShares, ReusedResultMatchesAFreshOne) {
+    const Mesh mesh = makeTorus(3.0f, 1.0f, 48, 24);
+    const OrientationMeshData data = deriveOrientationData(mesh, true);
+    MeshOrientation reused;
+    // Far then close, so the second call must shrink what the first left behind.
+    for (const glm::dvec3& eye : {glm::dvec3(0.0, -40.0, 10.0), glm::dvec3(0.5, -4.5, 1.0), glm::dvec3(20, 0, 0)}) {
+        const ViewVectorChoice view = chooseViewVector(ViewVectorMode::Constant, eye, {0, 0, 0}, 4.0);
+        for (const MethodRule& methodRule : allMethodsAndRules()) {
+            const OrientationRequest request = makeRequest(methodRule, view, eye);
+            const MeshOrientation fresh = orientMesh(mesh, data, request);
+            orientMesh(mesh, data, request, reused);
+            EXPECT_EQ(reused.frontTriangles, fresh.frontTriangles) << describe(methodRule, view);
+            EXPECT_EQ(reused.backTriangles, fresh.backTriangles) << describe(methodRule, view);
+            EXPECT_EQ(reused.shadeCoords, fresh.shadeCoords) << describe(methodRule, view);
+            EXPECT_EQ(reused.frontVertexCount, fresh.frontVertexCount);
+            EXPECT_EQ(reused.missedTriangles, fresh.missedTriangles);
+            EXPECT_EQ(reused.cutoff, fresh.cutoff);
+        }
+    }
+}
+
 TEST(FaceOrientationShares, CutoffsFollowTheFormulas) {
     const Mesh mesh = makeUvSphere({0, 0, 0}, 1.0f, 64, 32);
     const OrientationMeshData data = deriveOrientationData(mesh, false);
@@ -471,9 +492,16 @@ TEST(FaceOrientationLighting, MatchesTheTextbookForm) {
         const ViewVectorChoice view = chooseViewVector(mode, eye, {0, 0, 0}, 1.0);
         for (const FaceOrientationMethod method :
              {FaceOrientationMethod::DuringVertices, FaceOrientationMethod::AfterVertices}) {
-            const OrientationRequest request = makeRequest({method, 3}, view, eye);
-            const MeshOrientation result = orientMesh(mesh, data, request);
-            EXPECT_GT(expectTextbookLighting(mesh, result, request), 10) << describe({method, 3}, view);
+            // Whole shininess up to 1024 is raised by repeated squaring, the rest by std::pow: both are checked.
+            for (const double shininess : {1.0, 7.5, 32.0, 1000.0, 1500.0}) {
+                OrientationRequest request = makeRequest({method, 3}, view, eye);
+                request.shininess = shininess;
+                const MeshOrientation result = orientMesh(mesh, data, request);
+                const int partial = expectTextbookLighting(mesh, result, request);
+                if (shininess == 32.0) {
+                    EXPECT_GT(partial, 10) << describe({method, 3}, view) << ": too few vertices in the highlight";
+                }
+            }
         }
     }
 }
