@@ -95,6 +95,8 @@ public:
     GLuint id() const { return mHandle.id(); }
     /** Binds `buffer` as a tightly packed float vec3 attribute at `location`. */
     void setVec3Attribute(GLuint location, const GlBuffer& buffer);
+    /** Binds `buffer` as a tightly packed float vec2 attribute at `location`. */
+    void setVec2Attribute(GLuint location, const GlBuffer& buffer);
     void setIndexBuffer(const GlBuffer& buffer);
     void bind() const;
 

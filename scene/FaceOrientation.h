@@ -55,27 +55,51 @@ struct OrientationRequest {
     glm::dvec3 towardLight{0.0, 0.0, 1.0}; ///< unit, L (point -> light)
     double shininess = 32.0;      ///< >= 0; 0 gives specular 1 wherever n.l > 0
     bool paperCutoff = false;     ///< tests only: the paper's -sin(alpha) cut-off without betaMax
+    bool countMissed = true;      ///< false skips the exact per-face reference (benchmarks, or callers that time
+                                  ///< the method and count holes apart); `missedTriangles` is then 0
 };
 
-/** What one method decided for one mesh. */
+/** What one method decided for one mesh. Both triangle lists keep the mesh's triangle order.
+ *
+ *  Intermediate triangles (Listing 1's setIntermediateFlag, errata fixed to N.V > -cut-off) are front triangles near
+ *  the silhouette that the outline must still draw: with a vertex method, a front triangle with at least one vertex
+ *  whose N.V > -cut-off; with during-triangles, a front face whose n_f.V > -cut-off (none with exact vectors, whose
+ *  face cut-off is 0). They are in both lists. */
 struct MeshOrientation {
     std::vector<glm::uvec3> frontTriangles; ///< drawn filled, shaded from `shadeCoords`
-    std::vector<glm::uvec3> backTriangles;  ///< drawn by the back-face outline (BackCondition; includes the
-                                            ///< "intermediate" triangles, drawn with both)
+    std::vector<glm::uvec3> backTriangles;  ///< drawn by the back-face outline (BackCondition: every triangle that
+                                            ///< is not front, plus the intermediate ones)
     std::vector<glm::vec2> shadeCoords;     ///< per vertex (s, t) = (max(N.L,0), max(R.V,0)^n gated by N.L > 0);
                                             ///< computed only for front vertices (others 0)
     std::size_t frontVertexCount = 0;       ///< vertices marked front (lighting computed)
     std::size_t missedTriangles = 0;        ///< exact per-face front triangles not in frontTriangles (holes)
-    double cutoff = 0.0;                    ///< the N.V cut-off that was used
+    double cutoff = 0.0;                    ///< the N.V cut-off that was used (face test for during-triangles,
+                                            ///< vertex test otherwise)
     double betaMaxRadians = 0.0;
 };
 
 /** Runs one method over one mesh. `data` must come from deriveOrientationData(mesh, method == DuringVertices).
- *  Throws std::invalid_argument for Standard, a rule outside 1..3 or a negative shininess. */
+ *  During-triangles tests faces directly and ignores `frontRule`. With exact view vectors its face test is the exact
+ *  per-face test itself, so it marks exactly the exact front set.
+ *  When the vertex cut-off angle alpha + betaMax reaches pi/2, every vertex is front (the bound then says nothing).
+ *  The approximate tests compare against cut-off + 1e-6, so the rounding of float normals cannot open a hole.
+ *  Throws std::invalid_argument for Standard, a rule outside 1..3, a negative or NaN shininess, a non-finite eye, a
+ *  zero or non-finite light direction, or `data` that does not match the mesh. */
 MeshOrientation orientMesh(const Mesh& mesh, const OrientationMeshData& data, const OrientationRequest& request);
+/** The same into `result`, reusing its capacity: a caller that orients every frame allocates its lists only once. */
+void orientMesh(const Mesh& mesh, const OrientationMeshData& data, const OrientationRequest& request,
+                MeshOrientation& result);
 
-/** Exact per-face classification (n_f.(P - E) < 0), the reference for `missedTriangles` and for the Standard
- *  method's share in the stats. */
+/** Exact per-face classification (n_f.(P - E) < 0 with P the triangle's first vertex, in double), the reference for
+ *  `missedTriangles` and for the Standard method's share in the stats. */
 std::size_t countExactFrontTriangles(const Mesh& mesh, const glm::dvec3& eye);
+
+/** Vertices used by at least one exact front triangle (the Standard method's lit vertices in the stats). */
+std::size_t countExactFrontVertices(const Mesh& mesh, const glm::dvec3& eye);
+
+/** Exact front triangles that are not in `frontTriangles`, which must list triangles of `mesh` in the mesh's order
+ *  (as orientMesh() returns them). */
+std::size_t countMissedTriangles(const Mesh& mesh, const glm::dvec3& eye,
+                                 const std::vector<glm::uvec3>& frontTriangles);
 
 } // namespace inkgraph

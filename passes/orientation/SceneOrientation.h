@@ -30,15 +30,18 @@ struct OrientationReport {
     std::string fallBackReason;
     double sinAlpha = 0.0;
     double betaMaxDegrees = 0.0;     ///< largest over the meshes
-    double cutoff = 0.0;
+    double cutoff = 0.0;             ///< largest over the meshes (betaMax differs per mesh)
     std::size_t triangles = 0;
     std::size_t vertices = 0;
     std::size_t frontTriangles = 0;  ///< Standard: the exact per-face count
     std::size_t frontVertices = 0;   ///< Standard: vertices of exact front triangles
     std::size_t exactFrontTriangles = 0;
     std::size_t missedTriangles = 0; ///< holes against exact classification
+    double deriveMilliseconds = 0.0; ///< face normals, betaMax, adjacency (load-time work in the paper; 0 for
+                                     ///< Standard)
     double markMilliseconds = 0.0;   ///< CPU marking and lighting (0 for Standard)
-    double uploadMilliseconds = 0.0;
+    double uploadMilliseconds = 0.0; ///< CPU time of creating the buffers and arrays (the driver copies the data
+                                     ///< before returning)
 };
 
 class SceneOrientation {
@@ -55,7 +58,8 @@ public:
     };
     static constexpr GLuint kShadeCoordLocation = 2;
 
-    /** Keeps references; computes nothing until sets() or report() is called. */
+    /** Keeps references; computes nothing until sets() or report() is called. Throws std::invalid_argument for a
+     *  front rule outside 1..3 or a negative shininess. */
     SceneOrientation(const Scene& scene, GpuScene& gpuScene, const FrameParams& frame, OrientationSettings settings);
 
     bool usesCpuMarking() const { return mSettings.method != FaceOrientationMethod::Standard; }
@@ -66,6 +70,9 @@ public:
     const OrientationReport& report();
 
 private:
+    /** Derives, marks, lights and uploads every mesh; fills mSets and mReport. */
+    void compute();
+
     const Scene& mScene;
     GpuScene& mGpuScene;
     const FrameParams& mFrame;
