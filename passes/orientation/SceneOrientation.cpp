@@ -79,10 +79,26 @@ const std::vector<SceneOrientation::MeshSets>& SceneOrientation::sets() {
     return mSets;
 }
 
+void SceneOrientation::invalidate() {
+    mSets.clear();
+    mOrientations.clear();
+    mReport.reset();
+    mComputed = false;
+    mCounted = false;
+}
+
 const OrientationReport& SceneOrientation::report() {
     if (usesCpuMarking()) {
         if (!mComputed) {
             compute();
+        }
+        if (!mCounted) {
+            for (std::size_t i = 0; i < mScene.meshes.size(); ++i) {
+                mReport->exactFrontTriangles += countExactFrontTriangles(mScene.meshes[i], mFrame.camera.eye);
+                mReport->missedTriangles +=
+                    countMissedTriangles(mScene.meshes[i], mFrame.camera.eye, mOrientations[i].frontTriangles);
+            }
+            mCounted = true;
         }
         return *mReport;
     }
@@ -120,24 +136,26 @@ void SceneOrientation::compute() {
 
     std::vector<MeshSets> sets;
     sets.reserve(mScene.meshes.size());
+    mOrientations.resize(mScene.meshes.size());
+    const bool withAdjacency = mSettings.method == FaceOrientationMethod::DuringVertices;
+    if (mDerived.empty()) {
+        const Clock::time_point deriveStart = Clock::now();
+        for (const Mesh& mesh : mScene.meshes) mDerived.push_back(deriveOrientationData(mesh, withAdjacency));
+        mDeriveMilliseconds = millisecondsSince(deriveStart);
+    }
+    report.deriveMilliseconds = mDeriveMilliseconds;
     double betaMaxRadians = 0.0;
     for (std::size_t i = 0; i < mScene.meshes.size(); ++i) {
         const Mesh& mesh = mScene.meshes[i];
         const GpuScene::DrawMesh& drawMesh = drawMeshes[i];
 
-        const Clock::time_point deriveStart = Clock::now();
-        const OrientationMeshData data =
-            deriveOrientationData(mesh, mSettings.method == FaceOrientationMethod::DuringVertices);
-        report.deriveMilliseconds += millisecondsSince(deriveStart);
-
         const Clock::time_point markStart = Clock::now();
-        const MeshOrientation orientation = orientMesh(mesh, data, request);
+        MeshOrientation& orientation = mOrientations[i];
+        orientMesh(mesh, mDerived[i], request, orientation);
         report.markMilliseconds += millisecondsSince(markStart);
 
         report.frontTriangles += orientation.frontTriangles.size();
         report.frontVertices += orientation.frontVertexCount;
-        report.exactFrontTriangles += countExactFrontTriangles(mesh, request.eye);
-        report.missedTriangles += countMissedTriangles(mesh, request.eye, orientation.frontTriangles);
         report.cutoff = i == 0 ? orientation.cutoff : std::max(report.cutoff, orientation.cutoff);
         betaMaxRadians = std::max(betaMaxRadians, orientation.betaMaxRadians);
 
@@ -165,6 +183,7 @@ void SceneOrientation::compute() {
     mSets = std::move(sets);
     mReport = std::move(report);
     mComputed = true;
+    mCounted = false;
 }
 
 } // namespace inkgraph

@@ -66,20 +66,28 @@ public:
     const OrientationSettings& settings() const { return mSettings; }
     /** CPU methods: marks, lights and uploads on the first call. Throws std::logic_error for Standard. */
     const std::vector<MeshSets>& sets();
-    /** The numbers for --stats; for Standard counts the exact front share on the CPU (only when asked). */
+    /** The numbers for --stats; for Standard counts the exact front share on the CPU (only when asked). The exact
+     *  counts and holes are counted here, not while marking, so they never add to a pass's time. */
     const OrientationReport& report();
+    /** A new frame (the camera or light moved): the next sets() marks, lights and uploads again. The per-mesh
+     *  derived data (face normals, betaMax, adjacency) is kept: it depends on the mesh alone. */
+    void invalidate();
 
 private:
-    /** Derives, marks, lights and uploads every mesh; fills mSets and mReport. */
+    /** Derives (once), marks, lights and uploads every mesh; fills mSets, mOrientations and mReport. */
     void compute();
 
     const Scene& mScene;
     GpuScene& mGpuScene;
     const FrameParams& mFrame;
     OrientationSettings mSettings;
+    std::vector<OrientationMeshData> mDerived;      ///< per mesh; derived on the first compute()
+    std::vector<MeshOrientation> mOrientations;     ///< per mesh, of the last compute(); report() counts holes on it
     std::vector<MeshSets> mSets;
     std::optional<OrientationReport> mReport;
     bool mComputed = false;
+    bool mCounted = false;
+    double mDeriveMilliseconds = 0.0; ///< exact front and missed triangles are in mReport
 };
 
 } // namespace inkgraph
