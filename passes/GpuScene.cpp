@@ -57,4 +57,17 @@ const GlBuffer& GpuScene::hullNormals(std::size_t meshIndex) {
     return mHullNormals[meshIndex];
 }
 
+bool GpuScene::containsPoint(glm::dvec3 worldPoint) {
+    if (mContainmentPoint == worldPoint) return mContainsPoint;
+    mContainsPoint = false;
+    for (const Mesh& mesh : mScene.meshes) {
+        if (isPointInsideMesh(mesh, worldPoint)) {
+            mContainsPoint = true;
+            break;
+        }
+    }
+    mContainmentPoint = worldPoint;
+    return mContainsPoint;
+}
+
 } // namespace inkgraph

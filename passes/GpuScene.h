@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include <optional>
 #include <vector>
 
 namespace inkgraph {
@@ -39,6 +40,10 @@ public:
     const GlBuffer& hullNormals(std::size_t meshIndex);
     bool hullNormalsComputed() const { return !mHullNormals.empty(); }
 
+    /** Whether `worldPoint` lies inside any mesh (MeshOps isPointInsideMesh, ray parity on the CPU). The answer for
+     *  the last point asked is kept, so the line passes of one frame share one computation. */
+    bool containsPoint(glm::dvec3 worldPoint);
+
     /** The CPU scene the buffers come from (world space, not relative to worldOrigin). */
     const Scene& scene() const { return mScene; }
     glm::dvec3 worldOrigin() const { return mWorldOrigin; }
@@ -49,6 +54,8 @@ private:
     std::vector<DrawMesh> mMeshes;
     bool mUploaded = false;
     std::vector<GlBuffer> mHullNormals; ///< one per mesh once computed, else empty
+    std::optional<glm::dvec3> mContainmentPoint; ///< the last point containsPoint() was asked about
+    bool mContainsPoint = false;
 };
 
 } // namespace inkgraph
