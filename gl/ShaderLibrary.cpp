@@ -27,6 +27,15 @@ std::string infoLog(GLuint object, GetInteger getInteger, GetLog getLog) {
     return log;
 }
 
+const char* stageDefine(GLenum stage) {
+    switch (stage) {
+    case GL_VERTEX_SHADER: return "#define INKGRAPH_VERTEX_STAGE 1\n";
+    case GL_GEOMETRY_SHADER: return "#define INKGRAPH_GEOMETRY_STAGE 1\n";
+    case GL_FRAGMENT_SHADER: return "#define INKGRAPH_FRAGMENT_STAGE 1\n";
+    }
+    throw std::logic_error("stageDefine(): unknown shader stage");
+}
+
 } // namespace
 
 std::filesystem::path ShaderLibrary::defaultDirectory() {
@@ -53,7 +62,7 @@ const std::string& ShaderLibrary::source(const std::string& relativePath) {
 GLuint ShaderLibrary::compileStage(const ProgramDesc& desc, GLenum stage, const std::string& file) {
     std::string text = "#version 450 core\n";
     // Snippets may hold stage-specific code (e.g. the fullscreen-triangle vertex function).
-    text += stage == GL_VERTEX_SHADER ? "#define INKGRAPH_VERTEX_STAGE 1\n" : "#define INKGRAPH_FRAGMENT_STAGE 1\n";
+    text += stageDefine(stage);
     for (const std::string& define : desc.defines) text += "#define " + define + "\n";
     for (const std::string& snippet : desc.snippets) text += source(snippet) + "\n";
     // Reset line numbers so compiler messages point into the stage file itself.
@@ -74,21 +83,28 @@ GLuint ShaderLibrary::compileStage(const ProgramDesc& desc, GLenum stage, const 
 }
 
 GlProgram ShaderLibrary::build(const ProgramDesc& desc) {
+    const bool hasGeometry = !desc.geometryFile.empty();
     GlHandle<ShaderDeleter> vertex(compileStage(desc, GL_VERTEX_SHADER, desc.vertexFile));
+    GlHandle<ShaderDeleter> geometry;
+    if (hasGeometry) geometry = GlHandle<ShaderDeleter>(compileStage(desc, GL_GEOMETRY_SHADER, desc.geometryFile));
     GlHandle<ShaderDeleter> fragment(compileStage(desc, GL_FRAGMENT_SHADER, desc.fragmentFile));
     GlProgram program(glCreateProgram(), desc.label);
     glAttachShader(program.id(), vertex.id());
+    if (hasGeometry) glAttachShader(program.id(), geometry.id());
     glAttachShader(program.id(), fragment.id());
     glLinkProgram(program.id());
     glDetachShader(program.id(), vertex.id());
+    if (hasGeometry) glDetachShader(program.id(), geometry.id());
     glDetachShader(program.id(), fragment.id());
     GLint linked = GL_FALSE;
     glGetProgramiv(program.id(), GL_LINK_STATUS, &linked);
     if (linked != GL_TRUE) {
         const std::string log = infoLog(program.id(), glGetProgramiv, glGetProgramInfoLog);
-        throw std::runtime_error("ShaderLibrary::build(): program '" + desc.label + "' ('" + desc.vertexFile +
-                                 "' + '" + desc.fragmentFile + "', defines: " + joinDefines(desc.defines) +
-                                 ") failed to link:\n" + log);
+        const std::string stages =
+            "'" + desc.vertexFile + "' + " + (hasGeometry ? "'" + desc.geometryFile + "' + " : "") + "'" +
+            desc.fragmentFile + "'";
+        throw std::runtime_error("ShaderLibrary::build(): program '" + desc.label + "' (" + stages +
+                                 ", defines: " + joinDefines(desc.defines) + ") failed to link:\n" + log);
     }
     return program;
 }

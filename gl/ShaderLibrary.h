@@ -1,6 +1,7 @@
 #pragma once
-/** @file Assembles GLSL programs from files under shaders/ (Magnum's addSource style): the #version line, then
- *  generated #defines, then common/ snippets, then the stage file. Core GLSL has no #include, so each program
+/** @file Assembles GLSL programs from files under shaders/ (Magnum's addSource style): the #version line, the stage
+ *  define (INKGRAPH_VERTEX_STAGE, INKGRAPH_GEOMETRY_STAGE or INKGRAPH_FRAGMENT_STAGE), then generated #defines, then
+ *  common/ snippets, then the stage file. Core GLSL has no #include, so each program
  *  names its snippets explicitly. */
 
 #include "gl/GlObjects.h"
@@ -18,6 +19,7 @@ struct ProgramDesc {
     std::string fragmentFile;          ///< e.g. "gbuffer/gbuffer.frag"
     std::vector<std::string> defines;  ///< "OUT_NORMAL 1" becomes "#define OUT_NORMAL 1"
     std::vector<std::string> snippets; ///< e.g. "common/fullscreen.glsl", prepended to every stage in order
+    std::string geometryFile;          ///< optional, e.g. "outline/outline.geom"; empty: no geometry stage
 };
 
 class ShaderLibrary {

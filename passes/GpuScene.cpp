@@ -1,5 +1,10 @@
 #include "passes/GpuScene.h"
 
+#include "scene/MeshOps.h"
+
+#include <stdexcept>
+#include <string>
+
 namespace inkgraph {
 
 const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
@@ -23,6 +28,46 @@ const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
     }
     mUploaded = true;
     return mMeshes;
+}
+
+const GlBuffer& GpuScene::hullNormals(std::size_t meshIndex) {
+    if (meshIndex >= mScene.meshes.size())
+        throw std::out_of_range("GpuScene::hullNormals(): mesh " + std::to_string(meshIndex) +
+                                " out of range (the scene has " + std::to_string(mScene.meshes.size()) + ")");
+    if (mHullNormals.empty()) {
+        // One scene-wide distance, as the loader welds: relative to the whole model, so units do not matter.
+        BoundingBox box;
+        for (const Mesh& mesh : mScene.meshes) {
+            const BoundingBox meshBox = computeBoundingBox(mesh.positions);
+            if (meshBox.empty()) continue;
+            box.add(meshBox.min);
+            box.add(meshBox.max);
+        }
+        const double weldDistance = LoadOptions{}.weldTolerance * box.diagonal();
+        std::vector<GlBuffer> buffers;
+        buffers.reserve(mScene.meshes.size());
+        for (const Mesh& mesh : mScene.meshes) {
+            const std::vector<glm::vec3> normals =
+                computePositionWeldedNormals(mesh.positions, mesh.triangles, weldDistance);
+            buffers.emplace_back(normals.data(), normals.size() * sizeof(glm::vec3),
+                                 "mesh '" + mesh.name + "' hull normals");
+        }
+        mHullNormals = std::move(buffers);
+    }
+    return mHullNormals[meshIndex];
+}
+
+bool GpuScene::containsPoint(glm::dvec3 worldPoint) {
+    if (mContainmentPoint == worldPoint) return mContainsPoint;
+    mContainsPoint = false;
+    for (const Mesh& mesh : mScene.meshes) {
+        if (isPointInsideMesh(mesh, worldPoint)) {
+            mContainsPoint = true;
+            break;
+        }
+    }
+    mContainmentPoint = worldPoint;
+    return mContainsPoint;
 }
 
 } // namespace inkgraph

@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include <optional>
 #include <vector>
 
 namespace inkgraph {
@@ -31,11 +32,30 @@ public:
     const std::vector<DrawMesh>& meshes();
     bool isUploaded() const { return mUploaded; }
 
+    /** Unit normals for the inflated hull of mesh `meshIndex` (vec3 per vertex, GpuScene's vertex order): smooth
+     *  normals shared by every vertex at the same position (MeshOps computePositionWeldedNormals, weld distance the
+     *  loader's default relative tolerance x the scene's bounding-box diagonal), so split normals at hard edges do
+     *  not tear the hull open. Computed and uploaded for every mesh the first time any is asked for (only a pass that
+     *  runs asks). Throws std::out_of_range for a bad index. */
+    const GlBuffer& hullNormals(std::size_t meshIndex);
+    bool hullNormalsComputed() const { return !mHullNormals.empty(); }
+
+    /** Whether `worldPoint` lies inside any mesh (MeshOps isPointInsideMesh, ray parity on the CPU). The answer for
+     *  the last point asked is kept, so the line passes of one frame share one computation. */
+    bool containsPoint(glm::dvec3 worldPoint);
+
+    /** The CPU scene the buffers come from (world space, not relative to worldOrigin). */
+    const Scene& scene() const { return mScene; }
+    glm::dvec3 worldOrigin() const { return mWorldOrigin; }
+
 private:
     const Scene& mScene;
     glm::dvec3 mWorldOrigin;
     std::vector<DrawMesh> mMeshes;
     bool mUploaded = false;
+    std::vector<GlBuffer> mHullNormals; ///< one per mesh once computed, else empty
+    std::optional<glm::dvec3> mContainmentPoint; ///< the last point containsPoint() was asked about
+    bool mContainsPoint = false;
 };
 
 } // namespace inkgraph

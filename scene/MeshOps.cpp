@@ -258,6 +258,75 @@ std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions
     return normals;
 }
 
+std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> positions,
+                                                    std::span<const glm::uvec3> triangles, double weldDistance) {
+    const WeldMap weld = weldVertices(positions, {}, weldDistance);
+    std::vector<glm::vec3> weldedPositions(weld.kept.size());
+    for (std::size_t output = 0; output < weld.kept.size(); ++output) {
+        weldedPositions[output] = positions[weld.kept[output]];
+    }
+    std::vector<glm::uvec3> weldedTriangles(triangles.size());
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+        const glm::uvec3& triangle = triangles[i];
+        if (glm::any(glm::greaterThanEqual(triangle, glm::uvec3(std::uint32_t(positions.size()))))) {
+            throw std::out_of_range("computePositionWeldedNormals(): triangle index out of range");
+        }
+        // A triangle that welding collapses has a zero cross product and so adds nothing to the sums.
+        weldedTriangles[i] =
+            glm::uvec3(weld.outputOf[triangle.x], weld.outputOf[triangle.y], weld.outputOf[triangle.z]);
+    }
+    const std::vector<glm::vec3> weldedNormals = computeSmoothNormals(weldedPositions, weldedTriangles);
+    std::vector<glm::vec3> normals(positions.size());
+    for (std::size_t input = 0; input < positions.size(); ++input) {
+        normals[input] = weldedNormals[weld.outputOf[input]];
+    }
+    return normals;
+}
+
+bool isPointInsideMesh(const Mesh& mesh, glm::dvec3 point) {
+    const BoundingBox box = computeBoundingBox(mesh.positions);
+    if (box.empty() || glm::any(glm::lessThan(point, box.min)) || glm::any(glm::greaterThan(point, box.max))) {
+        return false;
+    }
+    // Directions with no simple ratio between their components, so they miss the axis-aligned and diagonal
+    // structure of procedural and CAD meshes (rays through shared edges and vertices) on all but unlucky inputs.
+    const glm::dvec3 directions[3] = {glm::normalize(glm::dvec3(0.5773, 0.3141, 0.7541)),
+                                      glm::normalize(glm::dvec3(-0.6180, 0.7071, -0.2718)),
+                                      glm::normalize(glm::dvec3(0.1414, -0.8660, -0.4472))};
+    int insideVotes = 0;
+    for (const glm::dvec3& direction : directions) {
+        std::size_t crossings = 0;
+        for (const glm::uvec3& triangle : mesh.triangles) {
+            // Moller-Trumbore in double; the barycentric bounds are inclusive, so a ray through a shared edge counts
+            // it twice: the other two rays outvote that.
+            const glm::dvec3 a(mesh.positions[triangle.x]);
+            const glm::dvec3 edge1 = glm::dvec3(mesh.positions[triangle.y]) - a;
+            const glm::dvec3 edge2 = glm::dvec3(mesh.positions[triangle.z]) - a;
+            const glm::dvec3 p = glm::cross(direction, edge2);
+            const double determinant = glm::dot(edge1, p);
+            if (determinant == 0.0) {
+                continue; // the ray is parallel to the triangle's plane
+            }
+            const double inverse = 1.0 / determinant;
+            const glm::dvec3 toPoint = point - a;
+            const double u = glm::dot(toPoint, p) * inverse;
+            if (u < 0.0 || u > 1.0) {
+                continue;
+            }
+            const glm::dvec3 q = glm::cross(toPoint, edge1);
+            const double v = glm::dot(direction, q) * inverse;
+            if (v < 0.0 || u + v > 1.0) {
+                continue;
+            }
+            if (glm::dot(edge2, q) * inverse > 0.0) {
+                ++crossings;
+            }
+        }
+        insideVotes += int(crossings % 2);
+    }
+    return insideVotes >= 2;
+}
+
 std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                                     double minArea) {
     const std::size_t before = triangles.size();

@@ -47,6 +47,19 @@ WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::
 std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions,
                                             std::span<const glm::uvec3> triangles);
 
+/** Area-weighted smooth normals in which every vertex within `weldDistance` (absolute) of another shares its normal,
+ *  whatever normals the mesh carries: the copies of a vertex that a hard edge splits get one common direction (the
+ *  sum over all their faces), so a surface pushed out along these normals stays closed (the inflated hull). Welds
+ *  with weldVertices() ignoring normals; returns one unit normal per input position. */
+std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> positions,
+                                                    std::span<const glm::uvec3> triangles, double weldDistance);
+
+/** Whether `point` (world space, like the mesh) lies inside the closed mesh, by ray parity: a ray from the point
+ *  crosses the surface an odd number of times when it starts inside. Three fixed, mutually skewed rays vote, so one
+ *  ray grazing an edge or a vertex (counted twice or not at all) cannot decide alone. For an open mesh the answer is
+ *  only as meaningful as parity is. */
+bool isPointInsideMesh(const Mesh& mesh, glm::dvec3 point);
+
 /** Removes triangles with a repeated index or an area at most `minArea`; returns how many were removed. */
 std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                                     double minArea);

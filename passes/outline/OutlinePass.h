@@ -10,7 +10,16 @@
  *  | <name>.lines  | r8     | required | 255 where the outline shows, else 0               |
  *
  *  `widthPixels` is the visible width outside the silhouette: the wireframe is drawn twice as wide. With a CPU
- *  face-orientation method (SceneOrientation) the back sets it marked are drawn; otherwise the GPU culls. */
+ *  face-orientation method (SceneOrientation) the back sets it marked are drawn; otherwise the GPU culls.
+ *
+ *  Two draws with the pass's own depth attachment: the model's depth (every face, no colour), then the back faces,
+ *  each triangle turned into three edge quads by a geometry shader, depth test LEQUAL against the model, writing
+ *  255. GL culls what the geometry shader emits, not the triangles it receives, so the facing test is made there,
+ *  on the view-space triangle. Edges are clipped to the near plane before the perspective divide, so an edge that
+ *  passes behind the eye never smears across the frame. Quads get square caps, closing the joins.
+ *
+ *  With the eye inside a mesh every face is a back face and the frame would fill with lines, so the mask is left
+ *  empty (skippedEyeInside(); checked when the pass runs, by ray parity on the CPU). */
 
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
@@ -26,7 +35,7 @@ namespace inkgraph {
 
 class OutlinePass : public Pass {
 public:
-    /** `orientation` may be null (GPU culling). */
+    /** `orientation` may be null (GPU culling). Throws std::invalid_argument for a negative or non-finite width. */
     OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
                 float widthPixels, SceneOrientation* orientation);
 
@@ -35,13 +44,24 @@ public:
     void prepare(PassContext& context) override;
     void execute(PassContext& context) override;
 
+    /** True when the last execute() left the mask empty because the eye was inside a mesh (for --stats). */
+    bool skippedEyeInside() const { return mSkippedEyeInside; }
+
 private:
+    bool usesCpuSets() const { return mOrientation && mOrientation->usesCpuMarking(); }
+
     std::string mName;
     ShaderLibrary& mShaders;
     GpuScene& mScene;
     const FrameParams& mFrame;
     float mWidthPixels;
     SceneOrientation* mOrientation;
+    std::unique_ptr<GlProgram> mDepthProgram; ///< the model, depth only
+    std::unique_ptr<GlProgram> mLineProgram;  ///< back-face edges as quads
+    std::unique_ptr<GlDepthTexture> mDepth;
+    int mDepthWidth = 0;
+    int mDepthHeight = 0;
+    bool mSkippedEyeInside = false;
 };
 
 } // namespace inkgraph

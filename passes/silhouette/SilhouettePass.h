@@ -8,8 +8,17 @@
  *  | reads         |        |          | nothing from the graph (meshes from GpuScene)     |
  *  | <name>.lines  | r8     | required | 255 where the hull outline shows, else 0          |
  *
+ *  Two draws into the mask with the pass's own depth attachment: the model's depth (every face, no colour), then
+ *  the hull's back faces (front faces culled, depth test LESS against the model, depth not written), each fragment
+ *  writing 255. Inside the model's silhouette the hull's back faces lie behind the model, so only the ring outside
+ *  it, and the hull of nearer parts over farther ones, shows.
+ *
  *  Width: in screen space (default) the offset is applied in clip space, so the line is `widthPixels` wide at any
- *  distance, field of view and resolution; in object space the hull is offset by `objectWidth` model units. */
+ *  distance, field of view and resolution; in object space the hull is offset by `objectWidth` model units. A
+ *  vertex whose hull normal points along the line of sight has no screen direction and is not moved.
+ *
+ *  With the eye inside a mesh every back face would show and flood the frame, so the mask is left empty
+ *  (skippedEyeInside(); checked when the pass runs, by ray parity on the CPU). */
 
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
@@ -20,16 +29,21 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace inkgraph {
 
 struct HullSettings {
     float widthPixels = 2.0f;
     std::optional<float> objectWidth; ///< model units; when set, the hull is offset in object space instead
+    /** Offset along GpuScene::hullNormals() (true) or along the mesh's own, possibly split, normals (false). Only
+     *  tests turn this off, to show the cracks that welding closes. */
+    bool weldNormals = true;
 };
 
 class SilhouettePass : public Pass {
 public:
+    /** Throws std::invalid_argument for a negative or non-finite width. */
     SilhouettePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
                    HullSettings settings);
 
@@ -38,12 +52,22 @@ public:
     void prepare(PassContext& context) override;
     void execute(PassContext& context) override;
 
+    /** True when the last execute() left the mask empty because the eye was inside a mesh (for --stats). */
+    bool skippedEyeInside() const { return mSkippedEyeInside; }
+
 private:
     std::string mName;
     ShaderLibrary& mShaders;
     GpuScene& mScene;
     const FrameParams& mFrame;
     HullSettings mSettings;
+    std::unique_ptr<GlProgram> mDepthProgram; ///< the model as it is, depth only
+    std::unique_ptr<GlProgram> mHullProgram;  ///< the offset hull
+    std::vector<GlVertexArray> mHullArrays;   ///< positions + hull normals + indices, one per mesh (welded only)
+    std::unique_ptr<GlDepthTexture> mDepth;
+    int mDepthWidth = 0;
+    int mDepthHeight = 0;
+    bool mSkippedEyeInside = false;
 };
 
 } // namespace inkgraph

@@ -128,6 +128,51 @@ TEST(ShaderLibrary, CompileErrorNamesFileAndDefines) {
     std::filesystem::remove_all(directory);
 }
 
+TEST(ShaderLibrary, GeometryStageIsOptionalAndGetsItsDefine) {
+    test::sharedGlContext();
+    const std::filesystem::path directory =
+        std::filesystem::temp_directory_path() / ("inkgraph-geometry-test-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(directory / "geo");
+    // The snippet defines its function only in the geometry stage: the program links only if that stage got
+    // INKGRAPH_GEOMETRY_STAGE and the others did not (two definitions would be a compile error elsewhere).
+    std::ofstream(directory / "geo" / "corner.glsl")
+        << "#ifdef INKGRAPH_GEOMETRY_STAGE\nvec4 corner(int i) { return vec4(i == 1 ? 3.0 : -1.0, i == 2 ? 3.0 : "
+           "-1.0, 0.0, 1.0); }\n#endif\n#ifdef INKGRAPH_FRAGMENT_STAGE\nconst float kValue = 1.0;\n#endif\n";
+    std::ofstream(directory / "geo" / "point.vert") << "void main() { gl_Position = vec4(0.0, 0.0, 0.0, 1.0); }\n";
+    std::ofstream(directory / "geo" / "cover.geom")
+        << "layout(points) in;\nlayout(triangle_strip, max_vertices = 3) out;\n"
+           "void main() { for (int i = 0; i < 3; ++i) { gl_Position = corner(i); EmitVertex(); } EndPrimitive(); }\n";
+    std::ofstream(directory / "geo" / "bad.geom") << "layout(points) in;\nvoid main() { EmitVertex(undefined); }\n";
+    std::ofstream(directory / "geo" / "one.frag") << "out float value;\nvoid main() { value = kValue; }\n";
+    ShaderLibrary library(directory);
+    // A single point only becomes a full-screen triangle through the geometry stage.
+    GlProgram program = library.build({"geo", "geo/point.vert", "geo/one.frag", {}, {"geo/corner.glsl"},
+                                       "geo/cover.geom"});
+    GlTexture target(Format::R8, 8, 8, "geometry target");
+    GlFramebuffer framebuffer("geometry test");
+    framebuffer.attachColor(0, target);
+    framebuffer.finish({0});
+    framebuffer.bind();
+    glViewport(0, 0, 8, 8);
+    program.use();
+    GlVertexArray empty("geometry test points");
+    empty.bind();
+    glDrawArrays(GL_POINTS, 0, 1);
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    const cv::Mat image = readTexture(target);
+    EXPECT_EQ(cv::countNonZero(image == 255), 64);
+
+    try {
+        library.build({"geo bad", "geo/point.vert", "geo/one.frag", {}, {"geo/corner.glsl"}, "geo/bad.geom"});
+        FAIL() << "a broken geometry shader must throw";
+    } catch (const std::runtime_error& error) {
+        EXPECT_NE(std::string(error.what()).find("'geo/bad.geom'"), std::string::npos) << error.what();
+    }
+    std::filesystem::remove_all(directory);
+}
+
 TEST(ShaderLibrary, MissingDirectoryIsAnErrorOnFirstBuild) {
     test::sharedGlContext();
     ShaderLibrary library("/nonexistent/inkgraph/shaders");

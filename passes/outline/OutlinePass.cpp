@@ -1,0 +1,112 @@
+#include "passes/outline/OutlinePass.h"
+
+#include "gl/GraphExecutor.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace inkgraph {
+
+OutlinePass::OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
+                         float widthPixels, SceneOrientation* orientation)
+    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mWidthPixels(widthPixels),
+      mOrientation(orientation) {
+    if (!std::isfinite(mWidthPixels) || mWidthPixels < 0.0f)
+        throw std::invalid_argument("OutlinePass(): pass '" + mName + "': 'widthPixels' must be finite and >= 0, got " +
+                                    std::to_string(mWidthPixels));
+}
+
+void OutlinePass::declare(PassBuilder& builder) const { builder.write("lines", {Format::R8}); }
+
+void OutlinePass::prepare(PassContext&) {
+    if (!mDepthProgram)
+        mDepthProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName + " model depth", "outline/outline.vert", "outline/outline.frag", {}, {}}));
+    if (!mLineProgram)
+        mLineProgram = std::make_unique<GlProgram>(mShaders.build(
+            {mName + " back edges", "outline/outline.vert", "outline/outline.frag", {}, {}, "outline/outline.geom"}));
+    mScene.meshes();
+    if (usesCpuSets()) mOrientation->sets(); // marks and uploads outside the timed execute()
+}
+
+void OutlinePass::execute(PassContext& context) {
+    GlPassContext& gl = GlPassContext::from(context);
+    GlTexture& lines = gl.outputTexture("lines");
+    const int width = gl.widthOf("lines");
+    const int height = gl.heightOf("lines");
+    // The depth attachment is the pass's own; kept between runs of the same size (batches, benchmarks).
+    if (!mDepth || mDepthWidth != width || mDepthHeight != height) {
+        mDepth.reset();
+        mDepth = std::make_unique<GlDepthTexture>(width, height, mName + " model depth");
+        mDepthWidth = width;
+        mDepthHeight = height;
+    }
+    GlFramebuffer framebuffer(mName);
+    framebuffer.attachColor(0, lines);
+    framebuffer.attachDepth(*mDepth);
+    framebuffer.finish({0});
+    framebuffer.bind();
+    glViewport(0, 0, width, height);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearBufferfv(GL_COLOR, 0, zero);
+    const float farDepth = 1.0f;
+    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+
+    mSkippedEyeInside = mScene.containsPoint(mFrame.camera.eye);
+    if (mSkippedEyeInside) {
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        return;
+    }
+
+    const glm::mat4 viewFromModel = mFrame.viewFromModel();
+    const glm::mat4 clipFromView = mFrame.clipFromView();
+    const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE); // the depth draw takes every face; the line draw culls in its geometry shader
+
+    // 1. The model's depth: every face (open meshes show their insides through holes), no colour.
+    glDepthFunc(GL_LESS);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    mDepthProgram->use();
+    glUniformMatrix4fv(mDepthProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
+    glUniformMatrix4fv(mDepthProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    for (const GpuScene::DrawMesh& mesh : meshes) {
+        mesh.vertexArray.bind();
+        glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+
+    // 2. Back-face edges as quads 2 x widthPixels wide. LEQUAL: a silhouette edge lies exactly on the model's depth.
+    glDepthFunc(GL_LEQUAL);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_FALSE);
+    mLineProgram->use();
+    glUniformMatrix4fv(mLineProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
+    glUniformMatrix4fv(mLineProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    glUniform2f(mLineProgram->uniform("viewportSize"), float(width), float(height));
+    glUniform1f(mLineProgram->uniform("halfWidthPixels"), mWidthPixels);
+    if (usesCpuSets()) {
+        // The CPU marked the back faces: draw them all, no facing test.
+        glUniform1i(mLineProgram->uniform("cullFrontFaces"), 0);
+        for (const SceneOrientation::MeshSets& sets : mOrientation->sets()) {
+            sets.backArray.bind();
+            glDrawElements(GL_TRIANGLES, sets.backIndexCount, GL_UNSIGNED_INT, nullptr);
+        }
+    } else {
+        glUniform1i(mLineProgram->uniform("cullFrontFaces"), 1);
+        for (const GpuScene::DrawMesh& mesh : meshes) {
+            mesh.vertexArray.bind();
+            glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        }
+    }
+
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+} // namespace inkgraph

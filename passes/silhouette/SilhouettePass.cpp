@@ -1,0 +1,127 @@
+#include "passes/silhouette/SilhouettePass.h"
+
+#include "gl/GraphExecutor.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace inkgraph {
+namespace {
+
+void requireWidth(const std::string& pass, const char* what, float value) {
+    if (!std::isfinite(value) || value < 0.0f)
+        throw std::invalid_argument("SilhouettePass(): pass '" + pass + "': '" + what +
+                                    "' must be finite and >= 0, got " + std::to_string(value));
+}
+
+} // namespace
+
+SilhouettePass::SilhouettePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
+                               HullSettings settings)
+    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSettings(settings) {
+    requireWidth(mName, "widthPixels", mSettings.widthPixels);
+    if (mSettings.objectWidth) requireWidth(mName, "objectWidth", *mSettings.objectWidth);
+}
+
+void SilhouettePass::declare(PassBuilder& builder) const { builder.write("lines", {Format::R8}); }
+
+void SilhouettePass::prepare(PassContext&) {
+    if (!mDepthProgram)
+        mDepthProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName + " model depth", "silhouette/hull.vert", "silhouette/hull.frag", {}, {}}));
+    if (!mHullProgram) {
+        const std::string offset = mSettings.objectWidth ? "HULL_OBJECT_WIDTH 1" : "HULL_SCREEN_WIDTH 1";
+        mHullProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName + " hull", "silhouette/hull.vert", "silhouette/hull.frag", {offset}, {}}));
+    }
+    const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
+    if (mSettings.weldNormals && mHullArrays.empty()) {
+        for (std::size_t index = 0; index < meshes.size(); ++index) {
+            GlVertexArray array(mName + " hull of mesh " + std::to_string(index));
+            array.setVec3Attribute(GpuScene::kPositionLocation, meshes[index].positions);
+            array.setVec3Attribute(GpuScene::kNormalLocation, mScene.hullNormals(index));
+            array.setIndexBuffer(meshes[index].indices);
+            mHullArrays.push_back(std::move(array));
+        }
+    }
+}
+
+void SilhouettePass::execute(PassContext& context) {
+    GlPassContext& gl = GlPassContext::from(context);
+    GlTexture& lines = gl.outputTexture("lines");
+    const int width = gl.widthOf("lines");
+    const int height = gl.heightOf("lines");
+    // The depth attachment is the pass's own; kept between runs of the same size (batches, benchmarks).
+    if (!mDepth || mDepthWidth != width || mDepthHeight != height) {
+        mDepth.reset();
+        mDepth = std::make_unique<GlDepthTexture>(width, height, mName + " model depth");
+        mDepthWidth = width;
+        mDepthHeight = height;
+    }
+    GlFramebuffer framebuffer(mName);
+    framebuffer.attachColor(0, lines);
+    framebuffer.attachDepth(*mDepth);
+    framebuffer.finish({0});
+    framebuffer.bind();
+    glViewport(0, 0, width, height);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearBufferfv(GL_COLOR, 0, zero);
+    const float farDepth = 1.0f;
+    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+
+    mSkippedEyeInside = mScene.containsPoint(mFrame.camera.eye);
+    if (mSkippedEyeInside) {
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        return;
+    }
+
+    const glm::mat4 viewFromModel = mFrame.viewFromModel();
+    const glm::mat3 viewNormalFromModel = glm::inverseTranspose(glm::mat3(viewFromModel));
+    const glm::mat4 clipFromView = mFrame.clipFromView();
+    const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_BLEND);
+
+    // 1. The model's depth: every face (open meshes show their insides through holes), no colour.
+    glDisable(GL_CULL_FACE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    mDepthProgram->use();
+    glUniformMatrix4fv(mDepthProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
+    glUniformMatrix4fv(mDepthProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    for (const GpuScene::DrawMesh& mesh : meshes) {
+        mesh.vertexArray.bind();
+        glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+
+    // 2. The hull's back faces where they are nearer than the model (LESS: where the hull meets the model's own
+    // depth, the model wins). The depth stays the model's, so hulls of different meshes never hide each other.
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_FALSE);
+    mHullProgram->use();
+    glUniformMatrix4fv(mHullProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
+    glUniformMatrix3fv(mHullProgram->uniform("viewNormalFromModel"), 1, GL_FALSE,
+                       glm::value_ptr(viewNormalFromModel));
+    glUniformMatrix4fv(mHullProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    glUniform2f(mHullProgram->uniform("viewportSize"), float(width), float(height));
+    glUniform1f(mHullProgram->uniform("widthPixels"), mSettings.widthPixels);
+    glUniform1f(mHullProgram->uniform("objectWidth"), mSettings.objectWidth.value_or(0.0f));
+    for (std::size_t index = 0; index < meshes.size(); ++index) {
+        (mSettings.weldNormals ? mHullArrays[index] : meshes[index].vertexArray).bind();
+        glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+} // namespace inkgraph

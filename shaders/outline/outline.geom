@@ -1,0 +1,63 @@
+// Back-face outline: one triangle in, its three edges out as screen-space quads 2 x halfWidthPixels wide with
+// square caps (core profile has no dependable wide lines, and quads keep the width at every angle).
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 12) out;
+
+uniform vec2 viewportSize;    // pixels
+uniform float halfWidthPixels;
+uniform bool cullFrontFaces;  // false when the CPU already chose the back faces
+
+in vec3 viewPosition[];
+
+// An edge is clipped to the near plane (clip z >= -w), where w equals the near distance, so w stays positive; the
+// floor only guards a degenerate projection.
+const float kMinClipW = 1e-7;
+
+// Clips the segment a-b to the near plane's visible side; false when none of it is visible.
+bool clipToNearPlane(inout vec4 a, inout vec4 b) {
+    float distanceA = a.z + a.w;
+    float distanceB = b.z + b.w;
+    if (distanceA < 0.0 && distanceB < 0.0) return false;
+    if (distanceA < 0.0) {
+        a = mix(a, b, distanceA / (distanceA - distanceB));
+    } else if (distanceB < 0.0) {
+        b = mix(b, a, distanceB / (distanceB - distanceA));
+    }
+    return a.w > kMinClipW && b.w > kMinClipW;
+}
+
+void emitCorner(vec4 clip, vec2 offsetPixels) {
+    // Offset in NDC, times w so the divide leaves it intact; z and w stay the endpoint's, so depth follows the edge.
+    gl_Position = vec4(clip.xy + offsetPixels * (2.0 / viewportSize) * clip.w, clip.z, clip.w);
+    EmitVertex();
+}
+
+void emitEdgeQuad(vec4 a, vec4 b) {
+    if (!clipToNearPlane(a, b)) return;
+    vec2 pixelsA = a.xy / a.w * 0.5 * viewportSize;
+    vec2 pixelsB = b.xy / b.w * 0.5 * viewportSize;
+    vec2 along = pixelsB - pixelsA;
+    float edgeLength = length(along);
+    // An edge seen end-on (along the line of sight) becomes a square around its point.
+    vec2 direction = edgeLength > 1e-4 ? along / edgeLength : vec2(1.0, 0.0);
+    vec2 lengthwise = direction * halfWidthPixels;
+    vec2 across = vec2(-direction.y, direction.x) * halfWidthPixels;
+    emitCorner(a, -lengthwise - across);
+    emitCorner(a, -lengthwise + across);
+    emitCorner(b, lengthwise - across);
+    emitCorner(b, lengthwise + across);
+    EndPrimitive();
+}
+
+void main() {
+    if (cullFrontFaces) {
+        // Front-facing: the outward (counter-clockwise) normal points toward the eye at the view-space origin. Exact
+        // under perspective and independent of clipping, unlike a screen-space winding test.
+        vec3 normal = cross(viewPosition[1] - viewPosition[0], viewPosition[2] - viewPosition[0]);
+        vec3 middle = (viewPosition[0] + viewPosition[1] + viewPosition[2]) / 3.0;
+        if (dot(normal, middle) < 0.0) return;
+    }
+    emitEdgeQuad(gl_in[0].gl_Position, gl_in[1].gl_Position);
+    emitEdgeQuad(gl_in[1].gl_Position, gl_in[2].gl_Position);
+    emitEdgeQuad(gl_in[2].gl_Position, gl_in[0].gl_Position);
+}

@@ -1,0 +1,14 @@
+// Back-face outline: the model in view and clip space. Alone it draws the model's depth; the geometry stage turns
+// back faces into edge quads.
+layout(location = 0) in vec3 inPosition;
+
+uniform mat4 viewFromModel;
+uniform mat4 clipFromView;
+
+out vec3 viewPosition;
+
+void main() {
+    vec4 position = viewFromModel * vec4(inPosition, 1.0);
+    viewPosition = position.xyz;
+    gl_Position = clipFromView * position;
+}
