@@ -213,7 +213,9 @@ TEST(GlTexture, AllocationFailureIsAnErrorNotACrash) {
     } catch (const GlOutOfMemoryError&) {
         outOfMemory = true;
     }
-    if (renderer.find("llvmpipe") != std::string::npos) EXPECT_TRUE(outOfMemory) << renderer;
+    if (renderer.find("llvmpipe") != std::string::npos) {
+        EXPECT_TRUE(outOfMemory) << renderer;
+    }
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)) << "the error was consumed by the check";
 }
 
