@@ -2,7 +2,7 @@
 
 #include "passes/composite/CompositePass.h"
 #include "passes/gbuffer/GBufferPass.h"
-#include "passes/lambert/LambertPass.h"
+#include "passes/shade/ShadePass.h"
 
 namespace inkgraph {
 
@@ -21,9 +21,12 @@ std::vector<Pass*> StillGraph::mutableView() const {
 StillGraph buildStillGraph(ShadingMode shading, ShaderLibrary& shaders, GpuScene& gpuScene, const FrameParams& frame) {
     StillGraph graph;
     graph.passes.push_back(std::make_unique<GBufferPass>("gbuffer", shaders, gpuScene, frame));
+    // Forward shading draws the meshes itself: the G-buffer runs only when something requests one of its fields.
+    ShadeSettings lambert;
+    lambert.model = ShadingModel::Lambert;
     graph.passes.push_back(
-        std::make_unique<LambertPass>("lambert", shaders, frame, "gbuffer.normal", "gbuffer.baseColor"));
-    if (shading == ShadingMode::Lambert) graph.shadingResource = "lambert.color";
+        std::make_unique<ShadePass>("shade", shaders, gpuScene, frame, lambert, std::nullopt, nullptr));
+    if (shading == ShadingMode::Lambert) graph.shadingResource = "shade.color";
     graph.passes.push_back(std::make_unique<CompositePass>("composite", frame, graph.shadingResource));
     return graph;
 }

@@ -16,7 +16,7 @@ namespace inkgraph {
 
 struct StillGraph {
     std::vector<std::unique_ptr<Pass>> passes;
-    std::string shadingResource; ///< the colour the composite reads ("lambert.color"), or empty for --shading none
+    std::string shadingResource; ///< the colour the composite reads ("shade.color"), or empty for --shading none
     std::string finalResource = "composite.final";
 
     std::vector<const Pass*> view() const;

@@ -101,8 +101,8 @@ TEST(DumpFileName, FixedNamesForTheIssueFiles) {
     EXPECT_EQ(dumpFileName("gbuffer.wVec", true, ""), "w.exr");
     EXPECT_EQ(dumpFileName("gbuffer.nDotV", true, ""), "ndotv.exr");
     EXPECT_EQ(dumpFileName("gbuffer.depth", true, ""), "depth.exr");
-    EXPECT_EQ(dumpFileName("lambert.color", false, "lambert.color"), "shading.png");
-    EXPECT_EQ(dumpFileName("composite.final", false, "lambert.color"), "final.png");
+    EXPECT_EQ(dumpFileName("shade.color", false, "shade.color"), "shading.png");
+    EXPECT_EQ(dumpFileName("composite.final", false, "shade.color"), "final.png");
     EXPECT_EQ(dumpFileName("contour.lines", false, ""), "lines-contour.png");
     EXPECT_EQ(dumpFileName("other.thing", true, ""), "other-thing.exr");
 }
