@@ -83,7 +83,7 @@ bool ShadePass::drawsOrientationSets() const {
 
 std::vector<std::string> ShadePass::defines() const {
     std::vector<std::string> result = {modelDefine(mSettings.model)};
-    if (mSettings.model == ShadingModel::Comic && drawsOrientationSets()) {
+    if (drawsOrientationSets()) {
         result.push_back("SHADE_COORDS 1");
         result.push_back("SHADE_COORD_LOCATION " + std::to_string(SceneOrientation::kShadeCoordLocation));
     } else if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
@@ -158,7 +158,7 @@ void ShadePass::execute(PassContext& context) {
     glUniform1f(program.uniform("ambient"), mSettings.ambient);
     glUniform1f(program.uniform("shininess"), float(mSettings.shininess));
     glUniform1f(program.uniform("specularStrength"), mSettings.specularStrength);
-    if (mSettings.view.constant) {
+    if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
         // V_c is eye -> centre in world space; the shader wants surface -> eye in view space (rotation only).
         const glm::dvec3 towardEye = glm::dmat3(mFrame.camera.viewMatrix()) * -mSettings.view.constantView;
         glUniform3fv(program.uniform("constantTowardEye"), 1, glm::value_ptr(glm::vec3(glm::normalize(towardEye))));
