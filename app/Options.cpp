@@ -308,10 +308,11 @@ Output
   -o, --output FILE      the final picture: .png, .exr, .tif or .jpg
   --size WxH             image size in pixels (default 1024x1024, at most 16384 a side)
   --dump DIR             also write every buffer the plan computed, and manifest.json. What is computed follows
-                         from the request: Lambert needs normal.exr and basecolor.png; add --request 'gbuffer.*'
-                         for view.exr, w.exr (float32 RGBA, alpha = coverage), ndotv.exr, depth.exr (float32),
-                         coverage.png. Also shading.png, final.png, lines-<type>.png. An earlier dump in DIR is
-                         replaced once everything is written; DIR must be new, empty, or hold exactly an earlier dump
+                         from the request: shading draws the meshes itself; add --request 'gbuffer.*' for
+                         normal.exr, view.exr, w.exr (float32 RGBA, alpha = coverage), ndotv.exr, depth.exr
+                         (float32), coverage.png, basecolor.png. Also shading.png, final.png, lines-<type>.png.
+                         An earlier dump in DIR is replaced once everything is written; DIR must be new, empty, or
+                         hold exactly an earlier dump
   --request LIST         compute and keep extra graph outputs, comma-separated: 'gbuffer.wVec', or 'gbuffer.*'
                          for all of them (requesting is what makes a pass compute a buffer; dumping never does)
   --stats FILE.json      timings per pass, culled passes with reasons, scene and GL facts

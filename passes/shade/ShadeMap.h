@@ -21,15 +21,18 @@ struct ShadeMap {
 };
 
 /** N even bands over the half-Lambert axis, levels i/(N-1) (grey). N = 5 is seed 003's cel default
- *  {0, .25, .5, .75, 1} with borders at q = .2, .4, .6, .8. Throws std::invalid_argument unless 2 <= N <= 256. */
+ *  {0, .25, .5, .75, 1} with borders at q = .2, .4, .6, .8. The levels are linear light, stored as their sRGB
+ *  codes (0.25 -> 137) like every 8-bit colour, so the decoded texel times the base colour gives the level.
+ *  Throws std::invalid_argument unless 2 <= N <= 256. */
 ShadeMap makeBandShadeMap(int bands);
 
-/** The default comic map: two tones and a highlight (grey, so the material colour shows through). */
+/** The default comic map: two tones and a highlight (grey, so the material colour shows through). 32 x 32:
+ *  shadow (linear 0.2) where s < 0.25, lit (0.6) elsewhere, highlight (1.0) in the top half, t >= 0.5. */
 ShadeMap makeDefaultComicShadeMap();
 
 /** Checks an image read from `source` (any channel count from 1 to 4, 8-bit) and converts it to a ShadeMap:
- *  grey -> rgb, alpha ignored. Throws std::invalid_argument naming `source` when it is empty, larger than
- *  4096 a side, or (with `requireOneRow`) has more than one row. */
+ *  grey -> rgb, alpha ignored (set to 255). Throws std::invalid_argument naming `source` when it is empty, not
+ *  8-bit, has more than 4 channels, is larger than 4096 a side, or (with `requireOneRow`) has more than one row. */
 ShadeMap shadeMapFromImage(const cv::Mat& image, const std::string& source, bool requireOneRow);
 
 } // namespace inkgraph

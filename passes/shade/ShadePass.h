@@ -18,7 +18,13 @@
  *             with a constant view vector the specular term uses V_c; with a CPU face-orientation method the
  *             front sets are drawn with the per-vertex (s, t) the CPU computed (seed 000, Listing 1)
  *  Shininess 0 gives specular 1 (where n.l > 0); large shininess is evaluated as exp(n log(r.v)) with log(r.v) from
- *  |r - v|^2, so 1e6 gives neither NaN nor speckle. */
+ *  |r - v|^2, so 1e6 gives neither NaN nor speckle (specularTerm in shaders/common/lighting.glsl).
+ *
+ *  Ambient + diffuse is base x (ambient + (1 - ambient) max(n.l, 0)); phong adds specularStrength x specular in white;
+ *  cel and comic multiply the decoded texel with the base colour. Light: FrameParams::towardLightView(). No culling,
+ *  depth LESS: seen from behind (open meshes, holes), interpolated and flat normals turn toward the viewer; gouraud
+ *  lights the vertex normal as stored, so back faces show the lighting of their front side. The flat normal is
+ *  turned toward the eye by geometry (dot with -p), so it does not depend on the render target's y direction. */
 
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
@@ -32,6 +38,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace inkgraph {
 
@@ -48,7 +55,9 @@ struct ShadeSettings {
 class ShadePass : public Pass {
 public:
     /** `shadeMap` is required for cel and comic (a copy is uploaded in prepare()). `orientation` may be null; when it
-     *  uses CPU marking (comic only), the pass draws its front sets. */
+     *  uses CPU marking (comic only), the pass draws its front sets. Throws std::invalid_argument for a missing map,
+     *  a cel map of more than one row, a map that is not CV_8UC4, a negative or non-finite shininess or specular
+     *  strength, an ambient outside [0, 1], or a comic constant view vector that is not unit. */
     ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
               ShadeSettings settings, std::optional<ShadeMap> shadeMap, SceneOrientation* orientation);
     ~ShadePass() override;
@@ -59,6 +68,11 @@ public:
     void execute(PassContext& context) override;
 
 private:
+    /** Draws the front sets of a CPU face-orientation method (comic only) instead of the whole meshes. */
+    bool drawsOrientationSets() const;
+    /** MODEL_* and variant defines for the one program of this pass. */
+    std::vector<std::string> defines() const;
+
     std::string mName;
     ShaderLibrary& mShaders;
     GpuScene& mScene;
@@ -66,8 +80,8 @@ private:
     ShadeSettings mSettings;
     std::optional<ShadeMap> mShadeMap;
     SceneOrientation* mOrientation;
-    std::unique_ptr<GlProgram> mProgram;
-    GLuint mShadeTexture = 0; // owned; replace with an RAII GL texture wrapper in the implementation
+    std::unique_ptr<GlProgram> mProgram; ///< the one program of this model and variant
+    std::unique_ptr<GlTexture> mShadeTexture; ///< the map (cel, comic); GL row 0 is its bottom row, t = 0
     std::unique_ptr<GlDepthTexture> mDepth;
     int mDepthWidth = 0;
     int mDepthHeight = 0;

@@ -136,7 +136,7 @@ TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
     for (const auto& file : manifest["files"]) fileToResource[file["file"]] = file["resource"];
     EXPECT_EQ(fileToResource["normal.exr"], "gbuffer.normal");
     EXPECT_EQ(fileToResource["w.exr"], "gbuffer.wVec");
-    EXPECT_EQ(fileToResource["shading.png"], "lambert.color");
+    EXPECT_EQ(fileToResource["shading.png"], "shade.color");
     EXPECT_EQ(fileToResource["final.png"], "composite.final");
     EXPECT_EQ(manifest["passes"].size(), 3u);
 
@@ -159,9 +159,8 @@ TEST_F(Cli, DumpingNeverChangesWhatRuns) {
     ASSERT_EQ(plain["passes"].size(), dumped["passes"].size());
     for (std::size_t i = 0; i < plain["passes"].size(); ++i)
         EXPECT_EQ(plain["passes"][i]["name"], dumped["passes"][i]["name"]);
-    // Lambert needs only the normal and the base colour: nothing else of the G-buffer is computed or dumped.
-    EXPECT_EQ(listFiles(directory / "d"),
-              (std::vector<std::string>{"basecolor.png", "final.png", "manifest.json", "normal.exr", "shading.png"}));
+    // Shading draws the meshes itself: nothing of the G-buffer is computed or dumped unless requested.
+    EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"final.png", "manifest.json", "shading.png"}));
     EXPECT_EQ(cv::norm(readImage(directory / "a.png"), readImage(directory / "b.png"), cv::NORM_INF), 0.0);
 }
 
@@ -253,7 +252,7 @@ TEST_F(Cli, ShadingNoneCullsTheShadingPassWithAReason) {
         culled.insert(pass["name"].get<std::string>());
         EXPECT_FALSE(pass["reason"].get<std::string>().empty());
     }
-    EXPECT_EQ(culled, (std::set<std::string>{"gbuffer", "lambert"}));
+    EXPECT_EQ(culled, (std::set<std::string>{"gbuffer", "shade"}));
     // Paper only: every pixel white.
     const cv::Mat image = readImage(directory / "a.png");
     EXPECT_EQ(cv::countNonZero(image.reshape(1) != 255), 0);
@@ -265,7 +264,7 @@ TEST_F(Cli, PrintPlanWithoutOutputNeedsNoGl) {
                            "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl.json");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     EXPECT_NE(result.out.find("gbuffer"), std::string::npos);
-    EXPECT_NE(result.out.find("lambert"), std::string::npos);
+    EXPECT_NE(result.out.find("shade"), std::string::npos);
     EXPECT_NE(result.out.find("composite"), std::string::npos);
 }
 

@@ -1,0 +1,186 @@
+#include "passes/shade/ShadePass.h"
+
+#include "gl/GraphExecutor.h"
+#include "gl/Readback.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <opencv2/core.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace inkgraph {
+namespace {
+
+const char* modelName(ShadingModel model) {
+    switch (model) {
+    case ShadingModel::Flat: return "flat";
+    case ShadingModel::Gouraud: return "gouraud";
+    case ShadingModel::Lambert: return "lambert";
+    case ShadingModel::Phong: return "phong";
+    case ShadingModel::Cel: return "cel";
+    case ShadingModel::Comic: return "comic";
+    }
+    throw std::logic_error("modelName(): unknown shading model");
+}
+
+const char* modelDefine(ShadingModel model) {
+    switch (model) {
+    case ShadingModel::Flat: return "MODEL_FLAT 1";
+    case ShadingModel::Gouraud: return "MODEL_GOURAUD 1";
+    case ShadingModel::Lambert: return "MODEL_LAMBERT 1";
+    case ShadingModel::Phong: return "MODEL_PHONG 1";
+    case ShadingModel::Cel: return "MODEL_CEL 1";
+    case ShadingModel::Comic: return "MODEL_COMIC 1";
+    }
+    throw std::logic_error("modelDefine(): unknown shading model");
+}
+
+bool usesShadeMap(ShadingModel model) { return model == ShadingModel::Cel || model == ShadingModel::Comic; }
+
+} // namespace
+
+ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
+                     ShadeSettings settings, std::optional<ShadeMap> shadeMap, SceneOrientation* orientation)
+    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSettings(settings),
+      mShadeMap(std::move(shadeMap)), mOrientation(orientation) {
+    const std::string model = modelName(mSettings.model);
+    if (!std::isfinite(mSettings.shininess) || mSettings.shininess < 0.0)
+        throw std::invalid_argument("ShadePass(): shininess must be finite and >= 0, got " +
+                                    std::to_string(mSettings.shininess));
+    if (!std::isfinite(mSettings.ambient) || mSettings.ambient < 0.0f || mSettings.ambient > 1.0f)
+        throw std::invalid_argument("ShadePass(): ambient must be within [0, 1], got " +
+                                    std::to_string(mSettings.ambient));
+    if (!std::isfinite(mSettings.specularStrength) || mSettings.specularStrength < 0.0f)
+        throw std::invalid_argument("ShadePass(): specular strength must be finite and >= 0, got " +
+                                    std::to_string(mSettings.specularStrength));
+    if (usesShadeMap(mSettings.model)) {
+        if (!mShadeMap) throw std::invalid_argument("ShadePass(): the '" + model + "' model needs a shade map");
+        const cv::Mat& texels = mShadeMap->texels;
+        if (texels.empty() || texels.type() != CV_8UC4)
+            throw std::invalid_argument("ShadePass(): shade map '" + mShadeMap->source +
+                                        "' must be a non-empty CV_8UC4 image (see shadeMapFromImage())");
+        if (mSettings.model == ShadingModel::Cel && !mShadeMap->isOneDimensional())
+            throw std::invalid_argument("ShadePass(): the 'cel' model needs a one-row shade map, '" +
+                                        mShadeMap->source + "' has " + std::to_string(texels.rows) + " rows");
+    }
+    if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
+        const glm::dvec3& direction = mSettings.view.constantView;
+        const double length = glm::length(direction);
+        if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6)
+            throw std::invalid_argument("ShadePass(): the constant view vector must be a unit vector");
+    }
+}
+
+ShadePass::~ShadePass() = default;
+
+void ShadePass::declare(PassBuilder& builder) const { builder.write("color", {Format::RGBA8}); }
+
+bool ShadePass::drawsOrientationSets() const {
+    return mSettings.model == ShadingModel::Comic && mOrientation != nullptr && mOrientation->usesCpuMarking();
+}
+
+std::vector<std::string> ShadePass::defines() const {
+    std::vector<std::string> result = {modelDefine(mSettings.model)};
+    if (drawsOrientationSets()) {
+        result.push_back("SHADE_COORDS 1");
+        result.push_back("SHADE_COORD_LOCATION " + std::to_string(SceneOrientation::kShadeCoordLocation));
+    } else if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
+        result.push_back("VIEW_CONSTANT 1");
+    }
+    return result;
+}
+
+void ShadePass::prepare(PassContext&) {
+    if (!mProgram)
+        mProgram = std::make_unique<GlProgram>(mShaders.build(
+            {mName, "shade/shade.vert", "shade/shade.frag", defines(), {"common/color.glsl", "common/lighting.glsl"}}));
+    if (usesShadeMap(mSettings.model) && !mShadeTexture) {
+        // Nearest, clamped to the edge (every GlTexture is). uploadImage() turns the image bottom-up, so GL row 0 is
+        // the map's bottom row, t = 0, and the shader indexes rows by t directly.
+        const cv::Mat& texels = mShadeMap->texels;
+        mShadeTexture = std::make_unique<GlTexture>(Format::RGBA8, texels.cols, texels.rows,
+                                                    mName + " shade map '" + mShadeMap->source + "'");
+        uploadImage(*mShadeTexture, texels);
+    }
+    mScene.meshes();
+}
+
+void ShadePass::execute(PassContext& context) {
+    GlPassContext& gl = GlPassContext::from(context);
+    const int width = gl.widthOf("color");
+    const int height = gl.heightOf("color");
+    GlFramebuffer framebuffer(mName);
+    framebuffer.attachColor(0, gl.outputTexture("color"));
+    // The depth attachment is the pass's own; kept between runs of the same size (batches, benchmarks).
+    if (!mDepth || mDepthWidth != width || mDepthHeight != height) {
+        mDepth.reset();
+        mDepth = std::make_unique<GlDepthTexture>(width, height, mName + " depth test");
+        mDepthWidth = width;
+        mDepthHeight = height;
+    }
+    framebuffer.attachDepth(*mDepth);
+    framebuffer.finish({0});
+
+    // CPU face orientation (comic only): marked, lit and uploaded on the first call, so it counts as this pass's
+    // work, like the GPU's own culling would.
+    const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
+    const std::vector<SceneOrientation::MeshSets>* sets = nullptr;
+    if (drawsOrientationSets()) {
+        sets = &mOrientation->sets();
+        if (sets->size() != meshes.size())
+            throw std::logic_error("ShadePass::execute(): the scene orientation has " + std::to_string(sets->size()) +
+                                   " mesh sets for " + std::to_string(meshes.size()) + " meshes");
+    }
+
+    framebuffer.bind();
+    glViewport(0, 0, width, height);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearBufferfv(GL_COLOR, 0, zero);
+    const float farDepth = 1.0f;
+    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_CULL_FACE); // two-sided: open meshes show their insides through holes
+    glDisable(GL_BLEND);
+
+    const glm::mat4 viewFromModel = mFrame.viewFromModel();
+    const glm::mat3 viewNormalFromModel = glm::inverseTranspose(glm::mat3(viewFromModel));
+    const glm::mat4 clipFromView = mFrame.clipFromView();
+    GlProgram& program = *mProgram;
+    program.use();
+    glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
+    glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
+    glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    glUniform3fv(program.uniform("towardLightView"), 1, glm::value_ptr(mFrame.towardLightView()));
+    glUniform1f(program.uniform("ambient"), mSettings.ambient);
+    glUniform1f(program.uniform("shininess"), float(mSettings.shininess));
+    glUniform1f(program.uniform("specularStrength"), mSettings.specularStrength);
+    if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
+        // V_c is eye -> centre in world space; the shader wants surface -> eye in view space (rotation only).
+        const glm::dvec3 towardEye = glm::dmat3(mFrame.camera.viewMatrix()) * -mSettings.view.constantView;
+        glUniform3fv(program.uniform("constantTowardEye"), 1, glm::value_ptr(glm::vec3(glm::normalize(towardEye))));
+    }
+    if (mShadeTexture) glBindTextureUnit(0, mShadeTexture->id());
+
+    const GLint baseColorLocation = program.uniform("baseColor");
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+        glUniform4fv(baseColorLocation, 1, glm::value_ptr(meshes[i].baseColor));
+        if (sets) {
+            const SceneOrientation::MeshSets& set = (*sets)[i];
+            set.frontArray.bind();
+            glDrawElements(GL_TRIANGLES, set.frontIndexCount, GL_UNSIGNED_INT, nullptr);
+        } else {
+            meshes[i].vertexArray.bind();
+            glDrawElements(GL_TRIANGLES, meshes[i].indexCount, GL_UNSIGNED_INT, nullptr);
+        }
+    }
+    glBindVertexArray(0);
+    if (mShadeTexture) glBindTextureUnit(0, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDisable(GL_DEPTH_TEST);
+}
+
+} // namespace inkgraph

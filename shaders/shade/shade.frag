@@ -1,0 +1,93 @@
+// Forward shading, one model per program (MODEL_* define from ShadePass): flat, gouraud, lambert, phong, cel, comic
+// (docs/algorithms.md §1, §3). Colour is computed in linear RGB and written sRGB-encoded, alpha 1 on the model.
+in vec3 viewPosition;
+in vec3 viewNormal;
+#ifdef MODEL_GOURAUD
+in vec3 vertexColor;
+#endif
+#ifdef SHADE_COORDS
+in vec2 shadeCoord;
+#endif
+
+uniform vec4 baseColor;       // linear
+uniform vec3 towardLightView; // unit, view space
+uniform float ambient;          // flat, gouraud, lambert, phong
+uniform float shininess;        // phong, comic
+uniform float specularStrength; // phong: weight of the white specular
+#ifdef VIEW_CONSTANT
+uniform vec3 constantTowardEye; // comic: -V_c in view space, unit (seed 000 §3.5)
+#endif
+#if defined(MODEL_CEL) || defined(MODEL_COMIC)
+// sRGB texels, nearest, clamped; GL row 0 is the map image's bottom row (t = 0). Cel maps have one row.
+layout(binding = 0) uniform sampler2D shadeMap;
+#endif
+
+layout(location = 0) out vec4 outColor;
+
+// The interpolated normal, renormalised and, seen from behind (open meshes, holes), turned to the viewer's side.
+vec3 shadingNormal() {
+    float normalLength = length(viewNormal);
+    vec3 n = normalLength > 0.0 ? viewNormal / normalLength : vec3(0.0, 0.0, 1.0);
+    return gl_FrontFacing ? n : -n;
+}
+
+// Unit vector from the surface to the eye (the view-space origin).
+vec3 towardEye() {
+    float distanceToEye = length(viewPosition);
+    return distanceToEye > 0.0 ? -viewPosition / distanceToEye : vec3(0.0, 0.0, 1.0);
+}
+
+#if defined(MODEL_CEL) || defined(MODEL_COMIC)
+// Texel i = min(floor(u N), N - 1) of an axis of N texels; u = 1 stays on the last texel.
+int shadeMapIndex(float u, int count) {
+    return clamp(int(floor(u * float(count))), 0, count - 1);
+}
+
+// Linear colour of the texel at (u, v); v is ignored by one-row maps.
+vec3 shadeMapColor(vec2 uv) {
+    ivec2 size = textureSize(shadeMap, 0);
+    ivec2 texel = ivec2(shadeMapIndex(uv.x, size.x), shadeMapIndex(uv.y, size.y));
+    return decodeSrgb(texelFetch(shadeMap, texel, 0).rgb);
+}
+#endif
+
+void main() {
+    vec3 l = towardLightView;
+    vec3 rgb;
+#if defined(MODEL_FLAT)
+    // Seed 003 eq. 2, normalised; turned toward the viewer by geometry, so a y-flipped target cannot invert it.
+    vec3 faceNormal = cross(dFdx(viewPosition), dFdy(viewPosition));
+    float faceNormalLength = length(faceNormal);
+    vec3 n = faceNormalLength > 0.0 ? faceNormal / faceNormalLength : vec3(0.0, 0.0, 1.0);
+    if (dot(n, -viewPosition) < 0.0) n = -n;
+    rgb = baseColor.rgb * diffuseLighting(n, l, ambient);
+#elif defined(MODEL_GOURAUD)
+    rgb = vertexColor;
+#elif defined(MODEL_LAMBERT)
+    rgb = baseColor.rgb * diffuseLighting(shadingNormal(), l, ambient);
+#elif defined(MODEL_PHONG)
+    vec3 n = shadingNormal();
+    float nDotL = dot(n, l);
+    float specular = nDotL > 0.0 ? specularTerm(reflect(-l, n), towardEye(), shininess) : 0.0;
+    rgb = baseColor.rgb * diffuseLighting(n, l, ambient) + vec3(specularStrength * specular);
+#elif defined(MODEL_CEL)
+    rgb = shadeMapColor(vec2(halfLambert(shadingNormal(), l), 0.0)) * baseColor.rgb;
+#elif defined(MODEL_COMIC)
+#ifdef SHADE_COORDS
+    vec2 st = shadeCoord;
+#else
+    vec3 n = shadingNormal();
+    float nDotL = dot(n, l);
+#ifdef VIEW_CONSTANT
+    vec3 v = constantTowardEye;
+#else
+    vec3 v = towardEye();
+#endif
+    vec2 st = vec2(max(nDotL, 0.0), nDotL > 0.0 ? specularTerm(reflect(-l, n), v, shininess) : 0.0);
+#endif
+    rgb = shadeMapColor(st) * baseColor.rgb;
+#else
+#error "shade.frag needs one MODEL_* define"
+#endif
+    outColor = vec4(encodeSrgb(rgb), 1.0);
+}
