@@ -87,15 +87,14 @@ void OutlinePass::execute(PassContext& context) {
     glUniformMatrix4fv(mLineProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
     glUniform2f(mLineProgram->uniform("viewportSize"), float(width), float(height));
     glUniform1f(mLineProgram->uniform("halfWidthPixels"), mWidthPixels);
+    // With a CPU method its back sets decide what is submitted (seed 000's saving); they hold every true back face,
+    // and the geometry shader's facing test drops the front-facing "intermediate" ones, so the outline is the same.
     if (usesCpuSets()) {
-        // The CPU marked the back faces: draw them all, no facing test.
-        glUniform1i(mLineProgram->uniform("cullFrontFaces"), 0);
         for (const SceneOrientation::MeshSets& sets : mOrientation->sets()) {
             sets.backArray.bind();
             glDrawElements(GL_TRIANGLES, sets.backIndexCount, GL_UNSIGNED_INT, nullptr);
         }
     } else {
-        glUniform1i(mLineProgram->uniform("cullFrontFaces"), 1);
         for (const GpuScene::DrawMesh& mesh : meshes) {
             mesh.vertexArray.bind();
             glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);

@@ -10,7 +10,8 @@
  *  | <name>.lines  | r8     | required | 255 where the outline shows, else 0               |
  *
  *  `widthPixels` is the visible width outside the silhouette: the wireframe is drawn twice as wide. With a CPU
- *  face-orientation method (SceneOrientation) the back sets it marked are drawn; otherwise the GPU culls.
+ *  face-orientation method (SceneOrientation) only the back sets it marked are submitted (they hold every true back
+ *  face); the geometry shader's exact facing test decides in both cases.
  *
  *  Two draws with the pass's own depth attachment: the model's depth (every face, no colour), then the back faces,
  *  each triangle turned into three edge quads by a geometry shader, depth test LEQUAL against the model, writing

@@ -5,7 +5,6 @@ layout(triangle_strip, max_vertices = 12) out;
 
 uniform vec2 viewportSize;    // pixels
 uniform float halfWidthPixels;
-uniform bool cullFrontFaces;  // false when the CPU already chose the back faces
 
 in vec3 viewPosition[];
 
@@ -50,13 +49,12 @@ void emitEdgeQuad(vec4 a, vec4 b) {
 }
 
 void main() {
-    if (cullFrontFaces) {
-        // Front-facing: the outward (counter-clockwise) normal points toward the eye at the view-space origin. Exact
-        // under perspective and independent of clipping, unlike a screen-space winding test.
-        vec3 normal = cross(viewPosition[1] - viewPosition[0], viewPosition[2] - viewPosition[0]);
-        vec3 middle = (viewPosition[0] + viewPosition[1] + viewPosition[2]) / 3.0;
-        if (dot(normal, middle) < 0.0) return;
-    }
+    // Front-facing: the outward (counter-clockwise) normal points toward the eye at the view-space origin. Exact
+    // under perspective and independent of clipping, unlike a screen-space winding test. Made for the CPU's back
+    // sets too: they also hold Listing 1's "intermediate" front-facing triangles, whose edges would hatch the surface.
+    vec3 normal = cross(viewPosition[1] - viewPosition[0], viewPosition[2] - viewPosition[0]);
+    vec3 middle = (viewPosition[0] + viewPosition[1] + viewPosition[2]) / 3.0;
+    if (dot(normal, middle) < 0.0) return;
     emitEdgeQuad(gl_in[0].gl_Position, gl_in[1].gl_Position);
     emitEdgeQuad(gl_in[1].gl_Position, gl_in[2].gl_Position);
     emitEdgeQuad(gl_in[2].gl_Position, gl_in[0].gl_Position);
