@@ -4,9 +4,9 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 model=${1:-"$root/models/spot_c3d.obj"}
-"$root/build/inkgraph_make_shademaps" "$root/shademaps"
+"$root/build/shademaps/inkgraph_make_shademaps" "$root/shademaps"
 mkdir -p "$root/shademaps/renders"
-view=(--size 320x320 --eye 2.4,1.0,1.9 --target 0,0.05,0 --fov 32 --light 0.3,0.9,0.6 --lines outline -q)
+view=(--size 320x320 --eye 3.1,1.2,2.6 --target 0,-0.08,0 --fov 30 --light 0.3,0.9,0.6 --lines outline -q)
 for map in "$root"/shademaps/*.png; do
     name=$(basename "$map" .png)
     if [ "$(head -c 24 "$map" | tail -c 4 | od -An -tu1 | tr -s ' ')" = " 0 0 0 1" ]; then

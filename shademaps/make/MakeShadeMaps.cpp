@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -35,16 +36,17 @@ Color mix(const Color& a, const Color& b, double weight) {
     return {a[0] + (b[0] - a[0]) * weight, a[1] + (b[1] - a[1]) * weight, a[2] + (b[2] - a[2]) * weight};
 }
 
-/** 8x8 ordered-dither thresholds in (0, 1): the recursive Bayer pattern, whose 2x2 cell is [0 2; 3 1]. The lowest
- *  coordinate bits give the most significant base-4 digit, so neighbouring texels differ most. */
-double bayerThreshold(int column, int row) {
-    int value = 0;
-    for (int bit = 0; bit < 3; ++bit) {
-        const int x = (column >> bit) & 1;
-        const int y = (row >> bit) & 1;
-        value = (value << 2) | ((x ^ y) << 1) | y;
-    }
-    return (value + 0.5) / 64.0;
+/** A threshold in (0, 1) per texel from an integer hash: white noise, so neighbouring columns (which neighbouring
+ *  pixels of a smooth surface index) switch independently, and the dots do not line up into the moire stripes an
+ *  ordered (Bayer) pattern draws along the iso-lines of n.l. */
+double noiseThreshold(int column, int row) {
+    std::uint32_t hash = std::uint32_t(column) * 73856093u ^ std::uint32_t(row) * 19349663u;
+    hash ^= hash >> 16;
+    hash *= 0x7feb352du;
+    hash ^= hash >> 15;
+    hash *= 0x846ca68bu;
+    hash ^= hash >> 16;
+    return (double(hash & 0xffffffu) + 0.5) / double(1u << 24);
 }
 
 const std::vector<MapSpec>& mapSpecs() {
@@ -79,13 +81,13 @@ const std::vector<MapSpec>& mapSpecs() {
              if (t > 0.5 && s > 0.35) return Color{1.0, 1.0, 1.0};
              return s > 0.35 ? Color{0.78, 0.92, 1.0} : Color{0.16, 0.36, 0.44};
          }},
-        // Near-stippling: black dots on white, denser where darker, by ordered dither of the tone; the
-        // highlight is clean paper.
-        {"near-stippling.png", 256, 64,
+        // Near-stippling (seed 000 Figure 9d): black dots on white, denser where darker, by random thresholds on the
+        // tone; the highlight is clean paper. Wide, so the dots are small where n.l changes quickly.
+        {"near-stippling.png", 1024, 64,
          [](double s, double t, int column, int row) {
              if (t > 0.5) return grey(1.0);
-             const double tone = 0.15 + 0.85 * s;
-             return grey(tone > bayerThreshold(column, row) ? 1.0 : 0.08);
+             const double tone = 0.1 + 0.9 * s;
+             return grey(tone > noiseThreshold(column, row) ? 1.0 : 0.08);
          }},
         // Rim-like: the terminator glows (a bright band where the light grazes), then shadow, then the lit tone.
         {"rim-like.png", 128, 64,
