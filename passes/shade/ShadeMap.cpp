@@ -90,4 +90,25 @@ ShadeMap shadeMapFromImage(const cv::Mat& image, const std::string& source, bool
     return map;
 }
 
+SpecularRowBands specularRowBands(const ShadeMap& map, double shininess) {
+    if (map.texels.empty() || map.texels.type() != CV_8UC4)
+        throw std::invalid_argument("specularRowBands(): '" + map.source + "' is not a CV_8UC4 shade map");
+    if (!(shininess >= 0.0) || !std::isfinite(shininess))
+        throw std::invalid_argument("specularRowBands(): shininess must be finite and >= 0");
+    const int rows = map.texels.rows;
+    SpecularRowBands bands;
+    bands.firstRow.push_back(0);
+    for (int row = 1; row < rows; ++row) {
+        // Row `row` from the bottom is image row rows - 1 - row (the image's row 0 is the top, t = 1).
+        const cv::Mat below = map.texels.row(rows - row);
+        const cv::Mat current = map.texels.row(rows - 1 - row);
+        if (cv::norm(below, current, cv::NORM_INF) == 0.0) continue;
+        bands.firstRow.push_back(row);
+        const double borderT = double(row) / double(rows);
+        // t >= borderT <=> r.v >= borderT^(1/n) <=> x = 1 - r.v <= -expm1(log(borderT) / n); n = 0 makes t = 1.
+        bands.maxHalfSquaredDistance.push_back(shininess > 0.0 ? -std::expm1(std::log(borderT) / shininess) : 4.0);
+    }
+    return bands;
+}
+
 } // namespace inkgraph

@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include <string>
+#include <vector>
 
 namespace inkgraph {
 
@@ -34,5 +35,16 @@ ShadeMap makeDefaultComicShadeMap();
  *  grey -> rgb, alpha ignored (set to 255). Throws std::invalid_argument naming `source` when it is empty, not
  *  8-bit, has more than 4 channels, is larger than 4096 a side, or (with `requireOneRow`) has more than one row. */
 ShadeMap shadeMapFromImage(const cv::Mat& image, const std::string& source, bool requireOneRow);
+
+/** A 2-D map's rows grouped into bands of identical rows, with the specular term's band borders moved to the
+ *  half squared distance x = |r - v|^2 / 2 = 1 - r.v, where the shader can test them without a log or exp:
+ *  t = (r.v)^n >= j/R  <=>  x <= 1 - (j/R)^(1/n). Exact in double, and free of the cancellation of 1 - r.v near the
+ *  highlight (x is computed from r - v). Most maps have a few bands (a highlight or two over the diffuse tones). */
+struct SpecularRowBands {
+    std::vector<int> firstRow;      ///< per band, the map row where it starts, counted from the bottom (t = 0)
+    std::vector<double> maxHalfSquaredDistance; ///< per band after the first: the band holds t when x <= this
+                                                ///< (decreasing); > 2 (every x) for shininess 0, where t = 1
+};
+SpecularRowBands specularRowBands(const ShadeMap& map, double shininess);
 
 } // namespace inkgraph

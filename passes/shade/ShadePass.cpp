@@ -71,6 +71,7 @@ ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, 
         if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6)
             throw std::invalid_argument("ShadePass(): the constant view vector must be a unit vector");
     }
+    if (mSettings.model == ShadingModel::Comic) mRowBands = specularRowBands(*mShadeMap, mSettings.shininess);
 }
 
 ShadePass::~ShadePass() = default;
@@ -81,8 +82,17 @@ bool ShadePass::drawsOrientationSets() const {
     return mSettings.model == ShadingModel::Comic && mOrientation != nullptr && mOrientation->usesCpuMarking();
 }
 
+bool ShadePass::usesSpecularRowBands() const {
+    // A map of one band (no specular rows) has nothing to compare: the generic path reads its single row.
+    return mSettings.model == ShadingModel::Comic && !drawsOrientationSets() &&
+           !mRowBands.maxHalfSquaredDistance.empty() &&
+           mRowBands.maxHalfSquaredDistance.size() <= std::size_t(kMaxSpecularRowBands);
+}
+
 std::vector<std::string> ShadePass::defines() const {
     std::vector<std::string> result = {modelDefine(mSettings.model)};
+    if (usesSpecularRowBands())
+        result.push_back("SPECULAR_ROW_BANDS " + std::to_string(mRowBands.maxHalfSquaredDistance.size()));
     if (drawsOrientationSets()) {
         result.push_back("SHADE_COORDS 1");
         result.push_back("SHADE_COORD_LOCATION " + std::to_string(SceneOrientation::kShadeCoordLocation));
@@ -162,6 +172,14 @@ void ShadePass::execute(PassContext& context) {
         // V_c is eye -> centre in world space; the shader wants surface -> eye in view space (rotation only).
         const glm::dvec3 towardEye = glm::dmat3(mFrame.camera.viewMatrix()) * -mSettings.view.constantView;
         glUniform3fv(program.uniform("constantTowardEye"), 1, glm::value_ptr(glm::vec3(glm::normalize(towardEye))));
+    }
+    if (usesSpecularRowBands()) {
+        // The band borders in x = |r - v|^2 / 2 (ShadeMap.h): the shader finds the row without a log or exp.
+        const std::vector<GLint> rows(mRowBands.firstRow.begin(), mRowBands.firstRow.end());
+        std::vector<float> limits;
+        for (double limit : mRowBands.maxHalfSquaredDistance) limits.push_back(float(limit));
+        glUniform1fv(program.uniform("specularBorderLimit"), GLsizei(limits.size()), limits.data());
+        glUniform1iv(program.uniform("specularBandRow"), GLsizei(rows.size()), rows.data());
     }
     if (mShadeTexture) glBindTextureUnit(0, mShadeTexture->id());
 

@@ -72,6 +72,10 @@ private:
     bool drawsOrientationSets() const;
     /** MODEL_* and variant defines for the one program of this pass. */
     std::vector<std::string> defines() const;
+    /** Comic on the GPU with a map of at most kMaxSpecularRowBands + 1 row bands: rows found by comparisons. */
+    bool usesSpecularRowBands() const;
+
+    static constexpr int kMaxSpecularRowBands = 8; ///< borders; a map with more falls back to exp(n log(r.v))
 
     std::string mName;
     ShaderLibrary& mShaders;
@@ -79,6 +83,7 @@ private:
     const FrameParams& mFrame;
     ShadeSettings mSettings;
     std::optional<ShadeMap> mShadeMap;
+    SpecularRowBands mRowBands; ///< comic: the map's row bands for this shininess (computed once)
     SceneOrientation* mOrientation;
     std::unique_ptr<GlProgram> mProgram; ///< the one program of this model and variant
     std::unique_ptr<GlTexture> mShadeTexture; ///< the map (cel, comic); GL row 0 is its bottom row, t = 0

@@ -14,6 +14,13 @@ uniform vec3 towardLightView; // unit, view space
 uniform float ambient;          // flat, gouraud, lambert, phong
 uniform float shininess;        // phong, comic
 uniform float specularStrength; // phong: weight of the white specular
+#ifdef SPECULAR_ROW_BANDS
+// Comic: the map's rows in bands (ShadeMap.h specularRowBands). Band k + 1 holds t when x = |r - v|^2 / 2 <=
+// specularBorderLimit[k] (decreasing in k); its first row (from the bottom, t = 0) is specularBandRow[k + 1].
+// SPECULAR_ROW_BANDS is the number of borders, a compile-time constant so the loop unrolls to plain comparisons.
+uniform float specularBorderLimit[SPECULAR_ROW_BANDS];
+uniform int specularBandRow[SPECULAR_ROW_BANDS + 1];
+#endif
 #ifdef VIEW_CONSTANT
 uniform vec3 constantTowardEye; // comic: -V_c in view space, unit (seed 000 §3.5)
 #endif
@@ -83,9 +90,26 @@ void main() {
 #else
     vec3 v = towardEye();
 #endif
+#ifdef SPECULAR_ROW_BANDS
+    // The row by comparisons in the distance domain: no log or exp, and exact at any shininess.
+    int row = 0;
+    if (nDotL > 0.0) {
+        vec3 d = reflect(-l, n) - v;
+        float x = 0.5 * dot(d, d);
+        for (int border = 0; border < SPECULAR_ROW_BANDS; ++border)
+            if (x <= specularBorderLimit[border]) row = specularBandRow[border + 1];
+    }
+    ivec2 size = textureSize(shadeMap, 0);
+    ivec2 texel = ivec2(shadeMapIndex(max(nDotL, 0.0), size.x), row);
+    rgb = decodeSrgb(texelFetch(shadeMap, texel, 0).rgb) * baseColor.rgb;
+#else
     vec2 st = vec2(max(nDotL, 0.0), nDotL > 0.0 ? specularTerm(reflect(-l, n), v, shininess) : 0.0);
-#endif
     rgb = shadeMapColor(st) * baseColor.rgb;
+#endif
+#endif
+#ifdef SHADE_COORDS
+    rgb = shadeMapColor(st) * baseColor.rgb;
+#endif
 #else
 #error "shade.frag needs one MODEL_* define"
 #endif

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <unistd.h>
@@ -324,6 +325,133 @@ TEST_F(Cli, BadInputExitCodesAndMessages) {
 
     // Nothing was written by any failed run, not even under a temporary name.
     EXPECT_EQ(listFiles(directory), (std::vector<std::string>{"blocker", "nan.obj"}));
+}
+
+TEST_F(Cli, LineTypesDumpTheirMasksAndComposite) {
+    const CliRun result = run("render " + model("spot_c3d.obj") +
+                              " -o a.png --size 96x64 --lines outline,silhouette --silhouette-color 1,0,0"
+                              " --outline-width 1.5 --dump d --stats s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"final.png", "lines-outline.png",
+                                                                   "lines-silhouette.png", "manifest.json",
+                                                                   "shading.png"}));
+    const cv::Mat silhouette = readImage(directory / "d" / "lines-silhouette.png");
+    const cv::Mat shading = readImage(directory / "d" / "shading.png");
+    const cv::Mat finalImage = readImage(directory / "a.png");
+    ASSERT_EQ(silhouette.type(), CV_8UC1);
+    int linePixels = 0;
+    int outsideModel = 0;
+    for (int row = 0; row < silhouette.rows; ++row)
+        for (int col = 0; col < silhouette.cols; ++col) {
+            if (silhouette.at<uchar>(row, col) != 255) continue;
+            ++linePixels;
+            // The silhouette is composited last, in its colour.
+            ASSERT_EQ(finalImage.at<cv::Vec4b>(row, col), cv::Vec4b(255, 0, 0, 255)) << row << "," << col;
+            if (shading.at<cv::Vec4b>(row, col)[3] == 0) ++outsideModel;
+        }
+    EXPECT_GT(linePixels, 100);
+    // Most of the hull lies outside the model; the rest outlines parts in front of others (the head over the body).
+    EXPECT_GT(outsideModel, linePixels * 3 / 4);
+    const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+    EXPECT_EQ(stats["look"]["shading"], "cel");
+    EXPECT_EQ(stats["look"]["shademap"], "builtin:bands-5");
+    ASSERT_EQ(stats["look"]["lines"].size(), 2u);
+    EXPECT_EQ(stats["look"]["lines"][0]["type"], "outline");
+    EXPECT_EQ(stats["look"]["lines"][0]["width_pixels"], 1.5);
+    EXPECT_EQ(stats["look"]["lines"][1]["color"], nlohmann::json::array({1.0, 0.0, 0.0, 1.0}));
+    EXPECT_EQ(stats["look"]["lines"][1]["skipped_eye_inside"], false);
+    EXPECT_FALSE(stats.contains("face_orientation")) << "reported for comic only";
+}
+
+TEST_F(Cli, ComicStatsReportTheFaceOrientationMethod) {
+    const CliRun result = run("render " + model("spot_c3d.obj") +
+                              " -o a.png --size 64x64 --shading comic --view-vector constant"
+                              " --face-orientation during-vertices --front-rule 2 --lines outline --stats s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+    const auto& orientation = stats["face_orientation"];
+    EXPECT_EQ(orientation["method"], "during-vertices");
+    EXPECT_EQ(orientation["view_vector"], "constant") << "the auto-framed eye is far enough for V_c";
+    EXPECT_EQ(orientation["fell_back_to_exact"], false);
+    EXPECT_EQ(orientation["missed_triangles"], 0);
+    EXPECT_EQ(orientation["triangles"], 5856);
+    EXPECT_GE(orientation["front_triangles"].get<int>(), orientation["exact_front_triangles"].get<int>());
+    EXPECT_GT(orientation["front_triangle_share"].get<double>(), 0.3);
+    EXPECT_LT(orientation["front_triangle_share"].get<double>(), 1.0);
+    EXPECT_GE(orientation["mark_ms"].get<double>(), 0.0);
+
+    // Inside the bounding sphere the constant view vector would be NaN: exact vectors, and the stats say why.
+    const CliRun close = run("render " + model("spot_c3d.obj") +
+                             " -o b.png --size 32x32 --shading comic --view-vector constant --eye 0.3,0.2,0.3"
+                             " --target 0,0,0 --stats close.json");
+    ASSERT_EQ(close.exitCode, 0) << close.err;
+    const auto closeStats = nlohmann::json::parse(readText(directory / "close.json"));
+    EXPECT_EQ(closeStats["face_orientation"]["view_vector"], "exact");
+    EXPECT_EQ(closeStats["face_orientation"]["fell_back_to_exact"], true);
+    EXPECT_NE(closeStats["face_orientation"]["fall_back_reason"].get<std::string>().find("inside"),
+              std::string::npos);
+}
+
+TEST_F(Cli, ShadeMapFilesAreReadAndCheckedBeforeAnyWork) {
+    const std::string shadeMaps = (fs::path(INKGRAPH_SOURCE_ROOT) / "shademaps").string();
+    CliRun comic = run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --shading comic --shademap '" +
+                       shadeMaps + "/noir.png' --stats s.json");
+    ASSERT_EQ(comic.exitCode, 0) << comic.err;
+    EXPECT_NE(readText(directory / "s.json").find("noir.png"), std::string::npos);
+    // Noir has two tones (x the default grey material): every covered pixel is one of them.
+    const cv::Mat picture = readImage(directory / "a.png");
+    std::set<int> reds;
+    for (int row = 0; row < picture.rows; ++row)
+        for (int col = 0; col < picture.cols; ++col) reds.insert(picture.at<cv::Vec4b>(row, col)[0]);
+    EXPECT_LE(reds.size(), 3u) << "paper and the two tones";
+
+    CliRun missing = run("render " + model("spot_c3d.obj") + " -o b.png --size 16x16 --shademap nowhere.png");
+    EXPECT_EQ(missing.exitCode, 3);
+    EXPECT_NE(missing.err.find("--shademap"), std::string::npos) << missing.err;
+    EXPECT_NE(missing.err.find("nowhere.png"), std::string::npos) << missing.err;
+
+    std::ofstream(directory / "corrupt.png") << "not a png at all";
+    CliRun corrupt = run("render " + model("spot_c3d.obj") + " -o b.png --size 16x16 --shademap corrupt.png");
+    EXPECT_EQ(corrupt.exitCode, 3);
+    EXPECT_NE(corrupt.err.find("corrupt.png"), std::string::npos) << corrupt.err;
+
+    CliRun twoDimensionalForCel = run("render " + model("spot_c3d.obj") + " -o b.png --size 16x16 --shademap '" +
+                                      shadeMaps + "/metallic.png'");
+    EXPECT_EQ(twoDimensionalForCel.exitCode, 3);
+    EXPECT_NE(twoDimensionalForCel.err.find("metallic.png"), std::string::npos) << twoDimensionalForCel.err;
+
+    CliRun onItself = run("render " + model("spot_c3d.obj") + " -o m.png --size 16x16 --shading comic --shademap m.png");
+    EXPECT_EQ(onItself.exitCode, 2);
+    EXPECT_NE(onItself.err.find("is the --shademap itself"), std::string::npos) << onItself.err;
+
+    EXPECT_EQ(listFiles(directory), (std::vector<std::string>{"a.png", "corrupt.png", "s.json"}))
+        << "failed runs leave nothing behind";
+}
+
+TEST_F(Cli, EyeInsideTheModelDrawsNoSilhouettes) {
+    const CliRun result = run("render " + model("spot_c3d.obj") +
+                              " -o a.png --size 32x32 --eye 0,0.1,0 --target 1,0.1,0 --lines outline,silhouette"
+                              " --dump d --stats s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_EQ(cv::countNonZero(readImage(directory / "d" / "lines-outline.png")), 0);
+    EXPECT_EQ(cv::countNonZero(readImage(directory / "d" / "lines-silhouette.png")), 0);
+    const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+    EXPECT_EQ(stats["look"]["lines"][0]["skipped_eye_inside"], true);
+    EXPECT_EQ(stats["look"]["lines"][1]["skipped_eye_inside"], true);
+}
+
+TEST_F(Cli, EveryShadingModeRendersWithoutNaN) {
+    // Extreme shininess on every specular mode, written as EXR (float) so a NaN would survive to the file.
+    for (const std::string flags : {"--shading flat", "--shading gouraud", "--shading phong --shininess 0",
+                                    "--shading phong --shininess 1e6", "--shading comic --shininess 0",
+                                    "--shading comic --shininess 1e6", "--shading cel --bands 2"}) {
+        const CliRun result = run("render " + model("spot_c3d.obj") + " -o a.exr --size 48x48 " + flags);
+        ASSERT_EQ(result.exitCode, 0) << flags << ": " << result.err;
+        const cv::Mat picture = readImage(directory / "a.exr");
+        ASSERT_EQ(picture.depth(), CV_32F);
+        EXPECT_TRUE(cv::checkRange(picture)) << flags << " wrote a NaN or Inf";
+        fs::remove(directory / "a.exr");
+    }
 }
 
 } // namespace

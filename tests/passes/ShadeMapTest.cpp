@@ -184,5 +184,38 @@ TEST(ShadeMap, BadImagesAreRejectedNamingTheSource) {
     EXPECT_NO_THROW(shadeMapFromImage(cv::Mat(4096, 2, CV_8UC1, cv::Scalar(0)), "max.png", false));
 }
 
+TEST(SpecularRowBands, BordersMoveToTheDistanceDomainExactly) {
+    // 8 rows, bottom 5 one tone, top 3 another: one border at t = 5/8, between bottom rows 4 and 5.
+    ShadeMap map{cv::Mat(8, 4, CV_8UC4, cv::Scalar(50, 50, 50, 255)), "test"};
+    map.texels.rowRange(0, 3).setTo(cv::Scalar(250, 250, 250, 255));
+    const SpecularRowBands bands = specularRowBands(map, 32.0);
+    ASSERT_EQ(bands.firstRow, (std::vector<int>{0, 5}));
+    ASSERT_EQ(bands.maxHalfSquaredDistance.size(), 1u);
+    // At the border t = (1 - x)^32 = 5/8 exactly.
+    EXPECT_NEAR(std::pow(1.0 - bands.maxHalfSquaredDistance[0], 32.0), 5.0 / 8.0, 1e-12);
+    // Shininess 1e6: the border lies 4.7e-7 from r = v, still a positive, representable distance.
+    const SpecularRowBands sharp = specularRowBands(map, 1e6);
+    EXPECT_NEAR(sharp.maxHalfSquaredDistance[0], -std::log(5.0 / 8.0) / 1e6, 1e-12);
+    EXPECT_GT(sharp.maxHalfSquaredDistance[0], 0.0);
+    // Shininess 0: t = 1 wherever lit, so every x passes every border.
+    EXPECT_GT(specularRowBands(map, 0.0).maxHalfSquaredDistance[0], 2.0);
+}
+
+TEST(SpecularRowBands, EveryDistinctRowIsABand) {
+    const ShadeMap comic = makeDefaultComicShadeMap();
+    const SpecularRowBands bands = specularRowBands(comic, 16.0);
+    ASSERT_EQ(bands.firstRow.size(), 2u) << "tones below and a highlight above t = 0.5";
+    EXPECT_EQ(bands.firstRow[1], comic.texels.rows / 2);
+    // A gradient map has a band per row; the borders decrease (higher t needs r closer to v).
+    ShadeMap gradient{cv::Mat(16, 2, CV_8UC4), "gradient"};
+    for (int row = 0; row < 16; ++row) gradient.texels.row(row).setTo(cv::Scalar(row * 10, 0, 0, 255));
+    const SpecularRowBands many = specularRowBands(gradient, 8.0);
+    ASSERT_EQ(many.firstRow.size(), 16u);
+    for (std::size_t i = 1; i < many.maxHalfSquaredDistance.size(); ++i)
+        EXPECT_LT(many.maxHalfSquaredDistance[i], many.maxHalfSquaredDistance[i - 1]);
+    EXPECT_EQ(specularRowBands(makeBandShadeMap(4), 8.0).firstRow.size(), 1u) << "one row, one band";
+    EXPECT_THROW(specularRowBands(gradient, -1.0), std::invalid_argument);
+}
+
 } // namespace
 } // namespace inkgraph
