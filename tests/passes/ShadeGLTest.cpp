@@ -434,6 +434,23 @@ TEST_F(ShadeSphere, ComicHighlightIsWhereTheReflectionMeetsTheEye) {
                 count, measured.x, measured.y, predicted.x, predicted.y, offset);
 }
 
+TEST_F(ShadeSphere, ComicMapWithManyRowBandsTakesTheGeneralPathAndAgrees) {
+    // 20 rows: white above t = 0.5, alternating greys 100 and 101 below, so 10 row borders: more than the comparison
+    // path takes, so the shader evaluates exp(n log(r.v)) instead. The highlight must be classified the same way.
+    cv::Mat texels(20, 1, CV_8UC4);
+    for (int row = 0; row < 20; ++row) {
+        const uchar grey = row < 10 ? 255 : uchar(100 + row % 2);
+        texels.at<cv::Vec4b>(row, 0) = cv::Vec4b(grey, grey, grey, 255);
+    }
+    const ShadeMap map = shadeMapFromImage(texels, "test:many-bands", false);
+    ASSERT_GT(specularRowBands(map, 64.0).maxHalfSquaredDistance.size(), 8u);
+    useSphere(512, 256, {1.0f, 1.0f, 1.0f, 1.0f});
+    setLight(kHighlightLight);
+    const glm::dvec3 l = lightView();
+    const cv::Mat image = render(settingsFor(ShadingModel::Comic, 64.0), map);
+    EXPECT_GT(expectHighlightClassification(image, l, 64.0, std::nullopt, 0.02), 25000);
+}
+
 TEST_F(ShadeSphere, ComicDefaultMapShowsItsThreeTonesWherePredicted) {
     const glm::vec4 base(0.9f, 0.6f, 0.3f, 1.0f);
     useSphere(512, 256, base);
