@@ -151,10 +151,12 @@ Json describeLook(const RenderOptions& options, const StillGraph& graph) {
     look["shading"] = shadingModeName(options.shading);
     if (options.shading == ShadingMode::Phong || options.shading == ShadingMode::Comic)
         look["shininess"] = options.shininess;
-    if (usesShadeMap(options.shading))
-        look["shademap"] = !options.shadeMapPath.empty()         ? options.shadeMapPath
-                           : options.shading == ShadingMode::Cel ? "builtin:bands-" + std::to_string(options.bands.value_or(5))
-                                                                 : std::string("builtin:comic");
+    if (usesShadeMap(options.shading)) {
+        const std::string builtin = options.shading == ShadingMode::Cel
+                                        ? "builtin:bands-" + std::to_string(options.bands.value_or(5))
+                                        : "builtin:comic";
+        look["shademap"] = options.shadeMapPath.empty() ? builtin : options.shadeMapPath;
+    }
     Json lines = Json::array();
     for (const std::string& type : knownLineTypes()) {
         if (std::find(options.lines.begin(), options.lines.end(), type) == options.lines.end()) continue;
@@ -162,7 +164,8 @@ Json describeLook(const RenderOptions& options, const StillGraph& graph) {
         Json line = {{"type", type},
                      {"width_pixels", style.widthPixels},
                      {"color", Json::array({style.color.r, style.color.g, style.color.b, style.color.a})}};
-        if (type == "silhouette" && options.silhouetteObjectWidth) line["object_width"] = *options.silhouetteObjectWidth;
+        if (type == "silhouette" && options.silhouetteObjectWidth)
+            line["object_width"] = *options.silhouetteObjectWidth;
         if (type == "silhouette" && graph.silhouette) line["skipped_eye_inside"] = graph.silhouette->skippedEyeInside();
         if (type == "outline" && graph.outline) line["skipped_eye_inside"] = graph.outline->skippedEyeInside();
         lines.push_back(line);

@@ -151,4 +151,21 @@ void GlProgram::use() const { glUseProgram(id()); }
 
 GLint GlProgram::uniform(const char* name) const { return glGetUniformLocation(id(), name); }
 
+const GlDepthTexture& PassDepthBuffer::sized(int width, int height) {
+    if (!mDepth || mWidth != width || mHeight != height) {
+        mDepth.reset(); // the old one goes first, so two never exist at once
+        mDepth = std::make_unique<GlDepthTexture>(width, height, mLabel);
+        mWidth = width;
+        mHeight = height;
+    }
+    return *mDepth;
+}
+
+void clearColorAndDepth(int colorSlots) {
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (int slot = 0; slot < colorSlots; ++slot) glClearBufferfv(GL_COLOR, slot, zero);
+    const float farDepth = 1.0f;
+    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+}
+
 } // namespace inkgraph

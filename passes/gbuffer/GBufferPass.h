@@ -53,9 +53,7 @@ private:
     GpuScene& mScene;
     const FrameParams& mFrame;
     std::map<std::string, std::unique_ptr<GlProgram>> mPrograms; ///< keyed by the live-output defines
-    std::unique_ptr<GlDepthTexture> mDepth;
-    int mDepthWidth = 0;
-    int mDepthHeight = 0;
+    PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
 };
 
 } // namespace inkgraph

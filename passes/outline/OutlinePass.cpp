@@ -12,7 +12,7 @@ namespace inkgraph {
 OutlinePass::OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
                          float widthPixels, SceneOrientation* orientation)
     : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mWidthPixels(widthPixels),
-      mOrientation(orientation) {
+      mOrientation(orientation), mDepth(mName + " model depth") {
     if (!std::isfinite(mWidthPixels) || mWidthPixels < 0.0f)
         throw std::invalid_argument("OutlinePass(): pass '" + mName + "': 'widthPixels' must be finite and >= 0, got " +
                                     std::to_string(mWidthPixels));
@@ -36,23 +36,13 @@ void OutlinePass::execute(PassContext& context) {
     GlTexture& lines = gl.outputTexture("lines");
     const int width = gl.widthOf("lines");
     const int height = gl.heightOf("lines");
-    // The depth attachment is the pass's own; kept between runs of the same size (batches, benchmarks).
-    if (!mDepth || mDepthWidth != width || mDepthHeight != height) {
-        mDepth.reset();
-        mDepth = std::make_unique<GlDepthTexture>(width, height, mName + " model depth");
-        mDepthWidth = width;
-        mDepthHeight = height;
-    }
     GlFramebuffer framebuffer(mName);
     framebuffer.attachColor(0, lines);
-    framebuffer.attachDepth(*mDepth);
+    framebuffer.attachDepth(mDepth.sized(width, height));
     framebuffer.finish({0});
     framebuffer.bind();
     glViewport(0, 0, width, height);
-    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearBufferfv(GL_COLOR, 0, zero);
-    const float farDepth = 1.0f;
-    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    clearColorAndDepth(1);
 
     mSkippedEyeInside = mScene.containsPoint(mFrame.camera.eye);
     if (mSkippedEyeInside) {

@@ -59,9 +59,7 @@ private:
     SceneOrientation* mOrientation;
     std::unique_ptr<GlProgram> mDepthProgram; ///< the model, depth only
     std::unique_ptr<GlProgram> mLineProgram;  ///< back-face edges as quads
-    std::unique_ptr<GlDepthTexture> mDepth;
-    int mDepthWidth = 0;
-    int mDepthHeight = 0;
+    PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
     bool mSkippedEyeInside = false;
 };
 

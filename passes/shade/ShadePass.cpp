@@ -44,7 +44,7 @@ bool usesShadeMap(ShadingModel model) { return model == ShadingModel::Cel || mod
 ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
                      ShadeSettings settings, std::optional<ShadeMap> shadeMap, SceneOrientation* orientation)
     : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSettings(settings),
-      mShadeMap(std::move(shadeMap)), mOrientation(orientation) {
+      mShadeMap(std::move(shadeMap)), mOrientation(orientation), mDepth(mName + " depth test") {
     const std::string model = modelName(mSettings.model);
     if (!std::isfinite(mSettings.shininess) || mSettings.shininess < 0.0)
         throw std::invalid_argument("ShadePass(): shininess must be finite and >= 0, got " +
@@ -123,14 +123,7 @@ void ShadePass::execute(PassContext& context) {
     const int height = gl.heightOf("color");
     GlFramebuffer framebuffer(mName);
     framebuffer.attachColor(0, gl.outputTexture("color"));
-    // The depth attachment is the pass's own; kept between runs of the same size (batches, benchmarks).
-    if (!mDepth || mDepthWidth != width || mDepthHeight != height) {
-        mDepth.reset();
-        mDepth = std::make_unique<GlDepthTexture>(width, height, mName + " depth test");
-        mDepthWidth = width;
-        mDepthHeight = height;
-    }
-    framebuffer.attachDepth(*mDepth);
+    framebuffer.attachDepth(mDepth.sized(width, height));
     framebuffer.finish({0});
 
     // CPU face orientation (comic only): marked, lit and uploaded on the first call, so it counts as this pass's
@@ -146,10 +139,7 @@ void ShadePass::execute(PassContext& context) {
 
     framebuffer.bind();
     glViewport(0, 0, width, height);
-    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearBufferfv(GL_COLOR, 0, zero);
-    const float farDepth = 1.0f;
-    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    clearColorAndDepth(1);
 
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);

@@ -87,9 +87,7 @@ private:
     SceneOrientation* mOrientation;
     std::unique_ptr<GlProgram> mProgram; ///< the one program of this model and variant
     std::unique_ptr<GlTexture> mShadeTexture; ///< the map (cel, comic); GL row 0 is its bottom row, t = 0
-    std::unique_ptr<GlDepthTexture> mDepth;
-    int mDepthWidth = 0;
-    int mDepthHeight = 0;
+    PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
 };
 
 } // namespace inkgraph

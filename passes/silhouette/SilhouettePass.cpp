@@ -21,7 +21,8 @@ void requireWidth(const std::string& pass, const char* what, float value) {
 
 SilhouettePass::SilhouettePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
                                HullSettings settings)
-    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSettings(settings) {
+    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSettings(settings),
+      mDepth(mName + " model depth") {
     requireWidth(mName, "widthPixels", mSettings.widthPixels);
     if (mSettings.objectWidth) requireWidth(mName, "objectWidth", *mSettings.objectWidth);
 }
@@ -54,23 +55,13 @@ void SilhouettePass::execute(PassContext& context) {
     GlTexture& lines = gl.outputTexture("lines");
     const int width = gl.widthOf("lines");
     const int height = gl.heightOf("lines");
-    // The depth attachment is the pass's own; kept between runs of the same size (batches, benchmarks).
-    if (!mDepth || mDepthWidth != width || mDepthHeight != height) {
-        mDepth.reset();
-        mDepth = std::make_unique<GlDepthTexture>(width, height, mName + " model depth");
-        mDepthWidth = width;
-        mDepthHeight = height;
-    }
     GlFramebuffer framebuffer(mName);
     framebuffer.attachColor(0, lines);
-    framebuffer.attachDepth(*mDepth);
+    framebuffer.attachDepth(mDepth.sized(width, height));
     framebuffer.finish({0});
     framebuffer.bind();
     glViewport(0, 0, width, height);
-    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearBufferfv(GL_COLOR, 0, zero);
-    const float farDepth = 1.0f;
-    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    clearColorAndDepth(1);
 
     mSkippedEyeInside = mScene.containsPoint(mFrame.camera.eye);
     if (mSkippedEyeInside) {

@@ -64,9 +64,7 @@ private:
     std::unique_ptr<GlProgram> mDepthProgram; ///< the model as it is, depth only
     std::unique_ptr<GlProgram> mHullProgram;  ///< the offset hull
     std::vector<GlVertexArray> mHullArrays;   ///< positions + hull normals + indices, one per mesh (welded only)
-    std::unique_ptr<GlDepthTexture> mDepth;
-    int mDepthWidth = 0;
-    int mDepthHeight = 0;
+    PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
     bool mSkippedEyeInside = false;
 };
 
