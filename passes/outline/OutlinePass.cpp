@@ -1,6 +1,7 @@
 #include "passes/outline/OutlinePass.h"
 
 #include "gl/GraphExecutor.h"
+#include "passes/LineMaskTarget.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -33,22 +34,11 @@ void OutlinePass::prepare(PassContext&) {
 
 void OutlinePass::execute(PassContext& context) {
     GlPassContext& gl = GlPassContext::from(context);
-    GlTexture& lines = gl.outputTexture("lines");
+    GlFramebuffer framebuffer(mName);
+    mSkippedEyeInside = !beginLineMask(gl, framebuffer, mDepth, mScene, mFrame.camera.eye);
+    if (mSkippedEyeInside) return;
     const int width = gl.widthOf("lines");
     const int height = gl.heightOf("lines");
-    GlFramebuffer framebuffer(mName);
-    framebuffer.attachColor(0, lines);
-    framebuffer.attachDepth(mDepth.sized(width, height));
-    framebuffer.finish({0});
-    framebuffer.bind();
-    glViewport(0, 0, width, height);
-    clearColorAndDepth(1);
-
-    mSkippedEyeInside = mScene.containsPoint(mFrame.camera.eye);
-    if (mSkippedEyeInside) {
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        return;
-    }
 
     const glm::mat4 viewFromModel = mFrame.viewFromModel();
     const glm::mat4 clipFromView = mFrame.clipFromView();

@@ -1,0 +1,19 @@
+#pragma once
+/** @file The start the mesh-drawing line passes (outline, silhouette) share: their mask and depth bound and cleared,
+ *  and the eye-inside check. */
+
+#include "gl/GlObjects.h"
+#include "gl/GraphExecutor.h"
+#include "passes/GpuScene.h"
+
+#include <glm/glm.hpp>
+
+namespace inkgraph {
+
+/** Binds `framebuffer` with the pass's "lines" output and `depth` sized to it, sets the viewport and clears both.
+ *  Returns false, with the framebuffer unbound, when `eye` is inside the model: the mask then stays empty, because
+ *  back faces and the hull would flood the picture (docs/algorithms.md §7). */
+bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffer& depth, GpuScene& scene,
+                   const glm::dvec3& eye);
+
+} // namespace inkgraph
