@@ -1,5 +1,7 @@
 #include "passes/LineMaskTarget.h"
 
+#include <glm/gtc/type_ptr.hpp>
+
 namespace inkgraph {
 
 bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffer& depth, GpuScene& scene,
@@ -17,6 +19,18 @@ bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffe
         return false;
     }
     return true;
+}
+
+void drawModelDepth(const GlProgram& program, const std::vector<GpuScene::DrawMesh>& meshes,
+                    const glm::mat4& viewFromModel, const glm::mat4& clipFromView) {
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    program.use();
+    glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
+    glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    for (const GpuScene::DrawMesh& mesh : meshes) {
+        mesh.vertexArray.bind();
+        glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
 }
 
 } // namespace inkgraph

@@ -8,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include <vector>
+
 namespace inkgraph {
 
 /** Binds `framebuffer` with the pass's "lines" output and `depth` sized to it, sets the viewport and clears both.
@@ -15,5 +17,10 @@ namespace inkgraph {
  *  back faces and the hull would flood the picture (docs/algorithms.md §7). */
 bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffer& depth, GpuScene& scene,
                    const glm::dvec3& eye);
+
+/** Draws every face of `meshes` into the depth buffer only, colour writes off (they stay off), with `program`, whose
+ *  uniforms "viewFromModel" and "clipFromView" are set here. */
+void drawModelDepth(const GlProgram& program, const std::vector<GpuScene::DrawMesh>& meshes,
+                    const glm::mat4& viewFromModel, const glm::mat4& clipFromView);
 
 } // namespace inkgraph

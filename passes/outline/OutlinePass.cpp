@@ -49,14 +49,7 @@ void OutlinePass::execute(PassContext& context) {
 
     // 1. The model's depth: every face (open meshes show their insides through holes), no colour.
     glDepthFunc(GL_LESS);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    mDepthProgram->use();
-    glUniformMatrix4fv(mDepthProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
-    glUniformMatrix4fv(mDepthProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
-    for (const GpuScene::DrawMesh& mesh : meshes) {
-        mesh.vertexArray.bind();
-        glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
-    }
+    drawModelDepth(*mDepthProgram, meshes, viewFromModel, clipFromView);
 
     // 2. Back-face edges as quads 2 x widthPixels wide. LEQUAL: a silhouette edge lies exactly on the model's depth.
     glDepthFunc(GL_LEQUAL);

@@ -69,14 +69,7 @@ void SilhouettePass::execute(PassContext& context) {
 
     // 1. The model's depth: every face (open meshes show their insides through holes), no colour.
     glDisable(GL_CULL_FACE);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    mDepthProgram->use();
-    glUniformMatrix4fv(mDepthProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
-    glUniformMatrix4fv(mDepthProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
-    for (const GpuScene::DrawMesh& mesh : meshes) {
-        mesh.vertexArray.bind();
-        glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
-    }
+    drawModelDepth(*mDepthProgram, meshes, viewFromModel, clipFromView);
 
     // 2. The hull's back faces where they are nearer than the model (LESS: where the hull meets the model's own
     // depth, the model wins). The depth stays the model's, so hulls of different meshes never hide each other.
