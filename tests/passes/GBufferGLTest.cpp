@@ -9,6 +9,7 @@
 #include "scene/Camera.h"
 #include "scene/Procedural.h"
 #include "tests/support/GlTestContext.h"
+#include "tests/support/TestCamera.h"
 
 #include <gtest/gtest.h>
 
@@ -62,13 +63,8 @@ protected:
     void SetUp() override {
         test::sharedGlContext();
         scene = makeScene(makeUvSphere({0.0f, 0.0f, 0.0f}, float(kRadius), 512, 256));
-        CameraRequest request;
-        request.eye = glm::dvec3(0.0, 0.0, kDistance);
-        request.target = glm::dvec3(0.0);
-        request.fovYDegrees = kFovDegrees;
-        request.width = kSize;
-        request.height = kSize;
-        frame.camera = resolveCamera(request, scene);
+        frame.camera =
+            test::lookingAt(scene, glm::dvec3(0.0, 0.0, kDistance), glm::dvec3(0.0), kFovDegrees, kSize, kSize);
         frame.worldOrigin = glm::dvec3(0.0);
     }
 

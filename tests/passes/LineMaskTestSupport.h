@@ -12,6 +12,7 @@
 #include "scene/Camera.h"
 #include "scene/Procedural.h"
 #include "tests/support/GlTestContext.h"
+#include "tests/support/TestCamera.h"
 
 #include <gtest/gtest.h>
 
@@ -46,13 +47,7 @@ protected:
 
     /** Resolves a camera like the app (near and far fitted to the bounding sphere) at `width` x `height`. */
     void lookFrom(glm::dvec3 eye, glm::dvec3 target, double fovYDegrees, int width, int height) {
-        CameraRequest request;
-        request.eye = eye;
-        request.target = target;
-        request.fovYDegrees = fovYDegrees;
-        request.width = width;
-        request.height = height;
-        frame.camera = resolveCamera(request, scene);
+        frame.camera = test::lookingAt(scene, eye, target, fovYDegrees, width, height);
         frame.worldOrigin = gpuScene->worldOrigin();
     }
 

@@ -14,6 +14,7 @@
 #include "scene/Procedural.h"
 #include "tests/support/GlTestContext.h"
 #include "tests/support/ImageCompare.h"
+#include "tests/support/TestCamera.h"
 
 #include <gtest/gtest.h>
 
@@ -118,13 +119,8 @@ protected:
         Mesh mesh = makeUvSphere({0.0f, 0.0f, 0.0f}, float(kRadius), segments, rings);
         mesh.baseColor = baseColor;
         scene = makeScene(std::move(mesh));
-        CameraRequest request;
-        request.eye = glm::dvec3(0.0, 0.0, kDistance);
-        request.target = glm::dvec3(0.0);
-        request.fovYDegrees = kFovDegrees;
-        request.width = kSize;
-        request.height = kSize;
-        frame.camera = resolveCamera(request, scene);
+        frame.camera =
+            test::lookingAt(scene, glm::dvec3(0.0, 0.0, kDistance), glm::dvec3(0.0), kFovDegrees, kSize, kSize);
         frame.worldOrigin = glm::dvec3(0.0);
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
     }
