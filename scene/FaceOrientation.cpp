@@ -97,9 +97,26 @@ struct ViewTerms {
 
 /** The cut-off and the two thresholds derived from it. */
 struct Cutoff {
-    double reported = 0.0;   ///< the formula's value
+    double reported = 0.0;   ///< the formula's value (with betaMax for the vertex tests: the largest cut-off)
     double frontBelow = 0.0; ///< front <=> N.V < frontBelow (cut-off + slack, or +inf when everything is front)
     double deepAtMost = 0.0; ///< not intermediate <=> N.V <= deepAtMost (= -cut-off)
+    bool perVertex = false;  ///< vertex tests: each vertex's own cut-off from alpha and its beta (forVertex())
+    double sinAlpha = 0.0;
+    double cosAlpha = 1.0;
+
+    /** The thresholds for a vertex of (sin beta, cos beta): sin(alpha + beta) by the angle sum, no trig per vertex. */
+    Cutoff forVertex(const glm::vec2& beta) const {
+        if (!perVertex) {
+            return *this;
+        }
+        const double sinBeta = beta.x;
+        const double cosBeta = beta.y;
+        if (cosAlpha * cosBeta - sinAlpha * sinBeta <= 0.0) { // alpha + beta >= pi/2: see cutoffFor()
+            return {reported, std::numeric_limits<double>::infinity(), -1.0};
+        }
+        const double cutoff = sinAlpha * cosBeta + cosAlpha * sinBeta;
+        return {reported, cutoff + kCutoffSlack, -cutoff};
+    }
 };
 
 Cutoff cutoffFor(const OrientationRequest& request, double betaMaxRadians, bool faceTest) {
@@ -113,13 +130,22 @@ Cutoff cutoffFor(const OrientationRequest& request, double betaMaxRadians, bool 
         return {sinAlpha, sinAlpha + kCutoffSlack, -sinAlpha};
     }
     const double angle = std::asin(sinAlpha) + betaMaxRadians;
+    Cutoff cutoff;
+    cutoff.perVertex = true;
+    cutoff.sinAlpha = sinAlpha;
+    cutoff.cosAlpha = std::sqrt(std::max(0.0, 1.0 - sinAlpha * sinAlpha));
     if (angle >= glm::half_pi<double>()) {
-        // The bound angle(N_v, V) > pi/2 - alpha - betaMax says nothing any more: N.V = 1 exactly may still belong
+        // The bound angle(N_v, V) > pi/2 - alpha - beta says nothing any more: N.V = 1 exactly may still belong
         // to a front face, so the strict test against sin(pi/2) = 1 would not do.
-        return {1.0, std::numeric_limits<double>::infinity(), -1.0};
+        cutoff.reported = 1.0;
+        cutoff.frontBelow = std::numeric_limits<double>::infinity();
+        cutoff.deepAtMost = -1.0;
+        return cutoff;
     }
-    const double cutoff = std::sin(angle);
-    return {cutoff, cutoff + kCutoffSlack, -cutoff};
+    cutoff.reported = std::sin(angle);
+    cutoff.frontBelow = cutoff.reported + kCutoffSlack;
+    cutoff.deepAtMost = -cutoff.reported;
+    return cutoff;
 }
 
 /** Whole shininess values up to this are raised by repeated squaring (at most 10 squarings and 10 products, a few
@@ -238,7 +264,8 @@ void markDuringVertices(const Mesh& mesh, const OrientationMeshData& data, const
     std::vector<std::uint8_t> counters(mesh.triangles.size(), 0);
     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
         const std::uint8_t flags =
-            classifyVertex(terms, cutoff, mesh.positions[v], mesh.normals[v], result.shadeCoords[v]);
+            classifyVertex(terms, cutoff.forVertex(data.vertexBeta[v]), mesh.positions[v], mesh.normals[v],
+                           result.shadeCoords[v]);
         if (!flags) {
             continue;
         }
@@ -257,12 +284,13 @@ void markDuringVertices(const Mesh& mesh, const OrientationMeshData& data, const
     }
 }
 
-void markAfterVertices(const Mesh& mesh, const OrientationRequest& request, const ViewTerms& terms,
-                       const Cutoff& cutoff, MeshOrientation& result) {
+void markAfterVertices(const Mesh& mesh, const OrientationMeshData& data, const OrientationRequest& request,
+                       const ViewTerms& terms, const Cutoff& cutoff, MeshOrientation& result) {
     const glm::vec3* positions = mesh.positions.data();
     std::vector<std::uint8_t> flags(mesh.positions.size());
     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-        flags[v] = classifyVertex(terms, cutoff, mesh.positions[v], mesh.normals[v], result.shadeCoords[v]);
+        flags[v] = classifyVertex(terms, cutoff.forVertex(data.vertexBeta[v]), mesh.positions[v], mesh.normals[v],
+                                  result.shadeCoords[v]);
         result.frontVertexCount += flags[v] & kFrontVertex;
     }
     const int needed = frontVerticesNeeded(request.frontRule);
@@ -342,7 +370,7 @@ OrientationMeshData deriveOrientationData(const Mesh& mesh, bool withVertexTrian
 
     OrientationMeshData data;
     data.faceNormals.resize(mesh.triangles.size());
-    LargestAngle betaMax;
+    std::vector<LargestAngle> vertexBeta(vertexCount);
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
         const glm::uvec3& triangle = mesh.triangles[i];
         if (std::max(triangle.x, std::max(triangle.y, triangle.z)) >= vertexCount) {
@@ -356,10 +384,17 @@ OrientationMeshData deriveOrientationData(const Mesh& mesh, bool withVertexTrian
         data.faceNormals[i] = glm::vec3(faceNormal);
         // Measured against the double normal, not its float copy; a zero (degenerate) face adds nothing.
         for (int corner = 0; corner < 3; ++corner) {
-            betaMax.add(glm::dvec3(mesh.normals[triangle[corner]]), faceNormal);
+            vertexBeta[triangle[corner]].add(glm::dvec3(mesh.normals[triangle[corner]]), faceNormal);
         }
     }
-    data.betaMaxRadians = betaMax.radians();
+    data.vertexBeta.resize(vertexCount);
+    for (std::size_t v = 0; v < vertexCount; ++v) {
+        const double beta = vertexBeta[v].radians();
+        // Rounded up to float so the float copy never understates beta (which could drop a front vertex).
+        data.vertexBeta[v] = glm::vec2(std::nextafter(float(std::sin(beta)), 2.0f),
+                                       std::nextafter(float(std::cos(beta)), -2.0f));
+        data.betaMaxRadians = std::max(data.betaMaxRadians, beta);
+    }
 
     if (withVertexTriangles) {
         // Compressed rows: count the triangles of each vertex, prefix-sum into offsets, then fill.
@@ -437,8 +472,9 @@ void orientMesh(const Mesh& mesh, const OrientationMeshData& data, const Orienta
     if (!(request.shininess >= 0.0)) {
         invalid(function, "the shininess must be >= 0, got " + std::to_string(request.shininess));
     }
-    if (mesh.normals.size() != mesh.positions.size() || data.faceNormals.size() != mesh.triangles.size()) {
-        invalid(function, "mesh '" + mesh.name + "' does not match its derived data (normals or face normals)");
+    if (mesh.normals.size() != mesh.positions.size() || data.faceNormals.size() != mesh.triangles.size() ||
+        data.vertexBeta.size() != mesh.positions.size()) {
+        invalid(function, "mesh '" + mesh.name + "' does not match its derived data (normals, face normals or vertex betas)");
     }
     if (request.method == FaceOrientationMethod::DuringVertices &&
         (data.vertexTriangleStart.size() != mesh.positions.size() + 1 ||
@@ -469,7 +505,7 @@ void orientMesh(const Mesh& mesh, const OrientationMeshData& data, const Orienta
         markDuringVertices(mesh, data, request, terms, cutoff, result);
         break;
     case FaceOrientationMethod::AfterVertices:
-        markAfterVertices(mesh, request, terms, cutoff, result);
+        markAfterVertices(mesh, data, request, terms, cutoff, result);
         break;
     case FaceOrientationMethod::Standard:
         break;

@@ -22,11 +22,16 @@ enum class FaceOrientationMethod { Standard, DuringTriangles, DuringVertices, Af
 std::string viewVectorModeName(ViewVectorMode mode);               ///< "exact", "constant"
 std::string faceOrientationMethodName(FaceOrientationMethod mode); ///< "standard", "during-triangles", ...
 
-/** Data derived from a mesh once, only when a CPU orientation method runs: unit face normals, betaMax (the largest
- *  angle between a vertex normal and the normals of its incident faces) and, for during-vertices, the triangles
- *  around each vertex. */
+/** Data derived from a mesh once, only when a CPU orientation method runs: unit face normals, each vertex's beta (the
+ *  largest angle between its normal and the normals of its incident faces) and their maximum, and, for
+ *  during-vertices, the triangles around each vertex. */
 struct OrientationMeshData {
     std::vector<glm::vec3> faceNormals;
+    /** Per vertex (sin beta_v, cos beta_v). The vertex tests use the vertex's own cut-off sin(min(pi/2, alpha +
+     *  beta_v)): still hole-free (a front face's vertices each deviate from it by at most their own beta), and tight
+     *  where the normals are good, so a few stray normals (the teapot's poles: beta 111 deg) do not mark every
+     *  triangle front as the global betaMax would. */
+    std::vector<glm::vec2> vertexBeta;
     double betaMaxRadians = 0.0;
     std::vector<std::uint32_t> vertexTriangleStart; ///< CSR offsets, size vertexCount + 1 (during-vertices only)
     std::vector<std::uint32_t> vertexTriangles;     ///< triangle indices around each vertex (during-vertices only)
