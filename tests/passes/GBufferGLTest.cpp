@@ -9,6 +9,8 @@
 #include "scene/Camera.h"
 #include "scene/Procedural.h"
 #include "tests/support/GlTestContext.h"
+#include "tests/support/AnalyticSphere.h"
+#include "tests/support/PassHarness.h"
 #include "tests/support/TestCamera.h"
 
 #include <gtest/gtest.h>
@@ -28,37 +30,9 @@ constexpr double kRadius = 1.0;
 constexpr double kDistance = 4.0;
 constexpr double kFovDegrees = 35.0;
 
-/** The exact surface under a pixel centre, by ray casting the sphere in double (view space, eye at the origin). */
-struct AnalyticHit {
-    glm::dvec3 normal;
-    glm::dvec3 view;
-    double depth;
-};
+const test::AnalyticSphereView kSphere{kSize, kRadius, kDistance, kFovDegrees};
 
-std::optional<AnalyticHit> castPixel(int col, int row) {
-    const double tanHalf = std::tan(glm::radians(kFovDegrees) / 2.0);
-    // Row 0 is the top of the image; pixel centres sit at (col + 0.5, row + 0.5).
-    const double ndcX = 2.0 * (col + 0.5) / kSize - 1.0;
-    const double ndcY = 1.0 - 2.0 * (row + 0.5) / kSize;
-    const glm::dvec3 direction = glm::normalize(glm::dvec3(ndcX * tanHalf, ndcY * tanHalf, -1.0));
-    const glm::dvec3 center(0.0, 0.0, -kDistance);
-    const double b = glm::dot(direction, center);
-    const double discriminant = b * b - (glm::dot(center, center) - kRadius * kRadius);
-    if (discriminant < 0.0) return std::nullopt;
-    const glm::dvec3 hit = direction * (b - std::sqrt(discriminant));
-    return AnalyticHit{(hit - center) / kRadius, -glm::normalize(hit), -hit.z};
-}
-
-/** Distance in pixels from a pixel centre to the analytic silhouette circle (radius f R / sqrt(d^2 - R^2)). */
-double pixelsFromSilhouette(int col, int row) {
-    const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
-    const double radius = focal * kRadius / std::sqrt(kDistance * kDistance - kRadius * kRadius);
-    const double dx = col + 0.5 - kSize / 2.0;
-    const double dy = row + 0.5 - kSize / 2.0;
-    return std::abs(std::sqrt(dx * dx + dy * dy) - radius);
-}
-
-class GBufferSphere : public ::testing::Test {
+class GBufferSphere : public ::testing::Test, protected test::PassHarness {
 protected:
     void SetUp() override {
         test::sharedGlContext();
@@ -77,12 +51,6 @@ protected:
         return plan;
     }
 
-    Scene scene;
-    FrameParams frame;
-    ShaderLibrary shaders;
-    TexturePool pool;
-    GraphExecutor executor{pool};
-    std::unique_ptr<GpuScene> gpuScene;
     std::unique_ptr<GBufferPass> pass;
 };
 
@@ -104,26 +72,26 @@ TEST_F(GBufferSphere, MatchesRayCastSphere) {
     int comparedPixels = 0;
     for (int row = 0; row < kSize; ++row) {
         for (int col = 0; col < kSize; ++col) {
-            const std::optional<AnalyticHit> truth = castPixel(col, row);
+            const std::optional<test::SphereHit> truth = kSphere.castPixel(col, row);
             const bool covered = coverage.at<uchar>(row, col) == 255;
             // Pixels within a pixel of the silhouette may go either way (the mesh is a polygon); elsewhere coverage
             // must match the analytic disc exactly.
-            if (pixelsFromSilhouette(col, row) > 1.0) {
+            if (kSphere.pixelsFromSilhouette(col, row) > 1.0) {
                 ASSERT_EQ(covered, truth.has_value()) << "coverage at col " << col << ", row " << row;
             }
             if (!covered) {
                 ASSERT_EQ(depth.at<float>(row, col), 0.0f) << "background depth at " << col << "," << row;
                 continue;
             }
-            if (!truth || pixelsFromSilhouette(col, row) <= 2.0) continue;
+            if (!truth || kSphere.pixelsFromSilhouette(col, row) <= 2.0) continue;
             const cv::Vec4f n = normal.at<cv::Vec4f>(row, col);
             const glm::dvec3 measured(n[0], n[1], n[2]);
             EXPECT_EQ(n[3], 1.0f);
             const double cosine = std::clamp(glm::dot(glm::normalize(measured), truth->normal), -1.0, 1.0);
             angleErrors.push_back(glm::degrees(std::acos(cosine)));
             const cv::Vec4f v = view.at<cv::Vec4f>(row, col);
-            maxViewError = std::max(maxViewError, glm::length(glm::dvec3(v[0], v[1], v[2]) - truth->view));
-            const double trueNDotV = glm::dot(truth->normal, truth->view);
+            maxViewError = std::max(maxViewError, glm::length(glm::dvec3(v[0], v[1], v[2]) - truth->towardEye));
+            const double trueNDotV = glm::dot(truth->normal, truth->towardEye);
             maxNDotVError = std::max(maxNDotVError, std::abs(double(nDotV.at<float>(row, col)) - trueNDotV));
             maxDepthError = std::max(maxDepthError, std::abs(double(depth.at<float>(row, col)) - truth->depth));
             // |w| = sin(theta) and w is tangent: |w|^2 + (n.v)^2 = 1.

@@ -12,6 +12,7 @@
 #include "scene/Camera.h"
 #include "scene/Procedural.h"
 #include "tests/support/GlTestContext.h"
+#include "tests/support/PassHarness.h"
 #include "tests/support/TestCamera.h"
 
 #include <gtest/gtest.h>
@@ -32,7 +33,7 @@ struct LineRender {
     cv::Mat coverage;
 };
 
-class LinePassFixture : public ::testing::Test {
+class LinePassFixture : public ::testing::Test, protected test::PassHarness {
 protected:
     void SetUp() override { sharedGlContext(); }
 
@@ -65,12 +66,6 @@ protected:
         return result;
     }
 
-    Scene scene;
-    FrameParams frame;
-    ShaderLibrary shaders;
-    TexturePool pool;
-    GraphExecutor executor{pool};
-    std::unique_ptr<GpuScene> gpuScene;
     std::unique_ptr<GBufferPass> gbuffer; ///< coverage for the line tests, built on gpuScene
 };
 

@@ -14,6 +14,8 @@
 #include "scene/Procedural.h"
 #include "tests/support/GlTestContext.h"
 #include "tests/support/ImageCompare.h"
+#include "tests/support/AnalyticSphere.h"
+#include "tests/support/PassHarness.h"
 #include "tests/support/TestCamera.h"
 
 #include <gtest/gtest.h>
@@ -40,7 +42,6 @@ constexpr double kRadius = 1.0;
 constexpr double kDistance = 4.0;
 constexpr double kFovDegrees = 35.0;
 
-double focalPixels() { return (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0); }
 
 double encodeSrgb(double linear) {
     const double x = std::clamp(linear, 0.0, 1.0);
@@ -53,39 +54,8 @@ double decodeSrgb(double encoded) {
 int srgbCode(double linear) { return int(std::lround(255.0 * encodeSrgb(linear))); }
 double linearOf(int code) { return decodeSrgb(code / 255.0); }
 
-/** The exact sphere under a point of the image (pixel units, origin top-left), by ray casting in double. View
- *  space: the eye at the origin, the sphere centre at (0, 0, -kDistance). */
-struct AnalyticHit {
-    glm::dvec3 point;
-    glm::dvec3 normal;
-    glm::dvec3 towardEye;
-};
-const glm::dvec3 kCenter(0.0, 0.0, -kDistance);
-
-std::optional<AnalyticHit> castPoint(double x, double y) {
-    const double tanHalf = std::tan(glm::radians(kFovDegrees) / 2.0);
-    const double ndcX = 2.0 * x / kSize - 1.0;
-    const double ndcY = 1.0 - 2.0 * y / kSize;
-    const glm::dvec3 direction = glm::normalize(glm::dvec3(ndcX * tanHalf, ndcY * tanHalf, -1.0));
-    const double b = glm::dot(direction, kCenter);
-    const double discriminant = b * b - (glm::dot(kCenter, kCenter) - kRadius * kRadius);
-    if (discriminant < 0.0) return std::nullopt;
-    const glm::dvec3 hit = direction * (b - std::sqrt(discriminant));
-    return AnalyticHit{hit, (hit - kCenter) / kRadius, -direction};
-}
-std::optional<AnalyticHit> castPixel(int col, int row) { return castPoint(col + 0.5, row + 0.5); }
-
-/** View-space point -> image point (pixel units, origin top-left). */
-glm::dvec2 project(const glm::dvec3& point) {
-    return {kSize / 2.0 + focalPixels() * point.x / -point.z, kSize / 2.0 - focalPixels() * point.y / -point.z};
-}
-
-double pixelsFromSilhouette(int col, int row) {
-    const double radius = focalPixels() * kRadius / std::sqrt(kDistance * kDistance - kRadius * kRadius);
-    const double dx = col + 0.5 - kSize / 2.0;
-    const double dy = row + 0.5 - kSize / 2.0;
-    return std::abs(std::sqrt(dx * dx + dy * dy) - radius);
-}
+const test::AnalyticSphereView kSphere{kSize, kRadius, kDistance, kFovDegrees};
+const glm::dvec3 kCenter = kSphere.center();
 
 /** The point of the sphere where r = reflect(-l, n) meets the eye: n = normalize(l + v), solved by fixed-point
  *  iteration (v depends on the point; with a constant v it is exact at once). */
@@ -110,7 +80,7 @@ double specularReference(const glm::dvec3& normal, const glm::dvec3& towardLight
 
 cv::Vec4b pixelAt(const cv::Mat& image, int col, int row) { return image.at<cv::Vec4b>(row, col); }
 
-class ShadeSphere : public ::testing::Test {
+class ShadeSphere : public ::testing::Test, protected test::PassHarness {
 protected:
     void SetUp() override { test::sharedGlContext(); }
 
@@ -149,12 +119,6 @@ protected:
         return settings;
     }
 
-    Scene scene;
-    FrameParams frame;
-    ShaderLibrary shaders;
-    TexturePool pool;
-    GraphExecutor executor{pool};
-    std::unique_ptr<GpuScene> gpuScene;
 };
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -191,17 +155,17 @@ TEST_P(ShadeCel, BandBordersSitAtThePredictedAngles) {
     double closestToBorder = 1.0;
     for (int row = 0; row < kSize; ++row) {
         for (int col = 0; col < kSize; ++col) {
-            const std::optional<AnalyticHit> hit = castPixel(col, row);
+            const std::optional<test::SphereHit> hit = kSphere.castPixel(col, row);
             const cv::Vec4b pixel = pixelAt(image, col, row);
             const bool covered = pixel[3] == 255;
-            if (pixelsFromSilhouette(col, row) > 1.0) {
+            if (kSphere.pixelsFromSilhouette(col, row) > 1.0) {
                 ASSERT_EQ(covered, hit.has_value()) << "coverage at col " << col << ", row " << row;
             }
             if (!covered) {
                 ASSERT_EQ(pixel, cv::Vec4b(0, 0, 0, 0)) << "background at col " << col << ", row " << row;
                 continue;
             }
-            if (!hit || pixelsFromSilhouette(col, row) <= 1.5) continue;
+            if (!hit || kSphere.pixelsFromSilhouette(col, row) <= 1.5) continue;
             int nearest = 0;
             int nearestDistance = 256;
             for (int i = 0; i < bands; ++i) {
@@ -251,7 +215,7 @@ TEST_P(ShadeCel, BandBordersSitAtThePredictedAngles) {
     std::vector<BorderStats> stats(bands);
     for (int row = 0; row < kSize; ++row) {
         const auto nDotLAt = [&](double x) {
-            return std::clamp(glm::dot(castPoint(x, row + 0.5)->normal, l), -1.0, 1.0);
+            return std::clamp(glm::dot(kSphere.castPoint(x, row + 0.5)->normal, l), -1.0, 1.0);
         };
         for (int col = 0; col + 1 < kSize; ++col) {
             const int a = measuredBand.at<int>(row, col);
@@ -342,7 +306,7 @@ TEST_F(ShadeSphere, PhongHighlightIsWhereTheReflectionMeetsTheEye) {
     ShadeSettings phongSettings = settingsFor(ShadingModel::Phong, 64.0);
     const cv::Mat phong = render(phongSettings);
     const cv::Mat lambert = render(settingsFor(ShadingModel::Lambert));
-    const glm::dvec2 predicted = project(highlightPoint(l, std::nullopt));
+    const glm::dvec2 predicted = kSphere.project(highlightPoint(l, std::nullopt));
 
     double brightest = 0.0;
     for (int row = 0; row < kSize; ++row)
@@ -388,8 +352,8 @@ int expectHighlightClassification(const cv::Mat& image, const glm::dvec3& l, dou
     int wrong = 0;
     for (int row = 0; row < kSize; ++row) {
         for (int col = 0; col < kSize; ++col) {
-            const std::optional<AnalyticHit> hit = castPixel(col, row);
-            if (!hit || pixelsFromSilhouette(col, row) <= 1.5 || pixelAt(image, col, row)[3] != 255) continue;
+            const std::optional<test::SphereHit> hit = kSphere.castPixel(col, row);
+            if (!hit || kSphere.pixelsFromSilhouette(col, row) <= 1.5 || pixelAt(image, col, row)[3] != 255) continue;
             // The gate n.l > 0 decides t at the terminator: keep away from it too.
             if (std::abs(glm::dot(hit->normal, l)) < 0.01) continue;
             const glm::dvec3 towardEye = constantTowardEye ? *constantTowardEye : hit->towardEye;
@@ -410,7 +374,7 @@ TEST_F(ShadeSphere, ComicHighlightIsWhereTheReflectionMeetsTheEye) {
     setLight(kHighlightLight);
     const glm::dvec3 l = lightView();
     const cv::Mat image = render(settingsFor(ShadingModel::Comic, 64.0), highlightMap());
-    const glm::dvec2 predicted = project(highlightPoint(l, std::nullopt));
+    const glm::dvec2 predicted = kSphere.project(highlightPoint(l, std::nullopt));
     int count = 0;
     const glm::dvec2 measured = centroid([&](int col, int row) { return isHighlight(image, col, row); }, count);
     const double offset = glm::length(measured - predicted);
@@ -469,8 +433,8 @@ TEST_F(ShadeSphere, ComicDefaultMapShowsItsThreeTonesWherePredicted) {
     std::vector<int> counts(3, 0);
     for (int row = 0; row < kSize; ++row) {
         for (int col = 0; col < kSize; ++col) {
-            const std::optional<AnalyticHit> hit = castPixel(col, row);
-            if (!hit || pixelsFromSilhouette(col, row) <= 1.5) continue;
+            const std::optional<test::SphereHit> hit = kSphere.castPixel(col, row);
+            if (!hit || kSphere.pixelsFromSilhouette(col, row) <= 1.5) continue;
             const double nDotL = glm::dot(hit->normal, l);
             const double s = std::max(nDotL, 0.0);
             const double t = specularReference(hit->normal, l, hit->towardEye, 32.0);
@@ -505,8 +469,8 @@ TEST_F(ShadeSphere, ComicConstantViewVectorMovesTheHighlightAsPredicted) {
     settings.view.constantView = glm::dvec3(0.0, 0.0, -1.0);
     const cv::Mat image = render(settings, highlightMap());
     const glm::dvec3 constantTowardEye(0.0, 0.0, 1.0);
-    const glm::dvec2 predicted = project(highlightPoint(l, constantTowardEye));
-    const glm::dvec2 exactPrediction = project(highlightPoint(l, std::nullopt));
+    const glm::dvec2 predicted = kSphere.project(highlightPoint(l, constantTowardEye));
+    const glm::dvec2 exactPrediction = kSphere.project(highlightPoint(l, std::nullopt));
     int count = 0;
     const glm::dvec2 measured = centroid([&](int col, int row) { return isHighlight(image, col, row); }, count);
     const double offset = glm::length(measured - predicted);
@@ -538,8 +502,8 @@ TEST_F(ShadeSphere, PhongShininessZeroAndHuge) {
     int largestError = 0;
     for (int row = 0; row < kSize; ++row) {
         for (int col = 0; col < kSize; ++col) {
-            const std::optional<AnalyticHit> hit = castPixel(col, row);
-            if (!hit || pixelsFromSilhouette(col, row) <= 1.5) continue;
+            const std::optional<test::SphereHit> hit = kSphere.castPixel(col, row);
+            if (!hit || kSphere.pixelsFromSilhouette(col, row) <= 1.5) continue;
             const double nDotL = glm::dot(hit->normal, l);
             if (std::abs(nDotL) < 0.01) continue;
             const double diffuse = zeroSettings.ambient + (1.0 - zeroSettings.ambient) * std::max(nDotL, 0.0);
@@ -554,7 +518,7 @@ TEST_F(ShadeSphere, PhongShininessZeroAndHuge) {
     // Shininess 1e6: the highlight's half-width is 0.001 rad in r, 0.06 px on screen, so at most a pixel or two
     // differ from lambert, all at the predicted centre; everything else equals lambert.
     const cv::Mat huge = render(settingsFor(ShadingModel::Phong, 1e6));
-    const glm::dvec2 predicted = project(highlightPoint(l, std::nullopt));
+    const glm::dvec2 predicted = kSphere.project(highlightPoint(l, std::nullopt));
     int highlighted = 0;
     double farthest = 0.0;
     for (int row = 0; row < kSize; ++row) {
@@ -573,8 +537,8 @@ TEST_F(ShadeSphere, PhongShininessZeroAndHuge) {
     int hugeError = 0;
     for (int row = 0; row < kSize; ++row) {
         for (int col = 0; col < kSize; ++col) {
-            const std::optional<AnalyticHit> hit = castPixel(col, row);
-            if (!hit || pixelsFromSilhouette(col, row) <= 1.5) continue;
+            const std::optional<test::SphereHit> hit = kSphere.castPixel(col, row);
+            if (!hit || kSphere.pixelsFromSilhouette(col, row) <= 1.5) continue;
             const double nDotL = glm::dot(hit->normal, l);
             const double diffuse = zeroSettings.ambient + (1.0 - zeroSettings.ambient) * std::max(nDotL, 0.0);
             const double expected = kDarkBase.g * diffuse + zeroSettings.specularStrength *
@@ -608,7 +572,7 @@ TEST_F(ShadeSphere, ComicShininessZeroAndHuge) {
     // highlight pixel at all, or one or two next to the predicted centre: anything else is speckle.
     const cv::Mat huge = render(settingsFor(ShadingModel::Comic, 1e6), highlightMap());
     EXPECT_GT(expectHighlightClassification(huge, l, 1e6, std::nullopt, 0.02), 25000);
-    const glm::dvec2 predicted = project(highlightPoint(l, std::nullopt));
+    const glm::dvec2 predicted = kSphere.project(highlightPoint(l, std::nullopt));
     int highlighted = 0;
     double farthest = 0.0;
     for (int row = 0; row < kSize; ++row) {
@@ -810,7 +774,7 @@ MeshHit castMesh(const Mesh& mesh, const glm::dmat4& viewFromModel, int col, int
         double nearestEdge = std::numeric_limits<double>::infinity();
         const glm::dvec2 pixel(col + 0.5, row + 0.5);
         for (int k = 0; k < 3; ++k) {
-            const glm::dvec2 a = project(p[k]), b = project(p[(k + 1) % 3]);
+            const glm::dvec2 a = kSphere.project(p[k]), b = kSphere.project(p[(k + 1) % 3]);
             const double along = std::clamp(glm::dot(pixel - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
             nearestEdge = std::min(nearestEdge, glm::length(pixel - (a + along * (b - a))));
         }
@@ -918,16 +882,16 @@ TEST_F(ShadeSphere, LambertMatchesItsFormula) {
     int largestError = 0;
     for (int row = 0; row < kSize; ++row) {
         for (int col = 0; col < kSize; ++col) {
-            const std::optional<AnalyticHit> hit = castPixel(col, row);
+            const std::optional<test::SphereHit> hit = kSphere.castPixel(col, row);
             const cv::Vec4b pixel = pixelAt(image, col, row);
-            if (pixelsFromSilhouette(col, row) > 1.0) {
+            if (kSphere.pixelsFromSilhouette(col, row) > 1.0) {
                 ASSERT_EQ(pixel[3] == 255, hit.has_value()) << "coverage at " << col << ", " << row;
             }
             if (pixel[3] != 255) {
                 ASSERT_EQ(pixel, cv::Vec4b(0, 0, 0, 0)) << "background at " << col << ", " << row;
                 continue;
             }
-            if (!hit || pixelsFromSilhouette(col, row) <= 1.5) continue;
+            if (!hit || kSphere.pixelsFromSilhouette(col, row) <= 1.5) continue;
             const double diffuse =
                 settings.ambient + (1.0 - settings.ambient) * std::max(glm::dot(hit->normal, l), 0.0);
             for (int c = 0; c < 3; ++c)
