@@ -151,12 +151,7 @@ Json describeLook(const RenderOptions& options, const StillGraph& graph) {
     look["shading"] = shadingModeName(options.shading);
     if (options.shading == ShadingMode::Phong || options.shading == ShadingMode::Comic)
         look["shininess"] = options.shininess;
-    if (usesShadeMap(options.shading)) {
-        const std::string builtin = options.shading == ShadingMode::Cel
-                                        ? "builtin:bands-" + std::to_string(options.bands.value_or(5))
-                                        : "builtin:comic";
-        look["shademap"] = options.shadeMapPath.empty() ? builtin : options.shadeMapPath;
-    }
+    if (!graph.shadeMapSource.empty()) look["shademap"] = graph.shadeMapSource;
     Json lines = Json::array();
     for (const std::string& type : knownLineTypes()) {
         if (std::find(options.lines.begin(), options.lines.end(), type) == options.lines.end()) continue;
@@ -192,6 +187,7 @@ Json describeOrientation(SceneOrientation& orientation) {
             {"front_vertex_share", report.vertices ? double(report.frontVertices) / double(report.vertices) : 0.0},
             {"exact_front_triangles", report.exactFrontTriangles},
             {"missed_triangles", report.missedTriangles},
+            {"derive_ms", report.deriveMilliseconds},
             {"mark_ms", report.markMilliseconds},
             {"upload_ms", report.uploadMilliseconds}};
 }

@@ -69,6 +69,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         std::optional<ShadeMap> shadeMap = setup.shadeMap;
         if (!shadeMap && options.shading == ShadingMode::Cel) shadeMap = makeBandShadeMap(options.bands.value_or(5));
         if (!shadeMap && comic) shadeMap = makeDefaultComicShadeMap();
+        if (shadeMap) graph.shadeMapSource = shadeMap->source;
         graph.passes.push_back(std::make_unique<ShadePass>("shade", setup.shaders, setup.gpuScene, setup.frame,
                                                            settings, std::move(shadeMap), cpuOrientation));
         graph.shadingResource = "shade.color";

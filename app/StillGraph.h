@@ -37,6 +37,7 @@ struct StillGraph {
     std::unique_ptr<SceneOrientation> orientation;
     std::vector<std::unique_ptr<Pass>> passes;
     std::string shadingResource; ///< the colour the composite reads ("shade.color"), or empty for --shading none
+    std::string shadeMapSource;  ///< the shade map's ShadeMap::source ("builtin:bands-5", a path), or empty
     std::string finalResource = "composite.final";
     OutlinePass* outline = nullptr;       ///< for --stats
     SilhouettePass* silhouette = nullptr; ///< for --stats

@@ -44,8 +44,6 @@ public:
      *  the last point asked is kept, so the line passes of one frame share one computation. */
     bool containsPoint(glm::dvec3 worldPoint);
 
-    /** The CPU scene the buffers come from (world space, not relative to worldOrigin). */
-    const Scene& scene() const { return mScene; }
     glm::dvec3 worldOrigin() const { return mWorldOrigin; }
 
 private:

@@ -48,10 +48,6 @@ OrientationReport baseReport(const Scene& scene, const OrientationSettings& sett
     return report;
 }
 
-ViewVectorChoice viewFor(const Scene& scene, const FrameParams& frame, const OrientationSettings& settings) {
-    const BoundingSphere sphere = computeBoundingSphere(scene);
-    return chooseViewVector(settings.viewVector, frame.camera.eye, sphere.center, sphere.radius);
-}
 
 } // namespace
 
@@ -79,6 +75,12 @@ const std::vector<SceneOrientation::MeshSets>& SceneOrientation::sets() {
     return mSets;
 }
 
+ViewVectorChoice SceneOrientation::viewVector() {
+    // The sphere depends on the mesh alone: computed once; the choice depends on the eye, so per frame.
+    if (!mSphere) mSphere = computeBoundingSphere(mScene);
+    return chooseViewVector(mSettings.viewVector, mFrame.camera.eye, mSphere->center, mSphere->radius);
+}
+
 void SceneOrientation::invalidate() {
     mSets.clear();
     mOrientations.clear();
@@ -104,7 +106,7 @@ const OrientationReport& SceneOrientation::report() {
     }
     if (!mReport) {
         // Standard: the GPU culls, so the share shown in the stats is counted here, and only when asked for.
-        OrientationReport report = baseReport(mScene, mSettings, viewFor(mScene, mFrame, mSettings));
+        OrientationReport report = baseReport(mScene, mSettings, viewVector());
         for (const Mesh& mesh : mScene.meshes) {
             report.exactFrontTriangles += countExactFrontTriangles(mesh, mFrame.camera.eye);
             report.frontVertices += countExactFrontVertices(mesh, mFrame.camera.eye);
@@ -122,7 +124,7 @@ void SceneOrientation::compute() {
         throw std::logic_error("SceneOrientation::sets(): GpuScene holds " + std::to_string(drawMeshes.size()) +
                                " meshes for a scene of " + std::to_string(mScene.meshes.size()));
     }
-    const ViewVectorChoice view = viewFor(mScene, mFrame, mSettings);
+    const ViewVectorChoice view = viewVector();
     OrientationReport report = baseReport(mScene, mSettings, view);
 
     OrientationRequest request;

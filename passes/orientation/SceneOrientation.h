@@ -63,7 +63,6 @@ public:
     SceneOrientation(const Scene& scene, GpuScene& gpuScene, const FrameParams& frame, OrientationSettings settings);
 
     bool usesCpuMarking() const { return mSettings.method != FaceOrientationMethod::Standard; }
-    const OrientationSettings& settings() const { return mSettings; }
     /** CPU methods: marks, lights and uploads on the first call. Throws std::logic_error for Standard. */
     const std::vector<MeshSets>& sets();
     /** The numbers for --stats; for Standard counts the exact front share on the CPU (only when asked). The exact
@@ -74,6 +73,8 @@ public:
     void invalidate();
 
 private:
+    /** The view vector for the current eye (the scene's bounding sphere is computed on the first call only). */
+    ViewVectorChoice viewVector();
     /** Derives (once), marks, lights and uploads every mesh; fills mSets, mOrientations and mReport. */
     void compute();
 
@@ -81,6 +82,7 @@ private:
     GpuScene& mGpuScene;
     const FrameParams& mFrame;
     OrientationSettings mSettings;
+    std::optional<BoundingSphere> mSphere;          ///< of the scene; on the first viewVector()
     std::vector<OrientationMeshData> mDerived;      ///< per mesh; derived on the first compute()
     std::vector<MeshOrientation> mOrientations;     ///< per mesh, of the last compute(); report() counts holes on it
     std::vector<MeshSets> mSets;

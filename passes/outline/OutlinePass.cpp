@@ -24,10 +24,10 @@ void OutlinePass::declare(PassBuilder& builder) const { builder.write("lines", {
 void OutlinePass::prepare(PassContext&) {
     if (!mDepthProgram)
         mDepthProgram = std::make_unique<GlProgram>(
-            mShaders.build({mName + " model depth", "outline/outline.vert", "outline/outline.frag", {}, {}}));
+            mShaders.build({mName + " model depth", "outline/outline.vert", "common/line_mask.frag", {}, {}}));
     if (!mLineProgram)
         mLineProgram = std::make_unique<GlProgram>(mShaders.build(
-            {mName + " back edges", "outline/outline.vert", "outline/outline.frag", {}, {}, "outline/outline.geom"}));
+            {mName + " back edges", "outline/outline.vert", "common/line_mask.frag", {}, {}, "outline/outline.geom"}));
     mScene.meshes();
     if (usesCpuSets()) mOrientation->sets(); // marks and uploads outside the timed execute()
 }

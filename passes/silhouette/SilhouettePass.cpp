@@ -33,11 +33,11 @@ void SilhouettePass::declare(PassBuilder& builder) const { builder.write("lines"
 void SilhouettePass::prepare(PassContext&) {
     if (!mDepthProgram)
         mDepthProgram = std::make_unique<GlProgram>(
-            mShaders.build({mName + " model depth", "silhouette/hull.vert", "silhouette/hull.frag", {}, {}}));
+            mShaders.build({mName + " model depth", "silhouette/hull.vert", "common/line_mask.frag", {}, {}}));
     if (!mHullProgram) {
         const std::string offset = mSettings.objectWidth ? "HULL_OBJECT_WIDTH 1" : "HULL_SCREEN_WIDTH 1";
         mHullProgram = std::make_unique<GlProgram>(
-            mShaders.build({mName + " hull", "silhouette/hull.vert", "silhouette/hull.frag", {offset}, {}}));
+            mShaders.build({mName + " hull", "silhouette/hull.vert", "common/line_mask.frag", {offset}, {}}));
     }
     const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
     if (mSettings.weldNormals && mHullArrays.empty()) {

@@ -50,11 +50,15 @@ int shadeMapIndex(float u, int count) {
     return clamp(int(floor(u * float(count))), 0, count - 1);
 }
 
+// Linear colour of the texel in column `column`, row `row` (row 0 at the bottom, t = 0).
+vec3 shadeMapTexel(int column, int row) {
+    return decodeSrgb(texelFetch(shadeMap, ivec2(column, row), 0).rgb);
+}
+
 // Linear colour of the texel at (u, v); v is ignored by one-row maps.
 vec3 shadeMapColor(vec2 uv) {
     ivec2 size = textureSize(shadeMap, 0);
-    ivec2 texel = ivec2(shadeMapIndex(uv.x, size.x), shadeMapIndex(uv.y, size.y));
-    return decodeSrgb(texelFetch(shadeMap, texel, 0).rgb);
+    return shadeMapTexel(shadeMapIndex(uv.x, size.x), shadeMapIndex(uv.y, size.y));
 }
 #endif
 
@@ -81,7 +85,8 @@ void main() {
     rgb = shadeMapColor(vec2(halfLambert(shadingNormal(), l), 0.0)) * baseColor.rgb;
 #elif defined(MODEL_COMIC)
 #ifdef SHADE_COORDS
-    vec2 st = shadeCoord;
+    // Seed 000's per-vertex (s, t) from the CPU, interpolated.
+    rgb = shadeMapColor(shadeCoord) * baseColor.rgb;
 #else
     vec3 n = shadingNormal();
     float nDotL = dot(n, l);
@@ -99,16 +104,11 @@ void main() {
         for (int border = 0; border < SPECULAR_ROW_BANDS; ++border)
             if (x <= specularBorderLimit[border]) row = specularBandRow[border + 1];
     }
-    ivec2 size = textureSize(shadeMap, 0);
-    ivec2 texel = ivec2(shadeMapIndex(max(nDotL, 0.0), size.x), row);
-    rgb = decodeSrgb(texelFetch(shadeMap, texel, 0).rgb) * baseColor.rgb;
+    rgb = shadeMapTexel(shadeMapIndex(max(nDotL, 0.0), textureSize(shadeMap, 0).x), row) * baseColor.rgb;
 #else
     vec2 st = vec2(max(nDotL, 0.0), nDotL > 0.0 ? specularTerm(reflect(-l, n), v, shininess) : 0.0);
     rgb = shadeMapColor(st) * baseColor.rgb;
 #endif
-#endif
-#ifdef SHADE_COORDS
-    rgb = shadeMapColor(st) * baseColor.rgb;
 #endif
 #else
 #error "shade.frag needs one MODEL_* define"
