@@ -1,0 +1,48 @@
+#pragma once
+/** @file A line type's one-pixel skeleton, and its drawing at a width constant in output pixels, anti-aliased.
+ *  Pure functions over cv::Mat: no GL. Coordinates: x right, y down, pixel (col, row) has its centre at (col, row). */
+
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+namespace inkgraph {
+
+/** One sample of a line: where it passes, to sub-pixel precision, and how strongly it is drawn. */
+struct LinePoint {
+    cv::Point2f position;  ///< in data-buffer pixels (x right, y down, pixel centres at integers)
+    float strength = 1.0f; ///< alpha in (0, 1]: 1 for a full line, less for a faded one
+};
+
+/** What a line kernel finds, at the resolution of the buffers it read (the data resolution). */
+struct LineSkeleton {
+    cv::Mat mask;                   ///< CV_8UC1, the data size: 255 on each pixel a line passes through, else 0
+    std::vector<LinePoint> points;  ///< the line's sub-pixel samples; a mask pixel has one or more
+};
+
+/** A skeleton from a one-pixel mask drawn elsewhere (e.g. GL lines): every non-zero pixel becomes a point at its
+ *  centre with strength mask/255. Throws std::invalid_argument naming 'mask' unless CV_8UC1. */
+LineSkeleton skeletonFromMask(const cv::Mat& mask);
+
+/** The line layer for the composite: CV_8UC1 of size mask.size() / supersample (which must divide it), 255 = full
+ *  line. Each point is a disc of diameter widthPixels x supersample at the data resolution, with coverage
+ *  clamp(radius + 0.5 - distance, 0, 1) x strength, combined by maximum, so the line is anti-aliased and
+ *  `widthPixels` wide in output pixels at any resolution; then area-downsampled (INTER_AREA) by `supersample`.
+ *  Throws std::invalid_argument naming the argument for a non-finite or non-positive width, supersample < 1 or not
+ *  dividing the size, or a wrong mask type. */
+cv::Mat strokeLines(const LineSkeleton& skeleton, float widthPixels, int supersample);
+
+/** True when two neighbouring linear depths (> 0; 0 = background) do not belong to one surface: exactly one is
+ *  background, or both are surface and |za - zb| > relativeJump x min(za, zb). Judged relative to depth, so the
+ *  answer does not change with the scene's units or distance. */
+inline bool isDepthBreak(float za, float zb, float relativeJump) {
+    const bool aCovered = za > 0.0f;
+    const bool bCovered = zb > 0.0f;
+    if (aCovered != bCovered) return true;
+    if (!aCovered) return false;
+    const float nearer = za < zb ? za : zb;
+    const float jump = za > zb ? za - zb : zb - za;
+    return jump > relativeJump * nearer;
+}
+
+} // namespace inkgraph

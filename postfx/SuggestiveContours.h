@@ -1,0 +1,45 @@
+#pragma once
+/** @file Suggestive contours in image space (DeCarlo et al. 2003): D_w(n.v) = 0 with D_w D_w(n.v) > 0, by central
+ *  differences in float32, with v = c - p unnormalised so the zero set is exactly kappa_r = 0 (docs/lines.md). */
+
+#include "postfx/LineSkeleton.h"
+
+namespace inkgraph {
+
+struct SuggestiveSettings {
+    /** Pixels with sin(theta) = |w| / |v| below this are skipped: near-frontal, w has no direction there, and
+     *  n.v is at a maximum so no suggestive contour can pass. */
+    float minSinTheta = 0.1f;
+    /** Feature size fs in the scene's length units (rtsc's): makes the strength dimensionless. */
+    float featureSize = 1.0f;
+    /** Keep a crossing only where its strength q = fs^2 D_w D_w(n.v) / (|w|^2 n.v) exceeds this. q equals rtsc's
+     *  fs^2 tan(theta) D_w^ kappa_r at kappa_r = 0. 0 keeps every crossing with D_w D_w(n.v) > 0. */
+    float threshold = 0.0f;
+    /** > 0: each point's strength is q / (q + fade) (rtsc's fade); 0: full strength. */
+    float fade = 0.0f;
+    float depthJump = 0.05f; ///< no difference is taken across a relative depth jump larger than this
+};
+
+/** Per-pixel derivatives along w, for tests and the kernel. */
+struct RadialDerivatives {
+    cv::Mat dw;    ///< CV_32FC1: D_w(n.v), by central differences of n.v along the image-space J w; 0 where invalid
+    cv::Mat dwdw;  ///< CV_32FC1: D_w D_w(n.v), central differences of dw along J w; 0 where invalid
+    cv::Mat valid; ///< CV_8UC1: 255 where dwdw is defined (every difference it needs lies on one surface)
+};
+
+/** `radial`: CV_32FC4 per pixel (n.(c - p) unnormalised, (J w).x, (J w).y, |w|^2), where J is the projection's
+ *  Jacobian in pixels (x right, y down) and w = v - (n.v) n with v = c - p; zero off the model.
+ *  `depth`: CV_32FC1 linear view depth, 0 = background; same size.
+ *  No difference is taken across a depth break or the background; pixels with sin(theta) < minSinTheta or
+ *  n.v <= 0 are invalid. */
+RadialDerivatives computeRadialDerivatives(const cv::Mat& radial, const cv::Mat& depth,
+                                           const SuggestiveSettings& settings);
+
+/** Zero crossings of D_w(n.v) between 4-neighbours (the pixel with the smaller |D_w(n.v)| marked, the point at the
+ *  linear crossing, no half-pixel shift), kept where D_w D_w(n.v) > 0 and the strength passes the threshold. The
+ *  result does not depend on the resolution: J w scales with it and the differences per pixel inversely.
+ *  Throws std::invalid_argument naming the argument for wrong types, sizes or settings. */
+LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth,
+                                       const SuggestiveSettings& settings);
+
+} // namespace inkgraph
