@@ -5,6 +5,8 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <stdexcept>
+
 namespace inkgraph {
 
 const std::vector<GBufferPass::Field>& GBufferPass::fields() {
@@ -12,16 +14,22 @@ const std::vector<GBufferPass::Field>& GBufferPass::fields() {
         {"normal", Format::RGBA32F, "NORMAL"},  {"view", Format::RGBA32F, "VIEW"},
         {"wVec", Format::RGBA32F, "WVEC"},      {"nDotV", Format::R32F, "NDOTV"},
         {"depth", Format::R32F, "DEPTH"},       {"coverage", Format::R8, "COVERAGE"},
-        {"baseColor", Format::RGBA8, "BASECOLOR"},
+        {"baseColor", Format::RGBA8, "BASECOLOR"}, {"radial", Format::RGBA32F, "RADIAL"},
     };
     return kFields;
 }
 
-GBufferPass::GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame)
-    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mDepth(mName + " depth test") {}
+GBufferPass::GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
+                         int supersample)
+    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSupersample(supersample),
+      mDepth(mName + " depth test") {
+    if (supersample < 1)
+        throw std::invalid_argument("GBufferPass(): 'supersample' must be at least 1, got " +
+                                    std::to_string(supersample));
+}
 
 void GBufferPass::declare(PassBuilder& builder) const {
-    for (const Field& field : fields()) builder.write(field.name, {field.format}, Need::Optional);
+    for (const Field& field : fields()) builder.write(field.name, {field.format, mSupersample}, Need::Optional);
 }
 
 GlProgram& GBufferPass::programFor(const std::vector<std::string>& defines) {
@@ -85,6 +93,7 @@ void GBufferPass::execute(PassContext& context) {
     glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
     glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
     glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    if (gl.isLive("radial")) glUniform2f(program.uniform("viewportSize"), float(width), float(height));
     const GLint baseColorLocation = program.uniform("baseColor");
     for (const GpuScene::DrawMesh& mesh : mScene.meshes()) {
         glUniform4fv(baseColorLocation, 1, glm::value_ptr(mesh.baseColor));

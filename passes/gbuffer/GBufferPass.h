@@ -9,9 +9,16 @@
  *  | gbuffer.nDotV      | r32f    | optional | n . v                                                             |
  *  | gbuffer.depth      | r32f    | optional | linear view depth (distance along -z in view space), 0 off-model  |
  *  | gbuffer.coverage   | r8      | optional | 255 where the model covers the pixel centre                       |
- *  | gbuffer.baseColor  | rgba8   | optional | sRGB-encoded material base colour, a = coverage                         |
+ *  | gbuffer.baseColor  | rgba8   | optional | sRGB-encoded material base colour, a = coverage                   |
+ *  | gbuffer.radial     | rgba32f | optional | (n.(c - p), (J w).x, (J w).y, |w|^2) with v = c - p unnormalised  |
  *
- *  Reads: nothing from the graph; the meshes come from GpuScene. Background pixels are all zero.
+ *  `radial` is what suggestive contours read (postfx/SuggestiveContours.h): n.v with the unnormalised view vector
+ *  (DeCarlo's form, whose zero set of D_w(n.v) is exactly kappa_r = 0), the image-space direction of w as perspective
+ *  maps it (J is the Jacobian of pixel coordinates, x right and y down, so J w = -(n.v) J n), and |w|^2, packed so
+ *  one readback serves the kernel.
+ *
+ *  Reads: nothing from the graph; the meshes come from GpuScene. Background pixels are all zero. Every field is
+ *  `supersample` times the frame size (--supersample renders the data buffers larger).
  *  Only live outputs are bound as draw buffers, and the shader is compiled with matching OUT_* defines. */
 
 #include "gl/GlObjects.h"
@@ -36,7 +43,9 @@ public:
     /** Every field the pass can write, in attachment order. */
     static const std::vector<Field>& fields();
 
-    GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame);
+    /** `supersample` >= 1 scales every field; throws std::invalid_argument otherwise. */
+    GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
+                int supersample = 1);
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
@@ -53,6 +62,7 @@ private:
     GpuScene& mScene;
     const FrameParams& mFrame;
     std::map<std::string, std::unique_ptr<GlProgram>> mPrograms; ///< keyed by the live-output defines
+    int mSupersample;
     PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
 };
 

@@ -4,6 +4,10 @@ in vec3 viewPosition;
 in vec3 viewNormal;
 
 uniform vec4 baseColor; // linear
+#ifdef OUT_RADIAL
+uniform mat4 clipFromView;
+uniform vec2 viewportSize; // pixels
+#endif
 
 #ifdef OUT_NORMAL
 layout(location = LOC_NORMAL) out vec4 outNormal;
@@ -25,6 +29,18 @@ layout(location = LOC_COVERAGE) out float outCoverage;
 #endif
 #ifdef OUT_BASECOLOR
 layout(location = LOC_BASECOLOR) out vec4 outBaseColor;
+#endif
+#ifdef OUT_RADIAL
+layout(location = LOC_RADIAL) out vec4 outRadial;
+
+// J d: how far (in pixels, x right, y down) the image of viewPosition moves when it moves by d in view space.
+// Differentiates pixel = viewport/2 * (clip.xy / clip.w + 1), so it holds for any projection matrix.
+vec2 imageDisplacement(vec3 d) {
+    vec4 clip = clipFromView * vec4(viewPosition, 1.0);
+    vec4 clipStep = clipFromView * vec4(d, 0.0);
+    vec2 ndcStep = (clipStep.xy * clip.w - clip.xy * clipStep.w) / (clip.w * clip.w);
+    return 0.5 * viewportSize * vec2(ndcStep.x, -ndcStep.y);
+}
 #endif
 
 void main() {
@@ -58,5 +74,13 @@ void main() {
 #endif
 #ifdef OUT_BASECOLOR
     outBaseColor = vec4(encodeSrgb(baseColor.rgb), 1.0);
+#endif
+#ifdef OUT_RADIAL
+    // DeCarlo's unnormalised view vector v = c - p (c is the view-space origin). J v = 0 (moving along the eye ray
+    // does not move the pixel), so J w = -(n.v) J n, which avoids the cancellation of J v - (n.v) J n.
+    vec3 towardEye = -viewPosition;
+    float radialNDotV = dot(n, towardEye);
+    vec3 w = towardEye - radialNDotV * n;
+    outRadial = vec4(radialNDotV, -radialNDotV * imageDisplacement(n), dot(w, w));
 #endif
 }

@@ -43,9 +43,9 @@ protected:
     }
 
     /** Compiles the single G-buffer pass for `requested` and runs it; returns the plan. */
-    Plan render(const std::vector<std::string>& requested) {
+    Plan render(const std::vector<std::string>& requested, int supersample = 1) {
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
-        pass = std::make_unique<GBufferPass>("gbuffer", shaders, *gpuScene, frame);
+        pass = std::make_unique<GBufferPass>("gbuffer", shaders, *gpuScene, frame, supersample);
         Plan plan = compile({pass.get()}, requested);
         executor.run(plan, {pass.get()}, {kSize, kSize, false});
         return plan;
@@ -130,6 +130,57 @@ TEST_F(GBufferSphere, ComputesOnlyRequestedOptionalOutputs) {
     // n.v at the centre of a frontal sphere is 1 (the eye looks straight at the surface).
     const cv::Mat& nDotV = executor.store().image("gbuffer.nDotV");
     EXPECT_NEAR(nDotV.at<float>(kSize / 2, kSize / 2), 1.0f, 1e-3f);
+}
+
+TEST_F(GBufferSphere, RadialFieldIsDeCarlosUnnormalisedFormWithImageSpaceW) {
+    render({"gbuffer.radial", "gbuffer.depth"});
+    const cv::Mat& radial = executor.store().image("gbuffer.radial");
+    ASSERT_EQ(radial.type(), CV_32FC4);
+    double maxFacingError = 0.0, maxDirectionDegrees = 0.0, maxLengthError = 0.0, maxWError = 0.0;
+    int compared = 0;
+    // Every 7th pixel of the disc away from the rim, against the ray-cast surface and a numerical image Jacobian.
+    for (int row = 3; row < kSize; row += 7) {
+        for (int col = 3; col < kSize; col += 7) {
+            const std::optional<test::SphereHit> truth = kSphere.castPixel(col, row);
+            if (!truth || kSphere.pixelsFromSilhouette(col, row) <= 3.0) continue;
+            const cv::Vec4f value = radial.at<cv::Vec4f>(row, col);
+            const glm::dvec3 towardEye = -truth->point; // unnormalised: c - p
+            const double facing = glm::dot(truth->normal, towardEye);
+            const glm::dvec3 w = towardEye - facing * truth->normal;
+            // J w by central differences of the projection (x right, y down, pixels).
+            const double step = 1e-4;
+            const glm::dvec2 jw = (kSphere.project(truth->point + step * w) - kSphere.project(truth->point - step * w)) /
+                                  (2.0 * step);
+            maxFacingError = std::max(maxFacingError, std::abs(value[0] - facing));
+            maxLengthError = std::max(maxLengthError, std::abs(std::hypot(value[1], value[2]) - glm::length(jw)) /
+                                                          glm::length(jw));
+            if (glm::length(jw) > 1.0) {
+                const double cosine = glm::dot(glm::normalize(glm::dvec2(value[1], value[2])), glm::normalize(jw));
+                maxDirectionDegrees = std::max(maxDirectionDegrees, glm::degrees(std::acos(std::min(1.0, cosine))));
+            }
+            maxWError = std::max(maxWError, std::abs(value[3] - glm::dot(w, w)));
+            ++compared;
+        }
+    }
+    ASSERT_GT(compared, 200);
+    // The interpolated normal is within 0.01 degree of the true one (see MatchesRayCastSphere): n.(c - p) is about
+    // 3 units, so 1e-3 is the normal error times the distance, with room; a unit v or w.xy would miss by far more.
+    EXPECT_LT(maxFacingError, 2e-3);
+    EXPECT_LT(maxDirectionDegrees, 0.5);
+    EXPECT_LT(maxLengthError, 0.01);
+    EXPECT_LT(maxWError, 2e-3);
+}
+
+TEST_F(GBufferSphere, SupersampleScalesEveryField) {
+    const Plan plan = render({"gbuffer.depth", "gbuffer.radial"}, 2);
+    const cv::Mat& depth = executor.store().image("gbuffer.depth");
+    ASSERT_EQ(depth.size(), cv::Size(2 * kSize, 2 * kSize));
+    EXPECT_EQ(plan.findResource("gbuffer.radial")->desc.scale, 2);
+    // The sphere covers the same fraction of the frame: its centre row crosses it at the same relative place.
+    int coveredInRow = 0;
+    for (int col = 0; col < 2 * kSize; ++col) coveredInRow += depth.at<float>(kSize, col) > 0.0f;
+    const double diameter = 2.0 * kSphere.focalPixels() * kRadius / std::sqrt(kDistance * kDistance - kRadius * kRadius);
+    EXPECT_NEAR(coveredInRow, 2.0 * diameter, 2.0);
 }
 
 TEST_F(GBufferSphere, ImageRowZeroIsTheTop) {
