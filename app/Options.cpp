@@ -63,8 +63,18 @@ std::string joined(const std::vector<std::string>& items) {
 } // namespace
 
 const std::vector<std::string>& knownLineTypes() {
-    static const std::vector<std::string> kLineTypes = {"outline", "silhouette"};
+    static const std::vector<std::string> kLineTypes = {"outline",  "silhouette", "normal-edge",     "depth-edge",
+                                                        "crease",   "border",     "suggestive",      "contour",
+                                                        "mesh-silhouette"};
     return kLineTypes;
+}
+
+bool isImageSpaceLineType(const std::string& type) {
+    return type == "contour" || type == "suggestive" || type == "depth-edge" || type == "normal-edge";
+}
+
+bool isMeshEdgeLineType(const std::string& type) {
+    return type == "mesh-silhouette" || type == "crease" || type == "border";
 }
 
 namespace {
@@ -122,6 +132,35 @@ std::optional<std::pair<std::string, std::string>> lineStyleFlag(const std::stri
         for (const char* property : {"width", "color"})
             if (argument == "--" + type + "-" + property) return std::make_pair(type, std::string(property));
     return std::nullopt;
+}
+
+/** Line flags that would change nothing about the requested line types are refused, like the shading flags. */
+void checkLineFlags(const RenderOptions& options, const std::vector<std::string>& given) {
+    auto wasGiven = [&](const char* flag) { return std::find(given.begin(), given.end(), flag) != given.end(); };
+    auto drawn = [&](const char* type) {
+        return std::find(options.lines.begin(), options.lines.end(), type) != options.lines.end();
+    };
+    auto require = [&](const char* flag, std::initializer_list<const char*> types) {
+        if (!wasGiven(flag)) return;
+        std::string names;
+        for (const char* type : types) {
+            if (drawn(type)) return;
+            names += std::string(names.empty() ? "" : ", ") + type;
+        }
+        throw UsageError(std::string(flag) + " has no effect: none of the line types it applies to (" + names +
+                         ") is in --lines");
+    };
+    require("--crease-angle", {"crease", "normal-edge"});
+    require("--depth-jump", {"contour", "suggestive", "depth-edge", "normal-edge"});
+    require("--suggestive-threshold", {"suggestive"});
+    require("--suggestive-fade", {"suggestive"});
+    require("--supersample", {"contour", "suggestive", "depth-edge", "normal-edge", "mesh-silhouette", "crease",
+                              "border"});
+    if (std::size_t(options.width) * options.supersample > std::size_t(kMaxImageSide) ||
+        std::size_t(options.height) * options.supersample > std::size_t(kMaxImageSide))
+        throw UsageError("--supersample: " + std::to_string(options.supersample) + " x --size " +
+                         std::to_string(options.width) + "x" + std::to_string(options.height) +
+                         " exceeds the largest buffer side, " + std::to_string(kMaxImageSide));
 }
 
 /** Flags that only mean something with some shading modes are refused elsewhere, so a typo'd mode is not silently
@@ -246,6 +285,22 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
                     throw UsageError("--lines: '" + type + "' is listed twice");
                 options.lines.push_back(type);
             }
+        } else if (argument == "--crease-angle") {
+            options.creaseAngleDegrees = parseNumber(argument, value());
+            if (!(options.creaseAngleDegrees > 0.0 && options.creaseAngleDegrees < 180.0))
+                throw UsageError("--crease-angle: degrees must lie above 0 and below 180, got '" + arguments[i] + "'");
+        } else if (argument == "--depth-jump") {
+            options.depthJump = parseNumber(argument, value());
+            if (!(options.depthJump > 0.0 && options.depthJump <= 100.0))
+                throw UsageError("--depth-jump: expected a relative depth step above 0 up to 100, got '" +
+                                 arguments[i] + "'");
+        } else if (argument == "--suggestive-threshold" || argument == "--suggestive-fade") {
+            const double strength = parseNumber(argument, value());
+            if (!(strength >= 0.0 && strength <= 1e6))
+                throw UsageError(argument + ": expected a number from 0 to 1e6, got '" + arguments[i] + "'");
+            (argument == "--suggestive-threshold" ? options.suggestiveThreshold : options.suggestiveFade) = strength;
+        } else if (argument == "--supersample") {
+            options.supersample = parseWholeNumber(argument, value(), 1, 8);
         } else if (argument == "--background") {
             const glm::dvec3 color = parseVector(argument, value());
             for (int c = 0; c < 3; ++c)
@@ -285,6 +340,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
     }
     if (options.modelPath.empty()) throw UsageError("missing MODEL (a .gltf, .glb, .obj or .stl file)");
     checkShadingFlags(options, givenFlags);
+    checkLineFlags(options, givenFlags);
     for (const auto& [flag, type] : styledLineTypes)
         if (std::find(options.lines.begin(), options.lines.end(), type) == options.lines.end())
             throw UsageError(flag + ": the '" + type + "' line type is not drawn (add it to --lines)");
@@ -350,17 +406,37 @@ Look
                          the upper left behind the camera)
   --background R,G,B     paper colour, channels in [0,1] (default 1,1,1)
 
-Lines
-  --lines LIST           comma-separated line types, or none (default none):
+Lines (any subset; only the passes the listed types need run: see --stats "culled")
+  --lines LIST           comma-separated line types, or none (default none), composited in this order:
                            outline: Lander's back faces drawn as thick wireframe behind the fill (seed 000)
                            silhouette: the inflated hull (seed 003), offset along position-welded smooth
                                 normals so hard edges do not crack it
-                         each is written to lines-<type>.png by --dump; silhouette is drawn over outline
+                           normal-edge: creases where neighbouring G-buffer normals differ by more than
+                                --crease-angle (Saito and Takahashi)
+                           depth-edge: jumps in linear depth larger than --depth-jump x the depth
+                           crease: mesh edges whose faces meet at more than --crease-angle (object space)
+                           border: open (and non-manifold) mesh edges (object space)
+                           suggestive: suggestive contours (DeCarlo et al.): D_w(n.v) = 0 with D_w D_w(n.v) > 0,
+                                in the float G-buffer with v = c - p, so the lines are where kappa_r = 0
+                           contour: where n.v changes sign, and where the model ends (against the background or
+                                in front of a farther surface), as a one-pixel skeleton
+                           mesh-silhouette: mesh edges between a front and a back face (exact perspective test)
+                         each is written to lines-<type>.png by --dump
   --TYPE-width PX        line width in pixels, above 0 up to 256 (default 2), constant across distance, field
                          of view and resolution (for outline: the width showing outside the silhouette)
   --TYPE-color R,G,B[,A] line colour, channels in [0,1] (default 0,0,0)
   --silhouette-object-width D
                          offset the hull by D model units instead (the width then shrinks with distance)
+  --crease-angle DEG     crease, normal-edge: the angle above which an edge is a crease (default 30)
+  --depth-jump R         contour, suggestive, depth-edge, normal-edge: neighbouring pixels whose depths differ
+                         by more than R x the nearer depth are different surfaces (default 0.05)
+  --suggestive-threshold T, --suggestive-fade F
+                         suggestive: keep lines whose strength q (rtsc's fs^2 tan(theta) D_w kappa_r, fs = 5%
+                         of the bounding radius) exceeds T, and fade them as q / (q + F) (defaults in
+                         docs/lines.md)
+  --supersample S        find the G-buffer and mesh-edge lines at S x the size (1 to 8, default 1) and
+                         area-downsample only the final line images: smoother, better-placed lines, S^2 the
+                         work. Outline and silhouette are drawn by GL at the output size.
   Outline and silhouette draw nothing when the eye is inside the model (they would flood the picture).
 
 System

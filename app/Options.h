@@ -47,6 +47,11 @@ struct RenderOptions {
     std::vector<std::string> lines;         ///< line types in drawing order; empty = none
     std::map<std::string, LineStyle> lineStyles; ///< one per known line type (defaults filled in)
     std::optional<double> silhouetteObjectWidth; ///< model units: the hull is offset in object space
+    double creaseAngleDegrees = 30.0;       ///< crease and normal-edge: dihedral / normal angle above this
+    double depthJump = 0.05;                ///< contour, suggestive, depth-edge, normal-edge: relative depth break
+    std::optional<double> suggestiveThreshold; ///< strength threshold (default: LineDefaults)
+    std::optional<double> suggestiveFade;      ///< strength fade (default: LineDefaults)
+    int supersample = 1;                    ///< data buffers and edge skeletons at S x the size
     glm::dvec3 background{1.0, 1.0, 1.0};
     std::vector<std::string> extraOutputs;  ///< --request: extra graph resources kept and dumped ("gbuffer.*")
     std::string dumpDirectory;
@@ -60,6 +65,10 @@ struct RenderOptions {
 
 /** Line types this build knows, in the order they are composited (later ones on top). */
 const std::vector<std::string>& knownLineTypes();
+/** Line types found in the float G-buffer by the post stage (postfx/). */
+bool isImageSpaceLineType(const std::string& type);
+/** Line types drawn from the mesh's edges (the "mesh-edges" pass). */
+bool isMeshEdgeLineType(const std::string& type);
 std::string shadingModeName(ShadingMode mode);
 bool usesShadeMap(ShadingMode mode);
 

@@ -11,6 +11,7 @@
 #include "graph/GraphCompiler.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/lines/LineLayerPass.h"
 #include "passes/outline/OutlinePass.h"
 #include "passes/shade/ShadeMap.h"
 #include "passes/silhouette/SilhouettePass.h"
@@ -163,10 +164,42 @@ Json describeLook(const RenderOptions& options, const StillGraph& graph) {
             line["object_width"] = *options.silhouetteObjectWidth;
         if (type == "silhouette" && graph.silhouette) line["skipped_eye_inside"] = graph.silhouette->skippedEyeInside();
         if (type == "outline" && graph.outline) line["skipped_eye_inside"] = graph.outline->skippedEyeInside();
+        if (type == "crease" || type == "normal-edge") line["crease_angle_degrees"] = options.creaseAngleDegrees;
+        if (isImageSpaceLineType(type)) line["depth_jump"] = options.depthJump;
+        if (isImageSpaceLineType(type) || isMeshEdgeLineType(type)) line["supersample"] = options.supersample;
+        if (type == "suggestive") {
+            const SuggestiveSettings& settings = graph.lineLayers.at(type)->settings().suggestive;
+            line["threshold"] = settings.threshold;
+            line["fade"] = settings.fade;
+            line["feature_size"] = settings.featureSize;
+            line["min_sin_theta"] = settings.minSinTheta;
+        }
         lines.push_back(line);
     }
     look["lines"] = lines;
     return look;
+}
+
+/** The CPU line passes that ran: what they found and where the time went. "kernels_ms" is the post stage proper
+ *  (finding and stroking every line type, without bringing the G-buffer to the CPU); "composite_ms" follows it. */
+Json describePostStage(const StillGraph& graph, const std::vector<PassTiming>& timings) {
+    Json layers = Json::array();
+    double kernels = 0.0, readback = 0.0, composite = 0.0;
+    for (const PassTiming& timing : timings) {
+        if (timing.pass == "composite") composite = timing.milliseconds;
+        const auto layer = graph.lineLayers.find(timing.pass);
+        if (layer == graph.lineLayers.end()) continue;
+        const LineLayerReport& report = layer->second->report();
+        layers.push_back({{"type", timing.pass},
+                          {"skeleton_pixels", report.skeletonPixels},
+                          {"points", report.points},
+                          {"readback_ms", report.readbackMilliseconds},
+                          {"kernel_ms", report.kernelMilliseconds},
+                          {"stroke_ms", report.strokeMilliseconds}});
+        kernels += report.kernelMilliseconds + report.strokeMilliseconds;
+        readback += report.readbackMilliseconds;
+    }
+    return {{"lines", layers}, {"kernels_ms", kernels}, {"readback_ms", readback}, {"composite_ms", composite}};
 }
 
 /** Seed 000's numbers (Figure 8 plus holes and time) for --stats; only for comic, where the methods apply. */
@@ -198,7 +231,7 @@ std::string dumpFileName(const std::string& resource, bool isFloat, const std::s
     static const std::map<std::string, std::string> kFixedNames = {
         {"gbuffer.normal", "normal.exr"},       {"gbuffer.view", "view.exr"},   {"gbuffer.wVec", "w.exr"},
         {"gbuffer.nDotV", "ndotv.exr"},         {"gbuffer.depth", "depth.exr"}, {"gbuffer.coverage", "coverage.png"},
-        {"gbuffer.baseColor", "basecolor.png"}, {"composite.final", "final.png"},
+        {"gbuffer.baseColor", "basecolor.png"}, {"gbuffer.radial", "radial.exr"},  {"composite.final", "final.png"},
     };
     if (auto fixed = kFixedNames.find(resource); fixed != kFixedNames.end()) return fixed->second;
     if (!shadingResource.empty() && resource == shadingResource) return "shading.png";
@@ -365,6 +398,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
         stats["look"] = describeLook(options, graph);
         if (options.shading == ShadingMode::Comic) stats["face_orientation"] = describeOrientation(*graph.orientation);
         stats["passes"] = passTimes;
+        stats["post_stage"] = describePostStage(graph, timings);
         stats["culled"] = culled;
         stats["write_ms"] = millisecondsSince(writeStart);
         stats["textures_created"] = pool.createdCount();

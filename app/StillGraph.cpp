@@ -2,6 +2,7 @@
 
 #include "passes/composite/CompositePass.h"
 #include "passes/gbuffer/GBufferPass.h"
+#include "passes/lines/LineLayerPass.h"
 #include "passes/outline/OutlinePass.h"
 #include "passes/shade/ShadePass.h"
 #include "passes/silhouette/SilhouettePass.h"
@@ -57,7 +58,8 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         std::make_unique<SceneOrientation>(setup.scene, setup.gpuScene, setup.frame, orientationSettings);
     SceneOrientation* cpuOrientation = graph.orientation->usesCpuMarking() ? graph.orientation.get() : nullptr;
 
-    graph.passes.push_back(std::make_unique<GBufferPass>("gbuffer", setup.shaders, setup.gpuScene, setup.frame));
+    graph.passes.push_back(std::make_unique<GBufferPass>("gbuffer", setup.shaders, setup.gpuScene, setup.frame,
+                                                         options.supersample));
 
     if (options.shading != ShadingMode::None) {
         ShadeSettings settings;
@@ -86,6 +88,35 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     auto silhouette = std::make_unique<SilhouettePass>("silhouette", setup.shaders, setup.gpuScene, setup.frame, hull);
     graph.silhouette = silhouette.get();
     graph.passes.push_back(std::move(silhouette));
+
+    // The post-stage line types, each a CPU pass over the G-buffer; registered whether or not requested.
+    const float depthJump = float(options.depthJump);
+    for (const std::string& type : knownLineTypes()) {
+        if (!isImageSpaceLineType(type)) continue;
+        LineLayerSettings settings;
+        settings.widthPixels = float(options.lineStyles.at(type).widthPixels);
+        settings.supersample = options.supersample;
+        if (type == "contour") {
+            settings.source = LineSource::Contour;
+            settings.contour.depthJump = depthJump;
+        } else if (type == "suggestive") {
+            settings.source = LineSource::Suggestive;
+            settings.suggestive.depthJump = depthJump;
+            settings.suggestive.featureSize = float(kSuggestiveFeatureSizeFraction * setup.sphere.radius);
+            settings.suggestive.threshold = float(options.suggestiveThreshold.value_or(kDefaultSuggestiveThreshold));
+            settings.suggestive.fade = float(options.suggestiveFade.value_or(kDefaultSuggestiveFade));
+        } else if (type == "depth-edge") {
+            settings.source = LineSource::DepthEdge;
+            settings.depthEdge.relativeJump = depthJump;
+        } else {
+            settings.source = LineSource::NormalEdge;
+            settings.normalEdge.creaseAngleDegrees = float(options.creaseAngleDegrees);
+            settings.normalEdge.depthJump = depthJump;
+        }
+        auto pass = std::make_unique<LineLayerPass>(type, settings);
+        graph.lineLayers[type] = pass.get();
+        graph.passes.push_back(std::move(pass));
+    }
 
     std::vector<CompositePass::LineInput> lines;
     for (const std::string& type : knownLineTypes())

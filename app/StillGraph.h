@@ -11,6 +11,7 @@
 #include "passes/shade/ShadeMap.h"
 #include "scene/Scene.h"
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,8 +19,16 @@
 
 namespace inkgraph {
 
+class LineLayerPass;
 class OutlinePass;
 class SilhouettePass;
+
+/** Defaults of the suggestive-contour strength test (docs/lines.md says how they were chosen). */
+constexpr double kDefaultSuggestiveThreshold = 0.0;
+constexpr double kDefaultSuggestiveFade = 0.0;
+/** The feature size fs that makes the suggestive strength dimensionless, as a fraction of the bounding radius
+ *  (rtsc's upper bound on fs). */
+constexpr double kSuggestiveFeatureSizeFraction = 0.05;
 
 /** What buildStillGraph() needs; every reference must outlive the graph. */
 struct StillGraphSetup {
@@ -41,6 +50,7 @@ struct StillGraph {
     std::string finalResource = "composite.final";
     OutlinePass* outline = nullptr;       ///< for --stats
     SilhouettePass* silhouette = nullptr; ///< for --stats
+    std::map<std::string, LineLayerPass*> lineLayers; ///< the CPU line passes by line type, for --stats
 
     std::vector<const Pass*> view() const;
     std::vector<Pass*> mutableView() const;

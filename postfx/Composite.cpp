@@ -1,6 +1,9 @@
 #include "postfx/Composite.h"
 
+#include <opencv2/core/utility.hpp>
+
 #include <stdexcept>
+#include <vector>
 #include <string>
 
 namespace inkgraph {
@@ -41,31 +44,39 @@ cv::Mat compositeFinal(const CompositeInputs& inputs) {
 
     const cv::Vec4b paper = toBytes(inputs.paper);
     cv::Mat result(inputs.size, CV_8UC4, cv::Scalar(paper[0], paper[1], paper[2], paper[3]));
-    if (!inputs.shading.empty()) {
-        for (int row = 0; row < result.rows; ++row) {
-            const auto* shading = inputs.shading.ptr<cv::Vec4b>(row);
+    std::vector<cv::Vec4b> lineColors;
+    for (const LineLayer& layer : inputs.lines) lineColors.push_back(toBytes(layer.color));
+    // Rows are independent; opaque and empty pixels (most of a frame) skip the blend.
+    cv::parallel_for_(cv::Range(0, result.rows), [&](const cv::Range& rows) {
+        for (int row = rows.start; row < rows.end; ++row) {
             auto* out = result.ptr<cv::Vec4b>(row);
-            for (int col = 0; col < result.cols; ++col) {
-                const int alpha = shading[col][3];
-                for (int channel = 0; channel < 3; ++channel)
-                    out[col][channel] = over(shading[col][channel], paper[channel], alpha);
-                out[col][3] = static_cast<uchar>(alpha + (paper[3] * (255 - alpha) + 127) / 255);
+            if (!inputs.shading.empty()) {
+                const auto* shading = inputs.shading.ptr<cv::Vec4b>(row);
+                for (int col = 0; col < result.cols; ++col) {
+                    const int alpha = shading[col][3];
+                    if (alpha == 0) continue;
+                    if (alpha == 255) {
+                        out[col] = shading[col];
+                        continue;
+                    }
+                    for (int channel = 0; channel < 3; ++channel)
+                        out[col][channel] = over(shading[col][channel], paper[channel], alpha);
+                    out[col][3] = static_cast<uchar>(alpha + (paper[3] * (255 - alpha) + 127) / 255);
+                }
+            }
+            for (std::size_t layer = 0; layer < inputs.lines.size(); ++layer) {
+                const uchar* mask = inputs.lines[layer].mask.ptr<uchar>(row);
+                const cv::Vec4b color = lineColors[layer];
+                for (int col = 0; col < result.cols; ++col) {
+                    if (mask[col] == 0) continue;
+                    const int alpha = (mask[col] * color[3] + 127) / 255;
+                    for (int channel = 0; channel < 3; ++channel)
+                        out[col][channel] = over(color[channel], out[col][channel], alpha);
+                    out[col][3] = static_cast<uchar>(alpha + (out[col][3] * (255 - alpha) + 127) / 255);
+                }
             }
         }
-    }
-    for (const LineLayer& layer : inputs.lines) {
-        const cv::Vec4b color = toBytes(layer.color);
-        for (int row = 0; row < result.rows; ++row) {
-            const uchar* mask = layer.mask.ptr<uchar>(row);
-            auto* out = result.ptr<cv::Vec4b>(row);
-            for (int col = 0; col < result.cols; ++col) {
-                if (mask[col] == 0) continue;
-                const int alpha = (mask[col] * color[3] + 127) / 255;
-                for (int channel = 0; channel < 3; ++channel) out[col][channel] = over(color[channel], out[col][channel], alpha);
-                out[col][3] = static_cast<uchar>(alpha + (out[col][3] * (255 - alpha) + 127) / 255);
-            }
-        }
-    }
+    });
     return result;
 }
 

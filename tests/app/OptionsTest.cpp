@@ -124,6 +124,47 @@ TEST(Options, LineTypesAndTheirStyles) {
               std::string::npos);
 }
 
+TEST(Options, PostStageLineTypesAndTheirFlags) {
+    const RenderOptions options =
+        parse({"m.obj", "-o", "x.png", "--lines", "contour,suggestive,depth-edge,normal-edge,crease,border,"
+               "mesh-silhouette", "--crease-angle", "45", "--depth-jump", "0.1", "--suggestive-threshold", "0.02",
+               "--suggestive-fade", "0.5", "--supersample", "3", "--suggestive-width", "1.5"});
+    EXPECT_EQ(options.lines.size(), 7u);
+    EXPECT_EQ(options.creaseAngleDegrees, 45.0);
+    EXPECT_EQ(options.depthJump, 0.1);
+    EXPECT_EQ(*options.suggestiveThreshold, 0.02);
+    EXPECT_EQ(*options.suggestiveFade, 0.5);
+    EXPECT_EQ(options.supersample, 3);
+    EXPECT_EQ(options.lineStyles.at("suggestive").widthPixels, 1.5);
+    for (const std::string& type : {"contour", "suggestive", "depth-edge", "normal-edge"})
+        EXPECT_TRUE(isImageSpaceLineType(type)) << type;
+    for (const std::string& type : {"crease", "border", "mesh-silhouette"}) EXPECT_TRUE(isMeshEdgeLineType(type)) << type;
+    EXPECT_FALSE(isImageSpaceLineType("outline"));
+    EXPECT_FALSE(isMeshEdgeLineType("silhouette"));
+
+    // A flag that changes none of the requested line types is refused, naming the types it applies to.
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--crease-angle", "40"}).find("crease, normal-edge"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "crease", "--depth-jump", "0.1"}).find("--depth-jump"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--suggestive-fade", "1"}).find("suggestive"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--supersample", "2"}).find("--supersample"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "crease", "--crease-angle", "180"}).find("below 180"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--depth-jump", "0"}).find("--depth-jump"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-threshold", "-1"})
+                  .find("--suggestive-threshold"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--supersample", "9"}).find("1 to 8"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--size", "8192x8192", "--lines", "contour", "--supersample", "4"})
+                  .find("largest buffer side"),
+              std::string::npos);
+}
+
 TEST(Options, EveryValue) {
     const RenderOptions options =
         parse({"-o", "a.png", "m.glb", "--size", "640x480", "--eye", "1,2,3", "--target", "0,0.5,-1e-3", "--up",
@@ -162,7 +203,7 @@ TEST(Options, MalformedValuesNameTheFlag) {
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--request", "a.b.c"}).find("'a.b.c'"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "--print-plan", "--stats", "s.json"}).find("--stats"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "toon"}).find("'toon'"), std::string::npos);
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour"}).find("'contour'"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "hatching"}).find("'hatching'"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--light", "0,0,0"}).find("--light"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--up", "0,0,0"}).find("--up"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--background", "2,0,0"}).find("--background"), std::string::npos);

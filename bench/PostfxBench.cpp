@@ -1,0 +1,134 @@
+// The post stage alone (no GL): each line kernel, the stroke and the composite on a ray-cast torus G-buffer at
+// 512x512, 1024x1024, 1920x1080 and 4096x4096 (the torus fills about 40% of the frame at every size), and the post
+// stage of `--lines silhouette,contour,suggestive` (contour and suggestive kernels, their strokes, the composite of
+// three layers) as one number. Counters: Mpixel/s of the frame, skeleton points.
+//   ./build/bench/inkgraph_bench --benchmark_filter=Postfx
+#include "postfx/Composite.h"
+#include "postfx/Contour.h"
+#include "postfx/ImageEdges.h"
+#include "postfx/LineSkeleton.h"
+#include "postfx/SuggestiveContours.h"
+#include "tests/support/SyntheticGBuffer.h"
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <utility>
+
+namespace inkgraph::bench {
+namespace {
+
+/** A torus (ring 1, tube 0.4) seen from 30 degrees above, ray cast once per size and kept. */
+const test::SyntheticGBuffer& torusAt(int width, int height) {
+    static std::map<std::pair<int, int>, test::SyntheticGBuffer> buffers;
+    auto found = buffers.find({width, height});
+    if (found != buffers.end()) return found->second;
+    test::SyntheticCamera camera;
+    camera.width = width;
+    camera.height = height;
+    camera.eye = 4.2 * glm::dvec3(std::cos(glm::radians(30.0)), 0.0, std::sin(glm::radians(30.0)));
+    camera.up = {0.0, 0.0, 1.0};
+    return buffers.emplace(std::make_pair(width, height), test::renderTorus(camera, glm::dvec3(0.0), 1.0, 0.4))
+        .first->second;
+}
+
+SuggestiveSettings suggestiveSettings() {
+    SuggestiveSettings settings;
+    settings.featureSize = 0.05f * 1.4f; // 5% of the torus's bounding radius, as the app sets it
+    return settings;
+}
+
+void finish(benchmark::State& state, int width, int height, std::size_t points) {
+    state.counters["Mpixel/s"] =
+        benchmark::Counter(double(width) * height * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["points"] = double(points);
+}
+
+int widthOf(const benchmark::State& state) { return int(state.range(0)); }
+int heightOf(const benchmark::State& state) { return int(state.range(1)); }
+
+void BM_PostfxContour(benchmark::State& state) {
+    const test::SyntheticGBuffer& buffer = torusAt(widthOf(state), heightOf(state));
+    std::size_t points = 0;
+    for (auto _ : state) points = extractContours(buffer.nDotV, buffer.depth, {}).points.size();
+    finish(state, widthOf(state), heightOf(state), points);
+}
+
+void BM_PostfxSuggestive(benchmark::State& state) {
+    const test::SyntheticGBuffer& buffer = torusAt(widthOf(state), heightOf(state));
+    std::size_t points = 0;
+    for (auto _ : state)
+        points = extractSuggestiveContours(buffer.radial, buffer.depth, suggestiveSettings()).points.size();
+    finish(state, widthOf(state), heightOf(state), points);
+}
+
+void BM_PostfxDepthEdge(benchmark::State& state) {
+    const test::SyntheticGBuffer& buffer = torusAt(widthOf(state), heightOf(state));
+    std::size_t points = 0;
+    for (auto _ : state) points = extractDepthEdges(buffer.depth, {}).points.size();
+    finish(state, widthOf(state), heightOf(state), points);
+}
+
+void BM_PostfxNormalEdge(benchmark::State& state) {
+    const test::SyntheticGBuffer& buffer = torusAt(widthOf(state), heightOf(state));
+    std::size_t points = 0;
+    for (auto _ : state) points = extractNormalEdges(buffer.normal, buffer.depth, {}).points.size();
+    finish(state, widthOf(state), heightOf(state), points);
+}
+
+void BM_PostfxStrokeContour(benchmark::State& state) {
+    const test::SyntheticGBuffer& buffer = torusAt(widthOf(state), heightOf(state));
+    const LineSkeleton skeleton = extractContours(buffer.nDotV, buffer.depth, {});
+    for (auto _ : state) benchmark::DoNotOptimize(strokeLines(skeleton, 2.0f, 1));
+    finish(state, widthOf(state), heightOf(state), skeleton.points.size());
+}
+
+void BM_PostfxComposite3(benchmark::State& state) {
+    const cv::Size size(widthOf(state), heightOf(state));
+    const test::SyntheticGBuffer& buffer = torusAt(size.width, size.height);
+    CompositeInputs inputs;
+    inputs.size = size;
+    inputs.shading = cv::Mat(size, CV_8UC4, cv::Scalar(180, 160, 140, 255));
+    const cv::Mat contour = strokeLines(extractContours(buffer.nDotV, buffer.depth, {}), 2.0f, 1);
+    for (int layer = 0; layer < 3; ++layer) inputs.lines.push_back({"layer", contour, {0.0f, 0.0f, 0.0f, 1.0f}});
+    for (auto _ : state) benchmark::DoNotOptimize(compositeFinal(inputs));
+    finish(state, size.width, size.height, 0);
+}
+
+/** What `--lines silhouette,contour,suggestive` adds on the CPU after readback: two kernels, two strokes and the
+ *  composite of three layers over the shading (the silhouette mask comes from GL). */
+void BM_PostfxStageSilhouetteContourSuggestive(benchmark::State& state) {
+    const cv::Size size(widthOf(state), heightOf(state));
+    const test::SyntheticGBuffer& buffer = torusAt(size.width, size.height);
+    CompositeInputs inputs;
+    inputs.size = size;
+    inputs.shading = cv::Mat(size, CV_8UC4, cv::Scalar(180, 160, 140, 255));
+    const cv::Mat hull = strokeLines(extractDepthEdges(buffer.depth, {}), 2.0f, 1);
+    std::size_t points = 0;
+    for (auto _ : state) {
+        const LineSkeleton contour = extractContours(buffer.nDotV, buffer.depth, {});
+        const LineSkeleton suggestive = extractSuggestiveContours(buffer.radial, buffer.depth, suggestiveSettings());
+        inputs.lines = {{"silhouette", hull, {0.0f, 0.0f, 0.0f, 1.0f}},
+                        {"suggestive", strokeLines(suggestive, 2.0f, 1), {0.0f, 0.0f, 0.0f, 1.0f}},
+                        {"contour", strokeLines(contour, 2.0f, 1), {0.0f, 0.0f, 0.0f, 1.0f}}};
+        benchmark::DoNotOptimize(compositeFinal(inputs));
+        points = contour.points.size() + suggestive.points.size();
+    }
+    finish(state, size.width, size.height, points);
+}
+
+void sizes(benchmark::internal::Benchmark* benchmark) {
+    benchmark->Args({512, 512})->Args({1024, 1024})->Args({1920, 1080})->Args({4096, 4096});
+    benchmark->ArgNames({"w", "h"})->Unit(benchmark::kMillisecond);
+}
+
+BENCHMARK(BM_PostfxContour)->Apply(sizes);
+BENCHMARK(BM_PostfxSuggestive)->Apply(sizes);
+BENCHMARK(BM_PostfxDepthEdge)->Apply(sizes);
+BENCHMARK(BM_PostfxNormalEdge)->Apply(sizes);
+BENCHMARK(BM_PostfxStrokeContour)->Apply(sizes);
+BENCHMARK(BM_PostfxComposite3)->Apply(sizes);
+BENCHMARK(BM_PostfxStageSilhouetteContourSuggestive)->Apply(sizes);
+
+} // namespace
+} // namespace inkgraph::bench

@@ -1,0 +1,190 @@
+// The post-stage line types end to end: the GL G-buffer of a mesh, read back, through the postfx kernels, stroked.
+// Analytic expectations: a sphere's contour lies on its silhouette circle (image radius f R / sqrt(d^2 - R^2)), a
+// sphere has no suggestive contours, a torus has them on its inner side, and runs repeat exactly.
+#include "graph/GraphCompiler.h"
+#include "passes/gbuffer/GBufferPass.h"
+#include "passes/lines/LineLayerPass.h"
+#include "scene/Procedural.h"
+#include "tests/support/AnalyticSphere.h"
+#include "tests/support/GlTestContext.h"
+#include "tests/support/PassHarness.h"
+#include "tests/support/TestCamera.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/constants.hpp>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+constexpr int kSize = 512;
+constexpr double kFovDegrees = 35.0;
+
+class LineLayers : public ::testing::Test, protected test::PassHarness {
+protected:
+    void SetUp() override { test::sharedGlContext(); }
+
+    void look(Mesh mesh, const glm::dvec3& eye, int size = kSize) {
+        scene = makeScene(std::move(mesh));
+        frame.camera = test::lookingAt(scene, eye, glm::dvec3(0.0), kFovDegrees, size, size);
+        frame.worldOrigin = glm::dvec3(0.0);
+        frameSize = size;
+    }
+
+    /** Runs the G-buffer and one line pass; returns the pass for its report. The lines stay in the store. */
+    LineLayerPass& draw(LineLayerSettings settings, int supersample = 1) {
+        gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+        gbuffer = std::make_unique<GBufferPass>("gbuffer", shaders, *gpuScene, frame, supersample);
+        settings.supersample = supersample;
+        lines = std::make_unique<LineLayerPass>("lines-under-test", settings);
+        const std::vector<const Pass*> passes = {gbuffer.get(), lines.get()};
+        const Plan plan = compile(passes, {"lines-under-test.lines", "gbuffer.depth"});
+        executor.run(plan, {gbuffer.get(), lines.get()}, {frameSize, frameSize, false});
+        return *lines;
+    }
+
+    const cv::Mat& lineImage() { return executor.store().image("lines-under-test.lines"); }
+
+    int frameSize = kSize;
+    std::unique_ptr<GBufferPass> gbuffer;
+    std::unique_ptr<LineLayerPass> lines;
+};
+
+LineLayerSettings withSource(LineSource source) {
+    LineLayerSettings settings;
+    settings.source = source;
+    return settings;
+}
+
+TEST_F(LineLayers, SphereContourLiesOnTheAnalyticSilhouetteCircle) {
+    // 512 x 256 segments: the polygon lies inside the sphere by at most rho pi^2 / (2 N^2) = 0.004 px here.
+    look(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 512, 256), {0.0, 0.0, 4.0});
+    const test::AnalyticSphereView sphere{kSize, 1.0, 4.0, kFovDegrees};
+    for (const int supersample : {1, 2}) {
+        SCOPED_TRACE("supersample " + std::to_string(supersample));
+        draw(withSource(LineSource::Contour), supersample);
+        const cv::Mat& image = lineImage();
+        ASSERT_EQ(image.size(), cv::Size(kSize, kSize));
+        // Every drawn pixel with full coverage lies within half the width (1 px) plus 1 px of the circle, and the
+        // line goes all the way round: each 1-degree sector has a full-coverage pixel.
+        std::vector<int> sectors(360, 0);
+        double worst = 0.0;
+        int fullPixels = 0;
+        for (int row = 0; row < kSize; ++row)
+            for (int col = 0; col < kSize; ++col) {
+                if (image.at<uchar>(row, col) < 250) continue;
+                ++fullPixels;
+                worst = std::max(worst, sphere.pixelsFromSilhouette(col, row));
+                const double angle = std::atan2(row + 0.5 - kSize / 2.0, col + 0.5 - kSize / 2.0);
+                ++sectors[int(std::floor((angle + glm::pi<double>()) / (2.0 * glm::pi<double>()) * 360.0)) % 360];
+            }
+        EXPECT_LT(worst, 2.0) << "full-coverage line pixel this far from the silhouette circle";
+        for (int sector = 0; sector < 360; ++sector) EXPECT_GT(sectors[sector], 0) << "gap at " << sector << " deg";
+        // A 2-px ring of radius 209.6 px: about 2 pi rho x 2 pixels of coverage in all.
+        const double circle = sphere.focalPixels() / std::sqrt(15.0);
+        EXPECT_NEAR(cv::sum(image)[0] / 255.0, 2.0 * glm::pi<double>() * circle * 2.0, 0.1 * 2.0 * glm::pi<double>() * circle * 2.0);
+        RecordProperty("full_pixels_s" + std::to_string(supersample), fullPixels);
+    }
+}
+
+TEST_F(LineLayers, SphereContourSkeletonPointsAreWithinOnePixel) {
+    look(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 512, 256), {0.3, -0.2, 4.0});
+    // The off-axis sphere's silhouette is the image of the tangent cone: a pixel ray x lies on it iff
+    // (x.c)^2 = (|c|^2 - R^2)|x|^2 (algorithms.md 6.1). Every skeleton point must have the cone within 1 px.
+    const LineLayerPass& pass = draw(withSource(LineSource::Contour));
+    ASSERT_GT(pass.skeleton().points.size(), 1000u);
+    const glm::dmat4 view = frame.camera.viewMatrix();
+    const glm::dvec3 center = glm::dvec3(view * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
+    auto coneResidual = [&](double x, double y) { // x, y: image point, origin top-left
+        const glm::dvec3 ray((x - kSize / 2.0) / focal, -(y - kSize / 2.0) / focal, -1.0);
+        return glm::dot(ray, center) * glm::dot(ray, center) - (glm::dot(center, center) - 1.0) * glm::dot(ray, ray);
+    };
+    int outside = 0;
+    for (const LinePoint& point : pass.skeleton().points) {
+        // Skeleton points put pixel centres at integers; the image point of a pixel centre is col + 0.5.
+        const double x = point.position.x + 0.5, y = point.position.y + 0.5;
+        const bool positive = coneResidual(x, y) > 0;
+        bool crosses = false;
+        for (int step = 0; step < 32 && !crosses; ++step) {
+            const double angle = step * glm::pi<double>() / 16.0;
+            crosses = (coneResidual(x + std::cos(angle), y + std::sin(angle)) > 0) != positive;
+        }
+        outside += !crosses;
+    }
+    EXPECT_EQ(outside, 0) << "skeleton points more than 1 px from the analytic silhouette";
+}
+
+TEST_F(LineLayers, SphereHasNoSuggestiveContours) {
+    for (const glm::dvec3 eye : {glm::dvec3(0.0, 0.0, 4.0), glm::dvec3(1.5, 1.0, 2.5), glm::dvec3(0.0, 0.0, 1.6)}) {
+        look(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 512, 256), eye);
+        LineLayerSettings settings = withSource(LineSource::Suggestive);
+        settings.suggestive.featureSize = 0.05f;
+        const LineLayerPass& pass = draw(settings);
+        EXPECT_EQ(pass.report().points, 0u) << "eye " << eye.x << "," << eye.y << "," << eye.z;
+        EXPECT_EQ(cv::countNonZero(lineImage()), 0);
+    }
+}
+
+TEST_F(LineLayers, TorusHasSuggestiveContoursOnItsInnerSide) {
+    // Ring radius 1, tube 0.35, around z; seen from 30 degrees above the ring's plane.
+    const double ringRadius = 1.0, tubeRadius = 0.35;
+    const double elevation = glm::radians(30.0);
+    const glm::dvec3 eye = 4.0 * glm::dvec3(std::cos(elevation), 0.0, std::sin(elevation));
+    look(makeTorus(float(ringRadius), float(tubeRadius), 512, 256), eye);
+    LineLayerSettings settings = withSource(LineSource::Suggestive);
+    settings.suggestive.featureSize = float(0.05 * (ringRadius + tubeRadius));
+    const LineLayerPass& pass = draw(settings);
+    ASSERT_GT(pass.report().points, 100u);
+    // Back-project every line pixel through the depth buffer and ask where on the torus it is: the inner half
+    // (negative Gaussian curvature, distance from the axis below the ring radius) is the only place kappa_r can be 0.
+    const cv::Mat& depth = executor.store().image("gbuffer.depth");
+    const cv::Mat& image = lineImage();
+    const glm::dmat4 worldFromView = glm::inverse(frame.camera.viewMatrix());
+    const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
+    int inner = 0, outer = 0;
+    for (int row = 0; row < kSize; ++row)
+        for (int col = 0; col < kSize; ++col) {
+            if (image.at<uchar>(row, col) < 250 || depth.at<float>(row, col) <= 0.0f) continue;
+            const double z = depth.at<float>(row, col);
+            const glm::dvec3 view((col + 0.5 - kSize / 2.0) / focal * z, -(row + 0.5 - kSize / 2.0) / focal * z, -z);
+            const glm::dvec3 world = glm::dvec3(worldFromView * glm::dvec4(view, 1.0));
+            (std::hypot(world.x, world.y) < ringRadius ? inner : outer)++;
+        }
+    EXPECT_GT(inner, 200);
+    // The stroke is 2 px wide and a few pixels sit where the inner side meets the outer: allow 2%.
+    EXPECT_LT(outer, inner / 50) << "suggestive-contour pixels on the torus's outer (convex) half";
+    RecordProperty("inner_pixels", inner);
+    RecordProperty("outer_pixels", outer);
+}
+
+TEST_F(LineLayers, EveryKernelRepeatsExactly) {
+    look(makeTorus(1.0f, 0.35f, 96, 48), {2.5, 1.0, 2.5});
+    for (const LineSource source :
+         {LineSource::Contour, LineSource::Suggestive, LineSource::DepthEdge, LineSource::NormalEdge}) {
+        draw(withSource(source));
+        const cv::Mat first = lineImage().clone();
+        draw(withSource(source));
+        EXPECT_EQ(cv::norm(first, lineImage(), cv::NORM_INF), 0.0) << "source " << int(source);
+        EXPECT_GT(cv::countNonZero(first), 0) << "source " << int(source) << " found nothing on a torus";
+    }
+}
+
+TEST_F(LineLayers, ReadsOnlyWhatItsKernelNeeds) {
+    look(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 32, 16), {0.0, 0.0, 4.0});
+    GpuScene scene2(scene, frame.worldOrigin);
+    GBufferPass gbufferPass("gbuffer", shaders, scene2, frame);
+    LineLayerPass depthEdges("depth-edge", withSource(LineSource::DepthEdge));
+    const Plan plan = compile({&gbufferPass, &depthEdges}, {"depth-edge.lines"});
+    EXPECT_EQ(plan.findPass("gbuffer")->liveWrites, std::vector<std::string>{"gbuffer.depth"});
+    LineLayerPass suggestive("suggestive", withSource(LineSource::Suggestive));
+    const Plan plan2 = compile({&gbufferPass, &suggestive}, {"suggestive.lines"});
+    EXPECT_EQ(plan2.findPass("gbuffer")->liveWrites, (std::vector<std::string>{"gbuffer.depth", "gbuffer.radial"}));
+}
+
+} // namespace
+} // namespace inkgraph
