@@ -57,7 +57,8 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
         const glm::uvec3& triangle = triangles[faceIndex];
         const glm::uvec3 welded(weld.outputOf[triangle.x], weld.outputOf[triangle.y], weld.outputOf[triangle.z]);
         const glm::dvec3 a(positions[triangle.x]);
-        const glm::dvec3 cross = glm::cross(glm::dvec3(positions[triangle.y]) - a, glm::dvec3(positions[triangle.z]) - a);
+        const glm::dvec3 cross =
+            glm::cross(glm::dvec3(positions[triangle.y]) - a, glm::dvec3(positions[triangle.z]) - a);
         const double crossLength = glm::length(cross);
         const bool repeatsVertex = welded.x == welded.y || welded.y == welded.z || welded.x == welded.z;
         if (repeatsVertex || !(crossLength > minCrossLength)) {
@@ -66,7 +67,8 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
         }
         const glm::dvec3 normal = cross / crossLength;
         adjacency.faceNormals[faceIndex] = glm::vec3(normal);
-        // The offset from the stored (float) normal, so eyeSideOfFace() tests exactly the plane through `a` it describes.
+        // The offset from the stored (float) normal, so eyeSideOfFace() tests exactly the plane through `a` it
+        // describes.
         adjacency.facePlaneOffsets[faceIndex] = glm::dot(glm::dvec3(adjacency.faceNormals[faceIndex]), a);
 
         const auto face = std::uint32_t(faceIndex);
@@ -75,7 +77,8 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
         for (int corner = 0; corner < 3; ++corner) {
             const std::uint32_t from = welded[corner];
             const std::uint32_t to = welded[(corner + 1) % 3];
-            const auto [slot, inserted] = edgeOfKey.try_emplace(edgeKey(from, to), std::uint32_t(adjacency.edges.size()));
+            const auto [slot, inserted] =
+                edgeOfKey.try_emplace(edgeKey(from, to), std::uint32_t(adjacency.edges.size()));
             if (inserted) {
                 MeshEdge edge{};
                 edge.vertices = glm::uvec2(triangle[corner], triangle[(corner + 1) % 3]);
@@ -87,7 +90,8 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
 
     // Group the uses by edge (a counting sort keeps face order within each edge).
     std::vector<std::uint32_t> useCount(adjacency.edges.size(), 0);
-    for (const PendingUse& use : pending) ++useCount[use.edge];
+    for (const PendingUse& use : pending)
+        ++useCount[use.edge];
     std::uint32_t offset = 0;
     for (std::size_t edge = 0; edge < adjacency.edges.size(); ++edge) {
         adjacency.edges[edge].firstFaceUse = offset;
@@ -96,8 +100,10 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
     }
     adjacency.faceUses.resize(pending.size());
     std::vector<std::uint32_t> nextSlot(adjacency.edges.size());
-    for (std::size_t edge = 0; edge < adjacency.edges.size(); ++edge) nextSlot[edge] = adjacency.edges[edge].firstFaceUse;
-    for (const PendingUse& use : pending) adjacency.faceUses[nextSlot[use.edge]++] = use.use;
+    for (std::size_t edge = 0; edge < adjacency.edges.size(); ++edge)
+        nextSlot[edge] = adjacency.edges[edge].firstFaceUse;
+    for (const PendingUse& use : pending)
+        adjacency.faceUses[nextSlot[use.edge]++] = use.use;
 
     for (MeshEdge& edge : adjacency.edges) {
         if (edge.faceCount == 1) {
@@ -118,7 +124,8 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
         edge.inconsistentOrientation = first.againstKey == second.againstKey;
         adjacency.counts.inconsistent += edge.inconsistentOrientation;
         const glm::dvec3 n1(adjacency.faceNormals[first.face]);
-        const glm::dvec3 n2 = glm::dvec3(adjacency.faceNormals[second.face]) * (edge.inconsistentOrientation ? -1.0 : 1.0);
+        const glm::dvec3 n2 =
+            glm::dvec3(adjacency.faceNormals[second.face]) * (edge.inconsistentOrientation ? -1.0 : 1.0);
         edge.normalAngle = float(std::atan2(glm::length(glm::cross(n1, n2)), glm::dot(n1, n2)));
     }
     return adjacency;
@@ -134,7 +141,8 @@ bool isSilhouetteEdge(const EdgeAdjacency& adjacency, const MeshEdge& edge, cons
 std::vector<std::uint32_t> selectSilhouetteEdges(const EdgeAdjacency& adjacency, const glm::dvec3& eye) {
     // s per face once: a face serves three edges.
     std::vector<double> side(adjacency.faceNormals.size());
-    for (std::size_t face = 0; face < side.size(); ++face) side[face] = eyeSideOfFace(adjacency, std::uint32_t(face), eye);
+    for (std::size_t face = 0; face < side.size(); ++face)
+        side[face] = eyeSideOfFace(adjacency, std::uint32_t(face), eye);
     std::vector<std::uint32_t> indices;
     for (const MeshEdge& edge : adjacency.edges) {
         if (edge.kind != EdgeKind::Manifold) continue;

@@ -24,8 +24,8 @@ enum class EdgeKind : std::uint8_t {
 
 /** One face using an edge. */
 struct EdgeFaceUse {
-    std::uint32_t face;    ///< index into the mesh's triangles
-    bool againstKey;       ///< false when the face runs the edge from its smaller welded id to the larger
+    std::uint32_t face; ///< index into the mesh's triangles
+    bool againstKey;    ///< false when the face runs the edge from its smaller welded id to the larger
 };
 
 struct MeshEdge {
@@ -56,8 +56,8 @@ struct EdgeAdjacencyCounts {
 };
 
 struct EdgeAdjacency {
-    std::vector<MeshEdge> edges;         ///< in order of first use (face order, then the face's edge order)
-    std::vector<EdgeFaceUse> faceUses;   ///< grouped by edge, in face order within an edge
+    std::vector<MeshEdge> edges;       ///< in order of first use (face order, then the face's edge order)
+    std::vector<EdgeFaceUse> faceUses; ///< grouped by edge, in face order within an edge
     /** One per mesh triangle: the unit normal of its counter-clockwise winding, zero for a skipped degenerate face. */
     std::vector<glm::vec3> faceNormals;
     /** One per mesh triangle: n . p for its normal n and first vertex p, in double, so the face's plane is

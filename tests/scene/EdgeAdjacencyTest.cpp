@@ -61,7 +61,8 @@ TEST(EdgeAdjacency, TetrahedronHasSixManifoldEdgesAtTheRegularAngle) {
         const std::span<const EdgeFaceUse> faces = adjacency.facesOf(edge);
         EXPECT_NE(faces[0].againstKey, faces[1].againstKey);
     }
-    for (const glm::vec3& normal : adjacency.faceNormals) EXPECT_NEAR(glm::length(normal), 1.0f, 1e-6f);
+    for (const glm::vec3& normal : adjacency.faceNormals)
+        EXPECT_NEAR(glm::length(normal), 1.0f, 1e-6f);
     // At an interior angle of 70.5 degrees every edge is a crease at 60 and none at 110 (normals at 109.47).
     EXPECT_EQ(selectCreaseEdges(adjacency, 60.0 * kDegrees).size(), 12u);
     EXPECT_EQ(selectCreaseEdges(adjacency, 110.0 * kDegrees).size(), 0u);
@@ -142,7 +143,7 @@ TEST(EdgeAdjacency, CubeWithSplitNormalsKeysEdgesOnWeldedPositions) {
     EXPECT_EQ(right, 12);
     EXPECT_EQ(flat, 6);
     EXPECT_EQ(selectCreaseEdges(adjacency, 30.0 * kDegrees).size(), 24u);
-    EXPECT_EQ(selectCreaseEdges(adjacency, 0.0).size(), 24u);     // the diagonals' 0 is exact, so never above 0
+    EXPECT_EQ(selectCreaseEdges(adjacency, 0.0).size(), 24u); // the diagonals' 0 is exact, so never above 0
     EXPECT_EQ(selectCreaseEdges(adjacency, 89.9 * kDegrees).size(), 24u);
     EXPECT_EQ(selectCreaseEdges(adjacency, 90.1 * kDegrees).size(), 0u);
     EXPECT_TRUE(selectBorderEdges(adjacency).empty());
@@ -151,8 +152,7 @@ TEST(EdgeAdjacency, CubeWithSplitNormalsKeysEdgesOnWeldedPositions) {
 TEST(EdgeAdjacency, FlippedTriangleIsFlaggedAndItsAngleCorrected) {
     // The open quad with its second triangle wound the other way: both faces run the diagonal from 2 to 0.
     const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-    const EdgeAdjacency adjacency =
-        buildEdgeAdjacency(positions, std::vector<glm::uvec3>{{0, 1, 2}, {0, 3, 2}}, 0.0);
+    const EdgeAdjacency adjacency = buildEdgeAdjacency(positions, std::vector<glm::uvec3>{{0, 1, 2}, {0, 3, 2}}, 0.0);
     EXPECT_EQ(adjacency.counts.inconsistent, 1u);
     EXPECT_EQ(adjacency.counts.manifold, 1u);
     const MeshEdge& diagonal = adjacency.edges.at(2);
@@ -178,8 +178,8 @@ TEST(EdgeAdjacency, FlippedTriangleIsFlaggedAndItsAngleCorrected) {
     for (int trial = 0; trial < 200; ++trial) {
         const glm::dvec3 eye(coordinate(random), coordinate(random), coordinate(random));
         const bool expected = isSilhouetteEdge(consistent, consistent.edges.at(2), eye);
-        EXPECT_EQ(isSilhouetteEdge(flipped, flipped.edges.at(2), eye), expected) << "eye " << eye.x << ' ' << eye.y
-                                                                                 << ' ' << eye.z;
+        EXPECT_EQ(isSilhouetteEdge(flipped, flipped.edges.at(2), eye), expected)
+            << "eye " << eye.x << ' ' << eye.y << ' ' << eye.z;
         silhouettes += expected;
     }
     EXPECT_GT(silhouettes, 20); // both answers occur, so the comparison means something
@@ -194,8 +194,8 @@ TEST(EdgeAdjacency, EveryEdgeOfAFaceIsAddedAfterItsFirstMatches) {
     const std::vector<glm::uvec3> triangles = {{0, 1, 2}, {2, 1, 3}, {3, 1, 4}, {4, 1, 5}};
     const EdgeAdjacency adjacency = buildEdgeAdjacency(fan, triangles, 0.0);
     EXPECT_EQ(adjacency.edges.size(), 9u);
-    EXPECT_EQ(adjacency.counts.manifold, 3u);  // 1-2, 1-3, 1-4
-    EXPECT_EQ(adjacency.counts.boundary, 6u);  // 0-1, 2-0, 3-2, 4-3, 5-4, 1-5
+    EXPECT_EQ(adjacency.counts.manifold, 3u); // 1-2, 1-3, 1-4
+    EXPECT_EQ(adjacency.counts.boundary, 6u); // 0-1, 2-0, 3-2, 4-3, 5-4, 1-5
     EXPECT_EQ(adjacency.counts.inconsistent, 0u);
     std::set<std::pair<std::uint32_t, std::uint32_t>> manifold;
     for (const MeshEdge& edge : adjacency.edges)
@@ -218,7 +218,8 @@ TEST(EdgeAdjacency, TriangleSoupWeldsIntoAClosedCube) {
         }
     }
     std::vector<glm::uvec3> triangles;
-    for (std::uint32_t i = 0; i < soup.size(); i += 3) triangles.emplace_back(i, i + 1, i + 2);
+    for (std::uint32_t i = 0; i < soup.size(); i += 3)
+        triangles.emplace_back(i, i + 1, i + 2);
     const double diagonal = computeBoundingBox(soup).diagonal();
 
     const EdgeAdjacency welded = buildEdgeAdjacency(soup, triangles, LoadOptions{}.weldTolerance * diagonal);
@@ -270,13 +271,16 @@ TEST(EdgeAdjacency, SilhouetteTieCountsTheEdgeOnFaceAsBack) {
     const glm::dvec3 eye(5.0, 0.3, 1.0);
     const std::vector<std::uint32_t> silhouette = selectSilhouetteEdges(adjacency, eye);
     ASSERT_EQ(silhouette.size(), 8u);
-    for (const std::uint32_t vertex : silhouette) EXPECT_EQ(cube.positions[vertex].x, 1.0f);
+    for (const std::uint32_t vertex : silhouette)
+        EXPECT_EQ(cube.positions[vertex].x, 1.0f);
     int tiedFaces = 0, withTiesIncluded = 0;
-    for (std::uint32_t face = 0; face < cube.triangles.size(); ++face) tiedFaces += eyeSideOfFace(adjacency, face, eye) == 0.0;
+    for (std::uint32_t face = 0; face < cube.triangles.size(); ++face)
+        tiedFaces += eyeSideOfFace(adjacency, face, eye) == 0.0;
     EXPECT_EQ(tiedFaces, 2);
     for (const MeshEdge& edge : adjacency.edges) {
         const std::span<const EdgeFaceUse> faces = adjacency.facesOf(edge);
-        withTiesIncluded += eyeSideOfFace(adjacency, faces[0].face, eye) * eyeSideOfFace(adjacency, faces[1].face, eye) <= 0.0;
+        withTiesIncluded +=
+            eyeSideOfFace(adjacency, faces[0].face, eye) * eyeSideOfFace(adjacency, faces[1].face, eye) <= 0.0;
     }
     EXPECT_EQ(withTiesIncluded, 8); // the 4 + the top's 3 other edges + its diagonal
 }
@@ -291,8 +295,8 @@ TEST(EdgeAdjacency, SilhouetteIsExactUnderPerspective) {
     ASSERT_GE(silhouette.size(), 2u * 128u);
     double worstCosine = 0.0;
     for (std::size_t i = 0; i < silhouette.size(); i += 2) {
-        const glm::dvec3 middle = (glm::dvec3(sphere.positions[silhouette[i]]) +
-                                   glm::dvec3(sphere.positions[silhouette[i + 1]])) / 2.0;
+        const glm::dvec3 middle =
+            (glm::dvec3(sphere.positions[silhouette[i]]) + glm::dvec3(sphere.positions[silhouette[i + 1]])) / 2.0;
         worstCosine = std::max(worstCosine, std::abs(glm::dot(glm::normalize(middle), glm::normalize(eye - middle))));
     }
     // Edges span about 2 pi / 128 = 0.049 rad; an edge's middle lies within that of the tangency circle.
