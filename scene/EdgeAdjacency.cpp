@@ -2,10 +2,13 @@
 
 #include "scene/MeshOps.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace inkgraph {
 namespace {
@@ -19,6 +22,66 @@ std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
     const std::uint32_t high = a < b ? b : a;
     return (std::uint64_t(low) << 32) | high;
 }
+
+/** Open-addressing hash map from an edge key to its index in the edge list, linear probing, kept at most half full
+ *  (it doubles past that). Key and index share a slot, so a probe costs one cache miss: on large meshes the lookups
+ *  are random accesses into a table far bigger than the cache, and std::unordered_map's node per edge cost more. No
+ *  key equals kEmptyKey: it would need min == max. */
+class EdgeIndexTable {
+public:
+    explicit EdgeIndexTable(std::size_t expectedEdges) {
+        allocate(std::bit_ceil(std::max<std::size_t>(16, 2 * expectedEdges)));
+    }
+
+    /** The index stored for `key`, storing `indexIfNew` first when the key is new; `second` tells which. */
+    std::pair<std::uint32_t, bool> findOrInsert(std::uint64_t key, std::uint32_t indexIfNew) {
+        if (2 * (mCount + 1) > mSlots.size()) grow();
+        for (std::size_t index = mix(key) & mMask;; index = (index + 1) & mMask) {
+            Slot& slot = mSlots[index];
+            if (slot.key == key) return {slot.edge, false};
+            if (slot.key == kEmptyKey) {
+                slot = {key, indexIfNew};
+                ++mCount;
+                return {indexIfNew, true};
+            }
+        }
+    }
+
+private:
+    static constexpr std::uint64_t kEmptyKey = ~std::uint64_t(0);
+
+    struct Slot {
+        std::uint64_t key = kEmptyKey;
+        std::uint32_t edge = 0;
+    };
+
+    // The splitmix64 finaliser: neighbouring vertex ids (the common case) spread over the whole table, so a vertex
+    // shared by many faces (a fan's hub) makes no long probe runs.
+    static std::uint64_t mix(std::uint64_t key) {
+        key ^= key >> 30;
+        key *= 0xBF58476D1CE4E5B9ull;
+        key ^= key >> 27;
+        key *= 0x94D049BB133111EBull;
+        return key ^ (key >> 31);
+    }
+
+    void allocate(std::size_t capacity) {
+        mSlots.assign(capacity, Slot{});
+        mMask = capacity - 1;
+        mCount = 0;
+    }
+
+    void grow() {
+        std::vector<Slot> old = std::move(mSlots);
+        allocate(2 * old.size());
+        for (const Slot& slot : old)
+            if (slot.key != kEmptyKey) findOrInsert(slot.key, slot.edge);
+    }
+
+    std::vector<Slot> mSlots;
+    std::size_t mMask = 0;
+    std::size_t mCount = 0;
+};
 
 /** One face's use of an edge before grouping: which edge (index into the edge list), which face, which way. */
 struct PendingUse {
@@ -48,8 +111,8 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
     adjacency.faceNormals.assign(triangles.size(), glm::vec3(0.0f));
     adjacency.facePlaneOffsets.assign(triangles.size(), 0.0);
 
-    std::unordered_map<std::uint64_t, std::uint32_t> edgeOfKey; // welded key -> index into adjacency.edges
-    edgeOfKey.reserve(triangles.size() * 3 / 2 + 16);           // a closed mesh has 1.5 edges per face
+    EdgeIndexTable edgeOfKey(triangles.size() * 3 / 2); // welded key -> index into adjacency.edges; a closed mesh
+                                                        // has 1.5 edges per face
     std::vector<PendingUse> pending;
     pending.reserve(triangles.size() * 3);
 
@@ -77,14 +140,14 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
         for (int corner = 0; corner < 3; ++corner) {
             const std::uint32_t from = welded[corner];
             const std::uint32_t to = welded[(corner + 1) % 3];
-            const auto [slot, inserted] =
-                edgeOfKey.try_emplace(edgeKey(from, to), std::uint32_t(adjacency.edges.size()));
+            const auto [edgeIndex, inserted] =
+                edgeOfKey.findOrInsert(edgeKey(from, to), std::uint32_t(adjacency.edges.size()));
             if (inserted) {
                 MeshEdge edge{};
                 edge.vertices = glm::uvec2(triangle[corner], triangle[(corner + 1) % 3]);
                 adjacency.edges.push_back(edge);
             }
-            pending.push_back({slot->second, {face, from > to}});
+            pending.push_back({edgeIndex, {face, from > to}});
         }
     }
 
