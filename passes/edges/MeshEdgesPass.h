@@ -25,16 +25,16 @@
  *
  *  How: first the model's depth, once for every output, into the pass's own depth texture S x the frame size
  *  (every face, no colour), with polygon offset (factor 1, units 1) pushing the fill back by about one pixel of its
- *  own depth slope, so an edge passes over the faces it lies on. Then each output's edges are drawn into it alone as
- *  1-pixel GL_LINES writing 255, and their end points as 1-pixel GL_POINTS (GL leaves out a line's last pixel,
- *  diamond exit, which would open a gap wherever two edges of a chain meet head to head). The depth test is made in
- *  the fragment shader (shaders/edges/edges.frag): a fragment is kept when it is no deeper than the farthest offset
- *  depth at its pixel and its 4 edge neighbours. The offset alone fails where a line's pixel centre falls on a nearer
- *  face that does not hold the edge (the sub-pixel sliver beside a silhouette edge of a fine mesh, which broke a
- *  sphere's silhouette ring at 2x supersampling); a visible edge always has, one pixel across it, a side whose
- *  surface is no nearer than itself. So visibility is exact to within a pixel: a line behind the surface stays hidden
- * except within a pixel of the occluder's outline. Lines are clipped by GL, so an edge passing behind the eye is cut at
- *  the near plane.
+ *  own depth slope, so an edge passes over the faces it lies on, valleys included. Then each output's edges are drawn
+ *  into it alone as 1-pixel GL_LINES writing 255, and their end points as 1-pixel GL_POINTS (GL leaves out a line's
+ *  last pixel, diamond exit, which opened gaps wherever two edges of a chain met head to head). The depth test is
+ *  made in the fragment shader (shaders/edges/edges.frag): a fragment is kept when it is no deeper than the farthest
+ *  offset depth at its pixel and its 4 edge neighbours. The offset alone failed where a line's pixel centre fell on a
+ *  nearer face that does not hold the edge (the sub-pixel sliver beside a silhouette edge of a fine mesh, which broke
+ *  a sphere's silhouette ring at 2x supersampling); one pixel across a silhouette edge lies the background or a
+ *  farther surface. So visibility is decided to within a pixel: a line behind the surface stays hidden except within
+ *  about a pixel of the occluder's outline (where a cube's hidden edges meet its visible corners). Lines are clipped
+ *  by GL, so an edge passing behind the eye is cut at the near plane.
  *
  *  With the eye inside a mesh the lines are still drawn (unlike the hull and Lander's outline, where every back face
  *  would flood the frame): the depth hides what lies behind the visible inner surface. Seen from inside a closed
