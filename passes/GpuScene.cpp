@@ -30,31 +30,52 @@ const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
     return mMeshes;
 }
 
-const GlBuffer& GpuScene::hullNormals(std::size_t meshIndex) {
+void GpuScene::requireMeshIndex(const char* function, std::size_t meshIndex) const {
     if (meshIndex >= mScene.meshes.size())
-        throw std::out_of_range("GpuScene::hullNormals(): mesh " + std::to_string(meshIndex) +
+        throw std::out_of_range(std::string(function) + ": mesh " + std::to_string(meshIndex) +
                                 " out of range (the scene has " + std::to_string(mScene.meshes.size()) + ")");
+}
+
+double GpuScene::weldDistance() const {
+    // One scene-wide distance, as the loader welds: relative to the whole model, so units do not matter.
+    BoundingBox box;
+    for (const Mesh& mesh : mScene.meshes) {
+        const BoundingBox meshBox = computeBoundingBox(mesh.positions);
+        if (meshBox.empty()) continue;
+        box.add(meshBox.min);
+        box.add(meshBox.max);
+    }
+    return LoadOptions{}.weldTolerance * box.diagonal();
+}
+
+const GlBuffer& GpuScene::hullNormals(std::size_t meshIndex) {
+    requireMeshIndex("GpuScene::hullNormals()", meshIndex);
     if (mHullNormals.empty()) {
-        // One scene-wide distance, as the loader welds: relative to the whole model, so units do not matter.
-        BoundingBox box;
-        for (const Mesh& mesh : mScene.meshes) {
-            const BoundingBox meshBox = computeBoundingBox(mesh.positions);
-            if (meshBox.empty()) continue;
-            box.add(meshBox.min);
-            box.add(meshBox.max);
-        }
-        const double weldDistance = LoadOptions{}.weldTolerance * box.diagonal();
+        const double distance = weldDistance();
         std::vector<GlBuffer> buffers;
         buffers.reserve(mScene.meshes.size());
         for (const Mesh& mesh : mScene.meshes) {
             const std::vector<glm::vec3> normals =
-                computePositionWeldedNormals(mesh.positions, mesh.triangles, weldDistance);
+                computePositionWeldedNormals(mesh.positions, mesh.triangles, distance);
             buffers.emplace_back(normals.data(), normals.size() * sizeof(glm::vec3),
                                  "mesh '" + mesh.name + "' hull normals");
         }
         mHullNormals = std::move(buffers);
     }
     return mHullNormals[meshIndex];
+}
+
+const EdgeAdjacency& GpuScene::edgeAdjacency(std::size_t meshIndex) {
+    requireMeshIndex("GpuScene::edgeAdjacency()", meshIndex);
+    if (mEdgeAdjacency.empty()) {
+        const double distance = weldDistance();
+        std::vector<EdgeAdjacency> adjacency;
+        adjacency.reserve(mScene.meshes.size());
+        for (const Mesh& mesh : mScene.meshes)
+            adjacency.push_back(buildEdgeAdjacency(mesh.positions, mesh.triangles, distance));
+        mEdgeAdjacency = std::move(adjacency);
+    }
+    return mEdgeAdjacency[meshIndex];
 }
 
 bool GpuScene::containsPoint(glm::dvec3 worldPoint) {

@@ -2,6 +2,7 @@
 /** @file The scene's meshes on the GPU, uploaded the first time a pass that runs asks for them. */
 
 #include "gl/GlObjects.h"
+#include "scene/EdgeAdjacency.h"
 #include "scene/Scene.h"
 
 #include <glm/glm.hpp>
@@ -40,6 +41,13 @@ public:
     const GlBuffer& hullNormals(std::size_t meshIndex);
     bool hullNormalsComputed() const { return !mHullNormals.empty(); }
 
+    /** Edge adjacency of mesh `meshIndex` (scene/EdgeAdjacency.h: welded edges, their kinds, face normals and
+     *  planes), in world space like the scene, keyed on positions welded at the same distance as hullNormals(), so
+     *  split normals do not turn creases into borders. CPU data, nothing uploaded. Computed for every mesh the first
+     *  time any is asked for (only a pass that runs asks). Throws std::out_of_range for a bad index. */
+    const EdgeAdjacency& edgeAdjacency(std::size_t meshIndex);
+    bool edgeAdjacencyComputed() const { return !mEdgeAdjacency.empty(); }
+
     /** Whether `worldPoint` lies inside any mesh (MeshOps isPointInsideMesh, ray parity on the CPU). The answer for
      *  the last point asked is kept, so the line passes of one frame share one computation. */
     bool containsPoint(glm::dvec3 worldPoint);
@@ -47,11 +55,17 @@ public:
     glm::dvec3 worldOrigin() const { return mWorldOrigin; }
 
 private:
+    /** The loader's default relative weld tolerance times the whole scene's bounding-box diagonal: relative to the
+     *  model as the loader welds, so units do not matter. */
+    double weldDistance() const;
+    void requireMeshIndex(const char* function, std::size_t meshIndex) const;
+
     const Scene& mScene;
     glm::dvec3 mWorldOrigin;
     std::vector<DrawMesh> mMeshes;
     bool mUploaded = false;
-    std::vector<GlBuffer> mHullNormals; ///< one per mesh once computed, else empty
+    std::vector<GlBuffer> mHullNormals;          ///< one per mesh once computed, else empty
+    std::vector<EdgeAdjacency> mEdgeAdjacency;   ///< one per mesh once computed, else empty
     std::optional<glm::dvec3> mContainmentPoint; ///< the last point containsPoint() was asked about
     bool mContainsPoint = false;
 };

@@ -107,6 +107,29 @@ Mesh makeTorus(float majorRadius, float minorRadius, int majorSegments, int mino
     return mesh;
 }
 
+Mesh makeCube(glm::vec3 center, float halfSize) {
+    require(std::isfinite(halfSize) && halfSize > 0.0f, "makeCube()", "halfSize must be positive and finite");
+    require(std::isfinite(center.x) && std::isfinite(center.y) && std::isfinite(center.z), "makeCube()",
+            "center must be finite");
+    Mesh mesh;
+    mesh.name = "cube";
+    // Per face: the outward normal and two in-plane axes with u x v = normal, so corners taken counter-clockwise in
+    // (u, v) are counter-clockwise seen from outside.
+    const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (const glm::vec3& normal : normals) {
+        const glm::vec3 u = glm::vec3(normal.z, normal.x, normal.y); // a cyclic shift: perpendicular to the normal
+        const glm::vec3 v = glm::cross(normal, u);
+        const auto first = std::uint32_t(mesh.positions.size());
+        for (const glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+            mesh.positions.push_back(center + halfSize * (normal + corner.x * u + corner.y * v));
+            mesh.normals.push_back(normal);
+        }
+        mesh.triangles.emplace_back(first, first + 1, first + 2);
+        mesh.triangles.emplace_back(first, first + 2, first + 3);
+    }
+    return mesh;
+}
+
 Scene makeScene(Mesh mesh) {
     Scene scene;
     scene.report.format = "procedural";

@@ -363,6 +363,50 @@ TEST_F(Cli, LineTypesDumpTheirMasksAndComposite) {
     EXPECT_FALSE(stats.contains("face_orientation")) << "reported for comic only";
 }
 
+TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
+    auto passNames = [](const nlohmann::json& stats, const char* list) {
+        std::set<std::string> names;
+        for (const auto& pass : stats[list]) names.insert(pass["name"].get<std::string>());
+        return names;
+    };
+    // depth-edge alone: the G-buffer runs for depth only, and every other line pass is culled with a reason.
+    CliRun result = run("render " + model("spot_c3d.obj") +
+                        " -o a.png --size 128x96 --lines depth-edge --stats s.json --print-plan");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+    EXPECT_EQ(passNames(stats, "passes"), (std::set<std::string>{"gbuffer", "shade", "depth-edge", "composite"}));
+    for (const char* culled : {"contour", "suggestive", "normal-edge", "outline", "silhouette"})
+        EXPECT_EQ(passNames(stats, "culled").count(culled), 1u) << culled;
+    for (const auto& pass : stats["culled"]) EXPECT_FALSE(pass["reason"].get<std::string>().empty());
+    ASSERT_EQ(stats["post_stage"]["lines"].size(), 1u);
+    EXPECT_EQ(stats["post_stage"]["lines"][0]["type"], "depth-edge");
+    EXPECT_GT(stats["post_stage"]["lines"][0]["points"].get<int>(), 100);
+    EXPECT_NE(result.out.find("gbuffer.depth"), std::string::npos) << result.out;
+    EXPECT_EQ(result.out.find("gbuffer.radial"), std::string::npos) << "no suggestive contours: no radial buffer";
+
+    // contour and suggestive with shading off: G-buffer, the two line passes and the composite, nothing else.
+    result = run("render " + model("spot_c3d.obj") +
+                 " -o b.png --size 128x96 --shading none --lines contour,suggestive --stats t.json --dump d");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    stats = nlohmann::json::parse(readText(directory / "t.json"));
+    EXPECT_EQ(passNames(stats, "passes"), (std::set<std::string>{"gbuffer", "contour", "suggestive", "composite"}));
+    EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"final.png", "lines-contour.png",
+                                                                   "lines-suggestive.png", "manifest.json"}));
+    const cv::Mat contour = readImage(directory / "d" / "lines-contour.png");
+    ASSERT_EQ(contour.type(), CV_8UC1);
+    ASSERT_EQ(contour.size(), cv::Size(128, 96));
+    // Anti-aliased: the stroke has partial-coverage pixels as well as full ones.
+    int full = 0, partial = 0;
+    for (int row = 0; row < contour.rows; ++row)
+        for (int col = 0; col < contour.cols; ++col) {
+            const int value = contour.at<uchar>(row, col);
+            full += value == 255;
+            partial += value > 0 && value < 255;
+        }
+    EXPECT_GT(full, 100);
+    EXPECT_GT(partial, 50);
+}
+
 TEST_F(Cli, ComicStatsReportTheFaceOrientationMethod) {
     const CliRun result = run("render " + model("spot_c3d.obj") +
                               " -o a.png --size 64x64 --shading comic --view-vector constant"

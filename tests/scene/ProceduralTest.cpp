@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <tuple>
 
 namespace inkgraph {
 namespace {
@@ -88,6 +89,25 @@ TEST(Procedural, MakeSceneReportsLikeALoader) {
     const Scene wrapped = makeScene(bare);
     EXPECT_TRUE(wrapped.report.normalsComputed);
     EXPECT_EQ(wrapped.meshes.at(0).normals, std::vector<glm::vec3>(3, glm::vec3(0, 0, 1)));
+}
+
+TEST(Procedural, CubeHasSplitNormalsAndOutwardWinding) {
+    const glm::vec3 center(0.5f, -1.0f, 2.0f);
+    const Mesh mesh = makeCube(center, 2.0f);
+    EXPECT_EQ(mesh.positions.size(), 24u);
+    EXPECT_EQ(mesh.triangleCount(), 12u);
+    test::expectUnitNormals(mesh, 1e-6);
+    test::expectOutwardWinding(mesh, glm::dvec3(center));
+    std::set<std::tuple<float, float, float>> corners;
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        const glm::vec3 offset = mesh.positions[i] - center;
+        EXPECT_EQ(glm::abs(offset), glm::vec3(2.0f));
+        // The vertex carries its face's normal: the one axis along which the corner lies on that face.
+        EXPECT_EQ(glm::dot(offset, mesh.normals[i]), 2.0f);
+        corners.emplace(offset.x, offset.y, offset.z);
+    }
+    EXPECT_EQ(corners.size(), 8u);
+    EXPECT_THROW(makeCube(center, 0.0f), std::invalid_argument);
 }
 
 TEST(Procedural, InvalidShapesThrow) {

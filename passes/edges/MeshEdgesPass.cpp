@@ -1,0 +1,172 @@
+#include "passes/edges/MeshEdgesPass.h"
+
+#include "gl/GraphExecutor.h"
+#include "passes/LineMaskTarget.h"
+#include "scene/EdgeAdjacency.h"
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace inkgraph {
+namespace {
+
+// Polygon offset of the depth fill: one pixel of the face's own depth slope plus one resolvable depth step, so a line
+// fragment (whose centre may sit half a pixel off the edge) is not hidden by the face the edge lies on, valleys
+// included, while a surface more than about a pixel's worth of depth in front still hides it.
+constexpr GLfloat kFillOffsetFactor = 1.0f;
+constexpr GLfloat kFillOffsetUnits = 1.0f;
+
+} // namespace
+
+MeshEdgesPass::MeshEdgesPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
+                             MeshEdgesSettings settings)
+    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSettings(settings),
+      mDepth(mName + " model depth") {
+    if (!std::isfinite(mSettings.creaseAngleDegrees) || mSettings.creaseAngleDegrees < 0.0f ||
+        mSettings.creaseAngleDegrees > 180.0f)
+        throw std::invalid_argument("MeshEdgesPass(): pass '" + mName +
+                                    "': 'creaseAngleDegrees' must be in [0, 180], got " +
+                                    std::to_string(mSettings.creaseAngleDegrees));
+    if (mSettings.supersample < 1)
+        throw std::invalid_argument("MeshEdgesPass(): pass '" + mName + "': 'supersample' must be >= 1, got " +
+                                    std::to_string(mSettings.supersample));
+}
+
+void MeshEdgesPass::declare(PassBuilder& builder) const {
+    for (const char* field : kFields)
+        builder.write(field, {Format::R8, mSettings.supersample}, Need::Optional);
+}
+
+MeshEdgesPass::EdgeLines MeshEdgesPass::uploadEdgeLines(const std::string& output, std::size_t meshIndex,
+                                                        const std::vector<std::uint32_t>& indices) const {
+    EdgeLines lines;
+    if (indices.empty()) return lines;
+    const std::string label = mName + " " + output + " edges of mesh " + std::to_string(meshIndex);
+    lines.indices.emplace(indices.data(), indices.size() * sizeof(std::uint32_t), label);
+    lines.vertexArray.emplace(label);
+    lines.vertexArray->setVec3Attribute(GpuScene::kPositionLocation, mScene.meshes()[meshIndex].positions);
+    lines.vertexArray->setIndexBuffer(*lines.indices);
+    lines.indexCount = GLsizei(indices.size());
+    return lines;
+}
+
+std::size_t MeshEdgesPass::drawEdgeLines(const std::vector<EdgeLines>& lines) {
+    std::size_t edges = 0;
+    for (const EdgeLines& mesh : lines) {
+        if (mesh.indexCount == 0) continue;
+        mesh.vertexArray->bind();
+        glDrawElements(GL_LINES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        // GL's diamond-exit rule leaves out a line's last pixel, so two edges of a chain that meet head to head
+        // would leave a one-pixel gap; the end points, drawn as 1-pixel points, close it.
+        glDrawElements(GL_POINTS, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        edges += std::size_t(mesh.indexCount) / 2;
+    }
+    return edges;
+}
+
+void MeshEdgesPass::prepare(PassContext& context) {
+    if (!mDepthProgram)
+        mDepthProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName + " model depth", "edges/edges.vert", "common/line_mask.frag", {}, {}}));
+    if (!mLineProgram)
+        mLineProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName + " lines", "edges/edges.vert", "edges/edges.frag", {}, {}}));
+    const std::size_t meshCount = mScene.meshes().size();
+    const bool anyLive = context.isLive("silhouette") || context.isLive("crease") || context.isLive("border");
+    if (!anyLive) return;
+    for (std::size_t mesh = 0; mesh < meshCount; ++mesh)
+        mScene.edgeAdjacency(mesh);
+
+    // Creases and borders do not depend on the view: chosen and uploaded once, outside the timed execute().
+    const double creaseAngle = double(mSettings.creaseAngleDegrees) * glm::pi<double>() / 180.0;
+    if (context.isLive("crease") && mCreaseLines.empty())
+        for (std::size_t mesh = 0; mesh < meshCount; ++mesh)
+            mCreaseLines.push_back(
+                uploadEdgeLines("crease", mesh, selectCreaseEdges(mScene.edgeAdjacency(mesh), creaseAngle)));
+    if (context.isLive("border") && mBorderLines.empty())
+        for (std::size_t mesh = 0; mesh < meshCount; ++mesh)
+            mBorderLines.push_back(uploadEdgeLines("border", mesh, selectBorderEdges(mScene.edgeAdjacency(mesh))));
+}
+
+void MeshEdgesPass::execute(PassContext& context) {
+    GlPassContext& gl = GlPassContext::from(context);
+    mEdgesDrawn = {};
+    std::vector<const char*> live;
+    for (const char* field : kFields)
+        if (gl.isLive(field)) live.push_back(field);
+    if (live.empty()) return; // only reachable outside a compiled plan: the compiler culls a pass with no live output
+
+    // Every output has the same scale, so any gives the size.
+    const int width = gl.widthOf(live.front());
+    const int height = gl.heightOf(live.front());
+    const GlDepthTexture& depth = mDepth.sized(width, height);
+    const glm::mat4 viewFromModel = mFrame.viewFromModel();
+    const glm::mat4 clipFromView = mFrame.clipFromView();
+    const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
+    glViewport(0, 0, width, height);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+
+    // 1. The model's depth, once for every output: every face (open meshes and an eye inside show inner faces),
+    // pushed back by about a pixel of its own depth slope so the edges lying on it pass.
+    {
+        GlFramebuffer depthTarget(mName + " model depth");
+        depthTarget.attachDepth(depth);
+        depthTarget.finish({});
+        depthTarget.bind();
+        clearColorAndDepth(0);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(kFillOffsetFactor, kFillOffsetUnits);
+        drawModelDepth(*mDepthProgram, meshes, viewFromModel, clipFromView);
+        glDisable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(0.0f, 0.0f);
+        glDisable(GL_DEPTH_TEST);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    }
+
+    // 2. Each output's edges into that output alone. No depth attachment: the fragment shader compares with the
+    // depth above, sampled (a texture cannot be sampled while attached and written).
+    GlFramebuffer lineTarget(mName);
+    std::vector<int> slots;
+    for (std::size_t slot = 0; slot < live.size(); ++slot) {
+        lineTarget.attachColor(int(slot), gl.outputTexture(live[slot]));
+        slots.push_back(int(slot));
+    }
+    lineTarget.finish(slots);
+    lineTarget.bind();
+    clearColorAndDepth(int(slots.size()));
+    mLineProgram->use();
+    glUniformMatrix4fv(mLineProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
+    glUniformMatrix4fv(mLineProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    glBindTextureUnit(0, depth.id());
+    glLineWidth(1.0f);
+    glPointSize(1.0f);
+    for (std::size_t slot = 0; slot < live.size(); ++slot) {
+        const std::string field = live[slot];
+        lineTarget.finish({int(slot)});
+        if (field == "silhouette") {
+            // The eye in model space: meshes are in world space (GpuScene subtracts worldOrigin only for the GPU).
+            const glm::dvec3 eye = mFrame.camera.eye;
+            mSilhouetteLines.clear();
+            for (std::size_t mesh = 0; mesh < meshes.size(); ++mesh)
+                mSilhouetteLines.push_back(
+                    uploadEdgeLines("silhouette", mesh, selectSilhouetteEdges(mScene.edgeAdjacency(mesh), eye)));
+            mEdgesDrawn.silhouette = drawEdgeLines(mSilhouetteLines);
+        } else if (field == "crease") {
+            mEdgesDrawn.crease = drawEdgeLines(mCreaseLines);
+        } else {
+            mEdgesDrawn.border = drawEdgeLines(mBorderLines);
+        }
+    }
+
+    glBindTextureUnit(0, 0);
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+} // namespace inkgraph

@@ -1,0 +1,22 @@
+// Object-space edges: a line fragment is kept when it is no deeper than the farthest of the model's (offset) depth
+// at its pixel and its 4 edge neighbours, so visibility is decided to within a pixel. The polygon offset of the
+// depth lets a line pass over the faces it lies on (valleys included); the neighbours let it pass where its pixel
+// centre falls on a nearer face that does not hold the edge (a sub-pixel sliver beside a silhouette edge): a visible
+// edge always has, one pixel across it (up or down for a line running more across than up, else left or right), a
+// side whose surface is no nearer than itself. A line behind the surface stays hidden unless it runs within a pixel
+// of the occluder's outline.
+layout(location = 0) out float outLine;
+
+layout(binding = 0) uniform sampler2D modelDepth; // window depth of the model, polygon offset applied; 1 = nothing
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    ivec2 lastPixel = textureSize(modelDepth, 0) - 1;
+    const ivec2 kAround[5] = ivec2[5](ivec2(0, 0), ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+    float farthest = 0.0;
+    for (int i = 0; i < 5; ++i) {
+        farthest = max(farthest, texelFetch(modelDepth, clamp(pixel + kAround[i], ivec2(0), lastPixel), 0).r);
+    }
+    if (gl_FragCoord.z > farthest) discard;
+    outLine = 1.0;
+}

@@ -1,0 +1,10 @@
+// Object-space edges: the model in clip space. Drawn as triangles it gives the pass's depth; drawn as GL_LINES
+// through an index list of vertex pairs on the same positions, the chosen edges (common/line_mask.frag writes 255).
+layout(location = 0) in vec3 inPosition;
+
+uniform mat4 viewFromModel;
+uniform mat4 clipFromView;
+
+void main() {
+    gl_Position = clipFromView * (viewFromModel * vec4(inPosition, 1.0));
+}
