@@ -11,6 +11,7 @@
 #include "graph/GraphCompiler.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/edges/MeshEdgesPass.h"
 #include "passes/lines/LineLayerPass.h"
 #include "passes/outline/OutlinePass.h"
 #include "passes/shade/ShadeMap.h"
@@ -167,6 +168,11 @@ Json describeLook(const RenderOptions& options, const StillGraph& graph) {
         if (type == "crease" || type == "normal-edge") line["crease_angle_degrees"] = options.creaseAngleDegrees;
         if (isImageSpaceLineType(type)) line["depth_jump"] = options.depthJump;
         if (isImageSpaceLineType(type) || isMeshEdgeLineType(type)) line["supersample"] = options.supersample;
+        if (isMeshEdgeLineType(type) && graph.meshEdges) {
+            const MeshEdgesPass::EdgeCounts& counts = graph.meshEdges->edgesDrawn();
+            const auto& drawn = type == "crease" ? counts.crease : type == "border" ? counts.border : counts.silhouette;
+            if (drawn) line["edges_drawn"] = *drawn;
+        }
         if (type == "suggestive") {
             const SuggestiveSettings& settings = graph.lineLayers.at(type)->settings().suggestive;
             line["threshold"] = settings.threshold;

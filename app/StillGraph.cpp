@@ -1,6 +1,7 @@
 #include "app/StillGraph.h"
 
 #include "passes/composite/CompositePass.h"
+#include "passes/edges/MeshEdgesPass.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineLayerPass.h"
 #include "passes/outline/OutlinePass.h"
@@ -89,14 +90,27 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     graph.silhouette = silhouette.get();
     graph.passes.push_back(std::move(silhouette));
 
-    // The post-stage line types, each a CPU pass over the G-buffer; registered whether or not requested.
+    // Object-space edges: one GL pass draws the one-pixel skeletons the requested types read.
+    MeshEdgesSettings edgeSettings;
+    edgeSettings.creaseAngleDegrees = float(options.creaseAngleDegrees);
+    edgeSettings.supersample = options.supersample;
+    auto meshEdges = std::make_unique<MeshEdgesPass>("mesh-edges", setup.shaders, setup.gpuScene, setup.frame,
+                                                     edgeSettings);
+    graph.meshEdges = meshEdges.get();
+    graph.passes.push_back(std::move(meshEdges));
+
+    // The post-stage line types, each a CPU pass that finds a skeleton (in the G-buffer, or in a mesh-edges output)
+    // and strokes it; registered whether or not requested.
     const float depthJump = float(options.depthJump);
     for (const std::string& type : knownLineTypes()) {
-        if (!isImageSpaceLineType(type)) continue;
+        if (!isImageSpaceLineType(type) && !isMeshEdgeLineType(type)) continue;
         LineLayerSettings settings;
         settings.widthPixels = float(options.lineStyles.at(type).widthPixels);
         settings.supersample = options.supersample;
-        if (type == "contour") {
+        if (isMeshEdgeLineType(type)) {
+            settings.source = LineSource::Skeleton;
+            settings.skeletonResource = std::string("mesh-edges.") + (type == "mesh-silhouette" ? "silhouette" : type);
+        } else if (type == "contour") {
             settings.source = LineSource::Contour;
             settings.contour.depthJump = depthJump;
         } else if (type == "suggestive") {

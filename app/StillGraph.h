@@ -20,6 +20,7 @@
 namespace inkgraph {
 
 class LineLayerPass;
+class MeshEdgesPass;
 class OutlinePass;
 class SilhouettePass;
 
@@ -50,6 +51,7 @@ struct StillGraph {
     std::string finalResource = "composite.final";
     OutlinePass* outline = nullptr;       ///< for --stats
     SilhouettePass* silhouette = nullptr; ///< for --stats
+    MeshEdgesPass* meshEdges = nullptr;   ///< for --stats
     std::map<std::string, LineLayerPass*> lineLayers; ///< the CPU line passes by line type, for --stats
 
     std::vector<const Pass*> view() const;
