@@ -20,7 +20,8 @@ struct SurfaceHit {
 /** c[0] + c[1] x + ... + c[degree] x^degree. */
 double evaluatePolynomial(const double* coefficients, int degree, double x) {
     double value = coefficients[degree];
-    for (int power = degree - 1; power >= 0; --power) value = value * x + coefficients[power];
+    for (int power = degree - 1; power >= 0; --power)
+        value = value * x + coefficients[power];
     return value;
 }
 
@@ -28,7 +29,8 @@ double evaluatePolynomial(const double* coefficients, int degree, double x) {
  *  bisection whenever a step leaves the bracket, so it converges like Newton and never escapes. */
 double refineBracketedRoot(const double* coefficients, int degree, double low, double high) {
     double derivative[4];
-    for (int power = 1; power <= degree; ++power) derivative[power - 1] = power * coefficients[power];
+    for (int power = 1; power <= degree; ++power)
+        derivative[power - 1] = power * coefficients[power];
     const bool lowIsNegative = evaluatePolynomial(coefficients, degree, low) < 0.0;
     double x = 0.5 * (low + high);
     for (int iteration = 0; iteration < 200; ++iteration) {
@@ -41,7 +43,8 @@ double refineBracketedRoot(const double* coefficients, int degree, double low, d
         const double slope = evaluatePolynomial(derivative, degree - 1, x);
         double next = slope != 0.0 ? x - value / slope : 0.5 * (low + high);
         if (!(next > low && next < high)) next = 0.5 * (low + high);
-        if (std::abs(next - x) <= 1e-15 * std::max(1.0, std::abs(x)) || high - low <= 1e-15 * std::max(1.0, std::abs(x)))
+        if (std::abs(next - x) <= 1e-15 * std::max(1.0, std::abs(x)) ||
+            high - low <= 1e-15 * std::max(1.0, std::abs(x)))
             return next;
         x = next;
     }
@@ -61,7 +64,8 @@ int polynomialRootsIn(const double* coefficients, int degree, double low, double
         return 1;
     }
     double derivative[4];
-    for (int power = 1; power <= degree; ++power) derivative[power - 1] = power * coefficients[power];
+    for (int power = 1; power <= degree; ++power)
+        derivative[power - 1] = power * coefficients[power];
     double knots[6];
     knots[0] = low;
     const int criticalCount = polynomialRootsIn(derivative, degree - 1, low, high, knots + 1);
@@ -85,7 +89,8 @@ int polynomialRootsIn(const double* coefficients, int degree, double low, double
 }
 
 /** The two distances where the ray meets a sphere, if it does; the nearer is computed without cancellation. */
-std::optional<std::pair<double, double>> sphereInterval(const SyntheticRay& ray, const glm::dvec3& center, double radius) {
+std::optional<std::pair<double, double>> sphereInterval(const SyntheticRay& ray, const glm::dvec3& center,
+                                                        double radius) {
     const glm::dvec3 offset = ray.origin - center;
     const double halfB = glm::dot(offset, ray.direction);
     const double c = glm::dot(offset, offset) - radius * radius;
@@ -253,8 +258,7 @@ SyntheticGBuffer renderTorus(const SyntheticCamera& camera, const glm::dvec3& ce
 
 SyntheticGBuffer renderPlane(const SyntheticCamera& camera, const glm::dvec3& point, const glm::dvec3& normal) {
     checkCamera("renderPlane()", camera);
-    if (!(glm::length(normal) > 0.0))
-        throw std::invalid_argument("renderPlane(): 'normal' must be non-zero");
+    if (!(glm::length(normal) > 0.0)) throw std::invalid_argument("renderPlane(): 'normal' must be non-zero");
     const glm::dvec3 unitNormal = glm::normalize(normal);
     return renderSurface(camera, [&](const SyntheticRay& ray) { return hitPlane(ray, point, unitNormal); });
 }
