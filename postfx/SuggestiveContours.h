@@ -22,9 +22,13 @@ struct SuggestiveSettings {
 
 /** Per-pixel derivatives along w, for tests and the kernel. */
 struct RadialDerivatives {
-    cv::Mat dw;    ///< CV_32FC1: D_w(n.v), by central differences of n.v along the image-space J w; 0 where invalid
-    cv::Mat dwdw;  ///< CV_32FC1: D_w D_w(n.v), central differences of dw along J w; 0 where invalid
-    cv::Mat valid; ///< CV_8UC1: 255 where dwdw is defined (every difference it needs lies on one surface)
+    /** CV_32FC1: D_w(n.v), central differences of n.(c - p) dotted with the image-space J w; 0 where a difference
+     *  would leave the pixel's surface (depth break, background, image edge). */
+    cv::Mat dw;
+    cv::Mat dwdw; ///< CV_32FC1: D_w D_w(n.v), central differences of dw along J w; 0 where not valid
+    /** CV_8UC1: 255 where dwdw is defined: dw is defined at all four neighbours (so every difference lies on one
+     *  surface), n.v > 0 and sin(theta) >= minSinTheta. */
+    cv::Mat valid;
 };
 
 /** `radial`: CV_32FC4 per pixel (n.(c - p) unnormalised, (J w).x, (J w).y, |w|^2), where J is the projection's
@@ -35,11 +39,11 @@ struct RadialDerivatives {
 RadialDerivatives computeRadialDerivatives(const cv::Mat& radial, const cv::Mat& depth,
                                            const SuggestiveSettings& settings);
 
-/** Zero crossings of D_w(n.v) between 4-neighbours (the pixel with the smaller |D_w(n.v)| marked, the point at the
- *  linear crossing, no half-pixel shift), kept where D_w D_w(n.v) > 0 and the strength passes the threshold. The
- *  result does not depend on the resolution: J w scales with it and the differences per pixel inversely.
- *  Throws std::invalid_argument naming the argument for wrong types, sizes or settings. */
-LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth,
-                                       const SuggestiveSettings& settings);
+/** Zero crossings of D_w(n.v) between valid 4-neighbours (the pixel with the smaller |D_w(n.v)| marked, the point
+ *  at the linear crossing, no half-pixel shift), kept where D_w D_w(n.v) > 0 and the strength passes the threshold,
+ *  both interpolated to the crossing. The result does not depend on the resolution: J w scales with it and the
+ *  differences per pixel inversely. Rows are split into bands over cv::parallel_for_; the result does not depend on
+ *  the thread count either. Throws std::invalid_argument naming the argument for wrong types, sizes or settings. */
+LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings);
 
 } // namespace inkgraph
