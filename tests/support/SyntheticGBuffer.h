@@ -7,7 +7,15 @@
 #include <glm/glm.hpp>
 #include <opencv2/core.hpp>
 
+#include <optional>
+
 namespace inkgraph::test {
+
+/** A world-space ray with a unit direction. */
+struct SyntheticRay {
+    glm::dvec3 origin;
+    glm::dvec3 direction;
+};
 
 struct SyntheticCamera {
     int width = 512;
@@ -18,6 +26,13 @@ struct SyntheticCamera {
     double fovYDegrees = 35.0;
 
     double focalPixels() const; ///< (height / 2) / tan(fovY / 2)
+    glm::dmat4 view() const;    ///< glm::lookAt(eye, target, up): world -> view space
+
+    /** The ray from the eye through an image point in pixels: x right, y down, origin at the image's top-left
+     *  corner, so pixel (col, row) has its centre at (col + 0.5, row + 0.5). */
+    SyntheticRay rayThrough(const glm::dvec2& imagePoint) const;
+    /** A world point in front of the camera -> its image point, in the units of rayThrough(). */
+    glm::dvec2 project(const glm::dvec3& worldPoint) const;
 };
 
 /** The fields a post-stage kernel reads, all CV_32F, width x height. */
@@ -36,6 +51,11 @@ SyntheticGBuffer renderSphere(const SyntheticCamera& camera, const glm::dvec3& c
  *  P(u,v) = center + ((R + r cos v) cos u, (R + r cos v) sin u, r sin v). */
 SyntheticGBuffer renderTorus(const SyntheticCamera& camera, const glm::dvec3& center, double ringRadius,
                              double tubeRadius);
+
+/** Distance along `ray` to its first hit with the torus of renderTorus(), if any: the first root of the exact
+ *  quartic, isolated between the roots of its derivatives, so thin grazing hits are found (error ~1e-12). */
+std::optional<double> intersectTorus(const SyntheticRay& ray, const glm::dvec3& center, double ringRadius,
+                                     double tubeRadius);
 
 /** Infinite plane through `point` with unit `normal` (seen from either side; the normal turns toward the eye). */
 SyntheticGBuffer renderPlane(const SyntheticCamera& camera, const glm::dvec3& point, const glm::dvec3& normal);

@@ -1,0 +1,441 @@
+#include "postfx/SuggestiveContours.h"
+
+#include <opencv2/core/hal/intrin.hpp>
+#include <opencv2/core/utility.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+// Channels of the radial buffer.
+constexpr int kNormalDistance = 0; // n.(c - p)
+constexpr int kImageWX = 1;        // (J w).x
+constexpr int kImageWY = 2;        // (J w).y
+constexpr int kWLengthSquared = 3; // |w|^2
+
+std::string sizeText(cv::Size size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
+
+bool isFiniteAtLeast(float value, float lowest) { return std::isfinite(value) && value >= lowest; }
+
+void checkInputs(const std::string& function, const cv::Mat& radial, const cv::Mat& depth,
+                 const SuggestiveSettings& settings) {
+    if (radial.type() != CV_32FC4 || radial.empty())
+        throw std::invalid_argument(function + ": 'radial' must be a non-empty CV_32FC4 image");
+    if (depth.type() != CV_32FC1 || depth.size() != radial.size())
+        throw std::invalid_argument(function + ": 'depth' must be CV_32FC1 of " + sizeText(radial.size()));
+    if (!(isFiniteAtLeast(settings.minSinTheta, 0.0f) && settings.minSinTheta < 1.0f))
+        throw std::invalid_argument(function + ": 'minSinTheta' must lie in [0, 1)");
+    if (!(isFiniteAtLeast(settings.featureSize, 0.0f) && settings.featureSize > 0.0f))
+        throw std::invalid_argument(function + ": 'featureSize' must be positive and finite");
+    if (!isFiniteAtLeast(settings.threshold, 0.0f))
+        throw std::invalid_argument(function + ": 'threshold' must be finite and >= 0");
+    if (!isFiniteAtLeast(settings.fade, 0.0f))
+        throw std::invalid_argument(function + ": 'fade' must be finite and >= 0");
+    if (!(isFiniteAtLeast(settings.depthJump, 0.0f) && settings.depthJump > 0.0f))
+        throw std::invalid_argument(function + ": 'depthJump' must be positive and finite");
+}
+
+/** Columns [begin, end) of one row; the rows' spans bound their covered pixels, so work skips the background. */
+struct Span {
+    int begin = 0;
+    int end = 0;
+};
+
+#if CV_SIMD128
+using cv::v_float32x4;
+#endif
+
+/** From the first to the last covered pixel of a depth row (covered: depth > 0, as isDepthBreak() has it). */
+Span coveredSpan(const float* depth, int cols) {
+    int begin = 0;
+    int end = cols;
+#if CV_SIMD128
+    const v_float32x4 zero = cv::v_setzero_f32();
+    while (begin + 4 <= cols && !cv::v_check_any(cv::v_load(depth + begin) > zero))
+        begin += 4;
+    while (end - 4 >= begin && !cv::v_check_any(cv::v_load(depth + end - 4) > zero))
+        end -= 4;
+#endif
+    while (begin < end && !(depth[begin] > 0.0f))
+        ++begin;
+    while (end > begin && !(depth[end - 1] > 0.0f))
+        --end;
+    return {begin, end};
+}
+
+/** Copies n.(c - p) and J w of one row's span into contiguous arrays, which the differences then read 4 at a time. */
+void splitRadialRow(const cv::Vec4f* radial, Span span, float* normalDistance, float* imageWX, float* imageWY) {
+    int col = span.begin;
+#if CV_SIMD128
+    for (; col + 4 <= span.end; col += 4) {
+        v_float32x4 distance, wx, wy, wSquared;
+        cv::v_load_deinterleave(radial[col].val, distance, wx, wy, wSquared);
+        cv::v_store(normalDistance + col, distance);
+        cv::v_store(imageWX + col, wx);
+        cv::v_store(imageWY + col, wy);
+    }
+#endif
+    for (; col < span.end; ++col) {
+        normalDistance[col] = radial[col][kNormalDistance];
+        imageWX[col] = radial[col][kImageWX];
+        imageWY[col] = radial[col][kImageWY];
+    }
+}
+
+/** !isDepthBreak(depth, neighbourDepth, depthJump) for a covered pixel (depth > 0), in a form with a vector twin. */
+inline bool joinsNeighbour(float depth, float neighbourDepth, float depthJump) {
+    return neighbourDepth > 0.0f && std::abs(depth - neighbourDepth) <= depthJump * std::min(depth, neighbourDepth);
+}
+
+#if CV_SIMD128
+inline v_float32x4 joinsNeighbour(const v_float32x4& depth, const v_float32x4& neighbourDepth,
+                                  const v_float32x4& depthJump) {
+    return (neighbourDepth > cv::v_setzero_f32()) &
+           (cv::v_abs(depth - neighbourDepth) <= depthJump * cv::v_min(depth, neighbourDepth));
+}
+#endif
+
+/** One row's inputs to differentiateAlongW(): linear depth of the row and its neighbours, n.(c - p) likewise, and
+ *  J w of the row, each indexed by column. */
+struct RowInputs {
+    const float* depthAbove;
+    const float* depth;
+    const float* depthBelow;
+    const float* normalDistanceAbove;
+    const float* normalDistance;
+    const float* normalDistanceBelow;
+    const float* imageWX;
+    const float* imageWY;
+};
+
+/** D_w(n.v) over columns [begin, end) of an interior row: the central differences of n.(c - p) dotted with J w,
+ *  defined (1) where the pixel and its four neighbours lie on one surface, which keeps background out too; dw = 0
+ *  and defined = 0 elsewhere. Four columns at a time by selects: an entry not selected may have read stale
+ *  neighbours, which never reach the result. */
+void differentiateAlongW(const RowInputs& in, int begin, int end, float depthJump, float* dw, float* defined) {
+    int col = begin;
+#if CV_SIMD128
+    const v_float32x4 zero = cv::v_setzero_f32();
+    const v_float32x4 one = cv::v_setall_f32(1.0f);
+    const v_float32x4 half = cv::v_setall_f32(0.5f);
+    const v_float32x4 jump = cv::v_setall_f32(depthJump);
+    for (; col + 4 <= end; col += 4) {
+        const v_float32x4 z = cv::v_load(in.depth + col);
+        const v_float32x4 onOneSurface = (z > zero) & joinsNeighbour(z, cv::v_load(in.depth + col - 1), jump) &
+                                         joinsNeighbour(z, cv::v_load(in.depth + col + 1), jump) &
+                                         joinsNeighbour(z, cv::v_load(in.depthAbove + col), jump) &
+                                         joinsNeighbour(z, cv::v_load(in.depthBelow + col), jump);
+        const v_float32x4 gradientX = cv::v_load(in.normalDistance + col + 1) - cv::v_load(in.normalDistance + col - 1);
+        const v_float32x4 gradientY =
+            cv::v_load(in.normalDistanceBelow + col) - cv::v_load(in.normalDistanceAbove + col);
+        const v_float32x4 derivative =
+            half * (gradientX * cv::v_load(in.imageWX + col) + gradientY * cv::v_load(in.imageWY + col));
+        cv::v_store(dw + col, cv::v_select(onOneSurface, derivative, zero));
+        cv::v_store(defined + col, cv::v_select(onOneSurface, one, zero));
+    }
+#endif
+    for (; col < end; ++col) {
+        const float z = in.depth[col];
+        const bool onOneSurface = z > 0.0f && joinsNeighbour(z, in.depth[col - 1], depthJump) &&
+                                  joinsNeighbour(z, in.depth[col + 1], depthJump) &&
+                                  joinsNeighbour(z, in.depthAbove[col], depthJump) &&
+                                  joinsNeighbour(z, in.depthBelow[col], depthJump);
+        const float gradientX = in.normalDistance[col + 1] - in.normalDistance[col - 1];
+        const float gradientY = in.normalDistanceBelow[col] - in.normalDistanceAbove[col];
+        dw[col] = onOneSurface ? 0.5f * (gradientX * in.imageWX[col] + gradientY * in.imageWY[col]) : 0.0f;
+        defined[col] = onOneSurface ? 1.0f : 0.0f;
+    }
+}
+
+/** D_w D_w(n.v) at one pixel from the D_w(n.v) rows above, at and below it, or nothing where it is invalid: a
+ *  neighbour's D_w undefined (so every difference involved stays on the pixel's surface), n.v <= 0, or sin(theta)
+ *  below the cut-off. The caller keeps the pixel off the image's edges. */
+std::optional<float> secondDerivativeAt(const cv::Vec4f& radial, int col, const float* dwAbove, const float* dw,
+                                        const float* dwBelow, const float* definedAbove, const float* defined,
+                                        const float* definedBelow, float minSinThetaSquared) {
+    if (!(defined[col - 1] > 0.0f && defined[col + 1] > 0.0f && definedAbove[col] > 0.0f && definedBelow[col] > 0.0f))
+        return std::nullopt;
+    const float normalDistance = radial[kNormalDistance];
+    const float wSquared = radial[kWLengthSquared];
+    // sin^2 = |w|^2 / |v|^2 with |v|^2 = |w|^2 + (n.v)^2, compared without a division.
+    if (!(normalDistance > 0.0f) || !(wSquared >= minSinThetaSquared * (wSquared + normalDistance * normalDistance)))
+        return std::nullopt;
+    const float gradientX = dw[col + 1] - dw[col - 1];
+    const float gradientY = dwBelow[col] - dwAbove[col];
+    return 0.5f * (gradientX * radial[kImageWX] + gradientY * radial[kImageWY]);
+}
+
+/** A sign change, counting a zero once: as the non-negative side, so - 0 + is one crossing, between - and 0. */
+inline bool changesSign(float a, float b) { return (a < 0.0f) != (b < 0.0f); }
+
+/** What one band of rows found. Marks in the row above the band belong to the band above, so they wait here until
+ *  the bands have joined instead of being written concurrently. */
+struct BandResult {
+    std::vector<LinePoint> points;
+    std::vector<cv::Point> marksAboveBand;
+};
+
+/** Finds the suggestive-contour crossings owned by rows [firstRow, endRow): the horizontal pairs in each row and the
+ *  vertical pairs between it and the row above, so no two bands find the same crossing and their points, joined in
+ *  band order, are those of one band over the whole image.
+ *
+ *  One pass down the rows over a ring: split the newest row, D_w(n.v) of the row above it, and the crossings of the
+ *  row above that, whose validity needs D_w one row further up and down. D_w and its defined flag are written over
+ *  each row's covered span and kept zero outside it, as if computed everywhere: a slot taking a new row clears what
+ *  the old row left outside the new span. */
+class BandScanner {
+public:
+    BandScanner(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings, cv::Mat& mask,
+                int firstRow, int endRow)
+        : mRadial(radial), mDepth(depth), mMask(mask), mDepthJump(settings.depthJump),
+          mMinSinThetaSquared(settings.minSinTheta * settings.minSinTheta),
+          mFeatureSizeSquared(settings.featureSize * settings.featureSize), mThreshold(settings.threshold),
+          mFade(settings.fade), mRows(radial.rows), mCols(radial.cols), mFirstRow(firstRow), mEndRow(endRow),
+          mFirstLoaded(std::max(firstRow - 3, 0)), mSpans(size_t(std::min(endRow + 2, mRows) - mFirstLoaded)),
+          mNormalDistance(kRingRows * size_t(mCols), 0.0f), mImageWX(kRingRows * size_t(mCols), 0.0f),
+          mImageWY(kRingRows * size_t(mCols), 0.0f), mDw(kRingRows * size_t(mCols), 0.0f),
+          mDefined(kRingRows * size_t(mCols), 0.0f) {}
+
+    BandResult scan() {
+        const int loadEnd = std::min(mEndRow + 2, mRows);
+        const int differentiateBegin = std::max(mFirstRow - 2, 0);
+        const int differentiateEnd = std::min(mEndRow + 1, mRows);
+        for (int newest = mFirstLoaded; newest - 2 < mEndRow; ++newest) {
+            if (newest < loadEnd) load(newest);
+            if (newest - 1 >= differentiateBegin && newest - 1 < differentiateEnd) differentiate(newest - 1);
+            if (newest - 2 >= mFirstRow) findCrossings(newest - 2);
+        }
+        return std::move(mResult);
+    }
+
+private:
+    static constexpr int kRingRows = 8;
+
+    size_t slotOf(int row) const { return size_t(row % kRingRows) * size_t(mCols); }
+    Span spanOf(int row) const { return mSpans[size_t(row - mFirstLoaded)]; }
+
+    void load(int row) {
+        const Span span = coveredSpan(mDepth.ptr<float>(row), mCols);
+        mSpans[size_t(row - mFirstLoaded)] = span;
+        const size_t slot = slotOf(row);
+        splitRadialRow(mRadial.ptr<cv::Vec4f>(row), span, &mNormalDistance[slot], &mImageWX[slot], &mImageWY[slot]);
+    }
+
+    void resetDerivatives(size_t slot, int begin, int end) {
+        if (begin >= end) return;
+        std::fill(mDw.begin() + std::ptrdiff_t(slot) + begin, mDw.begin() + std::ptrdiff_t(slot) + end, 0.0f);
+        std::fill(mDefined.begin() + std::ptrdiff_t(slot) + begin, mDefined.begin() + std::ptrdiff_t(slot) + end, 0.0f);
+    }
+
+    void differentiate(int row) {
+        const Span span = spanOf(row);
+        const size_t slot = slotOf(row);
+        Span& held = mDerivativeSpans[size_t(row % kRingRows)];
+        resetDerivatives(slot, held.begin, std::min(held.end, span.begin));
+        resetDerivatives(slot, std::max(held.begin, span.end), held.end);
+        held = span;
+        // D_w needs a neighbour on every side: none in the first and last rows and columns.
+        const bool interiorRow = row > 0 && row < mRows - 1;
+        const int begin = interiorRow ? std::max(span.begin, 1) : span.end;
+        const int end = interiorRow ? std::min(span.end, mCols - 1) : span.end;
+        resetDerivatives(slot, span.begin, begin);
+        resetDerivatives(slot, std::max(begin, end), span.end);
+        if (begin >= end) return;
+        const RowInputs in{mDepth.ptr<float>(row - 1),
+                           mDepth.ptr<float>(row),
+                           mDepth.ptr<float>(row + 1),
+                           &mNormalDistance[slotOf(row - 1)],
+                           &mNormalDistance[slot],
+                           &mNormalDistance[slotOf(row + 1)],
+                           &mImageWX[slot],
+                           &mImageWY[slot]};
+        differentiateAlongW(in, begin, end, mDepthJump, &mDw[slot], &mDefined[slot]);
+    }
+
+    std::optional<float> secondDerivative(int row, int col) const {
+        return secondDerivativeAt(mRadial.ptr<cv::Vec4f>(row)[col], col, &mDw[slotOf(row - 1)], &mDw[slotOf(row)],
+                                  &mDw[slotOf(row + 1)], &mDefined[slotOf(row - 1)], &mDefined[slotOf(row)],
+                                  &mDefined[slotOf(row + 1)], mMinSinThetaSquared);
+    }
+
+    /** Crossings of the pairs (row, col)-(row, col + 1) and (row - 1, col)-(row, col), col in the row's span. Crossings
+     *  are rare, so four columns are tested at once and only groups holding one are visited. */
+    void findCrossings(int row) {
+        // Valid pixels need a neighbour on every side, so the first and last rows and columns have none.
+        if (row <= 0 || row >= mRows - 1) return;
+        const Span span = spanOf(row);
+        const int begin = std::max(span.begin, 1);
+        const int end = std::min(span.end, mCols - 1);
+        const float* dw = &mDw[slotOf(row)];
+        const float* defined = &mDefined[slotOf(row)];
+        const float* dwAbove = &mDw[slotOf(row - 1)];
+        const float* definedAbove = &mDefined[slotOf(row - 1)];
+        // Column end is always undefined (outside the span, or the last column), so the pairs reaching it are
+        // tested harmlessly.
+        int col = begin;
+#if CV_SIMD128
+        const v_float32x4 zero = cv::v_setzero_f32();
+        for (; col + 4 <= end; col += 4) {
+            const v_float32x4 centre = cv::v_load(dw + col);
+            const v_float32x4 centreDefined = cv::v_load(defined + col) > zero;
+            const v_float32x4 centreNegative = centre < zero;
+            const v_float32x4 horizontal = centreDefined & (cv::v_load(defined + col + 1) > zero) &
+                                           (centreNegative ^ (cv::v_load(dw + col + 1) < zero));
+            const v_float32x4 vertical = centreDefined & (cv::v_load(definedAbove + col) > zero) &
+                                         (centreNegative ^ (cv::v_load(dwAbove + col) < zero));
+            if (cv::v_check_any(horizontal))
+                for (int lane = 0; lane < 4; ++lane)
+                    considerPair(row, col + lane, false);
+            if (cv::v_check_any(vertical))
+                for (int lane = 0; lane < 4; ++lane)
+                    considerPair(row - 1, col + lane, true);
+        }
+#endif
+        for (; col < end; ++col) {
+            considerPair(row, col, false);
+            considerPair(row - 1, col, true);
+        }
+    }
+
+    /** Pixel a = (rowA, colA) and its neighbour b one step right, or down when `downward`. */
+    void considerPair(int rowA, int colA, bool downward) {
+        const int rowB = downward ? rowA + 1 : rowA;
+        const int colB = downward ? colA : colA + 1;
+        const float dwA = mDw[slotOf(rowA) + size_t(colA)];
+        const float dwB = mDw[slotOf(rowB) + size_t(colB)];
+        if (!(mDefined[slotOf(rowA) + size_t(colA)] > 0.0f && mDefined[slotOf(rowB) + size_t(colB)] > 0.0f) ||
+            !changesSign(dwA, dwB))
+            return;
+        const auto dwdwA = secondDerivative(rowA, colA);
+        const auto dwdwB = secondDerivative(rowB, colB);
+        if (!dwdwA || !dwdwB) return;
+        const cv::Vec4f& radialA = mRadial.ptr<cv::Vec4f>(rowA)[colA];
+        const cv::Vec4f& radialB = mRadial.ptr<cv::Vec4f>(rowB)[colB];
+
+        // The values at the linear crossing, so the test does not jump with which pixel lies nearer.
+        const float t = dwA / (dwA - dwB);
+        const float dwdw = *dwdwA + t * (*dwdwB - *dwdwA);
+        if (!(dwdw > 0.0f)) return;
+        const float wSquared = radialA[kWLengthSquared] + t * (radialB[kWLengthSquared] - radialA[kWLengthSquared]);
+        const float normalDistance =
+            radialA[kNormalDistance] + t * (radialB[kNormalDistance] - radialA[kNormalDistance]);
+        const float denominator = wSquared * normalDistance;
+        if (!(denominator > 0.0f)) return;
+        const float strength = mFeatureSizeSquared * dwdw / denominator;
+        if (!(strength > mThreshold)) return;
+
+        const bool marksA = std::abs(dwA) <= std::abs(dwB);
+        const cv::Point marked = marksA ? cv::Point(colA, rowA) : cv::Point(colB, rowB);
+        if (marked.y < mFirstRow)
+            mResult.marksAboveBand.push_back(marked);
+        else
+            mMask.ptr<uchar>(marked.y)[marked.x] = 255;
+        const cv::Point2f position(float(colA) + (downward ? 0.0f : t), float(rowA) + (downward ? t : 0.0f));
+        mResult.points.push_back({position, mFade > 0.0f ? strength / (strength + mFade) : 1.0f});
+    }
+
+    const cv::Mat& mRadial;
+    const cv::Mat& mDepth;
+    cv::Mat& mMask;
+    float mDepthJump;
+    float mMinSinThetaSquared;
+    float mFeatureSizeSquared;
+    float mThreshold;
+    float mFade;
+    int mRows;
+    int mCols;
+    int mFirstRow;
+    int mEndRow;
+    int mFirstLoaded;
+    std::vector<Span> mSpans;                       ///< of rows mFirstLoaded onwards
+    std::array<Span, kRingRows> mDerivativeSpans{}; ///< the span each slot's D_w was last written over
+    std::vector<float> mNormalDistance;
+    std::vector<float> mImageWX;
+    std::vector<float> mImageWY;
+    std::vector<float> mDw;
+    std::vector<float> mDefined;
+    BandResult mResult;
+};
+
+} // namespace
+
+RadialDerivatives computeRadialDerivatives(const cv::Mat& radial, const cv::Mat& depth,
+                                           const SuggestiveSettings& settings) {
+    checkInputs("computeRadialDerivatives()", radial, depth, settings);
+    const int rows = radial.rows;
+    const int cols = radial.cols;
+    cv::Mat normalDistance(radial.size(), CV_32FC1);
+    cv::Mat imageWX(radial.size(), CV_32FC1);
+    cv::Mat imageWY(radial.size(), CV_32FC1);
+    for (int row = 0; row < rows; ++row)
+        splitRadialRow(radial.ptr<cv::Vec4f>(row), Span{0, cols}, normalDistance.ptr<float>(row),
+                       imageWX.ptr<float>(row), imageWY.ptr<float>(row));
+
+    RadialDerivatives result;
+    result.dw = cv::Mat::zeros(radial.size(), CV_32FC1);
+    result.dwdw = cv::Mat::zeros(radial.size(), CV_32FC1);
+    result.valid = cv::Mat::zeros(radial.size(), CV_8UC1);
+    cv::Mat defined = cv::Mat::zeros(radial.size(), CV_32FC1);
+    for (int row = 1; row + 1 < rows; ++row) {
+        const RowInputs in{depth.ptr<float>(row - 1),      depth.ptr<float>(row),
+                           depth.ptr<float>(row + 1),      normalDistance.ptr<float>(row - 1),
+                           normalDistance.ptr<float>(row), normalDistance.ptr<float>(row + 1),
+                           imageWX.ptr<float>(row),        imageWY.ptr<float>(row)};
+        differentiateAlongW(in, 1, cols - 1, settings.depthJump, result.dw.ptr<float>(row), defined.ptr<float>(row));
+    }
+    const float minSinThetaSquared = settings.minSinTheta * settings.minSinTheta;
+    for (int row = 1; row + 1 < rows; ++row) {
+        const auto* radialRow = radial.ptr<cv::Vec4f>(row);
+        for (int col = 1; col + 1 < cols; ++col) {
+            const auto dwdw =
+                secondDerivativeAt(radialRow[col], col, result.dw.ptr<float>(row - 1), result.dw.ptr<float>(row),
+                                   result.dw.ptr<float>(row + 1), defined.ptr<float>(row - 1), defined.ptr<float>(row),
+                                   defined.ptr<float>(row + 1), minSinThetaSquared);
+            if (!dwdw) continue;
+            result.dwdw.at<float>(row, col) = *dwdw;
+            result.valid.at<uchar>(row, col) = 255;
+        }
+    }
+    return result;
+}
+
+LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth,
+                                       const SuggestiveSettings& settings) {
+    checkInputs("extractSuggestiveContours()", radial, depth, settings);
+    LineSkeleton skeleton;
+    skeleton.mask = cv::Mat::zeros(radial.size(), CV_8UC1);
+
+    // Bands of at least kMinBandRows rows, one per thread: each re-reads three rows above it, so thin bands cost more
+    // than they save. The result does not depend on the band count.
+    constexpr int kMinBandRows = 128;
+    const int bandCount = std::max(1, std::min(cv::getNumThreads(), radial.rows / kMinBandRows));
+    std::vector<BandResult> bands(static_cast<size_t>(bandCount));
+    const auto scanBands = [&](const cv::Range& range) {
+        for (int band = range.start; band < range.end; ++band) {
+            const int firstRow = int(int64_t(radial.rows) * band / bandCount);
+            const int endRow = int(int64_t(radial.rows) * (band + 1) / bandCount);
+            bands[size_t(band)] = BandScanner(radial, depth, settings, skeleton.mask, firstRow, endRow).scan();
+        }
+    };
+    if (bandCount == 1)
+        scanBands(cv::Range(0, 1));
+    else
+        cv::parallel_for_(cv::Range(0, bandCount), scanBands, bandCount);
+
+    for (const BandResult& band : bands) {
+        skeleton.points.insert(skeleton.points.end(), band.points.begin(), band.points.end());
+        for (const cv::Point& marked : band.marksAboveBand)
+            skeleton.mask.ptr<uchar>(marked.y)[marked.x] = 255;
+    }
+    return skeleton;
+}
+
+} // namespace inkgraph

@@ -1,0 +1,625 @@
+// postfx/SuggestiveContours on ray-cast G-buffers (tests/support/SyntheticGBuffer): the derivative against the torus's
+// analytic radial curvature, the lines against the analytic zero set of kappa_r, and the negative controls. No GL.
+#include "postfx/SuggestiveContours.h"
+#include "tests/support/SyntheticGBuffer.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/core/utility.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+using test::SyntheticCamera;
+using test::SyntheticGBuffer;
+
+/** The settings the app uses: the defaults (rtsc's threshold and fade in the dimensionless strength q) with a
+ *  feature size of 0.05 x the bounding radius (rtsc's cap). */
+SuggestiveSettings appSettings(double boundingRadius) {
+    SuggestiveSettings settings;
+    settings.featureSize = float(0.05 * boundingRadius);
+    return settings;
+}
+
+/** Every crossing with D_w D_w(n.v) > 0, unfaded. */
+SuggestiveSettings untrimmedSettings() {
+    SuggestiveSettings settings;
+    settings.threshold = 0.0f;
+    settings.fade = 0.0f;
+    return settings;
+}
+
+/** The torus of test::renderTorus() at the origin, and its differential geometry (algorithms.md 6.2). */
+struct Torus {
+    double ring = 1.0; ///< R
+    double tube = 0.4; ///< r
+
+    double boundingRadius() const { return ring + tube; }
+    glm::dvec3 point(double u, double v) const {
+        return {(ring + tube * std::cos(v)) * std::cos(u), (ring + tube * std::cos(v)) * std::sin(u),
+                tube * std::sin(v)};
+    }
+    glm::dvec3 normal(double u, double v) const {
+        return {std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v)};
+    }
+    glm::dvec3 tangentU(double u) const { return {-std::sin(u), std::cos(u), 0.0}; }
+    glm::dvec3 tangentV(double u, double v) const {
+        return {-std::sin(v) * std::cos(u), -std::sin(v) * std::sin(u), std::cos(v)};
+    }
+    double curvatureU(double v) const { return std::cos(v) / (ring + tube * std::cos(v)); }
+    double curvatureV() const { return 1.0 / tube; }
+    /** (u, v) of a point on the torus. */
+    glm::dvec2 parameters(const glm::dvec3& p) const {
+        return {std::atan2(p.y, p.x), std::atan2(p.z, std::hypot(p.x, p.y) - ring)};
+    }
+    /** |w|^2 kappa_r = kappa_u (w.e_u)^2 + kappa_v (w.e_v)^2 with w = v - (n.v) n, v = eye - p: what D_w(n.v)
+     *  equals (algorithms.md 4.1), and smooth where kappa_r alone is not (w -> 0). */
+    double wSquaredRadialCurvature(const glm::dvec3& eye, double u, double v) const {
+        const glm::dvec3 toEye = eye - point(u, v);
+        const glm::dvec3 n = normal(u, v);
+        const glm::dvec3 w = toEye - glm::dot(toEye, n) * n;
+        const double alongU = glm::dot(w, tangentU(u));
+        const double alongV = glm::dot(w, tangentV(u, v));
+        return curvatureU(v) * alongU * alongU + curvatureV() * alongV * alongV;
+    }
+};
+
+SyntheticCamera torusCamera(int size, double elevationDegrees, double distance) {
+    SyntheticCamera camera;
+    camera.width = camera.height = size;
+    const double elevation = glm::radians(elevationDegrees);
+    camera.eye = {0.0, -distance * std::cos(elevation), distance * std::sin(elevation)};
+    camera.target = glm::dvec3(0.0);
+    camera.up = {0.0, 0.0, 1.0};
+    return camera;
+}
+
+/** LinePoint coordinates (pixel centres at integers) of an image point from SyntheticCamera (centres at + 0.5). */
+cv::Point2d toLineCoordinates(const glm::dvec2& imagePoint) { return {imagePoint.x - 0.5, imagePoint.y - 0.5}; }
+
+struct Segment {
+    cv::Point2d a;
+    cv::Point2d b;
+};
+
+/** The analytic suggestive contours of the torus in LinePoint coordinates, as short segments: for each of
+ *  `uSamples` values of u, the v where kappa_r = 0 (a sign change of |w|^2 kappa_r over a scan of the inner half,
+ *  where kappa_u < 0 lets it vanish, refined by bisection), kept where D_w kappa_r > 0 (a central difference along
+ *  w-hat, h = 1e-5), the surface faces the eye with sin(theta) >= minSinTheta, and no other part of the torus hides
+ *  it; consecutive u joined where v continues. */
+std::vector<Segment> analyticSuggestiveContours(const Torus& torus, const SyntheticCamera& camera, double minSinTheta,
+                                                int uSamples) {
+    constexpr int kVSamples = 256;
+    const glm::dvec3 eye = camera.eye;
+    auto keptPoint = [&](double u, double v) -> std::optional<cv::Point2d> {
+        const glm::dvec3 p = torus.point(u, v);
+        const glm::dvec3 n = torus.normal(u, v);
+        const glm::dvec3 toEye = eye - p;
+        const double normalDistance = glm::dot(toEye, n);
+        const glm::dvec3 w = toEye - normalDistance * n;
+        if (!(normalDistance > 0.0) || glm::length(w) < minSinTheta * glm::length(toEye)) return std::nullopt;
+        // Along w-hat on the surface: du and dv per unit length.
+        const glm::dvec3 wHat = glm::normalize(w);
+        const double du = glm::dot(wHat, torus.tangentU(u)) / (torus.ring + torus.tube * std::cos(v));
+        const double dv = glm::dot(wHat, torus.tangentV(u, v)) / torus.tube;
+        const double h = 1e-5;
+        // At kappa_r = 0, D(|w|^2 kappa_r) = |w|^2 D kappa_r: the same sign.
+        if (!(torus.wSquaredRadialCurvature(eye, u + h * du, v + h * dv) -
+                  torus.wSquaredRadialCurvature(eye, u - h * du, v - h * dv) >
+              0.0))
+            return std::nullopt;
+        const auto hit = test::intersectTorus({eye, glm::normalize(p - eye)}, glm::dvec3(0.0), torus.ring, torus.tube);
+        if (!hit || std::abs(*hit - glm::length(toEye)) > 1e-7) return std::nullopt;
+        return toLineCoordinates(camera.project(p));
+    };
+
+    struct Zero {
+        double v;
+        std::optional<cv::Point2d> image;
+    };
+    std::vector<Segment> segments;
+    std::vector<Zero> previous;
+    for (int sample = 0; sample <= uSamples; ++sample) {
+        const double u = 2.0 * M_PI * sample / uSamples;
+        std::vector<Zero> zeros;
+        double lastV = M_PI / 2.0;
+        double lastValue = torus.wSquaredRadialCurvature(eye, u, lastV);
+        for (int step = 1; step <= kVSamples; ++step) {
+            const double v = M_PI / 2.0 + M_PI * step / kVSamples;
+            const double value = torus.wSquaredRadialCurvature(eye, u, v);
+            if ((value < 0.0) != (lastValue < 0.0)) {
+                double low = lastV;
+                double high = v;
+                const bool lowNegative = lastValue < 0.0;
+                for (int halving = 0; halving < 60; ++halving) {
+                    const double middle = 0.5 * (low + high);
+                    if ((torus.wSquaredRadialCurvature(eye, u, middle) < 0.0) == lowNegative)
+                        low = middle;
+                    else
+                        high = middle;
+                }
+                const double root = 0.5 * (low + high);
+                zeros.push_back({root, keptPoint(u, root)});
+            }
+            lastV = v;
+            lastValue = value;
+        }
+        for (const Zero& zero : zeros) {
+            if (!zero.image) continue;
+            const Zero* continued = nullptr;
+            for (const Zero& before : previous)
+                if (before.image && std::abs(before.v - zero.v) < 0.05 &&
+                    (!continued || std::abs(before.v - zero.v) < std::abs(continued->v - zero.v)))
+                    continued = &before;
+            // A point with no neighbour still counts, as a segment of length 0.
+            segments.push_back({continued ? *continued->image : *zero.image, *zero.image});
+        }
+        previous = std::move(zeros);
+    }
+    return segments;
+}
+
+double distanceToSegment(const cv::Point2d& p, const Segment& segment) {
+    const cv::Point2d along = segment.b - segment.a;
+    const double length2 = along.dot(along);
+    const double t = length2 > 0.0 ? std::clamp((p - segment.a).dot(along) / length2, 0.0, 1.0) : 0.0;
+    const cv::Point2d offset = p - (segment.a + t * along);
+    return std::sqrt(offset.dot(offset));
+}
+
+double distanceToSegments(const cv::Point2d& p, const std::vector<Segment>& segments) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Segment& segment : segments)
+        nearest = std::min(nearest, distanceToSegment(p, segment));
+    return nearest;
+}
+
+double distanceToPoints(const cv::Point2d& p, const std::vector<cv::Point2d>& points) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const cv::Point2d& q : points)
+        nearest = std::min(nearest, std::hypot(p.x - q.x, p.y - q.y));
+    return nearest;
+}
+
+double percentile(std::vector<double> values, double fraction) {
+    if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+    std::sort(values.begin(), values.end());
+    return values[std::min(values.size() - 1, size_t(fraction * double(values.size())))];
+}
+
+std::vector<cv::Point2d> positionsOf(const LineSkeleton& skeleton) {
+    std::vector<cv::Point2d> positions;
+    for (const LinePoint& point : skeleton.points)
+        positions.emplace_back(point.position.x, point.position.y);
+    return positions;
+}
+
+/** The nearer surface of two G-buffers per pixel: a scene with occlusion boundaries. */
+SyntheticGBuffer nearestOf(const SyntheticGBuffer& first, const SyntheticGBuffer& second) {
+    SyntheticGBuffer result{first.normal.clone(), first.nDotV.clone(), first.depth.clone(), first.radial.clone()};
+    for (int row = 0; row < first.depth.rows; ++row)
+        for (int col = 0; col < first.depth.cols; ++col) {
+            const float a = first.depth.at<float>(row, col);
+            const float b = second.depth.at<float>(row, col);
+            if (b > 0.0f && (a == 0.0f || b < a)) {
+                result.normal.at<cv::Vec4f>(row, col) = second.normal.at<cv::Vec4f>(row, col);
+                result.nDotV.at<float>(row, col) = second.nDotV.at<float>(row, col);
+                result.depth.at<float>(row, col) = b;
+                result.radial.at<cv::Vec4f>(row, col) = second.radial.at<cv::Vec4f>(row, col);
+            }
+        }
+    return result;
+}
+
+/** Central difference of a float image at an interior pixel, dotted with a direction in pixels (x right, y down). */
+double differenceAlong(const cv::Mat& image, int row, int col, double directionX, double directionY) {
+    const double gradientX = 0.5 * (double(image.at<float>(row, col + 1)) - image.at<float>(row, col - 1));
+    const double gradientY = 0.5 * (double(image.at<float>(row + 1, col)) - image.at<float>(row - 1, col));
+    return gradientX * directionX + gradientY * directionY;
+}
+
+TEST(SuggestiveContours, RadialDerivativeIsWSquaredTimesRadialCurvatureOnTorus) {
+    // D_w(n.v) = |w|^2 kappa_r with v = c - p unnormalised and w moved along J w in the image (algorithms.md 3, 4.1).
+    const Torus torus;
+    const SyntheticCamera camera = torusCamera(512, 30.0, 5.0);
+    const SyntheticGBuffer buffer = test::renderTorus(camera, glm::dvec3(0.0), torus.ring, torus.tube);
+    const RadialDerivatives derivatives = computeRadialDerivatives(buffer.radial, buffer.depth, untrimmedSettings());
+    const glm::dmat3 viewRotation(camera.view());
+    cv::Mat normalDistance;
+    cv::extractChannel(buffer.radial, normalDistance, 0);
+
+    // Errors relative to |w|^2 kappa_v, the size of the tube's term, so zeros of kappa_r do not divide by ~0.
+    double worstKernel = 0.0;
+    double worstUnitView = 0.0;
+    double worstOffCentreWxy = 0.0;
+    int checked = 0;
+    for (int row = 2; row < camera.height - 2; row += 5) {
+        for (int col = 2; col < camera.width - 2; col += 5) {
+            if (derivatives.valid.at<uchar>(row, col) == 0) continue;
+            const test::SyntheticRay ray = camera.rayThrough({col + 0.5, row + 0.5});
+            const auto distance = test::intersectTorus(ray, glm::dvec3(0.0), torus.ring, torus.tube);
+            ASSERT_TRUE(distance.has_value());
+            const glm::dvec3 p = ray.origin + *distance * ray.direction;
+            const glm::dvec2 uv = torus.parameters(p);
+            const glm::dvec3 toEye = camera.eye - p;
+            const glm::dvec3 n = torus.normal(uv.x, uv.y);
+            const glm::dvec3 w = toEye - glm::dot(toEye, n) * n;
+            const double sinTheta = glm::length(w) / glm::length(toEye);
+            // Away from the contour, where n.v changes faster than a central difference follows.
+            if (sinTheta > 0.9) continue;
+            ++checked;
+            const double expected = torus.wSquaredRadialCurvature(camera.eye, uv.x, uv.y);
+            const double scale = glm::dot(w, w) * torus.curvatureV();
+            worstKernel = std::max(worstKernel, std::abs(derivatives.dw.at<float>(row, col) - expected) / scale);
+
+            // Negative control 1: the unit view vector, scaled by |v| into the same units, is off by cos(theta)/|v|.
+            const cv::Vec4f radial = buffer.radial.at<cv::Vec4f>(row, col);
+            const double unitView = glm::length(toEye) * differenceAlong(buffer.nDotV, row, col, radial[1], radial[2]);
+            worstUnitView = std::max(worstUnitView, std::abs(unitView - expected) / scale);
+
+            // Negative control 2: the direction of view-space (w.x, -w.y) instead of J w, at J w's length. It is right
+            // on the view axis only, so judge it off-centre (more than 100 px out).
+            if (std::hypot(col + 0.5 - 256.0, row + 0.5 - 256.0) > 100.0) {
+                const glm::dvec3 viewW = viewRotation * w;
+                const double length = std::hypot(radial[1], radial[2]);
+                const double norm = std::hypot(viewW.x, viewW.y);
+                const double alongWxy =
+                    differenceAlong(normalDistance, row, col, length * viewW.x / norm, -length * viewW.y / norm);
+                worstOffCentreWxy = std::max(worstOffCentreWxy, std::abs(alongWxy - expected) / scale);
+            }
+        }
+    }
+    // Measured: kernel 0.42%, unit v 10.6%, w.xy 8.4% over about 3400 pixels.
+    std::cout << "checked " << checked << " pixels; worst error / (|w|^2 kappa_v): kernel " << worstKernel
+              << ", unit v " << worstUnitView << ", w.xy direction " << worstOffCentreWxy << "\n";
+    EXPECT_GT(checked, 1000);
+    EXPECT_LT(worstKernel, 0.01);
+    // The tolerance tells the right formula from both wrong ones.
+    EXPECT_GT(worstUnitView, 0.03);
+    EXPECT_GT(worstOffCentreWxy, 0.03);
+}
+
+TEST(SuggestiveContours, SpheresHaveNone) {
+    // kappa_r = 1/R > 0 everywhere: D_w(n.v) = |w|^2 / R never vanishes, whatever the distance or image position.
+    struct Case {
+        glm::dvec3 center;
+        double radius;
+        glm::dvec3 eye;
+    };
+    const Case cases[] = {
+        {glm::dvec3(0.0), 1.0, {0.0, 0.0, 2.5}},   {glm::dvec3(0.0), 1.0, {0.0, 0.0, 12.0}},
+        {{0.9, -0.6, 0.0}, 0.5, {0.0, 0.0, 4.0}},  // off-centre, low left
+        {{-1.1, 0.8, -1.0}, 0.7, {0.3, 0.2, 5.0}}, // off-centre, far
+        {{0.0, 0.0, 0.0}, 0.01, {0.0, 0.0, 0.04}}, // tiny and close: scale does not matter
+    };
+    for (const Case& sphereCase : cases) {
+        SyntheticCamera camera;
+        camera.width = camera.height = 256;
+        camera.eye = sphereCase.eye;
+        camera.target = {0.0, 0.0, -1.0};
+        const SyntheticGBuffer buffer = test::renderSphere(camera, sphereCase.center, sphereCase.radius);
+        ASSERT_GT(cv::countNonZero(buffer.depth), 500);
+        const LineSkeleton skeleton = extractSuggestiveContours(buffer.radial, buffer.depth, untrimmedSettings());
+        EXPECT_TRUE(skeleton.points.empty()) << skeleton.points.size() << " points, radius " << sphereCase.radius;
+        EXPECT_EQ(cv::countNonZero(skeleton.mask), 0);
+
+        // And D_w(n.v) itself is positive wherever it is valid, and |w|^2 / R away from the contour (sin(theta) <
+        // 0.9), where a central difference follows n.v.
+        const RadialDerivatives derivatives =
+            computeRadialDerivatives(buffer.radial, buffer.depth, untrimmedSettings());
+        ASSERT_GT(cv::countNonZero(derivatives.valid), 300);
+        double worst = 0.0;
+        for (int row = 0; row < camera.height; ++row)
+            for (int col = 0; col < camera.width; ++col) {
+                if (derivatives.valid.at<uchar>(row, col) == 0) continue;
+                const cv::Vec4f radial = buffer.radial.at<cv::Vec4f>(row, col);
+                const float dw = derivatives.dw.at<float>(row, col);
+                ASSERT_GT(dw, 0.0f) << col << "," << row;
+                if (radial[3] > 0.81f * (radial[3] + radial[0] * radial[0])) continue;
+                const float expected = radial[3] / float(sphereCase.radius);
+                worst = std::max(worst, std::abs(double(dw) - expected) / expected);
+            }
+        // Measured 0.03% to 1.3%: the worst is the far sphere, 34 px in radius, since a central difference's error
+        // grows as 1 / radius^2 in pixels.
+        EXPECT_LT(worst, 0.02) << "sphere radius " << sphereCase.radius;
+    }
+}
+
+TEST(SuggestiveContours, PlanesHaveNoneAndStayFinite) {
+    // n.(c - p) is the eye's distance to a plane, the same at every pixel: D_w(n.v) = 0, no crossing, no NaN, even
+    // where w is 0 (the frontal plane's centre) or huge (the tilted plane's horizon).
+    struct Case {
+        glm::dvec3 eye;
+        glm::dvec3 normal;
+    };
+    const Case cases[] = {
+        {{0.0, 0.0, 3.0}, {0.0, 0.0, 1.0}},  // frontal
+        {{0.0, -3.0, 0.4}, {0.0, 0.0, 1.0}}, // tilted, horizon in view
+        {{1.0, -2.0, 2.0}, {0.3, 0.2, 1.0}}, // oblique
+    };
+    for (const Case& planeCase : cases) {
+        SyntheticCamera camera;
+        camera.width = camera.height = 128;
+        camera.eye = planeCase.eye;
+        camera.up = {0.0, 1.0, 0.3};
+        const SyntheticGBuffer buffer = test::renderPlane(camera, glm::dvec3(0.0), planeCase.normal);
+        const LineSkeleton skeleton = extractSuggestiveContours(buffer.radial, buffer.depth, untrimmedSettings());
+        EXPECT_TRUE(skeleton.points.empty());
+        SuggestiveSettings everything = untrimmedSettings();
+        everything.minSinTheta = 0.0f;
+        const RadialDerivatives derivatives = computeRadialDerivatives(buffer.radial, buffer.depth, everything);
+        EXPECT_GT(cv::countNonZero(derivatives.valid), 128 * 20);
+        EXPECT_TRUE(cv::checkRange(derivatives.dw));
+        EXPECT_TRUE(cv::checkRange(derivatives.dwdw));
+        double largest = 0.0;
+        cv::minMaxLoc(cv::abs(derivatives.dw), nullptr, &largest);
+        EXPECT_EQ(largest, 0.0);
+        EXPECT_TRUE(extractSuggestiveContours(buffer.radial, buffer.depth, everything).points.empty());
+    }
+}
+
+TEST(SuggestiveContours, TorusLinesLieOnTheAnalyticZeroSetOfRadialCurvature) {
+    const Torus torus;
+    const SyntheticCamera camera = torusCamera(512, 30.0, 5.0);
+    const SyntheticGBuffer buffer = test::renderTorus(camera, glm::dvec3(0.0), torus.ring, torus.tube);
+    const SuggestiveSettings settings = untrimmedSettings();
+    const LineSkeleton skeleton = extractSuggestiveContours(buffer.radial, buffer.depth, settings);
+    ASSERT_GT(skeleton.points.size(), 150u);
+    EXPECT_GT(cv::countNonZero(skeleton.mask), 100);
+
+    // Every point lies on the inner half, where kappa_u < 0 lets kappa_r vanish: cast its ray back to (u, v).
+    double largestCosV = -1.0;
+    for (const LinePoint& point : skeleton.points) {
+        const test::SyntheticRay ray = camera.rayThrough({point.position.x + 0.5, point.position.y + 0.5});
+        const auto distance = test::intersectTorus(ray, glm::dvec3(0.0), torus.ring, torus.tube);
+        ASSERT_TRUE(distance.has_value());
+        const glm::dvec2 uv = torus.parameters(ray.origin + *distance * ray.direction);
+        largestCosV = std::max(largestCosV, std::cos(uv.y));
+        EXPECT_EQ(point.strength, 1.0f);
+        const cv::Point marked(cvRound(point.position.x), cvRound(point.position.y));
+        EXPECT_EQ(skeleton.mask.at<uchar>(marked), 255) << "a point's nearest pixel is marked";
+    }
+    EXPECT_LT(largestCosV, 0.0);
+
+    // Distances to the analytic lines, and the share of the analytic lines that were found.
+    const std::vector<Segment> reference = analyticSuggestiveContours(torus, camera, settings.minSinTheta, 16384);
+    ASSERT_GT(reference.size(), 500u);
+    std::vector<double> distances;
+    for (const cv::Point2d& position : positionsOf(skeleton))
+        distances.push_back(distanceToSegments(position, reference));
+    const std::vector<cv::Point2d> found = positionsOf(skeleton);
+    int recovered = 0;
+    for (const Segment& segment : reference)
+        recovered += distanceToPoints(segment.b, found) <= 1.0;
+    const double median = percentile(distances, 0.5);
+    const double p95 = percentile(distances, 0.95);
+    const double recall = double(recovered) / double(reference.size());
+    std::cout << skeleton.points.size() << " points, largest cos v " << largestCosV
+              << "; distance to the analytic lines: median " << median << " px, 95th percentile " << p95
+              << " px, largest " << percentile(distances, 1.0)
+              << " px; analytic samples within 1 px of a point: " << recall << "\n";
+    // Measured: 208 points, largest cos v -0.0002; median 0.004 px, 95th 0.016 px, largest 0.023 px; 98% of the
+    // analytic samples found (the rest lie within two pixels of the silhouette, where no difference is taken).
+    EXPECT_LT(median, 0.05);
+    EXPECT_LT(p95, 0.15);
+    EXPECT_LT(percentile(distances, 1.0), 0.5);
+    EXPECT_GT(recall, 0.9);
+}
+
+TEST(SuggestiveContours, TorusLinesDoNotDependOnResolution) {
+    // The app's settings: the strength is dimensionless and J w scales with the resolution, so 512^2 and 2048^2 draw
+    // the same lines, trimmed at the same places.
+    const Torus torus;
+    const SuggestiveSettings settings = appSettings(torus.boundingRadius());
+    const SyntheticCamera coarseCamera = torusCamera(512, 30.0, 5.0);
+    const SyntheticCamera fineCamera = torusCamera(2048, 30.0, 5.0);
+    const SyntheticGBuffer coarseBuffer = test::renderTorus(coarseCamera, glm::dvec3(0.0), torus.ring, torus.tube);
+    const SyntheticGBuffer fineBuffer = test::renderTorus(fineCamera, glm::dvec3(0.0), torus.ring, torus.tube);
+    const LineSkeleton coarse = extractSuggestiveContours(coarseBuffer.radial, coarseBuffer.depth, settings);
+    const LineSkeleton fine = extractSuggestiveContours(fineBuffer.radial, fineBuffer.depth, settings);
+    ASSERT_GT(coarse.points.size(), 100u);
+
+    // Image points scale by 1/4; LinePoint coordinates put pixel centres at integers, hence the half pixels.
+    std::vector<cv::Point2d> fineMapped;
+    for (const LinePoint& point : fine.points)
+        fineMapped.emplace_back((point.position.x + 0.5) / 4.0 - 0.5, (point.position.y + 0.5) / 4.0 - 0.5);
+    const std::vector<cv::Point2d> coarsePositions = positionsOf(coarse);
+    std::vector<double> fineToCoarse;
+    for (const cv::Point2d& p : fineMapped)
+        fineToCoarse.push_back(distanceToPoints(p, coarsePositions));
+    std::vector<double> coarseToFine;
+    for (const cv::Point2d& p : coarsePositions)
+        coarseToFine.push_back(distanceToPoints(p, fineMapped));
+    const double countRatio = double(fine.points.size()) / double(coarse.points.size());
+
+    // Against the untrimmed analytic lines at 512^2: both lie on them, and both keep the same share of them.
+    const std::vector<Segment> reference = analyticSuggestiveContours(torus, coarseCamera, settings.minSinTheta, 16384);
+    std::vector<double> coarseToReference;
+    for (const cv::Point2d& p : coarsePositions)
+        coarseToReference.push_back(distanceToSegments(p, reference));
+    std::vector<double> fineToReference;
+    for (const cv::Point2d& p : fineMapped)
+        fineToReference.push_back(distanceToSegments(p, reference));
+    auto shareFound = [&](const std::vector<cv::Point2d>& found) {
+        int near = 0;
+        for (const Segment& segment : reference)
+            near += distanceToPoints(segment.b, found) <= 1.0;
+        return double(near) / double(reference.size());
+    };
+    const double coarseShare = shareFound(coarsePositions);
+    const double fineShare = shareFound(fineMapped);
+
+    std::vector<double> coarseStrengths;
+    for (const LinePoint& point : coarse.points)
+        coarseStrengths.push_back(point.strength);
+    std::vector<double> fineStrengths;
+    for (const LinePoint& point : fine.points)
+        fineStrengths.push_back(point.strength);
+    std::cout << coarse.points.size() << " points at 512^2, " << fine.points.size() << " at 2048^2 (ratio "
+              << countRatio << "); 2048 -> 512 median " << percentile(fineToCoarse, 0.5) << " px, 95th "
+              << percentile(fineToCoarse, 0.95) << " px; 512 -> 2048 median " << percentile(coarseToFine, 0.5)
+              << " px, 95th " << percentile(coarseToFine, 0.95) << " px; to the analytic lines (512 px): median "
+              << percentile(coarseToReference, 0.5) << " / " << percentile(fineToReference, 0.5) << ", 95th "
+              << percentile(coarseToReference, 0.95) << " / " << percentile(fineToReference, 0.95)
+              << "; share of the analytic lines kept " << coarseShare << " / " << fineShare << "; median strength "
+              << percentile(coarseStrengths, 0.5) << " / " << percentile(fineStrengths, 0.5) << "\n";
+    // Measured: 176 and 728 points (ratio 4.14); point to point, medians 0.18 and 0.12 px, mostly the spacing of the
+    // 512 points; 95th percentiles 0.016 and 0.002 px from the analytic lines; 56% and 59% of them kept (the ends
+    // where q crosses the threshold are found to a pixel of each resolution); median strength 0.59 and 0.60.
+    EXPECT_LT(percentile(fineToCoarse, 0.5), 0.5);
+    EXPECT_LT(percentile(coarseToFine, 0.5), 0.5);
+    EXPECT_LT(percentile(fineToCoarse, 0.95), 1.0);
+    EXPECT_LT(percentile(coarseToFine, 0.95), 1.0);
+    EXPECT_LT(percentile(coarseToReference, 0.95), 0.15);
+    EXPECT_LT(percentile(fineToReference, 0.95), 0.15);
+    EXPECT_NEAR(fineShare, coarseShare, 0.06);
+    EXPECT_GT(countRatio, 3.6);
+    EXPECT_LT(countRatio, 4.4);
+    EXPECT_NEAR(percentile(fineStrengths, 0.5), percentile(coarseStrengths, 0.5), 0.05);
+}
+
+TEST(SuggestiveContours, NoLinesAlongOcclusionBoundaries) {
+    // Two overlapping spheres: each alone has none, and no difference may be taken across the boundary where the
+    // near one hides the far one.
+    SyntheticCamera camera;
+    camera.width = camera.height = 256;
+    camera.eye = {0.0, 0.0, 5.0};
+    const SyntheticGBuffer near = test::renderSphere(camera, {-0.35, 0.1, 0.5}, 0.7);
+    const SyntheticGBuffer far = test::renderSphere(camera, {0.45, -0.1, -0.6}, 0.9);
+    const SyntheticGBuffer scene = nearestOf(near, far);
+    const LineSkeleton skeleton = extractSuggestiveContours(scene.radial, scene.depth, untrimmedSettings());
+    EXPECT_TRUE(skeleton.points.empty()) << skeleton.points.size() << " points";
+
+    // Negative control: with the break test off (a jump of 1e6 x depth counts as one surface) the differences
+    // across the boundary do make lines.
+    SuggestiveSettings unbroken = untrimmedSettings();
+    unbroken.depthJump = 1e6f;
+    const size_t acrossBoundary = extractSuggestiveContours(scene.radial, scene.depth, unbroken).points.size();
+    // Measured: 226 points.
+    std::cout << acrossBoundary << " points when differences cross the occlusion boundary\n";
+    EXPECT_GT(acrossBoundary, 5u);
+}
+
+TEST(SuggestiveContours, DeterministicAndIndependentOfThreads) {
+    const Torus torus;
+    const SyntheticGBuffer buffer =
+        test::renderTorus(torusCamera(1024, 30.0, 5.0), glm::dvec3(0.0), torus.ring, torus.tube);
+    const SuggestiveSettings settings = appSettings(torus.boundingRadius());
+    const LineSkeleton first = extractSuggestiveContours(buffer.radial, buffer.depth, settings);
+    const LineSkeleton second = extractSuggestiveContours(buffer.radial, buffer.depth, settings);
+    const int threads = cv::getNumThreads();
+    cv::setNumThreads(1); // one band instead of one per thread
+    const LineSkeleton serial = extractSuggestiveContours(buffer.radial, buffer.depth, settings);
+    cv::setNumThreads(threads);
+    ASSERT_GT(first.points.size(), 100u);
+    for (const LineSkeleton* other : {&second, &serial}) {
+        ASSERT_EQ(other->points.size(), first.points.size());
+        for (size_t i = 0; i < first.points.size(); ++i) {
+            EXPECT_EQ(other->points[i].position, first.points[i].position);
+            EXPECT_EQ(other->points[i].strength, first.points[i].strength);
+        }
+        EXPECT_EQ(cv::countNonZero(other->mask != first.mask), 0);
+    }
+}
+
+TEST(SuggestiveContours, PointsAgreeWithTheDerivatives) {
+    // Each point sits between two valid 4-neighbours whose D_w(n.v) changes sign, on the marked pixel's side.
+    const Torus torus;
+    const SyntheticGBuffer buffer =
+        test::renderTorus(torusCamera(512, 50.0, 4.5), glm::dvec3(0.0), torus.ring, torus.tube);
+    const SuggestiveSettings settings = untrimmedSettings();
+    const LineSkeleton skeleton = extractSuggestiveContours(buffer.radial, buffer.depth, settings);
+    const RadialDerivatives derivatives = computeRadialDerivatives(buffer.radial, buffer.depth, settings);
+    ASSERT_GT(skeleton.points.size(), 50u);
+    for (const LinePoint& point : skeleton.points) {
+        const cv::Point2f position = point.position;
+        // A crossing exactly on a pixel centre (D_w = 0 there) does not tell its direction; none is expected.
+        ASSERT_FALSE(position.x == std::floor(position.x) && position.y == std::floor(position.y));
+        const bool horizontal = position.x != std::floor(position.x);
+        const cv::Point a(int(std::floor(position.x)), int(std::floor(position.y)));
+        const cv::Point b = horizontal ? a + cv::Point(1, 0) : a + cv::Point(0, 1);
+        ASSERT_EQ(derivatives.valid.at<uchar>(a), 255);
+        ASSERT_EQ(derivatives.valid.at<uchar>(b), 255);
+        const float dwA = derivatives.dw.at<float>(a);
+        const float dwB = derivatives.dw.at<float>(b);
+        EXPECT_NE(dwA < 0.0f, dwB < 0.0f);
+        const float t = dwA / (dwA - dwB);
+        // Positions are stored in float, about 300 px: within a few ulps of 300.
+        EXPECT_NEAR(horizontal ? position.x - float(a.x) : position.y - float(a.y), t, 1e-4f);
+        EXPECT_EQ(skeleton.mask.at<uchar>(std::abs(dwA) <= std::abs(dwB) ? a : b), 255);
+    }
+}
+
+TEST(SuggestiveContours, TinyAndEdgeFilledImagesAreHandled) {
+    // Covered up to the image's edges, where no pixel has all its neighbours; sizes below the 4-column vector width.
+    for (const cv::Size size : {cv::Size(1, 1), cv::Size(2, 3), cv::Size(3, 3), cv::Size(5, 4), cv::Size(7, 130)}) {
+        SyntheticCamera camera;
+        camera.width = size.width;
+        camera.height = size.height;
+        camera.eye = {0.0, 0.0, 1.5};
+        camera.fovYDegrees = 10.0;
+        const SyntheticGBuffer buffer = test::renderSphere(camera, glm::dvec3(0.0), 1.0);
+        ASSERT_EQ(cv::countNonZero(buffer.depth), size.area());
+        const LineSkeleton skeleton = extractSuggestiveContours(buffer.radial, buffer.depth, untrimmedSettings());
+        EXPECT_TRUE(skeleton.points.empty());
+        EXPECT_EQ(skeleton.mask.size(), size);
+        // Only pixels two or more from every edge can be valid (all of them here, near-frontal ones included).
+        SuggestiveSettings everything = untrimmedSettings();
+        everything.minSinTheta = 0.0f;
+        const RadialDerivatives derivatives = computeRadialDerivatives(buffer.radial, buffer.depth, everything);
+        EXPECT_EQ(cv::countNonZero(derivatives.valid), std::max(0, size.width - 4) * std::max(0, size.height - 4))
+            << size;
+    }
+}
+
+TEST(SuggestiveContours, RejectsWrongInputsNamingThem) {
+    const cv::Mat radial(8, 8, CV_32FC4, cv::Scalar::all(0));
+    const cv::Mat depth(8, 8, CV_32FC1, cv::Scalar::all(0));
+    auto expectRejected = [&](const cv::Mat& radialInput, const cv::Mat& depthInput, const SuggestiveSettings& settings,
+                              const std::string& argument) {
+        for (const bool derivativesOnly : {false, true}) {
+            const std::string function = derivativesOnly ? "computeRadialDerivatives()" : "extractSuggestiveContours()";
+            try {
+                if (derivativesOnly)
+                    computeRadialDerivatives(radialInput, depthInput, settings);
+                else
+                    extractSuggestiveContours(radialInput, depthInput, settings);
+                ADD_FAILURE() << function << " accepted a wrong '" << argument << "'";
+            } catch (const std::invalid_argument& error) {
+                const std::string message = error.what();
+                EXPECT_EQ(message.rfind(function, 0), 0u) << message;
+                EXPECT_NE(message.find("'" + argument + "'"), std::string::npos) << message;
+            }
+        }
+    };
+    const SuggestiveSettings good;
+    EXPECT_NO_THROW(extractSuggestiveContours(radial, depth, good));
+    expectRejected(cv::Mat(8, 8, CV_32FC3), depth, good, "radial");
+    expectRejected(cv::Mat(), depth, good, "radial");
+    expectRejected(radial, cv::Mat(8, 8, CV_64FC1), good, "depth");
+    expectRejected(radial, cv::Mat(8, 9, CV_32FC1), good, "depth");
+    SuggestiveSettings bad = good;
+    bad.minSinTheta = 1.0f;
+    expectRejected(radial, depth, bad, "minSinTheta");
+    bad = good;
+    bad.featureSize = 0.0f;
+    expectRejected(radial, depth, bad, "featureSize");
+    bad = good;
+    bad.threshold = std::numeric_limits<float>::quiet_NaN();
+    expectRejected(radial, depth, bad, "threshold");
+    bad = good;
+    bad.fade = -0.1f;
+    expectRejected(radial, depth, bad, "fade");
+    bad = good;
+    bad.depthJump = std::numeric_limits<float>::infinity();
+    expectRejected(radial, depth, bad, "depthJump");
+}
+
+} // namespace
+} // namespace inkgraph
