@@ -432,8 +432,8 @@ Lines (any subset; only the passes the listed types need run: see --stats "culle
                          by more than R x the nearer depth are different surfaces (default 0.05)
   --suggestive-threshold T, --suggestive-fade F
                          suggestive: keep lines whose strength q (rtsc's fs^2 tan(theta) D_w kappa_r, fs = 5%
-                         of the bounding radius) exceeds T, and fade them as q / (q + F) (defaults in
-                         docs/lines.md)
+                         of the bounding radius) exceeds T (default 0.01), drawn with alpha (q - T) / (q - T + F)
+                         (default F = 0.03; 0 draws every kept line in full)
   --supersample S        find the G-buffer and mesh-edge lines at S x the size (1 to 8, default 1) and
                          area-downsample only the final line images: smoother, better-placed lines, S^2 the
                          work. Outline and silhouette are drawn by GL at the output size.

@@ -49,8 +49,8 @@ struct RenderOptions {
     std::optional<double> silhouetteObjectWidth; ///< model units: the hull is offset in object space
     double creaseAngleDegrees = 30.0;       ///< crease and normal-edge: dihedral / normal angle above this
     double depthJump = 0.05;                ///< contour, suggestive, depth-edge, normal-edge: relative depth break
-    std::optional<double> suggestiveThreshold; ///< strength threshold (default: LineDefaults)
-    std::optional<double> suggestiveFade;      ///< strength fade (default: LineDefaults)
+    std::optional<double> suggestiveThreshold; ///< strength threshold (default: SuggestiveSettings, 0.01)
+    std::optional<double> suggestiveFade;      ///< strength fade (default: SuggestiveSettings, 0.03)
     int supersample = 1;                    ///< data buffers and edge skeletons at S x the size
     glm::dvec3 background{1.0, 1.0, 1.0};
     std::vector<std::string> extraOutputs;  ///< --request: extra graph resources kept and dumped ("gbuffer.*")

@@ -117,8 +117,8 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
             settings.source = LineSource::Suggestive;
             settings.suggestive.depthJump = depthJump;
             settings.suggestive.featureSize = float(kSuggestiveFeatureSizeFraction * setup.sphere.radius);
-            settings.suggestive.threshold = float(options.suggestiveThreshold.value_or(kDefaultSuggestiveThreshold));
-            settings.suggestive.fade = float(options.suggestiveFade.value_or(kDefaultSuggestiveFade));
+            if (options.suggestiveThreshold) settings.suggestive.threshold = float(*options.suggestiveThreshold);
+            if (options.suggestiveFade) settings.suggestive.fade = float(*options.suggestiveFade);
         } else if (type == "depth-edge") {
             settings.source = LineSource::DepthEdge;
             settings.depthEdge.relativeJump = depthJump;

@@ -24,9 +24,6 @@ class MeshEdgesPass;
 class OutlinePass;
 class SilhouettePass;
 
-/** Defaults of the suggestive-contour strength test (docs/lines.md says how they were chosen). */
-constexpr double kDefaultSuggestiveThreshold = 0.01;
-constexpr double kDefaultSuggestiveFade = 0.03;
 /** The feature size fs that makes the suggestive strength dimensionless, as a fraction of the bounding radius
  *  (rtsc's upper bound on fs). */
 constexpr double kSuggestiveFeatureSizeFraction = 0.05;

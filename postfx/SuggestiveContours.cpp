@@ -339,7 +339,10 @@ private:
         else
             mMask.ptr<uchar>(marked.y)[marked.x] = 255;
         const cv::Point2f position(float(colA) + (downward ? 0.0f : t), float(rowA) + (downward ? t : 0.0f));
-        mResult.points.push_back({position, mFade > 0.0f ? strength / (strength + mFade) : 1.0f});
+        // rtsc's fade of the excess over the threshold: a line grows in from nothing as a view change makes it
+        // stronger, instead of popping in at a fixed strength.
+        const float excess = strength - mThreshold;
+        mResult.points.push_back({position, mFade > 0.0f ? excess / (excess + mFade) : 1.0f});
     }
 
     const cv::Mat& mRadial;

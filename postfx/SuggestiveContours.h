@@ -18,8 +18,8 @@ struct SuggestiveSettings {
      *  rtsc's sug_thresh, for fs = 0.05 x the bounding radius: on a torus it keeps 85% of the zero set of kappa_r
      *  (the weakest, fastest-sliding ends go) and removes most points made by noise in n.v. */
     float threshold = 0.01f;
-    /** > 0: each point's strength is q / (q + fade) (rtsc's fade, which applies it to q - threshold); 0: full
-     *  strength. The default is rtsc's. */
+    /** > 0: each point's strength is (q - threshold) / (q - threshold + fade), rtsc's fade, so a line grows in from
+     *  nothing instead of popping in; 0: full strength. The default is rtsc's. */
     float fade = 0.03f;
     float depthJump = 0.05f; ///< no difference is taken across a relative depth jump larger than this
 };
