@@ -17,27 +17,35 @@ std::string sizeText(cv::Size size) { return std::to_string(size.width) + "x" + 
 
 uchar toByte(float coverage) { return static_cast<uchar>(coverage * 255.0f + 0.5f); }
 
-/** Coverage of a pixel centre at squared distance `distanceSquared` from a disc's centre: clamp(outer - d, 0, 1),
- *  with outer = radius + 0.5 (a one-pixel linear ramp centred on the rim) and d taken by sqrt only on the ramp. */
-float discCoverage(float distanceSquared, float outerRadius, float innerRadiusSquared) {
-    if (distanceSquared <= innerRadiusSquared) return 1.0f;
-    return std::clamp(outerRadius - std::sqrt(distanceSquared), 0.0f, 1.0f);
-}
+/** A disc as drawn: coverage clamp(radius + 0.5 - d, 0, 1), i.e. full out to the inner radius (radius - 0.5), then
+ *  a one-pixel linear ramp centred on the rim down to 0 at the outer radius (radius + 0.5). */
+struct DiscShape {
+    explicit DiscShape(float radius)
+        : outer(radius + 0.5f), outerSquared(outer * outer),
+          innerSquared(radius >= 0.5f ? (radius - 0.5f) * (radius - 0.5f) : -1.0f) {}
 
-/** Small discs: each point writes its own bounding box. Cost: points x (2 outer + 1)^2. */
-void stampDiscs(const std::vector<LinePoint>& points, float radius, cv::Mat& canvas) {
-    const float outer = radius + 0.5f;
-    const float inner = std::max(radius - 0.5f, 0.0f);
-    const float innerSquared = radius >= 0.5f ? inner * inner : -1.0f;
-    const float outerSquared = outer * outer;
+    /** Coverage of a pixel centre at squared distance `distanceSquared`; the square root only on the ramp. */
+    float coverage(float distanceSquared) const {
+        if (distanceSquared <= innerSquared) return 1.0f;
+        return std::clamp(outer - std::sqrt(distanceSquared), 0.0f, 1.0f);
+    }
+
+    float outer;
+    float outerSquared;
+    float innerSquared; ///< -1 when the disc has no full interior
+};
+
+/** Narrow discs: each point visits every pixel of its bounding box. */
+void stampDiscsByPixel(const std::vector<LinePoint>& points, float radius, cv::Mat& canvas) {
+    const DiscShape disc(radius);
     const float lastCol = static_cast<float>(canvas.cols - 1);
     const float lastRow = static_cast<float>(canvas.rows - 1);
     for (const LinePoint& point : points) {
         // Clamped in float first, so a point far off the image cannot overflow the int conversion.
-        const float left = std::max(std::ceil(point.position.x - outer), 0.0f);
-        const float right = std::min(std::floor(point.position.x + outer), lastCol);
-        const float top = std::max(std::ceil(point.position.y - outer), 0.0f);
-        const float bottom = std::min(std::floor(point.position.y + outer), lastRow);
+        const float left = std::max(std::ceil(point.position.x - disc.outer), 0.0f);
+        const float right = std::min(std::floor(point.position.x + disc.outer), lastCol);
+        const float top = std::max(std::ceil(point.position.y - disc.outer), 0.0f);
+        const float bottom = std::min(std::floor(point.position.y + disc.outer), lastRow);
         if (left > right || top > bottom) continue;
         const int firstCol = static_cast<int>(left);
         const int endCol = static_cast<int>(right) + 1;
@@ -48,21 +56,76 @@ void stampDiscs(const std::vector<LinePoint>& points, float radius, cv::Mat& can
             for (int col = firstCol; col < endCol; ++col) {
                 const float dx = static_cast<float>(col) - point.position.x;
                 const float distanceSquared = dx * dx + dySquared;
-                if (distanceSquared >= outerSquared) continue;
-                const uchar value = toByte(discCoverage(distanceSquared, outer, innerSquared) * point.strength);
+                if (distanceSquared >= disc.outerSquared) continue;
+                const uchar value = toByte(disc.coverage(distanceSquared) * point.strength);
                 out[col] = std::max(out[col], value);
             }
         }
     }
 }
 
-/** Large discs, or very many points: every pixel takes the disc of its nearest point. The nearest point is found by an
- * exact Euclidean distance transform over the points' pixels (a separable lower envelope of parabolas, Felzenszwalb and
- *  Huttenlocher 2004, that also returns which site is nearest), so the cost is a few passes over the image whatever
- *  the width or the number of points. Each pixel holding points is one site, represented by its strongest point; the
- *  coverage is then taken from that point's exact sub-pixel position and strength. Nearest is judged between pixel
- *  centres, so where two sites are almost equally near the pixel may take the one whose point is up to about 0.7
- *  px farther: for the discs this path draws (several pixels wide) that only moves the anti-aliased rim. */
+/** Wide discs, row by row: the run of pixels under a disc's full interior is filled at once (a byte maximum the
+ *  compiler vectorises), and only the pixels on the one-pixel rim ramp compute a distance. The run ends come from a
+ *  square root per row; a pixel there lands on whichever side, since the ramp gives 1 at the inner radius and 0 at
+ *  the outer one. */
+void stampDiscsByRow(const std::vector<LinePoint>& points, float radius, cv::Mat& canvas) {
+    const DiscShape disc(radius);
+    const float lastCol = static_cast<float>(canvas.cols - 1);
+    const float lastRow = static_cast<float>(canvas.rows - 1);
+    for (const LinePoint& point : points) {
+        const float x = point.position.x;
+        const float y = point.position.y;
+        // Clamped in float first, so a point far off the image cannot overflow the int conversion.
+        const float top = std::max(std::ceil(y - disc.outer), 0.0f);
+        const float bottom = std::min(std::floor(y + disc.outer), lastRow);
+        const uchar fullValue = toByte(point.strength);
+        for (int row = static_cast<int>(top); row <= static_cast<int>(bottom); ++row) {
+            const float dy = static_cast<float>(row) - y;
+            const float dySquared = dy * dy;
+            if (dySquared >= disc.outerSquared) continue;
+            const float outerHalfWidth = std::sqrt(disc.outerSquared - dySquared);
+            const float left = std::max(std::ceil(x - outerHalfWidth), 0.0f);
+            const float right = std::min(std::floor(x + outerHalfWidth), lastCol);
+            if (left > right) continue;
+            // The full run, clipped to [left, right]; empty (fullFirst > fullLast) where the row misses the interior.
+            float fullFirst = right + 1.0f;
+            float fullLast = right;
+            if (dySquared < disc.innerSquared) {
+                const float innerHalfWidth = std::sqrt(disc.innerSquared - dySquared);
+                fullFirst = std::max(std::ceil(x - innerHalfWidth), left);
+                fullLast = std::min(std::floor(x + innerHalfWidth), right);
+                if (fullFirst > fullLast) {
+                    fullFirst = right + 1.0f;
+                    fullLast = right;
+                }
+            }
+            uchar* out = canvas.ptr<uchar>(row);
+            auto ramp = [&](int col) {
+                const float dx = static_cast<float>(col) - x;
+                const uchar value = toByte(disc.coverage(dx * dx + dySquared) * point.strength);
+                out[col] = std::max(out[col], value);
+            };
+            const int firstCol = static_cast<int>(left);
+            const int lastColOfRow = static_cast<int>(right);
+            const int firstFull = static_cast<int>(fullFirst);
+            const int lastFull = static_cast<int>(fullLast);
+            for (int col = firstCol; col < std::min(firstFull, lastColOfRow + 1); ++col)
+                ramp(col);
+            for (int col = firstFull; col <= lastFull; ++col)
+                out[col] = std::max(out[col], fullValue);
+            for (int col = std::max(lastFull + 1, firstCol); col <= lastColOfRow; ++col)
+                ramp(col);
+        }
+    }
+}
+
+/** Many wide discs: every pixel takes the disc of its nearest point only. The nearest point is found by an exact
+ *  Euclidean distance transform over the points' pixels (a separable lower envelope of parabolas, after Felzenszwalb
+ *  and Huttenlocher 2004, that also tells which site is nearest), so the cost is a few passes over the image whatever
+ *  the width or the number of points. Each pixel holding points is one site, represented by its strongest point;
+ *  the coverage is then taken from that point's exact sub-pixel position and strength. Nearest is judged between
+ *  pixel centres, so where two sites are almost equally near, a pixel may take the point up to ~0.7 px farther: for
+ *  the discs this path draws (many pixels wide) that only moves the anti-aliased rim. */
 void drawDiscsByNearestPoint(const std::vector<LinePoint>& points, float radius, cv::Mat& canvas) {
     const int rows = canvas.rows;
     const int cols = canvas.cols;
@@ -102,12 +165,10 @@ void drawDiscsByNearestPoint(const std::vector<LinePoint>& points, float radius,
     }
 
     // Pass 2, along each row: the lower envelope of the parabolas (x - col)^2 + (row - siteRow(col))^2.
-    const float outer = radius + 0.5f;
-    const float inner = std::max(radius - 0.5f, 0.0f);
-    const float innerSquared = radius >= 0.5f ? inner * inner : -1.0f;
+    const DiscShape disc(radius);
     // A site is its point rounded to a pixel after clamping onto the image (which brings it no farther from any
-    // pixel), so a pixel farther than outer + sqrt(0.5) from the nearest site centre gets no coverage.
-    const double reach = static_cast<double>(outer) + 0.7072;
+    // pixel), so a pixel farther than the outer radius + sqrt(0.5) from the nearest site centre gets no coverage.
+    const double reach = static_cast<double>(disc.outer) + 0.7072;
     const double reachSquared = reach * reach;
     std::vector<int> envelopeCols(cols);
     std::vector<double> envelopeStarts(cols);
@@ -145,16 +206,19 @@ void drawDiscsByNearestPoint(const std::vector<LinePoint>& points, float radius,
             const LinePoint& point = points[pointAtSite[static_cast<size_t>(siteRow) * cols + siteCol]];
             const float px = static_cast<float>(col) - point.position.x;
             const float py = static_cast<float>(row) - point.position.y;
-            const float coverage = discCoverage(px * px + py * py, outer, innerSquared);
+            const float coverage = disc.coverage(px * px + py * py);
             if (coverage > 0.0f) out[col] = toByte(coverage * point.strength);
         }
     }
 }
 
-/** Per-point stamping costs about this many times less per pixel of a disc's box than the nearest-point path does
- *  per image pixel (measured on the 2-core 2.3 GHz development VM: ~1.2 ns against ~12 ns), so strokeLines() takes
- *  whichever is cheaper for the skeleton at hand. */
-constexpr double distanceTransformCostPerPixel = 10.0;
+/** Rough costs of the three ways to draw, measured on the 2-core 2.3 GHz development VM; strokeLines() takes the
+ *  cheapest for the skeleton at hand (only their ratios matter). */
+constexpr double widestBoxByPixel = 24.0;         ///< bounding-box sides up to this are stamped pixel by pixel
+constexpr double nanosecondsPerBoxPixel = 1.5;    ///< stampDiscsByPixel, per pixel of each disc's bounding box
+constexpr double nanosecondsPerDiscRow = 30.0;    ///< stampDiscsByRow, per row of each disc
+constexpr double nanosecondsPerRunPixel = 0.1;    ///< stampDiscsByRow, per pixel of each row's run
+constexpr double nanosecondsPerImagePixel = 15.0; ///< drawDiscsByNearestPoint, per pixel of the data buffer
 
 } // namespace
 
@@ -206,12 +270,17 @@ cv::Mat strokeLines(const LineSkeleton& skeleton, float widthPixels, int supersa
     const float radius = 0.5f * widthPixels * static_cast<float>(supersample);
     cv::Mat canvas = cv::Mat::zeros(mask.size(), CV_8UC1);
     const double boxSide = 2.0 * std::ceil(static_cast<double>(radius) + 0.5) + 1.0;
-    const double stampCost = static_cast<double>(skeleton.points.size()) * boxSide * boxSide;
-    const double transformCost = distanceTransformCostPerPixel * static_cast<double>(mask.total());
-    if (stampCost <= transformCost)
-        stampDiscs(skeleton.points, radius, canvas);
-    else
+    const double pointCount = static_cast<double>(skeleton.points.size());
+    const bool byPixel = boxSide <= widestBoxByPixel;
+    const double stampCost = byPixel
+                                 ? pointCount * boxSide * boxSide * nanosecondsPerBoxPixel
+                                 : pointCount * boxSide * (nanosecondsPerDiscRow + boxSide * nanosecondsPerRunPixel);
+    if (stampCost > nanosecondsPerImagePixel * static_cast<double>(mask.total()))
         drawDiscsByNearestPoint(skeleton.points, radius, canvas);
+    else if (byPixel)
+        stampDiscsByPixel(skeleton.points, radius, canvas);
+    else
+        stampDiscsByRow(skeleton.points, radius, canvas);
 
     if (supersample == 1) return canvas;
     cv::Mat lines;

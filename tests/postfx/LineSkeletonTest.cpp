@@ -90,15 +90,16 @@ TEST(LineSkeleton, FromMaskRejectsWrongMasks) {
 }
 
 TEST(StrokeLines, SinglePointIsTheAntiAliasedDisc) {
-    for (const cv::Point2f centre : {cv::Point2f(7.0f, 7.0f), cv::Point2f(7.3f, 6.6f)}) {
-        for (const float width : {2.0f, 3.0f}) {
-            LineSkeleton skeleton = emptySkeleton(15, 15);
+    // Narrow discs are stamped pixel by pixel, wide ones by runs per row: the same formula either way.
+    for (const cv::Point2f centre : {cv::Point2f(20.0f, 20.0f), cv::Point2f(20.3f, 19.6f)}) {
+        for (const float width : {1.0f, 2.0f, 3.0f, 30.0f, 35.5f}) {
+            LineSkeleton skeleton = emptySkeleton(41, 41);
             skeleton.points.push_back({centre, 1.0f});
             const cv::Mat lines = strokeLines(skeleton, width, 1);
             ASSERT_EQ(lines.type(), CV_8UC1);
-            ASSERT_EQ(lines.size(), cv::Size(15, 15));
-            for (int row = 0; row < 15; ++row)
-                for (int col = 0; col < 15; ++col) {
+            ASSERT_EQ(lines.size(), cv::Size(41, 41));
+            for (int row = 0; row < 41; ++row)
+                for (int col = 0; col < 41; ++col) {
                     const float distance = std::hypot(col - centre.x, row - centre.y);
                     const float expected = 255.0f * discCoverage(0.5f * width, distance);
                     EXPECT_NEAR(lines.at<uchar>(row, col), expected, 0.51)
@@ -154,16 +155,19 @@ TEST(StrokeLines, WideLineHasTheAnalyticCrossSection) {
 }
 
 TEST(StrokeLines, StrengthScalesCoverage) {
-    LineSkeleton full = emptySkeleton(9, 9);
-    full.points.push_back({{4.2f, 3.9f}, 1.0f});
-    LineSkeleton half = full;
-    half.points[0].strength = 0.5f;
-    const cv::Mat fullLines = strokeLines(full, 3.0f, 1);
-    const cv::Mat halfLines = strokeLines(half, 3.0f, 1);
-    EXPECT_EQ(halfLines.at<uchar>(4, 4), 128) << "full coverage at half strength";
-    for (int row = 0; row < 9; ++row)
-        for (int col = 0; col < 9; ++col)
-            EXPECT_NEAR(halfLines.at<uchar>(row, col), 0.5 * fullLines.at<uchar>(row, col), 1.0);
+    for (const float width : {3.0f, 30.0f}) {
+        LineSkeleton full = emptySkeleton(41, 41);
+        full.points.push_back({{20.2f, 19.9f}, 1.0f});
+        LineSkeleton half = full;
+        half.points[0].strength = 0.5f;
+        const cv::Mat fullLines = strokeLines(full, width, 1);
+        const cv::Mat halfLines = strokeLines(half, width, 1);
+        EXPECT_EQ(halfLines.at<uchar>(20, 20), 128) << "full coverage at half strength, width " << width;
+        for (int row = 0; row < 41; ++row)
+            for (int col = 0; col < 41; ++col)
+                EXPECT_NEAR(halfLines.at<uchar>(row, col), 0.5 * fullLines.at<uchar>(row, col), 1.0)
+                    << "pixel (" << col << ", " << row << "), width " << width;
+    }
 }
 
 TEST(StrokeLines, OverlappingDiscsCombineByMaximum) {
