@@ -16,10 +16,13 @@ struct ContourSettings {
  *  - both on one surface (no depth break) with n.v of opposite sign (0 counts as positive): the one with the smaller
  *    |n.v| is marked, the point at the linear zero crossing between the two centres;
  *  - a depth break (including model against background): the nearer pixel is marked, the point at the midpoint.
- *  Background pixels are never marked. Throws std::invalid_argument naming the argument for wrong types or sizes. */
+ *  Background pixels are never marked (a NaN depth counts as background), and no NaN point is produced.
+ *  Throws std::invalid_argument naming the argument for wrong types or sizes, or a negative or non-finite jump. */
 LineSkeleton extractContours(const cv::Mat& nDotV, const cv::Mat& depth, const ContourSettings& settings);
 
-/** The depth-break part alone, appended to `skeleton` (shared with extractDepthEdges()). */
+/** The depth-break part alone, appended to `skeleton` (shared with extractDepthEdges()): `depth` as above; an empty
+ *  `skeleton.mask` is allocated, otherwise it must be CV_8UC1 of the size of `depth` and keeps what it has.
+ *  Throws std::invalid_argument naming the argument for wrong types or sizes, or a negative or non-finite jump. */
 void appendDepthBreaks(const cv::Mat& depth, float relativeJump, LineSkeleton& skeleton);
 
 } // namespace inkgraph

@@ -28,8 +28,14 @@ LineSkeleton skeletonFromMask(const cv::Mat& mask);
  *  line. Each point is a disc of diameter widthPixels x supersample at the data resolution, with coverage
  *  clamp(radius + 0.5 - distance, 0, 1) x strength, combined by maximum, so the line is anti-aliased and
  *  `widthPixels` wide in output pixels at any resolution; then area-downsampled (INTER_AREA) by `supersample`.
+ *  The points are what is drawn; the mask gives the data size. Points may lie off the image (what reaches it is
+ *  drawn). Where stamping every disc would cost more than a few passes over the image (wide lines, dense points),
+ *  each pixel instead takes only the disc of its nearest point, found by an exact distance transform between the
+ *  points' pixels (the strongest point of a pixel standing for it). For lines of one strength that is the same
+ *  picture up to the rim, which may follow a point ~0.7 px farther where two are almost equally near; where a faded
+ *  point lies nearer than a stronger one, the faded one is drawn there.
  *  Throws std::invalid_argument naming the argument for a non-finite or non-positive width, supersample < 1 or not
- *  dividing the size, or a wrong mask type. */
+ *  dividing the size, a wrong or empty mask, or a point with a non-finite position or a strength outside (0, 1]. */
 cv::Mat strokeLines(const LineSkeleton& skeleton, float widthPixels, int supersample);
 
 /** True when two neighbouring linear depths (> 0; 0 = background) do not belong to one surface: exactly one is
