@@ -148,7 +148,8 @@ TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
     // Only the line passes no --lines asked for are culled.
     std::set<std::string> culledNames;
     for (const auto& pass : stats["culled"]) culledNames.insert(pass["name"].get<std::string>());
-    EXPECT_EQ(culledNames, (std::set<std::string>{"outline", "silhouette"}));
+    EXPECT_EQ(culledNames, (std::set<std::string>{"outline", "silhouette", "mesh-edges", "normal-edge", "depth-edge",
+                                                  "crease", "border", "suggestive", "contour", "mesh-silhouette"}));
     // No temporary or staging names left anywhere.
     for (const std::string& name : listFiles(directory / "dump")) EXPECT_NE(name.rfind(".inkgraph-", 0), 0u) << name;
     for (const std::string& name : listFiles(directory)) EXPECT_NE(name.rfind(".inkgraph-", 0), 0u) << name;
@@ -256,7 +257,9 @@ TEST_F(Cli, ShadingNoneCullsTheShadingPassWithAReason) {
         culled.insert(pass["name"].get<std::string>());
         EXPECT_FALSE(pass["reason"].get<std::string>().empty());
     }
-    EXPECT_EQ(culled, (std::set<std::string>{"gbuffer", "outline", "silhouette"}))
+    EXPECT_EQ(culled, (std::set<std::string>{"gbuffer", "outline", "silhouette", "mesh-edges", "normal-edge",
+                                             "depth-edge", "crease", "border", "suggestive", "contour",
+                                             "mesh-silhouette"}))
         << "--shading none registers no shading pass; the rest is culled";
     // Paper only: every pixel white.
     const cv::Mat image = readImage(directory / "a.png");
@@ -381,8 +384,8 @@ TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
     ASSERT_EQ(stats["post_stage"]["lines"].size(), 1u);
     EXPECT_EQ(stats["post_stage"]["lines"][0]["type"], "depth-edge");
     EXPECT_GT(stats["post_stage"]["lines"][0]["points"].get<int>(), 100);
-    EXPECT_NE(result.out.find("gbuffer.depth"), std::string::npos) << result.out;
-    EXPECT_EQ(result.out.find("gbuffer.radial"), std::string::npos) << "no suggestive contours: no radial buffer";
+    EXPECT_NE(result.out.find("writes: gbuffer.depth(r32f)     not computed:"), std::string::npos)
+        << "the G-buffer computes depth alone\n" << result.out;
 
     // contour and suggestive with shading off: G-buffer, the two line passes and the composite, nothing else.
     result = run("render " + model("spot_c3d.obj") +
@@ -390,8 +393,10 @@ TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
     ASSERT_EQ(result.exitCode, 0) << result.err;
     stats = nlohmann::json::parse(readText(directory / "t.json"));
     EXPECT_EQ(passNames(stats, "passes"), (std::set<std::string>{"gbuffer", "contour", "suggestive", "composite"}));
-    EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"final.png", "lines-contour.png",
-                                                                   "lines-suggestive.png", "manifest.json"}));
+    // The dump holds every buffer the plan computed: the G-buffer fields the two kernels read, and their lines.
+    EXPECT_EQ(listFiles(directory / "d"),
+              (std::vector<std::string>{"depth.exr", "final.png", "lines-contour.png", "lines-suggestive.png",
+                                        "manifest.json", "ndotv.exr", "radial.exr"}));
     const cv::Mat contour = readImage(directory / "d" / "lines-contour.png");
     ASSERT_EQ(contour.type(), CV_8UC1);
     ASSERT_EQ(contour.size(), cv::Size(128, 96));
@@ -405,6 +410,42 @@ TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
         }
     EXPECT_GT(full, 100);
     EXPECT_GT(partial, 50);
+}
+
+TEST_F(Cli, MeshEdgeLinesSupersampled) {
+    const CliRun result = run("render " + model("fandisk_c3d.obj") +
+                              " -o a.png --size 120x90 --lines crease,border,mesh-silhouette --crease-angle 40"
+                              " --supersample 2 --crease-color 1,0,0 --dump d --stats s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+    std::set<std::string> ran;
+    for (const auto& pass : stats["passes"]) ran.insert(pass["name"].get<std::string>());
+    EXPECT_EQ(ran, (std::set<std::string>{"shade", "mesh-edges", "crease", "border", "mesh-silhouette", "composite"}))
+        << "no G-buffer: every requested type is drawn from the mesh's edges";
+    ASSERT_EQ(stats["look"]["lines"].size(), 3u);
+    for (const auto& line : stats["look"]["lines"]) {
+        EXPECT_EQ(line["supersample"], 2);
+        if (line["type"] != "border") EXPECT_GT(line["edges_drawn"].get<int>(), 10) << line["type"];
+    }
+    EXPECT_EQ(stats["look"]["lines"][0]["crease_angle_degrees"], 40.0);
+    // The skeletons are drawn at twice the size; the stroked layers are the frame's size.
+    EXPECT_EQ(readImage(directory / "d" / "mesh-edges-crease.png").size(), cv::Size(240, 180));
+    const cv::Mat crease = readImage(directory / "d" / "lines-crease.png");
+    ASSERT_EQ(crease.size(), cv::Size(120, 90));
+    EXPECT_GT(cv::countNonZero(crease), 100);
+    // Where the crease layer is full and no later layer covers it, the final picture is the crease colour.
+    const cv::Mat finalImage = readImage(directory / "a.png");
+    const cv::Mat silhouette = readImage(directory / "d" / "lines-mesh-silhouette.png");
+    const cv::Mat border = readImage(directory / "d" / "lines-border.png");
+    int full = 0;
+    for (int row = 0; row < crease.rows; ++row)
+        for (int col = 0; col < crease.cols; ++col) {
+            if (crease.at<uchar>(row, col) != 255 || silhouette.at<uchar>(row, col) || border.at<uchar>(row, col))
+                continue;
+            ++full;
+            EXPECT_EQ(finalImage.at<cv::Vec4b>(row, col), cv::Vec4b(255, 0, 0, 255)) << col << "," << row;
+        }
+    EXPECT_GT(full, 5);
 }
 
 TEST_F(Cli, ComicStatsReportTheFaceOrientationMethod) {

@@ -136,9 +136,9 @@ TEST(Options, PostStageLineTypesAndTheirFlags) {
     EXPECT_EQ(*options.suggestiveFade, 0.5);
     EXPECT_EQ(options.supersample, 3);
     EXPECT_EQ(options.lineStyles.at("suggestive").widthPixels, 1.5);
-    for (const std::string& type : {"contour", "suggestive", "depth-edge", "normal-edge"})
+    for (const char* type : {"contour", "suggestive", "depth-edge", "normal-edge"})
         EXPECT_TRUE(isImageSpaceLineType(type)) << type;
-    for (const std::string& type : {"crease", "border", "mesh-silhouette"}) EXPECT_TRUE(isMeshEdgeLineType(type)) << type;
+    for (const char* type : {"crease", "border", "mesh-silhouette"}) EXPECT_TRUE(isMeshEdgeLineType(type)) << type;
     EXPECT_FALSE(isImageSpaceLineType("outline"));
     EXPECT_FALSE(isMeshEdgeLineType("silhouette"));
 
