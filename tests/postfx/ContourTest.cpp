@@ -1,5 +1,6 @@
 // postfx/Contour on synthetic buffers built inline; no GL.
 #include "postfx/Contour.h"
+#include "tests/postfx/LineTestImages.h"
 
 #include <gtest/gtest.h>
 
@@ -13,19 +14,8 @@
 namespace inkgraph {
 namespace {
 
-cv::Mat filled(int cols, int rows, const std::function<float(int col, int row)>& value) {
-    cv::Mat image(rows, cols, CV_32FC1);
-    for (int row = 0; row < rows; ++row)
-        for (int col = 0; col < cols; ++col)
-            image.at<float>(row, col) = value(col, row);
-    return image;
-}
-
-std::vector<cv::Point> markedPixels(const cv::Mat& mask) {
-    std::vector<cv::Point> pixels;
-    cv::findNonZero(mask, pixels);
-    return pixels;
-}
+using test::filled;
+using test::markedPixels;
 
 bool sameSkeleton(const LineSkeleton& a, const LineSkeleton& b) {
     if (a.points.size() != b.points.size() || cv::countNonZero(a.mask != b.mask) != 0) return false;

@@ -1,5 +1,6 @@
 // postfx/ImageEdges on synthetic buffers built inline; no GL.
 #include "postfx/ImageEdges.h"
+#include "tests/postfx/LineTestImages.h"
 
 #include <gtest/gtest.h>
 
@@ -16,15 +17,10 @@
 namespace inkgraph {
 namespace {
 
-constexpr double degrees = std::numbers::pi / 180.0;
+using test::filled;
+using test::markedPixels;
 
-cv::Mat filled(int cols, int rows, const std::function<float(int col, int row)>& value) {
-    cv::Mat image(rows, cols, CV_32FC1);
-    for (int row = 0; row < rows; ++row)
-        for (int col = 0; col < cols; ++col)
-            image.at<float>(row, col) = value(col, row);
-    return image;
-}
+constexpr double degrees = std::numbers::pi / 180.0;
 
 cv::Vec4f normalAt(double angleAroundY) {
     return {static_cast<float>(std::sin(angleAroundY)), 0.0f, static_cast<float>(std::cos(angleAroundY)), 1.0f};
@@ -37,12 +33,6 @@ cv::Mat normalsWithSeam(int cols, int rows, int lastLeftColumn, const cv::Vec4f&
         for (int col = 0; col < cols; ++col)
             normal.at<cv::Vec4f>(row, col) = col <= lastLeftColumn ? left : right;
     return normal;
-}
-
-std::vector<cv::Point> markedPixels(const cv::Mat& mask) {
-    std::vector<cv::Point> pixels;
-    cv::findNonZero(mask, pixels);
-    return pixels;
 }
 
 TEST(DepthEdges, StepIsJudgedRelativeToDepth) {
