@@ -41,51 +41,33 @@ void LineLayerPass::declare(PassBuilder& builder) const {
 void LineLayerPass::execute(PassContext& context) {
     GlPassContext& gl = GlPassContext::from(context);
     mReport = {};
-    auto start = std::chrono::steady_clock::now();
     // Every input is brought to the CPU before the kernel's clock starts, so kernel times are the post stage alone.
+    auto start = std::chrono::steady_clock::now();
     const cv::Mat depth = mSettings.source == LineSource::Skeleton ? cv::Mat() : gl.inputImage(input("depth"));
-    LineSkeleton& skeleton = mSkeleton;
+    cv::Mat field; // the kernel's other input
     switch (mSettings.source) {
-    case LineSource::Contour: {
-        const cv::Mat& nDotV = gl.inputImage(input("nDotV"));
-        mReport.readbackMilliseconds = millisecondsSince(start);
-        start = std::chrono::steady_clock::now();
-        skeleton = extractContours(nDotV, depth, mSettings.contour);
-        break;
+    case LineSource::Contour: field = gl.inputImage(input("nDotV")); break;
+    case LineSource::Suggestive: field = gl.inputImage(input("radial")); break;
+    case LineSource::DepthEdge: break;
+    case LineSource::NormalEdge: field = gl.inputImage(input("normal")); break;
+    case LineSource::Skeleton: field = gl.inputImage(mSettings.skeletonResource); break;
     }
-    case LineSource::Suggestive: {
-        const cv::Mat& radial = gl.inputImage(input("radial"));
-        mReport.readbackMilliseconds = millisecondsSince(start);
-        start = std::chrono::steady_clock::now();
-        skeleton = extractSuggestiveContours(radial, depth, mSettings.suggestive);
-        break;
-    }
-    case LineSource::DepthEdge:
-        mReport.readbackMilliseconds = millisecondsSince(start);
-        start = std::chrono::steady_clock::now();
-        skeleton = extractDepthEdges(depth, mSettings.depthEdge);
-        break;
-    case LineSource::NormalEdge: {
-        const cv::Mat& normal = gl.inputImage(input("normal"));
-        mReport.readbackMilliseconds = millisecondsSince(start);
-        start = std::chrono::steady_clock::now();
-        skeleton = extractNormalEdges(normal, depth, mSettings.normalEdge);
-        break;
-    }
-    case LineSource::Skeleton: {
-        const cv::Mat& mask = gl.inputImage(mSettings.skeletonResource);
-        mReport.readbackMilliseconds = millisecondsSince(start);
-        start = std::chrono::steady_clock::now();
-        skeleton = skeletonFromMask(mask);
-        break;
-    }
-    }
-    mReport.kernelMilliseconds = millisecondsSince(start);
-    mReport.skeletonPixels = std::size_t(cv::countNonZero(skeleton.mask));
-    mReport.points = skeleton.points.size();
+    mReport.readbackMilliseconds = millisecondsSince(start);
 
     start = std::chrono::steady_clock::now();
-    cv::Mat lines = strokeLines(skeleton, mSettings.widthPixels, mSettings.supersample);
+    switch (mSettings.source) {
+    case LineSource::Contour: mSkeleton = extractContours(field, depth, mSettings.contour); break;
+    case LineSource::Suggestive: mSkeleton = extractSuggestiveContours(field, depth, mSettings.suggestive); break;
+    case LineSource::DepthEdge: mSkeleton = extractDepthEdges(depth, mSettings.depthEdge); break;
+    case LineSource::NormalEdge: mSkeleton = extractNormalEdges(field, depth, mSettings.normalEdge); break;
+    case LineSource::Skeleton: mSkeleton = skeletonFromMask(field); break;
+    }
+    mReport.kernelMilliseconds = millisecondsSince(start);
+    mReport.skeletonPixels = std::size_t(cv::countNonZero(mSkeleton.mask));
+    mReport.points = mSkeleton.points.size();
+
+    start = std::chrono::steady_clock::now();
+    cv::Mat lines = strokeLines(mSkeleton, mSettings.widthPixels, mSettings.supersample);
     if (lines.size() != cv::Size(gl.width(), gl.height()))
         throw std::runtime_error("LineLayerPass::execute(): '" + mName + "' inputs are not " +
                                  std::to_string(mSettings.supersample) + " times the frame size");
