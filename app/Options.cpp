@@ -301,6 +301,11 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
             (argument == "--suggestive-threshold" ? options.suggestiveThreshold : options.suggestiveFade) = strength;
         } else if (argument == "--supersample") {
             options.supersample = parseWholeNumber(argument, value(), 1, 8);
+        } else if (argument == "--gbuffer-precision") {
+            const std::string precision = value();
+            if (precision == "float") options.gbufferPrecision = GBufferPrecision::Float32;
+            else if (precision == "half") options.gbufferPrecision = GBufferPrecision::Float16;
+            else throw UsageError("--gbuffer-precision: expected float or half, got '" + precision + "'");
         } else if (argument == "--background") {
             const glm::dvec3 color = parseVector(argument, value());
             for (int c = 0; c < 3; ++c)
@@ -437,6 +442,9 @@ Lines (any subset; only the passes the listed types need run: see --stats "culle
   --supersample S        find the G-buffer and mesh-edge lines at S x the size (1 to 8, default 1) and
                          area-downsample only the final line images: smoother, better-placed lines, S^2 the
                          work. Outline and silhouette are drawn by GL at the output size.
+  --gbuffer-precision P  float (default) | half: store the G-buffer's normal, view, w, n.v and radial fields as
+                         16-bit floats (depth stays 32-bit). Half the memory; the suggestive contours get noisy
+                         (docs/accuracy.md measures it). Also applies to --request 'gbuffer.*'
   Outline and silhouette draw nothing when the eye is inside the model (they would flood the picture).
 
 System
