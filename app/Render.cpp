@@ -180,6 +180,7 @@ Json describeLook(const RenderOptions& options, const StillGraph& graph) {
             line["fade"] = settings.fade;
             line["feature_size"] = settings.featureSize * graph.radialLengthUnit; // model units
             line["min_sin_theta"] = settings.minSinTheta;
+            line["stencil_points"] = settings.stencil == DifferenceStencil::Central5 ? 5 : 3;
         }
         lines.push_back(line);
     }

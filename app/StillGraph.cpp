@@ -122,6 +122,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
                                                     setup.frame.radialLengthUnit);
             if (options.suggestiveThreshold) settings.suggestive.threshold = float(*options.suggestiveThreshold);
             if (options.suggestiveFade) settings.suggestive.fade = float(*options.suggestiveFade);
+            if (options.suggestiveStencil == 5) settings.suggestive.stencil = DifferenceStencil::Central5;
         } else if (type == "depth-edge") {
             settings.source = LineSource::DepthEdge;
             settings.depthEdge.relativeJump = depthJump;
