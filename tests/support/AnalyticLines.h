@@ -55,6 +55,16 @@ std::vector<LinePolyline> sphereSilhouette(const SyntheticCamera& camera, const 
 std::vector<LinePolyline> torusContours(const SyntheticCamera& camera, const glm::dvec3& center, double ringRadius,
                                         double tubeRadius, int uSamples = 8192);
 
+/** A curve on the torus, for checking the ground truth itself: each vertex's surface parameters and its image. */
+struct TorusCurve {
+    std::vector<glm::dvec2> parameters; ///< (u, v) of each vertex, in radians (not wrapped)
+    LinePolyline image;                 ///< the same vertices, in the same order, in LinePoint coordinates
+};
+
+/** torusContours() with each vertex's (u, v). */
+std::vector<TorusCurve> torusContourCurves(const SyntheticCamera& camera, const glm::dvec3& center, double ringRadius,
+                                           double tubeRadius, int uSamples = 8192);
+
 /** The rule a suggestive-contour point must pass, in the units of SuggestiveSettings. */
 struct AnalyticSuggestiveSettings {
     double featureSize = 1.0; ///< fs, scene length units
@@ -75,5 +85,11 @@ std::vector<LinePolyline> torusSuggestiveContours(const SyntheticCamera& camera,
                                                   double ringRadius, double tubeRadius,
                                                   const AnalyticSuggestiveSettings& settings, int uSamples = 4096,
                                                   int vSamples = 1024);
+
+/** torusSuggestiveContours() with each vertex's (u, v). */
+std::vector<TorusCurve> torusSuggestiveContourCurves(const SyntheticCamera& camera, const glm::dvec3& center,
+                                                     double ringRadius, double tubeRadius,
+                                                     const AnalyticSuggestiveSettings& settings, int uSamples = 4096,
+                                                     int vSamples = 1024);
 
 } // namespace inkgraph::test
