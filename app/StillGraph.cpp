@@ -103,7 +103,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     // and strokes it; registered whether or not requested.
     const float depthJump = float(options.depthJump);
     for (const std::string& type : knownLineTypes()) {
-        if (!isImageSpaceLineType(type) && !isMeshEdgeLineType(type)) continue;
+        if (!isImageSpaceLineType(type) && !isMeshEdgeLineType(type) && !isObjectSpaceLineType(type)) continue;
         LineLayerSettings settings;
         settings.widthPixels = float(options.lineStyles.at(type).widthPixels);
         settings.supersample = options.supersample;
@@ -113,8 +113,9 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         } else if (type == "contour") {
             settings.source = LineSource::Contour;
             settings.contour.depthJump = depthJump;
-        } else if (type == "suggestive") {
-            settings.source = LineSource::Suggestive;
+        } else if (type == "suggestive" || type == "suggestive-object") {
+            // Both suggestive types share one meaning of the threshold, fade and feature size.
+            settings.source = type == "suggestive" ? LineSource::Suggestive : LineSource::SuggestiveObject;
             settings.suggestive.depthJump = depthJump;
             settings.suggestive.featureSize = float(kSuggestiveFeatureSizeFraction * setup.sphere.radius);
             if (options.suggestiveThreshold) settings.suggestive.threshold = float(*options.suggestiveThreshold);
@@ -127,7 +128,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
             settings.normalEdge.creaseAngleDegrees = float(options.creaseAngleDegrees);
             settings.normalEdge.depthJump = depthJump;
         }
-        auto pass = std::make_unique<LineLayerPass>(type, settings);
+        auto pass = std::make_unique<LineLayerPass>(type, settings, LineSceneInputs{&setup.gpuScene, &setup.frame});
         graph.lineLayers[type] = pass.get();
         graph.passes.push_back(std::move(pass));
     }
