@@ -63,15 +63,17 @@ std::string joined(const std::vector<std::string>& items) {
 } // namespace
 
 const std::vector<std::string>& knownLineTypes() {
-    static const std::vector<std::string> kLineTypes = {"outline",  "silhouette", "normal-edge",     "depth-edge",
-                                                        "crease",   "border",     "suggestive",      "contour",
-                                                        "mesh-silhouette"};
+    static const std::vector<std::string> kLineTypes = {
+        "outline", "silhouette", "normal-edge", "depth-edge",     "crease",
+        "border",  "suggestive", "suggestive-object", "contour", "mesh-silhouette"};
     return kLineTypes;
 }
 
 bool isImageSpaceLineType(const std::string& type) {
     return type == "contour" || type == "suggestive" || type == "depth-edge" || type == "normal-edge";
 }
+
+bool isObjectSpaceLineType(const std::string& type) { return type == "suggestive-object"; }
 
 bool isMeshEdgeLineType(const std::string& type) {
     return type == "mesh-silhouette" || type == "crease" || type == "border";
@@ -151,12 +153,12 @@ void checkLineFlags(const RenderOptions& options, const std::vector<std::string>
                          ") is in --lines");
     };
     require("--crease-angle", {"crease", "normal-edge"});
-    require("--depth-jump", {"contour", "suggestive", "depth-edge", "normal-edge"});
-    require("--suggestive-threshold", {"suggestive"});
-    require("--suggestive-fade", {"suggestive"});
+    require("--depth-jump", {"contour", "suggestive", "suggestive-object", "depth-edge", "normal-edge"});
+    require("--suggestive-threshold", {"suggestive", "suggestive-object"});
+    require("--suggestive-fade", {"suggestive", "suggestive-object"});
     require("--suggestive-stencil", {"suggestive"});
-    require("--supersample", {"contour", "suggestive", "depth-edge", "normal-edge", "mesh-silhouette", "crease",
-                              "border"});
+    require("--supersample", {"contour", "suggestive", "suggestive-object", "depth-edge", "normal-edge",
+                              "mesh-silhouette", "crease", "border"});
     if (std::size_t(options.width) * options.supersample > std::size_t(kMaxImageSide) ||
         std::size_t(options.height) * options.supersample > std::size_t(kMaxImageSide))
         throw UsageError("--supersample: " + std::to_string(options.supersample) + " x --size " +
@@ -429,6 +431,9 @@ Lines (any subset; only the passes the listed types need run: see --stats "culle
                            border: open (and non-manifold) mesh edges (object space)
                            suggestive: suggestive contours (DeCarlo et al.): D_w(n.v) = 0 with D_w D_w(n.v) > 0,
                                 in the float G-buffer with v = c - p, so the lines are where kappa_r = 0
+                           suggestive-object: the same lines found on the mesh (object space): the zero set of
+                                kappa_r from per-vertex curvature (Rusinkiewicz 2004) and rtsc's per-view test,
+                                projected, hidden by the G-buffer depth (within --depth-jump), sub-pixel exact
                            contour: where n.v changes sign, and where the model ends (against the background or
                                 in front of a farther surface), as a one-pixel skeleton
                            mesh-silhouette: mesh edges between a front and a back face (exact perspective test)
@@ -440,16 +445,19 @@ Lines (any subset; only the passes the listed types need run: see --stats "culle
                          offset the hull by D model units instead (the width then shrinks with distance)
   --crease-angle DEG     crease, normal-edge: the angle above which an edge is a crease (default 30)
   --depth-jump R         contour, suggestive, depth-edge, normal-edge: neighbouring pixels whose depths differ
-                         by more than R x the nearer depth are different surfaces (default 0.05)
+                         by more than R x the nearer depth are different surfaces (default 0.05);
+                         suggestive-object: a line point more than R x the depth behind the visible surface is
+                         hidden
   --suggestive-threshold T, --suggestive-fade F
-                         suggestive: keep lines whose strength q (rtsc's fs^2 tan(theta) D_w kappa_r, fs = 5%
-                         of the bounding radius) exceeds T (default 0.01), drawn with alpha (q - T) / (q - T + F)
-                         (default F = 0.03; 0 draws every kept line in full)
+                         suggestive, suggestive-object: keep lines whose strength q (rtsc's
+                         fs^2 tan(theta) D_w kappa_r, fs = 5% of the bounding radius) exceeds T (default 0.01),
+                         drawn with alpha (q - T) / (q - T + F) (default F = 0.03; 0 draws every kept line in
+                         full)
   --suggestive-stencil N suggestive: 3 (default) or 5-point central differences; 5 is fourth order, more exact on
                          clean data, slower, and needs two pixels of one surface on each side
-  --supersample S        find the G-buffer and mesh-edge lines at S x the size (1 to 8, default 1) and
-                         area-downsample only the final line images: smoother, better-placed lines, S^2 the
-                         work. Outline and silhouette are drawn by GL at the output size.
+  --supersample S        find the G-buffer, mesh-edge and object-space lines at S x the size (1 to 8,
+                         default 1) and area-downsample only the final line images: smoother, better-placed
+                         lines, S^2 the work. Outline and silhouette are drawn by GL at the output size.
   --gbuffer-precision P  float (default) | half: store the G-buffer's normal, view, w, n.v and radial fields as
                          16-bit floats (depth stays 32-bit). Half the memory; the suggestive contours get noisy
                          (docs/accuracy.md measures it). Also applies to --request 'gbuffer.*'

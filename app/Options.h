@@ -49,7 +49,7 @@ struct RenderOptions {
     std::map<std::string, LineStyle> lineStyles; ///< one per known line type (defaults filled in)
     std::optional<double> silhouetteObjectWidth; ///< model units: the hull is offset in object space
     double creaseAngleDegrees = 30.0;       ///< crease and normal-edge: dihedral / normal angle above this
-    double depthJump = 0.05;                ///< contour, suggestive, depth-edge, normal-edge: relative depth break
+    double depthJump = 0.05;                ///< contour, suggestive(-object), depth-edge, normal-edge: relative depth break
     std::optional<double> suggestiveThreshold; ///< strength threshold (default: SuggestiveSettings, 0.01)
     std::optional<double> suggestiveFade;      ///< strength fade (default: SuggestiveSettings, 0.03)
     int suggestiveStencil = 3;                 ///< points of the central differences: 3 (fast) or 5 (fourth order)
@@ -70,6 +70,8 @@ struct RenderOptions {
 const std::vector<std::string>& knownLineTypes();
 /** Line types found in the float G-buffer by the post stage (postfx/). */
 bool isImageSpaceLineType(const std::string& type);
+/** Line types found on the mesh itself by a CPU pass (per-vertex curvature), hidden with the G-buffer depth. */
+bool isObjectSpaceLineType(const std::string& type);
 /** Line types drawn from the mesh's edges (the "mesh-edges" pass). */
 bool isMeshEdgeLineType(const std::string& type);
 std::string shadingModeName(ShadingMode mode);

@@ -167,20 +167,25 @@ Json describeLook(const RenderOptions& options, const StillGraph& graph) {
         if (type == "silhouette" && graph.silhouette) line["skipped_eye_inside"] = graph.silhouette->skippedEyeInside();
         if (type == "outline" && graph.outline) line["skipped_eye_inside"] = graph.outline->skippedEyeInside();
         if (type == "crease" || type == "normal-edge") line["crease_angle_degrees"] = options.creaseAngleDegrees;
-        if (isImageSpaceLineType(type)) line["depth_jump"] = options.depthJump;
-        if (isImageSpaceLineType(type) || isMeshEdgeLineType(type)) line["supersample"] = options.supersample;
+        if (isImageSpaceLineType(type) || isObjectSpaceLineType(type)) line["depth_jump"] = options.depthJump;
+        if (isImageSpaceLineType(type) || isMeshEdgeLineType(type) || isObjectSpaceLineType(type))
+            line["supersample"] = options.supersample;
         if (isMeshEdgeLineType(type) && graph.meshEdges) {
             const MeshEdgesPass::EdgeCounts& counts = graph.meshEdges->edgesDrawn();
             const auto& drawn = type == "crease" ? counts.crease : type == "border" ? counts.border : counts.silhouette;
             if (drawn) line["edges_drawn"] = *drawn;
         }
-        if (type == "suggestive") {
+        if (type == "suggestive" || type == "suggestive-object") {
             const SuggestiveSettings& settings = graph.lineLayers.at(type)->settings().suggestive;
             line["threshold"] = settings.threshold;
             line["fade"] = settings.fade;
-            line["feature_size"] = settings.featureSize * graph.radialLengthUnit; // model units
-            line["min_sin_theta"] = settings.minSinTheta;
-            line["stencil_points"] = settings.stencil == DifferenceStencil::Central5 ? 5 : 3;
+            // In model units: the image-space fs is stored in units of the radial field's length.
+            line["feature_size"] = type == "suggestive" ? settings.featureSize * graph.radialLengthUnit
+                                                        : double(settings.featureSize);
+            if (type == "suggestive") {
+                line["min_sin_theta"] = settings.minSinTheta;
+                line["stencil_points"] = settings.stencil == DifferenceStencil::Central5 ? 5 : 3;
+            }
         }
         lines.push_back(line);
     }
@@ -198,12 +203,19 @@ Json describePostStage(const StillGraph& graph, const std::vector<PassTiming>& t
         const auto layer = graph.lineLayers.find(timing.pass);
         if (layer == graph.lineLayers.end()) continue;
         const LineLayerReport& report = layer->second->report();
-        layers.push_back({{"type", timing.pass},
-                          {"skeleton_pixels", report.skeletonPixels},
-                          {"points", report.points},
-                          {"readback_ms", report.readbackMilliseconds},
-                          {"kernel_ms", report.kernelMilliseconds},
-                          {"stroke_ms", report.strokeMilliseconds}});
+        Json entry = {{"type", timing.pass},
+                      {"skeleton_pixels", report.skeletonPixels},
+                      {"points", report.points},
+                      {"readback_ms", report.readbackMilliseconds},
+                      {"kernel_ms", report.kernelMilliseconds},
+                      {"stroke_ms", report.strokeMilliseconds}};
+        if (layer->second->settings().source == LineSource::SuggestiveObject) {
+            // The curvature is derived once per scene, before the pass's clock (in prepare): kernel_ms is per view.
+            entry["segments"] = report.segments;
+            entry["curvature_derived"] = report.curvatureDerived;
+            entry["curvature_ms"] = report.curvatureMilliseconds;
+        }
+        layers.push_back(entry);
         kernels += report.kernelMilliseconds + report.strokeMilliseconds;
         readback += report.readbackMilliseconds;
     }

@@ -104,7 +104,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     // and strokes it; registered whether or not requested.
     const float depthJump = float(options.depthJump);
     for (const std::string& type : knownLineTypes()) {
-        if (!isImageSpaceLineType(type) && !isMeshEdgeLineType(type)) continue;
+        if (!isImageSpaceLineType(type) && !isMeshEdgeLineType(type) && !isObjectSpaceLineType(type)) continue;
         LineLayerSettings settings;
         settings.widthPixels = float(options.lineStyles.at(type).widthPixels);
         settings.supersample = options.supersample;
@@ -114,12 +114,15 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         } else if (type == "contour") {
             settings.source = LineSource::Contour;
             settings.contour.depthJump = depthJump;
-        } else if (type == "suggestive") {
-            settings.source = LineSource::Suggestive;
+        } else if (type == "suggestive" || type == "suggestive-object") {
+            // Both suggestive types share one meaning of the threshold, fade and feature size.
+            settings.source = type == "suggestive" ? LineSource::Suggestive : LineSource::SuggestiveObject;
             settings.suggestive.depthJump = depthJump;
-            // gbuffer.radial is in units of the bounding radius (FrameParams::radialLengthUnit), so fs is too.
-            settings.suggestive.featureSize = float(kSuggestiveFeatureSizeFraction * setup.sphere.radius /
-                                                    setup.frame.radialLengthUnit);
+            // fs in model units for the object-space type, which works on the mesh; gbuffer.radial is in units of
+            // the bounding radius (FrameParams::radialLengthUnit), so the image-space fs is too.
+            const double featureSize = kSuggestiveFeatureSizeFraction * setup.sphere.radius;
+            settings.suggestive.featureSize =
+                float(type == "suggestive" ? featureSize / setup.frame.radialLengthUnit : featureSize);
             if (options.suggestiveThreshold) settings.suggestive.threshold = float(*options.suggestiveThreshold);
             if (options.suggestiveFade) settings.suggestive.fade = float(*options.suggestiveFade);
             if (options.suggestiveStencil == 5) settings.suggestive.stencil = DifferenceStencil::Central5;
@@ -131,7 +134,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
             settings.normalEdge.creaseAngleDegrees = float(options.creaseAngleDegrees);
             settings.normalEdge.depthJump = depthJump;
         }
-        auto pass = std::make_unique<LineLayerPass>(type, settings);
+        auto pass = std::make_unique<LineLayerPass>(type, settings, LineSceneInputs{&setup.gpuScene, &setup.frame});
         graph.lineLayers[type] = pass.get();
         graph.passes.push_back(std::move(pass));
     }

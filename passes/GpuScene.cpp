@@ -78,6 +78,19 @@ const EdgeAdjacency& GpuScene::edgeAdjacency(std::size_t meshIndex) {
     return mEdgeAdjacency[meshIndex];
 }
 
+const MeshCurvature& GpuScene::meshCurvature(std::size_t meshIndex) {
+    requireMeshIndex("GpuScene::meshCurvature()", meshIndex);
+    if (mMeshCurvature.empty()) {
+        const double distance = weldDistance();
+        std::vector<MeshCurvature> curvature;
+        curvature.reserve(mScene.meshes.size());
+        for (const Mesh& mesh : mScene.meshes)
+            curvature.push_back(computeMeshCurvature(mesh.positions, mesh.triangles, distance));
+        mMeshCurvature = std::move(curvature);
+    }
+    return mMeshCurvature[meshIndex];
+}
+
 bool GpuScene::containsPoint(glm::dvec3 worldPoint) {
     if (mContainmentPoint == worldPoint) return mContainsPoint;
     mContainsPoint = false;

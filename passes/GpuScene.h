@@ -3,6 +3,7 @@
 
 #include "gl/GlObjects.h"
 #include "scene/EdgeAdjacency.h"
+#include "scene/MeshCurvature.h"
 #include "scene/Scene.h"
 
 #include <glm/glm.hpp>
@@ -48,6 +49,16 @@ public:
     const EdgeAdjacency& edgeAdjacency(std::size_t meshIndex);
     bool edgeAdjacencyComputed() const { return !mEdgeAdjacency.empty(); }
 
+    /** Per-vertex curvature of mesh `meshIndex` (scene/MeshCurvature.h: normals, principal curvatures and
+     *  directions, and their derivative C on position-welded vertices), in world space like the scene, welded at the
+     *  same distance as hullNormals(). CPU data, nothing uploaded. Computed for every mesh the first time any is
+     *  asked for (only a pass that runs asks: the object-space suggestive contours). Throws std::out_of_range for a
+     *  bad index. */
+    const MeshCurvature& meshCurvature(std::size_t meshIndex);
+    bool meshCurvatureComputed() const { return !mMeshCurvature.empty(); }
+
+    std::size_t meshCount() const { return mScene.meshes.size(); }
+
     /** Whether `worldPoint` lies inside any mesh (MeshOps isPointInsideMesh, ray parity on the CPU). The answer for
      *  the last point asked is kept, so the line passes of one frame share one computation. */
     bool containsPoint(glm::dvec3 worldPoint);
@@ -66,6 +77,7 @@ private:
     bool mUploaded = false;
     std::vector<GlBuffer> mHullNormals;          ///< one per mesh once computed, else empty
     std::vector<EdgeAdjacency> mEdgeAdjacency;   ///< one per mesh once computed, else empty
+    std::vector<MeshCurvature> mMeshCurvature;   ///< one per mesh once computed, else empty
     std::optional<glm::dvec3> mContainmentPoint; ///< the last point containsPoint() was asked about
     bool mContainsPoint = false;
 };

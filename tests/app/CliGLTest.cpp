@@ -149,7 +149,8 @@ TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
     std::set<std::string> culledNames;
     for (const auto& pass : stats["culled"]) culledNames.insert(pass["name"].get<std::string>());
     EXPECT_EQ(culledNames, (std::set<std::string>{"outline", "silhouette", "mesh-edges", "normal-edge", "depth-edge",
-                                                  "crease", "border", "suggestive", "contour", "mesh-silhouette"}));
+                                                  "crease", "border", "suggestive", "suggestive-object", "contour",
+                                                  "mesh-silhouette"}));
     // No temporary or staging names left anywhere.
     for (const std::string& name : listFiles(directory / "dump")) EXPECT_NE(name.rfind(".inkgraph-", 0), 0u) << name;
     for (const std::string& name : listFiles(directory)) EXPECT_NE(name.rfind(".inkgraph-", 0), 0u) << name;
@@ -258,8 +259,8 @@ TEST_F(Cli, ShadingNoneCullsTheShadingPassWithAReason) {
         EXPECT_FALSE(pass["reason"].get<std::string>().empty());
     }
     EXPECT_EQ(culled, (std::set<std::string>{"gbuffer", "outline", "silhouette", "mesh-edges", "normal-edge",
-                                             "depth-edge", "crease", "border", "suggestive", "contour",
-                                             "mesh-silhouette"}))
+                                             "depth-edge", "crease", "border", "suggestive", "suggestive-object",
+                                             "contour", "mesh-silhouette"}))
         << "--shading none registers no shading pass; the rest is culled";
     // Paper only: every pixel white.
     const cv::Mat image = readImage(directory / "a.png");
@@ -378,7 +379,7 @@ TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
     ASSERT_EQ(result.exitCode, 0) << result.err;
     auto stats = nlohmann::json::parse(readText(directory / "s.json"));
     EXPECT_EQ(passNames(stats, "passes"), (std::set<std::string>{"gbuffer", "shade", "depth-edge", "composite"}));
-    for (const char* culled : {"contour", "suggestive", "normal-edge", "outline", "silhouette"})
+    for (const char* culled : {"contour", "suggestive", "suggestive-object", "normal-edge", "outline", "silhouette"})
         EXPECT_EQ(passNames(stats, "culled").count(culled), 1u) << culled;
     for (const auto& pass : stats["culled"]) EXPECT_FALSE(pass["reason"].get<std::string>().empty());
     ASSERT_EQ(stats["post_stage"]["lines"].size(), 1u);
@@ -412,6 +413,41 @@ TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
     EXPECT_GT(partial, 50);
 }
 
+TEST_F(Cli, ObjectSpaceSuggestiveContoursAreDumpedAndReported) {
+    const CliRun result = run("render " + model("spot_c3d.obj") +
+                              " -o a.png --size 160x160 --shading none --lines suggestive-object"
+                              " --suggestive-object-color 0,0,1 --dump d --stats s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    // Only the depth is read from the G-buffer: the lines come from the mesh.
+    EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"depth.exr", "final.png",
+                                                                     "lines-suggestive-object.png", "manifest.json"}));
+    const cv::Mat lines = readImage(directory / "d" / "lines-suggestive-object.png");
+    ASSERT_EQ(lines.size(), cv::Size(160, 160));
+    EXPECT_GT(cv::countNonZero(lines), 50) << "spot has suggestive contours (neck, legs, ears)";
+    const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+    ASSERT_EQ(stats["post_stage"]["lines"].size(), 1u);
+    const auto& layer = stats["post_stage"]["lines"][0];
+    EXPECT_EQ(layer["type"], "suggestive-object");
+    EXPECT_GT(layer["segments"].get<int>(), 10);
+    EXPECT_GT(layer["points"].get<int>(), 10);
+    EXPECT_EQ(layer["curvature_derived"], true);
+    EXPECT_GT(layer["curvature_ms"].get<double>(), 0.0);
+    EXPECT_GE(layer["kernel_ms"].get<double>(), 0.0);
+    ASSERT_EQ(stats["look"]["lines"].size(), 1u);
+    EXPECT_NEAR(stats["look"]["lines"][0]["threshold"].get<double>(), 0.01, 1e-6) << "the default";
+    EXPECT_EQ(stats["look"]["lines"][0]["color"], nlohmann::json::array({0.0, 0.0, 1.0, 1.0}));
+
+    // A run without it culls the pass, so the curvature is never derived.
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o b.png --size 64x64 --lines suggestive --stats t.json")
+                  .exitCode,
+              0);
+    const auto without = nlohmann::json::parse(readText(directory / "t.json"));
+    bool culled = false;
+    for (const auto& pass : without["culled"]) culled = culled || pass["name"] == "suggestive-object";
+    EXPECT_TRUE(culled);
+    for (const auto& other : without["post_stage"]["lines"]) EXPECT_FALSE(other.contains("curvature_ms"));
+}
+
 TEST_F(Cli, MeshEdgeLinesSupersampled) {
     const CliRun result = run("render " + model("fandisk_c3d.obj") +
                               " -o a.png --size 120x90 --lines crease,border,mesh-silhouette --crease-angle 40"
@@ -425,7 +461,9 @@ TEST_F(Cli, MeshEdgeLinesSupersampled) {
     ASSERT_EQ(stats["look"]["lines"].size(), 3u);
     for (const auto& line : stats["look"]["lines"]) {
         EXPECT_EQ(line["supersample"], 2);
-        if (line["type"] != "border") EXPECT_GT(line["edges_drawn"].get<int>(), 10) << line["type"];
+        if (line["type"] != "border") {
+            EXPECT_GT(line["edges_drawn"].get<int>(), 10) << line["type"];
+        }
     }
     EXPECT_EQ(stats["look"]["lines"][0]["crease_angle_degrees"], 40.0);
     // The skeletons are drawn at twice the size; the stroked layers are the frame's size.

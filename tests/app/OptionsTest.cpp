@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace inkgraph {
 namespace {
 
@@ -184,6 +186,40 @@ TEST(Options, SuggestiveStencil) {
               std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--suggestive-stencil", "5"})
                   .find("has no effect"),
+              std::string::npos);
+}
+
+TEST(Options, ObjectSpaceSuggestiveContours) {
+    const RenderOptions options =
+        parse({"m.obj", "-o", "x.png", "--lines", "contour,suggestive-object", "--suggestive-threshold", "0.05",
+               "--suggestive-fade", "0", "--suggestive-object-width", "3", "--suggestive-object-color", "0,0,1",
+               "--depth-jump", "0.02", "--supersample", "2"});
+    EXPECT_EQ(options.lines, (std::vector<std::string>{"contour", "suggestive-object"}));
+    EXPECT_EQ(*options.suggestiveThreshold, 0.05);
+    EXPECT_EQ(*options.suggestiveFade, 0.0);
+    EXPECT_EQ(options.lineStyles.at("suggestive-object").widthPixels, 3.0);
+    EXPECT_EQ(options.lineStyles.at("suggestive-object").color, glm::dvec4(0.0, 0.0, 1.0, 1.0));
+    EXPECT_TRUE(isObjectSpaceLineType("suggestive-object"));
+    EXPECT_FALSE(isImageSpaceLineType("suggestive-object"));
+    EXPECT_FALSE(isMeshEdgeLineType("suggestive-object"));
+    // Composited right after the image-space suggestive contours.
+    const auto& known = knownLineTypes();
+    const auto at = std::find(known.begin(), known.end(), "suggestive");
+    ASSERT_NE(at, known.end());
+    ASSERT_NE(at + 1, known.end());
+    EXPECT_EQ(*(at + 1), "suggestive-object");
+    EXPECT_NE(renderHelp().find("suggestive-object"), std::string::npos);
+    // Its flags without it are refused; its name in a style flag needs it in --lines.
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--suggestive-threshold", "0.1"})
+                  .find("suggestive, suggestive-object"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-object-width", "2"})
+                  .find("'suggestive-object' line type is not drawn"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive-object", "--suggestive-fade", "-1"})
+                  .find("--suggestive-fade"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive-objects"}).find("unknown line type"),
               std::string::npos);
 }
 

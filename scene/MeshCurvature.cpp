@@ -1,0 +1,365 @@
+#include "scene/MeshCurvature.h"
+
+#include "scene/MeshOps.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace inkgraph {
+namespace {
+
+/** Relative area at or below which a face is degenerate (times the squared bounding-box diagonal): the loaders' and
+ *  EdgeAdjacency's rule, so a loaded mesh loses nothing more here. */
+constexpr double kDegenerateAreaRelative = 1e-14;
+/** An LDL^T pivot below this times the largest diagonal entry of the normal matrix is singular: the face's edges do
+ *  not span the plane well enough to fit anything (a needle), and a fit there would be noise. */
+constexpr double kSingularPivotRelative = 1e-10;
+
+/** Solves the symmetric positive semi-definite system a x = b in place by LDL^T; false, leaving x untouched, when a
+ *  pivot is not clearly positive. Small fixed sizes only (3 and 4 here). */
+template <std::size_t N>
+bool solveSymmetric(std::array<std::array<double, N>, N> a, std::array<double, N> b, std::array<double, N>& x) {
+    double largestDiagonal = 0.0;
+    for (std::size_t i = 0; i < N; ++i) largestDiagonal = std::max(largestDiagonal, a[i][i]);
+    if (!(largestDiagonal > 0.0)) return false;
+    const double minimumPivot = kSingularPivotRelative * largestDiagonal;
+    // Factor in place: the lower triangle holds L (unit diagonal implied), the diagonal D.
+    for (std::size_t i = 0; i < N; ++i) {
+        for (std::size_t k = 0; k < i; ++k) a[i][i] -= a[i][k] * a[i][k] * a[k][k];
+        if (!(a[i][i] > minimumPivot)) return false;
+        for (std::size_t j = i + 1; j < N; ++j) {
+            for (std::size_t k = 0; k < i; ++k) a[j][i] -= a[j][k] * a[i][k] * a[k][k];
+            a[j][i] /= a[i][i];
+        }
+    }
+    for (std::size_t i = 0; i < N; ++i)
+        for (std::size_t k = 0; k < i; ++k) b[i] -= a[i][k] * b[k];
+    for (std::size_t i = 0; i < N; ++i) b[i] /= a[i][i];
+    for (std::size_t i = N; i-- > 0;)
+        for (std::size_t k = i + 1; k < N; ++k) b[i] -= a[k][i] * b[k];
+    x = b;
+    return true;
+}
+
+/** Turns the tangent frame (u, v) of a vertex with unit normal `from` about the axis from x to, so that it becomes
+ *  a frame of the plane with unit normal `to` (Rodrigues' formula with the unnormalised axis k = from x to, whose
+ *  length is the sine). Opposite normals: a half turn about u. */
+void rotateFrame(glm::dvec3& u, glm::dvec3& v, const glm::dvec3& from, const glm::dvec3& to) {
+    const double cosine = glm::dot(from, to);
+    if (cosine <= -1.0 + 1e-12) {
+        v = -v;
+        return;
+    }
+    const glm::dvec3 axis = glm::cross(from, to);
+    const double scale = 1.0 / (1.0 + cosine);
+    auto rotate = [&](const glm::dvec3& x) { return x * cosine + glm::cross(axis, x) + axis * (glm::dot(axis, x) * scale); };
+    u = rotate(u);
+    v = rotate(v);
+}
+
+/** Some unit vector perpendicular to unit `normal`: crossed with the coordinate axis it is least aligned with. */
+glm::dvec3 perpendicularTo(const glm::dvec3& normal) {
+    const glm::dvec3 magnitude = glm::abs(normal);
+    const glm::dvec3 axis = magnitude.x <= magnitude.y && magnitude.x <= magnitude.z ? glm::dvec3(1, 0, 0)
+                            : magnitude.y <= magnitude.z                            ? glm::dvec3(0, 1, 0)
+                                                                                    : glm::dvec3(0, 0, 1);
+    return glm::normalize(glm::cross(normal, axis));
+}
+
+/** A symmetric 2-tensor in some orthonormal frame: [[xx, xy], [xy, yy]]. */
+struct Tensor2 {
+    double xx = 0.0, xy = 0.0, yy = 0.0;
+};
+
+/** The tensor's value on the pair (p, q) of face-frame vectors. */
+double evaluate(const Tensor2& tensor, const glm::dvec2& p, const glm::dvec2& q) {
+    return tensor.xx * p.x * q.x + tensor.xy * (p.x * q.y + p.y * q.x) + tensor.yy * p.y * q.y;
+}
+
+/** A symmetric trilinear form on the plane, (a, b, c, d) = (C_xxx, C_xxy, C_xyy, C_yyy). */
+double evaluate(const glm::dvec4& c, const glm::dvec2& x, const glm::dvec2& y, const glm::dvec2& z) {
+    return c.x * x.x * y.x * z.x + c.y * (x.x * y.x * z.y + x.x * y.y * z.x + x.y * y.x * z.x) +
+           c.z * (x.x * y.y * z.y + x.y * y.x * z.y + x.y * y.y * z.x) + c.w * x.y * y.y * z.y;
+}
+
+/** One usable face's geometry, shared by the steps. */
+struct FaceFrame {
+    std::array<glm::dvec3, 3> edges; ///< edges[i] is opposite corner i, running from corner i+1 to corner i+2
+    glm::dvec3 normal;               ///< unit
+    glm::dvec3 tangent;              ///< unit, along edges[2] (corner 0 to corner 1)
+    glm::dvec3 bitangent;            ///< normal x tangent
+    glm::dvec2 inPlane(const glm::dvec3& x) const { return {glm::dot(x, tangent), glm::dot(x, bitangent)}; }
+};
+
+} // namespace
+
+MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                   double weldDistance) {
+    if (!std::isfinite(weldDistance) || weldDistance < 0.0)
+        throw std::invalid_argument("computeMeshCurvature(): 'weldDistance' must be finite and >= 0, got " +
+                                    std::to_string(weldDistance));
+    for (std::size_t i = 0; i < positions.size(); ++i)
+        if (!(std::isfinite(positions[i].x) && std::isfinite(positions[i].y) && std::isfinite(positions[i].z)))
+            throw std::invalid_argument("computeMeshCurvature(): 'positions' has a non-finite coordinate at vertex " +
+                                        std::to_string(i));
+    for (std::size_t face = 0; face < triangles.size(); ++face)
+        for (int corner = 0; corner < 3; ++corner)
+            if (triangles[face][corner] >= positions.size())
+                throw std::out_of_range("computeMeshCurvature(): 'triangles' face " + std::to_string(face) +
+                                        " uses vertex " + std::to_string(triangles[face][corner]) +
+                                        " but there are " + std::to_string(positions.size()) + " positions");
+
+    MeshCurvature result;
+    const WeldMap weld = weldVertices(positions, {}, weldDistance);
+    result.weldedOf = weld.outputOf;
+    const std::size_t vertexCount = weld.kept.size();
+    result.counts.weldedVertices = vertexCount;
+    result.positions.reserve(vertexCount);
+    for (std::uint32_t input : weld.kept) result.positions.emplace_back(positions[input]);
+
+    glm::dvec3 low(0.0), high(0.0);
+    if (vertexCount > 0) low = high = result.positions[0];
+    for (const glm::dvec3& p : result.positions) {
+        low = glm::min(low, p);
+        high = glm::max(high, p);
+    }
+    const double diagonal = glm::length(high - low);
+    const double minimumArea = kDegenerateAreaRelative * diagonal * diagonal;
+
+    // The usable faces and their frames.
+    std::vector<FaceFrame> frames;
+    for (std::size_t face = 0; face < triangles.size(); ++face) {
+        const glm::uvec3 welded(weld.outputOf[triangles[face].x], weld.outputOf[triangles[face].y],
+                                weld.outputOf[triangles[face].z]);
+        if (welded.x == welded.y || welded.y == welded.z || welded.z == welded.x) {
+            ++result.counts.degenerateFaces;
+            continue;
+        }
+        FaceFrame frame;
+        const glm::dvec3& p0 = result.positions[welded.x];
+        const glm::dvec3& p1 = result.positions[welded.y];
+        const glm::dvec3& p2 = result.positions[welded.z];
+        frame.edges = {p2 - p1, p0 - p2, p1 - p0};
+        const glm::dvec3 areaVector = glm::cross(frame.edges[2], -frame.edges[1]);
+        const double area = 0.5 * glm::length(areaVector);
+        if (!(area > minimumArea)) {
+            ++result.counts.degenerateFaces;
+            continue;
+        }
+        frame.normal = areaVector / (2.0 * area);
+        frame.tangent = glm::normalize(frame.edges[2]);
+        frame.bitangent = glm::cross(frame.normal, frame.tangent);
+        result.triangles.push_back(welded);
+        result.sourceFace.push_back(std::uint32_t(face));
+        frames.push_back(frame);
+    }
+    const std::size_t faceCount = result.triangles.size();
+
+    // 1. Normals, Max's weights: for a corner with edges a, b, (a x b) / (|a|^2 |b|^2). Every corner's a x b is the
+    // face's area vector. A usable face has no zero-length edge (its area is above the minimum).
+    std::vector<glm::dvec3> normalSums(vertexCount, glm::dvec3(0.0));
+    std::vector<glm::dvec3> fallbackNormals(vertexCount, glm::dvec3(0.0));
+    for (std::size_t face = 0; face < faceCount; ++face) {
+        const FaceFrame& frame = frames[face];
+        const glm::dvec3 areaVector = glm::cross(frame.edges[2], -frame.edges[1]);
+        std::array<double, 3> squaredLength;
+        for (int i = 0; i < 3; ++i) squaredLength[i] = glm::dot(frame.edges[i], frame.edges[i]);
+        for (int corner = 0; corner < 3; ++corner) {
+            const std::uint32_t vertex = result.triangles[face][corner];
+            // The corner's two edges are the ones not opposite it.
+            const double weight =
+                1.0 / (squaredLength[(corner + 1) % 3] * squaredLength[(corner + 2) % 3]);
+            normalSums[vertex] += areaVector * weight;
+            if (fallbackNormals[vertex] == glm::dvec3(0.0)) fallbackNormals[vertex] = frame.normal;
+        }
+    }
+    result.normals.resize(vertexCount);
+    for (std::size_t vertex = 0; vertex < vertexCount; ++vertex) {
+        const double length = glm::length(normalSums[vertex]);
+        if (length > 0.0 && std::isfinite(length))
+            result.normals[vertex] = normalSums[vertex] / length;
+        else if (fallbackNormals[vertex] != glm::dvec3(0.0))
+            result.normals[vertex] = fallbackNormals[vertex]; // opposite faces cancelled: take one
+        else
+            result.normals[vertex] = glm::dvec3(0.0, 0.0, 1.0); // no usable face
+    }
+
+    // 2. Corner areas (Meyer et al.): Voronoi for a non-obtuse triangle, 1/2 and 1/4 + 1/4 for an obtuse one.
+    std::vector<glm::dvec3> cornerAreas(faceCount);
+    result.pointAreas.assign(vertexCount, 0.0);
+    for (std::size_t face = 0; face < faceCount; ++face) {
+        const FaceFrame& frame = frames[face];
+        const double area = 0.5 * glm::length(glm::cross(frame.edges[2], -frame.edges[1]));
+        std::array<double, 3> squaredLength, cornerDot;
+        for (int i = 0; i < 3; ++i) {
+            squaredLength[i] = glm::dot(frame.edges[i], frame.edges[i]);
+            // The corner's edges, both pointing away from it: edges[i+2] and -edges[i+1].
+            cornerDot[i] = -glm::dot(frame.edges[(i + 2) % 3], frame.edges[(i + 1) % 3]);
+        }
+        glm::dvec3 corners;
+        int obtuse = -1;
+        for (int i = 0; i < 3; ++i)
+            if (cornerDot[i] < 0.0) obtuse = i;
+        if (obtuse >= 0) {
+            for (int i = 0; i < 3; ++i) corners[i] = i == obtuse ? 0.5 * area : 0.25 * area;
+        } else {
+            // cot of the angle at corner j = (its edges' dot) / |their cross| = dot / (2 area).
+            for (int i = 0; i < 3; ++i) {
+                const int j = (i + 1) % 3, k = (i + 2) % 3;
+                corners[i] = (squaredLength[j] * cornerDot[j] + squaredLength[k] * cornerDot[k]) / (16.0 * area);
+            }
+        }
+        cornerAreas[face] = corners;
+        for (int corner = 0; corner < 3; ++corner) result.pointAreas[result.triangles[face][corner]] += corners[corner];
+    }
+
+    // Each vertex's working frame (u, v) of its tangent plane.
+    std::vector<glm::dvec3> frameU(vertexCount), frameV(vertexCount);
+    for (std::size_t vertex = 0; vertex < vertexCount; ++vertex) {
+        frameU[vertex] = perpendicularTo(result.normals[vertex]);
+        frameV[vertex] = glm::cross(result.normals[vertex], frameU[vertex]);
+    }
+    auto cornerWeight = [&](std::size_t face, int corner) {
+        const double pointArea = result.pointAreas[result.triangles[face][corner]];
+        return pointArea > 0.0 ? cornerAreas[face][corner] / pointArea : 0.0;
+    };
+
+    // 3 and 4. II per face by least squares, carried to the vertices.
+    std::vector<Tensor2> vertexTensors(vertexCount);
+    std::vector<double> tensorWeights(vertexCount, 0.0);
+    for (std::size_t face = 0; face < faceCount; ++face) {
+        const FaceFrame& frame = frames[face];
+        const glm::uvec3& corners = result.triangles[face];
+        // Unknowns (L, M, N) of II = [[L, M], [M, N]]; per edge e = (x, y) in the face frame and the change dn of
+        // the normal along it: x L + y M = dn.t and x M + y N = dn.b.
+        std::array<std::array<double, 3>, 3> normalMatrix{};
+        std::array<double, 3> rightSide{};
+        for (int i = 0; i < 3; ++i) {
+            const glm::dvec2 e = frame.inPlane(frame.edges[i]);
+            const glm::dvec2 dn =
+                frame.inPlane(result.normals[corners[(i + 2) % 3]] - result.normals[corners[(i + 1) % 3]]);
+            normalMatrix[0][0] += e.x * e.x;
+            normalMatrix[0][1] += e.x * e.y;
+            normalMatrix[1][1] += e.x * e.x + e.y * e.y;
+            normalMatrix[1][2] += e.x * e.y;
+            normalMatrix[2][2] += e.y * e.y;
+            rightSide[0] += e.x * dn.x;
+            rightSide[1] += e.y * dn.x + e.x * dn.y;
+            rightSide[2] += e.y * dn.y;
+        }
+        normalMatrix[1][0] = normalMatrix[0][1];
+        normalMatrix[2][1] = normalMatrix[1][2];
+        std::array<double, 3> solution{};
+        if (!solveSymmetric(normalMatrix, rightSide, solution)) {
+            ++result.counts.singularCurvatureFits;
+            continue;
+        }
+        const Tensor2 faceTensor{solution[0], solution[1], solution[2]};
+        for (int corner = 0; corner < 3; ++corner) {
+            const std::uint32_t vertex = corners[corner];
+            glm::dvec3 u = frameU[vertex], v = frameV[vertex];
+            rotateFrame(u, v, result.normals[vertex], frame.normal);
+            const glm::dvec2 uf = frame.inPlane(u), vf = frame.inPlane(v);
+            const double weight = cornerWeight(face, corner);
+            Tensor2& tensor = vertexTensors[vertex];
+            tensor.xx += weight * evaluate(faceTensor, uf, uf);
+            tensor.xy += weight * evaluate(faceTensor, uf, vf);
+            tensor.yy += weight * evaluate(faceTensor, vf, vf);
+            tensorWeights[vertex] += weight;
+        }
+    }
+
+    // 5. Principal curvatures: the Jacobi rotation that diagonalises each 2x2 tensor.
+    result.curvature1.assign(vertexCount, 0.0);
+    result.curvature2.assign(vertexCount, 0.0);
+    result.direction1.resize(vertexCount);
+    result.direction2.resize(vertexCount);
+    for (std::size_t vertex = 0; vertex < vertexCount; ++vertex) {
+        Tensor2 tensor = vertexTensors[vertex];
+        if (tensorWeights[vertex] > 0.0) {
+            // Faces whose fit failed left the weights short of 1: the rest stand for the whole neighbourhood.
+            tensor.xx /= tensorWeights[vertex];
+            tensor.xy /= tensorWeights[vertex];
+            tensor.yy /= tensorWeights[vertex];
+        } else {
+            ++result.counts.isolatedVertices;
+        }
+        const double angle = 0.5 * std::atan2(2.0 * tensor.xy, tensor.xx - tensor.yy);
+        const double c = std::cos(angle), s = std::sin(angle);
+        double larger = tensor.xx * c * c + 2.0 * tensor.xy * c * s + tensor.yy * s * s;
+        double smaller = tensor.xx * s * s - 2.0 * tensor.xy * c * s + tensor.yy * c * c;
+        glm::dvec3 largerDirection = c * frameU[vertex] + s * frameV[vertex];
+        if (std::abs(smaller) > std::abs(larger)) {
+            std::swap(larger, smaller);
+            largerDirection = -s * frameU[vertex] + c * frameV[vertex];
+        }
+        result.curvature1[vertex] = larger;
+        result.curvature2[vertex] = smaller;
+        result.direction1[vertex] = largerDirection;
+        result.direction2[vertex] = glm::cross(result.normals[vertex], largerDirection);
+    }
+
+    // 6. C per face from the change of the vertex tensors along the edges, carried to the vertices.
+    std::vector<glm::dvec4> derivativeSums(vertexCount, glm::dvec4(0.0));
+    std::vector<double> derivativeWeights(vertexCount, 0.0);
+    for (std::size_t face = 0; face < faceCount; ++face) {
+        const FaceFrame& frame = frames[face];
+        const glm::uvec3& corners = result.triangles[face];
+        std::array<Tensor2, 3> cornerTensors;
+        std::array<glm::dvec2, 3> principal1, principal2; // each corner's principal frame in the face frame
+        for (int corner = 0; corner < 3; ++corner) {
+            const std::uint32_t vertex = corners[corner];
+            glm::dvec3 d1 = result.direction1[vertex], d2 = result.direction2[vertex];
+            rotateFrame(d1, d2, result.normals[vertex], frame.normal);
+            principal1[corner] = frame.inPlane(d1);
+            principal2[corner] = frame.inPlane(d2);
+            const double k1 = result.curvature1[vertex], k2 = result.curvature2[vertex];
+            const glm::dvec2 &p = principal1[corner], &q = principal2[corner];
+            cornerTensors[corner] = {k1 * p.x * p.x + k2 * q.x * q.x, k1 * p.x * p.y + k2 * q.x * q.y,
+                                     k1 * p.y * p.y + k2 * q.y * q.y};
+        }
+        // Unknowns (a, b, c, d) = (C_ttt, C_ttb, C_tbb, C_bbb); per edge e = (x, y) and the change dII along it:
+        // x a + y b = dII_tt, x b + y c = dII_tb, x c + y d = dII_bb.
+        std::array<std::array<double, 4>, 4> normalMatrix{};
+        std::array<double, 4> rightSide{};
+        for (int i = 0; i < 3; ++i) {
+            const glm::dvec2 e = frame.inPlane(frame.edges[i]);
+            const Tensor2& from = cornerTensors[(i + 1) % 3];
+            const Tensor2& to = cornerTensors[(i + 2) % 3];
+            const std::array<double, 3> change = {to.xx - from.xx, to.xy - from.xy, to.yy - from.yy};
+            for (int row = 0; row < 3; ++row) {
+                // Row `row` has x at unknown `row` and y at unknown `row + 1`.
+                normalMatrix[row][row] += e.x * e.x;
+                normalMatrix[row][row + 1] += e.x * e.y;
+                normalMatrix[row + 1][row] += e.x * e.y;
+                normalMatrix[row + 1][row + 1] += e.y * e.y;
+                rightSide[row] += e.x * change[row];
+                rightSide[row + 1] += e.y * change[row];
+            }
+        }
+        std::array<double, 4> solution{};
+        if (!solveSymmetric(normalMatrix, rightSide, solution)) {
+            ++result.counts.singularDerivativeFits;
+            continue;
+        }
+        const glm::dvec4 faceDerivative(solution[0], solution[1], solution[2], solution[3]);
+        for (int corner = 0; corner < 3; ++corner) {
+            const glm::dvec2 &p = principal1[corner], &q = principal2[corner];
+            const double weight = cornerWeight(face, corner);
+            derivativeSums[corners[corner]] +=
+                weight * glm::dvec4(evaluate(faceDerivative, p, p, p), evaluate(faceDerivative, p, p, q),
+                                    evaluate(faceDerivative, p, q, q), evaluate(faceDerivative, q, q, q));
+            derivativeWeights[corners[corner]] += weight;
+        }
+    }
+    result.derivative.resize(vertexCount);
+    for (std::size_t vertex = 0; vertex < vertexCount; ++vertex)
+        result.derivative[vertex] = derivativeWeights[vertex] > 0.0 ? derivativeSums[vertex] / derivativeWeights[vertex]
+                                                                    : glm::dvec4(0.0);
+    return result;
+}
+
+} // namespace inkgraph

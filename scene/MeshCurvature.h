@@ -1,0 +1,80 @@
+#pragma once
+/** @file Per-vertex curvature of a triangle mesh (Rusinkiewicz 2004, docs/algorithms.md §4.3 steps 1-6): normals,
+ *  Voronoi point areas, the second fundamental form fitted per face and carried to the vertices, principal curvatures
+ *  and directions, and the derivative of curvature C fitted the same way one order up. No GL; all in double.
+ *
+ *  Everything is computed on position-welded vertices (MeshOps weldVertices, ignoring normals): loaders keep a copy
+ *  of a vertex per distinct normal, and a cube's split corners, or an STL soup, would otherwise be separate sheets
+ *  with no neighbours across an edge. Sign convention: curvature is positive where the surface bends away from its
+ *  normal (a sphere with outward normals has kappa = +1/R). */
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace inkgraph {
+
+struct MeshCurvatureCounts {
+    std::size_t weldedVertices = 0;
+    /** Faces left out of everything: two corners weld together, or the area is at most 1e-14 x (bounding-box
+     *  diagonal)^2 (the loaders' rule). */
+    std::size_t degenerateFaces = 0;
+    /** Faces whose least-squares fit (of II, or of C) was singular to working precision and so adds nothing; rtsc's
+     *  LDL^T failure. A face that is not degenerate by area can still be singular (a needle). */
+    std::size_t singularCurvatureFits = 0;
+    std::size_t singularDerivativeFits = 0;
+    /** Welded vertices no curvature fit reaches (no usable face touches them, or every fit around them was
+     *  singular): zero curvature and C. Without a usable face the normal is (0, 0, 1). */
+    std::size_t isolatedVertices = 0;
+};
+
+/** The curvature of one mesh, per welded vertex. Every value is finite. */
+struct MeshCurvature {
+    std::vector<std::uint32_t> weldedOf;   ///< per input vertex: its welded vertex
+    std::vector<glm::dvec3> positions;     ///< per welded vertex (the first input copy's position)
+    /** The usable faces (not degenerate), in welded ids, counter-clockwise as the input; what lines are found on. */
+    std::vector<glm::uvec3> triangles;
+    std::vector<std::uint32_t> sourceFace; ///< per usable face: its index in the input triangles
+    std::vector<glm::dvec3> normals;       ///< unit, Max (1999) weighted: exact for vertices on a sphere
+    std::vector<double> pointAreas;        ///< mixed Voronoi area (Meyer et al. 2003); they sum to the surface area
+    /** Principal curvatures, sorted so |kappa1| >= |kappa2|, and their unit directions, perpendicular to the normal,
+     *  with direction2 = normal x direction1. */
+    std::vector<double> curvature1;
+    std::vector<double> curvature2;
+    std::vector<glm::dvec3> direction1;
+    std::vector<glm::dvec3> direction2;
+    /** The derivative of the second fundamental form, C(a, b, c) = (D_a II)(b, c), a symmetric trilinear form, in
+     *  the principal frame: (C111, C112, C122, C222) with index 1 = direction1, 2 = direction2. */
+    std::vector<glm::dvec4> derivative;
+    MeshCurvatureCounts counts;
+
+    /** C(d, d, d) for a tangent vector d = (d . direction1, d . direction2) in vertex `vertex`'s principal frame. */
+    double derivativeAlong(std::size_t vertex, double alongDirection1, double alongDirection2) const {
+        const glm::dvec4& c = derivative[vertex];
+        const double a = alongDirection1, b = alongDirection2;
+        return a * a * a * c.x + 3.0 * a * a * b * c.y + 3.0 * a * b * b * c.z + b * b * b * c.w;
+    }
+};
+
+/** Curvature of a triangle list (docs/algorithms.md §4.3):
+ *  1. vertex normals: the sum over faces of the face's cross product weighted by 1 / (|a|^2 |b|^2) for the corner's
+ *     two edges a, b (Max 1999); faces with a zero-length edge are skipped;
+ *  2. corner areas: the Voronoi part of each corner for a non-obtuse triangle, else half the area to the obtuse
+ *     corner and a quarter to each other (Meyer et al.); a point area is the sum of its corners;
+ *  3. per face, II in the frame (t, b) of the face plane by least squares over the three edges,
+ *     II (e.t, e.b) = (dn.t, dn.b) with dn the difference of the vertex normals along e (normal equations, LDL^T);
+ *  4. each vertex's frame rotated into the face's plane, II re-expressed in it and accumulated with weight
+ *     corner area / point area;
+ *  5. per vertex, the 2x2 tensor diagonalised (Jacobi rotation): kappa1, kappa2, direction1, direction2;
+ *  6. per face, the three vertex tensors in the face frame, their differences along the edges giving C(e, ., .) by
+ *     least squares for (C111, C112, C122, C222), carried back to the vertices like II.
+ *  `weldDistance` (absolute, >= 0): vertices closer than this are one. Throws std::out_of_range naming 'triangles'
+ *  for an index past the positions, std::invalid_argument naming 'weldDistance' for a negative or non-finite one,
+ *  and naming 'positions' for a non-finite coordinate. */
+MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                   double weldDistance);
+
+} // namespace inkgraph
