@@ -31,7 +31,7 @@ struct TradeoffRow {
      *  composite), warm: programs built and meshes uploaded once, as in a batch. */
     double frameMilliseconds = 0.0;
     double methodMilliseconds = 0.0; ///< median of the method's own passes (G-buffer + its line layer, or shade)
-    double setupMilliseconds = 0.0;  ///< one-off derived data the first frame computed (curvature), else 0
+    double setupMilliseconds = 0.0;  ///< one-off derived data of the first frame (object-space curvature), else 0
     LineAccuracy accuracy;           ///< at TradeoffConfig::tolerancePixels
     double f1AtTwoPixels = 0.0;      ///< F1 at 2 px, for methods whose lines are offset by design
 };

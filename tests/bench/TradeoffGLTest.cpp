@@ -71,6 +71,13 @@ TEST_F(TradeoffSweep, AccuraciesMatchWhatTheKernelTestsMeasure) {
     // float16 buffers cost accuracy, never gain it (to within the rounding of one row).
     EXPECT_LE(rowOf(*rows, "suggestive", "256 S1 half 3-point T0.01").accuracy.f1, suggestive.accuracy.f1 + 0.005);
 
+    // Object space on a mesh as fine as the image-space row's: as close to the analytic lines, in other ways (it
+    // follows the mesh's curvature estimate, not the G-buffer), and its curvature is derived once, on the first frame.
+    const TradeoffRow& object = rowOf(*rows, "suggestive-object", "256 S1 T0.01 66k tris");
+    EXPECT_GE(object.accuracy.f1, 0.95);
+    EXPECT_GT(object.setupMilliseconds, 0.0);
+    EXPECT_EQ(suggestive.setupMilliseconds, 0.0);
+
     // Comic shading: the exact mode is the reference (F1 1); the constant view vector moves the highlight bands.
     EXPECT_DOUBLE_EQ(rowOf(*rows, "comic", "exact view, standard").accuracy.f1, 1.0);
     EXPECT_LT(rowOf(*rows, "comic", "constant view, standard").accuracy.f1, 0.95);
