@@ -13,6 +13,7 @@
 #include <iostream>
 #include <limits>
 #include <string>
+#include <stdexcept>
 #include <vector>
 
 namespace inkgraph {
@@ -105,6 +106,28 @@ double differenceAlong(const cv::Mat& image, int row, int col, double directionX
     return gradientX * directionX + gradientY * directionY;
 }
 
+/** The analytic surface seen through a pixel centre of the torus view, for judging D_w(n.v) there. */
+struct TorusPixelTruth {
+    glm::dvec3 toEye;     ///< v = c - p
+    glm::dvec3 w;         ///< v - (n.v) n
+    double sinTheta;      ///< |w| / |v|
+    double dw;            ///< D_w(n.v) = |w|^2 kappa_r
+    double scale;         ///< |w|^2 kappa_v: the size of the tube's term, so zeros of kappa_r do not divide by ~0
+};
+
+TorusPixelTruth torusPixelTruth(const Torus& torus, const SyntheticCamera& camera, int row, int col) {
+    const test::SyntheticRay ray = camera.rayThrough({col + 0.5, row + 0.5});
+    const auto distance = test::intersectTorus(ray, glm::dvec3(0.0), torus.ring, torus.tube);
+    if (!distance) throw std::logic_error("torusPixelTruth(): the pixel misses the torus");
+    const glm::dvec3 p = ray.origin + *distance * ray.direction;
+    const glm::dvec2 uv = torus.parameters(p);
+    const glm::dvec3 toEye = camera.eye - p;
+    const glm::dvec3 n = torus.normal(uv.x, uv.y);
+    const glm::dvec3 w = toEye - glm::dot(toEye, n) * n;
+    return {toEye, w, glm::length(w) / glm::length(toEye), torus.wSquaredRadialCurvature(camera.eye, uv.x, uv.y),
+            glm::dot(w, w) * torus.curvatureV()};
+}
+
 TEST(SuggestiveContours, RadialDerivativeIsWSquaredTimesRadialCurvatureOnTorus) {
     // D_w(n.v) = |w|^2 kappa_r with v = c - p unnormalised and w moved along J w in the image (algorithms.md 3, 4.1).
     const Torus torus;
@@ -123,20 +146,14 @@ TEST(SuggestiveContours, RadialDerivativeIsWSquaredTimesRadialCurvatureOnTorus) 
     for (int row = 2; row < camera.height - 2; row += 5) {
         for (int col = 2; col < camera.width - 2; col += 5) {
             if (derivatives.valid.at<uchar>(row, col) == 0) continue;
-            const test::SyntheticRay ray = camera.rayThrough({col + 0.5, row + 0.5});
-            const auto distance = test::intersectTorus(ray, glm::dvec3(0.0), torus.ring, torus.tube);
-            ASSERT_TRUE(distance.has_value());
-            const glm::dvec3 p = ray.origin + *distance * ray.direction;
-            const glm::dvec2 uv = torus.parameters(p);
-            const glm::dvec3 toEye = camera.eye - p;
-            const glm::dvec3 n = torus.normal(uv.x, uv.y);
-            const glm::dvec3 w = toEye - glm::dot(toEye, n) * n;
-            const double sinTheta = glm::length(w) / glm::length(toEye);
+            const TorusPixelTruth truth = torusPixelTruth(torus, camera, row, col);
+            const glm::dvec3& toEye = truth.toEye;
+            const glm::dvec3& w = truth.w;
+            const double expected = truth.dw;
+            const double scale = truth.scale;
             // Away from the contour, where n.v changes faster than a central difference follows.
-            if (sinTheta > 0.9) continue;
+            if (truth.sinTheta > 0.9) continue;
             ++checked;
-            const double expected = torus.wSquaredRadialCurvature(camera.eye, uv.x, uv.y);
-            const double scale = glm::dot(w, w) * torus.curvatureV();
             worstKernel = std::max(worstKernel, std::abs(derivatives.dw.at<float>(row, col) - expected) / scale);
 
             // Negative control 1: the unit view vector, scaled by |v| into the same units, is off by cos(theta)/|v|.
@@ -503,18 +520,11 @@ TEST(SuggestiveContours, FivePointStencilIsMoreAccurateOnExactDataAndFindsTheSam
             // Both stencils judged on the same pixels: the wide one's valid set is the smaller.
             if (wideDerivatives.valid.at<uchar>(row, col) == 0) continue;
             ASSERT_EQ(narrowDerivatives.valid.at<uchar>(row, col), 255);
-            const test::SyntheticRay ray = camera.rayThrough({col + 0.5, row + 0.5});
-            const auto distance = test::intersectTorus(ray, glm::dvec3(0.0), torus.ring, torus.tube);
-            ASSERT_TRUE(distance.has_value());
-            const glm::dvec3 p = ray.origin + *distance * ray.direction;
-            const glm::dvec2 uv = torus.parameters(p);
-            const glm::dvec3 toEye = camera.eye - p;
-            const glm::dvec3 n = torus.normal(uv.x, uv.y);
-            const glm::dvec3 w = toEye - glm::dot(toEye, n) * n;
-            if (glm::length(w) / glm::length(toEye) > 0.9) continue;
+            const TorusPixelTruth truth = torusPixelTruth(torus, camera, row, col);
+            if (truth.sinTheta > 0.9) continue;
             ++checked;
-            const double expected = torus.wSquaredRadialCurvature(camera.eye, uv.x, uv.y);
-            const double scale = glm::dot(w, w) * torus.curvatureV();
+            const double expected = truth.dw;
+            const double scale = truth.scale;
             worstNarrow = std::max(worstNarrow, std::abs(narrowDerivatives.dw.at<float>(row, col) - expected) / scale);
             worstWide = std::max(worstWide, std::abs(wideDerivatives.dw.at<float>(row, col) - expected) / scale);
         }
