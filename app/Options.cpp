@@ -154,6 +154,7 @@ void checkLineFlags(const RenderOptions& options, const std::vector<std::string>
     require("--depth-jump", {"contour", "suggestive", "depth-edge", "normal-edge"});
     require("--suggestive-threshold", {"suggestive"});
     require("--suggestive-fade", {"suggestive"});
+    require("--suggestive-stencil", {"suggestive"});
     require("--supersample", {"contour", "suggestive", "depth-edge", "normal-edge", "mesh-silhouette", "crease",
                               "border"});
     if (std::size_t(options.width) * options.supersample > std::size_t(kMaxImageSide) ||
@@ -309,6 +310,16 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
             (argument == "--suggestive-threshold" ? options.suggestiveThreshold : options.suggestiveFade) = strength;
         } else if (argument == "--supersample") {
             options.supersample = parseWholeNumber(argument, value(), 1, 8);
+        } else if (argument == "--suggestive-stencil") {
+            const std::string stencil = value();
+            if (stencil != "3" && stencil != "5")
+                throw UsageError("--suggestive-stencil: expected 3 or 5, got '" + stencil + "'");
+            options.suggestiveStencil = stencil == "3" ? 3 : 5;
+        } else if (argument == "--gbuffer-precision") {
+            const std::string precision = value();
+            if (precision == "float") options.gbufferPrecision = GBufferPrecision::Float32;
+            else if (precision == "half") options.gbufferPrecision = GBufferPrecision::Float16;
+            else throw UsageError("--gbuffer-precision: expected float or half, got '" + precision + "'");
         } else if (argument == "--background") {
             const glm::dvec3 color = parseVector(argument, value());
             for (int c = 0; c < 3; ++c)
@@ -445,9 +456,14 @@ Lines (any subset; only the passes the listed types need run: see --stats "culle
                          suggestive: keep lines whose strength q (rtsc's fs^2 tan(theta) D_w kappa_r, fs = 5%
                          of the bounding radius) exceeds T (default 0.01), drawn with alpha (q - T) / (q - T + F)
                          (default F = 0.03; 0 draws every kept line in full)
+  --suggestive-stencil N suggestive: 3 (default) or 5-point central differences; 5 is fourth order, more exact on
+                         clean data, slower, and needs two pixels of one surface on each side
   --supersample S        find the G-buffer and mesh-edge lines at S x the size (1 to 8, default 1) and
                          area-downsample only the final line images: smoother, better-placed lines, S^2 the
                          work. Outline and silhouette are drawn by GL at the output size.
+  --gbuffer-precision P  float (default) | half: store the G-buffer's normal, view, w, n.v and radial fields as
+                         16-bit floats (depth stays 32-bit). Half the memory; the suggestive contours get noisy
+                         (docs/accuracy.md measures it). Also applies to --request 'gbuffer.*'
   Outline and silhouette draw nothing when the eye is inside the model (they would flood the picture).
 
 System

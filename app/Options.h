@@ -1,6 +1,7 @@
 #pragma once
 /** @file The `inkgraph render` command line: parsing and help. No GL, no files touched. */
 
+#include "passes/gbuffer/GBufferPrecision.h"
 #include "scene/FaceOrientation.h"
 
 #include <glm/glm.hpp>
@@ -52,7 +53,9 @@ struct RenderOptions {
     double depthJump = 0.05;                ///< contour, suggestive, depth-edge, normal-edge: relative depth break
     std::optional<double> suggestiveThreshold; ///< strength threshold (default: SuggestiveSettings, 0.01)
     std::optional<double> suggestiveFade;      ///< strength fade (default: SuggestiveSettings, 0.03)
+    int suggestiveStencil = 3;                 ///< points of the central differences: 3 (fast) or 5 (fourth order)
     int supersample = 1;                    ///< data buffers and edge skeletons at S x the size
+    GBufferPrecision gbufferPrecision = GBufferPrecision::Float32; ///< the G-buffer's direction fields
     glm::dvec3 background{1.0, 1.0, 1.0};
     std::vector<std::string> extraOutputs;  ///< --request: extra graph resources kept and dumped ("gbuffer.*")
     std::string dumpDirectory;

@@ -157,6 +157,7 @@ Json describeLook(const RenderOptions& options, const StillGraph& graph) {
     if (options.shading == ShadingMode::Phong || options.shading == ShadingMode::Comic)
         look["shininess"] = options.shininess;
     if (!graph.shadeMapSource.empty()) look["shademap"] = graph.shadeMapSource;
+    look["gbuffer_precision"] = options.gbufferPrecision == GBufferPrecision::Float16 ? "half" : "float";
     Json lines = Json::array();
     for (const std::string& type : knownLineTypes()) {
         if (std::find(options.lines.begin(), options.lines.end(), type) == options.lines.end()) continue;
@@ -180,8 +181,9 @@ Json describeLook(const RenderOptions& options, const StillGraph& graph) {
             const SuggestiveSettings& settings = graph.lineLayers.at(type)->settings().suggestive;
             line["threshold"] = settings.threshold;
             line["fade"] = settings.fade;
-            line["feature_size"] = settings.featureSize;
+            line["feature_size"] = settings.featureSize * graph.radialLengthUnit; // model units
             line["min_sin_theta"] = settings.minSinTheta;
+            line["stencil_points"] = settings.stencil == DifferenceStencil::Central5 ? 5 : 3;
         }
         lines.push_back(line);
     }
@@ -299,6 +301,8 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
                              : scene.light        ? scene.light->towardLight
                                                   : defaultLight(camera);
     frame.background = glm::vec4(glm::vec3(options.background), 1.0f);
+    // A point (or empty) model has no radius; 1 keeps the radial field finite there.
+    frame.radialLengthUnit = sphere.radius > 0.0 ? sphere.radius : 1.0;
 
     ShaderLibrary shaders;
     GpuScene gpuScene(scene, sphere.center);
@@ -360,7 +364,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
         std::set<std::string> usedNames;
         for (const PlannedResource& resource : plan.resources) {
             if (!store.contains(resource.name)) continue;
-            const bool isFloat = resource.desc.format == Format::RGBA32F || resource.desc.format == Format::R32F;
+            const bool isFloat = isFloatFormat(resource.desc.format);
             const std::string fileName = dumpFileName(resource.name, isFloat, graph.shadingResource);
             if (!usedNames.insert(fileName).second)
                 throw std::logic_error("renderStill(): two resources dump to '" + fileName + "'");

@@ -60,7 +60,8 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     SceneOrientation* cpuOrientation = graph.orientation->usesCpuMarking() ? graph.orientation.get() : nullptr;
 
     graph.passes.push_back(std::make_unique<GBufferPass>("gbuffer", setup.shaders, setup.gpuScene, setup.frame,
-                                                         options.supersample));
+                                                         options.supersample, options.gbufferPrecision));
+    graph.radialLengthUnit = setup.frame.radialLengthUnit;
 
     if (options.shading != ShadingMode::None) {
         ShadeSettings settings;
@@ -116,9 +117,12 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         } else if (type == "suggestive") {
             settings.source = LineSource::Suggestive;
             settings.suggestive.depthJump = depthJump;
-            settings.suggestive.featureSize = float(kSuggestiveFeatureSizeFraction * setup.sphere.radius);
+            // gbuffer.radial is in units of the bounding radius (FrameParams::radialLengthUnit), so fs is too.
+            settings.suggestive.featureSize = float(kSuggestiveFeatureSizeFraction * setup.sphere.radius /
+                                                    setup.frame.radialLengthUnit);
             if (options.suggestiveThreshold) settings.suggestive.threshold = float(*options.suggestiveThreshold);
             if (options.suggestiveFade) settings.suggestive.fade = float(*options.suggestiveFade);
+            if (options.suggestiveStencil == 5) settings.suggestive.stencil = DifferenceStencil::Central5;
         } else if (type == "depth-edge") {
             settings.source = LineSource::DepthEdge;
             settings.depthEdge.relativeJump = depthJump;

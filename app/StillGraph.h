@@ -46,6 +46,7 @@ struct StillGraph {
     std::string shadingResource; ///< the colour the composite reads ("shade.color"), or empty for --shading none
     std::string shadeMapSource;  ///< the shade map's ShadeMap::source ("builtin:bands-5", a path), or empty
     std::string finalResource = "composite.final";
+    double radialLengthUnit = 1.0; ///< the G-buffer's radial field's length unit (model units), for --stats
     OutlinePass* outline = nullptr;       ///< for --stats
     SilhouettePass* silhouette = nullptr; ///< for --stats
     MeshEdgesPass* meshEdges = nullptr;   ///< for --stats

@@ -45,6 +45,9 @@ GlFormat glFormatOf(Format format) {
     case Format::R32F: return {GL_R32F, GL_RED, GL_FLOAT, 1};
     case Format::RGBA8: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4};
     case Format::R8: return {GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1};
+    // Half floats are read back and uploaded as float32: GL converts, so the CPU never handles float16.
+    case Format::RGBA16F: return {GL_RGBA16F, GL_RGBA, GL_FLOAT, 4};
+    case Format::R16F: return {GL_R16F, GL_RED, GL_FLOAT, 1};
     }
     throw std::logic_error("glFormatOf(): unknown format");
 }

@@ -11,6 +11,8 @@ int bytesPerPixel(Format format)
     case Format::R32F: return 4;
     case Format::RGBA8: return 4;
     case Format::R8: return 1;
+    case Format::RGBA16F: return 8;
+    case Format::R16F: return 2;
     }
     assert(false && "bytesPerPixel(): unknown Format");
     return 0;
@@ -23,9 +25,16 @@ std::string_view formatName(Format format)
     case Format::R32F: return "r32f";
     case Format::RGBA8: return "rgba8";
     case Format::R8: return "r8";
+    case Format::RGBA16F: return "rgba16f";
+    case Format::R16F: return "r16f";
     }
     assert(false && "formatName(): unknown Format");
     return "unknown";
+}
+
+bool isFloatFormat(Format format)
+{
+    return format == Format::RGBA32F || format == Format::R32F || format == Format::RGBA16F || format == Format::R16F;
 }
 
 ResourceName ResourceName::split(std::string_view resource)

@@ -11,11 +11,15 @@ enum class Format {
     R32F,    ///< one float32 channel
     RGBA8,   ///< four unorm8 channels (final colour)
     R8,      ///< one unorm8 channel (line masks)
+    RGBA16F, ///< four float16 channels (read back as float32)
+    R16F,    ///< one float16 channel (read back as float32)
 };
 
 /** Bytes per pixel, and a short name ("rgba32f") for plans and manifests. */
 int bytesPerPixel(Format format);
 std::string_view formatName(Format format);
+/** True for the float formats (32- and 16-bit): their images are float32 on the CPU and dump as EXR. */
+bool isFloatFormat(Format format);
 
 /** Every graph texture is frame-sized, scaled by `scale` (supersampling renders data buffers larger). */
 struct TextureDesc {

@@ -15,6 +15,10 @@ struct FrameParams {
     glm::dvec3 worldOrigin{0.0};
     glm::dvec3 towardLightWorld{0.0, 0.0, 1.0}; ///< unit
     glm::vec4 background{1.0f, 1.0f, 1.0f, 1.0f}; ///< display RGBA of the paper behind the model
+    /** The length `gbuffer.radial` is measured in (the app passes the bounding radius): its values are then of
+     *  order 1 at any model scale, so they neither overflow nor underflow a float16 buffer, and a model scaled by
+     *  1e-4 gives the same numbers as at scale 1. */
+    double radialLengthUnit = 1.0;
 
     /** View matrix for positions stored relative to worldOrigin, computed in double then rounded. */
     glm::mat4 viewFromModel() const;

@@ -1,6 +1,7 @@
 #include "postfx/SuggestiveContours.h"
 
 #include <opencv2/core/hal/intrin.hpp>
+#include <opencv2/core.hpp>
 #include <opencv2/core/utility.hpp>
 
 #include <algorithm>
@@ -155,6 +156,14 @@ void differentiateAlongW(const RowInputs& in, int begin, int end, float depthJum
     }
 }
 
+/** n.v > 0 and sin(theta) >= the cut-off: where a second derivative along w is taken. */
+inline bool facesAwayFromFrontal(const cv::Vec4f& radial, float minSinThetaSquared) {
+    const float normalDistance = radial[kNormalDistance];
+    const float wSquared = radial[kWLengthSquared];
+    // sin^2 = |w|^2 / |v|^2 with |v|^2 = |w|^2 + (n.v)^2, compared without a division.
+    return normalDistance > 0.0f && wSquared >= minSinThetaSquared * (wSquared + normalDistance * normalDistance);
+}
+
 /** D_w D_w(n.v) at one pixel from the D_w(n.v) rows above, at and below it, or nothing where it is invalid: a
  *  neighbour's D_w undefined (so every difference involved stays on the pixel's surface), n.v <= 0, or sin(theta)
  *  below the cut-off. The caller keeps the pixel off the image's edges. */
@@ -163,11 +172,7 @@ std::optional<float> secondDerivativeAt(const cv::Vec4f& radial, int col, const 
                                         const float* definedBelow, float minSinThetaSquared) {
     if (!(defined[col - 1] > 0.0f && defined[col + 1] > 0.0f && definedAbove[col] > 0.0f && definedBelow[col] > 0.0f))
         return std::nullopt;
-    const float normalDistance = radial[kNormalDistance];
-    const float wSquared = radial[kWLengthSquared];
-    // sin^2 = |w|^2 / |v|^2 with |v|^2 = |w|^2 + (n.v)^2, compared without a division.
-    if (!(normalDistance > 0.0f) || !(wSquared >= minSinThetaSquared * (wSquared + normalDistance * normalDistance)))
-        return std::nullopt;
+    if (!facesAwayFromFrontal(radial, minSinThetaSquared)) return std::nullopt;
     const float gradientX = dw[col + 1] - dw[col - 1];
     const float gradientY = dwBelow[col] - dwAbove[col];
     return 0.5f * (gradientX * radial[kImageWX] + gradientY * radial[kImageWY]);
@@ -175,6 +180,47 @@ std::optional<float> secondDerivativeAt(const cv::Vec4f& radial, int col, const 
 
 /** A sign change, counting a zero once: as the non-negative side, so - 0 + is one crossing, between - and 0. */
 inline bool changesSign(float a, float b) { return (a < 0.0f) != (b < 0.0f); }
+
+/** The strength rule of a crossing: rtsc's q = fs^2 D_w D_w(n.v) / (|w|^2 n.v), its threshold and fade. */
+struct StrengthRule {
+    float featureSizeSquared;
+    float threshold;
+    float fade;
+};
+
+/** A kept crossing between neighbouring pixels a and b: where it lies from a (0..1), its alpha, and which pixel is
+ *  marked. */
+struct Crossing {
+    float t;
+    float alpha;
+    bool marksA;
+};
+
+/** The crossing of D_w(n.v) between valid pixels a and b (given D_w, D_w D_w and radial at each), kept where
+ *  D_w D_w(n.v) > 0 and the strength passes the threshold, both interpolated to the crossing so the test does not jump
+ *  with which pixel lies nearer. The pixel with the smaller |D_w(n.v)| is marked. */
+std::optional<Crossing> keptCrossing(float dwA, float dwB, float dwdwA, float dwdwB, const cv::Vec4f& radialA,
+                                     const cv::Vec4f& radialB, const StrengthRule& rule) {
+    if (!changesSign(dwA, dwB)) return std::nullopt;
+    const float t = dwA / (dwA - dwB);
+    const float dwdw = dwdwA + t * (dwdwB - dwdwA);
+    if (!(dwdw > 0.0f)) return std::nullopt;
+    const float wSquared = radialA[kWLengthSquared] + t * (radialB[kWLengthSquared] - radialA[kWLengthSquared]);
+    const float normalDistance = radialA[kNormalDistance] + t * (radialB[kNormalDistance] - radialA[kNormalDistance]);
+    const float denominator = wSquared * normalDistance;
+    if (!(denominator > 0.0f)) return std::nullopt;
+    const float strength = rule.featureSizeSquared * dwdw / denominator;
+    if (!(strength > rule.threshold)) return std::nullopt;
+    // rtsc's fade of the excess over the threshold: a line grows in from nothing as a view change makes it stronger,
+    // instead of popping in at a fixed strength.
+    const float excess = strength - rule.threshold;
+    return Crossing{t, rule.fade > 0.0f ? excess / (excess + rule.fade) : 1.0f, std::abs(dwA) <= std::abs(dwB)};
+}
+
+/** The point of a crossing between (colA, rowA) and its neighbour to the right, or below when `downward`. */
+cv::Point2f crossingPosition(int rowA, int colA, bool downward, float t) {
+    return {float(colA) + (downward ? 0.0f : t), float(rowA) + (downward ? t : 0.0f)};
+}
 
 /** What one band of rows found. Marks in the row above the band belong to the band above, so they wait here until
  *  the bands have joined instead of being written concurrently. */
@@ -197,8 +243,7 @@ public:
                 int firstRow, int endRow)
         : mRadial(radial), mDepth(depth), mMask(mask), mDepthJump(settings.depthJump),
           mMinSinThetaSquared(settings.minSinTheta * settings.minSinTheta),
-          mFeatureSizeSquared(settings.featureSize * settings.featureSize), mThreshold(settings.threshold),
-          mFade(settings.fade), mRows(radial.rows), mCols(radial.cols), mFirstRow(firstRow), mEndRow(endRow),
+          mRule{settings.featureSize * settings.featureSize, settings.threshold, settings.fade}, mRows(radial.rows), mCols(radial.cols), mFirstRow(firstRow), mEndRow(endRow),
           mFirstLoaded(std::max(firstRow - 3, 0)), mSpans(size_t(std::min(endRow + 2, mRows) - mFirstLoaded)),
           mNormalDistance(kRingRows * size_t(mCols), 0.0f), mImageWX(kRingRows * size_t(mCols), 0.0f),
           mImageWY(kRingRows * size_t(mCols), 0.0f), mDw(kRingRows * size_t(mCols), 0.0f),
@@ -313,36 +358,19 @@ private:
         const float dwB = mDw[slotOf(rowB) + size_t(colB)];
         if (!(mDefined[slotOf(rowA) + size_t(colA)] > 0.0f && mDefined[slotOf(rowB) + size_t(colB)] > 0.0f) ||
             !changesSign(dwA, dwB))
-            return;
+            return; // most pairs: skip the second derivatives
         const auto dwdwA = secondDerivative(rowA, colA);
         const auto dwdwB = secondDerivative(rowB, colB);
         if (!dwdwA || !dwdwB) return;
-        const cv::Vec4f& radialA = mRadial.ptr<cv::Vec4f>(rowA)[colA];
-        const cv::Vec4f& radialB = mRadial.ptr<cv::Vec4f>(rowB)[colB];
-
-        // The values at the linear crossing, so the test does not jump with which pixel lies nearer.
-        const float t = dwA / (dwA - dwB);
-        const float dwdw = *dwdwA + t * (*dwdwB - *dwdwA);
-        if (!(dwdw > 0.0f)) return;
-        const float wSquared = radialA[kWLengthSquared] + t * (radialB[kWLengthSquared] - radialA[kWLengthSquared]);
-        const float normalDistance =
-            radialA[kNormalDistance] + t * (radialB[kNormalDistance] - radialA[kNormalDistance]);
-        const float denominator = wSquared * normalDistance;
-        if (!(denominator > 0.0f)) return;
-        const float strength = mFeatureSizeSquared * dwdw / denominator;
-        if (!(strength > mThreshold)) return;
-
-        const bool marksA = std::abs(dwA) <= std::abs(dwB);
-        const cv::Point marked = marksA ? cv::Point(colA, rowA) : cv::Point(colB, rowB);
+        const std::optional<Crossing> crossing = keptCrossing(
+            dwA, dwB, *dwdwA, *dwdwB, mRadial.ptr<cv::Vec4f>(rowA)[colA], mRadial.ptr<cv::Vec4f>(rowB)[colB], mRule);
+        if (!crossing) return;
+        const cv::Point marked = crossing->marksA ? cv::Point(colA, rowA) : cv::Point(colB, rowB);
         if (marked.y < mFirstRow)
             mResult.marksAboveBand.push_back(marked);
         else
             mMask.ptr<uchar>(marked.y)[marked.x] = 255;
-        const cv::Point2f position(float(colA) + (downward ? 0.0f : t), float(rowA) + (downward ? t : 0.0f));
-        // rtsc's fade of the excess over the threshold: a line grows in from nothing as a view change makes it
-        // stronger, instead of popping in at a fixed strength.
-        const float excess = strength - mThreshold;
-        mResult.points.push_back({position, mFade > 0.0f ? excess / (excess + mFade) : 1.0f});
+        mResult.points.push_back({crossingPosition(rowA, colA, downward, crossing->t), crossing->alpha});
     }
 
     const cv::Mat& mRadial;
@@ -350,9 +378,7 @@ private:
     cv::Mat& mMask;
     float mDepthJump;
     float mMinSinThetaSquared;
-    float mFeatureSizeSquared;
-    float mThreshold;
-    float mFade;
+    StrengthRule mRule;
     int mRows;
     int mCols;
     int mFirstRow;
@@ -368,11 +394,100 @@ private:
     BandResult mResult;
 };
 
+
+/** Weights of the fourth-order central difference at offsets -2, -1, +1, +2 (the centre weighs 0). */
+constexpr std::array<int, 4> kWideOffsets = {-2, -1, 1, 2};
+constexpr std::array<float, 4> kWideWeights = {1.0f / 12.0f, -8.0f / 12.0f, 8.0f / 12.0f, -1.0f / 12.0f};
+
+/** The derivative of `field` along the image vector (wx, wy) at (row, col) by the five-point stencil, or nothing
+ *  where a stencil pixel is not `usable`. The caller keeps (row, col) two pixels off the image's edges. */
+template <typename Usable>
+std::optional<float> wideDerivative(const cv::Mat& field, int row, int col, float wx, float wy, Usable usable) {
+    float gradientX = 0.0f;
+    float gradientY = 0.0f;
+    for (size_t i = 0; i < kWideOffsets.size(); ++i) {
+        const int offset = kWideOffsets[i];
+        if (!usable(row, col + offset) || !usable(row + offset, col)) return std::nullopt;
+        gradientX += kWideWeights[i] * field.at<float>(row, col + offset);
+        gradientY += kWideWeights[i] * field.at<float>(row + offset, col);
+    }
+    return gradientX * wx + gradientY * wy;
+}
+
+/** computeRadialDerivatives() with DifferenceStencil::Central5: a plain per-pixel loop over full-image maps. */
+RadialDerivatives wideRadialDerivatives(const cv::Mat& radial, const cv::Mat& depth,
+                                        const SuggestiveSettings& settings) {
+    const int rows = radial.rows;
+    const int cols = radial.cols;
+    cv::Mat normalDistance;
+    cv::extractChannel(radial, normalDistance, kNormalDistance);
+    RadialDerivatives result;
+    result.dw = cv::Mat::zeros(radial.size(), CV_32FC1);
+    result.dwdw = cv::Mat::zeros(radial.size(), CV_32FC1);
+    result.valid = cv::Mat::zeros(radial.size(), CV_8UC1);
+    cv::Mat defined = cv::Mat::zeros(radial.size(), CV_8UC1);
+    constexpr int kReach = 2;
+    for (int row = kReach; row + kReach < rows; ++row) {
+        for (int col = kReach; col + kReach < cols; ++col) {
+            const float z = depth.at<float>(row, col);
+            if (!(z > 0.0f)) continue;
+            const cv::Vec4f& here = radial.at<cv::Vec4f>(row, col);
+            const auto sameSurface = [&](int r, int c) {
+                return joinsNeighbour(z, depth.at<float>(r, c), settings.depthJump);
+            };
+            if (const auto dw = wideDerivative(normalDistance, row, col, here[kImageWX], here[kImageWY], sameSurface)) {
+                result.dw.at<float>(row, col) = *dw;
+                defined.at<uchar>(row, col) = 1;
+            }
+        }
+    }
+    const float minSinThetaSquared = settings.minSinTheta * settings.minSinTheta;
+    const auto dwDefined = [&](int r, int c) { return defined.at<uchar>(r, c) != 0; };
+    for (int row = kReach; row + kReach < rows; ++row) {
+        for (int col = kReach; col + kReach < cols; ++col) {
+            const cv::Vec4f& here = radial.at<cv::Vec4f>(row, col);
+            if (!dwDefined(row, col) || !facesAwayFromFrontal(here, minSinThetaSquared)) continue;
+            if (const auto dwdw = wideDerivative(result.dw, row, col, here[kImageWX], here[kImageWY], dwDefined)) {
+                result.dwdw.at<float>(row, col) = *dwdw;
+                result.valid.at<uchar>(row, col) = 255;
+            }
+        }
+    }
+    return result;
+}
+
+/** extractSuggestiveContours() over full-image derivative maps: every pair of valid 4-neighbours. */
+LineSkeleton crossingsOfMaps(const cv::Mat& radial, const RadialDerivatives& derivatives,
+                             const SuggestiveSettings& settings) {
+    const StrengthRule rule{settings.featureSize * settings.featureSize, settings.threshold, settings.fade};
+    LineSkeleton skeleton;
+    skeleton.mask = cv::Mat::zeros(radial.size(), CV_8UC1);
+    for (int row = 0; row < radial.rows; ++row) {
+        for (int col = 0; col < radial.cols; ++col) {
+            if (!derivatives.valid.at<uchar>(row, col)) continue;
+            for (const bool downward : {false, true}) {
+                const int rowB = downward ? row + 1 : row;
+                const int colB = downward ? col : col + 1;
+                if (rowB >= radial.rows || colB >= radial.cols || !derivatives.valid.at<uchar>(rowB, colB)) continue;
+                const std::optional<Crossing> crossing =
+                    keptCrossing(derivatives.dw.at<float>(row, col), derivatives.dw.at<float>(rowB, colB),
+                                 derivatives.dwdw.at<float>(row, col), derivatives.dwdw.at<float>(rowB, colB),
+                                 radial.at<cv::Vec4f>(row, col), radial.at<cv::Vec4f>(rowB, colB), rule);
+                if (!crossing) continue;
+                const cv::Point marked = crossing->marksA ? cv::Point(col, row) : cv::Point(colB, rowB);
+                skeleton.mask.at<uchar>(marked) = 255;
+                skeleton.points.push_back({crossingPosition(row, col, downward, crossing->t), crossing->alpha});
+            }
+        }
+    }
+    return skeleton;
+}
 } // namespace
 
 RadialDerivatives computeRadialDerivatives(const cv::Mat& radial, const cv::Mat& depth,
                                            const SuggestiveSettings& settings) {
     checkInputs("computeRadialDerivatives()", radial, depth, settings);
+    if (settings.stencil == DifferenceStencil::Central5) return wideRadialDerivatives(radial, depth, settings);
     const int rows = radial.rows;
     const int cols = radial.cols;
     cv::Mat normalDistance(radial.size(), CV_32FC1);
@@ -413,6 +528,8 @@ RadialDerivatives computeRadialDerivatives(const cv::Mat& radial, const cv::Mat&
 LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth,
                                        const SuggestiveSettings& settings) {
     checkInputs("extractSuggestiveContours()", radial, depth, settings);
+    if (settings.stencil == DifferenceStencil::Central5)
+        return crossingsOfMaps(radial, wideRadialDerivatives(radial, depth, settings), settings);
     LineSkeleton skeleton;
     skeleton.mask = cv::Mat::zeros(radial.size(), CV_8UC1);
 

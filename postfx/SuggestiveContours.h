@@ -6,6 +6,16 @@
 
 namespace inkgraph {
 
+/** The finite-difference stencil of both derivatives along w. */
+enum class DifferenceStencil {
+    /** (f(x+1) - f(x-1)) / 2: second order, the fast banded SIMD scanner (the default). */
+    Central3,
+    /** (-f(x+2) + 8 f(x+1) - 8 f(x-1) + f(x-2)) / 12: fourth order, but it needs two pixels of one surface on every
+     *  side and amplifies data noise ~1.4x more (the sum of |weights| is 1.5 vs 1); a plain full-image path, slower.
+     *  Kept to measure the trade (bench/TradeoffSweep). */
+    Central5,
+};
+
 struct SuggestiveSettings {
     /** Pixels with sin(theta) = |w| / |v| below this are skipped: near-frontal, w has no direction there, and
      *  n.v is at a maximum so no suggestive contour can pass. Noise in n.v makes points there otherwise (a sphere
@@ -22,16 +32,17 @@ struct SuggestiveSettings {
      *  nothing instead of popping in; 0: full strength. The default is rtsc's. */
     float fade = 0.03f;
     float depthJump = 0.05f; ///< no difference is taken across a relative depth jump larger than this
+    DifferenceStencil stencil = DifferenceStencil::Central3;
 };
 
 /** Per-pixel derivatives along w, for tests and the kernel. */
 struct RadialDerivatives {
-    /** CV_32FC1: D_w(n.v), central differences of n.(c - p) dotted with the image-space J w; 0 where a difference
-     *  would leave the pixel's surface (depth break, background, image edge). */
+    /** CV_32FC1: D_w(n.v), central differences (settings.stencil) of n.(c - p) dotted with the image-space J w; 0
+     *  where a difference would leave the pixel's surface (depth break, background, image edge). */
     cv::Mat dw;
     cv::Mat dwdw; ///< CV_32FC1: D_w D_w(n.v), central differences of dw along J w; 0 where not valid
-    /** CV_8UC1: 255 where dwdw is defined: dw is defined at all four neighbours (so every difference lies on one
-     *  surface), n.v > 0 and sin(theta) >= minSinTheta. */
+    /** CV_8UC1: 255 where dwdw is defined: dw is defined at every neighbour the stencil reads (so every difference
+     *  lies on one surface), n.v > 0 and sin(theta) >= minSinTheta. */
     cv::Mat valid;
 };
 

@@ -6,6 +6,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <stdexcept>
+#include <string_view>
 
 namespace inkgraph {
 
@@ -20,16 +21,23 @@ const std::vector<GBufferPass::Field>& GBufferPass::fields() {
 }
 
 GBufferPass::GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-                         int supersample)
+                         int supersample, GBufferPrecision precision)
     : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSupersample(supersample),
-      mDepth(mName + " depth test") {
+      mPrecision(precision), mDepth(mName + " depth test") {
     if (supersample < 1)
         throw std::invalid_argument("GBufferPass(): 'supersample' must be at least 1, got " +
                                     std::to_string(supersample));
 }
 
+Format GBufferPass::formatOf(const Field& field) const {
+    if (mPrecision == GBufferPrecision::Float32 || std::string_view(field.name) == "depth") return field.format;
+    if (field.format == Format::RGBA32F) return Format::RGBA16F;
+    if (field.format == Format::R32F) return Format::R16F;
+    return field.format;
+}
+
 void GBufferPass::declare(PassBuilder& builder) const {
-    for (const Field& field : fields()) builder.write(field.name, {field.format, mSupersample}, Need::Optional);
+    for (const Field& field : fields()) builder.write(field.name, {formatOf(field), mSupersample}, Need::Optional);
 }
 
 GlProgram& GBufferPass::programFor(const std::vector<std::string>& defines) {
@@ -93,7 +101,10 @@ void GBufferPass::execute(PassContext& context) {
     glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
     glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
     glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
-    if (gl.isLive("radial")) glUniform2f(program.uniform("viewportSize"), float(width), float(height));
+    if (gl.isLive("radial")) {
+        glUniform2f(program.uniform("viewportSize"), float(width), float(height));
+        glUniform1f(program.uniform("radialLengthScale"), float(1.0 / mFrame.radialLengthUnit));
+    }
     const GLint baseColorLocation = program.uniform("baseColor");
     for (const GpuScene::DrawMesh& mesh : mScene.meshes()) {
         glUniform4fv(baseColorLocation, 1, glm::value_ptr(mesh.baseColor));

@@ -10,7 +10,13 @@
  *  | gbuffer.depth      | r32f    | optional | linear view depth (distance along -z in view space), 0 off-model  |
  *  | gbuffer.coverage   | r8      | optional | 255 where the model covers the pixel centre                       |
  *  | gbuffer.baseColor  | rgba8   | optional | sRGB-encoded material base colour, a = coverage                   |
- *  | gbuffer.radial     | rgba32f | optional | (n.(c - p), (J w).x, (J w).y, |w|^2) with v = c - p unnormalised  |
+ *  | gbuffer.radial     | rgba32f | optional | (n.(c - p), (J w).x, (J w).y, |w|^2) with v = c - p unnormalised, |
+ *  |                    |         |          | lengths in units of FrameParams::radialLengthUnit (J w: pixels)   |
+ *
+ *  GBufferPrecision::Float16 stores normal, view, wVec, nDotV and radial as rgba16f / r16f instead (read back as
+ *  float32): half the memory and bandwidth, about 3 decimal digits. It exists to measure what float32 buys
+ *  (bench/TradeoffSweep, docs/accuracy.md). Depth stays r32f: linear depth overflows float16 at 65504 and the
+ *  relative depth-break test needs its precision.
  *
  *  `radial` is what suggestive contours read (postfx/SuggestiveContours.h): n.v with the unnormalised view vector
  *  (DeCarlo's form, whose zero set of D_w(n.v) is exactly kappa_r = 0), the image-space direction of w as perspective
@@ -26,6 +32,7 @@
 #include "graph/Pass.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/gbuffer/GBufferPrecision.h"
 
 #include <map>
 #include <memory>
@@ -45,7 +52,10 @@ public:
 
     /** `supersample` >= 1 scales every field; throws std::invalid_argument otherwise. */
     GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-                int supersample = 1);
+                int supersample = 1, GBufferPrecision precision = GBufferPrecision::Float32);
+
+    /** The format `field` is stored in at this pass's precision. */
+    Format formatOf(const Field& field) const;
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
@@ -63,6 +73,7 @@ private:
     const FrameParams& mFrame;
     std::map<std::string, std::unique_ptr<GlProgram>> mPrograms; ///< keyed by the live-output defines
     int mSupersample;
+    GBufferPrecision mPrecision;
     PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
 };
 

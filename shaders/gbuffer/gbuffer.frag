@@ -7,6 +7,7 @@ uniform vec4 baseColor; // linear
 #ifdef OUT_RADIAL
 uniform mat4 clipFromView;
 uniform vec2 viewportSize; // pixels
+uniform float radialLengthScale; // 1 / the length unit of the radial field (the bounding radius)
 #endif
 
 #ifdef OUT_NORMAL
@@ -78,9 +79,13 @@ void main() {
 #ifdef OUT_RADIAL
     // DeCarlo's unnormalised view vector v = c - p (c is the view-space origin). J v = 0 (moving along the eye ray
     // does not move the pixel), so J w = -(n.v) J n, which avoids the cancellation of J v - (n.v) J n.
+    // Lengths are in units of the bounding radius L, as if the model were scaled by 1/L: n.v and |w|^2 shrink by L
+    // and L^2, while J w (pixels) does not change, since J of the scaled world is L J. The values are then O(1) at
+    // any model scale, so float16 holds them and a model at scale 1e-4 gives the numbers it gives at scale 1.
     vec3 towardEye = -viewPosition;
-    float radialNDotV = dot(n, towardEye);
-    vec3 w = towardEye - radialNDotV * n;
-    outRadial = vec4(radialNDotV, -radialNDotV * imageDisplacement(n), dot(w, w));
+    float worldNDotV = dot(n, towardEye);
+    float radialNDotV = worldNDotV * radialLengthScale;
+    vec3 w = (towardEye - worldNDotV * n) * radialLengthScale;
+    outRadial = vec4(radialNDotV, -worldNDotV * imageDisplacement(n), dot(w, w));
 #endif
 }

@@ -165,6 +165,28 @@ TEST(Options, PostStageLineTypesAndTheirFlags) {
               std::string::npos);
 }
 
+TEST(Options, GBufferPrecision) {
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png"}).gbufferPrecision, GBufferPrecision::Float32);
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--gbuffer-precision", "half"}).gbufferPrecision,
+              GBufferPrecision::Float16);
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--gbuffer-precision", "float"}).gbufferPrecision,
+              GBufferPrecision::Float32);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--gbuffer-precision", "double"}).find("float or half"),
+              std::string::npos);
+}
+
+TEST(Options, SuggestiveStencil) {
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--lines", "suggestive"}).suggestiveStencil, 3);
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-stencil", "5"}).suggestiveStencil,
+              5);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-stencil", "4"})
+                  .find("3 or 5"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--suggestive-stencil", "5"})
+                  .find("has no effect"),
+              std::string::npos);
+}
+
 TEST(Options, EveryValue) {
     const RenderOptions options =
         parse({"-o", "a.png", "m.glb", "--size", "640x480", "--eye", "1,2,3", "--target", "0,0.5,-1e-3", "--up",

@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -43,9 +44,10 @@ protected:
     }
 
     /** Compiles the single G-buffer pass for `requested` and runs it; returns the plan. */
-    Plan render(const std::vector<std::string>& requested, int supersample = 1) {
+    Plan render(const std::vector<std::string>& requested, int supersample = 1,
+                GBufferPrecision precision = GBufferPrecision::Float32) {
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
-        pass = std::make_unique<GBufferPass>("gbuffer", shaders, *gpuScene, frame, supersample);
+        pass = std::make_unique<GBufferPass>("gbuffer", shaders, *gpuScene, frame, supersample, precision);
         Plan plan = compile({pass.get()}, requested);
         executor.run(plan, {pass.get()}, {kSize, kSize, false});
         return plan;
@@ -191,6 +193,62 @@ TEST_F(GBufferSphere, ImageRowZeroIsTheTop) {
     EXPECT_GT(normal.at<cv::Vec4f>(center - 40, center)[1], 0.2f) << "upper half must face up (+y)";
     EXPECT_LT(normal.at<cv::Vec4f>(center + 40, center)[1], -0.2f);
     EXPECT_LT(normal.at<cv::Vec4f>(center, center - 40)[0], -0.2f) << "left half must face left (-x)";
+}
+
+TEST_F(GBufferSphere, HalfPrecisionStoresTheDirectionFieldsAsFloat16AndDepthAsFloat32) {
+    const std::vector<std::string> fields = {"gbuffer.normal", "gbuffer.nDotV", "gbuffer.radial", "gbuffer.depth"};
+    render(fields);
+    std::map<std::string, cv::Mat> full;
+    for (const std::string& field : fields) full[field] = executor.store().image(field).clone();
+    const Plan plan = render(fields, 1, GBufferPrecision::Float16);
+    EXPECT_EQ(plan.findResource("gbuffer.normal")->desc.format, Format::RGBA16F);
+    EXPECT_EQ(plan.findResource("gbuffer.radial")->desc.format, Format::RGBA16F);
+    EXPECT_EQ(plan.findResource("gbuffer.nDotV")->desc.format, Format::R16F);
+    EXPECT_EQ(plan.findResource("gbuffer.depth")->desc.format, Format::R32F);
+    for (const std::string& field : fields) {
+        const cv::Mat& half = executor.store().image(field);
+        ASSERT_EQ(half.type(), full[field].type()) << field << " is read back as float32";
+        // Every value is a float16 (it survives a round trip through CV_16F), within half's relative step of the
+        // float32 value; depth is float32 itself.
+        cv::Mat asHalf, roundTrip;
+        half.convertTo(asHalf, CV_16F);
+        asHalf.convertTo(roundTrip, CV_32F);
+        const double notHalf = cv::norm(half, roundTrip, cv::NORM_INF);
+        const double difference = cv::norm(half, full[field], cv::NORM_INF);
+        double largest = 0.0;
+        cv::minMaxLoc(cv::Mat(cv::abs(full[field])).reshape(1), nullptr, &largest);
+        if (field == "gbuffer.depth") {
+            EXPECT_EQ(difference, 0.0) << field;
+        } else {
+            EXPECT_EQ(notHalf, 0.0) << field;
+            EXPECT_GT(difference, 0.0) << field << ": float16 must round something";
+            EXPECT_LE(difference, largest * 1e-3) << field; // 2^-11 relative rounding, of the largest value at most
+        }
+    }
+}
+
+TEST_F(GBufferSphere, RadialFieldIsMeasuredInTheLengthUnit) {
+    // As if the model were scaled by 1/L: n.(c - p) shrinks by L, |w|^2 by L^2, and J w (pixels) stays.
+    render({"gbuffer.radial"});
+    const cv::Mat unitLength = executor.store().image("gbuffer.radial").clone();
+    constexpr double kLengthUnit = 4.0;
+    frame.radialLengthUnit = kLengthUnit;
+    render({"gbuffer.radial"});
+    const cv::Mat& scaled = executor.store().image("gbuffer.radial");
+    int compared = 0;
+    for (int row = 0; row < kSize; row += 3) {
+        for (int col = 0; col < kSize; col += 3) {
+            const cv::Vec4f a = unitLength.at<cv::Vec4f>(row, col);
+            const cv::Vec4f b = scaled.at<cv::Vec4f>(row, col);
+            if (a[0] == 0.0f) continue;
+            ++compared;
+            EXPECT_NEAR(b[0], a[0] / kLengthUnit, 1e-6 * std::abs(a[0]));
+            EXPECT_NEAR(b[1], a[1], 1e-6 * std::abs(a[1]) + 1e-7);
+            EXPECT_NEAR(b[2], a[2], 1e-6 * std::abs(a[2]) + 1e-7);
+            EXPECT_NEAR(b[3], a[3] / (kLengthUnit * kLengthUnit), 1e-6 * std::abs(a[3]) + 1e-9);
+        }
+    }
+    EXPECT_GT(compared, 1000);
 }
 
 } // namespace
