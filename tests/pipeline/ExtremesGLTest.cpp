@@ -686,5 +686,34 @@ TEST_F(Extremes, NearOverFarFrom1em4To1e6KeepsEveryBufferFinite) {
     EXPECT_GT(cv::countNonZero(cut.at("coverage.png")), 0);
 }
 
+// --- Float16 G-buffer ---------------------------------------------------------------------------------------------
+
+TEST_F(Extremes, HalfFloatGBufferStaysFiniteAndKeepsDepthInFloat32) {
+    // --gbuffer-precision half stores normal, view, w, n.v and radial in float16 (largest finite 65504, smallest
+    // normal 6.1e-5). The fandisk at scale 2^17 puts every linear depth above 65504, where float16 would turn it to
+    // Inf; depth stays float32, so it is the float32 run's depth to the bit. The radial field is in units of the
+    // bounding radius, so its values stay near 1 at any scale. A frontal plane drives |w|^2 below float16's normal
+    // range at its centre: it underflows toward 0, never to NaN.
+    const fs::path fandisk = scaledFandisk(directory, std::ldexp(1.0, 17));
+    const auto single = readDump(render(fandisk, "float", kScaleFlags));
+    std::vector<std::string> halfFlags = kScaleFlags;
+    halfFlags.insert(halfFlags.end(), {"--gbuffer-precision", "half"});
+    const fs::path halfDump = render(fandisk, "half", halfFlags);
+    const auto half = readDump(halfDump);
+    double nearest = 0.0, farthest = 0.0;
+    cv::minMaxLoc(single.at("depth.exr"), nullptr, &farthest);
+    cv::minMaxLoc(single.at("depth.exr"), &nearest, nullptr, nullptr, nullptr, single.at("depth.exr") > 0);
+    EXPECT_GT(nearest, 65504.0) << "the case must exceed float16's range";
+    EXPECT_EQ(imageFilePixelType(halfDump / "depth.exr"), "float");
+    EXPECT_EQ(cv::norm(half.at("depth.exr"), single.at("depth.exr"), cv::NORM_INF), 0.0);
+    EXPECT_EQ(differingPixels(half.at("coverage.png"), single.at("coverage.png")), 0);
+
+    const fs::path plane = directory / "plane.obj";
+    writeObj(plane, {makePlane(1.0f, 16)});
+    const auto frontal = readDump(render(plane, "frontal", {"--size", "129x129", "--eye", "0,0,3", "--target", "0,0,0",
+                                                             "--lines", kAllLines, "--gbuffer-precision", "half"}));
+    EXPECT_EQ(cv::countNonZero(frontal.at("lines-suggestive.png")), 0);
+}
+
 } // namespace
 } // namespace inkgraph
