@@ -239,6 +239,14 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
             if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
                 throw UsageError("--fov: degrees must lie in [0.01, 179], got " + arguments[i]);
             options.fovYDegrees = fov;
+        } else if (argument == "--clip") {
+            const std::vector<std::string> parts = splitList(value(), ',');
+            if (parts.size() != 2)
+                throw UsageError("--clip: expected NEAR,FAR (two comma-separated distances), got '" + arguments[i] + "'");
+            const glm::dvec2 clip(parseNumber(argument, parts[0]), parseNumber(argument, parts[1]));
+            if (!(clip.x > 0.0 && clip.x < clip.y))
+                throw UsageError("--clip: expected 0 < NEAR < FAR, got '" + arguments[i] + "'");
+            options.clipRange = clip;
         } else if (argument == "--light") {
             const glm::dvec3 light = parseVector(argument, value());
             if (glm::length(light) == 0.0) throw UsageError("--light: the direction must not be zero");
@@ -395,6 +403,9 @@ Camera (right-handed world, OpenGL lookAt/perspective; default: the glTF camera,
   --up X,Y,Z             up direction (default: the glTF camera's, else 0,1,0); auto-framing looks from the
                          front, slightly above, as this up defines it
   --fov DEG              vertical field of view in degrees, 0.01 to 179 (default 35)
+  --clip NEAR,FAR        near and far clip distances along the view axis, finite with 0 < NEAR < FAR (default:
+                         fitted to the bounding sphere, with far/near at most 1e4); depth is reversed-Z float, so
+                         ratios up to 1e6 and beyond keep about 1e-7 of the distance apart
 
 Look
   --shading MODE         cel (default) | comic | flat | gouraud | lambert | phong | none

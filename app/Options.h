@@ -37,6 +37,7 @@ struct RenderOptions {
     std::optional<glm::dvec3> target;
     std::optional<glm::dvec3> up;           ///< default: the glTF camera's, else 0,1,0
     std::optional<double> fovYDegrees;      ///< default 35 unless the glTF camera says otherwise
+    std::optional<glm::dvec2> clipRange;    ///< --clip NEAR,FAR (0 < near < far); default: fitted to the model
     std::optional<glm::dvec3> towardLight;  ///< world direction toward the light
     ShadingMode shading = ShadingMode::Cel;
     double shininess = 32.0;                ///< phong and comic, [0, 1e6]

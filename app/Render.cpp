@@ -124,6 +124,9 @@ Json describeCamera(const Camera& camera) {
             {"fov_y_degrees", camera.fovYDegrees},
             {"near", camera.zNear},
             {"far", camera.zFar},
+            {"clip", camera.clipSource},
+            {"depth", "reversed-z float32: window depth n (f - d) / ((f - n) d) at view depth d, 1 at near, 0 at far; "
+                      "projection_matrix is OpenGL's standard one"},
             {"focal_pixels", camera.focalPixels()},
             {"view_matrix", matrixRows(camera.viewMatrix())},
             {"projection_matrix", matrixRows(camera.projectionMatrix())}};
@@ -290,6 +293,10 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     request.target = options.target;
     request.up = options.up;
     request.fovYDegrees = options.fovYDegrees;
+    if (options.clipRange) {
+        request.zNear = options.clipRange->x;
+        request.zFar = options.clipRange->y;
+    }
     request.width = options.width;
     request.height = options.height;
     Camera camera;
@@ -411,6 +418,11 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
                           {"normals_computed", scene.report.normalsComputed}};
         stats["size"] = {options.width, options.height};
         stats["camera_source"] = camera.source;
+        stats["clip"] = {{"near", camera.zNear},
+                         {"far", camera.zFar},
+                         {"far_over_near", camera.zFar / camera.zNear},
+                         {"source", camera.clipSource},
+                         {"depth", "reversed-z float32"}};
         stats["gl"] = {{"platform", context->platform()},
                        {"renderer", context->renderer()},
                        {"version", context->version()},

@@ -167,8 +167,9 @@ const GlDepthTexture& PassDepthBuffer::sized(int width, int height) {
 void clearColorAndDepth(int colorSlots) {
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     for (int slot = 0; slot < colorSlots; ++slot) glClearBufferfv(GL_COLOR, slot, zero);
-    const float farDepth = 1.0f;
-    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    glClearBufferfv(GL_DEPTH, 0, &kFarDepth);
 }
+
+void useReversedDepthClipControl() { glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE); }
 
 } // namespace inkgraph

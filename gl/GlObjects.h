@@ -78,7 +78,20 @@ private:
     int mHeight = 0;
 };
 
-/** Clears the bound framebuffer's first `colorSlots` colour attachments to zero and its depth to the far plane. */
+/** Depth convention of every pass: reversed-Z (docs/stability.md, "far/near ratio"). The projection maps the near
+ *  plane to window depth 1 and the far plane to 0 (FrameParams::clipFromView), glClipControl(GL_LOWER_LEFT,
+ *  GL_ZERO_TO_ONE) keeps that [0, 1] range without OpenGL's [-1, 1] -> [0, 1] halving, and depth buffers are
+ *  DEPTH_COMPONENT32F. Float spacing is then relative near 0, where the far depths are, so depth resolves about
+ *  1e-7 of the distance at any far/near ratio, where the standard mapping loses 2^-24 x far/near.
+ *  Nearer fragments have the GREATER depth. */
+inline constexpr GLenum kDepthNearer = GL_GREATER;
+inline constexpr GLenum kDepthNearerOrEqual = GL_GEQUAL;
+inline constexpr float kFarDepth = 0.0f;
+/** Sets the clip control reversed-Z needs; part of every pass's starting state (GraphExecutor) and of a new context. */
+void useReversedDepthClipControl();
+
+/** Clears the bound framebuffer's first `colorSlots` colour attachments to zero and its depth to the far plane
+ *  (kFarDepth). */
 void clearColorAndDepth(int colorSlots);
 
 /** A framebuffer with up to 8 colour attachments and an optional depth attachment. */

@@ -16,13 +16,15 @@ double nowMilliseconds() {
 }
 
 
-/** Back to GL's defaults for what passes touch, so no pass depends on what the one before it left bound. */
+/** Back to GL's defaults for what passes touch (but reversed-Z depth: GlObjects.h), so no pass depends on what the one
+ *  before it left bound. */
 void resetPassState() {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glUseProgram(0);
     glBindVertexArray(0);
     glDisable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    useReversedDepthClipControl();
+    glDepthFunc(kDepthNearer);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glCullFace(GL_BACK);

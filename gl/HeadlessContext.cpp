@@ -1,5 +1,7 @@
 #include "gl/HeadlessContext.h"
 
+#include "gl/GlObjects.h"
+
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
@@ -220,6 +222,9 @@ HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) {
         releaseEgl();
         throw HeadlessContextError("HeadlessContext(): OpenGL 4.5 is required, the driver gave " + found);
     }
+    // Every pass draws with reversed-Z (gl/GlObjects.h), also one run outside GraphExecutor.
+    useReversedDepthClipControl();
+    glDepthFunc(kDepthNearer);
     if (debug) {
         glEnable(GL_DEBUG_OUTPUT);
         glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);

@@ -22,6 +22,8 @@ struct FrameParams {
 
     /** View matrix for positions stored relative to worldOrigin, computed in double then rounded. */
     glm::mat4 viewFromModel() const;
+    /** The camera's perspective with reversed-Z depth (near -> 1, far -> 0; gl/GlObjects.h), in float. x, y and w
+     *  are those of camera.projectionMatrix(). */
     glm::mat4 clipFromView() const;
     /** Light direction in view space (unit). */
     glm::vec3 towardLightView() const;

@@ -169,6 +169,19 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     }
     const double minNear = camera.zFar * kMinNearOverFar;
     camera.zNear = distance < sphere.radius ? minNear : std::max(distance - sphere.radius, minNear) * 0.99;
+    if (request.zNear || request.zFar) {
+        if (!request.zNear || !request.zFar) {
+            invalid("--clip needs both the near and the far distance");
+        }
+        const double n = *request.zNear;
+        const double f = *request.zFar;
+        if (!std::isfinite(n) || !std::isfinite(f) || !(n > 0.0) || !(n < f)) {
+            invalid("--clip " + formatNumber(n) + "," + formatNumber(f) + " must be finite with 0 < near < far");
+        }
+        camera.zNear = n;
+        camera.zFar = f;
+        camera.clipSource = "flags";
+    }
     return camera;
 }
 

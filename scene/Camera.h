@@ -19,6 +19,9 @@ struct CameraRequest {
      *  the glTF camera's up, and auto-framing looks at the model from a side chosen relative to it. */
     std::optional<glm::dvec3> up;
     std::optional<double> fovYDegrees; ///< vertical field of view; default 35
+    /** Near and far clip distances (--clip); unset, both are fitted to the bounding sphere. */
+    std::optional<double> zNear;
+    std::optional<double> zFar;
     int width = 1024;
     int height = 1024;
 };
@@ -33,6 +36,7 @@ struct Camera {
     int width = 1024;
     int height = 1024;
     std::string source; ///< "flags", "gltf" or "auto-framed"
+    std::string clipSource = "fitted"; ///< "fitted" (to the bounding sphere) or "flags" (--clip)
 
     double aspect() const { return double(width) / double(height); }
     glm::dmat4 viewMatrix() const;       ///< glm::lookAt(eye, target, up)
@@ -47,7 +51,8 @@ struct Camera {
  *  toward world -Y when |Z . u| > 0.9, so Z-up models are seen from the front), i.e. from the front and slightly
  *  above; for the default up (0, 1, 0) that is normalize(0, 0.25, 1). Near and far are fitted to the bounding
  *  sphere: far = distance to the centre + radius (x1.01); near = max(distance - radius, far x 1e-4) (x0.99), so the
- *  sphere is never clipped when the eye is outside it. Throws std::invalid_argument, with a message that names the
+ *  sphere is never clipped when the eye is outside it; a requested zNear and zFar replace both (finite, 0 < near < far,
+ *  else std::invalid_argument naming --clip). Throws std::invalid_argument, with a message that names the
  *  flags involved (--eye, --target, --up, --fov, --size), for eye == target, a zero up or one parallel to the view
  *  direction, fov outside (0, 180), non-finite vectors, or a non-positive size. */
 Camera resolveCamera(const CameraRequest& request, const Scene& scene);

@@ -15,9 +15,11 @@ namespace {
 
 // Polygon offset of the depth fill: one pixel of the face's own depth slope plus one resolvable depth step, so a line
 // fragment (whose centre may sit half a pixel off the edge) is not hidden by the face the edge lies on, valleys
-// included, while a surface more than about a pixel's worth of depth in front still hides it.
-constexpr GLfloat kFillOffsetFactor = 1.0f;
-constexpr GLfloat kFillOffsetUnits = 1.0f;
+// included, while a surface more than about a pixel's worth of depth in front still hides it. Negative: with
+// reversed-Z (gl/GlObjects.h) farther is smaller. For a float depth buffer one unit is 2^(e - 23) of the
+// fragment's own exponent e, a relative step, so the push stays a fixed fraction of the depth at any far/near.
+constexpr GLfloat kFillOffsetFactor = -1.0f;
+constexpr GLfloat kFillOffsetUnits = -1.0f;
 
 } // namespace
 
@@ -119,7 +121,7 @@ void MeshEdgesPass::execute(PassContext& context) {
         depthTarget.bind();
         clearColorAndDepth(0);
         glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
+        glDepthFunc(kDepthNearer);
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(kFillOffsetFactor, kFillOffsetUnits);
         drawModelDepth(*mDepthProgram, meshes, viewFromModel, clipFromView);

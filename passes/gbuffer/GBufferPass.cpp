@@ -90,7 +90,7 @@ void GBufferPass::execute(PassContext& context) {
     clearColorAndDepth(int(drawSlots.size()));
 
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(kDepthNearer);
     glDisable(GL_CULL_FACE); // open meshes show their insides through holes
     glDisable(GL_BLEND);
 

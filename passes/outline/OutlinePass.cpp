@@ -48,11 +48,12 @@ void OutlinePass::execute(PassContext& context) {
     glDisable(GL_CULL_FACE); // the depth draw takes every face; the line draw culls in its geometry shader
 
     // 1. The model's depth: every face (open meshes show their insides through holes), no colour.
-    glDepthFunc(GL_LESS);
+    glDepthFunc(kDepthNearer);
     drawModelDepth(*mDepthProgram, meshes, viewFromModel, clipFromView);
 
-    // 2. Back-face edges as quads 2 x widthPixels wide. LEQUAL: a silhouette edge lies exactly on the model's depth.
-    glDepthFunc(GL_LEQUAL);
+    // 2. Back-face edges as quads 2 x widthPixels wide. Nearer or equal: a silhouette edge lies exactly on the model's
+    // depth.
+    glDepthFunc(kDepthNearerOrEqual);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_FALSE);
     mLineProgram->use();
@@ -75,7 +76,7 @@ void OutlinePass::execute(PassContext& context) {
     }
 
     glDepthMask(GL_TRUE);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(kDepthNearer);
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

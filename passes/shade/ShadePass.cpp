@@ -142,7 +142,7 @@ void ShadePass::execute(PassContext& context) {
     clearColorAndDepth(1);
 
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(kDepthNearer);
     glDisable(GL_CULL_FACE); // two-sided: open meshes show their insides through holes
     glDisable(GL_BLEND);
 

@@ -64,14 +64,14 @@ void SilhouettePass::execute(PassContext& context) {
     const glm::mat4 clipFromView = mFrame.clipFromView();
     const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(kDepthNearer);
     glDisable(GL_BLEND);
 
     // 1. The model's depth: every face (open meshes show their insides through holes), no colour.
     glDisable(GL_CULL_FACE);
     drawModelDepth(*mDepthProgram, meshes, viewFromModel, clipFromView);
 
-    // 2. The hull's back faces where they are nearer than the model (LESS: where the hull meets the model's own
+    // 2. The hull's back faces where they are nearer than the model (strictly nearer: where the hull meets the model's own
     // depth, the model wins). The depth stays the model's, so hulls of different meshes never hide each other.
     glEnable(GL_CULL_FACE);
     glCullFace(GL_FRONT);

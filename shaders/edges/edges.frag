@@ -7,16 +7,18 @@
 // of the occluder's outline.
 layout(location = 0) out float outLine;
 
-layout(binding = 0) uniform sampler2D modelDepth; // window depth of the model, polygon offset applied; 1 = nothing
+// Window depth of the model, polygon offset applied, reversed-Z (gl/GlObjects.h): 1 at the near plane, 0 = nothing,
+// so the farthest is the smallest and a fragment is behind it when its depth is smaller.
+layout(binding = 0) uniform sampler2D modelDepth;
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     ivec2 lastPixel = textureSize(modelDepth, 0) - 1;
     const ivec2 kAround[5] = ivec2[5](ivec2(0, 0), ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
-    float farthest = 0.0;
+    float farthest = 1.0;
     for (int i = 0; i < 5; ++i) {
-        farthest = max(farthest, texelFetch(modelDepth, clamp(pixel + kAround[i], ivec2(0), lastPixel), 0).r);
+        farthest = min(farthest, texelFetch(modelDepth, clamp(pixel + kAround[i], ivec2(0), lastPixel), 0).r);
     }
-    if (gl_FragCoord.z > farthest) discard;
+    if (gl_FragCoord.z < farthest) discard;
     outLine = 1.0;
 }

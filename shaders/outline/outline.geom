@@ -8,21 +8,22 @@ uniform float halfWidthPixels;
 
 in vec3 viewPosition[];
 
-// An edge is clipped to the near plane (clip z >= -w), where w equals the near distance, so w stays positive; the
-// floor only guards a degenerate projection.
-const float kMinClipW = 1e-7;
+// An edge is clipped to the near plane (reversed-Z, gl/GlObjects.h: clip z <= w in front of it), where w equals the
+// near distance, so w stays positive. The
+// guard is w > 0 and not an absolute floor: w is a view depth in model units, so a floor such as 1e-7 dropped every
+// edge of a model scaled to 1e-9 (tests/pipeline/ExtremesGLTest, exact scales).
 
 // Clips the segment a-b to the near plane's visible side; false when none of it is visible.
 bool clipToNearPlane(inout vec4 a, inout vec4 b) {
-    float distanceA = a.z + a.w;
-    float distanceB = b.z + b.w;
+    float distanceA = a.w - a.z;
+    float distanceB = b.w - b.z;
     if (distanceA < 0.0 && distanceB < 0.0) return false;
     if (distanceA < 0.0) {
         a = mix(a, b, distanceA / (distanceA - distanceB));
     } else if (distanceB < 0.0) {
         b = mix(b, a, distanceB / (distanceB - distanceA));
     }
-    return a.w > kMinClipW && b.w > kMinClipW;
+    return a.w > 0.0 && b.w > 0.0;
 }
 
 void emitCorner(vec4 clip, vec2 offsetPixels) {

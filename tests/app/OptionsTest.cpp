@@ -323,5 +323,15 @@ TEST(CommandLine, HelpAndUsageExitCodes) {
     EXPECT_EQ(valueOut.str(), "");
 }
 
+TEST(Options, ClipRange) {
+    EXPECT_FALSE(parse({"m.obj", "-o", "x.png"}).clipRange);
+    const RenderOptions options = parse({"m.obj", "-o", "x.png", "--clip", "1e-3,1e3"});
+    ASSERT_TRUE(options.clipRange);
+    EXPECT_EQ(options.clipRange->x, 1e-3);
+    EXPECT_EQ(options.clipRange->y, 1e3);
+    for (const char* bad : {"1", "1,2,3", "0,1", "-1,1", "2,1", "1,1", "nan,1", "1,inf", "a,1"})
+        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--clip", bad}).find("--clip"), std::string::npos) << bad;
+}
+
 } // namespace
 } // namespace inkgraph

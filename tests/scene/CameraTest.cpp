@@ -394,5 +394,26 @@ TEST(Camera, ProjectionMapsNearAndFarToTheDepthRange) {
     EXPECT_NEAR(top.y / top.w, 1.0, 1e-9);
 }
 
+TEST(Camera, RequestedClipRangeReplacesTheFittedOne) {
+    const Scene scene = sphereScene();
+    CameraRequest request;
+    request.zNear = 1e-3;
+    request.zFar = 1e3;
+    const Camera camera = resolveCamera(request, scene);
+    EXPECT_EQ(camera.zNear, 1e-3);
+    EXPECT_EQ(camera.zFar, 1e3);
+    EXPECT_EQ(camera.clipSource, "flags");
+    EXPECT_EQ(resolveCamera({}, scene).clipSource, "fitted");
+    const double nan = std::nan("");
+    for (const auto& [n, f] : std::vector<std::pair<double, double>>{{0.0, 1.0}, {-1.0, 1.0}, {2.0, 1.0}, {1.0, 1.0},
+                                                                      {nan, 1.0}, {1.0, HUGE_VAL}}) {
+        CameraRequest bad;
+        bad.zNear = n;
+        bad.zFar = f;
+        const std::string message = invalidArgumentMessage([&] { resolveCamera(bad, scene); });
+        EXPECT_NE(message.find("--clip"), std::string::npos) << message;
+    }
+}
+
 } // namespace
 } // namespace inkgraph
