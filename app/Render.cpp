@@ -263,6 +263,21 @@ std::string dumpFileName(const std::string& resource, bool isFloat, const std::s
     return name.pass + "-" + name.field + (isFloat ? ".exr" : ".png");
 }
 
+CameraRequest cameraRequestOf(const RenderOptions& options) {
+    CameraRequest request;
+    request.eye = options.eye;
+    request.target = options.target;
+    request.up = options.up;
+    request.fovYDegrees = options.fovYDegrees;
+    if (options.clipRange) {
+        request.zNear = options.clipRange->x;
+        request.zFar = options.clipRange->y;
+    }
+    request.width = options.width;
+    request.height = options.height;
+    return request;
+}
+
 void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& log) {
     const auto processStart = std::chrono::steady_clock::now();
     // Declared first so it is destroyed last, after every GL object below.
@@ -288,17 +303,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     }
 
     const BoundingSphere sphere = computeBoundingSphere(scene);
-    CameraRequest request;
-    request.eye = options.eye;
-    request.target = options.target;
-    request.up = options.up;
-    request.fovYDegrees = options.fovYDegrees;
-    if (options.clipRange) {
-        request.zNear = options.clipRange->x;
-        request.zFar = options.clipRange->y;
-    }
-    request.width = options.width;
-    request.height = options.height;
+    const CameraRequest request = cameraRequestOf(options);
     Camera camera;
     try {
         camera = resolveCamera(request, scene);

@@ -2,6 +2,7 @@
 /** @file `inkgraph render`: load, frame, build the graph, compile, execute, write. */
 
 #include "app/Options.h"
+#include "scene/Camera.h"
 
 #include <cstddef>
 #include <iosfwd>
@@ -28,6 +29,9 @@ enum ExitCode : int {
 
 /** One buffer must stay under 2 GiB: GL's byte counts are 32-bit (llvmpipe refuses larger RGBA32F targets). */
 inline constexpr std::size_t kMaxTextureBytes = std::size_t(2) << 30;
+
+/** The camera the flags ask for (--eye, --target, --up, --fov, --clip, --size); resolveCamera() fills the rest. */
+CameraRequest cameraRequestOf(const RenderOptions& options);
 
 /** Renders as the options say. `out` receives --print-plan, `log` the progress lines. Throws the layer's own
  *  exceptions (SceneError, InputFileError, HeadlessContextError, FileError, UsageError, GraphError); runCommandLine maps them to

@@ -1,6 +1,7 @@
 #include "bench/Tradeoff.h"
 
 #include "app/Options.h"
+#include "app/Render.h"
 #include "app/StillGraph.h"
 #include "gl/GraphExecutor.h"
 #include "gl/HeadlessContext.h"
@@ -83,14 +84,7 @@ public:
         arguments.insert(arguments.end(), flags.begin(), flags.end());
         mOptions = parseRenderOptions(arguments);
         mSphere = computeBoundingSphere(mScene);
-        CameraRequest request;
-        request.eye = mOptions.eye;
-        request.target = mOptions.target;
-        request.up = mOptions.up;
-        request.fovYDegrees = mOptions.fovYDegrees;
-        request.width = mOptions.width;
-        request.height = mOptions.height;
-        mFrame.camera = resolveCamera(request, mScene);
+        mFrame.camera = resolveCamera(cameraRequestOf(mOptions), mScene);
         mFrame.worldOrigin = mSphere.center;
         mFrame.towardLightWorld = glm::normalize(mOptions.towardLight.value_or(glm::dvec3(-0.4, 0.5, 0.77)));
         mFrame.radialLengthUnit = mSphere.radius;
