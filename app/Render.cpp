@@ -278,6 +278,20 @@ CameraRequest cameraRequestOf(const RenderOptions& options) {
     return request;
 }
 
+FrameParams frameParamsOf(const RenderOptions& options, const Scene& scene, const Camera& camera,
+                          const BoundingSphere& sphere) {
+    FrameParams frame;
+    frame.camera = camera;
+    frame.worldOrigin = sphere.center;
+    frame.towardLightWorld = options.towardLight ? *options.towardLight
+                             : scene.light        ? scene.light->towardLight
+                                                  : defaultLight(camera);
+    frame.background = glm::vec4(glm::vec3(options.background), 1.0f);
+    // A point (or empty) model has no radius; 1 keeps the radial field finite there.
+    frame.radialLengthUnit = sphere.radius > 0.0 ? sphere.radius : 1.0;
+    return frame;
+}
+
 void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& log) {
     const auto processStart = std::chrono::steady_clock::now();
     // Declared first so it is destroyed last, after every GL object below.
@@ -311,15 +325,7 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
         throw UsageError(error.what()); // the loader has validated the file's camera: what is left is the flags
     }
 
-    FrameParams frame;
-    frame.camera = camera;
-    frame.worldOrigin = sphere.center;
-    frame.towardLightWorld = options.towardLight ? *options.towardLight
-                             : scene.light        ? scene.light->towardLight
-                                                  : defaultLight(camera);
-    frame.background = glm::vec4(glm::vec3(options.background), 1.0f);
-    // A point (or empty) model has no radius; 1 keeps the radial field finite there.
-    frame.radialLengthUnit = sphere.radius > 0.0 ? sphere.radius : 1.0;
+    const FrameParams frame = frameParamsOf(options, scene, camera, sphere);
 
     ShaderLibrary shaders;
     GpuScene gpuScene(scene, sphere.center);

@@ -2,6 +2,7 @@
 /** @file `inkgraph render`: load, frame, build the graph, compile, execute, write. */
 
 #include "app/Options.h"
+#include "passes/FrameParams.h"
 #include "scene/Camera.h"
 
 #include <cstddef>
@@ -32,6 +33,11 @@ inline constexpr std::size_t kMaxTextureBytes = std::size_t(2) << 30;
 
 /** The camera the flags ask for (--eye, --target, --up, --fov, --clip, --size); resolveCamera() fills the rest. */
 CameraRequest cameraRequestOf(const RenderOptions& options);
+
+/** The per-still parameters of `camera` for the options (--light, else the file's light, else the default key
+ *  light; --background) and the model's bounding sphere. */
+FrameParams frameParamsOf(const RenderOptions& options, const Scene& scene, const Camera& camera,
+                          const BoundingSphere& sphere);
 
 /** Renders as the options say. `out` receives --print-plan, `log` the progress lines. Throws the layer's own
  *  exceptions (SceneError, InputFileError, HeadlessContextError, FileError, UsageError, GraphError); runCommandLine maps them to

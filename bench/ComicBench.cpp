@@ -8,6 +8,7 @@
 // overhead over 9 rounds (the hosts are shared; back-to-back runs of one case drift by 10-30%).
 //   LP_NUM_THREADS=1 ./build/bench/inkgraph_bench --benchmark_filter=ComicOverhead
 #include "bench/BenchScene.h"
+#include "bench/Median.h"
 
 namespace inkgraph::bench {
 namespace {
@@ -74,11 +75,6 @@ void runComicCase(benchmark::State& state, const ComicCase& comicCase) {
         state.counters["mark_ms"] = report.markMilliseconds;
         state.counters["holes"] = double(report.missedTriangles);
     }
-}
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    return values[values.size() / 2];
 }
 
 /** Seed 000's headline number, robust to a shared host: standard comic and `comicCase` run alternately on the same

@@ -1,5 +1,7 @@
 #include "bench/Tradeoff.h"
 
+#include "bench/Median.h"
+
 #include "app/Options.h"
 #include "app/Render.h"
 #include "app/StillGraph.h"
@@ -16,7 +18,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <iomanip>
 #include <map>
 #include <memory>
@@ -68,13 +69,6 @@ View torusView(int size) {
 
 View sphereView(int size) { return {{0.0, 0.0, kSphereDistance}, {0.0, 1.0, 0.0}, size}; }
 
-double median(std::vector<double> values) {
-    if (values.empty()) return 0.0;
-    std::sort(values.begin(), values.end());
-    const std::size_t middle = values.size() / 2;
-    return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
-}
-
 /** One render set up as `inkgraph render` would for these flags, run warm. */
 class WarmRender {
 public:
@@ -84,10 +78,7 @@ public:
         arguments.insert(arguments.end(), flags.begin(), flags.end());
         mOptions = parseRenderOptions(arguments);
         mSphere = computeBoundingSphere(mScene);
-        mFrame.camera = resolveCamera(cameraRequestOf(mOptions), mScene);
-        mFrame.worldOrigin = mSphere.center;
-        mFrame.towardLightWorld = glm::normalize(mOptions.towardLight.value_or(glm::dvec3(-0.4, 0.5, 0.77)));
-        mFrame.radialLengthUnit = mSphere.radius;
+        mFrame = frameParamsOf(mOptions, mScene, resolveCamera(cameraRequestOf(mOptions), mScene), mSphere);
         mGpuScene = std::make_unique<GpuScene>(mScene, mFrame.worldOrigin);
         mGraph = buildStillGraph({mOptions, mShaders, mScene, mSphere, *mGpuScene, mFrame, std::nullopt});
         std::vector<std::string> resources = {mGraph.finalResource};
