@@ -22,6 +22,35 @@ struct RawScene {
     std::vector<std::string> warnings;
 };
 
+/** The memory bound of one load (LoadOptions::memoryLimitBytes), checked before anything of a counted size is
+ *  allocated. The estimate is the file's own bytes plus a fixed cost per vertex and per triangle that covers the
+ *  reader's copy, welding, the finished mesh and its GPU upload (scene/README.md gives the measured peak). */
+class MeshBudget {
+public:
+    static constexpr std::size_t kBytesPerVertex = 96;
+    static constexpr std::size_t kBytesPerTriangle = 64;
+
+    MeshBudget(const std::string& path, std::size_t limitBytes) : mPath(path), mLimitBytes(limitBytes) {}
+
+    /** The file's bytes, held in memory while it is read. Throws SceneError naming the file above the limit. */
+    void chargeFile(std::size_t bytes);
+    /** Throws SceneError naming the file when what is charged so far plus these counts exceeds the limit. */
+    void check(std::size_t vertices, std::size_t triangles) const;
+    /** check(), then counts them for good (one glTF mesh may be instanced by many nodes). */
+    void charge(std::size_t vertices, std::size_t triangles);
+
+    std::size_t limitBytes() const { return mLimitBytes; }
+
+private:
+    std::size_t estimate(std::size_t vertices, std::size_t triangles) const;
+
+    std::string mPath;
+    std::size_t mLimitBytes;
+    std::size_t mFileBytes = 0;
+    std::size_t mVertices = 0;
+    std::size_t mTriangles = 0;
+};
+
 /** Throws SceneError("loadScene(): '<path>': <problem>"). */
 [[noreturn]] void throwLoadError(const std::string& path, std::string_view problem);
 
@@ -29,12 +58,13 @@ struct RawScene {
 [[noreturn]] void throwLoadErrorAtLine(const std::string& path, std::size_t line, std::string_view problem);
 
 /** Wavefront OBJ from the whole file's text. */
-RawScene readObj(const std::string& path, std::string_view content);
+RawScene readObj(const std::string& path, std::string_view content, MeshBudget& budget);
 
 /** STL, binary or ASCII (decided from the content), from the whole file's bytes. */
-RawScene readStl(const std::string& path, std::string_view content);
+RawScene readStl(const std::string& path, std::string_view content, MeshBudget& budget);
 
-/** glTF 2.0 through tinygltf: `binary` selects the GLB container (the file starts with the "glTF" magic). */
-RawScene readGltf(const std::string& path, bool binary);
+/** glTF 2.0 or GLB (the content starts with the "glTF" magic) through tinygltf, from the whole file's bytes;
+ *  external buffers are resolved next to `path`. */
+RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget);
 
 } // namespace inkgraph::detail

@@ -22,6 +22,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iterator>
+#include <limits>
 #include <sstream>
 #include <string_view>
 
@@ -119,8 +120,8 @@ struct AccessorData {
 
 class GltfWalker {
 public:
-    GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out)
-        : mPath(path), mModel(model), mOut(out), mReached(model.nodes.size(), false) {}
+    GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out, MeshBudget& budget)
+        : mPath(path), mModel(model), mOut(out), mBudget(budget), mReached(model.nodes.size(), false) {}
 
     void walk() {
         checkRequiredExtensions();
@@ -469,10 +470,15 @@ private:
             return;
         }
 
+        // Charged before anything is copied: one mesh instanced by many nodes is copied once per node.
+        const std::size_t vertexCount = accessorData(positionAttribute->second, TINYGLTF_TYPE_VEC3, "POSITION").count;
+        const std::size_t cornerCount =
+            primitive.indices >= 0 ? accessorData(primitive.indices, TINYGLTF_TYPE_SCALAR, "index").count : vertexCount;
+        mBudget.charge(vertexCount, mode == TINYGLTF_MODE_TRIANGLES ? cornerCount / 3 : cornerCount);
+
         RawMesh mesh;
         mesh.name = name;
         mesh.positions = readVec3(positionAttribute->second, "POSITION");
-        const std::size_t vertexCount = mesh.positions.size();
         const auto normalAttribute = primitive.attributes.find("NORMAL");
         if (normalAttribute != primitive.attributes.end()) {
             mesh.normals = readVec3(normalAttribute->second, "NORMAL");
@@ -527,6 +533,7 @@ private:
     const std::string& mPath;
     const tinygltf::Model& mModel;
     RawScene& mOut;
+    MeshBudget& mBudget;
     std::vector<bool> mReached; ///< nodes already reached by the walk; reaching one again is an error
     std::size_t mSkippedPrimitives = 0;
 };
@@ -554,32 +561,74 @@ std::size_t jsonNestingDepth(std::string_view text) {
 
 /** tinygltf parses JSON recursively, so absurd nesting would overflow the stack: glTF itself nests a few levels, and
  *  extras rarely more than a dozen. Checked before tinygltf sees the file. */
-void rejectDeepJson(const std::string& path, bool binary) {
+void rejectDeepJson(const std::string& path, std::string_view content, bool binary) {
     constexpr std::size_t kMaxJsonDepth = 256;
-    std::ifstream file(path, std::ios::binary);
-    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-    std::string_view json = text;
-    if (binary && text.size() >= 20) {
+    std::string_view json = content;
+    if (binary && content.size() >= 20) {
         // GLB: 12-byte header, then the JSON chunk's length, type, and text.
         std::uint32_t chunkLength = 0;
-        std::memcpy(&chunkLength, text.data() + 12, sizeof chunkLength);
-        json = std::string_view(text).substr(20, chunkLength);
+        std::memcpy(&chunkLength, content.data() + 12, sizeof chunkLength);
+        json = content.substr(20, chunkLength);
     }
     if (jsonNestingDepth(json) > kMaxJsonDepth)
         throwLoadError(path, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
 }
 
+/** tinygltf's own test opens the file, which blocks on a FIFO; asking the file system does not. */
+bool externalFileExists(const std::string& path, void*) {
+    std::error_code error;
+    return std::filesystem::exists(path, error);
+}
+
+/** tinygltf's file reading, with each external buffer's size charged to the load's memory budget before it is
+ *  read. A refusal comes back to tinygltf as a read error with the reason. */
+bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
+    auto& budget = *static_cast<MeshBudget*>(user);
+    // A FIFO or device ("/dev/stdin", "/dev/zero") as a buffer URI would block or never end: files only.
+    std::error_code typeError;
+    if (!std::filesystem::is_regular_file(path, typeError)) {
+        if (error) *error += "external file '" + path + "' is not a regular file\n";
+        return false;
+    }
+    std::error_code sizeError;
+    const std::uintmax_t size = std::filesystem::file_size(path, sizeError);
+    if (sizeError) {
+        if (error) *error += "cannot read '" + path + "': " + sizeError.message() + "\n";
+        return false;
+    }
+    try {
+        budget.chargeFile(std::size_t(size));
+    } catch (const SceneError&) {
+        if (error)
+            *error += "external file '" + path + "' is " + std::to_string(size >> 20) +
+                      " MiB, above the memory limit of " + std::to_string(budget.limitBytes() >> 20) + " MiB\n";
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, error, path, nullptr);
+}
+
 } // namespace
 
-RawScene readGltf(const std::string& path, bool binary) {
-    rejectDeepJson(path, binary);
+RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget) {
+    const bool binary = content.size() >= 4 && content.substr(0, 4) == "glTF";
+    rejectDeepJson(path, content, binary);
+    // tinygltf takes 32-bit lengths; the GLB container itself cannot describe more.
+    if (content.size() > std::numeric_limits<std::uint32_t>::max())
+        throwLoadError(path, "glTF files above 4 GiB are not supported");
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skipImageDecoding, nullptr);
+    loader.SetFsCallbacks({&externalFileExists, &tinygltf::ExpandFilePath, &readExternalFile,
+                           &tinygltf::WriteWholeFile, &budget});
     tinygltf::Model model;
     std::string error;
     std::string warning;
-    const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
-                               : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+    const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
+    const auto length = static_cast<unsigned int>(content.size());
+    const bool loaded =
+        binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                             reinterpret_cast<const unsigned char*>(content.data()), length,
+                                             baseDirectory)
+               : loader.LoadASCIIFromString(&model, &error, &warning, content.data(), length, baseDirectory);
     if (!loaded) {
         throwLoadError(path, std::string(binary ? "invalid GLB" : "invalid glTF") + ": " +
                                  (error.empty() ? "tinygltf gave no reason" : joinLines(error)));
@@ -593,7 +642,7 @@ RawScene readGltf(const std::string& path, bool binary) {
             scene.warnings.push_back("tinygltf: " + std::move(line));
         }
     }
-    GltfWalker(path, model, scene).walk();
+    GltfWalker(path, model, scene, budget).walk();
     if (scene.meshes.empty()) {
         throwLoadError(path, "no triangles in the file");
     }

@@ -4,6 +4,7 @@
 
 #include "scene/FormatReaders.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -27,6 +28,9 @@ struct Corner {
     std::uint32_t normal = 0;
 };
 
+/** Lines between memory-budget checks: a line adds at most a few hundred bytes per byte of text. */
+constexpr std::size_t kBudgetCheckInterval = 1 << 14;
+
 constexpr std::uint32_t kNoNormal = std::numeric_limits<std::uint32_t>::max();
 
 /** A positive index that pointed past the vertices defined so far; legal only if the vertex appears later. */
@@ -38,9 +42,15 @@ struct ForwardReference {
 
 class ObjParser {
 public:
-    ObjParser(const std::string& path, std::string_view text) : mPath(path), mText(text) {}
+    ObjParser(const std::string& path, std::string_view text, MeshBudget& budget)
+        : mPath(path), mText(text), mBudget(budget) {}
 
     RawScene parse() {
+        // Text never holds NUL bytes; a GLB or binary STL saved as .obj would otherwise read as "no faces".
+        if (const std::size_t nul = mText.find('\0'); nul != std::string_view::npos) {
+            mLine = std::size_t(std::count(mText.begin(), mText.begin() + std::ptrdiff_t(nul), '\n')) + 1;
+            fail("binary data (NUL byte); an OBJ file is text (is this a .glb or binary .stl?)");
+        }
         const char* cursor = mText.data();
         const char* const end = cursor + mText.size();
         while (cursor < end) {
@@ -51,6 +61,9 @@ public:
             }
             parseLine(cursor, lineEnd);
             cursor = lineEnd + 1;
+            if (mLine % kBudgetCheckInterval == 0) {
+                mBudget.check(mPositions.size() + mNormals.size(), mPositionTriangles.size() + mNormalTriangles.size());
+            }
         }
         checkForwardReferences();
         if (mPositionTriangles.empty()) {
@@ -273,6 +286,7 @@ private:
 
     const std::string& mPath;
     std::string_view mText;
+    MeshBudget& mBudget;
     std::size_t mLine = 0;
     std::string mMeshName;
     std::vector<glm::vec3> mPositions;
@@ -288,6 +302,8 @@ private:
 
 } // namespace
 
-RawScene readObj(const std::string& path, std::string_view content) { return ObjParser(path, content).parse(); }
+RawScene readObj(const std::string& path, std::string_view content, MeshBudget& budget) {
+    return ObjParser(path, content, budget).parse();
+}
 
 } // namespace inkgraph::detail

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
+#include <cstdint>
 
 namespace inkgraph {
 
@@ -21,6 +22,39 @@ void throwLoadError(const std::string& path, std::string_view problem) {
 
 void throwLoadErrorAtLine(const std::string& path, std::size_t line, std::string_view problem) {
     throw SceneError("loadScene(): '" + path + "' line " + std::to_string(line) + ": " + std::string(problem));
+}
+
+std::size_t MeshBudget::estimate(std::size_t vertices, std::size_t triangles) const {
+    // Saturating: declared counts may be anything up to 2^64.
+    const auto product = [](std::size_t count, std::size_t bytes) {
+        return count > SIZE_MAX / bytes ? SIZE_MAX : count * bytes;
+    };
+    const auto sum = [](std::size_t a, std::size_t b) { return a > SIZE_MAX - b ? SIZE_MAX : a + b; };
+    const std::size_t allVertices = sum(mVertices, vertices);
+    const std::size_t allTriangles = sum(mTriangles, triangles);
+    return sum(mFileBytes, sum(product(allVertices, kBytesPerVertex), product(allTriangles, kBytesPerTriangle)));
+}
+
+void MeshBudget::chargeFile(std::size_t bytes) {
+    mFileBytes = bytes;
+    if (estimate(0, 0) > mLimitBytes)
+        throwLoadError(mPath, "the file is " + std::to_string(bytes >> 20) + " MiB, above the memory limit of " +
+                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
+}
+
+void MeshBudget::check(std::size_t vertices, std::size_t triangles) const {
+    const std::size_t bytes = estimate(vertices, triangles);
+    if (bytes > mLimitBytes)
+        throwLoadError(mPath, "the mesh would need about " + std::to_string(bytes >> 20) + " MiB (" +
+                                  std::to_string(mVertices + vertices) + " vertices, " +
+                                  std::to_string(mTriangles + triangles) + " triangles), above the memory limit of " +
+                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
+}
+
+void MeshBudget::charge(std::size_t vertices, std::size_t triangles) {
+    check(vertices, triangles);
+    mVertices += vertices;
+    mTriangles += triangles;
 }
 
 } // namespace detail
@@ -64,8 +98,9 @@ void requireRegularFile(const std::string& path) {
     }
 }
 
-/** The whole file in memory: the text readers parse it in one pass without per-line stream overhead. */
-std::string readWholeFile(const std::string& path) {
+/** The whole file in memory: the readers parse it in one pass without per-line stream overhead. Its size is charged to
+ *  the budget before the bytes are allocated. */
+std::string readWholeFile(const std::string& path, detail::MeshBudget& budget) {
     std::ifstream file(path, std::ios::binary | std::ios::ate);
     if (!file) {
         detail::throwLoadError(path, "cannot open the file for reading");
@@ -74,6 +109,7 @@ std::string readWholeFile(const std::string& path) {
     if (size < 0) {
         detail::throwLoadError(path, "cannot determine the file size");
     }
+    budget.chargeFile(std::size_t(size));
     std::string content(std::size_t(size), '\0');
     file.seekg(0);
     if (!file.read(content.data(), size)) {
@@ -82,10 +118,20 @@ std::string readWholeFile(const std::string& path) {
     return content;
 }
 
-bool startsWithGlbMagic(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    char magic[4] = {};
-    return file.read(magic, sizeof magic) && std::string_view(magic, sizeof magic) == "glTF";
+void checkLoadOptions(const LoadOptions& options) {
+    if (!std::isfinite(options.weldTolerance) || options.weldTolerance < 0.0) {
+        throw std::invalid_argument("loadScene(): weldTolerance must be finite and >= 0, got " +
+                                    std::to_string(options.weldTolerance));
+    }
+}
+
+detail::RawScene readContent(const std::string& path, std::string_view content, detail::MeshBudget& budget) {
+    switch (kindFromExtension(path)) {
+    case FileKind::Gltf: return detail::readGltf(path, content, budget); // JSON or GLB: the content decides
+    case FileKind::Obj: return detail::readObj(path, content, budget);
+    case FileKind::Stl: return detail::readStl(path, content, budget);
+    }
+    throw std::logic_error("loadScene(): unhandled file kind");
 }
 
 Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOptions& options) {
@@ -144,23 +190,19 @@ std::size_t Scene::vertexCount() const {
 }
 
 Scene loadScene(const std::string& path, const LoadOptions& options) {
-    if (!std::isfinite(options.weldTolerance) || options.weldTolerance < 0.0) {
-        throw std::invalid_argument("loadScene(): weldTolerance must be finite and >= 0, got " +
-                                    std::to_string(options.weldTolerance));
-    }
-    const FileKind kind = kindFromExtension(path);
+    checkLoadOptions(options);
+    kindFromExtension(path); // an unsupported extension is named before the file is looked at
     requireRegularFile(path);
+    detail::MeshBudget budget(path, options.memoryLimitBytes);
+    const std::string content = readWholeFile(path, budget);
+    return finalizeScene(path, readContent(path, content, budget), options);
+}
 
-    detail::RawScene raw;
-    switch (kind) {
-    case FileKind::Gltf:
-        // The content decides between the JSON and binary container, whatever the extension says.
-        raw = detail::readGltf(path, startsWithGlbMagic(path));
-        break;
-    case FileKind::Obj: raw = detail::readObj(path, readWholeFile(path)); break;
-    case FileKind::Stl: raw = detail::readStl(path, readWholeFile(path)); break;
-    }
-    return finalizeScene(path, std::move(raw), options);
+Scene loadSceneFromMemory(const std::string& path, std::string_view content, const LoadOptions& options) {
+    checkLoadOptions(options);
+    detail::MeshBudget budget(path, options.memoryLimitBytes);
+    budget.chargeFile(content.size());
+    return finalizeScene(path, readContent(path, content, budget), options);
 }
 
 BoundingSphere computeBoundingSphere(const Scene& scene) {

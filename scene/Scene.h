@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace inkgraph {
@@ -73,17 +74,28 @@ struct BoundingSphere {
     double radius = 0.0;
 };
 
+/** 8 GiB: a 60-million-triangle mesh. */
+inline constexpr std::size_t kDefaultLoadMemoryLimit = std::size_t(8) << 30;
+
 /** Options of loadScene(). */
 struct LoadOptions {
     /** Positions closer than weldTolerance x (bounding-box diagonal) are merged. Relative, so the result does
      *  not depend on the model's units. */
     double weldTolerance = 1e-6;
+    /** The most memory one load may take, estimated before allocating from the file size and the vertex and
+     *  triangle counts the file declares or has reached (detail::MeshBudget); above it loading stops with a
+     *  SceneError naming the file. The CLI sets it from --memory-limit. */
+    std::size_t memoryLimitBytes = kDefaultLoadMemoryLimit;
 };
 
 /** Reads .gltf, .glb, .obj or .stl (binary or ASCII), chosen by content and extension.
  *  Throws SceneError for a missing or unreadable file, corrupt or truncated content, non-finite
  *  coordinates, out-of-range indices, or a file with no triangles. */
 Scene loadScene(const std::string& path, const LoadOptions& options = {});
+
+/** loadScene() on a file's bytes already in memory (the fuzz targets' entry): `path` names the file in messages,
+ *  its extension picks the reader, and glTF's external buffers are resolved next to it. */
+Scene loadSceneFromMemory(const std::string& path, std::string_view content, const LoadOptions& options = {});
 
 /** A bounding sphere of every mesh (centre of the bounding box, radius to the farthest vertex).
  *  Throws SceneError on an empty scene. */

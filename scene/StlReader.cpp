@@ -20,6 +20,7 @@ namespace {
 constexpr std::size_t kBinaryHeaderBytes = 80;
 constexpr std::size_t kBinaryPreambleBytes = kBinaryHeaderBytes + 4; // header + uint32 triangle count
 constexpr std::size_t kBinaryTriangleBytes = 50;                     // normal, 3 corners, uint16 attribute
+constexpr std::size_t kBudgetCheckInterval = 1 << 16;                // ASCII vertices between memory checks
 
 template <typename T>
 T readLittleEndian(const char* bytes) {
@@ -34,7 +35,9 @@ T readLittleEndian(const char* bytes) {
 
 std::string meshNameFor(const std::string& path) { return std::filesystem::path(path).stem().string(); }
 
-RawScene readBinary(const std::string& path, std::string_view content, std::uint32_t triangleCount) {
+RawScene readBinary(const std::string& path, std::string_view content, std::uint32_t triangleCount,
+                    MeshBudget& budget) {
+    budget.charge(std::size_t(triangleCount) * 3, triangleCount);
     RawScene scene;
     scene.format = "stl-binary";
     RawMesh mesh;
@@ -121,7 +124,8 @@ bool equalsIgnoringCase(std::string_view a, std::string_view b) {
 
 /** Parses `solid ... facet normal n n n / outer loop / vertex x y z (3+) / endloop / endfacet ... endsolid`, several
  *  solids allowed. Loops with more than three vertices are fan-triangulated. */
-std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, std::vector<std::string>& warnings) {
+std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, std::vector<std::string>& warnings,
+                                      const MeshBudget& budget) {
     // Text never holds NUL bytes while binary STL nearly always does (zero floats, zero attribute words): this
     // catches a binary file whose header starts with "solid" before its bytes are misread as tokens.
     if (const std::size_t nul = content.find('\0'); nul != std::string_view::npos) {
@@ -178,6 +182,7 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, 
                 return failure("non-finite vertex coordinate");
             }
             mesh.positions.push_back(position);
+            if (mesh.positions.size() % kBudgetCheckInterval == 0) budget.check(mesh.positions.size(), mesh.triangles.size());
         } else if (equalsIgnoringCase(token, "endloop") && state == State::InLoop) {
             const std::size_t loopSize = mesh.positions.size() - loopStart;
             if (loopSize < 3) {
@@ -211,7 +216,7 @@ bool startsWithSolid(std::string_view content) {
 
 } // namespace
 
-RawScene readStl(const std::string& path, std::string_view content) {
+RawScene readStl(const std::string& path, std::string_view content, MeshBudget& budget) {
     const bool hasBinaryPreamble = content.size() >= kBinaryPreambleBytes;
     const std::uint32_t declaredTriangles =
         hasBinaryPreamble ? readLittleEndian<std::uint32_t>(content.data() + kBinaryHeaderBytes) : 0;
@@ -222,7 +227,7 @@ RawScene readStl(const std::string& path, std::string_view content) {
                                     std::to_string(binarySize) + " bytes) but the file has " +
                                     std::to_string(content.size()) + " bytes";
     const auto readBinaryWithTrailingBytes = [&](const std::string& what) {
-        RawScene scene = readBinary(path, content, declaredTriangles);
+        RawScene scene = readBinary(path, content, declaredTriangles, budget);
         scene.warnings.push_back(what + ": " + std::to_string(content.size() - binarySize) +
                                  " bytes after the last triangle ignored");
         return scene;
@@ -230,14 +235,14 @@ RawScene readStl(const std::string& path, std::string_view content) {
 
     // The size test comes first: binary exporters often start the free-form header with "solid" too.
     if (hasBinaryPreamble && binarySize == content.size()) {
-        return readBinary(path, content, declaredTriangles);
+        return readBinary(path, content, declaredTriangles, budget);
     }
     if (startsWithSolid(content)) {
         RawScene scene;
         scene.format = "stl-ascii";
         RawMesh mesh;
         mesh.name = meshNameFor(path);
-        const std::optional<AsciiFailure> failure = parseAscii(content, mesh, scene.warnings);
+        const std::optional<AsciiFailure> failure = parseAscii(content, mesh, scene.warnings, budget);
         if (!failure) {
             scene.meshes.push_back(std::move(mesh));
             return scene;

@@ -1,0 +1,130 @@
+// The loader's memory bound (LoadOptions::memoryLimitBytes, detail::MeshBudget): refused before allocating, with
+// the file and the numbers in the message; and loadSceneFromMemory(), the fuzz targets' entry.
+#include "scene/FormatReaders.h"
+#include "scene/Scene.h"
+
+#include "SceneTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+
+#include <cstdint>
+#include <limits>
+#include <sstream>
+
+namespace inkgraph {
+namespace {
+
+using test::GltfWriter;
+using test::TempFile;
+
+const std::vector<glm::vec3> kTriangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+
+/** One triangle mesh placed by `instances` sibling nodes, each moved along x so no two coincide. */
+std::string instancedTriangle(GltfWriter& writer, int instances) {
+    const int positions = writer.addVec3(kTriangle);
+    std::string nodes, roots;
+    for (int i = 0; i < instances; ++i) {
+        nodes += std::string(i ? ", " : "") + "{\"mesh\": 0, \"translation\": [" + std::to_string(2 * i) + ", 0, 0]}";
+        roots += std::string(i ? ", " : "") + std::to_string(i);
+    }
+    return "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+           "}}]}], \"nodes\": [" + nodes + "], \"scenes\": [{\"nodes\": [" + roots + "]}], \"scene\": 0";
+}
+
+std::string binaryStlHeader(std::uint32_t triangles) {
+    std::string bytes(80, 'x');
+    for (int shift = 0; shift < 32; shift += 8) bytes.push_back(char((triangles >> shift) & 0xFF));
+    return bytes;
+}
+
+TEST(LoadLimits, EveryInstanceOfAGltfMeshIsChargedBeforeItIsCopied) {
+    GltfWriter writer;
+    const std::string body = instancedTriangle(writer, 3000);
+    const TempFile file("instanced.glb", writer.glb(body));
+    EXPECT_EQ(loadScene(file.path()).triangleCount(), 3000u) << "within the default limit every instance loads";
+
+    // 3000 instances x (3 vertices x 96 + 1 triangle x 64 bytes) = 1,056,000 bytes, plus the file: above 1 MiB,
+    // though the file holds one triangle.
+    LoadOptions tight;
+    tight.memoryLimitBytes = 1u << 20;
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path(), tight); });
+    EXPECT_EQ(message.rfind("loadScene(): '" + file.path() + "': the mesh would need about", 0), 0u) << message;
+    EXPECT_NE(message.find("above the memory limit of 1 MiB (--memory-limit)"), std::string::npos) << message;
+}
+
+TEST(LoadLimits, BinaryStlDeclaringMoreThanTheLimitIsRefusedFromItsHeader) {
+    // 200,000 triangles of zeros, all present: the size check passes, the memory bound does not.
+    std::string bytes = binaryStlHeader(200'000);
+    bytes.resize(84 + 200'000 * 50, '\0');
+    const TempFile file("big.stl", bytes);
+    LoadOptions options;
+    options.memoryLimitBytes = 64u << 20;
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path(), options); });
+    // 10 MB file + 600,000 vertices x 96 + 200,000 triangles x 64 = 80 MB > 64 MiB.
+    EXPECT_NE(message.find("(600000 vertices, 200000 triangles)"), std::string::npos) << message;
+    EXPECT_NE(message.find("memory limit of 64 MiB"), std::string::npos) << message;
+}
+
+TEST(LoadLimits, GrowingObjIsStoppedAtTheLimit) {
+    std::ostringstream obj;
+    for (int i = 0; i < 40'000; ++i) obj << "v " << i << " 0 0\nv " << i << " 1 0\nv " << i << " 0 1\nf -3 -2 -1\n";
+    const TempFile file("grow.obj", obj.str());
+    LoadOptions options;
+    options.memoryLimitBytes = 4u << 20; // the file alone is about 1.3 MB; its mesh needs about 14 MB
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path(), options); });
+    EXPECT_NE(message.find(file.fileName() + "': the mesh would need about"), std::string::npos) << message;
+    options.memoryLimitBytes = 64u << 20;
+    EXPECT_EQ(loadScene(file.path(), options).triangleCount(), 40'000u);
+}
+
+TEST(LoadLimits, FileLargerThanTheLimitIsRefusedBeforeItIsRead) {
+    const TempFile file("large.obj", std::string(3u << 20, '#'));
+    LoadOptions options;
+    options.memoryLimitBytes = 2u << 20;
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path(), options); });
+    EXPECT_NE(message.find("the file is 3 MiB, above the memory limit of 2 MiB"), std::string::npos) << message;
+}
+
+TEST(LoadLimits, DeclaredCountsNearTwoToTheSixtyFourSaturateInsteadOfWrapping) {
+    detail::MeshBudget budget("huge.glb", std::size_t(8) << 30);
+    const std::size_t huge = std::numeric_limits<std::size_t>::max() / 64 + 1; // x 64 wraps to 0 without saturation
+    EXPECT_THROW(budget.check(0, huge), SceneError);
+    EXPECT_THROW(budget.check(huge, huge), SceneError);
+    EXPECT_NO_THROW(budget.check(1000, 1000));
+}
+
+TEST(LoadLimits, GltfBufferThatIsNotARegularFileIsRefusedWithoutReadingIt) {
+    // A FIFO would block tinygltf's read forever (so would /dev/stdin); a device would never end.
+    const std::filesystem::path fifo =
+        std::filesystem::temp_directory_path() / ("inkgraph_fifo_" + std::to_string(::getpid()) + ".bin");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    GltfWriter writer;
+    const int positions = writer.addVec3(kTriangle);
+    const TempFile file("fifo.gltf",
+                        writer.gltfWithExternalBuffer("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
+                                                          std::to_string(positions) +
+                                                          "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": "
+                                                          "[0]}], \"scene\": 0",
+                                                      fifo.filename().string()));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    std::filesystem::remove(fifo);
+    EXPECT_NE(message.find("is not a regular file"), std::string::npos) << message;
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+}
+
+TEST(LoadFromMemory, GivesTheSameSceneAsTheFileAndNamesThePath) {
+    const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    const TempFile file("tetra.obj", obj);
+    const Scene fromFile = loadScene(file.path());
+    const Scene fromMemory = loadSceneFromMemory(file.path(), obj);
+    ASSERT_EQ(fromMemory.meshes.size(), 1u);
+    EXPECT_EQ(fromMemory.meshes[0].positions, fromFile.meshes[0].positions);
+    EXPECT_EQ(fromMemory.meshes[0].triangles, fromFile.meshes[0].triangles);
+    const std::string message = test::sceneErrorMessage([&] { loadSceneFromMemory("in/memory.stl", "solid x\nfoo"); });
+    EXPECT_EQ(message.rfind("loadScene(): 'in/memory.stl'", 0), 0u) << message;
+}
+
+} // namespace
+} // namespace inkgraph
