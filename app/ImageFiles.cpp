@@ -1,6 +1,7 @@
 #include "app/ImageFiles.h"
 
 #include "app/ImageIoModule.h"
+#include "app/PngChunks.h"
 #include "app/TemporaryFiles.h"
 
 #include <dlfcn.h>
@@ -11,6 +12,8 @@
 #include <cerrno>
 #include <cstring>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <future>
 #include <mutex>
 #include <system_error>
@@ -148,11 +151,38 @@ std::string imageFilePixelType(const std::filesystem::path& path) {
     return type;
 }
 
-cv::Mat readImage(const std::filesystem::path& path) {
+cv::Mat readImage(const std::filesystem::path& path, std::size_t maxPixels) {
     cv::Mat image;
     std::string error;
-    if (!imageIo().readImage(path.string(), image, error))
+    if (!imageIo().readImage(path.string(), maxPixels, image, error))
         throw FileError("readImage(): cannot read '" + path.string() + "': " + error);
+    return image;
+}
+
+cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, std::size_t maxFileBytes) {
+    const std::string where = "readPngImage(): '" + path.string() + "'";
+    std::error_code error;
+    const auto status = std::filesystem::status(path, error);
+    if (status.type() == std::filesystem::file_type::not_found) throw FileError(where + ": file not found");
+    if (status.type() != std::filesystem::file_type::regular) throw FileError(where + ": not a regular file");
+    const std::uintmax_t size = std::filesystem::file_size(path, error);
+    if (error) throw FileError(where + ": " + error.message());
+    if (size > maxFileBytes)
+        throw FileError(where + " is " + std::to_string(size >> 20) + " MiB; at most " +
+                        std::to_string(maxFileBytes >> 20) + " MiB are read here");
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw FileError(where + ": cannot open the file for reading");
+    const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    std::vector<unsigned char> png;
+    try {
+        png = criticalPngChunks(bytes);
+    } catch (const std::invalid_argument& problem) {
+        throw FileError(where + ": " + problem.what());
+    }
+    cv::Mat image;
+    std::string readError;
+    if (!imageIo().readImageBytes(png, "png", maxPixels, image, readError))
+        throw FileError(where + ": " + readError);
     return image;
 }
 

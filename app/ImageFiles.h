@@ -37,8 +37,16 @@ void writeImageTo(const std::filesystem::path& destination, const std::filesyste
 void writeBytes(const std::filesystem::path& destination, const void* data, std::size_t byteCount,
                 const std::string& shownName);
 
-/** Reads any image OpenImageIO knows into CV_8UCn (8-bit files) or CV_32FCn (everything else). */
-cv::Mat readImage(const std::filesystem::path& path);
+/** The most pixels readImage() accepts unless told otherwise: the largest picture inkgraph writes. */
+inline constexpr std::size_t kDefaultMaxReadPixels = std::size_t(16384) * 16384;
+
+/** Reads any image OpenImageIO knows into CV_8UCn (8-bit files) or CV_32FCn (everything else). Images whose header
+ *  declares more than `maxPixels` pixels are refused (FileError) before anything is allocated. */
+cv::Mat readImage(const std::filesystem::path& path, std::size_t maxPixels = kDefaultMaxReadPixels);
+
+/** readImage() for a PNG from outside (a user's shade map): a file of at most `maxFileBytes`, reduced to its critical
+ *  chunks (app/PngChunks.h) and decoded from memory by the PNG reader alone. Throws FileError naming the file. */
+cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, std::size_t maxFileBytes);
 
 /** The pixel type stored in the file itself, e.g. "uint8", "half", "float" (readImage converts, this does not). */
 std::string imageFilePixelType(const std::filesystem::path& path);

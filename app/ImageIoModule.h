@@ -17,12 +17,17 @@ struct ImageIoFunctions {
      *  writers do not all report I/O errors (libpng's is ignored, libjpeg's exits the process), memory never fails. */
     bool (*encodeImage)(const std::string& formatPath, const cv::Mat& image, std::vector<unsigned char>& bytes,
                         std::string& error);
-    bool (*readImage)(const std::string& path, cv::Mat& image, std::string& error);
+    /** Refuses, before allocating, images of more than `maxPixels` pixels, volume and deep images. */
+    bool (*readImage)(const std::string& path, std::size_t maxPixels, cv::Mat& image, std::string& error);
+    /** The same from bytes in memory, read by the reader of `format` ("png") alone: no other reader (OpenEXR's
+     *  allocates whatever a header claims) ever sees them. */
+    bool (*readImageBytes)(const std::vector<unsigned char>& bytes, const std::string& format, std::size_t maxPixels,
+                           cv::Mat& image, std::string& error);
     /** The file's own pixel type ("uint8", "half", "float", ...). */
     bool (*pixelType)(const std::string& path, std::string& type, std::string& error);
 };
 
-inline constexpr int kImageIoVersion = 3;
+inline constexpr int kImageIoVersion = 4;
 
 } // namespace inkgraph
 

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <memory>
 
 #include <vector>
 
@@ -79,7 +80,39 @@ bool encodeWithOiio(const std::string& formatPath, const cv::Mat& image, std::ve
     return true;
 }
 
-bool readWithOiio(const std::string& path, cv::Mat& image, std::string& error) {
+/** Checks what the opened file's header claims before anything of that size is allocated, then reads it. */
+bool readOpened(OIIO::ImageInput& input, std::size_t maxPixels, cv::Mat& image, std::string& error) {
+    const OIIO::ImageSpec& spec = input.spec();
+    if (spec.nchannels < 1 || spec.nchannels > 4) {
+        error = "it has " + std::to_string(spec.nchannels) + " channels; 1 to 4 are supported";
+        return false;
+    }
+    // The header's sizes are the file's claim: a few bytes can declare gigapixels, so they are judged before any
+    // allocation. A volume (depth > 1) or deep image would not fit the 2-D buffer read_image fills.
+    if (spec.width <= 0 || spec.height <= 0) {
+        error = "it declares " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels";
+        return false;
+    }
+    if (std::size_t(spec.width) * std::size_t(spec.height) > maxPixels) {
+        error = "it declares " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                " pixels, more than the " + std::to_string(maxPixels) + " allowed here";
+        return false;
+    }
+    if (spec.depth != 1 || spec.deep) {
+        error = "it is a volume or deep image; only flat 2-D images are read";
+        return false;
+    }
+    const bool eightBit = spec.format == OIIO::TypeDesc::UINT8;
+    image.create(spec.height, spec.width, CV_MAKETYPE(eightBit ? CV_8U : CV_32F, spec.nchannels));
+    if (!input.read_image(0, 0, 0, spec.nchannels, eightBit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT,
+                          image.data)) {
+        error = input.geterror();
+        return false;
+    }
+    return true;
+}
+
+bool readWithOiio(const std::string& path, std::size_t maxPixels, cv::Mat& image, std::string& error) {
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     auto input = OIIO::ImageInput::open(path, &config);
@@ -87,19 +120,25 @@ bool readWithOiio(const std::string& path, cv::Mat& image, std::string& error) {
         error = OIIO::geterror();
         return false;
     }
-    const OIIO::ImageSpec& spec = input->spec();
-    if (spec.nchannels < 1 || spec.nchannels > 4) {
-        error = "it has " + std::to_string(spec.nchannels) + " channels; 1 to 4 are supported";
+    return readOpened(*input, maxPixels, image, error);
+}
+
+bool readBytesWithOiio(const std::vector<unsigned char>& bytes, const std::string& format, std::size_t maxPixels,
+                       cv::Mat& image, std::string& error) {
+    OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size()); // outlives the reader, which closes on it
+    auto input = OIIO::ImageInput::create(format);
+    if (!input) {
+        error = "no " + format + " reader (" + OIIO::geterror() + ")";
         return false;
     }
-    const bool eightBit = spec.format == OIIO::TypeDesc::UINT8;
-    image.create(spec.height, spec.width, CV_MAKETYPE(eightBit ? CV_8U : CV_32F, spec.nchannels));
-    if (!input->read_image(0, 0, 0, spec.nchannels, eightBit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT,
-                           image.data)) {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    OIIO::ImageSpec spec;
+    if (!input->set_ioproxy(&memory) || !input->open("memory." + format, spec, config)) {
         error = input->geterror();
         return false;
     }
-    return true;
+    return readOpened(*input, maxPixels, image, error);
 }
 
 bool pixelTypeWithOiio(const std::string& path, std::string& type, std::string& error) {
@@ -112,7 +151,8 @@ bool pixelTypeWithOiio(const std::string& path, std::string& type, std::string& 
     return true;
 }
 
-const ImageIoFunctions kFunctions = {kImageIoVersion, encodeWithOiio, readWithOiio, pixelTypeWithOiio};
+const ImageIoFunctions kFunctions = {kImageIoVersion, encodeWithOiio, readWithOiio, readBytesWithOiio,
+                                     pixelTypeWithOiio};
 
 } // namespace
 } // namespace inkgraph

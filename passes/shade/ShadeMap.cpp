@@ -7,7 +7,6 @@
 namespace inkgraph {
 namespace {
 
-constexpr int kMaxMapSide = 4096;
 
 /** 8-bit sRGB code of a linear grey level in [0, 1] (the standard piecewise curve, rounded to nearest). */
 uchar srgbCode(double linear) {
@@ -65,9 +64,9 @@ ShadeMap shadeMapFromImage(const cv::Mat& image, const std::string& source, bool
     const int channels = image.channels();
     if (channels < 1 || channels > 4)
         throw std::invalid_argument(where + " has " + std::to_string(channels) + " channels (1 to 4 are allowed)");
-    if (image.cols > kMaxMapSide || image.rows > kMaxMapSide)
+    if (image.cols > kMaxShadeMapSide || image.rows > kMaxShadeMapSide)
         throw std::invalid_argument(where + " is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
-                                    " (at most " + std::to_string(kMaxMapSide) + " a side)");
+                                    " (at most " + std::to_string(kMaxShadeMapSide) + " a side)");
     if (requireOneRow && image.rows != 1)
         throw std::invalid_argument(where + " has " + std::to_string(image.rows) +
                                     " rows; a 1-D shade map must be a single row");

@@ -14,6 +14,9 @@
 
 namespace inkgraph {
 
+/** The largest side of a shade map (a map needs no more texels than the screen has pixels across). */
+inline constexpr int kMaxShadeMapSide = 4096;
+
 struct ShadeMap {
     cv::Mat texels;     ///< CV_8UC4 sRGB, row 0 at the top; 1 row for a 1-D map
     std::string source; ///< "builtin:bands-5", or the file it came from
