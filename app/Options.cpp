@@ -94,6 +94,7 @@ const std::vector<std::pair<std::string, FaceOrientationMethod>> kOrientationMet
 };
 constexpr double kMaxShininess = 1e6;
 constexpr double kMaxLineWidthPixels = 256.0;
+constexpr int kMaxMemoryLimitMib = 1 << 24; // 16 TiB
 
 template <typename Value>
 Value parseChoice(const std::string& flag, const std::string& text,
@@ -201,162 +202,193 @@ std::string shadingModeName(ShadingMode mode) {
 bool usesShadeMap(ShadingMode mode) { return mode == ShadingMode::Cel || mode == ShadingMode::Comic; }
 
 RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
+    return parseRenderOptions(arguments, {});
+}
+
+RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, const std::vector<std::string>& origins) {
+    if (!origins.empty() && origins.size() != arguments.size())
+        throw std::invalid_argument("parseRenderOptions(): " + std::to_string(origins.size()) + " origins for " +
+                                    std::to_string(arguments.size()) + " arguments");
     RenderOptions options;
-    for (const std::string& type : knownLineTypes()) options.lineStyles[type] = LineStyle{};
+    for (const std::string& type : knownLineTypes())
+        options.lineStyles[type] = LineStyle{};
     std::vector<std::string> givenFlags;
     std::vector<std::pair<std::string, std::string>> styledLineTypes; // flag, line type
     for (std::size_t i = 0; i < arguments.size(); ++i) {
-        const std::string& argument = arguments[i];
-        if (!argument.empty() && argument[0] == '-') givenFlags.push_back(argument);
-        auto value = [&]() -> const std::string& {
-            if (i + 1 >= arguments.size()) throw UsageError(argument + ": missing value");
-            if (arguments[i + 1].empty()) throw UsageError(argument + ": empty value");
-            return arguments[++i];
-        };
-        if (argument == "--help" || argument == "-h") {
-            options.help = true;
-            return options;
-        }
-        if (argument == "-o" || argument == "--output") {
-            options.outputPath = value();
-            std::string extension = std::filesystem::path(options.outputPath).extension().string();
-            std::transform(extension.begin(), extension.end(), extension.begin(),
-                           [](unsigned char c) { return char(std::tolower(c)); });
-            if (std::find(kOutputExtensions.begin(), kOutputExtensions.end(), extension) == kOutputExtensions.end())
-                throw UsageError("-o: '" + options.outputPath + "' has no picture extension I write (use .png, .exr, "
-                                 ".tif or .jpg)");
-        } else if (argument == "--size") {
-            parseSize(value(), options.width, options.height);
-        } else if (argument == "--eye") {
-            options.eye = parseVector(argument, value());
-        } else if (argument == "--target") {
-            options.target = parseVector(argument, value());
-        } else if (argument == "--up") {
-            options.up = parseVector(argument, value());
-            if (glm::length(*options.up) == 0.0) throw UsageError("--up: the up vector must not be zero");
-        } else if (argument == "--fov") {
-            const double fov = parseNumber(argument, value());
-            if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
-                throw UsageError("--fov: degrees must lie in [0.01, 179], got " + arguments[i]);
-            options.fovYDegrees = fov;
-        } else if (argument == "--clip") {
-            const std::vector<std::string> parts = splitList(value(), ',');
-            if (parts.size() != 2)
-                throw UsageError("--clip: expected NEAR,FAR (two comma-separated distances), got '" + arguments[i] + "'");
-            const glm::dvec2 clip(parseNumber(argument, parts[0]), parseNumber(argument, parts[1]));
-            if (!(clip.x > 0.0 && clip.x < clip.y))
-                throw UsageError("--clip: expected 0 < NEAR < FAR, got '" + arguments[i] + "'");
-            options.clipRange = clip;
-        } else if (argument == "--light") {
-            const glm::dvec3 light = parseVector(argument, value());
-            if (glm::length(light) == 0.0) throw UsageError("--light: the direction must not be zero");
-            options.towardLight = glm::normalize(light);
-        } else if (argument == "--shading") {
-            options.shading = parseChoice(argument, value(), kShadingModes);
-        } else if (argument == "--shininess") {
-            options.shininess = parseNumber(argument, value());
-            if (options.shininess < 0.0 || options.shininess > kMaxShininess)
-                throw UsageError("--shininess: expected a number from 0 to 1e6, got '" + arguments[i] + "'");
-        } else if (argument == "--bands") {
-            options.bands = parseWholeNumber(argument, value(), 2, 256);
-        } else if (argument == "--shademap") {
-            options.shadeMapPath = value();
-        } else if (argument == "--view-vector") {
-            options.viewVector = parseChoice<ViewVectorMode>(
-                argument, value(), {{"exact", ViewVectorMode::Exact}, {"constant", ViewVectorMode::Constant}});
-        } else if (argument == "--face-orientation") {
-            options.faceOrientation = parseChoice(argument, value(), kOrientationMethods);
-        } else if (argument == "--front-rule") {
-            options.frontRule = parseWholeNumber(argument, value(), 1, 3);
-        } else if (auto styleFlag = lineStyleFlag(argument)) {
-            LineStyle& style = options.lineStyles[styleFlag->first];
-            if (styleFlag->second == "color") {
-                style.color = parseColor(argument, value());
+        const std::size_t flagIndex = i;
+        try {
+            const std::string& argument = arguments[i];
+            if (!argument.empty() && argument[0] == '-') givenFlags.push_back(argument);
+            auto value = [&]() -> const std::string& {
+                if (i + 1 >= arguments.size()) throw UsageError(argument + ": missing value");
+                if (arguments[i + 1].empty()) throw UsageError(argument + ": empty value");
+                return arguments[++i];
+            };
+            if (argument == "--help" || argument == "-h") {
+                options.help = true;
+                return options;
+            }
+            if (argument == "-o" || argument == "--output") {
+                options.outputPath = value();
+                std::string extension = std::filesystem::path(options.outputPath).extension().string();
+                std::transform(extension.begin(), extension.end(), extension.begin(),
+                               [](unsigned char c) { return char(std::tolower(c)); });
+                if (std::find(kOutputExtensions.begin(), kOutputExtensions.end(), extension) == kOutputExtensions.end())
+                    throw UsageError("-o: '" + options.outputPath +
+                                     "' has no picture extension I write (use .png, .exr, "
+                                     ".tif or .jpg)");
+            } else if (argument == "--size") {
+                parseSize(value(), options.width, options.height);
+            } else if (argument == "--eye") {
+                options.eye = parseVector(argument, value());
+            } else if (argument == "--target") {
+                options.target = parseVector(argument, value());
+            } else if (argument == "--up") {
+                options.up = parseVector(argument, value());
+                if (glm::length(*options.up) == 0.0) throw UsageError("--up: the up vector must not be zero");
+            } else if (argument == "--fov") {
+                const double fov = parseNumber(argument, value());
+                if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
+                    throw UsageError("--fov: degrees must lie in [0.01, 179], got " + arguments[i]);
+                options.fovYDegrees = fov;
+            } else if (argument == "--clip") {
+                const std::vector<std::string> parts = splitList(value(), ',');
+                if (parts.size() != 2)
+                    throw UsageError("--clip: expected NEAR,FAR (two comma-separated distances), got '" + arguments[i] +
+                                     "'");
+                const glm::dvec2 clip(parseNumber(argument, parts[0]), parseNumber(argument, parts[1]));
+                if (!(clip.x > 0.0 && clip.x < clip.y))
+                    throw UsageError("--clip: expected 0 < NEAR < FAR, got '" + arguments[i] + "'");
+                options.clipRange = clip;
+            } else if (argument == "--light") {
+                const glm::dvec3 light = parseVector(argument, value());
+                if (glm::length(light) == 0.0) throw UsageError("--light: the direction must not be zero");
+                options.towardLight = glm::normalize(light);
+            } else if (argument == "--shading") {
+                options.shading = parseChoice(argument, value(), kShadingModes);
+            } else if (argument == "--shininess") {
+                options.shininess = parseNumber(argument, value());
+                if (options.shininess < 0.0 || options.shininess > kMaxShininess)
+                    throw UsageError("--shininess: expected a number from 0 to 1e6, got '" + arguments[i] + "'");
+            } else if (argument == "--bands") {
+                options.bands = parseWholeNumber(argument, value(), 2, 256);
+            } else if (argument == "--shademap") {
+                options.shadeMapPath = value();
+            } else if (argument == "--view-vector") {
+                options.viewVector = parseChoice<ViewVectorMode>(
+                    argument, value(), {{"exact", ViewVectorMode::Exact}, {"constant", ViewVectorMode::Constant}});
+            } else if (argument == "--face-orientation") {
+                options.faceOrientation = parseChoice(argument, value(), kOrientationMethods);
+            } else if (argument == "--front-rule") {
+                options.frontRule = parseWholeNumber(argument, value(), 1, 3);
+            } else if (auto styleFlag = lineStyleFlag(argument)) {
+                LineStyle& style = options.lineStyles[styleFlag->first];
+                if (styleFlag->second == "color") {
+                    style.color = parseColor(argument, value());
+                } else {
+                    style.widthPixels = parseNumber(argument, value());
+                    if (!(style.widthPixels > 0.0 && style.widthPixels <= kMaxLineWidthPixels))
+                        throw UsageError(argument + ": pixels must be above 0 and at most 256, got '" + arguments[i] +
+                                         "'");
+                }
+                styledLineTypes.emplace_back(argument, styleFlag->first);
+            } else if (argument == "--silhouette-object-width") {
+                options.silhouetteObjectWidth = parseNumber(argument, value());
+                if (!(*options.silhouetteObjectWidth > 0.0))
+                    throw UsageError("--silhouette-object-width: model units must be above 0, got '" + arguments[i] +
+                                     "'");
+                styledLineTypes.emplace_back(argument, "silhouette");
+            } else if (argument == "--lines") {
+                const std::string& list = value();
+                options.lines.clear();
+                if (list == "none") continue;
+                for (const std::string& type : splitList(list, ',')) {
+                    const auto& known = knownLineTypes();
+                    if (std::find(known.begin(), known.end(), type) == known.end())
+                        throw UsageError("--lines: unknown line type '" + type + "' (available: " + joined(known) +
+                                         "; or 'none')");
+                    if (std::find(options.lines.begin(), options.lines.end(), type) != options.lines.end())
+                        throw UsageError("--lines: '" + type + "' is listed twice");
+                    options.lines.push_back(type);
+                }
+            } else if (argument == "--crease-angle") {
+                options.creaseAngleDegrees = parseNumber(argument, value());
+                if (!(options.creaseAngleDegrees > 0.0 && options.creaseAngleDegrees < 180.0))
+                    throw UsageError("--crease-angle: degrees must lie above 0 and below 180, got '" + arguments[i] +
+                                     "'");
+            } else if (argument == "--depth-jump") {
+                options.depthJump = parseNumber(argument, value());
+                if (!(options.depthJump > 0.0 && options.depthJump <= 100.0))
+                    throw UsageError("--depth-jump: expected a relative depth step above 0 up to 100, got '" +
+                                     arguments[i] + "'");
+            } else if (argument == "--suggestive-threshold" || argument == "--suggestive-fade") {
+                const double strength = parseNumber(argument, value());
+                if (!(strength >= 0.0 && strength <= 1e6))
+                    throw UsageError(argument + ": expected a number from 0 to 1e6, got '" + arguments[i] + "'");
+                (argument == "--suggestive-threshold" ? options.suggestiveThreshold : options.suggestiveFade) =
+                    strength;
+            } else if (argument == "--supersample") {
+                options.supersample = parseWholeNumber(argument, value(), 1, 8);
+            } else if (argument == "--suggestive-stencil") {
+                const std::string stencil = value();
+                if (stencil != "3" && stencil != "5")
+                    throw UsageError("--suggestive-stencil: expected 3 or 5, got '" + stencil + "'");
+                options.suggestiveStencil = stencil == "3" ? 3 : 5;
+            } else if (argument == "--gbuffer-precision") {
+                const std::string precision = value();
+                if (precision == "float")
+                    options.gbufferPrecision = GBufferPrecision::Float32;
+                else if (precision == "half")
+                    options.gbufferPrecision = GBufferPrecision::Float16;
+                else
+                    throw UsageError("--gbuffer-precision: expected float or half, got '" + precision + "'");
+            } else if (argument == "--background") {
+                const glm::dvec3 color = parseVector(argument, value());
+                for (int c = 0; c < 3; ++c)
+                    if (color[c] < 0.0 || color[c] > 1.0)
+                        throw UsageError("--background: channels must lie in [0, 1], got '" + arguments[i] + "'");
+                options.background = color;
+            } else if (argument == "--request") {
+                for (const std::string& resource : splitList(value(), ',')) {
+                    const ResourceName name = ResourceName::split(resource);
+                    if (name.pass.empty() || name.field.empty())
+                        throw UsageError("--request: '" + resource +
+                                         "' is not a resource name like 'gbuffer.normal' "
+                                         "or 'gbuffer.*'");
+                    options.extraOutputs.push_back(resource);
+                }
+            } else if (argument == "--dump") {
+                options.dumpDirectory = value();
+            } else if (argument == "--stats") {
+                options.statsPath = value();
+            } else if (argument == "--graphviz") {
+                options.graphvizPath = value();
+            } else if (argument == "--print-plan") {
+                options.printPlan = true;
+            } else if (argument == "--egl-platform") {
+                options.eglPlatform = value();
+                if (options.eglPlatform != "auto" && options.eglPlatform != "device" &&
+                    options.eglPlatform != "surfaceless")
+                    throw UsageError("--egl-platform: '" + options.eglPlatform +
+                                     "' is not one of auto, device, surfaceless");
+            } else if (argument == "--memory-limit") {
+                options.memoryLimitBytes = std::size_t(parseWholeNumber(argument, value(), 64, kMaxMemoryLimitMib))
+                                           << 20;
+            } else if (argument == "--style") {
+                options.stylePath = value(); // its settings were put first by expandStyleFile()
+            } else if (argument == "-q" || argument == "--quiet") {
+                options.quiet = true;
+            } else if (!argument.empty() && argument[0] == '-') {
+                throw UsageError("unknown option '" + argument + "'");
+            } else if (options.modelPath.empty()) {
+                options.modelPath = argument;
             } else {
-                style.widthPixels = parseNumber(argument, value());
-                if (!(style.widthPixels > 0.0 && style.widthPixels <= kMaxLineWidthPixels))
-                    throw UsageError(argument + ": pixels must be above 0 and at most 256, got '" + arguments[i] + "'");
+                throw UsageError("unexpected argument '" + argument + "' (one MODEL per run; the model is '" +
+                                 options.modelPath + "')");
             }
-            styledLineTypes.emplace_back(argument, styleFlag->first);
-        } else if (argument == "--silhouette-object-width") {
-            options.silhouetteObjectWidth = parseNumber(argument, value());
-            if (!(*options.silhouetteObjectWidth > 0.0))
-                throw UsageError("--silhouette-object-width: model units must be above 0, got '" + arguments[i] + "'");
-            styledLineTypes.emplace_back(argument, "silhouette");
-        } else if (argument == "--lines") {
-            const std::string& list = value();
-            options.lines.clear();
-            if (list == "none") continue;
-            for (const std::string& type : splitList(list, ',')) {
-                const auto& known = knownLineTypes();
-                if (std::find(known.begin(), known.end(), type) == known.end())
-                    throw UsageError("--lines: unknown line type '" + type + "' (available: " + joined(known) +
-                                     "; or 'none')");
-                if (std::find(options.lines.begin(), options.lines.end(), type) != options.lines.end())
-                    throw UsageError("--lines: '" + type + "' is listed twice");
-                options.lines.push_back(type);
-            }
-        } else if (argument == "--crease-angle") {
-            options.creaseAngleDegrees = parseNumber(argument, value());
-            if (!(options.creaseAngleDegrees > 0.0 && options.creaseAngleDegrees < 180.0))
-                throw UsageError("--crease-angle: degrees must lie above 0 and below 180, got '" + arguments[i] + "'");
-        } else if (argument == "--depth-jump") {
-            options.depthJump = parseNumber(argument, value());
-            if (!(options.depthJump > 0.0 && options.depthJump <= 100.0))
-                throw UsageError("--depth-jump: expected a relative depth step above 0 up to 100, got '" +
-                                 arguments[i] + "'");
-        } else if (argument == "--suggestive-threshold" || argument == "--suggestive-fade") {
-            const double strength = parseNumber(argument, value());
-            if (!(strength >= 0.0 && strength <= 1e6))
-                throw UsageError(argument + ": expected a number from 0 to 1e6, got '" + arguments[i] + "'");
-            (argument == "--suggestive-threshold" ? options.suggestiveThreshold : options.suggestiveFade) = strength;
-        } else if (argument == "--supersample") {
-            options.supersample = parseWholeNumber(argument, value(), 1, 8);
-        } else if (argument == "--suggestive-stencil") {
-            const std::string stencil = value();
-            if (stencil != "3" && stencil != "5")
-                throw UsageError("--suggestive-stencil: expected 3 or 5, got '" + stencil + "'");
-            options.suggestiveStencil = stencil == "3" ? 3 : 5;
-        } else if (argument == "--gbuffer-precision") {
-            const std::string precision = value();
-            if (precision == "float") options.gbufferPrecision = GBufferPrecision::Float32;
-            else if (precision == "half") options.gbufferPrecision = GBufferPrecision::Float16;
-            else throw UsageError("--gbuffer-precision: expected float or half, got '" + precision + "'");
-        } else if (argument == "--background") {
-            const glm::dvec3 color = parseVector(argument, value());
-            for (int c = 0; c < 3; ++c)
-                if (color[c] < 0.0 || color[c] > 1.0)
-                    throw UsageError("--background: channels must lie in [0, 1], got '" + arguments[i] + "'");
-            options.background = color;
-        } else if (argument == "--request") {
-            for (const std::string& resource : splitList(value(), ',')) {
-                const ResourceName name = ResourceName::split(resource);
-                if (name.pass.empty() || name.field.empty())
-                    throw UsageError("--request: '" + resource + "' is not a resource name like 'gbuffer.normal' "
-                                     "or 'gbuffer.*'");
-                options.extraOutputs.push_back(resource);
-            }
-        } else if (argument == "--dump") {
-            options.dumpDirectory = value();
-        } else if (argument == "--stats") {
-            options.statsPath = value();
-        } else if (argument == "--graphviz") {
-            options.graphvizPath = value();
-        } else if (argument == "--print-plan") {
-            options.printPlan = true;
-        } else if (argument == "--egl-platform") {
-            options.eglPlatform = value();
-            if (options.eglPlatform != "auto" && options.eglPlatform != "device" && options.eglPlatform != "surfaceless")
-                throw UsageError("--egl-platform: '" + options.eglPlatform + "' is not one of auto, device, surfaceless");
-        } else if (argument == "-q" || argument == "--quiet") {
-            options.quiet = true;
-        } else if (!argument.empty() && argument[0] == '-') {
-            throw UsageError("unknown option '" + argument + "'");
-        } else if (options.modelPath.empty()) {
-            options.modelPath = argument;
-        } else {
-            throw UsageError("unexpected argument '" + argument + "' (one MODEL per run; the model is '" +
-                             options.modelPath + "')");
+        } catch (const UsageError& error) {
+            if (origins.empty() || origins[flagIndex].empty()) throw;
+            throw UsageError(origins[flagIndex] + ": " + error.what());
         }
     }
     if (options.modelPath.empty()) throw UsageError("missing MODEL (a .gltf, .glb, .obj or .stl file)");
@@ -408,6 +440,9 @@ Camera (right-handed world, OpenGL lookAt/perspective; default: the glTF camera,
                          ratios up to 1e6 and beyond keep about 1e-7 of the distance apart
 
 Look
+  --style FILE           settings from a style file, one NAME = VALUE per line (# comments): any flag of this
+                         section and of Lines, and --size, without the dashes; e.g. "shading = comic",
+                         "lines = contour, suggestive". Flags on the command line win over the file's
   --shading MODE         cel (default) | comic | flat | gouraud | lambert | phong | none
                            cel: 1-D shade map indexed by the half-Lambert (n.l + 1)/2; default: seed 003's five
                                 bands {0, .25, .5, .75, 1} x the material colour
@@ -476,6 +511,10 @@ Lines (any subset; only the passes the listed types need run: see --stats "culle
 
 System
   --egl-platform P       auto | device | surfaceless (default auto: device first, then surfaceless)
+  --memory-limit MIB     the most memory one model load and the plan's buffers may take, 64 and up (default:
+                         half this machine's memory, at least 1024). Checked before allocating, from the file's
+                         size and declared counts and from the plan: above it the run stops with exit 3 (model)
+                         or 2 (--size), naming what needs the memory
 
 Exit codes: 0 done, 2 bad command line, 3 unreadable or invalid model, 4 no OpenGL/EGL,
 5 an output could not be written, 1 anything else.

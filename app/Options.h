@@ -63,6 +63,8 @@ struct RenderOptions {
     std::string graphvizPath;               ///< --graphviz: the plan as DOT
     bool printPlan = false;
     std::string eglPlatform = "auto";       ///< auto, device, surfaceless
+    std::optional<std::size_t> memoryLimitBytes; ///< --memory-limit; default: half the machine's memory, >= 1 GiB
+    std::string stylePath;                  ///< --style, for the stats (its settings are already in the options)
     bool quiet = false;
     bool help = false;                      ///< --help or -h in a flag's place: print help, do nothing else
 };
@@ -81,6 +83,10 @@ bool usesShadeMap(ShadingMode mode);
 /** Parses the arguments after "render". Throws UsageError with a message naming the flag and the bad value.
  *  --help (or -h) where a flag may stand stops parsing and sets `help`; as the value of a flag it is just a value. */
 RenderOptions parseRenderOptions(const std::vector<std::string>& arguments);
+
+/** The same, with each argument's origin (app/StyleFile.h): a problem with an argument from a style file is reported
+ *  with the file and line first. `origins` is empty or as long as `arguments`. */
+RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, const std::vector<std::string>& origins);
 
 /** The text of `inkgraph render --help`. */
 std::string renderHelp();

@@ -3,6 +3,7 @@
 #include "app/ImageFiles.h"
 #include "app/OutputFiles.h"
 #include "app/StillGraph.h"
+#include "app/StyleFile.h"
 #include "app/TemporaryFiles.h"
 #include "gl/GraphExecutor.h"
 #include "gl/HeadlessContext.h"
@@ -72,14 +73,6 @@ std::size_t estimatePlanBytes(const Plan& plan, int width, int height, bool keep
     return bytes;
 }
 
-/** Half the machine's memory, the bound on what one plan may keep (at least 1 GiB). */
-std::size_t planMemoryBound() {
-    const long pages = ::sysconf(_SC_PHYS_PAGES);
-    const long pageSize = ::sysconf(_SC_PAGE_SIZE);
-    const std::size_t physical = pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : 0;
-    return std::max<std::size_t>(physical / 2, std::size_t(1) << 30);
-}
-
 /** llvmpipe stores textures in 64x64 tiles, so a side is rounded up before its size is judged. */
 std::size_t paddedSide(int side) { return (std::size_t(side) + 63) / 64 * 64; }
 
@@ -96,12 +89,13 @@ void checkFrameBudget(const Plan& plan, const RenderOptions& options) {
                              " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
     }
     const std::size_t planBytes = estimatePlanBytes(plan, options.width, options.height, !options.dumpDirectory.empty());
-    const std::size_t bound = planMemoryBound();
+    const std::size_t bound = memoryLimitOf(options);
     if (planBytes > bound)
         throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
                          " needs about " + std::to_string(planBytes >> 20) + " MiB for the buffers this plan keeps; " +
-                         "the bound is " + std::to_string(bound >> 20) +
-                         " MiB, half this machine's memory (make the image smaller, or request or dump fewer buffers)");
+                         "the memory limit is " + std::to_string(bound >> 20) + " MiB" +
+                         (options.memoryLimitBytes ? " (--memory-limit)" : ", half this machine's memory") +
+                         " (make the image smaller, or request or dump fewer buffers)");
 }
 
 /** Makes a context and checks the frame against what the driver can allocate. */
@@ -132,27 +126,9 @@ Json describeCamera(const Camera& camera) {
             {"projection_matrix", matrixRows(camera.projectionMatrix())}};
 }
 
-/** --shademap, read and checked before any GL work. Problems are input errors (exit 3) naming the flag and the file. */
-ShadeMap loadShadeMapFile(const RenderOptions& options) {
-    const std::string& path = options.shadeMapPath;
-    cv::Mat image;
-    try {
-        image = readImage(path);
-    } catch (const FileError& error) {
-        throw InputFileError(std::string("--shademap: ") + error.what());
-    }
-    if (image.depth() != CV_8U)
-        throw InputFileError("--shademap: '" + path + "' stores " + imageFilePixelType(path) +
-                             " pixels; a shade map is an 8-bit image (PNG)");
-    try {
-        return shadeMapFromImage(image, path, options.shading == ShadingMode::Cel);
-    } catch (const std::invalid_argument& error) {
-        throw InputFileError(std::string("--shademap: ") + error.what());
-    }
-}
-
 Json describeLook(const RenderOptions& options, const StillGraph& graph) {
     Json look;
+    if (!options.stylePath.empty()) look["style"] = options.stylePath;
     look["shading"] = shadingModeName(options.shading);
     if (options.shading == ShadingMode::Phong || options.shading == ShadingMode::Comic)
         look["shininess"] = options.shininess;
@@ -250,6 +226,33 @@ Json describeOrientation(SceneOrientation& orientation) {
 
 } // namespace
 
+std::size_t memoryLimitOf(const RenderOptions& options) {
+    if (options.memoryLimitBytes) return *options.memoryLimitBytes;
+    const long pages = ::sysconf(_SC_PHYS_PAGES);
+    const long pageSize = ::sysconf(_SC_PAGE_SIZE);
+    const std::size_t physical = pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : 0;
+    return std::max<std::size_t>(physical / 2, std::size_t(1) << 30);
+}
+
+ShadeMap readShadeMapFile(const std::string& path, bool oneDimensional) {
+    cv::Mat image;
+    try {
+        // PNG only, by its own reader (fuzz_shademap found OpenEXR allocating 1.6 GB for a 600-byte header), without
+        // ancillary chunks (and libpng 1.9 GB for a 342-byte file's tEXt), and the header's size is judged before
+        // the pixels are allocated: a map is at most 4096 a side, its file at most 64 MiB (4096² RGBA is 64 MiB raw).
+        image = readPngImage(path, std::size_t(kMaxShadeMapSide) * kMaxShadeMapSide, std::size_t(64) << 20);
+    } catch (const FileError& error) {
+        throw InputFileError(std::string("--shademap: ") + error.what());
+    }
+    if (image.depth() != CV_8U)
+        throw InputFileError("--shademap: '" + path + "' stores 16-bit pixels; a shade map is an 8-bit PNG");
+    try {
+        return shadeMapFromImage(image, path, oneDimensional);
+    } catch (const std::invalid_argument& error) {
+        throw InputFileError(std::string("--shademap: ") + error.what());
+    }
+}
+
 std::string dumpFileName(const std::string& resource, bool isFloat, const std::string& shadingResource) {
     static const std::map<std::string, std::string> kFixedNames = {
         {"gbuffer.normal", "normal.exr"},       {"gbuffer.view", "view.exr"},   {"gbuffer.wVec", "w.exr"},
@@ -304,10 +307,13 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     // Every output place is checked before any work; outputs are staged and put in place only at the end.
     OutputSet outputs(options);
     std::optional<ShadeMap> shadeMap;
-    if (!options.shadeMapPath.empty()) shadeMap = loadShadeMapFile(options);
+    if (!options.shadeMapPath.empty())
+        shadeMap = readShadeMapFile(options.shadeMapPath, options.shading == ShadingMode::Cel);
 
     const auto loadStart = std::chrono::steady_clock::now();
-    const Scene scene = loadScene(options.modelPath);
+    LoadOptions loadOptions;
+    loadOptions.memoryLimitBytes = memoryLimitOf(options);
+    const Scene scene = loadScene(options.modelPath, loadOptions);
     const double loadMs = millisecondsSince(loadStart);
     if (!options.quiet) {
         log << std::fixed << std::setprecision(1) << "inkgraph: loaded '" << options.modelPath << "': " << scene.triangleCount() << " triangles, "
@@ -487,7 +493,8 @@ int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::os
     arguments.erase(arguments.begin());
     removeTemporariesOnSignals();
     try {
-        const RenderOptions options = parseRenderOptions(arguments);
+        const SourcedArguments expanded = expandStyleFile(arguments);
+        const RenderOptions options = parseRenderOptions(expanded.arguments, expanded.origins);
         if (options.help) {
             out << renderHelp();
             return kExitOk;

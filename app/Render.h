@@ -3,6 +3,7 @@
 
 #include "app/Options.h"
 #include "passes/FrameParams.h"
+#include "passes/shade/ShadeMap.h"
 #include "scene/Camera.h"
 
 #include <cstddef>
@@ -30,6 +31,14 @@ enum ExitCode : int {
 
 /** One buffer must stay under 2 GiB: GL's byte counts are 32-bit (llvmpipe refuses larger RGBA32F targets). */
 inline constexpr std::size_t kMaxTextureBytes = std::size_t(2) << 30;
+
+/** --memory-limit, else half the machine's memory (at least 1 GiB): the bound on one model load (checked before
+ *  allocating, from the file's declared counts) and on the buffers one plan keeps (checked before any GL work). */
+std::size_t memoryLimitOf(const RenderOptions& options);
+
+/** Reads and checks a --shademap file: 8-bit, 1 to 4 channels, at most 4096 a side (judged from the header before
+ *  the pixels are read), one row when `oneDimensional`. Throws InputFileError naming --shademap and the file. */
+ShadeMap readShadeMapFile(const std::string& path, bool oneDimensional);
 
 /** The camera the flags ask for (--eye, --target, --up, --fov, --clip, --size); resolveCamera() fills the rest. */
 CameraRequest cameraRequestOf(const RenderOptions& options);

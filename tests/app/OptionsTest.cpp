@@ -177,6 +177,16 @@ TEST(Options, GBufferPrecision) {
               std::string::npos);
 }
 
+TEST(Options, MemoryLimitInMebibytes) {
+    EXPECT_FALSE(parse({"m.obj", "-o", "x.png"}).memoryLimitBytes) << "default: half the machine's memory";
+    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--memory-limit", "64"}).memoryLimitBytes, std::size_t(64) << 20);
+    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--memory-limit", "16777216"}).memoryLimitBytes, std::size_t(1) << 44);
+    for (const char* bad : {"63", "0", "-5", "1.5", "16777217", "lots"})
+        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--memory-limit", bad}).find("--memory-limit"),
+                  std::string::npos)
+            << bad;
+}
+
 TEST(Options, SuggestiveStencil) {
     EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--lines", "suggestive"}).suggestiveStencil, 3);
     EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-stencil", "5"}).suggestiveStencil,

@@ -1,0 +1,124 @@
+#include "app/StyleFile.h"
+
+#include "app/Options.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <set>
+
+namespace inkgraph {
+namespace {
+
+constexpr std::uintmax_t kMaxStyleFileBytes = 64 * 1024;
+
+bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+std::string_view trimmed(std::string_view text) {
+    while (!text.empty() && isBlank(text.front())) text.remove_prefix(1);
+    while (!text.empty() && isBlank(text.back())) text.remove_suffix(1);
+    return text;
+}
+
+/** "0.1, 0.2, 0.3" -> "0.1,0.2,0.3": lists may be spaced for reading; no setting but a path holds a space. */
+std::string withoutBlanks(std::string_view text) {
+    std::string compact;
+    std::copy_if(text.begin(), text.end(), std::back_inserter(compact), [](char c) { return !isBlank(c); });
+    return compact;
+}
+
+} // namespace
+
+const std::vector<std::string>& styleSettingNames() {
+    static const std::vector<std::string> kNames = [] {
+        std::vector<std::string> names = {
+            "size",         "fov",          "light",          "background",           "shading",
+            "shininess",    "bands",        "shademap",       "view-vector",          "face-orientation",
+            "front-rule",   "lines",        "crease-angle",   "depth-jump",           "suggestive-threshold",
+            "suggestive-fade", "suggestive-stencil", "supersample", "gbuffer-precision", "silhouette-object-width"};
+        for (const std::string& type : knownLineTypes()) {
+            names.push_back(type + "-width");
+            names.push_back(type + "-color");
+        }
+        return names;
+    }();
+    return kNames;
+}
+
+SourcedArguments styleArguments(std::string_view text, const std::string& source, const std::string& directory) {
+    SourcedArguments result;
+    std::set<std::string, std::less<>> seen;
+    const std::vector<std::string>& known = styleSettingNames();
+    std::size_t lineNumber = 0;
+    while (!text.empty()) {
+        ++lineNumber;
+        const std::size_t end = std::min(text.find('\n'), text.size());
+        std::string_view line = text.substr(0, end);
+        text.remove_prefix(std::min(end + 1, text.size()));
+        const std::string where = "--style '" + source + "' line " + std::to_string(lineNumber);
+        if (line.find('\0') != std::string_view::npos) throw UsageError(where + ": binary data (NUL byte); a style is text");
+        if (const std::size_t comment = line.find('#'); comment != std::string_view::npos) line = line.substr(0, comment);
+        line = trimmed(line);
+        if (line.empty()) continue;
+        const std::size_t equals = line.find('=');
+        if (equals == std::string_view::npos)
+            throw UsageError(where + ": expected NAME = VALUE, got '" + std::string(line.substr(0, 80)) + "'");
+        const std::string name(trimmed(line.substr(0, equals)));
+        const std::string_view value = trimmed(line.substr(equals + 1));
+        if (std::find(known.begin(), known.end(), name) == known.end())
+            throw UsageError(where + ": '" + name.substr(0, 80) +
+                             "' is not a style setting (a style sets the look, lines and size: the render flags "
+                             "without their dashes, such as 'shading' or 'contour-width')");
+        if (!seen.insert(name).second) throw UsageError(where + ": '" + name + "' is set twice");
+        if (value.empty()) throw UsageError(where + ": '" + name + "' has no value");
+        std::string argument;
+        if (name == "shademap") {
+            const std::filesystem::path path{std::string(value)};
+            argument = path.is_relative() && !directory.empty() ? (std::filesystem::path(directory) / path).string()
+                                                                : path.string();
+        } else {
+            argument = withoutBlanks(value);
+        }
+        result.arguments.push_back("--" + name);
+        result.arguments.push_back(std::move(argument));
+        result.origins.insert(result.origins.end(), 2, where);
+    }
+    return result;
+}
+
+SourcedArguments expandStyleFile(const std::vector<std::string>& arguments) {
+    // "--style FILE" stays where it is (the options record the file); its settings go first.
+    SourcedArguments rest{arguments, std::vector<std::string>(arguments.size())};
+    std::string stylePath;
+    for (std::size_t i = 0; i < arguments.size(); ++i) {
+        if (arguments[i] != "--style") continue;
+        if (i + 1 >= arguments.size() || arguments[i + 1].empty()) throw UsageError("--style: missing FILE");
+        if (!stylePath.empty()) throw UsageError("--style: given twice ('" + stylePath + "', '" + arguments[i + 1] + "')");
+        stylePath = arguments[++i];
+    }
+    if (stylePath.empty()) return rest;
+
+    std::error_code error;
+    const auto status = std::filesystem::status(stylePath, error);
+    if (status.type() == std::filesystem::file_type::not_found)
+        throw UsageError("--style: '" + stylePath + "': file not found");
+    if (status.type() != std::filesystem::file_type::regular)
+        throw UsageError("--style: '" + stylePath + "': not a regular file");
+    const std::uintmax_t size = std::filesystem::file_size(stylePath, error);
+    if (error) throw UsageError("--style: '" + stylePath + "': " + error.message());
+    if (size > kMaxStyleFileBytes)
+        throw UsageError("--style: '" + stylePath + "' is " + std::to_string(size) + " bytes; a style file is at most " +
+                         std::to_string(kMaxStyleFileBytes) + " bytes of settings");
+    std::ifstream file(stylePath, std::ios::binary);
+    if (!file) throw UsageError("--style: '" + stylePath + "': cannot open the file for reading");
+    const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+
+    SourcedArguments expanded =
+        styleArguments(text, stylePath, std::filesystem::path(stylePath).parent_path().string());
+    expanded.arguments.insert(expanded.arguments.end(), rest.arguments.begin(), rest.arguments.end());
+    expanded.origins.insert(expanded.origins.end(), rest.origins.begin(), rest.origins.end());
+    return expanded;
+}
+
+} // namespace inkgraph

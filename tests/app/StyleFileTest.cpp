@@ -1,0 +1,128 @@
+// Style files (app/StyleFile.h): parsing, their place before the command line, and messages naming file and line.
+#include "app/Options.h"
+#include "app/StyleFile.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <functional>
+#include <fstream>
+
+#include <unistd.h>
+
+namespace inkgraph {
+namespace {
+
+std::string usageErrorOf(const std::function<void()>& action) {
+    try {
+        action();
+    } catch (const UsageError& error) {
+        return error.what();
+    }
+    ADD_FAILURE() << "expected a UsageError";
+    return {};
+}
+
+RenderOptions optionsWith(const SourcedArguments& style, const std::vector<std::string>& commandLine) {
+    SourcedArguments all = style;
+    for (const std::string& argument : commandLine) {
+        all.arguments.push_back(argument);
+        all.origins.emplace_back();
+    }
+    return parseRenderOptions(all.arguments, all.origins);
+}
+
+TEST(StyleFile, SettingsBecomeFlagsWithListsCompactedAndCommentsDropped) {
+    const SourcedArguments style = styleArguments("# house style\r\n\n  shading = comic  # the seed-000 look\n"
+                                                  "shininess=64\nlines = contour, suggestive\n"
+                                                  "contour-color = 0.1, 0.2, 0.3\n",
+                                                  "look.style", "");
+    EXPECT_EQ(style.arguments, (std::vector<std::string>{"--shading", "comic", "--shininess", "64", "--lines",
+                                                         "contour,suggestive", "--contour-color", "0.1,0.2,0.3"}));
+    ASSERT_EQ(style.origins.size(), style.arguments.size());
+    EXPECT_EQ(style.origins[0], "--style 'look.style' line 3");
+    EXPECT_EQ(style.origins[7], "--style 'look.style' line 6");
+
+    const RenderOptions options = optionsWith(style, {"m.obj", "-o", "o.png"});
+    EXPECT_EQ(options.shading, ShadingMode::Comic);
+    EXPECT_EQ(options.shininess, 64.0);
+    EXPECT_EQ(options.lines, (std::vector<std::string>{"contour", "suggestive"}));
+    EXPECT_EQ(options.lineStyles.at("contour").color, glm::dvec4(0.1, 0.2, 0.3, 1.0));
+}
+
+TEST(StyleFile, TheCommandLineWinsOverTheStyle) {
+    const SourcedArguments style = styleArguments("shading = phong\nshininess = 8\n", "s.style", "");
+    const RenderOptions options = optionsWith(style, {"m.obj", "-o", "o.png", "--shininess", "100"});
+    EXPECT_EQ(options.shading, ShadingMode::Phong);
+    EXPECT_EQ(options.shininess, 100.0);
+}
+
+TEST(StyleFile, ShadeMapPathsAreRelativeToTheStyleFileAndKeepTheirSpaces) {
+    const SourcedArguments relative = styleArguments("shademap = maps/my map.png\n", "s.style", "looks");
+    EXPECT_EQ(relative.arguments[1], "looks/maps/my map.png");
+    const SourcedArguments absolute = styleArguments("shademap = /maps/a.png\n", "s.style", "looks");
+    EXPECT_EQ(absolute.arguments[1], "/maps/a.png");
+}
+
+TEST(StyleFile, BadLinesNameTheFileTheLineAndTheProblem) {
+    auto message = [](const std::string& text) {
+        return usageErrorOf([&] { styleArguments(text, "look.style", ""); });
+    };
+    EXPECT_EQ(message("shading comic\n"), "--style 'look.style' line 1: expected NAME = VALUE, got 'shading comic'");
+    EXPECT_NE(message("\n\neye = 0,0,5\n").find("line 3: 'eye' is not a style setting"), std::string::npos);
+    EXPECT_NE(message("output = x.png\n").find("'output' is not a style setting"), std::string::npos);
+    EXPECT_NE(message("shading = cel\nshading = comic\n").find("line 2: 'shading' is set twice"), std::string::npos);
+    EXPECT_NE(message("bands =   \n").find("'bands' has no value"), std::string::npos);
+    EXPECT_NE(message(std::string("bands = 4\0", 10)).find("NUL"), std::string::npos);
+}
+
+TEST(StyleFile, ValueProblemsFoundByTheFlagParserCarryTheStyleLine) {
+    const SourcedArguments style = styleArguments("shading = comic\nshininess = lots\n", "look.style", "");
+    const std::string message = usageErrorOf([&] { optionsWith(style, {"m.obj", "-o", "o.png"}); });
+    EXPECT_EQ(message, "--style 'look.style' line 2: --shininess: 'lots' is not a finite number");
+}
+
+TEST(StyleFile, EveryStyleSettingIsAFlagTheParserKnows) {
+    // A style setting the parser did not know would fail every style that uses it.
+    for (const std::string& name : styleSettingNames()) {
+        const std::string message = usageErrorOf([&] { parseRenderOptions({"m.obj", "-o", "o.png", "--" + name}); });
+        EXPECT_EQ(message, "--" + name + ": missing value") << name;
+    }
+}
+
+class StyleFileOnDisk : public ::testing::Test {
+protected:
+    void SetUp() override {
+        directory = std::filesystem::temp_directory_path() / ("inkgraph-style-" + std::to_string(::getpid()));
+        std::filesystem::create_directories(directory);
+    }
+    void TearDown() override { std::filesystem::remove_all(directory); }
+    std::filesystem::path directory;
+};
+
+TEST_F(StyleFileOnDisk, ExpandPutsTheSettingsFirstAndKeepsTheFlagForTheRecord) {
+    const std::string path = (directory / "look.style").string();
+    std::ofstream(path) << "shading = flat\n";
+    const SourcedArguments expanded = expandStyleFile({"m.obj", "--style", path, "-o", "o.png"});
+    EXPECT_EQ(expanded.arguments,
+              (std::vector<std::string>{"--shading", "flat", "m.obj", "--style", path, "-o", "o.png"}));
+    const RenderOptions options = parseRenderOptions(expanded.arguments, expanded.origins);
+    EXPECT_EQ(options.shading, ShadingMode::Flat);
+    EXPECT_EQ(options.stylePath, path);
+}
+
+TEST_F(StyleFileOnDisk, UnreadableOversizedOrRepeatedStylesAreUsageErrors) {
+    EXPECT_EQ(usageErrorOf([&] { expandStyleFile({"--style", (directory / "none").string()}); }),
+              "--style: '" + (directory / "none").string() + "': file not found");
+    EXPECT_NE(usageErrorOf([&] { expandStyleFile({"--style", directory.string()}); }).find("not a regular file"),
+              std::string::npos);
+    const std::string big = (directory / "big.style").string();
+    std::ofstream(big) << std::string(70000, '#');
+    EXPECT_NE(usageErrorOf([&] { expandStyleFile({"--style", big}); }).find("is 70000 bytes"), std::string::npos);
+    EXPECT_NE(usageErrorOf([&] { expandStyleFile({"--style", big, "--style", big}); }).find("given twice"),
+              std::string::npos);
+    EXPECT_EQ(usageErrorOf([&] { expandStyleFile({"m.obj", "--style"}); }), "--style: missing FILE");
+}
+
+} // namespace
+} // namespace inkgraph
