@@ -1,0 +1,193 @@
+// The bad-input matrix (issue 6): every way a user's files or flags can be wrong, run through the real executable.
+// Each case expects its exit code, a message naming the file (or flag) and the problem, and the folder exactly as it
+// was: an earlier out.png untouched, no new file, not even a temporary one. GL label: the no-EGL case needs the
+// executable to reach the driver; every other case stops before any GL work.
+#include "CliTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+using test::Cli;
+using test::CliRun;
+using test::readText;
+namespace fs = std::filesystem;
+
+constexpr const char* kEarlierPicture = "an earlier render the failed run must not touch";
+
+struct BadInput {
+    const char* name;
+    std::vector<std::pair<std::string, std::string>> files; ///< written into the folder before the run
+    std::string arguments;                                  ///< after "render"; {models} is the models folder
+    int exitCode;
+    std::vector<std::string> messageParts;                  ///< each must appear in stderr
+    std::string environment = "";
+};
+
+std::string u32(std::uint32_t value) {
+    std::string bytes;
+    for (int shift = 0; shift < 32; shift += 8) bytes.push_back(char((value >> shift) & 0xFF));
+    return bytes;
+}
+
+std::string f32(float value) {
+    char bytes[4];
+    std::memcpy(bytes, &value, 4);
+    return std::string(bytes, 4);
+}
+
+/** Binary STL with `declared` in its header and the given corners (three per triangle). */
+std::string binaryStl(std::uint32_t declared, const std::vector<float>& corners) {
+    std::string bytes = std::string(80, ' ') + u32(declared);
+    for (std::size_t i = 0; i + 9 <= corners.size(); i += 9) {
+        bytes += std::string(12, '\0');
+        for (std::size_t k = 0; k < 9; ++k) bytes += f32(corners[i + k]);
+        bytes += std::string(2, '\0');
+    }
+    return bytes;
+}
+
+/** A one-triangle glTF with the buffer inline; `primitive` is spliced into the primitive's JSON. */
+std::string gltfTriangle(const std::string& primitiveExtra = "", float x = 1.0f, std::uint32_t count = 3) {
+    std::string buffer;
+    for (float v : {0.0f, 0.0f, 0.0f, x, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f}) buffer += f32(v);
+    static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string base64;
+    for (std::size_t i = 0; i < buffer.size(); i += 3) {
+        const std::uint32_t chunk = std::uint32_t(std::uint8_t(buffer[i])) << 16 |
+                                    std::uint32_t(std::uint8_t(buffer[i + 1])) << 8 | std::uint8_t(buffer[i + 2]);
+        for (int k = 3; k >= 0; --k) base64 += kAlphabet[(chunk >> (6 * k)) & 63];
+    }
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+           R"("meshes":[{"primitives":[{"attributes":{"POSITION":0})" +
+           primitiveExtra + R"(}]}],"accessors":[{"bufferView":0,"componentType":5126,"count":)" +
+           std::to_string(count) + R"(,"type":"VEC3"}],"bufferViews":[{"buffer":0,"byteLength":36}],)"
+           R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
+           base64 + R"("}]})";
+}
+
+std::string glb(const std::string& json) {
+    std::string padded = json;
+    while (padded.size() % 4) padded += ' ';
+    const std::string body = u32(std::uint32_t(padded.size())) + "JSON" + padded;
+    return "glTF" + u32(2) + u32(std::uint32_t(12 + body.size())) + body;
+}
+
+std::string source(const std::string& relative) { return (fs::path(INKGRAPH_SOURCE_ROOT) / relative).string(); }
+
+std::vector<BadInput> badInputs() {
+    const std::string spot = "'" + source("models/spot_c3d.obj") + "'";
+    const std::string triangleGlb = glb(gltfTriangle());
+    std::string bigStl = binaryStl(200'000, {});
+    bigStl.resize(84 + std::size_t(200'000) * 50, '\0');
+    return {
+        // Files that are not there or not models.
+        {"missing file", {}, "nowhere.obj -o out.png", 3, {"'nowhere.obj'", "file not found"}},
+        {"folder as model", {{"models.obj/x", ""}}, "models.obj -o out.png", 3, {"'models.obj'", "not a regular file"}},
+        {"empty OBJ", {{"empty.obj", ""}}, "empty.obj -o out.png", 3, {"'empty.obj'", "no faces"}},
+        {"empty STL", {{"empty.stl", ""}}, "empty.stl -o out.png", 3, {"'empty.stl'", "not an STL file"}},
+        {"empty glTF", {{"empty.gltf", ""}}, "empty.gltf -o out.png", 3, {"'empty.gltf'", "invalid glTF"}},
+        {"wrong extension", {{"model.ply", "ply\n"}}, "model.ply -o out.png", 3,
+         {"'model.ply'", "unsupported file type (extension '.ply')"}},
+        {"no extension", {{"model", "v 0 0 0\n"}}, "model -o out.png", 3, {"'model'", "no extension"}},
+        {"GLB content named .obj", {{"scene.obj", triangleGlb}}, "scene.obj -o out.png", 3, {"'scene.obj' line 1", "binary data (NUL byte)"}},
+        // Truncated binaries.
+        {"truncated GLB", {{"half.glb", triangleGlb.substr(0, triangleGlb.size() / 2)}}, "half.glb -o out.png", 3,
+         {"'half.glb'", "invalid GLB"}},
+        {"truncated STL", {{"half.stl", binaryStl(12, {0, 0, 0, 1, 0, 0, 0, 1, 0})}}, "half.stl -o out.png", 3,
+         {"'half.stl'", "truncated binary STL", "declares 12 triangles"}},
+        // Huge declared counts: refused from the header, nothing of that size allocated.
+        {"STL declaring 4 billion triangles", {{"huge.stl", binaryStl(0xFFFFFFFFu, {0, 0, 0, 1, 0, 0, 0, 1, 0})}},
+         "huge.stl -o out.png", 3, {"'huge.stl'", "declares 4294967295 triangles"}},
+        {"glTF accessor declaring 2^31 elements", {{"huge.gltf", gltfTriangle("", 1.0f, 0x80000000u)}},
+         "huge.gltf -o out.png", 3, {"'huge.gltf'", "2147483648 elements", "reads past the end"}},
+        {"mesh above --memory-limit", {{"big.stl", bigStl}}, "big.stl -o out.png --memory-limit 64", 3,
+         {"'big.stl'", "(600000 vertices, 200000 triangles)", "above the memory limit of 64 MiB (--memory-limit)"}},
+        // Indices, coordinates, primitives, areas.
+        {"OBJ index out of range", {{"index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"}}, "index.obj -o out.png", 3,
+         {"'index.obj' line 4", "index 9 out of range"}},
+        {"glTF index out of range",
+         {{"index.gltf", gltfTriangle(R"(,"indices":1)")}}, "index.gltf -o out.png", 3, {"'index.gltf'", "index"}},
+        {"NaN in OBJ", {{"nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n"}}, "nan.obj -o out.png", 3,
+         {"'nan.obj' line 3"}},
+        {"Inf in binary STL",
+         {{"inf.stl", binaryStl(1, {0, 0, 0, std::numeric_limits<float>::infinity(), 0, 0, 0, 1, 0})}},
+         "inf.stl -o out.png", 3, {"'inf.stl'", "non-finite"}},
+        {"NaN in glTF", {{"nan.gltf", gltfTriangle("", std::numeric_limits<float>::quiet_NaN())}},
+         "nan.gltf -o out.png", 3, {"'nan.gltf'", "non-finite"}},
+        {"lines only in glTF", {{"lines.gltf", gltfTriangle(R"(,"mode":1)")}}, "lines.gltf -o out.png", 3,
+         {"'lines.gltf'", "non-triangle"}},
+        {"lines only in OBJ", {{"lines.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n"}}, "lines.obj -o out.png", 3,
+         {"'lines.obj'", "no faces"}},
+        {"zero-area mesh", {{"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 3 2\n"}}, "flat.obj -o out.png", 3,
+         {"'flat.obj'", "all 2 triangles are degenerate"}},
+        // Shade maps.
+        {"shade map that is not a PNG", {{"map.png", "GIF89a"}},
+         spot + " -o out.png --shading comic --shademap map.png", 3,
+         {"--shademap", "'map.png'", "not a PNG file"}},
+        {"shade map folder", {{"maps/x", ""}}, spot + " -o out.png --shading comic --shademap maps", 3,
+         {"--shademap", "'maps'", "not a regular file"}},
+        {"shade map chunk claiming 1.9 GB", {}, spot + " -o out.png --shading comic --shademap '" +
+         source("tests/fuzz/regressions/shademap/png-text-chunk-claims-1.9GB.png") + "'", 3,
+         {"--shademap", "png-text-chunk-claims-1.9GB.png", "declares 1979711508 bytes"}},
+        {"truncated shade map", {{"cut.png", readText(source("shademaps/noir.png")).substr(0, 100)}},
+         spot + " -o out.png --shading comic --shademap cut.png", 3, {"--shademap", "'cut.png'", "declares 32 bytes but only 26 follow"}},
+        // Outputs that cannot be written.
+        {"--dump under a file", {{"blocker", "a file"}}, spot + " -o out.png --size 16x16 --dump blocker/d", 5,
+         {"blocker/d"}},
+        {"--dump in /proc", {}, spot + " -o out.png --size 16x16 --dump /proc/inkgraph-dump", 5,
+         {"/proc/inkgraph-dump"}},
+        // Absurd sizes.
+        {"--size 0x5", {}, spot + " -o out.png --size 0x5", 2, {"--size", "from 1 to 16384", "'0x5'"}},
+        {"--size negative", {}, spot + " -o out.png --size -3x4", 2, {"--size", "'-3x4'"}},
+        {"--size 1e9", {}, spot + " -o out.png --size 1e9x1e9", 2, {"--size", "'1e9x1e9'"}},
+        {"--size nan", {}, spot + " -o out.png --size nanx4", 2, {"--size", "not a finite number"}},
+        {"--size words", {}, spot + " -o out.png --size big", 2, {"--size", "expected WxH"}},
+        {"--size above the memory limit", {}, spot + " -o out.png --size 8192x8192 --memory-limit 512", 2,
+         {"--size 8192x8192", "the memory limit is 512 MiB (--memory-limit)"}},
+        {"--memory-limit below 64", {}, spot + " -o out.png --memory-limit 1", 2, {"--memory-limit", "64"}},
+        // Flags and style files.
+        {"unknown flag", {}, spot + " -o out.png --shadin cel", 2, {"unknown option '--shadin'"}},
+        {"style file missing", {}, spot + " -o out.png --style none.style", 2, {"--style", "'none.style'", "not found"}},
+        {"style file bad value", {{"bad.style", "shading = comic\nshininess = -1\n"}},
+         spot + " -o out.png --style bad.style", 2, {"--style 'bad.style' line 2", "--shininess"}},
+        {"style file binary", {{"bin.style", std::string("shading = cel\n\0\x01", 16)}},
+         spot + " -o out.png --style bin.style", 2, {"--style 'bin.style' line 2", "NUL"}},
+        // No display.
+        {"no EGL display", {}, spot + " -o out.png --size 16x16", 4, {"EGL"},
+         "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl.json"},
+    };
+}
+
+TEST_F(Cli, BadInputMatrixFailsCleanlyAndTouchesNothing) {
+    for (const BadInput& input : badInputs()) {
+        SCOPED_TRACE(input.name);
+        fs::remove_all(directory);
+        fs::create_directories(directory);
+        std::ofstream(directory / "out.png") << kEarlierPicture;
+        for (const auto& [name, content] : input.files) {
+            fs::create_directories((directory / name).parent_path());
+            std::ofstream(directory / name, std::ios::binary) << content;
+        }
+        const std::vector<std::string> before = listFiles(directory);
+        std::string arguments = input.arguments;
+        if (arguments.rfind("render ", 0) != 0) arguments = "render " + arguments;
+        const CliRun result = run(arguments, input.environment);
+        EXPECT_EQ(result.exitCode, input.exitCode) << result.err;
+        for (const std::string& part : input.messageParts)
+            EXPECT_NE(result.err.find(part), std::string::npos) << "missing '" << part << "' in: " << result.err;
+        EXPECT_EQ(result.err.find("internal error"), std::string::npos) << result.err;
+        EXPECT_EQ(readText(directory / "out.png"), kEarlierPicture);
+        EXPECT_EQ(listFiles(directory), before) << "a failed run left a file behind";
+    }
+}
+
+} // namespace
+} // namespace inkgraph
