@@ -1,0 +1,7 @@
+// libFuzzer target: the glTF and GLB reader (scene/GltfReader.cpp) and what the line passes derive from its meshes.
+#include "tests/fuzz/FuzzSupport.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    inkgraph::fuzz::loadAndDerive("fuzz.gltf", inkgraph::fuzz::bytesOf(data, size));
+    return 0;
+}
