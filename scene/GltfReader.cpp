@@ -624,11 +624,18 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     std::string warning;
     const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
     const auto length = static_cast<unsigned int>(content.size());
-    const bool loaded =
-        binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
-                                             reinterpret_cast<const unsigned char*>(content.data()), length,
-                                             baseDirectory)
-               : loader.LoadASCIIFromString(&model, &error, &warning, content.data(), length, baseDirectory);
+    bool loaded = false;
+    try {
+        loaded = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                                      reinterpret_cast<const unsigned char*>(content.data()), length,
+                                                      baseDirectory)
+                        : loader.LoadASCIIFromString(&model, &error, &warning, content.data(), length, baseDirectory);
+    } catch (const std::exception& thrown) {
+        // tinygltf 2.7 indexes with .at() on what the file declares: fuzz_gltf found a GLB whose empty buffer made
+        // it throw std::out_of_range ("vector::_M_range_check"), which ended the CLI as an internal error.
+        throwLoadError(path, std::string(binary ? "invalid GLB" : "invalid glTF") + ": tinygltf failed (" +
+                                 thrown.what() + ")");
+    }
     if (!loaded) {
         throwLoadError(path, std::string(binary ? "invalid GLB" : "invalid glTF") + ": " +
                                  (error.empty() ? "tinygltf gave no reason" : joinLines(error)));

@@ -99,6 +99,9 @@ std::vector<BadInput> badInputs() {
         {"no extension", {{"model", "v 0 0 0\n"}}, "model -o out.png", 3, {"'model'", "no extension"}},
         {"GLB content named .obj", {{"scene.obj", triangleGlb}}, "scene.obj -o out.png", 3, {"'scene.obj' line 1", "binary data (NUL byte)"}},
         // Truncated binaries.
+        {"GLB that made tinygltf throw (fuzz finding)", {},
+         "'" + source("tests/fuzz/regressions/gltf/glb-empty-buffer-tinygltf-range-check.glb") + "' -o out.png", 3,
+         {"glb-empty-buffer-tinygltf-range-check.glb'", "invalid GLB: tinygltf failed"}},
         {"truncated GLB", {{"half.glb", triangleGlb.substr(0, triangleGlb.size() / 2)}}, "half.glb -o out.png", 3,
          {"'half.glb'", "invalid GLB"}},
         {"truncated STL", {{"half.stl", binaryStl(12, {0, 0, 0, 1, 0, 0, 0, 1, 0})}}, "half.stl -o out.png", 3,

@@ -27,7 +27,8 @@ const std::string& scratchPath() {
 
 void writeScratch(const std::uint8_t* data, std::size_t size) {
     std::FILE* file = std::fopen(scratchPath().c_str(), "wb");
-    if (file == nullptr || std::fwrite(data, 1, size, file) != size || std::fclose(file) != 0)
+    // fwrite's buffer must not be null even for no bytes (UBSan: the empty input arrives as a null pointer).
+    if (file == nullptr || (size > 0 && std::fwrite(data, 1, size, file) != size) || std::fclose(file) != 0)
         throw std::runtime_error("FuzzShadeMap: cannot write '" + scratchPath() + "'");
 }
 

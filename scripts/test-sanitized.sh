@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Builds the whole suite with AddressSanitizer and UndefinedBehaviorSanitizer (-DINKGRAPH_SANITIZE=ON, -O1 with line
+# tables) into build-asan/ and runs every test there, GL tests on llvmpipe included. Any sanitizer report fails the
+# test that triggered it (UBSan does not recover; LeakSanitizer runs at exit). tests/sanitizers/lsan.supp lists the
+# leaks of Debian's libraries that are not ours. Run after scripts/install-deps.sh; scripts/test.sh runs it too.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build="$root/build-asan"
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
+    -DINKGRAPH_SANITIZE=ON
+cmake --build "$build" -j"$jobs"
+export LP_NUM_THREADS=1
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
+export LSAN_OPTIONS="suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+cd "$build"
+ctest --output-on-failure --timeout 900 -j"$jobs"
