@@ -32,7 +32,8 @@ public:
 
     MeshBudget(const std::string& path, std::size_t limitBytes) : mPath(path), mLimitBytes(limitBytes) {}
 
-    /** The file's bytes, held in memory while it is read. Throws SceneError naming the file above the limit. */
+    /** A file's bytes, held in memory while it is read (called once per file: glTF's external buffers add theirs).
+     *  Throws SceneError naming the file above the limit. */
     void chargeFile(std::size_t bytes);
     /** Throws SceneError naming the file when what is charged so far plus these counts exceeds the limit. */
     void check(std::size_t vertices, std::size_t triangles) const;

@@ -615,6 +615,8 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     // tinygltf takes 32-bit lengths; the GLB container itself cannot describe more.
     if (content.size() > std::numeric_limits<std::uint32_t>::max())
         throwLoadError(path, "glTF files above 4 GiB are not supported");
+    // tinygltf keeps its own copy of every buffer it decodes (the GLB's BIN chunk, data URIs): at most the file again.
+    budget.chargeFile(content.size());
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skipImageDecoding, nullptr);
     loader.SetFsCallbacks({&externalFileExists, &tinygltf::ExpandFilePath, &readExternalFile,

@@ -5,12 +5,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
-#include <cstdint>
 
 namespace inkgraph {
 
@@ -36,9 +36,10 @@ std::size_t MeshBudget::estimate(std::size_t vertices, std::size_t triangles) co
 }
 
 void MeshBudget::chargeFile(std::size_t bytes) {
-    mFileBytes = bytes;
+    mFileBytes = mFileBytes > SIZE_MAX - bytes ? SIZE_MAX : mFileBytes + bytes;
     if (estimate(0, 0) > mLimitBytes)
-        throwLoadError(mPath, "the file is " + std::to_string(bytes >> 20) + " MiB, above the memory limit of " +
+        throwLoadError(mPath, "the file is " + std::to_string(bytes >> 20) + " MiB; the load would hold about " +
+                                  std::to_string(estimate(0, 0) >> 20) + " MiB, above the memory limit of " +
                                   std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
 }
 

@@ -84,7 +84,21 @@ TEST(LoadLimits, FileLargerThanTheLimitIsRefusedBeforeItIsRead) {
     LoadOptions options;
     options.memoryLimitBytes = 2u << 20;
     const std::string message = test::sceneErrorMessage([&] { loadScene(file.path(), options); });
-    EXPECT_NE(message.find("the file is 3 MiB, above the memory limit of 2 MiB"), std::string::npos) << message;
+    EXPECT_NE(message.find("the file is 3 MiB; the load would hold about 3 MiB, above the memory limit of 2 MiB"),
+              std::string::npos)
+        << message;
+}
+
+TEST(LoadLimits, GlbIsChargedTwiceForTinygltfsCopyOfItsBuffers) {
+    GltfWriter writer;
+    const std::string body = instancedTriangle(writer, 1);
+    const std::string bytes = writer.glb(body);
+    LoadOptions options;
+    options.memoryLimitBytes = 2 * bytes.size() + 3 * 96 + 64; // the file twice and one triangle: just enough
+    EXPECT_EQ(loadSceneFromMemory("one.glb", bytes, options).triangleCount(), 1u);
+    options.memoryLimitBytes -= 1;
+    const std::string message = test::sceneErrorMessage([&] { loadSceneFromMemory("one.glb", bytes, options); });
+    EXPECT_NE(message.find("(3 vertices, 1 triangles), above the memory limit"), std::string::npos) << message;
 }
 
 TEST(LoadLimits, DeclaredCountsNearTwoToTheSixtyFourSaturateInsteadOfWrapping) {
