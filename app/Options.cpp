@@ -441,7 +441,7 @@ Camera (right-handed world, OpenGL lookAt/perspective; default: the glTF camera,
 
 Look
   --style FILE           settings from a style file, one NAME = VALUE per line (# comments): any flag of this
-                         section and of Lines, and --size, without the dashes; e.g. "shading = comic",
+                         section and of Lines, --size and --fov, without the dashes; e.g. "shading = comic",
                          "lines = contour, suggestive". Flags on the command line win over the file's
   --shading MODE         cel (default) | comic | flat | gouraud | lambert | phong | none
                            cel: 1-D shade map indexed by the half-Lambert (n.l + 1)/2; default: seed 003's five
