@@ -159,20 +159,25 @@ cv::Mat readImage(const std::filesystem::path& path, std::size_t maxPixels) {
     return image;
 }
 
-cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, std::size_t maxFileBytes) {
-    const std::string where = "readPngImage(): '" + path.string() + "'";
+std::string readInputBytes(const std::filesystem::path& path, std::uintmax_t maxBytes, const std::string& who) {
+    const std::string where = who + ": '" + path.string() + "'";
     std::error_code error;
     const auto status = std::filesystem::status(path, error);
     if (status.type() == std::filesystem::file_type::not_found) throw FileError(where + ": file not found");
     if (status.type() != std::filesystem::file_type::regular) throw FileError(where + ": not a regular file");
     const std::uintmax_t size = std::filesystem::file_size(path, error);
     if (error) throw FileError(where + ": " + error.message());
-    if (size > maxFileBytes)
-        throw FileError(where + " is " + std::to_string(size >> 20) + " MiB; at most " +
-                        std::to_string(maxFileBytes >> 20) + " MiB are read here");
+    if (size > maxBytes)
+        throw FileError(where + " is " + std::to_string(size) + " bytes; at most " + std::to_string(maxBytes) +
+                        " bytes are read here");
     std::ifstream file(path, std::ios::binary);
     if (!file) throw FileError(where + ": cannot open the file for reading");
-    const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
+cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, std::size_t maxFileBytes) {
+    const std::string where = "readPngImage(): '" + path.string() + "'";
+    const std::string bytes = readInputBytes(path, maxFileBytes, "readPngImage()");
     std::vector<unsigned char> png;
     try {
         png = criticalPngChunks(bytes);

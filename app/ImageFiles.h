@@ -44,6 +44,11 @@ inline constexpr std::size_t kDefaultMaxReadPixels = std::size_t(16384) * 16384;
  *  declares more than `maxPixels` pixels are refused (FileError) before anything is allocated. */
 cv::Mat readImage(const std::filesystem::path& path, std::size_t maxPixels = kDefaultMaxReadPixels);
 
+/** The bytes of a file from outside (a shade map, a style file): a regular file of at most `maxBytes`, judged
+ *  before anything is read, so a FIFO, a device or a huge file is refused at once. Throws FileError starting with
+ *  `who` and naming the file. */
+std::string readInputBytes(const std::filesystem::path& path, std::uintmax_t maxBytes, const std::string& who);
+
 /** readImage() for a PNG from outside (a user's shade map): a file of at most `maxFileBytes`, reduced to its critical
  *  chunks (app/PngChunks.h) and decoded from memory by the PNG reader alone. Throws FileError naming the file. */
 cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, std::size_t maxFileBytes);

@@ -191,6 +191,183 @@ void checkShadingFlags(const RenderOptions& options, const std::vector<std::stri
                          faceOrientationMethodName(options.faceOrientation) + "'");
 }
 
+/** What parsing gathers beside the options: the flags given, and the line types a style flag names. */
+struct ParseState {
+    RenderOptions options;
+    std::vector<std::string> givenFlags;
+    std::vector<std::pair<std::string, std::string>> styledLineTypes; // flag, line type
+};
+
+/** Applies arguments[i] to `state`, with its value (i then points at the value). Returns false at --help, where
+ *  parsing stops. */
+bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, ParseState& state) {
+    RenderOptions& options = state.options;
+    std::vector<std::string>& givenFlags = state.givenFlags;
+    std::vector<std::pair<std::string, std::string>>& styledLineTypes = state.styledLineTypes;
+    const std::string& argument = arguments[i];
+    if (!argument.empty() && argument[0] == '-') givenFlags.push_back(argument);
+    auto value = [&]() -> const std::string& {
+        if (i + 1 >= arguments.size()) throw UsageError(argument + ": missing value");
+        if (arguments[i + 1].empty()) throw UsageError(argument + ": empty value");
+        return arguments[++i];
+    };
+    if (argument == "--help" || argument == "-h") {
+        options.help = true;
+        return false;
+    }
+    if (argument == "-o" || argument == "--output") {
+        options.outputPath = value();
+        std::string extension = std::filesystem::path(options.outputPath).extension().string();
+        std::transform(extension.begin(), extension.end(), extension.begin(),
+                       [](unsigned char c) { return char(std::tolower(c)); });
+        if (std::find(kOutputExtensions.begin(), kOutputExtensions.end(), extension) == kOutputExtensions.end())
+            throw UsageError("-o: '" + options.outputPath +
+                             "' has no picture extension I write (use .png, .exr, "
+                             ".tif or .jpg)");
+    } else if (argument == "--size") {
+        parseSize(value(), options.width, options.height);
+    } else if (argument == "--eye") {
+        options.eye = parseVector(argument, value());
+    } else if (argument == "--target") {
+        options.target = parseVector(argument, value());
+    } else if (argument == "--up") {
+        options.up = parseVector(argument, value());
+        if (glm::length(*options.up) == 0.0) throw UsageError("--up: the up vector must not be zero");
+    } else if (argument == "--fov") {
+        const double fov = parseNumber(argument, value());
+        if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
+            throw UsageError("--fov: degrees must lie in [0.01, 179], got " + arguments[i]);
+        options.fovYDegrees = fov;
+    } else if (argument == "--clip") {
+        const std::vector<std::string> parts = splitList(value(), ',');
+        if (parts.size() != 2)
+            throw UsageError("--clip: expected NEAR,FAR (two comma-separated distances), got '" + arguments[i] + "'");
+        const glm::dvec2 clip(parseNumber(argument, parts[0]), parseNumber(argument, parts[1]));
+        if (!(clip.x > 0.0 && clip.x < clip.y))
+            throw UsageError("--clip: expected 0 < NEAR < FAR, got '" + arguments[i] + "'");
+        options.clipRange = clip;
+    } else if (argument == "--light") {
+        const glm::dvec3 light = parseVector(argument, value());
+        if (glm::length(light) == 0.0) throw UsageError("--light: the direction must not be zero");
+        options.towardLight = glm::normalize(light);
+    } else if (argument == "--shading") {
+        options.shading = parseChoice(argument, value(), kShadingModes);
+    } else if (argument == "--shininess") {
+        options.shininess = parseNumber(argument, value());
+        if (options.shininess < 0.0 || options.shininess > kMaxShininess)
+            throw UsageError("--shininess: expected a number from 0 to 1e6, got '" + arguments[i] + "'");
+    } else if (argument == "--bands") {
+        options.bands = parseWholeNumber(argument, value(), 2, 256);
+    } else if (argument == "--shademap") {
+        options.shadeMapPath = value();
+    } else if (argument == "--view-vector") {
+        options.viewVector = parseChoice<ViewVectorMode>(
+            argument, value(), {{"exact", ViewVectorMode::Exact}, {"constant", ViewVectorMode::Constant}});
+    } else if (argument == "--face-orientation") {
+        options.faceOrientation = parseChoice(argument, value(), kOrientationMethods);
+    } else if (argument == "--front-rule") {
+        options.frontRule = parseWholeNumber(argument, value(), 1, 3);
+    } else if (auto styleFlag = lineStyleFlag(argument)) {
+        LineStyle& style = options.lineStyles[styleFlag->first];
+        if (styleFlag->second == "color") {
+            style.color = parseColor(argument, value());
+        } else {
+            style.widthPixels = parseNumber(argument, value());
+            if (!(style.widthPixels > 0.0 && style.widthPixels <= kMaxLineWidthPixels))
+                throw UsageError(argument + ": pixels must be above 0 and at most 256, got '" + arguments[i] + "'");
+        }
+        styledLineTypes.emplace_back(argument, styleFlag->first);
+    } else if (argument == "--silhouette-object-width") {
+        options.silhouetteObjectWidth = parseNumber(argument, value());
+        if (!(*options.silhouetteObjectWidth > 0.0))
+            throw UsageError("--silhouette-object-width: model units must be above 0, got '" + arguments[i] + "'");
+        styledLineTypes.emplace_back(argument, "silhouette");
+    } else if (argument == "--lines") {
+        const std::string& list = value();
+        options.lines.clear();
+        if (list == "none") return true;
+        for (const std::string& type : splitList(list, ',')) {
+            const auto& known = knownLineTypes();
+            if (std::find(known.begin(), known.end(), type) == known.end())
+                throw UsageError("--lines: unknown line type '" + type + "' (available: " + joined(known) +
+                                 "; or 'none')");
+            if (std::find(options.lines.begin(), options.lines.end(), type) != options.lines.end())
+                throw UsageError("--lines: '" + type + "' is listed twice");
+            options.lines.push_back(type);
+        }
+    } else if (argument == "--crease-angle") {
+        options.creaseAngleDegrees = parseNumber(argument, value());
+        if (!(options.creaseAngleDegrees > 0.0 && options.creaseAngleDegrees < 180.0))
+            throw UsageError("--crease-angle: degrees must lie above 0 and below 180, got '" + arguments[i] + "'");
+    } else if (argument == "--depth-jump") {
+        options.depthJump = parseNumber(argument, value());
+        if (!(options.depthJump > 0.0 && options.depthJump <= 100.0))
+            throw UsageError("--depth-jump: expected a relative depth step above 0 up to 100, got '" + arguments[i] +
+                             "'");
+    } else if (argument == "--suggestive-threshold" || argument == "--suggestive-fade") {
+        const double strength = parseNumber(argument, value());
+        if (!(strength >= 0.0 && strength <= 1e6))
+            throw UsageError(argument + ": expected a number from 0 to 1e6, got '" + arguments[i] + "'");
+        (argument == "--suggestive-threshold" ? options.suggestiveThreshold : options.suggestiveFade) = strength;
+    } else if (argument == "--supersample") {
+        options.supersample = parseWholeNumber(argument, value(), 1, 8);
+    } else if (argument == "--suggestive-stencil") {
+        const std::string stencil = value();
+        if (stencil != "3" && stencil != "5")
+            throw UsageError("--suggestive-stencil: expected 3 or 5, got '" + stencil + "'");
+        options.suggestiveStencil = stencil == "3" ? 3 : 5;
+    } else if (argument == "--gbuffer-precision") {
+        const std::string precision = value();
+        if (precision == "float")
+            options.gbufferPrecision = GBufferPrecision::Float32;
+        else if (precision == "half")
+            options.gbufferPrecision = GBufferPrecision::Float16;
+        else
+            throw UsageError("--gbuffer-precision: expected float or half, got '" + precision + "'");
+    } else if (argument == "--background") {
+        const glm::dvec3 color = parseVector(argument, value());
+        for (int c = 0; c < 3; ++c)
+            if (color[c] < 0.0 || color[c] > 1.0)
+                throw UsageError("--background: channels must lie in [0, 1], got '" + arguments[i] + "'");
+        options.background = color;
+    } else if (argument == "--request") {
+        for (const std::string& resource : splitList(value(), ',')) {
+            const ResourceName name = ResourceName::split(resource);
+            if (name.pass.empty() || name.field.empty())
+                throw UsageError("--request: '" + resource +
+                                 "' is not a resource name like 'gbuffer.normal' "
+                                 "or 'gbuffer.*'");
+            options.extraOutputs.push_back(resource);
+        }
+    } else if (argument == "--dump") {
+        options.dumpDirectory = value();
+    } else if (argument == "--stats") {
+        options.statsPath = value();
+    } else if (argument == "--graphviz") {
+        options.graphvizPath = value();
+    } else if (argument == "--print-plan") {
+        options.printPlan = true;
+    } else if (argument == "--egl-platform") {
+        options.eglPlatform = value();
+        if (options.eglPlatform != "auto" && options.eglPlatform != "device" && options.eglPlatform != "surfaceless")
+            throw UsageError("--egl-platform: '" + options.eglPlatform + "' is not one of auto, device, surfaceless");
+    } else if (argument == "--memory-limit") {
+        options.memoryLimitBytes = std::size_t(parseWholeNumber(argument, value(), 64, kMaxMemoryLimitMib)) << 20;
+    } else if (argument == "--style") {
+        options.stylePath = value(); // its settings were put first by expandStyleFile()
+    } else if (argument == "-q" || argument == "--quiet") {
+        options.quiet = true;
+    } else if (!argument.empty() && argument[0] == '-') {
+        throw UsageError("unknown option '" + argument + "'");
+    } else if (options.modelPath.empty()) {
+        options.modelPath = argument;
+    } else {
+        throw UsageError("unexpected argument '" + argument + "' (one MODEL per run; the model is '" +
+                         options.modelPath + "')");
+    }
+    return true;
+}
+
 } // namespace
 
 std::string shadingModeName(ShadingMode mode) {
@@ -209,192 +386,22 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, cons
     if (!origins.empty() && origins.size() != arguments.size())
         throw std::invalid_argument("parseRenderOptions(): " + std::to_string(origins.size()) + " origins for " +
                                     std::to_string(arguments.size()) + " arguments");
-    RenderOptions options;
-    for (const std::string& type : knownLineTypes())
-        options.lineStyles[type] = LineStyle{};
-    std::vector<std::string> givenFlags;
-    std::vector<std::pair<std::string, std::string>> styledLineTypes; // flag, line type
+    ParseState state;
+    RenderOptions& options = state.options;
+    for (const std::string& type : knownLineTypes()) options.lineStyles[type] = LineStyle{};
     for (std::size_t i = 0; i < arguments.size(); ++i) {
         const std::size_t flagIndex = i;
         try {
-            const std::string& argument = arguments[i];
-            if (!argument.empty() && argument[0] == '-') givenFlags.push_back(argument);
-            auto value = [&]() -> const std::string& {
-                if (i + 1 >= arguments.size()) throw UsageError(argument + ": missing value");
-                if (arguments[i + 1].empty()) throw UsageError(argument + ": empty value");
-                return arguments[++i];
-            };
-            if (argument == "--help" || argument == "-h") {
-                options.help = true;
-                return options;
-            }
-            if (argument == "-o" || argument == "--output") {
-                options.outputPath = value();
-                std::string extension = std::filesystem::path(options.outputPath).extension().string();
-                std::transform(extension.begin(), extension.end(), extension.begin(),
-                               [](unsigned char c) { return char(std::tolower(c)); });
-                if (std::find(kOutputExtensions.begin(), kOutputExtensions.end(), extension) == kOutputExtensions.end())
-                    throw UsageError("-o: '" + options.outputPath +
-                                     "' has no picture extension I write (use .png, .exr, "
-                                     ".tif or .jpg)");
-            } else if (argument == "--size") {
-                parseSize(value(), options.width, options.height);
-            } else if (argument == "--eye") {
-                options.eye = parseVector(argument, value());
-            } else if (argument == "--target") {
-                options.target = parseVector(argument, value());
-            } else if (argument == "--up") {
-                options.up = parseVector(argument, value());
-                if (glm::length(*options.up) == 0.0) throw UsageError("--up: the up vector must not be zero");
-            } else if (argument == "--fov") {
-                const double fov = parseNumber(argument, value());
-                if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
-                    throw UsageError("--fov: degrees must lie in [0.01, 179], got " + arguments[i]);
-                options.fovYDegrees = fov;
-            } else if (argument == "--clip") {
-                const std::vector<std::string> parts = splitList(value(), ',');
-                if (parts.size() != 2)
-                    throw UsageError("--clip: expected NEAR,FAR (two comma-separated distances), got '" + arguments[i] +
-                                     "'");
-                const glm::dvec2 clip(parseNumber(argument, parts[0]), parseNumber(argument, parts[1]));
-                if (!(clip.x > 0.0 && clip.x < clip.y))
-                    throw UsageError("--clip: expected 0 < NEAR < FAR, got '" + arguments[i] + "'");
-                options.clipRange = clip;
-            } else if (argument == "--light") {
-                const glm::dvec3 light = parseVector(argument, value());
-                if (glm::length(light) == 0.0) throw UsageError("--light: the direction must not be zero");
-                options.towardLight = glm::normalize(light);
-            } else if (argument == "--shading") {
-                options.shading = parseChoice(argument, value(), kShadingModes);
-            } else if (argument == "--shininess") {
-                options.shininess = parseNumber(argument, value());
-                if (options.shininess < 0.0 || options.shininess > kMaxShininess)
-                    throw UsageError("--shininess: expected a number from 0 to 1e6, got '" + arguments[i] + "'");
-            } else if (argument == "--bands") {
-                options.bands = parseWholeNumber(argument, value(), 2, 256);
-            } else if (argument == "--shademap") {
-                options.shadeMapPath = value();
-            } else if (argument == "--view-vector") {
-                options.viewVector = parseChoice<ViewVectorMode>(
-                    argument, value(), {{"exact", ViewVectorMode::Exact}, {"constant", ViewVectorMode::Constant}});
-            } else if (argument == "--face-orientation") {
-                options.faceOrientation = parseChoice(argument, value(), kOrientationMethods);
-            } else if (argument == "--front-rule") {
-                options.frontRule = parseWholeNumber(argument, value(), 1, 3);
-            } else if (auto styleFlag = lineStyleFlag(argument)) {
-                LineStyle& style = options.lineStyles[styleFlag->first];
-                if (styleFlag->second == "color") {
-                    style.color = parseColor(argument, value());
-                } else {
-                    style.widthPixels = parseNumber(argument, value());
-                    if (!(style.widthPixels > 0.0 && style.widthPixels <= kMaxLineWidthPixels))
-                        throw UsageError(argument + ": pixels must be above 0 and at most 256, got '" + arguments[i] +
-                                         "'");
-                }
-                styledLineTypes.emplace_back(argument, styleFlag->first);
-            } else if (argument == "--silhouette-object-width") {
-                options.silhouetteObjectWidth = parseNumber(argument, value());
-                if (!(*options.silhouetteObjectWidth > 0.0))
-                    throw UsageError("--silhouette-object-width: model units must be above 0, got '" + arguments[i] +
-                                     "'");
-                styledLineTypes.emplace_back(argument, "silhouette");
-            } else if (argument == "--lines") {
-                const std::string& list = value();
-                options.lines.clear();
-                if (list == "none") continue;
-                for (const std::string& type : splitList(list, ',')) {
-                    const auto& known = knownLineTypes();
-                    if (std::find(known.begin(), known.end(), type) == known.end())
-                        throw UsageError("--lines: unknown line type '" + type + "' (available: " + joined(known) +
-                                         "; or 'none')");
-                    if (std::find(options.lines.begin(), options.lines.end(), type) != options.lines.end())
-                        throw UsageError("--lines: '" + type + "' is listed twice");
-                    options.lines.push_back(type);
-                }
-            } else if (argument == "--crease-angle") {
-                options.creaseAngleDegrees = parseNumber(argument, value());
-                if (!(options.creaseAngleDegrees > 0.0 && options.creaseAngleDegrees < 180.0))
-                    throw UsageError("--crease-angle: degrees must lie above 0 and below 180, got '" + arguments[i] +
-                                     "'");
-            } else if (argument == "--depth-jump") {
-                options.depthJump = parseNumber(argument, value());
-                if (!(options.depthJump > 0.0 && options.depthJump <= 100.0))
-                    throw UsageError("--depth-jump: expected a relative depth step above 0 up to 100, got '" +
-                                     arguments[i] + "'");
-            } else if (argument == "--suggestive-threshold" || argument == "--suggestive-fade") {
-                const double strength = parseNumber(argument, value());
-                if (!(strength >= 0.0 && strength <= 1e6))
-                    throw UsageError(argument + ": expected a number from 0 to 1e6, got '" + arguments[i] + "'");
-                (argument == "--suggestive-threshold" ? options.suggestiveThreshold : options.suggestiveFade) =
-                    strength;
-            } else if (argument == "--supersample") {
-                options.supersample = parseWholeNumber(argument, value(), 1, 8);
-            } else if (argument == "--suggestive-stencil") {
-                const std::string stencil = value();
-                if (stencil != "3" && stencil != "5")
-                    throw UsageError("--suggestive-stencil: expected 3 or 5, got '" + stencil + "'");
-                options.suggestiveStencil = stencil == "3" ? 3 : 5;
-            } else if (argument == "--gbuffer-precision") {
-                const std::string precision = value();
-                if (precision == "float")
-                    options.gbufferPrecision = GBufferPrecision::Float32;
-                else if (precision == "half")
-                    options.gbufferPrecision = GBufferPrecision::Float16;
-                else
-                    throw UsageError("--gbuffer-precision: expected float or half, got '" + precision + "'");
-            } else if (argument == "--background") {
-                const glm::dvec3 color = parseVector(argument, value());
-                for (int c = 0; c < 3; ++c)
-                    if (color[c] < 0.0 || color[c] > 1.0)
-                        throw UsageError("--background: channels must lie in [0, 1], got '" + arguments[i] + "'");
-                options.background = color;
-            } else if (argument == "--request") {
-                for (const std::string& resource : splitList(value(), ',')) {
-                    const ResourceName name = ResourceName::split(resource);
-                    if (name.pass.empty() || name.field.empty())
-                        throw UsageError("--request: '" + resource +
-                                         "' is not a resource name like 'gbuffer.normal' "
-                                         "or 'gbuffer.*'");
-                    options.extraOutputs.push_back(resource);
-                }
-            } else if (argument == "--dump") {
-                options.dumpDirectory = value();
-            } else if (argument == "--stats") {
-                options.statsPath = value();
-            } else if (argument == "--graphviz") {
-                options.graphvizPath = value();
-            } else if (argument == "--print-plan") {
-                options.printPlan = true;
-            } else if (argument == "--egl-platform") {
-                options.eglPlatform = value();
-                if (options.eglPlatform != "auto" && options.eglPlatform != "device" &&
-                    options.eglPlatform != "surfaceless")
-                    throw UsageError("--egl-platform: '" + options.eglPlatform +
-                                     "' is not one of auto, device, surfaceless");
-            } else if (argument == "--memory-limit") {
-                options.memoryLimitBytes = std::size_t(parseWholeNumber(argument, value(), 64, kMaxMemoryLimitMib))
-                                           << 20;
-            } else if (argument == "--style") {
-                options.stylePath = value(); // its settings were put first by expandStyleFile()
-            } else if (argument == "-q" || argument == "--quiet") {
-                options.quiet = true;
-            } else if (!argument.empty() && argument[0] == '-') {
-                throw UsageError("unknown option '" + argument + "'");
-            } else if (options.modelPath.empty()) {
-                options.modelPath = argument;
-            } else {
-                throw UsageError("unexpected argument '" + argument + "' (one MODEL per run; the model is '" +
-                                 options.modelPath + "')");
-            }
+            if (!parseArgument(arguments, i, state)) return options;
         } catch (const UsageError& error) {
             if (origins.empty() || origins[flagIndex].empty()) throw;
             throw UsageError(origins[flagIndex] + ": " + error.what());
         }
     }
     if (options.modelPath.empty()) throw UsageError("missing MODEL (a .gltf, .glb, .obj or .stl file)");
-    checkShadingFlags(options, givenFlags);
-    checkLineFlags(options, givenFlags);
-    for (const auto& [flag, type] : styledLineTypes)
+    checkShadingFlags(options, state.givenFlags);
+    checkLineFlags(options, state.givenFlags);
+    for (const auto& [flag, type] : state.styledLineTypes)
         if (std::find(options.lines.begin(), options.lines.end(), type) == options.lines.end())
             throw UsageError(flag + ": the '" + type + "' line type is not drawn (add it to --lines)");
     if (options.outputPath.empty() && !options.printPlan && options.dumpDirectory.empty() &&

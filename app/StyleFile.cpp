@@ -1,10 +1,10 @@
 #include "app/StyleFile.h"
 
+#include "app/ImageFiles.h"
 #include "app/Options.h"
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <set>
 
@@ -99,20 +99,12 @@ SourcedArguments expandStyleFile(const std::vector<std::string>& arguments) {
     }
     if (stylePath.empty()) return rest;
 
-    std::error_code error;
-    const auto status = std::filesystem::status(stylePath, error);
-    if (status.type() == std::filesystem::file_type::not_found)
-        throw UsageError("--style: '" + stylePath + "': file not found");
-    if (status.type() != std::filesystem::file_type::regular)
-        throw UsageError("--style: '" + stylePath + "': not a regular file");
-    const std::uintmax_t size = std::filesystem::file_size(stylePath, error);
-    if (error) throw UsageError("--style: '" + stylePath + "': " + error.message());
-    if (size > kMaxStyleFileBytes)
-        throw UsageError("--style: '" + stylePath + "' is " + std::to_string(size) + " bytes; a style file is at most " +
-                         std::to_string(kMaxStyleFileBytes) + " bytes of settings");
-    std::ifstream file(stylePath, std::ios::binary);
-    if (!file) throw UsageError("--style: '" + stylePath + "': cannot open the file for reading");
-    const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    std::string text;
+    try {
+        text = readInputBytes(stylePath, kMaxStyleFileBytes, "--style");
+    } catch (const FileError& error) {
+        throw UsageError(error.what()); // the style file is part of the command line (exit 2)
+    }
 
     SourcedArguments expanded =
         styleArguments(text, stylePath, std::filesystem::path(stylePath).parent_path().string());
