@@ -17,6 +17,13 @@ constexpr double kMinFovDegrees = 0.01;
 constexpr double kMaxFovDegrees = 179.0;
 const std::vector<std::string> kOutputExtensions = {".png", ".exr", ".tif", ".tiff", ".jpg", ".jpeg"};
 
+std::string lowercaseExtension(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
+}
+
 double parseNumber(const std::string& flag, const std::string& text) {
     double value = 0.0;
     const char* begin = text.data();
@@ -113,6 +120,17 @@ int parseWholeNumber(const std::string& flag, const std::string& text, int low, 
         throw UsageError(flag + ": expected a whole number from " + std::to_string(low) + " to " +
                          std::to_string(high) + ", got '" + text + "'");
     return static_cast<int>(value);
+}
+
+/** K/N with 0 <= K < N (N at most a million: more shards than that is a mistake, not a cluster). */
+Shard parseShard(const std::string& flag, const std::string& text) {
+    const auto slash = text.find('/');
+    if (slash == std::string::npos)
+        throw UsageError(flag + ": expected K/N (this process's share K of N, 0 <= K < N), got '" + text + "'");
+    Shard shard;
+    shard.count = parseWholeNumber(flag, text.substr(slash + 1), 1, 1000000);
+    shard.index = parseWholeNumber(flag, text.substr(0, slash), 0, shard.count - 1);
+    return shard;
 }
 
 /** R,G,B or R,G,B,A with channels in [0, 1]. */
@@ -217,9 +235,7 @@ bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, Pa
     }
     if (argument == "-o" || argument == "--output") {
         options.outputPath = value();
-        std::string extension = std::filesystem::path(options.outputPath).extension().string();
-        std::transform(extension.begin(), extension.end(), extension.begin(),
-                       [](unsigned char c) { return char(std::tolower(c)); });
+        const std::string extension = lowercaseExtension(options.outputPath);
         if (std::find(kOutputExtensions.begin(), kOutputExtensions.end(), extension) == kOutputExtensions.end())
             throw UsageError("-o: '" + options.outputPath +
                              "' has no picture extension I write (use .png, .exr, "
@@ -345,6 +361,22 @@ bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, Pa
         options.statsPath = value();
     } else if (argument == "--graphviz") {
         options.graphvizPath = value();
+    } else if (argument == "--contact-sheet") {
+        options.contactSheetPath = value();
+        if (lowercaseExtension(options.contactSheetPath) != ".png")
+            throw UsageError("--contact-sheet: '" + options.contactSheetPath + "' must be a .png file");
+    } else if (argument == "--svg") {
+        options.svgPath = value();
+        if (lowercaseExtension(options.svgPath) != ".svg")
+            throw UsageError("--svg: '" + options.svgPath + "' must be a .svg file");
+    } else if (argument == "--svg-tolerance") {
+        options.svgTolerance = parseNumber(argument, value());
+        if (options.svgTolerance < 0.0 || options.svgTolerance > 100.0)
+            throw UsageError("--svg-tolerance: expected output pixels from 0 to 100, got '" + arguments[i] + "'");
+    } else if (argument == "--list") {
+        options.listPath = value();
+    } else if (argument == "--shard") {
+        options.shard = parseShard(argument, value());
     } else if (argument == "--print-plan") {
         options.printPlan = true;
     } else if (argument == "--egl-platform") {
@@ -359,16 +391,19 @@ bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, Pa
         options.quiet = true;
     } else if (!argument.empty() && argument[0] == '-') {
         throw UsageError("unknown option '" + argument + "'");
-    } else if (options.modelPath.empty()) {
-        options.modelPath = argument;
     } else {
-        throw UsageError("unexpected argument '" + argument + "' (one MODEL per run; the model is '" +
-                         options.modelPath + "')");
+        if (options.modelPaths.empty()) options.modelPath = argument;
+        options.modelPaths.push_back(argument);
     }
     return true;
 }
 
 } // namespace
+
+bool rendersImages(const RenderOptions& options) {
+    return !options.outputPath.empty() || !options.dumpDirectory.empty() || !options.contactSheetPath.empty() ||
+           !options.svgPath.empty();
+}
 
 std::string shadingModeName(ShadingMode mode) {
     for (const auto& [name, value] : kShadingModes)
@@ -398,27 +433,33 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, cons
             throw UsageError(origins[flagIndex] + ": " + error.what());
         }
     }
-    if (options.modelPath.empty()) throw UsageError("missing MODEL (a .gltf, .glb, .obj or .stl file)");
+    if (options.modelPaths.empty() && options.listPath.empty())
+        throw UsageError("missing MODEL (a .gltf, .glb, .obj or .stl file, or --list FILE)");
     checkShadingFlags(options, state.givenFlags);
     checkLineFlags(options, state.givenFlags);
     for (const auto& [flag, type] : state.styledLineTypes)
         if (std::find(options.lines.begin(), options.lines.end(), type) == options.lines.end())
             throw UsageError(flag + ": the '" + type + "' line type is not drawn (add it to --lines)");
     if (options.outputPath.empty() && !options.printPlan && options.dumpDirectory.empty() &&
-        options.graphvizPath.empty())
+        options.graphvizPath.empty() && options.contactSheetPath.empty() && options.svgPath.empty())
         throw UsageError("missing -o OUT.png (or --print-plan / --graphviz to only show the plan)");
     if (options.eye && options.target && *options.eye == *options.target)
         throw UsageError("--eye and --target must differ");
-    const bool renders = !options.outputPath.empty() || !options.dumpDirectory.empty();
+    const bool renders = rendersImages(options);
+    const std::vector<std::string>& given = state.givenFlags;
+    if (std::find(given.begin(), given.end(), "--svg-tolerance") != given.end() && options.svgPath.empty())
+        throw UsageError("--svg-tolerance: applies to --svg, which is not given");
+    if (!options.svgPath.empty() && options.lines.empty())
+        throw UsageError("--svg: no line types to write (add --lines)");
     if (!options.statsPath.empty() && !renders)
         throw UsageError("--stats needs -o or --dump: with --print-plan alone nothing is rendered or timed");
     return options;
 }
 
 std::string renderHelp() {
-    return R"(Usage: inkgraph render MODEL -o OUT.png [options]
+    return R"(Usage: inkgraph render MODEL... -o OUT.png [options]
 
-Renders one still of MODEL (.gltf, .glb, .obj, .stl) with no window or display (EGL).
+Renders one still of each MODEL (.gltf, .glb, .obj, .stl) with no window or display (EGL).
 
 Output
   -o, --output FILE      the final picture: .png, .exr, .tif or .jpg
@@ -434,6 +475,13 @@ Output
   --stats FILE.json      timings per pass, culled passes with reasons, scene and GL facts
   --print-plan           print the compiled render plan (without -o, print it and stop: no GL needed)
   --graphviz FILE.dot    write the plan as a Graphviz graph (culled passes dashed)
+  --contact-sheet FILE.png
+                         every buffer the plan computed (normal, view, w, n.v, depth, each line layer, shading,
+                         final) side by side in one labelled picture
+  --svg FILE.svg         the line layers as vector paths, one group (an Inkscape layer) per line type, traced
+                         from the one-pixel line skeletons and simplified, in the lines' widths and colours
+  --svg-tolerance PX     --svg: how far a simplified path may leave the traced pixels, in output pixels
+                         (default 0.5; 0 keeps every pixel)
   -q, --quiet            no progress lines on stderr
 
 Camera (right-handed world, OpenGL lookAt/perspective; default: the glTF camera, else auto-framed)
@@ -516,6 +564,17 @@ Lines (any subset; only the passes the listed types need run: see --stats "culle
                          (docs/accuracy.md measures it). Also applies to --request 'gbuffer.*'
   Outline and silhouette draw nothing when the eye is inside the model (they would flood the picture).
 
+Batch (several models in one process: one GL context, each shader program compiled once)
+  MODEL...               several models render one after the other; every output path must then hold {name}
+                         (the model's file name without extension) or {index} (its list position from 1,
+                         zero-padded), e.g. -o 'out/{name}.png' --stats 'out/{name}.json'
+  --list FILE            more models, one path per line (blank lines and # comments skipped; relative paths
+                         from the current folder); '-' reads standard input
+  --shard K/N            render only the models at list positions p (from 0) with p mod N = K, 0 <= K < N: one
+                         task of an array job (Slurm: --shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT)
+  Each model gets a progress line. A model that cannot be read is reported and the others go on; the run then
+  ends with exit 3. Any other error stops the batch; models already done keep their files.
+
 System
   --egl-platform P       auto | device | surfaceless (default auto: device first, then surfaceless)
   --memory-limit MIB     the most memory one model load and the plan's buffers may take, 64 and up (default:
@@ -532,7 +591,8 @@ std::string mainHelp() {
     return R"(inkgraph - headless anime- and comic-style renderer
 
 Usage:
-  inkgraph render MODEL -o OUT.png [options]   render one still (see: inkgraph help render)
+  inkgraph render MODEL... -o OUT.png [options]
+                                               render a still of each model (see: inkgraph help render)
   inkgraph --version                           print the version
   inkgraph --help                              this text
 )";

@@ -28,8 +28,17 @@ struct LineStyle {
     glm::dvec4 color{0.0, 0.0, 0.0, 1.0}; ///< display RGBA in [0,1]
 };
 
+/** --shard K/N: this process renders the models whose 0-based list position p has p mod N == K. */
+struct Shard {
+    int index = 0; ///< K, 0 <= K < N (Slurm's SLURM_ARRAY_TASK_ID with --array=0-(N-1))
+    int count = 1; ///< N
+};
+
 struct RenderOptions {
-    std::string modelPath;
+    std::string modelPath;                  ///< the model of this still (the first MODEL until a batch assigns it)
+    std::vector<std::string> modelPaths;    ///< every MODEL argument, in order; with --list, a batch (app/Batch.h)
+    std::string listPath;                   ///< --list FILE: more models, one per line ("-": standard input)
+    std::optional<Shard> shard;             ///< --shard K/N: this process's share of the models
     std::string outputPath;                 ///< -o; may be empty with --print-plan only
     int width = 1024;
     int height = 1024;
@@ -61,6 +70,9 @@ struct RenderOptions {
     std::string dumpDirectory;
     std::string statsPath;
     std::string graphvizPath;               ///< --graphviz: the plan as DOT
+    std::string contactSheetPath;           ///< --contact-sheet: every computed buffer in one labelled PNG
+    std::string svgPath;                    ///< --svg: the line layers as vector paths
+    double svgTolerance = 0.5;              ///< --svg-tolerance: simplification, output pixels
     bool printPlan = false;
     std::string eglPlatform = "auto";       ///< auto, device, surfaceless
     std::optional<std::size_t> memoryLimitBytes; ///< --memory-limit; default: half the machine's memory, >= 1 GiB
@@ -77,6 +89,8 @@ bool isImageSpaceLineType(const std::string& type);
 bool isObjectSpaceLineType(const std::string& type);
 /** Line types drawn from the mesh's edges (the "mesh-edges" pass). */
 bool isMeshEdgeLineType(const std::string& type);
+/** Whether a run renders (-o, --dump, --contact-sheet or --svg) rather than only showing the plan. */
+bool rendersImages(const RenderOptions& options);
 std::string shadingModeName(ShadingMode mode);
 bool usesShadeMap(ShadingMode mode);
 

@@ -87,6 +87,8 @@ OutputSet::OutputSet(const RenderOptions& options) : mOptions(options) {
     if (!options.outputPath.empty()) files.push_back({"-o", options.outputPath});
     if (!options.statsPath.empty()) files.push_back({"--stats", options.statsPath});
     if (!options.graphvizPath.empty()) files.push_back({"--graphviz", options.graphvizPath});
+    if (!options.contactSheetPath.empty()) files.push_back({"--contact-sheet", options.contactSheetPath});
+    if (!options.svgPath.empty()) files.push_back({"--svg", options.svgPath});
 
     // Collisions first: they are mistakes in the command line, whatever the file system says.
     const fs::path model = resolved(options.modelPath);
@@ -176,6 +178,8 @@ void OutputSet::stageFile(const fs::path& destination, const cv::Mat* image, con
 void OutputSet::stageFinalImage(const cv::Mat& image) { stageFile(mOptions.outputPath, &image, nullptr); }
 void OutputSet::stageStats(const std::string& json) { stageFile(mOptions.statsPath, nullptr, &json); }
 void OutputSet::stageGraphviz(const std::string& dot) { stageFile(mOptions.graphvizPath, nullptr, &dot); }
+void OutputSet::stageContactSheet(const cv::Mat& image) { stageFile(mOptions.contactSheetPath, &image, nullptr); }
+void OutputSet::stageSvg(const std::string& svg) { stageFile(mOptions.svgPath, nullptr, &svg); }
 
 void OutputSet::stageDumpImage(const std::string& fileName, const cv::Mat& image) {
     writeImageTo(mStaging / fileName, mDumpDirectory / fileName, image);

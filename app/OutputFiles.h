@@ -29,6 +29,8 @@ public:
     void stageFinalImage(const cv::Mat& image);   ///< -o
     void stageStats(const std::string& json);     ///< --stats
     void stageGraphviz(const std::string& dot);   ///< --graphviz
+    void stageContactSheet(const cv::Mat& image); ///< --contact-sheet
+    void stageSvg(const std::string& svg);        ///< --svg
     void stageDumpImage(const std::string& fileName, const cv::Mat& image);
     void stageDumpManifest(const std::string& json);
 
@@ -45,7 +47,7 @@ private:
     void commitDump();
 
     const RenderOptions& mOptions;
-    std::vector<Staged> mFiles;          ///< -o, --stats, --graphviz
+    std::vector<Staged> mFiles;          ///< -o, --stats, --graphviz, --contact-sheet, --svg
     std::vector<std::string> mDumpNames; ///< staged in mStaging, manifest.json last
     std::filesystem::path mDumpDirectory;
     std::filesystem::path mStaging;

@@ -295,14 +295,23 @@ FrameParams frameParamsOf(const RenderOptions& options, const Scene& scene, cons
     return frame;
 }
 
-void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& log) {
+RenderSession::RenderSession(std::ostream& out, std::ostream& log) : mOut(out), mLog(log) {
+    mShaders.keepPrograms(true);
+}
+
+RenderSession::~RenderSession() = default;
+
+StillReport RenderSession::render(const RenderOptions& options, const BatchPosition* batch) {
     const auto processStart = std::chrono::steady_clock::now();
-    // Declared first so it is destroyed last, after every GL object below.
-    std::optional<HeadlessContext> context;
-    const bool renders = !options.outputPath.empty() || !options.dumpDirectory.empty();
+    std::ostream& out = mOut;
+    std::ostream& log = mLog;
+    const bool renders = rendersImages(options);
+    // In a batch the progress line per still replaces the lines of one still.
+    const bool talks = !options.quiet && batch == nullptr;
     // OpenImageIO's ~0.2 s of dynamic linking overlaps loading the model. (Not rendering: on llvmpipe, LLVM's symbol
     // look-ups wait for the dynamic loader's lock, so they would queue behind it.)
     if (renders) preloadImageIo();
+    StillReport report;
 
     // Every output place is checked before any work; outputs are staged and put in place only at the end.
     OutputSet outputs(options);
@@ -315,11 +324,13 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     loadOptions.memoryLimitBytes = memoryLimitOf(options);
     const Scene scene = loadScene(options.modelPath, loadOptions);
     const double loadMs = millisecondsSince(loadStart);
-    if (!options.quiet) {
+    report.triangles = scene.triangleCount();
+    for (const std::string& warning : scene.report.warnings)
+        log << "inkgraph: warning: " << (talks ? "" : "'" + options.modelPath + "': ") << warning << "\n";
+    if (talks) {
         log << std::fixed << std::setprecision(1) << "inkgraph: loaded '" << options.modelPath << "': " << scene.triangleCount() << " triangles, "
             << scene.vertexCount() << " vertices (" << scene.report.degenerateDropped << " degenerate dropped) in "
             << loadMs << " ms\n";
-        for (const std::string& warning : scene.report.warnings) log << "inkgraph: warning: " << warning << "\n";
     }
 
     const BoundingSphere sphere = computeBoundingSphere(scene);
@@ -333,9 +344,8 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
 
     const FrameParams frame = frameParamsOf(options, scene, camera, sphere);
 
-    ShaderLibrary shaders;
     GpuScene gpuScene(scene, sphere.center);
-    const StillGraph graph = buildStillGraph({options, shaders, scene, sphere, gpuScene, frame, std::move(shadeMap)});
+    const StillGraph graph = buildStillGraph({options, mShaders, scene, sphere, gpuScene, frame, std::move(shadeMap)});
 
     std::vector<std::string> requested = {graph.finalResource};
     for (const std::string& extra : expandWildcards(options.extraOutputs, graph))
@@ -352,18 +362,27 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
     if (!options.graphvizPath.empty()) outputs.stageGraphviz(plan.graphviz());
     if (!renders) {
         outputs.commit();
-        return;
+        return report;
     }
     checkFrameBudget(plan, options);
 
-    HeadlessContextOptions contextOptions;
-    if (options.eglPlatform == "device") contextOptions.platform = EglPlatform::Device;
-    if (options.eglPlatform == "surfaceless") contextOptions.platform = EglPlatform::Surfaceless;
-    const auto contextStart = std::chrono::steady_clock::now();
-    context.emplace(contextOptions);
-    const double contextMs = millisecondsSince(contextStart);
-    if (!options.quiet) log << "inkgraph: " << context->describe() << "\n";
+    // One context for every still of the process: the first that renders makes it (the platform flag is the same
+    // for all of them), later ones find it current with the programs the earlier ones compiled.
+    const bool contextReused = mContext.has_value();
+    double contextMs = 0.0;
+    if (!contextReused) {
+        HeadlessContextOptions contextOptions;
+        if (options.eglPlatform == "device") contextOptions.platform = EglPlatform::Device;
+        if (options.eglPlatform == "surfaceless") contextOptions.platform = EglPlatform::Surfaceless;
+        const auto contextStart = std::chrono::steady_clock::now();
+        mContext.emplace(contextOptions);
+        contextMs = millisecondsSince(contextStart);
+        if (!options.quiet) log << "inkgraph: " << mContext->describe() << "\n";
+    }
+    const HeadlessContext& context = *mContext;
     checkDriverLimits(options);
+    const std::size_t programsCompiledBefore = mShaders.compiledCount();
+    const std::size_t programsReusedBefore = mShaders.reusedCount();
 
     TexturePool pool;
     GraphExecutor executor(pool);
@@ -440,12 +459,17 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
                          {"far_over_near", camera.zFar / camera.zNear},
                          {"source", camera.clipSource},
                          {"depth", "reversed-z float32"}};
-        stats["gl"] = {{"platform", context->platform()},
-                       {"renderer", context->renderer()},
-                       {"version", context->version()},
-                       {"vendor", context->vendor()}};
+        if (batch) stats["batch"] = {{"position", batch->model.position + 1}, {"list_length", batch->listLength}};
+        stats["gl"] = {{"platform", context.platform()},
+                       {"renderer", context.renderer()},
+                       {"version", context.version()},
+                       {"vendor", context.vendor()}};
         stats["load_ms"] = loadMs;
         stats["context_ms"] = contextMs;
+        stats["context_reused"] = contextReused;
+        // Programs this still compiled, and those it took from an earlier still of the process.
+        stats["programs_compiled"] = mShaders.compiledCount() - programsCompiledBefore;
+        stats["programs_reused"] = mShaders.reusedCount() - programsReusedBefore;
         stats["look"] = describeLook(options, graph);
         if (options.shading == ShadingMode::Comic) stats["face_orientation"] = describeOrientation(*graph.orientation);
         stats["passes"] = passTimes;
@@ -460,12 +484,76 @@ void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& 
         outputs.stageStats(jsonText(stats));
     }
     outputs.commit();
-    if (!options.quiet) {
+    report.milliseconds = millisecondsSince(processStart);
+    if (talks) {
         log << "inkgraph: rendered " << options.width << "x" << options.height << " in "
             << millisecondsSince(processStart) << " ms";
         if (!options.outputPath.empty()) log << " -> '" << options.outputPath << "'";
         log << "\n";
     }
+    return report;
+}
+
+void renderStill(const RenderOptions& options, std::ostream& out, std::ostream& log) {
+    RenderSession session(out, log);
+    session.render(options);
+}
+
+int renderBatch(const RenderOptions& options, std::istream& standardInput, std::ostream& out, std::ostream& log) {
+    const BatchList list = batchList(options, standardInput);
+    checkBatchOutputs(options, list);
+    RenderSession session(out, log);
+    if (!list.isBatch) {
+        session.render(stillOptions(options, list.models.front(), list.total));
+        return kExitOk;
+    }
+    const auto batchStart = std::chrono::steady_clock::now();
+    const std::string share =
+        options.shard ? " (shard " + std::to_string(options.shard->index) + "/" + std::to_string(options.shard->count) +
+                            " of " + std::to_string(list.total) + ")"
+                      : "";
+    if (list.models.empty()) {
+        if (!options.quiet) log << "inkgraph: no models in this share" << share << "\n";
+        return kExitOk;
+    }
+    int exitCode = kExitOk;
+    std::vector<std::string> failed;
+    for (std::size_t i = 0; i < list.models.size(); ++i) {
+        const BatchModel& model = list.models[i];
+        const RenderOptions still = stillOptions(options, model, list.total);
+        const std::string counter =
+            "inkgraph: [" + std::to_string(i + 1) + "/" + std::to_string(list.models.size()) + "] '" + model.path + "'";
+        try {
+            const BatchPosition position{model, list.total};
+            const StillReport report = session.render(still, &position);
+            if (!options.quiet) {
+                log << counter;
+                if (!still.outputPath.empty()) log << " -> '" << still.outputPath << "'";
+                log << ": " << report.triangles << " triangles, " << std::fixed << std::setprecision(0)
+                    << report.milliseconds << " ms\n";
+            }
+        } catch (const SceneError& error) {
+            // Bad input stops one still, not the batch: the other models' work is not lost.
+            log << counter << " failed: " << error.what() << "\n";
+            failed.push_back(model.path);
+            if (exitCode == kExitOk) exitCode = kExitBadInput;
+        } catch (const InputFileError& error) {
+            log << counter << " failed: " << error.what() << "\n";
+            failed.push_back(model.path);
+            if (exitCode == kExitOk) exitCode = kExitBadInput;
+        }
+    }
+    if (!options.quiet || !failed.empty()) {
+        log << "inkgraph: rendered " << list.models.size() - failed.size() << " of " << list.models.size()
+            << " models" << share << " in " << std::fixed << std::setprecision(1)
+            << millisecondsSince(batchStart) / 1000.0 << " s";
+        if (!failed.empty()) {
+            log << "; " << failed.size() << " failed:";
+            for (const std::string& path : failed) log << " '" << path << "'";
+        }
+        log << "\n";
+    }
+    return exitCode;
 }
 
 int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
@@ -499,8 +587,7 @@ int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::os
             out << renderHelp();
             return kExitOk;
         }
-        renderStill(options, out, err);
-        return kExitOk;
+        return renderBatch(options, std::cin, out, err);
     } catch (const UsageError& error) {
         err << "inkgraph: " << error.what() << "\n(see: inkgraph help render)\n";
         return kExitUsage;

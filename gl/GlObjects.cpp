@@ -146,7 +146,8 @@ void GlVertexArray::setIndexBuffer(const GlBuffer& buffer) { glVertexArrayElemen
 
 void GlVertexArray::bind() const { glBindVertexArray(id()); }
 
-GlProgram::GlProgram(GLuint id, std::string label) : mHandle(id), mLabel(std::move(label)) {
+GlProgram::GlProgram(GLuint id, std::string label)
+    : mHandle(std::make_shared<const GlHandle<ProgramDeleter>>(id)), mLabel(std::move(label)) {
     labelObject(GL_PROGRAM, id, mLabel);
 }
 

@@ -136,16 +136,18 @@ private:
     GlHandle<VertexArrayDeleter> mHandle;
 };
 
+/** A linked program. Copies share the one GL program (deleted with the last copy), so a ShaderLibrary that keeps
+ *  programs can hand the same one to the passes of every still a process renders. */
 class GlProgram {
 public:
     GlProgram(GLuint id, std::string label);
-    GLuint id() const { return mHandle.id(); }
+    GLuint id() const { return mHandle->id(); }
     void use() const;
     /** Uniform location by name; -1 (ignored by glUniform) when the compiler removed it. */
     GLint uniform(const char* name) const;
 
 private:
-    GlHandle<ProgramDeleter> mHandle;
+    std::shared_ptr<const GlHandle<ProgramDeleter>> mHandle;
     std::string mLabel;
 };
 

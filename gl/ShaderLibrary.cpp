@@ -83,6 +83,19 @@ GLuint ShaderLibrary::compileStage(const ProgramDesc& desc, GLenum stage, const 
 }
 
 GlProgram ShaderLibrary::build(const ProgramDesc& desc) {
+    if (!mKeepPrograms) return compileAndLink(desc);
+    // Everything that goes into the source text; '\n' cannot occur in a file name or a define.
+    std::string key = desc.vertexFile + "\n" + desc.geometryFile + "\n" + desc.fragmentFile;
+    for (const std::string& define : desc.defines) key += "\nD" + define;
+    for (const std::string& snippet : desc.snippets) key += "\nS" + snippet;
+    if (auto kept = mPrograms.find(key); kept != mPrograms.end()) {
+        ++mReused;
+        return kept->second;
+    }
+    return mPrograms.emplace(key, compileAndLink(desc)).first->second;
+}
+
+GlProgram ShaderLibrary::compileAndLink(const ProgramDesc& desc) {
     const bool hasGeometry = !desc.geometryFile.empty();
     GlHandle<ShaderDeleter> vertex(compileStage(desc, GL_VERTEX_SHADER, desc.vertexFile));
     GlHandle<ShaderDeleter> geometry;
@@ -106,6 +119,7 @@ GlProgram ShaderLibrary::build(const ProgramDesc& desc) {
         throw std::runtime_error("ShaderLibrary::build(): program '" + desc.label + "' (" + stages +
                                  ", defines: " + joinDefines(desc.defines) + ") failed to link:\n" + log);
     }
+    ++mCompiled;
     return program;
 }
 

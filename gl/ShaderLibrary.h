@@ -30,17 +30,32 @@ public:
     /** Reads nothing yet: a missing folder is reported by the first build(), so plans compile without shaders. */
     explicit ShaderLibrary(std::filesystem::path directory = defaultDirectory());
 
-    /** Compiles and links; throws std::runtime_error naming the file, stage, defines and the info log. */
+    /** Compiles and links; throws std::runtime_error naming the file, stage, defines and the info log. With
+     *  keepPrograms(true), a program of the same files, defines and snippets as an earlier one is that program
+     *  again (the label does not matter), so the stills of a batch compile each program once. */
     GlProgram build(const ProgramDesc& desc);
+
+    /** Keep every program built from now on until the library is destroyed (which must then happen while the GL
+     *  context is still current). Off by default: a library outliving its context must own no GL objects. */
+    void keepPrograms(bool keep) { mKeepPrograms = keep; }
+
+    /** Programs compiled and linked, and builds answered with a kept program, since construction. */
+    std::size_t compiledCount() const { return mCompiled; }
+    std::size_t reusedCount() const { return mReused; }
 
     const std::filesystem::path& directory() const { return mDirectory; }
 
 private:
     const std::string& source(const std::string& relativePath);
     GLuint compileStage(const ProgramDesc& desc, GLenum stage, const std::string& file);
+    GlProgram compileAndLink(const ProgramDesc& desc);
 
     std::filesystem::path mDirectory;
     std::map<std::string, std::string> mSources;
+    bool mKeepPrograms = false;
+    std::map<std::string, GlProgram> mPrograms; ///< by programKey(): files, defines, snippets
+    std::size_t mCompiled = 0;
+    std::size_t mReused = 0;
 };
 
 } // namespace inkgraph

@@ -70,7 +70,11 @@ protected:
     }
 
     static std::string model(const std::string& name) {
-        return "'" + (fs::path(INKGRAPH_SOURCE_ROOT) / "models" / name).string() + "'";
+        // Appended rather than "'" + path + "'": GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
+        std::string quoted = "'";
+        quoted += (fs::path(INKGRAPH_SOURCE_ROOT) / "models" / name).string();
+        quoted += "'";
+        return quoted;
     }
 
     fs::path directory;

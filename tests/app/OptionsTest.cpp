@@ -279,10 +279,47 @@ TEST(Options, MalformedValuesNameTheFlag) {
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--egl-platform", "x11"}).find("x11"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--bogus"}).find("'--bogus'"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o"}).find("-o: missing value"), std::string::npos);
-    EXPECT_NE(usageMessage({"m.obj", "n.obj", "-o", "x.png"}).find("'n.obj'"), std::string::npos);
     EXPECT_NE(usageMessage({"-o", "x.png"}).find("missing MODEL"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj"}).find("-o"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--eye", "1,1,1", "--target", "1,1,1"}).find("differ"),
+              std::string::npos);
+}
+
+TEST(Options, SeveralModelsAListAndAShard) {
+    const RenderOptions several = parse({"a.obj", "-o", "{name}.png", "b.glb", "c.stl"});
+    EXPECT_EQ(several.modelPaths, std::vector<std::string>({"a.obj", "b.glb", "c.stl"}));
+    EXPECT_EQ(several.modelPath, "a.obj");
+    const RenderOptions listed = parse({"--list", "models.txt", "--shard", "2/5", "-o", "{name}.png"});
+    EXPECT_TRUE(listed.modelPaths.empty());
+    EXPECT_EQ(listed.listPath, "models.txt");
+    ASSERT_TRUE(listed.shard.has_value());
+    EXPECT_EQ(listed.shard->index, 2);
+    EXPECT_EQ(listed.shard->count, 5);
+    EXPECT_NE(usageMessage({"--list", "l.txt", "-o", "x.png", "--shard", "5/5"}).find("--shard"), std::string::npos);
+    EXPECT_NE(usageMessage({"--list", "l.txt", "-o", "x.png", "--shard", "-1/5"}).find("--shard"), std::string::npos);
+    EXPECT_NE(usageMessage({"--list", "l.txt", "-o", "x.png", "--shard", "1/0"}).find("--shard"), std::string::npos);
+    EXPECT_NE(usageMessage({"--list", "l.txt", "-o", "x.png", "--shard", "3"}).find("expected K/N"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"--list", "", "-o", "x.png"}).find("--list: empty value"), std::string::npos);
+}
+
+TEST(Options, ContactSheetAndSvgOutputs) {
+    const RenderOptions options =
+        parse({"m.obj", "--contact-sheet", "sheet.PNG", "--svg", "l.svg", "--lines", "contour", "--svg-tolerance", "0"});
+    EXPECT_EQ(options.contactSheetPath, "sheet.PNG");
+    EXPECT_EQ(options.svgPath, "l.svg");
+    EXPECT_EQ(options.svgTolerance, 0.0);
+    EXPECT_TRUE(rendersImages(options)) << "a contact sheet or an SVG alone renders";
+    EXPECT_EQ(parse({"m.obj", "--svg", "l.svg", "--lines", "crease"}).svgTolerance, 0.5);
+    EXPECT_NE(usageMessage({"m.obj", "--contact-sheet", "s.jpg"}).find("--contact-sheet: 's.jpg' must be a .png"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "--svg", "l.png", "--lines", "contour"}).find("must be a .svg"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "--svg", "l.svg"}).find("--svg: no line types"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--svg-tolerance", "1"}).find("--svg, which is not given"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "--svg", "l.svg", "--lines", "contour", "--svg-tolerance", "-1"})
+                  .find("--svg-tolerance"),
               std::string::npos);
 }
 

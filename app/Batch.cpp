@@ -1,0 +1,153 @@
+#include "app/Batch.h"
+
+#include "app/ImageFiles.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <istream>
+#include <map>
+#include <sstream>
+
+namespace inkgraph {
+namespace {
+
+/** A list is text, one path a line: 16 MiB is some 100 000 models, far more than one process should take. */
+constexpr std::size_t kMaxListBytes = std::size_t(16) << 20;
+
+std::string listText(const std::string& listPath, std::istream& standardInput) {
+    if (listPath != "-") {
+        try {
+            return readInputBytes(listPath, kMaxListBytes, "--list");
+        } catch (const FileError& error) {
+            throw UsageError(error.what());
+        }
+    }
+    std::string text;
+    char buffer[65536];
+    while (standardInput.read(buffer, sizeof buffer) || standardInput.gcount() > 0) {
+        text.append(buffer, std::size_t(standardInput.gcount()));
+        if (text.size() > kMaxListBytes)
+            throw UsageError("--list: standard input holds more than " + std::to_string(kMaxListBytes >> 20) +
+                             " MiB; split the list");
+    }
+    return text;
+}
+
+std::string trimmed(const std::string& text) {
+    const auto first = text.find_first_not_of(" \t\r");
+    if (first == std::string::npos) return "";
+    return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+}
+
+/** The place a path names, for comparing outputs: absolute and normalised, without touching the file system's
+ *  links beyond what exists (two spellings of one file compare equal). */
+std::string placeOf(const std::string& path) {
+    std::error_code error;
+    const std::filesystem::path place = std::filesystem::weakly_canonical(std::filesystem::absolute(path), error);
+    return error ? std::filesystem::absolute(path).lexically_normal().string() : place.string();
+}
+
+bool hasPlaceholder(const std::string& pattern) {
+    return pattern.find("{name}") != std::string::npos || pattern.find("{index}") != std::string::npos;
+}
+
+/** Each output flag and its value, in the order --help lists them. */
+std::vector<std::pair<std::string, std::string>> outputFlags(const RenderOptions& options) {
+    std::vector<std::pair<std::string, std::string>> flags = {
+        {"-o", options.outputPath},           {"--dump", options.dumpDirectory}, {"--stats", options.statsPath},
+        {"--graphviz", options.graphvizPath}, {"--contact-sheet", options.contactSheetPath},
+        {"--svg", options.svgPath}};
+    flags.erase(std::remove_if(flags.begin(), flags.end(), [](const auto& flag) { return flag.second.empty(); }),
+                flags.end());
+    return flags;
+}
+
+} // namespace
+
+BatchList batchList(const RenderOptions& options, std::istream& standardInput) {
+    std::vector<std::string> paths = options.modelPaths;
+    if (!options.listPath.empty()) {
+        const std::string text = listText(options.listPath, standardInput);
+        const std::string listName = options.listPath == "-" ? "standard input" : "'" + options.listPath + "'";
+        std::istringstream lines(text);
+        std::string line;
+        for (std::size_t number = 1; std::getline(lines, line); ++number) {
+            if (line.find('\0') != std::string::npos)
+                throw UsageError("--list " + listName + " line " + std::to_string(number) +
+                                 ": binary data (NUL byte); a list holds one model path per line");
+            const std::string path = trimmed(line);
+            if (path.empty() || path[0] == '#') continue;
+            paths.push_back(path);
+        }
+        if (paths.empty()) throw UsageError("--list " + listName + ": no models in it (one path per line)");
+    }
+    BatchList list;
+    list.total = paths.size();
+    list.isBatch = paths.size() > 1 || !options.listPath.empty();
+    for (std::size_t position = 0; position < paths.size(); ++position) {
+        if (options.shard && int(position % std::size_t(options.shard->count)) != options.shard->index) continue;
+        list.models.push_back({paths[position], position});
+    }
+    return list;
+}
+
+std::string expandOutputPattern(const std::string& pattern, const BatchModel& model, std::size_t total) {
+    std::string index = std::to_string(model.position + 1);
+    const std::size_t width = std::to_string(std::max<std::size_t>(total, 1)).size();
+    if (index.size() < width) index.insert(0, width - index.size(), '0');
+    const std::string name = std::filesystem::path(model.path).stem().string();
+    std::string expanded;
+    for (std::size_t i = 0; i < pattern.size();) {
+        if (pattern.compare(i, 6, "{name}") == 0) {
+            expanded += name;
+            i += 6;
+        } else if (pattern.compare(i, 7, "{index}") == 0) {
+            expanded += index;
+            i += 7;
+        } else {
+            expanded += pattern[i++];
+        }
+    }
+    return expanded;
+}
+
+RenderOptions stillOptions(const RenderOptions& options, const BatchModel& model, std::size_t total) {
+    RenderOptions still = options;
+    still.modelPath = model.path;
+    for (std::string* output : {&still.outputPath, &still.dumpDirectory, &still.statsPath, &still.graphvizPath,
+                                &still.contactSheetPath, &still.svgPath})
+        *output = expandOutputPattern(*output, model, total);
+    return still;
+}
+
+void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
+    if (list.total > 1)
+        for (const auto& [flag, pattern] : outputFlags(options))
+            if (!hasPlaceholder(pattern))
+                throw UsageError(flag + " '" + pattern + "' would be the same file for all " +
+                                 std::to_string(list.total) + " models; put {name} or {index} in it, e.g. '" +
+                                 (flag == "--dump" ? "out/{name}-dump" : "out/{name}" +
+                                  std::filesystem::path(pattern).extension().string()) + "'");
+    std::map<std::string, std::string> modelsByPlace;
+    for (const BatchModel& model : list.models) modelsByPlace.emplace(placeOf(model.path), model.path);
+    // Place -> the first still writing there (a model listed twice is two stills).
+    std::map<std::string, const BatchModel*> writers;
+    for (const BatchModel& model : list.models) {
+        for (const auto& [flag, pattern] : outputFlags(options)) {
+            const std::string output = expandOutputPattern(pattern, model, list.total);
+            const std::string place = placeOf(output);
+            if (auto input = modelsByPlace.find(place); input != modelsByPlace.end())
+                throw UsageError(flag + " '" + output + "' (for '" + model.path + "') would overwrite the model '" +
+                                 input->second + "'");
+            // One still's own outputs colliding with each other are OutputSet's to report.
+            const auto [earlier, inserted] = writers.emplace(place, &model);
+            if (!inserted && earlier->second->position != model.position)
+                throw UsageError(flag + " '" + output + "' is written for both '" + earlier->second->path +
+                                 "' (list position " + std::to_string(earlier->second->position + 1) + ") and '" +
+                                 model.path + "' (position " + std::to_string(model.position + 1) +
+                                 "); models of one name need {index}");
+        }
+    }
+}
+
+} // namespace inkgraph

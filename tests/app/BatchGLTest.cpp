@@ -1,0 +1,116 @@
+// A batch run by the real `inkgraph` executable: several models in one process give the same pictures as one
+// process each, make one GL context and compile each program once, report a line per model, and keep going past
+// a bad model. Needs a GL context (llvmpipe in CI).
+#include "app/ImageFiles.h"
+#include "CliTestSupport.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+namespace inkgraph {
+namespace {
+
+using test::Cli;
+using test::CliRun;
+using test::readText;
+namespace fs = std::filesystem;
+
+/** The look of every still here; batches run without -q, as their progress lines are checked. */
+const std::string kLook = " --size 96x80 --shading comic --lines outline,contour,crease";
+
+bool sameImage(const fs::path& a, const fs::path& b) {
+    const cv::Mat left = readImage(a);
+    const cv::Mat right = readImage(b);
+    return left.size() == right.size() && left.type() == right.type() && cv::norm(left, right, cv::NORM_INF) == 0.0;
+}
+
+TEST_F(Cli, BatchMatchesOneProcessPerModelAndCompilesEachProgramOnce) {
+    const CliRun batch = run("render " + model("spot_c3d.obj") + " " + model("teapot_c3d.obj") + " " +
+                             model("fandisk_c3d.obj") + " -o 'batch-{index}-{name}.png' --stats '{name}.json'" +
+                             kLook);
+    ASSERT_EQ(batch.exitCode, 0) << batch.err;
+    for (const char* name : {"spot_c3d", "teapot_c3d", "fandisk_c3d"}) {
+        const CliRun single = run("render " + model(std::string(name) + ".obj") + " -o single-" + name + ".png -q" + kLook);
+        ASSERT_EQ(single.exitCode, 0) << single.err;
+    }
+    // Bit-identical: a kept program's uniforms and the context's state carry nothing from one still to the next.
+    EXPECT_TRUE(sameImage(directory / "batch-1-spot_c3d.png", directory / "single-spot_c3d.png"));
+    EXPECT_TRUE(sameImage(directory / "batch-2-teapot_c3d.png", directory / "single-teapot_c3d.png"));
+    EXPECT_TRUE(sameImage(directory / "batch-3-fandisk_c3d.png", directory / "single-fandisk_c3d.png"));
+
+    const auto first = nlohmann::json::parse(readText(directory / "spot_c3d.json"));
+    EXPECT_FALSE(first["context_reused"].get<bool>());
+    EXPECT_GT(first["context_ms"].get<double>(), 0.0);
+    const int compiled = first["programs_compiled"].get<int>();
+    EXPECT_GE(compiled, 4); // shade, outline (two), mesh edges (two); the contour is a CPU pass
+    EXPECT_EQ(first["programs_reused"].get<int>(), 0);
+    EXPECT_EQ(first["batch"]["position"].get<int>(), 1);
+    EXPECT_EQ(first["batch"]["list_length"].get<int>(), 3);
+    for (const char* name : {"teapot_c3d", "fandisk_c3d"}) {
+        const auto later = nlohmann::json::parse(readText(directory / (std::string(name) + ".json")));
+        EXPECT_TRUE(later["context_reused"].get<bool>()) << name;
+        EXPECT_EQ(later["context_ms"].get<double>(), 0.0) << name;
+        EXPECT_EQ(later["programs_compiled"].get<int>(), 0) << name;
+        EXPECT_EQ(later["programs_reused"].get<int>(), compiled) << name;
+    }
+
+    // One line per model, in order, with its output, then the summary.
+    const std::size_t one = batch.err.find("[1/3] " + model("spot_c3d.obj") + " -> 'batch-1-spot_c3d.png': 5856 "
+                                                                                "triangles");
+    const std::size_t two = batch.err.find("[2/3] " + model("teapot_c3d.obj") + " -> 'batch-2-teapot_c3d.png'");
+    const std::size_t three = batch.err.find("[3/3] " + model("fandisk_c3d.obj"));
+    ASSERT_NE(one, std::string::npos) << batch.err;
+    ASSERT_NE(two, std::string::npos) << batch.err;
+    ASSERT_NE(three, std::string::npos) << batch.err;
+    EXPECT_LT(one, two);
+    EXPECT_LT(two, three);
+    EXPECT_NE(batch.err.find("rendered 3 of 3 models in"), std::string::npos) << batch.err;
+    EXPECT_EQ(batch.err.find("loaded '"), std::string::npos) << "a batch prints one line per model: " << batch.err;
+}
+
+TEST_F(Cli, BatchGoesOnPastABadModelAndExitsWithItsCode) {
+    std::ofstream(directory / "broken.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+    const fs::path models = fs::path(INKGRAPH_SOURCE_ROOT) / "models";
+    std::ofstream(directory / "models.txt") << "# a list\n" << (models / "spot_c3d.obj").string() << "\nbroken.obj\n\n"
+                                            << (models / "cow_c3d.obj").string() << "\n";
+    const CliRun result = run("render --list models.txt -o '{name}.png'" + kLook);
+    EXPECT_EQ(result.exitCode, 3) << result.err;
+    EXPECT_TRUE(fs::exists(directory / "spot_c3d.png"));
+    EXPECT_TRUE(fs::exists(directory / "cow_c3d.png")) << "the model after the bad one was rendered";
+    EXPECT_FALSE(fs::exists(directory / "broken.png"));
+    EXPECT_NE(result.err.find("[2/3] 'broken.obj' failed: loadScene(): 'broken.obj' line 3"), std::string::npos)
+        << result.err;
+    EXPECT_NE(result.err.find("rendered 2 of 3 models in"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("1 failed: 'broken.obj'"), std::string::npos) << result.err;
+}
+
+TEST_F(Cli, ShardsOfAListRenderDisjointSharesThatMakeTheWhole) {
+    std::ofstream list(directory / "models.txt");
+    for (const char* name : {"spot_c3d", "cow_c3d", "teapot_c3d", "suzanne_npm_4k", "torusknot_open3d"})
+        list << (fs::path(INKGRAPH_SOURCE_ROOT) / "models" / (std::string(name) + ".obj")).string() << "\n";
+    list.close();
+    for (int shard = 0; shard < 2; ++shard) {
+        fs::create_directories(directory / ("shard" + std::to_string(shard)));
+        const CliRun result = run("render --list models.txt --shard " + std::to_string(shard) + "/2 -o 'shard" +
+                                  std::to_string(shard) + "/{index}-{name}.png' --size 32x32 -q");
+        ASSERT_EQ(result.exitCode, 0) << result.err;
+    }
+    EXPECT_EQ(listFiles(directory / "shard0"),
+              std::vector<std::string>({"1-spot_c3d.png", "3-teapot_c3d.png", "5-torusknot_open3d.png"}));
+    EXPECT_EQ(listFiles(directory / "shard1"), std::vector<std::string>({"2-cow_c3d.png", "4-suzanne_npm_4k.png"}));
+}
+
+TEST_F(Cli, ABatchWhoseOutputsCollideWritesNothing) {
+    const CliRun result = run("render " + model("spot_c3d.obj") + " " + model("cow_c3d.obj") +
+                              " -o '{name}.png' --stats stats.json --size 32x32");
+    EXPECT_EQ(result.exitCode, 2) << result.err;
+    EXPECT_NE(result.err.find("--stats 'stats.json' would be the same file for all 2 models"), std::string::npos)
+        << result.err;
+    EXPECT_EQ(listFiles(directory), std::vector<std::string>());
+}
+
+} // namespace
+} // namespace inkgraph

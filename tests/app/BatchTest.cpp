@@ -1,0 +1,206 @@
+// app/Batch: which models a run renders, how output paths expand, and which batches are refused before any work.
+// No GL: the rendering of a batch is tests/app/BatchGLTest.cpp.
+#include "app/Batch.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+namespace inkgraph {
+namespace {
+
+namespace fs = std::filesystem;
+
+RenderOptions withModels(std::vector<std::string> models) {
+    RenderOptions options;
+    options.modelPaths = std::move(models);
+    if (!options.modelPaths.empty()) options.modelPath = options.modelPaths.front();
+    options.outputPath = "out/{name}.png";
+    return options;
+}
+
+std::vector<std::string> pathsOf(const BatchList& list) {
+    std::vector<std::string> paths;
+    for (const BatchModel& model : list.models) paths.push_back(model.path);
+    return paths;
+}
+
+std::string usageMessage(const RenderOptions& options, const BatchList& list) {
+    try {
+        checkBatchOutputs(options, list);
+    } catch (const UsageError& error) {
+        return error.what();
+    }
+    return "";
+}
+
+class BatchListFile : public ::testing::Test {
+protected:
+    void SetUp() override {
+        folder = fs::temp_directory_path() / ("inkgraph-batch-" + std::to_string(::getpid()));
+        fs::create_directories(folder);
+    }
+    void TearDown() override { fs::remove_all(folder); }
+    std::string write(const std::string& name, const std::string& text) {
+        std::ofstream(folder / name, std::ios::binary) << text;
+        return (folder / name).string();
+    }
+    fs::path folder;
+};
+
+TEST(BatchList, OneModelIsNoBatchAndSeveralAre) {
+    std::istringstream none;
+    const BatchList one = batchList(withModels({"a.obj"}), none);
+    EXPECT_FALSE(one.isBatch);
+    EXPECT_EQ(one.total, 1u);
+    EXPECT_EQ(pathsOf(one), std::vector<std::string>({"a.obj"}));
+    const BatchList two = batchList(withModels({"a.obj", "b.glb"}), none);
+    EXPECT_TRUE(two.isBatch);
+    EXPECT_EQ(pathsOf(two), std::vector<std::string>({"a.obj", "b.glb"}));
+    EXPECT_EQ(two.models[1].position, 1u);
+}
+
+TEST_F(BatchListFile, ListLinesFollowTheArgumentsSkippingCommentsAndBlanks) {
+    RenderOptions options = withModels({"first.obj"});
+    options.listPath = write("list.txt", "# models\n  b.obj  \n\n\tc.stl\r\n#d.obj\nsub dir/e f.glb\n");
+    std::istringstream none;
+    const BatchList list = batchList(options, none);
+    EXPECT_TRUE(list.isBatch);
+    EXPECT_EQ(list.total, 4u);
+    EXPECT_EQ(pathsOf(list), std::vector<std::string>({"first.obj", "b.obj", "c.stl", "sub dir/e f.glb"}));
+}
+
+TEST_F(BatchListFile, AListOfOneModelIsStillABatch) {
+    RenderOptions options;
+    options.listPath = write("one.txt", "a.obj\n");
+    std::istringstream none;
+    const BatchList list = batchList(options, none);
+    EXPECT_TRUE(list.isBatch); // a progress line, as for every list
+    EXPECT_EQ(pathsOf(list), std::vector<std::string>({"a.obj"}));
+}
+
+TEST(BatchList, DashReadsTheListFromStandardInput) {
+    RenderOptions options;
+    options.listPath = "-";
+    std::istringstream input("x.obj\ny.obj");
+    EXPECT_EQ(pathsOf(batchList(options, input)), std::vector<std::string>({"x.obj", "y.obj"}));
+}
+
+TEST(BatchList, ShardsTakeEveryNthModelAndTogetherTheWholeList) {
+    std::vector<std::string> models;
+    for (int i = 0; i < 10; ++i) models.push_back("m" + std::to_string(i) + ".obj");
+    std::vector<std::string> union_;
+    for (int k = 0; k < 3; ++k) {
+        RenderOptions options = withModels(models);
+        options.shard = Shard{k, 3};
+        std::istringstream none;
+        const BatchList list = batchList(options, none);
+        EXPECT_EQ(list.total, 10u);
+        for (const BatchModel& model : list.models) {
+            EXPECT_EQ(int(model.position % 3), k) << model.path;
+            EXPECT_EQ(model.path, models[model.position]);
+            union_.push_back(model.path);
+        }
+        EXPECT_EQ(list.models.size(), k == 0 ? 4u : 3u);
+    }
+    std::sort(union_.begin(), union_.end());
+    std::sort(models.begin(), models.end());
+    EXPECT_EQ(union_, models);
+}
+
+TEST_F(BatchListFile, BadListsAreRefusedNamingTheFile) {
+    std::istringstream none;
+    RenderOptions options;
+    options.listPath = write("empty.txt", "# nothing\n\n");
+    try {
+        batchList(options, none);
+        FAIL() << "an empty list was accepted";
+    } catch (const UsageError& error) {
+        EXPECT_NE(std::string(error.what()).find("--list '" + options.listPath + "': no models"), std::string::npos)
+            << error.what();
+    }
+    options.listPath = write("binary.txt", std::string("a.obj\nb\0c.obj\n", 14));
+    try {
+        batchList(options, none);
+        FAIL() << "a list with a NUL byte was accepted";
+    } catch (const UsageError& error) {
+        EXPECT_NE(std::string(error.what()).find("line 2: binary data"), std::string::npos) << error.what();
+    }
+    options.listPath = (folder / "missing.txt").string();
+    try {
+        batchList(options, none);
+        FAIL() << "a missing list was accepted";
+    } catch (const UsageError& error) {
+        EXPECT_NE(std::string(error.what()).find("missing.txt"), std::string::npos) << error.what();
+        EXPECT_EQ(std::string(error.what()).rfind("--list", 0), 0u) << error.what();
+    }
+}
+
+TEST(BatchOutputs, PlaceholdersExpandToTheModelNameAndPaddedPosition) {
+    const BatchModel model{"models/dir.v2/bunny.obj", 2};
+    EXPECT_EQ(expandOutputPattern("out/{name}.png", model, 3), "out/bunny.png");
+    EXPECT_EQ(expandOutputPattern("{index}-{name}-{index}.png", model, 12), "03-bunny-03.png");
+    EXPECT_EQ(expandOutputPattern("{index}.png", model, 1000), "0003.png");
+    EXPECT_EQ(expandOutputPattern("plain.png", model, 3), "plain.png");
+    EXPECT_EQ(expandOutputPattern("{nam}{index", model, 3), "{nam}{index"); // only the two placeholders
+}
+
+TEST(BatchOutputs, EveryOutputOfAStillIsExpanded) {
+    RenderOptions options = withModels({"a.obj", "b.obj"});
+    options.dumpDirectory = "d/{name}";
+    options.statsPath = "s/{name}.json";
+    options.graphvizPath = "g/{index}.dot";
+    options.contactSheetPath = "c/{name}.png";
+    options.svgPath = "v/{name}.svg";
+    const RenderOptions still = stillOptions(options, {"x/b.obj", 1}, 2);
+    EXPECT_EQ(still.modelPath, "x/b.obj");
+    EXPECT_EQ(still.outputPath, "out/b.png");
+    EXPECT_EQ(still.dumpDirectory, "d/b");
+    EXPECT_EQ(still.statsPath, "s/b.json");
+    EXPECT_EQ(still.graphvizPath, "g/2.dot");
+    EXPECT_EQ(still.contactSheetPath, "c/b.png");
+    EXPECT_EQ(still.svgPath, "v/b.svg");
+}
+
+TEST(BatchOutputs, SeveralModelsNeedAPlaceholderInEveryOutput) {
+    std::istringstream none;
+    RenderOptions options = withModels({"a.obj", "b.obj"});
+    options.statsPath = "stats.json";
+    const std::string message = usageMessage(options, batchList(options, none));
+    EXPECT_NE(message.find("--stats 'stats.json' would be the same file for all 2 models"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("'out/{name}.json'"), std::string::npos) << message;
+    options.statsPath = "{index}.json";
+    EXPECT_EQ(usageMessage(options, batchList(options, none)), "");
+    RenderOptions single = withModels({"a.obj"});
+    single.outputPath = "a.png";
+    EXPECT_EQ(usageMessage(single, batchList(single, none)), ""); // one model needs none
+}
+
+TEST(BatchOutputs, ModelsOfOneNameCollideUnlessIndexed) {
+    std::istringstream none;
+    RenderOptions options = withModels({"x/spot.obj", "y/spot.obj"});
+    const std::string message = usageMessage(options, batchList(options, none));
+    EXPECT_NE(message.find("-o 'out/spot.png' is written for both 'x/spot.obj'"), std::string::npos) << message;
+    EXPECT_NE(message.find("{index}"), std::string::npos) << message;
+    options.outputPath = "out/{index}-{name}.png";
+    EXPECT_EQ(usageMessage(options, batchList(options, none)), "");
+    // The same model twice is two stills: with {name} alone they would overwrite each other.
+    RenderOptions twice = withModels({"a.obj", "a.obj"});
+    EXPECT_NE(usageMessage(twice, batchList(twice, none)).find("is written for both"), std::string::npos);
+}
+
+TEST(BatchOutputs, NoStillMayOverwriteAModelOfTheList) {
+    std::istringstream none;
+    RenderOptions options = withModels({"m/a.png.obj", "m/b.obj"});
+    options.outputPath = "m/{name}.obj"; // a.png.obj -> stem a.png: 'm/a.png.obj' is the first model
+    const std::string message = usageMessage(options, batchList(options, none));
+    EXPECT_NE(message.find("would overwrite the model 'm/a.png.obj'"), std::string::npos) << message;
+}
+
+} // namespace
+} // namespace inkgraph
