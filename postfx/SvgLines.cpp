@@ -1,0 +1,218 @@
+#include "postfx/SvgLines.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace inkgraph {
+namespace {
+
+/** Appends `value` rounded to `decimals` places, without trailing zeros or a trailing point, and never "-0".
+ *  Locale-free (std::to_chars), so a C library locale with a decimal comma cannot break the document. */
+void appendNumber(std::string& out, double value, int decimals) {
+    char buffer[64];
+    const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
+    if (error != std::errc()) throw std::logic_error("svgDocument(): appendNumber() buffer too small");
+    char* last = end;
+    if (std::find(buffer, end, '.') != end) {
+        while (last[-1] == '0')
+            --last;
+        if (last[-1] == '.') --last;
+    }
+    const bool negativeZero = last - buffer == 2 && buffer[0] == '-' && buffer[1] == '0';
+    if (negativeZero)
+        out += '0';
+    else
+        out.append(buffer, last);
+}
+
+std::string formatNumber(double value, int decimals) {
+    std::string text;
+    appendNumber(text, value, decimals);
+    return text;
+}
+
+std::string layerName(std::size_t index) { return "'layers' [" + std::to_string(index) + "]"; }
+
+/** #rrggbb of display channels in [0, 1], checked. */
+std::string hexColor(const std::array<double, 4>& color, const std::string& name) {
+    static constexpr char kDigits[] = "0123456789abcdef";
+    for (std::size_t channel = 0; channel < 4; ++channel)
+        if (!std::isfinite(color[channel]) || color[channel] < 0.0 || color[channel] > 1.0)
+            throw std::invalid_argument("svgDocument(): " + name + " channel " + std::to_string(channel) +
+                                        " must be finite and in [0, 1], got " + std::to_string(color[channel]));
+    std::string text = "#";
+    for (std::size_t channel = 0; channel < 3; ++channel) {
+        const int byte = static_cast<int>(std::lround(color[channel] * 255.0));
+        text += kDigits[byte >> 4];
+        text += kDigits[byte & 15];
+    }
+    return text;
+}
+
+bool isIdCharacter(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_' ||
+           c == '.';
+}
+
+/** The length of the well-formed UTF-8 sequence at `at` that XML 1.0 allows, or 0. */
+std::size_t validUtf8Length(const std::string& text, std::size_t at) {
+    const auto byte = [&](std::size_t index) { return static_cast<unsigned char>(text[index]); };
+    const unsigned lead = byte(at);
+    std::size_t length = 0;
+    std::uint32_t code = 0;
+    if (lead < 0x80) return 1;
+    if (lead >= 0xC2 && lead <= 0xDF)
+        length = 2, code = lead & 0x1Fu;
+    else if (lead >= 0xE0 && lead <= 0xEF)
+        length = 3, code = lead & 0x0Fu;
+    else if (lead >= 0xF0 && lead <= 0xF4)
+        length = 4, code = lead & 0x07u;
+    else
+        return 0;
+    if (at + length > text.size()) return 0;
+    for (std::size_t index = 1; index < length; ++index) {
+        if ((byte(at + index) & 0xC0u) != 0x80u) return 0;
+        code = (code << 6) | (byte(at + index) & 0x3Fu);
+    }
+    const bool overlong = (length == 3 && code < 0x800) || (length == 4 && code < 0x10000);
+    const bool surrogate = code >= 0xD800 && code <= 0xDFFF;
+    const bool notCharacter = code == 0xFFFE || code == 0xFFFF || code > 0x10FFFF;
+    return overlong || surrogate || notCharacter ? 0 : length;
+}
+
+/** Text content for XML 1.0: markup characters escaped, what XML cannot hold replaced by '?'. */
+std::string escapeXml(const std::string& text) {
+    std::string escaped;
+    escaped.reserve(text.size());
+    for (std::size_t at = 0; at < text.size();) {
+        const char c = text[at];
+        switch (c) {
+        case '&':
+            escaped += "&amp;";
+            ++at;
+            continue;
+        case '<':
+            escaped += "&lt;";
+            ++at;
+            continue;
+        case '>':
+            escaped += "&gt;";
+            ++at;
+            continue;
+        case '"':
+            escaped += "&quot;";
+            ++at;
+            continue;
+        case '\'':
+            escaped += "&apos;";
+            ++at;
+            continue;
+        default: break;
+        }
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte < 0x20 && c != '\t' && c != '\n' && c != '\r') {
+            escaped += '?';
+            ++at;
+            continue;
+        }
+        const std::size_t length = validUtf8Length(text, at);
+        if (length == 0) {
+            escaped += '?';
+            ++at;
+            continue;
+        }
+        escaped.append(text, at, length);
+        at += length;
+    }
+    return escaped;
+}
+
+void checkLayer(const SvgLineLayer& layer, std::size_t index, std::set<std::string>& types) {
+    const std::string name = layerName(index);
+    if (layer.type.empty()) throw std::invalid_argument("svgDocument(): " + name + " 'type' must not be empty");
+    for (const char c : layer.type)
+        if (!isIdCharacter(c))
+            throw std::invalid_argument("svgDocument(): " + name + " 'type' '" + layer.type +
+                                        "' may hold only A-Z, a-z, 0-9, '-', '_' and '.' (it becomes an XML id)");
+    if (!types.insert(layer.type).second)
+        throw std::invalid_argument("svgDocument(): " + name + " 'type' '" + layer.type +
+                                    "' repeats an earlier layer's (group ids must be unique)");
+    if (layer.supersample < 1)
+        throw std::invalid_argument("svgDocument(): " + name + " 'supersample' must be >= 1, got " +
+                                    std::to_string(layer.supersample));
+    if (!std::isfinite(layer.widthPixels) || layer.widthPixels <= 0.0)
+        throw std::invalid_argument("svgDocument(): " + name + " 'widthPixels' must be finite and > 0, got " +
+                                    std::to_string(layer.widthPixels));
+    for (std::size_t line = 0; line < layer.polylines.size(); ++line)
+        for (const cv::Point2f& point : layer.polylines[line].points)
+            if (!std::isfinite(point.x) || !std::isfinite(point.y))
+                throw std::invalid_argument("svgDocument(): " + name + " 'polylines' [" + std::to_string(line) +
+                                            "] has a non-finite coordinate");
+}
+
+void appendPath(std::string& out, const Polyline& polyline, double scale) {
+    if (polyline.points.empty()) return;
+    auto appendPoint = [&](const char* command, const cv::Point2f& point) {
+        out += command;
+        appendNumber(out, (double(point.x) + 0.5) * scale, 2);
+        out += ' ';
+        appendNumber(out, (double(point.y) + 0.5) * scale, 2);
+    };
+    out += "    <path d=\"";
+    appendPoint("M ", polyline.points.front());
+    if (polyline.points.size() == 1) {
+        appendPoint(" L ", polyline.points.front()); // zero length: round caps draw a dot
+    } else {
+        for (std::size_t index = 1; index < polyline.points.size(); ++index)
+            appendPoint(" L ", polyline.points[index]);
+        if (polyline.closed) out += " Z";
+    }
+    out += "\"/>\n";
+}
+
+} // namespace
+
+std::string svgDocument(int width, int height, const std::vector<SvgLineLayer>& layers,
+                        const SvgDocumentOptions& options) {
+    if (width < 1 || height < 1)
+        throw std::invalid_argument("svgDocument(): 'width' and 'height' must be >= 1, got " + std::to_string(width) +
+                                    "x" + std::to_string(height));
+    std::set<std::string> types;
+    for (std::size_t index = 0; index < layers.size(); ++index)
+        checkLayer(layers[index], index, types);
+    const std::string backgroundColor =
+        options.background ? hexColor(*options.background, "'options.background'") : std::string();
+
+    const std::string widthText = std::to_string(width), heightText = std::to_string(height);
+    std::string out;
+    out += "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n";
+    out += "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\""
+           " version=\"1.1\" width=\"" +
+           widthText + "\" height=\"" + heightText + "\" viewBox=\"0 0 " + widthText + " " + heightText + "\">\n";
+    out += "  <title>" + escapeXml(options.title) + "</title>\n";
+    if (options.background)
+        out += "  <rect id=\"background\" x=\"0\" y=\"0\" width=\"" + widthText + "\" height=\"" + heightText +
+               "\" fill=\"" + backgroundColor + "\" fill-opacity=\"" + formatNumber((*options.background)[3], 3) +
+               "\"/>\n";
+    for (std::size_t index = 0; index < layers.size(); ++index) {
+        const SvgLineLayer& layer = layers[index];
+        out += "  <g id=\"lines-" + layer.type + "\" inkscape:groupmode=\"layer\" inkscape:label=\"" + layer.type +
+               "\" fill=\"none\" stroke=\"" + hexColor(layer.color, layerName(index) + " 'color'") +
+               "\" stroke-opacity=\"" + formatNumber(layer.color[3], 3) + "\" stroke-width=\"" +
+               formatNumber(layer.widthPixels, 3) + "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+        const double scale = 1.0 / layer.supersample;
+        for (const Polyline& polyline : layer.polylines)
+            appendPath(out, polyline, scale);
+        out += "  </g>\n";
+    }
+    out += "</svg>\n";
+    return out;
+}
+
+} // namespace inkgraph
