@@ -17,6 +17,9 @@
 #include "passes/outline/OutlinePass.h"
 #include "passes/shade/ShadeMap.h"
 #include "passes/silhouette/SilhouettePass.h"
+#include "postfx/ContactSheet.h"
+#include "postfx/LineTracing.h"
+#include "postfx/SvgLines.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
 
@@ -73,6 +76,11 @@ std::size_t estimatePlanBytes(const Plan& plan, int width, int height, bool keep
     return bytes;
 }
 
+/** --dump and --contact-sheet show every buffer the plan computed, so the executor keeps them all. */
+bool keepsEveryBuffer(const RenderOptions& options) {
+    return !options.dumpDirectory.empty() || !options.contactSheetPath.empty();
+}
+
 /** llvmpipe stores textures in 64x64 tiles, so a side is rounded up before its size is judged. */
 std::size_t paddedSide(int side) { return (std::size_t(side) + 63) / 64 * 64; }
 
@@ -88,7 +96,7 @@ void checkFrameBudget(const Plan& plan, const RenderOptions& options) {
                              " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
                              " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
     }
-    const std::size_t planBytes = estimatePlanBytes(plan, options.width, options.height, !options.dumpDirectory.empty());
+    const std::size_t planBytes = estimatePlanBytes(plan, options.width, options.height, keepsEveryBuffer(options));
     const std::size_t bound = memoryLimitOf(options);
     if (planBytes > bound)
         throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
@@ -96,6 +104,74 @@ void checkFrameBudget(const Plan& plan, const RenderOptions& options) {
                          "the memory limit is " + std::to_string(bound >> 20) + " MiB" +
                          (options.memoryLimitBytes ? " (--memory-limit)" : ", half this machine's memory") +
                          " (make the image smaller, or request or dump fewer buffers)");
+}
+
+/** How the contact sheet shows a buffer: by the field it is (the G-buffer's), else by its format. */
+TileContent tileContentOf(const std::string& resource, Format format, const StillGraph& graph) {
+    static const std::map<std::string, TileContent> kGBufferFields = {
+        {"gbuffer.normal", TileContent::UnitVector},   {"gbuffer.view", TileContent::UnitVector},
+        {"gbuffer.wVec", TileContent::UnitVector},     {"gbuffer.nDotV", TileContent::SignedScalar},
+        {"gbuffer.depth", TileContent::Depth},         {"gbuffer.coverage", TileContent::Mask},
+        {"gbuffer.baseColor", TileContent::Color},     {"gbuffer.radial", TileContent::Data},
+    };
+    if (auto field = kGBufferFields.find(resource); field != kGBufferFields.end()) return field->second;
+    if (resource == graph.finalResource || resource == graph.shadingResource) return TileContent::Color;
+    if (isFloatFormat(format)) return TileContent::Data;
+    // The remaining 8-bit one-channel buffers are line layers and mesh-edge skeletons: ink on paper.
+    if (format == Format::R8) return TileContent::Lines;
+    return TileContent::Color;
+}
+
+std::string lookSummary(const RenderOptions& options) {
+    std::string lines;
+    for (const std::string& type : options.lines) lines += (lines.empty() ? "" : ",") + type;
+    return "shading " + shadingModeName(options.shading) + ", lines " + (lines.empty() ? "none" : lines);
+}
+
+/** --contact-sheet: every buffer the plan computed (the executor kept them all), in the plan's order, so the
+ *  pipeline reads left to right, top to bottom. */
+cv::Mat contactSheetOf(const RenderOptions& options, const StillGraph& graph, const Plan& plan,
+                       ResourceStore& store) {
+    std::vector<ContactTile> tiles;
+    for (const PlannedResource& resource : plan.resources) {
+        if (!store.contains(resource.name)) continue;
+        const cv::Mat& image = store.image(resource.name);
+        tiles.push_back({resource.name, describeImage(image) + " by " + resource.writer, image,
+                         tileContentOf(resource.name, resource.desc.format, graph)});
+    }
+    ContactSheetLayout layout;
+    layout.title = "inkgraph: '" + std::filesystem::path(options.modelPath).filename().string() + "' " +
+                   std::to_string(options.width) + "x" + std::to_string(options.height) + ", " + lookSummary(options);
+    return composeContactSheet(tiles, layout);
+}
+
+/** --svg: each line type's skeleton traced into simplified polylines. The CPU layers (everything but outline and
+ *  silhouette) keep the one-pixel skeleton they stroked, at the data resolution, with sub-pixel points; outline and
+ *  silhouette are bands GL drew at the output size, thinned to their centre lines first. */
+std::string svgOf(const RenderOptions& options, const StillGraph& graph, ResourceStore& store) {
+    std::vector<SvgLineLayer> layers;
+    for (const std::string& type : knownLineTypes()) { // the composite's order: later types on top
+        if (std::find(options.lines.begin(), options.lines.end(), type) == options.lines.end()) continue;
+        const LineStyle& style = options.lineStyles.at(type);
+        SvgLineLayer layer;
+        layer.type = type;
+        layer.widthPixels = style.widthPixels;
+        layer.color = {style.color.r, style.color.g, style.color.b, style.color.a};
+        TraceSettings trace;
+        if (auto cpuLayer = graph.lineLayers.find(type); cpuLayer != graph.lineLayers.end()) {
+            layer.supersample = cpuLayer->second->settings().supersample;
+            trace.tolerancePixels = options.svgTolerance * layer.supersample;
+            layer.polylines = traceSkeleton(cpuLayer->second->skeleton(), trace);
+        } else {
+            trace.tolerancePixels = options.svgTolerance;
+            layer.polylines = traceMask(store.image(type + ".lines"), trace);
+        }
+        layers.push_back(std::move(layer));
+    }
+    SvgDocumentOptions document;
+    document.title = "inkgraph: '" + std::filesystem::path(options.modelPath).filename().string() + "', " +
+                     lookSummary(options);
+    return svgDocument(options.width, options.height, layers, document);
 }
 
 /** Makes a context and checks the frame against what the driver can allocate. */
@@ -348,6 +424,10 @@ StillReport RenderSession::render(const RenderOptions& options, const BatchPosit
     const StillGraph graph = buildStillGraph({options, mShaders, scene, sphere, gpuScene, frame, std::move(shadeMap)});
 
     std::vector<std::string> requested = {graph.finalResource};
+    // --svg traces the GL-drawn layers (outline, silhouette) from their masks, so those must outlive the composite.
+    if (!options.svgPath.empty())
+        for (const std::string& type : options.lines)
+            if (!graph.lineLayers.count(type)) requested.push_back(type + ".lines");
     for (const std::string& extra : expandWildcards(options.extraOutputs, graph))
         if (std::find(requested.begin(), requested.end(), extra) == requested.end()) requested.push_back(extra);
     std::optional<Plan> compiled;
@@ -389,7 +469,7 @@ StillReport RenderSession::render(const RenderOptions& options, const BatchPosit
     ExecuteOptions executeOptions;
     executeOptions.frameWidth = options.width;
     executeOptions.frameHeight = options.height;
-    executeOptions.keepAllResources = !options.dumpDirectory.empty();
+    executeOptions.keepAllResources = keepsEveryBuffer(options);
     std::vector<PassTiming> timings;
     try {
         timings = executor.run(plan, graph.mutableView(), executeOptions);
@@ -401,6 +481,9 @@ StillReport RenderSession::render(const RenderOptions& options, const BatchPosit
     const auto writeStart = std::chrono::steady_clock::now();
     ResourceStore& store = executor.store();
     if (!options.outputPath.empty()) outputs.stageFinalImage(store.image(graph.finalResource));
+    if (!options.contactSheetPath.empty())
+        outputs.stageContactSheet(contactSheetOf(options, graph, plan, store));
+    if (!options.svgPath.empty()) outputs.stageSvg(svgOf(options, graph, store));
 
     Json passTimes = Json::array();
     for (const PassTiming& timing : timings)
@@ -478,8 +561,8 @@ StillReport RenderSession::render(const RenderOptions& options, const BatchPosit
         stats["write_ms"] = millisecondsSince(writeStart);
         stats["textures_created"] = pool.createdCount();
         stats["textures_reused"] = pool.reusedCount();
-        stats["estimated_peak_mib"] = double(estimatePlanBytes(plan, options.width, options.height,
-                                                               !options.dumpDirectory.empty())) / (1 << 20);
+        stats["estimated_peak_mib"] =
+            double(estimatePlanBytes(plan, options.width, options.height, keepsEveryBuffer(options))) / (1 << 20);
         stats["total_ms"] = millisecondsSince(processStart);
         outputs.stageStats(jsonText(stats));
     }
