@@ -128,17 +128,19 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
                                  std::to_string(list.total) + " models; put {name} or {index} in it, e.g. '" +
                                  (flag == "--dump" ? "out/{name}-dump" : "out/{name}" +
                                   std::filesystem::path(pattern).extension().string()) + "'");
-    std::map<std::string, std::string> modelsByPlace;
-    for (const BatchModel& model : list.models) modelsByPlace.emplace(placeOf(model.path), model.path);
+    std::map<std::string, const BatchModel*> modelsByPlace;
+    for (const BatchModel& model : list.models) modelsByPlace.emplace(placeOf(model.path), &model);
     // Place -> the first still writing there (a model listed twice is two stills).
     std::map<std::string, const BatchModel*> writers;
     for (const BatchModel& model : list.models) {
         for (const auto& [flag, pattern] : outputFlags(options)) {
             const std::string output = expandOutputPattern(pattern, model, list.total);
             const std::string place = placeOf(output);
-            if (auto input = modelsByPlace.find(place); input != modelsByPlace.end())
+            // A still writing over its own model is OutputSet's to report, as for a single model.
+            if (auto input = modelsByPlace.find(place);
+                input != modelsByPlace.end() && input->second->path != model.path)
                 throw UsageError(flag + " '" + output + "' (for '" + model.path + "') would overwrite the model '" +
-                                 input->second + "'");
+                                 input->second->path + "'");
             // One still's own outputs colliding with each other are OutputSet's to report.
             const auto [earlier, inserted] = writers.emplace(place, &model);
             if (!inserted && earlier->second->position != model.position)

@@ -196,10 +196,11 @@ TEST(BatchOutputs, ModelsOfOneNameCollideUnlessIndexed) {
 
 TEST(BatchOutputs, NoStillMayOverwriteAModelOfTheList) {
     std::istringstream none;
-    RenderOptions options = withModels({"m/a.png.obj", "m/b.obj"});
-    options.outputPath = "m/{name}.obj"; // a.png.obj -> stem a.png: 'm/a.png.obj' is the first model
+    RenderOptions options = withModels({"m/2.obj", "m/a.obj"});
+    options.outputPath = "m/{index}.obj"; // the second still would write 'm/2.obj', the first model
     const std::string message = usageMessage(options, batchList(options, none));
-    EXPECT_NE(message.find("would overwrite the model 'm/a.png.obj'"), std::string::npos) << message;
+    EXPECT_NE(message.find("-o 'm/2.obj' (for 'm/a.obj') would overwrite the model 'm/2.obj'"), std::string::npos)
+        << message;
 }
 
 } // namespace
