@@ -2,6 +2,7 @@
 
 #include "app/ImageFiles.h"
 #include "app/OutputFiles.h"
+#include "app/SceneShadeMaps.h"
 #include "app/StillGraph.h"
 #include "app/StyleFile.h"
 #include "app/TemporaryFiles.h"
@@ -209,6 +210,12 @@ Json describeLook(const RenderOptions& options, const StillGraph& graph) {
     if (options.shading == ShadingMode::Phong || options.shading == ShadingMode::Comic)
         look["shininess"] = options.shininess;
     if (!graph.shadeMapSource.empty()) look["shademap"] = graph.shadeMapSource;
+    if (!graph.meshShadeMapSources.empty()) {
+        Json meshMaps = Json::array();
+        for (const auto& [mesh, source] : graph.meshShadeMapSources)
+            meshMaps.push_back({{"mesh", mesh}, {"shademap", source}});
+        look["mesh_shademaps"] = meshMaps;
+    }
     look["gbuffer_precision"] = options.gbufferPrecision == GBufferPrecision::Float16 ? "half" : "float";
     Json lines = Json::array();
     for (const std::string& type : knownLineTypes()) {
@@ -409,6 +416,12 @@ StillReport RenderSession::render(const RenderOptions& options, const BatchPosit
             << loadMs << " ms\n";
     }
 
+    // The maps the model's materials name (glTF extras), each file read once; exit 3 like --shademap.
+    std::vector<std::string> shadeMapWarnings;
+    std::vector<std::optional<ShadeMap>> meshShadeMaps = readSceneShadeMaps(scene, options.shading, &shadeMapWarnings);
+    for (const std::string& warning : shadeMapWarnings)
+        log << "inkgraph: warning: " << (talks ? "" : "'" + options.modelPath + "': ") << warning << "\n";
+
     const BoundingSphere sphere = computeBoundingSphere(scene);
     const CameraRequest request = cameraRequestOf(options);
     Camera camera;
@@ -421,7 +434,9 @@ StillReport RenderSession::render(const RenderOptions& options, const BatchPosit
     const FrameParams frame = frameParamsOf(options, scene, camera, sphere);
 
     GpuScene gpuScene(scene, sphere.center);
-    const StillGraph graph = buildStillGraph({options, mShaders, scene, sphere, gpuScene, frame, std::move(shadeMap)});
+    StillGraphSetup setup{options, mShaders, scene, sphere, gpuScene, frame, std::move(shadeMap)};
+    setup.meshShadeMaps = std::move(meshShadeMaps);
+    const StillGraph graph = buildStillGraph(setup);
 
     std::vector<std::string> requested = {graph.finalResource};
     // --svg traces the GL-drawn layers (outline, silhouette) from their masks, so those must outlive the composite.

@@ -74,6 +74,13 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         if (!shadeMap && options.shading == ShadingMode::Cel) shadeMap = makeBandShadeMap(options.bands.value_or(5));
         if (!shadeMap && comic) shadeMap = makeDefaultComicShadeMap();
         if (shadeMap) graph.shadeMapSource = shadeMap->source;
+        if (options.shading == ShadingMode::Cel || comic) {
+            // Per-mesh maps replace the run's map on their meshes; the models without a map have nothing to replace.
+            settings.meshShadeMaps = setup.meshShadeMaps;
+            for (std::size_t i = 0; i < setup.meshShadeMaps.size() && i < setup.scene.meshes.size(); ++i)
+                if (setup.meshShadeMaps[i])
+                    graph.meshShadeMapSources.emplace_back(setup.scene.meshes[i].name, setup.meshShadeMaps[i]->source);
+        }
         graph.passes.push_back(std::make_unique<ShadePass>("shade", setup.shaders, setup.gpuScene, setup.frame,
                                                            settings, std::move(shadeMap), cpuOrientation));
         graph.shadingResource = "shade.color";

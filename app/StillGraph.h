@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace inkgraph {
@@ -37,6 +38,9 @@ struct StillGraphSetup {
     GpuScene& gpuScene;
     const FrameParams& frame;
     std::optional<ShadeMap> shadeMap; ///< --shademap as read; empty: the built-in map of the mode
+    /** Per scene mesh, the map it names itself (readSceneShadeMaps()); empty entries use `shadeMap`. Only cel and
+     *  comic use them. */
+    std::vector<std::optional<ShadeMap>> meshShadeMaps{};
 };
 
 struct StillGraph {
@@ -45,6 +49,8 @@ struct StillGraph {
     std::vector<std::unique_ptr<Pass>> passes;
     std::string shadingResource; ///< the colour the composite reads ("shade.color"), or empty for --shading none
     std::string shadeMapSource;  ///< the shade map's ShadeMap::source ("builtin:bands-5", a path), or empty
+    /** Mesh name -> ShadeMap::source for each mesh drawn with its own map (cel, comic), in scene order, for --stats. */
+    std::vector<std::pair<std::string, std::string>> meshShadeMapSources;
     std::string finalResource = "composite.final";
     double radialLengthUnit = 1.0; ///< the G-buffer's radial field's length unit (model units), for --stats
     OutlinePass* outline = nullptr;       ///< for --stats

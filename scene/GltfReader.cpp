@@ -1,6 +1,7 @@
 /** @file glTF 2.0 (.gltf JSON and .glb) through the packaged tinygltf. tinygltf parses and resolves buffers; this file
  *  walks the node hierarchy, bounds-checks every accessor it reads (tinygltf does not), bakes node transforms into
- *  world space and picks up the first perspective camera and the first directional KHR_lights_punctual light. */
+ *  world space and picks up the first perspective camera, the first directional KHR_lights_punctual light and each
+ *  material's inkgraph extras (a per-mesh shade map). */
 
 #include "scene/FormatReaders.h"
 
@@ -9,6 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -23,6 +25,7 @@
 #include <iomanip>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -121,7 +124,8 @@ struct AccessorData {
 class GltfWalker {
 public:
     GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out, MeshBudget& budget)
-        : mPath(path), mModel(model), mOut(out), mBudget(budget), mReached(model.nodes.size(), false) {}
+        : mPath(path), mModel(model), mOut(out), mBudget(budget), mReached(model.nodes.size(), false),
+          mMaterialShadeMaps(model.materials.size()) {}
 
     void walk() {
         checkRequiredExtensions();
@@ -310,6 +314,59 @@ private:
             fail("light '" + light.name + "' has a degenerate or non-finite node transform");
         }
         mOut.light = result;
+    }
+
+    /** "material 2 'Metal'", or "material 2" for an unnamed one. */
+    std::string materialLabel(int materialIndex) const {
+        const std::string& name = mModel.materials[std::size_t(materialIndex)].name;
+        return "material " + std::to_string(materialIndex) + (name.empty() ? "" : " '" + name + "'");
+    }
+
+    /** The shade map material `materialIndex` names in `"extras": {"inkgraph": {"shademap": PATH}}`, resolved against
+     *  the file's folder; empty when it names none. Read once per material (its warnings too), when a primitive first
+     *  uses it. The original JSON is parsed rather than tinygltf's Value, which drops nulls and empty objects and
+     *  arrays, so `"shademap": null` would pass for "no map" instead of being reported. */
+    const std::string& materialShadeMap(int materialIndex) {
+        std::optional<std::string>& cached = mMaterialShadeMaps[std::size_t(materialIndex)];
+        if (cached) {
+            return *cached;
+        }
+        cached.emplace();
+        const std::string& extrasJson = mModel.materials[std::size_t(materialIndex)].extras_json_string;
+        if (extrasJson.empty()) {
+            return *cached;
+        }
+        const nlohmann::json extras = nlohmann::json::parse(extrasJson, nullptr, false);
+        // Other tools may keep anything in extras; only the "inkgraph" member is ours.
+        if (!extras.is_object() || !extras.contains("inkgraph")) {
+            return *cached;
+        }
+        const std::string label = materialLabel(materialIndex);
+        const nlohmann::json& ours = extras["inkgraph"];
+        if (!ours.is_object()) {
+            fail(label + ": extras.inkgraph must be an object, got " + std::string(ours.type_name()));
+        }
+        for (const auto& [key, value] : ours.items()) {
+            if (key == "shademap") {
+                continue;
+            }
+            // A newer file or a typo ("shadeMap"): the render still works, so say so instead of refusing it.
+            mOut.warnings.push_back(label + ": extras.inkgraph key '" + key + "' ignored (known: 'shademap')");
+        }
+        const auto shadeMap = ours.find("shademap");
+        if (shadeMap == ours.end()) {
+            return *cached;
+        }
+        if (!shadeMap->is_string() || shadeMap->get_ref<const std::string&>().empty()) {
+            fail(label + ": extras.inkgraph.shademap must be a non-empty string (a PNG path), got " +
+                 (shadeMap->is_string() ? std::string("an empty string") : std::string(shadeMap->type_name())));
+        }
+        // Relative to the glTF file, like its buffer URIs, so a scene folder can be moved or rendered from anywhere.
+        const std::filesystem::path named(shadeMap->get_ref<const std::string&>());
+        const std::filesystem::path resolved =
+            named.is_absolute() ? named : std::filesystem::path(mPath).parent_path() / named;
+        *cached = resolved.lexically_normal().string();
+        return *cached;
     }
 
     void addMesh(const tinygltf::Node& node, const glm::dmat4& world) {
@@ -521,11 +578,13 @@ private:
         }
 
         if (primitive.material >= 0 && std::size_t(primitive.material) < mModel.materials.size()) {
-            const std::vector<double>& factor =
-                mModel.materials[std::size_t(primitive.material)].pbrMetallicRoughness.baseColorFactor;
+            const tinygltf::Material& material = mModel.materials[std::size_t(primitive.material)];
+            mesh.materialName = material.name;
+            const std::vector<double>& factor = material.pbrMetallicRoughness.baseColorFactor;
             if (factor.size() == 4) {
                 mesh.baseColor = glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
             }
+            mesh.shadeMapPath = materialShadeMap(primitive.material);
         }
         mOut.meshes.push_back(std::move(mesh));
     }
@@ -535,6 +594,7 @@ private:
     RawScene& mOut;
     MeshBudget& mBudget;
     std::vector<bool> mReached; ///< nodes already reached by the walk; reaching one again is an error
+    std::vector<std::optional<std::string>> mMaterialShadeMaps; ///< per material, once read: its shade map or ""
     std::size_t mSkippedPrimitives = 0;
 };
 
@@ -619,6 +679,8 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     budget.chargeFile(content.size());
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skipImageDecoding, nullptr);
+    // Keeps each extras object as JSON text, so materialShadeMap() sees the types as written (GltfWalker).
+    loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
     loader.SetFsCallbacks({&externalFileExists, &tinygltf::ExpandFilePath, &readExternalFile,
                            &tinygltf::WriteWholeFile, &budget});
     tinygltf::Model model;

@@ -381,6 +381,8 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     Mesh mesh;
     mesh.name = std::move(raw.name);
     mesh.baseColor = raw.baseColor;
+    mesh.shadeMapPath = std::move(raw.shadeMapPath);
+    mesh.materialName = std::move(raw.materialName);
     for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
         if (compactIndex[vertex] == kNoVertex) {
             continue;

@@ -71,6 +71,8 @@ struct RawMesh {
     std::vector<glm::vec3> normals;
     std::vector<glm::uvec3> triangles;
     glm::vec4 baseColor{0.8f, 0.8f, 0.8f, 1.0f};
+    std::string shadeMapPath; ///< as Mesh::shadeMapPath
+    std::string materialName; ///< as Mesh::materialName
 };
 
 /** Turns a raw mesh into a clean Mesh: welds within options.weldTolerance x modelDiagonal, drops degenerate

@@ -28,6 +28,10 @@ struct Mesh {
     std::vector<glm::vec3> normals;    ///< one unit normal per position (from the file, else area-weighted smooth)
     std::vector<glm::uvec3> triangles; ///< counter-clockwise seen from the front (outward normals), none degenerate
     glm::vec4 baseColor{0.8f, 0.8f, 0.8f, 1.0f}; ///< linear RGBA; glTF baseColorFactor or the default grey
+    /** The shade map this mesh asks for (glTF material extras {"inkgraph": {"shademap": "..."}}), a path resolved
+     *  against the glTF file's folder and lexically normalised; empty: the run's map. Read by the app, not here. */
+    std::string shadeMapPath;
+    std::string materialName; ///< the glTF material's name, for messages; empty without one or for other formats
 
     std::size_t triangleCount() const { return triangles.size(); }
 };

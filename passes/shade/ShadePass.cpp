@@ -7,7 +7,9 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <opencv2/core.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 namespace inkgraph {
@@ -43,8 +45,8 @@ bool usesShadeMap(ShadingModel model) { return model == ShadingModel::Cel || mod
 
 ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
                      ShadeSettings settings, std::optional<ShadeMap> shadeMap, SceneOrientation* orientation)
-    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSettings(settings),
-      mShadeMap(std::move(shadeMap)), mOrientation(orientation), mDepth(mName + " depth test") {
+    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSettings(std::move(settings)),
+      mOrientation(orientation), mDepth(mName + " depth test") {
     const std::string model = modelName(mSettings.model);
     if (!std::isfinite(mSettings.shininess) || mSettings.shininess < 0.0)
         throw std::invalid_argument("ShadePass(): shininess must be finite and >= 0, got " +
@@ -55,15 +57,36 @@ ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, 
     if (!std::isfinite(mSettings.specularStrength) || mSettings.specularStrength < 0.0f)
         throw std::invalid_argument("ShadePass(): specular strength must be finite and >= 0, got " +
                                     std::to_string(mSettings.specularStrength));
+    // The maps move into mMaps; the settings keep none (they would hold a second copy of every map).
+    std::vector<std::optional<ShadeMap>> meshShadeMaps = std::move(mSettings.meshShadeMaps);
+    mSettings.meshShadeMaps.clear();
+    const std::size_t meshCount = mScene.meshCount();
+    if (meshShadeMaps.size() > meshCount)
+        throw std::invalid_argument("ShadePass(): " + std::to_string(meshShadeMaps.size()) +
+                                    " per-mesh shade maps for a scene of " + std::to_string(meshCount) + " meshes");
     if (usesShadeMap(mSettings.model)) {
-        if (!mShadeMap) throw std::invalid_argument("ShadePass(): the '" + model + "' model needs a shade map");
-        const cv::Mat& texels = mShadeMap->texels;
-        if (texels.empty() || texels.type() != CV_8UC4)
-            throw std::invalid_argument("ShadePass(): shade map '" + mShadeMap->source +
-                                        "' must be a non-empty CV_8UC4 image (see shadeMapFromImage())");
-        if (mSettings.model == ShadingModel::Cel && !mShadeMap->isOneDimensional())
-            throw std::invalid_argument("ShadePass(): the 'cel' model needs a one-row shade map, '" +
-                                        mShadeMap->source + "' has " + std::to_string(texels.rows) + " rows");
+        if (!shadeMap) throw std::invalid_argument("ShadePass(): the '" + model + "' model needs a shade map");
+        // Every map is checked, also one that equals another, so the message names the map the caller gave.
+        const auto check = [&](const ShadeMap& map, const std::string& owner) {
+            const cv::Mat& texels = map.texels;
+            if (texels.empty() || texels.type() != CV_8UC4)
+                throw std::invalid_argument("ShadePass(): shade map '" + map.source + "'" + owner +
+                                            " must be a non-empty CV_8UC4 image (see shadeMapFromImage())");
+            if (mSettings.model == ShadingModel::Cel && !map.isOneDimensional())
+                throw std::invalid_argument("ShadePass(): the 'cel' model needs a one-row shade map, '" + map.source +
+                                            "'" + owner + " has " + std::to_string(texels.rows) + " rows");
+        };
+        check(*shadeMap, "");
+        for (std::size_t i = 0; i < meshShadeMaps.size(); ++i)
+            if (meshShadeMaps[i]) check(*meshShadeMaps[i], " (mesh " + std::to_string(i) + ")");
+
+        mMaps.push_back({});
+        mMaps[0].map = std::move(*shadeMap);
+        mMeshMap.assign(meshCount, 0);
+        for (std::size_t i = 0; i < meshShadeMaps.size(); ++i)
+            if (meshShadeMaps[i]) mMeshMap[i] = slotOf(std::move(*meshShadeMaps[i]));
+        for (std::size_t slot : mMeshMap)
+            mMaps[slot].used = true;
     }
     if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
         const glm::dvec3& direction = mSettings.view.constantView;
@@ -71,7 +94,45 @@ ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, 
         if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6)
             throw std::invalid_argument("ShadePass(): the constant view vector must be a unit vector");
     }
-    if (mSettings.model == ShadingModel::Comic) mRowBands = specularRowBands(*mShadeMap, mSettings.shininess);
+    if (mSettings.model == ShadingModel::Comic) {
+        for (MapSlot& slot : mMaps) {
+            slot.rowBands = specularRowBands(slot.map, mSettings.shininess);
+            // Only maps some mesh draws with decide the program: an unused default must not change the picture.
+            if (slot.used)
+                mSpecularBorderCount = std::max(mSpecularBorderCount, slot.rowBands.maxHalfSquaredDistance.size());
+        }
+        // Padding: a border of -1 never holds (x >= 0), so a map with fewer borders keeps exactly its own rows.
+        for (MapSlot& slot : mMaps) {
+            slot.borderLimit.assign(mSpecularBorderCount, -1.0f);
+            slot.bandRow.assign(mSpecularBorderCount + 1, 0);
+            const SpecularRowBands& bands = slot.rowBands;
+            for (std::size_t k = 0; k < bands.maxHalfSquaredDistance.size() && k < mSpecularBorderCount; ++k)
+                slot.borderLimit[k] = float(bands.maxHalfSquaredDistance[k]);
+            for (std::size_t k = 0; k < bands.firstRow.size() && k < mSpecularBorderCount + 1; ++k)
+                slot.bandRow[k] = bands.firstRow[k];
+        }
+    }
+}
+
+std::size_t ShadePass::slotOf(ShadeMap map) {
+    const cv::Mat& texels = map.texels;
+    for (std::size_t slot = 0; slot < mMaps.size(); ++slot) {
+        const cv::Mat& other = mMaps[slot].map.texels;
+        if (other.size() != texels.size() || other.type() != texels.type()) continue;
+        // One texture per picture, whatever the file it came from: a map equal to the default draws with the default.
+        bool equal = true;
+        const std::size_t rowBytes = std::size_t(texels.cols) * texels.elemSize();
+        for (int row = 0; row < texels.rows && equal; ++row)
+            equal = other.ptr(row) == texels.ptr(row) || std::memcmp(other.ptr(row), texels.ptr(row), rowBytes) == 0;
+        if (equal) return slot;
+    }
+    mMaps.push_back({});
+    mMaps.back().map = std::move(map);
+    return mMaps.size() - 1;
+}
+
+std::size_t ShadePass::distinctShadeMapCount() const {
+    return std::size_t(std::count_if(mMaps.begin(), mMaps.end(), [](const MapSlot& slot) { return slot.used; }));
 }
 
 ShadePass::~ShadePass() = default;
@@ -83,16 +144,14 @@ bool ShadePass::drawsOrientationSets() const {
 }
 
 bool ShadePass::usesSpecularRowBands() const {
-    // A map of one band (no specular rows) has nothing to compare: the generic path reads its single row.
-    return mSettings.model == ShadingModel::Comic && !drawsOrientationSets() &&
-           !mRowBands.maxHalfSquaredDistance.empty() &&
-           mRowBands.maxHalfSquaredDistance.size() <= std::size_t(kMaxSpecularRowBands);
+    // Maps of one band (no specular rows) have nothing to compare: the generic path reads their single row.
+    return mSettings.model == ShadingModel::Comic && !drawsOrientationSets() && mSpecularBorderCount > 0 &&
+           mSpecularBorderCount <= std::size_t(kMaxSpecularRowBands);
 }
 
 std::vector<std::string> ShadePass::defines() const {
     std::vector<std::string> result = {modelDefine(mSettings.model)};
-    if (usesSpecularRowBands())
-        result.push_back("SPECULAR_ROW_BANDS " + std::to_string(mRowBands.maxHalfSquaredDistance.size()));
+    if (usesSpecularRowBands()) result.push_back("SPECULAR_ROW_BANDS " + std::to_string(mSpecularBorderCount));
     if (drawsOrientationSets()) {
         result.push_back("SHADE_COORDS 1");
         result.push_back("SHADE_COORD_LOCATION " + std::to_string(SceneOrientation::kShadeCoordLocation));
@@ -106,13 +165,14 @@ void ShadePass::prepare(PassContext&) {
     if (!mProgram)
         mProgram = std::make_unique<GlProgram>(mShaders.build(
             {mName, "shade/shade.vert", "shade/shade.frag", defines(), {"common/color.glsl", "common/lighting.glsl"}}));
-    if (usesShadeMap(mSettings.model) && !mShadeTexture) {
+    for (MapSlot& slot : mMaps) {
+        if (!slot.used || slot.texture) continue;
         // Nearest, clamped to the edge (every GlTexture is). uploadImage() turns the image bottom-up, so GL row 0 is
         // the map's bottom row, t = 0, and the shader indexes rows by t directly.
-        const cv::Mat& texels = mShadeMap->texels;
-        mShadeTexture = std::make_unique<GlTexture>(Format::RGBA8, texels.cols, texels.rows,
-                                                    mName + " shade map '" + mShadeMap->source + "'");
-        uploadImage(*mShadeTexture, texels);
+        const cv::Mat& texels = slot.map.texels;
+        slot.texture = std::make_unique<GlTexture>(Format::RGBA8, texels.cols, texels.rows,
+                                                   mName + " shade map '" + slot.map.source + "'");
+        uploadImage(*slot.texture, texels);
     }
     mScene.meshes();
 }
@@ -163,18 +223,24 @@ void ShadePass::execute(PassContext& context) {
         const glm::dvec3 towardEye = glm::dmat3(mFrame.camera.viewMatrix()) * -mSettings.view.constantView;
         glUniform3fv(program.uniform("constantTowardEye"), 1, glm::value_ptr(glm::vec3(glm::normalize(towardEye))));
     }
-    if (usesSpecularRowBands()) {
-        // The band borders in x = |r - v|^2 / 2 (ShadeMap.h): the shader finds the row without a log or exp.
-        const std::vector<GLint> rows(mRowBands.firstRow.begin(), mRowBands.firstRow.end());
-        std::vector<float> limits;
-        for (double limit : mRowBands.maxHalfSquaredDistance) limits.push_back(float(limit));
-        glUniform1fv(program.uniform("specularBorderLimit"), GLsizei(limits.size()), limits.data());
-        glUniform1iv(program.uniform("specularBandRow"), GLsizei(rows.size()), rows.data());
-    }
-    if (mShadeTexture) glBindTextureUnit(0, mShadeTexture->id());
+    const bool rowBands = usesSpecularRowBands();
+    const GLint borderLimitLocation = rowBands ? program.uniform("specularBorderLimit") : -1;
+    const GLint bandRowLocation = rowBands ? program.uniform("specularBandRow") : -1;
 
     const GLint baseColorLocation = program.uniform("baseColor");
+    std::optional<std::size_t> boundSlot;
     for (std::size_t i = 0; i < meshes.size(); ++i) {
+        if (!mMaps.empty() && boundSlot != mMeshMap[i]) {
+            // Each mesh's own map; consecutive meshes that share one keep it bound.
+            const MapSlot& slot = mMaps[mMeshMap[i]];
+            glBindTextureUnit(0, slot.texture->id());
+            if (rowBands) {
+                // The band borders in x = |r - v|^2 / 2 (ShadeMap.h): the shader finds the row without a log or exp.
+                glUniform1fv(borderLimitLocation, GLsizei(slot.borderLimit.size()), slot.borderLimit.data());
+                glUniform1iv(bandRowLocation, GLsizei(slot.bandRow.size()), slot.bandRow.data());
+            }
+            boundSlot = mMeshMap[i];
+        }
         glUniform4fv(baseColorLocation, 1, glm::value_ptr(meshes[i].baseColor));
         if (sets) {
             const SceneOrientation::MeshSets& set = (*sets)[i];
@@ -186,7 +252,7 @@ void ShadePass::execute(PassContext& context) {
         }
     }
     glBindVertexArray(0);
-    if (mShadeTexture) glBindTextureUnit(0, 0);
+    if (!mMaps.empty()) glBindTextureUnit(0, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_DEPTH_TEST);
 }

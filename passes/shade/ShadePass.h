@@ -20,6 +20,14 @@
  *  Shininess 0 gives specular 1 (where n.l > 0); large shininess is evaluated as exp(n log(r.v)) with log(r.v) from
  *  |r - v|^2, so 1e6 gives neither NaN nor speckle (specularTerm in shaders/common/lighting.glsl).
  *
+ *  Per-mesh shade maps (cel, comic; ShadeSettings::meshShadeMaps): each mesh may bring its own map in place of the
+ *  default one. Every distinct map (equal texels count as one) is uploaded once in prepare() and bound per draw.
+ *  Comic's row-band fast path takes the largest border count of the maps in use as its SPECULAR_ROW_BANDS, and a map
+ *  with fewer borders is padded with borders no x = |r - v|^2 / 2 >= 0 reaches (-1): each mesh then gets exactly the
+ *  rows its map alone would give, so a scene whose meshes share one map renders as the single-map pass, bit for bit.
+ *  Only when some map has more than kMaxSpecularRowBands borders do all meshes take the generic exp(n log(r.v)) path
+ *  (one program per pass), which can differ from the comparisons by one row at a band border.
+ *
  *  Ambient + diffuse is base x (ambient + (1 - ambient) max(n.l, 0)); phong adds specularStrength x specular in white;
  *  cel and comic multiply the decoded texel with the base colour. Light: FrameParams::towardLightView(). No culling,
  *  depth LESS: seen from behind (open meshes, holes), interpolated and flat normals turn toward the viewer; gouraud
@@ -50,14 +58,19 @@ struct ShadeSettings {
     float ambient = 0.15f;            ///< flat, gouraud, lambert, phong
     float specularStrength = 0.5f;    ///< phong: white specular weight
     ViewVectorChoice view;            ///< comic: constant or exact (from chooseViewVector())
+    /** cel and comic: entry i, when present, is GpuScene mesh i's own shade map, checked like the default one (a
+     *  missing entry, or a mesh past the end, uses the default map). Ignored by the models without a map. */
+    std::vector<std::optional<ShadeMap>> meshShadeMaps{};
 };
 
 class ShadePass : public Pass {
 public:
-    /** `shadeMap` is required for cel and comic (a copy is uploaded in prepare()). `orientation` may be null; when it
-     *  uses CPU marking (comic only), the pass draws its front sets. Throws std::invalid_argument for a missing map,
-     *  a cel map of more than one row, a map that is not CV_8UC4, a negative or non-finite shininess or specular
-     *  strength, an ambient outside [0, 1], or a comic constant view vector that is not unit. */
+    /** `shadeMap` is required for cel and comic (a copy is uploaded in prepare()); it is the default for meshes
+     *  without one of their own in `settings.meshShadeMaps`. `orientation` may be null; when it uses CPU marking
+     *  (comic only), the pass draws its front sets. Throws std::invalid_argument for a missing map, a cel map
+     *  (default or per mesh) of more than one row, a map that is not CV_8UC4, more per-mesh maps than the scene has
+     *  meshes, a negative or non-finite shininess or specular strength, an ambient outside [0, 1], or a comic constant
+     *  view vector that is not unit. */
     ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
               ShadeSettings settings, std::optional<ShadeMap> shadeMap, SceneOrientation* orientation);
     ~ShadePass() override;
@@ -67,12 +80,29 @@ public:
     void prepare(PassContext& context) override;
     void execute(PassContext& context) override;
 
+    /** The distinct shade maps the meshes use (1 for a single map, 0 for the models without one): the textures
+     *  prepare() uploads. */
+    std::size_t distinctShadeMapCount() const;
+
 private:
+    /** One distinct shade map: the default or a mesh's own, uploaded once in prepare(). */
+    struct MapSlot {
+        ShadeMap map;
+        SpecularRowBands rowBands;      ///< comic: the map's row bands for this shininess (computed once)
+        std::vector<float> borderLimit; ///< comic row bands: rowBands' limits padded to mSpecularBorderCount with -1
+        std::vector<int> bandRow;       ///< comic row bands: rowBands' first rows padded to mSpecularBorderCount + 1
+        bool used = false;              ///< some mesh draws with it (the default may be replaced on every mesh)
+        std::unique_ptr<GlTexture> texture; ///< GL row 0 is the map's bottom row, t = 0
+    };
+
+    /** The entry of mMaps holding texels equal to `map`'s, adding one when none does. */
+    std::size_t slotOf(ShadeMap map);
+
     /** Draws the front sets of a CPU face-orientation method (comic only) instead of the whole meshes. */
     bool drawsOrientationSets() const;
     /** MODEL_* and variant defines for the one program of this pass. */
     std::vector<std::string> defines() const;
-    /** Comic on the GPU with a map of at most kMaxSpecularRowBands + 1 row bands: rows found by comparisons. */
+    /** Comic on the GPU with maps of at most kMaxSpecularRowBands + 1 row bands: rows found by comparisons. */
     bool usesSpecularRowBands() const;
 
     static constexpr int kMaxSpecularRowBands = 8; ///< borders; a map with more falls back to exp(n log(r.v))
@@ -82,11 +112,11 @@ private:
     GpuScene& mScene;
     const FrameParams& mFrame;
     ShadeSettings mSettings;
-    std::optional<ShadeMap> mShadeMap;
-    SpecularRowBands mRowBands; ///< comic: the map's row bands for this shininess (computed once)
+    std::vector<MapSlot> mMaps;           ///< cel, comic: [0] the default map, then each distinct per-mesh map
+    std::vector<std::size_t> mMeshMap;    ///< cel, comic: per GpuScene mesh, its entry of mMaps
+    std::size_t mSpecularBorderCount = 0; ///< comic: the most row-band borders of a map in use
     SceneOrientation* mOrientation;
     std::unique_ptr<GlProgram> mProgram; ///< the one program of this model and variant
-    std::unique_ptr<GlTexture> mShadeTexture; ///< the map (cel, comic); GL row 0 is its bottom row, t = 0
     PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
 };
 

@@ -17,7 +17,8 @@ uniform float specularStrength; // phong: weight of the white specular
 #ifdef SPECULAR_ROW_BANDS
 // Comic: the map's rows in bands (ShadeMap.h specularRowBands). Band k + 1 holds t when x = |r - v|^2 / 2 <=
 // specularBorderLimit[k] (decreasing in k); its first row (from the bottom, t = 0) is specularBandRow[k + 1].
-// SPECULAR_ROW_BANDS is the number of borders, a compile-time constant so the loop unrolls to plain comparisons.
+// SPECULAR_ROW_BANDS is the number of borders, a compile-time constant so the loop unrolls to plain comparisons; with
+// per-mesh maps it is the largest count in use and ShadePass pads each map's borders with -1 (never reached, x >= 0).
 uniform float specularBorderLimit[SPECULAR_ROW_BANDS];
 uniform int specularBandRow[SPECULAR_ROW_BANDS + 1];
 #endif

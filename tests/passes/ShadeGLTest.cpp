@@ -8,6 +8,7 @@
 #include "graph/GraphCompiler.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/orientation/SceneOrientation.h"
 #include "passes/shade/ShadeMap.h"
 #include "passes/shade/ShadePass.h"
 #include "scene/Camera.h"
@@ -32,6 +33,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string>
 #include <vector>
 
 namespace inkgraph {
@@ -924,6 +926,278 @@ TEST_F(ShadeSphere, RejectsMissingOrWrongShadeMapsAndBadSettings) {
     EXPECT_EQ(message(settingsFor(ShadingModel::Lambert), std::nullopt), "");
     // A one-row map is a valid comic map (t is then ignored).
     EXPECT_EQ(message(settingsFor(ShadingModel::Comic), makeBandShadeMap(4)), "");
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Per-mesh shade maps: two spheres side by side, each drawn with its own map.
+
+/** A map of `rows` x `cols` texels of one colour. */
+ShadeMap flatMap(cv::Vec4b color, int rows, int cols, const std::string& source) {
+    return shadeMapFromImage(cv::Mat(rows, cols, CV_8UC4, cv::Scalar(color[0], color[1], color[2], color[3])), source,
+                             false);
+}
+
+/** A comic map 8 wide: the lower half-map's rows are `shadow` left of column 2 and `lit` from there; above them come
+ *  the specular bands, `rowsPerBand` rows each, the last of `highlights` at the top (t = 1). Row bands: one per
+ *  highlight colour, plus the diffuse one. */
+ShadeMap comicMap(cv::Vec4b shadow, cv::Vec4b lit, const std::vector<cv::Vec4b>& highlights, int rowsPerBand,
+                  const std::string& source) {
+    const int rows = 2 * rowsPerBand * int(highlights.size());
+    cv::Mat texels(rows, 8, CV_8UC4);
+    for (int row = 0; row < rows; ++row) {
+        const int band = (rows - 1 - row) / rowsPerBand; // from the bottom
+        const int highlight = band - int(highlights.size());
+        for (int col = 0; col < 8; ++col)
+            texels.at<cv::Vec4b>(row, col) =
+                highlight >= 0 ? highlights[std::size_t(highlight)] : (col < 2 ? shadow : lit);
+    }
+    return shadeMapFromImage(texels, source, false);
+}
+
+/** The 8-bit colour a texel gives on a base colour: decoded, multiplied, encoded. */
+cv::Vec3i shadedColor(cv::Vec4b texel, glm::vec4 base) {
+    cv::Vec3i color;
+    for (int c = 0; c < 3; ++c)
+        color[c] = srgbCode(linearOf(texel[c]) * double(base[c]));
+    return color;
+}
+
+bool near(cv::Vec4b pixel, cv::Vec3i color, int tolerance = 1) {
+    for (int c = 0; c < 3; ++c)
+        if (std::abs(int(pixel[c]) - color[c]) > tolerance) return false;
+    return true;
+}
+
+/** Pixels of `a` and `b` that differ in the left (`left`) or right half of the image. */
+int differingPixels(const cv::Mat& a, const cv::Mat& b, bool left) {
+    int count = 0;
+    for (int row = 0; row < kSize; ++row)
+        for (int col = left ? 0 : kSize / 2; col < (left ? kSize / 2 : kSize); ++col)
+            if (pixelAt(a, col, row) != pixelAt(b, col, row)) ++count;
+    return count;
+}
+
+class ShadeTwoSpheres : public ShadeSphere {
+protected:
+    /** Mesh 0 ("left") and mesh 1 ("right"): unit spheres at x = -1.25 and x = +1.25, seen from (0, 0, 6) with a 45
+     *  degree field of view, so each lies wholly in its half of the image (the gap between them straddles the
+     *  middle column). */
+    void useTwoSpheres(glm::vec4 leftBase, glm::vec4 rightBase) {
+        Mesh left = makeUvSphere({-1.25f, 0.0f, 0.0f}, 1.0f, 128, 64);
+        left.name = "left";
+        left.baseColor = leftBase;
+        Mesh right = makeUvSphere({1.25f, 0.0f, 0.0f}, 1.0f, 128, 64);
+        right.name = "right";
+        right.baseColor = rightBase;
+        scene = makeScene(std::move(left));
+        scene.meshes.push_back(std::move(right));
+        frame.camera = test::lookingAt(scene, glm::dvec3(0.0, 0.0, 6.0), glm::dvec3(0.0), 45.0, kSize, kSize);
+        frame.worldOrigin = glm::dvec3(0.0);
+        gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+        setLight(kHighlightLight);
+    }
+
+    /** render() with a face-orientation object (may be null). */
+    cv::Mat renderWith(const ShadeSettings& settings, ShadeMap map, SceneOrientation* orientation) {
+        ShadePass pass("shade", shaders, *gpuScene, frame, settings, std::move(map), orientation);
+        const Plan plan = compile({&pass}, {"shade.color"});
+        executor.run(plan, {&pass}, {kSize, kSize, false});
+        cv::Mat image = executor.store().image("shade.color").clone();
+        executor.store().clear();
+        return image;
+    }
+
+    /** Covered pixels in each half; fails if a half holds no sphere or a sphere crosses the middle. */
+    void expectEachSphereInItsHalf(const cv::Mat& image) {
+        int covered[2] = {0, 0};
+        for (int row = 0; row < kSize; ++row)
+            for (int col = 0; col < kSize; ++col)
+                if (pixelAt(image, col, row)[3] == 255) ++covered[col < kSize / 2 ? 0 : 1];
+        EXPECT_GT(covered[0], 5000);
+        EXPECT_GT(covered[1], 5000);
+        for (int row = 0; row < kSize; ++row)
+            for (int col : {kSize / 2 - 1, kSize / 2})
+                ASSERT_EQ(pixelAt(image, col, row)[3], 0) << "the spheres must not reach the middle, row " << row;
+    }
+
+    static ShadeSettings withMeshMaps(ShadingModel model, double shininess,
+                                      std::vector<std::optional<ShadeMap>> meshMaps) {
+        ShadeSettings settings = settingsFor(model, shininess);
+        settings.meshShadeMaps = std::move(meshMaps);
+        return settings;
+    }
+};
+
+TEST_F(ShadeTwoSpheres, CelMeshesTakeTheColourOfTheirOwnMap) {
+    // One-texel maps: every pixel of a sphere is its map's colour times its base colour, whatever the lighting. The
+    // default (five grey bands) is used by neither mesh.
+    const glm::vec4 leftBase(0.9f, 0.6f, 0.3f, 1.0f);
+    const glm::vec4 rightBase(0.4f, 0.7f, 1.0f, 1.0f);
+    useTwoSpheres(leftBase, rightBase);
+    const cv::Vec4b orange(240, 160, 40, 255);
+    const cv::Vec4b teal(30, 200, 180, 255);
+    const cv::Mat image = render(
+        withMeshMaps(ShadingModel::Cel, 32.0, {flatMap(orange, 1, 1, "test:orange"), flatMap(teal, 1, 1, "test:teal")}),
+        makeBandShadeMap(5));
+    expectEachSphereInItsHalf(image);
+    const cv::Vec3i expected[2] = {shadedColor(orange, leftBase), shadedColor(teal, rightBase)};
+    int compared = 0;
+    int wrong = 0;
+    for (int row = 0; row < kSize; ++row) {
+        for (int col = 0; col < kSize; ++col) {
+            const cv::Vec4b pixel = pixelAt(image, col, row);
+            if (pixel[3] != 255) continue;
+            ++compared;
+            // The shader encodes in float: one code off at most.
+            if (!near(pixel, expected[col < kSize / 2 ? 0 : 1]) && ++wrong <= 5)
+                ADD_FAILURE() << "col " << col << ", row " << row << ": " << pixel;
+        }
+    }
+    EXPECT_EQ(wrong, 0);
+    EXPECT_GT(compared, 10000);
+    std::printf("  cel per-mesh maps: %d pixels, each its own map's colour x base colour\n", compared);
+}
+
+TEST_F(ShadeTwoSpheres, PerMeshMapEqualToTheDefaultGivesTheSamePicture) {
+    useTwoSpheres({0.9f, 0.6f, 0.3f, 1.0f}, {0.4f, 0.7f, 1.0f, 1.0f});
+    // Cel: mesh 0 names a map equal to the default (a fresh copy), mesh 1 none.
+    const cv::Mat celDefault = render(settingsFor(ShadingModel::Cel), makeBandShadeMap(5));
+    const cv::Mat celPerMesh =
+        render(withMeshMaps(ShadingModel::Cel, 32.0, {makeBandShadeMap(5), std::nullopt}), makeBandShadeMap(5));
+    expectEachSphereInItsHalf(celDefault);
+    EXPECT_EQ(cv::norm(celDefault, celPerMesh, cv::NORM_INF), 0.0);
+
+    // Comic: both meshes name the same map while the default, which no mesh then uses, has more row bands. The
+    // program must be the single-map pass's (SPECULAR_ROW_BANDS from the maps in use), so the picture is the same.
+    const ShadeMap shared = comicMap({60, 60, 60, 255}, {170, 170, 170, 255}, {{255, 255, 255, 255}}, 4, "test:shared");
+    const ShadeMap unused = comicMap({0, 0, 0, 255}, {90, 90, 90, 255},
+                                     {{120, 0, 0, 255}, {0, 120, 0, 255}, {0, 0, 120, 255}}, 2, "test:unused");
+    const cv::Mat comicDefault = render(settingsFor(ShadingModel::Comic, 16.0), shared);
+    const cv::Mat comicPerMesh = render(withMeshMaps(ShadingModel::Comic, 16.0, {shared, shared}), unused);
+    EXPECT_EQ(cv::norm(comicDefault, comicPerMesh, cv::NORM_INF), 0.0);
+}
+
+TEST_F(ShadeTwoSpheres, ComicMeshesUseTheirOwnTwoDimensionalMaps) {
+    // Map A has one row border, map B two: the pass pads A's borders to B's count. Each half of the picture must be
+    // bit for bit the picture of that map alone (the row is an integer found by the same comparisons).
+    const glm::vec4 white(1.0f, 1.0f, 1.0f, 1.0f);
+    useTwoSpheres(white, white);
+    const cv::Vec4b aShadow(90, 30, 30, 255), aLit(200, 90, 80, 255), aHighlight(255, 230, 200, 255);
+    const cv::Vec4b bShadow(20, 40, 90, 255), bLit(70, 140, 220, 255), bLow(160, 220, 255, 255),
+        bHigh(250, 255, 255, 255);
+    const ShadeMap a = comicMap(aShadow, aLit, {aHighlight}, 6, "test:a");
+    const ShadeMap b = comicMap(bShadow, bLit, {bLow, bHigh}, 3, "test:b");
+    ASSERT_EQ(specularRowBands(a, 16.0).maxHalfSquaredDistance.size(), 1u);
+    ASSERT_EQ(specularRowBands(b, 16.0).maxHalfSquaredDistance.size(), 2u);
+
+    const cv::Mat perMesh = render(withMeshMaps(ShadingModel::Comic, 16.0, {a, b}), makeDefaultComicShadeMap());
+    const cv::Mat onlyA = render(settingsFor(ShadingModel::Comic, 16.0), a);
+    const cv::Mat onlyB = render(settingsFor(ShadingModel::Comic, 16.0), b);
+    expectEachSphereInItsHalf(perMesh);
+    EXPECT_EQ(differingPixels(perMesh, onlyA, true), 0);
+    EXPECT_EQ(differingPixels(perMesh, onlyB, false), 0);
+
+    // Every tone of each map shows on its own sphere, and none of the other map's.
+    const std::vector<cv::Vec4b> tones[2] = {{aShadow, aLit, aHighlight}, {bShadow, bLit, bLow, bHigh}};
+    for (int half = 0; half < 2; ++half) {
+        std::vector<int> counts(tones[half].size(), 0);
+        int other = 0;
+        for (int row = 0; row < kSize; ++row) {
+            for (int col = half * kSize / 2; col < (half + 1) * kSize / 2; ++col) {
+                const cv::Vec4b pixel = pixelAt(perMesh, col, row);
+                if (pixel[3] != 255) continue;
+                bool known = false;
+                for (std::size_t k = 0; k < tones[half].size(); ++k)
+                    if (near(pixel, shadedColor(tones[half][k], white))) {
+                        ++counts[k];
+                        known = true;
+                    }
+                if (!known) ++other;
+            }
+        }
+        EXPECT_EQ(other, 0) << "half " << half << ": pixels of no tone of its map";
+        for (std::size_t k = 0; k < counts.size(); ++k)
+            EXPECT_GT(counts[k], 20) << "half " << half << ", tone " << k << " must show";
+    }
+}
+
+TEST_F(ShadeTwoSpheres, ComicFaceOrientationSetsDrawWithEachMeshsMap) {
+    // Seed 000's CPU marking: the pass draws the front sets with the per-vertex (s, t), one map per mesh.
+    useTwoSpheres({1.0f, 1.0f, 1.0f, 1.0f}, {1.0f, 1.0f, 1.0f, 1.0f});
+    const ShadeMap a = comicMap({90, 30, 30, 255}, {200, 90, 80, 255}, {{255, 230, 200, 255}}, 6, "test:a");
+    const ShadeMap b = comicMap({20, 40, 90, 255}, {70, 140, 220, 255}, {{160, 220, 255, 255}}, 3, "test:b");
+    OrientationSettings orientationSettings;
+    orientationSettings.method = FaceOrientationMethod::AfterVertices;
+    orientationSettings.shininess = 16.0;
+    SceneOrientation orientation(scene, *gpuScene, frame, orientationSettings);
+    ASSERT_TRUE(orientation.usesCpuMarking());
+    const cv::Mat perMesh =
+        renderWith(withMeshMaps(ShadingModel::Comic, 16.0, {a, b}), makeDefaultComicShadeMap(), &orientation);
+    const cv::Mat onlyA = renderWith(settingsFor(ShadingModel::Comic, 16.0), a, &orientation);
+    const cv::Mat onlyB = renderWith(settingsFor(ShadingModel::Comic, 16.0), b, &orientation);
+    expectEachSphereInItsHalf(perMesh);
+    EXPECT_EQ(differingPixels(perMesh, onlyA, true), 0);
+    EXPECT_EQ(differingPixels(perMesh, onlyB, false), 0);
+    EXPECT_GT(cv::norm(onlyA, onlyB, cv::NORM_INF), 0.0); // the maps differ where it shows
+}
+
+TEST_F(ShadeTwoSpheres, ComicMapWithTooManyRowBandsTakesEveryMeshToTheGenericPath) {
+    // Map M has 10 row borders, more than the comparison path takes, so the pass's one program evaluates
+    // exp(n log(r.v)) for both meshes. M's half is exactly M alone (generic both times); A's half may differ from A
+    // alone (comparisons) only where t lies within float rounding of A's border.
+    useTwoSpheres({1.0f, 1.0f, 1.0f, 1.0f}, {1.0f, 1.0f, 1.0f, 1.0f});
+    cv::Mat texels(20, 1, CV_8UC4);
+    for (int row = 0; row < 20; ++row) {
+        const uchar grey = row < 10 ? 255 : uchar(100 + row % 2);
+        texels.at<cv::Vec4b>(row, 0) = cv::Vec4b(grey, grey, grey, 255);
+    }
+    const ShadeMap many = shadeMapFromImage(texels, "test:many-bands", false);
+    const ShadeMap a = comicMap({90, 30, 30, 255}, {200, 90, 80, 255}, {{255, 230, 200, 255}}, 6, "test:a");
+    const cv::Mat perMesh = render(withMeshMaps(ShadingModel::Comic, 16.0, {many, a}), makeDefaultComicShadeMap());
+    const cv::Mat onlyMany = render(settingsFor(ShadingModel::Comic, 16.0), many);
+    const cv::Mat onlyA = render(settingsFor(ShadingModel::Comic, 16.0), a);
+    EXPECT_EQ(differingPixels(perMesh, onlyMany, true), 0);
+    const int differing = differingPixels(perMesh, onlyA, false);
+    EXPECT_LE(differing, 3);
+    std::printf("  comic generic fall-back: %d pixels of the one-border map differ from its comparison path\n",
+                differing);
+}
+
+TEST_F(ShadeTwoSpheres, DistinctMapsAreUploadedOnceAndWrongOnesRefused) {
+    useTwoSpheres({0.8f, 0.8f, 0.8f, 1.0f}, {0.8f, 0.8f, 0.8f, 1.0f});
+    const ShadeMap red = flatMap({255, 0, 0, 255}, 1, 4, "test:red");
+    const ShadeMap blue = flatMap({0, 0, 255, 255}, 1, 4, "test:blue");
+    const auto distinct = [&](ShadingModel model, std::vector<std::optional<ShadeMap>> meshMaps) {
+        ShadePass pass("shade", shaders, *gpuScene, frame, withMeshMaps(model, 32.0, std::move(meshMaps)),
+                       makeBandShadeMap(5), nullptr);
+        return pass.distinctShadeMapCount();
+    };
+    EXPECT_EQ(distinct(ShadingModel::Cel, {}), 1u);
+    EXPECT_EQ(distinct(ShadingModel::Cel, {red, std::nullopt}), 2u);
+    EXPECT_EQ(distinct(ShadingModel::Cel, {red, blue}), 2u); // the default is used by neither
+    // Equal texels are one map, whatever their source says.
+    ShadeMap redAgain = flatMap({255, 0, 0, 255}, 1, 4, "test:red-again");
+    EXPECT_EQ(distinct(ShadingModel::Cel, {red, redAgain}), 1u);
+    EXPECT_EQ(distinct(ShadingModel::Cel, {makeBandShadeMap(5), std::nullopt}), 1u);
+    EXPECT_EQ(distinct(ShadingModel::Lambert, {red, blue}), 0u); // models without a map ignore them
+
+    const auto message = [&](ShadingModel model, std::vector<std::optional<ShadeMap>> meshMaps) -> std::string {
+        try {
+            ShadePass pass("shade", shaders, *gpuScene, frame, withMeshMaps(model, 32.0, std::move(meshMaps)),
+                           makeBandShadeMap(5), nullptr);
+        } catch (const std::invalid_argument& error) {
+            return error.what();
+        }
+        return "";
+    };
+    EXPECT_EQ(message(ShadingModel::Cel, {std::nullopt, makeDefaultComicShadeMap()}),
+              "ShadePass(): the 'cel' model needs a one-row shade map, 'builtin:comic' (mesh 1) has 32 rows");
+    ShadeMap rgb{cv::Mat(1, 4, CV_8UC3, cv::Scalar(1, 2, 3)), "test:rgb"};
+    EXPECT_EQ(message(ShadingModel::Comic, {rgb}),
+              "ShadePass(): shade map 'test:rgb' (mesh 0) must be a non-empty CV_8UC4 image (see shadeMapFromImage())");
+    EXPECT_EQ(message(ShadingModel::Cel, {red, blue, red}),
+              "ShadePass(): 3 per-mesh shade maps for a scene of 2 meshes");
+    EXPECT_EQ(message(ShadingModel::Comic, {makeDefaultComicShadeMap(), red}), ""); // one-row maps are comic maps too
 }
 
 } // namespace

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <utility>
 
 namespace inkgraph {
 namespace {
@@ -158,6 +160,102 @@ TEST(GltfLoader, BaseColorFactorIsRead) {
     ASSERT_EQ(scene.meshes.size(), 2u);
     EXPECT_EQ(scene.meshes[0].baseColor, glm::vec4(0.1f, 0.2f, 0.3f, 0.4f));
     EXPECT_EQ(scene.meshes[1].baseColor, glm::vec4(0.8f, 0.8f, 0.8f, 1.0f)); // no material: the default grey
+}
+
+/** Meshes "a", "b", "c" (one triangle each, one node each), using the materials given as JSON (empty: none). */
+std::string threeMeshesWithMaterials(GltfWriter& writer, const std::string& materials,
+                                     const std::vector<int>& materialOfMesh) {
+    const int positions = writer.addVec3(kUnitTriangle);
+    std::string meshes;
+    std::string nodes;
+    const char* names[] = {"a", "b", "c"};
+    for (std::size_t i = 0; i < materialOfMesh.size(); ++i) {
+        const std::string material =
+            materialOfMesh[i] >= 0 ? ", \"material\": " + std::to_string(materialOfMesh[i]) : "";
+        meshes += std::string(i ? ", " : "") + "{\"name\": \"" + names[i] +
+                  "\", \"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}" + material +
+                  "}]}";
+        nodes += std::string(i ? ", " : "") + "{\"mesh\": " + std::to_string(i) + "}";
+    }
+    std::string roots;
+    for (std::size_t i = 0; i < materialOfMesh.size(); ++i)
+        roots += std::string(i ? ", " : "") + std::to_string(i);
+    return "\"materials\": [" + materials + "], \"meshes\": [" + meshes + "], \"nodes\": [" + nodes +
+           "], \"scenes\": [{\"nodes\": [" + roots + "]}]";
+}
+
+TEST(GltfLoader, MaterialShadeMapIsResolvedAgainstTheFilesFolder) {
+    // Material 0: a relative path with a detour, resolved next to the .gltf (the temp folder) and normalised;
+    // material 1: an absolute path, kept; material 2: extras of another tool only. Mesh "c" has no material.
+    GltfWriter writer;
+    const std::string materials =
+        "{\"name\": \"Warm\", \"extras\": {\"inkgraph\": {\"shademap\": \"maps/../maps/./warm.png\"}}}, "
+        "{\"extras\": {\"inkgraph\": {\"shademap\": \"/srv/maps/cool.png\"}, \"blender\": 1}}, "
+        "{\"name\": \"Plain\", \"extras\": {\"blender\": {\"shademap\": 5}}}";
+    const TempFile file("shademaps.gltf", writer.gltf(threeMeshesWithMaterials(writer, materials, {0, 1, 2})));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 3u);
+    const std::filesystem::path folder = std::filesystem::path(file.path()).parent_path();
+    EXPECT_EQ(scene.meshes[0].shadeMapPath, (folder / "maps" / "warm.png").string());
+    EXPECT_EQ(scene.meshes[1].shadeMapPath, "/srv/maps/cool.png");
+    EXPECT_EQ(scene.meshes[2].shadeMapPath, "");
+    EXPECT_EQ(scene.meshes[0].materialName, "Warm");
+    EXPECT_EQ(scene.meshes[1].materialName, "");
+    EXPECT_EQ(scene.meshes[2].materialName, "Plain");
+    EXPECT_TRUE(scene.report.warnings.empty()) << scene.report.warnings.front();
+
+    GltfWriter noMaterialWriter;
+    const TempFile plain("no_material.gltf",
+                         noMaterialWriter.gltf(threeMeshesWithMaterials(noMaterialWriter, "", {-1})));
+    EXPECT_EQ(loadScene(plain.path()).meshes.at(0).shadeMapPath, "");
+}
+
+TEST(GltfLoader, MaterialShadeMapSharedByPrimitivesWarnsOnceAboutUnknownKeys) {
+    // Two meshes use material 0, whose inkgraph extras hold a typo next to the map: one warning naming the key and
+    // the material, and both meshes get the map.
+    GltfWriter writer;
+    const std::string materials =
+        "{\"name\": \"Metal\", \"extras\": {\"inkgraph\": {\"shademap\": \"metal.png\", \"shadeMap\": \"x.png\"}}}";
+    const TempFile file("typo.gltf", writer.gltf(threeMeshesWithMaterials(writer, materials, {0, 0})));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 2u);
+    const std::string expected = (std::filesystem::path(file.path()).parent_path() / "metal.png").string();
+    EXPECT_EQ(scene.meshes[0].shadeMapPath, expected);
+    EXPECT_EQ(scene.meshes[1].shadeMapPath, expected);
+    ASSERT_EQ(scene.report.warnings.size(), 1u);
+    EXPECT_EQ(scene.report.warnings[0],
+              "material 0 'Metal': extras.inkgraph key 'shadeMap' ignored (known: 'shademap')");
+}
+
+TEST(GltfLoader, MaterialShadeMapOfTheWrongTypeIsAnError) {
+    // What the file holds -> the end of the message; the material is named by index and name (or index alone).
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"{\"inkgraph\": 5}", "extras.inkgraph must be an object, got number"},
+        {"{\"inkgraph\": \"metal.png\"}", "extras.inkgraph must be an object, got string"},
+        {"{\"inkgraph\": []}", "extras.inkgraph must be an object, got array"},
+        {"{\"inkgraph\": null}", "extras.inkgraph must be an object, got null"},
+        {"{\"inkgraph\": {\"shademap\": 3}}",
+         "extras.inkgraph.shademap must be a non-empty string (a PNG path), got number"},
+        {"{\"inkgraph\": {\"shademap\": \"\"}}",
+         "extras.inkgraph.shademap must be a non-empty string (a PNG path), got an empty string"},
+        {"{\"inkgraph\": {\"shademap\": null}}",
+         "extras.inkgraph.shademap must be a non-empty string (a PNG path), got null"},
+        {"{\"inkgraph\": {\"shademap\": {}}}",
+         "extras.inkgraph.shademap must be a non-empty string (a PNG path), got object"},
+    };
+    for (const auto& [extras, problem] : cases) {
+        for (const bool named : {true, false}) {
+            GltfWriter writer;
+            const std::string material =
+                std::string("{") + (named ? "\"name\": \"Metal\", " : "") + "\"extras\": " + extras + "}";
+            const TempFile file("bad_extras.gltf",
+                                writer.gltf(threeMeshesWithMaterials(writer, "{}, " + material, {-1, 1})));
+            const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+            EXPECT_EQ(message,
+                      "loadScene(): '" + file.path() + "': material 1" + (named ? " 'Metal'" : "") + ": " + problem)
+                << extras;
+        }
+    }
 }
 
 TEST(GltfLoader, PerspectiveCameraIsRead) {
