@@ -2,6 +2,8 @@
 // No GL.
 #include "passes/shade/ShadeMap.h"
 
+#include "tests/support/ThrowMessage.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,16 +24,7 @@ double decodeSrgb(int code) {
 /** The texel a shader picks for coordinate u in [0, 1]: i = min(floor(u N), N - 1). */
 int texelIndex(double u, int count) { return std::min(int(std::floor(u * count)), count - 1); }
 
-/** The message of the std::invalid_argument `call` throws, or "" when it throws nothing. */
-template <class Call>
-std::string invalidArgumentMessage(Call call) {
-    try {
-        call();
-    } catch (const std::invalid_argument& error) {
-        return error.what();
-    }
-    return "";
-}
+using test::invalidArgumentMessage;
 
 TEST(ShadeMap, FiveBandsAreSeed003Levels) {
     const ShadeMap map = makeBandShadeMap(5);

@@ -1,6 +1,8 @@
 // postfx/ContactSheet on synthetic buffers; no GL.
 #include "postfx/ContactSheet.h"
 
+#include "tests/support/ThrowMessage.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,17 +26,7 @@ cv::Vec4b grey(int value) { return {uchar(value), uchar(value), uchar(value), 25
 /** The tile of a buffer shown at its own size (no scaling), so each pixel is the mapping of one value. */
 cv::Mat tileAtOwnSize(const cv::Mat& image, TileContent content) { return tileImage(image, content, image.size()); }
 
-/** Runs `call`, expects std::invalid_argument, and returns its message. */
-template <typename Call>
-std::string invalidArgumentMessage(Call call) {
-    try {
-        call();
-    } catch (const std::invalid_argument& error) {
-        return error.what();
-    }
-    ADD_FAILURE() << "no std::invalid_argument";
-    return {};
-}
+using test::invalidArgumentMessage;
 
 bool startsWith(const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; }
 

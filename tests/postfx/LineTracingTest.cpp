@@ -2,6 +2,8 @@
 // integers) and from the analytic lines they were drawn from.
 #include "postfx/LineTracing.h"
 
+#include "tests/support/ThrowMessage.h"
+
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
@@ -68,16 +70,7 @@ bool hasVertex(const Polyline& polyline, cv::Point2f vertex) {
     return std::find(polyline.points.begin(), polyline.points.end(), vertex) != polyline.points.end();
 }
 
-/** The message of the std::invalid_argument `call` throws, or "" when it throws none. */
-template <typename Call>
-std::string invalidArgumentMessage(Call call) {
-    try {
-        call();
-    } catch (const std::invalid_argument& error) {
-        return error.what();
-    }
-    return "";
-}
+using test::invalidArgumentMessage;
 
 TEST(LineTracingTest, StraightLineOf200PixelsSimplifiesToItsTwoEnds) {
     cv::Mat mask = blank(240, 40);

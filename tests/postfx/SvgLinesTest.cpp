@@ -3,6 +3,8 @@
 
 #include "tests/support/SvgPaths.h"
 
+#include "tests/support/ThrowMessage.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -21,15 +23,7 @@ using test::parseSvgPathGroups;
 using test::SvgPathDocument;
 using test::SvgPathGroup;
 
-template <typename Call>
-std::string invalidArgumentMessage(Call call) {
-    try {
-        call();
-    } catch (const std::invalid_argument& error) {
-        return error.what();
-    }
-    return "";
-}
+using test::invalidArgumentMessage;
 
 bool startsWith(const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; }
 
