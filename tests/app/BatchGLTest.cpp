@@ -45,7 +45,7 @@ TEST_F(Cli, BatchMatchesOneProcessPerModelAndCompilesEachProgramOnce) {
     EXPECT_FALSE(first["context_reused"].get<bool>());
     EXPECT_GT(first["context_ms"].get<double>(), 0.0);
     const int compiled = first["programs_compiled"].get<int>();
-    EXPECT_GE(compiled, 4); // shade, outline (two), mesh edges (two); the contour is a CPU pass
+    EXPECT_EQ(compiled, 6); // gbuffer, shade, outline (two), mesh edges (two); the contour is a CPU pass
     EXPECT_EQ(first["programs_reused"].get<int>(), 0);
     EXPECT_EQ(first["batch"]["position"].get<int>(), 1);
     EXPECT_EQ(first["batch"]["list_length"].get<int>(), 3);
