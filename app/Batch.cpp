@@ -1,6 +1,7 @@
 #include "app/Batch.h"
 
 #include "app/ImageFiles.h"
+#include "app/OutputFiles.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -39,26 +40,15 @@ std::string trimmed(const std::string& text) {
     return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
 }
 
-/** The place a path names, for comparing outputs: absolute and normalised, without touching the file system's
- *  links beyond what exists (two spellings of one file compare equal). */
-std::string placeOf(const std::string& path) {
-    std::error_code error;
-    const std::filesystem::path place = std::filesystem::weakly_canonical(std::filesystem::absolute(path), error);
-    return error ? std::filesystem::absolute(path).lexically_normal().string() : place.string();
-}
-
 bool hasPlaceholder(const std::string& pattern) {
     return pattern.find("{name}") != std::string::npos || pattern.find("{index}") != std::string::npos;
 }
 
-/** Each output flag and its value, in the order --help lists them. */
+/** Each output flag given and its value, in --help's order. */
 std::vector<std::pair<std::string, std::string>> outputFlags(const RenderOptions& options) {
-    std::vector<std::pair<std::string, std::string>> flags = {
-        {"-o", options.outputPath},           {"--dump", options.dumpDirectory}, {"--stats", options.statsPath},
-        {"--graphviz", options.graphvizPath}, {"--contact-sheet", options.contactSheetPath},
-        {"--svg", options.svgPath}};
-    flags.erase(std::remove_if(flags.begin(), flags.end(), [](const auto& flag) { return flag.second.empty(); }),
-                flags.end());
+    std::vector<std::pair<std::string, std::string>> flags;
+    for (const auto& [flag, field] : outputPathFlags())
+        if (!(options.*field).empty()) flags.emplace_back(flag, options.*field);
     return flags;
 }
 
@@ -114,9 +104,7 @@ std::string expandOutputPattern(const std::string& pattern, const BatchModel& mo
 RenderOptions stillOptions(const RenderOptions& options, const BatchModel& model, std::size_t total) {
     RenderOptions still = options;
     still.modelPath = model.path;
-    for (std::string* output : {&still.outputPath, &still.dumpDirectory, &still.statsPath, &still.graphvizPath,
-                                &still.contactSheetPath, &still.svgPath})
-        *output = expandOutputPattern(*output, model, total);
+    for (const auto& [flag, field] : outputPathFlags()) still.*field = expandOutputPattern(still.*field, model, total);
     return still;
 }
 
@@ -128,14 +116,14 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
                                  std::to_string(list.total) + " models; put {name} or {index} in it, e.g. '" +
                                  (flag == "--dump" ? "out/{name}-dump" : "out/{name}" +
                                   std::filesystem::path(pattern).extension().string()) + "'");
-    std::map<std::string, const BatchModel*> modelsByPlace;
-    for (const BatchModel& model : list.models) modelsByPlace.emplace(placeOf(model.path), &model);
+    std::map<std::filesystem::path, const BatchModel*> modelsByPlace;
+    for (const BatchModel& model : list.models) modelsByPlace.emplace(resolvedPath(model.path), &model);
     // Place -> the first still writing there (a model listed twice is two stills).
-    std::map<std::string, const BatchModel*> writers;
+    std::map<std::filesystem::path, const BatchModel*> writers;
     for (const BatchModel& model : list.models) {
         for (const auto& [flag, pattern] : outputFlags(options)) {
             const std::string output = expandOutputPattern(pattern, model, list.total);
-            const std::string place = placeOf(output);
+            const std::filesystem::path place = resolvedPath(output);
             // A still writing over its own model is OutputSet's to report, as for a single model.
             if (auto input = modelsByPlace.find(place);
                 input != modelsByPlace.end() && input->second->path != model.path)

@@ -400,6 +400,18 @@ bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, Pa
 
 } // namespace
 
+const std::vector<std::pair<std::string, std::string RenderOptions::*>>& outputPathFlags() {
+    static const std::vector<std::pair<std::string, std::string RenderOptions::*>> kFlags = {
+        {"-o", &RenderOptions::outputPath},
+        {"--dump", &RenderOptions::dumpDirectory},
+        {"--stats", &RenderOptions::statsPath},
+        {"--graphviz", &RenderOptions::graphvizPath},
+        {"--contact-sheet", &RenderOptions::contactSheetPath},
+        {"--svg", &RenderOptions::svgPath},
+    };
+    return kFlags;
+}
+
 bool rendersImages(const RenderOptions& options) {
     return !options.outputPath.empty() || !options.dumpDirectory.empty() || !options.contactSheetPath.empty() ||
            !options.svgPath.empty();

@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace inkgraph {
@@ -89,6 +90,10 @@ bool isImageSpaceLineType(const std::string& type);
 bool isObjectSpaceLineType(const std::string& type);
 /** Line types drawn from the mesh's edges (the "mesh-edges" pass). */
 bool isMeshEdgeLineType(const std::string& type);
+/** Every flag that names an output path, with its field, in --help's order: -o, --dump, --stats, --graphviz,
+ *  --contact-sheet, --svg. One list for the checks of one still (OutputSet) and of a batch (app/Batch.h). */
+const std::vector<std::pair<std::string, std::string RenderOptions::*>>& outputPathFlags();
+
 /** Whether a run renders (-o, --dump, --contact-sheet or --svg) rather than only showing the plan. */
 bool rendersImages(const RenderOptions& options);
 std::string shadingModeName(ShadingMode mode);

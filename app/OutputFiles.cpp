@@ -21,13 +21,6 @@ namespace {
 
 fs::path folderOf(const fs::path& file) { return file.has_parent_path() ? file.parent_path() : fs::path("."); }
 
-/** The path as the file system will resolve it, for comparing outputs (symlinks resolved where they exist). */
-fs::path resolved(const fs::path& path) {
-    std::error_code error;
-    fs::path result = fs::weakly_canonical(fs::absolute(path, error), error);
-    return error ? fs::absolute(path).lexically_normal() : result;
-}
-
 bool isInside(const fs::path& path, const fs::path& folder) {
     const fs::path relative = path.lexically_relative(folder);
     return !relative.empty() && *relative.begin() != "..";
@@ -60,6 +53,12 @@ void requireWritableFolder(const fs::path& folder, const std::string& what) {
 
 } // namespace
 
+fs::path resolvedPath(const fs::path& path) {
+    std::error_code error;
+    fs::path result = fs::weakly_canonical(fs::absolute(path, error), error);
+    return error ? fs::absolute(path).lexically_normal() : result;
+}
+
 std::optional<std::vector<std::string>> earlierDumpFiles(const fs::path& directory) {
     std::ifstream file(directory / "manifest.json");
     if (!file) return std::nullopt;
@@ -83,27 +82,24 @@ OutputSet::OutputSet(const RenderOptions& options) : mOptions(options) {
         std::string flag;
         std::string path;
     };
-    std::vector<Named> files;
-    if (!options.outputPath.empty()) files.push_back({"-o", options.outputPath});
-    if (!options.statsPath.empty()) files.push_back({"--stats", options.statsPath});
-    if (!options.graphvizPath.empty()) files.push_back({"--graphviz", options.graphvizPath});
-    if (!options.contactSheetPath.empty()) files.push_back({"--contact-sheet", options.contactSheetPath});
-    if (!options.svgPath.empty()) files.push_back({"--svg", options.svgPath});
+    std::vector<Named> files; // every output file; the --dump folder is checked apart
+    for (const auto& [flag, field] : outputPathFlags())
+        if (flag != "--dump" && !(options.*field).empty()) files.push_back({flag, options.*field});
 
     // Collisions first: they are mistakes in the command line, whatever the file system says.
-    const fs::path model = resolved(options.modelPath);
-    const fs::path shadeMap = options.shadeMapPath.empty() ? fs::path() : resolved(options.shadeMapPath);
+    const fs::path model = resolvedPath(options.modelPath);
+    const fs::path shadeMap = options.shadeMapPath.empty() ? fs::path() : resolvedPath(options.shadeMapPath);
     for (std::size_t i = 0; i < files.size(); ++i) {
-        const fs::path path = resolved(files[i].path);
+        const fs::path path = resolvedPath(files[i].path);
         if (path == model)
             throw UsageError(files[i].flag + " '" + files[i].path + "' is the model itself; choose another file");
         if (!shadeMap.empty() && path == shadeMap)
             throw UsageError(files[i].flag + " '" + files[i].path + "' is the --shademap itself; choose another file");
         for (std::size_t j = i + 1; j < files.size(); ++j)
-            if (path == resolved(files[j].path))
+            if (path == resolvedPath(files[j].path))
                 throw UsageError(files[i].flag + " and " + files[j].flag + " name the same file '" + files[i].path +
                                  "'");
-        if (!options.dumpDirectory.empty() && isInside(path, resolved(options.dumpDirectory)))
+        if (!options.dumpDirectory.empty() && isInside(path, resolvedPath(options.dumpDirectory)))
             throw UsageError(files[i].flag + " '" + files[i].path + "' lies inside --dump '" + options.dumpDirectory +
                              "', whose contents each dump replaces; write it elsewhere");
     }

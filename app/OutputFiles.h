@@ -55,6 +55,10 @@ private:
     bool mCommitted = false;
 };
 
+/** The place a path names, for comparing outputs and inputs: absolute, with the links that exist resolved (two
+ *  spellings of one file compare equal); lexically normalised where it cannot be resolved. */
+std::filesystem::path resolvedPath(const std::filesystem::path& path);
+
 /** The files an earlier --dump wrote into `directory` (from its manifest.json, which is included), or nothing when
  *  `directory` holds anything else: then it is not ours to replace. Staging folders of running inkgraph processes
  *  are ignored. */

@@ -2,13 +2,14 @@
 // No GL: the rendering of a batch is tests/app/BatchGLTest.cpp.
 #include "app/Batch.h"
 
+#include "tests/support/TestFolder.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
 namespace inkgraph {
 namespace {
@@ -38,18 +39,12 @@ std::string usageMessage(const RenderOptions& options, const BatchList& list) {
     return "";
 }
 
-class BatchListFile : public ::testing::Test {
+class BatchListFile : public test::TestFolder {
 protected:
-    void SetUp() override {
-        folder = fs::temp_directory_path() / ("inkgraph-batch-" + std::to_string(::getpid()));
-        fs::create_directories(folder);
-    }
-    void TearDown() override { fs::remove_all(folder); }
     std::string write(const std::string& name, const std::string& text) {
-        std::ofstream(folder / name, std::ios::binary) << text;
-        return (folder / name).string();
+        std::ofstream(directory / name, std::ios::binary) << text;
+        return (directory / name).string();
     }
-    fs::path folder;
 };
 
 TEST(BatchList, OneModelIsNoBatchAndSeveralAre) {
@@ -130,7 +125,7 @@ TEST_F(BatchListFile, BadListsAreRefusedNamingTheFile) {
     } catch (const UsageError& error) {
         EXPECT_NE(std::string(error.what()).find("line 2: binary data"), std::string::npos) << error.what();
     }
-    options.listPath = (folder / "missing.txt").string();
+    options.listPath = (directory / "missing.txt").string();
     try {
         batchList(options, none);
         FAIL() << "a missing list was accepted";

@@ -1,6 +1,8 @@
 #pragma once
 /** @file The `inkgraph` executable run as a user runs it, in a fresh folder per test (tests/app). */
 
+#include "tests/support/TestFolder.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include <vector>
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 namespace inkgraph::test {
 
@@ -31,19 +32,17 @@ inline std::string readText(const fs::path& path) {
     return text.str();
 }
 
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        directory = fs::temp_directory_path() /
-                    ("inkgraph-cli-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
-        fs::remove_all(directory);
-        fs::create_directories(directory);
-    }
-    void TearDown() override {
-        if (!HasFailure()) fs::remove_all(directory);
-    }
+/** `path` in single quotes, for the shell. */
+inline std::string shellQuoted(const fs::path& path) {
+    // Appended rather than "'" + path + "'": GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
+    std::string text = "'";
+    text += path.string();
+    text += "'";
+    return text;
+}
 
+class Cli : public TestFolder {
+protected:
     /** Runs the executable through the shell; `environment` is prefixed ("A=1 B=2"). */
     CliRun run(const std::string& arguments, const std::string& environment = "") {
         const fs::path outFile = directory / "stdout.txt";
@@ -69,15 +68,11 @@ protected:
         return names;
     }
 
+    /** A bundled model's path, quoted for the shell. */
     static std::string model(const std::string& name) {
-        // Appended rather than "'" + path + "'": GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
-        std::string quoted = "'";
-        quoted += (fs::path(INKGRAPH_SOURCE_ROOT) / "models" / name).string();
-        quoted += "'";
-        return quoted;
+        return shellQuoted(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / name);
     }
 
-    fs::path directory;
 };
 
 } // namespace inkgraph::test

@@ -18,10 +18,7 @@ using test::readText;
 namespace fs = std::filesystem;
 
 std::string stillLife() {
-    std::string quoted = "'"; // appended: see Cli::model() on GCC 12's false -Wrestrict
-    quoted += (fs::path(INKGRAPH_SOURCE_ROOT) / "examples" / "still-life" / "still-life.gltf").string();
-    quoted += "'";
-    return quoted;
+    return test::shellQuoted(fs::path(INKGRAPH_SOURCE_ROOT) / "examples" / "still-life" / "still-life.gltf");
 }
 
 TEST_F(Cli, StillLifeUsesItsCameraLightAndAShadeMapPerMaterial) {

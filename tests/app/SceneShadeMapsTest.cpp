@@ -4,9 +4,10 @@
 #include "app/ImageFiles.h"
 #include "app/Render.h"
 
+#include "tests/support/TestFolder.h"
+
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 
 #include <filesystem>
 #include <string>
@@ -17,17 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class SceneShadeMaps : public ::testing::Test {
+class SceneShadeMaps : public test::TestFolder {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        directory = fs::temp_directory_path() /
-                    ("inkgraph-scene-shademaps-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
-        fs::remove_all(directory);
-        fs::create_directories(directory);
-    }
-    void TearDown() override { fs::remove_all(directory); }
-
     /** Writes a `rows` x `cols` PNG of one RGBA colour; returns its path. */
     std::string writeMap(const std::string& name, int rows, int cols, cv::Vec4b color) const {
         const fs::path path = directory / name;
@@ -55,7 +47,6 @@ protected:
         return {};
     }
 
-    fs::path directory;
 };
 
 TEST_F(SceneShadeMaps, DistinctFilesAreReadOnceAndShared) {

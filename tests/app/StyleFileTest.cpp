@@ -2,13 +2,14 @@
 #include "app/Options.h"
 #include "app/StyleFile.h"
 
+#include "tests/support/TestFolder.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <functional>
 #include <fstream>
 
-#include <unistd.h>
 
 namespace inkgraph {
 namespace {
@@ -90,15 +91,7 @@ TEST(StyleFile, EveryStyleSettingIsAFlagTheParserKnows) {
     }
 }
 
-class StyleFileOnDisk : public ::testing::Test {
-protected:
-    void SetUp() override {
-        directory = std::filesystem::temp_directory_path() / ("inkgraph-style-" + std::to_string(::getpid()));
-        std::filesystem::create_directories(directory);
-    }
-    void TearDown() override { std::filesystem::remove_all(directory); }
-    std::filesystem::path directory;
-};
+class StyleFileOnDisk : public test::TestFolder {};
 
 TEST_F(StyleFileOnDisk, ExpandPutsTheSettingsFirstAndKeepsTheFlagForTheRecord) {
     const std::string path = (directory / "look.style").string();
