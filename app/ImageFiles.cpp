@@ -75,11 +75,25 @@ LoadedModule loadModule() {
     return loaded;
 }
 
+/** The load's result, started on first call. `started` tells whether any call has been made yet. */
+struct ModuleLoad {
+    std::once_flag once;
+    std::atomic<bool> started{false};
+    std::shared_future<LoadedModule> future;
+};
+
+ModuleLoad& moduleLoad() {
+    static ModuleLoad load;
+    return load;
+}
+
 std::shared_future<LoadedModule>& moduleFuture() {
-    static std::once_flag started;
-    static std::shared_future<LoadedModule> future;
-    std::call_once(started, [] { future = std::async(std::launch::async, loadModule).share(); });
-    return future;
+    ModuleLoad& load = moduleLoad();
+    std::call_once(load.once, [&load] {
+        load.future = std::async(std::launch::async, loadModule).share();
+        load.started = true;
+    });
+    return load.future;
 }
 
 const ImageIoFunctions& imageIo() {
@@ -93,6 +107,11 @@ const ImageIoFunctions& imageIo() {
 } // namespace
 
 void preloadImageIo() { moduleFuture(); }
+
+void finishImageIoPreload() {
+    // Only wait for a load someone started: starting one here would cost every exit ~0.2 s for nothing.
+    if (moduleLoad().started) moduleFuture().wait();
+}
 
 std::filesystem::path temporarySibling(const std::filesystem::path& path) {
     // Short and fixed in length, so a final name near NAME_MAX still has a valid temporary name.

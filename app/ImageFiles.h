@@ -22,6 +22,10 @@ public:
  *  dynamic linking overlaps other work. Optional: every function below loads it on first use anyway. */
 void preloadImageIo();
 
+/** Waits until a load that preloadImageIo() (or a first use) started has finished, successfully or not; returns at
+ *  once when none was started. After it the loader thread has ended: app/BackgroundThreads.h. */
+void finishImageIoPreload();
+
 /** Writes CV_8UC1/CV_8UC4 as 8-bit sRGB and CV_32FC1/CV_32FC4 as float32 (EXR keeps float; PNG would quantise, so
  *  float images must go to .exr or .tif); an 8-bit picture written as EXR is converted to linear float. The format
  *  follows the extension. Encoded in memory, written under a temporary name, synced, renamed into place. */

@@ -1,4 +1,14 @@
 // The benchmarks of bench/*Bench.cpp in one program: inkgraph_bench --benchmark_filter=REGEX
+#include "app/BackgroundThreads.h"
+
 #include <benchmark/benchmark.h>
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    // The end every inkgraph process shares (app/BackgroundThreads.h).
+    inkgraph::finishProcess();
+    return 0;
+}

@@ -1,4 +1,5 @@
 // inkgraph_tradeoff: the speed/accuracy sweep of bench/Tradeoff.h, written as a CSV, a markdown table and a plot.
+#include "app/BackgroundThreads.h"
 #include "app/ImageFiles.h"
 #include "bench/Tradeoff.h"
 
@@ -67,6 +68,7 @@ int main(int argc, char** argv) {
         }
     }
     if (out.empty()) return usage("--out DIR is required");
+    int exitCode = 0;
     try {
         std::filesystem::create_directories(out);
         const auto rows = inkgraph::bench::runTradeoffSweep(config, std::cout);
@@ -78,7 +80,9 @@ int main(int argc, char** argv) {
         std::cout << "wrote " << (out / "tradeoff.csv").string() << ", tradeoff.md, tradeoff.png\n";
     } catch (const std::exception& error) {
         std::cerr << "inkgraph_tradeoff: " << error.what() << "\n";
-        return 1;
+        exitCode = 1;
     }
-    return 0;
+    // The end every inkgraph process shares (app/BackgroundThreads.h).
+    inkgraph::finishProcess();
+    return exitCode;
 }

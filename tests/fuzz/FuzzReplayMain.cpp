@@ -1,6 +1,8 @@
 // Replays inputs through a fuzz target without libFuzzer: the ctest side of tests/fuzz. Every file under the given
 // files or folders is one input. Exits 1 when no input was found (a test that ran nothing must not pass); a failing
 // input aborts (an escaped exception) or is reported by a sanitizer in the sanitized build.
+#include "app/BackgroundThreads.h"
+
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -44,5 +46,6 @@ int main(int argc, char** argv) {
         LLVMFuzzerTestOneInput(bytes.data(), bytes.size());
     }
     std::cout << "fuzz replay: " << inputs.size() << " inputs, none failed\n";
+    inkgraph::finishProcess();
     return 0;
 }

@@ -1,0 +1,47 @@
+#include "app/BackgroundThreads.h"
+
+#include "app/ImageFiles.h"
+
+#include <oneapi/tbb/global_control.h>
+#include <opencv2/core/utility.hpp>
+
+#include <new>
+#include <stdexcept>
+
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+#endif
+
+namespace inkgraph {
+
+void stopParallelWorkers() {
+    const int threads = cv::getNumThreads();
+    // OpenCV's own arena holds the pool while its thread setting is above 0; 0 releases it.
+    cv::setNumThreads(0);
+    // A blocking finalize: returns once every worker thread has been joined.
+    oneapi::tbb::task_scheduler_handle pool{oneapi::tbb::attach{}};
+    const bool joined = oneapi::tbb::finalize(pool, std::nothrow);
+    cv::setNumThreads(threads);
+    if (!joined)
+        throw std::runtime_error("stopParallelWorkers(): oneTBB's worker pool, which OpenCV's parallel loops run on, is "
+                                 "still held by another user (a task_arena or global_control outside OpenCV); its "
+                                 "workers were not joined");
+}
+
+void joinBackgroundThreads() {
+    // The loader first: a dlopen in progress may still be starting the pools of OpenImageIO's dependencies.
+    finishImageIoPreload();
+    stopParallelWorkers();
+}
+
+void finishProcess() {
+    joinBackgroundThreads();
+#if defined(__SANITIZE_ADDRESS__)
+    // Before static destructors: some libraries' pools end their threads there without joining them (log4cplus's
+    // workers detach themselves, oneTBB's are released from its library destructor), so the check at exit could
+    // meet them half torn down.
+    __lsan_do_leak_check();
+#endif
+}
+
+} // namespace inkgraph

@@ -1,0 +1,29 @@
+#pragma once
+/** @file The threads that inkgraph's libraries run for it in the background, ended and joined at a defined point.
+ *
+ *  Two kinds start on their own: OpenCV runs its parallel loops on oneTBB's worker pool (Debian's build), which
+ *  starts workers lazily and asynchronously and, at exit, lets them finish on their own time; and the OpenImageIO
+ *  module is loaded on a thread of ours (app/ImageIoModule.h), whose dlopen starts yet more pools (log4cplus's, by
+ *  way of OpenVDB). A process that ends while one of these threads is being created or torn down breaks
+ *  LeakSanitizer's check at exit, which stops every thread and reads its stack and thread-local storage ("Tracer
+ *  caught signal 11"). So every inkgraph process ends the same way: the executable's main (app/main.cpp) and every
+ *  test binary's (tests/support/TestMain.cpp) join these threads, then, in sanitized builds, run the leak check
+ *  before any library's static teardown begins (docs/robustness.md, "How a process ends"). */
+
+namespace inkgraph {
+
+/** Ends OpenCV's parallel workers and waits until each has exited; OpenCV keeps its thread setting, so a later
+ *  parallel loop starts new workers. Throws std::runtime_error naming the pool when the workers cannot be joined
+ *  (another user of oneTBB still holds it). */
+void stopParallelWorkers();
+
+/** Waits for the OpenImageIO module's loader if it was started (app/ImageFiles.h), then stopParallelWorkers():
+ *  afterwards no thread that inkgraph started is being created or torn down, and none of ours is left running. */
+void joinBackgroundThreads();
+
+/** The end of every inkgraph process: joinBackgroundThreads(), then, in builds with AddressSanitizer, LeakSanitizer's
+ *  check at this point (a leak ends the process with LeakSanitizer's exit code, and the check at exit is skipped);
+ *  the process may then run static destructors or _Exit. */
+void finishProcess();
+
+} // namespace inkgraph
