@@ -24,8 +24,8 @@ void stopParallelWorkers() {
     cv::setNumThreads(threads);
     if (!joined)
         throw std::runtime_error("stopParallelWorkers(): oneTBB's worker pool, which OpenCV's parallel loops run on, is "
-                                 "still held by another user (a task_arena or global_control outside OpenCV); its "
-                                 "workers were not joined");
+                                 "still held by another user (an initialised task_arena or a task_scheduler_handle outside "
+                                 "OpenCV); its workers were not joined");
 }
 
 void joinBackgroundThreads() {

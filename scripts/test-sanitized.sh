@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds the whole suite with AddressSanitizer and UndefinedBehaviorSanitizer (-DINKGRAPH_SANITIZE=ON, -O1 with line
 # tables) into build-asan/ and runs every test there, GL tests on llvmpipe included. Any sanitizer report fails the
-# test that triggered it (UBSan does not recover; LeakSanitizer runs at exit). tests/sanitizers/lsan.supp lists the
-# leaks of Debian's libraries that are not ours. Run after scripts/install-deps.sh; scripts/test.sh runs it too.
+# test that triggered it (UBSan does not recover; LeakSanitizer runs at the end of each process).
+# tests/sanitizers/lsan.supp lists the leaks of Debian's libraries that are not ours. Run after
+# scripts/install-deps.sh; scripts/test.sh runs it too.
 # Every test runs three times (--repeat until-fail:3): a race at process exit (a thread still starting or being torn
 # down while LeakSanitizer stops them all, docs/robustness.md "How a process ends") shows only now and then, and a
 # test that fails once in three runs here would fail CI by chance later. About 4 minutes on 2 cores.
