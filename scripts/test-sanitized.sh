@@ -4,9 +4,10 @@
 # test that triggered it (UBSan does not recover; LeakSanitizer runs at the end of each process).
 # tests/sanitizers/lsan.supp lists the leaks of Debian's libraries that are not ours. Run after
 # scripts/install-deps.sh; scripts/test.sh runs it too.
-# Every test runs three times (--repeat until-fail:3): a race at process exit (a thread still starting or being torn
-# down while LeakSanitizer stops them all, docs/robustness.md "How a process ends") shows only now and then, and a
-# test that fails once in three runs here would fail CI by chance later. About 4 minutes on 2 cores.
+# Races at process exit (a thread still starting or being torn down while LeakSanitizer stops them all,
+# docs/robustness.md "How a process ends") have two guards: the test exit_threads_are_quiet fails on such a thread
+# whether or not it crashes the check, and every test runs three times (--repeat until-fail:3), so a test that fails
+# once in three runs fails here rather than in a later CI run by chance. About 5 minutes on 2 cores.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build="$root/build-asan"
