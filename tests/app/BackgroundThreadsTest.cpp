@@ -32,6 +32,14 @@ std::set<std::string> threadIds() {
     return ids;
 }
 
+/** The threads of this process that were not in `before`. */
+std::set<std::string> threadsStartedSince(const std::set<std::string>& before) {
+    std::set<std::string> started;
+    for (const std::string& id : threadIds())
+        if (before.count(id) == 0) started.insert(id);
+    return started;
+}
+
 /** Runs a parallel loop whose stripes wait (up to 10 s) until two threads have entered it, so that at least one of
  *  oneTBB's workers is started and used; returns how many threads ran stripes. */
 std::size_t loopOnTwoThreads() {
@@ -73,9 +81,7 @@ TEST(BackgroundThreads, StopParallelWorkersJoinsEveryWorkerAndLaterLoopsStartNew
     const int threadSetting = cv::getNumThreads();
     const std::set<std::string> before = threadIds();
     ASSERT_GE(loopOnTwoThreads(), 2u) << "no worker of OpenCV's pool took part in the loop";
-    std::set<std::string> workers;
-    for (const std::string& id : threadIds())
-        if (before.count(id) == 0) workers.insert(id);
+    const std::set<std::string> workers = threadsStartedSince(before);
     ASSERT_FALSE(workers.empty());
 
     stopParallelWorkers();
@@ -85,9 +91,7 @@ TEST(BackgroundThreads, StopParallelWorkersJoinsEveryWorkerAndLaterLoopsStartNew
     // The pool comes back on demand, and stopping twice in a row is harmless.
     const std::set<std::string> beforeAgain = threadIds();
     EXPECT_GE(loopOnTwoThreads(), 2u);
-    std::set<std::string> newWorkers;
-    for (const std::string& id : threadIds())
-        if (beforeAgain.count(id) == 0) newWorkers.insert(id);
+    const std::set<std::string> newWorkers = threadsStartedSince(beforeAgain);
     EXPECT_FALSE(newWorkers.empty());
     stopParallelWorkers();
     EXPECT_NO_THROW(stopParallelWorkers());
