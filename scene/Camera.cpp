@@ -61,6 +61,8 @@ glm::dvec3 autoFrameDirection(const glm::dvec3& up) {
 
 glm::dmat4 Camera::viewMatrix() const { return glm::lookAt(eye, target, up); }
 
+glm::dmat4 Camera::worldViewMatrix() const { return viewMatrix() * glm::translate(glm::dmat4(1.0), -origin); }
+
 glm::dmat4 Camera::projectionMatrix() const {
     return glm::perspective(glm::radians(fovYDegrees), aspect(), zNear, zFar);
 }
@@ -84,6 +86,14 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     Camera camera;
     camera.width = request.width;
     camera.height = request.height;
+    camera.origin = scene.origin;
+    // The user speaks world coordinates; the scene and the renderer work relative to the scene origin. Messages show
+    // world values (what the user typed), so `world` converts back.
+    const std::optional<glm::dvec3> requestEye =
+        request.eye ? std::optional<glm::dvec3>(*request.eye - scene.origin) : std::nullopt;
+    const std::optional<glm::dvec3> requestTarget =
+        request.target ? std::optional<glm::dvec3>(*request.target - scene.origin) : std::nullopt;
+    const auto world = [&](const glm::dvec3& local) { return formatVector(scene.origin + local); };
 
     // The file's field of view is a property of its lens and applies whoever places the camera; its placement
     // (eye, orientation) is one unit that an explicit eye replaces entirely.
@@ -109,7 +119,7 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     }
 
     const BoundingSphere sphere = computeBoundingSphere(scene);
-    const std::string centreText = "the model's bounding-sphere centre (" + formatVector(sphere.center) + ")";
+    const std::string centreText = "the model's bounding-sphere centre (" + world(sphere.center) + ")";
     // A point-sized scene still needs a usable framing distance.
     const double radius = sphere.radius > 0.0 ? sphere.radius : 1.0;
 
@@ -117,36 +127,36 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     std::string eyeText;
     std::string targetText;
     std::string viewText;
-    if (request.eye) {
-        camera.eye = *request.eye;
-        camera.target = request.target ? *request.target : sphere.center;
+    if (requestEye) {
+        camera.eye = *requestEye;
+        camera.target = requestTarget ? *requestTarget : sphere.center;
         camera.source = "flags";
-        eyeText = "the eye (--eye " + formatVector(camera.eye) + ")";
-        targetText = request.target ? "the target (--target " + formatVector(camera.target) + ") coincide"
+        eyeText = "the eye (--eye " + formatVector(*request.eye) + ")";
+        targetText = request.target ? "the target (--target " + formatVector(*request.target) + ") coincide"
                                     : "the target coincide; without --target the target is " + centreText;
         viewText = "from --eye to " + (request.target ? std::string("--target") : centreText);
     } else if (fileCamera) {
         camera.eye = fileCamera->eye;
-        if (request.target) {
-            camera.target = *request.target;
+        if (requestTarget) {
+            camera.target = *requestTarget;
         } else {
             // Only the direction matters to lookAt; aim at the depth of the model so the target is meaningful.
             const double depth = glm::length(sphere.center - fileCamera->eye);
             camera.target = fileCamera->eye + fileCamera->forward * (depth > 0.0 ? depth : 1.0);
         }
         camera.source = "gltf";
-        eyeText = "the glTF camera's eye (" + formatVector(camera.eye) + "; override it with --eye)";
-        targetText = request.target ? "the target (--target " + formatVector(camera.target) + ") coincide"
+        eyeText = "the glTF camera's eye (" + world(camera.eye) + "; override it with --eye)";
+        targetText = request.target ? "the target (--target " + formatVector(*request.target) + ") coincide"
                                     : "its target coincide";
         viewText = request.target ? "from the glTF camera's eye to --target"
                                   : "the glTF camera's forward " + formatVector(fileCamera->forward);
     } else {
-        camera.target = request.target ? *request.target : sphere.center;
+        camera.target = requestTarget ? *requestTarget : sphere.center;
         camera.eye = camera.target + autoFrameDirection(camera.up) *
                                          framingDistance(radius, glm::radians(camera.fovYDegrees), camera.aspect());
         camera.source = "auto-framed";
-        eyeText = "the auto-framed eye (" + formatVector(camera.eye) + ")";
-        targetText = (request.target ? "the target (--target " + formatVector(camera.target) + ")"
+        eyeText = "the auto-framed eye (" + world(camera.eye) + ")";
+        targetText = (request.target ? "the target (--target " + formatVector(*request.target) + ")"
                                      : "the target, " + centreText + ",") +
                      " coincide: the model is too small for its distance from the origin; set --eye";
         viewText = "the auto-framing direction";

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,10 +17,15 @@ namespace inkgraph::detail {
 /** Everything a reader found in one file, before welding. */
 struct RawScene {
     std::string format; ///< as in LoadReport::format
+    /** Mesh positions are stored relative to this point (world = origin + position), picked by the reader near the
+     *  model (e.g. its first vertex, computed in double) so that float keeps the model's detail even when the file
+     *  places it far from the world origin. loadScene() then re-centres on the bounding-box centre (Scene::origin). */
+    glm::dvec3 origin{0.0};
     std::vector<RawMesh> meshes;
-    std::optional<SceneCamera> camera;
+    std::optional<SceneCamera> camera; ///< in world coordinates (not relative to `origin`)
     std::optional<DirectionalLight> light;
     std::vector<std::string> warnings;
+    std::vector<std::string> inputFiles; ///< as LoadReport::inputFiles
 };
 
 /** The memory bound of one load (LoadOptions::memoryLimitBytes), checked before anything of a counted size is
@@ -51,6 +57,31 @@ private:
     std::size_t mVertices = 0;
     std::size_t mTriangles = 0;
 };
+
+/** Text taken from a file (a name, a URI, a token) as it may appear in a message: at most kMessageExcerptChars
+ *  characters, longer text cut with "..." and its byte count, so a 64 MB data: URI or name never fills a terminal
+ *  or a log. Every reader quotes file-given text through this one function. */
+std::string excerptForMessage(std::string_view text);
+
+/** Characters of file-given text that excerptForMessage() keeps. */
+inline constexpr std::size_t kMessageExcerptChars = 60;
+
+/** The shortest text that reads back as `value` (e.g. 0.5, 1e+15, 3.1415926535897936, inf), for messages. */
+std::string formatNumber(double value);
+
+/** `content` without a leading UTF-8 byte-order mark (EF BB BF), which some Windows tools write before text. */
+std::string_view withoutByteOrderMark(std::string_view content);
+
+/** Throws SceneError naming the file when a model's extent (bounding-box diagonal) lies outside [kMinModelExtent,
+ *  kMaxModelExtent]; zero passes (a model of degenerate triangles is reported as such later). */
+void checkModelExtent(const std::string& path, double extent);
+
+/** Float positions for coordinates read in double: rounded directly (origin 0) when the model is about as large as
+ *  its distance from the world origin, where that loses nothing and keeps every float the file wrote exact (scaling
+ *  such a model by a power of two scales its stored positions exactly); otherwise relative to the bounding-box centre,
+ *  the difference taken in double, so a model 1e7 units out keeps its detail. Returns the origin they are relative
+ *  to. Throws (checkModelExtent()) for a model too large to render. */
+glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> world, std::vector<glm::vec3>& stored);
 
 /** Throws SceneError("loadScene(): '<path>': <problem>"). */
 [[noreturn]] void throwLoadError(const std::string& path, std::string_view problem);

@@ -26,12 +26,18 @@
 #include <iterator>
 #include <limits>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string_view>
 
 namespace inkgraph::detail {
 
 namespace {
+
+/** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light.
+ *  Geometry compression (KHR_draco_mesh_compression, EXT_meshopt_compression, KHR_mesh_quantization) is not here yet
+ *  (issue 18), nor any texture or material extension: the reader reads the core baseColorFactor only. */
+const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual"};
 
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian; add byte swapping");
 
@@ -61,10 +67,29 @@ std::vector<std::string> splitLines(const std::string& text) {
     return lines;
 }
 
+/** A tinygltf message with every long word (a data: URI, a file name, a name from the file) cut by
+ *  excerptForMessage(): tinygltf quotes what the file gives it whole, a 64 MB data: URI included. */
+std::string shortenWords(const std::string& line) {
+    std::string shortened;
+    std::size_t start = 0;
+    while (start < line.size()) {
+        std::size_t end = line.find(' ', start);
+        if (end == std::string::npos) {
+            end = line.size();
+        }
+        shortened += excerptForMessage(std::string_view(line).substr(start, end - start));
+        if (end < line.size()) {
+            shortened += ' ';
+        }
+        start = end + 1;
+    }
+    return shortened;
+}
+
 std::string joinLines(const std::string& text) {
     std::string joined;
     for (const std::string& line : splitLines(text)) {
-        joined += (joined.empty() ? "" : "; ") + line;
+        joined += (joined.empty() ? "" : "; ") + shortenWords(line);
     }
     return joined;
 }
@@ -97,20 +122,6 @@ glm::dmat4 localTransform(const tinygltf::Node& node) {
     return transform;
 }
 
-/** The shortest text that reads back as `value` (e.g. 0.5, 3.1415926535897936, inf), for messages. */
-std::string formatNumber(double value) {
-    std::string text;
-    for (int precision = 6; precision <= 17; ++precision) {
-        std::ostringstream candidate;
-        candidate << std::setprecision(precision) << value;
-        text = candidate.str();
-        if (!std::isfinite(value) || std::strtod(text.c_str(), nullptr) == value) {
-            break;
-        }
-    }
-    return text;
-}
-
 /** A bounds-checked window on an accessor's elements. */
 struct AccessorData {
     const unsigned char* first = nullptr;
@@ -129,6 +140,7 @@ public:
 
     void walk() {
         checkRequiredExtensions();
+        checkMaterialIndices();
         // Depth-first with an explicit stack (a deep hierarchy must not overflow the call stack), in the order the
         // recursive walk would take: roots and children are pushed in reverse so the first is handled first.
         std::vector<PendingNode> pending;
@@ -142,7 +154,7 @@ public:
             pending.pop_back();
             const tinygltf::Node& node = mModel.nodes[std::size_t(next.index)];
             const glm::dmat4 world = next.parentWorld * localTransform(node);
-            visit(node, world);
+            visit(next.index, node, world);
             for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
                 claimChild(next.index, *child);
                 pending.push_back({*child, world});
@@ -157,26 +169,53 @@ public:
 private:
     [[noreturn]] void fail(const std::string& problem) const { throwLoadError(mPath, problem); }
 
-    /** Geometry compression changes what accessors mean, so reading such a file without it would give garbage;
-     *  other required extensions (materials, textures) only affect looks this renderer does not use. */
+    /** The glTF 2.0 specification: a loader must refuse a file that requires an extension it does not implement,
+     *  since the file may not make sense without it (compressed geometry reads as garbage, for one). */
     void checkRequiredExtensions() {
-        static const std::array<std::string_view, 3> unsupportedGeometry = {
-            "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization"};
+        std::string unsupported;
+        std::size_t unsupportedCount = 0;
         for (const std::string& extension : mModel.extensionsRequired) {
-            if (std::ranges::find(unsupportedGeometry, extension) != unsupportedGeometry.end()) {
-                fail("requires the unsupported extension " + extension);
+            if (std::ranges::find(supportedGltfExtensions(), extension) == supportedGltfExtensions().end()) {
+                unsupported += (unsupported.empty() ? "'" : ", '") + excerptForMessage(extension) + "'";
+                ++unsupportedCount;
             }
-            if (extension != "KHR_lights_punctual") {
-                mOut.warnings.push_back("required extension " + extension + " ignored");
+        }
+        if (unsupportedCount > 0) {
+            std::string supported;
+            for (const std::string& extension : supportedGltfExtensions()) {
+                supported += (supported.empty() ? "'" : ", '") + extension + "'";
+            }
+            fail("requires the unsupported extension" + std::string(unsupportedCount > 1 ? "s " : " ") + unsupported +
+                 " (extensionsRequired; supported: " + supported + ")");
+        }
+    }
+
+    /** A primitive naming a material that does not exist would silently take the default colour and shade map. */
+    void checkMaterialIndices() const {
+        for (std::size_t meshIndex = 0; meshIndex < mModel.meshes.size(); ++meshIndex) {
+            const tinygltf::Mesh& mesh = mModel.meshes[meshIndex];
+            for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
+                const int material = mesh.primitives[i].material;
+                // tinygltf leaves an absent "material" at -1; any other negative value was written in the file.
+                if (material < -1 || (material >= 0 && std::size_t(material) >= mModel.materials.size())) {
+                    fail("mesh " + std::to_string(meshIndex) +
+                         (mesh.name.empty() ? "" : " '" + excerptForMessage(mesh.name) + "'") + " primitive " +
+                         std::to_string(i) + ": material index " + std::to_string(material) +
+                         " out of range (file has " + std::to_string(mModel.materials.size()) + " materials)");
+                }
             }
         }
     }
 
     std::vector<int> rootNodes() const {
+        // tinygltf leaves an absent "scene" at -1; drawing another scene than the one asked for would be wrong.
+        if (mModel.defaultScene < -1 ||
+            (mModel.defaultScene >= 0 && std::size_t(mModel.defaultScene) >= mModel.scenes.size())) {
+            fail("\"scene\": " + std::to_string(mModel.defaultScene) + " is out of range (file has " +
+                 std::to_string(mModel.scenes.size()) + " scenes)");
+        }
         if (!mModel.scenes.empty()) {
-            const bool validDefault =
-                mModel.defaultScene >= 0 && std::size_t(mModel.defaultScene) < mModel.scenes.size();
-            return mModel.scenes[validDefault ? std::size_t(mModel.defaultScene) : 0].nodes;
+            return mModel.scenes[mModel.defaultScene >= 0 ? std::size_t(mModel.defaultScene) : 0].nodes;
         }
         // No scenes: every node that is nobody's child is a root.
         std::vector<bool> isChild(mModel.nodes.size(), false);
@@ -228,9 +267,9 @@ private:
         mReached[std::size_t(nodeIndex)] = true;
     }
 
-    void visit(const tinygltf::Node& node, const glm::dmat4& world) {
+    void visit(int nodeIndex, const tinygltf::Node& node, const glm::dmat4& world) {
         if (node.mesh >= 0) {
-            addMesh(node, world);
+            addMesh(nodeIndex, node, world);
         }
         if (node.camera >= 0) {
             addCamera(node, world);
@@ -241,7 +280,7 @@ private:
     /** "camera 2 'main'", or "camera 2" for an unnamed one. */
     std::string cameraLabel(int cameraIndex) const {
         const std::string& name = mModel.cameras[std::size_t(cameraIndex)].name;
-        return "camera " + std::to_string(cameraIndex) + (name.empty() ? "" : " '" + name + "'");
+        return "camera " + std::to_string(cameraIndex) + (name.empty() ? "" : " '" + excerptForMessage(name) + "'");
     }
 
     void addCamera(const tinygltf::Node& node, const glm::dmat4& world) {
@@ -250,7 +289,7 @@ private:
         }
         const tinygltf::Camera& camera = mModel.cameras[std::size_t(node.camera)];
         if (camera.type != "perspective") {
-            mOut.warnings.push_back(cameraLabel(node.camera) + " of type '" + camera.type +
+            mOut.warnings.push_back(cameraLabel(node.camera) + " of type '" + excerptForMessage(camera.type) +
                                     "' ignored (only perspective cameras are used)");
             return;
         }
@@ -296,8 +335,8 @@ private:
         }
         const tinygltf::Light& light = mModel.lights[std::size_t(lightIndex)];
         if (light.type != "directional") {
-            mOut.warnings.push_back("KHR_lights_punctual " + light.type + " light '" + light.name +
-                                    "' ignored (only directional lights are used)");
+            mOut.warnings.push_back("KHR_lights_punctual " + excerptForMessage(light.type) + " light '" +
+                                    excerptForMessage(light.name) + "' ignored (only directional lights are used)");
             return;
         }
         if (mOut.light) {
@@ -311,7 +350,7 @@ private:
         }
         result.intensity = light.intensity;
         if (!std::isfinite(result.towardLight.x + result.towardLight.y + result.towardLight.z)) {
-            fail("light '" + light.name + "' has a degenerate or non-finite node transform");
+            fail("light '" + excerptForMessage(light.name) + "' has a degenerate or non-finite node transform");
         }
         mOut.light = result;
     }
@@ -319,7 +358,7 @@ private:
     /** "material 2 'Metal'", or "material 2" for an unnamed one. */
     std::string materialLabel(int materialIndex) const {
         const std::string& name = mModel.materials[std::size_t(materialIndex)].name;
-        return "material " + std::to_string(materialIndex) + (name.empty() ? "" : " '" + name + "'");
+        return "material " + std::to_string(materialIndex) + (name.empty() ? "" : " '" + excerptForMessage(name) + "'");
     }
 
     /** The shade map material `materialIndex` names in `"extras": {"inkgraph": {"shademap": PATH}}`, resolved against
@@ -351,7 +390,8 @@ private:
                 continue;
             }
             // A newer file or a typo ("shadeMap"): the render still works, so say so instead of refusing it.
-            mOut.warnings.push_back(label + ": extras.inkgraph key '" + key + "' ignored (known: 'shademap')");
+            mOut.warnings.push_back(label + ": extras.inkgraph key '" + excerptForMessage(key) +
+                                    "' ignored (known: 'shademap')");
         }
         const auto shadeMap = ours.find("shademap");
         if (shadeMap == ours.end()) {
@@ -369,7 +409,13 @@ private:
         return *cached;
     }
 
-    void addMesh(const tinygltf::Node& node, const glm::dmat4& world) {
+    /** "node 3 'wheel'", or "node 3" for an unnamed one. */
+    std::string nodeLabel(int nodeIndex) const {
+        const std::string& name = mModel.nodes[std::size_t(nodeIndex)].name;
+        return "node " + std::to_string(nodeIndex) + (name.empty() ? "" : " '" + excerptForMessage(name) + "'");
+    }
+
+    void addMesh(int nodeIndex, const tinygltf::Node& node, const glm::dmat4& world) {
         if (std::size_t(node.mesh) >= mModel.meshes.size()) {
             fail("mesh index " + std::to_string(node.mesh) + " out of range");
         }
@@ -380,7 +426,7 @@ private:
         for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
             const std::string name =
                 mesh.primitives.size() == 1 ? baseName : baseName + " primitive " + std::to_string(i);
-            addPrimitive(mesh.primitives[i], name, world);
+            addPrimitive(mesh.primitives[i], name, nodeLabel(nodeIndex), world);
         }
     }
 
@@ -488,7 +534,7 @@ private:
         const std::size_t n = v.size();
         if (mode == TINYGLTF_MODE_TRIANGLES) {
             if (n % 3 != 0) {
-                mOut.warnings.push_back("'" + name + "': " + std::to_string(n % 3) +
+                mOut.warnings.push_back("'" + excerptForMessage(name) + "': " + std::to_string(n % 3) +
                                         " trailing indices of an incomplete triangle ignored");
             }
             triangles.reserve(n / 3);
@@ -512,18 +558,19 @@ private:
         return triangles;
     }
 
-    void addPrimitive(const tinygltf::Primitive& primitive, const std::string& name, const glm::dmat4& world) {
+    void addPrimitive(const tinygltf::Primitive& primitive, const std::string& name, const std::string& node,
+                      const glm::dmat4& world) {
         const int mode = primitive.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
             ++mSkippedPrimitives;
-            mOut.warnings.push_back("'" + name + "': non-triangle primitive (mode " + std::to_string(mode) + ", " +
+            mOut.warnings.push_back("'" + excerptForMessage(name) + "': non-triangle primitive (mode " + std::to_string(mode) + ", " +
                                     modeName(mode) + ") skipped");
             return;
         }
         const auto positionAttribute = primitive.attributes.find("POSITION");
         if (positionAttribute == primitive.attributes.end()) {
-            mOut.warnings.push_back("'" + name + "': primitive without POSITION skipped");
+            mOut.warnings.push_back("'" + excerptForMessage(name) + "': primitive without POSITION skipped");
             return;
         }
 
@@ -540,7 +587,7 @@ private:
         if (normalAttribute != primitive.attributes.end()) {
             mesh.normals = readVec3(normalAttribute->second, "NORMAL");
             if (mesh.normals.size() != vertexCount) {
-                fail("'" + name + "': NORMAL has " + std::to_string(mesh.normals.size()) +
+                fail("'" + excerptForMessage(name) + "': NORMAL has " + std::to_string(mesh.normals.size()) +
                      " elements but POSITION has " + std::to_string(vertexCount));
             }
         }
@@ -559,11 +606,24 @@ private:
         // Bake the node transform; normals use the inverse transpose so non-uniform scale keeps them perpendicular.
         const glm::dmat3 linear(world);
         const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
+        // In double until the position is relative to the scene's raw origin (the first world position): rounding
+        // world coordinates of a model 1e7 units out to float would leave it a blocky polyhedron.
         for (glm::vec3& position : mesh.positions) {
-            position = glm::vec3(world * glm::dvec4(glm::dvec3(position), 1.0));
-            if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) {
-                fail("'" + name + "': node transform produces non-finite positions");
+            const glm::dvec3 worldPosition(world * glm::dvec4(glm::dvec3(position), 1.0));
+            if (!std::isfinite(worldPosition.x) || !std::isfinite(worldPosition.y) || !std::isfinite(worldPosition.z)) {
+                fail(node + " ('" + excerptForMessage(name) + "'): the node transform produces non-finite positions");
             }
+            if (!mHasOrigin) {
+                mOut.origin = worldPosition;
+                mHasOrigin = true;
+            }
+            const glm::dvec3 relative = worldPosition - mOut.origin;
+            if (!(std::max({std::abs(relative.x), std::abs(relative.y), std::abs(relative.z)}) <= kMaxModelExtent)) {
+                fail(node + " ('" + excerptForMessage(name) + "'): after the node transforms a position lies " +
+                     formatNumber(glm::length(relative)) + " units from the first mesh's first vertex, more than the " +
+                     formatNumber(kMaxModelExtent) + " the renderer can hold (a node scale or translation too large?)");
+            }
+            position = glm::vec3(relative);
         }
         for (glm::vec3& normal : mesh.normals) {
             const glm::dvec3 transformed = normalMatrix * glm::dvec3(normal);
@@ -577,7 +637,7 @@ private:
             }
         }
 
-        if (primitive.material >= 0 && std::size_t(primitive.material) < mModel.materials.size()) {
+        if (primitive.material >= 0) { // in range: checkMaterialIndices()
             const tinygltf::Material& material = mModel.materials[std::size_t(primitive.material)];
             mesh.materialName = material.name;
             const std::vector<double>& factor = material.pbrMetallicRoughness.baseColorFactor;
@@ -596,6 +656,7 @@ private:
     std::vector<bool> mReached; ///< nodes already reached by the walk; reaching one again is an error
     std::vector<std::optional<std::string>> mMaterialShadeMaps; ///< per material, once read: its shade map or ""
     std::size_t mSkippedPrimitives = 0;
+    bool mHasOrigin = false; ///< mOut.origin is set (the first world position seen)
 };
 
 /** Deepest nesting of arrays and objects in JSON text, outside strings. */
@@ -619,57 +680,166 @@ std::size_t jsonNestingDepth(std::string_view text) {
     return deepest;
 }
 
+/** The JSON text of a .gltf file or of a GLB's JSON chunk (empty when the GLB is too short to have one). */
+std::string_view jsonOf(std::string_view content, bool binary) {
+    if (!binary) return content;
+    if (content.size() < 20) return {};
+    std::uint32_t chunkLength = 0;
+    std::memcpy(&chunkLength, content.data() + 12, sizeof chunkLength);
+    return content.substr(20, chunkLength);
+}
+
 /** tinygltf parses JSON recursively, so absurd nesting would overflow the stack: glTF itself nests a few levels, and
  *  extras rarely more than a dozen. Checked before tinygltf sees the file. */
 void rejectDeepJson(const std::string& path, std::string_view content, bool binary) {
     constexpr std::size_t kMaxJsonDepth = 256;
-    std::string_view json = content;
-    if (binary && content.size() >= 20) {
-        // GLB: 12-byte header, then the JSON chunk's length, type, and text.
-        std::uint32_t chunkLength = 0;
-        std::memcpy(&chunkLength, content.data() + 12, sizeof chunkLength);
-        json = content.substr(20, chunkLength);
-    }
+    // GLB: 12-byte header, then the JSON chunk's length, type, and text.
+    const std::string_view json = binary && content.size() < 20 ? content : jsonOf(content, binary);
     if (jsonNestingDepth(json) > kMaxJsonDepth)
         throwLoadError(path, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
 }
 
-/** tinygltf's own test opens the file, which blocks on a FIFO; asking the file system does not. */
-bool externalFileExists(const std::string& path, void*) {
-    std::error_code error;
-    return std::filesystem::exists(path, error);
+/** The external (non-data:) URIs of the top-level "buffers" and "images" arrays, collected by a SAX pass over the
+ *  JSON before tinygltf reads it, so the file callbacks can tell an image (never read) from a buffer (read). */
+class ExternalUriCollector : public nlohmann::json_sax<nlohmann::json> {
+public:
+    std::vector<std::string> bufferUris;
+    std::vector<std::string> imageUris;
+
+    bool null() override { return leaveValue(); }
+    bool boolean(bool) override { return leaveValue(); }
+    bool number_integer(number_integer_t) override { return leaveValue(); }
+    bool number_unsigned(number_unsigned_t) override { return leaveValue(); }
+    bool number_float(number_float_t, const string_t&) override { return leaveValue(); }
+    bool binary(binary_t&) override { return leaveValue(); }
+    bool string(string_t& value) override {
+        // Depth 3: the root object, the "buffers"/"images" array, one element object; the member is "uri".
+        if (mKeys.size() == 3 && mKeys[2] == "uri" && value.rfind("data:", 0) != 0) {
+            if (mKeys[0] == "buffers") bufferUris.push_back(value);
+            if (mKeys[0] == "images") imageUris.push_back(value);
+        }
+        return leaveValue();
+    }
+    bool start_object(std::size_t) override {
+        mKeys.emplace_back();
+        return true;
+    }
+    bool key(string_t& name) override {
+        mKeys.back() = name.size() <= 8 ? name : std::string(); // only "buffers", "images" and "uri" matter
+        return true;
+    }
+    bool end_object() override {
+        mKeys.pop_back();
+        return leaveValue();
+    }
+    bool start_array(std::size_t) override {
+        mKeys.emplace_back(); // arrays have no keys; the placeholder keeps depths aligned with objects
+        return true;
+    }
+    bool end_array() override {
+        mKeys.pop_back();
+        return leaveValue();
+    }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false; // tinygltf reports the error in its own words
+    }
+
+private:
+    bool leaveValue() { return true; }
+
+    std::vector<std::string> mKeys; ///< per open container: the member being read ("" in arrays)
+};
+
+/** A URI as tinygltf turns it into a file name: '+' becomes a space and %XX the byte XX (a non-hex digit counts as 0,
+ *  as tinygltf does), so the names match the ones its file callbacks receive. */
+std::string decodeUri(std::string_view uri) {
+    const auto hexValue = [](char c) -> unsigned {
+        if (c >= '0' && c <= '9') return unsigned(c - '0');
+        if (c >= 'a' && c <= 'f') return unsigned(c - 'a' + 10);
+        if (c >= 'A' && c <= 'F') return unsigned(c - 'A' + 10);
+        return 0;
+    };
+    std::string decoded;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '+') {
+            decoded += ' ';
+        } else if (uri[i] == '%' && i + 2 < uri.size()) {
+            decoded += char((hexValue(uri[i + 1]) << 4) | hexValue(uri[i + 2]));
+            i += 2;
+        } else {
+            decoded += uri[i];
+        }
+    }
+    return decoded;
 }
 
-/** tinygltf's file reading, with each external buffer's size charged to the load's memory budget before it is
- *  read. A refusal comes back to tinygltf as a read error with the reason. */
+/** The path tinygltf asks its callbacks for first: the model's folder joined with the decoded URI. */
+std::string pathBesideModel(const std::string& baseDirectory, std::string_view uri) {
+    const std::string decoded = decodeUri(uri);
+    if (baseDirectory.empty()) return decoded;
+    return baseDirectory + (baseDirectory.back() == '/' ? "" : "/") + decoded;
+}
+
+/** What tinygltf's file callbacks work with: the load's budget, the external files the JSON names, and the record of
+ *  what was opened (LoadReport::inputFiles). */
+struct ExternalFiles {
+    MeshBudget& budget;
+    std::set<std::string> bufferPaths;
+    std::set<std::string> imagePaths;
+    std::vector<std::string> opened;
+};
+
+/** Only the files the JSON names, beside the model: tinygltf would otherwise fall back to the current folder and read a
+ *  file of the same name there. Asks the file system rather than opening (tinygltf's own test blocks on a FIFO). An
+ *  image counts as present even when missing: it is never read (the renderer uses no textures), so a missing one must
+ *  not fail or even warn. */
+bool externalFileExists(const std::string& path, void* user) {
+    const auto& files = *static_cast<const ExternalFiles*>(user);
+    if (files.imagePaths.count(path) > 0) {
+        return true;
+    }
+    std::error_code error;
+    return files.bufferPaths.count(path) > 0 && std::filesystem::exists(path, error);
+}
+
+/** tinygltf's file reading. An image gets a one-byte placeholder without being opened (a 1 GiB texture would otherwise
+ *  be read whole, then dropped); a buffer must be a regular file, and its size is charged to the load's memory budget
+ *  before it is read. A refusal comes back to tinygltf as a read error with the reason. */
 bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
-    auto& budget = *static_cast<MeshBudget*>(user);
+    auto& files = *static_cast<ExternalFiles*>(user);
+    if (files.bufferPaths.count(path) == 0 && files.imagePaths.count(path) > 0) {
+        out->assign(1, 0); // tinygltf refuses an empty image; skipImageDecoding() ignores the byte
+        return true;
+    }
     // A FIFO or device ("/dev/stdin", "/dev/zero") as a buffer URI would block or never end: files only.
     std::error_code typeError;
     if (!std::filesystem::is_regular_file(path, typeError)) {
-        if (error) *error += "external file '" + path + "' is not a regular file\n";
+        if (error) *error += "external file '" + excerptForMessage(path) + "' is not a regular file\n";
         return false;
     }
     std::error_code sizeError;
     const std::uintmax_t size = std::filesystem::file_size(path, sizeError);
     if (sizeError) {
-        if (error) *error += "cannot read '" + path + "': " + sizeError.message() + "\n";
+        if (error) *error += "cannot read '" + excerptForMessage(path) + "': " + sizeError.message() + "\n";
         return false;
     }
     try {
-        budget.chargeFile(std::size_t(size));
+        files.budget.chargeFile(std::size_t(size));
     } catch (const SceneError&) {
         if (error)
-            *error += "external file '" + path + "' is " + std::to_string(size >> 20) +
-                      " MiB, above the memory limit of " + std::to_string(budget.limitBytes() >> 20) + " MiB\n";
+            *error += "external file '" + excerptForMessage(path) + "' is " + std::to_string(size >> 20) +
+                      " MiB, above the memory limit of " + std::to_string(files.budget.limitBytes() >> 20) + " MiB\n";
         return false;
     }
+    files.opened.push_back(path);
     return tinygltf::ReadWholeFile(out, error, path, nullptr);
 }
+
 
 } // namespace
 
 RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget) {
+    // A byte-order mark before the JSON needs nothing here: tinygltf's JSON parser (nlohmann) skips it.
     const bool binary = content.size() >= 4 && content.substr(0, 4) == "glTF";
     rejectDeepJson(path, content, binary);
     // tinygltf takes 32-bit lengths; the GLB container itself cannot describe more.
@@ -677,16 +847,23 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
         throwLoadError(path, "glTF files above 4 GiB are not supported");
     // tinygltf keeps its own copy of every buffer it decodes (the GLB's BIN chunk, data URIs): at most the file again.
     budget.chargeFile(content.size());
+    const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
+    ExternalUriCollector uris;
+    const std::string_view json = jsonOf(content, binary);
+    nlohmann::json::sax_parse(json.begin(), json.end(), &uris, nlohmann::json::input_format_t::json, false);
+    ExternalFiles files{budget, {}, {}, {}};
+    for (const std::string& uri : uris.bufferUris) files.bufferPaths.insert(pathBesideModel(baseDirectory, uri));
+    for (const std::string& uri : uris.imageUris) files.imagePaths.insert(pathBesideModel(baseDirectory, uri));
+
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skipImageDecoding, nullptr);
     // Keeps each extras object as JSON text, so materialShadeMap() sees the types as written (GltfWalker).
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
     loader.SetFsCallbacks({&externalFileExists, &tinygltf::ExpandFilePath, &readExternalFile,
-                           &tinygltf::WriteWholeFile, &budget});
+                           &tinygltf::WriteWholeFile, &files});
     tinygltf::Model model;
     std::string error;
     std::string warning;
-    const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
     const auto length = static_cast<unsigned int>(content.size());
     bool loaded = false;
     try {
@@ -698,7 +875,7 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
         // tinygltf 2.7 indexes with .at() on what the file declares: fuzz_gltf found a GLB whose empty buffer made
         // it throw std::out_of_range ("vector::_M_range_check"), which ended the CLI as an internal error.
         throwLoadError(path, std::string(binary ? "invalid GLB" : "invalid glTF") + ": tinygltf failed (" +
-                                 thrown.what() + ")");
+                                 shortenWords(thrown.what()) + ")");
     }
     if (!loaded) {
         throwLoadError(path, std::string(binary ? "invalid GLB" : "invalid glTF") + ": " +
@@ -709,8 +886,16 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     scene.format = binary ? "glb" : "gltf";
     // tinygltf also reports recoverable problems (e.g. chunk padding) through `error` while still succeeding.
     for (const std::string* messages : {&warning, &error}) {
-        for (std::string& line : splitLines(*messages)) {
-            scene.warnings.push_back("tinygltf: " + std::move(line));
+        for (const std::string& line : splitLines(*messages)) {
+            scene.warnings.push_back("tinygltf: " + shortenWords(line));
+        }
+    }
+    scene.inputFiles = std::move(files.opened);
+    // Images too, though never read: the app must not overwrite one with an output.
+    for (const std::string& uri : uris.imageUris) {
+        const std::string imagePath = pathBesideModel(baseDirectory, uri);
+        if (std::ranges::find(scene.inputFiles, imagePath) == scene.inputFiles.end()) {
+            scene.inputFiles.push_back(imagePath);
         }
     }
     GltfWalker(path, model, scene, budget).walk();
@@ -721,3 +906,9 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
 }
 
 } // namespace inkgraph::detail
+
+namespace inkgraph {
+
+const std::vector<std::string>& supportedGltfExtensions() { return detail::kSupportedExtensions; }
+
+} // namespace inkgraph

@@ -1,6 +1,9 @@
 /** @file Wavefront OBJ: v, vn and f (v, v/vt, v//vn, v/vt/vn; negative = relative), polygons fan-triangulated.
- *  Parses the whole file from memory with std::from_chars; everything else (vt, o/g names, materials, groups,
- *  smoothing) is skipped, except that the first `o` name names the mesh. */
+ *  Parses the whole file from memory with std::from_chars; everything else (vt, o/g names, groups, smoothing) is
+ *  skipped, except that the first `o` name names the mesh. Materials are not drawn (an OBJ mesh takes the default
+ *  colour), but the `mtllib` files are read for their `newmtl` names so that a missing library or an undefined
+ *  `usemtl` material is reported as a warning: exports often travel without their .mtl, and refusing them would
+ *  help nobody. */
 
 #include "scene/FormatReaders.h"
 
@@ -11,7 +14,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <map>
+#include <set>
+#include <system_error>
 #include <unordered_map>
 
 namespace inkgraph::detail {
@@ -27,6 +34,19 @@ struct Corner {
     std::uint32_t position = 0;
     std::uint32_t normal = 0;
 };
+
+/** Undefined `usemtl` materials named one by one in the warnings; the rest are counted. */
+constexpr std::size_t kMaxNamedMaterials = 10;
+
+std::string_view trimmed(const char* begin, const char* end) {
+    while (begin < end && isBlank(*begin)) {
+        ++begin;
+    }
+    while (end > begin && isBlank(end[-1])) {
+        --end;
+    }
+    return std::string_view(begin, std::size_t(end - begin));
+}
 
 /** Lines between memory-budget checks: a line adds at most a few hundred bytes per byte of text. */
 constexpr std::size_t kBudgetCheckInterval = 1 << 14;
@@ -46,6 +66,9 @@ public:
         : mPath(path), mText(text), mBudget(budget) {}
 
     RawScene parse() {
+        // Windows tools may write a byte-order mark; left in, it would glue itself to the first keyword ("\xEF\xBB\xBFv")
+        // and that vertex would be skipped, shifting every index after it.
+        mText = withoutByteOrderMark(mText);
         // Text never holds NUL bytes; a GLB or binary STL saved as .obj would otherwise read as "no faces".
         if (const std::size_t nul = mText.find('\0'); nul != std::string_view::npos) {
             mLine = std::size_t(std::count(mText.begin(), mText.begin() + std::ptrdiff_t(nul), '\n')) + 1;
@@ -69,6 +92,7 @@ public:
         if (mPositionTriangles.empty()) {
             throwLoadError(mPath, "no triangles: the file has no faces");
         }
+        checkMaterials();
         return buildScene();
     }
 
@@ -88,7 +112,7 @@ private:
         }
         const std::string_view command(keyword, std::size_t(p - keyword));
         if (command == "v") {
-            mPositions.push_back(parseVector(p, end, "vertex"));
+            mPositions.push_back(parsePosition(p, end));
         } else if (command == "vn") {
             mNormals.push_back(parseVector(p, end, "normal"));
         } else if (command == "f") {
@@ -104,13 +128,136 @@ private:
             mMeshName.assign(p, nameEnd);
         } else if (command == "l" || command == "p") {
             ++mSkippedNonFaces;
+        } else if (command == "mtllib") {
+            readMaterialLibraries(trimmed(p, end));
+        } else if (command == "usemtl") {
+            mUsedMaterials.try_emplace(std::string(trimmed(p, end)), mLine);
         }
-        // vt, g, s, usemtl, mtllib and unknown statements carry nothing this renderer uses.
+        // vt, g, s and unknown statements carry nothing this renderer uses.
+    }
+
+    /** A `v` line, kept in double until the whole model is known (storeNearModel()), so a model far from the world
+     *  origin keeps its detail. A coordinate beyond float's range is refused as it always was: no renderable model
+     *  has one. */
+    glm::dvec3 parsePosition(const char*& p, const char* end) {
+        glm::dvec3 value;
+        for (int axis = 0; axis < 3; ++axis) {
+            value[axis] = parseNumber(p, end, "vertex");
+            if (!std::isfinite(value[axis])) {
+                fail("non-finite vertex coordinate (" + formatNumber(value[axis]) + ")");
+            }
+            if (std::abs(value[axis]) > std::numeric_limits<float>::max()) {
+                fail("non-finite vertex coordinate in float (" + formatNumber(value[axis]) +
+                     " is beyond float's range)");
+            }
+        }
+        return value;
+    }
+
+    /** `mtllib a.mtl [b.mtl ...]`: each library next to the OBJ is read for its `newmtl` names. A name with spaces
+     *  is tried whole first, since exporters write such names unquoted. */
+    void readMaterialLibraries(std::string_view names) {
+        if (names.empty()) {
+            return;
+        }
+        if (readMaterialLibrary(names, false)) {
+            return;
+        }
+        const char* p = names.data();
+        const char* const end = p + names.size();
+        while (p < end) {
+            while (p < end && isBlank(*p)) {
+                ++p;
+            }
+            const char* nameStart = p;
+            while (p < end && !isBlank(*p)) {
+                ++p;
+            }
+            if (p > nameStart) {
+                readMaterialLibrary(std::string_view(nameStart, std::size_t(p - nameStart)), true);
+            }
+        }
+    }
+
+    /** Reads one library's `newmtl` names; false (and, when `warnIfMissing`, a warning) when it cannot be read. */
+    bool readMaterialLibrary(std::string_view name, bool warnIfMissing) {
+        const std::filesystem::path named{std::string(name)};
+        const std::filesystem::path resolved =
+            named.is_absolute() ? named : std::filesystem::path(mPath).parent_path() / named;
+        const std::string shown = "mtllib '" + excerptForMessage(name) + "' (line " + std::to_string(mLine) + ")";
+        std::error_code error;
+        // A FIFO or device would block or never end: only regular files are opened.
+        if (!std::filesystem::is_regular_file(resolved, error)) {
+            if (warnIfMissing) {
+                mWarnings.push_back(shown + ": '" + excerptForMessage(resolved.string()) +
+                                    "' is missing or not a regular file; materials are not drawn for OBJ, so the "
+                                    "render is the same");
+                mMissingLibrary = true;
+            }
+            return false;
+        }
+        const std::uintmax_t size = std::filesystem::file_size(resolved, error);
+        std::ifstream file(resolved, std::ios::binary);
+        if (error || !file) {
+            if (warnIfMissing) {
+                mWarnings.push_back(shown + ": cannot read '" + excerptForMessage(resolved.string()) + "'");
+                mMissingLibrary = true;
+            }
+            return false;
+        }
+        mBudget.chargeFile(std::size_t(size));
+        mInputFiles.push_back(resolved.string());
+        std::string line;
+        while (std::getline(file, line)) {
+            const char* p = line.data();
+            const char* const end = p + line.size();
+            while (p < end && isBlank(*p)) {
+                ++p;
+            }
+            constexpr std::string_view kNewMaterial = "newmtl";
+            if (std::size_t(end - p) > kNewMaterial.size() && std::string_view(p, kNewMaterial.size()) == kNewMaterial &&
+                isBlank(p[kNewMaterial.size()])) {
+                mDefinedMaterials.insert(std::string(trimmed(p + kNewMaterial.size(), end)));
+            }
+        }
+        return true;
+    }
+
+    /** Warns about `usemtl` names that no library read defines (unless a library was missing: that was said). */
+    void checkMaterials() {
+        if (mUsedMaterials.empty()) {
+            return;
+        }
+        std::vector<std::string> undefined;
+        std::size_t undefinedCount = 0;
+        for (const auto& [name, line] : mUsedMaterials) {
+            if (mDefinedMaterials.count(name) == 0) {
+                if (++undefinedCount <= kMaxNamedMaterials) {
+                    std::string entry = "'";
+                    entry += excerptForMessage(name);
+                    entry += "' (line " + std::to_string(line) + ")";
+                    undefined.push_back(std::move(entry));
+                }
+            }
+        }
+        if (undefinedCount == 0 || mMissingLibrary) {
+            return;
+        }
+        std::string list;
+        for (const std::string& entry : undefined) {
+            list += (list.empty() ? "" : ", ") + entry;
+        }
+        if (undefinedCount > undefined.size()) {
+            list += " and " + std::to_string(undefinedCount - undefined.size()) + " more";
+        }
+        const std::string where = !mInputFiles.empty() ? "in its mtllib files" : "(the file has no mtllib)";
+        mWarnings.push_back("usemtl names materials not defined " + where + ": " + list +
+                                 "; materials are not drawn for OBJ, so the render is the same");
     }
 
     /** Three finite coordinates; a fourth (w, or vertex colours after them) is ignored. */
     glm::vec3 parseVector(const char*& p, const char* end, const char* what) {
-        glm::vec3 value;
+        glm::vec3 value(0.0f);
         for (int axis = 0; axis < 3; ++axis) {
             const double number = parseNumber(p, end, what);
             value[axis] = float(number);
@@ -143,7 +290,8 @@ private:
             while (tokenEnd < end && !isBlank(*tokenEnd)) {
                 ++tokenEnd;
             }
-            fail(std::string("cannot read ") + what + " coordinate '" + std::string(start, tokenEnd) + "'");
+            fail(std::string("cannot read ") + what + " coordinate '" +
+                 excerptForMessage(std::string_view(start, std::size_t(tokenEnd - start))) + "'");
         }
         p = next;
         return number;
@@ -157,7 +305,8 @@ private:
             while (tokenEnd < end && !isBlank(*tokenEnd)) {
                 ++tokenEnd;
             }
-            fail("cannot read face index in '" + std::string(p, tokenEnd) + "'");
+            fail("cannot read face index in '" + excerptForMessage(std::string_view(p, std::size_t(tokenEnd - p))) +
+                 "'");
         }
         p = next;
         return index;
@@ -248,6 +397,11 @@ private:
     RawScene buildScene() {
         RawScene scene;
         scene.format = "obj";
+        std::vector<glm::vec3> positions;
+        scene.origin = storeNearModel(mPath, mPositions, positions);
+        mPositions = {}; // its memory back before the mesh is built
+        scene.inputFiles = std::move(mInputFiles);
+        scene.warnings = std::move(mWarnings);
         RawMesh mesh;
         mesh.name = mMeshName.empty() ? std::filesystem::path(mPath).stem().string() : mMeshName;
 
@@ -263,7 +417,7 @@ private:
                     const std::uint64_t key = (std::uint64_t(position) << 32) | normal;
                     const auto [it, inserted] = vertexOfPair.try_emplace(key, std::uint32_t(mesh.positions.size()));
                     if (inserted) {
-                        mesh.positions.push_back(mPositions[position]);
+                        mesh.positions.push_back(positions[position]);
                         mesh.normals.push_back(mNormals[normal]);
                     }
                     mesh.triangles[t][corner] = it->second;
@@ -274,7 +428,7 @@ private:
                 scene.warnings.push_back(std::to_string(mFacesWithoutNormals) +
                                          " faces have no normals; all normals recomputed");
             }
-            mesh.positions = std::move(mPositions);
+            mesh.positions = std::move(positions);
             mesh.triangles = std::move(mPositionTriangles);
         }
         if (mSkippedNonFaces > 0) {
@@ -289,7 +443,12 @@ private:
     MeshBudget& mBudget;
     std::size_t mLine = 0;
     std::string mMeshName;
-    std::vector<glm::vec3> mPositions;
+    std::vector<std::string> mInputFiles; ///< the mtllib files read
+    std::vector<std::string> mWarnings;
+    std::map<std::string, std::size_t> mUsedMaterials; ///< usemtl name -> first line using it
+    std::set<std::string> mDefinedMaterials;            ///< newmtl names of every library read
+    bool mMissingLibrary = false;
+    std::vector<glm::dvec3> mPositions; ///< as read; rounded to float once the model's extent is known
     std::vector<glm::vec3> mNormals;
     std::vector<glm::uvec3> mPositionTriangles;
     std::vector<glm::uvec3> mNormalTriangles; ///< parallel to mPositionTriangles while every face has normals

@@ -8,13 +8,82 @@
 #include <cstdint>
 #include <cmath>
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 
 namespace inkgraph {
 
 namespace detail {
+
+std::string excerptForMessage(std::string_view text) {
+    if (text.size() <= kMessageExcerptChars) {
+        return std::string(text);
+    }
+    return std::string(text.substr(0, kMessageExcerptChars)) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+
+std::string formatNumber(double value) {
+    std::string text;
+    for (int precision = 6; precision <= 17; ++precision) {
+        std::ostringstream candidate;
+        candidate << std::setprecision(precision) << value;
+        text = candidate.str();
+        if (!std::isfinite(value) || std::strtod(text.c_str(), nullptr) == value) {
+            break;
+        }
+    }
+    return text;
+}
+
+std::string_view withoutByteOrderMark(std::string_view content) {
+    constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
+    if (content.substr(0, kUtf8ByteOrderMark.size()) == kUtf8ByteOrderMark) {
+        content.remove_prefix(kUtf8ByteOrderMark.size());
+    }
+    return content;
+}
+
+/** Three significant digits ("1.73e+16"), for the extent messages. */
+std::string formatExtent(double value) {
+    std::ostringstream text;
+    text << std::setprecision(3) << value;
+    return text.str();
+}
+
+void checkModelExtent(const std::string& path, double extent) {
+    if (!(extent <= kMaxModelExtent)) {
+        throwLoadError(path, "the model is " + formatExtent(extent) + " units across (bounding-box diagonal), above the " +
+                                 formatExtent(kMaxModelExtent) +
+                                 " the renderer can hold (float relative to the model's centre); "
+                                 "check the units or the node scales");
+    }
+    if (extent > 0.0 && extent < kMinModelExtent) {
+        throwLoadError(path, "the model is " + formatExtent(extent) + " units across (bounding-box diagonal), below the " +
+                                 formatExtent(kMinModelExtent) +
+                                 " the renderer can resolve; check the units or the node scales");
+    }
+}
+
+glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> world, std::vector<glm::vec3>& stored) {
+    BoundingBox box;
+    for (const glm::dvec3& p : world) {
+        box.add(p);
+    }
+    const double extent = box.diagonal();
+    checkModelExtent(path, extent);
+    const glm::dvec3 centre = box.empty() ? glm::dvec3(0.0) : box.center();
+    const glm::dvec3 distance = glm::abs(centre);
+    const glm::dvec3 origin = std::max({distance.x, distance.y, distance.z}) <= extent ? glm::dvec3(0.0) : centre;
+    stored.resize(world.size());
+    for (std::size_t i = 0; i < world.size(); ++i) {
+        stored[i] = glm::vec3(world[i] - origin);
+    }
+    return origin;
+}
 
 void throwLoadError(const std::string& path, std::string_view problem) {
     throw SceneError("loadScene(): '" + path + "': " + std::string(problem));
@@ -127,12 +196,41 @@ void checkLoadOptions(const LoadOptions& options) {
 }
 
 detail::RawScene readContent(const std::string& path, std::string_view content, detail::MeshBudget& budget) {
+    detail::RawScene raw;
     switch (kindFromExtension(path)) {
-    case FileKind::Gltf: return detail::readGltf(path, content, budget); // JSON or GLB: the content decides
-    case FileKind::Obj: return detail::readObj(path, content, budget);
-    case FileKind::Stl: return detail::readStl(path, content, budget);
+    case FileKind::Gltf: raw = detail::readGltf(path, content, budget); break; // JSON or GLB: the content decides
+    case FileKind::Obj: raw = detail::readObj(path, content, budget); break;
+    case FileKind::Stl: raw = detail::readStl(path, content, budget); break;
     }
-    throw std::logic_error("loadScene(): unhandled file kind");
+    // The model first, then what the reader opened beside it.
+    raw.inputFiles.insert(raw.inputFiles.begin(), path);
+    return raw;
+}
+
+/** Moves every raw position (relative to the reader's origin) to be relative to the model's bounding-box centre, in
+ *  double before rounding, and sets scene.origin; refuses a model too large or too small for float rendering. */
+void recentre(const std::string& path, detail::RawScene& raw, Scene& scene) {
+    // Zero extent is a model whose triangles are all degenerate, reported as such by finalizeScene().
+    BoundingBox modelBox;
+    for (const RawMesh& mesh : raw.meshes) {
+        for (const glm::vec3& p : mesh.positions) {
+            modelBox.add(glm::dvec3(p));
+        }
+    }
+    if (modelBox.empty()) {
+        return;
+    }
+    detail::checkModelExtent(path, modelBox.diagonal());
+    const glm::dvec3 centre = modelBox.center();
+    scene.origin = raw.origin + centre;
+    for (RawMesh& mesh : raw.meshes) {
+        for (glm::vec3& p : mesh.positions) {
+            p = glm::vec3(glm::dvec3(p) - centre);
+        }
+    }
+    if (scene.camera) {
+        scene.camera->eye -= scene.origin;
+    }
 }
 
 Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOptions& options) {
@@ -141,6 +239,8 @@ Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOpt
     scene.light = raw.light;
     scene.report.format = raw.format;
     scene.report.warnings = std::move(raw.warnings);
+    scene.report.inputFiles = std::move(raw.inputFiles);
+    recentre(path, raw, scene);
 
     // One model size for every mesh, so the weld and degenerate thresholds follow the file's units, not each part's.
     BoundingBox modelBox;
@@ -158,7 +258,7 @@ Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOpt
         if (!mesh.triangles.empty()) {
             scene.meshes.push_back(std::move(mesh));
         } else if (trianglesBefore > 0) {
-            scene.report.warnings.push_back("mesh '" + name + "': all " + std::to_string(trianglesBefore) +
+            scene.report.warnings.push_back("mesh '" + detail::excerptForMessage(name) + "': all " + std::to_string(trianglesBefore) +
                                             " triangles are degenerate; mesh skipped");
         }
     }

@@ -21,10 +21,10 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-/** One triangle mesh in world space (node transforms already applied). */
+/** One triangle mesh (node transforms already applied); positions are relative to Scene::origin. */
 struct Mesh {
     std::string name;                  ///< node/mesh/object name, or the file stem
-    std::vector<glm::vec3> positions;  ///< welded, finite
+    std::vector<glm::vec3> positions;  ///< welded, finite; relative to Scene::origin (world = origin + position)
     std::vector<glm::vec3> normals;    ///< one unit normal per position (from the file, else area-weighted smooth)
     std::vector<glm::uvec3> triangles; ///< counter-clockwise seen from the front (outward normals), none degenerate
     glm::vec4 baseColor{0.8f, 0.8f, 0.8f, 1.0f}; ///< linear RGBA; glTF baseColorFactor or the default grey
@@ -36,7 +36,8 @@ struct Mesh {
     std::size_t triangleCount() const { return triangles.size(); }
 };
 
-/** The first perspective camera of a glTF file, in world space. */
+/** The first perspective camera of a glTF file, in the scene's frame: `eye` is relative to Scene::origin like the
+ *  positions (world eye = origin + eye); directions are the same in both frames. */
 struct SceneCamera {
     glm::dvec3 eye{0.0};
     glm::dvec3 forward{0.0, 0.0, -1.0}; ///< unit; the camera looks down its local -Z
@@ -61,9 +62,15 @@ struct LoadReport {
     std::size_t verticesAfterWeld = 0;
     bool normalsComputed = false;      ///< true when some mesh had no normals in the file
     std::vector<std::string> warnings; ///< e.g. skipped POINTS primitives, ignored orthographic cameras
+    std::vector<std::string> inputFiles; ///< every file this load read: the model, glTF external buffers and images (paths as opened, resolved against the model's folder)
 };
 
 struct Scene {
+    /** World = origin + stored position. Positions are computed in double while loading and stored in float relative
+     *  to this point (the centre of the model's bounding box), so a model far from the world origin (georeferenced
+     *  exports at 1e7 units) keeps its detail. Everything positional the scene carries (the glTF camera's eye) is in
+     *  the same local frame; resolveCamera() takes world coordinates from the user and subtracts this. */
+    glm::dvec3 origin{0.0};
     std::vector<Mesh> meshes;
     std::optional<SceneCamera> camera;
     std::optional<DirectionalLight> light;
@@ -77,6 +84,18 @@ struct BoundingSphere {
     glm::dvec3 center{0.0};
     double radius = 0.0;
 };
+
+/** The largest model extent (bounding-box diagonal, in the file's units) a load accepts. The renderer works in float
+ *  relative to the model's centre and squares distances (eye to surface, about 3x the extent when auto-framed): far
+ *  below float's 3.4e38 even squared, with room for the depth range and the derivative kernels. */
+inline constexpr double kMaxModelExtent = 1e15;
+/** The smallest non-zero model extent a load accepts: curvature derivatives scale as 1/extent^3, which in double
+ *  stays far from overflow at 1e-12 (1e36), as do the squared areas (1e-24) the clean-up thresholds compare. */
+inline constexpr double kMinModelExtent = 1e-12;
+
+/** The glTF extensions the reader implements; a file that lists any other in `extensionsRequired` is refused (the
+ *  glTF 2.0 specification requires it), one that merely uses another is loaded without it. */
+const std::vector<std::string>& supportedGltfExtensions();
 
 /** 8 GiB: a 60-million-triangle mesh. */
 inline constexpr std::size_t kDefaultLoadMemoryLimit = std::size_t(8) << 30;
@@ -94,14 +113,16 @@ struct LoadOptions {
 
 /** Reads .gltf, .glb, .obj or .stl (binary or ASCII), chosen by content and extension.
  *  Throws SceneError for a missing or unreadable file, corrupt or truncated content, non-finite
- *  coordinates, out-of-range indices, or a file with no triangles. */
+ *  coordinates, out-of-range indices, a model whose extent lies outside [kMinModelExtent, kMaxModelExtent], or a file
+ *  with no triangles. */
 Scene loadScene(const std::string& path, const LoadOptions& options = {});
 
 /** loadScene() on a file's bytes already in memory (the fuzz targets' entry): `path` names the file in messages,
  *  its extension picks the reader, and glTF's external buffers are resolved next to it. */
 Scene loadSceneFromMemory(const std::string& path, std::string_view content, const LoadOptions& options = {});
 
-/** A bounding sphere of every mesh (centre of the bounding box, radius to the farthest vertex).
+/** A bounding sphere of every mesh (centre of the bounding box, radius to the farthest vertex), in the scene's local
+ *  frame like the positions (add Scene::origin for world coordinates).
  *  Throws SceneError on an empty scene. */
 BoundingSphere computeBoundingSphere(const Scene& scene);
 

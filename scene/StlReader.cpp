@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <optional>
 
 namespace inkgraph::detail {
@@ -123,8 +124,11 @@ bool equalsIgnoringCase(std::string_view a, std::string_view b) {
 }
 
 /** Parses `solid ... facet normal n n n / outer loop / vertex x y z (3+) / endloop / endfacet ... endsolid`, several
- *  solids allowed. Loops with more than three vertices are fan-triangulated. */
-std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, std::vector<std::string>& warnings,
+ *  solids allowed. Loops with more than three vertices are fan-triangulated. `withoutSolid`: the text starts at its
+ *  first `facet` (some exporters drop the `solid` line). Positions are read in double into `positions` (one per loop
+ *  corner); `mesh` gets the triangles. */
+std::optional<AsciiFailure> parseAscii(std::string_view content, bool withoutSolid, RawMesh& mesh,
+                                      std::vector<glm::dvec3>& positions, std::vector<std::string>& warnings,
                                       const MeshBudget& budget) {
     // Text never holds NUL bytes while binary STL nearly always does (zero floats, zero attribute words): this
     // catches a binary file whose header starts with "solid" before its bytes are misread as tokens.
@@ -134,11 +138,11 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, 
     }
     Tokenizer tokens(content);
     enum class State { OutsideSolid, InSolid, InFacet, InLoop, AfterLoop };
-    State state = State::OutsideSolid;
-    std::size_t loopStart = 0; // index in mesh.positions of the current loop's first vertex
+    State state = withoutSolid ? State::InSolid : State::OutsideSolid;
+    std::size_t loopStart = 0; // index in positions of the current loop's first vertex
 
     auto failure = [&](std::string problem) { return AsciiFailure{tokens.line(), std::move(problem)}; };
-    auto readNumber = [&](float& value) -> bool {
+    auto readNumber = [&](double& value) -> bool {
         std::string_view token = tokens.next();
         if (!token.empty() && token.front() == '+') {
             token.remove_prefix(1);
@@ -158,7 +162,7 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, 
             if (!equalsIgnoringCase(tokens.next(), "normal")) {
                 return failure("expected 'normal' after 'facet'");
             }
-            float ignored = 0.0f;
+            double ignored = 0.0;
             for (int axis = 0; axis < 3; ++axis) {
                 if (!readNumber(ignored)) {
                     return failure("cannot read facet normal");
@@ -169,10 +173,10 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, 
             if (!equalsIgnoringCase(tokens.next(), "loop")) {
                 return failure("expected 'loop' after 'outer'");
             }
-            loopStart = mesh.positions.size();
+            loopStart = positions.size();
             state = State::InLoop;
         } else if (equalsIgnoringCase(token, "vertex") && state == State::InLoop) {
-            glm::vec3 position;
+            glm::dvec3 position;
             for (int axis = 0; axis < 3; ++axis) {
                 if (!readNumber(position[axis])) {
                     return failure("cannot read vertex coordinate");
@@ -181,10 +185,15 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, 
             if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) {
                 return failure("non-finite vertex coordinate");
             }
-            mesh.positions.push_back(position);
-            if (mesh.positions.size() % kBudgetCheckInterval == 0) budget.check(mesh.positions.size(), mesh.triangles.size());
+            // As before positions were read in double: a coordinate beyond float's range is no renderable model's.
+            if (std::max({std::abs(position.x), std::abs(position.y), std::abs(position.z)}) >
+                std::numeric_limits<float>::max()) {
+                return failure("cannot read vertex coordinate (beyond float's range)");
+            }
+            positions.push_back(position);
+            if (positions.size() % kBudgetCheckInterval == 0) budget.check(positions.size(), mesh.triangles.size());
         } else if (equalsIgnoringCase(token, "endloop") && state == State::InLoop) {
-            const std::size_t loopSize = mesh.positions.size() - loopStart;
+            const std::size_t loopSize = positions.size() - loopStart;
             if (loopSize < 3) {
                 return failure("facet loop has " + std::to_string(loopSize) + " vertices (needs 3)");
             }
@@ -195,7 +204,7 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, 
         } else if (equalsIgnoringCase(token, "endfacet") && state == State::AfterLoop) {
             state = State::InSolid;
         } else {
-            return failure("unexpected '" + std::string(token.substr(0, 40)) + "'");
+            return failure("unexpected '" + excerptForMessage(token) + "'");
         }
     }
     if (state == State::InSolid) {
@@ -206,12 +215,28 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, RawMesh& mesh, 
     return std::nullopt;
 }
 
-bool startsWithSolid(std::string_view content) {
+/** Whether the text starts, after whitespace, with `keyword` in any case; `wholeWord`: followed by whitespace or the
+ *  end. "solid" is a prefix test as it always was ("solidname" lines exist); "facet" must be the whole word. */
+bool startsWithKeyword(std::string_view text, std::string_view keyword, bool wholeWord) {
     std::size_t start = 0;
-    while (start < content.size() && std::isspace(static_cast<unsigned char>(content[start]))) {
+    while (start < text.size() && std::isspace(static_cast<unsigned char>(text[start]))) {
         ++start;
     }
-    return content.size() - start >= 5 && equalsIgnoringCase(content.substr(start, 5), "solid");
+    const std::size_t end = start + keyword.size();
+    if (text.size() < end || !equalsIgnoringCase(text.substr(start, keyword.size()), keyword)) {
+        return false;
+    }
+    return !wholeWord || end == text.size() || std::isspace(static_cast<unsigned char>(text[end]));
+}
+
+/** Whether the bytes a binary STL's preamble would occupy are all printable text (or whitespace): a binary header is
+ *  free-form, but its triangle count almost never is, so text there means the file was written as text. */
+bool preambleLooksLikeText(std::string_view content) {
+    const std::string_view preamble = content.substr(0, kBinaryPreambleBytes);
+    return std::ranges::all_of(preamble, [](char c) {
+        const auto byte = static_cast<unsigned char>(c);
+        return std::isprint(byte) || std::isspace(byte) || byte >= 0x80; // UTF-8 text included
+    });
 }
 
 } // namespace
@@ -237,14 +262,33 @@ RawScene readStl(const std::string& path, std::string_view content, MeshBudget& 
     if (hasBinaryPreamble && binarySize == content.size()) {
         return readBinary(path, content, declaredTriangles, budget);
     }
-    if (startsWithSolid(content)) {
-        RawScene scene;
+    // A byte-order mark (Windows editors) before "solid" would otherwise make the text unrecognisable.
+    const std::string_view text = withoutByteOrderMark(content);
+    const auto parseAsText = [&](bool withoutSolid, RawScene& scene) {
         scene.format = "stl-ascii";
         RawMesh mesh;
         mesh.name = meshNameFor(path);
-        const std::optional<AsciiFailure> failure = parseAscii(content, mesh, scene.warnings, budget);
+        std::vector<glm::dvec3> positions;
+        std::optional<AsciiFailure> failure = parseAscii(text, withoutSolid, mesh, positions, scene.warnings, budget);
         if (!failure) {
+            scene.origin = storeNearModel(path, positions, mesh.positions);
             scene.meshes.push_back(std::move(mesh));
+        }
+        return failure;
+    };
+    if (startsWithKeyword(text, "facet", true)) {
+        RawScene scene;
+        scene.warnings.push_back("ASCII STL without a 'solid' line");
+        if (const std::optional<AsciiFailure> failure = parseAsText(true, scene)) {
+            throwLoadErrorAtLine(path, failure->line, "invalid ASCII STL (it has no 'solid' line): " +
+                                                          failure->problem);
+        }
+        return scene;
+    }
+    if (startsWithKeyword(text, "solid", false)) {
+        RawScene scene;
+        const std::optional<AsciiFailure> failure = parseAsText(false, scene);
+        if (!failure) {
             return scene;
         }
         // Real text that fails past its 'solid' line is broken ASCII: its bytes 80-83 read as a triangle count mean
@@ -264,6 +308,12 @@ RawScene readStl(const std::string& path, std::string_view content, MeshBudget& 
     if (!hasBinaryPreamble) {
         throwLoadError(path, "not an STL file: " + std::to_string(content.size()) +
                                  " bytes are too few for a binary STL (84-byte preamble) and there is no 'solid' line");
+    }
+    if (!binaryFits && preambleLooksLikeText(content)) {
+        // Read as binary, text makes a count in the hundreds of millions; saying "truncated" would mislead.
+        throwLoadError(path, "not an STL file: it looks like text, but ASCII STL starts with 'solid' (or 'facet') and "
+                             "this starts with '" +
+                                 excerptForMessage(text.substr(0, text.find_first_of("\r\n"))) + "'");
     }
     if (!binaryFits) {
         throwLoadError(path, "truncated binary STL: " + binaryClaim);

@@ -104,12 +104,13 @@ TEST(GltfLoader, NodeTransformsAreBakedIntoWorldSpace) {
         "            {\"name\": \"child\", \"mesh\": 0, \"translation\": [0, 1, 0], \"scale\": [2, 2, 2]}], "
         "\"scenes\": [{\"nodes\": [0]}]";
     const TempFile file("transform.gltf", writer.gltf(body));
-    const Mesh mesh = loadScene(file.path()).meshes.at(0);
+    const Scene scene = loadScene(file.path());
+    const Mesh& mesh = scene.meshes.at(0);
     EXPECT_EQ(mesh.name, "child");
     ASSERT_EQ(mesh.positions.size(), 3u);
-    EXPECT_EQ(mesh.positions[0], glm::vec3(10, 1, 0));
-    EXPECT_EQ(mesh.positions[1], glm::vec3(12, 1, 0));
-    EXPECT_EQ(mesh.positions[2], glm::vec3(10, 3, 0));
+    EXPECT_EQ(test::worldPosition(scene, mesh.positions[0]), glm::dvec3(10, 1, 0));
+    EXPECT_EQ(test::worldPosition(scene, mesh.positions[1]), glm::dvec3(12, 1, 0));
+    EXPECT_EQ(test::worldPosition(scene, mesh.positions[2]), glm::dvec3(10, 3, 0));
 }
 
 TEST(GltfLoader, MatrixTransformAndMirroringKeepFrontFaces) {
@@ -125,7 +126,7 @@ TEST(GltfLoader, MatrixTransformAndMirroringKeepFrontFaces) {
     const Scene scene = loadScene(file.path());
     const Mesh& mesh = scene.meshes.at(0);
     EXPECT_FALSE(scene.report.normalsComputed);
-    EXPECT_EQ(mesh.positions[1], glm::vec3(-1, 0, 5));
+    EXPECT_EQ(test::worldPosition(scene, mesh.positions[1]), glm::dvec3(-1, 0, 5));
     for (const glm::vec3& normal : mesh.normals) {
         EXPECT_EQ(normal, glm::vec3(0, 0, 1));
     }
@@ -277,7 +278,7 @@ TEST(GltfLoader, PerspectiveCameraIsRead) {
     const TempFile file("camera.gltf", writer.gltf(body));
     const Scene scene = loadScene(file.path());
     ASSERT_TRUE(scene.camera.has_value());
-    expectNear(scene.camera->eye, {1, 2, 10});
+    expectNear(scene.origin + scene.camera->eye, {1, 2, 10});
     expectNear(scene.camera->forward, {-1, 0, 0});
     expectNear(scene.camera->up, {0, 1, 0});
     EXPECT_NEAR(scene.camera->fovYDegrees, 0.5 * 180.0 / glm::pi<double>(), 1e-9);
@@ -290,7 +291,7 @@ TEST(GltfLoader, PerspectiveCameraIsRead) {
 
     const Camera camera = resolveCamera({}, scene);
     EXPECT_EQ(camera.source, "gltf");
-    expectNear(camera.eye, {1, 2, 10});
+    expectNear(camera.worldEye(), {1, 2, 10});
     expectNear(glm::normalize(camera.target - camera.eye), {-1, 0, 0});
 }
 
@@ -445,7 +446,7 @@ TEST(GltfLoader, DeepNodeChainLoadsWithoutExhaustingTheStack) {
     const Scene scene = loadScene(file.path());
     ASSERT_EQ(scene.meshes.size(), 1u);
     EXPECT_EQ(scene.meshes[0].name, "deepest");
-    EXPECT_EQ(scene.meshes[0].positions.at(0), glm::vec3(float(kDepth), 0, 0));
+    EXPECT_EQ(test::worldPosition(scene, scene.meshes[0].positions.at(0)), glm::dvec3(kDepth, 0, 0));
 }
 
 TEST(GltfLoader, SharedChildrenAreRejectedWithoutExpandingEveryPath) {

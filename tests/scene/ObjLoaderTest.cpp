@@ -90,11 +90,12 @@ TEST(ObjLoader, NegativeIndicesAreRelativeToTheCurrentLine) {
     // Each face refers to the three vertices just above it.
     const TempFile file("relative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n"
                                         "v 5 0 0\nv 6 0 0\nv 5 1 0\nf -3 -2 -1\n");
-    const Mesh mesh = loadScene(file.path()).meshes.at(0);
+    const Scene scene = loadScene(file.path());
+    const Mesh& mesh = scene.meshes.at(0);
     ASSERT_EQ(mesh.triangleCount(), 2u);
     EXPECT_EQ(mesh.positions.size(), 6u);
-    EXPECT_EQ(mesh.positions[mesh.triangles[1].x], glm::vec3(5, 0, 0));
-    EXPECT_EQ(mesh.positions[mesh.triangles[1].z], glm::vec3(5, 1, 0));
+    EXPECT_EQ(test::worldPosition(scene, mesh.positions[mesh.triangles[1].x]), glm::dvec3(5, 0, 0));
+    EXPECT_EQ(test::worldPosition(scene, mesh.positions[mesh.triangles[1].z]), glm::dvec3(5, 1, 0));
 }
 
 TEST(ObjLoader, FileNormalsArePreservedAndKeepHardEdgesSplit) {

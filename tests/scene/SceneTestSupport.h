@@ -48,6 +48,11 @@ private:
     std::string mPath;
 };
 
+/** A stored (local) position in world coordinates: Scene::origin + position. */
+inline glm::dvec3 worldPosition(const Scene& scene, const glm::vec3& stored) {
+    return scene.origin + glm::dvec3(stored);
+}
+
 inline std::string sourcePath(const std::string& relative) {
     return std::string(INKGRAPH_SOURCE_ROOT) + "/" + relative;
 }

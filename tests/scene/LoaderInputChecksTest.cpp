@@ -1,0 +1,366 @@
+// Bad or unusual input must be refused with a clear message or rendered right, never turned silently into a wrong
+// picture (issue 16): byte-order marks, out-of-range scene and material indices, required extensions, extreme
+// extents, STL told apart by content, long names and URIs in messages, the files a load reads, and textures that
+// are named but never decoded.
+
+#include "scene/Scene.h"
+
+#include "SceneTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+#include <sys/types.h>
+
+#include <algorithm>
+#include <fstream>
+#include <string>
+
+namespace inkgraph {
+namespace {
+
+using test::GltfWriter;
+using test::TempFile;
+
+const std::string kByteOrderMark = "\xEF\xBB\xBF";
+const std::string kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+bool anyWarningContains(const Scene& scene, const std::string& part) {
+    return std::ranges::any_of(scene.report.warnings, [&](const std::string& w) { return contains(w, part); });
+}
+
+/** One unit right triangle in one mesh on one node, with `primitiveExtra` and `nodeExtra` spliced into the mesh's
+ *  primitive and the node, and `top` into the top level. */
+std::string triangleGltf(const std::string& primitiveExtra = "", const std::string& nodeExtra = "",
+                         const std::string& top = "") {
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    return writer.gltf("\"meshes\": [{\"name\": \"plate\", \"primitives\": [{\"attributes\": {\"POSITION\": " +
+                       std::to_string(positions) + "}" + primitiveExtra +
+                       "}]}], \"nodes\": [{\"name\": \"holder\", \"mesh\": 0" + nodeExtra +
+                       "}], \"scenes\": [{\"nodes\": [0]}]" + top);
+}
+
+/** A folder under the temp directory, removed with everything in it on destruction. */
+class TempFolder {
+public:
+    TempFolder() {
+        mPath = std::filesystem::temp_directory_path() /
+                ("inkgraph_inputs_" + std::to_string(::getpid()) + "_" + std::to_string(sCounter++));
+        std::filesystem::create_directories(mPath);
+    }
+    ~TempFolder() {
+        std::error_code ignored;
+        std::filesystem::remove_all(mPath, ignored);
+    }
+    std::string write(const std::string& name, const std::string& content) const {
+        const std::string path = (mPath / name).string();
+        std::ofstream(path, std::ios::binary) << content;
+        return path;
+    }
+    std::string path(const std::string& name) const { return (mPath / name).string(); }
+
+private:
+    static inline int sCounter = 0;
+    std::filesystem::path mPath;
+};
+
+// --- 1. byte-order marks ---
+
+TEST(LoaderInputChecks, ObjWithByteOrderMarkKeepsItsFirstVertex) {
+    // Read as a keyword, "\xEF\xBB\xBFv" was skipped: two vertices were left and face index 3 was out of range.
+    const TempFile file("bom.obj", kByteOrderMark + kTriangleObj);
+    const Scene scene = loadScene(file.path());
+    const Mesh& mesh = scene.meshes.at(0);
+    ASSERT_EQ(mesh.positions.size(), 3u);
+    EXPECT_EQ(test::worldPosition(scene, mesh.positions[mesh.triangles[0].x]), glm::dvec3(0, 0, 0));
+    EXPECT_EQ(test::worldPosition(scene, mesh.positions[mesh.triangles[0].y]), glm::dvec3(1, 0, 0));
+    EXPECT_EQ(test::worldPosition(scene, mesh.positions[mesh.triangles[0].z]), glm::dvec3(0, 1, 0));
+}
+
+TEST(LoaderInputChecks, AsciiStlWithByteOrderMarkIsAscii) {
+    const TempFile file("bom.stl", kByteOrderMark + "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+                                                    "vertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n");
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.report.format, "stl-ascii");
+    EXPECT_EQ(scene.triangleCount(), 1u);
+}
+
+TEST(LoaderInputChecks, GltfJsonWithByteOrderMarkLoads) {
+    // tinygltf's JSON parser skips the mark itself; this keeps it that way (and the reader's own JSON passes).
+    const TempFile file("bom.gltf", kByteOrderMark + triangleGltf());
+    EXPECT_EQ(loadScene(file.path()).triangleCount(), 1u);
+}
+
+// --- 3. the default scene ---
+
+TEST(LoaderInputChecks, GltfSceneIndexOutOfRangeIsRefused) {
+    // It used to draw scene 0 instead.
+    const TempFile file("scene7.gltf", triangleGltf("", "", ", \"scene\": 7"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_TRUE(contains(message, "loadScene(): '" + file.path() + "'")) << message;
+    EXPECT_TRUE(contains(message, "\"scene\": 7 is out of range (file has 1 scenes)")) << message;
+}
+
+// --- 4. materials ---
+
+TEST(LoaderInputChecks, GltfMaterialIndexOutOfRangeIsRefused) {
+    // It used to render in the default grey.
+    const TempFile file("material.gltf", triangleGltf(", \"material\": 3"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_TRUE(contains(message, "mesh 0 'plate' primitive 0: material index 3 out of range (file has 0 materials)"))
+        << message;
+}
+
+TEST(LoaderInputChecks, ObjMissingMaterialLibraryIsAWarningNamingIt) {
+    const TempFile file("nolib.obj", "mtllib absent.mtl\nusemtl Steel\n" + kTriangleObj);
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.triangleCount(), 1u);
+    EXPECT_TRUE(anyWarningContains(scene, "mtllib 'absent.mtl' (line 1)")) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.inputFiles, std::vector<std::string>{file.path()});
+}
+
+TEST(LoaderInputChecks, ObjUndefinedMaterialIsAWarningNamingIt) {
+    const TempFolder folder;
+    const std::string library = folder.write("parts.mtl", "newmtl Steel\nKd 0.5 0.5 0.5\n");
+    const std::string model = folder.write("part.obj", "mtllib parts.mtl\nusemtl Steel\nusemtl Brass\n" + kTriangleObj);
+    const Scene scene = loadScene(model);
+    EXPECT_TRUE(anyWarningContains(scene, "'Brass' (line 3)")) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_FALSE(anyWarningContains(scene, "'Steel'"));
+    EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, library}));
+}
+
+// --- 5. required extensions ---
+
+TEST(LoaderInputChecks, UnknownRequiredExtensionIsRefusedNamingIt) {
+    const std::string top = ", \"extensionsUsed\": [\"EXT_future\", \"KHR_lights_punctual\", \"KHR_mesh_quantization\"], "
+                            "\"extensionsRequired\": [\"EXT_future\", \"KHR_lights_punctual\", \"KHR_mesh_quantization\"]";
+    const TempFile file("required.gltf", triangleGltf("", "", top));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_TRUE(contains(message, "requires the unsupported extensions 'EXT_future', 'KHR_mesh_quantization'"))
+        << message;
+}
+
+TEST(LoaderInputChecks, SupportedRequiredExtensionLoads) {
+    const std::string top = ", \"extensionsUsed\": [\"KHR_lights_punctual\"], "
+                            "\"extensionsRequired\": [\"KHR_lights_punctual\"]";
+    const TempFile file("lights.gltf", triangleGltf("", "", top));
+    EXPECT_EQ(loadScene(file.path()).triangleCount(), 1u);
+    EXPECT_EQ(supportedGltfExtensions(), std::vector<std::string>{"KHR_lights_punctual"});
+}
+
+// --- 6. extreme extents ---
+
+TEST(LoaderInputChecks, NodeScaleBeyondTheRenderableExtentIsRefusedNamingTheNode) {
+    const TempFile file("huge.gltf", triangleGltf("", ", \"scale\": [1e38, 1e38, 1e38]"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_TRUE(contains(message, "loadScene(): '" + file.path() + "': node 0 'holder'")) << message;
+    EXPECT_TRUE(contains(message, "more than the 1e+15 the renderer can hold")) << message;
+}
+
+TEST(LoaderInputChecks, NonFiniteAfterTheTransformIsRefusedNamingTheNode) {
+    // 1e200 x 1e200 overflows double.
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const TempFile file("overflow.gltf",
+                        writer.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
+                                    std::to_string(positions) +
+                                    "}}]}], \"nodes\": [{\"name\": \"outer\", \"scale\": [1e200, 1e200, 1e200], "
+                                    "\"children\": [1]}, {\"name\": \"inner\", \"mesh\": 0, \"scale\": [1e200, "
+                                    "1e200, 1e200]}], \"scenes\": [{\"nodes\": [0]}]"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_TRUE(contains(message, "node 1 'inner'")) << message;
+    EXPECT_TRUE(contains(message, "non-finite")) << message;
+}
+
+TEST(LoaderInputChecks, ModelExtentIsCheckedAtBothEnds) {
+    // Three corners (0,0,0), (s,0,0), (0,s,0): the bounding-box diagonal is s sqrt(2).
+    const auto triangleOfSize = [](const std::string& s) {
+        return "v 0 0 0\nv " + s + " 0 0\nv 0 " + s + " 0\nf 1 2 3\n";
+    };
+    const TempFile large("large.obj", triangleOfSize("7e14"));
+    EXPECT_EQ(loadScene(large.path()).triangleCount(), 1u); // 9.9e14 across
+    const TempFile tooLarge("toolarge.obj", triangleOfSize("8e14"));
+    const std::string largeMessage = test::sceneErrorMessage([&] { loadScene(tooLarge.path()); });
+    EXPECT_TRUE(contains(largeMessage, "the model is 1.13e+15 units across (bounding-box diagonal), above the 1e+15"))
+        << largeMessage;
+
+    const TempFile small("small.obj", triangleOfSize("1e-12"));
+    EXPECT_EQ(loadScene(small.path()).triangleCount(), 1u); // 1.4e-12 across
+    const TempFile tooSmall("toosmall.obj", triangleOfSize("5e-13"));
+    const std::string smallMessage = test::sceneErrorMessage([&] { loadScene(tooSmall.path()); });
+    EXPECT_TRUE(contains(smallMessage, "the model is 7.07e-13 units across (bounding-box diagonal), below the 1e-12"))
+        << smallMessage;
+}
+
+TEST(LoaderInputChecks, ObjCoordinateBeyondFloatIsRefusedAtItsLine) {
+    // Read in double, 1e39 is finite; no renderable model has such a coordinate (float ends at 3.4e38).
+    const TempFile file("far.obj", "v 0 0 0\nv 1 0 0\nv 1e39 1 0\nf 1 2 3\n");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_TRUE(contains(message, "line 3: non-finite vertex coordinate in float (1e+39 is beyond float's range)"))
+        << message;
+}
+
+// --- 7. messages ---
+
+TEST(LoaderInputChecks, AsciiStlWithoutSolidIsReadAsAscii) {
+    // Its bytes 80-83 as a binary count read 959328288 triangles: "truncated binary STL".
+    std::string text;
+    for (int i = 0; i < 3; ++i) {
+        text += "facet normal 0 0 1\n outer loop\n  vertex 0 0 " + std::to_string(i) +
+                "\n  vertex 1 0 " + std::to_string(i) + "\n  vertex 0 1 " + std::to_string(i) +
+                "\n endloop\nendfacet\n";
+    }
+    const TempFile file("nosolid.stl", text);
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.report.format, "stl-ascii");
+    EXPECT_EQ(scene.triangleCount(), 3u);
+    EXPECT_TRUE(anyWarningContains(scene, "ASCII STL without a 'solid' line"));
+}
+
+TEST(LoaderInputChecks, TextThatIsNotStlSaysSo) {
+    const TempFile file("notes.stl", "These are my notes about the part, which is not attached here after all.\n"
+                                     "Second line of the notes.\n");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_TRUE(contains(message, "not an STL file: it looks like text, but ASCII STL starts with 'solid' (or 'facet') "
+                                  "and this starts with 'These are my notes"))
+        << message;
+    EXPECT_FALSE(contains(message, "triangles")) << message;
+}
+
+TEST(LoaderInputChecks, TruncatedBinaryStlGivesTheCountAndTheSize) {
+    std::string binary(80, '\0');
+    const std::uint32_t count = 10;
+    binary.append(reinterpret_cast<const char*>(&count), 4);
+    binary.append(50 * 3, '\0'); // 3 of the 10 triangles
+    const TempFile file("short.stl", binary);
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_TRUE(contains(message, "truncated binary STL: its binary header declares 10 triangles (584 bytes) but the "
+                                  "file has 234 bytes"))
+        << message;
+}
+
+TEST(LoaderInputChecks, LongDataUriIsShortenedInMessages) {
+    // A buffer whose data: URI does not decode: tinygltf quotes the URI whole.
+    const std::string uri = "data:application/octet-stream;base64," + std::string(1 << 20, '!');
+    const std::string gltf = "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{\"uri\": \"" + uri +
+                             "\", \"byteLength\": 12}]}";
+    const TempFile glbFile("longuri.glb", [&] {
+        // GLB: the binary reader's message quotes the URI ("Failed to decode 'uri' : <uri> in Buffer").
+        std::string json = gltf;
+        while (json.size() % 4 != 0) json += ' ';
+        std::string file = "glTF";
+        const auto append = [&](std::uint32_t value) { file.append(reinterpret_cast<const char*>(&value), 4); };
+        append(2);
+        append(std::uint32_t(12 + 8 + json.size()));
+        append(std::uint32_t(json.size()));
+        file += "JSON" + json;
+        return file;
+    }());
+    const std::string message = test::sceneErrorMessage([&] { loadScene(glbFile.path()); });
+    EXPECT_LT(message.size(), 1000u) << message.substr(0, 2000);
+    EXPECT_TRUE(contains(message, "data:application/octet-stream;base64,!!!!!!!!!!!!!!!!!!!!!!!... (" +
+                                      std::to_string(uri.size()) + " bytes)"))
+        << message.substr(0, 2000);
+}
+
+TEST(LoaderInputChecks, LongObjTokenIsShortenedInMessages) {
+    const TempFile file("token.obj", "v 0 0 " + std::string(100000, '7') + "x\n");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_LT(message.size(), 400u);
+    EXPECT_TRUE(contains(message, "... (100001 bytes)'")) << message;
+}
+
+// --- 8. the files a load reads ---
+
+TEST(LoaderInputChecks, InputFilesListTheModelBuffersAndImages) {
+    const TempFolder folder;
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const std::string body = "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
+                             std::to_string(positions) +
+                             "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], "
+                             "\"images\": [{\"uri\": \"textures/wood%20grain.png\"}, {\"uri\": \"missing.png\"}]";
+    const std::string buffer = folder.write("geometry.bin", writer.binary());
+    std::filesystem::create_directories(folder.path("textures"));
+    const std::string texture = folder.write("textures/wood grain.png", "not read");
+    const std::string model = folder.write("model.gltf", writer.gltfWithExternalBuffer(body, "geometry.bin"));
+    const Scene scene = loadScene(model);
+    EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, buffer, texture, folder.path("missing.png")}));
+    // The missing image is unused: no failure and nothing to warn about.
+    EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
+}
+
+TEST(LoaderInputChecks, InputFilesOfStl) {
+    const TempFile file("one.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                   "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n");
+    EXPECT_EQ(loadScene(file.path()).report.inputFiles, std::vector<std::string>{file.path()});
+}
+
+// --- 9. images are never read ---
+
+/** Peak resident memory since the last resetPeakResident(), in bytes; 0 where Linux does not offer it. */
+std::size_t peakResidentBytes() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
+    }
+    return 0;
+}
+
+std::size_t residentBytes() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.rfind("VmRSS:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
+    }
+    return 0;
+}
+
+/** Resets VmHWM to the current resident size (Linux 4.0+: "5" to clear_refs); false where that is not possible. */
+bool resetPeakResident() {
+    std::ofstream clear("/proc/self/clear_refs");
+    clear << "5";
+    clear.flush();
+    return bool(clear);
+}
+
+TEST(LoaderInputChecks, LargeImageIsNeitherReadNorCharged) {
+    // A 256 MiB (sparse) texture: read, it would be resident (the old loader read every image whole) and charged to
+    // the memory budget; with a 64 MiB limit the read failed, leaving a tinygltf warning.
+    const TempFolder folder;
+    const std::string image = folder.path("huge.png");
+    std::filesystem::resize_file(folder.write("huge.png", ""), std::uintmax_t(256) << 20);
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const std::string model = folder.write(
+        "model.gltf", writer.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
+                                  std::to_string(positions) +
+                                  "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], "
+                                  "\"images\": [{\"uri\": \"huge.png\"}]"));
+    LoadOptions options;
+    options.memoryLimitBytes = std::size_t(64) << 20;
+    const bool peakMeasured = resetPeakResident();
+    const std::size_t residentBefore = residentBytes();
+    const Scene scene = loadScene(model, options);
+    EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, image}));
+    if (peakMeasured && peakResidentBytes() > 0) {
+        EXPECT_LT(peakResidentBytes() - std::min(residentBefore, peakResidentBytes()), std::size_t(32) << 20);
+    }
+}
+
+TEST(LoaderInputChecks, ImageNamingAFifoLoadsWithoutBlocking) {
+    const TempFolder folder;
+    ASSERT_EQ(::mkfifo(folder.path("pipe.png").c_str(), 0600), 0);
+    const std::string model = folder.write("model.gltf", triangleGltf("", "", ", \"images\": [{\"uri\": \"pipe.png\"}]"));
+    const Scene scene = loadScene(model);
+    EXPECT_EQ(scene.triangleCount(), 1u);
+    EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
+}
+
+} // namespace
+} // namespace inkgraph
