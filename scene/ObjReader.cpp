@@ -207,18 +207,25 @@ private:
         }
         mBudget.chargeFile(std::size_t(size));
         mInputFiles.push_back(resolved.string());
-        std::string line;
-        while (std::getline(file, line)) {
-            const char* p = line.data();
-            const char* const end = p + line.size();
-            while (p < end && isBlank(*p)) {
-                ++p;
+        // At most the size the file system reports: some "regular" files (/proc/self/pagemap) report 0 and then
+        // stream gigabytes.
+        std::string text(std::size_t(size), '\0');
+        file.read(text.data(), std::streamsize(size));
+        text.resize(std::size_t(file.gcount()));
+        std::size_t start = 0;
+        while (start < text.size()) {
+            std::size_t lineEnd = text.find('\n', start);
+            if (lineEnd == std::string::npos) {
+                lineEnd = text.size();
             }
+            const std::string_view line = trimmed(text.data() + start, text.data() + lineEnd);
             constexpr std::string_view kNewMaterial = "newmtl";
-            if (std::size_t(end - p) > kNewMaterial.size() && std::string_view(p, kNewMaterial.size()) == kNewMaterial &&
-                isBlank(p[kNewMaterial.size()])) {
-                mDefinedMaterials.insert(std::string(trimmed(p + kNewMaterial.size(), end)));
+            if (line.size() > kNewMaterial.size() && line.substr(0, kNewMaterial.size()) == kNewMaterial &&
+                isBlank(line[kNewMaterial.size()])) {
+                const std::string_view defined = line.substr(kNewMaterial.size());
+                mDefinedMaterials.insert(std::string(trimmed(defined.data(), defined.data() + defined.size())));
             }
+            start = lineEnd + 1;
         }
         return true;
     }

@@ -208,7 +208,9 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, bool withoutSol
         }
     }
     if (state == State::InSolid) {
-        warnings.push_back("ASCII STL ends without 'endsolid' (truncated?)");
+        if (!withoutSolid) {
+            warnings.push_back("ASCII STL ends without 'endsolid' (truncated?)");
+        }
     } else if (state != State::OutsideSolid) {
         return failure("unexpected end of file inside a facet");
     }
