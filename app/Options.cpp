@@ -589,10 +589,12 @@ Batch (several models in one process: one GL context, each shader program compil
 
 System
   --egl-platform P       auto | device | surfaceless (default auto: device first, then surfaceless)
-  --memory-limit MIB     the most memory one model load and the plan's buffers may take, 64 and up (default:
-                         half this machine's memory, at least 1024). Checked before allocating, from the file's
-                         size and declared counts and from the plan: above it the run stops with exit 3 (model)
-                         or 2 (--size), naming what needs the memory
+  --memory-limit MIB     the most memory the process may take for one still, 64 and up (default: half this
+                         machine's memory, at least 1024). Checked before allocating: the model load from the
+                         file's size and declared counts (exit 3), then the whole run's peak from the plan (the
+                         process, the scene, every buffer at --size and --supersample, read-backs, encoding; exit
+                         2), naming the flags that need the memory. --stats reports the estimate
+                         (estimated_peak_mib) and the measured peak (peak_rss_mib); docs/batch.md sizes a task
 
 Exit codes: 0 done, 2 bad command line, 3 unreadable or invalid model, 4 no OpenGL/EGL,
 5 an output could not be written, 1 anything else.

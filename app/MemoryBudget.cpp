@@ -1,0 +1,201 @@
+#include "app/MemoryBudget.h"
+
+#include "app/Options.h"
+#include "graph/Plan.h"
+#include "scene/Scene.h"
+
+#include <algorithm>
+#include <map>
+
+#include <sys/resource.h>
+
+namespace inkgraph {
+namespace {
+
+constexpr std::size_t kMiB = std::size_t(1) << 20;
+
+// The constants below were measured (peak resident set, /usr/bin/time %M) with llvmpipe (Mesa 22.3, LLVM 15);
+// docs/batch.md ("Memory") has the table they were fitted to.
+
+/** The process at a 64x64 still of a 4k-triangle model with every line type: 205-210 MiB (libraries, OpenImageIO,
+ *  llvmpipe and LLVM, the compiled shaders), with room for the run-to-run spread. */
+constexpr std::size_t kBaselineBytes = 224 * kMiB;
+/** Per vertex: the loader's own bound (detail::MeshBudget), which covers the mesh and its vertex buffers. */
+constexpr std::size_t kBytesPerVertex = 96;
+/** Per triangle, with every line type: index buffers, the outline's shell, the mesh edges, curvature and what
+ *  llvmpipe bins per triangle and draw. The bunny (69k triangles) costs 62 MiB over a 4k-triangle model. */
+constexpr std::size_t kBytesPerTriangle = 1024;
+
+/** Per data pixel of a line layer's pass, what lives on after it: the one-pixel skeleton mask (1) and its sub-pixel
+ *  points (12 bytes each, at most one per 12 pixels). */
+constexpr std::size_t kSkeletonBytesPerPixel = 2;
+/** Per data pixel, what one line layer's pass holds while it runs: the stroke canvas (1) and the nearest-point
+ *  stroke's two ints (8; postfx/LineSkeleton.cpp takes that path when the points are many). */
+constexpr std::size_t kStrokeBytesPerPixel = 9;
+/** Per data pixel, the 5-point suggestive stencil's maps (postfx/SuggestiveContours.cpp: dw, dwdw and the normal
+ *  distance as float, two byte masks). */
+constexpr std::size_t kWideStencilBytesPerPixel = 14;
+/** gl/Readback.cpp moves pixels in bands of at most this many bytes, through one extra buffer. */
+constexpr std::size_t kTransferBandBytes = 64 * kMiB;
+/** Encoding one image: the encoded bytes in a growing vector (up to twice their size) and the writer's own copy. */
+constexpr std::size_t kEncodeCopies = 2;
+
+/** llvmpipe rounds a texture's sides up to its tiles; 64 covers the 4-pixel raster blocks of Mesa 22 and the
+ *  64-pixel tiles of older versions. */
+std::size_t paddedTextureSide(std::size_t side) { return (side + 63) / 64 * 64; }
+
+int channelsOf(Format format) {
+    return format == Format::RGBA32F || format == Format::RGBA8 || format == Format::RGBA16F ? 4 : 1;
+}
+
+/** Bytes of a resource's CPU image: float formats (half included) are float32 there (gl/Readback.cpp). */
+std::size_t cpuBytesPerPixel(Format format) {
+    return std::size_t(channelsOf(format)) * (isFloatFormat(format) ? 4 : 1);
+}
+
+/** Passes that read nothing from the graph draw the scene with GL, into a depth attachment of their own; the others
+ *  (line layers, composite) work on the CPU on what they read. */
+bool drawsTheScene(const PlannedPass& pass) { return pass.reads.empty(); }
+
+/** A CPU pass that finds and strokes one --lines type (it is named after it): it keeps a skeleton and strokes it. */
+bool strokesLines(const PlannedPass& pass, const RenderOptions& options) {
+    return !drawsTheScene(pass) &&
+           std::find(options.lines.begin(), options.lines.end(), pass.name) != options.lines.end();
+}
+
+class PlanSizes {
+public:
+    PlanSizes(const Plan& plan, const RenderOptions& options) : mPlan(plan), mOptions(options) {
+        for (const PlannedResource& resource : plan.resources) mResources[resource.name] = &resource;
+    }
+
+    std::size_t pixels(int scale) const {
+        return std::size_t(mOptions.width) * std::size_t(scale) * std::size_t(mOptions.height) * std::size_t(scale);
+    }
+    std::size_t paddedPixels(int scale) const {
+        return paddedTextureSide(std::size_t(mOptions.width) * std::size_t(scale)) *
+               paddedTextureSide(std::size_t(mOptions.height) * std::size_t(scale));
+    }
+    std::size_t textureBytes(const PlannedResource& resource) const {
+        return paddedPixels(resource.desc.scale) * std::size_t(bytesPerPixel(resource.desc.format));
+    }
+    std::size_t imageBytes(const PlannedResource& resource) const {
+        return pixels(resource.desc.scale) * cpuBytesPerPixel(resource.desc.format);
+    }
+    const PlannedResource* resource(const std::string& name) const {
+        auto found = mResources.find(name);
+        return found == mResources.end() ? nullptr : found->second;
+    }
+    /** The scale a pass works at: its largest read or write. */
+    int scaleOf(const PlannedPass& pass) const {
+        int scale = 1;
+        for (const auto* names : {&pass.reads, &pass.liveWrites})
+            for (const std::string& name : *names)
+                if (const PlannedResource* found = resource(name)) scale = std::max(scale, found->desc.scale);
+        return scale;
+    }
+
+private:
+    const Plan& mPlan;
+    const RenderOptions& mOptions;
+    std::map<std::string, const PlannedResource*> mResources;
+};
+
+/** What the post stage holds while pass `index` runs (or, for index == passes.size(), while the outputs are
+ *  written): the CPU images then alive, the skeletons of the post passes so far, and the pass's working images. */
+std::size_t cpuBytesAt(std::size_t index, const Plan& plan, const RenderOptions& options, const PlanSizes& sizes,
+                       bool keepAll) {
+    const bool writing = index == plan.passes.size();
+    std::size_t bytes = 0;
+    // An image exists on the CPU from the first post pass that reads it (or writes it) to its last use; requested
+    // ones, and all with --dump or --contact-sheet, to the end. While outputs are written every image may be read.
+    for (const PlannedResource& resource : plan.resources) {
+        bool onCpu = writing && (keepAll || resource.requested);
+        for (std::size_t at = 0; at < plan.passes.size() && at <= index && !onCpu; ++at) {
+            const PlannedPass& pass = plan.passes[at];
+            if (drawsTheScene(pass)) continue;
+            const bool touches = std::find(pass.reads.begin(), pass.reads.end(), resource.name) != pass.reads.end() ||
+                                 resource.writer == pass.name;
+            onCpu = touches;
+        }
+        const bool alive = keepAll || resource.requested || resource.lastUse >= index;
+        if (onCpu && alive) bytes += sizes.imageBytes(resource);
+    }
+    for (std::size_t at = 0; at < std::min(index + 1, plan.passes.size()); ++at)
+        if (strokesLines(plan.passes[at], options))
+            bytes += kSkeletonBytesPerPixel * sizes.pixels(sizes.scaleOf(plan.passes[at]));
+
+    std::size_t largestImage = 0;
+    for (const PlannedResource& resource : plan.resources)
+        largestImage = std::max(largestImage, sizes.imageBytes(resource));
+    if (writing) {
+        // One image encoded at a time: the final picture, or with --dump the largest buffer.
+        std::size_t encoded = 0;
+        for (const PlannedResource& resource : plan.resources)
+            if (keepAll || resource.requested) encoded = std::max(encoded, sizes.imageBytes(resource));
+        return bytes + kEncodeCopies * encoded + std::min(kTransferBandBytes, largestImage);
+    }
+    const PlannedPass& pass = plan.passes[index];
+    if (drawsTheScene(pass)) return bytes;
+    // Other CPU passes (the composite) work in the images they read and write, counted above.
+    if (!strokesLines(pass, options)) return bytes + std::min(kTransferBandBytes, largestImage);
+    std::size_t working = kStrokeBytesPerPixel;
+    if (pass.name == "suggestive" && options.suggestiveStencil == 5) working += kWideStencilBytesPerPixel;
+    return bytes + working * sizes.pixels(sizes.scaleOf(pass)) + std::min(kTransferBandBytes, largestImage);
+}
+
+std::string sizeText(std::size_t width, std::size_t height) {
+    return std::to_string(width) + "x" + std::to_string(height);
+}
+
+} // namespace
+
+SceneSize sceneSizeOf(const Scene& scene) { return {scene.vertexCount(), scene.triangleCount()}; }
+
+MemoryEstimate estimateRunMemory(const Plan& plan, const RenderOptions& options, const SceneSize& scene) {
+    const PlanSizes sizes(plan, options);
+    const bool keepAll = !options.dumpDirectory.empty() || !options.contactSheetPath.empty();
+    MemoryEstimate estimate;
+    estimate.baseline = kBaselineBytes;
+    estimate.scene = scene.vertices * kBytesPerVertex + scene.triangles * kBytesPerTriangle;
+    // The texture pool keeps every texture it made until the still ends, so they all count at once.
+    for (const PlannedResource& resource : plan.resources) estimate.glTargets += sizes.textureBytes(resource);
+    for (const PlannedPass& pass : plan.passes)
+        if (drawsTheScene(pass)) estimate.glTargets += sizes.paddedPixels(sizes.scaleOf(pass)) * 4; // DEPTH32F
+    for (std::size_t index = 0; index <= plan.passes.size(); ++index)
+        estimate.cpuImages = std::max(estimate.cpuImages, cpuBytesAt(index, plan, options, sizes, keepAll));
+    return estimate;
+}
+
+std::string memoryDriversText(const Plan& plan, const RenderOptions& options) {
+    std::string text = "--size " + sizeText(std::size_t(options.width), std::size_t(options.height));
+    if (options.supersample > 1) {
+        const PlanSizes sizes(plan, options);
+        std::string supersampled;
+        int count = 0;
+        for (const std::string& type : options.lines) { // in the order the user gave them
+            const PlannedPass* pass = plan.findPass(type);
+            if (pass == nullptr || !strokesLines(*pass, options)) continue;
+            if (sizes.scaleOf(*pass) < options.supersample) continue;
+            supersampled += (count++ ? "," : "") + type;
+        }
+        text += " with --supersample " + std::to_string(options.supersample);
+        if (count > 0)
+            text += " (--lines " + supersampled + (count == 1 ? " works" : " work") + " at " +
+                    sizeText(std::size_t(options.width) * options.supersample,
+                             std::size_t(options.height) * options.supersample) +
+                    ")";
+    }
+    if (!options.dumpDirectory.empty()) text += " and --dump";
+    if (!options.contactSheetPath.empty()) text += " and --contact-sheet";
+    if (!options.dumpDirectory.empty() || !options.contactSheetPath.empty()) text += " (every buffer is kept)";
+    return text;
+}
+
+std::size_t peakResidentBytes() {
+    rusage usage{};
+    if (::getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+    return std::size_t(usage.ru_maxrss) * 1024; // Linux reports kilobytes
+}
+
+} // namespace inkgraph
