@@ -69,6 +69,9 @@ inline constexpr std::size_t kMessageExcerptChars = 60;
 /** The shortest text that reads back as `value` (e.g. 0.5, 1e+15, 3.1415926535897936, inf), for messages. */
 std::string formatNumber(double value);
 
+/** Three significant digits ("1.73e+16"), for sizes and distances in messages. */
+std::string formatExtent(double value);
+
 /** `content` without a leading UTF-8 byte-order mark (EF BB BF), which some Windows tools write before text. */
 std::string_view withoutByteOrderMark(std::string_view content);
 

@@ -611,7 +611,7 @@ private:
         for (glm::vec3& position : mesh.positions) {
             const glm::dvec3 worldPosition(world * glm::dvec4(glm::dvec3(position), 1.0));
             if (!std::isfinite(worldPosition.x) || !std::isfinite(worldPosition.y) || !std::isfinite(worldPosition.z)) {
-                fail(node + " ('" + excerptForMessage(name) + "'): the node transform produces non-finite positions");
+                fail(node + ": the node transform produces non-finite positions");
             }
             if (!mHasOrigin) {
                 mOut.origin = worldPosition;
@@ -619,9 +619,9 @@ private:
             }
             const glm::dvec3 relative = worldPosition - mOut.origin;
             if (!(std::max({std::abs(relative.x), std::abs(relative.y), std::abs(relative.z)}) <= kMaxModelExtent)) {
-                fail(node + " ('" + excerptForMessage(name) + "'): after the node transforms a position lies " +
-                     formatNumber(glm::length(relative)) + " units from the first mesh's first vertex, more than the " +
-                     formatNumber(kMaxModelExtent) + " the renderer can hold (a node scale or translation too large?)");
+                fail(node + ": after the node transforms a position lies " + formatExtent(glm::length(relative)) +
+                     " units from the first mesh's first vertex, more than the " +
+                     formatExtent(kMaxModelExtent) + " the renderer can hold (a node scale or translation too large?)");
             }
             position = glm::vec3(relative);
         }

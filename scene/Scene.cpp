@@ -47,7 +47,6 @@ std::string_view withoutByteOrderMark(std::string_view content) {
     return content;
 }
 
-/** Three significant digits ("1.73e+16"), for the extent messages. */
 std::string formatExtent(double value) {
     std::ostringstream text;
     text << std::setprecision(3) << value;
