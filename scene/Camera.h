@@ -44,7 +44,7 @@ struct Camera {
     std::string clipSource = "fitted"; ///< "fitted" (to the bounding sphere) or "flags" (--clip)
 
     double aspect() const { return double(width) / double(height); }
-    glm::dmat4 viewMatrix() const;       ///< glm::lookAt(eye, target, up): local (scene-frame) points to view space
+    glm::dmat4 viewMatrix() const; ///< glm::lookAt(eye, target, up): local (scene-frame) points to view space
     glm::dvec3 worldEye() const { return origin + eye; }
     glm::dvec3 worldTarget() const { return origin + target; }
     /** viewMatrix() * translate(-origin): world points to view space, for reports. Its translation is as large as
@@ -56,16 +56,16 @@ struct Camera {
 };
 
 /** Resolves a camera in the scene's local frame. The request's eye and target are world coordinates; scene.origin is
- *  subtracted (in double) and kept in Camera::origin. Precedence per field: the request, then the scene's glTF camera, then auto-framing, which
- *  looks at the bounding-sphere centre at the distance where the sphere fits the smaller field of view with a 5%
- *  margin, from the direction normalize(h + 0.25 u): u is the unit up, h the unit horizontal toward world +Z (or
- *  toward world -Y when |Z . u| > 0.9, so Z-up models are seen from the front), i.e. from the front and slightly
- *  above; for the default up (0, 1, 0) that is normalize(0, 0.25, 1). Near and far are fitted to the bounding
- *  sphere: far = distance to the centre + radius (x1.01); near = max(distance - radius, far x 1e-4) (x0.99), so the
- *  sphere is never clipped when the eye is outside it; a requested zNear and zFar replace both (finite, 0 < near < far,
- *  else std::invalid_argument naming --clip). Throws std::invalid_argument, with a message that names the
- *  flags involved (--eye, --target, --up, --fov, --size), for eye == target, a zero up or one parallel to the view
- *  direction, fov outside (0, 180), non-finite vectors, or a non-positive size. */
+ *  subtracted (in double) and kept in Camera::origin. Precedence per field: the request, then the scene's glTF
+ *  camera, then auto-framing, which looks at the bounding-sphere centre at the distance where the sphere fits the
+ *  smaller field of view with a 5% margin, from the direction normalize(h + 0.25 u): u is the unit up, h the unit
+ *  horizontal toward world +Z (or toward world -Y when |Z . u| > 0.9, so Z-up models are seen from the front), i.e.
+ *  from the front and slightly above; for the default up (0, 1, 0) that is normalize(0, 0.25, 1). Near and far are
+ *  fitted to the bounding sphere: far = distance to the centre + radius (x1.01); near = max(distance - radius, far
+ *  x 1e-4) (x0.99), so the sphere is never clipped when the eye is outside it; a requested zNear and zFar replace both
+ *  (finite, 0 < near < far, else std::invalid_argument naming --clip). Throws std::invalid_argument, with a message
+ *  that names the flags involved (--eye, --target, --up, --fov, --size), for eye == target, a zero up or one
+ *  parallel to the view direction, fov outside (0, 180), non-finite vectors, or a non-positive size. */
 Camera resolveCamera(const CameraRequest& request, const Scene& scene);
 
 } // namespace inkgraph

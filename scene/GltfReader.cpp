@@ -564,8 +564,8 @@ private:
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
             ++mSkippedPrimitives;
-            mOut.warnings.push_back("'" + excerptForMessage(name) + "': non-triangle primitive (mode " + std::to_string(mode) + ", " +
-                                    modeName(mode) + ") skipped");
+            mOut.warnings.push_back("'" + excerptForMessage(name) + "': non-triangle primitive (mode " +
+                                    std::to_string(mode) + ", " + modeName(mode) + ") skipped");
             return;
         }
         const auto positionAttribute = primitive.attributes.find("POSITION");
@@ -620,8 +620,8 @@ private:
             const glm::dvec3 relative = worldPosition - mOut.origin;
             if (!(std::max({std::abs(relative.x), std::abs(relative.y), std::abs(relative.z)}) <= kMaxModelExtent)) {
                 fail(node + ": after the node transforms a position lies " + formatExtent(glm::length(relative)) +
-                     " units from the first mesh's first vertex, more than the " +
-                     formatExtent(kMaxModelExtent) + " the renderer can hold (a node scale or translation too large?)");
+                     " units from the first mesh's first vertex, more than the " + formatExtent(kMaxModelExtent) +
+                     " the renderer can hold (a node scale or translation too large?)");
             }
             position = glm::vec3(relative);
         }
@@ -835,7 +835,6 @@ bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const
     return tinygltf::ReadWholeFile(out, error, path, nullptr);
 }
 
-
 } // namespace
 
 RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget) {
@@ -852,15 +851,17 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     const std::string_view json = jsonOf(content, binary);
     nlohmann::json::sax_parse(json.begin(), json.end(), &uris, nlohmann::json::input_format_t::json, false);
     ExternalFiles files{budget, {}, {}, {}};
-    for (const std::string& uri : uris.bufferUris) files.bufferPaths.insert(pathBesideModel(baseDirectory, uri));
-    for (const std::string& uri : uris.imageUris) files.imagePaths.insert(pathBesideModel(baseDirectory, uri));
+    for (const std::string& uri : uris.bufferUris)
+        files.bufferPaths.insert(pathBesideModel(baseDirectory, uri));
+    for (const std::string& uri : uris.imageUris)
+        files.imagePaths.insert(pathBesideModel(baseDirectory, uri));
 
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skipImageDecoding, nullptr);
     // Keeps each extras object as JSON text, so materialShadeMap() sees the types as written (GltfWalker).
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
-    loader.SetFsCallbacks({&externalFileExists, &tinygltf::ExpandFilePath, &readExternalFile,
-                           &tinygltf::WriteWholeFile, &files});
+    loader.SetFsCallbacks(
+        {&externalFileExists, &tinygltf::ExpandFilePath, &readExternalFile, &tinygltf::WriteWholeFile, &files});
     tinygltf::Model model;
     std::string error;
     std::string warning;

@@ -66,8 +66,8 @@ public:
         : mPath(path), mText(text), mBudget(budget) {}
 
     RawScene parse() {
-        // Windows tools may write a byte-order mark; left in, it would glue itself to the first keyword ("\xEF\xBB\xBFv")
-        // and that vertex would be skipped, shifting every index after it.
+        // Windows tools may write a byte-order mark; left in, it would glue itself to the first keyword
+        // ("\xEF\xBB\xBFv") and that vertex would be skipped, shifting every index after it.
         mText = withoutByteOrderMark(mText);
         // Text never holds NUL bytes; a GLB or binary STL saved as .obj would otherwise read as "no faces".
         if (const std::size_t nul = mText.find('\0'); nul != std::string_view::npos) {
@@ -259,7 +259,7 @@ private:
         }
         const std::string where = !mInputFiles.empty() ? "in its mtllib files" : "(the file has no mtllib)";
         mWarnings.push_back("usemtl names materials not defined " + where + ": " + list +
-                                 "; materials are not drawn for OBJ, so the render is the same");
+                            "; materials are not drawn for OBJ, so the render is the same");
     }
 
     /** Three finite coordinates; a fourth (w, or vertex colours after them) is ignored. */
@@ -453,7 +453,7 @@ private:
     std::vector<std::string> mInputFiles; ///< the mtllib files read
     std::vector<std::string> mWarnings;
     std::map<std::string, std::size_t> mUsedMaterials; ///< usemtl name -> first line using it
-    std::set<std::string> mDefinedMaterials;            ///< newmtl names of every library read
+    std::set<std::string> mDefinedMaterials;           ///< newmtl names of every library read
     bool mMissingLibrary = false;
     std::vector<glm::dvec3> mPositions; ///< as read; rounded to float once the model's extent is known
     std::vector<glm::vec3> mNormals;

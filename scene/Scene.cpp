@@ -55,14 +55,14 @@ std::string formatExtent(double value) {
 
 void checkModelExtent(const std::string& path, double extent) {
     if (!(extent <= kMaxModelExtent)) {
-        throwLoadError(path, "the model is " + formatExtent(extent) + " units across (bounding-box diagonal), above the " +
-                                 formatExtent(kMaxModelExtent) +
+        throwLoadError(path, "the model is " + formatExtent(extent) +
+                                 " units across (bounding-box diagonal), above the " + formatExtent(kMaxModelExtent) +
                                  " the renderer can hold (float relative to the model's centre); "
                                  "check the units or the node scales");
     }
     if (extent > 0.0 && extent < kMinModelExtent) {
-        throwLoadError(path, "the model is " + formatExtent(extent) + " units across (bounding-box diagonal), below the " +
-                                 formatExtent(kMinModelExtent) +
+        throwLoadError(path, "the model is " + formatExtent(extent) +
+                                 " units across (bounding-box diagonal), below the " + formatExtent(kMinModelExtent) +
                                  " the renderer can resolve; check the units or the node scales");
     }
 }
@@ -257,7 +257,8 @@ Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOpt
         if (!mesh.triangles.empty()) {
             scene.meshes.push_back(std::move(mesh));
         } else if (trianglesBefore > 0) {
-            scene.report.warnings.push_back("mesh '" + detail::excerptForMessage(name) + "': all " + std::to_string(trianglesBefore) +
+            scene.report.warnings.push_back("mesh '" + detail::excerptForMessage(name) + "': all " +
+                                            std::to_string(trianglesBefore) +
                                             " triangles are degenerate; mesh skipped");
         }
     }

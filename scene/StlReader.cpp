@@ -128,8 +128,8 @@ bool equalsIgnoringCase(std::string_view a, std::string_view b) {
  *  first `facet` (some exporters drop the `solid` line). Positions are read in double into `positions` (one per loop
  *  corner); `mesh` gets the triangles. */
 std::optional<AsciiFailure> parseAscii(std::string_view content, bool withoutSolid, RawMesh& mesh,
-                                      std::vector<glm::dvec3>& positions, std::vector<std::string>& warnings,
-                                      const MeshBudget& budget) {
+                                       std::vector<glm::dvec3>& positions, std::vector<std::string>& warnings,
+                                       const MeshBudget& budget) {
     // Text never holds NUL bytes while binary STL nearly always does (zero floats, zero attribute words): this
     // catches a binary file whose header starts with "solid" before its bytes are misread as tokens.
     if (const std::size_t nul = content.find('\0'); nul != std::string_view::npos) {
@@ -282,8 +282,8 @@ RawScene readStl(const std::string& path, std::string_view content, MeshBudget& 
         RawScene scene;
         scene.warnings.push_back("ASCII STL without a 'solid' line");
         if (const std::optional<AsciiFailure> failure = parseAsText(true, scene)) {
-            throwLoadErrorAtLine(path, failure->line, "invalid ASCII STL (it has no 'solid' line): " +
-                                                          failure->problem);
+            throwLoadErrorAtLine(path, failure->line,
+                                 "invalid ASCII STL (it has no 'solid' line): " + failure->problem);
         }
         return scene;
     }

@@ -118,7 +118,8 @@ TEST(LoaderInputChecks, ObjMissingMaterialLibraryIsAWarningNamingIt) {
     const TempFile file("nolib.obj", "mtllib absent.mtl\nusemtl Steel\n" + kTriangleObj);
     const Scene scene = loadScene(file.path());
     EXPECT_EQ(scene.triangleCount(), 1u);
-    EXPECT_TRUE(anyWarningContains(scene, "mtllib 'absent.mtl' (line 1)")) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_TRUE(anyWarningContains(scene, "mtllib 'absent.mtl' (line 1)"))
+        << ::testing::PrintToString(scene.report.warnings);
     EXPECT_EQ(scene.report.inputFiles, std::vector<std::string>{file.path()});
 }
 
@@ -135,8 +136,9 @@ TEST(LoaderInputChecks, ObjUndefinedMaterialIsAWarningNamingIt) {
 // --- 5. required extensions ---
 
 TEST(LoaderInputChecks, UnknownRequiredExtensionIsRefusedNamingIt) {
-    const std::string top = ", \"extensionsUsed\": [\"EXT_future\", \"KHR_lights_punctual\", \"KHR_mesh_quantization\"], "
-                            "\"extensionsRequired\": [\"EXT_future\", \"KHR_lights_punctual\", \"KHR_mesh_quantization\"]";
+    const std::string top =
+        ", \"extensionsUsed\": [\"EXT_future\", \"KHR_lights_punctual\", \"KHR_mesh_quantization\"], "
+        "\"extensionsRequired\": [\"EXT_future\", \"KHR_lights_punctual\", \"KHR_mesh_quantization\"]";
     const TempFile file("required.gltf", triangleGltf("", "", top));
     const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
     EXPECT_TRUE(contains(message, "requires the unsupported extensions 'EXT_future', 'KHR_mesh_quantization'"))
@@ -164,12 +166,12 @@ TEST(LoaderInputChecks, NonFiniteAfterTheTransformIsRefusedNamingTheNode) {
     // 1e200 x 1e200 overflows double.
     GltfWriter writer;
     const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    const TempFile file("overflow.gltf",
-                        writer.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
-                                    std::to_string(positions) +
-                                    "}}]}], \"nodes\": [{\"name\": \"outer\", \"scale\": [1e200, 1e200, 1e200], "
-                                    "\"children\": [1]}, {\"name\": \"inner\", \"mesh\": 0, \"scale\": [1e200, "
-                                    "1e200, 1e200]}], \"scenes\": [{\"nodes\": [0]}]"));
+    const TempFile file(
+        "overflow.gltf",
+        writer.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+                    "}}]}], \"nodes\": [{\"name\": \"outer\", \"scale\": [1e200, 1e200, 1e200], "
+                    "\"children\": [1]}, {\"name\": \"inner\", \"mesh\": 0, \"scale\": [1e200, "
+                    "1e200, 1e200]}], \"scenes\": [{\"nodes\": [0]}]"));
     const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
     EXPECT_TRUE(contains(message, "node 1 'inner'")) << message;
     EXPECT_TRUE(contains(message, "non-finite")) << message;
@@ -209,9 +211,8 @@ TEST(LoaderInputChecks, AsciiStlWithoutSolidIsReadAsAscii) {
     // Its bytes 80-83 as a binary count read 959328288 triangles: "truncated binary STL".
     std::string text;
     for (int i = 0; i < 3; ++i) {
-        text += "facet normal 0 0 1\n outer loop\n  vertex 0 0 " + std::to_string(i) +
-                "\n  vertex 1 0 " + std::to_string(i) + "\n  vertex 0 1 " + std::to_string(i) +
-                "\n endloop\nendfacet\n";
+        text += "facet normal 0 0 1\n outer loop\n  vertex 0 0 " + std::to_string(i) + "\n  vertex 1 0 " +
+                std::to_string(i) + "\n  vertex 0 1 " + std::to_string(i) + "\n endloop\nendfacet\n";
     }
     const TempFile file("nosolid.stl", text);
     const Scene scene = loadScene(file.path());
@@ -246,12 +247,13 @@ TEST(LoaderInputChecks, TruncatedBinaryStlGivesTheCountAndTheSize) {
 TEST(LoaderInputChecks, LongDataUriIsShortenedInMessages) {
     // A buffer whose data: URI does not decode: tinygltf quotes the URI whole.
     const std::string uri = "data:application/octet-stream;base64," + std::string(1 << 20, '!');
-    const std::string gltf = "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{\"uri\": \"" + uri +
-                             "\", \"byteLength\": 12}]}";
+    const std::string gltf =
+        "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{\"uri\": \"" + uri + "\", \"byteLength\": 12}]}";
     const TempFile glbFile("longuri.glb", [&] {
         // GLB: the binary reader's message quotes the URI ("Failed to decode 'uri' : <uri> in Buffer").
         std::string json = gltf;
-        while (json.size() % 4 != 0) json += ' ';
+        while (json.size() % 4 != 0)
+            json += ' ';
         std::string file = "glTF";
         const auto append = [&](std::uint32_t value) { file.append(reinterpret_cast<const char*>(&value), 4); };
         append(2);
@@ -280,10 +282,10 @@ TEST(LoaderInputChecks, InputFilesListTheModelBuffersAndImages) {
     const TempFolder folder;
     GltfWriter writer;
     const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    const std::string body = "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
-                             std::to_string(positions) +
-                             "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], "
-                             "\"images\": [{\"uri\": \"textures/wood%20grain.png\"}, {\"uri\": \"missing.png\"}]";
+    const std::string body =
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+        "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], "
+        "\"images\": [{\"uri\": \"textures/wood%20grain.png\"}, {\"uri\": \"missing.png\"}]";
     const std::string buffer = folder.write("geometry.bin", writer.binary());
     std::filesystem::create_directories(folder.path("textures"));
     const std::string texture = folder.write("textures/wood grain.png", "not read");
@@ -338,10 +340,10 @@ TEST(LoaderInputChecks, LargeImageIsNeitherReadNorCharged) {
     GltfWriter writer;
     const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
     const std::string model = folder.write(
-        "model.gltf", writer.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
-                                  std::to_string(positions) +
-                                  "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], "
-                                  "\"images\": [{\"uri\": \"huge.png\"}]"));
+        "model.gltf",
+        writer.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+                    "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], "
+                    "\"images\": [{\"uri\": \"huge.png\"}]"));
     LoadOptions options;
     options.memoryLimitBytes = std::size_t(64) << 20;
     const bool peakMeasured = resetPeakResident();
@@ -357,7 +359,8 @@ TEST(LoaderInputChecks, LargeImageIsNeitherReadNorCharged) {
 TEST(LoaderInputChecks, ImageNamingAFifoLoadsWithoutBlocking) {
     const TempFolder folder;
     ASSERT_EQ(::mkfifo(folder.path("pipe.png").c_str(), 0600), 0);
-    const std::string model = folder.write("model.gltf", triangleGltf("", "", ", \"images\": [{\"uri\": \"pipe.png\"}]"));
+    const std::string model =
+        folder.write("model.gltf", triangleGltf("", "", ", \"images\": [{\"uri\": \"pipe.png\"}]"));
     const Scene scene = loadScene(model);
     EXPECT_EQ(scene.triangleCount(), 1u);
     EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);

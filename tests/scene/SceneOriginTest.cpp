@@ -71,8 +71,8 @@ std::string sphereGltf(const glm::dvec3& offset) {
     const int triangles = writer.addIndices(indices, 4);
     return writer.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
                        "}, \"indices\": " + std::to_string(triangles) +
-                       "}]}], \"nodes\": [{\"mesh\": 0, \"translation\": [" + exact(offset.x) + ", " +
-                       exact(offset.y) + ", " + exact(offset.z) + "]}], \"scenes\": [{\"nodes\": [0]}]");
+                       "}]}], \"nodes\": [{\"mesh\": 0, \"translation\": [" + exact(offset.x) + ", " + exact(offset.y) +
+                       ", " + exact(offset.z) + "]}], \"scenes\": [{\"nodes\": [0]}]");
 }
 
 Scene loadText(const std::string& fileName, const std::string& content) {
@@ -186,7 +186,8 @@ TEST(SceneOrigin, GltfCameraEyeIsInTheSceneFrame) {
     const std::string body =
         "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
         "}}]}], \"cameras\": [{\"type\": \"perspective\", \"perspective\": {\"yfov\": 0.5, \"znear\": 0.1}}], "
-        "\"nodes\": [{\"mesh\": 0, \"translation\": [1e7, 0, 0]}, {\"camera\": 0, \"translation\": [10000000, 0, 10]}], "
+        "\"nodes\": [{\"mesh\": 0, \"translation\": [1e7, 0, 0]}, "
+        "{\"camera\": 0, \"translation\": [10000000, 0, 10]}], "
         "\"scenes\": [{\"nodes\": [0, 1]}]";
     const Scene scene = loadText("camera.gltf", writer.gltf(body));
     ASSERT_TRUE(scene.camera.has_value());
