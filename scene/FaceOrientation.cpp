@@ -1,5 +1,7 @@
 #include "scene/FaceOrientation.h"
 
+#include "scene/FormatReaders.h"
+
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
@@ -361,11 +363,13 @@ OrientationMeshData deriveOrientationData(const Mesh& mesh, bool withVertexTrian
     constexpr const char* function = "deriveOrientationData()";
     const std::size_t vertexCount = mesh.positions.size();
     if (mesh.normals.size() != vertexCount) {
-        invalid(function, "mesh '" + mesh.name + "' has " + std::to_string(mesh.normals.size()) + " normals for " +
-                              std::to_string(vertexCount) + " positions");
+        invalid(function, "mesh '" + detail::excerptForMessage(mesh.name) + "' has " +
+                              std::to_string(mesh.normals.size()) + " normals for " + std::to_string(vertexCount) +
+                              " positions");
     }
     if (withVertexTriangles && mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max() / 3) {
-        invalid(function, "mesh '" + mesh.name + "' has too many triangles for 32-bit adjacency offsets");
+        invalid(function, "mesh '" + detail::excerptForMessage(mesh.name) +
+                              "' has too many triangles for 32-bit adjacency offsets");
     }
 
     OrientationMeshData data;
@@ -374,7 +378,7 @@ OrientationMeshData deriveOrientationData(const Mesh& mesh, bool withVertexTrian
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
         const glm::uvec3& triangle = mesh.triangles[i];
         if (std::max(triangle.x, std::max(triangle.y, triangle.z)) >= vertexCount) {
-            invalid(function, "mesh '" + mesh.name + "' triangle " + std::to_string(i) +
+            invalid(function, "mesh '" + detail::excerptForMessage(mesh.name) + "' triangle " + std::to_string(i) +
                                   " uses a vertex past its " + std::to_string(vertexCount) + " vertices");
         }
         const glm::dvec3 a(mesh.positions[triangle.x]);
@@ -474,13 +478,14 @@ void orientMesh(const Mesh& mesh, const OrientationMeshData& data, const Orienta
     }
     if (mesh.normals.size() != mesh.positions.size() || data.faceNormals.size() != mesh.triangles.size() ||
         data.vertexBeta.size() != mesh.positions.size()) {
-        invalid(function, "mesh '" + mesh.name + "' does not match its derived data (normals, face normals or vertex betas)");
+        invalid(function, "mesh '" + detail::excerptForMessage(mesh.name) +
+                              "' does not match its derived data (normals, face normals or vertex betas)");
     }
     if (request.method == FaceOrientationMethod::DuringVertices &&
         (data.vertexTriangleStart.size() != mesh.positions.size() + 1 ||
          data.vertexTriangles.size() != data.vertexTriangleStart.back())) {
-        invalid(function, "'during-vertices' needs the vertex-triangle adjacency of mesh '" + mesh.name +
-                              "' (deriveOrientationData(mesh, true))");
+        invalid(function, "'during-vertices' needs the vertex-triangle adjacency of mesh '" +
+                              detail::excerptForMessage(mesh.name) + "' (deriveOrientationData(mesh, true))");
     }
     const ViewTerms terms = viewTermsFor(request);
     const bool faceTest = request.method == FaceOrientationMethod::DuringTriangles;
@@ -554,8 +559,8 @@ std::size_t countMissedTriangles(const Mesh& mesh, const glm::dvec3& eye,
         missed += isExactFront(positions, triangle, eye) ? 1 : 0;
     }
     if (next != frontTriangles.size()) {
-        invalid("countMissedTriangles()", "'frontTriangles' is not a subsequence of mesh '" + mesh.name +
-                                              "' triangles in their order");
+        invalid("countMissedTriangles()", "'frontTriangles' is not a subsequence of mesh '" +
+                                              detail::excerptForMessage(mesh.name) + "' triangles in their order");
     }
     return missed;
 }
