@@ -39,6 +39,9 @@ namespace {
  *  (issue 18), nor any texture or material extension: the reader reads the core baseColorFactor only. */
 const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual"};
 
+/** Unsupported required extensions named one by one in the refusal; the rest are counted. */
+constexpr std::size_t kMaxNamedExtensions = 10;
+
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian; add byte swapping");
 
 /** tinygltf decodes textures by default; the renderer uses none, so skip the work (and stb's failure modes). */
@@ -82,6 +85,11 @@ std::string shortenWords(const std::string& line) {
             shortened += ' ';
         }
         start = end + 1;
+    }
+    // Many short words (a long name with spaces) must not make a long line either.
+    constexpr std::size_t kMaxLineChars = 5 * kMessageExcerptChars;
+    if (shortened.size() > kMaxLineChars) {
+        shortened = shortened.substr(0, kMaxLineChars) + "... (" + std::to_string(shortened.size()) + " bytes)";
     }
     return shortened;
 }
@@ -176,9 +184,13 @@ private:
         std::size_t unsupportedCount = 0;
         for (const std::string& extension : mModel.extensionsRequired) {
             if (std::ranges::find(supportedGltfExtensions(), extension) == supportedGltfExtensions().end()) {
-                unsupported += (unsupported.empty() ? "'" : ", '") + excerptForMessage(extension) + "'";
-                ++unsupportedCount;
+                if (++unsupportedCount <= kMaxNamedExtensions) {
+                    unsupported += (unsupported.empty() ? "'" : ", '") + excerptForMessage(extension) + "'";
+                }
             }
+        }
+        if (unsupportedCount > kMaxNamedExtensions) {
+            unsupported += " and " + std::to_string(unsupportedCount - kMaxNamedExtensions) + " more";
         }
         if (unsupportedCount > 0) {
             std::string supported;

@@ -269,6 +269,31 @@ TEST(LoaderInputChecks, LongDataUriIsShortenedInMessages) {
         << message.substr(0, 2000);
 }
 
+TEST(LoaderInputChecks, LongNameWithSpacesIsShortenedInMessages) {
+    // tinygltf quotes an invalid image's name whole; short words must not add up to a long message either.
+    std::string name;
+    for (int i = 0; i < 100000; ++i)
+        name += "word ";
+    const TempFile file("longname.gltf", triangleGltf("", "",
+                                                      ", \"images\": [{\"name\": \"" + name +
+                                                          "\", \"uri\": \"a.png\", "
+                                                          "\"bufferView\": 0}]"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_LT(message.size(), 1000u) << message.substr(0, 2000);
+    EXPECT_TRUE(contains(message, "Only one of")) << message.substr(0, 2000);
+}
+
+TEST(LoaderInputChecks, ManyUnsupportedRequiredExtensionsAreCounted) {
+    std::string list;
+    for (int i = 0; i < 1000; ++i)
+        list += (list.empty() ? "\"EXT_" : ", \"EXT_") + std::to_string(i) + "\"";
+    const TempFile file(
+        "many.gltf",
+        triangleGltf("", "", ", \"extensionsUsed\": [" + list + "], \"extensionsRequired\": [" + list + "]"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_TRUE(contains(message, "'EXT_8', 'EXT_9' and 990 more (extensionsRequired;")) << message.substr(0, 2000);
+}
+
 TEST(LoaderInputChecks, LongObjTokenIsShortenedInMessages) {
     const TempFile file("token.obj", "v 0 0 " + std::string(100000, '7') + "x\n");
     const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
