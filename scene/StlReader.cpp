@@ -231,13 +231,14 @@ bool startsWithKeyword(std::string_view text, std::string_view keyword, bool who
     return !wholeWord || end == text.size() || std::isspace(static_cast<unsigned char>(text[end]));
 }
 
-/** Whether the bytes a binary STL's preamble would occupy are all printable text (or whitespace): a binary header is
- *  free-form, but its triangle count almost never is, so text there means the file was written as text. */
+/** Whether the bytes a binary STL's preamble would occupy are all printable ASCII (or whitespace): a binary header is
+ *  free-form text, but its triangle count is not (any count below 2^24 has a zero byte; a huge one like 0xFFFFFFFF
+ *  has bytes above 0x7F), so printable ASCII there means the file was written as text. */
 bool preambleLooksLikeText(std::string_view content) {
     const std::string_view preamble = content.substr(0, kBinaryPreambleBytes);
     return std::ranges::all_of(preamble, [](char c) {
         const auto byte = static_cast<unsigned char>(c);
-        return std::isprint(byte) || std::isspace(byte) || byte >= 0x80; // UTF-8 text included
+        return byte < 0x80 && (std::isprint(byte) || std::isspace(byte));
     });
 }
 

@@ -244,6 +244,13 @@ TEST(LoaderInputChecks, TruncatedBinaryStlGivesTheCountAndTheSize) {
         << message;
 }
 
+TEST(LoaderInputChecks, BinaryStlWithATextHeaderAndAHugeCountIsStillBinary) {
+    // 80 spaces, then 0xFFFFFFFF: the header is text, the count is not.
+    const TempFile file("huge.stl", std::string(80, ' ') + std::string(4, '\xFF') + std::string(50, '\0'));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_TRUE(contains(message, "truncated binary STL: its binary header declares 4294967295 triangles")) << message;
+}
+
 TEST(LoaderInputChecks, LongDataUriIsShortenedInMessages) {
     // A buffer whose data: URI does not decode: tinygltf quotes the URI whole.
     const std::string uri = "data:application/octet-stream;base64," + std::string(1 << 20, '!');
