@@ -1,14 +1,37 @@
 #include "gl/GraphExecutor.h"
 
 #include "gl/Readback.h"
+#include "gl/ShaderLibrary.h"
 
 #include <algorithm>
 #include <chrono>
+#include <new>
 #include <cstdio>
 #include <stdexcept>
 
 namespace inkgraph {
 namespace {
+
+/** Runs a pass's prepare or execute, naming the pass in what it throws. Failures the caller reports by their cause
+ *  keep their type: shaders that cannot be read (the installation), and memory running out, on the GPU or the CPU. */
+template <class Step>
+void runPassStep(const std::string& pass, const char* failed, Step&& step) {
+    const std::string where = "GraphExecutor::run(): pass '" + pass + "'";
+    try {
+        step();
+    } catch (const ShaderSourceError&) {
+        throw;
+    } catch (const GlOutOfMemoryError& error) {
+        throw GlOutOfMemoryError(where + ": " + error.what());
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemoryError(where + " ran out of memory");
+    } catch (const cv::Exception& error) {
+        if (error.code == cv::Error::StsNoMem) throw OutOfMemoryError(where + " ran out of memory: " + error.err);
+        throw std::runtime_error(where + " " + failed + ": " + error.what());
+    } catch (const std::exception& error) {
+        throw std::runtime_error(where + " " + failed + ": " + error.what());
+    }
+}
 
 double nowMilliseconds() {
     using Clock = std::chrono::steady_clock;
@@ -188,12 +211,7 @@ std::vector<PassTiming> GraphExecutor::run(const Plan& plan, const std::vector<P
         const PlannedPass& planned = plan.passes[index];
         GlPassContext context(mStore, planned, plan, options.frameWidth, options.frameHeight);
         const double start = nowMilliseconds();
-        try {
-            ordered[index]->prepare(context);
-        } catch (const std::exception& error) {
-            throw std::runtime_error("GraphExecutor::run(): pass '" + planned.name + "' failed to prepare: " +
-                                     error.what());
-        }
+        runPassStep(planned.name, "failed to prepare", [&] { ordered[index]->prepare(context); });
         glFinish();
         timings[index].pass = planned.name;
         timings[index].prepareMilliseconds = nowMilliseconds() - start;
@@ -203,13 +221,7 @@ std::vector<PassTiming> GraphExecutor::run(const Plan& plan, const std::vector<P
         const PlannedPass& planned = plan.passes[index];
         GlPassContext context(mStore, planned, plan, options.frameWidth, options.frameHeight);
         const double start = nowMilliseconds();
-        try {
-            ordered[index]->execute(context);
-        } catch (const GlOutOfMemoryError& error) {
-            throw GlOutOfMemoryError("GraphExecutor::run(): pass '" + planned.name + "': " + error.what());
-        } catch (const std::exception& error) {
-            throw std::runtime_error("GraphExecutor::run(): pass '" + planned.name + "' failed: " + error.what());
-        }
+        runPassStep(planned.name, "failed", [&] { ordered[index]->execute(context); });
         // Waiting here makes the milliseconds mean the pass's own work, not whatever the driver queued.
         glFinish();
         timings[index].milliseconds = nowMilliseconds() - start;

@@ -12,12 +12,20 @@
 
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace inkgraph {
 
 /** The resources of one run, by full name. */
+/** A pass's CPU work ran out of memory (std::bad_alloc or OpenCV's out-of-memory error), named by the pass. The
+ *  driver running out is GlOutOfMemoryError. */
+class OutOfMemoryError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
 class ResourceStore {
 public:
     explicit ResourceStore(TexturePool& pool) : mPool(pool) {}

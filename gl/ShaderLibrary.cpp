@@ -51,9 +51,14 @@ const std::string& ShaderLibrary::source(const std::string& relativePath) {
     if (found != mSources.end()) return found->second;
     const std::filesystem::path path = mDirectory / relativePath;
     std::ifstream file(path, std::ios::binary);
-    if (!file)
-        throw std::runtime_error("ShaderLibrary::source(): cannot read shader '" + path.string() +
-                                 "' (set INKGRAPH_SHADER_DIR to the shaders/ folder of the source tree)");
+    if (!file) {
+        const char* fromEnvironment = std::getenv("INKGRAPH_SHADER_DIR");
+        const std::string origin = fromEnvironment && *fromEnvironment && mDirectory == fromEnvironment
+                                       ? "; INKGRAPH_SHADER_DIR is '" + mDirectory.string() + "'"
+                                       : "";
+        throw ShaderSourceError("ShaderLibrary::source(): cannot read shader '" + path.string() + "'" + origin +
+                                " (set INKGRAPH_SHADER_DIR to the shaders/ folder of the source tree)");
+    }
     std::ostringstream text;
     text << file.rdbuf();
     return mSources.emplace(relativePath, text.str()).first->second;

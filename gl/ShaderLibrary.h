@@ -8,10 +8,17 @@
 
 #include <filesystem>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace inkgraph {
+
+/** A shader file cannot be read: the installation is incomplete or INKGRAPH_SHADER_DIR names the wrong folder. */
+class ShaderSourceError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
 
 struct ProgramDesc {
     std::string label;                 ///< e.g. "gbuffer"; used in errors and GL object labels
@@ -30,7 +37,7 @@ public:
     /** Reads nothing yet: a missing folder is reported by the first build(), so plans compile without shaders. */
     explicit ShaderLibrary(std::filesystem::path directory = defaultDirectory());
 
-    /** Compiles and links; throws std::runtime_error naming the file, stage, defines and the info log. With
+    /** Compiles and links; throws ShaderSourceError for a file that cannot be read, std::runtime_error naming the file, stage, defines and the info log. With
      *  keepPrograms(true), a program of the same files, defines and snippets as an earlier one is that program
      *  again (the label does not matter), so the stills of a batch compile each program once. */
     GlProgram build(const ProgramDesc& desc);
