@@ -116,8 +116,14 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
                                  std::to_string(list.total) + " models; put {name} or {index} in it, e.g. '" +
                                  (flag == "--dump" ? "out/{name}-dump" : "out/{name}" +
                                   std::filesystem::path(pattern).extension().string()) + "'");
+    // By place and by device and inode: a hard link of a model is that model under another name.
     std::map<std::filesystem::path, const BatchModel*> modelsByPlace;
-    for (const BatchModel& model : list.models) modelsByPlace.emplace(resolvedPath(model.path), &model);
+    std::map<std::pair<dev_t, ino_t>, const BatchModel*> modelsByIdentity;
+    for (const BatchModel& model : list.models) {
+        modelsByPlace.emplace(resolvedPath(model.path), &model);
+        if (const auto identity = fileIdentity(model.path))
+            modelsByIdentity.emplace(std::make_pair(identity->device, identity->inode), &model);
+    }
     // Place -> the first still writing there (a model listed twice is two stills).
     std::map<std::filesystem::path, const BatchModel*> writers;
     for (const BatchModel& model : list.models) {
@@ -125,10 +131,15 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
             const std::string output = expandOutputPattern(pattern, model, list.total);
             const std::filesystem::path place = resolvedPath(output);
             // A still writing over its own model is OutputSet's to report, as for a single model.
-            if (auto input = modelsByPlace.find(place);
-                input != modelsByPlace.end() && input->second->path != model.path)
+            const BatchModel* overwritten = nullptr;
+            if (auto input = modelsByPlace.find(place); input != modelsByPlace.end()) overwritten = input->second;
+            if (const auto identity = fileIdentity(output))
+                if (auto input = modelsByIdentity.find({identity->device, identity->inode});
+                    input != modelsByIdentity.end())
+                    overwritten = input->second;
+            if (overwritten != nullptr && overwritten->path != model.path)
                 throw UsageError(flag + " '" + output + "' (for '" + model.path + "') would overwrite the model '" +
-                                 input->second->path + "'");
+                                 overwritten->path + "'");
             // One still's own outputs colliding with each other are OutputSet's to report.
             const auto [earlier, inserted] = writers.emplace(place, &model);
             if (!inserted && earlier->second->position != model.position)

@@ -114,10 +114,10 @@ void finishImageIoPreload() {
 }
 
 std::filesystem::path temporarySibling(const std::filesystem::path& path) {
-    // Short and fixed in length, so a final name near NAME_MAX still has a valid temporary name.
+    // Short, and without the final name's extension (which may itself be near NAME_MAX): the format follows the
+    // final name, never the temporary one.
     static std::atomic<int> counter{0};
-    const std::string name = ".inkgraph-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".tmp" +
-                             path.extension().string();
+    const std::string name = ".inkgraph-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".tmp";
     return path.parent_path() / name;
 }
 

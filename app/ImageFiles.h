@@ -63,7 +63,7 @@ std::string imageFilePixelType(const std::filesystem::path& path);
 /** Writes text under a temporary name and renames it into place. */
 void writeTextFile(const std::filesystem::path& path, const std::string& text);
 
-/** A sibling of `path` with the same extension, unique to this process: "final.png" -> ".inkgraph-1234-0.tmp.png". */
+/** A short sibling of `path`, unique to this process: "final.png" -> ".inkgraph-1234-0.tmp". */
 std::filesystem::path temporarySibling(const std::filesystem::path& path);
 
 } // namespace inkgraph

@@ -1,18 +1,18 @@
 #include "app/OutputFiles.h"
 
 #include "app/ImageFiles.h"
+#include "app/Render.h"
 #include "app/TemporaryFiles.h"
 
-#include <nlohmann/json.hpp>
-
 #include <fcntl.h>
-#include <sys/file.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <set>
+#include <iostream>
 #include <system_error>
 
 namespace inkgraph {
@@ -26,13 +26,14 @@ bool isInside(const fs::path& path, const fs::path& folder) {
     return !relative.empty() && *relative.begin() != "..";
 }
 
-/** Leftovers of killed runs (".inkgraph-<pid>-..." whose process is gone) are removed when we meet them. */
+/** Leftover files of killed runs (".inkgraph-<pid>-..." whose process is gone) are removed when we meet them: plain
+ *  files only, never a folder of that name (app/DumpFolder.h sweeps staging folders by their marker). */
 void sweepStaleTemporaries(const fs::path& folder) {
     std::error_code error;
     for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
         if (!isStaleTemporary(it->path().filename().string())) continue;
-        std::error_code ignored;
-        fs::remove_all(it->path(), ignored);
+        struct stat status {};
+        if (::lstat(it->path().c_str(), &status) == 0 && S_ISREG(status.st_mode)) ::unlink(it->path().c_str());
     }
 }
 
@@ -51,6 +52,86 @@ void requireWritableFolder(const fs::path& folder, const std::string& what) {
     ::unlink(probe.c_str());
 }
 
+/** What a non-regular file is, for the message that refuses it as an output. */
+std::string kindOf(mode_t mode) {
+    if (S_ISCHR(mode)) return "a character device";
+    if (S_ISBLK(mode)) return "a block device";
+    if (S_ISFIFO(mode)) return "a FIFO";
+    if (S_ISSOCK(mode)) return "a socket";
+    if (S_ISDIR(mode)) return "a folder";
+    return "not a regular file";
+}
+
+/** An output is written under a temporary name and renamed over its place, which would replace a device, FIFO or
+ *  socket by a regular file (as root, `--stats /dev/null` would replace the machine's /dev/null). */
+void requireRegularFileOrNewName(const fs::path& path, const std::string& what) {
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0) return; // a new name (a dangling link is replaced by the file)
+    if (S_ISDIR(status.st_mode)) throw FileError("checkOutputs(): " + what + " is a folder; give a file name");
+    if (!S_ISREG(status.st_mode))
+        throw FileError("checkOutputs(): " + what + " is " + kindOf(status.st_mode) +
+                        "; outputs are written as new files and renamed into place, which would replace it, so give "
+                        "the name of a regular file or a new one");
+}
+
+/** The rename at the end would fail on a name the file system cannot hold: said now, before any work. */
+void requireNameFits(const fs::path& path, const std::string& what) {
+    const std::string name = path.filename().string();
+    const long limit = ::pathconf(folderOf(path).c_str(), _PC_NAME_MAX);
+    if (limit > 0 && name.size() > std::size_t(limit))
+        throw FileError("checkOutputs(): " + what + ": its file name is " + std::to_string(name.size()) +
+                        " bytes; this file system holds names of at most " + std::to_string(limit));
+}
+
+/** The commit's test hooks: INKGRAPH_TEST_COMMIT_KILL / _FAIL = the step after which to stop. */
+class CommitSteps {
+public:
+    CommitSteps() : mKillAfter(stepFrom("INKGRAPH_TEST_COMMIT_KILL")), mFailAfter(stepFrom("INKGRAPH_TEST_COMMIT_FAIL")) {}
+
+    /** A step that can still be undone. */
+    void done(const std::string& step) {
+        doneAfterCommit(step);
+        if (mCount == mFailAfter)
+            throw FileError("OutputSet::commit(): test hook: failed after commit step " + std::to_string(mCount) +
+                            " (" + step + ")");
+    }
+
+    /** A step after the commit point: it can be killed, not failed. */
+    void doneAfterCommit(const std::string& step) {
+        ++mCount;
+        if (mCount == mKillAfter) {
+            std::cerr << "inkgraph: test hook: killed after commit step " << mCount << " (" << step << ")" << std::endl;
+            ::kill(::getpid(), SIGKILL);
+        }
+    }
+
+private:
+    static int stepFrom(const char* variable) {
+        const char* value = std::getenv(variable);
+        return value ? std::atoi(value) : 0;
+    }
+    int mKillAfter;
+    int mFailAfter;
+    int mCount = 0;
+};
+
+/** Signals wait while the commit runs: a Ctrl-C then lands after it, with every output old or every one new. */
+class SignalsHeld {
+public:
+    SignalsHeld() {
+        sigset_t held;
+        sigemptyset(&held);
+        for (int signalNumber : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&held, signalNumber);
+        ::pthread_sigmask(SIG_BLOCK, &held, &mPrevious);
+    }
+    ~SignalsHeld() { ::pthread_sigmask(SIG_SETMASK, &mPrevious, nullptr); }
+    SignalsHeld(const SignalsHeld&) = delete;
+    SignalsHeld& operator=(const SignalsHeld&) = delete;
+
+private:
+    sigset_t mPrevious;
+};
+
 } // namespace
 
 fs::path resolvedPath(const fs::path& path) {
@@ -59,172 +140,161 @@ fs::path resolvedPath(const fs::path& path) {
     return error ? fs::absolute(path).lexically_normal() : result;
 }
 
-std::optional<std::vector<std::string>> earlierDumpFiles(const fs::path& directory) {
-    std::ifstream file(directory / "manifest.json");
-    if (!file) return std::nullopt;
-    const auto manifest = nlohmann::json::parse(file, nullptr, false);
-    if (!manifest.is_object() || !manifest.contains("inkgraph") || !manifest.contains("files")) return std::nullopt;
-    std::set<std::string> listed = {"manifest.json"};
-    for (const auto& entry : manifest["files"])
-        if (entry.contains("file") && entry["file"].is_string()) listed.insert(entry["file"].get<std::string>());
-    std::error_code error;
-    for (fs::directory_iterator it(directory, error), end; !error && it != end; it.increment(error)) {
-        const std::string name = it->path().filename().string();
-        if (name.rfind(".inkgraph-staging-", 0) == 0) continue; // another run's work in progress
-        if (listed.count(name) == 0) return std::nullopt;
-    }
-    if (error) return std::nullopt;
-    return std::vector<std::string>(listed.begin(), listed.end());
-}
-
-OutputSet::OutputSet(const RenderOptions& options) : mOptions(options) {
-    struct Named {
-        std::string flag;
-        std::string path;
-    };
-    std::vector<Named> files; // every output file; the --dump folder is checked apart
+OutputSet::OutputSet(const RenderOptions& options) {
     for (const auto& [flag, field] : outputPathFlags())
-        if (flag != "--dump" && !(options.*field).empty()) files.push_back({flag, options.*field});
+        if (flag != "--dump" && !(options.*field).empty()) mOutputs.push_back({flag, options.*field, {}, {}, false});
 
     // Collisions first: they are mistakes in the command line, whatever the file system says.
-    const fs::path model = resolvedPath(options.modelPath);
-    const fs::path shadeMap = options.shadeMapPath.empty() ? fs::path() : resolvedPath(options.shadeMapPath);
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        const fs::path path = resolvedPath(files[i].path);
-        if (path == model)
-            throw UsageError(files[i].flag + " '" + files[i].path + "' is the model itself; choose another file");
-        if (!shadeMap.empty() && path == shadeMap)
-            throw UsageError(files[i].flag + " '" + files[i].path + "' is the --shademap itself; choose another file");
-        for (std::size_t j = i + 1; j < files.size(); ++j)
-            if (path == resolvedPath(files[j].path))
-                throw UsageError(files[i].flag + " and " + files[j].flag + " name the same file '" + files[i].path +
-                                 "'");
+    for (std::size_t i = 0; i < mOutputs.size(); ++i) {
+        const Output& file = mOutputs[i];
+        const fs::path path = resolvedPath(file.destination);
+        const auto identity = fileIdentity(file.destination);
+        for (std::size_t j = i + 1; j < mOutputs.size(); ++j) {
+            const auto other = fileIdentity(mOutputs[j].destination);
+            if (path == resolvedPath(mOutputs[j].destination) || (identity && other && *identity == *other))
+                throw UsageError(file.flag + " and " + mOutputs[j].flag + " name the same file '" +
+                                 file.destination.string() + "'");
+        }
         if (!options.dumpDirectory.empty() && isInside(path, resolvedPath(options.dumpDirectory)))
-            throw UsageError(files[i].flag + " '" + files[i].path + "' lies inside --dump '" + options.dumpDirectory +
-                             "', whose contents each dump replaces; write it elsewhere");
+            throw UsageError(file.flag + " '" + file.destination.string() + "' lies inside --dump '" +
+                             options.dumpDirectory + "', whose contents each dump replaces; write it elsewhere");
     }
+    std::vector<RunInput> inputs = {{options.modelPath, "the model itself"}};
+    if (!options.shadeMapPath.empty()) inputs.push_back({options.shadeMapPath, "the --shademap itself"});
+    if (!options.stylePath.empty()) inputs.push_back({options.stylePath, "the --style file"});
+    if (!options.listPath.empty() && options.listPath != "-") inputs.push_back({options.listPath, "the --list file"});
+    refuseInputs(inputs);
 
-    for (const Named& file : files) {
-        std::error_code error;
-        const std::string what = file.flag + " '" + file.path + "'";
-        if (fs::is_directory(file.path, error))
-            throw FileError("checkOutputs(): " + what + " is a folder; give a file name");
-        requireWritableFolder(folderOf(file.path), what);
-        sweepStaleTemporaries(folderOf(file.path));
+    for (const Output& file : mOutputs) {
+        const std::string what = file.flag + " '" + file.destination.string() + "'";
+        requireRegularFileOrNewName(file.destination, what);
+        requireWritableFolder(folderOf(file.destination), what);
+        requireNameFits(file.destination, what);
+        sweepStaleTemporaries(folderOf(file.destination));
     }
-    if (!options.dumpDirectory.empty()) checkDumpFolder();
+    if (!options.dumpDirectory.empty()) {
+        mDump.emplace(options.dumpDirectory);
+        refuseInputs(inputs); // the files of an earlier dump are known now
+    }
 }
 
-void OutputSet::checkDumpFolder() {
-    mDumpDirectory = fs::path(mOptions.dumpDirectory);
-    const std::string what = "--dump '" + mOptions.dumpDirectory + "'";
-    std::error_code error;
-    const fs::file_status status = fs::status(mDumpDirectory, error);
-    if (fs::exists(status)) {
-        if (!fs::is_directory(status)) throw FileError("checkOutputs(): " + what + " is a file, not a folder");
-        sweepStaleTemporaries(mDumpDirectory);
-        if (!fs::is_empty(mDumpDirectory, error) && !earlierDumpFiles(mDumpDirectory))
-            throw FileError("checkOutputs(): " + what + " holds files that are not an inkgraph dump; give a new or "
-                            "empty folder (each dump replaces the previous one's files)");
-    } else if (error && error != std::errc::no_such_file_or_directory) {
-        throw FileError("checkOutputs(): " + what + ": " + error.message());
-    } else {
-        // Created now, and removed again (with any parents created for it) if the run fails.
-        for (fs::path missing = fs::absolute(mDumpDirectory).lexically_normal();
-             !missing.empty() && !fs::exists(missing, error); missing = missing.parent_path())
-            mCreatedFolders.push_back(missing);
-        fs::create_directories(mDumpDirectory, error);
-        if (error) throw FileError("checkOutputs(): cannot create " + what + ": " + error.message());
-        // Outermost first, so an interrupted run removes the innermost first (app/TemporaryFiles.h).
-        for (auto folder = mCreatedFolders.rbegin(); folder != mCreatedFolders.rend(); ++folder)
-            registerTemporary(*folder);
+void OutputSet::refuseInputs(const std::vector<RunInput>& inputs) const {
+    for (const RunInput& input : inputs) {
+        const auto identity = fileIdentity(input.path);
+        const fs::path place = resolvedPath(input.path);
+        for (const Output& file : mOutputs) {
+            const auto other = fileIdentity(file.destination);
+            if (place == resolvedPath(file.destination) || (identity && other && *identity == *other))
+                throw UsageError(file.flag + " '" + file.destination.string() + "' is " + input.what +
+                                 "; choose another file");
+        }
+        if (!mDump || !identity) continue;
+        for (const std::string& name : mDump->earlierFiles())
+            if (fileIdentity(mDump->folder() / name) == identity)
+                throw UsageError("--dump '" + mDump->shownName() + "' holds '" + name + "', which is " + input.what +
+                                 ", and a dump replaces its folder's files; choose another folder");
     }
-    requireWritableFolder(mDumpDirectory, what);
-    mStaging = mDumpDirectory / (".inkgraph-staging-" + std::to_string(::getpid()));
-    fs::remove_all(mStaging, error);
-    if (!fs::create_directory(mStaging, error))
-        throw FileError("checkOutputs(): cannot create a staging folder in " + what + ": " + error.message());
-    registerTemporary(mStaging);
 }
 
 OutputSet::~OutputSet() {
     if (mCommitted) return;
-    std::error_code ignored;
-    for (const Staged& file : mFiles) {
-        fs::remove(file.temporary, ignored);
+    for (const Output& file : mOutputs) {
+        if (file.temporary.empty()) continue;
+        ::unlink(file.temporary.c_str());
         forgetTemporary(file.temporary);
     }
-    if (!mStaging.empty()) {
-        fs::remove_all(mStaging, ignored);
-        forgetTemporary(mStaging);
-    }
-    for (const fs::path& folder : mCreatedFolders) {
-        fs::remove(folder, ignored); // only if empty
-        forgetTemporary(folder);
-    }
 }
 
-void OutputSet::stageFile(const fs::path& destination, const cv::Mat* image, const std::string* text) {
-    const fs::path temporary = temporarySibling(destination);
-    if (image != nullptr) writeImageTo(temporary, destination, *image);
-    else writeBytes(temporary, text->data(), text->size(), destination.string());
-    mFiles.push_back({temporary, destination});
+OutputSet::Output& OutputSet::output(const std::string& flag) {
+    for (Output& file : mOutputs)
+        if (file.flag == flag) return file;
+    throw std::logic_error("OutputSet::output(): '" + flag + "' was not given");
 }
 
-void OutputSet::stageFinalImage(const cv::Mat& image) { stageFile(mOptions.outputPath, &image, nullptr); }
-void OutputSet::stageStats(const std::string& json) { stageFile(mOptions.statsPath, nullptr, &json); }
-void OutputSet::stageGraphviz(const std::string& dot) { stageFile(mOptions.graphvizPath, nullptr, &dot); }
-void OutputSet::stageContactSheet(const cv::Mat& image) { stageFile(mOptions.contactSheetPath, &image, nullptr); }
-void OutputSet::stageSvg(const std::string& svg) { stageFile(mOptions.svgPath, nullptr, &svg); }
+void OutputSet::stageFile(const std::string& flag, const cv::Mat* image, const std::string* text) {
+    Output& file = output(flag);
+    const fs::path temporary = temporarySibling(file.destination);
+    if (image != nullptr) writeImageTo(temporary, file.destination, *image);
+    else writeBytes(temporary, text->data(), text->size(), file.destination.string());
+    file.temporary = temporary;
+}
+
+void OutputSet::stageFinalImage(const cv::Mat& image) { stageFile("-o", &image, nullptr); }
+void OutputSet::stageStats(const std::string& json) { stageFile("--stats", nullptr, &json); }
+void OutputSet::stageGraphviz(const std::string& dot) { stageFile("--graphviz", nullptr, &dot); }
+void OutputSet::stageContactSheet(const cv::Mat& image) { stageFile("--contact-sheet", &image, nullptr); }
+void OutputSet::stageSvg(const std::string& svg) { stageFile("--svg", nullptr, &svg); }
 
 void OutputSet::stageDumpImage(const std::string& fileName, const cv::Mat& image) {
-    writeImageTo(mStaging / fileName, mDumpDirectory / fileName, image);
-    mDumpNames.push_back(fileName);
+    writeImageTo(mDump->stage(fileName), mDump->folder() / fileName, image);
 }
 
 void OutputSet::stageDumpManifest(const std::string& json) {
-    writeBytes(mStaging / "manifest.json", json.data(), json.size(), (mDumpDirectory / "manifest.json").string());
-    mDumpNames.push_back("manifest.json");
+    writeBytes(mDump->stage("manifest.json"), json.data(), json.size(),
+               (mDump->folder() / "manifest.json").string());
 }
 
-void OutputSet::commitDump() {
-    // A lock on the folder itself: runs dumping into one folder in parallel commit one after the other.
-    const int folder = ::open(mDumpDirectory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (folder < 0 || ::flock(folder, LOCK_EX) != 0)
-        throw FileError("OutputSet::commit(): cannot lock --dump '" + mDumpDirectory.string() +
-                        "': " + std::strerror(errno));
-    std::error_code error;
-    // The manifest goes first and comes back last, so a folder with a manifest always holds one whole dump.
-    if (const auto earlier = earlierDumpFiles(mDumpDirectory)) {
-        fs::remove(mDumpDirectory / "manifest.json", error);
-        for (const std::string& name : *earlier) fs::remove(mDumpDirectory / name, error);
-    }
-    for (const std::string& name : mDumpNames) {
-        fs::rename(mStaging / name, mDumpDirectory / name, error);
-        if (error) {
-            ::close(folder);
-            throw FileError("OutputSet::commit(): cannot move '" + name + "' into --dump '" +
-                            mDumpDirectory.string() + "': " + error.message());
+void OutputSet::undo() {
+    for (auto file = mOutputs.rbegin(); file != mOutputs.rend(); ++file) {
+        if (file->moved) {
+            // Our new file goes back to its temporary name (the destructor removes it), the old one back in place.
+            if (::rename(file->destination.c_str(), file->temporary.c_str()) == 0) file->moved = false;
+            if (!file->backup.empty() && ::rename(file->backup.c_str(), file->destination.c_str()) == 0)
+                file->backup.clear();
         }
-        forgetTemporary(mStaging / name);
+        if (!file->backup.empty() && ::unlink(file->backup.c_str()) == 0) file->backup.clear();
     }
-    ::close(folder);
-    fs::remove_all(mStaging, error);
-    forgetTemporary(mStaging);
+    if (mDump) mDump->undo();
 }
 
 void OutputSet::commit() {
-    if (!mStaging.empty()) commitDump();
-    for (const Staged& file : mFiles) {
-        std::error_code error;
-        fs::rename(file.temporary, file.destination, error);
-        if (error)
-            throw FileError("OutputSet::commit(): cannot move the finished file into place as '" +
-                            file.destination.string() + "': " + error.message());
-        forgetTemporary(file.temporary);
+    const SignalsHeld signalsHeld;
+    CommitSteps steps;
+    try {
+        steps.done("everything staged");
+        if (mDump) {
+            mDump->markEarlier();
+            steps.done("earlier dump marked");
+        }
+        for (Output& file : mOutputs) {
+            if (file.temporary.empty() || !fs::exists(fs::symlink_status(file.destination))) continue;
+            // A second name for the file being replaced, so a failure further on can put it back.
+            const fs::path backup = temporarySibling(file.destination);
+            if (::link(file.destination.c_str(), backup.c_str()) == 0) {
+                file.backup = backup;
+            } else if (errno != EPERM && errno != EOPNOTSUPP && errno != EMLINK) {
+                // (Those three: a file system without hard links. The file is then replaced without a way back.)
+                throw FileError("OutputSet::commit(): cannot keep the earlier " + file.flag + " '" +
+                                file.destination.string() + "' until the commit ends: " + std::strerror(errno));
+            }
+            steps.done("earlier " + file.flag + " kept");
+        }
+        if (mDump) {
+            mDump->swapIn();
+            steps.done("dump swapped in");
+        }
+        for (Output& file : mOutputs) {
+            if (file.temporary.empty()) continue;
+            if (::rename(file.temporary.c_str(), file.destination.c_str()) != 0)
+                throw FileError("OutputSet::commit(): cannot move the finished file into place as '" +
+                                file.destination.string() + "': " + std::strerror(errno));
+            file.moved = true;
+            steps.done(file.flag + " moved into place");
+        }
+    } catch (...) {
+        undo();
+        throw;
     }
-    for (const fs::path& folder : mCreatedFolders) forgetTemporary(folder);
+    // Committed. What is left is tidying: a crash here leaves names the next run sweeps.
     mCommitted = true;
+    for (Output& file : mOutputs) {
+        forgetTemporary(file.temporary);
+        if (!file.backup.empty()) ::unlink(file.backup.c_str());
+    }
+    if (mDump) {
+        mDump->finish();
+        steps.doneAfterCommit("dump tidied");
+    }
 }
 
 } // namespace inkgraph

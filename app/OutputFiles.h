@@ -1,10 +1,17 @@
 #pragma once
-/** @file Every output of one run as a transaction. The constructor checks every output place before any work;
- *  files are then staged under temporary names and only commit() puts them in place, so a run that fails at any
- *  point changes none of the user's files (and a signal removes what was staged: app/TemporaryFiles.h).
- *  --dump DIR is filled from a staging folder inside DIR: at commit the previous dump's files are removed and the
- *  new ones moved in, the manifest last, under a lock on DIR so parallel runs never mix. */
+/** @file Every output of one run as a transaction. The constructor checks every output place before any work:
+ *  outputs are regular files or new names (a device, FIFO or socket is refused), never one another, never a file the
+ *  run reads (refuseInputs(), compared by device and inode). Files are then staged under temporary names, the dump
+ *  in a staging folder (app/DumpFolder.h), and only commit() puts them in place: all of them, or, when any step
+ *  fails, none (the steps done are undone). A run that fails at any point changes none of the user's files, and a
+ *  signal removes what was staged (app/TemporaryFiles.h). A crash (kill -9) inside the commit leaves each output
+ *  whole, old or new, and the next run sweeps what the crash left.
+ *
+ *  Test hooks (tests/app/OutputTransactionGLTest.cpp): INKGRAPH_TEST_COMMIT_KILL=N ends the process with SIGKILL
+ *  after the commit's N-th step, INKGRAPH_TEST_COMMIT_FAIL=N fails the commit there; both say on stderr which step
+ *  it was. */
 
+#include "app/DumpFolder.h"
 #include "app/Options.h"
 
 #include <opencv2/core.hpp>
@@ -16,15 +23,25 @@
 
 namespace inkgraph {
 
+/** A file the run reads, for refuseInputs(): `what` completes "-o 'x' is ..." (e.g. "the model itself"). */
+struct RunInput {
+    std::string path;
+    std::string what;
+};
+
 class OutputSet {
 public:
-    /** Throws UsageError when outputs collide (with each other, with the model, or inside --dump DIR) and FileError
-     *  when an output place cannot be written, naming the flag and the path. May create DIR (removed again if the
-     *  run fails). */
+    /** Throws UsageError when outputs collide (with each other, with the inputs the options name, or inside --dump
+     *  DIR) and FileError when an output place cannot be written or is not a regular file, naming the flag and the
+     *  path. May create DIR (removed again if the run fails). */
     explicit OutputSet(const RenderOptions& options);
     ~OutputSet();
     OutputSet(const OutputSet&) = delete;
     OutputSet& operator=(const OutputSet&) = delete;
+
+    /** Throws UsageError when an output, or a file the commit would replace in --dump DIR, is one of `inputs`. The
+     *  model, --shademap, --style and --list are checked by the constructor; the app adds what loading found. */
+    void refuseInputs(const std::vector<RunInput>& inputs) const;
 
     void stageFinalImage(const cv::Mat& image);   ///< -o
     void stageStats(const std::string& json);     ///< --stats
@@ -34,34 +51,28 @@ public:
     void stageDumpImage(const std::string& fileName, const cv::Mat& image);
     void stageDumpManifest(const std::string& json);
 
-    /** Moves everything staged into place. */
+    /** Puts everything staged in place, or nothing (throws FileError). */
     void commit();
 
 private:
-    struct Staged {
-        std::filesystem::path temporary;
+    struct Output {
+        std::string flag;
         std::filesystem::path destination;
+        std::filesystem::path temporary; ///< empty until staged
+        std::filesystem::path backup;    ///< a hard link to the file it replaces, during the commit
+        bool moved = false;
     };
-    void stageFile(const std::filesystem::path& destination, const cv::Mat* image, const std::string* text);
-    void checkDumpFolder();
-    void commitDump();
+    Output& output(const std::string& flag);
+    void stageFile(const std::string& flag, const cv::Mat* image, const std::string* text);
+    void undo();
 
-    const RenderOptions& mOptions;
-    std::vector<Staged> mFiles;          ///< -o, --stats, --graphviz, --contact-sheet, --svg
-    std::vector<std::string> mDumpNames; ///< staged in mStaging, manifest.json last
-    std::filesystem::path mDumpDirectory;
-    std::filesystem::path mStaging;
-    std::vector<std::filesystem::path> mCreatedFolders; ///< outermost last; removed if the run fails
+    std::vector<Output> mOutputs; ///< -o, --stats, --graphviz, --contact-sheet, --svg, as given
+    std::optional<DumpFolder> mDump;
     bool mCommitted = false;
 };
 
 /** The place a path names, for comparing outputs and inputs: absolute, with the links that exist resolved (two
  *  spellings of one file compare equal); lexically normalised where it cannot be resolved. */
 std::filesystem::path resolvedPath(const std::filesystem::path& path);
-
-/** The files an earlier --dump wrote into `directory` (from its manifest.json, which is included), or nothing when
- *  `directory` holds anything else: then it is not ours to replace. Staging folders of running inkgraph processes
- *  are ignored. */
-std::optional<std::vector<std::string>> earlierDumpFiles(const std::filesystem::path& directory);
 
 } // namespace inkgraph

@@ -63,14 +63,13 @@ void removeTemporariesOnSignals() {
 }
 
 bool isStaleTemporary(const std::string& name) {
-    for (const char* prefix : {".inkgraph-staging-", ".inkgraph-"}) {
-        if (name.rfind(prefix, 0) != 0) continue;
-        const std::string rest = name.substr(std::strlen(prefix));
-        const long pid = std::strtol(rest.c_str(), nullptr, 10);
-        if (pid <= 0) return false;
-        return ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
-    }
-    return false;
+    constexpr const char* kPrefix = ".inkgraph-"; // then "<pid>-<n>.tmp" (app/ImageFiles.h temporarySibling)
+    if (name.rfind(kPrefix, 0) != 0) return false;
+    const char* digits = name.c_str() + std::strlen(kPrefix);
+    char* end = nullptr;
+    const long pid = std::strtol(digits, &end, 10);
+    if (end == digits || *end != '-' || pid <= 0) return false;
+    return ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
 }
 
 } // namespace inkgraph

@@ -15,7 +15,8 @@ void forgetTemporary(const std::filesystem::path& path);
  *  would have. SIGXFSZ is ignored, so a write past the file-size limit fails with EFBIG and is reported. */
 void removeTemporariesOnSignals();
 
-/** True when `name` is one of ours (".inkgraph-<pid>-...") and that process no longer runs: left by a killed run. */
+/** True when `name` is one of our temporary names (".inkgraph-<pid>-<n>...") and that process no longer runs: left
+ *  by a killed run. (Staging folders of --dump have their own test: app/DumpFolder.h.) */
 bool isStaleTemporary(const std::string& name);
 
 } // namespace inkgraph

@@ -198,5 +198,24 @@ TEST(BatchOutputs, NoStillMayOverwriteAModelOfTheList) {
         << message;
 }
 
+TEST(BatchOutputs, AHardLinkOfAModelIsThatModel) {
+    // Another name, the same inode: writing '1.png' for the first still would change the second model.
+    const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() / ("inkgraph-batch-link-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder);
+    std::ofstream(folder / "b.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::ofstream(folder / "a.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::filesystem::create_hard_link(folder / "b.obj", folder / "1.png");
+    std::istringstream none;
+    RenderOptions options = withModels({(folder / "a.obj").string(), (folder / "b.obj").string()});
+    options.outputPath = (folder / "{index}.png").string();
+    const std::string message = usageMessage(options, batchList(options, none));
+    std::filesystem::remove_all(folder);
+    EXPECT_NE(message.find("1.png' (for '" + (folder / "a.obj").string() + "') would overwrite the model '" +
+                           (folder / "b.obj").string() + "'"),
+              std::string::npos)
+        << message;
+}
+
 } // namespace
 } // namespace inkgraph

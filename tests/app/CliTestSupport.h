@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -66,6 +67,21 @@ protected:
         for (const auto& entry : fs::directory_iterator(folder)) names.push_back(entry.path().filename().string());
         std::sort(names.begin(), names.end());
         return names;
+    }
+
+    /** Everything under `folder` (links not followed): each relative path with its kind and, for files, every byte
+     *  (for links, the target). Equal snapshots: nothing was added, removed or changed. FIFOs are never opened. */
+    static std::map<std::string, std::string> snapshot(const fs::path& folder) {
+        std::map<std::string, std::string> entries;
+        for (auto it = fs::recursive_directory_iterator(folder); it != fs::recursive_directory_iterator(); ++it) {
+            const std::string name = fs::relative(it->path(), folder).string();
+            const fs::file_status status = it->symlink_status();
+            if (fs::is_symlink(status)) entries[name] = "link to " + fs::read_symlink(it->path()).string();
+            else if (fs::is_regular_file(status)) entries[name] = "file: " + readText(it->path());
+            else if (fs::is_directory(status)) entries[name] = "folder";
+            else entries[name] = "special";
+        }
+        return entries;
     }
 
     /** A bundled model's path, quoted for the shell. */

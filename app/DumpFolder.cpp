@@ -1,0 +1,330 @@
+#include "app/DumpFolder.h"
+
+#include "app/ImageFiles.h"
+#include "app/TemporaryFiles.h"
+
+#include <nlohmann/json.hpp>
+
+#include <dirent.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <set>
+
+namespace inkgraph {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kStagingPrefix = ".inkgraph-dump-";
+constexpr const char* kManifest = "manifest.json";
+/** A manifest is a few KiB; anything far larger is not one of ours and is not read. */
+constexpr std::uintmax_t kMaxManifestBytes = std::uintmax_t(16) << 20;
+
+/** A name from a file, quoted in a message: at most 80 bytes of it. */
+std::string quotedName(const std::string& name) {
+    // Appended, not "'" + name: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
+    std::string quoted = "'";
+    if (name.size() <= 80) return quoted.append(name).append("'");
+    return quoted.append(name, 0, 60).append("...' (").append(std::to_string(name.size())).append(" bytes)");
+}
+
+bool isPlainFileName(const std::string& name) {
+    return !name.empty() && name != "." && name != ".." && name.find('/') == std::string::npos &&
+           name.find('\0') == std::string::npos;
+}
+
+/** The names in a folder, "." and ".." left out; nothing when it cannot be read. */
+std::optional<std::vector<std::string>> namesIn(const fs::path& folder) {
+    DIR* directory = ::opendir(folder.c_str());
+    if (directory == nullptr) return std::nullopt;
+    std::vector<std::string> names;
+    while (const dirent* entry = ::readdir(directory)) {
+        const std::string name = entry->d_name;
+        if (name != "." && name != "..") names.push_back(name);
+    }
+    ::closedir(directory);
+    return names;
+}
+
+/** Removes the plain files and links directly inside the folder `folderDescriptor` (never a subfolder, never
+ *  anything a link points to), `last` after the others. */
+void removePlainFilesIn(int folderDescriptor, const std::string& last) {
+    const int listing = ::dup(folderDescriptor);
+    if (listing < 0) return;
+    DIR* directory = ::fdopendir(listing);
+    if (directory == nullptr) {
+        ::close(listing);
+        return;
+    }
+    std::vector<std::string> names;
+    while (const dirent* entry = ::readdir(directory)) names.push_back(entry->d_name);
+    ::closedir(directory);
+    for (const std::string& name : names) {
+        struct stat status {};
+        if (name == "." || name == ".." || name == last) continue;
+        if (::fstatat(folderDescriptor, name.c_str(), &status, AT_SYMLINK_NOFOLLOW) != 0) continue;
+        if (S_ISREG(status.st_mode) || S_ISLNK(status.st_mode)) ::unlinkat(folderDescriptor, name.c_str(), 0);
+    }
+    ::unlinkat(folderDescriptor, last.c_str(), 0);
+}
+
+/** The pid in ".inkgraph-dump-<pid>-<n>", or 0. */
+long stagingFolderPid(const std::string& name) {
+    if (name.rfind(kStagingPrefix, 0) != 0) return 0;
+    const char* digits = name.c_str() + std::strlen(kStagingPrefix);
+    char* end = nullptr;
+    const long pid = std::strtol(digits, &end, 10);
+    return end != digits && *end == '-' && pid > 0 ? pid : 0;
+}
+
+fs::path newStagingName(const fs::path& parent) {
+    static std::atomic<int> counter{0};
+    return parent / (kStagingPrefix + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+}
+
+/** Swaps two names atomically (Linux 3.15 and later; ext4, xfs, btrfs, tmpfs and overlayfs support it). */
+int exchangeFolders(const fs::path& first, const fs::path& second) {
+    return ::renameat2(AT_FDCWD, first.c_str(), AT_FDCWD, second.c_str(), RENAME_EXCHANGE);
+}
+
+} // namespace
+
+std::optional<FileIdentity> fileIdentity(const fs::path& path) {
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0) return std::nullopt;
+    return FileIdentity{status.st_dev, status.st_ino};
+}
+
+EarlierDump readEarlierDump(const fs::path& folder) {
+    EarlierDump dump;
+    const auto names = namesIn(folder);
+    if (!names) return {{}, std::string("it cannot be read: ") + std::strerror(errno)};
+    std::set<std::string> present(names->begin(), names->end());
+    present.erase(kStagingMarker);
+    if (present.empty()) return dump;
+    if (!present.count(kManifest)) return {{}, "it has no manifest.json"};
+
+    struct stat status {};
+    const fs::path manifestPath = folder / kManifest;
+    if (::lstat(manifestPath.c_str(), &status) != 0 || !S_ISREG(status.st_mode) ||
+        std::uintmax_t(status.st_size) > kMaxManifestBytes)
+        return {{}, "its manifest.json is not a file inkgraph wrote"};
+    std::ifstream file(manifestPath);
+    const auto manifest = nlohmann::json::parse(file, nullptr, false);
+    if (!manifest.is_object() || !manifest.contains("inkgraph") || !manifest.contains("files") ||
+        !manifest["files"].is_array())
+        return {{}, "its manifest.json is not an inkgraph manifest"};
+    std::set<std::string> listed = {kManifest};
+    for (const auto& entry : manifest["files"]) {
+        if (!entry.is_object() || !entry.contains("file") || !entry["file"].is_string())
+            return {{}, "its manifest.json has a file entry without a name"};
+        const std::string name = entry["file"].get<std::string>();
+        if (!isPlainFileName(name))
+            return {{}, "its manifest.json names " + quotedName(name) + ", which is not a plain file name"};
+        if (::lstat((folder / name).c_str(), &status) != 0 || !S_ISREG(status.st_mode))
+            return {{}, "its manifest.json names " + quotedName(name) + ", which is not a file in it"};
+        listed.insert(name);
+    }
+    for (const std::string& name : present)
+        if (!listed.count(name)) return {{}, "it holds " + quotedName(name) + ", which its manifest.json does not name"};
+    dump.files.assign(listed.begin(), listed.end());
+    return dump;
+}
+
+void sweepStaleStagingFolders(const fs::path& parent) {
+    const auto names = namesIn(parent);
+    if (!names) return;
+    for (const std::string& name : *names) {
+        const long pid = stagingFolderPid(name);
+        if (pid == 0 || !(::kill(pid_t(pid), 0) != 0 && errno == ESRCH)) continue;
+        const fs::path path = parent / name;
+        const int folder = ::open(path.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        if (folder < 0) continue;
+        struct stat marker {};
+        if (::fstatat(folder, kStagingMarker, &marker, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(marker.st_mode)) {
+            removePlainFilesIn(folder, kStagingMarker);
+            ::rmdir(path.c_str()); // fails, and leaves it, if anything else is inside
+        }
+        ::close(folder);
+    }
+}
+
+DumpFolder::DumpFolder(const std::string& flagValue) : mShownName(flagValue) {
+    try {
+        check(flagValue);
+    } catch (...) {
+        abandon(); // a constructor that throws runs no destructor
+        throw;
+    }
+}
+
+void DumpFolder::check(const std::string& flagValue) {
+    const std::string what = "--dump '" + flagValue + "'";
+    const auto fail = [&](const std::string& problem) { throw FileError("checkOutputs(): " + what + " " + problem); };
+    std::error_code error;
+    fs::path folder = fs::absolute(flagValue, error);
+    if (error) fail("cannot be found: " + error.message());
+    folder = folder.lexically_normal();
+    if (!folder.has_filename()) folder = folder.parent_path(); // "d/" and "d/." name d itself
+    const fs::file_status status = fs::status(folder, error);
+    if (error && error != std::errc::no_such_file_or_directory) fail(": " + error.message());
+    if (fs::exists(status)) {
+        if (!fs::is_directory(status)) fail("is a file, not a folder");
+        folder = fs::canonical(folder, error); // the swap replaces the folder itself, never a link to it
+        if (error) fail(": " + error.message());
+    } else {
+        // Created now (its missing parents too), removed again if the run fails; the commit swaps the dump in for it.
+        for (fs::path missing = folder; !missing.empty() && !fs::exists(missing, error);
+             missing = missing.parent_path())
+            mCreatedFolders.push_back(missing);
+        fs::create_directories(folder, error);
+        if (error) fail("cannot be created: " + error.message());
+        for (auto created = mCreatedFolders.rbegin(); created != mCreatedFolders.rend(); ++created)
+            registerTemporary(*created); // outermost first: a signal removes the innermost first
+    }
+    if (folder == folder.root_path()) fail("is the root folder; give a folder of its own");
+    mFolder = folder;
+    const fs::path parent = folder.parent_path();
+
+    struct stat folderStatus {}, parentStatus {};
+    if (::stat(folder.c_str(), &folderStatus) != 0 || ::stat(parent.c_str(), &parentStatus) != 0)
+        fail(std::string(": ") + std::strerror(errno));
+    if (folderStatus.st_dev != parentStatus.st_dev)
+        fail("is a mount point; a dump is staged beside its folder and swapped in, so give a folder inside it");
+    mFolderMode = folderStatus.st_mode & 07777;
+    const fs::path probe = temporarySibling(parent / "probe");
+    const int probeFile = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (probeFile < 0)
+        fail("cannot be staged: a dump is written beside its folder, in '" + parent.string() +
+             "', and swapped in whole: " + std::strerror(errno));
+    ::close(probeFile);
+    ::unlink(probe.c_str());
+
+    // Locked until the commit ends. The lock is on the folder's inode, and a commit swaps another inode in under the
+    // name, so a lock taken on a folder that was swapped out meanwhile is let go and taken again on the new one.
+    for (int attempt = 0; mLock < 0; ++attempt) {
+        const int lock = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (lock < 0) fail(std::string("cannot be opened: ") + std::strerror(errno));
+        if (::flock(lock, LOCK_EX | LOCK_NB) != 0) {
+            const int reason = errno;
+            ::close(lock);
+            if (reason == EWOULDBLOCK)
+                fail("is being written by another inkgraph run; wait until it has finished, or give another folder");
+            fail(std::string("cannot be locked: ") + std::strerror(reason));
+        }
+        struct stat locked {}, named {};
+        if (::fstat(lock, &locked) == 0 && ::stat(folder.c_str(), &named) == 0 && locked.st_dev == named.st_dev &&
+            locked.st_ino == named.st_ino) {
+            mLock = lock;
+        } else {
+            ::close(lock);
+            if (attempt == 10) fail("keeps being replaced by another run");
+        }
+    }
+
+    sweepStaleStagingFolders(parent);
+    const auto names = namesIn(folder);
+    mHadEarlierDump = names && !names->empty();
+    if (mHadEarlierDump) {
+        EarlierDump earlier = readEarlierDump(folder);
+        if (!earlier.problem.empty())
+            fail("holds files that are not an inkgraph dump (" + earlier.problem +
+                 "); give a new or empty folder (each dump replaces the previous one's files)");
+        mEarlierFiles = std::move(earlier.files);
+    }
+
+    mStaging = newStagingName(parent);
+    if (::mkdir(mStaging.c_str(), 0700) != 0) fail("cannot be staged: " + std::string(std::strerror(errno)));
+    registerTemporary(mStaging);
+    const fs::path marker = mStaging / kStagingMarker;
+    const int markerFile = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (markerFile < 0) fail("cannot be staged: " + std::string(std::strerror(errno)));
+    ::close(markerFile);
+    registerTemporary(marker);
+}
+
+DumpFolder::~DumpFolder() { abandon(); }
+
+void DumpFolder::abandon() {
+    if (!mSwapped && !mStaging.empty()) {
+        const int staging = ::open(mStaging.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        if (staging >= 0) {
+            removePlainFilesIn(staging, kStagingMarker);
+            ::close(staging);
+        }
+        ::rmdir(mStaging.c_str());
+        forgetTemporary(mStaging / kStagingMarker);
+        forgetTemporary(mStaging);
+    }
+    if (!mSwapped)
+        for (const fs::path& folder : mCreatedFolders) ::rmdir(folder.c_str()); // innermost first, only if empty
+    for (const fs::path& folder : mCreatedFolders) forgetTemporary(folder);
+    mCreatedFolders.clear();
+    mStaging.clear();
+    if (mLock >= 0) ::close(mLock);
+    mLock = -1;
+}
+
+fs::path DumpFolder::stage(const std::string& name) {
+    mStagedNames.push_back(name);
+    return mStaging / name;
+}
+
+void DumpFolder::markEarlier() {
+    if (!mHadEarlierDump) return;
+    const fs::path marker = mFolder / kStagingMarker;
+    const int file = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+    if (file < 0)
+        throw FileError("OutputSet::commit(): cannot mark the earlier dump in --dump '" + mShownName +
+                        "': " + std::strerror(errno));
+    ::close(file);
+    mMarked = true;
+}
+
+void DumpFolder::swapIn() {
+    ::chmod(mStaging.c_str(), mFolderMode); // the folder keeps its permissions
+    const int result =
+        mHadEarlierDump ? exchangeFolders(mStaging, mFolder) : ::rename(mStaging.c_str(), mFolder.c_str());
+    if (result != 0)
+        throw FileError("OutputSet::commit(): cannot swap the new dump into --dump '" + mShownName +
+                        "': " + std::strerror(errno));
+    mSwapped = true;
+    // The staged names now name the earlier dump's files (or nothing): a signal must not remove them any more.
+    for (const std::string& name : mStagedNames) forgetTemporary(mStaging / name);
+    forgetTemporary(mStaging / kStagingMarker);
+    forgetTemporary(mStaging);
+}
+
+void DumpFolder::undo() {
+    if (mSwapped) {
+        if (mHadEarlierDump) {
+            if (exchangeFolders(mStaging, mFolder) == 0) mSwapped = false;
+        } else if (::rename(mFolder.c_str(), mStaging.c_str()) == 0) {
+            ::mkdir(mFolder.c_str(), mFolderMode);
+            mSwapped = false;
+        }
+    }
+    if (mMarked && !mSwapped && ::unlink((mFolder / kStagingMarker).c_str()) == 0) mMarked = false;
+}
+
+bool DumpFolder::finish() {
+    bool clean = ::unlink((mFolder / kStagingMarker).c_str()) == 0;
+    if (!mHadEarlierDump) return clean;
+    // The earlier dump, swapped out: only the files it was checked to hold, the marker last.
+    const int aside = ::open(mStaging.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (aside < 0) return false;
+    for (const std::string& name : mEarlierFiles) ::unlinkat(aside, name.c_str(), 0);
+    ::unlinkat(aside, kStagingMarker, 0);
+    ::close(aside);
+    return ::rmdir(mStaging.c_str()) == 0 && clean;
+}
+
+} // namespace inkgraph

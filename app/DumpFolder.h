@@ -1,0 +1,99 @@
+#pragma once
+/** @file --dump DIR as one transaction: the new dump is written whole into a staging folder beside DIR and swapped
+ *  in with one rename (renameat2 RENAME_EXCHANGE when DIR holds an earlier dump), so after any crash DIR holds
+ *  either the earlier dump or the new one, whole.
+ *
+ *  The staging folder is ".inkgraph-dump-<pid>-<n>" in DIR's parent and holds the marker file ".inkgraph-staging".
+ *  A later run removes such a folder only when both hold (its name and its marker) and process <pid> is gone, and
+ *  then only the plain files directly inside it: nothing is ever deleted because a file's content says so. An
+ *  earlier dump is recognised by its manifest.json, whose "files" must all be plain names (no separators) of
+ *  regular files the folder holds, with nothing else beside them.
+ *
+ *  DIR is locked (flock) from the check until the commit ends: a second run on the same folder is refused at once,
+ *  naming it, instead of mixing its files in. */
+
+#include <sys/types.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+
+/** The marker of a staging folder (app/DumpFolder.h). Tolerated inside a dump: a crash between the swap and its
+ *  removal leaves it there. */
+inline constexpr const char* kStagingMarker = ".inkgraph-staging";
+
+/** Device and inode: how two spellings, links or hard links of one file compare equal. */
+struct FileIdentity {
+    dev_t device = 0;
+    ino_t inode = 0;
+    bool operator==(const FileIdentity& other) const { return device == other.device && inode == other.inode; }
+};
+
+/** The identity of what `path` names (links followed), or nothing when it does not exist or cannot be reached. */
+std::optional<FileIdentity> fileIdentity(const std::filesystem::path& path);
+
+/** The files of an earlier dump in `folder` (manifest.json included), or why `folder` is not one: every entry of
+ *  the manifest's "files" must be a plain file name (no '/', not "." or "..") of a regular file in `folder`, and
+ *  `folder` may hold nothing else but the staging marker. */
+struct EarlierDump {
+    std::vector<std::string> files; ///< valid when `problem` is empty
+    std::string problem;            ///< e.g. "its manifest.json names '../x', which is not a plain file name"
+};
+EarlierDump readEarlierDump(const std::filesystem::path& folder);
+
+/** Removes, in `parent`, the staging folders of inkgraph runs that no longer run (app/DumpFolder.h). */
+void sweepStaleStagingFolders(const std::filesystem::path& parent);
+
+class DumpFolder {
+public:
+    /** Checks `--dump` `flagValue` (a new name, an empty folder or an earlier dump; its parent writable and on the
+     *  same file system), creates it and its missing parents when needed (removed again on failure), locks it, sweeps
+     *  stale staging folders beside it and makes this run's. Throws FileError naming --dump and the problem. */
+    explicit DumpFolder(const std::string& flagValue);
+    ~DumpFolder();
+    DumpFolder(const DumpFolder&) = delete;
+    DumpFolder& operator=(const DumpFolder&) = delete;
+
+    /** The folder as given on the command line, for messages. */
+    const std::string& shownName() const { return mShownName; }
+    /** The folder itself, links resolved. */
+    const std::filesystem::path& folder() const { return mFolder; }
+    /** Where the file `name` of the new dump is to be written before the swap. */
+    std::filesystem::path stage(const std::string& name);
+    /** The files of the earlier dump the commit will replace (none for a new or empty folder). */
+    const std::vector<std::string>& earlierFiles() const { return mEarlierFiles; }
+
+    // The commit, in steps (app/OutputFiles.cpp runs them with the other outputs and undoes them on failure):
+    /** Puts the staging marker into an earlier dump, so that once swapped out it is recognised as ours. */
+    void markEarlier();
+    /** Swaps the staging folder in (RENAME_EXCHANGE with an earlier dump; rename over an empty folder). */
+    void swapIn();
+    /** Undoes swapIn() and markEarlier(): the earlier dump is back in place, the new one in staging. */
+    void undo();
+    /** After the swap: removes the marker from the new dump and the earlier dump's files from beside it. Errors are
+     *  left for a later run's sweep: the dump itself is committed. Returns false when something was left. */
+    bool finish();
+
+private:
+    void check(const std::string& flagValue);
+    /** Removes what this run made (staging, folders it created) unless the dump was swapped in; lets the lock go. */
+    void abandon();
+
+    std::string mShownName;
+    std::filesystem::path mFolder;
+    std::filesystem::path mStaging;
+    std::vector<std::string> mEarlierFiles;
+    std::vector<std::string> mStagedNames;
+    bool mHadEarlierDump = false;
+    mode_t mFolderMode = 0;
+    int mLock = -1;
+    std::vector<std::filesystem::path> mCreatedFolders; ///< innermost first; removed on failure when empty
+    bool mMarked = false;
+    bool mSwapped = false;
+    bool mFinished = false;
+};
+
+} // namespace inkgraph

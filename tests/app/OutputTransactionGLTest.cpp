@@ -1,0 +1,254 @@
+// The output transaction (app/OutputFiles.h, app/DumpFolder.h) through the real executable: outputs are regular files
+// or new names, never a file the run reads; -o, --stats and --dump are committed together or not at all, at every
+// step of the commit (test hooks INKGRAPH_TEST_COMMIT_FAIL / _KILL); a crash at any step leaves each output whole, old
+// or new, and the next run recovers; a dump folder in use is refused; a planted manifest never deletes anything.
+#include "CliTestSupport.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace inkgraph {
+namespace {
+
+using test::Cli;
+using test::CliRun;
+using test::readText;
+namespace fs = std::filesystem;
+
+using Snapshot = std::map<std::string, std::string>;
+
+/** Width and height from a PNG's header (IHDR), or 0x0 when the bytes are not a whole PNG's start. */
+std::pair<std::uint32_t, std::uint32_t> pngSize(const std::string& bytes) {
+    if (bytes.size() < 24 || bytes.compare(1, 3, "PNG") != 0) return {0, 0};
+    const auto bigEndian = [&](std::size_t at) {
+        std::uint32_t value = 0;
+        for (std::size_t i = 0; i < 4; ++i) value = value << 8 | std::uint8_t(bytes[at + i]);
+        return value;
+    };
+    return {bigEndian(16), bigEndian(20)};
+}
+
+class OutputTransaction : public Cli {
+protected:
+    /** Renders the bundled cow into `folder` at `side`² with -o, --stats and --dump. */
+    CliRun renderInto(const fs::path& folder, int side, const std::string& environment = "") {
+        const std::string size = std::to_string(side) + "x" + std::to_string(side);
+        return run("render " + model("spot_c3d.obj") + " --size " + size + " -o '" + (folder / "out.png").string() +
+                       "' --stats '" + (folder / "s.json").string() + "' --dump '" + (folder / "d").string() + "'",
+                   environment);
+    }
+
+    /** An earlier run's outputs (32²) in `old/`, kept as the state each hooked run starts from. */
+    void makeEarlierOutputs() {
+        fs::create_directories(directory / "old");
+        const CliRun earlier = renderInto(directory / "old", 32);
+        ASSERT_EQ(earlier.exitCode, 0) << earlier.err;
+        oldState = snapshot(directory / "old");
+    }
+
+    /** work/ as old/ left it. */
+    void resetWork() {
+        fs::remove_all(directory / "work");
+        fs::copy(directory / "old", directory / "work", fs::copy_options::recursive);
+        ASSERT_EQ(snapshot(directory / "work"), oldState);
+    }
+
+    Snapshot oldState;
+};
+
+TEST_F(OutputTransaction, AFailureAtAnyCommitStepChangesNothing) {
+    makeEarlierOutputs();
+    int steps = 0;
+    for (int step = 1; step < 30; ++step) {
+        SCOPED_TRACE("failed after step " + std::to_string(step));
+        resetWork();
+        const CliRun result = renderInto(directory / "work", 48, "INKGRAPH_TEST_COMMIT_FAIL=" + std::to_string(step));
+        if (result.exitCode == 0) break; // past the commit point: nothing left to fail
+        ++steps;
+        EXPECT_EQ(result.exitCode, 5) << result.err;
+        EXPECT_NE(result.err.find("test hook: failed after commit step " + std::to_string(step)), std::string::npos)
+            << result.err;
+        // Every file as it was, byte for byte, and nothing beside them: not a temporary, not a staging folder.
+        EXPECT_EQ(snapshot(directory / "work"), oldState);
+    }
+    // staged, earlier dump marked, earlier -o and --stats kept, dump swapped in, -o and --stats moved.
+    EXPECT_EQ(steps, 7);
+}
+
+TEST_F(OutputTransaction, ACrashAtAnyCommitStepLeavesEachOutputWholeAndTheNextRunRecovers) {
+    makeEarlierOutputs();
+    int crashes = 0;
+    for (int step = 1; step < 30; ++step) {
+        SCOPED_TRACE("killed after step " + std::to_string(step));
+        resetWork();
+        const fs::path work = directory / "work";
+        const CliRun result = renderInto(work, 48, "INKGRAPH_TEST_COMMIT_KILL=" + std::to_string(step));
+        if (result.exitCode == 0) break; // the hook's step lies past the last one
+        ++crashes;
+        EXPECT_NE(result.err.find("test hook: killed after commit step " + std::to_string(step)), std::string::npos)
+            << result.err;
+        const Snapshot after = snapshot(work);
+
+        // -o and --stats: each the old file or the new one, whole.
+        const std::string picture = readText(work / "out.png");
+        EXPECT_TRUE(picture == readText(directory / "old" / "out.png") ||
+                    pngSize(picture) == std::make_pair(48u, 48u));
+        const auto stats = nlohmann::json::parse(readText(work / "s.json"));
+        EXPECT_TRUE(stats["size"] == nlohmann::json::array({32, 32}) || stats["size"] == nlohmann::json::array({48, 48}));
+
+        // The dump: the earlier one, byte for byte, or the new one, whole (the staging marker may be left in it).
+        std::set<std::string> dumpFiles;
+        for (const auto& entry : fs::directory_iterator(work / "d"))
+            if (entry.path().filename() != ".inkgraph-staging") dumpFiles.insert(entry.path().filename().string());
+        const auto manifest = nlohmann::json::parse(readText(work / "d" / "manifest.json"));
+        if (manifest["size"] == nlohmann::json::array({32, 32})) {
+            for (const std::string& name : dumpFiles) EXPECT_EQ(after.at("d/" + name), oldState.at("d/" + name)) << name;
+            std::set<std::string> oldFiles;
+            for (const auto& entry : fs::directory_iterator(directory / "old" / "d"))
+                oldFiles.insert(entry.path().filename().string());
+            EXPECT_EQ(dumpFiles, oldFiles);
+        } else {
+            EXPECT_EQ(manifest["size"], nlohmann::json::array({48, 48}));
+            EXPECT_EQ(dumpFiles, (std::set<std::string>{"final.png", "manifest.json", "shading.png"}));
+            EXPECT_EQ(pngSize(readText(work / "d" / "final.png")), std::make_pair(48u, 48u));
+        }
+
+        // The next run succeeds and sweeps whatever the crash left (the process that left it is gone).
+        const CliRun next = renderInto(work, 48);
+        ASSERT_EQ(next.exitCode, 0) << next.err;
+        EXPECT_EQ(listFiles(work), (std::vector<std::string>{"d", "out.png", "s.json"}));
+        EXPECT_EQ(listFiles(work / "d"), (std::vector<std::string>{"final.png", "manifest.json", "shading.png"}));
+    }
+    // The 7 steps that can fail, then the dump's tidying.
+    EXPECT_EQ(crashes, 8);
+}
+
+TEST_F(OutputTransaction, ADumpFolderInUseIsRefusedAtOnce) {
+    makeEarlierOutputs();
+    resetWork();
+    // Another run holds the folder's lock, as a run does from its check until its commit ends.
+    const int held = ::open((directory / "work" / "d").c_str(), O_RDONLY | O_DIRECTORY);
+    ASSERT_GE(held, 0);
+    ASSERT_EQ(::flock(held, LOCK_EX), 0);
+    const CliRun result = renderInto(directory / "work", 48);
+    ::close(held);
+    EXPECT_EQ(result.exitCode, 5);
+    EXPECT_NE(result.err.find("is being written by another inkgraph run"), std::string::npos) << result.err;
+    EXPECT_EQ(snapshot(directory / "work"), oldState);
+    EXPECT_EQ(renderInto(directory / "work", 48).exitCode, 0) << "once the lock is gone, the folder is usable";
+}
+
+TEST_F(OutputTransaction, DevicesFifosAndLinksToThemAreNeverReplaced) {
+    fs::create_symlink("/dev/null", directory / "null.json");
+    ASSERT_EQ(::mkfifo((directory / "pipe.svg").c_str(), 0644), 0);
+    const Snapshot before = snapshot(directory);
+    const CliRun device = run("render " + model("spot_c3d.obj") + " -o out.png --size 16x16 --stats null.json");
+    EXPECT_EQ(device.exitCode, 5);
+    EXPECT_NE(device.err.find("--stats 'null.json' is a character device"), std::string::npos) << device.err;
+    const CliRun fifo = run("render " + model("spot_c3d.obj") + " -o out.png --size 16x16 --lines contour --svg pipe.svg");
+    EXPECT_EQ(fifo.exitCode, 5);
+    EXPECT_NE(fifo.err.find("--svg 'pipe.svg' is a FIFO"), std::string::npos) << fifo.err;
+    EXPECT_EQ(snapshot(directory), before);
+    struct stat status {};
+    ASSERT_EQ(::stat("/dev/null", &status), 0);
+    EXPECT_TRUE(S_ISCHR(status.st_mode));
+}
+
+TEST_F(OutputTransaction, OutputsThatAreInputsByAnyNameAreRefused) {
+    // A hard link has its own name but the model's inode.
+    fs::copy_file(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "spot_c3d.obj", directory / "m.obj");
+    fs::create_hard_link(directory / "m.obj", directory / "m-link.png");
+    const Snapshot before = snapshot(directory);
+    const CliRun link = run("render m.obj -o m-link.png --size 16x16");
+    EXPECT_EQ(link.exitCode, 2);
+    EXPECT_NE(link.err.find("-o 'm-link.png' is the model itself"), std::string::npos) << link.err;
+    EXPECT_EQ(snapshot(directory), before);
+
+    // A file in the dump folder the commit would replace, read by this run as its shade map.
+    ASSERT_EQ(run("render m.obj --size 16x16 --dump d").exitCode, 0);
+    const Snapshot dumped = snapshot(directory);
+    const CliRun map = run("render m.obj --size 16x16 --dump d --shading cel --shademap d/final.png");
+    EXPECT_EQ(map.exitCode, 2);
+    EXPECT_NE(map.err.find("--dump 'd' holds 'final.png', which is the --shademap itself"), std::string::npos)
+        << map.err;
+    EXPECT_EQ(snapshot(directory), dumped);
+}
+
+TEST_F(OutputTransaction, APlantedManifestNeverDeletesAnything) {
+    fs::create_directories(directory / "d");
+    std::ofstream(directory / "victim.txt") << "precious";
+    fs::create_symlink(directory / "victim.txt", directory / "d" / "link.png");
+    const std::string absolute = (directory / "victim.txt").string();
+    for (const std::string& name : {std::string("../victim.txt"), absolute, std::string("link.png"),
+                                    std::string("."), std::string("")}) {
+        SCOPED_TRACE(name);
+        std::ofstream(directory / "d" / "manifest.json")
+            << nlohmann::json({{"inkgraph", "0"}, {"files", {{{"file", name}}}}}).dump();
+        const Snapshot before = snapshot(directory);
+        const CliRun result = run("render " + model("spot_c3d.obj") + " -o out.png --size 16x16 --dump d");
+        EXPECT_EQ(result.exitCode, 5);
+        EXPECT_NE(result.err.find("holds files that are not an inkgraph dump"), std::string::npos) << result.err;
+        EXPECT_EQ(snapshot(directory), before);
+    }
+}
+
+TEST_F(OutputTransaction, StagingFoldersAreSweptOnlyByTheirMarker) {
+    // A pid that is surely gone: a child that has exited and been reaped.
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    ASSERT_GT(child, 0);
+    ::waitpid(child, nullptr, 0);
+    const std::string stale = ".inkgraph-dump-" + std::to_string(child) + "-0";
+    // Named like a staging folder of a dead run, but without the marker: someone else's, never touched.
+    fs::create_directories(directory / (stale + "x"));
+    std::ofstream(directory / (stale + "x") / "notes.txt") << "precious";
+    // With the marker: a crashed run's staging folder, removed by the next run dumping beside it.
+    fs::create_directories(directory / stale);
+    std::ofstream(directory / stale / ".inkgraph-staging");
+    std::ofstream(directory / stale / "final.png") << "half";
+    const CliRun result = run("render " + model("spot_c3d.obj") + " --size 16x16 --dump d");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_FALSE(fs::exists(directory / stale));
+    EXPECT_EQ(readText(directory / (stale + "x") / "notes.txt"), "precious");
+}
+
+TEST_F(OutputTransaction, LongNamesFailBeforeRenderingOrNotAtAll) {
+    // 255 bytes is the limit of ext4 and tmpfs; the temporary name must not grow with the final one's extension.
+    const std::string longest = "s." + std::string(253, 'j');
+    const CliRun fits = run("render " + model("spot_c3d.obj") + " -o out.png --size 16x16 --stats " + longest);
+    EXPECT_EQ(fits.exitCode, 0) << fits.err;
+    EXPECT_TRUE(fs::exists(directory / longest));
+    const CliRun tooLong =
+        run("render " + model("spot_c3d.obj") + " -o new.png --size 16x16 --stats " + longest + "j");
+    EXPECT_EQ(tooLong.exitCode, 5);
+    EXPECT_NE(tooLong.err.find("its file name is 256 bytes"), std::string::npos) << tooLong.err;
+    EXPECT_EQ(tooLong.err.find("rendered"), std::string::npos) << "refused before any work";
+    EXPECT_FALSE(fs::exists(directory / "new.png"));
+}
+
+TEST_F(OutputTransaction, EmptyShardAndUnwritableStandardOutput) {
+    const CliRun empty = run("render " + model("spot_c3d.obj") + " -o out.png --size 16x16 --shard 1/2");
+    EXPECT_EQ(empty.exitCode, 0) << empty.err;
+    EXPECT_NE(empty.err.find("no models in this share (shard 1/2 of 1)"), std::string::npos) << empty.err;
+    EXPECT_EQ(listFiles(directory), std::vector<std::string>{});
+
+    const std::string command = "cd '" + directory.string() + "' && LP_NUM_THREADS=1 '" + INKGRAPH_EXECUTABLE +
+                                "' render " + model("spot_c3d.obj") + " --print-plan > /dev/full 2> err.txt";
+    const int status = std::system(command.c_str());
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 5);
+    EXPECT_NE(readText(directory / "err.txt").find("cannot write the standard output"), std::string::npos);
+}
+
+} // namespace
+} // namespace inkgraph
