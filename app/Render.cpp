@@ -1,6 +1,7 @@
 #include "app/Render.h"
 
 #include "app/ImageFiles.h"
+#include "app/MemoryBudget.h"
 #include "app/OutputFiles.h"
 #include "app/SceneShadeMaps.h"
 #include "app/StillGraph.h"
@@ -26,7 +27,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cerrno>
 #include <chrono>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -67,14 +71,11 @@ glm::dvec3 defaultLight(const Camera& camera) {
     return glm::normalize(glm::transpose(glm::dmat3(camera.viewMatrix())) * towardLightView);
 }
 
-/** Bytes the plan holds at its peak, as an upper bound: every live texture at once, plus the G-buffer's depth
- *  attachment, plus a CPU copy of each when everything is kept for dumping. */
-std::size_t estimatePlanBytes(const Plan& plan, int width, int height, bool keepAll) {
-    std::size_t bytes = std::size_t(width) * std::size_t(height) * 4; // depth test attachment
-    for (const PlannedResource& resource : plan.resources)
-        bytes += std::size_t(width) * std::size_t(height) * std::size_t(resource.desc.scale * resource.desc.scale) *
-                 std::size_t(bytesPerPixel(resource.desc.format)) * (keepAll ? 2 : 1);
-    return bytes;
+/** The whole run's peak for the plan, as an upper bound (app/MemoryBudget.h): the process, the scene, every GL target
+ *  as llvmpipe stores it, and the post stage's read-backs, working images and encoders at their largest moment.
+ *  Without the scene (not loaded yet) its meshes add nothing. */
+std::size_t estimatePlanBytes(const Plan& plan, const RenderOptions& options, const Scene* scene) {
+    return estimateRunMemory(plan, options, scene ? sceneSizeOf(*scene) : SceneSize{}).total();
 }
 
 /** --dump and --contact-sheet show every buffer the plan computed, so the executor keeps them all. */
@@ -85,26 +86,32 @@ bool keepsEveryBuffer(const RenderOptions& options) {
 /** llvmpipe stores textures in 64x64 tiles, so a side is rounded up before its size is judged. */
 std::size_t paddedSide(int side) { return (std::size_t(side) + 63) / 64 * 64; }
 
-/** Refuses sizes that would fail deep inside the driver: one texture of 2 GiB or more (GL's byte counts are 32-bit),
- *  or a plan above the memory bound. Both name --size, the cause. */
-void checkFrameBudget(const Plan& plan, const RenderOptions& options) {
+/** Refuses sizes that would fail deep inside the driver or outgrow the process's memory: one texture of 2 GiB or more
+ *  (GL's byte counts are 32-bit), or a whole run estimated above the memory limit. Both name every flag that makes
+ *  the buffers that large (--size, and --supersample for the supersampled ones), not only --size. */
+void checkFrameBudget(const Plan& plan, const RenderOptions& options, const Scene* scene = nullptr) {
     for (const PlannedResource& resource : plan.resources) {
         const std::size_t textureBytes = paddedSide(options.width * resource.desc.scale) *
                                          paddedSide(options.height * resource.desc.scale) *
                                          std::size_t(bytesPerPixel(resource.desc.format));
-        if (textureBytes >= kMaxTextureBytes)
-            throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
-                             " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
-                             " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
+        if (textureBytes < kMaxTextureBytes) continue;
+        const std::string size = "--size " + std::to_string(options.width) + "x" + std::to_string(options.height);
+        const std::string cause =
+            resource.desc.scale > 1 ? size + " with --supersample " + std::to_string(resource.desc.scale) +
+                                          " (" + std::to_string(options.width * resource.desc.scale) + "x" +
+                                          std::to_string(options.height * resource.desc.scale) + ")"
+                                    : size;
+        throw UsageError(cause + " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
+                         " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
     }
-    const std::size_t planBytes = estimatePlanBytes(plan, options.width, options.height, keepsEveryBuffer(options));
+    const std::size_t needed = estimatePlanBytes(plan, options, scene);
     const std::size_t bound = memoryLimitOf(options);
-    if (planBytes > bound)
-        throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
-                         " needs about " + std::to_string(planBytes >> 20) + " MiB for the buffers this plan keeps; " +
-                         "the memory limit is " + std::to_string(bound >> 20) + " MiB" +
+    const std::size_t neededMib = (needed + (1 << 20) - 1) >> 20; // rounded up: "needs 600" never fits a 600 limit
+    if (needed > bound)
+        throw UsageError(memoryDriversText(plan, options) + " needs about " + std::to_string(neededMib) +
+                         " MiB for the whole run; the memory limit is " + std::to_string(bound >> 20) + " MiB" +
                          (options.memoryLimitBytes ? " (--memory-limit)" : ", half this machine's memory") +
-                         " (make the image smaller, or request or dump fewer buffers)");
+                         " (make the image smaller, lower --supersample, or request or dump fewer buffers)");
 }
 
 /** How the contact sheet shows a buffer: by the field it is (the G-buffer's), else by its format. */
@@ -284,6 +291,21 @@ Json describePostStage(const StillGraph& graph, const std::vector<PassTiming>& t
     return {{"lines", layers}, {"kernels_ms", kernels}, {"readback_ms", readback}, {"composite_ms", composite}};
 }
 
+/** The files the run read that only loading the model revealed: its buffers and images, and the shade maps its
+ *  materials name. No output may be one of them (OutputSet::refuseInputs). */
+std::vector<RunInput> inputsFoundByLoading(const RenderOptions& options, const Scene& scene) {
+    // Appended, not "'" + name: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
+    std::string model = "'";
+    model.append(std::filesystem::path(options.modelPath).filename().string()).append("'");
+    std::vector<RunInput> inputs;
+    for (const std::string& file : scene.report.inputFiles)
+        inputs.push_back({file, "a file the model " + model + " reads"});
+    for (const Mesh& mesh : scene.meshes)
+        if (!mesh.shadeMapPath.empty())
+            inputs.push_back({mesh.shadeMapPath, "the shade map of mesh '" + mesh.name + "' of " + model});
+    return inputs;
+}
+
 /** Seed 000's numbers (Figure 8 plus holes and time) for --stats; only for comic, where the methods apply. */
 Json describeOrientation(SceneOrientation& orientation) {
     const OrientationReport& report = orientation.report();
@@ -421,6 +443,7 @@ StillReport RenderSession::render(const RenderOptions& options, const BatchPosit
     std::vector<std::optional<ShadeMap>> meshShadeMaps = readSceneShadeMaps(scene, options.shading, &shadeMapWarnings);
     for (const std::string& warning : shadeMapWarnings)
         log << "inkgraph: warning: " << (talks ? "" : "'" + options.modelPath + "': ") << warning << "\n";
+    outputs.refuseInputs(inputsFoundByLoading(options, scene));
 
     const BoundingSphere sphere = computeBoundingSphere(scene);
     const CameraRequest request = cameraRequestOf(options);
@@ -459,7 +482,7 @@ StillReport RenderSession::render(const RenderOptions& options, const BatchPosit
         outputs.commit();
         return report;
     }
-    checkFrameBudget(plan, options);
+    checkFrameBudget(plan, options, &scene);
 
     // One context for every still of the process: the first that renders makes it (the platform flag is the same
     // for all of them), later ones find it current with the programs the earlier ones compiled.
@@ -491,6 +514,10 @@ StillReport RenderSession::render(const RenderOptions& options, const BatchPosit
     } catch (const GlOutOfMemoryError& error) {
         throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
                          ": the driver ran out of memory (" + error.what() + "); make the image smaller");
+    } catch (const OutOfMemoryError& error) {
+        throw UsageError("--size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+                         " with --supersample " + std::to_string(options.supersample) + ": out of memory (" +
+                         error.what() + "); make the image smaller, or give the process more memory");
     }
 
     const auto writeStart = std::chrono::steady_clock::now();
@@ -576,8 +603,9 @@ StillReport RenderSession::render(const RenderOptions& options, const BatchPosit
         stats["write_ms"] = millisecondsSince(writeStart);
         stats["textures_created"] = pool.createdCount();
         stats["textures_reused"] = pool.reusedCount();
-        stats["estimated_peak_mib"] =
-            double(estimatePlanBytes(plan, options.width, options.height, keepsEveryBuffer(options))) / (1 << 20);
+        stats["estimated_peak_mib"] = double(estimatePlanBytes(plan, options, &scene)) / (1 << 20);
+        // Measured so far (the outputs above are encoded): what the estimate bounds, to compare.
+        stats["peak_rss_mib"] = double(peakResidentBytes()) / (1 << 20);
         stats["total_ms"] = millisecondsSince(processStart);
         outputs.stageStats(jsonText(stats));
     }
@@ -601,19 +629,21 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     const BatchList list = batchList(options, standardInput);
     checkBatchOutputs(options, list);
     RenderSession session(out, log);
+    const std::string share =
+        options.shard ? " (shard " + std::to_string(options.shard->index) + "/" + std::to_string(options.shard->count) +
+                            " of " + std::to_string(list.total) + ")"
+                      : "";
+    // Only --shard can leave a share empty (a list of no models is refused): with N above the list's length some
+    // shards have nothing to do, which is not an error in an array job.
+    if (list.models.empty()) {
+        if (!options.quiet) log << "inkgraph: no models in this share" << share << "\n";
+        return kExitOk;
+    }
     if (!list.isBatch) {
         session.render(stillOptions(options, list.models.front(), list.total));
         return kExitOk;
     }
     const auto batchStart = std::chrono::steady_clock::now();
-    const std::string share =
-        options.shard ? " (shard " + std::to_string(options.shard->index) + "/" + std::to_string(options.shard->count) +
-                            " of " + std::to_string(list.total) + ")"
-                      : "";
-    if (list.models.empty()) {
-        if (!options.quiet) log << "inkgraph: no models in this share" << share << "\n";
-        return kExitOk;
-    }
     int exitCode = kExitOk;
     std::vector<std::string> failed;
     for (std::size_t i = 0; i < list.models.size(); ++i) {
@@ -654,6 +684,60 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     return exitCode;
 }
 
+namespace {
+
+int runRenderCommand(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
+    try {
+        std::error_code noFolder;
+        (void)std::filesystem::current_path(noFolder);
+        if (noFolder)
+            throw FileError("runCommandLine(): the working folder cannot be found (" + noFolder.message() +
+                            "; was it deleted?); run inkgraph from an existing folder");
+        const SourcedArguments expanded = expandStyleFile(arguments);
+        const RenderOptions options = parseRenderOptions(expanded.arguments, expanded.origins);
+        if (options.help) {
+            out << renderHelp();
+            return kExitOk;
+        }
+        return renderBatch(options, std::cin, out, err);
+    } catch (const UsageError& error) {
+        err << "inkgraph: " << error.what() << "\n(see: inkgraph help render)\n";
+        return kExitUsage;
+    } catch (const SceneError& error) {
+        err << "inkgraph: " << error.what() << "\n";
+        return kExitBadInput;
+    } catch (const InputFileError& error) {
+        err << "inkgraph: " << error.what() << "\n";
+        return kExitBadInput;
+    } catch (const HeadlessContextError& error) {
+        err << "inkgraph: " << error.what() << "\n";
+        return kExitNoGl;
+    } catch (const FileError& error) {
+        err << "inkgraph: " << error.what() << "\n";
+        return kExitOutput;
+    } catch (const ShaderSourceError& error) {
+        err << "inkgraph: " << error.what() << "\n";
+        return kExitNoGl;
+    } catch (const std::bad_alloc&) {
+        err << "inkgraph: out of memory; make the image smaller (--size, --supersample) or request and dump fewer "
+               "buffers\n(see: inkgraph help render)\n";
+        return kExitUsage;
+    } catch (const cv::Exception& error) {
+        if (error.code != cv::Error::StsNoMem) {
+            err << "inkgraph: internal error: " << error.what() << "\n";
+            return kExitInternal;
+        }
+        err << "inkgraph: out of memory (" << error.err << "); make the image smaller (--size, --supersample) or "
+               "request and dump fewer buffers\n(see: inkgraph help render)\n";
+        return kExitUsage;
+    } catch (const std::exception& error) {
+        err << "inkgraph: internal error: " << error.what() << "\n";
+        return kExitInternal;
+    }
+}
+
+} // namespace
+
 int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
     std::vector<std::string> arguments(argv + std::min(argc, 1), argv + argc);
     if (arguments.empty()) {
@@ -678,33 +762,16 @@ int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::os
     }
     arguments.erase(arguments.begin());
     removeTemporariesOnSignals();
-    try {
-        const SourcedArguments expanded = expandStyleFile(arguments);
-        const RenderOptions options = parseRenderOptions(expanded.arguments, expanded.origins);
-        if (options.help) {
-            out << renderHelp();
-            return kExitOk;
-        }
-        return renderBatch(options, std::cin, out, err);
-    } catch (const UsageError& error) {
-        err << "inkgraph: " << error.what() << "\n(see: inkgraph help render)\n";
-        return kExitUsage;
-    } catch (const SceneError& error) {
-        err << "inkgraph: " << error.what() << "\n";
-        return kExitBadInput;
-    } catch (const InputFileError& error) {
-        err << "inkgraph: " << error.what() << "\n";
-        return kExitBadInput;
-    } catch (const HeadlessContextError& error) {
-        err << "inkgraph: " << error.what() << "\n";
-        return kExitNoGl;
-    } catch (const FileError& error) {
-        err << "inkgraph: " << error.what() << "\n";
-        return kExitOutput;
-    } catch (const std::exception& error) {
-        err << "inkgraph: internal error: " << error.what() << "\n";
-        return kExitInternal;
+    const int exitCode = runRenderCommand(arguments, out, err);
+    // Output that cannot be written (--print-plan > /dev/full, a closed pipe) is a failed run, not a silent one.
+    errno = 0;
+    out.flush();
+    if (!out || (&out == &std::cout && (std::fflush(stdout) != 0 || std::ferror(stdout)))) {
+        err << "inkgraph: cannot write the standard output" << (errno ? std::string(": ") + std::strerror(errno) : "")
+            << "\n";
+        return exitCode == kExitOk ? kExitOutput : exitCode;
     }
+    return exitCode;
 }
 
 } // namespace inkgraph
