@@ -49,6 +49,25 @@ glm::dvec3 parseVector(const std::string& flag, const std::string& text) {
     return {parseNumber(flag, parts[0]), parseNumber(flag, parts[1]), parseNumber(flag, parts[2])};
 }
 
+/** A point in world units. Bounded so that differences of points stay finite and meaningful in double (at 1e15
+ *  adjacent doubles are 0.125 apart); beyond it the camera's distances overflow and the messages mislead. */
+glm::dvec3 parsePoint(const std::string& flag, const std::string& text) {
+    constexpr double kMaxCoordinate = 1e15;
+    const glm::dvec3 point = parseVector(flag, text);
+    if (std::max({std::abs(point.x), std::abs(point.y), std::abs(point.z)}) > kMaxCoordinate)
+        throw UsageError(flag + ": coordinates must lie within +-1e15, got '" + text + "'");
+    return point;
+}
+
+/** A direction, made unit length. Scaled by its largest component first, so any finite input keeps its direction
+ *  (1e300,1e300,0 would overflow the length and normalise to zero; 1e-300,0,0 would underflow). */
+glm::dvec3 parseDirection(const std::string& flag, const std::string& text) {
+    const glm::dvec3 direction = parseVector(flag, text);
+    const double largest = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
+    if (largest == 0.0) throw UsageError(flag + ": the direction must not be zero, got '" + text + "'");
+    return glm::normalize(direction / largest);
+}
+
 void parseSize(const std::string& text, int& width, int& height) {
     const auto cross = text.find('x');
     if (cross == std::string::npos) throw UsageError("--size: expected WxH such as 1024x768, got '" + text + "'");
@@ -101,6 +120,9 @@ const std::vector<std::pair<std::string, FaceOrientationMethod>> kOrientationMet
 };
 constexpr double kMaxShininess = 1e6;
 constexpr double kMaxLineWidthPixels = 256.0;
+constexpr double kMinClipDistance = 1e-30;
+constexpr double kMaxClipDistance = 1e30;
+constexpr double kMaxClipRatio = 1e30;
 constexpr int kMaxMemoryLimitMib = 1 << 24; // 16 TiB
 
 template <typename Value>
@@ -243,12 +265,11 @@ bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, Pa
     } else if (argument == "--size") {
         parseSize(value(), options.width, options.height);
     } else if (argument == "--eye") {
-        options.eye = parseVector(argument, value());
+        options.eye = parsePoint(argument, value());
     } else if (argument == "--target") {
-        options.target = parseVector(argument, value());
+        options.target = parsePoint(argument, value());
     } else if (argument == "--up") {
-        options.up = parseVector(argument, value());
-        if (glm::length(*options.up) == 0.0) throw UsageError("--up: the up vector must not be zero");
+        options.up = parseDirection(argument, value());
     } else if (argument == "--fov") {
         const double fov = parseNumber(argument, value());
         if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
@@ -261,11 +282,16 @@ bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, Pa
         const glm::dvec2 clip(parseNumber(argument, parts[0]), parseNumber(argument, parts[1]));
         if (!(clip.x > 0.0 && clip.x < clip.y))
             throw UsageError("--clip: expected 0 < NEAR < FAR, got '" + arguments[i] + "'");
+        // The shaders get the planes, and reversed-z depth (about NEAR / distance), as float32, where 1e-38 is
+        // already subnormal and flushed to zero: every depth then reads as the far plane, a blank picture. Within
+        // these bounds every depth stays a normal float32 (tests/pipeline/ExtremesGLTest.cpp renders 1e-6,1e6 like
+        // the fitted range).
+        if (clip.x < kMinClipDistance || clip.y > kMaxClipDistance || clip.y / clip.x > kMaxClipRatio)
+            throw UsageError("--clip: NEAR and FAR must lie in [1e-30, 1e30] with FAR/NEAR at most 1e30 (depth is "
+                             "float32), got '" + arguments[i] + "'");
         options.clipRange = clip;
     } else if (argument == "--light") {
-        const glm::dvec3 light = parseVector(argument, value());
-        if (glm::length(light) == 0.0) throw UsageError("--light: the direction must not be zero");
-        options.towardLight = glm::normalize(light);
+        options.towardLight = parseDirection(argument, value());
     } else if (argument == "--shading") {
         options.shading = parseChoice(argument, value(), kShadingModes);
     } else if (argument == "--shininess") {
@@ -497,14 +523,15 @@ Output
   -q, --quiet            no progress lines on stderr
 
 Camera (right-handed world, OpenGL lookAt/perspective; default: the glTF camera, else auto-framed)
-  --eye X,Y,Z            camera position
-  --target X,Y,Z         point looked at (default: the model's bounding-sphere centre)
+  --eye X,Y,Z            camera position, in world units (coordinates within +-1e15)
+  --target X,Y,Z         point looked at (default: the model's bounding-sphere centre; within +-1e15)
   --up X,Y,Z             up direction (default: the glTF camera's, else 0,1,0); auto-framing looks from the
                          front, slightly above, as this up defines it
   --fov DEG              vertical field of view in degrees, 0.01 to 179 (default 35)
-  --clip NEAR,FAR        near and far clip distances along the view axis, finite with 0 < NEAR < FAR (default:
-                         fitted to the bounding sphere, with far/near at most 1e4); depth is reversed-Z float, so
-                         ratios up to 1e6 and beyond keep about 1e-7 of the distance apart
+  --clip NEAR,FAR        near and far clip distances along the view axis, 0 < NEAR < FAR, both in [1e-30, 1e30],
+                         FAR/NEAR at most 1e30 (default: fitted to the bounding sphere, with far/near at most 1e4);
+                         depth is reversed-Z float, so ratios up to 1e6 and beyond keep about 1e-7 of the distance
+                         apart
 
 Look
   --style FILE           settings from a style file, one NAME = VALUE per line (# comments): any flag of this

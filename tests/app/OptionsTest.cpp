@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace inkgraph {
 namespace {
@@ -282,6 +283,30 @@ TEST(Options, MalformedValuesNameTheFlag) {
     EXPECT_NE(usageMessage({"-o", "x.png"}).find("missing MODEL"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj"}).find("-o"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--eye", "1,1,1", "--target", "1,1,1"}).find("differ"),
+              std::string::npos);
+}
+
+TEST(Options, ExtremeButFiniteDirectionsKeepTheirDirection) {
+    // The length of (1e300, 1e300, 0) overflows and that of (1e-300, 0, 0) underflows in double: scaled first.
+    const glm::dvec3 huge = *parse({"m.obj", "-o", "x.png", "--light", "1e300,1e300,0"}).towardLight;
+    EXPECT_NEAR(huge.x, std::sqrt(0.5), 1e-15);
+    EXPECT_NEAR(huge.y, std::sqrt(0.5), 1e-15);
+    EXPECT_EQ(huge.z, 0.0);
+    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--up", "1e-300,0,0"}).up, glm::dvec3(1, 0, 0));
+    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--up", "0,-5e-324,0"}).up, glm::dvec3(0, -1, 0)); // subnormal
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--up", "0,0,0"}).find("--up: the direction must not be zero"),
+              std::string::npos);
+}
+
+TEST(Options, ClipAndPointsWithinWhatFloat32AndDoubleHold) {
+    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--clip", "1e-30,1e-12"}).clipRange, glm::dvec2(1e-30, 1e-12));
+    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--clip", "1e12,1e30"}).clipRange, glm::dvec2(1e12, 1e30));
+    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--clip", "1e-15,1e14"}).clipRange, glm::dvec2(1e-15, 1e14));
+    for (const char* clip : {"1e-38,10", "1e-31,1e-29", "1,1e31", "1e-20,1e11"})
+        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--clip", clip}).find("FAR/NEAR at most 1e30"), std::string::npos)
+            << clip;
+    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--eye", "1e15,-1e15,0"}).eye, glm::dvec3(1e15, -1e15, 0));
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--target", "0,2e15,0"}).find("--target: coordinates must lie within"),
               std::string::npos);
 }
 
