@@ -1,6 +1,6 @@
 // The bad-input matrix (issue 6): every way a user's files or flags can be wrong, run through the real executable.
 // Each case expects its exit code, a message naming the file (or flag) and the problem, and the folder exactly as it
-// was: an earlier out.png untouched, no new file, not even a temporary one. GL label: the no-EGL case needs the
+// was, byte for byte: an earlier out.png untouched, no new file, not even a temporary one. GL label: the no-EGL case needs the
 // executable to reach the driver; every other case stops before any GL work.
 #include "CliTestSupport.h"
 
@@ -54,10 +54,18 @@ std::string binaryStl(std::uint32_t declared, const std::vector<float>& corners)
     return bytes;
 }
 
-/** A one-triangle glTF with the buffer inline; `primitive` is spliced into the primitive's JSON. */
-std::string gltfTriangle(const std::string& primitiveExtra = "", float x = 1.0f, std::uint32_t count = 3) {
+/** The 36 bytes of one triangle's three float corners. */
+std::string triangleBytes(float x = 1.0f) {
     std::string buffer;
     for (float v : {0.0f, 0.0f, 0.0f, x, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f}) buffer += f32(v);
+    return buffer;
+}
+
+/** A one-triangle glTF with the buffer inline; `primitive` is spliced into the primitive's JSON, `top` into the
+ *  top-level object; `uri` replaces the inline buffer. */
+std::string gltfTriangle(const std::string& primitiveExtra = "", float x = 1.0f, std::uint32_t count = 3,
+                         const std::string& top = "", const std::string& uri = "") {
+    const std::string buffer = triangleBytes(x);
     static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string base64;
     for (std::size_t i = 0; i < buffer.size(); i += 3) {
@@ -65,12 +73,12 @@ std::string gltfTriangle(const std::string& primitiveExtra = "", float x = 1.0f,
                                     std::uint32_t(std::uint8_t(buffer[i + 1])) << 8 | std::uint8_t(buffer[i + 2]);
         for (int k = 3; k >= 0; --k) base64 += kAlphabet[(chunk >> (6 * k)) & 63];
     }
-    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)" + top +
            R"("meshes":[{"primitives":[{"attributes":{"POSITION":0})" +
            primitiveExtra + R"(}]}],"accessors":[{"bufferView":0,"componentType":5126,"count":)" +
            std::to_string(count) + R"(,"type":"VEC3"}],"bufferViews":[{"buffer":0,"byteLength":36}],)"
-           R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
-           base64 + R"("}]})";
+           R"("buffers":[{"byteLength":36,"uri":")" +
+           (uri.empty() ? "data:application/octet-stream;base64," + base64 : uri) + R"("}]})";
 }
 
 std::string glb(const std::string& json) {
@@ -81,6 +89,15 @@ std::string glb(const std::string& json) {
 }
 
 std::string source(const std::string& relative) { return (fs::path(INKGRAPH_SOURCE_ROOT) / relative).string(); }
+
+/** Makes memory run out for the out-of-memory case. AddressSanitizer reserves terabytes of address space, so under it
+ *  an address-space limit stops the program before main; its allocator refuses big blocks instead. */
+#if defined(__SANITIZE_ADDRESS__)
+const char* const kOutOfMemory =
+    "sh -c 'ASAN_OPTIONS=\"$ASAN_OPTIONS:allocator_may_return_null=1:max_allocation_size_mb=200\" exec \"$0\" \"$@\"'";
+#else
+const char* const kOutOfMemory = "sh -c 'ulimit -v 1500000; exec \"$0\" \"$@\"'";
+#endif
 
 std::vector<BadInput> badInputs() {
     const std::string spot = "'" + source("models/spot_c3d.obj") + "'";
@@ -147,6 +164,51 @@ std::vector<BadInput> badInputs() {
          {"blocker/d"}},
         {"--dump in /proc", {}, spot + " -o out.png --size 16x16 --dump /proc/inkgraph-dump", 5,
          {"/proc/inkgraph-dump"}},
+        // Outputs that would replace what the run reads (compared by device and inode: tests/app/OutputTransaction*).
+        {"--stats over the model's buffer",
+         {{"m.gltf", gltfTriangle("", 1.0f, 3, "", "mesh.bin")}, {"mesh.bin", triangleBytes()}},
+         "m.gltf -o out.png --size 16x16 --stats mesh.bin", 2,
+         {"--stats 'mesh.bin' is a file the model 'm.gltf' reads", "choose another file"}},
+        {"-o over a shade map a material names",
+         {{"m.gltf", gltfTriangle(R"(,"material":0)", 1.0f, 3,
+                                  R"("materials":[{"extras":{"inkgraph":{"shademap":"map.png"}}}],)")},
+          {"map.png", readText(source("shademaps/noir.png"))}},
+         "m.gltf -o map.png --size 16x16 --shading comic", 2, {"-o 'map.png' is the shade map of mesh"}},
+        {"--stats over the --style file", {{"look.style", "shading = cel\n"}},
+         spot + " -o out.png --size 16x16 --style look.style --stats look.style", 2,
+         {"--stats 'look.style' is the --style file"}},
+        {"--stats over the --list file", {{"spot_c3d.txt", source("models/spot_c3d.obj") + "\n"}},
+         "--list spot_c3d.txt -o '{name}.png' --size 16x16 --stats '{name}.txt'", 2,
+         {"--stats 'spot_c3d.txt' is the --list file"}},
+        // Planted manifests: a manifest may only name plain files its folder holds (OutputTransaction has more).
+        {"manifest naming a file outside its folder",
+         {{"d/manifest.json", R"({"inkgraph":"0","files":[{"file":"../victim.txt"}]})"}, {"victim.txt", "x"}},
+         spot + " -o out.png --size 16x16 --dump d", 5,
+         {"--dump 'd' holds files that are not an inkgraph dump", "'../victim.txt', which is not a plain file name"}},
+        {"manifest naming a folder", {{"d/manifest.json", R"({"inkgraph":"0","files":[{"file":"keep"}]})"},
+                                      {"d/keep/precious.txt", "x"}},
+         spot + " -o out.png --size 16x16 --dump d", 5, {"'keep', which is not a file in it"}},
+        {"file name too long", {}, spot + " -o " + std::string(252, 'n') + ".png --size 16x16", 5,
+         {"its file name is 256 bytes"}},
+        // Extreme but finite values.
+        {"--clip near below float", {}, spot + " -o out.png --clip 1e-38,10", 2, {"--clip", "[1e-30, 1e30]", "'1e-38,10'"}},
+        {"--clip ratio", {}, spot + " -o out.png --clip 1e-16,1e16", 2, {"--clip", "FAR/NEAR at most 1e30"}},
+        {"--eye beyond double", {}, spot + " -o out.png --eye 1e300,0,0", 2, {"--eye", "+-1e15", "'1e300,0,0'"}},
+        {"--up zero", {}, spot + " -o out.png --up 0,0,0", 2, {"--up", "must not be zero"}},
+        // The environment.
+        {"deleted working folder", {}, spot + " -o out.png --size 16x16", 5,
+         {"the working folder cannot be found", "was it deleted?"},
+         "sh -c 'mkdir gone && cd gone && rmdir ../gone && exec \"$0\" \"$@\"'"},
+        {"INKGRAPH_SHADER_DIR missing", {}, spot + " -o out.png --size 16x16", 4,
+         {"cannot read shader '/nonexistent/shaders/", "INKGRAPH_SHADER_DIR is '/nonexistent/shaders'"},
+         "INKGRAPH_SHADER_DIR=/nonexistent/shaders"},
+        {"INKGRAPH_SHADER_DIR empty folder", {{"noshaders/README", "empty"}}, spot + " -o out.png --size 16x16", 4,
+         {"cannot read shader 'noshaders/", "INKGRAPH_SHADER_DIR is 'noshaders'"}, "INKGRAPH_SHADER_DIR=noshaders"},
+        // Memory running out below the limit's estimate (here: the address space): the post stage's OpenCV
+        // allocation fails at 1.5 GB (on other machines it may be the driver's texture first; both are exit 2).
+        {"out of memory", {}, spot + " -o out.png --size 2048x2048 --supersample 2 --lines contour,suggestive "
+         "--memory-limit 100000", 2, {"--size 2048x2048", "out of memory", "make the image smaller"},
+         kOutOfMemory},
         // Absurd sizes.
         {"--size 0x5", {}, spot + " -o out.png --size 0x5", 2, {"--size", "from 1 to 16384", "'0x5'"}},
         {"--size negative", {}, spot + " -o out.png --size -3x4", 2, {"--size", "'-3x4'"}},
@@ -179,7 +241,7 @@ TEST_F(Cli, BadInputMatrixFailsCleanlyAndTouchesNothing) {
             fs::create_directories((directory / name).parent_path());
             std::ofstream(directory / name, std::ios::binary) << content;
         }
-        const std::vector<std::string> before = listFiles(directory);
+        const std::map<std::string, std::string> before = snapshot(directory);
         std::string arguments = input.arguments;
         if (arguments.rfind("render ", 0) != 0) arguments = "render " + arguments;
         const CliRun result = run(arguments, input.environment);
@@ -188,7 +250,7 @@ TEST_F(Cli, BadInputMatrixFailsCleanlyAndTouchesNothing) {
             EXPECT_NE(result.err.find(part), std::string::npos) << "missing '" << part << "' in: " << result.err;
         EXPECT_EQ(result.err.find("internal error"), std::string::npos) << result.err;
         EXPECT_EQ(readText(directory / "out.png"), kEarlierPicture);
-        EXPECT_EQ(listFiles(directory), before) << "a failed run left a file behind";
+        EXPECT_EQ(snapshot(directory), before) << "a failed run changed, removed or left a file";
     }
 }
 
