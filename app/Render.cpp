@@ -196,8 +196,8 @@ void checkDriverLimits(const RenderOptions& options) {
 
 Json describeCamera(const Camera& camera) {
     return {{"source", camera.source},
-            {"eye", vectorJson(camera.eye)},
-            {"target", vectorJson(camera.target)},
+            {"eye", vectorJson(camera.worldEye())},
+            {"target", vectorJson(camera.worldTarget())},
             {"up", vectorJson(camera.up)},
             {"fov_y_degrees", camera.fovYDegrees},
             {"near", camera.zNear},
@@ -206,7 +206,7 @@ Json describeCamera(const Camera& camera) {
             {"depth", "reversed-z float32: window depth n (f - d) / ((f - n) d) at view depth d, 1 at near, 0 at far; "
                       "projection_matrix is OpenGL's standard one"},
             {"focal_pixels", camera.focalPixels()},
-            {"view_matrix", matrixRows(camera.viewMatrix())},
+            {"view_matrix", matrixRows(camera.worldViewMatrix())},
             {"projection_matrix", matrixRows(camera.projectionMatrix())}};
 }
 

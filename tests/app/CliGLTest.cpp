@@ -176,6 +176,32 @@ TEST_F(Cli, DumpRefusesAFolderOfOtherFiles) {
     EXPECT_EQ(listFiles(directory / "mine"), std::vector<std::string>{"notes.txt"});
 }
 
+TEST_F(Cli, AModelFarFromTheOriginRendersLikeTheSameModelAtIt) {
+    // Georeferenced exports sit 1e7 units out. Positions stay in double until they are relative to the scene's
+    // origin, so the picture is the same bit for bit (before, float32 positions rounded to 1 unit: a blocky polyhedron).
+    std::ifstream near(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "spot_c3d.obj");
+    std::ofstream far(directory / "far.obj");
+    far.precision(17);
+    for (std::string line; std::getline(near, line);) {
+        std::istringstream fields(line);
+        std::string tag;
+        double x = 0, y = 0, z = 0;
+        if (fields >> tag && tag == "v" && fields >> x >> y >> z)
+            far << "v " << x + 1e7 << " " << y - 3e7 << " " << z + 2e7 << "\n";
+        else
+            far << line << "\n";
+    }
+    far.close();
+    const std::string look = " --size 96x96 --lines contour,silhouette,suggestive";
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o near.png" + look).exitCode, 0);
+    ASSERT_EQ(run("render far.obj -o far.png --dump d" + look).exitCode, 0);
+    EXPECT_EQ(cv::norm(readImage(directory / "near.png"), readImage(directory / "far.png"), cv::NORM_INF), 0.0);
+    // The manifest speaks world coordinates: an --eye given in them comes back as given.
+    ASSERT_EQ(run("render far.obj --size 16x16 --dump e --eye 10000003,-30000000,20000000").exitCode, 0);
+    const auto manifest = nlohmann::json::parse(readText(directory / "e" / "manifest.json"));
+    EXPECT_EQ(manifest["camera"]["eye"], nlohmann::json::array({10000003.0, -30000000.0, 20000000.0}));
+}
+
 TEST_F(Cli, AwkwardPathsAndFormats) {
     // A model path that is not UTF-8 still gives valid JSON (the bad bytes become U+FFFD).
     fs::copy_file(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "spot_c3d.obj", directory / "caf\xe9.obj");
