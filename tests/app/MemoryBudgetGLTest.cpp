@@ -18,6 +18,15 @@ using test::Cli;
 using test::CliRun;
 using test::readText;
 
+/** The estimate bounds the program as built for users. Under AddressSanitizer the process also holds the sanitizer's
+ *  shadow memory, redzones and quarantine (about 1.2-1.5x more here), so the sanitized suite checks every refusal and
+ *  message but compares the measured peak only in the Release suite, which CI runs as well. */
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kPeakIsComparable = false;
+#else
+constexpr bool kPeakIsComparable = true;
+#endif
+
 class MemoryBudget : public Cli {
 protected:
     struct Peak {
@@ -60,6 +69,7 @@ TEST_F(MemoryBudget, MeasuredPeakStaysUnderTheEstimateAtEverySupersampling) {
          }) {
         const Peak peak = renderWithStats(arguments);
         EXPECT_GT(peak.measuredMib, 100.0) << arguments; // the process itself: a real measurement, not zero
+        if (!kPeakIsComparable) continue;
         EXPECT_LE(peak.measuredMib, peak.estimatedMib) << arguments;
         // A bound, not a wild guess: within 1.6 x of what was measured (docs/batch.md has the whole table).
         EXPECT_LE(peak.estimatedMib, 1.6 * peak.measuredMib) << arguments;
@@ -79,7 +89,7 @@ TEST_F(MemoryBudget, LimitJustUnderTheEstimateIsRefusedNamingEveryFlagAndJustOve
     EXPECT_FALSE(std::filesystem::exists(directory / "out.png"));
 
     const Peak peak = renderWithStats(arguments + " --memory-limit " + std::to_string(needed));
-    EXPECT_LE(peak.measuredMib, double(needed));
+    if (kPeakIsComparable) EXPECT_LE(peak.measuredMib, double(needed));
 }
 
 TEST_F(MemoryBudget, IssueCaseIsRefusedRatherThanOutgrowingItsLimit) {
