@@ -62,7 +62,8 @@ std::string triangleBytes(float x = 1.0f) {
 }
 
 /** A one-triangle glTF with the buffer inline; `primitive` is spliced into the primitive's JSON, `top` into the
- *  top-level object; `uri` replaces the inline buffer. */
+ *  top-level object (it may repeat a key such as "scene" or "nodes": the later one wins in nlohmann::json, the parser
+ *  under tinygltf); `uri` replaces the inline buffer. */
 std::string gltfTriangle(const std::string& primitiveExtra = "", float x = 1.0f, std::uint32_t count = 3,
                          const std::string& top = "", const std::string& uri = "") {
     const std::string buffer = triangleBytes(x);
@@ -130,6 +131,20 @@ std::vector<BadInput> badInputs() {
          "huge.gltf -o out.png", 3, {"'huge.gltf'", "2147483648 elements", "reads past the end"}},
         {"mesh above --memory-limit", {{"big.stl", bigStl}}, "big.stl -o out.png --memory-limit 64", 3,
          {"'big.stl'", "(600000 vertices, 200000 triangles)", "above the memory limit of 64 MiB (--memory-limit)"}},
+        // glTF structure the spec says must not load (silently rendered otherwise: scene 0, grey, or blank).
+        {"glTF scene out of range", {{"s.gltf", gltfTriangle("", 1.0f, 3, R"("scene":7,)")}}, "s.gltf -o out.png", 3,
+         {"'s.gltf'", "\"scene\": 7 is out of range (file has 1 scenes)"}},
+        {"glTF material out of range", {{"m.gltf", gltfTriangle(R"(,"material":3)")}}, "m.gltf -o out.png", 3,
+         {"'m.gltf'", "material index 3 out of range (file has 0 materials)"}},
+        {"glTF requiring an unknown extension",
+         {{"e.gltf", gltfTriangle("", 1.0f, 3, R"("extensionsUsed":["KHR_foo"],"extensionsRequired":["KHR_foo"],)")}},
+         "e.gltf -o out.png", 3, {"'e.gltf'", "requires the unsupported extension 'KHR_foo'"}},
+        {"glTF node scale of 1e38",
+         {{"n.gltf", gltfTriangle("", 1.0f, 3, R"("nodes":[{"mesh":0,"scale":[1e38,1e38,1e38]}],)")}},
+         "n.gltf -o out.png", 3, {"'n.gltf'", "node 0", "more than the 1e+15 the renderer can hold"}},
+        {"glTF data URI of 1 MiB, quoted short", {{"u.gltf", gltfTriangle("", 1.0f, 3, "",
+         "data:application/octet-stream;base64," + std::string(1 << 20, 'A') + "!!")}},
+         "u.gltf -o out.png", 3, {"'u.gltf'", "Failed to decode", "... (1048615 bytes)"}},
         // Indices, coordinates, primitives, areas.
         {"OBJ index out of range", {{"index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"}}, "index.obj -o out.png", 3,
          {"'index.obj' line 4", "index 9 out of range"}},
@@ -248,6 +263,7 @@ TEST_F(Cli, BadInputMatrixFailsCleanlyAndTouchesNothing) {
         EXPECT_EQ(result.exitCode, input.exitCode) << result.err;
         for (const std::string& part : input.messageParts)
             EXPECT_NE(result.err.find(part), std::string::npos) << "missing '" << part << "' in: " << result.err;
+        EXPECT_LT(result.err.size(), 2000u) << "a message quotes what it names, not the whole of it";
         EXPECT_EQ(result.err.find("internal error"), std::string::npos) << result.err;
         EXPECT_EQ(readText(directory / "out.png"), kEarlierPicture);
         EXPECT_EQ(snapshot(directory), before) << "a failed run changed, removed or left a file";

@@ -202,6 +202,26 @@ TEST_F(Cli, AModelFarFromTheOriginRendersLikeTheSameModelAtIt) {
     EXPECT_EQ(manifest["camera"]["eye"], nlohmann::json::array({10000003.0, -30000000.0, 20000000.0}));
 }
 
+TEST_F(Cli, AByteOrderMarkOrAMissingSolidLineChangesNothing) {
+    // Before: the BOM glued to the first 'v' lost that vertex and shifted every index; STL text without 'solid' was
+    // called a truncated binary STL of 959328288 triangles.
+    const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    std::ofstream(directory / "plain.obj") << obj;
+    std::ofstream(directory / "bom.obj") << "\xEF\xBB\xBF" << obj;
+    const std::string facets = "facet normal 0 0 0\n outer loop\n  vertex 0 0 0\n  vertex 0 1 0\n  vertex 1 0 0\n"
+                               " endloop\nendfacet\nfacet normal 0 0 0\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n"
+                               "  vertex 0 0 1\n endloop\nendfacet\n";
+    std::ofstream(directory / "solid.stl") << "solid t\n" << facets << "endsolid t\n";
+    std::ofstream(directory / "bare.stl") << facets;
+    for (const char* name : {"plain.obj", "bom.obj", "solid.stl", "bare.stl"}) {
+        const CliRun result = run(std::string("render ") + name + " -o " + name + ".png --size 48x48 --lines contour");
+        ASSERT_EQ(result.exitCode, 0) << name << ": " << result.err;
+    }
+    EXPECT_EQ(cv::norm(readImage(directory / "plain.obj.png"), readImage(directory / "bom.obj.png"), cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(readImage(directory / "solid.stl.png"), readImage(directory / "bare.stl.png"), cv::NORM_INF),
+              0.0);
+}
+
 TEST_F(Cli, AwkwardPathsAndFormats) {
     // A model path that is not UTF-8 still gives valid JSON (the bad bytes become U+FFFD).
     fs::copy_file(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "spot_c3d.obj", directory / "caf\xe9.obj");
