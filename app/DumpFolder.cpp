@@ -15,6 +15,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <set>
@@ -95,6 +96,13 @@ int exchangeFolders(const fs::path& first, const fs::path& second) {
     return ::renameat2(AT_FDCWD, first.c_str(), AT_FDCWD, second.c_str(), RENAME_EXCHANGE);
 }
 
+/** Test hook (tests/app/OutputTransactionGLTest.cpp): INKGRAPH_TEST_NO_RENAME_EXCHANGE=1 takes the path of file
+ *  systems that lack RENAME_EXCHANGE. */
+bool exchangeIsUnsupported() {
+    const char* value = std::getenv("INKGRAPH_TEST_NO_RENAME_EXCHANGE");
+    return value != nullptr && std::string(value) == "1";
+}
+
 } // namespace
 
 std::optional<FileIdentity> fileIdentity(const fs::path& path) {
@@ -134,7 +142,8 @@ EarlierDump readEarlierDump(const fs::path& folder) {
         listed.insert(name);
     }
     for (const std::string& name : present)
-        if (!listed.count(name)) return {{}, "it holds " + quotedName(name) + ", which its manifest.json does not name"};
+        if (!listed.count(name))
+            return {{}, "it holds " + quotedName(name) + ", which its manifest.json does not name"};
     dump.files.assign(listed.begin(), listed.end());
     return dump;
 }
@@ -290,12 +299,28 @@ void DumpFolder::markEarlier() {
 }
 
 void DumpFolder::swapIn() {
-    ::chmod(mStaging.c_str(), mFolderMode); // the folder keeps its permissions
-    const int result =
-        mHadEarlierDump ? exchangeFolders(mStaging, mFolder) : ::rename(mStaging.c_str(), mFolder.c_str());
-    if (result != 0)
+    const auto fail = [&](int reason) {
         throw FileError("OutputSet::commit(): cannot swap the new dump into --dump '" + mShownName +
-                        "': " + std::strerror(errno));
+                        "': " + std::strerror(reason));
+    };
+    ::chmod(mStaging.c_str(), mFolderMode); // the folder keeps its permissions
+    if (!mHadEarlierDump) {
+        if (::rename(mStaging.c_str(), mFolder.c_str()) != 0) fail(errno);
+    } else if (!exchangeIsUnsupported() && exchangeFolders(mStaging, mFolder) == 0) {
+        mAside = mStaging;
+    } else {
+        if (errno != EINVAL && errno != ENOSYS && errno != EOPNOTSUPP && !exchangeIsUnsupported()) fail(errno);
+        // A file system without RENAME_EXCHANGE (NFS, some cluster file systems): two renames. A crash between them
+        // leaves no DIR, the earlier dump set aside (marked) and the new one staged: never a mix.
+        mAside = newStagingName(mFolder.parent_path());
+        if (::rename(mFolder.c_str(), mAside.c_str()) != 0) fail(errno);
+        if (::rename(mStaging.c_str(), mFolder.c_str()) != 0) {
+            const int reason = errno;
+            ::rename(mAside.c_str(), mFolder.c_str());
+            fail(reason);
+        }
+        mExchanged = false;
+    }
     mSwapped = true;
     // The staged names now name the earlier dump's files (or nothing): a signal must not remove them any more.
     for (const std::string& name : mStagedNames) forgetTemporary(mStaging / name);
@@ -305,10 +330,14 @@ void DumpFolder::swapIn() {
 
 void DumpFolder::undo() {
     if (mSwapped) {
-        if (mHadEarlierDump) {
+        if (!mHadEarlierDump) {
+            if (::rename(mFolder.c_str(), mStaging.c_str()) == 0) {
+                ::mkdir(mFolder.c_str(), mFolderMode);
+                mSwapped = false;
+            }
+        } else if (mExchanged) {
             if (exchangeFolders(mStaging, mFolder) == 0) mSwapped = false;
-        } else if (::rename(mFolder.c_str(), mStaging.c_str()) == 0) {
-            ::mkdir(mFolder.c_str(), mFolderMode);
+        } else if (::rename(mFolder.c_str(), mStaging.c_str()) == 0 && ::rename(mAside.c_str(), mFolder.c_str()) == 0) {
             mSwapped = false;
         }
     }
@@ -319,12 +348,12 @@ bool DumpFolder::finish() {
     bool clean = ::unlink((mFolder / kStagingMarker).c_str()) == 0;
     if (!mHadEarlierDump) return clean;
     // The earlier dump, swapped out: only the files it was checked to hold, the marker last.
-    const int aside = ::open(mStaging.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    const int aside = ::open(mAside.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
     if (aside < 0) return false;
     for (const std::string& name : mEarlierFiles) ::unlinkat(aside, name.c_str(), 0);
     ::unlinkat(aside, kStagingMarker, 0);
     ::close(aside);
-    return ::rmdir(mStaging.c_str()) == 0 && clean;
+    return ::rmdir(mAside.c_str()) == 0 && clean;
 }
 
 } // namespace inkgraph

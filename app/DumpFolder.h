@@ -1,7 +1,8 @@
 #pragma once
 /** @file --dump DIR as one transaction: the new dump is written whole into a staging folder beside DIR and swapped
  *  in with one rename (renameat2 RENAME_EXCHANGE when DIR holds an earlier dump), so after any crash DIR holds
- *  either the earlier dump or the new one, whole.
+ *  either the earlier dump or the new one, whole. (On a file system without RENAME_EXCHANGE, such as NFS, the swap is
+ *  two renames: a crash between them leaves no DIR, never a mix.)
  *
  *  The staging folder is ".inkgraph-dump-<pid>-<n>" in DIR's parent and holds the marker file ".inkgraph-staging".
  *  A later run removes such a folder only when both hold (its name and its marker) and process <pid> is gone, and
@@ -85,6 +86,7 @@ private:
     std::string mShownName;
     std::filesystem::path mFolder;
     std::filesystem::path mStaging;
+    std::filesystem::path mAside; ///< where the earlier dump is after the swap (mStaging when exchanged)
     std::vector<std::string> mEarlierFiles;
     std::vector<std::string> mStagedNames;
     bool mHadEarlierDump = false;
@@ -93,6 +95,7 @@ private:
     std::vector<std::filesystem::path> mCreatedFolders; ///< innermost first; removed on failure when empty
     bool mMarked = false;
     bool mSwapped = false;
+    bool mExchanged = true; ///< false: swapped by two renames (no RENAME_EXCHANGE on this file system)
     bool mFinished = false;
 };
 

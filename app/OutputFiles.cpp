@@ -86,7 +86,8 @@ void requireNameFits(const fs::path& path, const std::string& what) {
 /** The commit's test hooks: INKGRAPH_TEST_COMMIT_KILL / _FAIL = the step after which to stop. */
 class CommitSteps {
 public:
-    CommitSteps() : mKillAfter(stepFrom("INKGRAPH_TEST_COMMIT_KILL")), mFailAfter(stepFrom("INKGRAPH_TEST_COMMIT_FAIL")) {}
+    CommitSteps()
+        : mKillAfter(stepFrom("INKGRAPH_TEST_COMMIT_KILL")), mFailAfter(stepFrom("INKGRAPH_TEST_COMMIT_FAIL")) {}
 
     /** A step that can still be undone. */
     void done(const std::string& step) {

@@ -206,7 +206,8 @@ std::vector<BadInput> badInputs() {
         {"file name too long", {}, spot + " -o " + std::string(252, 'n') + ".png --size 16x16", 5,
          {"its file name is 256 bytes"}},
         // Extreme but finite values.
-        {"--clip near below float", {}, spot + " -o out.png --clip 1e-38,10", 2, {"--clip", "[1e-30, 1e30]", "'1e-38,10'"}},
+        {"--clip near below float", {}, spot + " -o out.png --clip 1e-38,10", 2,
+         {"--clip", "[1e-30, 1e30]", "'1e-38,10'"}},
         {"--clip ratio", {}, spot + " -o out.png --clip 1e-16,1e16", 2, {"--clip", "FAR/NEAR at most 1e30"}},
         {"--eye beyond double", {}, spot + " -o out.png --eye 1e300,0,0", 2, {"--eye", "+-1e15", "'1e300,0,0'"}},
         {"--up zero", {}, spot + " -o out.png --up 0,0,0", 2, {"--up", "must not be zero"}},

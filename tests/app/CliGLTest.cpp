@@ -178,7 +178,8 @@ TEST_F(Cli, DumpRefusesAFolderOfOtherFiles) {
 
 TEST_F(Cli, AModelFarFromTheOriginRendersLikeTheSameModelAtIt) {
     // Georeferenced exports sit 1e7 units out. Positions stay in double until they are relative to the scene's
-    // origin, so the picture is the same bit for bit (before, float32 positions rounded to 1 unit: a blocky polyhedron).
+    // origin, so the picture is the same bit for bit (before, float32 positions rounded to 1 unit: a blocky
+    // polyhedron).
     std::ifstream near(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "spot_c3d.obj");
     std::ofstream far(directory / "far.obj");
     far.precision(17);
@@ -217,7 +218,8 @@ TEST_F(Cli, AByteOrderMarkOrAMissingSolidLineChangesNothing) {
         const CliRun result = run(std::string("render ") + name + " -o " + name + ".png --size 48x48 --lines contour");
         ASSERT_EQ(result.exitCode, 0) << name << ": " << result.err;
     }
-    EXPECT_EQ(cv::norm(readImage(directory / "plain.obj.png"), readImage(directory / "bom.obj.png"), cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(readImage(directory / "plain.obj.png"), readImage(directory / "bom.obj.png"), cv::NORM_INF),
+              0.0);
     EXPECT_EQ(cv::norm(readImage(directory / "solid.stl.png"), readImage(directory / "bare.stl.png"), cv::NORM_INF),
               0.0);
 }

@@ -89,7 +89,9 @@ TEST_F(MemoryBudget, LimitJustUnderTheEstimateIsRefusedNamingEveryFlagAndJustOve
     EXPECT_FALSE(std::filesystem::exists(directory / "out.png"));
 
     const Peak peak = renderWithStats(arguments + " --memory-limit " + std::to_string(needed));
-    if (kPeakIsComparable) EXPECT_LE(peak.measuredMib, double(needed));
+    if (kPeakIsComparable) {
+        EXPECT_LE(peak.measuredMib, double(needed));
+    }
 }
 
 TEST_F(MemoryBudget, IssueCaseIsRefusedRatherThanOutgrowingItsLimit) {

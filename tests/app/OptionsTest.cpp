@@ -303,11 +303,13 @@ TEST(Options, ClipAndPointsWithinWhatFloat32AndDoubleHold) {
     EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--clip", "1e12,1e30"}).clipRange, glm::dvec2(1e12, 1e30));
     EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--clip", "1e-15,1e14"}).clipRange, glm::dvec2(1e-15, 1e14));
     for (const char* clip : {"1e-38,10", "1e-31,1e-29", "1,1e31", "1e-20,1e11"})
-        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--clip", clip}).find("FAR/NEAR at most 1e30"), std::string::npos)
+        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--clip", clip}).find("FAR/NEAR at most 1e30"),
+                  std::string::npos)
             << clip;
     EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--eye", "1e15,-1e15,0"}).eye, glm::dvec3(1e15, -1e15, 0));
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--target", "0,2e15,0"}).find("--target: coordinates must lie within"),
-              std::string::npos);
+    EXPECT_NE(
+        usageMessage({"m.obj", "-o", "x.png", "--target", "0,2e15,0"}).find("--target: coordinates must lie within"),
+        std::string::npos);
 }
 
 TEST(Options, SeveralModelsAListAndAShard) {

@@ -33,7 +33,8 @@ std::pair<std::uint32_t, std::uint32_t> pngSize(const std::string& bytes) {
     if (bytes.size() < 24 || bytes.compare(1, 3, "PNG") != 0) return {0, 0};
     const auto bigEndian = [&](std::size_t at) {
         std::uint32_t value = 0;
-        for (std::size_t i = 0; i < 4; ++i) value = value << 8 | std::uint8_t(bytes[at + i]);
+        for (std::size_t i = 0; i < 4; ++i)
+            value = value << 8 | std::uint8_t(bytes[at + i]);
         return value;
     };
     return {bigEndian(16), bigEndian(20)};
@@ -67,71 +68,81 @@ protected:
     Snapshot oldState;
 };
 
+/** Each test runs on this file system's RENAME_EXCHANGE and on the two renames of file systems without it (NFS). */
+const char* const kSwapModes[] = {"", "INKGRAPH_TEST_NO_RENAME_EXCHANGE=1 "};
+
 TEST_F(OutputTransaction, AFailureAtAnyCommitStepChangesNothing) {
     makeEarlierOutputs();
-    int steps = 0;
-    for (int step = 1; step < 30; ++step) {
-        SCOPED_TRACE("failed after step " + std::to_string(step));
-        resetWork();
-        const CliRun result = renderInto(directory / "work", 48, "INKGRAPH_TEST_COMMIT_FAIL=" + std::to_string(step));
-        if (result.exitCode == 0) break; // past the commit point: nothing left to fail
-        ++steps;
-        EXPECT_EQ(result.exitCode, 5) << result.err;
-        EXPECT_NE(result.err.find("test hook: failed after commit step " + std::to_string(step)), std::string::npos)
-            << result.err;
-        // Every file as it was, byte for byte, and nothing beside them: not a temporary, not a staging folder.
-        EXPECT_EQ(snapshot(directory / "work"), oldState);
+    for (const std::string mode : kSwapModes) {
+        int steps = 0;
+        for (int step = 1; step < 30; ++step) {
+            SCOPED_TRACE(mode + "failed after step " + std::to_string(step));
+            resetWork();
+            const CliRun result =
+                renderInto(directory / "work", 48, mode + "INKGRAPH_TEST_COMMIT_FAIL=" + std::to_string(step));
+            if (result.exitCode == 0) break; // past the commit point: nothing left to fail
+            ++steps;
+            EXPECT_EQ(result.exitCode, 5) << result.err;
+            EXPECT_NE(result.err.find("test hook: failed after commit step " + std::to_string(step)), std::string::npos)
+                << result.err;
+            // Every file as it was, byte for byte, and nothing beside them: not a temporary, not a staging folder.
+            EXPECT_EQ(snapshot(directory / "work"), oldState);
+        }
+        // staged, earlier dump marked, earlier -o and --stats kept, dump swapped in, -o and --stats moved.
+        EXPECT_EQ(steps, 7);
     }
-    // staged, earlier dump marked, earlier -o and --stats kept, dump swapped in, -o and --stats moved.
-    EXPECT_EQ(steps, 7);
 }
 
 TEST_F(OutputTransaction, ACrashAtAnyCommitStepLeavesEachOutputWholeAndTheNextRunRecovers) {
     makeEarlierOutputs();
-    int crashes = 0;
-    for (int step = 1; step < 30; ++step) {
-        SCOPED_TRACE("killed after step " + std::to_string(step));
-        resetWork();
-        const fs::path work = directory / "work";
-        const CliRun result = renderInto(work, 48, "INKGRAPH_TEST_COMMIT_KILL=" + std::to_string(step));
-        if (result.exitCode == 0) break; // the hook's step lies past the last one
-        ++crashes;
-        EXPECT_NE(result.err.find("test hook: killed after commit step " + std::to_string(step)), std::string::npos)
-            << result.err;
-        const Snapshot after = snapshot(work);
+    for (const std::string mode : kSwapModes) {
+        int crashes = 0;
+        for (int step = 1; step < 30; ++step) {
+            SCOPED_TRACE(mode + "killed after step " + std::to_string(step));
+            resetWork();
+            const fs::path work = directory / "work";
+            const CliRun result = renderInto(work, 48, mode + "INKGRAPH_TEST_COMMIT_KILL=" + std::to_string(step));
+            if (result.exitCode == 0) break; // the hook's step lies past the last one
+            ++crashes;
+            EXPECT_NE(result.err.find("test hook: killed after commit step " + std::to_string(step)), std::string::npos)
+                << result.err;
+            const Snapshot after = snapshot(work);
 
-        // -o and --stats: each the old file or the new one, whole.
-        const std::string picture = readText(work / "out.png");
-        EXPECT_TRUE(picture == readText(directory / "old" / "out.png") ||
-                    pngSize(picture) == std::make_pair(48u, 48u));
-        const auto stats = nlohmann::json::parse(readText(work / "s.json"));
-        EXPECT_TRUE(stats["size"] == nlohmann::json::array({32, 32}) || stats["size"] == nlohmann::json::array({48, 48}));
+            // -o and --stats: each the old file or the new one, whole.
+            const std::string picture = readText(work / "out.png");
+            EXPECT_TRUE(picture == readText(directory / "old" / "out.png") ||
+                        pngSize(picture) == std::make_pair(48u, 48u));
+            const auto stats = nlohmann::json::parse(readText(work / "s.json"));
+            EXPECT_TRUE(stats["size"] == nlohmann::json::array({32, 32}) ||
+                        stats["size"] == nlohmann::json::array({48, 48}));
 
-        // The dump: the earlier one, byte for byte, or the new one, whole (the staging marker may be left in it).
-        std::set<std::string> dumpFiles;
-        for (const auto& entry : fs::directory_iterator(work / "d"))
-            if (entry.path().filename() != ".inkgraph-staging") dumpFiles.insert(entry.path().filename().string());
-        const auto manifest = nlohmann::json::parse(readText(work / "d" / "manifest.json"));
-        if (manifest["size"] == nlohmann::json::array({32, 32})) {
-            for (const std::string& name : dumpFiles) EXPECT_EQ(after.at("d/" + name), oldState.at("d/" + name)) << name;
-            std::set<std::string> oldFiles;
-            for (const auto& entry : fs::directory_iterator(directory / "old" / "d"))
-                oldFiles.insert(entry.path().filename().string());
-            EXPECT_EQ(dumpFiles, oldFiles);
-        } else {
-            EXPECT_EQ(manifest["size"], nlohmann::json::array({48, 48}));
-            EXPECT_EQ(dumpFiles, (std::set<std::string>{"final.png", "manifest.json", "shading.png"}));
-            EXPECT_EQ(pngSize(readText(work / "d" / "final.png")), std::make_pair(48u, 48u));
+            // The dump: the earlier one, byte for byte, or the new one, whole (the staging marker may be left in it).
+            std::set<std::string> dumpFiles;
+            for (const auto& entry : fs::directory_iterator(work / "d"))
+                if (entry.path().filename() != ".inkgraph-staging") dumpFiles.insert(entry.path().filename().string());
+            const auto manifest = nlohmann::json::parse(readText(work / "d" / "manifest.json"));
+            if (manifest["size"] == nlohmann::json::array({32, 32})) {
+                for (const std::string& name : dumpFiles)
+                    EXPECT_EQ(after.at("d/" + name), oldState.at("d/" + name)) << name;
+                std::set<std::string> oldFiles;
+                for (const auto& entry : fs::directory_iterator(directory / "old" / "d"))
+                    oldFiles.insert(entry.path().filename().string());
+                EXPECT_EQ(dumpFiles, oldFiles);
+            } else {
+                EXPECT_EQ(manifest["size"], nlohmann::json::array({48, 48}));
+                EXPECT_EQ(dumpFiles, (std::set<std::string>{"final.png", "manifest.json", "shading.png"}));
+                EXPECT_EQ(pngSize(readText(work / "d" / "final.png")), std::make_pair(48u, 48u));
+            }
+
+            // The next run succeeds and sweeps whatever the crash left (the process that left it is gone).
+            const CliRun next = renderInto(work, 48);
+            ASSERT_EQ(next.exitCode, 0) << next.err;
+            EXPECT_EQ(listFiles(work), (std::vector<std::string>{"d", "out.png", "s.json"}));
+            EXPECT_EQ(listFiles(work / "d"), (std::vector<std::string>{"final.png", "manifest.json", "shading.png"}));
         }
-
-        // The next run succeeds and sweeps whatever the crash left (the process that left it is gone).
-        const CliRun next = renderInto(work, 48);
-        ASSERT_EQ(next.exitCode, 0) << next.err;
-        EXPECT_EQ(listFiles(work), (std::vector<std::string>{"d", "out.png", "s.json"}));
-        EXPECT_EQ(listFiles(work / "d"), (std::vector<std::string>{"final.png", "manifest.json", "shading.png"}));
+        // The 7 steps that can fail, then the dump's tidying.
+        EXPECT_EQ(crashes, 8);
     }
-    // The 7 steps that can fail, then the dump's tidying.
-    EXPECT_EQ(crashes, 8);
 }
 
 TEST_F(OutputTransaction, ADumpFolderInUseIsRefusedAtOnce) {
@@ -156,7 +167,8 @@ TEST_F(OutputTransaction, DevicesFifosAndLinksToThemAreNeverReplaced) {
     const CliRun device = run("render " + model("spot_c3d.obj") + " -o out.png --size 16x16 --stats null.json");
     EXPECT_EQ(device.exitCode, 5);
     EXPECT_NE(device.err.find("--stats 'null.json' is a character device"), std::string::npos) << device.err;
-    const CliRun fifo = run("render " + model("spot_c3d.obj") + " -o out.png --size 16x16 --lines contour --svg pipe.svg");
+    const CliRun fifo =
+        run("render " + model("spot_c3d.obj") + " -o out.png --size 16x16 --lines contour --svg pipe.svg");
     EXPECT_EQ(fifo.exitCode, 5);
     EXPECT_NE(fifo.err.find("--svg 'pipe.svg' is a FIFO"), std::string::npos) << fifo.err;
     EXPECT_EQ(snapshot(directory), before);
@@ -190,8 +202,8 @@ TEST_F(OutputTransaction, APlantedManifestNeverDeletesAnything) {
     std::ofstream(directory / "victim.txt") << "precious";
     fs::create_symlink(directory / "victim.txt", directory / "d" / "link.png");
     const std::string absolute = (directory / "victim.txt").string();
-    for (const std::string& name : {std::string("../victim.txt"), absolute, std::string("link.png"),
-                                    std::string("."), std::string("")}) {
+    for (const std::string& name :
+         {std::string("../victim.txt"), absolute, std::string("link.png"), std::string("."), std::string("")}) {
         SCOPED_TRACE(name);
         std::ofstream(directory / "d" / "manifest.json")
             << nlohmann::json({{"inkgraph", "0"}, {"files", {{{"file", name}}}}}).dump();
@@ -229,8 +241,7 @@ TEST_F(OutputTransaction, LongNamesFailBeforeRenderingOrNotAtAll) {
     const CliRun fits = run("render " + model("spot_c3d.obj") + " -o out.png --size 16x16 --stats " + longest);
     EXPECT_EQ(fits.exitCode, 0) << fits.err;
     EXPECT_TRUE(fs::exists(directory / longest));
-    const CliRun tooLong =
-        run("render " + model("spot_c3d.obj") + " -o new.png --size 16x16 --stats " + longest + "j");
+    const CliRun tooLong = run("render " + model("spot_c3d.obj") + " -o new.png --size 16x16 --stats " + longest + "j");
     EXPECT_EQ(tooLong.exitCode, 5);
     EXPECT_NE(tooLong.err.find("its file name is 256 bytes"), std::string::npos) << tooLong.err;
     EXPECT_EQ(tooLong.err.find("rendered"), std::string::npos) << "refused before any work";
