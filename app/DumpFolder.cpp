@@ -80,10 +80,14 @@ void removePlainFilesIn(int folderDescriptor, const std::string& last) {
 /** The pid in ".inkgraph-dump-<pid>-<n>", or 0. */
 long stagingFolderPid(const std::string& name) {
     if (name.rfind(kStagingPrefix, 0) != 0) return 0;
-    const char* digits = name.c_str() + std::strlen(kStagingPrefix);
-    char* end = nullptr;
-    const long pid = std::strtol(digits, &end, 10);
-    return end != digits && *end == '-' && pid > 0 ? pid : 0;
+    // Exactly "<digits>-<digits>" after the prefix, as newStagingName() writes it.
+    const std::string rest = name.substr(std::strlen(kStagingPrefix));
+    const auto dash = rest.find('-');
+    const auto allDigits = [](const std::string& text) {
+        return !text.empty() && text.size() <= 10 && text.find_first_not_of("0123456789") == std::string::npos;
+    };
+    if (dash == std::string::npos || !allDigits(rest.substr(0, dash)) || !allDigits(rest.substr(dash + 1))) return 0;
+    return std::stol(rest.substr(0, dash));
 }
 
 fs::path newStagingName(const fs::path& parent) {
@@ -116,11 +120,13 @@ EarlierDump readEarlierDump(const fs::path& folder) {
     const auto names = namesIn(folder);
     if (!names) return {{}, std::string("it cannot be read: ") + std::strerror(errno)};
     std::set<std::string> present(names->begin(), names->end());
-    present.erase(kStagingMarker);
+    struct stat status {};
+    if (present.erase(kStagingMarker) &&
+        (::lstat((folder / kStagingMarker).c_str(), &status) != 0 || !S_ISREG(status.st_mode)))
+        return {{}, std::string("its ") + kStagingMarker + " is not a file inkgraph wrote"};
     if (present.empty()) return dump;
     if (!present.count(kManifest)) return {{}, "it has no manifest.json"};
 
-    struct stat status {};
     const fs::path manifestPath = folder / kManifest;
     if (::lstat(manifestPath.c_str(), &status) != 0 || !S_ISREG(status.st_mode) ||
         std::uintmax_t(status.st_size) > kMaxManifestBytes)
@@ -185,6 +191,8 @@ void DumpFolder::check(const std::string& flagValue) {
     if (!folder.has_filename()) folder = folder.parent_path(); // "d/" and "d/." name d itself
     const fs::file_status status = fs::status(folder, error);
     if (error && error != std::errc::no_such_file_or_directory) fail(": " + error.message());
+    if (!fs::exists(status) && fs::is_symlink(fs::symlink_status(folder)))
+        fail("is a link to a folder that does not exist ('" + fs::read_symlink(folder).string() + "')");
     if (fs::exists(status)) {
         if (!fs::is_directory(status)) fail("is a file, not a folder");
         folder = fs::canonical(folder, error); // the swap replaces the folder itself, never a link to it
@@ -209,6 +217,8 @@ void DumpFolder::check(const std::string& flagValue) {
     if (folderStatus.st_dev != parentStatus.st_dev)
         fail("is a mount point; a dump is staged beside its folder and swapped in, so give a folder inside it");
     mFolderMode = folderStatus.st_mode & 07777;
+    mFolderOwner = folderStatus.st_uid;
+    mFolderGroup = folderStatus.st_gid;
     const fs::path probe = temporarySibling(parent / "probe");
     const int probeFile = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
     if (probeFile < 0)
@@ -273,8 +283,10 @@ void DumpFolder::abandon() {
         forgetTemporary(mStaging / kStagingMarker);
         forgetTemporary(mStaging);
     }
-    if (!mSwapped)
-        for (const fs::path& folder : mCreatedFolders) ::rmdir(folder.c_str()); // innermost first, only if empty
+    // Innermost first, only if empty, and only if this run held the lock: a folder it created but another run locked
+    // first is that run's now.
+    if (!mSwapped && mLock >= 0)
+        for (const fs::path& folder : mCreatedFolders) ::rmdir(folder.c_str());
     for (const fs::path& folder : mCreatedFolders) forgetTemporary(folder);
     mCreatedFolders.clear();
     mStaging.clear();
@@ -290,7 +302,8 @@ fs::path DumpFolder::stage(const std::string& name) {
 void DumpFolder::markEarlier() {
     if (!mHadEarlierDump) return;
     const fs::path marker = mFolder / kStagingMarker;
-    const int file = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+    // Never through a link, never blocking: the check saw a regular file or none, but the folder is the user's.
+    const int file = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
     if (file < 0)
         throw FileError("OutputSet::commit(): cannot mark the earlier dump in --dump '" + mShownName +
                         "': " + std::strerror(errno));
@@ -303,7 +316,9 @@ void DumpFolder::swapIn() {
         throw FileError("OutputSet::commit(): cannot swap the new dump into --dump '" + mShownName +
                         "': " + std::strerror(reason));
     };
-    ::chmod(mStaging.c_str(), mFolderMode); // the folder keeps its permissions
+    // The folder keeps its permissions and owner (the owner only where this process may give it: root).
+    ::chmod(mStaging.c_str(), mFolderMode);
+    if (::geteuid() == 0) (void)::chown(mStaging.c_str(), mFolderOwner, mFolderGroup);
     if (!mHadEarlierDump) {
         if (::rename(mStaging.c_str(), mFolder.c_str()) != 0) fail(errno);
     } else if (!exchangeIsUnsupported() && exchangeFolders(mStaging, mFolder) == 0) {
@@ -312,6 +327,9 @@ void DumpFolder::swapIn() {
         if (errno != EINVAL && errno != ENOSYS && errno != EOPNOTSUPP && !exchangeIsUnsupported()) fail(errno);
         // A file system without RENAME_EXCHANGE (NFS, some cluster file systems): two renames. A crash between them
         // leaves no DIR, the earlier dump set aside (marked) and the new one staged: never a mix.
+        // Unmarked first: should the process die before the second rename, the earlier dump stays set aside under
+        // this name for the user to rename back, and no later run's sweep deletes it.
+        if (mMarked && ::unlink((mFolder / kStagingMarker).c_str()) == 0) mMarked = false;
         mAside = newStagingName(mFolder.parent_path());
         if (::rename(mFolder.c_str(), mAside.c_str()) != 0) fail(errno);
         if (::rename(mStaging.c_str(), mFolder.c_str()) != 0) {
@@ -320,6 +338,10 @@ void DumpFolder::swapIn() {
             fail(reason);
         }
         mExchanged = false;
+        // Marked again now that the new dump is in place: from here a crash leaves it for the next run's sweep.
+        const int marker = ::open((mAside / kStagingMarker).c_str(),
+                                  O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+        if (marker >= 0) ::close(marker);
     }
     mSwapped = true;
     // The staged names now name the earlier dump's files (or nothing): a signal must not remove them any more.
@@ -338,6 +360,7 @@ void DumpFolder::undo() {
         } else if (mExchanged) {
             if (exchangeFolders(mStaging, mFolder) == 0) mSwapped = false;
         } else if (::rename(mFolder.c_str(), mStaging.c_str()) == 0 && ::rename(mAside.c_str(), mFolder.c_str()) == 0) {
+            ::unlink((mFolder / kStagingMarker).c_str()); // the mark swapIn() gave it once set aside
             mSwapped = false;
         }
     }

@@ -91,6 +91,8 @@ private:
     std::vector<std::string> mStagedNames;
     bool mHadEarlierDump = false;
     mode_t mFolderMode = 0;
+    uid_t mFolderOwner = 0;
+    gid_t mFolderGroup = 0;
     int mLock = -1;
     std::vector<std::filesystem::path> mCreatedFolders; ///< innermost first; removed on failure when empty
     bool mMarked = false;

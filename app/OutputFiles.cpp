@@ -83,11 +83,13 @@ void requireNameFits(const fs::path& path, const std::string& what) {
                         " bytes; this file system holds names of at most " + std::to_string(limit));
 }
 
-/** The commit's test hooks: INKGRAPH_TEST_COMMIT_KILL / _FAIL = the step after which to stop. */
+/** The commit's test hooks: INKGRAPH_TEST_COMMIT_KILL / _FAIL / _INTERRUPT = the step after which to stop the
+ *  process, fail the commit, or send the process SIGINT. */
 class CommitSteps {
 public:
     CommitSteps()
-        : mKillAfter(stepFrom("INKGRAPH_TEST_COMMIT_KILL")), mFailAfter(stepFrom("INKGRAPH_TEST_COMMIT_FAIL")) {}
+        : mKillAfter(stepFrom("INKGRAPH_TEST_COMMIT_KILL")), mFailAfter(stepFrom("INKGRAPH_TEST_COMMIT_FAIL")),
+          mInterruptAfter(stepFrom("INKGRAPH_TEST_COMMIT_INTERRUPT")) {}
 
     /** A step that can still be undone. */
     void done(const std::string& step) {
@@ -100,6 +102,7 @@ public:
     /** A step after the commit point: it can be killed, not failed. */
     void doneAfterCommit(const std::string& step) {
         ++mCount;
+        if (mCount == mInterruptAfter) ::kill(::getpid(), SIGINT); // to the process: any thread may take it
         if (mCount == mKillAfter) {
             std::cerr << "inkgraph: test hook: killed after commit step " << mCount << " (" << step << ")" << std::endl;
             ::kill(::getpid(), SIGKILL);
@@ -113,24 +116,8 @@ private:
     }
     int mKillAfter;
     int mFailAfter;
+    int mInterruptAfter;
     int mCount = 0;
-};
-
-/** Signals wait while the commit runs: a Ctrl-C then lands after it, with every output old or every one new. */
-class SignalsHeld {
-public:
-    SignalsHeld() {
-        sigset_t held;
-        sigemptyset(&held);
-        for (int signalNumber : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&held, signalNumber);
-        ::pthread_sigmask(SIG_BLOCK, &held, &mPrevious);
-    }
-    ~SignalsHeld() { ::pthread_sigmask(SIG_SETMASK, &mPrevious, nullptr); }
-    SignalsHeld(const SignalsHeld&) = delete;
-    SignalsHeld& operator=(const SignalsHeld&) = delete;
-
-private:
-    sigset_t mPrevious;
 };
 
 } // namespace
@@ -237,11 +224,15 @@ void OutputSet::stageDumpManifest(const std::string& json) {
 
 void OutputSet::undo() {
     for (auto file = mOutputs.rbegin(); file != mOutputs.rend(); ++file) {
-        if (file->moved) {
-            // Our new file goes back to its temporary name (the destructor removes it), the old one back in place.
-            if (::rename(file->destination.c_str(), file->temporary.c_str()) == 0) file->moved = false;
-            if (!file->backup.empty() && ::rename(file->backup.c_str(), file->destination.c_str()) == 0)
+        // One step each, so no moment lacks the destination: the old file renamed back over our new one, or our new
+        // one removed where there was none.
+        if (file->moved && !file->backup.empty()) {
+            if (::rename(file->backup.c_str(), file->destination.c_str()) == 0) {
                 file->backup.clear();
+                file->moved = false;
+            }
+        } else if (file->moved && ::unlink(file->destination.c_str()) == 0) {
+            file->moved = false;
         }
         if (!file->backup.empty() && ::unlink(file->backup.c_str()) == 0) file->backup.clear();
     }
@@ -249,7 +240,7 @@ void OutputSet::undo() {
 }
 
 void OutputSet::commit() {
-    const SignalsHeld signalsHeld;
+    const SignalsDeferred signalsDeferred; // a Ctrl-C lands after the commit, with every output old or every one new
     CommitSteps steps;
     try {
         steps.done("everything staged");

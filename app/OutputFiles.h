@@ -8,8 +8,8 @@
  *  whole, old or new, and the next run sweeps what the crash left.
  *
  *  Test hooks (tests/app/OutputTransactionGLTest.cpp): INKGRAPH_TEST_COMMIT_KILL=N ends the process with SIGKILL
- *  after the commit's N-th step, INKGRAPH_TEST_COMMIT_FAIL=N fails the commit there; both say on stderr which step
- *  it was. */
+ *  after the commit's N-th step, INKGRAPH_TEST_COMMIT_FAIL=N fails the commit there (both say on stderr which step it
+ *  was), INKGRAPH_TEST_COMMIT_INTERRUPT=N sends the process SIGINT there (it must land after the commit). */
 
 #include "app/DumpFolder.h"
 #include "app/Options.h"

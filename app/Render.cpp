@@ -291,6 +291,15 @@ Json describePostStage(const StillGraph& graph, const std::vector<PassTiming>& t
     return {{"lines", layers}, {"kernels_ms", kernels}, {"readback_ms", readback}, {"composite_ms", composite}};
 }
 
+/** Standard output that cannot be written (--print-plan > /dev/full, a closed pipe) fails the run. */
+void requireStandardOutputWritten(std::ostream& out) {
+    errno = 0;
+    out.flush();
+    if (!out || (&out == &std::cout && (std::fflush(stdout) != 0 || std::ferror(stdout))))
+        throw FileError(std::string("renderStill(): cannot write the standard output") +
+                        (errno ? std::string(": ") + std::strerror(errno) : ""));
+}
+
 /** The files the run read that only loading the model revealed: its buffers and images, and the shade maps its
  *  materials name. No output may be one of them (OutputSet::refuseInputs). */
 std::vector<RunInput> inputsFoundByLoading(const RenderOptions& options, const Scene& scene) {
@@ -476,7 +485,10 @@ StillReport RenderSession::render(const RenderOptions& options, const BatchPosit
         throw UsageError(std::string("--request: ") + error.what());
     }
     const Plan& plan = *compiled;
-    if (options.printPlan) out << plan.describe();
+    if (options.printPlan) {
+        out << plan.describe();
+        requireStandardOutputWritten(out); // before the commit: a run that fails puts no file in place
+    }
     if (!options.graphvizPath.empty()) outputs.stageGraphviz(plan.graphviz());
     if (!renders) {
         outputs.commit();
@@ -763,12 +775,11 @@ int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::os
     arguments.erase(arguments.begin());
     removeTemporariesOnSignals();
     const int exitCode = runRenderCommand(arguments, out, err);
-    // Output that cannot be written (--print-plan > /dev/full, a closed pipe) is a failed run, not a silent one.
-    errno = 0;
-    out.flush();
-    if (!out || (&out == &std::cout && (std::fflush(stdout) != 0 || std::ferror(stdout)))) {
-        err << "inkgraph: cannot write the standard output" << (errno ? std::string(": ") + std::strerror(errno) : "")
-            << "\n";
+    // Output that cannot be written (--help > /dev/full, a closed pipe) is a failed run, not a silent one.
+    try {
+        requireStandardOutputWritten(out);
+    } catch (const FileError& error) {
+        if (exitCode == kExitOk) err << "inkgraph: " << error.what() << "\n";
         return exitCode == kExitOk ? kExitOutput : exitCode;
     }
     return exitCode;

@@ -23,7 +23,16 @@ struct Entry {
 Entry gEntries[kMaxEntries];
 std::mutex gRegistryMutex; // writers only; the handler reads without locking (it may interrupt a writer)
 
+/** While an output commit runs, a signal only records itself here (any thread may take it: the library threads do
+ *  not block signals); SignalsDeferred acts on it once the commit has ended. */
+std::atomic<bool> gDeferring{false};
+std::atomic<int> gDeferredSignal{0};
+
 void removeAll(int signalNumber) {
+    if (gDeferring.load()) {
+        gDeferredSignal.store(signalNumber);
+        return;
+    }
     for (int i = kMaxEntries - 1; i >= 0; --i) {
         if (!gEntries[i].used.load()) continue;
         if (::unlink(gEntries[i].path) != 0 && errno == EISDIR) ::rmdir(gEntries[i].path);
@@ -62,14 +71,34 @@ void removeTemporariesOnSignals() {
     });
 }
 
+SignalsDeferred::SignalsDeferred() {
+    gDeferredSignal.store(0);
+    gDeferring.store(true);
+}
+
+SignalsDeferred::~SignalsDeferred() {
+    gDeferring.store(false);
+    if (const int signalNumber = gDeferredSignal.exchange(0)) removeAll(signalNumber);
+}
+
 bool isStaleTemporary(const std::string& name) {
-    constexpr const char* kPrefix = ".inkgraph-"; // then "<pid>-<n>.tmp" (app/ImageFiles.h temporarySibling)
-    if (name.rfind(kPrefix, 0) != 0) return false;
-    const char* digits = name.c_str() + std::strlen(kPrefix);
-    char* end = nullptr;
-    const long pid = std::strtol(digits, &end, 10);
-    if (end == digits || *end != '-' || pid <= 0) return false;
-    return ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
+    // Exactly ".inkgraph-<pid>-<n>.tmp" (app/ImageFiles.h temporarySibling): a user's ".inkgraph-1234-notes.txt" is
+    // not ours, whatever its name suggests.
+    constexpr const char* kPrefix = ".inkgraph-";
+    constexpr const char* kSuffix = ".tmp";
+    const std::size_t prefix = std::strlen(kPrefix), suffix = std::strlen(kSuffix);
+    if (name.size() <= prefix + suffix || name.rfind(kPrefix, 0) != 0 ||
+        name.compare(name.size() - suffix, suffix, kSuffix) != 0)
+        return false;
+    const std::string middle = name.substr(prefix, name.size() - prefix - suffix);
+    const auto dash = middle.find('-');
+    const auto allDigits = [](const std::string& text) {
+        return !text.empty() && text.size() <= 10 && text.find_first_not_of("0123456789") == std::string::npos;
+    };
+    if (dash == std::string::npos || !allDigits(middle.substr(0, dash)) || !allDigits(middle.substr(dash + 1)))
+        return false;
+    const long pid = std::stol(middle.substr(0, dash));
+    return pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
 }
 
 } // namespace inkgraph

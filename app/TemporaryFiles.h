@@ -15,6 +15,16 @@ void forgetTemporary(const std::filesystem::path& path);
  *  would have. SIGXFSZ is ignored, so a write past the file-size limit fails with EFBIG and is reported. */
 void removeTemporariesOnSignals();
 
+/** While one lives, SIGINT, SIGTERM and SIGHUP wait, in whichever thread they land: the output commit runs as a whole,
+ *  then a signal that came meanwhile removes what is still registered and ends the process as it would have. */
+class SignalsDeferred {
+public:
+    SignalsDeferred();
+    ~SignalsDeferred();
+    SignalsDeferred(const SignalsDeferred&) = delete;
+    SignalsDeferred& operator=(const SignalsDeferred&) = delete;
+};
+
 /** True when `name` is one of our temporary names (".inkgraph-<pid>-<n>...") and that process no longer runs: left
  *  by a killed run. (Staging folders of --dump have their own test: app/DumpFolder.h.) */
 bool isStaleTemporary(const std::string& name);

@@ -145,6 +145,37 @@ TEST_F(OutputTransaction, ACrashAtAnyCommitStepLeavesEachOutputWholeAndTheNextRu
     }
 }
 
+TEST_F(OutputTransaction, ACtrlCDuringTheCommitLandsAfterIt) {
+    // The signal goes to the process; whichever thread takes it (the libraries' threads block none), the commit ends
+    // first: every output new, then the process ends as SIGINT would have it, with nothing left behind.
+    makeEarlierOutputs();
+    for (int step = 1; step <= 8; ++step) {
+        SCOPED_TRACE("interrupted after step " + std::to_string(step));
+        resetWork();
+        const fs::path work = directory / "work";
+        const CliRun result = renderInto(work, 48, "INKGRAPH_TEST_COMMIT_INTERRUPT=" + std::to_string(step));
+        // Ended by the signal (the shell that ran it reports 128 + SIGINT).
+        EXPECT_TRUE(result.exitCode == 130 || result.exitCode == -1) << result.exitCode << ": " << result.err;
+        EXPECT_EQ(pngSize(readText(work / "out.png")), std::make_pair(48u, 48u));
+        EXPECT_EQ(nlohmann::json::parse(readText(work / "s.json"))["size"], nlohmann::json::array({48, 48}));
+        EXPECT_EQ(pngSize(readText(work / "d" / "final.png")), std::make_pair(48u, 48u));
+        EXPECT_EQ(listFiles(work), (std::vector<std::string>{"d", "out.png", "s.json"}));
+        EXPECT_EQ(listFiles(work / "d"), (std::vector<std::string>{"final.png", "manifest.json", "shading.png"}));
+    }
+}
+
+TEST_F(OutputTransaction, AMarkerThatIsNotAFileIsRefused) {
+    // A link planted as the staging marker would have the commit create (or, for a FIFO, block on) a file elsewhere.
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 16x16 --dump d").exitCode, 0);
+    fs::create_directories(directory / "elsewhere");
+    fs::create_symlink(directory / "elsewhere" / "made-by-the-commit", directory / "d" / ".inkgraph-staging");
+    const Snapshot before = snapshot(directory);
+    const CliRun result = run("render " + model("spot_c3d.obj") + " --size 16x16 --dump d");
+    EXPECT_EQ(result.exitCode, 5);
+    EXPECT_NE(result.err.find("its .inkgraph-staging is not a file inkgraph wrote"), std::string::npos) << result.err;
+    EXPECT_EQ(snapshot(directory), before);
+}
+
 TEST_F(OutputTransaction, ADumpFolderInUseIsRefusedAtOnce) {
     makeEarlierOutputs();
     resetWork();
@@ -229,10 +260,15 @@ TEST_F(OutputTransaction, StagingFoldersAreSweptOnlyByTheirMarker) {
     fs::create_directories(directory / stale);
     std::ofstream(directory / stale / ".inkgraph-staging");
     std::ofstream(directory / stale / "final.png") << "half";
-    const CliRun result = run("render " + model("spot_c3d.obj") + " --size 16x16 --dump d");
+    // Temporary files: exactly ".inkgraph-<dead pid>-<n>.tmp" is a killed run's; anything else of that look is not.
+    std::ofstream(directory / (".inkgraph-" + std::to_string(child) + "-3.tmp")) << "half";
+    std::ofstream(directory / (".inkgraph-" + std::to_string(child) + "-notes.txt")) << "precious";
+    const CliRun result = run("render " + model("spot_c3d.obj") + " --size 16x16 --dump d -o out.png");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     EXPECT_FALSE(fs::exists(directory / stale));
+    EXPECT_FALSE(fs::exists(directory / (".inkgraph-" + std::to_string(child) + "-3.tmp")));
     EXPECT_EQ(readText(directory / (stale + "x") / "notes.txt"), "precious");
+    EXPECT_EQ(readText(directory / (".inkgraph-" + std::to_string(child) + "-notes.txt")), "precious");
 }
 
 TEST_F(OutputTransaction, LongNamesFailBeforeRenderingOrNotAtAll) {
@@ -254,11 +290,14 @@ TEST_F(OutputTransaction, EmptyShardAndUnwritableStandardOutput) {
     EXPECT_NE(empty.err.find("no models in this share (shard 1/2 of 1)"), std::string::npos) << empty.err;
     EXPECT_EQ(listFiles(directory), std::vector<std::string>{});
 
+    // The plan is printed before the commit: a run whose output cannot be written puts no file in place either.
     const std::string command = "cd '" + directory.string() + "' && LP_NUM_THREADS=1 '" + INKGRAPH_EXECUTABLE +
-                                "' render " + model("spot_c3d.obj") + " --print-plan > /dev/full 2> err.txt";
+                                "' render " + model("spot_c3d.obj") +
+                                " --size 16x16 -o out.png --print-plan > /dev/full 2> err.txt";
     const int status = std::system(command.c_str());
     EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 5);
     EXPECT_NE(readText(directory / "err.txt").find("cannot write the standard output"), std::string::npos);
+    EXPECT_FALSE(fs::exists(directory / "out.png"));
 }
 
 } // namespace
