@@ -2,6 +2,7 @@
 
 #include "app/ImageFiles.h"
 #include "app/OutputFiles.h"
+#include "scene/Scene.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -124,6 +125,15 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
         if (const auto identity = fileIdentity(model.path))
             modelsByIdentity.emplace(std::make_pair(identity->device, identity->inode), &model);
     }
+    // The files each model names (glTF buffers, images, material shade maps; OBJ material libraries): no still may
+    // replace one, whichever model reads it. Looked up only with several models: one still checks its own inputs.
+    std::map<std::pair<dev_t, ino_t>, std::pair<const BatchModel*, std::string>> namedByIdentity;
+    if (list.models.size() > 1)
+        for (const BatchModel& model : list.models)
+            for (const std::string& file : referencedFiles(model.path))
+                if (const auto identity = fileIdentity(file))
+                    namedByIdentity.emplace(std::make_pair(identity->device, identity->inode),
+                                            std::make_pair(&model, file));
     // Place -> the first still writing there (a model listed twice is two stills).
     std::map<std::filesystem::path, const BatchModel*> writers;
     for (const BatchModel& model : list.models) {
@@ -140,6 +150,12 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
             if (overwritten != nullptr && overwritten->path != model.path)
                 throw UsageError(flag + " '" + output + "' (for '" + model.path + "') would overwrite the model '" +
                                  overwritten->path + "'");
+            if (const auto identity = fileIdentity(output))
+                if (auto named = namedByIdentity.find({identity->device, identity->inode});
+                    named != namedByIdentity.end())
+                    throw UsageError(flag + " '" + output + "' (for '" + model.path + "') would overwrite '" +
+                                     named->second.second + "', which the model '" + named->second.first->path +
+                                     "' reads");
             // One still's own outputs colliding with each other are OutputSet's to report.
             const auto [earlier, inserted] = writers.emplace(place, &model);
             if (!inserted && earlier->second->position != model.position)

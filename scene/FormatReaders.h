@@ -102,4 +102,12 @@ RawScene readStl(const std::string& path, std::string_view content, MeshBudget& 
  *  external buffers are resolved next to `path`. */
 RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget);
 
+/** The files a glTF (or GLB: `content` may stop after the JSON chunk) names: external buffers and images, and the
+ *  shade maps of its materials, resolved as readGltf() resolves them. Best effort, nothing thrown. */
+std::vector<std::string> gltfReferencedFiles(const std::string& path, std::string_view content);
+
+/** The material libraries an OBJ's `mtllib` lines name, resolved beside it (a name with spaces both whole and split,
+ *  as readObj() tries it). */
+std::vector<std::string> objReferencedFiles(const std::string& path, std::string_view content);
+
 } // namespace inkgraph::detail

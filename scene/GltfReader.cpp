@@ -34,6 +34,15 @@ namespace inkgraph::detail {
 
 namespace {
 
+/** A material's shade map path: relative to the glTF file, like its buffer URIs, so a scene folder can be moved or
+ *  rendered from anywhere; lexically normalised. */
+std::string shadeMapBesideModel(const std::string& modelPath, const std::string& named) {
+    const std::filesystem::path path(named);
+    const std::filesystem::path resolved =
+        path.is_absolute() ? path : std::filesystem::path(modelPath).parent_path() / path;
+    return resolved.lexically_normal().string();
+}
+
 /** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light.
  *  Geometry compression (KHR_draco_mesh_compression, EXT_meshopt_compression, KHR_mesh_quantization) is not here yet
  *  (issue 18), nor any texture or material extension: the reader reads the core baseColorFactor only. */
@@ -413,11 +422,7 @@ private:
             fail(label + ": extras.inkgraph.shademap must be a non-empty string (a PNG path), got " +
                  (shadeMap->is_string() ? std::string("an empty string") : std::string(shadeMap->type_name())));
         }
-        // Relative to the glTF file, like its buffer URIs, so a scene folder can be moved or rendered from anywhere.
-        const std::filesystem::path named(shadeMap->get_ref<const std::string&>());
-        const std::filesystem::path resolved =
-            named.is_absolute() ? named : std::filesystem::path(mPath).parent_path() / named;
-        *cached = resolved.lexically_normal().string();
+        *cached = shadeMapBesideModel(mPath, shadeMap->get_ref<const std::string&>());
         return *cached;
     }
 
@@ -916,6 +921,28 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
         throwLoadError(path, "no triangles in the file");
     }
     return scene;
+}
+
+std::vector<std::string> gltfReferencedFiles(const std::string& path, std::string_view content) {
+    const bool binary = content.size() >= 4 && content.substr(0, 4) == "glTF";
+    const std::string_view json = jsonOf(content, binary);
+    const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
+    std::vector<std::string> files;
+    ExternalUriCollector uris; // whatever it collected before a syntax error still counts
+    nlohmann::json::sax_parse(json.begin(), json.end(), &uris, nlohmann::json::input_format_t::json, false);
+    for (const auto* list : {&uris.bufferUris, &uris.imageUris})
+        for (const std::string& uri : *list) files.push_back(pathBesideModel(baseDirectory, uri));
+    constexpr std::size_t kMaxJsonDepth = 256; // as rejectDeepJson()
+    if (jsonNestingDepth(json) > kMaxJsonDepth) return files;
+    const nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
+    if (!document.is_object() || !document.contains("materials") || !document["materials"].is_array()) return files;
+    for (const nlohmann::json& material : document["materials"]) {
+        const nlohmann::json::json_pointer where("/extras/inkgraph/shademap");
+        if (material.is_object() && material.contains(where) && material[where].is_string() &&
+            !material[where].get_ref<const std::string&>().empty())
+            files.push_back(shadeMapBesideModel(path, material[where].get_ref<const std::string&>()));
+    }
+    return files;
 }
 
 } // namespace inkgraph::detail

@@ -472,4 +472,33 @@ RawScene readObj(const std::string& path, std::string_view content, MeshBudget& 
     return ObjParser(path, content, budget).parse();
 }
 
+std::vector<std::string> objReferencedFiles(const std::string& path, std::string_view content) {
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    const auto beside = [&](std::string_view name) {
+        const std::filesystem::path named{std::string(name)};
+        return (named.is_absolute() ? named : folder / named).string();
+    };
+    std::vector<std::string> files;
+    for (std::size_t start = 0; start < content.size();) {
+        std::size_t end = content.find('\n', start);
+        if (end == std::string_view::npos) end = content.size();
+        std::string_view line = content.substr(start, end - start);
+        start = end + 1;
+        while (!line.empty() && isBlank(line.front())) line.remove_prefix(1);
+        while (!line.empty() && (isBlank(line.back()) || line.back() == '\r')) line.remove_suffix(1);
+        if (line.substr(0, 6) != "mtllib" || line.size() < 8 || !isBlank(line[6])) continue;
+        std::string_view names = line.substr(7);
+        while (!names.empty() && isBlank(names.front())) names.remove_prefix(1);
+        files.push_back(beside(names)); // a name with spaces, whole
+        for (std::size_t at = 0; at < names.size();) {
+            const std::size_t from = names.find_first_not_of(" \t", at);
+            if (from == std::string_view::npos) break;
+            const std::size_t to = std::min(names.find_first_of(" \t", from), names.size());
+            if (from != 0 || to != names.size()) files.push_back(beside(names.substr(from, to - from)));
+            at = to;
+        }
+    }
+    return files;
+}
+
 } // namespace inkgraph::detail

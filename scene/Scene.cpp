@@ -9,8 +9,10 @@
 #include <cmath>
 #include <filesystem>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -304,6 +306,30 @@ Scene loadSceneFromMemory(const std::string& path, std::string_view content, con
     detail::MeshBudget budget(path, options.memoryLimitBytes);
     budget.chargeFile(content.size());
     return finalizeScene(path, readContent(path, content, budget), options);
+}
+
+std::vector<std::string> referencedFiles(const std::string& path) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) return {}; // a FIFO would block; loading reports the rest
+    const std::string extension = lowercaseExtension(path);
+    std::ifstream file(path, std::ios::binary);
+    std::string content;
+    if (extension == ".glb") {
+        // The JSON chunk only: the binary chunk after it can be large and names no file.
+        content.resize(20);
+        if (!file.read(content.data(), 20)) return {};
+        std::uint32_t chunkLength = 0;
+        std::memcpy(&chunkLength, content.data() + 12, sizeof chunkLength);
+        const std::uintmax_t size = std::filesystem::file_size(path, error);
+        if (error || chunkLength > size - 20) return {};
+        content.resize(20 + std::size_t(chunkLength));
+        if (!file.read(content.data() + 20, chunkLength)) return {};
+        return detail::gltfReferencedFiles(path, content);
+    }
+    if (extension != ".gltf" && extension != ".obj") return {};
+    content.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+    return extension == ".gltf" ? detail::gltfReferencedFiles(path, content)
+                                : detail::objReferencedFiles(path, content);
 }
 
 BoundingSphere computeBoundingSphere(const Scene& scene) {

@@ -217,5 +217,45 @@ TEST(BatchOutputs, AHardLinkOfAModelIsThatModel) {
         << message;
 }
 
+TEST(BatchOutputs, NoStillMayReplaceAFileAnotherModelReads) {
+    // One model's output over another model's glTF buffer or material shade map, or an OBJ's material library: the
+    // batch is refused before any work, though each still alone only checks its own inputs.
+    const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() / ("inkgraph-batch-named-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder);
+    std::ofstream(folder / "scene.gltf")
+        << R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":36,"uri":"geometry.bin"}],)"
+           R"("images":[{"uri":"skin%20tone.png"}],"materials":[{"extras":{"inkgraph":{"shademap":"maps/ink.png"}}}]})";
+    std::ofstream(folder / "geometry.bin") << std::string(36, '\0');
+    std::ofstream(folder / "skin tone.png") << "png";
+    std::filesystem::create_directories(folder / "maps");
+    std::ofstream(folder / "maps" / "ink.png") << "png";
+    std::ofstream(folder / "cube.obj") << "mtllib cube.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::ofstream(folder / "cube.mtl") << "newmtl red\n";
+    for (const std::string& name : {"geometry", "skin tone", "ink"})
+        std::ofstream(folder / (name + ".obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::istringstream none;
+    const auto messageFor = [&](const std::string& model, const std::string& flag, const std::string& pattern) {
+        RenderOptions options = withModels({(folder / "scene.gltf").string(), (folder / "cube.obj").string(),
+                                            (folder / model).string()});
+        options.outputPath = (folder / "{index}.png").string();
+        (options.*(flag == "--stats" ? &RenderOptions::statsPath : &RenderOptions::svgPath)) = pattern;
+        return usageMessage(options, batchList(options, none));
+    };
+    EXPECT_NE(messageFor("geometry.obj", "--stats", (folder / "{name}.bin").string())
+                  .find("geometry.bin' (for '" + (folder / "geometry.obj").string() + "') would overwrite '" +
+                        (folder / "geometry.bin").string() + "', which the model '" + (folder / "scene.gltf").string() +
+                        "' reads"),
+              std::string::npos);
+    EXPECT_NE(messageFor("skin tone.obj", "--stats", (folder / "{name}.png").string()).find("which the model"),
+              std::string::npos);
+    EXPECT_NE(messageFor("ink.obj", "--svg", (folder / "maps" / "{name}.png").string()).find("maps/ink.png"),
+              std::string::npos);
+    const std::string library = messageFor("ink.obj", "--stats", (folder / "{name}.mtl").string());
+    EXPECT_NE(library.find("cube.mtl', which the model"), std::string::npos) << library;
+    EXPECT_EQ(messageFor("ink.obj", "--stats", (folder / "{name}.json").string()), "");
+    std::filesystem::remove_all(folder);
+}
+
 } // namespace
 } // namespace inkgraph
