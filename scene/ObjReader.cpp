@@ -479,6 +479,7 @@ std::vector<std::string> objReferencedFiles(const std::string& path, std::string
         return (named.is_absolute() ? named : folder / named).string();
     };
     std::vector<std::string> files;
+    content = withoutByteOrderMark(content); // as readObj(): a mark must not hide a first-line mtllib
     for (std::size_t start = 0; start < content.size();) {
         std::size_t end = content.find('\n', start);
         if (end == std::string_view::npos) end = content.size();

@@ -123,6 +123,12 @@ TEST(LoaderInputChecks, ObjMissingMaterialLibraryIsAWarningNamingIt) {
     EXPECT_EQ(scene.report.inputFiles, std::vector<std::string>{file.path()});
 }
 
+TEST(LoaderInputChecks, ReferencedFilesSeeAMaterialLibraryAfterAByteOrderMark) {
+    const TempFolder folder;
+    const std::string model = folder.write("bom.obj", kByteOrderMark + "mtllib parts.mtl\n" + kTriangleObj);
+    EXPECT_EQ(referencedFiles(model), std::vector<std::string>{folder.path("parts.mtl")});
+}
+
 TEST(LoaderInputChecks, ObjUndefinedMaterialIsAWarningNamingIt) {
     const TempFolder folder;
     const std::string library = folder.write("parts.mtl", "newmtl Steel\nKd 0.5 0.5 0.5\n");
