@@ -152,7 +152,8 @@ void MeshEdgesPass::execute(PassContext& context) {
         const std::string field = live[slot];
         lineTarget.finish({int(slot)});
         if (field == "silhouette") {
-            // The eye in model space: meshes are in world space (GpuScene subtracts worldOrigin only for the GPU).
+            // The eye in the meshes' frame: the scene's local frame (Scene::origin), where Camera::eye lives too
+            // (GpuScene subtracts worldOrigin only for the GPU).
             const glm::dvec3 eye = mFrame.camera.eye;
             mSilhouetteLines.clear();
             for (std::size_t mesh = 0; mesh < meshes.size(); ++mesh)
