@@ -81,13 +81,7 @@ void removePlainFilesIn(int folderDescriptor, const std::string& last) {
 long stagingFolderPid(const std::string& name) {
     if (name.rfind(kStagingPrefix, 0) != 0) return 0;
     // Exactly "<digits>-<digits>" after the prefix, as newStagingName() writes it.
-    const std::string rest = name.substr(std::strlen(kStagingPrefix));
-    const auto dash = rest.find('-');
-    const auto allDigits = [](const std::string& text) {
-        return !text.empty() && text.size() <= 10 && text.find_first_not_of("0123456789") == std::string::npos;
-    };
-    if (dash == std::string::npos || !allDigits(rest.substr(0, dash)) || !allDigits(rest.substr(dash + 1))) return 0;
-    return std::stol(rest.substr(0, dash));
+    return pidOfNumberedName(name.substr(std::strlen(kStagingPrefix)));
 }
 
 fs::path newStagingName(const fs::path& parent) {

@@ -90,15 +90,17 @@ bool isStaleTemporary(const std::string& name) {
     if (name.size() <= prefix + suffix || name.rfind(kPrefix, 0) != 0 ||
         name.compare(name.size() - suffix, suffix, kSuffix) != 0)
         return false;
-    const std::string middle = name.substr(prefix, name.size() - prefix - suffix);
-    const auto dash = middle.find('-');
-    const auto allDigits = [](const std::string& text) {
-        return !text.empty() && text.size() <= 10 && text.find_first_not_of("0123456789") == std::string::npos;
-    };
-    if (dash == std::string::npos || !allDigits(middle.substr(0, dash)) || !allDigits(middle.substr(dash + 1)))
-        return false;
-    const long pid = std::stol(middle.substr(0, dash));
+    const long pid = pidOfNumberedName(name.substr(prefix, name.size() - prefix - suffix));
     return pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
+}
+
+long pidOfNumberedName(const std::string& text) {
+    const auto dash = text.find('-');
+    const auto allDigits = [](const std::string& part) {
+        return !part.empty() && part.size() <= 10 && part.find_first_not_of("0123456789") == std::string::npos;
+    };
+    if (dash == std::string::npos || !allDigits(text.substr(0, dash)) || !allDigits(text.substr(dash + 1))) return 0;
+    return std::stol(text.substr(0, dash));
 }
 
 } // namespace inkgraph

@@ -29,4 +29,7 @@ public:
  *  by a killed run. (Staging folders of --dump have their own test: app/DumpFolder.h.) */
 bool isStaleTemporary(const std::string& name);
 
+/** The pid in "<pid>-<n>" (both decimal: how our temporary and staging names are numbered), or 0 for other text. */
+long pidOfNumberedName(const std::string& text);
+
 } // namespace inkgraph
