@@ -229,8 +229,10 @@ void DumpFolder::check(const std::string& flagValue) {
         if (::flock(lock, LOCK_EX | LOCK_NB) != 0) {
             const int reason = errno;
             ::close(lock);
-            if (reason == EWOULDBLOCK)
+            if (reason == EWOULDBLOCK) {
+                mTakenByAnotherRun = true;
                 fail("is being written by another inkgraph run; wait until it has finished, or give another folder");
+            }
             fail(std::string("cannot be locked: ") + std::strerror(reason));
         }
         struct stat locked {}, named {};
@@ -277,9 +279,9 @@ void DumpFolder::abandon() {
         forgetTemporary(mStaging / kStagingMarker);
         forgetTemporary(mStaging);
     }
-    // Innermost first, only if empty, and only if this run held the lock: a folder it created but another run locked
-    // first is that run's now.
-    if (!mSwapped && mLock >= 0)
+    // Innermost first, only if empty, and never one another run has locked: a folder this run created but another
+    // run locked first is that run's now.
+    if (!mSwapped && !mTakenByAnotherRun)
         for (const fs::path& folder : mCreatedFolders) ::rmdir(folder.c_str());
     for (const fs::path& folder : mCreatedFolders) forgetTemporary(folder);
     mCreatedFolders.clear();
