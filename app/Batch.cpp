@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <istream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace inkgraph {
@@ -119,21 +120,27 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
                                   std::filesystem::path(pattern).extension().string()) + "'");
     // By place and by device and inode: a hard link of a model is that model under another name.
     std::map<std::filesystem::path, const BatchModel*> modelsByPlace;
-    std::map<std::pair<dev_t, ino_t>, const BatchModel*> modelsByIdentity;
+    std::map<FileIdentity, const BatchModel*> modelsByIdentity;
     for (const BatchModel& model : list.models) {
         modelsByPlace.emplace(resolvedPath(model.path), &model);
-        if (const auto identity = fileIdentity(model.path))
-            modelsByIdentity.emplace(std::make_pair(identity->device, identity->inode), &model);
+        if (const auto identity = fileIdentity(model.path)) modelsByIdentity.emplace(*identity, &model);
     }
     // The files each model names (glTF buffers, images, material shade maps; OBJ material libraries): no still may
-    // replace one, whichever model reads it. Looked up only with several models: one still checks its own inputs.
-    std::map<std::pair<dev_t, ino_t>, std::pair<const BatchModel*, std::string>> namedByIdentity;
-    if (list.models.size() > 1)
-        for (const BatchModel& model : list.models)
-            for (const std::string& file : referencedFiles(model.path))
-                if (const auto identity = fileIdentity(file))
-                    namedByIdentity.emplace(std::make_pair(identity->device, identity->inode),
-                                            std::make_pair(&model, file));
+    // replace one, whichever model reads it. Only an output that exists can replace anything, so the models are read
+    // for them only then (a first run into new names reads none), and only with several models: one still checks its
+    // own inputs (OutputSet).
+    std::optional<std::map<FileIdentity, std::pair<const BatchModel*, std::string>>> namedFiles;
+    const auto modelNaming = [&](const FileIdentity& identity) -> const std::pair<const BatchModel*, std::string>* {
+        if (list.models.size() < 2) return nullptr;
+        if (!namedFiles) {
+            namedFiles.emplace();
+            for (const BatchModel& model : list.models)
+                for (const std::string& file : referencedFiles(model.path))
+                    if (const auto named = fileIdentity(file)) namedFiles->emplace(*named, std::make_pair(&model, file));
+        }
+        const auto found = namedFiles->find(identity);
+        return found == namedFiles->end() ? nullptr : &found->second;
+    };
     // Place -> the first still writing there (a model listed twice is two stills).
     std::map<std::filesystem::path, const BatchModel*> writers;
     for (const BatchModel& model : list.models) {
@@ -141,21 +148,19 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
             const std::string output = expandOutputPattern(pattern, model, list.total);
             const std::filesystem::path place = resolvedPath(output);
             // A still writing over its own model is OutputSet's to report, as for a single model.
+            const auto identity = fileIdentity(output);
             const BatchModel* overwritten = nullptr;
             if (auto input = modelsByPlace.find(place); input != modelsByPlace.end()) overwritten = input->second;
-            if (const auto identity = fileIdentity(output))
-                if (auto input = modelsByIdentity.find({identity->device, identity->inode});
-                    input != modelsByIdentity.end())
+            if (identity)
+                if (auto input = modelsByIdentity.find(*identity); input != modelsByIdentity.end())
                     overwritten = input->second;
             if (overwritten != nullptr && overwritten->path != model.path)
                 throw UsageError(flag + " '" + output + "' (for '" + model.path + "') would overwrite the model '" +
                                  overwritten->path + "'");
-            if (const auto identity = fileIdentity(output))
-                if (auto named = namedByIdentity.find({identity->device, identity->inode});
-                    named != namedByIdentity.end())
+            if (identity)
+                if (const auto* named = modelNaming(*identity))
                     throw UsageError(flag + " '" + output + "' (for '" + model.path + "') would overwrite '" +
-                                     named->second.second + "', which the model '" + named->second.first->path +
-                                     "' reads");
+                                     named->second + "', which the model '" + named->first->path + "' reads");
             // One still's own outputs colliding with each other are OutputSet's to report.
             const auto [earlier, inserted] = writers.emplace(place, &model);
             if (!inserted && earlier->second->position != model.position)

@@ -213,13 +213,9 @@ void DumpFolder::check(const std::string& flagValue) {
     mFolderMode = folderStatus.st_mode & 07777;
     mFolderOwner = folderStatus.st_uid;
     mFolderGroup = folderStatus.st_gid;
-    const fs::path probe = temporarySibling(parent / "probe");
-    const int probeFile = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
-    if (probeFile < 0)
+    if (const int reason = creationErrorIn(parent))
         fail("cannot be staged: a dump is written beside its folder, in '" + parent.string() +
-             "', and swapped in whole: " + std::strerror(errno));
-    ::close(probeFile);
-    ::unlink(probe.c_str());
+             "', and swapped in whole: " + std::strerror(reason));
 
     // Locked until the commit ends. The lock is on the folder's inode, and a commit swaps another inode in under the
     // name, so a lock taken on a folder that was swapped out meanwhile is let go and taken again on the new one.

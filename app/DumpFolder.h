@@ -31,6 +31,9 @@ struct FileIdentity {
     dev_t device = 0;
     ino_t inode = 0;
     bool operator==(const FileIdentity& other) const { return device == other.device && inode == other.inode; }
+    bool operator<(const FileIdentity& other) const {
+        return device != other.device ? device < other.device : inode < other.inode;
+    }
 };
 
 /** The identity of what `path` names (links followed), or nothing when it does not exist or cannot be reached. */

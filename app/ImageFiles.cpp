@@ -121,6 +121,15 @@ std::filesystem::path temporarySibling(const std::filesystem::path& path) {
     return path.parent_path() / name;
 }
 
+int creationErrorIn(const std::filesystem::path& folder) {
+    const std::filesystem::path probe = temporarySibling(folder / "probe");
+    const int descriptor = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (descriptor < 0) return errno;
+    ::close(descriptor);
+    ::unlink(probe.c_str());
+    return 0;
+}
+
 void writeBytes(const std::filesystem::path& destination, const void* data, std::size_t byteCount,
                 const std::string& shownName) {
     // O_EXCL: a temporary name that exists is someone else's file, never ours to overwrite.

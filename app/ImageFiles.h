@@ -63,6 +63,10 @@ std::string imageFilePixelType(const std::filesystem::path& path);
 /** Writes text under a temporary name and renames it into place. */
 void writeTextFile(const std::filesystem::path& path, const std::string& text);
 
+/** 0 when a file can be created in `folder`, else the errno of trying. A probe file is the only reliable test of
+ *  writability (permissions, read-only mounts, ACLs). */
+int creationErrorIn(const std::filesystem::path& folder);
+
 /** A short sibling of `path`, unique to this process: "final.png" -> ".inkgraph-1234-0.tmp". */
 std::filesystem::path temporarySibling(const std::filesystem::path& path);
 

@@ -1,7 +1,6 @@
 #include "app/OutputFiles.h"
 
 #include "app/ImageFiles.h"
-#include "app/Render.h"
 #include "app/TemporaryFiles.h"
 
 #include <fcntl.h>
@@ -37,19 +36,22 @@ void sweepStaleTemporaries(const fs::path& folder) {
     }
 }
 
-/** A probe file is the only reliable test of writability (permissions, read-only mounts, ACLs). */
 void requireWritableFolder(const fs::path& folder, const std::string& what) {
     std::error_code error;
     if (!fs::is_directory(folder, error))
         throw FileError("checkOutputs(): the folder of " + what + " ('" + folder.string() + "') does not exist" +
                         (error && error != std::errc::no_such_file_or_directory ? ": " + error.message() : ""));
-    const fs::path probe = temporarySibling(folder / "probe");
-    const int descriptor = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (descriptor < 0)
+    if (const int reason = creationErrorIn(folder))
         throw FileError("checkOutputs(): cannot write into the folder of " + what + " ('" + folder.string() +
-                        "'): " + std::strerror(errno));
-    ::close(descriptor);
-    ::unlink(probe.c_str());
+                        "'): " + std::strerror(reason));
+}
+
+/** One file by two names: the same place once links are resolved, or the same device and inode (a hard link). */
+bool isSameFile(const fs::path& first, const fs::path& second) {
+    if (resolvedPath(first) == resolvedPath(second)) return true;
+    const auto firstIdentity = fileIdentity(first);
+    const auto secondIdentity = fileIdentity(second);
+    return firstIdentity && secondIdentity && *firstIdentity == *secondIdentity;
 }
 
 /** What a non-regular file is, for the message that refuses it as an output. */
@@ -136,13 +138,10 @@ OutputSet::OutputSet(const RenderOptions& options) {
     for (std::size_t i = 0; i < mOutputs.size(); ++i) {
         const Output& file = mOutputs[i];
         const fs::path path = resolvedPath(file.destination);
-        const auto identity = fileIdentity(file.destination);
-        for (std::size_t j = i + 1; j < mOutputs.size(); ++j) {
-            const auto other = fileIdentity(mOutputs[j].destination);
-            if (path == resolvedPath(mOutputs[j].destination) || (identity && other && *identity == *other))
+        for (std::size_t j = i + 1; j < mOutputs.size(); ++j)
+            if (isSameFile(file.destination, mOutputs[j].destination))
                 throw UsageError(file.flag + " and " + mOutputs[j].flag + " name the same file '" +
                                  file.destination.string() + "'");
-        }
         if (!options.dumpDirectory.empty() && isInside(path, resolvedPath(options.dumpDirectory)))
             throw UsageError(file.flag + " '" + file.destination.string() + "' lies inside --dump '" +
                              options.dumpDirectory + "', whose contents each dump replaces; write it elsewhere");
@@ -168,14 +167,12 @@ OutputSet::OutputSet(const RenderOptions& options) {
 
 void OutputSet::refuseInputs(const std::vector<RunInput>& inputs) const {
     for (const RunInput& input : inputs) {
-        const auto identity = fileIdentity(input.path);
-        const fs::path place = resolvedPath(input.path);
         for (const Output& file : mOutputs) {
-            const auto other = fileIdentity(file.destination);
-            if (place == resolvedPath(file.destination) || (identity && other && *identity == *other))
+            if (isSameFile(input.path, file.destination))
                 throw UsageError(file.flag + " '" + file.destination.string() + "' is " + input.what +
                                  "; choose another file");
         }
+        const auto identity = fileIdentity(input.path);
         if (!mDump || !identity) continue;
         for (const std::string& name : mDump->earlierFiles())
             if (fileIdentity(mDump->folder() / name) == identity)
