@@ -1,16 +1,17 @@
 #pragma once
-/** @file The Pass interface: a pass declares by name what it reads and writes, then executes.
- *  Declaring is pure (no GL, deterministic) so the graph compiles and is tested without a context. */
+/** @file The Pass interface: a pass declares by name what it reads and writes. Declaring is pure (no GL,
+ *  deterministic) so the graph compiles and is tested without a context; how a pass runs is its backend's business
+ *  (gl/GlPass.h). */
 
 #include "graph/Resource.h"
+
+#include <nlohmann/json_fwd.hpp>
 
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace inkgraph {
-
-class PassContext;
 
 /** Records one pass's declarations; handed to Pass::declare(). Never touches GL. */
 class PassBuilder {
@@ -52,23 +53,8 @@ public:
     virtual std::string_view name() const = 0;
     /** Cheap, deterministic, no GL. */
     virtual void declare(PassBuilder& builder) const = 0;
-    /** Once per run, before anything executes and outside the timed execute(): build programs, upload meshes.
-     *  May ask the context which outputs are live; must not touch resources. */
-    virtual void prepare(PassContext& context) { (void)context; }
-    /** Runs the pass. The context knows which optional outputs are live. */
-    virtual void execute(PassContext& context) = 0;
-};
-
-/** What a pass sees while it executes. The graph core knows only names; a backend (gl/GlPassContext) adds
- *  access to the textures behind them. */
-class PassContext {
-public:
-    virtual ~PassContext() = default;
-    /** True when this pass's field (e.g. "normal") is consumed or requested in the plan. */
-    virtual bool isLive(std::string_view field) const = 0;
-    /** The frame size (the output image's size). A field with a scale is larger: see the backend's widthOf(). */
-    virtual int width() const = 0;
-    virtual int height() const = 0;
+    /** What the last run did, for --stats (e.g. "skipped_eye_inside"); default nothing. Adds keys to `report`. */
+    virtual void describe(nlohmann::ordered_json& report) const { (void)report; }
 };
 
 } // namespace inkgraph

@@ -1,8 +1,9 @@
 #pragma once
 /** @file Fake passes and a null executor for the no-GL graph tests (after Filament's NOOP-backend frame-graph tests):
  *  a FakePass declares the reads and writes it was constructed with, and execute() only records that it ran and
- *  which of its fields the context said were live. */
+ *  which of its fields the plan made live. FakeGraph::execute() runs them through graph/Executor's loop. */
 
+#include "graph/Executor.h"
 #include "graph/GraphCompiler.h"
 #include "graph/Pass.h"
 #include "graph/Plan.h"
@@ -52,15 +53,23 @@ public:
             builder.markSideEffect();
     }
 
-    void execute(PassContext& context) override
+    /** What a backend's execute would do: records the run and the fields `planned` makes live. */
+    void execute(const PlannedPass& planned)
     {
         if (!mLog)
             throw std::logic_error("FakePass::execute(): pass '" + mName + "' has no log");
         mLog->executed.push_back(mName);
         std::vector<std::string>& live = mLog->liveFields[mName];
         for (const FakeWrite& write : mWrites)
-            if (context.isLive(write.field))
+            if (isLive(planned, write.field))
                 live.push_back(write.field);
+    }
+
+    /** True when this pass's `field` is among `planned`'s live writes, as gl/GlPassContext answers it. */
+    static bool isLive(const PlannedPass& planned, const std::string& field)
+    {
+        const std::string full = planned.name + "." + field;
+        return std::find(planned.liveWrites.begin(), planned.liveWrites.end(), full) != planned.liveWrites.end();
     }
 
     void setLog(ExecutionLog* log) { mLog = log; }
@@ -71,23 +80,6 @@ private:
     std::vector<FakeWrite> mWrites;
     bool mSideEffect = false;
     ExecutionLog* mLog = nullptr;
-};
-
-/** A PassContext that answers isLive() from the planned pass, as gl/GlPassContext does with real textures. */
-class FakeContext final : public PassContext {
-public:
-    explicit FakeContext(const PlannedPass& pass) : mPass(pass) {}
-
-    bool isLive(std::string_view field) const override
-    {
-        const std::string full = mPass.name + "." + std::string(field);
-        return std::find(mPass.liveWrites.begin(), mPass.liveWrites.end(), full) != mPass.liveWrites.end();
-    }
-    int width() const override { return 64; }
-    int height() const override { return 48; }
-
-private:
-    const PlannedPass& mPass;
 };
 
 /** A graph of fake passes in registration order, with the null executor. */
@@ -111,22 +103,36 @@ public:
 
     Plan compile(const std::vector<std::string>& requested) const { return inkgraph::compile(passes(), requested); }
 
-    /** The null executor: runs the plan's passes in order with a FakeContext and returns the log. */
+    /** The null executor: runs the plan through graph/Executor's loop, each execute calling FakePass::execute(),
+     *  and returns the log. */
     const ExecutionLog& execute(const Plan& plan)
     {
         mLog = {};
-        for (const PlannedPass& planned : plan.passes) {
-            auto it = std::find_if(mPasses.begin(), mPasses.end(),
-                                   [&](const auto& pass) { return pass->name() == planned.name; });
-            if (it == mPasses.end())
-                throw std::logic_error("FakeGraph::execute(): plan names unknown pass '" + planned.name + "'");
-            FakeContext context(planned);
-            (*it)->execute(context);
-        }
+        NullBackend backend(mPasses);
+        std::vector<std::string_view> names;
+        for (const auto& pass : mPasses)
+            names.push_back(pass->name());
+        executePlan("FakeGraph::execute()", plan, names, backend, false);
         return mLog;
     }
 
 private:
+    /** Executes FakePasses and counts every live write as written. */
+    class NullBackend final : public ExecutorBackend {
+    public:
+        explicit NullBackend(const std::vector<std::unique_ptr<FakePass>>& passes) : mPasses(passes) {}
+        void runPass(std::size_t passIndex, const PlannedPass& planned, PassPhase phase) override
+        {
+            if (phase == PassPhase::Execute)
+                mPasses[passIndex]->execute(planned);
+        }
+        bool wrote(const std::string&) const override { return true; }
+        void release(const std::string&) override {}
+
+    private:
+        const std::vector<std::unique_ptr<FakePass>>& mPasses;
+    };
+
     std::vector<std::unique_ptr<FakePass>> mPasses;
     ExecutionLog mLog;
 };
