@@ -10,10 +10,6 @@
 
 namespace inkgraph {
 
-/** Tag for a handle that owns nothing yet. */
-struct NoCreateTag {};
-inline constexpr NoCreateTag NoCreate{};
-
 template <class Deleter>
 class GlHandle {
 public:
@@ -52,7 +48,6 @@ struct BufferDeleter { void operator()(GLuint id) const { glDeleteBuffers(1, &id
 struct VertexArrayDeleter { void operator()(GLuint id) const { glDeleteVertexArrays(1, &id); } };
 struct ShaderDeleter { void operator()(GLuint id) const { glDeleteShader(id); } };
 struct ProgramDeleter { void operator()(GLuint id) const { glDeleteProgram(id); } };
-struct QueryDeleter { void operator()(GLuint id) const { glDeleteQueries(1, &id); } };
 
 /** Names an object for RenderDoc/apitrace captures and debug messages. */
 void labelObject(GLenum identifier, GLuint id, std::string_view label);

@@ -34,7 +34,6 @@ GlFormat glFormatOf(Format format);
 /** An immutable-storage 2-D texture, one level, nearest filtering, clamped to the edge. */
 class GlTexture {
 public:
-    explicit GlTexture(NoCreateTag) {}
     GlTexture(Format format, int width, int height, std::string_view label);
 
     GLuint id() const { return mHandle.id(); }

@@ -1,43 +1,14 @@
 #include "gl/GraphExecutor.h"
 
+#include "gl/GlPass.h"
 #include "gl/Readback.h"
 #include "gl/ShaderLibrary.h"
 
 #include <algorithm>
-#include <chrono>
-#include <new>
-#include <cstdio>
 #include <stdexcept>
 
 namespace inkgraph {
 namespace {
-
-/** Runs a pass's prepare or execute, naming the pass in what it throws. Failures the caller reports by their cause
- *  keep their type: shaders that cannot be read (the installation), and memory running out, on the GPU or the CPU. */
-template <class Step>
-void runPassStep(const std::string& pass, const char* failed, Step&& step) {
-    const std::string where = "GraphExecutor::run(): pass '" + pass + "'";
-    try {
-        step();
-    } catch (const ShaderSourceError&) {
-        throw;
-    } catch (const GlOutOfMemoryError& error) {
-        throw GlOutOfMemoryError(where + ": " + error.what());
-    } catch (const std::bad_alloc&) {
-        throw OutOfMemoryError(where + " ran out of memory");
-    } catch (const cv::Exception& error) {
-        if (error.code == cv::Error::StsNoMem) throw OutOfMemoryError(where + " ran out of memory: " + error.err);
-        throw std::runtime_error(where + " " + failed + ": " + error.what());
-    } catch (const std::exception& error) {
-        throw std::runtime_error(where + " " + failed + ": " + error.what());
-    }
-}
-
-double nowMilliseconds() {
-    using Clock = std::chrono::steady_clock;
-    return std::chrono::duration<double, std::milli>(Clock::now().time_since_epoch()).count();
-}
-
 
 /** Back to GL's defaults for what passes touch (but reversed-Z depth: GlObjects.h), so no pass depends on what the one
  *  before it left bound. */
@@ -110,12 +81,6 @@ const cv::Mat& ResourceStore::image(const std::string& name) {
     return source.image;
 }
 
-Format ResourceStore::format(const std::string& name) const {
-    auto found = mEntries.find(name);
-    if (found == mEntries.end()) throw std::out_of_range("ResourceStore: no resource '" + name + "'");
-    return found->second.format;
-}
-
 std::vector<std::string> ResourceStore::names() const {
     std::vector<std::string> result;
     for (const auto& [name, unused] : mEntries) result.push_back(name);
@@ -139,13 +104,6 @@ GlPassContext::GlPassContext(ResourceStore& store, const PlannedPass& planned, c
                              int frameHeight)
     : mStore(store), mPlanned(planned), mPlan(plan), mFrameWidth(frameWidth), mFrameHeight(frameHeight) {}
 
-GlPassContext& GlPassContext::from(PassContext& context) {
-    auto* backend = dynamic_cast<GlPassContext*>(&context);
-    if (backend == nullptr)
-        throw std::logic_error("GlPassContext::from(): this pass needs the GL executor's context");
-    return *backend;
-}
-
 bool GlPassContext::isLive(std::string_view field) const {
     const std::string resource = mPlanned.name + "." + std::string(field);
     return std::find(mPlanned.liveWrites.begin(), mPlanned.liveWrites.end(), resource) != mPlanned.liveWrites.end();
@@ -162,6 +120,17 @@ const PlannedResource& GlPassContext::liveOutput(std::string_view field) const {
 
 int GlPassContext::widthOf(std::string_view field) const { return mFrameWidth * liveOutput(field).desc.scale; }
 int GlPassContext::heightOf(std::string_view field) const { return mFrameHeight * liveOutput(field).desc.scale; }
+
+int GlPassContext::scaleOf(std::string_view resource) const {
+    const bool declaredRead = std::find(mPlanned.reads.begin(), mPlanned.reads.end(), resource) != mPlanned.reads.end();
+    const bool ownOutput =
+        std::find(mPlanned.liveWrites.begin(), mPlanned.liveWrites.end(), resource) != mPlanned.liveWrites.end();
+    const PlannedResource* planned = declaredRead || ownOutput ? mPlan.findResource(std::string(resource)) : nullptr;
+    if (planned == nullptr)
+        throw std::logic_error("GlPassContext::scaleOf(): pass '" + mPlanned.name + "' neither reads '" +
+                               std::string(resource) + "' nor writes it as a live output");
+    return planned->desc.scale;
+}
 
 GlTexture& GlPassContext::outputTexture(std::string_view field) {
     const PlannedResource& planned = liveOutput(field);
@@ -193,52 +162,64 @@ const cv::Mat& GlPassContext::inputImage(std::string_view resource) {
 
 // --- GraphExecutor -------------------------------------------------------------------------------------------
 
-std::vector<PassTiming> GraphExecutor::run(const Plan& plan, const std::vector<Pass*>& passes,
+namespace {
+
+/** graph/Executor's loop on GL: one GlPassContext per step over the executor's store. */
+class GlBackend final : public ExecutorBackend {
+public:
+    GlBackend(ResourceStore& store, const Plan& plan, const std::vector<GlPass*>& passes, const ExecuteOptions& options)
+        : mStore(store), mPlan(plan), mPasses(passes), mOptions(options) {}
+
+    void runPass(std::size_t passIndex, const PlannedPass& planned, PassPhase phase) override {
+        GlPassContext context(mStore, planned, mPlan, mOptions.frameWidth, mOptions.frameHeight);
+        if (phase == PassPhase::Prepare)
+            mPasses[passIndex]->prepare(context);
+        else
+            mPasses[passIndex]->execute(context);
+    }
+
+    void finishStep(const PlannedPass&, PassPhase) override { glFinish(); }
+
+    std::string afterPass(const PlannedPass&) override {
+        resetPassState();
+        if (const GLenum error = glGetError(); error != GL_NO_ERROR) return "raised " + glErrorName(error);
+        return {};
+    }
+
+    void rethrowByCause(const std::exception_ptr& failure, const std::string& where) const override {
+        // The installation (shaders that cannot be read) is reported as it is; memory running out, on the GPU or in
+        // OpenCV, keeps its type so the caller can say how to fix it.
+        try {
+            std::rethrow_exception(failure);
+        } catch (const ShaderSourceError&) {
+            throw;
+        } catch (const GlOutOfMemoryError& error) {
+            throw GlOutOfMemoryError(where + ": " + error.what());
+        } catch (const cv::Exception& error) {
+            if (error.code == cv::Error::StsNoMem) throw OutOfMemoryError(where + " ran out of memory: " + error.err);
+        } catch (...) {
+        }
+    }
+
+    bool wrote(const std::string& resource) const override { return mStore.contains(resource); }
+    void release(const std::string& resource) override { mStore.release(resource); }
+
+private:
+    ResourceStore& mStore;
+    const Plan& mPlan;
+    const std::vector<GlPass*>& mPasses;
+    const ExecuteOptions& mOptions;
+};
+
+} // namespace
+
+std::vector<PassTiming> GraphExecutor::run(const Plan& plan, const std::vector<GlPass*>& passes,
                                            const ExecuteOptions& options) {
     mStore.clear();
-    std::vector<Pass*> ordered;
-    for (const PlannedPass& planned : plan.passes) {
-        auto found = std::find_if(passes.begin(), passes.end(),
-                                  [&](const Pass* pass) { return pass->name() == planned.name; });
-        if (found == passes.end())
-            throw std::logic_error("GraphExecutor::run(): the plan names pass '" + planned.name +
-                                   "' but no such pass object was given");
-        ordered.push_back(*found);
-    }
-
-    std::vector<PassTiming> timings(plan.passes.size());
-    for (std::size_t index = 0; index < plan.passes.size(); ++index) {
-        const PlannedPass& planned = plan.passes[index];
-        GlPassContext context(mStore, planned, plan, options.frameWidth, options.frameHeight);
-        const double start = nowMilliseconds();
-        runPassStep(planned.name, "failed to prepare", [&] { ordered[index]->prepare(context); });
-        glFinish();
-        timings[index].pass = planned.name;
-        timings[index].prepareMilliseconds = nowMilliseconds() - start;
-    }
-
-    for (std::size_t index = 0; index < plan.passes.size(); ++index) {
-        const PlannedPass& planned = plan.passes[index];
-        GlPassContext context(mStore, planned, plan, options.frameWidth, options.frameHeight);
-        const double start = nowMilliseconds();
-        runPassStep(planned.name, "failed", [&] { ordered[index]->execute(context); });
-        // Waiting here makes the milliseconds mean the pass's own work, not whatever the driver queued.
-        glFinish();
-        timings[index].milliseconds = nowMilliseconds() - start;
-        resetPassState();
-
-        if (const GLenum error = glGetError(); error != GL_NO_ERROR)
-            throw std::runtime_error("GraphExecutor::run(): pass '" + planned.name + "' raised " + glErrorName(error));
-        for (const std::string& written : planned.liveWrites)
-            if (!mStore.contains(written))
-                throw std::logic_error("GraphExecutor::run(): pass '" + planned.name + "' did not write its live output '" +
-                                       written + "'");
-
-        if (options.keepAllResources) continue;
-        for (const PlannedResource& resource : plan.resources)
-            if (!resource.requested && resource.lastUse == index) mStore.release(resource.name);
-    }
-    return timings;
+    std::vector<std::string_view> names;
+    for (const GlPass* pass : passes) names.push_back(pass->name());
+    GlBackend backend(mStore, plan, passes, options);
+    return executePlan("GraphExecutor::run()", plan, names, backend, options.keepAllResources);
 }
 
 } // namespace inkgraph

@@ -5,7 +5,7 @@
 
 #include "gl/GlObjects.h"
 #include "gl/TexturePool.h"
-#include "graph/Pass.h"
+#include "graph/Executor.h"
 #include "graph/Plan.h"
 
 #include <opencv2/core.hpp>
@@ -19,13 +19,6 @@
 namespace inkgraph {
 
 /** The resources of one run, by full name. */
-/** A pass's CPU work ran out of memory (std::bad_alloc or OpenCV's out-of-memory error), named by the pass. The
- *  driver running out is GlOutOfMemoryError. */
-class OutOfMemoryError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
-
 class ResourceStore {
 public:
     explicit ResourceStore(TexturePool& pool) : mPool(pool) {}
@@ -43,7 +36,6 @@ public:
     const cv::Mat& image(const std::string& name);
 
     bool contains(const std::string& name) const { return mEntries.count(name) != 0; }
-    Format format(const std::string& name) const;
     std::vector<std::string> names() const;
     void release(const std::string& name);
     void clear();
@@ -62,21 +54,25 @@ private:
     std::map<std::string, Entry> mEntries;
 };
 
-/** What a GL or CPU pass sees while it executes. Reads and writes are checked against the plan. */
-class GlPassContext : public PassContext {
+/** What a GL or CPU pass (GlPass) sees while it prepares and executes. Reads and writes are checked against the
+ *  plan. */
+class GlPassContext {
 public:
     GlPassContext(ResourceStore& store, const PlannedPass& planned, const Plan& plan, int frameWidth, int frameHeight);
 
-    /** The backend context of a pass executed by GraphExecutor; throws for any other context. */
-    static GlPassContext& from(PassContext& context);
+    /** True when this pass's field (e.g. "normal") is consumed or requested in the plan. */
+    bool isLive(std::string_view field) const;
+    /** The frame size (the output image's size). A field with a scale is larger: see widthOf(). */
+    int width() const { return mFrameWidth; }
+    int height() const { return mFrameHeight; }
 
-    bool isLive(std::string_view field) const override;
-    int width() const override { return mFrameWidth; }
-    int height() const override { return mFrameHeight; }
-
-    /** Size of one of this pass's fields (frame size x its scale). */
+    /** Size of one of this pass's live fields (frame size x its scale). */
     int widthOf(std::string_view field) const;
     int heightOf(std::string_view field) const;
+    /** The planned scale (TextureDesc::scale) of a declared read (full name, "gbuffer.depth") or of this pass's own
+     *  live output (full name, "mesh-edges.crease"), so a reader need not be told how large its inputs are. Throws
+     *  std::logic_error for any other resource. */
+    int scaleOf(std::string_view resource) const;
 
     /** This pass's live output `field` as a GPU target or a CPU image. Throws if the field is not live. */
     GlTexture& outputTexture(std::string_view field);
@@ -96,12 +92,6 @@ private:
     int mFrameHeight;
 };
 
-struct PassTiming {
-    std::string pass;
-    double prepareMilliseconds = 0.0; ///< shader compilation and uploads, once per run
-    double milliseconds = 0.0;        ///< execute(): CPU wall time from the call to glFinish() returning
-};
-
 struct ExecuteOptions {
     int frameWidth = 1024;
     int frameHeight = 1024;
@@ -109,13 +99,18 @@ struct ExecuteOptions {
     bool keepAllResources = false;
 };
 
+class GlPass;
+
+/** The GL backend of graph/Executor's loop: a GlPassContext per pass over one ResourceStore, glFinish() inside each
+ *  pass's time, GL state reset and glGetError() after each execute. */
 class GraphExecutor {
 public:
     explicit GraphExecutor(TexturePool& pool) : mStore(pool) {}
 
-    /** Executes `plan` with the given pass objects (looked up by name). Throws std::runtime_error naming the pass
-     *  when a pass fails, leaves a live output unwritten, or raises a GL error. */
-    std::vector<PassTiming> run(const Plan& plan, const std::vector<Pass*>& passes, const ExecuteOptions& options);
+    /** Executes `plan` with the given pass objects (looked up by name; graph/Executor.h has the loop). Throws naming
+     *  the pass when a pass fails, leaves a live output unwritten, or raises a GL error; ShaderSourceError,
+     *  GlOutOfMemoryError and OutOfMemoryError keep their types. */
+    std::vector<PassTiming> run(const Plan& plan, const std::vector<GlPass*>& passes, const ExecuteOptions& options);
 
     /** Resources kept after run(): the requested ones, or every computed one with keepAllResources. */
     ResourceStore& store() { return mStore; }

@@ -214,9 +214,6 @@ HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) {
     mVendor = glString(GL_VENDOR);
     mRenderer = glString(GL_RENDERER);
     mVersion = glString(GL_VERSION);
-    GLfloat lineWidthRange[2] = {1.0f, 1.0f};
-    glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, lineWidthRange);
-    mMaxLineWidth = lineWidthRange[1];
     if (epoxy_gl_version() < 45) {
         const std::string found = describe();
         releaseEgl();

@@ -40,8 +40,6 @@ public:
     const std::string& version() const { return mVersion; }
     /** e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Core Profile) Mesa 22.3.6 via EGL device platform" */
     std::string describe() const;
-    /** The largest width of aliased lines, GL_ALIASED_LINE_WIDTH_RANGE[1]. */
-    float maxLineWidth() const { return mMaxLineWidth; }
 
 private:
     void releaseEgl();
@@ -52,7 +50,6 @@ private:
     std::string mVendor;
     std::string mRenderer;
     std::string mVersion;
-    float mMaxLineWidth = 1.0f;
 };
 
 } // namespace inkgraph
