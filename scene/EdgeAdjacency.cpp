@@ -135,7 +135,7 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
         adjacency.facePlaneOffsets[faceIndex] = glm::dot(glm::dvec3(adjacency.faceNormals[faceIndex]), a);
 
         const auto face = std::uint32_t(faceIndex);
-        // Every edge of the face on its own: seed 002's Templist marked a face "found" at its first matching edge
+        // Every edge of the face on its own: Lander 2000's Templist marked a face "found" at its first matching edge
         // and never added the other two.
         for (int corner = 0; corner < 3; ++corner) {
             const std::uint32_t from = welded[corner];

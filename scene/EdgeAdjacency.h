@@ -1,5 +1,5 @@
 #pragma once
-/** @file Edge adjacency of a triangle mesh for object-space lines (docs/algorithms.md §2, seed 002 done the modern
+/** @file Edge adjacency of a triangle mesh for object-space lines (docs/algorithms.md §2, Lander 2000 done the modern
  *  way): which faces share each edge, with their direction, the edge's kind, and the angle between the normals of
  *  the two faces of a manifold edge. No GL.
  *
@@ -74,7 +74,7 @@ struct EdgeAdjacency {
  *  weldVertices, ignoring normals) count as one. A face is skipped when two of its corners weld together or its area
  *  is at most 1e-14 x (bounding-box diagonal)^2 (the loaders' rule), so it has no normal and adds no edges. Every
  *  edge of every other face goes into a hash map keyed (uint64(min welded id) << 32) | max, whose value lists the
- *  faces using it with their direction: each of a face's three edges is looked up on its own (seed 002's Templist
+ *  faces using it with their direction: each of a face's three edges is looked up on its own (Lander 2000's Templist
  *  stopped at a face's first match and lost its other edges). Throws std::out_of_range for an index past the
  *  positions and std::invalid_argument for a negative or non-finite weld distance. */
 EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
@@ -82,14 +82,14 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
 
 /** s = n . (E - p) for face `face`'s unit normal n, a point p of its plane and the eye E (model space): positive
  *  when the eye is in front of the face's plane. Exact under perspective (n . (E - x) is the same for every x on the
- *  plane); seed 002's -n . d with the view direction d is the orthographic special case. Zero for a skipped face. */
+ *  plane); Lander 2000's -n . d with the view direction d is the orthographic special case. Zero for a skipped face. */
 inline double eyeSideOfFace(const EdgeAdjacency& adjacency, std::uint32_t face, const glm::dvec3& eye) {
     return glm::dot(glm::dvec3(adjacency.faceNormals[face]), eye) - adjacency.facePlaneOffsets[face];
 }
 
 /** Whether a face with eyeSideOfFace() `side` faces the eye, after turning it round when `turned`. Zero (the eye in
  *  the face's plane, the face seen edge-on) is back-facing either way: the symbolic tie-break that makes exactly one
- *  edge of an edge-on strip fire, where seed 002's "include ties" drew two. */
+ *  edge of an edge-on strip fire, where Lander 2000's "include ties" drew two. */
 inline bool facesEye(double side, bool turned) { return turned ? side < 0.0 : side > 0.0; }
 
 /** Whether manifold `edge` is a silhouette edge seen from `eye` (model space): exactly one of its faces faces the

@@ -92,7 +92,7 @@ struct ViewTerms {
     glm::dvec3 constantView{0.0}; ///< unit V_c when `constant`
     glm::dvec3 eye{0.0};
     glm::dvec3 towardLight{0.0};  ///< unit L
-    double constantDotLV = 0.0;   ///< L.V_c, once per call (seed 000 §3.6)
+    double constantDotLV = 0.0;   ///< L.V_c, once per call (Winnemöller & Bangay 2002 §3.6)
     double shininess = 0.0;
     std::uint32_t wholeShininess = 0; ///< the shininess when it is a whole number in [1, 1024], else 0
 };

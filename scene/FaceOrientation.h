@@ -39,7 +39,8 @@ struct OrientationMeshData {
 /** `withVertexTriangles` builds the CSR adjacency too. */
 OrientationMeshData deriveOrientationData(const Mesh& mesh, bool withVertexTriangles);
 
-/** The constant view vector of seed 000 §3.5 for one frame, or why exact vectors are used instead. */
+/** The constant view vector of Winnemöller & Bangay 2002 §3.5 for one frame, or why exact vectors are used
+ *  instead. */
 struct ViewVectorChoice {
     bool constant = false;           ///< false: exact per-vertex or per-face view vectors
     bool fellBack = false;           ///< constant was asked for, but the eye is inside or near the bounding sphere

@@ -1,9 +1,9 @@
 #pragma once
-/** @file Shade maps (Lander's 1-D shade texture, seed 000's 2-D shade map) as CPU images. No GL here: the shading
- *  pass uploads them with nearest filtering, clamped to the edge.
+/** @file Shade maps (Lander's 1-D shade texture, Winnemoller & Bangay 2002's 2-D shade map) as CPU images. No GL
+ *  here: the shading pass uploads them with nearest filtering, clamped to the edge.
  *
  *  Axes. Column = diffuse, left (dark) to right (lit). For cel (1-D, one row) the column axis is the half-Lambert
- *  term q = (n.l + 1)/2 of seed 003; for comic (2-D) it is Lander's s = max(n.l, 0). Row = specular
+ *  term q = (n.l + 1)/2 of Qu, Chen & Zwicker; for comic (2-D) it is Lander's s = max(n.l, 0). Row = specular
  *  t = max(r.v, 0)^shininess for comic: the bottom row is t = 0, the top row t = 1 (as the map is drawn). Texel
  *  i = min(floor(u N), N - 1). Texels are sRGB colours multiplied with the material's base colour. */
 
@@ -24,7 +24,7 @@ struct ShadeMap {
     bool isOneDimensional() const { return texels.rows == 1; }
 };
 
-/** N even bands over the half-Lambert axis, levels i/(N-1) (grey). N = 5 is seed 003's cel default
+/** N even bands over the half-Lambert axis, levels i/(N-1) (grey). N = 5 is Qu, Chen & Zwicker's cel default
  *  {0, .25, .5, .75, 1} with borders at q = .2, .4, .6, .8. The levels are linear light, stored as their sRGB
  *  codes (0.25 -> 137) like every 8-bit colour, so the decoded texel times the base colour gives the level.
  *  Throws std::invalid_argument unless 2 <= N <= 256. */

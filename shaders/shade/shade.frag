@@ -23,7 +23,7 @@ uniform float specularBorderLimit[SPECULAR_ROW_BANDS];
 uniform int specularBandRow[SPECULAR_ROW_BANDS + 1];
 #endif
 #ifdef VIEW_CONSTANT
-uniform vec3 constantTowardEye; // comic: -V_c in view space, unit (seed 000 §3.5)
+uniform vec3 constantTowardEye; // comic: -V_c in view space, unit (Winnemöller & Bangay 2002 §3.5)
 #endif
 #if defined(MODEL_CEL) || defined(MODEL_COMIC)
 // sRGB texels, nearest, clamped; GL row 0 is the map image's bottom row (t = 0). Cel maps have one row.

@@ -1,5 +1,5 @@
 // Edge adjacency (docs/algorithms.md §2): counts by kind on small meshes with known answers, normal angles by atan2,
-// position welding across split normals and triangle soups, inconsistent orientation, degenerate faces, seed 002's
+// position welding across split normals and triangle soups, inconsistent orientation, degenerate faces, Lander 2000's
 // Templist erratum, and the exact silhouette test with its tie rule.
 #include "scene/EdgeAdjacency.h"
 #include "scene/MeshOps.h"
