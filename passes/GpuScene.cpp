@@ -1,5 +1,7 @@
 #include "passes/GpuScene.h"
 
+#include "passes/orientation/SceneOrientation.h"
+#include "scene/MaterialIds.h"
 #include "scene/MeshOps.h"
 
 #include <stdexcept>
@@ -7,10 +9,36 @@
 
 namespace inkgraph {
 
+GpuScene::GpuScene(const Scene& scene, glm::dvec3 worldOrigin) : mScene(scene), mWorldOrigin(worldOrigin) {}
+
+// Out of line: SceneOrientation is complete only here.
+GpuScene::~GpuScene() = default;
+
+void GpuScene::setOrientation(const FrameParams& frame, OrientationSettings settings) {
+    checkOrientationSettings("GpuScene::setOrientation()", settings);
+    mOrientationFrame = &frame;
+    mOrientationSettings = settings;
+    mOrientation.reset();
+}
+
+SceneOrientation* GpuScene::orientation() {
+    if (mOrientationFrame == nullptr) return nullptr;
+    if (!mOrientation)
+        mOrientation = std::make_unique<SceneOrientation>(mScene, *this, *mOrientationFrame, mOrientationSettings);
+    return mOrientation.get();
+}
+
+SceneOrientation* GpuScene::cpuOrientation() {
+    if (mOrientationFrame == nullptr || mOrientationSettings.method == FaceOrientationMethod::Standard) return nullptr;
+    return orientation();
+}
+
 const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
     if (mUploaded) return mMeshes;
+    const std::vector<std::uint32_t> materials = materialIds(mScene);
     mMeshes.reserve(mScene.meshes.size());
-    for (const Mesh& mesh : mScene.meshes) {
+    for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
+        const Mesh& mesh = mScene.meshes[index];
         std::vector<glm::vec3> relative(mesh.positions.size());
         for (std::size_t i = 0; i < relative.size(); ++i)
             relative[i] = glm::vec3(glm::dvec3(mesh.positions[i]) - mWorldOrigin);
@@ -20,7 +48,8 @@ const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
                       GlBuffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3), label + " indices"),
                       GlVertexArray(label),
                       static_cast<GLsizei>(mesh.triangles.size() * 3),
-                      mesh.baseColor};
+                      mesh.baseColor,
+                      materials[index]};
         draw.vertexArray.setVec3Attribute(kPositionLocation, draw.positions);
         draw.vertexArray.setVec3Attribute(kNormalLocation, draw.normals);
         draw.vertexArray.setIndexBuffer(draw.indices);

@@ -1,17 +1,25 @@
 #pragma once
-/** @file The scene's meshes on the GPU, uploaded the first time a pass that runs asks for them. */
+/** @file The scene's meshes on the GPU, uploaded the first time a pass that runs asks for them, and the data derived
+ *  from them (hull normals, edge adjacency, curvature, the CPU face orientation), each made the first time a pass
+ *  that runs asks: the one lazy cache every pass reads derived scene data from. */
 
 #include "gl/GlObjects.h"
+#include "passes/orientation/OrientationSettings.h"
 #include "scene/EdgeAdjacency.h"
 #include "scene/MeshCurvature.h"
 #include "scene/Scene.h"
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 namespace inkgraph {
+
+struct FrameParams;
+class SceneOrientation;
 
 class GpuScene {
 public:
@@ -22,13 +30,17 @@ public:
         GlVertexArray vertexArray;
         GLsizei indexCount;
         glm::vec4 baseColor;
+        std::uint32_t materialId; ///< scene/MaterialIds.h: equal exactly for meshes of the same material
     };
 
     static constexpr GLuint kPositionLocation = 0;
     static constexpr GLuint kNormalLocation = 1;
 
     /** Keeps references; nothing is uploaded until meshes() is called. */
-    GpuScene(const Scene& scene, glm::dvec3 worldOrigin) : mScene(scene), mWorldOrigin(worldOrigin) {}
+    GpuScene(const Scene& scene, glm::dvec3 worldOrigin);
+    ~GpuScene();
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
 
     /** Uploads on first call (positions relative to worldOrigin, in float), then returns the cached meshes. */
     const std::vector<DrawMesh>& meshes();
@@ -59,6 +71,19 @@ public:
 
     std::size_t meshCount() const { return mScene.meshes.size(); }
 
+    /** The face orientation the passes draw with: stores `frame` (by reference: it must outlive this scene, and the
+     *  camera and light are read when the orientation is computed) and `settings`, creating nothing; drops an
+     *  orientation made for earlier settings. Throws std::invalid_argument for a front rule outside 1..3 or a negative
+     *  shininess (SceneOrientation's checks, made here so they come before any GL work). */
+    void setOrientation(const FrameParams& frame, OrientationSettings settings);
+    /** The CPU face orientation (Winnemoller & Bangay 2002's marking: front and back sets) the passes draw with,
+     *  made on the first call; nullptr when setOrientation() was never called or its method is Standard (the GPU
+     *  culls). */
+    SceneOrientation* cpuOrientation();
+    /** The orientation for any method, Standard included (whose report() counts the exact front share for --stats),
+     *  made on the first call; nullptr when setOrientation() was never called. */
+    SceneOrientation* orientation();
+
     /** Whether `worldPoint` lies inside any mesh (MeshOps isPointInsideMesh, ray parity on the CPU). The answer for
      *  the last point asked is kept, so the line passes of one frame share one computation. */
     bool containsPoint(glm::dvec3 worldPoint);
@@ -80,6 +105,9 @@ private:
     std::vector<MeshCurvature> mMeshCurvature;   ///< one per mesh once computed, else empty
     std::optional<glm::dvec3> mContainmentPoint; ///< the last point containsPoint() was asked about
     bool mContainsPoint = false;
+    const FrameParams* mOrientationFrame = nullptr; ///< set by setOrientation()
+    OrientationSettings mOrientationSettings;
+    std::unique_ptr<SceneOrientation> mOrientation; ///< made by the first orientation() or cpuOrientation()
 };
 
 } // namespace inkgraph

@@ -15,8 +15,7 @@ void CompositePass::declare(PassBuilder& builder) const {
     builder.write("final", {Format::RGBA8});
 }
 
-void CompositePass::execute(PassContext& context) {
-    GlPassContext& gl = GlPassContext::from(context);
+void CompositePass::execute(GlPassContext& gl) {
     CompositeInputs inputs;
     inputs.size = cv::Size(gl.width(), gl.height());
     inputs.paper = cv::Vec4f(mFrame.background.r, mFrame.background.g, mFrame.background.b, mFrame.background.a);

@@ -9,7 +9,7 @@
  *  | <name>.final     | rgba8  | required | sRGB picture, opaque                                 |
  */
 
-#include "graph/Pass.h"
+#include "gl/GlPass.h"
 #include "passes/FrameParams.h"
 
 #include <opencv2/core.hpp>
@@ -19,7 +19,7 @@
 
 namespace inkgraph {
 
-class CompositePass : public Pass {
+class CompositePass : public GlPass {
 public:
     struct LineInput {
         std::string resource; ///< "silhouette.lines"
@@ -31,7 +31,7 @@ public:
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
-    void execute(PassContext& context) override;
+    void execute(GlPassContext& context) override;
 
 private:
     std::string mName;

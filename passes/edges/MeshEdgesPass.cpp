@@ -4,6 +4,8 @@
 #include "passes/LineMaskTarget.h"
 #include "scene/EdgeAdjacency.h"
 
+#include <nlohmann/json.hpp>
+
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -42,6 +44,14 @@ void MeshEdgesPass::declare(PassBuilder& builder) const {
         builder.write(field, {Format::R8, mSettings.supersample}, Need::Optional);
 }
 
+void MeshEdgesPass::describe(nlohmann::ordered_json& report) const {
+    nlohmann::ordered_json drawn = nlohmann::ordered_json::object();
+    if (mEdgesDrawn.crease) drawn["crease"] = *mEdgesDrawn.crease;
+    if (mEdgesDrawn.border) drawn["border"] = *mEdgesDrawn.border;
+    if (mEdgesDrawn.silhouette) drawn["silhouette"] = *mEdgesDrawn.silhouette;
+    report["edges_drawn"] = drawn;
+}
+
 MeshEdgesPass::EdgeLines MeshEdgesPass::uploadEdgeLines(const std::string& output, std::size_t meshIndex,
                                                         const std::vector<std::uint32_t>& indices) const {
     EdgeLines lines;
@@ -69,7 +79,7 @@ std::size_t MeshEdgesPass::drawEdgeLines(const std::vector<EdgeLines>& lines) {
     return edges;
 }
 
-void MeshEdgesPass::prepare(PassContext& context) {
+void MeshEdgesPass::prepare(GlPassContext& context) {
     if (!mDepthProgram)
         mDepthProgram = std::make_unique<GlProgram>(
             mShaders.build({mName + " model depth", "edges/edges.vert", "common/line_mask.frag", {}, {}}));
@@ -93,8 +103,7 @@ void MeshEdgesPass::prepare(PassContext& context) {
             mBorderLines.push_back(uploadEdgeLines("border", mesh, selectBorderEdges(mScene.edgeAdjacency(mesh))));
 }
 
-void MeshEdgesPass::execute(PassContext& context) {
-    GlPassContext& gl = GlPassContext::from(context);
+void MeshEdgesPass::execute(GlPassContext& gl) {
     mEdgesDrawn = {};
     std::vector<const char*> live;
     for (const char* field : kFields)

@@ -1,5 +1,5 @@
 #pragma once
-/** @file Object-space edges (seed 002, docs/algorithms.md §2) as one-pixel line skeletons: the mesh's own edges,
+/** @file Object-space edges (Lander 2000, docs/algorithms.md §2) as one-pixel line skeletons: the mesh's own edges,
  *  chosen from its edge adjacency (GpuScene::edgeAdjacency()) and drawn as GL_LINES where the model does not hide
  *  them. A later CPU pass draws the skeleton at the user's width with anti-aliasing.
  *
@@ -42,7 +42,7 @@
 
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "graph/Pass.h"
+#include "gl/GlPass.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
 
@@ -64,7 +64,7 @@ struct MeshEdgesSettings {
     int supersample = 1;
 };
 
-class MeshEdgesPass : public Pass {
+class MeshEdgesPass : public GlPass {
 public:
     /** The outputs' field names, in the order the pass draws them. */
     static constexpr std::array<const char*, 3> kFields = {"silhouette", "crease", "border"};
@@ -77,8 +77,8 @@ public:
     void declare(PassBuilder& builder) const override;
     /** Builds the program, uploads the meshes and, when some output is live, derives the adjacency and uploads the
      *  crease and border index lists (once per pass object). */
-    void prepare(PassContext& context) override;
-    void execute(PassContext& context) override;
+    void prepare(GlPassContext& context) override;
+    void execute(GlPassContext& context) override;
 
     /** Edges submitted to each output in the last execute(), over all meshes (before the depth test decides which
      *  pixels show); empty for an output that was not live. For --stats. */
@@ -88,6 +88,8 @@ public:
         std::optional<std::size_t> border;
     };
     const EdgeCounts& edgesDrawn() const { return mEdgesDrawn; }
+    /** "edges_drawn": {"crease": n, "border": n, "silhouette": n} for the outputs the last execute() drew. */
+    void describe(nlohmann::ordered_json& report) const override;
 
     const MeshEdgesSettings& settings() const { return mSettings; }
 

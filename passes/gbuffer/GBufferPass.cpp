@@ -16,6 +16,7 @@ const std::vector<GBufferPass::Field>& GBufferPass::fields() {
         {"wVec", Format::RGBA32F, "WVEC"},      {"nDotV", Format::R32F, "NDOTV"},
         {"depth", Format::R32F, "DEPTH"},       {"coverage", Format::R8, "COVERAGE"},
         {"baseColor", Format::RGBA8, "BASECOLOR"}, {"radial", Format::RGBA32F, "RADIAL"},
+        {"materialId", Format::R32F, "MATERIAL_ID"},
     };
     return kFields;
 }
@@ -30,7 +31,9 @@ GBufferPass::GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& sce
 }
 
 Format GBufferPass::formatOf(const Field& field) const {
-    if (mPrecision == GBufferPrecision::Float32 || std::string_view(field.name) == "depth") return field.format;
+    // Depth needs float32's range and precision; material ids must stay exact integers (float16 holds only 2048).
+    const std::string_view name = field.name;
+    if (mPrecision == GBufferPrecision::Float32 || name == "depth" || name == "materialId") return field.format;
     if (field.format == Format::RGBA32F) return Format::RGBA16F;
     if (field.format == Format::R32F) return Format::R16F;
     return field.format;
@@ -50,7 +53,7 @@ GlProgram& GBufferPass::programFor(const std::vector<std::string>& defines) {
     return *program;
 }
 
-std::vector<std::string> GBufferPass::definesFor(const PassContext& context) {
+std::vector<std::string> GBufferPass::definesFor(const GlPassContext& context) {
     std::vector<std::string> defines;
     int slot = 0;
     for (const Field& field : fields()) {
@@ -61,13 +64,12 @@ std::vector<std::string> GBufferPass::definesFor(const PassContext& context) {
     return defines;
 }
 
-void GBufferPass::prepare(PassContext& context) {
+void GBufferPass::prepare(GlPassContext& context) {
     programFor(definesFor(context));
     mScene.meshes();
 }
 
-void GBufferPass::execute(PassContext& context) {
-    GlPassContext& gl = GlPassContext::from(context);
+void GBufferPass::execute(GlPassContext& gl) {
     GlFramebuffer framebuffer(mName);
     std::vector<int> drawSlots;
     int width = 0;
@@ -84,7 +86,7 @@ void GBufferPass::execute(PassContext& context) {
     framebuffer.attachDepth(mDepth.sized(width, height));
     framebuffer.finish(drawSlots);
 
-    GlProgram& program = programFor(definesFor(context));
+    GlProgram& program = programFor(definesFor(gl));
     framebuffer.bind();
     glViewport(0, 0, width, height);
     clearColorAndDepth(int(drawSlots.size()));
@@ -106,8 +108,10 @@ void GBufferPass::execute(PassContext& context) {
         glUniform1f(program.uniform("radialLengthScale"), float(1.0 / mFrame.radialLengthUnit));
     }
     const GLint baseColorLocation = program.uniform("baseColor");
+    const GLint materialIdLocation = program.uniform("materialId"); // -1 unless the field is live: ignored
     for (const GpuScene::DrawMesh& mesh : mScene.meshes()) {
         glUniform4fv(baseColorLocation, 1, glm::value_ptr(mesh.baseColor));
+        glUniform1ui(materialIdLocation, mesh.materialId);
         mesh.vertexArray.bind();
         glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
     }

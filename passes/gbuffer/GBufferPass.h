@@ -12,11 +12,13 @@
  *  | gbuffer.baseColor  | rgba8   | optional | sRGB-encoded material base colour, a = coverage                   |
  *  | gbuffer.radial     | rgba32f | optional | (n.(c - p), (J w).x, (J w).y, |w|^2) with v = c - p unnormalised, |
  *  |                    |         |          | lengths in units of FrameParams::radialLengthUnit (J w: pixels)   |
+ *  | gbuffer.materialId | r32f    | optional | GpuScene's material id + 1 as an exact float (scene/MaterialIds.h:|
+ *  |                    |         |          | equal for meshes of one material), 0 off-model                    |
  *
  *  GBufferPrecision::Float16 stores normal, view, wVec, nDotV and radial as rgba16f / r16f instead (read back as
  *  float32): half the memory and bandwidth, about 3 decimal digits. It exists to measure what float32 buys
  *  (bench/TradeoffSweep, docs/accuracy.md). Depth stays r32f: linear depth overflows float16 at 65504 and the
- *  relative depth-break test needs its precision.
+ *  relative depth-break test needs its precision; materialId stays r32f, since ids must be exact.
  *
  *  `radial` is what suggestive contours read (postfx/SuggestiveContours.h): n.v with the unnormalised view vector
  *  (DeCarlo's form, whose zero set of D_w(n.v) is exactly kappa_r = 0), the image-space direction of w as perspective
@@ -29,7 +31,7 @@
 
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "graph/Pass.h"
+#include "gl/GlPass.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
 #include "passes/gbuffer/GBufferPrecision.h"
@@ -40,7 +42,7 @@
 
 namespace inkgraph {
 
-class GBufferPass : public Pass {
+class GBufferPass : public GlPass {
 public:
     struct Field {
         const char* name;   ///< "normal"
@@ -59,12 +61,12 @@ public:
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
-    void prepare(PassContext& context) override;
-    void execute(PassContext& context) override;
+    void prepare(GlPassContext& context) override;
+    void execute(GlPassContext& context) override;
 
 private:
     /** OUT_* / LOC_* defines for the live outputs, in attachment order. */
-    static std::vector<std::string> definesFor(const PassContext& context);
+    static std::vector<std::string> definesFor(const GlPassContext& context);
     GlProgram& programFor(const std::vector<std::string>& defines);
 
     std::string mName;

@@ -1,5 +1,7 @@
 #include "passes/orientation/SceneOrientation.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <limits>
@@ -51,17 +53,35 @@ OrientationReport baseReport(const Scene& scene, const OrientationSettings& sett
 
 } // namespace
 
+void checkOrientationSettings(const char* function, const OrientationSettings& settings) {
+    if (settings.frontRule < 1 || settings.frontRule > 3) {
+        throw std::invalid_argument(std::string(function) + ": the front rule must be 1, 2 or 3, got " +
+                                    std::to_string(settings.frontRule));
+    }
+    if (!(settings.shininess >= 0.0)) {
+        throw std::invalid_argument(std::string(function) + ": the shininess must be >= 0, got " +
+                                    std::to_string(settings.shininess));
+    }
+}
+
 SceneOrientation::SceneOrientation(const Scene& scene, GpuScene& gpuScene, const FrameParams& frame,
                                    OrientationSettings settings)
     : mScene(scene), mGpuScene(gpuScene), mFrame(frame), mSettings(settings) {
-    if (mSettings.frontRule < 1 || mSettings.frontRule > 3) {
-        throw std::invalid_argument("SceneOrientation(): the front rule must be 1, 2 or 3, got " +
-                                    std::to_string(mSettings.frontRule));
-    }
-    if (!(mSettings.shininess >= 0.0)) {
-        throw std::invalid_argument("SceneOrientation(): the shininess must be >= 0, got " +
-                                    std::to_string(mSettings.shininess));
-    }
+    checkOrientationSettings("SceneOrientation()", mSettings);
+}
+
+nlohmann::ordered_json SceneOrientation::describe() {
+    const OrientationReport& report = this->report();
+    return {{"method", report.method}, {"view_vector", report.viewVector}, {"fell_back_to_exact", report.fellBack},
+            {"fall_back_reason", report.fallBackReason}, {"sin_alpha", report.sinAlpha},
+            {"beta_max_degrees", report.betaMaxDegrees}, {"cutoff", report.cutoff}, {"triangles", report.triangles},
+            {"vertices", report.vertices}, {"front_triangles", report.frontTriangles},
+            {"front_vertices", report.frontVertices},
+            {"front_triangle_share", report.triangles ? double(report.frontTriangles) / double(report.triangles) : 0.0},
+            {"front_vertex_share", report.vertices ? double(report.frontVertices) / double(report.vertices) : 0.0},
+            {"exact_front_triangles", report.exactFrontTriangles}, {"missed_triangles", report.missedTriangles},
+            {"derive_ms", report.deriveMilliseconds}, {"mark_ms", report.markMilliseconds},
+            {"upload_ms", report.uploadMilliseconds}};
 }
 
 const std::vector<SceneOrientation::MeshSets>& SceneOrientation::sets() {

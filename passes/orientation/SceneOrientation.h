@@ -1,13 +1,17 @@
 #pragma once
-/** @file The seed-000 CPU face orientation of every mesh, computed and uploaded the first time a pass that runs asks
- *  for it (the comic fill draws the front sets, the back-face outline the back sets). With the Standard method the
- *  GPU culls and nothing is computed here. */
+/** @file The CPU face orientation of Winnemoller & Bangay 2002 for every mesh, computed and uploaded the first time a
+ *  pass that runs asks for it (the comic fill draws the front sets, the back-face outline the back sets); owned by
+ *  GpuScene (setOrientation(), cpuOrientation()). With the Standard method the GPU culls and nothing is computed
+ *  here. */
 
 #include "gl/GlObjects.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/orientation/OrientationSettings.h"
 #include "scene/FaceOrientation.h"
 #include "scene/Scene.h"
+
+#include <nlohmann/json_fwd.hpp>
 
 #include <optional>
 #include <string>
@@ -15,14 +19,7 @@
 
 namespace inkgraph {
 
-struct OrientationSettings {
-    FaceOrientationMethod method = FaceOrientationMethod::Standard;
-    ViewVectorMode viewVector = ViewVectorMode::Exact;
-    int frontRule = 3;
-    double shininess = 32.0;
-};
-
-/** Per-method numbers for --stats (seed 000 Figure 8, plus holes and time). */
+/** Per-method numbers for --stats (Winnemoller & Bangay 2002 Figure 8, plus holes and time). */
 struct OrientationReport {
     std::string method;
     std::string viewVector;          ///< what was used: "exact" or "constant"
@@ -68,6 +65,8 @@ public:
     /** The numbers for --stats; for Standard counts the exact front share on the CPU (only when asked). The exact
      *  counts and holes are counted here, not while marking, so they never add to a pass's time. */
     const OrientationReport& report();
+    /** report() as the --stats "face_orientation" object (method, view vector, fall-back, shares, holes, times). */
+    nlohmann::ordered_json describe();
     /** A new frame (the camera or light moved): the next sets() marks, lights and uploads again. The per-mesh
      *  derived data (face normals, betaMax, adjacency) is kept: it depends on the mesh alone. */
     void invalidate();

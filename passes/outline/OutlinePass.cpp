@@ -3,6 +3,8 @@
 #include "gl/GraphExecutor.h"
 #include "passes/LineMaskTarget.h"
 
+#include <nlohmann/json.hpp>
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include <cmath>
@@ -11,9 +13,9 @@
 namespace inkgraph {
 
 OutlinePass::OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-                         float widthPixels, SceneOrientation* orientation)
+                         float widthPixels)
     : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mWidthPixels(widthPixels),
-      mOrientation(orientation), mDepth(mName + " model depth") {
+      mDepth(mName + " model depth") {
     if (!std::isfinite(mWidthPixels) || mWidthPixels < 0.0f)
         throw std::invalid_argument("OutlinePass(): pass '" + mName + "': 'widthPixels' must be finite and >= 0, got " +
                                     std::to_string(mWidthPixels));
@@ -21,7 +23,9 @@ OutlinePass::OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& sce
 
 void OutlinePass::declare(PassBuilder& builder) const { builder.write("lines", {Format::R8}); }
 
-void OutlinePass::prepare(PassContext&) {
+void OutlinePass::describe(nlohmann::ordered_json& report) const { report["skipped_eye_inside"] = skippedEyeInside(); }
+
+void OutlinePass::prepare(GlPassContext&) {
     if (!mDepthProgram)
         mDepthProgram = std::make_unique<GlProgram>(
             mShaders.build({mName + " model depth", "outline/outline.vert", "common/line_mask.frag", {}, {}}));
@@ -29,11 +33,11 @@ void OutlinePass::prepare(PassContext&) {
         mLineProgram = std::make_unique<GlProgram>(mShaders.build(
             {mName + " back edges", "outline/outline.vert", "common/line_mask.frag", {}, {}, "outline/outline.geom"}));
     mScene.meshes();
-    if (usesCpuSets()) mOrientation->sets(); // marks and uploads outside the timed execute()
+    if (SceneOrientation* orientation = mScene.cpuOrientation())
+        orientation->sets(); // marks and uploads outside the timed execute()
 }
 
-void OutlinePass::execute(PassContext& context) {
-    GlPassContext& gl = GlPassContext::from(context);
+void OutlinePass::execute(GlPassContext& gl) {
     GlFramebuffer framebuffer(mName);
     mSkippedEyeInside = !beginLineMask(gl, framebuffer, mDepth, mScene, mFrame.camera.eye);
     if (mSkippedEyeInside) return;
@@ -61,10 +65,11 @@ void OutlinePass::execute(PassContext& context) {
     glUniformMatrix4fv(mLineProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
     glUniform2f(mLineProgram->uniform("viewportSize"), float(width), float(height));
     glUniform1f(mLineProgram->uniform("halfWidthPixels"), mWidthPixels);
-    // With a CPU method its back sets decide what is submitted (seed 000's saving); they hold every true back face,
-    // and the geometry shader's facing test drops the front-facing "intermediate" ones, so the outline is the same.
-    if (usesCpuSets()) {
-        for (const SceneOrientation::MeshSets& sets : mOrientation->sets()) {
+    // With a CPU method its back sets decide what is submitted (Winnemoller & Bangay 2002's saving); they hold every
+    // true back face, and the geometry shader's facing test drops the front-facing "intermediate" ones, so the outline
+    // is the same.
+    if (SceneOrientation* orientation = mScene.cpuOrientation()) {
+        for (const SceneOrientation::MeshSets& sets : orientation->sets()) {
             sets.backArray.bind();
             glDrawElements(GL_TRIANGLES, sets.backIndexCount, GL_UNSIGNED_INT, nullptr);
         }

@@ -1,8 +1,8 @@
 #pragma once
-/** @file Lander's back-face outline (seed 000, docs/algorithms.md §1.1) as a line mask: back faces drawn as thick
- *  wireframe behind the filled front faces, so about half of each line shows outside the silhouette and interior
- *  occluding contours get lines too. Lines are expanded to screen-space quads (core profile has no reliable wide
- *  lines), so the width holds at every angle.
+/** @file Lander's back-face outline (Winnemöller & Bangay 2002, docs/algorithms.md §1.1) as a line mask: back faces
+ *  drawn as thick wireframe behind the filled front faces, so about half of each line shows outside the silhouette
+ *  and interior occluding contours get lines too. Lines are expanded to screen-space quads (core profile has no
+ *  reliable wide lines), so the width holds at every angle.
  *
  *  | resource      | format | need     | content                                          |
  *  |---------------|--------|----------|--------------------------------------------------|
@@ -10,21 +10,22 @@
  *  | <name>.lines  | r8     | required | 255 where the outline shows, else 0               |
  *
  *  `widthPixels` is the visible width outside the silhouette: the wireframe is drawn twice as wide. With a CPU
- *  face-orientation method (SceneOrientation) only the back sets it marked are submitted (they hold every true back
- *  face); the geometry shader's exact facing test decides in both cases.
+ *  face-orientation method (GpuScene::cpuOrientation()) only the back sets it marked are submitted (they hold every
+ *  true back face); the geometry shader's exact facing test decides in both cases.
  *
  *  Two draws with the pass's own depth attachment: the model's depth (every face, no colour), then the back faces,
- *  each triangle turned into three edge quads by a geometry shader, depth test LEQUAL against the model, writing
- *  255. GL culls what the geometry shader emits, not the triangles it receives, so the facing test is made there,
- *  on the view-space triangle. Edges are clipped to the near plane before the perspective divide, so an edge that
- *  passes behind the eye never smears across the frame. Quads get square caps, closing the joins.
+ *  each triangle turned into three edge quads by a geometry shader, a nearer-or-equal depth test against the model
+ *  (GL_GEQUAL: reversed-Z, gl/GlObjects.h), writing 255. GL culls what the geometry shader emits, not the triangles
+ *  it receives, so the facing test is made there, on the view-space triangle. Edges are clipped to the near plane
+ *  before the perspective divide, so an edge that passes behind the eye never smears across the frame. Quads get
+ *  square caps, closing the joins.
  *
  *  With the eye inside a mesh every face is a back face and the frame would fill with lines, so the mask is left
  *  empty (skippedEyeInside(); checked when the pass runs, by ray parity on the CPU). */
 
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "graph/Pass.h"
+#include "gl/GlPass.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
 #include "passes/orientation/SceneOrientation.h"
@@ -34,29 +35,31 @@
 
 namespace inkgraph {
 
-class OutlinePass : public Pass {
+class OutlinePass : public GlPass {
 public:
-    /** `orientation` may be null (GPU culling). Throws std::invalid_argument for a negative or non-finite width. */
+    /** Draws the back sets of `scene.cpuOrientation()` when the scene has one (GPU culling otherwise). Throws
+     *  std::invalid_argument for a negative or non-finite width. */
     OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-                float widthPixels, SceneOrientation* orientation);
+                float widthPixels);
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
-    void prepare(PassContext& context) override;
-    void execute(PassContext& context) override;
+    void prepare(GlPassContext& context) override;
+    void execute(GlPassContext& context) override;
+
+    /** "skipped_eye_inside": skippedEyeInside(). */
+    void describe(nlohmann::ordered_json& report) const override;
 
     /** True when the last execute() left the mask empty because the eye was inside a mesh (for --stats). */
     bool skippedEyeInside() const { return mSkippedEyeInside; }
 
 private:
-    bool usesCpuSets() const { return mOrientation && mOrientation->usesCpuMarking(); }
 
     std::string mName;
     ShaderLibrary& mShaders;
     GpuScene& mScene;
     const FrameParams& mFrame;
     float mWidthPixels;
-    SceneOrientation* mOrientation;
     std::unique_ptr<GlProgram> mDepthProgram; ///< the model, depth only
     std::unique_ptr<GlProgram> mLineProgram;  ///< back-face edges as quads
     PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs

@@ -44,9 +44,9 @@ bool usesShadeMap(ShadingModel model) { return model == ShadingModel::Cel || mod
 } // namespace
 
 ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-                     ShadeSettings settings, std::optional<ShadeMap> shadeMap, SceneOrientation* orientation)
+                     ShadeSettings settings, std::optional<ShadeMap> shadeMap)
     : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSettings(std::move(settings)),
-      mOrientation(orientation), mDepth(mName + " depth test") {
+      mDepth(mName + " depth test") {
     const std::string model = modelName(mSettings.model);
     if (!std::isfinite(mSettings.shininess) || mSettings.shininess < 0.0)
         throw std::invalid_argument("ShadePass(): shininess must be finite and >= 0, got " +
@@ -140,7 +140,7 @@ ShadePass::~ShadePass() = default;
 void ShadePass::declare(PassBuilder& builder) const { builder.write("color", {Format::RGBA8}); }
 
 bool ShadePass::drawsOrientationSets() const {
-    return mSettings.model == ShadingModel::Comic && mOrientation != nullptr && mOrientation->usesCpuMarking();
+    return mSettings.model == ShadingModel::Comic && mScene.cpuOrientation() != nullptr;
 }
 
 bool ShadePass::usesSpecularRowBands() const {
@@ -161,7 +161,7 @@ std::vector<std::string> ShadePass::defines() const {
     return result;
 }
 
-void ShadePass::prepare(PassContext&) {
+void ShadePass::prepare(GlPassContext&) {
     if (!mProgram)
         mProgram = std::make_unique<GlProgram>(mShaders.build(
             {mName, "shade/shade.vert", "shade/shade.frag", defines(), {"common/color.glsl", "common/lighting.glsl"}}));
@@ -177,8 +177,7 @@ void ShadePass::prepare(PassContext&) {
     mScene.meshes();
 }
 
-void ShadePass::execute(PassContext& context) {
-    GlPassContext& gl = GlPassContext::from(context);
+void ShadePass::execute(GlPassContext& gl) {
     const int width = gl.widthOf("color");
     const int height = gl.heightOf("color");
     GlFramebuffer framebuffer(mName);
@@ -191,7 +190,7 @@ void ShadePass::execute(PassContext& context) {
     const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
     const std::vector<SceneOrientation::MeshSets>* sets = nullptr;
     if (drawsOrientationSets()) {
-        sets = &mOrientation->sets();
+        sets = &mScene.cpuOrientation()->sets();
         if (sets->size() != meshes.size())
             throw std::logic_error("ShadePass::execute(): the scene orientation has " + std::to_string(sets->size()) +
                                    " mesh sets for " + std::to_string(meshes.size()) + " meshes");

@@ -1,11 +1,12 @@
 #pragma once
-/** @file Forward shading of the meshes: every shading model of seeds 000 and 003 in one pass, chosen at construction.
- *  Draws the meshes itself with its own depth attachment, so a plan without lines needs no G-buffer.
+/** @file Forward shading of the meshes: every shading model of Winnemöller & Bangay 2002 and Qu, Chen & Zwicker in
+ *  one pass, chosen at construction. Draws the meshes itself with its own depth attachment, so a plan without lines
+ *  needs no G-buffer.
  *
  *  | resource      | format | need     | content                                                            |
  *  |---------------|--------|----------|--------------------------------------------------------------------|
  *  | reads         |        |          | nothing from the graph (meshes from GpuScene, sets from             |
- *  |               |        |          | SceneOrientation for the CPU face-orientation methods)              |
+ *  |               |        |          | GpuScene::cpuOrientation() for the CPU face-orientation methods)    |
  *  | <name>.color  | rgba8  | required | sRGB colour, a = coverage (0 off the model)                        |
  *
  *  Models (docs/algorithms.md §1, §3; n, l, v unit, v surface -> eye, r = reflect(-l, n)):
@@ -16,7 +17,7 @@
  *  - cel:     1-D shade map indexed by the half-Lambert q = (n.l + 1)/2 per fragment
  *  - comic:   2-D shade map indexed by (max(n.l, 0), max(r.v, 0)^n) per fragment, specular 0 where n.l <= 0;
  *             with a constant view vector the specular term uses V_c; with a CPU face-orientation method the
- *             front sets are drawn with the per-vertex (s, t) the CPU computed (seed 000, Listing 1)
+ *             front sets are drawn with the per-vertex (s, t) the CPU computed (Winnemöller & Bangay 2002, Listing 1)
  *  Shininess 0 gives specular 1 (where n.l > 0); large shininess is evaluated as exp(n log(r.v)) with log(r.v) from
  *  |r - v|^2, so 1e6 gives neither NaN nor speckle (specularTerm in shaders/common/lighting.glsl).
  *
@@ -30,13 +31,14 @@
  *
  *  Ambient + diffuse is base x (ambient + (1 - ambient) max(n.l, 0)); phong adds specularStrength x specular in white;
  *  cel and comic multiply the decoded texel with the base colour. Light: FrameParams::towardLightView(). No culling,
- *  depth LESS: seen from behind (open meshes, holes), interpolated and flat normals turn toward the viewer; gouraud
- *  lights the vertex normal as stored, so back faces show the lighting of their front side. The flat normal is
- *  turned toward the eye by geometry (dot with -p), so it does not depend on the render target's y direction. */
+ *  a nearer depth test (GL_GREATER: reversed-Z, gl/GlObjects.h): seen from behind (open meshes, holes),
+ *  interpolated and flat normals turn toward the viewer; gouraud lights the vertex normal as stored, so back faces
+ *  show the lighting of their front side. The flat normal is turned toward the eye by geometry (dot with -p), so it
+ *  does not depend on the render target's y direction. */
 
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "graph/Pass.h"
+#include "gl/GlPass.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
 #include "passes/orientation/SceneOrientation.h"
@@ -63,22 +65,22 @@ struct ShadeSettings {
     std::vector<std::optional<ShadeMap>> meshShadeMaps{};
 };
 
-class ShadePass : public Pass {
+class ShadePass : public GlPass {
 public:
     /** `shadeMap` is required for cel and comic (a copy is uploaded in prepare()); it is the default for meshes
-     *  without one of their own in `settings.meshShadeMaps`. `orientation` may be null; when it uses CPU marking
-     *  (comic only), the pass draws its front sets. Throws std::invalid_argument for a missing map, a cel map
+     *  without one of their own in `settings.meshShadeMaps`. Comic draws the front sets of `scene.cpuOrientation()`
+     *  when the scene has one (asked when the pass runs). Throws std::invalid_argument for a missing map, a cel map
      *  (default or per mesh) of more than one row, a map that is not CV_8UC4, more per-mesh maps than the scene has
      *  meshes, a negative or non-finite shininess or specular strength, an ambient outside [0, 1], or a comic constant
      *  view vector that is not unit. */
     ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-              ShadeSettings settings, std::optional<ShadeMap> shadeMap, SceneOrientation* orientation);
+              ShadeSettings settings, std::optional<ShadeMap> shadeMap);
     ~ShadePass() override;
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
-    void prepare(PassContext& context) override;
-    void execute(PassContext& context) override;
+    void prepare(GlPassContext& context) override;
+    void execute(GlPassContext& context) override;
 
     /** The distinct shade maps the meshes use (1 for a single map, 0 for the models without one): the textures
      *  prepare() uploads. */
@@ -115,7 +117,6 @@ private:
     std::vector<MapSlot> mMaps;           ///< cel, comic: [0] the default map, then each distinct per-mesh map
     std::vector<std::size_t> mMeshMap;    ///< cel, comic: per GpuScene mesh, its entry of mMaps
     std::size_t mSpecularBorderCount = 0; ///< comic: the most row-band borders of a map in use
-    SceneOrientation* mOrientation;
     std::unique_ptr<GlProgram> mProgram; ///< the one program of this model and variant
     PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
 };

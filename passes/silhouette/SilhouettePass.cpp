@@ -3,6 +3,8 @@
 #include "gl/GraphExecutor.h"
 #include "passes/LineMaskTarget.h"
 
+#include <nlohmann/json.hpp>
+
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -30,7 +32,11 @@ SilhouettePass::SilhouettePass(std::string name, ShaderLibrary& shaders, GpuScen
 
 void SilhouettePass::declare(PassBuilder& builder) const { builder.write("lines", {Format::R8}); }
 
-void SilhouettePass::prepare(PassContext&) {
+void SilhouettePass::describe(nlohmann::ordered_json& report) const {
+    report["skipped_eye_inside"] = skippedEyeInside();
+}
+
+void SilhouettePass::prepare(GlPassContext&) {
     if (!mDepthProgram)
         mDepthProgram = std::make_unique<GlProgram>(
             mShaders.build({mName + " model depth", "silhouette/hull.vert", "common/line_mask.frag", {}, {}}));
@@ -51,8 +57,7 @@ void SilhouettePass::prepare(PassContext&) {
     }
 }
 
-void SilhouettePass::execute(PassContext& context) {
-    GlPassContext& gl = GlPassContext::from(context);
+void SilhouettePass::execute(GlPassContext& gl) {
     GlFramebuffer framebuffer(mName);
     mSkippedEyeInside = !beginLineMask(gl, framebuffer, mDepth, mScene, mFrame.camera.eye);
     if (mSkippedEyeInside) return;

@@ -1,7 +1,7 @@
 #pragma once
-/** @file The inflated hull of seed 003 §3.6 as a line mask: the meshes pushed out along position-welded smooth
- *  normals (so hard edges and split normals do not crack the hull), back faces drawn where the model does not
- *  cover them.
+/** @file The inflated hull of Qu, Chen & Zwicker §3.6 as a line mask: the meshes pushed out along position-welded
+ *  smooth normals (so hard edges and split normals do not crack the hull), back faces drawn where the model does
+ *  not cover them.
  *
  *  | resource      | format | need     | content                                          |
  *  |---------------|--------|----------|--------------------------------------------------|
@@ -9,9 +9,10 @@
  *  | <name>.lines  | r8     | required | 255 where the hull outline shows, else 0          |
  *
  *  Two draws into the mask with the pass's own depth attachment: the model's depth (every face, no colour), then
- *  the hull's back faces (front faces culled, depth test LESS against the model, depth not written), each fragment
- *  writing 255. Inside the model's silhouette the hull's back faces lie behind the model, so only the ring outside
- *  it, and the hull of nearer parts over farther ones, shows.
+ *  the hull's back faces (front faces culled, a strictly-nearer depth test against the model: GL_GREATER with
+ *  reversed-Z, gl/GlObjects.h; depth not written), each fragment writing 255. Inside the model's silhouette the
+ *  hull's back faces lie behind the model, so only the ring outside it, and the hull of nearer parts over farther
+ *  ones, shows.
  *
  *  Width: in screen space (default) the offset is applied in clip space, so the line is `widthPixels` wide at any
  *  distance, field of view and resolution; in object space the hull is offset by `objectWidth` model units. A
@@ -22,7 +23,7 @@
 
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
-#include "graph/Pass.h"
+#include "gl/GlPass.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
 
@@ -41,7 +42,7 @@ struct HullSettings {
     bool weldNormals = true;
 };
 
-class SilhouettePass : public Pass {
+class SilhouettePass : public GlPass {
 public:
     /** Throws std::invalid_argument for a negative or non-finite width. */
     SilhouettePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
@@ -49,8 +50,11 @@ public:
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
-    void prepare(PassContext& context) override;
-    void execute(PassContext& context) override;
+    void prepare(GlPassContext& context) override;
+    void execute(GlPassContext& context) override;
+
+    /** "skipped_eye_inside": skippedEyeInside(). */
+    void describe(nlohmann::ordered_json& report) const override;
 
     /** True when the last execute() left the mask empty because the eye was inside a mesh (for --stats). */
     bool skippedEyeInside() const { return mSkippedEyeInside; }

@@ -4,6 +4,9 @@ in vec3 viewPosition;
 in vec3 viewNormal;
 
 uniform vec4 baseColor; // linear
+#ifdef OUT_MATERIAL_ID
+uniform uint materialId; // GpuScene::DrawMesh::materialId, one per draw
+#endif
 #ifdef OUT_RADIAL
 uniform mat4 clipFromView;
 uniform vec2 viewportSize; // pixels
@@ -30,6 +33,9 @@ layout(location = LOC_COVERAGE) out float outCoverage;
 #endif
 #ifdef OUT_BASECOLOR
 layout(location = LOC_BASECOLOR) out vec4 outBaseColor;
+#endif
+#ifdef OUT_MATERIAL_ID
+layout(location = LOC_MATERIAL_ID) out float outMaterialId;
 #endif
 #ifdef OUT_RADIAL
 layout(location = LOC_RADIAL) out vec4 outRadial;
@@ -75,6 +81,10 @@ void main() {
 #endif
 #ifdef OUT_BASECOLOR
     outBaseColor = vec4(encodeSrgb(baseColor.rgb), 1.0);
+#endif
+#ifdef OUT_MATERIAL_ID
+    // + 1 so the cleared background (0) is no material; exact in float32 below 2^24 materials.
+    outMaterialId = float(materialId + 1u);
 #endif
 #ifdef OUT_RADIAL
     // DeCarlo's unnormalised view vector v = c - p (c is the view-space origin). J v = 0 (moving along the eye ray

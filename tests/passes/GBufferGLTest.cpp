@@ -251,5 +251,84 @@ TEST_F(GBufferSphere, RadialFieldIsMeasuredInTheLengthUnit) {
     EXPECT_GT(compared, 1000);
 }
 
+// --- material ids ----------------------------------------------------------------------------------------------
+
+/** Two cubes side by side, left and right of the centre, seen from the front; `right`'s material is set by the test. */
+class GBufferMaterials : public ::testing::Test, protected test::PassHarness {
+protected:
+    void SetUp() override { test::sharedGlContext(); }
+
+    /** Renders gbuffer.materialId (and coverage) of the two cubes at `precision`. */
+    cv::Mat render(const Mesh& left, const Mesh& right, GBufferPrecision precision = GBufferPrecision::Float32) {
+        scene = makeScene(left);
+        scene.meshes.push_back(right);
+        frame.camera = test::lookingAt(scene, glm::dvec3(0.0, 0.0, 8.0), glm::dvec3(0.0), kFovDegrees, kSize, kSize);
+        frame.worldOrigin = glm::dvec3(0.0);
+        gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+        GBufferPass pass("gbuffer", shaders, *gpuScene, frame, 1, precision);
+        const Plan plan = compile({&pass}, {"gbuffer.materialId", "gbuffer.coverage"});
+        EXPECT_EQ(plan.findResource("gbuffer.materialId")->desc.format, Format::R32F) << "ids must stay exact";
+        executor.run(plan, {&pass}, {kSize, kSize, false});
+        return executor.store().image("gbuffer.materialId").clone();
+    }
+
+    static Mesh cube(float x, std::string material, glm::vec4 color) {
+        Mesh mesh = makeCube({x, 0.0f, 0.0f}, 0.8f);
+        mesh.materialName = std::move(material);
+        mesh.baseColor = color;
+        return mesh;
+    }
+
+    /** The distinct values of `ids` where `mask` is set (where it is not, with `outside`), ascending. */
+    static std::vector<float> valuesIn(const cv::Mat& ids, const cv::Mat& mask, bool outside = false) {
+        std::vector<float> values;
+        for (int row = 0; row < ids.rows; ++row)
+            for (int col = 0; col < ids.cols; ++col) {
+                if ((mask.at<uchar>(row, col) != 0) == outside) continue;
+                const float value = ids.at<float>(row, col);
+                if (std::find(values.begin(), values.end(), value) == values.end()) values.push_back(value);
+            }
+        std::sort(values.begin(), values.end());
+        return values;
+    }
+
+    static cv::Mat halfOf(const cv::Mat& coverage, bool leftHalf) {
+        cv::Mat mask = coverage.clone();
+        const int half = coverage.cols / 2;
+        const cv::Rect otherHalf = leftHalf ? cv::Rect(half, 0, coverage.cols - half, coverage.rows)
+                                            : cv::Rect(0, 0, half, coverage.rows);
+        mask(otherHalf).setTo(0);
+        return mask;
+    }
+
+    const glm::vec4 kRed{0.8f, 0.1f, 0.1f, 1.0f};
+    const glm::vec4 kBlue{0.1f, 0.1f, 0.8f, 1.0f};
+};
+
+TEST_F(GBufferMaterials, TwoMaterialsGiveIdsOneAndTwoAndTheBackgroundZero) {
+    const cv::Mat ids = render(cube(-1.2f, "paint", kRed), cube(1.2f, "metal", kBlue));
+    ASSERT_EQ(ids.type(), CV_32FC1);
+    const cv::Mat coverage = executor.store().image("gbuffer.coverage");
+    EXPECT_GT(cv::countNonZero(halfOf(coverage, true)), 1000);
+    EXPECT_GT(cv::countNonZero(halfOf(coverage, false)), 1000);
+    EXPECT_EQ(valuesIn(ids, halfOf(coverage, true)), std::vector<float>{1.0f}) << "the left cube, material 0";
+    EXPECT_EQ(valuesIn(ids, halfOf(coverage, false)), std::vector<float>{2.0f}) << "the right cube, material 1";
+    EXPECT_EQ(valuesIn(ids, coverage, true), std::vector<float>{0.0f}) << "off the model";
+}
+
+TEST_F(GBufferMaterials, EqualMaterialsShareOneId) {
+    const cv::Mat ids = render(cube(-1.2f, "paint", kRed), cube(1.2f, "paint", kRed));
+    const cv::Mat coverage = executor.store().image("gbuffer.coverage");
+    EXPECT_EQ(valuesIn(ids, coverage), std::vector<float>{1.0f});
+    EXPECT_EQ(valuesIn(ids, coverage, true), std::vector<float>{0.0f});
+}
+
+TEST_F(GBufferMaterials, HalfPrecisionKeepsIdsFloat32) {
+    const cv::Mat ids = render(cube(-1.2f, "", kRed), cube(1.2f, "", kBlue), GBufferPrecision::Float16);
+    const cv::Mat coverage = executor.store().image("gbuffer.coverage");
+    EXPECT_EQ(valuesIn(ids, halfOf(coverage, true)), std::vector<float>{1.0f});
+    EXPECT_EQ(valuesIn(ids, halfOf(coverage, false)), std::vector<float>{2.0f});
+}
+
 } // namespace
 } // namespace inkgraph

@@ -54,7 +54,7 @@ protected:
 
     /** Runs `linePass` (whose mask is "<name>.lines") and, when `withCoverage`, the G-buffer's coverage, through
      *  compile() and the executor, as the app does. */
-    LineRender render(Pass& linePass, bool withCoverage = true) {
+    LineRender render(GlPass& linePass, bool withCoverage = true) {
         const std::string lines = std::string(linePass.name()) + ".lines";
         std::vector<std::string> requested = {lines};
         if (withCoverage) requested.push_back("gbuffer.coverage");

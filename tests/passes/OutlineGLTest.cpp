@@ -38,7 +38,7 @@ TEST_F(OutlineSphere, VisibleRingIsWidthPixelsWide) {
     };
     std::ostringstream measured;
     for (const OutlineCase& view : cases) {
-        OutlinePass pass("outline", shaders, *gpuScene, frame, view.widthPixels, nullptr);
+        OutlinePass pass("outline", shaders, *gpuScene, frame, view.widthPixels);
         lookFrom({0.0, 0.0, view.distance}, glm::dvec3(0.0), view.fovYDegrees, view.width, view.height);
         const LineRender render = this->render(pass);
         const std::string where = "distance " + std::to_string(view.distance) + ", fov " +
@@ -75,7 +75,7 @@ TEST_F(OutlineSphere, VisibleRingIsWidthPixelsWide) {
 TEST_F(OutlineSphere, InnerHalfIsHiddenByTheFill) {
     // Measured directly: the line pixels inside the model's coverage are at most a pixel deep, not widthPixels.
     constexpr float kWidth = 4.0f;
-    OutlinePass pass("outline", shaders, *gpuScene, frame, kWidth, nullptr);
+    OutlinePass pass("outline", shaders, *gpuScene, frame, kWidth);
     lookFrom({0.0, 0.0, 4.0}, glm::dvec3(0.0), 35.0, 256, 256);
     const LineRender render = this->render(pass);
     const test::SilhouetteCircle circle = test::silhouetteOf(frame.camera, 1.0, 4.0);
@@ -89,7 +89,7 @@ TEST_F(OutlineSphere, InnerHalfIsHiddenByTheFill) {
 }
 
 TEST_F(OutlineSphere, EyeInsideLeavesBothMasksEmpty) {
-    OutlinePass outline("outline", shaders, *gpuScene, frame, 2.0f, nullptr);
+    OutlinePass outline("outline", shaders, *gpuScene, frame, 2.0f);
     SilhouettePass silhouette("silhouette", shaders, *gpuScene, frame, HullSettings{});
     lookFrom({0.1, -0.2, 0.3}, {1.0, 0.0, 0.0}, 70.0, 128, 128);
     EXPECT_EQ(cv::countNonZero(render(outline, false).lines), 0);
@@ -106,7 +106,7 @@ TEST_F(OutlineSphere, EdgesBehindTheEyeAreClippedAtTheNearPlane) {
     // near plane and w = 0. Every visible point has view x > 0, so the left half of the frame must stay empty apart
     // from the line width; an edge projected without clipping would streak across it.
     constexpr float kWidth = 3.0f;
-    OutlinePass pass("outline", shaders, *gpuScene, frame, kWidth, nullptr);
+    OutlinePass pass("outline", shaders, *gpuScene, frame, kWidth);
     for (const double nearScale : {1.0, 4.0}) {
         lookFrom({-1.2, 0.0, 0.0}, {-1.2, 0.0, -1.0}, 90.0, 256, 256);
         // Also with the near plane pushed into the sphere, so the cut opens it and shows its back faces.
@@ -125,8 +125,8 @@ TEST(OutlinePass, RejectsBadWidths) {
     GpuScene gpuScene(scene, glm::dvec3(0.0));
     ShaderLibrary shaders;
     FrameParams frame;
-    EXPECT_THROW(OutlinePass("o", shaders, gpuScene, frame, -2.0f, nullptr), std::invalid_argument);
-    EXPECT_THROW(OutlinePass("o", shaders, gpuScene, frame, std::numeric_limits<float>::quiet_NaN(), nullptr),
+    EXPECT_THROW(OutlinePass("o", shaders, gpuScene, frame, -2.0f), std::invalid_argument);
+    EXPECT_THROW(OutlinePass("o", shaders, gpuScene, frame, std::numeric_limits<float>::quiet_NaN()),
                  std::invalid_argument);
 }
 

@@ -10,9 +10,11 @@
 #include "tests/support/GlTestContext.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace inkgraph {
@@ -68,10 +70,11 @@ protected:
         frame.camera = resolveCamera(request, scene);
     }
 
+    /** A new GpuScene's orientation for `settings`, as the passes get it (GpuScene::orientation()). */
     SceneOrientation& orientation(OrientationSettings settings) {
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
-        sceneOrientation = std::make_unique<SceneOrientation>(scene, *gpuScene, frame, settings);
-        return *sceneOrientation;
+        gpuScene->setOrientation(frame, settings);
+        return *gpuScene->orientation();
     }
 
     /** What orientMesh() decides for the same inputs, computed here independently of SceneOrientation. */
@@ -91,7 +94,6 @@ protected:
     Scene scene;
     FrameParams frame;
     std::unique_ptr<GpuScene> gpuScene;
-    std::unique_ptr<SceneOrientation> sceneOrientation;
 };
 
 TEST_F(SceneOrientationSphere, AfterVerticesUploadsWhatOrientMeshDecided) {
@@ -176,7 +178,7 @@ TEST_F(SceneOrientationSphere, EveryCpuMethodReportsNoHoles) {
             EXPECT_EQ(report.missedTriangles, 0u) << report.method << ", " << report.viewVector;
             EXPECT_GE(report.frontTriangles, report.exactFrontTriangles) << report.method;
             EXPECT_EQ(report.viewVector, viewVectorModeName(mode));
-            EXPECT_EQ(sceneOrientation->sets()[0].frontIndexCount, GLsizei(3 * report.frontTriangles));
+            EXPECT_EQ(gpuScene->cpuOrientation()->sets()[0].frontIndexCount, GLsizei(3 * report.frontTriangles));
         }
     }
 }
@@ -226,6 +228,49 @@ TEST_F(SceneOrientationSphere, StandardReportsTheExactShareAndHasNoSets) {
     EXPECT_FALSE(gpuScene->isUploaded()) << "the Standard report needs no GPU";
 }
 
+TEST_F(SceneOrientationSphere, GpuSceneMakesTheCpuOrientationOnceAndOnlyForCpuMethods) {
+    gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+    EXPECT_EQ(gpuScene->cpuOrientation(), nullptr) << "nothing set";
+    EXPECT_EQ(gpuScene->orientation(), nullptr) << "nothing set";
+
+    OrientationSettings standard;
+    gpuScene->setOrientation(frame, standard);
+    EXPECT_EQ(gpuScene->cpuOrientation(), nullptr) << "Standard: the GPU culls";
+    ASSERT_NE(gpuScene->orientation(), nullptr) << "Standard still reports for --stats";
+    EXPECT_FALSE(gpuScene->orientation()->usesCpuMarking());
+
+    OrientationSettings cpu;
+    cpu.method = FaceOrientationMethod::DuringTriangles;
+    gpuScene->setOrientation(frame, cpu);
+    SceneOrientation* first = gpuScene->cpuOrientation();
+    ASSERT_NE(first, nullptr);
+    EXPECT_TRUE(first->usesCpuMarking()) << "new settings drop the Standard orientation";
+    EXPECT_EQ(gpuScene->cpuOrientation(), first) << "made once, then cached";
+    EXPECT_EQ(gpuScene->orientation(), first);
+    EXPECT_FALSE(gpuScene->isUploaded()) << "making the orientation computes and uploads nothing";
+    EXPECT_EQ(first->sets().size(), 1u);
+}
+
+TEST_F(SceneOrientationSphere, DescribeGivesTheStatsObject) {
+    OrientationSettings settings;
+    settings.method = FaceOrientationMethod::AfterVertices;
+    SceneOrientation& subject = orientation(settings);
+    const nlohmann::ordered_json described = subject.describe();
+    const OrientationReport& report = subject.report();
+    std::vector<std::string> keys;
+    for (const auto& [key, value] : described.items()) keys.push_back(key);
+    EXPECT_EQ(keys, (std::vector<std::string>{"method", "view_vector", "fell_back_to_exact", "fall_back_reason",
+                                              "sin_alpha", "beta_max_degrees", "cutoff", "triangles", "vertices",
+                                              "front_triangles", "front_vertices", "front_triangle_share",
+                                              "front_vertex_share", "exact_front_triangles", "missed_triangles",
+                                              "derive_ms", "mark_ms", "upload_ms"}));
+    EXPECT_EQ(described["method"], "after-vertices");
+    EXPECT_EQ(described["triangles"], report.triangles);
+    EXPECT_EQ(described["missed_triangles"], 0);
+    EXPECT_DOUBLE_EQ(described["front_triangle_share"].get<double>(),
+                     double(report.frontTriangles) / double(report.triangles));
+}
+
 TEST(SceneOrientationSettings, RejectsBadRuleAndShininess) {
     const Scene scene = makeScene(makeUvSphere({0, 0, 0}, 1.0f, 8, 4));
     GpuScene gpuScene(scene, glm::dvec3(0.0));
@@ -236,6 +281,15 @@ TEST(SceneOrientationSettings, RejectsBadRuleAndShininess) {
     OrientationSettings badShininess;
     badShininess.shininess = -2.0;
     EXPECT_THROW(SceneOrientation(scene, gpuScene, frame, badShininess), std::invalid_argument);
+    // GpuScene checks them when they are set, before anything runs.
+    try {
+        gpuScene.setOrientation(frame, badRule);
+        ADD_FAILURE() << "no error for front rule 0";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_STREQ(error.what(), "GpuScene::setOrientation(): the front rule must be 1, 2 or 3, got 0");
+    }
+    EXPECT_THROW(gpuScene.setOrientation(frame, badShininess), std::invalid_argument);
+    EXPECT_EQ(gpuScene.orientation(), nullptr) << "bad settings are not kept";
 }
 
 } // namespace

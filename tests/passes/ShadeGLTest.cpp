@@ -105,7 +105,7 @@ protected:
 
     /** Runs one ShadePass and returns its colour, row 0 at the top. */
     cv::Mat render(const ShadeSettings& settings, std::optional<ShadeMap> map = std::nullopt) {
-        ShadePass pass("shade", shaders, *gpuScene, frame, settings, std::move(map), nullptr);
+        ShadePass pass("shade", shaders, *gpuScene, frame, settings, std::move(map));
         const Plan plan = compile({&pass}, {"shade.color"});
         executor.run(plan, {&pass}, {kSize, kSize, false});
         cv::Mat image = executor.store().image("shade.color").clone();
@@ -910,7 +910,7 @@ TEST_F(ShadeSphere, RejectsMissingOrWrongShadeMapsAndBadSettings) {
     useSphere(8, 6, {0.8f, 0.8f, 0.8f, 1.0f});
     const auto message = [&](ShadeSettings settings, std::optional<ShadeMap> map) -> std::string {
         try {
-            ShadePass pass("shade", shaders, *gpuScene, frame, settings, std::move(map), nullptr);
+            ShadePass pass("shade", shaders, *gpuScene, frame, settings, std::move(map));
         } catch (const std::invalid_argument& error) {
             return error.what();
         }
@@ -997,9 +997,9 @@ protected:
         setLight(kHighlightLight);
     }
 
-    /** render() with a face-orientation object (may be null). */
-    cv::Mat renderWith(const ShadeSettings& settings, ShadeMap map, SceneOrientation* orientation) {
-        ShadePass pass("shade", shaders, *gpuScene, frame, settings, std::move(map), orientation);
+    /** render() with the face orientation set on the GpuScene (GpuScene::setOrientation()), if any. */
+    cv::Mat renderWith(const ShadeSettings& settings, ShadeMap map) {
+        ShadePass pass("shade", shaders, *gpuScene, frame, settings, std::move(map));
         const Plan plan = compile({&pass}, {"shade.color"});
         executor.run(plan, {&pass}, {kSize, kSize, false});
         cv::Mat image = executor.store().image("shade.color").clone();
@@ -1129,12 +1129,11 @@ TEST_F(ShadeTwoSpheres, ComicFaceOrientationSetsDrawWithEachMeshsMap) {
     OrientationSettings orientationSettings;
     orientationSettings.method = FaceOrientationMethod::AfterVertices;
     orientationSettings.shininess = 16.0;
-    SceneOrientation orientation(scene, *gpuScene, frame, orientationSettings);
-    ASSERT_TRUE(orientation.usesCpuMarking());
-    const cv::Mat perMesh =
-        renderWith(withMeshMaps(ShadingModel::Comic, 16.0, {a, b}), makeDefaultComicShadeMap(), &orientation);
-    const cv::Mat onlyA = renderWith(settingsFor(ShadingModel::Comic, 16.0), a, &orientation);
-    const cv::Mat onlyB = renderWith(settingsFor(ShadingModel::Comic, 16.0), b, &orientation);
+    gpuScene->setOrientation(frame, orientationSettings);
+    ASSERT_NE(gpuScene->cpuOrientation(), nullptr);
+    const cv::Mat perMesh = renderWith(withMeshMaps(ShadingModel::Comic, 16.0, {a, b}), makeDefaultComicShadeMap());
+    const cv::Mat onlyA = renderWith(settingsFor(ShadingModel::Comic, 16.0), a);
+    const cv::Mat onlyB = renderWith(settingsFor(ShadingModel::Comic, 16.0), b);
     expectEachSphereInItsHalf(perMesh);
     EXPECT_EQ(differingPixels(perMesh, onlyA, true), 0);
     EXPECT_EQ(differingPixels(perMesh, onlyB, false), 0);
@@ -1169,7 +1168,7 @@ TEST_F(ShadeTwoSpheres, DistinctMapsAreUploadedOnceAndWrongOnesRefused) {
     const ShadeMap blue = flatMap({0, 0, 255, 255}, 1, 4, "test:blue");
     const auto distinct = [&](ShadingModel model, std::vector<std::optional<ShadeMap>> meshMaps) {
         ShadePass pass("shade", shaders, *gpuScene, frame, withMeshMaps(model, 32.0, std::move(meshMaps)),
-                       makeBandShadeMap(5), nullptr);
+                       makeBandShadeMap(5));
         return pass.distinctShadeMapCount();
     };
     EXPECT_EQ(distinct(ShadingModel::Cel, {}), 1u);
@@ -1184,7 +1183,7 @@ TEST_F(ShadeTwoSpheres, DistinctMapsAreUploadedOnceAndWrongOnesRefused) {
     const auto message = [&](ShadingModel model, std::vector<std::optional<ShadeMap>> meshMaps) -> std::string {
         try {
             ShadePass pass("shade", shaders, *gpuScene, frame, withMeshMaps(model, 32.0, std::move(meshMaps)),
-                           makeBandShadeMap(5), nullptr);
+                           makeBandShadeMap(5));
         } catch (const std::invalid_argument& error) {
             return error.what();
         }
