@@ -8,6 +8,7 @@
 #include "scene/EdgeAdjacency.h"
 
 #include <glm/gtc/constants.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <deque>
@@ -332,6 +333,9 @@ TEST_F(MeshEdgesCube, CreasesAreTheNineVisibleEdgesAndSilhouetteTheHexagon) {
     EXPECT_EQ(pass.edgesDrawn().silhouette, std::optional<std::size_t>(6));
     EXPECT_EQ(pass.edgesDrawn().border, std::optional<std::size_t>(0));
     EXPECT_EQ(cv::countNonZero(masks["border"]), 0);
+    nlohmann::ordered_json report;
+    pass.describe(report);
+    EXPECT_EQ(report.dump(), R"({"edges_drawn":{"crease":12,"border":0,"silhouette":6}})");
 
     std::ostringstream measured;
     const std::vector<ScreenSegment> visible = projectAll(cube.visible);
@@ -387,6 +391,9 @@ TEST_F(MeshEdgesCube, CreaseAngleDecidesAndDiagonalsNeverShow) {
     MeshEdgesPass atZero("mesh-edges", shaders, *gpuScene, frame, zero);
     const cv::Mat crease = renderEdges(atZero, {"crease"})["crease"];
     EXPECT_EQ(atZero.edgesDrawn().crease, std::optional<std::size_t>(12));
+    nlohmann::ordered_json report;
+    atZero.describe(report);
+    EXPECT_EQ(report.dump(), R"({"edges_drawn":{"crease":12}})") << "only the outputs it drew";
     EXPECT_EQ(linesAlongForbidden(crease, projectAll(cube.frontDiagonals), projectAll(cube.visible), 2.5, 1.0).hits, 0);
     EXPECT_LE(farthestLinePixelAwayFrom(crease, projectAll(cube.visible), projectedCorners(frame.camera), 2.0), 1.0);
 

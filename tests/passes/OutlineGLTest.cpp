@@ -6,6 +6,8 @@
 
 #include "LineMaskTestSupport.h"
 
+#include <nlohmann/json.hpp>
+
 #include <limits>
 #include <sstream>
 
@@ -96,6 +98,11 @@ TEST_F(OutlineSphere, EyeInsideLeavesBothMasksEmpty) {
     EXPECT_TRUE(outline.skippedEyeInside());
     EXPECT_EQ(cv::countNonZero(render(silhouette, false).lines), 0);
     EXPECT_TRUE(silhouette.skippedEyeInside());
+    nlohmann::ordered_json outlineReport, silhouetteReport;
+    outline.describe(outlineReport);
+    silhouette.describe(silhouetteReport);
+    EXPECT_EQ(outlineReport.dump(), R"({"skipped_eye_inside":true})");
+    EXPECT_EQ(silhouetteReport.dump(), R"({"skipped_eye_inside":true})");
     lookFrom({0.0, 0.0, 4.0}, glm::dvec3(0.0), 35.0, 128, 128);
     EXPECT_GT(cv::countNonZero(render(outline, false).lines), 100);
     EXPECT_FALSE(outline.skippedEyeInside());
