@@ -2,6 +2,7 @@
 
 #include "app/Options.h"
 #include "graph/Plan.h"
+#include "passes/lines/LineTypes.h"
 #include "scene/Scene.h"
 
 #include <algorithm>
@@ -32,9 +33,6 @@ constexpr std::size_t kSkeletonBytesPerPixel = 2;
 /** Per data pixel, what one line layer's pass holds while it runs: the stroke canvas (1) and the nearest-point
  *  stroke's two ints (8; postfx/LineSkeleton.cpp takes that path when the points are many). */
 constexpr std::size_t kStrokeBytesPerPixel = 9;
-/** Per data pixel, the 5-point suggestive stencil's maps (postfx/SuggestiveContours.cpp: dw, dwdw and the normal
- *  distance as float, two byte masks). */
-constexpr std::size_t kWideStencilBytesPerPixel = 14;
 /** gl/Readback.cpp moves pixels in bands of at most this many bytes, through one extra buffer. */
 constexpr std::size_t kTransferBandBytes = 64 * kMiB;
 /** Encoding one image: the encoded bytes in a growing vector (up to twice their size) and the writer's own copy. */
@@ -60,7 +58,7 @@ bool drawsTheScene(const PlannedPass& pass) { return pass.reads.empty(); }
 /** A CPU pass that finds and strokes one --lines type (it is named after it): it keeps a skeleton and strokes it. */
 bool strokesLines(const PlannedPass& pass, const RenderOptions& options) {
     return !drawsTheScene(pass) &&
-           std::find(options.lines.begin(), options.lines.end(), pass.name) != options.lines.end();
+           std::find(options.look.lines.begin(), options.look.lines.end(), pass.name) != options.look.lines.end();
 }
 
 class PlanSizes {
@@ -140,7 +138,8 @@ std::size_t cpuBytesAt(std::size_t index, const Plan& plan, const RenderOptions&
     // Other CPU passes (the composite) work in the images they read and write, counted above.
     if (!strokesLines(pass, options)) return bytes + std::min(kTransferBandBytes, largestImage);
     std::size_t working = kStrokeBytesPerPixel;
-    if (pass.name == "suggestive" && options.suggestiveStencil == 5) working += kWideStencilBytesPerPixel;
+    if (const LineType* type = findLineType(pass.name); type && type->workingBytesPerPixel)
+        working += type->workingBytesPerPixel(options.look.lineParameters);
     return bytes + working * sizes.pixels(sizes.scaleOf(pass)) + std::min(kTransferBandBytes, largestImage);
 }
 
@@ -169,21 +168,21 @@ MemoryEstimate estimateRunMemory(const Plan& plan, const RenderOptions& options,
 
 std::string memoryDriversText(const Plan& plan, const RenderOptions& options) {
     std::string text = "--size " + sizeText(std::size_t(options.width), std::size_t(options.height));
-    if (options.supersample > 1) {
+    if (options.look.supersample > 1) {
         const PlanSizes sizes(plan, options);
         std::string supersampled;
         int count = 0;
-        for (const std::string& type : options.lines) { // in the order the user gave them
+        for (const std::string& type : options.look.lines) { // in the order the user gave them
             const PlannedPass* pass = plan.findPass(type);
             if (pass == nullptr || !strokesLines(*pass, options)) continue;
-            if (sizes.scaleOf(*pass) < options.supersample) continue;
+            if (sizes.scaleOf(*pass) < options.look.supersample) continue;
             supersampled += (count++ ? "," : "") + type;
         }
-        text += " with --supersample " + std::to_string(options.supersample);
+        text += " with --supersample " + std::to_string(options.look.supersample);
         if (count > 0)
             text += " (--lines " + supersampled + (count == 1 ? " works" : " work") + " at " +
-                    sizeText(std::size_t(options.width) * options.supersample,
-                             std::size_t(options.height) * options.supersample) +
+                    sizeText(std::size_t(options.width) * options.look.supersample,
+                             std::size_t(options.height) * options.look.supersample) +
                     ")";
     }
     if (!options.dumpDirectory.empty()) text += " and --dump";

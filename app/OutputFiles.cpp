@@ -147,7 +147,7 @@ OutputSet::OutputSet(const RenderOptions& options) {
                              options.dumpDirectory + "', whose contents each dump replaces; write it elsewhere");
     }
     std::vector<RunInput> inputs = {{options.modelPath, "the model itself"}};
-    if (!options.shadeMapPath.empty()) inputs.push_back({options.shadeMapPath, "the --shademap itself"});
+    if (!options.look.shadeMapPath.empty()) inputs.push_back({options.look.shadeMapPath, "the --shademap itself"});
     if (!options.stylePath.empty()) inputs.push_back({options.stylePath, "the --style file"});
     if (!options.listPath.empty() && options.listPath != "-") inputs.push_back({options.listPath, "the --list file"});
     refuseInputs(inputs);

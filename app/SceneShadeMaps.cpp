@@ -16,19 +16,19 @@ std::string meshLabel(const Mesh& mesh) {
 
 } // namespace
 
-std::vector<std::optional<ShadeMap>> readSceneShadeMaps(const Scene& scene, ShadingMode shading,
+std::vector<std::optional<ShadeMap>> readSceneShadeMaps(const Scene& scene, ShadingModel shading,
                                                         std::vector<std::string>* warnings) {
     std::vector<std::optional<ShadeMap>> maps(scene.meshes.size());
-    const bool usesMaps = shading == ShadingMode::Cel || shading == ShadingMode::Comic;
+    const bool usesMaps = traitsOf(shading).shadeMap;
     if (!usesMaps) {
         // Reading files nothing will draw with could only fail the run; say why the file's maps do not show instead.
         std::size_t naming = 0;
         for (const Mesh& mesh : scene.meshes)
             if (!mesh.shadeMapPath.empty()) ++naming;
         if (naming > 0 && warnings)
-            warnings->push_back(naming == 1 ? "1 mesh names a shade map, which only --shading cel and comic use"
+            warnings->push_back(naming == 1 ? "1 mesh names a shade map, which only --shading " + shadingModelsWith(&ShadingModelTraits::shadeMap) + " use"
                                             : std::to_string(naming) +
-                                                  " meshes name shade maps, which only --shading cel and comic use");
+                                                  " meshes name shade maps, which only --shading " + shadingModelsWith(&ShadingModelTraits::shadeMap) + " use");
         return maps;
     }
 
@@ -41,7 +41,7 @@ std::vector<std::optional<ShadeMap>> readSceneShadeMaps(const Scene& scene, Shad
         if (found == read.end()) {
             try {
                 found =
-                    read.emplace(mesh.shadeMapPath, readShadeMapFile(mesh.shadeMapPath, shading == ShadingMode::Cel))
+                    read.emplace(mesh.shadeMapPath, readShadeMapFile(mesh.shadeMapPath, traitsOf(shading).oneDimensionalMap))
                         .first;
             } catch (const InputFileError& error) {
                 // readShadeMapFile() speaks for --shademap; here the file came from the model, so name the mesh.

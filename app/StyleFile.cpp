@@ -1,6 +1,7 @@
 #include "app/StyleFile.h"
 
 #include "app/ImageFiles.h"
+#include "app/FlagTable.h"
 #include "app/Options.h"
 
 #include <algorithm>
@@ -32,15 +33,9 @@ std::string withoutBlanks(std::string_view text) {
 
 const std::vector<std::string>& styleSettingNames() {
     static const std::vector<std::string> kNames = [] {
-        std::vector<std::string> names = {
-            "size",         "fov",          "light",          "background",           "shading",
-            "shininess",    "bands",        "shademap",       "view-vector",          "face-orientation",
-            "front-rule",   "lines",        "crease-angle",   "depth-jump",           "suggestive-threshold",
-            "suggestive-fade", "suggestive-stencil", "supersample", "gbuffer-precision", "silhouette-object-width"};
-        for (const std::string& type : knownLineTypes()) {
-            names.push_back(type + "-width");
-            names.push_back(type + "-color");
-        }
+        std::vector<std::string> names;
+        for (const Flag& flag : renderFlags())
+            if (flag.inStyle) names.push_back(flag.names.back().substr(2));
         return names;
     }();
     return kNames;
@@ -73,7 +68,7 @@ SourcedArguments styleArguments(std::string_view text, const std::string& source
         if (!seen.insert(name).second) throw UsageError(where + ": '" + name + "' is set twice");
         if (value.empty()) throw UsageError(where + ": '" + name + "' has no value");
         std::string argument;
-        if (name == "shademap") {
+        if (findFlag("--" + name)->pathValue) {
             const std::filesystem::path path{std::string(value)};
             argument = path.is_relative() && !directory.empty() ? (std::filesystem::path(directory) / path).string()
                                                                 : path.string();

@@ -1,5 +1,5 @@
 #include "app/BackgroundThreads.h"
-#include "app/Render.h"
+#include "app/Cli.h"
 
 #include <cstdio>
 #include <cstdlib>

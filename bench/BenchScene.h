@@ -1,7 +1,7 @@
 #pragma once
 // Shared by the benchmarks: one GL context per process, procedural scenes, and the CLI's graph compiled once and run
 // warm (programs built and meshes uploaded once, as in a batch).
-#include "app/StillGraph.h"
+#include "passes/StillGraph.h"
 #include "gl/GraphExecutor.h"
 #include "gl/HeadlessContext.h"
 #include "gl/TexturePool.h"
@@ -33,15 +33,10 @@ inline Scene sphereScene(int triangleCount) {
     return makeScene(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 2 * rings, rings));
 }
 
-/** Options as the CLI would parse them for a 1024x1024 still, with `arguments` added. */
-inline RenderOptions benchOptions(std::vector<std::string> arguments) {
-    arguments.insert(arguments.begin(), {"bench.obj", "-o", "bench.png", "--size", "1024x1024"});
-    return parseRenderOptions(arguments);
-}
 
 /** One scene with the CLI's passes (auto-framed camera, default light), compiled for `requested`. */
 struct Bench {
-    RenderOptions options;
+    Look look;
     Scene scene;
     BoundingSphere sphere;
     FrameParams frame;
@@ -52,8 +47,8 @@ struct Bench {
     GraphExecutor executor{pool};
     Plan plan;
 
-    Bench(Scene loaded, RenderOptions renderOptions, const std::vector<std::string>& requested)
-        : options(std::move(renderOptions)), scene(std::move(loaded)) {
+    Bench(Scene loaded, Look benchLook, const std::vector<std::string>& requested)
+        : look(std::move(benchLook)), scene(std::move(loaded)) {
         context();
         CameraRequest request;
         request.width = kFrameSize;
@@ -63,7 +58,7 @@ struct Bench {
         frame.worldOrigin = sphere.center;
         frame.towardLightWorld = glm::normalize(glm::dvec3(-0.4, 0.5, 0.77));
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
-        graph = buildStillGraph({options, shaders, scene, sphere, *gpuScene, frame, std::nullopt});
+        graph = buildStillGraph({look, shaders, scene, sphere, *gpuScene, frame, std::nullopt});
         plan = compile(graph.view(), requested);
     }
 

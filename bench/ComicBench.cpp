@@ -1,4 +1,4 @@
-// Seed 000's comparison, warm, at 1024x1024 on UV spheres of 1k to 1M triangles (auto-framed, so the eye is about
+// Winnemöller & Bangay 2002's comparison, warm, at 1024x1024 on UV spheres of 1k to 1M triangles (auto-framed, so the eye is about
 // 3 radii away and the constant view vector applies): standard comic (Lander: 1-D shade map + back-face outline)
 // against specular comic with exact view vectors, with the constant view vector, and with each CPU face-orientation
 // method. The time of one case is the shade pass plus the outline pass (prepare() plus execute() to glFinish); for
@@ -15,25 +15,31 @@ namespace {
 
 struct ComicCase {
     const char* name;
-    std::vector<std::string> arguments;
+    Look look;
 };
 
+/** Comic shading (or cel: Lander's standard comic) with Lander's outline. */
+Look comicLook(ShadingModel shading, ViewVectorMode viewVector = ViewVectorMode::Exact,
+               FaceOrientationMethod method = FaceOrientationMethod::Standard) {
+    Look look;
+    look.shading = shading;
+    look.viewVector = viewVector;
+    look.faceOrientation = method;
+    look.lines = {"outline"};
+    return look;
+}
+
 const std::vector<ComicCase>& comicCases() {
+    using M = FaceOrientationMethod;
+    constexpr ViewVectorMode kConstant = ViewVectorMode::Constant;
     static const std::vector<ComicCase> kCases = {
-        {"StandardComic", {"--shading", "cel", "--lines", "outline"}},
-        {"SpecularExact", {"--shading", "comic", "--lines", "outline"}},
-        {"SpecularConstant", {"--shading", "comic", "--view-vector", "constant", "--lines", "outline"}},
-        {"DuringTriangles",
-         {"--shading", "comic", "--view-vector", "constant", "--face-orientation", "during-triangles", "--lines",
-          "outline"}},
-        {"DuringVertices",
-         {"--shading", "comic", "--view-vector", "constant", "--face-orientation", "during-vertices", "--lines",
-          "outline"}},
-        {"AfterVertices",
-         {"--shading", "comic", "--view-vector", "constant", "--face-orientation", "after-vertices", "--lines",
-          "outline"}},
-        {"AfterVerticesExact",
-         {"--shading", "comic", "--face-orientation", "after-vertices", "--lines", "outline"}},
+        {"StandardComic", comicLook(ShadingModel::Cel)},
+        {"SpecularExact", comicLook(ShadingModel::Comic)},
+        {"SpecularConstant", comicLook(ShadingModel::Comic, kConstant)},
+        {"DuringTriangles", comicLook(ShadingModel::Comic, kConstant, M::DuringTriangles)},
+        {"DuringVertices", comicLook(ShadingModel::Comic, kConstant, M::DuringVertices)},
+        {"AfterVertices", comicLook(ShadingModel::Comic, kConstant, M::AfterVertices)},
+        {"AfterVerticesExact", comicLook(ShadingModel::Comic, ViewVectorMode::Exact, M::AfterVertices)},
     };
     return kCases;
 }
@@ -44,7 +50,7 @@ struct FrameTime {
     double total = 0.0;
 };
 FrameTime timeFrame(Bench& bench) {
-    bench.graph.orientation->invalidate();
+    if (SceneOrientation* orientation = bench.gpuScene->cpuOrientation()) orientation->invalidate();
     FrameTime time;
     // prepare() counts too: that is where the CPU methods mark, light and upload (once per frame, for both passes).
     for (const PassTiming& timing : bench.run()) {
@@ -56,7 +62,7 @@ FrameTime timeFrame(Bench& bench) {
 }
 
 void runComicCase(benchmark::State& state, const ComicCase& comicCase) {
-    Bench bench(sphereScene(int(state.range(0))), benchOptions(comicCase.arguments), {"composite.final"});
+    Bench bench(sphereScene(int(state.range(0))), comicCase.look, {"composite.final"});
     double shadeSum = 0.0, outlineSum = 0.0;
     timeFrame(bench); // warm-up: llvmpipe compiles shader variants on the first draw
     for (auto _ : state) {
@@ -81,8 +87,8 @@ void runComicCase(benchmark::State& state, const ComicCase& comicCase) {
  *  mesh, frame by frame, so drifts in the machine's speed hit both; the overhead is the median of the per-round
  *  ratios. The manual time is the comic case's frame. */
 void runOverheadCase(benchmark::State& state, const ComicCase& comicCase) {
-    Bench standard(sphereScene(int(state.range(0))), benchOptions(comicCases().front().arguments), {"composite.final"});
-    Bench specular(sphereScene(int(state.range(0))), benchOptions(comicCase.arguments), {"composite.final"});
+    Bench standard(sphereScene(int(state.range(0))), comicCases().front().look, {"composite.final"});
+    Bench specular(sphereScene(int(state.range(0))), comicCase.look, {"composite.final"});
     timeFrame(standard); // warm-up: llvmpipe compiles shader variants on the first draw
     timeFrame(specular);
     std::vector<double> totalRatios, shadeRatios, standardTotals, specularTotals;

@@ -21,33 +21,33 @@ void BM_LoadBunny(benchmark::State& state) {
 BENCHMARK(BM_LoadBunny)->Unit(benchmark::kMillisecond);
 
 void BM_GBufferSphere_LambertOutputs(benchmark::State& state) {
-    Bench bench(sphereScene(int(state.range(0))), benchOptions({}), kLambertOutputs);
+    Bench bench(sphereScene(int(state.range(0))), Look{}, kLambertOutputs);
     reportPass(state, bench, "gbuffer");
 }
 BENCHMARK(BM_GBufferSphere_LambertOutputs)->Arg(1000)->Arg(100000)->Arg(1000000)->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
 void BM_GBufferSphere_AllOutputs(benchmark::State& state) {
-    Bench bench(sphereScene(int(state.range(0))), benchOptions({}), kAllOutputs);
+    Bench bench(sphereScene(int(state.range(0))), Look{}, kAllOutputs);
     reportPass(state, bench, "gbuffer");
 }
 BENCHMARK(BM_GBufferSphere_AllOutputs)->Arg(1000)->Arg(100000)->Arg(1000000)->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
 void BM_GBufferBunny_AllOutputs(benchmark::State& state) {
-    Bench bench(loadScene(kBunnyPath), benchOptions({}), kAllOutputs);
+    Bench bench(loadScene(kBunnyPath), Look{}, kAllOutputs);
     reportPass(state, bench, "gbuffer");
 }
 BENCHMARK(BM_GBufferBunny_AllOutputs)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 void BM_CelBunny(benchmark::State& state) {
-    Bench bench(loadScene(kBunnyPath), benchOptions({}), {"composite.final"});
+    Bench bench(loadScene(kBunnyPath), Look{}, {"composite.final"});
     reportPass(state, bench, "shade");
 }
 BENCHMARK(BM_CelBunny)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 void BM_CompositeBunny(benchmark::State& state) {
-    Bench bench(loadScene(kBunnyPath), benchOptions({}), {"composite.final"});
+    Bench bench(loadScene(kBunnyPath), Look{}, {"composite.final"});
     reportPass(state, bench, "composite");
 }
 BENCHMARK(BM_CompositeBunny)->UseManualTime()->Unit(benchmark::kMillisecond);

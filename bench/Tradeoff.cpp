@@ -4,12 +4,14 @@
 
 #include "app/Options.h"
 #include "app/Render.h"
-#include "app/StillGraph.h"
+#include "passes/StillGraph.h"
+#include "passes/lines/LineLayerPass.h"
+#include "passes/lines/types/SuggestiveLines.h"
 #include "gl/GraphExecutor.h"
 #include "gl/HeadlessContext.h"
 #include "gl/TexturePool.h"
 #include "graph/GraphCompiler.h"
-#include "passes/lines/LineLayerPass.h"
+#include "passes/lines/LineTypes.h"
 #include "scene/Camera.h"
 #include "scene/Procedural.h"
 #include "tests/support/AnalyticLines.h"
@@ -78,9 +80,9 @@ public:
         arguments.insert(arguments.end(), flags.begin(), flags.end());
         mOptions = parseRenderOptions(arguments);
         mSphere = computeBoundingSphere(mScene);
-        mFrame = frameParamsOf(mOptions, mScene, resolveCamera(cameraRequestOf(mOptions), mScene), mSphere);
+        mFrame = frameParamsOf(mOptions.look, mScene, resolveCamera(cameraRequestOf(mOptions), mScene), mSphere);
         mGpuScene = std::make_unique<GpuScene>(mScene, mFrame.worldOrigin);
-        mGraph = buildStillGraph({mOptions, mShaders, mScene, mSphere, *mGpuScene, mFrame, std::nullopt});
+        mGraph = buildStillGraph({mOptions.look, mShaders, mScene, mSphere, *mGpuScene, mFrame, std::nullopt});
         std::vector<std::string> resources = {mGraph.finalResource};
         resources.insert(resources.end(), requested.begin(), requested.end());
         mPlan = compile(mGraph.view(), resources);
@@ -131,8 +133,8 @@ Timings timeRuns(WarmRender& render, const std::vector<std::string>& methodPasse
     };
     render.run();
     double setup = 0.0;
-    if (auto object = render.graph().lineLayers.find("suggestive-object"); object != render.graph().lineLayers.end())
-        setup = object->second->report().curvatureMilliseconds;
+    if (const LineLayerPass* object = render.graph().lineLayer("suggestive-object"))
+        setup = static_cast<const ObjectSuggestiveKernel&>(object->kernel()).report().curvatureMilliseconds;
     std::vector<double> frames, methods;
     for (int i = 0; i < repetitions; ++i) {
         const std::map<std::string, double> times = render.run();
@@ -147,7 +149,7 @@ Timings timeRuns(WarmRender& render, const std::vector<std::string>& methodPasse
 
 /** The points a line layer found, in output pixels. */
 std::vector<cv::Point2d> linePoints(const WarmRender& render, const std::string& type) {
-    return outputPixelPositions(render.graph().lineLayers.at(type)->skeleton(), render.options().supersample);
+    return outputPixelPositions(render.graph().lineLayer(type)->skeleton(), render.options().look.supersample);
 }
 
 /** Pixels where the shading changes between 4-neighbours that both lie on the model: the band boundaries. */
@@ -166,6 +168,13 @@ cv::Mat bandBoundaries(const cv::Mat& shade, const cv::Mat& coverage) {
         }
     }
     return boundaries;
+}
+
+/** The suggestive stencil's points (3 or 5) of a look, by the parameter's registered name. */
+std::string stencilPoints(const Look& look) {
+    for (const LineParameter* parameter : findLineType("suggestive")->parameters)
+        if (parameter->name == "suggestive-stencil") return look.lineParameters.choice(*parameter);
+    return "3";
 }
 
 std::string thousands(std::size_t triangles) {
@@ -245,7 +254,7 @@ private:
         WarmRender render(scene, flags, {});
         const Timings timings = timeRuns(render, {"gbuffer", type}, mConfig.repetitions);
         const RenderOptions& options = render.options();
-        const double threshold = options.suggestiveThreshold.value_or(SuggestiveSettings{}.threshold);
+        const double threshold = options.look.lineParameters.number(line_parameters::kSuggestiveThreshold);
         const double featureSize = kSuggestiveFeatureSizeFraction * render.sphere().radius;
         const std::vector<cv::Point2d> points = linePoints(render, type);
         const std::vector<LinePolyline>& truth =
@@ -255,15 +264,15 @@ private:
         TradeoffRow row;
         row.method = type;
         std::ostringstream setting;
-        setting << size << " S" << options.supersample;
+        setting << size << " S" << options.look.supersample;
         if (type == "suggestive-object")
             setting << " T" << threshold << " " << thousands(scene.triangleCount()) << " tris";
         else
-            setting << (options.gbufferPrecision == GBufferPrecision::Float16 ? " half" : " float");
-        if (type == "suggestive") setting << " " << options.suggestiveStencil << "-point T" << threshold;
+            setting << (options.look.gbufferPrecision == GBufferPrecision::Float16 ? " half" : " float");
+        if (type == "suggestive") setting << " " << stencilPoints(options.look) << "-point T" << threshold;
         row.setting = setting.str();
         row.scene = "torus " + thousands(scene.triangleCount());
-        finish(row, size, options.supersample, scene.triangleCount(), timings, points, truth);
+        finish(row, size, options.look.supersample, scene.triangleCount(), timings, points, truth);
     }
 
     void sphereRow(const Scene& scene, const std::string& type, int size, int segments) {

@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string_view>
 
@@ -53,49 +54,58 @@ GlProgram& GBufferPass::programFor(const std::vector<std::string>& defines) {
     return *program;
 }
 
-std::vector<std::string> GBufferPass::definesFor(const GlPassContext& context) {
-    std::vector<std::string> defines;
-    int slot = 0;
+std::vector<std::vector<const GBufferPass::Field*>> GBufferPass::liveGroups(const GlPassContext& context) {
+    std::vector<std::vector<const Field*>> groups;
     for (const Field& field : fields()) {
         if (!context.isLive(field.name)) continue;
-        defines.push_back(std::string("OUT_") + field.define + " 1");
-        defines.push_back(std::string("LOC_") + field.define + " " + std::to_string(slot++));
+        if (groups.empty() || int(groups.back().size()) == kMaxDrawBuffers) groups.emplace_back();
+        groups.back().push_back(&field);
+    }
+    return groups;
+}
+
+std::vector<std::string> GBufferPass::definesFor(const std::vector<const Field*>& group) {
+    std::vector<std::string> defines;
+    int slot = 0;
+    for (const Field* field : group) {
+        defines.push_back(std::string("OUT_") + field->define + " 1");
+        defines.push_back(std::string("LOC_") + field->define + " " + std::to_string(slot++));
     }
     return defines;
 }
 
 void GBufferPass::prepare(GlPassContext& context) {
-    programFor(definesFor(context));
+    for (const std::vector<const Field*>& group : liveGroups(context)) programFor(definesFor(group));
     mScene.meshes();
 }
 
 void GBufferPass::execute(GlPassContext& gl) {
+    // GL guarantees 8 draw buffers: more live fields are drawn in a second draw of the same meshes with the same
+    // vertex shader and depth test, which rasterises exactly the same fragments.
+    for (const std::vector<const Field*>& group : liveGroups(gl)) drawGroup(gl, group);
+}
+
+void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& group) {
     GlFramebuffer framebuffer(mName);
     std::vector<int> drawSlots;
-    int width = 0;
-    int height = 0;
-    for (const Field& field : fields()) {
-        if (!gl.isLive(field.name)) continue;
-        // Every field shares one scale, so any live field gives the size of the attachments.
-        width = gl.widthOf(field.name);
-        height = gl.heightOf(field.name);
+    // Every field shares one scale, so any live field gives the size of the attachments.
+    const int width = gl.widthOf(group.front()->name);
+    const int height = gl.heightOf(group.front()->name);
+    for (const Field* field : group) {
         const int slot = static_cast<int>(drawSlots.size());
-        framebuffer.attachColor(slot, gl.outputTexture(field.name));
+        framebuffer.attachColor(slot, gl.outputTexture(field->name));
         drawSlots.push_back(slot);
     }
     framebuffer.attachDepth(mDepth.sized(width, height));
     framebuffer.finish(drawSlots);
-
-    GlProgram& program = programFor(definesFor(gl));
+    GlProgram& program = programFor(definesFor(group));
     framebuffer.bind();
     glViewport(0, 0, width, height);
     clearColorAndDepth(int(drawSlots.size()));
-
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(kDepthNearer);
     glDisable(GL_CULL_FACE); // open meshes show their insides through holes
     glDisable(GL_BLEND);
-
     const glm::mat4 viewFromModel = mFrame.viewFromModel();
     const glm::mat3 viewNormalFromModel = glm::inverseTranspose(glm::mat3(viewFromModel));
     const glm::mat4 clipFromView = mFrame.clipFromView();
@@ -103,7 +113,7 @@ void GBufferPass::execute(GlPassContext& gl) {
     glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
     glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
     glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
-    if (gl.isLive("radial")) {
+    if (std::any_of(group.begin(), group.end(), [](const Field* field) { return std::string_view(field->name) == "radial"; })) {
         glUniform2f(program.uniform("viewportSize"), float(width), float(height));
         glUniform1f(program.uniform("radialLengthScale"), float(1.0 / mFrame.radialLengthUnit));
     }

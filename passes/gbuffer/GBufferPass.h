@@ -1,5 +1,6 @@
 #pragma once
-/** @file The G-buffer: float32 view-space data of the visible surface, one MRT draw, no MSAA.
+/** @file The G-buffer: float32 view-space data of the visible surface, one MRT draw (two when more than the 8 draw
+ *  buffers GL guarantees are live), no MSAA.
  *
  *  | resource           | format  | need     | content                                                           |
  *  |--------------------|---------|----------|-------------------------------------------------------------------|
@@ -66,7 +67,12 @@ public:
 
 private:
     /** OUT_* / LOC_* defines for the live outputs, in attachment order. */
-    static std::vector<std::string> definesFor(const GlPassContext& context);
+    /** The live fields in attachment order, in groups of at most kMaxDrawBuffers: one draw each. */
+    static std::vector<std::vector<const Field*>> liveGroups(const GlPassContext& context);
+    /** OUT_* and LOC_* defines for one group's draw. */
+    static std::vector<std::string> definesFor(const std::vector<const Field*>& group);
+    void drawGroup(GlPassContext& gl, const std::vector<const Field*>& group);
+    static constexpr int kMaxDrawBuffers = 8; ///< GL 4.5's guaranteed GL_MAX_DRAW_BUFFERS (llvmpipe has exactly 8)
     GlProgram& programFor(const std::vector<std::string>& defines);
 
     std::string mName;

@@ -15,31 +15,11 @@
 namespace inkgraph {
 namespace {
 
-const char* modelName(ShadingModel model) {
-    switch (model) {
-    case ShadingModel::Flat: return "flat";
-    case ShadingModel::Gouraud: return "gouraud";
-    case ShadingModel::Lambert: return "lambert";
-    case ShadingModel::Phong: return "phong";
-    case ShadingModel::Cel: return "cel";
-    case ShadingModel::Comic: return "comic";
-    }
-    throw std::logic_error("modelName(): unknown shading model");
-}
+const char* modelName(ShadingModel model) { return traitsOf(model).name; }
 
-const char* modelDefine(ShadingModel model) {
-    switch (model) {
-    case ShadingModel::Flat: return "MODEL_FLAT 1";
-    case ShadingModel::Gouraud: return "MODEL_GOURAUD 1";
-    case ShadingModel::Lambert: return "MODEL_LAMBERT 1";
-    case ShadingModel::Phong: return "MODEL_PHONG 1";
-    case ShadingModel::Cel: return "MODEL_CEL 1";
-    case ShadingModel::Comic: return "MODEL_COMIC 1";
-    }
-    throw std::logic_error("modelDefine(): unknown shading model");
-}
+const char* modelDefine(ShadingModel model) { return traitsOf(model).define; }
 
-bool usesShadeMap(ShadingModel model) { return model == ShadingModel::Cel || model == ShadingModel::Comic; }
+bool usesShadeMap(ShadingModel model) { return traitsOf(model).shadeMap; }
 
 } // namespace
 
@@ -48,6 +28,8 @@ ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, 
     : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSettings(std::move(settings)),
       mDepth(mName + " depth test") {
     const std::string model = modelName(mSettings.model);
+    if (traitsOf(mSettings.model).define == nullptr)
+        throw std::invalid_argument("ShadePass(): the shading model '" + model + "' has no shading pass");
     if (!std::isfinite(mSettings.shininess) || mSettings.shininess < 0.0)
         throw std::invalid_argument("ShadePass(): shininess must be finite and >= 0, got " +
                                     std::to_string(mSettings.shininess));

@@ -43,6 +43,7 @@
 #include "passes/GpuScene.h"
 #include "passes/orientation/SceneOrientation.h"
 #include "passes/shade/ShadeMap.h"
+#include "passes/shade/ShadingModel.h"
 #include "scene/FaceOrientation.h"
 
 #include <memory>
@@ -51,8 +52,6 @@
 #include <vector>
 
 namespace inkgraph {
-
-enum class ShadingModel { Flat, Gouraud, Lambert, Phong, Cel, Comic };
 
 struct ShadeSettings {
     ShadingModel model = ShadingModel::Cel;

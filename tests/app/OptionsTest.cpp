@@ -1,6 +1,8 @@
 // Command-line parsing: defaults, values, and a clear UsageError for every malformed flag. No GL.
 #include "app/Options.h"
 #include "app/Render.h"
+#include "app/StillOutputs.h"
+#include "passes/lines/LineTypes.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +13,23 @@ namespace inkgraph {
 namespace {
 
 RenderOptions parse(std::vector<std::string> arguments) { return parseRenderOptions(arguments); }
+
+/** The registered line parameter called `name` (passes/lines/LineTypes.h). */
+const LineParameter& lineParameter(const std::string& name) {
+    for (const LineParameter* parameter : lineParameters())
+        if (parameter->name == name) return *parameter;
+    throw std::logic_error("no line parameter '" + name + "'");
+}
+
+double parameter(const RenderOptions& options, const std::string& name) {
+    return options.look.lineParameters.number(lineParameter(name));
+}
+
+std::string stencil(const RenderOptions& options) {
+    return options.look.lineParameters.choice(lineParameter("suggestive-stencil"));
+}
+
+LineFamily familyOf(const std::string& type) { return findLineType(type)->family; }
 
 std::string usageMessage(std::vector<std::string> arguments) {
     try {
@@ -29,33 +48,33 @@ TEST(Options, Defaults) {
     EXPECT_EQ(options.height, 1024);
     EXPECT_FALSE(options.up.has_value());
     EXPECT_FALSE(options.fovYDegrees.has_value());
-    EXPECT_EQ(options.shading, ShadingMode::Cel) << "cel is the default look";
-    EXPECT_EQ(options.shininess, 32.0);
-    EXPECT_FALSE(options.bands.has_value());
-    EXPECT_EQ(options.viewVector, ViewVectorMode::Exact);
-    EXPECT_EQ(options.faceOrientation, FaceOrientationMethod::Standard);
-    EXPECT_EQ(options.frontRule, 3);
-    EXPECT_TRUE(options.lines.empty());
-    for (const std::string& type : knownLineTypes()) {
-        EXPECT_EQ(options.lineStyles.at(type).widthPixels, 2.0) << type;
-        EXPECT_EQ(options.lineStyles.at(type).color, glm::dvec4(0, 0, 0, 1)) << type;
+    EXPECT_EQ(options.look.shading, ShadingModel::Cel) << "cel is the default look";
+    EXPECT_EQ(options.look.shininess, 32.0);
+    EXPECT_FALSE(options.look.bands.has_value());
+    EXPECT_EQ(options.look.viewVector, ViewVectorMode::Exact);
+    EXPECT_EQ(options.look.faceOrientation, FaceOrientationMethod::Standard);
+    EXPECT_EQ(options.look.frontRule, 3);
+    EXPECT_TRUE(options.look.lines.empty());
+    for (const LineType& type : lineTypes()) {
+        EXPECT_EQ(options.look.styleOf(type.name).widthPixels, 2.0) << type.name;
+        EXPECT_EQ(options.look.styleOf(type.name).color, glm::dvec4(0, 0, 0, 1)) << type.name;
     }
     EXPECT_FALSE(options.printPlan);
 }
 
 TEST(Options, ShadingModesAndTheirFlags) {
     for (const char* mode : {"none", "flat", "gouraud", "lambert", "phong", "cel", "comic"})
-        EXPECT_EQ(shadingModeName(parse({"m.obj", "-o", "x.png", "--shading", mode}).shading), mode);
+        EXPECT_EQ(traitsOf(parse({"m.obj", "-o", "x.png", "--shading", mode}).look.shading).name, mode);
     const RenderOptions comic =
         parse({"m.obj", "-o", "x.png", "--shading", "comic", "--shininess", "0", "--shademap", "map.png",
                "--view-vector", "constant", "--face-orientation", "during-vertices", "--front-rule", "1"});
-    EXPECT_EQ(comic.shininess, 0.0);
-    EXPECT_EQ(comic.shadeMapPath, "map.png");
-    EXPECT_EQ(comic.viewVector, ViewVectorMode::Constant);
-    EXPECT_EQ(comic.faceOrientation, FaceOrientationMethod::DuringVertices);
-    EXPECT_EQ(comic.frontRule, 1);
-    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--shading", "phong", "--shininess", "1e6"}).shininess, 1e6);
-    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--bands", "3"}).bands, 3) << "cel is the default, so --bands applies";
+    EXPECT_EQ(comic.look.shininess, 0.0);
+    EXPECT_EQ(comic.look.shadeMapPath, "map.png");
+    EXPECT_EQ(comic.look.viewVector, ViewVectorMode::Constant);
+    EXPECT_EQ(comic.look.faceOrientation, FaceOrientationMethod::DuringVertices);
+    EXPECT_EQ(comic.look.frontRule, 1);
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--shading", "phong", "--shininess", "1e6"}).look.shininess, 1e6);
+    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--bands", "3"}).look.bands, 3) << "cel is the default, so --bands applies";
 }
 
 TEST(Options, ShadingFlagsWithoutEffectAreRefused) {
@@ -102,12 +121,12 @@ TEST(Options, LineTypesAndTheirStyles) {
     const RenderOptions options =
         parse({"m.obj", "-o", "x.png", "--lines", "silhouette,outline", "--silhouette-width", "3.5",
                "--outline-color", "1,0,0", "--silhouette-color", "0,0,1,0.5", "--silhouette-object-width", "0.02"});
-    EXPECT_EQ(options.lines, (std::vector<std::string>{"silhouette", "outline"}));
-    EXPECT_EQ(options.lineStyles.at("silhouette").widthPixels, 3.5);
-    EXPECT_EQ(options.lineStyles.at("silhouette").color, glm::dvec4(0, 0, 1, 0.5));
-    EXPECT_EQ(options.lineStyles.at("outline").color, glm::dvec4(1, 0, 0, 1));
-    EXPECT_EQ(options.lineStyles.at("outline").widthPixels, 2.0);
-    EXPECT_EQ(*options.silhouetteObjectWidth, 0.02);
+    EXPECT_EQ(options.look.lines, (std::vector<std::string>{"silhouette", "outline"}));
+    EXPECT_EQ(options.look.styleOf("silhouette").widthPixels, 3.5);
+    EXPECT_EQ(options.look.styleOf("silhouette").color, glm::dvec4(0, 0, 1, 0.5));
+    EXPECT_EQ(options.look.styleOf("outline").color, glm::dvec4(1, 0, 0, 1));
+    EXPECT_EQ(options.look.styleOf("outline").widthPixels, 2.0);
+    EXPECT_EQ(parameter(options, "silhouette-object-width"), 0.02);
 
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--outline-width", "3"}).find("'outline' line type is not drawn"),
               std::string::npos);
@@ -132,18 +151,18 @@ TEST(Options, PostStageLineTypesAndTheirFlags) {
         parse({"m.obj", "-o", "x.png", "--lines", "contour,suggestive,depth-edge,normal-edge,crease,border,"
                "mesh-silhouette", "--crease-angle", "45", "--depth-jump", "0.1", "--suggestive-threshold", "0.02",
                "--suggestive-fade", "0.5", "--supersample", "3", "--suggestive-width", "1.5"});
-    EXPECT_EQ(options.lines.size(), 7u);
-    EXPECT_EQ(options.creaseAngleDegrees, 45.0);
-    EXPECT_EQ(options.depthJump, 0.1);
-    EXPECT_EQ(*options.suggestiveThreshold, 0.02);
-    EXPECT_EQ(*options.suggestiveFade, 0.5);
-    EXPECT_EQ(options.supersample, 3);
-    EXPECT_EQ(options.lineStyles.at("suggestive").widthPixels, 1.5);
+    EXPECT_EQ(options.look.lines.size(), 7u);
+    EXPECT_EQ(parameter(options, "crease-angle"), 45.0);
+    EXPECT_EQ(parameter(options, "depth-jump"), 0.1);
+    EXPECT_EQ(parameter(options, "suggestive-threshold"), 0.02);
+    EXPECT_EQ(parameter(options, "suggestive-fade"), 0.5);
+    EXPECT_EQ(options.look.supersample, 3);
+    EXPECT_EQ(options.look.styleOf("suggestive").widthPixels, 1.5);
     for (const char* type : {"contour", "suggestive", "depth-edge", "normal-edge"})
-        EXPECT_TRUE(isImageSpaceLineType(type)) << type;
-    for (const char* type : {"crease", "border", "mesh-silhouette"}) EXPECT_TRUE(isMeshEdgeLineType(type)) << type;
-    EXPECT_FALSE(isImageSpaceLineType("outline"));
-    EXPECT_FALSE(isMeshEdgeLineType("silhouette"));
+        EXPECT_TRUE((familyOf(type) == LineFamily::ImageSpace)) << type;
+    for (const char* type : {"crease", "border", "mesh-silhouette"}) EXPECT_TRUE((familyOf(type) == LineFamily::MeshEdge)) << type;
+    EXPECT_FALSE((familyOf("outline") == LineFamily::ImageSpace));
+    EXPECT_FALSE((familyOf("silhouette") == LineFamily::MeshEdge));
 
     // A flag that changes none of the requested line types is refused, naming the types it applies to.
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--crease-angle", "40"}).find("crease, normal-edge"),
@@ -169,10 +188,10 @@ TEST(Options, PostStageLineTypesAndTheirFlags) {
 }
 
 TEST(Options, GBufferPrecision) {
-    EXPECT_EQ(parse({"m.obj", "-o", "x.png"}).gbufferPrecision, GBufferPrecision::Float32);
-    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--gbuffer-precision", "half"}).gbufferPrecision,
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png"}).look.gbufferPrecision, GBufferPrecision::Float32);
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--gbuffer-precision", "half"}).look.gbufferPrecision,
               GBufferPrecision::Float16);
-    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--gbuffer-precision", "float"}).gbufferPrecision,
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--gbuffer-precision", "float"}).look.gbufferPrecision,
               GBufferPrecision::Float32);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--gbuffer-precision", "double"}).find("float or half"),
               std::string::npos);
@@ -189,9 +208,9 @@ TEST(Options, MemoryLimitInMebibytes) {
 }
 
 TEST(Options, SuggestiveStencil) {
-    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--lines", "suggestive"}).suggestiveStencil, 3);
-    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-stencil", "5"}).suggestiveStencil,
-              5);
+    EXPECT_EQ(stencil(parse({"m.obj", "-o", "x.png", "--lines", "suggestive"})), "3");
+    EXPECT_EQ(stencil(parse({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-stencil", "5"})),
+              "5");
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-stencil", "4"})
                   .find("3 or 5"),
               std::string::npos);
@@ -205,16 +224,17 @@ TEST(Options, ObjectSpaceSuggestiveContours) {
         parse({"m.obj", "-o", "x.png", "--lines", "contour,suggestive-object", "--suggestive-threshold", "0.05",
                "--suggestive-fade", "0", "--suggestive-object-width", "3", "--suggestive-object-color", "0,0,1",
                "--depth-jump", "0.02", "--supersample", "2"});
-    EXPECT_EQ(options.lines, (std::vector<std::string>{"contour", "suggestive-object"}));
-    EXPECT_EQ(*options.suggestiveThreshold, 0.05);
-    EXPECT_EQ(*options.suggestiveFade, 0.0);
-    EXPECT_EQ(options.lineStyles.at("suggestive-object").widthPixels, 3.0);
-    EXPECT_EQ(options.lineStyles.at("suggestive-object").color, glm::dvec4(0.0, 0.0, 1.0, 1.0));
-    EXPECT_TRUE(isObjectSpaceLineType("suggestive-object"));
-    EXPECT_FALSE(isImageSpaceLineType("suggestive-object"));
-    EXPECT_FALSE(isMeshEdgeLineType("suggestive-object"));
+    EXPECT_EQ(options.look.lines, (std::vector<std::string>{"contour", "suggestive-object"}));
+    EXPECT_EQ(parameter(options, "suggestive-threshold"), 0.05);
+    EXPECT_EQ(parameter(options, "suggestive-fade"), 0.0);
+    EXPECT_EQ(options.look.styleOf("suggestive-object").widthPixels, 3.0);
+    EXPECT_EQ(options.look.styleOf("suggestive-object").color, glm::dvec4(0.0, 0.0, 1.0, 1.0));
+    EXPECT_TRUE((familyOf("suggestive-object") == LineFamily::ObjectSpace));
+    EXPECT_FALSE((familyOf("suggestive-object") == LineFamily::ImageSpace));
+    EXPECT_FALSE((familyOf("suggestive-object") == LineFamily::MeshEdge));
     // Composited right after the image-space suggestive contours.
-    const auto& known = knownLineTypes();
+    std::vector<std::string> known;
+    for (const LineType& type : lineTypes()) known.push_back(type.name);
     const auto at = std::find(known.begin(), known.end(), "suggestive");
     ASSERT_NE(at, known.end());
     ASSERT_NE(at + 1, known.end());
@@ -246,13 +266,13 @@ TEST(Options, EveryValue) {
     EXPECT_EQ(*options.target, glm::dvec3(0, 0.5, -1e-3));
     EXPECT_EQ(*options.up, glm::dvec3(0, 0, 1));
     EXPECT_EQ(*options.fovYDegrees, 50.0);
-    EXPECT_EQ(*options.towardLight, glm::dvec3(0, 0, 1)) << "the light direction is normalised";
-    EXPECT_EQ(options.shading, ShadingMode::None);
+    EXPECT_EQ(*options.look.towardLight, glm::dvec3(0, 0, 1)) << "the light direction is normalised";
+    EXPECT_EQ(options.look.shading, ShadingModel::None);
     EXPECT_EQ(options.dumpDirectory, "d");
     EXPECT_EQ(options.statsPath, "s.json");
     EXPECT_TRUE(options.printPlan);
     EXPECT_EQ(options.extraOutputs, (std::vector<std::string>{"gbuffer.*", "gbuffer.depth"}));
-    EXPECT_EQ(options.background, glm::dvec3(0, 0.5, 1));
+    EXPECT_EQ(options.look.background, glm::dvec3(0, 0.5, 1));
     EXPECT_EQ(options.eglPlatform, "surfaceless");
     EXPECT_TRUE(options.quiet);
 }
@@ -288,7 +308,7 @@ TEST(Options, MalformedValuesNameTheFlag) {
 
 TEST(Options, ExtremeButFiniteDirectionsKeepTheirDirection) {
     // The length of (1e300, 1e300, 0) overflows and that of (1e-300, 0, 0) underflows in double: scaled first.
-    const glm::dvec3 huge = *parse({"m.obj", "-o", "x.png", "--light", "1e300,1e300,0"}).towardLight;
+    const glm::dvec3 huge = *parse({"m.obj", "-o", "x.png", "--light", "1e300,1e300,0"}).look.towardLight;
     EXPECT_NEAR(huge.x, std::sqrt(0.5), 1e-15);
     EXPECT_NEAR(huge.y, std::sqrt(0.5), 1e-15);
     EXPECT_EQ(huge.z, 0.0);

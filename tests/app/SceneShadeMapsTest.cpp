@@ -37,7 +37,7 @@ protected:
     }
 
     /** The message of the InputFileError readSceneShadeMaps() throws. */
-    static std::string errorOf(const Scene& scene, ShadingMode shading) {
+    static std::string errorOf(const Scene& scene, ShadingModel shading) {
         try {
             readSceneShadeMaps(scene, shading, nullptr);
         } catch (const InputFileError& error) {
@@ -56,7 +56,7 @@ TEST_F(SceneShadeMaps, DistinctFilesAreReadOnceAndShared) {
     scene.meshes = {meshNaming("Spot", warm), meshNaming("Teapot", cool), meshNaming("Suzanne", warm),
                     meshNaming("Ground", "")};
     std::vector<std::string> warnings;
-    const std::vector<std::optional<ShadeMap>> maps = readSceneShadeMaps(scene, ShadingMode::Comic, &warnings);
+    const std::vector<std::optional<ShadeMap>> maps = readSceneShadeMaps(scene, ShadingModel::Comic, &warnings);
     EXPECT_TRUE(warnings.empty());
     ASSERT_EQ(maps.size(), 4u);
     ASSERT_TRUE(maps[0] && maps[1] && maps[2]);
@@ -76,11 +76,11 @@ TEST_F(SceneShadeMaps, MissingFileNamesTheMeshItsMaterialAndTheFile) {
     const std::string missing = (directory / "missing.png").string();
     Scene scene;
     scene.meshes = {meshNaming("Spot", ""), meshNaming("Teapot", missing, "Metal")};
-    EXPECT_EQ(errorOf(scene, ShadingMode::Comic),
+    EXPECT_EQ(errorOf(scene, ShadingModel::Comic),
               "mesh 'Teapot' (glTF material 'Metal') shade map: readPngImage(): '" + missing + "': file not found");
     // Without a material name the mesh alone is named.
     scene.meshes[1].materialName.clear();
-    EXPECT_EQ(errorOf(scene, ShadingMode::Cel),
+    EXPECT_EQ(errorOf(scene, ShadingModel::Cel),
               "mesh 'Teapot' shade map: readPngImage(): '" + missing + "': file not found");
 }
 
@@ -89,16 +89,16 @@ TEST_F(SceneShadeMaps, CelRefusesATwoDimensionalMapAndTakesAOneRowMap) {
     const std::string row = writeMap("row.png", 1, 8, {90, 90, 90, 255});
     Scene scene;
     scene.meshes = {meshNaming("Spot", row), meshNaming("Suzanne", square, "Fur")};
-    EXPECT_EQ(errorOf(scene, ShadingMode::Cel),
+    EXPECT_EQ(errorOf(scene, ShadingModel::Cel),
               "mesh 'Suzanne' (glTF material 'Fur') shade map: shadeMapFromImage(): '" + square +
                   "' has 4 rows; a 1-D shade map must be a single row");
     // Comic takes both: a one-row map is a comic map whose specular axis has one texel.
-    const std::vector<std::optional<ShadeMap>> maps = readSceneShadeMaps(scene, ShadingMode::Comic, nullptr);
+    const std::vector<std::optional<ShadeMap>> maps = readSceneShadeMaps(scene, ShadingModel::Comic, nullptr);
     ASSERT_TRUE(maps[0] && maps[1]);
     EXPECT_EQ(maps[0]->texels.rows, 1);
     EXPECT_EQ(maps[1]->texels.rows, 4);
     scene.meshes.pop_back();
-    EXPECT_EQ(readSceneShadeMaps(scene, ShadingMode::Cel, nullptr).at(0)->texels.rows, 1);
+    EXPECT_EQ(readSceneShadeMaps(scene, ShadingModel::Cel, nullptr).at(0)->texels.rows, 1);
 }
 
 TEST_F(SceneShadeMaps, ModesWithoutMapsReadNothingAndWarn) {
@@ -106,8 +106,8 @@ TEST_F(SceneShadeMaps, ModesWithoutMapsReadNothingAndWarn) {
     Scene scene;
     scene.meshes = {meshNaming("Spot", (directory / "a.png").string()), meshNaming("Teapot", ""),
                     meshNaming("Suzanne", (directory / "b.png").string())};
-    for (ShadingMode mode :
-         {ShadingMode::None, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Lambert, ShadingMode::Phong}) {
+    for (ShadingModel mode :
+         {ShadingModel::None, ShadingModel::Flat, ShadingModel::Gouraud, ShadingModel::Lambert, ShadingModel::Phong}) {
         std::vector<std::string> warnings;
         const std::vector<std::optional<ShadeMap>> maps = readSceneShadeMaps(scene, mode, &warnings);
         ASSERT_EQ(maps.size(), 3u);
@@ -115,18 +115,18 @@ TEST_F(SceneShadeMaps, ModesWithoutMapsReadNothingAndWarn) {
             EXPECT_FALSE(map);
         EXPECT_EQ(warnings,
                   std::vector<std::string>{"2 meshes name shade maps, which only --shading cel and comic use"})
-            << shadingModeName(mode);
+            << traitsOf(mode).name;
     }
     std::vector<std::string> warnings;
     scene.meshes.pop_back();
-    readSceneShadeMaps(scene, ShadingMode::Phong, &warnings);
+    readSceneShadeMaps(scene, ShadingModel::Phong, &warnings);
     EXPECT_EQ(warnings, std::vector<std::string>{"1 mesh names a shade map, which only --shading cel and comic use"});
     // No warnings list: nothing to say it to, still no error.
-    EXPECT_EQ(readSceneShadeMaps(scene, ShadingMode::Lambert, nullptr).size(), 2u);
+    EXPECT_EQ(readSceneShadeMaps(scene, ShadingModel::Lambert, nullptr).size(), 2u);
     // Nothing named, nothing said.
     warnings.clear();
     scene.meshes = {meshNaming("Teapot", "")};
-    readSceneShadeMaps(scene, ShadingMode::Flat, &warnings);
+    readSceneShadeMaps(scene, ShadingModel::Flat, &warnings);
     EXPECT_TRUE(warnings.empty());
 }
 

@@ -45,17 +45,17 @@ TEST(StyleFile, SettingsBecomeFlagsWithListsCompactedAndCommentsDropped) {
     EXPECT_EQ(style.origins[7], "--style 'look.style' line 6");
 
     const RenderOptions options = optionsWith(style, {"m.obj", "-o", "o.png"});
-    EXPECT_EQ(options.shading, ShadingMode::Comic);
-    EXPECT_EQ(options.shininess, 64.0);
-    EXPECT_EQ(options.lines, (std::vector<std::string>{"contour", "suggestive"}));
-    EXPECT_EQ(options.lineStyles.at("contour").color, glm::dvec4(0.1, 0.2, 0.3, 1.0));
+    EXPECT_EQ(options.look.shading, ShadingModel::Comic);
+    EXPECT_EQ(options.look.shininess, 64.0);
+    EXPECT_EQ(options.look.lines, (std::vector<std::string>{"contour", "suggestive"}));
+    EXPECT_EQ(options.look.styleOf("contour").color, glm::dvec4(0.1, 0.2, 0.3, 1.0));
 }
 
 TEST(StyleFile, TheCommandLineWinsOverTheStyle) {
     const SourcedArguments style = styleArguments("shading = phong\nshininess = 8\n", "s.style", "");
     const RenderOptions options = optionsWith(style, {"m.obj", "-o", "o.png", "--shininess", "100"});
-    EXPECT_EQ(options.shading, ShadingMode::Phong);
-    EXPECT_EQ(options.shininess, 100.0);
+    EXPECT_EQ(options.look.shading, ShadingModel::Phong);
+    EXPECT_EQ(options.look.shininess, 100.0);
 }
 
 TEST(StyleFile, ShadeMapPathsAreRelativeToTheStyleFileAndKeepTheirSpaces) {
@@ -100,7 +100,7 @@ TEST_F(StyleFileOnDisk, ExpandPutsTheSettingsFirstAndKeepsTheFlagForTheRecord) {
     EXPECT_EQ(expanded.arguments,
               (std::vector<std::string>{"--shading", "flat", "m.obj", "--style", path, "-o", "o.png"}));
     const RenderOptions options = parseRenderOptions(expanded.arguments, expanded.origins);
-    EXPECT_EQ(options.shading, ShadingMode::Flat);
+    EXPECT_EQ(options.look.shading, ShadingModel::Flat);
     EXPECT_EQ(options.stylePath, path);
 }
 

@@ -4,6 +4,8 @@
 #include "graph/GraphCompiler.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineLayerPass.h"
+#include "passes/lines/types/ImageEdgeLines.h"
+#include "passes/lines/types/SuggestiveLines.h"
 #include "scene/Procedural.h"
 #include "tests/support/AnalyticSphere.h"
 #include "tests/support/GlTestContext.h"
@@ -36,11 +38,10 @@ protected:
     }
 
     /** Runs the G-buffer and one line pass; returns the pass for its report. The lines stay in the store. */
-    LineLayerPass& draw(LineLayerSettings settings, int supersample = 1) {
+    LineLayerPass& draw(const LineSettings& settings, int supersample = 1) {
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
         gbuffer = std::make_unique<GBufferPass>("gbuffer", shaders, *gpuScene, frame, supersample);
-        settings.supersample = supersample;
-        lines = std::make_unique<LineLayerPass>("lines-under-test", settings, LineSceneInputs{gpuScene.get(), &frame});
+        lines = std::make_unique<LineLayerPass>("lines-under-test", kernelFor(settings, *gpuScene, frame), 2.0f);
         const std::vector<const Pass*> passes = {gbuffer.get(), lines.get()};
         const Plan plan = compile(passes, {"lines-under-test.lines", "gbuffer.depth"});
         executor.run(plan, {gbuffer.get(), lines.get()}, {frameSize, frameSize, false});
@@ -54,10 +55,31 @@ protected:
     std::unique_ptr<LineLayerPass> lines;
 };
 
-LineLayerSettings withSource(LineSource source) {
-    LineLayerSettings settings;
-    settings.source = source;
-    return settings;
+enum class Source { Contour, Suggestive, SuggestiveObject, DepthEdge, NormalEdge };
+
+/** Which kernel a layer runs, with the suggestive settings both suggestive kernels take. */
+struct LineSettings {
+    Source source = Source::Contour;
+    SuggestiveSettings suggestive;
+};
+
+LineSettings withSource(Source source) { return {source, {}}; }
+
+std::unique_ptr<LineKernel> kernelFor(const LineSettings& settings, GpuScene& scene, const FrameParams& frame) {
+    switch (settings.source) {
+    case Source::Contour: return std::make_unique<ContourKernel>("gbuffer", ContourSettings{});
+    case Source::Suggestive: return std::make_unique<SuggestiveKernel>("gbuffer", settings.suggestive);
+    case Source::SuggestiveObject:
+        return std::make_unique<ObjectSuggestiveKernel>("gbuffer", settings.suggestive, scene, frame);
+    case Source::DepthEdge: return std::make_unique<DepthEdgeKernel>("gbuffer", DepthEdgeSettings{});
+    case Source::NormalEdge: return std::make_unique<NormalEdgeKernel>("gbuffer", NormalEdgeSettings{});
+    }
+    return nullptr;
+}
+
+/** What the object-space kernel of a layer found beyond its skeleton. */
+const ObjectSuggestiveReport& objectReport(const LineLayerPass& pass) {
+    return static_cast<const ObjectSuggestiveKernel&>(pass.kernel()).report();
 }
 
 TEST_F(LineLayers, SphereContourLiesOnTheAnalyticSilhouetteCircle) {
@@ -66,7 +88,7 @@ TEST_F(LineLayers, SphereContourLiesOnTheAnalyticSilhouetteCircle) {
     const test::AnalyticSphereView sphere{kSize, 1.0, 4.0, kFovDegrees};
     for (const int supersample : {1, 2}) {
         SCOPED_TRACE("supersample " + std::to_string(supersample));
-        draw(withSource(LineSource::Contour), supersample);
+        draw(withSource(Source::Contour), supersample);
         const cv::Mat& image = lineImage();
         ASSERT_EQ(image.size(), cv::Size(kSize, kSize));
         // Every drawn pixel with full coverage lies within half the width (1 px) plus 1 px of the circle, and the
@@ -95,7 +117,7 @@ TEST_F(LineLayers, SphereContourSkeletonPointsAreWithinOnePixel) {
     look(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 512, 256), {0.3, -0.2, 4.0});
     // The off-axis sphere's silhouette is the image of the tangent cone: a pixel ray x lies on it iff
     // (x.c)^2 = (|c|^2 - R^2)|x|^2 (algorithms.md 6.1). Every skeleton point must have the cone within 1 px.
-    const LineLayerPass& pass = draw(withSource(LineSource::Contour));
+    const LineLayerPass& pass = draw(withSource(Source::Contour));
     ASSERT_GT(pass.skeleton().points.size(), 1000u);
     const glm::dmat4 view = frame.camera.viewMatrix();
     const glm::dvec3 center = glm::dvec3(view * glm::dvec4(0.0, 0.0, 0.0, 1.0));
@@ -122,7 +144,7 @@ TEST_F(LineLayers, SphereContourSkeletonPointsAreWithinOnePixel) {
 TEST_F(LineLayers, SphereHasNoSuggestiveContours) {
     for (const glm::dvec3 eye : {glm::dvec3(0.0, 0.0, 4.0), glm::dvec3(1.5, 1.0, 2.5), glm::dvec3(0.0, 0.0, 1.6)}) {
         look(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 512, 256), eye);
-        LineLayerSettings settings = withSource(LineSource::Suggestive);
+        LineSettings settings = withSource(Source::Suggestive);
         settings.suggestive.featureSize = 0.05f;
         const LineLayerPass& pass = draw(settings);
         EXPECT_EQ(pass.report().points, 0u) << "eye " << eye.x << "," << eye.y << "," << eye.z;
@@ -136,7 +158,7 @@ TEST_F(LineLayers, TorusHasSuggestiveContoursOnItsInnerSide) {
     const double elevation = glm::radians(30.0);
     const glm::dvec3 eye = 4.0 * glm::dvec3(std::cos(elevation), 0.0, std::sin(elevation));
     look(makeTorus(float(ringRadius), float(tubeRadius), 512, 256), eye);
-    LineLayerSettings settings = withSource(LineSource::Suggestive);
+    LineSettings settings = withSource(Source::Suggestive);
     settings.suggestive.featureSize = float(0.05 * (ringRadius + tubeRadius));
     const LineLayerPass& pass = draw(settings);
     ASSERT_GT(pass.report().points, 100u);
@@ -184,15 +206,15 @@ TEST_F(LineLayers, ObjectSpaceSuggestiveContoursMatchTheImageSpaceOnes) {
     for (const int supersample : {1, 2}) {
         SCOPED_TRACE("supersample " + std::to_string(supersample));
         look(makeTorus(float(ringRadius), float(tubeRadius), 256, 96), eye, 384);
-        LineLayerSettings settings = withSource(LineSource::Suggestive);
+        LineSettings settings = withSource(Source::Suggestive);
         settings.suggestive.featureSize = float(0.05 * (ringRadius + tubeRadius));
         const std::vector<LinePoint> imageSpace = draw(settings, supersample).skeleton().points;
-        settings.source = LineSource::SuggestiveObject;
+        settings.source = Source::SuggestiveObject;
         const LineLayerPass& pass = draw(settings, supersample);
         const std::vector<LinePoint> objectSpace = pass.skeleton().points;
         ASSERT_GT(imageSpace.size(), 50u);
         ASSERT_GT(objectSpace.size(), 100u);
-        EXPECT_GT(pass.report().segments, 40u);
+        EXPECT_GT(objectReport(pass).segments, 40u);
         EXPECT_EQ(pass.skeleton().mask.size(), cv::Size(384 * supersample, 384 * supersample));
         EXPECT_GT(cv::countNonZero(lineImage()), 0);
         // Data pixels: the lines are the same set seen two ways, so they lie within a couple of pixels of each other.
@@ -222,11 +244,11 @@ TEST_F(LineLayers, ObjectSpaceSuggestiveContoursAreHiddenBehindNearerSurfaces) {
     // one at u = +1.1): that line is hidden and the other is not. The ball, convex, adds no segments.
     const glm::dvec3 eye = 4.0 * glm::dvec3(std::cos(glm::radians(30.0)), 0.0, std::sin(glm::radians(30.0)));
     const Mesh torus = makeTorus(1.0f, 0.35f, 256, 96);
-    LineLayerSettings settings = withSource(LineSource::SuggestiveObject);
+    LineSettings settings = withSource(Source::SuggestiveObject);
     settings.suggestive.featureSize = 0.0675f;
     look(torus, eye, 256);
     const LineLayerPass& alone = draw(settings);
-    const std::size_t segments = alone.report().segments;
+    const std::size_t segments = objectReport(alone).segments;
     const std::vector<LinePoint> unoccluded = alone.skeleton().points;
 
     Mesh occluded = torus;
@@ -237,7 +259,7 @@ TEST_F(LineLayers, ObjectSpaceSuggestiveContoursAreHiddenBehindNearerSurfaces) {
     for (const glm::uvec3& triangle : ball.triangles) occluded.triangles.push_back(triangle + offset);
     look(occluded, eye, 256);
     const LineLayerPass& behind = draw(settings);
-    EXPECT_EQ(behind.report().segments, segments);
+    EXPECT_EQ(objectReport(behind).segments, segments);
     const std::vector<LinePoint> visible = behind.skeleton().points;
     // Measured: 273 points alone, 132 behind the ball. Every one kept is one of the unoccluded ones.
     EXPECT_GT(unoccluded.size(), 100u);
@@ -252,10 +274,10 @@ TEST_F(LineLayers, CurvatureIsDerivedOnlyWhenObjectSpaceLinesRun) {
     look(makeTorus(1.0f, 0.35f, 96, 48), 4.0 * glm::dvec3(std::cos(glm::radians(30.0)), 0.0, 0.5), 128);
     gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
     GBufferPass gbufferPass("gbuffer", shaders, *gpuScene, frame);
-    LineLayerPass contour("contour", withSource(LineSource::Contour));
-    LineLayerSettings objectSettings = withSource(LineSource::SuggestiveObject);
+    LineLayerPass contour("contour", kernelFor(withSource(Source::Contour), *gpuScene, frame), 2.0f);
+    LineSettings objectSettings = withSource(Source::SuggestiveObject);
     objectSettings.suggestive.featureSize = 0.0675f;
-    LineLayerPass object("suggestive-object", objectSettings, LineSceneInputs{gpuScene.get(), &frame});
+    LineLayerPass object("suggestive-object", kernelFor(objectSettings, *gpuScene, frame), 2.0f);
     const std::vector<const Pass*> passes = {&gbufferPass, &contour, &object};
 
     const Plan contourOnly = compile(passes, {"contour.lines"});
@@ -268,23 +290,24 @@ TEST_F(LineLayers, CurvatureIsDerivedOnlyWhenObjectSpaceLinesRun) {
     EXPECT_EQ(both.findPass("gbuffer")->liveWrites, (std::vector<std::string>{"gbuffer.nDotV", "gbuffer.depth"}));
     executor.run(both, {&gbufferPass, &contour, &object}, {128, 128, false});
     EXPECT_TRUE(gpuScene->meshCurvatureComputed());
-    EXPECT_TRUE(object.report().curvatureDerived);
-    EXPECT_GT(object.report().curvatureMilliseconds, 0.0);
-    EXPECT_GT(object.report().segments, 0u);
+    EXPECT_TRUE(objectReport(object).curvatureDerived);
+    EXPECT_GT(objectReport(object).curvatureMilliseconds, 0.0);
+    EXPECT_GT(objectReport(object).segments, 0u);
     // Derived once per scene: the next frame reuses it.
     executor.run(both, {&gbufferPass, &contour, &object}, {128, 128, false});
-    EXPECT_FALSE(object.report().curvatureDerived);
-    EXPECT_EQ(object.report().curvatureMilliseconds, 0.0);
+    EXPECT_FALSE(objectReport(object).curvatureDerived);
+    EXPECT_EQ(objectReport(object).curvatureMilliseconds, 0.0);
 
-    EXPECT_THROW(LineLayerPass("no-scene", objectSettings), std::invalid_argument);
+    EXPECT_THROW(LineLayerPass("no-kernel", nullptr, 2.0f), std::invalid_argument);
+    EXPECT_THROW(LineLayerPass("no-width", kernelFor(objectSettings, *gpuScene, frame), 0.0f), std::invalid_argument);
 }
 
 TEST_F(LineLayers, EveryKernelRepeatsExactly) {
-    for (const LineSource source :
-         {LineSource::Contour, LineSource::Suggestive, LineSource::SuggestiveObject, LineSource::DepthEdge,
-          LineSource::NormalEdge}) {
+    for (const Source source :
+         {Source::Contour, Source::Suggestive, Source::SuggestiveObject, Source::DepthEdge,
+          Source::NormalEdge}) {
         // A smooth torus has contours, suggestive contours and depth breaks; normal creases need a cube.
-        if (source == LineSource::NormalEdge)
+        if (source == Source::NormalEdge)
             look(makeCube({0.0f, 0.0f, 0.0f}, 1.0f), {2.5, 1.8, 2.0});
         else
             look(makeTorus(1.0f, 0.35f, 96, 48), {2.5, 1.0, 2.5});
@@ -300,10 +323,10 @@ TEST_F(LineLayers, ReadsOnlyWhatItsKernelNeeds) {
     look(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 32, 16), {0.0, 0.0, 4.0});
     GpuScene scene2(scene, frame.worldOrigin);
     GBufferPass gbufferPass("gbuffer", shaders, scene2, frame);
-    LineLayerPass depthEdges("depth-edge", withSource(LineSource::DepthEdge));
+    LineLayerPass depthEdges("depth-edge", kernelFor(withSource(Source::DepthEdge), scene2, frame), 2.0f);
     const Plan plan = compile({&gbufferPass, &depthEdges}, {"depth-edge.lines"});
     EXPECT_EQ(plan.findPass("gbuffer")->liveWrites, std::vector<std::string>{"gbuffer.depth"});
-    LineLayerPass suggestive("suggestive", withSource(LineSource::Suggestive));
+    LineLayerPass suggestive("suggestive", kernelFor(withSource(Source::Suggestive), scene2, frame), 2.0f);
     const Plan plan2 = compile({&gbufferPass, &suggestive}, {"suggestive.lines"});
     EXPECT_EQ(plan2.findPass("gbuffer")->liveWrites, (std::vector<std::string>{"gbuffer.depth", "gbuffer.radial"}));
 }
