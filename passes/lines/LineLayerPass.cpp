@@ -30,21 +30,20 @@ void LineLayerPass::declare(PassBuilder& builder) const {
     builder.write("lines", {Format::R8});
 }
 
-void LineLayerPass::prepare(PassContext& context) {
+void LineLayerPass::prepare(GlPassContext& context) {
     (void)context;
     mKernel->prepare();
 }
 
-void LineLayerPass::execute(PassContext& context) {
-    GlPassContext& gl = GlPassContext::from(context);
+void LineLayerPass::execute(GlPassContext& gl) {
     mReport = {};
     const std::vector<std::string> inputs = mKernel->inputs();
+    mReport.supersample = gl.scaleOf(inputs.front());
     // Every input is brought to the CPU before the kernel's clock starts, so kernel times are the post stage alone.
     auto start = std::chrono::steady_clock::now();
     std::vector<cv::Mat> images;
     for (const std::string& input : inputs) images.push_back(gl.inputImage(input));
     mReport.readbackMilliseconds = millisecondsSince(start);
-    mReport.supersample = std::max(1, images.front().cols / std::max(1, gl.width())); // MERGE: gl.scaleOf()
 
     start = std::chrono::steady_clock::now();
     mSkeleton = mKernel->find(images);

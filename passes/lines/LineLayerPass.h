@@ -11,7 +11,7 @@
  *  The inputs are S times the frame size, S their writers' scale as the plan records it (--supersample); the kernel
  *  runs there and only the stroked line image is area-downsampled. */
 
-#include "graph/Pass.h"
+#include "gl/GlPass.h"
 #include "passes/lines/LineKernel.h"
 #include "postfx/LineSkeleton.h"
 
@@ -30,7 +30,7 @@ struct LineLayerReport {
     double strokeMilliseconds = 0.0;   ///< drawing it at width, downsampling
 };
 
-class LineLayerPass : public Pass {
+class LineLayerPass : public GlPass {
 public:
     /** Throws std::invalid_argument for a non-positive or non-finite width, a null kernel or one that reads
      *  nothing. */
@@ -39,10 +39,10 @@ public:
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
     /** The kernel's own preparation (deriving scene data), outside the timed execute(). */
-    void prepare(PassContext& context) override;
-    void execute(PassContext& context) override;
+    void prepare(GlPassContext& context) override;
+    void execute(GlPassContext& context) override;
     /** post_stage.lines' entry: type, skeleton_pixels, points, readback_ms, kernel_ms, stroke_ms and the kernel's. */
-    void describe(nlohmann::ordered_json& report) const;
+    void describe(nlohmann::ordered_json& report) const override;
 
     float widthPixels() const { return mWidthPixels; }
     const LineKernel& kernel() const { return *mKernel; }

@@ -26,6 +26,34 @@ namespace {
 constexpr int kSize = 512;
 constexpr double kFovDegrees = 35.0;
 
+
+enum class Source { Contour, Suggestive, SuggestiveObject, DepthEdge, NormalEdge };
+
+/** Which kernel a layer runs, with the suggestive settings both suggestive kernels take. */
+struct LineSettings {
+    Source source = Source::Contour;
+    SuggestiveSettings suggestive;
+};
+
+LineSettings withSource(Source source) { return {source, {}}; }
+
+std::unique_ptr<LineKernel> kernelFor(const LineSettings& settings, GpuScene& scene, const FrameParams& frame) {
+    switch (settings.source) {
+    case Source::Contour: return std::make_unique<ContourKernel>("gbuffer", ContourSettings{});
+    case Source::Suggestive: return std::make_unique<SuggestiveKernel>("gbuffer", settings.suggestive);
+    case Source::SuggestiveObject:
+        return std::make_unique<ObjectSuggestiveKernel>("gbuffer", settings.suggestive, scene, frame);
+    case Source::DepthEdge: return std::make_unique<DepthEdgeKernel>("gbuffer", DepthEdgeSettings{});
+    case Source::NormalEdge: return std::make_unique<NormalEdgeKernel>("gbuffer", NormalEdgeSettings{});
+    }
+    return nullptr;
+}
+
+/** What the object-space kernel of a layer found beyond its skeleton. */
+const ObjectSuggestiveReport& objectReport(const LineLayerPass& pass) {
+    return static_cast<const ObjectSuggestiveKernel&>(pass.kernel()).report();
+}
+
 class LineLayers : public ::testing::Test, protected test::PassHarness {
 protected:
     void SetUp() override { test::sharedGlContext(); }
@@ -55,32 +83,7 @@ protected:
     std::unique_ptr<LineLayerPass> lines;
 };
 
-enum class Source { Contour, Suggestive, SuggestiveObject, DepthEdge, NormalEdge };
 
-/** Which kernel a layer runs, with the suggestive settings both suggestive kernels take. */
-struct LineSettings {
-    Source source = Source::Contour;
-    SuggestiveSettings suggestive;
-};
-
-LineSettings withSource(Source source) { return {source, {}}; }
-
-std::unique_ptr<LineKernel> kernelFor(const LineSettings& settings, GpuScene& scene, const FrameParams& frame) {
-    switch (settings.source) {
-    case Source::Contour: return std::make_unique<ContourKernel>("gbuffer", ContourSettings{});
-    case Source::Suggestive: return std::make_unique<SuggestiveKernel>("gbuffer", settings.suggestive);
-    case Source::SuggestiveObject:
-        return std::make_unique<ObjectSuggestiveKernel>("gbuffer", settings.suggestive, scene, frame);
-    case Source::DepthEdge: return std::make_unique<DepthEdgeKernel>("gbuffer", DepthEdgeSettings{});
-    case Source::NormalEdge: return std::make_unique<NormalEdgeKernel>("gbuffer", NormalEdgeSettings{});
-    }
-    return nullptr;
-}
-
-/** What the object-space kernel of a layer found beyond its skeleton. */
-const ObjectSuggestiveReport& objectReport(const LineLayerPass& pass) {
-    return static_cast<const ObjectSuggestiveKernel&>(pass.kernel()).report();
-}
 
 TEST_F(LineLayers, SphereContourLiesOnTheAnalyticSilhouetteCircle) {
     // 512 x 256 segments: the polygon lies inside the sphere by at most rho pi^2 / (2 N^2) = 0.004 px here.

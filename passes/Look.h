@@ -1,0 +1,51 @@
+#pragma once
+/** @file What a still looks like, as plain data: the shading model and its settings, the line types drawn and theirs,
+ *  the data resolution and precision, the paper and the light. The renderer (app/StillRenderer.h) and the graph of
+ *  one still (passes/StillGraph.h) take this; the command line (app/Options.h) fills it from flags and style files,
+ *  and benchmarks and tests build it directly. */
+
+#include "passes/gbuffer/GBufferPrecision.h"
+#include "passes/lines/LineParameter.h"
+#include "passes/shade/ShadingModel.h"
+#include "scene/FaceOrientation.h"
+
+#include <glm/glm.hpp>
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+
+/** How one line type is drawn: --<type>-width and --<type>-color. */
+struct LineStyle {
+    double widthPixels = 2.0;
+    glm::dvec4 color{0.0, 0.0, 0.0, 1.0}; ///< display RGBA in [0,1]
+};
+
+struct Look {
+    ShadingModel shading = ShadingModel::Cel;
+    double shininess = 32.0;                ///< phong and comic, [0, 1e6]
+    std::optional<int> bands;               ///< cel: N even bands (default: Qu, Chen & Zwicker's five)
+    std::string shadeMapPath;               ///< cel (one row) or comic (2-D) PNG; empty = built-in map
+    ViewVectorMode viewVector = ViewVectorMode::Exact;                         ///< comic
+    FaceOrientationMethod faceOrientation = FaceOrientationMethod::Standard; ///< comic
+    int frontRule = 3;                      ///< comic with during-vertices or after-vertices
+    std::vector<std::string> lines;         ///< line types drawn (composited in the registry's order); empty = none
+    std::map<std::string, LineStyle> lineStyles; ///< per line type; a type without an entry has LineStyle{}
+    LineParameterValues lineParameters;     ///< the line types' other settings (passes/lines/LineParameter.h)
+    int supersample = 1;                    ///< data buffers and edge skeletons at S x the size
+    GBufferPrecision gbufferPrecision = GBufferPrecision::Float32; ///< the G-buffer's direction fields
+    glm::dvec3 background{1.0, 1.0, 1.0};
+    std::optional<glm::dvec3> towardLight;  ///< world direction toward the light; default: the file's, else a key light
+
+    bool draws(const std::string& type) const { return std::find(lines.begin(), lines.end(), type) != lines.end(); }
+    LineStyle styleOf(const std::string& type) const {
+        auto found = lineStyles.find(type);
+        return found == lineStyles.end() ? LineStyle{} : found->second;
+    }
+};
+
+} // namespace inkgraph

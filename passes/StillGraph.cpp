@@ -1,0 +1,169 @@
+#include "passes/StillGraph.h"
+
+#include "passes/composite/CompositePass.h"
+#include "passes/gbuffer/GBufferPass.h"
+#include "passes/lines/LineLayerPass.h"
+#include "passes/lines/LineTypes.h"
+#include "passes/orientation/SceneOrientation.h"
+#include "passes/shade/ShadePass.h"
+#include "postfx/LineTracing.h"
+
+#include <algorithm>
+
+namespace inkgraph {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+cv::Vec4f displayColor(const glm::dvec4& color) {
+    return cv::Vec4f(float(color.r), float(color.g), float(color.b), float(color.a));
+}
+
+/** The shading model's pass, when it has one; fills the graph's shading facts. */
+void addShading(const StillGraphSetup& setup, StillGraph& graph) {
+    const Look& look = setup.look;
+    const ShadingModelTraits& traits = traitsOf(look.shading);
+    if (traits.define == nullptr) return; // none: paper and lines only
+    ShadeSettings settings;
+    settings.model = look.shading;
+    settings.shininess = look.shininess;
+    if (traits.faceOrientation)
+        settings.view =
+            chooseViewVector(look.viewVector, setup.frame.camera.eye, setup.sphere.center, setup.sphere.radius);
+    std::optional<ShadeMap> shadeMap = setup.shadeMap;
+    if (!shadeMap && traits.bands) shadeMap = makeBandShadeMap(look.bands.value_or(5));
+    if (!shadeMap && traits.shadeMap) shadeMap = makeDefaultComicShadeMap();
+    if (shadeMap) graph.shadeMapSource = shadeMap->source;
+    if (traits.shadeMap) {
+        // Per-mesh maps replace the run's map on their meshes; the models without a map have nothing to replace.
+        settings.meshShadeMaps = setup.meshShadeMaps;
+        for (std::size_t i = 0; i < setup.meshShadeMaps.size() && i < setup.scene.meshes.size(); ++i)
+            if (setup.meshShadeMaps[i])
+                graph.meshShadeMapSources.emplace_back(setup.scene.meshes[i].name, setup.meshShadeMaps[i]->source);
+    }
+    graph.passes.push_back(std::make_unique<ShadePass>("shade", setup.shaders, setup.gpuScene, setup.frame, settings,
+                                                       std::move(shadeMap)));
+    graph.shadingResource = "shade.color";
+}
+
+} // namespace
+
+std::vector<const Pass*> StillGraph::view() const {
+    std::vector<const Pass*> result;
+    for (const auto& pass : passes) result.push_back(pass.get());
+    return result;
+}
+
+std::vector<GlPass*> StillGraph::mutableView() const {
+    std::vector<GlPass*> result;
+    for (const auto& pass : passes) result.push_back(pass.get());
+    return result;
+}
+
+const Pass* StillGraph::findPass(std::string_view name) const {
+    for (const auto& pass : passes)
+        if (pass->name() == name) return pass.get();
+    return nullptr;
+}
+
+StillGraph buildStillGraph(const StillGraphSetup& setup) {
+    const Look& look = setup.look;
+    StillGraph graph;
+    graph.mLook = &look;
+    graph.mSphere = setup.sphere;
+
+    // The face-orientation methods (Winnemöller & Bangay 2002) are comic's; the others draw with GPU culling.
+    OrientationSettings orientation;
+    orientation.method = traitsOf(look.shading).faceOrientation ? look.faceOrientation : FaceOrientationMethod::Standard;
+    orientation.viewVector = look.viewVector;
+    orientation.frontRule = look.frontRule;
+    orientation.shininess = look.shininess;
+    setup.gpuScene.setOrientation(setup.frame, orientation);
+
+    graph.passes.push_back(std::make_unique<GBufferPass>("gbuffer", setup.shaders, setup.gpuScene, setup.frame,
+                                                         look.supersample, look.gbufferPrecision));
+    addShading(setup, graph);
+
+    // Every line type registers its passes, drawn or not: one the composite does not read is culled, and --stats
+    // says so.
+    const LineGraphSetup lineSetup{look, setup.shaders, setup.gpuScene, setup.frame, setup.sphere};
+    LineGraphBuilder builder(lineSetup, graph.passes);
+    std::vector<CompositePass::LineInput> lines;
+    for (const LineType& type : lineTypes()) {
+        type.build(type.name, builder);
+        if (look.draws(type.name)) lines.push_back({type.name + ".lines", displayColor(look.styleOf(type.name).color)});
+    }
+    graph.mLineLayers = builder.layers();
+    graph.passes.push_back(
+        std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
+    return graph;
+}
+
+Json StillGraph::describeLines() const {
+    Json lines = Json::array();
+    const LineStatsSource source{*mLook, mSphere, [this](std::string_view name) { return findPass(name); }};
+    for (const LineType& type : lineTypes()) {
+        if (!mLook->draws(type.name)) continue;
+        const LineStyle style = mLook->styleOf(type.name);
+        Json line = {{"type", type.name},
+                     {"width_pixels", style.widthPixels},
+                     {"color", Json::array({style.color.r, style.color.g, style.color.b, style.color.a})}};
+        if (type.describe) type.describe(source, line);
+        lines.push_back(line);
+    }
+    return lines;
+}
+
+Json StillGraph::describePostStage(const std::vector<PassTiming>& timings) const {
+    Json layers = Json::array();
+    double kernels = 0.0, readback = 0.0, composite = 0.0;
+    for (const PassTiming& timing : timings) {
+        if (timing.pass == "composite") composite = timing.milliseconds;
+        const auto layer = mLineLayers.find(timing.pass);
+        if (layer == mLineLayers.end()) continue;
+        Json entry;
+        layer->second->describe(entry);
+        layers.push_back(entry);
+        const LineLayerReport& report = layer->second->report();
+        kernels += report.kernelMilliseconds + report.strokeMilliseconds;
+        readback += report.readbackMilliseconds;
+    }
+    return {{"lines", layers}, {"kernels_ms", kernels}, {"readback_ms", readback}, {"composite_ms", composite}};
+}
+
+std::vector<SvgLineLayer> StillGraph::svgLayers(ResourceStore& store, double tolerancePixels) const {
+    std::vector<SvgLineLayer> layers;
+    for (const LineType& type : lineTypes()) { // the composite's order: later types on top
+        if (!mLook->draws(type.name)) continue;
+        const LineStyle style = mLook->styleOf(type.name);
+        SvgLineLayer layer;
+        layer.type = type.name;
+        layer.widthPixels = style.widthPixels;
+        layer.color = {style.color.r, style.color.g, style.color.b, style.color.a};
+        TraceSettings trace;
+        if (auto cpuLayer = mLineLayers.find(type.name); cpuLayer != mLineLayers.end()) {
+            layer.supersample = cpuLayer->second->report().supersample;
+            trace.tolerancePixels = tolerancePixels * layer.supersample;
+            layer.polylines = traceSkeleton(cpuLayer->second->skeleton(), trace);
+        } else {
+            trace.tolerancePixels = tolerancePixels;
+            layer.polylines = traceMask(store.image(type.name + ".lines"), trace);
+        }
+        layers.push_back(std::move(layer));
+    }
+    return layers;
+}
+
+const LineLayerPass* StillGraph::lineLayer(const std::string& type) const {
+    auto found = mLineLayers.find(type);
+    return found == mLineLayers.end() ? nullptr : found->second;
+}
+
+std::vector<std::string> StillGraph::svgInputs() const {
+    std::vector<std::string> inputs;
+    for (const std::string& type : mLook->lines)
+        if (!mLineLayers.count(type)) inputs.push_back(type + ".lines");
+    return inputs;
+}
+
+} // namespace inkgraph

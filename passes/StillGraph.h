@@ -1,0 +1,82 @@
+#pragma once
+/** @file The passes of one still, registered in a fixed order from a Look: the G-buffer, the shading model's pass,
+ *  every line type of the registry (passes/lines/LineTypes.h), the composite. Every pass is registered; the compiler
+ *  culls what the request does not need, so --stats can say why a pass did not run. The graph also describes itself
+ *  for --stats and traces its line layers for --svg, so the app names no pass type. Shared by the renderer
+ *  (app/StillRenderer.h), the benchmarks and the tests. */
+
+#include "gl/GraphExecutor.h"
+#include "gl/ShaderLibrary.h"
+#include "gl/GlPass.h"
+#include "passes/FrameParams.h"
+#include "passes/GpuScene.h"
+#include "passes/Look.h"
+#include "passes/shade/ShadeMap.h"
+#include "postfx/SvgLines.h"
+#include "scene/Scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace inkgraph {
+
+class LineLayerPass;
+
+/** What buildStillGraph() needs; every reference must outlive the graph. */
+struct StillGraphSetup {
+    const Look& look;
+    ShaderLibrary& shaders;
+    const Scene& scene;
+    BoundingSphere sphere;
+    GpuScene& gpuScene;
+    const FrameParams& frame;
+    std::optional<ShadeMap> shadeMap; ///< --shademap as read; empty: the built-in map of the model
+    /** Per scene mesh, the map it names itself (app/SceneShadeMaps.h); empty entries use `shadeMap`. Only the models
+     *  with a shade map use them. */
+    std::vector<std::optional<ShadeMap>> meshShadeMaps{};
+};
+
+class StillGraph {
+public:
+    std::vector<std::unique_ptr<GlPass>> passes;
+    std::string shadingResource; ///< the colour the composite reads ("shade.color"), or empty for --shading none
+    std::string shadeMapSource;  ///< the shade map's ShadeMap::source ("builtin:bands-5", a path), or empty
+    /** Mesh name -> ShadeMap::source for each mesh drawn with its own map, in scene order, for --stats. */
+    std::vector<std::pair<std::string, std::string>> meshShadeMapSources;
+    std::string finalResource = "composite.final";
+
+    std::vector<const Pass*> view() const;
+    std::vector<GlPass*> mutableView() const;
+    /** The registered pass of that name, or null. */
+    const Pass* findPass(std::string_view name) const;
+
+    /** --stats look.lines: one entry per drawn type in composite order, with its style and what its type reports. */
+    nlohmann::ordered_json describeLines() const;
+    /** --stats post_stage: what each CPU line layer that ran found and where its time went; "kernels_ms" is the post
+     *  stage proper (finding and stroking, without bringing the G-buffer to the CPU), "composite_ms" follows it. */
+    nlohmann::ordered_json describePostStage(const std::vector<PassTiming>& timings) const;
+    /** --svg: each drawn type's lines traced into simplified polylines, in composite order. CPU layers give the
+     *  one-pixel skeleton they stroked (at the data resolution, sub-pixel points); GL-drawn bands are thinned from
+     *  their masks in `store` (which must hold "<type>.lines": request them). */
+    std::vector<SvgLineLayer> svgLayers(ResourceStore& store, double tolerancePixels) const;
+    /** The resources --svg needs kept beyond the final picture: the GL-drawn types' masks. */
+    std::vector<std::string> svgInputs() const;
+    /** The CPU line layer of `type` (what it found: skeleton(), report(), kernel()), or null for GL-drawn types. */
+    const LineLayerPass* lineLayer(const std::string& type) const;
+
+private:
+    friend StillGraph buildStillGraph(const StillGraphSetup& setup);
+    const Look* mLook = nullptr;
+    BoundingSphere mSphere;
+    std::map<std::string, LineLayerPass*> mLineLayers; ///< the CPU line layers by type
+};
+
+StillGraph buildStillGraph(const StillGraphSetup& setup);
+
+} // namespace inkgraph

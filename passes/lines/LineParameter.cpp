@@ -1,0 +1,80 @@
+#include "passes/lines/LineParameter.h"
+
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+
+namespace inkgraph {
+
+std::variant<double, std::string> LineParameter::parse(const std::string& text) const {
+    const std::string flag = "--" + name;
+    if (isChoice()) {
+        for (const std::string& choice : choices)
+            if (choice == text) return choice;
+        std::string names;
+        for (std::size_t i = 0; i < choices.size(); ++i)
+            names += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
+        throw std::invalid_argument(flag + ": expected " + names + ", got '" + text + "'");
+    }
+    double value = 0.0;
+    const auto [stop, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || stop != text.data() + text.size() || !std::isfinite(value))
+        throw std::invalid_argument(flag + ": '" + text + "' is not a finite number");
+    const bool aboveLow = lowOpen ? value > low : value >= low;
+    const bool belowHigh = highOpen ? value < high : value <= high;
+    if (!(aboveLow && belowHigh)) throw std::invalid_argument(flag + ": " + rangeText + ", got '" + text + "'");
+    return value;
+}
+
+void LineParameterValues::set(const LineParameter& parameter, std::variant<double, std::string> value) {
+    mValues[parameter.name] = std::move(value);
+}
+
+std::optional<double> LineParameterValues::numberIfSet(const LineParameter& parameter) const {
+    if (parameter.isChoice())
+        throw std::logic_error("LineParameterValues::number(): '" + parameter.name + "' is a choice");
+    if (auto given = mValues.find(parameter.name); given != mValues.end()) return std::get<double>(given->second);
+    return parameter.defaultNumber;
+}
+
+double LineParameterValues::number(const LineParameter& parameter) const {
+    const std::optional<double> value = numberIfSet(parameter);
+    if (!value)
+        throw std::logic_error("LineParameterValues::number(): '" + parameter.name + "' has no default and is not set");
+    return *value;
+}
+
+const std::string& LineParameterValues::choice(const LineParameter& parameter) const {
+    if (!parameter.isChoice())
+        throw std::logic_error("LineParameterValues::choice(): '" + parameter.name + "' is a number");
+    if (auto given = mValues.find(parameter.name); given != mValues.end()) return std::get<std::string>(given->second);
+    return parameter.defaultChoice;
+}
+
+namespace line_parameters {
+
+const LineParameter kCreaseAngle{
+    "crease-angle", "DEG", "the angle above which an edge is a crease (default 30)", {}, 30.0, "",
+    0.0, 180.0, true, true, "degrees must lie above 0 and below 180"};
+
+const LineParameter kDepthJump{
+    "depth-jump", "R",
+    "neighbouring pixels whose depths differ by more than R x the nearer\n"
+    "depth are different surfaces (default 0.05); suggestive-object: a line point more than R x the depth behind the\n"
+    "visible surface is hidden",
+    {}, 0.05, "", 0.0, 100.0, true, false, "expected a relative depth step above 0 up to 100"};
+
+const LineParameter kSuggestiveThreshold{
+    "suggestive-threshold", "T",
+    "keep lines whose strength q (rtsc's fs^2 tan(theta) D_w kappa_r,\n"
+    "fs = 5% of the bounding radius) exceeds T (default 0.01)",
+    {}, 0.01, "", 0.0, 1e6, false, false, "expected a number from 0 to 1e6"};
+
+const LineParameter kSuggestiveFade{
+    "suggestive-fade", "F",
+    "draw a kept line with alpha (q - T) / (q - T + F) (default 0.03; 0 draws\n"
+    "every kept line in full)",
+    {}, 0.03, "", 0.0, 1e6, false, false, "expected a number from 0 to 1e6"};
+
+} // namespace line_parameters
+} // namespace inkgraph

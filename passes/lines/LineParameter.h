@@ -1,0 +1,56 @@
+#pragma once
+/** @file The settings of the line types besides width and colour: each one flag (`--<name>`) and one style-file
+ *  name (`<name>`), declared once here or in the room of the only type that uses it, and listed by every line type it
+ *  applies to (passes/lines/LineType.h). The command line, --help, style files, range checks and the "has no effect"
+ *  refusals are all generated from these declarations (app/FlagTable.cpp). */
+
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace inkgraph {
+
+struct LineParameter {
+    std::string name;               ///< "depth-jump": the flag --depth-jump and the style setting depth-jump
+    std::string valueName;          ///< "R", for --help
+    std::string help;               ///< what it does, after the generated "<types>: "; '\n' breaks a help line
+    std::vector<std::string> choices; ///< empty: a number; else the words it takes ("3", "5")
+    std::optional<double> defaultNumber; ///< numbers: the value when not given; nullopt: "not given" means something
+    std::string defaultChoice;      ///< choices: the value when not given
+    double low = 0.0, high = 0.0;   ///< numbers: the accepted range ...
+    bool lowOpen = false, highOpen = false; ///< ... with open ends where set
+    std::string rangeText;          ///< the message for a value outside: "degrees must lie above 0 and below 180"
+
+    bool isChoice() const { return !choices.empty(); }
+    /** Checks and converts `text` (the flag's value). Throws std::invalid_argument with "--<name>: <rangeText>, got
+     *  '<text>'" (numbers) or "--<name>: expected A or B, got '<text>'" (choices). */
+    std::variant<double, std::string> parse(const std::string& text) const;
+};
+
+/** The values given for line parameters, by name; a parameter not given has its declared default. */
+class LineParameterValues {
+public:
+    void set(const LineParameter& parameter, std::variant<double, std::string> value);
+    bool isGiven(const LineParameter& parameter) const { return mValues.count(parameter.name) != 0; }
+    /** A number parameter's value. Throws std::logic_error for a choice, or a number with no default not given. */
+    double number(const LineParameter& parameter) const;
+    /** A number parameter's value when given or defaulted; nullopt when neither. */
+    std::optional<double> numberIfSet(const LineParameter& parameter) const;
+    /** A choice parameter's value. */
+    const std::string& choice(const LineParameter& parameter) const;
+
+private:
+    std::map<std::string, std::variant<double, std::string>> mValues;
+};
+
+/** The parameters several line types share. */
+namespace line_parameters {
+extern const LineParameter kCreaseAngle;         ///< crease, normal-edge
+extern const LineParameter kDepthJump;           ///< the G-buffer line types and suggestive-object
+extern const LineParameter kSuggestiveThreshold; ///< suggestive, suggestive-object
+extern const LineParameter kSuggestiveFade;      ///< suggestive, suggestive-object
+} // namespace line_parameters
+
+} // namespace inkgraph

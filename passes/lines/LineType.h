@@ -1,0 +1,99 @@
+#pragma once
+/** @file A line type: one entry of the registry (passes/lines/LineTypes.h) that says everything about it: its name,
+ *  family and --help text, its parameters, the passes that draw "<name>.lines", what it reports to --stats, and how
+ *  --svg traces it. The command line, style files, the still graph, the composite, the stats and the SVG writer all
+ *  iterate the registry, so a new line type is one file in passes/lines/types/ and one line in LineTypes.cpp
+ *  (docs/contributing.md). */
+
+#include "gl/GlPass.h"
+#include "passes/Look.h"
+#include "passes/lines/LineKernel.h"
+#include "passes/lines/LineParameter.h"
+#include "scene/Camera.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace inkgraph {
+
+class GpuScene;
+class LineLayerPass;
+class ShaderLibrary;
+struct FrameParams;
+
+/** Where a line type's lines come from. Every family but GlDrawn finds a one-pixel skeleton at the data resolution
+ *  (--supersample) and strokes it on the CPU (LineLayerPass); GlDrawn types are bands GL draws at the output size. */
+enum class LineFamily {
+    GlDrawn,     ///< drawn by a GL pass at the output size (outline, silhouette)
+    ImageSpace,  ///< found by a postfx kernel in the G-buffer
+    MeshEdge,    ///< mesh edges GL draws as a one-pixel skeleton (the shared "mesh-edges" pass)
+    ObjectSpace, ///< found on the mesh on the CPU, projected, hidden with the G-buffer depth
+};
+
+/** "image-space" and so on, for --help. */
+std::string_view lineFamilyName(LineFamily family);
+
+/** What every line type's passes are built from; every reference outlives the graph. */
+struct LineGraphSetup {
+    const Look& look;
+    ShaderLibrary& shaders;
+    GpuScene& scene;
+    const FrameParams& frame;
+    BoundingSphere sphere;
+    std::string gbuffer = "gbuffer"; ///< the G-buffer pass's name: fields are "<gbuffer>.<field>"
+};
+
+/** Hands a line type's build() the setup and the graph's pass list. */
+class LineGraphBuilder {
+public:
+    LineGraphBuilder(const LineGraphSetup& setup, std::vector<std::unique_ptr<GlPass>>& passes)
+        : mSetup(setup), mPasses(passes) {}
+    const LineGraphSetup& setup() const { return mSetup; }
+    const Look& look() const { return mSetup.look; }
+    /** Whether a pass of that name is registered already (a pass several types share is added once). */
+    bool has(std::string_view passName) const;
+    void add(std::unique_ptr<GlPass> pass);
+    /** The usual ending: a LineLayerPass named `type` that runs `kernel` and strokes its skeleton at the type's width. */
+    void addLayer(const std::string& type, std::unique_ptr<LineKernel> kernel);
+    /** The layers addLayer() made, by type (for the stats and the SVG of the still graph). */
+    const std::map<std::string, LineLayerPass*>& layers() const { return mLayers; }
+
+private:
+    const LineGraphSetup& mSetup;
+    std::vector<std::unique_ptr<GlPass>>& mPasses;
+    std::map<std::string, LineLayerPass*> mLayers;
+};
+
+/** What a line type's describe() sees after the run. */
+struct LineStatsSource {
+    const Look& look;
+    BoundingSphere sphere;
+    /** A registered pass by name (what it did: Pass::describe()), or null. */
+    std::function<const Pass*(std::string_view)> pass;
+};
+
+struct LineType {
+    std::string name;   ///< "contour": --lines contour, --contour-width, lines-contour.png
+    LineFamily family = LineFamily::ImageSpace;
+    std::string help;   ///< --help, after "<name>: "; '\n' breaks a help line
+    std::vector<const LineParameter*> parameters; ///< settings besides width and colour, each --<name> and a style name
+    /** Registers the passes that write "<name>.lines" (r8, frame-sized, 255 = line). Called for every registered type:
+     *  the compiler culls the ones not drawn, and --stats says so. */
+    std::function<void(const std::string& type, LineGraphBuilder& builder)> build;
+    /** Adds its settings and what it did to its entry of --stats look.lines (after type, width and colour). */
+    std::function<void(const LineStatsSource& source, nlohmann::ordered_json& entry)> describe;
+    /** Working memory per data pixel beyond the stroke's, for app/MemoryBudget (0 when not set). */
+    std::function<std::size_t(const LineParameterValues& values)> workingBytesPerPixel;
+
+    /** Found as a skeleton at the data resolution (so --supersample applies, and --svg traces the skeleton). */
+    bool strokedOnCpu() const { return family != LineFamily::GlDrawn; }
+};
+
+} // namespace inkgraph

@@ -1,0 +1,81 @@
+#include "passes/lines/LineTypes.h"
+
+#include "passes/lines/LineLayerPass.h"
+
+#include <algorithm>
+
+namespace inkgraph {
+
+// Each is defined in its room, passes/lines/types/<Name>Line.cpp.
+LineType outlineLineType();
+LineType silhouetteLineType();
+LineType normalEdgeLineType();
+LineType depthEdgeLineType();
+LineType creaseLineType();
+LineType borderLineType();
+LineType materialBoundaryLineType();
+LineType suggestiveLineType();
+LineType suggestiveObjectLineType();
+LineType contourLineType();
+LineType meshSilhouetteLineType();
+
+const std::vector<LineType>& lineTypes() {
+    // The composite order: later types are drawn over earlier ones.
+    static const std::vector<LineType> kTypes = {
+        outlineLineType(),   silhouetteLineType(),       normalEdgeLineType(), depthEdgeLineType(),
+        creaseLineType(),    borderLineType(),           materialBoundaryLineType(), suggestiveLineType(),
+        suggestiveObjectLineType(), contourLineType(), meshSilhouetteLineType(),
+    };
+    return kTypes;
+}
+
+const LineType* findLineType(std::string_view name) {
+    for (const LineType& type : lineTypes())
+        if (type.name == name) return &type;
+    return nullptr;
+}
+
+std::vector<const LineParameter*> lineParameters() {
+    std::vector<const LineParameter*> parameters;
+    for (const LineType& type : lineTypes())
+        for (const LineParameter* parameter : type.parameters)
+            if (std::find(parameters.begin(), parameters.end(), parameter) == parameters.end())
+                parameters.push_back(parameter);
+    return parameters;
+}
+
+std::vector<std::string> lineTypesUsing(const LineParameter* parameter) {
+    std::vector<std::string> names;
+    for (const LineType& type : lineTypes()) {
+        const bool uses = parameter ? std::find(type.parameters.begin(), type.parameters.end(), parameter) !=
+                                          type.parameters.end()
+                                    : type.strokedOnCpu();
+        if (uses) names.push_back(type.name);
+    }
+    return names;
+}
+
+std::string_view lineFamilyName(LineFamily family) {
+    switch (family) {
+    case LineFamily::GlDrawn: return "drawn by GL";
+    case LineFamily::ImageSpace: return "image space";
+    case LineFamily::MeshEdge: return "mesh edges";
+    case LineFamily::ObjectSpace: return "object space";
+    }
+    return "?";
+}
+
+bool LineGraphBuilder::has(std::string_view passName) const {
+    return std::any_of(mPasses.begin(), mPasses.end(),
+                       [&](const std::unique_ptr<GlPass>& pass) { return pass->name() == passName; });
+}
+
+void LineGraphBuilder::add(std::unique_ptr<GlPass> pass) { mPasses.push_back(std::move(pass)); }
+
+void LineGraphBuilder::addLayer(const std::string& type, std::unique_ptr<LineKernel> kernel) {
+    auto layer = std::make_unique<LineLayerPass>(type, std::move(kernel), float(mSetup.look.styleOf(type).widthPixels));
+    mLayers[type] = layer.get();
+    add(std::move(layer));
+}
+
+} // namespace inkgraph

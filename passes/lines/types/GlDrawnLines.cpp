@@ -1,0 +1,61 @@
+// The two line types GL draws at the output size: Lander's back-face outline and the inflated hull.
+#include "passes/lines/LineType.h"
+#include "passes/outline/OutlinePass.h"
+#include "passes/silhouette/SilhouettePass.h"
+
+namespace inkgraph {
+namespace {
+
+/** The GL passes say whether they skipped the frame (the eye inside the model would flood the picture). */
+void describeSkipped(const LineStatsSource& source, const std::string& passName, nlohmann::ordered_json& entry) {
+    if (const Pass* pass = source.pass(passName)) {
+        nlohmann::ordered_json report;
+        pass->describe(report);
+        if (report.contains("skipped_eye_inside")) entry["skipped_eye_inside"] = report["skipped_eye_inside"];
+    }
+}
+
+const LineParameter kSilhouetteObjectWidth{
+    "silhouette-object-width", "D", "offset the hull by D model units instead (the width then shrinks with distance)",
+    {}, std::nullopt, "", 0.0, 1e300, true, false, "model units must be above 0"};
+
+} // namespace
+
+LineType outlineLineType() {
+    LineType type;
+    type.name = "outline";
+    type.family = LineFamily::GlDrawn;
+    type.help = "Lander's back faces drawn as thick wireframe behind the fill (Lander 2000)";
+    type.build = [](const std::string& name, LineGraphBuilder& builder) {
+        const LineGraphSetup& setup = builder.setup();
+        builder.add(std::make_unique<OutlinePass>(name, setup.shaders, setup.scene, setup.frame,
+                                                  float(setup.look.styleOf(name).widthPixels)));
+    };
+    type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
+        describeSkipped(source, "outline", entry);
+    };
+    return type;
+}
+
+LineType silhouetteLineType() {
+    LineType type;
+    type.name = "silhouette";
+    type.family = LineFamily::GlDrawn;
+    type.help = "the inflated hull (Qu, Chen & Zwicker), offset along position-welded smooth\n"
+                "normals so hard edges do not crack it";
+    type.parameters = {&kSilhouetteObjectWidth};
+    type.build = [](const std::string& name, LineGraphBuilder& builder) {
+        const LineGraphSetup& setup = builder.setup();
+        HullSettings hull;
+        hull.widthPixels = float(setup.look.styleOf(name).widthPixels);
+        if (auto width = setup.look.lineParameters.numberIfSet(kSilhouetteObjectWidth)) hull.objectWidth = float(*width);
+        builder.add(std::make_unique<SilhouettePass>(name, setup.shaders, setup.scene, setup.frame, hull));
+    };
+    type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
+        if (auto width = source.look.lineParameters.numberIfSet(kSilhouetteObjectWidth)) entry["object_width"] = *width;
+        describeSkipped(source, "silhouette", entry);
+    };
+    return type;
+}
+
+} // namespace inkgraph

@@ -1,0 +1,71 @@
+// The line types drawn from the mesh's own edges (Lander 2000; docs/algorithms.md §2): one GL pass, "mesh-edges",
+// draws each kind's one-pixel skeleton where the model does not hide it; each type strokes its kind.
+#include "passes/edges/MeshEdgesPass.h"
+#include "passes/lines/LineType.h"
+
+namespace inkgraph {
+namespace {
+
+constexpr const char* kMeshEdgesPass = "mesh-edges";
+
+/** Strokes a one-pixel mask another pass drew. */
+class SkeletonKernel : public LineKernel {
+public:
+    explicit SkeletonKernel(std::string resource) : mResource(std::move(resource)) {}
+    std::vector<std::string> inputs() const override { return {mResource}; }
+    LineSkeleton find(const std::vector<cv::Mat>& inputs) override { return skeletonFromMask(inputs[0]); }
+
+private:
+    std::string mResource;
+};
+
+/** A type that strokes the mesh-edges pass's output `kind` ("crease"). */
+LineType meshEdgeType(std::string name, std::string kind, std::string help,
+                      std::vector<const LineParameter*> parameters) {
+    LineType type;
+    type.name = std::move(name);
+    type.family = LineFamily::MeshEdge;
+    type.help = std::move(help);
+    type.parameters = std::move(parameters);
+    type.build = [kind](const std::string& typeName, LineGraphBuilder& builder) {
+        const LineGraphSetup& setup = builder.setup();
+        if (!builder.has(kMeshEdgesPass)) {
+            MeshEdgesSettings settings;
+            settings.creaseAngleDegrees = float(setup.look.lineParameters.number(line_parameters::kCreaseAngle));
+            settings.supersample = setup.look.supersample;
+            builder.add(std::make_unique<MeshEdgesPass>(kMeshEdgesPass, setup.shaders, setup.scene, setup.frame,
+                                                        settings));
+        }
+        builder.addLayer(typeName, std::make_unique<SkeletonKernel>(std::string(kMeshEdgesPass) + "." + kind));
+    };
+    type.describe = [kind](const LineStatsSource& source, nlohmann::ordered_json& entry) {
+        if (kind == "crease")
+            entry["crease_angle_degrees"] = source.look.lineParameters.number(line_parameters::kCreaseAngle);
+        entry["supersample"] = source.look.supersample;
+        if (const Pass* pass = source.pass(kMeshEdgesPass)) {
+            nlohmann::ordered_json report;
+            pass->describe(report);
+            if (report.contains("edges_drawn") && report["edges_drawn"].contains(kind))
+                entry["edges_drawn"] = report["edges_drawn"][kind];
+        }
+    };
+    return type;
+}
+
+} // namespace
+
+LineType creaseLineType() {
+    return meshEdgeType("crease", "crease", "mesh edges whose faces meet at more than --crease-angle (object space)",
+                        {&line_parameters::kCreaseAngle});
+}
+
+LineType borderLineType() {
+    return meshEdgeType("border", "border", "open (and non-manifold) mesh edges (object space)", {});
+}
+
+LineType meshSilhouetteLineType() {
+    return meshEdgeType("mesh-silhouette", "silhouette",
+                        "mesh edges between a front and a back face (exact perspective test)", {});
+}
+
+} // namespace inkgraph

@@ -1,0 +1,195 @@
+#include "passes/lines/types/SuggestiveLines.h"
+
+#include "passes/FrameParams.h"
+#include "passes/GpuScene.h"
+#include "passes/lines/LineType.h"
+#include "scene/ObjectSuggestiveContours.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace inkgraph {
+namespace {
+
+using line_parameters::kDepthJump;
+using line_parameters::kSuggestiveFade;
+using line_parameters::kSuggestiveThreshold;
+
+/** Object-space lines are sampled at most this far apart along the image (data pixels), so the one-pixel skeleton
+ *  has no gaps and the stroke's discs overlap. */
+constexpr double kSampleSpacingPixels = 0.5;
+
+/** Points of the image-space central differences: 3 (fast) or 5 (fourth order). */
+const LineParameter kSuggestiveStencil{
+    "suggestive-stencil", "N",
+    "3 (default) or 5-point central differences; 5 is fourth order, more exact on clean\n"
+    "data, slower, and needs two pixels of one surface on each side",
+    {"3", "5"}, std::nullopt, "3", 0.0, 0.0, false, false, ""};
+
+/** Per data pixel, the 5-point stencil's maps (postfx/SuggestiveContours.cpp: dw, dwdw and the normal distance as
+ *  float, two byte masks): working memory beyond the stroke's, for app/MemoryBudget. */
+constexpr std::size_t kWideStencilBytesPerPixel = 14;
+
+/** The settings both types share; featureSize in model units. */
+SuggestiveSettings sharedSettings(const Look& look, const BoundingSphere& sphere) {
+    SuggestiveSettings settings;
+    settings.depthJump = float(look.lineParameters.number(kDepthJump));
+    settings.threshold = float(look.lineParameters.number(kSuggestiveThreshold));
+    settings.fade = float(look.lineParameters.number(kSuggestiveFade));
+    settings.featureSize = float(kSuggestiveFeatureSizeFraction * sphere.radius);
+    return settings;
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void describeShared(const LineStatsSource& source, nlohmann::ordered_json& entry) {
+    const SuggestiveSettings settings = sharedSettings(source.look, source.sphere);
+    entry["depth_jump"] = source.look.lineParameters.number(kDepthJump);
+    entry["supersample"] = source.look.supersample;
+    entry["threshold"] = settings.threshold;
+    entry["fade"] = settings.fade;
+    entry["feature_size"] = kSuggestiveFeatureSizeFraction * source.sphere.radius;
+}
+
+} // namespace
+
+void ObjectSuggestiveKernel::prepare() {
+    mReport.curvatureDerived = false;
+    mReport.curvatureMilliseconds = 0.0;
+    if (mScene.meshCurvatureComputed()) return;
+    const auto start = std::chrono::steady_clock::now();
+    for (std::size_t mesh = 0; mesh < mScene.meshCount(); ++mesh) mScene.meshCurvature(mesh);
+    mReport.curvatureDerived = true;
+    mReport.curvatureMilliseconds = millisecondsSince(start);
+}
+
+void ObjectSuggestiveKernel::describe(nlohmann::ordered_json& entry) const {
+    // The curvature is derived once per scene, before the pass's clock (in prepare): kernel_ms is per view.
+    entry["segments"] = mReport.segments;
+    entry["curvature_derived"] = mReport.curvatureDerived;
+    entry["curvature_ms"] = mReport.curvatureMilliseconds;
+}
+
+LineSkeleton ObjectSuggestiveKernel::find(const std::vector<cv::Mat>& inputs) {
+    const cv::Mat& depth = inputs[0];
+    mReport.segments = 0;
+    const Camera& camera = mFrame.camera;
+    const glm::dmat4 view = camera.viewMatrix();
+    const glm::dmat4 projection = camera.projectionMatrix();
+    const int width = depth.cols, height = depth.rows;
+    const double tolerance = 1.0 + double(mSettings.depthJump);
+    ObjectSuggestiveSettings settings;
+    settings.featureSize = mSettings.featureSize;
+    settings.threshold = mSettings.threshold;
+    settings.fade = mSettings.fade;
+
+    LineSkeleton skeleton;
+    skeleton.mask = cv::Mat::zeros(depth.size(), CV_8UC1);
+    // The rule in the header: some surface pixel centre of the 2 x 2 around the point is not nearer than it by more
+    // than the tolerance.
+    auto isVisible = [&](double x, double y, double pointDepth) {
+        const int left = int(std::floor(x)), top = int(std::floor(y));
+        for (int row = top; row <= top + 1; ++row)
+            for (int col = left; col <= left + 1; ++col) {
+                if (row < 0 || col < 0 || row >= height || col >= width) continue;
+                const double surface = depth.at<float>(row, col);
+                if (surface > 0.0 && pointDepth <= surface * tolerance) return true;
+            }
+        return false;
+    };
+    // Pixel coordinates of a clip-space point: x right, y down, pixel centres at integers.
+    auto toPixel = [&](const glm::dvec4& clip) {
+        return glm::dvec2((clip.x / clip.w + 1.0) * 0.5 * width - 0.5, (1.0 - clip.y / clip.w) * 0.5 * height - 0.5);
+    };
+
+    for (std::size_t mesh = 0; mesh < mScene.meshCount(); ++mesh) {
+        const std::vector<SuggestiveSegment> segments =
+            extractObjectSuggestiveContours(mScene.meshCurvature(mesh), camera.eye, settings);
+        mReport.segments += segments.size();
+        for (const SuggestiveSegment& segment : segments) {
+            const glm::dvec4 viewA = view * glm::dvec4(segment.ends[0], 1.0);
+            const glm::dvec4 viewB = view * glm::dvec4(segment.ends[1], 1.0);
+            const glm::dvec4 clipA = projection * viewA, clipB = projection * viewB;
+            // Clip to GL's near (z >= -w) and far (z <= w) planes, as the rasteriser does.
+            double from = 0.0, to = 1.0;
+            bool outside = false;
+            for (const double side : {1.0, -1.0}) {
+                const double a = clipA.w + side * clipA.z, b = clipB.w + side * clipB.z;
+                if (a < 0.0 && b < 0.0) outside = true;
+                else if (a < 0.0) from = std::max(from, a / (a - b));
+                else if (b < 0.0) to = std::min(to, a / (a - b));
+            }
+            if (outside || !(to > from)) continue;
+            const glm::dvec2 start = toPixel(clipA + from * (clipB - clipA));
+            const glm::dvec2 end = toPixel(clipA + to * (clipB - clipA));
+            // Linear view depth at the clipped ends; its reciprocal is linear along the image under perspective.
+            const double startDepth = -(viewA.z + from * (viewB.z - viewA.z));
+            const double endDepth = -(viewA.z + to * (viewB.z - viewA.z));
+            const int steps = std::max(1, int(std::ceil(glm::length(end - start) / kSampleSpacingPixels)));
+            for (int step = 0; step <= steps; ++step) {
+                const double s = double(step) / double(steps);
+                const double inverseDepth = (1.0 - s) / startDepth + s / endDepth;
+                const double pointDepth = 1.0 / inverseDepth;
+                // Where along the 3-D segment the sample lies, for the strength (linear there, as extracted).
+                const double along = from + (to - from) * (s / endDepth) / inverseDepth;
+                const double strength =
+                    std::min(1.0, segment.strengths[0] + along * (segment.strengths[1] - segment.strengths[0]));
+                if (!(strength > 0.0)) continue; // a cut end at the threshold: nothing to draw
+                const glm::dvec2 pixel = start + s * (end - start);
+                const int col = int(std::lround(pixel.x)), row = int(std::lround(pixel.y));
+                if (col < 0 || row < 0 || col >= width || row >= height) continue;
+                if (!isVisible(pixel.x, pixel.y, pointDepth)) continue;
+                skeleton.points.push_back({cv::Point2f(float(pixel.x), float(pixel.y)), float(strength)});
+                skeleton.mask.at<uchar>(row, col) = 255;
+            }
+        }
+    }
+    return skeleton;
+}
+
+LineType suggestiveLineType() {
+    LineType type;
+    type.name = "suggestive";
+    type.help = "suggestive contours (DeCarlo et al. 2003): D_w(n.v) = 0 with D_w D_w(n.v) > 0,\n"
+                "in the float G-buffer with v = c - p, so the lines are where kappa_r = 0";
+    type.parameters = {&kDepthJump, &kSuggestiveThreshold, &kSuggestiveFade, &kSuggestiveStencil};
+    type.build = [](const std::string& name, LineGraphBuilder& builder) {
+        const LineGraphSetup& setup = builder.setup();
+        SuggestiveSettings settings = sharedSettings(setup.look, setup.sphere);
+        // gbuffer.radial is in units of the bounding radius (FrameParams::radialLengthUnit), so fs is too.
+        settings.featureSize = float(kSuggestiveFeatureSizeFraction * setup.sphere.radius / setup.frame.radialLengthUnit);
+        if (setup.look.lineParameters.choice(kSuggestiveStencil) == "5") settings.stencil = DifferenceStencil::Central5;
+        builder.addLayer(name, std::make_unique<SuggestiveKernel>(setup.gbuffer, settings));
+    };
+    type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
+        describeShared(source, entry);
+        entry["min_sin_theta"] = SuggestiveSettings{}.minSinTheta;
+        entry["stencil_points"] = source.look.lineParameters.choice(kSuggestiveStencil) == "5" ? 5 : 3;
+    };
+    type.workingBytesPerPixel = [](const LineParameterValues& values) {
+        return values.choice(kSuggestiveStencil) == "5" ? kWideStencilBytesPerPixel : std::size_t(0);
+    };
+    return type;
+}
+
+LineType suggestiveObjectLineType() {
+    LineType type;
+    type.name = "suggestive-object";
+    type.family = LineFamily::ObjectSpace;
+    type.help = "the same lines found on the mesh (object space): the zero set of\n"
+                "kappa_r from per-vertex curvature (Rusinkiewicz 2004) and rtsc's per-view test,\n"
+                "projected, hidden by the G-buffer depth (within --depth-jump), sub-pixel exact";
+    type.parameters = {&kDepthJump, &kSuggestiveThreshold, &kSuggestiveFade};
+    type.build = [](const std::string& name, LineGraphBuilder& builder) {
+        const LineGraphSetup& setup = builder.setup();
+        builder.addLayer(name, std::make_unique<ObjectSuggestiveKernel>(
+                                   setup.gbuffer, sharedSettings(setup.look, setup.sphere), setup.scene, setup.frame));
+    };
+    type.describe = describeShared;
+    return type;
+}
+
+} // namespace inkgraph

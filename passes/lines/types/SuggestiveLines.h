@@ -1,0 +1,75 @@
+#pragma once
+/** @file The kernels of the two suggestive-contour line types (DeCarlo et al. 2003): in the G-buffer's radial field
+ *  (image space), and on the mesh from per-vertex curvature (Rusinkiewicz 2004), projected and hidden with the
+ *  G-buffer depth (object space). Both share one meaning of threshold, fade and feature size: the strength
+ *  q = fs^2 tan(theta) D_w kappa_r.
+ *
+ *  Object space, per frame: the segments seen from the camera's eye are projected with the camera's own view and
+ *  projection (in double: the G-buffer's matrices before rounding to float), clipped to the near and far planes, and
+ *  sampled along the image every <= 0.5 data pixels (the depth perspective-correct, the strength linear along the 3-D
+ *  segment). A sample is visible when one of the four pixel centres around it holds the model (depth > 0) at a linear
+ *  depth d with z <= d (1 + depthJump): a point on the surface it lies on passes (its own pixel is at most a pixel's
+ *  depth slope away), a point behind a nearer surface fails, background pixels beside a silhouette do not vote, and
+ *  visibility is decided to within a pixel of an occluder's outline, as for the mesh edges. The curvature of every
+ *  mesh (GpuScene::meshCurvature()) is derived in prepare() the first time the kernel runs, so a plan that culls the
+ *  layer derives nothing. */
+
+#include "passes/lines/LineKernel.h"
+#include "postfx/SuggestiveContours.h"
+
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+
+class GpuScene;
+struct FrameParams;
+
+/** The feature size fs that makes the strength dimensionless, as a fraction of the bounding radius (rtsc's upper
+ *  bound on fs). */
+constexpr double kSuggestiveFeatureSizeFraction = 0.05;
+
+/** Image space: reads "<gbuffer>.radial" and "<gbuffer>.depth" (postfx/SuggestiveContours.h). */
+class SuggestiveKernel : public LineKernel {
+public:
+    SuggestiveKernel(std::string gbuffer, SuggestiveSettings settings)
+        : mGBuffer(std::move(gbuffer)), mSettings(settings) {}
+    std::vector<std::string> inputs() const override { return {mGBuffer + ".radial", mGBuffer + ".depth"}; }
+    LineSkeleton find(const std::vector<cv::Mat>& inputs) override {
+        return extractSuggestiveContours(inputs[0], inputs[1], mSettings);
+    }
+
+private:
+    std::string mGBuffer;
+    SuggestiveSettings mSettings;
+};
+
+/** What the object-space kernel did, for --stats. */
+struct ObjectSuggestiveReport {
+    std::size_t segments = 0;           ///< segments on the mesh (before visibility), over all meshes
+    bool curvatureDerived = false;      ///< whether this run derived the curvature (else it was cached)
+    double curvatureMilliseconds = 0.0; ///< deriving it, in prepare(); 0 when cached
+};
+
+/** Object space: reads "<gbuffer>.depth" for visibility; the meshes' curvature comes from `scene`. `settings`:
+ *  featureSize in model units, threshold, fade, and depthJump as the visibility tolerance. Both references must
+ *  outlive the kernel. */
+class ObjectSuggestiveKernel : public LineKernel {
+public:
+    ObjectSuggestiveKernel(std::string gbuffer, SuggestiveSettings settings, GpuScene& scene, const FrameParams& frame)
+        : mGBuffer(std::move(gbuffer)), mSettings(settings), mScene(scene), mFrame(frame) {}
+    std::vector<std::string> inputs() const override { return {mGBuffer + ".depth"}; }
+    void prepare() override;
+    LineSkeleton find(const std::vector<cv::Mat>& inputs) override;
+    void describe(nlohmann::ordered_json& entry) const override;
+    const ObjectSuggestiveReport& report() const { return mReport; }
+
+private:
+    std::string mGBuffer;
+    SuggestiveSettings mSettings;
+    GpuScene& mScene;
+    const FrameParams& mFrame;
+    ObjectSuggestiveReport mReport;
+};
+
+} // namespace inkgraph
