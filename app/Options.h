@@ -57,20 +57,6 @@ struct RenderOptions {
     bool quiet = false;
     bool help = false;                      ///< --help or -h in a flag's place: print help, do nothing else
 };
-    std::vector<std::string> extraOutputs;  ///< --request: extra graph resources kept and dumped ("gbuffer.*")
-    std::string dumpDirectory;
-    std::string statsPath;
-    std::string graphvizPath;               ///< --graphviz: the plan as DOT
-    std::string contactSheetPath;           ///< --contact-sheet: every computed buffer in one labelled PNG
-    std::string svgPath;                    ///< --svg: the line layers as vector paths
-    double svgTolerance = 0.5;              ///< --svg-tolerance: simplification, output pixels
-    bool printPlan = false;
-    std::string eglPlatform = "auto";       ///< auto, device, surfaceless
-    std::optional<std::size_t> memoryLimitBytes; ///< --memory-limit; default: half the machine's memory, >= 1 GiB
-    std::string stylePath;                  ///< --style, for the stats (its settings are already in the options)
-    bool quiet = false;
-    bool help = false;                      ///< --help or -h in a flag's place: print help, do nothing else
-};
 
 /** Every flag that names an output path, with its field, in --help's order: -o, --dump, --stats, --graphviz,
  *  --contact-sheet, --svg. One list for the checks of one still (OutputSet) and of a batch (app/Batch.h). */

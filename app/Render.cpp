@@ -1,3 +1,69 @@
+#include "app/Render.h"
+
+#include "app/ImageFiles.h"
+#include "app/MemoryBudget.h"
+#include "app/OutputFiles.h"
+#include "app/StillOutputs.h"
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+
+#include <unistd.h>
+
+namespace inkgraph {
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/** The whole run's peak for the plan, as an upper bound (app/MemoryBudget.h): the process, the scene, every GL target
+ *  as llvmpipe stores it, and the post stage's read-backs, working images and encoders at their largest moment.
+ *  Without the scene (not loaded yet) its meshes add nothing. */
+std::size_t estimatePlanBytes(const Plan& plan, const RenderOptions& options, const Scene* scene) {
+    return estimateRunMemory(plan, options, scene ? sceneSizeOf(*scene) : SceneSize{}).total();
+}
+
+/** --dump and --contact-sheet show every buffer the plan computed, so the executor keeps them all. */
+bool keepsEveryBuffer(const RenderOptions& options) {
+    return !options.dumpDirectory.empty() || !options.contactSheetPath.empty();
+}
+
+/** llvmpipe stores textures in 64x64 tiles, so a side is rounded up before its size is judged. */
+std::size_t paddedSide(int side) { return (std::size_t(side) + 63) / 64 * 64; }
+
+/** Refuses sizes that would fail deep inside the driver or outgrow the process's memory: one texture of 2 GiB or more
+ *  (GL's byte counts are 32-bit), or a whole run estimated above the memory limit. Both name every flag that makes
+ *  the buffers that large (--size, and --supersample for the supersampled ones), not only --size. */
+void checkFrameBudget(const Plan& plan, const RenderOptions& options, const Scene* scene = nullptr) {
+    for (const PlannedResource& resource : plan.resources) {
+        const std::size_t textureBytes = paddedSide(options.width * resource.desc.scale) *
+                                         paddedSide(options.height * resource.desc.scale) *
+                                         std::size_t(bytesPerPixel(resource.desc.format));
+        if (textureBytes < kMaxTextureBytes) continue;
+        const std::string size = "--size " + std::to_string(options.width) + "x" + std::to_string(options.height);
+        const std::string cause =
+            resource.desc.scale > 1 ? size + " with --supersample " + std::to_string(resource.desc.scale) +
+                                          " (" + std::to_string(options.width * resource.desc.scale) + "x" +
+                                          std::to_string(options.height * resource.desc.scale) + ")"
+                                    : size;
+        throw UsageError(cause + " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
+                         " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
+    }
+    const std::size_t needed = estimatePlanBytes(plan, options, scene);
+    const std::size_t bound = memoryLimitOf(options);
+    const std::size_t neededMib = (needed + (1 << 20) - 1) >> 20; // rounded up: "needs 600" never fits a 600 limit
+    if (needed > bound)
+        throw UsageError(memoryDriversText(plan, options) + " needs about " + std::to_string(neededMib) +
+                         " MiB for the whole run; the memory limit is " + std::to_string(bound >> 20) + " MiB" +
+                         (options.memoryLimitBytes ? " (--memory-limit)" : ", half this machine's memory") +
+                         " (make the image smaller, lower --supersample, or request or dump fewer buffers)");
+}
+
 /** The files the run read that only loading the model revealed: its buffers and images, and the shade maps its
  *  materials name. No output may be one of them (OutputSet::refuseInputs). */
 std::vector<RunInput> inputsFoundByLoading(const RenderOptions& options, const Scene& scene) {

@@ -9,6 +9,7 @@
 //   LP_NUM_THREADS=1 ./build/bench/inkgraph_bench --benchmark_filter=ComicOverhead
 #include "bench/BenchScene.h"
 #include "bench/Median.h"
+#include "passes/orientation/SceneOrientation.h"
 
 namespace inkgraph::bench {
 namespace {
@@ -75,15 +76,15 @@ void runComicCase(benchmark::State& state, const ComicCase& comicCase) {
     state.counters["triangles"] = double(bench.scene.triangleCount());
     state.counters["shade_ms"] = shadeSum / iterations;
     state.counters["outline_ms"] = outlineSum / iterations;
-    if (bench.graph.orientation->usesCpuMarking()) {
-        const OrientationReport& report = bench.graph.orientation->report();
+    if (SceneOrientation* orientation = bench.gpuScene->cpuOrientation()) {
+        const OrientationReport& report = orientation->report();
         state.counters["front_share"] = double(report.frontTriangles) / double(report.triangles);
         state.counters["mark_ms"] = report.markMilliseconds;
         state.counters["holes"] = double(report.missedTriangles);
     }
 }
 
-/** Seed 000's headline number, robust to a shared host: standard comic and `comicCase` run alternately on the same
+/** Winnemöller & Bangay 2002's headline number, robust to a shared host: standard comic and `comicCase` run alternately on the same
  *  mesh, frame by frame, so drifts in the machine's speed hit both; the overhead is the median of the per-round
  *  ratios. The manual time is the comic case's frame. */
 void runOverheadCase(benchmark::State& state, const ComicCase& comicCase) {

@@ -1,5 +1,6 @@
 // Command-line parsing: defaults, values, and a clear UsageError for every malformed flag. No GL.
 #include "app/Options.h"
+#include "app/Cli.h"
 #include "app/Render.h"
 #include "app/StillOutputs.h"
 #include "passes/lines/LineTypes.h"

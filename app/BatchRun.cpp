@@ -1,0 +1,80 @@
+#include "app/BatchRun.h"
+
+#include "app/Batch.h"
+#include "app/Cli.h"
+#include "app/Render.h"
+#include "scene/Scene.h"
+
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+
+namespace inkgraph {
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+int renderBatch(const RenderOptions& options, std::istream& standardInput, std::ostream& out, std::ostream& log) {
+    const BatchList list = batchList(options, standardInput);
+    checkBatchOutputs(options, list);
+    RenderSession session(out, log);
+    const std::string share =
+        options.shard ? " (shard " + std::to_string(options.shard->index) + "/" + std::to_string(options.shard->count) +
+                            " of " + std::to_string(list.total) + ")"
+                      : "";
+    // Only --shard can leave a share empty (a list of no models is refused): with N above the list's length some
+    // shards have nothing to do, which is not an error in an array job.
+    if (list.models.empty()) {
+        if (!options.quiet) log << "inkgraph: no models in this share" << share << "\n";
+        return kExitOk;
+    }
+    if (!list.isBatch) {
+        session.render(stillOptions(options, list.models.front(), list.total));
+        return kExitOk;
+    }
+    const auto batchStart = std::chrono::steady_clock::now();
+    int exitCode = kExitOk;
+    std::vector<std::string> failed;
+    for (std::size_t i = 0; i < list.models.size(); ++i) {
+        const BatchModel& model = list.models[i];
+        const RenderOptions still = stillOptions(options, model, list.total);
+        const std::string counter =
+            "inkgraph: [" + std::to_string(i + 1) + "/" + std::to_string(list.models.size()) + "] '" + model.path + "'";
+        try {
+            const StillBatchPosition position{model.position, list.total};
+            const StillReport report = session.render(still, &position);
+            if (!options.quiet) {
+                log << counter;
+                if (!still.outputPath.empty()) log << " -> '" << still.outputPath << "'";
+                log << ": " << report.triangles << " triangles, " << std::fixed << std::setprecision(0)
+                    << report.milliseconds << " ms\n";
+            }
+        } catch (const SceneError& error) {
+            // Bad input stops one still, not the batch: the other models' work is not lost.
+            log << counter << " failed: " << error.what() << "\n";
+            failed.push_back(model.path);
+            if (exitCode == kExitOk) exitCode = kExitBadInput;
+        } catch (const InputFileError& error) {
+            log << counter << " failed: " << error.what() << "\n";
+            failed.push_back(model.path);
+            if (exitCode == kExitOk) exitCode = kExitBadInput;
+        }
+    }
+    if (!options.quiet || !failed.empty()) {
+        log << "inkgraph: rendered " << list.models.size() - failed.size() << " of " << list.models.size()
+            << " models" << share << " in " << std::fixed << std::setprecision(1)
+            << millisecondsSince(batchStart) / 1000.0 << " s";
+        if (!failed.empty()) {
+            log << "; " << failed.size() << " failed:";
+            for (const std::string& path : failed) log << " '" << path << "'";
+        }
+        log << "\n";
+    }
+    return exitCode;
+}
+
+} // namespace inkgraph

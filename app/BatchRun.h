@@ -1,0 +1,16 @@
+#pragma once
+/** @file Running every model of `inkgraph render` (app/Batch.h says which) in one RenderSession. */
+
+#include "app/Options.h"
+
+#include <iosfwd>
+
+namespace inkgraph {
+
+/** Every model of the run in one RenderSession, with a progress line per model on `log` (unless --quiet) when there
+ *  are several. A model that cannot be read (exit 3) is reported and the others go on; the first such failure's exit
+ *  code is returned after the last model. Any other error stops the batch (models done so far keep their outputs).
+ *  `standardInput` is read for --list -. Returns the exit code. */
+int renderBatch(const RenderOptions& options, std::istream& standardInput, std::ostream& out, std::ostream& log);
+
+} // namespace inkgraph

@@ -1,0 +1,670 @@
+#include "app/FlagTable.h"
+
+#include "graph/Resource.h"
+#include "passes/lines/LineTypes.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+namespace inkgraph {
+namespace {
+
+constexpr int kMaxImageSide = 16384;
+constexpr double kMinFovDegrees = 0.01;
+constexpr double kMaxFovDegrees = 179.0;
+constexpr double kMaxShininess = 1e6;
+constexpr double kMaxLineWidthPixels = 256.0;
+constexpr double kMinClipDistance = 1e-30;
+constexpr double kMaxClipDistance = 1e30;
+constexpr double kMaxClipRatio = 1e30;
+constexpr int kMaxMemoryLimitMib = 1 << 24; // 16 TiB
+const std::vector<std::string> kOutputExtensions = {".png", ".exr", ".tif", ".tiff", ".jpg", ".jpeg"};
+
+std::string lowercaseExtension(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
+}
+
+double parseNumber(const std::string& flag, const std::string& text) {
+    double value = 0.0;
+    const char* begin = text.data();
+    const char* end = begin + text.size();
+    auto [stop, error] = std::from_chars(begin, end, value);
+    if (error != std::errc() || stop != end || !std::isfinite(value))
+        throw UsageError(flag + ": '" + text + "' is not a finite number");
+    return value;
+}
+
+std::vector<std::string> splitList(const std::string& text, char separator) {
+    std::vector<std::string> parts;
+    std::string part;
+    std::istringstream stream(text);
+    while (std::getline(stream, part, separator)) parts.push_back(part);
+    if (!text.empty() && text.back() == separator) parts.push_back("");
+    return parts;
+}
+
+glm::dvec3 parseVector(const std::string& flag, const std::string& text) {
+    const std::vector<std::string> parts = splitList(text, ',');
+    if (parts.size() != 3) throw UsageError(flag + ": expected X,Y,Z (three comma-separated numbers), got '" + text + "'");
+    return {parseNumber(flag, parts[0]), parseNumber(flag, parts[1]), parseNumber(flag, parts[2])};
+}
+
+/** A point in world units. Bounded so that differences of points stay finite and meaningful in double (at 1e15
+ *  adjacent doubles are 0.125 apart); beyond it the camera's distances overflow and the messages mislead. */
+glm::dvec3 parsePoint(const std::string& flag, const std::string& text) {
+    constexpr double kMaxCoordinate = 1e15;
+    const glm::dvec3 point = parseVector(flag, text);
+    if (std::max({std::abs(point.x), std::abs(point.y), std::abs(point.z)}) > kMaxCoordinate)
+        throw UsageError(flag + ": coordinates must lie within +-1e15, got '" + text + "'");
+    return point;
+}
+
+/** A direction, made unit length. Scaled by its largest component first, so any finite input keeps its direction
+ *  (1e300,1e300,0 would overflow the length and normalise to zero; 1e-300,0,0 would underflow). */
+glm::dvec3 parseDirection(const std::string& flag, const std::string& text) {
+    const glm::dvec3 direction = parseVector(flag, text);
+    const double largest = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
+    if (largest == 0.0) throw UsageError(flag + ": the direction must not be zero, got '" + text + "'");
+    return glm::normalize(direction / largest);
+}
+
+void parseSize(const std::string& text, int& width, int& height) {
+    const auto cross = text.find('x');
+    if (cross == std::string::npos) throw UsageError("--size: expected WxH such as 1024x768, got '" + text + "'");
+    const double w = parseNumber("--size", text.substr(0, cross));
+    const double h = parseNumber("--size", text.substr(cross + 1));
+    if (w != std::floor(w) || h != std::floor(h) || w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
+        throw UsageError("--size: width and height must be whole numbers from 1 to " + std::to_string(kMaxImageSide) +
+                         ", got '" + text + "'");
+    width = static_cast<int>(w);
+    height = static_cast<int>(h);
+}
+
+std::string joined(const std::vector<std::string>& items) {
+    std::string text;
+    for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+    return text.empty() ? "(none in this version)" : text;
+}
+
+
+
+template <typename Value>
+Value parseChoice(const std::string& flag, const std::string& text,
+                  const std::vector<std::pair<std::string, Value>>& choices) {
+    std::string names;
+    for (const auto& [name, value] : choices) {
+        if (name == text) return value;
+        names += (names.empty() ? "" : ", ") + name;
+    }
+    throw UsageError(flag + ": unknown value '" + text + "' (available: " + names + ")");
+}
+
+int parseWholeNumber(const std::string& flag, const std::string& text, int low, int high) {
+    const double value = parseNumber(flag, text);
+    if (value != std::floor(value) || value < low || value > high)
+        throw UsageError(flag + ": expected a whole number from " + std::to_string(low) + " to " +
+                         std::to_string(high) + ", got '" + text + "'");
+    return static_cast<int>(value);
+}
+
+/** K/N with 0 <= K < N (N at most a million: more shards than that is a mistake, not a cluster). */
+Shard parseShard(const std::string& flag, const std::string& text) {
+    const auto slash = text.find('/');
+    if (slash == std::string::npos)
+        throw UsageError(flag + ": expected K/N (this process's share K of N, 0 <= K < N), got '" + text + "'");
+    Shard shard;
+    shard.count = parseWholeNumber(flag, text.substr(slash + 1), 1, 1000000);
+    shard.index = parseWholeNumber(flag, text.substr(0, slash), 0, shard.count - 1);
+    return shard;
+}
+
+/** R,G,B or R,G,B,A with channels in [0, 1]. */
+glm::dvec4 parseColor(const std::string& flag, const std::string& text) {
+    const std::vector<std::string> parts = splitList(text, ',');
+    if (parts.size() != 3 && parts.size() != 4)
+        throw UsageError(flag + ": expected R,G,B or R,G,B,A with channels in [0,1], got '" + text + "'");
+    glm::dvec4 color(0.0, 0.0, 0.0, 1.0);
+    for (std::size_t channel = 0; channel < parts.size(); ++channel) {
+        color[int(channel)] = parseNumber(flag, parts[channel]);
+        if (color[int(channel)] < 0.0 || color[int(channel)] > 1.0)
+            throw UsageError(flag + ": channels must lie in [0, 1], got '" + text + "'");
+    }
+    return color;
+}
+
+
+const std::vector<std::pair<std::string, FaceOrientationMethod>> kOrientationMethods = {
+    {"standard", FaceOrientationMethod::Standard},
+    {"during-triangles", FaceOrientationMethod::DuringTriangles},
+    {"during-vertices", FaceOrientationMethod::DuringVertices},
+    {"after-vertices", FaceOrientationMethod::AfterVertices},
+};
+
+std::string commaJoined(const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+    return text;
+}
+
+// --- "has no effect" rules --------------------------------------------------------------------------------------
+
+/** A shading flag that only the models with trait `has` take. */
+std::function<std::string(const RenderOptions&)> onlyWithModels(const std::string& flag,
+                                                                bool ShadingModelTraits::*has) {
+    return [flag, has](const RenderOptions& options) -> std::string {
+        if (traitsOf(options.look.shading).*has) return "";
+        return flag + " has no effect with --shading " + traitsOf(options.look.shading).name + " (it applies to " +
+               shadingModelsWith(has) + ")";
+    };
+}
+
+/** A flag that only the line types in `types` use. */
+std::function<std::string(const RenderOptions&)> onlyWithLineTypes(const std::string& flag,
+                                                                   std::vector<std::string> types) {
+    std::sort(types.begin(), types.end()); // named in messages alphabetically
+    return [flag, types](const RenderOptions& options) -> std::string {
+        for (const std::string& type : types)
+            if (options.look.draws(type)) return "";
+        return flag + " has no effect: none of the line types it applies to (" + commaJoined(types) +
+               ") is in --lines";
+    };
+}
+
+// --- the table ---------------------------------------------------------------------------------------------------
+
+Flag flag(std::vector<std::string> names, std::string valueName, HelpSection section, std::string help,
+          std::function<void(const std::string&, RenderOptions&)> apply) {
+    Flag entry;
+    entry.names = std::move(names);
+    entry.valueName = std::move(valueName);
+    entry.section = section;
+    entry.help = std::move(help);
+    entry.apply = std::move(apply);
+    return entry;
+}
+
+Flag styleFlag(Flag entry) {
+    entry.inStyle = true;
+    return entry;
+}
+
+Flag helpOnly(HelpSection section, std::string label, std::string help) {
+    Flag entry;
+    entry.section = section;
+    entry.helpLabel = std::move(label);
+    entry.help = std::move(help);
+    return entry;
+}
+
+/** The width, colour and parameter flags of every registered line type. */
+void addLineTypeFlags(std::vector<Flag>& flags) {
+    flags.push_back(helpOnly(HelpSection::Lines, "--TYPE-width PX",
+                             "line width in pixels, above 0 up to 256 (default 2), constant across distance, field\n"
+                             "of view and resolution (for outline: the width showing outside the silhouette)"));
+    flags.push_back(helpOnly(HelpSection::Lines, "--TYPE-color R,G,B[,A]", "line colour, channels in [0,1] (default 0,0,0)"));
+    for (const LineType& type : lineTypes()) {
+        const std::string name = type.name;
+        const auto notDrawn = [name](const std::string& flagName) {
+            return [name, flagName](const RenderOptions& options) -> std::string {
+                return options.look.draws(name)
+                           ? ""
+                           : flagName + ": the '" + name + "' line type is not drawn (add it to --lines)";
+            };
+        };
+        Flag width = styleFlag(flag({"--" + name + "-width"}, "PX", HelpSection::Lines, "",
+                                    [name](const std::string& value, RenderOptions& options) {
+                                        const std::string flagName = "--" + name + "-width";
+                                        const double pixels = parseNumber(flagName, value);
+                                        if (!(pixels > 0.0 && pixels <= kMaxLineWidthPixels))
+                                            throw UsageError(flagName + ": pixels must be above 0 and at most 256, got '" +
+                                                             value + "'");
+                                        options.look.lineStyles[name].widthPixels = pixels;
+                                    }));
+        width.noEffect = notDrawn("--" + name + "-width");
+        flags.push_back(width);
+        Flag color = styleFlag(flag({"--" + name + "-color"}, "R,G,B[,A]", HelpSection::Lines, "",
+                                    [name](const std::string& value, RenderOptions& options) {
+                                        options.look.lineStyles[name].color = parseColor("--" + name + "-color", value);
+                                    }));
+        color.noEffect = notDrawn("--" + name + "-color");
+        flags.push_back(color);
+    }
+    for (const LineParameter* parameter : lineParameters()) {
+        const std::vector<std::string> types = lineTypesUsing(parameter);
+        const std::string flagName = "--" + parameter->name;
+        Flag entry = styleFlag(flag({flagName}, parameter->valueName, HelpSection::Lines,
+                                    commaJoined(types) + ": " + parameter->help,
+                                    [parameter](const std::string& value, RenderOptions& options) {
+                                        try {
+                                            options.look.lineParameters.set(*parameter, parameter->parse(value));
+                                        } catch (const std::invalid_argument& error) {
+                                            throw UsageError(error.what());
+                                        }
+                                    }));
+        entry.noEffect = onlyWithLineTypes(flagName, types);
+        flags.push_back(entry);
+    }
+}
+
+std::string lineTypesHelp() {
+    std::string text = "comma-separated line types, or none (default none), composited in this order:";
+    for (const LineType& type : lineTypes()) {
+        std::string help = type.help;
+        std::string indented;
+        for (char c : help) indented += c == '\n' ? std::string("\n       ") : std::string(1, c);
+        text += "\n  " + type.name + ": " + indented;
+    }
+    return text + "\neach is written to lines-<type>.png by --dump";
+}
+
+std::string shadingHelp() {
+    std::string text;
+    for (const ShadingModelTraits& traits : shadingModels())
+        text += std::string(text.empty() ? "" : " | ") + traits.name + (traits.model == Look{}.shading ? " (default)" : "");
+    for (const ShadingModelTraits& traits : shadingModels()) {
+        if (traits.model == ShadingModel::None) continue;
+        std::string indented;
+        for (const char* c = traits.help; *c; ++c) indented += *c == '\n' ? std::string("\n       ") : std::string(1, *c);
+        text += "\n  " + std::string(traits.name) + ": " + indented;
+    }
+    return text;
+}
+
+std::vector<Flag> makeFlags() {
+    using S = HelpSection;
+    std::vector<Flag> flags;
+    // Output
+    flags.push_back(flag({"-o", "--output"}, "FILE", S::Output, "the final picture: .png, .exr, .tif or .jpg",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.outputPath = value;
+                             const std::string extension = lowercaseExtension(value);
+                             if (std::find(kOutputExtensions.begin(), kOutputExtensions.end(), extension) ==
+                                 kOutputExtensions.end())
+                                 throw UsageError("-o: '" + value +
+                                                  "' has no picture extension I write (use .png, .exr, .tif or .jpg)");
+                         }));
+    flags.push_back(styleFlag(flag({"--size"}, "WxH", S::Output,
+                                   "image size in pixels (default 1024x1024, at most 16384 a side)",
+                                   [](const std::string& value, RenderOptions& options) {
+                                       parseSize(value, options.width, options.height);
+                                   })));
+    flags.push_back(flag(
+        {"--dump"}, "DIR", S::Output,
+        "also write every buffer the plan computed, and manifest.json. What is computed follows\n"
+        "from the request: shading draws the meshes itself; add --request 'gbuffer.*' for\n"
+        "normal.exr, view.exr, w.exr (float32 RGBA, alpha = coverage), ndotv.exr, depth.exr\n"
+        "(float32), coverage.png, basecolor.png, radial.exr, materialid.exr. Also shading.png, final.png,\n"
+        "lines-<type>.png. An earlier dump in DIR is replaced once everything is written; DIR must be new,\n"
+        "empty, or hold exactly an earlier dump",
+        [](const std::string& value, RenderOptions& options) { options.dumpDirectory = value; }));
+    flags.push_back(flag({"--request"}, "LIST", S::Output,
+                         "compute and keep extra graph outputs, comma-separated: 'gbuffer.wVec', or 'gbuffer.*'\n"
+                         "for all of them (requesting is what makes a pass compute a buffer; dumping never does)",
+                         [](const std::string& value, RenderOptions& options) {
+                             for (const std::string& resource : splitList(value, ',')) {
+                                 const ResourceName name = ResourceName::split(resource);
+                                 if (name.pass.empty() || name.field.empty())
+                                     throw UsageError("--request: '" + resource +
+                                                      "' is not a resource name like 'gbuffer.normal' or 'gbuffer.*'");
+                                 options.extraOutputs.push_back(resource);
+                             }
+                         }));
+    flags.push_back(flag({"--stats"}, "FILE.json", S::Output,
+                         "timings per pass, culled passes with reasons, scene and GL facts",
+                         [](const std::string& value, RenderOptions& options) { options.statsPath = value; }));
+    flags.push_back(flag({"--print-plan"}, "", S::Output,
+                         "print the compiled render plan (without -o, print it and stop: no GL needed)",
+                         [](const std::string&, RenderOptions& options) { options.printPlan = true; }));
+    flags.push_back(flag({"--graphviz"}, "FILE.dot", S::Output,
+                         "write the plan as a Graphviz graph (culled passes dashed)",
+                         [](const std::string& value, RenderOptions& options) { options.graphvizPath = value; }));
+    flags.push_back(flag({"--contact-sheet"}, "FILE.png", S::Output,
+                         "every buffer the plan computed (normal, view, w, n.v, depth, each line layer, shading,\n"
+                         "final) side by side in one labelled picture",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.contactSheetPath = value;
+                             if (lowercaseExtension(value) != ".png")
+                                 throw UsageError("--contact-sheet: '" + value + "' must be a .png file");
+                         }));
+    flags.push_back(flag({"--svg"}, "FILE.svg", S::Output,
+                         "the line layers as vector paths, one group (an Inkscape layer) per line type, traced\n"
+                         "from the one-pixel line skeletons and simplified, in the lines' widths and colours",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.svgPath = value;
+                             if (lowercaseExtension(value) != ".svg")
+                                 throw UsageError("--svg: '" + value + "' must be a .svg file");
+                         }));
+    Flag svgTolerance = flag({"--svg-tolerance"}, "PX", S::Output,
+                             "--svg: how far a simplified path may leave the traced pixels, in output pixels\n"
+                             "(default 0.5; 0 keeps every pixel)",
+                             [](const std::string& value, RenderOptions& options) {
+                                 options.svgTolerance = parseNumber("--svg-tolerance", value);
+                                 if (options.svgTolerance < 0.0 || options.svgTolerance > 100.0)
+                                     throw UsageError("--svg-tolerance: expected output pixels from 0 to 100, got '" +
+                                                      value + "'");
+                             });
+    svgTolerance.noEffect = [](const RenderOptions& options) -> std::string {
+        return options.svgPath.empty() ? "--svg-tolerance: applies to --svg, which is not given" : "";
+    };
+    flags.push_back(svgTolerance);
+    flags.push_back(flag({"-q", "--quiet"}, "", S::Output, "no progress lines on stderr",
+                         [](const std::string&, RenderOptions& options) { options.quiet = true; }));
+
+    // Camera
+    flags.push_back(flag({"--eye"}, "X,Y,Z", S::Camera, "camera position, in world units (coordinates within +-1e15)",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.eye = parsePoint("--eye", value);
+                         }));
+    flags.push_back(flag({"--target"}, "X,Y,Z", S::Camera,
+                         "point looked at (default: the model's bounding-sphere centre; within +-1e15)",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.target = parsePoint("--target", value);
+                         }));
+    flags.push_back(flag({"--up"}, "X,Y,Z", S::Camera,
+                         "up direction (default: the glTF camera's, else 0,1,0); auto-framing looks from the\n"
+                         "front, slightly above, as this up defines it",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.up = parseDirection("--up", value);
+                         }));
+    flags.push_back(styleFlag(flag({"--fov"}, "DEG", S::Camera,
+                                   "vertical field of view in degrees, 0.01 to 179 (default 35)",
+                                   [](const std::string& value, RenderOptions& options) {
+                                       const double fov = parseNumber("--fov", value);
+                                       if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
+                                           throw UsageError("--fov: degrees must lie in [0.01, 179], got " + value);
+                                       options.fovYDegrees = fov;
+                                   })));
+    flags.push_back(flag(
+        {"--clip"}, "NEAR,FAR", S::Camera,
+        "near and far clip distances along the view axis, 0 < NEAR < FAR, both in [1e-30, 1e30],\n"
+        "FAR/NEAR at most 1e30 (default: fitted to the bounding sphere, with far/near at most 1e4);\n"
+        "depth is reversed-Z float, so ratios up to 1e6 and beyond keep about 1e-7 of the distance\n"
+        "apart",
+        [](const std::string& value, RenderOptions& options) {
+            const std::vector<std::string> parts = splitList(value, ',');
+            if (parts.size() != 2)
+                throw UsageError("--clip: expected NEAR,FAR (two comma-separated distances), got '" + value + "'");
+            const glm::dvec2 clip(parseNumber("--clip", parts[0]), parseNumber("--clip", parts[1]));
+            if (!(clip.x > 0.0 && clip.x < clip.y))
+                throw UsageError("--clip: expected 0 < NEAR < FAR, got '" + value + "'");
+            // The shaders get the planes, and reversed-z depth (about NEAR / distance), as float32, where 1e-38 is
+            // already subnormal and flushed to zero: every depth then reads as the far plane, a blank picture.
+            // Within these bounds every depth stays a normal float32 (tests/pipeline/ExtremesGLTest.cpp renders
+            // 1e-6,1e6 like the fitted range).
+            if (clip.x < kMinClipDistance || clip.y > kMaxClipDistance || clip.y / clip.x > kMaxClipRatio)
+                throw UsageError("--clip: NEAR and FAR must lie in [1e-30, 1e30] with FAR/NEAR at most 1e30 (depth "
+                                 "is float32), got '" + value + "'");
+            options.clipRange = clip;
+        }));
+
+    // Look
+    flags.push_back(flag({"--style"}, "FILE", S::Look,
+                         "settings from a style file, one NAME = VALUE per line (# comments): any flag of this\n"
+                         "section and of Lines, --size and --fov, without the dashes; e.g. \"shading = comic\",\n"
+                         "\"lines = contour, suggestive\". Flags on the command line win over the file's",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.stylePath = value; // its settings were put first by expandStyleFile()
+                         }));
+    flags.push_back(styleFlag(flag({"--shading"}, "MODE", S::Look, shadingHelp(),
+                                   [](const std::string& value, RenderOptions& options) {
+                                       const ShadingModelTraits* traits = findShadingModel(value);
+                                       if (traits == nullptr) {
+                                           std::vector<std::string> names;
+                                           for (const ShadingModelTraits& model : shadingModels())
+                                               names.push_back(model.name);
+                                           throw UsageError("--shading: unknown value '" + value + "' (available: " +
+                                                            commaJoined(names) + ")");
+                                       }
+                                       options.look.shading = traits->model;
+                                   })));
+    Flag shininess = styleFlag(flag({"--shininess"}, "N", S::Look,
+                                    "specular exponent for " + shadingModelsWith(&ShadingModelTraits::specular) +
+                                        ", 0 to 1e6 (default 32)",
+                                    [](const std::string& value, RenderOptions& options) {
+                                        options.look.shininess = parseNumber("--shininess", value);
+                                        if (options.look.shininess < 0.0 || options.look.shininess > kMaxShininess)
+                                            throw UsageError("--shininess: expected a number from 0 to 1e6, got '" +
+                                                             value + "'");
+                                    }));
+    shininess.noEffect = onlyWithModels("--shininess", &ShadingModelTraits::specular);
+    flags.push_back(shininess);
+    Flag bands = styleFlag(flag({"--bands"}, "N", S::Look, shadingModelsWith(&ShadingModelTraits::bands) +
+                                                                ": N even bands, 2 to 256",
+                                [](const std::string& value, RenderOptions& options) {
+                                    options.look.bands = parseWholeNumber("--bands", value, 2, 256);
+                                }));
+    bands.noEffect = onlyWithModels("--bands", &ShadingModelTraits::bands);
+    flags.push_back(bands);
+    Flag shadeMap = styleFlag(flag({"--shademap"}, "FILE", S::Look,
+                                   "cel: a one-row image; comic: a 2-D image (left dark -> right lit, bottom no highlight\n"
+                                   "-> top full highlight); 8-bit, at most 4096 a side; multiplied with the material colour",
+                                   [](const std::string& value, RenderOptions& options) {
+                                       options.look.shadeMapPath = value;
+                                   }));
+    shadeMap.pathValue = true;
+    shadeMap.noEffect = onlyWithModels("--shademap", &ShadingModelTraits::shadeMap);
+    flags.push_back(shadeMap);
+    Flag viewVector = styleFlag(flag(
+        {"--view-vector"}, "V", S::Look,
+        "comic: exact (default, per pixel) | constant (Winnemöller & Bangay's V_c toward the bounding-sphere\n"
+        "centre; falls back to exact when the eye is inside or within 2 radii of the sphere)",
+        [](const std::string& value, RenderOptions& options) {
+            options.look.viewVector = parseChoice<ViewVectorMode>(
+                "--view-vector", value, {{"exact", ViewVectorMode::Exact}, {"constant", ViewVectorMode::Constant}});
+        }));
+    viewVector.noEffect = onlyWithModels("--view-vector", &ShadingModelTraits::faceOrientation);
+    flags.push_back(viewVector);
+    Flag faceOrientation = styleFlag(flag(
+        {"--face-orientation"}, "M", S::Look,
+        "comic: standard (default: the GPU culls and lights per pixel) | during-triangles |\n"
+        "during-vertices | after-vertices (Winnemöller & Bangay's CPU marking with per-vertex lighting;\n"
+        "--stats reports front shares, holes and milliseconds)",
+        [](const std::string& value, RenderOptions& options) {
+            options.look.faceOrientation = parseChoice("--face-orientation", value, kOrientationMethods);
+        }));
+    faceOrientation.noEffect = onlyWithModels("--face-orientation", &ShadingModelTraits::faceOrientation);
+    flags.push_back(faceOrientation);
+    Flag frontRule = styleFlag(flag({"--front-rule"}, "R", S::Look,
+                                    "during-vertices, after-vertices: a triangle is front when 3 (R=1), 2 (R=2) or 1 (R=3,\n"
+                                    "default) of its vertices are front",
+                                    [](const std::string& value, RenderOptions& options) {
+                                        options.look.frontRule = parseWholeNumber("--front-rule", value, 1, 3);
+                                    }));
+    frontRule.noEffect = [comic = onlyWithModels("--front-rule", &ShadingModelTraits::faceOrientation)](
+                             const RenderOptions& options) -> std::string {
+        if (std::string refusal = comic(options); !refusal.empty()) return refusal;
+        const FaceOrientationMethod method = options.look.faceOrientation;
+        if (method == FaceOrientationMethod::DuringVertices || method == FaceOrientationMethod::AfterVertices)
+            return "";
+        return "--front-rule applies to --face-orientation during-vertices and after-vertices, not '" +
+               faceOrientationMethodName(method) + "'";
+    };
+    flags.push_back(frontRule);
+    flags.push_back(styleFlag(flag({"--light"}, "X,Y,Z", S::Look,
+                                   "world direction toward the light (default: the glTF directional light, else from\n"
+                                   "the upper left behind the camera)",
+                                   [](const std::string& value, RenderOptions& options) {
+                                       options.look.towardLight = parseDirection("--light", value);
+                                   })));
+    flags.push_back(styleFlag(flag({"--background"}, "R,G,B", S::Look,
+                                   "paper colour, channels in [0,1] (default 1,1,1)",
+                                   [](const std::string& value, RenderOptions& options) {
+                                       const glm::dvec3 color = parseVector("--background", value);
+                                       for (int c = 0; c < 3; ++c)
+                                           if (color[c] < 0.0 || color[c] > 1.0)
+                                               throw UsageError("--background: channels must lie in [0, 1], got '" +
+                                                                value + "'");
+                                       options.look.background = color;
+                                   })));
+
+    // Lines
+    flags.push_back(styleFlag(flag({"--lines"}, "LIST", S::Lines, lineTypesHelp(),
+                                   [](const std::string& value, RenderOptions& options) {
+                                       options.look.lines.clear();
+                                       if (value == "none") return;
+                                       std::vector<std::string> known;
+                                       for (const LineType& type : lineTypes()) known.push_back(type.name);
+                                       for (const std::string& type : splitList(value, ',')) {
+                                           if (!findLineType(type))
+                                               throw UsageError("--lines: unknown line type '" + type +
+                                                                "' (available: " + joined(known) + "; or 'none')");
+                                           if (options.look.draws(type))
+                                               throw UsageError("--lines: '" + type + "' is listed twice");
+                                           options.look.lines.push_back(type);
+                                       }
+                                   })));
+    addLineTypeFlags(flags);
+    Flag supersample = styleFlag(flag(
+        {"--supersample"}, "S", S::Lines,
+        "find the G-buffer, mesh-edge and object-space lines at S x the size (1 to 8,\n"
+        "default 1) and area-downsample only the final line images: smoother, better-placed\n"
+        "lines, S^2 the work. Outline and silhouette are drawn by GL at the output size.",
+        [](const std::string& value, RenderOptions& options) {
+            options.look.supersample = parseWholeNumber("--supersample", value, 1, 8);
+        }));
+    supersample.noEffect = onlyWithLineTypes("--supersample", lineTypesUsing(nullptr));
+    flags.push_back(supersample);
+    flags.push_back(styleFlag(flag(
+        {"--gbuffer-precision"}, "P", S::Lines,
+        "float (default) | half: store the G-buffer's normal, view, w, n.v and radial fields as\n"
+        "16-bit floats (depth and material ids stay 32-bit). Half the memory; the suggestive contours get\n"
+        "noisy (docs/accuracy.md measures it). Also applies to --request 'gbuffer.*'",
+        [](const std::string& value, RenderOptions& options) {
+            if (value == "float")
+                options.look.gbufferPrecision = GBufferPrecision::Float32;
+            else if (value == "half")
+                options.look.gbufferPrecision = GBufferPrecision::Float16;
+            else
+                throw UsageError("--gbuffer-precision: expected float or half, got '" + value + "'");
+        })));
+    flags.push_back(helpOnly(S::Lines, "", "Outline and silhouette draw nothing when the eye is inside the model (they would flood the picture)."));
+
+    // Batch
+    flags.push_back(helpOnly(S::Batch, "MODEL...",
+                             "several models render one after the other; every output path must then hold {name}\n"
+                             "(the model's file name without extension) or {index} (its list position from 1,\n"
+                             "zero-padded), e.g. -o 'out/{name}.png' --stats 'out/{name}.json'"));
+    flags.push_back(flag({"--list"}, "FILE", S::Batch,
+                         "more models, one path per line (blank lines and # comments skipped; relative paths\n"
+                         "from the current folder); '-' reads standard input",
+                         [](const std::string& value, RenderOptions& options) { options.listPath = value; }));
+    flags.push_back(flag({"--shard"}, "K/N", S::Batch,
+                         "render only the models at list positions p (from 0) with p mod N = K, 0 <= K < N: one\n"
+                         "task of an array job (Slurm: --shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT)",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.shard = parseShard("--shard", value);
+                         }));
+    flags.push_back(helpOnly(S::Batch, "",
+                             "Each model gets a progress line. A model that cannot be read is reported and the others go on; the run then\n"
+                             "ends with exit 3. Any other error stops the batch; models already done keep their files."));
+
+    // System
+    flags.push_back(flag({"--egl-platform"}, "P", S::System,
+                         "auto | device | surfaceless (default auto: device first, then surfaceless)",
+                         [](const std::string& value, RenderOptions& options) {
+                             if (value != "auto" && value != "device" && value != "surfaceless")
+                                 throw UsageError("--egl-platform: '" + value +
+                                                  "' is not one of auto, device, surfaceless");
+                             options.eglPlatform = value;
+                         }));
+    flags.push_back(flag(
+        {"--memory-limit"}, "MIB", S::System,
+        "the most memory the process may take for one still, 64 and up (default: half this\n"
+        "machine's memory, at least 1024). Checked before allocating: the model load from the\n"
+        "file's size and declared counts (exit 3), then the whole run's peak from the plan (the\n"
+        "process, the scene, every buffer at --size and --supersample, read-backs, encoding; exit\n"
+        "2), naming the flags that need the memory. --stats reports the estimate\n"
+        "(estimated_peak_mib) and the measured peak (peak_rss_mib); docs/batch.md sizes a task",
+        [](const std::string& value, RenderOptions& options) {
+            options.memoryLimitBytes = std::size_t(parseWholeNumber("--memory-limit", value, 64, kMaxMemoryLimitMib))
+                                       << 20;
+        }));
+    return flags;
+}
+
+const char* sectionTitle(HelpSection section) {
+    switch (section) {
+    case HelpSection::Output: return "Output";
+    case HelpSection::Camera:
+        return "Camera (right-handed world, OpenGL lookAt/perspective; default: the glTF camera, else auto-framed)";
+    case HelpSection::Look: return "Look";
+    case HelpSection::Lines: return "Lines (any subset; only the passes the listed types need run: see --stats \"culled\")";
+    case HelpSection::Batch: return "Batch (several models in one process: one GL context, each shader program compiled once)";
+    case HelpSection::System: return "System";
+    }
+    return "";
+}
+
+} // namespace
+
+const std::vector<Flag>& renderFlags() {
+    static const std::vector<Flag> kFlags = makeFlags();
+    return kFlags;
+}
+
+const Flag* findFlag(const std::string& name) {
+    for (const Flag& entry : renderFlags())
+        if (std::find(entry.names.begin(), entry.names.end(), name) != entry.names.end()) return &entry;
+    return nullptr;
+}
+
+/** `line` broken at spaces so that with `indent` it fits kHelpWidth; continuation lines get `continuation` more
+ *  spaces (list items hang under their text). */
+void appendWrapped(std::string& text, const std::string& line, std::size_t indent, std::size_t continuation) {
+    constexpr std::size_t kHelpWidth = 118;
+    std::string rest = line;
+    std::size_t lineIndent = indent;
+    while (lineIndent + rest.size() > kHelpWidth) {
+        std::size_t cut = rest.rfind(' ', kHelpWidth - lineIndent);
+        if (cut == std::string::npos || cut == 0) break;
+        text += std::string(lineIndent, ' ') + rest.substr(0, cut) + "\n";
+        rest = rest.substr(cut + 1);
+        lineIndent = indent + continuation;
+    }
+    text += std::string(lineIndent, ' ') + rest + "\n";
+}
+
+std::string renderFlagsHelp() {
+    constexpr std::size_t kHelpColumn = 25;
+    std::string text;
+    for (HelpSection section : {HelpSection::Output, HelpSection::Camera, HelpSection::Look, HelpSection::Lines,
+                                HelpSection::Batch, HelpSection::System}) {
+        text += std::string("\n") + sectionTitle(section) + "\n";
+        for (const Flag& entry : renderFlags()) {
+            if (entry.section != section || entry.help.empty()) continue;
+            std::string label = entry.helpLabel;
+            if (label.empty() && !entry.names.empty()) {
+                for (const std::string& name : entry.names) label += (label.empty() ? "" : ", ") + name;
+                if (!entry.valueName.empty()) label += " " + entry.valueName;
+            }
+            const std::vector<std::string> lines = splitList(entry.help, '\n');
+            if (label.empty()) { // a note: the section's own words, two spaces in
+                for (const std::string& line : lines) appendWrapped(text, line, 2, 0);
+                continue;
+            }
+            std::string first = "  " + label;
+            if (first.size() + 1 > kHelpColumn) {
+                text += first + "\n";
+                first.clear();
+            }
+            for (std::size_t i = 0; i < lines.size(); ++i) {
+                // List items ("  outline: ...") hang their continuation lines under their text.
+                const bool item = lines[i].rfind("  ", 0) == 0;
+                std::string wrapped;
+                appendWrapped(wrapped, lines[i], kHelpColumn, item ? 5 : 0);
+                if (i == 0 && !first.empty()) wrapped.replace(0, first.size(), first);
+                text += wrapped;
+            }
+        }
+    }
+    return text;
+}
+
+} // namespace inkgraph

@@ -1,0 +1,40 @@
+#pragma once
+/** @file The flags of `inkgraph render`, declared once each: names, value, help section and text, whether a style
+ *  file may set it, how its value is checked and stored, and when it has no effect with the rest of the command line.
+ *  Parsing (app/Options.cpp), `--help`, the style files' setting names (app/StyleFile.h), the range checks and the
+ *  "has no effect" refusals are all generated from this table. The line types' width, colour and parameter flags
+ *  come from the line-type registry (passes/lines/LineTypes.h), the shading models' from their trait table
+ *  (passes/shade/ShadingModel.h). */
+
+#include "app/Options.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+
+enum class HelpSection { Output, Camera, Look, Lines, Batch, System };
+
+struct Flag {
+    std::vector<std::string> names; ///< "--size", or "-o" and "--output"; empty for a help-only entry
+    std::string valueName;          ///< "WxH"; empty: the flag takes no value
+    HelpSection section = HelpSection::Output;
+    std::string help;               ///< --help's text; '\n' starts a new line; empty: not in --help
+    std::string helpLabel;          ///< --help's left column when not "<names> <valueName>" ("--TYPE-width PX")
+    bool inStyle = false;           ///< a style file may set it, as its long name without the dashes
+    bool pathValue = false;         ///< its value is a file: in a style file, relative to the style file
+    /** Checks `value` and stores it; throws UsageError naming the flag. Null for help-only entries. */
+    std::function<void(const std::string& value, RenderOptions& options)> apply;
+    /** After parsing, when given: the refusal if the flag changes nothing with these options, else "". */
+    std::function<std::string(const RenderOptions& options)> noEffect;
+};
+
+/** Every flag of `inkgraph render`, in --help's order within each section. */
+const std::vector<Flag>& renderFlags();
+/** The flag named `name` ("--size", "-o"), or null. */
+const Flag* findFlag(const std::string& name);
+/** The text of `inkgraph render --help`. */
+std::string renderFlagsHelp();
+
+} // namespace inkgraph

@@ -1,0 +1,62 @@
+#include "app/Stats.h"
+
+#include "app/MemoryBudget.h"
+#include "app/StillOutputs.h"
+#include "passes/orientation/SceneOrientation.h"
+
+namespace inkgraph {
+
+std::string statsText(const StatsContext& context, const StillRenderer& renderer, const PreparedStill& still,
+                      const StillResult& result) {
+    using Json = nlohmann::ordered_json;
+    const RenderOptions& options = context.options;
+    const Scene& scene = still.scene;
+    const Camera& camera = still.camera;
+    Json culled = Json::array();
+    for (const CulledPass& pass : still.plan.culled) culled.push_back({{"name", pass.name}, {"reason", pass.reason}});
+    Json stats;
+    stats["model"] = still.request.modelPath;
+    stats["scene"] = {{"format", scene.report.format},
+                      {"meshes", scene.meshes.size()},
+                      {"triangles", scene.triangleCount()},
+                      {"vertices", scene.vertexCount()},
+                      {"triangles_read", scene.report.trianglesRead},
+                      {"degenerate_dropped", scene.report.degenerateDropped},
+                      {"vertices_before_weld", scene.report.verticesBeforeWeld},
+                      {"normals_computed", scene.report.normalsComputed}};
+    stats["size"] = {options.width, options.height};
+    stats["camera_source"] = camera.source;
+    stats["clip"] = {{"near", camera.zNear},
+                     {"far", camera.zFar},
+                     {"far_over_near", camera.zFar / camera.zNear},
+                     {"source", camera.clipSource},
+                     {"depth", "reversed-z float32"}};
+    if (context.batch) stats["batch"] = {{"position", context.batch->position + 1}, {"list_length", context.batch->listLength}};
+    if (const HeadlessContext* gl = renderer.context())
+        stats["gl"] = {{"platform", gl->platform()},
+                       {"renderer", gl->renderer()},
+                       {"version", gl->version()},
+                       {"vendor", gl->vendor()}};
+    stats["load_ms"] = still.loadMilliseconds;
+    stats["context_ms"] = result.contextMilliseconds;
+    stats["context_reused"] = result.contextReused;
+    // Programs this still compiled, and those it took from an earlier still of the process.
+    stats["programs_compiled"] = result.programsCompiled;
+    stats["programs_reused"] = result.programsReused;
+    stats["look"] = describeLook(still, options.stylePath);
+    if (traitsOf(still.request.look.shading).faceOrientation)
+        stats["face_orientation"] = still.gpuScene->orientation()->describe();
+    stats["passes"] = describeTimings(result.timings);
+    stats["post_stage"] = still.graph.describePostStage(result.timings);
+    stats["culled"] = culled;
+    stats["write_ms"] = context.writeMilliseconds;
+    stats["textures_created"] = result.pool->createdCount();
+    stats["textures_reused"] = result.pool->reusedCount();
+    stats["estimated_peak_mib"] = double(context.estimatedPeakBytes) / (1 << 20);
+    // Measured so far (the outputs above are encoded): what the estimate bounds, to compare.
+    stats["peak_rss_mib"] = double(peakResidentBytes()) / (1 << 20);
+    stats["total_ms"] = context.totalMilliseconds;
+    return jsonText(stats);
+}
+
+} // namespace inkgraph

@@ -1,0 +1,182 @@
+#include "app/StillOutputs.h"
+
+#include "postfx/ContactSheet.h"
+#include "postfx/SvgLines.h"
+
+#include <filesystem>
+#include <map>
+#include <set>
+
+namespace inkgraph {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json matrixRows(const glm::dmat4& matrix) {
+    Json rows = Json::array();
+    for (int row = 0; row < 4; ++row) {
+        Json values = Json::array();
+        for (int col = 0; col < 4; ++col) values.push_back(matrix[col][row]); // glm is column-major
+        rows.push_back(values);
+    }
+    return rows;
+}
+
+Json vectorJson(const glm::dvec3& value) { return Json::array({value.x, value.y, value.z}); }
+
+/** How the contact sheet shows a buffer: by the field it is (the G-buffer's), else by its format. */
+TileContent tileContentOf(const std::string& resource, Format format, const StillGraph& graph) {
+    static const std::map<std::string, TileContent> kGBufferFields = {
+        {"gbuffer.normal", TileContent::UnitVector},   {"gbuffer.view", TileContent::UnitVector},
+        {"gbuffer.wVec", TileContent::UnitVector},     {"gbuffer.nDotV", TileContent::SignedScalar},
+        {"gbuffer.depth", TileContent::Depth},         {"gbuffer.coverage", TileContent::Mask},
+        {"gbuffer.baseColor", TileContent::Color},     {"gbuffer.radial", TileContent::Data},
+    };
+    if (auto field = kGBufferFields.find(resource); field != kGBufferFields.end()) return field->second;
+    if (resource == graph.finalResource || resource == graph.shadingResource) return TileContent::Color;
+    if (isFloatFormat(format)) return TileContent::Data;
+    // The remaining 8-bit one-channel buffers are line layers and mesh-edge skeletons: ink on paper.
+    if (format == Format::R8) return TileContent::Lines;
+    return TileContent::Color;
+}
+
+std::string lookSummary(const Look& look) {
+    std::string lines;
+    for (const std::string& type : look.lines) lines += (lines.empty() ? "" : ",") + type;
+    return "shading " + std::string(traitsOf(look.shading).name) + ", lines " + (lines.empty() ? "none" : lines);
+}
+
+std::string modelFileName(const PreparedStill& still) {
+    return std::filesystem::path(still.request.modelPath).filename().string();
+}
+
+/** --contact-sheet: every buffer the plan computed (the executor kept them all), in the plan's order, so the
+ *  pipeline reads left to right, top to bottom. */
+cv::Mat contactSheetOf(const PreparedStill& still, ResourceStore& store) {
+    std::vector<ContactTile> tiles;
+    for (const PlannedResource& resource : still.plan.resources) {
+        if (!store.contains(resource.name)) continue;
+        const cv::Mat& image = store.image(resource.name);
+        tiles.push_back({resource.name, describeImage(image) + " by " + resource.writer, image,
+                         tileContentOf(resource.name, resource.desc.format, still.graph)});
+    }
+    ContactSheetLayout layout;
+    const CameraRequest& camera = still.request.camera;
+    layout.title = "inkgraph: '" + modelFileName(still) + "' " + std::to_string(camera.width) + "x" +
+                   std::to_string(camera.height) + ", " + lookSummary(still.request.look);
+    return composeContactSheet(tiles, layout);
+}
+
+/** --svg: each line type's lines traced into simplified polylines (StillGraph::svgLayers()). */
+std::string svgOf(const RenderOptions& options, const PreparedStill& still, ResourceStore& store) {
+    SvgDocumentOptions document;
+    document.title = "inkgraph: '" + modelFileName(still) + "', " + lookSummary(still.request.look);
+    return svgDocument(options.width, options.height, still.graph.svgLayers(store, options.svgTolerance), document);
+}
+
+/** --dump: every buffer the plan computed, then manifest.json. */
+void stageDump(const RenderOptions& options, const PreparedStill& still, StillResult& result, OutputSet& outputs) {
+    ResourceStore& store = result.store();
+    Json files = Json::array();
+    std::set<std::string> usedNames;
+    for (const PlannedResource& resource : still.plan.resources) {
+        if (!store.contains(resource.name)) continue;
+        const bool isFloat = isFloatFormat(resource.desc.format);
+        const std::string fileName = dumpFileName(resource.name, isFloat, still.graph.shadingResource);
+        if (!usedNames.insert(fileName).second)
+            throw std::logic_error("stageDump(): two resources dump to '" + fileName + "'");
+        outputs.stageDumpImage(fileName, store.image(resource.name));
+        // Written buffers are not needed again: freeing them keeps the dump's peak memory to one copy.
+        if (resource.name != still.graph.finalResource) store.release(resource.name);
+        files.push_back({{"file", fileName},
+                         {"resource", resource.name},
+                         {"pass", resource.writer},
+                         {"format", std::string(formatName(resource.desc.format))},
+                         {"requested", resource.requested}});
+    }
+    Json manifest;
+    manifest["inkgraph"] = INKGRAPH_VERSION;
+    manifest["model"] = still.request.modelPath;
+    manifest["size"] = {options.width, options.height};
+    manifest["conventions"] = "right-handed world; OpenGL lookAt/perspective; row 0 at the top; pixel centres at "
+                              "(col+0.5, row+0.5); matrices as rows; 8-bit images sRGB, float images linear data";
+    manifest["camera"] = describeCamera(still.camera);
+    manifest["toward_light_world"] = vectorJson(still.frame.towardLightWorld);
+    manifest["look"] = describeLook(still, options.stylePath);
+    manifest["files"] = files;
+    manifest["passes"] = describeTimings(result.timings);
+    outputs.stageDumpManifest(jsonText(manifest));
+}
+
+} // namespace
+
+std::string jsonText(const Json& json) { return json.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
+
+std::string dumpFileName(const std::string& resource, bool isFloat, const std::string& shadingResource) {
+    static const std::map<std::string, std::string> kFixedNames = {
+        {"gbuffer.normal", "normal.exr"},       {"gbuffer.view", "view.exr"},   {"gbuffer.wVec", "w.exr"},
+        {"gbuffer.nDotV", "ndotv.exr"},         {"gbuffer.depth", "depth.exr"}, {"gbuffer.coverage", "coverage.png"},
+        {"gbuffer.baseColor", "basecolor.png"}, {"gbuffer.radial", "radial.exr"}, {"gbuffer.materialId", "materialid.exr"},
+        {"composite.final", "final.png"},
+    };
+    if (auto fixed = kFixedNames.find(resource); fixed != kFixedNames.end()) return fixed->second;
+    if (!shadingResource.empty() && resource == shadingResource) return "shading.png";
+    const ResourceName name = ResourceName::split(resource);
+    if (name.field == "lines") return "lines-" + name.pass + ".png";
+    return name.pass + "-" + name.field + (isFloat ? ".exr" : ".png");
+}
+
+Json describeCamera(const Camera& camera) {
+    return {{"source", camera.source},
+            {"eye", vectorJson(camera.worldEye())},
+            {"target", vectorJson(camera.worldTarget())},
+            {"up", vectorJson(camera.up)},
+            {"fov_y_degrees", camera.fovYDegrees},
+            {"near", camera.zNear},
+            {"far", camera.zFar},
+            {"clip", camera.clipSource},
+            {"depth", "reversed-z float32: window depth n (f - d) / ((f - n) d) at view depth d, 1 at near, 0 at far; "
+                      "projection_matrix is OpenGL's standard one"},
+            {"focal_pixels", camera.focalPixels()},
+            {"view_matrix", matrixRows(camera.worldViewMatrix())},
+            {"projection_matrix", matrixRows(camera.projectionMatrix())}};
+}
+
+Json describeLook(const PreparedStill& still, const std::string& stylePath) {
+    const Look& look = still.request.look;
+    const StillGraph& graph = still.graph;
+    const ShadingModelTraits& shading = traitsOf(look.shading);
+    Json json;
+    if (!stylePath.empty()) json["style"] = stylePath;
+    json["shading"] = shading.name;
+    if (shading.specular) json["shininess"] = look.shininess;
+    if (!graph.shadeMapSource.empty()) json["shademap"] = graph.shadeMapSource;
+    if (!graph.meshShadeMapSources.empty()) {
+        Json meshMaps = Json::array();
+        for (const auto& [mesh, source] : graph.meshShadeMapSources)
+            meshMaps.push_back({{"mesh", mesh}, {"shademap", source}});
+        json["mesh_shademaps"] = meshMaps;
+    }
+    json["gbuffer_precision"] = look.gbufferPrecision == GBufferPrecision::Float16 ? "half" : "float";
+    json["lines"] = graph.describeLines();
+    return json;
+}
+
+Json describeTimings(const std::vector<PassTiming>& timings) {
+    Json passTimes = Json::array();
+    for (const PassTiming& timing : timings)
+        passTimes.push_back(
+            {{"name", timing.pass}, {"ms", timing.milliseconds}, {"prepare_ms", timing.prepareMilliseconds}});
+    return passTimes;
+}
+
+void stageStillOutputs(const RenderOptions& options, const PreparedStill& still, StillResult& result,
+                       OutputSet& outputs) {
+    ResourceStore& store = result.store();
+    if (!options.outputPath.empty()) outputs.stageFinalImage(store.image(still.graph.finalResource));
+    if (!options.contactSheetPath.empty()) outputs.stageContactSheet(contactSheetOf(still, store));
+    if (!options.svgPath.empty()) outputs.stageSvg(svgOf(options, still, store));
+    if (!options.dumpDirectory.empty()) stageDump(options, still, result, outputs);
+}
+
+} // namespace inkgraph

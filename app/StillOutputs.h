@@ -1,0 +1,32 @@
+#pragma once
+/** @file What one still writes besides its stats: the final picture, --contact-sheet, --svg, and --dump with its
+ *  manifest, each staged into the run's OutputSet (app/OutputFiles.h), which puts them all in place or none. */
+
+#include "app/OutputFiles.h"
+#include "app/StillRenderer.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace inkgraph {
+
+/** The file name --dump gives a resource: "gbuffer.normal" -> "normal.exr", the shading colour -> "shading.png",
+ *  "composite.final" -> "final.png", "<type>.lines" -> "lines-<type>.png"; others "<pass>-<field>.exr|png". */
+std::string dumpFileName(const std::string& resource, bool isFloat, const std::string& shadingResource);
+
+/** The camera for --stats and manifest.json: its source, world eye and target, matrices and depth convention. */
+nlohmann::ordered_json describeCamera(const Camera& camera);
+/** The look for --stats and manifest.json: style file, shading and its map, precision, and each drawn line type. */
+nlohmann::ordered_json describeLook(const PreparedStill& still, const std::string& stylePath);
+/** The passes' timings for --stats and manifest.json. */
+nlohmann::ordered_json describeTimings(const std::vector<PassTiming>& timings);
+
+/** Stages the outputs `options` asks for (-o, --contact-sheet, --svg, --dump) from a still that executed. */
+void stageStillOutputs(const RenderOptions& options, const PreparedStill& still, StillResult& result,
+                       OutputSet& outputs);
+
+/** JSON text; a path that is not valid UTF-8 gets U+FFFD in place of the bad bytes rather than failing the run. */
+std::string jsonText(const nlohmann::ordered_json& json);
+
+} // namespace inkgraph

@@ -1,0 +1,189 @@
+#include "app/StillRenderer.h"
+
+#include "app/ImageFiles.h"
+#include "app/Options.h"
+#include "app/SceneShadeMaps.h"
+#include "graph/GraphCompiler.h"
+#include "scene/Scene.h"
+
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+
+namespace inkgraph {
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/** Default key light: from the upper left, behind the camera, fixed in view space so every auto-framed still is lit
+ *  the same way. */
+glm::dvec3 defaultLight(const Camera& camera) {
+    const glm::dvec3 towardLightView = glm::normalize(glm::dvec3(-0.4, 0.5, 0.77));
+    return glm::normalize(glm::transpose(glm::dmat3(camera.viewMatrix())) * towardLightView);
+}
+
+/** "gbuffer.*" -> every field the pass "gbuffer" declares; other names pass through for compile() to check. Throws
+ *  UsageError for a wildcard on a pass the graph does not have. */
+std::vector<std::string> expandWildcards(const std::vector<std::string>& requests, const StillGraph& graph) {
+    std::vector<std::string> expanded;
+    for (const std::string& request : requests) {
+        const ResourceName name = ResourceName::split(request);
+        if (name.field != "*") {
+            expanded.push_back(request);
+            continue;
+        }
+        const Pass* pass = graph.findPass(name.pass);
+        if (pass == nullptr) throw UsageError("--request: no pass named '" + name.pass + "' in this render graph");
+        PassBuilder builder{name.pass};
+        pass->declare(builder);
+        for (const auto& write : builder.writes()) expanded.push_back(name.pass + "." + write.field);
+    }
+    return expanded;
+}
+
+/** Checks the frame against what the driver can allocate. */
+void checkDriverLimits(int width, int height) {
+    GLint maxTextureSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
+    GLint maxViewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+    const int limit = std::min(maxTextureSize, std::min(maxViewport[0], maxViewport[1]));
+    if (width > limit || height > limit)
+        throw UsageError("--size " + std::to_string(width) + "x" + std::to_string(height) +
+                         " exceeds this driver's largest render target side, " + std::to_string(limit));
+}
+
+} // namespace
+
+ShadeMap readShadeMapFile(const std::string& path, bool oneDimensional) {
+    cv::Mat image;
+    try {
+        // PNG only, by its own reader (fuzz_shademap found OpenEXR allocating 1.6 GB for a 600-byte header), without
+        // ancillary chunks (and libpng 1.9 GB for a 342-byte file's tEXt), and the header's size is judged before
+        // the pixels are allocated: a map is at most 4096 a side, its file at most 64 MiB (4096² RGBA is 64 MiB raw).
+        image = readPngImage(path, std::size_t(kMaxShadeMapSide) * kMaxShadeMapSide, std::size_t(64) << 20);
+    } catch (const FileError& error) {
+        throw InputFileError(std::string("--shademap: ") + error.what());
+    }
+    if (image.depth() != CV_8U)
+        throw InputFileError("--shademap: '" + path + "' stores 16-bit pixels; a shade map is an 8-bit PNG");
+    try {
+        return shadeMapFromImage(image, path, oneDimensional);
+    } catch (const std::invalid_argument& error) {
+        throw InputFileError(std::string("--shademap: ") + error.what());
+    }
+}
+
+FrameParams frameParamsOf(const Look& look, const Scene& scene, const Camera& camera, const BoundingSphere& sphere) {
+    FrameParams frame;
+    frame.camera = camera;
+    frame.worldOrigin = sphere.center;
+    frame.towardLightWorld = look.towardLight ? *look.towardLight
+                             : scene.light    ? scene.light->towardLight
+                                              : defaultLight(camera);
+    frame.background = glm::vec4(glm::vec3(look.background), 1.0f);
+    // A point (or empty) model has no radius; 1 keeps the radial field finite there.
+    frame.radialLengthUnit = sphere.radius > 0.0 ? sphere.radius : 1.0;
+    return frame;
+}
+
+StillRenderer::StillRenderer() { mShaders.keepPrograms(true); }
+
+StillRenderer::~StillRenderer() = default;
+
+std::unique_ptr<PreparedStill> StillRenderer::prepare(StillRequest request, const StillLog& log) {
+    auto still = std::make_unique<PreparedStill>();
+    still->request = std::move(request);
+    const StillRequest& req = still->request;
+    const Look& look = req.look;
+    const ShadingModelTraits& shading = traitsOf(look.shading);
+    std::optional<ShadeMap> shadeMap;
+    if (!look.shadeMapPath.empty()) shadeMap = readShadeMapFile(look.shadeMapPath, shading.oneDimensionalMap);
+
+    const auto loadStart = std::chrono::steady_clock::now();
+    LoadOptions loadOptions;
+    loadOptions.memoryLimitBytes = req.memoryLimitBytes;
+    still->scene = loadScene(req.modelPath, loadOptions);
+    still->loadMilliseconds = millisecondsSince(loadStart);
+    const Scene& scene = still->scene;
+    const std::string prefix = log.talks ? "" : "'" + req.modelPath + "': ";
+    for (const std::string& warning : scene.report.warnings) log.log << "inkgraph: warning: " << prefix << warning << "\n";
+    if (log.talks && !log.quiet) {
+        log.log << std::fixed << std::setprecision(1) << "inkgraph: loaded '" << req.modelPath
+                << "': " << scene.triangleCount() << " triangles, " << scene.vertexCount() << " vertices ("
+                << scene.report.degenerateDropped << " degenerate dropped) in " << still->loadMilliseconds << " ms\n";
+    }
+
+    // The maps the model's materials name (glTF extras), each file read once; exit 3 like --shademap.
+    std::vector<std::string> shadeMapWarnings;
+    std::vector<std::optional<ShadeMap>> meshShadeMaps = readSceneShadeMaps(scene, look.shading, &shadeMapWarnings);
+    for (const std::string& warning : shadeMapWarnings) log.log << "inkgraph: warning: " << prefix << warning << "\n";
+
+    still->sphere = computeBoundingSphere(scene);
+    try {
+        still->camera = resolveCamera(req.camera, scene);
+    } catch (const std::invalid_argument& error) {
+        throw UsageError(error.what()); // the loader has validated the file's camera: what is left is the flags
+    }
+    still->frame = frameParamsOf(look, scene, still->camera, still->sphere);
+    still->gpuScene = std::make_unique<GpuScene>(scene, still->sphere.center);
+    StillGraphSetup setup{look, mShaders, scene, still->sphere, *still->gpuScene, still->frame, std::move(shadeMap)};
+    setup.meshShadeMaps = std::move(meshShadeMaps);
+    still->graph = buildStillGraph(setup);
+
+    std::vector<std::string> requested = {still->graph.finalResource};
+    // --svg traces the GL-drawn layers from their masks, so those must outlive the composite.
+    if (req.keepSvgInputs)
+        for (const std::string& input : still->graph.svgInputs()) requested.push_back(input);
+    for (const std::string& extra : expandWildcards(req.extraOutputs, still->graph))
+        if (std::find(requested.begin(), requested.end(), extra) == requested.end()) requested.push_back(extra);
+    try {
+        still->plan = compile(still->graph.view(), requested);
+    } catch (const GraphError& error) {
+        // The registered passes are consistent (tests/graph, tests/app); a problem here comes from --request.
+        throw UsageError(std::string("--request: ") + error.what());
+    }
+    return still;
+}
+
+StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
+    StillResult result;
+    // One context for every still of the process: the first that renders makes it (the platform is the same for all
+    // of them), later ones find it current with the programs the earlier ones compiled.
+    result.contextReused = mContext.has_value();
+    if (!result.contextReused) {
+        HeadlessContextOptions contextOptions;
+        contextOptions.platform = still.request.eglPlatform;
+        const auto contextStart = std::chrono::steady_clock::now();
+        mContext.emplace(contextOptions);
+        result.contextMilliseconds = millisecondsSince(contextStart);
+        if (!log.quiet) log.log << "inkgraph: " << mContext->describe() << "\n";
+    }
+    const CameraRequest& camera = still.request.camera;
+    checkDriverLimits(camera.width, camera.height);
+    const std::size_t programsCompiledBefore = mShaders.compiledCount();
+    const std::size_t programsReusedBefore = mShaders.reusedCount();
+
+    result.pool = std::make_unique<TexturePool>();
+    result.executor = std::make_unique<GraphExecutor>(*result.pool);
+    ExecuteOptions executeOptions;
+    executeOptions.frameWidth = camera.width;
+    executeOptions.frameHeight = camera.height;
+    executeOptions.keepAllResources = still.request.keepEveryBuffer;
+    const std::string size = "--size " + std::to_string(camera.width) + "x" + std::to_string(camera.height);
+    try {
+        result.timings = result.executor->run(still.plan, still.graph.mutableView(), executeOptions);
+    } catch (const GlOutOfMemoryError& error) {
+        throw UsageError(size + ": the driver ran out of memory (" + error.what() + "); make the image smaller");
+    } catch (const OutOfMemoryError& error) {
+        throw UsageError(size + " with --supersample " + std::to_string(still.request.look.supersample) +
+                         ": out of memory (" + error.what() + "); make the image smaller, or give the process more memory");
+    }
+    result.programsCompiled = mShaders.compiledCount() - programsCompiledBefore;
+    result.programsReused = mShaders.reusedCount() - programsReusedBefore;
+    return result;
+}
+
+} // namespace inkgraph

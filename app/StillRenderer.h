@@ -1,0 +1,120 @@
+#pragma once
+/** @file The renderer of one still, as a library: a model path, a Look and a camera request in, the scene, the plan
+ *  and every computed buffer out. No command line and no files written: app/Render.h turns flags into a
+ *  StillRequest and the result into files (app/StillOutputs.h, app/Stats.h). One StillRenderer keeps one GL context
+ *  (made by the first still that executes) and one ShaderLibrary that keeps every program, so a batch makes the
+ *  context once and compiles each program once. */
+
+#include "gl/GraphExecutor.h"
+#include "gl/HeadlessContext.h"
+#include "gl/ShaderLibrary.h"
+#include "gl/TexturePool.h"
+#include "graph/Plan.h"
+#include "passes/FrameParams.h"
+#include "passes/GpuScene.h"
+#include "passes/Look.h"
+#include "passes/StillGraph.h"
+#include "passes/shade/ShadeMap.h"
+#include "scene/Camera.h"
+#include "scene/Scene.h"
+
+#include <cstddef>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+
+/** An input file other than the model (--shademap, a material's map) is missing or unusable; exit code 3 like a bad
+ *  model. The message names the flag and the file. */
+class InputFileError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/** One buffer must stay under 2 GiB: GL's byte counts are 32-bit (llvmpipe refuses larger RGBA32F targets). */
+inline constexpr std::size_t kMaxTextureBytes = std::size_t(2) << 30;
+
+/** Reads and checks a shade map file: 8-bit, 1 to 4 channels, at most 4096 a side (judged from the header before
+ *  the pixels are read), one row when `oneDimensional`. Throws InputFileError naming --shademap and the file. */
+ShadeMap readShadeMapFile(const std::string& path, bool oneDimensional);
+
+/** The per-still parameters of `camera` for the look (its light, else the file's light, else the default key light;
+ *  its background) and the model's bounding sphere. */
+FrameParams frameParamsOf(const Look& look, const Scene& scene, const Camera& camera, const BoundingSphere& sphere);
+
+/** What to render. */
+struct StillRequest {
+    std::string modelPath;
+    Look look;
+    CameraRequest camera;                  ///< what the caller fixes; resolveCamera() fills the rest from the file
+    std::vector<std::string> extraOutputs; ///< more resources to compute and keep ("gbuffer.*" expands)
+    bool keepEveryBuffer = false;          ///< keep every computed buffer (dumps, contact sheets)
+    bool keepSvgInputs = false;            ///< keep what StillGraph::svgLayers() reads
+    std::size_t memoryLimitBytes = std::size_t(1) << 30; ///< bounds the model load (scene/Loader.h)
+    EglPlatform eglPlatform = EglPlatform::Any;
+};
+
+/** Where a still's progress lines go. */
+struct StillLog {
+    std::ostream& log;
+    bool talks = true;  ///< per-still lines ("loaded ..."); a batch prints its own line per still instead
+    bool quiet = false; ///< nothing but warnings
+};
+
+/** A still loaded, framed and planned; nothing executed, no GL touched. Fixed in memory: the graph points at it. */
+struct PreparedStill {
+    StillRequest request;
+    Scene scene;
+    double loadMilliseconds = 0.0;
+    BoundingSphere sphere;
+    Camera camera;
+    FrameParams frame;
+    std::unique_ptr<GpuScene> gpuScene;
+    StillGraph graph;
+    Plan plan;
+
+    PreparedStill() = default;
+    PreparedStill(const PreparedStill&) = delete;
+    PreparedStill& operator=(const PreparedStill&) = delete;
+};
+
+/** What executing a plan did. The store holds the requested buffers (every computed one with keepEveryBuffer). */
+struct StillResult {
+    std::unique_ptr<TexturePool> pool;
+    std::unique_ptr<GraphExecutor> executor;
+    std::vector<PassTiming> timings;
+    double contextMilliseconds = 0.0; ///< making the context; 0 when reused
+    bool contextReused = false;
+    std::size_t programsCompiled = 0; ///< by this still
+    std::size_t programsReused = 0;   ///< taken from an earlier still of the process
+    ResourceStore& store() { return executor->store(); }
+};
+
+class StillRenderer {
+public:
+    StillRenderer();
+    ~StillRenderer();
+    StillRenderer(const StillRenderer&) = delete;
+    StillRenderer& operator=(const StillRenderer&) = delete;
+
+    /** Reads the shade maps, loads the model, resolves the camera, builds the graph and compiles the plan for the
+     *  final picture plus what the request keeps. Throws SceneError, InputFileError, and UsageError for a request
+     *  the scene cannot satisfy (a camera, a --request name). */
+    std::unique_ptr<PreparedStill> prepare(StillRequest request, const StillLog& log);
+    /** Makes or reuses the context, checks the frame against the driver, runs the plan. Throws HeadlessContextError,
+     *  UsageError (the driver's limits, out of memory), GraphError. */
+    StillResult execute(PreparedStill& still, const StillLog& log);
+
+    /** The context, once a still has executed. */
+    const HeadlessContext* context() const { return mContext ? &*mContext : nullptr; }
+
+private:
+    std::optional<HeadlessContext> mContext; ///< declared before the programs, so they are deleted first
+    ShaderLibrary mShaders;
+};
+
+} // namespace inkgraph

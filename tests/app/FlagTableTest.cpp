@@ -1,0 +1,128 @@
+// The flag table and the registries it is generated from: every registered line type, line parameter and shading
+// model gets its flags, style names, help and refusals without code of its own in app/.
+#include "app/FlagTable.h"
+#include "app/Options.h"
+#include "app/StyleFile.h"
+#include "passes/lines/LineTypes.h"
+#include "passes/shade/ShadingModel.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+namespace inkgraph {
+namespace {
+
+std::string usageMessage(std::vector<std::string> arguments) {
+    try {
+        parseRenderOptions(arguments);
+    } catch (const UsageError& error) {
+        return error.what();
+    }
+    return "(no error)";
+}
+
+bool isStyleName(const std::string& name) {
+    const std::vector<std::string>& names = styleSettingNames();
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+TEST(LineTypeRegistry, NamesAreUniqueAndEveryTypeCanBuildAndDescribeItself) {
+    std::set<std::string> names;
+    for (const LineType& type : lineTypes()) {
+        EXPECT_TRUE(names.insert(type.name).second) << type.name << " registered twice";
+        EXPECT_TRUE(bool(type.build)) << type.name;
+        EXPECT_FALSE(type.help.empty()) << type.name;
+        EXPECT_EQ(findLineType(type.name), &type);
+    }
+    EXPECT_EQ(findLineType("no-such-type"), nullptr);
+    EXPECT_TRUE(names.count("material-boundary"));
+}
+
+TEST(LineTypeRegistry, ParametersAreListedOnceWithTheTypesThatUseThem) {
+    const std::vector<const LineParameter*> parameters = lineParameters();
+    std::set<std::string> names;
+    for (const LineParameter* parameter : parameters) EXPECT_TRUE(names.insert(parameter->name).second);
+    EXPECT_EQ(lineTypesUsing(&line_parameters::kCreaseAngle), (std::vector<std::string>{"normal-edge", "crease"}));
+    // --supersample applies to every type stroked on the CPU: all but the two GL-drawn ones.
+    const std::vector<std::string> supersampled = lineTypesUsing(nullptr);
+    EXPECT_EQ(supersampled.size(), lineTypes().size() - 2);
+    EXPECT_EQ(std::count(supersampled.begin(), supersampled.end(), "outline"), 0);
+    EXPECT_EQ(std::count(supersampled.begin(), supersampled.end(), "material-boundary"), 1);
+}
+
+TEST(FlagTable, EveryLineTypeHasItsFlagsStyleNamesAndHelp) {
+    const std::string help = renderHelp();
+    for (const LineType& type : lineTypes()) {
+        for (const char* property : {"-width", "-color"}) {
+            const std::string flag = "--" + type.name + property;
+            EXPECT_NE(findFlag(flag), nullptr) << flag;
+            EXPECT_TRUE(isStyleName(type.name + property)) << flag;
+        }
+        EXPECT_NE(help.find("  " + type.name + ": "), std::string::npos) << type.name << " is not in --help";
+        // A width flag without its type in --lines is refused, naming the type.
+        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--" + type.name + "-width", "3"})
+                      .find("'" + type.name + "' line type is not drawn"),
+                  std::string::npos)
+            << type.name;
+    }
+    for (const LineParameter* parameter : lineParameters()) {
+        EXPECT_NE(findFlag("--" + parameter->name), nullptr) << parameter->name;
+        EXPECT_TRUE(isStyleName(parameter->name)) << parameter->name;
+        EXPECT_NE(help.find("--" + parameter->name + " " + parameter->valueName), std::string::npos) << parameter->name;
+    }
+}
+
+TEST(FlagTable, ParametersAreRangeCheckedFromTheirDeclaration) {
+    for (const LineParameter* parameter : lineParameters()) {
+        if (parameter->isChoice()) {
+            EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", lineTypesUsing(parameter).front(),
+                                    "--" + parameter->name, "bogus"})
+                          .find("--" + parameter->name + ": expected"),
+                      std::string::npos);
+            continue;
+        }
+        // Just outside the lower bound (or on it, when open) is refused with the declared words.
+        const std::string low = parameter->lowOpen ? std::to_string(parameter->low) : std::to_string(parameter->low - 1);
+        const std::string message =
+            usageMessage({"m.obj", "-o", "x.png", "--lines", lineTypesUsing(parameter).front(), "--" + parameter->name, low});
+        EXPECT_NE(message.find(parameter->rangeText), std::string::npos) << parameter->name << ": " << message;
+    }
+}
+
+TEST(FlagTable, ShadingFlagsFollowTheTraitTable) {
+    // --shininess is refused for every model without the specular trait, with the models that take it named.
+    for (const ShadingModelTraits& model : shadingModels()) {
+        const std::string message =
+            usageMessage({"m.obj", "-o", "x.png", "--shading", model.name, "--shininess", "4"});
+        if (model.specular)
+            EXPECT_EQ(message, "(no error)") << model.name;
+        else
+            EXPECT_EQ(message, std::string("--shininess has no effect with --shading ") + model.name +
+                                   " (it applies to phong and comic)");
+        EXPECT_NE(renderHelp().find(model.name), std::string::npos);
+    }
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::shadeMap), "cel and comic");
+    EXPECT_EQ(findShadingModel("comic")->model, ShadingModel::Comic);
+    EXPECT_EQ(findShadingModel("toon"), nullptr);
+}
+
+TEST(FlagTable, HelpKeepsItsColumns) {
+    // Every help line fits 120 columns; flag descriptions start at column 25.
+    const std::string help = renderHelp();
+    std::size_t start = 0;
+    while (start < help.size()) {
+        const std::size_t end = help.find('\n', start);
+        const std::string line = help.substr(start, end - start);
+        EXPECT_LE(line.size(), 120u) << line;
+        start = end == std::string::npos ? help.size() : end + 1;
+    }
+    EXPECT_NE(help.find("\n  --size WxH" + std::string(13, ' ') + "image size"), std::string::npos);
+    EXPECT_NE(help.find("\n  -o, --output FILE" + std::string(6, ' ') + "the final picture"), std::string::npos);
+    // A label too long for the column puts its description on the next line, at the column.
+    EXPECT_NE(help.find("\n  --contact-sheet FILE.png\n" + std::string(25, ' ') + "every buffer"), std::string::npos);
+}
+
+} // namespace
+} // namespace inkgraph
