@@ -3,6 +3,7 @@
 // that every float intermediate is finite everywhere, that every file the manifest lists exists, and what the case
 // itself promises. Small images keep the suite fast on llvmpipe.
 #include "app/ImageFiles.h"
+#include "app/Cli.h"
 #include "app/Render.h"
 #include "scene/MeshOps.h"
 #include "scene/Procedural.h"
