@@ -91,12 +91,12 @@ INSTANTIATE_TEST_SUITE_P(
                             "--target", "0,0.1,0", "--fov", "35", "--light", "1,1,-0.5", "--shading", "lambert"}},
         // The teapot: open patches (back faces through holes), the auto-framed camera and the default light.
         GoldenCase{"teapot", {model("teapot_c3d.obj"), "--size", "128x128", "--shading", "lambert"}},
-        // The default look: seed 003's five cel bands, Lander's outline and the inflated hull (3 px, red).
+        // The default look: Qu, Chen & Zwicker's five cel bands, Lander's outline and the inflated hull (3 px, red).
         GoldenCase{"spot_cel_lines",
                    {model("spot_c3d.obj"), "--size", "160x120", "--eye", "2.4,1.0,-1.6", "--target", "0,0.1,0",
                     "--fov", "35", "--light", "1,1,-0.5", "--lines", "outline,silhouette", "--silhouette-width", "3",
                     "--silhouette-color", "1,0,0"}},
-        // Specular comic with seed 000's CPU marking (after-vertices, constant view vector, rule 1).
+        // Specular comic with Winnemöller & Bangay 2002's CPU marking (after-vertices, constant view vector, rule 1).
         GoldenCase{"teapot_comic_after_vertices",
                    {model("teapot_c3d.obj"), "--size", "128x128", "--shading", "comic", "--shininess", "16",
                     "--view-vector", "constant", "--face-orientation", "after-vertices", "--front-rule", "1",
