@@ -1,6 +1,7 @@
 #pragma once
 /** @file How accurately a line method finds its lines: predicted points or masks scored against ground truth
- *  (algorithms.md 6.3). Pure functions over cv::Mat and STL: no GL, no file I/O, inputs never mutated.
+ *  (the distance-tolerant measure of the BSDS boundary benchmark, Martin, Fowlkes & Malik 2004; docs/references.md).
+ *  Pure functions over cv::Mat and STL: no GL, no file I/O, inputs never mutated.
  *  Coordinates are those of LinePoint: x right, y down, pixel (col, row) has its centre at (col, row).
  *
  *  Definitions, for a tolerance k in pixels:

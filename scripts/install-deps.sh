@@ -8,6 +8,7 @@ packages=(
     libglm-dev libopencv-dev libtbb-dev libtinygltf-dev nlohmann-json3-dev
     libopenimageio-dev openimageio-tools
     libgtest-dev libgmock-dev libbenchmark-dev
+    clang-format
 )
 
 missing=()

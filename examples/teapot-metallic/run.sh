@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A metallic teapot: seed 000's specular comic shading with the bundled 2-D metallic shade map (stripes across the
+# A metallic teapot: Winnemöller & Bangay 2002's specular comic shading with the bundled 2-D metallic shade map (stripes across the
 # diffuse axis, a broad highlight), Lander's outline, and the teapot's open patch borders and creases.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)

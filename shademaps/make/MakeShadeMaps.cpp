@@ -51,7 +51,7 @@ double noiseThreshold(int column, int row) {
 
 const std::vector<MapSpec>& mapSpecs() {
     static const std::vector<MapSpec> kSpecs = {
-        // Lander's look with seed 000's addition: shadow and light tones, a hard white highlight.
+        // Lander's look with Winnemöller & Bangay 2002's addition: shadow and light tones, a hard white highlight.
         {"classic-two-tone.png", 128, 64,
          [](double s, double t, int, int) { return t > 0.5 && s > 0.3 ? grey(1.0) : grey(s > 0.3 ? 0.78 : 0.45); }},
         // Three diffuse bands and a highlight band.
@@ -81,8 +81,8 @@ const std::vector<MapSpec>& mapSpecs() {
              if (t > 0.5 && s > 0.35) return Color{1.0, 1.0, 1.0};
              return s > 0.35 ? Color{0.78, 0.92, 1.0} : Color{0.16, 0.36, 0.44};
          }},
-        // Near-stippling (seed 000 Figure 9d): black dots on white, denser where darker, by random thresholds on the
-        // tone; the highlight is clean paper. Wide, so the dots are small where n.l changes quickly.
+        // Near-stippling (Winnemöller & Bangay 2002, Figure 9d): black dots on white, denser where darker, by random
+        // thresholds on the tone; the highlight is clean paper. Wide, so the dots are small where n.l changes quickly.
         {"near-stippling.png", 1024, 64,
          [](double s, double t, int column, int row) {
              if (t > 0.5) return grey(1.0);
@@ -98,7 +98,8 @@ const std::vector<MapSpec>& mapSpecs() {
          }},
         // Noir: black shadows, white light, no highlight band (the specular axis changes nothing).
         {"noir.png", 128, 64, [](double s, double, int, int) { return grey(s > 0.25 ? 0.95 : 0.06); }},
-        // Soft diffuse with a banded highlight: the specular term alone is stylised (seed 000 Figure 6b/6c).
+        // Soft diffuse with a banded highlight: the specular term alone is stylised (Winnemöller & Bangay 2002,
+        // Figure 6b/6c).
         {"soft-highlight.png", 128, 64,
          [](double s, double t, int, int) {
              if (t > 0.7) return grey(1.0);

@@ -129,7 +129,7 @@ TorusPixelTruth torusPixelTruth(const Torus& torus, const SyntheticCamera& camer
 }
 
 TEST(SuggestiveContours, RadialDerivativeIsWSquaredTimesRadialCurvatureOnTorus) {
-    // D_w(n.v) = |w|^2 kappa_r with v = c - p unnormalised and w moved along J w in the image (algorithms.md 3, 4.1).
+    // D_w(n.v) = |w|^2 kappa_r with v = c - p unnormalised and w moved along J w in the image (DeCarlo et al. 2003).
     const Torus torus;
     const SyntheticCamera camera = torusCamera(512, 30.0, 5.0);
     const SyntheticGBuffer buffer = test::renderTorus(camera, glm::dvec3(0.0), torus.ring, torus.tube);
