@@ -1,4 +1,4 @@
-// CPU cost of seed 000's face-orientation methods (marking plus per-vertex lighting, as orientMesh() runs them) on
+// CPU cost of Winnemöller & Bangay's face-orientation methods (marking plus per-vertex lighting, as orientMesh() runs them) on
 // UV spheres of about 1k to 1M triangles: rule 3, constant view vector, eye at 5 radii. The exact per-face count is
 // there as the reference for one triangle pass. Derived data (face normals, betaMax, adjacency) is built once per
 // size outside the timing, as the paper does at load time; holes are not counted in the timed loop. `reuse:1` passes

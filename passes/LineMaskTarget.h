@@ -14,7 +14,7 @@ namespace inkgraph {
 
 /** Binds `framebuffer` with the pass's "lines" output and `depth` sized to it, sets the viewport and clears both.
  *  Returns false, with the framebuffer unbound, when `eye` is inside the model: the mask then stays empty, because
- *  back faces and the hull would flood the picture (docs/algorithms.md §7). */
+ *  back faces and the hull would flood the picture (docs/stability.md). */
 bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffer& depth, GpuScene& scene,
                    const glm::dvec3& eye);
 

@@ -16,7 +16,7 @@ namespace {
 
 /** chooseViewVector() falls back to exact vectors when the eye is within this fraction of the radius outside the
  *  bounding sphere (counted as inside), or when sin(alpha) exceeds kMaxSinAlpha: beyond that the constant vector is
- *  too rough for the specular term and the cut-off accepts nearly everything (docs/algorithms.md §1.5). */
+ *  too rough for the specular term and the cut-off accepts nearly everything (docs/shading.md). */
 constexpr double kInsideMargin = 1e-3;
 constexpr double kMaxSinAlpha = 0.5;
 
@@ -170,7 +170,7 @@ inline double specularPower(double base, double shininess, std::uint32_t wholeSh
 }
 
 /** (s, t) of Listing 1 for unit N, L and V (V eye -> point), with the paper's R.V = L.V - 2 (N.L)(N.V)
- *  (docs/algorithms.md §1.3; the same number as the textbook r.v with v = -V). */
+ *  (docs/shading.md; the same number as the textbook r.v with v = -V). */
 inline glm::vec2 shadeCoord(double dotNL, double dotNV, double dotLV, double shininess, std::uint32_t wholeShininess) {
     if (!(dotNL > 0.0)) {
         return glm::vec2(0.0f); // no diffuse and, as in Phong's gate, no specular

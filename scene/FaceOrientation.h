@@ -1,7 +1,7 @@
 #pragma once
-/** @file Seed 000's CPU face orientation (Listing 1, errata fixed) and its per-vertex comic lighting.
+/** @file Winnemöller & Bangay's CPU face orientation (Listing 1, errata fixed) and its per-vertex comic lighting.
  *
- *  Conventions (docs/algorithms.md §0, §1.3-1.6): V is eye -> point, L is point -> light; a surface is front-facing
+ *  Conventions (docs/shading.md): V is eye -> point, L is point -> light; a surface is front-facing
  *  where N.V < cut-off. The cut-off is +sin(alpha) for face tests and sin(min(pi/2, alpha + betaMax)) for vertex
  *  tests (the paper's "-sin alpha" is a sign slip that opens holes; `paperCutoff` reproduces it for tests). No GL. */
 
@@ -49,7 +49,7 @@ struct ViewVectorChoice {
     std::string reason;              ///< one line for the stats ("eye inside the bounding sphere", ...)
 };
 /** `center`/`radius`: the bounding sphere of the mesh (or scene). Falls back to exact when
- *  |C - E| <= radius x (1 + 1e-3) or sin(alpha) > 0.5 (docs/algorithms.md §1.5); never evaluates asin above 1. */
+ *  |C - E| <= radius x (1 + 1e-3) or sin(alpha) > 0.5 (docs/shading.md); never evaluates asin above 1. */
 ViewVectorChoice chooseViewVector(ViewVectorMode requested, const glm::dvec3& eye, const glm::dvec3& center,
                                   double radius);
 

@@ -1,5 +1,5 @@
 #pragma once
-/** @file Per-vertex curvature of a triangle mesh (Rusinkiewicz 2004, docs/algorithms.md §4.3 steps 1-6): normals,
+/** @file Per-vertex curvature of a triangle mesh (Rusinkiewicz 2004, docs/lines.md): normals,
  *  Voronoi point areas, the second fundamental form fitted per face and carried to the vertices, principal curvatures
  *  and directions, and the derivative of curvature C fitted the same way one order up. No GL; all in double.
  *
@@ -59,7 +59,7 @@ struct MeshCurvature {
     }
 };
 
-/** Curvature of a triangle list (docs/algorithms.md §4.3):
+/** Curvature of a triangle list (docs/lines.md):
  *  1. vertex normals: the sum over faces of the face's cross product weighted by 1 / (|a|^2 |b|^2) for the corner's
  *     two edges a, b (Max 1999); faces with a zero-length edge are skipped;
  *  2. corner areas: the Voronoi part of each corner for a non-obtuse triangle, else half the area to the obtuse

@@ -1,6 +1,6 @@
 #pragma once
-/** @file Suggestive contours in object space (DeCarlo et al. 2003 with rtsc's per-view test, docs/algorithms.md
- *  §4.3): per view, the zero set of the radial curvature on the mesh, kept where the surface faces the eye and the
+/** @file Suggestive contours in object space (DeCarlo et al. 2003 with rtsc's per-view test, docs/lines.md):
+ *  per view, the zero set of the radial curvature on the mesh, kept where the surface faces the eye and the
  *  strength passes the threshold. No GL; all in double. The mesh's curvature (MeshCurvature.h) is computed once and
  *  reused for every view.
  *

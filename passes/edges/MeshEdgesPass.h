@@ -1,5 +1,5 @@
 #pragma once
-/** @file Object-space edges (Lander 2000, docs/algorithms.md §2) as one-pixel line skeletons: the mesh's own edges,
+/** @file Object-space edges (Lander 2000, docs/lines.md) as one-pixel line skeletons: the mesh's own edges,
  *  chosen from its edge adjacency (GpuScene::edgeAdjacency()) and drawn as GL_LINES where the model does not hide
  *  them. A later CPU pass draws the skeleton at the user's width with anti-aliasing.
  *

@@ -1,5 +1,5 @@
 #pragma once
-/** @file Lander's back-face outline (Winnemöller & Bangay 2002, docs/algorithms.md §1.1) as a line mask: back faces
+/** @file Lander's back-face outline (Winnemöller & Bangay 2002, docs/shading.md) as a line mask: back faces
  *  drawn as thick wireframe behind the filled front faces, so about half of each line shows outside the silhouette
  *  and interior occluding contours get lines too. Lines are expanded to screen-space quads (core profile has no
  *  reliable wide lines), so the width holds at every angle.

@@ -9,7 +9,7 @@
  *  |               |        |          | GpuScene::cpuOrientation() for the CPU face-orientation methods)    |
  *  | <name>.color  | rgba8  | required | sRGB colour, a = coverage (0 off the model)                        |
  *
- *  Models (docs/algorithms.md §1, §3; n, l, v unit, v surface -> eye, r = reflect(-l, n)):
+ *  Models (docs/shading.md; n, l, v unit, v surface -> eye, r = reflect(-l, n)):
  *  - flat:    face normal from the derivatives of the view position, ambient + diffuse
  *  - gouraud: ambient + diffuse per vertex, colour interpolated
  *  - lambert: ambient + diffuse per fragment, interpolated normals

@@ -1,4 +1,4 @@
-// Lighting terms shared by the shading passes (docs/algorithms.md §1.2-1.3, §3, §7). Every vector is unit and in
+// Lighting terms shared by the shading passes (docs/shading.md). Every vector is unit and in
 // view space: n the normal, l surface -> light, v surface -> eye, r = reflect(-l, n) (the incident direction is -l).
 
 // Ambient plus Lambert diffuse, the factor the base colour is multiplied with.
@@ -6,7 +6,7 @@ float diffuseLighting(vec3 n, vec3 l, float ambient) {
     return ambient + (1.0 - ambient) * max(dot(n, l), 0.0);
 }
 
-// Seed 003's half-Lambert q = (n.l + 1) / 2, in [0, 1].
+// Qu, Chen & Zwicker's half-Lambert q = (n.l + 1) / 2, in [0, 1].
 float halfLambert(vec3 n, vec3 l) {
     return clamp(0.5 * dot(n, l) + 0.5, 0.0, 1.0);
 }

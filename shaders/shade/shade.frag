@@ -1,5 +1,5 @@
 // Forward shading, one model per program (MODEL_* define from ShadePass): flat, gouraud, lambert, phong, cel, comic
-// (docs/algorithms.md §1, §3). Colour is computed in linear RGB and written sRGB-encoded, alpha 1 on the model.
+// (docs/shading.md). Colour is computed in linear RGB and written sRGB-encoded, alpha 1 on the model.
 in vec3 viewPosition;
 in vec3 viewNormal;
 #ifdef MODEL_GOURAUD
@@ -67,7 +67,7 @@ void main() {
     vec3 l = towardLightView;
     vec3 rgb;
 #if defined(MODEL_FLAT)
-    // Seed 003 eq. 2, normalised; turned toward the viewer by geometry, so a y-flipped target cannot invert it.
+    // Qu, Chen & Zwicker's eq. 2, normalised; turned toward the viewer by geometry, so a y-flipped target cannot invert it.
     vec3 faceNormal = cross(dFdx(viewPosition), dFdy(viewPosition));
     float faceNormalLength = length(faceNormal);
     vec3 n = faceNormalLength > 0.0 ? faceNormal / faceNormalLength : vec3(0.0, 0.0, 1.0);
@@ -86,7 +86,7 @@ void main() {
     rgb = shadeMapColor(vec2(halfLambert(shadingNormal(), l), 0.0)) * baseColor.rgb;
 #elif defined(MODEL_COMIC)
 #ifdef SHADE_COORDS
-    // Seed 000's per-vertex (s, t) from the CPU, interpolated.
+    // Winnemöller & Bangay's per-vertex (s, t) from the CPU, interpolated.
     rgb = shadeMapColor(shadeCoord) * baseColor.rgb;
 #else
     vec3 n = shadingNormal();

@@ -34,7 +34,7 @@ RenderOptions optionsWith(const SourcedArguments& style, const std::vector<std::
 }
 
 TEST(StyleFile, SettingsBecomeFlagsWithListsCompactedAndCommentsDropped) {
-    const SourcedArguments style = styleArguments("# house style\r\n\n  shading = comic  # the seed-000 look\n"
+    const SourcedArguments style = styleArguments("# house style\r\n\n  shading = comic  # the Winnemöller & Bangay look\n"
                                                   "shininess=64\nlines = contour, suggestive\n"
                                                   "contour-color = 0.1, 0.2, 0.3\n",
                                                   "look.style", "");

@@ -119,7 +119,7 @@ TEST_F(LineLayers, SphereContourLiesOnTheAnalyticSilhouetteCircle) {
 TEST_F(LineLayers, SphereContourSkeletonPointsAreWithinOnePixel) {
     look(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 512, 256), {0.3, -0.2, 4.0});
     // The off-axis sphere's silhouette is the image of the tangent cone: a pixel ray x lies on it iff
-    // (x.c)^2 = (|c|^2 - R^2)|x|^2 (algorithms.md 6.1). Every skeleton point must have the cone within 1 px.
+    // (x.c)^2 = (|c|^2 - R^2)|x|^2 (docs/accuracy.md). Every skeleton point must have the cone within 1 px.
     const LineLayerPass& pass = draw(withSource(Source::Contour));
     ASSERT_GT(pass.skeleton().points.size(), 1000u);
     const glm::dmat4 view = frame.camera.viewMatrix();

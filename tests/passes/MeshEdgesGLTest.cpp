@@ -155,7 +155,7 @@ std::vector<ScreenSegment> projectSegments(const Camera& camera, const WorldSegm
 
 /** Dense samples of the true silhouette of a sphere of `radius` at world `centre`, projected to pixels as a closed
  *  polyline: the tangency circle has centre c (1 - R^2/d^2) and radius R sqrt(d^2 - R^2) / d in the plane
- *  perpendicular to c, with c the centre in view space (algorithms §6.1). */
+ *  perpendicular to c, with c the centre in view space (docs/accuracy.md). */
 std::vector<ScreenSegment> analyticSilhouette(const Camera& camera, glm::dvec3 centre, double radius, int scale) {
     constexpr int kSamples = 2048;
     const glm::dvec3 c = glm::dvec3(camera.viewMatrix() * glm::dvec4(centre, 1.0));

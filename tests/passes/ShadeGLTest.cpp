@@ -1122,7 +1122,7 @@ TEST_F(ShadeTwoSpheres, ComicMeshesUseTheirOwnTwoDimensionalMaps) {
 }
 
 TEST_F(ShadeTwoSpheres, ComicFaceOrientationSetsDrawWithEachMeshsMap) {
-    // Seed 000's CPU marking: the pass draws the front sets with the per-vertex (s, t), one map per mesh.
+    // Winnemöller & Bangay's CPU marking: the pass draws the front sets with the per-vertex (s, t), one map per mesh.
     useTwoSpheres({1.0f, 1.0f, 1.0f, 1.0f}, {1.0f, 1.0f, 1.0f, 1.0f});
     const ShadeMap a = comicMap({90, 30, 30, 255}, {200, 90, 80, 255}, {{255, 230, 200, 255}}, 6, "test:a");
     const ShadeMap b = comicMap({20, 40, 90, 255}, {70, 140, 220, 255}, {{160, 220, 255, 255}}, 3, "test:b");

@@ -51,7 +51,7 @@ TEST(ShadeMap, FiveBandsAreSeed003Levels) {
 }
 
 TEST(ShadeMap, FiveBandBordersSitAtQuarterFifths) {
-    // Seed 003's eq. 4: level 0 below q = .2, .25 up to .4, .5 up to .6, .75 up to .8, 1 above. The same texel
+    // Qu, Chen & Zwicker's eq. 4: level 0 below q = .2, .25 up to .4, .5 up to .6, .75 up to .8, 1 above. The same texel
     // rule as the shader, on both sides of every border.
     const int bands = makeBandShadeMap(5).texels.cols;
     const double borders[] = {0.2, 0.4, 0.6, 0.8};
@@ -61,7 +61,7 @@ TEST(ShadeMap, FiveBandBordersSitAtQuarterFifths) {
     }
     EXPECT_EQ(texelIndex(0.0, bands), 0);
     EXPECT_EQ(texelIndex(1.0, bands), 4) << "q = 1 (n = l) must stay on the last texel, never wrap";
-    // The closed form of docs/algorithms.md §3 agrees away from the borders.
+    // The closed form of docs/shading.md agrees away from the borders.
     for (double q = 0.01; q < 1.0; q += 0.02) {
         const double closedForm = std::clamp(std::ceil(5.0 * q - 1.0) / 4.0, 0.0, 1.0);
         EXPECT_DOUBLE_EQ(texelIndex(q, bands) / 4.0, closedForm) << "q = " << q;

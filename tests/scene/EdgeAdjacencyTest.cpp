@@ -1,4 +1,4 @@
-// Edge adjacency (docs/algorithms.md §2): counts by kind on small meshes with known answers, normal angles by atan2,
+// Edge adjacency (docs/lines.md): counts by kind on small meshes with known answers, normal angles by atan2,
 // position welding across split normals and triangle soups, inconsistent orientation, degenerate faces, Lander 2000's
 // Templist erratum, and the exact silhouette test with its tie rule.
 #include "scene/EdgeAdjacency.h"
@@ -187,7 +187,7 @@ TEST(EdgeAdjacency, FlippedTriangleIsFlaggedAndItsAngleCorrected) {
 }
 
 TEST(EdgeAdjacency, EveryEdgeOfAFaceIsAddedAfterItsFirstMatches) {
-    // Seed 002's erratum: its Templist set `found` once per triangle, so a triangle whose first edge matched never
+    // An erratum of the comic-renderer write-up after Lander 2000: its Templist set `found` once per triangle, so a triangle whose first edge matched never
     // added its other two. In this fan every triangle after the first starts with the edge it shares with the one
     // before, and its second edge is what the next triangle shares.
     const std::vector<glm::vec3> fan = {{-1, -0.5f, 0}, {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}};
@@ -265,7 +265,7 @@ TEST(EdgeAdjacency, BadInputThrowsNamingTheFunction) {
 TEST(EdgeAdjacency, SilhouetteTieCountsTheEdgeOnFaceAsBack) {
     // The eye in the plane of the cube's top face (z = 1), in front of its +x face: the top is seen edge-on (s = 0).
     // Counted as back, the silhouette is the +x face's outline, 4 edges, with one line where front meets edge-on.
-    // Seed 002's "include ties" (s1 s2 <= 0) would add the top's three other edges, and its diagonal.
+    // The write-up's "include ties" (s1 s2 <= 0) would add the top's three other edges, and its diagonal.
     const Mesh cube = makeCube({0.0f, 0.0f, 0.0f}, 1.0f);
     const EdgeAdjacency adjacency = buildEdgeAdjacency(cube.positions, cube.triangles, 1e-6);
     const glm::dvec3 eye(5.0, 0.3, 1.0);
@@ -302,7 +302,7 @@ TEST(EdgeAdjacency, SilhouetteIsExactUnderPerspective) {
     // Edges span about 2 pi / 128 = 0.049 rad; an edge's middle lies within that of the tangency circle.
     EXPECT_LT(worstCosine, 0.05);
 
-    // Seed 002's orthographic test, with the view direction d toward the centre: s = -n . d. Its edges lie on the
+    // The write-up's orthographic test, with the view direction d toward the centre: s = -n . d. Its edges lie on the
     // great circle perpendicular to d, where the eye sees the surface at cos = 1 / sqrt(10) = 0.316, not grazing.
     const glm::dvec3 towardEye = glm::normalize(eye);
     double bestOrthographicCosine = 1.0;

@@ -1,5 +1,5 @@
 #pragma once
-/** @file Analytic ground-truth lines for the shapes of SyntheticGBuffer.h (algorithms.md 6.1, 6.2), in double, for
+/** @file Analytic ground-truth lines for the shapes of SyntheticGBuffer.h (docs/accuracy.md), in double, for
  *  scoring line methods with postfx/LineMetrics.h. Every result is in LinePoint coordinates (pixels, x right, y down,
  *  pixel centres at integers: SyntheticCamera::project() - 0.5), holds only visible parts, and is cut where it
  *  leaves the image [-0.5, width - 0.5] x [-0.5, height - 0.5]. No GL. */
@@ -13,7 +13,7 @@
 
 namespace inkgraph::test {
 
-/** The torus of renderTorus() and its differential geometry (algorithms.md 6.2), in its own frame (centre at the
+/** The torus of renderTorus() and its differential geometry (docs/accuracy.md), in its own frame (centre at the
  *  origin, axis z): P(u,v) = ((R + r cos v) cos u, (R + r cos v) sin u, r sin v), outward normal
  *  n = (cos v cos u, cos v sin u, sin v). Curvature signs follow trimesh2 (a sphere has +1/radius). */
 struct TorusGeometry {
@@ -29,7 +29,7 @@ struct TorusGeometry {
     /** (u, v) of a point on (or near) the torus, u and v in (-pi, pi]. */
     glm::dvec2 parameters(const glm::dvec3& p) const;
     /** |w|^2 kappa_r = kappa_u (w.e_u)^2 + kappa_v (w.e_v)^2 with w = v - (n.v) n and v = eye - P(u,v): what
-     *  D_w(n.v) equals (algorithms.md 4.1); smooth where kappa_r alone is not (w -> 0). `eye` in the torus frame. */
+     *  D_w(n.v) equals (docs/lines.md); smooth where kappa_r alone is not (w -> 0). `eye` in the torus frame. */
     double wSquaredRadialCurvature(const glm::dvec3& eye, double u, double v) const;
     /** kappa_r = II(w^, w^) for the view from `eye` (torus frame); NaN where w = 0. */
     double radialCurvature(const glm::dvec3& eye, double u, double v) const;

@@ -1,4 +1,4 @@
-// The line types drawn from the mesh's own edges (Lander 2000; docs/algorithms.md §2): one GL pass, "mesh-edges",
+// The line types drawn from the mesh's own edges (Lander 2000; docs/lines.md): one GL pass, "mesh-edges",
 // draws each kind's one-pixel skeleton where the model does not hide it; each type strokes its kind.
 #include "passes/edges/MeshEdgesPass.h"
 #include "passes/lines/LineType.h"
