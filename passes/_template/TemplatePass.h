@@ -6,10 +6,10 @@
  *      GlPass (gl/GlPass.h): prepare() builds programs and uploads, execute() draws through the GlPassContext.
  *   2. shaders/foo/foo.vert, foo.frag from shaders/_template/ (fullscreen passes take common/fullscreen.glsl as a
  *      snippet); a row in shaders/README.md.
- *   3. passes/CMakeLists.txt: add foo/FooPass.cpp to inkgraph_passes_core.
+ *   3. passes/CMakeLists.txt: add foo/FooPass.cpp to inkgraph_passes.
  *   4. passes/README.md: a paragraph and a row per resource.
- *   5. If the pass has numbers for --stats, override Pass::describe(). The app registers the pass (app/StillGraph)
- *      and names what requests it; nothing inside a pass checks the scene.
+ *   5. If the pass has numbers for --stats, override Pass::describe(). passes/StillGraph.cpp registers it (or, for a
+ *      line type, its room in passes/lines/types/: docs/contributing.md); nothing inside a pass checks the scene.
  *   6. tests/passes/FooGLTest.cpp (listed in tests/passes/CMakeLists.txt) against analytic values, run through
  *      GraphExecutor as TemplatePassGLTest does; a no-GL graph test if it changes what gets culled; a golden case in
  *      tests/pipeline/ if its output is a stored intermediate.
