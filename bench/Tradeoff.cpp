@@ -2,8 +2,7 @@
 
 #include "bench/Median.h"
 
-#include "app/Options.h"
-#include "app/Render.h"
+#include "app/StillRenderer.h"
 #include "passes/StillGraph.h"
 #include "passes/lines/LineLayerPass.h"
 #include "passes/lines/types/SuggestiveLines.h"
@@ -19,6 +18,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -37,13 +37,7 @@ constexpr double kTorusElevationDegrees = 30.0;
 constexpr double kSphereDistance = 4.0;
 constexpr double kFovDegrees = 35.0;
 
-std::string vectorText(const glm::dvec3& v) {
-    std::ostringstream text;
-    text << std::setprecision(17) << v.x << "," << v.y << "," << v.z;
-    return text.str();
-}
-
-/** Where a scene is seen from: the GL camera's flags and the analytic camera of the ground truth, which agree. */
+/** Where a scene is seen from: the GL camera's request and the analytic camera of the ground truth, which agree. */
 struct View {
     glm::dvec3 eye;
     glm::dvec3 up;
@@ -58,9 +52,14 @@ struct View {
         camera.fovYDegrees = kFovDegrees;
         return camera;
     }
-    std::vector<std::string> flags() const {
-        return {"--size", std::to_string(size) + "x" + std::to_string(size), "--eye", vectorText(eye), "--target",
-                "0,0,0", "--up", vectorText(up), "--fov", std::to_string(kFovDegrees)};
+    CameraRequest request() const {
+        CameraRequest camera;
+        camera.eye = eye;
+        camera.target = glm::dvec3(0.0);
+        camera.up = up;
+        camera.fovYDegrees = kFovDegrees;
+        camera.width = camera.height = size;
+        return camera;
     }
 };
 
@@ -71,18 +70,15 @@ View torusView(int size) {
 
 View sphereView(int size) { return {{0.0, 0.0, kSphereDistance}, {0.0, 1.0, 0.0}, size}; }
 
-/** One render set up as `inkgraph render` would for these flags, run warm. */
+/** One still of `look` from `view`, set up as the renderer sets it up, run warm. */
 class WarmRender {
 public:
-    WarmRender(const Scene& scene, const std::vector<std::string>& flags, const std::vector<std::string>& requested)
-        : mScene(scene) {
-        std::vector<std::string> arguments = {"bench.obj", "-o", "bench.png"};
-        arguments.insert(arguments.end(), flags.begin(), flags.end());
-        mOptions = parseRenderOptions(arguments);
+    WarmRender(const Scene& scene, const View& view, Look look, const std::vector<std::string>& requested)
+        : mScene(scene), mLook(std::move(look)), mSize(view.size) {
         mSphere = computeBoundingSphere(mScene);
-        mFrame = frameParamsOf(mOptions.look, mScene, resolveCamera(cameraRequestOf(mOptions), mScene), mSphere);
+        mFrame = frameParamsOf(mLook, mScene, resolveCamera(view.request(), mScene), mSphere);
         mGpuScene = std::make_unique<GpuScene>(mScene, mFrame.worldOrigin);
-        mGraph = buildStillGraph({mOptions.look, mShaders, mScene, mSphere, *mGpuScene, mFrame, std::nullopt});
+        mGraph = buildStillGraph({mLook, mShaders, mScene, mSphere, *mGpuScene, mFrame, std::nullopt});
         std::vector<std::string> resources = {mGraph.finalResource};
         resources.insert(resources.end(), requested.begin(), requested.end());
         mPlan = compile(mGraph.view(), resources);
@@ -91,22 +87,23 @@ public:
     /** Runs once; returns each pass's execute() + prepare() milliseconds by name. */
     std::map<std::string, double> run() {
         ExecuteOptions execute;
-        execute.frameWidth = mOptions.width;
-        execute.frameHeight = mOptions.height;
+        execute.frameWidth = mSize;
+        execute.frameHeight = mSize;
         std::map<std::string, double> milliseconds;
         for (const PassTiming& timing : mExecutor.run(mPlan, mGraph.mutableView(), execute))
             milliseconds[timing.pass] = timing.milliseconds + timing.prepareMilliseconds;
         return milliseconds;
     }
 
-    const RenderOptions& options() const { return mOptions; }
+    const Look& look() const { return mLook; }
     const StillGraph& graph() const { return mGraph; }
     const BoundingSphere& sphere() const { return mSphere; }
     ResourceStore& store() { return mExecutor.store(); }
 
 private:
     const Scene& mScene;
-    RenderOptions mOptions;
+    Look mLook;
+    int mSize;
     BoundingSphere mSphere;
     FrameParams mFrame;
     ShaderLibrary mShaders;
@@ -149,7 +146,7 @@ Timings timeRuns(WarmRender& render, const std::vector<std::string>& methodPasse
 
 /** The points a line layer found, in output pixels. */
 std::vector<cv::Point2d> linePoints(const WarmRender& render, const std::string& type) {
-    return outputPixelPositions(render.graph().lineLayer(type)->skeleton(), render.options().look.supersample);
+    return outputPixelPositions(render.graph().lineLayer(type)->skeleton(), render.look().supersample);
 }
 
 /** Pixels where the shading changes between 4-neighbours that both lie on the model: the band boundaries. */
@@ -170,12 +167,26 @@ cv::Mat bandBoundaries(const cv::Mat& shade, const cv::Mat& coverage) {
     return boundaries;
 }
 
-/** The suggestive stencil's points (3 or 5) of a look, by the parameter's registered name. */
-std::string stencilPoints(const Look& look) {
-    for (const LineParameter* parameter : findLineType("suggestive")->parameters)
-        if (parameter->name == "suggestive-stencil") return look.lineParameters.choice(*parameter);
-    return "3";
+
+/** Only the lines of `type`, no shading. */
+Look linesOnly(const std::string& type) {
+    Look look;
+    look.shading = ShadingModel::None;
+    look.lines = {type};
+    return look;
 }
+
+const LineParameter& stencilParameter() {
+    for (const LineParameter* parameter : findLineType("suggestive")->parameters)
+        if (parameter->name == "suggestive-stencil") return *parameter;
+    throw std::logic_error("stencilParameter(): the suggestive type has no 'suggestive-stencil'");
+}
+
+void halfPrecision(Look& look) { look.gbufferPrecision = GBufferPrecision::Float16; }
+void fivePointStencil(Look& look) { look.lineParameters.set(stencilParameter(), std::string("5")); }
+
+/** The suggestive stencil's points (3 or 5) of a look. */
+std::string stencilPoints(const Look& look) { return look.lineParameters.choice(stencilParameter()); }
 
 std::string thousands(std::size_t triangles) {
     return triangles >= 1000 ? std::to_string((triangles + 500) / 1000) + "k" : std::to_string(triangles);
@@ -194,15 +205,20 @@ public:
                                                 mConfig.quick ? 128 : 256));
 
         for (const char* type : {"contour", "suggestive"}) {
-            for (int size : sizes) lineRow(torus, type, size, {});
+            for (int size : sizes) lineRow(torus, type, size);
             for (int supersample : supersamples)
-                lineRow(torus, type, base, {"--supersample", std::to_string(supersample)});
-            lineRow(torus, type, base, {"--gbuffer-precision", "half"});
+                lineRow(torus, type, base, [&](Look& look) { look.supersample = supersample; });
+            lineRow(torus, type, base, halfPrecision);
         }
-        lineRow(torus, "suggestive", base, {"--suggestive-stencil", "5"});
-        lineRow(torus, "suggestive", base, {"--gbuffer-precision", "half", "--suggestive-stencil", "5"});
-        for (const char* threshold : {"0", "0.05"})
-            lineRow(torus, "suggestive", base, {"--suggestive-threshold", threshold});
+        lineRow(torus, "suggestive", base, fivePointStencil);
+        lineRow(torus, "suggestive", base, [&](Look& look) {
+            halfPrecision(look);
+            fivePointStencil(look);
+        });
+        for (const double threshold : {0.0, 0.05})
+            lineRow(torus, "suggestive", base, [&](Look& look) {
+                look.lineParameters.set(line_parameters::kSuggestiveThreshold, threshold);
+            });
 
         // Object space: the accuracy follows the mesh, so the torus at three tessellations; curvature is derived on
         // the first frame (setup) and reused.
@@ -212,9 +228,9 @@ public:
             const Scene mesh = segments == (mConfig.quick ? 256 : 512)
                                    ? torus
                                    : makeScene(makeTorus(float(kTorusRing), float(kTorusTube), segments, segments / 2));
-            lineRow(mesh, "suggestive-object", base, {});
+            lineRow(mesh, "suggestive-object", base);
         }
-        lineRow(torus, "suggestive-object", base, {"--supersample", "2"});
+        lineRow(torus, "suggestive-object", base, [](Look& look) { look.supersample = 2; });
 
         const std::vector<int> sphereSegments =
             mConfig.quick ? std::vector<int>{32, 128} : std::vector<int>{32, 128, 512};
@@ -247,14 +263,12 @@ private:
         return mTruth.emplace(key, std::move(truth)).first->second;
     }
 
-    void lineRow(const Scene& scene, const std::string& type, int size, const std::vector<std::string>& extra) {
-        std::vector<std::string> flags = torusView(size).flags();
-        flags.insert(flags.end(), {"--shading", "none", "--lines", type});
-        flags.insert(flags.end(), extra.begin(), extra.end());
-        WarmRender render(scene, flags, {});
+    void lineRow(const Scene& scene, const std::string& type, int size, const std::function<void(Look&)>& adjust = {}) {
+        Look look = linesOnly(type);
+        if (adjust) adjust(look);
+        WarmRender render(scene, torusView(size), look, {});
         const Timings timings = timeRuns(render, {"gbuffer", type}, mConfig.repetitions);
-        const RenderOptions& options = render.options();
-        const double threshold = options.look.lineParameters.number(line_parameters::kSuggestiveThreshold);
+        const double threshold = look.lineParameters.number(line_parameters::kSuggestiveThreshold);
         const double featureSize = kSuggestiveFeatureSizeFraction * render.sphere().radius;
         const std::vector<cv::Point2d> points = linePoints(render, type);
         const std::vector<LinePolyline>& truth =
@@ -264,21 +278,19 @@ private:
         TradeoffRow row;
         row.method = type;
         std::ostringstream setting;
-        setting << size << " S" << options.look.supersample;
+        setting << size << " S" << look.supersample;
         if (type == "suggestive-object")
             setting << " T" << threshold << " " << thousands(scene.triangleCount()) << " tris";
         else
-            setting << (options.look.gbufferPrecision == GBufferPrecision::Float16 ? " half" : " float");
-        if (type == "suggestive") setting << " " << stencilPoints(options.look) << "-point T" << threshold;
+            setting << (look.gbufferPrecision == GBufferPrecision::Float16 ? " half" : " float");
+        if (type == "suggestive") setting << " " << stencilPoints(look) << "-point T" << threshold;
         row.setting = setting.str();
         row.scene = "torus " + thousands(scene.triangleCount());
-        finish(row, size, options.look.supersample, scene.triangleCount(), timings, points, truth);
+        finish(row, size, look.supersample, scene.triangleCount(), timings, points, truth);
     }
 
     void sphereRow(const Scene& scene, const std::string& type, int size, int segments) {
-        std::vector<std::string> flags = sphereView(size).flags();
-        flags.insert(flags.end(), {"--shading", "none", "--lines", type});
-        WarmRender render(scene, flags, {});
+        WarmRender render(scene, sphereView(size), linesOnly(type), {});
         const Timings timings =
             timeRuns(render, {type == "contour" ? "gbuffer" : "mesh-edges", type}, mConfig.repetitions);
         const std::vector<LinePolyline> truth =
@@ -293,25 +305,30 @@ private:
     /** Comic shading's approximations against its exact mode: band boundaries scored as lines. */
     void shadingRows(const Scene& scene, int size) {
         struct Mode {
-            const char* viewVector;
-            const char* orientation;
+            ViewVectorMode viewVector;
+            FaceOrientationMethod orientation;
         };
-        const std::vector<Mode> modes = {{"exact", "standard"},         {"constant", "standard"},
-                                         {"exact", "during-triangles"}, {"exact", "during-vertices"},
-                                         {"exact", "after-vertices"}};
+        using M = FaceOrientationMethod;
+        const std::vector<Mode> modes = {{ViewVectorMode::Exact, M::Standard},
+                                         {ViewVectorMode::Constant, M::Standard},
+                                         {ViewVectorMode::Exact, M::DuringTriangles},
+                                         {ViewVectorMode::Exact, M::DuringVertices},
+                                         {ViewVectorMode::Exact, M::AfterVertices}};
         cv::Mat reference;
         for (const Mode& mode : modes) {
-            std::vector<std::string> flags = torusView(size).flags();
-            flags.insert(flags.end(), {"--shading", "comic", "--view-vector", mode.viewVector, "--face-orientation",
-                                       mode.orientation, "--light", "-0.4,0.5,0.77"});
-            WarmRender render(scene, flags, {"shade.color", "gbuffer.coverage"});
+            Look look;
+            look.shading = ShadingModel::Comic;
+            look.viewVector = mode.viewVector;
+            look.faceOrientation = mode.orientation;
+            look.towardLight = glm::normalize(glm::dvec3(-0.4, 0.5, 0.77));
+            WarmRender render(scene, torusView(size), look, {"shade.color", "gbuffer.coverage"});
             const Timings timings = timeRuns(render, {"shade"}, mConfig.repetitions);
             const cv::Mat boundaries =
                 bandBoundaries(render.store().image("shade.color"), render.store().image("gbuffer.coverage"));
             if (reference.empty()) reference = boundaries.clone();
             TradeoffRow row;
             row.method = "comic";
-            row.setting = std::string(mode.viewVector) + " view, " + mode.orientation;
+            row.setting = viewVectorModeName(mode.viewVector) + " view, " + faceOrientationMethodName(mode.orientation);
             row.scene = "torus " + thousands(scene.triangleCount());
             row.size = size;
             row.triangles = scene.triangleCount();

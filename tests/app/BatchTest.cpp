@@ -232,8 +232,8 @@ TEST(BatchOutputs, NoStillMayReplaceAFileAnotherModelReads) {
     std::ofstream(folder / "maps" / "ink.png") << "png";
     std::ofstream(folder / "cube.obj") << "mtllib cube.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     std::ofstream(folder / "cube.mtl") << "newmtl red\n";
-    for (const std::string& name : {"geometry", "skin tone", "ink"})
-        std::ofstream(folder / (name + ".obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    for (const char* name : {"geometry", "skin tone", "ink"})
+        std::ofstream(folder / (std::string(name) + ".obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     std::istringstream none;
     const auto messageFor = [&](const std::string& model, const std::string& flag, const std::string& pattern) {
         RenderOptions options = withModels({(folder / "scene.gltf").string(), (folder / "cube.obj").string(),
