@@ -23,9 +23,10 @@ void stopParallelWorkers() {
     const bool joined = oneapi::tbb::finalize(pool, std::nothrow);
     cv::setNumThreads(threads);
     if (!joined)
-        throw std::runtime_error("stopParallelWorkers(): oneTBB's worker pool, which OpenCV's parallel loops run on, is "
-                                 "still held by another user (an initialised task_arena or a task_scheduler_handle outside "
-                                 "OpenCV); its workers were not joined");
+        throw std::runtime_error(
+            "stopParallelWorkers(): oneTBB's worker pool, which OpenCV's parallel loops run on, is "
+            "still held by another user (an initialised task_arena or a task_scheduler_handle outside "
+            "OpenCV); its workers were not joined");
 }
 
 void joinBackgroundThreads() {

@@ -116,8 +116,10 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
             if (!hasPlaceholder(pattern))
                 throw UsageError(flag + " '" + pattern + "' would be the same file for all " +
                                  std::to_string(list.total) + " models; put {name} or {index} in it, e.g. '" +
-                                 (flag == "--dump" ? "out/{name}-dump" : "out/{name}" +
-                                  std::filesystem::path(pattern).extension().string()) + "'");
+                                 (flag == "--dump"
+                                      ? "out/{name}-dump"
+                                      : "out/{name}" + std::filesystem::path(pattern).extension().string()) +
+                                 "'");
     // By place and by device and inode: a hard link of a model is that model under another name.
     std::map<std::filesystem::path, const BatchModel*> modelsByPlace;
     std::map<FileIdentity, const BatchModel*> modelsByIdentity;
@@ -136,7 +138,8 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
             namedFiles.emplace();
             for (const BatchModel& model : list.models)
                 for (const std::string& file : referencedFiles(model.path))
-                    if (const auto named = fileIdentity(file)) namedFiles->emplace(*named, std::make_pair(&model, file));
+                    if (const auto named = fileIdentity(file))
+                        namedFiles->emplace(*named, std::make_pair(&model, file));
         }
         const auto found = namedFiles->find(identity);
         return found == namedFiles->end() ? nullptr : &found->second;

@@ -22,10 +22,10 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     const BatchList list = batchList(options, standardInput);
     checkBatchOutputs(options, list);
     RenderSession session(out, log);
-    const std::string share =
-        options.shard ? " (shard " + std::to_string(options.shard->index) + "/" + std::to_string(options.shard->count) +
-                            " of " + std::to_string(list.total) + ")"
-                      : "";
+    const std::string share = options.shard
+                                  ? " (shard " + std::to_string(options.shard->index) + "/" +
+                                        std::to_string(options.shard->count) + " of " + std::to_string(list.total) + ")"
+                                  : "";
     // Only --shard can leave a share empty (a list of no models is refused): with N above the list's length some
     // shards have nothing to do, which is not an error in an array job.
     if (list.models.empty()) {
@@ -65,9 +65,8 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
         }
     }
     if (!options.quiet || !failed.empty()) {
-        log << "inkgraph: rendered " << list.models.size() - failed.size() << " of " << list.models.size()
-            << " models" << share << " in " << std::fixed << std::setprecision(1)
-            << millisecondsSince(batchStart) / 1000.0 << " s";
+        log << "inkgraph: rendered " << list.models.size() - failed.size() << " of " << list.models.size() << " models"
+            << share << " in " << std::fixed << std::setprecision(1) << millisecondsSince(batchStart) / 1000.0 << " s";
         if (!failed.empty()) {
             log << "; " << failed.size() << " failed:";
             for (const std::string& path : failed) log << " '" << path << "'";

@@ -60,7 +60,8 @@ int runRenderCommand(const std::vector<std::string>& arguments, std::ostream& ou
             err << "inkgraph: internal error: " << error.what() << "\n";
             return kExitInternal;
         }
-        err << "inkgraph: out of memory (" << error.err << "); make the image smaller (--size, --supersample) or "
+        err << "inkgraph: out of memory (" << error.err
+            << "); make the image smaller (--size, --supersample) or "
                "request and dump fewer buffers\n(see: inkgraph help render)\n";
         return kExitUsage;
     } catch (const std::exception& error) {

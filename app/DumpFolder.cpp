@@ -205,7 +205,8 @@ void DumpFolder::check(const std::string& flagValue) {
     mFolder = folder;
     const fs::path parent = folder.parent_path();
 
-    struct stat folderStatus {}, parentStatus {};
+    struct stat folderStatus {
+    }, parentStatus{};
     if (::stat(folder.c_str(), &folderStatus) != 0 || ::stat(parent.c_str(), &parentStatus) != 0)
         fail(std::string(": ") + std::strerror(errno));
     if (folderStatus.st_dev != parentStatus.st_dev)
@@ -231,7 +232,8 @@ void DumpFolder::check(const std::string& flagValue) {
             }
             fail(std::string("cannot be locked: ") + std::strerror(reason));
         }
-        struct stat locked {}, named {};
+        struct stat locked {
+        }, named{};
         if (::fstat(lock, &locked) == 0 && ::stat(folder.c_str(), &named) == 0 && locked.st_dev == named.st_dev &&
             locked.st_ino == named.st_ino) {
             mLock = lock;

@@ -97,7 +97,7 @@ private:
     uid_t mFolderOwner = 0;
     gid_t mFolderGroup = 0;
     int mLock = -1;
-    bool mTakenByAnotherRun = false; ///< its lock was held: never remove what this run created of it
+    bool mTakenByAnotherRun = false;                    ///< its lock was held: never remove what this run created of it
     std::vector<std::filesystem::path> mCreatedFolders; ///< innermost first; removed on failure when empty
     bool mMarked = false;
     bool mSwapped = false;

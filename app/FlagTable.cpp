@@ -52,7 +52,8 @@ std::vector<std::string> splitList(const std::string& text, char separator) {
 
 glm::dvec3 parseVector(const std::string& flag, const std::string& text) {
     const std::vector<std::string> parts = splitList(text, ',');
-    if (parts.size() != 3) throw UsageError(flag + ": expected X,Y,Z (three comma-separated numbers), got '" + text + "'");
+    if (parts.size() != 3)
+        throw UsageError(flag + ": expected X,Y,Z (three comma-separated numbers), got '" + text + "'");
     return {parseNumber(flag, parts[0]), parseNumber(flag, parts[1]), parseNumber(flag, parts[2])};
 }
 
@@ -92,8 +93,6 @@ std::string joined(const std::vector<std::string>& items) {
     for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
     return text.empty() ? "(none in this version)" : text;
 }
-
-
 
 template <typename Value>
 Value parseChoice(const std::string& flag, const std::string& text,
@@ -139,7 +138,6 @@ glm::dvec4 parseColor(const std::string& flag, const std::string& text) {
     return color;
 }
 
-
 const std::vector<std::pair<std::string, FaceOrientationMethod>> kOrientationMethods = {
     {"standard", FaceOrientationMethod::Standard},
     {"during-triangles", FaceOrientationMethod::DuringTriangles},
@@ -172,8 +170,7 @@ std::function<std::string(const RenderOptions&)> onlyWithLineTypes(const std::st
     return [flag, types](const RenderOptions& options) -> std::string {
         for (const std::string& type : types)
             if (options.look.draws(type)) return "";
-        return flag + " has no effect: none of the line types it applies to (" + commaJoined(types) +
-               ") is in --lines";
+        return flag + " has no effect: none of the line types it applies to (" + commaJoined(types) + ") is in --lines";
     };
 }
 
@@ -208,7 +205,8 @@ void addLineTypeFlags(std::vector<Flag>& flags) {
     flags.push_back(helpOnly(HelpSection::Lines, "--TYPE-width PX",
                              "line width in pixels, above 0 up to 256 (default 2), constant across distance, field\n"
                              "of view and resolution (for outline: the width showing outside the silhouette)"));
-    flags.push_back(helpOnly(HelpSection::Lines, "--TYPE-color R,G,B[,A]", "line colour, channels in [0,1] (default 0,0,0)"));
+    flags.push_back(
+        helpOnly(HelpSection::Lines, "--TYPE-color R,G,B[,A]", "line colour, channels in [0,1] (default 0,0,0)"));
     for (const LineType& type : lineTypes()) {
         const std::string name = type.name;
         const auto notDrawn = [name](const std::string& flagName) {
@@ -218,15 +216,15 @@ void addLineTypeFlags(std::vector<Flag>& flags) {
                            : flagName + ": the '" + name + "' line type is not drawn (add it to --lines)";
             };
         };
-        Flag width = styleFlag(flag({"--" + name + "-width"}, "PX", HelpSection::Lines, "",
-                                    [name](const std::string& value, RenderOptions& options) {
-                                        const std::string flagName = "--" + name + "-width";
-                                        const double pixels = parseNumber(flagName, value);
-                                        if (!(pixels > 0.0 && pixels <= kMaxLineWidthPixels))
-                                            throw UsageError(flagName + ": pixels must be above 0 and at most 256, got '" +
-                                                             value + "'");
-                                        options.look.lineStyles[name].widthPixels = pixels;
-                                    }));
+        Flag width = styleFlag(
+            flag({"--" + name + "-width"}, "PX", HelpSection::Lines, "",
+                 [name](const std::string& value, RenderOptions& options) {
+                     const std::string flagName = "--" + name + "-width";
+                     const double pixels = parseNumber(flagName, value);
+                     if (!(pixels > 0.0 && pixels <= kMaxLineWidthPixels))
+                         throw UsageError(flagName + ": pixels must be above 0 and at most 256, got '" + value + "'");
+                     options.look.lineStyles[name].widthPixels = pixels;
+                 }));
         width.noEffect = notDrawn("--" + name + "-width");
         flags.push_back(width);
         Flag color = styleFlag(flag({"--" + name + "-color"}, "R,G,B[,A]", HelpSection::Lines, "",
@@ -267,11 +265,13 @@ std::string lineTypesHelp() {
 std::string shadingHelp() {
     std::string text;
     for (const ShadingModelTraits& traits : shadingModels())
-        text += std::string(text.empty() ? "" : " | ") + traits.name + (traits.model == Look{}.shading ? " (default)" : "");
+        text +=
+            std::string(text.empty() ? "" : " | ") + traits.name + (traits.model == Look{}.shading ? " (default)" : "");
     for (const ShadingModelTraits& traits : shadingModels()) {
         if (traits.model == ShadingModel::None) continue;
         std::string indented;
-        for (const char* c = traits.help; *c; ++c) indented += *c == '\n' ? std::string("\n       ") : std::string(1, *c);
+        for (const char* c = traits.help; *c; ++c)
+            indented += *c == '\n' ? std::string("\n       ") : std::string(1, *c);
         text += "\n  " + std::string(traits.name) + ": " + indented;
     }
     return text;
@@ -281,29 +281,26 @@ std::vector<Flag> makeFlags() {
     using S = HelpSection;
     std::vector<Flag> flags;
     // Output
-    flags.push_back(flag({"-o", "--output"}, "FILE", S::Output, "the final picture: .png, .exr, .tif or .jpg",
-                         [](const std::string& value, RenderOptions& options) {
-                             options.outputPath = value;
-                             const std::string extension = lowercaseExtension(value);
-                             if (std::find(kOutputExtensions.begin(), kOutputExtensions.end(), extension) ==
-                                 kOutputExtensions.end())
-                                 throw UsageError("-o: '" + value +
-                                                  "' has no picture extension I write (use .png, .exr, .tif or .jpg)");
-                         }));
-    flags.push_back(styleFlag(flag({"--size"}, "WxH", S::Output,
-                                   "image size in pixels (default 1024x1024, at most 16384 a side)",
-                                   [](const std::string& value, RenderOptions& options) {
-                                       parseSize(value, options.width, options.height);
-                                   })));
     flags.push_back(flag(
-        {"--dump"}, "DIR", S::Output,
-        "also write every buffer the plan computed, and manifest.json. What is computed follows\n"
-        "from the request: shading draws the meshes itself; add --request 'gbuffer.*' for\n"
-        "normal.exr, view.exr, w.exr (float32 RGBA, alpha = coverage), ndotv.exr, depth.exr\n"
-        "(float32), coverage.png, basecolor.png, radial.exr, materialid.exr. Also shading.png, final.png,\n"
-        "lines-<type>.png. An earlier dump in DIR is replaced once everything is written; DIR must be new,\n"
-        "empty, or hold exactly an earlier dump",
-        [](const std::string& value, RenderOptions& options) { options.dumpDirectory = value; }));
+        {"-o", "--output"}, "FILE", S::Output, "the final picture: .png, .exr, .tif or .jpg",
+        [](const std::string& value, RenderOptions& options) {
+            options.outputPath = value;
+            const std::string extension = lowercaseExtension(value);
+            if (std::find(kOutputExtensions.begin(), kOutputExtensions.end(), extension) == kOutputExtensions.end())
+                throw UsageError("-o: '" + value + "' has no picture extension I write (use .png, .exr, .tif or .jpg)");
+        }));
+    flags.push_back(styleFlag(flag(
+        {"--size"}, "WxH", S::Output, "image size in pixels (default 1024x1024, at most 16384 a side)",
+        [](const std::string& value, RenderOptions& options) { parseSize(value, options.width, options.height); })));
+    flags.push_back(
+        flag({"--dump"}, "DIR", S::Output,
+             "also write every buffer the plan computed, and manifest.json. What is computed follows\n"
+             "from the request: shading draws the meshes itself; add --request 'gbuffer.*' for\n"
+             "normal.exr, view.exr, w.exr (float32 RGBA, alpha = coverage), ndotv.exr, depth.exr\n"
+             "(float32), coverage.png, basecolor.png, radial.exr, materialid.exr. Also shading.png, final.png,\n"
+             "lines-<type>.png. An earlier dump in DIR is replaced once everything is written; DIR must be new,\n"
+             "empty, or hold exactly an earlier dump",
+             [](const std::string& value, RenderOptions& options) { options.dumpDirectory = value; }));
     flags.push_back(flag({"--request"}, "LIST", S::Output,
                          "compute and keep extra graph outputs, comma-separated: 'gbuffer.wVec', or 'gbuffer.*'\n"
                          "for all of them (requesting is what makes a pass compute a buffer; dumping never does)",
@@ -341,15 +338,15 @@ std::vector<Flag> makeFlags() {
                              if (lowercaseExtension(value) != ".svg")
                                  throw UsageError("--svg: '" + value + "' must be a .svg file");
                          }));
-    Flag svgTolerance = flag({"--svg-tolerance"}, "PX", S::Output,
-                             "--svg: how far a simplified path may leave the traced pixels, in output pixels\n"
-                             "(default 0.5; 0 keeps every pixel)",
-                             [](const std::string& value, RenderOptions& options) {
-                                 options.svgTolerance = parseNumber("--svg-tolerance", value);
-                                 if (options.svgTolerance < 0.0 || options.svgTolerance > 100.0)
-                                     throw UsageError("--svg-tolerance: expected output pixels from 0 to 100, got '" +
-                                                      value + "'");
-                             });
+    Flag svgTolerance =
+        flag({"--svg-tolerance"}, "PX", S::Output,
+             "--svg: how far a simplified path may leave the traced pixels, in output pixels\n"
+             "(default 0.5; 0 keeps every pixel)",
+             [](const std::string& value, RenderOptions& options) {
+                 options.svgTolerance = parseNumber("--svg-tolerance", value);
+                 if (options.svgTolerance < 0.0 || options.svgTolerance > 100.0)
+                     throw UsageError("--svg-tolerance: expected output pixels from 0 to 100, got '" + value + "'");
+             });
     svgTolerance.noEffect = [](const RenderOptions& options) -> std::string {
         return options.svgPath.empty() ? "--svg-tolerance: applies to --svg, which is not given" : "";
     };
@@ -358,29 +355,26 @@ std::vector<Flag> makeFlags() {
                          [](const std::string&, RenderOptions& options) { options.quiet = true; }));
 
     // Camera
-    flags.push_back(flag({"--eye"}, "X,Y,Z", S::Camera, "camera position, in world units (coordinates within +-1e15)",
-                         [](const std::string& value, RenderOptions& options) {
-                             options.eye = parsePoint("--eye", value);
-                         }));
-    flags.push_back(flag({"--target"}, "X,Y,Z", S::Camera,
-                         "point looked at (default: the model's bounding-sphere centre; within +-1e15)",
-                         [](const std::string& value, RenderOptions& options) {
-                             options.target = parsePoint("--target", value);
-                         }));
-    flags.push_back(flag({"--up"}, "X,Y,Z", S::Camera,
-                         "up direction (default: the glTF camera's, else 0,1,0); auto-framing looks from the\n"
-                         "front, slightly above, as this up defines it",
-                         [](const std::string& value, RenderOptions& options) {
-                             options.up = parseDirection("--up", value);
-                         }));
-    flags.push_back(styleFlag(flag({"--fov"}, "DEG", S::Camera,
-                                   "vertical field of view in degrees, 0.01 to 179 (default 35)",
-                                   [](const std::string& value, RenderOptions& options) {
-                                       const double fov = parseNumber("--fov", value);
-                                       if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
-                                           throw UsageError("--fov: degrees must lie in [0.01, 179], got " + value);
-                                       options.fovYDegrees = fov;
-                                   })));
+    flags.push_back(
+        flag({"--eye"}, "X,Y,Z", S::Camera, "camera position, in world units (coordinates within +-1e15)",
+             [](const std::string& value, RenderOptions& options) { options.eye = parsePoint("--eye", value); }));
+    flags.push_back(
+        flag({"--target"}, "X,Y,Z", S::Camera,
+             "point looked at (default: the model's bounding-sphere centre; within +-1e15)",
+             [](const std::string& value, RenderOptions& options) { options.target = parsePoint("--target", value); }));
+    flags.push_back(
+        flag({"--up"}, "X,Y,Z", S::Camera,
+             "up direction (default: the glTF camera's, else 0,1,0); auto-framing looks from the\n"
+             "front, slightly above, as this up defines it",
+             [](const std::string& value, RenderOptions& options) { options.up = parseDirection("--up", value); }));
+    flags.push_back(
+        styleFlag(flag({"--fov"}, "DEG", S::Camera, "vertical field of view in degrees, 0.01 to 179 (default 35)",
+                       [](const std::string& value, RenderOptions& options) {
+                           const double fov = parseNumber("--fov", value);
+                           if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
+                               throw UsageError("--fov: degrees must lie in [0.01, 179], got " + value);
+                           options.fovYDegrees = fov;
+                       })));
     flags.push_back(flag(
         {"--clip"}, "NEAR,FAR", S::Camera,
         "near and far clip distances along the view axis, 0 < NEAR < FAR, both in [1e-30, 1e30],\n"
@@ -400,7 +394,8 @@ std::vector<Flag> makeFlags() {
             // 1e-6,1e6 like the fitted range).
             if (clip.x < kMinClipDistance || clip.y > kMaxClipDistance || clip.y / clip.x > kMaxClipRatio)
                 throw UsageError("--clip: NEAR and FAR must lie in [1e-30, 1e30] with FAR/NEAR at most 1e30 (depth "
-                                 "is float32), got '" + value + "'");
+                                 "is float32), got '" +
+                                 value + "'");
             options.clipRange = clip;
         }));
 
@@ -412,42 +407,38 @@ std::vector<Flag> makeFlags() {
                          [](const std::string& value, RenderOptions& options) {
                              options.stylePath = value; // its settings were put first by expandStyleFile()
                          }));
-    flags.push_back(styleFlag(flag({"--shading"}, "MODE", S::Look, shadingHelp(),
-                                   [](const std::string& value, RenderOptions& options) {
-                                       const ShadingModelTraits* traits = findShadingModel(value);
-                                       if (traits == nullptr) {
-                                           std::vector<std::string> names;
-                                           for (const ShadingModelTraits& model : shadingModels())
-                                               names.push_back(model.name);
-                                           throw UsageError("--shading: unknown value '" + value + "' (available: " +
-                                                            commaJoined(names) + ")");
-                                       }
-                                       options.look.shading = traits->model;
-                                   })));
-    Flag shininess = styleFlag(flag({"--shininess"}, "N", S::Look,
-                                    "specular exponent for " + shadingModelsWith(&ShadingModelTraits::specular) +
-                                        ", 0 to 1e6 (default 32)",
-                                    [](const std::string& value, RenderOptions& options) {
-                                        options.look.shininess = parseNumber("--shininess", value);
-                                        if (options.look.shininess < 0.0 || options.look.shininess > kMaxShininess)
-                                            throw UsageError("--shininess: expected a number from 0 to 1e6, got '" +
-                                                             value + "'");
-                                    }));
+    flags.push_back(styleFlag(
+        flag({"--shading"}, "MODE", S::Look, shadingHelp(), [](const std::string& value, RenderOptions& options) {
+            const ShadingModelTraits* traits = findShadingModel(value);
+            if (traits == nullptr) {
+                std::vector<std::string> names;
+                for (const ShadingModelTraits& model : shadingModels()) names.push_back(model.name);
+                throw UsageError("--shading: unknown value '" + value + "' (available: " + commaJoined(names) + ")");
+            }
+            options.look.shading = traits->model;
+        })));
+    Flag shininess = styleFlag(
+        flag({"--shininess"}, "N", S::Look,
+             "specular exponent for " + shadingModelsWith(&ShadingModelTraits::specular) + ", 0 to 1e6 (default 32)",
+             [](const std::string& value, RenderOptions& options) {
+                 options.look.shininess = parseNumber("--shininess", value);
+                 if (options.look.shininess < 0.0 || options.look.shininess > kMaxShininess)
+                     throw UsageError("--shininess: expected a number from 0 to 1e6, got '" + value + "'");
+             }));
     shininess.noEffect = onlyWithModels("--shininess", &ShadingModelTraits::specular);
     flags.push_back(shininess);
-    Flag bands = styleFlag(flag({"--bands"}, "N", S::Look, shadingModelsWith(&ShadingModelTraits::bands) +
-                                                                ": N even bands, 2 to 256",
+    Flag bands = styleFlag(flag({"--bands"}, "N", S::Look,
+                                shadingModelsWith(&ShadingModelTraits::bands) + ": N even bands, 2 to 256",
                                 [](const std::string& value, RenderOptions& options) {
                                     options.look.bands = parseWholeNumber("--bands", value, 2, 256);
                                 }));
     bands.noEffect = onlyWithModels("--bands", &ShadingModelTraits::bands);
     flags.push_back(bands);
-    Flag shadeMap = styleFlag(flag({"--shademap"}, "FILE", S::Look,
-                                   "cel: a one-row image; comic: a 2-D image (left dark -> right lit, bottom no highlight\n"
-                                   "-> top full highlight); 8-bit, at most 4096 a side; multiplied with the material colour",
-                                   [](const std::string& value, RenderOptions& options) {
-                                       options.look.shadeMapPath = value;
-                                   }));
+    Flag shadeMap =
+        styleFlag(flag({"--shademap"}, "FILE", S::Look,
+                       "cel: a one-row image; comic: a 2-D image (left dark -> right lit, bottom no highlight\n"
+                       "-> top full highlight); 8-bit, at most 4096 a side; multiplied with the material colour",
+                       [](const std::string& value, RenderOptions& options) { options.look.shadeMapPath = value; }));
     shadeMap.pathValue = true;
     shadeMap.noEffect = onlyWithModels("--shademap", &ShadingModelTraits::shadeMap);
     flags.push_back(shadeMap);
@@ -461,22 +452,23 @@ std::vector<Flag> makeFlags() {
         }));
     viewVector.noEffect = onlyWithModels("--view-vector", &ShadingModelTraits::faceOrientation);
     flags.push_back(viewVector);
-    Flag faceOrientation = styleFlag(flag(
-        {"--face-orientation"}, "M", S::Look,
-        "comic: standard (default: the GPU culls and lights per pixel) | during-triangles |\n"
-        "during-vertices | after-vertices (Winnemöller & Bangay's CPU marking with per-vertex lighting;\n"
-        "--stats reports front shares, holes and milliseconds)",
-        [](const std::string& value, RenderOptions& options) {
-            options.look.faceOrientation = parseChoice("--face-orientation", value, kOrientationMethods);
-        }));
+    Flag faceOrientation = styleFlag(
+        flag({"--face-orientation"}, "M", S::Look,
+             "comic: standard (default: the GPU culls and lights per pixel) | during-triangles |\n"
+             "during-vertices | after-vertices (Winnemöller & Bangay's CPU marking with per-vertex lighting;\n"
+             "--stats reports front shares, holes and milliseconds)",
+             [](const std::string& value, RenderOptions& options) {
+                 options.look.faceOrientation = parseChoice("--face-orientation", value, kOrientationMethods);
+             }));
     faceOrientation.noEffect = onlyWithModels("--face-orientation", &ShadingModelTraits::faceOrientation);
     flags.push_back(faceOrientation);
-    Flag frontRule = styleFlag(flag({"--front-rule"}, "R", S::Look,
-                                    "during-vertices, after-vertices: a triangle is front when 3 (R=1), 2 (R=2) or 1 (R=3,\n"
-                                    "default) of its vertices are front",
-                                    [](const std::string& value, RenderOptions& options) {
-                                        options.look.frontRule = parseWholeNumber("--front-rule", value, 1, 3);
-                                    }));
+    Flag frontRule =
+        styleFlag(flag({"--front-rule"}, "R", S::Look,
+                       "during-vertices, after-vertices: a triangle is front when 3 (R=1), 2 (R=2) or 1 (R=3,\n"
+                       "default) of its vertices are front",
+                       [](const std::string& value, RenderOptions& options) {
+                           options.look.frontRule = parseWholeNumber("--front-rule", value, 1, 3);
+                       }));
     frontRule.noEffect = [comic = onlyWithModels("--front-rule", &ShadingModelTraits::faceOrientation)](
                              const RenderOptions& options) -> std::string {
         if (std::string refusal = comic(options); !refusal.empty()) return refusal;
@@ -493,58 +485,58 @@ std::vector<Flag> makeFlags() {
                                    [](const std::string& value, RenderOptions& options) {
                                        options.look.towardLight = parseDirection("--light", value);
                                    })));
-    flags.push_back(styleFlag(flag({"--background"}, "R,G,B", S::Look,
-                                   "paper colour, channels in [0,1] (default 1,1,1)",
-                                   [](const std::string& value, RenderOptions& options) {
-                                       const glm::dvec3 color = parseVector("--background", value);
-                                       for (int c = 0; c < 3; ++c)
-                                           if (color[c] < 0.0 || color[c] > 1.0)
-                                               throw UsageError("--background: channels must lie in [0, 1], got '" +
-                                                                value + "'");
-                                       options.look.background = color;
-                                   })));
+    flags.push_back(
+        styleFlag(flag({"--background"}, "R,G,B", S::Look, "paper colour, channels in [0,1] (default 1,1,1)",
+                       [](const std::string& value, RenderOptions& options) {
+                           const glm::dvec3 color = parseVector("--background", value);
+                           for (int c = 0; c < 3; ++c)
+                               if (color[c] < 0.0 || color[c] > 1.0)
+                                   throw UsageError("--background: channels must lie in [0, 1], got '" + value + "'");
+                           options.look.background = color;
+                       })));
 
     // Lines
-    flags.push_back(styleFlag(flag({"--lines"}, "LIST", S::Lines, lineTypesHelp(),
-                                   [](const std::string& value, RenderOptions& options) {
-                                       options.look.lines.clear();
-                                       if (value == "none") return;
-                                       std::vector<std::string> known;
-                                       for (const LineType& type : lineTypes()) known.push_back(type.name);
-                                       for (const std::string& type : splitList(value, ',')) {
-                                           if (!findLineType(type))
-                                               throw UsageError("--lines: unknown line type '" + type +
-                                                                "' (available: " + joined(known) + "; or 'none')");
-                                           if (options.look.draws(type))
-                                               throw UsageError("--lines: '" + type + "' is listed twice");
-                                           options.look.lines.push_back(type);
-                                       }
-                                   })));
+    flags.push_back(styleFlag(
+        flag({"--lines"}, "LIST", S::Lines, lineTypesHelp(), [](const std::string& value, RenderOptions& options) {
+            options.look.lines.clear();
+            if (value == "none") return;
+            std::vector<std::string> known;
+            for (const LineType& type : lineTypes()) known.push_back(type.name);
+            for (const std::string& type : splitList(value, ',')) {
+                if (!findLineType(type))
+                    throw UsageError("--lines: unknown line type '" + type + "' (available: " + joined(known) +
+                                     "; or 'none')");
+                if (options.look.draws(type)) throw UsageError("--lines: '" + type + "' is listed twice");
+                options.look.lines.push_back(type);
+            }
+        })));
     addLineTypeFlags(flags);
-    Flag supersample = styleFlag(flag(
-        {"--supersample"}, "S", S::Lines,
-        "find the G-buffer, mesh-edge and object-space lines at S x the size (1 to 8,\n"
-        "default 1) and area-downsample only the final line images: smoother, better-placed\n"
-        "lines, S^2 the work. Outline and silhouette are drawn by GL at the output size.",
-        [](const std::string& value, RenderOptions& options) {
-            options.look.supersample = parseWholeNumber("--supersample", value, 1, 8);
-        }));
+    Flag supersample =
+        styleFlag(flag({"--supersample"}, "S", S::Lines,
+                       "find the G-buffer, mesh-edge and object-space lines at S x the size (1 to 8,\n"
+                       "default 1) and area-downsample only the final line images: smoother, better-placed\n"
+                       "lines, S^2 the work. Outline and silhouette are drawn by GL at the output size.",
+                       [](const std::string& value, RenderOptions& options) {
+                           options.look.supersample = parseWholeNumber("--supersample", value, 1, 8);
+                       }));
     supersample.noEffect = onlyWithLineTypes("--supersample", lineTypesUsing(nullptr));
     flags.push_back(supersample);
-    flags.push_back(styleFlag(flag(
-        {"--gbuffer-precision"}, "P", S::Lines,
-        "float (default) | half: store the G-buffer's normal, view, w, n.v and radial fields as\n"
-        "16-bit floats (depth and material ids stay 32-bit). Half the memory; the suggestive contours get\n"
-        "noisy (docs/accuracy.md measures it). Also applies to --request 'gbuffer.*'",
-        [](const std::string& value, RenderOptions& options) {
-            if (value == "float")
-                options.look.gbufferPrecision = GBufferPrecision::Float32;
-            else if (value == "half")
-                options.look.gbufferPrecision = GBufferPrecision::Float16;
-            else
-                throw UsageError("--gbuffer-precision: expected float or half, got '" + value + "'");
-        })));
-    flags.push_back(helpOnly(S::Lines, "", "Outline and silhouette draw nothing when the eye is inside the model (they would flood the picture)."));
+    flags.push_back(styleFlag(
+        flag({"--gbuffer-precision"}, "P", S::Lines,
+             "float (default) | half: store the G-buffer's normal, view, w, n.v and radial fields as\n"
+             "16-bit floats (depth and material ids stay 32-bit). Half the memory; the suggestive contours get\n"
+             "noisy (docs/accuracy.md measures it). Also applies to --request 'gbuffer.*'",
+             [](const std::string& value, RenderOptions& options) {
+                 if (value == "float")
+                     options.look.gbufferPrecision = GBufferPrecision::Float32;
+                 else if (value == "half")
+                     options.look.gbufferPrecision = GBufferPrecision::Float16;
+                 else
+                     throw UsageError("--gbuffer-precision: expected float or half, got '" + value + "'");
+             })));
+    flags.push_back(helpOnly(
+        S::Lines, "",
+        "Outline and silhouette draw nothing when the eye is inside the model (they would flood the picture)."));
 
     // Batch
     flags.push_back(helpOnly(S::Batch, "MODEL...",
@@ -555,15 +547,15 @@ std::vector<Flag> makeFlags() {
                          "more models, one path per line (blank lines and # comments skipped; relative paths\n"
                          "from the current folder); '-' reads standard input",
                          [](const std::string& value, RenderOptions& options) { options.listPath = value; }));
-    flags.push_back(flag({"--shard"}, "K/N", S::Batch,
-                         "render only the models at list positions p (from 0) with p mod N = K, 0 <= K < N: one\n"
-                         "task of an array job (Slurm: --shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT)",
-                         [](const std::string& value, RenderOptions& options) {
-                             options.shard = parseShard("--shard", value);
-                         }));
-    flags.push_back(helpOnly(S::Batch, "",
-                             "Each model gets a progress line. A model that cannot be read is reported and the others go on; the run then\n"
-                             "ends with exit 3. Any other error stops the batch; models already done keep their files."));
+    flags.push_back(
+        flag({"--shard"}, "K/N", S::Batch,
+             "render only the models at list positions p (from 0) with p mod N = K, 0 <= K < N: one\n"
+             "task of an array job (Slurm: --shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT)",
+             [](const std::string& value, RenderOptions& options) { options.shard = parseShard("--shard", value); }));
+    flags.push_back(helpOnly(
+        S::Batch, "",
+        "Each model gets a progress line. A model that cannot be read is reported and the others go on; the run then\n"
+        "ends with exit 3. Any other error stops the batch; models already done keep their files."));
 
     // System
     flags.push_back(flag({"--egl-platform"}, "P", S::System,
@@ -574,18 +566,17 @@ std::vector<Flag> makeFlags() {
                                                   "' is not one of auto, device, surfaceless");
                              options.eglPlatform = value;
                          }));
-    flags.push_back(flag(
-        {"--memory-limit"}, "MIB", S::System,
-        "the most memory the process may take for one still, 64 and up (default: half this\n"
-        "machine's memory, at least 1024). Checked before allocating: the model load from the\n"
-        "file's size and declared counts (exit 3), then the whole run's peak from the plan (the\n"
-        "process, the scene, every buffer at --size and --supersample, read-backs, encoding; exit\n"
-        "2), naming the flags that need the memory. --stats reports the estimate\n"
-        "(estimated_peak_mib) and the measured peak (peak_rss_mib); docs/batch.md sizes a task",
-        [](const std::string& value, RenderOptions& options) {
-            options.memoryLimitBytes = std::size_t(parseWholeNumber("--memory-limit", value, 64, kMaxMemoryLimitMib))
-                                       << 20;
-        }));
+    flags.push_back(flag({"--memory-limit"}, "MIB", S::System,
+                         "the most memory the process may take for one still, 64 and up (default: half this\n"
+                         "machine's memory, at least 1024). Checked before allocating: the model load from the\n"
+                         "file's size and declared counts (exit 3), then the whole run's peak from the plan (the\n"
+                         "process, the scene, every buffer at --size and --supersample, read-backs, encoding; exit\n"
+                         "2), naming the flags that need the memory. --stats reports the estimate\n"
+                         "(estimated_peak_mib) and the measured peak (peak_rss_mib); docs/batch.md sizes a task",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.memoryLimitBytes =
+                                 std::size_t(parseWholeNumber("--memory-limit", value, 64, kMaxMemoryLimitMib)) << 20;
+                         }));
     return flags;
 }
 
@@ -595,8 +586,10 @@ const char* sectionTitle(HelpSection section) {
     case HelpSection::Camera:
         return "Camera (right-handed world, OpenGL lookAt/perspective; default: the glTF camera, else auto-framed)";
     case HelpSection::Look: return "Look";
-    case HelpSection::Lines: return "Lines (any subset; only the passes the listed types need run: see --stats \"culled\")";
-    case HelpSection::Batch: return "Batch (several models in one process: one GL context, each shader program compiled once)";
+    case HelpSection::Lines:
+        return "Lines (any subset; only the passes the listed types need run: see --stats \"culled\")";
+    case HelpSection::Batch:
+        return "Batch (several models in one process: one GL context, each shader program compiled once)";
     case HelpSection::System: return "System";
     }
     return "";

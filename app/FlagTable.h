@@ -20,10 +20,10 @@ struct Flag {
     std::vector<std::string> names; ///< "--size", or "-o" and "--output"; empty for a help-only entry
     std::string valueName;          ///< "WxH"; empty: the flag takes no value
     HelpSection section = HelpSection::Output;
-    std::string help;               ///< --help's text; '\n' starts a new line; empty: not in --help
-    std::string helpLabel;          ///< --help's left column when not "<names> <valueName>" ("--TYPE-width PX")
-    bool inStyle = false;           ///< a style file may set it, as its long name without the dashes
-    bool pathValue = false;         ///< its value is a file: in a style file, relative to the style file
+    std::string help;       ///< --help's text; '\n' starts a new line; empty: not in --help
+    std::string helpLabel;  ///< --help's left column when not "<names> <valueName>" ("--TYPE-width PX")
+    bool inStyle = false;   ///< a style file may set it, as its long name without the dashes
+    bool pathValue = false; ///< its value is a file: in a style file, relative to the style file
     /** Checks `value` and stores it; throws UsageError naming the flag. Null for help-only entries. */
     std::function<void(const std::string& value, RenderOptions& options)> apply;
     /** After parsing, when given: the refusal if the flag changes nothing with these options, else "". */

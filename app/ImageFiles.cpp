@@ -27,8 +27,8 @@ void renameIntoPlace(const std::filesystem::path& temporary, const std::filesyst
     if (error) {
         std::filesystem::remove(temporary, error);
         forgetTemporary(temporary);
-        throw FileError("writeFile(): cannot move the finished file into place as '" + path.string() + "': " +
-                        error.message());
+        throw FileError("writeFile(): cannot move the finished file into place as '" + path.string() +
+                        "': " + error.message());
     }
     forgetTemporary(temporary);
 }
@@ -134,17 +134,19 @@ void writeBytes(const std::filesystem::path& destination, const void* data, std:
                 const std::string& shownName) {
     // O_EXCL: a temporary name that exists is someone else's file, never ours to overwrite.
     const int descriptor = ::open(destination.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (descriptor < 0)
-        throw FileError("writeFile(): cannot create '" + shownName + "': " + std::strerror(errno));
+    if (descriptor < 0) throw FileError("writeFile(): cannot create '" + shownName + "': " + std::strerror(errno));
     registerTemporary(destination);
     const auto* bytes = static_cast<const char*>(data);
     std::size_t written = 0;
     int failure = 0;
     while (written < byteCount && failure == 0) {
         const ssize_t result = ::write(descriptor, bytes + written, byteCount - written);
-        if (result > 0) written += std::size_t(result);
-        else if (result < 0 && errno != EINTR) failure = errno;
-        else if (result == 0) failure = EIO;
+        if (result > 0)
+            written += std::size_t(result);
+        else if (result < 0 && errno != EINTR)
+            failure = errno;
+        else if (result == 0)
+            failure = EIO;
     }
     // fsync before the rename: after a crash the final name holds the whole file or the old one, never a prefix.
     if (failure == 0 && ::fsync(descriptor) != 0) failure = errno;
@@ -214,8 +216,7 @@ cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, s
     }
     cv::Mat image;
     std::string readError;
-    if (!imageIo().readImageBytes(png, "png", maxPixels, image, readError))
-        throw FileError(where + ": " + readError);
+    if (!imageIo().readImageBytes(png, "png", maxPixels, image, readError)) throw FileError(where + ": " + readError);
     return image;
 }
 

@@ -38,7 +38,9 @@ bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, Re
 
 /** What no single flag can judge alone. */
 void checkCombinations(const RenderOptions& options, const std::vector<const Flag*>& given) {
-    auto wasGiven = [&](const char* name) { return std::find(given.begin(), given.end(), findFlag(name)) != given.end(); };
+    auto wasGiven = [&](const char* name) {
+        return std::find(given.begin(), given.end(), findFlag(name)) != given.end();
+    };
     if (wasGiven("--bands") && wasGiven("--shademap"))
         throw UsageError("--bands and --shademap both choose the cel shade map: give one");
     const Look& look = options.look;
@@ -52,8 +54,7 @@ void checkCombinations(const RenderOptions& options, const std::vector<const Fla
         throw UsageError("missing -o OUT.png (or --print-plan / --graphviz to only show the plan)");
     if (options.eye && options.target && *options.eye == *options.target)
         throw UsageError("--eye and --target must differ");
-    if (!options.svgPath.empty() && look.lines.empty())
-        throw UsageError("--svg: no line types to write (add --lines)");
+    if (!options.svgPath.empty() && look.lines.empty()) throw UsageError("--svg: no line types to write (add --lines)");
     if (!options.statsPath.empty() && !rendersImages(options))
         throw UsageError("--stats needs -o or --dump: with --print-plan alone nothing is rendered or timed");
 }

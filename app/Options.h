@@ -30,32 +30,32 @@ struct Shard {
 /** The command line of `inkgraph render`: the models, the camera, the Look, the outputs and the run's settings. The
  *  renderer takes the parts (Look, CameraRequest); this struct is only what the flags fill. */
 struct RenderOptions {
-    std::string modelPath;                  ///< the model of this still (the first MODEL until a batch assigns it)
-    std::vector<std::string> modelPaths;    ///< every MODEL argument, in order; with --list, a batch (app/Batch.h)
-    std::string listPath;                   ///< --list FILE: more models, one per line ("-": standard input)
-    std::optional<Shard> shard;             ///< --shard K/N: this process's share of the models
-    std::string outputPath;                 ///< -o; may be empty with --print-plan only
+    std::string modelPath;               ///< the model of this still (the first MODEL until a batch assigns it)
+    std::vector<std::string> modelPaths; ///< every MODEL argument, in order; with --list, a batch (app/Batch.h)
+    std::string listPath;                ///< --list FILE: more models, one per line ("-": standard input)
+    std::optional<Shard> shard;          ///< --shard K/N: this process's share of the models
+    std::string outputPath;              ///< -o; may be empty with --print-plan only
     int width = 1024;
     int height = 1024;
     std::optional<glm::dvec3> eye;
     std::optional<glm::dvec3> target;
-    std::optional<glm::dvec3> up;           ///< default: the glTF camera's, else 0,1,0
-    std::optional<double> fovYDegrees;      ///< default 35 unless the glTF camera says otherwise
-    std::optional<glm::dvec2> clipRange;    ///< --clip NEAR,FAR (0 < near < far); default: fitted to the model
-    Look look;                              ///< shading, lines, supersampling, precision, paper, light
-    std::vector<std::string> extraOutputs;  ///< --request: extra graph resources kept and dumped ("gbuffer.*")
+    std::optional<glm::dvec3> up;          ///< default: the glTF camera's, else 0,1,0
+    std::optional<double> fovYDegrees;     ///< default 35 unless the glTF camera says otherwise
+    std::optional<glm::dvec2> clipRange;   ///< --clip NEAR,FAR (0 < near < far); default: fitted to the model
+    Look look;                             ///< shading, lines, supersampling, precision, paper, light
+    std::vector<std::string> extraOutputs; ///< --request: extra graph resources kept and dumped ("gbuffer.*")
     std::string dumpDirectory;
     std::string statsPath;
-    std::string graphvizPath;               ///< --graphviz: the plan as DOT
-    std::string contactSheetPath;           ///< --contact-sheet: every computed buffer in one labelled PNG
-    std::string svgPath;                    ///< --svg: the line layers as vector paths
-    double svgTolerance = 0.5;              ///< --svg-tolerance: simplification, output pixels
+    std::string graphvizPath;     ///< --graphviz: the plan as DOT
+    std::string contactSheetPath; ///< --contact-sheet: every computed buffer in one labelled PNG
+    std::string svgPath;          ///< --svg: the line layers as vector paths
+    double svgTolerance = 0.5;    ///< --svg-tolerance: simplification, output pixels
     bool printPlan = false;
-    std::string eglPlatform = "auto";       ///< auto, device, surfaceless
+    std::string eglPlatform = "auto";            ///< auto, device, surfaceless
     std::optional<std::size_t> memoryLimitBytes; ///< --memory-limit; default: half the machine's memory, >= 1 GiB
-    std::string stylePath;                  ///< --style, for the stats (its settings are already in the options)
+    std::string stylePath;                       ///< --style, for the stats (its settings are already in the options)
     bool quiet = false;
-    bool help = false;                      ///< --help or -h in a flag's place: print help, do nothing else
+    bool help = false; ///< --help or -h in a flag's place: print help, do nothing else
 };
 
 /** Every flag that names an output path, with its field, in --help's order: -o, --dump, --stats, --graphviz,

@@ -199,8 +199,10 @@ OutputSet::Output& OutputSet::output(const std::string& flag) {
 void OutputSet::stageFile(const std::string& flag, const cv::Mat* image, const std::string* text) {
     Output& file = output(flag);
     const fs::path temporary = temporarySibling(file.destination);
-    if (image != nullptr) writeImageTo(temporary, file.destination, *image);
-    else writeBytes(temporary, text->data(), text->size(), file.destination.string());
+    if (image != nullptr)
+        writeImageTo(temporary, file.destination, *image);
+    else
+        writeBytes(temporary, text->data(), text->size(), file.destination.string());
     file.temporary = temporary;
 }
 
@@ -215,8 +217,7 @@ void OutputSet::stageDumpImage(const std::string& fileName, const cv::Mat& image
 }
 
 void OutputSet::stageDumpManifest(const std::string& json) {
-    writeBytes(mDump->stage("manifest.json"), json.data(), json.size(),
-               (mDump->folder() / "manifest.json").string());
+    writeBytes(mDump->stage("manifest.json"), json.data(), json.size(), (mDump->folder() / "manifest.json").string());
 }
 
 void OutputSet::undo() {

@@ -46,11 +46,11 @@ void checkFrameBudget(const Plan& plan, const RenderOptions& options, const Scen
                                          std::size_t(bytesPerPixel(resource.desc.format));
         if (textureBytes < kMaxTextureBytes) continue;
         const std::string size = "--size " + std::to_string(options.width) + "x" + std::to_string(options.height);
-        const std::string cause =
-            resource.desc.scale > 1 ? size + " with --supersample " + std::to_string(resource.desc.scale) +
-                                          " (" + std::to_string(options.width * resource.desc.scale) + "x" +
-                                          std::to_string(options.height * resource.desc.scale) + ")"
-                                    : size;
+        const std::string cause = resource.desc.scale > 1
+                                      ? size + " with --supersample " + std::to_string(resource.desc.scale) + " (" +
+                                            std::to_string(options.width * resource.desc.scale) + "x" +
+                                            std::to_string(options.height * resource.desc.scale) + ")"
+                                      : size;
         throw UsageError(cause + " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
                          " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
     }

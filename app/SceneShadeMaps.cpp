@@ -26,9 +26,11 @@ std::vector<std::optional<ShadeMap>> readSceneShadeMaps(const Scene& scene, Shad
         for (const Mesh& mesh : scene.meshes)
             if (!mesh.shadeMapPath.empty()) ++naming;
         if (naming > 0 && warnings)
-            warnings->push_back(naming == 1 ? "1 mesh names a shade map, which only --shading " + shadingModelsWith(&ShadingModelTraits::shadeMap) + " use"
-                                            : std::to_string(naming) +
-                                                  " meshes name shade maps, which only --shading " + shadingModelsWith(&ShadingModelTraits::shadeMap) + " use");
+            warnings->push_back(naming == 1
+                                    ? "1 mesh names a shade map, which only --shading " +
+                                          shadingModelsWith(&ShadingModelTraits::shadeMap) + " use"
+                                    : std::to_string(naming) + " meshes name shade maps, which only --shading " +
+                                          shadingModelsWith(&ShadingModelTraits::shadeMap) + " use");
         return maps;
     }
 
@@ -40,9 +42,9 @@ std::vector<std::optional<ShadeMap>> readSceneShadeMaps(const Scene& scene, Shad
         auto found = read.find(mesh.shadeMapPath);
         if (found == read.end()) {
             try {
-                found =
-                    read.emplace(mesh.shadeMapPath, readShadeMapFile(mesh.shadeMapPath, traitsOf(shading).oneDimensionalMap))
-                        .first;
+                found = read.emplace(mesh.shadeMapPath,
+                                     readShadeMapFile(mesh.shadeMapPath, traitsOf(shading).oneDimensionalMap))
+                            .first;
             } catch (const InputFileError& error) {
                 // readShadeMapFile() speaks for --shademap; here the file came from the model, so name the mesh.
                 constexpr std::string_view kFlagPrefix = "--shademap: ";

@@ -31,7 +31,8 @@ std::string statsText(const StatsContext& context, const StillRenderer& renderer
                      {"far_over_near", camera.zFar / camera.zNear},
                      {"source", camera.clipSource},
                      {"depth", "reversed-z float32"}};
-    if (context.batch) stats["batch"] = {{"position", context.batch->position + 1}, {"list_length", context.batch->listLength}};
+    if (context.batch)
+        stats["batch"] = {{"position", context.batch->position + 1}, {"list_length", context.batch->listLength}};
     if (const HeadlessContext* gl = renderer.context())
         stats["gl"] = {{"platform", gl->platform()},
                        {"renderer", gl->renderer()},

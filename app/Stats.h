@@ -20,8 +20,8 @@ struct StillBatchPosition {
 struct StatsContext {
     const RenderOptions& options;
     const StillBatchPosition* batch = nullptr;
-    double writeMilliseconds = 0.0;  ///< encoding the outputs so far
-    double totalMilliseconds = 0.0;  ///< the still so far
+    double writeMilliseconds = 0.0; ///< encoding the outputs so far
+    double totalMilliseconds = 0.0; ///< the still so far
     std::size_t estimatedPeakBytes = 0;
 };
 

@@ -27,10 +27,10 @@ Json vectorJson(const glm::dvec3& value) { return Json::array({value.x, value.y,
 /** How the contact sheet shows a buffer: by the field it is (the G-buffer's), else by its format. */
 TileContent tileContentOf(const std::string& resource, Format format, const StillGraph& graph) {
     static const std::map<std::string, TileContent> kGBufferFields = {
-        {"gbuffer.normal", TileContent::UnitVector},   {"gbuffer.view", TileContent::UnitVector},
-        {"gbuffer.wVec", TileContent::UnitVector},     {"gbuffer.nDotV", TileContent::SignedScalar},
-        {"gbuffer.depth", TileContent::Depth},         {"gbuffer.coverage", TileContent::Mask},
-        {"gbuffer.baseColor", TileContent::Color},     {"gbuffer.radial", TileContent::Data},
+        {"gbuffer.normal", TileContent::UnitVector}, {"gbuffer.view", TileContent::UnitVector},
+        {"gbuffer.wVec", TileContent::UnitVector},   {"gbuffer.nDotV", TileContent::SignedScalar},
+        {"gbuffer.depth", TileContent::Depth},       {"gbuffer.coverage", TileContent::Mask},
+        {"gbuffer.baseColor", TileContent::Color},   {"gbuffer.radial", TileContent::Data},
     };
     if (auto field = kGBufferFields.find(resource); field != kGBufferFields.end()) return field->second;
     if (resource == graph.finalResource || resource == graph.shadingResource) return TileContent::Color;
@@ -114,9 +114,15 @@ std::string jsonText(const Json& json) { return json.dump(2, ' ', false, Json::e
 
 std::string dumpFileName(const std::string& resource, bool isFloat, const std::string& shadingResource) {
     static const std::map<std::string, std::string> kFixedNames = {
-        {"gbuffer.normal", "normal.exr"},       {"gbuffer.view", "view.exr"},   {"gbuffer.wVec", "w.exr"},
-        {"gbuffer.nDotV", "ndotv.exr"},         {"gbuffer.depth", "depth.exr"}, {"gbuffer.coverage", "coverage.png"},
-        {"gbuffer.baseColor", "basecolor.png"}, {"gbuffer.radial", "radial.exr"}, {"gbuffer.materialId", "materialid.exr"},
+        {"gbuffer.normal", "normal.exr"},
+        {"gbuffer.view", "view.exr"},
+        {"gbuffer.wVec", "w.exr"},
+        {"gbuffer.nDotV", "ndotv.exr"},
+        {"gbuffer.depth", "depth.exr"},
+        {"gbuffer.coverage", "coverage.png"},
+        {"gbuffer.baseColor", "basecolor.png"},
+        {"gbuffer.radial", "radial.exr"},
+        {"gbuffer.materialId", "materialid.exr"},
         {"composite.final", "final.png"},
     };
     if (auto fixed = kFixedNames.find(resource); fixed != kFixedNames.end()) return fixed->second;

@@ -109,7 +109,8 @@ std::unique_ptr<PreparedStill> StillRenderer::prepare(StillRequest request, cons
     still->loadMilliseconds = millisecondsSince(loadStart);
     const Scene& scene = still->scene;
     const std::string prefix = log.talks ? "" : "'" + req.modelPath + "': ";
-    for (const std::string& warning : scene.report.warnings) log.log << "inkgraph: warning: " << prefix << warning << "\n";
+    for (const std::string& warning : scene.report.warnings)
+        log.log << "inkgraph: warning: " << prefix << warning << "\n";
     if (log.talks && !log.quiet) {
         log.log << std::fixed << std::setprecision(1) << "inkgraph: loaded '" << req.modelPath
                 << "': " << scene.triangleCount() << " triangles, " << scene.vertexCount() << " vertices ("
@@ -179,7 +180,8 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
         throw UsageError(size + ": the driver ran out of memory (" + error.what() + "); make the image smaller");
     } catch (const OutOfMemoryError& error) {
         throw UsageError(size + " with --supersample " + std::to_string(still.request.look.supersample) +
-                         ": out of memory (" + error.what() + "); make the image smaller, or give the process more memory");
+                         ": out of memory (" + error.what() +
+                         "); make the image smaller, or give the process more memory");
     }
     result.programsCompiled = mShaders.compiledCount() - programsCompiledBefore;
     result.programsReused = mShaders.reusedCount() - programsReusedBefore;

@@ -52,8 +52,10 @@ SourcedArguments styleArguments(std::string_view text, const std::string& source
         std::string_view line = text.substr(0, end);
         text.remove_prefix(std::min(end + 1, text.size()));
         const std::string where = "--style '" + source + "' line " + std::to_string(lineNumber);
-        if (line.find('\0') != std::string_view::npos) throw UsageError(where + ": binary data (NUL byte); a style is text");
-        if (const std::size_t comment = line.find('#'); comment != std::string_view::npos) line = line.substr(0, comment);
+        if (line.find('\0') != std::string_view::npos)
+            throw UsageError(where + ": binary data (NUL byte); a style is text");
+        if (const std::size_t comment = line.find('#'); comment != std::string_view::npos)
+            line = line.substr(0, comment);
         line = trimmed(line);
         if (line.empty()) continue;
         const std::size_t equals = line.find('=');
@@ -89,7 +91,8 @@ SourcedArguments expandStyleFile(const std::vector<std::string>& arguments) {
     for (std::size_t i = 0; i < arguments.size(); ++i) {
         if (arguments[i] != "--style") continue;
         if (i + 1 >= arguments.size() || arguments[i + 1].empty()) throw UsageError("--style: missing FILE");
-        if (!stylePath.empty()) throw UsageError("--style: given twice ('" + stylePath + "', '" + arguments[i + 1] + "')");
+        if (!stylePath.empty())
+            throw UsageError("--style: given twice ('" + stylePath + "', '" + arguments[i + 1] + "')");
         stylePath = arguments[++i];
     }
     if (stylePath.empty()) return rest;

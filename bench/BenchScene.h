@@ -33,7 +33,6 @@ inline Scene sphereScene(int triangleCount) {
     return makeScene(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 2 * rings, rings));
 }
 
-
 /** One scene with the CLI's passes (auto-framed camera, default light), compiled for `requested`. */
 struct Bench {
     Look look;
@@ -76,8 +75,8 @@ inline void reportPass(benchmark::State& state, Bench& bench, const std::string&
     bench.run(passName); // warm-up: llvmpipe compiles shader variants on the first draw
     for (auto _ : state) state.SetIterationTime(bench.run(passName) / 1000.0);
     state.counters["triangles"] = double(bench.scene.triangleCount());
-    state.counters["Mpixel/s"] = benchmark::Counter(double(kFrameSize) * kFrameSize * state.iterations() / 1e6,
-                                                    benchmark::Counter::kIsRate);
+    state.counters["Mpixel/s"] =
+        benchmark::Counter(double(kFrameSize) * kFrameSize * state.iterations() / 1e6, benchmark::Counter::kIsRate);
 }
 
 } // namespace inkgraph::bench

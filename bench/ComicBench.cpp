@@ -1,11 +1,11 @@
-// Winnemöller & Bangay 2002's comparison, warm, at 1024x1024 on UV spheres of 1k to 1M triangles (auto-framed, so the eye is about
-// 3 radii away and the constant view vector applies): standard comic (Lander: 1-D shade map + back-face outline)
-// against specular comic with exact view vectors, with the constant view vector, and with each CPU face-orientation
-// method. The time of one case is the shade pass plus the outline pass (prepare() plus execute() to glFinish); for
-// the CPU methods the marking, per-vertex lighting and upload run every frame (an animation's camera moves), in the
-// first prepare() that asks for them.
-// BM_ComicOverhead runs standard comic and one other case alternately, frame by frame, and reports the median
-// overhead over 9 rounds (the hosts are shared; back-to-back runs of one case drift by 10-30%).
+// Winnemöller & Bangay 2002's comparison, warm, at 1024x1024 on UV spheres of 1k to 1M triangles (auto-framed, so the
+// eye is about 3 radii away and the constant view vector applies): standard comic (Lander: 1-D shade map + back-face
+// outline) against specular comic with exact view vectors, with the constant view vector, and with each CPU
+// face-orientation method. The time of one case is the shade pass plus the outline pass (prepare() plus execute() to
+// glFinish); for the CPU methods the marking, per-vertex lighting and upload run every frame (an animation's camera
+// moves), in the first prepare() that asks for them. BM_ComicOverhead runs standard comic and one other case
+// alternately, frame by frame, and reports the median overhead over 9 rounds (the hosts are shared; back-to-back runs
+// of one case drift by 10-30%).
 //   LP_NUM_THREADS=1 ./build/bench/inkgraph_bench --benchmark_filter=ComicOverhead
 #include "bench/BenchScene.h"
 #include "bench/Median.h"
@@ -84,9 +84,9 @@ void runComicCase(benchmark::State& state, const ComicCase& comicCase) {
     }
 }
 
-/** Winnemöller & Bangay 2002's headline number, robust to a shared host: standard comic and `comicCase` run alternately on the same
- *  mesh, frame by frame, so drifts in the machine's speed hit both; the overhead is the median of the per-round
- *  ratios. The manual time is the comic case's frame. */
+/** Winnemöller & Bangay 2002's headline number, robust to a shared host: standard comic and `comicCase` run alternately
+ * on the same mesh, frame by frame, so drifts in the machine's speed hit both; the overhead is the median of the
+ * per-round ratios. The manual time is the comic case's frame. */
 void runOverheadCase(benchmark::State& state, const ComicCase& comicCase) {
     Bench standard(sphereScene(int(state.range(0))), comicCases().front().look, {"composite.final"});
     Bench specular(sphereScene(int(state.range(0))), comicCase.look, {"composite.final"});
@@ -113,14 +113,24 @@ const bool kRegistered = [] {
     for (const ComicCase& comicCase : comicCases())
         benchmark::RegisterBenchmark((std::string("BM_Comic/") + comicCase.name).c_str(),
                                      [&comicCase](benchmark::State& state) { runComicCase(state, comicCase); })
-            ->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000)
-            ->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
+            ->Arg(1000)
+            ->Arg(10000)
+            ->Arg(100000)
+            ->Arg(1000000)
+            ->UseManualTime()
+            ->Unit(benchmark::kMillisecond)
+            ->MinTime(0.5);
     for (const ComicCase& comicCase : comicCases()) {
         if (&comicCase == &comicCases().front()) continue;
         benchmark::RegisterBenchmark((std::string("BM_ComicOverhead/") + comicCase.name).c_str(),
                                      [&comicCase](benchmark::State& state) { runOverheadCase(state, comicCase); })
-            ->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000)
-            ->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(9);
+            ->Arg(1000)
+            ->Arg(10000)
+            ->Arg(100000)
+            ->Arg(1000000)
+            ->UseManualTime()
+            ->Unit(benchmark::kMillisecond)
+            ->Iterations(9);
     }
     return true;
 }();

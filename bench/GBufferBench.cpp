@@ -11,9 +11,8 @@ namespace {
 
 // The two buffers deferred Lambert read (the size of the smallest useful G-buffer).
 const std::vector<std::string> kLambertOutputs = {"gbuffer.normal", "gbuffer.baseColor"};
-const std::vector<std::string> kAllOutputs = {"gbuffer.normal", "gbuffer.view",     "gbuffer.wVec",
-                                              "gbuffer.nDotV",  "gbuffer.depth",    "gbuffer.coverage",
-                                              "gbuffer.baseColor"};
+const std::vector<std::string> kAllOutputs = {"gbuffer.normal", "gbuffer.view",     "gbuffer.wVec",     "gbuffer.nDotV",
+                                              "gbuffer.depth",  "gbuffer.coverage", "gbuffer.baseColor"};
 
 void BM_LoadBunny(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(loadScene(kBunnyPath));
@@ -24,14 +23,22 @@ void BM_GBufferSphere_LambertOutputs(benchmark::State& state) {
     Bench bench(sphereScene(int(state.range(0))), Look{}, kLambertOutputs);
     reportPass(state, bench, "gbuffer");
 }
-BENCHMARK(BM_GBufferSphere_LambertOutputs)->Arg(1000)->Arg(100000)->Arg(1000000)->UseManualTime()
+BENCHMARK(BM_GBufferSphere_LambertOutputs)
+    ->Arg(1000)
+    ->Arg(100000)
+    ->Arg(1000000)
+    ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
 void BM_GBufferSphere_AllOutputs(benchmark::State& state) {
     Bench bench(sphereScene(int(state.range(0))), Look{}, kAllOutputs);
     reportPass(state, bench, "gbuffer");
 }
-BENCHMARK(BM_GBufferSphere_AllOutputs)->Arg(1000)->Arg(100000)->Arg(1000000)->UseManualTime()
+BENCHMARK(BM_GBufferSphere_AllOutputs)
+    ->Arg(1000)
+    ->Arg(100000)
+    ->Arg(1000000)
+    ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
 void BM_GBufferBunny_AllOutputs(benchmark::State& state) {

@@ -1,8 +1,8 @@
-// CPU cost of Winnemöller & Bangay's face-orientation methods (marking plus per-vertex lighting, as orientMesh() runs them) on
-// UV spheres of about 1k to 1M triangles: rule 3, constant view vector, eye at 5 radii. The exact per-face count is
-// there as the reference for one triangle pass. Derived data (face normals, betaMax, adjacency) is built once per
-// size outside the timing, as the paper does at load time; holes are not counted in the timed loop. `reuse:1` passes
-// the same MeshOrientation every iteration, so its lists are allocated once, as in an interactive renderer.
+// CPU cost of Winnemöller & Bangay's face-orientation methods (marking plus per-vertex lighting, as orientMesh() runs
+// them) on UV spheres of about 1k to 1M triangles: rule 3, constant view vector, eye at 5 radii. The exact per-face
+// count is there as the reference for one triangle pass. Derived data (face normals, betaMax, adjacency) is built once
+// per size outside the timing, as the paper does at load time; holes are not counted in the timed loop. `reuse:1`
+// passes the same MeshOrientation every iteration, so its lists are allocated once, as in an interactive renderer.
 #include "scene/FaceOrientation.h"
 #include "scene/Procedural.h"
 
@@ -69,8 +69,8 @@ void orientSphere(benchmark::State& state, FaceOrientationMethod method) {
     const double triangles = double(input.mesh.triangleCount());
     state.counters["triangles"] = triangles;
     state.counters["frontShare"] = double(frontTriangles) / triangles;
-    state.counters["Mtri/s"] = benchmark::Counter(triangles * double(state.iterations()) / 1e6,
-                                                  benchmark::Counter::kIsRate);
+    state.counters["Mtri/s"] =
+        benchmark::Counter(triangles * double(state.iterations()) / 1e6, benchmark::Counter::kIsRate);
 }
 
 void BM_OrientDuringTriangles(benchmark::State& state) { orientSphere(state, FaceOrientationMethod::DuringTriangles); }
@@ -87,8 +87,8 @@ void BM_OrientExactFrontCount(benchmark::State& state) {
     const double triangles = double(input.mesh.triangleCount());
     state.counters["triangles"] = triangles;
     state.counters["frontShare"] = double(frontTriangles) / triangles;
-    state.counters["Mtri/s"] = benchmark::Counter(triangles * double(state.iterations()) / 1e6,
-                                                  benchmark::Counter::kIsRate);
+    state.counters["Mtri/s"] =
+        benchmark::Counter(triangles * double(state.iterations()) / 1e6, benchmark::Counter::kIsRate);
 }
 
 void BM_DeriveOrientationData(benchmark::State& state) {

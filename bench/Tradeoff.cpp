@@ -167,7 +167,6 @@ cv::Mat bandBoundaries(const cv::Mat& shade, const cv::Mat& coverage) {
     return boundaries;
 }
 
-
 /** Only the lines of `type`, no shading. */
 Look linesOnly(const std::string& type) {
     Look look;
@@ -201,8 +200,8 @@ public:
         const int base = mConfig.quick ? 256 : 1024;
         const std::vector<int> sizes = mConfig.quick ? std::vector<int>{128, 256} : std::vector<int>{512, 1024, 2048};
         const std::vector<int> supersamples = mConfig.quick ? std::vector<int>{2} : std::vector<int>{2, 4};
-        const Scene torus = makeScene(makeTorus(float(kTorusRing), float(kTorusTube), mConfig.quick ? 256 : 512,
-                                                mConfig.quick ? 128 : 256));
+        const Scene torus = makeScene(
+            makeTorus(float(kTorusRing), float(kTorusTube), mConfig.quick ? 256 : 512, mConfig.quick ? 128 : 256));
 
         for (const char* type : {"contour", "suggestive"}) {
             for (int size : sizes) lineRow(torus, type, size);
@@ -216,9 +215,8 @@ public:
             fivePointStencil(look);
         });
         for (const double threshold : {0.0, 0.05})
-            lineRow(torus, "suggestive", base, [&](Look& look) {
-                look.lineParameters.set(line_parameters::kSuggestiveThreshold, threshold);
-            });
+            lineRow(torus, "suggestive", base,
+                    [&](Look& look) { look.lineParameters.set(line_parameters::kSuggestiveThreshold, threshold); });
 
         // Object space: the accuracy follows the mesh, so the torus at three tessellations; curvature is derived on
         // the first frame (setup) and reused.
@@ -271,9 +269,8 @@ private:
         const double threshold = look.lineParameters.number(line_parameters::kSuggestiveThreshold);
         const double featureSize = kSuggestiveFeatureSizeFraction * render.sphere().radius;
         const std::vector<cv::Point2d> points = linePoints(render, type);
-        const std::vector<LinePolyline>& truth =
-            torusTruth(type == "contour" ? "contour" : "suggestive", size, type == "contour" ? 0.0 : threshold,
-                       featureSize);
+        const std::vector<LinePolyline>& truth = torusTruth(type == "contour" ? "contour" : "suggestive", size,
+                                                            type == "contour" ? 0.0 : threshold, featureSize);
 
         TradeoffRow row;
         row.method = type;
@@ -394,10 +391,10 @@ std::string tradeoffCsv(const std::vector<TradeoffRow>& rows) {
         const LineAccuracy& a = row.accuracy;
         csv << row.method << ",\"" << row.setting << "\"," << row.scene << "," << row.size << "," << row.supersample
             << "," << row.triangles << "," << row.frameMilliseconds << "," << row.methodMilliseconds << ","
-            << row.setupMilliseconds << "," << a.tolerancePixels << "," << a.precision << "," << a.recall << ","
-            << a.f1 << "," << row.f1AtTwoPixels << "," << a.predictedCount << "," << a.spuriousCount << ","
-            << a.truthLength << "," << a.predictedToTruthP95 << "," << a.predictedToTruthMax << ","
-            << a.truthToPredictedP95 << "," << a.truthToPredictedMax << "," << a.chamferMean << "\n";
+            << row.setupMilliseconds << "," << a.tolerancePixels << "," << a.precision << "," << a.recall << "," << a.f1
+            << "," << row.f1AtTwoPixels << "," << a.predictedCount << "," << a.spuriousCount << "," << a.truthLength
+            << "," << a.predictedToTruthP95 << "," << a.predictedToTruthMax << "," << a.truthToPredictedP95 << ","
+            << a.truthToPredictedMax << "," << a.chamferMean << "\n";
     }
     return csv.str();
 }
@@ -444,9 +441,7 @@ void drawPanel(cv::Mat& plot, const cv::Rect& area, const std::string& method, c
         const double t = (std::log10(std::max(ms, 1e-3)) - firstDecade) / (lastDecade - firstDecade);
         return frame.x + int(std::lround(t * frame.width));
     };
-    const auto y = [&](double f1) {
-        return frame.y + int(std::lround((1.0 - f1) / (1.0 - floorF1) * frame.height));
-    };
+    const auto y = [&](double f1) { return frame.y + int(std::lround((1.0 - f1) / (1.0 - floorF1) * frame.height)); };
     for (double decade = firstDecade; decade <= lastDecade; decade += 1.0) {
         for (int step = 1; step < 10 && decade + std::log10(step) <= lastDecade + 1e-9; ++step) {
             const int px = x(std::pow(10.0, decade) * step);
@@ -503,7 +498,7 @@ cv::Mat tradeoffPlot(const std::vector<TradeoffRow>& rows, double tolerancePixel
                 "F1 at " + fixed(tolerancePixels, 1) +
                     " px against analytic lines (comic: band boundaries against exact shading) vs frame ms, warm",
                 {20, 27}, cv::FONT_HERSHEY_SIMPLEX, 0.65, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-    const std::vector<cv::Scalar> palette = {{200, 90, 20}, {30, 30, 220},  {40, 150, 40}, {180, 40, 180},
+    const std::vector<cv::Scalar> palette = {{200, 90, 20},  {30, 30, 220}, {40, 150, 40}, {180, 40, 180},
                                              {20, 130, 220}, {120, 120, 0}, {90, 90, 90},  {0, 160, 160}};
     for (std::size_t i = 0; i < methods.size(); ++i) {
         std::vector<TradeoffRow> methodRows;

@@ -37,8 +37,8 @@ struct TradeoffRow {
 };
 
 struct TradeoffConfig {
-    bool quick = false;          ///< small sizes and few settings: for the test that runs the sweep end to end
-    int repetitions = 5;         ///< timed runs per row after one warm-up; the median is reported
+    bool quick = false;           ///< small sizes and few settings: for the test that runs the sweep end to end
+    int repetitions = 5;          ///< timed runs per row after one warm-up; the median is reported
     double tolerancePixels = 1.0; ///< k of precision, recall and F1
 };
 

@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
             char* end = nullptr;
             const long repetitions = std::strtol(argv[++i], &end, 10);
             if (*end != '\0' || repetitions < 1 || repetitions > 100)
-                return usage("--repetitions: expected a whole number from 1 to 100, got '" + std::string(argv[i]) + "'");
+                return usage("--repetitions: expected a whole number from 1 to 100, got '" + std::string(argv[i]) +
+                             "'");
             config.repetitions = int(repetitions);
         } else if (argument == "--tolerance" && hasValue) {
             char* end = nullptr;

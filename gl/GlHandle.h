@@ -42,12 +42,24 @@ private:
     GLuint mId = 0;
 };
 
-struct TextureDeleter { void operator()(GLuint id) const { glDeleteTextures(1, &id); } };
-struct FramebufferDeleter { void operator()(GLuint id) const { glDeleteFramebuffers(1, &id); } };
-struct BufferDeleter { void operator()(GLuint id) const { glDeleteBuffers(1, &id); } };
-struct VertexArrayDeleter { void operator()(GLuint id) const { glDeleteVertexArrays(1, &id); } };
-struct ShaderDeleter { void operator()(GLuint id) const { glDeleteShader(id); } };
-struct ProgramDeleter { void operator()(GLuint id) const { glDeleteProgram(id); } };
+struct TextureDeleter {
+    void operator()(GLuint id) const { glDeleteTextures(1, &id); }
+};
+struct FramebufferDeleter {
+    void operator()(GLuint id) const { glDeleteFramebuffers(1, &id); }
+};
+struct BufferDeleter {
+    void operator()(GLuint id) const { glDeleteBuffers(1, &id); }
+};
+struct VertexArrayDeleter {
+    void operator()(GLuint id) const { glDeleteVertexArrays(1, &id); }
+};
+struct ShaderDeleter {
+    void operator()(GLuint id) const { glDeleteShader(id); }
+};
+struct ProgramDeleter {
+    void operator()(GLuint id) const { glDeleteProgram(id); }
+};
 
 /** Names an object for RenderDoc/apitrace captures and debug messages. */
 void labelObject(GLenum identifier, GLuint id, std::string_view label);

@@ -81,7 +81,8 @@ GlDepthTexture::GlDepthTexture(int width, int height, std::string_view label) {
     mHandle = GlHandle<TextureDeleter>(id);
     glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, width, height);
     checkAllocation("GlDepthTexture()",
-                    std::to_string(width) + "x" + std::to_string(height) + " depth texture '" + std::string(label) + "'",
+                    std::to_string(width) + "x" + std::to_string(height) + " depth texture '" + std::string(label) +
+                        "'",
                     glGetError());
     labelObject(GL_TEXTURE, id, label);
 }

@@ -238,9 +238,9 @@ void HeadlessContext::releaseEgl() {
 #ifndef INKGRAPH_KEEP_EGL_DISPLAYS
     eglTerminate(mDisplay);
 #else
-    // Sanitized builds (INKGRAPH_SANITIZE) keep the display initialized: terminating it unloads Mesa's driver, whose
-    // globals are the only roots of its still-used caches, and LeakSanitizer would then report them as lost from an
-    // unmapped library it cannot name. A later context on the same display initializes it again at no cost.
+        // Sanitized builds (INKGRAPH_SANITIZE) keep the display initialized: terminating it unloads Mesa's driver,
+        // whose globals are the only roots of its still-used caches, and LeakSanitizer would then report them as lost
+        // from an unmapped library it cannot name. A later context on the same display initializes it again at no cost.
 #endif
     eglReleaseThread();
     mDisplay = nullptr;

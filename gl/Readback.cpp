@@ -45,8 +45,7 @@ cv::Mat readTexture(const GlTexture& texture) {
     for (int glRow = 0; glRow < texture.height(); glRow += band) {
         const int rows = std::min(band, texture.height() - glRow);
         glGetTextureSubImage(texture.id(), 0, 0, glRow, 0, texture.width(), rows, 1, glFormat.pixelFormat,
-                             glFormat.pixelType, GLsizei(std::size_t(rows) * bottomUpBand.step[0]),
-                             bottomUpBand.data);
+                             glFormat.pixelType, GLsizei(std::size_t(rows) * bottomUpBand.step[0]), bottomUpBand.data);
         throwOnGlError("readTexture()", texture);
         // GL row glRow + i is image row (height - 1 - glRow - i).
         for (int i = 0; i < rows; ++i) bottomUpBand.row(i).copyTo(topDown.row(texture.height() - 1 - glRow - i));
@@ -65,8 +64,8 @@ void uploadImage(GlTexture& texture, const cv::Mat& image) {
     for (int glRow = 0; glRow < texture.height(); glRow += band) {
         const int rows = std::min(band, texture.height() - glRow);
         for (int i = 0; i < rows; ++i) image.row(texture.height() - 1 - glRow - i).copyTo(bottomUpBand.row(i));
-        glTextureSubImage2D(texture.id(), 0, 0, glRow, texture.width(), rows, glFormat.pixelFormat,
-                            glFormat.pixelType, bottomUpBand.data);
+        glTextureSubImage2D(texture.id(), 0, 0, glRow, texture.width(), rows, glFormat.pixelFormat, glFormat.pixelType,
+                            bottomUpBand.data);
         throwOnGlError("uploadImage()", texture);
     }
 }

@@ -118,9 +118,9 @@ GlProgram ShaderLibrary::compileAndLink(const ProgramDesc& desc) {
     glGetProgramiv(program.id(), GL_LINK_STATUS, &linked);
     if (linked != GL_TRUE) {
         const std::string log = infoLog(program.id(), glGetProgramiv, glGetProgramInfoLog);
-        const std::string stages =
-            "'" + desc.vertexFile + "' + " + (hasGeometry ? "'" + desc.geometryFile + "' + " : "") + "'" +
-            desc.fragmentFile + "'";
+        const std::string stages = "'" + desc.vertexFile + "' + " +
+                                   (hasGeometry ? "'" + desc.geometryFile + "' + " : "") + "'" + desc.fragmentFile +
+                                   "'";
         throw std::runtime_error("ShaderLibrary::build(): program '" + desc.label + "' (" + stages +
                                  ", defines: " + joinDefines(desc.defines) + ") failed to link:\n" + log);
     }

@@ -37,9 +37,10 @@ public:
     /** Reads nothing yet: a missing folder is reported by the first build(), so plans compile without shaders. */
     explicit ShaderLibrary(std::filesystem::path directory = defaultDirectory());
 
-    /** Compiles and links; throws ShaderSourceError for a file that cannot be read, std::runtime_error naming the file, stage, defines and the info log. With
-     *  keepPrograms(true), a program of the same files, defines and snippets as an earlier one is that program
-     *  again (the label does not matter), so the stills of a batch compile each program once. */
+    /** Compiles and links; throws ShaderSourceError for a file that cannot be read, std::runtime_error naming the file,
+     * stage, defines and the info log. With keepPrograms(true), a program of the same files, defines and snippets as an
+     * earlier one is that program again (the label does not matter), so the stills of a batch compile each program
+     * once. */
     GlProgram build(const ProgramDesc& desc);
 
     /** Keep every program built from now on until the library is destroyed (which must then happen while the GL

@@ -15,28 +15,20 @@ namespace {
 
 constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 
-std::string quote(std::string_view name)
-{
-    return "'" + std::string(name) + "'";
-}
+std::string quote(std::string_view name) { return "'" + std::string(name) + "'"; }
 
 /** "'a'", "'a' and 'b'", "'a', 'b' and 'c'" (or "or" in place of "and"). */
-std::string quoteList(const std::vector<std::string>& names, std::string_view lastSeparator = "and")
-{
+std::string quoteList(const std::vector<std::string>& names, std::string_view lastSeparator = "and") {
     std::string text;
     for (std::size_t i = 0; i < names.size(); ++i) {
-        if (i > 0)
-            text += (i + 1 == names.size()) ? " " + std::string(lastSeparator) + " " : ", ";
+        if (i > 0) text += (i + 1 == names.size()) ? " " + std::string(lastSeparator) + " " : ", ";
         text += quote(names[i]);
     }
     return text;
 }
 
 /** A well-formed written field: non-empty, no dot (a pass writes only inside its own namespace). */
-bool isValidField(std::string_view field)
-{
-    return !field.empty() && field.find('.') == std::string_view::npos;
-}
+bool isValidField(std::string_view field) { return !field.empty() && field.find('.') == std::string_view::npos; }
 
 /** One written resource and everyone who touches it, by registration index. */
 struct ResourceInfo {
@@ -61,9 +53,7 @@ struct DeclaredPass {
 /** Everything compile() derives from the declarations, before liveness. */
 class Declarations {
 public:
-    Declarations(const std::vector<const Pass*>& passList, std::vector<std::string>& problems)
-        : mProblems(problems)
-    {
+    Declarations(const std::vector<const Pass*>& passList, std::vector<std::string>& problems) : mProblems(problems) {
         declarePasses(passList);
         checkPassNames();
         collectWrites();
@@ -77,8 +67,7 @@ public:
     std::unordered_map<std::string, std::size_t> resourceIndex;
     std::vector<std::vector<std::size_t>> successors; ///< writer -> readers, sorted, each once
 
-    std::size_t findResource(const std::string& name) const
-    {
+    std::size_t findResource(const std::string& name) const {
         auto it = resourceIndex.find(name);
         return it == resourceIndex.end() ? kNone : it->second;
     }
@@ -98,8 +87,7 @@ private:
     std::vector<PassBuilder> mBuilders;
 };
 
-void Declarations::declarePasses(const std::vector<const Pass*>& passList)
-{
+void Declarations::declarePasses(const std::vector<const Pass*>& passList) {
     passes.resize(passList.size());
     mBuilders.reserve(passList.size());
     for (std::size_t i = 0; i < passList.size(); ++i) {
@@ -117,22 +105,20 @@ void Declarations::declarePasses(const std::vector<const Pass*>& passList)
     }
 }
 
-void Declarations::checkPassNames()
-{
+void Declarations::checkPassNames() {
     // Reported once per name, at its first use, listing every position it appears at.
     std::unordered_map<std::string, std::vector<std::size_t>> positions;
     for (std::size_t i = 0; i < passes.size(); ++i)
-        if (passes[i].pass)
-            positions[passes[i].name].push_back(i);
+        if (passes[i].pass) positions[passes[i].name].push_back(i);
 
     for (std::size_t i = 0; i < passes.size(); ++i) {
         const DeclaredPass& declared = passes[i];
-        if (!declared.pass)
-            continue;
+        if (!declared.pass) continue;
         if (declared.name.empty())
             mProblems.push_back("pass #" + std::to_string(i) + " has an empty name");
         else if (declared.name.find('.') != std::string::npos)
-            mProblems.push_back("pass " + quote(declared.name) + " has a '.' in its name; '.' separates a pass from "
+            mProblems.push_back("pass " + quote(declared.name) +
+                                " has a '.' in its name; '.' separates a pass from "
                                 "its field in resource names");
 
         const std::vector<std::size_t>& same = positions[declared.name];
@@ -146,8 +132,7 @@ void Declarations::checkPassNames()
     }
 }
 
-void Declarations::collectWrites()
-{
+void Declarations::collectWrites() {
     for (std::size_t i = 0; i < passes.size(); ++i) {
         DeclaredPass& declared = passes[i];
         std::unordered_set<std::string> seenFields;
@@ -168,23 +153,19 @@ void Declarations::collectWrites()
                 continue;
             }
             auto [it, inserted] = resourceIndex.try_emplace(full, resources.size());
-            if (inserted)
-                resources.push_back({full, write.desc, write.need, {}, {}});
+            if (inserted) resources.push_back({full, write.desc, write.need, {}, {}});
             resources[it->second].writers.push_back(i);
             declared.writes.push_back(it->second);
         }
     }
 }
 
-void Declarations::checkWriters()
-{
+void Declarations::checkWriters() {
     // Resources are in first-written order, so this is deterministic.
     for (const ResourceInfo& resource : resources) {
-        if (resource.writers.size() < 2)
-            continue;
+        if (resource.writers.size() < 2) continue;
         std::vector<std::string> writers;
-        for (std::size_t writer : resource.writers)
-            writers.push_back(passes[writer].name);
+        for (std::size_t writer : resource.writers) writers.push_back(passes[writer].name);
         std::string where;
         for (std::size_t k = 0; k < resource.writers.size(); ++k)
             where += (k == 0 ? "#" : ", #") + std::to_string(resource.writers[k]);
@@ -194,15 +175,13 @@ void Declarations::checkWriters()
     }
 }
 
-void Declarations::resolveReads()
-{
+void Declarations::resolveReads() {
     // Every pass is checked, not only live ones: a broken graph fails even when the broken pass would be culled.
     for (std::size_t i = 0; i < passes.size(); ++i) {
         DeclaredPass& declared = passes[i];
         std::unordered_set<std::string> seen;
         for (const PassBuilder::Read& read : mBuilders[i].reads()) {
-            if (!seen.insert(read.resource).second)
-                continue;
+            if (!seen.insert(read.resource).second) continue;
             const std::size_t resource = findResource(read.resource);
             declared.reads.push_back(read.resource);
             declared.readResources.push_back(resource);
@@ -215,35 +194,29 @@ void Declarations::resolveReads()
     }
 }
 
-void Declarations::buildEdges()
-{
+void Declarations::buildEdges() {
     successors.assign(passes.size(), {});
     for (std::size_t reader = 0; reader < passes.size(); ++reader)
         for (std::size_t resource : passes[reader].readResources)
             if (resource != kNone)
-                for (std::size_t writer : resources[resource].writers)
-                    successors[writer].push_back(reader);
+                for (std::size_t writer : resources[resource].writers) successors[writer].push_back(reader);
     for (std::vector<std::size_t>& next : successors) {
         std::sort(next.begin(), next.end());
         next.erase(std::unique(next.begin(), next.end()), next.end());
     }
 }
 
-std::string toLower(std::string_view text)
-{
+std::string toLower(std::string_view text) {
     std::string lower(text);
-    for (char& c : lower)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return lower;
 }
 
 /** Levenshtein distance, ignoring case (a misspelt "wvec" should find "wVec"). */
-std::size_t editDistance(std::string_view a, std::string_view b)
-{
+std::size_t editDistance(std::string_view a, std::string_view b) {
     const std::string x = toLower(a), y = toLower(b);
     std::vector<std::size_t> row(y.size() + 1);
-    for (std::size_t j = 0; j <= y.size(); ++j)
-        row[j] = j;
+    for (std::size_t j = 0; j <= y.size(); ++j) row[j] = j;
     for (std::size_t i = 1; i <= x.size(); ++i) {
         std::size_t diagonal = row[0];
         row[0] = i;
@@ -256,14 +229,12 @@ std::size_t editDistance(std::string_view a, std::string_view b)
     return row[y.size()];
 }
 
-std::string_view fieldOf(std::string_view resource)
-{
+std::string_view fieldOf(std::string_view resource) {
     const std::size_t dot = resource.rfind('.');
     return dot == std::string_view::npos ? resource : resource.substr(dot + 1);
 }
 
-std::string Declarations::suggest(std::string_view wanted) const
-{
+std::string Declarations::suggest(std::string_view wanted) const {
     // Prefer the same field under another pass ("gbufer.normal" -> "gbuffer.normal"), then anything close enough.
     const ResourceInfo* best = nullptr;
     bool bestSameField = false;
@@ -281,15 +252,13 @@ std::string Declarations::suggest(std::string_view wanted) const
         }
     }
     const std::size_t closeEnough = std::max<std::size_t>(1, wanted.size() / 3);
-    if (!best || (!bestSameField && bestDistance > closeEnough))
-        return {};
+    if (!best || (!bestSameField && bestDistance > closeEnough)) return {};
     return " (did you mean " + quote(best->name) + "?)";
 }
 
 /** Reports every cycle (one per strongly connected component), each as its shortest loop through the component's
  *  first-registered pass, so the message is deterministic. */
-void checkCycles(const Declarations& graph, std::vector<std::string>& problems)
-{
+void checkCycles(const Declarations& graph, std::vector<std::string>& problems) {
     const std::size_t passCount = graph.passes.size();
     const auto& successors = graph.successors;
 
@@ -322,19 +291,16 @@ void checkCycles(const Declarations& graph, std::vector<std::string>& problems)
         }
     };
     for (std::size_t v = 0; v < passCount; ++v)
-        if (index[v] == kNone)
-            visit(v);
+        if (index[v] == kNone) visit(v);
 
     std::vector<std::size_t> componentSize(componentCount, 0);
-    for (std::size_t v = 0; v < passCount; ++v)
-        ++componentSize[component[v]];
+    for (std::size_t v = 0; v < passCount; ++v) ++componentSize[component[v]];
 
     std::vector<bool> reported(componentCount, false);
     for (std::size_t start = 0; start < passCount; ++start) {
         const std::size_t c = component[start];
         const bool selfLoop = std::binary_search(successors[start].begin(), successors[start].end(), start);
-        if (reported[c] || (componentSize[c] < 2 && !selfLoop))
-            continue;
+        if (reported[c] || (componentSize[c] < 2 && !selfLoop)) continue;
         reported[c] = true;
 
         // Breadth-first from `start` inside the component: the first pass found that feeds `start` closes the
@@ -360,22 +326,19 @@ void checkCycles(const Declarations& graph, std::vector<std::string>& problems)
         }
         assert(last != kNone);
         std::vector<std::size_t> loop;
-        for (std::size_t v = last; v != start; v = parent[v])
-            loop.push_back(v);
+        for (std::size_t v = last; v != start; v = parent[v]) loop.push_back(v);
         loop.push_back(start);
         std::reverse(loop.begin(), loop.end());
 
         std::string text = "cycle: ";
-        for (std::size_t v : loop)
-            text += quote(graph.passes[v].name) + " -> ";
+        for (std::size_t v : loop) text += quote(graph.passes[v].name) + " -> ";
         text += quote(graph.passes[start].name);
         problems.push_back(text);
     }
 }
 
 void checkRequests(const Declarations& graph, const std::vector<std::string>& requested,
-                   std::vector<std::string>& problems)
-{
+                   std::vector<std::string>& problems) {
     std::unordered_set<std::string> seen;
     for (const std::string& name : requested)
         if (seen.insert(name).second && graph.findResource(name) == kNone)
@@ -388,22 +351,18 @@ void checkRequests(const Declarations& graph, const std::vector<std::string>& re
         problems.push_back("nothing is requested and no pass has a side effect, so the plan would be empty");
 }
 
-[[noreturn]] void throwProblems(std::vector<std::string> problems)
-{
-    std::string message = "GraphCompiler::compile(): " + std::to_string(problems.size()) +
-                          " problem(s) in the render graph:";
-    for (const std::string& problem : problems)
-        message += "\n  - " + problem;
+[[noreturn]] void throwProblems(std::vector<std::string> problems) {
+    std::string message =
+        "GraphCompiler::compile(): " + std::to_string(problems.size()) + " problem(s) in the render graph:";
+    for (const std::string& problem : problems) message += "\n  - " + problem;
     throw GraphError(message, std::move(problems));
 }
 
 /** Why a pass did not make it into the plan, naming its outputs and whoever (culled) reads them. */
-std::string explainCulled(const Declarations& graph, std::size_t pass, const std::vector<bool>& passLive)
-{
+std::string explainCulled(const Declarations& graph, std::size_t pass, const std::vector<bool>& passLive) {
     (void)passLive; // only checked in debug builds
     const DeclaredPass& declared = graph.passes[pass];
-    if (declared.writes.empty())
-        return "writes nothing and has no side effect";
+    if (declared.writes.empty()) return "writes nothing and has no side effect";
 
     std::vector<std::string> outputs;
     std::vector<std::size_t> readers;
@@ -422,8 +381,7 @@ std::string explainCulled(const Declarations& graph, std::size_t pass, const std
         reason += outputs.size() == 1 ? " (nothing reads it)" : " (nothing reads them)";
     } else {
         std::vector<std::string> names;
-        for (std::size_t reader : readers)
-            names.push_back(graph.passes[reader].name);
+        for (std::size_t reader : readers) names.push_back(graph.passes[reader].name);
         reason += " (read only by culled " + quoteList(names) + ")";
     }
     return reason;
@@ -431,14 +389,12 @@ std::string explainCulled(const Declarations& graph, std::size_t pass, const std
 
 } // namespace
 
-Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::string>& requested)
-{
+Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::string>& requested) {
     std::vector<std::string> problems;
     const Declarations graph(passes, problems);
     checkRequests(graph, requested, problems);
     checkCycles(graph, problems);
-    if (!problems.empty())
-        throwProblems(std::move(problems));
+    if (!problems.empty()) throwProblems(std::move(problems));
 
     // From here the graph is valid: unique names, one writer per resource, every read resolves, no cycle.
     const std::size_t passCount = graph.passes.size();
@@ -455,14 +411,11 @@ Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::stri
         }
     };
     auto markPass = [&](std::size_t pass) {
-        if (passLive[pass])
-            return;
+        if (passLive[pass]) return;
         passLive[pass] = true;
         for (std::size_t resource : graph.passes[pass].writes)
-            if (graph.resources[resource].need == Need::Required)
-                markResource(resource);
-        for (std::size_t resource : graph.passes[pass].readResources)
-            markResource(resource);
+            if (graph.resources[resource].need == Need::Required) markResource(resource);
+        for (std::size_t resource : graph.passes[pass].readResources) markResource(resource);
     };
     for (const std::string& name : requested) {
         const std::size_t resource = graph.findResource(name);
@@ -470,8 +423,7 @@ Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::stri
         markResource(resource);
     }
     for (std::size_t pass = 0; pass < passCount; ++pass)
-        if (graph.passes[pass].hasSideEffect)
-            markPass(pass);
+        if (graph.passes[pass].hasSideEffect) markPass(pass);
     while (!pending.empty()) {
         const std::size_t resource = pending.back();
         pending.pop_back();
@@ -483,12 +435,10 @@ Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::stri
     for (std::size_t pass = 0; pass < passCount; ++pass)
         if (passLive[pass])
             for (std::size_t reader : graph.successors[pass])
-                if (passLive[reader])
-                    ++inDegree[reader];
+                if (passLive[reader]) ++inDegree[reader];
     std::priority_queue<std::size_t, std::vector<std::size_t>, std::greater<>> ready;
     for (std::size_t pass = 0; pass < passCount; ++pass)
-        if (passLive[pass] && inDegree[pass] == 0)
-            ready.push(pass);
+        if (passLive[pass] && inDegree[pass] == 0) ready.push(pass);
 
     Plan plan;
     plan.requested = requested;
@@ -510,21 +460,18 @@ Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::stri
         plan.passes.push_back(std::move(planned));
 
         for (std::size_t reader : graph.successors[pass])
-            if (passLive[reader] && --inDegree[reader] == 0)
-                ready.push(reader);
+            if (passLive[reader] && --inDegree[reader] == 0) ready.push(reader);
     }
 
     for (std::size_t pass = 0; pass < passCount; ++pass) {
-        if (passLive[pass])
-            continue;
+        if (passLive[pass]) continue;
         const DeclaredPass& declared = graph.passes[pass];
-        plan.culled.push_back({declared.name, explainCulled(graph, pass, passLive), declared.reads,
-                               declared.allWrites});
+        plan.culled.push_back(
+            {declared.name, explainCulled(graph, pass, passLive), declared.reads, declared.allWrites});
     }
 
     for (std::size_t resource = 0; resource < graph.resources.size(); ++resource) {
-        if (!resourceLive[resource])
-            continue;
+        if (!resourceLive[resource]) continue;
         const ResourceInfo& info = graph.resources[resource];
         PlannedResource planned;
         planned.name = info.name;
@@ -536,16 +483,12 @@ Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::stri
 
         std::vector<std::size_t> readers;
         for (std::size_t reader : info.readers)
-            if (passLive[reader])
-                readers.push_back(planIndex[reader]);
+            if (passLive[reader]) readers.push_back(planIndex[reader]);
         std::sort(readers.begin(), readers.end());
-        for (std::size_t index : readers)
-            planned.readers.push_back(plan.passes[index].name);
-        if (!readers.empty())
-            planned.lastUse = readers.back();
+        for (std::size_t index : readers) planned.readers.push_back(plan.passes[index].name);
+        if (!readers.empty()) planned.lastUse = readers.back();
         // Requested outputs are read back after the last pass, so they live to the end.
-        if (planned.requested)
-            planned.lastUse = plan.passes.size() - 1;
+        if (planned.requested) planned.lastUse = plan.passes.size() - 1;
         plan.resources.push_back(std::move(planned));
     }
     std::sort(plan.resources.begin(), plan.resources.end(), [](const PlannedResource& a, const PlannedResource& b) {

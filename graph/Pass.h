@@ -20,7 +20,7 @@ public:
         std::string resource; ///< full name, "gbuffer.normal"
     };
     struct Write {
-        std::string field;    ///< own field, "normal"; the resource is "<pass>.<field>"
+        std::string field; ///< own field, "normal"; the resource is "<pass>.<field>"
         TextureDesc desc;
         Need need = Need::Required;
     };

@@ -7,50 +7,39 @@ namespace inkgraph {
 namespace {
 
 /** "rgba32f", or "rgba32f x2" for supersampled buffers. */
-std::string describeDesc(const TextureDesc& desc)
-{
+std::string describeDesc(const TextureDesc& desc) {
     std::string text(formatName(desc.format));
-    if (desc.scale != 1)
-        text += " x" + std::to_string(desc.scale);
+    if (desc.scale != 1) text += " x" + std::to_string(desc.scale);
     return text;
 }
 
-std::string joinNames(const std::vector<std::string>& names, std::string_view separator, std::string_view empty)
-{
-    if (names.empty())
-        return std::string(empty);
+std::string joinNames(const std::vector<std::string>& names, std::string_view separator, std::string_view empty) {
+    if (names.empty()) return std::string(empty);
     std::string text;
-    for (std::size_t i = 0; i < names.size(); ++i)
-        text += (i > 0 ? std::string(separator) : std::string()) + names[i];
+    for (std::size_t i = 0; i < names.size(); ++i) text += (i > 0 ? std::string(separator) : std::string()) + names[i];
     return text;
 }
 
-std::string quoteNames(const std::vector<std::string>& names)
-{
+std::string quoteNames(const std::vector<std::string>& names) {
     std::vector<std::string> quoted;
-    for (const std::string& name : names)
-        quoted.push_back("'" + name + "'");
+    for (const std::string& name : names) quoted.push_back("'" + name + "'");
     return joinNames(quoted, ", ", "none");
 }
 
 /** Rows of cells, each column padded to its widest cell, two spaces apart, no trailing spaces. */
-std::string formatTable(const std::vector<std::vector<std::string>>& rows, std::string_view indent)
-{
+std::string formatTable(const std::vector<std::vector<std::string>>& rows, std::string_view indent) {
     std::vector<std::size_t> widths;
     for (const auto& row : rows) {
         widths.resize(std::max(widths.size(), row.size()), 0);
-        for (std::size_t c = 0; c < row.size(); ++c)
-            widths[c] = std::max(widths[c], row[c].size());
+        for (std::size_t c = 0; c < row.size(); ++c) widths[c] = std::max(widths[c], row[c].size());
     }
     std::string text;
     for (const auto& row : rows) {
         std::string line(indent);
         for (std::size_t c = 0; c < row.size(); ++c) {
-            if (widths[c] == 0)
-                continue; // a column nobody uses takes no room
+            if (widths[c] == 0) continue; // a column nobody uses takes no room
             line += row[c];
-            if (c + 1 < row.size())
-                line += std::string(widths[c] - row[c].size() + 2, ' ');
+            if (c + 1 < row.size()) line += std::string(widths[c] - row[c].size() + 2, ' ');
         }
         line.erase(line.find_last_not_of(' ') + 1);
         text += line + "\n";
@@ -59,58 +48,40 @@ std::string formatTable(const std::vector<std::vector<std::string>>& rows, std::
 }
 
 /** "1 pass", "3 passes". */
-std::string describePassCount(std::size_t count)
-{
-    return std::to_string(count) + (count == 1 ? " pass" : " passes");
-}
+std::string describePassCount(std::size_t count) { return std::to_string(count) + (count == 1 ? " pass" : " passes"); }
 
 /** A DOT double-quoted string; `lines` are joined with DOT's "\n" line break. */
-std::string dotString(const std::vector<std::string>& lines)
-{
+std::string dotString(const std::vector<std::string>& lines) {
     std::string quoted = "\"";
     for (std::size_t i = 0; i < lines.size(); ++i) {
-        if (i > 0)
-            quoted += "\\n";
+        if (i > 0) quoted += "\\n";
         for (char c : lines[i]) {
-            if (c == '"' || c == '\\')
-                quoted += '\\';
+            if (c == '"' || c == '\\') quoted += '\\';
             quoted += c;
         }
     }
     return quoted + "\"";
 }
 
-std::string dotString(const std::string& text)
-{
-    return dotString(std::vector<std::string>{text});
-}
+std::string dotString(const std::string& text) { return dotString(std::vector<std::string>{text}); }
 
-std::string passNode(const std::string& name)
-{
-    return dotString("pass:" + name);
-}
+std::string passNode(const std::string& name) { return dotString("pass:" + name); }
 
-std::string resourceNode(const std::string& name)
-{
-    return dotString("res:" + name);
-}
+std::string resourceNode(const std::string& name) { return dotString("res:" + name); }
 
 } // namespace
 
-const PlannedResource* Plan::findResource(const std::string& name) const
-{
+const PlannedResource* Plan::findResource(const std::string& name) const {
     auto it = std::find_if(resources.begin(), resources.end(), [&](const auto& r) { return r.name == name; });
     return it == resources.end() ? nullptr : &*it;
 }
 
-const PlannedPass* Plan::findPass(const std::string& name) const
-{
+const PlannedPass* Plan::findPass(const std::string& name) const {
     auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& p) { return p.name == name; });
     return it == passes.end() ? nullptr : &*it;
 }
 
-std::string Plan::describe() const
-{
+std::string Plan::describe() const {
     std::string text = "plan: " + describePassCount(passes.size()) + " run, " + std::to_string(culled.size()) +
                        " culled; requested: " + quoteNames(requested) + "\n";
 
@@ -130,8 +101,7 @@ std::string Plan::describe() const
         std::vector<std::string> notes;
         if (!pass.deadOptionalWrites.empty())
             notes.push_back("not computed: " + joinNames(pass.deadOptionalWrites, " ", ""));
-        if (pass.hasSideEffect)
-            notes.push_back("side effect");
+        if (pass.hasSideEffect) notes.push_back("side effect");
         rows.push_back({number + " " + pass.name, "reads: " + joinNames(pass.reads, " ", "-"),
                         "writes: " + joinNames(writes, " ", "-"), joinNames(notes, "; ", "")});
     }
@@ -141,8 +111,7 @@ std::string Plan::describe() const
         text += "culled: none\n";
     } else {
         text += "culled:\n";
-        for (const CulledPass& pass : culled)
-            text += "  - " + pass.name + ": " + pass.reason + "\n";
+        for (const CulledPass& pass : culled) text += "  - " + pass.name + ": " + pass.reason + "\n";
     }
 
     text += "lifetimes:\n";
@@ -157,8 +126,7 @@ std::string Plan::describe() const
     return text;
 }
 
-std::string Plan::graphviz() const
-{
+std::string Plan::graphviz() const {
     std::string dot = "digraph plan {\n"
                       "    rankdir=LR;\n"
                       "    node [fontname=\"Helvetica\", fontsize=10];\n"
@@ -190,13 +158,10 @@ std::string Plan::graphviz() const
             dot += "    " + resourceNode(name) + " [shape=ellipse, " + grey + ", label=" + dotString(name) + "];\n";
     };
     for (const PlannedPass& pass : passes)
-        for (const std::string& name : pass.deadOptionalWrites)
-            drawDead(name);
+        for (const std::string& name : pass.deadOptionalWrites) drawDead(name);
     for (const CulledPass& pass : culled) {
-        for (const std::string& name : pass.writes)
-            drawDead(name);
-        for (const std::string& name : pass.reads)
-            drawDead(name);
+        for (const std::string& name : pass.writes) drawDead(name);
+        for (const std::string& name : pass.reads) drawDead(name);
     }
 
     for (const PlannedPass& pass : passes) {

@@ -11,22 +11,22 @@ namespace inkgraph {
 
 struct PlannedPass {
     std::string name;
-    std::size_t registrationIndex = 0;        ///< position in the list given to compile()
-    std::vector<std::string> reads;           ///< full resource names, declaration order, each once
-    std::vector<std::string> liveWrites;      ///< full names of the written resources that are live
+    std::size_t registrationIndex = 0;           ///< position in the list given to compile()
+    std::vector<std::string> reads;              ///< full resource names, declaration order, each once
+    std::vector<std::string> liveWrites;         ///< full names of the written resources that are live
     std::vector<std::string> deadOptionalWrites; ///< optional outputs nobody needs: not bound, not computed
-    bool hasSideEffect = false;               ///< declared markSideEffect(): live even if nothing reads it
+    bool hasSideEffect = false;                  ///< declared markSideEffect(): live even if nothing reads it
 };
 
 struct CulledPass {
     std::string name;
-    std::string reason; ///< e.g. "no requested output depends on 'hull.color'"
+    std::string reason;              ///< e.g. "no requested output depends on 'hull.color'"
     std::vector<std::string> reads;  ///< full resource names, declaration order (for graphviz())
     std::vector<std::string> writes; ///< full names of everything it would have written
 };
 
 struct PlannedResource {
-    std::string name;                 ///< "gbuffer.normal"
+    std::string name; ///< "gbuffer.normal"
     TextureDesc desc;
     std::string writer;               ///< pass name
     std::vector<std::string> readers; ///< live readers, in plan order

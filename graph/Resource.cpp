@@ -4,8 +4,7 @@
 
 namespace inkgraph {
 
-int bytesPerPixel(Format format)
-{
+int bytesPerPixel(Format format) {
     switch (format) {
     case Format::RGBA32F: return 16;
     case Format::R32F: return 4;
@@ -18,8 +17,7 @@ int bytesPerPixel(Format format)
     return 0;
 }
 
-std::string_view formatName(Format format)
-{
+std::string_view formatName(Format format) {
     switch (format) {
     case Format::RGBA32F: return "rgba32f";
     case Format::R32F: return "r32f";
@@ -32,16 +30,13 @@ std::string_view formatName(Format format)
     return "unknown";
 }
 
-bool isFloatFormat(Format format)
-{
+bool isFloatFormat(Format format) {
     return format == Format::RGBA32F || format == Format::R32F || format == Format::RGBA16F || format == Format::R16F;
 }
 
-ResourceName ResourceName::split(std::string_view resource)
-{
+ResourceName ResourceName::split(std::string_view resource) {
     const std::size_t dot = resource.find('.');
-    if (dot == std::string_view::npos || resource.find('.', dot + 1) != std::string_view::npos)
-        return {};
+    if (dot == std::string_view::npos || resource.find('.', dot + 1) != std::string_view::npos) return {};
     return {std::string(resource.substr(0, dot)), std::string(resource.substr(dot + 1))};
 }
 

@@ -27,19 +27,19 @@ struct LineStyle {
 
 struct Look {
     ShadingModel shading = ShadingModel::Cel;
-    double shininess = 32.0;                ///< phong and comic, [0, 1e6]
-    std::optional<int> bands;               ///< cel: N even bands (default: Qu, Chen & Zwicker's five)
-    std::string shadeMapPath;               ///< cel (one row) or comic (2-D) PNG; empty = built-in map
-    ViewVectorMode viewVector = ViewVectorMode::Exact;                         ///< comic
+    double shininess = 32.0;                           ///< phong and comic, [0, 1e6]
+    std::optional<int> bands;                          ///< cel: N even bands (default: Qu, Chen & Zwicker's five)
+    std::string shadeMapPath;                          ///< cel (one row) or comic (2-D) PNG; empty = built-in map
+    ViewVectorMode viewVector = ViewVectorMode::Exact; ///< comic
     FaceOrientationMethod faceOrientation = FaceOrientationMethod::Standard; ///< comic
-    int frontRule = 3;                      ///< comic with during-vertices or after-vertices
-    std::vector<std::string> lines;         ///< line types drawn (composited in the registry's order); empty = none
+    int frontRule = 3;              ///< comic with during-vertices or after-vertices
+    std::vector<std::string> lines; ///< line types drawn (composited in the registry's order); empty = none
     std::map<std::string, LineStyle> lineStyles; ///< per line type; a type without an entry has LineStyle{}
-    LineParameterValues lineParameters;     ///< the line types' other settings (passes/lines/LineParameter.h)
-    int supersample = 1;                    ///< data buffers and edge skeletons at S x the size
+    LineParameterValues lineParameters;          ///< the line types' other settings (passes/lines/LineParameter.h)
+    int supersample = 1;                         ///< data buffers and edge skeletons at S x the size
     GBufferPrecision gbufferPrecision = GBufferPrecision::Float32; ///< the G-buffer's direction fields
     glm::dvec3 background{1.0, 1.0, 1.0};
-    std::optional<glm::dvec3> towardLight;  ///< world direction toward the light; default: the file's, else a key light
+    std::optional<glm::dvec3> towardLight; ///< world direction toward the light; default: the file's, else a key light
 
     bool draws(const std::string& type) const { return std::find(lines.begin(), lines.end(), type) != lines.end(); }
     LineStyle styleOf(const std::string& type) const {

@@ -74,7 +74,8 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
 
     // The face-orientation methods (Winnemöller & Bangay 2002) are comic's; the others draw with GPU culling.
     OrientationSettings orientation;
-    orientation.method = traitsOf(look.shading).faceOrientation ? look.faceOrientation : FaceOrientationMethod::Standard;
+    orientation.method =
+        traitsOf(look.shading).faceOrientation ? look.faceOrientation : FaceOrientationMethod::Standard;
     orientation.viewVector = look.viewVector;
     orientation.frontRule = look.frontRule;
     orientation.shininess = look.shininess;

@@ -23,14 +23,17 @@ cv::Vec4b toBytes(const cv::Vec4f& color) {
 std::string sizeText(cv::Size size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
 
 /** "over" in 8 bits with rounding: top x alpha + bottom x (255 - alpha), alpha in 0..255. */
-uchar over(int top, int bottom, int alpha) { return static_cast<uchar>((top * alpha + bottom * (255 - alpha) + 127) / 255); }
+uchar over(int top, int bottom, int alpha) {
+    return static_cast<uchar>((top * alpha + bottom * (255 - alpha) + 127) / 255);
+}
 
 } // namespace
 
 cv::Mat compositeFinal(const CompositeInputs& inputs) {
     if (inputs.size.width <= 0 || inputs.size.height <= 0)
         throw std::invalid_argument("compositeFinal(): output size must be positive");
-    if (!isUnitColor(inputs.paper)) throw std::invalid_argument("compositeFinal(): 'paper' channels must lie in [0, 1]");
+    if (!isUnitColor(inputs.paper))
+        throw std::invalid_argument("compositeFinal(): 'paper' channels must lie in [0, 1]");
     if (!inputs.shading.empty() && (inputs.shading.type() != CV_8UC4 || inputs.shading.size() != inputs.size))
         throw std::invalid_argument("compositeFinal(): 'shading' must be CV_8UC4 of " + sizeText(inputs.size));
     for (const LineLayer& layer : inputs.lines) {

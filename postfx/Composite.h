@@ -10,16 +10,16 @@ namespace inkgraph {
 
 /** One line type's mask and how to draw it. */
 struct LineLayer {
-    std::string name;                    ///< the line type, for error messages ("silhouette")
-    cv::Mat mask;                        ///< CV_8UC1 coverage, 255 = line
+    std::string name;                        ///< the line type, for error messages ("silhouette")
+    cv::Mat mask;                            ///< CV_8UC1 coverage, 255 = line
     cv::Vec4f color{0.0f, 0.0f, 0.0f, 1.0f}; ///< display RGBA in [0,1]; alpha scales the mask
 };
 
 struct CompositeInputs {
-    cv::Size size;                       ///< output size; every given layer must match it
+    cv::Size size;                           ///< output size; every given layer must match it
     cv::Vec4f paper{1.0f, 1.0f, 1.0f, 1.0f}; ///< display RGBA in [0,1] behind everything
-    cv::Mat shading;                     ///< CV_8UC4 sRGB colour with coverage in alpha, or empty for none
-    std::vector<LineLayer> lines;        ///< drawn over the shading in this order
+    cv::Mat shading;                         ///< CV_8UC4 sRGB colour with coverage in alpha, or empty for none
+    std::vector<LineLayer> lines;            ///< drawn over the shading in this order
 };
 
 /** CV_8UC4, row 0 at the top: the shading over the paper ("over" with the shading's alpha), then each line layer over

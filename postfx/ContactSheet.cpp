@@ -15,13 +15,13 @@ namespace inkgraph {
 namespace {
 
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
-constexpr double kTitleFontScale = 0.6;   // ~14 px from cap top to baseline
-constexpr double kLabelFontScale = 0.45;  // ~10 px
-constexpr double kCaptionFontScale = 0.4; // ~9 px
-constexpr double kMinFontScale = 0.3;     // ~7 px: below this Hershey simplex is unreadable, so longer text is cut
-constexpr int kTitleBaseline = 22;        // in the title bar: 8 px above the caps, 4 below the descenders
-constexpr int kLabelBaseline = 14;        // below the picture
-constexpr int kCaptionBaseline = 30;      // below the picture; descenders end at ~34 of kCaptionHeight's 36
+constexpr double kTitleFontScale = 0.6;      // ~14 px from cap top to baseline
+constexpr double kLabelFontScale = 0.45;     // ~10 px
+constexpr double kCaptionFontScale = 0.4;    // ~9 px
+constexpr double kMinFontScale = 0.3;        // ~7 px: below this Hershey simplex is unreadable, so longer text is cut
+constexpr int kTitleBaseline = 22;           // in the title bar: 8 px above the caps, 4 below the descenders
+constexpr int kLabelBaseline = 14;           // below the picture
+constexpr int kCaptionBaseline = 30;         // below the picture; descenders end at ~34 of kCaptionHeight's 36
 constexpr std::size_t kMaxShownChars = 1024; // cut before measuring: 4096 px hold ~700 characters at the smallest scale
 
 std::string sizeText(cv::Size size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
@@ -67,8 +67,8 @@ std::string contentProblem(const cv::Mat& image, TileContent content) {
 
 /** The picture's size inside `box`, aspect kept, at least 1 pixel a side. */
 cv::Size fitSize(cv::Size image, cv::Size box) {
-    const double scale = std::min(static_cast<double>(box.width) / image.width,
-                                  static_cast<double>(box.height) / image.height);
+    const double scale =
+        std::min(static_cast<double>(box.width) / image.width, static_cast<double>(box.height) / image.height);
     const auto side = [scale](int length, int limit) {
         return std::clamp(static_cast<int>(std::lround(length * scale)), 1, limit);
     };
@@ -77,8 +77,8 @@ cv::Size fitSize(cv::Size image, cv::Size box) {
 
 /** A buffer mapped to display values at its own size, before scaling. */
 struct Display {
-    cv::Mat color;  ///< CV_8UC3 display values; for Color CV_16UC4: RGB premultiplied (c x a, 0..65025), a x 257
-    cv::Mat bad;    ///< CV_8UC1, nonzero where a value is non-finite; empty when there is none
+    cv::Mat color; ///< CV_8UC3 display values; for Color CV_16UC4: RGB premultiplied (c x a, 0..65025), a x 257
+    cv::Mat bad;   ///< CV_8UC1, nonzero where a value is non-finite; empty when there is none
 };
 
 cv::Mat asFloat(const cv::Mat& image) {
@@ -323,10 +323,9 @@ SheetGeometry sheetGeometry(const char* who, std::int64_t tileCount, cv::Size fi
     if (first.width <= 0 || first.height <= 0)
         throw std::invalid_argument(prefix + "the first tile's size must be positive, got " + sizeText(first));
     if (layout.tileWidth < ContactSheetLayout::kMinTileWidth || layout.tileWidth > ContactSheetLayout::kMaxTileWidth)
-        throw std::invalid_argument(prefix + "'tileWidth' must be " +
-                                    std::to_string(ContactSheetLayout::kMinTileWidth) + " to " +
-                                    std::to_string(ContactSheetLayout::kMaxTileWidth) + ", got " +
-                                    std::to_string(layout.tileWidth));
+        throw std::invalid_argument(
+            prefix + "'tileWidth' must be " + std::to_string(ContactSheetLayout::kMinTileWidth) + " to " +
+            std::to_string(ContactSheetLayout::kMaxTileWidth) + ", got " + std::to_string(layout.tileWidth));
     if (layout.columns < 0)
         throw std::invalid_argument(prefix + "'columns' must be 0 (automatic) or positive, got " +
                                     std::to_string(layout.columns));
@@ -465,8 +464,8 @@ cv::Mat composeContactSheet(const std::vector<ContactTile>& tiles, const Contact
         const ContactTile& tile = tiles[index];
         renderTile(tile.image, tile.content, tileSize).copyTo(sheet(cv::Rect(cell, tileSize)));
         // The text area is a view of exactly the cell's width, so nothing can spill into the next cell.
-        cv::Mat text = sheet(cv::Rect(cell.x, cell.y + geometry.tileHeight, layout.tileWidth,
-                                      ContactSheetLayout::kCaptionHeight));
+        cv::Mat text =
+            sheet(cv::Rect(cell.x, cell.y + geometry.tileHeight, layout.tileWidth, ContactSheetLayout::kCaptionHeight));
         drawLine(text, tile.label, {1, kLabelBaseline}, layout.tileWidth - 2, kLabelFontScale, ink);
         drawLine(text, tile.caption, {1, kCaptionBaseline}, layout.tileWidth - 2, kCaptionFontScale, ink);
     }

@@ -49,10 +49,10 @@ struct TilePalette {
     static inline const cv::Vec4b kCheckerDark = cv::Vec4b(204, 204, 204, 255);  ///< Color: the other squares
     static constexpr int kCheckerSquare = 8;                                     ///< Color: square side, tile pixels
     static inline const cv::Vec4b kVectorBackground = cv::Vec4b(64, 64, 64, 255); ///< UnitVector where alpha <= 0
-    static inline const cv::Vec4b kDepthBackground = cv::Vec4b(0, 0, 0, 255);    ///< Depth where depth == 0
-    static constexpr int kDepthNear = 255;                                       ///< Depth: nearest pixel's grey
-    static constexpr int kDepthFar = 64;                                         ///< Depth: farthest pixel's grey
-    static constexpr int kDataFlat = 128;                                        ///< Data: a channel of one value
+    static inline const cv::Vec4b kDepthBackground = cv::Vec4b(0, 0, 0, 255);     ///< Depth where depth == 0
+    static constexpr int kDepthNear = 255;                                        ///< Depth: nearest pixel's grey
+    static constexpr int kDepthFar = 64;                                          ///< Depth: farthest pixel's grey
+    static constexpr int kDataFlat = 128;                                         ///< Data: a channel of one value
 };
 
 /** A short description of a buffer for a caption, in the plan's format names: "rgba32f 1024x1024", "r8 512x512",
@@ -84,7 +84,7 @@ struct ContactSheetLayout {
     static constexpr int kCaptionHeight = 36;  ///< below each picture: the label line, then the caption line
     static constexpr int kMinTileWidth = 32;
     static constexpr int kMaxTileWidth = 4096;
-    static constexpr int kMaxSide = 16384;     ///< the largest sheet, each side (the largest picture inkgraph writes)
+    static constexpr int kMaxSide = 16384; ///< the largest sheet, each side (the largest picture inkgraph writes)
 
     int tileWidth = 256;                             ///< picture width of every cell, kMinTileWidth..kMaxTileWidth
     int columns = 0;                                 ///< 0 = automatic: ceil(sqrt(tile count)); at most the tiles

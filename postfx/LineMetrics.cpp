@@ -176,8 +176,10 @@ LineAccuracy summarise(double tolerance, const std::vector<double>& predictedDis
         }
         accuracy.truthToPredictedMean = hasPrediction ? sum / total : kInfinity;
         accuracy.recall = accuracy.truthLengthWithinTolerance / total;
-        if (byCount) accuracy.truthLengthWithinTolerance = 0.0;
-        else accuracy.truthLengthWithinTolerance = std::min(accuracy.truthLengthWithinTolerance, truthLength);
+        if (byCount)
+            accuracy.truthLengthWithinTolerance = 0.0;
+        else
+            accuracy.truthLengthWithinTolerance = std::min(accuracy.truthLengthWithinTolerance, truthLength);
         accuracy.truthToPredictedP95 = weightedPercentile(std::move(truthDistances), 0.95);
     } else {
         accuracy.recall = 1.0;
@@ -316,8 +318,8 @@ LineAccuracy scoreLineMasks(const cv::Mat& predicted, const cv::Mat& truth, doub
         hasTruth ? distancesTo(truthSkeleton, predictedPixels) : std::vector<double>(predictedPixels.size(), kInfinity);
     std::vector<WeightedDistance> truthDistances;
     if (hasTruth) {
-        const std::vector<double> distances =
-            hasPrediction ? distancesTo(predictedSkeleton, truthPixels) : std::vector<double>(truthPixels.size(), kInfinity);
+        const std::vector<double> distances = hasPrediction ? distancesTo(predictedSkeleton, truthPixels)
+                                                            : std::vector<double>(truthPixels.size(), kInfinity);
         for (const double distance : distances) truthDistances.push_back({distance, 1.0});
     }
     return summarise(tolerancePixels, predictedDistances, std::move(truthDistances), double(truthPixels.size()),

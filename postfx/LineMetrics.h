@@ -34,24 +34,24 @@ struct LinePolyline {
 
 /** The score of one prediction against one truth at one tolerance. Distances in pixels. */
 struct LineAccuracy {
-    double tolerancePixels = 0.0;           ///< k
-    std::size_t predictedCount = 0;         ///< predicted points (scoreLineMasks: skeleton pixels)
+    double tolerancePixels = 0.0;             ///< k
+    std::size_t predictedCount = 0;           ///< predicted points (scoreLineMasks: skeleton pixels)
     std::size_t predictedWithinTolerance = 0; ///< predicted points within k of the truth
-    std::size_t spuriousCount = 0;          ///< predicted points farther than k: predictedCount - within
-    double truthLength = 0.0;               ///< arc length of the truth (scoreLineMasks: truth skeleton pixels)
-    double truthLengthWithinTolerance = 0.0; ///< the part of truthLength within k of a predicted point
-    std::size_t truthSampleCount = 0;       ///< truth samples measured (<= 0.25 px apart; masks: pixels)
-    double precision = 0.0;                 ///< P, in [0, 1]
-    double recall = 0.0;                    ///< R, in [0, 1], by arc length
-    double f1 = 0.0;                        ///< 2PR / (P + R)
-    double predictedToTruthMean = 0.0;      ///< mean distance of a predicted point to the truth
-    double predictedToTruthP95 = 0.0;       ///< its 95th percentile
-    double predictedToTruthMax = 0.0;       ///< its largest value
-    double truthToPredictedMean = 0.0;      ///< mean over the truth's length of the distance to the nearest prediction
-    double truthToPredictedP95 = 0.0;       ///< its 95th percentile, by length
-    double truthToPredictedMax = 0.0;       ///< its largest value (polyline vertices included)
-    double hausdorff = 0.0;                 ///< max(predictedToTruthMax, truthToPredictedMax)
-    double chamferMean = 0.0;               ///< (predictedToTruthMean + truthToPredictedMean) / 2
+    std::size_t spuriousCount = 0;            ///< predicted points farther than k: predictedCount - within
+    double truthLength = 0.0;                 ///< arc length of the truth (scoreLineMasks: truth skeleton pixels)
+    double truthLengthWithinTolerance = 0.0;  ///< the part of truthLength within k of a predicted point
+    std::size_t truthSampleCount = 0;         ///< truth samples measured (<= 0.25 px apart; masks: pixels)
+    double precision = 0.0;                   ///< P, in [0, 1]
+    double recall = 0.0;                      ///< R, in [0, 1], by arc length
+    double f1 = 0.0;                          ///< 2PR / (P + R)
+    double predictedToTruthMean = 0.0;        ///< mean distance of a predicted point to the truth
+    double predictedToTruthP95 = 0.0;         ///< its 95th percentile
+    double predictedToTruthMax = 0.0;         ///< its largest value
+    double truthToPredictedMean = 0.0; ///< mean over the truth's length of the distance to the nearest prediction
+    double truthToPredictedP95 = 0.0;  ///< its 95th percentile, by length
+    double truthToPredictedMax = 0.0;  ///< its largest value (polyline vertices included)
+    double hausdorff = 0.0;            ///< max(predictedToTruthMax, truthToPredictedMax)
+    double chamferMean = 0.0;          ///< (predictedToTruthMean + truthToPredictedMean) / 2
 };
 
 /** Sub-pixel points against sub-pixel truth. `predicted`: points in LinePoint coordinates (each counts once,

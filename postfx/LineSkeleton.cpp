@@ -109,12 +109,9 @@ void stampDiscsByRow(const std::vector<LinePoint>& points, float radius, cv::Mat
             const int lastColOfRow = static_cast<int>(right);
             const int firstFull = static_cast<int>(fullFirst);
             const int lastFull = static_cast<int>(fullLast);
-            for (int col = firstCol; col < std::min(firstFull, lastColOfRow + 1); ++col)
-                ramp(col);
-            for (int col = firstFull; col <= lastFull; ++col)
-                out[col] = std::max(out[col], fullValue);
-            for (int col = std::max(lastFull + 1, firstCol); col <= lastColOfRow; ++col)
-                ramp(col);
+            for (int col = firstCol; col < std::min(firstFull, lastColOfRow + 1); ++col) ramp(col);
+            for (int col = firstFull; col <= lastFull; ++col) out[col] = std::max(out[col], fullValue);
+            for (int col = std::max(lastFull + 1, firstCol); col <= lastColOfRow; ++col) ramp(col);
         }
     }
 }
@@ -197,8 +194,7 @@ void drawDiscsByNearestPoint(const std::vector<LinePoint>& points, float radius,
         uchar* out = canvas.ptr<uchar>(row);
         int segment = 0;
         for (int col = 0; col < cols; ++col) {
-            while (segment + 1 < count && envelopeStarts[segment + 1] <= col)
-                ++segment;
+            while (segment + 1 < count && envelopeStarts[segment + 1] <= col) ++segment;
             const int siteCol = envelopeCols[segment];
             const double dx = col - siteCol;
             if (dx * dx + heights[siteCol] > reachSquared) continue;
@@ -242,11 +238,9 @@ LineSkeleton skeletonFromMask(const cv::Mat& mask) {
             std::uint64_t word;
             std::memcpy(&word, in + col, sizeof word);
             if (word == 0) continue;
-            for (int offset = 0; offset < 8; ++offset)
-                take(col + offset);
+            for (int offset = 0; offset < 8; ++offset) take(col + offset);
         }
-        for (; col < mask.cols; ++col)
-            take(col);
+        for (; col < mask.cols; ++col) take(col);
     }
     return skeleton;
 }

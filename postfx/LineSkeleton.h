@@ -16,8 +16,8 @@ struct LinePoint {
 
 /** What a line kernel finds, at the resolution of the buffers it read (the data resolution). */
 struct LineSkeleton {
-    cv::Mat mask;                   ///< CV_8UC1, the data size: 255 on each pixel a line passes through, else 0
-    std::vector<LinePoint> points;  ///< the line's sub-pixel samples; a mask pixel has one or more
+    cv::Mat mask;                  ///< CV_8UC1, the data size: 255 on each pixel a line passes through, else 0
+    std::vector<LinePoint> points; ///< the line's sub-pixel samples; a mask pixel has one or more
 };
 
 /** A skeleton from a one-pixel mask drawn elsewhere (e.g. GL lines): every non-zero pixel becomes a point at its

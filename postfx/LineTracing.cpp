@@ -46,8 +46,7 @@ constexpr unsigned linksOf(unsigned bits) {
 
 constexpr std::array<uchar, 256> makeLinkTable() {
     std::array<uchar, 256> table{};
-    for (unsigned bits = 0; bits < 256; ++bits)
-        table[bits] = static_cast<uchar>(linksOf(bits));
+    for (unsigned bits = 0; bits < 256; ++bits) table[bits] = static_cast<uchar>(linksOf(bits));
     return table;
 }
 constexpr std::array<uchar, 256> kLinks = makeLinkTable();
@@ -66,8 +65,7 @@ constexpr bool isRemovable(unsigned bits) {
 
 constexpr std::array<bool, 256> makeRemovableTable() {
     std::array<bool, 256> table{};
-    for (unsigned bits = 0; bits < 256; ++bits)
-        table[bits] = isRemovable(bits);
+    for (unsigned bits = 0; bits < 256; ++bits) table[bits] = isRemovable(bits);
     return table;
 }
 constexpr std::array<bool, 256> kRemovable = makeRemovableTable();
@@ -134,15 +132,12 @@ public:
         }
         // Counting sort by row, then by column within each row; then one mean per pixel.
         std::vector<std::size_t> rowCount(std::size_t(size.height) + 1, 0);
-        for (const Sample& sample : samples)
-            ++rowCount[std::size_t(sample.row) + 1];
-        for (std::size_t row = 1; row < rowCount.size(); ++row)
-            rowCount[row] += rowCount[row - 1];
+        for (const Sample& sample : samples) ++rowCount[std::size_t(sample.row) + 1];
+        for (std::size_t row = 1; row < rowCount.size(); ++row) rowCount[row] += rowCount[row - 1];
         std::vector<Sample> byRow(samples.size());
         {
             std::vector<std::size_t> next(rowCount.begin(), rowCount.end() - 1);
-            for (const Sample& sample : samples)
-                byRow[next[std::size_t(sample.row)]++] = sample;
+            for (const Sample& sample : samples) byRow[next[std::size_t(sample.row)]++] = sample;
         }
         mEntries.reserve(byRow.size());
         for (int row = 0; row < size.height; ++row) {
@@ -224,8 +219,7 @@ Polyline simplifyPoints(const std::vector<cv::Point2d>& points, bool closed, dou
     const std::size_t count = points.size();
     auto toFloat = [](const cv::Point2d& p) { return cv::Point2f(static_cast<float>(p.x), static_cast<float>(p.y)); };
     if (count <= 2) {
-        for (const cv::Point2d& point : points)
-            result.points.push_back(toFloat(point));
+        for (const cv::Point2d& point : points) result.points.push_back(toFloat(point));
         return result;
     }
     // Compared squared: no square root per point.
@@ -259,10 +253,8 @@ Polyline simplifyPoints(const std::vector<cv::Point2d>& points, bool closed, dou
             // The first vertex may go when every point from the kept vertex before it round to the one after it
             // stays within tolerance of the segment joining those two.
             std::size_t previous = count - 1, next = 1;
-            while (!keep[previous])
-                --previous;
-            while (!keep[next])
-                ++next;
+            while (!keep[previous]) --previous;
+            while (!keep[next]) ++next;
             bool holds = true;
             for (std::size_t index = previous + 1; index <= count + next - 1 && holds; ++index)
                 holds =

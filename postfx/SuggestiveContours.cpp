@@ -60,15 +60,11 @@ Span coveredSpan(const float* depth, int cols) {
     int end = cols;
 #if CV_SIMD128
     const v_float32x4 zero = cv::v_setzero_f32();
-    while (begin + 4 <= cols && !cv::v_check_any(cv::v_load(depth + begin) > zero))
-        begin += 4;
-    while (end - 4 >= begin && !cv::v_check_any(cv::v_load(depth + end - 4) > zero))
-        end -= 4;
+    while (begin + 4 <= cols && !cv::v_check_any(cv::v_load(depth + begin) > zero)) begin += 4;
+    while (end - 4 >= begin && !cv::v_check_any(cv::v_load(depth + end - 4) > zero)) end -= 4;
 #endif
-    while (begin < end && !(depth[begin] > 0.0f))
-        ++begin;
-    while (end > begin && !(depth[end - 1] > 0.0f))
-        --end;
+    while (begin < end && !(depth[begin] > 0.0f)) ++begin;
+    while (end > begin && !(depth[end - 1] > 0.0f)) --end;
     return {begin, end};
 }
 
@@ -242,8 +238,10 @@ public:
     BandScanner(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings, cv::Mat& mask,
                 int firstRow, int endRow)
         : mRadial(radial), mDepth(depth), mMask(mask), mDepthJump(settings.depthJump),
-          mMinSinThetaSquared(settings.minSinTheta * settings.minSinTheta),
-          mRule{settings.featureSize * settings.featureSize, settings.threshold, settings.fade}, mRows(radial.rows), mCols(radial.cols), mFirstRow(firstRow), mEndRow(endRow),
+          mMinSinThetaSquared(settings.minSinTheta * settings.minSinTheta), mRule{settings.featureSize *
+                                                                                      settings.featureSize,
+                                                                                  settings.threshold, settings.fade},
+          mRows(radial.rows), mCols(radial.cols), mFirstRow(firstRow), mEndRow(endRow),
           mFirstLoaded(std::max(firstRow - 3, 0)), mSpans(size_t(std::min(endRow + 2, mRows) - mFirstLoaded)),
           mNormalDistance(kRingRows * size_t(mCols), 0.0f), mImageWX(kRingRows * size_t(mCols), 0.0f),
           mImageWY(kRingRows * size_t(mCols), 0.0f), mDw(kRingRows * size_t(mCols), 0.0f),
@@ -337,11 +335,9 @@ private:
             const v_float32x4 vertical = centreDefined & (cv::v_load(definedAbove + col) > zero) &
                                          (centreNegative ^ (cv::v_load(dwAbove + col) < zero));
             if (cv::v_check_any(horizontal))
-                for (int lane = 0; lane < 4; ++lane)
-                    considerPair(row, col + lane, false);
+                for (int lane = 0; lane < 4; ++lane) considerPair(row, col + lane, false);
             if (cv::v_check_any(vertical))
-                for (int lane = 0; lane < 4; ++lane)
-                    considerPair(row - 1, col + lane, true);
+                for (int lane = 0; lane < 4; ++lane) considerPair(row - 1, col + lane, true);
         }
 #endif
         for (; col < end; ++col) {
@@ -393,7 +389,6 @@ private:
     std::vector<float> mDefined;
     BandResult mResult;
 };
-
 
 /** Weights of the fourth-order central difference at offsets -2, -1, +1, +2 (the centre weighs 0). */
 constexpr std::array<int, 4> kWideOffsets = {-2, -1, 1, 2};
@@ -552,8 +547,7 @@ LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& dep
 
     for (const BandResult& band : bands) {
         skeleton.points.insert(skeleton.points.end(), band.points.begin(), band.points.end());
-        for (const cv::Point& marked : band.marksAboveBand)
-            skeleton.mask.ptr<uchar>(marked.y)[marked.x] = 255;
+        for (const cv::Point& marked : band.marksAboveBand) skeleton.mask.ptr<uchar>(marked.y)[marked.x] = 255;
     }
     return skeleton;
 }

@@ -20,8 +20,7 @@ void appendNumber(std::string& out, double value, int decimals) {
     if (error != std::errc()) throw std::logic_error("svgDocument(): appendNumber() buffer too small");
     char* last = end;
     if (std::find(buffer, end, '.') != end) {
-        while (last[-1] == '0')
-            --last;
+        while (last[-1] == '0') --last;
         if (last[-1] == '.') --last;
     }
     const bool negativeZero = last - buffer == 2 && buffer[0] == '-' && buffer[1] == '0';
@@ -169,8 +168,7 @@ void appendPath(std::string& out, const Polyline& polyline, double scale) {
     if (polyline.points.size() == 1) {
         appendPoint(" L ", polyline.points.front()); // zero length: round caps draw a dot
     } else {
-        for (std::size_t index = 1; index < polyline.points.size(); ++index)
-            appendPoint(" L ", polyline.points[index]);
+        for (std::size_t index = 1; index < polyline.points.size(); ++index) appendPoint(" L ", polyline.points[index]);
         if (polyline.closed) out += " Z";
     }
     out += "\"/>\n";
@@ -184,8 +182,7 @@ std::string svgDocument(int width, int height, const std::vector<SvgLineLayer>& 
         throw std::invalid_argument("svgDocument(): 'width' and 'height' must be >= 1, got " + std::to_string(width) +
                                     "x" + std::to_string(height));
     std::set<std::string> types;
-    for (std::size_t index = 0; index < layers.size(); ++index)
-        checkLayer(layers[index], index, types);
+    for (std::size_t index = 0; index < layers.size(); ++index) checkLayer(layers[index], index, types);
     const std::string backgroundColor =
         options.background ? hexColor(*options.background, "'options.background'") : std::string();
 
@@ -207,8 +204,7 @@ std::string svgDocument(int width, int height, const std::vector<SvgLineLayer>& 
                "\" stroke-opacity=\"" + formatNumber(layer.color[3], 3) + "\" stroke-width=\"" +
                formatNumber(layer.widthPixels, 3) + "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
         const double scale = 1.0 / layer.supersample;
-        for (const Polyline& polyline : layer.polylines)
-            appendPath(out, polyline, scale);
+        for (const Polyline& polyline : layer.polylines) appendPath(out, polyline, scale);
         out += "  </g>\n";
     }
     out += "</svg>\n";

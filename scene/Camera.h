@@ -40,7 +40,7 @@ struct Camera {
     double zFar = 100.0;
     int width = 1024;
     int height = 1024;
-    std::string source; ///< "flags", "gltf" or "auto-framed"
+    std::string source;                ///< "flags", "gltf" or "auto-framed"
     std::string clipSource = "fitted"; ///< "fitted" (to the bounding sphere) or "flags" (--clip)
 
     double aspect() const { return double(width) / double(height); }

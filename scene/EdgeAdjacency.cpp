@@ -153,8 +153,7 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
 
     // Group the uses by edge (a counting sort keeps face order within each edge).
     std::vector<std::uint32_t> useCount(adjacency.edges.size(), 0);
-    for (const PendingUse& use : pending)
-        ++useCount[use.edge];
+    for (const PendingUse& use : pending) ++useCount[use.edge];
     std::uint32_t offset = 0;
     for (std::size_t edge = 0; edge < adjacency.edges.size(); ++edge) {
         adjacency.edges[edge].firstFaceUse = offset;
@@ -165,8 +164,7 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
     std::vector<std::uint32_t> nextSlot(adjacency.edges.size());
     for (std::size_t edge = 0; edge < adjacency.edges.size(); ++edge)
         nextSlot[edge] = adjacency.edges[edge].firstFaceUse;
-    for (const PendingUse& use : pending)
-        adjacency.faceUses[nextSlot[use.edge]++] = use.use;
+    for (const PendingUse& use : pending) adjacency.faceUses[nextSlot[use.edge]++] = use.use;
 
     for (MeshEdge& edge : adjacency.edges) {
         if (edge.faceCount == 1) {

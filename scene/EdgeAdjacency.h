@@ -34,7 +34,8 @@ struct MeshEdge {
     glm::uvec2 vertices;
     EdgeKind kind;
     /** Manifold edges whose two faces run it in the same direction: their normals disagree about which side is out.
-     *  the s1 x s2 test of the comic-renderer write-up after Lander 2000 would fire everywhere or nowhere there; see normalAngle and isSilhouetteEdge(). */
+     *  the s1 x s2 test of the comic-renderer write-up after Lander 2000 would fire everywhere or nowhere there; see
+     * normalAngle and isSilhouetteEdge(). */
     bool inconsistentOrientation = false;
     /** Manifold edges only (0 otherwise): the angle between the two faces' unit normals, atan2(|n1 x n2|, n1 . n2),
      *  in radians: 0 across a flat surface, pi/2 at a cube's edge. This is pi minus the interior dihedral angle (a

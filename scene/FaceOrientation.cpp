@@ -91,8 +91,8 @@ struct ViewTerms {
     bool constant = false;
     glm::dvec3 constantView{0.0}; ///< unit V_c when `constant`
     glm::dvec3 eye{0.0};
-    glm::dvec3 towardLight{0.0};  ///< unit L
-    double constantDotLV = 0.0;   ///< L.V_c, once per call (Winnemöller & Bangay 2002 §3.6)
+    glm::dvec3 towardLight{0.0}; ///< unit L
+    double constantDotLV = 0.0;  ///< L.V_c, once per call (Winnemöller & Bangay 2002 §3.6)
     double shininess = 0.0;
     std::uint32_t wholeShininess = 0; ///< the shininess when it is a whole number in [1, 1024], else 0
 };
@@ -265,9 +265,8 @@ void markDuringVertices(const Mesh& mesh, const OrientationMeshData& data, const
     const std::uint32_t* around = data.vertexTriangles.data();
     std::vector<std::uint8_t> counters(mesh.triangles.size(), 0);
     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-        const std::uint8_t flags =
-            classifyVertex(terms, cutoff.forVertex(data.vertexBeta[v]), mesh.positions[v], mesh.normals[v],
-                           result.shadeCoords[v]);
+        const std::uint8_t flags = classifyVertex(terms, cutoff.forVertex(data.vertexBeta[v]), mesh.positions[v],
+                                                  mesh.normals[v], result.shadeCoords[v]);
         if (!flags) {
             continue;
         }
@@ -337,24 +336,18 @@ ViewTerms viewTermsFor(const OrientationRequest& request) {
 
 std::string viewVectorModeName(ViewVectorMode mode) {
     switch (mode) {
-    case ViewVectorMode::Exact:
-        return "exact";
-    case ViewVectorMode::Constant:
-        return "constant";
+    case ViewVectorMode::Exact: return "exact";
+    case ViewVectorMode::Constant: return "constant";
     }
     return "unknown";
 }
 
 std::string faceOrientationMethodName(FaceOrientationMethod mode) {
     switch (mode) {
-    case FaceOrientationMethod::Standard:
-        return "standard";
-    case FaceOrientationMethod::DuringTriangles:
-        return "during-triangles";
-    case FaceOrientationMethod::DuringVertices:
-        return "during-vertices";
-    case FaceOrientationMethod::AfterVertices:
-        return "after-vertices";
+    case FaceOrientationMethod::Standard: return "standard";
+    case FaceOrientationMethod::DuringTriangles: return "during-triangles";
+    case FaceOrientationMethod::DuringVertices: return "during-vertices";
+    case FaceOrientationMethod::AfterVertices: return "after-vertices";
     }
     return "unknown";
 }
@@ -395,8 +388,8 @@ OrientationMeshData deriveOrientationData(const Mesh& mesh, bool withVertexTrian
     for (std::size_t v = 0; v < vertexCount; ++v) {
         const double beta = vertexBeta[v].radians();
         // Rounded up to float so the float copy never understates beta (which could drop a front vertex).
-        data.vertexBeta[v] = glm::vec2(std::nextafter(float(std::sin(beta)), 2.0f),
-                                       std::nextafter(float(std::cos(beta)), -2.0f));
+        data.vertexBeta[v] =
+            glm::vec2(std::nextafter(float(std::sin(beta)), 2.0f), std::nextafter(float(std::cos(beta)), -2.0f));
         data.betaMaxRadians = std::max(data.betaMaxRadians, beta);
     }
 
@@ -503,17 +496,10 @@ void orientMesh(const Mesh& mesh, const OrientationMeshData& data, const Orienta
     result.backTriangles.reserve(mesh.triangles.size());
 
     switch (request.method) {
-    case FaceOrientationMethod::DuringTriangles:
-        markDuringTriangles(mesh, data, request, terms, cutoff, result);
-        break;
-    case FaceOrientationMethod::DuringVertices:
-        markDuringVertices(mesh, data, request, terms, cutoff, result);
-        break;
-    case FaceOrientationMethod::AfterVertices:
-        markAfterVertices(mesh, data, request, terms, cutoff, result);
-        break;
-    case FaceOrientationMethod::Standard:
-        break;
+    case FaceOrientationMethod::DuringTriangles: markDuringTriangles(mesh, data, request, terms, cutoff, result); break;
+    case FaceOrientationMethod::DuringVertices: markDuringVertices(mesh, data, request, terms, cutoff, result); break;
+    case FaceOrientationMethod::AfterVertices: markAfterVertices(mesh, data, request, terms, cutoff, result); break;
+    case FaceOrientationMethod::Standard: break;
     }
 }
 

@@ -42,11 +42,11 @@ OrientationMeshData deriveOrientationData(const Mesh& mesh, bool withVertexTrian
 /** The constant view vector of Winnemöller & Bangay 2002 §3.5 for one frame, or why exact vectors are used
  *  instead. */
 struct ViewVectorChoice {
-    bool constant = false;           ///< false: exact per-vertex or per-face view vectors
-    bool fellBack = false;           ///< constant was asked for, but the eye is inside or near the bounding sphere
-    glm::dvec3 constantView{0.0};    ///< unit V_c = (C - E)/|C - E| when `constant`
-    double sinAlpha = 0.0;           ///< r_b/|C - E| (the bounding-sphere radius, not the paper's box side)
-    std::string reason;              ///< one line for the stats ("eye inside the bounding sphere", ...)
+    bool constant = false;        ///< false: exact per-vertex or per-face view vectors
+    bool fellBack = false;        ///< constant was asked for, but the eye is inside or near the bounding sphere
+    glm::dvec3 constantView{0.0}; ///< unit V_c = (C - E)/|C - E| when `constant`
+    double sinAlpha = 0.0;        ///< r_b/|C - E| (the bounding-sphere radius, not the paper's box side)
+    std::string reason;           ///< one line for the stats ("eye inside the bounding sphere", ...)
 };
 /** `center`/`radius`: the bounding sphere of the mesh (or scene). Falls back to exact when
  *  |C - E| <= radius x (1 + 1e-3) or sin(alpha) > 0.5 (docs/shading.md); never evaluates asin above 1. */
@@ -55,14 +55,14 @@ ViewVectorChoice chooseViewVector(ViewVectorMode requested, const glm::dvec3& ey
 
 struct OrientationRequest {
     FaceOrientationMethod method = FaceOrientationMethod::AfterVertices; ///< not Standard (that is the GPU's job)
-    int frontRule = 3;            ///< 1: all three vertices front, 2: at least two, 3: at least one (vertex methods)
-    ViewVectorChoice view;        ///< from chooseViewVector()
-    glm::dvec3 eye{0.0};          ///< same space as the mesh positions
+    int frontRule = 3;     ///< 1: all three vertices front, 2: at least two, 3: at least one (vertex methods)
+    ViewVectorChoice view; ///< from chooseViewVector()
+    glm::dvec3 eye{0.0};   ///< same space as the mesh positions
     glm::dvec3 towardLight{0.0, 0.0, 1.0}; ///< unit, L (point -> light)
-    double shininess = 32.0;      ///< >= 0; 0 gives specular 1 wherever n.l > 0
-    bool paperCutoff = false;     ///< tests only: the paper's -sin(alpha) cut-off without betaMax
-    bool countMissed = true;      ///< false skips the exact per-face reference (benchmarks, or callers that time
-                                  ///< the method and count holes apart); `missedTriangles` is then 0
+    double shininess = 32.0;               ///< >= 0; 0 gives specular 1 wherever n.l > 0
+    bool paperCutoff = false;              ///< tests only: the paper's -sin(alpha) cut-off without betaMax
+    bool countMissed = true; ///< false skips the exact per-face reference (benchmarks, or callers that time
+                             ///< the method and count holes apart); `missedTriangles` is then 0
 };
 
 /** What one method decided for one mesh. Both triangle lists keep the mesh's triangle order.

@@ -684,8 +684,10 @@ std::size_t jsonNestingDepth(std::string_view text) {
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
         if (inString) {
-            if (c == '\\') ++i;
-            else if (c == '"') inString = false;
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                inString = false;
         } else if (c == '"') {
             inString = true;
         } else if (c == '[' || c == '{') {
@@ -868,10 +870,8 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     const std::string_view json = jsonOf(content, binary);
     nlohmann::json::sax_parse(json.begin(), json.end(), &uris, nlohmann::json::input_format_t::json, false);
     ExternalFiles files{budget, {}, {}, {}};
-    for (const std::string& uri : uris.bufferUris)
-        files.bufferPaths.insert(pathBesideModel(baseDirectory, uri));
-    for (const std::string& uri : uris.imageUris)
-        files.imagePaths.insert(pathBesideModel(baseDirectory, uri));
+    for (const std::string& uri : uris.bufferUris) files.bufferPaths.insert(pathBesideModel(baseDirectory, uri));
+    for (const std::string& uri : uris.imageUris) files.imagePaths.insert(pathBesideModel(baseDirectory, uri));
 
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skipImageDecoding, nullptr);

@@ -55,7 +55,9 @@ void rotateFrame(glm::dvec3& u, glm::dvec3& v, const glm::dvec3& from, const glm
     }
     const glm::dvec3 axis = glm::cross(from, to);
     const double scale = 1.0 / (1.0 + cosine);
-    auto rotate = [&](const glm::dvec3& x) { return x * cosine + glm::cross(axis, x) + axis * (glm::dot(axis, x) * scale); };
+    auto rotate = [&](const glm::dvec3& x) {
+        return x * cosine + glm::cross(axis, x) + axis * (glm::dot(axis, x) * scale);
+    };
     u = rotate(u);
     v = rotate(v);
 }
@@ -64,8 +66,8 @@ void rotateFrame(glm::dvec3& u, glm::dvec3& v, const glm::dvec3& from, const glm
 glm::dvec3 perpendicularTo(const glm::dvec3& normal) {
     const glm::dvec3 magnitude = glm::abs(normal);
     const glm::dvec3 axis = magnitude.x <= magnitude.y && magnitude.x <= magnitude.z ? glm::dvec3(1, 0, 0)
-                            : magnitude.y <= magnitude.z                            ? glm::dvec3(0, 1, 0)
-                                                                                    : glm::dvec3(0, 0, 1);
+                            : magnitude.y <= magnitude.z                             ? glm::dvec3(0, 1, 0)
+                                                                                     : glm::dvec3(0, 0, 1);
     return glm::normalize(glm::cross(normal, axis));
 }
 
@@ -109,8 +111,8 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
         for (int corner = 0; corner < 3; ++corner)
             if (triangles[face][corner] >= positions.size())
                 throw std::out_of_range("computeMeshCurvature(): 'triangles' face " + std::to_string(face) +
-                                        " uses vertex " + std::to_string(triangles[face][corner]) +
-                                        " but there are " + std::to_string(positions.size()) + " positions");
+                                        " uses vertex " + std::to_string(triangles[face][corner]) + " but there are " +
+                                        std::to_string(positions.size()) + " positions");
 
     MeshCurvature result;
     const WeldMap weld = weldVertices(positions, {}, weldDistance);
@@ -170,8 +172,7 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
         for (int corner = 0; corner < 3; ++corner) {
             const std::uint32_t vertex = result.triangles[face][corner];
             // The corner's two edges are the ones not opposite it.
-            const double weight =
-                1.0 / (squaredLength[(corner + 1) % 3] * squaredLength[(corner + 2) % 3]);
+            const double weight = 1.0 / (squaredLength[(corner + 1) % 3] * squaredLength[(corner + 2) % 3]);
             normalSums[vertex] += areaVector * weight;
             if (fallbackNormals[vertex] == glm::dvec3(0.0)) fallbackNormals[vertex] = frame.normal;
         }
@@ -357,8 +358,8 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
     }
     result.derivative.resize(vertexCount);
     for (std::size_t vertex = 0; vertex < vertexCount; ++vertex)
-        result.derivative[vertex] = derivativeWeights[vertex] > 0.0 ? derivativeSums[vertex] / derivativeWeights[vertex]
-                                                                    : glm::dvec4(0.0);
+        result.derivative[vertex] =
+            derivativeWeights[vertex] > 0.0 ? derivativeSums[vertex] / derivativeWeights[vertex] : glm::dvec4(0.0);
     return result;
 }
 

@@ -33,8 +33,8 @@ struct MeshCurvatureCounts {
 
 /** The curvature of one mesh, per welded vertex. Every value is finite. */
 struct MeshCurvature {
-    std::vector<std::uint32_t> weldedOf;   ///< per input vertex: its welded vertex
-    std::vector<glm::dvec3> positions;     ///< per welded vertex (the first input copy's position)
+    std::vector<std::uint32_t> weldedOf; ///< per input vertex: its welded vertex
+    std::vector<glm::dvec3> positions;   ///< per welded vertex (the first input copy's position)
     /** The usable faces (not degenerate), in welded ids, counter-clockwise as the input; what lines are found on. */
     std::vector<glm::uvec3> triangles;
     std::vector<std::uint32_t> sourceFace; ///< per usable face: its index in the input triangles

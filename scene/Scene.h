@@ -60,8 +60,8 @@ struct LoadReport {
     std::size_t degenerateDropped = 0; ///< zero-area or repeated-index triangles removed
     std::size_t verticesBeforeWeld = 0;
     std::size_t verticesAfterWeld = 0;
-    bool normalsComputed = false;      ///< true when some mesh had no normals in the file
-    std::vector<std::string> warnings; ///< e.g. skipped POINTS primitives, ignored orthographic cameras
+    bool normalsComputed = false;        ///< true when some mesh had no normals in the file
+    std::vector<std::string> warnings;   ///< e.g. skipped POINTS primitives, ignored orthographic cameras
     std::vector<std::string> inputFiles; ///< every file this load read: the model, glTF external buffers and images
                                          ///< (paths as opened, resolved against the model's folder)
 };

@@ -84,8 +84,7 @@ class BufferWriter {
 public:
     /** Appends a view of `bytes`, 4-byte aligned; returns its index. */
     int addView(const void* data, std::size_t bytes, int target) {
-        while (mBytes.size() % 4 != 0)
-            mBytes.push_back(0);
+        while (mBytes.size() % 4 != 0) mBytes.push_back(0);
         mViews.push_back({{"buffer", 0}, {"byteOffset", mBytes.size()}, {"byteLength", bytes}, {"target", target}});
         const auto* first = static_cast<const unsigned char*>(data);
         mBytes.insert(mBytes.end(), first, first + bytes);
@@ -117,11 +116,9 @@ Geometry loadUpright(const fs::path& file, const glm::dmat3& upright, double hei
     Geometry geometry;
     for (const inkgraph::Mesh& mesh : scene.meshes) {
         const auto first = std::uint32_t(points.size());
-        for (const glm::vec3& p : mesh.positions)
-            points.push_back(upright * glm::dvec3(p));
+        for (const glm::vec3& p : mesh.positions) points.push_back(upright * glm::dvec3(p));
         for (const glm::uvec3& t : mesh.triangles)
-            for (int corner = 0; corner < 3; ++corner)
-                geometry.indices.push_back(first + t[corner]);
+            for (int corner = 0; corner < 3; ++corner) geometry.indices.push_back(first + t[corner]);
     }
     glm::dvec3 low(std::numeric_limits<double>::max()), high(std::numeric_limits<double>::lowest());
     for (const glm::dvec3& p : points) {
@@ -130,8 +127,7 @@ Geometry loadUpright(const fs::path& file, const glm::dmat3& upright, double hei
     }
     const double scale = height / (high.y - low.y);
     const glm::dvec3 foot(0.5 * (low.x + high.x), low.y, 0.5 * (low.z + high.z));
-    for (const glm::dvec3& p : points)
-        geometry.positions.push_back(glm::vec3((p - foot) * scale));
+    for (const glm::dvec3& p : points) geometry.positions.push_back(glm::vec3((p - foot) * scale));
     return geometry;
 }
 

@@ -40,8 +40,7 @@ MeshEdgesPass::MeshEdgesPass(std::string name, ShaderLibrary& shaders, GpuScene&
 }
 
 void MeshEdgesPass::declare(PassBuilder& builder) const {
-    for (const char* field : kFields)
-        builder.write(field, {Format::R8, mSettings.supersample}, Need::Optional);
+    for (const char* field : kFields) builder.write(field, {Format::R8, mSettings.supersample}, Need::Optional);
 }
 
 void MeshEdgesPass::describe(nlohmann::ordered_json& report) const {
@@ -89,8 +88,7 @@ void MeshEdgesPass::prepare(GlPassContext& context) {
     const std::size_t meshCount = mScene.meshes().size();
     const bool anyLive = context.isLive("silhouette") || context.isLive("crease") || context.isLive("border");
     if (!anyLive) return;
-    for (std::size_t mesh = 0; mesh < meshCount; ++mesh)
-        mScene.edgeAdjacency(mesh);
+    for (std::size_t mesh = 0; mesh < meshCount; ++mesh) mScene.edgeAdjacency(mesh);
 
     // Creases and borders do not depend on the view: chosen and uploaded once, outside the timed execute().
     const double creaseAngle = double(mSettings.creaseAngleDegrees) * glm::pi<double>() / 180.0;

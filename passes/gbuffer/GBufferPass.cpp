@@ -13,10 +13,14 @@ namespace inkgraph {
 
 const std::vector<GBufferPass::Field>& GBufferPass::fields() {
     static const std::vector<Field> kFields = {
-        {"normal", Format::RGBA32F, "NORMAL"},  {"view", Format::RGBA32F, "VIEW"},
-        {"wVec", Format::RGBA32F, "WVEC"},      {"nDotV", Format::R32F, "NDOTV"},
-        {"depth", Format::R32F, "DEPTH"},       {"coverage", Format::R8, "COVERAGE"},
-        {"baseColor", Format::RGBA8, "BASECOLOR"}, {"radial", Format::RGBA32F, "RADIAL"},
+        {"normal", Format::RGBA32F, "NORMAL"},
+        {"view", Format::RGBA32F, "VIEW"},
+        {"wVec", Format::RGBA32F, "WVEC"},
+        {"nDotV", Format::R32F, "NDOTV"},
+        {"depth", Format::R32F, "DEPTH"},
+        {"coverage", Format::R8, "COVERAGE"},
+        {"baseColor", Format::RGBA8, "BASECOLOR"},
+        {"radial", Format::RGBA32F, "RADIAL"},
         {"materialId", Format::R32F, "MATERIAL_ID"},
     };
     return kFields;
@@ -49,8 +53,8 @@ GlProgram& GBufferPass::programFor(const std::vector<std::string>& defines) {
     for (const std::string& define : defines) key += define + ";";
     auto& program = mPrograms[key];
     if (!program)
-        program = std::make_unique<GlProgram>(mShaders.build(
-            {mName, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", defines, {"common/color.glsl"}}));
+        program = std::make_unique<GlProgram>(
+            mShaders.build({mName, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", defines, {"common/color.glsl"}}));
     return *program;
 }
 
@@ -113,7 +117,8 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
     glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
     glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
     glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
-    if (std::any_of(group.begin(), group.end(), [](const Field* field) { return std::string_view(field->name) == "radial"; })) {
+    if (std::any_of(group.begin(), group.end(),
+                    [](const Field* field) { return std::string_view(field->name) == "radial"; })) {
         glUniform2f(program.uniform("viewportSize"), float(width), float(height));
         glUniform1f(program.uniform("radialLengthScale"), float(1.0 / mFrame.radialLengthUnit));
     }

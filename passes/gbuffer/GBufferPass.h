@@ -46,7 +46,7 @@ namespace inkgraph {
 class GBufferPass : public GlPass {
 public:
     struct Field {
-        const char* name;   ///< "normal"
+        const char* name; ///< "normal"
         Format format;
         const char* define; ///< "NORMAL": OUT_NORMAL / LOC_NORMAL in gbuffer.frag
     };

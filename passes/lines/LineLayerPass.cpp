@@ -21,8 +21,7 @@ LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kerne
     if (!(std::isfinite(mWidthPixels) && mWidthPixels > 0.0f))
         throw std::invalid_argument("LineLayerPass(): '" + mName + "' width must be positive and finite");
     if (!mKernel) throw std::invalid_argument("LineLayerPass(): '" + mName + "' has no kernel");
-    if (mKernel->inputs().empty())
-        throw std::invalid_argument("LineLayerPass(): '" + mName + "' kernel reads nothing");
+    if (mKernel->inputs().empty()) throw std::invalid_argument("LineLayerPass(): '" + mName + "' kernel reads nothing");
 }
 
 void LineLayerPass::declare(PassBuilder& builder) const {

@@ -22,9 +22,9 @@ namespace inkgraph {
 
 /** What the last execute() did, for --stats. */
 struct LineLayerReport {
-    int supersample = 1;              ///< the inputs' scale
-    std::size_t skeletonPixels = 0;   ///< pixels the kernel marked, at the data resolution
-    std::size_t points = 0;           ///< sub-pixel samples stroked
+    int supersample = 1;               ///< the inputs' scale
+    std::size_t skeletonPixels = 0;    ///< pixels the kernel marked, at the data resolution
+    std::size_t points = 0;            ///< sub-pixel samples stroked
     double readbackMilliseconds = 0.0; ///< bringing the inputs to the CPU (shared with other layers: the first pays)
     double kernelMilliseconds = 0.0;   ///< finding the skeleton
     double strokeMilliseconds = 0.0;   ///< drawing it at width, downsampling

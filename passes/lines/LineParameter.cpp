@@ -53,28 +53,58 @@ const std::string& LineParameterValues::choice(const LineParameter& parameter) c
 
 namespace line_parameters {
 
-const LineParameter kCreaseAngle{
-    "crease-angle", "DEG", "the angle above which an edge is a crease (default 30)", {}, 30.0, "",
-    0.0, 180.0, true, true, "degrees must lie above 0 and below 180"};
+const LineParameter kCreaseAngle{"crease-angle",
+                                 "DEG",
+                                 "the angle above which an edge is a crease (default 30)",
+                                 {},
+                                 30.0,
+                                 "",
+                                 0.0,
+                                 180.0,
+                                 true,
+                                 true,
+                                 "degrees must lie above 0 and below 180"};
 
 const LineParameter kDepthJump{
-    "depth-jump", "R",
+    "depth-jump",
+    "R",
     "neighbouring pixels whose depths differ by more than R x the nearer\n"
     "depth are different surfaces (default 0.05); suggestive-object: a line point more than R x the depth behind the\n"
     "visible surface is hidden",
-    {}, 0.05, "", 0.0, 100.0, true, false, "expected a relative depth step above 0 up to 100"};
+    {},
+    0.05,
+    "",
+    0.0,
+    100.0,
+    true,
+    false,
+    "expected a relative depth step above 0 up to 100"};
 
-const LineParameter kSuggestiveThreshold{
-    "suggestive-threshold", "T",
-    "keep lines whose strength q (rtsc's fs^2 tan(theta) D_w kappa_r,\n"
-    "fs = 5% of the bounding radius) exceeds T (default 0.01)",
-    {}, 0.01, "", 0.0, 1e6, false, false, "expected a number from 0 to 1e6"};
+const LineParameter kSuggestiveThreshold{"suggestive-threshold",
+                                         "T",
+                                         "keep lines whose strength q (rtsc's fs^2 tan(theta) D_w kappa_r,\n"
+                                         "fs = 5% of the bounding radius) exceeds T (default 0.01)",
+                                         {},
+                                         0.01,
+                                         "",
+                                         0.0,
+                                         1e6,
+                                         false,
+                                         false,
+                                         "expected a number from 0 to 1e6"};
 
-const LineParameter kSuggestiveFade{
-    "suggestive-fade", "F",
-    "draw a kept line with alpha (q - T) / (q - T + F) (default 0.03; 0 draws\n"
-    "every kept line in full)",
-    {}, 0.03, "", 0.0, 1e6, false, false, "expected a number from 0 to 1e6"};
+const LineParameter kSuggestiveFade{"suggestive-fade",
+                                    "F",
+                                    "draw a kept line with alpha (q - T) / (q - T + F) (default 0.03; 0 draws\n"
+                                    "every kept line in full)",
+                                    {},
+                                    0.03,
+                                    "",
+                                    0.0,
+                                    1e6,
+                                    false,
+                                    false,
+                                    "expected a number from 0 to 1e6"};
 
 } // namespace line_parameters
 } // namespace inkgraph

@@ -13,15 +13,15 @@
 namespace inkgraph {
 
 struct LineParameter {
-    std::string name;               ///< "depth-jump": the flag --depth-jump and the style setting depth-jump
-    std::string valueName;          ///< "R", for --help
-    std::string help;               ///< what it does, after the generated "<types>: "; '\n' breaks a help line
-    std::vector<std::string> choices; ///< empty: a number; else the words it takes ("3", "5")
-    std::optional<double> defaultNumber; ///< numbers: the value when not given; nullopt: "not given" means something
-    std::string defaultChoice;      ///< choices: the value when not given
-    double low = 0.0, high = 0.0;   ///< numbers: the accepted range ...
+    std::string name;                       ///< "depth-jump": the flag --depth-jump and the style setting depth-jump
+    std::string valueName;                  ///< "R", for --help
+    std::string help;                       ///< what it does, after the generated "<types>: "; '\n' breaks a help line
+    std::vector<std::string> choices;       ///< empty: a number; else the words it takes ("3", "5")
+    std::optional<double> defaultNumber;    ///< numbers: the value when not given; nullopt: "not given" means something
+    std::string defaultChoice;              ///< choices: the value when not given
+    double low = 0.0, high = 0.0;           ///< numbers: the accepted range ...
     bool lowOpen = false, highOpen = false; ///< ... with open ends where set
-    std::string rangeText;          ///< the message for a value outside: "degrees must lie above 0 and below 180"
+    std::string rangeText; ///< the message for a value outside: "degrees must lie above 0 and below 180"
 
     bool isChoice() const { return !choices.empty(); }
     /** Checks and converts `text` (the flag's value). Throws std::invalid_argument with "--<name>: <rangeText>, got

@@ -60,7 +60,8 @@ public:
     /** Whether a pass of that name is registered already (a pass several types share is added once). */
     bool has(std::string_view passName) const;
     void add(std::unique_ptr<GlPass> pass);
-    /** The usual ending: a LineLayerPass named `type` that runs `kernel` and strokes its skeleton at the type's width. */
+    /** The usual ending: a LineLayerPass named `type` that runs `kernel` and strokes its skeleton at the type's width.
+     */
     void addLayer(const std::string& type, std::unique_ptr<LineKernel> kernel);
     /** The layers addLayer() made, by type (for the stats and the SVG of the still graph). */
     const std::map<std::string, LineLayerPass*>& layers() const { return mLayers; }
@@ -80,9 +81,9 @@ struct LineStatsSource {
 };
 
 struct LineType {
-    std::string name;   ///< "contour": --lines contour, --contour-width, lines-contour.png
+    std::string name; ///< "contour": --lines contour, --contour-width, lines-contour.png
     LineFamily family = LineFamily::ImageSpace;
-    std::string help;   ///< --help, after "<name>: "; '\n' breaks a help line
+    std::string help;                             ///< --help, after "<name>: "; '\n' breaks a help line
     std::vector<const LineParameter*> parameters; ///< settings besides width and colour, each --<name> and a style name
     /** Registers the passes that write "<name>.lines" (r8, frame-sized, 255 = line). Called for every registered type:
      *  the compiler culls the ones not drawn, and --stats says so. */

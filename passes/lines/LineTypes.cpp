@@ -22,9 +22,9 @@ LineType meshSilhouetteLineType();
 const std::vector<LineType>& lineTypes() {
     // The composite order: later types are drawn over earlier ones.
     static const std::vector<LineType> kTypes = {
-        outlineLineType(),   silhouetteLineType(),       normalEdgeLineType(), depthEdgeLineType(),
-        creaseLineType(),    borderLineType(),           materialBoundaryLineType(), suggestiveLineType(),
-        suggestiveObjectLineType(), contourLineType(), meshSilhouetteLineType(),
+        outlineLineType(),          silhouetteLineType(), normalEdgeLineType(),       depthEdgeLineType(),
+        creaseLineType(),           borderLineType(),     materialBoundaryLineType(), suggestiveLineType(),
+        suggestiveObjectLineType(), contourLineType(),    meshSilhouetteLineType(),
     };
     return kTypes;
 }
@@ -47,9 +47,9 @@ std::vector<const LineParameter*> lineParameters() {
 std::vector<std::string> lineTypesUsing(const LineParameter* parameter) {
     std::vector<std::string> names;
     for (const LineType& type : lineTypes()) {
-        const bool uses = parameter ? std::find(type.parameters.begin(), type.parameters.end(), parameter) !=
-                                          type.parameters.end()
-                                    : type.strokedOnCpu();
+        const bool uses =
+            parameter ? std::find(type.parameters.begin(), type.parameters.end(), parameter) != type.parameters.end()
+                      : type.strokedOnCpu();
         if (uses) names.push_back(type.name);
     }
     return names;

@@ -50,7 +50,6 @@ OrientationReport baseReport(const Scene& scene, const OrientationSettings& sett
     return report;
 }
 
-
 } // namespace
 
 void checkOrientationSettings(const char* function, const OrientationSettings& settings) {
@@ -72,15 +71,23 @@ SceneOrientation::SceneOrientation(const Scene& scene, GpuScene& gpuScene, const
 
 nlohmann::ordered_json SceneOrientation::describe() {
     const OrientationReport& report = this->report();
-    return {{"method", report.method}, {"view_vector", report.viewVector}, {"fell_back_to_exact", report.fellBack},
-            {"fall_back_reason", report.fallBackReason}, {"sin_alpha", report.sinAlpha},
-            {"beta_max_degrees", report.betaMaxDegrees}, {"cutoff", report.cutoff}, {"triangles", report.triangles},
-            {"vertices", report.vertices}, {"front_triangles", report.frontTriangles},
+    return {{"method", report.method},
+            {"view_vector", report.viewVector},
+            {"fell_back_to_exact", report.fellBack},
+            {"fall_back_reason", report.fallBackReason},
+            {"sin_alpha", report.sinAlpha},
+            {"beta_max_degrees", report.betaMaxDegrees},
+            {"cutoff", report.cutoff},
+            {"triangles", report.triangles},
+            {"vertices", report.vertices},
+            {"front_triangles", report.frontTriangles},
             {"front_vertices", report.frontVertices},
             {"front_triangle_share", report.triangles ? double(report.frontTriangles) / double(report.triangles) : 0.0},
             {"front_vertex_share", report.vertices ? double(report.frontVertices) / double(report.vertices) : 0.0},
-            {"exact_front_triangles", report.exactFrontTriangles}, {"missed_triangles", report.missedTriangles},
-            {"derive_ms", report.deriveMilliseconds}, {"mark_ms", report.markMilliseconds},
+            {"exact_front_triangles", report.exactFrontTriangles},
+            {"missed_triangles", report.missedTriangles},
+            {"derive_ms", report.deriveMilliseconds},
+            {"mark_ms", report.markMilliseconds},
             {"upload_ms", report.uploadMilliseconds}};
 }
 

@@ -22,16 +22,16 @@ namespace inkgraph {
 /** Per-method numbers for --stats (Winnemoller & Bangay 2002 Figure 8, plus holes and time). */
 struct OrientationReport {
     std::string method;
-    std::string viewVector;          ///< what was used: "exact" or "constant"
-    bool fellBack = false;           ///< constant asked for, exact used
+    std::string viewVector; ///< what was used: "exact" or "constant"
+    bool fellBack = false;  ///< constant asked for, exact used
     std::string fallBackReason;
     double sinAlpha = 0.0;
-    double betaMaxDegrees = 0.0;     ///< largest over the meshes
-    double cutoff = 0.0;             ///< largest over the meshes (betaMax differs per mesh)
+    double betaMaxDegrees = 0.0; ///< largest over the meshes
+    double cutoff = 0.0;         ///< largest over the meshes (betaMax differs per mesh)
     std::size_t triangles = 0;
     std::size_t vertices = 0;
-    std::size_t frontTriangles = 0;  ///< Standard: the exact per-face count
-    std::size_t frontVertices = 0;   ///< Standard: vertices of exact front triangles
+    std::size_t frontTriangles = 0; ///< Standard: the exact per-face count
+    std::size_t frontVertices = 0;  ///< Standard: vertices of exact front triangles
     std::size_t exactFrontTriangles = 0;
     std::size_t missedTriangles = 0; ///< holes against exact classification
     double deriveMilliseconds = 0.0; ///< face normals, betaMax, adjacency (load-time work in the paper; 0 for
@@ -45,11 +45,11 @@ class SceneOrientation {
 public:
     /** One per mesh of the scene, in GpuScene's order. */
     struct MeshSets {
-        GlBuffer shadeCoords;      ///< vec2 per vertex, location kShadeCoordLocation
+        GlBuffer shadeCoords; ///< vec2 per vertex, location kShadeCoordLocation
         GlBuffer frontIndices;
         GlBuffer backIndices;
-        GlVertexArray frontArray;  ///< positions + normals (GpuScene's buffers) + shadeCoords, frontIndices
-        GlVertexArray backArray;   ///< positions + normals, backIndices
+        GlVertexArray frontArray; ///< positions + normals (GpuScene's buffers) + shadeCoords, frontIndices
+        GlVertexArray backArray;  ///< positions + normals, backIndices
         GLsizei frontIndexCount;
         GLsizei backIndexCount;
     };
@@ -81,9 +81,9 @@ private:
     GpuScene& mGpuScene;
     const FrameParams& mFrame;
     OrientationSettings mSettings;
-    std::optional<BoundingSphere> mSphere;          ///< of the scene; on the first viewVector()
-    std::vector<OrientationMeshData> mDerived;      ///< per mesh; derived on the first compute()
-    std::vector<MeshOrientation> mOrientations;     ///< per mesh, of the last compute(); report() counts holes on it
+    std::optional<BoundingSphere> mSphere;      ///< of the scene; on the first viewVector()
+    std::vector<OrientationMeshData> mDerived;  ///< per mesh; derived on the first compute()
+    std::vector<MeshOrientation> mOrientations; ///< per mesh, of the last compute(); report() counts holes on it
     std::vector<MeshSets> mSets;
     std::optional<OrientationReport> mReport;
     bool mComputed = false;

@@ -39,8 +39,7 @@ class OutlinePass : public GlPass {
 public:
     /** Draws the back sets of `scene.cpuOrientation()` when the scene has one (GPU culling otherwise). Throws
      *  std::invalid_argument for a negative or non-finite width. */
-    OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-                float widthPixels);
+    OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame, float widthPixels);
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
@@ -54,7 +53,6 @@ public:
     bool skippedEyeInside() const { return mSkippedEyeInside; }
 
 private:
-
     std::string mName;
     ShaderLibrary& mShaders;
     GpuScene& mScene;
@@ -62,7 +60,7 @@ private:
     float mWidthPixels;
     std::unique_ptr<GlProgram> mDepthProgram; ///< the model, depth only
     std::unique_ptr<GlProgram> mLineProgram;  ///< back-face edges as quads
-    PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
+    PassDepthBuffer mDepth;                   ///< the pass's own depth attachment, kept between runs
     bool mSkippedEyeInside = false;
 };
 

@@ -7,7 +7,6 @@
 namespace inkgraph {
 namespace {
 
-
 /** 8-bit sRGB code of a linear grey level in [0, 1] (the standard piecewise curve, rounded to nearest). */
 uchar srgbCode(double linear) {
     const double clamped = std::clamp(linear, 0.0, 1.0);

@@ -44,7 +44,7 @@ ShadeMap shadeMapFromImage(const cv::Mat& image, const std::string& source, bool
  *  t = (r.v)^n >= j/R  <=>  x <= 1 - (j/R)^(1/n). Exact in double, and free of the cancellation of 1 - r.v near the
  *  highlight (x is computed from r - v). Most maps have a few bands (a highlight or two over the diffuse tones). */
 struct SpecularRowBands {
-    std::vector<int> firstRow;      ///< per band, the map row where it starts, counted from the bottom (t = 0)
+    std::vector<int> firstRow; ///< per band, the map row where it starts, counted from the bottom (t = 0)
     std::vector<double> maxHalfSquaredDistance; ///< per band after the first: the band holds t when x <= this
                                                 ///< (decreasing); > 2 (every x) for shininess 0, where t = 1
 };

@@ -67,8 +67,7 @@ ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, 
         mMeshMap.assign(meshCount, 0);
         for (std::size_t i = 0; i < meshShadeMaps.size(); ++i)
             if (meshShadeMaps[i]) mMeshMap[i] = slotOf(std::move(*meshShadeMaps[i]));
-        for (std::size_t slot : mMeshMap)
-            mMaps[slot].used = true;
+        for (std::size_t slot : mMeshMap) mMaps[slot].used = true;
     }
     if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
         const glm::dvec3& direction = mSettings.view.constantView;

@@ -55,10 +55,10 @@ namespace inkgraph {
 
 struct ShadeSettings {
     ShadingModel model = ShadingModel::Cel;
-    double shininess = 32.0;          ///< phong and comic; >= 0
-    float ambient = 0.15f;            ///< flat, gouraud, lambert, phong
-    float specularStrength = 0.5f;    ///< phong: white specular weight
-    ViewVectorChoice view;            ///< comic: constant or exact (from chooseViewVector())
+    double shininess = 32.0;       ///< phong and comic; >= 0
+    float ambient = 0.15f;         ///< flat, gouraud, lambert, phong
+    float specularStrength = 0.5f; ///< phong: white specular weight
+    ViewVectorChoice view;         ///< comic: constant or exact (from chooseViewVector())
     /** cel and comic: entry i, when present, is GpuScene mesh i's own shade map, checked like the default one (a
      *  missing entry, or a mesh past the end, uses the default map). Ignored by the models without a map. */
     std::vector<std::optional<ShadeMap>> meshShadeMaps{};
@@ -116,8 +116,8 @@ private:
     std::vector<MapSlot> mMaps;           ///< cel, comic: [0] the default map, then each distinct per-mesh map
     std::vector<std::size_t> mMeshMap;    ///< cel, comic: per GpuScene mesh, its entry of mMaps
     std::size_t mSpecularBorderCount = 0; ///< comic: the most row-band borders of a map in use
-    std::unique_ptr<GlProgram> mProgram; ///< the one program of this model and variant
-    PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
+    std::unique_ptr<GlProgram> mProgram;  ///< the one program of this model and variant
+    PassDepthBuffer mDepth;               ///< the pass's own depth attachment, kept between runs
 };
 
 } // namespace inkgraph

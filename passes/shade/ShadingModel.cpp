@@ -9,8 +9,7 @@ const std::vector<ShadingModelTraits>& shadingModels() {
     static const std::vector<ShadingModelTraits> kModels = {
         {ShadingModel::None, "none", nullptr, false, false, false, false, false,
          "no shading pass: the paper colour, and the lines"},
-        {ShadingModel::Flat, "flat", "MODEL_FLAT 1", false, false, false, false, false,
-         "ambient + diffuse per face"},
+        {ShadingModel::Flat, "flat", "MODEL_FLAT 1", false, false, false, false, false, "ambient + diffuse per face"},
         {ShadingModel::Gouraud, "gouraud", "MODEL_GOURAUD 1", false, false, false, false, false,
          "ambient + diffuse per vertex"},
         {ShadingModel::Lambert, "lambert", "MODEL_LAMBERT 1", false, false, false, false, false,

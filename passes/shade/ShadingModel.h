@@ -13,14 +13,14 @@ enum class ShadingModel { None, Flat, Gouraud, Lambert, Phong, Cel, Comic };
 
 struct ShadingModelTraits {
     ShadingModel model;
-    const char* name;          ///< the --shading value: "cel"
-    const char* define;        ///< shade.frag's define, "MODEL_CEL 1"; null for none (no shade pass)
-    bool specular;             ///< takes --shininess
-    bool shadeMap;             ///< indexed into a shade map (--shademap, the materials' maps)
-    bool oneDimensionalMap;    ///< its map is one row (cel); else 2-D (comic)
-    bool bands;                ///< takes --bands (evenly spaced bands as its built-in map)
-    bool faceOrientation;      ///< takes --view-vector, --face-orientation, --front-rule (Winnemöller & Bangay 2002)
-    const char* help;          ///< --help's description, lines after the first indented by the help writer
+    const char* name;       ///< the --shading value: "cel"
+    const char* define;     ///< shade.frag's define, "MODEL_CEL 1"; null for none (no shade pass)
+    bool specular;          ///< takes --shininess
+    bool shadeMap;          ///< indexed into a shade map (--shademap, the materials' maps)
+    bool oneDimensionalMap; ///< its map is one row (cel); else 2-D (comic)
+    bool bands;             ///< takes --bands (evenly spaced bands as its built-in map)
+    bool faceOrientation;   ///< takes --view-vector, --face-orientation, --front-rule (Winnemöller & Bangay 2002)
+    const char* help;       ///< --help's description, lines after the first indented by the help writer
 };
 
 /** Every model, in the enum's order. */

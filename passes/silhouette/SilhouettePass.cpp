@@ -76,16 +76,15 @@ void SilhouettePass::execute(GlPassContext& gl) {
     glDisable(GL_CULL_FACE);
     drawModelDepth(*mDepthProgram, meshes, viewFromModel, clipFromView);
 
-    // 2. The hull's back faces where they are nearer than the model (strictly nearer: where the hull meets the model's own
-    // depth, the model wins). The depth stays the model's, so hulls of different meshes never hide each other.
+    // 2. The hull's back faces where they are nearer than the model (strictly nearer: where the hull meets the model's
+    // own depth, the model wins). The depth stays the model's, so hulls of different meshes never hide each other.
     glEnable(GL_CULL_FACE);
     glCullFace(GL_FRONT);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_FALSE);
     mHullProgram->use();
     glUniformMatrix4fv(mHullProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
-    glUniformMatrix3fv(mHullProgram->uniform("viewNormalFromModel"), 1, GL_FALSE,
-                       glm::value_ptr(viewNormalFromModel));
+    glUniformMatrix3fv(mHullProgram->uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
     glUniformMatrix4fv(mHullProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
     glUniform2f(mHullProgram->uniform("viewportSize"), float(width), float(height));
     glUniform1f(mHullProgram->uniform("widthPixels"), mSettings.widthPixels);

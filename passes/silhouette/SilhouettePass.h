@@ -68,7 +68,7 @@ private:
     std::unique_ptr<GlProgram> mDepthProgram; ///< the model as it is, depth only
     std::unique_ptr<GlProgram> mHullProgram;  ///< the offset hull
     std::vector<GlVertexArray> mHullArrays;   ///< positions + hull normals + indices, one per mesh (welded only)
-    PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
+    PassDepthBuffer mDepth;                   ///< the pass's own depth attachment, kept between runs
     bool mSkippedEyeInside = false;
 };
 

@@ -29,11 +29,11 @@ bool sameImage(const fs::path& a, const fs::path& b) {
 
 TEST_F(Cli, BatchMatchesOneProcessPerModelAndCompilesEachProgramOnce) {
     const CliRun batch = run("render " + model("spot_c3d.obj") + " " + model("teapot_c3d.obj") + " " +
-                             model("fandisk_c3d.obj") + " -o 'batch-{index}-{name}.png' --stats '{name}.json'" +
-                             kLook);
+                             model("fandisk_c3d.obj") + " -o 'batch-{index}-{name}.png' --stats '{name}.json'" + kLook);
     ASSERT_EQ(batch.exitCode, 0) << batch.err;
     for (const char* name : {"spot_c3d", "teapot_c3d", "fandisk_c3d"}) {
-        const CliRun single = run("render " + model(std::string(name) + ".obj") + " -o single-" + name + ".png -q" + kLook);
+        const CliRun single =
+            run("render " + model(std::string(name) + ".obj") + " -o single-" + name + ".png -q" + kLook);
         ASSERT_EQ(single.exitCode, 0) << single.err;
     }
     // Bit-identical: a kept program's uniforms and the context's state carry nothing from one still to the next.
@@ -58,8 +58,9 @@ TEST_F(Cli, BatchMatchesOneProcessPerModelAndCompilesEachProgramOnce) {
     }
 
     // One line per model, in order, with its output, then the summary.
-    const std::size_t one = batch.err.find("[1/3] " + model("spot_c3d.obj") + " -> 'batch-1-spot_c3d.png': 5856 "
-                                                                                "triangles");
+    const std::size_t one = batch.err.find("[1/3] " + model("spot_c3d.obj") +
+                                           " -> 'batch-1-spot_c3d.png': 5856 "
+                                           "triangles");
     const std::size_t two = batch.err.find("[2/3] " + model("teapot_c3d.obj") + " -> 'batch-2-teapot_c3d.png'");
     const std::size_t three = batch.err.find("[3/3] " + model("fandisk_c3d.obj"));
     ASSERT_NE(one, std::string::npos) << batch.err;
@@ -74,7 +75,8 @@ TEST_F(Cli, BatchMatchesOneProcessPerModelAndCompilesEachProgramOnce) {
 TEST_F(Cli, BatchGoesOnPastABadModelAndExitsWithItsCode) {
     std::ofstream(directory / "broken.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
     const fs::path models = fs::path(INKGRAPH_SOURCE_ROOT) / "models";
-    std::ofstream(directory / "models.txt") << "# a list\n" << (models / "spot_c3d.obj").string() << "\nbroken.obj\n\n"
+    std::ofstream(directory / "models.txt") << "# a list\n"
+                                            << (models / "spot_c3d.obj").string() << "\nbroken.obj\n\n"
                                             << (models / "cow_c3d.obj").string() << "\n";
     const CliRun result = run("render --list models.txt -o '{name}.png'" + kLook);
     EXPECT_EQ(result.exitCode, 3) << result.err;

@@ -236,8 +236,8 @@ TEST(BatchOutputs, NoStillMayReplaceAFileAnotherModelReads) {
         std::ofstream(folder / (std::string(name) + ".obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     std::istringstream none;
     const auto messageFor = [&](const std::string& model, const std::string& flag, const std::string& pattern) {
-        RenderOptions options = withModels({(folder / "scene.gltf").string(), (folder / "cube.obj").string(),
-                                            (folder / model).string()});
+        RenderOptions options =
+            withModels({(folder / "scene.gltf").string(), (folder / "cube.obj").string(), (folder / model).string()});
         options.outputPath = (folder / "{index}.png").string();
         (options.*(flag == "--stats" ? &RenderOptions::statsPath : &RenderOptions::svgPath)) = pattern;
         return usageMessage(options, batchList(options, none));

@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 
 TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
     const CliRun result = run("render " + model("spot_c3d.obj") +
-                           " -o final.png --size 96x64 --dump dump --request 'gbuffer.*' --stats stats.json");
+                              " -o final.png --size 96x64 --dump dump --request 'gbuffer.*' --stats stats.json");
     ASSERT_EQ(result.exitCode, 0) << result.err;
 
     // float32 in the files themselves, not converted on reading.
@@ -249,7 +249,8 @@ TEST_F(Cli, AwkwardPathsAndFormats) {
 }
 
 TEST_F(Cli, ShadingNoneCullsTheShadingPassWithAReason) {
-    const CliRun result = run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --shading none --stats s.json");
+    const CliRun result =
+        run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --shading none --stats s.json");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
     ASSERT_EQ(stats["passes"].size(), 1u);
@@ -261,8 +262,7 @@ TEST_F(Cli, ShadingNoneCullsTheShadingPassWithAReason) {
     }
     std::set<std::string> expected = everyLinePass();
     expected.insert("gbuffer");
-    EXPECT_EQ(culled, expected)
-        << "--shading none registers no shading pass; the rest is culled";
+    EXPECT_EQ(culled, expected) << "--shading none registers no shading pass; the rest is culled";
     // Paper only: every pixel white.
     const cv::Mat image = readImage(directory / "a.png");
     EXPECT_EQ(cv::countNonZero(image.reshape(1) != 255), 0);
@@ -271,7 +271,7 @@ TEST_F(Cli, ShadingNoneCullsTheShadingPassWithAReason) {
 TEST_F(Cli, PrintPlanWithoutOutputNeedsNoGl) {
     // No EGL vendor at all: --print-plan alone still works, because no context is made.
     const CliRun result = run("render " + model("spot_c3d.obj") + " --print-plan",
-                           "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl.json");
+                              "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl.json");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     EXPECT_NE(result.out.find("gbuffer"), std::string::npos);
     EXPECT_NE(result.out.find("shade"), std::string::npos);
@@ -280,7 +280,7 @@ TEST_F(Cli, PrintPlanWithoutOutputNeedsNoGl) {
 
 TEST_F(Cli, NoEglDisplayIsAClearErrorNotACrash) {
     const CliRun result = run("render " + model("spot_c3d.obj") + " -o a.png --size 16x16",
-                           "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl.json");
+                              "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl.json");
     EXPECT_EQ(result.exitCode, 4) << result.err;
     EXPECT_NE(result.err.find("libegl-mesa0"), std::string::npos) << result.err;
     EXPECT_NE(result.err.find("EGL_LOG_LEVEL=debug"), std::string::npos) << result.err;
@@ -337,9 +337,9 @@ TEST_F(Cli, LineTypesDumpTheirMasksAndComposite) {
                               " -o a.png --size 96x64 --lines outline,silhouette --silhouette-color 1,0,0"
                               " --outline-width 1.5 --dump d --stats s.json");
     ASSERT_EQ(result.exitCode, 0) << result.err;
-    EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"final.png", "lines-outline.png",
-                                                                   "lines-silhouette.png", "manifest.json",
-                                                                   "shading.png"}));
+    EXPECT_EQ(listFiles(directory / "d"),
+              (std::vector<std::string>{"final.png", "lines-outline.png", "lines-silhouette.png", "manifest.json",
+                                        "shading.png"}));
     const cv::Mat silhouette = readImage(directory / "d" / "lines-silhouette.png");
     const cv::Mat shading = readImage(directory / "d" / "shading.png");
     const cv::Mat finalImage = readImage(directory / "a.png");
@@ -387,7 +387,8 @@ TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
     EXPECT_EQ(stats["post_stage"]["lines"][0]["type"], "depth-edge");
     EXPECT_GT(stats["post_stage"]["lines"][0]["points"].get<int>(), 100);
     EXPECT_NE(result.out.find("writes: gbuffer.depth(r32f)     not computed:"), std::string::npos)
-        << "the G-buffer computes depth alone\n" << result.out;
+        << "the G-buffer computes depth alone\n"
+        << result.out;
 
     // contour and suggestive with shading off: G-buffer, the two line passes and the composite, nothing else.
     result = run("render " + model("spot_c3d.obj") +
@@ -420,8 +421,8 @@ TEST_F(Cli, ObjectSpaceSuggestiveContoursAreDumpedAndReported) {
                               " --suggestive-object-color 0,0,1 --dump d --stats s.json");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     // Only the depth is read from the G-buffer: the lines come from the mesh.
-    EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"depth.exr", "final.png",
-                                                                     "lines-suggestive-object.png", "manifest.json"}));
+    EXPECT_EQ(listFiles(directory / "d"),
+              (std::vector<std::string>{"depth.exr", "final.png", "lines-suggestive-object.png", "manifest.json"}));
     const cv::Mat lines = readImage(directory / "d" / "lines-suggestive-object.png");
     ASSERT_EQ(lines.size(), cv::Size(160, 160));
     EXPECT_GT(cv::countNonZero(lines), 50) << "spot has suggestive contours (neck, legs, ears)";
@@ -439,9 +440,9 @@ TEST_F(Cli, ObjectSpaceSuggestiveContoursAreDumpedAndReported) {
     EXPECT_EQ(stats["look"]["lines"][0]["color"], nlohmann::json::array({0.0, 0.0, 1.0, 1.0}));
 
     // A run without it culls the pass, so the curvature is never derived.
-    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o b.png --size 64x64 --lines suggestive --stats t.json")
-                  .exitCode,
-              0);
+    ASSERT_EQ(
+        run("render " + model("spot_c3d.obj") + " -o b.png --size 64x64 --lines suggestive --stats t.json").exitCode,
+        0);
     const auto without = nlohmann::json::parse(readText(directory / "t.json"));
     bool culled = false;
     for (const auto& pass : without["culled"]) culled = culled || pass["name"] == "suggestive-object";
@@ -512,8 +513,7 @@ TEST_F(Cli, ComicStatsReportTheFaceOrientationMethod) {
     const auto closeStats = nlohmann::json::parse(readText(directory / "close.json"));
     EXPECT_EQ(closeStats["face_orientation"]["view_vector"], "exact");
     EXPECT_EQ(closeStats["face_orientation"]["fell_back_to_exact"], true);
-    EXPECT_NE(closeStats["face_orientation"]["fall_back_reason"].get<std::string>().find("inside"),
-              std::string::npos);
+    EXPECT_NE(closeStats["face_orientation"]["fall_back_reason"].get<std::string>().find("inside"), std::string::npos);
 }
 
 TEST_F(Cli, ShadeMapFilesAreReadAndCheckedBeforeAnyWork) {
@@ -539,12 +539,13 @@ TEST_F(Cli, ShadeMapFilesAreReadAndCheckedBeforeAnyWork) {
     EXPECT_EQ(corrupt.exitCode, 3);
     EXPECT_NE(corrupt.err.find("corrupt.png"), std::string::npos) << corrupt.err;
 
-    CliRun twoDimensionalForCel = run("render " + model("spot_c3d.obj") + " -o b.png --size 16x16 --shademap '" +
-                                      shadeMaps + "/metallic.png'");
+    CliRun twoDimensionalForCel =
+        run("render " + model("spot_c3d.obj") + " -o b.png --size 16x16 --shademap '" + shadeMaps + "/metallic.png'");
     EXPECT_EQ(twoDimensionalForCel.exitCode, 3);
     EXPECT_NE(twoDimensionalForCel.err.find("metallic.png"), std::string::npos) << twoDimensionalForCel.err;
 
-    CliRun onItself = run("render " + model("spot_c3d.obj") + " -o m.png --size 16x16 --shading comic --shademap m.png");
+    CliRun onItself =
+        run("render " + model("spot_c3d.obj") + " -o m.png --size 16x16 --shading comic --shademap m.png");
     EXPECT_EQ(onItself.exitCode, 2);
     EXPECT_NE(onItself.err.find("is the --shademap itself"), std::string::npos) << onItself.err;
 
@@ -566,9 +567,9 @@ TEST_F(Cli, EyeInsideTheModelDrawsNoSilhouettes) {
 
 TEST_F(Cli, EveryShadingModeRendersWithoutNaN) {
     // Extreme shininess on every specular mode, written as EXR (float) so a NaN would survive to the file.
-    for (const std::string flags : {"--shading flat", "--shading gouraud", "--shading phong --shininess 0",
-                                    "--shading phong --shininess 1e6", "--shading comic --shininess 0",
-                                    "--shading comic --shininess 1e6", "--shading cel --bands 2"}) {
+    for (const std::string flags :
+         {"--shading flat", "--shading gouraud", "--shading phong --shininess 0", "--shading phong --shininess 1e6",
+          "--shading comic --shininess 0", "--shading comic --shininess 1e6", "--shading cel --bands 2"}) {
         const CliRun result = run("render " + model("spot_c3d.obj") + " -o a.exr --size 48x48 " + flags);
         ASSERT_EQ(result.exitCode, 0) << flags << ": " << result.err;
         const cv::Mat picture = readImage(directory / "a.exr");

@@ -76,10 +76,14 @@ protected:
         for (auto it = fs::recursive_directory_iterator(folder); it != fs::recursive_directory_iterator(); ++it) {
             const std::string name = fs::relative(it->path(), folder).string();
             const fs::file_status status = it->symlink_status();
-            if (fs::is_symlink(status)) entries[name] = "link to " + fs::read_symlink(it->path()).string();
-            else if (fs::is_regular_file(status)) entries[name] = "file: " + readText(it->path());
-            else if (fs::is_directory(status)) entries[name] = "folder";
-            else entries[name] = "special";
+            if (fs::is_symlink(status))
+                entries[name] = "link to " + fs::read_symlink(it->path()).string();
+            else if (fs::is_regular_file(status))
+                entries[name] = "file: " + readText(it->path());
+            else if (fs::is_directory(status))
+                entries[name] = "folder";
+            else
+                entries[name] = "special";
         }
         return entries;
     }
@@ -88,7 +92,6 @@ protected:
     static std::string model(const std::string& name) {
         return shellQuoted(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / name);
     }
-
 };
 
 } // namespace inkgraph::test

@@ -84,9 +84,10 @@ TEST(FlagTable, ParametersAreRangeCheckedFromTheirDeclaration) {
             continue;
         }
         // Just outside the lower bound (or on it, when open) is refused with the declared words.
-        const std::string low = parameter->lowOpen ? std::to_string(parameter->low) : std::to_string(parameter->low - 1);
-        const std::string message =
-            usageMessage({"m.obj", "-o", "x.png", "--lines", lineTypesUsing(parameter).front(), "--" + parameter->name, low});
+        const std::string low =
+            parameter->lowOpen ? std::to_string(parameter->low) : std::to_string(parameter->low - 1);
+        const std::string message = usageMessage(
+            {"m.obj", "-o", "x.png", "--lines", lineTypesUsing(parameter).front(), "--" + parameter->name, low});
         EXPECT_NE(message.find(parameter->rangeText), std::string::npos) << parameter->name << ": " << message;
     }
 }
@@ -94,8 +95,7 @@ TEST(FlagTable, ParametersAreRangeCheckedFromTheirDeclaration) {
 TEST(FlagTable, ShadingFlagsFollowTheTraitTable) {
     // --shininess is refused for every model without the specular trait, with the models that take it named.
     for (const ShadingModelTraits& model : shadingModels()) {
-        const std::string message =
-            usageMessage({"m.obj", "-o", "x.png", "--shading", model.name, "--shininess", "4"});
+        const std::string message = usageMessage({"m.obj", "-o", "x.png", "--shading", model.name, "--shininess", "4"});
         if (model.specular)
             EXPECT_EQ(message, "(no error)") << model.name;
         else

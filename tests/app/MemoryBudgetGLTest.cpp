@@ -84,7 +84,7 @@ TEST_F(MemoryBudget, LimitJustUnderTheEstimateIsRefusedNamingEveryFlagAndJustOve
     const CliRun under = run("render " + arguments + " -o out.png --memory-limit " + std::to_string(needed - 1));
     EXPECT_EQ(under.exitCode, 2) << under.err;
     for (const char* part : {"--size 512x512", "--supersample 4", "--lines contour,suggestive work at 2048x2048",
-                             "needs about " , "(--memory-limit)"})
+                             "needs about ", "(--memory-limit)"})
         EXPECT_NE(under.err.find(part), std::string::npos) << part << " not in: " << under.err;
     EXPECT_FALSE(std::filesystem::exists(directory / "out.png"));
 
@@ -105,8 +105,8 @@ TEST_F(MemoryBudget, IssueCaseIsRefusedRatherThanOutgrowingItsLimit) {
 }
 
 TEST_F(MemoryBudget, OneBufferOver2GiBNamesSupersampleWhenItIsTheCause) {
-    const CliRun result = run("render " + model("spot_c3d.obj") +
-                              " -o out.png --size 2048x2048 --supersample 8 --lines suggestive");
+    const CliRun result =
+        run("render " + model("spot_c3d.obj") + " -o out.png --size 2048x2048 --supersample 8 --lines suggestive");
     EXPECT_EQ(result.exitCode, 2) << result.err;
     EXPECT_NE(result.err.find("--size 2048x2048 with --supersample 8 (16384x16384) makes 'gbuffer.radial' 4096 MiB"),
               std::string::npos)

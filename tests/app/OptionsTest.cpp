@@ -75,12 +75,14 @@ TEST(Options, ShadingModesAndTheirFlags) {
     EXPECT_EQ(comic.look.faceOrientation, FaceOrientationMethod::DuringVertices);
     EXPECT_EQ(comic.look.frontRule, 1);
     EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--shading", "phong", "--shininess", "1e6"}).look.shininess, 1e6);
-    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--bands", "3"}).look.bands, 3) << "cel is the default, so --bands applies";
+    EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--bands", "3"}).look.bands, 3)
+        << "cel is the default, so --bands applies";
 }
 
 TEST(Options, ShadingFlagsWithoutEffectAreRefused) {
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shininess", "8"}).find("--shininess has no effect with "
-                                                                                "--shading cel"),
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shininess", "8"})
+                  .find("--shininess has no effect with "
+                        "--shading cel"),
               std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "comic", "--bands", "4"}).find("--bands"),
               std::string::npos);
@@ -120,8 +122,8 @@ TEST(Options, ShadingValuesOutOfRange) {
 
 TEST(Options, LineTypesAndTheirStyles) {
     const RenderOptions options =
-        parse({"m.obj", "-o", "x.png", "--lines", "silhouette,outline", "--silhouette-width", "3.5",
-               "--outline-color", "1,0,0", "--silhouette-color", "0,0,1,0.5", "--silhouette-object-width", "0.02"});
+        parse({"m.obj", "-o", "x.png", "--lines", "silhouette,outline", "--silhouette-width", "3.5", "--outline-color",
+               "1,0,0", "--silhouette-color", "0,0,1,0.5", "--silhouette-object-width", "0.02"});
     EXPECT_EQ(options.look.lines, (std::vector<std::string>{"silhouette", "outline"}));
     EXPECT_EQ(options.look.styleOf("silhouette").widthPixels, 3.5);
     EXPECT_EQ(options.look.styleOf("silhouette").color, glm::dvec4(0, 0, 1, 0.5));
@@ -131,8 +133,9 @@ TEST(Options, LineTypesAndTheirStyles) {
 
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--outline-width", "3"}).find("'outline' line type is not drawn"),
               std::string::npos);
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--silhouette-object-width", "1"}).find("--silhouette-object-width"),
-              std::string::npos);
+    EXPECT_NE(
+        usageMessage({"m.obj", "-o", "x.png", "--silhouette-object-width", "1"}).find("--silhouette-object-width"),
+        std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-width", "0"}).find("above 0"),
               std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-width", "300"}).find("256"),
@@ -149,9 +152,11 @@ TEST(Options, LineTypesAndTheirStyles) {
 
 TEST(Options, PostStageLineTypesAndTheirFlags) {
     const RenderOptions options =
-        parse({"m.obj", "-o", "x.png", "--lines", "contour,suggestive,depth-edge,normal-edge,crease,border,"
-               "mesh-silhouette", "--crease-angle", "45", "--depth-jump", "0.1", "--suggestive-threshold", "0.02",
-               "--suggestive-fade", "0.5", "--supersample", "3", "--suggestive-width", "1.5"});
+        parse({"m.obj", "-o", "x.png", "--lines",
+               "contour,suggestive,depth-edge,normal-edge,crease,border,"
+               "mesh-silhouette",
+               "--crease-angle", "45", "--depth-jump", "0.1", "--suggestive-threshold", "0.02", "--suggestive-fade",
+               "0.5", "--supersample", "3", "--suggestive-width", "1.5"});
     EXPECT_EQ(options.look.lines.size(), 7u);
     EXPECT_EQ(parameter(options, "crease-angle"), 45.0);
     EXPECT_EQ(parameter(options, "depth-jump"), 0.1);
@@ -161,12 +166,14 @@ TEST(Options, PostStageLineTypesAndTheirFlags) {
     EXPECT_EQ(options.look.styleOf("suggestive").widthPixels, 1.5);
     for (const char* type : {"contour", "suggestive", "depth-edge", "normal-edge"})
         EXPECT_TRUE((familyOf(type) == LineFamily::ImageSpace)) << type;
-    for (const char* type : {"crease", "border", "mesh-silhouette"}) EXPECT_TRUE((familyOf(type) == LineFamily::MeshEdge)) << type;
+    for (const char* type : {"crease", "border", "mesh-silhouette"})
+        EXPECT_TRUE((familyOf(type) == LineFamily::MeshEdge)) << type;
     EXPECT_FALSE((familyOf("outline") == LineFamily::ImageSpace));
     EXPECT_FALSE((familyOf("silhouette") == LineFamily::MeshEdge));
 
     // A flag that changes none of the requested line types is refused, naming the types it applies to.
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--crease-angle", "40"}).find("crease, normal-edge"),
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--crease-angle", "40"})
+                  .find("crease, normal-edge"),
               std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "crease", "--depth-jump", "0.1"}).find("--depth-jump"),
               std::string::npos);
@@ -210,14 +217,13 @@ TEST(Options, MemoryLimitInMebibytes) {
 
 TEST(Options, SuggestiveStencil) {
     EXPECT_EQ(stencil(parse({"m.obj", "-o", "x.png", "--lines", "suggestive"})), "3");
-    EXPECT_EQ(stencil(parse({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-stencil", "5"})),
-              "5");
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-stencil", "4"})
-                  .find("3 or 5"),
-              std::string::npos);
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--suggestive-stencil", "5"})
-                  .find("has no effect"),
-              std::string::npos);
+    EXPECT_EQ(stencil(parse({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-stencil", "5"})), "5");
+    EXPECT_NE(
+        usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-stencil", "4"}).find("3 or 5"),
+        std::string::npos);
+    EXPECT_NE(
+        usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--suggestive-stencil", "5"}).find("has no effect"),
+        std::string::npos);
 }
 
 TEST(Options, ObjectSpaceSuggestiveContours) {
@@ -256,11 +262,37 @@ TEST(Options, ObjectSpaceSuggestiveContours) {
 }
 
 TEST(Options, EveryValue) {
-    const RenderOptions options =
-        parse({"-o", "a.png", "m.glb", "--size", "640x480", "--eye", "1,2,3", "--target", "0,0.5,-1e-3", "--up",
-               "0,0,1", "--fov", "50", "--light", "0,0,2", "--shading", "none", "--lines", "none", "--dump", "d",
-               "--stats", "s.json", "--print-plan", "--request", "gbuffer.*,gbuffer.depth", "--background",
-               "0,0.5,1", "--egl-platform", "surfaceless", "-q"});
+    const RenderOptions options = parse({"-o",
+                                         "a.png",
+                                         "m.glb",
+                                         "--size",
+                                         "640x480",
+                                         "--eye",
+                                         "1,2,3",
+                                         "--target",
+                                         "0,0.5,-1e-3",
+                                         "--up",
+                                         "0,0,1",
+                                         "--fov",
+                                         "50",
+                                         "--light",
+                                         "0,0,2",
+                                         "--shading",
+                                         "none",
+                                         "--lines",
+                                         "none",
+                                         "--dump",
+                                         "d",
+                                         "--stats",
+                                         "s.json",
+                                         "--print-plan",
+                                         "--request",
+                                         "gbuffer.*,gbuffer.depth",
+                                         "--background",
+                                         "0,0.5,1",
+                                         "--egl-platform",
+                                         "surfaceless",
+                                         "-q"});
     EXPECT_EQ(options.width, 640);
     EXPECT_EQ(options.height, 480);
     EXPECT_EQ(*options.eye, glm::dvec3(1, 2, 3));
@@ -346,14 +378,13 @@ TEST(Options, SeveralModelsAListAndAShard) {
     EXPECT_NE(usageMessage({"--list", "l.txt", "-o", "x.png", "--shard", "5/5"}).find("--shard"), std::string::npos);
     EXPECT_NE(usageMessage({"--list", "l.txt", "-o", "x.png", "--shard", "-1/5"}).find("--shard"), std::string::npos);
     EXPECT_NE(usageMessage({"--list", "l.txt", "-o", "x.png", "--shard", "1/0"}).find("--shard"), std::string::npos);
-    EXPECT_NE(usageMessage({"--list", "l.txt", "-o", "x.png", "--shard", "3"}).find("expected K/N"),
-              std::string::npos);
+    EXPECT_NE(usageMessage({"--list", "l.txt", "-o", "x.png", "--shard", "3"}).find("expected K/N"), std::string::npos);
     EXPECT_NE(usageMessage({"--list", "", "-o", "x.png"}).find("--list: empty value"), std::string::npos);
 }
 
 TEST(Options, ContactSheetAndSvgOutputs) {
-    const RenderOptions options =
-        parse({"m.obj", "--contact-sheet", "sheet.PNG", "--svg", "l.svg", "--lines", "contour", "--svg-tolerance", "0"});
+    const RenderOptions options = parse(
+        {"m.obj", "--contact-sheet", "sheet.PNG", "--svg", "l.svg", "--lines", "contour", "--svg-tolerance", "0"});
     EXPECT_EQ(options.contactSheetPath, "sheet.PNG");
     EXPECT_EQ(options.svgPath, "l.svg");
     EXPECT_EQ(options.svgTolerance, 0.0);
@@ -371,9 +402,7 @@ TEST(Options, ContactSheetAndSvgOutputs) {
               std::string::npos);
 }
 
-TEST(Options, PrintPlanAloneNeedsNoOutput) {
-    EXPECT_NO_THROW(parse({"m.obj", "--print-plan"}));
-}
+TEST(Options, PrintPlanAloneNeedsNoOutput) { EXPECT_NO_THROW(parse({"m.obj", "--print-plan"})); }
 
 TEST(Options, HelpWhereAFlagStandsStopsParsing) {
     EXPECT_TRUE(parse({"m.obj", "-h", "--size", "bad"}).help);

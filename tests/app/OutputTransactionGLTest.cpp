@@ -33,8 +33,7 @@ std::pair<std::uint32_t, std::uint32_t> pngSize(const std::string& bytes) {
     if (bytes.size() < 24 || bytes.compare(1, 3, "PNG") != 0) return {0, 0};
     const auto bigEndian = [&](std::size_t at) {
         std::uint32_t value = 0;
-        for (std::size_t i = 0; i < 4; ++i)
-            value = value << 8 | std::uint8_t(bytes[at + i]);
+        for (std::size_t i = 0; i < 4; ++i) value = value << 8 | std::uint8_t(bytes[at + i]);
         return value;
     };
     return {bigEndian(16), bigEndian(20)};

@@ -8,7 +8,6 @@
 
 #include <gtest/gtest.h>
 
-
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -46,7 +45,6 @@ protected:
         ADD_FAILURE() << "expected InputFileError";
         return {};
     }
-
 };
 
 TEST_F(SceneShadeMaps, DistinctFilesAreReadOnceAndShared) {
@@ -111,8 +109,7 @@ TEST_F(SceneShadeMaps, ModesWithoutMapsReadNothingAndWarn) {
         std::vector<std::string> warnings;
         const std::vector<std::optional<ShadeMap>> maps = readSceneShadeMaps(scene, mode, &warnings);
         ASSERT_EQ(maps.size(), 3u);
-        for (const std::optional<ShadeMap>& map : maps)
-            EXPECT_FALSE(map);
+        for (const std::optional<ShadeMap>& map : maps) EXPECT_FALSE(map);
         EXPECT_EQ(warnings,
                   std::vector<std::string>{"2 meshes name shade maps, which only --shading cel and comic use"})
             << traitsOf(mode).name;

@@ -10,7 +10,6 @@
 #include <functional>
 #include <fstream>
 
-
 namespace inkgraph {
 namespace {
 
@@ -34,10 +33,11 @@ RenderOptions optionsWith(const SourcedArguments& style, const std::vector<std::
 }
 
 TEST(StyleFile, SettingsBecomeFlagsWithListsCompactedAndCommentsDropped) {
-    const SourcedArguments style = styleArguments("# house style\r\n\n  shading = comic  # the Winnemöller & Bangay look\n"
-                                                  "shininess=64\nlines = contour, suggestive\n"
-                                                  "contour-color = 0.1, 0.2, 0.3\n",
-                                                  "look.style", "");
+    const SourcedArguments style =
+        styleArguments("# house style\r\n\n  shading = comic  # the Winnemöller & Bangay look\n"
+                       "shininess=64\nlines = contour, suggestive\n"
+                       "contour-color = 0.1, 0.2, 0.3\n",
+                       "look.style", "");
     EXPECT_EQ(style.arguments, (std::vector<std::string>{"--shading", "comic", "--shininess", "64", "--lines",
                                                          "contour,suggestive", "--contour-color", "0.1,0.2,0.3"}));
     ASSERT_EQ(style.origins.size(), style.arguments.size());
@@ -105,14 +105,20 @@ TEST_F(StyleFileOnDisk, ExpandPutsTheSettingsFirstAndKeepsTheFlagForTheRecord) {
 }
 
 TEST_F(StyleFileOnDisk, UnreadableOversizedOrRepeatedStylesAreUsageErrors) {
-    EXPECT_EQ(usageErrorOf([&] { expandStyleFile({"--style", (directory / "none").string()}); }),
+    EXPECT_EQ(usageErrorOf([&] {
+                  expandStyleFile({"--style", (directory / "none").string()});
+              }),
               "--style: '" + (directory / "none").string() + "': file not found");
-    EXPECT_NE(usageErrorOf([&] { expandStyleFile({"--style", directory.string()}); }).find("not a regular file"),
+    EXPECT_NE(usageErrorOf([&] {
+                  expandStyleFile({"--style", directory.string()});
+              }).find("not a regular file"),
               std::string::npos);
     const std::string big = (directory / "big.style").string();
     std::ofstream(big) << std::string(70000, '#');
     EXPECT_NE(usageErrorOf([&] { expandStyleFile({"--style", big}); }).find("is 70000 bytes"), std::string::npos);
-    EXPECT_NE(usageErrorOf([&] { expandStyleFile({"--style", big, "--style", big}); }).find("given twice"),
+    EXPECT_NE(usageErrorOf([&] {
+                  expandStyleFile({"--style", big, "--style", big});
+              }).find("given twice"),
               std::string::npos);
     EXPECT_EQ(usageErrorOf([&] { expandStyleFile({"m.obj", "--style"}); }), "--style: missing FILE");
 }

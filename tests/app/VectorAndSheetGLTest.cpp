@@ -81,8 +81,7 @@ TEST_F(Cli, SvgHasOneGroupPerLineTypeWhosePathsLieOnItsMask) {
         const CliRun result =
             run("render " + model("suzanne_npm_4k.obj") +
                 " --size 160x120 --lines outline,crease,border,contour --border-color 0.8,0.1,0.1,0.5 " +
-                "--outline-width 4 --supersample " + std::to_string(supersample) +
-                " --svg lines.svg --dump dump -q");
+                "--outline-width 4 --supersample " + std::to_string(supersample) + " --svg lines.svg --dump dump -q");
         ASSERT_EQ(result.exitCode, 0) << result.err;
         const test::SvgPathDocument document = test::parseSvgPathDocument(readText(directory / "lines.svg"));
         EXPECT_EQ(document.width, 160);
@@ -150,10 +149,13 @@ TEST_F(Cli, ContactSheetShowsEveryBufferThePlanComputed) {
     ASSERT_LT(finalIndex, buffers);
     const int columns = int(std::ceil(std::sqrt(double(buffers))));
     const int tileHeight = int(std::lround(layout.tileWidth * 64.0 / 96.0));
-    const int x = ContactSheetLayout::kSpacing + int(finalIndex % columns) * (layout.tileWidth + ContactSheetLayout::kSpacing);
-    const int y = ContactSheetLayout::kTitleBarHeight + ContactSheetLayout::kSpacing +
-                  int(finalIndex / columns) * (tileHeight + ContactSheetLayout::kCaptionHeight + ContactSheetLayout::kSpacing);
-    const cv::Mat expected = tileImage(readImage(directory / "final.png"), TileContent::Color, {layout.tileWidth, tileHeight});
+    const int x =
+        ContactSheetLayout::kSpacing + int(finalIndex % columns) * (layout.tileWidth + ContactSheetLayout::kSpacing);
+    const int y =
+        ContactSheetLayout::kTitleBarHeight + ContactSheetLayout::kSpacing +
+        int(finalIndex / columns) * (tileHeight + ContactSheetLayout::kCaptionHeight + ContactSheetLayout::kSpacing);
+    const cv::Mat expected =
+        tileImage(readImage(directory / "final.png"), TileContent::Color, {layout.tileWidth, tileHeight});
     const cv::Mat cell = sheet(cv::Rect(x, y, layout.tileWidth, tileHeight));
     EXPECT_EQ(cv::norm(cell, expected, cv::NORM_INF), 0.0);
 }

@@ -30,8 +30,7 @@ class RecordingBackend final : public ExecutorBackend {
 public:
     explicit RecordingBackend(Names passNames) : mPassNames(std::move(passNames)) {}
 
-    void runPass(std::size_t passIndex, const PlannedPass& planned, PassPhase phase) override
-    {
+    void runPass(std::size_t passIndex, const PlannedPass& planned, PassPhase phase) override {
         const std::string event =
             std::string(phase == PassPhase::Prepare ? "prepare " : "execute ") + mPassNames.at(passIndex);
         EXPECT_EQ(mPassNames.at(passIndex), planned.name) << "the loop handed another pass's plan entry";
@@ -41,18 +40,15 @@ public:
             for (const std::string& resource : planned.liveWrites)
                 if (!unwritten.count(resource)) written.insert(resource);
     }
-    void finishStep(const PlannedPass& planned, PassPhase phase) override
-    {
+    void finishStep(const PlannedPass& planned, PassPhase phase) override {
         events.push_back(std::string(phase == PassPhase::Prepare ? "finish prepare " : "finish execute ") +
                          planned.name);
     }
-    std::string afterPass(const PlannedPass& planned) override
-    {
+    std::string afterPass(const PlannedPass& planned) override {
         events.push_back("after " + planned.name);
         return planned.name == problemPass ? "raised a backend error" : "";
     }
-    void rethrowByCause(const std::exception_ptr& failure, const std::string& where) const override
-    {
+    void rethrowByCause(const std::exception_ptr& failure, const std::string& where) const override {
         try {
             std::rethrow_exception(failure);
         } catch (const BackendFailure& error) {
@@ -61,8 +57,7 @@ public:
         }
     }
     bool wrote(const std::string& resource) const override { return written.count(resource) != 0; }
-    void release(const std::string& resource) override
-    {
+    void release(const std::string& resource) override {
         events.push_back("release " + resource);
         written.erase(resource);
     }
@@ -80,35 +75,31 @@ private:
 };
 
 /** Only the events that start with `prefix`. */
-Names eventsStartingWith(const Names& events, const std::string& prefix)
-{
+Names eventsStartingWith(const Names& events, const std::string& prefix) {
     Names result;
     for (const std::string& event : events)
-        if (event.rfind(prefix, 0) == 0)
-            result.push_back(event);
+        if (event.rfind(prefix, 0) == 0) result.push_back(event);
     return result;
 }
 
 /** c reads b reads a, registered backwards; the plan requests c.out. */
-Plan chainPlan(FakeGraph& graph)
-{
+Plan chainPlan(FakeGraph& graph) {
     graph.addPass("c", {"b.out"}, {{"out"}});
     graph.addPass("b", {"a.out"}, {{"out"}});
     graph.addPass("a", {}, {{"out"}});
     return graph.compile({"c.out"});
 }
 
-TEST(ExecutorTest, PreparesEveryPassThenExecutesInPlanOrder)
-{
+TEST(ExecutorTest, PreparesEveryPassThenExecutesInPlanOrder) {
     FakeGraph graph;
     const Plan plan = chainPlan(graph);
     RecordingBackend backend({"c", "b", "a"}); // the caller's order, not the plan's
     const std::vector<PassTiming> timings = executePlan("run()", plan, backend.names(), backend, false);
 
-    EXPECT_EQ(backend.events, (Names{"prepare a", "finish prepare a", "prepare b", "finish prepare b", "prepare c",
-                                     "finish prepare c", "execute a", "finish execute a", "after a", "execute b",
-                                     "finish execute b", "after b", "release a.out", "execute c", "finish execute c",
-                                     "after c", "release b.out"}));
+    EXPECT_EQ(backend.events,
+              (Names{"prepare a", "finish prepare a", "prepare b", "finish prepare b", "prepare c", "finish prepare c",
+                     "execute a", "finish execute a", "after a", "execute b", "finish execute b", "after b",
+                     "release a.out", "execute c", "finish execute c", "after c", "release b.out"}));
     ASSERT_EQ(timings.size(), 3u);
     EXPECT_EQ(timings[0].pass, "a");
     EXPECT_EQ(timings[1].pass, "b");
@@ -119,8 +110,7 @@ TEST(ExecutorTest, PreparesEveryPassThenExecutesInPlanOrder)
     }
 }
 
-TEST(ExecutorTest, ReleasesEachResourceAfterItsLastReaderAndKeepsRequestedOnes)
-{
+TEST(ExecutorTest, ReleasesEachResourceAfterItsLastReaderAndKeepsRequestedOnes) {
     FakeGraph graph;
     graph.addPass("gbuffer", {}, {{"normal"}, {"depth"}});
     graph.addPass("shade", {"gbuffer.normal"}, {{"color"}});
@@ -143,8 +133,7 @@ TEST(ExecutorTest, ReleasesEachResourceAfterItsLastReaderAndKeepsRequestedOnes)
     EXPECT_EQ(backend.written, (std::set<std::string>{"gbuffer.normal", "composite.final"}));
 }
 
-TEST(ExecutorTest, KeepAllResourcesReleasesNothing)
-{
+TEST(ExecutorTest, KeepAllResourcesReleasesNothing) {
     FakeGraph graph;
     const Plan plan = chainPlan(graph);
     RecordingBackend backend({"a", "b", "c"});
@@ -153,8 +142,7 @@ TEST(ExecutorTest, KeepAllResourcesReleasesNothing)
     EXPECT_EQ(backend.written, (std::set<std::string>{"a.out", "b.out", "c.out"}));
 }
 
-TEST(ExecutorTest, APlannedPassWithoutAnObjectIsNamedBeforeAnythingRuns)
-{
+TEST(ExecutorTest, APlannedPassWithoutAnObjectIsNamedBeforeAnythingRuns) {
     FakeGraph graph;
     const Plan plan = chainPlan(graph);
     RecordingBackend backend({"a", "c"});
@@ -167,8 +155,7 @@ TEST(ExecutorTest, APlannedPassWithoutAnObjectIsNamedBeforeAnythingRuns)
     EXPECT_TRUE(backend.events.empty());
 }
 
-TEST(ExecutorTest, ALiveOutputLeftUnwrittenNamesThePassAndTheResource)
-{
+TEST(ExecutorTest, ALiveOutputLeftUnwrittenNamesThePassAndTheResource) {
     FakeGraph graph;
     const Plan plan = chainPlan(graph);
     RecordingBackend backend({"a", "b", "c"});
@@ -182,8 +169,7 @@ TEST(ExecutorTest, ALiveOutputLeftUnwrittenNamesThePassAndTheResource)
     EXPECT_EQ(backend.events.back(), "after b") << "nothing runs after the failing pass";
 }
 
-TEST(ExecutorTest, AFailingExecuteIsWrappedNamingThePass)
-{
+TEST(ExecutorTest, AFailingExecuteIsWrappedNamingThePass) {
     FakeGraph graph;
     const Plan plan = chainPlan(graph);
     RecordingBackend backend({"a", "b", "c"});
@@ -199,8 +185,7 @@ TEST(ExecutorTest, AFailingExecuteIsWrappedNamingThePass)
     EXPECT_EQ(backend.events.back(), "execute b");
 }
 
-TEST(ExecutorTest, AFailingPrepareStopsBeforeAnyExecute)
-{
+TEST(ExecutorTest, AFailingPrepareStopsBeforeAnyExecute) {
     FakeGraph graph;
     const Plan plan = chainPlan(graph);
     RecordingBackend backend({"a", "b", "c"});
@@ -216,8 +201,7 @@ TEST(ExecutorTest, AFailingPrepareStopsBeforeAnyExecute)
     EXPECT_TRUE(eventsStartingWith(backend.events, "execute ").empty());
 }
 
-TEST(ExecutorTest, RunningOutOfMemoryAndBackendFailuresKeepTheirTypes)
-{
+TEST(ExecutorTest, RunningOutOfMemoryAndBackendFailuresKeepTheirTypes) {
     FakeGraph graph;
     const Plan plan = chainPlan(graph);
     {
@@ -246,8 +230,7 @@ TEST(ExecutorTest, RunningOutOfMemoryAndBackendFailuresKeepTheirTypes)
     }
 }
 
-TEST(ExecutorTest, AProblemTheBackendFindsAfterAPassNamesThePass)
-{
+TEST(ExecutorTest, AProblemTheBackendFindsAfterAPassNamesThePass) {
     FakeGraph graph;
     const Plan plan = chainPlan(graph);
     RecordingBackend backend({"a", "b", "c"});
@@ -261,8 +244,7 @@ TEST(ExecutorTest, AProblemTheBackendFindsAfterAPassNamesThePass)
     EXPECT_TRUE(eventsStartingWith(backend.events, "execute b").empty());
 }
 
-TEST(ExecutorTest, FakeGraphRunsThroughTheLoop)
-{
+TEST(ExecutorTest, FakeGraphRunsThroughTheLoop) {
     FakeGraph graph;
     const Plan plan = chainPlan(graph);
     EXPECT_EQ(graph.execute(plan).executed, (Names{"a", "b", "c"}));

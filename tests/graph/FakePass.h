@@ -24,8 +24,7 @@ struct FakeWrite {
     TextureDesc desc = {};
 };
 
-inline FakeWrite optionalWrite(std::string field, TextureDesc desc = {})
-{
+inline FakeWrite optionalWrite(std::string field, TextureDesc desc = {}) {
     return {std::move(field), Need::Optional, desc};
 }
 
@@ -38,36 +37,27 @@ struct ExecutionLog {
 class FakePass final : public Pass {
 public:
     FakePass(std::string name, std::vector<std::string> reads, std::vector<FakeWrite> writes, bool sideEffect = false)
-        : mName(std::move(name)), mReads(std::move(reads)), mWrites(std::move(writes)), mSideEffect(sideEffect)
-    {}
+        : mName(std::move(name)), mReads(std::move(reads)), mWrites(std::move(writes)), mSideEffect(sideEffect) {}
 
     std::string_view name() const override { return mName; }
 
-    void declare(PassBuilder& builder) const override
-    {
-        for (const std::string& resource : mReads)
-            builder.read(resource);
-        for (const FakeWrite& write : mWrites)
-            builder.write(write.field, write.desc, write.need);
-        if (mSideEffect)
-            builder.markSideEffect();
+    void declare(PassBuilder& builder) const override {
+        for (const std::string& resource : mReads) builder.read(resource);
+        for (const FakeWrite& write : mWrites) builder.write(write.field, write.desc, write.need);
+        if (mSideEffect) builder.markSideEffect();
     }
 
     /** What a backend's execute would do: records the run and the fields `planned` makes live. */
-    void execute(const PlannedPass& planned)
-    {
-        if (!mLog)
-            throw std::logic_error("FakePass::execute(): pass '" + mName + "' has no log");
+    void execute(const PlannedPass& planned) {
+        if (!mLog) throw std::logic_error("FakePass::execute(): pass '" + mName + "' has no log");
         mLog->executed.push_back(mName);
         std::vector<std::string>& live = mLog->liveFields[mName];
         for (const FakeWrite& write : mWrites)
-            if (isLive(planned, write.field))
-                live.push_back(write.field);
+            if (isLive(planned, write.field)) live.push_back(write.field);
     }
 
     /** True when this pass's `field` is among `planned`'s live writes, as gl/GlPassContext answers it. */
-    static bool isLive(const PlannedPass& planned, const std::string& field)
-    {
+    static bool isLive(const PlannedPass& planned, const std::string& field) {
         const std::string full = planned.name + "." + field;
         return std::find(planned.liveWrites.begin(), planned.liveWrites.end(), full) != planned.liveWrites.end();
     }
@@ -86,18 +76,15 @@ private:
 class FakeGraph {
 public:
     FakePass& addPass(std::string name, std::vector<std::string> reads, std::vector<FakeWrite> writes,
-                      bool sideEffect = false)
-    {
+                      bool sideEffect = false) {
         mPasses.push_back(std::make_unique<FakePass>(std::move(name), std::move(reads), std::move(writes), sideEffect));
         mPasses.back()->setLog(&mLog);
         return *mPasses.back();
     }
 
-    std::vector<const Pass*> passes() const
-    {
+    std::vector<const Pass*> passes() const {
         std::vector<const Pass*> list;
-        for (const auto& pass : mPasses)
-            list.push_back(pass.get());
+        for (const auto& pass : mPasses) list.push_back(pass.get());
         return list;
     }
 
@@ -105,13 +92,11 @@ public:
 
     /** The null executor: runs the plan through graph/Executor's loop, each execute calling FakePass::execute(),
      *  and returns the log. */
-    const ExecutionLog& execute(const Plan& plan)
-    {
+    const ExecutionLog& execute(const Plan& plan) {
         mLog = {};
         NullBackend backend(mPasses);
         std::vector<std::string_view> names;
-        for (const auto& pass : mPasses)
-            names.push_back(pass->name());
+        for (const auto& pass : mPasses) names.push_back(pass->name());
         executePlan("FakeGraph::execute()", plan, names, backend, false);
         return mLog;
     }
@@ -121,10 +106,8 @@ private:
     class NullBackend final : public ExecutorBackend {
     public:
         explicit NullBackend(const std::vector<std::unique_ptr<FakePass>>& passes) : mPasses(passes) {}
-        void runPass(std::size_t passIndex, const PlannedPass& planned, PassPhase phase) override
-        {
-            if (phase == PassPhase::Execute)
-                mPasses[passIndex]->execute(planned);
+        void runPass(std::size_t passIndex, const PlannedPass& planned, PassPhase phase) override {
+            if (phase == PassPhase::Execute) mPasses[passIndex]->execute(planned);
         }
         bool wrote(const std::string&) const override { return true; }
         void release(const std::string&) override {}
@@ -138,32 +121,26 @@ private:
 };
 
 /** The names of a plan's passes, in plan order. */
-inline std::vector<std::string> passNames(const Plan& plan)
-{
+inline std::vector<std::string> passNames(const Plan& plan) {
     std::vector<std::string> names;
-    for (const PlannedPass& pass : plan.passes)
-        names.push_back(pass.name);
+    for (const PlannedPass& pass : plan.passes) names.push_back(pass.name);
     return names;
 }
 
 /** The names of a plan's culled passes, in registration order. */
-inline std::vector<std::string> culledNames(const Plan& plan)
-{
+inline std::vector<std::string> culledNames(const Plan& plan) {
     std::vector<std::string> names;
-    for (const CulledPass& pass : plan.culled)
-        names.push_back(pass.name);
+    for (const CulledPass& pass : plan.culled) names.push_back(pass.name);
     return names;
 }
 
 /** Compiles and returns the GraphError's problems; fails the test (returns {}) when compile() does not throw. */
 inline std::vector<std::string> compileProblems(const FakeGraph& graph, const std::vector<std::string>& requested,
-                                                std::string* message = nullptr)
-{
+                                                std::string* message = nullptr) {
     try {
         graph.compile(requested);
     } catch (const GraphError& error) {
-        if (message)
-            *message = error.what();
+        if (message) *message = error.what();
         return error.problems();
     }
     return {};

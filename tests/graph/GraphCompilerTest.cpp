@@ -19,29 +19,27 @@ const TextureDesc kLinesDesc{Format::R8, 1};
 
 /** The shape of the real pipeline: a G-buffer with optional outputs, shading, a hull, contours and a composite.
  *  Registered in the order a user would write it. */
-void addPipeline(FakeGraph& graph)
-{
+void addPipeline(FakeGraph& graph) {
     graph.addPass("gbuffer", {},
-                  {{"normal", Need::Required, kNormalDesc}, {"depth", Need::Required, kDepthDesc},
-                   optionalWrite("viewVec"), optionalWrite("wVec")});
+                  {{"normal", Need::Required, kNormalDesc},
+                   {"depth", Need::Required, kDepthDesc},
+                   optionalWrite("viewVec"),
+                   optionalWrite("wVec")});
     graph.addPass("lambert", {"gbuffer.normal"}, {{"color", Need::Required, kColorDesc}});
     graph.addPass("hull", {"lambert.color"}, {{"color", Need::Required, kColorDesc}});
     graph.addPass("contours", {"gbuffer.normal", "gbuffer.depth"}, {{"lines", Need::Required, kLinesDesc}});
     graph.addPass("composite", {"hull.color", "contours.lines"}, {{"final", Need::Required, kColorDesc}});
 }
 
-const CulledPass* findCulled(const Plan& plan, const std::string& name)
-{
+const CulledPass* findCulled(const Plan& plan, const std::string& name) {
     for (const CulledPass& pass : plan.culled)
-        if (pass.name == name)
-            return &pass;
+        if (pass.name == name) return &pass;
     return nullptr;
 }
 
 // --- order -----------------------------------------------------------------------------------------------------------
 
-TEST(GraphCompilerTest, LinearChainCompilesInOrder)
-{
+TEST(GraphCompilerTest, LinearChainCompilesInOrder) {
     FakeGraph graph;
     graph.addPass("a", {}, {{"out"}});
     graph.addPass("b", {"a.out"}, {{"out"}});
@@ -58,8 +56,7 @@ TEST(GraphCompilerTest, LinearChainCompilesInOrder)
     EXPECT_EQ(plan.requested, (Names{"c.out"}));
 }
 
-TEST(GraphCompilerTest, LinearChainRegisteredBackwardsStillRunsWritersFirst)
-{
+TEST(GraphCompilerTest, LinearChainRegisteredBackwardsStillRunsWritersFirst) {
     FakeGraph graph;
     graph.addPass("c", {"b.out"}, {{"out"}});
     graph.addPass("b", {"a.out"}, {{"out"}});
@@ -71,8 +68,7 @@ TEST(GraphCompilerTest, LinearChainRegisteredBackwardsStillRunsWritersFirst)
     EXPECT_EQ(plan.passes[2].registrationIndex, 0u);
 }
 
-TEST(GraphCompilerTest, DiamondBreaksTiesByRegistrationOrder)
-{
+TEST(GraphCompilerTest, DiamondBreaksTiesByRegistrationOrder) {
     FakeGraph graph;
     graph.addPass("top", {}, {{"out"}});
     graph.addPass("left", {"top.out"}, {{"out"}});
@@ -82,8 +78,7 @@ TEST(GraphCompilerTest, DiamondBreaksTiesByRegistrationOrder)
     EXPECT_EQ(passNames(graph.compile({"bottom.out"})), (Names{"top", "left", "right", "bottom"}));
 }
 
-TEST(GraphCompilerTest, DiamondRegisteredInReverseBreaksTiesByRegistrationOrder)
-{
+TEST(GraphCompilerTest, DiamondRegisteredInReverseBreaksTiesByRegistrationOrder) {
     FakeGraph graph;
     graph.addPass("bottom", {"left.out", "right.out"}, {{"out"}});
     graph.addPass("right", {"top.out"}, {{"out"}});
@@ -94,8 +89,7 @@ TEST(GraphCompilerTest, DiamondRegisteredInReverseBreaksTiesByRegistrationOrder)
     EXPECT_EQ(passNames(graph.compile({"bottom.out"})), (Names{"top", "right", "left", "bottom"}));
 }
 
-TEST(GraphCompilerTest, IndependentPassesKeepRegistrationOrder)
-{
+TEST(GraphCompilerTest, IndependentPassesKeepRegistrationOrder) {
     FakeGraph graph;
     graph.addPass("z", {}, {{"out"}});
     graph.addPass("y", {}, {{"out"}});
@@ -105,8 +99,7 @@ TEST(GraphCompilerTest, IndependentPassesKeepRegistrationOrder)
     EXPECT_EQ(passNames(graph.compile({"x.out", "y.out", "z.out"})), (Names{"z", "y", "x"}));
 }
 
-TEST(GraphCompilerTest, SmallestReadyIndexWinsOverDepthFirst)
-{
+TEST(GraphCompilerTest, SmallestReadyIndexWinsOverDepthFirst) {
     FakeGraph graph;
     graph.addPass("a", {}, {{"out"}});
     graph.addPass("b", {"a.out"}, {{"out"}});
@@ -118,8 +111,7 @@ TEST(GraphCompilerTest, SmallestReadyIndexWinsOverDepthFirst)
     EXPECT_EQ(passNames(graph.compile({"d.out", "e.out"})), (Names{"a", "b", "c", "d", "e"}));
 }
 
-TEST(GraphCompilerTest, RepeatedCompilesGiveTheSamePlan)
-{
+TEST(GraphCompilerTest, RepeatedCompilesGiveTheSamePlan) {
     FakeGraph graph;
     addPipeline(graph);
     graph.addPass("debug", {"gbuffer.wVec"}, {{"heat"}});
@@ -142,8 +134,7 @@ TEST(GraphCompilerTest, RepeatedCompilesGiveTheSamePlan)
 
 // --- culling ---------------------------------------------------------------------------------------------------------
 
-TEST(GraphCompilerTest, RequestingAnUpstreamOutputCullsEverythingDownstream)
-{
+TEST(GraphCompilerTest, RequestingAnUpstreamOutputCullsEverythingDownstream) {
     FakeGraph graph;
     addPipeline(graph);
 
@@ -161,8 +152,7 @@ TEST(GraphCompilerTest, RequestingAnUpstreamOutputCullsEverythingDownstream)
     EXPECT_EQ(findCulled(plan, "hull")->writes, (Names{"hull.color"}));
 }
 
-TEST(GraphCompilerTest, PassWritingNothingRequestedIsCulled)
-{
+TEST(GraphCompilerTest, PassWritingNothingRequestedIsCulled) {
     FakeGraph graph;
     addPipeline(graph);
 
@@ -173,8 +163,7 @@ TEST(GraphCompilerTest, PassWritingNothingRequestedIsCulled)
     EXPECT_EQ(plan.findResource("contours.lines"), nullptr);
 }
 
-TEST(GraphCompilerTest, PassWithOnlyAnUnreadOptionalOutputIsCulled)
-{
+TEST(GraphCompilerTest, PassWithOnlyAnUnreadOptionalOutputIsCulled) {
     FakeGraph graph;
     graph.addPass("gbuffer", {}, {{"normal"}});
     graph.addPass("debug", {"gbuffer.normal"}, {optionalWrite("heat")});
@@ -186,8 +175,7 @@ TEST(GraphCompilerTest, PassWithOnlyAnUnreadOptionalOutputIsCulled)
     EXPECT_EQ(plan.culled[0].reason, "no requested output depends on 'debug.heat' (nothing reads it)");
 }
 
-TEST(GraphCompilerTest, CulledReasonListsEveryOutput)
-{
+TEST(GraphCompilerTest, CulledReasonListsEveryOutput) {
     FakeGraph graph;
     graph.addPass("source", {}, {{"out"}});
     graph.addPass("split", {"source.out"}, {{"low"}, {"mid"}, optionalWrite("high")});
@@ -198,8 +186,7 @@ TEST(GraphCompilerTest, CulledReasonListsEveryOutput)
               "no requested output depends on 'split.low', 'split.mid' or 'split.high' (nothing reads them)");
 }
 
-TEST(GraphCompilerTest, PassWithNoWritesAndNoSideEffectIsCulled)
-{
+TEST(GraphCompilerTest, PassWithNoWritesAndNoSideEffectIsCulled) {
     FakeGraph graph;
     graph.addPass("source", {}, {{"out"}});
     graph.addPass("sink", {"source.out"}, {});
@@ -210,8 +197,7 @@ TEST(GraphCompilerTest, PassWithNoWritesAndNoSideEffectIsCulled)
     EXPECT_EQ(plan.culled[0].reason, "writes nothing and has no side effect");
 }
 
-TEST(GraphCompilerTest, CulledPassesAreListedInRegistrationOrder)
-{
+TEST(GraphCompilerTest, CulledPassesAreListedInRegistrationOrder) {
     FakeGraph graph;
     graph.addPass("c", {"b.out"}, {{"out"}});
     graph.addPass("a", {}, {{"out"}});
@@ -224,8 +210,7 @@ TEST(GraphCompilerTest, CulledPassesAreListedInRegistrationOrder)
 
 // --- optional outputs ------------------------------------------------------------------------------------------------
 
-TEST(GraphCompilerTest, OptionalOutputIsLiveOnlyWhenRead)
-{
+TEST(GraphCompilerTest, OptionalOutputIsLiveOnlyWhenRead) {
     FakeGraph graph;
     addPipeline(graph);
     graph.addPass("specular", {"gbuffer.normal", "gbuffer.viewVec"}, {{"color", Need::Required, kColorDesc}});
@@ -240,8 +225,7 @@ TEST(GraphCompilerTest, OptionalOutputIsLiveOnlyWhenRead)
     EXPECT_EQ(plan.findResource("gbuffer.wVec"), nullptr);
 }
 
-TEST(GraphCompilerTest, OptionalOutputIsLiveWhenRequested)
-{
+TEST(GraphCompilerTest, OptionalOutputIsLiveWhenRequested) {
     FakeGraph graph;
     addPipeline(graph);
 
@@ -255,8 +239,7 @@ TEST(GraphCompilerTest, OptionalOutputIsLiveWhenRequested)
     EXPECT_TRUE(plan.findResource("gbuffer.wVec")->readers.empty());
 }
 
-TEST(GraphCompilerTest, OptionalOutputReadOnlyByACulledPassIsDead)
-{
+TEST(GraphCompilerTest, OptionalOutputReadOnlyByACulledPassIsDead) {
     FakeGraph graph;
     addPipeline(graph);
     graph.addPass("specular", {"gbuffer.viewVec"}, {{"color"}});
@@ -267,8 +250,7 @@ TEST(GraphCompilerTest, OptionalOutputReadOnlyByACulledPassIsDead)
     EXPECT_NE(findCulled(plan, "specular"), nullptr);
 }
 
-TEST(GraphCompilerTest, RequiredWritesOfALivePassAreAlwaysLive)
-{
+TEST(GraphCompilerTest, RequiredWritesOfALivePassAreAlwaysLive) {
     FakeGraph graph;
     addPipeline(graph);
 
@@ -284,8 +266,7 @@ TEST(GraphCompilerTest, RequiredWritesOfALivePassAreAlwaysLive)
     EXPECT_EQ(plan.findPass("gbuffer")->liveWrites, (Names{"gbuffer.normal", "gbuffer.depth"}));
 }
 
-TEST(GraphCompilerTest, PassLiveOnlyForAnOptionalOutputStillComputesItsRequiredOnes)
-{
+TEST(GraphCompilerTest, PassLiveOnlyForAnOptionalOutputStillComputesItsRequiredOnes) {
     FakeGraph graph;
     graph.addPass("gbuffer", {}, {{"normal"}, optionalWrite("wVec")});
     graph.addPass("hull", {"gbuffer.wVec"}, {{"color"}});
@@ -297,8 +278,7 @@ TEST(GraphCompilerTest, PassLiveOnlyForAnOptionalOutputStillComputesItsRequiredO
 
 // --- lifetimes -------------------------------------------------------------------------------------------------------
 
-TEST(GraphCompilerTest, LifetimesRunFromWriterToLastReader)
-{
+TEST(GraphCompilerTest, LifetimesRunFromWriterToLastReader) {
     FakeGraph graph;
     addPipeline(graph);
 
@@ -311,12 +291,9 @@ TEST(GraphCompilerTest, LifetimesRunFromWriterToLastReader)
         Names readers;
     };
     const Expected expected[] = {
-        {"gbuffer.depth", 0, 3, {"contours"}},
-        {"gbuffer.normal", 0, 3, {"lambert", "contours"}},
-        {"lambert.color", 1, 2, {"hull"}},
-        {"hull.color", 2, 4, {"composite"}},
-        {"contours.lines", 3, 4, {"composite"}},
-        {"composite.final", 4, 4, {}},
+        {"gbuffer.depth", 0, 3, {"contours"}},   {"gbuffer.normal", 0, 3, {"lambert", "contours"}},
+        {"lambert.color", 1, 2, {"hull"}},       {"hull.color", 2, 4, {"composite"}},
+        {"contours.lines", 3, 4, {"composite"}}, {"composite.final", 4, 4, {}},
     };
     ASSERT_EQ(plan.resources.size(), std::size(expected));
     for (std::size_t i = 0; i < plan.resources.size(); ++i) {
@@ -333,8 +310,7 @@ TEST(GraphCompilerTest, LifetimesRunFromWriterToLastReader)
     EXPECT_EQ(plan.findResource("hull.color")->writer, "hull");
 }
 
-TEST(GraphCompilerTest, RequestedResourceLivesToTheEnd)
-{
+TEST(GraphCompilerTest, RequestedResourceLivesToTheEnd) {
     FakeGraph graph;
     addPipeline(graph);
 
@@ -349,8 +325,7 @@ TEST(GraphCompilerTest, RequestedResourceLivesToTheEnd)
     EXPECT_EQ(plan.findResource("gbuffer.depth")->lastUse, 3u);
 }
 
-TEST(GraphCompilerTest, ReadersAreListedInPlanOrder)
-{
+TEST(GraphCompilerTest, ReadersAreListedInPlanOrder) {
     FakeGraph graph;
     graph.addPass("late", {"src.out", "early.out"}, {{"out"}});
     graph.addPass("early", {"src.out"}, {{"out"}});
@@ -362,8 +337,7 @@ TEST(GraphCompilerTest, ReadersAreListedInPlanOrder)
     EXPECT_EQ(plan.findResource("src.out")->lastUse, 2u);
 }
 
-TEST(GraphCompilerTest, RepeatedReadsAreRecordedOnce)
-{
+TEST(GraphCompilerTest, RepeatedReadsAreRecordedOnce) {
     FakeGraph graph;
     graph.addPass("src", {}, {{"out"}});
     graph.addPass("dst", {"src.out", "src.out"}, {{"out"}});
@@ -375,8 +349,7 @@ TEST(GraphCompilerTest, RepeatedReadsAreRecordedOnce)
 
 // --- side effects ----------------------------------------------------------------------------------------------------
 
-TEST(GraphCompilerTest, SideEffectPassIsNeverCulledAndItsInputsAreLive)
-{
+TEST(GraphCompilerTest, SideEffectPassIsNeverCulledAndItsInputsAreLive) {
     FakeGraph graph;
     addPipeline(graph);
     graph.addPass("export", {"lambert.color", "gbuffer.viewVec"}, {}, true);
@@ -391,8 +364,7 @@ TEST(GraphCompilerTest, SideEffectPassIsNeverCulledAndItsInputsAreLive)
     EXPECT_EQ(culledNames(plan), (Names{"hull", "contours", "composite"}));
 }
 
-TEST(GraphCompilerTest, SideEffectAloneNeedsNoRequest)
-{
+TEST(GraphCompilerTest, SideEffectAloneNeedsNoRequest) {
     FakeGraph graph;
     graph.addPass("src", {}, {{"out"}, optionalWrite("extra")});
     graph.addPass("log", {"src.out"}, {optionalWrite("stats")}, true);
@@ -410,8 +382,7 @@ TEST(GraphCompilerTest, SideEffectAloneNeedsNoRequest)
 
 // --- errors ----------------------------------------------------------------------------------------------------------
 
-TEST(GraphCompilerTest, TwoWritersOfOneResourceNameBothPasses)
-{
+TEST(GraphCompilerTest, TwoWritersOfOneResourceNameBothPasses) {
     FakeGraph graph;
     graph.addPass("gbuffer", {}, {{"normal"}});
     graph.addPass("cel", {"gbuffer.normal"}, {{"color"}});
@@ -422,8 +393,7 @@ TEST(GraphCompilerTest, TwoWritersOfOneResourceNameBothPasses)
                      "resource 'gbuffer.normal' has two writers: 'gbuffer' and 'gbuffer' (passes #0, #2)"}));
 }
 
-TEST(GraphCompilerTest, DuplicatePassNamesAreAnError)
-{
+TEST(GraphCompilerTest, DuplicatePassNamesAreAnError) {
     FakeGraph graph;
     graph.addPass("src", {}, {{"out"}});
     graph.addPass("cel", {"src.out"}, {{"color"}});
@@ -434,8 +404,7 @@ TEST(GraphCompilerTest, DuplicatePassNamesAreAnError)
               (Names{"pass name 'cel' is used by 3 passes (#1, #2 and #3); pass names must be unique"}));
 }
 
-TEST(GraphCompilerTest, ReadOfAnUnwrittenResourceSuggestsACloseName)
-{
+TEST(GraphCompilerTest, ReadOfAnUnwrittenResourceSuggestsACloseName) {
     FakeGraph graph;
     addPipeline(graph);
     graph.addPass("cel", {"gbuffer.normals"}, {{"color"}});
@@ -444,8 +413,7 @@ TEST(GraphCompilerTest, ReadOfAnUnwrittenResourceSuggestsACloseName)
               (Names{"pass 'cel' reads 'gbuffer.normals' but no pass writes it (did you mean 'gbuffer.normal'?)"}));
 }
 
-TEST(GraphCompilerTest, ReadOfAnUnwrittenResourceSuggestsTheSameFieldElsewhere)
-{
+TEST(GraphCompilerTest, ReadOfAnUnwrittenResourceSuggestsTheSameFieldElsewhere) {
     FakeGraph graph;
     addPipeline(graph);
     graph.addPass("cel", {"geometry.depth"}, {{"color"}});
@@ -454,18 +422,15 @@ TEST(GraphCompilerTest, ReadOfAnUnwrittenResourceSuggestsTheSameFieldElsewhere)
               (Names{"pass 'cel' reads 'geometry.depth' but no pass writes it (did you mean 'gbuffer.depth'?)"}));
 }
 
-TEST(GraphCompilerTest, ReadOfAnUnwrittenResourceWithNothingSimilarHasNoSuggestion)
-{
+TEST(GraphCompilerTest, ReadOfAnUnwrittenResourceWithNothingSimilarHasNoSuggestion) {
     FakeGraph graph;
     addPipeline(graph);
     graph.addPass("cel", {"shademap.ramp"}, {{"color"}});
 
-    EXPECT_EQ(compileProblems(graph, {"cel.color"}),
-              (Names{"pass 'cel' reads 'shademap.ramp' but no pass writes it"}));
+    EXPECT_EQ(compileProblems(graph, {"cel.color"}), (Names{"pass 'cel' reads 'shademap.ramp' but no pass writes it"}));
 }
 
-TEST(GraphCompilerTest, BrokenReadFailsEvenWhenItsPassWouldBeCulled)
-{
+TEST(GraphCompilerTest, BrokenReadFailsEvenWhenItsPassWouldBeCulled) {
     FakeGraph graph;
     addPipeline(graph);
     graph.addPass("unused", {"missing.thing"}, {{"out"}});
@@ -475,8 +440,7 @@ TEST(GraphCompilerTest, BrokenReadFailsEvenWhenItsPassWouldBeCulled)
     EXPECT_EQ(problems[0], "pass 'unused' reads 'missing.thing' but no pass writes it");
 }
 
-TEST(GraphCompilerTest, RequestedResourceNobodyWritesIsAnError)
-{
+TEST(GraphCompilerTest, RequestedResourceNobodyWritesIsAnError) {
     FakeGraph graph;
     addPipeline(graph);
 
@@ -485,8 +449,7 @@ TEST(GraphCompilerTest, RequestedResourceNobodyWritesIsAnError)
                      "requested resource 'nowhere.at.all' is not written by any pass"}));
 }
 
-TEST(GraphCompilerTest, ThreePassCycleIsNamedInOrder)
-{
+TEST(GraphCompilerTest, ThreePassCycleIsNamedInOrder) {
     FakeGraph graph;
     graph.addPass("src", {}, {{"out"}});
     graph.addPass("a", {"src.out", "c.out"}, {{"out"}});
@@ -499,8 +462,7 @@ TEST(GraphCompilerTest, ThreePassCycleIsNamedInOrder)
     EXPECT_NE(message.find("cycle: 'a' -> 'b' -> 'c' -> 'a'"), std::string::npos);
 }
 
-TEST(GraphCompilerTest, CycleStartsAtItsFirstRegisteredPass)
-{
+TEST(GraphCompilerTest, CycleStartsAtItsFirstRegisteredPass) {
     FakeGraph graph;
     graph.addPass("c", {"b.out"}, {{"out"}});
     graph.addPass("a", {"c.out"}, {{"out"}});
@@ -509,8 +471,7 @@ TEST(GraphCompilerTest, CycleStartsAtItsFirstRegisteredPass)
     EXPECT_EQ(compileProblems(graph, {"c.out"}), (Names{"cycle: 'c' -> 'a' -> 'b' -> 'c'"}));
 }
 
-TEST(GraphCompilerTest, SelfCycleAndTwoSeparateCyclesAreEachReported)
-{
+TEST(GraphCompilerTest, SelfCycleAndTwoSeparateCyclesAreEachReported) {
     FakeGraph graph;
     graph.addPass("self", {"self.out"}, {{"out"}});
     graph.addPass("x", {"y.out"}, {{"out"}});
@@ -520,8 +481,7 @@ TEST(GraphCompilerTest, SelfCycleAndTwoSeparateCyclesAreEachReported)
               (Names{"cycle: 'self' -> 'self'", "cycle: 'x' -> 'y' -> 'x'"}));
 }
 
-TEST(GraphCompilerTest, CycleReportsTheShortestLoop)
-{
+TEST(GraphCompilerTest, CycleReportsTheShortestLoop) {
     FakeGraph graph;
     // a -> b -> c -> d -> a, with the shortcut b -> a.
     graph.addPass("a", {"d.out", "b.out"}, {{"out"}});
@@ -532,8 +492,7 @@ TEST(GraphCompilerTest, CycleReportsTheShortestLoop)
     EXPECT_EQ(compileProblems(graph, {"d.out"}), (Names{"cycle: 'a' -> 'b' -> 'a'"}));
 }
 
-TEST(GraphCompilerTest, WritingAFieldWithADotIsAnError)
-{
+TEST(GraphCompilerTest, WritingAFieldWithADotIsAnError) {
     FakeGraph graph;
     graph.addPass("cel", {}, {{"color"}, {"hull.color"}});
 
@@ -542,24 +501,21 @@ TEST(GraphCompilerTest, WritingAFieldWithADotIsAnError)
                      "('cel.<field>')"}));
 }
 
-TEST(GraphCompilerTest, WritingAnEmptyFieldIsAnError)
-{
+TEST(GraphCompilerTest, WritingAnEmptyFieldIsAnError) {
     FakeGraph graph;
     graph.addPass("cel", {}, {{"color"}, {""}});
 
     EXPECT_EQ(compileProblems(graph, {"cel.color"}), (Names{"pass 'cel' writes a field with an empty name"}));
 }
 
-TEST(GraphCompilerTest, WritingAFieldTwiceIsAnError)
-{
+TEST(GraphCompilerTest, WritingAFieldTwiceIsAnError) {
     FakeGraph graph;
     graph.addPass("gbuffer", {}, {{"normal"}, {"depth"}, optionalWrite("normal")});
 
     EXPECT_EQ(compileProblems(graph, {"gbuffer.depth"}), (Names{"pass 'gbuffer' writes 'gbuffer.normal' twice"}));
 }
 
-TEST(GraphCompilerTest, BadPassNamesAreErrors)
-{
+TEST(GraphCompilerTest, BadPassNamesAreErrors) {
     FakeGraph graph;
     graph.addPass("", {}, {{"out"}});
     graph.addPass("post.fx", {}, {{"out"}});
@@ -570,8 +526,7 @@ TEST(GraphCompilerTest, BadPassNamesAreErrors)
                      "pass 'post.fx' has a '.' in its name; '.' separates a pass from its field in resource names"}));
 }
 
-TEST(GraphCompilerTest, NullPassIsAnError)
-{
+TEST(GraphCompilerTest, NullPassIsAnError) {
     FakeGraph graph;
     graph.addPass("ok", {}, {{"out"}});
     std::vector<const Pass*> passes = graph.passes();
@@ -585,8 +540,7 @@ TEST(GraphCompilerTest, NullPassIsAnError)
     }
 }
 
-TEST(GraphCompilerTest, NothingRequestedAndNoSideEffectIsAnError)
-{
+TEST(GraphCompilerTest, NothingRequestedAndNoSideEffectIsAnError) {
     FakeGraph graph;
     addPipeline(graph);
 
@@ -595,13 +549,12 @@ TEST(GraphCompilerTest, NothingRequestedAndNoSideEffectIsAnError)
     EXPECT_EQ(compileProblems(FakeGraph(), {}).size(), 1u);
 }
 
-TEST(GraphCompilerTest, ThreeDifferentProblemsAreReportedInOneError)
-{
+TEST(GraphCompilerTest, ThreeDifferentProblemsAreReportedInOneError) {
     FakeGraph graph;
-    graph.addPass("gbuffer", {}, {{"normal"}, {"hull.mask"}});                // 1: writes outside its namespace
-    graph.addPass("cel", {"gbuffer.normal", "shademap.ramp"}, {{"color"}});   // 2: reads what nobody writes
+    graph.addPass("gbuffer", {}, {{"normal"}, {"hull.mask"}});              // 1: writes outside its namespace
+    graph.addPass("cel", {"gbuffer.normal", "shademap.ramp"}, {{"color"}}); // 2: reads what nobody writes
     graph.addPass("hull", {"cel.color", "outline.lines"}, {{"color"}});
-    graph.addPass("outline", {"hull.color"}, {{"lines"}});                    // 3: hull -> outline -> hull
+    graph.addPass("outline", {"hull.color"}, {{"lines"}}); // 3: hull -> outline -> hull
 
     try {
         graph.compile({"hull.color"});
@@ -618,8 +571,7 @@ TEST(GraphCompilerTest, ThreeDifferentProblemsAreReportedInOneError)
     }
 }
 
-TEST(GraphCompilerTest, ErrorMessageListsOneProblemPerLine)
-{
+TEST(GraphCompilerTest, ErrorMessageListsOneProblemPerLine) {
     FakeGraph graph;
     graph.addPass("a", {"x.in"}, {{"out"}});
 
@@ -631,8 +583,7 @@ TEST(GraphCompilerTest, ErrorMessageListsOneProblemPerLine)
                        "  - requested resource 'b.result' is not written by any pass");
 }
 
-TEST(GraphCompilerTest, ProblemsAreReportedInTheSameOrderEveryTime)
-{
+TEST(GraphCompilerTest, ProblemsAreReportedInTheSameOrderEveryTime) {
     FakeGraph graph;
     graph.addPass("b", {"zz.out", "a.out"}, {{"out"}, {"bad.field"}});
     graph.addPass("a", {"b.out", "yy.out"}, {{"out"}});
@@ -640,8 +591,7 @@ TEST(GraphCompilerTest, ProblemsAreReportedInTheSameOrderEveryTime)
 
     const Names first = compileProblems(graph, {"a.out", "q.out"});
     ASSERT_EQ(first.size(), 6u);
-    for (int i = 0; i < 5; ++i)
-        EXPECT_EQ(compileProblems(graph, {"a.out", "q.out"}), first);
+    for (int i = 0; i < 5; ++i) EXPECT_EQ(compileProblems(graph, {"a.out", "q.out"}), first);
     // Names, then writes, then writers, then reads (registration order), then requests, then cycles.
     EXPECT_NE(first[0].find("pass name 'a'"), std::string::npos);
     EXPECT_NE(first[1].find("'bad.field'"), std::string::npos);
@@ -653,8 +603,7 @@ TEST(GraphCompilerTest, ProblemsAreReportedInTheSameOrderEveryTime)
 
 // --- the null executor -----------------------------------------------------------------------------------------------
 
-TEST(GraphCompilerTest, NullExecutorRunsExactlyThePlannedPassesInOrder)
-{
+TEST(GraphCompilerTest, NullExecutorRunsExactlyThePlannedPassesInOrder) {
     FakeGraph graph;
     addPipeline(graph);
     graph.addPass("unused", {"gbuffer.depth"}, {{"out"}});
@@ -668,8 +617,7 @@ TEST(GraphCompilerTest, NullExecutorRunsExactlyThePlannedPassesInOrder)
         EXPECT_EQ(log.liveFields.count(culled.name), 0u) << "'" << culled.name << "' ran although it was culled";
 }
 
-TEST(GraphCompilerTest, NullExecutorSeesOnlyLiveFields)
-{
+TEST(GraphCompilerTest, NullExecutorSeesOnlyLiveFields) {
     FakeGraph graph;
     addPipeline(graph);
     graph.addPass("specular", {"gbuffer.viewVec"}, {{"highlight"}, optionalWrite("mask")});

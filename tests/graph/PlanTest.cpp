@@ -10,26 +10,23 @@ namespace inkgraph::test {
 namespace {
 
 /** G-buffer -> lambert -> export (side effect), with a culled hull and a dead optional G-buffer output. */
-void addSmallGraph(FakeGraph& graph)
-{
+void addSmallGraph(FakeGraph& graph) {
     graph.addPass("gbuffer", {},
-                  {{"normal", Need::Required, {Format::RGBA32F, 1}}, {"depth", Need::Required, {Format::R32F, 2}},
+                  {{"normal", Need::Required, {Format::RGBA32F, 1}},
+                   {"depth", Need::Required, {Format::R32F, 2}},
                    optionalWrite("wVec")});
     graph.addPass("lambert", {"gbuffer.normal"}, {{"color", Need::Required, {Format::RGBA8, 1}}});
     graph.addPass("hull", {"lambert.color"}, {{"color", Need::Required, {Format::RGBA8, 1}}});
     graph.addPass("export", {"lambert.color"}, {}, true);
 }
 
-std::size_t countOf(const std::string& text, const std::string& needle)
-{
+std::size_t countOf(const std::string& text, const std::string& needle) {
     std::size_t count = 0;
-    for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
-        ++count;
+    for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++count;
     return count;
 }
 
-TEST(GraphPlanTest, FindPassAndResource)
-{
+TEST(GraphPlanTest, FindPassAndResource) {
     FakeGraph graph;
     addSmallGraph(graph);
     const Plan plan = graph.compile({"lambert.color"});
@@ -46,8 +43,7 @@ TEST(GraphPlanTest, FindPassAndResource)
     EXPECT_EQ(plan.findResource("gbuffer"), nullptr);
 }
 
-TEST(GraphPlanTest, DescribeShowsPassesCulledReasonsAndLifetimes)
-{
+TEST(GraphPlanTest, DescribeShowsPassesCulledReasonsAndLifetimes) {
     FakeGraph graph;
     addSmallGraph(graph);
     const Plan plan = graph.compile({"lambert.color"});
@@ -67,8 +63,7 @@ TEST(GraphPlanTest, DescribeShowsPassesCulledReasonsAndLifetimes)
     EXPECT_EQ(plan.describe(), expected);
 }
 
-TEST(GraphPlanTest, DescribeNamesEveryPassAndIsStableAcrossCompiles)
-{
+TEST(GraphPlanTest, DescribeNamesEveryPassAndIsStableAcrossCompiles) {
     FakeGraph graph;
     addSmallGraph(graph);
     graph.addPass("contours", {"gbuffer.depth"}, {{"lines", Need::Required, {Format::R8, 1}}});
@@ -86,8 +81,7 @@ TEST(GraphPlanTest, DescribeNamesEveryPassAndIsStableAcrossCompiles)
     EXPECT_EQ(countOf(first, " \n"), 0u) << first;
 }
 
-TEST(GraphPlanTest, DescribeWithNothingCulledOrRequested)
-{
+TEST(GraphPlanTest, DescribeWithNothingCulledOrRequested) {
     FakeGraph graph;
     graph.addPass("src", {}, {{"out", Need::Required, {Format::R8, 1}}});
     graph.addPass("log", {"src.out"}, {}, true);
@@ -100,8 +94,7 @@ TEST(GraphPlanTest, DescribeWithNothingCulledOrRequested)
                                             "  src.out  r8  passes 1..2  src -> log\n");
 }
 
-TEST(GraphPlanTest, DescribeAlignsTwoDigitPassNumbers)
-{
+TEST(GraphPlanTest, DescribeAlignsTwoDigitPassNumbers) {
     FakeGraph graph;
     std::string previous;
     for (int i = 0; i < 10; ++i) {
@@ -118,8 +111,7 @@ TEST(GraphPlanTest, DescribeAlignsTwoDigitPassNumbers)
     EXPECT_NE(text.find("  p9.out  rgba32f  passes 10..10  p9 -> -   (requested)\n"), std::string::npos) << text;
 }
 
-TEST(GraphPlanTest, GraphvizDrawsLiveAndCulledPasses)
-{
+TEST(GraphPlanTest, GraphvizDrawsLiveAndCulledPasses) {
     FakeGraph graph;
     addSmallGraph(graph);
     const Plan plan = graph.compile({"lambert.color"});
@@ -150,8 +142,7 @@ TEST(GraphPlanTest, GraphvizDrawsLiveAndCulledPasses)
     EXPECT_EQ(dot, graph.compile({"lambert.color"}).graphviz());
 }
 
-TEST(GraphPlanTest, GraphvizEscapesQuotes)
-{
+TEST(GraphPlanTest, GraphvizEscapesQuotes) {
     Plan plan;
     plan.passes.push_back({"say\"hi\\", 0, {}, {}, {}, false});
     const std::string dot = plan.graphviz();

@@ -7,24 +7,21 @@
 namespace inkgraph {
 namespace {
 
-TEST(GraphResourceTest, BytesPerPixel)
-{
+TEST(GraphResourceTest, BytesPerPixel) {
     EXPECT_EQ(bytesPerPixel(Format::RGBA32F), 16);
     EXPECT_EQ(bytesPerPixel(Format::R32F), 4);
     EXPECT_EQ(bytesPerPixel(Format::RGBA8), 4);
     EXPECT_EQ(bytesPerPixel(Format::R8), 1);
 }
 
-TEST(GraphResourceTest, FormatName)
-{
+TEST(GraphResourceTest, FormatName) {
     EXPECT_EQ(formatName(Format::RGBA32F), "rgba32f");
     EXPECT_EQ(formatName(Format::R32F), "r32f");
     EXPECT_EQ(formatName(Format::RGBA8), "rgba8");
     EXPECT_EQ(formatName(Format::R8), "r8");
 }
 
-TEST(GraphResourceTest, TextureDescDefaultsAndEquality)
-{
+TEST(GraphResourceTest, TextureDescDefaultsAndEquality) {
     const TextureDesc desc;
     EXPECT_EQ(desc.format, Format::RGBA32F);
     EXPECT_EQ(desc.scale, 1);
@@ -33,16 +30,14 @@ TEST(GraphResourceTest, TextureDescDefaultsAndEquality)
     EXPECT_NE(desc, (TextureDesc{Format::R8, 1}));
 }
 
-TEST(GraphResourceTest, SplitAWellFormedName)
-{
+TEST(GraphResourceTest, SplitAWellFormedName) {
     const ResourceName name = ResourceName::split("gbuffer.normal");
     EXPECT_EQ(name.pass, "gbuffer");
     EXPECT_EQ(name.field, "normal");
     EXPECT_EQ(name.joined(), "gbuffer.normal");
 }
 
-TEST(GraphResourceTest, SplitWithoutExactlyOneDotGivesEmptyParts)
-{
+TEST(GraphResourceTest, SplitWithoutExactlyOneDotGivesEmptyParts) {
     for (const char* bad : {"normal", "", "gbuffer.normal.x", "a..b"}) {
         SCOPED_TRACE(bad);
         const ResourceName name = ResourceName::split(bad);
@@ -51,8 +46,7 @@ TEST(GraphResourceTest, SplitWithoutExactlyOneDotGivesEmptyParts)
     }
 }
 
-TEST(GraphResourceTest, SplitKeepsEmptySidesOfTheDot)
-{
+TEST(GraphResourceTest, SplitKeepsEmptySidesOfTheDot) {
     const ResourceName leading = ResourceName::split(".normal");
     EXPECT_EQ(leading.pass, "");
     EXPECT_EQ(leading.field, "normal");
@@ -61,8 +55,7 @@ TEST(GraphResourceTest, SplitKeepsEmptySidesOfTheDot)
     EXPECT_EQ(trailing.field, "");
 }
 
-TEST(GraphPassBuilderTest, RecordsReadsWritesAndSideEffect)
-{
+TEST(GraphPassBuilderTest, RecordsReadsWritesAndSideEffect) {
     PassBuilder builder("cel");
     EXPECT_EQ(builder.passName(), "cel");
     EXPECT_FALSE(builder.hasSideEffect());
@@ -86,8 +79,7 @@ TEST(GraphPassBuilderTest, RecordsReadsWritesAndSideEffect)
     EXPECT_TRUE(builder.hasSideEffect());
 }
 
-TEST(GraphPassBuilderTest, MalformedWritesAreRecordedAsGivenNotThrown)
-{
+TEST(GraphPassBuilderTest, MalformedWritesAreRecordedAsGivenNotThrown) {
     // compile() reports these together with every other problem, so declare() must not throw.
     PassBuilder builder("cel");
     EXPECT_NO_THROW(builder.write("hull.color", {}));

@@ -145,8 +145,8 @@ TEST(ShaderLibrary, GeometryStageIsOptionalAndGetsItsDefine) {
     std::ofstream(directory / "geo" / "one.frag") << "out float value;\nvoid main() { value = kValue; }\n";
     ShaderLibrary library(directory);
     // A single point only becomes a full-screen triangle through the geometry stage.
-    GlProgram program = library.build({"geo", "geo/point.vert", "geo/one.frag", {}, {"geo/corner.glsl"},
-                                       "geo/cover.geom"});
+    GlProgram program =
+        library.build({"geo", "geo/point.vert", "geo/one.frag", {}, {"geo/corner.glsl"}, "geo/cover.geom"});
     GlTexture target(Format::R8, 8, 8, "geometry target");
     GlFramebuffer framebuffer("geometry test");
     framebuffer.attachColor(0, target);

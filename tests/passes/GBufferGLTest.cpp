@@ -151,11 +151,11 @@ TEST_F(GBufferSphere, RadialFieldIsDeCarlosUnnormalisedFormWithImageSpaceW) {
             const glm::dvec3 w = towardEye - facing * truth->normal;
             // J w by central differences of the projection (x right, y down, pixels).
             const double step = 1e-4;
-            const glm::dvec2 jw = (kSphere.project(truth->point + step * w) - kSphere.project(truth->point - step * w)) /
-                                  (2.0 * step);
+            const glm::dvec2 jw =
+                (kSphere.project(truth->point + step * w) - kSphere.project(truth->point - step * w)) / (2.0 * step);
             maxFacingError = std::max(maxFacingError, std::abs(value[0] - facing));
-            maxLengthError = std::max(maxLengthError, std::abs(std::hypot(value[1], value[2]) - glm::length(jw)) /
-                                                          glm::length(jw));
+            maxLengthError =
+                std::max(maxLengthError, std::abs(std::hypot(value[1], value[2]) - glm::length(jw)) / glm::length(jw));
             if (glm::length(jw) > 1.0) {
                 const double cosine = glm::dot(glm::normalize(glm::dvec2(value[1], value[2])), glm::normalize(jw));
                 maxDirectionDegrees = std::max(maxDirectionDegrees, glm::degrees(std::acos(std::min(1.0, cosine))));
@@ -181,7 +181,8 @@ TEST_F(GBufferSphere, SupersampleScalesEveryField) {
     // The sphere covers the same fraction of the frame: its centre row crosses it at the same relative place.
     int coveredInRow = 0;
     for (int col = 0; col < 2 * kSize; ++col) coveredInRow += depth.at<float>(kSize, col) > 0.0f;
-    const double diameter = 2.0 * kSphere.focalPixels() * kRadius / std::sqrt(kDistance * kDistance - kRadius * kRadius);
+    const double diameter =
+        2.0 * kSphere.focalPixels() * kRadius / std::sqrt(kDistance * kDistance - kRadius * kRadius);
     EXPECT_NEAR(coveredInRow, 2.0 * diameter, 2.0);
 }
 
@@ -295,8 +296,8 @@ protected:
     static cv::Mat halfOf(const cv::Mat& coverage, bool leftHalf) {
         cv::Mat mask = coverage.clone();
         const int half = coverage.cols / 2;
-        const cv::Rect otherHalf = leftHalf ? cv::Rect(half, 0, coverage.cols - half, coverage.rows)
-                                            : cv::Rect(0, 0, half, coverage.rows);
+        const cv::Rect otherHalf =
+            leftHalf ? cv::Rect(half, 0, coverage.cols - half, coverage.rows) : cv::Rect(0, 0, half, coverage.rows);
         mask(otherHalf).setTo(0);
         return mask;
     }

@@ -26,7 +26,6 @@ namespace {
 constexpr int kSize = 512;
 constexpr double kFovDegrees = 35.0;
 
-
 enum class Source { Contour, Suggestive, SuggestiveObject, DepthEdge, NormalEdge };
 
 /** Which kernel a layer runs, with the suggestive settings both suggestive kernels take. */
@@ -83,8 +82,6 @@ protected:
     std::unique_ptr<LineLayerPass> lines;
 };
 
-
-
 TEST_F(LineLayers, SphereContourLiesOnTheAnalyticSilhouetteCircle) {
     // 512 x 256 segments: the polygon lies inside the sphere by at most rho pi^2 / (2 N^2) = 0.004 px here.
     look(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 512, 256), {0.0, 0.0, 4.0});
@@ -111,7 +108,8 @@ TEST_F(LineLayers, SphereContourLiesOnTheAnalyticSilhouetteCircle) {
         for (int sector = 0; sector < 360; ++sector) EXPECT_GT(sectors[sector], 0) << "gap at " << sector << " deg";
         // A 2-px ring of radius 209.6 px: about 2 pi rho x 2 pixels of coverage in all.
         const double circle = sphere.focalPixels() / std::sqrt(15.0);
-        EXPECT_NEAR(cv::sum(image)[0] / 255.0, 2.0 * glm::pi<double>() * circle * 2.0, 0.1 * 2.0 * glm::pi<double>() * circle * 2.0);
+        EXPECT_NEAR(cv::sum(image)[0] / 255.0, 2.0 * glm::pi<double>() * circle * 2.0,
+                    0.1 * 2.0 * glm::pi<double>() * circle * 2.0);
         RecordProperty("full_pixels_s" + std::to_string(supersample), fullPixels);
     }
 }
@@ -307,8 +305,7 @@ TEST_F(LineLayers, CurvatureIsDerivedOnlyWhenObjectSpaceLinesRun) {
 
 TEST_F(LineLayers, EveryKernelRepeatsExactly) {
     for (const Source source :
-         {Source::Contour, Source::Suggestive, Source::SuggestiveObject, Source::DepthEdge,
-          Source::NormalEdge}) {
+         {Source::Contour, Source::Suggestive, Source::SuggestiveObject, Source::DepthEdge, Source::NormalEdge}) {
         // A smooth torus has contours, suggestive contours and depth breaks; normal creases need a cube.
         if (source == Source::NormalEdge)
             look(makeCube({0.0f, 0.0f, 0.0f}, 1.0f), {2.5, 1.8, 2.0});

@@ -48,7 +48,8 @@ protected:
         executor.run(plan, graph.mutableView(), {kSize, kSize, false});
         std::vector<cv::Point2d> points;
         for (const LinePoint& point : graph.lineLayer("material-boundary")->skeleton().points)
-            points.push_back({(point.position.x + 0.5) / supersample - 0.5, (point.position.y + 0.5) / supersample - 0.5});
+            points.push_back(
+                {(point.position.x + 0.5) / supersample - 0.5, (point.position.y + 0.5) / supersample - 0.5});
         return points;
     }
 
@@ -63,8 +64,8 @@ protected:
         std::vector<cv::Point2d> edge;
         for (int i = 0; i <= samples; ++i) {
             const double t = double(i) / samples;
-            edge.push_back(project({0.0, -kHalf + t * 2 * kHalf, kHalf}));  // front face, bottom to top
-            edge.push_back(project({0.0, kHalf, kHalf - t * 2 * kHalf}));   // top face, front to back
+            edge.push_back(project({0.0, -kHalf + t * 2 * kHalf, kHalf})); // front face, bottom to top
+            edge.push_back(project({0.0, kHalf, kHalf - t * 2 * kHalf}));  // top face, front to back
         }
         return edge;
     }

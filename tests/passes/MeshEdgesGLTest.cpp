@@ -36,8 +36,7 @@ double distanceToSegment(glm::dvec2 point, const ScreenSegment& segment) {
 
 double distanceToSegments(glm::dvec2 point, const std::vector<ScreenSegment>& segments) {
     double nearest = std::numeric_limits<double>::infinity();
-    for (const ScreenSegment& segment : segments)
-        nearest = std::min(nearest, distanceToSegment(point, segment));
+    for (const ScreenSegment& segment : segments) nearest = std::min(nearest, distanceToSegment(point, segment));
     return nearest;
 }
 
@@ -173,8 +172,7 @@ std::vector<ScreenSegment> analyticSilhouette(const Camera& camera, glm::dvec3 c
             toPixels(camera, circleCentre + circleRadius * (std::cos(angle) * u + std::sin(angle) * v), scale));
     }
     std::vector<ScreenSegment> segments;
-    for (int i = 0; i < kSamples; ++i)
-        segments.push_back({points[i], points[(i + 1) % kSamples]});
+    for (int i = 0; i < kSamples; ++i) segments.push_back({points[i], points[(i + 1) % kSamples]});
     return segments;
 }
 
@@ -213,13 +211,11 @@ protected:
      *  returns each field's mask (row 0 at the top). */
     std::map<std::string, cv::Mat> renderEdges(MeshEdgesPass& pass, const std::vector<std::string>& fields) {
         std::vector<std::string> requested;
-        for (const std::string& field : fields)
-            requested.push_back(std::string(pass.name()) + "." + field);
+        for (const std::string& field : fields) requested.push_back(std::string(pass.name()) + "." + field);
         const Plan plan = compile({gbuffer.get(), &pass}, requested);
         executor.run(plan, {gbuffer.get(), &pass}, {frame.camera.width, frame.camera.height, false});
         std::map<std::string, cv::Mat> masks;
-        for (std::size_t i = 0; i < fields.size(); ++i)
-            masks[fields[i]] = executor.store().image(requested[i]).clone();
+        for (std::size_t i = 0; i < fields.size(); ++i) masks[fields[i]] = executor.store().image(requested[i]).clone();
         return masks;
     }
 
@@ -594,8 +590,7 @@ TEST_F(MeshEdgesGL, BordersLieOnTheRimOfAnOpenSphere) {
     EXPECT_GE(total.fraction(), 0.95);
     // The rim encloses the middle of its projection.
     glm::dvec2 middle(0.0);
-    for (const ScreenSegment& edge : projectedRim)
-        middle += edge.a / double(projectedRim.size());
+    for (const ScreenSegment& edge : projectedRim) middle += edge.a / double(projectedRim.size());
     EXPECT_FALSE(leaksToBorder(border, cv::Point(int(middle.x), int(middle.y))));
     RecordProperty("bowl_rim", "farthest " + std::to_string(farthest) + " px, covered " +
                                    std::to_string(total.fraction()) + ", " + std::to_string(cv::countNonZero(border)) +
@@ -619,8 +614,7 @@ TEST_F(MeshEdgesGL, QuadHasFourBordersAndNoDiagonal) {
     const std::vector<ScreenSegment> sides = projectAll(
         {{{-1, -1, 0}, {1, -1, 0}}, {{1, -1, 0}, {1, 1, 0}}, {{1, 1, 0}, {-1, 1, 0}}, {{-1, 1, 0}, {-1, -1, 0}}});
     EXPECT_LE(farthestLinePixel(masks["border"], sides), 1.0);
-    for (const ScreenSegment& side : sides)
-        EXPECT_GE(coverageAlong(masks["border"], side, 1.0).fraction(), 0.95);
+    for (const ScreenSegment& side : sides) EXPECT_GE(coverageAlong(masks["border"], side, 1.0).fraction(), 0.95);
     const StrayCheck diagonal =
         linesAlongForbidden(masks["border"], projectAll({{{-1, -1, 0}, {1, 1, 0}}}), sides, 2.5, 1.0);
     EXPECT_GT(diagonal.samples, 50);

@@ -113,8 +113,7 @@ TEST_F(SceneOrientationSphere, AfterVerticesUploadsWhatOrientMeshDecided) {
     const SceneOrientation::MeshSets& meshSets = sets[0];
     EXPECT_EQ(meshSets.frontIndexCount, GLsizei(3 * reference.frontTriangles.size()));
     EXPECT_EQ(meshSets.backIndexCount, GLsizei(3 * reference.backTriangles.size()));
-    EXPECT_EQ(readBuffer<glm::uvec3>(meshSets.frontIndices, reference.frontTriangles.size()),
-              reference.frontTriangles);
+    EXPECT_EQ(readBuffer<glm::uvec3>(meshSets.frontIndices, reference.frontTriangles.size()), reference.frontTriangles);
     EXPECT_EQ(readBuffer<glm::uvec3>(meshSets.backIndices, reference.backTriangles.size()), reference.backTriangles);
     EXPECT_EQ(readBuffer<glm::vec2>(meshSets.shadeCoords, reference.shadeCoords.size()), reference.shadeCoords);
     EXPECT_EQ(meshSets.shadeCoords.byteCount(), reference.shadeCoords.size() * sizeof(glm::vec2));
@@ -166,9 +165,9 @@ TEST_F(SceneOrientationSphere, AfterVerticesUploadsWhatOrientMeshDecided) {
 }
 
 TEST_F(SceneOrientationSphere, EveryCpuMethodReportsNoHoles) {
-    for (const FaceOrientationMethod method : {FaceOrientationMethod::DuringTriangles,
-                                               FaceOrientationMethod::DuringVertices,
-                                               FaceOrientationMethod::AfterVertices}) {
+    for (const FaceOrientationMethod method :
+         {FaceOrientationMethod::DuringTriangles, FaceOrientationMethod::DuringVertices,
+          FaceOrientationMethod::AfterVertices}) {
         for (const ViewVectorMode mode : {ViewVectorMode::Exact, ViewVectorMode::Constant}) {
             OrientationSettings settings;
             settings.method = method;

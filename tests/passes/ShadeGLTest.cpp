@@ -44,7 +44,6 @@ constexpr double kRadius = 1.0;
 constexpr double kDistance = 4.0;
 constexpr double kFovDegrees = 35.0;
 
-
 double encodeSrgb(double linear) {
     const double x = std::clamp(linear, 0.0, 1.0);
     return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
@@ -120,7 +119,6 @@ protected:
         settings.shininess = shininess;
         return settings;
     }
-
 };
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -142,8 +140,7 @@ TEST_P(ShadeCel, BandBordersSitAtThePredictedAngles) {
     for (int i = 0; i < bands; ++i) {
         const cv::Vec4b texel = map.texels.at<cv::Vec4b>(0, i);
         cv::Vec3i color;
-        for (int c = 0; c < 3; ++c)
-            color[c] = srgbCode(linearOf(texel[c]) * double(base[c]));
+        for (int c = 0; c < 3; ++c) color[c] = srgbCode(linearOf(texel[c]) * double(base[c]));
         bandColors.push_back(color);
     }
     const cv::Mat image = render(settingsFor(ShadingModel::Cel), map);
@@ -172,8 +169,7 @@ TEST_P(ShadeCel, BandBordersSitAtThePredictedAngles) {
             int nearestDistance = 256;
             for (int i = 0; i < bands; ++i) {
                 int distance = 0;
-                for (int c = 0; c < 3; ++c)
-                    distance = std::max(distance, std::abs(int(pixel[c]) - bandColors[i][c]));
+                for (int c = 0; c < 3; ++c) distance = std::max(distance, std::abs(int(pixel[c]) - bandColors[i][c]));
                 if (distance < nearestDistance) {
                     nearest = i;
                     nearestDistance = distance;
@@ -182,8 +178,7 @@ TEST_P(ShadeCel, BandBordersSitAtThePredictedAngles) {
             measuredBand.at<int>(row, col) = nearest;
             const double q = 0.5 * glm::dot(hit->normal, l) + 0.5;
             double fromBorder = 1.0;
-            for (int k = 1; k < bands; ++k)
-                fromBorder = std::min(fromBorder, std::abs(q - double(k) / bands));
+            for (int k = 1; k < bands; ++k) fromBorder = std::min(fromBorder, std::abs(q - double(k) / bands));
             const int predicted = std::min(int(std::floor(q * bands)), bands - 1);
             // How close to a border the shading is still exact: the farthest wrong pixel, margin or not.
             if (nearest != predicted) widestWrongMargin = std::max(widestWrongMargin, fromBorder);
@@ -424,8 +419,7 @@ TEST_F(ShadeSphere, ComicDefaultMapShowsItsThreeTonesWherePredicted) {
     const auto colorOf = [&](int mapRow, int mapCol) {
         const cv::Vec4b texel = map.texels.at<cv::Vec4b>(mapRow, mapCol);
         cv::Vec3i color;
-        for (int c = 0; c < 3; ++c)
-            color[c] = srgbCode(linearOf(texel[c]) * double(base[c]));
+        for (int c = 0; c < 3; ++c) color[c] = srgbCode(linearOf(texel[c]) * double(base[c]));
         return color;
     };
     const int bottom = map.texels.rows - 1;
@@ -445,8 +439,7 @@ TEST_F(ShadeSphere, ComicDefaultMapShowsItsThreeTonesWherePredicted) {
             const cv::Vec3i expected = tone == 2 ? highlight : (tone == 1 ? lit : shadow);
             const cv::Vec4b pixel = pixelAt(image, col, row);
             int error = 0;
-            for (int c = 0; c < 3; ++c)
-                error = std::max(error, std::abs(int(pixel[c]) - expected[c]));
+            for (int c = 0; c < 3; ++c) error = std::max(error, std::abs(int(pixel[c]) - expected[c]));
             ++compared;
             ++counts[tone];
             if (error > 1 && ++wrong <= 5)
@@ -455,8 +448,7 @@ TEST_F(ShadeSphere, ComicDefaultMapShowsItsThreeTonesWherePredicted) {
     }
     EXPECT_EQ(wrong, 0);
     EXPECT_GT(compared, 25000);
-    for (int tone = 0; tone < 3; ++tone)
-        EXPECT_GT(counts[tone], 100) << "tone " << tone << " must show";
+    for (int tone = 0; tone < 3; ++tone) EXPECT_GT(counts[tone], 100) << "tone " << tone << " must show";
     std::printf("  comic default map: %d pixels as predicted (shadow %d, lit %d, highlight %d)\n", compared, counts[0],
                 counts[1], counts[2]);
 }
@@ -811,8 +803,7 @@ TEST_F(ShadeSphere, FlatShadesEveryFaceWithOneColour) {
             // The face normal, turned toward the eye, lit like lambert.
             const glm::uvec3 t = mesh.triangles[hit.triangle];
             glm::dvec3 p[3];
-            for (int k = 0; k < 3; ++k)
-                p[k] = glm::dvec3(viewFromModel * glm::dvec4(mesh.positions[t[k]], 1.0));
+            for (int k = 0; k < 3; ++k) p[k] = glm::dvec3(viewFromModel * glm::dvec4(mesh.positions[t[k]], 1.0));
             glm::dvec3 n = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
             if (glm::dot(n, -p[0]) < 0.0) n = -n;
             const double expected =
@@ -849,8 +840,7 @@ int largestDifference(const cv::Mat& a, const cv::Mat& b) {
             const cv::Vec4b pa = pixelAt(a, col, row), pb = pixelAt(b, col, row);
             EXPECT_EQ(pa[3], pb[3]) << "coverage at " << col << ", " << row;
             if (pa[3] != 255 || pb[3] != 255) continue;
-            for (int c = 0; c < 3; ++c)
-                largest = std::max(largest, std::abs(int(pa[c]) - int(pb[c])));
+            for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(int(pa[c]) - int(pb[c])));
         }
     }
     return largest;
@@ -957,8 +947,7 @@ ShadeMap comicMap(cv::Vec4b shadow, cv::Vec4b lit, const std::vector<cv::Vec4b>&
 /** The 8-bit colour a texel gives on a base colour: decoded, multiplied, encoded. */
 cv::Vec3i shadedColor(cv::Vec4b texel, glm::vec4 base) {
     cv::Vec3i color;
-    for (int c = 0; c < 3; ++c)
-        color[c] = srgbCode(linearOf(texel[c]) * double(base[c]));
+    for (int c = 0; c < 3; ++c) color[c] = srgbCode(linearOf(texel[c]) * double(base[c]));
     return color;
 }
 

@@ -51,8 +51,8 @@ TEST(ShadeMap, FiveBandsAreSeed003Levels) {
 }
 
 TEST(ShadeMap, FiveBandBordersSitAtQuarterFifths) {
-    // Qu, Chen & Zwicker's eq. 4: level 0 below q = .2, .25 up to .4, .5 up to .6, .75 up to .8, 1 above. The same texel
-    // rule as the shader, on both sides of every border.
+    // Qu, Chen & Zwicker's eq. 4: level 0 below q = .2, .25 up to .4, .5 up to .6, .75 up to .8, 1 above. The same
+    // texel rule as the shader, on both sides of every border.
     const int bands = makeBandShadeMap(5).texels.cols;
     const double borders[] = {0.2, 0.4, 0.6, 0.8};
     for (int k = 0; k < 4; ++k) {

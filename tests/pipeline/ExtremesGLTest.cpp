@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 const std::string kAllLines =
     "outline,silhouette,normal-edge,depth-edge,crease,border,suggestive,contour,mesh-silhouette";
 /** The types found in the G-buffer or on the mesh's edges (not drawn by GL at the output size). */
-const std::vector<std::string> kImageAndEdgeLines = {"normal-edge", "depth-edge", "crease", "border",
+const std::vector<std::string> kImageAndEdgeLines = {"normal-edge", "depth-edge", "crease",         "border",
                                                      "suggestive",  "contour",    "mesh-silhouette"};
 
 std::string readText(const fs::path& path) {
@@ -292,10 +292,10 @@ TEST_F(Extremes, DegenerateTrianglesChangeNothing) {
           << "v " << number(corner.x) << ' ' << number(corner.y) << ' ' << number(corner.z) << "\n"
           << "v 0.25 0.5 0.75\n"
           << "vn 0 0 1\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\n"
-          << face(5, 5, 6) << face(7, 8, 7)                                      // repeated indices
-          << face(poleIndex, next, next + 1)                                     // collinear spike
+          << face(5, 5, 6) << face(7, 8, 7)                                           // repeated indices
+          << face(poleIndex, next, next + 1)                                          // collinear spike
           << face(sphere.positions.size() + 1, sphere.positions.size() + 2, next + 2) // two corners at one point
-          << face(next + 3, next + 3, next + 3);                                 // a point
+          << face(next + 3, next + 3, next + 3);                                      // a point
     const fs::path dirty = directory / "degenerate.obj";
     writeObj(dirty, {sphere, cube}, 1.0, extra.str());
 
@@ -312,8 +312,7 @@ TEST_F(Extremes, DegenerateTrianglesChangeNothing) {
     ASSERT_EQ(reference.size(), degenerate.size());
     for (const auto& [name, image] : reference) {
         ASSERT_TRUE(degenerate.count(name)) << name;
-        EXPECT_TRUE(test::imagesNear(degenerate.at(name), image, {0.0, 0.0, 0.0}, "Extremes.Degenerate", name))
-            << name;
+        EXPECT_TRUE(test::imagesNear(degenerate.at(name), image, {0.0, 0.0, 0.0}, "Extremes.Degenerate", name)) << name;
     }
 }
 
@@ -325,9 +324,9 @@ TEST_F(Extremes, DegenerateTrianglesGiveFiniteNormalsHullOffsetsAndAdjacency) {
     mesh.positions.push_back({0.0f, 0.0f, 1.5f});
     mesh.positions.push_back({0.0f, 0.0f, 2.0f});
     mesh.positions.push_back(mesh.positions[5]);
-    mesh.triangles.emplace_back(0, count, count + 1);  // collinear
-    mesh.triangles.emplace_back(3, 3, 4);              // repeated index
-    mesh.triangles.emplace_back(5, count + 2, 6);      // two corners at one position
+    mesh.triangles.emplace_back(0, count, count + 1); // collinear
+    mesh.triangles.emplace_back(3, 3, 4);             // repeated index
+    mesh.triangles.emplace_back(5, count + 2, 6);     // two corners at one position
     mesh.triangles.emplace_back(count + 2, count + 2, count + 2);
     auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
     for (const glm::vec3& n : computeSmoothNormals(mesh.positions, mesh.triangles)) {
@@ -423,22 +422,23 @@ TEST_F(Extremes, PlaneAndCubeSeenAt89_9DegreesFromTheirNormal) {
     writeObj(plane, {makePlane(1.0f, 32)});
     // The plane z = 0 from 89.9 degrees off its normal: a sliver one or two pixels high across the picture.
     const std::string eye = number(0.0) + "," + number(-4.0 * std::sin(angle)) + "," + number(4.0 * std::cos(angle));
-    const auto planeDump =
-        readDump(render(plane, "plane", {"--size", "128x128", "--eye", eye, "--target", "0,0,0", "--up", "0,0,1",
-                                         "--lines", kAllLines, "--shading", "phong"}));
+    const auto planeDump = readDump(render(plane, "plane",
+                                           {"--size", "128x128", "--eye", eye, "--target", "0,0,0", "--up", "0,0,1",
+                                            "--lines", kAllLines, "--shading", "phong"}));
     // Its depth extent projects to 2 sin(0.1 deg) f / 4 = 0.18 px: at most one row of pixel centres is covered.
     EXPECT_LE(cv::countNonZero(planeDump.at("coverage.png")), 128);
     // A plane has no suggestive contours, creases, mesh silhouette or normal edges, whatever the angle.
-    for (const char* file : {"lines-suggestive.png", "lines-crease.png", "lines-mesh-silhouette.png",
-                             "lines-normal-edge.png"})
+    for (const char* file :
+         {"lines-suggestive.png", "lines-crease.png", "lines-mesh-silhouette.png", "lines-normal-edge.png"})
         EXPECT_EQ(cv::countNonZero(planeDump.at(file)), 0) << file;
 
     // A cube whose top face is seen at 89.9 degrees and whose front face is seen head on (w -> 0 there).
     const fs::path cube = directory / "cube.obj";
     writeObj(cube, {makeCube({0.0f, 0.0f, 0.0f}, 1.0f)});
     const std::string cubeEye = "0," + number(1.0 + 5.0 * std::cos(angle)) + "," + number(1.0 + 5.0 * std::sin(angle));
-    const auto cubeDump = readDump(render(cube, "cube", {"--size", "128x128", "--eye", cubeEye, "--target", "0,1,1",
-                                                         "--lines", kAllLines, "--shading", "comic"}));
+    const auto cubeDump = readDump(render(
+        cube, "cube",
+        {"--size", "128x128", "--eye", cubeEye, "--target", "0,1,1", "--lines", kAllLines, "--shading", "comic"}));
     // Inside the front face (3 px from every edge of the coverage) no line of any type: the grazing top face above it
     // makes no depth-edge, normal-edge or contour false positive, and w ~ 0 makes no suggestive contour.
     const cv::Mat interior = interiorOf(cubeDump.at("coverage.png"), 4);
@@ -452,8 +452,9 @@ TEST_F(Extremes, FrontalPlaneHasNoSuggestiveContoursAndAFiniteW) {
     // pixel and normalize(w) would be NaN.
     const fs::path plane = directory / "plane.obj";
     writeObj(plane, {makePlane(1.0f, 16)});
-    const auto dump = readDump(render(plane, "frontal", {"--size", "129x129", "--eye", "0,0,3", "--target", "0,0,0",
-                                                          "--lines", kAllLines, "--shading", "phong"}));
+    const auto dump = readDump(render(
+        plane, "frontal",
+        {"--size", "129x129", "--eye", "0,0,3", "--target", "0,0,0", "--lines", kAllLines, "--shading", "phong"}));
     const cv::Vec4f w = dump.at("w.exr").at<cv::Vec4f>(64, 64);
     EXPECT_LT(std::hypot(w[0], w[1], w[2]), 1e-3f);
     EXPECT_EQ(cv::countNonZero(dump.at("lines-suggestive.png")), 0);
@@ -468,9 +469,9 @@ TEST_F(Extremes, SphereRimIsFiniteAndItsContourIsOnePixelWide) {
     const fs::path sphere = directory / "sphere.obj";
     writeObj(sphere, {makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 128, 64)});
     const fs::path statsPath = directory / "stats.json";
-    const auto dump = readDump(render(sphere, "sphere", {"--size", "128x128", "--eye", "0,0,4", "--target", "0,0,0",
-                                                         "--fov", "35", "--lines", kAllLines, "--stats",
-                                                         statsPath.string()}));
+    const auto dump = readDump(render(sphere, "sphere",
+                                      {"--size", "128x128", "--eye", "0,0,4", "--target", "0,0,0", "--fov", "35",
+                                       "--lines", kAllLines, "--stats", statsPath.string()}));
     EXPECT_EQ(cv::countNonZero(dump.at("lines-suggestive.png")), 0) << "a sphere has no suggestive contours";
     // The contour skeleton is one pixel wide: a closed digital curve around a disc of radius rho has between
     // 4 sqrt(2) rho (8-connected: rho / sqrt(2) pixels per octant) and 8 rho (4-connected) pixels; a band two pixels
@@ -497,8 +498,8 @@ TEST_F(Extremes, ShininessZeroAndAMillionInPhongAndComic) {
     cv::Mat mapImage(2, 2, CV_8UC4, cv::Scalar(255, 255, 255, 255));
     mapImage.row(1).setTo(cv::Scalar(0, 0, 0, 255));
     writeImage(map, mapImage);
-    const std::vector<std::string> view = {"--size", "96x96", "--eye", "0,0,4", "--target", "0,0,0",
-                                           "--light", "0.3,0.4,1"};
+    const std::vector<std::string> view = {"--size",   "96x96", "--eye",   "0,0,4",
+                                           "--target", "0,0,0", "--light", "0.3,0.4,1"};
     auto flags = [&](std::vector<std::string> more) {
         more.insert(more.begin(), view.begin(), view.end());
         return more;
@@ -506,8 +507,8 @@ TEST_F(Extremes, ShininessZeroAndAMillionInPhongAndComic) {
     const auto lambert = readDump(render(sphere, "lambert", flags({"--shading", "lambert"})));
     const cv::Mat lit = lambert.at("coverage.png") > 0;
     for (const char* shininess : {"0", "1e6"}) {
-        const auto phong = readDump(render(sphere, std::string("phong") + shininess,
-                                           flags({"--shading", "phong", "--shininess", shininess})));
+        const auto phong = readDump(
+            render(sphere, std::string("phong") + shininess, flags({"--shading", "phong", "--shininess", shininess})));
         const auto comic = readDump(render(sphere, std::string("comic") + shininess,
                                            flags({"--shading", "comic", "--shininess", shininess, "--shademap",
                                                   map.string(), "--lines", "suggestive,contour"})));
@@ -553,8 +554,9 @@ TEST_F(Extremes, CameraInsideTheModel) {
     const fs::path model = directory / "room.obj";
     writeObj(model, {room, ball});
     const fs::path statsPath = directory / "stats.json";
-    const fs::path dump = render(model, "inside", {"--size", "128x128", "--eye", "0,0,0", "--target", "0,0,-4",
-                                                   "--lines", kAllLines, "--stats", statsPath.string()});
+    const fs::path dump = render(model, "inside",
+                                 {"--size", "128x128", "--eye", "0,0,0", "--target", "0,0,-4", "--lines", kAllLines,
+                                  "--stats", statsPath.string()});
     const auto files = readDump(dump);
     EXPECT_EQ(cv::countNonZero(files.at("lines-outline.png")), 0);
     EXPECT_EQ(cv::countNonZero(files.at("lines-silhouette.png")), 0);
@@ -615,9 +617,10 @@ TEST_F(Extremes, FarOverNearOfAMillionKeepsOcclusionAndLinearDepth) {
     writeObj(model, {makePlane(400.0f, 4, {0.0f, 0.0f, -planeDepth}),
                      makeBox({-boxHalf, -boxHalf, -boxDepth - 0.45f}, {boxHalf, boxHalf, -boxDepth})});
     const fs::path statsPath = directory / "stats.json";
-    const fs::path dump = render(model, "far", {"--size", "128x128", "--eye", "0,0,0", "--target", "0,0,-1",
-                                                "--clip", "1e-3,1e3", "--lines", "depth-edge,crease,mesh-silhouette",
-                                                "--depth-jump", "1e-4", "--stats", statsPath.string()});
+    const fs::path dump =
+        render(model, "far",
+               {"--size", "128x128", "--eye", "0,0,0", "--target", "0,0,-1", "--clip", "1e-3,1e3", "--lines",
+                "depth-edge,crease,mesh-silhouette", "--depth-jump", "1e-4", "--stats", statsPath.string()});
     const auto files = readDump(dump);
     const auto stats = nlohmann::json::parse(readText(statsPath));
     EXPECT_EQ(stats["clip"]["far_over_near"], 1e6);
@@ -669,8 +672,8 @@ TEST_F(Extremes, NearOverFarFrom1em4To1e6KeepsEveryBufferFinite) {
     // cuts the sphere open: finite buffers, and the coverage of the uncut sphere identical at every ratio.
     const fs::path sphere = directory / "sphere.obj";
     writeObj(sphere, {makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 48, 24)});
-    const std::vector<std::string> view = {"--size", "64x64", "--eye", "0,0,4", "--target", "0,0,0",
-                                           "--lines", kAllLines};
+    const std::vector<std::string> view = {"--size",   "64x64", "--eye",   "0,0,4",
+                                           "--target", "0,0,0", "--lines", kAllLines};
     auto flags = [&](std::vector<std::string> more) {
         more.insert(more.begin(), view.begin(), view.end());
         return more;
@@ -711,8 +714,9 @@ TEST_F(Extremes, HalfFloatGBufferStaysFiniteAndKeepsDepthInFloat32) {
 
     const fs::path plane = directory / "plane.obj";
     writeObj(plane, {makePlane(1.0f, 16)});
-    const auto frontal = readDump(render(plane, "frontal", {"--size", "129x129", "--eye", "0,0,3", "--target", "0,0,0",
-                                                             "--lines", kAllLines, "--gbuffer-precision", "half"}));
+    const auto frontal = readDump(render(plane, "frontal",
+                                         {"--size", "129x129", "--eye", "0,0,3", "--target", "0,0,0", "--lines",
+                                          kAllLines, "--gbuffer-precision", "half"}));
     EXPECT_EQ(cv::countNonZero(frontal.at("lines-suggestive.png")), 0);
 }
 

@@ -34,8 +34,11 @@ void PrintTo(const GoldenCase& golden, std::ostream* stream) { *stream << golden
 // coverage on a rasterisation tie, hence up to 0.5% outliers, all within a pixel of the silhouette. 8-bit images: one
 // code of rounding.
 const std::map<std::string, test::ImageTolerance> kTolerances = {
-    {"normal.exr", {1e-4, 2e-3, 0.005}},   {"view.exr", {1e-4, 2e-3, 0.005}}, {"w.exr", {1e-4, 2e-3, 0.005}},
-    {"ndotv.exr", {1e-4, 2e-3, 0.005}},    {"depth.exr", {1e-4, 2e-2, 0.005}},
+    {"normal.exr", {1e-4, 2e-3, 0.005}},
+    {"view.exr", {1e-4, 2e-3, 0.005}},
+    {"w.exr", {1e-4, 2e-3, 0.005}},
+    {"ndotv.exr", {1e-4, 2e-3, 0.005}},
+    {"depth.exr", {1e-4, 2e-2, 0.005}},
     // radial = (n.(c - p), (J w).x, (J w).y, |w|^2), lengths in bounding radii and J w in pixels: values reach about
     // 110 in these scenes (J w near the silhouette), so max 1e-2 is the same 1e-4 of the largest value the [-1, 1]
     // fields get. A silhouette pixel flipping coverage changes by its whole value, on average 9.2 (spot) and 11.6
@@ -44,10 +47,13 @@ const std::map<std::string, test::ImageTolerance> kTolerances = {
     // Material ids are whole numbers (id + 1, 0 off the model), exact on any driver; only a silhouette pixel flipping
     // coverage changes, by its id + 1 (1 in these one-material scenes), so 0.5% of pixels give a mean of 0.005.
     {"materialid.exr", {0.0, 1e-2, 0.005}},
-    {"coverage.png", {0.0, 2.0, 0.005}},   {"basecolor.png", {0.0, 2.0, 0.005}},
-    {"shading.png", {1.0, 2.0, 0.005}},    {"final.png", {1.0, 2.0, 0.005}},
+    {"coverage.png", {0.0, 2.0, 0.005}},
+    {"basecolor.png", {0.0, 2.0, 0.005}},
+    {"shading.png", {1.0, 2.0, 0.005}},
+    {"final.png", {1.0, 2.0, 0.005}},
     // Line masks are 0 or 255: only rasterisation ties on a line's own border may flip (see below).
-    {"lines-outline.png", {0.0, 2.0, 0.01}}, {"lines-silhouette.png", {0.0, 2.0, 0.01}},
+    {"lines-outline.png", {0.0, 2.0, 0.01}},
+    {"lines-silhouette.png", {0.0, 2.0, 0.01}},
 };
 
 /** The buffers a dump wrote: every file its manifest.json names. */
@@ -56,7 +62,8 @@ std::set<std::string> dumpedBuffers(const fs::path& dumpDirectory) {
     const nlohmann::json manifest = nlohmann::json::parse(file, nullptr, false);
     std::set<std::string> files;
     if (!manifest.is_object() || !manifest.contains("files") || !manifest["files"].is_array()) {
-        ADD_FAILURE() << dumpDirectory / "manifest.json" << " is missing or has no \"files\" list";
+        ADD_FAILURE() << dumpDirectory / "manifest.json"
+                      << " is missing or has no \"files\" list";
         return files;
     }
     for (const nlohmann::json& entry : manifest["files"]) files.insert(entry.at("file").get<std::string>());
@@ -143,20 +150,21 @@ INSTANTIATE_TEST_SUITE_P(
     Models, PipelineGolden,
     ::testing::Values(
         // Spot from a fixed three-quarter view: smooth closed surface, computed normals, auto near/far.
-        GoldenCase{"spot", {model("spot_c3d.obj"), "--size", "160x120", "--eye", "2.4,1.0,-1.6",
-                            "--target", "0,0.1,0", "--fov", "35", "--light", "1,1,-0.5", "--shading", "lambert"}},
+        GoldenCase{"spot",
+                   {model("spot_c3d.obj"), "--size", "160x120", "--eye", "2.4,1.0,-1.6", "--target", "0,0.1,0", "--fov",
+                    "35", "--light", "1,1,-0.5", "--shading", "lambert"}},
         // The teapot: open patches (back faces through holes), the auto-framed camera and the default light.
         GoldenCase{"teapot", {model("teapot_c3d.obj"), "--size", "128x128", "--shading", "lambert"}},
         // The default look: Qu, Chen & Zwicker's five cel bands, Lander's outline and the inflated hull (3 px, red).
         GoldenCase{"spot_cel_lines",
-                   {model("spot_c3d.obj"), "--size", "160x120", "--eye", "2.4,1.0,-1.6", "--target", "0,0.1,0",
-                    "--fov", "35", "--light", "1,1,-0.5", "--lines", "outline,silhouette", "--silhouette-width", "3",
+                   {model("spot_c3d.obj"), "--size", "160x120", "--eye", "2.4,1.0,-1.6", "--target", "0,0.1,0", "--fov",
+                    "35", "--light", "1,1,-0.5", "--lines", "outline,silhouette", "--silhouette-width", "3",
                     "--silhouette-color", "1,0,0"}},
         // Specular comic with Winnemöller & Bangay 2002's CPU marking (after-vertices, constant view vector, rule 1).
         GoldenCase{"teapot_comic_after_vertices",
                    {model("teapot_c3d.obj"), "--size", "128x128", "--shading", "comic", "--shininess", "16",
-                    "--view-vector", "constant", "--face-orientation", "after-vertices", "--front-rule", "1",
-                    "--lines", "outline"}}),
+                    "--view-vector", "constant", "--face-orientation", "after-vertices", "--front-rule", "1", "--lines",
+                    "outline"}}),
     [](const ::testing::TestParamInfo<GoldenCase>& param) { return param.param.name; });
 
 } // namespace

@@ -49,8 +49,8 @@ struct SphereCase {
     double radius;
 };
 const SphereCase kSphereCases[] = {
-    {{0.0, 0.0, 4.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 1.0},     // on axis, d = 4 R
-    {{0.3, -0.2, 5.0}, {0.0, 0.0, 0.0}, {0.9, -0.6, -0.4}, 0.6},  // off axis: an ellipse
+    {{0.0, 0.0, 4.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 1.0},    // on axis, d = 4 R
+    {{0.3, -0.2, 5.0}, {0.0, 0.0, 0.0}, {0.9, -0.6, -0.4}, 0.6}, // off axis: an ellipse
 };
 
 TEST(AnalyticLines, SphereSilhouetteSatisfiesTheConic) {
@@ -98,8 +98,8 @@ TEST(AnalyticLines, TorusContoursAreVisibleContourGenerators) {
             // n.(E - P) relative to |E - P|: the sine of the angle between the eye ray and the tangent plane.
             worst = std::max(worst, std::abs(glm::dot(torus.normal(u, v), toEye)) / glm::length(toEye));
             // Visible: nothing on the eye ray before it.
-            const auto hit = test::intersectTorus({camera.eye, -glm::normalize(toEye)}, glm::dvec3(0.0), torus.ring,
-                                                  torus.tube);
+            const auto hit =
+                test::intersectTorus({camera.eye, -glm::normalize(toEye)}, glm::dvec3(0.0), torus.ring, torus.tube);
             if (hit) {
                 EXPECT_GT(*hit, glm::length(toEye) * (1.0 - 1e-6));
             }

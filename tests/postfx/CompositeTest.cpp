@@ -53,7 +53,7 @@ TEST(Composite, LineLayersOverShadingInOrder) {
     cv::Mat first(1, 4, CV_8UC1, cv::Scalar(0));
     first.at<uchar>(0, 1) = 255; // full line: the line colour
     first.at<uchar>(0, 2) = 255;
-    first.at<uchar>(0, 3) = 51;  // partial coverage: 20% of the way from the shading to the line colour
+    first.at<uchar>(0, 3) = 51; // partial coverage: 20% of the way from the shading to the line colour
     cv::Mat second(1, 4, CV_8UC1, cv::Scalar(0));
     second.at<uchar>(0, 2) = 255; // drawn after the first: on top
     inputs.lines.push_back({"first", first, {0.0f, 0.0f, 0.0f, 1.0f}});

@@ -40,8 +40,8 @@ int countDifferentPixels(const cv::Mat& a, const cv::Mat& b) {
 
 TEST(ContactSheetTile, ColorShowsCoverageOverTheChecker) {
     cv::Mat color(16, 16, CV_8UC4, cv::Scalar(0, 0, 0, 0)); // transparent everywhere but the pixels set below
-    color.at<cv::Vec4b>(1, 1) = {10, 20, 30, 255};           // covered: the colour itself
-    color.at<cv::Vec4b>(2, 2) = {0, 0, 0, 128};              // half covered black over the light square
+    color.at<cv::Vec4b>(1, 1) = {10, 20, 30, 255};          // covered: the colour itself
+    color.at<cv::Vec4b>(2, 2) = {0, 0, 0, 128};             // half covered black over the light square
     const cv::Mat tile = tileAtOwnSize(color, TileContent::Color);
     ASSERT_EQ(tile.type(), CV_8UC4);
     ASSERT_EQ(tile.size(), cv::Size(16, 16));
@@ -232,8 +232,8 @@ TEST(ContactSheetTile, EnlargingRepeatsPixels) {
 
 TEST(ContactSheetTile, OnePixelLineSurvivesShrinkingFourTimes) {
     cv::Mat lines(64, 64, CV_8UC1, cv::Scalar(0));
-    lines.col(10).setTo(255);                                         // vertical, in picture column 2
-    for (int i = 0; i < 64; ++i) lines.at<uchar>(i, 63 - i) = 255;     // anti-diagonal
+    lines.col(10).setTo(255);                                      // vertical, in picture column 2
+    for (int i = 0; i < 64; ++i) lines.at<uchar>(i, 63 - i) = 255; // anti-diagonal
     const cv::Mat tile = tileImage(lines, TileContent::Lines, {16, 16});
     for (int row = 0; row < 16; ++row) {
         const cv::Vec4b vertical = tile.at<cv::Vec4b>(row, 2);
@@ -448,8 +448,9 @@ TEST(ContactSheet, ShowsEveryContentOfARun) {
     layout.tileWidth = 32;
     layout.columns = 7;
     const cv::Mat sheet = composeContactSheet(tiles, layout);
-    const std::vector<cv::Vec4b> expected = {{10, 20, 30, 255}, kBlack, kWhite, {128, 128, 255, 255}, {0, 0, 255, 255},
-                                             grey(TilePalette::kDepthNear), TilePalette::kBad};
+    const std::vector<cv::Vec4b> expected = {{10, 20, 30, 255},    kBlack,           kWhite,
+                                             {128, 128, 255, 255}, {0, 0, 255, 255}, grey(TilePalette::kDepthNear),
+                                             TilePalette::kBad};
     for (int index = 0; index < 7; ++index) {
         const cv::Point corner(Layout::kSpacing + index * (32 + Layout::kSpacing), Layout::kSpacing);
         EXPECT_EQ(sheet.at<cv::Vec4b>(corner + cv::Point(16, 16)), expected[index]) << tiles[index].label;
@@ -516,11 +517,17 @@ TEST(ContactSheet, RejectsBadTilesByLabel) {
 }
 
 TEST(ContactSheetTile, RejectsBadInputs) {
-    EXPECT_EQ(invalidArgumentMessage([] { tileImage(cv::Mat(), TileContent::Mask, {8, 8}); }),
+    EXPECT_EQ(invalidArgumentMessage([] {
+                  tileImage(cv::Mat(), TileContent::Mask, {8, 8});
+              }),
               "tileImage(): image is empty");
-    EXPECT_EQ(invalidArgumentMessage([] { tileImage(cv::Mat(2, 2, CV_32FC1), TileContent::Lines, {8, 8}); }),
+    EXPECT_EQ(invalidArgumentMessage([] {
+                  tileImage(cv::Mat(2, 2, CV_32FC1), TileContent::Lines, {8, 8});
+              }),
               "tileImage(): image must be CV_8UC1 for 'Lines', got CV_32FC1");
-    EXPECT_TRUE(startsWith(invalidArgumentMessage([] { tileImage(cv::Mat(2, 2, CV_8UC1), TileContent::Mask, {0, 8}); }),
+    EXPECT_TRUE(startsWith(invalidArgumentMessage([] {
+                               tileImage(cv::Mat(2, 2, CV_8UC1), TileContent::Mask, {0, 8});
+                           }),
                            "tileImage(): size must be 1 to 16384 a side, got 0x8"));
     EXPECT_THROW(tileImage(cv::Mat(2, 2, CV_8UC1), TileContent::Mask, {16385, 8}), std::invalid_argument);
     EXPECT_THROW(tileImage(cv::Mat(2, 2, CV_32FC(5)), TileContent::Data, {8, 8}), std::invalid_argument);

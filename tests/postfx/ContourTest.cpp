@@ -103,19 +103,15 @@ TEST(Contours, SignChangeIsPlacedAtTheLinearZeroCrossing) {
     const LineSkeleton otherSide = extractContours(
         filled(24, 16, [](int col, int) { return 0.05f * (10.7f - static_cast<float>(col)); }), depth, {});
     ASSERT_EQ(otherSide.points.size(), 16u);
-    for (const LinePoint& point : otherSide.points)
-        EXPECT_NEAR(point.position.x, 10.7f, 1e-3f);
-    for (const cv::Point& pixel : markedPixels(otherSide.mask))
-        EXPECT_EQ(pixel.x, 11);
+    for (const LinePoint& point : otherSide.points) EXPECT_NEAR(point.position.x, 10.7f, 1e-3f);
+    for (const cv::Point& pixel : markedPixels(otherSide.mask)) EXPECT_EQ(pixel.x, 11);
 
     // Across rows (the vertical pairs): zero at y = 7.6.
     const LineSkeleton acrossRows = extractContours(
         filled(24, 16, [](int, int row) { return 0.2f * (static_cast<float>(row) - 7.6f); }), depth, {});
     ASSERT_EQ(acrossRows.points.size(), 24u);
-    for (const LinePoint& point : acrossRows.points)
-        EXPECT_NEAR(point.position.y, 7.6f, 1e-3f);
-    for (const cv::Point& pixel : markedPixels(acrossRows.mask))
-        EXPECT_EQ(pixel.y, 8);
+    for (const LinePoint& point : acrossRows.points) EXPECT_NEAR(point.position.y, 7.6f, 1e-3f);
+    for (const cv::Point& pixel : markedPixels(acrossRows.mask)) EXPECT_EQ(pixel.y, 8);
 }
 
 TEST(Contours, SignChangeIsFoundInEveryColumn) {
@@ -125,8 +121,7 @@ TEST(Contours, SignChangeIsFoundInEveryColumn) {
         const LineSkeleton skeleton =
             extractContours(filled(40, 3, [=](int col, int) { return crossing - static_cast<float>(col); }), depth, {});
         ASSERT_EQ(skeleton.points.size(), 3u) << "crossing at " << crossing;
-        for (const LinePoint& point : skeleton.points)
-            EXPECT_NEAR(point.position.x, crossing, 1e-4f);
+        for (const LinePoint& point : skeleton.points) EXPECT_NEAR(point.position.x, crossing, 1e-4f);
         for (const cv::Point& pixel : markedPixels(skeleton.mask))
             EXPECT_EQ(pixel.x, static_cast<int>(std::lround(crossing))) << "crossing at " << crossing;
     }
@@ -136,8 +131,7 @@ TEST(Contours, SignChangeIsFoundInEveryColumn) {
         const LineSkeleton skeleton = extractContours(
             filled(18, 40, [=](int, int row) { return crossing - static_cast<float>(row); }), tallDepth, {});
         ASSERT_EQ(skeleton.points.size(), 18u) << "crossing at " << crossing;
-        for (const LinePoint& point : skeleton.points)
-            EXPECT_NEAR(point.position.y, crossing, 1e-4f);
+        for (const LinePoint& point : skeleton.points) EXPECT_NEAR(point.position.y, crossing, 1e-4f);
     }
 }
 
@@ -147,10 +141,8 @@ TEST(Contours, ZeroCountsAsFrontFacing) {
         extractContours(filled(24, 4, [](int col, int) { return static_cast<float>(col - 10); }), depth, {});
     // -1 | 0 changes sign (the point on the zero pixel); 0 | 1 does not.
     ASSERT_EQ(skeleton.points.size(), 4u);
-    for (const LinePoint& point : skeleton.points)
-        EXPECT_EQ(point.position.x, 10.0f);
-    for (const cv::Point& pixel : markedPixels(skeleton.mask))
-        EXPECT_EQ(pixel.x, 10);
+    for (const LinePoint& point : skeleton.points) EXPECT_EQ(point.position.x, 10.0f);
+    for (const cv::Point& pixel : markedPixels(skeleton.mask)) EXPECT_EQ(pixel.x, 10);
 }
 
 TEST(Contours, TouchingZeroIsNoContour) {
@@ -170,8 +162,7 @@ TEST(Contours, DepthStepMarksTheNearerSideAboveARelativeThreshold) {
         ASSERT_EQ(skeleton.points.size(), 16u) << what;
         for (const LinePoint& point : skeleton.points)
             EXPECT_EQ(point.position.x, 20.5f) << what << ": the midpoint of the pair";
-        for (const cv::Point& pixel : markedPixels(skeleton.mask))
-            EXPECT_EQ(pixel.x, markedColumn) << what;
+        for (const cv::Point& pixel : markedPixels(skeleton.mask)) EXPECT_EQ(pixel.x, markedColumn) << what;
         EXPECT_EQ(cv::countNonZero(skeleton.mask), 16) << what;
     };
     expectEdgeAt(extractContours(nDotV, step(2.0f, 3.0f), {}), 20, "nearer on the left");
@@ -230,8 +221,7 @@ TEST(AppendDepthBreaks, AddsToAnExistingSkeleton) {
     appendDepthBreaks(depth, 0.05f, skeleton);
     ASSERT_EQ(skeleton.points.size(), 7u);
     EXPECT_EQ(skeleton.points[0].position, cv::Point2f(15.0f, 2.0f)) << "what was there stays first";
-    for (size_t index = 1; index < skeleton.points.size(); ++index)
-        EXPECT_EQ(skeleton.points[index].position.x, 4.5f);
+    for (size_t index = 1; index < skeleton.points.size(); ++index) EXPECT_EQ(skeleton.points[index].position.x, 4.5f);
     EXPECT_EQ(skeleton.mask.at<uchar>(2, 15), 255);
     EXPECT_EQ(cv::countNonZero(skeleton.mask.col(5)), 6) << "the model's first column, next to the background";
     EXPECT_EQ(cv::countNonZero(skeleton.mask), 7);

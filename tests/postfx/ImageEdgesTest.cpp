@@ -30,8 +30,7 @@ cv::Vec4f normalAt(double angleAroundY) {
 cv::Mat normalsWithSeam(int cols, int rows, int lastLeftColumn, const cv::Vec4f& left, const cv::Vec4f& right) {
     cv::Mat normal(rows, cols, CV_32FC4);
     for (int row = 0; row < rows; ++row)
-        for (int col = 0; col < cols; ++col)
-            normal.at<cv::Vec4f>(row, col) = col <= lastLeftColumn ? left : right;
+        for (int col = 0; col < cols; ++col) normal.at<cv::Vec4f>(row, col) = col <= lastLeftColumn ? left : right;
     return normal;
 }
 
@@ -42,10 +41,8 @@ TEST(DepthEdges, StepIsJudgedRelativeToDepth) {
     for (const float scale : {1.0f, 1000.0f, 1e-3f}) {
         const LineSkeleton skeleton = extractDepthEdges(step(2.0f * scale, 3.0f * scale), {});
         ASSERT_EQ(skeleton.points.size(), 12u) << "scale " << scale;
-        for (const LinePoint& point : skeleton.points)
-            EXPECT_EQ(point.position.x, 24.5f);
-        for (const cv::Point& pixel : markedPixels(skeleton.mask))
-            EXPECT_EQ(pixel.x, 24) << "the nearer side";
+        for (const LinePoint& point : skeleton.points) EXPECT_EQ(point.position.x, 24.5f);
+        for (const cv::Point& pixel : markedPixels(skeleton.mask)) EXPECT_EQ(pixel.x, 24) << "the nearer side";
         EXPECT_TRUE(extractDepthEdges(step(2.0f * scale, 2.08f * scale), {}).points.empty()) << "scale " << scale;
     }
     DepthEdgeSettings strict;
@@ -58,8 +55,7 @@ TEST(DepthEdges, StepIsFoundInEveryColumnAndRow) {
         const LineSkeleton skeleton =
             extractDepthEdges(filled(40, 3, [=](int col, int) { return col < firstFar ? 1.0f : 2.0f; }), {});
         ASSERT_EQ(skeleton.points.size(), 3u) << "step before column " << firstFar;
-        for (const cv::Point& pixel : markedPixels(skeleton.mask))
-            EXPECT_EQ(pixel.x, firstFar - 1);
+        for (const cv::Point& pixel : markedPixels(skeleton.mask)) EXPECT_EQ(pixel.x, firstFar - 1);
     }
     for (const int firstFar : {1, 20, 39}) {
         const LineSkeleton skeleton =
@@ -99,8 +95,7 @@ TEST(DepthEdges, GrazingPlaneHasNone) {
     DepthEdgeSettings strict;
     strict.relativeJump = 0.03f;
     const LineSkeleton skeleton = extractDepthEdges(depth, strict);
-    for (const cv::Point& pixel : markedPixels(skeleton.mask))
-        EXPECT_LE(pixel.x, 8) << pixel;
+    for (const cv::Point& pixel : markedPixels(skeleton.mask)) EXPECT_LE(pixel.x, 8) << pixel;
     EXPECT_EQ(cv::countNonZero(skeleton.mask), 9 * 8);
 }
 
@@ -123,10 +118,8 @@ TEST(NormalEdges, SeamAbove30DegreesIsOnePixelWide) {
     const LineSkeleton crease =
         extractNormalEdges(normalsWithSeam(40, 10, 19, normalAt(0.0), normalAt(45.0 * degrees)), depth, {});
     ASSERT_EQ(crease.points.size(), 10u);
-    for (const LinePoint& point : crease.points)
-        EXPECT_EQ(point.position.x, 19.5f) << "the midpoint of the pair";
-    for (const cv::Point& pixel : markedPixels(crease.mask))
-        EXPECT_EQ(pixel.x, 19) << "the left pixel";
+    for (const LinePoint& point : crease.points) EXPECT_EQ(point.position.x, 19.5f) << "the midpoint of the pair";
+    for (const cv::Point& pixel : markedPixels(crease.mask)) EXPECT_EQ(pixel.x, 19) << "the left pixel";
     EXPECT_EQ(cv::countNonZero(crease.mask), 10);
 
     const LineSkeleton gentle =
@@ -145,8 +138,7 @@ TEST(NormalEdges, SeamIsFoundInEveryColumn) {
         const LineSkeleton skeleton = extractNormalEdges(
             normalsWithSeam(40, 3, lastLeftColumn, normalAt(0.0), normalAt(45.0 * degrees)), depth, {});
         ASSERT_EQ(skeleton.points.size(), 3u) << "seam after column " << lastLeftColumn;
-        for (const cv::Point& pixel : markedPixels(skeleton.mask))
-            EXPECT_EQ(pixel.x, lastLeftColumn);
+        for (const cv::Point& pixel : markedPixels(skeleton.mask)) EXPECT_EQ(pixel.x, lastLeftColumn);
     }
 }
 
@@ -157,10 +149,8 @@ TEST(NormalEdges, HorizontalSeamMarksTheUpperPixel) {
             normal.at<cv::Vec4f>(row, col) = row <= 6 ? normalAt(10.0 * degrees) : normalAt(-40.0 * degrees);
     const LineSkeleton skeleton = extractNormalEdges(normal, cv::Mat(12, 30, CV_32FC1, cv::Scalar(3.0)), {});
     ASSERT_EQ(skeleton.points.size(), 30u);
-    for (const LinePoint& point : skeleton.points)
-        EXPECT_EQ(point.position.y, 6.5f);
-    for (const cv::Point& pixel : markedPixels(skeleton.mask))
-        EXPECT_EQ(pixel.y, 6);
+    for (const LinePoint& point : skeleton.points) EXPECT_EQ(point.position.y, 6.5f);
+    for (const cv::Point& pixel : markedPixels(skeleton.mask)) EXPECT_EQ(pixel.y, 6);
 }
 
 TEST(NormalEdges, ConstantNormalHasNone) {
@@ -233,8 +223,7 @@ TEST(NormalEdges, AgreesWithAtan2OnRandomNormals) {
         settings.creaseAngleDegrees = creaseDegrees;
         const LineSkeleton skeleton = extractNormalEdges(normal, cv::Mat(2, cols, CV_32FC1, cv::Scalar(1.0)), settings);
         std::set<std::pair<float, float>> found;
-        for (const LinePoint& point : skeleton.points)
-            found.insert({point.position.x, point.position.y});
+        for (const LinePoint& point : skeleton.points) found.insert({point.position.x, point.position.y});
         int compared = 0;
         auto check = [&](int a, int b) {
             const double angle = std::atan2(cv::norm(exact[a].cross(exact[b])), exact[a].dot(exact[b]));

@@ -74,8 +74,7 @@ using test::invalidArgumentMessage;
 
 TEST(LineTracingTest, StraightLineOf200PixelsSimplifiesToItsTwoEnds) {
     cv::Mat mask = blank(240, 40);
-    for (int col = 10; col < 210; ++col)
-        set(mask, col, 20);
+    for (int col = 10; col < 210; ++col) set(mask, col, 20);
     const std::vector<Polyline> polylines = traceSkeleton({mask, {}});
     ASSERT_EQ(polylines.size(), 1u);
     EXPECT_FALSE(polylines[0].closed);
@@ -100,10 +99,8 @@ TEST(LineTracingTest, DiagonalBresenhamLineIsOneSegment) {
 
 TEST(LineTracingTest, LShapeKeepsItsCorner) {
     cv::Mat mask = blank(50, 50);
-    for (int row = 5; row <= 40; ++row)
-        set(mask, 8, row); // down
-    for (int col = 8; col <= 45; ++col)
-        set(mask, col, 40); // then right
+    for (int row = 5; row <= 40; ++row) set(mask, 8, row);  // down
+    for (int col = 8; col <= 45; ++col) set(mask, col, 40); // then right
     const std::vector<Polyline> polylines = traceSkeleton({mask, {}});
     ASSERT_EQ(polylines.size(), 1u);
     const std::vector<cv::Point2f> expected = {{8, 5}, {8, 40}, {45, 40}};
@@ -146,10 +143,8 @@ TEST(LineTracingTest, CircleIsOneClosedPolylineOnTheCircle) {
 
 TEST(LineTracingTest, TJunctionGivesThreeBranchesFromTheJunction) {
     cv::Mat mask = blank(40, 40);
-    for (int col = 5; col <= 35; ++col)
-        set(mask, col, 10);
-    for (int row = 11; row <= 30; ++row)
-        set(mask, 20, row);
+    for (int col = 5; col <= 35; ++col) set(mask, col, 10);
+    for (int row = 11; row <= 30; ++row) set(mask, 20, row);
     const std::vector<Polyline> polylines = traceSkeleton({mask, {}});
     ASSERT_EQ(polylines.size(), 3u);
     for (const Polyline& polyline : polylines) {
@@ -201,8 +196,7 @@ TEST(LineTracingTest, IsolatedPixelsBecomeOnePointPolylines) {
     set(mask, 3, 4);
     set(mask, 17, 2);
     set(mask, 0, 19); // corners of the image too
-    for (int col = 5; col <= 12; ++col)
-        set(mask, col, 10);
+    for (int col = 5; col <= 12; ++col) set(mask, col, 10);
     const std::vector<Polyline> polylines = traceSkeleton({mask, {}});
     ASSERT_EQ(polylines.size(), 4u);
     EXPECT_EQ(polylines[0].points.size(), 2u); // chains first
@@ -295,16 +289,11 @@ TEST(LineTracingTest, SimplifyClosedPolylineHandlesTheLoop) {
     // A 10 x 10 square traced from the middle of its top edge, as a loop's raster start often lies.
     Polyline square;
     square.closed = true;
-    for (int x = 5; x < 10; ++x)
-        square.points.emplace_back(float(x), 0.0f);
-    for (int y = 0; y < 10; ++y)
-        square.points.emplace_back(10.0f, float(y));
-    for (int x = 10; x > 0; --x)
-        square.points.emplace_back(float(x), 10.0f);
-    for (int y = 10; y > 0; --y)
-        square.points.emplace_back(0.0f, float(y));
-    for (int x = 0; x < 5; ++x)
-        square.points.emplace_back(float(x), 0.0f);
+    for (int x = 5; x < 10; ++x) square.points.emplace_back(float(x), 0.0f);
+    for (int y = 0; y < 10; ++y) square.points.emplace_back(10.0f, float(y));
+    for (int x = 10; x > 0; --x) square.points.emplace_back(float(x), 10.0f);
+    for (int y = 10; y > 0; --y) square.points.emplace_back(0.0f, float(y));
+    for (int x = 0; x < 5; ++x) square.points.emplace_back(float(x), 0.0f);
 
     const Polyline kept = simplifyPolyline(square, 0.5, true);
     EXPECT_TRUE(kept.closed);
@@ -320,8 +309,7 @@ TEST(LineTracingTest, LoopHangingOffAJunctionIsClosedAtTheJunction) {
     // A 6 x 6 ring of pixels with a tail to the left of its top-left corner.
     cv::Mat mask = blank(30, 30);
     cv::rectangle(mask, cv::Rect(10, 10, 6, 6), 255, 1);
-    for (int col = 3; col < 10; ++col)
-        set(mask, col, 10);
+    for (int col = 3; col < 10; ++col) set(mask, col, 10);
     const std::vector<Polyline> polylines = traceSkeleton({mask, {}});
     ASSERT_EQ(polylines.size(), 2u);
     // Raster order of start pixels: the tail's end (3, 10) comes before the junction (10, 10).
@@ -384,18 +372,15 @@ TEST(LineTracingTest, ThinningAFivePixelBandGivesItsCentreLine) {
     ASSERT_EQ(skeleton.type(), CV_8UC1);
     const std::vector<cv::Point> pixels = onPixels(skeleton);
     ASSERT_GE(pixels.size(), 50u); // ends shorten by about half the width
-    for (const cv::Point& pixel : pixels)
-        EXPECT_LE(std::abs(pixel.y - 20), 1) << pixel;
+    for (const cv::Point& pixel : pixels) EXPECT_LE(std::abs(pixel.y - 20), 1) << pixel;
     // The long middle is exactly the centre row.
-    for (int col = 15; col < 65; ++col)
-        EXPECT_EQ(skeleton.at<uchar>(20, col), 255) << col;
+    for (int col = 15; col < 65; ++col) EXPECT_EQ(skeleton.at<uchar>(20, col), 255) << col;
     // Values are 0 or 255 only.
     EXPECT_EQ(cv::countNonZero(skeleton == 255) + cv::countNonZero(skeleton == 0), skeleton.rows * skeleton.cols);
 
     const std::vector<Polyline> polylines = traceMask(mask);
     ASSERT_EQ(polylines.size(), 1u);
-    for (const cv::Point2f& vertex : polylines[0].points)
-        EXPECT_NEAR(vertex.y, 20.0f, 1.0f);
+    for (const cv::Point2f& vertex : polylines[0].points) EXPECT_NEAR(vertex.y, 20.0f, 1.0f);
 }
 
 TEST(LineTracingTest, ThinningEvenAndSlantedBandsStaysWithinAPixelOfTheCentre) {
@@ -403,8 +388,7 @@ TEST(LineTracingTest, ThinningEvenAndSlantedBandsStaysWithinAPixelOfTheCentre) {
     // thresholded at 128 as a GL line layer would be.
     cv::Mat even = blank(80, 40);
     even(cv::Rect(10, 10, 60, 4)).setTo(255); // rows 10..13: centre 11.5
-    for (const cv::Point& pixel : onPixels(thinToSkeleton(even)))
-        EXPECT_LE(std::abs(pixel.y - 11.5), 1.0) << pixel;
+    for (const cv::Point& pixel : onPixels(thinToSkeleton(even))) EXPECT_LE(std::abs(pixel.y - 11.5), 1.0) << pixel;
 
     cv::Mat slanted = blank(120, 120);
     const cv::Point2d a(15, 20), b(105, 95);
@@ -449,15 +433,13 @@ TEST(LineTracingTest, ThinningNeverRemovesAShape) {
     mask(cv::Rect(2, 2, 2, 2)).setTo(255);
     mask(cv::Rect(10, 10, 3, 3)).setTo(255);
     set(mask, 17, 3);
-    for (int col = 2; col < 18; ++col)
-        set(mask, col, 16);
+    for (int col = 2; col < 18; ++col) set(mask, col, 16);
     const cv::Mat skeleton = thinToSkeleton(mask);
     EXPECT_GT(cv::countNonZero(skeleton(cv::Rect(2, 2, 2, 2))), 0);
     EXPECT_GT(cv::countNonZero(skeleton(cv::Rect(10, 10, 3, 3))), 0);
     EXPECT_EQ(skeleton.at<uchar>(11, 11), 255); // peeled from all four sides, the middle stays
     EXPECT_EQ(skeleton.at<uchar>(3, 17), 255);
-    for (int col = 2; col < 18; ++col)
-        EXPECT_EQ(skeleton.at<uchar>(16, col), 255) << col;
+    for (int col = 2; col < 18; ++col) EXPECT_EQ(skeleton.at<uchar>(16, col), 255) << col;
     // The threshold decides what is set.
     cv::Mat faint = blank(10, 10);
     faint(cv::Rect(2, 5, 6, 1)).setTo(100);

@@ -64,8 +64,7 @@ std::vector<LinePolyline> analyticSuggestiveContours(const Torus& torus, const S
 
 double distanceToPoints(const cv::Point2d& p, const std::vector<cv::Point2d>& points) {
     double nearest = std::numeric_limits<double>::infinity();
-    for (const cv::Point2d& q : points)
-        nearest = std::min(nearest, std::hypot(p.x - q.x, p.y - q.y));
+    for (const cv::Point2d& q : points) nearest = std::min(nearest, std::hypot(p.x - q.x, p.y - q.y));
     return nearest;
 }
 
@@ -77,8 +76,7 @@ double percentile(std::vector<double> values, double fraction) {
 
 std::vector<cv::Point2d> positionsOf(const LineSkeleton& skeleton) {
     std::vector<cv::Point2d> positions;
-    for (const LinePoint& point : skeleton.points)
-        positions.emplace_back(point.position.x, point.position.y);
+    for (const LinePoint& point : skeleton.points) positions.emplace_back(point.position.x, point.position.y);
     return positions;
 }
 
@@ -108,11 +106,11 @@ double differenceAlong(const cv::Mat& image, int row, int col, double directionX
 
 /** The analytic surface seen through a pixel centre of the torus view, for judging D_w(n.v) there. */
 struct TorusPixelTruth {
-    glm::dvec3 toEye;     ///< v = c - p
-    glm::dvec3 w;         ///< v - (n.v) n
-    double sinTheta;      ///< |w| / |v|
-    double dw;            ///< D_w(n.v) = |w|^2 kappa_r
-    double scale;         ///< |w|^2 kappa_v: the size of the tube's term, so zeros of kappa_r do not divide by ~0
+    glm::dvec3 toEye; ///< v = c - p
+    glm::dvec3 w;     ///< v - (n.v) n
+    double sinTheta;  ///< |w| / |v|
+    double dw;        ///< D_w(n.v) = |w|^2 kappa_r
+    double scale;     ///< |w|^2 kappa_v: the size of the tube's term, so zeros of kappa_r do not divide by ~0
 };
 
 TorusPixelTruth torusPixelTruth(const Torus& torus, const SyntheticCamera& camera, int row, int col) {
@@ -320,11 +318,9 @@ TEST(SuggestiveContours, TorusLinesDoNotDependOnResolution) {
         fineMapped.emplace_back((point.position.x + 0.5) / 4.0 - 0.5, (point.position.y + 0.5) / 4.0 - 0.5);
     const std::vector<cv::Point2d> coarsePositions = positionsOf(coarse);
     std::vector<double> fineToCoarse;
-    for (const cv::Point2d& p : fineMapped)
-        fineToCoarse.push_back(distanceToPoints(p, coarsePositions));
+    for (const cv::Point2d& p : fineMapped) fineToCoarse.push_back(distanceToPoints(p, coarsePositions));
     std::vector<double> coarseToFine;
-    for (const cv::Point2d& p : coarsePositions)
-        coarseToFine.push_back(distanceToPoints(p, fineMapped));
+    for (const cv::Point2d& p : coarsePositions) coarseToFine.push_back(distanceToPoints(p, fineMapped));
     const double countRatio = double(fine.points.size()) / double(coarse.points.size());
 
     // Against the untrimmed analytic lines at 512^2: both lie on them, and both keep the same share of them.
@@ -335,11 +331,9 @@ TEST(SuggestiveContours, TorusLinesDoNotDependOnResolution) {
     const double fineShare = fineAccuracy.recall;
 
     std::vector<double> coarseStrengths;
-    for (const LinePoint& point : coarse.points)
-        coarseStrengths.push_back(point.strength);
+    for (const LinePoint& point : coarse.points) coarseStrengths.push_back(point.strength);
     std::vector<double> fineStrengths;
-    for (const LinePoint& point : fine.points)
-        fineStrengths.push_back(point.strength);
+    for (const LinePoint& point : fine.points) fineStrengths.push_back(point.strength);
     std::cout << coarse.points.size() << " points at 512^2, " << fine.points.size() << " at 2048^2 (ratio "
               << countRatio << "); 2048 -> 512 median " << percentile(fineToCoarse, 0.5) << " px, 95th "
               << percentile(fineToCoarse, 0.95) << " px; 512 -> 2048 median " << percentile(coarseToFine, 0.5)

@@ -225,7 +225,6 @@ TEST(Camera, InvalidRequestsThrow) {
     EXPECT_THROW(resolveCamera({}, Scene{}), SceneError);
 }
 
-
 TEST(Camera, AutoFramingWithTheDefaultUpKeepsItsDirection) {
     const Scene scene = sphereScene();
     const glm::dvec3 expected = glm::normalize(glm::dvec3(0.0, 0.25, 1.0));
@@ -405,8 +404,8 @@ TEST(Camera, RequestedClipRangeReplacesTheFittedOne) {
     EXPECT_EQ(camera.clipSource, "flags");
     EXPECT_EQ(resolveCamera({}, scene).clipSource, "fitted");
     const double nan = std::nan("");
-    for (const auto& [n, f] : std::vector<std::pair<double, double>>{{0.0, 1.0}, {-1.0, 1.0}, {2.0, 1.0}, {1.0, 1.0},
-                                                                      {nan, 1.0}, {1.0, HUGE_VAL}}) {
+    for (const auto& [n, f] : std::vector<std::pair<double, double>>{
+             {0.0, 1.0}, {-1.0, 1.0}, {2.0, 1.0}, {1.0, 1.0}, {nan, 1.0}, {1.0, HUGE_VAL}}) {
         CameraRequest bad;
         bad.zNear = n;
         bad.zFar = f;

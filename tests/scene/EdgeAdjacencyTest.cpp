@@ -61,8 +61,7 @@ TEST(EdgeAdjacency, TetrahedronHasSixManifoldEdgesAtTheRegularAngle) {
         const std::span<const EdgeFaceUse> faces = adjacency.facesOf(edge);
         EXPECT_NE(faces[0].againstKey, faces[1].againstKey);
     }
-    for (const glm::vec3& normal : adjacency.faceNormals)
-        EXPECT_NEAR(glm::length(normal), 1.0f, 1e-6f);
+    for (const glm::vec3& normal : adjacency.faceNormals) EXPECT_NEAR(glm::length(normal), 1.0f, 1e-6f);
     // At an interior angle of 70.5 degrees every edge is a crease at 60 and none at 110 (normals at 109.47).
     EXPECT_EQ(selectCreaseEdges(adjacency, 60.0 * kDegrees).size(), 12u);
     EXPECT_EQ(selectCreaseEdges(adjacency, 110.0 * kDegrees).size(), 0u);
@@ -187,9 +186,9 @@ TEST(EdgeAdjacency, FlippedTriangleIsFlaggedAndItsAngleCorrected) {
 }
 
 TEST(EdgeAdjacency, EveryEdgeOfAFaceIsAddedAfterItsFirstMatches) {
-    // An erratum of the comic-renderer write-up after Lander 2000: its Templist set `found` once per triangle, so a triangle whose first edge matched never
-    // added its other two. In this fan every triangle after the first starts with the edge it shares with the one
-    // before, and its second edge is what the next triangle shares.
+    // An erratum of the comic-renderer write-up after Lander 2000: its Templist set `found` once per triangle, so a
+    // triangle whose first edge matched never added its other two. In this fan every triangle after the first starts
+    // with the edge it shares with the one before, and its second edge is what the next triangle shares.
     const std::vector<glm::vec3> fan = {{-1, -0.5f, 0}, {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}};
     const std::vector<glm::uvec3> triangles = {{0, 1, 2}, {2, 1, 3}, {3, 1, 4}, {4, 1, 5}};
     const EdgeAdjacency adjacency = buildEdgeAdjacency(fan, triangles, 0.0);
@@ -218,8 +217,7 @@ TEST(EdgeAdjacency, TriangleSoupWeldsIntoAClosedCube) {
         }
     }
     std::vector<glm::uvec3> triangles;
-    for (std::uint32_t i = 0; i < soup.size(); i += 3)
-        triangles.emplace_back(i, i + 1, i + 2);
+    for (std::uint32_t i = 0; i < soup.size(); i += 3) triangles.emplace_back(i, i + 1, i + 2);
     const double diagonal = computeBoundingBox(soup).diagonal();
 
     const EdgeAdjacency welded = buildEdgeAdjacency(soup, triangles, LoadOptions{}.weldTolerance * diagonal);
@@ -271,8 +269,7 @@ TEST(EdgeAdjacency, SilhouetteTieCountsTheEdgeOnFaceAsBack) {
     const glm::dvec3 eye(5.0, 0.3, 1.0);
     const std::vector<std::uint32_t> silhouette = selectSilhouetteEdges(adjacency, eye);
     ASSERT_EQ(silhouette.size(), 8u);
-    for (const std::uint32_t vertex : silhouette)
-        EXPECT_EQ(cube.positions[vertex].x, 1.0f);
+    for (const std::uint32_t vertex : silhouette) EXPECT_EQ(cube.positions[vertex].x, 1.0f);
     int tiedFaces = 0, withTiesIncluded = 0;
     for (std::uint32_t face = 0; face < cube.triangles.size(); ++face)
         tiedFaces += eyeSideOfFace(adjacency, face, eye) == 0.0;

@@ -1,6 +1,6 @@
-// Winnemöller & Bangay's CPU face orientation against the exact per-face test: no holes for any method, rule or view vector at
-// any distance (with the corrected cut-off), holes with the paper's cut-off, front shares against the analytic sphere,
-// and the per-vertex (s, t) against the textbook form of the specular term.
+// Winnemöller & Bangay's CPU face orientation against the exact per-face test: no holes for any method, rule or view
+// vector at any distance (with the corrected cut-off), holes with the paper's cut-off, front shares against the
+// analytic sphere, and the per-vertex (s, t) against the textbook form of the specular term.
 #include "scene/FaceOrientation.h"
 
 #include "scene/Procedural.h"
@@ -46,7 +46,9 @@ OrientationRequest makeRequest(MethodRule methodRule, const ViewVectorChoice& vi
 
 std::string describe(MethodRule methodRule, const ViewVectorChoice& view) {
     return faceOrientationMethodName(methodRule.method) + " rule " + std::to_string(methodRule.frontRule) + ", " +
-           (view.constant ? "constant" : view.fellBack ? "exact (fell back)" : "exact");
+           (view.constant   ? "constant"
+            : view.fellBack ? "exact (fell back)"
+                            : "exact");
 }
 
 /** The cube [-1,1]^3 as 12 triangles with the symmetric corner normals (+-1,+-1,+-1)/sqrt(3). */
@@ -176,13 +178,13 @@ TEST(DeriveOrientationData, RejectsMissingNormals) {
 
 TEST(CountExactFront, CubeAndTriangleByHand) {
     const Mesh cube = makeCube();
-    EXPECT_EQ(countExactFrontTriangles(cube, {0, 0, 5}), 2u);     // the +z face
-    EXPECT_EQ(countExactFrontTriangles(cube, {5, 5, 5}), 6u);     // three faces
-    EXPECT_EQ(countExactFrontTriangles(cube, {5, 0, 0.5}), 2u);   // +x only: z = 0.5 is inside the z slab
-    EXPECT_EQ(countExactFrontTriangles(cube, {0, 0, 0}), 0u);     // inside a closed mesh nothing faces the eye
-    EXPECT_EQ(countExactFrontTriangles(cube, {0, 0, 1}), 0u);     // on the +z plane: grazing is not front
+    EXPECT_EQ(countExactFrontTriangles(cube, {0, 0, 5}), 2u);   // the +z face
+    EXPECT_EQ(countExactFrontTriangles(cube, {5, 5, 5}), 6u);   // three faces
+    EXPECT_EQ(countExactFrontTriangles(cube, {5, 0, 0.5}), 2u); // +x only: z = 0.5 is inside the z slab
+    EXPECT_EQ(countExactFrontTriangles(cube, {0, 0, 0}), 0u);   // inside a closed mesh nothing faces the eye
+    EXPECT_EQ(countExactFrontTriangles(cube, {0, 0, 1}), 0u);   // on the +z plane: grazing is not front
     EXPECT_EQ(countExactFrontVertices(cube, {0, 0, 5}), 4u);
-    EXPECT_EQ(countExactFrontVertices(cube, {5, 5, 5}), 7u);      // all but the far corner
+    EXPECT_EQ(countExactFrontVertices(cube, {5, 5, 5}), 7u); // all but the far corner
     EXPECT_EQ(countExactFrontVertices(cube, {0, 0, 0}), 0u);
 
     Mesh triangle;
@@ -221,7 +223,9 @@ void expectNoHoles(const Scene& scene, const std::string& label) {
     for (const Mesh& mesh : scene.meshes) data.push_back(deriveOrientationData(mesh, true));
 
     const std::vector<double> distances = {0.2, 0.5, 0.9, 1.0, 1.0005, 1.1, 1.5, 1.99, 2.0, 2.5, 3.0, 5.0, 10.0, 50.0};
-    const std::vector<glm::dvec3> directions = {{0, 0, 1}, {1, 0, 0}, glm::normalize(glm::dvec3(1, 2, 3)),
+    const std::vector<glm::dvec3> directions = {{0, 0, 1},
+                                                {1, 0, 0},
+                                                glm::normalize(glm::dvec3(1, 2, 3)),
                                                 glm::normalize(glm::dvec3(-0.3, -1, 0.2)),
                                                 glm::normalize(glm::dvec3(0.7, -0.2, -0.9))};
     int constantRuns = 0;
@@ -242,11 +246,10 @@ void expectNoHoles(const Scene& scene, const std::string& label) {
                         exactFront += countExactFrontTriangles(scene.meshes[m], eye);
                         front += result.frontTriangles.size();
                     }
-                    EXPECT_EQ(missed, 0u) << label << " at " << distance << " radii, direction (" << direction.x
-                                          << ", " << direction.y << ", " << direction.z << "), "
-                                          << describe(methodRule, view);
-                    EXPECT_GE(front, exactFront) << label << " at " << distance << " radii, "
-                                                 << describe(methodRule, view);
+                    EXPECT_EQ(missed, 0u) << label << " at " << distance << " radii, direction (" << direction.x << ", "
+                                          << direction.y << ", " << direction.z << "), " << describe(methodRule, view);
+                    EXPECT_GE(front, exactFront)
+                        << label << " at " << distance << " radii, " << describe(methodRule, view);
                     constantRuns += view.constant ? 1 : 0;
                     fallBackRuns += view.fellBack ? 1 : 0;
                 }

@@ -179,8 +179,7 @@ std::string threeMeshesWithMaterials(GltfWriter& writer, const std::string& mate
         nodes += std::string(i ? ", " : "") + "{\"mesh\": " + std::to_string(i) + "}";
     }
     std::string roots;
-    for (std::size_t i = 0; i < materialOfMesh.size(); ++i)
-        roots += std::string(i ? ", " : "") + std::to_string(i);
+    for (std::size_t i = 0; i < materialOfMesh.size(); ++i) roots += std::string(i ? ", " : "") + std::to_string(i);
     return "\"materials\": [" + materials + "], \"meshes\": [" + meshes + "], \"nodes\": [" + nodes +
            "], \"scenes\": [{\"nodes\": [" + roots + "]}]";
 }
@@ -548,8 +547,8 @@ TEST(GltfLoader, AbsurdlyNestedJsonIsAnErrorNotAStackOverflow) {
     const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
     EXPECT_NE(message.find("nested deeper than"), std::string::npos) << message;
     // Brackets inside strings do not count.
-    const TempFile quoted("quoted.gltf", "{\"asset\": {\"version\": \"2.0\", \"generator\": \"" +
-                                             std::string(1000, '[') + "\"}}");
+    const TempFile quoted("quoted.gltf",
+                          "{\"asset\": {\"version\": \"2.0\", \"generator\": \"" + std::string(1000, '[') + "\"}}");
     EXPECT_EQ(test::sceneErrorMessage([&] { loadScene(quoted.path()); }).find("nested deeper"), std::string::npos);
 }
 

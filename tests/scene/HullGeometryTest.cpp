@@ -78,7 +78,7 @@ TEST(HullNormals, CopiesOfAVertexShareOneOutwardNormal) {
 TEST(HullNormals, VerticesFartherThanTheWeldDistanceKeepTheirOwnFaces) {
     // Two triangles folded 90 degrees along the x axis (normals +z and -y); the second one's copy of the shared edge
     // sits 1e-3 away, and welded onto the first one's it makes the two triangles equal.
-    const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0},
+    const std::vector<glm::vec3> positions = {{0, 0, 0},      {1, 0, 0},      {0, 1, 0},
                                               {0, 0, 0.001f}, {1, 0, 0.001f}, {0, 0, 1}};
     const std::vector<glm::uvec3> triangles = {{0, 1, 2}, {3, 4, 5}};
     const std::vector<glm::vec3> apart = computePositionWeldedNormals(positions, triangles, 1e-6);

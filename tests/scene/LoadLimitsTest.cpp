@@ -116,12 +116,12 @@ TEST(LoadLimits, GltfBufferThatIsNotARegularFileIsRefusedWithoutReadingIt) {
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     GltfWriter writer;
     const int positions = writer.addVec3(kTriangle);
-    const TempFile file("fifo.gltf",
-                        writer.gltfWithExternalBuffer("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
-                                                          std::to_string(positions) +
-                                                          "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": "
-                                                          "[0]}], \"scene\": 0",
-                                                      fifo.filename().string()));
+    const TempFile file(
+        "fifo.gltf", writer.gltfWithExternalBuffer(
+                         "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+                             "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": "
+                             "[0]}], \"scene\": 0",
+                         fifo.filename().string()));
     const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
     std::filesystem::remove(fifo);
     EXPECT_NE(message.find("is not a regular file"), std::string::npos) << message;

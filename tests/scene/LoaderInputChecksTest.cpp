@@ -265,8 +265,7 @@ TEST(LoaderInputChecks, LongDataUriIsShortenedInMessages) {
     const TempFile glbFile("longuri.glb", [&] {
         // GLB: the binary reader's message quotes the URI ("Failed to decode 'uri' : <uri> in Buffer").
         std::string json = gltf;
-        while (json.size() % 4 != 0)
-            json += ' ';
+        while (json.size() % 4 != 0) json += ' ';
         std::string file = "glTF";
         const auto append = [&](std::uint32_t value) { file.append(reinterpret_cast<const char*>(&value), 4); };
         append(2);
@@ -285,8 +284,7 @@ TEST(LoaderInputChecks, LongDataUriIsShortenedInMessages) {
 TEST(LoaderInputChecks, LongNameWithSpacesIsShortenedInMessages) {
     // tinygltf quotes an invalid image's name whole; short words must not add up to a long message either.
     std::string name;
-    for (int i = 0; i < 100000; ++i)
-        name += "word ";
+    for (int i = 0; i < 100000; ++i) name += "word ";
     const TempFile file("longname.gltf", triangleGltf("", "",
                                                       ", \"images\": [{\"name\": \"" + name +
                                                           "\", \"uri\": \"a.png\", "
@@ -298,8 +296,7 @@ TEST(LoaderInputChecks, LongNameWithSpacesIsShortenedInMessages) {
 
 TEST(LoaderInputChecks, ManyUnsupportedRequiredExtensionsAreCounted) {
     std::string list;
-    for (int i = 0; i < 1000; ++i)
-        list += (list.empty() ? "\"EXT_" : ", \"EXT_") + std::to_string(i) + "\"";
+    for (int i = 0; i < 1000; ++i) list += (list.empty() ? "\"EXT_" : ", \"EXT_") + std::to_string(i) + "\"";
     const TempFile file(
         "many.gltf",
         triangleGltf("", "", ", \"extensionsUsed\": [" + list + "], \"extensionsRequired\": [" + list + "]"));

@@ -44,8 +44,8 @@ TEST(MaterialIds, AnyDifferenceInNameColourOrMapGivesANewId) {
 }
 
 TEST(MaterialIds, UnnamedMeshesShareAnIdWhenTheyLookTheSame) {
-    const Scene scene = sceneOf({meshOf("", kRed), meshOf("", kBlue), meshOf("", kRed), meshOf("", kRed, "m.png"),
-                                 meshOf("", kBlue)});
+    const Scene scene =
+        sceneOf({meshOf("", kRed), meshOf("", kBlue), meshOf("", kRed), meshOf("", kRed, "m.png"), meshOf("", kBlue)});
     EXPECT_EQ(materialIds(scene), (Ids{0, 1, 0, 2, 1}));
 }
 

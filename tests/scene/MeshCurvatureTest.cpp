@@ -142,13 +142,13 @@ TEST(MeshCurvature, DegenerateFacesGiveFiniteResults) {
     }
     std::vector<glm::uvec3> triangles;
     for (std::uint32_t i = 0; i < 6; ++i) triangles.push_back({0u, 1u + i, 1u + (i + 1) % 6});
-    positions.push_back({2.0f, 0.0f, 0.0f});          // 7: collinear with 1 and 8
-    positions.push_back({3.0f, 0.0f, 0.0f});          // 8
-    triangles.push_back({1u, 7u, 8u});                // zero area
-    triangles.push_back({1u, 1u, 2u});                // repeated vertex
-    positions.push_back({3.0f, 1e-5f, 0.0f});         // 9: a needle with 7 and 8
+    positions.push_back({2.0f, 0.0f, 0.0f});  // 7: collinear with 1 and 8
+    positions.push_back({3.0f, 0.0f, 0.0f});  // 8
+    triangles.push_back({1u, 7u, 8u});        // zero area
+    triangles.push_back({1u, 1u, 2u});        // repeated vertex
+    positions.push_back({3.0f, 1e-5f, 0.0f}); // 9: a needle with 7 and 8
     triangles.push_back({7u, 8u, 9u});
-    positions.push_back({5.0f, 5.0f, 5.0f});          // 10: used by no face
+    positions.push_back({5.0f, 5.0f, 5.0f}); // 10: used by no face
     const MeshCurvature curvature = computeMeshCurvature(positions, triangles, 0.0);
     expectAllFinite(curvature);
     EXPECT_EQ(curvature.counts.degenerateFaces, 2u);

@@ -55,8 +55,8 @@ struct Torus {
         const double du = glm::dot(wHat, tangentU(u)) / (ring + tube * std::cos(v));
         const double dv = glm::dot(wHat, tangentV(u, v)) / tube;
         const double h = 1e-5;
-        const double derivative = (radialCurvature(u + h * du, v + h * dv) - radialCurvature(u - h * du, v - h * dv)) /
-                                  (2.0 * h);
+        const double derivative =
+            (radialCurvature(u + h * du, v + h * dv) - radialCurvature(u - h * du, v - h * dv)) / (2.0 * h);
         const double tangent = glm::length(w) / glm::dot(view, n);
         return featureSize * featureSize * tangent * derivative;
     }
@@ -99,7 +99,8 @@ TEST(ObjectSuggestiveContours, TorusLinesLieOnTheAnalyticZeroSetOnTheInnerHalf) 
             EXPECT_GT(glm::dot(torus.normal(uv.x, uv.y), eye - p), -1e-3) << "a line on a back-facing part";
             auto f = [&](double u, double v) { return torus.radialCurvatureSinSquared(eye, u, v); };
             const double h = 1e-6;
-            const double alongU = (f(uv.x + h, uv.y) - f(uv.x - h, uv.y)) / (2.0 * h * (torus.ring + torus.tube * std::cos(uv.y)));
+            const double alongU =
+                (f(uv.x + h, uv.y) - f(uv.x - h, uv.y)) / (2.0 * h * (torus.ring + torus.tube * std::cos(uv.y)));
             const double alongV = (f(uv.x, uv.y + h) - f(uv.x, uv.y - h)) / (2.0 * h * torus.tube);
             distances.push_back(std::abs(f(uv.x, uv.y)) / std::hypot(alongU, alongV));
         }
@@ -252,8 +253,7 @@ TEST(ObjectSuggestiveContours, BadSettingsAreAClearError) {
         extractObjectSuggestiveContours(curvature, glm::dvec3(4.0), settings);
         FAIL() << "expected std::invalid_argument";
     } catch (const std::invalid_argument& error) {
-        EXPECT_NE(std::string(error.what()).find("extractObjectSuggestiveContours(): 'featureSize'"),
-                  std::string::npos)
+        EXPECT_NE(std::string(error.what()).find("extractObjectSuggestiveContours(): 'featureSize'"), std::string::npos)
             << error.what();
     }
     settings = {};
@@ -262,8 +262,7 @@ TEST(ObjectSuggestiveContours, BadSettingsAreAClearError) {
     settings = {};
     settings.fade = std::nan("");
     EXPECT_THROW(extractObjectSuggestiveContours(curvature, glm::dvec3(4.0), settings), std::invalid_argument);
-    EXPECT_THROW(extractObjectSuggestiveContours(curvature, glm::dvec3(INFINITY, 0.0, 0.0), {}),
-                 std::invalid_argument);
+    EXPECT_THROW(extractObjectSuggestiveContours(curvature, glm::dvec3(INFINITY, 0.0, 0.0), {}), std::invalid_argument);
 }
 
 } // namespace

@@ -229,7 +229,8 @@ std::vector<TorusCurve> torusContourCurves(const SyntheticCamera& camera, const 
             vs[std::size_t(index)] = v;
             const glm::dvec3 world = center + torus.point(u, v);
             if (!isVisibleOnTorus(camera.eye, world, center, ringRadius, tubeRadius)) continue;
-            if (const auto image = imagePointOf(camera, world)) points[std::size_t(index)] = TorusSample{{u, v}, *image};
+            if (const auto image = imagePointOf(camera, world))
+                points[std::size_t(index)] = TorusSample{{u, v}, *image};
         }
         std::vector<bool> linked(static_cast<std::size_t>(uSamples));
         for (std::size_t index = 0; index < linked.size(); ++index) {
@@ -246,8 +247,7 @@ std::vector<LinePolyline> torusSuggestiveContours(const SyntheticCamera& camera,
                                                   double ringRadius, double tubeRadius,
                                                   const AnalyticSuggestiveSettings& settings, int uSamples,
                                                   int vSamples) {
-    return imagesOf(
-        torusSuggestiveContourCurves(camera, center, ringRadius, tubeRadius, settings, uSamples, vSamples));
+    return imagesOf(torusSuggestiveContourCurves(camera, center, ringRadius, tubeRadius, settings, uSamples, vSamples));
 }
 
 std::vector<TorusCurve> torusSuggestiveContourCurves(const SyntheticCamera& camera, const glm::dvec3& center,
@@ -349,9 +349,7 @@ std::vector<TorusCurve> torusSuggestiveContourCurves(const SyntheticCamera& came
         const std::int64_t node = id / 2;
         const int i = int(node % uSamples), j = int(node / uSamples);
         const double u0 = i * stepU, v0 = j * stepV;
-        auto at = [&](double t) {
-            return alongV ? glm::dvec2(u0, v0 + t * stepV) : glm::dvec2(u0 + t * stepU, v0);
-        };
+        auto at = [&](double t) { return alongV ? glm::dvec2(u0, v0 + t * stepV) : glm::dvec2(u0 + t * stepU, v0); };
         double low = 0.0, high = 1.0;
         const bool lowNegative = isNegative(i, j);
         for (int halving = 0; halving < 64 && high - low > 1e-17; ++halving) {

@@ -32,10 +32,9 @@ cv::Mat coverageEdges(const cv::Mat& coverage) {
                                       const std::string& testName, const std::string& resourceName,
                                       const cv::Mat& outlierZone) {
     if (actual.size() != expected.size() || actual.channels() != expected.channels())
-        return ::testing::AssertionFailure()
-               << resourceName << ": size or channels differ: actual " << actual.cols << "x" << actual.rows << "x"
-               << actual.channels() << ", expected " << expected.cols << "x" << expected.rows << "x"
-               << expected.channels();
+        return ::testing::AssertionFailure() << resourceName << ": size or channels differ: actual " << actual.cols
+                                             << "x" << actual.rows << "x" << actual.channels() << ", expected "
+                                             << expected.cols << "x" << expected.rows << "x" << expected.channels();
     cv::Mat actualFloat, expectedFloat, difference;
     actual.convertTo(actualFloat, CV_32F);
     expected.convertTo(expectedFloat, CV_32F);

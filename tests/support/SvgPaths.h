@@ -105,8 +105,7 @@ inline std::pair<std::vector<cv::Point2d>, bool> parsePathData(std::string_view 
             continue;
         }
         std::size_t end = index;
-        while (end < data.size() && !isSpace(data[end]))
-            ++end;
+        while (end < data.size() && !isSpace(data[end])) ++end;
         tokens.push_back(data.substr(index, end - index));
         index = end;
     }
@@ -160,14 +159,12 @@ inline Element readTag(const std::string& text, std::size_t& at) {
         ++index;
     }
     const std::size_t nameStart = index;
-    while (index < text.size() && isNameCharacter(text[index], index == nameStart))
-        ++index;
+    while (index < text.size() && isNameCharacter(text[index], index == nameStart)) ++index;
     if (index == nameStart) fail("a tag without a name", at);
     element.name = text.substr(nameStart, index - nameStart);
     for (;;) {
         const std::size_t beforeSpace = index;
-        while (index < text.size() && isSpace(text[index]))
-            ++index;
+        while (index < text.size() && isSpace(text[index])) ++index;
         if (index >= text.size()) fail("unterminated tag <" + element.name + ">", at);
         if (text[index] == '>') {
             ++index;
@@ -181,8 +178,7 @@ inline Element readTag(const std::string& text, std::size_t& at) {
         if (element.closing) fail("attributes in a closing tag </" + element.name + ">", at);
         if (index == beforeSpace) fail("no space before an attribute in <" + element.name + ">", index);
         const std::size_t attributeStart = index;
-        while (index < text.size() && isNameCharacter(text[index], index == attributeStart))
-            ++index;
+        while (index < text.size() && isNameCharacter(text[index], index == attributeStart)) ++index;
         if (index == attributeStart) fail("bad attribute name in <" + element.name + ">", index);
         const std::string attribute = text.substr(attributeStart, index - attributeStart);
         if (text.compare(index, 2, "=\"") != 0) fail("attribute '" + attribute + "' needs =\"...\"", index);

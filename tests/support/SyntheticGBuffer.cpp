@@ -20,8 +20,7 @@ struct SurfaceHit {
 /** c[0] + c[1] x + ... + c[degree] x^degree. */
 double evaluatePolynomial(const double* coefficients, int degree, double x) {
     double value = coefficients[degree];
-    for (int power = degree - 1; power >= 0; --power)
-        value = value * x + coefficients[power];
+    for (int power = degree - 1; power >= 0; --power) value = value * x + coefficients[power];
     return value;
 }
 
@@ -29,8 +28,7 @@ double evaluatePolynomial(const double* coefficients, int degree, double x) {
  *  bisection whenever a step leaves the bracket, so it converges like Newton and never escapes. */
 double refineBracketedRoot(const double* coefficients, int degree, double low, double high) {
     double derivative[4];
-    for (int power = 1; power <= degree; ++power)
-        derivative[power - 1] = power * coefficients[power];
+    for (int power = 1; power <= degree; ++power) derivative[power - 1] = power * coefficients[power];
     const bool lowIsNegative = evaluatePolynomial(coefficients, degree, low) < 0.0;
     double x = 0.5 * (low + high);
     for (int iteration = 0; iteration < 200; ++iteration) {
@@ -64,8 +62,7 @@ int polynomialRootsIn(const double* coefficients, int degree, double low, double
         return 1;
     }
     double derivative[4];
-    for (int power = 1; power <= degree; ++power)
-        derivative[power - 1] = power * coefficients[power];
+    for (int power = 1; power <= degree; ++power) derivative[power - 1] = power * coefficients[power];
     double knots[6];
     knots[0] = low;
     const int criticalCount = polynomialRootsIn(derivative, degree - 1, low, high, knots + 1);

@@ -16,8 +16,17 @@ void describeSkipped(const LineStatsSource& source, const std::string& passName,
 }
 
 const LineParameter kSilhouetteObjectWidth{
-    "silhouette-object-width", "D", "offset the hull by D model units instead (the width then shrinks with distance)",
-    {}, std::nullopt, "", 0.0, 1e300, true, false, "model units must be above 0"};
+    "silhouette-object-width",
+    "D",
+    "offset the hull by D model units instead (the width then shrinks with distance)",
+    {},
+    std::nullopt,
+    "",
+    0.0,
+    1e300,
+    true,
+    false,
+    "model units must be above 0"};
 
 } // namespace
 
@@ -48,7 +57,8 @@ LineType silhouetteLineType() {
         const LineGraphSetup& setup = builder.setup();
         HullSettings hull;
         hull.widthPixels = float(setup.look.styleOf(name).widthPixels);
-        if (auto width = setup.look.lineParameters.numberIfSet(kSilhouetteObjectWidth)) hull.objectWidth = float(*width);
+        if (auto width = setup.look.lineParameters.numberIfSet(kSilhouetteObjectWidth))
+            hull.objectWidth = float(*width);
         builder.add(std::make_unique<SilhouettePass>(name, setup.shaders, setup.scene, setup.frame, hull));
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {

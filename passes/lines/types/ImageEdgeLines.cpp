@@ -10,9 +10,7 @@ namespace {
 using line_parameters::kCreaseAngle;
 using line_parameters::kDepthJump;
 
-float depthJumpOf(const LineGraphBuilder& builder) {
-    return float(builder.look().lineParameters.number(kDepthJump));
-}
+float depthJumpOf(const LineGraphBuilder& builder) { return float(builder.look().lineParameters.number(kDepthJump)); }
 
 void describeDepthJump(const LineStatsSource& source, nlohmann::ordered_json& entry) {
     entry["depth_jump"] = source.look.lineParameters.number(kDepthJump);

@@ -33,8 +33,8 @@ LineType meshEdgeType(std::string name, std::string kind, std::string help,
             MeshEdgesSettings settings;
             settings.creaseAngleDegrees = float(setup.look.lineParameters.number(line_parameters::kCreaseAngle));
             settings.supersample = setup.look.supersample;
-            builder.add(std::make_unique<MeshEdgesPass>(kMeshEdgesPass, setup.shaders, setup.scene, setup.frame,
-                                                        settings));
+            builder.add(
+                std::make_unique<MeshEdgesPass>(kMeshEdgesPass, setup.shaders, setup.scene, setup.frame, settings));
         }
         builder.addLayer(typeName, std::make_unique<SkeletonKernel>(std::string(kMeshEdgesPass) + "." + kind));
     };

@@ -22,10 +22,18 @@ constexpr double kSampleSpacingPixels = 0.5;
 
 /** Points of the image-space central differences: 3 (fast) or 5 (fourth order). */
 const LineParameter kSuggestiveStencil{
-    "suggestive-stencil", "N",
+    "suggestive-stencil",
+    "N",
     "3 (default) or 5-point central differences; 5 is fourth order, more exact on clean\n"
     "data, slower, and needs two pixels of one surface on each side",
-    {"3", "5"}, std::nullopt, "3", 0.0, 0.0, false, false, ""};
+    {"3", "5"},
+    std::nullopt,
+    "3",
+    0.0,
+    0.0,
+    false,
+    false,
+    ""};
 
 /** Per data pixel, the 5-point stencil's maps (postfx/SuggestiveContours.cpp: dw, dwdw and the normal distance as
  *  float, two byte masks): working memory beyond the stroke's, for app/MemoryBudget. */
@@ -118,9 +126,12 @@ LineSkeleton ObjectSuggestiveKernel::find(const std::vector<cv::Mat>& inputs) {
             bool outside = false;
             for (const double side : {1.0, -1.0}) {
                 const double a = clipA.w + side * clipA.z, b = clipB.w + side * clipB.z;
-                if (a < 0.0 && b < 0.0) outside = true;
-                else if (a < 0.0) from = std::max(from, a / (a - b));
-                else if (b < 0.0) to = std::min(to, a / (a - b));
+                if (a < 0.0 && b < 0.0)
+                    outside = true;
+                else if (a < 0.0)
+                    from = std::max(from, a / (a - b));
+                else if (b < 0.0)
+                    to = std::min(to, a / (a - b));
             }
             if (outside || !(to > from)) continue;
             const glm::dvec2 start = toPixel(clipA + from * (clipB - clipA));
@@ -160,7 +171,8 @@ LineType suggestiveLineType() {
         const LineGraphSetup& setup = builder.setup();
         SuggestiveSettings settings = sharedSettings(setup.look, setup.sphere);
         // gbuffer.radial is in units of the bounding radius (FrameParams::radialLengthUnit), so fs is too.
-        settings.featureSize = float(kSuggestiveFeatureSizeFraction * setup.sphere.radius / setup.frame.radialLengthUnit);
+        settings.featureSize =
+            float(kSuggestiveFeatureSizeFraction * setup.sphere.radius / setup.frame.radialLengthUnit);
         if (setup.look.lineParameters.choice(kSuggestiveStencil) == "5") settings.stencil = DifferenceStencil::Central5;
         builder.addLayer(name, std::make_unique<SuggestiveKernel>(setup.gbuffer, settings));
     };
