@@ -252,14 +252,16 @@ void addLineTypeFlags(std::vector<Flag>& flags) {
 }
 
 std::string lineTypesHelp() {
-    std::string text = "comma-separated line types, or none (default none), composited in this order:";
+    std::string text =
+        "comma-separated line types, or none (default none), each written to lines-<type>.png by --dump, "
+        "composited in this order:";
     for (const LineType& type : lineTypes()) {
         std::string help = type.help;
         std::string indented;
         for (char c : help) indented += c == '\n' ? std::string("\n       ") : std::string(1, c);
         text += "\n  " + type.name + ": " + indented;
     }
-    return text + "\neach is written to lines-<type>.png by --dump";
+    return text;
 }
 
 std::string shadingHelp() {
@@ -624,6 +626,21 @@ void appendWrapped(std::string& text, const std::string& line, std::size_t inden
     text += std::string(lineIndent, ' ') + rest + "\n";
 }
 
+/** A help text as the blocks the writer wraps: its '\n' are soft, except before a list item (a line that starts with
+ *  two spaces and a word); lines indented deeper continue the item above. */
+std::vector<std::string> helpBlocks(const std::string& help) {
+    std::vector<std::string> blocks;
+    for (const std::string& line : splitList(help, '\n')) {
+        const std::size_t indent = line.find_first_not_of(' ');
+        const std::string words = indent == std::string::npos ? "" : line.substr(indent);
+        if (blocks.empty() || indent == 2)
+            blocks.push_back(line);
+        else
+            blocks.back() += " " + words;
+    }
+    return blocks;
+}
+
 std::string renderFlagsHelp() {
     constexpr std::size_t kHelpColumn = 25;
     std::string text;
@@ -637,9 +654,9 @@ std::string renderFlagsHelp() {
                 for (const std::string& name : entry.names) label += (label.empty() ? "" : ", ") + name;
                 if (!entry.valueName.empty()) label += " " + entry.valueName;
             }
-            const std::vector<std::string> lines = splitList(entry.help, '\n');
+            const std::vector<std::string> blocks = helpBlocks(entry.help);
             if (label.empty()) { // a note: the section's own words, two spaces in
-                for (const std::string& line : lines) appendWrapped(text, line, 2, 0);
+                for (const std::string& block : blocks) appendWrapped(text, block, 2, 0);
                 continue;
             }
             std::string first = "  " + label;
@@ -647,11 +664,11 @@ std::string renderFlagsHelp() {
                 text += first + "\n";
                 first.clear();
             }
-            for (std::size_t i = 0; i < lines.size(); ++i) {
+            for (std::size_t i = 0; i < blocks.size(); ++i) {
                 // List items ("  outline: ...") hang their continuation lines under their text.
-                const bool item = lines[i].rfind("  ", 0) == 0;
+                const bool item = blocks[i].rfind("  ", 0) == 0;
                 std::string wrapped;
-                appendWrapped(wrapped, lines[i], kHelpColumn, item ? 5 : 0);
+                appendWrapped(wrapped, blocks[i], kHelpColumn, item ? 7 : 0);
                 if (i == 0 && !first.empty()) wrapped.replace(0, first.size(), first);
                 text += wrapped;
             }
