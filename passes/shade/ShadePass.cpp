@@ -54,7 +54,7 @@ ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, 
             if (texels.empty() || texels.type() != CV_8UC4)
                 throw std::invalid_argument("ShadePass(): shade map '" + map.source + "'" + owner +
                                             " must be a non-empty CV_8UC4 image (see shadeMapFromImage())");
-            if (mSettings.model == ShadingModel::Cel && !map.isOneDimensional())
+            if (traitsOf(mSettings.model).oneDimensionalMap && !map.isOneDimensional())
                 throw std::invalid_argument("ShadePass(): the 'cel' model needs a one-row shade map, '" + map.source +
                                             "'" + owner + " has " + std::to_string(texels.rows) + " rows");
         };
