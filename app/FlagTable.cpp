@@ -270,7 +270,6 @@ std::string shadingHelp() {
         text +=
             std::string(text.empty() ? "" : " | ") + traits.name + (traits.model == Look{}.shading ? " (default)" : "");
     for (const ShadingModelTraits& traits : shadingModels()) {
-        if (traits.model == ShadingModel::None) continue;
         std::string indented;
         for (const char* c = traits.help; *c; ++c)
             indented += *c == '\n' ? std::string("\n       ") : std::string(1, *c);
@@ -442,7 +441,12 @@ std::vector<Flag> makeFlags() {
                        "-> top full highlight); 8-bit, at most 4096 a side; multiplied with the material colour",
                        [](const std::string& value, RenderOptions& options) { options.look.shadeMapPath = value; }));
     shadeMap.pathValue = true;
-    shadeMap.noEffect = onlyWithModels("--shademap", &ShadingModelTraits::shadeMap);
+    shadeMap.noEffect = [model = onlyWithModels("--shademap", &ShadingModelTraits::shadeMap)](
+                            const RenderOptions& options) -> std::string {
+        if (std::string refusal = model(options); !refusal.empty()) return refusal;
+        // --bands is set only when given: both choose the cel map.
+        return options.look.bands ? "--bands and --shademap both choose the cel shade map: give one" : "";
+    };
     flags.push_back(shadeMap);
     Flag viewVector = styleFlag(flag(
         {"--view-vector"}, "V", S::Look,

@@ -36,24 +36,39 @@ bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, Re
     return true;
 }
 
-/** What no single flag can judge alone. */
-void checkCombinations(const RenderOptions& options, const std::vector<const Flag*>& given) {
-    auto wasGiven = [&](const char* name) {
-        return std::find(given.begin(), given.end(), findFlag(name)) != given.end();
-    };
-    if (wasGiven("--bands") && wasGiven("--shademap"))
-        throw UsageError("--bands and --shademap both choose the cel shade map: give one");
+/** The given flags whose rule `which` selects: the refusal of the first that changes nothing, in the table's order. */
+template <typename Which>
+void refuseWithoutEffect(const RenderOptions& options, const std::vector<const Flag*>& given, Which which) {
+    for (const Flag& flag : renderFlags())
+        if (flag.noEffect && which(flag) && std::find(given.begin(), given.end(), &flag) != given.end())
+            if (const std::string refusal = flag.noEffect(options); !refusal.empty()) throw UsageError(refusal);
+}
+
+/** After parsing: every flag given that would change nothing is refused, so a typo'd mode or a missing line type is
+ *  not silently rendered without what the user asked for; then what no single flag can judge alone. In this order:
+ *  the look's flags, the lines' settings, the data size, the line types'
+ *  widths and colours, the outputs. */
+void checkGivenFlags(const RenderOptions& options, const std::vector<const Flag*>& given) {
+    // Width and colour flags, one pair per line type, are the entries without help of their own.
+    auto isStyle = [](const Flag& flag) { return flag.section == HelpSection::Lines && flag.help.empty(); };
+    refuseWithoutEffect(options, given, [](const Flag& flag) { return flag.section == HelpSection::Look; });
+    refuseWithoutEffect(options, given,
+                        [&](const Flag& flag) { return flag.section == HelpSection::Lines && !isStyle(flag); });
     const Look& look = options.look;
     if (std::size_t(options.width) * look.supersample > kMaxImageSide ||
         std::size_t(options.height) * look.supersample > kMaxImageSide)
         throw UsageError("--supersample: " + std::to_string(look.supersample) + " x --size " +
                          std::to_string(options.width) + "x" + std::to_string(options.height) +
                          " exceeds the largest buffer side, " + std::to_string(kMaxImageSide));
+    refuseWithoutEffect(options, given, isStyle);
     if (options.outputPath.empty() && !options.printPlan && options.dumpDirectory.empty() &&
         options.graphvizPath.empty() && options.contactSheetPath.empty() && options.svgPath.empty())
         throw UsageError("missing -o OUT.png (or --print-plan / --graphviz to only show the plan)");
     if (options.eye && options.target && *options.eye == *options.target)
         throw UsageError("--eye and --target must differ");
+    refuseWithoutEffect(options, given, [](const Flag& flag) {
+        return flag.section != HelpSection::Look && flag.section != HelpSection::Lines;
+    });
     if (!options.svgPath.empty() && look.lines.empty()) throw UsageError("--svg: no line types to write (add --lines)");
     if (!options.statsPath.empty() && !rendersImages(options))
         throw UsageError("--stats needs -o or --dump: with --print-plan alone nothing is rendered or timed");
@@ -99,12 +114,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, cons
     }
     if (options.modelPaths.empty() && options.listPath.empty())
         throw UsageError("missing MODEL (a .gltf, .glb, .obj or .stl file, or --list FILE)");
-    // Every flag given that would change nothing is refused, so a typo'd mode or a missing line type is not silently
-    // rendered without what the user asked for. In the table's order: the look's flags, then the lines'.
-    for (const Flag& flag : renderFlags())
-        if (flag.noEffect && std::find(given.begin(), given.end(), &flag) != given.end())
-            if (const std::string refusal = flag.noEffect(options); !refusal.empty()) throw UsageError(refusal);
-    checkCombinations(options, given);
+    checkGivenFlags(options, given);
     return options;
 }
 

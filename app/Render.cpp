@@ -139,9 +139,10 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
 
     // Every output place is checked before any work; outputs are staged and put in place only at the end.
     OutputSet outputs(options);
-    const std::unique_ptr<PreparedStill> still = mRenderer.prepare(stillRequestOf(options), log);
+    const std::unique_ptr<PreparedStill> still = mRenderer.load(stillRequestOf(options), log);
     report.triangles = still->scene.triangleCount();
     outputs.refuseInputs(inputsFoundByLoading(options, still->scene));
+    mRenderer.plan(*still);
 
     const Plan& plan = still->plan;
     if (options.printPlan) {

@@ -24,20 +24,21 @@ Json matrixRows(const glm::dmat4& matrix) {
 
 Json vectorJson(const glm::dvec3& value) { return Json::array({value.x, value.y, value.z}); }
 
-/** How the contact sheet shows a buffer: by the field it is (the G-buffer's), else by its format. */
-TileContent tileContentOf(const std::string& resource, Format format, const StillGraph& graph) {
-    static const std::map<std::string, TileContent> kGBufferFields = {
-        {"gbuffer.normal", TileContent::UnitVector}, {"gbuffer.view", TileContent::UnitVector},
-        {"gbuffer.wVec", TileContent::UnitVector},   {"gbuffer.nDotV", TileContent::SignedScalar},
-        {"gbuffer.depth", TileContent::Depth},       {"gbuffer.coverage", TileContent::Mask},
-        {"gbuffer.baseColor", TileContent::Color},   {"gbuffer.radial", TileContent::Data},
-    };
-    if (auto field = kGBufferFields.find(resource); field != kGBufferFields.end()) return field->second;
-    if (resource == graph.finalResource || resource == graph.shadingResource) return TileContent::Color;
-    if (isFloatFormat(format)) return TileContent::Data;
-    // The remaining 8-bit one-channel buffers are line layers and mesh-edge skeletons: ink on paper.
-    if (format == Format::R8) return TileContent::Lines;
-    return TileContent::Color;
+/** How the contact sheet shows a buffer: as its writer declared it, else by its format. */
+TileContent tileContentOf(const PlannedResource& resource) {
+    switch (resource.presentation.appearance) {
+    case Appearance::Color: return TileContent::Color;
+    case Appearance::Lines: return TileContent::Lines;
+    case Appearance::Mask: return TileContent::Mask;
+    case Appearance::UnitVector: return TileContent::UnitVector;
+    case Appearance::SignedScalar: return TileContent::SignedScalar;
+    case Appearance::Depth: return TileContent::Depth;
+    case Appearance::Data: return TileContent::Data;
+    case Appearance::Auto: break;
+    }
+    if (isFloatFormat(resource.desc.format)) return TileContent::Data;
+    // 8-bit one-channel buffers are line layers and skeletons: ink on paper.
+    return resource.desc.format == Format::R8 ? TileContent::Lines : TileContent::Color;
 }
 
 std::string lookSummary(const Look& look) {
@@ -57,8 +58,8 @@ cv::Mat contactSheetOf(const PreparedStill& still, ResourceStore& store) {
     for (const PlannedResource& resource : still.plan.resources) {
         if (!store.contains(resource.name)) continue;
         const cv::Mat& image = store.image(resource.name);
-        tiles.push_back({resource.name, describeImage(image) + " by " + resource.writer, image,
-                         tileContentOf(resource.name, resource.desc.format, still.graph)});
+        tiles.push_back(
+            {resource.name, describeImage(image) + " by " + resource.writer, image, tileContentOf(resource)});
     }
     ContactSheetLayout layout;
     const CameraRequest& camera = still.request.camera;
@@ -81,8 +82,7 @@ void stageDump(const RenderOptions& options, const PreparedStill& still, StillRe
     std::set<std::string> usedNames;
     for (const PlannedResource& resource : still.plan.resources) {
         if (!store.contains(resource.name)) continue;
-        const bool isFloat = isFloatFormat(resource.desc.format);
-        const std::string fileName = dumpFileName(resource.name, isFloat, still.graph.shadingResource);
+        const std::string fileName = dumpFileName(resource);
         if (!usedNames.insert(fileName).second)
             throw std::logic_error("stageDump(): two resources dump to '" + fileName + "'");
         outputs.stageDumpImage(fileName, store.image(resource.name));
@@ -112,24 +112,10 @@ void stageDump(const RenderOptions& options, const PreparedStill& still, StillRe
 
 std::string jsonText(const Json& json) { return json.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
 
-std::string dumpFileName(const std::string& resource, bool isFloat, const std::string& shadingResource) {
-    static const std::map<std::string, std::string> kFixedNames = {
-        {"gbuffer.normal", "normal.exr"},
-        {"gbuffer.view", "view.exr"},
-        {"gbuffer.wVec", "w.exr"},
-        {"gbuffer.nDotV", "ndotv.exr"},
-        {"gbuffer.depth", "depth.exr"},
-        {"gbuffer.coverage", "coverage.png"},
-        {"gbuffer.baseColor", "basecolor.png"},
-        {"gbuffer.radial", "radial.exr"},
-        {"gbuffer.materialId", "materialid.exr"},
-        {"composite.final", "final.png"},
-    };
-    if (auto fixed = kFixedNames.find(resource); fixed != kFixedNames.end()) return fixed->second;
-    if (!shadingResource.empty() && resource == shadingResource) return "shading.png";
-    const ResourceName name = ResourceName::split(resource);
-    if (name.field == "lines") return "lines-" + name.pass + ".png";
-    return name.pass + "-" + name.field + (isFloat ? ".exr" : ".png");
+std::string dumpFileName(const PlannedResource& resource) {
+    if (!resource.presentation.fileName.empty()) return resource.presentation.fileName;
+    const ResourceName name = ResourceName::split(resource.name);
+    return name.pass + "-" + name.field + (isFloatFormat(resource.desc.format) ? ".exr" : ".png");
 }
 
 Json describeCamera(const Camera& camera) {

@@ -11,9 +11,9 @@
 
 namespace inkgraph {
 
-/** The file name --dump gives a resource: "gbuffer.normal" -> "normal.exr", the shading colour -> "shading.png",
- *  "composite.final" -> "final.png", "<type>.lines" -> "lines-<type>.png"; others "<pass>-<field>.exr|png". */
-std::string dumpFileName(const std::string& resource, bool isFloat, const std::string& shadingResource);
+/** The file name --dump gives a planned resource: the one its writer declared ("normal.exr", "shading.png",
+ *  "lines-<type>.png"), else "<pass>-<field>.exr" for float formats and ".png" for 8-bit ones. */
+std::string dumpFileName(const PlannedResource& resource);
 
 /** The camera for --stats and manifest.json: its source, world eye and target, matrices and depth convention. */
 nlohmann::ordered_json describeCamera(const Camera& camera);

@@ -94,13 +94,18 @@ StillRenderer::StillRenderer() { mShaders.keepPrograms(true); }
 StillRenderer::~StillRenderer() = default;
 
 std::unique_ptr<PreparedStill> StillRenderer::prepare(StillRequest request, const StillLog& log) {
+    std::unique_ptr<PreparedStill> still = load(std::move(request), log);
+    plan(*still);
+    return still;
+}
+
+std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const StillLog& log) {
     auto still = std::make_unique<PreparedStill>();
     still->request = std::move(request);
     const StillRequest& req = still->request;
     const Look& look = req.look;
     const ShadingModelTraits& shading = traitsOf(look.shading);
-    std::optional<ShadeMap> shadeMap;
-    if (!look.shadeMapPath.empty()) shadeMap = readShadeMapFile(look.shadeMapPath, shading.oneDimensionalMap);
+    if (!look.shadeMapPath.empty()) still->shadeMap = readShadeMapFile(look.shadeMapPath, shading.oneDimensionalMap);
 
     const auto loadStart = std::chrono::steady_clock::now();
     LoadOptions loadOptions;
@@ -119,34 +124,40 @@ std::unique_ptr<PreparedStill> StillRenderer::prepare(StillRequest request, cons
 
     // The maps the model's materials name (glTF extras), each file read once; exit 3 like --shademap.
     std::vector<std::string> shadeMapWarnings;
-    std::vector<std::optional<ShadeMap>> meshShadeMaps = readSceneShadeMaps(scene, look.shading, &shadeMapWarnings);
+    still->meshShadeMaps = readSceneShadeMaps(scene, look.shading, &shadeMapWarnings);
     for (const std::string& warning : shadeMapWarnings) log.log << "inkgraph: warning: " << prefix << warning << "\n";
+    return still;
+}
 
-    still->sphere = computeBoundingSphere(scene);
+void StillRenderer::plan(PreparedStill& still) {
+    const StillRequest& req = still.request;
+    const Look& look = req.look;
+    const Scene& scene = still.scene;
+
+    still.sphere = computeBoundingSphere(scene);
     try {
-        still->camera = resolveCamera(req.camera, scene);
+        still.camera = resolveCamera(req.camera, scene);
     } catch (const std::invalid_argument& error) {
         throw UsageError(error.what()); // the loader has validated the file's camera: what is left is the flags
     }
-    still->frame = frameParamsOf(look, scene, still->camera, still->sphere);
-    still->gpuScene = std::make_unique<GpuScene>(scene, still->sphere.center);
-    StillGraphSetup setup{look, mShaders, scene, still->sphere, *still->gpuScene, still->frame, std::move(shadeMap)};
-    setup.meshShadeMaps = std::move(meshShadeMaps);
-    still->graph = buildStillGraph(setup);
+    still.frame = frameParamsOf(look, scene, still.camera, still.sphere);
+    still.gpuScene = std::make_unique<GpuScene>(scene, still.sphere.center);
+    StillGraphSetup setup{look, mShaders, scene, still.sphere, *still.gpuScene, still.frame, still.shadeMap};
+    setup.meshShadeMaps = still.meshShadeMaps;
+    still.graph = buildStillGraph(setup);
 
-    std::vector<std::string> requested = {still->graph.finalResource};
+    std::vector<std::string> requested = {still.graph.finalResource};
     // --svg traces the GL-drawn layers from their masks, so those must outlive the composite.
     if (req.keepSvgInputs)
-        for (const std::string& input : still->graph.svgInputs()) requested.push_back(input);
-    for (const std::string& extra : expandWildcards(req.extraOutputs, still->graph))
+        for (const std::string& input : still.graph.svgInputs()) requested.push_back(input);
+    for (const std::string& extra : expandWildcards(req.extraOutputs, still.graph))
         if (std::find(requested.begin(), requested.end(), extra) == requested.end()) requested.push_back(extra);
     try {
-        still->plan = compile(still->graph.view(), requested);
+        still.plan = compile(still.graph.view(), requested);
     } catch (const GraphError& error) {
         // The registered passes are consistent (tests/graph, tests/app); a problem here comes from --request.
         throw UsageError(std::string("--request: ") + error.what());
     }
-    return still;
 }
 
 StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {

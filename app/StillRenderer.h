@@ -73,6 +73,8 @@ struct PreparedStill {
     BoundingSphere sphere;
     Camera camera;
     FrameParams frame;
+    std::optional<ShadeMap> shadeMap;                   ///< the request's shade map, read
+    std::vector<std::optional<ShadeMap>> meshShadeMaps; ///< per mesh, the map its material names
     std::unique_ptr<GpuScene> gpuScene;
     StillGraph graph;
     Plan plan;
@@ -101,10 +103,14 @@ public:
     StillRenderer(const StillRenderer&) = delete;
     StillRenderer& operator=(const StillRenderer&) = delete;
 
-    /** Reads the shade maps, loads the model, resolves the camera, builds the graph and compiles the plan for the
-     *  final picture plus what the request keeps. Throws SceneError, InputFileError, and UsageError for a request
-     *  the scene cannot satisfy (a camera, a --request name). */
+    /** load() then plan(). */
     std::unique_ptr<PreparedStill> prepare(StillRequest request, const StillLog& log);
+    /** Reads the shade maps (the request's and the ones the materials name) and loads the model. Throws SceneError
+     *  and InputFileError. */
+    std::unique_ptr<PreparedStill> load(StillRequest request, const StillLog& log);
+    /** Resolves the camera, builds the graph and compiles the plan for the final picture plus what the request keeps.
+     *  Throws UsageError for a request the scene cannot satisfy (a camera, a --request name). No GL. */
+    void plan(PreparedStill& still);
     /** Makes or reuses the context, checks the frame against the driver, runs the plan. Throws HeadlessContextError,
      *  UsageError (the driver's limits, out of memory), GraphError. */
     StillResult execute(PreparedStill& still, const StillLog& log);

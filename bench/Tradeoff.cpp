@@ -6,6 +6,8 @@
 #include "passes/StillGraph.h"
 #include "passes/lines/LineLayerPass.h"
 #include "passes/lines/types/SuggestiveLines.h"
+
+#include <nlohmann/json.hpp>
 #include "gl/GraphExecutor.h"
 #include "gl/HeadlessContext.h"
 #include "gl/TexturePool.h"
@@ -130,8 +132,11 @@ Timings timeRuns(WarmRender& render, const std::vector<std::string>& methodPasse
     };
     render.run();
     double setup = 0.0;
-    if (const LineLayerPass* object = render.graph().lineLayer("suggestive-object"))
-        setup = static_cast<const ObjectSuggestiveKernel&>(object->kernel()).report().curvatureMilliseconds;
+    if (const LineLayerPass* object = render.graph().lineLayer("suggestive-object")) {
+        nlohmann::ordered_json report;
+        object->describe(report);
+        setup = report.value("curvature_ms", 0.0);
+    }
     std::vector<double> frames, methods;
     for (int i = 0; i < repetitions; ++i) {
         const std::map<std::string, double> times = render.run();

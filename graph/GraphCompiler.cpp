@@ -35,6 +35,7 @@ struct ResourceInfo {
     std::string name;
     TextureDesc desc;
     Need need = Need::Required;
+    Presentation presentation;
     std::vector<std::size_t> writers;
     std::vector<std::size_t> readers; ///< registration order, each once
 };
@@ -153,7 +154,7 @@ void Declarations::collectWrites() {
                 continue;
             }
             auto [it, inserted] = resourceIndex.try_emplace(full, resources.size());
-            if (inserted) resources.push_back({full, write.desc, write.need, {}, {}});
+            if (inserted) resources.push_back({full, write.desc, write.need, write.presentation, {}, {}});
             resources[it->second].writers.push_back(i);
             declared.writes.push_back(it->second);
         }
@@ -476,6 +477,7 @@ Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::stri
         PlannedResource planned;
         planned.name = info.name;
         planned.desc = info.desc;
+        planned.presentation = info.presentation;
         planned.writer = graph.passes[info.writers.front()].name;
         planned.firstUse = planIndex[info.writers.front()];
         planned.lastUse = planned.firstUse;

@@ -23,6 +23,7 @@ public:
         std::string field; ///< own field, "normal"; the resource is "<pass>.<field>"
         TextureDesc desc;
         Need need = Need::Required;
+        Presentation presentation;
     };
 
     explicit PassBuilder(std::string passName) : mPassName(std::move(passName)) {}
@@ -30,7 +31,8 @@ public:
     /** Reads any resource by its full name. */
     void read(std::string_view resource);
     /** Writes a field in this pass's own namespace. */
-    void write(std::string_view field, const TextureDesc& desc, Need need = Need::Required);
+    void write(std::string_view field, const TextureDesc& desc, Need need = Need::Required,
+               Presentation presentation = {});
     /** Never culled. Use sparingly (nothing in the core pipeline needs it). */
     void markSideEffect() { mSideEffect = true; }
 

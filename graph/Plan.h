@@ -28,6 +28,7 @@ struct CulledPass {
 struct PlannedResource {
     std::string name; ///< "gbuffer.normal"
     TextureDesc desc;
+    Presentation presentation;        ///< as its writer declared it
     std::string writer;               ///< pass name
     std::vector<std::string> readers; ///< live readers, in plan order
     std::size_t firstUse = 0;         ///< index into Plan::passes of the writer

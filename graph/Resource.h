@@ -28,6 +28,17 @@ struct TextureDesc {
     bool operator==(const TextureDesc&) const = default;
 };
 
+/** What a resource's pixels mean, for the pictures made of it outside the graph (--contact-sheet's tiles). Auto: judged
+ *  from the format (8-bit RGBA a colour, 8-bit one channel ink lines, floats data). */
+enum class Appearance { Auto, Color, Lines, Mask, UnitVector, SignedScalar, Depth, Data };
+
+/** How a written resource is shown and named outside the graph, declared by its writer so that a new output needs no
+ *  table elsewhere. */
+struct Presentation {
+    std::string fileName; ///< --dump's file name ("normal.exr"); empty: "<pass>-<field>.exr" (floats) or ".png"
+    Appearance appearance = Appearance::Auto;
+};
+
 /** Whether a written field must be produced, or only when something consumes it. */
 enum class Need { Required, Optional };
 

@@ -71,6 +71,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     StillGraph graph;
     graph.mLook = &look;
     graph.mSphere = setup.sphere;
+    graph.mRadialLengthUnit = setup.frame.radialLengthUnit;
 
     // The face-orientation methods (Winnemöller & Bangay 2002) are comic's; the others draw with GPU culling.
     OrientationSettings orientation;
@@ -94,7 +95,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         type.build(type.name, builder);
         if (look.draws(type.name)) lines.push_back({type.name + ".lines", displayColor(look.styleOf(type.name).color)});
     }
-    graph.mLineLayers = builder.layers();
+    graph.mLineLayers = builder.finish();
     graph.passes.push_back(
         std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
     return graph;
@@ -102,7 +103,8 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
 
 Json StillGraph::describeLines() const {
     Json lines = Json::array();
-    const LineStatsSource source{*mLook, mSphere, [this](std::string_view name) { return findPass(name); }};
+    const LineStatsSource source{*mLook, mSphere, mRadialLengthUnit,
+                                 [this](std::string_view name) { return findPass(name); }};
     for (const LineType& type : lineTypes()) {
         if (!mLook->draws(type.name)) continue;
         const LineStyle style = mLook->styleOf(type.name);

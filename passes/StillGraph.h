@@ -74,6 +74,7 @@ private:
     friend StillGraph buildStillGraph(const StillGraphSetup& setup);
     const Look* mLook = nullptr;
     BoundingSphere mSphere;
+    double mRadialLengthUnit = 1.0;
     std::map<std::string, LineLayerPass*> mLineLayers; ///< the CPU line layers by type
 };
 

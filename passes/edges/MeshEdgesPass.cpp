@@ -40,7 +40,8 @@ MeshEdgesPass::MeshEdgesPass(std::string name, ShaderLibrary& shaders, GpuScene&
 }
 
 void MeshEdgesPass::declare(PassBuilder& builder) const {
-    for (const char* field : kFields) builder.write(field, {Format::R8, mSettings.supersample}, Need::Optional);
+    for (const char* field : kFields)
+        builder.write(field, {Format::R8, mSettings.supersample}, Need::Optional, {"", Appearance::Lines});
 }
 
 void MeshEdgesPass::describe(nlohmann::ordered_json& report) const {

@@ -13,15 +13,15 @@ namespace inkgraph {
 
 const std::vector<GBufferPass::Field>& GBufferPass::fields() {
     static const std::vector<Field> kFields = {
-        {"normal", Format::RGBA32F, "NORMAL"},
-        {"view", Format::RGBA32F, "VIEW"},
-        {"wVec", Format::RGBA32F, "WVEC"},
-        {"nDotV", Format::R32F, "NDOTV"},
-        {"depth", Format::R32F, "DEPTH"},
-        {"coverage", Format::R8, "COVERAGE"},
-        {"baseColor", Format::RGBA8, "BASECOLOR"},
-        {"radial", Format::RGBA32F, "RADIAL"},
-        {"materialId", Format::R32F, "MATERIAL_ID"},
+        {"normal", Format::RGBA32F, "NORMAL", "normal.exr", Appearance::UnitVector},
+        {"view", Format::RGBA32F, "VIEW", "view.exr", Appearance::UnitVector},
+        {"wVec", Format::RGBA32F, "WVEC", "w.exr", Appearance::UnitVector},
+        {"nDotV", Format::R32F, "NDOTV", "ndotv.exr", Appearance::SignedScalar},
+        {"depth", Format::R32F, "DEPTH", "depth.exr", Appearance::Depth},
+        {"coverage", Format::R8, "COVERAGE", "coverage.png", Appearance::Mask},
+        {"baseColor", Format::RGBA8, "BASECOLOR", "basecolor.png", Appearance::Color},
+        {"radial", Format::RGBA32F, "RADIAL", "radial.exr", Appearance::Data},
+        {"materialId", Format::R32F, "MATERIAL_ID", "materialid.exr", Appearance::Data},
     };
     return kFields;
 }
@@ -45,7 +45,8 @@ Format GBufferPass::formatOf(const Field& field) const {
 }
 
 void GBufferPass::declare(PassBuilder& builder) const {
-    for (const Field& field : fields()) builder.write(field.name, {formatOf(field), mSupersample}, Need::Optional);
+    for (const Field& field : fields())
+        builder.write(field.name, {formatOf(field), mSupersample}, Need::Optional, {field.fileName, field.appearance});
 }
 
 GlProgram& GBufferPass::programFor(const std::vector<std::string>& defines) {
@@ -85,7 +86,7 @@ void GBufferPass::prepare(GlPassContext& context) {
 
 void GBufferPass::execute(GlPassContext& gl) {
     // GL guarantees 8 draw buffers: more live fields are drawn in a second draw of the same meshes with the same
-    // vertex shader and depth test, which rasterises exactly the same fragments.
+    // vertex shader (gl_Position is invariant) and depth test, which rasterises exactly the same fragments.
     for (const std::vector<const Field*>& group : liveGroups(gl)) drawGroup(gl, group);
 }
 

@@ -48,7 +48,9 @@ public:
     struct Field {
         const char* name; ///< "normal"
         Format format;
-        const char* define; ///< "NORMAL": OUT_NORMAL / LOC_NORMAL in gbuffer.frag
+        const char* define;    ///< "NORMAL": OUT_NORMAL / LOC_NORMAL in gbuffer.frag
+        const char* fileName;  ///< --dump's file name, "normal.exr"
+        Appearance appearance; ///< how --contact-sheet shows it
     };
     /** Every field the pass can write, in attachment order. */
     static const std::vector<Field>& fields();

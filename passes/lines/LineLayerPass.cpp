@@ -26,7 +26,7 @@ LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kerne
 
 void LineLayerPass::declare(PassBuilder& builder) const {
     for (const std::string& input : mKernel->inputs()) builder.read(input);
-    builder.write("lines", {Format::R8});
+    builder.write("lines", {Format::R8}, Need::Required, {"lines-" + mName + ".png", Appearance::Lines});
 }
 
 void LineLayerPass::prepare(GlPassContext& context) {

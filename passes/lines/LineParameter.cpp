@@ -68,9 +68,9 @@ const LineParameter kCreaseAngle{"crease-angle",
 const LineParameter kDepthJump{
     "depth-jump",
     "R",
-    "neighbouring pixels whose depths differ by more than R x the nearer\n"
-    "depth are different surfaces (default 0.05); suggestive-object: a line point more than R x the depth behind the\n"
-    "visible surface is hidden",
+    "in the G-buffer, neighbouring pixels whose depths differ by more than R x the nearer depth are different "
+    "surfaces; on the mesh (suggestive-object), a line point more than R x the depth behind the visible surface is "
+    "hidden (default 0.05)",
     {},
     0.05,
     "",

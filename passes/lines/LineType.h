@@ -8,6 +8,7 @@
 #include "gl/GlPass.h"
 #include "passes/Look.h"
 #include "passes/lines/LineKernel.h"
+#include "passes/lines/LineLayerPass.h"
 #include "passes/lines/LineParameter.h"
 #include "scene/Camera.h"
 
@@ -24,7 +25,6 @@
 namespace inkgraph {
 
 class GpuScene;
-class LineLayerPass;
 class ShaderLibrary;
 struct FrameParams;
 
@@ -36,9 +36,6 @@ enum class LineFamily {
     MeshEdge,    ///< mesh edges GL draws as a one-pixel skeleton (the shared "mesh-edges" pass)
     ObjectSpace, ///< found on the mesh on the CPU, projected, hidden with the G-buffer depth
 };
-
-/** "image-space" and so on, for --help. */
-std::string_view lineFamilyName(LineFamily family);
 
 /** What every line type's passes are built from; every reference outlives the graph. */
 struct LineGraphSetup {
@@ -59,23 +56,25 @@ public:
     const Look& look() const { return mSetup.look; }
     /** Whether a pass of that name is registered already (a pass several types share is added once). */
     bool has(std::string_view passName) const;
+    /** A GL pass, registered at once: every type's GL passes come before every CPU line layer. */
     void add(std::unique_ptr<GlPass> pass);
     /** The usual ending: a LineLayerPass named `type` that runs `kernel` and strokes its skeleton at the type's width.
-     */
+     *  Registered by finish(), after the GL passes of every type. */
     void addLayer(const std::string& type, std::unique_ptr<LineKernel> kernel);
-    /** The layers addLayer() made, by type (for the stats and the SVG of the still graph). */
-    const std::map<std::string, LineLayerPass*>& layers() const { return mLayers; }
+    /** Registers the layers in the order they were added; returns them by type (for the stats and the SVG). */
+    std::map<std::string, LineLayerPass*> finish();
 
 private:
     const LineGraphSetup& mSetup;
     std::vector<std::unique_ptr<GlPass>>& mPasses;
-    std::map<std::string, LineLayerPass*> mLayers;
+    std::vector<std::unique_ptr<LineLayerPass>> mLayers; ///< addLayer()'s, until finish()
 };
 
 /** What a line type's describe() sees after the run. */
 struct LineStatsSource {
     const Look& look;
     BoundingSphere sphere;
+    double radialLengthUnit = 1.0; ///< FrameParams::radialLengthUnit: the G-buffer's radial field's length unit
     /** A registered pass by name (what it did: Pass::describe()), or null. */
     std::function<const Pass*(std::string_view)> pass;
 };

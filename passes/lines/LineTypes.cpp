@@ -55,27 +55,28 @@ std::vector<std::string> lineTypesUsing(const LineParameter* parameter) {
     return names;
 }
 
-std::string_view lineFamilyName(LineFamily family) {
-    switch (family) {
-    case LineFamily::GlDrawn: return "drawn by GL";
-    case LineFamily::ImageSpace: return "image space";
-    case LineFamily::MeshEdge: return "mesh edges";
-    case LineFamily::ObjectSpace: return "object space";
-    }
-    return "?";
-}
-
 bool LineGraphBuilder::has(std::string_view passName) const {
-    return std::any_of(mPasses.begin(), mPasses.end(),
-                       [&](const std::unique_ptr<GlPass>& pass) { return pass->name() == passName; });
+    auto named = [&](const auto& pass) { return pass->name() == passName; };
+    return std::any_of(mPasses.begin(), mPasses.end(), named) || std::any_of(mLayers.begin(), mLayers.end(), named);
 }
 
 void LineGraphBuilder::add(std::unique_ptr<GlPass> pass) { mPasses.push_back(std::move(pass)); }
 
 void LineGraphBuilder::addLayer(const std::string& type, std::unique_ptr<LineKernel> kernel) {
-    auto layer = std::make_unique<LineLayerPass>(type, std::move(kernel), float(mSetup.look.styleOf(type).widthPixels));
-    mLayers[type] = layer.get();
-    add(std::move(layer));
+    mLayers.push_back(
+        std::make_unique<LineLayerPass>(type, std::move(kernel), float(mSetup.look.styleOf(type).widthPixels)));
+}
+
+std::map<std::string, LineLayerPass*> LineGraphBuilder::finish() {
+    // The GL passes first, then the CPU layers, as the plan breaks ties by registration: GL work is queued before
+    // the post stage reads anything back.
+    std::map<std::string, LineLayerPass*> layers;
+    for (std::unique_ptr<LineLayerPass>& layer : mLayers) {
+        layers[std::string(layer->name())] = layer.get();
+        mPasses.push_back(std::move(layer));
+    }
+    mLayers.clear();
+    return layers;
 }
 
 } // namespace inkgraph

@@ -21,7 +21,9 @@ OutlinePass::OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& sce
                                     std::to_string(mWidthPixels));
 }
 
-void OutlinePass::declare(PassBuilder& builder) const { builder.write("lines", {Format::R8}); }
+void OutlinePass::declare(PassBuilder& builder) const {
+    builder.write("lines", {Format::R8}, Need::Required, {"lines-" + mName + ".png", Appearance::Lines});
+}
 
 void OutlinePass::describe(nlohmann::ordered_json& report) const { report["skipped_eye_inside"] = skippedEyeInside(); }
 

@@ -118,7 +118,9 @@ std::size_t ShadePass::distinctShadeMapCount() const {
 
 ShadePass::~ShadePass() = default;
 
-void ShadePass::declare(PassBuilder& builder) const { builder.write("color", {Format::RGBA8}); }
+void ShadePass::declare(PassBuilder& builder) const {
+    builder.write("color", {Format::RGBA8}, Need::Required, {"shading.png", Appearance::Color});
+}
 
 bool ShadePass::drawsOrientationSets() const {
     return mSettings.model == ShadingModel::Comic && mScene.cpuOrientation() != nullptr;

@@ -30,7 +30,9 @@ SilhouettePass::SilhouettePass(std::string name, ShaderLibrary& shaders, GpuScen
     if (mSettings.objectWidth) requireWidth(mName, "objectWidth", *mSettings.objectWidth);
 }
 
-void SilhouettePass::declare(PassBuilder& builder) const { builder.write("lines", {Format::R8}); }
+void SilhouettePass::declare(PassBuilder& builder) const {
+    builder.write("lines", {Format::R8}, Need::Required, {"lines-" + mName + ".png", Appearance::Lines});
+}
 
 void SilhouettePass::describe(nlohmann::ordered_json& report) const {
     report["skipped_eye_inside"] = skippedEyeInside();

@@ -8,6 +8,9 @@ uniform mat4 clipFromView;
 
 out vec3 viewPosition;
 out vec3 viewNormal;
+// The pass draws twice when more fields are live than GL's 8 draw buffers, with two programs: invariance makes both
+// rasterise exactly the same fragments.
+invariant gl_Position;
 
 void main() {
     vec4 position = viewFromModel * vec4(inPosition, 1.0);

@@ -411,17 +411,18 @@ TEST(Options, HelpWhereAFlagStandsStopsParsing) {
         << "a bad value before --help is still reported";
 }
 
-TEST(DumpFileName, FixedNamesForTheIssueFiles) {
-    EXPECT_EQ(dumpFileName("gbuffer.normal", true, ""), "normal.exr");
-    EXPECT_EQ(dumpFileName("gbuffer.view", true, ""), "view.exr");
-    EXPECT_EQ(dumpFileName("gbuffer.wVec", true, ""), "w.exr");
-    EXPECT_EQ(dumpFileName("gbuffer.nDotV", true, ""), "ndotv.exr");
-    EXPECT_EQ(dumpFileName("gbuffer.depth", true, ""), "depth.exr");
-    EXPECT_EQ(dumpFileName("shade.color", false, "shade.color"), "shading.png");
-    EXPECT_EQ(dumpFileName("composite.final", false, "shade.color"), "final.png");
-    EXPECT_EQ(dumpFileName("silhouette.lines", false, "shade.color"), "lines-silhouette.png");
-    EXPECT_EQ(dumpFileName("contour.lines", false, ""), "lines-contour.png");
-    EXPECT_EQ(dumpFileName("other.thing", true, ""), "other-thing.exr");
+TEST(DumpFileName, TheWritersNameElseThePassAndField) {
+    auto planned = [](std::string name, Format format, std::string fileName) {
+        PlannedResource resource;
+        resource.name = std::move(name);
+        resource.desc.format = format;
+        resource.presentation.fileName = std::move(fileName);
+        return resource;
+    };
+    EXPECT_EQ(dumpFileName(planned("gbuffer.normal", Format::RGBA32F, "normal.exr")), "normal.exr");
+    EXPECT_EQ(dumpFileName(planned("shade.color", Format::RGBA8, "shading.png")), "shading.png");
+    EXPECT_EQ(dumpFileName(planned("other.thing", Format::R32F, "")), "other-thing.exr");
+    EXPECT_EQ(dumpFileName(planned("mesh-edges.crease", Format::R8, "")), "mesh-edges-crease.png");
 }
 
 TEST(CommandLine, HelpAndUsageExitCodes) {

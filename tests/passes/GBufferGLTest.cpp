@@ -331,5 +331,39 @@ TEST_F(GBufferMaterials, HalfPrecisionKeepsIdsFloat32) {
     EXPECT_EQ(valuesIn(ids, halfOf(coverage, false)), std::vector<float>{2.0f});
 }
 
+TEST_F(GBufferMaterials, AllNineFieldsTakeTwoDrawsThatCoverTheSamePixels) {
+    // Nine live fields exceed the 8 draw buffers GL guarantees, so materialId comes from a second draw with its own
+    // program; the vertex stage is invariant, so both draws rasterise the same fragments, silhouettes included.
+    Mesh left = makeUvSphere({-1.0f, 0.0f, 0.0f}, 1.1f, 48, 24);
+    Mesh right = makeUvSphere({1.0f, 0.2f, -0.5f}, 1.1f, 48, 24);
+    left.baseColor = kRed;
+    right.baseColor = kBlue;
+    scene = makeScene(left);
+    scene.meshes.push_back(right);
+    frame.camera = test::lookingAt(scene, glm::dvec3(0.3, 0.4, 7.0), glm::dvec3(0.0), kFovDegrees, kSize, kSize);
+    frame.worldOrigin = glm::dvec3(0.0);
+    gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+    GBufferPass pass("gbuffer", shaders, *gpuScene, frame);
+    std::vector<std::string> every;
+    for (const GBufferPass::Field& field : GBufferPass::fields()) every.push_back(std::string("gbuffer.") + field.name);
+    ASSERT_EQ(every.size(), 9u);
+    const Plan plan = compile({&pass}, every);
+    executor.run(plan, {&pass}, {kSize, kSize, false});
+    const cv::Mat ids = executor.store().image("gbuffer.materialId");
+    const cv::Mat coverage = executor.store().image("gbuffer.coverage");
+    const cv::Mat depth = executor.store().image("gbuffer.depth");
+    int covered = 0, mismatched = 0;
+    for (int row = 0; row < kSize; ++row)
+        for (int col = 0; col < kSize; ++col) {
+            const bool onModel = coverage.at<uchar>(row, col) != 0;
+            covered += onModel;
+            if (onModel != (ids.at<float>(row, col) > 0.0f) || onModel != (depth.at<float>(row, col) > 0.0f))
+                ++mismatched;
+        }
+    EXPECT_GT(covered, 1000);
+    EXPECT_EQ(mismatched, 0) << "the two draws covered different pixels";
+    EXPECT_EQ(valuesIn(ids, coverage), (std::vector<float>{1.0f, 2.0f}));
+}
+
 } // namespace
 } // namespace inkgraph

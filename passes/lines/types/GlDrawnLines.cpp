@@ -3,6 +3,10 @@
 #include "passes/outline/OutlinePass.h"
 #include "passes/silhouette/SilhouettePass.h"
 
+#include <limits>
+
+#include <limits>
+
 namespace inkgraph {
 namespace {
 
@@ -23,7 +27,7 @@ const LineParameter kSilhouetteObjectWidth{
     std::nullopt,
     "",
     0.0,
-    1e300,
+    std::numeric_limits<double>::max(),
     true,
     false,
     "model units must be above 0"};

@@ -53,13 +53,16 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void describeShared(const LineStatsSource& source, nlohmann::ordered_json& entry) {
+/** The settings both types report; feature_size in model units, as the kernel holds it (in float). */
+void describeShared(const LineStatsSource& source, nlohmann::ordered_json& entry, bool imageSpace) {
     const SuggestiveSettings settings = sharedSettings(source.look, source.sphere);
     entry["depth_jump"] = source.look.lineParameters.number(kDepthJump);
     entry["supersample"] = source.look.supersample;
     entry["threshold"] = settings.threshold;
     entry["fade"] = settings.fade;
-    entry["feature_size"] = kSuggestiveFeatureSizeFraction * source.sphere.radius;
+    const double featureSize = kSuggestiveFeatureSizeFraction * source.sphere.radius;
+    const double unit = source.radialLengthUnit;
+    entry["feature_size"] = imageSpace ? double(float(featureSize / unit)) * unit : double(float(featureSize));
 }
 
 } // namespace
@@ -177,7 +180,7 @@ LineType suggestiveLineType() {
         builder.addLayer(name, std::make_unique<SuggestiveKernel>(setup.gbuffer, settings));
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
-        describeShared(source, entry);
+        describeShared(source, entry, true);
         entry["min_sin_theta"] = SuggestiveSettings{}.minSinTheta;
         entry["stencil_points"] = source.look.lineParameters.choice(kSuggestiveStencil) == "5" ? 5 : 3;
     };
@@ -200,7 +203,9 @@ LineType suggestiveObjectLineType() {
         builder.addLayer(name, std::make_unique<ObjectSuggestiveKernel>(
                                    setup.gbuffer, sharedSettings(setup.look, setup.sphere), setup.scene, setup.frame));
     };
-    type.describe = describeShared;
+    type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
+        describeShared(source, entry, false);
+    };
     return type;
 }
 

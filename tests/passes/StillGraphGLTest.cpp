@@ -1,0 +1,60 @@
+// The still graph as the registry builds it: the passes in the order the app has always run them (every GL pass
+// before the CPU line layers, the shared mesh-edges pass once), and only what the drawn types need kept live.
+#include "graph/GraphCompiler.h"
+#include "passes/StillGraph.h"
+#include "passes/lines/LineTypes.h"
+#include "scene/Procedural.h"
+#include "tests/support/GlTestContext.h"
+#include "tests/support/PassHarness.h"
+#include "tests/support/TestCamera.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace inkgraph {
+namespace {
+
+class StillGraphOrder : public ::testing::Test, protected test::PassHarness {
+protected:
+    void SetUp() override {
+        test::sharedGlContext();
+        scene = makeScene(makeCube({0.0f, 0.0f, 0.0f}, 1.0f));
+        frame.camera = test::lookingAt(scene, {2.5, 1.8, 2.0}, glm::dvec3(0.0), 35.0, 64, 64);
+        gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+    }
+
+    std::vector<std::string> planOrder(const Look& look) {
+        StillGraphSetup setup{look, shaders, scene, computeBoundingSphere(scene), *gpuScene, frame, std::nullopt};
+        const StillGraph graph = buildStillGraph(setup);
+        std::vector<std::string> names;
+        for (const PlannedPass& pass : compile(graph.view(), {graph.finalResource}).passes) names.push_back(pass.name);
+        return names;
+    }
+};
+
+TEST_F(StillGraphOrder, GlPassesComeBeforeTheLineLayersAndSharedPassesAreRegisteredOnce) {
+    Look look;
+    look.lines = {"crease", "normal-edge", "border", "outline"};
+    EXPECT_EQ(planOrder(look), (std::vector<std::string>{"gbuffer", "shade", "outline", "mesh-edges", "normal-edge",
+                                                         "crease", "border", "composite"}));
+}
+
+TEST_F(StillGraphOrder, EveryRegisteredTypeHasItsLayerOrPassAndTheCompositeReadsThemInRegistryOrder) {
+    Look look;
+    look.shading = ShadingModel::None;
+    for (const LineType& type : lineTypes()) look.lines.push_back(type.name);
+    std::reverse(look.lines.begin(), look.lines.end()); // the user's order does not change the composite's
+    StillGraphSetup setup{look, shaders, scene, computeBoundingSphere(scene), *gpuScene, frame, std::nullopt};
+    const StillGraph graph = buildStillGraph(setup);
+    const Plan plan = compile(graph.view(), {graph.finalResource});
+    const PlannedPass* composite = plan.findPass("composite");
+    ASSERT_NE(composite, nullptr);
+    std::vector<std::string> expected;
+    for (const LineType& type : lineTypes()) expected.push_back(type.name + ".lines");
+    EXPECT_EQ(composite->reads, expected);
+    EXPECT_TRUE(plan.culled.empty()) << plan.culled.front().name << ": " << plan.culled.front().reason;
+}
+
+} // namespace
+} // namespace inkgraph
