@@ -65,7 +65,7 @@ TEST(Options, Defaults) {
 
 TEST(Options, ShadingModesAndTheirFlags) {
     for (const char* mode : {"none", "flat", "gouraud", "lambert", "phong", "cel", "comic"})
-        EXPECT_EQ(traitsOf(parse({"m.obj", "-o", "x.png", "--shading", mode}).look.shading).name, mode);
+        EXPECT_EQ(std::string(traitsOf(parse({"m.obj", "-o", "x.png", "--shading", mode}).look.shading).name), mode);
     const RenderOptions comic =
         parse({"m.obj", "-o", "x.png", "--shading", "comic", "--shininess", "0", "--shademap", "map.png",
                "--view-vector", "constant", "--face-orientation", "during-vertices", "--front-rule", "1"});
