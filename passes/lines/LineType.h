@@ -2,8 +2,8 @@
 /** @file A line type: one entry of the registry (passes/lines/LineTypes.h) that says everything about it: its name,
  *  family and --help text, its parameters, the passes that draw "<name>.lines", what it reports to --stats, and how
  *  --svg traces it. The command line, style files, the still graph, the composite, the stats and the SVG writer all
- *  iterate the registry, so a new line type is one file in passes/lines/types/ and one line in LineTypes.cpp
- *  (docs/contributing.md). */
+ *  iterate the registry, so a new line type is one file in passes/lines/types/ and its registration in
+ *  LineTypes.cpp (docs/contributing.md). */
 
 #include "gl/GlPass.h"
 #include "passes/Look.h"
