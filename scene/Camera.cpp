@@ -171,14 +171,19 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
         invalid("the up vector (" + upText + ") is parallel to the view direction (" + viewText + ")");
     }
 
-    // Fit the clip planes to the bounding sphere so nothing is clipped and depth precision is spent on the model.
+    // Fit the clip planes to the bounding sphere so nothing is clipped and depth precision is spent on the model. The
+    // planes are perpendicular to the view axis, so the sphere's nearest depth is its centre's depth along that axis
+    // less the radius: with the model off the axis (--target elsewhere) the centre's distance would put the near
+    // plane behind the front of the sphere and clip a cap off it.
     const double distance = glm::length(camera.eye - sphere.center);
+    const double centreDepth = glm::dot(sphere.center - camera.eye, view / viewLength);
     camera.zFar = (distance + sphere.radius) * 1.01;
     if (!(camera.zFar > 0.0)) {
         camera.zFar = 1.0; // the eye sits on a point-sized scene
     }
     const double minNear = camera.zFar * kMinNearOverFar;
-    camera.zNear = distance < sphere.radius ? minNear : std::max(distance - sphere.radius, minNear) * 0.99;
+    const double nearestDepth = centreDepth - sphere.radius;
+    camera.zNear = distance < sphere.radius || !(nearestDepth > 0.0) ? minNear : std::max(nearestDepth, minNear) * 0.99;
     if (request.zNear || request.zFar) {
         if (!request.zNear || !request.zFar) {
             invalid("--clip needs both the near and the far distance");

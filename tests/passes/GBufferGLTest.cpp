@@ -173,6 +173,50 @@ TEST_F(GBufferSphere, RadialFieldIsDeCarlosUnnormalisedFormWithImageSpaceW) {
     EXPECT_LT(maxWError, 2e-3);
 }
 
+TEST_F(GBufferSphere, OffAxisViewKeepsTheWholeFrontOfTheSphere) {
+    // The eye 4 from the centre looking 0.8 beside it: the sphere's front lies nearer along the view axis than its
+    // centre's distance less the radius, so a near plane fitted to that distance clipped a cap off the front (a hole
+    // showing the inside). Every pixel whose ray, and its neighbours' rays, hit the sphere must be covered at the
+    // ray-cast depth.
+    const glm::dvec3 eye(0.0, 0.0, kDistance), target(0.8, 0.0, 0.0);
+    frame.camera = test::lookingAt(scene, eye, target, kFovDegrees, kSize, kSize);
+    render({"gbuffer.depth", "gbuffer.coverage"});
+    const cv::Mat& depth = executor.store().image("gbuffer.depth");
+    const cv::Mat& coverage = executor.store().image("gbuffer.coverage");
+    const glm::dvec3 forward = glm::normalize(target - eye);
+    const glm::dmat3 worldFromView = glm::transpose(glm::dmat3(frame.camera.viewMatrix()));
+    const double tanHalf = std::tan(glm::radians(kFovDegrees) / 2.0);
+    // Linear depth of the sphere along a pixel's ray through (x, y) in pixels, or nothing when the ray misses.
+    auto castDepth = [&](double x, double y) -> std::optional<double> {
+        const double ndcX = (x + 0.5) / kSize * 2.0 - 1.0, ndcY = 1.0 - (y + 0.5) / kSize * 2.0;
+        const glm::dvec3 ray = glm::normalize(worldFromView * glm::dvec3(ndcX * tanHalf, ndcY * tanHalf, -1.0));
+        const glm::dvec3 toEye = eye; // the sphere's centre is the origin
+        const double b = glm::dot(ray, toEye);
+        const double discriminant = b * b - (glm::dot(toEye, toEye) - kRadius * kRadius);
+        if (discriminant <= 0.0) return std::nullopt;
+        const double t = -b - std::sqrt(discriminant);
+        return glm::dot(t * ray, forward);
+    };
+    int checked = 0, wrong = 0;
+    double worstDepth = 0.0;
+    for (int row = 1; row + 1 < kSize; ++row)
+        for (int col = 1; col + 1 < kSize; ++col) {
+            bool inside = true;
+            for (int dy = -1; dy <= 1 && inside; ++dy)
+                for (int dx = -1; dx <= 1 && inside; ++dx) inside = castDepth(col + dx, row + dy).has_value();
+            if (!inside) continue;
+            ++checked;
+            const double truth = *castDepth(col, row);
+            const double error = std::abs(double(depth.at<float>(row, col)) - truth);
+            worstDepth = std::max(worstDepth, error);
+            if (coverage.at<uchar>(row, col) != 255 || error > 2e-3 * truth) ++wrong;
+        }
+    EXPECT_GT(checked, 5000);
+    EXPECT_EQ(wrong, 0) << "pixels of the sphere's front missing or at the wrong depth; worst depth error "
+                        << worstDepth;
+    EXPECT_LT(frame.camera.zNear, glm::dot(-eye, forward) - kRadius);
+}
+
 TEST_F(GBufferSphere, SupersampleScalesEveryField) {
     const Plan plan = render({"gbuffer.depth", "gbuffer.radial"}, 2);
     const cv::Mat& depth = executor.store().image("gbuffer.depth");

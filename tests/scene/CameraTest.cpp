@@ -112,6 +112,27 @@ TEST(Camera, ClipPlanesEncloseTheSphere) {
     EXPECT_NEAR(camera.zNear, (distance - sphere.radius) * 0.99, 1e-9);
 }
 
+TEST(Camera, NearPlaneFollowsTheDepthAlongTheViewAxisWhenTheModelIsOffAxis) {
+    // The eye 4 from the centre, looking 0.8 beside it: the centre lies at depth 16/sqrt(16.64) = 3.92 along the view
+    // axis, so the sphere's front is at depth 2.92, in front of the 2.97 the centre's distance (4 - 1) x 0.99 gave.
+    const Scene scene = sphereScene({0, 0, 0}, 1.0f);
+    const BoundingSphere sphere = computeBoundingSphere(scene);
+    CameraRequest request;
+    request.eye = glm::dvec3(0, 0, 4);
+    request.target = glm::dvec3(0.8, 0, 0);
+    const Camera camera = resolveCamera(request, scene);
+    const glm::dvec3 axis = glm::normalize(*request.target - *request.eye);
+    const double frontDepth = glm::dot(sphere.center - camera.eye, axis) - sphere.radius;
+    EXPECT_NEAR(camera.zNear, frontDepth * 0.99, 1e-9);
+    EXPECT_LT(camera.zNear, frontDepth);
+    EXPECT_GT(camera.zFar, glm::length(camera.eye - sphere.center) + sphere.radius);
+    // A sphere beside the eye (its front behind the eye plane) gets the smallest near plane.
+    request.target = glm::dvec3(0, 0, 8);
+    request.eye = glm::dvec3(1.5, 0, 0.5);
+    const Camera beside = resolveCamera(request, scene);
+    EXPECT_DOUBLE_EQ(beside.zNear, beside.zFar * 1e-4);
+}
+
 TEST(Camera, EyeInsideTheSphereGetsATinyNearPlane) {
     const Scene scene = sphereScene({0, 0, 0}, 10.0f);
     CameraRequest request;
