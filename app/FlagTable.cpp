@@ -356,6 +356,15 @@ std::vector<Flag> makeFlags() {
                          [](const std::string&, RenderOptions& options) { options.quiet = true; }));
 
     // Camera
+    flags.push_back(flag({"--camera"}, "C", S::Camera,
+                         "file (default: the glTF file's camera when it has one: its place, up and field of view, each "
+                         "replaced by --eye, --up and --fov) | auto (never the file's camera: auto-framed unless --eye "
+                         "places it, field of view 35 unless --fov)",
+                         [](const std::string& value, RenderOptions& options) {
+                             if (value != "file" && value != "auto")
+                                 throw UsageError("--camera: expected file or auto, got '" + value + "'");
+                             options.autoCamera = value == "auto";
+                         }));
     flags.push_back(
         flag({"--eye"}, "X,Y,Z", S::Camera, "camera position, in world units (coordinates within +-1e15)",
              [](const std::string& value, RenderOptions& options) { options.eye = parsePoint("--eye", value); }));

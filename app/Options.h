@@ -42,6 +42,7 @@ struct RenderOptions {
     std::optional<glm::dvec3> up;          ///< default: the glTF camera's, else 0,1,0
     std::optional<double> fovYDegrees;     ///< default 35 unless the glTF camera says otherwise
     std::optional<glm::dvec2> clipRange;   ///< --clip NEAR,FAR (0 < near < far); default: fitted to the model
+    bool autoCamera = false;               ///< --camera auto: never the file's camera
     Look look;                             ///< shading, lines, supersampling, precision, paper, light
     std::vector<std::string> extraOutputs; ///< --request: extra graph resources kept and dumped ("gbuffer.*")
     std::string dumpDirectory;

@@ -103,6 +103,7 @@ CameraRequest cameraRequestOf(const RenderOptions& options) {
     request.target = options.target;
     request.up = options.up;
     request.fovYDegrees = options.fovYDegrees;
+    request.ignoreFileCamera = options.autoCamera;
     if (options.clipRange) {
         request.zNear = options.clipRange->x;
         request.zFar = options.clipRange->y;

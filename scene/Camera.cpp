@@ -97,10 +97,11 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
 
     // The file's field of view is a property of its lens and applies whoever places the camera; its placement
     // (eye, orientation) is one unit that an explicit eye replaces entirely.
+    const SceneCamera* sceneCamera = scene.camera && !request.ignoreFileCamera ? &*scene.camera : nullptr;
     camera.fovYDegrees = request.fovYDegrees ? *request.fovYDegrees
-                         : scene.camera      ? scene.camera->fovYDegrees
+                         : sceneCamera       ? sceneCamera->fovYDegrees
                                              : kDefaultFovYDegrees;
-    const SceneCamera* fileCamera = !request.eye && scene.camera ? &*scene.camera : nullptr;
+    const SceneCamera* fileCamera = !request.eye ? sceneCamera : nullptr;
     if (!std::isfinite(camera.fovYDegrees) || camera.fovYDegrees <= 0.0 || camera.fovYDegrees >= 180.0) {
         const std::string fov = formatNumber(camera.fovYDegrees);
         invalid(request.fovYDegrees

@@ -19,6 +19,9 @@ struct CameraRequest {
      *  the glTF camera's up, and auto-framing looks at the model from a side chosen relative to it. */
     std::optional<glm::dvec3> up;
     std::optional<double> fovYDegrees; ///< vertical field of view; default 35
+    /** --camera auto: the file's camera is not used at all (its placement, up and field of view); the view is
+     *  auto-framed unless --eye places it. */
+    bool ignoreFileCamera = false;
     /** Near and far clip distances (--clip); unset, both are fitted to the bounding sphere. */
     std::optional<double> zNear;
     std::optional<double> zFar;

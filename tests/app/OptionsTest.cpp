@@ -365,6 +365,15 @@ TEST(Options, ClipAndPointsWithinWhatFloat32AndDoubleHold) {
         std::string::npos);
 }
 
+TEST(Options, CameraFileOrAuto) {
+    EXPECT_FALSE(parse({"m.obj", "-o", "x.png"}).autoCamera) << "the file's camera by default";
+    EXPECT_TRUE(parse({"m.obj", "-o", "x.png", "--camera", "auto"}).autoCamera);
+    EXPECT_FALSE(parse({"m.obj", "-o", "x.png", "--camera", "file"}).autoCamera);
+    EXPECT_TRUE(cameraRequestOf(parse({"m.obj", "-o", "x.png", "--camera", "auto"})).ignoreFileCamera);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--camera", "orbit"}).find("--camera: expected file or auto"),
+              std::string::npos);
+}
+
 TEST(Options, SeveralModelsAListAndAShard) {
     const RenderOptions several = parse({"a.obj", "-o", "{name}.png", "b.glb", "c.stl"});
     EXPECT_EQ(several.modelPaths, std::vector<std::string>({"a.obj", "b.glb", "c.stl"}));

@@ -179,6 +179,28 @@ TEST(Camera, RequestedEyeAndTargetAreHonoured) {
     expectNear(placed.eye - placed.target, framed.eye - framed.target); // the same offset as auto-framing
 }
 
+TEST(Camera, AutoCameraIgnoresTheFilesCamera) {
+    Scene scene = sphereScene({0, 0, 0}, 1.0f);
+    SceneCamera fileCamera;
+    fileCamera.eye = glm::dvec3(0, 0, 8);
+    fileCamera.up = glm::dvec3(1, 0, 0);
+    fileCamera.fovYDegrees = 18.0;
+    scene.camera = fileCamera;
+    CameraRequest automatic;
+    automatic.ignoreFileCamera = true;
+    const Camera framed = resolveCamera(automatic, scene);
+    const Camera unfiled = resolveCamera({}, sphereScene({0, 0, 0}, 1.0f));
+    EXPECT_EQ(framed.source, "auto-framed");
+    EXPECT_EQ(framed.fovYDegrees, 35.0) << "the file's lens goes with its camera";
+    EXPECT_EQ(framed.up, glm::dvec3(0, 1, 0));
+    EXPECT_EQ(framed.eye, unfiled.eye) << "the same view as a file without a camera";
+    // With --eye too: the flags' placement and the default lens, not the file's 18 degrees.
+    automatic.eye = glm::dvec3(3, 0, 3);
+    const Camera placed = resolveCamera(automatic, scene);
+    EXPECT_EQ(placed.source, "flags");
+    EXPECT_EQ(placed.fovYDegrees, 35.0);
+}
+
 TEST(Camera, GltfCameraIsUsedWithoutFlags) {
     Scene scene = sphereScene({0, 0, 0}, 1.0f);
     SceneCamera fileCamera;
