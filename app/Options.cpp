@@ -113,14 +113,14 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, cons
         }
     }
     if (options.modelPaths.empty() && options.listPath.empty())
-        throw UsageError("missing MODEL (a .gltf, .glb, .obj or .stl file, or --list FILE)");
+        throw UsageError("missing MODEL (a .gltf, .glb, .vrm, .obj or .stl file, or --list FILE)");
     checkGivenFlags(options, given);
     return options;
 }
 
 std::string renderHelp() {
     return "Usage: inkgraph render MODEL... -o OUT.png [options]\n\n"
-           "Renders one still of each MODEL (.gltf, .glb, .obj, .stl) with no window or display (EGL).\n" +
+           "Renders one still of each MODEL (.gltf, .glb, .vrm, .obj, .stl) with no window or display (EGL).\n" +
            renderFlagsHelp() +
            "\nExit codes: 0 done, 2 bad command line, 3 unreadable or invalid model, 4 no OpenGL/EGL,\n"
            "5 an output could not be written, 1 anything else.\n";

@@ -47,9 +47,9 @@ double framingDistance(double radius, double fovYRadians, double aspect) {
 /** Unit direction from the target toward the auto-framed eye: the front (world +Z, or world -Y when +Z is nearly
  *  along up) made perpendicular to up, then lifted by kAutoFrameLift x up. `up` must be non-zero and finite. For up
  *  (0, 1, 0) every step is exact, giving exactly normalize(0, 0.25, 1). */
-glm::dvec3 autoFrameDirection(const glm::dvec3& up) {
+glm::dvec3 autoFrameDirection(const glm::dvec3& up, const std::optional<glm::dvec3>& modelFront) {
     const glm::dvec3 u = glm::normalize(up);
-    glm::dvec3 front(0.0, 0.0, 1.0);
+    glm::dvec3 front = modelFront.value_or(glm::dvec3(0.0, 0.0, 1.0));
     if (std::abs(glm::dot(front, u)) > kMaxFrontAlongUp) {
         front = glm::dvec3(0.0, -1.0, 0.0); // |Y . u| < sqrt(1 - 0.9^2) here, so the projection below is not short
     }
@@ -153,7 +153,7 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
                                   : "the glTF camera's forward " + formatVector(fileCamera->forward);
     } else {
         camera.target = requestTarget ? *requestTarget : sphere.center;
-        camera.eye = camera.target + autoFrameDirection(camera.up) *
+        camera.eye = camera.target + autoFrameDirection(camera.up, scene.front) *
                                          framingDistance(radius, glm::radians(camera.fovYDegrees), camera.aspect());
         camera.source = "auto-framed";
         eyeText = "the auto-framed eye (" + world(camera.eye) + ")";

@@ -158,6 +158,7 @@ public:
     void walk() {
         checkRequiredExtensions();
         checkMaterialIndices();
+        readVrmFront();
         // Depth-first with an explicit stack (a deep hierarchy must not overflow the call stack), in the order the
         // recursive walk would take: roots and children are pushed in reverse so the first is handled first.
         std::vector<PendingNode> pending;
@@ -209,6 +210,18 @@ private:
             fail("requires the unsupported extension" + std::string(unsupportedCount > 1 ? "s " : " ") + unsupported +
                  " (extensionsRequired; supported: " + supported + ")");
         }
+    }
+
+    /** A VRM character faces its specification's front: -Z in VRM 0.x (extension "VRM"), +Z in VRM 1.0
+     *  ("VRMC_vrm"), so auto-framing shows its face, not its back. */
+    void readVrmFront() {
+        const auto uses = [&](const char* name) {
+            return std::ranges::find(mModel.extensionsUsed, std::string(name)) != mModel.extensionsUsed.end();
+        };
+        if (uses("VRMC_vrm"))
+            mOut.front = glm::dvec3(0.0, 0.0, 1.0);
+        else if (uses("VRM"))
+            mOut.front = glm::dvec3(0.0, 0.0, -1.0);
     }
 
     /** A primitive naming a material that does not exist would silently take the default colour and shade map. */

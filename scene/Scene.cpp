@@ -142,7 +142,7 @@ std::string lowercaseExtension(const std::string& path) {
 
 FileKind kindFromExtension(const std::string& path) {
     const std::string extension = lowercaseExtension(path);
-    if (extension == ".gltf" || extension == ".glb") {
+    if (extension == ".gltf" || extension == ".glb" || extension == ".vrm") { // a VRM file is a GLB
         return FileKind::Gltf;
     }
     if (extension == ".obj") {
@@ -152,7 +152,7 @@ FileKind kindFromExtension(const std::string& path) {
         return FileKind::Stl;
     }
     const std::string shown = extension.empty() ? "no extension" : "extension '" + extension + "'";
-    detail::throwLoadError(path, "unsupported file type (" + shown + "); supported: .gltf, .glb, .obj, .stl");
+    detail::throwLoadError(path, "unsupported file type (" + shown + "); supported: .gltf, .glb, .vrm, .obj, .stl");
 }
 
 void requireRegularFile(const std::string& path) {
@@ -238,6 +238,7 @@ Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOpt
     Scene scene;
     scene.camera = raw.camera;
     scene.light = raw.light;
+    scene.front = raw.front;
     scene.report.format = raw.format;
     scene.report.warnings = std::move(raw.warnings);
     scene.report.inputFiles = std::move(raw.inputFiles);
@@ -314,7 +315,7 @@ std::vector<std::string> referencedFiles(const std::string& path) {
     const std::string extension = lowercaseExtension(path);
     std::ifstream file(path, std::ios::binary);
     std::string content;
-    if (extension == ".glb") {
+    if (extension == ".glb" || extension == ".vrm") {
         // The JSON chunk only: the binary chunk after it can be large and names no file.
         content.resize(20);
         if (!file.read(content.data(), 20)) return {};

@@ -75,6 +75,9 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::optional<SceneCamera> camera;
     std::optional<DirectionalLight> light;
+    /** The direction the model faces when its file says so (unit, world): a VRM 0.x character faces -Z, a VRM 1.0
+     *  one +Z (their specifications). Auto-framing looks at this side; empty, it looks from +Z. */
+    std::optional<glm::dvec3> front;
     LoadReport report;
 
     std::size_t triangleCount() const;
@@ -112,7 +115,7 @@ struct LoadOptions {
     std::size_t memoryLimitBytes = kDefaultLoadMemoryLimit;
 };
 
-/** Reads .gltf, .glb, .obj or .stl (binary or ASCII), chosen by content and extension.
+/** Reads .gltf, .glb (and .vrm, a GLB), .obj or .stl (binary or ASCII), chosen by content and extension.
  *  Throws SceneError for a missing or unreadable file, corrupt or truncated content, non-finite
  *  coordinates, out-of-range indices, a model whose extent lies outside [kMinModelExtent, kMaxModelExtent], or a file
  *  with no triangles. */

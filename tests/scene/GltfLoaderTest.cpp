@@ -559,5 +559,44 @@ TEST(GltfLoader, InvalidJsonIsAnError) {
     EXPECT_NE(message.find("invalid glTF"), std::string::npos) << message;
 }
 
+Scene loadSceneFromTriangle() {
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const TempFile file("triangle.glb",
+                        writer.glb(singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}}")));
+    return loadScene(file.path());
+}
+
+TEST(GltfLoader, VrmFilesAreGlbsAndFaceTheirSpecificationsFront) {
+    // A VRM file is a GLB with a .vrm name. VRM 0.x characters face -Z, VRM 1.0 ones +Z; a plain glTF names no front.
+    for (const auto& [extensions, front] : std::vector<std::pair<std::string, std::optional<glm::dvec3>>>{
+             {"\"extensionsUsed\": [\"VRM\"], ", glm::dvec3(0, 0, -1)},
+             {"\"extensionsUsed\": [\"VRMC_vrm\"], ", glm::dvec3(0, 0, 1)},
+             {"", std::nullopt}}) {
+        GltfWriter writer;
+        const int positions = writer.addVec3(kUnitTriangle);
+        const TempFile file(
+            "character.vrm",
+            writer.glb(extensions + singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}}")));
+        const Scene scene = loadScene(file.path());
+        EXPECT_EQ(scene.report.format, "glb");
+        EXPECT_EQ(scene.triangleCount(), 1u);
+        EXPECT_EQ(scene.front, front) << extensions;
+    }
+}
+
+TEST(GltfLoader, AutoFramingLooksAtTheModelsFront) {
+    // A VRM 0.x character (front -Z) is framed from -Z, so its face shows; a file without a front from +Z.
+    Scene scene = loadSceneFromTriangle();
+    const Camera defaultView = resolveCamera({}, scene);
+    scene.front = glm::dvec3(0, 0, -1);
+    const Camera vrmView = resolveCamera({}, scene);
+    const BoundingSphere sphere = computeBoundingSphere(scene);
+    EXPECT_GT(defaultView.eye.z - sphere.center.z, 0.0);
+    EXPECT_LT(vrmView.eye.z - sphere.center.z, 0.0);
+    EXPECT_NEAR(vrmView.eye.x - sphere.center.x, 0.0, 1e-9);
+    EXPECT_GT(vrmView.eye.y - sphere.center.y, 0.0) << "still slightly above";
+}
+
 } // namespace
 } // namespace inkgraph
