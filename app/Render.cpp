@@ -74,8 +74,8 @@ std::vector<RunInput> inputsFoundByLoading(const RenderOptions& options, const S
     for (const std::string& file : scene.report.inputFiles)
         inputs.push_back({file, "a file the model " + model + " reads"});
     for (const Mesh& mesh : scene.meshes)
-        if (!mesh.shadeMapPath.empty())
-            inputs.push_back({mesh.shadeMapPath, "the shade map of mesh '" + mesh.name + "' of " + model});
+        if (!mesh.material.shadeMapPath.empty())
+            inputs.push_back({mesh.material.shadeMapPath, "the shade map of mesh '" + mesh.name + "' of " + model});
     return inputs;
 }
 

@@ -11,7 +11,7 @@ namespace {
 /** "mesh 'Teapot' (glTF material 'Metal')", or without the material when the mesh has no named one. */
 std::string meshLabel(const Mesh& mesh) {
     return "mesh '" + mesh.name + "'" +
-           (mesh.materialName.empty() ? "" : " (glTF material '" + mesh.materialName + "')");
+           (mesh.material.name.empty() ? "" : " (glTF material '" + mesh.material.name + "')");
 }
 
 } // namespace
@@ -24,7 +24,7 @@ std::vector<std::optional<ShadeMap>> readSceneShadeMaps(const Scene& scene, Shad
         // Reading files nothing will draw with could only fail the run; say why the file's maps do not show instead.
         std::size_t naming = 0;
         for (const Mesh& mesh : scene.meshes)
-            if (!mesh.shadeMapPath.empty()) ++naming;
+            if (!mesh.material.shadeMapPath.empty()) ++naming;
         if (naming > 0 && warnings)
             warnings->push_back(naming == 1
                                     ? "1 mesh names a shade map, which only --shading " +
@@ -38,12 +38,12 @@ std::vector<std::optional<ShadeMap>> readSceneShadeMaps(const Scene& scene, Shad
     std::map<std::string, ShadeMap> read;
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const Mesh& mesh = scene.meshes[i];
-        if (mesh.shadeMapPath.empty()) continue;
-        auto found = read.find(mesh.shadeMapPath);
+        if (mesh.material.shadeMapPath.empty()) continue;
+        auto found = read.find(mesh.material.shadeMapPath);
         if (found == read.end()) {
             try {
-                found = read.emplace(mesh.shadeMapPath,
-                                     readShadeMapFile(mesh.shadeMapPath, traitsOf(shading).oneDimensionalMap))
+                found = read.emplace(mesh.material.shadeMapPath,
+                                     readShadeMapFile(mesh.material.shadeMapPath, traitsOf(shading).oneDimensionalMap))
                             .first;
             } catch (const InputFileError& error) {
                 // readShadeMapFile() speaks for --shademap; here the file came from the model, so name the mesh.

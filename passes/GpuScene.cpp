@@ -48,7 +48,7 @@ const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
                       GlBuffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3), label + " indices"),
                       GlVertexArray(label),
                       static_cast<GLsizei>(mesh.triangles.size() * 3),
-                      mesh.baseColor,
+                      mesh.material.baseColorFactor,
                       materials[index]};
         draw.vertexArray.setVec3Attribute(kPositionLocation, draw.positions);
         draw.vertexArray.setVec3Attribute(kNormalLocation, draw.normals);

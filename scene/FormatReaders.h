@@ -25,6 +25,7 @@ struct RawScene {
     std::optional<SceneCamera> camera; ///< in world coordinates (not relative to `origin`)
     std::optional<DirectionalLight> light;
     std::optional<glm::dvec3> front; ///< as Scene::front
+    std::vector<SceneImage> images;  ///< as Scene::images
     std::vector<std::string> warnings;
     std::vector<std::string> inputFiles; ///< as LoadReport::inputFiles
 };

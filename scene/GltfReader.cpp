@@ -669,12 +669,13 @@ private:
 
         if (primitive.material >= 0) { // in range: checkMaterialIndices()
             const tinygltf::Material& material = mModel.materials[std::size_t(primitive.material)];
-            mesh.materialName = material.name;
+            mesh.material.name = material.name;
             const std::vector<double>& factor = material.pbrMetallicRoughness.baseColorFactor;
             if (factor.size() == 4) {
-                mesh.baseColor = glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
+                mesh.material.baseColorFactor =
+                    glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
             }
-            mesh.shadeMapPath = materialShadeMap(primitive.material);
+            mesh.material.shadeMapPath = materialShadeMap(primitive.material);
         }
         mOut.meshes.push_back(std::move(mesh));
     }

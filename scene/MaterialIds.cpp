@@ -3,9 +3,7 @@
 namespace inkgraph {
 namespace {
 
-bool sameMaterial(const Mesh& a, const Mesh& b) {
-    return a.materialName == b.materialName && a.baseColor == b.baseColor && a.shadeMapPath == b.shadeMapPath;
-}
+bool sameMaterial(const Mesh& a, const Mesh& b) { return a.material == b.material; }
 
 } // namespace
 

@@ -1,6 +1,8 @@
 #include "scene/MeshOps.h"
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -141,9 +143,13 @@ BoundingBox computeBoundingBox(std::span<const glm::vec3> positions) {
     return box;
 }
 
-WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals, double distance) {
+WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals, double distance,
+                     std::span<const std::uint32_t> attributeClasses) {
     if (!normals.empty() && normals.size() != positions.size()) {
         throw std::logic_error("weldVertices(): normals must be empty or one per position");
+    }
+    if (!attributeClasses.empty() && attributeClasses.size() != positions.size()) {
+        throw std::logic_error("weldVertices(): attribute classes must be empty or one per position");
     }
     if (positions.size() >= kNoVertex) {
         throw std::length_error("weldVertices(): too many vertices for 32-bit indices");
@@ -195,6 +201,9 @@ WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::
                     distanceSquared > bestDistanceSquared ||
                     (best != kNoVertex && distanceSquared == bestDistanceSquared); // ties keep the first found
                 if (fartherThanBest) {
+                    continue;
+                }
+                if (!attributeClasses.empty() && attributeClasses[candidateInput] != attributeClasses[input]) {
                     continue;
                 }
                 if (matchNormals) {
@@ -340,6 +349,30 @@ std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::v
     return before - triangles.size();
 }
 
+namespace {
+
+/** One class per distinct (texcoords, colour) tuple, compared exactly; empty when the mesh has no such attributes. */
+std::vector<std::uint32_t> vertexAttributeClasses(const RawMesh& raw) {
+    if (raw.texcoords[0].empty() && raw.texcoords[1].empty() && raw.colors.empty()) return {};
+    std::map<std::array<float, 8>, std::uint32_t> classOf;
+    std::vector<std::uint32_t> classes(raw.positions.size());
+    for (std::size_t vertex = 0; vertex < raw.positions.size(); ++vertex) {
+        std::array<float, 8> key{};
+        for (int set = 0; set < 2; ++set) {
+            if (raw.texcoords[set].empty()) continue;
+            key[2 * set] = raw.texcoords[set][vertex].x;
+            key[2 * set + 1] = raw.texcoords[set][vertex].y;
+        }
+        if (!raw.colors.empty()) {
+            for (int channel = 0; channel < 4; ++channel) key[4 + channel] = raw.colors[vertex][channel];
+        }
+        classes[vertex] = classOf.emplace(key, std::uint32_t(classOf.size())).first->second;
+    }
+    return classes;
+}
+
+} // namespace
+
 Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options, LoadReport& report) {
     const bool fileHasNormals = !raw.normals.empty();
     if (fileHasNormals && raw.normals.size() != raw.positions.size()) {
@@ -355,7 +388,18 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         someNormalsUnusable = someNormalsUnusable || normal == glm::vec3(0.0f);
     }
 
-    const WeldMap weld = weldVertices(raw.positions, raw.normals, options.weldTolerance * modelDiagonal);
+    for (const auto* perVertex : {&raw.texcoords[0], &raw.texcoords[1]}) {
+        if (!perVertex->empty() && perVertex->size() != raw.positions.size()) {
+            throw std::logic_error("finalizeMesh(): texture coordinates must be empty or one per position");
+        }
+    }
+    if (!raw.colors.empty() && raw.colors.size() != raw.positions.size()) {
+        throw std::logic_error("finalizeMesh(): colours must be empty or one per position");
+    }
+    // A texture seam or a colour border keeps its split vertices: only vertices with exactly equal attributes weld.
+    const std::vector<std::uint32_t> attributeClasses = vertexAttributeClasses(raw);
+    const WeldMap weld =
+        weldVertices(raw.positions, raw.normals, options.weldTolerance * modelDiagonal, attributeClasses);
     std::vector<glm::vec3> positions(weld.kept.size());
     std::vector<glm::vec3> normals(fileHasNormals ? weld.kept.size() : 0);
     for (std::size_t output = 0; output < weld.kept.size(); ++output) {
@@ -380,9 +424,7 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     }
     Mesh mesh;
     mesh.name = std::move(raw.name);
-    mesh.baseColor = raw.baseColor;
-    mesh.shadeMapPath = std::move(raw.shadeMapPath);
-    mesh.materialName = std::move(raw.materialName);
+    mesh.material = std::move(raw.material);
     for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
         if (compactIndex[vertex] == kNoVertex) {
             continue;
@@ -392,6 +434,11 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         if (fileHasNormals) {
             mesh.normals.push_back(normals[vertex]);
         }
+        const std::uint32_t input = weld.kept[vertex];
+        for (int set = 0; set < 2; ++set) {
+            if (!raw.texcoords[set].empty()) mesh.texcoords[set].push_back(raw.texcoords[set][input]);
+        }
+        if (!raw.colors.empty()) mesh.colors.push_back(raw.colors[input]);
     }
     mesh.triangles = std::move(triangles);
     for (glm::uvec3& triangle : mesh.triangles) {
@@ -399,7 +446,11 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     }
 
     if (!fileHasNormals) {
-        mesh.normals = computeSmoothNormals(mesh.positions, mesh.triangles);
+        // Smooth across texture seams and colour borders: the copies of a vertex that only its attributes split share
+        // one normal, as they would have without the attributes.
+        mesh.normals = attributeClasses.empty() ? computeSmoothNormals(mesh.positions, mesh.triangles)
+                                                : computePositionWeldedNormals(mesh.positions, mesh.triangles,
+                                                                               options.weldTolerance * modelDiagonal);
         report.normalsComputed = true;
     } else if (someNormalsUnusable) {
         const std::vector<glm::vec3> smooth = computeSmoothNormals(mesh.positions, mesh.triangles);

@@ -37,10 +37,12 @@ struct WeldMap {
 };
 
 /** Merges vertices closer than `distance` (absolute). When `normals` is not empty (one per position), two vertices
- *  merge only if their normals also agree, so hard edges keep their split normals. Uses a hash grid with cells of
- *  ~2.5 x distance and checks the 8 cells that can hold a match, so points straddling a cell border still merge.
- *  Greedy: each vertex joins the first earlier representative within reach. */
-WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals, double distance);
+ *  merge only if their normals also agree, so hard edges keep their split normals; when `attributeClasses` is not
+ *  empty, only if their classes are equal (texture seams and colour borders keep their split vertices). Uses a hash
+ * grid with cells of ~2.5 x distance and checks the 8 cells that can hold a match, so points straddling a cell border
+ * still merge. Greedy: each vertex joins the first earlier representative within reach. */
+WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals, double distance,
+                     std::span<const std::uint32_t> attributeClasses = {});
 
 /** Area-weighted smooth normals: every vertex sums the unnormalised cross products of its triangles. A vertex whose
  *  sum vanishes (e.g. two opposite faces) takes the normal of one incident face, or (0,0,1) if all are degenerate. */
@@ -70,9 +72,9 @@ struct RawMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::uvec3> triangles;
-    glm::vec4 baseColor{0.8f, 0.8f, 0.8f, 1.0f};
-    std::string shadeMapPath; ///< as Mesh::shadeMapPath
-    std::string materialName; ///< as Mesh::materialName
+    std::vector<glm::vec2> texcoords[2]; ///< as Mesh::texcoords: empty or one per position
+    std::vector<glm::vec4> colors;       ///< as Mesh::colors: empty or one per position
+    Material material;
 };
 
 /** Turns a raw mesh into a clean Mesh: welds within options.weldTolerance x modelDiagonal, drops degenerate

@@ -239,6 +239,7 @@ Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOpt
     scene.camera = raw.camera;
     scene.light = raw.light;
     scene.front = raw.front;
+    scene.images = std::move(raw.images);
     scene.report.format = raw.format;
     scene.report.warnings = std::move(raw.warnings);
     scene.report.inputFiles = std::move(raw.inputFiles);

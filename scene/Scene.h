@@ -2,6 +2,8 @@
 /** @file Plain scene data shared by every layer: meshes in world space, an optional camera and light.
  *  No GL here; passes upload what they need. */
 
+#include "scene/Material.h"
+
 #include <glm/glm.hpp>
 
 #include <cstddef>
@@ -27,11 +29,11 @@ struct Mesh {
     std::vector<glm::vec3> positions;  ///< welded, finite; relative to Scene::origin (world = origin + position)
     std::vector<glm::vec3> normals;    ///< one unit normal per position (from the file, else area-weighted smooth)
     std::vector<glm::uvec3> triangles; ///< counter-clockwise seen from the front (outward normals), none degenerate
-    glm::vec4 baseColor{0.8f, 0.8f, 0.8f, 1.0f}; ///< linear RGBA; glTF baseColorFactor or the default grey
-    /** The shade map this mesh asks for (glTF material extras {"inkgraph": {"shademap": "..."}}), a path resolved
-     *  against the glTF file's folder and lexically normalised; empty: the run's map. Read by the app, not here. */
-    std::string shadeMapPath;
-    std::string materialName; ///< the glTF material's name, for messages; empty without one or for other formats
+    /** Texture coordinates TEXCOORD_0 and TEXCOORD_1, one per position, or empty when the file has none (glTF's
+     *  convention: (0, 0) is the image's top-left corner). */
+    std::vector<glm::vec2> texcoords[2];
+    std::vector<glm::vec4> colors; ///< linear RGBA vertex colours (glTF COLOR_0, OBJ `v x y z r g b`), or empty
+    Material material;             ///< what the surface looks like (scene/Material.h)
 
     std::size_t triangleCount() const { return triangles.size(); }
 };
@@ -78,6 +80,7 @@ struct Scene {
     /** The direction the model faces when its file says so (unit, world): a VRM 0.x character faces -Z, a VRM 1.0
      *  one +Z (their specifications). Auto-framing looks at this side; empty, it looks from +Z. */
     std::optional<glm::dvec3> front;
+    std::vector<SceneImage> images; ///< what the materials' TextureRef::image indexes, still encoded
     LoadReport report;
 
     std::size_t triangleCount() const;

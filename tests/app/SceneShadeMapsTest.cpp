@@ -30,8 +30,8 @@ protected:
                            const std::string& materialName = "") {
         Mesh mesh;
         mesh.name = name;
-        mesh.shadeMapPath = shadeMapPath;
-        mesh.materialName = materialName;
+        mesh.material.shadeMapPath = shadeMapPath;
+        mesh.material.name = materialName;
         return mesh;
     }
 
@@ -77,7 +77,7 @@ TEST_F(SceneShadeMaps, MissingFileNamesTheMeshItsMaterialAndTheFile) {
     EXPECT_EQ(errorOf(scene, ShadingModel::Comic),
               "mesh 'Teapot' (glTF material 'Metal') shade map: readPngImage(): '" + missing + "': file not found");
     // Without a material name the mesh alone is named.
-    scene.meshes[1].materialName.clear();
+    scene.meshes[1].material.name.clear();
     EXPECT_EQ(errorOf(scene, ShadingModel::Cel),
               "mesh 'Teapot' shade map: readPngImage(): '" + missing + "': file not found");
 }

@@ -319,8 +319,8 @@ protected:
 
     static Mesh cube(float x, std::string material, glm::vec4 color) {
         Mesh mesh = makeCube({x, 0.0f, 0.0f}, 0.8f);
-        mesh.materialName = std::move(material);
-        mesh.baseColor = color;
+        mesh.material.name = std::move(material);
+        mesh.material.baseColorFactor = color;
         return mesh;
     }
 
@@ -380,8 +380,8 @@ TEST_F(GBufferMaterials, AllNineFieldsTakeTwoDrawsThatCoverTheSamePixels) {
     // program; the vertex stage is invariant, so both draws rasterise the same fragments, silhouettes included.
     Mesh left = makeUvSphere({-1.0f, 0.0f, 0.0f}, 1.1f, 48, 24);
     Mesh right = makeUvSphere({1.0f, 0.2f, -0.5f}, 1.1f, 48, 24);
-    left.baseColor = kRed;
-    right.baseColor = kBlue;
+    left.material.baseColorFactor = kRed;
+    right.material.baseColorFactor = kBlue;
     scene = makeScene(left);
     scene.meshes.push_back(right);
     frame.camera = test::lookingAt(scene, glm::dvec3(0.3, 0.4, 7.0), glm::dvec3(0.0), kFovDegrees, kSize, kSize);

@@ -31,8 +31,8 @@ protected:
     std::vector<cv::Point2d> boundaryPoints(glm::vec4 leftColor, glm::vec4 rightColor, int supersample = 1) {
         Mesh left = makeCube({-kHalf, 0.0f, 0.0f}, kHalf);
         Mesh right = makeCube({kHalf, 0.0f, 0.0f}, kHalf);
-        left.baseColor = leftColor;
-        right.baseColor = rightColor;
+        left.material.baseColorFactor = leftColor;
+        right.material.baseColorFactor = rightColor;
         scene = Scene{};
         scene.meshes = {left, right};
         frame.camera = test::lookingAt(scene, eye, glm::dvec3(0.0), 35.0, kSize, kSize);

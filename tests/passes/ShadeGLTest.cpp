@@ -88,7 +88,7 @@ protected:
     /** A UV sphere of radius 1 at the origin seen from (0, 0, kDistance): view space is world space shifted. */
     void useSphere(int segments, int rings, glm::vec4 baseColor) {
         Mesh mesh = makeUvSphere({0.0f, 0.0f, 0.0f}, float(kRadius), segments, rings);
-        mesh.baseColor = baseColor;
+        mesh.material.baseColorFactor = baseColor;
         scene = makeScene(std::move(mesh));
         frame.camera =
             test::lookingAt(scene, glm::dvec3(0.0, 0.0, kDistance), glm::dvec3(0.0), kFovDegrees, kSize, kSize);
@@ -974,10 +974,10 @@ protected:
     void useTwoSpheres(glm::vec4 leftBase, glm::vec4 rightBase) {
         Mesh left = makeUvSphere({-1.25f, 0.0f, 0.0f}, 1.0f, 128, 64);
         left.name = "left";
-        left.baseColor = leftBase;
+        left.material.baseColorFactor = leftBase;
         Mesh right = makeUvSphere({1.25f, 0.0f, 0.0f}, 1.0f, 128, 64);
         right.name = "right";
-        right.baseColor = rightBase;
+        right.material.baseColorFactor = rightBase;
         scene = makeScene(std::move(left));
         scene.meshes.push_back(std::move(right));
         frame.camera = test::lookingAt(scene, glm::dvec3(0.0, 0.0, 6.0), glm::dvec3(0.0), 45.0, kSize, kSize);

@@ -159,8 +159,9 @@ TEST(GltfLoader, BaseColorFactorIsRead) {
     const TempFile file("material.gltf", writer.gltf(body));
     const Scene scene = loadScene(file.path());
     ASSERT_EQ(scene.meshes.size(), 2u);
-    EXPECT_EQ(scene.meshes[0].baseColor, glm::vec4(0.1f, 0.2f, 0.3f, 0.4f));
-    EXPECT_EQ(scene.meshes[1].baseColor, glm::vec4(0.8f, 0.8f, 0.8f, 1.0f)); // no material: the default grey
+    EXPECT_EQ(scene.meshes[0].material.baseColorFactor, glm::vec4(0.1f, 0.2f, 0.3f, 0.4f));
+    EXPECT_EQ(scene.meshes[1].material.baseColorFactor,
+              glm::vec4(0.8f, 0.8f, 0.8f, 1.0f)); // no material: the default grey
 }
 
 /** Meshes "a", "b", "c" (one triangle each, one node each), using the materials given as JSON (empty: none). */
@@ -196,18 +197,18 @@ TEST(GltfLoader, MaterialShadeMapIsResolvedAgainstTheFilesFolder) {
     const Scene scene = loadScene(file.path());
     ASSERT_EQ(scene.meshes.size(), 3u);
     const std::filesystem::path folder = std::filesystem::path(file.path()).parent_path();
-    EXPECT_EQ(scene.meshes[0].shadeMapPath, (folder / "maps" / "warm.png").string());
-    EXPECT_EQ(scene.meshes[1].shadeMapPath, "/srv/maps/cool.png");
-    EXPECT_EQ(scene.meshes[2].shadeMapPath, "");
-    EXPECT_EQ(scene.meshes[0].materialName, "Warm");
-    EXPECT_EQ(scene.meshes[1].materialName, "");
-    EXPECT_EQ(scene.meshes[2].materialName, "Plain");
+    EXPECT_EQ(scene.meshes[0].material.shadeMapPath, (folder / "maps" / "warm.png").string());
+    EXPECT_EQ(scene.meshes[1].material.shadeMapPath, "/srv/maps/cool.png");
+    EXPECT_EQ(scene.meshes[2].material.shadeMapPath, "");
+    EXPECT_EQ(scene.meshes[0].material.name, "Warm");
+    EXPECT_EQ(scene.meshes[1].material.name, "");
+    EXPECT_EQ(scene.meshes[2].material.name, "Plain");
     EXPECT_TRUE(scene.report.warnings.empty()) << scene.report.warnings.front();
 
     GltfWriter noMaterialWriter;
     const TempFile plain("no_material.gltf",
                          noMaterialWriter.gltf(threeMeshesWithMaterials(noMaterialWriter, "", {-1})));
-    EXPECT_EQ(loadScene(plain.path()).meshes.at(0).shadeMapPath, "");
+    EXPECT_EQ(loadScene(plain.path()).meshes.at(0).material.shadeMapPath, "");
 }
 
 TEST(GltfLoader, MaterialShadeMapSharedByPrimitivesWarnsOnceAboutUnknownKeys) {
@@ -220,8 +221,8 @@ TEST(GltfLoader, MaterialShadeMapSharedByPrimitivesWarnsOnceAboutUnknownKeys) {
     const Scene scene = loadScene(file.path());
     ASSERT_EQ(scene.meshes.size(), 2u);
     const std::string expected = (std::filesystem::path(file.path()).parent_path() / "metal.png").string();
-    EXPECT_EQ(scene.meshes[0].shadeMapPath, expected);
-    EXPECT_EQ(scene.meshes[1].shadeMapPath, expected);
+    EXPECT_EQ(scene.meshes[0].material.shadeMapPath, expected);
+    EXPECT_EQ(scene.meshes[1].material.shadeMapPath, expected);
     ASSERT_EQ(scene.report.warnings.size(), 1u);
     EXPECT_EQ(scene.report.warnings[0],
               "material 0 'Metal': extras.inkgraph key 'shadeMap' ignored (known: 'shademap')");

@@ -13,9 +13,9 @@ using Ids = std::vector<std::uint32_t>;
 
 Mesh meshOf(std::string materialName, glm::vec4 baseColor, std::string shadeMapPath = {}) {
     Mesh mesh;
-    mesh.materialName = std::move(materialName);
-    mesh.baseColor = baseColor;
-    mesh.shadeMapPath = std::move(shadeMapPath);
+    mesh.material.name = std::move(materialName);
+    mesh.material.baseColorFactor = baseColor;
+    mesh.material.shadeMapPath = std::move(shadeMapPath);
     return mesh;
 }
 

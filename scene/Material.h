@@ -1,0 +1,102 @@
+#pragma once
+/** @file What a surface looks like, as the file says: glTF 2.0's metallic-roughness material reduced to what a toon
+ *  renderer uses (base colour factor and texture, emissive, alpha, double-sidedness), KHR_materials_unlit, an OBJ
+ *  material library's Kd/map_Kd/d, and a VRM character's MToon parameters. Plain data, no GL: the images stay
+ *  encoded here and are decoded only when a pass that runs samples them (scene/TextureImage.h). */
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+
+/** glTF's sampler filters and wraps, with their glTF (= OpenGL) enum values. */
+enum class TextureWrap : std::uint32_t { Repeat = 10497, ClampToEdge = 33071, MirroredRepeat = 33648 };
+enum class TextureFilter : std::uint32_t {
+    Nearest = 9728,
+    Linear = 9729,
+    NearestMipmapNearest = 9984,
+    LinearMipmapNearest = 9985,
+    NearestMipmapLinear = 9986,
+    LinearMipmapLinear = 9987,
+};
+
+struct TextureSampler {
+    TextureFilter magFilter = TextureFilter::Linear;
+    TextureFilter minFilter = TextureFilter::LinearMipmapLinear; ///< glTF leaves it to the renderer; trilinear
+    TextureWrap wrapS = TextureWrap::Repeat;
+    TextureWrap wrapT = TextureWrap::Repeat;
+    bool operator==(const TextureSampler&) const = default;
+};
+
+/** A material's use of one image: which image, which texture-coordinate set, how it is sampled, and the
+ *  KHR_texture_transform (uv' = transform * (u, v, 1)). */
+struct TextureRef {
+    int image = -1;   ///< index into Scene::images; -1: no texture
+    int texCoord = 0; ///< TEXCOORD_<n> of the mesh (0 or 1: Mesh::texcoords)
+    TextureSampler sampler;
+    /** KHR_texture_transform as a matrix: translation * rotation * scale, in glTF's order (column-major, GLM). */
+    glm::mat3 transform{1.0f};
+
+    bool present() const { return image >= 0; }
+    bool operator==(const TextureRef&) const = default;
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+/** A VRM character's MToon material, in VRMC_materials_mtoon-1.0's terms (VRM 0.x's properties are converted to these
+ *  by the reader, scene/VrmMaterials.cpp). docs/mtoon.md sets them beside the specification's formulas. */
+struct MToonMaterial {
+    glm::vec3 shadeColorFactor{0.0f};         ///< linear; the colour of the shaded side
+    TextureRef shadeMultiplyTexture;          ///< times shadeColorFactor
+    float shadingShiftFactor = 0.0f;          ///< added to n.l before the band
+    float shadingToonyFactor = 0.9f;          ///< 1: a hard band edge; 0: a smooth ramp
+    glm::vec3 parametricRimColorFactor{0.0f}; ///< linear; added rim light (black: none)
+    float parametricRimFresnelPowerFactor = 5.0f;
+    float parametricRimLiftFactor = 0.0f;
+    glm::vec3 matcapFactor{1.0f}; ///< unused by inkgraph (no matcap), kept for --stats
+    enum class OutlineWidthMode { None, WorldCoordinates, ScreenCoordinates };
+    OutlineWidthMode outlineWidthMode = OutlineWidthMode::None;
+    /** World: metres (model units); screen: a share of the screen height. */
+    float outlineWidthFactor = 0.0f;
+    TextureRef outlineWidthMultiplyTexture; ///< its green channel scales the width
+    glm::vec3 outlineColorFactor{0.0f};     ///< linear
+    float outlineLightingMixFactor = 1.0f;  ///< how much the outline takes the surface's lighting (0: flat colour)
+    std::string specVersion;                ///< "0.x" or "1.0": where the parameters came from
+
+    bool operator==(const MToonMaterial&) const = default;
+};
+
+struct Material {
+    std::string name; ///< the file's material name, for messages and --stats; empty without one
+    glm::vec4 baseColorFactor{0.8f, 0.8f, 0.8f, 1.0f}; ///< linear RGBA; a model without materials is light grey
+    TextureRef baseColorTexture;                       ///< sRGB image, times baseColorFactor
+    glm::vec3 emissiveFactor{0.0f};                    ///< linear, added after lighting
+    TextureRef emissiveTexture;                        ///< sRGB image, times emissiveFactor
+    bool unlit = false;                                ///< KHR_materials_unlit: the base colour as is
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f; ///< Mask: a fragment whose alpha is below this is cut out
+    bool doubleSided = false; ///< false: back faces are culled (glTF); true: lit with the flipped normal
+    std::optional<MToonMaterial> mtoon;
+    /** The shade map this material asks for (glTF material extras {"inkgraph": {"shademap": "..."}}), a path resolved
+     *  against the glTF file's folder and lexically normalised; empty: the run's map. Read by the app, not here. */
+    std::string shadeMapPath;
+
+    bool textured() const { return baseColorTexture.present(); }
+    bool operator==(const Material&) const = default;
+};
+
+/** One image a material refers to, still encoded (PNG, JPEG, ...): its bytes when the file embeds it, else the path
+ *  of the file it lives in (read when decoded). Shared, because scenes are copied and images are large. */
+struct SceneImage {
+    std::string name;                                          ///< the image's name or URI, for messages
+    std::string path;                                          ///< the external file; empty when embedded
+    std::string mimeType;                                      ///< as the file says, may be empty
+    std::shared_ptr<const std::vector<unsigned char>> encoded; ///< embedded bytes; null for an external file
+};
+
+} // namespace inkgraph
