@@ -27,6 +27,16 @@ struct Shard {
     int count = 1; ///< N
 };
 
+/** The line types drawn when neither --lines nor a style file names any. */
+inline const std::vector<std::string> kDefaultLines = {"silhouette"};
+
+/** A Look with the command line's defaults: Look{} with kDefaultLines. */
+inline Look defaultLook() {
+    Look look;
+    look.lines = kDefaultLines;
+    return look;
+}
+
 /** The command line of `inkgraph render`: the models, the camera, the Look, the outputs and the run's settings. The
  *  renderer takes the parts (Look, CameraRequest); this struct is only what the flags fill. */
 struct RenderOptions {
@@ -43,7 +53,10 @@ struct RenderOptions {
     std::optional<double> fovYDegrees;     ///< default 35 unless the glTF camera says otherwise
     std::optional<glm::dvec2> clipRange;   ///< --clip NEAR,FAR (0 < near < far); default: fitted to the model
     bool autoCamera = false;               ///< --camera auto: never the file's camera
-    Look look;                             ///< shading, lines, supersampling, precision, paper, light
+    /** Shading, lines, supersampling, precision, paper, light. The command line's default draws the silhouette
+     *  (kDefaultLines), so no model is white on white: a white or untextured model's lit band is the paper's
+     *  colour, and its outline still sets it apart. */
+    Look look = defaultLook();
     std::vector<std::string> extraOutputs; ///< --request: extra graph resources kept and dumped ("gbuffer.*")
     std::string dumpDirectory;
     std::string statsPath;

@@ -156,6 +156,10 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
         return report;
     }
     checkFrameBudget(plan, options, &still->scene);
+    // The textures are decoded during the run, only those a pass samples: they get what the estimate leaves.
+    const std::size_t estimated = estimatePlanBytes(plan, options, &still->scene);
+    const std::size_t limit = memoryLimitOf(options);
+    still->gpuScene->materials().setTextureMemoryLimit(limit > estimated ? limit - estimated : 0);
 
     StillResult result = mRenderer.execute(*still, log);
     const auto writeStart = std::chrono::steady_clock::now();

@@ -80,7 +80,9 @@ struct Material {
     bool unlit = false;                                ///< KHR_materials_unlit: the base colour as is
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f; ///< Mask: a fragment whose alpha is below this is cut out
-    bool doubleSided = false; ///< false: back faces are culled (glTF); true: lit with the flipped normal
+    /** true: both sides drawn, a back face lit with the flipped normal (meshes without a glTF material: OBJ, STL);
+     *  false: back faces culled, as a glTF material says by default. */
+    bool doubleSided = true;
     std::optional<MToonMaterial> mtoon;
     /** The shade map this material asks for (glTF material extras {"inkgraph": {"shademap": "..."}}), a path resolved
      *  against the glTF file's folder and lexically normalised; empty: the run's map. Read by the app, not here. */
