@@ -4,6 +4,7 @@
  *  material's inkgraph extras (a per-mesh shade map). */
 
 #include "scene/FormatReaders.h"
+#include "scene/VrmMaterials.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -43,10 +44,12 @@ std::string shadeMapBesideModel(const std::string& modelPath, const std::string&
     return resolved.lexically_normal().string();
 }
 
-/** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light.
- *  Geometry compression (KHR_draco_mesh_compression, EXT_meshopt_compression, KHR_mesh_quantization) is not here yet
- *  (issue 18), nor any texture or material extension: the reader reads the core baseColorFactor only. */
-const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual"};
+/** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light,
+ *  VRM 0.x ("VRM": its front and MToon materialProperties) and 1.0 ("VRMC_vrm": its front; "VRMC_materials_mtoon"),
+ *  scene/VrmMaterials.h. Geometry compression (KHR_draco_mesh_compression, EXT_meshopt_compression,
+ *  KHR_mesh_quantization) is not here yet (issue 18). */
+const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual", "VRM", "VRMC_materials_mtoon",
+                                                       "VRMC_vrm"};
 
 /** Unsupported required extensions named one by one in the refusal; the rest are counted. */
 constexpr std::size_t kMaxNamedExtensions = 10;
@@ -153,7 +156,7 @@ class GltfWalker {
 public:
     GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out, MeshBudget& budget)
         : mPath(path), mModel(model), mOut(out), mBudget(budget), mReached(model.nodes.size(), false),
-          mMaterialShadeMaps(model.materials.size()) {}
+          mMaterialShadeMaps(model.materials.size()), mVrmMaterialsWarned(model.materials.size(), false) {}
 
     void walk() {
         checkRequiredExtensions();
@@ -439,6 +442,26 @@ private:
         return *cached;
     }
 
+    /** A VRM character's MToon (scene/VrmMaterials.h), which may also adjust `material`; its warnings once per
+     *  material. The texture resolver is a stand-in (image and set only) until the glTF material's texture reading
+     *  lands; then it is that reading. */
+    std::optional<MToonMaterial> vrmMaterial(int materialIndex, Material& material) {
+        const VrmTextureResolver resolveTexture = [this](int texture, int texCoord, const tinygltf::Value*) {
+            TextureRef ref;
+            const int source = mModel.textures[std::size_t(texture)].source;
+            ref.image = source >= 0 && std::size_t(source) < mModel.images.size() ? source : -1;
+            ref.texCoord = texCoord;
+            return ref;
+        };
+        std::vector<std::string> warnings;
+        std::optional<MToonMaterial> mtoon = readVrmMaterial(mModel, materialIndex, material, resolveTexture, warnings);
+        if (!mVrmMaterialsWarned[std::size_t(materialIndex)]) {
+            mVrmMaterialsWarned[std::size_t(materialIndex)] = true;
+            mOut.warnings.insert(mOut.warnings.end(), warnings.begin(), warnings.end());
+        }
+        return mtoon;
+    }
+
     /** "node 3 'wheel'", or "node 3" for an unnamed one. */
     std::string nodeLabel(int nodeIndex) const {
         const std::string& name = mModel.nodes[std::size_t(nodeIndex)].name;
@@ -676,6 +699,7 @@ private:
                     glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
             }
             mesh.material.shadeMapPath = materialShadeMap(primitive.material);
+            mesh.material.mtoon = vrmMaterial(primitive.material, mesh.material);
         }
         mOut.meshes.push_back(std::move(mesh));
     }
@@ -686,6 +710,7 @@ private:
     MeshBudget& mBudget;
     std::vector<bool> mReached; ///< nodes already reached by the walk; reaching one again is an error
     std::vector<std::optional<std::string>> mMaterialShadeMaps; ///< per material, once read: its shade map or ""
+    std::vector<bool> mVrmMaterialsWarned; ///< per material: its VRM material warnings are reported
     std::size_t mSkippedPrimitives = 0;
     bool mHasOrigin = false; ///< mOut.origin is set (the first world position seen)
 };

@@ -58,7 +58,8 @@ struct MToonMaterial {
     glm::vec3 parametricRimColorFactor{0.0f}; ///< linear; added rim light (black: none)
     float parametricRimFresnelPowerFactor = 5.0f;
     float parametricRimLiftFactor = 0.0f;
-    glm::vec3 matcapFactor{1.0f}; ///< unused by inkgraph (no matcap), kept for --stats
+    float rimLightingMixFactor = 1.0f; ///< how much the rim takes the surface's lighting (0: like emission)
+    glm::vec3 matcapFactor{1.0f};      ///< unused by inkgraph (no matcap), kept for --stats
     enum class OutlineWidthMode { None, WorldCoordinates, ScreenCoordinates };
     OutlineWidthMode outlineWidthMode = OutlineWidthMode::None;
     /** World: metres (model units); screen: a share of the screen height. */

@@ -156,7 +156,8 @@ TEST(LoaderInputChecks, SupportedRequiredExtensionLoads) {
                             "\"extensionsRequired\": [\"KHR_lights_punctual\"]";
     const TempFile file("lights.gltf", triangleGltf("", "", top));
     EXPECT_EQ(loadScene(file.path()).triangleCount(), 1u);
-    EXPECT_EQ(supportedGltfExtensions(), std::vector<std::string>{"KHR_lights_punctual"});
+    EXPECT_EQ(supportedGltfExtensions(),
+              (std::vector<std::string>{"KHR_lights_punctual", "VRM", "VRMC_materials_mtoon", "VRMC_vrm"}));
 }
 
 // --- 6. extreme extents ---
