@@ -551,6 +551,11 @@ private:
                 mesh.material = material->second;
             } else {
                 mesh.material.name = group.materialName; // undefined (warned): the default grey, its name kept
+                if (mHasColors) {
+                    // The base colour multiplies the vertex colours (glTF's rule); without a material that says
+                    // otherwise, white shows them as the file wrote them rather than 80 % darker.
+                    mesh.material.baseColorFactor = glm::vec4(1.0f);
+                }
             }
             // File normals only when every face of the mesh has them; otherwise all are computed (a warning).
             const bool useNormals = group.facesWithNormals > 0 && group.facesWithoutNormals == 0;

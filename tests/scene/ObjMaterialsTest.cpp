@@ -325,6 +325,8 @@ TEST(ObjMaterials, VertexColoursAreReadClampedAndUncolouredVerticesAreWhite) {
     EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {1, 0, 0})], glm::vec4(0, 1, 0, 1));
     EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {0, 1, 0})], glm::vec4(1, 1, 1, 1));
     EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {1, 1, 0})], glm::vec4(0.5f, 0.5f, 0.5f, 0.25f));
+    // Without a material, the base colour that multiplies them is white, so they show as written.
+    EXPECT_EQ(mesh.material.baseColorFactor, glm::vec4(1.0f));
 }
 
 TEST(ObjMaterials, AFourthCoordinateIsWNotAColour) {
@@ -347,6 +349,7 @@ TEST(ObjMaterials, VertexColoursFollowTheirPositionsIntoEveryMaterialMesh) {
         EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {0, 0, 0})], glm::vec4(0, 0, 1, 1)) << name;
         EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {1, 0, 0})], glm::vec4(1, 1, 1, 1)) << name;
         EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {0, 1, 0})], glm::vec4(0, 1, 0, 1)) << name;
+        EXPECT_EQ(mesh.material.baseColorFactor, Material{}.baseColorFactor) << name; // as the library says
     }
     EXPECT_EQ(meshWithMaterial(scene, "a").normals.at(0), glm::vec3(0, 0, 1));  // the file's
     EXPECT_EQ(meshWithMaterial(scene, "b").normals.at(0), glm::vec3(0, 0, -1)); // computed for b's winding
