@@ -6,6 +6,7 @@
 #include "scene/Scene.h"
 
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -108,8 +109,24 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
  *  shade maps of its materials, resolved as readGltf() resolves them. Best effort, nothing thrown. */
 std::vector<std::string> gltfReferencedFiles(const std::string& path, std::string_view content);
 
+/** What an OBJ's material libraries define, gathered by readMtl() over every `mtllib` file of one load. */
+struct ObjMaterials {
+    std::map<std::string, Material> byName; ///< `newmtl` name -> material; the first definition of a name wins
+    std::vector<SceneImage> images;         ///< what the materials' textures index (RawScene::images)
+    std::vector<std::string> namedFiles;    ///< every texture file named (map_Kd, map_d), resolved, found or not
+};
+
+/** Reads one material library's text into `materials`: Kd, d/Tr, Ke, map_Kd (options skipped but -clamp, -s and -o)
+ *  and a map_d cut-out; texture names are resolved beside `path`. Bad lines, missing textures and unsupported
+ *  statements become warnings naming the library and the line; nothing is thrown. */
+void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials,
+             std::vector<std::string>& warnings);
+
+/** The texture files a material library's map_Kd and map_d lines name, resolved as readMtl() resolves them. */
+std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content);
+
 /** The material libraries an OBJ's `mtllib` lines name, resolved beside it (a name with spaces both whole and split,
- *  as readObj() tries it). */
+ *  as readObj() tries it), and the textures those that exist name (mtlReferencedFiles()). */
 std::vector<std::string> objReferencedFiles(const std::string& path, std::string_view content);
 
 } // namespace inkgraph::detail

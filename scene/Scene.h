@@ -129,9 +129,9 @@ Scene loadScene(const std::string& path, const LoadOptions& options = {});
 Scene loadSceneFromMemory(const std::string& path, std::string_view content, const LoadOptions& options = {});
 
 /** The files a model names besides itself, found without loading it: a glTF's external buffers and images and its
- *  materials' shade maps (a GLB's JSON chunk alone is read), an OBJ's material libraries. For checks before any work
- *  (a batch's outputs must not replace a file another model reads). Best effort: a file that cannot be read names
- *  none, and loading it reports why. */
+ *  materials' shade maps (a GLB's JSON chunk alone is read), an OBJ's material libraries and their textures. For checks
+ * before any work (a batch's outputs must not replace a file another model reads). Best effort: a file that cannot be
+ * read names none, and loading it reports why. */
 std::vector<std::string> referencedFiles(const std::string& path);
 
 /** A bounding sphere of every mesh (centre of the bounding box, radius to the farthest vertex), in the scene's local
