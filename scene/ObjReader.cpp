@@ -411,6 +411,7 @@ private:
         scene.warnings = std::move(mWarnings);
         RawMesh mesh;
         mesh.name = mMeshName.empty() ? std::filesystem::path(mPath).stem().string() : mMeshName;
+        if (!mMeshName.empty()) mesh.nodePath = {mMeshName}; // the first `o` name: what --frame selects
 
         if (mFacesWithNormals > 0 && mFacesWithoutNormals == 0) {
             // A vertex is a (position, normal) pair; hard edges reference one position with several normals.
