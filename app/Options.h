@@ -3,6 +3,7 @@
  *  (app/FlagTable.h). No GL, no files touched. */
 
 #include "passes/Look.h"
+#include "scene/Camera.h"
 
 #include <glm/glm.hpp>
 
@@ -48,9 +49,11 @@ struct RenderOptions {
     int width = 1024;
     int height = 1024;
     std::optional<glm::dvec3> eye;
+    std::optional<Orbit> orbit; ///< --orbit AZIMUTH,ELEVATION[,DISTANCE]: the eye around the target
     std::optional<glm::dvec3> target;
     std::optional<glm::dvec3> up;          ///< default: the glTF camera's, else 0,1,0
-    std::optional<double> fovYDegrees;     ///< default 35 unless the glTF camera says otherwise
+    std::optional<double> fovYDegrees;     ///< default 35, or the glTF camera's when that camera places the view
+    std::vector<std::string> frameNodes;   ///< --frame NODE[,NODE...]: frame only the meshes under these nodes
     std::optional<glm::dvec2> clipRange;   ///< --clip NEAR,FAR (0 < near < far); default: fitted to the model
     bool autoCamera = false;               ///< --camera auto: never the file's camera
     /** Shading, lines, supersampling, precision, paper, light. The command line's default draws the silhouette

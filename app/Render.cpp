@@ -100,7 +100,9 @@ std::size_t memoryLimitOf(const RenderOptions& options) {
 CameraRequest cameraRequestOf(const RenderOptions& options) {
     CameraRequest request;
     request.eye = options.eye;
+    request.orbit = options.orbit;
     request.target = options.target;
+    request.frameNodes = options.frameNodes;
     request.up = options.up;
     request.fovYDegrees = options.fovYDegrees;
     request.ignoreFileCamera = options.autoCamera;

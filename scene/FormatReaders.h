@@ -48,6 +48,9 @@ public:
     void check(std::size_t vertices, std::size_t triangles) const;
     /** check(), then counts them for good (one glTF mesh may be instanced by many nodes). */
     void charge(std::size_t vertices, std::size_t triangles);
+    /** Other memory a reader keeps that grows with the file's declarations (each mesh's node path), counted for good;
+     *  throws SceneError naming the file above the limit. */
+    void chargeBytes(std::size_t bytes);
 
     std::size_t limitBytes() const { return mLimitBytes; }
 
@@ -57,6 +60,7 @@ private:
     std::string mPath;
     std::size_t mLimitBytes;
     std::size_t mFileBytes = 0;
+    std::size_t mOtherBytes = 0; ///< chargeBytes()
     std::size_t mVertices = 0;
     std::size_t mTriangles = 0;
 };

@@ -302,6 +302,7 @@ private:
             fail("node " + std::to_string(nodeIndex) + " has more than one parent (or is in a cycle)");
         }
         mReached[std::size_t(nodeIndex)] = true;
+        mParent[std::size_t(nodeIndex)] = parentIndex;
     }
 
     void visit(int nodeIndex, const tinygltf::Node& node, const glm::dmat4& world) {
@@ -476,11 +477,36 @@ private:
         const std::string baseName = !node.name.empty()   ? node.name
                                      : !mesh.name.empty() ? mesh.name
                                                           : "mesh " + std::to_string(node.mesh);
+        const std::vector<std::string> path = nodePath(nodeIndex);
         for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
             const std::string name =
                 mesh.primitives.size() == 1 ? baseName : baseName + " primitive " + std::to_string(i);
+            chargeNodePath(path); // before the primitive's copy, as its vertices are
+            const std::size_t meshesBefore = mOut.meshes.size();
             addPrimitive(mesh.primitives[i], name, nodeLabel(nodeIndex), world);
+            if (mOut.meshes.size() > meshesBefore) {
+                mOut.meshes.back().nodePath = path;
+            }
         }
+    }
+
+    /** The node names from the root down to `nodeIndex` (Mesh::nodePath). This one copy lives only while its node
+     *  is visited and is no larger than the names the parsed file holds; each mesh's copy is charged. */
+    std::vector<std::string> nodePath(int nodeIndex) const {
+        std::vector<std::string> path;
+        for (int node = nodeIndex; node >= 0; node = mParent[std::size_t(node)]) {
+            path.push_back(mModel.nodes[std::size_t(node)].name);
+        }
+        std::reverse(path.begin(), path.end());
+        return path;
+    }
+
+    /** Every mesh holds its own copy of its path, as deep as the hierarchy: a deep chain of mesh nodes would hold
+     *  depth^2 names, so each copy is charged to the budget first (a skipped primitive's too: a slight over-count). */
+    void chargeNodePath(const std::vector<std::string>& path) {
+        std::size_t bytes = sizeof(path);
+        for (const std::string& name : path) bytes += sizeof(std::string) + name.size();
+        mBudget.chargeBytes(bytes);
     }
 
     AccessorData accessorData(int accessorIndex, int expectedType, const std::string& role) const {
@@ -709,6 +735,7 @@ private:
     RawScene& mOut;
     MeshBudget& mBudget;
     std::vector<bool> mReached; ///< nodes already reached by the walk; reaching one again is an error
+    std::vector<int> mParent = std::vector<int>(mModel.nodes.size(), -1); ///< each node's parent, -1 for a root
     std::vector<std::optional<std::string>> mMaterialShadeMaps; ///< per material, once read: its shade map or ""
     std::vector<bool> mVrmMaterialsWarned; ///< per material: its VRM material warnings are reported
     std::size_t mSkippedPrimitives = 0;

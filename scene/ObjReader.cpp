@@ -546,6 +546,7 @@ private:
             RawMesh mesh;
             mesh.name =
                 groupsWithFaces == 1 || group.materialName.empty() ? baseName : baseName + "/" + group.materialName;
+            if (!mMeshName.empty()) mesh.nodePath = {mMeshName}; // the first `o` name: what --frame selects
             const auto material = mMaterials.byName.find(group.materialName);
             if (material != mMaterials.byName.end()) {
                 mesh.material = material->second;

@@ -102,7 +102,8 @@ std::size_t MeshBudget::estimate(std::size_t vertices, std::size_t triangles) co
     const auto sum = [](std::size_t a, std::size_t b) { return a > SIZE_MAX - b ? SIZE_MAX : a + b; };
     const std::size_t allVertices = sum(mVertices, vertices);
     const std::size_t allTriangles = sum(mTriangles, triangles);
-    return sum(mFileBytes, sum(product(allVertices, kBytesPerVertex), product(allTriangles, kBytesPerTriangle)));
+    return sum(sum(mFileBytes, mOtherBytes),
+               sum(product(allVertices, kBytesPerVertex), product(allTriangles, kBytesPerTriangle)));
 }
 
 void MeshBudget::chargeFile(std::size_t bytes) {
@@ -110,6 +111,14 @@ void MeshBudget::chargeFile(std::size_t bytes) {
     if (estimate(0, 0) > mLimitBytes)
         throwLoadError(mPath, "the file is " + std::to_string(bytes >> 20) + " MiB; the load would hold about " +
                                   std::to_string(estimate(0, 0) >> 20) + " MiB, above the memory limit of " +
+                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
+}
+
+void MeshBudget::chargeBytes(std::size_t bytes) {
+    mOtherBytes = mOtherBytes > SIZE_MAX - bytes ? SIZE_MAX : mOtherBytes + bytes;
+    if (estimate(0, 0) > mLimitBytes)
+        throwLoadError(mPath, "the load would hold about " + std::to_string(estimate(0, 0) >> 20) +
+                                  " MiB (with the meshes' node paths), above the memory limit of " +
                                   std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
 }
 

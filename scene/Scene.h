@@ -34,6 +34,9 @@ struct Mesh {
     std::vector<glm::vec2> texcoords[2];
     std::vector<glm::vec4> colors; ///< linear RGBA vertex colours (glTF COLOR_0, OBJ `v x y z r g b`), or empty
     Material material;             ///< what the surface looks like (scene/Material.h)
+    /** The names of the nodes from the scene's root down to the one holding this mesh (glTF node names, "" for an
+     *  unnamed node; an OBJ's `o` name), or empty when the format has no nodes (STL). --frame selects meshes by it. */
+    std::vector<std::string> nodePath;
 
     std::size_t triangleCount() const { return triangles.size(); }
 };

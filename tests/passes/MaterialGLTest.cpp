@@ -7,6 +7,7 @@
 #include "graph/GraphCompiler.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/material/SceneMaterials.h"
+#include "passes/shade/ShadeMap.h"
 #include "passes/shade/ShadePass.h"
 #include "passes/edges/MeshEdgesPass.h"
 #include "scene/Procedural.h"
@@ -98,7 +99,9 @@ protected:
     cv::Mat shade(ShadingModel model = ShadingModel::Lambert) {
         ShadeSettings settings;
         settings.model = model;
-        ShadePass pass("shade", shaders, *gpuScene, frame, settings);
+        std::optional<ShadeMap> map;
+        if (model == ShadingModel::Cel) map = makeBandShadeMap(5);
+        ShadePass pass("shade", shaders, *gpuScene, frame, settings, std::move(map));
         const Plan plan = compile({&pass}, {"shade.color"});
         executor.run(plan, {&pass}, {kSize, kSize, false});
         cv::Mat image = executor.store().image("shade.color").clone();
@@ -352,6 +355,41 @@ TEST_F(MaterialPasses, MToonBandIsLinearstepOfNDotLPlusShift) {
     // The mesh's interpolated normals differ from the sphere's by well under a degree at this tessellation; 8-bit
     // codes add half a step.
     EXPECT_LT(worst, 0.02);
+}
+
+TEST_F(MaterialPasses, MToonScreenOutlineIsItsShareOfTheScreenHeight) {
+    // A sphere of radius 1 at distance 4: its outline is a ring from the silhouette (focal x tan(asin(1/4)) pixels
+    // from the centre) out to outlineWidthFactor x the image height, in the outline colour (lighting mix 0).
+    Mesh sphere = makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 256, 128);
+    sphere.material.baseColorFactor = glm::vec4(1.0f);
+    MToonMaterial mtoon;
+    mtoon.shadeColorFactor = glm::vec3(1.0f);
+    mtoon.outlineWidthMode = MToonMaterial::OutlineWidthMode::ScreenCoordinates;
+    mtoon.outlineWidthFactor = 0.04f; // 5.12 pixels of 128
+    mtoon.outlineColorFactor = glm::vec3(0.0f, 0.0f, 1.0f);
+    mtoon.outlineLightingMixFactor = 0.0f;
+    sphere.material.mtoon = mtoon;
+    useScene(makeScene(std::move(sphere)));
+    const cv::Mat color = shade(ShadingModel::MToon);
+    const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
+    const double silhouette = focal * std::tan(std::asin(1.0 / kDistance));
+    const double width = 0.04 * kSize;
+    int inRing = 0, outside = 0, samples = 0;
+    for (int step = 0; step < 64; ++step) {
+        const double angle = step * 2.0 * 3.14159265358979 / 64.0;
+        auto pixelAtRadius = [&](double radius) {
+            return cv::Point(int(std::floor(kSize / 2.0 + radius * std::cos(angle))),
+                             int(std::floor(kSize / 2.0 - radius * std::sin(angle))));
+        };
+        ++samples;
+        const cv::Vec4b ring = at(color, pixelAtRadius(silhouette + width / 2.0));
+        if (ring == cv::Vec4b(0, 0, 255, 255)) ++inRing;
+        if (at(color, pixelAtRadius(silhouette + width + 1.5))[3] == 0) ++outside;
+    }
+    EXPECT_EQ(inRing, samples) << "the outline colour halfway across the ring";
+    EXPECT_EQ(outside, samples) << "nothing beyond the ring's width";
+    // The surface itself is not covered by its outline: the centre is the lit white.
+    expectColor(at(color, cv::Point(kSize / 2, kSize / 2)), {255, 255, 255}, 255, 1, "centre");
 }
 
 TEST_F(MaterialPasses, TexturesAreDecodedOnlyWhenAPassSamplesThem) {
