@@ -5,6 +5,7 @@
 
 #include "scene/FormatReaders.h"
 #include "scene/GltfAccessors.h"
+#include "scene/GltfPose.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -121,34 +122,26 @@ const char* modeName(int mode) {
     }
 }
 
-glm::dmat4 localTransform(const tinygltf::Node& node) {
-    if (node.matrix.size() == 16) {
-        return glm::make_mat4(node.matrix.data()); // both column-major
-    }
-    glm::dmat4 transform(1.0);
-    if (node.translation.size() == 3) {
-        transform = glm::translate(transform, glm::make_vec3(node.translation.data()));
-    }
-    if (node.rotation.size() == 4) {
-        const glm::dquat rotation(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]); // xyzw
-        transform *= glm::mat4_cast(glm::normalize(rotation));
-    }
-    if (node.scale.size() == 3) {
-        transform = glm::scale(transform, glm::make_vec3(node.scale.data()));
-    }
-    return transform;
+/** A normal through a normal matrix, unit length again (zero when the matrix collapses it). */
+glm::vec3 transformNormal(const glm::dmat3& normalMatrix, const glm::vec3& normal) {
+    const glm::dvec3 transformed = normalMatrix * glm::dvec3(normal);
+    const double length = glm::length(transformed);
+    return length > 0.0 && std::isfinite(length) ? glm::vec3(transformed / length) : glm::vec3(0.0f);
 }
 
 class GltfWalker {
 public:
-    GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out, MeshBudget& budget)
-        : mPath(path), mModel(model), mOut(out), mBudget(budget), mReached(model.nodes.size(), false),
-          mMaterialShadeMaps(model.materials.size()) {}
+    GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out, MeshBudget& budget,
+               const LoadOptions& options)
+        : mPath(path), mModel(model), mOut(out), mBudget(budget), mOptions(options),
+          mReached(model.nodes.size(), false), mWorlds(model.nodes.size()), mMaterialShadeMaps(model.materials.size()) {
+    }
 
     void walk() {
         checkRequiredExtensions();
         checkMaterialIndices();
         readVrmFront();
+        posed();
         // Depth-first with an explicit stack (a deep hierarchy must not overflow the call stack), in the order the
         // recursive walk would take: roots and children are pushed in reverse so the first is handled first.
         std::vector<PendingNode> pending;
@@ -157,16 +150,23 @@ public:
             claimRoot(*root);
             pending.push_back({*root, glm::dmat4(1.0)});
         }
+        // Every world transform first, then the visits: a skinned mesh needs its joints' transforms, wherever they
+        // are in the hierarchy.
+        std::vector<int> visitOrder;
         while (!pending.empty()) {
             const PendingNode next = pending.back();
             pending.pop_back();
             const tinygltf::Node& node = mModel.nodes[std::size_t(next.index)];
-            const glm::dmat4 world = next.parentWorld * localTransform(node);
-            visit(next.index, node, world);
+            const glm::dmat4 world = next.parentWorld * mPoses[std::size_t(next.index)].local();
+            mWorlds[std::size_t(next.index)] = world;
+            visitOrder.push_back(next.index);
             for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
                 claimChild(next.index, *child);
                 pending.push_back({*child, world});
             }
+        }
+        for (const int index : visitOrder) {
+            visit(index, mModel.nodes[std::size_t(index)], *mWorlds[std::size_t(index)]);
         }
         if (mOut.meshes.empty() && mSkippedPrimitives > 0) {
             throwLoadError(mPath, "no triangles: all " + std::to_string(mSkippedPrimitives) +
@@ -176,6 +176,15 @@ public:
 
 private:
     [[noreturn]] void fail(const std::string& problem) const { throwLoadError(mPath, problem); }
+
+    /** The nodes' local transforms and morph weights: their own, or the animation LoadOptions names at its time. */
+    void posed() {
+        mPoses = restPose(mModel);
+        if (!mOptions.animation.empty()) {
+            applyAnimation(mPath, mModel, findAnimation(mPath, mModel, mOptions.animation), mOptions.time, mPoses,
+                           mBudget, mOut.warnings);
+        }
+    }
 
     /** The glTF 2.0 specification: a loader must refuse a file that requires an extension it does not implement,
      *  since the file may not make sense without it (compressed geometry reads as garbage, for one). */
@@ -443,12 +452,31 @@ private:
         const std::string baseName = !node.name.empty()   ? node.name
                                      : !mesh.name.empty() ? mesh.name
                                                           : "mesh " + std::to_string(node.mesh);
+        // glTF: a skinned mesh is placed by its joints alone; its node's own transform does not apply.
+        std::optional<std::vector<glm::dmat4>> skinJoints;
+        if (node.skin >= 0) {
+            skinJoints = jointMatrices(mPath, mModel, node.skin, [&](int joint) {
+                const std::optional<glm::dmat4>& jointWorld = mWorlds[std::size_t(joint)];
+                if (!jointWorld) {
+                    fail(nodeLabel(nodeIndex) + ": skin " + std::to_string(node.skin) + " joint node " +
+                         std::to_string(joint) + " is not in the scene");
+                }
+                return *jointWorld;
+            });
+        }
+        const PrimitivePose pose{mPoses[std::size_t(nodeIndex)].weights, skinJoints ? &*skinJoints : nullptr};
         for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
             const std::string name =
                 mesh.primitives.size() == 1 ? baseName : baseName + " primitive " + std::to_string(i);
-            addPrimitive(mesh.primitives[i], name, nodeLabel(nodeIndex), world);
+            addPrimitive(mesh.primitives[i], name, nodeLabel(nodeIndex), world, pose);
         }
     }
+
+    /** What moves a primitive's vertices besides its node's transform. */
+    struct PrimitivePose {
+        const std::vector<double>& morphWeights;
+        const std::vector<glm::dmat4>* skinJoints = nullptr; ///< null: not skinned
+    };
 
     /** A VEC3 attribute (POSITION, NORMAL) as vectors, in the file's frame. */
     std::vector<glm::vec3> readVec3(int accessorIndex, const std::string& role) const {
@@ -513,7 +541,7 @@ private:
     }
 
     void addPrimitive(const tinygltf::Primitive& primitive, const std::string& name, const std::string& node,
-                      const glm::dmat4& world) {
+                      const glm::dmat4& world, const PrimitivePose& pose) {
         const int mode = primitive.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -545,6 +573,18 @@ private:
             mesh.normals = readVec3(normalAttribute->second, "NORMAL");
         }
 
+        applyMorphTargets(mPath, mModel, primitive, pose.morphWeights, mesh.positions, mesh.normals, name,
+                          mOut.warnings);
+        std::optional<SkinBlend> skin;
+        if (pose.skinJoints) {
+            // SkinBlend holds every JOINTS_n/WEIGHTS_n set for the primitive's vertices while it is baked.
+            const auto sets = std::ranges::count_if(
+                primitive.attributes, [](const auto& entry) { return entry.first.starts_with("JOINTS_"); });
+            mBudget.check(vertexCount * std::size_t(sets) * kSkinBytesPerVertexPerSet / MeshBudget::kBytesPerVertex + 1,
+                          0);
+            skin.emplace(mPath, mModel, primitive, vertexCount, *pose.skinJoints, world, name);
+        }
+
         std::vector<std::uint32_t> indices;
         if (primitive.indices >= 0) {
             indices = readIndices(primitive.indices, vertexCount);
@@ -556,15 +596,19 @@ private:
         }
         mesh.triangles = triangulate(mode, indices, name);
 
-        // Bake the node transform; normals use the inverse transpose so non-uniform scale keeps them perpendicular.
+        // Bake the node transform (a skinned vertex's: its blend of joint matrices); normals use the inverse
+        // transpose so non-uniform scale keeps them perpendicular.
         const glm::dmat3 linear(world);
         const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
+        std::vector<bool> mirrored; // per vertex of a skinned mesh: its skin matrix turns the winding over
         // In double until the position is relative to the scene's raw origin (the first world position): rounding
         // world coordinates of a model 1e7 units out to float would leave it a blocky polyhedron.
-        for (glm::vec3& position : mesh.positions) {
-            const glm::dvec3 worldPosition(world * glm::dvec4(glm::dvec3(position), 1.0));
+        for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+            const glm::dmat4 vertexMatrix = skin ? skin->vertexMatrix(v) : world;
+            const glm::dvec3 worldPosition(vertexMatrix * glm::dvec4(glm::dvec3(mesh.positions[v]), 1.0));
             if (!std::isfinite(worldPosition.x) || !std::isfinite(worldPosition.y) || !std::isfinite(worldPosition.z)) {
-                fail(node + ": the node transform produces non-finite positions");
+                fail(node + (skin ? ": the skin's joint transforms produce non-finite positions"
+                                  : ": the node transform produces non-finite positions"));
             }
             if (!mHasOrigin) {
                 mOut.origin = worldPosition;
@@ -576,16 +620,21 @@ private:
                      " units from the first mesh's first vertex, more than the " + formatExtent(kMaxModelExtent) +
                      " the renderer can hold (a node scale or translation too large?)");
             }
-            position = glm::vec3(relative);
+            mesh.positions[v] = glm::vec3(relative);
+            if (skin) {
+                const glm::dmat3 vertexLinear(vertexMatrix);
+                mirrored.push_back(glm::determinant(vertexLinear) < 0.0);
+                if (!mesh.normals.empty()) {
+                    mesh.normals[v] = transformNormal(glm::transpose(glm::inverse(vertexLinear)), mesh.normals[v]);
+                }
+            }
         }
-        for (glm::vec3& normal : mesh.normals) {
-            const glm::dvec3 transformed = normalMatrix * glm::dvec3(normal);
-            const double length = glm::length(transformed);
-            normal = length > 0.0 && std::isfinite(length) ? glm::vec3(transformed / length) : glm::vec3(0.0f);
+        if (!skin) {
+            for (glm::vec3& normal : mesh.normals) normal = transformNormal(normalMatrix, normal);
         }
         // A mirroring transform turns counter-clockwise into clockwise; swap two corners to keep fronts outward.
-        if (glm::determinant(linear) < 0.0) {
-            for (glm::uvec3& triangle : mesh.triangles) {
+        for (glm::uvec3& triangle : mesh.triangles) {
+            if (skin ? bool(mirrored[triangle.x]) : glm::determinant(linear) < 0.0) {
                 std::swap(triangle.y, triangle.z);
             }
         }
@@ -607,7 +656,10 @@ private:
     const tinygltf::Model& mModel;
     RawScene& mOut;
     MeshBudget& mBudget;
-    std::vector<bool> mReached; ///< nodes already reached by the walk; reaching one again is an error
+    const LoadOptions& mOptions;
+    std::vector<NodePose> mPoses; ///< per node: its local transform and morph weights, animated or not (posed())
+    std::vector<bool> mReached;   ///< nodes already reached by the walk; reaching one again is an error
+    std::vector<std::optional<glm::dmat4>> mWorlds;             ///< per node reached by the walk: its world transform
     std::vector<std::optional<std::string>> mMaterialShadeMaps; ///< per material, once read: its shade map or ""
     std::size_t mSkippedPrimitives = 0;
     bool mHasOrigin = false; ///< mOut.origin is set (the first world position seen)
@@ -793,7 +845,7 @@ bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const
 
 } // namespace
 
-RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget) {
+RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget, const LoadOptions& options) {
     // A byte-order mark before the JSON needs nothing here: tinygltf's JSON parser (nlohmann) skips it.
     const bool binary = content.size() >= 4 && content.substr(0, 4) == "glTF";
     rejectDeepJson(path, content, binary);
@@ -853,7 +905,7 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
             scene.inputFiles.push_back(imagePath);
         }
     }
-    GltfWalker(path, model, scene, budget).walk();
+    GltfWalker(path, model, scene, budget, options).walk();
     if (scene.meshes.empty()) {
         throwLoadError(path, "no triangles in the file");
     }
