@@ -43,6 +43,8 @@ struct RenderOptions {
     std::optional<double> fovYDegrees;     ///< default 35 unless the glTF camera says otherwise
     std::optional<glm::dvec2> clipRange;   ///< --clip NEAR,FAR (0 < near < far); default: fitted to the model
     bool autoCamera = false;               ///< --camera auto: never the file's camera
+    std::string animation;                 ///< --animation: a glTF animation's name or index; empty: the rest pose
+    double animationTime = 0.0;            ///< --time: seconds into `animation`
     Look look;                             ///< shading, lines, supersampling, precision, paper, light
     std::vector<std::string> extraOutputs; ///< --request: extra graph resources kept and dumped ("gbuffer.*")
     std::string dumpDirectory;
