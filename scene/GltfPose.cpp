@@ -321,7 +321,7 @@ void applyMorphTargets(const std::string& path, const tinygltf::Model& model, co
 }
 
 std::vector<glm::dmat4> jointMatrices(const std::string& path, const tinygltf::Model& model, int skinIndex,
-                                      const std::function<glm::dmat4(int node)>& worldOf) {
+                                      const std::function<glm::dmat4(int node)>& worldOf, MeshBudget& budget) {
     if (skinIndex < 0 || std::size_t(skinIndex) >= model.skins.size()) {
         throwLoadError(path, "skin index " + std::to_string(skinIndex) + " out of range (file has " +
                                  std::to_string(model.skins.size()) + " skins)");
@@ -337,6 +337,9 @@ std::vector<glm::dmat4> jointMatrices(const std::string& path, const tinygltf::M
             throwLoadError(path, role + ": " + std::to_string(count) + " matrices for " +
                                      std::to_string(skin.joints.size()) + " joints");
         }
+        // glTF allows more matrices than joints; all are read, so all are checked (a sparse accessor without a buffer
+        // view can declare any count).
+        budget.check((count + skin.joints.size()) * sizeof(glm::dmat4) / MeshBudget::kBytesPerVertex + 1, 0);
         inverseBind = readAccessorFloats(path, model, skin.inverseBindMatrices, TINYGLTF_TYPE_MAT4, role);
     }
     std::vector<glm::dmat4> matrices;

@@ -77,9 +77,10 @@ void applyMorphTargets(const std::string& path, const tinygltf::Model& model, co
                        std::vector<std::string>& warnings);
 
 /** Skin `skinIndex`'s joint matrices: world(joint) * inverseBindMatrix (identity when the skin has none).
- *  `worldOf` gives a node's world matrix. Throws for a bad joint index or inverse bind matrix accessor. */
+ *  `worldOf` gives a node's world matrix. The inverse bind matrices are checked against `budget` before they are
+ *  read. Throws for a bad joint index or inverse bind matrix accessor. */
 std::vector<glm::dmat4> jointMatrices(const std::string& path, const tinygltf::Model& model, int skinIndex,
-                                      const std::function<glm::dmat4(int node)>& worldOf);
+                                      const std::function<glm::dmat4(int node)>& worldOf, MeshBudget& budget);
 
 /** The per-vertex skinning of one primitive: JOINTS_n / WEIGHTS_n (n = 0 and 1 when present) blending the skin's
  *  joint matrices. */

@@ -455,14 +455,17 @@ private:
         // glTF: a skinned mesh is placed by its joints alone; its node's own transform does not apply.
         std::optional<std::vector<glm::dmat4>> skinJoints;
         if (node.skin >= 0) {
-            skinJoints = jointMatrices(mPath, mModel, node.skin, [&](int joint) {
-                const std::optional<glm::dmat4>& jointWorld = mWorlds[std::size_t(joint)];
-                if (!jointWorld) {
-                    fail(nodeLabel(nodeIndex) + ": skin " + std::to_string(node.skin) + " joint node " +
-                         std::to_string(joint) + " is not in the scene");
-                }
-                return *jointWorld;
-            });
+            skinJoints = jointMatrices(
+                mPath, mModel, node.skin,
+                [&](int joint) {
+                    const std::optional<glm::dmat4>& jointWorld = mWorlds[std::size_t(joint)];
+                    if (!jointWorld) {
+                        fail(nodeLabel(nodeIndex) + ": skin " + std::to_string(node.skin) + " joint node " +
+                             std::to_string(joint) + " is not in the scene");
+                    }
+                    return *jointWorld;
+                },
+                mBudget);
         }
         const PrimitivePose pose{mPoses[std::size_t(nodeIndex)].weights, skinJoints ? &*skinJoints : nullptr};
         for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
