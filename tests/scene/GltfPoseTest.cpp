@@ -121,6 +121,7 @@ struct TwoBoneStrip {
     int joints = 0;
     int weights = 0;
     int inverseBind = 0;
+    int normals = -1; ///< a NORMAL attribute when set (withNormals())
 
     explicit TwoBoneStrip(std::vector<std::uint8_t> jointIndices = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
                                                                     0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}) {
@@ -135,12 +136,16 @@ struct TwoBoneStrip {
                                        "MAT4");
     }
 
+    /** Every vertex's normal (1, 0, 0), which a skin turns like the vertex. */
+    void withNormals() { normals = writer.addFloats({1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0}, "VEC3"); }
+
     std::string gltf(const std::string& bone1Extra, const std::string& animations = "",
                      const std::string& skinJoints = "[1, 2]") {
         return writer.gltf(
             "\"meshes\": [{\"name\": \"strip\", \"primitives\": [{\"attributes\": {\"POSITION\": " +
-            std::to_string(positions) + ", \"JOINTS_0\": " + std::to_string(joints) +
-            ", \"WEIGHTS_0\": " + std::to_string(weights) + "}, \"indices\": " + std::to_string(indices) +
+            std::to_string(positions) + (normals >= 0 ? ", \"NORMAL\": " + std::to_string(normals) : "") +
+            ", \"JOINTS_0\": " + std::to_string(joints) + ", \"WEIGHTS_0\": " + std::to_string(weights) +
+            "}, \"indices\": " + std::to_string(indices) +
             "}]}], "
             "\"skins\": [{\"joints\": " +
             skinJoints + ", \"inverseBindMatrices\": " + std::to_string(inverseBind) +
@@ -172,6 +177,26 @@ TEST(GltfPose, SkinRestPoseTurnsTheUpperBone) {
     expectTopTurnedBy(scene, 90.0);
     EXPECT_TRUE(hasVertexNear(scene, {-1, 1, 0})) << describeVertices(scene);
     EXPECT_TRUE(hasVertexNear(scene, {-1, 2, 0})) << describeVertices(scene);
+}
+
+TEST(GltfPose, SkinTurnsNormalsWithTheirVertices) {
+    TwoBoneStrip strip;
+    strip.withNormals();
+    const TempFile file("normals.gltf", strip.gltf(", \"rotation\": " + quaternionAboutZ(90)));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    const Mesh& mesh = scene.meshes[0];
+    ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+    std::size_t checked = 0;
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+        const glm::dvec3 world = test::worldPosition(scene, mesh.positions[v]);
+        // Bone 1's vertices (now at x = -1) turned 90 degrees about Z: +X becomes +Y; bone 0's keep +X.
+        const glm::dvec3 expected = world.x < -0.5 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+        EXPECT_LT(glm::length(glm::dvec3(mesh.normals[v]) - expected), 1e-5)
+            << "vertex at " << world.x << ", " << world.y;
+        ++checked;
+    }
+    EXPECT_EQ(checked, 6u);
 }
 
 TEST(GltfPose, SkinWithoutRotationStaysInBindPose) {
