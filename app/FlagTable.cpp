@@ -382,6 +382,28 @@ std::vector<Flag> makeFlags() {
                          [](const std::string&, RenderOptions& options) { options.quiet = true; }));
 
     // Camera
+    flags.push_back(flag({"--animation"}, "NAME", S::Camera,
+                         "pose a glTF model by its animation NAME (or its index, 0 for the first) at --time;\n"
+                         "skins, morph weights and node transforms follow, and so does auto-framing (default: the\n"
+                         "rest pose, the file's own node transforms and morph weights). A name the file does not\n"
+                         "have is refused with the list of those it has; ignored with a warning for OBJ and STL",
+                         [](const std::string& value, RenderOptions& options) {
+                             if (value.empty()) throw UsageError("--animation: expected a name or an index, got ''");
+                             options.animation = value;
+                         }));
+    Flag animationTime = flag({"--time"}, "SECONDS", S::Camera,
+                              "seconds into --animation (default 0); each channel holds its first or last keyframe\n"
+                              "outside its keyframe times",
+                              [](const std::string& value, RenderOptions& options) {
+                                  const double seconds = parseNumber("--time", value);
+                                  if (seconds < 0.0)
+                                      throw UsageError("--time: expected seconds >= 0, got '" + value + "'");
+                                  options.animationTime = seconds;
+                              });
+    animationTime.noEffect = [](const RenderOptions& options) -> std::string {
+        return options.animation.empty() ? "--time has no effect without --animation" : "";
+    };
+    flags.push_back(animationTime);
     flags.push_back(flag({"--camera"}, "C", S::Camera,
                          "file (default: the glTF file's camera when it has one: its place, up and field of view;\n"
                          "--up and --fov replace their own, --eye, --orbit or --frame all three) | auto (never the\n"

@@ -124,6 +124,8 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     request.keepEveryBuffer = keepsEveryBuffer(options);
     request.keepSvgInputs = !options.svgPath.empty();
     request.memoryLimitBytes = memoryLimitOf(options);
+    request.animation = options.animation;
+    request.animationTime = options.animationTime;
     if (options.eglPlatform == "device") request.eglPlatform = EglPlatform::Device;
     if (options.eglPlatform == "surfaceless") request.eglPlatform = EglPlatform::Surfaceless;
     return request;

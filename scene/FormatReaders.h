@@ -106,8 +106,9 @@ RawScene readObj(const std::string& path, std::string_view content, MeshBudget& 
 RawScene readStl(const std::string& path, std::string_view content, MeshBudget& budget);
 
 /** glTF 2.0 or GLB (the content starts with the "glTF" magic) through tinygltf, from the whole file's bytes;
- *  external buffers are resolved next to `path`. */
-RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget);
+ *  external buffers are resolved next to `path`. Posed as `options` asks (LoadOptions::animation and time). */
+RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget,
+                  const LoadOptions& options = {});
 
 /** The files a glTF (or GLB: `content` may stop after the JSON chunk) names: external buffers and images, and the
  *  shade maps of its materials, resolved as readGltf() resolves them. Best effort, nothing thrown. */

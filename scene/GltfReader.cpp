@@ -4,6 +4,8 @@
  *  material's inkgraph extras (a per-mesh shade map). */
 
 #include "scene/FormatReaders.h"
+#include "scene/GltfAccessors.h"
+#include "scene/GltfPose.h"
 #include "scene/VrmMaterials.h"
 
 #include <glm/gtc/constants.hpp>
@@ -45,11 +47,11 @@ std::string shadeMapBesideModel(const std::string& modelPath, const std::string&
 }
 
 /** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light,
- *  VRM 0.x ("VRM": its front and MToon materialProperties) and 1.0 ("VRMC_vrm": its front; "VRMC_materials_mtoon"),
- *  scene/VrmMaterials.h. Geometry compression (KHR_draco_mesh_compression, EXT_meshopt_compression,
- *  KHR_mesh_quantization) is not here yet (issue 18). */
-const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual", "VRM", "VRMC_materials_mtoon",
-                                                       "VRMC_vrm"};
+ *  KHR_mesh_quantization's integer and normalized attributes (GltfAccessors.cpp reads any component type), VRM 0.x
+ *  ("VRM": its front and MToon materialProperties) and 1.0 ("VRMC_vrm": its front; "VRMC_materials_mtoon"),
+ *  scene/VrmMaterials.h. */
+const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_mesh_quantization", "VRM",
+                                                       "VRMC_materials_mtoon", "VRMC_vrm"};
 
 /** Unsupported required extensions named one by one in the refusal; the rest are counted. */
 constexpr std::size_t kMaxNamedExtensions = 10;
@@ -124,44 +126,26 @@ const char* modeName(int mode) {
     }
 }
 
-glm::dmat4 localTransform(const tinygltf::Node& node) {
-    if (node.matrix.size() == 16) {
-        return glm::make_mat4(node.matrix.data()); // both column-major
-    }
-    glm::dmat4 transform(1.0);
-    if (node.translation.size() == 3) {
-        transform = glm::translate(transform, glm::make_vec3(node.translation.data()));
-    }
-    if (node.rotation.size() == 4) {
-        const glm::dquat rotation(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]); // xyzw
-        transform *= glm::mat4_cast(glm::normalize(rotation));
-    }
-    if (node.scale.size() == 3) {
-        transform = glm::scale(transform, glm::make_vec3(node.scale.data()));
-    }
-    return transform;
+/** A normal through a normal matrix, unit length again (zero when the matrix collapses it). */
+glm::vec3 transformNormal(const glm::dmat3& normalMatrix, const glm::vec3& normal) {
+    const glm::dvec3 transformed = normalMatrix * glm::dvec3(normal);
+    const double length = glm::length(transformed);
+    return length > 0.0 && std::isfinite(length) ? glm::vec3(transformed / length) : glm::vec3(0.0f);
 }
-
-/** A bounds-checked window on an accessor's elements. */
-struct AccessorData {
-    const unsigned char* first = nullptr;
-    std::size_t stride = 0;
-    std::size_t count = 0;
-    int componentType = 0;
-
-    const unsigned char* element(std::size_t index) const { return first + index * stride; }
-};
 
 class GltfWalker {
 public:
-    GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out, MeshBudget& budget)
-        : mPath(path), mModel(model), mOut(out), mBudget(budget), mReached(model.nodes.size(), false),
-          mMaterialShadeMaps(model.materials.size()), mVrmMaterialsWarned(model.materials.size(), false) {}
+    GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out, MeshBudget& budget,
+               const LoadOptions& options)
+        : mPath(path), mModel(model), mOut(out), mBudget(budget), mOptions(options),
+          mReached(model.nodes.size(), false), mWorlds(model.nodes.size()), mMaterialShadeMaps(model.materials.size()),
+          mVrmMaterialsWarned(model.materials.size(), false) {}
 
     void walk() {
         checkRequiredExtensions();
         checkMaterialIndices();
         readVrmFront();
+        posed();
         // Depth-first with an explicit stack (a deep hierarchy must not overflow the call stack), in the order the
         // recursive walk would take: roots and children are pushed in reverse so the first is handled first.
         std::vector<PendingNode> pending;
@@ -170,16 +154,23 @@ public:
             claimRoot(*root);
             pending.push_back({*root, glm::dmat4(1.0)});
         }
+        // Every world transform first, then the visits: a skinned mesh needs its joints' transforms, wherever they
+        // are in the hierarchy.
+        std::vector<int> visitOrder;
         while (!pending.empty()) {
             const PendingNode next = pending.back();
             pending.pop_back();
             const tinygltf::Node& node = mModel.nodes[std::size_t(next.index)];
-            const glm::dmat4 world = next.parentWorld * localTransform(node);
-            visit(next.index, node, world);
+            const glm::dmat4 world = next.parentWorld * mPoses[std::size_t(next.index)].local();
+            mWorlds[std::size_t(next.index)] = world;
+            visitOrder.push_back(next.index);
             for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
                 claimChild(next.index, *child);
                 pending.push_back({*child, world});
             }
+        }
+        for (const int index : visitOrder) {
+            visit(index, mModel.nodes[std::size_t(index)], *mWorlds[std::size_t(index)]);
         }
         if (mOut.meshes.empty() && mSkippedPrimitives > 0) {
             throwLoadError(mPath, "no triangles: all " + std::to_string(mSkippedPrimitives) +
@@ -189,6 +180,15 @@ public:
 
 private:
     [[noreturn]] void fail(const std::string& problem) const { throwLoadError(mPath, problem); }
+
+    /** The nodes' local transforms and morph weights: their own, or the animation LoadOptions names at its time. */
+    void posed() {
+        mPoses = restPose(mModel);
+        if (!mOptions.animation.empty()) {
+            applyAnimation(mPath, mModel, findAnimation(mPath, mModel, mOptions.animation), mOptions.time, mPoses,
+                           mBudget, mOut.warnings);
+        }
+    }
 
     /** The glTF 2.0 specification: a loader must refuse a file that requires an extension it does not implement,
      *  since the file may not make sense without it (compressed geometry reads as garbage, for one). */
@@ -477,18 +477,40 @@ private:
         const std::string baseName = !node.name.empty()   ? node.name
                                      : !mesh.name.empty() ? mesh.name
                                                           : "mesh " + std::to_string(node.mesh);
+        // glTF: a skinned mesh is placed by its joints alone; its node's own transform does not apply.
+        std::optional<std::vector<glm::dmat4>> skinJoints;
+        if (node.skin >= 0) {
+            skinJoints = jointMatrices(
+                mPath, mModel, node.skin,
+                [&](int joint) {
+                    const std::optional<glm::dmat4>& jointWorld = mWorlds[std::size_t(joint)];
+                    if (!jointWorld) {
+                        fail(nodeLabel(nodeIndex) + ": skin " + std::to_string(node.skin) + " joint node " +
+                             std::to_string(joint) + " is not in the scene");
+                    }
+                    return *jointWorld;
+                },
+                mBudget);
+        }
+        const PrimitivePose pose{mPoses[std::size_t(nodeIndex)].weights, skinJoints ? &*skinJoints : nullptr};
         const std::vector<std::string> path = nodePath(nodeIndex);
         for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
             const std::string name =
                 mesh.primitives.size() == 1 ? baseName : baseName + " primitive " + std::to_string(i);
             chargeNodePath(path); // before the primitive's copy, as its vertices are
             const std::size_t meshesBefore = mOut.meshes.size();
-            addPrimitive(mesh.primitives[i], name, nodeLabel(nodeIndex), world);
+            addPrimitive(mesh.primitives[i], name, nodeLabel(nodeIndex), world, pose);
             if (mOut.meshes.size() > meshesBefore) {
                 mOut.meshes.back().nodePath = path;
             }
         }
     }
+
+    /** What moves a primitive's vertices besides its node's transform. */
+    struct PrimitivePose {
+        const std::vector<double>& morphWeights;
+        const std::vector<glm::dmat4>* skinJoints = nullptr; ///< null: not skinned
+    };
 
     /** The node names from the root down to `nodeIndex` (Mesh::nodePath). This one copy lives only while its node
      *  is visited and is no larger than the names the parsed file holds; each mesh's copy is charged. */
@@ -509,95 +531,29 @@ private:
         mBudget.chargeBytes(bytes);
     }
 
-    AccessorData accessorData(int accessorIndex, int expectedType, const std::string& role) const {
-        if (accessorIndex < 0 || std::size_t(accessorIndex) >= mModel.accessors.size()) {
-            fail(role + " accessor index " + std::to_string(accessorIndex) + " out of range");
-        }
-        const tinygltf::Accessor& accessor = mModel.accessors[std::size_t(accessorIndex)];
-        const std::string label = role + " accessor " + std::to_string(accessorIndex);
-        if (accessor.sparse.isSparse) {
-            fail(label + ": sparse accessors are not supported");
-        }
-        if (accessor.type != expectedType) {
-            fail(label + ": unexpected element type");
-        }
-        const int componentBytes = tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType));
-        const int components = tinygltf::GetNumComponentsInType(std::uint32_t(accessor.type));
-        if (componentBytes <= 0 || components <= 0) {
-            fail(label + ": invalid component type");
-        }
-        if (accessor.bufferView < 0 || std::size_t(accessor.bufferView) >= mModel.bufferViews.size()) {
-            fail(label + ": missing or out-of-range buffer view");
-        }
-        const tinygltf::BufferView& view = mModel.bufferViews[std::size_t(accessor.bufferView)];
-        if (view.buffer < 0 || std::size_t(view.buffer) >= mModel.buffers.size()) {
-            fail(label + ": buffer view " + std::to_string(accessor.bufferView) + " has an out-of-range buffer");
-        }
-        const std::vector<unsigned char>& buffer = mModel.buffers[std::size_t(view.buffer)].data;
-        if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
-            fail("buffer view " + std::to_string(accessor.bufferView) + " (offset " + std::to_string(view.byteOffset) +
-                 ", length " + std::to_string(view.byteLength) + ") exceeds its buffer of " +
-                 std::to_string(buffer.size()) + " bytes");
-        }
-
-        AccessorData data;
-        data.componentType = accessor.componentType;
-        data.count = accessor.count;
-        const std::size_t elementBytes = std::size_t(componentBytes) * std::size_t(components);
-        data.stride = view.byteStride != 0 ? view.byteStride : elementBytes;
-        if (data.stride < elementBytes) {
-            fail(label + ": byte stride " + std::to_string(data.stride) + " is smaller than an element");
-        }
-        if (data.count == 0) {
-            return data;
-        }
-        // Last byte read: offset + stride * (count - 1) + elementBytes, checked without overflow.
-        const std::size_t available = view.byteLength;
-        const bool fits = accessor.byteOffset <= available && elementBytes <= available - accessor.byteOffset &&
-                          (data.count - 1) <= (available - accessor.byteOffset - elementBytes) / data.stride;
-        if (!fits) {
-            fail(label + " (" + std::to_string(data.count) + " elements from offset " +
-                 std::to_string(accessor.byteOffset) + ") reads past the end of buffer view " +
-                 std::to_string(accessor.bufferView) + " (" + std::to_string(available) + " bytes)");
-        }
-        data.first = buffer.data() + view.byteOffset + accessor.byteOffset;
-        return data;
+    /** A VEC3 attribute (POSITION, NORMAL) as vectors, in the file's frame. */
+    std::vector<glm::vec3> readVec3(int accessorIndex, const std::string& role) const {
+        const std::vector<float> values = readAccessorFloats(mPath, mModel, accessorIndex, TINYGLTF_TYPE_VEC3, role);
+        std::vector<glm::vec3> vectors(values.size() / 3);
+        std::memcpy(vectors.data(), values.data(), vectors.size() * sizeof(glm::vec3));
+        return vectors;
     }
 
-    std::vector<glm::vec3> readVec3(int accessorIndex, const std::string& role) const {
-        const AccessorData data = accessorData(accessorIndex, TINYGLTF_TYPE_VEC3, role);
-        if (data.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-            fail(role + " accessor " + std::to_string(accessorIndex) + ": only float components are supported");
+    /** A vertex attribute has one element per vertex; checked before it is read, so a mismatched count allocates
+     *  nothing. */
+    void requireVertexCount(int accessorIndex, int type, const std::string& attribute, std::size_t vertexCount,
+                            const std::string& name) const {
+        const std::size_t count = accessorCount(mPath, mModel, accessorIndex, type, attribute);
+        if (count != vertexCount) {
+            fail("'" + excerptForMessage(name) + "': " + attribute + " has " + std::to_string(count) +
+                 " elements but POSITION has " + std::to_string(vertexCount));
         }
-        std::vector<glm::vec3> values(data.count);
-        for (std::size_t i = 0; i < data.count; ++i) {
-            std::memcpy(&values[i], data.element(i), sizeof(glm::vec3));
-            if (!std::isfinite(values[i].x) || !std::isfinite(values[i].y) || !std::isfinite(values[i].z)) {
-                fail(role + " accessor " + std::to_string(accessorIndex) + " element " + std::to_string(i) +
-                     ": non-finite coordinate");
-            }
-        }
-        return values;
     }
 
     std::vector<std::uint32_t> readIndices(int accessorIndex, std::size_t vertexCount) const {
-        const AccessorData data = accessorData(accessorIndex, TINYGLTF_TYPE_SCALAR, "index");
-        std::vector<std::uint32_t> indices(data.count);
-        for (std::size_t i = 0; i < data.count; ++i) {
-            const unsigned char* element = data.element(i);
-            switch (data.componentType) {
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: indices[i] = *element; break;
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-                std::uint16_t value = 0;
-                std::memcpy(&value, element, sizeof value);
-                indices[i] = value;
-                break;
-            }
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&indices[i], element, sizeof(std::uint32_t)); break;
-            default:
-                fail("index accessor " + std::to_string(accessorIndex) +
-                     ": component type must be unsigned byte, short or int");
-            }
+        std::vector<std::uint32_t> indices =
+            readAccessorIntegers(mPath, mModel, accessorIndex, TINYGLTF_TYPE_SCALAR, "index");
+        for (std::size_t i = 0; i < indices.size(); ++i) {
             if (indices[i] >= vertexCount) {
                 fail("index accessor " + std::to_string(accessorIndex) + " element " + std::to_string(i) + ": index " +
                      std::to_string(indices[i]) + " out of range (primitive has " + std::to_string(vertexCount) +
@@ -638,7 +594,7 @@ private:
     }
 
     void addPrimitive(const tinygltf::Primitive& primitive, const std::string& name, const std::string& node,
-                      const glm::dmat4& world) {
+                      const glm::dmat4& world, const PrimitivePose& pose) {
         const int mode = primitive.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -654,9 +610,11 @@ private:
         }
 
         // Charged before anything is copied: one mesh instanced by many nodes is copied once per node.
-        const std::size_t vertexCount = accessorData(positionAttribute->second, TINYGLTF_TYPE_VEC3, "POSITION").count;
+        const std::size_t vertexCount =
+            accessorCount(mPath, mModel, positionAttribute->second, TINYGLTF_TYPE_VEC3, "POSITION");
         const std::size_t cornerCount =
-            primitive.indices >= 0 ? accessorData(primitive.indices, TINYGLTF_TYPE_SCALAR, "index").count : vertexCount;
+            primitive.indices >= 0 ? accessorCount(mPath, mModel, primitive.indices, TINYGLTF_TYPE_SCALAR, "index")
+                                   : vertexCount;
         mBudget.charge(vertexCount, mode == TINYGLTF_MODE_TRIANGLES ? cornerCount / 3 : cornerCount);
 
         RawMesh mesh;
@@ -664,11 +622,20 @@ private:
         mesh.positions = readVec3(positionAttribute->second, "POSITION");
         const auto normalAttribute = primitive.attributes.find("NORMAL");
         if (normalAttribute != primitive.attributes.end()) {
+            requireVertexCount(normalAttribute->second, TINYGLTF_TYPE_VEC3, "NORMAL", vertexCount, name);
             mesh.normals = readVec3(normalAttribute->second, "NORMAL");
-            if (mesh.normals.size() != vertexCount) {
-                fail("'" + excerptForMessage(name) + "': NORMAL has " + std::to_string(mesh.normals.size()) +
-                     " elements but POSITION has " + std::to_string(vertexCount));
-            }
+        }
+
+        applyMorphTargets(mPath, mModel, primitive, pose.morphWeights, mesh.positions, mesh.normals, name,
+                          mOut.warnings);
+        std::optional<SkinBlend> skin;
+        if (pose.skinJoints) {
+            // SkinBlend holds every JOINTS_n/WEIGHTS_n set for the primitive's vertices while it is baked.
+            const auto sets = std::ranges::count_if(
+                primitive.attributes, [](const auto& entry) { return entry.first.starts_with("JOINTS_"); });
+            mBudget.check(vertexCount * std::size_t(sets) * kSkinBytesPerVertexPerSet / MeshBudget::kBytesPerVertex + 1,
+                          0);
+            skin.emplace(mPath, mModel, primitive, vertexCount, *pose.skinJoints, world, name);
         }
 
         std::vector<std::uint32_t> indices;
@@ -682,15 +649,19 @@ private:
         }
         mesh.triangles = triangulate(mode, indices, name);
 
-        // Bake the node transform; normals use the inverse transpose so non-uniform scale keeps them perpendicular.
+        // Bake the node transform (a skinned vertex's: its blend of joint matrices); normals use the inverse
+        // transpose so non-uniform scale keeps them perpendicular.
         const glm::dmat3 linear(world);
         const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
+        std::vector<bool> mirrored; // per vertex of a skinned mesh: its skin matrix turns the winding over
         // In double until the position is relative to the scene's raw origin (the first world position): rounding
         // world coordinates of a model 1e7 units out to float would leave it a blocky polyhedron.
-        for (glm::vec3& position : mesh.positions) {
-            const glm::dvec3 worldPosition(world * glm::dvec4(glm::dvec3(position), 1.0));
+        for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+            const glm::dmat4 vertexMatrix = skin ? skin->vertexMatrix(v) : world;
+            const glm::dvec3 worldPosition(vertexMatrix * glm::dvec4(glm::dvec3(mesh.positions[v]), 1.0));
             if (!std::isfinite(worldPosition.x) || !std::isfinite(worldPosition.y) || !std::isfinite(worldPosition.z)) {
-                fail(node + ": the node transform produces non-finite positions");
+                fail(node + (skin ? ": the skin's joint transforms produce non-finite positions"
+                                  : ": the node transform produces non-finite positions"));
             }
             if (!mHasOrigin) {
                 mOut.origin = worldPosition;
@@ -702,16 +673,21 @@ private:
                      " units from the first mesh's first vertex, more than the " + formatExtent(kMaxModelExtent) +
                      " the renderer can hold (a node scale or translation too large?)");
             }
-            position = glm::vec3(relative);
+            mesh.positions[v] = glm::vec3(relative);
+            if (skin) {
+                const glm::dmat3 vertexLinear(vertexMatrix);
+                mirrored.push_back(glm::determinant(vertexLinear) < 0.0);
+                if (!mesh.normals.empty()) {
+                    mesh.normals[v] = transformNormal(glm::transpose(glm::inverse(vertexLinear)), mesh.normals[v]);
+                }
+            }
         }
-        for (glm::vec3& normal : mesh.normals) {
-            const glm::dvec3 transformed = normalMatrix * glm::dvec3(normal);
-            const double length = glm::length(transformed);
-            normal = length > 0.0 && std::isfinite(length) ? glm::vec3(transformed / length) : glm::vec3(0.0f);
+        if (!skin) {
+            for (glm::vec3& normal : mesh.normals) normal = transformNormal(normalMatrix, normal);
         }
         // A mirroring transform turns counter-clockwise into clockwise; swap two corners to keep fronts outward.
-        if (glm::determinant(linear) < 0.0) {
-            for (glm::uvec3& triangle : mesh.triangles) {
+        for (glm::uvec3& triangle : mesh.triangles) {
+            if (skin ? bool(mirrored[triangle.x]) : glm::determinant(linear) < 0.0) {
                 std::swap(triangle.y, triangle.z);
             }
         }
@@ -734,7 +710,10 @@ private:
     const tinygltf::Model& mModel;
     RawScene& mOut;
     MeshBudget& mBudget;
-    std::vector<bool> mReached; ///< nodes already reached by the walk; reaching one again is an error
+    const LoadOptions& mOptions;
+    std::vector<NodePose> mPoses; ///< per node: its local transform and morph weights, animated or not (posed())
+    std::vector<bool> mReached;   ///< nodes already reached by the walk; reaching one again is an error
+    std::vector<std::optional<glm::dmat4>> mWorlds; ///< per node reached by the walk: its world transform
     std::vector<int> mParent = std::vector<int>(mModel.nodes.size(), -1); ///< each node's parent, -1 for a root
     std::vector<std::optional<std::string>> mMaterialShadeMaps; ///< per material, once read: its shade map or ""
     std::vector<bool> mVrmMaterialsWarned; ///< per material: its VRM material warnings are reported
@@ -922,7 +901,7 @@ bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const
 
 } // namespace
 
-RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget) {
+RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget, const LoadOptions& options) {
     // A byte-order mark before the JSON needs nothing here: tinygltf's JSON parser (nlohmann) skips it.
     const bool binary = content.size() >= 4 && content.substr(0, 4) == "glTF";
     rejectDeepJson(path, content, binary);
@@ -982,7 +961,7 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
             scene.inputFiles.push_back(imagePath);
         }
     }
-    GltfWalker(path, model, scene, budget).walk();
+    GltfWalker(path, model, scene, budget, options).walk();
     if (scene.meshes.empty()) {
         throwLoadError(path, "no triangles in the file");
     }

@@ -119,6 +119,12 @@ struct LoadOptions {
      *  triangle counts the file declares or has reached (detail::MeshBudget); above it loading stops with a
      *  SceneError naming the file. The CLI sets it from --memory-limit. */
     std::size_t memoryLimitBytes = kDefaultLoadMemoryLimit;
+    /** A glTF animation to pose the model by: its name, or its index as text when no animation has that name; empty
+     *  for the rest pose (the nodes' own transforms and morph weights). A name the file does not have is a SceneError
+     *  listing the animations it has. The CLI sets it from --animation. */
+    std::string animation;
+    /** Seconds into `animation` (clamped to each channel's keyframes); finite and >= 0. The CLI's --time. */
+    double time = 0.0;
 };
 
 /** Reads .gltf, .glb (and .vrm, a GLB), .obj or .stl (binary or ASCII), chosen by content and extension.
