@@ -51,13 +51,13 @@ struct RenderOptions {
     std::optional<glm::dvec3> eye;
     std::optional<Orbit> orbit; ///< --orbit AZIMUTH,ELEVATION[,DISTANCE]: the eye around the target
     std::optional<glm::dvec3> target;
-    std::optional<glm::dvec3> up;          ///< default: the glTF camera's, else 0,1,0
-    std::optional<double> fovYDegrees;     ///< default 35, or the glTF camera's when that camera places the view
-    std::vector<std::string> frameNodes;   ///< --frame NODE[,NODE...]: frame only the meshes under these nodes
-    std::optional<glm::dvec2> clipRange;   ///< --clip NEAR,FAR (0 < near < far); default: fitted to the model
-    bool autoCamera = false;               ///< --camera auto: never the file's camera
-    std::string animation;                 ///< --animation: a glTF animation's name or index; empty: the rest pose
-    double animationTime = 0.0;            ///< --time: seconds into `animation`
+    std::optional<glm::dvec3> up;        ///< default: the glTF camera's, else 0,1,0
+    std::optional<double> fovYDegrees;   ///< default 35, or the glTF camera's when that camera places the view
+    std::vector<std::string> frameNodes; ///< --frame NODE[,NODE...]: frame only the meshes under these nodes
+    std::optional<glm::dvec2> clipRange; ///< --clip NEAR,FAR (0 < near < far); default: fitted to the model
+    bool autoCamera = false;             ///< --camera auto: never the file's camera
+    std::string animation;               ///< --animation: a glTF animation's name or index; empty: the rest pose
+    double animationTime = 0.0;          ///< --time: seconds into `animation`
     /** Shading, lines, supersampling, precision, paper, light. The command line's default draws the silhouette
      *  (kDefaultLines), so no model is white on white: a white or untextured model's lit band is the paper's
      *  colour, and its outline still sets it apart. */

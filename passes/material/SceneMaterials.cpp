@@ -108,13 +108,13 @@ void SceneMaterials::describe(nlohmann::ordered_json& out) const {
         if (material.mtoon) {
             const MToonMaterial& mtoon = *material.mtoon;
             static const char* const kOutlineModes[] = {"none", "worldCoordinates", "screenCoordinates"};
-            entry["mtoon"] = {{"spec_version", mtoon.specVersion},
-                              {"shade_color_factor",
-                               {mtoon.shadeColorFactor.r, mtoon.shadeColorFactor.g, mtoon.shadeColorFactor.b}},
-                              {"shading_shift", mtoon.shadingShiftFactor},
-                              {"shading_toony", mtoon.shadingToonyFactor},
-                              {"outline_width_mode", kOutlineModes[int(mtoon.outlineWidthMode)]},
-                              {"outline_width", mtoon.outlineWidthFactor}};
+            entry["mtoon"] = {
+                {"spec_version", mtoon.specVersion},
+                {"shade_color_factor", {mtoon.shadeColorFactor.r, mtoon.shadeColorFactor.g, mtoon.shadeColorFactor.b}},
+                {"shading_shift", mtoon.shadingShiftFactor},
+                {"shading_toony", mtoon.shadingToonyFactor},
+                {"outline_width_mode", kOutlineModes[int(mtoon.outlineWidthMode)]},
+                {"outline_width", mtoon.outlineWidthFactor}};
         }
         materials.push_back(std::move(entry));
     }
@@ -173,7 +173,7 @@ void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex) {
     if (program.uniform("mtoonOutlineMode") >= 0) {
         const int mode = mtoon.outlineWidthMode == MToonMaterial::OutlineWidthMode::WorldCoordinates    ? 1
                          : mtoon.outlineWidthMode == MToonMaterial::OutlineWidthMode::ScreenCoordinates ? 2
-                                                                                                         : 0;
+                                                                                                        : 0;
         glUniform1i(program.uniform("mtoonOutlineMode"), material.mtoon ? mode : 0);
         glUniform1f(program.uniform("mtoonOutlineWidthFactor"), mtoon.outlineWidthFactor);
         glUniform3fv(program.uniform("mtoonOutlineColorFactor"), 1, glm::value_ptr(mtoon.outlineColorFactor));

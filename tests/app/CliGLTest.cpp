@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 
 TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
     const CliRun result = run("render " + model("spot_c3d.obj") +
-                              " -o final.png --size 96x64 --dump dump --request 'gbuffer.*' --stats stats.json");
+                              " -o final.png --size 96x64 --lines none --dump dump --request 'gbuffer.*' --stats stats.json");
     ASSERT_EQ(result.exitCode, 0) << result.err;
 
     // float32 in the files themselves, not converted on reading.
@@ -111,7 +111,7 @@ TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
 
 TEST_F(Cli, DumpingNeverChangesWhatRuns) {
     ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o a.png --size 48x48 --stats plain.json").exitCode, 0);
-    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o b.png --size 48x48 --stats dumped.json --dump d").exitCode,
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o b.png --size 48x48 --lines none --stats dumped.json --dump d").exitCode,
               0);
     const auto plain = nlohmann::json::parse(readText(directory / "plain.json"));
     const auto dumped = nlohmann::json::parse(readText(directory / "dumped.json"));
@@ -124,9 +124,9 @@ TEST_F(Cli, DumpingNeverChangesWhatRuns) {
 }
 
 TEST_F(Cli, DumpReplacesAnEarlierDumpWhole) {
-    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 32x32 --dump d --request 'gbuffer.*'").exitCode, 0);
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 32x32 --lines none --dump d --request 'gbuffer.*'").exitCode, 0);
     EXPECT_TRUE(fs::exists(directory / "d" / "w.exr"));
-    const CliRun second = run("render " + model("spot_c3d.obj") + " --size 48x48 --dump d --shading none");
+    const CliRun second = run("render " + model("spot_c3d.obj") + " --size 48x48 --lines none --dump d --shading none");
     ASSERT_EQ(second.exitCode, 0) << second.err;
     // Nothing of the first run is left beside the second run's files, and no staging folder either.
     EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"final.png", "manifest.json"}));
@@ -138,8 +138,8 @@ TEST_F(Cli, DumpIntoAnExistingFolderKeepsTheFolder) {
     // "d/." and a folder given by a trailing slash both name the folder itself; it is filled in place.
     fs::create_directories(directory / "d");
     fs::permissions(directory / "d", fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec);
-    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 16x16 --dump d/.").exitCode, 0);
-    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 16x16 --dump d/ --shading none").exitCode, 0);
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 16x16 --lines none --dump d/.").exitCode, 0);
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 16x16 --lines none --dump d/ --shading none").exitCode, 0);
     EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"final.png", "manifest.json"}));
     EXPECT_EQ(fs::status(directory / "d").permissions() & fs::perms::all,
               fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec)
@@ -250,7 +250,7 @@ TEST_F(Cli, AwkwardPathsAndFormats) {
 
 TEST_F(Cli, ShadingNoneCullsTheShadingPassWithAReason) {
     const CliRun result =
-        run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --shading none --stats s.json");
+        run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --shading none --lines none --stats s.json");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
     ASSERT_EQ(stats["passes"].size(), 1u);
@@ -518,7 +518,7 @@ TEST_F(Cli, ComicStatsReportTheFaceOrientationMethod) {
 
 TEST_F(Cli, ShadeMapFilesAreReadAndCheckedBeforeAnyWork) {
     const std::string shadeMaps = (fs::path(INKGRAPH_SOURCE_ROOT) / "shademaps").string();
-    CliRun comic = run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --shading comic --shademap '" +
+    CliRun comic = run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --lines none --shading comic --shademap '" +
                        shadeMaps + "/noir.png' --stats s.json");
     ASSERT_EQ(comic.exitCode, 0) << comic.err;
     EXPECT_NE(readText(directory / "s.json").find("noir.png"), std::string::npos);

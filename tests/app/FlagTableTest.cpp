@@ -62,7 +62,7 @@ TEST(FlagTable, EveryLineTypeHasItsFlagsStyleNamesAndHelp) {
         }
         EXPECT_NE(help.find("  " + type.name + ": "), std::string::npos) << type.name << " is not in --help";
         // A width flag without its type in --lines is refused, naming the type.
-        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--" + type.name + "-width", "3"})
+        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "none", "--" + type.name + "-width", "3"})
                       .find("'" + type.name + "' line type is not drawn"),
                   std::string::npos)
             << type.name;

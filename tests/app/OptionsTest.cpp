@@ -55,7 +55,8 @@ TEST(Options, Defaults) {
     EXPECT_EQ(options.look.viewVector, ViewVectorMode::Exact);
     EXPECT_EQ(options.look.faceOrientation, FaceOrientationMethod::Standard);
     EXPECT_EQ(options.look.frontRule, 3);
-    EXPECT_TRUE(options.look.lines.empty());
+    EXPECT_EQ(options.look.lines, kDefaultLines); // the silhouette: no model white on white
+    EXPECT_EQ(options.look.lines, std::vector<std::string>{"silhouette"});
     for (const LineType& type : lineTypes()) {
         EXPECT_EQ(options.look.styleOf(type.name).widthPixels, 2.0) << type.name;
         EXPECT_EQ(options.look.styleOf(type.name).color, glm::dvec4(0, 0, 0, 1)) << type.name;
@@ -134,7 +135,8 @@ TEST(Options, LineTypesAndTheirStyles) {
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--outline-width", "3"}).find("'outline' line type is not drawn"),
               std::string::npos);
     EXPECT_NE(
-        usageMessage({"m.obj", "-o", "x.png", "--silhouette-object-width", "1"}).find("--silhouette-object-width"),
+        usageMessage({"m.obj", "-o", "x.png", "--lines", "none", "--silhouette-object-width", "1"})
+            .find("--silhouette-object-width"),
         std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-width", "0"}).find("above 0"),
               std::string::npos);
@@ -403,7 +405,8 @@ TEST(Options, ContactSheetAndSvgOutputs) {
               std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "--svg", "l.png", "--lines", "contour"}).find("must be a .svg"),
               std::string::npos);
-    EXPECT_NE(usageMessage({"m.obj", "--svg", "l.svg"}).find("--svg: no line types"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "--svg", "l.svg", "--lines", "none"}).find("--svg: no line types"),
+              std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--svg-tolerance", "1"}).find("--svg, which is not given"),
               std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "--svg", "l.svg", "--lines", "contour", "--svg-tolerance", "-1"})

@@ -152,9 +152,9 @@ INSTANTIATE_TEST_SUITE_P(
         // Spot from a fixed three-quarter view: smooth closed surface, computed normals, auto near/far.
         GoldenCase{"spot",
                    {model("spot_c3d.obj"), "--size", "160x120", "--eye", "2.4,1.0,-1.6", "--target", "0,0.1,0", "--fov",
-                    "35", "--light", "1,1,-0.5", "--shading", "lambert"}},
+                    "35", "--light", "1,1,-0.5", "--shading", "lambert", "--lines", "none"}},
         // The teapot: open patches (back faces through holes), the auto-framed camera and the default light.
-        GoldenCase{"teapot", {model("teapot_c3d.obj"), "--size", "128x128", "--shading", "lambert"}},
+        GoldenCase{"teapot", {model("teapot_c3d.obj"), "--size", "128x128", "--shading", "lambert", "--lines", "none"}},
         // The default look: Qu, Chen & Zwicker's five cel bands, Lander's outline and the inflated hull (3 px, red).
         GoldenCase{"spot_cel_lines",
                    {model("spot_c3d.obj"), "--size", "160x120", "--eye", "2.4,1.0,-1.6", "--target", "0,0.1,0", "--fov",
