@@ -4,6 +4,7 @@
  *  material's inkgraph extras (a per-mesh shade map). */
 
 #include "scene/FormatReaders.h"
+#include "scene/GltfAccessors.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -43,10 +44,9 @@ std::string shadeMapBesideModel(const std::string& modelPath, const std::string&
     return resolved.lexically_normal().string();
 }
 
-/** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light.
- *  Geometry compression (KHR_draco_mesh_compression, EXT_meshopt_compression, KHR_mesh_quantization) is not here yet
- *  (issue 18), nor any texture or material extension: the reader reads the core baseColorFactor only. */
-const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual"};
+/** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light
+ *  and KHR_mesh_quantization's integer and normalized attributes (GltfAccessors.cpp reads any component type). */
+const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_mesh_quantization"};
 
 /** Unsupported required extensions named one by one in the refusal; the rest are counted. */
 constexpr std::size_t kMaxNamedExtensions = 10;
@@ -138,16 +138,6 @@ glm::dmat4 localTransform(const tinygltf::Node& node) {
     }
     return transform;
 }
-
-/** A bounds-checked window on an accessor's elements. */
-struct AccessorData {
-    const unsigned char* first = nullptr;
-    std::size_t stride = 0;
-    std::size_t count = 0;
-    int componentType = 0;
-
-    const unsigned char* element(std::size_t index) const { return first + index * stride; }
-};
 
 class GltfWalker {
 public:
@@ -460,95 +450,29 @@ private:
         }
     }
 
-    AccessorData accessorData(int accessorIndex, int expectedType, const std::string& role) const {
-        if (accessorIndex < 0 || std::size_t(accessorIndex) >= mModel.accessors.size()) {
-            fail(role + " accessor index " + std::to_string(accessorIndex) + " out of range");
-        }
-        const tinygltf::Accessor& accessor = mModel.accessors[std::size_t(accessorIndex)];
-        const std::string label = role + " accessor " + std::to_string(accessorIndex);
-        if (accessor.sparse.isSparse) {
-            fail(label + ": sparse accessors are not supported");
-        }
-        if (accessor.type != expectedType) {
-            fail(label + ": unexpected element type");
-        }
-        const int componentBytes = tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType));
-        const int components = tinygltf::GetNumComponentsInType(std::uint32_t(accessor.type));
-        if (componentBytes <= 0 || components <= 0) {
-            fail(label + ": invalid component type");
-        }
-        if (accessor.bufferView < 0 || std::size_t(accessor.bufferView) >= mModel.bufferViews.size()) {
-            fail(label + ": missing or out-of-range buffer view");
-        }
-        const tinygltf::BufferView& view = mModel.bufferViews[std::size_t(accessor.bufferView)];
-        if (view.buffer < 0 || std::size_t(view.buffer) >= mModel.buffers.size()) {
-            fail(label + ": buffer view " + std::to_string(accessor.bufferView) + " has an out-of-range buffer");
-        }
-        const std::vector<unsigned char>& buffer = mModel.buffers[std::size_t(view.buffer)].data;
-        if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
-            fail("buffer view " + std::to_string(accessor.bufferView) + " (offset " + std::to_string(view.byteOffset) +
-                 ", length " + std::to_string(view.byteLength) + ") exceeds its buffer of " +
-                 std::to_string(buffer.size()) + " bytes");
-        }
-
-        AccessorData data;
-        data.componentType = accessor.componentType;
-        data.count = accessor.count;
-        const std::size_t elementBytes = std::size_t(componentBytes) * std::size_t(components);
-        data.stride = view.byteStride != 0 ? view.byteStride : elementBytes;
-        if (data.stride < elementBytes) {
-            fail(label + ": byte stride " + std::to_string(data.stride) + " is smaller than an element");
-        }
-        if (data.count == 0) {
-            return data;
-        }
-        // Last byte read: offset + stride * (count - 1) + elementBytes, checked without overflow.
-        const std::size_t available = view.byteLength;
-        const bool fits = accessor.byteOffset <= available && elementBytes <= available - accessor.byteOffset &&
-                          (data.count - 1) <= (available - accessor.byteOffset - elementBytes) / data.stride;
-        if (!fits) {
-            fail(label + " (" + std::to_string(data.count) + " elements from offset " +
-                 std::to_string(accessor.byteOffset) + ") reads past the end of buffer view " +
-                 std::to_string(accessor.bufferView) + " (" + std::to_string(available) + " bytes)");
-        }
-        data.first = buffer.data() + view.byteOffset + accessor.byteOffset;
-        return data;
+    /** A VEC3 attribute (POSITION, NORMAL) as vectors, in the file's frame. */
+    std::vector<glm::vec3> readVec3(int accessorIndex, const std::string& role) const {
+        const std::vector<float> values = readAccessorFloats(mPath, mModel, accessorIndex, TINYGLTF_TYPE_VEC3, role);
+        std::vector<glm::vec3> vectors(values.size() / 3);
+        std::memcpy(vectors.data(), values.data(), vectors.size() * sizeof(glm::vec3));
+        return vectors;
     }
 
-    std::vector<glm::vec3> readVec3(int accessorIndex, const std::string& role) const {
-        const AccessorData data = accessorData(accessorIndex, TINYGLTF_TYPE_VEC3, role);
-        if (data.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-            fail(role + " accessor " + std::to_string(accessorIndex) + ": only float components are supported");
+    /** A vertex attribute has one element per vertex; checked before it is read, so a mismatched count allocates
+     *  nothing. */
+    void requireVertexCount(int accessorIndex, int type, const std::string& attribute, std::size_t vertexCount,
+                            const std::string& name) const {
+        const std::size_t count = accessorCount(mPath, mModel, accessorIndex, type, attribute);
+        if (count != vertexCount) {
+            fail("'" + excerptForMessage(name) + "': " + attribute + " has " + std::to_string(count) +
+                 " elements but POSITION has " + std::to_string(vertexCount));
         }
-        std::vector<glm::vec3> values(data.count);
-        for (std::size_t i = 0; i < data.count; ++i) {
-            std::memcpy(&values[i], data.element(i), sizeof(glm::vec3));
-            if (!std::isfinite(values[i].x) || !std::isfinite(values[i].y) || !std::isfinite(values[i].z)) {
-                fail(role + " accessor " + std::to_string(accessorIndex) + " element " + std::to_string(i) +
-                     ": non-finite coordinate");
-            }
-        }
-        return values;
     }
 
     std::vector<std::uint32_t> readIndices(int accessorIndex, std::size_t vertexCount) const {
-        const AccessorData data = accessorData(accessorIndex, TINYGLTF_TYPE_SCALAR, "index");
-        std::vector<std::uint32_t> indices(data.count);
-        for (std::size_t i = 0; i < data.count; ++i) {
-            const unsigned char* element = data.element(i);
-            switch (data.componentType) {
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: indices[i] = *element; break;
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-                std::uint16_t value = 0;
-                std::memcpy(&value, element, sizeof value);
-                indices[i] = value;
-                break;
-            }
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&indices[i], element, sizeof(std::uint32_t)); break;
-            default:
-                fail("index accessor " + std::to_string(accessorIndex) +
-                     ": component type must be unsigned byte, short or int");
-            }
+        std::vector<std::uint32_t> indices =
+            readAccessorIntegers(mPath, mModel, accessorIndex, TINYGLTF_TYPE_SCALAR, "index");
+        for (std::size_t i = 0; i < indices.size(); ++i) {
             if (indices[i] >= vertexCount) {
                 fail("index accessor " + std::to_string(accessorIndex) + " element " + std::to_string(i) + ": index " +
                      std::to_string(indices[i]) + " out of range (primitive has " + std::to_string(vertexCount) +
@@ -605,9 +529,11 @@ private:
         }
 
         // Charged before anything is copied: one mesh instanced by many nodes is copied once per node.
-        const std::size_t vertexCount = accessorData(positionAttribute->second, TINYGLTF_TYPE_VEC3, "POSITION").count;
+        const std::size_t vertexCount =
+            accessorCount(mPath, mModel, positionAttribute->second, TINYGLTF_TYPE_VEC3, "POSITION");
         const std::size_t cornerCount =
-            primitive.indices >= 0 ? accessorData(primitive.indices, TINYGLTF_TYPE_SCALAR, "index").count : vertexCount;
+            primitive.indices >= 0 ? accessorCount(mPath, mModel, primitive.indices, TINYGLTF_TYPE_SCALAR, "index")
+                                   : vertexCount;
         mBudget.charge(vertexCount, mode == TINYGLTF_MODE_TRIANGLES ? cornerCount / 3 : cornerCount);
 
         RawMesh mesh;
@@ -615,11 +541,8 @@ private:
         mesh.positions = readVec3(positionAttribute->second, "POSITION");
         const auto normalAttribute = primitive.attributes.find("NORMAL");
         if (normalAttribute != primitive.attributes.end()) {
+            requireVertexCount(normalAttribute->second, TINYGLTF_TYPE_VEC3, "NORMAL", vertexCount, name);
             mesh.normals = readVec3(normalAttribute->second, "NORMAL");
-            if (mesh.normals.size() != vertexCount) {
-                fail("'" + excerptForMessage(name) + "': NORMAL has " + std::to_string(mesh.normals.size()) +
-                     " elements but POSITION has " + std::to_string(vertexCount));
-            }
         }
 
         std::vector<std::uint32_t> indices;
