@@ -5,6 +5,7 @@
 
 #include "scene/FormatReaders.h"
 #include "scene/GltfAccessors.h"
+#include "scene/GltfDraco.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -48,10 +49,11 @@ std::string shadeMapBesideModel(const std::string& modelPath, const std::string&
 
 /** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light,
  *  KHR_mesh_quantization's integer and normalized attributes (GltfAccessors.cpp reads any component type),
- *  KHR_texture_transform, KHR_materials_unlit and KHR_materials_emissive_strength. */
-const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_mesh_quantization",
-                                                       "KHR_texture_transform", "KHR_materials_unlit",
-                                                       "KHR_materials_emissive_strength"};
+ *  KHR_draco_mesh_compression (GltfDraco.cpp), KHR_texture_transform, KHR_materials_unlit and
+ *  KHR_materials_emissive_strength. */
+const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual",        "KHR_mesh_quantization",
+                                                       "KHR_draco_mesh_compression", "KHR_texture_transform",
+                                                       "KHR_materials_unlit",        "KHR_materials_emissive_strength"};
 
 /** Unsupported required extensions named one by one in the refusal; the rest are counted. */
 constexpr std::size_t kMaxNamedExtensions = 10;
@@ -624,22 +626,14 @@ private:
         return *cached;
     }
 
-    /** A TEXCOORD_n or COLOR_0 attribute, its count checked against POSITION first. */
-    std::vector<float> readVertexAttribute(const tinygltf::Primitive& primitive, const std::string& attribute, int type,
-                                           std::size_t vertexCount, const std::string& name) const {
-        const int accessorIndex = primitive.attributes.at(attribute);
-        requireVertexCount(accessorIndex, type, attribute, vertexCount, name);
-        return readAccessorFloats(mPath, mModel, accessorIndex, type, attribute);
-    }
-
     /** TEXCOORD_0 and TEXCOORD_1, and COLOR_0 (RGB gets alpha 1), as the file gives them. */
-    void readSurfaceAttributes(const tinygltf::Primitive& primitive, std::size_t vertexCount, const std::string& name,
-                               RawMesh& mesh) const {
+    void readSurfaceAttributes(const tinygltf::Primitive& primitive, std::optional<DracoPrimitive>& draco,
+                               std::size_t vertexCount, const std::string& name, RawMesh& mesh) const {
         for (int set = 0; set < 2; ++set) {
             const std::string attribute = "TEXCOORD_" + std::to_string(set);
             if (primitive.attributes.count(attribute) == 0) continue;
             const std::vector<float> values =
-                readVertexAttribute(primitive, attribute, TINYGLTF_TYPE_VEC2, vertexCount, name);
+                attributeFloats(primitive, draco, attribute, TINYGLTF_TYPE_VEC2, vertexCount, name);
             mesh.texcoords[set].resize(vertexCount);
             std::memcpy(mesh.texcoords[set].data(), values.data(), vertexCount * sizeof(glm::vec2));
         }
@@ -649,8 +643,8 @@ private:
         const bool rgb = color->second >= 0 && std::size_t(color->second) < mModel.accessors.size() &&
                          mModel.accessors[std::size_t(color->second)].type == TINYGLTF_TYPE_VEC3;
         const int components = rgb ? 3 : 4;
-        const std::vector<float> values =
-            readVertexAttribute(primitive, "COLOR_0", rgb ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, vertexCount, name);
+        const std::vector<float> values = attributeFloats(
+            primitive, draco, "COLOR_0", rgb ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, vertexCount, name);
         mesh.colors.resize(vertexCount);
         for (std::size_t i = 0; i < vertexCount; ++i) {
             const float* rgba = values.data() + i * std::size_t(components);
@@ -679,12 +673,28 @@ private:
         }
     }
 
-    /** A VEC3 attribute (POSITION, NORMAL) as vectors, in the file's frame. */
-    std::vector<glm::vec3> readVec3(int accessorIndex, const std::string& role) const {
-        const std::vector<float> values = readAccessorFloats(mPath, mModel, accessorIndex, TINYGLTF_TYPE_VEC3, role);
+    /** VEC3 floats (POSITION, NORMAL) as vectors, in the file's frame. */
+    static std::vector<glm::vec3> toVec3(const std::vector<float>& values) {
         std::vector<glm::vec3> vectors(values.size() / 3);
         std::memcpy(vectors.data(), values.data(), vectors.size() * sizeof(glm::vec3));
         return vectors;
+    }
+
+    /** Vertex attribute `attribute` of `primitive` as floats: from the decoded Draco data when the primitive
+     *  compresses it, else from its accessor, whose count is checked against POSITION before it is read. */
+    std::vector<float> attributeFloats(const tinygltf::Primitive& primitive, std::optional<DracoPrimitive>& draco,
+                                       const std::string& attribute, int type, std::size_t vertexCount,
+                                       const std::string& name) const {
+        const int accessorIndex = primitive.attributes.at(attribute);
+        if (draco) {
+            const auto decoded = draco->attributes.find(attribute);
+            if (decoded != draco->attributes.end()) {
+                accessorCount(mPath, mModel, accessorIndex, type, attribute); // its type checked, as uncompressed
+                return std::move(decoded->second);
+            }
+        }
+        requireVertexCount(accessorIndex, type, attribute, vertexCount, name);
+        return readAccessorFloats(mPath, mModel, accessorIndex, type, attribute);
     }
 
     /** A vertex attribute has one element per vertex; checked before it is read, so a mismatched count allocates
@@ -757,26 +767,33 @@ private:
             return;
         }
 
-        // Charged before anything is copied: one mesh instanced by many nodes is copied once per node.
-        const std::size_t vertexCount =
-            accessorCount(mPath, mModel, positionAttribute->second, TINYGLTF_TYPE_VEC3, "POSITION");
-        const std::size_t cornerCount =
-            primitive.indices >= 0 ? accessorCount(mPath, mModel, primitive.indices, TINYGLTF_TYPE_SCALAR, "index")
-                                   : vertexCount;
-        mBudget.charge(vertexCount, mode == TINYGLTF_MODE_TRIANGLES ? cornerCount / 3 : cornerCount);
+        // Charged before anything is copied: one mesh instanced by many nodes is copied once per node. Draco data is
+        // charged by its decoded counts (decodeDracoPrimitive()); its accessors hold no data of their own.
+        std::optional<DracoPrimitive> draco;
+        std::size_t vertexCount = 0;
+        if (hasDracoCompression(primitive)) {
+            draco = decodeDracoPrimitive(mPath, mModel, primitive, "'" + excerptForMessage(name) + "'", mBudget);
+            vertexCount = draco->vertexCount;
+        } else {
+            vertexCount = accessorCount(mPath, mModel, positionAttribute->second, TINYGLTF_TYPE_VEC3, "POSITION");
+            const std::size_t cornerCount =
+                primitive.indices >= 0 ? accessorCount(mPath, mModel, primitive.indices, TINYGLTF_TYPE_SCALAR, "index")
+                                       : vertexCount;
+            mBudget.charge(vertexCount, mode == TINYGLTF_MODE_TRIANGLES ? cornerCount / 3 : cornerCount);
+        }
 
         RawMesh mesh;
         mesh.name = name;
-        mesh.positions = readVec3(positionAttribute->second, "POSITION");
-        const auto normalAttribute = primitive.attributes.find("NORMAL");
-        if (normalAttribute != primitive.attributes.end()) {
-            requireVertexCount(normalAttribute->second, TINYGLTF_TYPE_VEC3, "NORMAL", vertexCount, name);
-            mesh.normals = readVec3(normalAttribute->second, "NORMAL");
+        mesh.positions = toVec3(attributeFloats(primitive, draco, "POSITION", TINYGLTF_TYPE_VEC3, vertexCount, name));
+        if (primitive.attributes.count("NORMAL") > 0) {
+            mesh.normals = toVec3(attributeFloats(primitive, draco, "NORMAL", TINYGLTF_TYPE_VEC3, vertexCount, name));
         }
-        readSurfaceAttributes(primitive, vertexCount, name, mesh);
+        readSurfaceAttributes(primitive, draco, vertexCount, name, mesh);
 
         std::vector<std::uint32_t> indices;
-        if (primitive.indices >= 0) {
+        if (draco) {
+            indices = std::move(draco->indices); // a triangle list whatever the mode says: Draco stores faces
+        } else if (primitive.indices >= 0) {
             indices = readIndices(primitive.indices, vertexCount);
         } else {
             indices.resize(vertexCount);
@@ -784,7 +801,7 @@ private:
                 indices[i] = std::uint32_t(i);
             }
         }
-        mesh.triangles = triangulate(mode, indices, name);
+        mesh.triangles = triangulate(draco ? TINYGLTF_MODE_TRIANGLES : mode, indices, name);
 
         // Bake the node transform; normals use the inverse transpose so non-uniform scale keeps them perpendicular.
         const glm::dmat3 linear(world);
@@ -867,6 +884,41 @@ std::string_view jsonOf(std::string_view content, bool binary) {
     std::uint32_t chunkLength = 0;
     std::memcpy(&chunkLength, content.data() + 12, sizeof chunkLength);
     return content.substr(20, chunkLength);
+}
+
+/** The file with "indices" removed from every KHR_draco_mesh_compression primitive, or nothing when no primitive has
+ *  the extension (or the JSON does not parse: tinygltf then says why). tinygltf built without Draco refuses an indices
+ *  accessor without a buffer view, which is how Draco files write it; the decoded Draco faces replace those indices
+ *  (decodeDracoPrimitive()). A GLB is rebuilt around the new JSON chunk with its other chunks as they were. */
+std::optional<std::string> withoutDracoIndices(std::string_view content, bool binary) {
+    const std::string_view json = jsonOf(content, binary);
+    if (json.find(kDracoExtension) == std::string_view::npos) return std::nullopt;
+    nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
+    if (!document.is_object() || !document.contains("meshes") || !document["meshes"].is_array()) return std::nullopt;
+    bool changed = false;
+    for (nlohmann::json& mesh : document["meshes"]) {
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+        for (nlohmann::json& primitive : mesh["primitives"]) {
+            if (primitive.is_object() && primitive.contains("indices") && primitive.contains("extensions") &&
+                primitive["extensions"].is_object() && primitive["extensions"].contains(kDracoExtension)) {
+                primitive.erase("indices");
+                changed = true;
+            }
+        }
+    }
+    if (!changed) return std::nullopt;
+    std::string text = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    if (!binary) return text;
+    const std::size_t restOffset = 20 + json.size();
+    if (content.size() < restOffset) return std::nullopt;
+    while (text.size() % 4 != 0) text += ' '; // GLB chunks are 4-byte aligned; JSON pads with spaces
+    const auto u32 = [](std::size_t value) {
+        const std::uint32_t little = std::uint32_t(value);
+        return std::string(reinterpret_cast<const char*>(&little), 4);
+    };
+    const std::string_view rest = content.substr(restOffset);
+    return std::string(content.substr(0, 8)) + u32(12 + 8 + text.size() + rest.size()) + u32(text.size()) + "JSON" +
+           text + std::string(rest);
 }
 
 /** tinygltf parses JSON recursively, so absurd nesting would overflow the stack: glTF itself nests a few levels, and
@@ -1065,6 +1117,11 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
         throwLoadError(path, "glTF files above 4 GiB are not supported");
     // tinygltf keeps its own copy of every buffer it decodes (the GLB's BIN chunk, data URIs): at most the file again.
     budget.chargeFile(content.size());
+    const std::optional<std::string> dracoReady = withoutDracoIndices(content, binary);
+    if (dracoReady) {
+        budget.chargeFile(dracoReady->size());
+        content = *dracoReady;
+    }
     const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
     ExternalUriCollector uris;
     const std::string_view json = jsonOf(content, binary);

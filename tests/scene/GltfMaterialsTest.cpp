@@ -185,8 +185,8 @@ TEST(GltfMaterials, UnlitBlendAndEmissiveStrength) {
 }
 
 TEST(GltfMaterials, SupportedExtensionsListTheMaterialAndGeometryOnes) {
-    for (const char* name : {"KHR_lights_punctual", "KHR_mesh_quantization", "KHR_texture_transform",
-                             "KHR_materials_unlit", "KHR_materials_emissive_strength"})
+    for (const char* name : {"KHR_lights_punctual", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
+                             "KHR_texture_transform", "KHR_materials_unlit", "KHR_materials_emissive_strength"})
         EXPECT_NE(std::ranges::find(supportedGltfExtensions(), std::string(name)), supportedGltfExtensions().end())
             << name;
 }
