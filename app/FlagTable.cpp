@@ -22,6 +22,11 @@ constexpr double kMinClipDistance = 1e-30;
 constexpr double kMaxClipDistance = 1e30;
 constexpr double kMaxClipRatio = 1e30;
 constexpr int kMaxMemoryLimitMib = 1 << 24; // 16 TiB
+/** At +-90 degrees of --orbit elevation the view would be parallel to up. */
+constexpr double kMaxOrbitElevationDegrees = 89.9;
+constexpr double kMaxOrbitAzimuthDegrees = 360.0;
+/** As --eye's coordinates (parsePoint): the eye stays within what double subtracts meaningfully. */
+constexpr double kMaxOrbitDistance = 1e15;
 const std::vector<std::string> kOutputExtensions = {".png", ".exr", ".tif", ".tiff", ".jpg", ".jpeg"};
 
 std::string lowercaseExtension(const std::string& path) {
@@ -74,6 +79,27 @@ glm::dvec3 parseDirection(const std::string& flag, const std::string& text) {
     const double largest = std::max({std::abs(direction.x), std::abs(direction.y), std::abs(direction.z)});
     if (largest == 0.0) throw UsageError(flag + ": the direction must not be zero, got '" + text + "'");
     return glm::normalize(direction / largest);
+}
+
+/** AZIMUTH,ELEVATION[,DISTANCE]: degrees, degrees, world units. */
+Orbit parseOrbit(const std::string& flag, const std::string& text) {
+    const std::vector<std::string> parts = splitList(text, ',');
+    if (parts.size() != 2 && parts.size() != 3)
+        throw UsageError(flag + ": expected AZIMUTH,ELEVATION or AZIMUTH,ELEVATION,DISTANCE, got '" + text + "'");
+    Orbit orbit;
+    orbit.azimuthDegrees = parseNumber(flag, parts[0]);
+    orbit.elevationDegrees = parseNumber(flag, parts[1]);
+    if (std::abs(orbit.azimuthDegrees) > kMaxOrbitAzimuthDegrees)
+        throw UsageError(flag + ": the azimuth must lie in [-360, 360] degrees, got '" + text + "'");
+    if (std::abs(orbit.elevationDegrees) > kMaxOrbitElevationDegrees)
+        throw UsageError(flag + ": the elevation must lie in [-89.9, 89.9] degrees (at +-90 the view is parallel to " +
+                         "--up), got '" + text + "'");
+    if (parts.size() == 3) {
+        orbit.distance = parseNumber(flag, parts[2]);
+        if (!(*orbit.distance > 0.0 && *orbit.distance <= kMaxOrbitDistance))
+            throw UsageError(flag + ": the distance must be above 0 and at most 1e15, got '" + text + "'");
+    }
+    return orbit;
 }
 
 void parseSize(const std::string& text, int& width, int& height) {
@@ -356,10 +382,32 @@ std::vector<Flag> makeFlags() {
                          [](const std::string&, RenderOptions& options) { options.quiet = true; }));
 
     // Camera
+    flags.push_back(flag({"--animation"}, "NAME", S::Camera,
+                         "pose a glTF model by its animation NAME (or its index, 0 for the first) at --time;\n"
+                         "skins, morph weights and node transforms follow, and so does auto-framing (default: the\n"
+                         "rest pose, the file's own node transforms and morph weights). A name the file does not\n"
+                         "have is refused with the list of those it has; ignored with a warning for OBJ and STL",
+                         [](const std::string& value, RenderOptions& options) {
+                             if (value.empty()) throw UsageError("--animation: expected a name or an index, got ''");
+                             options.animation = value;
+                         }));
+    Flag animationTime = flag({"--time"}, "SECONDS", S::Camera,
+                              "seconds into --animation (default 0); each channel holds its first or last keyframe\n"
+                              "outside its keyframe times",
+                              [](const std::string& value, RenderOptions& options) {
+                                  const double seconds = parseNumber("--time", value);
+                                  if (seconds < 0.0)
+                                      throw UsageError("--time: expected seconds >= 0, got '" + value + "'");
+                                  options.animationTime = seconds;
+                              });
+    animationTime.noEffect = [](const RenderOptions& options) -> std::string {
+        return options.animation.empty() ? "--time has no effect without --animation" : "";
+    };
+    flags.push_back(animationTime);
     flags.push_back(flag({"--camera"}, "C", S::Camera,
-                         "file (default: the glTF file's camera when it has one: its place, up and field of view, each "
-                         "replaced by --eye, --up and --fov) | auto (never the file's camera: auto-framed unless --eye "
-                         "places it, field of view 35 unless --fov)",
+                         "file (default: the glTF file's camera when it has one: its place, up and field of view;\n"
+                         "--up and --fov replace their own, --eye, --orbit or --frame all three) | auto (never the\n"
+                         "file's camera: auto-framed unless --eye or --orbit places it, field of view 35 unless --fov)",
                          [](const std::string& value, RenderOptions& options) {
                              if (value != "file" && value != "auto")
                                  throw UsageError("--camera: expected file or auto, got '" + value + "'");
@@ -368,23 +416,59 @@ std::vector<Flag> makeFlags() {
     flags.push_back(
         flag({"--eye"}, "X,Y,Z", S::Camera, "camera position, in world units (coordinates within +-1e15)",
              [](const std::string& value, RenderOptions& options) { options.eye = parsePoint("--eye", value); }));
+    Flag orbit =
+        flag({"--orbit"}, "AZ,EL[,DIST]", S::Camera,
+             "the eye around the target (default: the framed centre), instead of --eye: AZ degrees about\n"
+             "--up from the model's front (the side auto-framing looks from: a VRM character's face, else +Z, or -Y\n"
+             "for a Z-up --up), positive toward the front view's right (counter-clockwise seen from above: with up\n"
+             "+Y and front +Z, 90 looks from +X), -360 to 360; EL degrees above the horizontal, -89.9 to 89.9;\n"
+             "DIST world units (default: the auto-framing distance). 0,0 looks straight at the front, 180,0 at\n"
+             "the back; the default view is 0,14.04",
+             [](const std::string& value, RenderOptions& options) { options.orbit = parseOrbit("--orbit", value); });
+    orbit.noEffect = [](const RenderOptions& options) -> std::string {
+        return options.eye ? "--orbit and --eye both place the eye: give one" : "";
+    };
+    flags.push_back(orbit);
+    Flag frame = flag({"--frame"}, "NODE[,NODE...]", S::Camera,
+                      "frame only the meshes under these nodes (a node and all its descendants; glTF node names,\n"
+                      "an OBJ's o name): the default target and the auto-framing and --orbit distance fit their\n"
+                      "bounding sphere, so a character on a large ground fills the picture; the clip planes still\n"
+                      "fit the whole model. The file's camera is not used. A name no mesh lies under is an error\n"
+                      "that lists the model's node names",
+                      [](const std::string& value, RenderOptions& options) {
+                          for (const std::string& name : splitList(value, ',')) {
+                              if (name.empty()) throw UsageError("--frame: empty node name in '" + value + "'");
+                              options.frameNodes.push_back(name);
+                          }
+                      });
+    frame.noEffect = [](const RenderOptions& options) -> std::string {
+        const bool distanceGiven = options.eye || (options.orbit && options.orbit->distance);
+        return options.target && distanceGiven
+                   ? "--frame has no effect: --target and " +
+                         std::string(options.eye ? "--eye" : "--orbit's distance") + " fix the view it would frame"
+                   : "";
+    };
+    flags.push_back(frame);
     flags.push_back(
         flag({"--target"}, "X,Y,Z", S::Camera,
-             "point looked at (default: the model's bounding-sphere centre; within +-1e15)",
+             "point looked at (default: the bounding-sphere centre of the model, or of the --frame\n"
+             "nodes; within +-1e15)",
              [](const std::string& value, RenderOptions& options) { options.target = parsePoint("--target", value); }));
     flags.push_back(
         flag({"--up"}, "X,Y,Z", S::Camera,
              "up direction (default: the glTF camera's, else 0,1,0); auto-framing looks from the\n"
-             "front, slightly above, as this up defines it",
+             "front, slightly above, as this up defines it (for a Z-up up, from -Y as Blender's front view;\n"
+             "a model that faces +Y shows its back there: --orbit 180,14.04 turns to its face)",
              [](const std::string& value, RenderOptions& options) { options.up = parseDirection("--up", value); }));
-    flags.push_back(
-        styleFlag(flag({"--fov"}, "DEG", S::Camera, "vertical field of view in degrees, 0.01 to 179 (default 35)",
-                       [](const std::string& value, RenderOptions& options) {
-                           const double fov = parseNumber("--fov", value);
-                           if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
-                               throw UsageError("--fov: degrees must lie in [0.01, 179], got " + value);
-                           options.fovYDegrees = fov;
-                       })));
+    flags.push_back(styleFlag(flag({"--fov"}, "DEG", S::Camera,
+                                   "vertical field of view in degrees, 0.01 to 179 (default 35, or the glTF\n"
+                                   "camera's when that camera places the view)",
+                                   [](const std::string& value, RenderOptions& options) {
+                                       const double fov = parseNumber("--fov", value);
+                                       if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
+                                           throw UsageError("--fov: degrees must lie in [0.01, 179], got " + value);
+                                       options.fovYDegrees = fov;
+                                   })));
     flags.push_back(flag(
         {"--clip"}, "NEAR,FAR", S::Camera,
         "near and far clip distances along the view axis, 0 < NEAR < FAR, both in [1e-30, 1e30],\n"

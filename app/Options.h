@@ -3,6 +3,7 @@
  *  (app/FlagTable.h). No GL, no files touched. */
 
 #include "passes/Look.h"
+#include "scene/Camera.h"
 
 #include <glm/glm.hpp>
 
@@ -27,6 +28,16 @@ struct Shard {
     int count = 1; ///< N
 };
 
+/** The line types drawn when neither --lines nor a style file names any. */
+inline const std::vector<std::string> kDefaultLines = {"silhouette"};
+
+/** A Look with the command line's defaults: Look{} with kDefaultLines. */
+inline Look defaultLook() {
+    Look look;
+    look.lines = kDefaultLines;
+    return look;
+}
+
 /** The command line of `inkgraph render`: the models, the camera, the Look, the outputs and the run's settings. The
  *  renderer takes the parts (Look, CameraRequest); this struct is only what the flags fill. */
 struct RenderOptions {
@@ -38,12 +49,19 @@ struct RenderOptions {
     int width = 1024;
     int height = 1024;
     std::optional<glm::dvec3> eye;
+    std::optional<Orbit> orbit; ///< --orbit AZIMUTH,ELEVATION[,DISTANCE]: the eye around the target
     std::optional<glm::dvec3> target;
     std::optional<glm::dvec3> up;          ///< default: the glTF camera's, else 0,1,0
-    std::optional<double> fovYDegrees;     ///< default 35 unless the glTF camera says otherwise
+    std::optional<double> fovYDegrees;     ///< default 35, or the glTF camera's when that camera places the view
+    std::vector<std::string> frameNodes;   ///< --frame NODE[,NODE...]: frame only the meshes under these nodes
     std::optional<glm::dvec2> clipRange;   ///< --clip NEAR,FAR (0 < near < far); default: fitted to the model
     bool autoCamera = false;               ///< --camera auto: never the file's camera
-    Look look;                             ///< shading, lines, supersampling, precision, paper, light
+    std::string animation;                 ///< --animation: a glTF animation's name or index; empty: the rest pose
+    double animationTime = 0.0;            ///< --time: seconds into `animation`
+    /** Shading, lines, supersampling, precision, paper, light. The command line's default draws the silhouette
+     *  (kDefaultLines), so no model is white on white: a white or untextured model's lit band is the paper's
+     *  colour, and its outline still sets it apart. */
+    Look look = defaultLook();
     std::vector<std::string> extraOutputs; ///< --request: extra graph resources kept and dumped ("gbuffer.*")
     std::string dumpDirectory;
     std::string statsPath;

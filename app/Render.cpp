@@ -100,7 +100,9 @@ std::size_t memoryLimitOf(const RenderOptions& options) {
 CameraRequest cameraRequestOf(const RenderOptions& options) {
     CameraRequest request;
     request.eye = options.eye;
+    request.orbit = options.orbit;
     request.target = options.target;
+    request.frameNodes = options.frameNodes;
     request.up = options.up;
     request.fovYDegrees = options.fovYDegrees;
     request.ignoreFileCamera = options.autoCamera;
@@ -122,6 +124,8 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     request.keepEveryBuffer = keepsEveryBuffer(options);
     request.keepSvgInputs = !options.svgPath.empty();
     request.memoryLimitBytes = memoryLimitOf(options);
+    request.animation = options.animation;
+    request.animationTime = options.animationTime;
     if (options.eglPlatform == "device") request.eglPlatform = EglPlatform::Device;
     if (options.eglPlatform == "surfaceless") request.eglPlatform = EglPlatform::Surfaceless;
     return request;
@@ -156,6 +160,10 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
         return report;
     }
     checkFrameBudget(plan, options, &still->scene);
+    // The textures are decoded during the run, only those a pass samples: they get what the estimate leaves.
+    const std::size_t estimated = estimatePlanBytes(plan, options, &still->scene);
+    const std::size_t limit = memoryLimitOf(options);
+    still->gpuScene->materials().setTextureMemoryLimit(limit > estimated ? limit - estimated : 0);
 
     StillResult result = mRenderer.execute(*still, log);
     const auto writeStart = std::chrono::steady_clock::now();

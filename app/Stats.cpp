@@ -24,6 +24,7 @@ std::string statsText(const StatsContext& context, const StillRenderer& renderer
                       {"degenerate_dropped", scene.report.degenerateDropped},
                       {"vertices_before_weld", scene.report.verticesBeforeWeld},
                       {"normals_computed", scene.report.normalsComputed}};
+    still.gpuScene->materials().describe(stats["scene"]);
     stats["size"] = {options.width, options.height};
     stats["camera_source"] = camera.source;
     stats["clip"] = {{"near", camera.zNear},

@@ -110,6 +110,8 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     const auto loadStart = std::chrono::steady_clock::now();
     LoadOptions loadOptions;
     loadOptions.memoryLimitBytes = req.memoryLimitBytes;
+    loadOptions.animation = req.animation;
+    loadOptions.time = req.animationTime;
     still->scene = loadScene(req.modelPath, loadOptions);
     still->loadMilliseconds = millisecondsSince(loadStart);
     const Scene& scene = still->scene;

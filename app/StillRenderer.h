@@ -55,6 +55,8 @@ struct StillRequest {
     bool keepEveryBuffer = false;          ///< keep every computed buffer (dumps, contact sheets)
     bool keepSvgInputs = false;            ///< keep what StillGraph::svgLayers() reads
     std::size_t memoryLimitBytes = std::size_t(1) << 30; ///< bounds the model load (scene/Loader.h)
+    std::string animation;                               ///< LoadOptions::animation: the pose to load
+    double animationTime = 0.0;                          ///< LoadOptions::time
     EglPlatform eglPlatform = EglPlatform::Any;
 };
 

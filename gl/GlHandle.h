@@ -60,6 +60,9 @@ struct ShaderDeleter {
 struct ProgramDeleter {
     void operator()(GLuint id) const { glDeleteProgram(id); }
 };
+struct SamplerDeleter {
+    void operator()(GLuint id) const { glDeleteSamplers(1, &id); }
+};
 
 /** Names an object for RenderDoc/apitrace captures and debug messages. */
 void labelObject(GLenum identifier, GLuint id, std::string_view label);

@@ -143,6 +143,13 @@ void GlVertexArray::setVec2Attribute(GLuint location, const GlBuffer& buffer) {
     glEnableVertexArrayAttrib(id(), location);
 }
 
+void GlVertexArray::setVec4Attribute(GLuint location, const GlBuffer& buffer) {
+    glVertexArrayVertexBuffer(id(), location, buffer.id(), 0, 4 * sizeof(float));
+    glVertexArrayAttribFormat(id(), location, 4, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(id(), location, location);
+    glEnableVertexArrayAttrib(id(), location);
+}
+
 void GlVertexArray::setIndexBuffer(const GlBuffer& buffer) { glVertexArrayElementBuffer(id(), buffer.id()); }
 
 void GlVertexArray::bind() const { glBindVertexArray(id()); }

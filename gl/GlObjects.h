@@ -128,6 +128,8 @@ public:
     void setVec3Attribute(GLuint location, const GlBuffer& buffer);
     /** Binds `buffer` as a tightly packed float vec2 attribute at `location`. */
     void setVec2Attribute(GLuint location, const GlBuffer& buffer);
+    /** Binds `buffer` as a tightly packed float vec4 attribute at `location`. */
+    void setVec4Attribute(GLuint location, const GlBuffer& buffer);
     void setIndexBuffer(const GlBuffer& buffer);
     void bind() const;
 

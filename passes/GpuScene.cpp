@@ -4,12 +4,39 @@
 #include "scene/MaterialIds.h"
 #include "scene/MeshOps.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
 namespace inkgraph {
 
-GpuScene::GpuScene(const Scene& scene, glm::dvec3 worldOrigin) : mScene(scene), mWorldOrigin(worldOrigin) {}
+GpuScene::GpuScene(const Scene& scene, glm::dvec3 worldOrigin)
+    : mScene(scene), mWorldOrigin(worldOrigin),
+      mMaterials(scene, scene.report.inputFiles.empty() ? std::string("scene") : scene.report.inputFiles.front()) {}
+
+bool GpuScene::hasTransparency() const {
+    return std::ranges::any_of(mScene.meshes,
+                               [](const Mesh& mesh) { return mesh.material.alphaMode != AlphaMode::Opaque; });
+}
+
+std::vector<std::size_t> GpuScene::drawOrder(const glm::mat4& viewFromModel) const {
+    std::vector<std::size_t> order;
+    std::vector<std::pair<double, std::size_t>> blended; // (view-space z, mesh): larger z is nearer the eye
+    for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
+        const Mesh& mesh = mScene.meshes[index];
+        if (mesh.material.alphaMode != AlphaMode::Blend) {
+            order.push_back(index);
+            continue;
+        }
+        const glm::dvec3 centre = computeBoundingBox(mesh.positions).center() - mWorldOrigin;
+        const glm::dvec4 view = glm::dmat4(viewFromModel) * glm::dvec4(centre, 1.0);
+        blended.emplace_back(view.z, index);
+    }
+    // Farthest (most negative z) first; ties keep scene order.
+    std::ranges::stable_sort(blended, {}, [](const auto& entry) { return entry.first; });
+    for (const auto& entry : blended) order.push_back(entry.second);
+    return order;
+}
 
 // Out of line: SceneOrientation is complete only here.
 GpuScene::~GpuScene() = default;
@@ -49,7 +76,11 @@ const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
                       GlVertexArray(label),
                       static_cast<GLsizei>(mesh.triangles.size() * 3),
                       mesh.material.baseColorFactor,
-                      materials[index]};
+                      materials[index],
+                      {},
+                      &mesh.material};
+        draw.materialAttributes = uploadMaterialAttributes(mesh, label);
+        draw.materialAttributes.attachTo(draw.vertexArray);
         draw.vertexArray.setVec3Attribute(kPositionLocation, draw.positions);
         draw.vertexArray.setVec3Attribute(kNormalLocation, draw.normals);
         draw.vertexArray.setIndexBuffer(draw.indices);

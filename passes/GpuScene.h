@@ -4,6 +4,7 @@
  *  that runs asks: the one lazy cache every pass reads derived scene data from. */
 
 #include "gl/GlObjects.h"
+#include "passes/material/SceneMaterials.h"
 #include "passes/orientation/OrientationSettings.h"
 #include "scene/EdgeAdjacency.h"
 #include "scene/MeshCurvature.h"
@@ -30,7 +31,9 @@ public:
         GlVertexArray vertexArray;
         GLsizei indexCount;
         glm::vec4 baseColor;
-        std::uint32_t materialId; ///< scene/MaterialIds.h: equal exactly for meshes of the same material
+        std::uint32_t materialId;                ///< scene/MaterialIds.h: equal exactly for meshes of the same material
+        MeshAttributeBuffers materialAttributes; ///< texture coordinates and colours, in vertexArray too
+        const Material* material;                ///< the scene mesh's
     };
 
     static constexpr GLuint kPositionLocation = 0;
@@ -71,6 +74,17 @@ public:
 
     std::size_t meshCount() const { return mScene.meshes.size(); }
 
+    /** The materials' textures and uniforms (passes/material/SceneMaterials.h); textures are decoded the first time a
+     *  draw binds them. */
+    SceneMaterials& materials() { return mMaterials; }
+    /** Binds mesh `meshIndex`'s material for `program` (in use): SceneMaterials::bind(). */
+    void bindMaterial(const GlProgram& program, std::size_t meshIndex) { mMaterials.bind(program, meshIndex); }
+    /** Whether any mesh's material cuts out (MASK) or blends (BLEND): passes that draw depth then sample alpha. */
+    bool hasTransparency() const;
+    /** The order meshes are drawn in where blending matters: opaque and masked meshes in scene order, then blended ones
+     *  back to front (by their bounding-box centres' depth along the view axis of `viewFromModel`). */
+    std::vector<std::size_t> drawOrder(const glm::mat4& viewFromModel) const;
+
     /** The face orientation the passes draw with: stores `frame` (by reference: it must outlive this scene, and the
      *  camera and light are read when the orientation is computed) and `settings`, creating nothing; drops an
      *  orientation made for earlier settings. Throws std::invalid_argument for a front rule outside 1..3 or a negative
@@ -98,6 +112,7 @@ private:
 
     const Scene& mScene;
     glm::dvec3 mWorldOrigin;
+    SceneMaterials mMaterials;
     std::vector<DrawMesh> mMeshes;
     bool mUploaded = false;
     std::vector<GlBuffer> mHullNormals;          ///< one per mesh once computed, else empty

@@ -21,16 +21,24 @@ bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffe
     return true;
 }
 
-void drawModelDepth(const GlProgram& program, const std::vector<GpuScene::DrawMesh>& meshes,
-                    const glm::mat4& viewFromModel, const glm::mat4& clipFromView) {
+void drawModelDepth(const GlProgram& program, GpuScene& scene, const glm::mat4& viewFromModel,
+                    const glm::mat4& clipFromView) {
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     program.use();
     glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
     glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
-    for (const GpuScene::DrawMesh& mesh : meshes) {
-        mesh.vertexArray.bind();
-        glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+    const bool transparency = scene.hasTransparency();
+    const std::vector<GpuScene::DrawMesh>& meshes = scene.meshes();
+    for (std::size_t index = 0; index < meshes.size(); ++index) {
+        if (transparency) scene.bindMaterial(program, index);
+        meshes[index].vertexArray.bind();
+        glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
     }
+}
+
+std::vector<std::string> materialAlphaDefines(const GpuScene& scene) {
+    if (!scene.hasTransparency()) return {};
+    return {"MATERIAL_ALPHA 1", "MATERIAL_SOLID_ONLY 1"};
 }
 
 } // namespace inkgraph

@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include <string>
 #include <vector>
 
 namespace inkgraph {
@@ -18,9 +19,15 @@ namespace inkgraph {
 bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffer& depth, GpuScene& scene,
                    const glm::dvec3& eye);
 
-/** Draws every face of `meshes` into the depth buffer only, colour writes off (they stay off), with `program`, whose
- *  uniforms "viewFromModel" and "clipFromView" are set here. */
-void drawModelDepth(const GlProgram& program, const std::vector<GpuScene::DrawMesh>& meshes,
-                    const glm::mat4& viewFromModel, const glm::mat4& clipFromView);
+/** Draws every face of the scene's meshes into the depth buffer only, colour writes off (they stay off), with
+ *  `program`, whose uniforms "viewFromModel" and "clipFromView" are set here. When the scene has cut-out or blended
+ *  materials, each mesh's material is bound, so a program built with materialAlphaDefines() leaves the cut-out parts
+ *  out of the depth (lines behind them stay visible). */
+void drawModelDepth(const GlProgram& program, GpuScene& scene, const glm::mat4& viewFromModel,
+                    const glm::mat4& clipFromView);
+
+/** The defines that make common/line_mask.frag (with the common/material.glsl snippet) discard what a material cuts
+ *  out, as the G-buffer does: none for a scene without MASK or BLEND materials, so opaque scenes sample nothing. */
+std::vector<std::string> materialAlphaDefines(const GpuScene& scene);
 
 } // namespace inkgraph

@@ -1,5 +1,7 @@
 #include "postfx/Composite.h"
 
+#include <algorithm>
+
 #include <opencv2/core/utility.hpp>
 
 #include <stdexcept>
@@ -62,8 +64,10 @@ cv::Mat compositeFinal(const CompositeInputs& inputs) {
                         out[col] = shading[col];
                         continue;
                     }
+                    // Premultiplied: a blended surface over nothing holds colour x alpha (the shade pass blends so).
                     for (int channel = 0; channel < 3; ++channel)
-                        out[col][channel] = over(shading[col][channel], paper[channel], alpha);
+                        out[col][channel] = static_cast<uchar>(
+                            std::min(255, shading[col][channel] + (paper[channel] * (255 - alpha) + 127) / 255));
                     out[col][3] = static_cast<uchar>(alpha + (paper[3] * (255 - alpha) + 127) / 255);
                 }
             }

@@ -1,9 +1,12 @@
 #include "scene/Camera.h"
 
+#include "scene/FormatReaders.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -18,6 +21,10 @@ constexpr double kAutoFrameLift = 0.25;
 /** When world +Z lies this close to up (|Z . u| above it), the front is world -Y instead (Z-up CAD and STL models). */
 constexpr double kMaxFrontAlongUp = 0.9;
 constexpr double kFramingMargin = 1.05;
+/** --orbit's elevation stops this short of +-90 degrees, where up would be parallel to the view. */
+constexpr double kMaxOrbitElevationDegrees = 89.9;
+/** A --frame error names at most this many of the scene's nodes. */
+constexpr std::size_t kMaxNamedNodes = 10;
 /** Near never drops below far x this, which bounds depth-buffer precision loss when the eye is close or inside. */
 constexpr double kMinNearOverFar = 1e-4;
 
@@ -44,17 +51,95 @@ double framingDistance(double radius, double fovYRadians, double aspect) {
     return kFramingMargin * radius / std::sin(std::min(fovYRadians, fovXRadians) / 2.0);
 }
 
-/** Unit direction from the target toward the auto-framed eye: the front (world +Z, or world -Y when +Z is nearly
- *  along up) made perpendicular to up, then lifted by kAutoFrameLift x up. `up` must be non-zero and finite. For up
- *  (0, 1, 0) every step is exact, giving exactly normalize(0, 0.25, 1). */
-glm::dvec3 autoFrameDirection(const glm::dvec3& up, const std::optional<glm::dvec3>& modelFront) {
-    const glm::dvec3 u = glm::normalize(up);
+/** The unit horizontal toward the side the model faces: the model's front (world +Z unless the file says, or world
+ *  -Y when that is nearly along up, Blender's front view of a Z-up scene) made perpendicular to the unit up `u`. */
+glm::dvec3 frontHorizontal(const glm::dvec3& u, const std::optional<glm::dvec3>& modelFront) {
     glm::dvec3 front = modelFront.value_or(glm::dvec3(0.0, 0.0, 1.0));
     if (std::abs(glm::dot(front, u)) > kMaxFrontAlongUp) {
         front = glm::dvec3(0.0, -1.0, 0.0); // |Y . u| < sqrt(1 - 0.9^2) here, so the projection below is not short
     }
-    const glm::dvec3 horizontal = glm::normalize(front - glm::dot(front, u) * u);
-    return glm::normalize(horizontal + kAutoFrameLift * u);
+    return glm::normalize(front - glm::dot(front, u) * u);
+}
+
+/** Unit direction from the target toward the auto-framed eye: the front horizontal lifted by kAutoFrameLift x up.
+ *  `up` must be non-zero and finite. For up (0, 1, 0) every step is exact, giving exactly normalize(0, 0.25, 1). */
+glm::dvec3 autoFrameDirection(const glm::dvec3& up, const std::optional<glm::dvec3>& modelFront) {
+    const glm::dvec3 u = glm::normalize(up);
+    return glm::normalize(frontHorizontal(u, modelFront) + kAutoFrameLift * u);
+}
+
+/** Unit direction from the target toward an orbit's eye: the front horizontal turned by the azimuth about up toward
+ *  u x h (the front view's right), then raised by the elevation. */
+glm::dvec3 orbitDirection(const glm::dvec3& up, const std::optional<glm::dvec3>& modelFront, const Orbit& orbit) {
+    const glm::dvec3 u = glm::normalize(up);
+    const glm::dvec3 front = frontHorizontal(u, modelFront);
+    const glm::dvec3 right = glm::cross(u, front);
+    const double azimuth = glm::radians(orbit.azimuthDegrees);
+    const double elevation = glm::radians(orbit.elevationDegrees);
+    const glm::dvec3 horizontal = std::cos(azimuth) * front + std::sin(azimuth) * right;
+    return glm::normalize(std::cos(elevation) * horizontal + std::sin(elevation) * u);
+}
+
+/** The bounding sphere of the meshes under the named nodes (any entry of Mesh::nodePath), computed like
+ *  computeBoundingSphere(). A name that no mesh lies under is an error naming some of the scene's nodes. */
+BoundingSphere framedSphere(const Scene& scene, const std::vector<std::string>& nodeNames) {
+    const auto underNamedNode = [&](const Mesh& mesh) {
+        return std::ranges::any_of(mesh.nodePath, [&](const std::string& node) {
+            return std::ranges::find(nodeNames, node) != nodeNames.end();
+        });
+    };
+    for (const std::string& name : nodeNames) {
+        const bool found = std::ranges::any_of(scene.meshes, [&](const Mesh& mesh) {
+            return std::ranges::find(mesh.nodePath, name) != mesh.nodePath.end();
+        });
+        if (found) {
+            continue;
+        }
+        std::vector<std::string> known;
+        std::set<std::string> seen;
+        for (const Mesh& mesh : scene.meshes) {
+            for (const std::string& node : mesh.nodePath) {
+                if (!node.empty() && seen.insert(node).second) {
+                    known.push_back(node);
+                }
+            }
+        }
+        std::string list;
+        for (std::size_t i = 0; i < std::min(known.size(), kMaxNamedNodes); ++i) {
+            list += (list.empty() ? "'" : ", '") + detail::excerptForMessage(known[i]) + "'";
+        }
+        if (known.size() > kMaxNamedNodes) {
+            list += " and " + std::to_string(known.size() - kMaxNamedNodes) + " more";
+        }
+        invalid("--frame '" + detail::excerptForMessage(name) + "': no mesh lies under a node of that name (" +
+                (known.empty() ? std::string("the model has no named nodes")
+                               : "the model's nodes with meshes under them: " + list) +
+                ")");
+    }
+    BoundingBox box;
+    for (const Mesh& mesh : scene.meshes) {
+        if (underNamedNode(mesh)) {
+            for (const glm::vec3& p : mesh.positions) {
+                box.add(glm::dvec3(p));
+            }
+        }
+    }
+    if (box.empty()) {
+        invalid("--frame: the meshes under the named nodes have no vertices");
+    }
+    BoundingSphere sphere;
+    sphere.center = box.center();
+    double maxDistanceSquared = 0.0;
+    for (const Mesh& mesh : scene.meshes) {
+        if (underNamedNode(mesh)) {
+            for (const glm::vec3& p : mesh.positions) {
+                const glm::dvec3 offset = glm::dvec3(p) - sphere.center;
+                maxDistanceSquared = std::max(maxDistanceSquared, glm::dot(offset, offset));
+            }
+        }
+    }
+    sphere.radius = std::sqrt(maxDistanceSquared);
+    return sphere;
 }
 
 } // namespace
@@ -82,6 +167,25 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     requireFinite(request.eye, "--eye");
     requireFinite(request.target, "--target");
     requireFinite(request.up, "--up");
+    if (request.orbit) {
+        const Orbit& orbit = *request.orbit;
+        const std::string orbitText = "--orbit " + formatNumber(orbit.azimuthDegrees) + "," +
+                                      formatNumber(orbit.elevationDegrees) +
+                                      (orbit.distance ? "," + formatNumber(*orbit.distance) : "");
+        if (request.eye) {
+            invalid(orbitText + " and --eye both place the eye: give one");
+        }
+        if (!std::isfinite(orbit.azimuthDegrees) || !std::isfinite(orbit.elevationDegrees)) {
+            invalid(orbitText + ": the angles must be finite");
+        }
+        if (std::abs(orbit.elevationDegrees) > kMaxOrbitElevationDegrees) {
+            invalid(orbitText + ": the elevation must lie in [-89.9, 89.9] degrees (at +-90 the view is parallel to "
+                                "up)");
+        }
+        if (orbit.distance && !(std::isfinite(*orbit.distance) && *orbit.distance > 0.0)) {
+            invalid(orbitText + ": the distance must be finite and above 0");
+        }
+    }
 
     Camera camera;
     camera.width = request.width;
@@ -95,13 +199,14 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
         request.target ? std::optional<glm::dvec3>(*request.target - scene.origin) : std::nullopt;
     const auto world = [&](const glm::dvec3& local) { return formatVector(scene.origin + local); };
 
-    // The file's field of view is a property of its lens and applies whoever places the camera; its placement
-    // (eye, orientation) is one unit that an explicit eye replaces entirely.
-    const SceneCamera* sceneCamera = scene.camera && !request.ignoreFileCamera ? &*scene.camera : nullptr;
+    // The file's camera is one unit, its placement, orientation and lens: a view the flags place (--eye, --orbit,
+    // --frame) is composed for the default lens, and the file's 18 degrees meant for its own eye would crop it.
+    const bool flagsPlaceView = request.eye || request.orbit || !request.frameNodes.empty();
+    const SceneCamera* fileCamera =
+        scene.camera && !request.ignoreFileCamera && !flagsPlaceView ? &*scene.camera : nullptr;
     camera.fovYDegrees = request.fovYDegrees ? *request.fovYDegrees
-                         : sceneCamera       ? sceneCamera->fovYDegrees
+                         : fileCamera        ? fileCamera->fovYDegrees
                                              : kDefaultFovYDegrees;
-    const SceneCamera* fileCamera = !request.eye ? sceneCamera : nullptr;
     if (!std::isfinite(camera.fovYDegrees) || camera.fovYDegrees <= 0.0 || camera.fovYDegrees >= 180.0) {
         const std::string fov = formatNumber(camera.fovYDegrees);
         invalid(request.fovYDegrees
@@ -119,10 +224,15 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
         invalid("the up vector (" + upText + ") is zero");
     }
 
+    // The clip planes fit the whole scene (a ground plane under a --frame'd character must not be clipped); the
+    // framing (default target, distance) fits the framed part.
     const BoundingSphere sphere = computeBoundingSphere(scene);
-    const std::string centreText = "the model's bounding-sphere centre (" + world(sphere.center) + ")";
+    const BoundingSphere framed = request.frameNodes.empty() ? sphere : framedSphere(scene, request.frameNodes);
+    const std::string centreText = (request.frameNodes.empty() ? "the model's bounding-sphere centre ("
+                                                               : "the bounding-sphere centre of the --frame nodes (") +
+                                   world(framed.center) + ")";
     // A point-sized scene still needs a usable framing distance.
-    const double radius = sphere.radius > 0.0 ? sphere.radius : 1.0;
+    const double radius = framed.radius > 0.0 ? framed.radius : sphere.radius > 0.0 ? sphere.radius : 1.0;
 
     // Each branch also says, for the error messages below, where its eye, target and view direction come from.
     std::string eyeText;
@@ -130,7 +240,7 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     std::string viewText;
     if (requestEye) {
         camera.eye = *requestEye;
-        camera.target = requestTarget ? *requestTarget : sphere.center;
+        camera.target = requestTarget ? *requestTarget : framed.center;
         camera.source = "flags";
         eyeText = "the eye (--eye " + formatVector(*request.eye) + ")";
         targetText = request.target ? "the target (--target " + formatVector(*request.target) + ") coincide"
@@ -152,15 +262,21 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
         viewText = request.target ? "from the glTF camera's eye to --target"
                                   : "the glTF camera's forward " + formatVector(fileCamera->forward);
     } else {
-        camera.target = requestTarget ? *requestTarget : sphere.center;
-        camera.eye = camera.target + autoFrameDirection(camera.up, scene.front) *
-                                         framingDistance(radius, glm::radians(camera.fovYDegrees), camera.aspect());
-        camera.source = "auto-framed";
-        eyeText = "the auto-framed eye (" + world(camera.eye) + ")";
+        camera.target = requestTarget ? *requestTarget : framed.center;
+        const double fittedDistance = framingDistance(radius, glm::radians(camera.fovYDegrees), camera.aspect());
+        if (request.orbit) {
+            camera.eye = camera.target + orbitDirection(camera.up, scene.front, *request.orbit) *
+                                             request.orbit->distance.value_or(fittedDistance);
+            camera.source = "orbit";
+        } else {
+            camera.eye = camera.target + autoFrameDirection(camera.up, scene.front) * fittedDistance;
+            camera.source = "auto-framed";
+        }
+        eyeText = "the " + std::string(request.orbit ? "orbit's" : "auto-framed") + " eye (" + world(camera.eye) + ")";
         targetText = (request.target ? "the target (--target " + formatVector(*request.target) + ")"
                                      : "the target, " + centreText + ",") +
                      " coincide: the model is too small for its distance from the origin; set --eye";
-        viewText = "the auto-framing direction";
+        viewText = request.orbit ? "the --orbit direction" : "the auto-framing direction";
     }
 
     const glm::dvec3 view = camera.target - camera.eye;

@@ -8,17 +8,36 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace inkgraph {
+
+/** A view around the target (--orbit): the eye on a sphere about it, angles from the model's front. */
+struct Orbit {
+    /** Degrees about the up vector from the front (the side auto-framing looks from). Positive moves the eye toward
+     *  the front view's right: counter-clockwise seen from above, so with up +Y and the front +Z, 90 looks from +X. */
+    double azimuthDegrees = 0.0;
+    /** Degrees above the plane through the target perpendicular to up, within [-89.9, 89.9]: at +-90 up would be
+     *  parallel to the view. */
+    double elevationDegrees = 0.0;
+    std::optional<double> distance; ///< world units from the target; unset: the auto-framing distance
+};
 
 /** What the user asked for; every unset field falls back to the glTF camera, then to auto-framing. */
 struct CameraRequest {
     std::optional<glm::dvec3> eye;    ///< world coordinates (--eye)
+    std::optional<Orbit> orbit;       ///< --orbit; places the eye, so not together with `eye`
     std::optional<glm::dvec3> target; ///< world coordinates (--target)
     /** World up (--up). Unset: the glTF camera's up when that camera is used, else (0, 1, 0). Set, it also wins over
      *  the glTF camera's up, and auto-framing looks at the model from a side chosen relative to it. */
     std::optional<glm::dvec3> up;
-    std::optional<double> fovYDegrees; ///< vertical field of view; default 35
+    /** Vertical field of view. Unset: the glTF camera's when that camera places the view, else 35 (a view placed
+     *  by --eye, --orbit or --frame does not take the file camera's lens). */
+    std::optional<double> fovYDegrees;
+    /** --frame: node names (Mesh::nodePath); the framing (the default target, the auto-framing and --orbit
+     *  distance) fits only the meshes under these nodes, and the file camera does not place the view. The clip
+     *  planes still fit the whole scene. Empty: every mesh. */
+    std::vector<std::string> frameNodes;
     /** --camera auto: the file's camera is not used at all (its placement, up and field of view); the view is
      *  auto-framed unless --eye places it. */
     bool ignoreFileCamera = false;
@@ -43,7 +62,7 @@ struct Camera {
     double zFar = 100.0;
     int width = 1024;
     int height = 1024;
-    std::string source;                ///< "flags", "gltf" or "auto-framed"
+    std::string source;                ///< "flags" (--eye), "orbit", "gltf" or "auto-framed"
     std::string clipSource = "fitted"; ///< "fitted" (to the bounding sphere) or "flags" (--clip)
 
     double aspect() const { return double(width) / double(height); }
@@ -60,15 +79,21 @@ struct Camera {
 
 /** Resolves a camera in the scene's local frame. The request's eye and target are world coordinates; scene.origin is
  *  subtracted (in double) and kept in Camera::origin. Precedence per field: the request, then the scene's glTF
- *  camera, then auto-framing, which looks at the bounding-sphere centre at the distance where the sphere fits the
- *  smaller field of view with a 5% margin, from the direction normalize(h + 0.25 u): u is the unit up, h the unit
- *  horizontal toward world +Z (or toward world -Y when |Z . u| > 0.9, so Z-up models are seen from the front), i.e.
- *  from the front and slightly above; for the default up (0, 1, 0) that is normalize(0, 0.25, 1). Near and far are
- *  fitted to the bounding sphere: far = distance to the centre + radius (x1.01); near = max(distance - radius, far
- *  x 1e-4) (x0.99), so the sphere is never clipped when the eye is outside it; a requested zNear and zFar replace both
- *  (finite, 0 < near < far, else std::invalid_argument naming --clip). Throws std::invalid_argument, with a message
- *  that names the flags involved (--eye, --target, --up, --fov, --size), for eye == target, a zero up or one
- *  parallel to the view direction, fov outside (0, 180), non-finite vectors, or a non-positive size. */
+ *  camera, then auto-framing, which looks at the framed bounding-sphere centre (the whole scene's, or with
+ *  frameNodes that of the meshes under them) at the distance where that sphere fits the smaller field of view with a
+ *  5% margin, from the direction normalize(h + 0.25 u): u is the unit up, h the unit horizontal toward the model's
+ *  front (Scene::front, else world +Z; world -Y when that is within |. u| > 0.9 of up, so Z-up models are seen from
+ *  the front as in Blender), i.e. from the front and slightly above; for the default up (0, 1, 0) that is
+ *  normalize(0, 0.25, 1), an orbit of azimuth 0 and elevation atan(0.25) = 14.04 degrees. An orbit puts the eye at
+ *  target + distance x (cos e (cos a h + sin a (u x h)) + sin e u). A view placed by the request (eye, orbit or
+ *  frameNodes) does not use the file camera at all, its field of view included. Near and far are fitted to the whole
+ *  bounding sphere: far = distance to the centre + radius (x1.01); near = max(depth of the sphere's front along the
+ *  view axis, far x 1e-4) (x0.99), so the sphere is never clipped when the eye is outside it; a requested zNear and
+ *  zFar replace both (finite, 0 < near < far, else std::invalid_argument naming --clip). Throws
+ *  std::invalid_argument, with a message that names the flags involved (--eye, --orbit, --frame, --target, --up,
+ *  --fov, --size), for eye == target, an eye with an orbit, an orbit elevation outside [-89.9, 89.9] or a
+ *  non-positive distance, a frame node that no mesh lies under (naming up to 10 of the scene's node names), a zero
+ *  up or one parallel to the view direction, fov outside (0, 180), non-finite values, or a non-positive size. */
 Camera resolveCamera(const CameraRequest& request, const Scene& scene);
 
 } // namespace inkgraph

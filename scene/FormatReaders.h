@@ -6,6 +6,7 @@
 #include "scene/Scene.h"
 
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -47,6 +48,9 @@ public:
     void check(std::size_t vertices, std::size_t triangles) const;
     /** check(), then counts them for good (one glTF mesh may be instanced by many nodes). */
     void charge(std::size_t vertices, std::size_t triangles);
+    /** Other memory a reader keeps that grows with the file's declarations (each mesh's node path), counted for good;
+     *  throws SceneError naming the file above the limit. */
+    void chargeBytes(std::size_t bytes);
 
     std::size_t limitBytes() const { return mLimitBytes; }
 
@@ -56,6 +60,7 @@ private:
     std::string mPath;
     std::size_t mLimitBytes;
     std::size_t mFileBytes = 0;
+    std::size_t mOtherBytes = 0; ///< chargeBytes()
     std::size_t mVertices = 0;
     std::size_t mTriangles = 0;
 };
@@ -101,15 +106,32 @@ RawScene readObj(const std::string& path, std::string_view content, MeshBudget& 
 RawScene readStl(const std::string& path, std::string_view content, MeshBudget& budget);
 
 /** glTF 2.0 or GLB (the content starts with the "glTF" magic) through tinygltf, from the whole file's bytes;
- *  external buffers are resolved next to `path`. */
-RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget);
+ *  external buffers are resolved next to `path`. Posed as `options` asks (LoadOptions::animation and time). */
+RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget,
+                  const LoadOptions& options = {});
 
 /** The files a glTF (or GLB: `content` may stop after the JSON chunk) names: external buffers and images, and the
  *  shade maps of its materials, resolved as readGltf() resolves them. Best effort, nothing thrown. */
 std::vector<std::string> gltfReferencedFiles(const std::string& path, std::string_view content);
 
+/** What an OBJ's material libraries define, gathered by readMtl() over every `mtllib` file of one load. */
+struct ObjMaterials {
+    std::map<std::string, Material> byName; ///< `newmtl` name -> material; the first definition of a name wins
+    std::vector<SceneImage> images;         ///< what the materials' textures index (RawScene::images)
+    std::vector<std::string> namedFiles;    ///< every texture file named (map_Kd, map_d), resolved, found or not
+};
+
+/** Reads one material library's text into `materials`: Kd, d/Tr, Ke, map_Kd (options skipped but -clamp, -s and -o)
+ *  and a map_d cut-out; texture names are resolved beside `path`. Bad lines, missing textures and unsupported
+ *  statements become warnings naming the library and the line; nothing is thrown. */
+void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials,
+             std::vector<std::string>& warnings);
+
+/** The texture files a material library's map_Kd and map_d lines name, resolved as readMtl() resolves them. */
+std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content);
+
 /** The material libraries an OBJ's `mtllib` lines name, resolved beside it (a name with spaces both whole and split,
- *  as readObj() tries it). */
+ *  as readObj() tries it), and the textures those that exist name (mtlReferencedFiles()). */
 std::vector<std::string> objReferencedFiles(const std::string& path, std::string_view content);
 
 } // namespace inkgraph::detail

@@ -6,6 +6,8 @@
 #include "scene/FormatReaders.h"
 #include "scene/GltfAccessors.h"
 #include "scene/GltfDraco.h"
+#include "scene/GltfPose.h"
+#include "scene/VrmMaterials.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -49,11 +51,18 @@ std::string shadeMapBesideModel(const std::string& modelPath, const std::string&
 
 /** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light,
  *  KHR_mesh_quantization's integer and normalized attributes (GltfAccessors.cpp reads any component type),
- *  KHR_draco_mesh_compression (GltfDraco.cpp), KHR_texture_transform, KHR_materials_unlit and
- *  KHR_materials_emissive_strength. */
-const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual",        "KHR_mesh_quantization",
-                                                       "KHR_draco_mesh_compression", "KHR_texture_transform",
-                                                       "KHR_materials_unlit",        "KHR_materials_emissive_strength"};
+ *  KHR_draco_mesh_compression (GltfDraco.cpp), KHR_texture_transform, KHR_materials_unlit,
+ *  KHR_materials_emissive_strength, VRM 0.x ("VRM": its front and MToon materialProperties) and 1.0 ("VRMC_vrm": its
+ *  front; "VRMC_materials_mtoon"), scene/VrmMaterials.h. */
+const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual",
+                                                       "KHR_mesh_quantization",
+                                                       "KHR_draco_mesh_compression",
+                                                       "KHR_texture_transform",
+                                                       "KHR_materials_unlit",
+                                                       "KHR_materials_emissive_strength",
+                                                       "VRM",
+                                                       "VRMC_materials_mtoon",
+                                                       "VRMC_vrm"};
 
 /** Unsupported required extensions named one by one in the refusal; the rest are counted. */
 constexpr std::size_t kMaxNamedExtensions = 10;
@@ -149,34 +158,26 @@ const char* modeName(int mode) {
     }
 }
 
-glm::dmat4 localTransform(const tinygltf::Node& node) {
-    if (node.matrix.size() == 16) {
-        return glm::make_mat4(node.matrix.data()); // both column-major
-    }
-    glm::dmat4 transform(1.0);
-    if (node.translation.size() == 3) {
-        transform = glm::translate(transform, glm::make_vec3(node.translation.data()));
-    }
-    if (node.rotation.size() == 4) {
-        const glm::dquat rotation(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]); // xyzw
-        transform *= glm::mat4_cast(glm::normalize(rotation));
-    }
-    if (node.scale.size() == 3) {
-        transform = glm::scale(transform, glm::make_vec3(node.scale.data()));
-    }
-    return transform;
+/** A normal through a normal matrix, unit length again (zero when the matrix collapses it). */
+glm::vec3 transformNormal(const glm::dmat3& normalMatrix, const glm::vec3& normal) {
+    const glm::dvec3 transformed = normalMatrix * glm::dvec3(normal);
+    const double length = glm::length(transformed);
+    return length > 0.0 && std::isfinite(length) ? glm::vec3(transformed / length) : glm::vec3(0.0f);
 }
 
 class GltfWalker {
 public:
-    GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out, MeshBudget& budget)
-        : mPath(path), mModel(model), mOut(out), mBudget(budget), mReached(model.nodes.size(), false),
-          mMaterialShadeMaps(model.materials.size()), mMaterials(model.materials.size()) {}
+    GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out, MeshBudget& budget,
+               const LoadOptions& options)
+        : mPath(path), mModel(model), mOut(out), mBudget(budget), mOptions(options),
+          mReached(model.nodes.size(), false), mWorlds(model.nodes.size()), mMaterialShadeMaps(model.materials.size()),
+          mMaterials(model.materials.size()) {}
 
     void walk() {
         checkRequiredExtensions();
         checkMaterialIndices();
         readVrmFront();
+        posed();
         // Depth-first with an explicit stack (a deep hierarchy must not overflow the call stack), in the order the
         // recursive walk would take: roots and children are pushed in reverse so the first is handled first.
         std::vector<PendingNode> pending;
@@ -185,16 +186,23 @@ public:
             claimRoot(*root);
             pending.push_back({*root, glm::dmat4(1.0)});
         }
+        // Every world transform first, then the visits: a skinned mesh needs its joints' transforms, wherever they
+        // are in the hierarchy.
+        std::vector<int> visitOrder;
         while (!pending.empty()) {
             const PendingNode next = pending.back();
             pending.pop_back();
             const tinygltf::Node& node = mModel.nodes[std::size_t(next.index)];
-            const glm::dmat4 world = next.parentWorld * localTransform(node);
-            visit(next.index, node, world);
+            const glm::dmat4 world = next.parentWorld * mPoses[std::size_t(next.index)].local();
+            mWorlds[std::size_t(next.index)] = world;
+            visitOrder.push_back(next.index);
             for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
                 claimChild(next.index, *child);
                 pending.push_back({*child, world});
             }
+        }
+        for (const int index : visitOrder) {
+            visit(index, mModel.nodes[std::size_t(index)], *mWorlds[std::size_t(index)]);
         }
         if (mOut.meshes.empty() && mSkippedPrimitives > 0) {
             throwLoadError(mPath, "no triangles: all " + std::to_string(mSkippedPrimitives) +
@@ -204,6 +212,15 @@ public:
 
 private:
     [[noreturn]] void fail(const std::string& problem) const { throwLoadError(mPath, problem); }
+
+    /** The nodes' local transforms and morph weights: their own, or the animation LoadOptions names at its time. */
+    void posed() {
+        mPoses = restPose(mModel);
+        if (!mOptions.animation.empty()) {
+            applyAnimation(mPath, mModel, findAnimation(mPath, mModel, mOptions.animation), mOptions.time, mPoses,
+                           mBudget, mOut.warnings);
+        }
+    }
 
     /** The glTF 2.0 specification: a loader must refuse a file that requires an extension it does not implement,
      *  since the file may not make sense without it (compressed geometry reads as garbage, for one). */
@@ -317,6 +334,7 @@ private:
             fail("node " + std::to_string(nodeIndex) + " has more than one parent (or is in a cycle)");
         }
         mReached[std::size_t(nodeIndex)] = true;
+        mParent[std::size_t(nodeIndex)] = parentIndex;
     }
 
     void visit(int nodeIndex, const tinygltf::Node& node, const glm::dmat4& world) {
@@ -578,8 +596,30 @@ private:
         return ref;
     }
 
+    /** A VRM character's MToon (scene/VrmMaterials.h), which may also adjust `material`. Its textures go through
+     *  readTextureRef(), so their samplers and KHR_texture_transform are read as the glTF material's are. Called once
+     *  per material, by material(), so its warnings are reported once. */
+    std::optional<MToonMaterial> vrmMaterial(int materialIndex, Material& material) {
+        const std::string label = materialLabel(materialIndex) + " MToon texture";
+        const VrmTextureResolver resolveTexture = [&](int texture, int texCoord,
+                                                      const tinygltf::Value* textureInfoExtensions) {
+            tinygltf::TextureInfo info;
+            info.index = texture;
+            info.texCoord = texCoord;
+            if (textureInfoExtensions && textureInfoExtensions->IsObject()) {
+                for (const std::string& key : textureInfoExtensions->Keys())
+                    info.extensions[key] = textureInfoExtensions->Get(key);
+            }
+            return readTextureRef(info, label);
+        };
+        std::vector<std::string> warnings;
+        std::optional<MToonMaterial> mtoon = readVrmMaterial(mModel, materialIndex, material, resolveTexture, warnings);
+        mOut.warnings.insert(mOut.warnings.end(), warnings.begin(), warnings.end());
+        return mtoon;
+    }
+
     /** Material `materialIndex` as the renderer sees it, read once (its warnings too) when a primitive first uses
-     *  it. */
+     *  it: the glTF material, then a VRM character's MToon (vrmMaterial()). */
     const Material& material(int materialIndex) {
         std::optional<Material>& cached = mMaterials[std::size_t(materialIndex)];
         if (cached) return *cached;
@@ -622,6 +662,7 @@ private:
         }
         result.doubleSided = source.doubleSided;
         result.shadeMapPath = materialShadeMap(materialIndex);
+        result.mtoon = vrmMaterial(materialIndex, result);
         cached = std::move(result);
         return *cached;
     }
@@ -666,11 +707,58 @@ private:
         const std::string baseName = !node.name.empty()   ? node.name
                                      : !mesh.name.empty() ? mesh.name
                                                           : "mesh " + std::to_string(node.mesh);
+        // glTF: a skinned mesh is placed by its joints alone; its node's own transform does not apply.
+        std::optional<std::vector<glm::dmat4>> skinJoints;
+        if (node.skin >= 0) {
+            skinJoints = jointMatrices(
+                mPath, mModel, node.skin,
+                [&](int joint) {
+                    const std::optional<glm::dmat4>& jointWorld = mWorlds[std::size_t(joint)];
+                    if (!jointWorld) {
+                        fail(nodeLabel(nodeIndex) + ": skin " + std::to_string(node.skin) + " joint node " +
+                             std::to_string(joint) + " is not in the scene");
+                    }
+                    return *jointWorld;
+                },
+                mBudget);
+        }
+        const PrimitivePose pose{mPoses[std::size_t(nodeIndex)].weights, skinJoints ? &*skinJoints : nullptr};
+        const std::vector<std::string> path = nodePath(nodeIndex);
         for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
             const std::string name =
                 mesh.primitives.size() == 1 ? baseName : baseName + " primitive " + std::to_string(i);
-            addPrimitive(mesh.primitives[i], name, nodeLabel(nodeIndex), world);
+            chargeNodePath(path); // before the primitive's copy, as its vertices are
+            const std::size_t meshesBefore = mOut.meshes.size();
+            addPrimitive(mesh.primitives[i], name, nodeLabel(nodeIndex), world, pose);
+            if (mOut.meshes.size() > meshesBefore) {
+                mOut.meshes.back().nodePath = path;
+            }
         }
+    }
+
+    /** What moves a primitive's vertices besides its node's transform. */
+    struct PrimitivePose {
+        const std::vector<double>& morphWeights;
+        const std::vector<glm::dmat4>* skinJoints = nullptr; ///< null: not skinned
+    };
+
+    /** The node names from the root down to `nodeIndex` (Mesh::nodePath). This one copy lives only while its node
+     *  is visited and is no larger than the names the parsed file holds; each mesh's copy is charged. */
+    std::vector<std::string> nodePath(int nodeIndex) const {
+        std::vector<std::string> path;
+        for (int node = nodeIndex; node >= 0; node = mParent[std::size_t(node)]) {
+            path.push_back(mModel.nodes[std::size_t(node)].name);
+        }
+        std::reverse(path.begin(), path.end());
+        return path;
+    }
+
+    /** Every mesh holds its own copy of its path, as deep as the hierarchy: a deep chain of mesh nodes would hold
+     *  depth^2 names, so each copy is charged to the budget first (a skipped primitive's too: a slight over-count). */
+    void chargeNodePath(const std::vector<std::string>& path) {
+        std::size_t bytes = sizeof(path);
+        for (const std::string& name : path) bytes += sizeof(std::string) + name.size();
+        mBudget.chargeBytes(bytes);
     }
 
     /** VEC3 floats (POSITION, NORMAL) as vectors, in the file's frame. */
@@ -752,7 +840,7 @@ private:
     }
 
     void addPrimitive(const tinygltf::Primitive& primitive, const std::string& name, const std::string& node,
-                      const glm::dmat4& world) {
+                      const glm::dmat4& world, const PrimitivePose& pose) {
         const int mode = primitive.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -788,6 +876,29 @@ private:
         if (primitive.attributes.count("NORMAL") > 0) {
             mesh.normals = toVec3(attributeFloats(primitive, draco, "NORMAL", TINYGLTF_TYPE_VEC3, vertexCount, name));
         }
+
+        if (draco) {
+            // Draco reorders and merges vertices, so a target's uncompressed accessor no longer lines up with them.
+            for (std::size_t t = 0; t < primitive.targets.size() && t < pose.morphWeights.size(); ++t) {
+                if (pose.morphWeights[t] != 0.0 && std::isfinite(pose.morphWeights[t])) { // as applyMorphTargets()
+                    fail("'" + excerptForMessage(name) +
+                         "': morph targets of a Draco-compressed primitive are not supported (target " +
+                         std::to_string(t) + " has weight " + formatNumber(pose.morphWeights[t]) + ")");
+                }
+            }
+        }
+        applyMorphTargets(mPath, mModel, primitive, pose.morphWeights, mesh.positions, mesh.normals, name,
+                          mOut.warnings);
+        std::optional<SkinBlend> skin;
+        if (pose.skinJoints) {
+            // SkinBlend holds every JOINTS_n/WEIGHTS_n set for the primitive's vertices while it is baked.
+            const auto sets = std::ranges::count_if(
+                primitive.attributes, [](const auto& entry) { return entry.first.starts_with("JOINTS_"); });
+            mBudget.check(vertexCount * std::size_t(sets) * kSkinBytesPerVertexPerSet / MeshBudget::kBytesPerVertex + 1,
+                          0);
+            skin.emplace(mPath, mModel, primitive, vertexCount, *pose.skinJoints, world, name,
+                         draco ? &draco->attributes : nullptr);
+        }
         readSurfaceAttributes(primitive, draco, vertexCount, name, mesh);
 
         std::vector<std::uint32_t> indices;
@@ -803,15 +914,19 @@ private:
         }
         mesh.triangles = triangulate(draco ? TINYGLTF_MODE_TRIANGLES : mode, indices, name);
 
-        // Bake the node transform; normals use the inverse transpose so non-uniform scale keeps them perpendicular.
+        // Bake the node transform (a skinned vertex's: its blend of joint matrices); normals use the inverse
+        // transpose so non-uniform scale keeps them perpendicular.
         const glm::dmat3 linear(world);
         const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
+        std::vector<bool> mirrored; // per vertex of a skinned mesh: its skin matrix turns the winding over
         // In double until the position is relative to the scene's raw origin (the first world position): rounding
         // world coordinates of a model 1e7 units out to float would leave it a blocky polyhedron.
-        for (glm::vec3& position : mesh.positions) {
-            const glm::dvec3 worldPosition(world * glm::dvec4(glm::dvec3(position), 1.0));
+        for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+            const glm::dmat4 vertexMatrix = skin ? skin->vertexMatrix(v) : world;
+            const glm::dvec3 worldPosition(vertexMatrix * glm::dvec4(glm::dvec3(mesh.positions[v]), 1.0));
             if (!std::isfinite(worldPosition.x) || !std::isfinite(worldPosition.y) || !std::isfinite(worldPosition.z)) {
-                fail(node + ": the node transform produces non-finite positions");
+                fail(node + (skin ? ": the skin's joint transforms produce non-finite positions"
+                                  : ": the node transform produces non-finite positions"));
             }
             if (!mHasOrigin) {
                 mOut.origin = worldPosition;
@@ -823,16 +938,21 @@ private:
                      " units from the first mesh's first vertex, more than the " + formatExtent(kMaxModelExtent) +
                      " the renderer can hold (a node scale or translation too large?)");
             }
-            position = glm::vec3(relative);
+            mesh.positions[v] = glm::vec3(relative);
+            if (skin) {
+                const glm::dmat3 vertexLinear(vertexMatrix);
+                mirrored.push_back(glm::determinant(vertexLinear) < 0.0);
+                if (!mesh.normals.empty()) {
+                    mesh.normals[v] = transformNormal(glm::transpose(glm::inverse(vertexLinear)), mesh.normals[v]);
+                }
+            }
         }
-        for (glm::vec3& normal : mesh.normals) {
-            const glm::dvec3 transformed = normalMatrix * glm::dvec3(normal);
-            const double length = glm::length(transformed);
-            normal = length > 0.0 && std::isfinite(length) ? glm::vec3(transformed / length) : glm::vec3(0.0f);
+        if (!skin) {
+            for (glm::vec3& normal : mesh.normals) normal = transformNormal(normalMatrix, normal);
         }
         // A mirroring transform turns counter-clockwise into clockwise; swap two corners to keep fronts outward.
-        if (glm::determinant(linear) < 0.0) {
-            for (glm::uvec3& triangle : mesh.triangles) {
+        for (glm::uvec3& triangle : mesh.triangles) {
+            if (skin ? bool(mirrored[triangle.x]) : glm::determinant(linear) < 0.0) {
                 std::swap(triangle.y, triangle.z);
             }
         }
@@ -847,7 +967,11 @@ private:
     const tinygltf::Model& mModel;
     RawScene& mOut;
     MeshBudget& mBudget;
-    std::vector<bool> mReached; ///< nodes already reached by the walk; reaching one again is an error
+    const LoadOptions& mOptions;
+    std::vector<NodePose> mPoses; ///< per node: its local transform and morph weights, animated or not (posed())
+    std::vector<bool> mReached;   ///< nodes already reached by the walk; reaching one again is an error
+    std::vector<std::optional<glm::dmat4>> mWorlds; ///< per node reached by the walk: its world transform
+    std::vector<int> mParent = std::vector<int>(mModel.nodes.size(), -1); ///< each node's parent, -1 for a root
     std::vector<std::optional<std::string>> mMaterialShadeMaps; ///< per material, once read: its shade map or ""
     std::vector<std::optional<Material>> mMaterials;            ///< per material, once read
     std::size_t mSkippedPrimitives = 0;
@@ -1108,7 +1232,7 @@ std::vector<SceneImage> sceneImages(const std::string& path, const tinygltf::Mod
 
 } // namespace
 
-RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget) {
+RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget, const LoadOptions& options) {
     // A byte-order mark before the JSON needs nothing here: tinygltf's JSON parser (nlohmann) skips it.
     const bool binary = content.size() >= 4 && content.substr(0, 4) == "glTF";
     rejectDeepJson(path, content, binary);
@@ -1175,7 +1299,7 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
         }
     }
     scene.images = sceneImages(path, model, baseDirectory, dataUriImages, budget);
-    GltfWalker(path, model, scene, budget).walk();
+    GltfWalker(path, model, scene, budget, options).walk();
     if (scene.meshes.empty()) {
         throwLoadError(path, "no triangles in the file");
     }

@@ -58,7 +58,8 @@ struct MToonMaterial {
     glm::vec3 parametricRimColorFactor{0.0f}; ///< linear; added rim light (black: none)
     float parametricRimFresnelPowerFactor = 5.0f;
     float parametricRimLiftFactor = 0.0f;
-    glm::vec3 matcapFactor{1.0f}; ///< unused by inkgraph (no matcap), kept for --stats
+    float rimLightingMixFactor = 1.0f; ///< how much the rim takes the surface's lighting (0: like emission)
+    glm::vec3 matcapFactor{1.0f};      ///< unused by inkgraph (no matcap), kept for --stats
     enum class OutlineWidthMode { None, WorldCoordinates, ScreenCoordinates };
     OutlineWidthMode outlineWidthMode = OutlineWidthMode::None;
     /** World: metres (model units); screen: a share of the screen height. */
@@ -80,7 +81,9 @@ struct Material {
     bool unlit = false;                                ///< KHR_materials_unlit: the base colour as is
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f; ///< Mask: a fragment whose alpha is below this is cut out
-    bool doubleSided = false; ///< false: back faces are culled (glTF); true: lit with the flipped normal
+    /** true: both sides drawn, a back face lit with the flipped normal (meshes without a glTF material: OBJ, STL);
+     *  false: back faces culled, as a glTF material says by default. */
+    bool doubleSided = true;
     std::optional<MToonMaterial> mtoon;
     /** The shade map this material asks for (glTF material extras {"inkgraph": {"shademap": "..."}}), a path resolved
      *  against the glTF file's folder and lexically normalised; empty: the run's map. Read by the app, not here. */

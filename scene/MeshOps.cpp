@@ -425,6 +425,7 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     Mesh mesh;
     mesh.name = std::move(raw.name);
     mesh.material = std::move(raw.material);
+    mesh.nodePath = std::move(raw.nodePath);
     for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
         if (compactIndex[vertex] == kNoVertex) {
             continue;

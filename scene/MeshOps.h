@@ -75,6 +75,7 @@ struct RawMesh {
     std::vector<glm::vec2> texcoords[2]; ///< as Mesh::texcoords: empty or one per position
     std::vector<glm::vec4> colors;       ///< as Mesh::colors: empty or one per position
     Material material;
+    std::vector<std::string> nodePath; ///< as Mesh::nodePath
 };
 
 /** Turns a raw mesh into a clean Mesh: welds within options.weldTolerance x modelDiagonal, drops degenerate

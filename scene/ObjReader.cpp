@@ -1,9 +1,9 @@
-/** @file Wavefront OBJ: v, vn and f (v, v/vt, v//vn, v/vt/vn; negative = relative), polygons fan-triangulated.
- *  Parses the whole file from memory with std::from_chars; everything else (vt, o/g names, groups, smoothing) is
- *  skipped, except that the first `o` name names the mesh. Materials are not drawn (an OBJ mesh takes the default
- *  colour), but the `mtllib` files are read for their `newmtl` names so that a missing library or an undefined
- *  `usemtl` material is reported as a warning: exports often travel without their .mtl, and refusing them would
- *  help nobody. */
+/** @file Wavefront OBJ: v (with an optional vertex colour), vt, vn and f (v, v/vt, v//vn, v/vt/vn; negative =
+ *  relative), polygons fan-triangulated, and the materials of its `mtllib` libraries (scene/ObjMaterials.cpp) that
+ *  `usemtl` picks: one mesh per material, named by the first `o` name (or the file stem). Parses the whole file from
+ *  memory with std::from_chars; o/g groups and smoothing groups are skipped. A missing library or an undefined
+ *  `usemtl` material is a warning, and those faces take the default grey: exports often travel without their .mtl,
+ *  and refusing them would help nobody. */
 
 #include "scene/FormatReaders.h"
 
@@ -17,7 +17,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
-#include <set>
+#include <optional>
 #include <system_error>
 #include <unordered_map>
 
@@ -27,12 +27,44 @@ namespace {
 
 bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
-const char* plural(bool isNormal) { return isNormal ? "normals" : "vertices"; }
+/** What a face index refers to. */
+enum class IndexKind { Vertex, Texcoord, Normal };
 
-/** One corner of a face as written in the file, already made 0-based; `normal` is kNoNormal when absent. */
+const char* singular(IndexKind kind) {
+    return kind == IndexKind::Vertex ? "vertex" : kind == IndexKind::Texcoord ? "texture coordinate" : "normal";
+}
+const char* plural(IndexKind kind) {
+    return kind == IndexKind::Vertex ? "vertices" : kind == IndexKind::Texcoord ? "texture coordinates" : "normals";
+}
+
+constexpr std::uint32_t kAbsent = std::numeric_limits<std::uint32_t>::max();
+
+/** One corner of a face as written in the file, already made 0-based; `texcoord` and `normal` are kAbsent when the
+ *  corner has none. */
 struct Corner {
     std::uint32_t position = 0;
-    std::uint32_t normal = 0;
+    std::uint32_t texcoord = kAbsent;
+    std::uint32_t normal = kAbsent;
+    bool operator==(const Corner&) const = default;
+};
+
+struct CornerHash {
+    std::size_t operator()(const Corner& corner) const {
+        std::uint64_t hash = corner.position;
+        hash = hash * 0x9E3779B97F4A7C15ull ^ corner.texcoord;
+        hash = hash * 0x9E3779B97F4A7C15ull ^ corner.normal;
+        return std::size_t(hash ^ (hash >> 29));
+    }
+};
+
+/** The faces that one `usemtl` material (or none, before the first `usemtl`) covers: one mesh. */
+struct FaceGroup {
+    std::string materialName;    ///< as `usemtl` wrote it; empty for the faces before any
+    std::vector<Corner> corners; ///< three per triangle
+    std::size_t facesWithNormals = 0;
+    std::size_t facesWithoutNormals = 0;
+    std::size_t facesWithTexcoords = 0;
+    std::size_t facesWithoutTexcoords = 0;
 };
 
 /** Undefined `usemtl` materials named one by one in the warnings; the rest are counted. */
@@ -48,16 +80,44 @@ std::string_view trimmed(const char* begin, const char* end) {
     return std::string_view(begin, std::size_t(end - begin));
 }
 
+std::vector<std::string_view> tokensOf(const char* p, const char* end) {
+    std::vector<std::string_view> tokens;
+    while (p < end) {
+        while (p < end && isBlank(*p)) {
+            ++p;
+        }
+        const char* start = p;
+        while (p < end && !isBlank(*p)) {
+            ++p;
+        }
+        if (p > start) {
+            tokens.emplace_back(start, std::size_t(p - start));
+        }
+    }
+    return tokens;
+}
+
+/** A finite number filling the whole token (an explicit '+' allowed), else nothing. */
+std::optional<double> finiteNumber(std::string_view token) {
+    if (!token.empty() && token.front() == '+') {
+        token.remove_prefix(1);
+    }
+    double value = 0.0;
+    const auto [next, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (token.empty() || error != std::errc() || next != token.data() + token.size() || !std::isfinite(value)) {
+        return std::nullopt;
+    }
+    return value;
+}
+
 /** Lines between memory-budget checks: a line adds at most a few hundred bytes per byte of text. */
 constexpr std::size_t kBudgetCheckInterval = 1 << 14;
-
-constexpr std::uint32_t kNoNormal = std::numeric_limits<std::uint32_t>::max();
 
 /** A positive index that pointed past the vertices defined so far; legal only if the vertex appears later. */
 struct ForwardReference {
     std::size_t line = 0;
     long long index = 0; ///< 1-based, as written
-    bool isNormal = false;
+    IndexKind kind = IndexKind::Vertex;
 };
 
 class ObjParser {
@@ -85,11 +145,11 @@ public:
             parseLine(cursor, lineEnd);
             cursor = lineEnd + 1;
             if (mLine % kBudgetCheckInterval == 0) {
-                mBudget.check(mPositions.size() + mNormals.size(), mPositionTriangles.size() + mNormalTriangles.size());
+                mBudget.check(mPositions.size() + mNormals.size() + mTexcoords.size(), mCornerCount / 3);
             }
         }
         checkForwardReferences();
-        if (mPositionTriangles.empty()) {
+        if (mCornerCount == 0) {
             throwLoadError(mPath, "no triangles: the file has no faces");
         }
         checkMaterials();
@@ -113,6 +173,9 @@ private:
         const std::string_view command(keyword, std::size_t(p - keyword));
         if (command == "v") {
             mPositions.push_back(parsePosition(p, end));
+            readVertexColour(p, end);
+        } else if (command == "vt") {
+            mTexcoords.push_back(parseTexcoord(p, end));
         } else if (command == "vn") {
             mNormals.push_back(parseVector(p, end, "normal"));
         } else if (command == "f") {
@@ -131,9 +194,11 @@ private:
         } else if (command == "mtllib") {
             readMaterialLibraries(trimmed(p, end));
         } else if (command == "usemtl") {
-            mUsedMaterials.try_emplace(std::string(trimmed(p, end)), mLine);
+            const std::string name(trimmed(p, end));
+            mUsedMaterials.try_emplace(name, mLine);
+            mCurrentGroup = groupOf(name);
         }
-        // vt, g, s and unknown statements carry nothing this renderer uses.
+        // g, s and unknown statements carry nothing this renderer uses.
     }
 
     /** A `v` line, kept in double until the whole model is known (storeNearModel()), so a model far from the world
@@ -154,7 +219,57 @@ private:
         return value;
     }
 
-    /** `mtllib a.mtl [b.mtl ...]`: each library next to the OBJ is read for its `newmtl` names. A name with spaces
+    /** What follows a `v` line's x y z: nothing, w (ignored: a renderer draws rational points no differently), or a
+     *  colour r g b [a] as many exporters write it (values as written, clamped to [0, 1]). Anything else is skipped as
+     *  it always was. The colours exist for every vertex once one vertex has one: the uncoloured ones are white. */
+    void readVertexColour(const char* p, const char* end) {
+        glm::vec4 colour(1.0f);
+        std::size_t count = 0;
+        bool allNumbers = true;
+        for (const std::string_view token : tokensOf(p, end)) {
+            const std::optional<double> value = finiteNumber(token);
+            allNumbers = allNumbers && value.has_value();
+            if (allNumbers && count < 4) colour[int(count)] = float(std::clamp(*value, 0.0, 1.0));
+            ++count;
+        }
+        const bool coloured = allNumbers && (count == 3 || count == 4);
+        if (coloured && !mHasColors) {
+            mColors.assign(mPositions.size() - 1, glm::vec4(1.0f));
+            mHasColors = true;
+        }
+        if (mHasColors) {
+            mColors.push_back(coloured ? colour : glm::vec4(1.0f));
+        }
+    }
+
+    /** `vt u [v [w]]`, stored as (u, 1 - v): OBJ's v points up from the image's bottom, while the mesh keeps glTF's
+     *  convention of (0, 0) at the image's top-left (Mesh::texcoords). */
+    glm::vec2 parseTexcoord(const char*& p, const char* end) {
+        while (p < end && isBlank(*p)) {
+            ++p;
+        }
+        if (p == end) {
+            fail("'vt' without coordinates");
+        }
+        const double u = parseNumber(p, end, "texture", 1);
+        double v = 0.0;
+        while (p < end && isBlank(*p)) {
+            ++p;
+        }
+        if (p < end) {
+            v = parseNumber(p, end, "texture", 1);
+        }
+        const glm::vec2 stored(float(u), float(1.0 - v));
+        if (!std::isfinite(stored.x) || !std::isfinite(stored.y)) {
+            // Not geometry: the shape is still right, only the texture at these corners is not, so a warning, and
+            // (0, 0) keeps NaN out of the vertex buffers.
+            ++mNonFiniteTexcoords;
+            return glm::vec2(0.0f);
+        }
+        return stored; // a w after u and v is ignored: images are 2D
+    }
+
+    /** `mtllib a.mtl [b.mtl ...]`: each library next to the OBJ is read for its materials. A name with spaces
      *  is tried whole first, since exporters write such names unquoted. */
     void readMaterialLibraries(std::string_view names) {
         if (names.empty()) {
@@ -179,7 +294,8 @@ private:
         }
     }
 
-    /** Reads one library's `newmtl` names; false (and, when `warnIfMissing`, a warning) when it cannot be read. */
+    /** Reads one library's materials (readMtl()); false (and, when `warnIfMissing`, a warning) when it cannot be
+     *  read. */
     bool readMaterialLibrary(std::string_view name, bool warnIfMissing) {
         const std::filesystem::path named{std::string(name)};
         const std::filesystem::path resolved =
@@ -190,8 +306,8 @@ private:
         if (!std::filesystem::is_regular_file(resolved, error)) {
             if (warnIfMissing) {
                 mWarnings.push_back(shown + ": '" + excerptForMessage(resolved.string()) +
-                                    "' is missing or not a regular file; materials are not drawn for OBJ, so the "
-                                    "render is the same");
+                                    "' is missing or not a regular file; its materials are drawn in the default "
+                                    "grey");
                 mMissingLibrary = true;
             }
             return false;
@@ -212,20 +328,12 @@ private:
         std::string text(std::size_t(size), '\0');
         file.read(text.data(), std::streamsize(size));
         text.resize(std::size_t(file.gcount()));
-        std::size_t start = 0;
-        while (start < text.size()) {
-            std::size_t lineEnd = text.find('\n', start);
-            if (lineEnd == std::string::npos) {
-                lineEnd = text.size();
+        readMtl(resolved.string(), text, mMaterials, mWarnings);
+        // Its textures too, found or not: inputs the app must never overwrite with an output.
+        for (const std::string& texture : mMaterials.namedFiles) {
+            if (std::find(mInputFiles.begin(), mInputFiles.end(), texture) == mInputFiles.end()) {
+                mInputFiles.push_back(texture);
             }
-            const std::string_view line = trimmed(text.data() + start, text.data() + lineEnd);
-            constexpr std::string_view kNewMaterial = "newmtl";
-            if (line.size() > kNewMaterial.size() && line.substr(0, kNewMaterial.size()) == kNewMaterial &&
-                isBlank(line[kNewMaterial.size()])) {
-                const std::string_view defined = line.substr(kNewMaterial.size());
-                mDefinedMaterials.insert(std::string(trimmed(defined.data(), defined.data() + defined.size())));
-            }
-            start = lineEnd + 1;
         }
         return true;
     }
@@ -238,7 +346,7 @@ private:
         std::vector<std::string> undefined;
         std::size_t undefinedCount = 0;
         for (const auto& [name, line] : mUsedMaterials) {
-            if (mDefinedMaterials.count(name) == 0) {
+            if (mMaterials.byName.count(name) == 0) {
                 if (++undefinedCount <= kMaxNamedMaterials) {
                     std::string entry = "'";
                     entry += excerptForMessage(name);
@@ -259,7 +367,7 @@ private:
         }
         const std::string where = !mInputFiles.empty() ? "in its mtllib files" : "(the file has no mtllib)";
         mWarnings.push_back("usemtl names materials not defined " + where + ": " + list +
-                            "; materials are not drawn for OBJ, so the render is the same");
+                            "; their faces are drawn in the default grey");
     }
 
     /** Three finite coordinates; a fourth (w, or vertex colours after them) is ignored. */
@@ -275,12 +383,13 @@ private:
         return value;
     }
 
-    double parseNumber(const char*& p, const char* end, const char* what) {
+    double parseNumber(const char*& p, const char* end, const char* what, int needed = 3) {
         while (p < end && isBlank(*p)) {
             ++p;
         }
         if (p == end) {
-            fail(std::string(what) + " has fewer than 3 coordinates");
+            fail(std::string(what) + " has fewer than " + std::to_string(needed) + " coordinate" +
+                 (needed == 1 ? "" : "s"));
         }
         const char* start = p;
         if (*p == '+') {
@@ -321,8 +430,8 @@ private:
 
     /** 1-based or negative (relative) index to 0-based; positive indices past the current count are checked once the
      *  whole file is read. */
-    std::uint32_t resolveIndex(long long index, std::size_t definedSoFar, bool isNormal) {
-        const char* what = isNormal ? "normal" : "vertex";
+    std::uint32_t resolveIndex(long long index, std::size_t definedSoFar, IndexKind kind) {
+        const char* what = singular(kind);
         if (index == 0) {
             fail(std::string(what) + " index 0 is invalid (OBJ indices start at 1)");
         }
@@ -331,13 +440,13 @@ private:
                 fail(std::string(what) + " index " + std::to_string(index) + " out of range");
             }
             if (std::size_t(index) > definedSoFar) {
-                mForwardReferences.push_back({mLine, index, isNormal});
+                mForwardReferences.push_back({mLine, index, kind});
             }
             return std::uint32_t(index - 1);
         }
         if (index < -std::int64_t(std::numeric_limits<std::uint32_t>::max()) || std::size_t(-index) > definedSoFar) {
             fail("relative " + std::string(what) + " index " + std::to_string(index) + " out of range (" +
-                 std::to_string(definedSoFar) + " " + plural(isNormal) + " defined so far)");
+                 std::to_string(definedSoFar) + " " + plural(kind) + " defined so far)");
         }
         return std::uint32_t(definedSoFar - std::size_t(-index));
     }
@@ -345,6 +454,7 @@ private:
     void parseFace(const char* p, const char* end) {
         mCorners.clear();
         bool faceHasNormals = true;
+        bool faceHasTexcoords = true;
         while (true) {
             while (p < end && isBlank(*p)) {
                 ++p;
@@ -353,50 +463,61 @@ private:
                 break;
             }
             Corner corner;
-            corner.position = resolveIndex(parseIndex(p, end), mPositions.size(), false);
-            corner.normal = kNoNormal;
+            corner.position = resolveIndex(parseIndex(p, end), mPositions.size(), IndexKind::Vertex);
             if (p < end && *p == '/') {
                 ++p;
                 if (p < end && *p != '/' && !isBlank(*p)) {
-                    parseIndex(p, end); // texture coordinate: syntax checked, value unused
+                    corner.texcoord = resolveIndex(parseIndex(p, end), mTexcoords.size(), IndexKind::Texcoord);
                 }
                 if (p < end && *p == '/') {
                     ++p;
-                    corner.normal = resolveIndex(parseIndex(p, end), mNormals.size(), true);
+                    corner.normal = resolveIndex(parseIndex(p, end), mNormals.size(), IndexKind::Normal);
                 }
             }
             if (p < end && !isBlank(*p)) {
                 fail("unexpected character '" + std::string(1, *p) + "' in face");
             }
-            faceHasNormals = faceHasNormals && corner.normal != kNoNormal;
+            faceHasNormals = faceHasNormals && corner.normal != kAbsent;
+            faceHasTexcoords = faceHasTexcoords && corner.texcoord != kAbsent;
             mCorners.push_back(corner);
         }
         if (mCorners.size() < 3) {
             fail("face has " + std::to_string(mCorners.size()) + " vertices (needs at least 3)");
         }
-        if (faceHasNormals) {
-            ++mFacesWithNormals;
-        } else {
-            ++mFacesWithoutNormals;
+        if (mCurrentGroup == kAbsent) {
+            mCurrentGroup = groupOf("");
         }
+        FaceGroup& group = mGroups[mCurrentGroup];
+        ++(faceHasNormals ? group.facesWithNormals : group.facesWithoutNormals);
+        ++(faceHasTexcoords ? group.facesWithTexcoords : group.facesWithoutTexcoords);
         // Fan triangulation keeps the polygon's winding; OBJ polygons are planar and convex in practice.
         for (std::size_t i = 1; i + 1 < mCorners.size(); ++i) {
-            mPositionTriangles.emplace_back(mCorners[0].position, mCorners[i].position, mCorners[i + 1].position);
-            if (faceHasNormals) {
-                mNormalTriangles.emplace_back(mCorners[0].normal, mCorners[i].normal, mCorners[i + 1].normal);
+            for (const Corner& corner : {mCorners[0], mCorners[i], mCorners[i + 1]}) {
+                group.corners.push_back(corner);
             }
+            mCornerCount += 3;
         }
+    }
+
+    /** The face group of a material name, made on first use. */
+    std::uint32_t groupOf(const std::string& materialName) {
+        const auto [it, inserted] = mGroupOfMaterial.try_emplace(materialName, std::uint32_t(mGroups.size()));
+        if (inserted) {
+            mGroups.emplace_back().materialName = materialName;
+        }
+        return it->second;
     }
 
     void checkForwardReferences() {
         for (const ForwardReference& reference : mForwardReferences) {
-            const std::size_t available = reference.isNormal ? mNormals.size() : mPositions.size();
+            const std::size_t available = reference.kind == IndexKind::Normal     ? mNormals.size()
+                                          : reference.kind == IndexKind::Texcoord ? mTexcoords.size()
+                                                                                  : mPositions.size();
             if (std::size_t(reference.index) > available) {
-                const char* what = reference.isNormal ? "normal" : "vertex";
                 throwLoadErrorAtLine(mPath, reference.line,
-                                     std::string(what) + " index " + std::to_string(reference.index) +
-                                         " out of range (file has " + std::to_string(available) + " " +
-                                         plural(reference.isNormal) + ")");
+                                     std::string(singular(reference.kind)) + " index " +
+                                         std::to_string(reference.index) + " out of range (file has " +
+                                         std::to_string(available) + " " + plural(reference.kind) + ")");
             }
         }
     }
@@ -406,43 +527,109 @@ private:
         scene.format = "obj";
         std::vector<glm::vec3> positions;
         scene.origin = storeNearModel(mPath, mPositions, positions);
-        mPositions = {}; // its memory back before the mesh is built
+        mPositions = {}; // its memory back before the meshes are built
         scene.inputFiles = std::move(mInputFiles);
         scene.warnings = std::move(mWarnings);
-        RawMesh mesh;
-        mesh.name = mMeshName.empty() ? std::filesystem::path(mPath).stem().string() : mMeshName;
+        scene.images = std::move(mMaterials.images);
+        const std::string baseName = mMeshName.empty() ? std::filesystem::path(mPath).stem().string() : mMeshName;
 
-        if (mFacesWithNormals > 0 && mFacesWithoutNormals == 0) {
-            // A vertex is a (position, normal) pair; hard edges reference one position with several normals.
-            std::unordered_map<std::uint64_t, std::uint32_t> vertexOfPair;
-            vertexOfPair.reserve(mPositions.size() * 2);
-            mesh.triangles.resize(mPositionTriangles.size());
-            for (std::size_t t = 0; t < mPositionTriangles.size(); ++t) {
-                for (int corner = 0; corner < 3; ++corner) {
-                    const std::uint32_t position = mPositionTriangles[t][corner];
-                    const std::uint32_t normal = mNormalTriangles[t][corner];
-                    const std::uint64_t key = (std::uint64_t(position) << 32) | normal;
-                    const auto [it, inserted] = vertexOfPair.try_emplace(key, std::uint32_t(mesh.positions.size()));
-                    if (inserted) {
-                        mesh.positions.push_back(positions[position]);
-                        mesh.normals.push_back(mNormals[normal]);
-                    }
-                    mesh.triangles[t][corner] = it->second;
+        std::size_t groupsWithFaces = 0;
+        for (const FaceGroup& group : mGroups) {
+            groupsWithFaces += group.corners.empty() ? 0 : 1;
+        }
+        std::size_t facesWithoutNormals = 0;
+        std::size_t facesWithoutTexcoords = 0;
+        for (FaceGroup& group : mGroups) {
+            if (group.corners.empty()) {
+                continue;
+            }
+            RawMesh mesh;
+            mesh.name =
+                groupsWithFaces == 1 || group.materialName.empty() ? baseName : baseName + "/" + group.materialName;
+            if (!mMeshName.empty()) mesh.nodePath = {mMeshName}; // the first `o` name: what --frame selects
+            const auto material = mMaterials.byName.find(group.materialName);
+            if (material != mMaterials.byName.end()) {
+                mesh.material = material->second;
+            } else {
+                mesh.material.name = group.materialName; // undefined (warned): the default grey, its name kept
+                if (mHasColors) {
+                    // The base colour multiplies the vertex colours (glTF's rule); without a material that says
+                    // otherwise, white shows them as the file wrote them rather than 80 % darker.
+                    mesh.material.baseColorFactor = glm::vec4(1.0f);
                 }
             }
-        } else {
-            if (mFacesWithNormals > 0) {
-                scene.warnings.push_back(std::to_string(mFacesWithoutNormals) +
-                                         " faces have no normals; all normals recomputed");
+            // File normals only when every face of the mesh has them; otherwise all are computed (a warning).
+            const bool useNormals = group.facesWithNormals > 0 && group.facesWithoutNormals == 0;
+            if (group.facesWithNormals > 0 && group.facesWithoutNormals > 0) {
+                facesWithoutNormals += group.facesWithoutNormals;
             }
-            mesh.positions = std::move(positions);
-            mesh.triangles = std::move(mPositionTriangles);
+            const bool useTexcoords = group.facesWithTexcoords > 0;
+            if (useTexcoords) {
+                facesWithoutTexcoords += group.facesWithoutTexcoords;
+            }
+            if (groupsWithFaces == 1 && !useNormals && !useTexcoords) {
+                // Positions (and colours) alone: the file's vertices as they are, in their order; finalizeMesh()
+                // drops the ones no face uses.
+                mesh.positions = std::move(positions);
+                mesh.colors = std::move(mColors);
+                mesh.triangles.resize(group.corners.size() / 3);
+                for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+                    mesh.triangles[t] = glm::uvec3(group.corners[3 * t].position, group.corners[3 * t + 1].position,
+                                                   group.corners[3 * t + 2].position);
+                }
+            } else {
+                buildVertices(group, positions, useNormals, useTexcoords, mesh);
+            }
+            group.corners = {};
+            scene.meshes.push_back(std::move(mesh));
+        }
+        if (facesWithoutNormals > 0) {
+            scene.warnings.push_back(std::to_string(facesWithoutNormals) +
+                                     " faces have no normals; all normals recomputed" +
+                                     (groupsWithFaces > 1 ? " in their meshes" : ""));
+        }
+        if (facesWithoutTexcoords > 0) {
+            scene.warnings.push_back(std::to_string(facesWithoutTexcoords) +
+                                     " faces have no texture coordinates (vt) in a mesh whose other faces have them; "
+                                     "their corners take (0, 0)");
+        }
+        if (mNonFiniteTexcoords > 0) {
+            scene.warnings.push_back(std::to_string(mNonFiniteTexcoords) +
+                                     " texture coordinates (vt) are not finite in float; they read as (0, 0)");
         }
         if (mSkippedNonFaces > 0) {
             scene.warnings.push_back(std::to_string(mSkippedNonFaces) + " line/point elements (l, p) skipped");
         }
-        scene.meshes.push_back(std::move(mesh));
         return scene;
+    }
+
+    /** One vertex per distinct (position, texture coordinate, normal) a face corner names: a hard edge or a texture
+     *  seam references one position with several normals or coordinates and stays split; finalizeMesh() welds the
+     *  rest. */
+    void buildVertices(const FaceGroup& group, const std::vector<glm::vec3>& positions, bool useNormals,
+                       bool useTexcoords, RawMesh& mesh) const {
+        std::unordered_map<Corner, std::uint32_t, CornerHash> vertexOfCorner;
+        mesh.triangles.resize(group.corners.size() / 3);
+        for (std::size_t c = 0; c < group.corners.size(); ++c) {
+            Corner corner = group.corners[c];
+            corner.normal = useNormals ? corner.normal : kAbsent;
+            corner.texcoord = useTexcoords ? corner.texcoord : kAbsent;
+            const auto [it, inserted] = vertexOfCorner.try_emplace(corner, std::uint32_t(mesh.positions.size()));
+            if (inserted) {
+                mesh.positions.push_back(positions[corner.position]);
+                if (useNormals) {
+                    mesh.normals.push_back(mNormals[corner.normal]);
+                }
+                if (useTexcoords) {
+                    mesh.texcoords[0].push_back(corner.texcoord == kAbsent ? glm::vec2(0.0f)
+                                                                           : mTexcoords[corner.texcoord]);
+                }
+                if (!mColors.empty()) {
+                    mesh.colors.push_back(mColors[corner.position]);
+                }
+            }
+            mesh.triangles[c / 3][int(c % 3)] = it->second;
+        }
     }
 
     const std::string& mPath;
@@ -453,17 +640,21 @@ private:
     std::vector<std::string> mInputFiles; ///< the mtllib files read
     std::vector<std::string> mWarnings;
     std::map<std::string, std::size_t> mUsedMaterials; ///< usemtl name -> first line using it
-    std::set<std::string> mDefinedMaterials;           ///< newmtl names of every library read
+    ObjMaterials mMaterials;                           ///< of every library read
     bool mMissingLibrary = false;
     std::vector<glm::dvec3> mPositions; ///< as read; rounded to float once the model's extent is known
+    std::vector<glm::vec4> mColors;     ///< one per position once a `v` line had a colour, else empty
+    bool mHasColors = false;
+    std::vector<glm::vec2> mTexcoords; ///< (u, 1 - v)
     std::vector<glm::vec3> mNormals;
-    std::vector<glm::uvec3> mPositionTriangles;
-    std::vector<glm::uvec3> mNormalTriangles; ///< parallel to mPositionTriangles while every face has normals
-    std::vector<Corner> mCorners;             ///< scratch for the current face
+    std::vector<FaceGroup> mGroups;                        ///< in the order of their first face or usemtl
+    std::map<std::string, std::uint32_t> mGroupOfMaterial; ///< usemtl name -> index in mGroups
+    std::uint32_t mCurrentGroup = kAbsent;                 ///< kAbsent: the faces before any usemtl, made on use
+    std::size_t mCornerCount = 0;                          ///< in all groups
+    std::vector<Corner> mCorners;                          ///< scratch for the current face
     std::vector<ForwardReference> mForwardReferences;
-    std::size_t mFacesWithNormals = 0;
-    std::size_t mFacesWithoutNormals = 0;
     std::size_t mSkippedNonFaces = 0;
+    std::size_t mNonFiniteTexcoords = 0;
 };
 
 } // namespace
@@ -497,6 +688,21 @@ std::vector<std::string> objReferencedFiles(const std::string& path, std::string
             const std::size_t to = std::min(names.find_first_of(" \t", from), names.size());
             if (from != 0 || to != names.size()) files.push_back(beside(names.substr(from, to - from)));
             at = to;
+        }
+    }
+    // The textures of the libraries that exist, read as readObj() reads them (regular files, their reported size).
+    const std::size_t libraries = files.size();
+    for (std::size_t i = 0; i < libraries; ++i) {
+        std::error_code error;
+        if (!std::filesystem::is_regular_file(files[i], error)) continue;
+        const std::uintmax_t size = std::filesystem::file_size(files[i], error);
+        std::ifstream file(files[i], std::ios::binary);
+        if (error || !file) continue;
+        std::string text(std::size_t(size), '\0');
+        file.read(text.data(), std::streamsize(size));
+        text.resize(std::size_t(file.gcount()));
+        for (std::string& texture : mtlReferencedFiles(files[i], text)) {
+            if (std::ranges::find(files, texture) == files.end()) files.push_back(std::move(texture));
         }
     }
     return files;

@@ -102,7 +102,8 @@ std::size_t MeshBudget::estimate(std::size_t vertices, std::size_t triangles) co
     const auto sum = [](std::size_t a, std::size_t b) { return a > SIZE_MAX - b ? SIZE_MAX : a + b; };
     const std::size_t allVertices = sum(mVertices, vertices);
     const std::size_t allTriangles = sum(mTriangles, triangles);
-    return sum(mFileBytes, sum(product(allVertices, kBytesPerVertex), product(allTriangles, kBytesPerTriangle)));
+    return sum(sum(mFileBytes, mOtherBytes),
+               sum(product(allVertices, kBytesPerVertex), product(allTriangles, kBytesPerTriangle)));
 }
 
 void MeshBudget::chargeFile(std::size_t bytes) {
@@ -110,6 +111,14 @@ void MeshBudget::chargeFile(std::size_t bytes) {
     if (estimate(0, 0) > mLimitBytes)
         throwLoadError(mPath, "the file is " + std::to_string(bytes >> 20) + " MiB; the load would hold about " +
                                   std::to_string(estimate(0, 0) >> 20) + " MiB, above the memory limit of " +
+                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
+}
+
+void MeshBudget::chargeBytes(std::size_t bytes) {
+    mOtherBytes = mOtherBytes > SIZE_MAX - bytes ? SIZE_MAX : mOtherBytes + bytes;
+    if (estimate(0, 0) > mLimitBytes)
+        throwLoadError(mPath, "the load would hold about " + std::to_string(estimate(0, 0) >> 20) +
+                                  " MiB (with the meshes' node paths), above the memory limit of " +
                                   std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
 }
 
@@ -194,14 +203,22 @@ void checkLoadOptions(const LoadOptions& options) {
         throw std::invalid_argument("loadScene(): weldTolerance must be finite and >= 0, got " +
                                     std::to_string(options.weldTolerance));
     }
+    if (!std::isfinite(options.time) || options.time < 0.0) {
+        throw std::invalid_argument("loadScene(): time must be finite and >= 0, got " + std::to_string(options.time));
+    }
 }
 
-detail::RawScene readContent(const std::string& path, std::string_view content, detail::MeshBudget& budget) {
+detail::RawScene readContent(const std::string& path, std::string_view content, detail::MeshBudget& budget,
+                             const LoadOptions& options) {
     detail::RawScene raw;
     switch (kindFromExtension(path)) {
-    case FileKind::Gltf: raw = detail::readGltf(path, content, budget); break; // JSON or GLB: the content decides
+    case FileKind::Gltf: raw = detail::readGltf(path, content, budget, options); break; // the content decides JSON/GLB
     case FileKind::Obj: raw = detail::readObj(path, content, budget); break;
     case FileKind::Stl: raw = detail::readStl(path, content, budget); break;
+    }
+    if (!options.animation.empty() && kindFromExtension(path) != FileKind::Gltf) {
+        raw.warnings.push_back("animation '" + detail::excerptForMessage(options.animation) +
+                               "' ignored: " + raw.format + " files have no animations");
     }
     // The model first, then what the reader opened beside it.
     raw.inputFiles.insert(raw.inputFiles.begin(), path);
@@ -300,14 +317,14 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     requireRegularFile(path);
     detail::MeshBudget budget(path, options.memoryLimitBytes);
     const std::string content = readWholeFile(path, budget);
-    return finalizeScene(path, readContent(path, content, budget), options);
+    return finalizeScene(path, readContent(path, content, budget, options), options);
 }
 
 Scene loadSceneFromMemory(const std::string& path, std::string_view content, const LoadOptions& options) {
     checkLoadOptions(options);
     detail::MeshBudget budget(path, options.memoryLimitBytes);
     budget.chargeFile(content.size());
-    return finalizeScene(path, readContent(path, content, budget), options);
+    return finalizeScene(path, readContent(path, content, budget, options), options);
 }
 
 std::vector<std::string> referencedFiles(const std::string& path) {

@@ -34,6 +34,9 @@ struct Mesh {
     std::vector<glm::vec2> texcoords[2];
     std::vector<glm::vec4> colors; ///< linear RGBA vertex colours (glTF COLOR_0, OBJ `v x y z r g b`), or empty
     Material material;             ///< what the surface looks like (scene/Material.h)
+    /** The names of the nodes from the scene's root down to the one holding this mesh (glTF node names, "" for an
+     *  unnamed node; an OBJ's `o` name), or empty when the format has no nodes (STL). --frame selects meshes by it. */
+    std::vector<std::string> nodePath;
 
     std::size_t triangleCount() const { return triangles.size(); }
 };
@@ -116,6 +119,12 @@ struct LoadOptions {
      *  triangle counts the file declares or has reached (detail::MeshBudget); above it loading stops with a
      *  SceneError naming the file. The CLI sets it from --memory-limit. */
     std::size_t memoryLimitBytes = kDefaultLoadMemoryLimit;
+    /** A glTF animation to pose the model by: its name, or its index as text when no animation has that name; empty
+     *  for the rest pose (the nodes' own transforms and morph weights). A name the file does not have is a SceneError
+     *  listing the animations it has. The CLI sets it from --animation. */
+    std::string animation;
+    /** Seconds into `animation` (clamped to each channel's keyframes); finite and >= 0. The CLI's --time. */
+    double time = 0.0;
 };
 
 /** Reads .gltf, .glb (and .vrm, a GLB), .obj or .stl (binary or ASCII), chosen by content and extension.
@@ -129,9 +138,9 @@ Scene loadScene(const std::string& path, const LoadOptions& options = {});
 Scene loadSceneFromMemory(const std::string& path, std::string_view content, const LoadOptions& options = {});
 
 /** The files a model names besides itself, found without loading it: a glTF's external buffers and images and its
- *  materials' shade maps (a GLB's JSON chunk alone is read), an OBJ's material libraries. For checks before any work
- *  (a batch's outputs must not replace a file another model reads). Best effort: a file that cannot be read names
- *  none, and loading it reports why. */
+ *  materials' shade maps (a GLB's JSON chunk alone is read), an OBJ's material libraries and their textures. For checks
+ * before any work (a batch's outputs must not replace a file another model reads). Best effort: a file that cannot be
+ * read names none, and loading it reports why. */
 std::vector<std::string> referencedFiles(const std::string& path);
 
 /** A bounding sphere of every mesh (centre of the bounding box, radius to the farthest vertex), in the scene's local

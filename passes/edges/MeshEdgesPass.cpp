@@ -61,14 +61,19 @@ MeshEdgesPass::EdgeLines MeshEdgesPass::uploadEdgeLines(const std::string& outpu
     lines.vertexArray.emplace(label);
     lines.vertexArray->setVec3Attribute(GpuScene::kPositionLocation, mScene.meshes()[meshIndex].positions);
     lines.vertexArray->setIndexBuffer(*lines.indices);
+    mScene.meshes()[meshIndex].materialAttributes.attachTo(*lines.vertexArray);
     lines.indexCount = GLsizei(indices.size());
     return lines;
 }
 
 std::size_t MeshEdgesPass::drawEdgeLines(const std::vector<EdgeLines>& lines) {
     std::size_t edges = 0;
-    for (const EdgeLines& mesh : lines) {
+    const bool transparency = mScene.hasTransparency();
+    for (std::size_t index = 0; index < lines.size(); ++index) {
+        const EdgeLines& mesh = lines[index];
         if (mesh.indexCount == 0) continue;
+        // An edge through what a material cuts out is not drawn (the lines follow the cut-out surface).
+        if (transparency) mScene.bindMaterial(*mLineProgram, index);
         mesh.vertexArray->bind();
         glDrawElements(GL_LINES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
         // GL's diamond-exit rule leaves out a line's last pixel, so two edges of a chain that meet head to head
@@ -81,11 +86,17 @@ std::size_t MeshEdgesPass::drawEdgeLines(const std::vector<EdgeLines>& lines) {
 
 void MeshEdgesPass::prepare(GlPassContext& context) {
     if (!mDepthProgram)
-        mDepthProgram = std::make_unique<GlProgram>(
-            mShaders.build({mName + " model depth", "edges/edges.vert", "common/line_mask.frag", {}, {}}));
+        mDepthProgram = std::make_unique<GlProgram>(mShaders.build({mName + " model depth",
+                                                                    "edges/edges.vert",
+                                                                    "common/line_mask.frag",
+                                                                    materialAlphaDefines(mScene),
+                                                                    {"common/material.glsl"}}));
     if (!mLineProgram)
-        mLineProgram = std::make_unique<GlProgram>(
-            mShaders.build({mName + " lines", "edges/edges.vert", "edges/edges.frag", {}, {}}));
+        mLineProgram = std::make_unique<GlProgram>(mShaders.build({mName + " lines",
+                                                                   "edges/edges.vert",
+                                                                   "edges/edges.frag",
+                                                                   materialAlphaDefines(mScene),
+                                                                   {"common/material.glsl"}}));
     const std::size_t meshCount = mScene.meshes().size();
     const bool anyLive = context.isLive("silhouette") || context.isLive("crease") || context.isLive("border");
     if (!anyLive) return;
@@ -132,7 +143,7 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
         glDepthFunc(kDepthNearer);
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(kFillOffsetFactor, kFillOffsetUnits);
-        drawModelDepth(*mDepthProgram, meshes, viewFromModel, clipFromView);
+        drawModelDepth(*mDepthProgram, mScene, viewFromModel, clipFromView);
         glDisable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(0.0f, 0.0f);
         glDisable(GL_DEPTH_TEST);

@@ -104,7 +104,7 @@ private:
     EdgeLines uploadEdgeLines(const std::string& output, std::size_t meshIndex,
                               const std::vector<std::uint32_t>& indices) const;
     /** Draws `lines` (one per mesh) as GL_LINES; returns the number of edges. */
-    static std::size_t drawEdgeLines(const std::vector<EdgeLines>& lines);
+    std::size_t drawEdgeLines(const std::vector<EdgeLines>& lines);
 
     std::string mName;
     ShaderLibrary& mShaders;

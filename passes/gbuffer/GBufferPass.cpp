@@ -54,8 +54,11 @@ GlProgram& GBufferPass::programFor(const std::vector<std::string>& defines) {
     for (const std::string& define : defines) key += define + ";";
     auto& program = mPrograms[key];
     if (!program)
-        program = std::make_unique<GlProgram>(
-            mShaders.build({mName, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", defines, {"common/color.glsl"}}));
+        program = std::make_unique<GlProgram>(mShaders.build({mName,
+                                                              "gbuffer/gbuffer.vert",
+                                                              "gbuffer/gbuffer.frag",
+                                                              defines,
+                                                              {"common/color.glsl", "common/material.glsl"}}));
     return *program;
 }
 
@@ -69,12 +72,16 @@ std::vector<std::vector<const GBufferPass::Field*>> GBufferPass::liveGroups(cons
     return groups;
 }
 
-std::vector<std::string> GBufferPass::definesFor(const std::vector<const Field*>& group) {
+std::vector<std::string> GBufferPass::definesFor(const std::vector<const Field*>& group) const {
     std::vector<std::string> defines;
     int slot = 0;
     for (const Field* field : group) {
         defines.push_back(std::string("OUT_") + field->define + " 1");
         defines.push_back(std::string("LOC_") + field->define + " " + std::to_string(slot++));
+    }
+    if (mScene.hasTransparency()) {
+        defines.push_back("MATERIAL_ALPHA 1");
+        defines.push_back("MATERIAL_SOLID_ONLY 1");
     }
     return defines;
 }
@@ -109,7 +116,6 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
     clearColorAndDepth(int(drawSlots.size()));
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(kDepthNearer);
-    glDisable(GL_CULL_FACE); // open meshes show their insides through holes
     glDisable(GL_BLEND);
     const glm::mat4 viewFromModel = mFrame.viewFromModel();
     const glm::mat3 viewNormalFromModel = glm::inverseTranspose(glm::mat3(viewFromModel));
@@ -123,14 +129,17 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
         glUniform2f(program.uniform("viewportSize"), float(width), float(height));
         glUniform1f(program.uniform("radialLengthScale"), float(1.0 / mFrame.radialLengthUnit));
     }
-    const GLint baseColorLocation = program.uniform("baseColor");
     const GLint materialIdLocation = program.uniform("materialId"); // -1 unless the field is live: ignored
-    for (const GpuScene::DrawMesh& mesh : mScene.meshes()) {
-        glUniform4fv(baseColorLocation, 1, glm::value_ptr(mesh.baseColor));
+    const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
+    for (std::size_t index = 0; index < meshes.size(); ++index) {
+        const GpuScene::DrawMesh& mesh = meshes[index];
+        mScene.bindMaterial(program, index);
         glUniform1ui(materialIdLocation, mesh.materialId);
+        setFaceCulling(*mesh.material);
         mesh.vertexArray.bind();
         glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
     }
+    glDisable(GL_CULL_FACE);
     glBindVertexArray(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_DEPTH_TEST);

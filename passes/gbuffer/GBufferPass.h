@@ -72,7 +72,7 @@ private:
     /** The live fields in attachment order, in groups of at most kMaxDrawBuffers: one draw each. */
     static std::vector<std::vector<const Field*>> liveGroups(const GlPassContext& context);
     /** OUT_* and LOC_* defines for one group's draw. */
-    static std::vector<std::string> definesFor(const std::vector<const Field*>& group);
+    std::vector<std::string> definesFor(const std::vector<const Field*>& group) const;
     void drawGroup(GlPassContext& gl, const std::vector<const Field*>& group);
     static constexpr int kMaxDrawBuffers = 8; ///< GL 4.5's guaranteed GL_MAX_DRAW_BUFFERS (llvmpipe has exactly 8)
     GlProgram& programFor(const std::vector<std::string>& defines);

@@ -201,9 +201,11 @@ void SceneOrientation::compute() {
         meshSets.frontArray.setVec3Attribute(GpuScene::kNormalLocation, drawMesh.normals);
         meshSets.frontArray.setVec2Attribute(kShadeCoordLocation, meshSets.shadeCoords);
         meshSets.frontArray.setIndexBuffer(meshSets.frontIndices);
+        drawMesh.materialAttributes.attachTo(meshSets.frontArray);
         meshSets.backArray.setVec3Attribute(GpuScene::kPositionLocation, drawMesh.positions);
         meshSets.backArray.setVec3Attribute(GpuScene::kNormalLocation, drawMesh.normals);
         meshSets.backArray.setIndexBuffer(meshSets.backIndices);
+        drawMesh.materialAttributes.attachTo(meshSets.backArray);
         sets.push_back(std::move(meshSets));
         report.uploadMilliseconds += millisecondsSince(uploadStart);
     }

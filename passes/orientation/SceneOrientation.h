@@ -53,7 +53,7 @@ public:
         GLsizei frontIndexCount;
         GLsizei backIndexCount;
     };
-    static constexpr GLuint kShadeCoordLocation = 2;
+    static constexpr GLuint kShadeCoordLocation = 5; ///< after the material snippet's 2-4
 
     /** Keeps references; computes nothing until sets() or report() is called. Throws std::invalid_argument for a
      *  front rule outside 1..3 or a negative shininess. */

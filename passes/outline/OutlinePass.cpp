@@ -29,8 +29,11 @@ void OutlinePass::describe(nlohmann::ordered_json& report) const { report["skipp
 
 void OutlinePass::prepare(GlPassContext&) {
     if (!mDepthProgram)
-        mDepthProgram = std::make_unique<GlProgram>(
-            mShaders.build({mName + " model depth", "outline/outline.vert", "common/line_mask.frag", {}, {}}));
+        mDepthProgram = std::make_unique<GlProgram>(mShaders.build({mName + " model depth",
+                                                                    "outline/outline.vert",
+                                                                    "common/line_mask.frag",
+                                                                    materialAlphaDefines(mScene),
+                                                                    {"common/material.glsl"}}));
     if (!mLineProgram)
         mLineProgram = std::make_unique<GlProgram>(mShaders.build(
             {mName + " back edges", "outline/outline.vert", "common/line_mask.frag", {}, {}, "outline/outline.geom"}));
@@ -55,7 +58,7 @@ void OutlinePass::execute(GlPassContext& gl) {
 
     // 1. The model's depth: every face (open meshes show their insides through holes), no colour.
     glDepthFunc(kDepthNearer);
-    drawModelDepth(*mDepthProgram, meshes, viewFromModel, clipFromView);
+    drawModelDepth(*mDepthProgram, mScene, viewFromModel, clipFromView);
 
     // 2. Back-face edges as quads 2 x widthPixels wide. Nearer or equal: a silhouette edge lies exactly on the model's
     // depth.

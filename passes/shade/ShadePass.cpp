@@ -133,7 +133,7 @@ bool ShadePass::usesSpecularRowBands() const {
 }
 
 std::vector<std::string> ShadePass::defines() const {
-    std::vector<std::string> result = {modelDefine(mSettings.model)};
+    std::vector<std::string> result = {modelDefine(mSettings.model), "MATERIAL_EMISSIVE 1"};
     if (usesSpecularRowBands()) result.push_back("SPECULAR_ROW_BANDS " + std::to_string(mSpecularBorderCount));
     if (drawsOrientationSets()) {
         result.push_back("SHADE_COORDS 1");
@@ -146,8 +146,12 @@ std::vector<std::string> ShadePass::defines() const {
 
 void ShadePass::prepare(GlPassContext&) {
     if (!mProgram)
-        mProgram = std::make_unique<GlProgram>(mShaders.build(
-            {mName, "shade/shade.vert", "shade/shade.frag", defines(), {"common/color.glsl", "common/lighting.glsl"}}));
+        mProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName,
+                            "shade/shade.vert",
+                            "shade/shade.frag",
+                            defines(),
+                            {"common/color.glsl", "common/lighting.glsl", "common/material.glsl"}}));
     for (MapSlot& slot : mMaps) {
         if (!slot.used || slot.texture) continue;
         // Nearest, clamped to the edge (every GlTexture is). uploadImage() turns the image bottom-up, so GL row 0 is
@@ -158,6 +162,56 @@ void ShadePass::prepare(GlPassContext&) {
         uploadImage(*slot.texture, texels);
     }
     mScene.meshes();
+    if (drawsMToonOutlines() && !mOutlineProgram) {
+        std::vector<std::string> outlineDefines = defines();
+        outlineDefines.push_back("MTOON_OUTLINE 1");
+        mOutlineProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName + " mtoon outline",
+                            "shade/mtoon_outline.vert",
+                            "shade/shade.frag",
+                            outlineDefines,
+                            {"common/color.glsl", "common/lighting.glsl", "common/material.glsl"}}));
+        const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
+        for (std::size_t index = 0; index < meshes.size(); ++index) {
+            GlVertexArray array(mName + " mtoon outline of mesh " + std::to_string(index));
+            array.setVec3Attribute(GpuScene::kPositionLocation, meshes[index].positions);
+            array.setVec3Attribute(GpuScene::kNormalLocation, mScene.hullNormals(index));
+            array.setIndexBuffer(meshes[index].indices);
+            meshes[index].materialAttributes.attachTo(array);
+            mOutlineArrays.push_back(std::move(array));
+        }
+    }
+}
+
+bool ShadePass::drawsMToonOutlines() const {
+    if (mSettings.model != ShadingModel::MToon) return false;
+    for (std::size_t index = 0; index < mScene.meshCount(); ++index)
+        if (mScene.materials().outlineOf(index).has_value()) return true;
+    return false;
+}
+
+void ShadePass::drawMToonOutlines(const glm::mat4& viewFromModel, const glm::mat3& viewNormalFromModel,
+                                  const glm::mat4& clipFromView, int width, int height) {
+    GlProgram& program = *mOutlineProgram;
+    program.use();
+    glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
+    glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
+    glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    glUniform2f(program.uniform("viewportSize"), float(width), float(height));
+    glUniform3fv(program.uniform("towardLightView"), 1, glm::value_ptr(mFrame.towardLightView()));
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    // Only the shell's back faces: where it sticks out beyond the surface, the outline.
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT);
+    for (std::size_t index = 0; index < mOutlineArrays.size(); ++index) {
+        if (!mScene.materials().outlineOf(index)) continue;
+        mScene.bindMaterial(program, index);
+        mOutlineArrays[index].bind();
+        glDrawElements(GL_TRIANGLES, mScene.meshes()[index].indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+    glCullFace(GL_BACK);
+    glDisable(GL_CULL_FACE);
 }
 
 void ShadePass::execute(GlPassContext& gl) {
@@ -185,7 +239,6 @@ void ShadePass::execute(GlPassContext& gl) {
 
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(kDepthNearer);
-    glDisable(GL_CULL_FACE); // two-sided: open meshes show their insides through holes
     glDisable(GL_BLEND);
 
     const glm::mat4 viewFromModel = mFrame.viewFromModel();
@@ -209,9 +262,9 @@ void ShadePass::execute(GlPassContext& gl) {
     const GLint borderLimitLocation = rowBands ? program.uniform("specularBorderLimit") : -1;
     const GLint bandRowLocation = rowBands ? program.uniform("specularBandRow") : -1;
 
-    const GLint baseColorLocation = program.uniform("baseColor");
     std::optional<std::size_t> boundSlot;
-    for (std::size_t i = 0; i < meshes.size(); ++i) {
+    bool blending = false;
+    for (const std::size_t i : mScene.drawOrder(viewFromModel)) {
         if (!mMaps.empty() && boundSlot != mMeshMap[i]) {
             // Each mesh's own map; consecutive meshes that share one keep it bound.
             const MapSlot& slot = mMaps[mMeshMap[i]];
@@ -223,7 +276,17 @@ void ShadePass::execute(GlPassContext& gl) {
             }
             boundSlot = mMeshMap[i];
         }
-        glUniform4fv(baseColorLocation, 1, glm::value_ptr(meshes[i].baseColor));
+        if (meshes[i].material->alphaMode == AlphaMode::Blend && !blending) {
+            // drawOrder() puts blended meshes last, back to front: each goes over what is behind it, writing no
+            // depth. The target holds premultiplied colour (postfx/Composite.h), so over nothing a surface leaves
+            // colour x alpha and its alpha.
+            glEnable(GL_BLEND);
+            glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+            glDepthMask(GL_FALSE);
+            blending = true;
+        }
+        mScene.bindMaterial(program, i);
+        setFaceCulling(*meshes[i].material);
         if (sets) {
             const SceneOrientation::MeshSets& set = (*sets)[i];
             set.frontArray.bind();
@@ -233,6 +296,10 @@ void ShadePass::execute(GlPassContext& gl) {
             glDrawElements(GL_TRIANGLES, meshes[i].indexCount, GL_UNSIGNED_INT, nullptr);
         }
     }
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    if (mOutlineProgram) drawMToonOutlines(viewFromModel, viewNormalFromModel, clipFromView, width, height);
     glBindVertexArray(0);
     if (!mMaps.empty()) glBindTextureUnit(0, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

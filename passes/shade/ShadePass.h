@@ -101,6 +101,11 @@ private:
 
     /** Draws the front sets of a CPU face-orientation method (comic only) instead of the whole meshes. */
     bool drawsOrientationSets() const;
+    /** mtoon with a mesh whose MToon material asks for an outline (worldCoordinates or screenCoordinates). */
+    bool drawsMToonOutlines() const;
+    /** The MToon outline shells, after the surfaces (shaders/shade/mtoon_outline.vert). */
+    void drawMToonOutlines(const glm::mat4& viewFromModel, const glm::mat3& viewNormalFromModel,
+                           const glm::mat4& clipFromView, int width, int height);
     /** MODEL_* and variant defines for the one program of this pass. */
     std::vector<std::string> defines() const;
     /** Comic on the GPU with maps of at most kMaxSpecularRowBands + 1 row bands: rows found by comparisons. */
@@ -117,6 +122,8 @@ private:
     std::vector<std::size_t> mMeshMap;    ///< cel, comic: per GpuScene mesh, its entry of mMaps
     std::size_t mSpecularBorderCount = 0; ///< comic: the most row-band borders of a map in use
     std::unique_ptr<GlProgram> mProgram;  ///< the one program of this model and variant
+    std::unique_ptr<GlProgram> mOutlineProgram; ///< mtoon's outline shells, when drawsMToonOutlines()
+    std::vector<GlVertexArray> mOutlineArrays;  ///< per mesh: positions, hull normals, material attributes
     PassDepthBuffer mDepth;               ///< the pass's own depth attachment, kept between runs
 };
 

@@ -22,6 +22,9 @@ const std::vector<ShadingModelTraits>& shadingModels() {
         {ShadingModel::Comic, "comic", "MODEL_COMIC 1", true, true, false, false, true,
          "2-D shade map indexed by diffuse max(n.l, 0) (across) and specular\n"
          "     max(r.v, 0)^shininess (up), Winnemöller & Bangay 2002"},
+        {ShadingModel::MToon, "mtoon", "MODEL_MTOON 1", false, false, false, false, false,
+         "the file's MToon materials (VRM): lit and shade colours, shading shift and toony, rim\n"
+         "     (VRMC_materials_mtoon-1.0's formulas, docs/mtoon.md); other materials get a hard band"},
     };
     return kModels;
 }

@@ -9,7 +9,7 @@
 
 namespace inkgraph {
 
-enum class ShadingModel { None, Flat, Gouraud, Lambert, Phong, Cel, Comic };
+enum class ShadingModel { None, Flat, Gouraud, Lambert, Phong, Cel, Comic, MToon };
 
 struct ShadingModelTraits {
     ShadingModel model;

@@ -40,12 +40,16 @@ void SilhouettePass::describe(nlohmann::ordered_json& report) const {
 
 void SilhouettePass::prepare(GlPassContext&) {
     if (!mDepthProgram)
-        mDepthProgram = std::make_unique<GlProgram>(
-            mShaders.build({mName + " model depth", "silhouette/hull.vert", "common/line_mask.frag", {}, {}}));
+        mDepthProgram = std::make_unique<GlProgram>(mShaders.build({mName + " model depth",
+                                                                    "silhouette/hull.vert",
+                                                                    "common/line_mask.frag",
+                                                                    materialAlphaDefines(mScene),
+                                                                    {"common/material.glsl"}}));
     if (!mHullProgram) {
-        const std::string offset = mSettings.objectWidth ? "HULL_OBJECT_WIDTH 1" : "HULL_SCREEN_WIDTH 1";
-        mHullProgram = std::make_unique<GlProgram>(
-            mShaders.build({mName + " hull", "silhouette/hull.vert", "common/line_mask.frag", {offset}, {}}));
+        std::vector<std::string> defines = materialAlphaDefines(mScene);
+        defines.push_back(mSettings.objectWidth ? "HULL_OBJECT_WIDTH 1" : "HULL_SCREEN_WIDTH 1");
+        mHullProgram = std::make_unique<GlProgram>(mShaders.build(
+            {mName + " hull", "silhouette/hull.vert", "common/line_mask.frag", defines, {"common/material.glsl"}}));
     }
     const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
     if (mSettings.weldNormals && mHullArrays.empty()) {
@@ -54,6 +58,7 @@ void SilhouettePass::prepare(GlPassContext&) {
             array.setVec3Attribute(GpuScene::kPositionLocation, meshes[index].positions);
             array.setVec3Attribute(GpuScene::kNormalLocation, mScene.hullNormals(index));
             array.setIndexBuffer(meshes[index].indices);
+            meshes[index].materialAttributes.attachTo(array);
             mHullArrays.push_back(std::move(array));
         }
     }
@@ -76,7 +81,7 @@ void SilhouettePass::execute(GlPassContext& gl) {
 
     // 1. The model's depth: every face (open meshes show their insides through holes), no colour.
     glDisable(GL_CULL_FACE);
-    drawModelDepth(*mDepthProgram, meshes, viewFromModel, clipFromView);
+    drawModelDepth(*mDepthProgram, mScene, viewFromModel, clipFromView);
 
     // 2. The hull's back faces where they are nearer than the model (strictly nearer: where the hull meets the model's
     // own depth, the model wins). The depth stays the model's, so hulls of different meshes never hide each other.
@@ -91,7 +96,10 @@ void SilhouettePass::execute(GlPassContext& gl) {
     glUniform2f(mHullProgram->uniform("viewportSize"), float(width), float(height));
     glUniform1f(mHullProgram->uniform("widthPixels"), mSettings.widthPixels);
     glUniform1f(mHullProgram->uniform("objectWidth"), mSettings.objectWidth.value_or(0.0f));
+    const bool transparency = mScene.hasTransparency();
     for (std::size_t index = 0; index < meshes.size(); ++index) {
+        // A cut-out's hull is cut where the surface is (its vertices carry the surface's texture coordinates).
+        if (transparency) mScene.bindMaterial(*mHullProgram, index);
         (mSettings.weldNormals ? mHullArrays[index] : meshes[index].vertexArray).bind();
         glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
     }

@@ -12,6 +12,9 @@ layout(location = 0) out float outLine;
 layout(binding = 0) uniform sampler2D modelDepth;
 
 void main() {
+#ifdef MATERIAL_ALPHA
+    if (materialCutsOut(materialBaseColor().a)) discard; // common/material.glsl
+#endif
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     ivec2 lastPixel = textureSize(modelDepth, 0) - 1;
     const ivec2 kAround[5] = ivec2[5](ivec2(0, 0), ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));

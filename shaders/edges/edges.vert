@@ -7,4 +7,7 @@ uniform mat4 clipFromView;
 
 void main() {
     gl_Position = clipFromView * (viewFromModel * vec4(inPosition, 1.0));
+#ifdef MATERIAL_ALPHA
+    passMaterialAttributes();
+#endif
 }

@@ -3,7 +3,7 @@
 in vec3 viewPosition;
 in vec3 viewNormal;
 
-uniform vec4 baseColor; // linear
+// common/material.glsl: the base colour (OUT_BASECOLOR) and, with MATERIAL_ALPHA, the cut-out that decides coverage.
 #ifdef OUT_MATERIAL_ID
 uniform uint materialId; // GpuScene::DrawMesh::materialId, one per draw
 #endif
@@ -51,6 +51,13 @@ vec2 imageDisplacement(vec3 d) {
 #endif
 
 void main() {
+#if defined(OUT_BASECOLOR) || defined(MATERIAL_ALPHA)
+    vec4 surfaceColor = materialBaseColor();
+#endif
+#ifdef MATERIAL_ALPHA
+    // Cut out before anything is written: coverage, depth and every field follow the mask's edge.
+    if (materialCutsOut(surfaceColor.a)) discard;
+#endif
     // Interpolated normals are renormalised per fragment; seen from behind (open meshes, holes) the surface is
     // two-sided, so the normal turns toward the viewer's side.
     float normalLength = length(viewNormal);
@@ -80,7 +87,7 @@ void main() {
     outCoverage = 1.0;
 #endif
 #ifdef OUT_BASECOLOR
-    outBaseColor = vec4(encodeSrgb(baseColor.rgb), 1.0);
+    outBaseColor = vec4(encodeSrgb(surfaceColor.rgb), 1.0);
 #endif
 #ifdef OUT_MATERIAL_ID
     // + 1 so the cleared background (0) is no material; exact in float32 below 2^24 materials.

@@ -17,4 +17,5 @@ void main() {
     viewPosition = position.xyz;
     viewNormal = viewNormalFromModel * inNormal;
     gl_Position = clipFromView * position;
+    passMaterialAttributes();
 }

@@ -11,4 +11,7 @@ void main() {
     vec4 position = viewFromModel * vec4(inPosition, 1.0);
     viewPosition = position.xyz;
     gl_Position = clipFromView * position;
+#ifdef MATERIAL_ALPHA
+    passMaterialAttributes();
+#endif
 }

@@ -1,15 +1,16 @@
-// Forward shading, one model per program (MODEL_* define from ShadePass): flat, gouraud, lambert, phong, cel, comic
-// (docs/shading.md). Colour is computed in linear RGB and written sRGB-encoded, alpha 1 on the model.
+// Forward shading, one model per program (MODEL_* define from ShadePass): flat, gouraud, lambert, phong, cel, comic,
+// mtoon (docs/shading.md, docs/mtoon.md). The base colour is the material's (common/material.glsl: factor x texture
+// x vertex colour). Colour is computed in linear RGB and written sRGB-encoded, with the surface's alpha (1 unless the
+// material blends).
 in vec3 viewPosition;
 in vec3 viewNormal;
 #ifdef MODEL_GOURAUD
-in vec3 vertexColor;
+in float vertexLight;
 #endif
 #ifdef SHADE_COORDS
 in vec2 shadeCoord;
 #endif
 
-uniform vec4 baseColor;       // linear
 uniform vec3 towardLightView; // unit, view space
 uniform float ambient;          // flat, gouraud, lambert, phong
 uniform float shininess;        // phong, comic
@@ -30,13 +31,70 @@ uniform vec3 constantTowardEye; // comic: -V_c in view space, unit (Winnemöller
 layout(binding = 0) uniform sampler2D shadeMap;
 #endif
 
+#ifdef MODEL_MTOON
+// VRMC_materials_mtoon-1.0's parameters of the mesh's material (docs/mtoon.md); a material without MToon gets
+// mtoonPresent 0 and the fallback there.
+uniform int mtoonPresent;
+uniform vec3 mtoonShadeColorFactor;
+uniform int mtoonShadeMultiplyTextured;
+uniform int mtoonShadeMultiplySet;
+uniform mat3 mtoonShadeMultiplyTransform;
+layout(binding = 3) uniform sampler2D mtoonShadeMultiplyTexture;
+uniform float mtoonShadingShiftFactor;
+uniform float mtoonShadingToonyFactor;
+uniform vec3 mtoonRimColorFactor;
+uniform float mtoonRimFresnelPowerFactor;
+uniform float mtoonRimLiftFactor;
+#ifdef MTOON_OUTLINE
+uniform vec3 mtoonOutlineColorFactor; // linear
+uniform float mtoonOutlineLightingMixFactor;
+#endif
+
+// The shade tone of a material without MToon parameters, times its lit colour (docs/mtoon.md).
+const float kMToonFallbackShade = 0.5;
+
+// MToon's linearstep: 0 below a, 1 above b, linear between (the specification's definition).
+float linearstep(float a, float b, float t) {
+    return clamp((t - a) / max(b - a, 1e-6), 0.0, 1.0);
+}
+
+vec3 mtoonColor(vec3 lit, vec3 n, vec3 l, vec3 v) {
+    vec3 shade;
+    float shift, toony;
+    if (mtoonPresent != 0) {
+        shade = mtoonShadeColorFactor;
+        if (mtoonShadeMultiplyTextured != 0)
+            shade *= texture(mtoonShadeMultiplyTexture,
+                             materialTexcoord(mtoonShadeMultiplySet, mtoonShadeMultiplyTransform)).rgb;
+        shift = mtoonShadingShiftFactor;
+        toony = mtoonShadingToonyFactor;
+    } else {
+        // No MToon in the file: the lit colour's own shadow tone, a hard band at n.l = 0 (docs/mtoon.md).
+        shade = lit * kMToonFallbackShade;
+        shift = 0.0;
+        toony = 0.9;
+    }
+    float shading = linearstep(-1.0 + toony, 1.0 - toony, dot(n, l) + shift);
+    vec3 color = mix(shade, lit, shading);
+    if (mtoonPresent != 0) {
+        float rim = pow(clamp(1.0 - dot(n, v) + mtoonRimLiftFactor, 0.0, 1.0), max(mtoonRimFresnelPowerFactor, 1e-5));
+        color += mtoonRimColorFactor * rim;
+    }
+    return color;
+}
+#endif
+
 layout(location = 0) out vec4 outColor;
 
 // The interpolated normal, renormalised and, seen from behind (open meshes, holes), turned to the viewer's side.
 vec3 shadingNormal() {
     float normalLength = length(viewNormal);
     vec3 n = normalLength > 0.0 ? viewNormal / normalLength : vec3(0.0, 0.0, 1.0);
+#ifdef MTOON_OUTLINE
+    return n; // the outline shell is seen from inside (front faces culled); its normal already points out
+#else
     return gl_FrontFacing ? n : -n;
+#endif
 }
 
 // Unit vector from the surface to the eye (the view-space origin).
@@ -64,6 +122,12 @@ vec3 shadeMapColor(vec2 uv) {
 #endif
 
 void main() {
+    vec4 surface = materialBaseColor();
+#ifdef MODEL_MTOON
+    if (mtoonPresent != 0) surface = materialTexturedColor(); // MToon ignores vertex colours
+#endif
+    if (materialCutsOut(surface.a)) discard;
+    vec3 base = surface.rgb;
     vec3 l = towardLightView;
     vec3 rgb;
 #if defined(MODEL_FLAT)
@@ -72,22 +136,22 @@ void main() {
     float faceNormalLength = length(faceNormal);
     vec3 n = faceNormalLength > 0.0 ? faceNormal / faceNormalLength : vec3(0.0, 0.0, 1.0);
     if (dot(n, -viewPosition) < 0.0) n = -n;
-    rgb = baseColor.rgb * diffuseLighting(n, l, ambient);
+    rgb = base * diffuseLighting(n, l, ambient);
 #elif defined(MODEL_GOURAUD)
-    rgb = vertexColor;
+    rgb = base * vertexLight;
 #elif defined(MODEL_LAMBERT)
-    rgb = baseColor.rgb * diffuseLighting(shadingNormal(), l, ambient);
+    rgb = base * diffuseLighting(shadingNormal(), l, ambient);
 #elif defined(MODEL_PHONG)
     vec3 n = shadingNormal();
     float nDotL = dot(n, l);
     float specular = nDotL > 0.0 ? specularTerm(reflect(-l, n), towardEye(), shininess) : 0.0;
-    rgb = baseColor.rgb * diffuseLighting(n, l, ambient) + vec3(specularStrength * specular);
+    rgb = base * diffuseLighting(n, l, ambient) + vec3(specularStrength * specular);
 #elif defined(MODEL_CEL)
-    rgb = shadeMapColor(vec2(halfLambert(shadingNormal(), l), 0.0)) * baseColor.rgb;
+    rgb = shadeMapColor(vec2(halfLambert(shadingNormal(), l), 0.0)) * base;
 #elif defined(MODEL_COMIC)
 #ifdef SHADE_COORDS
     // Winnemöller & Bangay's per-vertex (s, t) from the CPU, interpolated.
-    rgb = shadeMapColor(shadeCoord) * baseColor.rgb;
+    rgb = shadeMapColor(shadeCoord) * base;
 #else
     vec3 n = shadingNormal();
     float nDotL = dot(n, l);
@@ -105,14 +169,29 @@ void main() {
         for (int border = 0; border < SPECULAR_ROW_BANDS; ++border)
             if (x <= specularBorderLimit[border]) row = specularBandRow[border + 1];
     }
-    rgb = shadeMapTexel(shadeMapIndex(max(nDotL, 0.0), textureSize(shadeMap, 0).x), row) * baseColor.rgb;
+    rgb = shadeMapTexel(shadeMapIndex(max(nDotL, 0.0), textureSize(shadeMap, 0).x), row) * base;
 #else
     vec2 st = vec2(max(nDotL, 0.0), nDotL > 0.0 ? specularTerm(reflect(-l, n), v, shininess) : 0.0);
-    rgb = shadeMapColor(st) * baseColor.rgb;
+    rgb = shadeMapColor(st) * base;
 #endif
 #endif
+#elif defined(MODEL_MTOON)
+    rgb = mtoonColor(base, shadingNormal(), l, towardEye());
 #else
 #error "shade.frag needs one MODEL_* define"
 #endif
-    outColor = vec4(encodeSrgb(rgb), 1.0);
+    // KHR_materials_unlit: no lighting at all. A VRM material that also has MToon keeps MToon (unlit is its
+    // fallback for viewers without MToon).
+#ifdef MODEL_MTOON
+    if (materialUnlit != 0 && mtoonPresent == 0) rgb = base;
+#else
+    if (materialUnlit != 0) rgb = base;
+#endif
+    rgb += materialEmissive();
+#ifdef MTOON_OUTLINE
+    // The outline's colour takes the surface's lighting as far as the mix factor says (docs/mtoon.md).
+    rgb = mix(mtoonOutlineColorFactor, mtoonOutlineColorFactor * rgb, mtoonOutlineLightingMixFactor);
+#endif
+    // Straight alpha for the blend of BLEND surfaces over what is behind them; cut-out and opaque surfaces are 1.
+    outColor = vec4(encodeSrgb(rgb), materialAlphaMode == 2 ? surface.a : 1.0);
 }

@@ -16,10 +16,9 @@ out vec3 viewPosition;
 out vec3 viewNormal;
 
 #ifdef MODEL_GOURAUD
-uniform vec4 baseColor;       // linear
 uniform vec3 towardLightView; // unit
 uniform float ambient;
-out vec3 vertexColor;         // linear, interpolated
+out float vertexLight;        // the lighting factor, interpolated; the fragment multiplies the base colour
 #endif
 
 void main() {
@@ -30,11 +29,12 @@ void main() {
 #ifdef SHADE_COORDS
     shadeCoord = inShadeCoord;
 #endif
+    passMaterialAttributes();
 #ifdef MODEL_GOURAUD
     // Lit with the vertex normal as stored: a vertex cannot know which side its triangles will be seen from, so
     // faces seen from behind (through holes of open meshes) show the lighting of their front side.
     float normalLength = length(viewNormal);
     vec3 n = normalLength > 0.0 ? viewNormal / normalLength : vec3(0.0, 0.0, 1.0);
-    vertexColor = baseColor.rgb * diffuseLighting(n, towardLightView, ambient);
+    vertexLight = diffuseLighting(n, towardLightView, ambient);
 #endif
 }

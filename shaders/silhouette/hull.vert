@@ -28,4 +28,7 @@ void main() {
     }
 #endif
     gl_Position = clip;
+#ifdef MATERIAL_ALPHA
+    passMaterialAttributes();
+#endif
 }

@@ -251,8 +251,8 @@ TEST_F(Extremes, NonFinitePositionsAndNormalsAreRejectedInEveryFormat) {
 }
 
 TEST_F(Extremes, NonFiniteDataTheRendererDoesNotUseIsIgnored) {
-    // OBJ texture coordinates and STL facet normals are never read (smooth normals are computed), so NaN there
-    // cannot reach a buffer: the model renders, finite.
+    // A non-finite OBJ texture coordinate reads as (0, 0) with a warning, and STL facet normals are never read (smooth
+    // normals are computed), so NaN there cannot reach a buffer: the model renders, finite.
     const fs::path obj = directory / "nan_texcoord.obj";
     std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt nan inf\nvt 0 0\nf 1/1 2/2 3/1\n";
     readDump(render(obj, "obj", {"--size", "32x32", "--lines", "contour,depth-edge"}));

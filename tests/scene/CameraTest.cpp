@@ -223,14 +223,14 @@ TEST(Camera, GltfCameraIsUsedWithoutFlags) {
     EXPECT_EQ(widened.source, "gltf");
     EXPECT_EQ(widened.fovYDegrees, 40.0);
 
-    // An explicit eye replaces the file's placement; the file's lens still applies.
+    // An explicit eye replaces the file's camera: its placement, up and lens (CameraAimTest has the lens rule).
     CameraRequest eye;
     eye.eye = glm::dvec3(5, 0, 0);
     const Camera moved = resolveCamera(eye, scene);
     EXPECT_EQ(moved.source, "flags");
     EXPECT_EQ(moved.up, glm::dvec3(0, 1, 0));
     expectNear(moved.target, glm::dvec3(0.0), 1e-6);
-    EXPECT_EQ(moved.fovYDegrees, 22.0);
+    EXPECT_EQ(moved.fovYDegrees, 35.0);
 }
 
 TEST(Camera, InvalidRequestsThrow) {

@@ -1,6 +1,6 @@
 /** @file KHR_draco_mesh_compression: a quad compressed with libdraco's encoder (tests/scene/data/draco-quad.bin, made
  *  by make-draco-quad.cpp there) loads with the positions, texture coordinates and colours put in; broken Draco data
- *  is refused naming the extension. */
+ *  is refused naming the extension, and so are morph targets of a compressed primitive at a non-zero weight. */
 
 #include "scene/Scene.h"
 
@@ -89,6 +89,33 @@ TEST(GltfDraco, CompressedQuadLoadsWithItsAttributes) {
     }
     // Counter-clockwise seen from +Z, as the faces were given.
     for (const glm::uvec3& triangle : mesh.triangles) EXPECT_GT(test::triangleCross(mesh, triangle).z, 0.0);
+}
+
+/** The quad with one morph target moving POSITION at `weight`: Draco reorders vertices, so the target's uncompressed
+ *  accessor would not line up with them; a non-zero weight is refused, a zero one changes nothing and loads. */
+std::string dracoGltfWithMorphTarget(const CompressedQuad& quad, const std::string& weight) {
+    std::string json = dracoGltf(quad.bytes, quad);
+    const auto replace = [&](const std::string& from, const std::string& to) {
+        const std::size_t at = json.find(from);
+        if (at == std::string::npos) throw std::runtime_error("dracoGltf() changed: no '" + from + "'");
+        json.replace(at, from.size(), to);
+    };
+    replace("\"type\": \"SCALAR\"}]",
+            "\"type\": \"SCALAR\"}, {\"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\"}]");
+    replace("\"indices\": 3,", "\"indices\": 3, \"targets\": [{\"POSITION\": 4}],");
+    replace("\"meshes\": [{", "\"meshes\": [{\"weights\": [" + weight + "], ");
+    return json;
+}
+
+TEST(GltfDraco, MorphTargetsOfACompressedPrimitiveAreRefusedWhenWeighted) {
+    const CompressedQuad quad = compressedQuad();
+    const TempFile weighted("draco-morph.gltf", dracoGltfWithMorphTarget(quad, "0.5"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(weighted.path()); });
+    EXPECT_NE(message.find("morph targets of a Draco-compressed primitive are not supported (target 0 has weight 0.5)"),
+              std::string::npos)
+        << message;
+    const TempFile rest("draco-morph-rest.gltf", dracoGltfWithMorphTarget(quad, "0"));
+    EXPECT_EQ(loadScene(rest.path()).triangleCount(), 2u);
 }
 
 /** `json` and `binary` as a GLB container. */

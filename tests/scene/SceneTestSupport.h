@@ -48,6 +48,39 @@ private:
     std::string mPath;
 };
 
+/** A folder under the system temp directory for a model and the files beside it (an OBJ and its .mtl and textures);
+ *  removed with everything in it on destruction. */
+class TempFolder {
+public:
+    TempFolder() {
+        static std::atomic<int> counter{0};
+        mPath = std::filesystem::temp_directory_path() /
+                ("inkgraph_folder_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+        std::filesystem::create_directories(mPath);
+    }
+    ~TempFolder() {
+        std::error_code ignored;
+        std::filesystem::remove_all(mPath, ignored);
+    }
+    TempFolder(const TempFolder&) = delete;
+    TempFolder& operator=(const TempFolder&) = delete;
+
+    /** Writes `content` to `name` in the folder; returns its path. */
+    std::string write(const std::string& name, std::string_view content) const {
+        const std::string file = path(name);
+        std::ofstream out(file, std::ios::binary);
+        out.write(content.data(), std::streamsize(content.size()));
+        if (!out) {
+            throw std::runtime_error("cannot write test file " + file);
+        }
+        return file;
+    }
+    std::string path(const std::string& name) const { return (mPath / name).string(); }
+
+private:
+    std::filesystem::path mPath;
+};
+
 /** A stored (local) position in world coordinates: Scene::origin + position. */
 inline glm::dvec3 worldPosition(const Scene& scene, const glm::vec3& stored) {
     return scene.origin + glm::dvec3(stored);

@@ -1,0 +1,225 @@
+#include "passes/material/SceneMaterials.h"
+
+#include "scene/TextureImage.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace inkgraph {
+namespace {
+
+int alphaModeCode(AlphaMode mode) {
+    switch (mode) {
+    case AlphaMode::Opaque: return 0;
+    case AlphaMode::Mask: return 1;
+    case AlphaMode::Blend: return 2;
+    }
+    return 0;
+}
+
+/** Binds `reference`'s texture and sampler to `unit` and sets `<prefix>Textured`, `<prefix>Set` and
+ *  `<prefix>Transform`; an absent texture leaves the unit as it is and the flag 0. */
+void bindTexture(SceneMaterials& materials, const GlProgram& program, const TextureRef& reference, GLuint unit,
+                 const std::string& prefix, bool srgb = true) {
+    const GLint textured = program.uniform((prefix + "Textured").c_str());
+    const GLuint texture = materials.texture(reference, srgb);
+    glUniform1i(textured, texture != 0 ? 1 : 0);
+    if (texture == 0) return;
+    glBindTextureUnit(unit, texture);
+    glBindSampler(unit, materials.sampler(reference.sampler));
+    glUniform1i(program.uniform((prefix + "Set").c_str()), reference.texCoord == 1 ? 1 : 0);
+    glUniformMatrix3fv(program.uniform((prefix + "Transform").c_str()), 1, GL_FALSE,
+                       glm::value_ptr(reference.transform));
+}
+
+int mipmapLevels(int width, int height) {
+    int levels = 1;
+    for (int side = std::max(width, height); side > 1; side /= 2) ++levels;
+    return levels;
+}
+
+} // namespace
+
+SceneMaterials::SceneMaterials(const Scene& scene, std::string modelPath)
+    : mScene(scene), mModelPath(std::move(modelPath)) {}
+
+SceneMaterials::~SceneMaterials() = default;
+
+GLuint SceneMaterials::texture(const TextureRef& reference, bool srgb) {
+    if (!reference.present()) return 0;
+    if (std::size_t(reference.image) >= mScene.images.size())
+        throw SceneError("SceneMaterials::texture(): '" + mModelPath + "': image " + std::to_string(reference.image) +
+                         " out of range (the model has " + std::to_string(mScene.images.size()) + ")");
+    const std::pair<int, bool> key(reference.image, srgb);
+    if (auto found = mTextures.find(key); found != mTextures.end()) return found->second.id();
+    const SceneImage& image = mScene.images[std::size_t(reference.image)];
+    const std::size_t left = mTextureByteLimit > mTextureBytes ? mTextureByteLimit - mTextureBytes : 0;
+    const DecodedImage decoded = decodeSceneImage(image, mModelPath, left);
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    GlHandle<TextureDeleter> handle(id);
+    // sRGB storage: the sampler decodes to linear before filtering, as glTF's base colour and emissive need.
+    glTextureStorage2D(id, mipmapLevels(decoded.width, decoded.height), GL_SRGB8_ALPHA8, decoded.width, decoded.height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    // Rows top first, as decoded: GL's t = 0 is then the image's top row, which is glTF's v = 0.
+    glTextureSubImage2D(id, 0, 0, 0, decoded.width, decoded.height, GL_RGBA, GL_UNSIGNED_BYTE, decoded.rgba.data());
+    glGenerateTextureMipmap(id);
+    labelObject(GL_TEXTURE, id, "image '" + image.name + "'");
+    mTextureBytes += decodedImageBytes(decoded.width, decoded.height);
+    return mTextures.emplace(key, std::move(handle)).first->second.id();
+}
+
+void SceneMaterials::describe(nlohmann::ordered_json& out) const {
+    using Json = nlohmann::ordered_json;
+    auto imageName = [&](const TextureRef& reference) -> Json {
+        if (!reference.present()) return nullptr;
+        if (std::size_t(reference.image) >= mScene.images.size()) return reference.image;
+        return mScene.images[std::size_t(reference.image)].name;
+    };
+    static const char* const kAlphaModes[] = {"opaque", "mask", "blend"};
+    std::vector<const Material*> seen;
+    std::vector<int> meshCounts;
+    for (const Mesh& mesh : mScene.meshes) {
+        auto found = std::find_if(seen.begin(), seen.end(), [&](const Material* m) { return *m == mesh.material; });
+        if (found == seen.end()) {
+            seen.push_back(&mesh.material);
+            meshCounts.push_back(1);
+        } else {
+            ++meshCounts[std::size_t(found - seen.begin())];
+        }
+    }
+    Json materials = Json::array();
+    for (std::size_t index = 0; index < seen.size(); ++index) {
+        const Material& material = *seen[index];
+        const glm::vec4& factor = material.baseColorFactor;
+        Json entry = {{"name", material.name},
+                      {"meshes", meshCounts[index]},
+                      {"base_color_factor", {factor.r, factor.g, factor.b, factor.a}},
+                      {"base_color_texture", imageName(material.baseColorTexture)},
+                      {"alpha_mode", kAlphaModes[alphaModeCode(material.alphaMode)]},
+                      {"double_sided", material.doubleSided},
+                      {"unlit", material.unlit}};
+        if (material.alphaMode == AlphaMode::Mask) entry["alpha_cutoff"] = material.alphaCutoff;
+        if (material.emissiveFactor != glm::vec3(0.0f))
+            entry["emissive_factor"] = {material.emissiveFactor.r, material.emissiveFactor.g,
+                                        material.emissiveFactor.b};
+        if (material.mtoon) {
+            const MToonMaterial& mtoon = *material.mtoon;
+            static const char* const kOutlineModes[] = {"none", "worldCoordinates", "screenCoordinates"};
+            entry["mtoon"] = {{"spec_version", mtoon.specVersion},
+                              {"shade_color_factor",
+                               {mtoon.shadeColorFactor.r, mtoon.shadeColorFactor.g, mtoon.shadeColorFactor.b}},
+                              {"shading_shift", mtoon.shadingShiftFactor},
+                              {"shading_toony", mtoon.shadingToonyFactor},
+                              {"outline_width_mode", kOutlineModes[int(mtoon.outlineWidthMode)]},
+                              {"outline_width", mtoon.outlineWidthFactor}};
+        }
+        materials.push_back(std::move(entry));
+    }
+    out["materials"] = std::move(materials);
+    out["images"] = {{"count", mScene.images.size()},
+                     {"decoded", mTextures.size()},
+                     {"decoded_bytes", mTextureBytes},
+                     {"byte_limit", mTextureByteLimit == std::size_t(-1) ? Json(nullptr) : Json(mTextureByteLimit)}};
+}
+
+std::optional<MToonMaterial> SceneMaterials::outlineOf(std::size_t meshIndex) const {
+    const std::optional<MToonMaterial>& mtoon = mScene.meshes.at(meshIndex).material.mtoon;
+    if (!mtoon || mtoon->outlineWidthMode == MToonMaterial::OutlineWidthMode::None ||
+        !(mtoon->outlineWidthFactor > 0.0f))
+        return std::nullopt;
+    return mtoon;
+}
+
+GLuint SceneMaterials::sampler(const TextureSampler& settings) {
+    for (const auto& [known, handle] : mSamplers)
+        if (known == settings) return handle.id();
+    GLuint id = 0;
+    glCreateSamplers(1, &id);
+    GlHandle<SamplerDeleter> handle(id);
+    glSamplerParameteri(id, GL_TEXTURE_MAG_FILTER, GLint(settings.magFilter));
+    glSamplerParameteri(id, GL_TEXTURE_MIN_FILTER, GLint(settings.minFilter));
+    glSamplerParameteri(id, GL_TEXTURE_WRAP_S, GLint(settings.wrapS));
+    glSamplerParameteri(id, GL_TEXTURE_WRAP_T, GLint(settings.wrapT));
+    mSamplers.emplace_back(settings, std::move(handle));
+    return id;
+}
+
+void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex) {
+    const Material& material = mScene.meshes.at(meshIndex).material;
+    glUniform4fv(program.uniform("materialBaseColorFactor"), 1, glm::value_ptr(material.baseColorFactor));
+    glUniform3fv(program.uniform("materialEmissiveFactor"), 1, glm::value_ptr(material.emissiveFactor));
+    glUniform1i(program.uniform("materialUnlit"), material.unlit ? 1 : 0);
+    glUniform1i(program.uniform("materialAlphaMode"), alphaModeCode(material.alphaMode));
+    glUniform1f(program.uniform("materialAlphaCutoff"), material.alphaCutoff);
+    glUniform1f(program.uniform("materialBlendSolidAlpha"), kBlendSolidAlpha);
+    // Only programs that sample a texture look its uniforms up, so a pass that never reads colour never decodes.
+    if (program.uniform("materialBaseColorTextured") >= 0)
+        bindTexture(*this, program, material.baseColorTexture, kBaseColorTextureUnit, "materialBaseColor");
+    if (program.uniform("materialEmissiveTextured") >= 0)
+        bindTexture(*this, program, material.emissiveTexture, kEmissiveTextureUnit, "materialEmissive");
+    const MToonMaterial mtoon = material.mtoon.value_or(MToonMaterial{});
+    glUniform1i(program.uniform("mtoonPresent"), material.mtoon ? 1 : 0);
+    glUniform3fv(program.uniform("mtoonShadeColorFactor"), 1, glm::value_ptr(mtoon.shadeColorFactor));
+    glUniform1f(program.uniform("mtoonShadingShiftFactor"), mtoon.shadingShiftFactor);
+    glUniform1f(program.uniform("mtoonShadingToonyFactor"), mtoon.shadingToonyFactor);
+    glUniform3fv(program.uniform("mtoonRimColorFactor"), 1, glm::value_ptr(mtoon.parametricRimColorFactor));
+    glUniform1f(program.uniform("mtoonRimFresnelPowerFactor"), mtoon.parametricRimFresnelPowerFactor);
+    glUniform1f(program.uniform("mtoonRimLiftFactor"), mtoon.parametricRimLiftFactor);
+    if (program.uniform("mtoonShadeMultiplyTextured") >= 0)
+        bindTexture(*this, program, mtoon.shadeMultiplyTexture, kShadeMultiplyTextureUnit, "mtoonShadeMultiply");
+    if (program.uniform("mtoonOutlineMode") >= 0) {
+        const int mode = mtoon.outlineWidthMode == MToonMaterial::OutlineWidthMode::WorldCoordinates    ? 1
+                         : mtoon.outlineWidthMode == MToonMaterial::OutlineWidthMode::ScreenCoordinates ? 2
+                                                                                                         : 0;
+        glUniform1i(program.uniform("mtoonOutlineMode"), material.mtoon ? mode : 0);
+        glUniform1f(program.uniform("mtoonOutlineWidthFactor"), mtoon.outlineWidthFactor);
+        glUniform3fv(program.uniform("mtoonOutlineColorFactor"), 1, glm::value_ptr(mtoon.outlineColorFactor));
+        glUniform1f(program.uniform("mtoonOutlineLightingMixFactor"), mtoon.outlineLightingMixFactor);
+        bindTexture(*this, program, mtoon.outlineWidthMultiplyTexture, kOutlineWidthTextureUnit,
+                    "mtoonOutlineWidthMultiply", /*srgb=*/false);
+    }
+    // What a mesh without the attribute reads: GL's current value of a disabled attribute array.
+    glVertexAttrib2f(kTexcoord0Location, 0.0f, 0.0f);
+    glVertexAttrib2f(kTexcoord1Location, 0.0f, 0.0f);
+    glVertexAttrib4f(kVertexColorLocation, 1.0f, 1.0f, 1.0f, 1.0f);
+}
+
+void setFaceCulling(const Material& material) {
+    if (material.doubleSided) {
+        glDisable(GL_CULL_FACE);
+        return;
+    }
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+}
+
+MeshAttributeBuffers uploadMaterialAttributes(const Mesh& mesh, const std::string& label) {
+    MeshAttributeBuffers uploaded;
+    for (int set = 0; set < 2; ++set) {
+        const std::vector<glm::vec2>& texcoords = mesh.texcoords[set];
+        if (texcoords.empty()) continue;
+        uploaded.attributes.push_back({set == 0 ? kTexcoord0Location : kTexcoord1Location, 2,
+                                       GlBuffer(texcoords.data(), texcoords.size() * sizeof(glm::vec2),
+                                                label + " texcoords " + std::to_string(set))});
+    }
+    if (!mesh.colors.empty())
+        uploaded.attributes.push_back(
+            {kVertexColorLocation, 4,
+             GlBuffer(mesh.colors.data(), mesh.colors.size() * sizeof(glm::vec4), label + " colours")});
+    return uploaded;
+}
+
+void MeshAttributeBuffers::attachTo(GlVertexArray& vertexArray) const {
+    for (const Attribute& attribute : attributes) {
+        if (attribute.components == 2)
+            vertexArray.setVec2Attribute(attribute.location, attribute.buffer);
+        else
+            vertexArray.setVec4Attribute(attribute.location, attribute.buffer);
+    }
+}
+
+} // namespace inkgraph

@@ -1,0 +1,98 @@
+#pragma once
+/** @file The materials of the scene on the GPU: their images decoded (scene/TextureImage.h) and uploaded the first
+ *  time a draw samples them, their samplers, and one call that binds a mesh's material for a program that includes
+ *  shaders/common/material.glsl. Every pass that draws the surface binds through here, so base colour, vertex
+ *  colours, alpha cut-outs and MToon parameters mean the same in each. */
+
+#include "gl/GlObjects.h"
+#include "scene/Scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+
+/** Texture units the material snippet samples (the shade map keeps unit 0). */
+inline constexpr GLuint kBaseColorTextureUnit = 1;
+inline constexpr GLuint kEmissiveTextureUnit = 2;
+inline constexpr GLuint kShadeMultiplyTextureUnit = 3;
+inline constexpr GLuint kOutlineWidthTextureUnit = 4;
+
+/** Vertex attribute locations of the material snippet (positions and normals are 0 and 1). */
+inline constexpr GLuint kTexcoord0Location = 2;
+inline constexpr GLuint kTexcoord1Location = 3;
+inline constexpr GLuint kVertexColorLocation = 4;
+
+/** In the passes that build the G-buffer and the line masks, a blended (BLEND) surface counts as solid where its alpha
+ *  reaches this: a character's hair or clothes marked BLEND with opaque texels get their lines, while glass and veils
+ *  let the lines of what lies behind show through. */
+inline constexpr float kBlendSolidAlpha = 0.9f;
+
+class SceneMaterials {
+public:
+    /** Keeps a reference to `scene`; nothing is decoded until a texture is bound. `modelPath` names the model in
+     *  messages. */
+    SceneMaterials(const Scene& scene, std::string modelPath);
+    ~SceneMaterials();
+    SceneMaterials(const SceneMaterials&) = delete;
+    SceneMaterials& operator=(const SceneMaterials&) = delete;
+
+    /** The most bytes the decoded textures may take together (decodedImageBytes() each, mipmaps included); a texture
+     *  that would go beyond it is refused with a SceneError that names the image and --memory-limit. */
+    void setTextureMemoryLimit(std::size_t bytes) { mTextureByteLimit = bytes; }
+    std::size_t textureBytes() const { return mTextureBytes; }
+    std::size_t texturesDecoded() const { return mTextures.size(); }
+
+    /** Sets the material uniforms of `program` (in use) for mesh `meshIndex` and binds its textures, decoding and
+     *  uploading them on first use; sets the constant attribute values a mesh without texture coordinates or
+     *  colours reads. */
+    void bind(const GlProgram& program, std::size_t meshIndex);
+
+    /** For --stats: each distinct material (name, meshes, base colour factor, texture, alpha, sides, unlit, emissive,
+     *  MToon) and the images (count, decoded, bytes). */
+    void describe(nlohmann::ordered_json& out) const;
+
+    /** Mesh `meshIndex`'s MToon material when it asks for an outline (a width mode other than none and a width
+     *  above 0), else empty. */
+    std::optional<MToonMaterial> outlineOf(std::size_t meshIndex) const;
+
+    /** The material's GL texture for `reference`, decoded and uploaded on the first call with mipmaps, or 0 when
+     *  `reference` names no image. Colour (`srgb`: base colour, emissive, shade) is stored sRGB8_ALPHA8, so sampling
+     *  decodes it to linear; data (the outline width) RGBA8 as is. */
+    GLuint texture(const TextureRef& reference, bool srgb = true);
+    /** A sampler object with the reference's filters and wraps. */
+    GLuint sampler(const TextureSampler& settings);
+
+private:
+    const Scene& mScene;
+    std::string mModelPath;
+    std::size_t mTextureByteLimit = std::size_t(-1);
+    std::size_t mTextureBytes = 0;
+    std::map<std::pair<int, bool>, GlHandle<TextureDeleter>> mTextures; ///< by Scene::images index and sRGB-ness
+    std::vector<std::pair<TextureSampler, GlHandle<SamplerDeleter>>> mSamplers;
+};
+
+/** Back-face culling as the material says: on (GL_BACK, counter-clockwise fronts) for a single-sided glTF material,
+ *  off for a double-sided one (its back faces are lit with the flipped normal by the shaders). */
+void setFaceCulling(const Material& material);
+
+/** A mesh's texture coordinates and colours on the GPU (those it has), at the snippet's attribute locations. */
+struct MeshAttributeBuffers {
+    struct Attribute {
+        GLuint location;
+        int components; ///< 2 (texture coordinates) or 4 (colour)
+        GlBuffer buffer;
+    };
+    std::vector<Attribute> attributes;
+
+    /** Adds every attribute to `vertexArray` (another array over the same vertices: the hull, the CPU face sets). */
+    void attachTo(GlVertexArray& vertexArray) const;
+};
+MeshAttributeBuffers uploadMaterialAttributes(const Mesh& mesh, const std::string& label);
+
+} // namespace inkgraph

@@ -1,0 +1,374 @@
+/** @file Wavefront material libraries (.mtl), for readObj(): per `newmtl`, the diffuse colour (Kd) and its map
+ *  (map_Kd with its options), the dissolve (d, or Tr = 1 - d), the emission (Ke) and a cut-out map_d. Everything else
+ *  (Ka, Ks, Ns, illum, bump, reflection) shapes a photoreal look that a toon render does not use, so it is skipped.
+ *  Bad lines are warnings, not refusals: a library that travels with a model is often half-broken, and the model is
+ *  still worth drawing. */
+
+#include "scene/FormatReaders.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <system_error>
+
+namespace inkgraph::detail {
+
+namespace {
+
+bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+std::string_view trimmed(std::string_view text) {
+    while (!text.empty() && isBlank(text.front())) text.remove_prefix(1);
+    while (!text.empty() && isBlank(text.back())) text.remove_suffix(1);
+    return text;
+}
+
+std::vector<std::string_view> tokensOf(std::string_view text) {
+    std::vector<std::string_view> tokens;
+    std::size_t at = 0;
+    while (at < text.size()) {
+        while (at < text.size() && isBlank(text[at])) ++at;
+        const std::size_t start = at;
+        while (at < text.size() && !isBlank(text[at])) ++at;
+        if (at > start) tokens.push_back(text.substr(start, at - start));
+    }
+    return tokens;
+}
+
+/** MTL keywords are lower- or mixed-case depending on the exporter ("map_Kd", "map_kd"); compared ignoring case. */
+bool sameKeyword(std::string_view a, std::string_view b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+               return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+           });
+}
+
+/** File text in quotes, shortened (excerptForMessage()). */
+std::string quotedExcerpt(std::string_view text) {
+    std::string out = "'";
+    out += excerptForMessage(text);
+    out += '\'';
+    return out;
+}
+
+/** A finite number filling the whole token (an explicit '+' allowed), else nothing. */
+std::optional<double> numberOf(std::string_view token) {
+    if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+    double value = 0.0;
+    const auto [next, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (token.empty() || error != std::errc() || next != token.data() + token.size() || !std::isfinite(value)) {
+        return std::nullopt;
+    }
+    return value;
+}
+
+/** A `map_*` statement: its options and the file it names. */
+struct MapStatement {
+    std::string file; ///< as written, spaces kept
+    TextureSampler sampler;
+    glm::mat3 transform{1.0f};
+};
+
+/** Reads `[options] file`; on a problem returns nothing and says why in `problem`. The options (MTL spec, "Texture
+ *  map statements") are skipped except -clamp (the sampler's wraps) and -s/-o (the texture transform). */
+std::optional<MapStatement> parseMapStatement(std::string_view rest, std::string& problem) {
+    const std::vector<std::string_view> tokens = tokensOf(rest);
+    MapStatement map;
+    glm::dvec2 scale{1.0}, offset{0.0};
+    std::size_t at = 0;
+    while (at < tokens.size() && tokens[at].size() > 1 && tokens[at].front() == '-') {
+        const std::string_view option = tokens[at++];
+        std::size_t fixedArguments = 0;
+        if (sameKeyword(option, "-s") || sameKeyword(option, "-o") || sameKeyword(option, "-t")) {
+            // One to three numbers (u [v [w]]); a texture has no w, and -t (turbulence) is not drawn.
+            glm::dvec3 values = sameKeyword(option, "-s") ? glm::dvec3(1.0) : glm::dvec3(0.0);
+            std::size_t count = 0;
+            while (count < 3 && at < tokens.size() && numberOf(tokens[at]))
+                values[int(count++)] = *numberOf(tokens[at++]);
+            if (count == 0) {
+                problem = "option '" + excerptForMessage(option) + "' without a number";
+                return std::nullopt;
+            }
+            if (sameKeyword(option, "-s")) scale = glm::dvec2(values);
+            if (sameKeyword(option, "-o")) offset = glm::dvec2(values);
+            continue;
+        }
+        if (sameKeyword(option, "-clamp")) {
+            if (at == tokens.size() || !(sameKeyword(tokens[at], "on") || sameKeyword(tokens[at], "off"))) {
+                problem = "option '-clamp' without 'on' or 'off'";
+                return std::nullopt;
+            }
+            const TextureWrap wrap = sameKeyword(tokens[at++], "on") ? TextureWrap::ClampToEdge : TextureWrap::Repeat;
+            map.sampler.wrapS = map.sampler.wrapT = wrap;
+            continue;
+        }
+        for (std::string_view known : {"-blendu", "-blendv", "-cc", "-bm", "-boost", "-texres", "-imfchan", "-type"}) {
+            if (sameKeyword(option, known)) fixedArguments = 1;
+        }
+        if (sameKeyword(option, "-mm")) fixedArguments = 2;
+        if (fixedArguments == 0) {
+            problem = "unknown option '" + excerptForMessage(option) + "'";
+            return std::nullopt;
+        }
+        if (tokens.size() - at < fixedArguments) {
+            problem = "option '" + excerptForMessage(option) + "' without its value";
+            return std::nullopt;
+        }
+        at += fixedArguments;
+    }
+    if (at == tokens.size()) {
+        problem = "names no file";
+        return std::nullopt;
+    }
+    // The rest of the line is the name: exporters write names with spaces unquoted.
+    const std::string_view line = trimmed(rest);
+    map.file.assign(tokens[at].data(), std::size_t(line.data() + line.size() - tokens[at].data()));
+    // OBJ looks up (u s + o, v s + o) with v pointing up; in the glTF convention the mesh stores (u, 1 - v), so the
+    // same lookup is v' = s v + (1 - s - o): a scale and a translation in KHR_texture_transform's matrix.
+    map.transform[0][0] = float(scale.x);
+    map.transform[1][1] = float(scale.y);
+    map.transform[2][0] = float(offset.x);
+    map.transform[2][1] = float(1.0 - scale.y - offset.y);
+    return map;
+}
+
+/** A texture name resolved beside the library. Windows exporters write "maps\wood.png"; when the name as written
+ *  is not a file, the same name with '/' is tried. */
+std::string resolveBeside(const std::filesystem::path& folder, const std::string& name) {
+    const auto resolve = [&](const std::string& written) {
+        const std::filesystem::path named{written};
+        return (named.is_absolute() ? named : folder / named).string();
+    };
+    const std::string asWritten = resolve(name);
+    std::error_code error;
+    if (name.find('\\') == std::string::npos || std::filesystem::exists(asWritten, error)) return asWritten;
+    std::string slashed = name;
+    std::replace(slashed.begin(), slashed.end(), '\\', '/');
+    return resolve(slashed);
+}
+
+class MtlReader {
+public:
+    MtlReader(const std::string& path, ObjMaterials& materials, std::vector<std::string>& warnings)
+        : mPath(path), mFolder(std::filesystem::path(path).parent_path()), mMaterials(materials), mWarnings(warnings) {}
+
+    void read(std::string_view content) {
+        content = withoutByteOrderMark(content);
+        for (std::size_t start = 0; start < content.size();) {
+            std::size_t end = content.find('\n', start);
+            if (end == std::string_view::npos) end = content.size();
+            ++mLine;
+            readLine(trimmed(content.substr(start, end - start)));
+            start = end + 1;
+        }
+        finishMaterial();
+    }
+
+private:
+    /** What one `newmtl` block said, turned into a Material when the block ends. */
+    struct Pending {
+        Material material;
+        std::size_t line = 0;
+        std::optional<double> dissolve;     ///< d
+        std::optional<double> transparency; ///< Tr
+        std::optional<MapStatement> diffuseMap;
+        std::size_t diffuseMapLine = 0;
+        std::optional<MapStatement> dissolveMap;
+        std::size_t dissolveMapLine = 0;
+    };
+
+    void warn(const std::string& problem) {
+        mWarnings.push_back("material library '" + mPath + "' line " + std::to_string(mLine) + ": " + problem);
+    }
+
+    void readLine(std::string_view line) {
+        if (line.empty() || line.front() == '#') return;
+        const std::size_t keywordEnd =
+            std::min(line.size(), std::size_t(std::find_if(line.begin(), line.end(), isBlank) - line.begin()));
+        const std::string_view keyword = line.substr(0, keywordEnd);
+        const std::string_view rest = trimmed(line.substr(keywordEnd));
+        if (sameKeyword(keyword, "newmtl")) {
+            finishMaterial();
+            if (rest.empty()) {
+                warn("'newmtl' without a name; its statements are ignored");
+                return;
+            }
+            mCurrent.emplace();
+            mCurrent->material.name = std::string(rest);
+            mCurrent->line = mLine;
+            return;
+        }
+        const bool used = sameKeyword(keyword, "Kd") || sameKeyword(keyword, "Ke") || sameKeyword(keyword, "d") ||
+                          sameKeyword(keyword, "Tr") || sameKeyword(keyword, "map_Kd") || sameKeyword(keyword, "map_d");
+        if (!used) return; // Ka, Ks, Ns, illum, bump, ...: not part of a toon render's surface
+        if (!mCurrent) {
+            warn(quotedExcerpt(keyword) + " before any 'newmtl'; ignored");
+            return;
+        }
+        if (sameKeyword(keyword, "Kd")) {
+            if (const auto colour = readColour(keyword, rest)) {
+                mCurrent->material.baseColorFactor = glm::vec4(*colour, mCurrent->material.baseColorFactor.a);
+            }
+        } else if (sameKeyword(keyword, "Ke")) {
+            if (const auto colour = readColour(keyword, rest)) mCurrent->material.emissiveFactor = *colour;
+        } else if (sameKeyword(keyword, "d") || sameKeyword(keyword, "Tr")) {
+            std::vector<std::string_view> tokens = tokensOf(rest);
+            if (!tokens.empty() && sameKeyword(tokens.front(), "-halo")) tokens.erase(tokens.begin()); // not drawn
+            const std::optional<double> value = tokens.size() == 1 ? numberOf(tokens.front()) : std::nullopt;
+            if (!value) {
+                warn("cannot read '" + excerptForMessage(keyword) + "' value '" + excerptForMessage(rest) +
+                     "'; ignored");
+                return;
+            }
+            (sameKeyword(keyword, "d") ? mCurrent->dissolve : mCurrent->transparency) = std::clamp(*value, 0.0, 1.0);
+        } else {
+            std::string problem;
+            std::optional<MapStatement> map = parseMapStatement(rest, problem);
+            if (!map) {
+                warn(quotedExcerpt(keyword) + " " + problem + "; ignored");
+                return;
+            }
+            if (sameKeyword(keyword, "map_Kd")) {
+                mCurrent->diffuseMap = std::move(map);
+                mCurrent->diffuseMapLine = mLine;
+            } else {
+                mCurrent->dissolveMap = std::move(map);
+                mCurrent->dissolveMapLine = mLine;
+            }
+        }
+    }
+
+    /** `Kd r g b` or `Kd r` (grey). MTL colours carry no colour space; like most renderers, they are taken as
+     *  linear as written (clamped to [0, 1], the range of glTF's factors). */
+    std::optional<glm::vec3> readColour(std::string_view keyword, std::string_view rest) {
+        const std::vector<std::string_view> tokens = tokensOf(rest);
+        if (!tokens.empty() && (sameKeyword(tokens.front(), "spectral") || sameKeyword(tokens.front(), "xyz"))) {
+            warn(quotedExcerpt(std::string(keyword) + " " + std::string(tokens.front())) +
+                 " colours are not supported; ignored");
+            return std::nullopt;
+        }
+        glm::dvec3 colour(0.0);
+        bool readable = tokens.size() == 1 || tokens.size() == 3;
+        for (std::size_t i = 0; readable && i < tokens.size(); ++i) {
+            const std::optional<double> value = numberOf(tokens[i]);
+            readable = value.has_value();
+            if (readable) colour[int(i)] = std::clamp(*value, 0.0, 1.0);
+        }
+        if (!readable) {
+            warn("cannot read '" + excerptForMessage(keyword) + "' colour '" + excerptForMessage(rest) +
+                 "' (1 or 3 numbers); ignored");
+            return std::nullopt;
+        }
+        if (tokens.size() == 1) colour = glm::dvec3(colour.x);
+        return glm::vec3(colour);
+    }
+
+    /** The image of a map, appended to the materials' images once per file; -1 when the file is missing (a
+     *  warning: the material is drawn without it). Every file named is recorded, found or not. */
+    int imageOf(const MapStatement& map, std::string_view keyword, std::size_t line) {
+        const std::string path = resolveBeside(mFolder, map.file);
+        if (std::ranges::find(mMaterials.namedFiles, path) == mMaterials.namedFiles.end()) {
+            mMaterials.namedFiles.push_back(path);
+        }
+        const auto known = std::ranges::find(mMaterials.images, path, &SceneImage::path);
+        if (known != mMaterials.images.end()) return int(known - mMaterials.images.begin());
+        std::error_code error;
+        // A FIFO or device would block when decoded: only regular files are images.
+        if (!std::filesystem::is_regular_file(path, error)) {
+            mWarnings.push_back("material library '" + mPath + "' line " + std::to_string(line) + ": " +
+                                std::string(keyword) + " '" + excerptForMessage(map.file) + "': '" +
+                                excerptForMessage(path) + "' is missing or not a regular file; material '" +
+                                excerptForMessage(mCurrent->material.name) + "' is drawn without it");
+            return -1;
+        }
+        SceneImage image;
+        image.name = map.file;
+        image.path = path;
+        mMaterials.images.push_back(std::move(image));
+        return int(mMaterials.images.size() - 1);
+    }
+
+    void finishMaterial() {
+        if (!mCurrent) return;
+        Pending& pending = *mCurrent;
+        Material& material = pending.material;
+        // d is the standard; Tr (= 1 - d) is what some exporters write instead. When both appear, d decides.
+        const double alpha = pending.dissolve       ? *pending.dissolve
+                             : pending.transparency ? 1.0 - *pending.transparency
+                                                    : 1.0;
+        material.baseColorFactor.a = float(alpha);
+        if (alpha < 1.0) material.alphaMode = AlphaMode::Blend;
+        if (pending.diffuseMap) {
+            material.baseColorTexture.image = imageOf(*pending.diffuseMap, "map_Kd", pending.diffuseMapLine);
+            material.baseColorTexture.sampler = pending.diffuseMap->sampler;
+            material.baseColorTexture.transform = pending.diffuseMap->transform;
+        }
+        if (pending.dissolveMap) {
+            // A cut-out is drawn from the base colour texture's alpha: map_d naming the map_Kd image (a PNG with an
+            // alpha channel, as exporters write it) is that. A separate mask image has no place in the material.
+            const std::string maskPath = resolveBeside(mFolder, pending.dissolveMap->file);
+            if (std::ranges::find(mMaterials.namedFiles, maskPath) == mMaterials.namedFiles.end()) {
+                mMaterials.namedFiles.push_back(maskPath);
+            }
+            const bool sameImage =
+                material.textured() && mMaterials.images[std::size_t(material.baseColorTexture.image)].path == maskPath;
+            if (sameImage) {
+                if (material.alphaMode == AlphaMode::Opaque) {
+                    material.alphaMode = AlphaMode::Mask;
+                    material.alphaCutoff = 0.5f;
+                }
+            } else {
+                mWarnings.push_back("material library '" + mPath + "' line " + std::to_string(pending.dissolveMapLine) +
+                                    ": map_d '" + excerptForMessage(pending.dissolveMap->file) +
+                                    "' is not the material's map_Kd image; only the map_Kd image's own alpha can cut "
+                                    "out, so it is ignored");
+            }
+        }
+        if (!mMaterials.byName.try_emplace(material.name, material).second) {
+            mWarnings.push_back("material library '" + mPath + "' line " + std::to_string(pending.line) +
+                                ": material '" + excerptForMessage(material.name) +
+                                "' is defined again; the first definition is kept");
+        }
+        mCurrent.reset();
+    }
+
+    const std::string& mPath;
+    std::filesystem::path mFolder;
+    ObjMaterials& mMaterials;
+    std::vector<std::string>& mWarnings;
+    std::size_t mLine = 0;
+    std::optional<Pending> mCurrent;
+};
+
+} // namespace
+
+void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials,
+             std::vector<std::string>& warnings) {
+    MtlReader(path, materials, warnings).read(content);
+}
+
+std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content) {
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    std::vector<std::string> files;
+    content = withoutByteOrderMark(content);
+    for (std::size_t start = 0; start < content.size();) {
+        std::size_t end = content.find('\n', start);
+        if (end == std::string_view::npos) end = content.size();
+        const std::string_view line = trimmed(content.substr(start, end - start));
+        start = end + 1;
+        const std::vector<std::string_view> tokens = tokensOf(line);
+        if (tokens.empty() || !(sameKeyword(tokens.front(), "map_Kd") || sameKeyword(tokens.front(), "map_d"))) {
+            continue;
+        }
+        std::string problem;
+        if (const auto map = parseMapStatement(line.substr(tokens.front().size()), problem)) {
+            const std::string file = resolveBeside(folder, map->file);
+            if (std::ranges::find(files, file) == files.end()) files.push_back(file);
+        }
+    }
+    return files;
+}
+
+} // namespace inkgraph::detail

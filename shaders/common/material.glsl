@@ -1,0 +1,81 @@
+// The surface's material (passes/material/SceneMaterials.h binds it per mesh): base colour = factor x texture x vertex
+// colour, in linear RGB with alpha; alpha cut-outs; emissive. Every pass that draws the surface includes this, so they
+// agree on where the surface is. Needs common/color.glsl before it in the fragment stage.
+#ifdef INKGRAPH_VERTEX_STAGE
+layout(location = 2) in vec2 inTexcoord0;
+layout(location = 3) in vec2 inTexcoord1;
+layout(location = 4) in vec4 inVertexColor; // linear; (1, 1, 1, 1) for a mesh without colours
+out vec2 materialTexcoord0;
+out vec2 materialTexcoord1;
+out vec4 materialVertexColor;
+
+void passMaterialAttributes() {
+    materialTexcoord0 = inTexcoord0;
+    materialTexcoord1 = inTexcoord1;
+    materialVertexColor = inVertexColor;
+}
+#endif
+
+#ifdef INKGRAPH_FRAGMENT_STAGE
+in vec2 materialTexcoord0;
+in vec2 materialTexcoord1;
+in vec4 materialVertexColor;
+
+uniform vec4 materialBaseColorFactor; // linear RGBA
+uniform int materialBaseColorTextured;
+uniform int materialBaseColorSet;      // TEXCOORD_0 or _1
+uniform mat3 materialBaseColorTransform; // KHR_texture_transform
+uniform int materialAlphaMode;           // 0 opaque, 1 mask, 2 blend
+uniform float materialAlphaCutoff;
+uniform float materialBlendSolidAlpha;   // SceneMaterials.h kBlendSolidAlpha
+// sRGB8_ALPHA8 storage: texture() returns linear colour.
+layout(binding = 1) uniform sampler2D materialBaseColorTexture;
+
+vec2 materialTexcoord(int set, mat3 transform) {
+    vec2 uv = set == 1 ? materialTexcoord1 : materialTexcoord0;
+    return (transform * vec3(uv, 1.0)).xy;
+}
+
+// Linear RGBA: factor x texture, without the vertex colour (MToon ignores vertex colours, docs/mtoon.md).
+vec4 materialTexturedColor() {
+    vec4 color = materialBaseColorFactor;
+    if (materialBaseColorTextured != 0)
+        color *= texture(materialBaseColorTexture, materialTexcoord(materialBaseColorSet, materialBaseColorTransform));
+    return color;
+}
+
+// Linear RGBA: factor x texture x vertex colour (glTF 2.0's base colour).
+vec4 materialBaseColor() {
+    return materialTexturedColor() * materialVertexColor;
+}
+
+// Whether a fragment of this alpha is not part of the surface: below the cutoff of a MASK material; with
+// MATERIAL_SOLID_ONLY (the G-buffer and the line masks), also a BLEND fragment less opaque than
+// materialBlendSolidAlpha, so lines behind glass stay visible.
+bool materialCutsOut(float alpha) {
+    if (materialAlphaMode == 1) return alpha < materialAlphaCutoff;
+#ifdef MATERIAL_SOLID_ONLY
+    if (materialAlphaMode == 2) return alpha < materialBlendSolidAlpha;
+#else
+    if (materialAlphaMode == 2) return alpha <= 0.0;
+#endif
+    return false;
+}
+
+#ifdef MATERIAL_EMISSIVE
+uniform vec3 materialEmissiveFactor; // linear
+uniform int materialEmissiveTextured;
+uniform int materialEmissiveSet;
+uniform mat3 materialEmissiveTransform;
+layout(binding = 2) uniform sampler2D materialEmissiveTexture;
+uniform int materialUnlit; // KHR_materials_unlit: the base colour as is
+
+vec3 materialEmissive() {
+    vec3 emissive = materialEmissiveFactor;
+    if (materialEmissiveTextured != 0)
+        emissive *=
+            texture(materialEmissiveTexture, materialTexcoord(materialEmissiveSet, materialEmissiveTransform)).rgb;
+    return emissive;
+}
+#endif
+#endif

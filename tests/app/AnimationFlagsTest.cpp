@@ -1,0 +1,63 @@
+// --animation and --time: parsed into RenderOptions, carried to the still's load, refused when they cannot apply.
+#include "app/Cli.h"
+#include "app/FlagTable.h"
+#include "app/Options.h"
+#include "app/Render.h"
+#include "app/StyleFile.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace inkgraph {
+namespace {
+
+std::string usageMessage(std::vector<std::string> arguments) {
+    try {
+        parseRenderOptions(arguments);
+    } catch (const UsageError& error) {
+        return error.what();
+    }
+    return "(no error)";
+}
+
+TEST(AnimationFlags, DefaultIsTheRestPose) {
+    const RenderOptions options = parseRenderOptions({"m.glb", "-o", "x.png"});
+    EXPECT_EQ(options.animation, "");
+    EXPECT_EQ(options.animationTime, 0.0);
+}
+
+TEST(AnimationFlags, NameAndTimeReachTheStillRequest) {
+    const RenderOptions options =
+        parseRenderOptions({"m.glb", "-o", "x.png", "--animation", "Walk Cycle", "--time", "1.25"});
+    EXPECT_EQ(options.animation, "Walk Cycle");
+    EXPECT_EQ(options.animationTime, 1.25);
+    const StillRequest request = stillRequestOf(options);
+    EXPECT_EQ(request.animation, "Walk Cycle");
+    EXPECT_EQ(request.animationTime, 1.25);
+}
+
+TEST(AnimationFlags, TimeWithoutAnimationHasNoEffect) {
+    EXPECT_EQ(usageMessage({"m.glb", "-o", "x.png", "--time", "2"}), "--time has no effect without --animation");
+}
+
+TEST(AnimationFlags, NegativeOrNonFiniteTimeIsRefused) {
+    for (const std::string& bad : {"-1", "nan", "inf", "1e999", "two"}) {
+        const std::string message = usageMessage({"m.glb", "-o", "x.png", "--animation", "0", "--time", bad});
+        EXPECT_EQ(message.rfind("--time: ", 0), 0u) << bad << ": " << message;
+    }
+    EXPECT_EQ(usageMessage({"m.glb", "-o", "x.png", "--animation", ""}).rfind("--animation: ", 0), 0u);
+}
+
+TEST(AnimationFlags, AreNotStyleSettings) {
+    // A pose belongs to a model, not to a look shared by many.
+    const std::vector<std::string>& names = styleSettingNames();
+    EXPECT_EQ(std::find(names.begin(), names.end(), "animation"), names.end());
+    EXPECT_EQ(std::find(names.begin(), names.end(), "time"), names.end());
+    EXPECT_NE(renderFlagsHelp().find("--animation NAME"), std::string::npos);
+    EXPECT_NE(renderFlagsHelp().find("--time SECONDS"), std::string::npos);
+}
+
+} // namespace
+} // namespace inkgraph

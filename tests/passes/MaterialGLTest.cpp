@@ -1,0 +1,424 @@
+// Materials in the passes that draw the surface, against known answers: a texture atlas seen as its exact texel
+// colours, KHR_texture_transform picking one texel, vertex colours interpolated in linear light, emissive and unlit,
+// an alpha-masked disc whose G-buffer coverage follows the mask to within a pixel (and whose mesh edges are cut
+// with it), a blended quad over an opaque one (the blend in the shading, the G-buffer seeing through), single- and
+// double-sided faces seen from behind, MToon's band (linearstep of n.l + shift) on a sphere against ray casting, and
+// textures decoded only when a pass samples them. Needs a GL context (llvmpipe in CI).
+#include "graph/GraphCompiler.h"
+#include "passes/gbuffer/GBufferPass.h"
+#include "passes/material/SceneMaterials.h"
+#include "passes/shade/ShadeMap.h"
+#include "passes/shade/ShadePass.h"
+#include "passes/edges/MeshEdgesPass.h"
+#include "scene/Procedural.h"
+#include "scene/TextureImage.h"
+#include "tests/support/AnalyticSphere.h"
+#include "tests/support/GlTestContext.h"
+#include "tests/support/PassHarness.h"
+#include "tests/support/TestCamera.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+constexpr int kSize = 128;
+constexpr double kDistance = 4.0;
+constexpr double kFovDegrees = 35.0;
+
+double encodeSrgb(double linear) {
+    const double x = std::clamp(linear, 0.0, 1.0);
+    return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+}
+double decodeSrgb(double encoded) {
+    return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+int srgbCode(double linear) { return int(std::lround(255.0 * encodeSrgb(linear))); }
+double linearOf(int code) { return decodeSrgb(code / 255.0); }
+
+/** A PNG of `image` (CV_8UC4 in RGBA order, row 0 at the top) as a scene image. */
+SceneImage pngImage(const cv::Mat& rgba, const std::string& name) {
+    cv::Mat bgra;
+    cv::cvtColor(rgba, bgra, cv::COLOR_RGBA2BGRA);
+    std::vector<unsigned char> bytes;
+    EXPECT_TRUE(cv::imencode(".png", bgra, bytes));
+    SceneImage image;
+    image.name = name;
+    image.mimeType = "image/png";
+    image.encoded = std::make_shared<const std::vector<unsigned char>>(std::move(bytes));
+    return image;
+}
+
+TextureRef nearestTexture(int image) {
+    TextureRef reference;
+    reference.image = image;
+    reference.sampler.magFilter = TextureFilter::Nearest;
+    reference.sampler.minFilter = TextureFilter::Nearest;
+    reference.sampler.wrapS = TextureWrap::ClampToEdge;
+    reference.sampler.wrapT = TextureWrap::ClampToEdge;
+    return reference;
+}
+
+/** The square [-half, half]^2 in the plane z = `z`, facing +Z (or -Z when `backward`), glTF texture coordinates:
+ *  (0, 0) at its top-left corner (-half, +half). */
+Mesh square(float half, float z, bool backward = false) {
+    Mesh mesh;
+    mesh.name = "square";
+    mesh.positions = {{-half, -half, z}, {half, -half, z}, {half, half, z}, {-half, half, z}};
+    const glm::vec3 normal(0.0f, 0.0f, backward ? -1.0f : 1.0f);
+    mesh.normals.assign(4, normal);
+    mesh.texcoords[0] = {{0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}, {0.0f, 0.0f}};
+    mesh.triangles = backward ? std::vector<glm::uvec3>{{0, 2, 1}, {0, 3, 2}}
+                              : std::vector<glm::uvec3>{{0, 1, 2}, {0, 2, 3}};
+    return mesh;
+}
+
+class MaterialPasses : public ::testing::Test, protected test::PassHarness {
+protected:
+    void SetUp() override { test::sharedGlContext(); }
+
+    void useScene(Scene built) {
+        scene = std::move(built);
+        frame.camera = test::lookingAt(scene, glm::dvec3(0.0, 0.0, kDistance), glm::dvec3(0.0), kFovDegrees, kSize,
+                                       kSize);
+        frame.worldOrigin = glm::dvec3(0.0);
+        frame.towardLightWorld = glm::dvec3(0.0, 0.0, 1.0);
+        gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+    }
+
+    cv::Mat shade(ShadingModel model = ShadingModel::Lambert) {
+        ShadeSettings settings;
+        settings.model = model;
+        std::optional<ShadeMap> map;
+        if (model == ShadingModel::Cel) map = makeBandShadeMap(5);
+        ShadePass pass("shade", shaders, *gpuScene, frame, settings, std::move(map));
+        const Plan plan = compile({&pass}, {"shade.color"});
+        executor.run(plan, {&pass}, {kSize, kSize, false});
+        cv::Mat image = executor.store().image("shade.color").clone();
+        executor.store().clear();
+        return image;
+    }
+
+    cv::Mat gbuffer(const std::string& field) {
+        GBufferPass pass("gbuffer", shaders, *gpuScene, frame, 1, GBufferPrecision::Float32);
+        const Plan plan = compile({&pass}, {"gbuffer." + field});
+        executor.run(plan, {&pass}, {kSize, kSize, false});
+        cv::Mat image = executor.store().image("gbuffer." + field).clone();
+        executor.store().clear();
+        return image;
+    }
+
+    /** The point of the plane z = `planeZ` (world) that pixel (col, row)'s centre sees. */
+    static glm::dvec2 planePoint(int col, int row, double planeZ) {
+        const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
+        const double x = (col + 0.5 - kSize / 2.0) / focal;
+        const double y = -(row + 0.5 - kSize / 2.0) / focal;
+        return glm::dvec2(x, y) * (kDistance - planeZ);
+    }
+    /** The pixel that sees world point (x, y, planeZ). */
+    static cv::Point pixelOf(double x, double y, double planeZ) {
+        const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
+        const double scale = focal / (kDistance - planeZ);
+        return {int(std::floor(kSize / 2.0 + x * scale)), int(std::floor(kSize / 2.0 - y * scale))};
+    }
+};
+
+cv::Vec4b at(const cv::Mat& image, cv::Point pixel) { return image.at<cv::Vec4b>(pixel.y, pixel.x); }
+
+void expectColor(const cv::Vec4b& actual, cv::Vec3i rgb, int alpha, int tolerance, const std::string& where) {
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(int(actual[c]), rgb[c], tolerance) << where << " channel " << c;
+    EXPECT_NEAR(int(actual[3]), alpha, tolerance) << where << " alpha";
+}
+
+TEST_F(MaterialPasses, TextureAtlasShowsItsExactTexelColours) {
+    // A 2 x 2 atlas, nearest: each quarter of the square shows one texel, unlit, so the picture holds the file's
+    // codes (sRGB decoded by the sampler, encoded again by the shader: a round trip exact to the code).
+    const cv::Vec3i texels[2][2] = {{{200, 30, 40}, {20, 180, 60}}, {{40, 60, 220}, {230, 210, 20}}};
+    cv::Mat atlas(2, 2, CV_8UC4);
+    for (int row = 0; row < 2; ++row)
+        for (int col = 0; col < 2; ++col)
+            atlas.at<cv::Vec4b>(row, col) =
+                cv::Vec4b(uchar(texels[row][col][0]), uchar(texels[row][col][1]), uchar(texels[row][col][2]), 255);
+    Mesh mesh = square(1.0f, 0.0f);
+    mesh.material.baseColorFactor = glm::vec4(1.0f);
+    mesh.material.baseColorTexture = nearestTexture(0);
+    mesh.material.unlit = true;
+    Scene built = makeScene(std::move(mesh));
+    built.images.push_back(pngImage(atlas, "atlas"));
+    useScene(std::move(built));
+    const cv::Mat color = shade();
+    for (int row = 0; row < 2; ++row) {
+        for (int col = 0; col < 2; ++col) {
+            // Quarter centres: x = -0.5 (left) or 0.5, y = 0.5 (top, texel row 0) or -0.5.
+            const cv::Point pixel = pixelOf(col == 0 ? -0.5 : 0.5, row == 0 ? 0.5 : -0.5, 0.0);
+            expectColor(at(color, pixel), texels[row][col], 255, 1,
+                        "texel (" + std::to_string(col) + ", " + std::to_string(row) + ")");
+        }
+    }
+    EXPECT_EQ(gpuScene->materials().texturesDecoded(), 1u);
+    EXPECT_EQ(gpuScene->materials().textureBytes(), decodedImageBytes(2, 2));
+}
+
+TEST_F(MaterialPasses, TextureTransformPicksTheTexelItMapsTo) {
+    // uv' = translate(0.5, 0.5) x scale(0.5, 0.5) x uv maps the whole square into the bottom-right texel.
+    cv::Mat atlas(2, 2, CV_8UC4, cv::Scalar(0, 0, 0, 255));
+    atlas.at<cv::Vec4b>(1, 1) = cv::Vec4b(230, 210, 20, 255);
+    Mesh mesh = square(1.0f, 0.0f);
+    mesh.material.baseColorFactor = glm::vec4(1.0f);
+    mesh.material.baseColorTexture = nearestTexture(0);
+    mesh.material.baseColorTexture.transform =
+        glm::mat3(1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.5f, 0.5f, 1.0f) * glm::mat3(0.5f, 0, 0, 0, 0.5f, 0, 0, 0, 1);
+    mesh.material.unlit = true;
+    Scene built = makeScene(std::move(mesh));
+    built.images.push_back(pngImage(atlas, "atlas"));
+    useScene(std::move(built));
+    const cv::Mat color = shade();
+    for (const auto& [x, y] : std::vector<std::pair<double, double>>{{-0.9, 0.9}, {0.9, -0.9}, {0.0, 0.0}})
+        expectColor(at(color, pixelOf(x, y, 0.0)), {230, 210, 20}, 255, 1, "point " + std::to_string(x));
+}
+
+TEST_F(MaterialPasses, VertexColoursInterpolateInLinearLight) {
+    Mesh mesh;
+    mesh.name = "triangle";
+    mesh.positions = {{-1.0f, -1.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+    mesh.normals.assign(3, glm::vec3(0.0f, 0.0f, 1.0f));
+    mesh.triangles = {{0, 1, 2}};
+    mesh.colors = {{1.0f, 0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 1.0f, 1.0f}};
+    mesh.material.baseColorFactor = glm::vec4(1.0f);
+    mesh.material.unlit = true;
+    useScene(makeScene(std::move(mesh)));
+    const cv::Mat color = shade();
+    // Near each corner its own colour dominates; at the centroid each channel is 1/3 in linear light.
+    const int third = srgbCode(1.0 / 3.0);
+    expectColor(at(color, pixelOf(0.0, -1.0 / 3.0, 0.0)), {third, third, third}, 255, 3, "centroid");
+    const cv::Vec4b nearRed = at(color, pixelOf(-0.85, -0.9, 0.0));
+    EXPECT_GT(nearRed[0], 200);
+    EXPECT_LT(nearRed[1], 120);
+    EXPECT_LT(nearRed[2], 120);
+}
+
+TEST_F(MaterialPasses, EmissiveAddsToTheLitColourAndUnlitIgnoresTheLight) {
+    Mesh mesh = square(1.0f, 0.0f);
+    mesh.material.baseColorFactor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    mesh.material.emissiveFactor = glm::vec3(0.5f, 0.25f, 0.0f);
+    useScene(makeScene(std::move(mesh)));
+    const cv::Mat color = shade(ShadingModel::Lambert);
+    expectColor(at(color, pixelOf(0.0, 0.0, 0.0)), {srgbCode(0.5), srgbCode(0.25), 0}, 255, 1, "emissive");
+
+    Mesh lit = square(1.0f, 0.0f);
+    lit.material.baseColorFactor = glm::vec4(0.2f, 0.4f, 0.6f, 1.0f);
+    lit.material.unlit = true;
+    useScene(makeScene(std::move(lit)));
+    frame.towardLightWorld = glm::normalize(glm::dvec3(1.0, 0.0, 0.2)); // grazing: lit, it would be dark
+    const cv::Mat unlit = shade(ShadingModel::Cel);
+    expectColor(at(unlit, pixelOf(0.0, 0.0, 0.0)), {srgbCode(0.2), srgbCode(0.4), srgbCode(0.6)}, 255, 1, "unlit");
+}
+
+TEST_F(MaterialPasses, MaskedDiscCoverageFollowsTheMaskWithinOnePixel) {
+    // A 64 x 64 mask: texels whose centre lies within 0.35 of the texture's centre are opaque, the rest clear.
+    constexpr int kTexels = 64;
+    constexpr double kDiscRadius = 0.35;
+    cv::Mat mask(kTexels, kTexels, CV_8UC4);
+    auto inside = [&](double u, double v) { return std::hypot(u - 0.5, v - 0.5) <= kDiscRadius; };
+    for (int row = 0; row < kTexels; ++row)
+        for (int col = 0; col < kTexels; ++col)
+            mask.at<cv::Vec4b>(row, col) =
+                cv::Vec4b(255, 255, 255, inside((col + 0.5) / kTexels, (row + 0.5) / kTexels) ? 255 : 0);
+    Mesh mesh = square(1.0f, 0.0f);
+    mesh.material.baseColorTexture = nearestTexture(0);
+    mesh.material.alphaMode = AlphaMode::Mask;
+    mesh.material.alphaCutoff = 0.5f;
+    Scene built = makeScene(std::move(mesh));
+    built.images.push_back(pngImage(mask, "disc"));
+    useScene(std::move(built));
+    const cv::Mat coverage = gbuffer("coverage");
+    ASSERT_EQ(coverage.type(), CV_8UC1);
+    // The mask's edge is a staircase of texels, 1/32 of the square (about 1 px here): pixels whose centre's texel is
+    // opaque must be covered and those whose texel is clear must not, except within a pixel of the disc's edge.
+    const double pixelInUv = (planePoint(1, 0, 0.0).x - planePoint(0, 0, 0.0).x) / 2.0;
+    int checked = 0, wrong = 0;
+    for (int row = 0; row < kSize; ++row) {
+        for (int col = 0; col < kSize; ++col) {
+            const glm::dvec2 point = planePoint(col, row, 0.0);
+            if (std::abs(point.x) >= 1.0 || std::abs(point.y) >= 1.0) continue;
+            const double u = (point.x + 1.0) / 2.0, v = (1.0 - point.y) / 2.0;
+            const double distance = std::hypot(u - 0.5, v - 0.5);
+            if (std::abs(distance - kDiscRadius) <= pixelInUv + 1.0 / kTexels) continue;
+            ++checked;
+            const bool expected = distance < kDiscRadius;
+            if ((coverage.at<uchar>(row, col) == 255) != expected) ++wrong;
+        }
+    }
+    EXPECT_GT(checked, 1000);
+    EXPECT_EQ(wrong, 0) << "pixels whose coverage disagrees with the mask away from its edge";
+
+    // The square's border edges run through the cut-out part only: the mesh-edge pass draws none of them, while
+    // an opaque square's border is drawn.
+    auto borderPixels = [&] {
+        MeshEdgesPass pass("mesh-edges", shaders, *gpuScene, frame);
+        const Plan plan = compile({&pass}, {"mesh-edges.border"});
+        executor.run(plan, {&pass}, {kSize, kSize, false});
+        const int drawn = cv::countNonZero(executor.store().image("mesh-edges.border"));
+        executor.store().clear();
+        return drawn;
+    };
+    EXPECT_EQ(borderPixels(), 0) << "border edges through the cut-out";
+    scene.meshes[0].material.alphaMode = AlphaMode::Opaque;
+    gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+    EXPECT_GT(borderPixels(), 400) << "the opaque square's border";
+}
+
+TEST_F(MaterialPasses, BlendedQuadOverOpaqueOneMixesAndTheGBufferSeesThrough) {
+    Mesh back = square(1.0f, -0.5f);
+    back.name = "back";
+    back.material.baseColorFactor = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
+    back.material.unlit = true;
+    Mesh front = square(0.5f, 0.0f);
+    front.name = "front";
+    front.material.baseColorFactor = glm::vec4(1.0f, 0.0f, 0.0f, 0.5f);
+    front.material.alphaMode = AlphaMode::Blend;
+    front.material.unlit = true;
+    Mesh beside = square(0.3f, 0.0f); // a blended square over nothing, off to the side
+    for (glm::vec3& position : beside.positions) position.x += 2.0f;
+    beside.name = "beside";
+    beside.material = front.material;
+    Scene built = makeScene(std::move(back));
+    built.meshes.push_back(std::move(front));
+    built.meshes.push_back(std::move(beside));
+    useScene(std::move(built));
+    const cv::Mat color = shade();
+    // Blended in the stored (sRGB-encoded) values: red 255 x 0.5 over blue 255 x 0.5.
+    expectColor(at(color, pixelOf(0.0, 0.0, 0.0)), {128, 0, 128}, 255, 1, "blend over the opaque square");
+    expectColor(at(color, pixelOf(0.8, 0.8, -0.5)), {0, 0, 255}, 255, 0, "the opaque square alone");
+    // Over nothing: premultiplied (postfx/Composite.h), colour x alpha and the alpha.
+    expectColor(at(color, pixelOf(2.0, 0.0, 0.0)), {128, 0, 0}, 128, 1, "blend over nothing");
+    // The G-buffer sees the opaque square through the glass, so its lines stay visible.
+    const cv::Mat depth = gbuffer("depth");
+    const cv::Point middle = pixelOf(0.0, 0.0, 0.0);
+    EXPECT_NEAR(depth.at<float>(middle.y, middle.x), kDistance + 0.5, 1e-4);
+}
+
+TEST_F(MaterialPasses, SingleSidedBackFacesAreCulledDoubleSidedOnesLit) {
+    Mesh away = square(1.0f, 0.0f, /*backward=*/true);
+    away.material.baseColorFactor = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
+    away.material.doubleSided = false;
+    useScene(makeScene(away));
+    EXPECT_EQ(at(shade(), pixelOf(0.0, 0.0, 0.0))[3], 0) << "a single-sided face seen from behind is culled";
+    EXPECT_EQ(gbuffer("coverage").at<uchar>(kSize / 2, kSize / 2), 0);
+
+    away.material.doubleSided = true;
+    useScene(makeScene(away));
+    // Seen from behind, lit with the flipped normal: the light at the eye gives full diffuse.
+    const cv::Vec4b lit = at(shade(ShadingModel::Lambert), pixelOf(0.0, 0.0, 0.0));
+    EXPECT_EQ(lit[3], 255);
+    EXPECT_GT(lit[0], srgbCode(0.4));
+}
+
+TEST_F(MaterialPasses, MToonBandIsLinearstepOfNDotLPlusShift) {
+    Mesh sphere = makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 256, 128);
+    sphere.material.baseColorFactor = glm::vec4(0.9f, 0.8f, 0.7f, 1.0f);
+    MToonMaterial mtoon;
+    mtoon.shadeColorFactor = glm::vec3(0.2f, 0.1f, 0.3f);
+    mtoon.shadingToonyFactor = 0.5f;
+    mtoon.shadingShiftFactor = -0.2f;
+    sphere.material.mtoon = mtoon;
+    useScene(makeScene(std::move(sphere)));
+    frame.towardLightWorld = glm::normalize(glm::dvec3(1.0, 0.0, 0.3));
+    const cv::Mat color = shade(ShadingModel::MToon);
+    const test::AnalyticSphereView view{kSize, 1.0, kDistance, kFovDegrees};
+    const glm::dvec3 light = frame.towardLightWorld; // the camera only translates: view = world directions
+    int compared = 0;
+    double worst = 0.0;
+    for (int row = 0; row < kSize; row += 3) {
+        for (int col = 0; col < kSize; col += 3) {
+            const std::optional<test::SphereHit> hit = view.castPixel(col, row);
+            if (!hit || glm::dot(hit->normal, hit->towardEye) < 0.3) continue; // away from the polygonal rim
+            const double t = std::clamp((glm::dot(hit->normal, light) - 0.2 - (-0.5)) / (0.5 - (-0.5)), 0.0, 1.0);
+            const glm::dvec3 expected = glm::mix(glm::dvec3(0.2, 0.1, 0.3), glm::dvec3(0.9, 0.8, 0.7), t);
+            const cv::Vec4b actual = color.at<cv::Vec4b>(row, col);
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(linearOf(actual[c]) - expected[c]));
+            ++compared;
+        }
+    }
+    EXPECT_GT(compared, 300);
+    // The mesh's interpolated normals differ from the sphere's by well under a degree at this tessellation; 8-bit
+    // codes add half a step.
+    EXPECT_LT(worst, 0.02);
+}
+
+TEST_F(MaterialPasses, MToonScreenOutlineIsItsShareOfTheScreenHeight) {
+    // A sphere of radius 1 at distance 4: its outline is a ring from the silhouette (focal x tan(asin(1/4)) pixels
+    // from the centre) out to outlineWidthFactor x the image height, in the outline colour (lighting mix 0).
+    Mesh sphere = makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 256, 128);
+    sphere.material.baseColorFactor = glm::vec4(1.0f);
+    MToonMaterial mtoon;
+    mtoon.shadeColorFactor = glm::vec3(1.0f);
+    mtoon.outlineWidthMode = MToonMaterial::OutlineWidthMode::ScreenCoordinates;
+    mtoon.outlineWidthFactor = 0.04f; // 5.12 pixels of 128
+    mtoon.outlineColorFactor = glm::vec3(0.0f, 0.0f, 1.0f);
+    mtoon.outlineLightingMixFactor = 0.0f;
+    sphere.material.mtoon = mtoon;
+    useScene(makeScene(std::move(sphere)));
+    const cv::Mat color = shade(ShadingModel::MToon);
+    const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
+    const double silhouette = focal * std::tan(std::asin(1.0 / kDistance));
+    const double width = 0.04 * kSize;
+    int inRing = 0, outside = 0, samples = 0;
+    for (int step = 0; step < 64; ++step) {
+        const double angle = step * 2.0 * 3.14159265358979 / 64.0;
+        auto pixelAtRadius = [&](double radius) {
+            return cv::Point(int(std::floor(kSize / 2.0 + radius * std::cos(angle))),
+                             int(std::floor(kSize / 2.0 - radius * std::sin(angle))));
+        };
+        ++samples;
+        const cv::Vec4b ring = at(color, pixelAtRadius(silhouette + width / 2.0));
+        if (ring == cv::Vec4b(0, 0, 255, 255)) ++inRing;
+        if (at(color, pixelAtRadius(silhouette + width + 1.5))[3] == 0) ++outside;
+    }
+    EXPECT_EQ(inRing, samples) << "the outline colour halfway across the ring";
+    EXPECT_EQ(outside, samples) << "nothing beyond the ring's width";
+    // The surface itself is not covered by its outline: the centre is the lit white.
+    expectColor(at(color, cv::Point(kSize / 2, kSize / 2)), {255, 255, 255}, 255, 1, "centre");
+}
+
+TEST_F(MaterialPasses, TexturesAreDecodedOnlyWhenAPassSamplesThem) {
+    Mesh mesh = square(1.0f, 0.0f);
+    mesh.material.baseColorTexture = nearestTexture(0);
+    Scene built = makeScene(std::move(mesh));
+    built.images.push_back(pngImage(cv::Mat(4, 4, CV_8UC4, cv::Scalar(10, 20, 30, 255)), "plain"));
+    useScene(std::move(built));
+    gbuffer("depth"); // opaque: depth needs no colour
+    EXPECT_EQ(gpuScene->materials().texturesDecoded(), 0u);
+    gbuffer("baseColor");
+    EXPECT_EQ(gpuScene->materials().texturesDecoded(), 1u);
+}
+
+TEST_F(MaterialPasses, TextureBeyondTheMemoryLimitIsRefusedNamingTheImage) {
+    Mesh mesh = square(1.0f, 0.0f);
+    mesh.material.baseColorTexture = nearestTexture(0);
+    Scene built = makeScene(std::move(mesh));
+    built.images.push_back(pngImage(cv::Mat(64, 64, CV_8UC4, cv::Scalar(10, 20, 30, 255)), "big one"));
+    useScene(std::move(built));
+    gpuScene->materials().setTextureMemoryLimit(decodedImageBytes(64, 64) - 1);
+    try {
+        shade();
+        FAIL() << "no error";
+    } catch (const SceneError& error) {
+        EXPECT_NE(std::string(error.what()).find("image 'big one'"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("--memory-limit"), std::string::npos) << error.what();
+    }
+}
+
+} // namespace
+} // namespace inkgraph

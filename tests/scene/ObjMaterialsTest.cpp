@@ -1,0 +1,426 @@
+// OBJ materials, texture coordinates and vertex colours (issue 18): `mtllib` libraries and `usemtl` (one mesh per
+// material), Kd, d/Tr, Ke, map_Kd with its options and map_d, `vt` flipped into the glTF convention, `v x y z r g b`,
+// and the warnings for what is missing or malformed. Every model is written here, beside its .mtl and textures.
+
+#include "scene/Scene.h"
+
+#include "SceneTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+
+namespace inkgraph {
+namespace {
+
+using test::TempFolder;
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+bool anyWarningContains(const Scene& scene, const std::string& part) {
+    return std::ranges::any_of(scene.report.warnings, [&](const std::string& w) { return contains(w, part); });
+}
+
+const Mesh& meshWithMaterial(const Scene& scene, const std::string& materialName) {
+    const auto found =
+        std::ranges::find_if(scene.meshes, [&](const Mesh& mesh) { return mesh.material.name == materialName; });
+    if (found == scene.meshes.end()) {
+        throw std::runtime_error("no mesh with material '" + materialName + "'");
+    }
+    return *found;
+}
+
+/** The index of the vertex at world position `world`; fails the test when there is none. */
+std::size_t vertexAt(const Scene& scene, const Mesh& mesh, glm::dvec3 world) {
+    for (std::size_t vertex = 0; vertex < mesh.positions.size(); ++vertex) {
+        if (glm::length(test::worldPosition(scene, mesh.positions[vertex]) - world) < 1e-6) return vertex;
+    }
+    ADD_FAILURE() << "no vertex at (" << world.x << ", " << world.y << ", " << world.z << ")";
+    return 0;
+}
+
+/** Two separate unit triangles, the first at z = 0 and the second at z = 1, each after its own `usemtl`. */
+std::string twoTriangles(const std::string& first, const std::string& second) {
+    return "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nusemtl " + first + "\nf 1 2 3\nusemtl " + second +
+           "\nf 4 5 6\n";
+}
+
+const std::string kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+TEST(ObjMaterials, KdColourPerUsemtlGroupGivesOneMeshPerMaterial) {
+    const TempFolder folder;
+    folder.write("paints.mtl", "# two paints\nnewmtl red\nKd 1 0 0\nKa 0 0 0\nNs 10\nillum 2\n\n"
+                               "newmtl dark blue\nKd 0 0 0.25\nKe 0.5 0.25 0\n");
+    const std::string model =
+        folder.write("pair.obj", "mtllib paints.mtl\no pair\n" + twoTriangles("red", "dark blue"));
+    const Scene scene = loadScene(model);
+    ASSERT_EQ(scene.meshes.size(), 2u);
+    EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
+
+    const Mesh& red = meshWithMaterial(scene, "red");
+    EXPECT_EQ(red.name, "pair/red");
+    EXPECT_EQ(red.triangleCount(), 1u);
+    EXPECT_EQ(red.material.baseColorFactor, glm::vec4(1, 0, 0, 1));
+    EXPECT_EQ(red.material.alphaMode, AlphaMode::Opaque);
+    EXPECT_EQ(red.material.emissiveFactor, glm::vec3(0.0f));
+    EXPECT_FALSE(red.material.textured());
+    for (const glm::vec3& p : red.positions) EXPECT_EQ(test::worldPosition(scene, p).z, 0.0);
+
+    const Mesh& blue = meshWithMaterial(scene, "dark blue");
+    EXPECT_EQ(blue.name, "pair/dark blue");
+    EXPECT_EQ(blue.triangleCount(), 1u);
+    EXPECT_EQ(blue.material.baseColorFactor, glm::vec4(0, 0, 0.25f, 1));
+    EXPECT_EQ(blue.material.emissiveFactor, glm::vec3(0.5f, 0.25f, 0.0f));
+    for (const glm::vec3& p : blue.positions) EXPECT_EQ(test::worldPosition(scene, p).z, 1.0);
+}
+
+TEST(ObjMaterials, FacesOfOneMaterialJoinOneMeshWhereverTheyAre) {
+    const TempFolder folder;
+    folder.write("m.mtl", "newmtl a\nKd 0.5 0.5 0.5\nnewmtl b\nKd 0.1 0.1 0.1\n");
+    const std::string model =
+        folder.write("split.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\n"
+                                  "f 1 2 3\nusemtl a\nf 2 4 3\nusemtl b\nf 5 6 7\nusemtl a\nf 1 3 7\n");
+    const Scene scene = loadScene(model);
+    ASSERT_EQ(scene.meshes.size(), 3u); // the faces before any usemtl, a, b
+    EXPECT_EQ(meshWithMaterial(scene, "").material, Material{});
+    EXPECT_EQ(meshWithMaterial(scene, "").name, "split");
+    EXPECT_EQ(meshWithMaterial(scene, "a").triangleCount(), 2u);
+    EXPECT_EQ(meshWithMaterial(scene, "a").material.baseColorFactor, glm::vec4(0.5f, 0.5f, 0.5f, 1));
+    EXPECT_EQ(meshWithMaterial(scene, "b").triangleCount(), 1u);
+    EXPECT_EQ(scene.triangleCount(), 4u);
+}
+
+TEST(ObjMaterials, SingleMaterialKeepsTheObjectNameAndAGreyKdReadsAsOneNumber) {
+    const TempFolder folder;
+    folder.write("one.mtl", "newmtl only\nKd 0.25\n");
+    const std::string model = folder.write("one.obj", "mtllib one.mtl\no thing\nusemtl only\n" + kTriangle);
+    const Scene scene = loadScene(model);
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.meshes[0].name, "thing");
+    EXPECT_EQ(scene.meshes[0].material.baseColorFactor, glm::vec4(0.25f, 0.25f, 0.25f, 1));
+}
+
+TEST(ObjMaterials, DissolveBelowOneBlendsAndTrIsItsComplement) {
+    const TempFolder folder;
+    folder.write("alpha.mtl", "newmtl half\nKd 1 1 1\nd 0.5\n"
+                              "newmtl tr\nTr 0.25\n"
+                              "newmtl both\nd 1\nTr 0.75\n"
+                              "newmtl halo\nd -halo 0.5\n");
+    const std::string model = folder.write(
+        "alpha.obj", "mtllib alpha.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl half\nf 1 2 3\nusemtl tr\nf 1 2 3\n"
+                     "usemtl both\nf 1 2 3\nusemtl halo\nf 1 2 3\n");
+    const Scene scene = loadScene(model);
+    const Material& half = meshWithMaterial(scene, "half").material;
+    EXPECT_EQ(half.baseColorFactor, glm::vec4(1, 1, 1, 0.5f));
+    EXPECT_EQ(half.alphaMode, AlphaMode::Blend);
+    const Material& tr = meshWithMaterial(scene, "tr").material;
+    EXPECT_EQ(tr.baseColorFactor.a, 0.75f);
+    EXPECT_EQ(tr.alphaMode, AlphaMode::Blend);
+    const Material& both = meshWithMaterial(scene, "both").material; // d decides
+    EXPECT_EQ(both.baseColorFactor.a, 1.0f);
+    EXPECT_EQ(both.alphaMode, AlphaMode::Opaque);
+    EXPECT_EQ(meshWithMaterial(scene, "halo").material.baseColorFactor.a, 0.5f);
+}
+
+TEST(ObjMaterials, MapKdWithOptionsAndASpaceInItsNameIsAnImageBesideTheLibrary) {
+    const TempFolder folder;
+    std::filesystem::create_directories(folder.path("lib/maps"));
+    const std::string texture = folder.write("lib/maps/old wood.png", "not decoded here");
+    const std::string library =
+        folder.write("lib/wood.mtl", "newmtl wood\nKd 1 0.5 1\nmap_Kd -bm 0.3 -s 2 4 1 -o 0.5 0.25 -clamp on -mm 0 1 "
+                                     "maps/old wood.png\nnewmtl again\nmap_Kd maps/old wood.png\n");
+    const std::string model = folder.write("wood.obj", "mtllib lib/wood.mtl\n" + twoTriangles("wood", "again"));
+    const Scene scene = loadScene(model);
+    EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
+    ASSERT_EQ(scene.images.size(), 1u); // one image for both materials
+    EXPECT_EQ(scene.images[0].path, texture);
+    EXPECT_EQ(scene.images[0].name, "maps/old wood.png");
+    EXPECT_EQ(scene.images[0].encoded, nullptr);
+
+    const Material& wood = meshWithMaterial(scene, "wood").material;
+    EXPECT_EQ(wood.baseColorFactor, glm::vec4(1, 0.5f, 1, 1));
+    EXPECT_EQ(wood.baseColorTexture.image, 0);
+    EXPECT_EQ(wood.baseColorTexture.texCoord, 0);
+    EXPECT_EQ(wood.baseColorTexture.sampler.wrapS, TextureWrap::ClampToEdge);
+    EXPECT_EQ(wood.baseColorTexture.sampler.wrapT, TextureWrap::ClampToEdge);
+    // OBJ's lookup (u 2 + 0.5, v 4 + 0.25) with v up is, on the stored (u, 1 - v): u' = 2 u + 0.5, v' = 4 v - 3.25.
+    const glm::vec3 corner = wood.baseColorTexture.transform * glm::vec3(0.0f, 0.0f, 1.0f);
+    const glm::vec3 far = wood.baseColorTexture.transform * glm::vec3(1.0f, 1.0f, 1.0f);
+    EXPECT_EQ(corner, glm::vec3(0.5f, -3.25f, 1.0f));
+    EXPECT_EQ(far, glm::vec3(2.5f, 0.75f, 1.0f));
+
+    const Material& again = meshWithMaterial(scene, "again").material;
+    EXPECT_EQ(again.baseColorTexture.image, 0);
+    EXPECT_EQ(again.baseColorTexture.sampler, TextureSampler{});
+    EXPECT_EQ(again.baseColorTexture.transform, glm::mat3(1.0f));
+
+    EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, library, texture}));
+    EXPECT_EQ(referencedFiles(model), (std::vector<std::string>{library, texture}));
+}
+
+TEST(ObjMaterials, MissingTextureIsAWarningAndTheMaterialKeepsItsColour) {
+    const TempFolder folder;
+    const std::string library = folder.write("gone.mtl", "newmtl skin\nKd 0.5 0.25 0\nmap_Kd skin.png\n");
+    const std::string model = folder.write("gone.obj", "mtllib gone.mtl\nusemtl skin\n" + kTriangle);
+    const Scene scene = loadScene(model);
+    EXPECT_TRUE(anyWarningContains(scene, "material library '" + library + "' line 3: map_Kd 'skin.png': '" +
+                                              folder.path("skin.png") + "' is missing"))
+        << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_TRUE(scene.images.empty());
+    EXPECT_FALSE(scene.meshes.at(0).material.textured());
+    EXPECT_EQ(scene.meshes.at(0).material.baseColorFactor, glm::vec4(0.5f, 0.25f, 0, 1));
+    // Named, so an output must not take its place.
+    EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, library, folder.path("skin.png")}));
+}
+
+TEST(ObjMaterials, MapDOfTheMapKdImageCutsOutAndAnotherImageIsIgnored) {
+    const TempFolder folder;
+    folder.write("leaf.png", "png");
+    folder.write("mask.png", "png");
+    folder.write("cut.mtl", "newmtl leaf\nmap_d leaf.png\nmap_Kd leaf.png\n"
+                            "newmtl masked\nmap_Kd leaf.png\nmap_d mask.png\n");
+    const std::string model = folder.write("cut.obj", "mtllib cut.mtl\n" + twoTriangles("leaf", "masked"));
+    const Scene scene = loadScene(model);
+    const Material& leaf = meshWithMaterial(scene, "leaf").material;
+    EXPECT_EQ(leaf.alphaMode, AlphaMode::Mask);
+    EXPECT_EQ(leaf.alphaCutoff, 0.5f);
+    EXPECT_EQ(meshWithMaterial(scene, "masked").material.alphaMode, AlphaMode::Opaque);
+    EXPECT_TRUE(anyWarningContains(scene, "line 6: map_d 'mask.png' is not the material's map_Kd image"))
+        << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.images.size(), 1u);
+    EXPECT_NE(std::ranges::find(scene.report.inputFiles, folder.path("mask.png")), scene.report.inputFiles.end());
+}
+
+TEST(ObjMaterials, MalformedLibraryLinesAreWarningsWithFileAndLine) {
+    const TempFolder folder;
+    const std::string library = folder.write("bad.mtl", "Kd 1 1 1\nnewmtl bad\nKd 1 x 0\nd\nmap_Kd -zz 1 a.png\n"
+                                                        "Kd spectral sun.rfl\nmap_Kd -clamp\nKe 0 1 0\n");
+    const std::string model = folder.write("bad.obj", "mtllib bad.mtl\nusemtl bad\n" + kTriangle);
+    const Scene scene = loadScene(model);
+    const std::string prefix = "material library '" + library + "' line ";
+    for (const std::string& expected :
+         {prefix + "1: 'Kd' before any 'newmtl'; ignored", prefix + "3: cannot read 'Kd' colour '1 x 0'",
+          prefix + "4: cannot read 'd' value ''", prefix + "5: 'map_Kd' unknown option '-zz'; ignored",
+          prefix + "6: 'Kd spectral' colours are not supported",
+          prefix + "7: 'map_Kd' option '-clamp' without 'on' or 'off'"}) {
+        EXPECT_TRUE(anyWarningContains(scene, expected)) << expected << "\n"
+                                                         << ::testing::PrintToString(scene.report.warnings);
+    }
+    const Material& bad = scene.meshes.at(0).material;
+    EXPECT_EQ(bad.baseColorFactor, Material{}.baseColorFactor); // every Kd was unreadable
+    EXPECT_EQ(bad.emissiveFactor, glm::vec3(0, 1, 0));          // the good line after the bad ones counts
+}
+
+TEST(ObjMaterials, MissingLibraryIsAWarningAndTheMeshIsDefaultGrey) {
+    const TempFolder folder;
+    const std::string model = folder.write("lost.obj", "mtllib lost.mtl\nusemtl Steel\n" + kTriangle);
+    const Scene scene = loadScene(model);
+    EXPECT_EQ(scene.triangleCount(), 1u);
+    EXPECT_TRUE(anyWarningContains(scene, "mtllib 'lost.mtl' (line 1): '" + folder.path("lost.mtl") +
+                                              "' is missing or not a regular file; its materials are drawn in the "
+                                              "default grey"))
+        << ::testing::PrintToString(scene.report.warnings);
+    const Material& steel = scene.meshes.at(0).material;
+    EXPECT_EQ(steel.name, "Steel");
+    EXPECT_EQ(steel.baseColorFactor, glm::vec4(0.8f, 0.8f, 0.8f, 1.0f));
+    EXPECT_EQ(scene.report.inputFiles, std::vector<std::string>{model});
+}
+
+TEST(ObjMaterials, UnknownUsemtlIsAWarningAndDefaultGrey) {
+    const TempFolder folder;
+    folder.write("known.mtl", "newmtl Known\nKd 0 1 0\n");
+    const std::string model = folder.write("mixed.obj", "mtllib known.mtl\n" + twoTriangles("Known", "Unknown"));
+    const Scene scene = loadScene(model);
+    EXPECT_TRUE(anyWarningContains(scene, "usemtl names materials not defined in its mtllib files: 'Unknown' (line "
+                                          "10); their faces are drawn in the default grey"))
+        << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(meshWithMaterial(scene, "Known").material.baseColorFactor, glm::vec4(0, 1, 0, 1));
+    EXPECT_EQ(meshWithMaterial(scene, "Unknown").material.baseColorFactor, Material{}.baseColorFactor);
+}
+
+TEST(ObjMaterials, SeveralLibrariesOnOneLineAndTheFirstDefinitionWins) {
+    const TempFolder folder;
+    const std::string first = folder.write("a.mtl", "newmtl shared\nKd 1 0 0\nnewmtl onlyA\nKd 0 1 0\n");
+    const std::string second = folder.write("b.mtl", "newmtl shared\nKd 0 0 1\nnewmtl onlyB\nKd 1 1 0\n");
+    const std::string model =
+        folder.write("libs.obj", "mtllib a.mtl b.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl shared\nf 1 2 3\n"
+                                 "usemtl onlyA\nf 1 2 3\nusemtl onlyB\nf 1 2 3\n");
+    const Scene scene = loadScene(model);
+    EXPECT_EQ(meshWithMaterial(scene, "shared").material.baseColorFactor, glm::vec4(1, 0, 0, 1));
+    EXPECT_EQ(meshWithMaterial(scene, "onlyA").material.baseColorFactor, glm::vec4(0, 1, 0, 1));
+    EXPECT_EQ(meshWithMaterial(scene, "onlyB").material.baseColorFactor, glm::vec4(1, 1, 0, 1));
+    EXPECT_TRUE(anyWarningContains(scene, "material library '" + second +
+                                              "' line 1: material 'shared' is defined again; the first definition "
+                                              "is kept"))
+        << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, first, second}));
+}
+
+TEST(ObjMaterials, TextureCoordinatesAreFlippedToTheTopLeftConvention) {
+    const TempFolder folder;
+    const std::string model =
+        folder.write("uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.25 0.75\nvt 1 0 0\nvt 0.5\nf 1/1 2/2 3/3\n");
+    const Scene scene = loadScene(model);
+    const Mesh& mesh = scene.meshes.at(0);
+    ASSERT_EQ(mesh.texcoords[0].size(), mesh.positions.size());
+    EXPECT_TRUE(mesh.texcoords[1].empty());
+    EXPECT_EQ(mesh.texcoords[0][vertexAt(scene, mesh, {0, 0, 0})], glm::vec2(0.25f, 0.25f));
+    EXPECT_EQ(mesh.texcoords[0][vertexAt(scene, mesh, {1, 0, 0})], glm::vec2(1.0f, 1.0f));
+    EXPECT_EQ(mesh.texcoords[0][vertexAt(scene, mesh, {0, 1, 0})], glm::vec2(0.5f, 1.0f)); // v defaults to 0
+}
+
+TEST(ObjMaterials, FaceWithoutTextureCoordinatesInATexturedMeshTakesZeroAndWarnsOnce) {
+    const TempFolder folder;
+    const std::string model = folder.write("partial.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\n"
+                                                          "vt 0.5 0.5\nf 1/1 2/1 3/1\nf 2 4 3\nf 2 5 4\n");
+    const Scene scene = loadScene(model);
+    const Mesh& mesh = scene.meshes.at(0);
+    EXPECT_EQ(mesh.texcoords[0][vertexAt(scene, mesh, {2, 0, 0})], glm::vec2(0.0f, 0.0f));
+    EXPECT_EQ(mesh.texcoords[0][vertexAt(scene, mesh, {1, 1, 0})], glm::vec2(0.0f, 0.0f));
+    EXPECT_EQ(mesh.texcoords[0][vertexAt(scene, mesh, {0, 0, 0})], glm::vec2(0.5f, 0.5f));
+    EXPECT_EQ(std::ranges::count_if(scene.report.warnings,
+                                    [](const std::string& w) { return contains(w, "texture coordinates"); }),
+              1);
+    EXPECT_TRUE(anyWarningContains(scene, "2 faces have no texture coordinates (vt)"))
+        << ::testing::PrintToString(scene.report.warnings);
+}
+
+TEST(ObjMaterials, BadTextureCoordinatesAreErrorsWithTheirLine) {
+    const TempFolder folder;
+    const std::string range = folder.write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n");
+    EXPECT_TRUE(contains(test::sceneErrorMessage([&] { loadScene(range); }),
+                         "line 5: texture coordinate index 2 out of range (file has 1 texture coordinates)"));
+    const std::string word = folder.write("word.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 up\nf 1 2 3\n");
+    EXPECT_TRUE(
+        contains(test::sceneErrorMessage([&] { loadScene(word); }), "line 4: cannot read texture coordinate 'up'"));
+    const std::string empty = folder.write("empty.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt\nf 1 2 3\n");
+    EXPECT_TRUE(contains(test::sceneErrorMessage([&] { loadScene(empty); }), "line 4: 'vt' without coordinates"));
+}
+
+TEST(ObjMaterials, NonFiniteTextureCoordinatesReadAsZeroWithAWarning) {
+    const TempFolder folder;
+    const std::string model =
+        folder.write("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt nan inf\nvt 0.5 0.5\nvt 1e39 0\nf 1/1 2/2 3/3\n");
+    const Scene scene = loadScene(model);
+    const Mesh& mesh = scene.meshes.at(0);
+    EXPECT_EQ(mesh.texcoords[0][vertexAt(scene, mesh, {0, 0, 0})], glm::vec2(0.0f));
+    EXPECT_EQ(mesh.texcoords[0][vertexAt(scene, mesh, {1, 0, 0})], glm::vec2(0.5f));
+    EXPECT_EQ(mesh.texcoords[0][vertexAt(scene, mesh, {0, 1, 0})], glm::vec2(0.0f));
+    EXPECT_TRUE(anyWarningContains(scene, "2 texture coordinates (vt) are not finite in float; they read as (0, 0)"))
+        << ::testing::PrintToString(scene.report.warnings);
+}
+
+TEST(ObjMaterials, VertexColoursAreReadClampedAndUncolouredVerticesAreWhite) {
+    const TempFolder folder;
+    const std::string model = folder.write("colours.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 2 -1\nv 0 1 0\n"
+                                                          "v 1 1 0 0.5 0.5 0.5 0.25\nf 1 2 3\nf 2 4 3\n");
+    const Scene scene = loadScene(model);
+    const Mesh& mesh = scene.meshes.at(0);
+    ASSERT_EQ(mesh.colors.size(), mesh.positions.size());
+    EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {0, 0, 0})], glm::vec4(1, 0, 0, 1));
+    EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {1, 0, 0})], glm::vec4(0, 1, 0, 1));
+    EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {0, 1, 0})], glm::vec4(1, 1, 1, 1));
+    EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {1, 1, 0})], glm::vec4(0.5f, 0.5f, 0.5f, 0.25f));
+    // Without a material, the base colour that multiplies them is white, so they show as written.
+    EXPECT_EQ(mesh.material.baseColorFactor, glm::vec4(1.0f));
+}
+
+TEST(ObjMaterials, AFourthCoordinateIsWNotAColour) {
+    const TempFolder folder;
+    const std::string model = folder.write("w.obj", "v 0 0 0 1\nv 1 0 0 1\nv 0 1 0 1\nf 1 2 3\n");
+    const Scene scene = loadScene(model);
+    EXPECT_TRUE(scene.meshes.at(0).colors.empty());
+    EXPECT_EQ(scene.meshes.at(0).positions.size(), 3u);
+}
+
+TEST(ObjMaterials, VertexColoursFollowTheirPositionsIntoEveryMaterialMesh) {
+    const TempFolder folder;
+    folder.write("m.mtl", "newmtl a\nnewmtl b\n");
+    const std::string model = folder.write("split.obj", "mtllib m.mtl\nv 0 0 0 0 0 1\nv 1 0 0\nv 0 1 0 0 1 0\n"
+                                                        "usemtl a\nvn 0 0 1\nf 1//1 2//1 3//1\nusemtl b\nf 3 2 1\n");
+    const Scene scene = loadScene(model);
+    for (const char* name : {"a", "b"}) {
+        const Mesh& mesh = meshWithMaterial(scene, name);
+        ASSERT_EQ(mesh.colors.size(), 3u) << name;
+        EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {0, 0, 0})], glm::vec4(0, 0, 1, 1)) << name;
+        EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {1, 0, 0})], glm::vec4(1, 1, 1, 1)) << name;
+        EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {0, 1, 0})], glm::vec4(0, 1, 0, 1)) << name;
+        EXPECT_EQ(mesh.material.baseColorFactor, Material{}.baseColorFactor) << name; // as the library says
+    }
+    EXPECT_EQ(meshWithMaterial(scene, "a").normals.at(0), glm::vec3(0, 0, 1));  // the file's
+    EXPECT_EQ(meshWithMaterial(scene, "b").normals.at(0), glm::vec3(0, 0, -1)); // computed for b's winding
+}
+
+/** Two unit quads side by side sharing the edge x = 1; the right one's texture coordinates continue the left one's
+ *  (`seam` false) or start over at u = 0 (`seam` true). */
+std::string twoQuads(bool seam) {
+    return std::string("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+                       "vt 0 0\nvt 0.5 0\nvt 0.5 1\nvt 0 1\nvt 1 0\nvt 1 1\n") +
+           "f 1/1 2/2 3/3 4/4\n" + (seam ? "f 2/1 5/5 6/6 3/4\n" : "f 2/2 5/5 6/6 3/3\n");
+}
+
+TEST(ObjMaterials, TextureSeamKeepsItsSplitVerticesAndSharedCoordinatesWeld) {
+    const TempFolder folder;
+    const Scene joined = loadScene(folder.write("joined.obj", twoQuads(false)));
+    EXPECT_EQ(joined.meshes.at(0).positions.size(), 6u);
+    const Scene seamed = loadScene(folder.write("seamed.obj", twoQuads(true)));
+    const Mesh& mesh = seamed.meshes.at(0);
+    ASSERT_EQ(mesh.positions.size(), 8u); // the two seam corners twice, one copy per side
+    std::set<std::pair<float, float>> seamCoordinates;
+    for (std::size_t vertex = 0; vertex < mesh.positions.size(); ++vertex) {
+        if (test::worldPosition(seamed, mesh.positions[vertex]).x == 1.0) {
+            seamCoordinates.emplace(mesh.texcoords[0][vertex].x, mesh.texcoords[0][vertex].y);
+        }
+    }
+    EXPECT_EQ(seamCoordinates,
+              (std::set<std::pair<float, float>>{{0.5f, 1.0f}, {0.5f, 0.0f}, {0.0f, 1.0f}, {0.0f, 0.0f}}));
+}
+
+TEST(ObjMaterials, CubeWithAFullSquarePerFaceKeepsOneVertexPerCornerCoordinatePair) {
+    // Every face maps its quad onto the whole image, so each cube corner meets three faces at (mostly) different
+    // texture coordinates: the mesh keeps one vertex per distinct (corner, coordinate) pair, and the copies of a
+    // corner share one smooth normal (computed across the seams, so the cube's shading does not show them).
+    std::ostringstream obj;
+    for (const glm::vec3& corner : test::cubeCorners()) {
+        obj << "v " << corner.x << ' ' << corner.y << ' ' << corner.z << '\n';
+    }
+    obj << "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
+    std::set<std::pair<unsigned, unsigned>> pairs;
+    for (const glm::uvec4& quad : test::cubeQuads()) {
+        obj << "f " << quad.x << "/1 " << quad.y << "/2 " << quad.z << "/3 " << quad.w << "/4\n";
+        for (unsigned corner = 0; corner < 4; ++corner) pairs.emplace(quad[int(corner)], corner);
+    }
+    const TempFolder folder;
+    const Scene scene = loadScene(folder.write("cube.obj", obj.str()));
+    const Mesh& mesh = scene.meshes.at(0);
+    EXPECT_GT(pairs.size(), 8u);
+    EXPECT_EQ(mesh.positions.size(), pairs.size());
+    EXPECT_EQ(mesh.triangleCount(), 12u);
+    for (std::size_t a = 0; a < mesh.positions.size(); ++a) {
+        for (std::size_t b = 0; b < mesh.positions.size(); ++b) {
+            if (mesh.positions[a] == mesh.positions[b]) {
+                EXPECT_EQ(mesh.normals[a], mesh.normals[b]);
+                EXPECT_GT(glm::dot(glm::dvec3(mesh.normals[a]), glm::dvec3(mesh.positions[a])), 0.0);
+            }
+        }
+    }
+}
+
+TEST(ObjMaterials, LibraryBytesCountAgainstTheMemoryLimit) {
+    const TempFolder folder;
+    folder.write("huge.mtl", "newmtl big\n" + std::string(3u << 20, '#'));
+    const std::string model = folder.write("huge.obj", "mtllib huge.mtl\nusemtl big\n" + kTriangle);
+    LoadOptions options;
+    options.memoryLimitBytes = 2u << 20;
+    const std::string message = test::sceneErrorMessage([&] { loadScene(model, options); });
+    EXPECT_TRUE(contains(message, "above the memory limit of 2 MiB")) << message;
+    options.memoryLimitBytes = 16u << 20;
+    EXPECT_EQ(loadScene(model, options).triangleCount(), 1u);
+}
+
+} // namespace
+} // namespace inkgraph
