@@ -555,8 +555,10 @@ private:
         const std::string textureName = textureLabel(info.index);
         if (texture.source == -1) {
             std::string extensions;
+            std::size_t named = 0;
             for (const auto& [name, value] : texture.extensions)
-                extensions += (extensions.empty() ? " (it has only '" : "', '") + excerptForMessage(name);
+                if (++named <= kMaxNamedExtensions)
+                    extensions += (extensions.empty() ? " (it has only '" : "', '") + excerptForMessage(name);
             mOut.warnings.push_back(label + ": " + textureName + " has no PNG or JPEG source" +
                                     (extensions.empty() ? "" : extensions + "')") + "; drawn untextured");
             return ref;
