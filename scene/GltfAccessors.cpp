@@ -105,10 +105,33 @@ const unsigned char* checkedWindow(const AccessorContext& context, int viewIndex
                       (count - 1) <= (available - byteOffset - elementBytes) / stride;
     if (!fits) {
         context.fail(what + std::to_string(count) + " elements from offset " + std::to_string(byteOffset) +
-                     " read past the end of buffer view " + std::to_string(viewIndex) + " (" +
+                     ": the last reads past the end of buffer view " + std::to_string(viewIndex) + " (" +
                      std::to_string(available) + " bytes)");
     }
     return buffer.data() + view.byteOffset + byteOffset;
+}
+
+/** Where an accessor's own elements lie (not its sparse part): checked as checkedWindow() checks. */
+struct BaseWindow {
+    const unsigned char* first = nullptr;
+    std::size_t stride = 0;
+};
+
+BaseWindow baseWindow(const AccessorContext& context, const tinygltf::Accessor& accessor, int components) {
+    const std::size_t elementBytes = componentBytes(accessor.componentType) * std::size_t(components);
+    std::size_t stride = elementBytes;
+    if (accessor.bufferView >= 0 && std::size_t(accessor.bufferView) < context.model.bufferViews.size()) {
+        const std::size_t declared = context.model.bufferViews[std::size_t(accessor.bufferView)].byteStride;
+        if (declared != 0) {
+            if (declared < elementBytes) {
+                context.fail("byte stride " + std::to_string(declared) + " is smaller than an element (" +
+                             std::to_string(elementBytes) + " bytes)");
+            }
+            stride = declared;
+        }
+    }
+    return {checkedWindow(context, accessor.bufferView, accessor.byteOffset, accessor.count, elementBytes, stride, ""),
+            stride};
 }
 
 template <typename T>
@@ -167,19 +190,9 @@ std::vector<Value> readComponents(const AccessorContext& context, const tinygltf
     if (accessor.bufferView < 0) {
         values.assign(count * std::size_t(components), Value(0));
     } else {
-        std::size_t stride = elementBytes;
-        const tinygltf::BufferView* view = std::size_t(accessor.bufferView) < context.model.bufferViews.size()
-                                               ? &context.model.bufferViews[std::size_t(accessor.bufferView)]
-                                               : nullptr;
-        if (view != nullptr && view->byteStride != 0) {
-            stride = view->byteStride;
-            if (stride < elementBytes) {
-                context.fail("byte stride " + std::to_string(stride) + " is smaller than an element (" +
-                             std::to_string(elementBytes) + " bytes)");
-            }
-        }
-        const unsigned char* first =
-            checkedWindow(context, accessor.bufferView, accessor.byteOffset, count, elementBytes, stride, "");
+        const BaseWindow window = baseWindow(context, accessor, components);
+        const unsigned char* first = window.first;
+        const std::size_t stride = window.stride;
         values.resize(count * std::size_t(components));
         for (std::size_t i = 0; i < count; ++i) {
             const unsigned char* element = first + i * stride;
@@ -250,7 +263,10 @@ int componentsOf(int accessorType) {
 std::size_t accessorCount(const std::string& path, const tinygltf::Model& model, int index, int expectedType,
                           const std::string& role) {
     const AccessorContext context{path, model, index, role};
-    return checkedAccessor(context, expectedType).count;
+    const tinygltf::Accessor& accessor = checkedAccessor(context, expectedType);
+    // A count its buffer view cannot hold is refused here, before a caller charges or allocates for it.
+    if (accessor.bufferView >= 0) baseWindow(context, accessor, componentsOf(expectedType));
+    return accessor.count;
 }
 
 std::vector<float> readAccessorFloats(const std::string& path, const tinygltf::Model& model, int index,

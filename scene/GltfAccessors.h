@@ -30,8 +30,8 @@ std::vector<float> readAccessorFloats(const std::string& path, const tinygltf::M
 std::vector<std::uint32_t> readAccessorIntegers(const std::string& path, const tinygltf::Model& model, int index,
                                                 int expectedType, const std::string& role);
 
-/** The element count of accessor `index` after checking its index, type and component type, without reading it:
- *  for MeshBudget charges and count comparisons before anything is allocated. */
+/** The element count of accessor `index` after checking its index, type and component type and that its buffer view
+ *  holds that many, without reading it: for MeshBudget charges and count comparisons before anything is allocated. */
 std::size_t accessorCount(const std::string& path, const tinygltf::Model& model, int index, int expectedType,
                           const std::string& role);
 

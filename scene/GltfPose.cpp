@@ -13,6 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
 
 namespace inkgraph::detail {
 
@@ -359,7 +362,7 @@ std::vector<glm::dmat4> jointMatrices(const std::string& path, const tinygltf::M
 
 SkinBlend::SkinBlend(const std::string& path, const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                      std::size_t vertexCount, std::vector<glm::dmat4> joints, const glm::dmat4& fallback,
-                     const std::string& meshLabel)
+                     const std::string& meshLabel, const std::map<std::string, std::vector<float>>* decoded)
     : mJoints(std::move(joints)), mFallback(fallback) {
     const std::string label = quoted(meshLabel);
     for (int set = 0;; ++set) {
@@ -373,18 +376,38 @@ SkinBlend::SkinBlend(const std::string& path, const tinygltf::Model& model, cons
         }
         const std::string jointsRole = label + " " + jointsAttribute->first;
         const std::string weightsRole = label + " " + weightsAttribute->first;
-        for (const auto& [role, accessor] :
-             {std::pair{jointsRole, jointsAttribute->second}, std::pair{weightsRole, weightsAttribute->second}}) {
+        // A Draco primitive's decoded set (the decoder checked its count and component count); else the accessors.
+        const auto decodedOf = [&](const std::string& attribute) -> const std::vector<float>* {
+            if (!decoded) return nullptr;
+            const auto found = decoded->find(attribute);
+            return found != decoded->end() ? &found->second : nullptr;
+        };
+        const std::vector<float>* decodedJoints = decodedOf(jointsAttribute->first);
+        const std::vector<float>* decodedWeights = decodedOf(weightsAttribute->first);
+        for (const auto& [role, accessor, fromDraco] :
+             {std::tuple{jointsRole, jointsAttribute->second, decodedJoints != nullptr},
+              std::tuple{weightsRole, weightsAttribute->second, decodedWeights != nullptr}}) {
             const std::size_t count = accessorCount(path, model, accessor, TINYGLTF_TYPE_VEC4, role);
-            if (count != vertexCount) {
+            if (count != vertexCount && !fromDraco) {
                 throwLoadError(path, role + " has " + std::to_string(count) + " elements but POSITION has " +
                                          std::to_string(vertexCount));
             }
         }
-        const std::vector<std::uint32_t> jointOf =
-            readAccessorIntegers(path, model, jointsAttribute->second, TINYGLTF_TYPE_VEC4, jointsRole);
+        std::vector<std::uint32_t> jointOf;
+        if (decodedJoints) {
+            jointOf.reserve(decodedJoints->size());
+            for (const float joint : *decodedJoints) {
+                // JOINTS_n are unsigned integers; the decoder gives them as floats, exact below 2^24.
+                jointOf.push_back(std::isfinite(joint) && joint >= 0.0f && joint < 16777216.0f
+                                      ? std::uint32_t(joint)
+                                      : std::numeric_limits<std::uint32_t>::max());
+            }
+        } else {
+            jointOf = readAccessorIntegers(path, model, jointsAttribute->second, TINYGLTF_TYPE_VEC4, jointsRole);
+        }
         const std::vector<float> weightOf =
-            readAccessorFloats(path, model, weightsAttribute->second, TINYGLTF_TYPE_VEC4, weightsRole);
+            decodedWeights ? *decodedWeights
+                           : readAccessorFloats(path, model, weightsAttribute->second, TINYGLTF_TYPE_VEC4, weightsRole);
         // Interleaved per vertex: the earlier sets' influences, then this one's four.
         std::vector<std::uint32_t> joined(vertexCount * (mInfluences + 4));
         std::vector<float> joinedWeights(joined.size());

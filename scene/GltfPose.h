@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -87,10 +88,12 @@ std::vector<glm::dmat4> jointMatrices(const std::string& path, const tinygltf::M
 class SkinBlend {
 public:
     /** Reads the primitive's joints and weights (`vertexCount` each) and checks every joint index against
-     *  `joints.size()`. `fallback` is the matrix of a vertex whose weights sum to zero (the skinned node's world). */
+     *  `joints.size()`. `fallback` is the matrix of a vertex whose weights sum to zero (the skinned node's world).
+     *  `decoded`, for a Draco-compressed primitive, holds its decoded attributes by name (DracoPrimitive::attributes,
+     *  four floats per vertex for JOINTS_n and WEIGHTS_n): a set found there is taken from it, not its accessor. */
     SkinBlend(const std::string& path, const tinygltf::Model& model, const tinygltf::Primitive& primitive,
               std::size_t vertexCount, std::vector<glm::dmat4> joints, const glm::dmat4& fallback,
-              const std::string& meshLabel);
+              const std::string& meshLabel, const std::map<std::string, std::vector<float>>* decoded = nullptr);
 
     /** sum_i weight_i * joint[joint_i] over the vertex's influences, weights normalised to sum 1. */
     glm::dmat4 vertexMatrix(std::size_t vertex) const;

@@ -5,6 +5,7 @@
 
 #include "scene/FormatReaders.h"
 #include "scene/GltfAccessors.h"
+#include "scene/GltfDraco.h"
 #include "scene/GltfPose.h"
 #include "scene/VrmMaterials.h"
 
@@ -25,9 +26,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iomanip>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -47,20 +50,49 @@ std::string shadeMapBesideModel(const std::string& modelPath, const std::string&
 }
 
 /** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light,
- *  KHR_mesh_quantization's integer and normalized attributes (GltfAccessors.cpp reads any component type), VRM 0.x
- *  ("VRM": its front and MToon materialProperties) and 1.0 ("VRMC_vrm": its front; "VRMC_materials_mtoon"),
- *  scene/VrmMaterials.h. */
-const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_mesh_quantization", "VRM",
-                                                       "VRMC_materials_mtoon", "VRMC_vrm"};
+ *  KHR_mesh_quantization's integer and normalized attributes (GltfAccessors.cpp reads any component type),
+ *  KHR_draco_mesh_compression (GltfDraco.cpp), KHR_texture_transform, KHR_materials_unlit,
+ *  KHR_materials_emissive_strength, VRM 0.x ("VRM": its front and MToon materialProperties) and 1.0 ("VRMC_vrm": its
+ *  front; "VRMC_materials_mtoon"), scene/VrmMaterials.h. */
+const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual",
+                                                       "KHR_mesh_quantization",
+                                                       "KHR_draco_mesh_compression",
+                                                       "KHR_texture_transform",
+                                                       "KHR_materials_unlit",
+                                                       "KHR_materials_emissive_strength",
+                                                       "VRM",
+                                                       "VRMC_materials_mtoon",
+                                                       "VRMC_vrm"};
 
 /** Unsupported required extensions named one by one in the refusal; the rest are counted. */
 constexpr std::size_t kMaxNamedExtensions = 10;
 
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian; add byte swapping");
 
-/** tinygltf decodes textures by default; the renderer uses none, so skip the work (and stb's failure modes). */
-bool skipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                       void*) {
+/** The encoded bytes of the images given as data: URIs, by glTF image index, kept by keepEncodedImage(). */
+struct DataUriImages {
+    MeshBudget& budget;
+    std::vector<std::shared_ptr<const std::vector<unsigned char>>> bytes;
+};
+
+/** tinygltf's image decoder, replaced: images stay encoded until a pass samples them (scene/Material.h). tinygltf
+ *  calls it for data: URIs (bytes it decoded itself, the size exact), for external files (our one-byte placeholder:
+ *  readExternalFile()) and for buffer-view images, whose window it does not bounds-check: those are copied later by
+ *  sceneImages() after checking, so only data: URIs are kept here. */
+bool keepEncodedImage(tinygltf::Image* image, const int imageIndex, std::string* error, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* user) {
+    auto& images = *static_cast<DataUriImages*>(user);
+    if (image->bufferView != -1 || !image->uri.empty() || imageIndex < 0 || size < 0) {
+        return true;
+    }
+    try {
+        images.budget.chargeFile(std::size_t(size));
+    } catch (const SceneError&) {
+        if (error) *error += "image " + std::to_string(imageIndex) + " is above the memory limit\n";
+        return false;
+    }
+    if (images.bytes.size() <= std::size_t(imageIndex)) images.bytes.resize(std::size_t(imageIndex) + 1);
+    images.bytes[std::size_t(imageIndex)] = std::make_shared<const std::vector<unsigned char>>(bytes, bytes + size);
     return true;
 }
 
@@ -139,7 +171,7 @@ public:
                const LoadOptions& options)
         : mPath(path), mModel(model), mOut(out), mBudget(budget), mOptions(options),
           mReached(model.nodes.size(), false), mWorlds(model.nodes.size()), mMaterialShadeMaps(model.materials.size()),
-          mVrmMaterialsWarned(model.materials.size(), false) {}
+          mMaterials(model.materials.size()) {}
 
     void walk() {
         checkRequiredExtensions();
@@ -443,24 +475,224 @@ private:
         return *cached;
     }
 
-    /** A VRM character's MToon (scene/VrmMaterials.h), which may also adjust `material`; its warnings once per
-     *  material. The texture resolver is a stand-in (image and set only) until the glTF material's texture reading
-     *  lands; then it is that reading. */
-    std::optional<MToonMaterial> vrmMaterial(int materialIndex, Material& material) {
-        const VrmTextureResolver resolveTexture = [this](int texture, int texCoord, const tinygltf::Value*) {
-            TextureRef ref;
-            const int source = mModel.textures[std::size_t(texture)].source;
-            ref.image = source >= 0 && std::size_t(source) < mModel.images.size() ? source : -1;
-            ref.texCoord = texCoord;
+    /** "texture 2 'skin'", or "texture 2" for an unnamed one. */
+    std::string textureLabel(int textureIndex) const {
+        const std::string& name = mModel.textures[std::size_t(textureIndex)].name;
+        return "texture " + std::to_string(textureIndex) + (name.empty() ? "" : " '" + excerptForMessage(name) + "'");
+    }
+
+    /** A sampler enum as the file writes it, or `fallback` (with a warning) for a value glTF does not define;
+     *  tinygltf leaves an absent one at -1. */
+    template <typename Enum>
+    Enum samplerValue(int value, std::initializer_list<Enum> allowed, Enum fallback, const std::string& what) {
+        if (value == -1) return fallback;
+        for (Enum candidate : allowed)
+            if (std::uint32_t(candidate) == std::uint32_t(value)) return candidate;
+        mOut.warnings.push_back(what + " " + std::to_string(value) + " is not a glTF value; the default is used");
+        return fallback;
+    }
+
+    TextureSampler readSampler(int samplerIndex) {
+        TextureSampler result;
+        if (samplerIndex == -1) return result; // glTF: repeat, filters up to the renderer
+        if (samplerIndex < 0 || std::size_t(samplerIndex) >= mModel.samplers.size()) {
+            fail("sampler index " + std::to_string(samplerIndex) + " out of range (file has " +
+                 std::to_string(mModel.samplers.size()) + " samplers)");
+        }
+        const tinygltf::Sampler& sampler = mModel.samplers[std::size_t(samplerIndex)];
+        const std::string label = "sampler " + std::to_string(samplerIndex);
+        using F = TextureFilter;
+        using W = TextureWrap;
+        result.magFilter =
+            samplerValue(sampler.magFilter, {F::Nearest, F::Linear}, result.magFilter, label + " magFilter");
+        result.minFilter = samplerValue(sampler.minFilter,
+                                        {F::Nearest, F::Linear, F::NearestMipmapNearest, F::LinearMipmapNearest,
+                                         F::NearestMipmapLinear, F::LinearMipmapLinear},
+                                        result.minFilter, label + " minFilter");
+        const std::initializer_list<W> wraps = {W::Repeat, W::ClampToEdge, W::MirroredRepeat};
+        result.wrapS = samplerValue(sampler.wrapS, wraps, result.wrapS, label + " wrapS");
+        result.wrapT = samplerValue(sampler.wrapT, wraps, result.wrapT, label + " wrapT");
+        return result;
+    }
+
+    /** A number of an extension object, or `fallback` when absent; a present non-number or non-finite one fails. */
+    double extensionNumber(const tinygltf::Value& object, const char* key, double fallback,
+                           const std::string& label) const {
+        if (!object.Has(key)) return fallback;
+        const tinygltf::Value& value = object.Get(key);
+        const double number = value.IsNumber() ? value.GetNumberAsDouble() : std::nan("");
+        if (!std::isfinite(number)) fail(label + ": '" + key + "' must be a finite number");
+        return number;
+    }
+
+    /** An [x, y] array of an extension object, or `fallback` when absent. */
+    glm::dvec2 extensionPair(const tinygltf::Value& object, const char* key, glm::dvec2 fallback,
+                             const std::string& label) const {
+        if (!object.Has(key)) return fallback;
+        const tinygltf::Value& value = object.Get(key);
+        if (!value.IsArray() || value.ArrayLen() != 2) fail(label + ": '" + key + "' must be an array of 2 numbers");
+        glm::dvec2 pair;
+        for (int i = 0; i < 2; ++i) {
+            const tinygltf::Value& item = value.Get(i);
+            pair[i] = item.IsNumber() ? item.GetNumberAsDouble() : std::nan("");
+            if (!std::isfinite(pair[i])) fail(label + ": '" + key + "' must be an array of 2 finite numbers");
+        }
+        return pair;
+    }
+
+    /** A material's textureInfo as a TextureRef: the image its texture shows, the coordinate set and sampler, and the
+     *  KHR_texture_transform matrix. A texture without a core image (only an extension's, e.g. KHR_texture_basisu or
+     *  EXT_texture_webp, which the renderer cannot decode) or on a third coordinate set leaves the material
+     *  untextured, with a warning. */
+    TextureRef readTextureRef(const tinygltf::TextureInfo& info, const std::string& label) {
+        TextureRef ref;
+        if (info.index == -1) return ref;
+        if (info.index < 0 || std::size_t(info.index) >= mModel.textures.size()) {
+            fail(label + ": texture index " + std::to_string(info.index) + " out of range (file has " +
+                 std::to_string(mModel.textures.size()) + " textures)");
+        }
+        const tinygltf::Texture& texture = mModel.textures[std::size_t(info.index)];
+        const std::string textureName = textureLabel(info.index);
+        if (texture.source == -1) {
+            std::string extensions;
+            std::size_t named = 0;
+            for (const auto& [name, value] : texture.extensions)
+                if (++named <= kMaxNamedExtensions)
+                    extensions += (extensions.empty() ? " (it has only '" : "', '") + excerptForMessage(name);
+            mOut.warnings.push_back(label + ": " + textureName + " has no PNG or JPEG source" +
+                                    (extensions.empty() ? "" : extensions + "')") + "; drawn untextured");
             return ref;
+        }
+        if (texture.source < 0 || std::size_t(texture.source) >= mModel.images.size()) {
+            fail(label + ": " + textureName + ": image index " + std::to_string(texture.source) +
+                 " out of range (file has " + std::to_string(mModel.images.size()) + " images)");
+        }
+        int texCoord = info.texCoord;
+        glm::mat3 transform(1.0f);
+        const auto extension = info.extensions.find("KHR_texture_transform");
+        if (extension != info.extensions.end() && extension->second.IsObject()) {
+            const tinygltf::Value& object = extension->second;
+            const std::string where = label + " KHR_texture_transform";
+            const glm::dvec2 offset = extensionPair(object, "offset", glm::dvec2(0.0), where);
+            const double rotation = extensionNumber(object, "rotation", 0.0, where);
+            const glm::dvec2 scale = extensionPair(object, "scale", glm::dvec2(1.0), where);
+            const double texCoordOverride = extensionNumber(object, "texCoord", double(texCoord), where);
+            texCoord = texCoordOverride == 0.0 || texCoordOverride == 1.0 ? int(texCoordOverride) : -1;
+            // The extension's matrices, column by column as its GLSL writes them: uv' = T * R * S * (u, v, 1).
+            const glm::dmat3 translation(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, offset.x, offset.y, 1.0);
+            const double c = std::cos(rotation);
+            const double s = std::sin(rotation);
+            const glm::dmat3 rotationMatrix(c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0);
+            const glm::dmat3 scaleMatrix(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
+            transform = glm::mat3(translation * rotationMatrix * scaleMatrix);
+        }
+        if (texCoord < 0 || texCoord > 1) {
+            mOut.warnings.push_back(label + ": texture coordinate set " + std::to_string(texCoord) +
+                                    " is not read (only TEXCOORD_0 and TEXCOORD_1); drawn untextured");
+            return ref;
+        }
+        ref.image = texture.source;
+        ref.texCoord = texCoord;
+        ref.sampler = readSampler(texture.sampler);
+        ref.transform = transform;
+        return ref;
+    }
+
+    /** A VRM character's MToon (scene/VrmMaterials.h), which may also adjust `material`. Its textures go through
+     *  readTextureRef(), so their samplers and KHR_texture_transform are read as the glTF material's are. Called once
+     *  per material, by material(), so its warnings are reported once. */
+    std::optional<MToonMaterial> vrmMaterial(int materialIndex, Material& material) {
+        const std::string label = materialLabel(materialIndex) + " MToon texture";
+        const VrmTextureResolver resolveTexture = [&](int texture, int texCoord,
+                                                      const tinygltf::Value* textureInfoExtensions) {
+            tinygltf::TextureInfo info;
+            info.index = texture;
+            info.texCoord = texCoord;
+            if (textureInfoExtensions && textureInfoExtensions->IsObject()) {
+                for (const std::string& key : textureInfoExtensions->Keys())
+                    info.extensions[key] = textureInfoExtensions->Get(key);
+            }
+            return readTextureRef(info, label);
         };
         std::vector<std::string> warnings;
         std::optional<MToonMaterial> mtoon = readVrmMaterial(mModel, materialIndex, material, resolveTexture, warnings);
-        if (!mVrmMaterialsWarned[std::size_t(materialIndex)]) {
-            mVrmMaterialsWarned[std::size_t(materialIndex)] = true;
-            mOut.warnings.insert(mOut.warnings.end(), warnings.begin(), warnings.end());
-        }
+        mOut.warnings.insert(mOut.warnings.end(), warnings.begin(), warnings.end());
         return mtoon;
+    }
+
+    /** Material `materialIndex` as the renderer sees it, read once (its warnings too) when a primitive first uses
+     *  it: the glTF material, then a VRM character's MToon (vrmMaterial()). */
+    const Material& material(int materialIndex) {
+        std::optional<Material>& cached = mMaterials[std::size_t(materialIndex)];
+        if (cached) return *cached;
+        const tinygltf::Material& source = mModel.materials[std::size_t(materialIndex)];
+        const std::string label = materialLabel(materialIndex);
+        Material result;
+        result.name = source.name;
+        const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
+        if (factor.size() == 4) {
+            result.baseColorFactor = glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
+        }
+        result.baseColorTexture =
+            readTextureRef(source.pbrMetallicRoughness.baseColorTexture, label + " baseColorTexture");
+        if (source.emissiveFactor.size() == 3) {
+            result.emissiveFactor = glm::vec3(float(source.emissiveFactor[0]), float(source.emissiveFactor[1]),
+                                              float(source.emissiveFactor[2]));
+        }
+        const auto strength = source.extensions.find("KHR_materials_emissive_strength");
+        if (strength != source.extensions.end() && strength->second.IsObject()) {
+            const double multiplier =
+                extensionNumber(strength->second, "emissiveStrength", 1.0, label + " KHR_materials_emissive_strength");
+            if (multiplier < 0.0) fail(label + ": emissiveStrength " + formatNumber(multiplier) + " is negative");
+            result.emissiveFactor *= float(multiplier);
+        }
+        result.emissiveTexture = readTextureRef(source.emissiveTexture, label + " emissiveTexture");
+        result.unlit = source.extensions.count("KHR_materials_unlit") > 0;
+        if (source.alphaMode == "MASK") {
+            result.alphaMode = AlphaMode::Mask;
+        } else if (source.alphaMode == "BLEND") {
+            result.alphaMode = AlphaMode::Blend;
+        } else if (source.alphaMode != "OPAQUE") {
+            mOut.warnings.push_back(label + ": alphaMode '" + excerptForMessage(source.alphaMode) +
+                                    "' is not OPAQUE, MASK or BLEND; drawn opaque");
+        }
+        if (std::isfinite(source.alphaCutoff) && source.alphaCutoff >= 0.0) {
+            result.alphaCutoff = float(source.alphaCutoff);
+        } else {
+            mOut.warnings.push_back(label + ": alphaCutoff " + formatNumber(source.alphaCutoff) +
+                                    " is not a number >= 0; 0.5 is used");
+        }
+        result.doubleSided = source.doubleSided;
+        result.shadeMapPath = materialShadeMap(materialIndex);
+        result.mtoon = vrmMaterial(materialIndex, result);
+        cached = std::move(result);
+        return *cached;
+    }
+
+    /** TEXCOORD_0 and TEXCOORD_1, and COLOR_0 (RGB gets alpha 1), as the file gives them. */
+    void readSurfaceAttributes(const tinygltf::Primitive& primitive, std::optional<DracoPrimitive>& draco,
+                               std::size_t vertexCount, const std::string& name, RawMesh& mesh) const {
+        for (int set = 0; set < 2; ++set) {
+            const std::string attribute = "TEXCOORD_" + std::to_string(set);
+            if (primitive.attributes.count(attribute) == 0) continue;
+            const std::vector<float> values =
+                attributeFloats(primitive, draco, attribute, TINYGLTF_TYPE_VEC2, vertexCount, name);
+            mesh.texcoords[set].resize(vertexCount);
+            std::memcpy(mesh.texcoords[set].data(), values.data(), vertexCount * sizeof(glm::vec2));
+        }
+        const auto color = primitive.attributes.find("COLOR_0");
+        if (color == primitive.attributes.end()) return;
+        // RGB or RGBA; anything else is refused by the read as "expected VEC4".
+        const bool rgb = color->second >= 0 && std::size_t(color->second) < mModel.accessors.size() &&
+                         mModel.accessors[std::size_t(color->second)].type == TINYGLTF_TYPE_VEC3;
+        const int components = rgb ? 3 : 4;
+        const std::vector<float> values = attributeFloats(
+            primitive, draco, "COLOR_0", rgb ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, vertexCount, name);
+        mesh.colors.resize(vertexCount);
+        for (std::size_t i = 0; i < vertexCount; ++i) {
+            const float* rgba = values.data() + i * std::size_t(components);
+            mesh.colors[i] = glm::vec4(rgba[0], rgba[1], rgba[2], rgb ? 1.0f : rgba[3]);
+        }
     }
 
     /** "node 3 'wheel'", or "node 3" for an unnamed one. */
@@ -531,12 +763,28 @@ private:
         mBudget.chargeBytes(bytes);
     }
 
-    /** A VEC3 attribute (POSITION, NORMAL) as vectors, in the file's frame. */
-    std::vector<glm::vec3> readVec3(int accessorIndex, const std::string& role) const {
-        const std::vector<float> values = readAccessorFloats(mPath, mModel, accessorIndex, TINYGLTF_TYPE_VEC3, role);
+    /** VEC3 floats (POSITION, NORMAL) as vectors, in the file's frame. */
+    static std::vector<glm::vec3> toVec3(const std::vector<float>& values) {
         std::vector<glm::vec3> vectors(values.size() / 3);
         std::memcpy(vectors.data(), values.data(), vectors.size() * sizeof(glm::vec3));
         return vectors;
+    }
+
+    /** Vertex attribute `attribute` of `primitive` as floats: from the decoded Draco data when the primitive
+     *  compresses it, else from its accessor, whose count is checked against POSITION before it is read. */
+    std::vector<float> attributeFloats(const tinygltf::Primitive& primitive, std::optional<DracoPrimitive>& draco,
+                                       const std::string& attribute, int type, std::size_t vertexCount,
+                                       const std::string& name) const {
+        const int accessorIndex = primitive.attributes.at(attribute);
+        if (draco) {
+            const auto decoded = draco->attributes.find(attribute);
+            if (decoded != draco->attributes.end()) {
+                accessorCount(mPath, mModel, accessorIndex, type, attribute); // its type checked, as uncompressed
+                return std::move(decoded->second);
+            }
+        }
+        requireVertexCount(accessorIndex, type, attribute, vertexCount, name);
+        return readAccessorFloats(mPath, mModel, accessorIndex, type, attribute);
     }
 
     /** A vertex attribute has one element per vertex; checked before it is read, so a mismatched count allocates
@@ -609,23 +857,38 @@ private:
             return;
         }
 
-        // Charged before anything is copied: one mesh instanced by many nodes is copied once per node.
-        const std::size_t vertexCount =
-            accessorCount(mPath, mModel, positionAttribute->second, TINYGLTF_TYPE_VEC3, "POSITION");
-        const std::size_t cornerCount =
-            primitive.indices >= 0 ? accessorCount(mPath, mModel, primitive.indices, TINYGLTF_TYPE_SCALAR, "index")
-                                   : vertexCount;
-        mBudget.charge(vertexCount, mode == TINYGLTF_MODE_TRIANGLES ? cornerCount / 3 : cornerCount);
+        // Charged before anything is copied: one mesh instanced by many nodes is copied once per node. Draco data is
+        // charged by its decoded counts (decodeDracoPrimitive()); its accessors hold no data of their own.
+        std::optional<DracoPrimitive> draco;
+        std::size_t vertexCount = 0;
+        if (hasDracoCompression(primitive)) {
+            draco = decodeDracoPrimitive(mPath, mModel, primitive, "'" + excerptForMessage(name) + "'", mBudget);
+            vertexCount = draco->vertexCount;
+        } else {
+            vertexCount = accessorCount(mPath, mModel, positionAttribute->second, TINYGLTF_TYPE_VEC3, "POSITION");
+            const std::size_t cornerCount =
+                primitive.indices >= 0 ? accessorCount(mPath, mModel, primitive.indices, TINYGLTF_TYPE_SCALAR, "index")
+                                       : vertexCount;
+            mBudget.charge(vertexCount, mode == TINYGLTF_MODE_TRIANGLES ? cornerCount / 3 : cornerCount);
+        }
 
         RawMesh mesh;
         mesh.name = name;
-        mesh.positions = readVec3(positionAttribute->second, "POSITION");
-        const auto normalAttribute = primitive.attributes.find("NORMAL");
-        if (normalAttribute != primitive.attributes.end()) {
-            requireVertexCount(normalAttribute->second, TINYGLTF_TYPE_VEC3, "NORMAL", vertexCount, name);
-            mesh.normals = readVec3(normalAttribute->second, "NORMAL");
+        mesh.positions = toVec3(attributeFloats(primitive, draco, "POSITION", TINYGLTF_TYPE_VEC3, vertexCount, name));
+        if (primitive.attributes.count("NORMAL") > 0) {
+            mesh.normals = toVec3(attributeFloats(primitive, draco, "NORMAL", TINYGLTF_TYPE_VEC3, vertexCount, name));
         }
 
+        if (draco) {
+            // Draco reorders and merges vertices, so a target's uncompressed accessor no longer lines up with them.
+            for (std::size_t t = 0; t < primitive.targets.size() && t < pose.morphWeights.size(); ++t) {
+                if (pose.morphWeights[t] != 0.0 && std::isfinite(pose.morphWeights[t])) { // as applyMorphTargets()
+                    fail("'" + excerptForMessage(name) +
+                         "': morph targets of a Draco-compressed primitive are not supported (target " +
+                         std::to_string(t) + " has weight " + formatNumber(pose.morphWeights[t]) + ")");
+                }
+            }
+        }
         applyMorphTargets(mPath, mModel, primitive, pose.morphWeights, mesh.positions, mesh.normals, name,
                           mOut.warnings);
         std::optional<SkinBlend> skin;
@@ -635,11 +898,15 @@ private:
                 primitive.attributes, [](const auto& entry) { return entry.first.starts_with("JOINTS_"); });
             mBudget.check(vertexCount * std::size_t(sets) * kSkinBytesPerVertexPerSet / MeshBudget::kBytesPerVertex + 1,
                           0);
-            skin.emplace(mPath, mModel, primitive, vertexCount, *pose.skinJoints, world, name);
+            skin.emplace(mPath, mModel, primitive, vertexCount, *pose.skinJoints, world, name,
+                         draco ? &draco->attributes : nullptr);
         }
+        readSurfaceAttributes(primitive, draco, vertexCount, name, mesh);
 
         std::vector<std::uint32_t> indices;
-        if (primitive.indices >= 0) {
+        if (draco) {
+            indices = std::move(draco->indices); // a triangle list whatever the mode says: Draco stores faces
+        } else if (primitive.indices >= 0) {
             indices = readIndices(primitive.indices, vertexCount);
         } else {
             indices.resize(vertexCount);
@@ -647,7 +914,7 @@ private:
                 indices[i] = std::uint32_t(i);
             }
         }
-        mesh.triangles = triangulate(mode, indices, name);
+        mesh.triangles = triangulate(draco ? TINYGLTF_MODE_TRIANGLES : mode, indices, name);
 
         // Bake the node transform (a skinned vertex's: its blend of joint matrices); normals use the inverse
         // transpose so non-uniform scale keeps them perpendicular.
@@ -693,15 +960,7 @@ private:
         }
 
         if (primitive.material >= 0) { // in range: checkMaterialIndices()
-            const tinygltf::Material& material = mModel.materials[std::size_t(primitive.material)];
-            mesh.material.name = material.name;
-            const std::vector<double>& factor = material.pbrMetallicRoughness.baseColorFactor;
-            if (factor.size() == 4) {
-                mesh.material.baseColorFactor =
-                    glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
-            }
-            mesh.material.shadeMapPath = materialShadeMap(primitive.material);
-            mesh.material.mtoon = vrmMaterial(primitive.material, mesh.material);
+            mesh.material = material(primitive.material);
         }
         mOut.meshes.push_back(std::move(mesh));
     }
@@ -716,7 +975,7 @@ private:
     std::vector<std::optional<glm::dmat4>> mWorlds; ///< per node reached by the walk: its world transform
     std::vector<int> mParent = std::vector<int>(mModel.nodes.size(), -1); ///< each node's parent, -1 for a root
     std::vector<std::optional<std::string>> mMaterialShadeMaps; ///< per material, once read: its shade map or ""
-    std::vector<bool> mVrmMaterialsWarned; ///< per material: its VRM material warnings are reported
+    std::vector<std::optional<Material>> mMaterials;            ///< per material, once read
     std::size_t mSkippedPrimitives = 0;
     bool mHasOrigin = false; ///< mOut.origin is set (the first world position seen)
 };
@@ -753,6 +1012,41 @@ std::string_view jsonOf(std::string_view content, bool binary) {
     return content.substr(20, chunkLength);
 }
 
+/** The file with "indices" removed from every KHR_draco_mesh_compression primitive, or nothing when no primitive has
+ *  the extension (or the JSON does not parse: tinygltf then says why). tinygltf built without Draco refuses an indices
+ *  accessor without a buffer view, which is how Draco files write it; the decoded Draco faces replace those indices
+ *  (decodeDracoPrimitive()). A GLB is rebuilt around the new JSON chunk with its other chunks as they were. */
+std::optional<std::string> withoutDracoIndices(std::string_view content, bool binary) {
+    const std::string_view json = jsonOf(content, binary);
+    if (json.find(kDracoExtension) == std::string_view::npos) return std::nullopt;
+    nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
+    if (!document.is_object() || !document.contains("meshes") || !document["meshes"].is_array()) return std::nullopt;
+    bool changed = false;
+    for (nlohmann::json& mesh : document["meshes"]) {
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+        for (nlohmann::json& primitive : mesh["primitives"]) {
+            if (primitive.is_object() && primitive.contains("indices") && primitive.contains("extensions") &&
+                primitive["extensions"].is_object() && primitive["extensions"].contains(kDracoExtension)) {
+                primitive.erase("indices");
+                changed = true;
+            }
+        }
+    }
+    if (!changed) return std::nullopt;
+    std::string text = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    if (!binary) return text;
+    const std::size_t restOffset = 20 + json.size();
+    if (content.size() < restOffset) return std::nullopt;
+    while (text.size() % 4 != 0) text += ' '; // GLB chunks are 4-byte aligned; JSON pads with spaces
+    const auto u32 = [](std::size_t value) {
+        const std::uint32_t little = std::uint32_t(value);
+        return std::string(reinterpret_cast<const char*>(&little), 4);
+    };
+    const std::string_view rest = content.substr(restOffset);
+    return std::string(content.substr(0, 8)) + u32(12 + 8 + text.size() + rest.size()) + u32(text.size()) + "JSON" +
+           text + std::string(rest);
+}
+
 /** tinygltf parses JSON recursively, so absurd nesting would overflow the stack: glTF itself nests a few levels, and
  *  extras rarely more than a dozen. Checked before tinygltf sees the file. */
 void rejectDeepJson(const std::string& path, std::string_view content, bool binary) {
@@ -764,7 +1058,8 @@ void rejectDeepJson(const std::string& path, std::string_view content, bool bina
 }
 
 /** The external (non-data:) URIs of the top-level "buffers" and "images" arrays, collected by a SAX pass over the
- *  JSON before tinygltf reads it, so the file callbacks can tell an image (never read) from a buffer (read). */
+ *  JSON before tinygltf reads it, so the file callbacks can tell an image (not read at load time) from a buffer (read).
+ */
 class ExternalUriCollector : public nlohmann::json_sax<nlohmann::json> {
 public:
     std::vector<std::string> bufferUris;
@@ -855,8 +1150,8 @@ struct ExternalFiles {
 
 /** Only the files the JSON names, beside the model: tinygltf would otherwise fall back to the current folder and read a
  *  file of the same name there. Asks the file system rather than opening (tinygltf's own test blocks on a FIFO). An
- *  image counts as present even when missing: it is never read (the renderer uses no textures), so a missing one must
- *  not fail or even warn. */
+ *  image counts as present even when missing: it is not read at load time (only when a pass decodes it, which reports a
+ *  missing one then), so loading must not fail or warn for it. */
 bool externalFileExists(const std::string& path, void* user) {
     const auto& files = *static_cast<const ExternalFiles*>(user);
     if (files.imagePaths.count(path) > 0) {
@@ -866,13 +1161,14 @@ bool externalFileExists(const std::string& path, void* user) {
     return files.bufferPaths.count(path) > 0 && std::filesystem::exists(path, error);
 }
 
-/** tinygltf's file reading. An image gets a one-byte placeholder without being opened (a 1 GiB texture would otherwise
- *  be read whole, then dropped); a buffer must be a regular file, and its size is charged to the load's memory budget
- *  before it is read. A refusal comes back to tinygltf as a read error with the reason. */
+/** tinygltf's file reading. An image gets a one-byte placeholder without being opened (SceneImage keeps its path, read
+ *  when decoded, so a 1 GiB texture is not held by every load); a buffer must be a regular file, and its size is
+ * charged to the load's memory budget before it is read. A refusal comes back to tinygltf as a read error with the
+ * reason. */
 bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
     auto& files = *static_cast<ExternalFiles*>(user);
     if (files.bufferPaths.count(path) == 0 && files.imagePaths.count(path) > 0) {
-        out->assign(1, 0); // tinygltf refuses an empty image; skipImageDecoding() ignores the byte
+        out->assign(1, 0); // tinygltf refuses an empty image; keepEncodedImage() ignores the byte
         return true;
     }
     // A FIFO or device ("/dev/stdin", "/dev/zero") as a buffer URI would block or never end: files only.
@@ -899,6 +1195,43 @@ bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const
     return tinygltf::ReadWholeFile(out, error, path, nullptr);
 }
 
+/** The file's images in its order (a texture's `source` indexes them): embedded ones with their encoded bytes, external
+ *  ones with their path beside the model, not read here. */
+std::vector<SceneImage> sceneImages(const std::string& path, const tinygltf::Model& model,
+                                    const std::string& baseDirectory, const DataUriImages& dataUriImages,
+                                    MeshBudget& budget) {
+    std::vector<SceneImage> images;
+    images.reserve(model.images.size());
+    for (std::size_t i = 0; i < model.images.size(); ++i) {
+        const tinygltf::Image& image = model.images[i];
+        SceneImage result;
+        result.name = image.name.empty() ? excerptForMessage(image.uri) : image.name;
+        result.mimeType = image.mimeType;
+        if (image.bufferView >= 0) {
+            // tinygltf checked only that the view and its buffer exist.
+            const tinygltf::BufferView& view = model.bufferViews[std::size_t(image.bufferView)];
+            const std::vector<unsigned char>& buffer = model.buffers[std::size_t(view.buffer)].data;
+            if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
+                throwLoadError(path, "image " + std::to_string(i) + ": buffer view " +
+                                         std::to_string(image.bufferView) + " (offset " +
+                                         std::to_string(view.byteOffset) + ", length " +
+                                         std::to_string(view.byteLength) + ") exceeds its buffer of " +
+                                         std::to_string(buffer.size()) + " bytes");
+            }
+            budget.chargeFile(view.byteLength);
+            const auto first = buffer.begin() + std::ptrdiff_t(view.byteOffset);
+            result.encoded =
+                std::make_shared<const std::vector<unsigned char>>(first, first + std::ptrdiff_t(view.byteLength));
+        } else if (!image.uri.empty()) {
+            result.path = pathBesideModel(baseDirectory, image.uri);
+        } else if (i < dataUriImages.bytes.size()) {
+            result.encoded = dataUriImages.bytes[i];
+        }
+        images.push_back(std::move(result));
+    }
+    return images;
+}
+
 } // namespace
 
 RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget, const LoadOptions& options) {
@@ -910,6 +1243,11 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
         throwLoadError(path, "glTF files above 4 GiB are not supported");
     // tinygltf keeps its own copy of every buffer it decodes (the GLB's BIN chunk, data URIs): at most the file again.
     budget.chargeFile(content.size());
+    const std::optional<std::string> dracoReady = withoutDracoIndices(content, binary);
+    if (dracoReady) {
+        budget.chargeFile(dracoReady->size());
+        content = *dracoReady;
+    }
     const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
     ExternalUriCollector uris;
     const std::string_view json = jsonOf(content, binary);
@@ -919,7 +1257,8 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     for (const std::string& uri : uris.imageUris) files.imagePaths.insert(pathBesideModel(baseDirectory, uri));
 
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(&skipImageDecoding, nullptr);
+    DataUriImages dataUriImages{budget, {}};
+    loader.SetImageLoader(&keepEncodedImage, &dataUriImages);
     // Keeps each extras object as JSON text, so materialShadeMap() sees the types as written (GltfWalker).
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
     loader.SetFsCallbacks(
@@ -954,13 +1293,14 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
         }
     }
     scene.inputFiles = std::move(files.opened);
-    // Images too, though never read: the app must not overwrite one with an output.
+    // Images too, though not read here: the app must not overwrite one with an output.
     for (const std::string& uri : uris.imageUris) {
         const std::string imagePath = pathBesideModel(baseDirectory, uri);
         if (std::ranges::find(scene.inputFiles, imagePath) == scene.inputFiles.end()) {
             scene.inputFiles.push_back(imagePath);
         }
     }
+    scene.images = sceneImages(path, model, baseDirectory, dataUriImages, budget);
     GltfWalker(path, model, scene, budget, options).walk();
     if (scene.meshes.empty()) {
         throwLoadError(path, "no triangles in the file");

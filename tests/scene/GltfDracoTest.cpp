@@ -1,0 +1,173 @@
+/** @file KHR_draco_mesh_compression: a quad compressed with libdraco's encoder (tests/scene/data/draco-quad.bin, made
+ *  by make-draco-quad.cpp there) loads with the positions, texture coordinates and colours put in; broken Draco data
+ *  is refused naming the extension, and so are morph targets of a compressed primitive at a non-zero weight. */
+
+#include "scene/Scene.h"
+
+#include "SceneTestSupport.h"
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+using test::TempFile;
+
+/** The Draco attribute unique ids of tests/scene/data/draco-quad.bin (make-draco-quad.cpp made it). */
+struct CompressedQuad {
+    std::string bytes;
+    std::uint32_t positionId = 0;
+    std::uint32_t texcoordId = 1;
+    std::uint32_t colorId = 2;
+};
+
+/** The quad's corners; its texture coordinates are (x / 2, y / 4) and its colours (255 x, 51 y, 0) / 255. */
+constexpr std::array<std::array<float, 3>, 4> kCorners = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}};
+
+CompressedQuad compressedQuad() {
+    std::ifstream file(test::sourcePath("tests/scene/data/draco-quad.bin"), std::ios::binary);
+    CompressedQuad quad;
+    quad.bytes.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+    if (quad.bytes.empty()) throw std::runtime_error("cannot read tests/scene/data/draco-quad.bin");
+    return quad;
+}
+
+/** A .gltf whose only buffer view is `bytes`, used by a primitive through the extension; the accessors have no
+ *  buffer view, as the extension's files have. */
+std::string dracoGltf(const std::string& bytes, const CompressedQuad& ids, bool required = true,
+                      bool glbBuffer = false) {
+    const std::string extensions = std::string("\"extensionsUsed\": [\"KHR_draco_mesh_compression\"]") +
+                                   (required ? ", \"extensionsRequired\": [\"KHR_draco_mesh_compression\"]" : "");
+    const std::string uri =
+        glbBuffer ? "" : "\"uri\": \"data:application/octet-stream;base64," + test::base64(bytes) + "\", ";
+    return "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{" + uri +
+           "\"byteLength\": " + std::to_string(bytes.size()) +
+           "}], \"bufferViews\": [{\"buffer\": 0, \"byteLength\": " + std::to_string(bytes.size()) +
+           "}], \"accessors\": ["
+           "{\"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\"},"
+           "{\"componentType\": 5126, \"count\": 4, \"type\": \"VEC2\"},"
+           "{\"componentType\": 5121, \"normalized\": true, \"count\": 4, \"type\": \"VEC3\"},"
+           "{\"componentType\": 5123, \"count\": 6, \"type\": \"SCALAR\"}],"
+           " \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0, \"TEXCOORD_0\": 1, \"COLOR_0\": 2},"
+           " \"indices\": 3, \"extensions\": {\"KHR_draco_mesh_compression\": {\"bufferView\": 0, \"attributes\": "
+           "{\"POSITION\": " +
+           std::to_string(ids.positionId) + ", \"TEXCOORD_0\": " + std::to_string(ids.texcoordId) +
+           ", \"COLOR_0\": " + std::to_string(ids.colorId) +
+           "}}}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], \"scene\": 0, " + extensions + "}";
+}
+
+TEST(GltfDraco, CompressedQuadLoadsWithItsAttributes) {
+    const CompressedQuad quad = compressedQuad();
+    const TempFile file("draco.gltf", dracoGltf(quad.bytes, quad));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    const Mesh& mesh = scene.meshes[0];
+    EXPECT_EQ(mesh.triangleCount(), 2u);
+    ASSERT_EQ(mesh.positions.size(), 4u);
+    ASSERT_EQ(mesh.texcoords[0].size(), 4u);
+    ASSERT_EQ(mesh.colors.size(), 4u);
+    for (const auto& corner : kCorners) {
+        const glm::dvec3 expected(corner[0], corner[1], corner[2]);
+        std::size_t found = mesh.positions.size();
+        for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+            if (glm::length(test::worldPosition(scene, mesh.positions[i]) - expected) < 1e-6) found = i;
+        ASSERT_LT(found, mesh.positions.size()) << "corner " << corner[0] << ", " << corner[1];
+        EXPECT_EQ(mesh.texcoords[0][found], glm::vec2(corner[0] / 2, corner[1] / 4));
+        EXPECT_EQ(mesh.colors[found], glm::vec4(corner[0], 0.2f * corner[1], 0, 1));
+    }
+    // Counter-clockwise seen from +Z, as the faces were given.
+    for (const glm::uvec3& triangle : mesh.triangles) EXPECT_GT(test::triangleCross(mesh, triangle).z, 0.0);
+}
+
+/** The quad with one morph target moving POSITION at `weight`: Draco reorders vertices, so the target's uncompressed
+ *  accessor would not line up with them; a non-zero weight is refused, a zero one changes nothing and loads. */
+std::string dracoGltfWithMorphTarget(const CompressedQuad& quad, const std::string& weight) {
+    std::string json = dracoGltf(quad.bytes, quad);
+    const auto replace = [&](const std::string& from, const std::string& to) {
+        const std::size_t at = json.find(from);
+        if (at == std::string::npos) throw std::runtime_error("dracoGltf() changed: no '" + from + "'");
+        json.replace(at, from.size(), to);
+    };
+    replace("\"type\": \"SCALAR\"}]",
+            "\"type\": \"SCALAR\"}, {\"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\"}]");
+    replace("\"indices\": 3,", "\"indices\": 3, \"targets\": [{\"POSITION\": 4}],");
+    replace("\"meshes\": [{", "\"meshes\": [{\"weights\": [" + weight + "], ");
+    return json;
+}
+
+TEST(GltfDraco, MorphTargetsOfACompressedPrimitiveAreRefusedWhenWeighted) {
+    const CompressedQuad quad = compressedQuad();
+    const TempFile weighted("draco-morph.gltf", dracoGltfWithMorphTarget(quad, "0.5"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(weighted.path()); });
+    EXPECT_NE(message.find("morph targets of a Draco-compressed primitive are not supported (target 0 has weight 0.5)"),
+              std::string::npos)
+        << message;
+    const TempFile rest("draco-morph-rest.gltf", dracoGltfWithMorphTarget(quad, "0"));
+    EXPECT_EQ(loadScene(rest.path()).triangleCount(), 2u);
+}
+
+/** `json` and `binary` as a GLB container. */
+std::string glb(std::string json, std::string binary) {
+    while (json.size() % 4 != 0) json += ' ';
+    while (binary.size() % 4 != 0) binary += '\0';
+    const auto u32 = [](std::size_t value) {
+        const std::uint32_t little = std::uint32_t(value);
+        return std::string(reinterpret_cast<const char*>(&little), 4);
+    };
+    return "glTF" + u32(2) + u32(12 + 8 + json.size() + 8 + binary.size()) + u32(json.size()) + "JSON" + json +
+           u32(binary.size()) + std::string("BIN\0", 4) + binary;
+}
+
+TEST(GltfDraco, CompressedQuadLoadsFromAGlb) {
+    const CompressedQuad quad = compressedQuad();
+    const TempFile file("draco.glb", glb(dracoGltf(quad.bytes, quad, true, true), quad.bytes));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.meshes[0].triangleCount(), 2u);
+    EXPECT_EQ(scene.meshes[0].colors.size(), 4u);
+    EXPECT_EQ(scene.report.format, "glb");
+}
+
+TEST(GltfDraco, UndecodableDataIsRefusedNamingTheExtension) {
+    const CompressedQuad quad = compressedQuad();
+    std::string broken = quad.bytes.substr(0, quad.bytes.size() / 2);
+    const TempFile file("draco-broken.gltf", dracoGltf(broken, quad));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("KHR_draco_mesh_compression: Draco cannot decode buffer view 0"), std::string::npos)
+        << message;
+}
+
+TEST(GltfDraco, AttributeIdMissingFromTheDataIsRefused) {
+    CompressedQuad quad = compressedQuad();
+    quad.texcoordId = 77;
+    const TempFile file("draco-bad-id.gltf", dracoGltf(quad.bytes, quad, false));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("KHR_draco_mesh_compression: attribute 'TEXCOORD_0': the Draco data has no attribute "
+                           "with id 77"),
+              std::string::npos)
+        << message;
+}
+
+/** Debian's libdraco carries its own tinygltf (another version); linked wrongly (CMakeLists.txt says how), it replaces
+ *  Debian's in the executable and loading crashes. The reader's tinygltf must be libtinygltf.so's. */
+TEST(GltfDraco, TinygltfComesFromItsOwnLibrary) {
+    Dl_info info{};
+    ASSERT_NE(dladdr(reinterpret_cast<void*>(&tinygltf::ReadWholeFile), &info), 0);
+    ASSERT_NE(info.dli_fname, nullptr);
+    EXPECT_NE(std::string(info.dli_fname).find("libtinygltf"), std::string::npos) << info.dli_fname;
+}
+
+} // namespace
+} // namespace inkgraph

@@ -1,0 +1,419 @@
+/** @file The glTF reader's surface data: materials (factors, textures with their set, sampler and
+ *  KHR_texture_transform, emissive, unlit, alpha, double-sidedness), TEXCOORD_n and COLOR_0 attributes, images kept
+ *  encoded, and the accessor forms KHR_mesh_quantization and sparse accessors bring. Every file is written here with
+ *  known values. */
+
+#include "scene/Scene.h"
+
+#include "SceneTestSupport.h"
+
+#include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+using test::TempFile;
+
+/** Buffer views of any bytes and accessors written by hand, for component types and sparse forms that
+ *  test::GltfWriter (float VEC3 and indices only) does not write. One buffer, embedded as a data: URI. */
+class RawGltf {
+public:
+    /** A buffer view holding `values` as they lie in memory (little-endian, like glTF); returns its index. */
+    template <typename T>
+    int view(const std::vector<T>& values, int byteStride = 0) {
+        while (mBinary.size() % 4 != 0) mBinary += '\0';
+        mViews.push_back("{\"buffer\": 0, \"byteOffset\": " + std::to_string(mBinary.size()) +
+                         ", \"byteLength\": " + std::to_string(values.size() * sizeof(T)) +
+                         (byteStride > 0 ? ", \"byteStride\": " + std::to_string(byteStride) : std::string()) + "}");
+        mBinary.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+        return int(mViews.size() - 1);
+    }
+
+    /** An accessor from its JSON members, e.g. "\"bufferView\": 0, \"componentType\": 5126, ..."; returns its index. */
+    int accessor(const std::string& members) {
+        mAccessors.push_back("{" + members + "}");
+        return int(mAccessors.size() - 1);
+    }
+
+    /** A float accessor of `type` ("VEC2", "VEC3", ...) over a new view of `values`. */
+    int floats(const std::vector<float>& values, const std::string& type, std::size_t count) {
+        return accessor("\"bufferView\": " + std::to_string(view(values)) + ", \"componentType\": 5126, \"count\": " +
+                        std::to_string(count) + ", \"type\": \"" + type + "\"");
+    }
+
+    /** The .gltf text: the buffer, views and accessors, then `body` (meshes, nodes, materials, ...). */
+    std::string gltf(const std::string& body) const {
+        std::string views;
+        for (const std::string& view : mViews) views += (views.empty() ? "" : ", ") + view;
+        std::string accessors;
+        for (const std::string& accessor : mAccessors) accessors += (accessors.empty() ? "" : ", ") + accessor;
+        return "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{\"uri\": \"data:application/octet-stream;base64," +
+               test::base64(mBinary) + "\", \"byteLength\": " + std::to_string(mBinary.size()) +
+               "}], \"bufferViews\": [" + views + "], \"accessors\": [" + accessors + "], " + body + "}";
+    }
+
+private:
+    std::string mBinary;
+    std::vector<std::string> mViews;
+    std::vector<std::string> mAccessors;
+};
+
+/** The triangle (0,0,0), (1,0,0), (0,1,0) as float POSITION; returns the accessor. */
+int addTrianglePositions(RawGltf& gltf) { return gltf.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3); }
+
+/** One node, one mesh, one primitive with `attributes` (JSON members) and `primitiveExtra` members. */
+std::string singlePrimitive(const std::string& attributes, const std::string& primitiveExtra = "",
+                            const std::string& nodeExtra = "") {
+    return "\"meshes\": [{\"primitives\": [{\"attributes\": {" + attributes + "}" + primitiveExtra +
+           "}]}], \"nodes\": [{\"mesh\": 0" + nodeExtra + "}], \"scenes\": [{\"nodes\": [0]}], \"scene\": 0";
+}
+
+/** World positions of a mesh, sorted, for comparisons that do not depend on the welder's vertex order. */
+std::vector<glm::dvec3> sortedWorldPositions(const Scene& scene, const Mesh& mesh) {
+    std::vector<glm::dvec3> world;
+    for (const glm::vec3& position : mesh.positions) world.push_back(test::worldPosition(scene, position));
+    std::ranges::sort(world, [](const glm::dvec3& a, const glm::dvec3& b) {
+        return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+    });
+    return world;
+}
+
+/** The index of the vertex at world position `where` (within 1e-6), or -1. */
+int vertexAt(const Scene& scene, const Mesh& mesh, glm::dvec3 where) {
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+        if (glm::length(test::worldPosition(scene, mesh.positions[i]) - where) < 1e-6) return int(i);
+    return -1;
+}
+
+void expectNear(const glm::mat3& actual, const glm::mat3& expected) {
+    for (int column = 0; column < 3; ++column)
+        for (int row = 0; row < 3; ++row)
+            EXPECT_NEAR(actual[column][row], expected[column][row], 1e-6) << "column " << column << " row " << row;
+}
+
+const std::string kImageBytesA = std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR-a", 18);
+const std::string kImageBytesB = std::string("\xff\xd8\xff\xe0\0\x10JFIF-b", 12);
+
+std::string imagesOfTwoDataUris() {
+    return "\"images\": [{\"uri\": \"data:image/png;base64," + test::base64(kImageBytesA) +
+           "\"}, {\"uri\": \"data:image/jpeg;base64," + test::base64(kImageBytesB) + "\", \"name\": \"second\"}]";
+}
+
+TEST(GltfMaterials, EveryFieldOfACoreMaterialIsRead) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const int uv0 = gltf.floats({0, 0, 1, 0, 0, 1}, "VEC2", 3);
+    const int uv1 = gltf.floats({0, 0, 0.5f, 0, 0, 0.5f}, "VEC2", 3);
+    const std::string body =
+        singlePrimitive("\"POSITION\": " + std::to_string(position) + ", \"TEXCOORD_0\": " + std::to_string(uv0) +
+                            ", \"TEXCOORD_1\": " + std::to_string(uv1),
+                        ", \"material\": 0") +
+        ", \"materials\": [{\"name\": \"skin\", \"pbrMetallicRoughness\": {\"baseColorFactor\": [0.1, 0.2, 0.3, 0.4],"
+        " \"baseColorTexture\": {\"index\": 0, \"texCoord\": 1}},"
+        " \"emissiveFactor\": [0.5, 0.25, 0.0],"
+        " \"emissiveTexture\": {\"index\": 1, \"extensions\": {\"KHR_texture_transform\":"
+        " {\"offset\": [0.5, 0.25], \"rotation\": " +
+        std::to_string(glm::half_pi<double>()) +
+        ", \"scale\": [2, 3], \"texCoord\": 1}}},"
+        " \"alphaMode\": \"MASK\", \"alphaCutoff\": 0.3, \"doubleSided\": true}],"
+        " \"textures\": [{\"sampler\": 0, \"source\": 1}, {\"source\": 0}],"
+        " \"samplers\": [{\"magFilter\": 9728, \"minFilter\": 9729, \"wrapS\": 33071, \"wrapT\": 33648}], " +
+        imagesOfTwoDataUris() + ", \"extensionsUsed\": [\"KHR_texture_transform\"]";
+    const TempFile file("material.gltf", gltf.gltf(body));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    const Material& material = scene.meshes[0].material;
+    EXPECT_EQ(material.name, "skin");
+    EXPECT_EQ(material.baseColorFactor, glm::vec4(0.1f, 0.2f, 0.3f, 0.4f));
+    EXPECT_EQ(material.baseColorTexture.image, 1);
+    EXPECT_EQ(material.baseColorTexture.texCoord, 1);
+    EXPECT_EQ(material.baseColorTexture.sampler.magFilter, TextureFilter::Nearest);
+    EXPECT_EQ(material.baseColorTexture.sampler.minFilter, TextureFilter::Linear);
+    EXPECT_EQ(material.baseColorTexture.sampler.wrapS, TextureWrap::ClampToEdge);
+    EXPECT_EQ(material.baseColorTexture.sampler.wrapT, TextureWrap::MirroredRepeat);
+    EXPECT_EQ(material.baseColorTexture.transform, glm::mat3(1.0f));
+    EXPECT_EQ(material.emissiveFactor, glm::vec3(0.5f, 0.25f, 0.0f));
+    EXPECT_EQ(material.emissiveTexture.image, 0);
+    EXPECT_EQ(material.emissiveTexture.texCoord, 1);               // the transform's override of the default 0
+    EXPECT_EQ(material.emissiveTexture.sampler, TextureSampler{}); // no sampler: repeat, trilinear
+    // T * R * S with offset (0.5, 0.25), a quarter turn and scale (2, 3): u maps to (0, 2), v to (-3, 0).
+    expectNear(material.emissiveTexture.transform, glm::mat3(0, 2, 0, -3, 0, 0, 0.5f, 0.25f, 1));
+    const glm::vec3 corner = material.emissiveTexture.transform * glm::vec3(1, 1, 1);
+    EXPECT_NEAR(corner.x, -2.5, 1e-6);
+    EXPECT_NEAR(corner.y, 2.25, 1e-6);
+    EXPECT_FALSE(material.unlit);
+    EXPECT_EQ(material.alphaMode, AlphaMode::Mask);
+    EXPECT_FLOAT_EQ(material.alphaCutoff, 0.3f);
+    EXPECT_TRUE(material.doubleSided);
+    EXPECT_TRUE(material.textured());
+
+    ASSERT_EQ(scene.meshes[0].texcoords[0].size(), 3u);
+    ASSERT_EQ(scene.meshes[0].texcoords[1].size(), 3u);
+    const int right = vertexAt(scene, scene.meshes[0], {1, 0, 0});
+    ASSERT_GE(right, 0);
+    EXPECT_EQ(scene.meshes[0].texcoords[0][std::size_t(right)], glm::vec2(1, 0));
+    EXPECT_EQ(scene.meshes[0].texcoords[1][std::size_t(right)], glm::vec2(0.5f, 0));
+}
+
+TEST(GltfMaterials, UnlitBlendAndEmissiveStrength) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const std::string body = singlePrimitive("\"POSITION\": " + std::to_string(position), ", \"material\": 0") +
+                             ", \"materials\": [{\"alphaMode\": \"BLEND\", \"emissiveFactor\": [0.5, 0.25, 1],"
+                             " \"extensions\": {\"KHR_materials_unlit\": {}, \"KHR_materials_emissive_strength\": "
+                             "{\"emissiveStrength\": 4}}}],"
+                             " \"extensionsUsed\": [\"KHR_materials_unlit\", \"KHR_materials_emissive_strength\"],"
+                             " \"extensionsRequired\": [\"KHR_materials_unlit\"]";
+    const TempFile file("unlit.gltf", gltf.gltf(body));
+    const Scene scene = loadScene(file.path());
+    const Material& material = scene.meshes.at(0).material;
+    EXPECT_TRUE(material.unlit);
+    EXPECT_EQ(material.alphaMode, AlphaMode::Blend);
+    EXPECT_FLOAT_EQ(material.alphaCutoff, 0.5f);
+    EXPECT_EQ(material.emissiveFactor, glm::vec3(2.0f, 1.0f, 4.0f));
+    EXPECT_FALSE(material.doubleSided);
+    EXPECT_FALSE(material.textured());
+    EXPECT_TRUE(scene.images.empty());
+}
+
+TEST(GltfMaterials, SupportedExtensionsListTheMaterialAndGeometryOnes) {
+    for (const char* name : {"KHR_lights_punctual", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
+                             "KHR_texture_transform", "KHR_materials_unlit", "KHR_materials_emissive_strength"})
+        EXPECT_NE(std::ranges::find(supportedGltfExtensions(), std::string(name)), supportedGltfExtensions().end())
+            << name;
+}
+
+TEST(GltfMaterials, NormalizedUnsignedShortTexcoordsBecomeFractions) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const int uvView = gltf.view(std::vector<std::uint16_t>{0, 0, 65535, 0, 0, 32768});
+    const int uv = gltf.accessor("\"bufferView\": " + std::to_string(uvView) +
+                                 ", \"componentType\": 5123, \"normalized\": true, \"count\": 3, \"type\": \"VEC2\"");
+    const TempFile file("uv16.gltf", gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position) +
+                                                               ", \"TEXCOORD_0\": " + std::to_string(uv))));
+    const Scene scene = loadScene(file.path());
+    const Mesh& mesh = scene.meshes.at(0);
+    ASSERT_EQ(mesh.texcoords[0].size(), 3u);
+    EXPECT_TRUE(mesh.texcoords[1].empty());
+    EXPECT_EQ(mesh.texcoords[0][std::size_t(vertexAt(scene, mesh, {0, 0, 0}))], glm::vec2(0, 0));
+    EXPECT_EQ(mesh.texcoords[0][std::size_t(vertexAt(scene, mesh, {1, 0, 0}))], glm::vec2(1, 0));
+    EXPECT_EQ(mesh.texcoords[0][std::size_t(vertexAt(scene, mesh, {0, 1, 0}))], glm::vec2(0, 32768.0f / 65535.0f));
+}
+
+TEST(GltfMaterials, NormalizedByteRgbColoursGetAlphaOne) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    // VEC3 of unsigned bytes, each element padded to 4 bytes as glTF requires of vertex attributes.
+    const int colorView = gltf.view(std::vector<std::uint8_t>{255, 0, 0, 0, 0, 51, 0, 0, 0, 0, 255, 0}, 4);
+    const int color =
+        gltf.accessor("\"bufferView\": " + std::to_string(colorView) +
+                      ", \"componentType\": 5121, \"normalized\": true, \"count\": 3, \"type\": \"VEC3\"");
+    const TempFile file("colour.gltf", gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position) +
+                                                                 ", \"COLOR_0\": " + std::to_string(color))));
+    const Scene scene = loadScene(file.path());
+    const Mesh& mesh = scene.meshes.at(0);
+    ASSERT_EQ(mesh.colors.size(), 3u);
+    EXPECT_EQ(mesh.colors[std::size_t(vertexAt(scene, mesh, {0, 0, 0}))], glm::vec4(1, 0, 0, 1));
+    EXPECT_EQ(mesh.colors[std::size_t(vertexAt(scene, mesh, {1, 0, 0}))], glm::vec4(0, 0.2f, 0, 1));
+    EXPECT_EQ(mesh.colors[std::size_t(vertexAt(scene, mesh, {0, 1, 0}))], glm::vec4(0, 0, 1, 1));
+}
+
+TEST(GltfMaterials, AttributeCountDifferentFromPositionsIsRefused) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const int uv = gltf.floats({0, 0, 1, 0}, "VEC2", 2);
+    const TempFile file("short-uv.gltf", gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position) +
+                                                                   ", \"TEXCOORD_0\": " + std::to_string(uv))));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("TEXCOORD_0 has 2 elements but POSITION has 3"), std::string::npos) << message;
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+}
+
+TEST(GltfMaterials, SparsePositionsAreSubstituted) {
+    RawGltf gltf;
+    const int base = gltf.view(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const int indices = gltf.view(std::vector<std::uint8_t>{2});
+    const int values = gltf.view(std::vector<float>{0, 2, 0});
+    const int position = gltf.accessor(
+        "\"bufferView\": " + std::to_string(base) +
+        ", \"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\", \"sparse\": {\"count\": 1, \"indices\": "
+        "{\"bufferView\": " +
+        std::to_string(indices) + ", \"componentType\": 5121}, \"values\": {\"bufferView\": " + std::to_string(values) +
+        "}}");
+    const TempFile file("sparse.gltf", gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position))));
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(sortedWorldPositions(scene, scene.meshes.at(0)),
+              (std::vector<glm::dvec3>{{0, 0, 0}, {0, 2, 0}, {1, 0, 0}}));
+}
+
+TEST(GltfMaterials, SparseAccessorWithoutBufferViewStartsFromZeros) {
+    RawGltf gltf;
+    const int indices = gltf.view(std::vector<std::uint16_t>{1, 2});
+    const int values = gltf.view(std::vector<float>{3, 0, 0, 0, 4, 0});
+    const int position =
+        gltf.accessor("\"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\", \"sparse\": {\"count\": 2, "
+                      "\"indices\": {\"bufferView\": " +
+                      std::to_string(indices) +
+                      ", \"componentType\": 5123}, \"values\": {\"bufferView\": " + std::to_string(values) + "}}");
+    const TempFile file("sparse-zeros.gltf", gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position))));
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(sortedWorldPositions(scene, scene.meshes.at(0)),
+              (std::vector<glm::dvec3>{{0, 0, 0}, {0, 4, 0}, {3, 0, 0}}));
+}
+
+TEST(GltfMaterials, SparseIndexOutOfRangeIsRefused) {
+    RawGltf gltf;
+    const int base = gltf.view(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const int indices = gltf.view(std::vector<std::uint8_t>{7});
+    const int values = gltf.view(std::vector<float>{0, 2, 0});
+    const int position = gltf.accessor(
+        "\"bufferView\": " + std::to_string(base) +
+        ", \"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\", \"sparse\": {\"count\": 1, \"indices\": "
+        "{\"bufferView\": " +
+        std::to_string(indices) + ", \"componentType\": 5121}, \"values\": {\"bufferView\": " + std::to_string(values) +
+        "}}");
+    const TempFile file("sparse-bad.gltf", gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position))));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("POSITION accessor 0: sparse index 7"), std::string::npos) << message;
+}
+
+TEST(GltfMaterials, QuantizedShortPositionsTakeTheNodeScale) {
+    RawGltf gltf;
+    // Signed shorts, not normalized (KHR_mesh_quantization), each VEC3 padded to 8 bytes.
+    const int view = gltf.view(std::vector<std::int16_t>{0, 0, 0, 0, 100, 0, 0, 0, 0, -200, 0, 0}, 8);
+    const int position = gltf.accessor("\"bufferView\": " + std::to_string(view) +
+                                       ", \"componentType\": 5122, \"count\": 3, \"type\": \"VEC3\"");
+    const TempFile file("quantized.gltf", gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position), "",
+                                                                    ", \"scale\": [0.01, 0.01, 0.01]") +
+                                                    ", \"extensionsUsed\": [\"KHR_mesh_quantization\"],"
+                                                    " \"extensionsRequired\": [\"KHR_mesh_quantization\"]"));
+    const Scene scene = loadScene(file.path());
+    const std::vector<glm::dvec3> world = sortedWorldPositions(scene, scene.meshes.at(0));
+    const std::vector<glm::dvec3> expected = {{0, -2, 0}, {0, 0, 0}, {1, 0, 0}};
+    ASSERT_EQ(world.size(), expected.size());
+    for (std::size_t i = 0; i < world.size(); ++i) EXPECT_LT(glm::length(world[i] - expected[i]), 1e-6) << i;
+}
+
+TEST(GltfMaterials, EmbeddedImagesKeepTheirBytesInFileOrder) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const int imageView = gltf.view(std::vector<char>(kImageBytesB.begin(), kImageBytesB.end()));
+    const std::string body = singlePrimitive("\"POSITION\": " + std::to_string(position)) +
+                             ", \"images\": [{\"uri\": \"data:image/png;base64," + test::base64(kImageBytesA) +
+                             "\"}, {\"bufferView\": " + std::to_string(imageView) +
+                             ", \"mimeType\": \"image/jpeg\", \"name\": \"face\"}]";
+    const TempFile file("embedded.gltf", gltf.gltf(body));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.images.size(), 2u);
+    ASSERT_TRUE(scene.images[0].encoded);
+    EXPECT_EQ(std::string(scene.images[0].encoded->begin(), scene.images[0].encoded->end()), kImageBytesA);
+    EXPECT_EQ(scene.images[0].mimeType, "image/png");
+    EXPECT_TRUE(scene.images[0].path.empty());
+    ASSERT_TRUE(scene.images[1].encoded);
+    EXPECT_EQ(std::string(scene.images[1].encoded->begin(), scene.images[1].encoded->end()), kImageBytesB);
+    EXPECT_EQ(scene.images[1].mimeType, "image/jpeg");
+    EXPECT_EQ(scene.images[1].name, "face");
+}
+
+TEST(GltfMaterials, ExternalImageIsResolvedBesideTheModelAndNotRead) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const std::string body = singlePrimitive("\"POSITION\": " + std::to_string(position), ", \"material\": 0") +
+                             ", \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}}],"
+                             " \"textures\": [{\"source\": 0}],"
+                             " \"images\": [{\"uri\": \"textures/no%20such.png\"}]";
+    const TempFile file("external-image.gltf", gltf.gltf(body));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.images.size(), 1u);
+    const std::string expected =
+        (std::filesystem::path(file.path()).parent_path() / "textures" / "no such.png").string();
+    EXPECT_EQ(scene.images[0].path, expected);
+    EXPECT_FALSE(scene.images[0].encoded);
+    EXPECT_EQ(scene.meshes.at(0).material.baseColorTexture.image, 0);
+    EXPECT_NE(std::ranges::find(scene.report.inputFiles, expected), scene.report.inputFiles.end());
+    const std::vector<std::string> referenced = referencedFiles(file.path());
+    EXPECT_NE(std::ranges::find(referenced, expected), referenced.end());
+}
+
+TEST(GltfMaterials, TextureIndexOutOfRangeIsRefusedNamingTheMaterial) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const std::string body = singlePrimitive("\"POSITION\": " + std::to_string(position), ", \"material\": 0") +
+                             ", \"materials\": [{\"name\": \"coat\", \"pbrMetallicRoughness\": "
+                             "{\"baseColorTexture\": {\"index\": 5}}}], \"textures\": [{\"source\": 0}], " +
+                             imagesOfTwoDataUris();
+    const TempFile file("bad-texture.gltf", gltf.gltf(body));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("material 0 'coat' baseColorTexture: texture index 5 out of range (file has 1 textures)"),
+              std::string::npos)
+        << message;
+}
+
+TEST(GltfMaterials, TextureSourceOutOfRangeIsRefused) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const std::string body =
+        singlePrimitive("\"POSITION\": " + std::to_string(position), ", \"material\": 0") +
+        ", \"materials\": [{\"emissiveTexture\": {\"index\": 0}}], \"textures\": [{\"source\": 2}], " +
+        imagesOfTwoDataUris();
+    const TempFile file("bad-source.gltf", gltf.gltf(body));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("texture 0: image index 2 out of range (file has 2 images)"), std::string::npos) << message;
+}
+
+TEST(GltfMaterials, TextureWithOnlyAnExtensionImageIsDrawnUntexturedWithAWarning) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const std::string body = singlePrimitive("\"POSITION\": " + std::to_string(position), ", \"material\": 0") +
+                             ", \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}}],"
+                             " \"textures\": [{\"extensions\": {\"EXT_texture_webp\": {\"source\": 0}}}], " +
+                             imagesOfTwoDataUris() + ", \"extensionsUsed\": [\"EXT_texture_webp\"]";
+    const TempFile file("webp.gltf", gltf.gltf(body));
+    const Scene scene = loadScene(file.path());
+    EXPECT_FALSE(scene.meshes.at(0).material.textured());
+    const auto& warnings = scene.report.warnings;
+    EXPECT_TRUE(std::ranges::any_of(warnings, [](const std::string& warning) {
+        return warning.find("texture 0 has no PNG or JPEG source (it has only 'EXT_texture_webp')") !=
+               std::string::npos;
+    })) << (warnings.empty() ? "no warnings" : warnings.front());
+}
+
+/** A unit quad as two non-indexed triangles (6 vertices): corners (0,0) and (1,1) appear in both. `secondUvs` are the
+ *  second triangle's texture coordinates for (1,1), (0,1), (0,0). */
+std::string quadWithUvs(const std::vector<float>& secondUvs) {
+    RawGltf gltf;
+    const int position = gltf.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 1, 1, 0, 0, 1, 0, 0, 0, 0}, "VEC3", 6);
+    std::vector<float> uvs = {0, 0, 1, 0, 1, 1};
+    uvs.insert(uvs.end(), secondUvs.begin(), secondUvs.end());
+    const int uv = gltf.floats(uvs, "VEC2", 6);
+    return gltf.gltf(
+        singlePrimitive("\"POSITION\": " + std::to_string(position) + ", \"TEXCOORD_0\": " + std::to_string(uv)));
+}
+
+TEST(GltfMaterials, TextureSeamsKeepTheirSplitVertices) {
+    const TempFile continuous("quad-continuous.gltf", quadWithUvs({1, 1, 0, 1, 0, 0}));
+    const Scene joined = loadScene(continuous.path());
+    EXPECT_EQ(joined.meshes.at(0).positions.size(), 4u); // equal coordinates at the shared corners: welded
+
+    const TempFile seam("quad-seam.gltf", quadWithUvs({0.5f, 0.5f, 0, 1, 0.25f, 0.25f}));
+    const Scene split = loadScene(seam.path());
+    const Mesh& mesh = split.meshes.at(0);
+    EXPECT_EQ(mesh.positions.size(), 6u); // both shared corners differ in their coordinates: a seam
+    ASSERT_EQ(mesh.texcoords[0].size(), 6u);
+    std::vector<glm::vec2> atOrigin;
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+        if (glm::length(test::worldPosition(split, mesh.positions[i])) < 1e-9) atOrigin.push_back(mesh.texcoords[0][i]);
+    std::ranges::sort(atOrigin, [](glm::vec2 a, glm::vec2 b) { return a.x < b.x; });
+    EXPECT_EQ(atOrigin, (std::vector<glm::vec2>{{0, 0}, {0.25f, 0.25f}}));
+}
+
+} // namespace
+} // namespace inkgraph
