@@ -18,8 +18,8 @@ struct LineLayer {
 struct CompositeInputs {
     cv::Size size;                           ///< output size; every given layer must match it
     cv::Vec4f paper{1.0f, 1.0f, 1.0f, 1.0f}; ///< display RGBA in [0,1] behind everything
-    cv::Mat shading; ///< CV_8UC4 sRGB colour premultiplied by the coverage in alpha, or empty for none
-    std::vector<LineLayer> lines;            ///< drawn over the shading in this order
+    cv::Mat shading;              ///< CV_8UC4 sRGB colour premultiplied by the coverage in alpha, or empty for none
+    std::vector<LineLayer> lines; ///< drawn over the shading in this order
 };
 
 /** CV_8UC4, row 0 at the top: the shading over the paper ("over" with the shading's alpha), then each line layer over

@@ -59,7 +59,8 @@ DecodedImage decodeSceneImage(const SceneImage& image, const std::string& modelP
     if (needed > byteLimit)
         fail(image, modelPath,
              std::to_string(width) + "x" + std::to_string(height) + " decodes to " + std::to_string(needed) +
-                 " bytes with its mipmaps, more than the " + std::to_string(byteLimit) + " bytes the memory limit leaves for textures (raise --memory-limit)");
+                 " bytes with its mipmaps, more than the " + std::to_string(byteLimit) +
+                 " bytes the memory limit leaves for textures (raise --memory-limit)");
     int decodedWidth = 0, decodedHeight = 0;
     std::unique_ptr<unsigned char, StbFree> pixels(
         stbi_load_from_memory(bytes->data(), byteCount, &decodedWidth, &decodedHeight, &channels, 4));

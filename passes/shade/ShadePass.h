@@ -118,13 +118,13 @@ private:
     GpuScene& mScene;
     const FrameParams& mFrame;
     ShadeSettings mSettings;
-    std::vector<MapSlot> mMaps;           ///< cel, comic: [0] the default map, then each distinct per-mesh map
-    std::vector<std::size_t> mMeshMap;    ///< cel, comic: per GpuScene mesh, its entry of mMaps
-    std::size_t mSpecularBorderCount = 0; ///< comic: the most row-band borders of a map in use
-    std::unique_ptr<GlProgram> mProgram;  ///< the one program of this model and variant
+    std::vector<MapSlot> mMaps;                 ///< cel, comic: [0] the default map, then each distinct per-mesh map
+    std::vector<std::size_t> mMeshMap;          ///< cel, comic: per GpuScene mesh, its entry of mMaps
+    std::size_t mSpecularBorderCount = 0;       ///< comic: the most row-band borders of a map in use
+    std::unique_ptr<GlProgram> mProgram;        ///< the one program of this model and variant
     std::unique_ptr<GlProgram> mOutlineProgram; ///< mtoon's outline shells, when drawsMToonOutlines()
     std::vector<GlVertexArray> mOutlineArrays;  ///< per mesh: positions, hull normals, material attributes
-    PassDepthBuffer mDepth;               ///< the pass's own depth attachment, kept between runs
+    PassDepthBuffer mDepth;                     ///< the pass's own depth attachment, kept between runs
 };
 
 } // namespace inkgraph

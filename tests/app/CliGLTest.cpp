@@ -32,8 +32,9 @@ using test::readText;
 namespace fs = std::filesystem;
 
 TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
-    const CliRun result = run("render " + model("spot_c3d.obj") +
-                              " -o final.png --size 96x64 --lines none --dump dump --request 'gbuffer.*' --stats stats.json");
+    const CliRun result =
+        run("render " + model("spot_c3d.obj") +
+            " -o final.png --size 96x64 --lines none --dump dump --request 'gbuffer.*' --stats stats.json");
     ASSERT_EQ(result.exitCode, 0) << result.err;
 
     // float32 in the files themselves, not converted on reading.
@@ -110,9 +111,12 @@ TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
 }
 
 TEST_F(Cli, DumpingNeverChangesWhatRuns) {
-    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o a.png --size 48x48 --stats plain.json").exitCode, 0);
-    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " -o b.png --size 48x48 --lines none --stats dumped.json --dump d").exitCode,
-              0);
+    ASSERT_EQ(
+        run("render " + model("spot_c3d.obj") + " -o a.png --size 48x48 --lines none --stats plain.json").exitCode, 0);
+    ASSERT_EQ(
+        run("render " + model("spot_c3d.obj") + " -o b.png --size 48x48 --lines none --stats dumped.json --dump d")
+            .exitCode,
+        0);
     const auto plain = nlohmann::json::parse(readText(directory / "plain.json"));
     const auto dumped = nlohmann::json::parse(readText(directory / "dumped.json"));
     ASSERT_EQ(plain["passes"].size(), dumped["passes"].size());
@@ -124,7 +128,9 @@ TEST_F(Cli, DumpingNeverChangesWhatRuns) {
 }
 
 TEST_F(Cli, DumpReplacesAnEarlierDumpWhole) {
-    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 32x32 --lines none --dump d --request 'gbuffer.*'").exitCode, 0);
+    ASSERT_EQ(
+        run("render " + model("spot_c3d.obj") + " --size 32x32 --lines none --dump d --request 'gbuffer.*'").exitCode,
+        0);
     EXPECT_TRUE(fs::exists(directory / "d" / "w.exr"));
     const CliRun second = run("render " + model("spot_c3d.obj") + " --size 48x48 --lines none --dump d --shading none");
     ASSERT_EQ(second.exitCode, 0) << second.err;
@@ -139,7 +145,8 @@ TEST_F(Cli, DumpIntoAnExistingFolderKeepsTheFolder) {
     fs::create_directories(directory / "d");
     fs::permissions(directory / "d", fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec);
     ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 16x16 --lines none --dump d/.").exitCode, 0);
-    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 16x16 --lines none --dump d/ --shading none").exitCode, 0);
+    ASSERT_EQ(run("render " + model("spot_c3d.obj") + " --size 16x16 --lines none --dump d/ --shading none").exitCode,
+              0);
     EXPECT_EQ(listFiles(directory / "d"), (std::vector<std::string>{"final.png", "manifest.json"}));
     EXPECT_EQ(fs::status(directory / "d").permissions() & fs::perms::all,
               fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec)
@@ -518,8 +525,9 @@ TEST_F(Cli, ComicStatsReportTheFaceOrientationMethod) {
 
 TEST_F(Cli, ShadeMapFilesAreReadAndCheckedBeforeAnyWork) {
     const std::string shadeMaps = (fs::path(INKGRAPH_SOURCE_ROOT) / "shademaps").string();
-    CliRun comic = run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --lines none --shading comic --shademap '" +
-                       shadeMaps + "/noir.png' --stats s.json");
+    CliRun comic =
+        run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --lines none --shading comic --shademap '" +
+            shadeMaps + "/noir.png' --stats s.json");
     ASSERT_EQ(comic.exitCode, 0) << comic.err;
     EXPECT_NE(readText(directory / "s.json").find("noir.png"), std::string::npos);
     // Noir has two tones (x the default grey material): every covered pixel is one of them.

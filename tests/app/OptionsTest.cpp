@@ -134,10 +134,9 @@ TEST(Options, LineTypesAndTheirStyles) {
 
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--outline-width", "3"}).find("'outline' line type is not drawn"),
               std::string::npos);
-    EXPECT_NE(
-        usageMessage({"m.obj", "-o", "x.png", "--lines", "none", "--silhouette-object-width", "1"})
-            .find("--silhouette-object-width"),
-        std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "none", "--silhouette-object-width", "1"})
+                  .find("--silhouette-object-width"),
+              std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-width", "0"}).find("above 0"),
               std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-width", "300"}).find("256"),

@@ -44,8 +44,9 @@ protected:
     /** Renders the bundled cow into `folder` at `side`² with -o, --stats and --dump. */
     CliRun renderInto(const fs::path& folder, int side, const std::string& environment = "") {
         const std::string size = std::to_string(side) + "x" + std::to_string(side);
-        return run("render " + model("spot_c3d.obj") + " --lines none --size " + size + " -o '" + (folder / "out.png").string() +
-                       "' --stats '" + (folder / "s.json").string() + "' --dump '" + (folder / "d").string() + "'",
+        return run("render " + model("spot_c3d.obj") + " --lines none --size " + size + " -o '" +
+                       (folder / "out.png").string() + "' --stats '" + (folder / "s.json").string() + "' --dump '" +
+                       (folder / "d").string() + "'",
                    environment);
     }
 
