@@ -587,5 +587,69 @@ TEST_F(Cli, EveryShadingModeRendersWithoutNaN) {
     }
 }
 
+/** Pixels just off the model: not covered in `coverage` (255 on the model), with a covered 4-neighbour. */
+std::vector<cv::Point> pixelsAroundCoverage(const cv::Mat& coverage) {
+    std::vector<cv::Point> around;
+    for (int row = 1; row + 1 < coverage.rows; ++row)
+        for (int col = 1; col + 1 < coverage.cols; ++col) {
+            if (coverage.at<uchar>(row, col) == 255) continue;
+            bool touches = false;
+            for (const cv::Point step : {cv::Point(1, 0), cv::Point(-1, 0), cv::Point(0, 1), cv::Point(0, -1)})
+                touches = touches || coverage.at<uchar>(cv::Point(col, row) + step) == 255;
+            if (touches) around.emplace_back(col, row);
+        }
+    return around;
+}
+
+TEST_F(Cli, DefaultLookIsNeverWhiteOnWhite) {
+    // A pure white OBJ material and a textured glTF box (closed: a flat open sheet seen face-on has no hull outline,
+    // docs/materials.md): the default look (cel, paper white, silhouette) must set
+    // each model apart from the paper all around, where its lit band is the paper's colour.
+    auto writeText = [](const fs::path& path, const std::string& text) { std::ofstream(path) << text; };
+    // A closed white cube: every face counter-clockwise from outside.
+    writeText(directory / "white.obj", "mtllib white.mtl\nusemtl White\n"
+                                       "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+                                       "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                                       "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n");
+    writeText(directory / "white.mtl", "newmtl White\nKd 1 1 1\n");
+    const std::string box =
+        test::shellQuoted(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "characters" / "box-textured.glb");
+    for (const std::string& input : {std::string("white.obj"), box}) {
+        fs::remove_all(directory / "d");
+        const CliRun result = run("render " + input + " -o look.png --size 96x96 --dump d --request gbuffer.coverage");
+        ASSERT_EQ(result.exitCode, 0) << result.err;
+        const cv::Mat picture = readImage(directory / "look.png");
+        const cv::Mat coverage = readImage(directory / "d" / "coverage.png");
+        const std::vector<cv::Point> boundary = pixelsAroundCoverage(coverage);
+        ASSERT_GT(boundary.size(), 100u) << input;
+        std::size_t darkened = 0;
+        for (const cv::Point& pixel : boundary) {
+            const cv::Vec4b color = picture.at<cv::Vec4b>(pixel);
+            if (color[0] < 128 && color[1] < 128 && color[2] < 128) ++darkened;
+        }
+        EXPECT_GE(double(darkened), 0.95 * double(boundary.size())) << input << ": the outline encloses the model";
+    }
+}
+
+TEST_F(Cli, StatsListMaterialsAndTextures) {
+    const std::string fox = test::shellQuoted(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "characters" / "fox.glb");
+    const CliRun result = run("render " + fox + " -o fox.png --size 48x48 --stats s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+    const auto& materials = stats["scene"]["materials"];
+    ASSERT_EQ(materials.size(), 1u);
+    EXPECT_EQ(materials[0]["name"], "fox_material");
+    EXPECT_EQ(materials[0]["alpha_mode"], "opaque");
+    EXPECT_FALSE(materials[0]["base_color_texture"].is_null());
+    EXPECT_EQ(stats["scene"]["images"]["count"], 1);
+    EXPECT_EQ(stats["scene"]["images"]["decoded"], 1) << "the cel shading samples the texture";
+    EXPECT_GT(stats["scene"]["images"]["decoded_bytes"].get<double>(), 0.0);
+
+    // --shading none samples no colour: nothing is decoded.
+    ASSERT_EQ(run("render " + fox + " -o none.png --size 48x48 --shading none --stats n.json").exitCode, 0);
+    const auto none = nlohmann::json::parse(readText(directory / "n.json"));
+    EXPECT_EQ(none["scene"]["images"]["decoded"], 0);
+}
+
 } // namespace
 } // namespace inkgraph
