@@ -19,6 +19,7 @@ examples=(
     "armadillo-suggestive 480x480"
     "still-life 800x500"
     "line-types 256x256"
+    "characters 384x384"
 )
 for entry in "${examples[@]}"; do
     read -r name size <<<"$entry"
