@@ -278,9 +278,10 @@ void addLineTypeFlags(std::vector<Flag>& flags) {
 }
 
 std::string lineTypesHelp() {
-    std::string text = "comma-separated line types, or none (default silhouette: no model white on white), each "
-                       "written to lines-<type>.png by --dump, "
-                       "composited in this order:";
+    std::string text =
+        "comma-separated line types, or none (default silhouette,contour: no model white on white), each "
+        "written to lines-<type>.png by --dump, "
+        "composited in this order:";
     for (const LineType& type : lineTypes()) {
         std::string help = type.help;
         std::string indented;

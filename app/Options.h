@@ -28,8 +28,10 @@ struct Shard {
     int count = 1; ///< N
 };
 
-/** The line types drawn when neither --lines nor a style file names any. */
-inline const std::vector<std::string> kDefaultLines = {"silhouette"};
+/** The line types drawn when neither --lines nor a style file names any: the silhouette (the inflated hull, bold around
+ *  the figure) and the contour (n.v zero crossings and the model's ends, one pixel), which also edges a flat card seen
+ *  face-on, where the hull has no width. */
+inline const std::vector<std::string> kDefaultLines = {"silhouette", "contour"};
 
 /** A Look with the command line's defaults: Look{} with kDefaultLines. */
 inline Look defaultLook() {
@@ -58,9 +60,9 @@ struct RenderOptions {
     bool autoCamera = false;             ///< --camera auto: never the file's camera
     std::string animation;               ///< --animation: a glTF animation's name or index; empty: the rest pose
     double animationTime = 0.0;          ///< --time: seconds into `animation`
-    /** Shading, lines, supersampling, precision, paper, light. The command line's default draws the silhouette
+    /** Shading, lines, supersampling, precision, paper, light. The command line's default draws lines
      *  (kDefaultLines), so no model is white on white: a white or untextured model's lit band is the paper's
-     *  colour, and its outline still sets it apart. */
+     *  colour, and its lines still set it apart. */
     Look look = defaultLook();
     std::vector<std::string> extraOutputs; ///< --request: extra graph resources kept and dumped ("gbuffer.*")
     std::string dumpDirectory;

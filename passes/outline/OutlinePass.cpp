@@ -35,8 +35,12 @@ void OutlinePass::prepare(GlPassContext&) {
                                                                     materialAlphaDefines(mScene),
                                                                     {"common/material.glsl"}}));
     if (!mLineProgram)
-        mLineProgram = std::make_unique<GlProgram>(mShaders.build(
-            {mName + " back edges", "outline/outline.vert", "common/line_mask.frag", {}, {}, "outline/outline.geom"}));
+        mLineProgram = std::make_unique<GlProgram>(mShaders.build({mName + " back edges",
+                                                                   "outline/outline.vert",
+                                                                   "common/line_mask.frag",
+                                                                   materialAlphaDefines(mScene),
+                                                                   {"common/material.glsl"},
+                                                                   "outline/outline.geom"}));
     mScene.meshes();
     if (SceneOrientation* orientation = mScene.cpuOrientation())
         orientation->sets(); // marks and uploads outside the timed execute()
@@ -73,15 +77,20 @@ void OutlinePass::execute(GlPassContext& gl) {
     // With a CPU method its back sets decide what is submitted (Winnemoller & Bangay 2002's saving); they hold every
     // true back face, and the geometry shader's facing test drops the front-facing "intermediate" ones, so the outline
     // is the same.
+    // A cut-out's edges are cut with it (the corners carry the surface's texture coordinates to line_mask.frag).
+    const bool transparency = mScene.hasTransparency();
     if (SceneOrientation* orientation = mScene.cpuOrientation()) {
-        for (const SceneOrientation::MeshSets& sets : orientation->sets()) {
-            sets.backArray.bind();
-            glDrawElements(GL_TRIANGLES, sets.backIndexCount, GL_UNSIGNED_INT, nullptr);
+        const std::vector<SceneOrientation::MeshSets>& sets = orientation->sets();
+        for (std::size_t index = 0; index < sets.size(); ++index) {
+            if (transparency) mScene.bindMaterial(*mLineProgram, index);
+            sets[index].backArray.bind();
+            glDrawElements(GL_TRIANGLES, sets[index].backIndexCount, GL_UNSIGNED_INT, nullptr);
         }
     } else {
-        for (const GpuScene::DrawMesh& mesh : meshes) {
-            mesh.vertexArray.bind();
-            glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        for (std::size_t index = 0; index < meshes.size(); ++index) {
+            if (transparency) mScene.bindMaterial(*mLineProgram, index);
+            meshes[index].vertexArray.bind();
+            glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
         }
     }
 

@@ -1,25 +1,31 @@
 // The surface's material (passes/material/SceneMaterials.h binds it per mesh): base colour = factor x texture x vertex
 // colour, in linear RGB with alpha; alpha cut-outs; emissive. Every pass that draws the surface includes this, so they
 // agree on where the surface is. Needs common/color.glsl before it in the fragment stage.
+// The attributes travel in one interface block, matched by its name, so a geometry stage between (the back-face
+// outline) can pass them on (outline/outline.geom).
 #ifdef INKGRAPH_VERTEX_STAGE
 layout(location = 2) in vec2 inTexcoord0;
 layout(location = 3) in vec2 inTexcoord1;
 layout(location = 4) in vec4 inVertexColor; // linear; (1, 1, 1, 1) for a mesh without colours
-out vec2 materialTexcoord0;
-out vec2 materialTexcoord1;
-out vec4 materialVertexColor;
+out MaterialVarying {
+    vec2 texcoord0;
+    vec2 texcoord1;
+    vec4 vertexColor;
+} materialOut;
 
 void passMaterialAttributes() {
-    materialTexcoord0 = inTexcoord0;
-    materialTexcoord1 = inTexcoord1;
-    materialVertexColor = inVertexColor;
+    materialOut.texcoord0 = inTexcoord0;
+    materialOut.texcoord1 = inTexcoord1;
+    materialOut.vertexColor = inVertexColor;
 }
 #endif
 
 #ifdef INKGRAPH_FRAGMENT_STAGE
-in vec2 materialTexcoord0;
-in vec2 materialTexcoord1;
-in vec4 materialVertexColor;
+in MaterialVarying {
+    vec2 texcoord0;
+    vec2 texcoord1;
+    vec4 vertexColor;
+} materialIn;
 
 uniform vec4 materialBaseColorFactor; // linear RGBA
 uniform int materialBaseColorTextured;
@@ -32,7 +38,7 @@ uniform float materialBlendSolidAlpha;   // SceneMaterials.h kBlendSolidAlpha
 layout(binding = 1) uniform sampler2D materialBaseColorTexture;
 
 vec2 materialTexcoord(int set, mat3 transform) {
-    vec2 uv = set == 1 ? materialTexcoord1 : materialTexcoord0;
+    vec2 uv = set == 1 ? materialIn.texcoord1 : materialIn.texcoord0;
     return (transform * vec3(uv, 1.0)).xy;
 }
 
@@ -46,7 +52,7 @@ vec4 materialTexturedColor() {
 
 // Linear RGBA: factor x texture x vertex colour (glTF 2.0's base colour).
 vec4 materialBaseColor() {
-    return materialTexturedColor() * materialVertexColor;
+    return materialTexturedColor() * materialIn.vertexColor;
 }
 
 // Whether a fragment of this alpha is not part of the surface: below the cutoff of a MASK material; with

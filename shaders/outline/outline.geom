@@ -7,6 +7,18 @@ uniform vec2 viewportSize;    // pixels
 uniform float halfWidthPixels;
 
 in vec3 viewPosition[];
+// common/material.glsl's attributes, passed on per corner so line_mask.frag cuts the edges a material cuts out
+// (always passed: the fragment stage declares the block whether or not it reads it).
+in MaterialVarying {
+    vec2 texcoord0;
+    vec2 texcoord1;
+    vec4 vertexColor;
+} materialIn[];
+out MaterialVarying {
+    vec2 texcoord0;
+    vec2 texcoord1;
+    vec4 vertexColor;
+} materialOut;
 
 // An edge is clipped to the near plane (reversed-Z, gl/GlObjects.h: clip z <= w in front of it), where w equals the
 // near distance, so w stays positive. The
@@ -26,13 +38,18 @@ bool clipToNearPlane(inout vec4 a, inout vec4 b) {
     return a.w > 0.0 && b.w > 0.0;
 }
 
-void emitCorner(vec4 clip, vec2 offsetPixels) {
+void emitCorner(vec4 clip, vec2 offsetPixels, int corner) {
+    materialOut.texcoord0 = materialIn[corner].texcoord0;
+    materialOut.texcoord1 = materialIn[corner].texcoord1;
+    materialOut.vertexColor = materialIn[corner].vertexColor;
     // Offset in NDC, times w so the divide leaves it intact; z and w stay the endpoint's, so depth follows the edge.
     gl_Position = vec4(clip.xy + offsetPixels * (2.0 / viewportSize) * clip.w, clip.z, clip.w);
     EmitVertex();
 }
 
-void emitEdgeQuad(vec4 a, vec4 b) {
+void emitEdgeQuad(int first, int second) {
+    vec4 a = gl_in[first].gl_Position;
+    vec4 b = gl_in[second].gl_Position;
     if (!clipToNearPlane(a, b)) return;
     vec2 pixelsA = a.xy / a.w * 0.5 * viewportSize;
     vec2 pixelsB = b.xy / b.w * 0.5 * viewportSize;
@@ -42,10 +59,10 @@ void emitEdgeQuad(vec4 a, vec4 b) {
     vec2 direction = edgeLength > 1e-4 ? along / edgeLength : vec2(1.0, 0.0);
     vec2 lengthwise = direction * halfWidthPixels;
     vec2 across = vec2(-direction.y, direction.x) * halfWidthPixels;
-    emitCorner(a, -lengthwise - across);
-    emitCorner(a, -lengthwise + across);
-    emitCorner(b, lengthwise - across);
-    emitCorner(b, lengthwise + across);
+    emitCorner(a, -lengthwise - across, first);
+    emitCorner(a, -lengthwise + across, first);
+    emitCorner(b, lengthwise - across, second);
+    emitCorner(b, lengthwise + across, second);
     EndPrimitive();
 }
 
@@ -56,7 +73,7 @@ void main() {
     vec3 normal = cross(viewPosition[1] - viewPosition[0], viewPosition[2] - viewPosition[0]);
     vec3 middle = (viewPosition[0] + viewPosition[1] + viewPosition[2]) / 3.0;
     if (dot(normal, middle) < 0.0) return;
-    emitEdgeQuad(gl_in[0].gl_Position, gl_in[1].gl_Position);
-    emitEdgeQuad(gl_in[1].gl_Position, gl_in[2].gl_Position);
-    emitEdgeQuad(gl_in[2].gl_Position, gl_in[0].gl_Position);
+    emitEdgeQuad(0, 1);
+    emitEdgeQuad(1, 2);
+    emitEdgeQuad(2, 0);
 }

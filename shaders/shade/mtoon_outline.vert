@@ -25,7 +25,7 @@ void main() {
     passMaterialAttributes();
     float width = mtoonOutlineWidthFactor;
     if (mtoonOutlineWidthMultiplyTextured != 0) {
-        vec2 uv = mtoonOutlineWidthMultiplySet == 1 ? inTexcoord1 : inTexcoord0;
+        vec2 uv = mtoonOutlineWidthMultiplySet == 1 ? inTexcoord1 : inTexcoord0; // common/material.glsl
         width *= textureLod(mtoonOutlineWidthMultiplyTexture, (mtoonOutlineWidthMultiplyTransform * vec3(uv, 1.0)).xy,
                             0.0).g;
     }

@@ -55,8 +55,8 @@ TEST(Options, Defaults) {
     EXPECT_EQ(options.look.viewVector, ViewVectorMode::Exact);
     EXPECT_EQ(options.look.faceOrientation, FaceOrientationMethod::Standard);
     EXPECT_EQ(options.look.frontRule, 3);
-    EXPECT_EQ(options.look.lines, kDefaultLines); // the silhouette: no model white on white
-    EXPECT_EQ(options.look.lines, std::vector<std::string>{"silhouette"});
+    EXPECT_EQ(options.look.lines, kDefaultLines); // no model white on white
+    EXPECT_EQ(options.look.lines, (std::vector<std::string>{"silhouette", "contour"}));
     for (const LineType& type : lineTypes()) {
         EXPECT_EQ(options.look.styleOf(type.name).widthPixels, 2.0) << type.name;
         EXPECT_EQ(options.look.styleOf(type.name).color, glm::dvec4(0, 0, 0, 1)) << type.name;

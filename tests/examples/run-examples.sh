@@ -41,6 +41,8 @@ run_example armadillo-suggestive armadillo-object.png armadillo-image.png
 run_example line-types outline.png silhouette.png contour.png suggestive.png suggestive-object.png depth-edge.png \
     normal-edge.png mesh-silhouette.png crease.png border.png together.png
 run_example still-life still-life.png
+run_example characters fox-default.png godette-mtoon.png godette-face.png godette-orbit.png fox-walk.png \
+    expressions-binary-overrides-default.png
 run_example batch 1-bunny_c3d_70k.png 5-spot_c3d.png 9-suzanne_npm_4k.png 9-suzanne_npm_4k.json
 
 # The Slurm script, as tasks 1..3 of --array=1-3.

@@ -5,7 +5,10 @@
 // double-sided faces seen from behind, MToon's band (linearstep of n.l + shift) on a sphere against ray casting, and
 // textures decoded only when a pass samples them. Needs a GL context (llvmpipe in CI).
 #include "graph/GraphCompiler.h"
+#include "passes/StillGraph.h"
+#include "passes/lines/LineLayerPass.h"
 #include "passes/gbuffer/GBufferPass.h"
+#include "passes/outline/OutlinePass.h"
 #include "passes/material/SceneMaterials.h"
 #include "passes/shade/ShadeMap.h"
 #include "passes/shade/ShadePass.h"
@@ -281,6 +284,76 @@ TEST_F(MaterialPasses, MaskedDiscCoverageFollowsTheMaskWithinOnePixel) {
     scene.meshes[0].material.alphaMode = AlphaMode::Opaque;
     gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
     EXPECT_GT(borderPixels(), 400) << "the opaque square's border";
+}
+
+/** A square of half-width 1 at z = 0 whose texture is a disc of radius `radius` (in texture units) on `texels`^2
+ *  texels, alpha-masked at 0.5, nearest. */
+Scene maskedDiscScene(int texels, double radius, bool backward = false) {
+    cv::Mat mask(texels, texels, CV_8UC4);
+    for (int row = 0; row < texels; ++row)
+        for (int col = 0; col < texels; ++col) {
+            const bool inside = std::hypot((col + 0.5) / texels - 0.5, (row + 0.5) / texels - 0.5) <= radius;
+            mask.at<cv::Vec4b>(row, col) = cv::Vec4b(255, 255, 255, inside ? 255 : 0);
+        }
+    Mesh mesh = square(1.0f, 0.0f, backward);
+    mesh.material.baseColorTexture = nearestTexture(0);
+    mesh.material.alphaMode = AlphaMode::Mask;
+    mesh.material.doubleSided = true;
+    Scene built = makeScene(std::move(mesh));
+    built.images.push_back(pngImage(mask, "disc"));
+    return built;
+}
+
+TEST_F(MaterialPasses, MaskedDiscContourFollowsTheMaskWithinOnePixel) {
+    // The contour line type through the still graph: its skeleton lies on the cut-out's edge, a circle of radius
+    // 0.35 x 2 world units, not on the square's border. 256 texels put the mask's staircase within 0.2 px of it.
+    useScene(maskedDiscScene(256, 0.35));
+    Look look;
+    look.shading = ShadingModel::None;
+    look.lines = {"contour"};
+    StillGraphSetup setup{look, shaders, scene, computeBoundingSphere(scene), *gpuScene, frame, std::nullopt};
+    const StillGraph graph = buildStillGraph(setup);
+    const Plan plan = compile(graph.view(), {graph.finalResource});
+    executor.run(plan, graph.mutableView(), {kSize, kSize, false});
+    const std::vector<LinePoint>& points = graph.lineLayer("contour")->skeleton().points;
+    executor.store().clear();
+    ASSERT_GT(points.size(), 100u);
+    const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
+    const double radius = 0.7 * focal / kDistance; // pixels
+    double worst = 0.0;
+    for (const LinePoint& point : points) {
+        // Pixel centres at integers: the disc's centre, on the axis, is at (kSize - 1) / 2.
+        const double distance = std::hypot(point.position.x - (kSize - 1) / 2.0, point.position.y - (kSize - 1) / 2.0);
+        worst = std::max(worst, std::abs(distance - radius));
+    }
+    EXPECT_LE(worst, 1.0) << "farthest contour point from the mask's circle, in pixels";
+}
+
+TEST_F(MaterialPasses, BackFaceOutlineIsCutWithTheMask) {
+    // Seen from behind, every triangle of the square is a back face, so the outline pass draws its edges: the
+    // square's border and its diagonal. With the disc mask the border lies in the cut-out part and is not drawn;
+    // the diagonal's middle crosses the disc and stays. Counted: line pixels farther out than the disc.
+    const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
+    const double discRadius = 0.7 * focal / kDistance; // pixels
+    auto outlinePixelsOutsideTheDisc = [&] {
+        OutlinePass pass("outline", shaders, *gpuScene, frame, 2.0f);
+        const Plan plan = compile({&pass}, {"outline.lines"});
+        executor.run(plan, {&pass}, {kSize, kSize, false});
+        const cv::Mat lines = executor.store().image("outline.lines").clone();
+        executor.store().clear();
+        int outside = 0;
+        for (int row = 0; row < kSize; ++row)
+            for (int col = 0; col < kSize; ++col)
+                if (lines.at<uchar>(row, col) != 0 &&
+                    std::hypot(col - (kSize - 1) / 2.0, row - (kSize - 1) / 2.0) > discRadius + 3.0)
+                    ++outside;
+        return outside;
+    };
+    useScene(maskedDiscScene(64, 0.35, /*backward=*/true));
+    EXPECT_EQ(outlinePixelsOutsideTheDisc(), 0) << "the square's border runs through the cut-out";
+    scene.meshes[0].material.alphaMode = AlphaMode::Opaque;
+    gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+    EXPECT_GT(outlinePixelsOutsideTheDisc(), 400) << "the opaque square's border";
 }
 
 TEST_F(MaterialPasses, BlendedQuadOverOpaqueOneMixesAndTheGBufferSeesThrough) {
