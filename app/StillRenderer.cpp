@@ -7,6 +7,7 @@
 #include "scene/Scene.h"
 
 #include <chrono>
+#include <exception>
 #include <iomanip>
 #include <iostream>
 
@@ -195,6 +196,17 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
         throw UsageError(size + " with --supersample " + std::to_string(still.request.look.supersample) +
                          ": out of memory (" + error.what() +
                          "); make the image smaller, or give the process more memory");
+    } catch (const std::exception& error) {
+        // A pass that failed on the model's own data (a texture it could not decode) is bad input, as a load error
+        // is: the executor nests the SceneError under the pass's name, and the SceneError's own message names the
+        // model and the problem.
+        try {
+            std::rethrow_if_nested(error);
+        } catch (const SceneError&) {
+            throw;
+        } catch (...) {
+        }
+        throw;
     }
     result.programsCompiled = mShaders.compiledCount() - programsCompiledBefore;
     result.programsReused = mShaders.reusedCount() - programsReusedBefore;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <new>
 
 namespace inkgraph {
@@ -26,7 +27,8 @@ void runPassStep(ExecutorBackend& backend, const std::string& where, const char*
         } catch (const std::bad_alloc&) {
             throw OutOfMemoryError(where + " ran out of memory");
         } catch (const std::exception& error) {
-            throw std::runtime_error(where + " " + failed + ": " + error.what());
+            // Nested, so a caller that knows the cause's type (the app: a SceneError is bad input) can still tell.
+            std::throw_with_nested(std::runtime_error(where + " " + failed + ": " + error.what()));
         }
     }
 }

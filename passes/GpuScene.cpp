@@ -125,6 +125,24 @@ const GlBuffer& GpuScene::hullNormals(std::size_t meshIndex) {
     return mHullNormals[meshIndex];
 }
 
+const std::vector<GlVertexArray>& GpuScene::hullArrays() {
+    if (mHullArrays.empty()) {
+        const std::vector<DrawMesh>& drawMeshes = meshes();
+        std::vector<GlVertexArray> arrays;
+        arrays.reserve(drawMeshes.size());
+        for (std::size_t index = 0; index < drawMeshes.size(); ++index) {
+            GlVertexArray array("mesh '" + mScene.meshes[index].name + "' hull");
+            array.setVec3Attribute(kPositionLocation, drawMeshes[index].positions);
+            array.setVec3Attribute(kNormalLocation, hullNormals(index));
+            array.setIndexBuffer(drawMeshes[index].indices);
+            drawMeshes[index].materialAttributes.attachTo(array);
+            arrays.push_back(std::move(array));
+        }
+        mHullArrays = std::move(arrays);
+    }
+    return mHullArrays;
+}
+
 const EdgeAdjacency& GpuScene::edgeAdjacency(std::size_t meshIndex) {
     requireMeshIndex("GpuScene::edgeAdjacency()", meshIndex);
     if (mEdgeAdjacency.empty()) {

@@ -56,6 +56,10 @@ public:
      *  runs asks). Throws std::out_of_range for a bad index. */
     const GlBuffer& hullNormals(std::size_t meshIndex);
     bool hullNormalsComputed() const { return !mHullNormals.empty(); }
+    /** One vertex array per mesh for drawing its inflated hull (the silhouette, MToon's outline shell): its
+     *  positions, hullNormals() at the normal location, its material attributes and its indices. Made on the first
+     *  call. */
+    const std::vector<GlVertexArray>& hullArrays();
 
     /** Edge adjacency of mesh `meshIndex` (scene/EdgeAdjacency.h: welded edges, their kinds, face normals and
      *  planes), in world space like the scene, keyed on positions welded at the same distance as hullNormals(), so
@@ -116,6 +120,7 @@ private:
     std::vector<DrawMesh> mMeshes;
     bool mUploaded = false;
     std::vector<GlBuffer> mHullNormals;          ///< one per mesh once computed, else empty
+    std::vector<GlVertexArray> mHullArrays;      ///< one per mesh once made, else empty
     std::vector<EdgeAdjacency> mEdgeAdjacency;   ///< one per mesh once computed, else empty
     std::vector<MeshCurvature> mMeshCurvature;   ///< one per mesh once computed, else empty
     std::optional<glm::dvec3> mContainmentPoint; ///< the last point containsPoint() was asked about

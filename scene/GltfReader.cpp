@@ -567,7 +567,7 @@ private:
             fail(label + ": " + textureName + ": image index " + std::to_string(texture.source) +
                  " out of range (file has " + std::to_string(mModel.images.size()) + " images)");
         }
-        int texCoord = info.texCoord;
+        double texCoord = info.texCoord;
         glm::mat3 transform(1.0f);
         const auto extension = info.extensions.find("KHR_texture_transform");
         if (extension != info.extensions.end() && extension->second.IsObject()) {
@@ -576,8 +576,7 @@ private:
             const glm::dvec2 offset = extensionPair(object, "offset", glm::dvec2(0.0), where);
             const double rotation = extensionNumber(object, "rotation", 0.0, where);
             const glm::dvec2 scale = extensionPair(object, "scale", glm::dvec2(1.0), where);
-            const double texCoordOverride = extensionNumber(object, "texCoord", double(texCoord), where);
-            texCoord = texCoordOverride == 0.0 || texCoordOverride == 1.0 ? int(texCoordOverride) : -1;
+            texCoord = extensionNumber(object, "texCoord", texCoord, where);
             // The extension's matrices, column by column as its GLSL writes them: uv' = T * R * S * (u, v, 1).
             const glm::dmat3 translation(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, offset.x, offset.y, 1.0);
             const double c = std::cos(rotation);
@@ -586,13 +585,13 @@ private:
             const glm::dmat3 scaleMatrix(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
             transform = glm::mat3(translation * rotationMatrix * scaleMatrix);
         }
-        if (texCoord < 0 || texCoord > 1) {
-            mOut.warnings.push_back(label + ": texture coordinate set " + std::to_string(texCoord) +
+        if (texCoord != 0.0 && texCoord != 1.0) {
+            mOut.warnings.push_back(label + ": texture coordinate set " + formatNumber(texCoord) +
                                     " is not read (only TEXCOORD_0 and TEXCOORD_1); drawn untextured");
             return ref;
         }
         ref.image = texture.source;
-        ref.texCoord = texCoord;
+        ref.texCoord = int(texCoord);
         ref.sampler = readSampler(texture.sampler);
         ref.transform = transform;
         return ref;

@@ -351,6 +351,24 @@ std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::v
 
 namespace {
 
+/** A texture on a coordinate set the mesh does not have would sample one texel everywhere: it is dropped, with a
+ *  warning that names the mesh, the texture and the set. */
+void dropTexturesWithoutCoordinates(RawMesh& raw, LoadReport& report) {
+    auto check = [&](TextureRef& texture, const char* role) {
+        if (!texture.present() || !raw.texcoords[texture.texCoord == 1 ? 1 : 0].empty()) return;
+        report.warnings.push_back("mesh '" + raw.name + "': its " + role + " reads TEXCOORD_" +
+                                  std::to_string(texture.texCoord) +
+                                  ", which the mesh does not have; drawn without that texture");
+        texture = TextureRef{};
+    };
+    check(raw.material.baseColorTexture, "base colour texture");
+    check(raw.material.emissiveTexture, "emissive texture");
+    if (raw.material.mtoon) {
+        check(raw.material.mtoon->shadeMultiplyTexture, "MToon shade texture");
+        check(raw.material.mtoon->outlineWidthMultiplyTexture, "MToon outline width texture");
+    }
+}
+
 /** One class per distinct (texcoords, colour) tuple, compared exactly; empty when the mesh has no such attributes. */
 std::vector<std::uint32_t> vertexAttributeClasses(const RawMesh& raw) {
     if (raw.texcoords[0].empty() && raw.texcoords[1].empty() && raw.colors.empty()) return {};
@@ -396,6 +414,7 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     if (!raw.colors.empty() && raw.colors.size() != raw.positions.size()) {
         throw std::logic_error("finalizeMesh(): colours must be empty or one per position");
     }
+    dropTexturesWithoutCoordinates(raw, report);
     // A texture seam or a colour border keeps its split vertices: only vertices with exactly equal attributes weld.
     const std::vector<std::uint32_t> attributeClasses = vertexAttributeClasses(raw);
     const WeldMap weld =

@@ -156,6 +156,46 @@ private:
     std::vector<std::string>& mWarnings;
 };
 
+/** One warning naming the MToon features a material uses that inkgraph does not draw (docs/mtoon.md "Not supported"),
+ *  so a still that differs from a VRM viewer says why; nothing when it uses none. */
+void warnUndrawn(const std::vector<std::string>& features, PropertyReader& read) {
+    if (features.empty()) return;
+    std::string list;
+    for (std::size_t i = 0; i < features.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == features.size() ? " and " : ", ") + features[i];
+    read.warn("MToon's " + list + (features.size() == 1 ? " is" : " are") +
+              " not drawn (a still shows the texture unscrolled and no matcap or rim texture; docs/mtoon.md)");
+}
+
+/** Outline widths a file may well hold by mistake (a 0.x width of 1e30 "cm"): a screen width above 5 % of the picture's
+ *  height buries a character in its outline, so it is drawn as written but said; a world width too large for the
+ *  renderer's float positions would draw nothing, so it is dropped with a warning. */
+void checkOutlineWidth(MToonMaterial& mtoon, PropertyReader& read) {
+    using Mode = MToonMaterial::OutlineWidthMode;
+    if (mtoon.outlineWidthMode == Mode::ScreenCoordinates && mtoon.outlineWidthFactor > 0.05f) {
+        read.warn("MToon outline width " + formatNumber(mtoon.outlineWidthFactor) +
+                  " of the screen height is more than 5 %: the outline may cover most of the picture");
+    } else if (mtoon.outlineWidthMode == Mode::WorldCoordinates &&
+               !(double(mtoon.outlineWidthFactor) <= kMaxModelExtent)) {
+        read.warn("MToon outline width " + formatNumber(mtoon.outlineWidthFactor) +
+                  " model units is more than the renderer can place; no outline");
+        mtoon.outlineWidthMode = Mode::None;
+        mtoon.outlineWidthFactor = 0.0f;
+    }
+}
+
+/** Whether `object` has `key` as a number other than 0. */
+bool nonZeroNumber(const tinygltf::Value* object, const char* key) {
+    if (object == nullptr || !object->IsObject() || !object->Has(key)) return false;
+    const tinygltf::Value& value = object->Get(key);
+    return value.IsNumber() && value.GetNumberAsDouble() != 0.0;
+}
+
+/** Whether `object` has `key` at all. */
+bool hasKey(const tinygltf::Value* object, const char* key) {
+    return object != nullptr && object->IsObject() && object->Has(key);
+}
+
 MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read) {
     const std::string where = "VRMC_materials_mtoon";
     const tinygltf::Value* fields = &extension;
@@ -206,6 +246,14 @@ MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read
     mtoon.outlineColorFactor = read.color3(fields, "outlineColorFactor", mtoon.outlineColorFactor, where);
     mtoon.outlineLightingMixFactor =
         read.number(fields, "outlineLightingMixFactor", mtoon.outlineLightingMixFactor, where);
+    checkOutlineWidth(mtoon, read);
+    std::vector<std::string> undrawn;
+    for (const char* key : {"matcapTexture", "rimMultiplyTexture", "shadingShiftTexture"})
+        if (hasKey(fields, key)) undrawn.push_back(key);
+    for (const char* key :
+         {"uvAnimationScrollXSpeedFactor", "uvAnimationScrollYSpeedFactor", "uvAnimationRotationSpeedFactor"})
+        if (nonZeroNumber(fields, key)) undrawn.push_back(key);
+    warnUndrawn(undrawn, read);
     return mtoon;
 }
 
@@ -336,6 +384,13 @@ MToonMaterial readMToon0(const tinygltf::Value& entry, Material& material, Prope
     // OutlineColorMode { FixedColor, MixedLighting }: a fixed colour takes no lighting (UniVRM, three-vrm).
     const float colorMode = read.number(floats, "_OutlineColorMode", 0.0f, f);
     mtoon.outlineLightingMixFactor = colorMode == 1.0f ? read.number(floats, "_OutlineLightingMix", 1.0f, f) : 0.0f;
+    checkOutlineWidth(mtoon, read);
+    std::vector<std::string> undrawn;
+    for (const char* key : {"_SphereAdd", "_RimTexture"})
+        if (hasKey(textures, key)) undrawn.push_back(key);
+    for (const char* key : {"_UvAnimScrollX", "_UvAnimScrollY", "_UvAnimRotation"})
+        if (nonZeroNumber(floats, key)) undrawn.push_back(key);
+    warnUndrawn(undrawn, read);
     return mtoon;
 }
 

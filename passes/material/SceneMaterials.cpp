@@ -56,7 +56,7 @@ GLuint SceneMaterials::texture(const TextureRef& reference, bool srgb) {
     if (auto found = mTextures.find(key); found != mTextures.end()) return found->second.id();
     const SceneImage& image = mScene.images[std::size_t(reference.image)];
     const std::size_t left = mTextureByteLimit > mTextureBytes ? mTextureByteLimit - mTextureBytes : 0;
-    const DecodedImage decoded = decodeSceneImage(image, mModelPath, left);
+    const DecodedImage decoded = decodeSceneImage(image, std::size_t(reference.image), mModelPath, left);
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     GlHandle<TextureDeleter> handle(id);
@@ -64,9 +64,9 @@ GLuint SceneMaterials::texture(const TextureRef& reference, bool srgb) {
     glTextureStorage2D(id, mipmapLevels(decoded.width, decoded.height), GL_SRGB8_ALPHA8, decoded.width, decoded.height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     // Rows top first, as decoded: GL's t = 0 is then the image's top row, which is glTF's v = 0.
-    glTextureSubImage2D(id, 0, 0, 0, decoded.width, decoded.height, GL_RGBA, GL_UNSIGNED_BYTE, decoded.rgba.data());
+    glTextureSubImage2D(id, 0, 0, 0, decoded.width, decoded.height, GL_RGBA, GL_UNSIGNED_BYTE, decoded.rgba.get());
     glGenerateTextureMipmap(id);
-    labelObject(GL_TEXTURE, id, "image '" + image.name + "'");
+    labelObject(GL_TEXTURE, id, "image " + std::to_string(reference.image));
     mTextureBytes += decodedImageBytes(decoded.width, decoded.height);
     return mTextures.emplace(key, std::move(handle)).first->second.id();
 }

@@ -171,15 +171,7 @@ void ShadePass::prepare(GlPassContext&) {
                             "shade/shade.frag",
                             outlineDefines,
                             {"common/color.glsl", "common/lighting.glsl", "common/material.glsl"}}));
-        const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
-        for (std::size_t index = 0; index < meshes.size(); ++index) {
-            GlVertexArray array(mName + " mtoon outline of mesh " + std::to_string(index));
-            array.setVec3Attribute(GpuScene::kPositionLocation, meshes[index].positions);
-            array.setVec3Attribute(GpuScene::kNormalLocation, mScene.hullNormals(index));
-            array.setIndexBuffer(meshes[index].indices);
-            meshes[index].materialAttributes.attachTo(array);
-            mOutlineArrays.push_back(std::move(array));
-        }
+        mScene.hullArrays(); // the outline shells are the hulls, made outside the timed execute()
     }
 }
 
@@ -204,10 +196,10 @@ void ShadePass::drawMToonOutlines(const glm::mat4& viewFromModel, const glm::mat
     // Only the shell's back faces: where it sticks out beyond the surface, the outline.
     glEnable(GL_CULL_FACE);
     glCullFace(GL_FRONT);
-    for (std::size_t index = 0; index < mOutlineArrays.size(); ++index) {
+    for (std::size_t index = 0; index < mScene.meshCount(); ++index) {
         if (!mScene.materials().outlineOf(index)) continue;
         mScene.bindMaterial(program, index);
-        mOutlineArrays[index].bind();
+        mScene.hullArrays()[index].bind();
         glDrawElements(GL_TRIANGLES, mScene.meshes()[index].indexCount, GL_UNSIGNED_INT, nullptr);
     }
     glCullFace(GL_BACK);

@@ -123,7 +123,6 @@ private:
     std::size_t mSpecularBorderCount = 0;       ///< comic: the most row-band borders of a map in use
     std::unique_ptr<GlProgram> mProgram;        ///< the one program of this model and variant
     std::unique_ptr<GlProgram> mOutlineProgram; ///< mtoon's outline shells, when drawsMToonOutlines()
-    std::vector<GlVertexArray> mOutlineArrays;  ///< per mesh: positions, hull normals, material attributes
     PassDepthBuffer mDepth;                     ///< the pass's own depth attachment, kept between runs
 };
 

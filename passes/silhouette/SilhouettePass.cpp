@@ -51,17 +51,8 @@ void SilhouettePass::prepare(GlPassContext&) {
         mHullProgram = std::make_unique<GlProgram>(mShaders.build(
             {mName + " hull", "silhouette/hull.vert", "common/line_mask.frag", defines, {"common/material.glsl"}}));
     }
-    const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
-    if (mSettings.weldNormals && mHullArrays.empty()) {
-        for (std::size_t index = 0; index < meshes.size(); ++index) {
-            GlVertexArray array(mName + " hull of mesh " + std::to_string(index));
-            array.setVec3Attribute(GpuScene::kPositionLocation, meshes[index].positions);
-            array.setVec3Attribute(GpuScene::kNormalLocation, mScene.hullNormals(index));
-            array.setIndexBuffer(meshes[index].indices);
-            meshes[index].materialAttributes.attachTo(array);
-            mHullArrays.push_back(std::move(array));
-        }
-    }
+    mScene.meshes();
+    if (mSettings.weldNormals) mScene.hullArrays(); // made in prepare(), outside the timed execute()
 }
 
 void SilhouettePass::execute(GlPassContext& gl) {
@@ -100,7 +91,7 @@ void SilhouettePass::execute(GlPassContext& gl) {
     for (std::size_t index = 0; index < meshes.size(); ++index) {
         // A cut-out's hull is cut where the surface is (its vertices carry the surface's texture coordinates).
         if (transparency) mScene.bindMaterial(*mHullProgram, index);
-        (mSettings.weldNormals ? mHullArrays[index] : meshes[index].vertexArray).bind();
+        (mSettings.weldNormals ? mScene.hullArrays()[index] : meshes[index].vertexArray).bind();
         glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
     }
 

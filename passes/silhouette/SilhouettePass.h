@@ -67,7 +67,6 @@ private:
     HullSettings mSettings;
     std::unique_ptr<GlProgram> mDepthProgram; ///< the model as it is, depth only
     std::unique_ptr<GlProgram> mHullProgram;  ///< the offset hull
-    std::vector<GlVertexArray> mHullArrays;   ///< positions + hull normals + indices, one per mesh (welded only)
     PassDepthBuffer mDepth;                   ///< the pass's own depth attachment, kept between runs
     bool mSkippedEyeInside = false;
 };

@@ -1,4 +1,5 @@
 // --animation and --time: parsed into RenderOptions, carried to the still's load, refused when they cannot apply.
+#include "tests/app/OptionsTestSupport.h"
 #include "app/Cli.h"
 #include "app/FlagTable.h"
 #include "app/Options.h"
@@ -13,14 +14,7 @@
 namespace inkgraph {
 namespace {
 
-std::string usageMessage(std::vector<std::string> arguments) {
-    try {
-        parseRenderOptions(arguments);
-    } catch (const UsageError& error) {
-        return error.what();
-    }
-    return "(no error)";
-}
+using test::usageMessage;
 
 TEST(AnimationFlags, DefaultIsTheRestPose) {
     const RenderOptions options = parseRenderOptions({"m.glb", "-o", "x.png"});
@@ -43,7 +37,7 @@ TEST(AnimationFlags, TimeWithoutAnimationHasNoEffect) {
 }
 
 TEST(AnimationFlags, NegativeOrNonFiniteTimeIsRefused) {
-    for (const std::string& bad : {"-1", "nan", "inf", "1e999", "two"}) {
+    for (const std::string bad : {"-1", "nan", "inf", "1e999", "two"}) {
         const std::string message = usageMessage({"m.glb", "-o", "x.png", "--animation", "0", "--time", bad});
         EXPECT_EQ(message.rfind("--time: ", 0), 0u) << bad << ": " << message;
     }

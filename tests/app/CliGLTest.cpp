@@ -661,5 +661,28 @@ TEST_F(Cli, StatsListMaterialsAndTextures) {
     EXPECT_EQ(none["scene"]["images"]["decoded"], 0);
 }
 
+TEST_F(Cli, AnUndecodableTextureIsBadInputAndABatchGoesOn) {
+    // The texture is decoded only while rendering (the pass that samples it), yet it fails like a model that cannot
+    // be read: exit 3 with the decoder's message naming the model and the image, and the batch's other model renders.
+    auto writeText = [](const fs::path& path, const std::string& text) { std::ofstream(path) << text; };
+    const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+    writeText(directory / "bad.mtl", "newmtl skin\nmap_Kd bad.png\n");
+    writeText(directory / "bad.png", "this is not a PNG");
+    writeText(directory / "bad.obj", "mtllib bad.mtl\nusemtl skin\n" + triangle);
+    writeText(directory / "good.obj", triangle);
+    const CliRun single = run("render bad.obj -o bad.png.out.png --size 32x32");
+    EXPECT_EQ(single.exitCode, 3) << single.err;
+    EXPECT_NE(single.err.find("inkgraph: decodeSceneImage(): '"), std::string::npos) << single.err;
+    EXPECT_NE(single.err.find("bad.obj' image 0 'bad.png': cannot be decoded"), std::string::npos) << single.err;
+    EXPECT_EQ(single.err.find("internal error"), std::string::npos) << single.err;
+
+    fs::create_directories(directory / "out");
+    const CliRun batch = run("render bad.obj good.obj -o 'out/{name}.png' --size 32x32");
+    EXPECT_EQ(batch.exitCode, 3) << batch.err;
+    EXPECT_TRUE(fs::exists(directory / "out" / "good.png")) << batch.err;
+    EXPECT_FALSE(fs::exists(directory / "out" / "bad.png"));
+    EXPECT_EQ(readText(directory / "bad.png"), "this is not a PNG") << "the model's own texture is untouched";
+}
+
 } // namespace
 } // namespace inkgraph

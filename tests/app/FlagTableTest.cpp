@@ -1,5 +1,6 @@
 // The flag table and the registries it is generated from: every registered line type, line parameter and shading
 // model gets its flags, style names, help and refusals without code of its own in app/.
+#include "tests/app/OptionsTestSupport.h"
 #include "app/FlagTable.h"
 #include "app/Options.h"
 #include "app/StyleFile.h"
@@ -14,14 +15,7 @@
 namespace inkgraph {
 namespace {
 
-std::string usageMessage(std::vector<std::string> arguments) {
-    try {
-        parseRenderOptions(arguments);
-    } catch (const UsageError& error) {
-        return error.what();
-    }
-    return "(no error)";
-}
+using test::usageMessage;
 
 bool isStyleName(const std::string& name) {
     const std::vector<std::string>& names = styleSettingNames();

@@ -1,4 +1,5 @@
 // Command-line parsing: defaults, values, and a clear UsageError for every malformed flag. No GL.
+#include "tests/app/OptionsTestSupport.h"
 #include "app/Options.h"
 #include "app/Cli.h"
 #include "app/Render.h"
@@ -32,14 +33,7 @@ std::string stencil(const RenderOptions& options) {
 
 LineFamily familyOf(const std::string& type) { return findLineType(type)->family; }
 
-std::string usageMessage(std::vector<std::string> arguments) {
-    try {
-        parseRenderOptions(arguments);
-    } catch (const UsageError& error) {
-        return error.what();
-    }
-    return "(no error)";
-}
+using test::usageMessage;
 
 TEST(Options, Defaults) {
     const RenderOptions options = parse({"model.obj", "-o", "out.png"});

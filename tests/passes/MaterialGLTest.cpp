@@ -18,6 +18,7 @@
 #include "tests/support/AnalyticSphere.h"
 #include "tests/support/GlTestContext.h"
 #include "tests/support/PassHarness.h"
+#include "tests/support/Srgb.h"
 #include "tests/support/TestCamera.h"
 
 #include <gtest/gtest.h>
@@ -39,15 +40,8 @@ constexpr int kSize = 128;
 constexpr double kDistance = 4.0;
 constexpr double kFovDegrees = 35.0;
 
-double encodeSrgb(double linear) {
-    const double x = std::clamp(linear, 0.0, 1.0);
-    return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
-}
-double decodeSrgb(double encoded) {
-    return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
-}
-int srgbCode(double linear) { return int(std::lround(255.0 * encodeSrgb(linear))); }
-double linearOf(int code) { return decodeSrgb(code / 255.0); }
+using test::linearOf;
+using test::srgbCode;
 
 /** A PNG of `image` (CV_8UC4 in RGBA order, row 0 at the top) as a scene image, written by stb_image_write (the
  *  library that decodes it is stb_image). */
@@ -493,7 +487,7 @@ TEST_F(MaterialPasses, TextureBeyondTheMemoryLimitIsRefusedNamingTheImage) {
         shade();
         FAIL() << "no error";
     } catch (const std::exception& error) { // the executor names the pass around the SceneError
-        EXPECT_NE(std::string(error.what()).find("image 'big one'"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("image 0 'big one'"), std::string::npos) << error.what();
         EXPECT_NE(std::string(error.what()).find("--memory-limit"), std::string::npos) << error.what();
     }
 }

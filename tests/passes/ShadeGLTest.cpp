@@ -17,6 +17,7 @@
 #include "tests/support/ImageCompare.h"
 #include "tests/support/AnalyticSphere.h"
 #include "tests/support/PassHarness.h"
+#include "tests/support/Srgb.h"
 #include "tests/support/TestCamera.h"
 
 #include <gtest/gtest.h>
@@ -44,16 +45,10 @@ constexpr double kRadius = 1.0;
 constexpr double kDistance = 4.0;
 constexpr double kFovDegrees = 35.0;
 
-double encodeSrgb(double linear) {
-    const double x = std::clamp(linear, 0.0, 1.0);
-    return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
-}
-double decodeSrgb(double encoded) {
-    return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
-}
-/** The 8-bit code a shader writes for a linear value (encode, then round to nearest). */
-int srgbCode(double linear) { return int(std::lround(255.0 * encodeSrgb(linear))); }
-double linearOf(int code) { return decodeSrgb(code / 255.0); }
+using test::decodeSrgb;
+using test::encodeSrgb;
+using test::linearOf;
+using test::srgbCode;
 
 const test::AnalyticSphereView kSphere{kSize, kRadius, kDistance, kFovDegrees};
 const glm::dvec3 kCenter = kSphere.center();

@@ -323,13 +323,34 @@ TEST(GltfMaterials, EmbeddedImagesKeepTheirBytesInFileOrder) {
     EXPECT_EQ(scene.images[1].name, "face");
 }
 
+TEST(GltfMaterials, ATextureOnACoordinateSetTheMeshLacksIsDroppedWithAWarning) {
+    // TEXCOORD_1 named, only TEXCOORD_0 present: sampled, it would paint one texel everywhere.
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const int uv = gltf.floats({0, 0, 1, 0, 0, 1}, "VEC2", 3);
+    const std::string body =
+        singlePrimitive("\"POSITION\": " + std::to_string(position) + ", \"TEXCOORD_0\": " + std::to_string(uv),
+                        ", \"material\": 0") +
+        ", \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0, \"texCoord\": 1}}}],"
+        " \"textures\": [{\"source\": 0}], \"images\": [{\"uri\": \"skin.png\"}]";
+    const TempFile file("second-set.gltf", gltf.gltf(body));
+    const Scene scene = loadScene(file.path());
+    EXPECT_FALSE(scene.meshes.at(0).material.baseColorTexture.present());
+    ASSERT_EQ(scene.report.warnings.size(), 1u);
+    EXPECT_NE(scene.report.warnings[0].find("reads TEXCOORD_1, which the mesh does not have"), std::string::npos)
+        << scene.report.warnings[0];
+}
+
 TEST(GltfMaterials, ExternalImageIsResolvedBesideTheModelAndNotRead) {
     RawGltf gltf;
     const int position = addTrianglePositions(gltf);
-    const std::string body = singlePrimitive("\"POSITION\": " + std::to_string(position), ", \"material\": 0") +
-                             ", \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}}],"
-                             " \"textures\": [{\"source\": 0}],"
-                             " \"images\": [{\"uri\": \"textures/no%20such.png\"}]";
+    const int uv = gltf.floats({0, 0, 1, 0, 0, 1}, "VEC2", 3);
+    const std::string body =
+        singlePrimitive("\"POSITION\": " + std::to_string(position) + ", \"TEXCOORD_0\": " + std::to_string(uv),
+                        ", \"material\": 0") +
+        ", \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}}],"
+        " \"textures\": [{\"source\": 0}],"
+        " \"images\": [{\"uri\": \"textures/no%20such.png\"}]";
     const TempFile file("external-image.gltf", gltf.gltf(body));
     const Scene scene = loadScene(file.path());
     ASSERT_EQ(scene.images.size(), 1u);

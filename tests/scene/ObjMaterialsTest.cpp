@@ -133,7 +133,9 @@ TEST(ObjMaterials, MapKdWithOptionsAndASpaceInItsNameIsAnImageBesideTheLibrary) 
     const std::string library =
         folder.write("lib/wood.mtl", "newmtl wood\nKd 1 0.5 1\nmap_Kd -bm 0.3 -s 2 4 1 -o 0.5 0.25 -clamp on -mm 0 1 "
                                      "maps/old wood.png\nnewmtl again\nmap_Kd maps/old wood.png\n");
-    const std::string model = folder.write("wood.obj", "mtllib lib/wood.mtl\n" + twoTriangles("wood", "again"));
+    const std::string model =
+        folder.write("wood.obj", "mtllib lib/wood.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                 "usemtl wood\nf 1/1 2/2 3/3\nusemtl again\nf 1/1 3/3 2/2\n");
     const Scene scene = loadScene(model);
     EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
     ASSERT_EQ(scene.images.size(), 1u); // one image for both materials

@@ -193,6 +193,11 @@ public:
         return addAccessor(bytesOf(values.data(), values.size() * sizeof(glm::vec3)), values.size(), "VEC3", 5126);
     }
 
+    /** A VEC2 FLOAT accessor (texture coordinates); returns its index. */
+    int addVec2(const std::vector<glm::vec2>& values) {
+        return addAccessor(bytesOf(values.data(), values.size() * sizeof(glm::vec2)), values.size(), "VEC2", 5126);
+    }
+
     /** A SCALAR index accessor of unsigned byte (1), short (2) or int (4) components; returns its index. */
     int addIndices(const std::vector<std::uint32_t>& indices, int bytesPerIndex) {
         std::string bytes;

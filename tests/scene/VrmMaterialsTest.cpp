@@ -25,13 +25,17 @@ Scene loadVrm(const std::vector<std::string>& materials, const std::string& extr
               std::size_t primitivesPerMaterial = 1) {
     GltfWriter writer;
     const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    // Both texture-coordinate sets, so every texture the materials name has the set it reads.
+    const int texcoords = writer.addVec2({{0, 0}, {1, 0}, {0, 1}});
     std::string primitives;
     std::string materialList;
     for (std::size_t i = 0; i < materials.size(); ++i) {
         for (std::size_t copy = 0; copy < primitivesPerMaterial; ++copy) {
             primitives += std::string(primitives.empty() ? "" : ", ") +
                           "{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
-                          "}, \"material\": " + std::to_string(i) + "}";
+                          ", \"TEXCOORD_0\": " + std::to_string(texcoords) +
+                          ", \"TEXCOORD_1\": " + std::to_string(texcoords) + "}, \"material\": " + std::to_string(i) +
+                          "}";
         }
         materialList += (materialList.empty() ? "" : ", ") + materials[i];
     }
@@ -247,6 +251,26 @@ TEST(VrmMaterials, Vrm0MapsEveryProperty) {
     expectVec3Near(mtoon.outlineColorFactor, {0.0f, fifth, half});
     EXPECT_FLOAT_EQ(mtoon.outlineLightingMixFactor, 0.75f);
     EXPECT_TRUE(scene.report.warnings.empty()) << scene.report.warnings.front();
+}
+
+TEST(VrmMaterials, OutlandishOutlineWidthsAndUndrawnFeaturesAreSaid) {
+    // A 0.x width of 1e30 "percent": drawn as written but said; a world width beyond the renderer's range: dropped and
+    // said; matcap and UV animation: read, not drawn, and said once per material.
+    const auto entry = [](const std::string& name, const std::string& floats, const std::string& textures) {
+        return "{\"name\": \"" + name + "\", \"shader\": \"VRM/MToon\", \"floatProperties\": {" + floats +
+               "}, \"textureProperties\": {" + textures + "}}";
+    };
+    const Scene scene = loadVrm({R"({"name": "Wide"})", R"({"name": "Far"})", R"({"name": "Shiny"})"},
+                                vrm0(entry("Wide", "\"_OutlineWidthMode\": 2, \"_OutlineWidth\": 1e30", "") + ", " +
+                                     entry("Far", "\"_OutlineWidthMode\": 1, \"_OutlineWidth\": 1e38", "") + ", " +
+                                     entry("Shiny", "\"_UvAnimScrollX\": 0.5", "\"_SphereAdd\": 1")));
+    const std::string warnings = ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.warnings.size(), 3u) << warnings;
+    EXPECT_NE(warnings.find("more than 5 %"), std::string::npos) << warnings;
+    EXPECT_EQ(materialNamed(scene, "Wide").mtoon->outlineWidthMode, OutlineWidthMode::ScreenCoordinates);
+    EXPECT_NE(warnings.find("more than the renderer can place; no outline"), std::string::npos) << warnings;
+    EXPECT_EQ(materialNamed(scene, "Far").mtoon->outlineWidthMode, OutlineWidthMode::None);
+    EXPECT_NE(warnings.find("MToon's _SphereAdd and _UvAnimScrollX are not drawn"), std::string::npos) << warnings;
 }
 
 TEST(VrmMaterials, Vrm0OutlineWidthModesAndColourModes) {
