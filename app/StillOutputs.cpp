@@ -1,5 +1,6 @@
 #include "app/StillOutputs.h"
 
+#include "postfx/Composite.h"
 #include "postfx/ContactSheet.h"
 #include "postfx/SvgLines.h"
 
@@ -85,7 +86,10 @@ void stageDump(const RenderOptions& options, const PreparedStill& still, StillRe
         const std::string fileName = dumpFileName(resource);
         if (!usedNames.insert(fileName).second)
             throw std::logic_error("stageDump(): two resources dump to '" + fileName + "'");
-        outputs.stageDumpImage(fileName, store.image(resource.name));
+        // Image files hold straight alpha; the shading is premultiplied in memory (postfx/Composite.h).
+        const bool colour = resource.presentation.appearance == Appearance::Color;
+        outputs.stageDumpImage(fileName,
+                               colour ? straightAlphaOf(store.image(resource.name)) : store.image(resource.name));
         // Written buffers are not needed again: freeing them keeps the dump's peak memory to one copy.
         if (resource.name != still.graph.finalResource) store.release(resource.name);
         files.push_back({{"file", fileName},

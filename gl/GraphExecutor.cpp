@@ -26,7 +26,10 @@ void resetPassState() {
     glDepthMask(GL_TRUE);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glLineWidth(1.0f);
-    for (GLuint unit = 0; unit < 8; ++unit) glBindTextureUnit(unit, 0);
+    for (GLuint unit = 0; unit < 8; ++unit) {
+        glBindTextureUnit(unit, 0);
+        glBindSampler(unit, 0); // the materials' samplers (passes/material): a later texture() takes its own state
+    }
 }
 
 } // namespace

@@ -19,7 +19,7 @@ bool GpuScene::hasTransparency() const {
                                [](const Mesh& mesh) { return mesh.material.alphaMode != AlphaMode::Opaque; });
 }
 
-std::vector<std::size_t> GpuScene::drawOrder(const glm::mat4& viewFromModel) const {
+std::vector<std::size_t> GpuScene::drawOrder(const glm::mat4& viewFromModel) {
     std::vector<std::size_t> order;
     std::vector<std::pair<double, std::size_t>> blended; // (view-space z, mesh): larger z is nearer the eye
     for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
@@ -28,7 +28,9 @@ std::vector<std::size_t> GpuScene::drawOrder(const glm::mat4& viewFromModel) con
             order.push_back(index);
             continue;
         }
-        const glm::dvec3 centre = computeBoundingBox(mesh.positions).center() - mWorldOrigin;
+        if (mBlendCentres.empty()) mBlendCentres.resize(mScene.meshes.size());
+        if (!mBlendCentres[index]) mBlendCentres[index] = computeBoundingBox(mesh.positions).center() - mWorldOrigin;
+        const glm::dvec3 centre = *mBlendCentres[index];
         const glm::dvec4 view = glm::dmat4(viewFromModel) * glm::dvec4(centre, 1.0);
         blended.emplace_back(view.z, index);
     }

@@ -82,12 +82,14 @@ public:
      *  draw binds them. */
     SceneMaterials& materials() { return mMaterials; }
     /** Binds mesh `meshIndex`'s material for `program` (in use): SceneMaterials::bind(). */
-    void bindMaterial(const GlProgram& program, std::size_t meshIndex) { mMaterials.bind(program, meshIndex); }
+    void bindMaterial(const GlProgram& program, std::size_t meshIndex, MaterialUse use) {
+        mMaterials.bind(program, meshIndex, use);
+    }
     /** Whether any mesh's material cuts out (MASK) or blends (BLEND): passes that draw depth then sample alpha. */
     bool hasTransparency() const;
     /** The order meshes are drawn in where blending matters: opaque and masked meshes in scene order, then blended ones
      *  back to front (by their bounding-box centres' depth along the view axis of `viewFromModel`). */
-    std::vector<std::size_t> drawOrder(const glm::mat4& viewFromModel) const;
+    std::vector<std::size_t> drawOrder(const glm::mat4& viewFromModel);
 
     /** The face orientation the passes draw with: stores `frame` (by reference: it must outlive this scene, and the
      *  camera and light are read when the orientation is computed) and `settings`, creating nothing; drops an
@@ -119,11 +121,12 @@ private:
     SceneMaterials mMaterials;
     std::vector<DrawMesh> mMeshes;
     bool mUploaded = false;
-    std::vector<GlBuffer> mHullNormals;          ///< one per mesh once computed, else empty
-    std::vector<GlVertexArray> mHullArrays;      ///< one per mesh once made, else empty
-    std::vector<EdgeAdjacency> mEdgeAdjacency;   ///< one per mesh once computed, else empty
-    std::vector<MeshCurvature> mMeshCurvature;   ///< one per mesh once computed, else empty
-    std::optional<glm::dvec3> mContainmentPoint; ///< the last point containsPoint() was asked about
+    std::vector<GlBuffer> mHullNormals;                   ///< one per mesh once computed, else empty
+    std::vector<GlVertexArray> mHullArrays;               ///< one per mesh once made, else empty
+    std::vector<std::optional<glm::dvec3>> mBlendCentres; ///< per blended mesh, once drawOrder() needed it
+    std::vector<EdgeAdjacency> mEdgeAdjacency;            ///< one per mesh once computed, else empty
+    std::vector<MeshCurvature> mMeshCurvature;            ///< one per mesh once computed, else empty
+    std::optional<glm::dvec3> mContainmentPoint;          ///< the last point containsPoint() was asked about
     bool mContainsPoint = false;
     const FrameParams* mOrientationFrame = nullptr; ///< set by setOrientation()
     OrientationSettings mOrientationSettings;

@@ -30,7 +30,7 @@ void drawModelDepth(const GlProgram& program, GpuScene& scene, const glm::mat4& 
     const bool transparency = scene.hasTransparency();
     const std::vector<GpuScene::DrawMesh>& meshes = scene.meshes();
     for (std::size_t index = 0; index < meshes.size(); ++index) {
-        if (transparency) scene.bindMaterial(program, index);
+        if (transparency) scene.bindMaterial(program, index, MaterialUse::Coverage);
         meshes[index].vertexArray.bind();
         glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
     }

@@ -87,4 +87,16 @@ cv::Mat compositeFinal(const CompositeInputs& inputs) {
     return result;
 }
 
+cv::Mat straightAlphaOf(const cv::Mat& premultiplied) {
+    if (premultiplied.type() != CV_8UC4) return premultiplied;
+    cv::Mat straight = premultiplied.clone();
+    straight.forEach<cv::Vec4b>([](cv::Vec4b& pixel, const int*) {
+        const int alpha = pixel[3];
+        if (alpha == 0 || alpha == 255) return;
+        for (int channel = 0; channel < 3; ++channel)
+            pixel[channel] = static_cast<uchar>(std::min(255, (pixel[channel] * 255 + alpha / 2) / alpha));
+    });
+    return straight;
+}
+
 } // namespace inkgraph

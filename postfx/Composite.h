@@ -22,9 +22,13 @@ struct CompositeInputs {
     std::vector<LineLayer> lines; ///< drawn over the shading in this order
 };
 
-/** CV_8UC4, row 0 at the top: the shading over the paper ("over" with the shading's alpha), then each line layer over
- *  that with alpha = mask x colour alpha. Without shading the picture starts from the paper alone. Throws
- *  std::invalid_argument naming the layer when a type, size or colour is wrong. */
+/** CV_8UC4, row 0 at the top: the shading over the paper (premultiplied: shading + paper x (1 - alpha)), then each
+ *  line layer over that with alpha = mask x colour alpha. Without shading the picture starts from the paper alone.
+ *  Throws std::invalid_argument naming the layer when a type, size or colour is wrong. */
 cv::Mat compositeFinal(const CompositeInputs& inputs);
+
+/** A CV_8UC4 premultiplied colour image (the shading) with straight alpha, as image files hold it: each colour
+ *  channel divided by alpha, rounded; pixels with alpha 0 or 255 unchanged. Other types are returned as they are. */
+cv::Mat straightAlphaOf(const cv::Mat& premultiplied);
 
 } // namespace inkgraph

@@ -97,10 +97,13 @@ Display showColor(const cv::Mat& image) {
     for (int row = 0; row < image.rows; ++row) {
         const uchar* in = image.ptr<uchar>(row);
         auto* out = display.color.ptr<cv::Vec<ushort, 4>>(row);
+        // Colour tiles hold premultiplied colour (the shading, postfx/Composite.h; else opaque or empty pixels): the
+        // display's colour x alpha (in 255ths) is the stored value x 255; an empty pixel's colour is none.
         for (int col = 0; col < image.cols; ++col, in += channels) {
             const int alpha = channels == 4 ? in[3] : 255;
-            out[col] = {static_cast<ushort>(in[0] * alpha), static_cast<ushort>(in[1] * alpha),
-                        static_cast<ushort>(in[2] * alpha), static_cast<ushort>(alpha * 257)};
+            const int scale = alpha == 0 ? 0 : 255;
+            out[col] = {static_cast<ushort>(in[0] * scale), static_cast<ushort>(in[1] * scale),
+                        static_cast<ushort>(in[2] * scale), static_cast<ushort>(alpha * 257)};
         }
     }
     return display;
@@ -286,7 +289,8 @@ cv::Mat renderTile(const cv::Mat& image, TileContent content, cv::Size size) {
         auto* out = tile.ptr<cv::Vec4b>(origin.y + row) + origin.x;
         const uchar* badRow = bad.empty() ? nullptr : bad.ptr<uchar>(row);
         if (content == TileContent::Color) {
-            // "over" the checker in sRGB values, as compositeFinal() blends: premultiplied / 255 + checker x (1 - a).
+            // "over" the checker in sRGB values, as compositeFinal() blends the premultiplied shading over the paper:
+            // colour + checker x (1 - a).
             const auto* in = color.ptr<cv::Vec<ushort, 4>>(row);
             for (int col = 0; col < fit.width; ++col) {
                 const bool light = (row / TilePalette::kCheckerSquare + col / TilePalette::kCheckerSquare) % 2 == 0;

@@ -169,9 +169,10 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     requireFinite(request.up, "--up");
     if (request.orbit) {
         const Orbit& orbit = *request.orbit;
-        const std::string orbitText = "--orbit " + formatNumber(orbit.azimuthDegrees) + "," +
-                                      formatNumber(orbit.elevationDegrees) +
-                                      (orbit.distance ? "," + formatNumber(*orbit.distance) : "");
+        // Appended, not "," + text: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
+        std::string orbitText = "--orbit " + formatNumber(orbit.azimuthDegrees);
+        orbitText.append(",").append(formatNumber(orbit.elevationDegrees));
+        if (orbit.distance) orbitText.append(",").append(formatNumber(*orbit.distance));
         if (request.eye) {
             invalid(orbitText + " and --eye both place the eye: give one");
         }

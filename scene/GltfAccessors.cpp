@@ -58,6 +58,8 @@ struct AccessorContext {
 };
 
 /** The accessor, its index, type and component type checked. */
+constexpr std::size_t kMaxAccessorElements = std::size_t(1) << 32;
+
 const tinygltf::Accessor& checkedAccessor(const AccessorContext& context, int expectedType) {
     if (context.index < 0 || std::size_t(context.index) >= context.model.accessors.size()) {
         throwLoadError(context.path, context.role + " accessor index " + std::to_string(context.index) +
@@ -71,6 +73,12 @@ const tinygltf::Accessor& checkedAccessor(const AccessorContext& context, int ex
     }
     if (componentBytes(accessor.componentType) == 0) {
         context.fail("invalid component type " + std::to_string(accessor.componentType));
+    }
+    // glTF indexes elements with 32 bits. Without a buffer view (sparse or zeros) nothing else bounds a count, and
+    // count x components x bytes must not wrap in the reads and the memory charges that multiply it.
+    if (accessor.count > kMaxAccessorElements) {
+        context.fail("declares " + std::to_string(accessor.count) + " elements, more than the " +
+                     std::to_string(kMaxAccessorElements) + " a glTF accessor can index");
     }
     return accessor;
 }

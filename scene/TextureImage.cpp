@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <new>
 #include <vector>
 
 namespace inkgraph {
@@ -94,7 +95,11 @@ DecodedImage decodeSceneImage(const SceneImage& image, std::size_t index, const 
     int decodedWidth = 0, decodedHeight = 0;
     unsigned char* pixels =
         stbi_load_from_memory(bytes->data(), byteCount, &decodedWidth, &decodedHeight, &channels, 4);
-    if (pixels == nullptr) fail("cannot be decoded: corrupt or truncated" + declared + " (" + stbReason() + ")");
+    if (pixels == nullptr) {
+        const char* reason = stbi_failure_reason();
+        if (reason != nullptr && std::strcmp(reason, "outofmem") == 0) throw std::bad_alloc(); // the machine's limit
+        fail("cannot be decoded: corrupt or truncated" + declared + " (" + stbReason() + ")");
+    }
     DecodedImage decoded;
     decoded.rgba = std::shared_ptr<const unsigned char>(
         pixels, [](const unsigned char* p) { stbi_image_free(const_cast<unsigned char*>(p)); });

@@ -164,7 +164,7 @@ void warnUndrawn(const std::vector<std::string>& features, PropertyReader& read)
     for (std::size_t i = 0; i < features.size(); ++i)
         list += (i == 0 ? "" : i + 1 == features.size() ? " and " : ", ") + features[i];
     read.warn("MToon's " + list + (features.size() == 1 ? " is" : " are") +
-              " not drawn (a still shows the texture unscrolled and no matcap or rim texture; docs/mtoon.md)");
+              " not drawn by inkgraph (docs/mtoon.md, \"Not supported\")");
 }
 
 /** Outline widths a file may well hold by mistake (a 0.x width of 1e30 "cm"): a screen width above 5 % of the picture's

@@ -73,7 +73,7 @@ std::size_t MeshEdgesPass::drawEdgeLines(const std::vector<EdgeLines>& lines) {
         const EdgeLines& mesh = lines[index];
         if (mesh.indexCount == 0) continue;
         // An edge through what a material cuts out is not drawn (the lines follow the cut-out surface).
-        if (transparency) mScene.bindMaterial(*mLineProgram, index);
+        if (transparency) mScene.bindMaterial(*mLineProgram, index, MaterialUse::Coverage);
         mesh.vertexArray->bind();
         glDrawElements(GL_LINES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
         // GL's diamond-exit rule leaves out a line's last pixel, so two edges of a chain that meet head to head

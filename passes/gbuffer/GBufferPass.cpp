@@ -130,10 +130,15 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
         glUniform1f(program.uniform("radialLengthScale"), float(1.0 / mFrame.radialLengthUnit));
     }
     const GLint materialIdLocation = program.uniform("materialId"); // -1 unless the field is live: ignored
+    // Colour only for the baseColor field; the others need the material only where it cuts out.
+    const MaterialUse use = std::any_of(group.begin(), group.end(),
+                                        [](const Field* field) { return std::string_view(field->name) == "baseColor"; })
+                                ? MaterialUse::Colour
+                                : MaterialUse::Coverage;
     const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
     for (std::size_t index = 0; index < meshes.size(); ++index) {
         const GpuScene::DrawMesh& mesh = meshes[index];
-        mScene.bindMaterial(program, index);
+        mScene.bindMaterial(program, index, use);
         glUniform1ui(materialIdLocation, mesh.materialId);
         setFaceCulling(*mesh.material);
         mesh.vertexArray.bind();

@@ -60,8 +60,10 @@ GLuint SceneMaterials::texture(const TextureRef& reference, bool srgb) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     GlHandle<TextureDeleter> handle(id);
-    // sRGB storage: the sampler decodes to linear before filtering, as glTF's base colour and emissive need.
-    glTextureStorage2D(id, mipmapLevels(decoded.width, decoded.height), GL_SRGB8_ALPHA8, decoded.width, decoded.height);
+    // Colour in sRGB storage: the sampler decodes to linear before filtering, as glTF's base colour and emissive need.
+    // Data (MToon's outline width) as it is.
+    glTextureStorage2D(id, mipmapLevels(decoded.width, decoded.height), srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8,
+                       decoded.width, decoded.height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     // Rows top first, as decoded: GL's t = 0 is then the image's top row, which is glTF's v = 0.
     glTextureSubImage2D(id, 0, 0, 0, decoded.width, decoded.height, GL_RGBA, GL_UNSIGNED_BYTE, decoded.rgba.get());
@@ -147,18 +149,26 @@ GLuint SceneMaterials::sampler(const TextureSampler& settings) {
     return id;
 }
 
-void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex) {
+void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex, MaterialUse use) {
     const Material& material = mScene.meshes.at(meshIndex).material;
+    const bool colour = use == MaterialUse::Colour;
+    // MToon ignores vertex colours (its specification), alpha included, in every pass alike.
+    glUniform1i(program.uniform("materialUsesVertexColor"), material.mtoon ? 0 : 1);
     glUniform4fv(program.uniform("materialBaseColorFactor"), 1, glm::value_ptr(material.baseColorFactor));
     glUniform3fv(program.uniform("materialEmissiveFactor"), 1, glm::value_ptr(material.emissiveFactor));
     glUniform1i(program.uniform("materialUnlit"), material.unlit ? 1 : 0);
     glUniform1i(program.uniform("materialAlphaMode"), alphaModeCode(material.alphaMode));
     glUniform1f(program.uniform("materialAlphaCutoff"), material.alphaCutoff);
     glUniform1f(program.uniform("materialBlendSolidAlpha"), kBlendSolidAlpha);
-    // Only programs that sample a texture look its uniforms up, so a pass that never reads colour never decodes.
-    if (program.uniform("materialBaseColorTextured") >= 0)
-        bindTexture(*this, program, material.baseColorTexture, kBaseColorTextureUnit, "materialBaseColor");
-    if (program.uniform("materialEmissiveTextured") >= 0)
+    // Only programs that sample a texture look its uniforms up, and a draw for coverage samples only a material that
+    // cuts out or blends: a pass that never reads colour never decodes an opaque material's texture.
+    if (program.uniform("materialBaseColorTextured") >= 0) {
+        if (colour || material.alphaMode != AlphaMode::Opaque)
+            bindTexture(*this, program, material.baseColorTexture, kBaseColorTextureUnit, "materialBaseColor");
+        else
+            glUniform1i(program.uniform("materialBaseColorTextured"), 0);
+    }
+    if (colour && program.uniform("materialEmissiveTextured") >= 0)
         bindTexture(*this, program, material.emissiveTexture, kEmissiveTextureUnit, "materialEmissive");
     const MToonMaterial mtoon = material.mtoon.value_or(MToonMaterial{});
     glUniform1i(program.uniform("mtoonPresent"), material.mtoon ? 1 : 0);
@@ -168,7 +178,7 @@ void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex) {
     glUniform3fv(program.uniform("mtoonRimColorFactor"), 1, glm::value_ptr(mtoon.parametricRimColorFactor));
     glUniform1f(program.uniform("mtoonRimFresnelPowerFactor"), mtoon.parametricRimFresnelPowerFactor);
     glUniform1f(program.uniform("mtoonRimLiftFactor"), mtoon.parametricRimLiftFactor);
-    if (program.uniform("mtoonShadeMultiplyTextured") >= 0)
+    if (colour && program.uniform("mtoonShadeMultiplyTextured") >= 0)
         bindTexture(*this, program, mtoon.shadeMultiplyTexture, kShadeMultiplyTextureUnit, "mtoonShadeMultiply");
     if (program.uniform("mtoonOutlineMode") >= 0) {
         const int mode = mtoon.outlineWidthMode == MToonMaterial::OutlineWidthMode::WorldCoordinates    ? 1

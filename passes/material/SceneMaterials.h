@@ -33,6 +33,10 @@ inline constexpr GLuint kVertexColorLocation = 4;
  *  let the lines of what lies behind show through. */
 inline constexpr float kBlendSolidAlpha = 0.9f;
 
+/** What a draw needs of a material: its colour (shading, the G-buffer's baseColor), or only where the surface is (the
+ *  G-buffer's other fields, the line masks), for which an opaque material's texture is never decoded. */
+enum class MaterialUse { Colour, Coverage };
+
 class SceneMaterials {
 public:
     /** Keeps a reference to `scene`; nothing is decoded until a texture is bound. `modelPath` names the model in
@@ -48,10 +52,10 @@ public:
     std::size_t textureBytes() const { return mTextureBytes; }
     std::size_t texturesDecoded() const { return mTextures.size(); }
 
-    /** Sets the material uniforms of `program` (in use) for mesh `meshIndex` and binds its textures, decoding and
-     *  uploading them on first use; sets the constant attribute values a mesh without texture coordinates or
-     *  colours reads. */
-    void bind(const GlProgram& program, std::size_t meshIndex);
+    /** Sets the material uniforms of `program` (in use) for mesh `meshIndex` and binds the textures `use` needs,
+     *  decoding and uploading them on first use; sets the constant attribute values a mesh without texture
+     *  coordinates or colours reads. */
+    void bind(const GlProgram& program, std::size_t meshIndex, MaterialUse use);
 
     /** For --stats: each distinct material (name, meshes, base colour factor, texture, alpha, sides, unlit, emissive,
      *  MToon) and the images (count, decoded, bytes). */

@@ -82,13 +82,13 @@ void OutlinePass::execute(GlPassContext& gl) {
     if (SceneOrientation* orientation = mScene.cpuOrientation()) {
         const std::vector<SceneOrientation::MeshSets>& sets = orientation->sets();
         for (std::size_t index = 0; index < sets.size(); ++index) {
-            if (transparency) mScene.bindMaterial(*mLineProgram, index);
+            if (transparency) mScene.bindMaterial(*mLineProgram, index, MaterialUse::Coverage);
             sets[index].backArray.bind();
             glDrawElements(GL_TRIANGLES, sets[index].backIndexCount, GL_UNSIGNED_INT, nullptr);
         }
     } else {
         for (std::size_t index = 0; index < meshes.size(); ++index) {
-            if (transparency) mScene.bindMaterial(*mLineProgram, index);
+            if (transparency) mScene.bindMaterial(*mLineProgram, index, MaterialUse::Coverage);
             meshes[index].vertexArray.bind();
             glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
         }

@@ -163,11 +163,13 @@ void ShadePass::prepare(GlPassContext&) {
     }
     mScene.meshes();
     if (drawsMToonOutlines() && !mOutlineProgram) {
+        // The outline shells are the inflated hull (silhouette/hull.vert), each mesh's as wide as its material says.
         std::vector<std::string> outlineDefines = defines();
         outlineDefines.push_back("MTOON_OUTLINE 1");
+        outlineDefines.push_back("HULL_MATERIAL_WIDTH 1");
         mOutlineProgram = std::make_unique<GlProgram>(
             mShaders.build({mName + " mtoon outline",
-                            "shade/mtoon_outline.vert",
+                            "silhouette/hull.vert",
                             "shade/shade.frag",
                             outlineDefines,
                             {"common/color.glsl", "common/lighting.glsl", "common/material.glsl"}}));
@@ -198,7 +200,7 @@ void ShadePass::drawMToonOutlines(const glm::mat4& viewFromModel, const glm::mat
     glCullFace(GL_FRONT);
     for (std::size_t index = 0; index < mScene.meshCount(); ++index) {
         if (!mScene.materials().outlineOf(index)) continue;
-        mScene.bindMaterial(program, index);
+        mScene.bindMaterial(program, index, MaterialUse::Colour);
         mScene.hullArrays()[index].bind();
         glDrawElements(GL_TRIANGLES, mScene.meshes()[index].indexCount, GL_UNSIGNED_INT, nullptr);
     }
@@ -256,6 +258,7 @@ void ShadePass::execute(GlPassContext& gl) {
 
     std::optional<std::size_t> boundSlot;
     bool blending = false;
+    bool outlinesDrawn = false;
     for (const std::size_t i : mScene.drawOrder(viewFromModel)) {
         if (!mMaps.empty() && boundSlot != mMeshMap[i]) {
             // Each mesh's own map; consecutive meshes that share one keep it bound.
@@ -269,6 +272,13 @@ void ShadePass::execute(GlPassContext& gl) {
             boundSlot = mMeshMap[i];
         }
         if (meshes[i].material->alphaMode == AlphaMode::Blend && !blending) {
+            // MToon's outlines belong to the opaque world: drawn before the blended surfaces, which go over them.
+            if (mOutlineProgram) {
+                drawMToonOutlines(viewFromModel, viewNormalFromModel, clipFromView, width, height);
+                program.use();
+                if (!mMaps.empty() && boundSlot) glBindTextureUnit(0, mMaps[*boundSlot].texture->id());
+            }
+            outlinesDrawn = true;
             // drawOrder() puts blended meshes last, back to front: each goes over what is behind it, writing no
             // depth. The target holds premultiplied colour (postfx/Composite.h), so over nothing a surface leaves
             // colour x alpha and its alpha.
@@ -277,7 +287,7 @@ void ShadePass::execute(GlPassContext& gl) {
             glDepthMask(GL_FALSE);
             blending = true;
         }
-        mScene.bindMaterial(program, i);
+        mScene.bindMaterial(program, i, MaterialUse::Colour);
         setFaceCulling(*meshes[i].material);
         if (sets) {
             const SceneOrientation::MeshSets& set = (*sets)[i];
@@ -291,7 +301,8 @@ void ShadePass::execute(GlPassContext& gl) {
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
-    if (mOutlineProgram) drawMToonOutlines(viewFromModel, viewNormalFromModel, clipFromView, width, height);
+    if (mOutlineProgram && !outlinesDrawn)
+        drawMToonOutlines(viewFromModel, viewNormalFromModel, clipFromView, width, height);
     glBindVertexArray(0);
     if (!mMaps.empty()) glBindTextureUnit(0, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -103,7 +103,8 @@ private:
     bool drawsOrientationSets() const;
     /** mtoon with a mesh whose MToon material asks for an outline (worldCoordinates or screenCoordinates). */
     bool drawsMToonOutlines() const;
-    /** The MToon outline shells, after the surfaces (shaders/shade/mtoon_outline.vert). */
+    /** The MToon outline shells, after the opaque surfaces and before the blended ones (silhouette/hull.vert with
+     *  HULL_MATERIAL_WIDTH, shade.frag with MTOON_OUTLINE). */
     void drawMToonOutlines(const glm::mat4& viewFromModel, const glm::mat3& viewNormalFromModel,
                            const glm::mat4& clipFromView, int width, int height);
     /** MODEL_* and variant defines for the one program of this pass. */

@@ -90,7 +90,7 @@ void SilhouettePass::execute(GlPassContext& gl) {
     const bool transparency = mScene.hasTransparency();
     for (std::size_t index = 0; index < meshes.size(); ++index) {
         // A cut-out's hull is cut where the surface is (its vertices carry the surface's texture coordinates).
-        if (transparency) mScene.bindMaterial(*mHullProgram, index);
+        if (transparency) mScene.bindMaterial(*mHullProgram, index, MaterialUse::Coverage);
         (mSettings.weldNormals ? mScene.hullArrays()[index] : meshes[index].vertexArray).bind();
         glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
     }

@@ -3,6 +3,11 @@
 // agree on where the surface is. Needs common/color.glsl before it in the fragment stage.
 // The attributes travel in one interface block, matched by its name, so a geometry stage between (the back-face
 // outline) can pass them on (outline/outline.geom).
+// KHR_texture_transform: uv' = transform * (u, v, 1).
+vec2 materialTransformed(vec2 uv, mat3 transform) {
+    return (transform * vec3(uv, 1.0)).xy;
+}
+
 #ifdef INKGRAPH_VERTEX_STAGE
 layout(location = 2) in vec2 inTexcoord0;
 layout(location = 3) in vec2 inTexcoord1;
@@ -17,6 +22,11 @@ void passMaterialAttributes() {
     materialOut.texcoord0 = inTexcoord0;
     materialOut.texcoord1 = inTexcoord1;
     materialOut.vertexColor = inVertexColor;
+}
+
+// The vertex's texture coordinates of set `set` (TEXCOORD_0 or _1) through `transform`.
+vec2 materialVertexTexcoord(int set, mat3 transform) {
+    return materialTransformed(set == 1 ? inTexcoord1 : inTexcoord0, transform);
 }
 #endif
 
@@ -34,15 +44,15 @@ uniform mat3 materialBaseColorTransform; // KHR_texture_transform
 uniform int materialAlphaMode;           // 0 opaque, 1 mask, 2 blend
 uniform float materialAlphaCutoff;
 uniform float materialBlendSolidAlpha;   // SceneMaterials.h kBlendSolidAlpha
+uniform int materialUsesVertexColor;     // 0 for MToon materials, which ignore vertex colours
 // sRGB8_ALPHA8 storage: texture() returns linear colour.
 layout(binding = 1) uniform sampler2D materialBaseColorTexture;
 
 vec2 materialTexcoord(int set, mat3 transform) {
-    vec2 uv = set == 1 ? materialIn.texcoord1 : materialIn.texcoord0;
-    return (transform * vec3(uv, 1.0)).xy;
+    return materialTransformed(set == 1 ? materialIn.texcoord1 : materialIn.texcoord0, transform);
 }
 
-// Linear RGBA: factor x texture, without the vertex colour (MToon ignores vertex colours, docs/mtoon.md).
+// Linear RGBA: factor x texture, without the vertex colour.
 vec4 materialTexturedColor() {
     vec4 color = materialBaseColorFactor;
     if (materialBaseColorTextured != 0)
@@ -50,9 +60,11 @@ vec4 materialTexturedColor() {
     return color;
 }
 
-// Linear RGBA: factor x texture x vertex colour (glTF 2.0's base colour).
+// Linear RGBA: factor x texture x vertex colour (glTF 2.0's base colour); MToon materials take no vertex colour
+// (docs/mtoon.md), here as in every pass.
 vec4 materialBaseColor() {
-    return materialTexturedColor() * materialIn.vertexColor;
+    vec4 color = materialTexturedColor();
+    return materialUsesVertexColor != 0 ? color * materialIn.vertexColor : color;
 }
 
 // Whether a fragment of this alpha is not part of the surface: below the cutoff of a MASK material; with

@@ -123,9 +123,6 @@ vec3 shadeMapColor(vec2 uv) {
 
 void main() {
     vec4 surface = materialBaseColor();
-#ifdef MODEL_MTOON
-    if (mtoonPresent != 0) surface = materialTexturedColor(); // MToon ignores vertex colours
-#endif
     if (materialCutsOut(surface.a)) discard;
     vec3 base = surface.rgb;
     vec3 l = towardLightView;
@@ -193,5 +190,9 @@ void main() {
     rgb = mix(mtoonOutlineColorFactor, mtoonOutlineColorFactor * rgb, mtoonOutlineLightingMixFactor);
 #endif
     // Straight alpha for the blend of BLEND surfaces over what is behind them; cut-out and opaque surfaces are 1.
+#ifdef MTOON_OUTLINE
+    outColor = vec4(encodeSrgb(rgb), 1.0); // the outline is opaque, drawn before any blended surface
+#else
     outColor = vec4(encodeSrgb(rgb), materialAlphaMode == 2 ? surface.a : 1.0);
+#endif
 }

@@ -171,6 +171,43 @@ TEST_F(MaterialPasses, TextureAtlasShowsItsExactTexelColours) {
     EXPECT_EQ(gpuScene->materials().textureBytes(), decodedImageBytes(2, 2));
 }
 
+TEST_F(MaterialPasses, TextureAtlasOnACubeShowsEachFacesTexel) {
+    // A 3 x 2 atlas, one texel per face of a cube (face f takes texel (f mod 3, f div 3)), nearest, unlit: seen from
+    // a corner, each of the three visible faces is exactly its texel's colour.
+    const cv::Vec3i texels[6] = {{200, 30, 40},  {20, 180, 60},  {40, 60, 220},
+                                 {230, 210, 20}, {120, 20, 160}, {10, 200, 200}};
+    cv::Mat atlas(2, 3, CV_8UC4);
+    for (int face = 0; face < 6; ++face)
+        atlas.at<cv::Vec4b>(face / 3, face % 3) =
+            cv::Vec4b(uchar(texels[face][0]), uchar(texels[face][1]), uchar(texels[face][2]), 255);
+    Mesh cube = makeCube(glm::vec3(0.0f), 0.5f); // faces +X, -X, +Y, -Y, +Z, -Z, four corners each
+    for (int face = 0; face < 6; ++face) {
+        const glm::vec2 low((face % 3) / 3.0f, (face / 3) / 2.0f);
+        const glm::vec2 high(low.x + 1.0f / 3.0f, low.y + 0.5f);
+        const glm::vec2 inset(0.01f);
+        for (const glm::vec2 corner : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)})
+            cube.texcoords[0].push_back(glm::mix(low + inset, high - inset, corner));
+    }
+    cube.material.baseColorFactor = glm::vec4(1.0f);
+    cube.material.baseColorTexture = nearestTexture(0);
+    cube.material.unlit = true;
+    Scene built = makeScene(std::move(cube));
+    built.images.push_back(pngImage(atlas, "atlas"));
+    scene = std::move(built);
+    frame.camera = test::lookingAt(scene, glm::dvec3(2.0, 1.6, 2.4), glm::dvec3(0.0), kFovDegrees, kSize, kSize);
+    frame.worldOrigin = glm::dvec3(0.0);
+    gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+    const cv::Mat color = shade();
+    const glm::dmat4 clipFromWorld = frame.camera.projectionMatrix() * frame.camera.viewMatrix();
+    for (const int face : {0, 2, 4}) { // +X, +Y, +Z face the eye
+        const glm::dvec3 centre = 0.5 * glm::dvec3(face == 0, face == 2, face == 4);
+        const glm::dvec4 clip = clipFromWorld * glm::dvec4(centre, 1.0);
+        const cv::Point pixel(int(std::floor((clip.x / clip.w + 1.0) * 0.5 * kSize)),
+                              int(std::floor((1.0 - clip.y / clip.w) * 0.5 * kSize)));
+        expectColor(at(color, pixel), texels[face], 255, 1, "face " + std::to_string(face));
+    }
+}
+
 TEST_F(MaterialPasses, TextureTransformPicksTheTexelItMapsTo) {
     // uv' = translate(0.5, 0.5) x scale(0.5, 0.5) x uv maps the whole square into the bottom-right texel.
     cv::Mat atlas(2, 2, CV_8UC4, cv::Scalar(0, 0, 0, 255));
@@ -351,16 +388,16 @@ TEST_F(MaterialPasses, BackFaceOutlineIsCutWithTheMask) {
 }
 
 TEST_F(MaterialPasses, BlendedQuadOverOpaqueOneMixesAndTheGBufferSeesThrough) {
-    Mesh back = square(1.0f, -0.5f);
+    Mesh back = makeCube(glm::vec3(0.0f, 0.0f, -1.0f), 0.5f); // an opaque box, its front face at z = -0.5
     back.name = "back";
     back.material.baseColorFactor = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
     back.material.unlit = true;
-    Mesh front = square(0.5f, 0.0f);
+    Mesh front = square(0.2f, 0.0f);
     front.name = "front";
     front.material.baseColorFactor = glm::vec4(1.0f, 0.0f, 0.0f, 0.5f);
     front.material.alphaMode = AlphaMode::Blend;
     front.material.unlit = true;
-    // A blended square over nothing, off to the side: the back square ends at x = 1 x 4 / 4.5 seen at z = 0.
+    // A blended square over nothing, off to the side, clear of the box.
     Mesh beside = square(0.1f, 0.0f);
     for (glm::vec3& position : beside.positions) position.x += 1.1f;
     beside.name = "beside";
@@ -371,11 +408,11 @@ TEST_F(MaterialPasses, BlendedQuadOverOpaqueOneMixesAndTheGBufferSeesThrough) {
     useScene(std::move(built));
     const cv::Mat color = shade();
     // Blended in the stored (sRGB-encoded) values: red 255 x 0.5 over blue 255 x 0.5.
-    expectColor(at(color, pixelOf(0.0, 0.0, 0.0)), {128, 0, 128}, 255, 1, "blend over the opaque square");
-    expectColor(at(color, pixelOf(0.8, 0.8, -0.5)), {0, 0, 255}, 255, 0, "the opaque square alone");
+    expectColor(at(color, pixelOf(0.0, 0.0, 0.0)), {128, 0, 128}, 255, 1, "blend over the opaque box");
+    expectColor(at(color, pixelOf(0.45, 0.45, -0.5)), {0, 0, 255}, 255, 0, "the opaque box alone");
     // Over nothing: premultiplied (postfx/Composite.h), colour x alpha and the alpha.
     expectColor(at(color, pixelOf(1.1, 0.0, 0.0)), {128, 0, 0}, 128, 1, "blend over nothing");
-    // The G-buffer sees the opaque square through the glass, so its lines stay visible.
+    // The G-buffer sees the opaque box through the glass, so its lines stay visible.
     const cv::Mat depth = gbuffer("depth");
     const cv::Point middle = pixelOf(0.0, 0.0, 0.0);
     EXPECT_NEAR(depth.at<float>(middle.y, middle.x), kDistance + 0.5, 1e-4);
@@ -474,6 +511,20 @@ TEST_F(MaterialPasses, TexturesAreDecodedOnlyWhenAPassSamplesThem) {
     EXPECT_EQ(gpuScene->materials().texturesDecoded(), 0u);
     gbuffer("baseColor");
     EXPECT_EQ(gpuScene->materials().texturesDecoded(), 1u);
+
+    // Beside a cut-out mesh, the depth needs the cut-out's texture and still not the opaque mesh's.
+    Mesh opaque = square(1.0f, 0.0f);
+    opaque.material.baseColorTexture = nearestTexture(0);
+    Mesh cutOut = square(0.5f, 0.5f);
+    cutOut.material.baseColorTexture = nearestTexture(1);
+    cutOut.material.alphaMode = AlphaMode::Mask;
+    Scene mixed = makeScene(std::move(opaque));
+    mixed.meshes.push_back(std::move(cutOut));
+    mixed.images.push_back(pngImage(cv::Mat(4, 4, CV_8UC4, cv::Scalar(10, 20, 30, 255)), "opaque"));
+    mixed.images.push_back(pngImage(cv::Mat(4, 4, CV_8UC4, cv::Scalar(10, 20, 30, 255)), "cut-out"));
+    useScene(std::move(mixed));
+    gbuffer("depth");
+    EXPECT_EQ(gpuScene->materials().texturesDecoded(), 1u) << "only the cut-out's";
 }
 
 TEST_F(MaterialPasses, TextureBeyondTheMemoryLimitIsRefusedNamingTheImage) {

@@ -90,3 +90,31 @@ TEST(Composite, RejectsWrongLineLayersByName) {
 
 } // namespace
 } // namespace inkgraph
+
+namespace inkgraph {
+
+TEST(Composite, PremultipliedShadingGoesOverThePaperOnce) {
+    // A blended surface over nothing leaves colour x alpha: red at half alpha is (128, 0, 0, 128) in the shading,
+    // and over white paper it is red 255 x 0.5 + 255 x 0.5 in red, 255 x 0.5 in green and blue.
+    CompositeInputs inputs;
+    inputs.size = {1, 1};
+    inputs.paper = {1.0, 1.0, 1.0, 1.0};
+    inputs.shading = cv::Mat(1, 1, CV_8UC4, cv::Scalar(128, 0, 0, 128));
+    EXPECT_EQ(compositeFinal(inputs).at<cv::Vec4b>(0, 0), cv::Vec4b(255, 127, 127, 255));
+}
+
+TEST(Composite, StraightAlphaUndoesThePremultiplication) {
+    cv::Mat shading(1, 4, CV_8UC4);
+    shading.at<cv::Vec4b>(0, 0) = {64, 32, 0, 128};     // half covered
+    shading.at<cv::Vec4b>(0, 1) = {10, 20, 30, 255};    // opaque: unchanged
+    shading.at<cv::Vec4b>(0, 2) = {0, 0, 0, 0};         // empty: unchanged
+    shading.at<cv::Vec4b>(0, 3) = {200, 200, 200, 100}; // more than alpha (not premultiplied): clamped
+    const cv::Mat straight = straightAlphaOf(shading);
+    EXPECT_EQ(straight.at<cv::Vec4b>(0, 0), cv::Vec4b(128, 64, 0, 128));
+    EXPECT_EQ(straight.at<cv::Vec4b>(0, 1), cv::Vec4b(10, 20, 30, 255));
+    EXPECT_EQ(straight.at<cv::Vec4b>(0, 2), cv::Vec4b(0, 0, 0, 0));
+    EXPECT_EQ(straight.at<cv::Vec4b>(0, 3), cv::Vec4b(255, 255, 255, 100));
+    EXPECT_EQ(shading.at<cv::Vec4b>(0, 0), cv::Vec4b(64, 32, 0, 128)) << "the input is not changed";
+}
+
+} // namespace inkgraph
