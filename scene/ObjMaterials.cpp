@@ -222,6 +222,9 @@ private:
                      "'; ignored");
                 return;
             }
+            if (*value < 0.0 || *value > 1.0)
+                warn("'" + excerptForMessage(keyword) + "' " + formatNumber(*value) + " is outside [0, 1]; " +
+                     formatNumber(std::clamp(*value, 0.0, 1.0)) + " is used");
             (sameKeyword(keyword, "d") ? mCurrent->dissolve : mCurrent->transparency) = std::clamp(*value, 0.0, 1.0);
         } else {
             std::string problem;

@@ -233,6 +233,8 @@ private:
             ++count;
         }
         const bool coloured = allNumbers && (count == 3 || count == 4);
+        // Neither w nor a colour (two or five numbers, NaN, a word): counted, and said once for the file.
+        if (count > 1 && !coloured) ++mUnreadVertexExtras;
         if (coloured && !mHasColors) {
             mColors.assign(mPositions.size() - 1, glm::vec4(1.0f));
             mHasColors = true;
@@ -583,6 +585,11 @@ private:
             group.corners = {};
             scene.meshes.push_back(std::move(mesh));
         }
+        if (mUnreadVertexExtras > 0) {
+            scene.warnings.push_back(std::to_string(mUnreadVertexExtras) +
+                                     " 'v' lines have values after x y z that are neither w nor a colour r g b [a] of "
+                                     "finite numbers; ignored (those vertices are white where others are coloured)");
+        }
         if (facesWithoutNormals > 0) {
             scene.warnings.push_back(std::to_string(facesWithoutNormals) +
                                      " faces have no normals; all normals recomputed" +
@@ -645,7 +652,8 @@ private:
     std::vector<glm::dvec3> mPositions; ///< as read; rounded to float once the model's extent is known
     std::vector<glm::vec4> mColors;     ///< one per position once a `v` line had a colour, else empty
     bool mHasColors = false;
-    std::vector<glm::vec2> mTexcoords; ///< (u, 1 - v)
+    std::size_t mUnreadVertexExtras = 0; ///< `v` lines whose values after x y z are neither w nor r g b [a]
+    std::vector<glm::vec2> mTexcoords;   ///< (u, 1 - v)
     std::vector<glm::vec3> mNormals;
     std::vector<FaceGroup> mGroups;                        ///< in the order of their first face or usemtl
     std::map<std::string, std::uint32_t> mGroupOfMaterial; ///< usemtl name -> index in mGroups

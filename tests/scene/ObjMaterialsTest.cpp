@@ -339,6 +339,25 @@ TEST(ObjMaterials, AFourthCoordinateIsWNotAColour) {
     EXPECT_EQ(scene.meshes.at(0).positions.size(), 3u);
 }
 
+TEST(ObjMaterials, VertexValuesThatAreNeitherWNorAColourAreSaidOnce) {
+    const TempFolder folder;
+    // Five numbers, a NaN colour, and one good colour: the two odd lines are counted in one warning.
+    const std::string model = folder.write("odd.obj", "v 0 0 0 1 0 0 1 1\nv 1 0 0 nan 0 0\nv 0 1 0 0 1 0\nf 1 2 3\n");
+    const Scene scene = loadScene(model);
+    ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.warnings[0].rfind("2 'v' lines have values after x y z", 0), 0u) << scene.report.warnings[0];
+    EXPECT_EQ(scene.meshes.at(0).colors.size(), 3u) << "the good colour keeps the others white";
+}
+
+TEST(ObjMaterials, DissolveOutsideZeroToOneIsClampedWithAWarning) {
+    const TempFolder folder;
+    folder.write("d.mtl", "newmtl glass\nd -5\n");
+    const Scene scene = loadScene(folder.write("d.obj", "mtllib d.mtl\nusemtl glass\n" + kTriangle));
+    ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_NE(scene.report.warnings[0].find("'d' -5 is outside [0, 1]; 0 is used"), std::string::npos)
+        << scene.report.warnings[0];
+}
+
 TEST(ObjMaterials, VertexColoursFollowTheirPositionsIntoEveryMaterialMesh) {
     const TempFolder folder;
     folder.write("m.mtl", "newmtl a\nnewmtl b\n");
