@@ -155,13 +155,18 @@ void GlVertexArray::setIndexBuffer(const GlBuffer& buffer) { glVertexArrayElemen
 void GlVertexArray::bind() const { glBindVertexArray(id()); }
 
 GlProgram::GlProgram(GLuint id, std::string label)
-    : mHandle(std::make_shared<const GlHandle<ProgramDeleter>>(id)), mLabel(std::move(label)) {
+    : mHandle(std::make_shared<const GlHandle<ProgramDeleter>>(id)), mLocations(std::make_shared<Locations>()),
+      mLabel(std::move(label)) {
     labelObject(GL_PROGRAM, id, mLabel);
 }
 
 void GlProgram::use() const { glUseProgram(id()); }
 
-GLint GlProgram::uniform(const char* name) const { return glGetUniformLocation(id(), name); }
+GLint GlProgram::uniform(const char* name) const {
+    const std::string_view key(name);
+    if (auto found = mLocations->find(key); found != mLocations->end()) return found->second;
+    return mLocations->emplace(std::string(key), glGetUniformLocation(id(), name)).first->second;
+}
 
 const GlDepthTexture& PassDepthBuffer::sized(int width, int height) {
     if (!mDepth || mWidth != width || mHeight != height) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace inkgraph {
@@ -144,11 +145,20 @@ public:
     GlProgram(GLuint id, std::string label);
     GLuint id() const { return mHandle->id(); }
     void use() const;
-    /** Uniform location by name; -1 (ignored by glUniform) when the compiler removed it. */
+    /** Uniform location by name; -1 (ignored by glUniform) when the compiler removed it. Asked of GL once per name:
+     *  the materials' uniforms are set per draw (passes/material/SceneMaterials.h), many meshes times many passes. */
     GLint uniform(const char* name) const;
 
 private:
+    /** Hashes std::string and std::string_view alike, so a lookup by a C string allocates nothing. */
+    struct NameHash {
+        using is_transparent = void;
+        std::size_t operator()(std::string_view name) const { return std::hash<std::string_view>{}(name); }
+    };
+    using Locations = std::unordered_map<std::string, GLint, NameHash, std::equal_to<>>;
+
     std::shared_ptr<const GlHandle<ProgramDeleter>> mHandle;
+    std::shared_ptr<Locations> mLocations; ///< shared by copies, like the program itself
     std::string mLabel;
 };
 

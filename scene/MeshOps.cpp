@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <cmath>
 #include <stdexcept>
+#include <unordered_map>
 #include <utility>
 
 namespace inkgraph {
@@ -372,7 +372,16 @@ void dropTexturesWithoutCoordinates(RawMesh& raw, LoadReport& report) {
 /** One class per distinct (texcoords, colour) tuple, compared exactly; empty when the mesh has no such attributes. */
 std::vector<std::uint32_t> vertexAttributeClasses(const RawMesh& raw) {
     if (raw.texcoords[0].empty() && raw.texcoords[1].empty() && raw.colors.empty()) return {};
-    std::map<std::array<float, 8>, std::uint32_t> classOf;
+    // Hashed, not ordered: a textured scan has a million vertices. +0 and -0 are one value, as == says.
+    struct KeyHash {
+        std::size_t operator()(const std::array<float, 8>& key) const {
+            std::size_t hash = 0;
+            for (const float value : key) hash = hash * 1000003u ^ std::hash<float>{}(value == 0.0f ? 0.0f : value);
+            return hash;
+        }
+    };
+    std::unordered_map<std::array<float, 8>, std::uint32_t, KeyHash> classOf;
+    classOf.reserve(raw.positions.size());
     std::vector<std::uint32_t> classes(raw.positions.size());
     for (std::size_t vertex = 0; vertex < raw.positions.size(); ++vertex) {
         std::array<float, 8> key{};
