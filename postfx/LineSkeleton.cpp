@@ -37,10 +37,10 @@ struct DiscShape {
 
 /** Narrow discs: each point visits every pixel of its bounding box. */
 void stampDiscsByPixel(const std::vector<LinePoint>& points, float radius, cv::Mat& canvas) {
-    const DiscShape disc(radius);
     const float lastCol = static_cast<float>(canvas.cols - 1);
     const float lastRow = static_cast<float>(canvas.rows - 1);
     for (const LinePoint& point : points) {
+        const DiscShape disc(radius * point.width);
         // Clamped in float first, so a point far off the image cannot overflow the int conversion.
         const float left = std::max(std::ceil(point.position.x - disc.outer), 0.0f);
         const float right = std::min(std::floor(point.position.x + disc.outer), lastCol);
@@ -69,10 +69,10 @@ void stampDiscsByPixel(const std::vector<LinePoint>& points, float radius, cv::M
  *  square root per row; a pixel there lands on whichever side, since the ramp gives 1 at the inner radius and 0 at
  *  the outer one. */
 void stampDiscsByRow(const std::vector<LinePoint>& points, float radius, cv::Mat& canvas) {
-    const DiscShape disc(radius);
     const float lastCol = static_cast<float>(canvas.cols - 1);
     const float lastRow = static_cast<float>(canvas.rows - 1);
     for (const LinePoint& point : points) {
+        const DiscShape disc(radius * point.width);
         const float x = point.position.x;
         const float y = point.position.y;
         // Clamped in float first, so a point far off the image cannot overflow the int conversion.
@@ -255,11 +255,14 @@ cv::Mat strokeLines(const LineSkeleton& skeleton, float widthPixels, int supersa
     if (mask.cols % supersample != 0 || mask.rows % supersample != 0)
         throw std::invalid_argument("strokeLines(): 'supersample' (" + std::to_string(supersample) +
                                     ") must divide the size of 'skeleton.mask' (" + sizeText(mask.size()) + ")");
-    for (const LinePoint& point : skeleton.points)
+    bool uniformWidth = true;
+    for (const LinePoint& point : skeleton.points) {
         if (!std::isfinite(point.position.x) || !std::isfinite(point.position.y) || !(point.strength > 0.0f) ||
-            point.strength > 1.0f)
+            point.strength > 1.0f || !(point.width > 0.0f) || point.width > 1.0f)
             throw std::invalid_argument(
-                "strokeLines(): 'skeleton.points' must have finite positions and strengths in (0, 1]");
+                "strokeLines(): 'skeleton.points' must have finite positions and strengths and widths in (0, 1]");
+        uniformWidth = uniformWidth && point.width == 1.0f;
+    }
 
     const float radius = 0.5f * widthPixels * static_cast<float>(supersample);
     cv::Mat canvas = cv::Mat::zeros(mask.size(), CV_8UC1);
@@ -269,7 +272,8 @@ cv::Mat strokeLines(const LineSkeleton& skeleton, float widthPixels, int supersa
     const double stampCost = byPixel
                                  ? pointCount * boxSide * boxSide * nanosecondsPerBoxPixel
                                  : pointCount * boxSide * (nanosecondsPerDiscRow + boxSide * nanosecondsPerRunPixel);
-    if (stampCost > nanosecondsPerImagePixel * static_cast<double>(mask.total()))
+    // The nearest-point path draws one disc size; varying widths are stamped.
+    if (uniformWidth && stampCost > nanosecondsPerImagePixel * static_cast<double>(mask.total()))
         drawDiscsByNearestPoint(skeleton.points, radius, canvas);
     else if (byPixel)
         stampDiscsByPixel(skeleton.points, radius, canvas);

@@ -12,6 +12,7 @@ namespace inkgraph {
 struct LinePoint {
     cv::Point2f position;  ///< in data-buffer pixels (x right, y down, pixel centres at integers)
     float strength = 1.0f; ///< alpha in (0, 1]: 1 for a full line, less for a faded one
+    float width = 1.0f;    ///< the stroke's width here as a share of the layer's width, in (0, 1] (line weight)
 };
 
 /** What a line kernel finds, at the resolution of the buffers it read (the data resolution). */
@@ -33,9 +34,11 @@ LineSkeleton skeletonFromMask(const cv::Mat& mask);
  *  each pixel instead takes only the disc of its nearest point, found by an exact distance transform between the
  *  points' pixels (the strongest point of a pixel standing for it). For lines of one strength that is the same
  *  picture up to the rim, which may follow a point ~0.7 px farther where two are almost equally near; where a faded
- *  point lies nearer than a stronger one, the faded one is drawn there.
+ *  point lies nearer than a stronger one, the faded one is drawn there. A point's `width` scales its disc's diameter
+ *  (line weight: tapered ends, thinner far away); when any point has width < 1 every disc is stamped.
  *  Throws std::invalid_argument naming the argument for a non-finite or non-positive width, supersample < 1 or not
- *  dividing the size, a wrong or empty mask, or a point with a non-finite position or a strength outside (0, 1]. */
+ *  dividing the size, a wrong or empty mask, or a point with a non-finite position or a strength or width outside
+ *  (0, 1]. */
 cv::Mat strokeLines(const LineSkeleton& skeleton, float widthPixels, int supersample);
 
 /** True when two neighbouring linear depths (> 0; 0 = background) do not belong to one surface: exactly one is

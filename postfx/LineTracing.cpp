@@ -314,9 +314,8 @@ cv::Mat thinToSkeleton(const cv::Mat& mask, uchar threshold) {
     return skeleton;
 }
 
-std::vector<Polyline> traceSkeleton(const LineSkeleton& skeleton, const TraceSettings& settings) {
-    checkMask("traceSkeleton()", skeleton.mask, "skeleton.mask");
-    checkTolerance("traceSkeleton()", settings.tolerancePixels, "settings.tolerancePixels");
+std::vector<PixelChain> tracePixelChains(const LineSkeleton& skeleton) {
+    checkMask("tracePixelChains()", skeleton.mask, "skeleton.mask");
     const cv::Mat& mask = skeleton.mask;
     const PixelPositions positions(skeleton.points, mask.size());
 
@@ -338,14 +337,18 @@ std::vector<Polyline> traceSkeleton(const LineSkeleton& skeleton, const TraceSet
     remaining.copyTo(links); // from here on: every pixel's full links; `remaining`: the links not yet traced
     const uchar* const linkBase = links.ptr<uchar>(0);
     auto degree = [&](std::ptrdiff_t offset) { return std::popcount(unsigned(linkBase[offset])); };
-    auto positionOf = [&](std::ptrdiff_t offset) {
-        return positions.at(int(offset % stride) - 1, int(offset / stride) - 1);
-    };
+    auto pixelOf = [&](std::ptrdiff_t offset) { return cv::Point(int(offset % stride) - 1, int(offset / stride) - 1); };
 
-    std::vector<Polyline> polylines;
-    std::vector<cv::Point2d> chain;
-    auto emit = [&](bool closed, bool keepFirst) {
-        polylines.push_back(simplifyPoints(chain, closed, settings.tolerancePixels, keepFirst));
+    std::vector<PixelChain> chains;
+    PixelChain chain;
+    auto add = [&](std::ptrdiff_t offset) {
+        const cv::Point pixel = pixelOf(offset);
+        chain.pixels.push_back(pixel);
+        chain.positions.push_back(positions.at(pixel.x, pixel.y));
+    };
+    auto begin = [&](std::ptrdiff_t offset) {
+        chain = {};
+        add(offset);
     };
     // Follows untraced links from `start` through pixels of degree 2, clearing each link at both ends, until it
     // reaches an end or junction (or, round a loop, a pixel with no untraced link left). Returns the last pixel.
@@ -357,7 +360,7 @@ std::vector<Polyline> traceSkeleton(const LineSkeleton& skeleton, const TraceSet
             remainingBase[next] &= uchar(~(1u << opposite(direction)));
             current = next;
             if (degree(current) != 2 || remainingBase[current] == 0) return current;
-            chain.push_back(positionOf(current));
+            add(current);
             direction = std::countr_zero(unsigned(remainingBase[current]));
         }
     };
@@ -366,26 +369,46 @@ std::vector<Polyline> traceSkeleton(const LineSkeleton& skeleton, const TraceSet
     for (const std::ptrdiff_t start : onPixels) {
         if (degree(start) == 2) continue;
         while (remainingBase[start] != 0) {
-            chain.assign(1, positionOf(start));
+            begin(start);
             const std::ptrdiff_t end = walk(start, std::countr_zero(unsigned(remainingBase[start])));
             if (end == start) {
-                emit(true, true); // a loop back to its junction: closed, starting (and kept) there
+                chain.closed = true; // a loop back to its junction, starting there
             } else {
-                chain.push_back(positionOf(end));
-                emit(false, true);
+                add(end);
             }
+            chains.push_back(std::move(chain));
         }
     }
     // Loops with no end or junction, from their first pixel in raster order.
     for (const std::ptrdiff_t start : onPixels) {
         if (remainingBase[start] == 0) continue;
-        chain.assign(1, positionOf(start));
+        begin(start);
         walk(start, std::countr_zero(unsigned(remainingBase[start])));
-        emit(true, false);
+        chain.closed = true;
+        chain.anchored = false;
+        chains.push_back(std::move(chain));
     }
     // Isolated pixels: dots.
-    for (const std::ptrdiff_t pixel : onPixels)
-        if (linkBase[pixel] == 0) polylines.push_back({{cv::Point2f(positionOf(pixel))}, false});
+    for (const std::ptrdiff_t pixel : onPixels) {
+        if (linkBase[pixel] != 0) continue;
+        begin(pixel);
+        chains.push_back(std::move(chain));
+    }
+    return chains;
+}
+
+std::vector<Polyline> traceSkeleton(const LineSkeleton& skeleton, const TraceSettings& settings) {
+    checkMask("traceSkeleton()", skeleton.mask, "skeleton.mask");
+    checkTolerance("traceSkeleton()", settings.tolerancePixels, "settings.tolerancePixels");
+    std::vector<Polyline> polylines;
+    for (const PixelChain& chain : tracePixelChains(skeleton)) {
+        if (chain.positions.size() == 1) {
+            polylines.push_back({{cv::Point2f(chain.positions.front())}, false});
+            continue;
+        }
+        // A loop's raster-order start may go when the loop holds without it; a junction is always kept.
+        polylines.push_back(simplifyPoints(chain.positions, chain.closed, settings.tolerancePixels, chain.anchored));
+    }
     return polylines;
 }
 

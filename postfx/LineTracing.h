@@ -32,6 +32,16 @@ struct Polyline {
     bool closed = false;
 };
 
+/** A skeleton's chain of pixels before simplification, as traceSkeleton() finds it (see the file comment). */
+struct PixelChain {
+    std::vector<cv::Point2d> positions; ///< each pixel's position: the mean of its sub-pixel points, else its centre
+    std::vector<cv::Point> pixels;      ///< the pixels (col, row), in order
+    /** Runs back to its first pixel, which is not repeated: a loop from a junction (its first pixel is that
+     *  junction) or a loop with no end or junction. */
+    bool closed = false;
+    bool anchored = true; ///< the first pixel is an end or a junction (false only for a loop with neither)
+};
+
 /** How traceSkeleton() and traceMask() turn pixels into polylines. */
 struct TraceSettings {
     /** Ramer-Douglas-Peucker tolerance in data pixels, >= 0 and finite: every traced pixel position stays within it
@@ -74,6 +84,12 @@ cv::Mat thinToSkeleton(const cv::Mat& mask, uchar threshold = 128);
  *  Throws std::invalid_argument naming the argument for a wrong or empty 'skeleton.mask', a non-finite position
  *  in 'skeleton.points', or a negative or non-finite 'settings.tolerancePixels'. */
 std::vector<Polyline> traceSkeleton(const LineSkeleton& skeleton, const TraceSettings& settings = {});
+
+/** The chains traceSkeleton() simplifies, in its order: from ends and junctions (an end or junction is the first
+ *  and last pixel of each of its chains), then loops, then isolated pixels (one pixel each). Every link of the
+ *  skeleton lies on exactly one chain. Throws std::invalid_argument as traceSkeleton() does, naming
+ *  tracePixelChains(). */
+std::vector<PixelChain> tracePixelChains(const LineSkeleton& skeleton);
 
 /** traceSkeleton() of thinToSkeleton(mask, settings.maskThreshold), with no sub-pixel points: for masks drawn
  *  elsewhere (the GL line layers), one-pixel or thick. Polyline vertices lie on skeleton pixel centres before

@@ -1,0 +1,493 @@
+#include "postfx/Strokes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+namespace inkgraph {
+namespace {
+
+constexpr double kDegrees = 3.14159265358979323846 / 180.0;
+constexpr int kNone = -1;
+
+/** A traced chain of one layer, at the data resolution. */
+struct Branch {
+    int layer = 0;
+    std::vector<cv::Point2d> positions;
+    std::vector<cv::Point> pixels; ///< in the layer's skeleton
+    std::vector<float> strengths;
+    double length = 0.0;
+    bool loop = false; ///< closed with no end: a path of its own
+};
+
+/** One end of an open branch: side 0 is its first vertex, side 1 its last. */
+struct End {
+    std::size_t branch = 0;
+    int side = 0;
+    cv::Point2d position;
+    cv::Point2d outward; ///< unit, pointing out of the branch past its end; zero for a lone pixel
+    int partner = kNone; ///< the end it continues into
+};
+
+double lengthAlong(const std::vector<cv::Point2d>& points, bool closed) {
+    double length = 0.0;
+    for (std::size_t index = 1; index < points.size(); ++index) length += cv::norm(points[index] - points[index - 1]);
+    if (closed && points.size() > 1) length += cv::norm(points.front() - points.back());
+    return length;
+}
+
+/** The largest strength of the points rounding to each pixel of the skeleton (0 where none does). */
+cv::Mat1f pixelStrengths(const LineSkeleton& skeleton) {
+    cv::Mat1f strengths = cv::Mat1f::zeros(skeleton.mask.size());
+    for (const LinePoint& point : skeleton.points) {
+        const double col = std::floor(double(point.position.x) + 0.5), row = std::floor(double(point.position.y) + 0.5);
+        if (col < 0 || row < 0 || col >= strengths.cols || row >= strengths.rows) continue;
+        float& strength = strengths(int(row), int(col));
+        strength = std::max(strength, point.strength);
+    }
+    return strengths;
+}
+
+/** Unit vector from the vertex `reach` back along the chain to its end (`fromStart` picks which end). */
+cv::Point2d outwardAt(const std::vector<cv::Point2d>& points, bool fromStart, double reach) {
+    const std::size_t count = points.size();
+    const cv::Point2d end = fromStart ? points.front() : points.back();
+    cv::Point2d inner = end;
+    double travelled = 0.0;
+    for (std::size_t step = 1; step < count; ++step) {
+        const cv::Point2d& previous = fromStart ? points[step - 1] : points[count - step];
+        inner = fromStart ? points[step] : points[count - 1 - step];
+        travelled += cv::norm(inner - previous);
+        if (travelled >= reach) break;
+    }
+    const cv::Point2d direction = end - inner;
+    const double length = cv::norm(direction);
+    return length > 1e-9 ? direction / length : cv::Point2d(0.0, 0.0);
+}
+
+double angleBetween(const cv::Point2d& a, const cv::Point2d& b) { return std::acos(std::clamp(a.dot(b), -1.0, 1.0)); }
+
+void checkInputs(const std::vector<StrokeLayer>& layers, const StrokeSettings& settings) {
+    cv::Size dataSize;
+    for (std::size_t index = 0; index < layers.size(); ++index) {
+        const StrokeLayer& layer = layers[index];
+        const std::string name = "chainStrokes(): 'layers' [" + std::to_string(index) + "]";
+        if (!layer.skeleton || layer.skeleton->mask.empty() || layer.skeleton->mask.type() != CV_8UC1)
+            throw std::invalid_argument(name + " has no CV_8UC1 skeleton mask");
+        if (layer.scale < 1) throw std::invalid_argument(name + " 'scale' must be at least 1");
+        const cv::Size size(layer.skeleton->mask.cols * layer.scale, layer.skeleton->mask.rows * layer.scale);
+        if (index == 0) dataSize = size;
+        if (size != dataSize) throw std::invalid_argument(name + " is not at the first layer's data size");
+        if (!std::isfinite(layer.minLengthPixels) || layer.minLengthPixels < 0.0)
+            throw std::invalid_argument(name + " 'minLengthPixels' must be finite and >= 0");
+        if (!(layer.seedStrength >= 0.0f && layer.seedStrength <= 1.0f))
+            throw std::invalid_argument(name + " 'seedStrength' must lie in [0, 1]");
+    }
+    auto checkLength = [](double value, const char* field) {
+        if (!std::isfinite(value) || value < 0.0)
+            throw std::invalid_argument(std::string("chainStrokes(): 'settings.") + field +
+                                        "' must be finite and >= 0");
+    };
+    checkLength(settings.joinRadiusPixels, "joinRadiusPixels");
+    checkLength(settings.directionPixels, "directionPixels");
+    checkLength(settings.joinAngleDegrees, "joinAngleDegrees");
+    if (settings.joinAngleDegrees > 180.0)
+        throw std::invalid_argument("chainStrokes(): 'settings.joinAngleDegrees' must be at most 180");
+}
+
+std::vector<Branch> traceBranches(const std::vector<StrokeLayer>& layers) {
+    std::vector<Branch> branches;
+    for (std::size_t layerIndex = 0; layerIndex < layers.size(); ++layerIndex) {
+        const StrokeLayer& layer = layers[layerIndex];
+        const cv::Mat1f strengths = pixelStrengths(*layer.skeleton);
+        const double scale = layer.scale;
+        for (PixelChain& chain : tracePixelChains(*layer.skeleton)) {
+            Branch branch;
+            branch.layer = int(layerIndex);
+            branch.pixels = std::move(chain.pixels);
+            for (const cv::Point2d& position : chain.positions)
+                branch.positions.push_back((position + cv::Point2d(0.5, 0.5)) * scale - cv::Point2d(0.5, 0.5));
+            for (const cv::Point& pixel : branch.pixels) branch.strengths.push_back(strengths(pixel));
+            if (chain.closed && chain.anchored) {
+                // A loop back to its junction: an open chain whose two ends meet there, so they may join.
+                branch.positions.push_back(branch.positions.front());
+                branch.pixels.push_back(branch.pixels.front());
+                branch.strengths.push_back(branch.strengths.front());
+            }
+            branch.loop = chain.closed && !chain.anchored;
+            branch.length = lengthAlong(branch.positions, branch.loop);
+            branches.push_back(std::move(branch));
+        }
+    }
+    return branches;
+}
+
+std::vector<End> endsOf(const std::vector<Branch>& branches, double reach) {
+    std::vector<End> ends;
+    for (std::size_t index = 0; index < branches.size(); ++index) {
+        const Branch& branch = branches[index];
+        if (branch.loop) continue;
+        for (int side = 0; side < 2; ++side) {
+            End end;
+            end.branch = index;
+            end.side = side;
+            end.position = side == 0 ? branch.positions.front() : branch.positions.back();
+            end.outward = outwardAt(branch.positions, side == 0, reach);
+            ends.push_back(end);
+        }
+    }
+    return ends;
+}
+
+/** Step 2 of the file comment: pairs ends that continue one another, the best candidates first. */
+void joinEnds(std::vector<End>& ends, const std::vector<Branch>& branches, const StrokeSettings& settings) {
+    const double radius = settings.joinRadiusPixels;
+    const double maxTurn = settings.joinAngleDegrees * kDegrees;
+    const double cell = std::max(radius, 1.0);
+    auto key = [&](const cv::Point2d& p) {
+        return (std::int64_t(std::floor(p.x / cell)) << 32) ^ (std::int64_t(std::floor(p.y / cell)) & 0xffffffff);
+    };
+    std::unordered_map<std::int64_t, std::vector<int>> grid;
+    for (std::size_t index = 0; index < ends.size(); ++index) grid[key(ends[index].position)].push_back(int(index));
+
+    struct Candidate {
+        double cost;
+        int a, b;
+    };
+    std::vector<Candidate> candidates;
+    for (std::size_t index = 0; index < ends.size(); ++index) {
+        const End& a = ends[index];
+        const std::int64_t col = std::int64_t(std::floor(a.position.x / cell));
+        const std::int64_t row = std::int64_t(std::floor(a.position.y / cell));
+        for (std::int64_t dr = -1; dr <= 1; ++dr)
+            for (std::int64_t dc = -1; dc <= 1; ++dc) {
+                const auto found = grid.find(((col + dc) << 32) ^ ((row + dr) & 0xffffffff));
+                if (found == grid.end()) continue;
+                for (const int other : found->second) {
+                    if (other <= int(index)) continue;
+                    const End& b = ends[std::size_t(other)];
+                    const cv::Point2d gap = b.position - a.position;
+                    const double distance = cv::norm(gap);
+                    if (distance > radius) continue;
+                    if (a.branch == b.branch && branches[a.branch].length <= 2.0 * radius) continue;
+                    const bool aLone = a.outward == cv::Point2d(), bLone = b.outward == cv::Point2d();
+                    if (aLone || bLone) {
+                        // After every true continuation: a lone pixel has no direction to judge.
+                        candidates.push_back(
+                            {(aLone && bLone ? 4.0 : 2.0) + distance / std::max(radius, 1e-9), int(index), other});
+                        continue;
+                    }
+                    const double turn = angleBetween(a.outward, -b.outward);
+                    if (turn > maxTurn) continue;
+                    if (distance > 0.75) {
+                        const cv::Point2d across = gap / distance;
+                        if (angleBetween(a.outward, across) > maxTurn || angleBetween(across, -b.outward) > maxTurn)
+                            continue;
+                    }
+                    candidates.push_back(
+                        {turn / std::max(maxTurn, 1e-9) + distance / std::max(radius, 1e-9), int(index), other});
+                }
+            }
+    }
+    std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+        return x.cost != y.cost ? x.cost < y.cost : (x.a != y.a ? x.a < y.a : x.b < y.b);
+    });
+    for (const Candidate& candidate : candidates) {
+        End& a = ends[std::size_t(candidate.a)];
+        End& b = ends[std::size_t(candidate.b)];
+        if (a.partner != kNone || b.partner != kNone) continue;
+        a.partner = candidate.b;
+        b.partner = candidate.a;
+    }
+}
+
+/** One branch as walked along a path. */
+struct PathStep {
+    std::size_t branch;
+    bool forward;
+};
+
+/** Step 3: the paths the joined ends make, open ones from their free ends, then the cycles. */
+std::vector<std::pair<std::vector<PathStep>, bool>> pathsOf(const std::vector<End>& ends,
+                                                            const std::vector<Branch>& branches) {
+    std::vector<int> endOf(branches.size() * 2, kNone); // branch * 2 + side -> end index
+    for (std::size_t index = 0; index < ends.size(); ++index)
+        endOf[ends[index].branch * 2 + std::size_t(ends[index].side)] = int(index);
+    std::vector<char> visited(branches.size(), 0);
+    std::vector<std::pair<std::vector<PathStep>, bool>> paths;
+
+    auto walk = [&](int start) {
+        std::vector<PathStep> steps;
+        bool closed = false;
+        int current = start;
+        for (;;) {
+            const End& entry = ends[std::size_t(current)];
+            visited[entry.branch] = 1;
+            steps.push_back({entry.branch, entry.side == 0});
+            const int exit = endOf[entry.branch * 2 + std::size_t(1 - entry.side)];
+            const int next = ends[std::size_t(exit)].partner;
+            if (next == kNone) break;
+            if (next == start) {
+                closed = true;
+                break;
+            }
+            if (visited[ends[std::size_t(next)].branch]) break;
+            current = next;
+        }
+        paths.emplace_back(std::move(steps), closed);
+    };
+    for (std::size_t index = 0; index < ends.size(); ++index)
+        if (ends[index].partner == kNone && !visited[ends[index].branch]) walk(int(index));
+    for (std::size_t index = 0; index < ends.size(); ++index)
+        if (!visited[ends[index].branch] && ends[index].side == 0) walk(int(index));
+    for (std::size_t index = 0; index < branches.size(); ++index)
+        if (branches[index].loop) paths.push_back({{{index, true}}, true});
+    return paths;
+}
+
+void finishStroke(Stroke& stroke, std::vector<Stroke>& strokes) {
+    if (stroke.points.empty()) return;
+    std::vector<cv::Point2d> positions;
+    double strengthSum = 0.0;
+    for (const LinePoint& point : stroke.points) {
+        positions.emplace_back(point.position.x, point.position.y);
+        strengthSum += point.strength;
+        stroke.peakStrength = std::max(stroke.peakStrength, point.strength);
+    }
+    stroke.lengthPixels = lengthAlong(positions, stroke.closed);
+    stroke.meanStrength = float(strengthSum / double(stroke.points.size()));
+    strokes.push_back(std::move(stroke));
+}
+
+} // namespace
+
+std::size_t Strokes::keptStrokes() const {
+    return std::size_t(std::count_if(strokes.begin(), strokes.end(), [](const Stroke& s) { return s.kept; }));
+}
+
+std::size_t Strokes::droppedShort() const {
+    return std::size_t(
+        std::count_if(strokes.begin(), strokes.end(), [&](const Stroke& s) { return !chains[s.chain].longEnough; }));
+}
+
+std::size_t Strokes::droppedWeak() const {
+    return std::size_t(std::count_if(strokes.begin(), strokes.end(), [&](const Stroke& s) {
+        return chains[s.chain].longEnough && !chains[s.chain].seeded;
+    }));
+}
+
+Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSettings& settings) {
+    checkInputs(layers, settings);
+    Strokes result;
+    const std::vector<Branch> branches = traceBranches(layers);
+    std::vector<End> ends = endsOf(branches, settings.directionPixels);
+    joinEnds(ends, branches, settings);
+
+    for (const auto& [steps, closed] : pathsOf(ends, branches)) {
+        const std::size_t chainIndex = result.chains.size();
+        StrokeChain chain;
+        chain.closed = closed;
+        const std::size_t firstStroke = result.strokes.size();
+        Stroke stroke;
+        stroke.layer = kNone;
+        cv::Point2d last;
+        float lastStrength = 0.0f;
+        for (const PathStep& step : steps) {
+            const Branch& branch = branches[step.branch];
+            chain.lengthPixels += branch.length;
+            const std::size_t count = branch.positions.size();
+            std::size_t first = 0;
+            if (stroke.layer != kNone) {
+                const cv::Point2d entry = step.forward ? branch.positions.front() : branch.positions.back();
+                const double gap = cv::norm(entry - last);
+                chain.lengthPixels += gap;
+                if (branch.layer != stroke.layer) {
+                    ++result.crossTypeJoins;
+                    finishStroke(stroke, result.strokes);
+                    stroke = {};
+                    stroke.layer = kNone;
+                } else if (gap < 1e-6) {
+                    ++result.junctionJoins;
+                    first = 1; // the shared junction pixel, once
+                } else {
+                    ++result.gapJoins;
+                    // Bridging points every half pixel, strictly between the two ends.
+                    const int pieces = int(std::ceil(gap / 0.5));
+                    const float entryStrength = step.forward ? branch.strengths.front() : branch.strengths.back();
+                    for (int piece = 1; piece < pieces; ++piece) {
+                        const double t = double(piece) / pieces;
+                        const cv::Point2d position = last + (entry - last) * t;
+                        const float strength =
+                            std::max(lastStrength + float(t) * (entryStrength - lastStrength), 1e-3f);
+                        stroke.points.push_back({cv::Point2f(position), strength});
+                        stroke.pixels.emplace_back(-1, -1);
+                    }
+                }
+            }
+            if (stroke.layer == kNone) {
+                stroke.layer = branch.layer;
+                stroke.chain = chainIndex;
+            }
+            for (std::size_t k = first; k < count; ++k) {
+                const std::size_t index = step.forward ? k : count - 1 - k;
+                // Pixels without a point of their own are drawn faintly rather than not at all.
+                const float strength = std::max(branch.strengths[index], 1e-3f);
+                stroke.points.push_back({cv::Point2f(branch.positions[index]), strength});
+                stroke.pixels.push_back(branch.pixels[index]);
+            }
+            last = stroke.points.empty() ? last : cv::Point2d(stroke.points.back().position);
+            lastStrength = stroke.points.empty() ? 0.0f : stroke.points.back().strength;
+        }
+        if (closed) {
+            const Branch& firstBranch = branches[steps.front().branch];
+            const cv::Point2d start =
+                steps.front().forward ? firstBranch.positions.front() : firstBranch.positions.back();
+            const double gap = cv::norm(start - last);
+            if (steps.size() > 1 || !firstBranch.loop) chain.lengthPixels += gap;
+            const bool oneStroke = result.strokes.size() == firstStroke;
+            if (oneStroke) {
+                stroke.closed = true;
+                // The closing junction pixel is the first point already.
+                if (stroke.points.size() > 1 && gap < 1e-6) {
+                    stroke.points.pop_back();
+                    stroke.pixels.pop_back();
+                }
+            }
+        }
+        finishStroke(stroke, result.strokes);
+        result.chains.push_back(chain);
+    }
+
+    // Step 4: the rules, per chain.
+    for (StrokeChain& chain : result.chains) {
+        chain.longEnough = true;
+        chain.seeded = false;
+    }
+    for (const Stroke& stroke : result.strokes) {
+        StrokeChain& chain = result.chains[stroke.chain];
+        const StrokeLayer& layer = layers[std::size_t(stroke.layer)];
+        if (chain.lengthPixels < layer.minLengthPixels) chain.longEnough = false;
+        if (layer.seedStrength <= 0.0f || stroke.peakStrength >= layer.seedStrength) chain.seeded = true;
+    }
+    for (Stroke& stroke : result.strokes) stroke.kept = result.chains[stroke.chain].kept();
+    return result;
+}
+
+void weighStrokes(Strokes& strokes, const LineWeightSettings& weight, const cv::Mat& depth, cv::Size dataSize) {
+    if (!weight.any()) return;
+    const bool byDepth = weight.farWidth != 1.0;
+    if (byDepth && (depth.type() != CV_32FC1 || depth.size() != dataSize))
+        throw std::invalid_argument("weighStrokes(): 'depth' must be CV_32FC1 at the data size");
+    auto depthAt = [&](const cv::Point2f& position) {
+        const int col = int(std::lround(std::clamp(position.x, 0.0f, float(depth.cols - 1))));
+        const int row = int(std::lround(std::clamp(position.y, 0.0f, float(depth.rows - 1))));
+        float nearest = depth.at<float>(row, col);
+        if (nearest > 0.0f) return double(nearest);
+        // Lines beside the model (silhouettes, outlines) take the nearest surface next to them.
+        for (int dr = -3; dr <= 3; ++dr)
+            for (int dc = -3; dc <= 3; ++dc) {
+                const int r = row + dr, c = col + dc;
+                if (r < 0 || c < 0 || r >= depth.rows || c >= depth.cols) continue;
+                const float z = depth.at<float>(r, c);
+                if (z > 0.0f && (nearest <= 0.0f || z < nearest)) nearest = z;
+            }
+        return nearest > 0.0f ? double(nearest) : weight.farDepth;
+    };
+    const double depthSpan = weight.farDepth - weight.nearDepth;
+    for (Stroke& stroke : strokes.strokes) {
+        if (!stroke.kept) continue;
+        // Arc length to each point, for the taper.
+        std::vector<double> along(stroke.points.size(), 0.0);
+        for (std::size_t index = 1; index < stroke.points.size(); ++index)
+            along[index] =
+                along[index - 1] + cv::norm(stroke.points[index].position - stroke.points[index - 1].position);
+        const double taper = stroke.closed ? 0.0 : std::min(weight.taperPixels, 0.5 * stroke.lengthPixels);
+        for (std::size_t index = 0; index < stroke.points.size(); ++index) {
+            LinePoint& point = stroke.points[index];
+            double share = 1.0;
+            if (byDepth) {
+                const double t = depthSpan > 0.0
+                                     ? std::clamp((depthAt(point.position) - weight.nearDepth) / depthSpan, 0.0, 1.0)
+                                     : 0.0;
+                share *= 1.0 + (weight.farWidth - 1.0) * t;
+            }
+            share *= 1.0 - weight.strengthShare + weight.strengthShare * point.strength;
+            if (taper > 0.0) {
+                const double fromEnd = std::min(along[index], stroke.lengthPixels - along[index]) / taper;
+                if (fromEnd < 1.0) share *= weight.taperStart + (1.0 - weight.taperStart) * std::max(fromEnd, 0.0);
+            }
+            point.width = float(std::clamp(share, 0.02, 1.0));
+        }
+    }
+}
+
+LineSkeleton keptSkeleton(const Strokes& strokes, const std::vector<StrokeLayer>& layers, int layer) {
+    const StrokeLayer& source = layers.at(std::size_t(layer));
+    const cv::Mat& mask = source.skeleton->mask;
+    const cv::Size dataSize(mask.cols * source.scale, mask.rows * source.scale);
+    LineSkeleton kept;
+    kept.mask = cv::Mat::zeros(dataSize, CV_8UC1);
+    auto mark = [&](const cv::Point2f& position) {
+        const double col = std::floor(double(position.x) + 0.5), row = std::floor(double(position.y) + 0.5);
+        if (col >= 0 && row >= 0 && col < dataSize.width && row < dataSize.height)
+            kept.mask.at<uchar>(int(row), int(col)) = 255;
+    };
+    cv::Mat1f widthAt = cv::Mat1f::zeros(mask.size());
+    for (const Stroke& stroke : strokes.strokes) {
+        if (!stroke.kept || stroke.layer != layer) continue;
+        for (std::size_t index = 0; index < stroke.points.size(); ++index) {
+            const cv::Point& pixel = stroke.pixels[index];
+            if (source.scale == 1 && pixel.x >= 0) {
+                float& width = widthAt(pixel);
+                width = std::max(width, stroke.points[index].width);
+            } else {
+                // Bridging points, and a coarser layer's traced positions, are drawn as they are.
+                kept.points.push_back(stroke.points[index]);
+                mark(stroke.points[index].position);
+            }
+        }
+    }
+    if (source.scale == 1) {
+        for (const LinePoint& point : source.skeleton->points) {
+            const double col = std::floor(double(point.position.x) + 0.5),
+                         row = std::floor(double(point.position.y) + 0.5);
+            if (col < 0 || row < 0 || col >= mask.cols || row >= mask.rows) continue;
+            const float width = widthAt(int(row), int(col));
+            if (width <= 0.0f) continue;
+            LinePoint drawn = point;
+            drawn.width = width;
+            kept.points.push_back(drawn);
+            kept.mask.at<uchar>(int(row), int(col)) = 255;
+        }
+    }
+    return kept;
+}
+
+std::vector<Polyline> strokePolylines(const Strokes& strokes, int layer, double tolerancePixels,
+                                      std::vector<std::vector<float>>* widths) {
+    std::vector<Polyline> polylines;
+    if (widths) widths->clear();
+    for (const Stroke& stroke : strokes.strokes) {
+        if (!stroke.kept || stroke.layer != layer) continue;
+        Polyline full;
+        full.closed = stroke.closed && stroke.points.size() > 2;
+        for (const LinePoint& point : stroke.points) full.points.push_back(point.position);
+        Polyline simplified = simplifyPolyline(full, tolerancePixels, true);
+        if (widths) {
+            // The simplified vertices are some of the stroke's own, in order: match them up.
+            std::vector<float> vertexWidths;
+            std::size_t next = 0;
+            for (const cv::Point2f& vertex : simplified.points) {
+                while (next + 1 < full.points.size() && full.points[next] != vertex) ++next;
+                vertexWidths.push_back(stroke.points[next].width);
+            }
+            widths->push_back(std::move(vertexWidths));
+        }
+        polylines.push_back(std::move(simplified));
+    }
+    return polylines;
+}
+
+} // namespace inkgraph

@@ -1,0 +1,129 @@
+#pragma once
+/** @file Line skeletons of every type chained into strokes, the unit an artist draws: pixels chained through
+ *  junctions where a line runs on, ends joined across small gaps and from one type into another where they
+ *  continue (as Blender Freestyle chains its edges), then a length rule and hysteresis on strength decide which
+ *  strokes are drawn. The raster layers (drawStrokeLayer) and the vector paths (strokePolylines) are both made
+ *  from the result, so they match. Pure functions over cv::Mat: no GL, no file I/O.
+ *
+ *  Coordinates are LinePoint's, in data pixels (x right, y down, pixel centres at integers) of the common data
+ *  resolution; a layer found at a lower resolution (GL bands at the output size while the G-buffer is
+ *  supersampled) gives its `scale`, and its positions are mapped as (p + 0.5) x scale - 0.5.
+ *
+ *  Method.
+ *  1. Each layer's skeleton is traced into chains of pixels between ends and junctions (tracePixelChains). A pixel's
+ *     strength is the largest of its points'.
+ *  2. Every chain end gets an outward direction, from the end to the vertex `directionPixels` back along the chain.
+ *     Two ends of any layers within `joinRadiusPixels` of each other are a candidate continuation when the line
+ *     turns by at most `joinAngleDegrees` from one into the other (and into the gap between them, when they are
+ *     apart); a lone pixel has no direction and continues whatever comes within reach, after every true
+ *     continuation. Candidates are taken greedily, the straightest and nearest first, each end at most once: at a
+ *     junction the two branches that run on most straight become one stroke and the others end there, as Freestyle's
+ *     chaining by natural continuation does.
+ *  3. Joined chains make a path (a chain of strokes, `StrokeChain`), open or closed. A path is cut into one stroke
+ *     per run of one layer; a gap inside one layer is bridged by points every half pixel, so the stroke closes it.
+ *  4. A chain is kept when it is long enough for each of its strokes' layers (`minLengthPixels`, measured along the
+ *     whole chain, so a short piece that continues a long line of another type stays) and seeded: some point
+ *     reaches its layer's `seedStrength` (hysteresis, as Canny's: a weak line is drawn only where it continues a
+ *     strong one). */
+
+#include "postfx/LineSkeleton.h"
+#include "postfx/LineTracing.h"
+
+#include <opencv2/core.hpp>
+
+#include <cstddef>
+#include <vector>
+
+namespace inkgraph {
+
+/** One line type's skeleton and the rules its strokes obey. */
+struct StrokeLayer {
+    const LineSkeleton* skeleton = nullptr; ///< not null; its mask's size times `scale` is the data size
+    int scale = 1;                          ///< data pixels per pixel of this skeleton (>= 1)
+    double minLengthPixels = 0.0;           ///< data pixels: a chain shorter than this is not drawn
+    float seedStrength = 0.0f;              ///< a chain needs a point of this layer this strong; 0: every point seeds
+};
+
+/** How ends are joined; lengths in data pixels. */
+struct StrokeSettings {
+    double joinRadiusPixels = 2.0;  ///< ends this close may continue one another (the gap is bridged)
+    double joinAngleDegrees = 50.0; ///< the largest turn where a line runs on through a junction or a gap
+    double directionPixels = 4.0;   ///< how far back from an end its direction is taken
+};
+
+/** A run of one layer along a chain. */
+struct Stroke {
+    int layer = 0;                 ///< index into the layers given
+    std::vector<LinePoint> points; ///< in order along the stroke, at the data resolution; a closed one not repeated
+    std::vector<cv::Point> pixels; ///< each point's pixel in its layer's skeleton; (-1, -1) for a bridging point
+    bool closed = false;
+    double lengthPixels = 0.0; ///< along its points (and round a closed one), data pixels
+    float meanStrength = 0.0f; ///< over its points
+    float peakStrength = 0.0f;
+    std::size_t chain = 0; ///< index into Strokes::chains
+    bool kept = false;     ///< its chain is kept
+};
+
+/** Strokes joined end to end. */
+struct StrokeChain {
+    double lengthPixels = 0.0; ///< the whole chain, bridges included
+    bool closed = false;
+    bool longEnough = false; ///< for every layer it holds
+    bool seeded = false;
+    bool kept() const { return longEnough && seeded; }
+};
+
+struct Strokes {
+    std::vector<Stroke> strokes;
+    std::vector<StrokeChain> chains;
+    std::size_t junctionJoins = 0;  ///< continuations through a shared pixel
+    std::size_t gapJoins = 0;       ///< continuations across a gap (bridged within a layer)
+    std::size_t crossTypeJoins = 0; ///< continuations from one layer into another
+    /** Counts for --stats: kept strokes, and what the length rule and the hysteresis removed. */
+    std::size_t keptStrokes() const;
+    std::size_t droppedShort() const;
+    std::size_t droppedWeak() const;
+};
+
+/** Chains every layer's skeleton into strokes and decides which are drawn (see the file comment). Throws
+ *  std::invalid_argument naming the argument for a null or empty skeleton, a `scale` below 1, layers whose sizes
+ *  times their scales differ, a negative or non-finite length, a seed strength outside [0, 1], or settings that are
+ *  negative, non-finite or (the angle) above 180. */
+Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSettings& settings = {});
+
+/** A kept stroke's points with `width` set: its line weight, a share of the layer's width in (0, 1]. */
+using StrokeWeight = std::vector<float>;
+
+/** What scales a stroke's width (docs/lines.md, "Line weight"). Each factor is in (0, 1]; they multiply. */
+struct LineWeightSettings {
+    /** Thinner far away: the width falls linearly from 1 at `nearDepth` to `farWidth` at `farDepth` (linear view
+     *  depths; clamped outside). 1 turns it off. */
+    double farWidth = 1.0;
+    double nearDepth = 0.0, farDepth = 0.0;
+    /** Thinner where weaker: width x (1 - strengthShare + strengthShare x strength); 0 turns it off. */
+    double strengthShare = 0.0;
+    /** Tapered ends: an open stroke's width grows from `taperStart` at each end to 1 over `taperPixels` (data pixels)
+     *  or half the stroke, whichever is shorter. 0 pixels turns it off. */
+    double taperPixels = 0.0;
+    double taperStart = 0.25;
+    bool any() const { return farWidth != 1.0 || strengthShare != 0.0 || taperPixels != 0.0; }
+};
+
+/** Sets every point's `width` in the kept strokes by `weight`; `depth` (CV_32FC1 at the data size, linear view
+ *  depth, 0 = background, may be empty when weight.farWidth is 1) gives each point's depth (off the model: the
+ *  nearest surface within 3 pixels, else the far depth). Throws std::invalid_argument naming 'depth' when it is
+ *  needed and is not CV_32FC1 or not `dataSize`. */
+void weighStrokes(Strokes& strokes, const LineWeightSettings& weight, const cv::Mat& depth, cv::Size dataSize);
+
+/** What strokeLines() draws of layer `layer`: at the data size, the layer's own sub-pixel points on the pixels of its
+ *  kept strokes (each with the width share of its pixel's stroke point) and the points bridging their gaps, and a
+ *  mask of those pixels. With every stroke kept and no weight this is the layer's skeleton as it was found. A layer
+ *  found at a lower resolution is drawn from its traced positions. `layers` as given to chainStrokes(). */
+LineSkeleton keptSkeleton(const Strokes& strokes, const std::vector<StrokeLayer>& layers, int layer);
+
+/** Layer `layer`'s kept strokes as polylines (Ramer-Douglas-Peucker with `tolerancePixels`, data pixels), in stroke
+ *  order, with each vertex's width share in `widths` (one vector per polyline, when not null). */
+std::vector<Polyline> strokePolylines(const Strokes& strokes, int layer, double tolerancePixels,
+                                      std::vector<std::vector<float>>* widths = nullptr);
+
+} // namespace inkgraph

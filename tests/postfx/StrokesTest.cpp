@@ -1,0 +1,263 @@
+// postfx/Strokes on small synthetic skeletons; no GL. Expected strokes come from the shapes drawn: how many there
+// are, which pixels each holds, their lengths, and which ones the length rule and the hysteresis keep.
+#include "postfx/Strokes.h"
+
+#include "tests/support/ThrowMessage.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+using test::invalidArgumentMessage;
+
+/** A skeleton with one point per set pixel at its centre, of the given strength. */
+LineSkeleton skeletonOf(const cv::Mat& mask, float strength = 1.0f) {
+    LineSkeleton skeleton = skeletonFromMask(mask);
+    for (LinePoint& point : skeleton.points) point.strength = strength;
+    return skeleton;
+}
+
+cv::Mat blank(int size = 64) { return cv::Mat::zeros(size, size, CV_8UC1); }
+
+void drawLine(cv::Mat& mask, cv::Point a, cv::Point b) { cv::line(mask, a, b, 255, 1, cv::LINE_8); }
+
+std::size_t keptOfLayer(const Strokes& strokes, int layer) {
+    std::size_t count = 0;
+    for (const Stroke& stroke : strokes.strokes) count += stroke.kept && stroke.layer == layer;
+    return count;
+}
+
+TEST(StrokesTest, AStraightLineIsOneStrokeOfItsLength) {
+    cv::Mat mask = blank();
+    drawLine(mask, {5, 10}, {45, 10});
+    const LineSkeleton skeleton = skeletonOf(mask);
+    const Strokes strokes = chainStrokes({{&skeleton}});
+    ASSERT_EQ(strokes.strokes.size(), 1u);
+    EXPECT_NEAR(strokes.strokes[0].lengthPixels, 40.0, 1e-9);
+    EXPECT_EQ(strokes.strokes[0].points.size(), 41u);
+    EXPECT_FALSE(strokes.strokes[0].closed);
+    EXPECT_TRUE(strokes.strokes[0].kept);
+    EXPECT_FLOAT_EQ(strokes.strokes[0].meanStrength, 1.0f);
+}
+
+TEST(StrokesTest, ACrossingIsTwoStraightStrokesNotFourBranches) {
+    // An X of two lines through (30, 30): tracing gives four branches at the junction; the straightest pairs run on.
+    cv::Mat mask = blank();
+    drawLine(mask, {10, 30}, {50, 30});
+    drawLine(mask, {30, 10}, {30, 50});
+    const LineSkeleton skeleton = skeletonOf(mask);
+    const Strokes strokes = chainStrokes({{&skeleton}});
+    ASSERT_EQ(strokes.strokes.size(), 2u);
+    EXPECT_EQ(strokes.junctionJoins, 2u);
+    for (const Stroke& stroke : strokes.strokes) {
+        EXPECT_NEAR(stroke.lengthPixels, 40.0, 1e-9);
+        const cv::Point2f first = stroke.points.front().position, last = stroke.points.back().position;
+        // Each runs straight: one coordinate constant.
+        EXPECT_TRUE(first.x == last.x || first.y == last.y) << first << " " << last;
+    }
+}
+
+TEST(StrokesTest, ATJunctionKeepsTheStraightRunAndEndsTheStem) {
+    cv::Mat mask = blank();
+    drawLine(mask, {10, 20}, {50, 20});
+    drawLine(mask, {30, 21}, {30, 40});
+    const LineSkeleton skeleton = skeletonOf(mask);
+    const Strokes strokes = chainStrokes({{&skeleton}});
+    ASSERT_EQ(strokes.strokes.size(), 2u);
+    std::vector<double> lengths{strokes.strokes[0].lengthPixels, strokes.strokes[1].lengthPixels};
+    std::sort(lengths.begin(), lengths.end());
+    EXPECT_NEAR(lengths[0], 20.0, 1e-9); // the stem, from the junction pixel down
+    EXPECT_NEAR(lengths[1], 40.0, 1e-9);
+}
+
+TEST(StrokesTest, ACircleIsOneClosedStroke) {
+    cv::Mat mask = blank();
+    cv::circle(mask, {32, 32}, 20, 255, 1, cv::LINE_8);
+    const LineSkeleton skeleton = skeletonOf(mask);
+    const Strokes strokes = chainStrokes({{&skeleton}});
+    ASSERT_EQ(strokes.strokes.size(), 1u);
+    EXPECT_TRUE(strokes.strokes[0].closed);
+    // A digital circle's 8-connected length is between its circumference and 8/(2 pi) x more.
+    EXPECT_GT(strokes.strokes[0].lengthPixels, 2.0 * std::numbers::pi * 20.0 * 0.95);
+    EXPECT_LT(strokes.strokes[0].lengthPixels, 2.0 * std::numbers::pi * 20.0 * 1.15);
+}
+
+TEST(StrokesTest, AGapInOneLayerIsBridgedAndDrawn) {
+    cv::Mat mask = blank();
+    drawLine(mask, {5, 10}, {24, 10});
+    drawLine(mask, {27, 10}, {45, 10}); // a two-pixel hole at x = 25, 26
+    const LineSkeleton skeleton = skeletonOf(mask);
+    StrokeSettings settings;
+    settings.joinRadiusPixels = 3.5;
+    const Strokes strokes = chainStrokes({{&skeleton}}, settings);
+    ASSERT_EQ(strokes.strokes.size(), 1u);
+    EXPECT_EQ(strokes.gapJoins, 1u);
+    EXPECT_NEAR(strokes.strokes[0].lengthPixels, 40.0, 1e-9);
+    const LineSkeleton drawn = keptSkeleton(strokes, {{&skeleton}}, 0);
+    EXPECT_EQ(drawn.mask.at<uchar>(10, 25), 255);
+    EXPECT_EQ(drawn.mask.at<uchar>(10, 26), 255);
+    // A gap across the line's direction is not bridged: two parallel lines stay two strokes.
+    cv::Mat parallel = blank();
+    drawLine(parallel, {5, 10}, {45, 10});
+    drawLine(parallel, {5, 12}, {45, 12});
+    const LineSkeleton two = skeletonOf(parallel);
+    EXPECT_EQ(chainStrokes({{&two}}, settings).strokes.size(), 2u);
+}
+
+TEST(StrokesTest, ALineRunsOnAcrossTypesAndItsShortPieceIsKept) {
+    // A 40-pixel contour continued by a 4-pixel crease: one chain of 45 px; the crease piece alone would be short.
+    cv::Mat contourMask = blank(), creaseMask = blank();
+    drawLine(contourMask, {5, 10}, {45, 10});
+    drawLine(creaseMask, {46, 10}, {50, 10});
+    const LineSkeleton contour = skeletonOf(contourMask), crease = skeletonOf(creaseMask);
+    StrokeLayer contourLayer{&contour}, creaseLayer{&crease};
+    creaseLayer.minLengthPixels = 20.0;
+    const Strokes strokes = chainStrokes({contourLayer, creaseLayer});
+    ASSERT_EQ(strokes.strokes.size(), 2u);
+    EXPECT_EQ(strokes.crossTypeJoins, 1u);
+    EXPECT_EQ(strokes.chains.size(), 1u);
+    EXPECT_NEAR(strokes.chains[0].lengthPixels, 45.0, 1e-9);
+    EXPECT_EQ(keptOfLayer(strokes, 1), 1u);
+    // Alone, at right angles to nothing it continues, the same crease piece is dropped.
+    cv::Mat apart = blank();
+    drawLine(apart, {30, 40}, {34, 40});
+    const LineSkeleton alone = skeletonOf(apart);
+    creaseLayer.skeleton = &alone;
+    const Strokes separate = chainStrokes({contourLayer, creaseLayer});
+    EXPECT_EQ(keptOfLayer(separate, 1), 0u);
+    EXPECT_EQ(separate.droppedShort(), 1u);
+}
+
+TEST(StrokesTest, TheLengthRuleDropsSpecksAndKeepsLines) {
+    cv::Mat mask = blank();
+    drawLine(mask, {5, 10}, {45, 10});
+    mask.at<uchar>(30, 30) = 255;       // a speck
+    drawLine(mask, {5, 50}, {8, 50});   // 3 px
+    drawLine(mask, {20, 50}, {33, 50}); // 13 px
+    const LineSkeleton skeleton = skeletonOf(mask);
+    StrokeLayer layer{&skeleton};
+    layer.minLengthPixels = 10.0;
+    const Strokes strokes = chainStrokes({layer});
+    EXPECT_EQ(strokes.strokes.size(), 4u);
+    EXPECT_EQ(strokes.keptStrokes(), 2u);
+    EXPECT_EQ(strokes.droppedShort(), 2u);
+    const LineSkeleton drawn = keptSkeleton(strokes, {layer}, 0);
+    EXPECT_EQ(drawn.mask.at<uchar>(30, 30), 0);
+    EXPECT_EQ(drawn.mask.at<uchar>(50, 6), 0);
+    EXPECT_EQ(drawn.mask.at<uchar>(50, 25), 255);
+    EXPECT_EQ(drawn.mask.at<uchar>(10, 25), 255);
+}
+
+TEST(StrokesTest, HysteresisKeepsWeakLinesThatContinueStrongOnes) {
+    // Layer 0: a weak line (0.2) whose right half is strong (0.8); and a separate weak line.
+    cv::Mat mask = blank();
+    drawLine(mask, {5, 10}, {45, 10});
+    drawLine(mask, {5, 30}, {45, 30});
+    LineSkeleton skeleton = skeletonOf(mask, 0.2f);
+    for (LinePoint& point : skeleton.points)
+        if (point.position.y == 10.0f && point.position.x > 25.0f) point.strength = 0.8f;
+    StrokeLayer layer{&skeleton};
+    layer.seedStrength = 0.5f;
+    const Strokes strokes = chainStrokes({layer});
+    ASSERT_EQ(strokes.strokes.size(), 2u);
+    EXPECT_EQ(strokes.keptStrokes(), 1u);
+    EXPECT_EQ(strokes.droppedWeak(), 1u);
+    const LineSkeleton drawn = keptSkeleton(strokes, {layer}, 0);
+    EXPECT_EQ(drawn.mask.at<uchar>(10, 6), 255) << "the weak half of the seeded line is drawn";
+    EXPECT_EQ(drawn.mask.at<uchar>(30, 25), 0) << "the unseeded line is not";
+}
+
+TEST(StrokesTest, EverythingKeptGivesTheSkeletonAsFound) {
+    cv::Mat mask = blank();
+    cv::circle(mask, {32, 32}, 12, 255, 1, cv::LINE_8);
+    drawLine(mask, {2, 2}, {60, 8});
+    const LineSkeleton skeleton = skeletonOf(mask, 0.7f);
+    const Strokes strokes = chainStrokes({{&skeleton}});
+    const LineSkeleton drawn = keptSkeleton(strokes, {{&skeleton}}, 0);
+    EXPECT_EQ(cv::countNonZero(drawn.mask != skeleton.mask), 0);
+    EXPECT_EQ(drawn.points.size(), skeleton.points.size());
+    EXPECT_EQ(cv::countNonZero(strokeLines(drawn, 2.0f, 1) != strokeLines(skeleton, 2.0f, 1)), 0);
+}
+
+TEST(StrokesTest, ALayerAtALowerResolutionJoinsInDataPixels) {
+    // Layer 1 at half the resolution continues layer 0's line: (col + 0.5) x 2 - 0.5 in data pixels.
+    cv::Mat fine = cv::Mat::zeros(64, 64, CV_8UC1), coarse = cv::Mat::zeros(32, 32, CV_8UC1);
+    drawLine(fine, {4, 21}, {30, 21});
+    drawLine(coarse, {16, 10}, {28, 10}); // data x 32.5 .. 56.5 at y 20.5
+    const LineSkeleton a = skeletonOf(fine), b = skeletonOf(coarse);
+    StrokeLayer coarseLayer{&b};
+    coarseLayer.scale = 2;
+    StrokeSettings settings;
+    settings.joinRadiusPixels = 3.0;
+    const Strokes strokes = chainStrokes({{&a}, coarseLayer}, settings);
+    EXPECT_EQ(strokes.crossTypeJoins, 1u);
+    EXPECT_EQ(strokes.chains.size(), 1u);
+    const LineSkeleton drawn = keptSkeleton(strokes, {{&a}, coarseLayer}, 1);
+    EXPECT_EQ(drawn.mask.size(), cv::Size(64, 64));
+    EXPECT_FLOAT_EQ(drawn.points.front().position.x, 32.5f);
+}
+
+TEST(StrokesTest, LineWeightTapersEndsAndThinsFarLines) {
+    cv::Mat mask = blank();
+    drawLine(mask, {4, 10}, {44, 10});
+    drawLine(mask, {4, 40}, {44, 40});
+    const LineSkeleton skeleton = skeletonOf(mask);
+    Strokes strokes = chainStrokes({{&skeleton}});
+    cv::Mat depth(64, 64, CV_32FC1, cv::Scalar(0.0f));
+    depth.rowRange(0, 20).setTo(2.0f);  // the upper line is near
+    depth.rowRange(30, 50).setTo(4.0f); // the lower far
+    LineWeightSettings weight;
+    weight.nearDepth = 2.0;
+    weight.farDepth = 4.0;
+    weight.farWidth = 0.5;
+    weight.taperPixels = 10.0;
+    weight.taperStart = 0.2;
+    weighStrokes(strokes, weight, depth, depth.size());
+    for (const Stroke& stroke : strokes.strokes) {
+        const float scale = stroke.points.front().position.y < 20.0f ? 1.0f : 0.5f;
+        EXPECT_NEAR(stroke.points.front().width, 0.2f * scale, 1e-6);
+        EXPECT_NEAR(stroke.points.back().width, 0.2f * scale, 1e-6);
+        EXPECT_NEAR(stroke.points[5].width, (0.2f + 0.8f * 0.5f) * scale, 1e-6); // halfway up the taper
+        EXPECT_NEAR(stroke.points[20].width, scale, 1e-6);
+    }
+    // The polylines carry the widths of the vertices they keep: the ends and the middle of a straight line.
+    std::vector<std::vector<float>> widths;
+    const std::vector<Polyline> polylines = strokePolylines(strokes, 0, 0.5, &widths);
+    ASSERT_EQ(polylines.size(), 2u);
+    ASSERT_EQ(widths.size(), 2u);
+    ASSERT_EQ(widths[0].size(), polylines[0].points.size());
+    EXPECT_EQ(polylines[0].points.size(), 2u);
+    EXPECT_NEAR(widths[0].front(), 0.2f, 1e-6);
+}
+
+TEST(StrokesTest, RefusesBadInputNamingIt) {
+    const LineSkeleton empty;
+    EXPECT_NE(invalidArgumentMessage([&] { chainStrokes({{&empty}}); }).find("chainStrokes(): 'layers' [0]"),
+              std::string::npos);
+    cv::Mat mask = blank();
+    const LineSkeleton skeleton = skeletonOf(mask);
+    StrokeLayer layer{&skeleton};
+    layer.seedStrength = 2.0f;
+    EXPECT_NE(invalidArgumentMessage([&] { chainStrokes({layer}); }).find("'seedStrength'"), std::string::npos);
+    StrokeSettings settings;
+    settings.joinAngleDegrees = 270.0;
+    EXPECT_NE(
+        invalidArgumentMessage([&] { chainStrokes({{&skeleton}}, settings); }).find("'settings.joinAngleDegrees'"),
+        std::string::npos);
+    const LineSkeleton small = skeletonOf(blank(32));
+    EXPECT_NE(invalidArgumentMessage([&] {
+                  chainStrokes({{&skeleton}, {&small}});
+              }).find("data size"),
+              std::string::npos);
+}
+
+} // namespace
+} // namespace inkgraph
