@@ -621,6 +621,45 @@ std::vector<Flag> makeFlags() {
                        }));
     supersample.noEffect = onlyWithLineTypes("--supersample", lineTypesUsing(nullptr));
     flags.push_back(supersample);
+    std::vector<std::string> allLineTypes;
+    for (const LineType& type : lineTypes()) allLineTypes.push_back(type.name);
+    Flag minStrokeLength = styleFlag(
+        flag({"--min-stroke-length"}, "F", S::Lines,
+             "line pixels are chained into strokes through junctions, across small gaps and from one\n"
+             "type into the next where they run on; a chain shorter than F x the picture's height is\n"
+             "not drawn, at any size (default 0.01: 10 px at 1024; 0 keeps every speck)",
+             [](const std::string& value, RenderOptions& options) {
+                 const double share = parseNumber("--min-stroke-length", value);
+                 if (!(share >= 0.0 && share <= 1.0))
+                     throw UsageError("--min-stroke-length: expected a share of the height from 0 to 1, got '" + value +
+                                      "'");
+                 options.look.strokes.minLength = share;
+             }));
+    minStrokeLength.noEffect = onlyWithLineTypes("--min-stroke-length", allLineTypes);
+    flags.push_back(minStrokeLength);
+    Flag lineWeight =
+        styleFlag(flag({"--line-weight"}, "LIST", S::Lines,
+                       "none (default) or any of: depth (the width falls to half from the model's near side to\n"
+                       "its far side), strength (faded lines thinner: 0.5 + 0.5 x strength), taper (stroke ends\n"
+                       "narrow to a quarter over 3% of the height); in the picture and the --svg alike",
+                       [](const std::string& value, RenderOptions& options) {
+                           StrokeStyle& strokes = options.look.strokes;
+                           strokes.weightByDepth = strokes.weightByStrength = strokes.taperEnds = false;
+                           if (value == "none") return;
+                           for (const std::string& item : splitList(value, ',')) {
+                               bool& setting = item == "depth"      ? strokes.weightByDepth
+                                               : item == "strength" ? strokes.weightByStrength
+                                               : item == "taper"
+                                                   ? strokes.taperEnds
+                                                   : throw UsageError("--line-weight: expected none or any of "
+                                                                      "depth, strength, taper; got '" +
+                                                                      item + "'");
+                               if (setting) throw UsageError("--line-weight: '" + item + "' is listed twice");
+                               setting = true;
+                           }
+                       }));
+    lineWeight.noEffect = onlyWithLineTypes("--line-weight", allLineTypes);
+    flags.push_back(lineWeight);
     flags.push_back(styleFlag(
         flag({"--gbuffer-precision"}, "P", S::Lines,
              "float (default) | half: store the G-buffer's normal, view, w, n.v and radial fields as\n"

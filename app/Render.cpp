@@ -122,7 +122,6 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     request.camera = cameraRequestOf(options);
     request.extraOutputs = options.extraOutputs;
     request.keepEveryBuffer = keepsEveryBuffer(options);
-    request.keepSvgInputs = !options.svgPath.empty();
     request.memoryLimitBytes = memoryLimitOf(options);
     request.animation = options.animation;
     request.animationTime = options.animationTime;

@@ -69,11 +69,12 @@ cv::Mat contactSheetOf(const PreparedStill& still, ResourceStore& store) {
     return composeContactSheet(tiles, layout);
 }
 
-/** --svg: each line type's lines traced into simplified polylines (StillGraph::svgLayers()). */
-std::string svgOf(const RenderOptions& options, const PreparedStill& still, ResourceStore& store) {
+/** --svg: each line type's strokes as simplified polylines, the strokes its layer was drawn from
+ *  (StillGraph::svgLayers()). */
+std::string svgOf(const RenderOptions& options, const PreparedStill& still) {
     SvgDocumentOptions document;
     document.title = "inkgraph: '" + modelFileName(still) + "', " + lookSummary(still.request.look);
-    return svgDocument(options.width, options.height, still.graph.svgLayers(store, options.svgTolerance), document);
+    return svgDocument(options.width, options.height, still.graph.svgLayers(options.svgTolerance), document);
 }
 
 /** --dump: every buffer the plan computed, then manifest.json. */
@@ -171,7 +172,7 @@ void stageStillOutputs(const RenderOptions& options, const PreparedStill& still,
     ResourceStore& store = result.store();
     if (!options.outputPath.empty()) outputs.stageFinalImage(store.image(still.graph.finalResource));
     if (!options.contactSheetPath.empty()) outputs.stageContactSheet(contactSheetOf(still, store));
-    if (!options.svgPath.empty()) outputs.stageSvg(svgOf(options, still, store));
+    if (!options.svgPath.empty()) outputs.stageSvg(svgOf(options, still));
     if (!options.dumpDirectory.empty()) stageDump(options, still, result, outputs);
 }
 

@@ -150,9 +150,6 @@ void StillRenderer::plan(PreparedStill& still) {
     still.graph = buildStillGraph(setup);
 
     std::vector<std::string> requested = {still.graph.finalResource};
-    // --svg traces the GL-drawn layers from their masks, so those must outlive the composite.
-    if (req.keepSvgInputs)
-        for (const std::string& input : still.graph.svgInputs()) requested.push_back(input);
     for (const std::string& extra : expandWildcards(req.extraOutputs, still.graph))
         if (std::find(requested.begin(), requested.end(), extra) == requested.end()) requested.push_back(extra);
     try {

@@ -25,6 +25,17 @@ struct LineStyle {
     glm::dvec4 color{0.0, 0.0, 0.0, 1.0}; ///< display RGBA in [0,1]
 };
 
+/** How line pixels become strokes (postfx/Strokes.h, docs/lines.md "Strokes"). Lengths are shares of the picture's
+ *  height, so the same strokes are drawn at every size. */
+struct StrokeStyle {
+    /** A chain of strokes shorter than this share of the height is not drawn (--min-stroke-length; 0 keeps all). */
+    double minLength = 0.01;
+    /** Line weight (--line-weight): width by depth, by strength, tapered ends. */
+    bool weightByDepth = false;
+    bool weightByStrength = false;
+    bool taperEnds = false;
+};
+
 struct Look {
     ShadingModel shading = ShadingModel::Cel;
     double shininess = 32.0;                           ///< phong and comic, [0, 1e6]
@@ -36,6 +47,7 @@ struct Look {
     std::vector<std::string> lines; ///< line types drawn (composited in the registry's order); empty = none
     std::map<std::string, LineStyle> lineStyles; ///< per line type; a type without an entry has LineStyle{}
     LineParameterValues lineParameters;          ///< the line types' other settings (passes/lines/LineParameter.h)
+    StrokeStyle strokes;                         ///< how line pixels become strokes, for every type
     int supersample = 1;                         ///< data buffers and edge skeletons at S x the size
     GBufferPrecision gbufferPrecision = GBufferPrecision::Float32; ///< the G-buffer's direction fields
     glm::dvec3 background{1.0, 1.0, 1.0};

@@ -4,6 +4,7 @@
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineLayerPass.h"
 #include "passes/lines/LineTypes.h"
+#include "passes/lines/StrokesPass.h"
 #include "passes/orientation/SceneOrientation.h"
 #include "passes/shade/ShadePass.h"
 #include "postfx/LineTracing.h"
@@ -14,6 +15,8 @@ namespace inkgraph {
 namespace {
 
 using Json = nlohmann::ordered_json;
+
+constexpr const char* kStrokesPass = "strokes";
 
 cv::Vec4f displayColor(const glm::dvec4& color) {
     return cv::Vec4f(float(color.r), float(color.g), float(color.b), float(color.a));
@@ -90,12 +93,38 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     // says so.
     const LineGraphSetup lineSetup{look, setup.shaders, setup.gpuScene, setup.frame, setup.sphere};
     LineGraphBuilder builder(lineSetup, graph.passes);
-    std::vector<CompositePass::LineInput> lines;
-    for (const LineType& type : lineTypes()) {
-        type.build(type.name, builder);
-        if (look.draws(type.name)) lines.push_back({type.name + ".lines", displayColor(look.styleOf(type.name).color)});
-    }
+    for (const LineType& type : lineTypes()) type.build(type.name, builder);
     graph.mLineLayers = builder.finish();
+
+    // Every drawn type's lines become strokes together, and the composite draws the strokes.
+    std::vector<CompositePass::LineInput> lines;
+    StrokesPassSettings strokes;
+    strokes.supersample = look.supersample;
+    for (const LineType& type : lineTypes()) {
+        if (!look.draws(type.name)) continue;
+        StrokeInput input;
+        input.type = type.name;
+        const auto layer = graph.mLineLayers.find(type.name);
+        input.layer = layer == graph.mLineLayers.end() ? nullptr : layer->second;
+        input.resource = type.name + (input.layer ? ".skeleton" : ".lines");
+        input.widthPixels = float(look.styleOf(type.name).widthPixels);
+        const LineTypeStrokeRules rules = type.strokeRules ? type.strokeRules(look) : LineTypeStrokeRules{};
+        input.minLength = std::max(look.strokes.minLength, rules.minLength);
+        input.seedStrength = rules.seedStrength;
+        strokes.inputs.push_back(input);
+        lines.push_back({std::string(kStrokesPass) + "." + type.name, displayColor(look.styleOf(type.name).color)});
+    }
+    if (!strokes.inputs.empty()) {
+        strokes.weightByDepth = look.strokes.weightByDepth;
+        strokes.weightByStrength = look.strokes.weightByStrength;
+        strokes.taperEnds = look.strokes.taperEnds;
+        const double eyeToCentre = glm::length(setup.frame.camera.eye - setup.sphere.center);
+        strokes.nearDepth = std::max(eyeToCentre - setup.sphere.radius, 0.0);
+        strokes.farDepth = eyeToCentre + setup.sphere.radius;
+        auto pass = std::make_unique<StrokesPass>(kStrokesPass, std::move(strokes));
+        graph.mStrokes = pass.get();
+        graph.passes.push_back(std::move(pass));
+    }
     graph.passes.push_back(
         std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
     return graph;
@@ -128,45 +157,37 @@ Json StillGraph::describePostStage(const std::vector<PassTiming>& timings) const
         layer->second->describe(entry);
         layers.push_back(entry);
         const LineLayerReport& report = layer->second->report();
-        kernels += report.kernelMilliseconds + report.strokeMilliseconds;
+        kernels += report.kernelMilliseconds;
         readback += report.readbackMilliseconds;
     }
-    return {{"lines", layers}, {"kernels_ms", kernels}, {"readback_ms", readback}, {"composite_ms", composite}};
+    Json result = {{"lines", layers}};
+    if (mStrokes && std::any_of(timings.begin(), timings.end(),
+                                [](const PassTiming& timing) { return timing.pass == kStrokesPass; })) {
+        Json strokes;
+        mStrokes->describe(strokes);
+        const StrokesReport& report = mStrokes->report();
+        kernels += report.thinMilliseconds + report.chainMilliseconds + report.strokeMilliseconds;
+        result["strokes"] = strokes;
+    }
+    result["kernels_ms"] = kernels;
+    result["readback_ms"] = readback;
+    result["composite_ms"] = composite;
+    return result;
 }
 
-std::vector<SvgLineLayer> StillGraph::svgLayers(ResourceStore& store, double tolerancePixels) const {
-    std::vector<SvgLineLayer> layers;
-    for (const LineType& type : lineTypes()) { // the composite's order: later types on top
-        if (!mLook->draws(type.name)) continue;
-        const LineStyle style = mLook->styleOf(type.name);
-        SvgLineLayer layer;
-        layer.type = type.name;
-        layer.widthPixels = style.widthPixels;
-        layer.color = {style.color.r, style.color.g, style.color.b, style.color.a};
-        TraceSettings trace;
-        if (auto cpuLayer = mLineLayers.find(type.name); cpuLayer != mLineLayers.end()) {
-            layer.supersample = cpuLayer->second->report().supersample;
-            trace.tolerancePixels = tolerancePixels * layer.supersample;
-            layer.polylines = traceSkeleton(cpuLayer->second->skeleton(), trace);
-        } else {
-            trace.tolerancePixels = tolerancePixels;
-            layer.polylines = traceMask(store.image(type.name + ".lines"), trace);
-        }
-        layers.push_back(std::move(layer));
+std::vector<SvgLineLayer> StillGraph::svgLayers(double tolerancePixels) const {
+    if (!mStrokes) return {};
+    std::vector<std::array<double, 4>> colors;
+    for (const StrokeInput& input : mStrokes->settings().inputs) {
+        const glm::dvec4 color = mLook->styleOf(input.type).color;
+        colors.push_back({color.r, color.g, color.b, color.a});
     }
-    return layers;
+    return mStrokes->svgLayers(tolerancePixels, colors);
 }
 
 const LineLayerPass* StillGraph::lineLayer(const std::string& type) const {
     auto found = mLineLayers.find(type);
     return found == mLineLayers.end() ? nullptr : found->second;
-}
-
-std::vector<std::string> StillGraph::svgInputs() const {
-    std::vector<std::string> inputs;
-    for (const std::string& type : mLook->lines)
-        if (!mLineLayers.count(type)) inputs.push_back(type + ".lines");
-    return inputs;
 }
 
 } // namespace inkgraph

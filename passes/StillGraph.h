@@ -27,6 +27,7 @@
 namespace inkgraph {
 
 class LineLayerPass;
+class StrokesPass;
 
 /** What buildStillGraph() needs; every reference must outlive the graph. */
 struct StillGraphSetup {
@@ -61,12 +62,11 @@ public:
     /** --stats post_stage: what each CPU line layer that ran found and where its time went; "kernels_ms" is the post
      *  stage proper (finding and stroking, without bringing the G-buffer to the CPU), "composite_ms" follows it. */
     nlohmann::ordered_json describePostStage(const std::vector<PassTiming>& timings) const;
-    /** --svg: each drawn type's lines traced into simplified polylines, in composite order. CPU layers give the
-     *  one-pixel skeleton they stroked (at the data resolution, sub-pixel points); GL-drawn bands are thinned from
-     *  their masks in `store` (which must hold "<type>.lines": request them). */
-    std::vector<SvgLineLayer> svgLayers(ResourceStore& store, double tolerancePixels) const;
-    /** The resources --svg needs kept beyond the final picture: the GL-drawn types' masks. */
-    std::vector<std::string> svgInputs() const;
+    /** --svg: each drawn type's kept strokes as simplified polylines (to within `tolerancePixels` output pixels),
+     *  in composite order: the strokes the line layers were drawn from (StrokesPass). Empty when no line is drawn. */
+    std::vector<SvgLineLayer> svgLayers(double tolerancePixels) const;
+    /** The stroke stage, or null when no line type is drawn. */
+    const StrokesPass* strokes() const { return mStrokes; }
     /** The CPU line layer of `type` (what it found: skeleton(), report(), kernel()), or null for GL-drawn types. */
     const LineLayerPass* lineLayer(const std::string& type) const;
 
@@ -76,6 +76,7 @@ private:
     BoundingSphere mSphere;
     double mRadialLengthUnit = 1.0;
     std::map<std::string, LineLayerPass*> mLineLayers; ///< the CPU line layers by type
+    StrokesPass* mStrokes = nullptr;                   ///< the stroke stage, when a line type is drawn
 };
 
 StillGraph buildStillGraph(const StillGraphSetup& setup);

@@ -153,6 +153,17 @@ void checkLayer(const SvgLineLayer& layer, std::size_t index, std::set<std::stri
             if (!std::isfinite(point.x) || !std::isfinite(point.y))
                 throw std::invalid_argument("svgDocument(): " + name + " 'polylines' [" + std::to_string(line) +
                                             "] has a non-finite coordinate");
+    if (!layer.widths.empty() && layer.widths.size() != layer.polylines.size())
+        throw std::invalid_argument("svgDocument(): " + name + " 'widths' must be empty or one per polyline");
+    for (std::size_t line = 0; line < layer.widths.size(); ++line) {
+        if (layer.widths[line].size() != layer.polylines[line].points.size())
+            throw std::invalid_argument("svgDocument(): " + name + " 'widths' [" + std::to_string(line) +
+                                        "] must hold one width per vertex");
+        for (const double width : layer.widths[line])
+            if (!std::isfinite(width) || width <= 0.0)
+                throw std::invalid_argument("svgDocument(): " + name + " 'widths' [" + std::to_string(line) +
+                                            "] must be finite and > 0");
+    }
 }
 
 void appendPath(std::string& out, const Polyline& polyline, double scale) {
@@ -172,6 +183,80 @@ void appendPath(std::string& out, const Polyline& polyline, double scale) {
         if (polyline.closed) out += " Z";
     }
     out += "\"/>\n";
+}
+
+/** A polyline of varying width as a filled outline: the left side forward, a round cap, the right side back, a round
+ *  cap. Vertex normals are the mean of the two segments' (mitred joins, good for the gentle turns of strokes). */
+void appendWeightedPath(std::string& out, const Polyline& polyline, const std::vector<double>& widths, double scale,
+                        const std::string& fill) {
+    const std::size_t count = polyline.points.size();
+    if (count == 0) return;
+    std::vector<cv::Point2d> points;
+    for (const cv::Point2f& point : polyline.points)
+        points.emplace_back((double(point.x) + 0.5) * scale, (double(point.y) + 0.5) * scale);
+    auto appendXY = [&](const cv::Point2d& point) {
+        appendNumber(out, point.x, 2);
+        out += ' ';
+        appendNumber(out, point.y, 2);
+    };
+    auto appendArc = [&](double radius, const cv::Point2d& to) {
+        out += " A ";
+        appendNumber(out, radius, 2);
+        out += ' ';
+        appendNumber(out, radius, 2);
+        out += " 0 0 1 ";
+        appendXY(to);
+    };
+    out += "    <path " + fill + " d=\"";
+    if (count == 1) { // a dot: a circle of the width
+        const double radius = 0.5 * widths[0];
+        out += "M ";
+        appendXY(points[0] - cv::Point2d(radius, 0.0));
+        appendArc(radius, points[0] + cv::Point2d(radius, 0.0));
+        appendArc(radius, points[0] - cv::Point2d(radius, 0.0));
+        out += " Z\"/>\n";
+        return;
+    }
+    const bool closed = polyline.closed && count > 2;
+    auto segmentNormal = [&](std::size_t from, std::size_t to) {
+        const cv::Point2d along = points[to] - points[from];
+        const double length = cv::norm(along);
+        return length > 0.0 ? cv::Point2d(-along.y, along.x) / length : cv::Point2d(0.0, 0.0);
+    };
+    std::vector<cv::Point2d> left(count), right(count);
+    for (std::size_t index = 0; index < count; ++index) {
+        cv::Point2d normal(0.0, 0.0);
+        if (index > 0 || closed) normal += segmentNormal(index > 0 ? index - 1 : count - 1, index);
+        if (index + 1 < count || closed) normal += segmentNormal(index, (index + 1) % count);
+        const double length = cv::norm(normal);
+        normal = length > 0.0 ? normal / length : cv::Point2d(0.0, 0.0);
+        left[index] = points[index] + normal * (0.5 * widths[index]);
+        right[index] = points[index] - normal * (0.5 * widths[index]);
+    }
+    out += "M ";
+    appendXY(left[0]);
+    for (std::size_t index = 1; index < count; ++index) {
+        out += " L ";
+        appendXY(left[index]);
+    }
+    if (closed) {
+        // A ring: the outer side, then the inner side the other way round, so the nonzero rule leaves a hole.
+        out += " Z M ";
+        appendXY(right[count - 1]);
+        for (std::size_t index = count - 1; index-- > 0;) {
+            out += " L ";
+            appendXY(right[index]);
+        }
+        out += " Z\"/>\n";
+        return;
+    }
+    appendArc(0.5 * widths[count - 1], right[count - 1]);
+    for (std::size_t index = count - 1; index-- > 0;) {
+        out += " L ";
+        appendXY(right[index]);
+    }
+    appendArc(0.5 * widths[0], left[0]);
+    out += " Z\"/>\n";
 }
 
 } // namespace
@@ -204,7 +289,14 @@ std::string svgDocument(int width, int height, const std::vector<SvgLineLayer>& 
                "\" stroke-opacity=\"" + formatNumber(layer.color[3], 3) + "\" stroke-width=\"" +
                formatNumber(layer.widthPixels, 3) + "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
         const double scale = 1.0 / layer.supersample;
-        for (const Polyline& polyline : layer.polylines) appendPath(out, polyline, scale);
+        const std::string fill = "fill=\"" + hexColor(layer.color, layerName(index) + " 'color'") +
+                                 "\" fill-opacity=\"" + formatNumber(layer.color[3], 3) + "\" stroke=\"none\"";
+        for (std::size_t line = 0; line < layer.polylines.size(); ++line) {
+            if (layer.widths.empty())
+                appendPath(out, layer.polylines[line], scale);
+            else
+                appendWeightedPath(out, layer.polylines[line], layer.widths[line], scale, fill);
+        }
         out += "  </g>\n";
     }
     out += "</svg>\n";

@@ -25,6 +25,10 @@ struct SvgLineLayer {
     int supersample = 1;             ///< >= 1: how many data pixels make one output pixel along each axis
     double widthPixels = 2;          ///< stroke width in output pixels, finite and > 0
     std::array<double, 4> color{0, 0, 0, 1}; ///< display (sRGB-encoded) RGBA, each in [0, 1]: stroke and opacity
+    /** Line weight, optional: empty, or one entry per polyline with each vertex's width in output pixels (finite,
+     *  > 0). A weighted polyline is written as a filled outline (its two sides at half the width from each vertex,
+     *  joined by round caps), since an SVG stroke has one width. */
+    std::vector<std::vector<double>> widths;
 };
 
 /** The document around the layers. */
@@ -41,14 +45,15 @@ struct SvgDocumentOptions {
  *  - per layer, in the given order (later layers are drawn on top): <g id="lines-<type>"
  *    inkscape:groupmode="layer" inkscape:label="<type>" fill="none" stroke="#rrggbb" stroke-opacity="A"
  *    stroke-width="W" stroke-linecap="round" stroke-linejoin="round">, an empty group when it has no polylines;
- *  - per polyline one <path d="M x y L x y ..."/> with absolute commands, " Z" appended when closed (and it has 2
- *    points or more). A 1-point polyline is written as a zero-length segment "M x y L x y", which round caps draw as
- *    a dot of the stroke width; a polyline with no points writes nothing.
- *  Colours: each channel c becomes round(255 c) in the hex colour; opacity is written with 3 decimals at most.
- *  Throws std::invalid_argument naming the argument for a 'width' or 'height' below 1, and in 'layers' for a
- *  'type' that is empty, holds a character outside [A-Za-z0-9_.-] or repeats an earlier one, a 'supersample' below
- *  1, a non-finite or non-positive 'widthPixels', a 'color' channel outside [0, 1] or non-finite, or a non-finite
- *  coordinate in 'polylines'; and for an 'options.background' channel outside [0, 1]. */
+ *  - per polyline one <path d="M x y L x y ..."/> with absolute commands (with `widths`, a filled outline:
+ *    <path fill="#rrggbb" fill-opacity="A" stroke="none" d="M left side A right side A Z"/>), " Z" appended when closed
+ * (and it has 2 points or more). A 1-point polyline is written as a zero-length segment "M x y L x y", which round caps
+ * draw as a dot of the stroke width; a polyline with no points writes nothing. Colours: each channel c becomes
+ * round(255 c) in the hex colour; opacity is written with 3 decimals at most. Throws std::invalid_argument naming the
+ * argument for a 'width' or 'height' below 1, and in 'layers' for a 'type' that is empty, holds a character outside
+ * [A-Za-z0-9_.-] or repeats an earlier one, a 'supersample' below 1, a non-finite or non-positive 'widthPixels', a
+ * 'color' channel outside [0, 1] or non-finite, or a non-finite coordinate in 'polylines'; and for an
+ * 'options.background' channel outside [0, 1]. */
 std::string svgDocument(int width, int height, const std::vector<SvgLineLayer>& layers,
                         const SvgDocumentOptions& options = {});
 

@@ -16,17 +16,17 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 
 } // namespace
 
-LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kernel, float widthPixels)
-    : mName(std::move(name)), mKernel(std::move(kernel)), mWidthPixels(widthPixels) {
-    if (!(std::isfinite(mWidthPixels) && mWidthPixels > 0.0f))
-        throw std::invalid_argument("LineLayerPass(): '" + mName + "' width must be positive and finite");
+LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kernel, int supersample)
+    : mName(std::move(name)), mKernel(std::move(kernel)), mSupersample(supersample) {
+    if (mSupersample < 1) throw std::invalid_argument("LineLayerPass(): '" + mName + "' supersample must be >= 1");
     if (!mKernel) throw std::invalid_argument("LineLayerPass(): '" + mName + "' has no kernel");
     if (mKernel->inputs().empty()) throw std::invalid_argument("LineLayerPass(): '" + mName + "' kernel reads nothing");
 }
 
 void LineLayerPass::declare(PassBuilder& builder) const {
     for (const std::string& input : mKernel->inputs()) builder.read(input);
-    builder.write("lines", {Format::R8}, Need::Required, {"lines-" + mName + ".png", Appearance::Lines});
+    builder.write("skeleton", {Format::R8, mSupersample}, Need::Required,
+                  {"skeleton-" + mName + ".png", Appearance::Lines});
 }
 
 void LineLayerPass::prepare(GlPassContext& context) {
@@ -49,14 +49,10 @@ void LineLayerPass::execute(GlPassContext& gl) {
     mReport.kernelMilliseconds = millisecondsSince(start);
     mReport.skeletonPixels = std::size_t(cv::countNonZero(mSkeleton.mask));
     mReport.points = mSkeleton.points.size();
-
-    start = std::chrono::steady_clock::now();
-    cv::Mat lines = strokeLines(mSkeleton, mWidthPixels, mReport.supersample);
-    if (lines.size() != cv::Size(gl.width(), gl.height()))
+    if (mSkeleton.mask.size() != cv::Size(gl.widthOf("skeleton"), gl.heightOf("skeleton")))
         throw std::runtime_error("LineLayerPass::execute(): '" + mName + "' inputs are not " +
-                                 std::to_string(mReport.supersample) + " times the frame size");
-    gl.outputImage("lines") = std::move(lines);
-    mReport.strokeMilliseconds = millisecondsSince(start);
+                                 std::to_string(mSupersample) + " times the frame size");
+    gl.outputImage("skeleton") = mSkeleton.mask;
 }
 
 void LineLayerPass::describe(nlohmann::ordered_json& report) const {
@@ -65,7 +61,6 @@ void LineLayerPass::describe(nlohmann::ordered_json& report) const {
     report["points"] = mReport.points;
     report["readback_ms"] = mReport.readbackMilliseconds;
     report["kernel_ms"] = mReport.kernelMilliseconds;
-    report["stroke_ms"] = mReport.strokeMilliseconds;
     mKernel->describe(report);
 }
 

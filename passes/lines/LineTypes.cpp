@@ -64,7 +64,7 @@ void LineGraphBuilder::add(std::unique_ptr<GlPass> pass) { mPasses.push_back(std
 
 void LineGraphBuilder::addLayer(const std::string& type, std::unique_ptr<LineKernel> kernel) {
     mLayers.push_back(
-        std::make_unique<LineLayerPass>(type, std::move(kernel), float(mSetup.look.styleOf(type).widthPixels)));
+        std::make_unique<LineLayerPass>(type, std::move(kernel), mSetup.look.supersample));
 }
 
 std::map<std::string, LineLayerPass*> LineGraphBuilder::finish() {

@@ -22,7 +22,7 @@ OutlinePass::OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& sce
 }
 
 void OutlinePass::declare(PassBuilder& builder) const {
-    builder.write("lines", {Format::R8}, Need::Required, {"lines-" + mName + ".png", Appearance::Lines});
+    builder.write("lines", {Format::R8}, Need::Required, {"band-" + mName + ".png", Appearance::Lines});
 }
 
 void OutlinePass::describe(nlohmann::ordered_json& report) const { report["skipped_eye_inside"] = skippedEyeInside(); }

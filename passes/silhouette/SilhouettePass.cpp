@@ -31,7 +31,7 @@ SilhouettePass::SilhouettePass(std::string name, ShaderLibrary& shaders, GpuScen
 }
 
 void SilhouettePass::declare(PassBuilder& builder) const {
-    builder.write("lines", {Format::R8}, Need::Required, {"lines-" + mName + ".png", Appearance::Lines});
+    builder.write("lines", {Format::R8}, Need::Required, {"band-" + mName + ".png", Appearance::Lines});
 }
 
 void SilhouettePass::describe(nlohmann::ordered_json& report) const {

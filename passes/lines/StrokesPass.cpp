@@ -1,0 +1,170 @@
+#include "passes/lines/StrokesPass.h"
+
+#include "gl/GraphExecutor.h"
+#include "passes/lines/LineLayerPass.h"
+#include "postfx/LineTracing.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace inkgraph {
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/** How far ends may be apart and still continue one another, in output pixels at a 1024-pixel height: scaled with
+ *  the height, so a gap closes at every size alike, and never under 2 pixels (a diagonal step and a half). */
+constexpr double kJoinRadiusAt1024 = 2.0;
+/** Line weight's fixed shapes (docs/lines.md, "Line weight"). */
+constexpr double kFarWidth = 0.5;      ///< the width at the far side of the model, as a share of the near side's
+constexpr double kStrengthShare = 0.5; ///< a line of strength s is (0.5 + 0.5 s) wide
+constexpr double kTaperLength = 0.03;  ///< the taper's length, a share of the height
+constexpr double kTaperStart = 0.25;   ///< the width share at a stroke's very end
+
+} // namespace
+
+StrokesPass::StrokesPass(std::string name, StrokesPassSettings settings)
+    : mName(std::move(name)), mSettings(std::move(settings)) {
+    if (mSettings.inputs.empty()) throw std::invalid_argument("StrokesPass(): '" + mName + "' has no line types");
+    if (mSettings.supersample < 1) throw std::invalid_argument("StrokesPass(): 'supersample' must be at least 1");
+    for (const StrokeInput& input : mSettings.inputs) {
+        if (!(std::isfinite(input.widthPixels) && input.widthPixels > 0.0f))
+            throw std::invalid_argument("StrokesPass(): '" + input.type + "' width must be positive and finite");
+        if (!(std::isfinite(input.minLength) && input.minLength >= 0.0))
+            throw std::invalid_argument("StrokesPass(): '" + input.type + "' minimum length must be finite and >= 0");
+        if (!(input.seedStrength >= 0.0f && input.seedStrength <= 1.0f))
+            throw std::invalid_argument("StrokesPass(): '" + input.type + "' seed strength must lie in [0, 1]");
+    }
+}
+
+void StrokesPass::declare(PassBuilder& builder) const {
+    for (const StrokeInput& input : mSettings.inputs) builder.read(input.resource);
+    if (mSettings.weightByDepth) builder.read("gbuffer.depth");
+    for (const StrokeInput& input : mSettings.inputs)
+        builder.write(input.type, {Format::R8}, Need::Required, {"lines-" + input.type + ".png", Appearance::Lines});
+}
+
+void StrokesPass::execute(GlPassContext& gl) {
+    mReport = {};
+    const int scale = mSettings.supersample;
+    const cv::Size dataSize(gl.width() * scale, gl.height() * scale);
+
+    // Each type's skeleton at the data resolution, or a GL band's middle line at the output size.
+    auto start = std::chrono::steady_clock::now();
+    mThinnedBands.assign(mSettings.inputs.size(), {});
+    std::vector<StrokeLayer> layers;
+    const double heightPixels = double(gl.height()) * scale;
+    for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
+        const StrokeInput& input = mSettings.inputs[index];
+        StrokeLayer layer;
+        if (input.layer) {
+            layer.skeleton = &input.layer->skeleton();
+        } else {
+            mThinnedBands[index] = skeletonFromMask(thinToSkeleton(gl.inputImage(input.resource)));
+            layer.skeleton = &mThinnedBands[index];
+            layer.scale = scale / gl.scaleOf(input.resource);
+        }
+        if (layer.skeleton->mask.size() * layer.scale != dataSize)
+            throw std::runtime_error("StrokesPass::execute(): '" + input.resource + "' is not at the data size " +
+                                     std::to_string(dataSize.width) + "x" + std::to_string(dataSize.height));
+        layer.minLengthPixels = input.minLength * heightPixels;
+        layer.seedStrength = input.seedStrength;
+        layers.push_back(layer);
+    }
+    mReport.thinMilliseconds = millisecondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    StrokeSettings settings;
+    settings.joinRadiusPixels = std::max(2.0, kJoinRadiusAt1024 * gl.height() / 1024.0) * scale;
+    settings.directionPixels = 2.0 * settings.joinRadiusPixels;
+    mStrokes = chainStrokes(layers, settings);
+    LineWeightSettings weight;
+    if (mSettings.weightByDepth) {
+        weight.farWidth = kFarWidth;
+        weight.nearDepth = mSettings.nearDepth;
+        weight.farDepth = mSettings.farDepth;
+    }
+    if (mSettings.weightByStrength) weight.strengthShare = kStrengthShare;
+    if (mSettings.taperEnds) {
+        weight.taperPixels = kTaperLength * heightPixels;
+        weight.taperStart = kTaperStart;
+    }
+    weighStrokes(mStrokes, weight, mSettings.weightByDepth ? gl.inputImage("gbuffer.depth") : cv::Mat(), dataSize);
+    mReport.chainMilliseconds = millisecondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
+        const StrokeInput& input = mSettings.inputs[index];
+        const LineSkeleton kept = keptSkeleton(mStrokes, layers, int(index));
+        gl.outputImage(input.type) = strokeLines(kept, input.widthPixels, scale);
+    }
+    mReport.strokeMilliseconds = millisecondsSince(start);
+
+    mReport.chains = mStrokes.chains.size();
+    mReport.strokes = mStrokes.strokes.size();
+    mReport.kept = mStrokes.keptStrokes();
+    mReport.droppedShort = mStrokes.droppedShort();
+    mReport.droppedWeak = mStrokes.droppedWeak();
+    mReport.junctionJoins = mStrokes.junctionJoins;
+    mReport.gapJoins = mStrokes.gapJoins;
+    mReport.crossTypeJoins = mStrokes.crossTypeJoins;
+}
+
+void StrokesPass::describe(nlohmann::ordered_json& report) const {
+    report["chains"] = mReport.chains;
+    report["strokes"] = mReport.strokes;
+    report["strokes_kept"] = mReport.kept;
+    report["dropped_short"] = mReport.droppedShort;
+    report["dropped_weak"] = mReport.droppedWeak;
+    report["junction_joins"] = mReport.junctionJoins;
+    report["gap_joins"] = mReport.gapJoins;
+    report["cross_type_joins"] = mReport.crossTypeJoins;
+    nlohmann::ordered_json types = nlohmann::ordered_json::object();
+    for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
+        std::size_t kept = 0;
+        double length = 0.0;
+        for (const Stroke& stroke : mStrokes.strokes)
+            if (stroke.kept && stroke.layer == int(index)) {
+                ++kept;
+                length += stroke.lengthPixels;
+            }
+        types[mSettings.inputs[index].type] = {{"strokes_kept", kept},
+                                               {"length_pixels", length / mSettings.supersample}};
+    }
+    report["types"] = types;
+    report["thin_ms"] = mReport.thinMilliseconds;
+    report["chain_ms"] = mReport.chainMilliseconds;
+    report["stroke_ms"] = mReport.strokeMilliseconds;
+}
+
+std::vector<SvgLineLayer> StrokesPass::svgLayers(double tolerancePixels,
+                                                 const std::vector<std::array<double, 4>>& colors) const {
+    if (colors.size() != mSettings.inputs.size())
+        throw std::invalid_argument("StrokesPass::svgLayers(): 'colors' must hold one colour per line type");
+    const bool weighted = mSettings.weightByDepth || mSettings.weightByStrength || mSettings.taperEnds;
+    std::vector<SvgLineLayer> layers;
+    for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
+        const StrokeInput& input = mSettings.inputs[index];
+        SvgLineLayer layer;
+        layer.type = input.type;
+        layer.supersample = mSettings.supersample;
+        layer.widthPixels = input.widthPixels;
+        layer.color = colors[index];
+        std::vector<std::vector<float>> shares;
+        layer.polylines = strokePolylines(mStrokes, int(index), tolerancePixels * mSettings.supersample,
+                                          weighted ? &shares : nullptr);
+        for (const std::vector<float>& vertexShares : shares) {
+            std::vector<double> widths;
+            for (const float share : vertexShares) widths.push_back(double(share) * input.widthPixels);
+            layer.widths.push_back(std::move(widths));
+        }
+        layers.push_back(std::move(layer));
+    }
+    return layers;
+}
+
+} // namespace inkgraph
