@@ -332,7 +332,9 @@ int measure(const Options& options) {
     const PinholeView cameraB = cameraOfDump(viewB.manifest, viewB.dump);
     const cv::Mat depthA = readChannel(viewA.dump / "depth.exr", CV_32F);
     const cv::Mat depthB = readChannel(viewB.dump / "depth.exr", CV_32F);
-    std::map<std::string, std::pair<double, double>> f1ByType;
+    // The table cell per type: "size / view", or "empty" when the type drew nothing at either size (both F1s are then 1
+    // by definition, which would read as perfect lines).
+    std::map<std::string, std::string> cellByType;
     for (const std::string& type : types) {
         const std::string file = "lines-" + type + ".png";
         const auto skeleton = inkgraph::bench::skeletonPoints(layersA[type], kInkThreshold);
@@ -357,7 +359,9 @@ int measure(const Options& options) {
                                {"f1_view", agreementJson(view)},
                                {"view_dropped_a_to_b", dropped(aInB)},
                                {"view_dropped_b_to_a", dropped(bInA)}};
-        f1ByType[type] = {size.f1, view.f1};
+        cellByType[type] = size.firstCount == 0 && size.secondCount == 0
+                               ? std::string("empty")
+                               : fixed(size.f1, 3) + " / " + fixed(view.f1, 3);
     }
 
     inkgraph::writeTextFile(options.json, json.dump(2) + "\n");
@@ -376,10 +380,8 @@ int measure(const Options& options) {
                       std::to_string(paths.pathCount) + " | " + fixed(100.0 * paths.shortShare, 1) + " | " +
                       fixed(paths.medianLength, 1) + " |";
     for (const std::string& column : options.columns) {
-        const auto found = f1ByType.find(column);
-        row += found == f1ByType.end()
-                   ? " – |"
-                   : " " + fixed(found->second.first, 3) + " / " + fixed(found->second.second, 3) + " |";
+        const auto found = cellByType.find(column);
+        row.append(" ").append(found == cellByType.end() ? "–" : found->second).append(" |");
     }
     std::cout << row << "\n";
     for (const std::string& type : types)
