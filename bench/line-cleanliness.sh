@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# The line-cleanliness table of issue 19 (bench/README.md): inkgraph_line_cleanliness over eight models in two looks,
+# one markdown table with the machine and date at the top. The inkgraph binary is an argument, so the same sweep
+# measures a build before a change and one after; its environment (LD_LIBRARY_PATH, INKGRAPH_SHADER_DIR,
+# LP_NUM_THREADS) is the caller's. Models run one after another; about 3 minutes on the 2-core CPU machine.
+#   bench/line-cleanliness.sh INKGRAPH_BINARY OUT.md [WORK_DIR]
+# TOOL=path/to/inkgraph_line_cleanliness overrides the default build/bench/inkgraph_line_cleanliness.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+if [ $# -lt 2 ] || [ $# -gt 3 ]; then
+    echo "usage: bench/line-cleanliness.sh INKGRAPH_BINARY OUT.md [WORK_DIR]" >&2
+    exit 2
+fi
+binary=$1
+out=$2
+work=${3:-$(mktemp -d /tmp/line-cleanliness.XXXXXX)}
+tool=${TOOL:-$root/build/bench/inkgraph_line_cleanliness}
+[ -x "$binary" ] || { echo "line-cleanliness.sh: '$binary' is not an executable" >&2; exit 2; }
+[ -x "$tool" ] || { echo "line-cleanliness.sh: '$tool' is not built (cmake --build build --target inkgraph_line_cleanliness)" >&2; exit 2; }
+
+models=(
+    models/bunny_c3d_70k.obj
+    models/armadillo_cgal_52k.obj
+    models/lucy_blendify_15k.obj
+    models/suzanne_npm_4k.obj
+    models/characters/fox.glb
+    models/characters/godette.vrm
+    models/characters/mtoon-uv-animation-test.vrm
+    models/characters/expressions-binary-overrides.vrm
+)
+comic_flags=(--shading comic --lines outline,contour,suggestive,crease)
+
+table=$(mktemp)
+trap 'rm -f "$table"' EXIT
+cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //' || echo "unknown CPU")
+{
+    echo "Measured $(date -u '+%Y-%m-%d %H:%M UTC') on $(hostname): $cpu, $(nproc) cores, llvmpipe (no GPU);"
+    echo "binary \`$binary\`; bench/line-cleanliness.sh (bench/README.md defines each column)."
+    echo
+} > "$table"
+header=--header
+for model in "${models[@]}"; do
+    name=$(basename "$model")
+    name=${name%.*}
+    echo "line-cleanliness.sh: $name, comic" >&2
+    "$tool" --inkgraph "$binary" --model "$root/$model" --work "$work/$name-comic" --look comic $header \
+        -- "${comic_flags[@]}" >> "$table"
+    header=
+    echo "line-cleanliness.sh: $name, default" >&2
+    "$tool" --inkgraph "$binary" --model "$root/$model" --work "$work/$name-default" --look default >> "$table"
+done
+mkdir -p "$(dirname "$out")"
+mv "$table" "$out"
+trap - EXIT
+echo "line-cleanliness.sh: wrote $out (renders and per-run JSON in $work)" >&2
