@@ -38,13 +38,37 @@ double lengthAlong(const std::vector<cv::Point2d>& points, bool closed) {
     return length;
 }
 
-/** The largest strength of the points rounding to each pixel of the skeleton (0 where none does). */
+/** The skeleton pixel a point belongs to: the one it rounds to when that is on, else the nearest on pixel around
+ *  it (a kernel marks one pixel of a pair and places the point at the crossing between them, up to a pixel away);
+ *  (-1, -1) when none is. */
+cv::Point pixelOfPoint(const cv::Mat& mask, const cv::Point2f& position) {
+    const double x = position.x, y = position.y;
+    const double roundedCol = std::floor(x + 0.5), roundedRow = std::floor(y + 0.5);
+    if (!(roundedCol >= -1 && roundedRow >= -1 && roundedCol <= mask.cols && roundedRow <= mask.rows)) return {-1, -1};
+    const int col = int(roundedCol), row = int(roundedRow);
+    auto on = [&](int c, int r) { return c >= 0 && r >= 0 && c < mask.cols && r < mask.rows && mask.at<uchar>(r, c); };
+    if (on(col, row)) return {col, row};
+    cv::Point best(-1, -1);
+    double nearest = 0.0;
+    for (int dr = -1; dr <= 1; ++dr)
+        for (int dc = -1; dc <= 1; ++dc) {
+            if (!on(col + dc, row + dr)) continue;
+            const double distance = std::hypot(col + dc - x, row + dr - y);
+            if (best.x < 0 || distance < nearest) {
+                best = {col + dc, row + dr};
+                nearest = distance;
+            }
+        }
+    return best;
+}
+
+/** The largest strength of the points belonging to each pixel of the skeleton (0 where none does). */
 cv::Mat1f pixelStrengths(const LineSkeleton& skeleton) {
     cv::Mat1f strengths = cv::Mat1f::zeros(skeleton.mask.size());
     for (const LinePoint& point : skeleton.points) {
-        const double col = std::floor(double(point.position.x) + 0.5), row = std::floor(double(point.position.y) + 0.5);
-        if (col < 0 || row < 0 || col >= strengths.cols || row >= strengths.rows) continue;
-        float& strength = strengths(int(row), int(col));
+        const cv::Point pixel = pixelOfPoint(skeleton.mask, point.position);
+        if (pixel.x < 0) continue;
+        float& strength = strengths(pixel);
         strength = std::max(strength, point.strength);
     }
     return strengths;
@@ -451,15 +475,14 @@ LineSkeleton keptSkeleton(const Strokes& strokes, const std::vector<StrokeLayer>
     }
     if (source.scale == 1) {
         for (const LinePoint& point : source.skeleton->points) {
-            const double col = std::floor(double(point.position.x) + 0.5),
-                         row = std::floor(double(point.position.y) + 0.5);
-            if (col < 0 || row < 0 || col >= mask.cols || row >= mask.rows) continue;
-            const float width = widthAt(int(row), int(col));
+            const cv::Point pixel = pixelOfPoint(mask, point.position);
+            if (pixel.x < 0) continue;
+            const float width = widthAt(pixel);
             if (width <= 0.0f) continue;
             LinePoint drawn = point;
             drawn.width = width;
             kept.points.push_back(drawn);
-            kept.mask.at<uchar>(int(row), int(col)) = 255;
+            kept.mask.at<uchar>(pixel) = 255;
         }
     }
     return kept;

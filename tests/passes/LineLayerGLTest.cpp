@@ -4,6 +4,7 @@
 #include "graph/GraphCompiler.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineLayerPass.h"
+#include "passes/lines/StrokesPass.h"
 #include "passes/lines/types/ImageEdgeLines.h"
 #include "passes/lines/types/SuggestiveLines.h"
 #include "scene/Procedural.h"
@@ -64,22 +65,28 @@ protected:
         frameSize = size;
     }
 
-    /** Runs the G-buffer and one line pass; returns the pass for its report. The lines stay in the store. */
+    /** Runs the G-buffer, one line pass and the stroke stage (keeping every stroke, so the layer is the whole
+     *  skeleton stroked); returns the line pass for its report. The lines stay in the store. */
     LineLayerPass& draw(const LineSettings& settings, int supersample = 1) {
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
         gbuffer = std::make_unique<GBufferPass>("gbuffer", shaders, *gpuScene, frame, supersample);
-        lines = std::make_unique<LineLayerPass>("lines-under-test", kernelFor(settings, *gpuScene, frame), 2.0f);
-        const std::vector<const Pass*> passes = {gbuffer.get(), lines.get()};
-        const Plan plan = compile(passes, {"lines-under-test.lines", "gbuffer.depth"});
-        executor.run(plan, {gbuffer.get(), lines.get()}, {frameSize, frameSize, false});
+        lines = std::make_unique<LineLayerPass>("lines-under-test", kernelFor(settings, *gpuScene, frame), supersample);
+        StrokesPassSettings strokeSettings;
+        strokeSettings.supersample = supersample;
+        strokeSettings.inputs = {{"lines-under-test", "lines-under-test.skeleton", lines.get(), 2.0f, 0.0, 0.0f}};
+        strokes = std::make_unique<StrokesPass>("strokes", strokeSettings);
+        const std::vector<const Pass*> passes = {gbuffer.get(), lines.get(), strokes.get()};
+        const Plan plan = compile(passes, {"strokes.lines-under-test", "gbuffer.depth"});
+        executor.run(plan, {gbuffer.get(), lines.get(), strokes.get()}, {frameSize, frameSize, false});
         return *lines;
     }
 
-    const cv::Mat& lineImage() { return executor.store().image("lines-under-test.lines"); }
+    const cv::Mat& lineImage() { return executor.store().image("strokes.lines-under-test"); }
 
     int frameSize = kSize;
     std::unique_ptr<GBufferPass> gbuffer;
     std::unique_ptr<LineLayerPass> lines;
+    std::unique_ptr<StrokesPass> strokes;
 };
 
 TEST_F(LineLayers, SphereContourLiesOnTheAnalyticSilhouetteCircle) {
@@ -275,18 +282,18 @@ TEST_F(LineLayers, CurvatureIsDerivedOnlyWhenObjectSpaceLinesRun) {
     look(makeTorus(1.0f, 0.35f, 96, 48), 4.0 * glm::dvec3(std::cos(glm::radians(30.0)), 0.0, 0.5), 128);
     gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
     GBufferPass gbufferPass("gbuffer", shaders, *gpuScene, frame);
-    LineLayerPass contour("contour", kernelFor(withSource(Source::Contour), *gpuScene, frame), 2.0f);
+    LineLayerPass contour("contour", kernelFor(withSource(Source::Contour), *gpuScene, frame), 1);
     LineSettings objectSettings = withSource(Source::SuggestiveObject);
     objectSettings.suggestive.featureSize = 0.0675f;
-    LineLayerPass object("suggestive-object", kernelFor(objectSettings, *gpuScene, frame), 2.0f);
+    LineLayerPass object("suggestive-object", kernelFor(objectSettings, *gpuScene, frame), 1);
     const std::vector<const Pass*> passes = {&gbufferPass, &contour, &object};
 
-    const Plan contourOnly = compile(passes, {"contour.lines"});
+    const Plan contourOnly = compile(passes, {"contour.skeleton"});
     EXPECT_FALSE(contourOnly.findPass("suggestive-object"));
     executor.run(contourOnly, {&gbufferPass, &contour, &object}, {128, 128, false});
     EXPECT_FALSE(gpuScene->meshCurvatureComputed()) << "a culled pass derived the curvature";
 
-    const Plan both = compile(passes, {"contour.lines", "suggestive-object.lines"});
+    const Plan both = compile(passes, {"contour.skeleton", "suggestive-object.skeleton"});
     // The object-space lines read only the depth from the G-buffer.
     EXPECT_EQ(both.findPass("gbuffer")->liveWrites, (std::vector<std::string>{"gbuffer.nDotV", "gbuffer.depth"}));
     executor.run(both, {&gbufferPass, &contour, &object}, {128, 128, false});
@@ -299,8 +306,8 @@ TEST_F(LineLayers, CurvatureIsDerivedOnlyWhenObjectSpaceLinesRun) {
     EXPECT_FALSE(objectReport(object).curvatureDerived);
     EXPECT_EQ(objectReport(object).curvatureMilliseconds, 0.0);
 
-    EXPECT_THROW(LineLayerPass("no-kernel", nullptr, 2.0f), std::invalid_argument);
-    EXPECT_THROW(LineLayerPass("no-width", kernelFor(objectSettings, *gpuScene, frame), 0.0f), std::invalid_argument);
+    EXPECT_THROW(LineLayerPass("no-kernel", nullptr, 1), std::invalid_argument);
+    EXPECT_THROW(LineLayerPass("no-scale", kernelFor(objectSettings, *gpuScene, frame), 0), std::invalid_argument);
 }
 
 TEST_F(LineLayers, EveryKernelRepeatsExactly) {
@@ -323,11 +330,11 @@ TEST_F(LineLayers, ReadsOnlyWhatItsKernelNeeds) {
     look(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 32, 16), {0.0, 0.0, 4.0});
     GpuScene scene2(scene, frame.worldOrigin);
     GBufferPass gbufferPass("gbuffer", shaders, scene2, frame);
-    LineLayerPass depthEdges("depth-edge", kernelFor(withSource(Source::DepthEdge), scene2, frame), 2.0f);
-    const Plan plan = compile({&gbufferPass, &depthEdges}, {"depth-edge.lines"});
+    LineLayerPass depthEdges("depth-edge", kernelFor(withSource(Source::DepthEdge), scene2, frame), 1);
+    const Plan plan = compile({&gbufferPass, &depthEdges}, {"depth-edge.skeleton"});
     EXPECT_EQ(plan.findPass("gbuffer")->liveWrites, std::vector<std::string>{"gbuffer.depth"});
-    LineLayerPass suggestive("suggestive", kernelFor(withSource(Source::Suggestive), scene2, frame), 2.0f);
-    const Plan plan2 = compile({&gbufferPass, &suggestive}, {"suggestive.lines"});
+    LineLayerPass suggestive("suggestive", kernelFor(withSource(Source::Suggestive), scene2, frame), 1);
+    const Plan plan2 = compile({&gbufferPass, &suggestive}, {"suggestive.skeleton"});
     EXPECT_EQ(plan2.findPass("gbuffer")->liveWrites, (std::vector<std::string>{"gbuffer.depth", "gbuffer.radial"}));
 }
 

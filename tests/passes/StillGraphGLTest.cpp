@@ -37,7 +37,8 @@ TEST_F(StillGraphOrder, GlPassesComeBeforeTheLineLayersAndSharedPassesAreRegiste
     Look look;
     look.lines = {"crease", "normal-edge", "border", "outline"};
     EXPECT_EQ(planOrder(look), (std::vector<std::string>{"gbuffer", "shade", "outline", "mesh-edges", "normal-edge",
-                                                         "crease", "border", "composite"}));
+                                                         "crease", "border", "strokes",
+                                                         "composite"}));
 }
 
 TEST_F(StillGraphOrder, EveryRegisteredTypeHasItsLayerOrPassAndTheCompositeReadsThemInRegistryOrder) {
@@ -51,8 +52,13 @@ TEST_F(StillGraphOrder, EveryRegisteredTypeHasItsLayerOrPassAndTheCompositeReads
     const PlannedPass* composite = plan.findPass("composite");
     ASSERT_NE(composite, nullptr);
     std::vector<std::string> expected;
-    for (const LineType& type : lineTypes()) expected.push_back(type.name + ".lines");
+    for (const LineType& type : lineTypes()) expected.push_back("strokes." + type.name);
     EXPECT_EQ(composite->reads, expected);
+    // The stroke stage reads every type's skeleton, or the band a GL pass drew.
+    std::vector<std::string> skeletons;
+    for (const LineType& type : lineTypes())
+        skeletons.push_back(type.name + (type.strokedOnCpu() ? ".skeleton" : ".lines"));
+    EXPECT_EQ(plan.findPass("strokes")->reads, skeletons);
     EXPECT_TRUE(plan.culled.empty()) << plan.culled.front().name << ": " << plan.culled.front().reason;
 }
 

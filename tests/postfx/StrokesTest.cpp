@@ -187,6 +187,21 @@ TEST(StrokesTest, EverythingKeptGivesTheSkeletonAsFound) {
     EXPECT_EQ(cv::countNonZero(strokeLines(drawn, 2.0f, 1) != strokeLines(skeleton, 2.0f, 1)), 0);
 }
 
+TEST(StrokesTest, PointsBetweenPixelsStayWithThePixelTheyMarked) {
+    // A kernel marks one pixel of a pair and places its point at the crossing, which may round to the other pixel
+    // (off the mask): the point is drawn with its marked pixel.
+    cv::Mat mask = blank();
+    drawLine(mask, {5, 10}, {45, 10});
+    LineSkeleton skeleton = skeletonOf(mask);
+    for (LinePoint& point : skeleton.points) point.position.y += 0.7f; // rounds to row 11, which is off
+    const Strokes strokes = chainStrokes({{&skeleton}});
+    ASSERT_EQ(strokes.strokes.size(), 1u);
+    EXPECT_FLOAT_EQ(strokes.strokes[0].peakStrength, 1.0f);
+    const LineSkeleton drawn = keptSkeleton(strokes, {{&skeleton}}, 0);
+    EXPECT_EQ(drawn.points.size(), skeleton.points.size());
+    EXPECT_EQ(drawn.mask.at<uchar>(10, 20), 255);
+}
+
 TEST(StrokesTest, ALayerAtALowerResolutionJoinsInDataPixels) {
     // Layer 1 at half the resolution continues layer 0's line: (col + 0.5) x 2 - 0.5 in data pixels.
     cv::Mat fine = cv::Mat::zeros(64, 64, CV_8UC1), coarse = cv::Mat::zeros(32, 32, CV_8UC1);
