@@ -158,15 +158,16 @@ const EdgeAdjacency& GpuScene::edgeAdjacency(std::size_t meshIndex) {
     return mEdgeAdjacency[meshIndex];
 }
 
-const MeshCurvature& GpuScene::meshCurvature(std::size_t meshIndex) {
+const MeshCurvature& GpuScene::meshCurvature(std::size_t meshIndex, double smoothing) {
     requireMeshIndex("GpuScene::meshCurvature()", meshIndex);
-    if (mMeshCurvature.empty()) {
+    if (!meshCurvatureComputed(smoothing)) {
         const double distance = weldDistance();
         std::vector<MeshCurvature> curvature;
         curvature.reserve(mScene.meshes.size());
         for (const Mesh& mesh : mScene.meshes)
-            curvature.push_back(computeMeshCurvature(mesh.positions, mesh.triangles, distance));
+            curvature.push_back(computeMeshCurvature(mesh.positions, mesh.triangles, distance, smoothing));
         mMeshCurvature = std::move(curvature);
+        mMeshCurvatureSmoothing = smoothing;
     }
     return mMeshCurvature[meshIndex];
 }

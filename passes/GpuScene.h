@@ -71,10 +71,15 @@ public:
     /** Per-vertex curvature of mesh `meshIndex` (scene/MeshCurvature.h: normals, principal curvatures and
      *  directions, and their derivative C on position-welded vertices), in world space like the scene, welded at the
      *  same distance as hullNormals(). CPU data, nothing uploaded. Computed for every mesh the first time any is
-     *  asked for (only a pass that runs asks: the object-space suggestive contours). Throws std::out_of_range for a
-     *  bad index. */
-    const MeshCurvature& meshCurvature(std::size_t meshIndex);
+     *  asked for (only a pass that runs asks: the object-space suggestive contours), smoothed over `smoothing` model
+     *  units (computeMeshCurvature()); asked with another smoothing, it is derived again. Throws std::out_of_range
+     *  for a bad index. */
+    const MeshCurvature& meshCurvature(std::size_t meshIndex, double smoothing = 0.0);
     bool meshCurvatureComputed() const { return !mMeshCurvature.empty(); }
+    /** Whether meshCurvature() holds the curvature for this smoothing. */
+    bool meshCurvatureComputed(double smoothing) const {
+        return !mMeshCurvature.empty() && mMeshCurvatureSmoothing == smoothing;
+    }
 
     std::size_t meshCount() const { return mScene.meshes.size(); }
 
@@ -126,6 +131,7 @@ private:
     std::vector<std::optional<glm::dvec3>> mBlendCentres; ///< per blended mesh, once drawOrder() needed it
     std::vector<EdgeAdjacency> mEdgeAdjacency;            ///< one per mesh once computed, else empty
     std::vector<MeshCurvature> mMeshCurvature;            ///< one per mesh once computed, else empty
+    double mMeshCurvatureSmoothing = 0.0;                 ///< the smoothing mMeshCurvature was derived with
     std::optional<glm::dvec3> mContainmentPoint;          ///< the last point containsPoint() was asked about
     bool mContainsPoint = false;
     const FrameParams* mOrientationFrame = nullptr; ///< set by setOrientation()

@@ -16,6 +16,10 @@ enum class DifferenceStencil {
     Central5,
 };
 
+/** The app's default smoothing (`--suggestive-smoothing`), sigma as a fraction of the bounding radius: on the scanned
+ *  models (docs/lines.md) it leaves the shape's lines and drops the bumps'. */
+constexpr double kSuggestiveSmoothingFraction = 0.005;
+
 struct SuggestiveSettings {
     /** Pixels with sin(theta) = |w| / |v| below this are skipped: near-frontal, w has no direction there, and
      *  n.v is at a maximum so no suggestive contour can pass. Noise in n.v makes points there otherwise (a sphere
@@ -33,7 +37,27 @@ struct SuggestiveSettings {
     float fade = 0.03f;
     float depthJump = 0.05f; ///< no difference is taken across a relative depth jump larger than this
     DifferenceStencil stencil = DifferenceStencil::Central3;
+    /** > 0: the radial field is smoothed first (smoothRadialField()) by a Gaussian of this standard deviation on the
+     *  surface, in the depth buffer's length units (the model's), so the derivatives see the surface at that scale,
+     *  not its facets and scan noise, alike at every resolution. 0: no smoothing. */
+    float smoothing = 0.0f;
+    /** The camera's focal length in pixels of this image, (height / 2) / tan(fovY / 2): converts `smoothing` to
+     *  pixels, smoothing x focalPixels / depth at each pixel. Read only when smoothing > 0; then > 0. */
+    float focalPixels = 0.0f;
 };
+
+/** The radial field smoothed on the surface at the scale settings.smoothing (> 0; 0 returns a copy): per pixel a
+ *  Gaussian of sigma = smoothing x focalPixels / depth pixels (the model-space scale seen at that pixel's depth),
+ *  applied along rows then columns, each 1-D pass a Gaussian-weighted least-squares line (local linear regression)
+ *  over the pixel's run of one surface: it stops at depth breaks (settings.depthJump) and the background, and a
+ *  field linear along the run is kept exactly, so a one-sided window at a silhouette or occlusion boundary does not
+ *  bend n.v there. The window reaches 3 sigma, at most kMaxSmoothingReach pixels. All four channels are smoothed;
+ *  the background stays 0. Same argument checks as extractSuggestiveContours(). */
+cv::Mat smoothRadialField(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings);
+
+/** The widest reach of smoothRadialField()'s window in pixels, so an eye inside the model's feature scale cannot make
+ *  a kernel as wide as the image. */
+constexpr int kMaxSmoothingReach = 256;
 
 /** Per-pixel derivatives along w, for tests and the kernel. */
 struct RadialDerivatives {
@@ -50,7 +74,7 @@ struct RadialDerivatives {
  *  Jacobian in pixels (x right, y down) and w = v - (n.v) n with v = c - p; zero off the model.
  *  `depth`: CV_32FC1 linear view depth, 0 = background; same size.
  *  No difference is taken across a depth break or the background; pixels with sin(theta) < minSinTheta or
- *  n.v <= 0 are invalid. */
+ *  n.v <= 0 are invalid. With settings.smoothing > 0 the derivatives are those of smoothRadialField(). */
 RadialDerivatives computeRadialDerivatives(const cv::Mat& radial, const cv::Mat& depth,
                                            const SuggestiveSettings& settings);
 
@@ -58,7 +82,8 @@ RadialDerivatives computeRadialDerivatives(const cv::Mat& radial, const cv::Mat&
  *  at the linear crossing, no half-pixel shift), kept where D_w D_w(n.v) > 0 and the strength passes the threshold,
  *  both interpolated to the crossing. The result does not depend on the resolution: J w scales with it and the
  *  differences per pixel inversely. Rows are split into bands over cv::parallel_for_; the result does not depend on
- *  the thread count either. Throws std::invalid_argument naming the argument for wrong types, sizes or settings. */
+ *  the thread count either. With settings.smoothing > 0 the field is smoothRadialField()'s. Throws
+ * std::invalid_argument naming the argument for wrong types, sizes or settings. */
 LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings);
 
 } // namespace inkgraph

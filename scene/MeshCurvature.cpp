@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -96,13 +98,84 @@ struct FaceFrame {
     glm::dvec2 inPlane(const glm::dvec3& x) const { return {glm::dot(x, tangent), glm::dot(x, bitangent)}; }
 };
 
+/** The Gaussian neighbourhoods of the vertices over the mesh's edges: for a vertex, every vertex reached from it by
+ *  edges through vertices within 3 sigma of it, with weight exp(-d^2 / (2 sigma^2)) x point area (rtsc's
+ *  diffuse_vert_field). A flood rather than a distance query, so a thin part's other side is not averaged in. */
+class GaussianNeighbourhoods {
+public:
+    GaussianNeighbourhoods(const std::vector<glm::dvec3>& positions, const std::vector<glm::uvec3>& triangles,
+                           const std::vector<double>& pointAreas, double sigma)
+        : mPositions(positions), mPointAreas(pointAreas), mReachSquared(9.0 * sigma * sigma),
+          mInverseTwoSigmaSquared(0.5 / (sigma * sigma)), mMark(positions.size(), kUnmarked) {
+        // Compressed adjacency: each vertex's neighbours across the faces' edges (a neighbour may repeat; the flood
+        // marks it once).
+        std::vector<std::uint32_t> degree(positions.size() + 1, 0);
+        for (const glm::uvec3& t : triangles)
+            for (int corner = 0; corner < 3; ++corner) degree[t[corner] + 1] += 2;
+        for (std::size_t i = 1; i < degree.size(); ++i) degree[i] += degree[i - 1];
+        mFirst = degree;
+        mNeighbours.resize(mFirst.back());
+        std::vector<std::uint32_t> next(mFirst.begin(), mFirst.end() - 1);
+        for (const glm::uvec3& t : triangles)
+            for (int corner = 0; corner < 3; ++corner) {
+                const std::uint32_t vertex = t[corner];
+                mNeighbours[next[vertex]++] = t[(corner + 1) % 3];
+                mNeighbours[next[vertex]++] = t[(corner + 2) % 3];
+            }
+    }
+
+    /** Calls visit(neighbour, weight) for `vertex` itself and every vertex of its neighbourhood. */
+    template <typename Visit>
+    void forEach(std::uint32_t vertex, Visit visit) {
+        const glm::dvec3 centre = mPositions[vertex];
+        mQueue.clear();
+        mQueue.push_back(vertex);
+        mMark[vertex] = vertex;
+        for (std::size_t head = 0; head < mQueue.size(); ++head) {
+            const std::uint32_t current = mQueue[head];
+            const glm::dvec3 offset = mPositions[current] - centre;
+            visit(current, std::exp(-glm::dot(offset, offset) * mInverseTwoSigmaSquared) * mPointAreas[current]);
+            for (std::uint32_t k = mFirst[current]; k < mFirst[current + 1]; ++k) {
+                const std::uint32_t neighbour = mNeighbours[k];
+                if (mMark[neighbour] == vertex) continue;
+                mMark[neighbour] = vertex;
+                const glm::dvec3 away = mPositions[neighbour] - centre;
+                if (glm::dot(away, away) <= mReachSquared) mQueue.push_back(neighbour);
+            }
+        }
+    }
+
+private:
+    static constexpr std::uint32_t kUnmarked = 0xffffffffu;
+    const std::vector<glm::dvec3>& mPositions;
+    const std::vector<double>& mPointAreas;
+    double mReachSquared;
+    double mInverseTwoSigmaSquared;
+    std::vector<std::uint32_t> mFirst;
+    std::vector<std::uint32_t> mNeighbours;
+    std::vector<std::uint32_t> mMark; ///< the vertex whose flood last reached it
+    std::vector<std::uint32_t> mQueue;
+};
+
+/** The tangent vectors (x, y) of the frame `to` (unit normal toNormal) expressed in the frame (u, v) of a vertex
+ *  with unit normal fromNormal, once that frame is rotated into to's plane: the coordinates that carry a tensor
+ *  from there to here. */
+std::array<glm::dvec2, 2> frameChange(glm::dvec3 u, glm::dvec3 v, const glm::dvec3& fromNormal, const glm::dvec3& x,
+                                      const glm::dvec3& y, const glm::dvec3& toNormal) {
+    rotateFrame(u, v, fromNormal, toNormal);
+    return {glm::dvec2(glm::dot(x, u), glm::dot(x, v)), glm::dvec2(glm::dot(y, u), glm::dot(y, v))};
+}
+
 } // namespace
 
 MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
-                                   double weldDistance) {
+                                   double weldDistance, double smoothing) {
     if (!std::isfinite(weldDistance) || weldDistance < 0.0)
         throw std::invalid_argument("computeMeshCurvature(): 'weldDistance' must be finite and >= 0, got " +
                                     std::to_string(weldDistance));
+    if (!std::isfinite(smoothing) || smoothing < 0.0)
+        throw std::invalid_argument("computeMeshCurvature(): 'smoothing' must be finite and >= 0, got " +
+                                    std::to_string(smoothing));
     for (std::size_t i = 0; i < positions.size(); ++i)
         if (!(std::isfinite(positions[i].x) && std::isfinite(positions[i].y) && std::isfinite(positions[i].z)))
             throw std::invalid_argument("computeMeshCurvature(): 'positions' has a non-finite coordinate at vertex " +
@@ -217,6 +290,22 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
         for (int corner = 0; corner < 3; ++corner) result.pointAreas[result.triangles[face][corner]] += corners[corner];
     }
 
+    std::optional<GaussianNeighbourhoods> neighbourhoods;
+    if (smoothing > 0.0) {
+        neighbourhoods.emplace(result.positions, result.triangles, result.pointAreas, smoothing);
+        // rtsc's diffuse_normals: curvature is the change of the normal, so the normals' noise is what the fits
+        // would turn into curvature noise.
+        std::vector<glm::dvec3> smoothed(vertexCount);
+        for (std::uint32_t vertex = 0; vertex < vertexCount; ++vertex) {
+            glm::dvec3 sum(0.0);
+            neighbourhoods->forEach(vertex,
+                                    [&](std::uint32_t other, double weight) { sum += weight * result.normals[other]; });
+            const double length = glm::length(sum);
+            smoothed[vertex] = length > 0.0 && std::isfinite(length) ? sum / length : result.normals[vertex];
+        }
+        result.normals = std::move(smoothed);
+    }
+
     // Each vertex's working frame (u, v) of its tangent plane.
     std::vector<glm::dvec3> frameU(vertexCount), frameV(vertexCount);
     for (std::size_t vertex = 0; vertex < vertexCount; ++vertex) {
@@ -273,13 +362,8 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
         }
     }
 
-    // 5. Principal curvatures: the Jacobi rotation that diagonalises each 2x2 tensor.
-    result.curvature1.assign(vertexCount, 0.0);
-    result.curvature2.assign(vertexCount, 0.0);
-    result.direction1.resize(vertexCount);
-    result.direction2.resize(vertexCount);
     for (std::size_t vertex = 0; vertex < vertexCount; ++vertex) {
-        Tensor2 tensor = vertexTensors[vertex];
+        Tensor2& tensor = vertexTensors[vertex];
         if (tensorWeights[vertex] > 0.0) {
             // Faces whose fit failed left the weights short of 1: the rest stand for the whole neighbourhood.
             tensor.xx /= tensorWeights[vertex];
@@ -288,6 +372,37 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
         } else {
             ++result.counts.isolatedVertices;
         }
+    }
+    if (neighbourhoods) {
+        // rtsc's diffuse_curv: each neighbour's tensor carried into this vertex's frame. Vertices no fit reached
+        // have no tensor and take no part.
+        std::vector<Tensor2> smoothed(vertexCount);
+        for (std::uint32_t vertex = 0; vertex < vertexCount; ++vertex) {
+            if (!(tensorWeights[vertex] > 0.0)) continue;
+            Tensor2 sum;
+            double total = 0.0;
+            neighbourhoods->forEach(vertex, [&](std::uint32_t other, double weight) {
+                if (!(tensorWeights[other] > 0.0) || !(weight > 0.0)) return;
+                const auto [x, y] = frameChange(frameU[other], frameV[other], result.normals[other], frameU[vertex],
+                                                frameV[vertex], result.normals[vertex]);
+                const Tensor2& tensor = vertexTensors[other];
+                sum.xx += weight * evaluate(tensor, x, x);
+                sum.xy += weight * evaluate(tensor, x, y);
+                sum.yy += weight * evaluate(tensor, y, y);
+                total += weight;
+            });
+            if (total > 0.0) smoothed[vertex] = {sum.xx / total, sum.xy / total, sum.yy / total};
+        }
+        vertexTensors = std::move(smoothed);
+    }
+
+    // 5. Principal curvatures: the Jacobi rotation that diagonalises each 2x2 tensor.
+    result.curvature1.assign(vertexCount, 0.0);
+    result.curvature2.assign(vertexCount, 0.0);
+    result.direction1.resize(vertexCount);
+    result.direction2.resize(vertexCount);
+    for (std::size_t vertex = 0; vertex < vertexCount; ++vertex) {
+        const Tensor2 tensor = vertexTensors[vertex];
         const double angle = 0.5 * std::atan2(2.0 * tensor.xy, tensor.xx - tensor.yy);
         const double c = std::cos(angle), s = std::sin(angle);
         double larger = tensor.xx * c * c + 2.0 * tensor.xy * c * s + tensor.yy * s * s;
@@ -360,6 +475,27 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
     for (std::size_t vertex = 0; vertex < vertexCount; ++vertex)
         result.derivative[vertex] =
             derivativeWeights[vertex] > 0.0 ? derivativeSums[vertex] / derivativeWeights[vertex] : glm::dvec4(0.0);
+    if (neighbourhoods) {
+        // rtsc's diffuse_dcurv: each neighbour's C carried into this vertex's principal frame.
+        std::vector<glm::dvec4> smoothed(vertexCount, glm::dvec4(0.0));
+        for (std::uint32_t vertex = 0; vertex < vertexCount; ++vertex) {
+            if (!(derivativeWeights[vertex] > 0.0)) continue;
+            glm::dvec4 sum(0.0);
+            double total = 0.0;
+            neighbourhoods->forEach(vertex, [&](std::uint32_t other, double weight) {
+                if (!(derivativeWeights[other] > 0.0) || !(weight > 0.0)) return;
+                const auto [p, q] =
+                    frameChange(result.direction1[other], result.direction2[other], result.normals[other],
+                                result.direction1[vertex], result.direction2[vertex], result.normals[vertex]);
+                const glm::dvec4& c = result.derivative[other];
+                sum += weight * glm::dvec4(evaluate(c, p, p, p), evaluate(c, p, p, q), evaluate(c, p, q, q),
+                                           evaluate(c, q, q, q));
+                total += weight;
+            });
+            if (total > 0.0) smoothed[vertex] = sum / total;
+        }
+        result.derivative = std::move(smoothed);
+    }
     return result;
 }
 

@@ -71,10 +71,18 @@ struct MeshCurvature {
  *  5. per vertex, the 2x2 tensor diagonalised (Jacobi rotation): kappa1, kappa2, direction1, direction2;
  *  6. per face, the three vertex tensors in the face frame, their differences along the edges giving C(e, ., .) by
  *     least squares for (C111, C112, C122, C222), carried back to the vertices like II.
- *  `weldDistance` (absolute, >= 0): vertices closer than this are one. Throws std::out_of_range naming 'triangles'
- *  for an index past the positions, std::invalid_argument naming 'weldDistance' for a negative or non-finite one,
- *  and naming 'positions' for a non-finite coordinate. */
+ *  `weldDistance` (absolute, >= 0): vertices closer than this are one.
+ *  `smoothing` (absolute, >= 0; 0 = none): the standard deviation of a Gaussian over the surface, as rtsc smooths
+ *  before finding lines (diffuse_normals, diffuse_curv, diffuse_dcurv): the normals are averaged after step 1 (then
+ *  renormalised), the tensors II after step 4 and C after step 6, each over the vertices joined to the vertex by
+ *  edges within 3 x smoothing of it (a flood over the mesh, so the other side of a thin part is not reached through
+ *  the air), weighted by exp(-d^2 / (2 smoothing^2)) x point area; tensors are re-expressed in the vertex's frame
+ *  (rotated into its plane) as in step 4. So curvature is measured at that scale, not at the facets' or a scan's
+ *  noise.
+ *  Throws std::out_of_range naming 'triangles' for an index past the positions, std::invalid_argument naming
+ *  'weldDistance' or 'smoothing' for a negative or non-finite one, and naming 'positions' for a non-finite
+ *  coordinate. */
 MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
-                                   double weldDistance);
+                                   double weldDistance, double smoothing = 0.0);
 
 } // namespace inkgraph

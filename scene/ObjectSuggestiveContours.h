@@ -18,6 +18,10 @@
 
 namespace inkgraph {
 
+/** The app's default curvature smoothing (`--suggestive-object-smoothing`, computeMeshCurvature()'s smoothing), sigma
+ *  as a fraction of the bounding radius. */
+constexpr double kSuggestiveObjectSmoothingFraction = 0.01;
+
 struct ObjectSuggestiveSettings {
     /** Feature size fs in the mesh's length units (rtsc's): makes the strength dimensionless. The app uses
      *  0.05 x the bounding radius, as for the image-space lines. */

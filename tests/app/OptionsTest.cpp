@@ -221,6 +221,25 @@ TEST(Options, SuggestiveStencil) {
         std::string::npos);
 }
 
+TEST(Options, SuggestiveSmoothing) {
+    // Fractions of the bounding radius; 0 turns smoothing off; a negative value or one above 1 is refused, and the
+    // flag without its type has no effect.
+    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "suggestive"}), "suggestive-smoothing"), 0.005);
+    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-smoothing", "0"}),
+                        "suggestive-smoothing"),
+              0.0);
+    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "suggestive-object"}), "suggestive-object-smoothing"),
+              0.01);
+    for (const char* bad : {"-0.1", "2", "lots"})
+        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-smoothing", bad})
+                      .find("--suggestive-smoothing"),
+                  std::string::npos)
+            << bad;
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-object-smoothing", "0.1"})
+                  .find("has no effect"),
+              std::string::npos);
+}
+
 TEST(Options, ObjectSpaceSuggestiveContours) {
     const RenderOptions options =
         parse({"m.obj", "-o", "x.png", "--lines", "contour,suggestive-object", "--suggestive-threshold", "0.05",

@@ -30,6 +30,13 @@ SuggestiveSettings appSettings(double boundingRadius) {
     return settings;
 }
 
+/** `settings` with the app's default smoothing (kSuggestiveSmoothingFraction x the bounding radius) for `camera`. */
+SuggestiveSettings smoothed(SuggestiveSettings settings, double boundingRadius, const SyntheticCamera& camera) {
+    settings.smoothing = float(kSuggestiveSmoothingFraction * boundingRadius);
+    settings.focalPixels = float(camera.focalPixels());
+    return settings;
+}
+
 /** Every crossing with D_w D_w(n.v) > 0, unfaded. */
 SuggestiveSettings untrimmedSettings() {
     SuggestiveSettings settings;
@@ -264,97 +271,114 @@ TEST(SuggestiveContours, TorusLinesLieOnTheAnalyticZeroSetOfRadialCurvature) {
     const Torus torus;
     const SyntheticCamera camera = torusCamera(512, 30.0, 5.0);
     const SyntheticGBuffer buffer = test::renderTorus(camera, glm::dvec3(0.0), torus.ring, torus.tube);
-    const SuggestiveSettings settings = untrimmedSettings();
-    const LineSkeleton skeleton = extractSuggestiveContours(buffer.radial, buffer.depth, settings);
-    ASSERT_GT(skeleton.points.size(), 150u);
-    EXPECT_GT(cv::countNonZero(skeleton.mask), 100);
+    // Unsmoothed, and with the app's default smoothing (sigma 2.2 px here), which must not move the lines.
+    for (const bool smoothing : {false, true}) {
+        SCOPED_TRACE(smoothing ? "default smoothing" : "no smoothing");
+        const SuggestiveSettings settings =
+            smoothing ? smoothed(untrimmedSettings(), boundingRadius(torus), camera) : untrimmedSettings();
+        const LineSkeleton skeleton = extractSuggestiveContours(buffer.radial, buffer.depth, settings);
+        ASSERT_GT(skeleton.points.size(), 150u);
+        EXPECT_GT(cv::countNonZero(skeleton.mask), 100);
 
-    // Every point lies on the inner half, where kappa_u < 0 lets kappa_r vanish: cast its ray back to (u, v).
-    double largestCosV = -1.0;
-    for (const LinePoint& point : skeleton.points) {
-        const test::SyntheticRay ray = camera.rayThrough({point.position.x + 0.5, point.position.y + 0.5});
-        const auto distance = test::intersectTorus(ray, glm::dvec3(0.0), torus.ring, torus.tube);
-        ASSERT_TRUE(distance.has_value());
-        const glm::dvec2 uv = torus.parameters(ray.origin + *distance * ray.direction);
-        largestCosV = std::max(largestCosV, std::cos(uv.y));
-        EXPECT_EQ(point.strength, 1.0f);
-        const cv::Point marked(cvRound(point.position.x), cvRound(point.position.y));
-        EXPECT_EQ(skeleton.mask.at<uchar>(marked), 255) << "a point's nearest pixel is marked";
+        // Every point lies on the inner half, where kappa_u < 0 lets kappa_r vanish: cast its ray back to (u, v).
+        double largestCosV = -1.0;
+        for (const LinePoint& point : skeleton.points) {
+            const test::SyntheticRay ray = camera.rayThrough({point.position.x + 0.5, point.position.y + 0.5});
+            const auto distance = test::intersectTorus(ray, glm::dvec3(0.0), torus.ring, torus.tube);
+            ASSERT_TRUE(distance.has_value());
+            const glm::dvec2 uv = torus.parameters(ray.origin + *distance * ray.direction);
+            largestCosV = std::max(largestCosV, std::cos(uv.y));
+            EXPECT_EQ(point.strength, 1.0f);
+            const cv::Point marked(cvRound(point.position.x), cvRound(point.position.y));
+            EXPECT_EQ(skeleton.mask.at<uchar>(marked), 255) << "a point's nearest pixel is marked";
+        }
+        EXPECT_LT(largestCosV, 0.0);
+
+        // Distances to the analytic lines, and the share of their length that was found.
+        const std::vector<LinePolyline> reference = analyticSuggestiveContours(torus, camera, settings.minSinTheta);
+        ASSERT_FALSE(reference.empty());
+        const LineAccuracy accuracy = scoreLinePoints(positionsOf(skeleton), reference, 1.0);
+        std::cout << (smoothing ? "smoothed: " : "") << skeleton.points.size() << " points, largest cos v "
+                  << largestCosV << "; distance to the analytic lines: mean " << accuracy.predictedToTruthMean
+                  << " px, 95th percentile " << accuracy.predictedToTruthP95 << " px, largest "
+                  << accuracy.predictedToTruthMax
+                  << " px; share of the analytic length within 1 px of a point: " << accuracy.recall << "\n";
+        // Measured: 208 points, largest cos v -0.0002; mean 0.006 px, 95th 0.016 px, largest 0.023 px; 98% of the
+        // analytic length found (the rest lies within two pixels of the silhouette, where no difference is taken).
+        EXPECT_LT(accuracy.predictedToTruthMean, 0.05);
+        EXPECT_LT(accuracy.predictedToTruthP95, 0.15);
+        EXPECT_LT(accuracy.predictedToTruthMax, 0.5);
+        EXPECT_GT(accuracy.recall, 0.9);
     }
-    EXPECT_LT(largestCosV, 0.0);
-
-    // Distances to the analytic lines, and the share of their length that was found.
-    const std::vector<LinePolyline> reference = analyticSuggestiveContours(torus, camera, settings.minSinTheta);
-    ASSERT_FALSE(reference.empty());
-    const LineAccuracy accuracy = scoreLinePoints(positionsOf(skeleton), reference, 1.0);
-    std::cout << skeleton.points.size() << " points, largest cos v " << largestCosV
-              << "; distance to the analytic lines: mean " << accuracy.predictedToTruthMean << " px, 95th percentile "
-              << accuracy.predictedToTruthP95 << " px, largest " << accuracy.predictedToTruthMax
-              << " px; share of the analytic length within 1 px of a point: " << accuracy.recall << "\n";
-    // Measured: 208 points, largest cos v -0.0002; mean 0.006 px, 95th 0.016 px, largest 0.023 px; 98% of the
-    // analytic length found (the rest lies within two pixels of the silhouette, where no difference is taken).
-    EXPECT_LT(accuracy.predictedToTruthMean, 0.05);
-    EXPECT_LT(accuracy.predictedToTruthP95, 0.15);
-    EXPECT_LT(accuracy.predictedToTruthMax, 0.5);
-    EXPECT_GT(accuracy.recall, 0.9);
 }
 
 TEST(SuggestiveContours, TorusLinesDoNotDependOnResolution) {
     // The app's settings: the strength is dimensionless and J w scales with the resolution, so 512^2 and 2048^2 draw
     // the same lines, trimmed at the same places.
     const Torus torus;
-    const SuggestiveSettings settings = appSettings(boundingRadius(torus));
     const SyntheticCamera coarseCamera = torusCamera(512, 30.0, 5.0);
     const SyntheticCamera fineCamera = torusCamera(2048, 30.0, 5.0);
     const SyntheticGBuffer coarseBuffer = test::renderTorus(coarseCamera, glm::dvec3(0.0), torus.ring, torus.tube);
     const SyntheticGBuffer fineBuffer = test::renderTorus(fineCamera, glm::dvec3(0.0), torus.ring, torus.tube);
-    const LineSkeleton coarse = extractSuggestiveContours(coarseBuffer.radial, coarseBuffer.depth, settings);
-    const LineSkeleton fine = extractSuggestiveContours(fineBuffer.radial, fineBuffer.depth, settings);
-    ASSERT_GT(coarse.points.size(), 100u);
+    // Unsmoothed, and with the app's default smoothing: its sigma in pixels scales with the resolution too.
+    for (const bool smoothing : {false, true}) {
+        SCOPED_TRACE(smoothing ? "default smoothing" : "no smoothing");
+        const SuggestiveSettings settings = appSettings(boundingRadius(torus));
+        const LineSkeleton coarse =
+            extractSuggestiveContours(coarseBuffer.radial, coarseBuffer.depth,
+                                      smoothing ? smoothed(settings, boundingRadius(torus), coarseCamera) : settings);
+        const LineSkeleton fine =
+            extractSuggestiveContours(fineBuffer.radial, fineBuffer.depth,
+                                      smoothing ? smoothed(settings, boundingRadius(torus), fineCamera) : settings);
+        ASSERT_GT(coarse.points.size(), 100u);
 
-    // Image points scale by 1/4; LinePoint coordinates put pixel centres at integers, hence the half pixels.
-    std::vector<cv::Point2d> fineMapped;
-    for (const LinePoint& point : fine.points)
-        fineMapped.emplace_back((point.position.x + 0.5) / 4.0 - 0.5, (point.position.y + 0.5) / 4.0 - 0.5);
-    const std::vector<cv::Point2d> coarsePositions = positionsOf(coarse);
-    std::vector<double> fineToCoarse;
-    for (const cv::Point2d& p : fineMapped) fineToCoarse.push_back(distanceToPoints(p, coarsePositions));
-    std::vector<double> coarseToFine;
-    for (const cv::Point2d& p : coarsePositions) coarseToFine.push_back(distanceToPoints(p, fineMapped));
-    const double countRatio = double(fine.points.size()) / double(coarse.points.size());
+        // Image points scale by 1/4; LinePoint coordinates put pixel centres at integers, hence the half pixels.
+        std::vector<cv::Point2d> fineMapped;
+        for (const LinePoint& point : fine.points)
+            fineMapped.emplace_back((point.position.x + 0.5) / 4.0 - 0.5, (point.position.y + 0.5) / 4.0 - 0.5);
+        const std::vector<cv::Point2d> coarsePositions = positionsOf(coarse);
+        std::vector<double> fineToCoarse;
+        for (const cv::Point2d& p : fineMapped) fineToCoarse.push_back(distanceToPoints(p, coarsePositions));
+        std::vector<double> coarseToFine;
+        for (const cv::Point2d& p : coarsePositions) coarseToFine.push_back(distanceToPoints(p, fineMapped));
+        const double countRatio = double(fine.points.size()) / double(coarse.points.size());
 
-    // Against the untrimmed analytic lines at 512^2: both lie on them, and both keep the same share of them.
-    const std::vector<LinePolyline> reference = analyticSuggestiveContours(torus, coarseCamera, settings.minSinTheta);
-    const LineAccuracy coarseAccuracy = scoreLinePoints(coarsePositions, reference, 1.0);
-    const LineAccuracy fineAccuracy = scoreLinePoints(fineMapped, reference, 1.0);
-    const double coarseShare = coarseAccuracy.recall;
-    const double fineShare = fineAccuracy.recall;
+        // Against the untrimmed analytic lines at 512^2: both lie on them, and both keep the same share of them.
+        const std::vector<LinePolyline> reference =
+            analyticSuggestiveContours(torus, coarseCamera, settings.minSinTheta);
+        const LineAccuracy coarseAccuracy = scoreLinePoints(coarsePositions, reference, 1.0);
+        const LineAccuracy fineAccuracy = scoreLinePoints(fineMapped, reference, 1.0);
+        const double coarseShare = coarseAccuracy.recall;
+        const double fineShare = fineAccuracy.recall;
 
-    std::vector<double> coarseStrengths;
-    for (const LinePoint& point : coarse.points) coarseStrengths.push_back(point.strength);
-    std::vector<double> fineStrengths;
-    for (const LinePoint& point : fine.points) fineStrengths.push_back(point.strength);
-    std::cout << coarse.points.size() << " points at 512^2, " << fine.points.size() << " at 2048^2 (ratio "
-              << countRatio << "); 2048 -> 512 median " << percentile(fineToCoarse, 0.5) << " px, 95th "
-              << percentile(fineToCoarse, 0.95) << " px; 512 -> 2048 median " << percentile(coarseToFine, 0.5)
-              << " px, 95th " << percentile(coarseToFine, 0.95) << " px; to the analytic lines (512 px): mean "
-              << coarseAccuracy.predictedToTruthMean << " / " << fineAccuracy.predictedToTruthMean << ", 95th "
-              << coarseAccuracy.predictedToTruthP95 << " / " << fineAccuracy.predictedToTruthP95
-              << "; share of the analytic length kept " << coarseShare << " / " << fineShare << "; median strength "
-              << percentile(coarseStrengths, 0.5) << " / " << percentile(fineStrengths, 0.5) << "\n";
-    // Measured: 176 and 728 points (ratio 4.14); point to point, medians 0.18 and 0.12 px, mostly the spacing of the
-    // 512 points; 95th percentiles 0.016 and 0.002 px from the analytic lines; 85% and 87% of their length kept (the
-    // ends where q crosses the threshold are found to a pixel of each resolution); median strength 0.52 and 0.54.
-    EXPECT_LT(percentile(fineToCoarse, 0.5), 0.5);
-    EXPECT_LT(percentile(coarseToFine, 0.5), 0.5);
-    EXPECT_LT(percentile(fineToCoarse, 0.95), 1.0);
-    EXPECT_LT(percentile(coarseToFine, 0.95), 1.0);
-    EXPECT_LT(coarseAccuracy.predictedToTruthP95, 0.15);
-    EXPECT_LT(fineAccuracy.predictedToTruthP95, 0.15);
-    EXPECT_NEAR(fineShare, coarseShare, 0.06);
-    EXPECT_GT(countRatio, 3.6);
-    EXPECT_LT(countRatio, 4.4);
-    EXPECT_NEAR(percentile(fineStrengths, 0.5), percentile(coarseStrengths, 0.5), 0.05);
+        std::vector<double> coarseStrengths;
+        for (const LinePoint& point : coarse.points) coarseStrengths.push_back(point.strength);
+        std::vector<double> fineStrengths;
+        for (const LinePoint& point : fine.points) fineStrengths.push_back(point.strength);
+        std::cout << (smoothing ? "smoothed: " : "") << coarse.points.size() << " points at 512^2, "
+                  << fine.points.size() << " at 2048^2 (ratio " << countRatio << "); 2048 -> 512 median "
+                  << percentile(fineToCoarse, 0.5) << " px, 95th " << percentile(fineToCoarse, 0.95)
+                  << " px; 512 -> 2048 median " << percentile(coarseToFine, 0.5) << " px, 95th "
+                  << percentile(coarseToFine, 0.95) << " px; to the analytic lines (512 px): mean "
+                  << coarseAccuracy.predictedToTruthMean << " / " << fineAccuracy.predictedToTruthMean << ", 95th "
+                  << coarseAccuracy.predictedToTruthP95 << " / " << fineAccuracy.predictedToTruthP95
+                  << "; share of the analytic length kept " << coarseShare << " / " << fineShare << "; median strength "
+                  << percentile(coarseStrengths, 0.5) << " / " << percentile(fineStrengths, 0.5) << "\n";
+        // Measured: 176 and 728 points (ratio 4.14); point to point, medians 0.18 and 0.12 px, mostly the spacing of
+        // the 512 points; 95th percentiles 0.016 and 0.002 px from the analytic lines; 85% and 87% of their length kept
+        // (the ends where q crosses the threshold are found to a pixel of each resolution); median strength 0.52 and
+        // 0.54.
+        EXPECT_LT(percentile(fineToCoarse, 0.5), 0.5);
+        EXPECT_LT(percentile(coarseToFine, 0.5), 0.5);
+        EXPECT_LT(percentile(fineToCoarse, 0.95), 1.0);
+        EXPECT_LT(percentile(coarseToFine, 0.95), 1.0);
+        EXPECT_LT(coarseAccuracy.predictedToTruthP95, 0.15);
+        EXPECT_LT(fineAccuracy.predictedToTruthP95, 0.15);
+        EXPECT_NEAR(fineShare, coarseShare, 0.06);
+        EXPECT_GT(countRatio, 3.6);
+        EXPECT_LT(countRatio, 4.4);
+        EXPECT_NEAR(percentile(fineStrengths, 0.5), percentile(coarseStrengths, 0.5), 0.05);
+    }
 }
 
 TEST(SuggestiveContours, NoLinesAlongOcclusionBoundaries) {

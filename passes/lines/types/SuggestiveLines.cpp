@@ -35,6 +35,39 @@ const LineParameter kSuggestiveStencil{
     false,
     ""};
 
+/** The image-space smoothing's sigma, as a fraction of the bounding radius. */
+const LineParameter kSuggestiveSmoothing{
+    "suggestive-smoothing",
+    "S",
+    "smooth the surface's n.v and w over a Gaussian of sigma S x the bounding radius\n"
+    "(on the surface, not across depth breaks) before differentiating, so the lines\n"
+    "follow the shape, not facets or scan noise, alike at every resolution (default 0.005;\n"
+    "0: none)",
+    {},
+    kSuggestiveSmoothingFraction,
+    "",
+    0.0,
+    1.0,
+    false,
+    false,
+    "expected a fraction of the bounding radius from 0 to 1"};
+
+/** The object-space curvature smoothing's sigma, as a fraction of the bounding radius. */
+const LineParameter kSuggestiveObjectSmoothing{
+    "suggestive-object-smoothing",
+    "S",
+    "smooth the mesh's normals, curvature and its derivative over a Gaussian of sigma\n"
+    "S x the bounding radius on the surface (rtsc's diffusion) before finding lines\n"
+    "(default 0.01; 0: none)",
+    {},
+    kSuggestiveObjectSmoothingFraction,
+    "",
+    0.0,
+    1.0,
+    false,
+    false,
+    "expected a fraction of the bounding radius from 0 to 1"};
+
 /** Per data pixel, the 5-point stencil's maps (postfx/SuggestiveContours.cpp: dw, dwdw and the normal distance as
  *  float, two byte masks): working memory beyond the stroke's, for app/MemoryBudget. */
 constexpr std::size_t kWideStencilBytesPerPixel = 14;
@@ -67,12 +100,20 @@ void describeShared(const LineStatsSource& source, nlohmann::ordered_json& entry
 
 } // namespace
 
+LineSkeleton SuggestiveKernel::find(const std::vector<cv::Mat>& inputs) {
+    SuggestiveSettings settings = mSettings;
+    // The data image may be supersampled: its own height gives its focal length in pixels.
+    settings.focalPixels =
+        float(0.5 * double(inputs[1].rows) / std::tan(0.5 * glm::radians(mFrame.camera.fovYDegrees)));
+    return extractSuggestiveContours(inputs[0], inputs[1], settings);
+}
+
 void ObjectSuggestiveKernel::prepare() {
     mReport.curvatureDerived = false;
     mReport.curvatureMilliseconds = 0.0;
-    if (mScene.meshCurvatureComputed()) return;
+    if (mScene.meshCurvatureComputed(mCurvatureSmoothing)) return;
     const auto start = std::chrono::steady_clock::now();
-    for (std::size_t mesh = 0; mesh < mScene.meshCount(); ++mesh) mScene.meshCurvature(mesh);
+    for (std::size_t mesh = 0; mesh < mScene.meshCount(); ++mesh) mScene.meshCurvature(mesh, mCurvatureSmoothing);
     mReport.curvatureDerived = true;
     mReport.curvatureMilliseconds = millisecondsSince(start);
 }
@@ -118,7 +159,7 @@ LineSkeleton ObjectSuggestiveKernel::find(const std::vector<cv::Mat>& inputs) {
 
     for (std::size_t mesh = 0; mesh < mScene.meshCount(); ++mesh) {
         const std::vector<SuggestiveSegment> segments =
-            extractObjectSuggestiveContours(mScene.meshCurvature(mesh), camera.eye, settings);
+            extractObjectSuggestiveContours(mScene.meshCurvature(mesh, mCurvatureSmoothing), camera.eye, settings);
         mReport.segments += segments.size();
         for (const SuggestiveSegment& segment : segments) {
             const glm::dvec4 viewA = view * glm::dvec4(segment.ends[0], 1.0);
@@ -169,7 +210,8 @@ LineType suggestiveLineType() {
     type.name = "suggestive";
     type.help = "suggestive contours (DeCarlo et al. 2003): D_w(n.v) = 0 with D_w D_w(n.v) > 0,\n"
                 "in the float G-buffer with v = c - p, so the lines are where kappa_r = 0";
-    type.parameters = {&kDepthJump, &kSuggestiveThreshold, &kSuggestiveFade, &kSuggestiveStencil};
+    type.parameters = {&kDepthJump, &kSuggestiveThreshold, &kSuggestiveFade, &kSuggestiveStencil,
+                       &kSuggestiveSmoothing};
     type.build = [](const std::string& name, LineGraphBuilder& builder) {
         const LineGraphSetup& setup = builder.setup();
         SuggestiveSettings settings = sharedSettings(setup.look, setup.sphere);
@@ -177,12 +219,15 @@ LineType suggestiveLineType() {
         settings.featureSize =
             float(kSuggestiveFeatureSizeFraction * setup.sphere.radius / setup.frame.radialLengthUnit);
         if (setup.look.lineParameters.choice(kSuggestiveStencil) == "5") settings.stencil = DifferenceStencil::Central5;
-        builder.addLayer(name, std::make_unique<SuggestiveKernel>(setup.gbuffer, settings));
+        // In model units, like the depth it is converted to pixels with.
+        settings.smoothing = float(setup.look.lineParameters.number(kSuggestiveSmoothing) * setup.sphere.radius);
+        builder.addLayer(name, std::make_unique<SuggestiveKernel>(setup.gbuffer, settings, setup.frame));
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
         describeShared(source, entry, true);
         entry["min_sin_theta"] = SuggestiveSettings{}.minSinTheta;
         entry["stencil_points"] = source.look.lineParameters.choice(kSuggestiveStencil) == "5" ? 5 : 3;
+        entry["smoothing"] = source.look.lineParameters.number(kSuggestiveSmoothing) * source.sphere.radius;
     };
     type.workingBytesPerPixel = [](const LineParameterValues& values) {
         return values.choice(kSuggestiveStencil) == "5" ? kWideStencilBytesPerPixel : std::size_t(0);
@@ -197,14 +242,18 @@ LineType suggestiveObjectLineType() {
     type.help = "the same lines found on the mesh (object space): the zero set of\n"
                 "kappa_r from per-vertex curvature (Rusinkiewicz 2004) and rtsc's per-view test,\n"
                 "projected, hidden by the G-buffer depth (within --depth-jump), sub-pixel exact";
-    type.parameters = {&kDepthJump, &kSuggestiveThreshold, &kSuggestiveFade};
+    type.parameters = {&kDepthJump, &kSuggestiveThreshold, &kSuggestiveFade, &kSuggestiveObjectSmoothing};
     type.build = [](const std::string& name, LineGraphBuilder& builder) {
         const LineGraphSetup& setup = builder.setup();
-        builder.addLayer(name, std::make_unique<ObjectSuggestiveKernel>(
-                                   setup.gbuffer, sharedSettings(setup.look, setup.sphere), setup.scene, setup.frame));
+        const double smoothing = setup.look.lineParameters.number(kSuggestiveObjectSmoothing) * setup.sphere.radius;
+        builder.addLayer(name, std::make_unique<ObjectSuggestiveKernel>(setup.gbuffer,
+                                                                        sharedSettings(setup.look, setup.sphere),
+                                                                        smoothing, setup.scene, setup.frame));
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
         describeShared(source, entry, false);
+        entry["curvature_smoothing"] =
+            source.look.lineParameters.number(kSuggestiveObjectSmoothing) * source.sphere.radius;
     };
     return type;
 }

@@ -29,19 +29,20 @@ struct FrameParams;
  *  bound on fs). */
 constexpr double kSuggestiveFeatureSizeFraction = 0.05;
 
-/** Image space: reads "<gbuffer>.radial" and "<gbuffer>.depth" (postfx/SuggestiveContours.h). */
+/** Image space: reads "<gbuffer>.radial" and "<gbuffer>.depth" (postfx/SuggestiveContours.h). `settings.smoothing`
+ *  is in model units (the depth's); the focal length in pixels is taken from `frame`'s camera and the data image's
+ *  height when the kernel runs. `frame` must outlive the kernel. */
 class SuggestiveKernel : public LineKernel {
 public:
-    SuggestiveKernel(std::string gbuffer, SuggestiveSettings settings)
-        : mGBuffer(std::move(gbuffer)), mSettings(settings) {}
+    SuggestiveKernel(std::string gbuffer, SuggestiveSettings settings, const FrameParams& frame)
+        : mGBuffer(std::move(gbuffer)), mSettings(settings), mFrame(frame) {}
     std::vector<std::string> inputs() const override { return {mGBuffer + ".radial", mGBuffer + ".depth"}; }
-    LineSkeleton find(const std::vector<cv::Mat>& inputs) override {
-        return extractSuggestiveContours(inputs[0], inputs[1], mSettings);
-    }
+    LineSkeleton find(const std::vector<cv::Mat>& inputs) override;
 
 private:
     std::string mGBuffer;
     SuggestiveSettings mSettings;
+    const FrameParams& mFrame;
 };
 
 /** What the object-space kernel did, for --stats. */
@@ -51,13 +52,15 @@ struct ObjectSuggestiveReport {
     double curvatureMilliseconds = 0.0; ///< deriving it, in prepare(); 0 when cached
 };
 
-/** Object space: reads "<gbuffer>.depth" for visibility; the meshes' curvature comes from `scene`. `settings`:
- *  featureSize in model units, threshold, fade, and depthJump as the visibility tolerance. Both references must
- *  outlive the kernel. */
+/** Object space: reads "<gbuffer>.depth" for visibility; the meshes' curvature comes from `scene`, smoothed over
+ *  `curvatureSmoothing` model units. `settings`: featureSize in model units, threshold, fade, and depthJump as the
+ *  visibility tolerance. Both references must outlive the kernel. */
 class ObjectSuggestiveKernel : public LineKernel {
 public:
-    ObjectSuggestiveKernel(std::string gbuffer, SuggestiveSettings settings, GpuScene& scene, const FrameParams& frame)
-        : mGBuffer(std::move(gbuffer)), mSettings(settings), mScene(scene), mFrame(frame) {}
+    ObjectSuggestiveKernel(std::string gbuffer, SuggestiveSettings settings, double curvatureSmoothing, GpuScene& scene,
+                           const FrameParams& frame)
+        : mGBuffer(std::move(gbuffer)), mSettings(settings), mCurvatureSmoothing(curvatureSmoothing), mScene(scene),
+          mFrame(frame) {}
     std::vector<std::string> inputs() const override { return {mGBuffer + ".depth"}; }
     void prepare() override;
     LineSkeleton find(const std::vector<cv::Mat>& inputs) override;
@@ -67,6 +70,7 @@ public:
 private:
     std::string mGBuffer;
     SuggestiveSettings mSettings;
+    double mCurvatureSmoothing;
     GpuScene& mScene;
     const FrameParams& mFrame;
     ObjectSuggestiveReport mReport;
