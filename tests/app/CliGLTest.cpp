@@ -345,8 +345,8 @@ TEST_F(Cli, LineTypesDumpTheirMasksAndComposite) {
                               " --outline-width 1.5 --dump d --stats s.json");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     EXPECT_EQ(listFiles(directory / "d"),
-              (std::vector<std::string>{"final.png", "lines-outline.png", "lines-silhouette.png", "manifest.json",
-                                        "shading.png"}));
+              (std::vector<std::string>{"band-outline.png", "band-silhouette.png", "final.png", "lines-outline.png",
+                                        "lines-silhouette.png", "manifest.json", "shading.png"}));
     const cv::Mat silhouette = readImage(directory / "d" / "lines-silhouette.png");
     const cv::Mat shading = readImage(directory / "d" / "shading.png");
     const cv::Mat finalImage = readImage(directory / "a.png");
@@ -386,7 +386,7 @@ TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
                         " -o a.png --size 128x96 --lines depth-edge --stats s.json --print-plan");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     auto stats = nlohmann::json::parse(readText(directory / "s.json"));
-    EXPECT_EQ(passNames(stats, "passes"), (std::set<std::string>{"gbuffer", "shade", "depth-edge", "composite"}));
+    EXPECT_EQ(passNames(stats, "passes"), (std::set<std::string>{"gbuffer", "shade", "depth-edge", "strokes", "composite"}));
     for (const char* culled : {"contour", "suggestive", "suggestive-object", "normal-edge", "outline", "silhouette"})
         EXPECT_EQ(passNames(stats, "culled").count(culled), 1u) << culled;
     for (const auto& pass : stats["culled"]) EXPECT_FALSE(pass["reason"].get<std::string>().empty());
@@ -402,11 +402,13 @@ TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
                  " -o b.png --size 128x96 --shading none --lines contour,suggestive --stats t.json --dump d");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     stats = nlohmann::json::parse(readText(directory / "t.json"));
-    EXPECT_EQ(passNames(stats, "passes"), (std::set<std::string>{"gbuffer", "contour", "suggestive", "composite"}));
-    // The dump holds every buffer the plan computed: the G-buffer fields the two kernels read, and their lines.
+    EXPECT_EQ(passNames(stats, "passes"), (std::set<std::string>{"gbuffer", "contour", "suggestive", "strokes", "composite"}));
+    // The dump holds every buffer the plan computed: the G-buffer fields the two kernels read, their skeletons and
+    // the lines the stroke stage drew from them.
     EXPECT_EQ(listFiles(directory / "d"),
               (std::vector<std::string>{"depth.exr", "final.png", "lines-contour.png", "lines-suggestive.png",
-                                        "manifest.json", "ndotv.exr", "radial.exr"}));
+                                        "manifest.json", "ndotv.exr", "radial.exr", "skeleton-contour.png",
+                                        "skeleton-suggestive.png"}));
     const cv::Mat contour = readImage(directory / "d" / "lines-contour.png");
     ASSERT_EQ(contour.type(), CV_8UC1);
     ASSERT_EQ(contour.size(), cv::Size(128, 96));
@@ -429,7 +431,8 @@ TEST_F(Cli, ObjectSpaceSuggestiveContoursAreDumpedAndReported) {
     ASSERT_EQ(result.exitCode, 0) << result.err;
     // Only the depth is read from the G-buffer: the lines come from the mesh.
     EXPECT_EQ(listFiles(directory / "d"),
-              (std::vector<std::string>{"depth.exr", "final.png", "lines-suggestive-object.png", "manifest.json"}));
+              (std::vector<std::string>{"depth.exr", "final.png", "lines-suggestive-object.png", "manifest.json",
+                                        "skeleton-suggestive-object.png"}));
     const cv::Mat lines = readImage(directory / "d" / "lines-suggestive-object.png");
     ASSERT_EQ(lines.size(), cv::Size(160, 160));
     EXPECT_GT(cv::countNonZero(lines), 50) << "spot has suggestive contours (neck, legs, ears)";
@@ -465,7 +468,8 @@ TEST_F(Cli, MeshEdgeLinesSupersampled) {
     const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
     std::set<std::string> ran;
     for (const auto& pass : stats["passes"]) ran.insert(pass["name"].get<std::string>());
-    EXPECT_EQ(ran, (std::set<std::string>{"shade", "mesh-edges", "crease", "border", "mesh-silhouette", "composite"}))
+    EXPECT_EQ(ran, (std::set<std::string>{"shade", "mesh-edges", "crease", "border", "mesh-silhouette", "strokes",
+                                          "composite"}))
         << "no G-buffer: every requested type is drawn from the mesh's edges";
     ASSERT_EQ(stats["look"]["lines"].size(), 3u);
     for (const auto& line : stats["look"]["lines"]) {
