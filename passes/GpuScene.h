@@ -82,6 +82,8 @@ public:
     }
 
     std::size_t meshCount() const { return mScene.meshes.size(); }
+    /** The scene the meshes were uploaded from (their CPU triangles, in the same vertex order as meshes()). */
+    const Scene& scene() const { return mScene; }
 
     /** The materials' textures and uniforms (passes/material/SceneMaterials.h); textures are decoded the first time a
      *  draw binds them. */

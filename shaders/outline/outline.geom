@@ -1,10 +1,13 @@
-// Back-face outline: one triangle in, its three edges out as screen-space quads 2 x halfWidthPixels wide with
-// square caps (core profile has no dependable wide lines, and quads keep the width at every angle).
-layout(triangles) in;
-layout(triangle_strip, max_vertices = 12) out;
+// Lander's outline, one mesh edge at a time (passes/outline/OutlinePass.h): its two ends and an opposite vertex of a
+// face on each side in, and, where the surface folds away from the eye there (or the edge is a border), a
+// screen-space quad widthPixels wide on the side away from its faces out, with square caps (core profile has no
+// dependable wide lines, and quads keep the width at every angle).
+layout(lines_adjacency) in; // 0: opposite vertex of one face, 1 and 2: the edge, 3: opposite vertex of another face
+layout(triangle_strip, max_vertices = 4) out;
 
-uniform vec2 viewportSize;    // pixels
-uniform float halfWidthPixels;
+uniform mat4 clipFromView;
+uniform vec2 viewportSize; // pixels
+uniform float widthPixels;
 
 in vec3 viewPosition[];
 // common/material.glsl's attributes, passed on per corner so line_mask.frag cuts the edges a material cuts out
@@ -47,33 +50,58 @@ void emitCorner(vec4 clip, vec2 offsetPixels, int corner) {
     EmitVertex();
 }
 
-void emitEdgeQuad(int first, int second) {
-    vec4 a = gl_in[first].gl_Position;
-    vec4 b = gl_in[second].gl_Position;
-    if (!clipToNearPlane(a, b)) return;
-    vec2 pixelsA = a.xy / a.w * 0.5 * viewportSize;
-    vec2 pixelsB = b.xy / b.w * 0.5 * viewportSize;
+void main() {
+    // The plane through the eye (the view-space origin) and the edge: a point's side of it is the side of the edge's
+    // screen line it projects to. The surface folds back at the edge (the exact perspective contour test; for a
+    // consistently oriented manifold edge, one face front and one back) when both opposite vertices lie on the same
+    // side. Needing no face orientation, this is also right for flipped faces and for both sides of a sheet. A border
+    // repeats its opposite vertex and is always kept. cross(a, b - a), not cross(a, b): the same plane, without the
+    // cancellation of two long nearly parallel vectors far from the eye.
+    vec3 a = viewPosition[1];
+    vec3 planeNormal = cross(a, viewPosition[2] - a);
+    float sideFirst = sign(dot(planeNormal, viewPosition[0] - a));
+    float sideSecond = sign(dot(planeNormal, viewPosition[3] - a));
+    bool border = viewPosition[0] == viewPosition[3];
+    // Faces on both sides; or both seen edge-on (an edge inside a flat region seen edge-on: the region's own outline
+    // is drawn by the edges around it, where one side is off the plane).
+    if (!border && (sideFirst * sideSecond < 0.0 || (sideFirst == 0.0 && sideSecond == 0.0))) return;
+    float surfaceSide = sideFirst != 0.0 ? sideFirst : sideSecond;
+
+    vec4 clipA = gl_in[1].gl_Position;
+    vec4 clipB = gl_in[2].gl_Position;
+    if (!clipToNearPlane(clipA, clipB)) return;
+    vec2 pixelsA = clipA.xy / clipA.w * 0.5 * viewportSize;
+    vec2 pixelsB = clipB.xy / clipB.w * 0.5 * viewportSize;
     vec2 along = pixelsB - pixelsA;
     float edgeLength = length(along);
-    // An edge seen end-on (along the line of sight) becomes a square around its point.
-    vec2 direction = edgeLength > 1e-4 ? along / edgeLength : vec2(1.0, 0.0);
-    vec2 lengthwise = direction * halfWidthPixels;
-    vec2 across = vec2(-direction.y, direction.x) * halfWidthPixels;
-    emitCorner(a, -lengthwise - across, first);
-    emitCorner(a, -lengthwise + across, first);
-    emitCorner(b, lengthwise - across, second);
-    emitCorner(b, lengthwise + across, second);
+    if (edgeLength <= 1e-4 || surfaceSide == 0.0) {
+        // Seen end-on (along the line of sight), or with its faces in the plane through the eye: no outer side to
+        // choose, so a square around the point, or a band on both sides.
+        vec2 direction = edgeLength > 1e-4 ? along / edgeLength : vec2(1.0, 0.0);
+        vec2 lengthwise = direction * widthPixels;
+        vec2 across = vec2(-direction.y, direction.x) * widthPixels;
+        emitCorner(clipA, -lengthwise - across, 1);
+        emitCorner(clipA, -lengthwise + across, 1);
+        emitCorner(clipB, lengthwise - across, 2);
+        emitCorner(clipB, lengthwise + across, 2);
+        EndPrimitive();
+        return;
+    }
+    vec2 direction = along / edgeLength;
+    vec2 across = vec2(-direction.y, direction.x);
+    // Toward the faces in pixels: the gradient of the plane's side over the screen. Image-plane coordinates are
+    // view x / -z = ndc x / clipFromView[0][0], and y likewise; the scale factors are positive, so only the signs
+    // matter. Only the outer side is drawn: the front faces would hide an inner half, and on a thin shell a band
+    // lying over the surface z-fights with it.
+    vec2 towardFaces = surfaceSide * vec2(planeNormal.x / (clipFromView[0][0] * viewportSize.x),
+                                          planeNormal.y / (clipFromView[1][1] * viewportSize.y));
+    if (dot(across, towardFaces) > 0.0) across = -across;
+    // Square caps widthPixels long close the joins at the chain's convex corners.
+    vec2 lengthwise = direction * widthPixels;
+    across *= widthPixels;
+    emitCorner(clipA, -lengthwise, 1);
+    emitCorner(clipA, -lengthwise + across, 1);
+    emitCorner(clipB, lengthwise, 2);
+    emitCorner(clipB, lengthwise + across, 2);
     EndPrimitive();
-}
-
-void main() {
-    // Front-facing: the outward (counter-clockwise) normal points toward the eye at the view-space origin. Exact
-    // under perspective and independent of clipping, unlike a screen-space winding test. Made for the CPU's back
-    // sets too: they also hold Listing 1's "intermediate" front-facing triangles, whose edges would hatch the surface.
-    vec3 normal = cross(viewPosition[1] - viewPosition[0], viewPosition[2] - viewPosition[0]);
-    vec3 middle = (viewPosition[0] + viewPosition[1] + viewPosition[2]) / 3.0;
-    if (dot(normal, middle) < 0.0) return;
-    emitEdgeQuad(0, 1);
-    emitEdgeQuad(1, 2);
-    emitEdgeQuad(2, 0);
 }

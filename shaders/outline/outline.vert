@@ -1,5 +1,5 @@
-// Back-face outline: the model in view and clip space. Alone it draws the model's depth; the geometry stage turns
-// back faces into edge quads.
+// Lander's outline: the model in view and clip space. Alone it draws the model's depth; with the geometry stage, the
+// contour and border edges as quads.
 layout(location = 0) in vec3 inPosition;
 
 uniform mat4 viewFromModel;
