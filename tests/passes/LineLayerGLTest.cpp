@@ -40,9 +40,10 @@ LineSettings withSource(Source source) { return {source, {}}; }
 std::unique_ptr<LineKernel> kernelFor(const LineSettings& settings, GpuScene& scene, const FrameParams& frame) {
     switch (settings.source) {
     case Source::Contour: return std::make_unique<ContourKernel>("gbuffer", ContourSettings{});
-    case Source::Suggestive: return std::make_unique<SuggestiveKernel>("gbuffer", settings.suggestive);
+    // No smoothing (the kernels' own defaults): these tests hold the unsmoothed lines to the analytic ones.
+    case Source::Suggestive: return std::make_unique<SuggestiveKernel>("gbuffer", settings.suggestive, frame);
     case Source::SuggestiveObject:
-        return std::make_unique<ObjectSuggestiveKernel>("gbuffer", settings.suggestive, scene, frame);
+        return std::make_unique<ObjectSuggestiveKernel>("gbuffer", settings.suggestive, 0.0, scene, frame);
     case Source::DepthEdge: return std::make_unique<DepthEdgeKernel>("gbuffer", DepthEdgeSettings{});
     case Source::NormalEdge: return std::make_unique<NormalEdgeKernel>("gbuffer", NormalEdgeSettings{});
     }
