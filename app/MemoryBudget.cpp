@@ -30,9 +30,13 @@ constexpr std::size_t kBytesPerTriangle = 1024;
 /** Per data pixel of a line layer's pass, what lives on after it: the one-pixel skeleton mask (1) and its sub-pixel
  *  points (12 bytes each, at most one per 12 pixels). */
 constexpr std::size_t kSkeletonBytesPerPixel = 2;
-/** Per data pixel, what one line layer's pass holds while it runs: the stroke canvas (1) and the nearest-point
- *  stroke's two ints (8; postfx/LineSkeleton.cpp takes that path when the points are many). */
-constexpr std::size_t kStrokeBytesPerPixel = 9;
+/** Per data pixel, what the stroke stage (passes/lines/StrokesPass) holds while it runs, for one line type at a
+ *  time: the pixel strengths and the kept widths (float each), the tracer's padded copies (2), the kept mask (1),
+ *  and the stroke canvas and nearest-point ints (9); the chains of every type stay until it ends, within the
+ *  skeletons' own bytes. */
+constexpr std::size_t kStrokeStageBytesPerPixel = 20;
+/** The stroke stage's pass (passes/StillGraph.cpp). */
+constexpr const char* kStrokeStage = "strokes";
 /** gl/Readback.cpp moves pixels in bands of at most this many bytes, through one extra buffer. */
 constexpr std::size_t kTransferBandBytes = 64 * kMiB;
 /** Encoding one image: the encoded bytes in a growing vector (up to twice their size) and the writer's own copy. */
@@ -55,7 +59,7 @@ std::size_t cpuBytesPerPixel(Format format) {
  *  (line layers, composite) work on the CPU on what they read. */
 bool drawsTheScene(const PlannedPass& pass) { return pass.reads.empty(); }
 
-/** A CPU pass that finds and strokes one --lines type (it is named after it): it keeps a skeleton and strokes it. */
+/** A CPU pass that finds one --lines type's skeleton (it is named after it) and keeps it. */
 bool strokesLines(const PlannedPass& pass, const RenderOptions& options) {
     return !drawsTheScene(pass) &&
            std::find(options.look.lines.begin(), options.look.lines.end(), pass.name) != options.look.lines.end();
@@ -135,9 +139,12 @@ std::size_t cpuBytesAt(std::size_t index, const Plan& plan, const RenderOptions&
     }
     const PlannedPass& pass = plan.passes[index];
     if (drawsTheScene(pass)) return bytes;
+    if (pass.name == kStrokeStage)
+        return bytes + kStrokeStageBytesPerPixel * sizes.pixels(options.look.supersample) +
+               std::min(kTransferBandBytes, largestImage);
     // Other CPU passes (the composite) work in the images they read and write, counted above.
     if (!strokesLines(pass, options)) return bytes + std::min(kTransferBandBytes, largestImage);
-    std::size_t working = kStrokeBytesPerPixel;
+    std::size_t working = 0;
     if (const LineType* type = findLineType(pass.name); type && type->workingBytesPerPixel)
         working += type->workingBytesPerPixel(options.look.lineParameters);
     return bytes + working * sizes.pixels(sizes.scaleOf(pass)) + std::min(kTransferBandBytes, largestImage);

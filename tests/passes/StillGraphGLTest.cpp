@@ -37,8 +37,7 @@ TEST_F(StillGraphOrder, GlPassesComeBeforeTheLineLayersAndSharedPassesAreRegiste
     Look look;
     look.lines = {"crease", "normal-edge", "border", "outline"};
     EXPECT_EQ(planOrder(look), (std::vector<std::string>{"gbuffer", "shade", "outline", "mesh-edges", "normal-edge",
-                                                         "crease", "border", "strokes",
-                                                         "composite"}));
+                                                         "crease", "border", "strokes", "composite"}));
 }
 
 TEST_F(StillGraphOrder, EveryRegisteredTypeHasItsLayerOrPassAndTheCompositeReadsThemInRegistryOrder) {

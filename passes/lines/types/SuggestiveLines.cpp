@@ -35,6 +35,11 @@ const LineParameter kSuggestiveStencil{
     false,
     ""};
 
+/** Per data pixel, the smoothing's images (postfx/SuggestiveContours.cpp smoothRadialField(): the sigmas and the
+ *  transposed depth and sigmas as float, the row pass, its transpose, the column pass and the result as 4 floats):
+ *  working memory for app/MemoryBudget. Measured: +257 MiB at 2048^2 data pixels (61 bytes each). */
+constexpr std::size_t kSmoothingBytesPerPixel = 76;
+
 /** The image-space smoothing's sigma, as a fraction of the bounding radius. */
 const LineParameter kSuggestiveSmoothing{
     "suggestive-smoothing",
@@ -230,7 +235,8 @@ LineType suggestiveLineType() {
         entry["smoothing"] = source.look.lineParameters.number(kSuggestiveSmoothing) * source.sphere.radius;
     };
     type.workingBytesPerPixel = [](const LineParameterValues& values) {
-        return values.choice(kSuggestiveStencil) == "5" ? kWideStencilBytesPerPixel : std::size_t(0);
+        const std::size_t stencil = values.choice(kSuggestiveStencil) == "5" ? kWideStencilBytesPerPixel : 0;
+        return stencil + (values.number(kSuggestiveSmoothing) > 0.0 ? kSmoothingBytesPerPixel : 0);
     };
     return type;
 }
