@@ -660,6 +660,18 @@ std::vector<Flag> makeFlags() {
                        }));
     lineWeight.noEffect = onlyWithLineTypes("--line-weight", allLineTypes);
     flags.push_back(lineWeight);
+    Flag overlapping =
+        styleFlag(flag({"--overlapping-lines"}, "M", S::Lines,
+                       "merge (default): where two types draw the same line (the contour along the outline,\n"
+                       "a crease along a contour), the one listed first under --lines' composite order draws\n"
+                       "it; draw: every type draws its own",
+                       [](const std::string& value, RenderOptions& options) {
+                           if (value != "merge" && value != "draw")
+                               throw UsageError("--overlapping-lines: expected merge or draw, got '" + value + "'");
+                           options.look.strokes.mergeOverlaps = value == "merge";
+                       }));
+    overlapping.noEffect = onlyWithLineTypes("--overlapping-lines", allLineTypes);
+    flags.push_back(overlapping);
     flags.push_back(styleFlag(
         flag({"--gbuffer-precision"}, "P", S::Lines,
              "float (default) | half: store the G-buffer's normal, view, w, n.v and radial fields as\n"

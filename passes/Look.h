@@ -34,6 +34,8 @@ struct StrokeStyle {
     bool weightByDepth = false;
     bool weightByStrength = false;
     bool taperEnds = false;
+    /** Where two types draw the same line, only the one earlier in the composite's order (--overlapping-lines). */
+    bool mergeOverlaps = true;
 };
 
 struct Look {

@@ -118,6 +118,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         strokes.weightByDepth = look.strokes.weightByDepth;
         strokes.weightByStrength = look.strokes.weightByStrength;
         strokes.taperEnds = look.strokes.taperEnds;
+        strokes.mergeOverlaps = look.strokes.mergeOverlaps;
         const double eyeToCentre = glm::length(setup.frame.camera.eye - setup.sphere.center);
         strokes.nearDepth = std::max(eyeToCentre - setup.sphere.radius, 0.0);
         strokes.farDepth = eyeToCentre + setup.sphere.radius;

@@ -1,5 +1,7 @@
 #include "postfx/Strokes.h"
 
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -116,6 +118,7 @@ void checkInputs(const std::vector<StrokeLayer>& layers, const StrokeSettings& s
     };
     checkLength(settings.joinRadiusPixels, "joinRadiusPixels");
     checkLength(settings.directionPixels, "directionPixels");
+    checkLength(settings.absorbPixels, "absorbPixels");
     checkLength(settings.joinAngleDegrees, "joinAngleDegrees");
     if (settings.joinAngleDegrees > 180.0)
         throw std::invalid_argument("chainStrokes(): 'settings.joinAngleDegrees' must be at most 180");
@@ -271,18 +274,73 @@ std::vector<std::pair<std::vector<PathStep>, bool>> pathsOf(const std::vector<En
     return paths;
 }
 
-void finishStroke(Stroke& stroke, std::vector<Stroke>& strokes) {
-    if (stroke.points.empty()) return;
+/** A stroke's length and strengths, from its points. */
+void measureStroke(Stroke& stroke) {
     std::vector<cv::Point2d> positions;
     double strengthSum = 0.0;
+    stroke.peakStrength = 0.0f;
     for (const LinePoint& point : stroke.points) {
         positions.emplace_back(point.position.x, point.position.y);
         strengthSum += point.strength;
         stroke.peakStrength = std::max(stroke.peakStrength, point.strength);
     }
     stroke.lengthPixels = lengthAlong(positions, stroke.closed);
-    stroke.meanStrength = float(strengthSum / double(stroke.points.size()));
+    stroke.meanStrength = stroke.points.empty() ? 0.0f : float(strengthSum / double(stroke.points.size()));
+}
+
+void finishStroke(Stroke& stroke, std::vector<Stroke>& strokes) {
+    if (stroke.points.empty()) return;
+    measureStroke(stroke);
     strokes.push_back(std::move(stroke));
+}
+
+/** Appends `tail`'s points to `head`, the shared point once. */
+void appendStroke(Stroke& head, const Stroke& tail) {
+    std::size_t first = 0;
+    if (!head.points.empty() && !tail.points.empty() && head.points.back().position == tail.points.front().position)
+        first = 1;
+    head.points.insert(head.points.end(), tail.points.begin() + std::ptrdiff_t(first), tail.points.end());
+    head.pixels.insert(head.pixels.end(), tail.pixels.begin() + std::ptrdiff_t(first), tail.pixels.end());
+}
+
+/** Step 3's fragments: a run of one layer shorter than `limit` between runs of others (a pixel or two of crease
+ *  where a contour runs on) joins its longer neighbour, drawn from its traced positions in that neighbour's type;
+ *  neighbours of one layer that then meet become one stroke. Returns how many runs were absorbed. */
+std::size_t absorbFragments(std::vector<Stroke>& runs, double limit) {
+    std::size_t absorbed = 0;
+    while (runs.size() > 1) {
+        std::size_t shortest = 0;
+        for (std::size_t index = 1; index < runs.size(); ++index)
+            if (runs[index].lengthPixels < runs[shortest].lengthPixels) shortest = index;
+        if (runs[shortest].lengthPixels >= limit) break;
+        std::size_t into = shortest == 0 ? 1 : shortest - 1;
+        if (shortest > 0 && shortest + 1 < runs.size() &&
+            runs[shortest + 1].lengthPixels > runs[shortest - 1].lengthPixels)
+            into = shortest + 1;
+        Stroke piece = std::move(runs[shortest]);
+        std::fill(piece.pixels.begin(), piece.pixels.end(), cv::Point(-1, -1));
+        piece.layer = runs[into].layer;
+        if (into < shortest) {
+            appendStroke(runs[into], piece);
+        } else {
+            appendStroke(piece, runs[into]);
+            runs[into].points = std::move(piece.points);
+            runs[into].pixels = std::move(piece.pixels);
+        }
+        runs.erase(runs.begin() + std::ptrdiff_t(shortest));
+        ++absorbed;
+        // Runs of one layer that now meet are one stroke.
+        for (std::size_t index = 1; index < runs.size();) {
+            if (runs[index].layer != runs[index - 1].layer) {
+                ++index;
+                continue;
+            }
+            appendStroke(runs[index - 1], runs[index]);
+            runs.erase(runs.begin() + std::ptrdiff_t(index));
+        }
+        for (Stroke& run : runs) measureStroke(run);
+    }
+    return absorbed;
 }
 
 } // namespace
@@ -313,7 +371,7 @@ Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSetting
         const std::size_t chainIndex = result.chains.size();
         StrokeChain chain;
         chain.closed = closed;
-        const std::size_t firstStroke = result.strokes.size();
+        std::vector<Stroke> runs;
         Stroke stroke;
         stroke.layer = kNone;
         cv::Point2d last;
@@ -329,7 +387,7 @@ Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSetting
                 chain.lengthPixels += gap;
                 if (branch.layer != stroke.layer) {
                     ++result.crossTypeJoins;
-                    finishStroke(stroke, result.strokes);
+                    finishStroke(stroke, runs);
                     stroke = {};
                     stroke.layer = kNone;
                 } else if (gap < 1e-6) {
@@ -364,23 +422,26 @@ Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSetting
             last = stroke.points.empty() ? last : cv::Point2d(stroke.points.back().position);
             lastStrength = stroke.points.empty() ? 0.0f : stroke.points.back().strength;
         }
+        finishStroke(stroke, runs);
+        result.absorbedFragments += absorbFragments(runs, settings.absorbPixels);
         if (closed) {
             const Branch& firstBranch = branches[steps.front().branch];
             const cv::Point2d start =
                 steps.front().forward ? firstBranch.positions.front() : firstBranch.positions.back();
             const double gap = cv::norm(start - last);
             if (steps.size() > 1 || !firstBranch.loop) chain.lengthPixels += gap;
-            const bool oneStroke = result.strokes.size() == firstStroke;
-            if (oneStroke) {
-                stroke.closed = true;
+            if (runs.size() == 1) {
+                Stroke& loop = runs.front();
+                loop.closed = true;
                 // The closing junction pixel is the first point already.
-                if (stroke.points.size() > 1 && gap < 1e-6) {
-                    stroke.points.pop_back();
-                    stroke.pixels.pop_back();
+                if (loop.points.size() > 1 && loop.points.back().position == loop.points.front().position) {
+                    loop.points.pop_back();
+                    loop.pixels.pop_back();
                 }
+                measureStroke(loop);
             }
         }
-        finishStroke(stroke, result.strokes);
+        for (Stroke& run : runs) result.strokes.push_back(std::move(run));
         result.chains.push_back(chain);
     }
 
@@ -397,6 +458,69 @@ Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSetting
     }
     for (Stroke& stroke : result.strokes) stroke.kept = result.chains[stroke.chain].kept();
     return result;
+}
+
+void mergeOverlaps(Strokes& strokes, const std::vector<StrokeLayer>& layers, const std::vector<double>& halfWidths) {
+    if (halfWidths.size() != layers.size())
+        throw std::invalid_argument("mergeOverlaps(): 'halfWidths' must hold one width per layer");
+    if (layers.empty()) return;
+    const cv::Size dataSize(layers[0].skeleton->mask.cols * layers[0].scale,
+                            layers[0].skeleton->mask.rows * layers[0].scale);
+    // 0 on the pixels earlier layers draw along, for the distance transform.
+    cv::Mat notDrawn(dataSize, CV_8UC1, cv::Scalar(255));
+    auto pixelOf = [&](const LinePoint& point) {
+        return cv::Point(std::clamp(int(std::lround(point.position.x)), 0, dataSize.width - 1),
+                         std::clamp(int(std::lround(point.position.y)), 0, dataSize.height - 1));
+    };
+    double earlierHalfWidth = 0.0;
+    std::vector<Stroke> result;
+    for (std::size_t layer = 0; layer < layers.size(); ++layer) {
+        cv::Mat distance;
+        if (layer > 0) cv::distanceTransform(notDrawn, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+        const double reach = halfWidths[layer] + earlierHalfWidth;
+        for (Stroke& stroke : strokes.strokes) {
+            if (stroke.layer != int(layer)) continue;
+            if (!stroke.kept || distance.empty()) {
+                result.push_back(std::move(stroke));
+                continue;
+            }
+            // Cut where an earlier type draws the same line; what is left must still be long enough.
+            Stroke run;
+            auto finishRun = [&] {
+                if (run.points.empty()) return;
+                measureStroke(run);
+                run.kept = run.lengthPixels >= layers[layer].minLengthPixels;
+                result.push_back(std::move(run));
+                run = {};
+            };
+            bool anyCovered = false;
+            for (std::size_t index = 0; index < stroke.points.size(); ++index) {
+                const bool covered = distance.at<float>(pixelOf(stroke.points[index])) <= reach;
+                anyCovered = anyCovered || covered;
+                if (covered) {
+                    ++strokes.overlapsMerged;
+                    finishRun();
+                    continue;
+                }
+                if (run.points.empty()) {
+                    run.layer = stroke.layer;
+                    run.chain = stroke.chain;
+                }
+                run.points.push_back(stroke.points[index]);
+                run.pixels.push_back(stroke.pixels[index]);
+            }
+            if (!anyCovered) {
+                result.push_back(std::move(stroke));
+                continue;
+            }
+            finishRun();
+        }
+        for (const Stroke& stroke : result)
+            if (stroke.layer == int(layer) && stroke.kept)
+                for (const LinePoint& point : stroke.points) notDrawn.at<uchar>(pixelOf(point)) = 0;
+        earlierHalfWidth = std::max(earlierHalfWidth, halfWidths[layer]);
+    }
+    strokes.strokes = std::move(result);
 }
 
 void weighStrokes(Strokes& strokes, const LineWeightSettings& weight, const cv::Mat& depth, cv::Size dataSize) {

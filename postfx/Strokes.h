@@ -21,6 +21,8 @@
  *     chaining by natural continuation does.
  *  3. Joined chains make a path (a chain of strokes, `StrokeChain`), open or closed. A path is cut into one stroke
  *     per run of one layer; a gap inside one layer is bridged by points every half pixel, so the stroke closes it.
+ *     A run shorter than `absorbPixels` between runs of other layers joins its longer neighbour (a pixel or two of
+ *     crease where a contour runs on is drawn as contour), so no path is a speck.
  *  4. A chain is kept when it is long enough for each of its strokes' layers (`minLengthPixels`, measured along the
  *     whole chain, so a short piece that continues a long line of another type stays) and seeded: some point
  *     reaches its layer's `seedStrength` (hysteresis, as Canny's: a weak line is drawn only where it continues a
@@ -49,6 +51,8 @@ struct StrokeSettings {
     double joinRadiusPixels = 2.0;  ///< ends this close may continue one another (the gap is bridged)
     double joinAngleDegrees = 50.0; ///< the largest turn where a line runs on through a junction or a gap
     double directionPixels = 4.0;   ///< how far back from an end its direction is taken
+    /** A run of one type shorter than this between runs of others joins its longer neighbour's type. */
+    double absorbPixels = 4.0;
 };
 
 /** A run of one layer along a chain. */
@@ -76,9 +80,11 @@ struct StrokeChain {
 struct Strokes {
     std::vector<Stroke> strokes;
     std::vector<StrokeChain> chains;
-    std::size_t junctionJoins = 0;  ///< continuations through a shared pixel
-    std::size_t gapJoins = 0;       ///< continuations across a gap (bridged within a layer)
-    std::size_t crossTypeJoins = 0; ///< continuations from one layer into another
+    std::size_t junctionJoins = 0;     ///< continuations through a shared pixel
+    std::size_t gapJoins = 0;          ///< continuations across a gap (bridged within a layer)
+    std::size_t crossTypeJoins = 0;    ///< continuations from one layer into another
+    std::size_t absorbedFragments = 0; ///< short runs drawn as their neighbour's type
+    std::size_t overlapsMerged = 0;    ///< points not drawn since an earlier type's stroke draws the same line
     /** Counts for --stats: kept strokes, and what the length rule and the hysteresis removed. */
     std::size_t keptStrokes() const;
     std::size_t droppedShort() const;
@@ -90,6 +96,13 @@ struct Strokes {
  *  times their scales differ, a negative or non-finite length, a seed strength outside [0, 1], or settings that are
  *  negative, non-finite or (the angle) above 180. */
 Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSettings& settings = {});
+
+/** One line drawn once: where a kept stroke of a later layer runs within `halfWidths[later] + halfWidths[earlier]`
+ *  (data pixels) of a kept stroke of an earlier layer (the contour along the outline's band, a crease along a
+ *  contour), the later one is cut there, and the pieces left shorter than their layer's `minLengthPixels` are
+ *  dropped. Layers in `layers`' order: earlier ones win (the composite's order, docs/lines.md). Throws
+ *  std::invalid_argument naming 'halfWidths' unless it holds one width per layer. */
+void mergeOverlaps(Strokes& strokes, const std::vector<StrokeLayer>& layers, const std::vector<double>& halfWidths);
 
 /** A kept stroke's points with `width` set: its line weight, a share of the layer's width in (0, 1]. */
 using StrokeWeight = std::vector<float>;

@@ -106,5 +106,19 @@ const LineParameter kSuggestiveFade{"suggestive-fade",
                                     false,
                                     "expected a number from 0 to 1e6"};
 
+const LineParameter kSuggestiveSeed{"suggestive-seed",
+                                    "Q",
+                                    "hysteresis: draw a line only in a stroke that somewhere reaches strength\n"
+                                    "Q (a strong seed grows along its weaker continuations down to T, as\n"
+                                    "Canny's edges do; default 0.04; at most T turns it off)",
+                                    {},
+                                    0.04,
+                                    "",
+                                    0.0,
+                                    1e6,
+                                    false,
+                                    false,
+                                    "expected a number from 0 to 1e6"};
+
 } // namespace line_parameters
 } // namespace inkgraph

@@ -51,6 +51,7 @@ extern const LineParameter kCreaseAngle;         ///< crease, normal-edge
 extern const LineParameter kDepthJump;           ///< the G-buffer line types and suggestive-object
 extern const LineParameter kSuggestiveThreshold; ///< suggestive, suggestive-object
 extern const LineParameter kSuggestiveFade;      ///< suggestive, suggestive-object
+extern const LineParameter kSuggestiveSeed;      ///< suggestive, suggestive-object: hysteresis
 } // namespace line_parameters
 
 } // namespace inkgraph

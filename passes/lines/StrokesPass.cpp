@@ -81,7 +81,13 @@ void StrokesPass::execute(GlPassContext& gl) {
     StrokeSettings settings;
     settings.joinRadiusPixels = std::max(2.0, kJoinRadiusAt1024 * gl.height() / 1024.0) * scale;
     settings.directionPixels = 2.0 * settings.joinRadiusPixels;
+    settings.absorbPixels = 2.0 * settings.joinRadiusPixels;
     mStrokes = chainStrokes(layers, settings);
+    if (mSettings.mergeOverlaps) {
+        std::vector<double> halfWidths;
+        for (const StrokeInput& input : mSettings.inputs) halfWidths.push_back(0.5 * input.widthPixels * scale);
+        mergeOverlaps(mStrokes, layers, halfWidths);
+    }
     LineWeightSettings weight;
     if (mSettings.weightByDepth) {
         weight.farWidth = kFarWidth;
@@ -112,6 +118,8 @@ void StrokesPass::execute(GlPassContext& gl) {
     mReport.junctionJoins = mStrokes.junctionJoins;
     mReport.gapJoins = mStrokes.gapJoins;
     mReport.crossTypeJoins = mStrokes.crossTypeJoins;
+    mReport.absorbedFragments = mStrokes.absorbedFragments;
+    mReport.overlapPoints = mStrokes.overlapsMerged;
 }
 
 void StrokesPass::describe(nlohmann::ordered_json& report) const {
@@ -123,6 +131,8 @@ void StrokesPass::describe(nlohmann::ordered_json& report) const {
     report["junction_joins"] = mReport.junctionJoins;
     report["gap_joins"] = mReport.gapJoins;
     report["cross_type_joins"] = mReport.crossTypeJoins;
+    report["absorbed_fragments"] = mReport.absorbedFragments;
+    report["overlap_points_merged"] = mReport.overlapPoints;
     nlohmann::ordered_json types = nlohmann::ordered_json::object();
     for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
         std::size_t kept = 0;

@@ -10,6 +10,9 @@
  *  |                  |        |          | "gbuffer.depth", only with line weight by depth                   |
  *  | <name>.<type>    | r8     | required | the type's line layer, frame-sized, 255 = full line, anti-aliased |
  *
+ *  Where two types draw the same line (the contour along the outline's band), the type earlier in the composite's
+ *  order draws it and the later one gives way there (mergeOverlaps()), unless the look keeps overlaps.
+ *
  *  Everything is chained at the data resolution (--supersample S): a GL band, drawn at the output size, is thinned
  *  there and its middle line mapped up. Each layer is stroked at its type's width in output pixels and then
  *  area-downsampled, as every CPU line layer always was (strokeLines). */
@@ -42,13 +45,14 @@ struct StrokesPassSettings {
     bool weightByDepth = false;      ///< reads "gbuffer.depth"; the width falls to half across the model's depth
     bool weightByStrength = false;
     bool taperEnds = false;
+    bool mergeOverlaps = true;              ///< a later type is not drawn where an earlier one draws the same line
     double nearDepth = 0.0, farDepth = 0.0; ///< the model's nearest and farthest linear depth (its bounding sphere)
 };
 
 /** What the last execute() did, for --stats. */
 struct StrokesReport {
     std::size_t chains = 0, strokes = 0, kept = 0, droppedShort = 0, droppedWeak = 0;
-    std::size_t junctionJoins = 0, gapJoins = 0, crossTypeJoins = 0;
+    std::size_t junctionJoins = 0, gapJoins = 0, crossTypeJoins = 0, absorbedFragments = 0, overlapPoints = 0;
     double thinMilliseconds = 0.0, chainMilliseconds = 0.0, strokeMilliseconds = 0.0;
 };
 

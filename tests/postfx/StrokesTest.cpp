@@ -136,6 +136,52 @@ TEST(StrokesTest, ALineRunsOnAcrossTypesAndItsShortPieceIsKept) {
     EXPECT_EQ(separate.droppedShort(), 1u);
 }
 
+TEST(StrokesTest, AFragmentBetweenRunsOfAnotherTypeIsDrawnAsItsNeighbour) {
+    // contour, two pixels of crease, contour again: one contour stroke, no two-pixel crease path.
+    cv::Mat contourMask = blank(), creaseMask = blank();
+    drawLine(contourMask, {5, 10}, {25, 10});
+    drawLine(creaseMask, {26, 10}, {27, 10});
+    drawLine(contourMask, {28, 10}, {50, 10});
+    const LineSkeleton contour = skeletonOf(contourMask), crease = skeletonOf(creaseMask);
+    const std::vector<StrokeLayer> layers{{&contour}, {&crease}};
+    const Strokes strokes = chainStrokes(layers);
+    ASSERT_EQ(strokes.strokes.size(), 1u);
+    EXPECT_EQ(strokes.absorbedFragments, 1u);
+    EXPECT_EQ(strokes.strokes[0].layer, 0);
+    EXPECT_NEAR(strokes.strokes[0].lengthPixels, 45.0, 1e-9);
+    const LineSkeleton drawn = keptSkeleton(strokes, layers, 0);
+    EXPECT_EQ(drawn.mask.at<uchar>(10, 26), 255) << "the absorbed pixels are drawn as contour";
+    EXPECT_EQ(cv::countNonZero(keptSkeleton(strokes, layers, 1).mask), 0);
+}
+
+TEST(StrokesTest, AnOverlappingLineOfALaterTypeGivesWay) {
+    // An outline band's middle line and a contour one pixel beside it along 40 px; the contour runs on for 30 px
+    // where the outline does not go.
+    cv::Mat outlineMask = blank(), contourMask = blank();
+    drawLine(outlineMask, {5, 20}, {45, 20});
+    drawLine(contourMask, {5, 21}, {45, 21});
+    drawLine(contourMask, {46, 22}, {60, 36});
+    const LineSkeleton outline = skeletonOf(outlineMask), contour = skeletonOf(contourMask);
+    std::vector<StrokeLayer> layers{{&outline}, {&contour}};
+    layers[1].minLengthPixels = 8.0;
+    Strokes strokes = chainStrokes(layers);
+    mergeOverlaps(strokes, layers, {1.0, 1.0});
+    EXPECT_GT(strokes.overlapsMerged, 35u);
+    const LineSkeleton drawnContour = keptSkeleton(strokes, layers, 1);
+    EXPECT_EQ(drawnContour.mask.at<uchar>(21, 25), 0) << "drawn once, by the outline";
+    EXPECT_EQ(drawnContour.mask.at<uchar>(30, 54), 255) << "the contour's own part stays";
+    EXPECT_EQ(keptSkeleton(strokes, layers, 0).mask.at<uchar>(20, 25), 255);
+    // Apart by more than the two half widths, both are drawn.
+    cv::Mat farContour = blank();
+    drawLine(farContour, {5, 24}, {45, 24});
+    const LineSkeleton apart = skeletonOf(farContour);
+    layers[1].skeleton = &apart;
+    Strokes separate = chainStrokes(layers);
+    mergeOverlaps(separate, layers, {1.0, 1.0});
+    EXPECT_EQ(separate.overlapsMerged, 0u);
+    EXPECT_EQ(keptSkeleton(separate, layers, 1).mask.at<uchar>(24, 25), 255);
+}
+
 TEST(StrokesTest, TheLengthRuleDropsSpecksAndKeepsLines) {
     cv::Mat mask = blank();
     drawLine(mask, {5, 10}, {45, 10});

@@ -14,6 +14,7 @@ namespace {
 
 using line_parameters::kDepthJump;
 using line_parameters::kSuggestiveFade;
+using line_parameters::kSuggestiveSeed;
 using line_parameters::kSuggestiveThreshold;
 
 /** Object-space lines are sampled at most this far apart along the image (data pixels), so the one-pixel skeleton
@@ -87,6 +88,17 @@ SuggestiveSettings sharedSettings(const Look& look, const BoundingSphere& sphere
     return settings;
 }
 
+/** Hysteresis for the stroke stage: the drawn strength (q - T) / (q - T + F) of a line at the seed Q. */
+LineTypeStrokeRules seedRules(const Look& look) {
+    const double threshold = look.lineParameters.number(kSuggestiveThreshold);
+    const double fade = look.lineParameters.number(kSuggestiveFade);
+    const double seed = look.lineParameters.number(kSuggestiveSeed);
+    LineTypeStrokeRules rules;
+    if (seed > threshold)
+        rules.seedStrength = fade > 0.0 ? float((seed - threshold) / (seed - threshold + fade)) : 1.0f;
+    return rules;
+}
+
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -98,6 +110,7 @@ void describeShared(const LineStatsSource& source, nlohmann::ordered_json& entry
     entry["supersample"] = source.look.supersample;
     entry["threshold"] = settings.threshold;
     entry["fade"] = settings.fade;
+    entry["seed"] = source.look.lineParameters.number(kSuggestiveSeed);
     const double featureSize = kSuggestiveFeatureSizeFraction * source.sphere.radius;
     const double unit = source.radialLengthUnit;
     entry["feature_size"] = imageSpace ? double(float(featureSize / unit)) * unit : double(float(featureSize));
@@ -215,8 +228,9 @@ LineType suggestiveLineType() {
     type.name = "suggestive";
     type.help = "suggestive contours (DeCarlo et al. 2003): D_w(n.v) = 0 with D_w D_w(n.v) > 0,\n"
                 "in the float G-buffer with v = c - p, so the lines are where kappa_r = 0";
-    type.parameters = {&kDepthJump, &kSuggestiveThreshold, &kSuggestiveFade, &kSuggestiveStencil,
-                       &kSuggestiveSmoothing};
+    type.strokeRules = seedRules;
+    type.parameters = {&kDepthJump,      &kSuggestiveThreshold, &kSuggestiveFade,
+                       &kSuggestiveSeed, &kSuggestiveStencil,   &kSuggestiveSmoothing};
     type.build = [](const std::string& name, LineGraphBuilder& builder) {
         const LineGraphSetup& setup = builder.setup();
         SuggestiveSettings settings = sharedSettings(setup.look, setup.sphere);
@@ -248,7 +262,9 @@ LineType suggestiveObjectLineType() {
     type.help = "the same lines found on the mesh (object space): the zero set of\n"
                 "kappa_r from per-vertex curvature (Rusinkiewicz 2004) and rtsc's per-view test,\n"
                 "projected, hidden by the G-buffer depth (within --depth-jump), sub-pixel exact";
-    type.parameters = {&kDepthJump, &kSuggestiveThreshold, &kSuggestiveFade, &kSuggestiveObjectSmoothing};
+    type.strokeRules = seedRules;
+    type.parameters = {&kDepthJump, &kSuggestiveThreshold, &kSuggestiveFade, &kSuggestiveSeed,
+                       &kSuggestiveObjectSmoothing};
     type.build = [](const std::string& name, LineGraphBuilder& builder) {
         const LineGraphSetup& setup = builder.setup();
         const double smoothing = setup.look.lineParameters.number(kSuggestiveObjectSmoothing) * setup.sphere.radius;
