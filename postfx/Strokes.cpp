@@ -484,36 +484,15 @@ void mergeOverlaps(Strokes& strokes, const std::vector<StrokeLayer>& layers, con
                 result.push_back(std::move(stroke));
                 continue;
             }
-            // Cut where an earlier type draws the same line; what is left must still be long enough.
-            Stroke run;
-            auto finishRun = [&] {
-                if (run.points.empty()) return;
-                measureStroke(run);
-                run.kept = run.lengthPixels >= layers[layer].minLengthPixels;
-                result.push_back(std::move(run));
-                run = {};
-            };
-            bool anyCovered = false;
-            for (std::size_t index = 0; index < stroke.points.size(); ++index) {
-                const bool covered = distance.at<float>(pixelOf(stroke.points[index])) <= reach;
-                anyCovered = anyCovered || covered;
-                if (covered) {
-                    ++strokes.overlapsMerged;
-                    finishRun();
-                    continue;
-                }
-                if (run.points.empty()) {
-                    run.layer = stroke.layer;
-                    run.chain = stroke.chain;
-                }
-                run.points.push_back(stroke.points[index]);
-                run.pixels.push_back(stroke.pixels[index]);
+            // A stroke mostly along an earlier type's is that line drawn again: it gives way whole. Deciding per
+            // stroke, not per point, leaves no scattered pieces where the two lines part by about the reach.
+            std::size_t covered = 0;
+            for (const LinePoint& point : stroke.points) covered += distance.at<float>(pixelOf(point)) <= reach;
+            if (2 * covered >= stroke.points.size()) {
+                stroke.kept = false;
+                strokes.overlapsMerged += 1;
             }
-            if (!anyCovered) {
-                result.push_back(std::move(stroke));
-                continue;
-            }
-            finishRun();
+            result.push_back(std::move(stroke));
         }
         for (const Stroke& stroke : result)
             if (stroke.layer == int(layer) && stroke.kept)

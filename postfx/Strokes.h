@@ -84,7 +84,7 @@ struct Strokes {
     std::size_t gapJoins = 0;          ///< continuations across a gap (bridged within a layer)
     std::size_t crossTypeJoins = 0;    ///< continuations from one layer into another
     std::size_t absorbedFragments = 0; ///< short runs drawn as their neighbour's type
-    std::size_t overlapsMerged = 0;    ///< points not drawn since an earlier type's stroke draws the same line
+    std::size_t overlapsMerged = 0;    ///< strokes not drawn since an earlier type's stroke draws the same line
     /** Counts for --stats: kept strokes, and what the length rule and the hysteresis removed. */
     std::size_t keptStrokes() const;
     std::size_t droppedShort() const;
@@ -97,11 +97,11 @@ struct Strokes {
  *  negative, non-finite or (the angle) above 180. */
 Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSettings& settings = {});
 
-/** One line drawn once: where a kept stroke of a later layer runs within `halfWidths[later] + halfWidths[earlier]`
- *  (data pixels) of a kept stroke of an earlier layer (the contour along the outline's band, a crease along a
- *  contour), the later one is cut there, and the pieces left shorter than their layer's `minLengthPixels` are
- *  dropped. Layers in `layers`' order: earlier ones win (the composite's order, docs/lines.md). Throws
- *  std::invalid_argument naming 'halfWidths' unless it holds one width per layer. */
+/** One line drawn once: a kept stroke of a later layer with at least half its points within `halfWidths[later] +
+ *  the widest earlier half width` (data pixels) of a kept stroke of an earlier layer (the contour along the outline's
+ *  band, a crease along a contour) is that line drawn again, and is not drawn. Decided per stroke, so no scattered
+ *  pieces are left where two lines part. Layers in `layers`' order: earlier ones win (the composite's order,
+ *  docs/lines.md). Throws std::invalid_argument naming 'halfWidths' unless it holds one width per layer. */
 void mergeOverlaps(Strokes& strokes, const std::vector<StrokeLayer>& layers, const std::vector<double>& halfWidths);
 
 /** A kept stroke's points with `width` set: its line weight, a share of the layer's width in (0, 1]. */
