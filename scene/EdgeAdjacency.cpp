@@ -145,6 +145,7 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
             if (inserted) {
                 MeshEdge edge{};
                 edge.vertices = glm::uvec2(triangle[corner], triangle[(corner + 1) % 3]);
+                edge.welded = glm::uvec2(from, to);
                 adjacency.edges.push_back(edge);
             }
             pending.push_back({edgeIndex, {face, from > to}});
@@ -225,6 +226,151 @@ std::vector<std::uint32_t> selectCreaseEdges(const EdgeAdjacency& adjacency, dou
         indices.push_back(edge.vertices.y);
     }
     return indices;
+}
+
+EdgeChains chainEdges(const EdgeAdjacency& adjacency, std::span<const glm::vec3> positions,
+                      std::span<const std::uint32_t> edges, double maxTurnRadians) {
+    if (!(maxTurnRadians >= 0.0 && maxTurnRadians <= 3.14159265358979323846))
+        throw std::invalid_argument("chainEdges(): 'maxTurnRadians' must be in [0, pi], got " +
+                                    std::to_string(maxTurnRadians));
+    std::uint32_t weldedCount = 0;
+    for (std::uint32_t edge : edges) {
+        if (edge >= adjacency.edges.size())
+            throw std::out_of_range("chainEdges(): edge " + std::to_string(edge) + " is past the " +
+                                    std::to_string(adjacency.edges.size()) + " edges");
+        const MeshEdge& meshEdge = adjacency.edges[edge];
+        if (std::max(meshEdge.vertices.x, meshEdge.vertices.y) >= positions.size())
+            throw std::out_of_range("chainEdges(): edge " + std::to_string(edge) + " names a vertex past the " +
+                                    std::to_string(positions.size()) + " positions");
+        weldedCount = std::max(weldedCount, std::max(meshEdge.welded.x, meshEdge.welded.y) + 1);
+    }
+    const std::size_t count = edges.size();
+    // An edge end is 2 x slot + end (end 0: vertices.x). The ends at each welded point, grouped (counting sort).
+    std::vector<std::uint32_t> firstEnd(std::size_t(weldedCount) + 1, 0);
+    for (std::uint32_t edge : edges) {
+        ++firstEnd[adjacency.edges[edge].welded.x + 1];
+        ++firstEnd[adjacency.edges[edge].welded.y + 1];
+    }
+    for (std::size_t point = 0; point < weldedCount; ++point) firstEnd[point + 1] += firstEnd[point];
+    std::vector<std::uint32_t> endsAt(2 * count);
+    {
+        std::vector<std::uint32_t> next(firstEnd.begin(), firstEnd.end() - 1);
+        for (std::size_t slot = 0; slot < count; ++slot) {
+            const glm::uvec2 welded = adjacency.edges[edges[slot]].welded;
+            endsAt[next[welded.x]++] = std::uint32_t(2 * slot);
+            endsAt[next[welded.y]++] = std::uint32_t(2 * slot + 1);
+        }
+    }
+
+    // Pair the ends at each point, straightest first. The turn between an edge arriving along -u_a and one leaving
+    // along u_b is pi minus the angle between the unit directions u_a, u_b away from the point: cos(turn) = -u_a.u_b.
+    constexpr std::uint32_t kNone = ~std::uint32_t(0);
+    std::vector<std::uint32_t> partner(2 * count, kNone);
+    const double minStraightness = std::cos(maxTurnRadians) - 1e-12; // the turn's cosine; a tolerance for 60 exactly
+    struct Pair {
+        double straightness; // cos(turn)
+        std::uint32_t a, b;
+    };
+    std::vector<Pair> pairs;
+    std::vector<glm::dvec3> away;
+    for (std::size_t point = 0; point < weldedCount; ++point) {
+        const std::uint32_t begin = firstEnd[point], end = firstEnd[point + 1];
+        if (end - begin < 2) continue;
+        away.clear();
+        for (std::uint32_t index = begin; index < end; ++index) {
+            const std::uint32_t edgeEnd = endsAt[index];
+            const MeshEdge& edge = adjacency.edges[edges[edgeEnd / 2]];
+            const glm::dvec3 here(positions[edgeEnd % 2 ? edge.vertices.y : edge.vertices.x]);
+            const glm::dvec3 there(positions[edgeEnd % 2 ? edge.vertices.x : edge.vertices.y]);
+            const double length = glm::length(there - here);
+            away.push_back(length > 0.0 ? (there - here) / length : glm::dvec3(0.0));
+        }
+        pairs.clear();
+        for (std::uint32_t a = 0; a + 1 < end - begin; ++a)
+            for (std::uint32_t b = a + 1; b < end - begin; ++b) {
+                if (away[a] == glm::dvec3(0.0) || away[b] == glm::dvec3(0.0)) continue; // no direction to follow
+                const double straightness = -glm::dot(away[a], away[b]);
+                if (straightness >= minStraightness) pairs.push_back({straightness, begin + a, begin + b});
+            }
+        // Ties (a symmetric star) go to the earlier ends, so the result does not depend on the sort.
+        std::sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) {
+            if (x.straightness != y.straightness) return x.straightness > y.straightness;
+            return x.a != y.a ? x.a < y.a : x.b < y.b;
+        });
+        for (const Pair& pair : pairs) {
+            const std::uint32_t a = endsAt[pair.a], b = endsAt[pair.b];
+            if (partner[a] != kNone || partner[b] != kNone) continue;
+            partner[a] = b;
+            partner[b] = a;
+        }
+    }
+
+    // Each edge has at most one partner per end: the chains are the connected runs (union-find over the pairs).
+    std::vector<std::uint32_t> parent(count);
+    for (std::size_t slot = 0; slot < count; ++slot) parent[slot] = std::uint32_t(slot);
+    const auto root = [&parent](std::uint32_t slot) {
+        while (parent[slot] != slot) slot = parent[slot] = parent[parent[slot]];
+        return slot;
+    };
+    for (std::size_t edgeEnd = 0; edgeEnd < 2 * count; ++edgeEnd)
+        if (partner[edgeEnd] != kNone) {
+            const std::uint32_t a = root(std::uint32_t(edgeEnd / 2)), b = root(partner[edgeEnd] / 2);
+            if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        }
+
+    EdgeChains chains;
+    chains.edges.assign(edges.begin(), edges.end());
+    chains.chainOf.assign(count, kNone);
+    std::vector<std::uint32_t> chainOfRoot(count, kNone);
+    for (std::size_t slot = 0; slot < count; ++slot) {
+        const std::uint32_t top = root(std::uint32_t(slot));
+        if (chainOfRoot[top] == kNone) {
+            chainOfRoot[top] = std::uint32_t(chains.chainLength.size());
+            chains.chainLength.push_back(0.0);
+            chains.chainNormalAngle.push_back(0.0);
+        }
+        const std::uint32_t chain = chainOfRoot[top];
+        chains.chainOf[slot] = chain;
+        const MeshEdge& edge = adjacency.edges[edges[slot]];
+        const double length =
+            glm::length(glm::dvec3(positions[edge.vertices.y]) - glm::dvec3(positions[edge.vertices.x]));
+        chains.chainLength[chain] += length;
+        chains.chainNormalAngle[chain] += length * double(edge.normalAngle);
+    }
+    for (std::size_t chain = 0; chain < chains.chainLength.size(); ++chain)
+        chains.chainNormalAngle[chain] =
+            chains.chainLength[chain] > 0.0 ? chains.chainNormalAngle[chain] / chains.chainLength[chain] : 0.0;
+    return chains;
+}
+
+CreaseSelection selectProminentCreaseEdges(const EdgeAdjacency& adjacency, std::span<const glm::vec3> positions,
+                                           double creaseAngleRadians, double minChainLength) {
+    if (!std::isfinite(minChainLength) || minChainLength < 0.0)
+        throw std::invalid_argument("selectProminentCreaseEdges(): 'minChainLength' must be finite and >= 0, got " +
+                                    std::to_string(minChainLength));
+    std::vector<std::uint32_t> creases;
+    for (std::size_t index = 0; index < adjacency.edges.size(); ++index) {
+        const MeshEdge& edge = adjacency.edges[index];
+        if (edge.kind == EdgeKind::Manifold && double(edge.normalAngle) > creaseAngleRadians)
+            creases.push_back(std::uint32_t(index));
+    }
+    CreaseSelection selection;
+    selection.edgesByAngle = creases.size();
+    const EdgeChains chains = chainEdges(adjacency, positions, creases, kCreaseChainMaxTurnRadians);
+    selection.chains = chains.chainLength.size();
+    std::vector<bool> keep(chains.chainLength.size());
+    for (std::size_t chain = 0; chain < keep.size(); ++chain) {
+        keep[chain] = chains.chainLength[chain] >= minChainLength;
+        selection.chainsKept += keep[chain];
+    }
+    for (std::size_t slot = 0; slot < creases.size(); ++slot) {
+        if (!keep[chains.chainOf[slot]]) continue;
+        const MeshEdge& edge = adjacency.edges[creases[slot]];
+        selection.indices.push_back(edge.vertices.x);
+        selection.indices.push_back(edge.vertices.y);
+        ++selection.edgesKept;
+    }
+    return selection;
 }
 
 std::vector<std::uint32_t> selectBorderEdges(const EdgeAdjacency& adjacency) {

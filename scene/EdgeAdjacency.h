@@ -32,6 +32,9 @@ struct MeshEdge {
     /** The ends as the mesh's own vertex ids, as the first face using the edge names them (in its direction): what a
      *  draw call indexes. Any copy of a welded vertex would do, since copies share a position. */
     glm::uvec2 vertices;
+    /** The same ends as position-welded ids (in the same order): one id per point, so edges that meet at a point
+     *  share it whichever copies their faces name (chainEdges() follows lines through them). */
+    glm::uvec2 welded;
     EdgeKind kind;
     /** Manifold edges whose two faces run it in the same direction: their normals disagree about which side is out.
      *  the s1 x s2 test of the comic-renderer write-up after Lander 2000 would fire everywhere or nowhere there; see
@@ -105,6 +108,47 @@ std::vector<std::uint32_t> selectSilhouetteEdges(const EdgeAdjacency& adjacency,
 
 /** The manifold edges whose normal angle exceeds `creaseAngleRadians`, as pairs of mesh vertex ids. */
 std::vector<std::uint32_t> selectCreaseEdges(const EdgeAdjacency& adjacency, double creaseAngleRadians);
+
+/** Edges chained into lines through the points they share (MeshEdge::welded): at each point the incident edges are
+ *  paired greedily, the pair that runs on straightest first (the smallest turn between the two edge directions, in
+ *  3-D), while the turn is at most `maxTurnRadians`; so a line runs on through a point and stops where it branches
+ *  off, and a point with one edge ends a line. Each edge then has at most one neighbour per end, so the chains are
+ *  paths or closed loops. */
+struct EdgeChains {
+    std::vector<std::uint32_t> edges;   ///< the edges chained, as indices into EdgeAdjacency::edges, in the given order
+    std::vector<std::uint32_t> chainOf; ///< one per entry of `edges`: its chain, numbered in order of first edge
+    std::vector<double> chainLength;    ///< one per chain: the sum of its edges' 3-D lengths
+    /** One per chain: the mean MeshEdge::normalAngle of its edges, weighted by their lengths (radians). */
+    std::vector<double> chainNormalAngle;
+};
+
+/** Chains `edges` (indices into adjacency.edges; see EdgeChains). `positions` are the mesh's, as given to
+ *  buildEdgeAdjacency(). Throws std::out_of_range for an edge index past the adjacency's edges or an end past the
+ *  positions, and std::invalid_argument for a turn outside [0, pi]. */
+EdgeChains chainEdges(const EdgeAdjacency& adjacency, std::span<const glm::vec3> positions,
+                      std::span<const std::uint32_t> edges, double maxTurnRadians);
+
+/** The largest turn, at a shared point, between two crease edges that chain into one line: 60 degrees, so a line
+ *  runs on round a coarse mesh's bends (a hexagon turns 60 degrees per corner) while a branch leaving at a right
+ *  angle ends a line. */
+inline constexpr double kCreaseChainMaxTurnRadians = 60.0 * 3.14159265358979323846 / 180.0;
+
+/** What selectProminentCreaseEdges() chose. */
+struct CreaseSelection {
+    std::vector<std::uint32_t> indices; ///< the kept edges as pairs of mesh vertex ids, ready for GL_LINES
+    std::size_t edgesByAngle = 0;       ///< manifold edges above the crease angle
+    std::size_t edgesKept = 0;          ///< of those, the ones in a long enough chain
+    std::size_t chains = 0;             ///< chains the edges above the angle form
+    std::size_t chainsKept = 0;         ///< chains at least the minimum length long
+};
+
+/** Crease prominence, decided on the mesh: the crease edges (selectCreaseEdges()) chained into lines (chainEdges(),
+ *  kCreaseChainMaxTurnRadians), keeping only the edges of chains at least `minChainLength` long in 3-D (model units,
+ *  >= 0; 0 keeps every crease). Dense detail (fur, braids, a scan's facets) has many short creases; an artist draws
+ *  the long ones. In model units, so the same edges at every size and view. Throws std::invalid_argument for a
+ *  negative or non-finite length. */
+CreaseSelection selectProminentCreaseEdges(const EdgeAdjacency& adjacency, std::span<const glm::vec3> positions,
+                                           double creaseAngleRadians, double minChainLength);
 
 /** The boundary and non-manifold edges, as pairs of mesh vertex ids: both are places where the surface is not a
  *  closed two-sided sheet, and both are drawn as borders. */

@@ -34,6 +34,10 @@ MeshEdgesPass::MeshEdgesPass(std::string name, ShaderLibrary& shaders, GpuScene&
         throw std::invalid_argument("MeshEdgesPass(): pass '" + mName +
                                     "': 'creaseAngleDegrees' must be in [0, 180], got " +
                                     std::to_string(mSettings.creaseAngleDegrees));
+    if (!std::isfinite(mSettings.creaseMinLength) || mSettings.creaseMinLength < 0.0f)
+        throw std::invalid_argument("MeshEdgesPass(): pass '" + mName +
+                                    "': 'creaseMinLength' must be finite and >= 0, got " +
+                                    std::to_string(mSettings.creaseMinLength));
     if (mSettings.supersample < 1)
         throw std::invalid_argument("MeshEdgesPass(): pass '" + mName + "': 'supersample' must be >= 1, got " +
                                     std::to_string(mSettings.supersample));
@@ -50,6 +54,11 @@ void MeshEdgesPass::describe(nlohmann::ordered_json& report) const {
     if (mEdgesDrawn.border) drawn["border"] = *mEdgesDrawn.border;
     if (mEdgesDrawn.silhouette) drawn["silhouette"] = *mEdgesDrawn.silhouette;
     report["edges_drawn"] = drawn;
+    if (mCreaseCounts)
+        report["crease_edges"] = {{"by_angle", mCreaseCounts->edgesByAngle},
+                                  {"kept", mCreaseCounts->edgesKept},
+                                  {"chains", mCreaseCounts->chains},
+                                  {"chains_kept", mCreaseCounts->chainsKept}};
 }
 
 MeshEdgesPass::EdgeLines MeshEdgesPass::uploadEdgeLines(const std::string& output, std::size_t meshIndex,
@@ -104,10 +113,20 @@ void MeshEdgesPass::prepare(GlPassContext& context) {
 
     // Creases and borders do not depend on the view: chosen and uploaded once, outside the timed execute().
     const double creaseAngle = double(mSettings.creaseAngleDegrees) * glm::pi<double>() / 180.0;
-    if (context.isLive("crease") && mCreaseLines.empty())
-        for (std::size_t mesh = 0; mesh < meshCount; ++mesh)
-            mCreaseLines.push_back(
-                uploadEdgeLines("crease", mesh, selectCreaseEdges(mScene.edgeAdjacency(mesh), creaseAngle)));
+    if (context.isLive("crease") && mCreaseLines.empty()) {
+        CreaseCounts counts;
+        for (std::size_t mesh = 0; mesh < meshCount; ++mesh) {
+            const CreaseSelection selection =
+                selectProminentCreaseEdges(mScene.edgeAdjacency(mesh), mScene.scene().meshes[mesh].positions,
+                                           creaseAngle, double(mSettings.creaseMinLength));
+            counts.edgesByAngle += selection.edgesByAngle;
+            counts.edgesKept += selection.edgesKept;
+            counts.chains += selection.chains;
+            counts.chainsKept += selection.chainsKept;
+            mCreaseLines.push_back(uploadEdgeLines("crease", mesh, selection.indices));
+        }
+        mCreaseCounts = counts;
+    }
     if (context.isLive("border") && mBorderLines.empty())
         for (std::size_t mesh = 0; mesh < meshCount; ++mesh)
             mBorderLines.push_back(uploadEdgeLines("border", mesh, selectBorderEdges(mScene.edgeAdjacency(mesh))));

@@ -19,7 +19,9 @@
  *    edge-on strip. Chosen on the CPU every frame (one pass over the faces, one over the edges) and uploaded as an
  *    index list. Inconsistently oriented pairs are re-oriented locally first.
  *  - crease: manifold edges whose faces' normals meet at more than `creaseAngleDegrees` (atan2(|n1 x n2|, n1 . n2):
- *    0 on a flat surface, 90 at a cube's edge), whatever the view. Chosen once per pass object.
+ *    0 on a flat surface, 90 at a cube's edge), whatever the view, and only those in a chain of crease edges at least
+ *    `creaseMinLength` long (scene/EdgeAdjacency.h selectProminentCreaseEdges(): edges joined where they run on
+ *    straightest, so fur, braids and a scan's facets lose their short creases). Chosen once per pass object.
  *  - border: boundary edges (one face) and non-manifold edges (three or more faces): both are where the surface
  *    stops being a closed two-sided sheet, and neither has a defined silhouette or crease test. Chosen once.
  *
@@ -59,6 +61,10 @@ namespace inkgraph {
 struct MeshEdgesSettings {
     /** Manifold edges whose face normals meet at more than this are creases; in [0, 180]. */
     float creaseAngleDegrees = 30.0f;
+    /** Crease prominence, in model units (the scene's), >= 0: a crease is drawn only when its edges chain into a line
+     *  at least this long in 3-D (selectProminentCreaseEdges()), so the choice is the same at every size and view.
+     *  0 keeps every crease. */
+    float creaseMinLength = 0.0f;
     /** Every output is this many times the frame size in each direction (>= 1), so the one-pixel skeleton can be
      *  drawn and filtered down at the user's width. */
     int supersample = 1;
@@ -69,7 +75,8 @@ public:
     /** The outputs' field names, in the order the pass draws them. */
     static constexpr std::array<const char*, 3> kFields = {"silhouette", "crease", "border"};
 
-    /** Throws std::invalid_argument for a crease angle outside [0, 180] or not finite, or supersample < 1. */
+    /** Throws std::invalid_argument for a crease angle outside [0, 180] or not finite, a crease minimum length
+     *  negative or not finite, or supersample < 1. */
     MeshEdgesPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
                   MeshEdgesSettings settings = {});
 
@@ -88,7 +95,16 @@ public:
         std::optional<std::size_t> border;
     };
     const EdgeCounts& edgesDrawn() const { return mEdgesDrawn; }
-    /** "edges_drawn": {"crease": n, "border": n, "silhouette": n} for the outputs the last execute() drew. */
+    /** Over all meshes, once the crease edges are chosen (prepare() with the crease output live). */
+    struct CreaseCounts {
+        std::size_t edgesByAngle = 0; ///< manifold edges above the crease angle
+        std::size_t edgesKept = 0;    ///< of those, the ones in a chain at least creaseMinLength long
+        std::size_t chains = 0;
+        std::size_t chainsKept = 0;
+    };
+    const std::optional<CreaseCounts>& creaseCounts() const { return mCreaseCounts; }
+    /** "edges_drawn": {"crease": n, "border": n, "silhouette": n} for the outputs the last execute() drew, and with
+     *  the crease edges chosen "crease_edges": {"by_angle", "kept", "chains", "chains_kept"}. */
     void describe(nlohmann::ordered_json& report) const override;
 
     const MeshEdgesSettings& settings() const { return mSettings; }
@@ -118,6 +134,7 @@ private:
     std::vector<EdgeLines> mSilhouetteLines;  ///< one per mesh, chosen and uploaded every execute()
     PassDepthBuffer mDepth;                   ///< the pass's own depth attachment, kept between runs
     EdgeCounts mEdgesDrawn;
+    std::optional<CreaseCounts> mCreaseCounts;
 };
 
 } // namespace inkgraph

@@ -8,21 +8,24 @@ namespace {
 
 constexpr const char* kMeshEdgesPass = "mesh-edges";
 
-/** Crease prominence: dense geometric detail (fur, braids, facets) has many short creases; an artist draws the
- *  long ones, the outline of the detail. */
+/** Crease prominence, decided on the mesh: dense geometric detail (fur, braids, a scan's facets) has many short
+ *  creases; an artist draws the long ones. A share of the bounding radius, so the same edges at every size and view.
+ *  The default 0.1 (measured on the bunny, armadillo, Lucy, fox, godette and fandisk: docs/lines.md) drops most
+ *  fragments of scans and fur while every visible crease of the CAD part stays (at 0.2 fandisk lost a short one). */
 const LineParameter kCreaseMinLength{"crease-min-length",
                                      "F",
-                                     "draw a crease only in a chain of strokes at least F x the picture's height\n"
-                                     "long, so fur, braids and facets give their outline, not a hatching\n"
-                                     "(default 0.03: 31 px at 1024; 0: --min-stroke-length alone)",
+                                     "draw a crease only where its mesh edges chain into a line (running on\n"
+                                     "through a vertex where they turn least, at most 60 degrees) at least F x the\n"
+                                     "model's bounding radius long in 3-D, so fur, braids and facets lose their\n"
+                                     "short creases; the same at every size and view (default 0.1; 0 keeps all)",
                                      {},
-                                     0.03,
+                                     0.1,
                                      "",
                                      0.0,
-                                     1.0,
+                                     100.0,
                                      false,
                                      false,
-                                     "expected a share of the height from 0 to 1"};
+                                     "expected a share of the bounding radius from 0 to 100"};
 
 /** Strokes a one-pixel mask another pass drew. */
 class SkeletonKernel : public LineKernel {
@@ -48,6 +51,7 @@ LineType meshEdgeType(std::string name, std::string kind, std::string help,
         if (!builder.has(kMeshEdgesPass)) {
             MeshEdgesSettings settings;
             settings.creaseAngleDegrees = float(setup.look.lineParameters.number(line_parameters::kCreaseAngle));
+            settings.creaseMinLength = float(setup.look.lineParameters.number(kCreaseMinLength) * setup.sphere.radius);
             settings.supersample = setup.look.supersample;
             builder.add(
                 std::make_unique<MeshEdgesPass>(kMeshEdgesPass, setup.shaders, setup.scene, setup.frame, settings));
@@ -55,14 +59,17 @@ LineType meshEdgeType(std::string name, std::string kind, std::string help,
         builder.addLayer(typeName, std::make_unique<SkeletonKernel>(std::string(kMeshEdgesPass) + "." + kind));
     };
     type.describe = [kind](const LineStatsSource& source, nlohmann::ordered_json& entry) {
-        if (kind == "crease")
+        if (kind == "crease") {
             entry["crease_angle_degrees"] = source.look.lineParameters.number(line_parameters::kCreaseAngle);
+            entry["crease_min_length"] = source.look.lineParameters.number(kCreaseMinLength);
+        }
         entry["supersample"] = source.look.supersample;
         if (const Pass* pass = source.pass(kMeshEdgesPass)) {
             nlohmann::ordered_json report;
             pass->describe(report);
             if (report.contains("edges_drawn") && report["edges_drawn"].contains(kind))
                 entry["edges_drawn"] = report["edges_drawn"][kind];
+            if (kind == "crease" && report.contains("crease_edges")) entry["crease_edges"] = report["crease_edges"];
         }
     };
     return type;
@@ -71,15 +78,8 @@ LineType meshEdgeType(std::string name, std::string kind, std::string help,
 } // namespace
 
 LineType creaseLineType() {
-    LineType type =
-        meshEdgeType("crease", "crease", "mesh edges whose faces meet at more than --crease-angle (object space)",
-                     {&line_parameters::kCreaseAngle, &kCreaseMinLength});
-    type.strokeRules = [](const Look& look) {
-        LineTypeStrokeRules rules;
-        rules.minLength = look.lineParameters.number(kCreaseMinLength);
-        return rules;
-    };
-    return type;
+    return meshEdgeType("crease", "crease", "mesh edges whose faces meet at more than --crease-angle (object space)",
+                        {&line_parameters::kCreaseAngle, &kCreaseMinLength});
 }
 
 LineType borderLineType() {
