@@ -662,9 +662,9 @@ std::vector<Flag> makeFlags() {
     flags.push_back(lineWeight);
     Flag overlapping =
         styleFlag(flag({"--overlapping-lines"}, "M", S::Lines,
-                       "merge (default): where two types draw the same line (the contour along the outline,\n"
-                       "a crease along a contour), the one listed first under --lines' composite order draws\n"
-                       "it; draw: every type draws its own",
+                       "draw (default): every type draws its own lines; merge: where two types draw the\n"
+                       "same line (the contour along the outline, a crease along a contour), only the one\n"
+                       "earlier in the composite order below draws it (less ink, one SVG path per line)",
                        [](const std::string& value, RenderOptions& options) {
                            if (value != "merge" && value != "draw")
                                throw UsageError("--overlapping-lines: expected merge or draw, got '" + value + "'");

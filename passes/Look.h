@@ -34,8 +34,9 @@ struct StrokeStyle {
     bool weightByDepth = false;
     bool weightByStrength = false;
     bool taperEnds = false;
-    /** Where two types draw the same line, only the one earlier in the composite's order (--overlapping-lines). */
-    bool mergeOverlaps = true;
+    /** Where two types draw the same line, only the one earlier in the composite's order (--overlapping-lines merge;
+     *  off by default: the type giving way keeps only the pieces where the two part, which change with the view). */
+    bool mergeOverlaps = false;
 };
 
 struct Look {

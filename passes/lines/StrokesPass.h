@@ -11,7 +11,7 @@
  *  | <name>.<type>    | r8     | required | the type's line layer, frame-sized, 255 = full line, anti-aliased |
  *
  *  Where two types draw the same line (the contour along the outline's band), the type earlier in the composite's
- *  order draws it and the later one gives way there (mergeOverlaps()), unless the look keeps overlaps.
+ *  order draws it and the later one gives way there (mergeOverlaps()) when the look asks for it.
  *
  *  Everything is chained at the data resolution (--supersample S): a GL band, drawn at the output size, is thinned
  *  there and its middle line mapped up. Each layer is stroked at its type's width in output pixels and then
@@ -45,7 +45,7 @@ struct StrokesPassSettings {
     bool weightByDepth = false;      ///< reads "gbuffer.depth"; the width falls to half across the model's depth
     bool weightByStrength = false;
     bool taperEnds = false;
-    bool mergeOverlaps = true;              ///< a later type is not drawn where an earlier one draws the same line
+    bool mergeOverlaps = false;             ///< a later type is not drawn where an earlier one draws the same line
     double nearDepth = 0.0, farDepth = 0.0; ///< the model's nearest and farthest linear depth (its bounding sphere)
 };
 

@@ -331,7 +331,8 @@ TEST_F(MeshEdgesCube, CreasesAreTheNineVisibleEdgesAndSilhouetteTheHexagon) {
     EXPECT_EQ(cv::countNonZero(masks["border"]), 0);
     nlohmann::ordered_json report;
     pass.describe(report);
-    EXPECT_EQ(report.dump(), R"({"edges_drawn":{"crease":12,"border":0,"silhouette":6}})");
+    EXPECT_EQ(report.dump(), R"({"edges_drawn":{"crease":12,"border":0,"silhouette":6},)"
+                             R"("crease_edges":{"by_angle":12,"kept":12,"chains":12,"chains_kept":12}})");
 
     std::ostringstream measured;
     const std::vector<ScreenSegment> visible = projectAll(cube.visible);
@@ -389,7 +390,9 @@ TEST_F(MeshEdgesCube, CreaseAngleDecidesAndDiagonalsNeverShow) {
     EXPECT_EQ(atZero.edgesDrawn().crease, std::optional<std::size_t>(12));
     nlohmann::ordered_json report;
     atZero.describe(report);
-    EXPECT_EQ(report.dump(), R"({"edges_drawn":{"crease":12}})") << "only the outputs it drew";
+    EXPECT_EQ(report.dump(),
+              R"({"edges_drawn":{"crease":12},"crease_edges":{"by_angle":12,"kept":12,"chains":12,"chains_kept":12}})")
+        << "only the outputs it drew; every cube edge is a chain long enough to keep";
     EXPECT_EQ(linesAlongForbidden(crease, projectAll(cube.frontDiagonals), projectAll(cube.visible), 2.5, 1.0).hits, 0);
     EXPECT_LE(farthestLinePixelAwayFrom(crease, projectAll(cube.visible), projectedCorners(frame.camera), 2.0), 1.0);
 
