@@ -5,6 +5,8 @@
 # LP_NUM_THREADS) is the caller's. Models run one after another; about 3 minutes on the 2-core CPU machine.
 #   bench/line-cleanliness.sh INKGRAPH_BINARY OUT.md [WORK_DIR]
 # TOOL=path/to/inkgraph_line_cleanliness overrides the default build/bench/inkgraph_line_cleanliness.
+# LOOKS="comic default comic-merge" picks the rows (default "comic default"); comic-merge is the comic look with
+# --overlapping-lines merge (issue 19's binaries and later).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 if [ $# -lt 2 ] || [ $# -gt 3 ]; then
@@ -29,6 +31,7 @@ models=(
     models/characters/expressions-binary-overrides.vrm
 )
 comic_flags=(--shading comic --lines outline,contour,suggestive,crease)
+looks=(${LOOKS:-comic default})
 
 table=$(mktemp)
 trap 'rm -f "$table"' EXIT
@@ -42,12 +45,18 @@ header=--header
 for model in "${models[@]}"; do
     name=$(basename "$model")
     name=${name%.*}
-    echo "line-cleanliness.sh: $name, comic" >&2
-    "$tool" --inkgraph "$binary" --model "$root/$model" --work "$work/$name-comic" --look comic $header \
-        -- "${comic_flags[@]}" >> "$table"
-    header=
-    echo "line-cleanliness.sh: $name, default" >&2
-    "$tool" --inkgraph "$binary" --model "$root/$model" --work "$work/$name-default" --look default >> "$table"
+    for look in "${looks[@]}"; do
+        case $look in
+        comic) flags=("${comic_flags[@]}") ;;
+        comic-merge) flags=("${comic_flags[@]}" --overlapping-lines merge) ;;
+        default) flags=() ;;
+        *) echo "line-cleanliness.sh: unknown look '$look' (comic, default, comic-merge)" >&2; exit 2 ;;
+        esac
+        echo "line-cleanliness.sh: $name, $look" >&2
+        "$tool" --inkgraph "$binary" --model "$root/$model" --work "$work/$name-$look" --look "$look" $header \
+            -- "${flags[@]}" >> "$table"
+        header=
+    done
 done
 mkdir -p "$(dirname "$out")"
 mv "$table" "$out"

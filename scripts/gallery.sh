@@ -20,6 +20,7 @@ examples=(
     "still-life 800x500"
     "line-types 256x256"
     "characters 384x384"
+    "clean-strokes 512x512"
 )
 for entry in "${examples[@]}"; do
     read -r name size <<<"$entry"

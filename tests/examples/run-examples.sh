@@ -41,6 +41,10 @@ run_example armadillo-suggestive armadillo-object.png armadillo-image.png
 run_example line-types outline.png silhouette.png contour.png suggestive.png suggestive-object.png depth-edge.png \
     normal-edge.png mesh-silhouette.png crease.png border.png together.png
 run_example still-life still-life.png
+run_example clean-strokes bunny.png armadillo.png lucy.png suzanne.png fox.png godette.png bunny-weight.png \
+    bunny.svg
+grep -q 'stroke="none" d="M' "$work/clean-strokes/bunny-weight.svg" 2>/dev/null ||
+    fail "clean-strokes: bunny-weight.svg has no weighted (filled outline) path"
 run_example characters fox-default.png godette-mtoon.png godette-face.png godette-orbit.png fox-walk.png \
     expressions-binary-overrides-default.png
 run_example batch 1-bunny_c3d_70k.png 5-spot_c3d.png 9-suzanne_npm_4k.png 9-suzanne_npm_4k.json
