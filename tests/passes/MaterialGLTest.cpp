@@ -361,9 +361,9 @@ TEST_F(MaterialPasses, MaskedDiscContourFollowsTheMaskWithinOnePixel) {
 }
 
 TEST_F(MaterialPasses, BackFaceOutlineIsCutWithTheMask) {
-    // Seen from behind, every triangle of the square is a back face, so the outline pass draws its edges: the
-    // square's border and its diagonal. With the disc mask the border lies in the cut-out part and is not drawn;
-    // the diagonal's middle crosses the disc and stays. Counted: line pixels farther out than the disc.
+    // Seen from behind, the square is an open sheet, so the outline draws its border (and, since issue 19, not its
+    // diagonal: only contour and border edges). With the disc mask the border lies in the cut-out part and is not
+    // drawn. Counted: line pixels farther out than the disc.
     const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
     const double discRadius = 0.7 * focal / kDistance; // pixels
     auto outlinePixelsOutsideTheDisc = [&] {
