@@ -1,8 +1,8 @@
 #pragma once
 /** @file The CPU face orientation of Winnemoller & Bangay 2002 for every mesh, computed and uploaded the first time a
- *  pass that runs asks for it (the comic fill draws the front sets; the outline chooses its edges per view on the GPU and needs none); owned by
- *  GpuScene (setOrientation(), cpuOrientation()). With the Standard method the GPU culls and nothing is computed
- *  here. */
+ *  pass that runs asks for it (the comic fill draws the front sets; the outline chooses its edges per view on the
+ *  GPU and needs none); owned by GpuScene (setOrientation(), cpuOrientation()). With the Standard method the GPU
+ *  culls and nothing is computed here. */
 
 #include "gl/GlObjects.h"
 #include "passes/FrameParams.h"
