@@ -240,6 +240,90 @@ TEST(Options, SuggestiveSmoothing) {
               std::string::npos);
 }
 
+TEST(Options, StrokeFlags) {
+    // Issue 19: how line pixels become strokes, for every drawn type.
+    const RenderOptions defaults = parse({"m.obj", "-o", "x.png", "--lines", "contour"});
+    EXPECT_EQ(defaults.look.strokes.minLength, 0.01);
+    EXPECT_FALSE(defaults.look.strokes.weightByDepth);
+    EXPECT_FALSE(defaults.look.strokes.weightByStrength);
+    EXPECT_FALSE(defaults.look.strokes.taperEnds);
+    EXPECT_FALSE(defaults.look.strokes.mergeOverlaps);
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--lines", "contour", "--min-stroke-length", "0"}).look.strokes.minLength,
+              0.0);
+    EXPECT_EQ(
+        parse({"m.obj", "-o", "x.png", "--lines", "contour", "--min-stroke-length", "0.02"}).look.strokes.minLength,
+        0.02);
+    for (const char* bad : {"-1", "2", "x"})
+        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--min-stroke-length", bad})
+                      .find("--min-stroke-length"),
+                  std::string::npos)
+            << bad;
+
+    const StrokeStyle none =
+        parse({"m.obj", "-o", "x.png", "--lines", "contour", "--line-weight", "none"}).look.strokes;
+    EXPECT_FALSE(none.weightByDepth || none.weightByStrength || none.taperEnds);
+    const StrokeStyle depthTaper =
+        parse({"m.obj", "-o", "x.png", "--lines", "contour", "--line-weight", "depth,taper"}).look.strokes;
+    EXPECT_TRUE(depthTaper.weightByDepth);
+    EXPECT_FALSE(depthTaper.weightByStrength);
+    EXPECT_TRUE(depthTaper.taperEnds);
+    EXPECT_TRUE(parse({"m.obj", "-o", "x.png", "--lines", "contour", "--line-weight", "strength"})
+                    .look.strokes.weightByStrength);
+    const std::string twice =
+        usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--line-weight", "depth,depth"});
+    EXPECT_NE(twice.find("--line-weight"), std::string::npos) << twice;
+    EXPECT_NE(twice.find("'depth' is listed twice"), std::string::npos) << twice;
+    const std::string bold = usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--line-weight", "bold"});
+    EXPECT_NE(bold.find("--line-weight"), std::string::npos) << bold;
+    EXPECT_NE(bold.find("depth, strength, taper"), std::string::npos) << bold;
+    EXPECT_NE(bold.find("'bold'"), std::string::npos) << bold;
+
+    EXPECT_TRUE(parse({"m.obj", "-o", "x.png", "--lines", "contour", "--overlapping-lines", "merge"})
+                    .look.strokes.mergeOverlaps);
+    EXPECT_FALSE(parse({"m.obj", "-o", "x.png", "--lines", "contour", "--overlapping-lines", "draw"})
+                     .look.strokes.mergeOverlaps);
+    const std::string overlap =
+        usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--overlapping-lines", "hide"});
+    EXPECT_NE(overlap.find("--overlapping-lines"), std::string::npos) << overlap;
+    EXPECT_NE(overlap.find("'hide'"), std::string::npos) << overlap;
+
+    // Without lines they change nothing, so they are refused.
+    for (const std::vector<std::string>& flag : std::vector<std::vector<std::string>>{
+             {"--min-stroke-length", "0.02"}, {"--line-weight", "taper"}, {"--overlapping-lines", "merge"}}) {
+        const std::string message = usageMessage({"m.obj", "-o", "x.png", "--lines", "none", flag[0], flag[1]});
+        EXPECT_NE(message.find(flag[0] + " has no effect"), std::string::npos) << message;
+    }
+}
+
+TEST(Options, StrokeLineParameters) {
+    // --suggestive-seed (hysteresis, a strength like --suggestive-threshold) and --crease-min-length (a share of the
+    // bounding radius), issue 19.
+    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "suggestive"}), "suggestive-seed"), 0.04);
+    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-seed", "0"}),
+                        "suggestive-seed"),
+              0.0);
+    for (const char* bad : {"-0.1", "2e6", "strong"})
+        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-seed", bad})
+                      .find("--suggestive-seed"),
+                  std::string::npos)
+            << bad;
+    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "crease"}), "crease-min-length"), 0.1);
+    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "crease", "--crease-min-length", "0.5"}),
+                        "crease-min-length"),
+              0.5);
+    for (const char* bad : {"-0.1", "101", "long"})
+        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "crease", "--crease-min-length", bad})
+                      .find("--crease-min-length"),
+                  std::string::npos)
+            << bad;
+    EXPECT_NE(
+        usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--suggestive-seed", "0.1"}).find("has no effect"),
+        std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", "--crease-min-length", "0.2"})
+                  .find("has no effect"),
+              std::string::npos);
+}
+
 TEST(Options, ObjectSpaceSuggestiveContours) {
     const RenderOptions options =
         parse({"m.obj", "-o", "x.png", "--lines", "contour,suggestive-object", "--suggestive-threshold", "0.05",

@@ -51,6 +51,23 @@ TEST(StyleFile, SettingsBecomeFlagsWithListsCompactedAndCommentsDropped) {
     EXPECT_EQ(options.look.styleOf("contour").color, glm::dvec4(0.1, 0.2, 0.3, 1.0));
 }
 
+TEST(StyleFile, StrokeSettings) {
+    // Issue 19's stroke flags are style settings like any other, lists compacted.
+    const SourcedArguments style =
+        styleArguments("lines = contour, suggestive\nmin-stroke-length = 0.02\nline-weight = depth, taper\n"
+                       "overlapping-lines = merge\nsuggestive-seed = 0.08\n",
+                       "strokes.style", "");
+    EXPECT_EQ(style.arguments,
+              (std::vector<std::string>{"--lines", "contour,suggestive", "--min-stroke-length", "0.02", "--line-weight",
+                                        "depth,taper", "--overlapping-lines", "merge", "--suggestive-seed", "0.08"}));
+    const RenderOptions options = optionsWith(style, {"m.obj", "-o", "o.png"});
+    EXPECT_EQ(options.look.strokes.minLength, 0.02);
+    EXPECT_TRUE(options.look.strokes.weightByDepth);
+    EXPECT_FALSE(options.look.strokes.weightByStrength);
+    EXPECT_TRUE(options.look.strokes.taperEnds);
+    EXPECT_TRUE(options.look.strokes.mergeOverlaps);
+}
+
 TEST(StyleFile, TheCommandLineWinsOverTheStyle) {
     const SourcedArguments style = styleArguments("shading = phong\nshininess = 8\n", "s.style", "");
     const RenderOptions options = optionsWith(style, {"m.obj", "-o", "o.png", "--shininess", "100"});

@@ -6,10 +6,15 @@
 #include "tests/support/ThrowMessage.h"
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <limits>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -29,6 +34,50 @@ bool startsWith(const std::string& text, const std::string& prefix) { return tex
 
 Polyline openPolyline(std::vector<cv::Point2f> points) { return {std::move(points), false}; }
 Polyline closedPolyline(std::vector<cv::Point2f> points) { return {std::move(points), true}; }
+
+/** The <path .../> elements of `svg`, whole, in order. */
+std::vector<std::string> pathElements(const std::string& svg) {
+    std::vector<std::string> elements;
+    for (std::size_t at = svg.find("<path "); at != std::string::npos; at = svg.find("<path ", at + 1))
+        elements.push_back(svg.substr(at, svg.find("/>", at) + 2 - at));
+    return elements;
+}
+
+/** The value of `name`="..." in `element`, or "(absent)". */
+std::string attributeOf(const std::string& element, const std::string& name) {
+    const std::size_t at = element.find(" " + name + "=\"");
+    if (at == std::string::npos) return "(absent)";
+    const std::size_t from = at + name.size() + 3;
+    return element.substr(from, element.find('"', from) - from);
+}
+
+/** One command of a weighted path's d (absolute M, L, A, Z) and its numbers. */
+struct PathCommand {
+    char command = 0;
+    std::vector<double> numbers;
+    /** Where the command ends: (x, y) for M and L, the last two numbers for A. */
+    cv::Point2d end() const { return {numbers[numbers.size() - 2], numbers[numbers.size() - 1]}; }
+};
+
+std::vector<PathCommand> parseD(const std::string& d) {
+    std::vector<PathCommand> commands;
+    std::istringstream tokens(d);
+    std::string token;
+    while (tokens >> token) {
+        if (token.size() == 1 && std::isalpha(static_cast<unsigned char>(token[0])))
+            commands.push_back({token[0], {}});
+        else if (!commands.empty())
+            commands.back().numbers.push_back(std::stod(token));
+        else
+            ADD_FAILURE() << "a number before any command in '" << d << "'";
+    }
+    return commands;
+}
+
+std::size_t countOf(const std::vector<PathCommand>& commands, char command) {
+    return std::size_t(std::count_if(commands.begin(), commands.end(),
+                                     [&](const PathCommand& each) { return each.command == command; }));
+}
 
 TEST(SvgLinesTest, DocumentHeaderIsStandaloneSvgWithInkscapeLayers) {
     SvgLineLayer layer;
@@ -235,6 +284,117 @@ TEST(SvgPathsTest, ParserRejectsMalformedDocuments) {
     };
     for (std::size_t index = 0; index < broken.size(); ++index)
         EXPECT_THROW(parseSvgPathDocument(broken[index]), std::runtime_error) << index << ":\n" << broken[index];
+}
+
+TEST(SvgLinesTest, AWeightedLineIsAFilledOutlineAtHalfItsWidthFromTheCentreLine) {
+    // Data pixel centres (0.5, 0.5) to (10.5, 0.5), 2 px wide at the start and 4 px at the end: the left side runs
+    // 1 then 2 px to one side, a round cap of radius 2 turns to the other side, which runs back, and a cap of radius
+    // 1 closes it.
+    SvgLineLayer layer;
+    layer.type = "contour";
+    layer.color = {1.0, 0.0, 0.0, 0.5};
+    layer.polylines = {openPolyline({{0, 0}, {10, 0}})};
+    layer.widths = {{2.0, 4.0}};
+    const std::vector<std::string> paths = pathElements(svgDocument(20, 10, {layer}));
+    ASSERT_EQ(paths.size(), 1u);
+    EXPECT_EQ(attributeOf(paths[0], "fill"), "#ff0000");
+    EXPECT_EQ(attributeOf(paths[0], "fill-opacity"), "0.5");
+    EXPECT_EQ(attributeOf(paths[0], "stroke"), "none");
+    const std::string d = attributeOf(paths[0], "d");
+    EXPECT_TRUE(startsWith(d, "M 0.5 1.5 ") || startsWith(d, "M 0.5 -0.5 ")) << d;
+    const std::vector<PathCommand> commands = parseD(d);
+    ASSERT_GE(commands.size(), 6u) << d;
+    EXPECT_EQ(commands.front().command, 'M');
+    EXPECT_EQ(commands.back().command, 'Z');
+    EXPECT_EQ(countOf(commands, 'M'), 1u);
+    EXPECT_EQ(countOf(commands, 'A'), 2u) << d;
+    EXPECT_EQ(countOf(commands, 'Z'), 1u);
+    // Every vertex lies at half the width at its x (1 px at x = 0.5, 2 px at x = 10.5) from the centre line y = 0.5,
+    // and each cap's radius is half the width where it turns.
+    std::size_t vertices = 0;
+    for (const PathCommand& command : commands) {
+        if (command.command == 'Z') continue;
+        ASSERT_EQ(command.numbers.size(), command.command == 'A' ? 7u : 2u) << d;
+        const cv::Point2d vertex = command.end();
+        ASSERT_TRUE(vertex.x == 0.5 || vertex.x == 10.5) << d;
+        const double halfWidth = vertex.x == 0.5 ? 1.0 : 2.0;
+        EXPECT_NEAR(std::abs(vertex.y - 0.5), halfWidth, 1e-9) << d;
+        if (command.command == 'A') {
+            // The cap that ends here started on the other side at the same x: radius is half that width.
+            EXPECT_NEAR(command.numbers[0], halfWidth, 1e-9) << d;
+            EXPECT_NEAR(command.numbers[1], halfWidth, 1e-9) << d;
+        }
+        ++vertices;
+    }
+    EXPECT_EQ(vertices, 5u) << "two sides of two vertices and the start again: " << d;
+    // Both sides are there: one vertex above and one below the centre line at each end.
+    std::set<std::pair<double, double>> corners;
+    for (const PathCommand& command : commands)
+        if (command.command != 'Z') corners.insert({command.end().x, command.end().y});
+    EXPECT_EQ(corners, (std::set<std::pair<double, double>>{{0.5, -0.5}, {0.5, 1.5}, {10.5, -1.5}, {10.5, 2.5}}));
+}
+
+TEST(SvgLinesTest, AWeightedClosedLineIsARingOfTwoSubpaths) {
+    SvgLineLayer layer;
+    layer.type = "contour";
+    layer.polylines = {closedPolyline({{0, 0}, {20, 0}, {10, 15}})};
+    layer.widths = {{2.0, 2.0, 2.0}};
+    const std::vector<std::string> paths = pathElements(svgDocument(30, 20, {layer}));
+    ASSERT_EQ(paths.size(), 1u);
+    EXPECT_EQ(attributeOf(paths[0], "stroke"), "none");
+    const std::string d = attributeOf(paths[0], "d");
+    const std::vector<PathCommand> commands = parseD(d);
+    EXPECT_EQ(countOf(commands, 'M'), 2u) << "outer and inner sides: " << d;
+    EXPECT_EQ(countOf(commands, 'Z'), 2u) << d;
+    EXPECT_EQ(countOf(commands, 'A'), 0u) << "a ring has no ends to cap: " << d;
+    EXPECT_EQ(countOf(commands, 'L'), 4u) << d;
+    ASSERT_FALSE(commands.empty());
+    EXPECT_EQ(commands.back().command, 'Z');
+    // The inner side lies inside the triangle of the centre line, the outer one outside it.
+    const std::vector<cv::Point2f> centre = {{0.5f, 0.5f}, {20.5f, 0.5f}, {10.5f, 15.5f}};
+    std::size_t subpath = 0;
+    std::array<int, 2> inside{0, 0}, outside{0, 0};
+    for (const PathCommand& command : commands) {
+        if (command.command == 'Z') {
+            ++subpath;
+            continue;
+        }
+        const cv::Point2d vertex = command.end();
+        const double side = cv::pointPolygonTest(centre, cv::Point2f(float(vertex.x), float(vertex.y)), false);
+        ASSERT_LT(subpath, 2u);
+        (side > 0 ? inside : outside)[subpath] += 1;
+    }
+    EXPECT_TRUE((inside[0] == 3 && outside[1] == 3) || (outside[0] == 3 && inside[1] == 3))
+        << "one subpath wholly inside, the other wholly outside: " << d;
+}
+
+TEST(SvgLinesTest, AWeightedDotIsACircleOfItsWidth) {
+    SvgLineLayer layer;
+    layer.type = "contour";
+    layer.polylines = {openPolyline({{7, 8}})};
+    layer.widths = {{3.0}};
+    const std::vector<std::string> paths = pathElements(svgDocument(20, 20, {layer}));
+    ASSERT_EQ(paths.size(), 1u);
+    EXPECT_EQ(attributeOf(paths[0], "stroke"), "none");
+    // Centre (7.5, 8.5), radius 1.5: from the left end a half circle to the right end and back.
+    EXPECT_EQ(attributeOf(paths[0], "d"), "M 6 8.5 A 1.5 1.5 0 0 1 9 8.5 A 1.5 1.5 0 0 1 6 8.5 Z");
+}
+
+TEST(SvgLinesTest, WidthsMustMatchThePolylines) {
+    SvgLineLayer layer;
+    layer.type = "contour";
+    layer.polylines = {openPolyline({{0, 0}, {5, 0}}), openPolyline({{1, 1}, {1, 5}})};
+    layer.widths = {{2.0, 2.0}}; // one list for two polylines
+    std::string message = invalidArgumentMessage([&] { svgDocument(10, 10, {layer}); });
+    EXPECT_NE(message.find("'widths'"), std::string::npos) << message;
+    layer.widths = {{2.0, 2.0}, {2.0}}; // one width for two vertices
+    message = invalidArgumentMessage([&] { svgDocument(10, 10, {layer}); });
+    EXPECT_NE(message.find("'widths' [1]"), std::string::npos) << message;
+    layer.widths = {{2.0, 2.0}, {2.0, 0.0}};
+    message = invalidArgumentMessage([&] { svgDocument(10, 10, {layer}); });
+    EXPECT_NE(message.find("'widths' [1]"), std::string::npos) << message;
+    layer.widths = {{2.0, 2.0}, {2.0, 3.0}};
+    EXPECT_NO_THROW(svgDocument(10, 10, {layer}));
 }
 
 } // namespace
