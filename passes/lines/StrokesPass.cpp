@@ -119,7 +119,7 @@ void StrokesPass::execute(GlPassContext& gl) {
     mReport.gapJoins = mStrokes.gapJoins;
     mReport.crossTypeJoins = mStrokes.crossTypeJoins;
     mReport.absorbedFragments = mStrokes.absorbedFragments;
-    mReport.overlapPoints = mStrokes.overlapsMerged;
+    mReport.overlapStrokes = mStrokes.overlapsMerged;
 }
 
 void StrokesPass::describe(nlohmann::ordered_json& report) const {
@@ -132,7 +132,7 @@ void StrokesPass::describe(nlohmann::ordered_json& report) const {
     report["gap_joins"] = mReport.gapJoins;
     report["cross_type_joins"] = mReport.crossTypeJoins;
     report["absorbed_fragments"] = mReport.absorbedFragments;
-    report["overlap_points_merged"] = mReport.overlapPoints;
+    report["overlap_strokes_merged"] = mReport.overlapStrokes;
     nlohmann::ordered_json types = nlohmann::ordered_json::object();
     for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
         std::size_t kept = 0;

@@ -52,7 +52,7 @@ struct StrokesPassSettings {
 /** What the last execute() did, for --stats. */
 struct StrokesReport {
     std::size_t chains = 0, strokes = 0, kept = 0, droppedShort = 0, droppedWeak = 0;
-    std::size_t junctionJoins = 0, gapJoins = 0, crossTypeJoins = 0, absorbedFragments = 0, overlapPoints = 0;
+    std::size_t junctionJoins = 0, gapJoins = 0, crossTypeJoins = 0, absorbedFragments = 0, overlapStrokes = 0;
     double thinMilliseconds = 0.0, chainMilliseconds = 0.0, strokeMilliseconds = 0.0;
 };
 

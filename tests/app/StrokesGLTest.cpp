@@ -175,8 +175,8 @@ TEST_F(Strokes, MergingOverlappingLinesLeavesLessContourInk) {
                 ".png --dump " + mode + " --stats " + mode + ".json -q --overlapping-lines " + mode);
         ASSERT_EQ(result.exitCode, 0) << result.err;
     }
-    EXPECT_EQ(strokeStats(directory / "draw.json")["overlap_points_merged"].get<int>(), 0);
-    EXPECT_GT(strokeStats(directory / "merge.json")["overlap_points_merged"].get<int>(), 0);
+    EXPECT_EQ(strokeStats(directory / "draw.json")["overlap_strokes_merged"].get<int>(), 0);
+    EXPECT_GT(strokeStats(directory / "merge.json")["overlap_strokes_merged"].get<int>(), 0);
     const double drawn = inkOf(readImage(directory / "draw" / "lines-contour.png"));
     const double merged = inkOf(readImage(directory / "merge" / "lines-contour.png"));
     // From spot's default view (from behind) its contours run along the outline, so they give way whole.
