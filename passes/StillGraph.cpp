@@ -7,7 +7,6 @@
 #include "passes/lines/StrokesPass.h"
 #include "passes/orientation/SceneOrientation.h"
 #include "passes/shade/ShadePass.h"
-#include "postfx/LineTracing.h"
 
 #include <algorithm>
 
@@ -109,7 +108,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         input.resource = type.name + (input.layer ? ".skeleton" : ".lines");
         input.widthPixels = float(look.styleOf(type.name).widthPixels);
         const LineTypeStrokeRules rules = type.strokeRules ? type.strokeRules(look) : LineTypeStrokeRules{};
-        input.minLength = std::max(look.strokes.minLength, rules.minLength);
+        input.minLength = look.strokes.minLength;
         input.seedStrength = rules.seedStrength;
         strokes.inputs.push_back(input);
         lines.push_back({std::string(kStrokesPass) + "." + type.name, displayColor(look.styleOf(type.name).color)});

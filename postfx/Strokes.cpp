@@ -414,7 +414,8 @@ Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSetting
             }
             for (std::size_t k = first; k < count; ++k) {
                 const std::size_t index = step.forward ? k : count - 1 - k;
-                // Pixels without a point of their own are drawn faintly rather than not at all.
+                // A pixel with no point of its own (strength 0) keeps a token strength, so every stroke point is a
+                // valid LinePoint; it seeds nothing.
                 const float strength = std::max(branch.strengths[index], 1e-3f);
                 stroke.points.push_back({cv::Point2f(branch.positions[index]), strength});
                 stroke.pixels.push_back(branch.pixels[index]);

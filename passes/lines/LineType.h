@@ -81,7 +81,6 @@ struct LineStatsSource {
 
 /** A line type's own stroke rules beyond the look's (postfx/Strokes.h). */
 struct LineTypeStrokeRules {
-    double minLength = 0.0;    ///< a share of the height its chains need at least (crease prominence); 0: the look's
     float seedStrength = 0.0f; ///< hysteresis: a chain needs a point of this type this strong; 0: every point seeds
 };
 
@@ -95,7 +94,7 @@ struct LineType {
     std::function<void(const std::string& type, LineGraphBuilder& builder)> build;
     /** Adds its settings and what it did to its entry of --stats look.lines (after type, width and colour). */
     std::function<void(const LineStatsSource& source, nlohmann::ordered_json& entry)> describe;
-    /** Its stroke rules (a longer minimum, a seed strength), from the look; not set: the look's rules alone. */
+    /** Its stroke rules (a seed strength), from the look; not set: the look's rules alone. */
     std::function<LineTypeStrokeRules(const Look& look)> strokeRules;
     /** Working memory per data pixel beyond the stroke's, for app/MemoryBudget (0 when not set). */
     std::function<std::size_t(const LineParameterValues& values)> workingBytesPerPixel;
