@@ -474,33 +474,28 @@ void mergeOverlaps(Strokes& strokes, const std::vector<StrokeLayer>& layers, con
                          std::clamp(int(std::lround(point.position.y)), 0, dataSize.height - 1));
     };
     double earlierHalfWidth = 0.0;
-    std::vector<Stroke> result;
     for (std::size_t layer = 0; layer < layers.size(); ++layer) {
-        cv::Mat distance;
-        if (layer > 0) cv::distanceTransform(notDrawn, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-        const double reach = halfWidths[layer] + earlierHalfWidth;
-        for (Stroke& stroke : strokes.strokes) {
-            if (stroke.layer != int(layer)) continue;
-            if (!stroke.kept || distance.empty()) {
-                result.push_back(std::move(stroke));
-                continue;
+        if (layer > 0) {
+            cv::Mat distance;
+            cv::distanceTransform(notDrawn, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+            const double reach = halfWidths[layer] + earlierHalfWidth;
+            for (Stroke& stroke : strokes.strokes) {
+                if (stroke.layer != int(layer) || !stroke.kept) continue;
+                // A stroke mostly along an earlier type's is that line drawn again: it gives way whole. Deciding per
+                // stroke, not per point, leaves no scattered pieces where the two lines part by about the reach.
+                std::size_t covered = 0;
+                for (const LinePoint& point : stroke.points) covered += distance.at<float>(pixelOf(point)) <= reach;
+                if (2 * covered >= stroke.points.size()) {
+                    stroke.kept = false;
+                    strokes.overlapsMerged += 1;
+                }
             }
-            // A stroke mostly along an earlier type's is that line drawn again: it gives way whole. Deciding per
-            // stroke, not per point, leaves no scattered pieces where the two lines part by about the reach.
-            std::size_t covered = 0;
-            for (const LinePoint& point : stroke.points) covered += distance.at<float>(pixelOf(point)) <= reach;
-            if (2 * covered >= stroke.points.size()) {
-                stroke.kept = false;
-                strokes.overlapsMerged += 1;
-            }
-            result.push_back(std::move(stroke));
         }
-        for (const Stroke& stroke : result)
+        for (const Stroke& stroke : strokes.strokes)
             if (stroke.layer == int(layer) && stroke.kept)
                 for (const LinePoint& point : stroke.points) notDrawn.at<uchar>(pixelOf(point)) = 0;
         earlierHalfWidth = std::max(earlierHalfWidth, halfWidths[layer]);
     }
-    strokes.strokes = std::move(result);
 }
 
 void weighStrokes(Strokes& strokes, const LineWeightSettings& weight, const cv::Mat& depth, cv::Size dataSize) {

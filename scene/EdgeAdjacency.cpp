@@ -218,10 +218,19 @@ std::vector<std::uint32_t> selectSilhouetteEdges(const EdgeAdjacency& adjacency,
     return indices;
 }
 
+namespace {
+
+/** A crease: a manifold edge whose faces' normals meet at more than the angle. */
+bool isCrease(const MeshEdge& edge, double creaseAngleRadians) {
+    return edge.kind == EdgeKind::Manifold && double(edge.normalAngle) > creaseAngleRadians;
+}
+
+} // namespace
+
 std::vector<std::uint32_t> selectCreaseEdges(const EdgeAdjacency& adjacency, double creaseAngleRadians) {
     std::vector<std::uint32_t> indices;
     for (const MeshEdge& edge : adjacency.edges) {
-        if (edge.kind != EdgeKind::Manifold || !(double(edge.normalAngle) > creaseAngleRadians)) continue;
+        if (!isCrease(edge, creaseAngleRadians)) continue;
         indices.push_back(edge.vertices.x);
         indices.push_back(edge.vertices.y);
     }
@@ -349,11 +358,8 @@ CreaseSelection selectProminentCreaseEdges(const EdgeAdjacency& adjacency, std::
         throw std::invalid_argument("selectProminentCreaseEdges(): 'minChainLength' must be finite and >= 0, got " +
                                     std::to_string(minChainLength));
     std::vector<std::uint32_t> creases;
-    for (std::size_t index = 0; index < adjacency.edges.size(); ++index) {
-        const MeshEdge& edge = adjacency.edges[index];
-        if (edge.kind == EdgeKind::Manifold && double(edge.normalAngle) > creaseAngleRadians)
-            creases.push_back(std::uint32_t(index));
-    }
+    for (std::size_t index = 0; index < adjacency.edges.size(); ++index)
+        if (isCrease(adjacency.edges[index], creaseAngleRadians)) creases.push_back(std::uint32_t(index));
     CreaseSelection selection;
     selection.edgesByAngle = creases.size();
     const EdgeChains chains = chainEdges(adjacency, positions, creases, kCreaseChainMaxTurnRadians);

@@ -55,7 +55,8 @@ void StrokesPass::execute(GlPassContext& gl) {
 
     // Each type's skeleton at the data resolution, or a GL band's middle line at the output size.
     auto start = std::chrono::steady_clock::now();
-    mThinnedBands.assign(mSettings.inputs.size(), {});
+    // A GL band's middle line, per input (empty for CPU types); the layers point into it while they are chained.
+    std::vector<LineSkeleton> thinnedBands(mSettings.inputs.size());
     std::vector<StrokeLayer> layers;
     const double heightPixels = double(gl.height()) * scale;
     for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
@@ -64,8 +65,8 @@ void StrokesPass::execute(GlPassContext& gl) {
         if (input.layer) {
             layer.skeleton = &input.layer->skeleton();
         } else {
-            mThinnedBands[index] = skeletonFromMask(thinToSkeleton(gl.inputImage(input.resource)));
-            layer.skeleton = &mThinnedBands[index];
+            thinnedBands[index] = skeletonFromMask(thinToSkeleton(gl.inputImage(input.resource)));
+            layer.skeleton = &thinnedBands[index];
             layer.scale = scale / gl.scaleOf(input.resource);
         }
         if (layer.skeleton->mask.size() * layer.scale != dataSize)

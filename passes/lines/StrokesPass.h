@@ -79,7 +79,6 @@ public:
 private:
     std::string mName;
     StrokesPassSettings mSettings;
-    std::vector<LineSkeleton> mThinnedBands; ///< per input: the band's middle line (GL types), else empty
     Strokes mStrokes;
     StrokesReport mReport;
 };
