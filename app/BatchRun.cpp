@@ -16,29 +16,10 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-} // namespace
-
-int renderBatch(const RenderOptions& options, std::istream& standardInput, std::ostream& out, std::ostream& log) {
-    const BatchList list = batchList(options, standardInput);
-    checkBatchOutputs(options, list);
-    RenderSession session(out, log);
-    const std::string share = options.shard
-                                  ? " (shard " + std::to_string(options.shard->index) + "/" +
-                                        std::to_string(options.shard->count) + " of " + std::to_string(list.total) + ")"
-                                  : "";
-    // Only --shard can leave a share empty (a list of no models is refused): with N above the list's length some
-    // shards have nothing to do, which is not an error in an array job.
-    if (list.models.empty()) {
-        if (!options.quiet) log << "inkgraph: no models in this share" << share << "\n";
-        return kExitOk;
-    }
-    if (!list.isBatch) {
-        session.render(stillOptions(options, list.models.front(), list.total));
-        return kExitOk;
-    }
-    const auto batchStart = std::chrono::steady_clock::now();
-    int exitCode = kExitOk;
-    std::vector<std::string> failed;
+/** Renders every model of the list in `session`, each still's picture encoded while the next renders (the caller
+ *  finishes the last). Bad input stops one still, not the batch: its model goes to `failed`. */
+void renderEach(const RenderOptions& options, const BatchList& list, RenderSession& session, std::ostream& log,
+                std::vector<std::string>& failed, int& exitCode) {
     for (std::size_t i = 0; i < list.models.size(); ++i) {
         const BatchModel& model = list.models[i];
         const RenderOptions still = stillOptions(options, model, list.total);
@@ -63,6 +44,44 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
             failed.push_back(model.path);
             if (exitCode == kExitOk) exitCode = kExitBadInput;
         }
+    }
+}
+
+} // namespace
+
+int renderBatch(const RenderOptions& options, std::istream& standardInput, std::ostream& out, std::ostream& log) {
+    const BatchList list = batchList(options, standardInput);
+    checkBatchOutputs(options, list);
+    RenderSession session(out, log);
+    const std::string share = options.shard
+                                  ? " (shard " + std::to_string(options.shard->index) + "/" +
+                                        std::to_string(options.shard->count) + " of " + std::to_string(list.total) + ")"
+                                  : "";
+    // Only --shard can leave a share empty (a list of no models is refused): with N above the list's length some
+    // shards have nothing to do, which is not an error in an array job.
+    if (list.models.empty()) {
+        if (!options.quiet) log << "inkgraph: no models in this share" << share << "\n";
+        return kExitOk;
+    }
+    if (!list.isBatch) {
+        session.render(stillOptions(options, list.models.front(), list.total));
+        return kExitOk;
+    }
+    const auto batchStart = std::chrono::steady_clock::now();
+    int exitCode = kExitOk;
+    std::vector<std::string> failed;
+    try {
+        renderEach(options, list, session, log, failed, exitCode);
+        session.finishPending();
+    } catch (...) {
+        // The batch stops; the still whose picture was still being encoded is finished first, so no completed
+        // still's outputs are lost. Its own failure, if any, is told, and the one that stopped the batch thrown.
+        try {
+            session.finishPending();
+        } catch (const std::exception& error) {
+            log << "inkgraph: error: " << error.what() << "\n";
+        }
+        throw;
     }
     if (!options.quiet || !failed.empty()) {
         log << "inkgraph: rendered " << list.models.size() - failed.size() << " of " << list.models.size() << " models"

@@ -158,12 +158,17 @@ void writeBytes(const std::filesystem::path& destination, const void* data, std:
     }
 }
 
-void writeImageTo(const std::filesystem::path& destination, const std::filesystem::path& finalPath,
-                  const cv::Mat& image) {
+std::vector<unsigned char> encodeImageFile(const std::filesystem::path& finalPath, const cv::Mat& image) {
     std::vector<unsigned char> encoded;
     std::string error;
     if (!imageIo().encodeImage(finalPath.string(), image, encoded, error))
         throw FileError("writeImage(): cannot write '" + finalPath.string() + "': " + error);
+    return encoded;
+}
+
+void writeImageTo(const std::filesystem::path& destination, const std::filesystem::path& finalPath,
+                  const cv::Mat& image) {
+    const std::vector<unsigned char> encoded = encodeImageFile(finalPath, image);
     writeBytes(destination, encoded.data(), encoded.size(), finalPath.string());
 }
 

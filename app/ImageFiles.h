@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace inkgraph {
 
@@ -30,6 +31,10 @@ void finishImageIoPreload();
  *  float images must go to .exr or .tif); an 8-bit picture written as EXR is converted to linear float. The format
  *  follows the extension. Encoded in memory, written under a temporary name, synced, renamed into place. */
 void writeImage(const std::filesystem::path& path, const cv::Mat& image);
+
+/** `image` encoded in memory in the format of `finalPath`'s extension (as writeImage() writes it); thread-safe, so
+ *  a batch encodes one still's picture while the next renders. Throws FileError naming `finalPath`. */
+std::vector<unsigned char> encodeImageFile(const std::filesystem::path& finalPath, const cv::Mat& image);
 
 /** Encodes `image` in the format of `finalPath`'s extension and writes it to `destination` (a new file, created
  *  exclusively, synced to disk); errors name `finalPath`. For callers that rename later (app/OutputFiles). */

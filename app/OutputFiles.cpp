@@ -196,21 +196,27 @@ OutputSet::Output& OutputSet::output(const std::string& flag) {
     throw std::logic_error("OutputSet::output(): '" + flag + "' was not given");
 }
 
-void OutputSet::stageFile(const std::string& flag, const cv::Mat* image, const std::string* text) {
+void OutputSet::stageBytes(const std::string& flag, const void* data, std::size_t byteCount) {
     Output& file = output(flag);
     const fs::path temporary = temporarySibling(file.destination);
-    if (image != nullptr)
-        writeImageTo(temporary, file.destination, *image);
-    else
-        writeBytes(temporary, text->data(), text->size(), file.destination.string());
+    writeBytes(temporary, data, byteCount, file.destination.string());
     file.temporary = temporary;
 }
 
-void OutputSet::stageFinalImage(const cv::Mat& image) { stageFile("-o", &image, nullptr); }
-void OutputSet::stageStats(const std::string& json) { stageFile("--stats", nullptr, &json); }
-void OutputSet::stageGraphviz(const std::string& dot) { stageFile("--graphviz", nullptr, &dot); }
-void OutputSet::stageContactSheet(const cv::Mat& image) { stageFile("--contact-sheet", &image, nullptr); }
-void OutputSet::stageSvg(const std::string& svg) { stageFile("--svg", nullptr, &svg); }
+void OutputSet::stageImage(const std::string& flag, const cv::Mat& image) {
+    Output& file = output(flag);
+    const fs::path temporary = temporarySibling(file.destination);
+    writeImageTo(temporary, file.destination, image);
+    file.temporary = temporary;
+}
+
+void OutputSet::stageFinalImage(const std::vector<unsigned char>& encoded) {
+    stageBytes("-o", encoded.data(), encoded.size());
+}
+void OutputSet::stageStats(const std::string& json) { stageBytes("--stats", json.data(), json.size()); }
+void OutputSet::stageGraphviz(const std::string& dot) { stageBytes("--graphviz", dot.data(), dot.size()); }
+void OutputSet::stageContactSheet(const cv::Mat& image) { stageImage("--contact-sheet", image); }
+void OutputSet::stageSvg(const std::string& svg) { stageBytes("--svg", svg.data(), svg.size()); }
 
 void OutputSet::stageDumpImage(const std::string& fileName, const cv::Mat& image) {
     writeImageTo(mDump->stage(fileName), mDump->folder() / fileName, image);

@@ -43,11 +43,11 @@ public:
      *  model, --shademap, --style and --list are checked by the constructor; the app adds what loading found. */
     void refuseInputs(const std::vector<RunInput>& inputs) const;
 
-    void stageFinalImage(const cv::Mat& image);   ///< -o
-    void stageStats(const std::string& json);     ///< --stats
-    void stageGraphviz(const std::string& dot);   ///< --graphviz
-    void stageContactSheet(const cv::Mat& image); ///< --contact-sheet
-    void stageSvg(const std::string& svg);        ///< --svg
+    void stageFinalImage(const std::vector<unsigned char>& encoded); ///< -o, as encodeImageFile() encoded it
+    void stageStats(const std::string& json);                        ///< --stats
+    void stageGraphviz(const std::string& dot);                      ///< --graphviz
+    void stageContactSheet(const cv::Mat& image);                    ///< --contact-sheet
+    void stageSvg(const std::string& svg);                           ///< --svg
     void stageDumpImage(const std::string& fileName, const cv::Mat& image);
     void stageDumpManifest(const std::string& json);
 
@@ -63,7 +63,8 @@ private:
         bool moved = false;
     };
     Output& output(const std::string& flag);
-    void stageFile(const std::string& flag, const cv::Mat* image, const std::string* text);
+    void stageBytes(const std::string& flag, const void* data, std::size_t byteCount);
+    void stageImage(const std::string& flag, const cv::Mat& image);
     void undo();
 
     std::vector<Output> mOutputs; ///< -o, --stats, --graphviz, --contact-sheet, --svg, as given

@@ -9,7 +9,9 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
+#include <future>
 #include <iostream>
 
 #include <unistd.h>
@@ -130,6 +132,27 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     return request;
 }
 
+std::unique_ptr<PreparedStill> RenderSession::loadWhileMakingContext(StillRequest request, bool renders,
+                                                                     const StillLog& log) {
+    const EglPlatform platform = request.eglPlatform;
+    // The model loads on a second thread while this one makes the GL context (the first still of a process only;
+    // the context must be current here, where the passes run). Neither touches what the other does.
+    std::future<std::unique_ptr<PreparedStill>> loading =
+        std::async(std::launch::async, [this, &request, &log] { return mRenderer.load(std::move(request), log); });
+    std::exception_ptr contextFailure;
+    if (renders) {
+        try {
+            mRenderer.makeContext(platform);
+        } catch (...) {
+            contextFailure = std::current_exception();
+        }
+    }
+    // A bad model is reported before a missing driver, as when the two ran one after the other.
+    std::unique_ptr<PreparedStill> still = loading.get();
+    if (contextFailure) std::rethrow_exception(contextFailure);
+    return still;
+}
+
 StillReport RenderSession::render(const RenderOptions& options, const StillBatchPosition* batch) {
     const auto processStart = std::chrono::steady_clock::now();
     const bool renders = rendersImages(options);
@@ -142,10 +165,10 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     StillReport report;
 
     // Every output place is checked before any work; outputs are staged and put in place only at the end.
-    OutputSet outputs(options);
-    const std::unique_ptr<PreparedStill> still = mRenderer.load(stillRequestOf(options), log);
+    auto outputs = std::make_unique<OutputSet>(options);
+    const std::unique_ptr<PreparedStill> still = loadWhileMakingContext(stillRequestOf(options), renders, log);
     report.triangles = still->scene.triangleCount();
-    outputs.refuseInputs(inputsFoundByLoading(options, still->scene));
+    outputs->refuseInputs(inputsFoundByLoading(options, still->scene));
     mRenderer.plan(*still);
 
     const Plan& plan = still->plan;
@@ -153,9 +176,9 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
         mOut << plan.describe();
         requireStandardOutputWritten(mOut); // before the commit: a run that fails puts no file in place
     }
-    if (!options.graphvizPath.empty()) outputs.stageGraphviz(plan.graphviz());
+    if (!options.graphvizPath.empty()) outputs->stageGraphviz(plan.graphviz());
     if (!renders) {
-        outputs.commit();
+        outputs->commit();
         return report;
     }
     checkFrameBudget(plan, options, &still->scene);
@@ -165,24 +188,59 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     still->gpuScene->materials().setTextureMemoryLimit(limit > estimated ? limit - estimated : 0);
 
     StillResult result = mRenderer.execute(*still, log);
+    // The previous still of a batch is finished now: its picture was encoded while this one loaded and rendered.
+    finishPending();
     const auto writeStart = std::chrono::steady_clock::now();
-    stageStillOutputs(options, *still, result, outputs);
+    auto pending = std::make_unique<PendingStill>();
+    stageStillOutputs(options, *still, result, *outputs);
+    if (!options.outputPath.empty()) {
+        // The picture is a CPU image the store shares with this thread; encoding it needs nothing else.
+        const cv::Mat picture = result.store().image(still->graph.finalResource);
+        pending->encoding = std::async(std::launch::async, [picture, path = std::filesystem::path(options.outputPath)] {
+            const auto encodeStart = std::chrono::steady_clock::now();
+            EncodedPicture encoded{encodeImageFile(path, picture), 0.0};
+            encoded.milliseconds = millisecondsSince(encodeStart);
+            return encoded;
+        });
+    }
     if (!options.statsPath.empty()) {
         StatsContext context{options, batch};
-        context.writeMilliseconds = millisecondsSince(writeStart);
         context.estimatedPeakBytes = estimatePlanBytes(plan, options, &still->scene);
-        context.totalMilliseconds = millisecondsSince(processStart);
-        outputs.stageStats(statsText(context, mRenderer, *still, result));
+        pending->stats = statsDocument(context, mRenderer, *still, result);
     }
-    outputs.commit();
-    report.milliseconds = millisecondsSince(processStart);
-    if (talks) {
-        mLog << "inkgraph: rendered " << options.width << "x" << options.height << " in "
-             << millisecondsSince(processStart) << " ms";
-        if (!options.outputPath.empty()) mLog << " -> '" << options.outputPath << "'";
+    pending->outputs = std::move(outputs);
+    pending->outputPath = options.outputPath;
+    pending->size = std::to_string(options.width) + "x" + std::to_string(options.height);
+    pending->talks = talks;
+    pending->stagedMilliseconds = millisecondsSince(writeStart);
+    pending->renderedMilliseconds = millisecondsSince(processStart);
+    report.milliseconds = pending->renderedMilliseconds;
+    mPending = std::move(pending);
+    // One still alone is finished at once; in a batch the caller finishes the last (finishPending()).
+    if (batch == nullptr) finishPending();
+    return report;
+}
+
+void RenderSession::finishPending() {
+    if (!mPending) return;
+    const std::unique_ptr<PendingStill> pending = std::move(mPending);
+    double writeMilliseconds = pending->stagedMilliseconds;
+    if (pending->encoding.valid()) {
+        const EncodedPicture encoded = pending->encoding.get();
+        const auto stageStart = std::chrono::steady_clock::now();
+        pending->outputs->stageFinalImage(encoded.bytes);
+        writeMilliseconds += encoded.milliseconds + millisecondsSince(stageStart);
+    }
+    // The still's own time: up to the hand-over, plus its writing (not the next still's work it overlapped).
+    const double totalMilliseconds = pending->renderedMilliseconds - pending->stagedMilliseconds + writeMilliseconds;
+    if (pending->stats)
+        pending->outputs->stageStats(finishedStatsText(*pending->stats, writeMilliseconds, totalMilliseconds));
+    pending->outputs->commit();
+    if (pending->talks) {
+        mLog << "inkgraph: rendered " << pending->size << " in " << totalMilliseconds << " ms";
+        if (!pending->outputPath.empty()) mLog << " -> '" << pending->outputPath << "'";
         mLog << "\n";
     }
-    return report;
 }
 
 } // namespace inkgraph

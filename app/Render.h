@@ -7,7 +7,14 @@
 #include "app/Stats.h"
 #include "app/StillRenderer.h"
 
+#include "app/OutputFiles.h"
+
 #include <cstddef>
+#include <future>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 #include <iosfwd>
 
 namespace inkgraph {
@@ -40,10 +47,39 @@ public:
      *  them to exit codes. */
     StillReport render(const RenderOptions& options, const StillBatchPosition* batch = nullptr);
 
+    /** A batch's still (`batch` given) returns from render() with its picture still being encoded on a second thread,
+     *  which overlaps the next still; the next render() finishes it (writes the picture and --stats, commits its
+     *  outputs) once that still has executed, and the caller finishes the last one with this. Throws the writing's
+     *  FileError. A still alone is finished before render() returns. */
+    void finishPending();
+
 private:
+    /** StillRenderer::load() on a second thread while this one makes the GL context when the run `renders`; the
+     *  load's error wins over the context's. */
+    std::unique_ptr<PreparedStill> loadWhileMakingContext(StillRequest request, bool renders, const StillLog& log);
+
+    /** A picture encoded in memory, and how long that took. */
+    struct EncodedPicture {
+        std::vector<unsigned char> bytes;
+        double milliseconds = 0.0;
+    };
+    /** A still that executed, its outputs staged but the picture (being encoded) and --stats, none committed. It
+     *  holds no GL object: the still's own are freed on this thread before the next still runs. */
+    struct PendingStill {
+        std::unique_ptr<OutputSet> outputs;
+        std::future<EncodedPicture> encoding;        ///< invalid without -o
+        std::optional<nlohmann::ordered_json> stats; ///< --stats, less the writing's facts
+        std::string outputPath;
+        std::string size; ///< "WxH", for the progress line
+        bool talks = false;
+        double stagedMilliseconds = 0.0;   ///< staging the other outputs
+        double renderedMilliseconds = 0.0; ///< from the still's start to the hand-over
+    };
+
     std::ostream& mOut;
     std::ostream& mLog;
     StillRenderer mRenderer;
+    std::unique_ptr<PendingStill> mPending;
 };
 
 /** Standard output that cannot be written (--print-plan > /dev/full, a closed pipe) fails the run: throws FileError. */

@@ -6,8 +6,8 @@
 
 namespace inkgraph {
 
-std::string statsText(const StatsContext& context, const StillRenderer& renderer, const PreparedStill& still,
-                      const StillResult& result) {
+nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRenderer& renderer,
+                                     const PreparedStill& still, const StillResult& result) {
     using Json = nlohmann::ordered_json;
     const RenderOptions& options = context.options;
     const Scene& scene = still.scene;
@@ -51,13 +51,20 @@ std::string statsText(const StatsContext& context, const StillRenderer& renderer
     stats["passes"] = describeTimings(result.timings);
     stats["post_stage"] = still.graph.describePostStage(result.timings);
     stats["culled"] = culled;
-    stats["write_ms"] = context.writeMilliseconds;
+    stats["write_ms"] = 0.0; // finishedStatsText()
     stats["textures_created"] = result.pool->createdCount();
     stats["textures_reused"] = result.pool->reusedCount();
     stats["estimated_peak_mib"] = double(context.estimatedPeakBytes) / (1 << 20);
-    // Measured so far (the outputs above are encoded): what the estimate bounds, to compare.
+    stats["peak_rss_mib"] = 0.0; // finishedStatsText()
+    stats["total_ms"] = 0.0;
+    return stats;
+}
+
+std::string finishedStatsText(nlohmann::ordered_json stats, double writeMilliseconds, double totalMilliseconds) {
+    stats["write_ms"] = writeMilliseconds;
+    // Measured once the outputs are encoded: what the estimate bounds, to compare.
     stats["peak_rss_mib"] = double(peakResidentBytes()) / (1 << 20);
-    stats["total_ms"] = context.totalMilliseconds;
+    stats["total_ms"] = totalMilliseconds;
     return jsonText(stats);
 }
 

@@ -5,6 +5,8 @@
 #include "app/Options.h"
 #include "app/StillRenderer.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstddef>
 #include <string>
 
@@ -20,13 +22,16 @@ struct StillBatchPosition {
 struct StatsContext {
     const RenderOptions& options;
     const StillBatchPosition* batch = nullptr;
-    double writeMilliseconds = 0.0; ///< encoding the outputs so far
-    double totalMilliseconds = 0.0; ///< the still so far
     std::size_t estimatedPeakBytes = 0;
 };
 
-/** The --stats document of a still that executed with `renderer`. */
-std::string statsText(const StatsContext& context, const StillRenderer& renderer, const PreparedStill& still,
-                      const StillResult& result);
+/** The --stats document of a still that executed with `renderer`, but for what only writing its outputs tells:
+ *  finishedStatsText() fills that in. Made while the still's GL objects live; it refers to none of them. */
+nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRenderer& renderer,
+                                     const PreparedStill& still, const StillResult& result);
+
+/** The document's text with "write_ms" (encoding and writing the outputs), "peak_rss_mib" (measured now) and
+ *  "total_ms" (the still from its start until its outputs are written) filled in. */
+std::string finishedStatsText(nlohmann::ordered_json stats, double writeMilliseconds, double totalMilliseconds);
 
 } // namespace inkgraph

@@ -170,7 +170,6 @@ Json describeTimings(const std::vector<PassTiming>& timings) {
 void stageStillOutputs(const RenderOptions& options, const PreparedStill& still, StillResult& result,
                        OutputSet& outputs) {
     ResourceStore& store = result.store();
-    if (!options.outputPath.empty()) outputs.stageFinalImage(store.image(still.graph.finalResource));
     if (!options.contactSheetPath.empty()) outputs.stageContactSheet(contactSheetOf(still, store));
     if (!options.svgPath.empty()) outputs.stageSvg(svgOf(options, still));
     if (!options.dumpDirectory.empty()) stageDump(options, still, result, outputs);

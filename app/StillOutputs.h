@@ -22,7 +22,8 @@ nlohmann::ordered_json describeLook(const PreparedStill& still, const std::strin
 /** The passes' timings for --stats and manifest.json. */
 nlohmann::ordered_json describeTimings(const std::vector<PassTiming>& timings);
 
-/** Stages the outputs `options` asks for (-o, --contact-sheet, --svg, --dump) from a still that executed. */
+/** Stages the outputs `options` asks for but the final picture and --stats (--contact-sheet, --svg, --dump) from a
+ *  still that executed; app/Render.cpp encodes the picture, off the critical path. */
 void stageStillOutputs(const RenderOptions& options, const PreparedStill& still, StillResult& result,
                        OutputSet& outputs);
 

@@ -160,17 +160,24 @@ void StillRenderer::plan(PreparedStill& still) {
     }
 }
 
+void StillRenderer::makeContext(EglPlatform platform) {
+    if (mContext) return;
+    HeadlessContextOptions contextOptions;
+    contextOptions.platform = platform;
+    const auto contextStart = std::chrono::steady_clock::now();
+    mContext.emplace(contextOptions);
+    mUnreportedContextMilliseconds = millisecondsSince(contextStart);
+}
+
 StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
     StillResult result;
     // One context for every still of the process: the first that renders makes it (the platform is the same for all
     // of them), later ones find it current with the programs the earlier ones compiled.
-    result.contextReused = mContext.has_value();
+    makeContext(still.request.eglPlatform);
+    result.contextReused = !mUnreportedContextMilliseconds.has_value();
     if (!result.contextReused) {
-        HeadlessContextOptions contextOptions;
-        contextOptions.platform = still.request.eglPlatform;
-        const auto contextStart = std::chrono::steady_clock::now();
-        mContext.emplace(contextOptions);
-        result.contextMilliseconds = millisecondsSince(contextStart);
+        result.contextMilliseconds = *mUnreportedContextMilliseconds;
+        mUnreportedContextMilliseconds.reset();
         if (!log.quiet) log.log << "inkgraph: " << mContext->describe() << "\n";
     }
     const CameraRequest& camera = still.request.camera;

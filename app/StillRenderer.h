@@ -112,8 +112,11 @@ public:
     /** Resolves the camera, builds the graph and compiles the plan for the final picture plus what the request keeps.
      *  Throws UsageError for a request the scene cannot satisfy (a camera, a --request name). No GL. */
     void plan(PreparedStill& still);
-    /** Makes or reuses the context, checks the frame against the driver, runs the plan. Throws HeadlessContextError,
-     *  UsageError (the driver's limits, out of memory), GraphError. */
+    /** Makes the process's GL context now, unless it exists: app/Render.cpp calls it while the model loads on another
+     *  thread, so the two overlap. Touches nothing load() uses. Throws HeadlessContextError. */
+    void makeContext(EglPlatform platform);
+    /** Makes (unless makeContext() did) or reuses the context, checks the frame against the driver, runs the plan.
+     *  Throws HeadlessContextError, UsageError (the driver's limits, out of memory), GraphError. */
     StillResult execute(PreparedStill& still, const StillLog& log);
 
     /** The context, once a still has executed. */
@@ -121,6 +124,8 @@ public:
 
 private:
     std::optional<HeadlessContext> mContext; ///< declared before the programs, so they are deleted first
+    /** Set by makeContext() until the next execute() reports it as that still's context time. */
+    std::optional<double> mUnreportedContextMilliseconds;
     ShaderLibrary mShaders;
 };
 

@@ -58,8 +58,8 @@ Mesh subdivided(const Mesh& input, int k) {
         }
         for (int i = 0; i < k; ++i)
             for (int j = 0; i + j < k; ++j) {
-                mesh.triangles.push_back({grid[size_t(i)][size_t(j)], grid[size_t(i) + 1][size_t(j)],
-                                          grid[size_t(i)][size_t(j) + 1]});
+                mesh.triangles.push_back(
+                    {grid[size_t(i)][size_t(j)], grid[size_t(i) + 1][size_t(j)], grid[size_t(i)][size_t(j) + 1]});
                 if (i + j + 1 < k)
                     mesh.triangles.push_back({grid[size_t(i) + 1][size_t(j)], grid[size_t(i) + 1][size_t(j) + 1],
                                               grid[size_t(i)][size_t(j) + 1]});
@@ -107,8 +107,7 @@ int main(int argc, char** argv) {
     std::size_t base = 1, triangleCount = 0, vertexCount = 0;
     for (const Mesh& mesh : meshes) {
         for (const auto& p : mesh.positions) std::fprintf(file, "v %.7g %.7g %.7g\n", p.x, p.y, p.z);
-        for (const auto& t : mesh.triangles)
-            std::fprintf(file, "f %zu %zu %zu\n", t.x + base, t.y + base, t.z + base);
+        for (const auto& t : mesh.triangles) std::fprintf(file, "f %zu %zu %zu\n", t.x + base, t.y + base, t.z + base);
         base += mesh.positions.size();
         triangleCount += mesh.triangles.size();
         vertexCount += mesh.positions.size();

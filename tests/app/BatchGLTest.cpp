@@ -89,6 +89,26 @@ TEST_F(Cli, BatchGoesOnPastABadModelAndExitsWithItsCode) {
     EXPECT_NE(result.err.find("1 failed: 'broken.obj'"), std::string::npos) << result.err;
 }
 
+TEST_F(Cli, ABatchStoppedByALaterStillKeepsTheStillsBeforeIt) {
+    // Each still's picture is encoded while the next renders and is committed after it (app/Render.h): a later still
+    // that stops the batch (a usage error, not bad input) must not take the earlier still's outputs with it.
+    // --frame names a node only the first model has.
+    const std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    std::ofstream(directory / "named.obj") << "o body\n" << tetrahedron;
+    std::ofstream(directory / "unnamed.obj") << tetrahedron;
+    const CliRun result =
+        run("render named.obj unnamed.obj -o '{name}.png' --stats '{name}.json' --frame body --size 48x40");
+    EXPECT_EQ(result.exitCode, 2) << result.err;
+    EXPECT_NE(result.err.find("--frame 'body'"), std::string::npos) << result.err;
+    EXPECT_EQ(listFiles(directory),
+              std::vector<std::string>({"named.json", "named.obj", "named.png", "unnamed.obj"}));
+    EXPECT_EQ(readImage(directory / "named.png").size(), cv::Size(48, 40));
+    const auto stats = nlohmann::json::parse(readText(directory / "named.json"));
+    EXPECT_GT(stats["write_ms"].get<double>(), 0.0);
+    EXPECT_GT(stats["total_ms"].get<double>(), stats["write_ms"].get<double>());
+    EXPECT_GT(stats["peak_rss_mib"].get<double>(), 0.0);
+}
+
 TEST_F(Cli, ShardsOfAListRenderDisjointSharesThatMakeTheWhole) {
     std::ofstream list(directory / "models.txt");
     for (const char* name : {"spot_c3d", "cow_c3d", "teapot_c3d", "suzanne_npm_4k", "torusknot_open3d"})

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Whole-process wall time and peak memory of the stills issue 20 sets goals for, RUNS rounds (default 7). Each round
+# runs every row once, in order, so drift on a shared machine hits all rows alike; medians are of the rounds.
+#   bench/whole-process.sh [RUNS] > table.md        (after scripts/build.sh; docs/performance.md quotes the table)
+# Environment: INKGRAPH (the binary, default build/inkgraph), FREESTYLE=0 skips Blender (it takes ~10 s a run),
+# ROWS="probe tetra bunny freestyle batch large" picks rows.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+runs=${1:-7}
+build="$root/build"
+inkgraph=${INKGRAPH:-$build/inkgraph}
+work="$build/bench-data"
+mkdir -p "$work/out" "$work/batch"
+rows=${ROWS:-"probe tetra bunny freestyle batch large"}
+cd "$root"
+
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >"$work/tetrahedron.obj"
+large="$work/armadillo-1.3m.obj"
+[ -f "$large" ] || "$build/bench/inkgraph_make_mesh" subdivide 5 models/armadillo_cgal_52k.obj "$large" >/dev/null
+if [[ " $rows " == *" freestyle "* ]] && { [ "${FREESTYLE:-1}" = 0 ] || ! command -v blender >/dev/null; }; then
+    rows=${rows/freestyle/}
+    echo "(Freestyle row skipped: FREESTYLE=0 or no blender on PATH)" >&2
+fi
+
+comic=(--shading cel --lines silhouette,contour,suggestive)
+command_of() { # row -> the command, one word per line
+    case $1 in
+    probe) printf '%s\n' "$build/bench/inkgraph_egl_probe" ;;
+    tetra) printf '%s\n' "$inkgraph" render "$work/tetrahedron.obj" -o "$work/out/tetra.png" --size 64x64 -q ;;
+    bunny) printf '%s\n' "$inkgraph" render models/bunny_c3d_70k.obj -o "$work/out/bunny.png" "${comic[@]}" -q ;;
+    freestyle) printf '%s\n' blender -b --factory-startup -noaudio -P bench/freestyle_still.py -- \
+        models/bunny_c3d_70k.obj "$work/out/bunny-freestyle.png" ;;
+    batch) printf '%s\n' "$inkgraph" render --list examples/batch/models.txt -o "$work/batch/{name}.png" -q ;;
+    large) printf '%s\n' "$inkgraph" render "$large" -o "$work/out/large.png" --shading comic \
+        --lines silhouette,contour,suggestive,crease -q ;;
+    esac
+}
+
+declare -A times memory
+for _ in $(seq "$runs"); do
+    for row in $rows; do
+        mapfile -t command < <(command_of "$row")
+        start=$(date +%s%N)
+        /usr/bin/time -f %M -o "$work/rss" "${command[@]}" >/dev/null 2>"$work/stderr" ||
+            { echo "$row failed:" >&2; cat "$work/stderr" >&2; exit 1; }
+        end=$(date +%s%N)
+        times[$row]+="$(( (end - start) / 1000000 )) "
+        memory[$row]+="$(tail -1 "$work/rss") "
+    done
+done
+
+median() { tr ' ' '\n' | grep . | sort -n | awk '{v[NR]=$1} END {print v[int((NR+1)/2)]}'; }
+range() { tr ' ' '\n' | grep . | sort -n | awk 'NR==1{lo=$1} {hi=$1} END {print lo "–" hi}'; }
+declare -A medians
+echo "| row | median ms | range ms | peak RSS MiB (median) | note |"
+echo "|---|---|---|---|---|"
+for row in $rows; do
+    medians[$row]=$(echo "${times[$row]}" | median)
+    rss=$(( $(echo "${memory[$row]}" | median) / 1024 ))
+    note=""
+    case $row in
+    tetra) note="$(awk -v a="${medians[tetra]}" -v b="${medians[probe]:-0}" \
+        'BEGIN { if (b > 0) printf "%.2fx the probe", a / b }')" ;;
+    batch) note="$(awk -v t="${medians[batch]}" 'BEGIN { printf "9 stills: %.1f stills/s", 9000 / t }')" ;;
+    freestyle) note="$(awk -v a="${medians[freestyle]}" -v b="${medians[bunny]:-0}" \
+        'BEGIN { if (b > 0) printf "%.1fx the inkgraph bunny", a / b }')" ;;
+    esac
+    echo "| $row | ${medians[$row]} | $(echo "${times[$row]}" | range) | $rss | $note |"
+done
+echo
+echo "$runs rounds; $(nproc) cores; $(date -u +%Y-%m-%d); LP_NUM_THREADS=${LP_NUM_THREADS:-unset}"
