@@ -52,8 +52,8 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
     stats["post_stage"] = still.graph.describePostStage(result.timings);
     stats["culled"] = culled;
     stats["write_ms"] = 0.0; // finishedStatsText()
-    stats["textures_created"] = result.pool->createdCount();
-    stats["textures_reused"] = result.pool->reusedCount();
+    stats["textures_created"] = result.texturesCreated;
+    stats["textures_reused"] = result.texturesReused;
     stats["estimated_peak_mib"] = double(context.estimatedPeakBytes) / (1 << 20);
     stats["peak_rss_mib"] = 0.0; // finishedStatsText()
     stats["total_ms"] = 0.0;

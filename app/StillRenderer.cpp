@@ -185,8 +185,14 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
     const std::size_t programsCompiledBefore = mShaders.compiledCount();
     const std::size_t programsReusedBefore = mShaders.reusedCount();
 
-    result.pool = std::make_unique<TexturePool>();
-    result.executor = std::make_unique<GraphExecutor>(*result.pool);
+    // Another size (a batch has one) would find nothing to reuse: the free textures of the last size go.
+    if (mTextureFrame != std::make_pair(camera.width, camera.height)) {
+        mTextures.dropFree();
+        mTextureFrame = {camera.width, camera.height};
+    }
+    const std::size_t texturesCreatedBefore = mTextures.createdCount();
+    const std::size_t texturesReusedBefore = mTextures.reusedCount();
+    result.executor = std::make_unique<GraphExecutor>(mTextures);
     ExecuteOptions executeOptions;
     executeOptions.frameWidth = camera.width;
     executeOptions.frameHeight = camera.height;
@@ -212,6 +218,8 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
         }
         throw;
     }
+    result.texturesCreated = mTextures.createdCount() - texturesCreatedBefore;
+    result.texturesReused = mTextures.reusedCount() - texturesReusedBefore;
     result.programsCompiled = mShaders.compiledCount() - programsCompiledBefore;
     result.programsReused = mShaders.reusedCount() - programsReusedBefore;
     return result;

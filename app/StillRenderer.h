@@ -87,8 +87,9 @@ struct PreparedStill {
 
 /** What executing a plan did. The store holds the requested buffers (every computed one with keepEveryBuffer). */
 struct StillResult {
-    std::unique_ptr<TexturePool> pool;
-    std::unique_ptr<GraphExecutor> executor;
+    std::unique_ptr<GraphExecutor> executor; ///< its buffers come from, and go back to, the renderer's TexturePool
+    std::size_t texturesCreated = 0;         ///< by this still
+    std::size_t texturesReused = 0;          ///< taken from an earlier still's (or its own earlier passes')
     std::vector<PassTiming> timings;
     double contextMilliseconds = 0.0; ///< making the context; 0 when reused
     bool contextReused = false;
@@ -124,6 +125,10 @@ public:
 
 private:
     std::optional<HeadlessContext> mContext; ///< declared before the programs, so they are deleted first
+    /** The stills' buffers, kept from one still to the next: a batch's stills have one size, and a texture made
+     *  once is not allocated, page-faulted and cleared by the driver again for every model. */
+    TexturePool mTextures;
+    std::pair<int, int> mTextureFrame{0, 0}; ///< the frame size mTextures' free textures were made for
     /** Set by makeContext() until the next execute() reports it as that still's context time. */
     std::optional<double> mUnreportedContextMilliseconds;
     ShaderLibrary mShaders;

@@ -14,6 +14,8 @@ public:
     /** A texture of this format and size, re-labelled for its new user; reuses a released one when it can. */
     GlTexture acquire(Format format, int width, int height, std::string_view label);
     void release(GlTexture texture);
+    /** Deletes the released textures (those in use stay with their users). */
+    void dropFree() { mFree.clear(); }
 
     std::size_t createdCount() const { return mCreatedCount; }
     std::size_t reusedCount() const { return mReusedCount; }
