@@ -166,7 +166,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
 
     // Every output place is checked before any work; outputs are staged and put in place only at the end.
     auto outputs = std::make_unique<OutputSet>(options);
-    const std::unique_ptr<PreparedStill> still = loadWhileMakingContext(stillRequestOf(options), renders, log);
+    std::unique_ptr<PreparedStill> still = loadWhileMakingContext(stillRequestOf(options), renders, log);
     report.triangles = still->scene.triangleCount();
     outputs->refuseInputs(inputsFoundByLoading(options, still->scene));
     mRenderer.plan(*still);
@@ -216,8 +216,13 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     pending->renderedMilliseconds = millisecondsSince(processStart);
     report.milliseconds = pending->renderedMilliseconds;
     mPending = std::move(pending);
-    // One still alone is finished at once; in a batch the caller finishes the last (finishPending()).
-    if (batch == nullptr) finishPending();
+    // One still alone is finished at once, once its GL objects and meshes are freed while the picture is encoded; in
+    // a batch the next still finishes it, the caller the last one (finishPending()).
+    if (batch == nullptr) {
+        result = StillResult{};
+        still.reset();
+        finishPending();
+    }
     return report;
 }
 
