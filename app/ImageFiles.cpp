@@ -2,19 +2,23 @@
 
 #include "app/ImageIoModule.h"
 #include "app/PngChunks.h"
+#include "app/PngFiles.h"
 #include "app/TemporaryFiles.h"
 
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
-#include <cstring>
+#include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
-#include <iterator>
 #include <future>
+#include <iterator>
 #include <mutex>
 #include <system_error>
 
@@ -106,7 +110,22 @@ const ImageIoFunctions& imageIo() {
 
 } // namespace
 
+bool usesImageIoModule(const std::filesystem::path& path) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return extension != ".png";
+}
+
 void preloadImageIo() { moduleFuture(); }
+
+std::string imageIoModuleState() {
+    ModuleLoad& load = moduleLoad();
+    if (!load.started) return "not loaded";
+    const std::shared_future<LoadedModule>& future = moduleFuture();
+    if (future.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return "loading";
+    return future.get().functions != nullptr ? "loaded" : "failed to load";
+}
 
 void finishImageIoPreload() {
     // Only wait for a load someone started: starting one here would cost every exit ~0.2 s for nothing.
@@ -161,8 +180,15 @@ void writeBytes(const std::filesystem::path& destination, const void* data, std:
 std::vector<unsigned char> encodeImageFile(const std::filesystem::path& finalPath, const cv::Mat& image) {
     std::vector<unsigned char> encoded;
     std::string error;
-    if (!imageIo().encodeImage(finalPath.string(), image, encoded, error))
+    if (!usesImageIoModule(finalPath)) {
+        try {
+            encoded = encodePng(image);
+        } catch (const std::runtime_error& failure) {
+            throw FileError("writeImage(): cannot write '" + finalPath.string() + "': " + failure.what());
+        }
+    } else if (!imageIo().encodeImage(finalPath.string(), image, encoded, error)) {
         throw FileError("writeImage(): cannot write '" + finalPath.string() + "': " + error);
+    }
     return encoded;
 }
 
@@ -187,6 +213,13 @@ std::string imageFilePixelType(const std::filesystem::path& path) {
 }
 
 cv::Mat readImage(const std::filesystem::path& path, std::size_t maxPixels) {
+    if (!usesImageIoModule(path)) {
+        try {
+            return readPngFile(path, maxPixels);
+        } catch (const std::runtime_error& failure) {
+            throw FileError("readImage(): cannot read '" + path.string() + "': " + failure.what());
+        }
+    }
     cv::Mat image;
     std::string error;
     if (!imageIo().readImage(path.string(), maxPixels, image, error))
@@ -219,10 +252,11 @@ cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, s
     } catch (const std::invalid_argument& problem) {
         throw FileError(where + ": " + problem.what());
     }
-    cv::Mat image;
-    std::string readError;
-    if (!imageIo().readImageBytes(png, "png", maxPixels, image, readError)) throw FileError(where + ": " + readError);
-    return image;
+    try {
+        return decodePng(png.data(), png.size(), maxPixels);
+    } catch (const std::runtime_error& failure) {
+        throw FileError(where + ": " + failure.what());
+    }
 }
 
 void writeTextFile(const std::filesystem::path& path, const std::string& text) {

@@ -1,8 +1,10 @@
 #pragma once
-/** @file Image and text files, all through OpenImageIO, each written under a temporary name in the target folder
- *  and renamed into place, so a failed run never leaves a half-written file.
- *  Images are cv::Mat with row 0 at the top and channels in RGBA order (not OpenCV's BGR). OpenImageIO itself is
- *  behind app/ImageIoModule.h. */
+/** @file Image and text files, each written under a temporary name in the target folder and renamed into place, so a
+ *  failed run never leaves a half-written file.
+ *  Images are cv::Mat with row 0 at the top and channels in RGBA order (not OpenCV's BGR). The format follows the
+ *  extension: PNG, which nearly every run writes, is encoded and decoded in the process by libpng (app/PngFiles.h);
+ *  every other format (EXR, TIFF, JPEG, ...) and imageFilePixelType() go through OpenImageIO, a module loaded only
+ *  when a run needs it (app/ImageIoModule.h), because loading it costs ~0.2 s. */
 
 #include <opencv2/core.hpp>
 
@@ -19,17 +21,26 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/** Whether reading or writing `path` goes through the OpenImageIO module: every extension but .png (in any case). */
+bool usesImageIoModule(const std::filesystem::path& path);
+
 /** Starts loading the OpenImageIO module on a background thread (see app/ImageIoModule.h), so its ~0.2 s of
- *  dynamic linking overlaps other work. Optional: every function below loads it on first use anyway. */
+ *  dynamic linking overlaps other work. Only for a run that will use it (usesImageIoModule()): the load is never
+ *  undone. Optional: every function below that needs the module loads it on first use anyway. */
 void preloadImageIo();
+
+/** The module in this process, for --stats: "not loaded" (nothing needed it), "loading", "loaded" or "failed to
+ *  load". Never starts a load. */
+std::string imageIoModuleState();
 
 /** Waits until a load that preloadImageIo() (or a first use) started has finished, successfully or not; returns at
  *  once when none was started. After it the loader thread has ended: app/BackgroundThreads.h. */
 void finishImageIoPreload();
 
 /** Writes CV_8UC1/CV_8UC4 as 8-bit sRGB and CV_32FC1/CV_32FC4 as float32 (EXR keeps float; PNG would quantise, so
- *  float images must go to .exr or .tif); an 8-bit picture written as EXR is converted to linear float. The format
- *  follows the extension. Encoded in memory, written under a temporary name, synced, renamed into place. */
+ *  float images must go to .exr or .tif, and a PNG refuses them); an 8-bit picture written as EXR is converted to
+ *  linear float. The format follows the extension. Encoded in memory, written under a temporary name, synced, renamed
+ * into place. */
 void writeImage(const std::filesystem::path& path, const cv::Mat& image);
 
 /** `image` encoded in memory in the format of `finalPath`'s extension (as writeImage() writes it); thread-safe, so
@@ -49,8 +60,9 @@ void writeBytes(const std::filesystem::path& destination, const void* data, std:
 /** The most pixels readImage() accepts unless told otherwise: the largest picture inkgraph writes. */
 inline constexpr std::size_t kDefaultMaxReadPixels = std::size_t(16384) * 16384;
 
-/** Reads any image OpenImageIO knows into CV_8UCn (8-bit files) or CV_32FCn (everything else). Images whose header
- *  declares more than `maxPixels` pixels are refused (FileError) before anything is allocated. */
+/** Reads a PNG (libpng) or any image OpenImageIO knows into CV_8UCn (8-bit files) or CV_32FCn (everything else; a
+ *  16-bit PNG is scaled to [0, 1]). Images whose header declares more than `maxPixels` pixels are refused (FileError)
+ *  before anything is allocated. */
 cv::Mat readImage(const std::filesystem::path& path, std::size_t maxPixels = kDefaultMaxReadPixels);
 
 /** The bytes of a file from outside (a shade map, a style file): a regular file of at most `maxBytes`, judged
@@ -59,10 +71,12 @@ cv::Mat readImage(const std::filesystem::path& path, std::size_t maxPixels = kDe
 std::string readInputBytes(const std::filesystem::path& path, std::uintmax_t maxBytes, const std::string& who);
 
 /** readImage() for a PNG from outside (a user's shade map): a file of at most `maxFileBytes`, reduced to its critical
- *  chunks (app/PngChunks.h) and decoded from memory by the PNG reader alone. Throws FileError naming the file. */
+ *  chunks (app/PngChunks.h) and decoded from memory by libpng alone, whatever the content. Throws FileError naming
+ *  the file. */
 cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, std::size_t maxFileBytes);
 
-/** The pixel type stored in the file itself, e.g. "uint8", "half", "float" (readImage converts, this does not). */
+/** The pixel type stored in the file itself, e.g. "uint8", "half", "float" (readImage converts, this does not).
+ *  Through OpenImageIO for every format: only tests and tools ask. */
 std::string imageFilePixelType(const std::filesystem::path& path);
 
 /** Writes text under a temporary name and renames it into place. */

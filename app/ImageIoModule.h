@@ -1,8 +1,10 @@
 #pragma once
 /** @file The boundary between inkgraph and OpenImageIO. Debian's OpenImageIO links about 260 libraries, and the
  *  dynamic loader spends ~0.2 s resolving their symbols: more than rendering the default model takes. So the OIIO
- *  code lives in a module (libinkgraph_imageio.so) that app/ImageFiles loads with dlopen on a background thread
- *  while the scene loads and renders. The boundary is plain: no exception crosses it, errors come back as text. */
+ *  code lives in a module (libinkgraph_imageio.so) that app/ImageFiles loads with dlopen only for the formats libpng
+ *  does not serve (EXR, TIFF, JPEG, ...; PNG is app/PngFiles.h, in the process): a run that writes only PNG never
+ *  loads it, one that needs it loads it on a background thread while the scene loads. The boundary is plain: no
+ *  exception crosses it, errors come back as text. */
 
 #include <opencv2/core.hpp>
 
@@ -19,15 +21,11 @@ struct ImageIoFunctions {
                         std::string& error);
     /** Refuses, before allocating, images of more than `maxPixels` pixels, volume and deep images. */
     bool (*readImage)(const std::string& path, std::size_t maxPixels, cv::Mat& image, std::string& error);
-    /** The same from bytes in memory, read by the reader of `format` ("png") alone: no other reader (OpenEXR's
-     *  allocates whatever a header claims) ever sees them. */
-    bool (*readImageBytes)(const std::vector<unsigned char>& bytes, const std::string& format, std::size_t maxPixels,
-                           cv::Mat& image, std::string& error);
     /** The file's own pixel type ("uint8", "half", "float", ...). */
     bool (*pixelType)(const std::string& path, std::string& type, std::string& error);
 };
 
-inline constexpr int kImageIoVersion = 4;
+inline constexpr int kImageIoVersion = 5;
 
 } // namespace inkgraph
 

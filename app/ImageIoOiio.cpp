@@ -66,7 +66,6 @@ bool encodeWithOiio(const std::string& formatPath, const cv::Mat& image, std::ve
     // Alpha is coverage, never premultiplied, so OIIO must not (un)premultiply it.
     spec.attribute("oiio:ColorSpace", type == OIIO::TypeDesc::UINT8 ? "sRGB" : "Linear");
     spec.attribute("oiio:UnassociatedAlpha", 1);
-    if (type == OIIO::TypeDesc::UINT8) spec.attribute("png:compressionLevel", 3); // faster than 6, about as small
     OIIO::Filesystem::IOVecOutput memory(bytes);
     bytes.clear();
     if (!output->supports("ioproxy") || !output->set_ioproxy(&memory)) {
@@ -123,24 +122,6 @@ bool readWithOiio(const std::string& path, std::size_t maxPixels, cv::Mat& image
     return readOpened(*input, maxPixels, image, error);
 }
 
-bool readBytesWithOiio(const std::vector<unsigned char>& bytes, const std::string& format, std::size_t maxPixels,
-                       cv::Mat& image, std::string& error) {
-    OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size()); // outlives the reader, which closes on it
-    auto input = OIIO::ImageInput::create(format);
-    if (!input) {
-        error = "no " + format + " reader (" + OIIO::geterror() + ")";
-        return false;
-    }
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    OIIO::ImageSpec spec;
-    if (!input->set_ioproxy(&memory) || !input->open("memory." + format, spec, config)) {
-        error = input->geterror();
-        return false;
-    }
-    return readOpened(*input, maxPixels, image, error);
-}
-
 bool pixelTypeWithOiio(const std::string& path, std::string& type, std::string& error) {
     auto input = OIIO::ImageInput::open(path);
     if (!input) {
@@ -151,8 +132,7 @@ bool pixelTypeWithOiio(const std::string& path, std::string& type, std::string& 
     return true;
 }
 
-const ImageIoFunctions kFunctions = {kImageIoVersion, encodeWithOiio, readWithOiio, readBytesWithOiio,
-                                     pixelTypeWithOiio};
+const ImageIoFunctions kFunctions = {kImageIoVersion, encodeWithOiio, readWithOiio, pixelTypeWithOiio};
 
 } // namespace
 } // namespace inkgraph

@@ -1,6 +1,7 @@
 #include "app/MemoryBudget.h"
 
 #include "app/Options.h"
+#include "app/StillOutputs.h"
 #include "graph/Plan.h"
 #include "passes/lines/LineTypes.h"
 #include "scene/Scene.h"
@@ -18,9 +19,12 @@ constexpr std::size_t kMiB = std::size_t(1) << 20;
 // The constants below were measured (peak resident set, /usr/bin/time %M) with llvmpipe (Mesa 22.3, LLVM 15);
 // docs/batch.md ("Memory") has the table they were fitted to.
 
-/** The process at a 64x64 still of a 4k-triangle model with every line type: 205-210 MiB (libraries, OpenImageIO,
+/** The process at a 64x64 still of a 4k-triangle model with every line type, written as PNG: 100 MiB (libraries,
  *  llvmpipe and LLVM, the compiled shaders), with room for the run-to-run spread. */
-constexpr std::size_t kBaselineBytes = 224 * kMiB;
+constexpr std::size_t kBaselineBytes = 108 * kMiB;
+/** What the OpenImageIO module adds once loaded (app/ImageIoModule.h), for a run that writes another format than PNG
+ *  or a dump: the same still as .exr peaked at 213-218 MiB. */
+constexpr std::size_t kImageIoModuleBytes = 116 * kMiB;
 /** Per vertex: the loader's own bound (detail::MeshBudget), which covers the mesh and its vertex buffers. */
 constexpr std::size_t kBytesPerVertex = 96;
 /** Per triangle, with every line type: index buffers, the outline's shell, the mesh edges, curvature and what
@@ -162,7 +166,7 @@ MemoryEstimate estimateRunMemory(const Plan& plan, const RenderOptions& options,
     const PlanSizes sizes(plan, options);
     const bool keepAll = !options.dumpDirectory.empty() || !options.contactSheetPath.empty();
     MemoryEstimate estimate;
-    estimate.baseline = kBaselineBytes;
+    estimate.baseline = kBaselineBytes + (outputsUseImageIoModule(options) ? kImageIoModuleBytes : 0);
     estimate.scene = scene.vertices * kBytesPerVertex + scene.triangles * kBytesPerTriangle;
     // The texture pool keeps every texture it made until the still ends, so they all count at once.
     for (const PlannedResource& resource : plan.resources) estimate.glTargets += sizes.textureBytes(resource);

@@ -27,7 +27,8 @@ SceneSize sceneSizeOf(const Scene& scene);
 
 /** The peak of one still, by part, in bytes. */
 struct MemoryEstimate {
-    std::size_t baseline = 0;  ///< the process before any buffer: libraries, llvmpipe, LLVM's compiled shaders
+    std::size_t baseline = 0;  ///< the process before any buffer: libraries (OpenImageIO's when the run loads it),
+                               ///< llvmpipe, LLVM's compiled shaders
     std::size_t scene = 0;     ///< the meshes, their GPU copies and per-triangle driver data
     std::size_t glTargets = 0; ///< every texture of the plan and each drawing pass's depth attachment
     std::size_t cpuImages = 0; ///< at the post stage's (or the output's) largest moment: read-backs, the line

@@ -159,9 +159,10 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     // In a batch the progress line per still replaces the lines of one still.
     const bool talks = !options.quiet && batch == nullptr;
     const StillLog log{mLog, talks, options.quiet};
-    // OpenImageIO's ~0.2 s of dynamic linking overlaps loading the model. (Not rendering: on llvmpipe, LLVM's symbol
-    // look-ups wait for the dynamic loader's lock, so they would queue behind it.)
-    if (renders) preloadImageIo();
+    // Only a run that writes other formats than PNG (or a dump) loads OpenImageIO; its ~0.2 s of dynamic linking then
+    // overlaps loading the model. (Not rendering: on llvmpipe, LLVM's symbol look-ups wait for the dynamic loader's
+    // lock, so they would queue behind it.)
+    if (outputsUseImageIoModule(options)) preloadImageIo();
     StillReport report;
 
     // Every output place is checked before any work; outputs are staged and put in place only at the end.

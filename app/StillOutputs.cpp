@@ -1,5 +1,7 @@
 #include "app/StillOutputs.h"
 
+#include "app/ImageFiles.h"
+
 #include "postfx/Composite.h"
 #include "postfx/ContactSheet.h"
 #include "postfx/SvgLines.h"
@@ -165,6 +167,14 @@ Json describeTimings(const std::vector<PassTiming>& timings) {
         passTimes.push_back(
             {{"name", timing.pass}, {"ms", timing.milliseconds}, {"prepare_ms", timing.prepareMilliseconds}});
     return passTimes;
+}
+
+bool outputsUseImageIoModule(const RenderOptions& options) {
+    // A dump is taken to hold float buffers without looking at the plan (the preload starts before the model loads):
+    // every plan has some (the G-buffer's depth), and dumpFileName() gives them .exr.
+    return (!options.outputPath.empty() && usesImageIoModule(options.outputPath)) ||
+           (!options.contactSheetPath.empty() && usesImageIoModule(options.contactSheetPath)) ||
+           !options.dumpDirectory.empty();
 }
 
 void stageStillOutputs(const RenderOptions& options, const PreparedStill& still, StillResult& result,

@@ -22,6 +22,10 @@ nlohmann::ordered_json describeLook(const PreparedStill& still, const std::strin
 /** The passes' timings for --stats and manifest.json. */
 nlohmann::ordered_json describeTimings(const std::vector<PassTiming>& timings);
 
+/** Whether the images `options` asks for need the OpenImageIO module (app/ImageIoModule.h), so that a run loads it
+ *  only then: -o or --contact-sheet in a format other than PNG, or --dump (its float buffers are EXR files). */
+bool outputsUseImageIoModule(const RenderOptions& options);
+
 /** Stages the outputs `options` asks for but the final picture and --stats (--contact-sheet, --svg, --dump) from a
  *  still that executed; app/Render.cpp encodes the picture, off the critical path. */
 void stageStillOutputs(const RenderOptions& options, const PreparedStill& still, StillResult& result,

@@ -256,6 +256,22 @@ TEST_F(Cli, AwkwardPathsAndFormats) {
     EXPECT_EQ(readImage(directory / "a.jpg").channels(), 3);
 }
 
+TEST_F(Cli, OnlyFormatsOtherThanPngLoadTheImageModule) {
+    // PNG is written in the process by libpng; OpenImageIO (~0.2 s of dynamic linking) only when a run needs it.
+    const auto moduleState = [&](const std::string& outputs) {
+        const CliRun result =
+            run("render " + model("spot_c3d.obj") + " --size 16x16 --lines none --stats s.json " + outputs);
+        EXPECT_EQ(result.exitCode, 0) << outputs << ": " << result.err;
+        return nlohmann::json::parse(readText(directory / "s.json"))["image_io_module"].get<std::string>();
+    };
+    EXPECT_EQ(moduleState("-o a.png"), "not loaded");
+    EXPECT_EQ(moduleState("-o A.PNG --contact-sheet sheet.png --graphviz a.dot"), "not loaded");
+    EXPECT_EQ(moduleState("-o a.exr"), "loaded");
+    EXPECT_EQ(moduleState("-o a.png --dump d"), "loaded") << "a dump's float buffers are EXR";
+    EXPECT_EQ(imageFilePixelType(directory / "a.exr"), "float");
+    EXPECT_EQ(imageFilePixelType(directory / "A.PNG"), "uint8");
+}
+
 TEST_F(Cli, ShadingNoneCullsTheShadingPassWithAReason) {
     const CliRun result =
         run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --shading none --lines none --stats s.json");

@@ -68,7 +68,7 @@ TEST_F(MemoryBudget, MeasuredPeakStaysUnderTheEstimateAtEverySupersampling) {
              spot + " --size 1024x1024 --supersample 4 --lines contour,suggestive",
          }) {
         const Peak peak = renderWithStats(arguments);
-        EXPECT_GT(peak.measuredMib, 100.0) << arguments; // the process itself: a real measurement, not zero
+        EXPECT_GT(peak.measuredMib, 50.0) << arguments; // the process itself: a real measurement, not zero
         if (!kPeakIsComparable) continue;
         EXPECT_LE(peak.measuredMib, peak.estimatedMib) << arguments;
         // A bound, not a wild guess: within 1.6 x of what was measured (docs/batch.md has the whole table).

@@ -1,6 +1,6 @@
-// libFuzzer target: --shademap files: OpenImageIO's readers behind app/ImageFiles, the header checks before
-// allocation, shadeMapFromImage() and the specular band table the comic shader gets. The bytes are written to a file
-// named .png (OpenImageIO falls back to every format it knows when the content is not PNG, as it would for a user).
+// libFuzzer target: --shademap files: the PNG chunk filter and libpng behind app/ImageFiles' readPngImage(), the
+// header checks before allocation, shadeMapFromImage() and the specular band table the comic shader gets. The bytes
+// are written to a file named .png, as a user's map would be (the seeds include other formats under that name).
 #include "app/Render.h"
 #include "passes/shade/ShadeMap.h"
 
