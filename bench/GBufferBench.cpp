@@ -2,9 +2,17 @@
 //   - loading the 70k-triangle bunny (OBJ parse + weld + normals);
 //   - the G-buffer pass alone at 1024x1024, over sphere meshes from 1k to 1M triangles and the bunny, with the two
 //     outputs Lambert needs and with all seven;
-//   - the default cel shading and composite passes at 1024x1024.
+//   - the default cel shading and composite passes at 1024x1024;
+//   - the G-buffer of the bunny comic look (issue 20) against a bare draw of the same meshes into targets of the same
+//     formats (BM_GBufferVsBareDraw).
 // Times are the pass's own execute() up to glFinish (manual time), which is what --stats reports.
 #include "bench/BenchScene.h"
+#include "bench/Median.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <chrono>
+#include <ctime>
 
 namespace inkgraph::bench {
 namespace {
@@ -58,6 +66,122 @@ void BM_CompositeBunny(benchmark::State& state) {
     reportPass(state, bench, "composite");
 }
 BENCHMARK(BM_CompositeBunny)->UseManualTime()->Unit(benchmark::kMillisecond);
+
+/** CPU time of every thread of the process (llvmpipe's rasteriser threads included): unlike wall time, it does not
+ *  count the time other processes of a shared host hold the cores. */
+double processCpuMilliseconds() {
+    timespec time{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &time);
+    return double(time.tv_sec) * 1e3 + double(time.tv_nsec) * 1e-6;
+}
+
+/** Issue 20's comic still: the bunny, cel, silhouette + contour + suggestive contours. */
+Look comicStillLook() {
+    Look look;
+    look.shading = ShadingModel::Cel;
+    look.lines = {"silhouette", "contour", "suggestive"};
+    return look;
+}
+
+/** The floor a G-buffer is measured against: the same meshes (their vertex arrays) into colour targets of the same
+ *  formats and size with a depth test, cleared as the G-buffer clears, but with a shader that only transforms the
+ *  positions and writes constants (bench/shaders/bare_draw.*). What the G-buffer costs beyond it is its own work:
+ *  attributes, per-fragment maths, material binds. */
+class BareDraw {
+public:
+    BareDraw(Bench& bench, const std::vector<Format>& formats)
+        : mBench(bench), mShaders(std::string(INKGRAPH_SOURCE_ROOT) + "/bench/shaders"), mDepth("bare draw depth") {
+        for (const Format format : formats)
+            mTargets.push_back(std::make_unique<GlTexture>(format, kFrameSize, kFrameSize, "bare draw target"));
+        mProgram = std::make_unique<GlProgram>(mShaders.build(
+            {"bare draw", "bare_draw.vert", "bare_draw.frag", {"TARGET_COUNT " + std::to_string(formats.size())}}));
+        mBench.gpuScene->meshes();
+    }
+
+    /** Milliseconds of one draw, from binding the framebuffer to glFinish (as the executor times a pass). */
+    double run() {
+        glFinish();
+        const auto start = std::chrono::steady_clock::now();
+        GlFramebuffer framebuffer("bare draw");
+        std::vector<int> slots;
+        for (std::size_t slot = 0; slot < mTargets.size(); ++slot) {
+            framebuffer.attachColor(int(slot), *mTargets[slot]);
+            slots.push_back(int(slot));
+        }
+        framebuffer.attachDepth(mDepth.sized(kFrameSize, kFrameSize));
+        framebuffer.finish(slots);
+        framebuffer.bind();
+        glViewport(0, 0, kFrameSize, kFrameSize);
+        clearColorAndDepth(int(slots.size()));
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(kDepthNearer);
+        mProgram->use();
+        const glm::mat4 clipFromModel = mBench.frame.clipFromView() * mBench.frame.viewFromModel();
+        glUniformMatrix4fv(mProgram->uniform("clipFromModel"), 1, GL_FALSE, glm::value_ptr(clipFromModel));
+        for (const GpuScene::DrawMesh& mesh : mBench.gpuScene->meshes()) {
+            mesh.vertexArray.bind();
+            glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        }
+        glBindVertexArray(0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glDisable(GL_DEPTH_TEST);
+        glFinish();
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+
+private:
+    Bench& mBench;
+    ShaderLibrary mShaders;
+    std::vector<std::unique_ptr<GlTexture>> mTargets;
+    std::unique_ptr<GlProgram> mProgram;
+    PassDepthBuffer mDepth;
+};
+
+/** Issue 20's bound: the G-buffer at most 1.3x a bare draw of the same triangles into the same targets. The G-buffer
+ *  computes exactly the fields the comic still's plan reads (from the compiled plan, so the benchmark follows the
+ *  look), and the two alternate draw by draw so that a shared host's drift hits both; the ratio is the median of the
+ *  per-round ratios. */
+void BM_GBufferVsBareDraw(benchmark::State& state) {
+    Bench bench(loadScene(kBunnyPath), comicStillLook(), {"composite.final"});
+    const PlannedPass* gbuffer = bench.plan.findPass("gbuffer");
+    if (gbuffer == nullptr) {
+        state.SkipWithError("the comic still's plan does not run the G-buffer");
+        return;
+    }
+    const std::vector<std::string> fields = gbuffer->liveWrites;
+    std::vector<Format> formats;
+    for (const std::string& field : fields) formats.push_back(bench.plan.findResource(field)->desc.format);
+    bench.plan = compile(bench.graph.view(), fields); // the G-buffer alone, with the look's fields
+    BareDraw bare(bench, formats);
+    bench.run("gbuffer"); // warm-up: llvmpipe compiles shader variants on the first draw
+    bare.run();
+    std::vector<double> gbufferTimes, bareTimes, ratios, cpuRatios;
+    for (auto _ : state) {
+        const double gbufferStart = processCpuMilliseconds();
+        const double gbufferTime = bench.run("gbuffer");
+        const double bareStart = processCpuMilliseconds();
+        const double bareTime = bare.run();
+        const double bareEnd = processCpuMilliseconds();
+        gbufferTimes.push_back(gbufferTime);
+        bareTimes.push_back(bareTime);
+        ratios.push_back(gbufferTime / bareTime);
+        cpuRatios.push_back((bareStart - gbufferStart) / (bareEnd - bareStart));
+        state.SetIterationTime(gbufferTime / 1000.0);
+    }
+    state.counters["triangles"] = double(bench.scene.triangleCount());
+    state.counters["fields"] = double(fields.size());
+    state.counters["gbuffer_ms"] = median(gbufferTimes);
+    state.counters["bare_ms"] = median(bareTimes);
+    state.counters["ratio"] = median(ratios);
+    state.counters["cpu_ratio"] = median(cpuRatios);
+    std::string label;
+    for (const std::string& field : fields) {
+        if (!label.empty()) label += ",";
+        label += ResourceName::split(field).field;
+    }
+    state.SetLabel(label);
+}
+BENCHMARK(BM_GBufferVsBareDraw)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(15);
 
 } // namespace
 } // namespace inkgraph::bench
