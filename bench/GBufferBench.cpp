@@ -8,6 +8,8 @@
 // Times are the pass's own execute() up to glFinish (manual time), which is what --stats reports.
 #include "bench/BenchScene.h"
 #include "bench/Median.h"
+#include "passes/gbuffer/GBufferPass.h"
+#include "passes/shade/ShadePass.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -182,6 +184,83 @@ void BM_GBufferVsBareDraw(benchmark::State& state) {
     state.SetLabel(label);
 }
 BENCHMARK(BM_GBufferVsBareDraw)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(15);
+
+/** The fields of the G-buffer that `bench`'s look reads for its lines (its plan with forward shading). */
+std::vector<std::string> lineFields(Bench& bench) {
+    const Plan plan = compile(bench.graph.view(), {bench.graph.finalResource});
+    const PlannedPass* gbuffer = plan.findPass("gbuffer");
+    return gbuffer ? gbuffer->liveWrites : std::vector<std::string>{};
+}
+
+/** G-buffer plus shade milliseconds of one run of `bench`'s plan. */
+struct ShadingTime {
+    double gbuffer = 0.0;
+    double shade = 0.0;
+};
+ShadingTime timeShading(Bench& bench) {
+    ShadingTime time;
+    for (const PassTiming& timing : bench.run()) {
+        if (timing.pass == "gbuffer") time.gbuffer = timing.milliseconds;
+        if (timing.pass == "shade") time.shade = timing.milliseconds;
+    }
+    return time;
+}
+
+/** Deferred against forward shading of the comic still (docs/shading.md): the same look twice, one graph as built
+ *  (deferred: the G-buffer also writes the fields shading reads, and shading is a full-screen triangle), one with the
+ *  shade pass told that no line reads the G-buffer (forward: it draws the meshes again). Both plans run the G-buffer
+ *  with the lines' fields and the shade pass, nothing else; they alternate round by round, and the saving is the median
+ *  of the per-round differences of G-buffer + shade. */
+void BM_DeferredShading(benchmark::State& state, ShadingModel model) {
+    Look look = comicStillLook();
+    look.shading = model;
+    Bench deferred(loadScene(kBunnyPath), look, {"composite.final"});
+    Bench forward(loadScene(kBunnyPath), look, {"composite.final"});
+    auto& shade = dynamic_cast<ShadePass&>(*forward.graph.passes.at(1));
+    shade.chooseMode(dynamic_cast<const GBufferPass&>(*forward.graph.passes.at(0)), {});
+    std::vector<std::string> requested = lineFields(forward);
+    requested.push_back("shade.color");
+    forward.plan = compile(forward.graph.view(), requested);
+    deferred.plan = compile(deferred.graph.view(), requested);
+    if (deferred.graph.shadingMode != "deferred") {
+        state.SkipWithError(("the look shades forward: " + deferred.graph.shadingForwardReason).c_str());
+        return;
+    }
+    timeShading(forward); // warm-up: llvmpipe compiles shader variants on the first draw
+    timeShading(deferred);
+    std::vector<double> forwardGBuffer, forwardShade, deferredGBuffer, deferredShade, savings;
+    for (auto _ : state) {
+        const ShadingTime a = timeShading(forward);
+        const ShadingTime b = timeShading(deferred);
+        forwardGBuffer.push_back(a.gbuffer);
+        forwardShade.push_back(a.shade);
+        deferredGBuffer.push_back(b.gbuffer);
+        deferredShade.push_back(b.shade);
+        savings.push_back((a.gbuffer + a.shade) - (b.gbuffer + b.shade));
+        state.SetIterationTime((b.gbuffer + b.shade) / 1000.0);
+    }
+    state.counters["forward_gbuffer_ms"] = median(forwardGBuffer);
+    state.counters["forward_shade_ms"] = median(forwardShade);
+    state.counters["deferred_gbuffer_ms"] = median(deferredGBuffer);
+    state.counters["deferred_shade_ms"] = median(deferredShade);
+    state.counters["saved_ms"] = median(savings);
+}
+BENCHMARK_CAPTURE(BM_DeferredShading, cel, ShadingModel::Cel)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(9);
+BENCHMARK_CAPTURE(BM_DeferredShading, lambert, ShadingModel::Lambert)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(9);
+BENCHMARK_CAPTURE(BM_DeferredShading, phong, ShadingModel::Phong)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(9);
+BENCHMARK_CAPTURE(BM_DeferredShading, comic, ShadingModel::Comic)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(9);
 
 } // namespace
 } // namespace inkgraph::bench

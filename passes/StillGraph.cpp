@@ -1,5 +1,6 @@
 #include "passes/StillGraph.h"
 
+#include "graph/GraphCompiler.h"
 #include "passes/composite/CompositePass.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineLayerPass.h"
@@ -21,17 +22,19 @@ cv::Vec4f displayColor(const glm::dvec4& color) {
     return cv::Vec4f(float(color.r), float(color.g), float(color.b), float(color.a));
 }
 
-/** The shading model's pass, when it has one; fills the graph's shading facts. */
-void addShading(const StillGraphSetup& setup, StillGraph& graph) {
+/** The shading model's pass, when it has one (else null); fills the graph's shading facts. */
+ShadePass* addShading(const StillGraphSetup& setup, StillGraph& graph) {
     const Look& look = setup.look;
     const ShadingModelTraits& traits = traitsOf(look.shading);
-    if (traits.define == nullptr) return; // none: paper and lines only
+    if (traits.define == nullptr) return nullptr; // none: paper and lines only
     ShadeSettings settings;
     settings.model = look.shading;
     settings.shininess = look.shininess;
-    if (traits.faceOrientation)
+    if (traits.faceOrientation) {
         settings.view =
             chooseViewVector(look.viewVector, setup.frame.camera.eye, setup.sphere.center, setup.sphere.radius);
+        settings.faceOrientation = look.faceOrientation;
+    }
     std::optional<ShadeMap> shadeMap = setup.shadeMap;
     if (!shadeMap && traits.bands) shadeMap = makeBandShadeMap(look.bands.value_or(5));
     if (!shadeMap && traits.shadeMap) shadeMap = makeDefaultComicShadeMap();
@@ -43,9 +46,31 @@ void addShading(const StillGraphSetup& setup, StillGraph& graph) {
             if (setup.meshShadeMaps[i])
                 graph.meshShadeMapSources.emplace_back(setup.scene.meshes[i].name, setup.meshShadeMaps[i]->source);
     }
-    graph.passes.push_back(std::make_unique<ShadePass>("shade", setup.shaders, setup.gpuScene, setup.frame, settings,
-                                                       std::move(shadeMap)));
+    auto pass =
+        std::make_unique<ShadePass>("shade", setup.shaders, setup.gpuScene, setup.frame, settings, std::move(shadeMap));
+    ShadePass* shade = pass.get();
+    graph.passes.push_back(std::move(pass));
     graph.shadingResource = "shade.color";
+    return shade;
+}
+
+/** Deferred shading where the G-buffer runs anyway: the plan of the look with forward shading (which reads nothing of
+ *  the G-buffer) says which G-buffer fields the lines read, and the shade pass decides from them
+ *  (ShadePass::chooseMode()). Requests beyond the look (--request 'gbuffer.*') do not count: they are not known
+ *  when the graph is built, and a still looks the same with or without them. */
+void chooseShadingMode(StillGraph& graph, ShadePass& shade, const GBufferPass& gbuffer) {
+    const Plan plan = compile(graph.view(), {graph.finalResource});
+    std::vector<std::string> liveFields;
+    if (const PlannedPass* planned = plan.findPass(std::string(gbuffer.name())))
+        for (const std::string& resource : planned->liveWrites)
+            liveFields.push_back(ResourceName::split(resource).field);
+    shade.chooseMode(gbuffer, liveFields);
+    if (shade.mode() == ShadeMode::Deferred) {
+        graph.shadingMode = "deferred";
+    } else {
+        graph.shadingMode = "forward";
+        graph.shadingForwardReason = shade.forwardReason();
+    }
 }
 
 } // namespace
@@ -84,9 +109,11 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     orientation.shininess = look.shininess;
     setup.gpuScene.setOrientation(setup.frame, orientation);
 
-    graph.passes.push_back(std::make_unique<GBufferPass>("gbuffer", setup.shaders, setup.gpuScene, setup.frame,
-                                                         look.supersample, look.gbufferPrecision));
-    addShading(setup, graph);
+    auto gbufferPass = std::make_unique<GBufferPass>("gbuffer", setup.shaders, setup.gpuScene, setup.frame,
+                                                     look.supersample, look.gbufferPrecision);
+    const GBufferPass& gbuffer = *gbufferPass;
+    graph.passes.push_back(std::move(gbufferPass));
+    ShadePass* shade = addShading(setup, graph);
 
     // Every line type registers its passes, drawn or not: one the composite does not read is culled, and --stats
     // says so.
@@ -127,7 +154,13 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     }
     graph.passes.push_back(
         std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
+    if (shade) chooseShadingMode(graph, *shade, gbuffer);
     return graph;
+}
+
+std::string StillGraph::describeShading() const {
+    if (shadingMode.empty()) return {};
+    return "shading: " + shadingMode + (shadingForwardReason.empty() ? "" : " (" + shadingForwardReason + ")") + "\n";
 }
 
 Json StillGraph::describeLines() const {

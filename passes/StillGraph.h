@@ -1,9 +1,10 @@
 #pragma once
 /** @file The passes of one still, registered in a fixed order from a Look: the G-buffer, the shading model's pass,
  *  every line type of the registry (passes/lines/LineTypes.h), the composite. Every pass is registered; the compiler
- *  culls what the request does not need, so --stats can say why a pass did not run. The graph also describes itself
- *  for --stats and traces its line layers for --svg, so the app names no pass type. Shared by the renderer
- *  (app/StillRenderer.h), the benchmarks and the tests. */
+ *  culls what the request does not need, so --stats can say why a pass did not run. The shade pass shades the
+ *  G-buffer instead of the meshes when the look's lines make the G-buffer run anyway (ShadePass::chooseMode()). The
+ * graph also describes itself for --stats and traces its line layers for --svg, so the app names no pass type. Shared
+ * by the renderer (app/StillRenderer.h), the benchmarks and the tests. */
 
 #include "gl/GraphExecutor.h"
 #include "gl/ShaderLibrary.h"
@@ -47,7 +48,11 @@ class StillGraph {
 public:
     std::vector<std::unique_ptr<GlPass>> passes;
     std::string shadingResource; ///< the colour the composite reads ("shade.color"), or empty for --shading none
-    std::string shadeMapSource;  ///< the shade map's ShadeMap::source ("builtin:bands-5", a path), or empty
+    /** "deferred" (the shade pass shades the G-buffer the lines need anyway), "forward", or empty for --shading none;
+     *  chosen when the graph is built (ShadePass::chooseMode()). */
+    std::string shadingMode;
+    std::string shadingForwardReason; ///< why forward ("no line type reads the G-buffer"), for --stats
+    std::string shadeMapSource;       ///< the shade map's ShadeMap::source ("builtin:bands-5", a path), or empty
     /** Mesh name -> ShadeMap::source for each mesh drawn with its own map, in scene order, for --stats. */
     std::vector<std::pair<std::string, std::string>> meshShadeMapSources;
     std::string finalResource = "composite.final";
@@ -57,6 +62,9 @@ public:
     /** The registered pass of that name, or null. */
     const Pass* findPass(std::string_view name) const;
 
+    /** --print-plan's line on shading: "shading: deferred\n", "shading: forward (<why>)\n", or empty without a shade
+     *  pass. */
+    std::string describeShading() const;
     /** --stats look.lines: one entry per drawn type in composite order, with its style and what its type reports. */
     nlohmann::ordered_json describeLines() const;
     /** --stats post_stage: what each CPU line layer that ran found and where its time went; "kernels_ms" is the post

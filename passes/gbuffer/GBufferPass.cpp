@@ -66,7 +66,7 @@ std::vector<std::vector<const GBufferPass::Field*>> GBufferPass::liveGroups(cons
     std::vector<std::vector<const Field*>> groups;
     for (const Field& field : fields()) {
         if (!context.isLive(field.name)) continue;
-        if (groups.empty() || int(groups.back().size()) == kMaxDrawBuffers) groups.emplace_back();
+        if (groups.empty() || groups.back().size() == kMaxDrawBuffers) groups.emplace_back();
         groups.back().push_back(&field);
     }
     return groups;

@@ -61,6 +61,12 @@ public:
 
     /** The format `field` is stored in at this pass's precision. */
     Format formatOf(const Field& field) const;
+    int supersample() const { return mSupersample; }
+    GBufferPrecision precision() const { return mPrecision; }
+    /** How many times the pass draws the meshes for `liveFieldCount` live fields: once per kMaxDrawBuffers. */
+    static int drawCount(std::size_t liveFieldCount) {
+        return int((liveFieldCount + kMaxDrawBuffers - 1) / kMaxDrawBuffers);
+    }
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
@@ -74,7 +80,7 @@ private:
     /** OUT_* and LOC_* defines for one group's draw. */
     std::vector<std::string> definesFor(const std::vector<const Field*>& group) const;
     void drawGroup(GlPassContext& gl, const std::vector<const Field*>& group);
-    static constexpr int kMaxDrawBuffers = 8; ///< GL 4.5's guaranteed GL_MAX_DRAW_BUFFERS (llvmpipe has exactly 8)
+    static constexpr std::size_t kMaxDrawBuffers = 8; ///< GL 4.5's guaranteed GL_MAX_DRAW_BUFFERS (llvmpipe's 8)
     GlProgram& programFor(const std::vector<std::string>& defines);
 
     std::string mName;

@@ -21,6 +21,24 @@ const char* modelDefine(ShadingModel model) { return traitsOf(model).define; }
 
 bool usesShadeMap(ShadingModel model) { return traitsOf(model).shadeMap; }
 
+/** A shade map's sRGB texels (CV_8UC4, RGBA) as linear light (CV_32FC4), decoded once here instead of in every
+ *  pixel: IEC 61966-2-1 in double, alpha as is. */
+cv::Mat linearTexels(const cv::Mat& srgb) {
+    double decoded[256];
+    for (int code = 0; code < 256; ++code) {
+        const double encoded = code / 255.0;
+        decoded[code] = encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+    }
+    cv::Mat linear(srgb.size(), CV_32FC4);
+    for (int row = 0; row < srgb.rows; ++row)
+        for (int column = 0; column < srgb.cols; ++column) {
+            const cv::Vec4b texel = srgb.at<cv::Vec4b>(row, column);
+            linear.at<cv::Vec4f>(row, column) = cv::Vec4f(float(decoded[texel[0]]), float(decoded[texel[1]]),
+                                                          float(decoded[texel[2]]), float(texel[3] / 255.0));
+        }
+    return linear;
+}
+
 } // namespace
 
 ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
@@ -119,7 +137,70 @@ std::size_t ShadePass::distinctShadeMapCount() const {
 ShadePass::~ShadePass() = default;
 
 void ShadePass::declare(PassBuilder& builder) const {
+    if (mMode == ShadeMode::Deferred)
+        for (const std::string& field : deferredFields()) builder.read(mGBufferName + "." + field);
     builder.write("color", {Format::RGBA8}, Need::Required, {"shading.png", Appearance::Color});
+}
+
+std::optional<glm::vec4> ShadePass::sceneBaseColor() const {
+    const std::vector<Mesh>& meshes = mScene.scene().meshes;
+    if (meshes.empty()) return std::nullopt;
+    const glm::vec4 color = meshes.front().material.baseColorFactor;
+    for (const Mesh& mesh : meshes) {
+        const Material& material = mesh.material;
+        // MToon materials ignore vertex colours (common/material.glsl); the others multiply them in.
+        const bool vertexColors = !mesh.colors.empty() && !material.mtoon;
+        if (material.textured() || vertexColors || material.baseColorFactor != color) return std::nullopt;
+    }
+    return color;
+}
+
+std::vector<std::string> ShadePass::deferredFields() const {
+    std::vector<std::string> fields = {"normal"};
+    if (!sceneBaseColor()) fields.push_back("baseColor");
+    // Comic's constant view vector is a uniform; phong and comic's exact one is the pixel's.
+    const bool constantView = mSettings.model == ShadingModel::Comic && mSettings.view.constant;
+    if (traitsOf(mSettings.model).specular && !constantView) fields.push_back("view");
+    return fields;
+}
+
+std::string ShadePass::deferredBlocker(const GBufferPass& gbuffer, const std::vector<std::string>& liveFields) const {
+    const std::string model = modelName(mSettings.model);
+    // First the reason that holds most often: shading alone does not justify a G-buffer.
+    if (liveFields.empty()) return "no line type reads the G-buffer";
+    if (!traitsOf(mSettings.model).perPixel)
+        return "'" + model + "' shades from more than the pixel's normal, view and base colour";
+    if (mSettings.faceOrientation != FaceOrientationMethod::Standard)
+        return "'" + model + "' draws the front sets of the CPU face orientation '" +
+               faceOrientationMethodName(mSettings.faceOrientation) + "'";
+    if (gbuffer.supersample() != 1)
+        return "the G-buffer is supersampled (" + std::to_string(gbuffer.supersample()) + "x the frame)";
+    if (gbuffer.precision() != GBufferPrecision::Float32) return "the G-buffer stores float16 normals";
+    const Scene& scene = mScene.scene();
+    for (const Mesh& mesh : scene.meshes) {
+        const Material& material = mesh.material;
+        const std::string name = "material '" + material.name + "' of mesh '" + mesh.name + "'";
+        if (material.alphaMode == AlphaMode::Blend) return name + " blends";
+        if (material.emissiveFactor != glm::vec3(0.0f)) return name + " is emissive";
+        if (material.unlit) return name + " is unlit";
+    }
+    if (distinctShadeMapCount() > 1)
+        return "the meshes use " + std::to_string(distinctShadeMapCount()) + " different shade maps";
+    std::vector<std::string> fields = liveFields;
+    for (const std::string& field : deferredFields())
+        if (std::find(fields.begin(), fields.end(), field) == fields.end()) fields.push_back(field);
+    if (GBufferPass::drawCount(fields.size()) > GBufferPass::drawCount(liveFields.size()))
+        return "the G-buffer would draw the meshes a second time for " + std::to_string(fields.size()) + " fields";
+    return {};
+}
+
+ShadeMode ShadePass::chooseMode(const GBufferPass& gbuffer, const std::vector<std::string>& liveFields) {
+    if (mProgram)
+        throw std::logic_error("ShadePass::chooseMode(): '" + mName + "' has been prepared; choose before compiling");
+    mForwardReason = deferredBlocker(gbuffer, liveFields);
+    mMode = mForwardReason.empty() ? ShadeMode::Deferred : ShadeMode::Forward;
+    mGBufferName = std::string(gbuffer.name());
+    return mMode;
 }
 
 bool ShadePass::drawsOrientationSets() const {
@@ -133,7 +214,18 @@ bool ShadePass::usesSpecularRowBands() const {
 }
 
 std::vector<std::string> ShadePass::defines() const {
-    std::vector<std::string> result = {modelDefine(mSettings.model), "MATERIAL_EMISSIVE 1"};
+    std::vector<std::string> result = {modelDefine(mSettings.model)};
+    if (mMode == ShadeMode::Deferred) {
+        result.push_back("SHADE_DEFERRED 1");
+        result.push_back("GBUFFER_NORMAL_UNIT " + std::to_string(kNormalUnit));
+        const std::vector<std::string> fields = deferredFields();
+        if (std::find(fields.begin(), fields.end(), "baseColor") != fields.end())
+            result.push_back("GBUFFER_BASECOLOR_UNIT " + std::to_string(kBaseColorUnit));
+        if (std::find(fields.begin(), fields.end(), "view") != fields.end())
+            result.push_back("GBUFFER_VIEW_UNIT " + std::to_string(kViewUnit));
+    } else {
+        result.push_back("MATERIAL_EMISSIVE 1");
+    }
     if (usesSpecularRowBands()) result.push_back("SPECULAR_ROW_BANDS " + std::to_string(mSpecularBorderCount));
     if (drawsOrientationSets()) {
         result.push_back("SHADE_COORDS 1");
@@ -145,6 +237,13 @@ std::vector<std::string> ShadePass::defines() const {
 }
 
 void ShadePass::prepare(GlPassContext&) {
+    if (!mProgram && mMode == ShadeMode::Deferred)
+        mProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName,
+                            "shade/deferred.vert",
+                            "shade/shade.frag",
+                            defines(),
+                            {"common/fullscreen.glsl", "common/color.glsl", "common/lighting.glsl"}}));
     if (!mProgram)
         mProgram = std::make_unique<GlProgram>(
             mShaders.build({mName,
@@ -155,12 +254,14 @@ void ShadePass::prepare(GlPassContext&) {
     for (MapSlot& slot : mMaps) {
         if (!slot.used || slot.texture) continue;
         // Nearest, clamped to the edge (every GlTexture is). uploadImage() turns the image bottom-up, so GL row 0 is
-        // the map's bottom row, t = 0, and the shader indexes rows by t directly.
+        // the map's bottom row, t = 0, and the shader indexes rows by t directly. Linear float texels: the shader
+        // decodes nothing per pixel.
         const cv::Mat& texels = slot.map.texels;
-        slot.texture = std::make_unique<GlTexture>(Format::RGBA8, texels.cols, texels.rows,
+        slot.texture = std::make_unique<GlTexture>(Format::RGBA32F, texels.cols, texels.rows,
                                                    mName + " shade map '" + slot.map.source + "'");
-        uploadImage(*slot.texture, texels);
+        uploadImage(*slot.texture, linearTexels(texels));
     }
+    if (mMode == ShadeMode::Deferred) return; // the G-buffer has drawn the meshes
     mScene.meshes();
     if (drawsMToonOutlines() && !mOutlineProgram) {
         // The outline shells are the inflated hull (silhouette/hull.vert), each mesh's as wide as its material says.
@@ -208,7 +309,69 @@ void ShadePass::drawMToonOutlines(const glm::mat4& viewFromModel, const glm::mat
     glDisable(GL_CULL_FACE);
 }
 
+void ShadePass::setShadingUniforms(const GlProgram& program) const {
+    glUniform3fv(program.uniform("towardLightView"), 1, glm::value_ptr(mFrame.towardLightView()));
+    glUniform1f(program.uniform("ambient"), mSettings.ambient);
+    glUniform1f(program.uniform("shininess"), float(mSettings.shininess));
+    glUniform1f(program.uniform("specularStrength"), mSettings.specularStrength);
+    if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
+        // V_c is eye -> centre in world space; the shader wants surface -> eye in view space (rotation only).
+        const glm::dvec3 towardEye = glm::dmat3(mFrame.camera.viewMatrix()) * -mSettings.view.constantView;
+        glUniform3fv(program.uniform("constantTowardEye"), 1, glm::value_ptr(glm::vec3(glm::normalize(towardEye))));
+    }
+}
+
+void ShadePass::bindShadeMap(const GlProgram& program, const MapSlot& slot) const {
+    glBindTextureUnit(0, slot.texture->id());
+    if (usesSpecularRowBands()) {
+        // The band borders in x = |r - v|^2 / 2 (ShadeMap.h): the shader finds the row without a log or exp.
+        glUniform1fv(program.uniform("specularBorderLimit"), GLsizei(slot.borderLimit.size()), slot.borderLimit.data());
+        glUniform1iv(program.uniform("specularBandRow"), GLsizei(slot.bandRow.size()), slot.bandRow.data());
+    }
+}
+
 void ShadePass::execute(GlPassContext& gl) {
+    if (mMode == ShadeMode::Deferred)
+        executeDeferred(gl);
+    else
+        executeForward(gl);
+}
+
+void ShadePass::executeDeferred(GlPassContext& gl) {
+    const int width = gl.widthOf("color");
+    const int height = gl.heightOf("color");
+    GlFramebuffer framebuffer(mName);
+    framebuffer.attachColor(0, gl.outputTexture("color"));
+    framebuffer.finish({0});
+    framebuffer.bind();
+    // Every pixel is written (transparent black off the model), so nothing is cleared.
+    glViewport(0, 0, width, height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    GlProgram& program = *mProgram;
+    program.use();
+    setShadingUniforms(program);
+    // chooseMode() allows one distinct map: the one every mesh uses.
+    for (const MapSlot& slot : mMaps)
+        if (slot.used) bindShadeMap(program, slot);
+    const std::vector<std::string> fields = deferredFields();
+    const GLuint units[] = {kNormalUnit, kBaseColorUnit, kViewUnit};
+    const char* names[] = {"normal", "baseColor", "view"};
+    for (std::size_t i = 0; i < 3; ++i)
+        if (std::find(fields.begin(), fields.end(), names[i]) != fields.end())
+            glBindTextureUnit(units[i], gl.inputTexture(mGBufferName + "." + names[i]).id());
+    if (const std::optional<glm::vec4> base = sceneBaseColor())
+        glUniform3fv(program.uniform("sceneBaseColor"), 1, glm::value_ptr(glm::vec3(*base)));
+    // Core profile draws nothing without a vertex array, even when the vertices come from gl_VertexID.
+    GlVertexArray empty(mName + " fullscreen");
+    empty.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    for (const GLuint unit : {GLuint(0), kNormalUnit, kBaseColorUnit, kViewUnit}) glBindTextureUnit(unit, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void ShadePass::executeForward(GlPassContext& gl) {
     const int width = gl.widthOf("color");
     const int height = gl.heightOf("color");
     GlFramebuffer framebuffer(mName);
@@ -243,18 +406,7 @@ void ShadePass::execute(GlPassContext& gl) {
     glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
     glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
     glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
-    glUniform3fv(program.uniform("towardLightView"), 1, glm::value_ptr(mFrame.towardLightView()));
-    glUniform1f(program.uniform("ambient"), mSettings.ambient);
-    glUniform1f(program.uniform("shininess"), float(mSettings.shininess));
-    glUniform1f(program.uniform("specularStrength"), mSettings.specularStrength);
-    if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
-        // V_c is eye -> centre in world space; the shader wants surface -> eye in view space (rotation only).
-        const glm::dvec3 towardEye = glm::dmat3(mFrame.camera.viewMatrix()) * -mSettings.view.constantView;
-        glUniform3fv(program.uniform("constantTowardEye"), 1, glm::value_ptr(glm::vec3(glm::normalize(towardEye))));
-    }
-    const bool rowBands = usesSpecularRowBands();
-    const GLint borderLimitLocation = rowBands ? program.uniform("specularBorderLimit") : -1;
-    const GLint bandRowLocation = rowBands ? program.uniform("specularBandRow") : -1;
+    setShadingUniforms(program);
 
     std::optional<std::size_t> boundSlot;
     bool blending = false;
@@ -262,13 +414,7 @@ void ShadePass::execute(GlPassContext& gl) {
     for (const std::size_t i : mScene.drawOrder(viewFromModel)) {
         if (!mMaps.empty() && boundSlot != mMeshMap[i]) {
             // Each mesh's own map; consecutive meshes that share one keep it bound.
-            const MapSlot& slot = mMaps[mMeshMap[i]];
-            glBindTextureUnit(0, slot.texture->id());
-            if (rowBands) {
-                // The band borders in x = |r - v|^2 / 2 (ShadeMap.h): the shader finds the row without a log or exp.
-                glUniform1fv(borderLimitLocation, GLsizei(slot.borderLimit.size()), slot.borderLimit.data());
-                glUniform1iv(bandRowLocation, GLsizei(slot.bandRow.size()), slot.bandRow.data());
-            }
+            bindShadeMap(program, mMaps[mMeshMap[i]]);
             boundSlot = mMeshMap[i];
         }
         if (meshes[i].material->alphaMode == AlphaMode::Blend && !blending) {

@@ -1,12 +1,17 @@
 #pragma once
-/** @file Forward shading of the meshes: every shading model of Winnemöller & Bangay 2002 and Qu, Chen & Zwicker in
- *  one pass, chosen at construction. Draws the meshes itself with its own depth attachment, so a plan without lines
- *  needs no G-buffer.
+/** @file Shading: every shading model of Winnemöller & Bangay 2002 and Qu, Chen & Zwicker in one pass, chosen at
+ *  construction. Forward by default: it draws the meshes itself with its own depth attachment, so a plan without lines
+ *  needs no G-buffer. Deferred when chooseMode() finds the G-buffer running for the lines anyway and nothing in the
+ *  model or the scene needs more than the per-pixel normal, view vector and base colour: one full-screen triangle
+ *  then shades the G-buffer's fields, and the meshes are drawn once instead of twice (docs/shading.md).
  *
  *  | resource      | format | need     | content                                                            |
  *  |---------------|--------|----------|--------------------------------------------------------------------|
- *  | reads         |        |          | nothing from the graph (meshes from GpuScene, sets from             |
+ *  | reads         |        |          | forward: nothing from the graph (meshes from GpuScene, sets from    |
  *  |               |        |          | GpuScene::cpuOrientation() for the CPU face-orientation methods)    |
+ *  |               |        |          | deferred: gbuffer.normal (a = coverage); gbuffer.baseColor unless   |
+ *  |               |        |          | the scene has one base colour; gbuffer.view for phong and comic     |
+ *  |               |        |          | with the exact view vector                                          |
  *  | <name>.color  | rgba8  | required | sRGB colour, a = coverage (0 off the model)                        |
  *
  *  Models (docs/shading.md; n, l, v unit, v surface -> eye, r = reflect(-l, n)):
@@ -41,6 +46,7 @@
 #include "gl/GlPass.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/gbuffer/GBufferPass.h"
 #include "passes/orientation/SceneOrientation.h"
 #include "passes/shade/ShadeMap.h"
 #include "passes/shade/ShadingModel.h"
@@ -53,12 +59,18 @@
 
 namespace inkgraph {
 
+/** Forward: the pass draws the meshes. Deferred: it shades the G-buffer's fields on a full-screen triangle. */
+enum class ShadeMode { Forward, Deferred };
+
 struct ShadeSettings {
     ShadingModel model = ShadingModel::Cel;
     double shininess = 32.0;       ///< phong and comic; >= 0
     float ambient = 0.15f;         ///< flat, gouraud, lambert, phong
     float specularStrength = 0.5f; ///< phong: white specular weight
     ViewVectorChoice view;         ///< comic: constant or exact (from chooseViewVector())
+    /** comic: the CPU face-orientation method whose front sets are drawn (Standard: the GPU culls), for
+     *  chooseMode(): the sets' per-vertex (s, t) are not in the G-buffer. */
+    FaceOrientationMethod faceOrientation = FaceOrientationMethod::Standard;
     /** cel and comic: entry i, when present, is GpuScene mesh i's own shade map, checked like the default one (a
      *  missing entry, or a mesh past the end, uses the default map). Ignored by the models without a map. */
     std::vector<std::optional<ShadeMap>> meshShadeMaps{};
@@ -85,6 +97,25 @@ public:
      *  prepare() uploads. */
     std::size_t distinctShadeMapCount() const;
 
+    /** The one place forward or deferred is decided, when the graph is built and before it is compiled (declare()
+     *  reads the choice). Deferred when `liveFields`, the fields of `gbuffer` the rest of the plan reads, is not empty
+     *  (the G-buffer runs anyway) and none of these holds, else forward with the first that does as the reason:
+     *  the model is not perPixel (flat, gouraud, mtoon); comic draws a CPU face orientation's sets; the G-buffer is
+     *  supersampled or float16 (deferred would shade other normals than forward); a material blends, is emissive or
+     *  unlit (the G-buffer holds none of it); the meshes use more than one distinct shade map; the fields deferred
+     *  reads would make the G-buffer draw the meshes a second time. Returns the mode. */
+    ShadeMode chooseMode(const GBufferPass& gbuffer, const std::vector<std::string>& liveFields);
+    ShadeMode mode() const { return mMode; }
+    /** Why the pass stays forward ("no line type reads the G-buffer"); empty when deferred. */
+    const std::string& forwardReason() const { return mForwardReason; }
+    /** The G-buffer fields deferred shading reads: normal (whose alpha is the coverage), baseColor unless
+     *  sceneBaseColor() has one, and view for phong and comic with the exact view vector. */
+    std::vector<std::string> deferredFields() const;
+    /** The base colour when it is one constant over the whole scene (every mesh untextured, without vertex colours,
+     *  with the same factor): deferred shading then takes it as a uniform, exactly as forward shading has it, and the
+     *  G-buffer does not store it. */
+    std::optional<glm::vec4> sceneBaseColor() const;
+
 private:
     /** One distinct shade map: the default or a mesh's own, uploaded once in prepare(). */
     struct MapSlot {
@@ -109,10 +140,22 @@ private:
                            const glm::mat4& clipFromView, int width, int height);
     /** MODEL_* and variant defines for the one program of this pass. */
     std::vector<std::string> defines() const;
+    /** Why deferred shading over `gbuffer` would not give the forward picture, or empty when it would. */
+    std::string deferredBlocker(const GBufferPass& gbuffer, const std::vector<std::string>& liveFields) const;
+    /** The uniforms both modes share: light, ambient, shininess, specular strength, comic's constant view. */
+    void setShadingUniforms(const GlProgram& program) const;
+    /** Binds `slot`'s shade map to unit 0 and, for comic's row bands, sets its borders and rows. */
+    void bindShadeMap(const GlProgram& program, const MapSlot& slot) const;
+    void executeForward(GlPassContext& gl);
+    void executeDeferred(GlPassContext& gl);
     /** Comic on the GPU with maps of at most kMaxSpecularRowBands + 1 row bands: rows found by comparisons. */
     bool usesSpecularRowBands() const;
 
     static constexpr int kMaxSpecularRowBands = 8; ///< borders; a map with more falls back to exp(n log(r.v))
+    /** Deferred: the texture units of the G-buffer fields (0 is the shade map; the materials' units are unused). */
+    static constexpr GLuint kNormalUnit = 1;
+    static constexpr GLuint kBaseColorUnit = 2;
+    static constexpr GLuint kViewUnit = 3;
 
     std::string mName;
     ShaderLibrary& mShaders;
@@ -125,6 +168,9 @@ private:
     std::unique_ptr<GlProgram> mProgram;        ///< the one program of this model and variant
     std::unique_ptr<GlProgram> mOutlineProgram; ///< mtoon's outline shells, when drawsMToonOutlines()
     PassDepthBuffer mDepth;                     ///< the pass's own depth attachment, kept between runs
+    ShadeMode mMode = ShadeMode::Forward;
+    std::string mForwardReason = "the graph did not choose (ShadePass::chooseMode() was not called)";
+    std::string mGBufferName; ///< deferred: the G-buffer pass whose fields are read
 };
 
 } // namespace inkgraph

@@ -1,9 +1,36 @@
-// Forward shading, one model per program (MODEL_* define from ShadePass): flat, gouraud, lambert, phong, cel, comic,
-// mtoon (docs/shading.md, docs/mtoon.md). The base colour is the material's (common/material.glsl: factor x texture
-// x vertex colour). Colour is computed in linear RGB and written sRGB-encoded, with the surface's alpha (1 unless the
-// material blends).
+// Shading, one model per program (MODEL_* define from ShadePass): flat, gouraud, lambert, phong, cel, comic, mtoon
+// (docs/shading.md, docs/mtoon.md). The base colour is the material's (common/material.glsl: factor x texture x vertex
+// colour). Colour is computed in linear RGB and written sRGB-encoded, with the surface's alpha (1 unless the material
+// blends).
+// Forward, the surface comes from the mesh drawn (shade.vert). With SHADE_DEFERRED (lambert, phong, cel, comic; see
+// ShadePass::chooseMode()) it comes from the G-buffer texel of this pixel, computed there by the same expressions:
+// the normal turned toward the viewer (alpha: the coverage) and the view vector; the base colour is a uniform when
+// the scene has one (ShadePass::sceneBaseColor()), else the G-buffer's sRGB8 copy (hence up to a code of difference
+// from forward).
+#ifdef SHADE_DEFERRED
+#if defined(MODEL_FLAT) || defined(MODEL_GOURAUD) || defined(MODEL_MTOON) || defined(SHADE_COORDS)
+#error "deferred shading needs a model that shades from the pixel's normal, view and base colour"
+#endif
+layout(binding = GBUFFER_NORMAL_UNIT) uniform sampler2D gbufferNormal;
+#ifdef GBUFFER_BASECOLOR_UNIT
+layout(binding = GBUFFER_BASECOLOR_UNIT) uniform sampler2D gbufferBaseColor;
+#else
+uniform vec3 sceneBaseColor; // linear
+#endif
+#ifdef GBUFFER_VIEW_UNIT
+layout(binding = GBUFFER_VIEW_UNIT) uniform sampler2D gbufferView;
+#endif
+
+// The G-buffer texel of this pixel: the G-buffer is the frame's size.
+vec4 gbufferTexel(sampler2D field) {
+    return texelFetch(field, ivec2(gl_FragCoord.xy), 0);
+}
+
+vec3 deferredNormal; // the G-buffer's, read once in main()
+#else
 in vec3 viewPosition;
 in vec3 viewNormal;
+#endif
 #ifdef MODEL_GOURAUD
 in float vertexLight;
 #endif
@@ -27,7 +54,8 @@ uniform int specularBandRow[SPECULAR_ROW_BANDS + 1];
 uniform vec3 constantTowardEye; // comic: -V_c in view space, unit (Winnemöller & Bangay 2002 §3.5)
 #endif
 #if defined(MODEL_CEL) || defined(MODEL_COMIC)
-// sRGB texels, nearest, clamped; GL row 0 is the map image's bottom row (t = 0). Cel maps have one row.
+// Linear texels (ShadePass decodes the map's sRGB once), nearest, clamped; GL row 0 is the map image's bottom row
+// (t = 0). Cel maps have one row.
 layout(binding = 0) uniform sampler2D shadeMap;
 #endif
 
@@ -86,6 +114,19 @@ vec3 mtoonColor(vec3 lit, vec3 n, vec3 l, vec3 v) {
 
 layout(location = 0) out vec4 outColor;
 
+#ifdef SHADE_DEFERRED
+// The G-buffer's normal, which is shadingNormal() below, computed there.
+vec3 shadingNormal() {
+    return deferredNormal;
+}
+
+#ifdef GBUFFER_VIEW_UNIT
+// The G-buffer's view vector, which is towardEye() below, computed there.
+vec3 towardEye() {
+    return gbufferTexel(gbufferView).xyz;
+}
+#endif
+#else
 // The interpolated normal, renormalised and, seen from behind (open meshes, holes), turned to the viewer's side.
 vec3 shadingNormal() {
     float normalLength = length(viewNormal);
@@ -102,6 +143,7 @@ vec3 towardEye() {
     float distanceToEye = length(viewPosition);
     return distanceToEye > 0.0 ? -viewPosition / distanceToEye : vec3(0.0, 0.0, 1.0);
 }
+#endif
 
 #if defined(MODEL_CEL) || defined(MODEL_COMIC)
 // Texel i = min(floor(u N), N - 1) of an axis of N texels; u = 1 stays on the last texel.
@@ -111,7 +153,7 @@ int shadeMapIndex(float u, int count) {
 
 // Linear colour of the texel in column `column`, row `row` (row 0 at the bottom, t = 0).
 vec3 shadeMapTexel(int column, int row) {
-    return decodeSrgb(texelFetch(shadeMap, ivec2(column, row), 0).rgb);
+    return texelFetch(shadeMap, ivec2(column, row), 0).rgb;
 }
 
 // Linear colour of the texel at (u, v); v is ignored by one-row maps.
@@ -122,8 +164,23 @@ vec3 shadeMapColor(vec2 uv) {
 #endif
 
 void main() {
+#ifdef SHADE_DEFERRED
+    vec4 normalTexel = gbufferTexel(gbufferNormal);
+    if (normalTexel.a == 0.0) {
+        // Off the model: what forward shading's clear leaves. Every pixel is written, so the pass clears nothing.
+        outColor = vec4(0.0);
+        return;
+    }
+    deferredNormal = normalTexel.xyz;
+#ifdef GBUFFER_BASECOLOR_UNIT
+    vec4 surface = vec4(decodeSrgb(gbufferTexel(gbufferBaseColor).rgb), 1.0);
+#else
+    vec4 surface = vec4(sceneBaseColor, 1.0);
+#endif
+#else
     vec4 surface = materialBaseColor();
     if (materialCutsOut(surface.a)) discard;
+#endif
     vec3 base = surface.rgb;
     vec3 l = towardLightView;
     vec3 rgb;
@@ -178,13 +235,15 @@ void main() {
 #error "shade.frag needs one MODEL_* define"
 #endif
     // KHR_materials_unlit: no lighting at all. A VRM material that also has MToon keeps MToon (unlit is its
-    // fallback for viewers without MToon).
+    // fallback for viewers without MToon). Deferred shading has neither (chooseMode() keeps such scenes forward).
 #ifdef MODEL_MTOON
     if (materialUnlit != 0 && mtoonPresent == 0) rgb = base;
-#else
+#elif !defined(SHADE_DEFERRED)
     if (materialUnlit != 0) rgb = base;
 #endif
+#ifndef SHADE_DEFERRED
     rgb += materialEmissive();
+#endif
 #ifdef MTOON_OUTLINE
     // The outline's colour takes the surface's lighting as far as the mix factor says (docs/mtoon.md).
     rgb = mix(mtoonOutlineColorFactor, mtoonOutlineColorFactor * rgb, mtoonOutlineLightingMixFactor);
@@ -192,6 +251,8 @@ void main() {
     // Straight alpha for the blend of BLEND surfaces over what is behind them; cut-out and opaque surfaces are 1.
 #ifdef MTOON_OUTLINE
     outColor = vec4(encodeSrgb(rgb), 1.0); // the outline is opaque, drawn before any blended surface
+#elif defined(SHADE_DEFERRED)
+    outColor = vec4(encodeSrgb(rgb), 1.0); // no blended material (chooseMode())
 #else
     outColor = vec4(encodeSrgb(rgb), materialAlphaMode == 2 ? surface.a : 1.0);
 #endif
