@@ -1,0 +1,192 @@
+// Forward or deferred shading, as the still graph chooses it when it is built (ShadePass::chooseMode()): one rule per
+// test, each on a look and a scene, read from the compiled plan (what the shade pass reads) and the graph's facts for
+// --stats. No GL: building and compiling the graph needs no context.
+#include "graph/GraphCompiler.h"
+#include "passes/StillGraph.h"
+#include "passes/gbuffer/GBufferPass.h"
+#include "passes/shade/ShadePass.h"
+#include "scene/Procedural.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+using Names = std::vector<std::string>;
+
+/** What the graph chose for one look. */
+struct Choice {
+    std::string mode;    ///< "deferred" or "forward"
+    std::string reason;  ///< why forward
+    Names reads;         ///< the shade pass's reads in the compiled plan
+    Names gbufferWrites; ///< the G-buffer's live writes, or none when it is culled
+};
+
+class ShadeModeChoice : public ::testing::Test {
+protected:
+    void SetUp() override {
+        scene = makeScene(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 32, 16));
+        scene.meshes[0].name = "sphere";
+        scene.meshes[0].material.name = "paint";
+    }
+
+    /** Builds the still graph of `look` over `scene` (the eye 5 radii away: comic's constant view vector applies) and
+     *  compiles it for the final picture. */
+    Choice choose(const Look& look, std::vector<std::optional<ShadeMap>> meshShadeMaps = {}) {
+        CameraRequest request;
+        request.eye = glm::dvec3(0.0, 0.0, 5.0);
+        request.target = glm::dvec3(0.0);
+        request.width = 64;
+        request.height = 64;
+        frame.camera = resolveCamera(request, scene);
+        const BoundingSphere sphere = computeBoundingSphere(scene);
+        frame.worldOrigin = sphere.center;
+        gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+        StillGraphSetup setup{look, shaders, scene, sphere, *gpuScene, frame, std::nullopt};
+        setup.meshShadeMaps = std::move(meshShadeMaps);
+        const StillGraph graph = buildStillGraph(setup);
+        const Plan plan = compile(graph.view(), {graph.finalResource});
+        Choice choice{graph.shadingMode, graph.shadingForwardReason, {}, {}};
+        if (const PlannedPass* shade = plan.findPass("shade")) choice.reads = shade->reads;
+        if (const PlannedPass* gbuffer = plan.findPass("gbuffer")) choice.gbufferWrites = gbuffer->liveWrites;
+        return choice;
+    }
+
+    static Look lookOf(ShadingModel model, Names lines = {"contour"}) {
+        Look look;
+        look.shading = model;
+        look.lines = std::move(lines);
+        return look;
+    }
+
+    Scene scene;
+    FrameParams frame;
+    ShaderLibrary shaders;
+    std::unique_ptr<GpuScene> gpuScene;
+};
+
+TEST_F(ShadeModeChoice, ForwardWhenNoDrawnLineReadsTheGBuffer) {
+    for (const Names& lines : {Names{}, Names{"silhouette"}, Names{"outline", "crease"}}) {
+        const Choice choice = choose(lookOf(ShadingModel::Cel, lines));
+        EXPECT_EQ(choice.mode, "forward");
+        EXPECT_EQ(choice.reason, "no line type reads the G-buffer");
+        EXPECT_TRUE(choice.reads.empty());
+        EXPECT_TRUE(choice.gbufferWrites.empty()) << "shading alone must not make the G-buffer run";
+    }
+}
+
+TEST_F(ShadeModeChoice, DeferredReadsTheNormalAndTheViewOnlyForSpecularModelsWithTheExactViewVector) {
+    // One untextured material: the base colour is a uniform, so the G-buffer adds only the normal (and the view).
+    const std::vector<std::pair<ShadingModel, Names>> cases = {
+        {ShadingModel::Lambert, {"gbuffer.normal"}},
+        {ShadingModel::Cel, {"gbuffer.normal"}},
+        {ShadingModel::Phong, {"gbuffer.normal", "gbuffer.view"}},
+        {ShadingModel::Comic, {"gbuffer.normal", "gbuffer.view"}},
+    };
+    for (const auto& [model, reads] : cases) {
+        const Choice choice = choose(lookOf(model, {"silhouette", "contour", "suggestive"}));
+        EXPECT_EQ(choice.mode, "deferred") << traitsOf(model).name << ": " << choice.reason;
+        EXPECT_TRUE(choice.reason.empty());
+        EXPECT_EQ(choice.reads, reads) << traitsOf(model).name;
+        for (const std::string& read : reads)
+            EXPECT_NE(std::find(choice.gbufferWrites.begin(), choice.gbufferWrites.end(), read),
+                      choice.gbufferWrites.end());
+    }
+    Look constant = lookOf(ShadingModel::Comic);
+    constant.viewVector = ViewVectorMode::Constant;
+    EXPECT_EQ(choose(constant).reads, (Names{"gbuffer.normal"})) << "comic's constant view vector is a uniform";
+}
+
+TEST_F(ShadeModeChoice, DeferredReadsTheBaseColourWhenItVariesOverTheScene) {
+    scene.meshes[0].colors.assign(scene.meshes[0].positions.size(), glm::vec4(1.0f, 0.5f, 0.25f, 1.0f));
+    EXPECT_EQ(choose(lookOf(ShadingModel::Cel)).reads, (Names{"gbuffer.normal", "gbuffer.baseColor"}));
+
+    SetUp();
+    scene.images.push_back({"checker.png", "checker.png", "image/png", nullptr});
+    scene.meshes[0].material.baseColorTexture.image = 0;
+    EXPECT_EQ(choose(lookOf(ShadingModel::Lambert)).reads, (Names{"gbuffer.normal", "gbuffer.baseColor"}));
+
+    SetUp();
+    Mesh second = makeUvSphere({3.0f, 0.0f, 0.0f}, 1.0f, 16, 8);
+    second.material.baseColorFactor = glm::vec4(0.2f, 0.4f, 0.8f, 1.0f);
+    scene.meshes.push_back(second);
+    EXPECT_EQ(choose(lookOf(ShadingModel::Cel)).reads, (Names{"gbuffer.normal", "gbuffer.baseColor"}));
+}
+
+TEST_F(ShadeModeChoice, ModelsThatNeedMoreThanThePixelStayForward) {
+    for (const ShadingModel model : {ShadingModel::Flat, ShadingModel::Gouraud, ShadingModel::MToon}) {
+        const Choice choice = choose(lookOf(model));
+        EXPECT_EQ(choice.mode, "forward");
+        EXPECT_EQ(choice.reason, "'" + std::string(traitsOf(model).name) +
+                                     "' shades from more than the pixel's normal, view and base colour");
+        EXPECT_TRUE(choice.reads.empty());
+    }
+    Look orientation = lookOf(ShadingModel::Comic);
+    orientation.viewVector = ViewVectorMode::Constant;
+    orientation.faceOrientation = FaceOrientationMethod::AfterVertices;
+    EXPECT_EQ(choose(orientation).reason, "'comic' draws the front sets of the CPU face orientation 'after-vertices'");
+}
+
+TEST_F(ShadeModeChoice, GBuffersThatWouldShadeOtherNormalsKeepItForward) {
+    Look supersampled = lookOf(ShadingModel::Cel);
+    supersampled.supersample = 2;
+    EXPECT_EQ(choose(supersampled).reason, "the G-buffer is supersampled (2x the frame)");
+    Look half = lookOf(ShadingModel::Cel);
+    half.gbufferPrecision = GBufferPrecision::Float16;
+    EXPECT_EQ(choose(half).reason, "the G-buffer stores float16 normals");
+}
+
+TEST_F(ShadeModeChoice, MaterialsTheGBufferDoesNotHoldKeepItForward) {
+    scene.meshes[0].material.alphaMode = AlphaMode::Blend;
+    EXPECT_EQ(choose(lookOf(ShadingModel::Cel)).reason, "material 'paint' of mesh 'sphere' blends");
+    SetUp();
+    scene.meshes[0].material.emissiveFactor = glm::vec3(0.1f, 0.0f, 0.0f);
+    EXPECT_EQ(choose(lookOf(ShadingModel::Cel)).reason, "material 'paint' of mesh 'sphere' is emissive");
+    SetUp();
+    scene.meshes[0].material.unlit = true;
+    EXPECT_EQ(choose(lookOf(ShadingModel::Cel)).reason, "material 'paint' of mesh 'sphere' is unlit");
+    SetUp();
+    scene.meshes[0].material.alphaMode = AlphaMode::Mask; // cut out alike in the G-buffer and forward
+    EXPECT_EQ(choose(lookOf(ShadingModel::Cel)).mode, "deferred");
+}
+
+TEST_F(ShadeModeChoice, OneShadeMapPerPixelOrForward) {
+    scene.meshes.push_back(makeUvSphere({3.0f, 0.0f, 0.0f}, 1.0f, 16, 8));
+    // A mesh's own map equal to the default one is the default one.
+    EXPECT_EQ(choose(lookOf(ShadingModel::Cel), {std::nullopt, makeBandShadeMap(5)}).mode, "deferred");
+    EXPECT_EQ(choose(lookOf(ShadingModel::Cel), {std::nullopt, makeBandShadeMap(3)}).reason,
+              "the meshes use 2 different shade maps");
+    // Every mesh with the same map of its own: one map.
+    EXPECT_EQ(choose(lookOf(ShadingModel::Cel), {makeBandShadeMap(3), makeBandShadeMap(3)}).mode, "deferred");
+}
+
+TEST_F(ShadeModeChoice, ForwardWhenTheShadingFieldsWouldMakeTheGBufferDrawTwice) {
+    CameraRequest request;
+    request.width = 64;
+    request.height = 64;
+    frame.camera = resolveCamera(request, scene);
+    GpuScene meshes(scene, glm::dvec3(0.0));
+    GBufferPass gbuffer("gbuffer", shaders, meshes, frame);
+    ShadeSettings settings;
+    settings.model = ShadingModel::Lambert;
+    ShadePass shade("shade", shaders, meshes, frame, settings, std::nullopt);
+    // Eight fields without the normal: the ninth would need a second draw of the meshes.
+    const Names eight = {"view", "wVec", "nDotV", "depth", "coverage", "baseColor", "radial", "materialId"};
+    EXPECT_EQ(shade.chooseMode(gbuffer, eight), ShadeMode::Forward);
+    EXPECT_EQ(shade.forwardReason(), "the G-buffer would draw the meshes a second time for 9 fields");
+    // Seven and the normal still fit one draw.
+    EXPECT_EQ(shade.chooseMode(gbuffer, Names(eight.begin(), eight.end() - 1)), ShadeMode::Deferred);
+    EXPECT_TRUE(shade.forwardReason().empty());
+    // Deferred reads exactly what it declares.
+    PassBuilder builder("shade");
+    shade.declare(builder);
+    ASSERT_EQ(builder.reads().size(), 1u);
+    EXPECT_EQ(builder.reads()[0].resource, "gbuffer.normal");
+}
+
+} // namespace
+} // namespace inkgraph
