@@ -10,6 +10,21 @@
 #include <string_view>
 
 namespace inkgraph {
+namespace {
+
+/** The radial field's focal lengths in pixels, (width/2 P[0][0], height/2 P[1][1]), for gbuffer.frag's closed form of
+ *  the image Jacobian, which holds for perspective projections only: throws std::logic_error for another form. */
+glm::vec2 focalPixels(const glm::mat4& clipFromView, int width, int height) {
+    const glm::mat4& p = clipFromView; // p[column][row]
+    const bool perspective = p[0][3] == 0.0f && p[1][3] == 0.0f && p[2][3] == -1.0f && p[3][3] == 0.0f &&
+                             p[1][0] == 0.0f && p[3][0] == 0.0f && p[0][1] == 0.0f && p[3][1] == 0.0f;
+    if (!perspective)
+        throw std::logic_error("GBufferPass::execute(): the 'radial' field needs a perspective projection "
+                               "(w row 0, 0, -1, 0; x and y rows without shear or translation)");
+    return {0.5f * float(width) * p[0][0], 0.5f * float(height) * p[1][1]};
+}
+
+} // namespace
 
 const std::vector<GBufferPass::Field>& GBufferPass::fields() {
     static const std::vector<Field> kFields = {
@@ -126,7 +141,7 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
     glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
     if (std::any_of(group.begin(), group.end(),
                     [](const Field* field) { return std::string_view(field->name) == "radial"; })) {
-        glUniform2f(program.uniform("viewportSize"), float(width), float(height));
+        glUniform2fv(program.uniform("focalPixels"), 1, glm::value_ptr(focalPixels(clipFromView, width, height)));
         glUniform1f(program.uniform("radialLengthScale"), float(1.0 / mFrame.radialLengthUnit));
     }
     const GLint materialIdLocation = program.uniform("materialId"); // -1 unless the field is live: ignored
