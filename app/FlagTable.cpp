@@ -323,7 +323,7 @@ std::vector<Flag> makeFlags() {
     flags.push_back(
         flag({"--dump"}, "DIR", S::Output,
              "also write every buffer the plan computed, and manifest.json. What is computed follows\n"
-             "from the request: shading draws the meshes itself; add --request 'gbuffer.*' for\n"
+             "from the request: shading reads the G-buffer only where lines do; add --request 'gbuffer.*' for\n"
              "normal.exr, view.exr, w.exr (float32 RGBA, alpha = coverage), ndotv.exr, depth.exr\n"
              "(float32), coverage.png, basecolor.png, radial.exr, materialid.exr. Also shading.png, final.png,\n"
              "lines-<type>.png. An earlier dump in DIR is replaced once everything is written; DIR must be new,\n"

@@ -4,7 +4,7 @@
 //     outputs Lambert needs and with all seven;
 //   - the default cel shading and composite passes at 1024x1024;
 //   - the G-buffer of the bunny comic look (issue 20) against a bare draw of the same meshes into targets of the same
-//     formats (BM_GBufferVsBareDraw).
+//     formats (BM_GBufferVsBareDraw), and that look shaded deferred against forward (BM_DeferredShading).
 // Times are the pass's own execute() up to glFinish (manual time), which is what --stats reports.
 #include "bench/BenchScene.h"
 #include "bench/Median.h"
