@@ -390,6 +390,9 @@ TEST_F(Cli, LineTypesDumpTheirMasksAndComposite) {
     EXPECT_EQ(stats["look"]["lines"][1]["color"], nlohmann::json::array({1.0, 0.0, 0.0, 1.0}));
     EXPECT_EQ(stats["look"]["lines"][1]["skipped_eye_inside"], false);
     EXPECT_FALSE(stats.contains("face_orientation")) << "reported for comic only";
+    // Neither line type reads the G-buffer, so shading draws the meshes itself.
+    EXPECT_EQ(stats["look"]["shading_mode"], "forward");
+    EXPECT_EQ(stats["look"]["shading_forward_because"], "no line type reads the G-buffer");
 }
 
 TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
@@ -411,9 +414,16 @@ TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
     ASSERT_EQ(stats["post_stage"]["lines"].size(), 1u);
     EXPECT_EQ(stats["post_stage"]["lines"][0]["type"], "depth-edge");
     EXPECT_GT(stats["post_stage"]["lines"][0]["points"].get<int>(), 100);
-    EXPECT_TRUE(std::regex_search(result.out, std::regex("writes: gbuffer\\.depth\\(r32f\\) +not computed:")))
-        << "the G-buffer computes depth alone\n"
+    // The G-buffer computes depth for the lines and the normal for shading, which shades it (deferred) instead of
+    // drawing the meshes again; the plan's last line says so.
+    EXPECT_TRUE(std::regex_search(
+        result.out, std::regex("writes: gbuffer\\.normal\\(rgba32f\\) gbuffer\\.depth\\(r32f\\) +not computed:")))
+        << "the G-buffer computes depth and the normal alone\n"
         << result.out;
+    EXPECT_TRUE(std::regex_search(result.out, std::regex("shade +reads: gbuffer\\.normal +writes:"))) << result.out;
+    EXPECT_NE(result.out.find("\nshading: deferred\n"), std::string::npos) << result.out;
+    EXPECT_EQ(stats["look"]["shading_mode"], "deferred");
+    EXPECT_FALSE(stats["look"].contains("shading_forward_because"));
 
     // contour and suggestive with shading off: G-buffer, the two line passes and the composite, nothing else.
     result = run("render " + model("spot_c3d.obj") +
