@@ -100,8 +100,7 @@ TEST_F(Cli, ABatchStoppedByALaterStillKeepsTheStillsBeforeIt) {
         run("render named.obj unnamed.obj -o '{name}.png' --stats '{name}.json' --frame body --size 48x40");
     EXPECT_EQ(result.exitCode, 2) << result.err;
     EXPECT_NE(result.err.find("--frame 'body'"), std::string::npos) << result.err;
-    EXPECT_EQ(listFiles(directory),
-              std::vector<std::string>({"named.json", "named.obj", "named.png", "unnamed.obj"}));
+    EXPECT_EQ(listFiles(directory), std::vector<std::string>({"named.json", "named.obj", "named.png", "unnamed.obj"}));
     EXPECT_EQ(readImage(directory / "named.png").size(), cv::Size(48, 40));
     const auto stats = nlohmann::json::parse(readText(directory / "named.json"));
     EXPECT_GT(stats["write_ms"].get<double>(), 0.0);
