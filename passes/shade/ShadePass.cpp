@@ -254,10 +254,11 @@ void ShadePass::prepare(GlPassContext&) {
     for (MapSlot& slot : mMaps) {
         if (!slot.used || slot.texture) continue;
         // Nearest, clamped to the edge (every GlTexture is). uploadImage() turns the image bottom-up, so GL row 0 is
-        // the map's bottom row, t = 0, and the shader indexes rows by t directly. Linear float texels: the shader
-        // decodes nothing per pixel.
+        // the map's bottom row, t = 0, and the shader indexes rows by t directly. Linear texels, so the shader decodes
+        // nothing per pixel, in float16: its 11 significant bits keep every 8-bit sRGB code apart (the closest two,
+        // 0 and 1, are 3.0e-4 apart in linear light), at half float32's memory (a 4096^2 map: 128 MiB, not 256).
         const cv::Mat& texels = slot.map.texels;
-        slot.texture = std::make_unique<GlTexture>(Format::RGBA32F, texels.cols, texels.rows,
+        slot.texture = std::make_unique<GlTexture>(Format::RGBA16F, texels.cols, texels.rows,
                                                    mName + " shade map '" + slot.map.source + "'");
         uploadImage(*slot.texture, linearTexels(texels));
     }
