@@ -1,8 +1,14 @@
 #include "gl/Readback.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 
 namespace inkgraph {
 
@@ -44,11 +50,26 @@ public:
     PackInverted& operator=(const PackInverted&) = delete;
 };
 
+/** Maps the pages of a fresh image in one call (Linux 5.14+) before the driver writes them: on the VM, faulting them
+ *  in one by one as the copy first touches them costs about twice as much (a 1024^2 RGBA32F read in a fresh process:
+ *  17-26 ms, against 7-16 ms). Where the call is missing or refused, the pages fault in during the copy, as before. */
+void mapPagesAhead(cv::Mat& image) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+    const auto page = std::uintptr_t(sysconf(_SC_PAGESIZE));
+    const std::uintptr_t begin = (std::uintptr_t(image.data) + page - 1) / page * page;
+    const std::uintptr_t end = std::uintptr_t(image.dataend) / page * page;
+    if (end > begin) (void)madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+#else
+    (void)image;
+#endif
+}
+
 } // namespace
 
 cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip) {
     const GlFormat glFormat = glFormatOf(texture.format());
     cv::Mat image(texture.height(), texture.width(), cvTypeOf(texture.format()));
+    mapPagesAhead(image);
     const int band = rowsPerBand(image);
     // Each band lands in its final rows of the image: no staging copy, so the only memory touched is the result's
     // (first touches of fresh memory cost more than the copy on a VM). GL_MESA_pack_invert (every Mesa driver) has
