@@ -586,6 +586,15 @@ TEST(SuggestiveContours, TinyAndEdgeFilledImagesAreHandled) {
         const RadialDerivatives derivatives = computeRadialDerivatives(buffer.radial, buffer.depth, everything);
         EXPECT_EQ(cv::countNonZero(derivatives.valid), std::max(0, size.width - 4) * std::max(0, size.height - 4))
             << size;
+        // Smoothed with windows of a pixel and of far more than the image: the rings of rows outgrow it.
+        for (const double sigmaPixels : {0.3, 100.0}) {
+            SuggestiveSettings smoothing = untrimmedSettings();
+            smoothing.focalPixels = float(camera.focalPixels());
+            smoothing.smoothing = float(sigmaPixels * 0.5 / camera.focalPixels()); // depth ~0.5 at the centre
+            EXPECT_TRUE(extractSuggestiveContours(buffer.radial, buffer.depth, smoothing).points.empty());
+            const cv::Mat smoothed = smoothRadialField(buffer.radial, buffer.depth, smoothing);
+            EXPECT_EQ(cv::countNonZero(cv::Mat(smoothed.reshape(1) != smoothed.reshape(1))), 0) << "no NaN";
+        }
     }
 }
 
