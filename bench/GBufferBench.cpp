@@ -4,10 +4,14 @@
 //     outputs Lambert needs and with all seven;
 //   - the default cel shading and composite passes at 1024x1024;
 //   - the G-buffer of the bunny comic look (issue 20) against a bare draw of the same meshes into targets of the same
-//     formats (BM_GBufferVsBareDraw), and that look shaded deferred against forward (BM_DeferredShading).
+//     formats (BM_GBufferVsBareDraw), and that look shaded deferred against forward (BM_DeferredShading);
+//   - the bunny's suggestive-contour layer (`--lines suggestive`, default smoothing): reading gbuffer.radial and
+//     gbuffer.depth back and the CPU kernel, as the pass's one time;
+//   - reading a 1024x1024 RGBA32F texture back (gl/Readback), turned over by the driver and by the CPU.
 // Times are the pass's own execute() up to glFinish (manual time), which is what --stats reports.
 #include "bench/BenchScene.h"
 #include "bench/Median.h"
+#include "gl/Readback.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/shade/ShadePass.h"
 
@@ -261,6 +265,27 @@ BENCHMARK_CAPTURE(BM_DeferredShading, comic, ShadingModel::Comic)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->Iterations(9);
+
+void BM_SuggestiveLayerBunny(benchmark::State& state) {
+    Look look;
+    look.lines = {"suggestive"};
+    Bench bench(loadScene(kBunnyPath), look, {"suggestive.skeleton"});
+    reportPass(state, bench, "suggestive");
+}
+BENCHMARK(BM_SuggestiveLayerBunny)->UseManualTime()->Unit(benchmark::kMillisecond);
+
+/** The radial field's size and format. Warm: after the first read the allocator hands the same memory back, so this
+ *  is the copy alone, not the first touch of fresh memory a still pays. */
+void BM_ReadbackRgba32f(benchmark::State& state) {
+    context();
+    GlTexture texture(Format::RGBA32F, kFrameSize, kFrameSize, "readback bench");
+    uploadImage(texture, cv::Mat(kFrameSize, kFrameSize, CV_32FC4, cv::Scalar(0.5, -0.25, 2.0, 1.0)));
+    const ReadbackFlip flip = state.range(0) == 0 ? ReadbackFlip::Fastest : ReadbackFlip::Cpu;
+    for (auto _ : state) benchmark::DoNotOptimize(readTexture(texture, flip));
+    state.counters["MiB/s"] = benchmark::Counter(double(kFrameSize) * kFrameSize * 16.0 / (1 << 20),
+                                                 benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_ReadbackRgba32f)->Arg(0)->Arg(1)->ArgName("cpu_flip")->Unit(benchmark::kMillisecond);
 
 } // namespace
 } // namespace inkgraph::bench

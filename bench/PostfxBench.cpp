@@ -1,7 +1,9 @@
 // The post stage alone (no GL): each line kernel, the stroke and the composite on a ray-cast torus G-buffer at
 // 512x512, 1024x1024, 1920x1080 and 4096x4096 (the torus fills about 40% of the frame at every size), and the post
 // stage of `--lines silhouette,contour,suggestive` (contour and suggestive kernels, their strokes, the composite of
-// three layers) as one number. Counters: Mpixel/s of the frame, skeleton points.
+// three layers) as one number. Suggestive contours unsmoothed (BM_PostfxSuggestive), with the app's default
+// smoothing (BM_PostfxSuggestiveSmoothed, as `--lines suggestive` runs it), and the smoothing alone
+// (BM_PostfxSmoothRadialField). Counters: Mpixel/s of the frame, skeleton points.
 //   ./build/bench/inkgraph_bench --benchmark_filter=Postfx
 #include "postfx/Composite.h"
 #include "postfx/Contour.h"
@@ -18,23 +20,41 @@
 namespace inkgraph::bench {
 namespace {
 
-/** A torus (ring 1, tube 0.4) seen from 30 degrees above, ray cast once per size and kept. */
-const test::SyntheticGBuffer& torusAt(int width, int height) {
-    static std::map<std::pair<int, int>, test::SyntheticGBuffer> buffers;
-    auto found = buffers.find({width, height});
-    if (found != buffers.end()) return found->second;
+/** The torus's bounding radius: ring 1 + tube 0.4. */
+constexpr double kTorusRadius = 1.4;
+
+/** The camera of torusAt(): 30 degrees above the torus's plane. */
+test::SyntheticCamera torusCamera(int width, int height) {
     test::SyntheticCamera camera;
     camera.width = width;
     camera.height = height;
     camera.eye = 4.2 * glm::dvec3(std::cos(glm::radians(30.0)), 0.0, std::sin(glm::radians(30.0)));
     camera.up = {0.0, 0.0, 1.0};
-    return buffers.emplace(std::make_pair(width, height), test::renderTorus(camera, glm::dvec3(0.0), 1.0, 0.4))
+    return camera;
+}
+
+/** A torus (ring 1, tube 0.4) seen from 30 degrees above, ray cast once per size and kept. */
+const test::SyntheticGBuffer& torusAt(int width, int height) {
+    static std::map<std::pair<int, int>, test::SyntheticGBuffer> buffers;
+    auto found = buffers.find({width, height});
+    if (found != buffers.end()) return found->second;
+    return buffers
+        .emplace(std::make_pair(width, height),
+                 test::renderTorus(torusCamera(width, height), glm::dvec3(0.0), 1.0, kTorusRadius - 1.0))
         .first->second;
 }
 
 SuggestiveSettings suggestiveSettings() {
     SuggestiveSettings settings;
-    settings.featureSize = 0.05f * 1.4f; // 5% of the torus's bounding radius, as the app sets it
+    settings.featureSize = float(0.05 * kTorusRadius); // 5% of the torus's bounding radius, as the app sets it
+    return settings;
+}
+
+/** suggestiveSettings() with the app's default smoothing (--suggestive-smoothing) for the image of torusAt(). */
+SuggestiveSettings smoothedSettings(int width, int height) {
+    SuggestiveSettings settings = suggestiveSettings();
+    settings.smoothing = float(kSuggestiveSmoothingFraction * kTorusRadius);
+    settings.focalPixels = float(torusCamera(width, height).focalPixels());
     return settings;
 }
 
@@ -60,6 +80,21 @@ void BM_PostfxSuggestive(benchmark::State& state) {
     for (auto _ : state)
         points = extractSuggestiveContours(buffer.radial, buffer.depth, suggestiveSettings()).points.size();
     finish(state, widthOf(state), heightOf(state), points);
+}
+
+void BM_PostfxSuggestiveSmoothed(benchmark::State& state) {
+    const test::SyntheticGBuffer& buffer = torusAt(widthOf(state), heightOf(state));
+    const SuggestiveSettings settings = smoothedSettings(widthOf(state), heightOf(state));
+    std::size_t points = 0;
+    for (auto _ : state) points = extractSuggestiveContours(buffer.radial, buffer.depth, settings).points.size();
+    finish(state, widthOf(state), heightOf(state), points);
+}
+
+void BM_PostfxSmoothRadialField(benchmark::State& state) {
+    const test::SyntheticGBuffer& buffer = torusAt(widthOf(state), heightOf(state));
+    const SuggestiveSettings settings = smoothedSettings(widthOf(state), heightOf(state));
+    for (auto _ : state) benchmark::DoNotOptimize(smoothRadialField(buffer.radial, buffer.depth, settings));
+    finish(state, widthOf(state), heightOf(state), 0);
 }
 
 void BM_PostfxDepthEdge(benchmark::State& state) {
@@ -124,6 +159,8 @@ void sizes(benchmark::internal::Benchmark* benchmark) {
 
 BENCHMARK(BM_PostfxContour)->Apply(sizes);
 BENCHMARK(BM_PostfxSuggestive)->Apply(sizes);
+BENCHMARK(BM_PostfxSuggestiveSmoothed)->Apply(sizes);
+BENCHMARK(BM_PostfxSmoothRadialField)->Apply(sizes);
 BENCHMARK(BM_PostfxDepthEdge)->Apply(sizes);
 BENCHMARK(BM_PostfxNormalEdge)->Apply(sizes);
 BENCHMARK(BM_PostfxStrokeContour)->Apply(sizes);

@@ -11,8 +11,14 @@ namespace inkgraph {
 /** OpenCV type for a graph format: CV_32FC4, CV_32FC1, CV_8UC4, CV_8UC1. */
 int cvTypeOf(Format format);
 
+/** Who turns GL's bottom-up rows over in readTexture(). */
+enum class ReadbackFlip {
+    Fastest, ///< the driver where it can (GL_MESA_pack_invert), else the CPU
+    Cpu,     ///< always the CPU, as on drivers without the extension (for tests)
+};
+
 /** Reads the whole texture; row 0 of the result is the TOP row of the image. */
-cv::Mat readTexture(const GlTexture& texture);
+cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip = ReadbackFlip::Fastest);
 
 /** Uploads `image` (row 0 = top) into a texture of the same size and matching type. Throws on a mismatch. */
 void uploadImage(GlTexture& texture, const cv::Mat& image);

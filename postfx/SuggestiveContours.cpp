@@ -8,9 +8,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace inkgraph {
@@ -222,6 +224,340 @@ cv::Point2f crossingPosition(int rowA, int colA, bool downward, float t) {
     return {float(colA) + (downward ? 0.0f : t), float(rowA) + (downward ? t : 0.0f)};
 }
 
+/** The Gaussian's weights at distances 0..reach of one sigma level, and their sum over the whole window. */
+struct GaussianWindow {
+    std::vector<float> weights;
+    int reach = 0;
+    float total = 0.0f;
+};
+
+/** Sigmas are rounded to levels a 1% step apart: neighbouring pixels see nearly the same depth, so few windows are
+ *  built, and the rounding moves the Gaussian far less than the smoothing itself does. */
+constexpr double kSigmaStep = 1.01;
+
+/** Marks a pixel smoothRadialField() leaves as it is (off the model) among the sigma levels. */
+constexpr int16_t kUnsmoothed = std::numeric_limits<int16_t>::min();
+
+/** The level of `sigma` pixels (> 0). Every finite float's level fits in int16 (|level| < 10500); infinity takes the
+ *  largest, whose window is the widest allowed. */
+int16_t sigmaLevel(float sigma) {
+    if (!(sigma < std::numeric_limits<float>::infinity())) return std::numeric_limits<int16_t>::max();
+    // std::lround() without its library call: the integer part, then the fraction (exact: x - trunc(x) is
+    // representable) rounded half away from zero.
+    const double exact = std::log(sigma) / std::log(kSigmaStep);
+    int level = int(exact);
+    const double fraction = exact - double(level);
+    if (fraction >= 0.5) ++level;
+    if (fraction <= -0.5) --level;
+    return int16_t(level);
+}
+
+/** The window of one level: 3 sigma wide, at most kMaxSmoothingReach. */
+GaussianWindow gaussianWindow(int level) {
+    GaussianWindow window;
+    const double rounded = std::pow(kSigmaStep, double(level));
+    window.reach = int(std::min(double(kMaxSmoothingReach), std::ceil(3.0 * rounded)));
+    window.weights.resize(size_t(window.reach) + 1);
+    for (int d = 0; d <= window.reach; ++d)
+        window.weights[size_t(d)] = float(std::exp(-0.5 * d * d / (rounded * rounded)));
+    window.total = window.weights[0];
+    for (int d = 1; d <= window.reach; ++d) window.total += 2.0f * window.weights[size_t(d)];
+    return window;
+}
+
+/** The windows of the levels met so far, built on first use; one per thread, so none is shared. */
+class GaussianWindows {
+public:
+    const GaussianWindow& forLevel(int level) {
+        if (level == mLastLevel && mLast != nullptr) return *mLast;
+        auto found = mWindows.find(level);
+        if (found == mWindows.end()) found = mWindows.emplace(level, gaussianWindow(level)).first;
+        mLastLevel = level;
+        mLast = &found->second;
+        return *mLast;
+    }
+
+private:
+    std::unordered_map<int, GaussianWindow> mWindows; // node-based: mLast stays valid as windows are added
+    int mLastLevel = 0;
+    const GaussianWindow* mLast = nullptr;
+};
+
+/** One pixel of a 1-D pass of smoothRadialField(): the Gaussian-weighted least-squares line through the pixels
+ *  `at(d)` (4 floats each) for d = -before .. after (its run of one surface, cut to the window), at d = 0. For a whole
+ *  window it is the plain Gaussian mean, summed in pairs; near a run's end the fitted line, so a linear field stays
+ *  exact there instead of being pulled toward the inside. */
+template <typename Neighbour>
+void smoothPixel(Neighbour at, int before, int after, const GaussianWindow& window, float* out) {
+    const int low = std::min(before, window.reach);
+    const int high = std::min(after, window.reach);
+    const float* weights = window.weights.data();
+    if (low == window.reach && high == window.reach) {
+#if CV_SIMD128
+        v_float32x4 sum = cv::v_load(at(0)) * cv::v_setall_f32(weights[0]);
+        for (int d = 1; d <= window.reach; ++d)
+            sum = cv::v_fma(cv::v_load(at(d)) + cv::v_load(at(-d)), cv::v_setall_f32(weights[d]), sum);
+        cv::v_store(out, sum * cv::v_setall_f32(1.0f / window.total));
+#else
+        for (int c = 0; c < 4; ++c) {
+            float sum = at(0)[c] * weights[0];
+            for (int d = 1; d <= window.reach; ++d) sum += (at(d)[c] + at(-d)[c]) * weights[d];
+            out[c] = sum * (1.0f / window.total);
+        }
+#endif
+        return;
+    }
+    if (low + high == 0) {
+        std::copy(at(0), at(0) + 4, out);
+        return;
+    }
+    float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f;
+    cv::Vec4f t0 = cv::Vec4f::all(0.0f), t1 = cv::Vec4f::all(0.0f);
+    for (int d = -low; d <= high; ++d) {
+        const float g = weights[std::abs(d)];
+        const float gd = g * float(d);
+        s0 += g;
+        s1 += gd;
+        s2 += gd * float(d);
+        const cv::Vec4f v(at(d));
+        t0 += g * v;
+        t1 += gd * v;
+    }
+    // The line a + b d fitted at d = 0: a = (s2 t0 - s1 t1) / (s0 s2 - s1^2); with a degenerate window the weighted
+    // mean.
+    const float determinant = s0 * s2 - s1 * s1;
+    const cv::Vec4f value =
+        determinant > 1e-6f * s0 * s2 ? (s2 * t0 - s1 * t1) * (1.0f / determinant) : t0 * (1.0f / s0);
+    std::copy(value.val, value.val + 4, out);
+}
+
+/** Pixels [begin, end) of one line of a pass: pixel i's neighbour d along the pass is at(i, d) (4 floats), its sigma
+ *  level levels[i] (kUnsmoothed: copied), its run before[i] and after[i] pixels either side. Four neighbouring pixels
+ *  of one level with whole windows are summed together, each in its own register, so their sums do not wait on each
+ *  other; each sum is formed as smoothPixel() forms it. */
+template <typename Neighbour>
+void smoothPixels(int begin, int end, const int16_t* levels, const int* before, const int* after, Neighbour at,
+                  GaussianWindows& windows, cv::Vec4f* out) {
+    for (int i = begin; i < end;) {
+        const int level = levels[i];
+        if (level == kUnsmoothed) {
+            std::copy(at(i, 0), at(i, 0) + 4, out[i].val);
+            ++i;
+            continue;
+        }
+        const GaussianWindow& window = windows.forLevel(level);
+#if CV_SIMD128
+        const int reach = window.reach;
+        if (i + 4 <= end && levels[i + 1] == level && levels[i + 2] == level && levels[i + 3] == level &&
+            std::min({before[i], before[i + 1], before[i + 2], before[i + 3]}) >= reach &&
+            std::min({after[i], after[i + 1], after[i + 2], after[i + 3]}) >= reach) {
+            // at(i + k, d) is at(i, d) + 4 k: the four pixels lie side by side in every row the window reads.
+            const float* weights = window.weights.data();
+            const v_float32x4 centreWeight = cv::v_setall_f32(weights[0]);
+            const float* centre = at(i, 0);
+            v_float32x4 sum0 = cv::v_load(centre) * centreWeight;
+            v_float32x4 sum1 = cv::v_load(centre + 4) * centreWeight;
+            v_float32x4 sum2 = cv::v_load(centre + 8) * centreWeight;
+            v_float32x4 sum3 = cv::v_load(centre + 12) * centreWeight;
+            for (int d = 1; d <= reach; ++d) {
+                const float* ahead = at(i, d);
+                const float* behind = at(i, -d);
+                const v_float32x4 weight = cv::v_setall_f32(weights[d]);
+                sum0 = cv::v_fma(cv::v_load(ahead) + cv::v_load(behind), weight, sum0);
+                sum1 = cv::v_fma(cv::v_load(ahead + 4) + cv::v_load(behind + 4), weight, sum1);
+                sum2 = cv::v_fma(cv::v_load(ahead + 8) + cv::v_load(behind + 8), weight, sum2);
+                sum3 = cv::v_fma(cv::v_load(ahead + 12) + cv::v_load(behind + 12), weight, sum3);
+            }
+            const v_float32x4 scale = cv::v_setall_f32(1.0f / window.total);
+            cv::v_store(out[i].val, sum0 * scale);
+            cv::v_store(out[i + 1].val, sum1 * scale);
+            cv::v_store(out[i + 2].val, sum2 * scale);
+            cv::v_store(out[i + 3].val, sum3 * scale);
+            i += 4;
+            continue;
+        }
+#endif
+        smoothPixel([&](int d) { return at(i, d); }, before[i], after[i], window, out[i].val);
+        ++i;
+    }
+}
+
+/** Whether pixel `depth` and the next one along a line are of one run of one surface: both covered, no depth break
+ *  (as isDepthBreak() has it; the relation is symmetric). */
+inline bool joinsNext(float depth, float nextDepth, float depthJump) {
+    return depth > 0.0f && joinsNeighbour(depth, nextDepth, depthJump);
+}
+
+/** Each row's covered span (coveredSpan()), found once for the smoother, the scanner and the bands. */
+std::vector<Span> coveredSpans(const cv::Mat& depth) {
+    std::vector<Span> spans(size_t(depth.rows));
+    for (int row = 0; row < depth.rows; ++row) spans[size_t(row)] = coveredSpan(depth.ptr<float>(row), depth.cols);
+    return spans;
+}
+
+/** The widest window any pixel of the image gets: that of the nearest covered depth. 0 when nothing is covered. */
+int widestReach(const cv::Mat& depth, const std::vector<Span>& spans, float sigmaDepth) {
+    const float infinity = std::numeric_limits<float>::infinity();
+    float nearest = infinity;
+    for (int row = 0; row < depth.rows; ++row) {
+        const float* z = depth.ptr<float>(row);
+        const Span span = spans[size_t(row)];
+        int col = span.begin;
+#if CV_SIMD128
+        v_float32x4 nearest4 = cv::v_setall_f32(infinity);
+        for (; col + 4 <= span.end; col += 4) {
+            const v_float32x4 depth4 = cv::v_load(z + col);
+            nearest4 = cv::v_min(nearest4, cv::v_select(depth4 > cv::v_setzero_f32(), depth4, nearest4));
+        }
+        nearest = std::min(nearest, cv::v_reduce_min(nearest4));
+#endif
+        for (; col < span.end; ++col)
+            if (z[col] > 0.0f) nearest = std::min(nearest, z[col]);
+    }
+    const float sigma = nearest < infinity ? sigmaDepth / nearest : 0.0f;
+    return sigma > 0.0f ? gaussianWindow(sigmaLevel(sigma)).reach : 0;
+}
+
+/** smoothRadialField() one row at a time, down a band of rows: the row pass fills a ring of the rows the column pass
+ *  reaches (reach above and below the row it smooths), and the column pass reads them there, so neither pass needs
+ *  an image of its own or a transpose. The runs along each column are counted as the rows go by: how many pixels of
+ *  the run lie above and below the current row, capped at the widest reach. Only covered spans are worked on; the
+ *  rest of a row is copied from the input. */
+class SurfaceSmoother {
+public:
+    /** `sigmaDepth`: the smoothing's sigma times the focal length in pixels (a pixel's sigma is this over its depth);
+     *  `spans`: coveredSpans(); `reach`: widestReach(). Rows are then asked for in order from `firstRow`. */
+    SurfaceSmoother(const cv::Mat& radial, const cv::Mat& depth, const std::vector<Span>& spans, float sigmaDepth,
+                    float depthJump, int reach, int firstRow)
+        : mRadial(radial), mDepth(depth), mSpans(spans), mSigmaDepth(sigmaDepth), mDepthJump(depthJump), mReach(reach),
+          mSlots(2 * reach + 1), mRows(radial.rows), mCols(radial.cols), mNextRow(firstRow),
+          mRowPass(size_t(mSlots) * size_t(mCols)), mLevels(size_t(mSlots) * size_t(mCols)), mAbove(size_t(mCols), 0),
+          mBelow(size_t(mCols), 0), mLeft(size_t(mCols), 0), mRight(size_t(mCols), 0), mWindowRows(size_t(mSlots)) {
+        for (int row = std::max(0, firstRow - reach); row < std::min(mRows, firstRow + reach); ++row)
+            smoothAlongRow(row);
+    }
+
+    /** The next row of the smoothed field, written to `out` (cols pixels). */
+    void next(cv::Vec4f* out) {
+        const int row = mNextRow++;
+        if (row + mReach < mRows) smoothAlongRow(row + mReach);
+        if (mCounted)
+            countColumnRuns(row);
+        else
+            countColumnRunsAfresh(row);
+        mCounted = true;
+        const Span span = mSpans[size_t(row)];
+        const cv::Vec4f* in = mRadial.ptr<cv::Vec4f>(row);
+        std::copy(in, in + span.begin, out);
+        std::copy(in + span.end, in + mCols, out + span.end);
+        for (int d = -mReach; d <= mReach; ++d)
+            mWindowRows[size_t(d + mReach)] = row + d >= 0 && row + d < mRows ? &mRowPass[slotOf(row + d)] : nullptr;
+        const cv::Vec4f* const* rows = &mWindowRows[size_t(mReach)];
+        smoothPixels(
+            span.begin, span.end, &mLevels[slotOf(row)], mAbove.data(), mBelow.data(),
+            [rows](int col, int d) { return rows[d][col].val; }, mWindows, out);
+    }
+
+private:
+    size_t slotOf(int row) const { return size_t(row % mSlots) * size_t(mCols); }
+
+    /** The row pass of `row`'s span into its slot, with each pixel's sigma level (kUnsmoothed off the model). */
+    void smoothAlongRow(int row) {
+        const Span span = mSpans[size_t(row)];
+        if (span.begin >= span.end) return;
+        const float* z = mDepth.ptr<float>(row);
+        const cv::Vec4f* in = mRadial.ptr<cv::Vec4f>(row);
+        cv::Vec4f* out = &mRowPass[slotOf(row)];
+        int16_t* level = &mLevels[slotOf(row)];
+        // The pixels beyond the span are not covered, so no run crosses its ends.
+        mLeft[size_t(span.begin)] = 0;
+        for (int col = span.begin + 1; col < span.end; ++col)
+            mLeft[size_t(col)] =
+                joinsNext(z[col], z[col - 1], mDepthJump) ? std::min(mLeft[size_t(col - 1)] + 1, mReach) : 0;
+        mRight[size_t(span.end - 1)] = 0;
+        for (int col = span.end - 1; col-- > span.begin;)
+            mRight[size_t(col)] =
+                joinsNext(z[col], z[col + 1], mDepthJump) ? std::min(mRight[size_t(col + 1)] + 1, mReach) : 0;
+        for (int col = span.begin; col < span.end; ++col) {
+            const float sigma = z[col] > 0.0f ? mSigmaDepth / z[col] : 0.0f;
+            level[col] = sigma > 0.0f ? sigmaLevel(sigma) : kUnsmoothed;
+        }
+        smoothPixels(
+            span.begin, span.end, level, mLeft.data(), mRight.data(), [in](int col, int d) { return in[col + d].val; },
+            mWindows, out);
+    }
+
+    /** Run pixels below (row, col), counted up to the widest reach. */
+    int countBelow(int row, int col) const {
+        int below = 0;
+        while (below < mReach && row + below + 1 < mRows &&
+               joinsNext(mDepth.ptr<float>(row + below)[col], mDepth.ptr<float>(row + below + 1)[col], mDepthJump))
+            ++below;
+        return below;
+    }
+
+    /** mAbove and mBelow over the first row's span. */
+    void countColumnRunsAfresh(int row) {
+        const Span span = mSpans[size_t(row)];
+        for (int col = span.begin; col < span.end; ++col) {
+            int above = 0;
+            while (above < mReach && row - above > 0 &&
+                   joinsNext(mDepth.ptr<float>(row - above - 1)[col], mDepth.ptr<float>(row - above)[col], mDepthJump))
+                ++above;
+            mAbove[size_t(col)] = above;
+            mBelow[size_t(col)] = countBelow(row, col);
+        }
+    }
+
+    /** mAbove and mBelow over `row`'s span from their values for the row above: one more above where the pair above
+     *  joins, one fewer below, unless the run was cut at the widest reach (then the pair at the window's far end
+     *  decides) or had ended (then a new run is counted). Off a row's span nothing is covered, so both are 0 there
+     *  and only the span's counts are kept. */
+    void countColumnRuns(int row) {
+        const Span span = mSpans[size_t(row)];
+        const Span spanAbove = mSpans[size_t(row - 1)];
+        const float* depthAbove = mDepth.ptr<float>(row - 1);
+        const float* depth = mDepth.ptr<float>(row);
+        const int farRow = row + mReach;
+        const bool farPairInside = mReach > 0 && farRow < mRows;
+        const float* depthFarAbove = farPairInside ? mDepth.ptr<float>(farRow - 1) : nullptr;
+        const float* depthFar = farPairInside ? mDepth.ptr<float>(farRow) : nullptr;
+        for (int col = span.begin; col < span.end; ++col) {
+            const bool aboveCounted = col >= spanAbove.begin && col < spanAbove.end;
+            const int aboveBefore = aboveCounted ? mAbove[size_t(col)] : 0;
+            const int belowBefore = aboveCounted ? mBelow[size_t(col)] : 0;
+            int& above = mAbove[size_t(col)];
+            int& below = mBelow[size_t(col)];
+            above = joinsNext(depthAbove[col], depth[col], mDepthJump) ? std::min(aboveBefore + 1, mReach) : 0;
+            if (belowBefore == 0)
+                below = countBelow(row, col);
+            else if (belowBefore < mReach)
+                below = belowBefore - 1;
+            else
+                below = farPairInside && joinsNext(depthFarAbove[col], depthFar[col], mDepthJump) ? mReach : mReach - 1;
+        }
+    }
+
+    const cv::Mat& mRadial;
+    const cv::Mat& mDepth;
+    const std::vector<Span>& mSpans;
+    float mSigmaDepth;
+    float mDepthJump;
+    int mReach;
+    int mSlots;
+    int mRows;
+    int mCols;
+    int mNextRow;
+    bool mCounted = false;
+    /** The row pass of rows row - reach .. row + reach over their spans, row r at slotOf(r). */
+    std::vector<cv::Vec4f> mRowPass;
+    std::vector<int16_t> mLevels;    ///< their pixels' sigma levels, likewise
+    std::vector<int> mAbove, mBelow; ///< per column, the current row's run pixels above and below it (its span)
+    std::vector<int> mLeft, mRight;  ///< per column, the row pass's run pixels left and right of it (its span)
+    std::vector<const cv::Vec4f*> mWindowRows; ///< the rows of mRowPass the current row's windows reach
+    GaussianWindows mWindows;
+};
+
 /** What one band of rows found. Marks in the row above the band belong to the band above, so they wait here until
  *  the bands have joined instead of being written concurrently. */
 struct BandResult {
@@ -239,17 +575,24 @@ struct BandResult {
  *  the old row left outside the new span. */
 class BandScanner {
 public:
-    BandScanner(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings, cv::Mat& mask,
-                int firstRow, int endRow)
-        : mRadial(radial), mDepth(depth), mMask(mask), mDepthJump(settings.depthJump),
+    /** `spans`: coveredSpans(). With settings.smoothing > 0 the rows are smoothed on the way in (SurfaceSmoother,
+     *  `reach` its widestReach()). */
+    BandScanner(const cv::Mat& radial, const cv::Mat& depth, const std::vector<Span>& spans,
+                const SuggestiveSettings& settings, int reach, cv::Mat& mask, int firstRow, int endRow)
+        : mRadial(radial), mDepth(depth), mSpans(spans), mMask(mask), mDepthJump(settings.depthJump),
           mMinSinThetaSquared(settings.minSinTheta * settings.minSinTheta), mRule{settings.featureSize *
                                                                                       settings.featureSize,
                                                                                   settings.threshold, settings.fade},
           mRows(radial.rows), mCols(radial.cols), mFirstRow(firstRow), mEndRow(endRow),
-          mFirstLoaded(std::max(firstRow - 3, 0)), mSpans(size_t(std::min(endRow + 2, mRows) - mFirstLoaded)),
-          mNormalDistance(kRingRows * size_t(mCols), 0.0f), mImageWX(kRingRows * size_t(mCols), 0.0f),
-          mImageWY(kRingRows * size_t(mCols), 0.0f), mDw(kRingRows * size_t(mCols), 0.0f),
-          mDefined(kRingRows * size_t(mCols), 0.0f) {}
+          mFirstLoaded(std::max(firstRow - 3, 0)), mNormalDistance(kRingRows * size_t(mCols), 0.0f),
+          mImageWX(kRingRows * size_t(mCols), 0.0f), mImageWY(kRingRows * size_t(mCols), 0.0f),
+          mDw(kRingRows * size_t(mCols), 0.0f), mDefined(kRingRows * size_t(mCols), 0.0f) {
+        if (settings.smoothing > 0.0f) {
+            mSmoother.emplace(radial, depth, spans, settings.smoothing * settings.focalPixels, settings.depthJump,
+                              reach, mFirstLoaded);
+            mSmoothed.resize(kRingRows * size_t(mCols));
+        }
+    }
 
     BandResult scan() {
         const int loadEnd = std::min(mEndRow + 2, mRows);
@@ -267,13 +610,18 @@ private:
     static constexpr int kRingRows = 8;
 
     size_t slotOf(int row) const { return size_t(row % kRingRows) * size_t(mCols); }
-    Span spanOf(int row) const { return mSpans[size_t(row - mFirstLoaded)]; }
+    Span spanOf(int row) const { return mSpans[size_t(row)]; }
+
+    /** The radial field's row, smoothed or not; rows up to three above the newest loaded one. */
+    const cv::Vec4f* radialRow(int row) const {
+        return mSmoother ? &mSmoothed[slotOf(row)] : mRadial.ptr<cv::Vec4f>(row);
+    }
 
     void load(int row) {
-        const Span span = coveredSpan(mDepth.ptr<float>(row), mCols);
-        mSpans[size_t(row - mFirstLoaded)] = span;
+        const Span span = spanOf(row);
         const size_t slot = slotOf(row);
-        splitRadialRow(mRadial.ptr<cv::Vec4f>(row), span, &mNormalDistance[slot], &mImageWX[slot], &mImageWY[slot]);
+        if (mSmoother) mSmoother->next(&mSmoothed[slot]);
+        splitRadialRow(radialRow(row), span, &mNormalDistance[slot], &mImageWX[slot], &mImageWY[slot]);
     }
 
     void resetDerivatives(size_t slot, int begin, int end) {
@@ -308,7 +656,7 @@ private:
     }
 
     std::optional<float> secondDerivative(int row, int col) const {
-        return secondDerivativeAt(mRadial.ptr<cv::Vec4f>(row)[col], col, &mDw[slotOf(row - 1)], &mDw[slotOf(row)],
+        return secondDerivativeAt(radialRow(row)[col], col, &mDw[slotOf(row - 1)], &mDw[slotOf(row)],
                                   &mDw[slotOf(row + 1)], &mDefined[slotOf(row - 1)], &mDefined[slotOf(row)],
                                   &mDefined[slotOf(row + 1)], mMinSinThetaSquared);
     }
@@ -362,8 +710,8 @@ private:
         const auto dwdwA = secondDerivative(rowA, colA);
         const auto dwdwB = secondDerivative(rowB, colB);
         if (!dwdwA || !dwdwB) return;
-        const std::optional<Crossing> crossing = keptCrossing(
-            dwA, dwB, *dwdwA, *dwdwB, mRadial.ptr<cv::Vec4f>(rowA)[colA], mRadial.ptr<cv::Vec4f>(rowB)[colB], mRule);
+        const std::optional<Crossing> crossing =
+            keptCrossing(dwA, dwB, *dwdwA, *dwdwB, radialRow(rowA)[colA], radialRow(rowB)[colB], mRule);
         if (!crossing) return;
         const cv::Point marked = crossing->marksA ? cv::Point(colA, rowA) : cv::Point(colB, rowB);
         if (marked.y < mFirstRow)
@@ -375,6 +723,7 @@ private:
 
     const cv::Mat& mRadial;
     const cv::Mat& mDepth;
+    const std::vector<Span>& mSpans;
     cv::Mat& mMask;
     float mDepthJump;
     float mMinSinThetaSquared;
@@ -384,13 +733,14 @@ private:
     int mFirstRow;
     int mEndRow;
     int mFirstLoaded;
-    std::vector<Span> mSpans;                       ///< of rows mFirstLoaded onwards
     std::array<Span, kRingRows> mDerivativeSpans{}; ///< the span each slot's D_w was last written over
     std::vector<float> mNormalDistance;
     std::vector<float> mImageWX;
     std::vector<float> mImageWY;
     std::vector<float> mDw;
     std::vector<float> mDefined;
+    std::optional<SurfaceSmoother> mSmoother;
+    std::vector<cv::Vec4f> mSmoothed; ///< with mSmoother, the smoothed rows, in the ring
     BandResult mResult;
 };
 
@@ -482,185 +832,61 @@ LineSkeleton crossingsOfMaps(const cv::Mat& radial, const RadialDerivatives& der
     return skeleton;
 }
 
-/** The Gaussian's weights at distances 0..reach for one sigma, reused while the sigma rounds to the same level. */
-class GaussianTaps {
-public:
-    /** Weights for `sigma` pixels (> 0), rounded to a 1% step: neighbouring pixels see nearly the same depth, so the
-     *  table is rarely rebuilt, and the rounding moves the Gaussian far less than the smoothing itself does. */
-    const std::vector<float>& weightsFor(float sigma) {
-        const int level = int(std::lround(std::log(sigma) / std::log(kStep)));
-        if (level != mLevel || mWeights.empty()) {
-            mLevel = level;
-            const double rounded = std::pow(kStep, double(level));
-            const int reach = std::min(kMaxSmoothingReach, int(std::ceil(3.0 * rounded)));
-            mWeights.resize(size_t(reach) + 1);
-            for (int d = 0; d <= reach; ++d) mWeights[size_t(d)] = float(std::exp(-0.5 * d * d / (rounded * rounded)));
-            mTotal = mWeights[0];
-            for (int d = 1; d <= reach; ++d) mTotal += 2.0f * mWeights[size_t(d)];
-        }
-        return mWeights;
+/** Bands of rows, one per thread, of about equal work (a row costs its covered span and a little more), as the
+ *  first row of each and then the image's end: each band re-reads rows around it (three for the scanner, the
+ *  smoothing's reach for the smoother), so there are no more than the threads and none under kMinBandRows on
+ *  average. The results never depend on the bands. */
+std::vector<int> bandBounds(const std::vector<Span>& spans) {
+    const int rows = int(spans.size());
+    constexpr int kMinBandRows = 128;
+    constexpr int64_t kRowCost = 32; // pixels' worth: the row's own work besides its covered pixels
+    const int count = std::max(1, std::min(cv::getNumThreads(), rows / kMinBandRows));
+    std::vector<int64_t> costUpTo(size_t(rows) + 1, 0);
+    for (int row = 0; row < rows; ++row) {
+        const Span span = spans[size_t(row)];
+        costUpTo[size_t(row) + 1] = costUpTo[size_t(row)] + kRowCost + (span.end - span.begin);
     }
-    /** The sum of the last weightsFor()'s weights over the whole window, both sides. */
-    float totalWeight() const { return mTotal; }
-
-private:
-    static constexpr double kStep = 1.01;
-    int mLevel = 0;
-    float mTotal = 0.0f;
-    std::vector<float> mWeights;
-};
-
-/** The Gaussian mean of the values at centre - reach .. centre + reach (reach = weights.size() - 1), all present. */
-cv::Vec4f symmetricMean(const cv::Vec4f* centre, const std::vector<float>& weights, float total) {
-    const int reach = int(weights.size()) - 1;
-#if CV_SIMD128
-    v_float32x4 sum = cv::v_load(centre->val) * cv::v_setall_f32(weights[0]);
-    for (int d = 1; d <= reach; ++d)
-        sum = cv::v_fma(cv::v_load(centre[d].val) + cv::v_load(centre[-d].val), cv::v_setall_f32(weights[size_t(d)]),
-                        sum);
-    cv::Vec4f result;
-    cv::v_store(result.val, sum * cv::v_setall_f32(1.0f / total));
-    return result;
-#else
-    cv::Vec4f sum = weights[0] * centre[0];
-    for (int d = 1; d <= reach; ++d) sum += weights[size_t(d)] * (centre[d] + centre[-d]);
-    return sum * (1.0f / total);
-#endif
+    std::vector<int> bounds{0};
+    for (int band = 1; band < count; ++band) {
+        const int64_t target = costUpTo.back() * band / count;
+        const int row = int(std::lower_bound(costUpTo.begin(), costUpTo.end(), target) - costUpTo.begin());
+        bounds.push_back(std::clamp(row, bounds.back() + 1, rows - (count - band)));
+    }
+    bounds.push_back(rows);
+    return bounds;
 }
 
-/** One line of pixels (a row or a column) as smoothLine() reads it. */
-struct PixelLine {
-    std::vector<cv::Vec4f> values;
-    std::vector<float> sigma;  ///< pixels; <= 0 off the model
-    std::vector<int> runEnd;   ///< one past the last pixel of this pixel's run of one surface
-    std::vector<int> runBegin; ///< the first pixel of it
-    std::vector<cv::Vec4f> out;
-    void resize(int n) {
-        values.resize(size_t(n));
-        sigma.resize(size_t(n));
-        runEnd.resize(size_t(n));
-        runBegin.resize(size_t(n));
-        out.resize(size_t(n));
-    }
-};
-
-/** Fills runBegin/runEnd from the depths along the line: consecutive covered pixels that join (no depth break) are
- *  one run. */
-void findRuns(const float* depth, int n, float depthJump, PixelLine& line) {
-    int begin = 0;
-    for (int i = 0; i < n; ++i) {
-        const float z = depth[i];
-        if (i > 0 && !(z > 0.0f && joinsNeighbour(z, depth[i - 1], depthJump))) begin = i;
-        line.runBegin[size_t(i)] = begin;
-    }
-    int end = n;
-    for (int i = n; i-- > 0;) {
-        const float z = depth[i];
-        if (i + 1 < n && !(z > 0.0f && joinsNeighbour(z, depth[i + 1], depthJump))) end = i + 1;
-        line.runEnd[size_t(i)] = end;
-    }
+/** Runs work(band, firstRow, endRow) for each band of `bounds` (bandBounds()), in parallel. */
+template <typename Work>
+void forEachBand(const std::vector<int>& bounds, Work work) {
+    const int count = int(bounds.size()) - 1;
+    const auto run = [&](const cv::Range& range) {
+        for (int band = range.start; band < range.end; ++band)
+            work(size_t(band), bounds[size_t(band)], bounds[size_t(band) + 1]);
+    };
+    if (count == 1)
+        run(cv::Range(0, 1));
+    else
+        cv::parallel_for_(cv::Range(0, count), run, count);
 }
 
-/** Each covered pixel's value replaced by the Gaussian-weighted least-squares line through its run's values within
- *  the reach, evaluated at the pixel: for a symmetric window the plain Gaussian mean; near a run's end the fitted
- *  line, so a linear field stays exact there instead of being pulled toward the inside. */
-void smoothLine(PixelLine& line, int n, GaussianTaps& taps) {
-    for (int i = 0; i < n; ++i) {
-        const float sigma = line.sigma[size_t(i)];
-        line.out[size_t(i)] = line.values[size_t(i)];
-        if (!(sigma > 0.0f)) continue;
-        const std::vector<float>& weights = taps.weightsFor(sigma);
-        const int reach = int(weights.size()) - 1;
-        const int low = std::max(line.runBegin[size_t(i)], i - reach);
-        const int high = std::min(line.runEnd[size_t(i)] - 1, i + reach);
-        if (high <= low) continue;
-        if (low == i - reach && high == i + reach) {
-            // The whole window on the surface, most pixels: symmetric, so the fitted line's value is the plain
-            // Gaussian mean, summed in pairs.
-            line.out[size_t(i)] = symmetricMean(&line.values[size_t(i)], weights, taps.totalWeight());
-            continue;
-        }
-        float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f;
-        cv::Vec4f t0 = cv::Vec4f::all(0.0f), t1 = cv::Vec4f::all(0.0f);
-        for (int j = low; j <= high; ++j) {
-            const int d = j - i;
-            const float g = weights[size_t(std::abs(d))];
-            const float gd = g * float(d);
-            s0 += g;
-            s1 += gd;
-            s2 += gd * float(d);
-            const cv::Vec4f& v = line.values[size_t(j)];
-            t0 += g * v;
-            t1 += gd * v;
-        }
-        // The line a + b d fitted at d = 0: a = (s2 t0 - s1 t1) / (s0 s2 - s1^2); with a window of one pixel (or a
-        // degenerate one) the weighted mean, which is then the pixel itself.
-        const float determinant = s0 * s2 - s1 * s1;
-        if (determinant > 1e-6f * s0 * s2)
-            line.out[size_t(i)] = (s2 * t0 - s1 * t1) * (1.0f / determinant);
-        else
-            line.out[size_t(i)] = t0 * (1.0f / s0);
-    }
-}
-
-/** Per pixel the smoothing's sigma in pixels: the model-space sigma seen at its depth; 0 off the model. */
-cv::Mat smoothingSigmas(const cv::Mat& depth, const SuggestiveSettings& settings) {
-    cv::Mat sigma(depth.size(), CV_32FC1);
-    const float scale = settings.smoothing * settings.focalPixels;
-    for (int row = 0; row < depth.rows; ++row) {
-        const float* z = depth.ptr<float>(row);
-        float* out = sigma.ptr<float>(row);
-        for (int col = 0; col < depth.cols; ++col) out[col] = z[col] > 0.0f ? scale / z[col] : 0.0f;
-    }
-    return sigma;
-}
-
-/** One 1-D pass of smoothRadialField() along every row, rows split over threads. The column pass runs this on the
- *  transposed images, so both read memory in order. */
-void smoothRows(const cv::Mat& source, cv::Mat& target, const cv::Mat& depth, const cv::Mat& sigma, float depthJump) {
-    const int n = source.cols;
-    cv::parallel_for_(cv::Range(0, source.rows), [&](const cv::Range& range) {
-        PixelLine line;
-        line.resize(n);
-        GaussianTaps taps;
-        for (int row = range.start; row < range.end; ++row) {
-            const cv::Vec4f* in = source.ptr<cv::Vec4f>(row);
-            std::copy(in, in + n, line.values.begin());
-            const float* s = sigma.ptr<float>(row);
-            std::copy(s, s + n, line.sigma.begin());
-            findRuns(depth.ptr<float>(row), n, depthJump, line);
-            smoothLine(line, n, taps);
-            std::copy(line.out.begin(), line.out.end(), target.ptr<cv::Vec4f>(row));
-        }
-    });
-}
-
-/** The separable same-surface local-linear Gaussian of smoothRadialField() at the given per-pixel sigmas. */
-cv::Mat gaussianOnSurface(const cv::Mat& radial, const cv::Mat& depth, const cv::Mat& depthTransposed,
-                          const cv::Mat& sigma, float depthJump) {
-    cv::Mat alongRows(radial.size(), CV_32FC4);
-    smoothRows(radial, alongRows, depth, sigma, depthJump);
-    cv::Mat transposed, sigmaTransposed;
-    cv::transpose(alongRows, transposed);
-    cv::transpose(sigma, sigmaTransposed);
-    cv::Mat alongColumns(transposed.size(), CV_32FC4);
-    smoothRows(transposed, alongColumns, depthTransposed, sigmaTransposed, depthJump);
-    cv::Mat smoothed;
-    cv::transpose(alongColumns, smoothed);
-    return smoothed;
-}
 } // namespace
 
 cv::Mat smoothRadialField(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings) {
     checkInputs("smoothRadialField()", radial, depth, settings);
     if (!(settings.smoothing > 0.0f)) return radial.clone();
-    const cv::Mat sigma = smoothingSigmas(depth, settings);
-    cv::Mat depthTransposed;
-    cv::transpose(depth, depthTransposed);
     // The shape's own lines move by O(sigma^2) (on the test torus at 512^2: a mean 0.025 px at 0.5% of the radius,
     // 0.095 px at 1%, 0.40 px at 2%). Twicing, 2 G(sigma) - G(sqrt(2) sigma), cut that to 0.14 px at 2% but made
     // spurious lines near the silhouettes at 2048^2, so it is not used.
-    return gaussianOnSurface(radial, depth, depthTransposed, sigma, settings.depthJump);
+    const float sigmaDepth = settings.smoothing * settings.focalPixels;
+    const std::vector<Span> spans = coveredSpans(depth);
+    const int reach = widestReach(depth, spans, sigmaDepth);
+    cv::Mat smoothed(radial.size(), CV_32FC4);
+    forEachBand(bandBounds(spans), [&](size_t, int firstRow, int endRow) {
+        SurfaceSmoother smoother(radial, depth, spans, sigmaDepth, settings.depthJump, reach, firstRow);
+        for (int row = firstRow; row < endRow; ++row) smoother.next(smoothed.ptr<cv::Vec4f>(row));
+    });
+    return smoothed;
 }
 
 RadialDerivatives computeRadialDerivatives(const cv::Mat& radialInput, const cv::Mat& depth,
@@ -705,32 +931,25 @@ RadialDerivatives computeRadialDerivatives(const cv::Mat& radialInput, const cv:
     return result;
 }
 
-LineSkeleton extractSuggestiveContours(const cv::Mat& radialInput, const cv::Mat& depth,
+LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth,
                                        const SuggestiveSettings& settings) {
-    checkInputs("extractSuggestiveContours()", radialInput, depth, settings);
-    const cv::Mat radial = settings.smoothing > 0.0f ? smoothRadialField(radialInput, depth, settings) : radialInput;
-    if (settings.stencil == DifferenceStencil::Central5)
-        return crossingsOfMaps(radial, wideRadialDerivatives(radial, depth, settings), settings);
+    checkInputs("extractSuggestiveContours()", radial, depth, settings);
+    if (settings.stencil == DifferenceStencil::Central5) {
+        const cv::Mat field = settings.smoothing > 0.0f ? smoothRadialField(radial, depth, settings) : radial;
+        return crossingsOfMaps(field, wideRadialDerivatives(field, depth, settings), settings);
+    }
     LineSkeleton skeleton;
     skeleton.mask = cv::Mat::zeros(radial.size(), CV_8UC1);
-
-    // Bands of at least kMinBandRows rows, one per thread: each re-reads three rows above it, so thin bands cost more
-    // than they save. The result does not depend on the band count.
-    constexpr int kMinBandRows = 128;
-    const int bandCount = std::max(1, std::min(cv::getNumThreads(), radial.rows / kMinBandRows));
-    std::vector<BandResult> bands(static_cast<size_t>(bandCount));
-    const auto scanBands = [&](const cv::Range& range) {
-        for (int band = range.start; band < range.end; ++band) {
-            const int firstRow = int(int64_t(radial.rows) * band / bandCount);
-            const int endRow = int(int64_t(radial.rows) * (band + 1) / bandCount);
-            bands[size_t(band)] = BandScanner(radial, depth, settings, skeleton.mask, firstRow, endRow).scan();
-        }
-    };
-    if (bandCount == 1)
-        scanBands(cv::Range(0, 1));
-    else
-        cv::parallel_for_(cv::Range(0, bandCount), scanBands, bandCount);
-
+    // With smoothing, each band smooths the rows it scans as it goes (BandScanner), so the smoothed field is never
+    // held whole.
+    const std::vector<Span> spans = coveredSpans(depth);
+    const int reach =
+        settings.smoothing > 0.0f ? widestReach(depth, spans, settings.smoothing * settings.focalPixels) : 0;
+    const std::vector<int> bounds = bandBounds(spans);
+    std::vector<BandResult> bands(bounds.size() - 1);
+    forEachBand(bounds, [&](size_t band, int firstRow, int endRow) {
+        bands[band] = BandScanner(radial, depth, spans, settings, reach, skeleton.mask, firstRow, endRow).scan();
+    });
     for (const BandResult& band : bands) {
         skeleton.points.insert(skeleton.points.end(), band.points.begin(), band.points.end());
         for (const cv::Point& marked : band.marksAboveBand) skeleton.mask.ptr<uchar>(marked.y)[marked.x] = 255;

@@ -48,11 +48,11 @@ struct SuggestiveSettings {
 
 /** The radial field smoothed on the surface at the scale settings.smoothing (> 0; 0 returns a copy): per pixel a
  *  Gaussian of sigma = smoothing x focalPixels / depth pixels (the model-space scale seen at that pixel's depth),
- *  applied along rows then columns, each 1-D pass a Gaussian-weighted least-squares line (local linear regression)
- *  over the pixel's run of one surface: it stops at depth breaks (settings.depthJump) and the background, and a
- *  field linear along the run is kept exactly, so a one-sided window at a silhouette or occlusion boundary does not
- *  bend n.v there. The window reaches 3 sigma, at most kMaxSmoothingReach pixels. All four channels are smoothed;
- *  the background stays 0. Same argument checks as extractSuggestiveContours(). */
+ *  rounded to 1% steps, applied along rows then columns, each 1-D pass a Gaussian-weighted least-squares line (local
+ *  linear regression) over the pixel's run of one surface: it stops at depth breaks (settings.depthJump) and the
+ *  background, and a field linear along the run is kept exactly, so a one-sided window at a silhouette or occlusion
+ *  boundary does not bend n.v there. The window reaches 3 sigma, at most kMaxSmoothingReach pixels. All four channels
+ *  are smoothed; the background stays 0. Same argument checks as extractSuggestiveContours(). */
 cv::Mat smoothRadialField(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings);
 
 /** The widest reach of smoothRadialField()'s window in pixels, so an eye inside the model's feature scale cannot make
@@ -82,8 +82,9 @@ RadialDerivatives computeRadialDerivatives(const cv::Mat& radial, const cv::Mat&
  *  at the linear crossing, no half-pixel shift), kept where D_w D_w(n.v) > 0 and the strength passes the threshold,
  *  both interpolated to the crossing. The result does not depend on the resolution: J w scales with it and the
  *  differences per pixel inversely. Rows are split into bands over cv::parallel_for_; the result does not depend on
- *  the thread count either. With settings.smoothing > 0 the field is smoothRadialField()'s. Throws
- * std::invalid_argument naming the argument for wrong types, sizes or settings. */
+ *  the thread count either. With settings.smoothing > 0 the field is smoothRadialField()'s to the bit, smoothed band
+ *  by band as the rows are scanned, so it is never held whole. Throws std::invalid_argument naming the argument for
+ *  wrong types, sizes or settings. */
 LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings);
 
 } // namespace inkgraph

@@ -36,10 +36,12 @@ const LineParameter kSuggestiveStencil{
     false,
     ""};
 
-/** Per data pixel, the smoothing's images (postfx/SuggestiveContours.cpp smoothRadialField(): the sigmas and the
- *  transposed depth and sigmas as float, the row pass, its transpose, the column pass and the result as 4 floats):
- *  working memory for app/MemoryBudget. Measured: +257 MiB at 2048^2 data pixels (61 bytes each). */
-constexpr std::size_t kSmoothingBytesPerPixel = 76;
+/** Per data pixel, the smoothing's working memory for app/MemoryBudget (postfx/SuggestiveContours.cpp): the scanner
+ *  smooths rows as it reads them, so only rings of rows around each band's current row are held, about a byte per
+ *  pixel. Measured: +2 MiB at 2048^2 data pixels at the default smoothing, +4 MiB at 0.02. The 5-point stencil
+ *  differentiates the whole smoothed field (smoothRadialField()), 4 floats per pixel more. */
+constexpr std::size_t kSmoothingBytesPerPixel = 1;
+constexpr std::size_t kSmoothedFieldBytesPerPixel = 16;
 
 /** The image-space smoothing's sigma, as a fraction of the bounding radius. */
 const LineParameter kSuggestiveSmoothing{
@@ -249,8 +251,11 @@ LineType suggestiveLineType() {
         entry["smoothing"] = source.look.lineParameters.number(kSuggestiveSmoothing) * source.sphere.radius;
     };
     type.workingBytesPerPixel = [](const LineParameterValues& values) {
-        const std::size_t stencil = values.choice(kSuggestiveStencil) == "5" ? kWideStencilBytesPerPixel : 0;
-        return stencil + (values.number(kSuggestiveSmoothing) > 0.0 ? kSmoothingBytesPerPixel : 0);
+        const bool wide = values.choice(kSuggestiveStencil) == "5";
+        const std::size_t smoothing = values.number(kSuggestiveSmoothing) > 0.0
+                                          ? kSmoothingBytesPerPixel + (wide ? kSmoothedFieldBytesPerPixel : 0)
+                                          : 0;
+        return (wide ? kWideStencilBytesPerPixel : 0) + smoothing;
     };
     return type;
 }
