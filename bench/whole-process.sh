@@ -3,7 +3,8 @@
 # runs every row once, in order, so drift on a shared machine hits all rows alike; medians are of the rounds.
 #   bench/whole-process.sh [RUNS] > table.md        (after scripts/build.sh; docs/performance.md quotes the table)
 # Environment: INKGRAPH (the binary, default build/inkgraph), FREESTYLE=0 skips Blender (it takes ~10 s a run),
-# ROWS="probe tetra bunny freestyle batch large" picks rows.
+# ROWS="probe tetra bunny freestyle batch large" picks rows; BEFORE=/path/to/an/older/inkgraph adds each inkgraph row
+# again as ROW@before, run by that binary in the same rounds (from its own checkout's folder, so it finds its shaders).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 runs=${1:-7}
@@ -12,6 +13,9 @@ inkgraph=${INKGRAPH:-$build/inkgraph}
 work="$build/bench-data"
 mkdir -p "$work/out" "$work/batch"
 rows=${ROWS:-"probe tetra bunny freestyle batch large"}
+if [ -n "${BEFORE:-}" ]; then
+    for row in tetra bunny batch large; do [[ " $rows " == *" $row "* ]] && rows+=" $row@before"; done
+fi
 cd "$root"
 
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >"$work/tetrahedron.obj"
@@ -24,6 +28,10 @@ fi
 
 comic=(--shading cel --lines silhouette,contour,suggestive)
 command_of() { # row -> the command, one word per line
+    if [[ $1 == *@before ]]; then
+        inkgraph=$BEFORE command_of "${1%@before}" | sed "s|/out/\(.*\)\.png$|/out/\1-before.png|"
+        return
+    fi
     case $1 in
     probe) printf '%s\n' "$build/bench/inkgraph_egl_probe" ;;
     tetra) printf '%s\n' "$inkgraph" render "$work/tetrahedron.obj" -o "$work/out/tetra.png" --size 64x64 -q ;;
@@ -40,8 +48,10 @@ declare -A times memory
 for _ in $(seq "$runs"); do
     for row in $rows; do
         mapfile -t command < <(command_of "$row")
+        folder=$root
+        [[ $row == *@before ]] && folder=$(cd "$(dirname "$BEFORE")/.." && pwd)
         start=$(date +%s%N)
-        /usr/bin/time -f %M -o "$work/rss" "${command[@]}" >/dev/null 2>"$work/stderr" ||
+        (cd "$folder" && /usr/bin/time -f %M -o "$work/rss" "${command[@]}" >/dev/null 2>"$work/stderr") ||
             { echo "$row failed:" >&2; cat "$work/stderr" >&2; exit 1; }
         end=$(date +%s%N)
         times[$row]+="$(( (end - start) / 1000000 )) "
@@ -59,9 +69,9 @@ for row in $rows; do
     rss=$(( $(echo "${memory[$row]}" | median) / 1024 ))
     note=""
     case $row in
-    tetra) note="$(awk -v a="${medians[tetra]}" -v b="${medians[probe]:-0}" \
+    tetra | tetra@before) note="$(awk -v a="${medians[$row]}" -v b="${medians[probe]:-0}" \
         'BEGIN { if (b > 0) printf "%.2fx the probe", a / b }')" ;;
-    batch) note="$(awk -v t="${medians[batch]}" 'BEGIN { printf "9 stills: %.1f stills/s", 9000 / t }')" ;;
+    batch | batch@before) note="$(awk -v t="${medians[$row]}" 'BEGIN { printf "9 stills: %.1f stills/s", 9000 / t }')" ;;
     freestyle) note="$(awk -v a="${medians[freestyle]}" -v b="${medians[bunny]:-0}" \
         'BEGIN { if (b > 0) printf "%.1fx the inkgraph bunny", a / b }')" ;;
     esac
