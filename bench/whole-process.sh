@@ -3,7 +3,7 @@
 # runs every row once, in order, so drift on a shared machine hits all rows alike; medians are of the rounds.
 #   bench/whole-process.sh [RUNS] > table.md        (after scripts/build.sh; docs/performance.md quotes the table)
 # Environment: INKGRAPH (the binary, default build/inkgraph), FREESTYLE=0 skips Blender (it takes ~10 s a run),
-# ROWS="probe tetra bunny freestyle batch large" picks rows; BEFORE=/path/to/an/older/inkgraph adds each inkgraph row
+# ROWS="probe tetra bunny freestyle batch large" picks rows (also: singles, the batch's models one process each); BEFORE=/path/to/an/older/inkgraph adds each inkgraph row
 # again as ROW@before, run by that binary in the same rounds (from its own checkout's folder, so it finds its shaders).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -39,6 +39,8 @@ command_of() { # row -> the command, one word per line
     freestyle) printf '%s\n' blender -b --factory-startup -noaudio -P bench/freestyle_still.py -- \
         models/bunny_c3d_70k.obj "$work/out/bunny-freestyle.png" ;;
     batch) printf '%s\n' "$inkgraph" render --list examples/batch/models.txt -o "$work/batch/{name}.png" -q ;;
+    singles) # one line: the command is read back one word per line
+        printf '%s\n' bash -c 'grep -v "^#" examples/batch/models.txt | while read -r m; do "$0" render "$m" -o "$1/$(basename "$m" .obj).png" -q || exit 1; done' "$inkgraph" "$work/batch" ;;
     large) printf '%s\n' "$inkgraph" render "$large" -o "$work/out/large.png" --shading comic \
         --lines silhouette,contour,suggestive,crease -q ;;
     esac
@@ -71,7 +73,7 @@ for row in $rows; do
     case $row in
     tetra | tetra@before) note="$(awk -v a="${medians[$row]}" -v b="${medians[probe]:-0}" \
         'BEGIN { if (b > 0) printf "%.2fx the probe", a / b }')" ;;
-    batch | batch@before) note="$(awk -v t="${medians[$row]}" 'BEGIN { printf "9 stills: %.1f stills/s", 9000 / t }')" ;;
+    batch | batch@before | singles) note="$(awk -v t="${medians[$row]}" 'BEGIN { printf "9 stills: %.1f stills/s", 9000 / t }')" ;;
     freestyle) note="$(awk -v a="${medians[freestyle]}" -v b="${medians[bunny]:-0}" \
         'BEGIN { if (b > 0) printf "%.1fx the inkgraph bunny", a / b }')" ;;
     esac
