@@ -44,7 +44,8 @@ std::uint64_t hashCell(const CellKey& key) {
 /** Open-addressing map from a grid cell to the most recent representative vertex in it; the rest of the cell's
  *  representatives are chained through a separate `next` array. Sized once for the worst case (one cell per
  *  vertex) at load factor <= 0.5, so it never grows. Most lookups are for empty neighbour cells, so a small
- *  occupancy bitmap (16 bits per vertex, cache-resident) answers those without touching the large slot array. */
+ *  occupancy bitmap (16 bits per vertex) answers those without touching the large slot array. Callers pass each
+ *  cell's hashCell() along, computed once for prefetch() and the lookup that follows it. */
 class CellTable {
 public:
     explicit CellTable(std::size_t maxCells) {
@@ -58,8 +59,7 @@ public:
         mOccupiedMask = capacity * 8 - 1;
     }
 
-    std::uint32_t head(const CellKey& key) const {
-        const std::uint64_t hash = hashCell(key);
+    std::uint32_t head(const CellKey& key, std::uint64_t hash) const {
         if (!isMarked(hash)) {
             return kNoVertex;
         }
@@ -75,8 +75,7 @@ public:
     }
 
     /** Makes `vertex` the head of its cell's chain and returns the previous head (kNoVertex if the cell was new). */
-    std::uint32_t push(const CellKey& key, std::uint32_t vertex) {
-        const std::uint64_t hash = hashCell(key);
+    std::uint32_t push(const CellKey& key, std::uint64_t hash, std::uint32_t vertex) {
         mark(hash);
         for (std::size_t i = hash & mMask;; i = (i + 1) & mMask) {
             Slot& slot = mSlots[i];
@@ -89,6 +88,13 @@ public:
                 return std::exchange(slot.head, vertex);
             }
         }
+    }
+
+    /** Asks the memory for what head() and push() will read for this hash: its bitmap word and, when `slot`, its
+     *  first slot. */
+    void prefetch(std::uint64_t hash, bool slot) const {
+        __builtin_prefetch(&mOccupied[bitOf(hash) / 64]);
+        if (slot) __builtin_prefetch(&mSlots[hash & mMask]);
     }
 
 private:
@@ -177,23 +183,45 @@ WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::
     std::vector<std::uint32_t> nextInCell;
     nextInCell.reserve(positions.size());
 
-    for (std::uint32_t input = 0; input < positions.size(); ++input) {
-        const glm::dvec3 point(positions[input]);
-        const glm::dvec3 scaled = (point - box.min) / cellSize;
+    // The 8 cells a vertex looks in: its own, then the neighbours on the sides it is nearer to (corner c moves along x
+    // if c & 1, y if c & 2, z if c & 4). Made kLookAhead vertices early, when their table memory is prefetched: the
+    // loop is otherwise a string of cache misses (a large model's table is far bigger than the cache), and the
+    // addresses do not depend on what the vertices before decide.
+    struct Lookup {
+        CellKey cells[8];
+        std::uint64_t hashes[8];
+    };
+    constexpr std::uint32_t kLookAhead = 16;
+    Lookup lookups[kLookAhead];
+    const auto prepare = [&](std::uint32_t input) {
+        Lookup& lookup = lookups[input % kLookAhead];
+        const glm::dvec3 scaled = (glm::dvec3(positions[input]) - box.min) / cellSize;
         const glm::dvec3 cellFloor = glm::floor(scaled);
         const CellKey home{std::int32_t(cellFloor.x), std::int32_t(cellFloor.y), std::int32_t(cellFloor.z)};
         const glm::dvec3 fraction = scaled - cellFloor;
         const std::int32_t stepX = fraction.x < 0.5 ? -1 : 1;
         const std::int32_t stepY = fraction.y < 0.5 ? -1 : 1;
         const std::int32_t stepZ = fraction.z < 0.5 ? -1 : 1;
+        for (int corner = 0; corner < 8; ++corner) {
+            lookup.cells[corner] = {home.x + ((corner & 1) ? stepX : 0), home.y + ((corner & 2) ? stepY : 0),
+                                    home.z + ((corner & 4) ? stepZ : 0)};
+            lookup.hashes[corner] = hashCell(lookup.cells[corner]);
+            table.prefetch(lookup.hashes[corner], corner == 0);
+        }
+    };
+    const auto count = std::uint32_t(positions.size());
+    for (std::uint32_t input = 0; input < std::min(count, kLookAhead); ++input) prepare(input);
+
+    for (std::uint32_t input = 0; input < count; ++input) {
+        const Lookup lookup = lookups[input % kLookAhead]; // a copy: prepare() below reuses the slot
+        if (input + kLookAhead < count) prepare(input + kLookAhead);
+        const glm::dvec3 point(positions[input]);
 
         std::uint32_t best = kNoVertex;
         double bestDistanceSquared = maxDistanceSquared;
         for (int corner = 0; corner < 8; ++corner) {
-            const CellKey cell{home.x + ((corner & 1) ? stepX : 0), home.y + ((corner & 2) ? stepY : 0),
-                               home.z + ((corner & 4) ? stepZ : 0)};
-            for (std::uint32_t candidate = table.head(cell); candidate != kNoVertex;
-                 candidate = nextInCell[candidate]) {
+            for (std::uint32_t candidate = table.head(lookup.cells[corner], lookup.hashes[corner]);
+                 candidate != kNoVertex; candidate = nextInCell[candidate]) {
                 const std::uint32_t candidateInput = map.kept[candidate];
                 const glm::dvec3 delta = glm::dvec3(positions[candidateInput]) - point;
                 const double distanceSquared = glm::dot(delta, delta);
@@ -224,7 +252,7 @@ WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::
         const auto output = std::uint32_t(map.kept.size());
         map.kept.push_back(input);
         map.outputOf[input] = output;
-        nextInCell.push_back(table.push(home, output));
+        nextInCell.push_back(table.push(lookup.cells[0], lookup.hashes[0], output));
     }
     return map;
 }
