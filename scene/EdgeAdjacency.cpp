@@ -96,13 +96,20 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
     if (!std::isfinite(weldDistance) || weldDistance < 0.0)
         throw std::invalid_argument("buildEdgeAdjacency(): 'weldDistance' must be finite and >= 0, got " +
                                     std::to_string(weldDistance));
+    return buildEdgeAdjacency(positions, triangles, weldVertices(positions, {}, weldDistance));
+}
+
+EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                 const WeldMap& weld) {
+    if (weld.outputOf.size() != positions.size())
+        throw std::invalid_argument("buildEdgeAdjacency(): the weld maps " + std::to_string(weld.outputOf.size()) +
+                                    " vertices, not the " + std::to_string(positions.size()) + " 'positions'");
     const auto vertexCount = std::uint32_t(positions.size());
     for (std::size_t face = 0; face < triangles.size(); ++face)
         if (glm::any(glm::greaterThanEqual(triangles[face], glm::uvec3(vertexCount))))
             throw std::out_of_range("buildEdgeAdjacency(): triangle " + std::to_string(face) +
                                     " names a vertex past the " + std::to_string(positions.size()) + " positions");
 
-    const WeldMap weld = weldVertices(positions, {}, weldDistance);
     const double diagonal = computeBoundingBox(positions).diagonal();
     // |cross| is twice the area.
     const double minCrossLength = 2.0 * kDegenerateAreaRelative * diagonal * diagonal;

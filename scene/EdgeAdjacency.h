@@ -7,6 +7,8 @@
  *  per distinct normal, so a hard edge (a cube's, a flat-shaded model's) has two copies of each end, and keyed on
  *  those copies every crease would read as two borders. */
 
+#include "scene/MeshOps.h"
+
 #include <glm/glm.hpp>
 
 #include <cstddef>
@@ -83,6 +85,11 @@ struct EdgeAdjacency {
  *  positions and std::invalid_argument for a negative or non-finite weld distance. */
 EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
                                  double weldDistance);
+/** The same with the position weld given (weldVertices() of `positions` ignoring normals, or weldMeshPositions()),
+ *  so the data derived from one mesh share one weld. Throws std::invalid_argument when the map is not one entry per
+ *  position. */
+EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                 const WeldMap& weld);
 
 /** s = n . (E - p) for face `face`'s unit normal n, a point p of its plane and the eye E (model space): positive
  *  when the eye is in front of the face's plane. Exact under perspective (n . (E - x) is the same for every x on the

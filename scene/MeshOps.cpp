@@ -295,9 +295,29 @@ std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions
     return normals;
 }
 
+WeldMap weldMeshPositions(const Mesh& mesh, double distance) {
+    if (!mesh.positionsWeldedAt || !(distance <= *mesh.positionsWeldedAt))
+        return weldVertices(mesh.positions, {}, distance);
+    // Every two positions are farther apart than the loader's distance (each vertex it kept was out of reach of every
+    // earlier one), so a weld at this distance keeps all of them, in order.
+    WeldMap map;
+    map.kept.resize(mesh.positions.size());
+    for (std::size_t vertex = 0; vertex < map.kept.size(); ++vertex) map.kept[vertex] = std::uint32_t(vertex);
+    map.outputOf = map.kept;
+    return map;
+}
+
 std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> positions,
                                                     std::span<const glm::uvec3> triangles, double weldDistance) {
-    const WeldMap weld = weldVertices(positions, {}, weldDistance);
+    return computePositionWeldedNormals(positions, triangles, weldVertices(positions, {}, weldDistance));
+}
+
+std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> positions,
+                                                    std::span<const glm::uvec3> triangles, const WeldMap& weld) {
+    if (weld.outputOf.size() != positions.size())
+        throw std::invalid_argument("computePositionWeldedNormals(): the weld maps " +
+                                    std::to_string(weld.outputOf.size()) + " vertices, not the " +
+                                    std::to_string(positions.size()) + " 'positions'");
     std::vector<glm::vec3> weldedPositions(weld.kept.size());
     for (std::size_t output = 0; output < weld.kept.size(); ++output) {
         weldedPositions[output] = positions[weld.kept[output]];
@@ -502,12 +522,16 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         triangle = glm::uvec3(compactIndex[triangle.x], compactIndex[triangle.y], compactIndex[triangle.z]);
     }
 
+    // Nothing but position decided this weld: the kept vertices are pairwise out of its reach, which derived data
+    // welded at the same distance can rely on (weldMeshPositions()).
+    if (!fileHasNormals && attributeClasses.empty()) mesh.positionsWeldedAt = options.weldTolerance * modelDiagonal;
     if (!fileHasNormals) {
         // Smooth across texture seams and colour borders: the copies of a vertex that only its attributes split share
         // one normal, as they would have without the attributes.
         mesh.normals = attributeClasses.empty() ? computeSmoothNormals(mesh.positions, mesh.triangles)
                                                 : computePositionWeldedNormals(mesh.positions, mesh.triangles,
                                                                                options.weldTolerance * modelDiagonal);
+        mesh.normalsAreSmooth = attributeClasses.empty();
         report.normalsComputed = true;
     } else if (someNormalsUnusable) {
         const std::vector<glm::vec3> smooth = computeSmoothNormals(mesh.positions, mesh.triangles);
