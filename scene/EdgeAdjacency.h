@@ -79,10 +79,12 @@ struct EdgeAdjacency {
 /** Builds the adjacency of a triangle list. Vertices closer than `weldDistance` (absolute, >= 0; MeshOps
  *  weldVertices, ignoring normals) count as one. A face is skipped when two of its corners weld together or its area
  *  is at most 1e-14 x (bounding-box diagonal)^2 (the loaders' rule), so it has no normal and adds no edges. Every
- *  edge of every other face goes into a hash map keyed (uint64(min welded id) << 32) | max, whose value lists the
- *  faces using it with their direction: each of a face's three edges is looked up on its own (Lander 2000's Templist
- *  stopped at a face's first match and lost its other edges). Throws std::out_of_range for an index past the
- *  positions and std::invalid_argument for a negative or non-finite weld distance. */
+ *  edge of every other face is filed on its own (Lander 2000's Templist stopped at a face's first match and lost its
+ *  other edges) under its welded pair (min, max): a counting sort by the smaller id, which keeps face order, then
+ *  each id's few entries sorted by the larger; equal pairs are one edge, numbered in order of first use. Faces and
+ *  edges are processed in parallel where they are independent; the result does not depend on the split. Throws
+ *  std::out_of_range for an index past the positions, std::invalid_argument for a negative or non-finite weld
+ *  distance, and std::length_error from 715,827,883 triangles (edge uses are numbered in 32 bits). */
 EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
                                  double weldDistance);
 /** The same with the position weld given (weldVertices() of `positions` ignoring normals, or weldMeshPositions()),
