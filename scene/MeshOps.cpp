@@ -261,37 +261,44 @@ std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions
                                             std::span<const glm::uvec3> triangles) {
     std::vector<glm::dvec3> sums(positions.size(), glm::dvec3(0.0));
     std::vector<double> weights(positions.size(), 0.0); // sum of |cross|, the scale to judge a sum against
-    // Fallback per vertex: the direction of one incident face with a usable normal.
-    std::vector<glm::dvec3> anyFaceNormal(positions.size(), glm::dvec3(0.0));
     for (const glm::uvec3& triangle : triangles) {
         if (glm::any(glm::greaterThanEqual(triangle, glm::uvec3(std::uint32_t(positions.size()))))) {
             throw std::out_of_range("computeSmoothNormals(): triangle index out of range");
         }
         const glm::dvec3 cross = faceCross(positions, triangle);
-        const glm::dvec3 faceNormal = normalizedOrZero(cross);
         const double weight = glm::length(cross);
         for (int corner = 0; corner < 3; ++corner) {
-            const std::uint32_t vertex = triangle[corner];
-            sums[vertex] += cross;
-            weights[vertex] += weight;
-            if (anyFaceNormal[vertex] == glm::dvec3(0.0)) {
-                anyFaceNormal[vertex] = faceNormal;
-            }
+            sums[triangle[corner]] += cross;
+            weights[triangle[corner]] += weight;
         }
     }
 
     std::vector<glm::vec3> normals(positions.size());
+    std::vector<std::uint8_t> fallback; // per vertex, once one needs it: its sum gave no direction
     for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
         const bool cancelled = glm::length(sums[vertex]) <= kCancelledNormalRelative * weights[vertex];
-        glm::dvec3 normal = cancelled ? glm::dvec3(0.0) : normalizedOrZero(sums[vertex]);
+        const glm::dvec3 normal = cancelled ? glm::dvec3(0.0) : normalizedOrZero(sums[vertex]);
         if (normal == glm::dvec3(0.0)) {
-            normal = anyFaceNormal[vertex];
-        }
-        if (normal == glm::dvec3(0.0)) {
-            normal = glm::dvec3(0.0, 0.0, 1.0);
+            if (fallback.empty()) fallback.assign(positions.size(), 0);
+            fallback[vertex] = 1;
         }
         normals[vertex] = glm::vec3(normal);
     }
+    if (fallback.empty()) return normals;
+    // Rare (opposite faces cancelling, or only degenerate faces): such a vertex takes the direction of its first face
+    // (in face order) that has one, else (0, 0, 1). A second pass over the faces rather than a fallback kept for
+    // every vertex in the first.
+    for (const glm::uvec3& triangle : triangles) {
+        const glm::dvec3 faceNormal = normalizedOrZero(faceCross(positions, triangle));
+        if (faceNormal == glm::dvec3(0.0)) continue;
+        for (int corner = 0; corner < 3; ++corner) {
+            if (fallback[triangle[corner]] != 1) continue;
+            normals[triangle[corner]] = glm::vec3(faceNormal);
+            fallback[triangle[corner]] = 2; // set
+        }
+    }
+    for (std::size_t vertex = 0; vertex < positions.size(); ++vertex)
+        if (fallback[vertex] == 1) normals[vertex] = glm::vec3(0.0f, 0.0f, 1.0f);
     return normals;
 }
 
@@ -476,17 +483,29 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     const std::vector<std::uint32_t> attributeClasses = vertexAttributeClasses(raw);
     const WeldMap weld =
         weldVertices(raw.positions, raw.normals, options.weldTolerance * modelDiagonal, attributeClasses);
-    std::vector<glm::vec3> positions(weld.kept.size());
-    std::vector<glm::vec3> normals(fileHasNormals ? weld.kept.size() : 0);
-    for (std::size_t output = 0; output < weld.kept.size(); ++output) {
-        positions[output] = raw.positions[weld.kept[output]];
-        if (fileHasNormals) {
-            normals[output] = raw.normals[weld.kept[output]];
+    // Kept in first-seen order, so keeping them all is the identity: the raw arrays serve as they are (a scan's file
+    // vertices are usually distinct already).
+    const bool keptAll = weld.kept.size() == raw.positions.size();
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    if (keptAll) {
+        positions = std::move(raw.positions);
+        normals = std::move(raw.normals);
+    } else {
+        positions.resize(weld.kept.size());
+        normals.resize(fileHasNormals ? weld.kept.size() : 0);
+        for (std::size_t output = 0; output < weld.kept.size(); ++output) {
+            positions[output] = raw.positions[weld.kept[output]];
+            if (fileHasNormals) {
+                normals[output] = raw.normals[weld.kept[output]];
+            }
         }
     }
     std::vector<glm::uvec3> triangles = std::move(raw.triangles);
-    for (glm::uvec3& triangle : triangles) {
-        triangle = glm::uvec3(weld.outputOf[triangle.x], weld.outputOf[triangle.y], weld.outputOf[triangle.z]);
+    if (!keptAll) {
+        for (glm::uvec3& triangle : triangles) {
+            triangle = glm::uvec3(weld.outputOf[triangle.x], weld.outputOf[triangle.y], weld.outputOf[triangle.z]);
+        }
     }
 
     report.degenerateDropped +=
@@ -502,24 +521,35 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     mesh.name = std::move(raw.name);
     mesh.material = std::move(raw.material);
     mesh.nodePath = std::move(raw.nodePath);
-    for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
-        if (compactIndex[vertex] == kNoVertex) {
-            continue;
+    const bool noAttributes = raw.texcoords[0].empty() && raw.texcoords[1].empty() && raw.colors.empty();
+    if (keptAll && noAttributes &&
+        std::find(compactIndex.begin(), compactIndex.end(), kNoVertex) == compactIndex.end()) {
+        // Every vertex kept and used, in order: nothing to compact.
+        mesh.positions = std::move(positions);
+        mesh.normals = std::move(normals);
+        mesh.triangles = std::move(triangles);
+    } else {
+        mesh.positions.reserve(positions.size());
+        mesh.normals.reserve(normals.size());
+        for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
+            if (compactIndex[vertex] == kNoVertex) {
+                continue;
+            }
+            compactIndex[vertex] = std::uint32_t(mesh.positions.size());
+            mesh.positions.push_back(positions[vertex]);
+            if (fileHasNormals) {
+                mesh.normals.push_back(normals[vertex]);
+            }
+            const std::uint32_t input = weld.kept[vertex];
+            for (int set = 0; set < 2; ++set) {
+                if (!raw.texcoords[set].empty()) mesh.texcoords[set].push_back(raw.texcoords[set][input]);
+            }
+            if (!raw.colors.empty()) mesh.colors.push_back(raw.colors[input]);
         }
-        compactIndex[vertex] = std::uint32_t(mesh.positions.size());
-        mesh.positions.push_back(positions[vertex]);
-        if (fileHasNormals) {
-            mesh.normals.push_back(normals[vertex]);
+        mesh.triangles = std::move(triangles);
+        for (glm::uvec3& triangle : mesh.triangles) {
+            triangle = glm::uvec3(compactIndex[triangle.x], compactIndex[triangle.y], compactIndex[triangle.z]);
         }
-        const std::uint32_t input = weld.kept[vertex];
-        for (int set = 0; set < 2; ++set) {
-            if (!raw.texcoords[set].empty()) mesh.texcoords[set].push_back(raw.texcoords[set][input]);
-        }
-        if (!raw.colors.empty()) mesh.colors.push_back(raw.colors[input]);
-    }
-    mesh.triangles = std::move(triangles);
-    for (glm::uvec3& triangle : mesh.triangles) {
-        triangle = glm::uvec3(compactIndex[triangle.x], compactIndex[triangle.y], compactIndex[triangle.z]);
     }
 
     // Nothing but position decided this weld: the kept vertices are pairwise out of its reach, which derived data
