@@ -46,10 +46,6 @@ public:
     void chargeFile(std::size_t bytes);
     /** Throws SceneError naming the file when what is charged so far plus these counts exceeds the limit. */
     void check(std::size_t vertices, std::size_t triangles) const;
-    /** Whether check() would pass. */
-    bool fits(std::size_t vertices, std::size_t triangles) const {
-        return estimate(vertices, triangles) <= mLimitBytes;
-    }
     /** check(), then counts them for good (one glTF mesh may be instanced by many nodes). */
     void charge(std::size_t vertices, std::size_t triangles);
     /** Other memory a reader keeps that grows with the file's declarations (each mesh's node path), counted for good;
@@ -103,18 +99,8 @@ glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> w
 /** Throws SceneError("loadScene(): '<path>' line <line>: <problem>"). */
 [[noreturn]] void throwLoadErrorAtLine(const std::string& path, std::size_t line, std::string_view problem);
 
-/** When readObj() parses a file by chunks of lines in parallel: from `minBytes` of text, in chunks of about
- *  `chunkBytes` (the threads take runs of chunks). Only files of positions and faces are (ObjReader.cpp,
- *  parseInParallel()); the result is the line-by-line parser's either way. Tests lower both to run it on small
- *  texts. */
-struct ObjParallelism {
-    std::size_t minBytes = std::size_t(4) << 20;
-    std::size_t chunkBytes = std::size_t(1) << 20;
-};
-
 /** Wavefront OBJ from the whole file's text. */
-RawScene readObj(const std::string& path, std::string_view content, MeshBudget& budget,
-                 ObjParallelism parallelism = {});
+RawScene readObj(const std::string& path, std::string_view content, MeshBudget& budget);
 
 /** STL, binary or ASCII (decided from the content), from the whole file's bytes. */
 RawScene readStl(const std::string& path, std::string_view content, MeshBudget& budget);

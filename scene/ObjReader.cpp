@@ -6,7 +6,6 @@
  *  and refusing them would help nobody. */
 
 #include "scene/FormatReaders.h"
-#include "scene/ParallelRanges.h"
 
 #include <algorithm>
 #include <charconv>
@@ -123,8 +122,8 @@ struct ForwardReference {
 
 class ObjParser {
 public:
-    ObjParser(const std::string& path, std::string_view text, MeshBudget& budget, ObjParallelism parallelism)
-        : mPath(path), mText(text), mBudget(budget), mParallelism(parallelism) {}
+    ObjParser(const std::string& path, std::string_view text, MeshBudget& budget)
+        : mPath(path), mText(text), mBudget(budget) {}
 
     RawScene parse() {
         // Windows tools may write a byte-order mark; left in, it would glue itself to the first keyword
@@ -137,7 +136,6 @@ public:
         }
         const char* cursor = mText.data();
         const char* const end = cursor + mText.size();
-        if (mText.size() >= mParallelism.minBytes && parseInParallel()) cursor = end; // done
         while (cursor < end) {
             ++mLine;
             const char* lineEnd = static_cast<const char*>(std::memchr(cursor, '\n', std::size_t(end - cursor)));
@@ -160,198 +158,6 @@ public:
 
 private:
     [[noreturn]] void fail(std::string_view problem) const { throwLoadErrorAtLine(mPath, mLine, problem); }
-
-    /** What one chunk of lines holds, counted before it is parsed (step 1 of parseInParallel()). */
-    struct ChunkCounts {
-        const char* begin = nullptr;
-        const char* end = nullptr;
-        std::size_t lines = 0;
-        std::size_t vertices = 0;
-        std::size_t faces = 0;
-        std::size_t corners = 0;    ///< after fan triangulation: 3 per triangle
-        std::string_view firstName; ///< the first `o` line's name that is not empty
-        bool plain = true;          ///< only statements parseInParallel() reads (else the sequential parser runs)
-        std::vector<ForwardReference> forwardReferences;
-    };
-
-    /** The common large file, positions and faces only (`v x y z`, `f a b c ...` with plain indices, `o`, comments and
-     *  ignored statements such as `g` and `s`), parsed by chunks of lines in parallel into arrays sized up front:
-     *  1. each chunk's lines are counted and their statements checked to be of those kinds; 2. each chunk is parsed
-     *  into its place, relative indices resolved against the vertices of the chunks before it. Leaves everything as
-     *  the line-by-line parser would, and returns true; returns false, having changed nothing, for anything else
-     *  (another statement, a vertex colour, an index form with slashes, a file above the memory limit) and for any
-     *  line that does not parse: the line-by-line parser then reads the file and reports what it reports. */
-    bool parseInParallel() {
-        const std::size_t chunkCount =
-            std::max<std::size_t>(1, mText.size() / std::max<std::size_t>(1, mParallelism.chunkBytes));
-        std::vector<ChunkCounts> chunks(chunkCount);
-        const char* const textEnd = mText.data() + mText.size();
-        for (std::size_t chunk = 0; chunk < chunkCount; ++chunk) {
-            // Boundaries just after a line break (a chunk may be empty when one line spans several).
-            const char* begin = chunk == 0 ? mText.data() : chunks[chunk - 1].end;
-            const char* end =
-                chunk + 1 == chunkCount ? textEnd : mText.data() + mText.size() * (chunk + 1) / chunkCount;
-            if (end < begin) end = begin;
-            if (end < textEnd && end > begin) {
-                const void* lineBreak = std::memchr(end - 1, '\n', std::size_t(textEnd - (end - 1)));
-                end = lineBreak == nullptr ? textEnd : static_cast<const char*>(lineBreak) + 1;
-            }
-            chunks[chunk].begin = begin;
-            chunks[chunk].end = end;
-        }
-        parallelRanges(chunkCount, 1, [&](std::size_t, std::size_t first, std::size_t last) {
-            for (std::size_t chunk = first; chunk < last; ++chunk) countChunk(chunks[chunk]);
-        });
-        std::size_t vertices = 0, corners = 0, faces = 0, lines = 0;
-        for (const ChunkCounts& chunk : chunks) {
-            if (!chunk.plain) return false;
-            vertices += chunk.vertices;
-            corners += chunk.corners;
-            faces += chunk.faces;
-            lines += chunk.lines;
-        }
-        // The budget's verdict on the whole file: below it, every check the line-by-line parser makes on the way
-        // passes too; above it, that parser says where.
-        if (!mBudget.fits(vertices, corners / 3)) return false;
-
-        std::vector<glm::dvec3> positions(vertices);
-        std::vector<Corner> faceCorners(corners);
-        std::vector<std::size_t> firstVertex(chunkCount), firstCorner(chunkCount), firstLine(chunkCount);
-        for (std::size_t chunk = 0, vertex = 0, corner = 0, line = 0; chunk < chunkCount; ++chunk) {
-            firstVertex[chunk] = vertex;
-            firstCorner[chunk] = corner;
-            firstLine[chunk] = line;
-            vertex += chunks[chunk].vertices;
-            corner += chunks[chunk].corners;
-            line += chunks[chunk].lines;
-        }
-        std::vector<std::uint8_t> parsed(chunkCount, 0);
-        parallelRanges(chunkCount, 1, [&](std::size_t, std::size_t first, std::size_t last) {
-            for (std::size_t chunk = first; chunk < last; ++chunk)
-                parsed[chunk] = parseChunk(chunks[chunk], firstLine[chunk], positions.data() + firstVertex[chunk],
-                                           firstVertex[chunk], faceCorners.data() + firstCorner[chunk]);
-        });
-        if (std::find(parsed.begin(), parsed.end(), 0) != parsed.end()) return false;
-
-        mLine = lines;
-        mPositions = std::move(positions);
-        for (ChunkCounts& chunk : chunks) {
-            mForwardReferences.insert(mForwardReferences.end(), chunk.forwardReferences.begin(),
-                                      chunk.forwardReferences.end());
-            if (mMeshName.empty() && !chunk.firstName.empty()) mMeshName.assign(chunk.firstName);
-        }
-        if (faces > 0) {
-            mCurrentGroup = groupOf("");
-            FaceGroup& group = mGroups[mCurrentGroup];
-            group.corners = std::move(faceCorners);
-            group.facesWithoutNormals = faces;
-            group.facesWithoutTexcoords = faces;
-            mCornerCount = corners;
-        }
-        return true;
-    }
-
-    /** Step 1 of parseInParallel() for one chunk: its lines, vertices, faces and corners, its first `o` name, and
-     *  whether every statement is one the parallel parse reads. Statements are told apart as parseLine() does. */
-    static void countChunk(ChunkCounts& chunk) {
-        for (const char* cursor = chunk.begin; cursor < chunk.end && chunk.plain;) {
-            ++chunk.lines;
-            const char* lineEnd = static_cast<const char*>(std::memchr(cursor, '\n', std::size_t(chunk.end - cursor)));
-            if (lineEnd == nullptr) lineEnd = chunk.end;
-            const char* p = cursor;
-            cursor = lineEnd + 1;
-            while (p < lineEnd && isBlank(*p)) ++p;
-            if (p == lineEnd || *p == '#') continue;
-            const char* keyword = p;
-            while (p < lineEnd && !isBlank(*p)) ++p;
-            const std::string_view command(keyword, std::size_t(p - keyword));
-            std::size_t tokens = 0;
-            bool slashes = false;
-            for (const char* q = p; q < lineEnd;) {
-                while (q < lineEnd && isBlank(*q)) ++q;
-                if (q == lineEnd) break;
-                ++tokens;
-                for (; q < lineEnd && !isBlank(*q); ++q) slashes = slashes || *q == '/';
-            }
-            if (command == "v") {
-                chunk.plain = tokens == 3; // a colour or w goes to the line-by-line parser
-                ++chunk.vertices;
-            } else if (command == "f") {
-                chunk.plain = tokens >= 3 && !slashes; // too few corners: the line-by-line parser says so
-                ++chunk.faces;
-                chunk.corners += 3 * (tokens - 2);
-            } else if (command == "o") {
-                if (chunk.firstName.empty()) chunk.firstName = trimmed(p, lineEnd);
-            } else if (command == "vt" || command == "vn" || command == "l" || command == "p" || command == "mtllib" ||
-                       command == "usemtl") {
-                chunk.plain = false;
-            }
-        }
-    }
-
-    /** Step 2 of parseInParallel() for one chunk, whose first line is `firstLine` + 1 and first vertex `firstVertex`:
-     *  its positions and triangle corners written where they go. False at the first line that does not parse as the
-     *  line-by-line parser would accept it (that parser then names the problem). */
-    static bool parseChunk(ChunkCounts& chunk, std::size_t firstLine, glm::dvec3* positions, std::size_t firstVertex,
-                           Corner* corners) {
-        std::size_t line = firstLine, vertices = firstVertex;
-        Corner polygon[3];
-        for (const char* cursor = chunk.begin; cursor < chunk.end;) {
-            ++line;
-            const char* lineEnd = static_cast<const char*>(std::memchr(cursor, '\n', std::size_t(chunk.end - cursor)));
-            if (lineEnd == nullptr) lineEnd = chunk.end;
-            const char* p = cursor;
-            cursor = lineEnd + 1;
-            while (p < lineEnd && isBlank(*p)) ++p;
-            if (p == lineEnd || *p == '#' || p + 1 == lineEnd || !isBlank(p[1])) continue; // not `v` or `f`
-            if (*p == 'v') {
-                ++p;
-                glm::dvec3 value;
-                for (int axis = 0; axis < 3; ++axis) {
-                    while (p < lineEnd && isBlank(*p)) ++p;
-                    if (p < lineEnd && *p == '+') ++p; // from_chars rejects an explicit plus sign
-                    const auto [next, error] = std::from_chars(p, lineEnd, value[axis]);
-                    if (error != std::errc() || (next != lineEnd && !isBlank(*next))) return false;
-                    if (!std::isfinite(value[axis]) || std::abs(value[axis]) > std::numeric_limits<float>::max())
-                        return false;
-                    p = next;
-                }
-                *positions++ = value;
-                ++vertices;
-            } else if (*p == 'f') {
-                ++p;
-                for (int count = 0;; ++count) {
-                    while (p < lineEnd && isBlank(*p)) ++p;
-                    if (p == lineEnd) break;
-                    long long index = 0;
-                    const auto [next, error] = std::from_chars(p, lineEnd, index);
-                    if (error != std::errc() || (next != lineEnd && !isBlank(*next))) return false;
-                    p = next;
-                    Corner corner;
-                    if (index > 0) {
-                        if (index > std::numeric_limits<std::uint32_t>::max() - 1) return false;
-                        if (std::size_t(index) > vertices)
-                            chunk.forwardReferences.push_back({line, index, IndexKind::Vertex});
-                        corner.position = std::uint32_t(index - 1);
-                    } else {
-                        if (index == 0 || index < -std::int64_t(std::numeric_limits<std::uint32_t>::max()) ||
-                            std::size_t(-index) > vertices)
-                            return false;
-                        corner.position = std::uint32_t(vertices - std::size_t(-index));
-                    }
-                    // Fan triangulation, as parseFace(): (first, previous, this) from the third corner on.
-                    if (count < 2) {
-                        polygon[count] = corner;
-                        continue;
-                    }
-                    if (count > 2) polygon[1] = polygon[2];
-                    polygon[2] = corner;
-                    for (const Corner& written : polygon) *corners++ = written;
-                }
-            }
-        }
-        return true;
-    }
 
     void parseLine(const char* p, const char* end) {
         while (p < end && isBlank(*p)) {
@@ -836,7 +642,6 @@ private:
     const std::string& mPath;
     std::string_view mText;
     MeshBudget& mBudget;
-    ObjParallelism mParallelism;
     std::size_t mLine = 0;
     std::string mMeshName;
     std::vector<std::string> mInputFiles; ///< the mtllib files read
@@ -862,8 +667,8 @@ private:
 
 } // namespace
 
-RawScene readObj(const std::string& path, std::string_view content, MeshBudget& budget, ObjParallelism parallelism) {
-    return ObjParser(path, content, budget, parallelism).parse();
+RawScene readObj(const std::string& path, std::string_view content, MeshBudget& budget) {
+    return ObjParser(path, content, budget).parse();
 }
 
 std::vector<std::string> objReferencedFiles(const std::string& path, std::string_view content) {
