@@ -110,21 +110,42 @@ double GpuScene::weldDistance() const {
     return LoadOptions{}.weldTolerance * box.diagonal();
 }
 
+const WeldMap& GpuScene::positionWeld(std::size_t meshIndex) {
+    requireMeshIndex("GpuScene::positionWeld()", meshIndex);
+    if (mPositionWelds.empty()) {
+        mPositionWelds.resize(mScene.meshes.size());
+        mWeldDistance = weldDistance(); // one scene-wide pass over the positions, not one per mesh
+    }
+    std::optional<WeldMap>& weld = mPositionWelds[meshIndex];
+    if (!weld) weld = weldMeshPositions(mScene.meshes[meshIndex], mWeldDistance);
+    return *weld;
+}
+
 const GlBuffer& GpuScene::hullNormals(std::size_t meshIndex) {
     requireMeshIndex("GpuScene::hullNormals()", meshIndex);
     if (mHullNormals.empty()) {
-        const double distance = weldDistance();
-        std::vector<GlBuffer> buffers;
-        buffers.reserve(mScene.meshes.size());
-        for (const Mesh& mesh : mScene.meshes) {
-            const std::vector<glm::vec3> normals =
-                computePositionWeldedNormals(mesh.positions, mesh.triangles, distance);
-            buffers.emplace_back(normals.data(), normals.size() * sizeof(glm::vec3),
-                                 "mesh '" + mesh.name + "' hull normals");
+        const std::vector<DrawMesh>& drawMeshes = meshes();
+        std::vector<GlBuffer> own;
+        own.reserve(mScene.meshes.size()); // never reallocated below: the pointers into it stay valid
+        std::vector<const GlBuffer*> buffers;
+        for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
+            const Mesh& mesh = mScene.meshes[index];
+            const WeldMap& weld = positionWeld(index);
+            // Nothing welded (kept in order) and smooth normals of their own: computePositionWeldedNormals() would
+            // compute exactly computeSmoothNormals(positions, triangles), which the mesh already holds.
+            if (mesh.normalsAreSmooth && weld.kept.size() == mesh.positions.size()) {
+                buffers.push_back(&drawMeshes[index].normals);
+                continue;
+            }
+            const std::vector<glm::vec3> normals = computePositionWeldedNormals(mesh.positions, mesh.triangles, weld);
+            own.emplace_back(normals.data(), normals.size() * sizeof(glm::vec3),
+                             "mesh '" + mesh.name + "' hull normals");
+            buffers.push_back(&own.back());
         }
+        mOwnHullNormals = std::move(own); // moving the vector keeps its elements where they are
         mHullNormals = std::move(buffers);
     }
-    return mHullNormals[meshIndex];
+    return *mHullNormals[meshIndex];
 }
 
 const std::vector<GlVertexArray>& GpuScene::hullArrays() {
@@ -148,11 +169,12 @@ const std::vector<GlVertexArray>& GpuScene::hullArrays() {
 const EdgeAdjacency& GpuScene::edgeAdjacency(std::size_t meshIndex) {
     requireMeshIndex("GpuScene::edgeAdjacency()", meshIndex);
     if (mEdgeAdjacency.empty()) {
-        const double distance = weldDistance();
         std::vector<EdgeAdjacency> adjacency;
         adjacency.reserve(mScene.meshes.size());
-        for (const Mesh& mesh : mScene.meshes)
-            adjacency.push_back(buildEdgeAdjacency(mesh.positions, mesh.triangles, distance));
+        for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
+            const Mesh& mesh = mScene.meshes[index];
+            adjacency.push_back(buildEdgeAdjacency(mesh.positions, mesh.triangles, positionWeld(index)));
+        }
         mEdgeAdjacency = std::move(adjacency);
     }
     return mEdgeAdjacency[meshIndex];
@@ -161,11 +183,12 @@ const EdgeAdjacency& GpuScene::edgeAdjacency(std::size_t meshIndex) {
 const MeshCurvature& GpuScene::meshCurvature(std::size_t meshIndex, double smoothing) {
     requireMeshIndex("GpuScene::meshCurvature()", meshIndex);
     if (!meshCurvatureComputed(smoothing)) {
-        const double distance = weldDistance();
         std::vector<MeshCurvature> curvature;
         curvature.reserve(mScene.meshes.size());
-        for (const Mesh& mesh : mScene.meshes)
-            curvature.push_back(computeMeshCurvature(mesh.positions, mesh.triangles, distance, smoothing));
+        for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
+            const Mesh& mesh = mScene.meshes[index];
+            curvature.push_back(computeMeshCurvature(mesh.positions, mesh.triangles, positionWeld(index), smoothing));
+        }
         mMeshCurvature = std::move(curvature);
         mMeshCurvatureSmoothing = smoothing;
     }

@@ -8,6 +8,7 @@
 #include "passes/orientation/OrientationSettings.h"
 #include "scene/EdgeAdjacency.h"
 #include "scene/MeshCurvature.h"
+#include "scene/MeshOps.h"
 #include "scene/Scene.h"
 
 #include <glm/glm.hpp>
@@ -49,11 +50,21 @@ public:
     const std::vector<DrawMesh>& meshes();
     bool isUploaded() const { return mUploaded; }
 
+    /** The position weld of mesh `meshIndex` (MeshOps weldMeshPositions(), distance the loader's default relative
+     *  tolerance x the scene's bounding-box diagonal): what the hull normals, the edge adjacency and the curvature are
+     *  built on, made once per mesh the first time one of them is. Nothing is welded when the loader's own weld
+     *  already settles it (Mesh::positionsWeldedAt). Throws std::out_of_range for a bad index. */
+    const WeldMap& positionWeld(std::size_t meshIndex);
+    bool positionWeldComputed(std::size_t meshIndex) const {
+        return meshIndex < mPositionWelds.size() && mPositionWelds[meshIndex].has_value();
+    }
+
     /** Unit normals for the inflated hull of mesh `meshIndex` (vec3 per vertex, GpuScene's vertex order): smooth
-     *  normals shared by every vertex at the same position (MeshOps computePositionWeldedNormals, weld distance the
-     *  loader's default relative tolerance x the scene's bounding-box diagonal), so split normals at hard edges do
-     *  not tear the hull open. Computed and uploaded for every mesh the first time any is asked for (only a pass that
-     *  runs asks). Throws std::out_of_range for a bad index. */
+     *  normals shared by every vertex at the same position (MeshOps computePositionWeldedNormals() on
+     *  positionWeld()), so split normals at hard edges do not tear the hull open. Computed and uploaded for every mesh
+     *  the first time any is asked for (only a pass that runs asks); a mesh whose weld merges nothing and whose own
+     *  normals are the smooth ones (Mesh::normalsAreSmooth) has exactly these already, and its normal buffer (meshes())
+     *  is returned instead. Throws std::out_of_range for a bad index. */
     const GlBuffer& hullNormals(std::size_t meshIndex);
     bool hullNormalsComputed() const { return !mHullNormals.empty(); }
     /** One vertex array per mesh for drawing its inflated hull (the silhouette, MToon's outline shell): its
@@ -62,15 +73,15 @@ public:
     const std::vector<GlVertexArray>& hullArrays();
 
     /** Edge adjacency of mesh `meshIndex` (scene/EdgeAdjacency.h: welded edges, their kinds, face normals and
-     *  planes), in world space like the scene, keyed on positions welded at the same distance as hullNormals(), so
-     *  split normals do not turn creases into borders. CPU data, nothing uploaded. Computed for every mesh the first
+     *  planes), in world space like the scene, keyed on positionWeld(), so split normals do not turn creases into
+     *  borders. CPU data, nothing uploaded. Computed for every mesh the first
      *  time any is asked for (only a pass that runs asks). Throws std::out_of_range for a bad index. */
     const EdgeAdjacency& edgeAdjacency(std::size_t meshIndex);
     bool edgeAdjacencyComputed() const { return !mEdgeAdjacency.empty(); }
 
     /** Per-vertex curvature of mesh `meshIndex` (scene/MeshCurvature.h: normals, principal curvatures and
-     *  directions, and their derivative C on position-welded vertices), in world space like the scene, welded at the
-     *  same distance as hullNormals(). CPU data, nothing uploaded. Computed for every mesh the first time any is
+     *  directions, and their derivative C on position-welded vertices), in world space like the scene, on
+     *  positionWeld(). CPU data, nothing uploaded. Computed for every mesh the first time any is
      *  asked for (only a pass that runs asks: the object-space suggestive contours), smoothed over `smoothing` model
      *  units (computeMeshCurvature()); asked with another smoothing, it is derived again. Throws std::out_of_range
      *  for a bad index. */
@@ -128,7 +139,10 @@ private:
     SceneMaterials mMaterials;
     std::vector<DrawMesh> mMeshes;
     bool mUploaded = false;
-    std::vector<GlBuffer> mHullNormals;                   ///< one per mesh once computed, else empty
+    std::vector<std::optional<WeldMap>> mPositionWelds;   ///< per mesh, once made
+    double mWeldDistance = 0.0;                           ///< weldDistance(), once mPositionWelds is sized
+    std::vector<const GlBuffer*> mHullNormals;            ///< one per mesh once computed (its own or mesh normals)
+    std::vector<GlBuffer> mOwnHullNormals;                ///< the hull normals that are not a mesh's own
     std::vector<GlVertexArray> mHullArrays;               ///< one per mesh once made, else empty
     std::vector<std::optional<glm::dvec3>> mBlendCentres; ///< per blended mesh, once drawOrder() needed it
     std::vector<EdgeAdjacency> mEdgeAdjacency;            ///< one per mesh once computed, else empty

@@ -1,9 +1,9 @@
 #include "scene/EdgeAdjacency.h"
 
 #include "scene/MeshOps.h"
+#include "scene/ParallelRanges.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -17,77 +17,32 @@ namespace {
  *  loaders' rule (MeshOps finalizeMesh), so a loaded mesh loses nothing more here. */
 constexpr double kDegenerateAreaRelative = 1e-14;
 
-std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
-    const std::uint32_t low = a < b ? a : b;
-    const std::uint32_t high = a < b ? b : a;
-    return (std::uint64_t(low) << 32) | high;
+constexpr std::uint32_t kNone = ~std::uint32_t(0);
+
+/** Faces per parallel chunk below which a thread is not worth starting. */
+constexpr std::size_t kMinChunk = 1 << 14;
+
+/** One face's use of an edge, filed under the edge's smaller welded id: the larger id and the use, (3 x face + corner)
+ *  x 2 + 1 when the face runs the edge from the larger id to the smaller (against the key). */
+struct EdgeEntry {
+    std::uint32_t high;
+    std::uint32_t use;
+};
+
+/** Sorts one bucket's entries by `high`, keeping their order (face order) among equal ones: an insertion sort, as a
+ *  bucket holds a vertex's few edges, except at a fan's hub. */
+void sortBucket(EdgeEntry* begin, EdgeEntry* end) {
+    if (end - begin > 32) {
+        std::stable_sort(begin, end, [](const EdgeEntry& a, const EdgeEntry& b) { return a.high < b.high; });
+        return;
+    }
+    for (EdgeEntry* at = begin + 1; at < end; ++at) {
+        const EdgeEntry entry = *at;
+        EdgeEntry* hole = at;
+        for (; hole > begin && hole[-1].high > entry.high; --hole) *hole = hole[-1];
+        *hole = entry;
+    }
 }
-
-/** Open-addressing hash map from an edge key to its index in the edge list, linear probing, kept at most half full
- *  (it doubles past that). Key and index share a slot, so a probe costs one cache miss: on large meshes the lookups
- *  are random accesses into a table far bigger than the cache, and std::unordered_map's node per edge cost more. No
- *  key equals kEmptyKey: it would need min == max. */
-class EdgeIndexTable {
-public:
-    explicit EdgeIndexTable(std::size_t expectedEdges) {
-        allocate(std::bit_ceil(std::max<std::size_t>(16, 2 * expectedEdges)));
-    }
-
-    /** The index stored for `key`, storing `indexIfNew` first when the key is new; `second` tells which. */
-    std::pair<std::uint32_t, bool> findOrInsert(std::uint64_t key, std::uint32_t indexIfNew) {
-        if (2 * (mCount + 1) > mSlots.size()) grow();
-        for (std::size_t index = mix(key) & mMask;; index = (index + 1) & mMask) {
-            Slot& slot = mSlots[index];
-            if (slot.key == key) return {slot.edge, false};
-            if (slot.key == kEmptyKey) {
-                slot = {key, indexIfNew};
-                ++mCount;
-                return {indexIfNew, true};
-            }
-        }
-    }
-
-private:
-    static constexpr std::uint64_t kEmptyKey = ~std::uint64_t(0);
-
-    struct Slot {
-        std::uint64_t key = kEmptyKey;
-        std::uint32_t edge = 0;
-    };
-
-    // The splitmix64 finaliser: neighbouring vertex ids (the common case) spread over the whole table, so a vertex
-    // shared by many faces (a fan's hub) makes no long probe runs.
-    static std::uint64_t mix(std::uint64_t key) {
-        key ^= key >> 30;
-        key *= 0xBF58476D1CE4E5B9ull;
-        key ^= key >> 27;
-        key *= 0x94D049BB133111EBull;
-        return key ^ (key >> 31);
-    }
-
-    void allocate(std::size_t capacity) {
-        mSlots.assign(capacity, Slot{});
-        mMask = capacity - 1;
-        mCount = 0;
-    }
-
-    void grow() {
-        std::vector<Slot> old = std::move(mSlots);
-        allocate(2 * old.size());
-        for (const Slot& slot : old)
-            if (slot.key != kEmptyKey) findOrInsert(slot.key, slot.edge);
-    }
-
-    std::vector<Slot> mSlots;
-    std::size_t mMask = 0;
-    std::size_t mCount = 0;
-};
-
-/** One face's use of an edge before grouping: which edge (index into the edge list), which face, which way. */
-struct PendingUse {
-    std::uint32_t edge;
-    EdgeFaceUse use;
-};
 
 } // namespace
 
@@ -96,99 +51,178 @@ EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span
     if (!std::isfinite(weldDistance) || weldDistance < 0.0)
         throw std::invalid_argument("buildEdgeAdjacency(): 'weldDistance' must be finite and >= 0, got " +
                                     std::to_string(weldDistance));
+    return buildEdgeAdjacency(positions, triangles, weldVertices(positions, {}, weldDistance));
+}
+
+EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                 const WeldMap& weld) {
+    if (weld.outputOf.size() != positions.size())
+        throw std::invalid_argument("buildEdgeAdjacency(): the weld maps " + std::to_string(weld.outputOf.size()) +
+                                    " vertices, not the " + std::to_string(positions.size()) + " 'positions'");
     const auto vertexCount = std::uint32_t(positions.size());
     for (std::size_t face = 0; face < triangles.size(); ++face)
         if (glm::any(glm::greaterThanEqual(triangles[face], glm::uvec3(vertexCount))))
             throw std::out_of_range("buildEdgeAdjacency(): triangle " + std::to_string(face) +
                                     " names a vertex past the " + std::to_string(positions.size()) + " positions");
 
-    const WeldMap weld = weldVertices(positions, {}, weldDistance);
+    // Uses are numbered 3 x face + corner and carry a direction bit: they must fit 32 bits.
+    if (triangles.size() > (std::size_t(kNone) >> 1) / 3)
+        throw std::length_error("buildEdgeAdjacency(): " + std::to_string(triangles.size()) +
+                                " triangles are too many for 32-bit edge uses");
     const double diagonal = computeBoundingBox(positions).diagonal();
     // |cross| is twice the area.
     const double minCrossLength = 2.0 * kDegenerateAreaRelative * diagonal * diagonal;
+    const std::size_t faceCount = triangles.size();
+    const std::size_t weldedCount = weld.kept.size();
 
     EdgeAdjacency adjacency;
-    adjacency.faceNormals.assign(triangles.size(), glm::vec3(0.0f));
-    adjacency.facePlaneOffsets.assign(triangles.size(), 0.0);
+    adjacency.faceNormals.assign(faceCount, glm::vec3(0.0f));
+    adjacency.facePlaneOffsets.assign(faceCount, 0.0);
 
-    EdgeIndexTable edgeOfKey(triangles.size() * 3 / 2); // welded key -> index into adjacency.edges; a closed mesh
-                                                        // has 1.5 edges per face
-    std::vector<PendingUse> pending;
-    pending.reserve(triangles.size() * 3);
-
-    for (std::size_t faceIndex = 0; faceIndex < triangles.size(); ++faceIndex) {
-        const glm::uvec3& triangle = triangles[faceIndex];
-        const glm::uvec3 welded(weld.outputOf[triangle.x], weld.outputOf[triangle.y], weld.outputOf[triangle.z]);
-        const glm::dvec3 a(positions[triangle.x]);
-        const glm::dvec3 cross =
-            glm::cross(glm::dvec3(positions[triangle.y]) - a, glm::dvec3(positions[triangle.z]) - a);
-        const double crossLength = glm::length(cross);
-        const bool repeatsVertex = welded.x == welded.y || welded.y == welded.z || welded.x == welded.z;
-        if (repeatsVertex || !(crossLength > minCrossLength)) {
-            ++adjacency.counts.degenerateFaces;
-            continue;
-        }
-        const glm::dvec3 normal = cross / crossLength;
-        adjacency.faceNormals[faceIndex] = glm::vec3(normal);
-        // The offset from the stored (float) normal, so eyeSideOfFace() tests exactly the plane through `a` it
-        // describes.
-        adjacency.facePlaneOffsets[faceIndex] = glm::dot(glm::dvec3(adjacency.faceNormals[faceIndex]), a);
-
-        const auto face = std::uint32_t(faceIndex);
-        // Every edge of the face on its own: Lander 2000's Templist marked a face "found" at its first matching edge
-        // and never added the other two.
-        for (int corner = 0; corner < 3; ++corner) {
-            const std::uint32_t from = welded[corner];
-            const std::uint32_t to = welded[(corner + 1) % 3];
-            const auto [edgeIndex, inserted] =
-                edgeOfKey.findOrInsert(edgeKey(from, to), std::uint32_t(adjacency.edges.size()));
-            if (inserted) {
-                MeshEdge edge{};
-                edge.vertices = glm::uvec2(triangle[corner], triangle[(corner + 1) % 3]);
-                edge.welded = glm::uvec2(from, to);
-                adjacency.edges.push_back(edge);
+    // 1. Each face's welded corners (x = kNone for a skipped face), unit normal and plane, in parallel.
+    std::vector<glm::uvec3> weldedFaces(faceCount);
+    std::vector<std::size_t> degenerate(parallelChunkCount(faceCount, kMinChunk), 0);
+    parallelRanges(faceCount, kMinChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        for (std::size_t faceIndex = begin; faceIndex < end; ++faceIndex) {
+            const glm::uvec3& triangle = triangles[faceIndex];
+            const glm::uvec3 welded(weld.outputOf[triangle.x], weld.outputOf[triangle.y], weld.outputOf[triangle.z]);
+            const glm::dvec3 a(positions[triangle.x]);
+            const glm::dvec3 cross =
+                glm::cross(glm::dvec3(positions[triangle.y]) - a, glm::dvec3(positions[triangle.z]) - a);
+            const double crossLength = glm::length(cross);
+            const bool repeatsVertex = welded.x == welded.y || welded.y == welded.z || welded.x == welded.z;
+            if (repeatsVertex || !(crossLength > minCrossLength)) {
+                ++degenerate[chunk];
+                weldedFaces[faceIndex] = glm::uvec3(kNone);
+                continue;
             }
-            pending.push_back({edgeIndex, {face, from > to}});
+            weldedFaces[faceIndex] = welded;
+            const glm::dvec3 normal = cross / crossLength;
+            adjacency.faceNormals[faceIndex] = glm::vec3(normal);
+            // The offset from the stored (float) normal, so eyeSideOfFace() tests exactly the plane through `a` it
+            // describes.
+            adjacency.facePlaneOffsets[faceIndex] = glm::dot(glm::dvec3(adjacency.faceNormals[faceIndex]), a);
+        }
+    });
+    for (const std::size_t count : degenerate) adjacency.counts.degenerateFaces += count;
+
+    // 2. Every edge of every other face on its own (Lander 2000's Templist marked a face "found" at its first matching
+    // edge and never added the other two), filed under its smaller welded id by a counting sort, which keeps face
+    // order within each id; then each id's entries sorted by the larger id. A run of equal ids is one edge, its
+    // entries the faces using it in face order. No hash table: on a large mesh its lookups were one cache miss each.
+    std::vector<std::uint32_t> bucketStart(weldedCount + 1, 0);
+    for (const glm::uvec3& welded : weldedFaces) {
+        if (welded.x == kNone) continue;
+        for (int corner = 0; corner < 3; ++corner)
+            ++bucketStart[std::min(welded[corner], welded[(corner + 1) % 3]) + 1];
+    }
+    for (std::size_t vertex = 0; vertex < weldedCount; ++vertex) bucketStart[vertex + 1] += bucketStart[vertex];
+    std::vector<EdgeEntry> entries(bucketStart[weldedCount]);
+    {
+        std::vector<std::uint32_t> next(bucketStart.begin(), bucketStart.end() - 1);
+        for (std::size_t face = 0; face < faceCount; ++face) {
+            const glm::uvec3& welded = weldedFaces[face];
+            if (welded.x == kNone) continue;
+            for (int corner = 0; corner < 3; ++corner) {
+                const std::uint32_t from = welded[corner], to = welded[(corner + 1) % 3];
+                const auto use = std::uint32_t(3 * face + std::size_t(corner));
+                entries[next[std::min(from, to)]++] = {std::max(from, to), use << 1 | std::uint32_t(from > to)};
+            }
         }
     }
+    std::vector<std::uint32_t> groupsInChunk(parallelChunkCount(weldedCount, kMinChunk), 0);
+    parallelRanges(weldedCount, kMinChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        for (std::size_t vertex = begin; vertex < end; ++vertex) {
+            EdgeEntry* first = entries.data() + bucketStart[vertex];
+            EdgeEntry* last = entries.data() + bucketStart[vertex + 1];
+            sortBucket(first, last);
+            for (EdgeEntry* at = first; at < last; ++at) groupsInChunk[chunk] += at == first || at[-1].high != at->high;
+        }
+    });
 
-    // Group the uses by edge (a counting sort keeps face order within each edge).
-    std::vector<std::uint32_t> useCount(adjacency.edges.size(), 0);
-    for (const PendingUse& use : pending) ++useCount[use.edge];
-    std::uint32_t offset = 0;
-    for (std::size_t edge = 0; edge < adjacency.edges.size(); ++edge) {
-        adjacency.edges[edge].firstFaceUse = offset;
-        adjacency.edges[edge].faceCount = useCount[edge];
-        offset += useCount[edge];
+    // 3. The edges in order of first use (face order, then the face's edge order): each run's first entry is its
+    // first use; marked by use, then read in use order.
+    std::uint32_t groupCount = 0;
+    for (std::uint32_t& groups : groupsInChunk) groupCount += std::exchange(groups, groupCount); // now: first id
+    std::vector<std::uint32_t> groupBegin(std::size_t(groupCount) + 1, std::uint32_t(entries.size()));
+    std::vector<std::uint32_t> groupOfFirstUse(3 * faceCount, kNone);
+    parallelRanges(weldedCount, kMinChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        std::uint32_t group = groupsInChunk[chunk];
+        for (std::size_t vertex = begin; vertex < end; ++vertex)
+            for (std::uint32_t at = bucketStart[vertex]; at < bucketStart[vertex + 1]; ++at) {
+                if (at != bucketStart[vertex] && entries[at - 1].high == entries[at].high) continue;
+                groupBegin[group] = at;
+                groupOfFirstUse[entries[at].use >> 1] = group++;
+            }
+    });
+    // 4. The edges and their face uses (each edge's uses at the running total of those before it), then each edge's
+    // kind and normal angle, in parallel over edges. Taken in edge order, the groups and the second faces' normals
+    // are scattered over memory, so each is asked for (prefetched) kLookAhead edges before it is read.
+    constexpr std::size_t kLookAhead = 16;
+    std::vector<std::uint32_t> firstEntry(groupCount); // per edge, into entries
+    adjacency.edges.resize(groupCount);
+    {
+        std::size_t edge = 0;
+        std::uint32_t offset = 0;
+        for (std::size_t use = 0; use < groupOfFirstUse.size(); ++use) {
+            if (use + 4 * kLookAhead < groupOfFirstUse.size() && groupOfFirstUse[use + 4 * kLookAhead] != kNone)
+                __builtin_prefetch(&groupBegin[groupOfFirstUse[use + 4 * kLookAhead]]);
+            const std::uint32_t group = groupOfFirstUse[use];
+            if (group == kNone) continue;
+            firstEntry[edge] = groupBegin[group];
+            adjacency.edges[edge].firstFaceUse = offset;
+            adjacency.edges[edge].faceCount = groupBegin[group + 1] - groupBegin[group];
+            offset += adjacency.edges[edge].faceCount;
+            ++edge;
+        }
     }
-    adjacency.faceUses.resize(pending.size());
-    std::vector<std::uint32_t> nextSlot(adjacency.edges.size());
-    for (std::size_t edge = 0; edge < adjacency.edges.size(); ++edge)
-        nextSlot[edge] = adjacency.edges[edge].firstFaceUse;
-    for (const PendingUse& use : pending) adjacency.faceUses[nextSlot[use.edge]++] = use.use;
+    groupOfFirstUse = {};
+    groupBegin = {};
+    adjacency.faceUses.resize(entries.size());
+    std::vector<EdgeAdjacencyCounts> counts(parallelChunkCount(groupCount, kMinChunk));
+    parallelRanges(groupCount, kMinChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        EdgeAdjacencyCounts& count = counts[chunk];
+        for (std::size_t edgeIndex = begin; edgeIndex < end; ++edgeIndex) {
+            if (edgeIndex + 2 * kLookAhead < end) __builtin_prefetch(&entries[firstEntry[edgeIndex + 2 * kLookAhead]]);
+            if (edgeIndex + kLookAhead < end && adjacency.edges[edgeIndex + kLookAhead].faceCount == 2)
+                __builtin_prefetch(&adjacency.faceNormals[entries[firstEntry[edgeIndex + kLookAhead] + 1].use / 6]);
+            MeshEdge& edge = adjacency.edges[edgeIndex];
+            const EdgeEntry* uses = entries.data() + firstEntry[edgeIndex];
+            for (std::uint32_t at = 0; at < edge.faceCount; ++at)
+                adjacency.faceUses[edge.firstFaceUse + at] = {uses[at].use / 6, (uses[at].use & 1u) != 0};
+            const std::uint32_t firstUse = uses[0].use >> 1;
+            const std::uint32_t face = firstUse / 3, corner = firstUse % 3, next = (corner + 1) % 3;
+            edge.vertices = glm::uvec2(triangles[face][int(corner)], triangles[face][int(next)]);
+            edge.welded = glm::uvec2(weldedFaces[face][int(corner)], weldedFaces[face][int(next)]);
 
-    for (MeshEdge& edge : adjacency.edges) {
-        if (edge.faceCount == 1) {
-            edge.kind = EdgeKind::Boundary;
-            ++adjacency.counts.boundary;
-            continue;
+            if (edge.faceCount == 1) {
+                edge.kind = EdgeKind::Boundary;
+                ++count.boundary;
+                continue;
+            }
+            if (edge.faceCount > 2) {
+                edge.kind = EdgeKind::NonManifold;
+                ++count.nonManifold;
+                continue;
+            }
+            edge.kind = EdgeKind::Manifold;
+            ++count.manifold;
+            const EdgeFaceUse& first = adjacency.faceUses[edge.firstFaceUse];
+            const EdgeFaceUse& second = adjacency.faceUses[edge.firstFaceUse + 1];
+            // Consistently oriented neighbours run their shared edge in opposite directions.
+            edge.inconsistentOrientation = first.againstKey == second.againstKey;
+            count.inconsistent += edge.inconsistentOrientation;
+            const glm::dvec3 n1(adjacency.faceNormals[first.face]);
+            const glm::dvec3 n2 =
+                glm::dvec3(adjacency.faceNormals[second.face]) * (edge.inconsistentOrientation ? -1.0 : 1.0);
+            edge.normalAngle = float(std::atan2(glm::length(glm::cross(n1, n2)), glm::dot(n1, n2)));
         }
-        if (edge.faceCount > 2) {
-            edge.kind = EdgeKind::NonManifold;
-            ++adjacency.counts.nonManifold;
-            continue;
-        }
-        edge.kind = EdgeKind::Manifold;
-        ++adjacency.counts.manifold;
-        const EdgeFaceUse& first = adjacency.faceUses[edge.firstFaceUse];
-        const EdgeFaceUse& second = adjacency.faceUses[edge.firstFaceUse + 1];
-        // Consistently oriented neighbours run their shared edge in opposite directions.
-        edge.inconsistentOrientation = first.againstKey == second.againstKey;
-        adjacency.counts.inconsistent += edge.inconsistentOrientation;
-        const glm::dvec3 n1(adjacency.faceNormals[first.face]);
-        const glm::dvec3 n2 =
-            glm::dvec3(adjacency.faceNormals[second.face]) * (edge.inconsistentOrientation ? -1.0 : 1.0);
-        edge.normalAngle = float(std::atan2(glm::length(glm::cross(n1, n2)), glm::dot(n1, n2)));
+    });
+    for (const EdgeAdjacencyCounts& count : counts) {
+        adjacency.counts.boundary += count.boundary;
+        adjacency.counts.manifold += count.manifold;
+        adjacency.counts.nonManifold += count.nonManifold;
+        adjacency.counts.inconsistent += count.inconsistent;
     }
     return adjacency;
 }

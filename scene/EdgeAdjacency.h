@@ -7,6 +7,8 @@
  *  per distinct normal, so a hard edge (a cube's, a flat-shaded model's) has two copies of each end, and keyed on
  *  those copies every crease would read as two borders. */
 
+#include "scene/MeshOps.h"
+
 #include <glm/glm.hpp>
 
 #include <cstddef>
@@ -77,12 +79,19 @@ struct EdgeAdjacency {
 /** Builds the adjacency of a triangle list. Vertices closer than `weldDistance` (absolute, >= 0; MeshOps
  *  weldVertices, ignoring normals) count as one. A face is skipped when two of its corners weld together or its area
  *  is at most 1e-14 x (bounding-box diagonal)^2 (the loaders' rule), so it has no normal and adds no edges. Every
- *  edge of every other face goes into a hash map keyed (uint64(min welded id) << 32) | max, whose value lists the
- *  faces using it with their direction: each of a face's three edges is looked up on its own (Lander 2000's Templist
- *  stopped at a face's first match and lost its other edges). Throws std::out_of_range for an index past the
- *  positions and std::invalid_argument for a negative or non-finite weld distance. */
+ *  edge of every other face is filed on its own (Lander 2000's Templist stopped at a face's first match and lost its
+ *  other edges) under its welded pair (min, max): a counting sort by the smaller id, which keeps face order, then
+ *  each id's few entries sorted by the larger; equal pairs are one edge, numbered in order of first use. Faces and
+ *  edges are processed in parallel where they are independent; the result does not depend on the split. Throws
+ *  std::out_of_range for an index past the positions, std::invalid_argument for a negative or non-finite weld
+ *  distance, and std::length_error from 715,827,883 triangles (edge uses are numbered in 32 bits). */
 EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
                                  double weldDistance);
+/** The same with the position weld given (weldVertices() of `positions` ignoring normals, or weldMeshPositions()),
+ *  so the data derived from one mesh share one weld. Throws std::invalid_argument when the map is not one entry per
+ *  position. */
+EdgeAdjacency buildEdgeAdjacency(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                 const WeldMap& weld);
 
 /** s = n . (E - p) for face `face`'s unit normal n, a point p of its plane and the eye E (model space): positive
  *  when the eye is in front of the face's plane. Exact under perspective (n . (E - x) is the same for every x on the

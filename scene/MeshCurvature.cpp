@@ -166,13 +166,9 @@ std::array<glm::dvec2, 2> frameChange(glm::dvec3 u, glm::dvec3 v, const glm::dve
     return {glm::dvec2(glm::dot(x, u), glm::dot(x, v)), glm::dvec2(glm::dot(y, u), glm::dot(y, v))};
 }
 
-} // namespace
-
-MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
-                                   double weldDistance, double smoothing) {
-    if (!std::isfinite(weldDistance) || weldDistance < 0.0)
-        throw std::invalid_argument("computeMeshCurvature(): 'weldDistance' must be finite and >= 0, got " +
-                                    std::to_string(weldDistance));
+/** The checks both computeMeshCurvature()s make before anything else (positions before a weld reads them). */
+void checkCurvatureInput(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                         double smoothing) {
     if (!std::isfinite(smoothing) || smoothing < 0.0)
         throw std::invalid_argument("computeMeshCurvature(): 'smoothing' must be finite and >= 0, got " +
                                     std::to_string(smoothing));
@@ -186,9 +182,27 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
                 throw std::out_of_range("computeMeshCurvature(): 'triangles' face " + std::to_string(face) +
                                         " uses vertex " + std::to_string(triangles[face][corner]) + " but there are " +
                                         std::to_string(positions.size()) + " positions");
+}
+
+} // namespace
+
+MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                   double weldDistance, double smoothing) {
+    if (!std::isfinite(weldDistance) || weldDistance < 0.0)
+        throw std::invalid_argument("computeMeshCurvature(): 'weldDistance' must be finite and >= 0, got " +
+                                    std::to_string(weldDistance));
+    checkCurvatureInput(positions, triangles, smoothing);
+    return computeMeshCurvature(positions, triangles, weldVertices(positions, {}, weldDistance), smoothing);
+}
+
+MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                   const WeldMap& weld, double smoothing) {
+    checkCurvatureInput(positions, triangles, smoothing);
+    if (weld.outputOf.size() != positions.size())
+        throw std::invalid_argument("computeMeshCurvature(): the weld maps " + std::to_string(weld.outputOf.size()) +
+                                    " vertices, not the " + std::to_string(positions.size()) + " 'positions'");
 
     MeshCurvature result;
-    const WeldMap weld = weldVertices(positions, {}, weldDistance);
     result.weldedOf = weld.outputOf;
     const std::size_t vertexCount = weld.kept.size();
     result.counts.weldedVertices = vertexCount;

@@ -8,6 +8,8 @@
  *  with no neighbours across an edge. Sign convention: curvature is positive where the surface bends away from its
  *  normal (a sphere with outward normals has kappa = +1/R). */
 
+#include "scene/MeshOps.h"
+
 #include <glm/glm.hpp>
 
 #include <cstddef>
@@ -84,5 +86,9 @@ struct MeshCurvature {
  *  coordinate. */
 MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
                                    double weldDistance, double smoothing = 0.0);
+/** The same with the position weld given (weldVertices() of `positions` ignoring normals, or weldMeshPositions()).
+ *  Throws std::invalid_argument when the map is not one entry per position. */
+MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                   const WeldMap& weld, double smoothing = 0.0);
 
 } // namespace inkgraph

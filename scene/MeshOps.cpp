@@ -44,7 +44,8 @@ std::uint64_t hashCell(const CellKey& key) {
 /** Open-addressing map from a grid cell to the most recent representative vertex in it; the rest of the cell's
  *  representatives are chained through a separate `next` array. Sized once for the worst case (one cell per
  *  vertex) at load factor <= 0.5, so it never grows. Most lookups are for empty neighbour cells, so a small
- *  occupancy bitmap (16 bits per vertex, cache-resident) answers those without touching the large slot array. */
+ *  occupancy bitmap (16 bits per vertex) answers those without touching the large slot array. Callers pass each
+ *  cell's hashCell() along, computed once for prefetch() and the lookup that follows it. */
 class CellTable {
 public:
     explicit CellTable(std::size_t maxCells) {
@@ -58,8 +59,7 @@ public:
         mOccupiedMask = capacity * 8 - 1;
     }
 
-    std::uint32_t head(const CellKey& key) const {
-        const std::uint64_t hash = hashCell(key);
+    std::uint32_t head(const CellKey& key, std::uint64_t hash) const {
         if (!isMarked(hash)) {
             return kNoVertex;
         }
@@ -75,8 +75,7 @@ public:
     }
 
     /** Makes `vertex` the head of its cell's chain and returns the previous head (kNoVertex if the cell was new). */
-    std::uint32_t push(const CellKey& key, std::uint32_t vertex) {
-        const std::uint64_t hash = hashCell(key);
+    std::uint32_t push(const CellKey& key, std::uint64_t hash, std::uint32_t vertex) {
         mark(hash);
         for (std::size_t i = hash & mMask;; i = (i + 1) & mMask) {
             Slot& slot = mSlots[i];
@@ -89,6 +88,13 @@ public:
                 return std::exchange(slot.head, vertex);
             }
         }
+    }
+
+    /** Asks the memory for what head() and push() will read for this hash: its bitmap word and, when `slot`, its
+     *  first slot. */
+    void prefetch(std::uint64_t hash, bool slot) const {
+        __builtin_prefetch(&mOccupied[bitOf(hash) / 64]);
+        if (slot) __builtin_prefetch(&mSlots[hash & mMask]);
     }
 
 private:
@@ -177,23 +183,45 @@ WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::
     std::vector<std::uint32_t> nextInCell;
     nextInCell.reserve(positions.size());
 
-    for (std::uint32_t input = 0; input < positions.size(); ++input) {
-        const glm::dvec3 point(positions[input]);
-        const glm::dvec3 scaled = (point - box.min) / cellSize;
+    // The 8 cells a vertex looks in: its own, then the neighbours on the sides it is nearer to (corner c moves along x
+    // if c & 1, y if c & 2, z if c & 4). Made kLookAhead vertices early, when their table memory is prefetched: the
+    // loop is otherwise a string of cache misses (a large model's table is far bigger than the cache), and the
+    // addresses do not depend on what the vertices before decide.
+    struct Lookup {
+        CellKey cells[8];
+        std::uint64_t hashes[8];
+    };
+    constexpr std::uint32_t kLookAhead = 16;
+    Lookup lookups[kLookAhead];
+    const auto prepare = [&](std::uint32_t input) {
+        Lookup& lookup = lookups[input % kLookAhead];
+        const glm::dvec3 scaled = (glm::dvec3(positions[input]) - box.min) / cellSize;
         const glm::dvec3 cellFloor = glm::floor(scaled);
         const CellKey home{std::int32_t(cellFloor.x), std::int32_t(cellFloor.y), std::int32_t(cellFloor.z)};
         const glm::dvec3 fraction = scaled - cellFloor;
         const std::int32_t stepX = fraction.x < 0.5 ? -1 : 1;
         const std::int32_t stepY = fraction.y < 0.5 ? -1 : 1;
         const std::int32_t stepZ = fraction.z < 0.5 ? -1 : 1;
+        for (int corner = 0; corner < 8; ++corner) {
+            lookup.cells[corner] = {home.x + ((corner & 1) ? stepX : 0), home.y + ((corner & 2) ? stepY : 0),
+                                    home.z + ((corner & 4) ? stepZ : 0)};
+            lookup.hashes[corner] = hashCell(lookup.cells[corner]);
+            table.prefetch(lookup.hashes[corner], corner == 0);
+        }
+    };
+    const auto count = std::uint32_t(positions.size());
+    for (std::uint32_t input = 0; input < std::min(count, kLookAhead); ++input) prepare(input);
+
+    for (std::uint32_t input = 0; input < count; ++input) {
+        const Lookup lookup = lookups[input % kLookAhead]; // a copy: prepare() below reuses the slot
+        if (input + kLookAhead < count) prepare(input + kLookAhead);
+        const glm::dvec3 point(positions[input]);
 
         std::uint32_t best = kNoVertex;
         double bestDistanceSquared = maxDistanceSquared;
         for (int corner = 0; corner < 8; ++corner) {
-            const CellKey cell{home.x + ((corner & 1) ? stepX : 0), home.y + ((corner & 2) ? stepY : 0),
-                               home.z + ((corner & 4) ? stepZ : 0)};
-            for (std::uint32_t candidate = table.head(cell); candidate != kNoVertex;
-                 candidate = nextInCell[candidate]) {
+            for (std::uint32_t candidate = table.head(lookup.cells[corner], lookup.hashes[corner]);
+                 candidate != kNoVertex; candidate = nextInCell[candidate]) {
                 const std::uint32_t candidateInput = map.kept[candidate];
                 const glm::dvec3 delta = glm::dvec3(positions[candidateInput]) - point;
                 const double distanceSquared = glm::dot(delta, delta);
@@ -224,7 +252,7 @@ WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::
         const auto output = std::uint32_t(map.kept.size());
         map.kept.push_back(input);
         map.outputOf[input] = output;
-        nextInCell.push_back(table.push(home, output));
+        nextInCell.push_back(table.push(lookup.cells[0], lookup.hashes[0], output));
     }
     return map;
 }
@@ -233,43 +261,70 @@ std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions
                                             std::span<const glm::uvec3> triangles) {
     std::vector<glm::dvec3> sums(positions.size(), glm::dvec3(0.0));
     std::vector<double> weights(positions.size(), 0.0); // sum of |cross|, the scale to judge a sum against
-    // Fallback per vertex: the direction of one incident face with a usable normal.
-    std::vector<glm::dvec3> anyFaceNormal(positions.size(), glm::dvec3(0.0));
     for (const glm::uvec3& triangle : triangles) {
         if (glm::any(glm::greaterThanEqual(triangle, glm::uvec3(std::uint32_t(positions.size()))))) {
             throw std::out_of_range("computeSmoothNormals(): triangle index out of range");
         }
         const glm::dvec3 cross = faceCross(positions, triangle);
-        const glm::dvec3 faceNormal = normalizedOrZero(cross);
         const double weight = glm::length(cross);
         for (int corner = 0; corner < 3; ++corner) {
-            const std::uint32_t vertex = triangle[corner];
-            sums[vertex] += cross;
-            weights[vertex] += weight;
-            if (anyFaceNormal[vertex] == glm::dvec3(0.0)) {
-                anyFaceNormal[vertex] = faceNormal;
-            }
+            sums[triangle[corner]] += cross;
+            weights[triangle[corner]] += weight;
         }
     }
 
     std::vector<glm::vec3> normals(positions.size());
+    std::vector<std::uint8_t> fallback; // per vertex, once one needs it: its sum gave no direction
     for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
         const bool cancelled = glm::length(sums[vertex]) <= kCancelledNormalRelative * weights[vertex];
-        glm::dvec3 normal = cancelled ? glm::dvec3(0.0) : normalizedOrZero(sums[vertex]);
+        const glm::dvec3 normal = cancelled ? glm::dvec3(0.0) : normalizedOrZero(sums[vertex]);
         if (normal == glm::dvec3(0.0)) {
-            normal = anyFaceNormal[vertex];
-        }
-        if (normal == glm::dvec3(0.0)) {
-            normal = glm::dvec3(0.0, 0.0, 1.0);
+            if (fallback.empty()) fallback.assign(positions.size(), 0);
+            fallback[vertex] = 1;
         }
         normals[vertex] = glm::vec3(normal);
     }
+    if (fallback.empty()) return normals;
+    // Rare (opposite faces cancelling, or only degenerate faces): such a vertex takes the direction of its first face
+    // (in face order) that has one, else (0, 0, 1). A second pass over the faces rather than a fallback kept for
+    // every vertex in the first.
+    for (const glm::uvec3& triangle : triangles) {
+        const glm::dvec3 faceNormal = normalizedOrZero(faceCross(positions, triangle));
+        if (faceNormal == glm::dvec3(0.0)) continue;
+        for (int corner = 0; corner < 3; ++corner) {
+            if (fallback[triangle[corner]] != 1) continue;
+            normals[triangle[corner]] = glm::vec3(faceNormal);
+            fallback[triangle[corner]] = 2; // set
+        }
+    }
+    for (std::size_t vertex = 0; vertex < positions.size(); ++vertex)
+        if (fallback[vertex] == 1) normals[vertex] = glm::vec3(0.0f, 0.0f, 1.0f);
     return normals;
+}
+
+WeldMap weldMeshPositions(const Mesh& mesh, double distance) {
+    if (!mesh.positionsWeldedAt || !(distance <= *mesh.positionsWeldedAt))
+        return weldVertices(mesh.positions, {}, distance);
+    // Every two positions are farther apart than the loader's distance (each vertex it kept was out of reach of every
+    // earlier one), so a weld at this distance keeps all of them, in order.
+    WeldMap map;
+    map.kept.resize(mesh.positions.size());
+    for (std::size_t vertex = 0; vertex < map.kept.size(); ++vertex) map.kept[vertex] = std::uint32_t(vertex);
+    map.outputOf = map.kept;
+    return map;
 }
 
 std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> positions,
                                                     std::span<const glm::uvec3> triangles, double weldDistance) {
-    const WeldMap weld = weldVertices(positions, {}, weldDistance);
+    return computePositionWeldedNormals(positions, triangles, weldVertices(positions, {}, weldDistance));
+}
+
+std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> positions,
+                                                    std::span<const glm::uvec3> triangles, const WeldMap& weld) {
+    if (weld.outputOf.size() != positions.size())
+        throw std::invalid_argument("computePositionWeldedNormals(): the weld maps " +
+                                    std::to_string(weld.outputOf.size()) + " vertices, not the " +
+                                    std::to_string(positions.size()) + " 'positions'");
     std::vector<glm::vec3> weldedPositions(weld.kept.size());
     for (std::size_t output = 0; output < weld.kept.size(); ++output) {
         weldedPositions[output] = positions[weld.kept[output]];
@@ -428,17 +483,29 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     const std::vector<std::uint32_t> attributeClasses = vertexAttributeClasses(raw);
     const WeldMap weld =
         weldVertices(raw.positions, raw.normals, options.weldTolerance * modelDiagonal, attributeClasses);
-    std::vector<glm::vec3> positions(weld.kept.size());
-    std::vector<glm::vec3> normals(fileHasNormals ? weld.kept.size() : 0);
-    for (std::size_t output = 0; output < weld.kept.size(); ++output) {
-        positions[output] = raw.positions[weld.kept[output]];
-        if (fileHasNormals) {
-            normals[output] = raw.normals[weld.kept[output]];
+    // Kept in first-seen order, so keeping them all is the identity: the raw arrays serve as they are (a scan's file
+    // vertices are usually distinct already).
+    const bool keptAll = weld.kept.size() == raw.positions.size();
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    if (keptAll) {
+        positions = std::move(raw.positions);
+        normals = std::move(raw.normals);
+    } else {
+        positions.resize(weld.kept.size());
+        normals.resize(fileHasNormals ? weld.kept.size() : 0);
+        for (std::size_t output = 0; output < weld.kept.size(); ++output) {
+            positions[output] = raw.positions[weld.kept[output]];
+            if (fileHasNormals) {
+                normals[output] = raw.normals[weld.kept[output]];
+            }
         }
     }
     std::vector<glm::uvec3> triangles = std::move(raw.triangles);
-    for (glm::uvec3& triangle : triangles) {
-        triangle = glm::uvec3(weld.outputOf[triangle.x], weld.outputOf[triangle.y], weld.outputOf[triangle.z]);
+    if (!keptAll) {
+        for (glm::uvec3& triangle : triangles) {
+            triangle = glm::uvec3(weld.outputOf[triangle.x], weld.outputOf[triangle.y], weld.outputOf[triangle.z]);
+        }
     }
 
     report.degenerateDropped +=
@@ -454,32 +521,47 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     mesh.name = std::move(raw.name);
     mesh.material = std::move(raw.material);
     mesh.nodePath = std::move(raw.nodePath);
-    for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
-        if (compactIndex[vertex] == kNoVertex) {
-            continue;
+    const bool noAttributes = raw.texcoords[0].empty() && raw.texcoords[1].empty() && raw.colors.empty();
+    if (keptAll && noAttributes &&
+        std::find(compactIndex.begin(), compactIndex.end(), kNoVertex) == compactIndex.end()) {
+        // Every vertex kept and used, in order: nothing to compact.
+        mesh.positions = std::move(positions);
+        mesh.normals = std::move(normals);
+        mesh.triangles = std::move(triangles);
+    } else {
+        mesh.positions.reserve(positions.size());
+        mesh.normals.reserve(normals.size());
+        for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
+            if (compactIndex[vertex] == kNoVertex) {
+                continue;
+            }
+            compactIndex[vertex] = std::uint32_t(mesh.positions.size());
+            mesh.positions.push_back(positions[vertex]);
+            if (fileHasNormals) {
+                mesh.normals.push_back(normals[vertex]);
+            }
+            const std::uint32_t input = weld.kept[vertex];
+            for (int set = 0; set < 2; ++set) {
+                if (!raw.texcoords[set].empty()) mesh.texcoords[set].push_back(raw.texcoords[set][input]);
+            }
+            if (!raw.colors.empty()) mesh.colors.push_back(raw.colors[input]);
         }
-        compactIndex[vertex] = std::uint32_t(mesh.positions.size());
-        mesh.positions.push_back(positions[vertex]);
-        if (fileHasNormals) {
-            mesh.normals.push_back(normals[vertex]);
+        mesh.triangles = std::move(triangles);
+        for (glm::uvec3& triangle : mesh.triangles) {
+            triangle = glm::uvec3(compactIndex[triangle.x], compactIndex[triangle.y], compactIndex[triangle.z]);
         }
-        const std::uint32_t input = weld.kept[vertex];
-        for (int set = 0; set < 2; ++set) {
-            if (!raw.texcoords[set].empty()) mesh.texcoords[set].push_back(raw.texcoords[set][input]);
-        }
-        if (!raw.colors.empty()) mesh.colors.push_back(raw.colors[input]);
-    }
-    mesh.triangles = std::move(triangles);
-    for (glm::uvec3& triangle : mesh.triangles) {
-        triangle = glm::uvec3(compactIndex[triangle.x], compactIndex[triangle.y], compactIndex[triangle.z]);
     }
 
+    // Nothing but position decided this weld: the kept vertices are pairwise out of its reach, which derived data
+    // welded at the same distance can rely on (weldMeshPositions()).
+    if (!fileHasNormals && attributeClasses.empty()) mesh.positionsWeldedAt = options.weldTolerance * modelDiagonal;
     if (!fileHasNormals) {
         // Smooth across texture seams and colour borders: the copies of a vertex that only its attributes split share
         // one normal, as they would have without the attributes.
         mesh.normals = attributeClasses.empty() ? computeSmoothNormals(mesh.positions, mesh.triangles)
                                                 : computePositionWeldedNormals(mesh.positions, mesh.triangles,
                                                                                options.weldTolerance * modelDiagonal);
+        mesh.normalsAreSmooth = attributeClasses.empty();
         report.normalsComputed = true;
     } else if (someNormalsUnusable) {
         const std::vector<glm::vec3> smooth = computeSmoothNormals(mesh.positions, mesh.triangles);

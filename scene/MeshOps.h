@@ -44,6 +44,12 @@ struct WeldMap {
 WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals, double distance,
                      std::span<const std::uint32_t> attributeClasses = {});
 
+/** The position weld of a loaded mesh (weldVertices() ignoring normals and attributes) at `distance`: the identity
+ *  map, computed without a lookup, when the loader already welded the mesh by position at that distance or more
+ *  (Mesh::positionsWeldedAt), else weldVertices(). What every datum derived on position-welded vertices (hull
+ *  normals, edge adjacency, curvature) is built from, so one weld can serve them all. */
+WeldMap weldMeshPositions(const Mesh& mesh, double distance);
+
 /** Area-weighted smooth normals: every vertex sums the unnormalised cross products of its triangles. A vertex whose
  *  sum vanishes (e.g. two opposite faces) takes the normal of one incident face, or (0,0,1) if all are degenerate. */
 std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions,
@@ -55,6 +61,10 @@ std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions
  *  with weldVertices() ignoring normals; returns one unit normal per input position. */
 std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> positions,
                                                     std::span<const glm::uvec3> triangles, double weldDistance);
+/** The same with the position weld given (weldVertices() of `positions` ignoring normals, or weldMeshPositions()).
+ *  Throws std::invalid_argument when the map is not one entry per position. */
+std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> positions,
+                                                    std::span<const glm::uvec3> triangles, const WeldMap& weld);
 
 /** Whether `point` (world space, like the mesh) lies inside the closed mesh, by ray parity: a ray from the point
  *  crosses the surface an odd number of times when it starts inside. Three fixed, mutually skewed rays vote, so one

@@ -37,6 +37,15 @@ struct Mesh {
     /** The names of the nodes from the scene's root down to the one holding this mesh (glTF node names, "" for an
      *  unnamed node; an OBJ's `o` name), or empty when the format has no nodes (STL). --frame selects meshes by it. */
     std::vector<std::string> nodePath;
+    /** What the loader knows about its weld, so data derived later need not weld again (MeshOps weldMeshPositions()):
+     *  set when it welded by position alone (no file normals, texture coordinates or colours kept copies of a point
+     *  apart), then a position weld (weldVertices() without normals or classes) at this distance or less merges
+     *  nothing. Empty when not known. Code that moves positions must reset it. */
+    std::optional<double> positionsWeldedAt;
+    /** Whether `normals` are exactly computeSmoothNormals(positions, triangles), as the loader computes them for a
+     *  file without normals (and without texture seams or colour borders to smooth across), so the inflated hull's
+     *  normals are these (GpuScene::hullNormals()). Code that changes positions or triangles must reset it. */
+    bool normalsAreSmooth = false;
 
     std::size_t triangleCount() const { return triangles.size(); }
 };

@@ -142,7 +142,6 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
     // Every output has the same scale, so any gives the size.
     const int width = gl.widthOf(live.front());
     const int height = gl.heightOf(live.front());
-    const GlDepthTexture& depth = mDepth.sized(width, height);
     const glm::mat4 viewFromModel = mFrame.viewFromModel();
     const glm::mat4 clipFromView = mFrame.clipFromView();
     const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
@@ -150,11 +149,30 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
 
+    // The silhouette edges for this eye, chosen before anything is drawn: when no live output has an edge (a smooth
+    // scan's creases all shorter than the minimum length, say), the model's depth, a draw of every face, is not
+    // needed, and the outputs are only cleared.
+    if (gl.isLive("silhouette")) {
+        // The eye in the meshes' frame: the scene's local frame (Scene::origin), where Camera::eye lives too
+        // (GpuScene subtracts worldOrigin only for the GPU).
+        const glm::dvec3 eye = mFrame.camera.eye;
+        mSilhouetteLines.clear();
+        for (std::size_t mesh = 0; mesh < meshes.size(); ++mesh)
+            mSilhouetteLines.push_back(
+                uploadEdgeLines("silhouette", mesh, selectSilhouetteEdges(mScene.edgeAdjacency(mesh), eye)));
+    }
+    const auto linesOf = [&](const std::string& field) -> const std::vector<EdgeLines>& {
+        return field == "silhouette" ? mSilhouetteLines : field == "crease" ? mCreaseLines : mBorderLines;
+    };
+    bool anyEdges = false;
+    for (const char* field : live)
+        for (const EdgeLines& lines : linesOf(field)) anyEdges = anyEdges || lines.indexCount > 0;
+
     // 1. The model's depth, once for every output: every face (open meshes and an eye inside show inner faces),
     // pushed back by about a pixel of its own depth slope so the edges lying on it pass.
-    {
+    if (anyEdges) {
         GlFramebuffer depthTarget(mName + " model depth");
-        depthTarget.attachDepth(depth);
+        depthTarget.attachDepth(mDepth.sized(width, height));
         depthTarget.finish({});
         depthTarget.bind();
         clearColorAndDepth(0);
@@ -183,26 +201,16 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
     mLineProgram->use();
     glUniformMatrix4fv(mLineProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
     glUniformMatrix4fv(mLineProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
-    glBindTextureUnit(0, depth.id());
+    if (anyEdges) glBindTextureUnit(0, mDepth.sized(width, height).id());
     glLineWidth(1.0f);
     glPointSize(1.0f);
     for (std::size_t slot = 0; slot < live.size(); ++slot) {
         const std::string field = live[slot];
         lineTarget.finish({int(slot)});
-        if (field == "silhouette") {
-            // The eye in the meshes' frame: the scene's local frame (Scene::origin), where Camera::eye lives too
-            // (GpuScene subtracts worldOrigin only for the GPU).
-            const glm::dvec3 eye = mFrame.camera.eye;
-            mSilhouetteLines.clear();
-            for (std::size_t mesh = 0; mesh < meshes.size(); ++mesh)
-                mSilhouetteLines.push_back(
-                    uploadEdgeLines("silhouette", mesh, selectSilhouetteEdges(mScene.edgeAdjacency(mesh), eye)));
-            mEdgesDrawn.silhouette = drawEdgeLines(mSilhouetteLines);
-        } else if (field == "crease") {
-            mEdgesDrawn.crease = drawEdgeLines(mCreaseLines);
-        } else {
-            mEdgesDrawn.border = drawEdgeLines(mBorderLines);
-        }
+        const std::size_t drawn = drawEdgeLines(linesOf(field));
+        (field == "silhouette" ? mEdgesDrawn.silhouette
+         : field == "crease"   ? mEdgesDrawn.crease
+                               : mEdgesDrawn.border) = drawn;
     }
 
     glBindTextureUnit(0, 0);

@@ -25,18 +25,19 @@
  *  - border: boundary edges (one face) and non-manifold edges (three or more faces): both are where the surface
  *    stops being a closed two-sided sheet, and neither has a defined silhouette or crease test. Chosen once.
  *
- *  How: first the model's depth, once for every output, into the pass's own depth texture S x the frame size
- *  (every face, no colour), with polygon offset (factor 1, units 1) pushing the fill back by about one pixel of its
- *  own depth slope, so an edge passes over the faces it lies on, valleys included. Then each output's edges are drawn
- *  into it alone as 1-pixel GL_LINES writing 255, and their end points as 1-pixel GL_POINTS (GL leaves out a line's
- *  last pixel, diamond exit, which opened gaps wherever two edges of a chain met head to head). The depth test is
- *  made in the fragment shader (shaders/edges/edges.frag): a fragment is kept when it is no deeper than the farthest
- *  offset depth at its pixel and its 4 edge neighbours. The offset alone failed where a line's pixel centre fell on a
- *  nearer face that does not hold the edge (the sub-pixel sliver beside a silhouette edge of a fine mesh, which broke
- *  a sphere's silhouette ring at 2x supersampling); one pixel across a silhouette edge lies the background or a
- *  farther surface. So visibility is decided to within a pixel: a line behind the surface stays hidden except within
- *  about a pixel of the occluder's outline (where a cube's hidden edges meet its visible corners). Lines are clipped
- *  by GL, so an edge passing behind the eye is cut at the near plane.
+ *  How: first the model's depth, once for every output, into the pass's own depth texture S x the frame size (every
+ *  face, no colour), with polygon offset (factor 1, units 1) pushing the fill back by about one pixel of its own depth
+ *  slope, so an edge passes over the faces it lies on, valleys included; skipped, the outputs only cleared, when no
+ *  live output has an edge to draw (a dense scan whose creases are all shorter than the minimum length). Then each
+ *  output's edges are drawn into it alone as 1-pixel GL_LINES writing 255, and their end points as 1-pixel GL_POINTS
+ *  (GL leaves out a line's last pixel, diamond exit, which opened gaps wherever two edges of a chain met head to head).
+ *  The depth test is made in the fragment shader (shaders/edges/edges.frag): a fragment is kept when it is no deeper
+ *  than the farthest offset depth at its pixel and its 4 edge neighbours. The offset alone failed where a line's pixel
+ *  centre fell on a nearer face that does not hold the edge (the sub-pixel sliver beside a silhouette edge of a fine
+ *  mesh, which broke a sphere's silhouette ring at 2x supersampling); one pixel across a silhouette edge lies the
+ *  background or a farther surface. So visibility is decided to within a pixel: a line behind the surface stays hidden
+ *  except within about a pixel of the occluder's outline (where a cube's hidden edges meet its visible corners). Lines
+ *  are clipped by GL, so an edge passing behind the eye is cut at the near plane.
  *
  *  With the eye inside a mesh the lines are still drawn (unlike the hull and Lander's outline, where every back face
  *  would flood the frame): the depth hides what lies behind the visible inner surface. Seen from inside a closed

@@ -646,6 +646,23 @@ TEST_F(MeshEdgesCube, CulledPassDerivesNothingAndOnlyLiveOutputsAreComputed) {
     EXPECT_FALSE(executor.store().contains("mesh-edges.border"));
 }
 
+TEST_F(MeshEdgesCube, NoEdgeToDrawClearsTheOutputsWithoutTheDepth) {
+    // The crease output first with the cube's 12 creases, then, from a pass whose angle no edge exceeds, none: that
+    // pass draws no depth (nothing would test against it), yet its output, a pooled texture the first one wrote, is
+    // cleared.
+    lookFrom(kNearCorner, glm::dvec3(0.0), 35.0, 96, 96);
+    MeshEdgesPass creases("mesh-edges", shaders, *gpuScene, frame);
+    EXPECT_GT(cv::countNonZero(renderEdges(creases, {"crease"})["crease"]), 50);
+    MeshEdgesSettings steep;
+    steep.creaseAngleDegrees = 170.0f;
+    MeshEdgesPass none("mesh-edges", shaders, *gpuScene, frame, steep);
+    const std::map<std::string, cv::Mat> masks = renderEdges(none, {"crease", "border"});
+    EXPECT_EQ(none.edgesDrawn().crease, std::optional<std::size_t>(0));
+    EXPECT_EQ(none.edgesDrawn().border, std::optional<std::size_t>(0));
+    EXPECT_EQ(cv::countNonZero(masks.at("crease")), 0);
+    EXPECT_EQ(cv::countNonZero(masks.at("border")), 0);
+}
+
 TEST_F(MeshEdgesCube, TwoRunsGiveIdenticalMasks) {
     lookFrom(kNearCorner, glm::dvec3(0.0), 35.0, 160, 120);
     MeshEdgesPass pass("mesh-edges", shaders, *gpuScene, frame);

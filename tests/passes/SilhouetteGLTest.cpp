@@ -1,7 +1,9 @@
 // The inflated-hull silhouette pass on llvmpipe: ring widths on a sphere in screen space (distance, field of view,
 // resolution and aspect) and object space, no gaps at the hard edges of the fandisk with split normals (and the gaps
-// that welding closes), the eye-inside skip, near-plane clipping, and hull normals computed only on demand.
+// that welding closes), the eye-inside skip, near-plane clipping, hull normals computed only on demand, and equal to
+// computePositionWeldedNormals() to the bit (a loaded mesh's own smooth normals shared when they are the same).
 #include "passes/silhouette/SilhouettePass.h"
+#include "scene/MeshOps.h"
 
 #include "LineMaskTestSupport.h"
 
@@ -233,6 +235,33 @@ TEST_F(SilhouetteSphere, HullNormalsOnlyWhenThePassRuns) {
     EXPECT_FALSE(gpuScene->hullNormalsComputed());
     render(pass, false);
     EXPECT_TRUE(gpuScene->hullNormalsComputed());
+}
+
+/** The hull normals GpuScene holds (read back from GL) against computePositionWeldedNormals() at its weld distance:
+ *  equal to the bit whether they were computed or are the mesh's own smooth normals (a file without normals, nothing
+ *  left to weld), which are then shared, not uploaded again. */
+class HullNormalsOfModels : public test::LinePassFixture {};
+
+TEST_F(HullNormalsOfModels, AreThePositionWeldedNormals) {
+    struct Case {
+        Scene scene;
+        bool shared;
+    };
+    std::vector<Case> cases;
+    cases.push_back({loadScene(std::string(INKGRAPH_SOURCE_ROOT) + "/models/fandisk_c3d.obj"), true});
+    cases.push_back({loadScene(std::string(INKGRAPH_SOURCE_ROOT) + "/models/teapot_c3d.obj"), true});
+    cases.push_back({flatShadedFandisk(), false});
+    for (Case& entry : cases) {
+        setScene(std::move(entry.scene));
+        const Mesh& mesh = scene.meshes.at(0);
+        const GlBuffer& buffer = gpuScene->hullNormals(0);
+        EXPECT_EQ(&buffer == &gpuScene->meshes()[0].normals, entry.shared) << mesh.name;
+        std::vector<glm::vec3> uploaded(mesh.positions.size());
+        ASSERT_EQ(buffer.byteCount(), uploaded.size() * sizeof(glm::vec3));
+        glGetNamedBufferSubData(buffer.id(), 0, GLsizeiptr(buffer.byteCount()), uploaded.data());
+        const double distance = LoadOptions{}.weldTolerance * computeBoundingBox(mesh.positions).diagonal();
+        EXPECT_EQ(uploaded, computePositionWeldedNormals(mesh.positions, mesh.triangles, distance)) << mesh.name;
+    }
 }
 
 TEST(SilhouettePass, RejectsBadWidths) {

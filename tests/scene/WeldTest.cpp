@@ -105,6 +105,17 @@ TEST(SceneWeld, ZeroLengthSmoothNormalFallsBackToAFaceNormal) {
     EXPECT_EQ(isolated.at(0), glm::vec3(0, 0, 1)); // no faces at all: the documented default
 }
 
+TEST(SceneWeld, CancelledSmoothNormalTakesTheFirstFaceWithADirection) {
+    // Vertex 0: a zero-area face first (no direction), then two opposite faces that cancel: it takes the first of
+    // those. Vertex 4 lies only on the zero-area face: the documented default. Vertex 5 is unused: the default too.
+    const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {2, 0, 0}, {9, 9, 9}};
+    const std::vector<glm::uvec3> triangles = {{0, 1, 4}, {0, 2, 3}, {0, 3, 2}, {1, 2, 3}};
+    const std::vector<glm::vec3> normals = computeSmoothNormals(positions, triangles);
+    EXPECT_EQ(normals.at(0), glm::vec3(1, 0, 0)); // face {0, 2, 3}: (0, 1, 0) x (0, 0, 1)
+    EXPECT_EQ(normals.at(4), glm::vec3(0, 0, 1));
+    EXPECT_EQ(normals.at(5), glm::vec3(0, 0, 1));
+}
+
 TEST(SceneWeld, LargeGridWeldsEveryDuplicate) {
     // A 60 x 60 height field written as separate triangles: 21,600 corners weld back to 3,721 grid points.
     std::vector<glm::vec3> corners;

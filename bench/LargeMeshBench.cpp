@@ -1,0 +1,149 @@
+// The CPU work a large model costs before any pixel is drawn (issue 20): loading a 1.3M-triangle OBJ, welding,
+// smooth and hull normals, edge adjacency and curvature, each alone, on the armadillo subdivided 5 x 5 (1,300,000
+// triangles, 650,002 vertices: what `inkgraph_make_mesh subdivide 5` writes). The OBJ is written once per machine
+// to the temporary folder and reused. Only scene/ functions whose signatures predate the work are timed, so the same
+// file measures a build before a change and one after.
+//
+//     ./build/bench/inkgraph_bench --benchmark_filter=Large
+#include "bench/LargeMesh.h"
+#include "scene/EdgeAdjacency.h"
+#include "scene/MeshCurvature.h"
+#include "scene/MeshOps.h"
+#include "scene/Scene.h"
+
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+const std::string kArmadilloPath = std::string(INKGRAPH_SOURCE_ROOT) + "/models/armadillo_cgal_52k.obj";
+constexpr int kSubdivision = 5;
+
+/** The subdivided armadillo's OBJ, written on first use (a few seconds) unless a previous run left it. */
+const std::string& largeObjPath() {
+    static const std::string path = [] {
+        const std::string file =
+            (std::filesystem::temp_directory_path() / "inkgraph-bench-armadillo-1.3m.obj").string();
+        if (!std::filesystem::exists(file)) {
+            std::vector<Mesh> meshes;
+            for (const Mesh& mesh : loadScene(kArmadilloPath).meshes)
+                meshes.push_back(bench::subdivided(mesh, kSubdivision));
+            const std::string partial = file + ".partial";
+            if (!bench::writeObj(meshes, partial))
+                throw std::runtime_error("largeObjPath(): cannot write '" + partial + "'");
+            std::filesystem::rename(partial, file);
+        }
+        return file;
+    }();
+    return path;
+}
+
+/** The loaded model (one mesh), as the renderer holds it. */
+const Mesh& largeMesh() {
+    static const Scene scene = loadScene(largeObjPath());
+    return scene.meshes.front();
+}
+
+/** The weld distance GpuScene derives with: the loader's default tolerance times the model's diagonal. */
+double derivedWeldDistance(const Mesh& mesh) {
+    return LoadOptions{}.weldTolerance * computeBoundingBox(mesh.positions).diagonal();
+}
+
+/** Every triangle with its own three vertices, as an STL file gives them: the weld has 6 copies of each point to
+ *  merge. */
+const std::vector<glm::vec3>& largeSoup() {
+    static const std::vector<glm::vec3> soup = [] {
+        const Mesh& mesh = largeMesh();
+        std::vector<glm::vec3> positions;
+        positions.reserve(mesh.triangles.size() * 3);
+        for (const glm::uvec3& t : mesh.triangles)
+            for (int corner = 0; corner < 3; ++corner) positions.push_back(mesh.positions[t[corner]]);
+        return positions;
+    }();
+    return soup;
+}
+
+void setTriangleCounters(benchmark::State& state, std::size_t triangles) {
+    state.counters["triangles"] = double(triangles);
+    state.counters["Mtri/s"] =
+        benchmark::Counter(double(triangles) * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_LargeLoadObj(benchmark::State& state) {
+    const std::string& path = largeObjPath();
+    std::size_t triangles = 0;
+    for (auto _ : state) {
+        const Scene scene = loadScene(path);
+        triangles = scene.triangleCount();
+        benchmark::DoNotOptimize(scene.meshes.data());
+    }
+    setTriangleCounters(state, triangles);
+}
+BENCHMARK(BM_LargeLoadObj)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/** 0: the loaded mesh by position alone, as every derived datum welds it (nothing merges); 1: the soup (every point
+ *  merges with its copies). */
+void BM_LargeWeld(benchmark::State& state) {
+    const Mesh& mesh = largeMesh();
+    const std::vector<glm::vec3>& positions = state.range(0) == 0 ? mesh.positions : largeSoup();
+    const double distance = derivedWeldDistance(mesh);
+    std::size_t kept = 0;
+    for (auto _ : state) {
+        const WeldMap map = weldVertices(positions, {}, distance);
+        kept = map.kept.size();
+        benchmark::DoNotOptimize(map.outputOf.data());
+    }
+    state.counters["vertices"] = double(positions.size());
+    state.counters["kept"] = double(kept);
+}
+BENCHMARK(BM_LargeWeld)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_LargeSmoothNormals(benchmark::State& state) {
+    const Mesh& mesh = largeMesh();
+    for (auto _ : state) benchmark::DoNotOptimize(computeSmoothNormals(mesh.positions, mesh.triangles).data());
+    setTriangleCounters(state, mesh.triangles.size());
+}
+BENCHMARK(BM_LargeSmoothNormals)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/** The silhouette hull's normals, weld included. */
+void BM_LargeHullNormals(benchmark::State& state) {
+    const Mesh& mesh = largeMesh();
+    const double distance = derivedWeldDistance(mesh);
+    for (auto _ : state)
+        benchmark::DoNotOptimize(computePositionWeldedNormals(mesh.positions, mesh.triangles, distance).data());
+    setTriangleCounters(state, mesh.triangles.size());
+}
+BENCHMARK(BM_LargeHullNormals)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/** The mesh-edges pass's adjacency, weld included. */
+void BM_LargeEdgeAdjacency(benchmark::State& state) {
+    const Mesh& mesh = largeMesh();
+    const double distance = derivedWeldDistance(mesh);
+    std::size_t edges = 0;
+    for (auto _ : state) {
+        const EdgeAdjacency adjacency = buildEdgeAdjacency(mesh.positions, mesh.triangles, distance);
+        edges = adjacency.edges.size();
+        benchmark::DoNotOptimize(adjacency.edges.data());
+    }
+    setTriangleCounters(state, mesh.triangles.size());
+    state.counters["edges"] = double(edges);
+}
+BENCHMARK(BM_LargeEdgeAdjacency)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/** The object-space suggestive contours' curvature, weld included, unsmoothed. */
+void BM_LargeCurvature(benchmark::State& state) {
+    const Mesh& mesh = largeMesh();
+    const double distance = derivedWeldDistance(mesh);
+    for (auto _ : state)
+        benchmark::DoNotOptimize(computeMeshCurvature(mesh.positions, mesh.triangles, distance).normals.data());
+    setTriangleCounters(state, mesh.triangles.size());
+}
+BENCHMARK(BM_LargeCurvature)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+} // namespace
+} // namespace inkgraph
