@@ -160,8 +160,8 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     const bool talks = !options.quiet && batch == nullptr;
     const StillLog log{mLog, talks, options.quiet};
     // Only a run that writes other formats than PNG (or a dump) loads OpenImageIO; its ~0.2 s of dynamic linking then
-    // overlaps loading the model. (Not rendering: on llvmpipe, LLVM's symbol look-ups wait for the dynamic loader's
-    // lock, so they would queue behind it.)
+    // overlaps loading the model and making the context, though Mesa's own library loading waits for the dynamic
+    // loader's lock meanwhile, so such runs still pay part of it.
     if (outputsUseImageIoModule(options)) preloadImageIo();
     StillReport report;
 
