@@ -59,16 +59,6 @@ std::size_t cpuBytesPerPixel(Format format) {
     return std::size_t(channelsOf(format)) * (isFloatFormat(format) ? 4 : 1);
 }
 
-/** Passes that read nothing from the graph draw the scene with GL, into a depth attachment of their own; the others
- *  (line layers, composite) work on the CPU on what they read. */
-bool drawsTheScene(const PlannedPass& pass) { return pass.reads.empty(); }
-
-/** A CPU pass that finds one --lines type's skeleton (it is named after it) and keeps it. */
-bool strokesLines(const PlannedPass& pass, const RenderOptions& options) {
-    return !drawsTheScene(pass) &&
-           std::find(options.look.lines.begin(), options.look.lines.end(), pass.name) != options.look.lines.end();
-}
-
 class PlanSizes {
 public:
     PlanSizes(const Plan& plan, const RenderOptions& options) : mPlan(plan), mOptions(options) {
@@ -107,6 +97,22 @@ private:
     std::map<std::string, const PlannedResource*> mResources;
 };
 
+/** Passes that read nothing from the graph but a depth (the G-buffer's z-buffer, which never leaves GL) draw the
+ *  scene with GL, into a depth attachment of their own or that one (counted as their own: a little high); the others
+ *  (line layers, composite) work on the CPU on what they read. */
+bool drawsTheScene(const PlannedPass& pass, const PlanSizes& sizes) {
+    return std::all_of(pass.reads.begin(), pass.reads.end(), [&](const std::string& name) {
+        const PlannedResource* read = sizes.resource(name);
+        return read != nullptr && read->desc.format == Format::Depth32F;
+    });
+}
+
+/** A CPU pass that finds one --lines type's skeleton (it is named after it) and keeps it. */
+bool strokesLines(const PlannedPass& pass, const RenderOptions& options, const PlanSizes& sizes) {
+    return !drawsTheScene(pass, sizes) &&
+           std::find(options.look.lines.begin(), options.look.lines.end(), pass.name) != options.look.lines.end();
+}
+
 /** What the post stage holds while pass `index` runs (or, for index == passes.size(), while the outputs are
  *  written): the CPU images then alive, the skeletons of the post passes so far, and the pass's working images. */
 std::size_t cpuBytesAt(std::size_t index, const Plan& plan, const RenderOptions& options, const PlanSizes& sizes,
@@ -119,7 +125,7 @@ std::size_t cpuBytesAt(std::size_t index, const Plan& plan, const RenderOptions&
         bool onCpu = writing && (keepAll || resource.requested);
         for (std::size_t at = 0; at < plan.passes.size() && at <= index && !onCpu; ++at) {
             const PlannedPass& pass = plan.passes[at];
-            if (drawsTheScene(pass)) continue;
+            if (drawsTheScene(pass, sizes)) continue;
             const bool touches = std::find(pass.reads.begin(), pass.reads.end(), resource.name) != pass.reads.end() ||
                                  resource.writer == pass.name;
             onCpu = touches;
@@ -128,7 +134,7 @@ std::size_t cpuBytesAt(std::size_t index, const Plan& plan, const RenderOptions&
         if (onCpu && alive) bytes += sizes.imageBytes(resource);
     }
     for (std::size_t at = 0; at < std::min(index + 1, plan.passes.size()); ++at)
-        if (strokesLines(plan.passes[at], options))
+        if (strokesLines(plan.passes[at], options, sizes))
             bytes += kSkeletonBytesPerPixel * sizes.pixels(sizes.scaleOf(plan.passes[at]));
 
     std::size_t largestImage = 0;
@@ -142,12 +148,12 @@ std::size_t cpuBytesAt(std::size_t index, const Plan& plan, const RenderOptions&
         return bytes + kEncodeCopies * encoded + std::min(kTransferBandBytes, largestImage);
     }
     const PlannedPass& pass = plan.passes[index];
-    if (drawsTheScene(pass)) return bytes;
+    if (drawsTheScene(pass, sizes)) return bytes;
     if (pass.name == kStrokeStage)
         return bytes + kStrokeStageBytesPerPixel * sizes.pixels(options.look.supersample) +
                std::min(kTransferBandBytes, largestImage);
     // Other CPU passes (the composite) work in the images they read and write, counted above.
-    if (!strokesLines(pass, options)) return bytes + std::min(kTransferBandBytes, largestImage);
+    if (!strokesLines(pass, options, sizes)) return bytes + std::min(kTransferBandBytes, largestImage);
     std::size_t working = 0;
     if (const LineType* type = findLineType(pass.name); type && type->workingBytesPerPixel)
         working += type->workingBytesPerPixel(options.look.lineParameters);
@@ -171,7 +177,7 @@ MemoryEstimate estimateRunMemory(const Plan& plan, const RenderOptions& options,
     // The texture pool keeps every texture it made until the still ends, so they all count at once.
     for (const PlannedResource& resource : plan.resources) estimate.glTargets += sizes.textureBytes(resource);
     for (const PlannedPass& pass : plan.passes)
-        if (drawsTheScene(pass)) estimate.glTargets += sizes.paddedPixels(sizes.scaleOf(pass)) * 4; // DEPTH32F
+        if (drawsTheScene(pass, sizes)) estimate.glTargets += sizes.paddedPixels(sizes.scaleOf(pass)) * 4; // DEPTH32F
     for (std::size_t index = 0; index <= plan.passes.size(); ++index)
         estimate.cpuImages = std::max(estimate.cpuImages, cpuBytesAt(index, plan, options, sizes, keepAll));
     return estimate;
@@ -185,7 +191,7 @@ std::string memoryDriversText(const Plan& plan, const RenderOptions& options) {
         int count = 0;
         for (const std::string& type : options.look.lines) { // in the order the user gave them
             const PlannedPass* pass = plan.findPass(type);
-            if (pass == nullptr || !strokesLines(*pass, options)) continue;
+            if (pass == nullptr || !strokesLines(*pass, options, sizes)) continue;
             if (sizes.scaleOf(*pass) < options.look.supersample) continue;
             supersampled += (count++ ? "," : "") + type;
         }

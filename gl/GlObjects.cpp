@@ -48,6 +48,7 @@ GlFormat glFormatOf(Format format) {
     // Half floats are read back and uploaded as float32: GL converts, so the CPU never handles float16.
     case Format::RGBA16F: return {GL_RGBA16F, GL_RGBA, GL_FLOAT, 4};
     case Format::R16F: return {GL_R16F, GL_RED, GL_FLOAT, 1};
+    case Format::Depth32F: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, 1};
     }
     throw std::logic_error("glFormatOf(): unknown format");
 }
@@ -99,6 +100,13 @@ void GlFramebuffer::attachColor(int slot, const GlTexture& texture) {
 }
 
 void GlFramebuffer::attachDepth(const GlDepthTexture& depth) {
+    glNamedFramebufferTexture(id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+}
+
+void GlFramebuffer::attachDepth(const GlTexture& depth) {
+    if (depth.format() != Format::Depth32F)
+        throw std::logic_error("GlFramebuffer::attachDepth(): texture '" + depth.label() + "' of framebuffer '" +
+                               mLabel + "' is " + std::string(formatName(depth.format())) + ", not depth32f");
     glNamedFramebufferTexture(id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
 }
 

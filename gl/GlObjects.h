@@ -101,6 +101,8 @@ public:
     GLuint id() const { return mHandle.id(); }
     void attachColor(int slot, const GlTexture& texture);
     void attachDepth(const GlDepthTexture& depth);
+    /** A graph texture of Format::Depth32F as the depth attachment; throws std::logic_error for another format. */
+    void attachDepth(const GlTexture& depth);
     /** Sets draw buffers to the attached slots in order and throws if the framebuffer is incomplete. */
     void finish(const std::vector<int>& drawSlots);
     void bind() const;

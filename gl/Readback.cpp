@@ -20,6 +20,7 @@ int cvTypeOf(Format format) {
     case Format::R8: return CV_8UC1;
     case Format::RGBA16F: return CV_32FC4;
     case Format::R16F: return CV_32FC1;
+    case Format::Depth32F: return CV_32FC1;
     }
     throw std::logic_error("cvTypeOf(): unknown format");
 }

@@ -12,6 +12,7 @@ int bytesPerPixel(Format format) {
     case Format::R8: return 1;
     case Format::RGBA16F: return 8;
     case Format::R16F: return 2;
+    case Format::Depth32F: return 4;
     }
     assert(false && "bytesPerPixel(): unknown Format");
     return 0;
@@ -25,13 +26,15 @@ std::string_view formatName(Format format) {
     case Format::R8: return "r8";
     case Format::RGBA16F: return "rgba16f";
     case Format::R16F: return "r16f";
+    case Format::Depth32F: return "depth32f";
     }
     assert(false && "formatName(): unknown Format");
     return "unknown";
 }
 
 bool isFloatFormat(Format format) {
-    return format == Format::RGBA32F || format == Format::R32F || format == Format::RGBA16F || format == Format::R16F;
+    return format == Format::RGBA32F || format == Format::R32F || format == Format::RGBA16F || format == Format::R16F ||
+           format == Format::Depth32F;
 }
 
 ResourceName ResourceName::split(std::string_view resource) {

@@ -13,6 +13,9 @@ enum class Format {
     R8,      ///< one unorm8 channel (line masks)
     RGBA16F, ///< four float16 channels (read back as float32)
     R16F,    ///< one float16 channel (read back as float32)
+    /** A depth attachment: GL's window depth as float32 (reversed-Z, gl/GlObjects.h), read back as one float32
+     *  channel. Passes that draw the model again test against it instead of drawing its depth once more. */
+    Depth32F,
 };
 
 /** Bytes per pixel, and a short name ("rgba32f") for plans and manifests. */

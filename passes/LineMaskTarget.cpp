@@ -2,23 +2,51 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <stdexcept>
+#include <string>
+
 namespace inkgraph {
 
-bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffer& depth, GpuScene& scene,
+namespace {
+
+/** Binds the mask and its depth (already attached), sets the viewport and clears the mask, and the depth when
+ *  `clearDepth`; false with the framebuffer unbound when `eye` is inside the model. */
+bool startLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, bool clearDepth, GpuScene& scene,
                    const glm::dvec3& eye) {
-    const int width = gl.widthOf("lines");
-    const int height = gl.heightOf("lines");
     framebuffer.attachColor(0, gl.outputTexture("lines"));
-    framebuffer.attachDepth(depth.sized(width, height));
     framebuffer.finish({0});
     framebuffer.bind();
-    glViewport(0, 0, width, height);
-    clearColorAndDepth(1);
+    glViewport(0, 0, gl.widthOf("lines"), gl.heightOf("lines"));
+    if (clearDepth) {
+        clearColorAndDepth(1);
+    } else {
+        const GLfloat none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glClearBufferfv(GL_COLOR, 0, none);
+    }
     if (scene.containsPoint(eye)) {
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         return false;
     }
     return true;
+}
+
+} // namespace
+
+bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffer& depth, GpuScene& scene,
+                   const glm::dvec3& eye) {
+    framebuffer.attachDepth(depth.sized(gl.widthOf("lines"), gl.heightOf("lines")));
+    return startLineMask(gl, framebuffer, true, scene, eye);
+}
+
+bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, const GlTexture& modelDepth, GpuScene& scene,
+                   const glm::dvec3& eye) {
+    if (modelDepth.width() != gl.widthOf("lines") || modelDepth.height() != gl.heightOf("lines"))
+        throw std::logic_error("beginLineMask(): model depth '" + modelDepth.label() + "' is " +
+                               std::to_string(modelDepth.width()) + "x" + std::to_string(modelDepth.height()) +
+                               ", the mask " + std::to_string(gl.widthOf("lines")) + "x" +
+                               std::to_string(gl.heightOf("lines")));
+    framebuffer.attachDepth(modelDepth);
+    return startLineMask(gl, framebuffer, false, scene, eye);
 }
 
 void drawModelDepth(const GlProgram& program, GpuScene& scene, const glm::mat4& viewFromModel,

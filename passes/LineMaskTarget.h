@@ -18,6 +18,10 @@ namespace inkgraph {
  *  back faces and the hull would flood the picture (docs/stability.md). */
 bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffer& depth, GpuScene& scene,
                    const glm::dvec3& eye);
+/** The same with the model's depth already drawn by another pass (a Format::Depth32F graph texture of the mask's
+ *  size): it is attached as it is and only the mask is cleared. */
+bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, const GlTexture& modelDepth, GpuScene& scene,
+                   const glm::dvec3& eye);
 
 /** Draws every face of the scene's meshes into the depth buffer only, colour writes off (they stay off), with
  *  `program`, whose uniforms "viewFromModel" and "clipFromView" are set here. When the scene has cut-out or blended

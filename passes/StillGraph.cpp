@@ -8,6 +8,7 @@
 #include "passes/lines/StrokesPass.h"
 #include "passes/orientation/SceneOrientation.h"
 #include "passes/shade/ShadePass.h"
+#include "passes/silhouette/SilhouettePass.h"
 
 #include <algorithm>
 
@@ -71,6 +72,20 @@ void chooseShadingMode(StillGraph& graph, ShadePass& shade, const GBufferPass& g
         graph.shadingMode = "forward";
         graph.shadingForwardReason = shade.forwardReason();
     }
+}
+
+/** The silhouette's hull is tested against the G-buffer's z-buffer instead of a depth of its own when the G-buffer runs
+ *  anyway (for the lines or deferred shading), at the mask's size (no supersampling), and its z-buffer holds every
+ *  face the silhouette would draw (GBufferPass::zBufferHoldsEveryFace()): one draw of the meshes fewer, the same mask
+ *  (SilhouetteGLTest). Called after chooseShadingMode(), whose deferred shading makes the G-buffer run. */
+void shareModelDepth(StillGraph& graph, const GBufferPass& gbuffer) {
+    if (gbuffer.supersample() != 1 || !gbuffer.zBufferHoldsEveryFace()) return;
+    const Plan plan = compile(graph.view(), {graph.finalResource});
+    if (plan.findPass(std::string(gbuffer.name())) == nullptr) return;
+    for (const auto& pass : graph.passes)
+        if (auto* silhouette = dynamic_cast<SilhouettePass*>(pass.get());
+            silhouette != nullptr && plan.findPass(std::string(silhouette->name())) != nullptr)
+            silhouette->useModelDepth(std::string(gbuffer.name()) + "." + GBufferPass::kZBuffer);
 }
 
 } // namespace
@@ -155,6 +170,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     graph.passes.push_back(
         std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
     if (shade) chooseShadingMode(graph, *shade, gbuffer);
+    shareModelDepth(graph, gbuffer);
     return graph;
 }
 

@@ -62,6 +62,14 @@ Format GBufferPass::formatOf(const Field& field) const {
 void GBufferPass::declare(PassBuilder& builder) const {
     for (const Field& field : fields())
         builder.write(field.name, {formatOf(field), mSupersample}, Need::Optional, {field.fileName, field.appearance});
+    builder.write(kZBuffer, {Format::Depth32F, mSupersample}, Need::Optional, {"zbuffer.exr", Appearance::Data});
+}
+
+bool GBufferPass::zBufferHoldsEveryFace() const {
+    const std::vector<Mesh>& meshes = mScene.scene().meshes;
+    return std::all_of(meshes.begin(), meshes.end(), [](const Mesh& mesh) {
+        return mesh.material.doubleSided && mesh.material.alphaMode == AlphaMode::Opaque;
+    });
 }
 
 GlProgram& GBufferPass::programFor(const std::vector<std::string>& defines) {
@@ -84,6 +92,7 @@ std::vector<std::vector<const GBufferPass::Field*>> GBufferPass::liveGroups(cons
         if (groups.empty() || groups.back().size() == kMaxDrawBuffers) groups.emplace_back();
         groups.back().push_back(&field);
     }
+    if (groups.empty() && context.isLive(kZBuffer)) groups.emplace_back(); // depth only
     return groups;
 }
 
@@ -116,14 +125,19 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
     GlFramebuffer framebuffer(mName);
     std::vector<int> drawSlots;
     // Every field shares one scale, so any live field gives the size of the attachments.
-    const int width = gl.widthOf(group.front()->name);
-    const int height = gl.heightOf(group.front()->name);
+    const std::string sizeField = group.empty() ? kZBuffer : group.front()->name;
+    const int width = gl.widthOf(sizeField);
+    const int height = gl.heightOf(sizeField);
     for (const Field* field : group) {
         const int slot = static_cast<int>(drawSlots.size());
         framebuffer.attachColor(slot, gl.outputTexture(field->name));
         drawSlots.push_back(slot);
     }
-    framebuffer.attachDepth(mDepth.sized(width, height));
+    // A reader of the z-buffer gets this draw's depth attachment itself (each group redraws the same depth).
+    if (gl.isLive(kZBuffer))
+        framebuffer.attachDepth(gl.outputTexture(kZBuffer));
+    else
+        framebuffer.attachDepth(mDepth.sized(width, height));
     framebuffer.finish(drawSlots);
     GlProgram& program = programFor(definesFor(group));
     framebuffer.bind();

@@ -15,6 +15,12 @@
  *  |                    |         |          | lengths in units of FrameParams::radialLengthUnit (J w: pixels)   |
  *  | gbuffer.materialId | r32f    | optional | GpuScene's material id + 1 as an exact float (scene/MaterialIds.h:|
  *  |                    |         |          | equal for meshes of one material), 0 off-model                    |
+ *  | gbuffer.zBuffer    | depth32f| optional | the depth test's own buffer: window depth of the nearest drawn    |
+ *  |                    |         |          | face, reversed-Z (gl/GlObjects.h), far plane 0 off-model          |
+ *
+ *  `zBuffer` is the pass's depth attachment published, not a shader output: the silhouette pass tests its hull
+ *  against it instead of drawing the model's depth again (passes/StillGraph.cpp chooses when:
+ *  zBufferHoldsEveryFace()). Without a reader it stays the pass's private attachment.
  *
  *  GBufferPrecision::Float16 stores normal, view, wVec, nDotV and radial as rgba16f / r16f instead (read back as
  *  float32): half the memory and bandwidth, about 3 decimal digits. It exists to measure what float32 buys
@@ -52,8 +58,10 @@ public:
         const char* fileName;  ///< --dump's file name, "normal.exr"
         Appearance appearance; ///< how --contact-sheet shows it
     };
-    /** Every field the pass can write, in attachment order. */
+    /** Every field the pass can write, in attachment order (the shader's outputs; the z-buffer is not one). */
     static const std::vector<Field>& fields();
+    /** The field that publishes the depth attachment: "zBuffer". */
+    static constexpr const char* kZBuffer = "zBuffer";
 
     /** `supersample` >= 1 scales every field; throws std::invalid_argument otherwise. */
     GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
@@ -62,6 +70,10 @@ public:
     /** The format `field` is stored in at this pass's precision. */
     Format formatOf(const Field& field) const;
     int supersample() const { return mSupersample; }
+    /** True when the z-buffer is the depth of every face of every mesh, as a pass that draws the model's depth with
+     *  no face culled and no cut-out would make it: no material is single-sided (the G-buffer culls their back faces)
+     *  and none is masked or blended. */
+    bool zBufferHoldsEveryFace() const;
     GBufferPrecision precision() const { return mPrecision; }
     /** How many times the pass draws the meshes for `liveFieldCount` live fields: once per kMaxDrawBuffers. */
     static int drawCount(std::size_t liveFieldCount) {
@@ -74,8 +86,8 @@ public:
     void execute(GlPassContext& context) override;
 
 private:
-    /** OUT_* / LOC_* defines for the live outputs, in attachment order. */
-    /** The live fields in attachment order, in groups of at most kMaxDrawBuffers: one draw each. */
+    /** The live fields in attachment order, in groups of at most kMaxDrawBuffers: one draw each; one empty group when
+     *  only the z-buffer is live. */
     static std::vector<std::vector<const Field*>> liveGroups(const GlPassContext& context);
     /** OUT_* and LOC_* defines for one group's draw. */
     std::vector<std::string> definesFor(const std::vector<const Field*>& group) const;

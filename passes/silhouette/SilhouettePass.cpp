@@ -31,15 +31,17 @@ SilhouettePass::SilhouettePass(std::string name, ShaderLibrary& shaders, GpuScen
 }
 
 void SilhouettePass::declare(PassBuilder& builder) const {
+    if (!mModelDepthResource.empty()) builder.read(mModelDepthResource);
     builder.write("lines", {Format::R8}, Need::Required, {"band-" + mName + ".png", Appearance::Lines});
 }
 
 void SilhouettePass::describe(nlohmann::ordered_json& report) const {
     report["skipped_eye_inside"] = skippedEyeInside();
+    report["model_depth"] = mModelDepthResource.empty() ? "drawn by the pass" : mModelDepthResource;
 }
 
 void SilhouettePass::prepare(GlPassContext&) {
-    if (!mDepthProgram)
+    if (!mDepthProgram && mModelDepthResource.empty())
         mDepthProgram = std::make_unique<GlProgram>(mShaders.build({mName + " model depth",
                                                                     "silhouette/hull.vert",
                                                                     "common/line_mask.frag",
@@ -57,7 +59,10 @@ void SilhouettePass::prepare(GlPassContext&) {
 
 void SilhouettePass::execute(GlPassContext& gl) {
     GlFramebuffer framebuffer(mName);
-    mSkippedEyeInside = !beginLineMask(gl, framebuffer, mDepth, mScene, mFrame.camera.eye);
+    const bool drawsModelDepth = mModelDepthResource.empty();
+    mSkippedEyeInside = drawsModelDepth ? !beginLineMask(gl, framebuffer, mDepth, mScene, mFrame.camera.eye)
+                                        : !beginLineMask(gl, framebuffer, gl.inputTexture(mModelDepthResource), mScene,
+                                                         mFrame.camera.eye);
     if (mSkippedEyeInside) return;
     const int width = gl.widthOf("lines");
     const int height = gl.heightOf("lines");
@@ -70,9 +75,12 @@ void SilhouettePass::execute(GlPassContext& gl) {
     glDepthFunc(kDepthNearer);
     glDisable(GL_BLEND);
 
-    // 1. The model's depth: every face (open meshes show their insides through holes), no colour.
-    glDisable(GL_CULL_FACE);
-    drawModelDepth(*mDepthProgram, mScene, viewFromModel, clipFromView);
+    // 1. The model's depth: every face (open meshes show their insides through holes), no colour; or the one the
+    // G-buffer drew.
+    if (drawsModelDepth) {
+        glDisable(GL_CULL_FACE);
+        drawModelDepth(*mDepthProgram, mScene, viewFromModel, clipFromView);
+    }
 
     // 2. The hull's back faces where they are nearer than the model (strictly nearer: where the hull meets the model's
     // own depth, the model wins). The depth stays the model's, so hulls of different meshes never hide each other.

@@ -5,14 +5,17 @@
  *
  *  | resource      | format | need     | content                                          |
  *  |---------------|--------|----------|--------------------------------------------------|
- *  | reads         |        |          | nothing from the graph (meshes from GpuScene)     |
+ *  | reads         |        |          | the model's depth when given one (useModelDepth(), |
+ *  |               |        |          | "gbuffer.zBuffer"); meshes from GpuScene           |
  *  | <name>.lines  | r8     | required | 255 where the hull outline shows, else 0          |
  *
  *  Two draws into the mask with the pass's own depth attachment: the model's depth (every face, no colour), then
  *  the hull's back faces (front faces culled, a strictly-nearer depth test against the model: GL_GREATER with
  *  reversed-Z, gl/GlObjects.h; depth not written), each fragment writing 255. Inside the model's silhouette the
  *  hull's back faces lie behind the model, so only the ring outside it, and the hull of nearer parts over farther
- *  ones, shows.
+ *  ones, shows. When the G-buffer has drawn that same depth anyway, the hull is tested against its z-buffer instead
+ *  and the first draw is left out (passes/StillGraph.cpp decides; both vertex shaders keep gl_Position invariant, so
+ *  the model's depth is the same to the bit where the hull meets it).
  *
  *  Width: in screen space (default) the offset is applied in clip space, so the line is `widthPixels` wide at any
  *  distance, field of view and resolution; in object space the hull is offset by `objectWidth` model units. A
@@ -59,6 +62,14 @@ public:
     /** True when the last execute() left the mask empty because the eye was inside a mesh (for --stats). */
     bool skippedEyeInside() const { return mSkippedEyeInside; }
 
+    /** Tests the hull against `resource`, a Format::Depth32F graph texture of the mask's size holding the depth of
+     *  every face (GBufferPass::zBufferHoldsEveryFace()), instead of drawing the model's depth: one draw of the
+     *  meshes fewer. Empty: the pass draws its own. Set before the graph is compiled (it changes what the pass
+     *  reads). */
+    void useModelDepth(std::string resource) { mModelDepthResource = std::move(resource); }
+    /** The resource set by useModelDepth(), or empty when the pass draws the model's depth itself. */
+    const std::string& modelDepthResource() const { return mModelDepthResource; }
+
 private:
     std::string mName;
     ShaderLibrary& mShaders;
@@ -68,6 +79,7 @@ private:
     std::unique_ptr<GlProgram> mDepthProgram; ///< the model as it is, depth only
     std::unique_ptr<GlProgram> mHullProgram;  ///< the offset hull
     PassDepthBuffer mDepth;                   ///< the pass's own depth attachment, kept between runs
+    std::string mModelDepthResource;          ///< useModelDepth()'s resource, or empty
     bool mSkippedEyeInside = false;
 };
 

@@ -14,6 +14,10 @@ uniform vec2 viewportSize;        // pixels
 uniform float widthPixels;
 uniform float objectWidth;        // model units
 
+// Unmoved vertices must land on the model's depth to the bit, whichever program drew that depth (this one without a
+// width define, or the G-buffer's, gbuffer.vert): the strictly-nearer test then leaves them out.
+invariant gl_Position;
+
 #ifdef HULL_MATERIAL_WIDTH
 uniform int mtoonOutlineMode; // 1 worldCoordinates, 2 screenCoordinates (0: the mesh is not drawn)
 uniform float mtoonOutlineWidthFactor;

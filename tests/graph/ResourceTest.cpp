@@ -12,6 +12,7 @@ TEST(GraphResourceTest, BytesPerPixel) {
     EXPECT_EQ(bytesPerPixel(Format::R32F), 4);
     EXPECT_EQ(bytesPerPixel(Format::RGBA8), 4);
     EXPECT_EQ(bytesPerPixel(Format::R8), 1);
+    EXPECT_EQ(bytesPerPixel(Format::Depth32F), 4);
 }
 
 TEST(GraphResourceTest, FormatName) {
@@ -19,6 +20,8 @@ TEST(GraphResourceTest, FormatName) {
     EXPECT_EQ(formatName(Format::R32F), "r32f");
     EXPECT_EQ(formatName(Format::RGBA8), "rgba8");
     EXPECT_EQ(formatName(Format::R8), "r8");
+    EXPECT_EQ(formatName(Format::Depth32F), "depth32f");
+    EXPECT_TRUE(isFloatFormat(Format::Depth32F)) << "read back as float32, dumped as EXR";
 }
 
 TEST(GraphResourceTest, TextureDescDefaultsAndEquality) {

@@ -264,6 +264,43 @@ TEST_F(HullNormalsOfModels, AreThePositionWeldedNormals) {
     }
 }
 
+/** The hull tested against the G-buffer's z-buffer (what StillGraph chooses when the G-buffer runs anyway) against
+ *  the pass's own draw of the model's depth: the same mask to the bit, on models with open borders (the teapot),
+ *  hard edges (the fandisk) and fine detail (the bunny), from three sides, in screen and object width. */
+TEST_F(HullNormalsOfModels, TheGBuffersZBufferGivesTheMaskOfTheModelsOwnDepth) {
+    const char* models[] = {"fandisk_c3d.obj", "bunny_c3d_70k.obj", "teapot_c3d.obj"};
+    const glm::dvec3 directions[] = {glm::normalize(glm::dvec3(0.2, 0.3, 1.0)),
+                                     glm::normalize(glm::dvec3(1.0, 2.0, 0.3)),
+                                     glm::normalize(glm::dvec3(-1.0, -0.2, -0.4))};
+    HullSettings screenWidth;
+    screenWidth.widthPixels = 3.0f;
+    for (const char* model : models) {
+        setScene(loadScene(std::string(INKGRAPH_SOURCE_ROOT) + "/models/" + model));
+        const BoundingSphere sphere = computeBoundingSphere(scene); // relative to Scene::origin, like the positions
+        const glm::dvec3 centre = scene.origin + sphere.center;
+        HullSettings objectWidth;
+        objectWidth.objectWidth = float(0.01 * sphere.radius);
+        for (const HullSettings& settings : {screenWidth, objectWidth}) {
+            SilhouettePass own("silhouette", shaders, *gpuScene, frame, settings);
+            SilhouettePass shared("silhouette", shaders, *gpuScene, frame, settings);
+            shared.useModelDepth("gbuffer.zBuffer");
+            const Plan plan = compile({gbuffer.get(), &shared}, {"silhouette.lines"});
+            ASSERT_NE(plan.findPass("silhouette"), nullptr);
+            EXPECT_EQ(plan.findPass("silhouette")->reads, std::vector<std::string>{"gbuffer.zBuffer"});
+            for (const glm::dvec3& direction : directions) {
+                SCOPED_TRACE(std::string(model) + (settings.objectWidth ? ", object width" : ", screen width") +
+                             ", view from " + std::to_string(direction.x) + "," + std::to_string(direction.y) + "," +
+                             std::to_string(direction.z));
+                lookFrom(centre + direction * (3.0 * sphere.radius), centre, 35.0, 384, 320);
+                const cv::Mat expected = render(own, false).lines;
+                const cv::Mat reused = render(shared, false).lines;
+                ASSERT_GT(cv::countNonZero(expected), 500) << "the hull must show";
+                EXPECT_EQ(cv::countNonZero(expected != reused), 0);
+            }
+        }
+    }
+}
+
 TEST(SilhouettePass, RejectsBadWidths) {
     const Scene scene = test::fineSphereScene();
     GpuScene gpuScene(scene, glm::dvec3(0.0));

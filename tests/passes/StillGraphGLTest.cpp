@@ -40,6 +40,38 @@ TEST_F(StillGraphOrder, GlPassesComeBeforeTheLineLayersAndSharedPassesAreRegiste
                                                          "crease", "border", "strokes", "composite"}));
 }
 
+/** The silhouette tests its hull against the G-buffer's z-buffer only where that is free and the same depth: the
+ *  G-buffer runs anyway, at the mask's size, with every face of every mesh drawn. */
+TEST_F(StillGraphOrder, TheSilhouetteReadsTheGBuffersZBufferOnlyWhenItRunsAnywayWithEveryFace) {
+    const auto silhouetteReads = [&](const Look& look) {
+        StillGraphSetup setup{look, shaders, scene, computeBoundingSphere(scene), *gpuScene, frame, std::nullopt};
+        const StillGraph graph = buildStillGraph(setup);
+        const Plan plan = compile(graph.view(), {graph.finalResource});
+        const PlannedPass* silhouette = plan.findPass("silhouette");
+        return silhouette ? silhouette->reads : std::vector<std::string>{"(not run)"};
+    };
+    const std::vector<std::string> zBuffer{"gbuffer.zBuffer"};
+    Look look;
+    look.lines = {"silhouette", "contour"};
+    EXPECT_EQ(silhouetteReads(look), zBuffer) << "contours make the G-buffer run";
+    look.shading = ShadingModel::Flat;
+    EXPECT_EQ(silhouetteReads(look), zBuffer) << "whatever the shading";
+    look.shading = ShadingModel::Cel;
+    look.lines = {"silhouette"};
+    EXPECT_EQ(silhouetteReads(look), std::vector<std::string>{}) << "no line reads the G-buffer: it does not run";
+    look.lines = {"silhouette", "contour"};
+    look.supersample = 2;
+    EXPECT_EQ(silhouetteReads(look), std::vector<std::string>{}) << "a supersampled z-buffer is not the mask's size";
+    look.supersample = 1;
+    scene.meshes[0].material.doubleSided = false;
+    gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+    EXPECT_EQ(silhouetteReads(look), std::vector<std::string>{}) << "single-sided: the G-buffer culls back faces";
+    scene.meshes[0].material.doubleSided = true;
+    scene.meshes[0].material.alphaMode = AlphaMode::Mask;
+    gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+    EXPECT_EQ(silhouetteReads(look), std::vector<std::string>{}) << "cut-outs stay the pass's own";
+}
+
 TEST_F(StillGraphOrder, EveryRegisteredTypeHasItsLayerOrPassAndTheCompositeReadsThemInRegistryOrder) {
     Look look;
     look.shading = ShadingModel::None;

@@ -5,17 +5,17 @@
 
 #include <limits>
 
-#include <limits>
-
 namespace inkgraph {
 namespace {
 
-/** The GL passes say whether they skipped the frame (the eye inside the model would flood the picture). */
+/** The GL passes say whether they skipped the frame (the eye inside the model would flood the picture), and the
+ *  silhouette where its model depth came from. */
 void describeSkipped(const LineStatsSource& source, const std::string& passName, nlohmann::ordered_json& entry) {
     if (const Pass* pass = source.pass(passName)) {
         nlohmann::ordered_json report;
         pass->describe(report);
-        if (report.contains("skipped_eye_inside")) entry["skipped_eye_inside"] = report["skipped_eye_inside"];
+        for (const char* key : {"skipped_eye_inside", "model_depth"})
+            if (report.contains(key)) entry[key] = report[key];
     }
 }
 
