@@ -124,6 +124,8 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     request.camera = cameraRequestOf(options);
     request.extraOutputs = options.extraOutputs;
     request.keepEveryBuffer = keepsEveryBuffer(options);
+    // Per-pass milliseconds are only shown by --stats and --dump's manifest: other stills let passes overlap.
+    request.timePasses = !options.statsPath.empty() || !options.dumpDirectory.empty();
     request.memoryLimitBytes = memoryLimitOf(options);
     request.animation = options.animation;
     request.animationTime = options.animationTime;

@@ -197,6 +197,7 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
     executeOptions.frameWidth = camera.width;
     executeOptions.frameHeight = camera.height;
     executeOptions.keepAllResources = still.request.keepEveryBuffer;
+    executeOptions.waitForEachPass = still.request.timePasses;
     const std::string size = "--size " + std::to_string(camera.width) + "x" + std::to_string(camera.height);
     try {
         result.timings = result.executor->run(still.plan, still.graph.mutableView(), executeOptions);

@@ -53,6 +53,9 @@ struct StillRequest {
     CameraRequest camera;                  ///< what the caller fixes; resolveCamera() fills the rest from the file
     std::vector<std::string> extraOutputs; ///< more resources to compute and keep ("gbuffer.*" expands)
     bool keepEveryBuffer = false;          ///< keep every computed buffer (dumps, contact sheets)
+    /** Wait for each pass to finish so its milliseconds are its own (--stats, --dump's manifest); without, the
+     *  driver may overlap one pass's drawing with the next pass's submission. */
+    bool timePasses = true;
     std::size_t memoryLimitBytes = std::size_t(1) << 30; ///< bounds the model load (scene/Loader.h)
     std::string animation;                               ///< LoadOptions::animation: the pose to load
     double animationTime = 0.0;                          ///< LoadOptions::time

@@ -181,7 +181,9 @@ public:
             mPasses[passIndex]->execute(context);
     }
 
-    void finishStep(const PlannedPass&, PassPhase) override { glFinish(); }
+    void finishStep(const PlannedPass&, PassPhase) override {
+        if (mOptions.waitForEachPass) glFinish();
+    }
 
     std::string afterPass(const PlannedPass&) override {
         resetPassState();

@@ -97,12 +97,16 @@ struct ExecuteOptions {
     int frameHeight = 1024;
     /** Keep every computed resource to the end (for --dump). Never changes which passes run. */
     bool keepAllResources = false;
+    /** glFinish() at the end of each pass, so its milliseconds are its own work (--stats, --dump's manifest, the
+     *  benchmarks). Off, a pass's timing counts only what it submitted, and the driver may still be drawing it while
+     *  the next pass submits (llvmpipe rasterises on its own threads): a still without stats ends sooner. */
+    bool waitForEachPass = true;
 };
 
 class GlPass;
 
 /** The GL backend of graph/Executor's loop: a GlPassContext per pass over one ResourceStore, glFinish() inside each
- *  pass's time, GL state reset and glGetError() after each execute. */
+ *  pass's time (ExecuteOptions::waitForEachPass), GL state reset and glGetError() after each execute. */
 class GraphExecutor {
 public:
     explicit GraphExecutor(TexturePool& pool) : mStore(pool) {}

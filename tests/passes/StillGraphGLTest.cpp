@@ -72,6 +72,26 @@ TEST_F(StillGraphOrder, TheSilhouetteReadsTheGBuffersZBufferOnlyWhenItRunsAnyway
     EXPECT_EQ(silhouetteReads(look), std::vector<std::string>{}) << "cut-outs stay the pass's own";
 }
 
+/** Without --stats the executor does not wait for each pass (ExecuteOptions::waitForEachPass): the driver may still
+ *  be drawing one pass while the next submits, and the picture must be the same to the bit. */
+TEST_F(StillGraphOrder, PassesThatDoNotWaitForEachOtherMakeTheSamePicture) {
+    Look look;
+    look.lines = {"silhouette", "contour", "suggestive", "crease"};
+    frame.camera = test::lookingAt(scene, {2.5, 1.8, 2.0}, glm::dvec3(0.0), 35.0, 256, 192);
+    StillGraphSetup setup{look, shaders, scene, computeBoundingSphere(scene), *gpuScene, frame, std::nullopt};
+    const StillGraph graph = buildStillGraph(setup);
+    const Plan plan = compile(graph.view(), {graph.finalResource});
+    ExecuteOptions options{256, 192, false};
+    executor.run(plan, graph.mutableView(), options);
+    const cv::Mat waited = executor.store().image(graph.finalResource).clone();
+    options.waitForEachPass = false;
+    executor.run(plan, graph.mutableView(), options);
+    const cv::Mat overlapped = executor.store().image(graph.finalResource);
+    ASSERT_EQ(waited.size(), overlapped.size());
+    EXPECT_GT(cv::countNonZero(waited.reshape(1) != 255), 1000) << "the cube and its lines must show";
+    EXPECT_EQ(cv::countNonZero(waited.reshape(1) != overlapped.reshape(1)), 0);
+}
+
 TEST_F(StillGraphOrder, EveryRegisteredTypeHasItsLayerOrPassAndTheCompositeReadsThemInRegistryOrder) {
     Look look;
     look.shading = ShadingModel::None;
