@@ -127,16 +127,35 @@ EOF
     chmod 755 "$kit/run/$name"
 done
 
+# The tree the build was made from (inkgraph_bench reads its models/ and bench/shaders/ there), and how far it is
+# from this one, whose shaders/ the kit's programs read.
+source_root=$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$build/CMakeCache.txt" 2>/dev/null || true)
+source_commit="" changed=""
+if [ -n "$source_root" ] && git -C "$source_root" rev-parse HEAD >/dev/null 2>&1; then
+    source_commit=$(git -C "$source_root" rev-parse HEAD)
+    changed=$(GIT_OPTIONAL_LOCKS=0 git -C "$source_root" status --porcelain --untracked-files=no | wc -l)
+    # Scripts and documents aside, this tree's commit should be the build's, and the build's tree unchanged.
+    if ! git -C "$root" diff --quiet "$source_commit" HEAD -- ':(exclude)*.sh' ':(exclude)*.md' 2>/dev/null ||
+        [ "$changed" != 0 ]; then
+        echo "device-kit.sh: warning: the build's tree $source_root is at ${source_commit:0:7} with $changed" \
+            "changed files, this tree at $(git -C "$root" rev-parse --short HEAD): the binaries may not be this" \
+            "tree's" >&2
+    fi
+    if [ "$(cd "$source_root" && pwd -P)" != "$(cd "$root" && pwd -P)" ]; then
+        for folder in shaders bench/shaders; do
+            if ! diff -rq "$source_root/$folder" "$root/$folder" >/dev/null 2>&1; then
+                echo "device-kit.sh: warning: $folder/ differs between $source_root and $root:" >&2
+                diff -rq "$source_root/$folder" "$root/$folder" >&2 || true
+            fi
+        done
+    fi
+fi
 {
     echo "# bench/device-kit.sh $(date -u +%Y-%m-%dT%H:%M:%SZ) on $(uname -n)"
     echo "build=$build"
-    source_root=$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$build/CMakeCache.txt" 2>/dev/null || true)
     echo "source_root=$source_root"
-    if [ -n "$source_root" ] && git -C "$source_root" rev-parse HEAD >/dev/null 2>&1; then
-        echo "source_commit=$(git -C "$source_root" rev-parse HEAD)"
-        echo "source_changed_files=$(GIT_OPTIONAL_LOCKS=0 git -C "$source_root" status --porcelain \
-            --untracked-files=no | wc -l)"
-    fi
+    echo "source_commit=$source_commit"
+    echo "source_changed_files=$changed"
     echo "shaders=$shaders"
     (cd "$kit" && for file in bin/* lib/*; do
         printf '%s %s %s\n' "$(sha256sum "$file" | cut -c1-16)" "$(stat -c %s "$file")" "$file"
