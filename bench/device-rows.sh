@@ -16,7 +16,10 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 kit=${KIT:-$root/.devicekit}
-[ -x "$kit/run/inkgraph" ] || { echo "device-rows.sh: no device kit in $kit (bench/device-kit.sh makes it)" >&2; exit 1; }
+if [ ! -x "$kit/run/inkgraph" ]; then
+    echo "device-rows.sh: no device kit in $kit (bench/device-kit.sh makes it)" >&2
+    exit 1
+fi
 kit=$(cd "$kit" && pwd)
 out=${OUT:-/tmp/out}
 rows=${ROWS:-"probe tetra bunny batch large"}
@@ -32,7 +35,8 @@ section() { printf '\n== %s (%s)\n' "$1" "$(date -u +%H:%M:%S)"; }
 section "machine"
 uname -srm
 sed -n 's/^PRETTY_NAME=//p' /etc/os-release 2>/dev/null || true
-echo "image glibc: $(getconf GNU_LIBC_VERSION 2>/dev/null || echo unknown); kit: $(sed -n 2,5p "$kit/MANIFEST" | tr '\n' ' ')"
+echo "image glibc: $(getconf GNU_LIBC_VERSION 2>/dev/null || echo unknown)"
+echo "kit: $(sed -n 2,6p "$kit/MANIFEST" | tr '\n' ' ')"
 if command -v nvidia-smi >/dev/null; then
     timeout 30 nvidia-smi -L || echo "nvidia-smi -L failed"
     timeout 30 nvidia-smi --query-gpu=driver_version --format=csv,noheader | sed 's/^/driver /' || true
