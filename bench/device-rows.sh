@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Issue 20's whole-process rows and the G-buffer benchmarks on a GPU machine that has none of our Debian libraries,
 # through the device kit (bench/device-kit.sh, carried as .devicekit/), run from the repository root:
-#   bash bench/device-rows.sh                  (results in $OUT, default /tmp/out; meant to take under 4 minutes)
+#   bash bench/device-rows.sh       (results in $OUT, default /tmp/out; under 4 minutes, 9 if every step times out)
 # Steps, each under `timeout`: NVIDIA's glvnd vendor file as __EGL_VENDOR_LIBRARY_FILENAMES (when the environment does
 # not set it), and its library's folder (searched in VENDOR_LIB_DIRS, default /usr/local/nvidia/lib64 and lib, then
 # the system's) added to LD_LIBRARY_PATH when the kit's loader would not search it; one bunny still with
@@ -38,8 +38,8 @@ sed -n 's/^PRETTY_NAME=//p' /etc/os-release 2>/dev/null || true
 echo "image glibc: $(getconf GNU_LIBC_VERSION 2>/dev/null || echo unknown)"
 echo "kit: $(sed -n 2,6p "$kit/MANIFEST" | tr '\n' ' ')"
 if command -v nvidia-smi >/dev/null; then
-    timeout 30 nvidia-smi -L || echo "nvidia-smi -L failed"
-    timeout 30 nvidia-smi --query-gpu=driver_version --format=csv,noheader | sed 's/^/driver /' || true
+    timeout 20 nvidia-smi -L || echo "nvidia-smi -L failed"
+    timeout 20 nvidia-smi --query-gpu=driver_version --format=csv,noheader | sed 's/^/driver /' || true
 else
     echo "no nvidia-smi on PATH"
 fi
@@ -97,7 +97,7 @@ section "one still: the device platform and the renderer"
 stats=$out/bunny-stats.json
 still=(render models/bunny_c3d_70k.obj -o "$out/bunny.png" --shading cel --lines silhouette,contour,suggestive
     --egl-platform device --stats "$stats")
-if timeout 90 "$kit/run/inkgraph" "${still[@]}" 2>"$out/bunny-stderr.txt"; then
+if timeout 60 "$kit/run/inkgraph" "${still[@]}" 2>"$out/bunny-stderr.txt"; then
     field() { # gl.NAME of the stats file
         if command -v python3 >/dev/null; then
             python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["gl"][sys.argv[2]])' "$stats" "$1"
@@ -137,13 +137,13 @@ gnu_time=/usr/bin/time
 [ -x "$gnu_time" ] || gnu_time=$kit/run/time
 echo "GNU time: $gnu_time"
 if FREESTYLE=0 ROWS=$rows INKGRAPH=$kit/run/inkgraph EGL_PROBE=$kit/run/inkgraph_egl_probe \
-    MAKE_MESH=$kit/run/inkgraph_make_mesh GNU_TIME=$gnu_time timeout 300 bash bench/whole-process.sh "$runs" \
+    MAKE_MESH=$kit/run/inkgraph_make_mesh GNU_TIME=$gnu_time timeout 240 bash bench/whole-process.sh "$runs" \
     >"$out/gpu-rows.md"; then
     echo "GL: $renderer ($platform platform); $(command -v nvidia-smi >/dev/null &&
-        timeout 30 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | head -1)" >>"$out/gpu-rows.md"
+        timeout 20 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | head -1)" >>"$out/gpu-rows.md"
     cat "$out/gpu-rows.md"
 else
-    echo "FAILED (exit $?): bench/whole-process.sh (timeout 300 s)"
+    echo "FAILED (exit $?): bench/whole-process.sh (timeout 240 s)"
     cat "$out/gpu-rows.md"
     failed=1
 fi
@@ -160,13 +160,13 @@ if [ -x "$kit/run/inkgraph_bench" ]; then
     if [ -f "$source_root/models/bunny_c3d_70k.obj" ] && [ -f "$source_root/bench/shaders/bare_draw.vert" ]; then
         : >"$out/gpu-bench.txt"
         for pattern in ${filter//|/ }; do # one process each: a benchmark that aborts loses only its own numbers
-            if timeout 120 "$kit/run/inkgraph_bench" --benchmark_filter="$pattern" \
+            if timeout 90 "$kit/run/inkgraph_bench" --benchmark_filter="$pattern" \
                 --benchmark_repetitions="$repetitions" --benchmark_report_aggregates_only=true \
                 --benchmark_out="$out/gpu-bench-${pattern//[^A-Za-z0-9_]/_}.json" --benchmark_out_format=json \
                 >>"$out/gpu-bench.txt" 2>&1; then
                 :
             else
-                echo "FAILED (exit $?): inkgraph_bench --benchmark_filter=$pattern (timeout 120 s)" \
+                echo "FAILED (exit $?): inkgraph_bench --benchmark_filter=$pattern (timeout 90 s)" \
                     >>"$out/gpu-bench.txt"
                 failed=1
             fi
