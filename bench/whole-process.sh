@@ -5,11 +5,17 @@
 # Environment: INKGRAPH (the binary, default build/inkgraph), FREESTYLE=0 skips Blender (it takes ~10 s a run),
 # ROWS="probe tetra bunny freestyle batch large" picks rows (also: singles, the batch's models one process each); BEFORE=/path/to/an/older/inkgraph adds each inkgraph row
 # again as ROW@before, run by that binary in the same rounds (from its own checkout's folder, so it finds its shaders).
+# EGL_PROBE and MAKE_MESH replace build/bench/inkgraph_egl_probe and build/bench/inkgraph_make_mesh, GNU_TIME
+# /usr/bin/time: a machine without our build runs the device kit's (bench/device-kit.sh, bench/device-rows.sh).
+# Generated inputs (the large row's mesh) go to build/bench-data/, made when missing.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 runs=${1:-7}
 build="$root/build"
 inkgraph=${INKGRAPH:-$build/inkgraph}
+probe=${EGL_PROBE:-$build/bench/inkgraph_egl_probe}
+make_mesh=${MAKE_MESH:-$build/bench/inkgraph_make_mesh}
+gnu_time=${GNU_TIME:-/usr/bin/time}
 work="$build/bench-data"
 mkdir -p "$work/out" "$work/batch"
 rows=${ROWS:-"probe tetra bunny freestyle batch large"}
@@ -20,7 +26,10 @@ cd "$root"
 
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >"$work/tetrahedron.obj"
 large="$work/armadillo-1.3m.obj"
-[ -f "$large" ] || "$build/bench/inkgraph_make_mesh" subdivide 5 models/armadillo_cgal_52k.obj "$large" >/dev/null
+if [[ " $rows " == *" large"* ]] && [ ! -f "$large" ]; then # written whole or not at all
+    "$make_mesh" subdivide 5 models/armadillo_cgal_52k.obj "$work/armadillo-1.3m.partial.obj" >/dev/null
+    mv "$work/armadillo-1.3m.partial.obj" "$large"
+fi
 if [[ " $rows " == *" freestyle "* ]] && { [ "${FREESTYLE:-1}" = 0 ] || ! command -v blender >/dev/null; }; then
     rows=${rows/freestyle/}
     echo "(Freestyle row skipped: FREESTYLE=0 or no blender on PATH)" >&2
@@ -33,7 +42,7 @@ command_of() { # row -> the command, one word per line
         return
     fi
     case $1 in
-    probe) printf '%s\n' "$build/bench/inkgraph_egl_probe" ;;
+    probe) printf '%s\n' "$probe" ;;
     tetra) printf '%s\n' "$inkgraph" render "$work/tetrahedron.obj" -o "$work/out/tetra.png" --size 64x64 -q ;;
     bunny) printf '%s\n' "$inkgraph" render models/bunny_c3d_70k.obj -o "$work/out/bunny.png" "${comic[@]}" -q ;;
     freestyle) printf '%s\n' blender -b --factory-startup -noaudio -P bench/freestyle_still.py -- \
@@ -53,7 +62,7 @@ for _ in $(seq "$runs"); do
         folder=$root
         [[ $row == *@before ]] && folder=$(cd "$(dirname "$BEFORE")/.." && pwd)
         start=$(date +%s%N)
-        (cd "$folder" && /usr/bin/time -f %M -o "$work/rss" "${command[@]}" >/dev/null 2>"$work/stderr") ||
+        (cd "$folder" && "$gnu_time" -f %M -o "$work/rss" "${command[@]}" >/dev/null 2>"$work/stderr") ||
             { echo "$row failed:" >&2; cat "$work/stderr" >&2; exit 1; }
         end=$(date +%s%N)
         times[$row]+="$(( (end - start) / 1000000 )) "
