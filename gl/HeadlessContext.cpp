@@ -156,9 +156,12 @@ HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) {
     Attempt chosen;
 
     if (platform != EglPlatform::Surfaceless) {
-        if (!hasExtension(clientExtensions, "EGL_EXT_platform_device") ||
-            !hasExtension(clientExtensions, "EGL_EXT_device_enumeration")) {
-            failures.push_back("device platform: EGL_EXT_platform_device or EGL_EXT_device_enumeration missing");
+        // EGL_EXT_device_base is enumeration and query in one: NVIDIA's driver (580, through glvnd) names only it.
+        const bool enumerates = hasExtension(clientExtensions, "EGL_EXT_device_enumeration") ||
+                                hasExtension(clientExtensions, "EGL_EXT_device_base");
+        if (!hasExtension(clientExtensions, "EGL_EXT_platform_device") || !enumerates) {
+            failures.push_back("device platform: EGL_EXT_platform_device, or EGL_EXT_device_enumeration and "
+                               "EGL_EXT_device_base, missing");
         } else {
             EGLDeviceEXT devices[16];
             EGLint deviceCount = 0;
