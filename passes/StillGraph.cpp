@@ -55,14 +55,13 @@ ShadePass* addShading(const StillGraphSetup& setup, StillGraph& graph) {
     return shade;
 }
 
-/** Deferred shading where the G-buffer runs anyway: the plan of the look with forward shading (which reads nothing of
- *  the G-buffer) says which G-buffer fields the lines read, and the shade pass decides from them
+/** Deferred shading where the G-buffer runs anyway: `registered`, the plan of the look with forward shading (which
+ *  reads nothing of the G-buffer), says which G-buffer fields the lines read, and the shade pass decides from them
  *  (ShadePass::chooseMode()). Requests beyond the look (--request 'gbuffer.*') do not count: they are not known
  *  when the graph is built, and a still looks the same with or without them. */
-void chooseShadingMode(StillGraph& graph, ShadePass& shade, const GBufferPass& gbuffer) {
-    const Plan plan = compile(graph.view(), {graph.finalResource});
+void chooseShadingMode(StillGraph& graph, ShadePass& shade, const GBufferPass& gbuffer, const Plan& registered) {
     std::vector<std::string> liveFields;
-    if (const PlannedPass* planned = plan.findPass(std::string(gbuffer.name())))
+    if (const PlannedPass* planned = registered.findPass(std::string(gbuffer.name())))
         for (const std::string& resource : planned->liveWrites)
             liveFields.push_back(ResourceName::split(resource).field);
     shade.chooseMode(gbuffer, liveFields);
@@ -75,16 +74,16 @@ void chooseShadingMode(StillGraph& graph, ShadePass& shade, const GBufferPass& g
 }
 
 /** The silhouette's hull is tested against the G-buffer's z-buffer instead of a depth of its own when the G-buffer runs
- *  anyway (for the lines or deferred shading), at the mask's size (no supersampling), and its z-buffer holds every
- *  face the silhouette would draw (GBufferPass::zBufferHoldsEveryFace()): one draw of the meshes fewer, the same mask
- *  (SilhouetteGLTest). Called after chooseShadingMode(), whose deferred shading makes the G-buffer run. */
-void shareModelDepth(StillGraph& graph, const GBufferPass& gbuffer) {
+ *  anyway, at the mask's size (no supersampling), and its z-buffer holds every face the silhouette would draw
+ *  (GBufferPass::zBufferHoldsEveryFace()): one draw of the meshes fewer, the same mask (SilhouetteGLTest). The
+ *  G-buffer runs anyway when `registered` (the plan chooseShadingMode() reads) runs it: for the lines, which deferred
+ *  shading also needs. */
+void shareModelDepth(StillGraph& graph, const GBufferPass& gbuffer, const Plan& registered) {
     if (gbuffer.supersample() != 1 || !gbuffer.zBufferHoldsEveryFace()) return;
-    const Plan plan = compile(graph.view(), {graph.finalResource});
-    if (plan.findPass(std::string(gbuffer.name())) == nullptr) return;
+    if (registered.findPass(std::string(gbuffer.name())) == nullptr) return;
     for (const auto& pass : graph.passes)
         if (auto* silhouette = dynamic_cast<SilhouettePass*>(pass.get());
-            silhouette != nullptr && plan.findPass(std::string(silhouette->name())) != nullptr)
+            silhouette != nullptr && registered.findPass(std::string(silhouette->name())) != nullptr)
             silhouette->useModelDepth(std::string(gbuffer.name()) + "." + GBufferPass::kZBuffer);
 }
 
@@ -169,8 +168,10 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     }
     graph.passes.push_back(
         std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
-    if (shade) chooseShadingMode(graph, *shade, gbuffer);
-    shareModelDepth(graph, gbuffer);
+    // One plan of the look as registered (forward shading, each pass its own depth) answers both questions.
+    const Plan registered = compile(graph.view(), {graph.finalResource});
+    if (shade) chooseShadingMode(graph, *shade, gbuffer, registered);
+    shareModelDepth(graph, gbuffer, registered);
     return graph;
 }
 
