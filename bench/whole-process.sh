@@ -3,8 +3,10 @@
 # runs every row once, in order, so drift on a shared machine hits all rows alike; medians are of the rounds.
 #   bench/whole-process.sh [RUNS] > table.md        (after scripts/build.sh; docs/performance.md quotes the table)
 # Environment: INKGRAPH (the binary, default build/inkgraph), FREESTYLE=0 skips Blender (it takes ~10 s a run),
-# ROWS="probe tetra bunny freestyle batch large" picks rows (also: singles, the batch's models one process each); BEFORE=/path/to/an/older/inkgraph adds each inkgraph row
-# again as ROW@before, run by that binary in the same rounds (from its own checkout's folder, so it finds its shaders).
+# ROWS="probe tetra bunny freestyle batch large" picks rows (also: singles, the batch's models one process each;
+# unlined, the bunny's still with its cel shading and no lines, the floor under the comic still);
+# BEFORE=/path/to/an/older/inkgraph adds each inkgraph row again as ROW@before, run by that binary in the same rounds
+# (from its own checkout's folder, so it finds its shaders).
 # EGL_PROBE and MAKE_MESH replace build/bench/inkgraph_egl_probe and build/bench/inkgraph_make_mesh, GNU_TIME
 # /usr/bin/time: a machine without our build runs the device kit's (bench/device-kit.sh, bench/device-rows.sh).
 # Generated inputs (the large row's mesh) go to build/bench-data/, made when missing.
@@ -45,6 +47,8 @@ command_of() { # row -> the command, one word per line
     probe) printf '%s\n' "$probe" ;;
     tetra) printf '%s\n' "$inkgraph" render "$work/tetrahedron.obj" -o "$work/out/tetra.png" --size 64x64 -q ;;
     bunny) printf '%s\n' "$inkgraph" render models/bunny_c3d_70k.obj -o "$work/out/bunny.png" "${comic[@]}" -q ;;
+    unlined) printf '%s\n' "$inkgraph" render models/bunny_c3d_70k.obj -o "$work/out/bunny-unlined.png" --shading cel \
+        --lines none -q ;;
     freestyle) printf '%s\n' blender -b --factory-startup -noaudio -P bench/freestyle_still.py -- \
         models/bunny_c3d_70k.obj "$work/out/bunny-freestyle.png" ;;
     batch) printf '%s\n' "$inkgraph" render --list examples/batch/models.txt -o "$work/batch/{name}.png" -q ;;
@@ -75,8 +79,8 @@ range() { tr ' ' '\n' | grep . | sort -n | awk 'NR==1{lo=$1} {hi=$1} END {print 
 declare -A medians
 echo "| row | median ms | range ms | peak RSS MiB (median) | note |"
 echo "|---|---|---|---|---|"
+for row in $rows; do medians[$row]=$(echo "${times[$row]}" | median); done # notes compare rows
 for row in $rows; do
-    medians[$row]=$(echo "${times[$row]}" | median)
     rss=$(( $(echo "${memory[$row]}" | median) / 1024 ))
     note=""
     case $row in
@@ -84,7 +88,9 @@ for row in $rows; do
         'BEGIN { if (b > 0) printf "%.2fx the probe", a / b }')" ;;
     batch | batch@before | singles) note="$(awk -v t="${medians[$row]}" 'BEGIN { printf "9 stills: %.1f stills/s", 9000 / t }')" ;;
     freestyle) note="$(awk -v a="${medians[freestyle]}" -v b="${medians[bunny]:-0}" \
-        'BEGIN { if (b > 0) printf "%.1fx the inkgraph bunny", a / b }')" ;;
+        'BEGIN { if (b > 0) printf "%.1fx the inkgraph bunny; ", a / b; printf "40x: a still of <= %.0f ms", a / 40 }')" ;;
+    unlined) note="$(awk -v a="${medians[unlined]}" -v b="${medians[bunny]:-0}" \
+        'BEGIN { if (b > 0) printf "%.0f%% of the bunny with its three line types", 100 * a / b }')" ;;
     esac
     echo "| $row | ${medians[$row]} | $(echo "${times[$row]}" | range) | $rss | $note |"
 done
