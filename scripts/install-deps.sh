@@ -8,6 +8,8 @@ packages=(
     libglm-dev libopencv-dev libtbb-dev libtinygltf-dev libdraco-dev nlohmann-json3-dev libstb-dev libpng-dev
     libopenimageio-dev openimageio-tools
     libgtest-dev libgmock-dev libbenchmark-dev
+    pybind11-dev python3-dev python3-numpy python3-pytest
+    slurm-wlm munge
     clang-format
 )
 
