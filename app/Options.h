@@ -96,7 +96,5 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, cons
 
 /** The text of `inkgraph render --help`. */
 std::string renderHelp();
-/** The text of `inkgraph --help`. */
-std::string mainHelp();
 
 } // namespace inkgraph
