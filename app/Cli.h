@@ -3,6 +3,7 @@
  *  code, and the help and version texts. The commands and the exit codes are listed once here, for --help, the man
  *  page and the bash completion (app/CommandLineDocs.h). */
 
+#include <exception>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -45,6 +46,17 @@ const std::vector<CommandInfo>& commands();
 
 /** The text of `inkgraph --help`. */
 std::string mainHelp();
+
+/** What the command line reports for an exception of any layer. */
+struct ErrorReport {
+    ExitCode exitCode = kExitInternal;
+    std::string message;        ///< as printed after "inkgraph: " ("internal error: ..." for kExitInternal)
+    bool showsHelpHint = false; ///< a usage error: "(see: inkgraph help render)" follows
+};
+
+/** The one mapping of each layer's exception to an exit code and message, shared by the command line and the library
+ *  (api/: its Error::Kind follows the exit code). */
+ErrorReport reportOf(const std::exception_ptr& error);
 
 /** The whole CLI: parses argv, runs, catches once, prints "inkgraph: <message>" to `err`, returns the exit code.
  *  `--list -` reads std::cin. */
