@@ -24,3 +24,8 @@ install(FILES ${INKGRAPH_SHADE_MAPS} ${PROJECT_SOURCE_DIR}/shademaps/README.md
 install(FILES ${INKGRAPH_MAN_PAGE} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1 COMPONENT runtime)
 install(FILES ${INKGRAPH_BASH_COMPLETION} DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions
     COMPONENT runtime)
+
+# libinkgraph.so (api/) links the Draco library too: it finds it in ${INKGRAPH_INSTALL_PRIVATE_LIBDIR}, below itself.
+if(TARGET inkgraph_library)
+    inkgraph_set_install_rpath(inkgraph_library ${CMAKE_INSTALL_LIBDIR})
+endif()

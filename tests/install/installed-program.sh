@@ -31,12 +31,15 @@ for product in "$build/inkgraph" "$build/libinkgraph_imageio.so" "$build/share/m
     [ -e "$product" ] || fail "'$product' is missing: build everything first (cmake --build $build)"
 done
 
-# Every ELF file under $1: its RPATH and RUNPATH must not name the build tree (installed files carry none of it).
-check_no_build_rpath() {
-    local file found=0
+# Every ELF file under $1: its RPATH and RUNPATH must not name the build tree (installed files carry none of it), and
+# every library it needs is found (Debian's on the system's paths, ours through an $ORIGIN RUNPATH).
+check_installed_elf_files() {
+    local file found=0 unresolved
     while IFS= read -r -d '' file; do
         if head -c 4 "$file" | grep -q $'^\x7fELF'; then
             found=$((found + 1))
+            unresolved=$(env -u LD_LIBRARY_PATH ldd "$file" | grep 'not found' || true)
+            [ -z "$unresolved" ] || fail "'$file' needs libraries that cannot be found:"$'\n'"$unresolved"
             local paths
             paths=$(readelf -d "$file" | sed -n 's/.*(\(RPATH\|RUNPATH\)).*\[\(.*\)\]/\2/p')
             if grep -qF "$build" <<<"$paths"; then fail "'$file' has an RPATH into the build tree: $paths"; fi
@@ -101,7 +104,7 @@ check_installed_program() {
     output=$(bash -c 'source "$1" && COMP_WORDS=(inkgraph render --shad) COMP_CWORD=2 && _inkgraph &&
         echo "${COMPREPLY[*]}"' completion "$prefix/share/bash-completion/completions/inkgraph")
     [ "$output" = "--shading --shademap" ] || fail "the installed completion offers '$output' for --shad"
-    check_no_build_rpath "$prefix"
+    check_installed_elf_files "$prefix"
 }
 
 version=$(sed -n 's/^CMAKE_PROJECT_VERSION:[A-Z]*=//p' "$build/CMakeCache.txt")
