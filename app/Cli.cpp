@@ -61,7 +61,9 @@ int runVersionCommand(const std::vector<std::string>& arguments, std::ostream& o
         return kExitOk;
     }
     if (arguments.size() == 2 && arguments[1] == "--verbose") return writeVerboseVersion(out);
-    err << "inkgraph: --version takes only --verbose, got '" << arguments[1] << "'\n";
+    std::string given;
+    for (std::size_t i = 1; i < arguments.size(); ++i) given += (given.empty() ? "" : " ") + arguments[i];
+    err << "inkgraph: --version takes only --verbose, got '" << given << "'\n";
     return kExitUsage;
 }
 

@@ -8,6 +8,10 @@ set(INKGRAPH_INSTALL_DATADIR ${CMAKE_INSTALL_DATADIR}/inkgraph)
 # Private shared libraries and modules: the OpenImageIO module, libinkgraph_draco.so.
 set(INKGRAPH_INSTALL_PRIVATE_LIBDIR ${CMAKE_INSTALL_LIBDIR}/inkgraph)
 
+# Installing never builds: `cpack` (and `make install`) take the build as it is, like `cmake --install`, so the
+# packaging test (tests/install) can never rebuild the programs that other tests are running.
+set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
+
 # The man page and the bash completion, generated at build time (app/CMakeLists.txt).
 set(INKGRAPH_MAN_PAGE ${PROJECT_BINARY_DIR}/share/man/man1/inkgraph.1)
 set(INKGRAPH_BASH_COMPLETION ${PROJECT_BINARY_DIR}/share/bash-completion/completions/inkgraph)

@@ -251,6 +251,9 @@ TEST(CommandLineCommands, EveryCommandAndHelpTopicRuns) {
     const char* badVersion[] = {"inkgraph", "--version", "--verbos"};
     EXPECT_EQ(runCommandLine(3, badVersion, out, err), kExitUsage);
     EXPECT_NE(err.str().find("--version takes only --verbose, got '--verbos'"), std::string::npos) << err.str();
+    const char* extraVersion[] = {"inkgraph", "--version", "--verbose", "x"};
+    EXPECT_EQ(runCommandLine(4, extraVersion, out, err), kExitUsage);
+    EXPECT_NE(err.str().find("--version takes only --verbose, got '--verbose x'"), std::string::npos) << err.str();
 }
 
 TEST(CommandLineCommands, HelpListsEveryCommandAndExitCode) {
