@@ -107,6 +107,44 @@ check_installed_program() {
     check_installed_elf_files "$prefix"
 }
 
+# libinkgraph.so, installed in prefix $1, finds the shaders and the module relative to itself, not to the program
+# that loaded it (a consumer compiled here, in the scratch folder), and never falls back to the source tree.
+check_installed_library() {
+    local prefix=$1 output status=0
+    cat >"$scratch/consumer.cpp" <<'END'
+#include <inkgraph/inkgraph.h>
+#include <iostream>
+int main(int argc, char** argv) {
+    namespace ig = inkgraph::api;
+    try {
+        ig::Renderer renderer;
+        ig::Frame frame;
+        frame.width = frame.height = 96;
+        const ig::Still still = renderer.render(ig::Scene::load(argv[1]), ig::Look::fromArguments({}), frame, {});
+        still.write("library.png");
+        still.write("library.exr");
+    } catch (const ig::Error& error) {
+        std::cerr << error.what() << "\n";
+        return error.exitCode();
+    }
+}
+END
+    "${CXX:-c++}" -std=c++17 "$scratch/consumer.cpp" -I "$prefix/include" -L "$prefix/$libdir" -linkgraph \
+        -Wl,-rpath,"$prefix/$libdir" -o "$scratch/consumer" || fail "cannot build a program against libinkgraph"
+    (cd "$scratch/work" && "$scratch/consumer" "$model") || fail "the program linking libinkgraph cannot render"
+    local statistics
+    statistics=$(oiiotool "$scratch/work/library.exr" --printstats)
+    grep -q 'Constant: No' <<<"$statistics" || fail "libinkgraph's picture is all one colour: $statistics"
+    mv "$prefix/share/inkgraph/shaders" "$scratch/shaders-away"
+    output=$(cd "$scratch/work" && "$scratch/consumer" "$model" 2>&1) || status=$?
+    mv "$scratch/shaders-away" "$prefix/share/inkgraph/shaders"
+    [ "$status" = 4 ] || fail "without its shaders libinkgraph's program exited $status, not 4: $output"
+    # The library sits in $prefix/$libdir: its shaders are looked for from there.
+    grep -qF "no shader folder found (searched '$(cd "$prefix/$libdir/.." && pwd -P)/share/inkgraph/shaders'" \
+        <<<"$output" || fail "libinkgraph does not look for its shaders beside itself: $output"
+    if grep -qF "$source" <<<"$output"; then fail "libinkgraph looked in the source tree: $output"; fi
+}
+
 version=$(sed -n 's/^CMAKE_PROJECT_VERSION:[A-Z]*=//p' "$build/CMakeCache.txt")
 [ -n "$version" ] || fail "no CMAKE_PROJECT_VERSION in '$build/CMakeCache.txt'"
 
@@ -130,6 +168,7 @@ prefix)
         cmp -s "$source/shaders/$shader" "$prefix/share/inkgraph/shaders/$shader" || fail "shader '$shader' differs"
     done
     check_installed_program "$prefix"
+    check_installed_library "$prefix"
     ;;
 deb)
     (cd "$scratch" && cpack -G DEB --config "$build/CPackConfig.cmake" -B "$scratch/package") >"$scratch/cpack.log" ||
