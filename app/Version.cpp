@@ -69,11 +69,11 @@ int writeVerboseVersion(std::ostream& out) {
     std::string searched;
     for (const std::filesystem::path& folder : shaders.searched)
         searched += (searched.empty() ? "'" : ", '") + folder.string() + "'";
-    std::error_code error;
+    std::error_code notFolder;
     if (shaders.path.empty()) {
         writeFact(out, "shaders", "not found (searched " + (searched.empty() ? "nothing" : searched) + ")");
         exitCode = kExitNoGl;
-    } else if (!std::filesystem::is_directory(shaders.path, error)) {
+    } else if (!std::filesystem::is_directory(shaders.path, notFolder)) {
         writeFact(out, "shaders", shaders.path.string() + " (" + shaders.origin + "), which is not a folder");
         exitCode = kExitNoGl;
     } else {

@@ -12,7 +12,8 @@ namespace inkgraph {
 
 /** The executable or shared library this code is linked into, links resolved; empty if the system cannot tell.
  *  dladdr() of an object of ours names the shared library; for the main program it gives only argv[0], so that
- *  case reads /proc/self/exe. Computed once. */
+ *  case takes the file mapped at that object's address (/proc/self/maps), which is also right for a program started
+ *  through the dynamic loader, whose /proc/self/exe is the loader. Computed once. */
 const std::filesystem::path& containingBinary();
 
 /** Whether containingBinary() lies in the build tree it was built in. Only then may the source tree serve files

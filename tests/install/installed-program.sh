@@ -79,6 +79,14 @@ check_installed_program() {
     grep -qE '^inkgraph [0-9]+\.[0-9]+\.[0-9]+ \(git ([0-9a-f]+|unknown)\)$' <<<"$report" ||
         fail "no version line in:"$'\n'"$report"
 
+    # Started through the dynamic loader (as bench/device-kit.sh starts it), whose file /proc/self/exe then names, the
+    # program still finds its own files.
+    local loader
+    loader=$(readelf -l "$program" | sed -n 's/.*Requesting program interpreter: \(.*\)\]/\1/p')
+    report=$(cd "$scratch/work" && "$loader" "$program" --version --verbose) || fail "'$loader $program' failed"
+    grep -qxF "shaders:       $prefix/share/inkgraph/shaders (installed)" <<<"$report" ||
+        fail "started through $loader, the program does not find its shaders:"$'\n'"$report"
+
     # INKGRAPH_SHADER_DIR still wins over the installed folder.
     local output status=0
     output=$(cd "$scratch/work" && INKGRAPH_SHADER_DIR="$scratch/nowhere" "$program" render "$model" -o x.png \
