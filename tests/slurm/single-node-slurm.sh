@@ -37,7 +37,7 @@ socket=$tmp/munge/munge.socket
 # environment, which no other process on the machine has: that is how the teardown finds what is left, by pid. The
 # daemons are started with it directly (not through this function) so that $! is the daemon itself.
 with_conf() { SLURM_CONF=$conf "$@"; }
-munged_pid= slurmctld_pid= slurmd_pid= sbatch_pid= job=
+munged_pid='' slurmctld_pid='' slurmd_pid='' sbatch_pid='' job=''
 
 process_state() { # R, S, Z, ...; empty once the process is gone
     local stat
@@ -65,8 +65,9 @@ our_leftovers() { # pids of the processes whose environment holds our SLURM_CONF
     grep -lszxF "SLURM_CONF=$conf" /proc/[0-9]*/environ | sed -e 's|^/proc/||' -e 's|/environ$||' || true
 }
 teardown() {
-    local status=$? pids
+    local status=$? pids=()
     trap - EXIT INT TERM
+    set +e # tear down everything, whatever fails on the way
     stop_daemon "$sbatch_pid" sbatch
     job=$(grep -m1 -E '^[0-9]+$' "$tmp/sbatch.out" 2> /dev/null || true)
     # Slurm's commands retry a controller that is gone for a long time (Ctrl-C stops the daemons too): ask only a
@@ -82,13 +83,13 @@ teardown() {
     stop_daemon "$slurmctld_pid" slurmctld
     stop_daemon "$munged_pid" munged
     for _ in $(seq 50); do # a job step finishing after slurmd stopped
-        pids=$(our_leftovers)
-        [ -z "$pids" ] && break
+        mapfile -t pids < <(our_leftovers)
+        [ ${#pids[@]} -eq 0 ] && break
         sleep 0.1
     done
-    if [ -n "$pids" ]; then
-        echo "single-node-slurm: killing what is left of this test: $(echo $pids)" >&2
-        kill -KILL $pids 2> /dev/null || true
+    if [ ${#pids[@]} -ne 0 ]; then
+        echo "single-node-slurm: killing what is left of this test: ${pids[*]}" >&2
+        kill -KILL "${pids[@]}" 2> /dev/null || true
     fi
     rm -rf "$tmp"
     exit "$status"
@@ -258,9 +259,10 @@ for position in $(seq "$count"); do
     name=$(output_name "$position")
     [ -n "${renderer[$name]:-}" ] || check "no task rendered list position $position ('${models[$position - 1]}')"
     stats=$tmp/slurm-out/$name.json
-    grep -q "\"model\": \"${models[$position - 1]}\"" "$stats" 2> /dev/null &&
-        grep -q "\"position\": $position," "$stats" ||
+    if ! grep -q "\"model\": \"${models[$position - 1]}\"" "$stats" 2> /dev/null ||
+        ! grep -q "\"position\": $position," "$stats"; then
         check "'$stats' is not the --stats of list position $position ('${models[$position - 1]}')"
+    fi
     [ -s "$tmp/local-out/$name.png" ] || { check "the local batch wrote no '$name.png'"; continue; }
     cmp -s "$tmp/slurm-out/$name.png" "$tmp/local-out/$name.png" ||
         check "'$name.png' from the array job differs from the local batch's"
