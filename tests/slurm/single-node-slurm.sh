@@ -23,15 +23,22 @@ for tool in mungekey munged slurmctld slurmd sbatch sinfo squeue scontrol scance
 done
 user=$(id -un 2> /dev/null) || fail "the user id $(id -u) has no name; Slurm's SlurmUser needs one"
 
-# A Slurm job around this test (or a user's Slurm settings) must not steer the Slurm started here.
-while read -r name; do unset "$name"; done < <(compgen -e | grep -E '^(SLURM|SBATCH|SALLOC|SRUN|SQUEUE|SINFO|SCONTROL)_' || true)
+# A Slurm job around this test (or a user's Slurm settings) must not steer the Slurm started here, and the installed
+# program must find its own shaders and modules, not a developer's override.
+while read -r name; do
+    unset "$name"
+done < <(compgen -e | grep -E '^(SLURM|SBATCH|SALLOC|SRUN|SQUEUE|SINFO|SCONTROL)_' || true)
+unset INKGRAPH_SHADER_DIR INKGRAPH_IMAGEIO_MODULE
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/inkgraph-slurm.XXXXXX")
 chmod 700 "$tmp"
 conf=$tmp/slurm.conf
 socket=$tmp/munge/munge.socket
 # A Unix socket's path holds at most 107 bytes.
-[ ${#socket} -le 100 ] || { rm -rf "$tmp"; fail "the scratch folder's path is too long for munge's socket: '$socket' (set TMPDIR to a shorter folder)"; }
+if [ ${#socket} -gt 100 ]; then
+    rm -rf "$tmp"
+    fail "the scratch folder's path is too long for munge's socket: '$socket' (set TMPDIR to a shorter folder)"
+fi
 
 # Every process started here (the daemons, the job steps and the job itself) carries SLURM_CONF=$conf in its
 # environment, which no other process on the machine has: that is how the teardown finds what is left, by pid. The
@@ -146,7 +153,8 @@ node=${node#NodeName=}
 memory=$(sed -n 's/.*RealMemory=\([0-9]*\).*/\1/p' <<< "$hardware")
 task_memory=1024 # MiB: a 256x256 still of the largest bundled model peaks at about 300 MiB (docs/batch.md)
 [ "${memory:-0}" -ge "$task_memory" ] || fail "this machine has ${memory:-no} MiB of memory; a task asks $task_memory"
-listening=$(awk 'NR > 1 && $4 == "0A" { split($2, a, ":"); print a[2] }' /proc/net/tcp /proc/net/tcp6 2> /dev/null || true)
+listening=$(awk 'NR > 1 && $4 == "0A" { split($2, a, ":"); print a[2] }' /proc/net/tcp /proc/net/tcp6 2> /dev/null ||
+    true)
 free_port() { ! grep -qx "$(printf '%04X' "$1")" <<< "$listening"; }
 controller_port=
 for _ in $(seq 100); do
