@@ -1,5 +1,6 @@
 #include "app/Options.h"
 
+#include "app/Cli.h"
 #include "app/FlagTable.h"
 
 #include <algorithm>
@@ -12,9 +13,11 @@ constexpr std::size_t kMaxImageSide = 16384;
 /** Applies arguments[i] (and its value: i then points at it) to `options`. Returns false at --help, where parsing
  *  stops. Records each flag given in `given`. */
 bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, RenderOptions& options,
-                   std::vector<const Flag*>& given) {
+                   std::vector<const Flag*>& given, bool flagsOnly) {
     const std::string& argument = arguments[i];
+    if (flagsOnly && (argument.empty() || argument[0] != '-')) throw UsageError("'" + argument + "' is not a flag");
     if (argument == "--help" || argument == "-h") {
+        if (flagsOnly) throw UsageError("unknown option '" + argument + "'");
         options.help = true;
         return false;
     }
@@ -48,7 +51,7 @@ void refuseWithoutEffect(const RenderOptions& options, const std::vector<const F
  *  not silently rendered without what the user asked for; then what no single flag can judge alone. In this order:
  *  the look's flags, the lines' settings, the data size, the line types'
  *  widths and colours, the outputs. */
-void checkGivenFlags(const RenderOptions& options, const std::vector<const Flag*>& given) {
+void checkGivenFlags(const RenderOptions& options, const std::vector<const Flag*>& given, bool flagsOnly) {
     // Width and colour flags, one pair per line type, are the entries without help of their own.
     auto isStyle = [](const Flag& flag) { return flag.section == HelpSection::Lines && flag.help.empty(); };
     refuseWithoutEffect(options, given, [](const Flag& flag) { return flag.section == HelpSection::Look; });
@@ -61,7 +64,7 @@ void checkGivenFlags(const RenderOptions& options, const std::vector<const Flag*
                          std::to_string(options.width) + "x" + std::to_string(options.height) +
                          " exceeds the largest buffer side, " + std::to_string(kMaxImageSide));
     refuseWithoutEffect(options, given, isStyle);
-    if (options.outputPath.empty() && !options.printPlan && options.dumpDirectory.empty() &&
+    if (!flagsOnly && options.outputPath.empty() && !options.printPlan && options.dumpDirectory.empty() &&
         options.graphvizPath.empty() && options.contactSheetPath.empty() && options.svgPath.empty())
         throw UsageError("missing -o OUT.png (or --print-plan / --graphviz to only show the plan)");
     if (options.eye && options.target && *options.eye == *options.target)
@@ -97,7 +100,11 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
     return parseRenderOptions(arguments, {});
 }
 
-RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, const std::vector<std::string>& origins) {
+namespace {
+
+/** parseRenderOptions() and parseRenderFlags(): `flagsOnly` takes flags alone and requires neither MODEL nor output. */
+RenderOptions parse(const std::vector<std::string>& arguments, const std::vector<std::string>& origins,
+                    bool flagsOnly) {
     if (!origins.empty() && origins.size() != arguments.size())
         throw std::invalid_argument("parseRenderOptions(): " + std::to_string(origins.size()) + " origins for " +
                                     std::to_string(arguments.size()) + " arguments");
@@ -106,35 +113,46 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, cons
     for (std::size_t i = 0; i < arguments.size(); ++i) {
         const std::size_t flagIndex = i;
         try {
-            if (!parseArgument(arguments, i, options, given)) return options;
+            if (!parseArgument(arguments, i, options, given, flagsOnly)) return options;
         } catch (const UsageError& error) {
             if (origins.empty() || origins[flagIndex].empty()) throw;
             throw UsageError(origins[flagIndex] + ": " + error.what());
         }
     }
-    if (options.modelPaths.empty() && options.listPath.empty())
+    if (!flagsOnly && options.modelPaths.empty() && options.listPath.empty())
         throw UsageError("missing MODEL (a .gltf, .glb, .vrm, .obj or .stl file, or --list FILE)");
-    checkGivenFlags(options, given);
+    checkGivenFlags(options, given, flagsOnly);
     return options;
 }
 
-std::string renderHelp() {
-    return "Usage: inkgraph render MODEL... -o OUT.png [options]\n\n"
-           "Renders one still of each MODEL (.gltf, .glb, .vrm, .obj, .stl) with no window or display (EGL).\n" +
-           renderFlagsHelp() +
-           "\nExit codes: 0 done, 2 bad command line, 3 unreadable or invalid model, 4 no OpenGL/EGL,\n"
-           "5 an output could not be written, 1 anything else.\n";
+} // namespace
+
+RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, const std::vector<std::string>& origins) {
+    return parse(arguments, origins, false);
 }
 
-std::string mainHelp() {
-    return R"(inkgraph - headless anime- and comic-style renderer
+RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const std::vector<std::string>& origins) {
+    return parse(arguments, origins, true);
+}
 
-Usage:
-  inkgraph render MODEL... -o OUT.png [options]
-                                               render a still of each model (see: inkgraph help render)
-  inkgraph --version                           print the version
-  inkgraph --help                              this text
-)";
+std::string renderHelp() {
+    constexpr std::size_t kLineWidth = 100;
+    std::string exitCodes = "Exit codes:";
+    std::size_t lineStart = 0;
+    for (const ExitCodeMeaning& exit : exitCodeMeanings()) {
+        const std::string item =
+            std::to_string(exit.code) + " " + exit.meaning + (&exit == &exitCodeMeanings().back() ? "." : ",");
+        if (exitCodes.size() - lineStart + 1 + item.size() > kLineWidth) {
+            exitCodes += "\n";
+            lineStart = exitCodes.size();
+        } else {
+            exitCodes += " ";
+        }
+        exitCodes += item;
+    }
+    return "Usage: inkgraph render MODEL... -o OUT.png [options]\n\n"
+           "Renders one still of each MODEL (.gltf, .glb, .vrm, .obj, .stl) with no window or display (EGL).\n" +
+           renderFlagsHelp() + "\n" + exitCodes + "\n";
 }
 
 } // namespace inkgraph
