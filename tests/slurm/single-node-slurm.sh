@@ -125,10 +125,10 @@ wait_for() { # seconds, what, command...: polls the command every 0.1 s until it
 }
 alive() { [ -n "$(process_state "$1")" ] && [ "$(process_state "$1")" != Z ]; }
 
-# 1. The program under test, installed as a user would.
-cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log" 2>&1 ||
+# 1. The program under test, installed as a user would: the component runtime, what the Debian package holds.
+cmake --install "$build" --prefix "$tmp/prefix" --component runtime > "$tmp/install.log" 2>&1 ||
     { cat "$tmp/install.log" >&2; fail "cmake --install '$build' failed"; }
-inkgraph=${INKGRAPH_SLURM_PROGRAM:-$tmp/prefix/bin/inkgraph}
+inkgraph=$tmp/prefix/bin/inkgraph
 [ -x "$inkgraph" ] || fail "cmake --install '$build' installed no bin/inkgraph under '$tmp/prefix'"
 
 # 2. munge, with its own key, socket, pid and seed files; in the foreground it logs to its stderr (log/munged.out).
