@@ -260,7 +260,8 @@ PYBIND11_MODULE(_inkgraph, m) {
     py::class_<PythonRenderer>(m, "Renderer",
                                "Renders stills. The first render makes one GL context (EGL, no display), kept with "
                                "every compiled program until close() or the renderer's end: a batch pays start-up "
-                               "once. Calls from several threads run one at a time; a renderer per thread is faster.")
+                               "once. One renderer at a time holds the process's context, on the thread of its first "
+                               "render; render() refuses others with UsageError until that one is closed.")
         .def(py::init<const std::string&>(), "egl_platform"_a = "auto",
              "`egl_platform`: 'auto', 'device' or 'surfaceless', as --egl-platform. Makes nothing yet.")
         .def("render", &PythonRenderer::render, "scene"_a, "look"_a, "frame"_a,

@@ -10,13 +10,14 @@
 
 Looks and cameras are `inkgraph render`'s flags (`inkgraph help render`), checked by the same code as on the command
 line, so errors read the same (inkgraph.UsageError and the rest of the inkgraph.Error family). render() draws with
-a renderer kept per thread, so a batch makes its GL context once; inkgraph.Renderer gives explicit control, and
+a renderer kept for the process, so a batch makes its GL context once; inkgraph.Renderer gives explicit control, and
 inkgraph.Scene loads a model once for many renders. The classes Renderer, Scene, Look, Frame and Still are the C++
 API's (inkgraph/inkgraph.h, docs/api.md) as the extension `inkgraph._inkgraph` binds them. docs/python.md has it all.
 """
 
 from __future__ import annotations
 
+import atexit
 import numbers
 import os
 import threading
@@ -111,20 +112,23 @@ def render(
               "picture", or a full graph resource name ("shade.color", "gbuffer.*").
     camera:   camera flags as `look` takes them: ["--orbit", "30,10"] or {"orbit": (30, 10), "fov": 40}.
     shading:  the shading mode (--shading), over the look's.
-    renderer: the Renderer to draw with; default: default_renderer(), kept per thread with its GL context.
+    renderer: the Renderer to draw with; default: default_renderer(), kept with its GL context.
 
     Raises UsageError (also a ValueError) for a bad flag, value or buffer name, InputError for a model that cannot
     be read, ContextError without OpenGL 4.5, OutputError, RenderError; each carries the command line's message.
     """
     scene = model if isinstance(model, Scene) else Scene.load(os.fspath(model))
-    if isinstance(buffers, str):
-        buffers = [buffers]
+    buffers = [buffers] if isinstance(buffers, str) else _string_list(buffers, "buffers")
     still = (renderer or default_renderer()).render(
-        scene, make_look(look, shading=shading, lines=lines), make_frame(size, camera), list(buffers)
+        scene, make_look(look, shading=shading, lines=lines), make_frame(size, camera), buffers
     )
-    return Result(
-        picture=still.picture, buffers={name: still.buffer(name) for name in still.buffer_names}, still=still
-    )
+    # Each buffer by the name it was asked with: the still's names (a wildcard's fields by their full names), and a
+    # second name of a buffer already there (both "depth" and "gbuffer.depth") as well.
+    arrays = {name: still.buffer(name) for name in still.buffer_names}
+    for name in buffers:
+        if name not in arrays and not name.endswith(".*"):
+            arrays[name] = still.buffer(name)
+    return Result(picture=still.picture, buffers=arrays, still=still)
 
 
 def make_look(look: LookLike = None, *, shading: str | None = None, lines: str | Iterable[str] | None = None) -> Look:
@@ -170,17 +174,30 @@ def make_frame(size: int | tuple[int, int] = 1024, camera: Flags | None = None) 
     return Frame(width, height, arguments)
 
 
-_per_thread = threading.local()
+_default_lock = threading.Lock()
+_default: Renderer | None = None
 
 
 def default_renderer() -> Renderer:
-    """The Renderer render() draws with when given none: one per thread, made on first use and kept, with its GL
-    context and compiled programs, for the thread's life (a closed one is replaced). A batch of render() calls
-    thus makes one context; threads never share one (the C++ renderer is one per thread)."""
-    renderer = getattr(_per_thread, "renderer", None)
-    if renderer is None or renderer.closed:
-        renderer = _per_thread.renderer = Renderer()
-    return renderer
+    """The Renderer render() draws with when given none: one for the process, made on first use and kept, with its
+    GL context and compiled programs, until closed (the next call then makes a new one) or the interpreter ends.
+    A batch of render() calls thus makes one context.
+
+    The C++ library lets one renderer at a time hold the process's GL context, on the thread of its first render:
+    to render with a Renderer of your own, or on another thread, close this one first
+    (``inkgraph.default_renderer().close()``); the library's UsageError says so otherwise."""
+    global _default
+    with _default_lock:
+        if _default is None or _default.closed:
+            _default = Renderer()
+        return _default
+
+
+@atexit.register
+def _close_default_renderer() -> None:
+    # While the interpreter is whole, rather than whenever module teardown reaches the object.
+    if _default is not None:
+        _default.close()
 
 
 def _flag_pairs(flags: Mapping[str, Any]) -> list[tuple[str, str | None]]:
