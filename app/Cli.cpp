@@ -33,44 +33,43 @@ int runRenderCommand(const std::vector<std::string>& arguments, std::ostream& ou
             return kExitOk;
         }
         return renderBatch(options, std::cin, out, err);
-    } catch (const UsageError& error) {
-        err << "inkgraph: " << error.what() << "\n(see: inkgraph help render)\n";
-        return kExitUsage;
-    } catch (const SceneError& error) {
-        err << "inkgraph: " << error.what() << "\n";
-        return kExitBadInput;
-    } catch (const InputFileError& error) {
-        err << "inkgraph: " << error.what() << "\n";
-        return kExitBadInput;
-    } catch (const HeadlessContextError& error) {
-        err << "inkgraph: " << error.what() << "\n";
-        return kExitNoGl;
-    } catch (const FileError& error) {
-        err << "inkgraph: " << error.what() << "\n";
-        return kExitOutput;
-    } catch (const ShaderSourceError& error) {
-        err << "inkgraph: " << error.what() << "\n";
-        return kExitNoGl;
-    } catch (const std::bad_alloc&) {
-        err << "inkgraph: out of memory; make the image smaller (--size, --supersample) or request and dump fewer "
-               "buffers\n(see: inkgraph help render)\n";
-        return kExitUsage;
-    } catch (const cv::Exception& error) {
-        if (error.code != cv::Error::StsNoMem) {
-            err << "inkgraph: internal error: " << error.what() << "\n";
-            return kExitInternal;
-        }
-        err << "inkgraph: out of memory (" << error.err
-            << "); make the image smaller (--size, --supersample) or "
-               "request and dump fewer buffers\n(see: inkgraph help render)\n";
-        return kExitUsage;
-    } catch (const std::exception& error) {
-        err << "inkgraph: internal error: " << error.what() << "\n";
-        return kExitInternal;
+    } catch (...) {
+        const ErrorReport report = reportOf(std::current_exception());
+        err << "inkgraph: " << report.message << "\n";
+        if (report.showsHelpHint) err << "(see: inkgraph help render)\n";
+        return report.exitCode;
     }
 }
 
 } // namespace
+
+ErrorReport reportOf(const std::exception_ptr& error) {
+    const std::string outOfMemory = "make the image smaller (--size, --supersample) or request and dump fewer buffers";
+    try {
+        std::rethrow_exception(error);
+    } catch (const UsageError& usage) {
+        return {kExitUsage, usage.what(), true};
+    } catch (const SceneError& input) {
+        return {kExitBadInput, input.what(), false};
+    } catch (const InputFileError& input) {
+        return {kExitBadInput, input.what(), false};
+    } catch (const HeadlessContextError& context) {
+        return {kExitNoGl, context.what(), false};
+    } catch (const FileError& output) {
+        return {kExitOutput, output.what(), false};
+    } catch (const ShaderSourceError& shaders) {
+        return {kExitNoGl, shaders.what(), false};
+    } catch (const std::bad_alloc&) {
+        return {kExitUsage, "out of memory; " + outOfMemory, true};
+    } catch (const cv::Exception& opencv) {
+        if (opencv.code != cv::Error::StsNoMem) return {kExitInternal, std::string("internal error: ") + opencv.what()};
+        return {kExitUsage, "out of memory (" + opencv.err + "); " + outOfMemory, true};
+    } catch (const std::exception& other) {
+        return {kExitInternal, std::string("internal error: ") + other.what()};
+    } catch (...) {
+        return {kExitInternal, "internal error: an exception that is not a std::exception"};
+    }
+}
 
 int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
     std::vector<std::string> arguments(argv + std::min(argc, 1), argv + argc);

@@ -2,7 +2,9 @@
 /** @file The `inkgraph` command line: dispatch to the commands, one catch that maps each layer's exception to an exit
  *  code, and the help and version texts. */
 
+#include <exception>
 #include <iosfwd>
+#include <string>
 
 namespace inkgraph {
 
@@ -15,6 +17,17 @@ enum ExitCode : int {
     kExitNoGl = 4,
     kExitOutput = 5,
 };
+
+/** What the command line reports for an exception of any layer. */
+struct ErrorReport {
+    ExitCode exitCode = kExitInternal;
+    std::string message;        ///< as printed after "inkgraph: " ("internal error: ..." for kExitInternal)
+    bool showsHelpHint = false; ///< a usage error: "(see: inkgraph help render)" follows
+};
+
+/** The one mapping of each layer's exception to an exit code and message, shared by the command line and the library
+ *  (api/: its Error::Kind follows the exit code). */
+ErrorReport reportOf(const std::exception_ptr& error);
 
 /** The whole CLI: parses argv, runs, catches once, prints "inkgraph: <message>" to `err`, returns the exit code.
  *  `--list -` reads std::cin. */

@@ -12,9 +12,11 @@ constexpr std::size_t kMaxImageSide = 16384;
 /** Applies arguments[i] (and its value: i then points at it) to `options`. Returns false at --help, where parsing
  *  stops. Records each flag given in `given`. */
 bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, RenderOptions& options,
-                   std::vector<const Flag*>& given) {
+                   std::vector<const Flag*>& given, bool flagsOnly) {
     const std::string& argument = arguments[i];
+    if (flagsOnly && (argument.empty() || argument[0] != '-')) throw UsageError("'" + argument + "' is not a flag");
     if (argument == "--help" || argument == "-h") {
+        if (flagsOnly) throw UsageError("unknown option '" + argument + "'");
         options.help = true;
         return false;
     }
@@ -48,7 +50,7 @@ void refuseWithoutEffect(const RenderOptions& options, const std::vector<const F
  *  not silently rendered without what the user asked for; then what no single flag can judge alone. In this order:
  *  the look's flags, the lines' settings, the data size, the line types'
  *  widths and colours, the outputs. */
-void checkGivenFlags(const RenderOptions& options, const std::vector<const Flag*>& given) {
+void checkGivenFlags(const RenderOptions& options, const std::vector<const Flag*>& given, bool flagsOnly) {
     // Width and colour flags, one pair per line type, are the entries without help of their own.
     auto isStyle = [](const Flag& flag) { return flag.section == HelpSection::Lines && flag.help.empty(); };
     refuseWithoutEffect(options, given, [](const Flag& flag) { return flag.section == HelpSection::Look; });
@@ -61,7 +63,7 @@ void checkGivenFlags(const RenderOptions& options, const std::vector<const Flag*
                          std::to_string(options.width) + "x" + std::to_string(options.height) +
                          " exceeds the largest buffer side, " + std::to_string(kMaxImageSide));
     refuseWithoutEffect(options, given, isStyle);
-    if (options.outputPath.empty() && !options.printPlan && options.dumpDirectory.empty() &&
+    if (!flagsOnly && options.outputPath.empty() && !options.printPlan && options.dumpDirectory.empty() &&
         options.graphvizPath.empty() && options.contactSheetPath.empty() && options.svgPath.empty())
         throw UsageError("missing -o OUT.png (or --print-plan / --graphviz to only show the plan)");
     if (options.eye && options.target && *options.eye == *options.target)
@@ -97,7 +99,11 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
     return parseRenderOptions(arguments, {});
 }
 
-RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, const std::vector<std::string>& origins) {
+namespace {
+
+/** parseRenderOptions() and parseRenderFlags(): `flagsOnly` takes flags alone and requires neither MODEL nor output. */
+RenderOptions parse(const std::vector<std::string>& arguments, const std::vector<std::string>& origins,
+                    bool flagsOnly) {
     if (!origins.empty() && origins.size() != arguments.size())
         throw std::invalid_argument("parseRenderOptions(): " + std::to_string(origins.size()) + " origins for " +
                                     std::to_string(arguments.size()) + " arguments");
@@ -106,16 +112,26 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, cons
     for (std::size_t i = 0; i < arguments.size(); ++i) {
         const std::size_t flagIndex = i;
         try {
-            if (!parseArgument(arguments, i, options, given)) return options;
+            if (!parseArgument(arguments, i, options, given, flagsOnly)) return options;
         } catch (const UsageError& error) {
             if (origins.empty() || origins[flagIndex].empty()) throw;
             throw UsageError(origins[flagIndex] + ": " + error.what());
         }
     }
-    if (options.modelPaths.empty() && options.listPath.empty())
+    if (!flagsOnly && options.modelPaths.empty() && options.listPath.empty())
         throw UsageError("missing MODEL (a .gltf, .glb, .vrm, .obj or .stl file, or --list FILE)");
-    checkGivenFlags(options, given);
+    checkGivenFlags(options, given, flagsOnly);
     return options;
+}
+
+} // namespace
+
+RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, const std::vector<std::string>& origins) {
+    return parse(arguments, origins, false);
+}
+
+RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const std::vector<std::string>& origins) {
+    return parse(arguments, origins, true);
 }
 
 std::string renderHelp() {

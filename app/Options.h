@@ -94,6 +94,11 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments);
  *  with the file and line first. `origins` is empty or as long as `arguments`. */
 RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, const std::vector<std::string>& origins);
 
+/** Flags alone, for the library (api/), which takes the model and the outputs otherwise: a MODEL argument or --help is
+ *  refused, neither MODEL nor an output is required, and everything else is checked as parseRenderOptions() checks
+ *  it, with the same messages. */
+RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const std::vector<std::string>& origins = {});
+
 /** The text of `inkgraph render --help`. */
 std::string renderHelp();
 /** The text of `inkgraph --help`. */

@@ -117,6 +117,14 @@ CameraRequest cameraRequestOf(const RenderOptions& options) {
     return request;
 }
 
+void budgetStill(PreparedStill& still, const RenderOptions& options) {
+    checkFrameBudget(still.plan, options, &still.scene());
+    // The textures are decoded during the run, only those a pass samples: they get what the estimate leaves.
+    const std::size_t estimated = estimatePlanBytes(still.plan, options, &still.scene());
+    const std::size_t limit = memoryLimitOf(options);
+    still.gpuScene->materials().setTextureMemoryLimit(limit > estimated ? limit - estimated : 0);
+}
+
 StillRequest stillRequestOf(const RenderOptions& options) {
     StillRequest request;
     request.modelPath = options.modelPath;
@@ -170,8 +178,8 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     // Every output place is checked before any work; outputs are staged and put in place only at the end.
     auto outputs = std::make_unique<OutputSet>(options);
     std::unique_ptr<PreparedStill> still = loadWhileMakingContext(stillRequestOf(options), renders, log);
-    report.triangles = still->scene.triangleCount();
-    outputs->refuseInputs(inputsFoundByLoading(options, still->scene));
+    report.triangles = still->scene().triangleCount();
+    outputs->refuseInputs(inputsFoundByLoading(options, still->scene()));
     mRenderer.plan(*still);
 
     const Plan& plan = still->plan;
@@ -184,11 +192,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
         outputs->commit();
         return report;
     }
-    checkFrameBudget(plan, options, &still->scene);
-    // The textures are decoded during the run, only those a pass samples: they get what the estimate leaves.
-    const std::size_t estimated = estimatePlanBytes(plan, options, &still->scene);
-    const std::size_t limit = memoryLimitOf(options);
-    still->gpuScene->materials().setTextureMemoryLimit(limit > estimated ? limit - estimated : 0);
+    budgetStill(*still, options);
 
     StillResult result = mRenderer.execute(*still, log);
     // The previous still of a batch is finished now: its picture was encoded while this one loaded and rendered.
@@ -208,7 +212,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     }
     if (!options.statsPath.empty()) {
         StatsContext context{options, batch};
-        context.estimatedPeakBytes = estimatePlanBytes(plan, options, &still->scene);
+        context.estimatedPeakBytes = estimatePlanBytes(plan, options, &still->scene());
         pending->stats = statsDocument(context, mRenderer, *still, result);
     }
     pending->outputs = std::move(outputs);

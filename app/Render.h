@@ -29,6 +29,11 @@ CameraRequest cameraRequestOf(const RenderOptions& options);
 /** What the renderer is asked for by the options of one still. */
 StillRequest stillRequestOf(const RenderOptions& options);
 
+/** Between plan and execute: refuses a still whose buffers would not fit (one texture of 2 GiB or more, or the whole
+ *  run's estimated peak above memoryLimitOf(options)), naming the flags that make them large (UsageError), then gives
+ *  the textures, decoded during the run, what the estimate leaves of the limit. */
+void budgetStill(PreparedStill& still, const RenderOptions& options);
+
 /** What one still did, for the batch's progress line. */
 struct StillReport {
     std::size_t triangles = 0;

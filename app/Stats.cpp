@@ -11,7 +11,7 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
                                      const PreparedStill& still, const StillResult& result) {
     using Json = nlohmann::ordered_json;
     const RenderOptions& options = context.options;
-    const Scene& scene = still.scene;
+    const Scene& scene = still.scene();
     const Camera& camera = still.camera;
     Json culled = Json::array();
     for (const CulledPass& pass : still.plan.culled) culled.push_back({{"name", pass.name}, {"reason", pass.reason}});

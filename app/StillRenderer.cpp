@@ -108,18 +108,22 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     const ShadingModelTraits& shading = traitsOf(look.shading);
     if (!look.shadeMapPath.empty()) still->shadeMap = readShadeMapFile(look.shadeMapPath, shading.oneDimensionalMap);
 
-    const auto loadStart = std::chrono::steady_clock::now();
-    LoadOptions loadOptions;
-    loadOptions.memoryLimitBytes = req.memoryLimitBytes;
-    loadOptions.animation = req.animation;
-    loadOptions.time = req.animationTime;
-    still->scene = loadScene(req.modelPath, loadOptions);
-    still->loadMilliseconds = millisecondsSince(loadStart);
-    const Scene& scene = still->scene;
     const std::string prefix = log.talks ? "" : "'" + req.modelPath + "': ";
-    for (const std::string& warning : scene.report.warnings)
-        log.log << "inkgraph: warning: " << prefix << warning << "\n";
-    if (log.talks && !log.quiet) {
+    if (req.loadedScene) {
+        still->loadedScene = req.loadedScene; // its loader's warnings went to whoever loaded it
+    } else {
+        const auto loadStart = std::chrono::steady_clock::now();
+        LoadOptions loadOptions;
+        loadOptions.memoryLimitBytes = req.memoryLimitBytes;
+        loadOptions.animation = req.animation;
+        loadOptions.time = req.animationTime;
+        still->loadedScene = std::make_shared<const Scene>(loadScene(req.modelPath, loadOptions));
+        still->loadMilliseconds = millisecondsSince(loadStart);
+        for (const std::string& warning : still->scene().report.warnings)
+            log.log << "inkgraph: warning: " << prefix << warning << "\n";
+    }
+    const Scene& scene = still->scene();
+    if (log.talks && !log.quiet && !req.loadedScene) {
         log.log << std::fixed << std::setprecision(1) << "inkgraph: loaded '" << req.modelPath
                 << "': " << scene.triangleCount() << " triangles, " << scene.vertexCount() << " vertices ("
                 << scene.report.degenerateDropped << " degenerate dropped) in " << still->loadMilliseconds << " ms\n";
@@ -135,7 +139,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
 void StillRenderer::plan(PreparedStill& still) {
     const StillRequest& req = still.request;
     const Look& look = req.look;
-    const Scene& scene = still.scene;
+    const Scene& scene = still.scene();
 
     still.sphere = computeBoundingSphere(scene);
     try {

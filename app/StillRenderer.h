@@ -49,6 +49,9 @@ FrameParams frameParamsOf(const Look& look, const Scene& scene, const Camera& ca
 /** What to render. */
 struct StillRequest {
     std::string modelPath;
+    /** The model, loaded already (the library's Scene, api/): load() takes it instead of reading `modelPath` again,
+     *  which then only names it in messages, and the stills that share it share its data. */
+    std::shared_ptr<const Scene> loadedScene;
     Look look;
     CameraRequest camera;                  ///< what the caller fixes; resolveCamera() fills the rest from the file
     std::vector<std::string> extraOutputs; ///< more resources to compute and keep ("gbuffer.*" expands)
@@ -72,8 +75,8 @@ struct StillLog {
 /** A still loaded, framed and planned; nothing executed, no GL touched. Fixed in memory: the graph points at it. */
 struct PreparedStill {
     StillRequest request;
-    Scene scene;
-    double loadMilliseconds = 0.0;
+    std::shared_ptr<const Scene> loadedScene; ///< read by load(), or the request's
+    double loadMilliseconds = 0.0;            ///< 0 for the request's loadedScene
     BoundingSphere sphere;
     Camera camera;
     FrameParams frame;
@@ -86,6 +89,8 @@ struct PreparedStill {
     PreparedStill() = default;
     PreparedStill(const PreparedStill&) = delete;
     PreparedStill& operator=(const PreparedStill&) = delete;
+
+    const Scene& scene() const { return *loadedScene; }
 };
 
 /** What executing a plan did. The store holds the requested buffers (every computed one with keepEveryBuffer). */
@@ -110,8 +115,8 @@ public:
 
     /** load() then plan(). */
     std::unique_ptr<PreparedStill> prepare(StillRequest request, const StillLog& log);
-    /** Reads the shade maps (the request's and the ones the materials name) and loads the model. Throws SceneError
-     *  and InputFileError. */
+    /** Reads the shade maps (the request's and the ones the materials name) and loads the model, unless the request
+     *  brings it loaded. Throws SceneError and InputFileError. */
     std::unique_ptr<PreparedStill> load(StillRequest request, const StillLog& log);
     /** Resolves the camera, builds the graph and compiles the plan for the final picture plus what the request keeps.
      *  Throws UsageError for a request the scene cannot satisfy (a camera, a --request name). No GL. */

@@ -17,8 +17,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-constexpr const char* kStrokesPass = "strokes";
-
 cv::Vec4f displayColor(const glm::dvec4& color) {
     return cv::Vec4f(float(color.r), float(color.g), float(color.b), float(color.a));
 }
@@ -123,7 +121,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     orientation.shininess = look.shininess;
     setup.gpuScene.setOrientation(setup.frame, orientation);
 
-    auto gbufferPass = std::make_unique<GBufferPass>("gbuffer", setup.shaders, setup.gpuScene, setup.frame,
+    auto gbufferPass = std::make_unique<GBufferPass>(kGBufferPass, setup.shaders, setup.gpuScene, setup.frame,
                                                      look.supersample, look.gbufferPrecision);
     const GBufferPass& gbuffer = *gbufferPass;
     graph.passes.push_back(std::move(gbufferPass));

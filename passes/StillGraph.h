@@ -30,6 +30,11 @@ namespace inkgraph {
 class LineLayerPass;
 class StrokesPass;
 
+/** Names of passes whose outputs are named outside the graph (the library's buffer names, api/): the G-buffer's fields
+ *  are "gbuffer.<field>", each drawn line type's layer is "strokes.<type>". */
+inline constexpr const char* kGBufferPass = "gbuffer";
+inline constexpr const char* kStrokesPass = "strokes";
+
 /** What buildStillGraph() needs; every reference must outlive the graph. */
 struct StillGraphSetup {
     const Look& look;

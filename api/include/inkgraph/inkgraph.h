@@ -26,15 +26,22 @@
 #include <string>
 #include <vector>
 
+/** What the shared library exports: this header's classes and functions, nothing else (api/CMakeLists.txt). */
+#if defined(__GNUC__)
+#define INKGRAPH_API __attribute__((visibility("default")))
+#else
+#define INKGRAPH_API
+#endif
+
 namespace inkgraph::api {
 
 /** "0.1.0". */
-std::string version();
+INKGRAPH_API std::string version();
 /** The git commit the library was built from ("unknown" outside a git checkout). */
-std::string gitCommit();
+INKGRAPH_API std::string gitCommit();
 
 /** Every failure of the API. The message is the command line's own (the function or flag first, names quoted). */
-class Error : public std::runtime_error {
+class INKGRAPH_API Error : public std::runtime_error {
 public:
     enum class Kind {
         Usage,   ///< a bad flag, value, buffer name or camera, or too little memory for the request
@@ -45,7 +52,7 @@ public:
     };
     Error(Kind kind, const std::string& message) : std::runtime_error(message), mKind(kind) {}
     Kind kind() const noexcept { return mKind; }
-    /** The exit code `inkgraph render` gives for this kind (2 usage, 3 input, 4 context; app/Cli.h). */
+    /** The exit code `inkgraph render` gives for this kind (2 usage, 3 input, 4 context, 5 output, 1 render). */
     int exitCode() const noexcept;
 
 private:
@@ -53,7 +60,7 @@ private:
 };
 
 /** An image: rows top first, tightly packed, channels interleaved (R, G, B, A order). */
-struct Image {
+struct INKGRAPH_API Image {
     enum class Type { UInt8, Float32 };
     int width = 0;
     int height = 0;
@@ -71,14 +78,16 @@ struct Image {
 
 /** What Scene::load() takes besides the path (the command line's --animation, --time, --memory-limit). */
 struct SceneOptions {
-    std::string animation;                              ///< a glTF animation's name or index; empty: the rest pose
-    double time = 0.0;                                  ///< seconds into `animation`
-    std::size_t memoryLimitBytes = std::size_t(1) << 30; ///< the load refuses files that would need more
+    std::string animation; ///< a glTF animation's name or index; empty: the rest pose
+    double time = 0.0;     ///< seconds into `animation`
+    /** The load refuses files that would need more, and so does each render of the scene (its buffers at the
+     *  frame's size); 0: the command line's default, half this machine's memory but at least 1 GiB. */
+    std::size_t memoryLimitBytes = 0;
 };
 
 /** A model loaded once (OBJ with MTL, glTF/GLB, VRM, STL): render it with any number of looks and frames.
  *  Copies share the loaded data. */
-class Scene {
+class INKGRAPH_API Scene {
 public:
     /** Throws Error(Input) naming the file and the problem. */
     static Scene load(const std::string& path, const SceneOptions& options = {});
@@ -98,18 +107,21 @@ private:
 };
 
 /** The look: shading, shade map, lines and their widths and colours, paper, light, supersampling, ... as
- *  `inkgraph render`'s flags of those kinds (the "Look" and "Lines" sections of `inkgraph help render`). The default
- *  is the command line's default look. */
-class Look {
+ *  `inkgraph render`'s flags of those kinds (the "Look" and "Lines" sections of `inkgraph help render`, --style
+ *  included). The default is the command line's default look. */
+class INKGRAPH_API Look {
 public:
     Look();
     /** Flags and values as on the command line: {"--shading", "comic", "--lines", "outline,contour"}. Throws
      *  Error(Usage) for a flag that is not a look flag (a camera, an output) or a bad value, with the CLI's message. */
     static Look fromArguments(const std::vector<std::string>& arguments);
-    /** A style file (`inkgraph render --style FILE`); throws Error(Input) naming the file and line. */
+    /** A style file (`inkgraph render --style FILE`): fromArguments({"--style", path}). Throws Error(Usage) naming
+     *  the file (and the line) as the command line does, also for a setting that is not the look's (size, fov: the
+     *  Frame's). */
     static Look fromStyleFile(const std::string& path);
     /** One flag: set("--lines", "contour,suggestive"), set("--silhouette-width", "3"); a flag without a value
-     *  takes ""; checked at once. */
+     *  takes "". The flag and its value are checked at once; what depends on the other flags (a flag that has no
+     *  effect with the rest, such as --bands with --shading phong) when the look renders. */
     Look& set(const std::string& flag, const std::string& value = "");
     /** Every flag given so far, in order. */
     const std::vector<std::string>& arguments() const { return mArguments; }
@@ -121,23 +133,27 @@ private:
 /** The frame: size and camera. Unset fields take the command line's defaults (the file's camera, else framed to fit
  *  the model at 35 degrees from the front, slightly above). */
 struct Frame {
-    int width = 1024;
+    int width = 1024; ///< --size's width and height: 1 to 16384
     int height = 1024;
     /** Camera flags as on the command line: {"--orbit", "30,10"}, {"--eye", "0,1,5", "--target", "0,0,0"}, {"--fov",
-     *  "40"}, {"--clip", "0.1,100"}, {"--camera", "auto"}, {"--frame", "Head"}. */
+     *  "40"}, {"--clip", "0.1,100"}, {"--camera", "auto"}, {"--frame", "Head"}. Not --animation and --time: they
+     *  pose the scene as it loads (SceneOptions). */
     std::vector<std::string> camera;
 };
 
 /** One rendered still: the picture and every buffer asked for. */
-class Still {
+class INKGRAPH_API Still {
 public:
     /** The final picture, RGBA8 (the command line's -o). */
     const Image& picture() const;
     /** A buffer asked for in render(), by the name it was asked with; throws Error(Usage) naming the buffers there
      *  are. */
     const Image& buffer(const std::string& name) const;
-    /** The names buffer() answers, in the order they were asked for. */
+    /** The buffers, each by the first name it was asked with, in that order ("gbuffer.*" gives each field's full
+     *  name); buffer() also answers any name of the same resource ("normal" for "gbuffer.normal"). */
     std::vector<std::string> bufferNames() const;
+    /** What the render warned about (a material's shade map that this shading does not use, ...). */
+    std::vector<std::string> warnings() const;
     /** Writes the picture (Image::write). */
     void write(const std::string& path) const { picture().write(path); }
     /** Milliseconds the render took (without loading the scene). */
@@ -155,11 +171,14 @@ private:
  *  "wVec", "nDotV", "depth", "coverage", "baseColor", "radial", "materialId" -> "gbuffer.<name>"; "lines.<type>" ->
  *  the drawn layer of a line type ("lines.contour" -> "strokes.contour", a mask, 255 on the line); "picture" ->
  *  "composite.final". A full resource name ("shade.color", "gbuffer.depth") is returned as it is. */
-std::string bufferResourceName(const std::string& name);
+INKGRAPH_API std::string bufferResourceName(const std::string& name);
 
 /** Renders stills. One GL context (EGL, no display) is made by the first render and kept, with every compiled
- *  program, for the renderer's life: a batch pays start-up once. Not thread-safe: one renderer per thread. */
-class Renderer {
+ *  program, for the renderer's life: a batch pays start-up once. One renderer renders at a time per process (EGL
+ *  shares one display per process, which ending a renderer's context ends): render() refuses while another renderer
+ *  holds the context; destroy that one first. Not thread-safe: a renderer renders on the thread of its first render,
+ *  where its context is current. Scenes and looks may be shared across threads (they are read only). */
+class INKGRAPH_API Renderer {
 public:
     /** `eglPlatform`: "auto" (default), "device" or "surfaceless", as --egl-platform. Nothing is made yet. */
     explicit Renderer(const std::string& eglPlatform = "auto");
@@ -170,7 +189,9 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     /** Renders `scene` with `look` in `frame`, keeping `buffers` (names as bufferResourceName() takes them; "gbuffer.*"
-     *  expands). Only the passes the picture and those buffers need run. Throws Error. */
+     *  and "lines.*" expand). Only the passes the picture and those buffers need run. Buffers come as the graph holds
+     *  them: G-buffer fields at the look's --supersample times the frame's size, line layers at the frame's size.
+     *  Throws Error; an unknown buffer name is Error(Usage) naming the buffers this look has. */
     Still render(const Scene& scene, const Look& look, const Frame& frame,
                  const std::vector<std::string>& buffers = {});
     /** The GL renderer and version in use ("llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Core Profile) Mesa 22.3.6"), or ""

@@ -1,0 +1,274 @@
+#include "api/Internal.h"
+
+#include "app/Render.h"
+#include "app/StillRenderer.h"
+#include "passes/StillGraph.h"
+#include "passes/gbuffer/GBufferPass.h"
+#include "passes/lines/LineTypes.h"
+#include "postfx/Composite.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+namespace inkgraph::api {
+namespace {
+
+const std::string kLinesPrefix = "lines.";
+
+bool startsWith(const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; }
+
+std::string joined(const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+    return text;
+}
+
+/** The name people use for a resource: bufferResourceName() backwards. */
+std::string bufferNameOf(const std::string& resource, const StillGraph& graph) {
+    if (resource == graph.finalResource) return "picture";
+    const ResourceName name = ResourceName::split(resource);
+    if (name.pass == kStrokesPass) return kLinesPrefix + name.field;
+    if (name.pass == kGBufferPass)
+        for (const GBufferPass::Field& field : GBufferPass::fields())
+            if (name.field == field.name) return name.field;
+    return resource;
+}
+
+/** Every resource the graph's passes write, by full name, in registration order. */
+std::vector<std::string> writtenResources(const StillGraph& graph) {
+    std::vector<std::string> resources;
+    for (const Pass* pass : graph.view()) {
+        PassBuilder builder{std::string(pass->name())};
+        pass->declare(builder);
+        for (const PassBuilder::Write& write : builder.writes())
+            resources.push_back(builder.passName() + "." + write.field);
+    }
+    return resources;
+}
+
+/** Throws UsageError for the first of `names` the graph does not write, naming the buffers it has; returns when every
+ *  name is one (the failure was another). */
+void refuseUnknownBuffers(const StillGraph& graph, const std::vector<std::string>& names) {
+    const std::vector<std::string> resources = writtenResources(graph);
+    for (const std::string& name : names) {
+        const std::string resource = bufferResourceName(name);
+        const ResourceName parts = ResourceName::split(resource);
+        const bool known = parts.field == "*"
+                               ? graph.findPass(parts.pass) != nullptr
+                               : std::find(resources.begin(), resources.end(), resource) != resources.end();
+        if (known) continue;
+        std::vector<std::string> available;
+        for (const std::string& written : resources) available.push_back(bufferNameOf(written, graph));
+        std::string why;
+        if (startsWith(name, kLinesPrefix) && findLineType(name.substr(kLinesPrefix.size())) != nullptr)
+            why = " ('" + name.substr(kLinesPrefix.size()) + "' is not in the look's --lines)";
+        throw UsageError("no buffer '" + name + "' in this look" + why + "; it has: " + joined(available));
+    }
+}
+
+/** The resources a name asked for stands for: the fields of a wildcard ("gbuffer.*", "lines.*") the plan computed,
+ *  else the one resource. */
+std::vector<std::string> resourcesAskedBy(const std::string& name, const Plan& plan) {
+    const std::string resource = bufferResourceName(name);
+    const ResourceName parts = ResourceName::split(resource);
+    if (parts.field != "*") return {resource};
+    std::vector<std::string> fields;
+    for (const PlannedResource& planned : plan.resources)
+        if (planned.requested && startsWith(planned.name, parts.pass + ".")) fields.push_back(planned.name);
+    return fields;
+}
+
+/** The warnings a still's log holds ("inkgraph: warning: " lines: StillRenderer::load()). */
+std::vector<std::string> warningsIn(const std::string& log) {
+    const std::string marker = "inkgraph: warning: ";
+    std::vector<std::string> warnings;
+    std::istringstream lines(log);
+    for (std::string line; std::getline(lines, line);)
+        if (startsWith(line, marker)) warnings.push_back(line.substr(marker.size()));
+    return warnings;
+}
+
+/** The renderer whose StillRenderer holds the process's GL context, or null (Renderer's comment says why one). */
+std::atomic<const void*> gContextHolder{nullptr};
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+struct Still::Impl {
+    struct Buffer {
+        std::string name;     ///< as first asked for
+        std::string resource; ///< the graph's name
+        Image image;
+    };
+    Image picture;
+    std::vector<Buffer> buffers;
+    std::vector<std::string> warnings;
+    double milliseconds = 0.0;
+};
+
+struct Renderer::Impl {
+    std::string eglPlatform;
+    StillRenderer renderer;
+    std::optional<std::thread::id> contextThread; ///< where the context was made, and is current
+
+    explicit Impl(std::string platform) : eglPlatform(std::move(platform)) {}
+    ~Impl() {
+        const void* self = this;
+        gContextHolder.compare_exchange_strong(self, nullptr);
+    }
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+
+    /** Takes the process's GL context for this renderer, on this thread; UsageError while another holds it. */
+    void holdContext() {
+        const void* holder = nullptr;
+        if (!gContextHolder.compare_exchange_strong(holder, this) && holder != this)
+            throw UsageError("another Renderer of this process holds the GL context (EGL shares one display per "
+                             "process); render with that one, or destroy it first");
+        if (contextThread && *contextThread != std::this_thread::get_id())
+            throw UsageError("this Renderer's GL context is current on the thread of its first render; render on that "
+                             "thread, or make a Renderer per thread, one after the other");
+        if (renderer.context() == nullptr) contextThread = std::this_thread::get_id();
+    }
+
+    /** The command line's options for this still: the look's flags, the frame's camera flags and size, checked
+     *  together as the command line checks them. */
+    RenderOptions optionsOf(const Scene& scene, const Look& look, const Frame& frame) const {
+        const SourcedArguments camera{frame.camera, {}};
+        try {
+            refuseOtherFlags(camera, FlagOwner::Camera);
+        } catch (const UsageError& error) {
+            throw UsageError(std::string("Frame::camera: ") + error.what());
+        }
+        const std::string size = std::to_string(frame.width) + "x" + std::to_string(frame.height);
+        try {
+            parseRenderFlags({"--size", size});
+        } catch (const UsageError& error) {
+            throw UsageError(std::string("Frame::width and height: ") + error.what());
+        }
+        std::vector<std::string> arguments = look.arguments();
+        arguments.insert(arguments.end(), frame.camera.begin(), frame.camera.end());
+        arguments.insert(arguments.end(), {"--size", size, "--egl-platform", eglPlatform});
+        RenderOptions options = parseRenderFlags(arguments);
+        const SceneOptions& sceneOptions = scene.impl().options;
+        options.modelPath = scene.path();
+        options.modelPaths = {scene.path()};
+        options.animation = sceneOptions.animation;
+        options.animationTime = sceneOptions.time;
+        if (sceneOptions.memoryLimitBytes != 0) options.memoryLimitBytes = sceneOptions.memoryLimitBytes;
+        return options;
+    }
+
+    std::shared_ptr<Still::Impl> render(const Scene& scene, const Look& look, const Frame& frame,
+                                        const std::vector<std::string>& buffers) {
+        const auto start = std::chrono::steady_clock::now();
+        RenderOptions options = optionsOf(scene, look, frame);
+        for (const std::string& name : buffers) {
+            const std::string resource = bufferResourceName(name);
+            if (std::find(options.extraOutputs.begin(), options.extraOutputs.end(), resource) ==
+                options.extraOutputs.end())
+                options.extraOutputs.push_back(resource);
+        }
+        StillRequest request = stillRequestOf(options);
+        request.loadedScene = scene.impl().scene;
+        request.timePasses = false; // no per-pass timings to report: passes may overlap
+
+        std::ostringstream log;
+        const StillLog stillLog{log, false, true};
+        const std::unique_ptr<PreparedStill> still = renderer.load(std::move(request), stillLog);
+        try {
+            renderer.plan(*still);
+        } catch (const UsageError&) {
+            refuseUnknownBuffers(still->graph, buffers);
+            throw;
+        }
+        budgetStill(*still, options);
+        holdContext();
+        StillResult result = renderer.execute(*still, stillLog);
+
+        auto made = std::make_shared<Still::Impl>();
+        ResourceStore& store = result.store();
+        // The picture as -o writes it; the buffers as --dump does (colour with straight alpha).
+        made->picture = imageOf(store.image(still->graph.finalResource));
+        for (const std::string& name : buffers) {
+            for (const std::string& resource : resourcesAskedBy(name, still->plan)) {
+                const auto same = [&](const Still::Impl::Buffer& kept) { return kept.resource == resource; };
+                if (std::any_of(made->buffers.begin(), made->buffers.end(), same)) continue;
+                const auto planned = std::find_if(still->plan.resources.begin(), still->plan.resources.end(),
+                                                  [&](const PlannedResource& entry) { return entry.name == resource; });
+                const bool colour =
+                    planned != still->plan.resources.end() && planned->presentation.appearance == Appearance::Color;
+                const cv::Mat& image = store.image(resource);
+                const std::string shownName = bufferResourceName(name) == resource ? name : resource;
+                made->buffers.push_back({shownName, resource, imageOf(colour ? straightAlphaOf(image) : image)});
+            }
+        }
+        made->warnings = warningsIn(log.str());
+        made->milliseconds = millisecondsSince(start);
+        return made;
+    }
+};
+
+std::string bufferResourceName(const std::string& name) {
+    if (name == "picture") return StillGraph{}.finalResource;
+    if (startsWith(name, kLinesPrefix)) return std::string(kStrokesPass) + "." + name.substr(kLinesPrefix.size());
+    for (const GBufferPass::Field& field : GBufferPass::fields())
+        if (name == field.name) return std::string(kGBufferPass) + "." + name;
+    return name;
+}
+
+const Image& Still::picture() const { return mImpl->picture; }
+
+const Image& Still::buffer(const std::string& name) const {
+    for (const Impl::Buffer& kept : mImpl->buffers)
+        if (kept.name == name) return kept.image;
+    const std::string resource = bufferResourceName(name);
+    for (const Impl::Buffer& kept : mImpl->buffers)
+        if (kept.resource == resource) return kept.image;
+    throw Error(Error::Kind::Usage, "Still::buffer(): no buffer '" + name + "' in this still (it has: " +
+                                        (mImpl->buffers.empty() ? std::string("none") : joined(bufferNames())) +
+                                        "; ask for buffers in Renderer::render())");
+}
+
+std::vector<std::string> Still::bufferNames() const {
+    std::vector<std::string> names;
+    for (const Impl::Buffer& kept : mImpl->buffers) names.push_back(kept.name);
+    return names;
+}
+
+std::vector<std::string> Still::warnings() const { return mImpl->warnings; }
+
+double Still::milliseconds() const { return mImpl->milliseconds; }
+
+Renderer::Renderer(const std::string& eglPlatform) {
+    translated("Renderer()", [&] {
+        parseRenderFlags({"--egl-platform", eglPlatform});
+        mImpl = std::make_unique<Impl>(eglPlatform);
+    });
+}
+
+Renderer::~Renderer() = default;
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+
+Still Renderer::render(const Scene& scene, const Look& look, const Frame& frame,
+                       const std::vector<std::string>& buffers) {
+    return translated("Renderer::render()", [&] {
+        if (!mImpl) throw UsageError("a Renderer moved from");
+        return Still(mImpl->render(scene, look, frame, buffers));
+    });
+}
+
+std::string Renderer::glDescription() const {
+    const HeadlessContext* context = mImpl ? mImpl->renderer.context() : nullptr;
+    return context != nullptr ? context->describe() : "";
+}
+
+} // namespace inkgraph::api
