@@ -185,7 +185,8 @@ PYBIND11_MODULE(_inkgraph, m) {
             "path"_a, "animation"_a = "", "time"_a = 0.0, "memory_limit_bytes"_a = ig::SceneOptions{}.memoryLimitBytes,
             py::call_guard<py::gil_scoped_release>(),
             "Loads a model; `animation` (a glTF animation's name or index) and `time` (seconds) pose it, as "
-            "--animation and --time. Raises InputError naming the file and the problem.")
+            "--animation and --time; `memory_limit_bytes` bounds the load and each render of the scene as "
+            "--memory-limit (0: the command line's default). Raises InputError naming the file and the problem.")
         .def_property_readonly("path", &ig::Scene::path)
         .def_property_readonly("triangle_count", &ig::Scene::triangleCount)
         .def_property_readonly("vertex_count", &ig::Scene::vertexCount)
@@ -250,6 +251,8 @@ PYBIND11_MODULE(_inkgraph, m) {
             "write", [](const ig::Still& still, const std::filesystem::path& path) { still.write(path.string()); },
             "path"_a, py::call_guard<py::gil_scoped_release>(),
             "Writes the picture; the format follows the extension. Raises OutputError naming the file.")
+        .def_property_readonly("warnings", &ig::Still::warnings,
+                               "What the render warned about (a material's shade map this shading does not use, ...).")
         .def_property_readonly("milliseconds", &ig::Still::milliseconds, "Milliseconds the render took.")
         .def("__repr__", [](const ig::Still& still) {
             const ig::Image& picture = still.picture();

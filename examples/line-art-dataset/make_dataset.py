@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Builds a small line-art data set from the bundled models with the inkgraph Python module: for each model and view,
-the picture and one mask per line type (255 on that type's drawn lines, 0 elsewhere), and manifest.json listing
-every file with its model, view and the ink pixels of each type. README.md in this folder says more.
+the picture and one mask per line type (the coverage of that type's drawn lines: 255 on a line, 0 off it, partial
+along antialiased edges), and manifest.json listing every file with its model, view and the ink pixels of each type
+(those at least half covered). README.md in this folder says more.
 
     PYTHONPATH=build/python /usr/bin/python3 examples/line-art-dataset/make_dataset.py --output out/line-art
 """
@@ -18,6 +19,7 @@ import numpy as np
 import inkgraph
 
 REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
+INK = 128  # a mask's pixel counts as ink from half coverage up (masks are antialiased: 255 inside a line)
 
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
@@ -81,7 +83,7 @@ def main(argv: list[str]) -> int:
                     file = f"{name}/view-{view}-{line_type}.png"
                     inkgraph.write_image(output / file, mask)
                     item["masks"][line_type] = file
-                    item["ink_pixels"][line_type] = int(np.count_nonzero(mask))
+                    item["ink_pixels"][line_type] = int(np.count_nonzero(mask >= INK))
                 items.append(item)
                 counts = ", ".join(f"{line_type} {count}" for line_type, count in item["ink_pixels"].items())
                 print(f"make_dataset: {picture} (ink pixels: {counts})", file=sys.stderr)

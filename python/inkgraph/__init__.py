@@ -218,7 +218,7 @@ def _flag_value(flag: str, value: Any) -> str:
     """A value as the command line writes it: numbers as Python prints them, lists and tuples joined by commas."""
     if isinstance(value, (str, numbers.Real, os.PathLike)):
         return _scalar_value(flag, value)
-    if isinstance(value, Iterable):
+    if isinstance(value, (Sequence, np.ndarray)):
         return ",".join(_scalar_value(flag, item) for item in value)
     raise TypeError(f"{flag}: expected a string, a number or a list of them, got {value!r}")
 
