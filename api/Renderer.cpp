@@ -70,15 +70,24 @@ void refuseUnknownBuffers(const StillGraph& graph, const std::vector<std::string
     }
 }
 
+const PlannedResource* plannedResource(const Plan& plan, const std::string& name) {
+    const auto found = std::find_if(plan.resources.begin(), plan.resources.end(),
+                                    [&](const PlannedResource& entry) { return entry.name == name; });
+    return found != plan.resources.end() ? &*found : nullptr;
+}
+
 /** The resources a name asked for stands for: the fields of a wildcard ("gbuffer.*", "lines.*") the plan computed,
- *  else the one resource. */
-std::vector<std::string> resourcesAskedBy(const std::string& name, const Plan& plan) {
+ *  in the order their pass declares them, else the one resource. */
+std::vector<std::string> resourcesAskedBy(const std::string& name, const PreparedStill& still) {
     const std::string resource = bufferResourceName(name);
     const ResourceName parts = ResourceName::split(resource);
     if (parts.field != "*") return {resource};
     std::vector<std::string> fields;
-    for (const PlannedResource& planned : plan.resources)
-        if (planned.requested && startsWith(planned.name, parts.pass + ".")) fields.push_back(planned.name);
+    for (const std::string& written : writtenResources(still.graph)) {
+        const PlannedResource* planned = plannedResource(still.plan, written);
+        if (startsWith(written, parts.pass + ".") && planned != nullptr && planned->requested)
+            fields.push_back(written);
+    }
     return fields;
 }
 
@@ -198,13 +207,11 @@ struct Renderer::Impl {
         // The picture as -o writes it; the buffers as --dump does (colour with straight alpha).
         made->picture = imageOf(store.image(still->graph.finalResource));
         for (const std::string& name : buffers) {
-            for (const std::string& resource : resourcesAskedBy(name, still->plan)) {
+            for (const std::string& resource : resourcesAskedBy(name, *still)) {
                 const auto same = [&](const Still::Impl::Buffer& kept) { return kept.resource == resource; };
                 if (std::any_of(made->buffers.begin(), made->buffers.end(), same)) continue;
-                const auto planned = std::find_if(still->plan.resources.begin(), still->plan.resources.end(),
-                                                  [&](const PlannedResource& entry) { return entry.name == resource; });
-                const bool colour =
-                    planned != still->plan.resources.end() && planned->presentation.appearance == Appearance::Color;
+                const PlannedResource* planned = plannedResource(still->plan, resource);
+                const bool colour = planned != nullptr && planned->presentation.appearance == Appearance::Color;
                 const cv::Mat& image = store.image(resource);
                 const std::string shownName = bufferResourceName(name) == resource ? name : resource;
                 made->buffers.push_back({shownName, resource, imageOf(colour ? straightAlphaOf(image) : image)});

@@ -1,0 +1,267 @@
+// The public C++ API rendering through libinkgraph.so, on the GL context a Renderer makes: the picture, the buffers
+// and what they hold, one renderer and one scene used more than once, and the picture the command line writes.
+#include <inkgraph/inkgraph.h>
+
+#include "app/ImageFiles.h"
+#include "tests/app/CliTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <thread>
+
+namespace ig = inkgraph::api;
+
+namespace inkgraph::test {
+namespace {
+
+const std::string kSuzanne = std::string(INKGRAPH_SOURCE_ROOT) + "/models/suzanne_npm_4k.obj";
+
+float floatAt(const ig::Image& image, std::size_t pixel, int channel) {
+    return image.floats()[pixel * std::size_t(image.channels) + std::size_t(channel)];
+}
+
+std::uint8_t byteAt(const ig::Image& image, std::size_t pixel, int channel) {
+    return image.bytes[pixel * std::size_t(image.channels) + std::size_t(channel)];
+}
+
+std::size_t pixelCount(const ig::Image& image) { return std::size_t(image.width) * std::size_t(image.height); }
+
+/** The image's pixels as one of our own files holds them, read back by the command line's reader. */
+std::vector<std::uint8_t> bytesOfFile(const std::filesystem::path& path) {
+    const cv::Mat read = readImage(path);
+    const cv::Mat continuous = read.isContinuous() ? read : read.clone();
+    return {continuous.data, continuous.data + continuous.total() * continuous.elemSize()};
+}
+
+ig::Error errorOf(const std::function<void()>& call) {
+    try {
+        call();
+    } catch (const ig::Error& error) {
+        return error;
+    }
+    return ig::Error(ig::Error::Kind::Render, "no Error thrown");
+}
+
+class ApiRender : public Cli {
+protected:
+    static ig::Frame frameOf(int width, int height, std::vector<std::string> camera = {}) {
+        ig::Frame frame;
+        frame.width = width;
+        frame.height = height;
+        frame.camera = std::move(camera);
+        return frame;
+    }
+
+    const ig::Scene suzanne = ig::Scene::load(kSuzanne);
+};
+
+TEST_F(ApiRender, ThePictureHasTheFramesSizeAndInkOnPaper) {
+    ig::Renderer renderer;
+    EXPECT_EQ(renderer.glDescription(), "");
+    const ig::Look look = ig::Look::fromArguments({"--shading", "cel", "--lines", "silhouette,contour"});
+    const ig::Still still = renderer.render(suzanne, look, frameOf(128, 96));
+    const ig::Image& picture = still.picture();
+    EXPECT_EQ(picture.width, 128);
+    EXPECT_EQ(picture.height, 96);
+    EXPECT_EQ(picture.channels, 4);
+    EXPECT_EQ(picture.type, ig::Image::Type::UInt8);
+    ASSERT_EQ(picture.bytes.size(), 128u * 96u * 4u);
+    // The model is framed in the middle: the corners are paper, and the silhouette puts black ink around it.
+    for (const std::size_t corner :
+         {std::size_t(0), std::size_t(127), std::size_t(95 * 128), std::size_t(96 * 128 - 1)})
+        for (int channel = 0; channel < 4; ++channel) EXPECT_EQ(byteAt(picture, corner, channel), 255) << corner;
+    std::size_t ink = 0;
+    for (std::size_t pixel = 0; pixel < pixelCount(picture); ++pixel)
+        if (byteAt(picture, pixel, 0) < 64 && byteAt(picture, pixel, 1) < 64 && byteAt(picture, pixel, 2) < 64) ++ink;
+    EXPECT_GT(ink, 100u);
+    EXPECT_NE(renderer.glDescription(), "");
+    EXPECT_GT(still.milliseconds(), 0.0);
+    EXPECT_TRUE(still.bufferNames().empty());
+}
+
+TEST_F(ApiRender, TheGBuffersFieldsAreWhatTheyMean) {
+    ig::Renderer renderer;
+    const ig::Still still =
+        renderer.render(suzanne, {}, frameOf(128, 128), {"normal", "view", "nDotV", "depth", "coverage"});
+    const ig::Image& normal = still.buffer("normal");
+    const ig::Image& view = still.buffer("view");
+    const ig::Image& nDotV = still.buffer("nDotV");
+    const ig::Image& depth = still.buffer("depth");
+    const ig::Image& coverage = still.buffer("coverage");
+    EXPECT_EQ(still.bufferNames(), (std::vector<std::string>{"normal", "view", "nDotV", "depth", "coverage"}));
+    for (const ig::Image* image : {&normal, &view, &nDotV, &depth, &coverage}) {
+        EXPECT_EQ(image->width, 128);
+        EXPECT_EQ(image->height, 128);
+    }
+    ASSERT_EQ(normal.type, ig::Image::Type::Float32);
+    ASSERT_EQ(normal.channels, 4);
+    ASSERT_EQ(nDotV.channels, 1);
+    ASSERT_EQ(depth.channels, 1);
+    ASSERT_EQ(coverage.type, ig::Image::Type::UInt8);
+    ASSERT_EQ(coverage.channels, 1);
+
+    std::size_t covered = 0;
+    for (std::size_t pixel = 0; pixel < pixelCount(normal); ++pixel) {
+        const std::uint8_t cover = byteAt(coverage, pixel, 0);
+        ASSERT_TRUE(cover == 0 || cover == 255) << pixel;
+        if (cover == 0) {
+            EXPECT_EQ(floatAt(normal, pixel, 3), 0.0f) << pixel; // cleared: alpha is coverage
+            continue;
+        }
+        ++covered;
+        float normalLength = 0.0f;
+        float cosine = 0.0f;
+        for (int axis = 0; axis < 3; ++axis) {
+            normalLength += floatAt(normal, pixel, axis) * floatAt(normal, pixel, axis);
+            cosine += floatAt(normal, pixel, axis) * floatAt(view, pixel, axis);
+        }
+        EXPECT_NEAR(std::sqrt(normalLength), 1.0f, 1e-4f) << pixel;
+        EXPECT_EQ(floatAt(normal, pixel, 3), 1.0f) << pixel;
+        EXPECT_GT(floatAt(depth, pixel, 0), 0.0f) << pixel;
+        EXPECT_GE(floatAt(nDotV, pixel, 0), -1.0f) << pixel;
+        EXPECT_LE(floatAt(nDotV, pixel, 0), 1.0f) << pixel;
+        EXPECT_NEAR(floatAt(nDotV, pixel, 0), cosine, 1e-5f) << pixel;
+    }
+    // Suzanne framed to fit covers a good share of the frame.
+    EXPECT_GT(covered, pixelCount(normal) / 8);
+}
+
+TEST_F(ApiRender, ALineLayerIsAMaskOfTheInkInThePicture) {
+    ig::Renderer renderer;
+    // No shading: the picture is paper and this one line type, black, so it is the mask inverted.
+    const ig::Look look = ig::Look::fromArguments({"--shading", "none", "--lines", "contour"});
+    const ig::Still still = renderer.render(suzanne, look, frameOf(128, 128), {"lines.contour"});
+    const ig::Image& mask = still.buffer("lines.contour");
+    const ig::Image& picture = still.picture();
+    ASSERT_EQ(mask.type, ig::Image::Type::UInt8);
+    ASSERT_EQ(mask.channels, 1);
+    ASSERT_EQ(mask.width, 128);
+    std::size_t line = 0;
+    for (std::size_t pixel = 0; pixel < pixelCount(mask); ++pixel) {
+        const std::uint8_t value = byteAt(mask, pixel, 0);
+        if (value == 255) ++line;
+        if (value != 0 && value != 255) continue; // an antialiased edge of a line
+        for (int channel = 0; channel < 3; ++channel)
+            ASSERT_EQ(byteAt(picture, pixel, channel), 255 - value) << pixel << " channel " << channel;
+    }
+    EXPECT_GT(line, 50u);
+}
+
+TEST_F(ApiRender, SupersampledFieldsAreLargerThanTheFrame) {
+    ig::Renderer renderer;
+    const ig::Look look = ig::Look::fromArguments({"--lines", "contour", "--supersample", "2"});
+    const ig::Still still = renderer.render(suzanne, look, frameOf(96, 64), {"normal", "lines.contour"});
+    EXPECT_EQ(still.picture().width, 96);
+    EXPECT_EQ(still.buffer("normal").width, 192);
+    EXPECT_EQ(still.buffer("normal").height, 128);
+    EXPECT_EQ(still.buffer("lines.contour").width, 96);
+    EXPECT_EQ(still.buffer("lines.contour").height, 64);
+}
+
+TEST_F(ApiRender, WildcardsGiveEveryFieldByItsFullName) {
+    ig::Renderer renderer;
+    const ig::Look look = ig::Look::fromArguments({"--lines", "silhouette,contour"});
+    const ig::Still still = renderer.render(suzanne, look, frameOf(64, 64), {"gbuffer.*", "lines.*"});
+    const std::vector<std::string> names = still.bufferNames();
+    ASSERT_GE(names.size(), 4u);
+    EXPECT_EQ(names.front(), "gbuffer.normal");
+    EXPECT_EQ(std::vector<std::string>(names.end() - 2, names.end()),
+              (std::vector<std::string>{"strokes.silhouette", "strokes.contour"}));
+    EXPECT_NE(std::find(names.begin(), names.end(), "gbuffer.depth"), names.end());
+    // Any name of a resource finds it.
+    EXPECT_EQ(&still.buffer("normal"), &still.buffer("gbuffer.normal"));
+    EXPECT_EQ(&still.buffer("lines.contour"), &still.buffer("strokes.contour"));
+}
+
+TEST_F(ApiRender, AStillNamesTheBuffersItHas) {
+    ig::Renderer renderer;
+    const ig::Still still =
+        renderer.render(suzanne, {}, frameOf(64, 64), {"normal", "lines.contour", "gbuffer.normal"});
+    EXPECT_EQ(still.bufferNames(), (std::vector<std::string>{"normal", "lines.contour"}));
+    const ig::Error error = errorOf([&] { still.buffer("depth"); });
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
+    EXPECT_STREQ(error.what(), "Still::buffer(): no buffer 'depth' in this still (it has: normal, lines.contour; ask "
+                               "for buffers in Renderer::render())");
+}
+
+TEST_F(ApiRender, ARendererRendersAgainTheSame) {
+    ig::Renderer renderer;
+    const ig::Look look = ig::Look::fromArguments({"--shading", "comic", "--lines", "contour,suggestive"});
+    const ig::Still first = renderer.render(suzanne, look, frameOf(128, 128), {"depth"});
+    const std::string context = renderer.glDescription();
+    const ig::Still second = renderer.render(suzanne, look, frameOf(128, 128), {"depth"});
+    EXPECT_EQ(renderer.glDescription(), context);
+    EXPECT_EQ(first.picture().bytes, second.picture().bytes);
+    EXPECT_EQ(first.buffer("depth").bytes, second.buffer("depth").bytes);
+}
+
+TEST_F(ApiRender, OneSceneRendersWithTwoLooksWithoutItsFile) {
+    const std::filesystem::path model = directory / "suzanne.obj";
+    std::filesystem::copy_file(kSuzanne, model);
+    const ig::Scene scene = ig::Scene::load(model.string());
+    std::filesystem::remove(model); // the scene holds what it loaded: no render reads the file
+    ig::Renderer renderer;
+    const ig::Look plain = ig::Look::fromArguments({"--shading", "cel", "--lines", "none"});
+    const ig::Look lined = ig::Look::fromArguments({"--shading", "cel", "--lines", "contour"});
+    const ig::Still unlined = renderer.render(scene, plain, frameOf(96, 96));
+    const ig::Still contoured = renderer.render(scene, lined, frameOf(96, 96), {"lines.contour"});
+    EXPECT_NE(unlined.picture().bytes, contoured.picture().bytes);
+    // Where the contour layer has no ink the two looks agree; where it is solid the lined look is darker.
+    const ig::Image& mask = contoured.buffer("lines.contour");
+    std::size_t darker = 0;
+    for (std::size_t pixel = 0; pixel < pixelCount(mask); ++pixel) {
+        const std::uint8_t value = byteAt(mask, pixel, 0);
+        if (value == 0) {
+            for (int channel = 0; channel < 4; ++channel)
+                ASSERT_EQ(byteAt(unlined.picture(), pixel, channel), byteAt(contoured.picture(), pixel, channel));
+        } else if (value == 255 && byteAt(contoured.picture(), pixel, 0) < byteAt(unlined.picture(), pixel, 0)) {
+            ++darker;
+        }
+    }
+    EXPECT_GT(darker, 50u);
+    const ig::Error error = errorOf([&] { renderer.render(scene, plain, frameOf(96, 96), {"lines.contour"}); });
+    EXPECT_NE(std::string(error.what()).find("'contour' is not in the look's --lines"), std::string::npos)
+        << error.what();
+}
+
+TEST_F(ApiRender, ThePictureIsTheCommandLines) {
+    const CliRun cli = run("render '" + kSuzanne +
+                           "' -o cli.png --size 120x90 --shading comic --lines silhouette,contour --orbit 30,10 -q");
+    ASSERT_EQ(cli.exitCode, 0) << cli.err;
+    ig::Renderer renderer;
+    const ig::Look look = ig::Look::fromArguments({"--shading", "comic", "--lines", "silhouette,contour"});
+    const ig::Still still = renderer.render(suzanne, look, frameOf(120, 90, {"--orbit", "30,10"}));
+    EXPECT_EQ(still.picture().bytes, bytesOfFile(directory / "cli.png"));
+    // The API writes the same picture the command line does.
+    still.write((directory / "api.png").string());
+    EXPECT_EQ(bytesOfFile(directory / "api.png"), still.picture().bytes);
+}
+
+TEST_F(ApiRender, OneRendererAtATimeHoldsTheContext) {
+    ig::Renderer second;
+    {
+        ig::Renderer first;
+        first.render(suzanne, {}, frameOf(32, 32));
+        const ig::Error error = errorOf([&] { second.render(suzanne, {}, frameOf(32, 32)); });
+        EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
+        EXPECT_STREQ(error.what(), "Renderer::render(): another Renderer of this process holds the GL context (EGL "
+                                   "shares one display per process); render with that one, or destroy it first");
+    }
+    EXPECT_EQ(second.render(suzanne, {}, frameOf(32, 32)).picture().width, 32);
+}
+
+TEST_F(ApiRender, ARendererRendersOnTheThreadOfItsFirstRender) {
+    ig::Renderer renderer;
+    renderer.render(suzanne, {}, frameOf(32, 32));
+    ig::Error error(ig::Error::Kind::Render, "not run");
+    std::thread other([&] { error = errorOf([&] { renderer.render(suzanne, {}, frameOf(32, 32)); }); });
+    other.join();
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
+    EXPECT_NE(std::string(error.what()).find("current on the thread of its first render"), std::string::npos)
+        << error.what();
+}
+
+} // namespace
+} // namespace inkgraph::test

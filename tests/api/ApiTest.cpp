@@ -1,0 +1,304 @@
+// The public C++ API through libinkgraph.so, everything that fails or finishes before a GL context is needed: loading
+// scenes, describing looks and frames, buffer names, images written and read back (app/ImageFiles), error kinds.
+#include <inkgraph/inkgraph.h>
+
+#include "app/ImageFiles.h"
+#include "tests/support/TestFolder.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <functional>
+
+namespace ig = inkgraph::api;
+
+namespace inkgraph::test {
+namespace {
+
+const std::string kModels = std::string(INKGRAPH_SOURCE_ROOT) + "/models/";
+
+/** The Error `call` throws; a test fails visibly when it throws none (kind Render, message "no Error thrown"). */
+ig::Error errorOf(const std::function<void()>& call) {
+    try {
+        call();
+    } catch (const ig::Error& error) {
+        return error;
+    }
+    return ig::Error(ig::Error::Kind::Render, "no Error thrown");
+}
+
+void writeText(const std::filesystem::path& path, const std::string& text) {
+    std::ofstream file(path, std::ios::binary);
+    file << text;
+}
+
+using ApiScene = TestFolder;
+
+TEST_F(ApiScene, MissingFileIsAnInputErrorNamingTheFile) {
+    const ig::Error error = errorOf([&] { ig::Scene::load((directory / "absent.obj").string()); });
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Input) << error.what();
+    EXPECT_EQ(error.exitCode(), 3);
+    EXPECT_NE(std::string(error.what()).find("absent.obj"), std::string::npos) << error.what();
+}
+
+TEST_F(ApiScene, UnreadableFileIsAnInputErrorNamingTheFile) {
+    const std::filesystem::path broken = directory / "broken.glb";
+    writeText(broken, "this is not a binary glTF file");
+    const ig::Error error = errorOf([&] { ig::Scene::load(broken.string()); });
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Input) << error.what();
+    EXPECT_NE(std::string(error.what()).find("broken.glb"), std::string::npos) << error.what();
+}
+
+TEST_F(ApiScene, CountsWhatTheFileHolds) {
+    // A unit square as two triangles over four vertices, one object.
+    const std::filesystem::path square = directory / "square.obj";
+    writeText(square, "o Square\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+    const ig::Scene scene = ig::Scene::load(square.string());
+    EXPECT_EQ(scene.path(), square.string());
+    EXPECT_EQ(scene.triangleCount(), 2u);
+    EXPECT_EQ(scene.vertexCount(), 4u);
+    EXPECT_EQ(scene.meshCount(), 1u);
+    EXPECT_TRUE(scene.warnings().empty());
+}
+
+TEST_F(ApiScene, PoseOptionsAreCheckedAsTheirFlags) {
+    ig::SceneOptions options;
+    options.time = 1.5; // without an animation
+    const ig::Error error = errorOf([&] { ig::Scene::load(kModels + "suzanne_npm_4k.obj", options); });
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
+    EXPECT_STREQ(error.what(), "Scene::load(): --time has no effect without --animation");
+    options.animation = "Walk";
+    options.time = -1.0;
+    EXPECT_STREQ(errorOf([&] { ig::Scene::load(kModels + "suzanne_npm_4k.obj", options); }).what(),
+                 "Scene::load(): --time: expected seconds >= 0, got '-1'");
+}
+
+TEST(ApiLook, RefusesAFlagThatIsNotTheLooksNamingItsPlace) {
+    const ig::Error camera = errorOf([] { ig::Look::fromArguments({"--shading", "cel", "--eye", "0,0,5"}); });
+    EXPECT_EQ(camera.kind(), ig::Error::Kind::Usage);
+    EXPECT_EQ(camera.exitCode(), 2);
+    EXPECT_STREQ(camera.what(), "Look::fromArguments(): '--eye' is not a look flag (give it in Frame::camera)");
+    EXPECT_STREQ(errorOf([] { ig::Look().set("--size", "64x64"); }).what(),
+                 "Look::set(): '--size' is not a look flag (give Frame::width and height)");
+    EXPECT_STREQ(errorOf([] { ig::Look().set("--animation", "Walk"); }).what(),
+                 "Look::set(): '--animation' is not a look flag (it poses the scene as it loads: SceneOptions, given "
+                 "to Scene::load())");
+    EXPECT_STREQ(errorOf([] { ig::Look::fromArguments({"--frobnicate"}); }).what(),
+                 "Look::fromArguments(): unknown option '--frobnicate'");
+    EXPECT_STREQ(errorOf([] { ig::Look::fromArguments({"bunny.obj"}); }).what(),
+                 "Look::fromArguments(): 'bunny.obj' is not a flag");
+}
+
+TEST(ApiLook, RefusesABadValueInTheCommandLinesWords) {
+    const ig::Error error = errorOf([] { ig::Look::fromArguments({"--bands", "many"}); });
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
+    EXPECT_STREQ(error.what(), "Look::fromArguments(): --bands: 'many' is not a finite number");
+    const std::string lines = errorOf([] { ig::Look().set("--lines", "contour,sketchy"); }).what();
+    EXPECT_EQ(lines.rfind("Look::set(): --lines: unknown line type 'sketchy' (available: ", 0), 0u) << lines;
+    EXPECT_STREQ(errorOf([] { ig::Look().set("--bands", ""); }).what(), "Look::set(): --bands: empty value");
+}
+
+TEST(ApiLook, RulesBetweenFlagsWaitForTheWholeLook) {
+    // fromArguments() has the whole look: a flag without effect is refused at once.
+    EXPECT_STREQ(errorOf([] {
+                     ig::Look::fromArguments({"--shading", "phong", "--bands", "4"});
+                 }).what(),
+                 "Look::fromArguments(): --bands has no effect with --shading phong (it applies to cel)");
+    // set() checks one flag; the shading that makes --shininess count may come next.
+    ig::Look look;
+    look.set("--shininess", "8").set("--shading", "phong");
+    EXPECT_EQ(look.arguments(), (std::vector<std::string>{"--shininess", "8", "--shading", "phong"}));
+}
+
+using ApiStyle = TestFolder;
+
+TEST_F(ApiStyle, AStyleFileIsTheLooksFlags) {
+    const std::filesystem::path style = directory / "house.style";
+    writeText(style, "# house style\nshading = comic\nlines = contour, suggestive\n");
+    const ig::Look look = ig::Look::fromStyleFile(style.string());
+    EXPECT_EQ(look.arguments(), (std::vector<std::string>{"--shading", "comic", "--lines", "contour,suggestive",
+                                                          "--style", style.string()}));
+}
+
+TEST_F(ApiStyle, AFrameSettingInAStyleFileIsRefusedWithItsLine) {
+    const std::filesystem::path style = directory / "sized.style";
+    writeText(style, "shading = comic\nsize = 640x480\n");
+    const ig::Error error = errorOf([&] { ig::Look::fromStyleFile(style.string()); });
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
+    EXPECT_EQ(std::string(error.what()), "Look::fromStyleFile(): --style '" + style.string() +
+                                             "' line 2: '--size' is not a look flag (give Frame::width and height)");
+}
+
+TEST_F(ApiStyle, AMissingStyleFileIsNamed) {
+    const ig::Error error = errorOf([&] { ig::Look::fromStyleFile((directory / "absent.style").string()); });
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
+    EXPECT_NE(std::string(error.what()).find("absent.style"), std::string::npos) << error.what();
+}
+
+TEST(ApiBufferNames, ShortNamesStandForTheGraphsResources) {
+    EXPECT_EQ(ig::bufferResourceName("normal"), "gbuffer.normal");
+    EXPECT_EQ(ig::bufferResourceName("nDotV"), "gbuffer.nDotV");
+    EXPECT_EQ(ig::bufferResourceName("materialId"), "gbuffer.materialId");
+    EXPECT_EQ(ig::bufferResourceName("lines.contour"), "strokes.contour");
+    EXPECT_EQ(ig::bufferResourceName("lines.*"), "strokes.*");
+    EXPECT_EQ(ig::bufferResourceName("picture"), "composite.final");
+    EXPECT_EQ(ig::bufferResourceName("shade.color"), "shade.color");
+    EXPECT_EQ(ig::bufferResourceName("gbuffer.depth"), "gbuffer.depth");
+}
+
+/** What fails before a still executes needs no GL: the frame, the buffer names, the look's files. */
+class ApiRenderRefusal : public TestFolder {
+protected:
+    ig::Error renderError(const ig::Look& look, const ig::Frame& frame, const std::vector<std::string>& buffers = {}) {
+        return errorOf([&] { ig::Renderer().render(scene, look, frame, buffers); });
+    }
+    const ig::Scene scene = ig::Scene::load(kModels + "suzanne_npm_4k.obj");
+};
+
+TEST_F(ApiRenderRefusal, AFrameTakesCameraFlagsOnly) {
+    ig::Frame frame;
+    frame.camera = {"--orbit", "30,10", "--lines", "contour"};
+    EXPECT_STREQ(renderError({}, frame).what(),
+                 "Renderer::render(): Frame::camera: '--lines' is not a camera flag (give it to the Look)");
+    frame.camera = {"--time", "2"};
+    EXPECT_STREQ(renderError({}, frame).what(),
+                 "Renderer::render(): Frame::camera: '--time' is not a camera flag (it poses the scene as it loads: "
+                 "SceneOptions, given to Scene::load())");
+    frame.camera = {"--orbit", "30,95"};
+    const ig::Error elevation = renderError({}, frame);
+    EXPECT_EQ(elevation.kind(), ig::Error::Kind::Usage);
+    EXPECT_NE(std::string(elevation.what()).find("--orbit: the elevation must lie in [-89.9, 89.9]"), std::string::npos)
+        << elevation.what();
+    frame.camera = {"--eye", "0,0,5", "--orbit", "30,10"};
+    EXPECT_STREQ(renderError({}, frame).what(), "Renderer::render(): --orbit and --eye both place the eye: give one");
+}
+
+TEST_F(ApiRenderRefusal, AFrameSizeIsCheckedAsSize) {
+    ig::Frame frame;
+    frame.width = 0;
+    EXPECT_STREQ(renderError({}, frame).what(),
+                 "Renderer::render(): Frame::width and height: --size: width and height must be whole numbers from 1 "
+                 "to 16384, got '0x1024'");
+    frame.width = 4096;
+    frame.height = 4096;
+    EXPECT_STREQ(renderError(ig::Look().set("--supersample", "8"), frame).what(),
+                 "Renderer::render(): --supersample: 8 x --size 4096x4096 exceeds the largest buffer side, 16384");
+}
+
+TEST_F(ApiRenderRefusal, AnUnknownBufferNamesTheLooksBuffers) {
+    const ig::Look look = ig::Look::fromArguments({"--lines", "contour"});
+    const ig::Error undrawn = renderError(look, {}, {"normal", "lines.crease"});
+    EXPECT_EQ(undrawn.kind(), ig::Error::Kind::Usage);
+    const std::string message = undrawn.what();
+    EXPECT_EQ(message.rfind("Renderer::render(): no buffer 'lines.crease' in this look ('crease' is not in the "
+                            "look's --lines); it has: normal, view, wVec, nDotV, depth, coverage, baseColor, radial, "
+                            "materialId, gbuffer.zBuffer, ",
+                            0),
+              0u)
+        << message;
+    EXPECT_NE(message.find(", lines.contour, picture"), std::string::npos) << message;
+    EXPECT_EQ(message.find("lines.silhouette"), std::string::npos) << message;
+    const ig::Error unknown = renderError(look, {}, {"gbuffer.sheen"});
+    EXPECT_EQ(
+        std::string(unknown.what()).rfind("Renderer::render(): no buffer 'gbuffer.sheen' in this look; it has: ", 0),
+        0u)
+        << unknown.what();
+}
+
+TEST_F(ApiRenderRefusal, AMissingShadeMapIsAnInputError) {
+    const std::string map = (directory / "absent.png").string();
+    const ig::Error error = renderError(ig::Look().set("--shademap", map), {});
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Input) << error.what();
+    EXPECT_EQ(error.exitCode(), 3);
+    EXPECT_NE(std::string(error.what()).find("--shademap: "), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find(map), std::string::npos) << error.what();
+}
+
+TEST(ApiRenderer, RefusesAnUnknownEglPlatform) {
+    const ig::Error error = errorOf([] { ig::Renderer renderer("wayland"); });
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
+    EXPECT_STREQ(error.what(), "Renderer(): --egl-platform: 'wayland' is not one of auto, device, surfaceless");
+}
+
+using ApiImage = TestFolder;
+
+/** A `width` x `height` image of `channels` whose every byte differs from its neighbours'. */
+ig::Image patterned(int width, int height, int channels, ig::Image::Type type) {
+    ig::Image image;
+    image.width = width;
+    image.height = height;
+    image.channels = channels;
+    image.type = type;
+    const std::size_t values = std::size_t(width) * height * channels;
+    image.bytes.resize(values * image.bytesPerChannel());
+    for (std::size_t i = 0; i < values; ++i) {
+        if (type == ig::Image::Type::UInt8) {
+            image.bytes[i] = std::uint8_t((i * 37 + 11) % 256);
+        } else {
+            const float value = float(i) * 0.125f - 3.0f;
+            std::memcpy(image.bytes.data() + 4 * i, &value, 4);
+        }
+    }
+    return image;
+}
+
+/** The image's bytes as written, read back by the command line's own reader. */
+std::vector<std::uint8_t> bytesReadBack(const std::filesystem::path& path) {
+    const cv::Mat read = readImage(path);
+    const cv::Mat continuous = read.isContinuous() ? read : read.clone();
+    return {continuous.data, continuous.data + continuous.total() * continuous.elemSize()};
+}
+
+TEST_F(ApiImage, WritesPngThatReadsBackTheSame) {
+    for (const int channels : {1, 4}) {
+        const ig::Image image = patterned(5, 3, channels, ig::Image::Type::UInt8);
+        const std::filesystem::path path = directory / ("image-" + std::to_string(channels) + ".png");
+        image.write(path.string());
+        const cv::Mat read = readImage(path);
+        EXPECT_EQ(read.cols, 5);
+        EXPECT_EQ(read.rows, 3);
+        EXPECT_EQ(read.channels(), channels);
+        EXPECT_EQ(bytesReadBack(path), image.bytes) << channels << " channels";
+    }
+}
+
+TEST_F(ApiImage, WritesFloatsToExrExactly) {
+    const ig::Image image = patterned(4, 2, 4, ig::Image::Type::Float32);
+    const std::filesystem::path path = directory / "image.exr";
+    image.write(path.string());
+    EXPECT_EQ(readImage(path).type(), CV_32FC4);
+    EXPECT_EQ(bytesReadBack(path), image.bytes);
+    EXPECT_EQ(image.floats()[5], 5 * 0.125f - 3.0f);
+}
+
+TEST_F(ApiImage, FailuresNameTheFile) {
+    const ig::Image image = patterned(2, 2, 4, ig::Image::Type::UInt8);
+    const std::string unwritable = (directory / "no-such-folder" / "x.png").string();
+    const ig::Error output = errorOf([&] { image.write(unwritable); });
+    EXPECT_EQ(output.kind(), ig::Error::Kind::Output) << output.what();
+    EXPECT_EQ(output.exitCode(), 5);
+    EXPECT_NE(std::string(output.what()).find(unwritable), std::string::npos) << output.what();
+
+    ig::Image truncated = image;
+    truncated.bytes.pop_back();
+    EXPECT_STREQ(errorOf([&] { truncated.write((directory / "t.png").string()); }).what(),
+                 "Image::write(): the image holds 15 bytes; 2x2x4 pixels need 16");
+    EXPECT_EQ(errorOf([&] { image.floats(); }).kind(), ig::Error::Kind::Usage);
+}
+
+TEST(ApiErrors, KindsKeepTheCommandLinesExitCodes) {
+    EXPECT_EQ(ig::Error(ig::Error::Kind::Usage, "").exitCode(), 2);
+    EXPECT_EQ(ig::Error(ig::Error::Kind::Input, "").exitCode(), 3);
+    EXPECT_EQ(ig::Error(ig::Error::Kind::Context, "").exitCode(), 4);
+    EXPECT_EQ(ig::Error(ig::Error::Kind::Output, "").exitCode(), 5);
+    EXPECT_EQ(ig::Error(ig::Error::Kind::Render, "").exitCode(), 1);
+}
+
+TEST(ApiVersion, IsTheProjects) {
+    EXPECT_EQ(ig::version(), INKGRAPH_PROJECT_VERSION);
+    EXPECT_FALSE(ig::gitCommit().empty());
+}
+
+} // namespace
+} // namespace inkgraph::test
