@@ -108,7 +108,7 @@ def render(
     lines:    the line types to draw (--lines): ["silhouette", "contour"], "outline,contour", or [] for none;
               None keeps the look's.
     buffers:  buffers to return besides the picture: "normal", "view", "wVec", "nDotV", "depth", "coverage",
-              "baseColor", "radial", "materialId" (the G-buffer), "lines.<type>" (a line type's drawn mask),
+              "baseColor", "radial", "materialId" (the G-buffer), "lines.<type>" (the coverage of a line type's lines),
               "picture", or a full graph resource name ("shade.color", "gbuffer.*").
     camera:   camera flags as `look` takes them: ["--orbit", "30,10"] or {"orbit": (30, 10), "fov": 40}.
     shading:  the shading mode (--shading), over the look's.
