@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 import threading
 
 import numpy as np
@@ -91,3 +92,30 @@ def test_the_low_level_api_renders_as_render_does(suzanne):
                                camera=["--orbit", "30,10"], buffers=["depth"])
     assert np.array_equal(still.picture, expected.picture)
     assert np.array_equal(still.buffer("depth"), expected.buffers["depth"])
+
+
+def test_render_lets_other_python_threads_run_while_it_draws(suzanne):
+    inkgraph.render(suzanne, size=64)  # the context exists: the next render only draws
+    state = {"inside": False, "seen": None}
+    go = threading.Event()
+
+    def observer():
+        go.wait()
+        state["seen"] = state["inside"]
+
+    thread = threading.Thread(target=observer)
+    thread.start()
+    # With a switch interval this long the interpreter never takes the GIL from the main thread: the observer, woken
+    # by go, gets it only when the main thread gives it up, which render() does while it draws (else the observer
+    # would run at join(), after the render, and see inside False).
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1000)
+    try:
+        state["inside"] = True
+        go.set()
+        inkgraph.render(suzanne, size=64)
+        state["inside"] = False
+    finally:
+        sys.setswitchinterval(interval)
+    thread.join()
+    assert state["seen"] is True
