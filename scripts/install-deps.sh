@@ -10,6 +10,7 @@ packages=(
     libgtest-dev libgmock-dev libbenchmark-dev
     pybind11-dev python3-dev python3-numpy python3-pytest
     slurm-wlm munge
+    groff-base
     clang-format
 )
 
