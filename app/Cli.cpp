@@ -1,10 +1,12 @@
 #include "app/Cli.h"
 
 #include "app/BatchRun.h"
+#include "app/CommandLineDocs.h"
 #include "app/ImageFiles.h"
 #include "app/Render.h"
 #include "app/StyleFile.h"
 #include "app/TemporaryFiles.h"
+#include "app/Version.h"
 #include "gl/GraphExecutor.h"
 #include "gl/HeadlessContext.h"
 #include "gl/ShaderLibrary.h"
@@ -12,12 +14,56 @@
 
 #include <opencv2/core.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
 
 namespace inkgraph {
 
 namespace {
+
+/** The command whose first name is `name`. */
+const CommandInfo& commandNamed(const std::string& name) {
+    for (const CommandInfo& command : commands())
+        if (command.names.front() == name) return command;
+    throw std::logic_error("commandNamed(): no command '" + name + "'");
+}
+
+/** `inkgraph help [TOPIC]`. */
+int runHelpCommand(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
+    const std::string topic = arguments.size() > 1 ? arguments[1] : "";
+    if (arguments.size() > 2) {
+        err << "inkgraph: help takes one topic, got '" << arguments[1] << "' and '" << arguments[2] << "'\n";
+        return kExitUsage;
+    }
+    if (topic.empty())
+        out << mainHelp();
+    else if (topic == "render")
+        out << renderHelp();
+    else if (topic == "--man")
+        out << manPage();
+    else if (topic == "--bash-completion")
+        out << bashCompletion();
+    else {
+        std::string topics;
+        for (const std::string& word : commandNamed("help").words) topics += (topics.empty() ? "" : ", ") + word;
+        err << "inkgraph: no help on '" << topic << "' (topics: " << topics << ")\n";
+        return kExitUsage;
+    }
+    return kExitOk;
+}
+
+/** `inkgraph --version [--verbose]`. */
+int runVersionCommand(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
+    if (arguments.size() == 1) {
+        out << versionLine() << "\n";
+        return kExitOk;
+    }
+    if (arguments.size() == 2 && arguments[1] == "--verbose") return writeVerboseVersion(out);
+    err << "inkgraph: --version takes only --verbose, got '" << arguments[1] << "'\n";
+    return kExitUsage;
+}
 
 int runRenderCommand(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
     try {
@@ -42,6 +88,50 @@ int runRenderCommand(const std::vector<std::string>& arguments, std::ostream& ou
 }
 
 } // namespace
+
+const std::vector<ExitCodeMeaning>& exitCodeMeanings() {
+    static const std::vector<ExitCodeMeaning> kMeanings = {
+        {kExitOk, "done"},
+        {kExitUsage, "bad command line"},
+        {kExitBadInput, "unreadable or invalid model"},
+        {kExitNoGl, "no OpenGL/EGL or no shaders"},
+        {kExitOutput, "an output could not be written"},
+        {kExitInternal, "anything else"},
+    };
+    return kMeanings;
+}
+
+const std::vector<CommandInfo>& commands() {
+    // runCommandLine() dispatches on these names; runHelpCommand() takes its topics from help's words.
+    static const std::vector<CommandInfo> kCommands = {
+        {{"render"}, "MODEL... -o OUT.png [options]", "render a still of each model (see: inkgraph help render)", {}},
+        {{"--version"},
+         "[--verbose]",
+         "print the version and the git commit; --verbose adds the shader folder\n"
+         "in use, the EGL and OpenGL driver (it makes a context) and the libraries'\n"
+         "versions, and exits with 4 when there is no context or no shader folder",
+         {"--verbose"}},
+        {{"help", "--help", "-h"},
+         "[render | --man | --bash-completion]",
+         "this text; render: every flag of inkgraph render; --man: the man page\n"
+         "(roff); --bash-completion: the bash completion script",
+         {"render", "--man", "--bash-completion"}},
+    };
+    return kCommands;
+}
+
+std::string mainHelp() {
+    constexpr std::size_t kHelpColumn = 47;
+    std::string text = std::string("inkgraph - ") + kProgramSummary + "\n\nUsage:\n";
+    for (const CommandInfo& command : commands()) {
+        std::string usage = "  inkgraph " + command.names.front() + " " + command.arguments;
+        usage = usage.size() + 1 > kHelpColumn ? usage + "\n" + std::string(kHelpColumn, ' ')
+                                               : usage + std::string(kHelpColumn - usage.size(), ' ');
+        for (char c : command.help) usage += c == '\n' ? "\n" + std::string(kHelpColumn, ' ') : std::string(1, c);
+        text += usage + "\n";
+    }
+    return text;
+}
 
 ErrorReport reportOf(const std::exception_ptr& error) {
     const std::string outOfMemory = "make the image smaller (--size, --supersample) or request and dump fewer buffers";
@@ -77,25 +167,23 @@ int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::os
         err << mainHelp();
         return kExitUsage;
     }
-    if (arguments[0] == "--help" || arguments[0] == "-h" || arguments[0] == "help") {
-        if (arguments.size() > 1 && arguments[1] != "render") {
-            err << "inkgraph: no help on '" << arguments[1] << "' (topics: render)\n";
-            return kExitUsage;
-        }
-        out << (arguments.size() > 1 ? renderHelp() : mainHelp());
-        return kExitOk;
-    }
-    if (arguments[0] == "--version") {
-        out << "inkgraph " << INKGRAPH_VERSION << "\n";
-        return kExitOk;
-    }
-    if (arguments[0] != "render") {
+    const auto named = [&arguments](const std::string& command) {
+        const std::vector<std::string>& names = commandNamed(command).names;
+        return std::find(names.begin(), names.end(), arguments[0]) != names.end();
+    };
+    int exitCode = kExitOk;
+    if (named("render")) {
+        arguments.erase(arguments.begin());
+        removeTemporariesOnSignals();
+        exitCode = runRenderCommand(arguments, out, err);
+    } else if (named("--version")) {
+        exitCode = runVersionCommand(arguments, out, err);
+    } else if (named("help")) {
+        exitCode = runHelpCommand(arguments, out, err);
+    } else {
         err << "inkgraph: unknown command '" << arguments[0] << "' (try: inkgraph --help)\n";
         return kExitUsage;
     }
-    arguments.erase(arguments.begin());
-    removeTemporariesOnSignals();
-    const int exitCode = runRenderCommand(arguments, out, err);
     // Output that cannot be written (--help > /dev/full, a closed pipe) is a failed run, not a silent one.
     try {
         requireStandardOutputWritten(out);

@@ -414,6 +414,7 @@ std::vector<Flag> makeFlags() {
                                  throw UsageError("--camera: expected file or auto, got '" + value + "'");
                              options.autoCamera = value == "auto";
                          }));
+    flags.back().choices = {"file", "auto"};
     flags.push_back(
         flag({"--eye"}, "X,Y,Z", S::Camera, "camera position, in world units (coordinates within +-1e15)",
              [](const std::string& value, RenderOptions& options) { options.eye = parsePoint("--eye", value); }));
@@ -512,6 +513,7 @@ std::vector<Flag> makeFlags() {
             }
             options.look.shading = traits->model;
         })));
+    for (const ShadingModelTraits& model : shadingModels()) flags.back().choices.push_back(model.name);
     Flag shininess = styleFlag(
         flag({"--shininess"}, "N", S::Look,
              "specular exponent for " + shadingModelsWith(&ShadingModelTraits::specular) + ", 0 to 1e6 (default 32)",
@@ -550,6 +552,7 @@ std::vector<Flag> makeFlags() {
             options.look.viewVector = parseChoice<ViewVectorMode>(
                 "--view-vector", value, {{"exact", ViewVectorMode::Exact}, {"constant", ViewVectorMode::Constant}});
         }));
+    viewVector.choices = {"exact", "constant"};
     viewVector.noEffect = onlyWithModels("--view-vector", &ShadingModelTraits::faceOrientation);
     flags.push_back(viewVector);
     Flag faceOrientation = styleFlag(
@@ -560,6 +563,7 @@ std::vector<Flag> makeFlags() {
              [](const std::string& value, RenderOptions& options) {
                  options.look.faceOrientation = parseChoice("--face-orientation", value, kOrientationMethods);
              }));
+    for (const auto& [name, method] : kOrientationMethods) faceOrientation.choices.push_back(name);
     faceOrientation.noEffect = onlyWithModels("--face-orientation", &ShadingModelTraits::faceOrientation);
     flags.push_back(faceOrientation);
     Flag frontRule =
@@ -569,6 +573,7 @@ std::vector<Flag> makeFlags() {
                        [](const std::string& value, RenderOptions& options) {
                            options.look.frontRule = parseWholeNumber("--front-rule", value, 1, 3);
                        }));
+    frontRule.choices = {"1", "2", "3"};
     frontRule.noEffect = [comic = onlyWithModels("--front-rule", &ShadingModelTraits::faceOrientation)](
                              const RenderOptions& options) -> std::string {
         if (std::string refusal = comic(options); !refusal.empty()) return refusal;
@@ -610,6 +615,9 @@ std::vector<Flag> makeFlags() {
                 options.look.lines.push_back(type);
             }
         })));
+    flags.back().choices = {"none"};
+    for (const LineType& type : lineTypes()) flags.back().choices.push_back(type.name);
+    flags.back().commaList = true;
     addLineTypeFlags(flags);
     Flag supersample =
         styleFlag(flag({"--supersample"}, "S", S::Lines,
@@ -658,6 +666,8 @@ std::vector<Flag> makeFlags() {
                                setting = true;
                            }
                        }));
+    lineWeight.choices = {"none", "depth", "strength", "taper"};
+    lineWeight.commaList = true;
     lineWeight.noEffect = onlyWithLineTypes("--line-weight", allLineTypes);
     flags.push_back(lineWeight);
     Flag overlapping =
@@ -670,6 +680,7 @@ std::vector<Flag> makeFlags() {
                                throw UsageError("--overlapping-lines: expected merge or draw, got '" + value + "'");
                            options.look.strokes.mergeOverlaps = value == "merge";
                        }));
+    overlapping.choices = {"draw", "merge"};
     overlapping.noEffect = onlyWithLineTypes("--overlapping-lines", allLineTypes);
     flags.push_back(overlapping);
     flags.push_back(styleFlag(
@@ -685,6 +696,7 @@ std::vector<Flag> makeFlags() {
                  else
                      throw UsageError("--gbuffer-precision: expected float or half, got '" + value + "'");
              })));
+    flags.back().choices = {"float", "half"};
     flags.push_back(helpOnly(
         S::Lines, "",
         "Outline and silhouette draw nothing when the eye is inside the model (they would flood the picture)."));
@@ -717,6 +729,7 @@ std::vector<Flag> makeFlags() {
                                                   "' is not one of auto, device, surfaceless");
                              options.eglPlatform = value;
                          }));
+    flags.back().choices = {"auto", "device", "surfaceless"};
     flags.push_back(flag({"--memory-limit"}, "MIB", S::System,
                          "the most memory the process may take for one still, 64 and up (default: half this\n"
                          "machine's memory, at least 1024). Checked before allocating: the model load from the\n"
@@ -731,7 +744,15 @@ std::vector<Flag> makeFlags() {
     return flags;
 }
 
-const char* sectionTitle(HelpSection section) {
+} // namespace
+
+const std::vector<HelpSection>& helpSections() {
+    static const std::vector<HelpSection> kSections = {HelpSection::Output, HelpSection::Camera, HelpSection::Look,
+                                                       HelpSection::Lines,  HelpSection::Batch,  HelpSection::System};
+    return kSections;
+}
+
+const char* helpSectionTitle(HelpSection section) {
     switch (section) {
     case HelpSection::Output: return "Output";
     case HelpSection::Camera:
@@ -745,8 +766,6 @@ const char* sectionTitle(HelpSection section) {
     }
     return "";
 }
-
-} // namespace
 
 const std::vector<Flag>& renderFlags() {
     static const std::vector<Flag> kFlags = makeFlags();
@@ -793,9 +812,8 @@ std::vector<std::string> helpBlocks(const std::string& help) {
 std::string renderFlagsHelp() {
     constexpr std::size_t kHelpColumn = 25;
     std::string text;
-    for (HelpSection section : {HelpSection::Output, HelpSection::Camera, HelpSection::Look, HelpSection::Lines,
-                                HelpSection::Batch, HelpSection::System}) {
-        text += std::string("\n") + sectionTitle(section) + "\n";
+    for (HelpSection section : helpSections()) {
+        text += std::string("\n") + helpSectionTitle(section) + "\n";
         for (const Flag& entry : renderFlags()) {
             if (entry.section != section || entry.help.empty()) continue;
             std::string label = entry.helpLabel;

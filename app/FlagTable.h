@@ -24,6 +24,11 @@ struct Flag {
     std::string helpLabel;  ///< --help's left column when not "<names> <valueName>" ("--TYPE-width PX")
     bool inStyle = false;   ///< a style file may set it, as its long name without the dashes
     bool pathValue = false; ///< its value is a file: in a style file, relative to the style file
+    /** The values it takes when they are a fixed set, for the shell's completion (the parser in `apply` judges, and
+     *  tests/app/CommandLineDocsTest.cpp checks it takes each);
+     *  empty: any value. */
+    std::vector<std::string> choices;
+    bool commaList = false; ///< its value is a comma-separated list (of `choices`, when it has them)
     /** Checks `value` and stores it; throws UsageError naming the flag. Null for help-only entries. */
     std::function<void(const std::string& value, RenderOptions& options)> apply;
     /** After parsing, when given: the refusal if the flag changes nothing with these options, else "". */
@@ -36,5 +41,13 @@ const std::vector<Flag>& renderFlags();
 const Flag* findFlag(const std::string& name);
 /** The text of `inkgraph render --help`. */
 std::string renderFlagsHelp();
+
+/** The help sections in --help's order, and each one's title. */
+const std::vector<HelpSection>& helpSections();
+const char* helpSectionTitle(HelpSection section);
+
+/** A flag's help text as the paragraphs --help wraps: its '\n' are soft, except before a list item (a line that
+ *  starts with two spaces and a word, kept with its indent); lines indented deeper continue the item above. */
+std::vector<std::string> helpBlocks(const std::string& help);
 
 } // namespace inkgraph

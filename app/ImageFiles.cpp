@@ -4,6 +4,7 @@
 #include "app/PngChunks.h"
 #include "app/PngFiles.h"
 #include "app/TemporaryFiles.h"
+#include "gl/BinaryLocation.h"
 
 #include <dlfcn.h>
 #include <fcntl.h>
@@ -25,6 +26,8 @@
 namespace inkgraph {
 namespace {
 
+constexpr const char* kModuleName = kImageIoModuleName;
+
 void renameIntoPlace(const std::filesystem::path& temporary, const std::filesystem::path& path) {
     std::error_code error;
     std::filesystem::rename(temporary, path, error);
@@ -37,29 +40,35 @@ void renameIntoPlace(const std::filesystem::path& temporary, const std::filesyst
     forgetTemporary(temporary);
 }
 
-/** Where the OpenImageIO module is: INKGRAPH_IMAGEIO_MODULE, else beside the executable, else the build tree. */
+/** Where the OpenImageIO module may be, in order: INKGRAPH_IMAGEIO_MODULE; the installed module relative to the
+ *  binary holding this code (gl/BinaryLocation.h: `<bin>/../lib/inkgraph/`, `<bin>/../../lib/inkgraph/`); and, only
+ *  for a binary in the build tree, the build tree's module. */
 std::vector<std::filesystem::path> moduleCandidates() {
     std::vector<std::filesystem::path> candidates;
     if (const char* fromEnvironment = std::getenv("INKGRAPH_IMAGEIO_MODULE"); fromEnvironment && *fromEnvironment)
         candidates.emplace_back(fromEnvironment);
-    std::error_code error;
-    const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
-    if (!error) candidates.push_back(executable.parent_path() / INKGRAPH_IMAGEIO_MODULE_NAME);
-    candidates.emplace_back(INKGRAPH_IMAGEIO_MODULE_PATH);
+    for (const std::filesystem::path& installed : installedCandidates(installedModuleFolder() / kModuleName))
+        candidates.push_back(installed);
+    if (runsFromBuildTree()) candidates.emplace_back(INKGRAPH_IMAGEIO_MODULE_PATH);
     return candidates;
 }
 
 /** Loads the module; the result (functions, or the reason it failed) is kept for the whole process. */
 struct LoadedModule {
     const ImageIoFunctions* functions = nullptr;
+    std::filesystem::path path;
     std::string failure;
 };
 
 LoadedModule loadModule() {
     LoadedModule loaded;
+    std::string missing;
     for (const std::filesystem::path& candidate : moduleCandidates()) {
-        std::error_code missing;
-        if (!std::filesystem::exists(candidate, missing)) continue;
+        std::error_code error;
+        if (!std::filesystem::exists(candidate, error)) {
+            missing += (missing.empty() ? "'" : ", '") + candidate.string() + "'";
+            continue;
+        }
         // Never unloaded: OpenImageIO keeps global state until exit.
         void* handle = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (handle == nullptr) {
@@ -73,9 +82,10 @@ LoadedModule loadModule() {
             continue;
         }
         loaded.functions = entry();
+        loaded.path = candidate;
         return loaded;
     }
-    if (loaded.failure.empty()) loaded.failure = " (none of the places it is looked for exists)";
+    if (!missing.empty()) loaded.failure += "\n  - not found at " + missing;
     return loaded;
 }
 
@@ -100,13 +110,15 @@ std::shared_future<LoadedModule>& moduleFuture() {
     return load.future;
 }
 
-const ImageIoFunctions& imageIo() {
+const LoadedModule& loadedImageIo() {
     const LoadedModule& loaded = moduleFuture().get();
     if (loaded.functions == nullptr)
-        throw FileError("imageIo(): cannot load the OpenImageIO module '" + std::string(INKGRAPH_IMAGEIO_MODULE_NAME) +
+        throw FileError("imageIo(): cannot load the OpenImageIO module '" + std::string(kModuleName) +
                         "' (install libopenimageio2.4, or set INKGRAPH_IMAGEIO_MODULE to its path):" + loaded.failure);
-    return *loaded.functions;
+    return loaded;
 }
+
+const ImageIoFunctions& imageIo() { return *loadedImageIo().functions; }
 
 } // namespace
 
@@ -125,6 +137,11 @@ std::string imageIoModuleState() {
     const std::shared_future<LoadedModule>& future = moduleFuture();
     if (future.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return "loading";
     return future.get().functions != nullptr ? "loaded" : "failed to load";
+}
+
+std::string imageIoLibrary() {
+    const LoadedModule& loaded = loadedImageIo();
+    return std::string(loaded.functions->libraryVersion()) + " (module '" + loaded.path.string() + "')";
 }
 
 void finishImageIoPreload() {

@@ -33,6 +33,11 @@ void preloadImageIo();
  *  load". Never starts a load. */
 std::string imageIoModuleState();
 
+/** Loads the OpenImageIO module (waiting for a load already started) and names it: "2.4.7 (module
+ *  '/usr/lib/inkgraph/libinkgraph_imageio.so')", OpenImageIO's version first. Throws FileError naming every place
+ * looked at when it cannot be loaded. For `inkgraph --version --verbose`. */
+std::string imageIoLibrary();
+
 /** Waits until a load that preloadImageIo() (or a first use) started has finished, successfully or not; returns at
  *  once when none was started. After it the loader thread has ended: app/BackgroundThreads.h. */
 void finishImageIoPreload();

@@ -23,9 +23,15 @@ struct ImageIoFunctions {
     bool (*readImage)(const std::string& path, std::size_t maxPixels, cv::Mat& image, std::string& error);
     /** The file's own pixel type ("uint8", "half", "float", ...). */
     bool (*pixelType)(const std::string& path, std::string& type, std::string& error);
+    /** "2.4.7": the OpenImageIO the module runs with (`inkgraph --version --verbose`). */
+    const char* (*libraryVersion)();
 };
 
-inline constexpr int kImageIoVersion = 5;
+inline constexpr int kImageIoVersion = 6;
+
+/** The module's file name (app/CMakeLists.txt builds it so), in the build tree's top folder and installed in
+ *  `${CMAKE_INSTALL_LIBDIR}/inkgraph/` (gl/BinaryLocation.h). */
+inline constexpr const char* kImageIoModuleName = "libinkgraph_imageio.so";
 
 } // namespace inkgraph
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include <vector>
 
@@ -132,7 +133,17 @@ bool pixelTypeWithOiio(const std::string& path, std::string& type, std::string& 
     return true;
 }
 
-const ImageIoFunctions kFunctions = {kImageIoVersion, encodeWithOiio, readWithOiio, pixelTypeWithOiio};
+const char* oiioVersion() {
+    // The library's own number (e.g. 20407), not the headers' the module was built with.
+    static const std::string kVersion = [] {
+        const int number = OIIO::openimageio_version();
+        return std::to_string(number / 10000) + "." + std::to_string(number / 100 % 100) + "." +
+               std::to_string(number % 100);
+    }();
+    return kVersion.c_str();
+}
+
+const ImageIoFunctions kFunctions = {kImageIoVersion, encodeWithOiio, readWithOiio, pixelTypeWithOiio, oiioVersion};
 
 } // namespace
 } // namespace inkgraph

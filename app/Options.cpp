@@ -1,5 +1,6 @@
 #include "app/Options.h"
 
+#include "app/Cli.h"
 #include "app/FlagTable.h"
 
 #include <algorithm>
@@ -136,22 +137,23 @@ RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const 
 }
 
 std::string renderHelp() {
+    constexpr std::size_t kLineWidth = 100;
+    std::string exitCodes = "Exit codes:";
+    std::size_t lineStart = 0;
+    for (const ExitCodeMeaning& exit : exitCodeMeanings()) {
+        const std::string item =
+            std::to_string(exit.code) + " " + exit.meaning + (&exit == &exitCodeMeanings().back() ? "." : ",");
+        if (exitCodes.size() - lineStart + 1 + item.size() > kLineWidth) {
+            exitCodes += "\n";
+            lineStart = exitCodes.size();
+        } else {
+            exitCodes += " ";
+        }
+        exitCodes += item;
+    }
     return "Usage: inkgraph render MODEL... -o OUT.png [options]\n\n"
            "Renders one still of each MODEL (.gltf, .glb, .vrm, .obj, .stl) with no window or display (EGL).\n" +
-           renderFlagsHelp() +
-           "\nExit codes: 0 done, 2 bad command line, 3 unreadable or invalid model, 4 no OpenGL/EGL,\n"
-           "5 an output could not be written, 1 anything else.\n";
-}
-
-std::string mainHelp() {
-    return R"(inkgraph - headless anime- and comic-style renderer
-
-Usage:
-  inkgraph render MODEL... -o OUT.png [options]
-                                               render a still of each model (see: inkgraph help render)
-  inkgraph --version                           print the version
-  inkgraph --help                              this text
-)";
+           renderFlagsHelp() + "\n" + exitCodes + "\n";
 }
 
 } // namespace inkgraph

@@ -107,7 +107,5 @@ RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const 
 
 /** The text of `inkgraph render --help`. */
 std::string renderHelp();
-/** The text of `inkgraph --help`. */
-std::string mainHelp();
 
 } // namespace inkgraph

@@ -1,5 +1,6 @@
 #include "app/StillOutputs.h"
 
+#include "app/BuildInfo.h"
 #include "app/ImageFiles.h"
 
 #include "postfx/Composite.h"
@@ -102,7 +103,7 @@ void stageDump(const RenderOptions& options, const PreparedStill& still, StillRe
                          {"requested", resource.requested}});
     }
     Json manifest;
-    manifest["inkgraph"] = INKGRAPH_VERSION;
+    manifest["inkgraph"] = inkgraphVersion();
     manifest["model"] = still.request.modelPath;
     manifest["size"] = {options.width, options.height};
     manifest["conventions"] = "right-handed world; OpenGL lookAt/perspective; row 0 at the top; pixel centres at "

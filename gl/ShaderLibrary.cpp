@@ -1,5 +1,7 @@
 #include "gl/ShaderLibrary.h"
 
+#include "gl/BinaryLocation.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
@@ -38,26 +40,64 @@ const char* stageDefine(GLenum stage) {
 
 } // namespace
 
-std::filesystem::path ShaderLibrary::defaultDirectory() {
-    if (const char* fromEnvironment = std::getenv("INKGRAPH_SHADER_DIR"); fromEnvironment && *fromEnvironment)
-        return fromEnvironment;
-    return INKGRAPH_SHADER_DIR;
+ShaderFolder ShaderLibrary::findShaderFolder() {
+    ShaderFolder folder;
+    if (const char* fromEnvironment = std::getenv("INKGRAPH_SHADER_DIR"); fromEnvironment && *fromEnvironment) {
+        folder.path = fromEnvironment;
+        folder.origin = "INKGRAPH_SHADER_DIR";
+        folder.searched = {folder.path};
+        return folder;
+    }
+    const auto firstExisting = [&folder](const std::vector<std::filesystem::path>& candidates, const char* origin) {
+        for (const std::filesystem::path& candidate : candidates) {
+            folder.searched.push_back(candidate);
+            std::error_code error;
+            if (std::filesystem::is_directory(candidate, error)) {
+                folder.path = candidate;
+                folder.origin = origin;
+                return true;
+            }
+        }
+        return false;
+    };
+    if (firstExisting(installedCandidates(installedShaderFolder()), "installed")) return folder;
+    // Named only here, and only ever read by a binary of the build tree: an installed program that lost its shaders
+    // must say so rather than quietly run on the source tree it was built from.
+    if (runsFromBuildTree()) firstExisting({INKGRAPH_SOURCE_SHADER_DIR}, "source tree");
+    return folder;
 }
 
-ShaderLibrary::ShaderLibrary(std::filesystem::path directory) : mDirectory(std::move(directory)) {}
+std::filesystem::path ShaderLibrary::defaultDirectory() { return findShaderFolder().path; }
+
+ShaderLibrary::ShaderLibrary() : mFolder(findShaderFolder()) {}
+
+ShaderLibrary::ShaderLibrary(std::filesystem::path directory) {
+    mFolder.path = std::move(directory);
+    mFolder.origin = "given";
+    mFolder.searched = {mFolder.path};
+}
 
 const std::string& ShaderLibrary::source(const std::string& relativePath) {
     auto found = mSources.find(relativePath);
     if (found != mSources.end()) return found->second;
-    const std::filesystem::path path = mDirectory / relativePath;
+    if (mFolder.path.empty()) {
+        std::string searched;
+        for (const std::filesystem::path& folder : mFolder.searched)
+            searched += (searched.empty() ? "'" : ", '") + folder.string() + "'";
+        throw ShaderSourceError("ShaderLibrary::source(): cannot read shader '" + relativePath +
+                                "': no shader folder found (searched " + (searched.empty() ? "nothing" : searched) +
+                                "); reinstall inkgraph, or set INKGRAPH_SHADER_DIR to its shaders/ folder");
+    }
+    const std::filesystem::path path = mFolder.path / relativePath;
     std::ifstream file(path, std::ios::binary);
     if (!file) {
-        const char* fromEnvironment = std::getenv("INKGRAPH_SHADER_DIR");
-        const std::string origin = fromEnvironment && *fromEnvironment && mDirectory == fromEnvironment
-                                       ? "; INKGRAPH_SHADER_DIR is '" + mDirectory.string() + "'"
-                                       : "";
-        throw ShaderSourceError("ShaderLibrary::source(): cannot read shader '" + path.string() + "'" + origin +
-                                " (set INKGRAPH_SHADER_DIR to the shaders/ folder of the source tree)");
+        if (mFolder.origin == "INKGRAPH_SHADER_DIR")
+            throw ShaderSourceError("ShaderLibrary::source(): cannot read shader '" + path.string() +
+                                    "'; INKGRAPH_SHADER_DIR is '" + mFolder.path.string() +
+                                    "' (set it to inkgraph's shaders/ folder, or unset it to use the installed one)");
+        throw ShaderSourceError("ShaderLibrary::source(): cannot read shader '" + path.string() + "' (the " +
+                                mFolder.origin + " shader folder '" + mFolder.path.string() +
+                                "' is incomplete; set INKGRAPH_SHADER_DIR to inkgraph's shaders/ folder)");
     }
     std::ostringstream text;
     text << file.rdbuf();

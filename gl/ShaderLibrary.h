@@ -14,7 +14,8 @@
 
 namespace inkgraph {
 
-/** A shader file cannot be read: the installation is incomplete or INKGRAPH_SHADER_DIR names the wrong folder. */
+/** A shader file cannot be read: no shader folder was found, the installation is incomplete or INKGRAPH_SHADER_DIR
+ *  names the wrong folder. */
 class ShaderSourceError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
@@ -29,13 +30,28 @@ struct ProgramDesc {
     std::string geometryFile;          ///< optional, e.g. "outline/outline.geom"; empty: no geometry stage
 };
 
+/** Where a library's shaders come from. */
+struct ShaderFolder {
+    std::filesystem::path path;                  ///< empty: none of `searched` exists
+    std::string origin;                          ///< "INKGRAPH_SHADER_DIR", "installed", "source tree" or "given"
+    std::vector<std::filesystem::path> searched; ///< the folders looked at, in order
+};
+
 class ShaderLibrary {
 public:
-    /** INKGRAPH_SHADER_DIR from the environment if set, else the source tree's shaders/ (a compile definition). */
+    /** INKGRAPH_SHADER_DIR from the environment if set (taken as it is, even when missing); else the first existing
+     *  folder of installedCandidates(installedShaderFolder()) (gl/BinaryLocation.h: `<bin>/../share/inkgraph/shaders`,
+     *  then `<bin>/../../share/inkgraph/shaders`, <bin> the folder of the executable or library holding this code);
+     *  else, only for a binary in the build tree, the source tree's shaders/. Looked up on each call. */
+    static ShaderFolder findShaderFolder();
+    /** findShaderFolder().path: empty when no folder was found. */
     static std::filesystem::path defaultDirectory();
 
-    /** Reads nothing yet: a missing folder is reported by the first build(), so plans compile without shaders. */
-    explicit ShaderLibrary(std::filesystem::path directory = defaultDirectory());
+    /** The shaders of findShaderFolder(). Reads nothing yet: a missing folder is reported by the first build() with
+     *  the folders searched, so plans compile without shaders. */
+    ShaderLibrary();
+    /** The shaders in `directory`. */
+    explicit ShaderLibrary(std::filesystem::path directory);
 
     /** Compiles and links; throws ShaderSourceError for a file that cannot be read, std::runtime_error naming the file,
      * stage, defines and the info log. With keepPrograms(true), a program of the same files, defines and snippets as an
@@ -51,14 +67,15 @@ public:
     std::size_t compiledCount() const { return mCompiled; }
     std::size_t reusedCount() const { return mReused; }
 
-    const std::filesystem::path& directory() const { return mDirectory; }
+    const std::filesystem::path& directory() const { return mFolder.path; }
+    const ShaderFolder& folder() const { return mFolder; }
 
 private:
     const std::string& source(const std::string& relativePath);
     GLuint compileStage(const ProgramDesc& desc, GLenum stage, const std::string& file);
     GlProgram compileAndLink(const ProgramDesc& desc);
 
-    std::filesystem::path mDirectory;
+    ShaderFolder mFolder;
     std::map<std::string, std::string> mSources;
     bool mKeepPrograms = false;
     std::map<std::string, GlProgram> mPrograms; ///< by programKey(): files, defines, snippets

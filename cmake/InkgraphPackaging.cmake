@@ -1,0 +1,38 @@
+# `cpack -G DEB` in the build folder: one Debian package per install component (docs/install.md):
+#   inkgraph_<version>_amd64.deb          runtime: the program, its data, man page, completion, private libraries
+#   inkgraph-dev_<version>_amd64.deb      dev: headers and CMake package files (when the build installs them)
+#   python3-inkgraph_<version>_amd64.deb  python: the Python package (when the build installs it)
+# Depends come from dpkg-shlibdeps (Debian's package names for every library the binaries link), plus what it cannot
+# see: libepoxy opens libEGL and libOpenGL with dlopen, and EGL needs a driver (Mesa's for llvmpipe).
+set(CPACK_PACKAGE_NAME inkgraph)
+set(CPACK_PACKAGE_VENDOR "inkgraph")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "headless anime- and comic-style renderer")
+set(CPACK_PACKAGE_DESCRIPTION
+    "inkgraph renders 3-D models (glTF, GLB, VRM, OBJ, STL) as anime- and comic-style stills with shading and line\n"
+    "drawings, through OpenGL 4.5 core on EGL with no window or display (a GPU's driver, or Mesa's llvmpipe).")
+set(CPACK_PACKAGE_CONTACT "inkgraph maintainers <inkgraph@localhost>")
+set(CPACK_GENERATOR DEB)
+set(CPACK_STRIP_FILES ON)
+
+set(CPACK_DEB_COMPONENT_INSTALL ON)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_ENABLE_COMPONENT_DEPENDS ON)
+
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME inkgraph)
+set(CPACK_DEBIAN_RUNTIME_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_DEPENDS "libegl1, libopengl0, libegl-mesa0, libgl1-mesa-dri")
+
+set(CPACK_DEBIAN_DEV_PACKAGE_NAME inkgraph-dev)
+set(CPACK_DEBIAN_DEV_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
+set(CPACK_COMPONENT_DEV_DEPENDS runtime)
+
+set(CPACK_DEBIAN_PYTHON_PACKAGE_NAME python3-inkgraph)
+set(CPACK_DEBIAN_PYTHON_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PYTHON_PACKAGE_SECTION python)
+set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS "python3, python3-numpy")
+set(CPACK_COMPONENT_PYTHON_DEPENDS runtime)
+
+include(CPack)
