@@ -32,7 +32,11 @@ set(CPACK_COMPONENT_DEV_DEPENDS runtime)
 set(CPACK_DEBIAN_PYTHON_PACKAGE_NAME python3-inkgraph)
 set(CPACK_DEBIAN_PYTHON_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PYTHON_PACKAGE_SECTION python)
-set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS "python3, python3-numpy")
+# The Python the extension is built for, and NumPy (python/CMakeLists.txt: INKGRAPH_PYTHON_DEB_DEPENDS); inkgraph
+# itself through the component's dependency on runtime. dpkg-shlibdeps is not asked: it cannot see libinkgraph.so,
+# which is in the runtime package, and the module links nothing else that package does not need too.
+set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS "${INKGRAPH_PYTHON_DEB_DEPENDS}")
+set(CPACK_DEBIAN_PYTHON_PACKAGE_SHLIBDEPS OFF)
 set(CPACK_COMPONENT_PYTHON_DEPENDS runtime)
 
 include(CPack)

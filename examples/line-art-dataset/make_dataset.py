@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Builds a small line-art data set from the bundled models with the inkgraph Python module: for each model and view,
+the picture and one mask per line type (the coverage of that type's drawn lines: 255 on a line, 0 off it, partial
+along antialiased edges), and manifest.json listing every file with its model, view and the ink pixels of each type
+(those at least half covered). README.md in this folder says more.
+
+    PYTHONPATH=build/python /usr/bin/python3 examples/line-art-dataset/make_dataset.py --output out/line-art
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import pathlib
+import sys
+
+import numpy as np
+
+import inkgraph
+
+REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
+INK = 128  # a mask's pixel counts as ink from half coverage up (masks are antialiased: 255 inside a line)
+
+
+def parse_arguments(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/examples/line-art-dataset"),
+                        help="folder to write into (made if missing; default: %(default)s)")
+    parser.add_argument("--models", type=pathlib.Path, default=REPOSITORY / "examples" / "batch" / "models.txt",
+                        help="a list of model files, one a line, # comments (default: every bundled model)")
+    parser.add_argument("--root", type=pathlib.Path, default=REPOSITORY,
+                        help="the folder the list's relative paths start from (default: the repository)")
+    parser.add_argument("--limit", type=int, default=0, help="only the first N models of the list (0: all)")
+    parser.add_argument("--views", type=int, default=2,
+                        help="views per model, evenly around it from the front (default: %(default)s)")
+    parser.add_argument("--elevation", type=float, default=15.0,
+                        help="degrees above the horizontal every view looks from (default: %(default)s)")
+    parser.add_argument("--size", type=int, default=256, help="square picture size in pixels (default: %(default)s)")
+    parser.add_argument("--lines", default="silhouette,contour,crease,suggestive",
+                        help="the line types drawn, each with its mask (default: %(default)s)")
+    parser.add_argument("--shading", default="cel", help="the pictures' shading mode (default: %(default)s)")
+    arguments = parser.parse_args(argv)
+    if arguments.views < 1 or arguments.limit < 0:
+        parser.error("--views must be at least 1 and --limit at least 0")
+    return arguments
+
+
+def model_list(path: pathlib.Path, limit: int) -> list[str]:
+    entries = [line.strip() for line in path.read_text().splitlines()]
+    models = [entry for entry in entries if entry and not entry.startswith("#")]
+    return models[:limit] if limit else models
+
+
+def main(argv: list[str]) -> int:
+    arguments = parse_arguments(argv)
+    line_types = [name for name in arguments.lines.split(",") if name]
+    look = inkgraph.make_look({"shading": arguments.shading}, lines=line_types)
+    masks = [f"lines.{name}" for name in line_types]
+    output = arguments.output
+    output.mkdir(parents=True, exist_ok=True)
+    items, failures = [], []
+    # One renderer for the whole set: one GL context, each shader program compiled once; each model loaded once.
+    with inkgraph.Renderer() as renderer:
+        for model in model_list(arguments.models, arguments.limit):
+            try:
+                scene = inkgraph.Scene.load(arguments.root / model)
+            except inkgraph.InputError as error:  # an unreadable model is reported, the others still rendered
+                print(f"make_dataset: {error}", file=sys.stderr)
+                failures.append({"model": model, "error": str(error)})
+                continue
+            name = pathlib.PurePath(model).stem
+            (output / name).mkdir(exist_ok=True)
+            for view in range(arguments.views):
+                azimuth = round(360.0 * view / arguments.views, 6)
+                frame = inkgraph.make_frame(arguments.size, ["--orbit", f"{azimuth},{arguments.elevation}"])
+                still = renderer.render(scene, look, frame, masks)
+                picture = f"{name}/view-{view}.png"
+                still.write(output / picture)
+                item = {"model": model, "view": {"index": view, "azimuth": azimuth, "elevation": arguments.elevation},
+                        "picture": picture, "masks": {}, "ink_pixels": {}}
+                for line_type, mask_name in zip(line_types, masks):
+                    mask = still.buffer(mask_name)
+                    file = f"{name}/view-{view}-{line_type}.png"
+                    inkgraph.write_image(output / file, mask)
+                    item["masks"][line_type] = file
+                    item["ink_pixels"][line_type] = int(np.count_nonzero(mask >= INK))
+                items.append(item)
+                counts = ", ".join(f"{line_type} {count}" for line_type, count in item["ink_pixels"].items())
+                print(f"make_dataset: {picture} (ink pixels: {counts})", file=sys.stderr)
+    manifest = {"inkgraph": inkgraph.__version__, "size": [arguments.size, arguments.size],
+                "shading": arguments.shading, "lines": line_types, "items": items, "failures": failures}
+    (output / "manifest.json").write_text(json.dumps(manifest, indent=2) + "\n")
+    print(f"make_dataset: {len(items)} pictures in {output}, manifest.json lists them", file=sys.stderr)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,55 @@
+"""The exceptions of inkgraph: one class per kind of inkgraph::api::Error (inkgraph/inkgraph.h).
+
+The extension (python/Module.cpp) raises the class of the C++ error's kind with the library's message unchanged
+(the function or flag first, names quoted, as the command line prints it) and the exit code the library gives for
+that kind, the one `inkgraph render` exits with (README, "Errors and exit codes").
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class Error(RuntimeError):
+    """Every failure of inkgraph. ``kind`` names the kind ("usage", "input", "context", "output", "render");
+    ``exit_code`` is the exit code `inkgraph render` gives for it."""
+
+    kind: str = "render"
+
+    def __init__(self, message: str, exit_code: int) -> None:
+        super().__init__(message)
+        self.exit_code = exit_code
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        # Picklable (a multiprocessing batch sends errors back): the default would call cls(message) alone.
+        return type(self), (str(self), self.exit_code)
+
+
+class UsageError(Error, ValueError):
+    """A bad flag, value, buffer name or camera, or too little memory for the request."""
+
+    kind = "usage"
+
+
+class InputError(Error):
+    """An unreadable or invalid model, shade map, texture or style file."""
+
+    kind = "input"
+
+
+class ContextError(Error):
+    """No OpenGL 4.5 core context through EGL, or the shaders are missing."""
+
+    kind = "context"
+
+
+class OutputError(Error):
+    """A file could not be written."""
+
+    kind = "output"
+
+
+class RenderError(Error):
+    """The render itself failed: an internal error."""
+
+    kind = "render"

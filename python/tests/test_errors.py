@@ -1,0 +1,116 @@
+"""Errors: each kind of inkgraph::api::Error as its Python class, with the command line's message and exit code."""
+
+from __future__ import annotations
+
+import pickle
+import subprocess
+
+import numpy as np
+import pytest
+
+import inkgraph
+from conftest import SIZE
+
+
+def command_line_error(executable, arguments, folder) -> tuple[str, int]:
+    """The message `inkgraph render` prints for these arguments (without "inkgraph: " and the help hint) and its
+    exit code."""
+    run = subprocess.run([str(executable), "render", *arguments], cwd=folder, capture_output=True, text=True)
+    first_line = run.stderr.splitlines()[0] if run.stderr else ""
+    assert first_line.startswith("inkgraph: "), run.stderr
+    return first_line.removeprefix("inkgraph: "), run.returncode
+
+
+def test_the_family():
+    for kind in (inkgraph.UsageError, inkgraph.InputError, inkgraph.ContextError, inkgraph.OutputError,
+                 inkgraph.RenderError):
+        assert issubclass(kind, inkgraph.Error) and issubclass(kind, RuntimeError)
+    assert issubclass(inkgraph.UsageError, ValueError)
+    assert not issubclass(inkgraph.InputError, ValueError)
+
+
+def test_a_missing_model_is_an_input_error_naming_the_file(tmp_path, inkgraph_executable):
+    missing = tmp_path / "no-such-model.obj"
+    with pytest.raises(inkgraph.InputError) as caught:
+        inkgraph.render(missing, size=SIZE)
+    error = caught.value
+    assert "'" + str(missing) + "'" in str(error)
+    assert error.exit_code == 3 and error.kind == "input"
+    message, code = command_line_error(inkgraph_executable, [str(missing), "-o", "out.png"], tmp_path)
+    assert (str(error), error.exit_code) == (message, code)
+
+
+def test_a_bad_flag_value_is_a_usage_error_with_the_command_lines_message(suzanne, suzanne_path, tmp_path,
+                                                                         inkgraph_executable):
+    with pytest.raises(inkgraph.UsageError) as caught:
+        inkgraph.render(suzanne, look={"shading": "watercolour"}, size=SIZE)
+    error = caught.value
+    assert isinstance(error, ValueError)
+    assert error.exit_code == 2 and error.kind == "usage"
+    # The command line's message after the function of the library that refused it.
+    message, code = command_line_error(inkgraph_executable, [suzanne_path, "--shading", "watercolour", "-o",
+                                                             "out.png"], tmp_path)
+    assert message.startswith("--shading: unknown value 'watercolour' (available: ")
+    assert (str(error), error.exit_code) == ("Look::set(): " + message, code)
+
+
+@pytest.mark.parametrize("look", [{"silhouette-width": -1}, ["--lines", "contour,sketchy"], {"no-such-flag": 1},
+                                  {"output": "x.png"}])
+def test_every_bad_look_is_a_usage_error(suzanne, look):
+    with pytest.raises(inkgraph.UsageError):
+        inkgraph.render(suzanne, look=look, size=SIZE)
+
+
+def test_a_bad_camera_and_size_are_usage_errors(suzanne):
+    with pytest.raises(inkgraph.UsageError) as caught:
+        inkgraph.render(suzanne, size=SIZE, camera=["--orbit", "0,95"])
+    assert "--orbit" in str(caught.value)
+    with pytest.raises(inkgraph.UsageError):
+        inkgraph.render(suzanne, size=(0, SIZE))
+
+
+def test_an_unknown_buffer_name_lists_the_available_ones(suzanne):
+    with pytest.raises(inkgraph.UsageError) as caught:
+        inkgraph.render(suzanne, size=SIZE, buffers=["normals"])
+    message = str(caught.value)
+    assert "'normals'" in message
+    for available in ("normal", "depth", "nDotV"):
+        assert available in message, message
+
+
+def test_a_buffer_not_asked_for_names_those_there_are(suzanne):
+    still = inkgraph.render(suzanne, size=SIZE, buffers=["depth", "lines.contour"]).still
+    with pytest.raises(inkgraph.UsageError) as caught:
+        still.buffer("normal")
+    message = str(caught.value)
+    assert "'normal'" in message and "depth" in message and "lines.contour" in message, message
+
+
+def test_an_unwritable_output_is_an_output_error_naming_the_file(suzanne, tmp_path):
+    result = inkgraph.render(suzanne, size=SIZE)
+    target = tmp_path / "no-such-folder" / "picture.png"
+    with pytest.raises(inkgraph.OutputError) as caught:
+        result.write(target)
+    assert str(target) in str(caught.value) and caught.value.exit_code == 5
+    with pytest.raises(inkgraph.OutputError):
+        inkgraph.write_image(target, np.zeros((4, 4), np.uint8))
+
+
+def test_a_bad_style_file_is_refused_as_the_command_line_refuses_it(suzanne, suzanne_path, tmp_path,
+                                                                    inkgraph_executable):
+    style = tmp_path / "bad.style"
+    style.write_text("shading = cel\nshading cel\n")
+    with pytest.raises(inkgraph.Error) as caught:
+        inkgraph.render(suzanne, look=style, size=SIZE)
+    assert "'" + str(style) + "' line 2" in str(caught.value)
+    message, code = command_line_error(inkgraph_executable, [suzanne_path, "--style", str(style), "-o", "out.png"],
+                                       tmp_path)
+    assert (str(caught.value), caught.value.exit_code) == ("Look::fromStyleFile(): " + message, code)
+
+
+def test_errors_survive_pickling(tmp_path):
+    with pytest.raises(inkgraph.InputError) as caught:
+        inkgraph.Scene.load(tmp_path / "missing.obj")
+    copy = pickle.loads(pickle.dumps(caught.value))
+    assert type(copy) is inkgraph.InputError
+    assert (str(copy), copy.exit_code, copy.kind) == (str(caught.value), 3, "input")

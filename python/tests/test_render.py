@@ -1,0 +1,113 @@
+"""inkgraph.render(): the picture, and every way of giving the look, the lines, the size and the camera."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import inkgraph
+from conftest import SIZE
+
+
+def ink(picture: np.ndarray) -> np.ndarray:
+    """Where the picture is dark: the default line colour is black, the default paper white."""
+    return picture[:, :, :3].max(axis=2) < 64
+
+
+def test_picture_is_rgba8_with_ink_on_paper(suzanne):
+    picture = inkgraph.render(suzanne, size=SIZE).picture
+    assert picture.shape == (SIZE, SIZE, 4) and picture.dtype == np.uint8
+    assert (picture[:, :, 3] == 255).all()
+    # White paper in the corners (the model is framed inside the picture), black lines on the model.
+    for corner in (picture[0, 0], picture[0, -1], picture[-1, 0], picture[-1, -1]):
+        assert corner.tolist() == [255, 255, 255, 255]
+    assert 50 < ink(picture).sum() < SIZE * SIZE / 2
+
+
+def test_a_path_renders_as_the_loaded_scene(suzanne, suzanne_path):
+    from_path = inkgraph.render(suzanne_path, size=SIZE).picture
+    assert np.array_equal(from_path, inkgraph.render(suzanne, size=SIZE).picture)
+
+
+def test_lines_none_leaves_no_ink_and_lines_add_it(suzanne):
+    unlined = inkgraph.render(suzanne, size=SIZE, lines=[], shading="flat").picture
+    silhouette = inkgraph.render(suzanne, size=SIZE, lines=["silhouette"], shading="flat").picture
+    both = inkgraph.render(suzanne, size=SIZE, lines="silhouette,contour", shading="flat").picture
+    assert ink(unlined).sum() == 0
+    assert ink(silhouette).sum() > 50
+    assert ink(both).sum() > ink(silhouette).sum()  # suzanne's contours lie inside her silhouette too
+    assert (ink(both) | ~ink(silhouette)).all()  # and the contour is drawn over the silhouette, not instead
+
+
+def test_look_as_dict_arguments_look_and_style_file_render_the_same(suzanne, tmp_path):
+    as_dict = {"shading": "cel", "silhouette-width": 4, "background": (0, 0, 1), "contour-color": [1, 0, 0]}
+    arguments = ["--shading", "cel", "--silhouette-width", "4", "--background", "0,0,1", "--contour-color", "1,0,0"]
+    style = tmp_path / "look.style"
+    style.write_text("shading = cel\nsilhouette-width = 4\nbackground = 0,0,1\ncontour-color = 1,0,0\n")
+    pictures = [
+        inkgraph.render(suzanne, look=look, size=SIZE).picture
+        for look in (as_dict, arguments, inkgraph.Look.from_arguments(arguments), style, str(style))
+    ]
+    for picture in pictures[1:]:
+        assert np.array_equal(picture, pictures[0])
+    # The flags took effect: blue paper, red contours, and not the default look.
+    assert pictures[0][0, 0].tolist() == [0, 0, 255, 255]
+    red = (pictures[0][:, :, 0] > 200) & (pictures[0][:, :, 1] < 50) & (pictures[0][:, :, 2] < 50)
+    assert red.sum() > 20
+    assert not np.array_equal(pictures[0], inkgraph.render(suzanne, size=SIZE).picture)
+
+
+def test_dict_keys_take_underscores_and_values_as_the_command_line_writes_them():
+    look = inkgraph.make_look({"silhouette_width": 3.5, "shading": "cel", "contour-width": None, "bands": False})
+    assert look.arguments == ["--silhouette-width", "3.5", "--shading", "cel"]
+    frame = inkgraph.make_frame(64, {"orbit": (30, np.float32(10.5)), "fov": 40, "flagged": True, "left-out": False})
+    assert frame.camera == ["--orbit", "30,10.5", "--fov", "40", "--flagged"]
+    assert (frame.width, frame.height) == (64, 64)
+
+
+def test_shading_and_lines_arguments_win_over_the_look():
+    look = inkgraph.make_look({"shading": "cel", "lines": "contour"}, shading="flat", lines=["silhouette"])
+    assert look.arguments == ["--shading", "cel", "--lines", "contour", "--shading", "flat", "--lines", "silhouette"]
+    assert inkgraph.make_look(lines=[]).arguments == ["--lines", "none"]
+
+
+def test_the_callers_look_is_not_changed(suzanne):
+    look = inkgraph.Look.from_arguments(["--shading", "cel"])
+    inkgraph.render(suzanne, look=look, size=SIZE, lines=["contour"], shading="flat")
+    assert look.arguments == ["--shading", "cel"]
+
+
+def test_shading_changes_the_picture_and_a_scene_serves_two_looks(suzanne):
+    cel = inkgraph.render(suzanne, look={"shading": "cel"}, size=SIZE, lines=[]).picture
+    flat = inkgraph.render(suzanne, look={"shading": "flat"}, size=SIZE, lines=[]).picture
+    again = inkgraph.render(suzanne, look={"shading": "cel"}, size=SIZE, lines=[]).picture
+    assert not np.array_equal(cel, flat)
+    assert np.array_equal(cel, again)
+    # Cel shading has few tones (its bands); flat shading one per face orientation.
+    shaded = cel[:, :, 3] > 0
+    assert len(np.unique(cel[shaded][:, :3], axis=0)) < len(np.unique(flat[shaded][:, :3], axis=0))
+
+
+def test_size_is_width_by_height(suzanne):
+    result = inkgraph.render(suzanne, size=(96, 64), buffers=["depth"])
+    assert result.picture.shape == (64, 96, 4)
+    assert result.buffers["depth"].shape == (64, 96)
+
+
+def test_camera_as_list_or_dict_moves_the_view(suzanne):
+    front = inkgraph.render(suzanne, size=SIZE, camera=["--orbit", "0,0"]).picture
+    back = inkgraph.render(suzanne, size=SIZE, camera=["--orbit", "180,0"]).picture
+    back_from_dict = inkgraph.render(suzanne, size=SIZE, camera={"orbit": (180, 0)}).picture
+    assert np.array_equal(back, back_from_dict)
+    assert not np.array_equal(front, back)
+
+
+def test_wrong_argument_types_are_type_errors(suzanne):
+    with pytest.raises(TypeError):
+        inkgraph.render(suzanne, size="big")
+    with pytest.raises(TypeError):
+        inkgraph.render(suzanne, size=SIZE, look=42)
+    with pytest.raises(TypeError):
+        inkgraph.render(suzanne, size=SIZE, camera="--orbit 0,0")
+    with pytest.raises(TypeError):
+        inkgraph.render(suzanne, size=SIZE, look={"background": {"r": 1}})
