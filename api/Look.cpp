@@ -94,26 +94,8 @@ Look& Look::set(const std::string& flag, const std::string& value) {
         const SourcedArguments expanded = expandStyleFile(arguments);
         refuseOtherFlags(expanded, FlagOwner::Look);
         // The flag's own checks; the rules between flags wait for the whole look (render()).
-        RenderOptions scratch;
-        const std::vector<std::string>& items = expanded.arguments;
-        for (std::size_t i = 0; i < items.size(); ++i) {
-            const Flag* item = findFlag(items[i]);
-            if (item == nullptr || !item->apply) throw UsageError("unknown option '" + items[i] + "'");
-            const std::string& name = items[i];
-            std::string itemValue;
-            if (!item->valueName.empty()) {
-                itemValue = i + 1 < items.size() ? items[++i] : "";
-                if (itemValue.empty()) throw UsageError(name + ": empty value");
-            }
-            try {
-                item->apply(itemValue, scratch);
-            } catch (const UsageError& error) {
-                const std::string& origin = expanded.origins[i];
-                if (origin.empty()) throw;
-                throw UsageError(origin + ": " + error.what());
-            }
-        }
-        mArguments.insert(mArguments.end(), items.begin(), items.end());
+        parseRenderFlags(expanded.arguments, expanded.origins, FlagChecks::Values);
+        mArguments.insert(mArguments.end(), expanded.arguments.begin(), expanded.arguments.end());
     });
     return *this;
 }

@@ -1,9 +1,11 @@
 #include "inkgraph/inkgraph.h"
 
+#include "app/BuildInfo.h"
+
 namespace inkgraph::api {
 
-std::string version() { return INKGRAPH_VERSION; }
+std::string version() { return inkgraphVersion(); }
 
-std::string gitCommit() { return INKGRAPH_GIT_COMMIT; }
+std::string gitCommit() { return inkgraphGitCommit(); }
 
 } // namespace inkgraph::api

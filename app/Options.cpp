@@ -103,8 +103,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
 namespace {
 
 /** parseRenderOptions() and parseRenderFlags(): `flagsOnly` takes flags alone and requires neither MODEL nor output. */
-RenderOptions parse(const std::vector<std::string>& arguments, const std::vector<std::string>& origins,
-                    bool flagsOnly) {
+RenderOptions parse(const std::vector<std::string>& arguments, const std::vector<std::string>& origins, bool flagsOnly,
+                    FlagChecks checks) {
     if (!origins.empty() && origins.size() != arguments.size())
         throw std::invalid_argument("parseRenderOptions(): " + std::to_string(origins.size()) + " origins for " +
                                     std::to_string(arguments.size()) + " arguments");
@@ -121,18 +121,19 @@ RenderOptions parse(const std::vector<std::string>& arguments, const std::vector
     }
     if (!flagsOnly && options.modelPaths.empty() && options.listPath.empty())
         throw UsageError("missing MODEL (a .gltf, .glb, .vrm, .obj or .stl file, or --list FILE)");
-    checkGivenFlags(options, given, flagsOnly);
+    if (checks == FlagChecks::ValuesAndRules) checkGivenFlags(options, given, flagsOnly);
     return options;
 }
 
 } // namespace
 
 RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, const std::vector<std::string>& origins) {
-    return parse(arguments, origins, false);
+    return parse(arguments, origins, false, FlagChecks::ValuesAndRules);
 }
 
-RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const std::vector<std::string>& origins) {
-    return parse(arguments, origins, true);
+RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const std::vector<std::string>& origins,
+                               FlagChecks checks) {
+    return parse(arguments, origins, true, checks);
 }
 
 std::string renderHelp() {

@@ -94,10 +94,16 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments);
  *  with the file and line first. `origins` is empty or as long as `arguments`. */
 RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, const std::vector<std::string>& origins);
 
+/** What parseRenderFlags() checks: each flag's value alone (one flag of a list still being built), or that and the
+ *  rules between the flags that parseRenderOptions() applies (a flag without effect with the rest, --supersample times
+ *  --size, ...). */
+enum class FlagChecks { Values, ValuesAndRules };
+
 /** Flags alone, for the library (api/), which takes the model and the outputs otherwise: a MODEL argument or --help is
- *  refused, neither MODEL nor an output is required, and everything else is checked as parseRenderOptions() checks
- *  it, with the same messages. */
-RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const std::vector<std::string>& origins = {});
+ *  refused, neither MODEL nor an output is required, and everything `checks` names is checked as parseRenderOptions()
+ *  checks it, with the same messages. */
+RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const std::vector<std::string>& origins = {},
+                               FlagChecks checks = FlagChecks::ValuesAndRules);
 
 /** The text of `inkgraph render --help`. */
 std::string renderHelp();

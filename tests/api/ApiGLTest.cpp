@@ -239,6 +239,24 @@ TEST_F(ApiRender, ThePictureIsTheCommandLines) {
     EXPECT_EQ(bytesOfFile(directory / "api.png"), still.picture().bytes);
 }
 
+TEST_F(ApiRender, MaterialsKeepTheirShadeMapsAsOnTheCommandLine) {
+    // Each material of the still life names its own 2-D shade map; the file brings the camera and the light.
+    const std::string stillLife = std::string(INKGRAPH_SOURCE_ROOT) + "/examples/still-life/still-life.gltf";
+    const CliRun cli = run("render '" + stillLife + "' -o cli.png --size 160x100 --shading comic --lines contour -q");
+    ASSERT_EQ(cli.exitCode, 0) << cli.err;
+    ig::Renderer renderer;
+    const ig::Scene scene = ig::Scene::load(stillLife);
+    const ig::Look comic = ig::Look::fromArguments({"--shading", "comic", "--lines", "contour"});
+    const ig::Still still = renderer.render(scene, comic, frameOf(160, 100));
+    EXPECT_EQ(still.picture().bytes, bytesOfFile(directory / "cli.png"));
+    EXPECT_TRUE(still.warnings().empty());
+    // A shading without maps draws the scene and says the materials' maps went unused.
+    const ig::Still lambert = renderer.render(scene, ig::Look().set("--shading", "lambert"), frameOf(160, 100));
+    ASSERT_EQ(lambert.warnings().size(), 1u);
+    EXPECT_NE(lambert.warnings()[0].find("4 meshes name shade maps, which only --shading"), std::string::npos)
+        << lambert.warnings()[0];
+}
+
 TEST_F(ApiRender, OneRendererAtATimeHoldsTheContext) {
     ig::Renderer second;
     {

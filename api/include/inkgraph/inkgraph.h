@@ -17,7 +17,8 @@
  *
  *  The look and the frame are described with the names and values of `inkgraph render`'s flags (`inkgraph help
  *  render`), checked by the same code, so every look the command line can draw the library can too, and their
- *  errors read the same. Errors are ig::Error, whose message starts with the function and quotes the names. */
+ *  errors read the same. Errors are ig::Error, whose message is the command line's (a flag's with the API's function
+ *  in front) and quotes the names. docs/api.md describes it all. */
 
 #include <cstddef>
 #include <cstdint>
@@ -44,7 +45,9 @@ INKGRAPH_API std::string gitCommit();
 class INKGRAPH_API Error : public std::runtime_error {
 public:
     enum class Kind {
-        Usage,   ///< a bad flag, value, buffer name or camera, or too little memory for the request
+        /** A bad flag, value, buffer name, camera or image; too little memory for the request; a Renderer used off
+         *  its thread or while another holds the process's GL context. */
+        Usage,
         Input,   ///< an unreadable or invalid model, shade map or texture
         Context, ///< no OpenGL 4.5 core context through EGL, or the shaders are missing
         Output,  ///< a file could not be written
@@ -194,8 +197,8 @@ public:
      *  Throws Error; an unknown buffer name is Error(Usage) naming the buffers this look has. */
     Still render(const Scene& scene, const Look& look, const Frame& frame,
                  const std::vector<std::string>& buffers = {});
-    /** The GL renderer and version in use ("llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Core Profile) Mesa 22.3.6"), or ""
-     *  before the first render. */
+    /** The GL renderer, version and vendor in use and the EGL platform ("llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Core
+     *  Profile) Mesa 22.3.6 (Mesa/X.org) via EGL device platform"), or "" before the first render. */
     std::string glDescription() const;
 
     struct Impl;
