@@ -172,8 +172,8 @@ private:
 
 /** Graph resource names of the buffers render() can return, for the short names people use: "normal", "view",
  *  "wVec", "nDotV", "depth", "coverage", "baseColor", "radial", "materialId" -> "gbuffer.<name>"; "lines.<type>" ->
- *  the drawn layer of a line type ("lines.contour" -> "strokes.contour", the line's coverage: 0 off it, 255 fully on
- * it); "picture" -> "composite.final". A full resource name ("shade.color", "gbuffer.depth") is returned as it is. */
+ *  the drawn layer of a line type ("lines.contour" -> "strokes.contour", the line's coverage from 0 off the line to
+ *  255 on it); "picture" -> "composite.final". A full resource name ("shade.color") is returned as it is. */
 INKGRAPH_API std::string bufferResourceName(const std::string& name);
 
 /** Renders stills. One GL context (EGL, no display) is made by the first render and kept, with every compiled
