@@ -87,7 +87,8 @@ Look& Look::set(const std::string& flag, const std::string& value) {
     translated("Look::set()", [&] {
         const Flag* entry = findFlag(flag);
         std::vector<std::string> arguments = {flag};
-        if (entry != nullptr && !entry->valueName.empty())
+        // An unknown flag keeps its value, so the parser names the flag as unknown rather than refusing the value.
+        if ((entry != nullptr && !entry->valueName.empty()) || (entry == nullptr && !value.empty()))
             arguments.push_back(value);
         else if (!value.empty())
             throw UsageError(flag + ": takes no value, got '" + value + "'");

@@ -12,7 +12,9 @@
 #include <chrono>
 #include <optional>
 #include <sstream>
-#include <thread>
+#include <mutex>
+
+#include <unistd.h>
 
 namespace inkgraph::api {
 namespace {
@@ -124,27 +126,55 @@ struct Still::Impl {
 
 struct Renderer::Impl {
     std::string eglPlatform;
-    StillRenderer renderer;
-    std::optional<std::thread::id> contextThread; ///< where the context was made, and is current
+    /** Held by pointer so that a child forked after the context was made can leave it alone: freeing it would call
+     *  into a driver whose threads exist only in the parent. */
+    std::unique_ptr<StillRenderer> renderer = std::make_unique<StillRenderer>();
+    std::mutex rendering; ///< one render at a time; any thread, since each render releases the context at its end
 
     explicit Impl(std::string platform) : eglPlatform(std::move(platform)) {}
     ~Impl() {
+        if (HeadlessContext* context = renderer->context()) {
+            if (context->owningProcess() != int(getpid())) {
+                (void)renderer.release(); // a forked child: its copy of the parent's driver state is never touched
+            } else {
+                try {
+                    context->makeCurrent(); // the GL objects are freed on this thread, maybe not the renderer's last
+                } catch (const HeadlessContextError&) {
+                    // The context is current on a thread that is still rendering: nothing safe to do but leak it.
+                    (void)renderer.release();
+                }
+            }
+        }
         const void* self = this;
         gContextHolder.compare_exchange_strong(self, nullptr);
     }
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
-    /** Takes the process's GL context for this renderer, on this thread; UsageError while another holds it. */
+    /** Takes the process's GL context for this renderer and makes it current on this thread; UsageError while another
+     *  renderer holds it, or when the context was made in the process this one was forked from. */
     void holdContext() {
         const void* holder = nullptr;
         if (!gContextHolder.compare_exchange_strong(holder, this) && holder != this)
             throw UsageError("another Renderer of this process holds the GL context (EGL shares one display per "
                              "process); render with that one, or destroy it first");
-        if (contextThread && *contextThread != std::this_thread::get_id())
-            throw UsageError("this Renderer's GL context is current on the thread of its first render; render on that "
-                             "thread, or make a Renderer per thread, one after the other");
-        if (renderer.context() == nullptr) contextThread = std::this_thread::get_id();
+        refuseForkedContext();
+        if (HeadlessContext* context = renderer->context()) context->makeCurrent();
+    }
+
+    /** UsageError when the context was made in the process this one was forked from. */
+    void refuseForkedContext() const {
+        if (const HeadlessContext* context = renderer->context(); context && context->owningProcess() != int(getpid()))
+            throw UsageError("this Renderer's GL context was made in process " +
+                             std::to_string(context->owningProcess()) +
+                             ", which forked this one; make renderers after the fork (Python: multiprocessing's "
+                             "'spawn' or 'forkserver'), or close them before it");
+    }
+
+    /** Leaves the calling thread without the context at the end of a render, so the next may run on any thread. */
+    void releaseContext() {
+        if (HeadlessContext* context = renderer->context(); context && context->owningProcess() == int(getpid()))
+            context->releaseThread();
     }
 
     /** The command line's options for this still: the look's flags, the frame's camera flags and size, checked
@@ -153,6 +183,8 @@ struct Renderer::Impl {
         const SourcedArguments camera{frame.camera, {}};
         try {
             refuseOtherFlags(camera, FlagOwner::Camera);
+            // Alone first: a flag at the end without its value would otherwise take the "--size" appended below.
+            parseRenderFlags(frame.camera, {}, FlagChecks::Values);
         } catch (const UsageError& error) {
             throw UsageError(std::string("Frame::camera: ") + error.what());
         }
@@ -177,7 +209,14 @@ struct Renderer::Impl {
 
     std::shared_ptr<Still::Impl> render(const Scene& scene, const Look& look, const Frame& frame,
                                         const std::vector<std::string>& buffers) {
+        const std::lock_guard<std::mutex> oneAtATime(rendering);
+        // Declared first, so it runs last: after the still's GL objects have gone back to the pool on this thread.
+        struct ReleaseAtEnd {
+            Impl& impl;
+            ~ReleaseAtEnd() { impl.releaseContext(); }
+        } releaseAtEnd{*this};
         const auto start = std::chrono::steady_clock::now();
+        refuseForkedContext();
         RenderOptions options = optionsOf(scene, look, frame);
         for (const std::string& name : buffers) {
             const std::string resource = bufferResourceName(name);
@@ -191,16 +230,16 @@ struct Renderer::Impl {
 
         std::ostringstream log;
         const StillLog stillLog{log, false, true};
-        const std::unique_ptr<PreparedStill> still = renderer.load(std::move(request), stillLog);
+        const std::unique_ptr<PreparedStill> still = renderer->load(std::move(request), stillLog);
         try {
-            renderer.plan(*still);
+            renderer->plan(*still);
         } catch (const UsageError&) {
             refuseUnknownBuffers(still->graph, buffers);
             throw;
         }
         budgetStill(*still, options);
         holdContext();
-        StillResult result = renderer.execute(*still, stillLog);
+        StillResult result = renderer->execute(*still, stillLog);
 
         auto made = std::make_shared<Still::Impl>();
         ResourceStore& store = result.store();
@@ -274,7 +313,7 @@ Still Renderer::render(const Scene& scene, const Look& look, const Frame& frame,
 }
 
 std::string Renderer::glDescription() const {
-    const HeadlessContext* context = mImpl ? mImpl->renderer.context() : nullptr;
+    const HeadlessContext* context = mImpl ? mImpl->renderer->context() : nullptr;
     return context != nullptr ? context->describe() : "";
 }
 

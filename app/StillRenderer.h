@@ -130,6 +130,7 @@ public:
 
     /** The context, once a still has executed. */
     const HeadlessContext* context() const { return mContext ? &*mContext : nullptr; }
+    HeadlessContext* context() { return mContext ? &*mContext : nullptr; }
 
 private:
     std::optional<HeadlessContext> mContext; ///< declared before the programs, so they are deleted first

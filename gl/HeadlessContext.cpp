@@ -10,7 +10,18 @@
 #include <cstring>
 #include <sstream>
 
+#include <unistd.h>
+
 namespace inkgraph {
+
+namespace {
+
+/** The process whose EGL driver is started (its display initialised), 0 when none is: a child forked from it inherits
+ *  the driver's state without its threads (llvmpipe's rasterisers), and a context made there would wait for them
+ *  forever. */
+pid_t gDriverProcess = 0;
+
+} // namespace
 namespace {
 
 const char* const kInstallHint =
@@ -82,15 +93,18 @@ Attempt tryDisplay(EGLDisplay display, bool debug) {
         attempt.failure = "eglInitialize failed (" + eglErrorName(eglGetError()) + ")";
         return attempt;
     }
+    gDriverProcess = getpid();
     const char* displayExtensions = eglQueryString(display, EGL_EXTENSIONS);
     if (!hasExtension(displayExtensions, "EGL_KHR_surfaceless_context")) {
         attempt.failure = "the display lacks EGL_KHR_surfaceless_context";
         eglTerminate(display);
+        gDriverProcess = 0;
         return attempt;
     }
     if (!eglBindAPI(EGL_OPENGL_API)) {
         attempt.failure = "eglBindAPI(EGL_OPENGL_API) failed: the driver has no desktop OpenGL";
         eglTerminate(display);
+        gDriverProcess = 0;
         return attempt;
     }
     const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0, EGL_NONE};
@@ -100,6 +114,7 @@ Attempt tryDisplay(EGLDisplay display, bool debug) {
         if (!hasExtension(displayExtensions, "EGL_KHR_no_config_context")) {
             attempt.failure = "no EGL config renders desktop OpenGL";
             eglTerminate(display);
+            gDriverProcess = 0;
             return attempt;
         }
         config = EGL_NO_CONFIG_KHR;
@@ -118,12 +133,14 @@ Attempt tryDisplay(EGLDisplay display, bool debug) {
     if (context == EGL_NO_CONTEXT) {
         attempt.failure = "eglCreateContext(OpenGL 4.5 core) failed (" + eglErrorName(eglGetError()) + ")";
         eglTerminate(display);
+        gDriverProcess = 0;
         return attempt;
     }
     if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
         attempt.failure = "eglMakeCurrent without a surface failed (" + eglErrorName(eglGetError()) + ")";
         eglDestroyContext(display, context);
         eglTerminate(display);
+        gDriverProcess = 0;
         return attempt;
     }
     attempt.display = display;
@@ -137,7 +154,12 @@ bool isSoftwareDevice(EGLDeviceEXT device) {
 
 } // namespace
 
-HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) {
+HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) : mProcess(int(getpid())) {
+    if (gDriverProcess != 0 && gDriverProcess != getpid())
+        throw HeadlessContextError(
+            "HeadlessContext(): this process was forked from process " + std::to_string(gDriverProcess) +
+            " after that one started the EGL driver, whose threads do not exist here; start the driver after the "
+            "fork (Python: multiprocessing's 'spawn' or 'forkserver', or close every renderer before forking)");
     const EglPlatform platform = platformFromEnvironment(options.platform);
     const char* debugVariable = std::getenv("INKGRAPH_GL_DEBUG");
     const bool debug = options.debugOutput || (debugVariable != nullptr && std::strcmp(debugVariable, "1") == 0);
@@ -240,6 +262,7 @@ void HeadlessContext::releaseEgl() {
     if (mContext != nullptr) eglDestroyContext(mDisplay, mContext);
 #ifndef INKGRAPH_KEEP_EGL_DISPLAYS
     eglTerminate(mDisplay);
+    gDriverProcess = 0;
 #else
         // Sanitized builds (INKGRAPH_SANITIZE) keep the display initialized: terminating it unloads Mesa's driver,
         // whose globals are the only roots of its still-used caches, and LeakSanitizer would then report them as lost
@@ -248,6 +271,17 @@ void HeadlessContext::releaseEgl() {
     eglReleaseThread();
     mDisplay = nullptr;
     mContext = nullptr;
+}
+
+void HeadlessContext::makeCurrent() {
+    if (eglGetCurrentContext() == mContext) return;
+    if (!eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, mContext))
+        throw HeadlessContextError("HeadlessContext::makeCurrent(): eglMakeCurrent failed (" +
+                                   eglErrorName(eglGetError()) + "); is the context current on another thread?");
+}
+
+void HeadlessContext::releaseThread() {
+    if (eglGetCurrentContext() == mContext) eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
 }
 
 std::string HeadlessContext::describe() const {

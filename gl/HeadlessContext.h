@@ -41,11 +41,21 @@ public:
     /** e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Core Profile) Mesa 22.3.6 via EGL device platform" */
     std::string describe() const;
 
+    /** Makes the context current on the calling thread; it must not be current on another one (releaseThread() there
+     *  first). Throws HeadlessContextError. */
+    void makeCurrent();
+    /** Leaves the calling thread without a context, so another thread may make this one current. */
+    void releaseThread();
+    /** The process that made the context. A forked child inherits the driver's state but none of its threads, so
+     *  nothing there may call into it: not even to free it. */
+    int owningProcess() const { return mProcess; }
+
 private:
     void releaseEgl();
 
     void* mDisplay = nullptr;
     void* mContext = nullptr;
+    int mProcess = 0;
     std::string mPlatform;
     std::string mVendor;
     std::string mRenderer;

@@ -206,7 +206,7 @@ PYBIND11_MODULE(_inkgraph, m) {
                     "Raises UsageError with the command line's message for a bad flag or value.")
         .def_static(
             "from_style_file", [](const std::filesystem::path& path) { return ig::Look::fromStyleFile(path.string()); },
-            "path"_a, "A style file (`inkgraph render --style FILE`). Raises InputError naming the file and line.")
+            "path"_a, "A style file (`inkgraph render --style FILE`). Raises UsageError naming the file and line.")
         .def("set", &ig::Look::set, "flag"_a, "value"_a = "", py::return_value_policy::reference_internal,
              "Sets one flag, checked at once: look.set('--silhouette-width', '3'). Returns the look.")
         .def_property_readonly("arguments", &ig::Look::arguments, "Every flag given so far, in order.")
@@ -263,8 +263,8 @@ PYBIND11_MODULE(_inkgraph, m) {
     py::class_<PythonRenderer>(m, "Renderer",
                                "Renders stills. The first render makes one GL context (EGL, no display), kept with "
                                "every compiled program until close() or the renderer's end: a batch pays start-up "
-                               "once. One renderer at a time holds the process's context, on the thread of its first "
-                               "render; render() refuses others with UsageError until that one is closed.")
+                               "once. One renderer at a time holds the process's context (render() refuses others with "
+                               "UsageError until that one is closed); any thread may render, one render at a time.")
         .def(py::init<const std::string&>(), "egl_platform"_a = "auto",
              "`egl_platform`: 'auto', 'device' or 'surfaceless', as --egl-platform. Makes nothing yet.")
         .def("render", &PythonRenderer::render, "scene"_a, "look"_a, "frame"_a,

@@ -183,14 +183,27 @@ def default_renderer() -> Renderer:
     GL context and compiled programs, until closed (the next call then makes a new one) or the interpreter ends.
     A batch of render() calls thus makes one context.
 
-    The C++ library lets one renderer at a time hold the process's GL context, on the thread of its first render:
-    to render with a Renderer of your own, or on another thread, close this one first
-    (``inkgraph.default_renderer().close()``); the library's UsageError says so otherwise."""
+    The C++ library lets one renderer at a time hold the process's GL context (it renders on any thread, one render
+    at a time): to render with a Renderer of your own, close this one first (``inkgraph.default_renderer().close()``);
+    the library's UsageError says so otherwise. A child forked after a render starts without a default renderer;
+    its GL driver is the parent's, without the parent's threads, so it cannot render (ContextError says why) unless
+    every renderer was closed before the fork: use multiprocessing's 'spawn' or 'forkserver' start method."""
     global _default
     with _default_lock:
         if _default is None or _default.closed:
             _default = Renderer()
         return _default
+
+
+def _forget_default_renderer_in_child() -> None:
+    # The parent's renderer is left alone in a forked child (its GL driver threads live only in the parent): dropping
+    # it frees nothing of the driver (the C++ library sees the other process), and the lock may have been held.
+    global _default, _default_lock
+    _default_lock = threading.Lock()
+    _default = None
+
+
+os.register_at_fork(after_in_child=_forget_default_renderer_in_child)
 
 
 @atexit.register

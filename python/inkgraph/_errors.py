@@ -15,10 +15,11 @@ class Error(RuntimeError):
     ``exit_code`` is the exit code `inkgraph render` gives for it."""
 
     kind: str = "render"
+    default_exit_code: int = 1  #: the command line's code for the kind, when a caller raises one without it
 
-    def __init__(self, message: str, exit_code: int) -> None:
+    def __init__(self, message: str, exit_code: int | None = None) -> None:
         super().__init__(message)
-        self.exit_code = exit_code
+        self.exit_code = self.default_exit_code if exit_code is None else exit_code
 
     def __reduce__(self) -> tuple[Any, ...]:
         # Picklable (a multiprocessing batch sends errors back): the default would call cls(message) alone.
@@ -29,24 +30,28 @@ class UsageError(Error, ValueError):
     """A bad flag, value, buffer name or camera, or too little memory for the request."""
 
     kind = "usage"
+    default_exit_code = 2
 
 
 class InputError(Error):
-    """An unreadable or invalid model, shade map, texture or style file."""
+    """An unreadable or invalid model, shade map or texture (a bad style file is a UsageError, as its flags are)."""
 
     kind = "input"
+    default_exit_code = 3
 
 
 class ContextError(Error):
     """No OpenGL 4.5 core context through EGL, or the shaders are missing."""
 
     kind = "context"
+    default_exit_code = 4
 
 
 class OutputError(Error):
     """A file could not be written."""
 
     kind = "output"
+    default_exit_code = 5
 
 
 class RenderError(Error):

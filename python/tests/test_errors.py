@@ -114,3 +114,16 @@ def test_errors_survive_pickling(tmp_path):
     copy = pickle.loads(pickle.dumps(caught.value))
     assert type(copy) is inkgraph.InputError
     assert (str(copy), copy.exit_code, copy.kind) == (str(caught.value), 3, "input")
+
+
+def test_the_error_classes_can_be_raised_by_callers_with_the_kinds_exit_codes(suzanne_path):
+    # Mocks and re-raising code construct them with a message only; the code is the one the library gives the kind.
+    with pytest.raises(inkgraph.UsageError) as usage:
+        inkgraph.render(suzanne_path, size=-1)
+    with pytest.raises(inkgraph.InputError) as missing:
+        inkgraph.render(suzanne_path + ".absent")
+    assert inkgraph.UsageError("x").exit_code == usage.value.exit_code == 2
+    assert inkgraph.InputError("x").exit_code == missing.value.exit_code == 3
+    expected = {inkgraph.ContextError: 4, inkgraph.OutputError: 5, inkgraph.RenderError: 1, inkgraph.Error: 1}
+    assert {cls: cls("x").exit_code for cls in expected} == expected
+    assert inkgraph.UsageError("x", 7).exit_code == 7

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
 import sys
 import threading
 
@@ -52,21 +54,76 @@ def test_one_renderer_holds_the_context_at_a_time(suzanne):
     other.close()
 
 
-def test_the_default_renderer_renders_on_the_thread_of_its_first_render(suzanne):
-    inkgraph.render(suzanne, size=64)
-    caught = []
-
-    def work():
-        try:
-            inkgraph.render(suzanne, size=64)
-        except inkgraph.UsageError as error:
-            caught.append(error)
-
-    thread = threading.Thread(target=work)
+def test_the_default_renderer_renders_on_any_thread(suzanne):
+    here = inkgraph.render(suzanne, size=64).picture
+    results = []
+    thread = threading.Thread(target=lambda: results.append(inkgraph.render(suzanne, size=64).picture))
     thread.start()
     thread.join()
-    assert len(caught) == 1 and "thread" in str(caught[0]), caught
-    assert inkgraph.render(suzanne, size=64).picture.shape == (64, 64, 4)  # still fine here
+    assert len(results) == 1 and np.array_equal(results[0], here)
+    assert np.array_equal(inkgraph.render(suzanne, size=64).picture, here)
+
+
+def _run_python(code: str, *arguments: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-c", code, *arguments], capture_output=True, text=True, timeout=120,
+                          env={**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)})
+
+
+def test_a_renderer_used_on_a_worker_thread_closes_on_another_and_at_exit(suzanne_path):
+    # Closing or ending the interpreter away from the render thread used to abort the process (SIGABRT in libepoxy).
+    code = """
+import sys, concurrent.futures as futures, inkgraph
+with futures.ThreadPoolExecutor(1) as pool:
+    print(pool.submit(lambda: inkgraph.render(sys.argv[1], size=32).picture.shape).result())
+mine = inkgraph.Renderer()
+inkgraph.default_renderer().close()
+with futures.ThreadPoolExecutor(1) as pool:
+    pool.submit(lambda: inkgraph.render(sys.argv[1], size=32, renderer=mine)).result()
+mine.close()
+print(inkgraph.render(sys.argv[1], size=32).picture.shape)  # the default renderer again, left open at exit
+"""
+    run = _run_python(code, suzanne_path)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split("\n")[:2] == ["(32, 32, 4)", "(32, 32, 4)"], run.stdout
+
+
+def test_a_child_forked_after_a_render_gets_a_clear_error_not_a_hang(suzanne_path):
+    code = """
+import os, sys, inkgraph
+inkgraph.render(sys.argv[1], size=32)
+child = os.fork()
+if child == 0:
+    try:
+        inkgraph.render(sys.argv[1], size=32)
+        os._exit(10)
+    except inkgraph.ContextError as error:
+        os._exit(0 if "forked from process" in str(error) else 11)
+    except BaseException:
+        os._exit(12)
+_, status = os.waitpid(child, 0)
+print(os.waitstatus_to_exitcode(status))
+print(inkgraph.render(sys.argv[1], size=32).picture.shape)  # the parent renders on
+"""
+    run = _run_python(code, suzanne_path)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split("\n")[:2] == ["0", "(32, 32, 4)"], run.stdout
+
+
+def test_a_child_forked_after_every_renderer_closed_renders(suzanne_path):
+    code = """
+import os, sys, inkgraph
+first = inkgraph.render(sys.argv[1], size=32).picture
+inkgraph.default_renderer().close()
+child = os.fork()
+if child == 0:
+    ok = (inkgraph.render(sys.argv[1], size=32).picture == first).all()
+    os._exit(0 if ok else 10)
+_, status = os.waitpid(child, 0)
+print(os.waitstatus_to_exitcode(status))
+"""
+    run = _run_python(code, suzanne_path)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split("\n")[0] == "0", run.stdout
 
 
 def test_a_closed_renderer_refuses_and_the_default_one_is_replaced(suzanne, own_renderer):

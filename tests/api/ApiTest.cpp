@@ -97,6 +97,8 @@ TEST(ApiLook, RefusesABadValueInTheCommandLinesWords) {
     const std::string lines = errorOf([] { ig::Look().set("--lines", "contour,sketchy"); }).what();
     EXPECT_EQ(lines.rfind("Look::set(): --lines: unknown line type 'sketchy' (available: ", 0), 0u) << lines;
     EXPECT_STREQ(errorOf([] { ig::Look().set("--bands", ""); }).what(), "Look::set(): --bands: empty value");
+    // A misspelt flag with a value is named as unknown, not as one that takes no value.
+    EXPECT_STREQ(errorOf([] { ig::Look().set("--shadin", "cel"); }).what(), "Look::set(): unknown option '--shadin'");
 }
 
 TEST(ApiLook, RulesBetweenFlagsWaitForTheWholeLook) {
@@ -170,6 +172,8 @@ TEST_F(ApiRenderRefusal, AFrameTakesCameraFlagsOnly) {
     EXPECT_EQ(elevation.kind(), ig::Error::Kind::Usage);
     EXPECT_NE(std::string(elevation.what()).find("--orbit: the elevation must lie in [-89.9, 89.9]"), std::string::npos)
         << elevation.what();
+    frame.camera = {"--orbit"}; // without its value: not the "--size" the renderer appends
+    EXPECT_STREQ(renderError({}, frame).what(), "Renderer::render(): Frame::camera: --orbit: missing value");
     frame.camera = {"--eye", "0,0,5", "--orbit", "30,10"};
     EXPECT_STREQ(renderError({}, frame).what(), "Renderer::render(): --orbit and --eye both place the eye: give one");
 }

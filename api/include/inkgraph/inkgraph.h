@@ -45,8 +45,8 @@ INKGRAPH_API std::string gitCommit();
 class INKGRAPH_API Error : public std::runtime_error {
 public:
     enum class Kind {
-        /** A bad flag, value, buffer name, camera or image; too little memory for the request; a Renderer used off
-         *  its thread or while another holds the process's GL context. */
+        /** A bad flag, value, buffer name, camera or image; too little memory for the request; a Renderer used while
+         *  another holds the process's GL context, or made before the fork of the process it is used in. */
         Usage,
         Input,   ///< an unreadable or invalid model, shade map or texture
         Context, ///< no OpenGL 4.5 core context through EGL, or the shaders are missing
@@ -179,8 +179,10 @@ INKGRAPH_API std::string bufferResourceName(const std::string& name);
 /** Renders stills. One GL context (EGL, no display) is made by the first render and kept, with every compiled
  *  program, for the renderer's life: a batch pays start-up once. One renderer renders at a time per process (EGL
  *  shares one display per process, which ending a renderer's context ends): render() refuses while another renderer
- *  holds the context; destroy that one first. Not thread-safe: a renderer renders on the thread of its first render,
- *  where its context is current. Scenes and looks may be shared across threads (they are read only). */
+ *  holds the context; destroy that one first. Any thread may render or destroy it, one render at a time (each render
+ *  makes the context current on its thread and releases it at its end). A process forked after a render can render
+ *  neither with it nor with a new one (the driver's threads stay in the parent): Error(Usage) and Error(Context) say
+ *  so. Scenes and looks may be shared across threads (they are read only). */
 class INKGRAPH_API Renderer {
 public:
     /** `eglPlatform`: "auto" (default), "device" or "surfaceless", as --egl-platform. Nothing is made yet. */
