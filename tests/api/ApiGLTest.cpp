@@ -3,6 +3,7 @@
 #include <inkgraph/inkgraph.h>
 
 #include "app/ImageFiles.h"
+#include "tests/api/ApiTestSupport.h"
 #include "tests/app/CliTestSupport.h"
 
 #include <gtest/gtest.h>
@@ -36,15 +37,6 @@ std::vector<std::uint8_t> bytesOfFile(const std::filesystem::path& path) {
     const cv::Mat read = readImage(path);
     const cv::Mat continuous = read.isContinuous() ? read : read.clone();
     return {continuous.data, continuous.data + continuous.total() * continuous.elemSize()};
-}
-
-ig::Error errorOf(const std::function<void()>& call) {
-    try {
-        call();
-    } catch (const ig::Error& error) {
-        return error;
-    }
-    return ig::Error(ig::Error::Kind::Render, "no Error thrown");
 }
 
 class ApiRender : public Cli {

@@ -3,6 +3,7 @@
 #include <inkgraph/inkgraph.h>
 
 #include "app/ImageFiles.h"
+#include "tests/api/ApiTestSupport.h"
 #include "tests/support/TestFolder.h"
 
 #include <gtest/gtest.h>
@@ -17,16 +18,6 @@ namespace inkgraph::test {
 namespace {
 
 const std::string kModels = std::string(INKGRAPH_SOURCE_ROOT) + "/models/";
-
-/** The Error `call` throws; a test fails visibly when it throws none (kind Render, message "no Error thrown"). */
-ig::Error errorOf(const std::function<void()>& call) {
-    try {
-        call();
-    } catch (const ig::Error& error) {
-        return error;
-    }
-    return ig::Error(ig::Error::Kind::Render, "no Error thrown");
-}
 
 void writeText(const std::filesystem::path& path, const std::string& text) {
     std::ofstream file(path, std::ios::binary);
