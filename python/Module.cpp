@@ -107,8 +107,9 @@ class PythonRenderer {
 public:
     explicit PythonRenderer(const std::string& eglPlatform) : mRenderer(std::in_place, eglPlatform) {}
 
-    ig::Still render(const ig::Scene& scene, const ig::Look& look, const ig::Frame& frame,
-                     const std::vector<std::string>& buffers) {
+    // The look and the frame by value: the render runs without the GIL, while another Python thread may change the
+    // objects it was given.
+    ig::Still render(const ig::Scene& scene, ig::Look look, ig::Frame frame, std::vector<std::string> buffers) {
         const std::lock_guard lock(mMutex);
         return open("Renderer.render()").render(scene, look, frame, buffers);
     }
