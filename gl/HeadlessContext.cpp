@@ -21,9 +21,6 @@ namespace {
  *  forever. */
 pid_t gDriverProcess = 0;
 
-} // namespace
-namespace {
-
 const char* const kInstallHint =
     "Install Mesa's EGL and drivers (apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri) for CPU rendering, or "
     "NVIDIA's driver with its EGL vendor file (10_nvidia.json in /usr/share/glvnd/egl_vendor.d). "
