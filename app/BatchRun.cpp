@@ -1,5 +1,7 @@
 #include "app/BatchRun.h"
 
+#include "app/Messages.h"
+
 #include "app/Batch.h"
 #include "app/Cli.h"
 #include "app/Render.h"
@@ -36,11 +38,11 @@ void renderEach(const RenderOptions& options, const BatchList& list, RenderSessi
             }
         } catch (const SceneError& error) {
             // Bad input stops one still, not the batch: the other models' work is not lost.
-            log << counter << " failed: " << error.what() << "\n";
+            log << boundedMessage(counter + " failed: " + error.what()) << "\n";
             failed.push_back(model.path);
             if (exitCode == kExitOk) exitCode = kExitBadInput;
         } catch (const InputFileError& error) {
-            log << counter << " failed: " << error.what() << "\n";
+            log << boundedMessage(counter + " failed: " + error.what()) << "\n";
             failed.push_back(model.path);
             if (exitCode == kExitOk) exitCode = kExitBadInput;
         }
@@ -79,7 +81,7 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
         try {
             session.finishPending();
         } catch (const std::exception& error) {
-            log << "inkgraph: error: " << error.what() << "\n";
+            log << boundedMessage(std::string("inkgraph: error: ") + error.what()) << "\n";
         }
         throw;
     }

@@ -1,5 +1,7 @@
 #include "app/Cli.h"
 
+#include "app/Messages.h"
+
 #include "app/BatchRun.h"
 #include "app/CommandLineDocs.h"
 #include "app/ImageFiles.h"
@@ -135,7 +137,9 @@ std::string mainHelp() {
     return text;
 }
 
-ErrorReport reportOf(const std::exception_ptr& error) {
+namespace {
+
+ErrorReport unboundedReportOf(const std::exception_ptr& error) {
     const std::string outOfMemory = "make the image smaller (--size, --supersample) or request and dump fewer buffers";
     try {
         std::rethrow_exception(error);
@@ -161,6 +165,14 @@ ErrorReport reportOf(const std::exception_ptr& error) {
     } catch (...) {
         return {kExitInternal, "internal error: an exception that is not a std::exception"};
     }
+}
+
+} // namespace
+
+ErrorReport reportOf(const std::exception_ptr& error) {
+    ErrorReport report = unboundedReportOf(error);
+    report.message = boundedMessage(report.message);
+    return report;
 }
 
 int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {

@@ -1,7 +1,7 @@
 #include "app/ImageFiles.h"
 
 #include "app/ImageIoModule.h"
-#include "app/PngChunks.h"
+#include "codecs/PngChunks.h"
 #include "app/PngFiles.h"
 #include "app/TemporaryFiles.h"
 #include "gl/BinaryLocation.h"

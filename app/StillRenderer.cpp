@@ -1,5 +1,7 @@
 #include "app/StillRenderer.h"
 
+#include "app/Messages.h"
+
 #include "app/ImageFiles.h"
 #include "app/Options.h"
 #include "app/SceneShadeMaps.h"
@@ -13,6 +15,11 @@
 
 namespace inkgraph {
 namespace {
+
+/** One warning line, bounded like every message (app/Messages.h). */
+void logWarning(const StillLog& log, const std::string& prefix, const std::string& warning) {
+    log.log << boundedMessage("inkgraph: warning: " + prefix + warning) << "\n";
+}
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -119,8 +126,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
         loadOptions.time = req.animationTime;
         still->loadedScene = std::make_shared<const Scene>(loadScene(req.modelPath, loadOptions));
         still->loadMilliseconds = millisecondsSince(loadStart);
-        for (const std::string& warning : still->scene().report.warnings)
-            log.log << "inkgraph: warning: " << prefix << warning << "\n";
+        for (const std::string& warning : still->scene().report.warnings) logWarning(log, prefix, warning);
     }
     const Scene& scene = still->scene();
     if (log.talks && !log.quiet && !req.loadedScene) {
@@ -132,7 +138,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     // The maps the model's materials name (glTF extras), each file read once; exit 3 like --shademap.
     std::vector<std::string> shadeMapWarnings;
     still->meshShadeMaps = readSceneShadeMaps(scene, look.shading, &shadeMapWarnings);
-    for (const std::string& warning : shadeMapWarnings) log.log << "inkgraph: warning: " << prefix << warning << "\n";
+    for (const std::string& warning : shadeMapWarnings) logWarning(log, prefix, warning);
     return still;
 }
 
@@ -223,6 +229,10 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
         }
         throw;
     }
+    // What decoding the textures had to say (an image shrunk to the driver's largest texture), as the loader's
+    // warnings.
+    const std::string prefix = log.talks ? "" : "'" + still.request.modelPath + "': ";
+    for (const std::string& warning : still.gpuScene->materials().warnings()) logWarning(log, prefix, warning);
     result.texturesCreated = mTextures.createdCount() - texturesCreatedBefore;
     result.texturesReused = mTextures.reusedCount() - texturesReusedBefore;
     result.programsCompiled = mShaders.compiledCount() - programsCompiledBefore;

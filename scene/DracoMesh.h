@@ -27,8 +27,18 @@ struct DracoMesh {
     std::string error;                             ///< empty when decoded; else why not
 };
 
-/** Decodes `size` bytes of a Draco mesh. `admit(points, faces)` is called with the decoded counts before anything is
- *  copied out (it may throw, e.g. a memory budget's refusal, which propagates). Failures of the data are reported in
+/** What a Draco mesh's header declares, read without decoding: faces, and the vertices its connectivity encodes. */
+struct DracoCounts {
+    std::size_t points = 0;
+    std::size_t faces = 0;
+    std::string error; ///< empty when read; else why not (not Draco, a point cloud, cut short)
+};
+
+INKGRAPH_DRACO_API DracoCounts readDracoCounts(const unsigned char* data, std::size_t size);
+
+/** Decodes `size` bytes of a Draco mesh. `admit(points, faces)` is called with the header's counts before Draco
+ *  decodes anything, and once more with whatever the decoded mesh holds beyond them before anything is copied out
+ *  (it may throw, e.g. a memory budget's refusal, which propagates). Failures of the data are reported in
  *  DracoMesh::error, not thrown. */
 INKGRAPH_DRACO_API DracoMesh decodeDracoMesh(const unsigned char* data, std::size_t size,
                                              const std::function<void(std::size_t, std::size_t)>& admit);

@@ -3,14 +3,22 @@
 #include "scene/FormatReaders.h"
 #include "scene/Scene.h"
 
+#include "codecs/JpegCodec.h"
+#include "codecs/PngChunks.h"
+#include "codecs/PngCodec.h"
+
 #include <stb/stb_image.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <new>
+#include <string_view>
 #include <vector>
 
 namespace inkgraph {
@@ -24,6 +32,9 @@ struct Failure {
         throw SceneError("decodeSceneImage(): '" + modelPath + "' " + label + ": " + problem);
     }
 };
+
+constexpr std::string_view kPngSignature("\x89PNG\r\n\x1a\n", 8);
+constexpr std::string_view kJpegSignature("\xff\xd8\xff", 3);
 
 std::string limitText(std::size_t byteLimit) {
     return std::to_string(byteLimit) + " bytes the memory limit leaves for textures (raise --memory-limit)";
@@ -57,6 +68,64 @@ std::string stbReason() {
     return std::string("stb_image says \"") + (reason ? reason : "?") + "\"";
 }
 
+bool startsWith(const std::vector<unsigned char>& bytes, std::string_view prefix) {
+    return bytes.size() >= prefix.size() && std::memcmp(bytes.data(), prefix.data(), prefix.size()) == 0;
+}
+
+/** The pixels of a texture: width x height x 4 bytes, allocated only after the caller's check has passed. */
+struct PixelBuffer {
+    std::shared_ptr<unsigned char> pixels;
+    std::vector<unsigned char*> rows;
+    std::vector<unsigned char*> allocate(std::uint32_t width, std::uint32_t height) {
+        const std::size_t rowBytes = std::size_t(width) * 4;
+        pixels = std::shared_ptr<unsigned char>(new unsigned char[rowBytes * height],
+                                                std::default_delete<unsigned char[]>());
+        rows.resize(height);
+        for (std::uint32_t row = 0; row < height; ++row) rows[row] = pixels.get() + rowBytes * row;
+        return rows;
+    }
+};
+
+/** The formats stb_image reads besides PNG and JPEG (BMP, TGA, GIF, PSD, HDR, PIC, PNM). stb allocates a whole image
+ *  of its own before converting it to 8-bit RGBA: the file's samples (32-bit float for HDR, up to 16-bit for PSD and
+ *  PNM, 4 channels), freed after the conversion, or for a GIF its background and history beside the frame. */
+std::size_t stbDecoderBytes(const std::vector<unsigned char>& bytes, int width, int height) {
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    const bool floatSamples = stbi_is_hdr_from_memory(bytes.data(), int(bytes.size())) != 0;
+    return pixels * (floatSamples ? 16 : 8);
+}
+
+using AdmitImage = std::function<void(std::uint64_t, std::uint64_t, std::size_t)>;
+
+DecodedImage decodeWithStb(const std::vector<unsigned char>& bytes, const std::string& declared,
+                           const AdmitImage& admit, const Failure& fail) {
+    if (bytes.size() > std::size_t(INT_MAX))
+        fail("is " + std::to_string(bytes.size()) + " bytes, more than stb_image reads (2 GiB)");
+    const int byteCount = int(bytes.size());
+    int width = 0, height = 0, channels = 0;
+    if (stbi_info_from_memory(bytes.data(), byteCount, &width, &height, &channels) == 0)
+        fail("cannot be decoded: not a PNG, JPEG, BMP, TGA, GIF, PSD, HDR, PIC or PNM image, or one stb_image finds "
+             "corrupt or too large" +
+             declared + " (" + stbReason() + ")");
+    admit(std::uint64_t(std::max(width, 0)), std::uint64_t(std::max(height, 0)), stbDecoderBytes(bytes, width, height));
+    int decodedWidth = 0, decodedHeight = 0;
+    unsigned char* pixels = stbi_load_from_memory(bytes.data(), byteCount, &decodedWidth, &decodedHeight, &channels, 4);
+    if (pixels == nullptr) {
+        const char* reason = stbi_failure_reason();
+        if (reason != nullptr && std::strcmp(reason, "outofmem") == 0) throw std::bad_alloc(); // the machine's limit
+        fail("cannot be decoded: corrupt or truncated" + declared + " (" + stbReason() + ")");
+    }
+    DecodedImage decoded;
+    decoded.rgba = std::shared_ptr<const unsigned char>(
+        pixels, [](const unsigned char* p) { stbi_image_free(const_cast<unsigned char*>(p)); });
+    if (decodedWidth != width || decodedHeight != height)
+        fail("decodes to " + std::to_string(decodedWidth) + "x" + std::to_string(decodedHeight) +
+             " although its header says " + std::to_string(width) + "x" + std::to_string(height));
+    decoded.width = width;
+    decoded.height = height;
+    return decoded;
+}
+
 } // namespace
 
 std::size_t decodedImageBytes(int width, int height) {
@@ -77,37 +146,58 @@ DecodedImage decodeSceneImage(const SceneImage& image, std::size_t index, const 
         bytes = &fromFile;
     }
     if (bytes->empty()) fail("is empty (0 bytes)");
-    if (bytes->size() > std::size_t(INT_MAX))
-        fail("is " + std::to_string(bytes->size()) + " bytes, more than stb_image reads (2 GiB)");
-    const int byteCount = int(bytes->size());
     const std::string declared = image.mimeType.empty() ? "" : " (declared " + image.mimeType + ")";
-    int width = 0, height = 0, channels = 0;
-    // The header alone first: a 60000 x 60000 PNG of a few kilobytes must be refused before 14 GB are allocated.
-    if (stbi_info_from_memory(bytes->data(), byteCount, &width, &height, &channels) == 0)
-        fail("cannot be decoded: not a PNG, JPEG, BMP, TGA, GIF, PSD, HDR, PIC or PNM image stb_image reads, or one it "
-             "finds corrupt or too large" +
-             declared + " (" + stbReason() + ")");
-    if (width <= 0 || height <= 0) fail("has no pixels");
-    const std::size_t needed = decodedImageBytes(width, height);
-    if (needed > byteLimit)
-        fail(std::to_string(width) + "x" + std::to_string(height) + " needs " + std::to_string(needed) +
-             " bytes to decode and upload with its mipmaps, more than the " + limitText(byteLimit));
-    int decodedWidth = 0, decodedHeight = 0;
-    unsigned char* pixels =
-        stbi_load_from_memory(bytes->data(), byteCount, &decodedWidth, &decodedHeight, &channels, 4);
-    if (pixels == nullptr) {
-        const char* reason = stbi_failure_reason();
-        if (reason != nullptr && std::strcmp(reason, "outofmem") == 0) throw std::bad_alloc(); // the machine's limit
-        fail("cannot be decoded: corrupt or truncated" + declared + " (" + stbReason() + ")");
-    }
+    // The header is the file's claim; this judges it, with what the decoder itself will allocate on top of the
+    // pixels, before anything of the image's size is allocated.
+    const auto admit = [&](std::uint64_t width, std::uint64_t height, std::size_t decoderBytes) {
+        if (width == 0 || height == 0) fail("has no pixels");
+        const auto size = std::to_string(width) + "x" + std::to_string(height);
+        if (width > std::uint64_t(INT_MAX) || height > std::uint64_t(INT_MAX) ||
+            width * height > std::uint64_t(SIZE_MAX) / 32)
+            fail(size + " pixels declared, far more than the " + limitText(byteLimit));
+        // An external file's bytes are held while it decodes; embedded ones were charged with the model.
+        const std::size_t needed = decodedImageBytes(int(width), int(height)) + decoderBytes + fromFile.size();
+        if (needed > byteLimit)
+            fail(size + " needs " + std::to_string(needed) +
+                 " bytes to decode and upload with its mipmaps, more than the " + limitText(byteLimit));
+    };
     DecodedImage decoded;
-    decoded.rgba = std::shared_ptr<const unsigned char>(
-        pixels, [](const unsigned char* p) { stbi_image_free(const_cast<unsigned char*>(p)); });
-    if (decodedWidth != width || decodedHeight != height)
-        fail("decodes to " + std::to_string(decodedWidth) + "x" + std::to_string(decodedHeight) +
-             " although its header says " + std::to_string(width) + "x" + std::to_string(height));
-    decoded.width = width;
-    decoded.height = height;
+    PixelBuffer buffer;
+    if (startsWith(*bytes, kPngSignature)) {
+        // libpng, bounded: only the critical chunks reach it (no compressed text or profile), and it inflates the
+        // image data row by row into the buffer and no further, however much the data would inflate to.
+        try {
+            const std::vector<unsigned char> png =
+                criticalPngChunks(std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()));
+            decodePngBytes(png.data(), png.size(), PngExpansion::Rgba8, [&](const PngLayout& layout) {
+                admit(layout.width, layout.height, 0);
+                decoded.width = int(layout.width);
+                decoded.height = int(layout.height);
+                return buffer.allocate(layout.width, layout.height);
+            });
+        } catch (const std::invalid_argument& problem) {
+            fail("cannot be decoded: a broken PNG" + declared + " (" + problem.what() + ")");
+        } catch (const std::runtime_error& problem) {
+            if (dynamic_cast<const SceneError*>(&problem) != nullptr) throw;
+            fail("cannot be decoded: a corrupt or truncated PNG" + declared + " (" + problem.what() + ")");
+        }
+    } else if (startsWith(*bytes, kJpegSignature)) {
+        try {
+            decodeJpegRgba8(bytes->data(), bytes->size(), [&](const JpegLayout& layout) {
+                admit(layout.width, layout.height, layout.decoderBytes);
+                decoded.width = int(layout.width);
+                decoded.height = int(layout.height);
+                return buffer.allocate(layout.width, layout.height);
+            });
+        } catch (const std::runtime_error& problem) {
+            if (dynamic_cast<const SceneError*>(&problem) != nullptr) throw;
+            fail("cannot be decoded: a corrupt, truncated or unsupported JPEG" + declared + " (" + problem.what() +
+                 ")");
+        }
+    } else {
+        return decodeWithStb(*bytes, declared, admit, fail);
+    }
+    decoded.rgba = std::move(buffer.pixels);
     return decoded;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
-/** @file A material's image decoded to 8-bit RGBA by stb_image (Debian's libstb), only when a pass that runs samples
- *  it: the loader keeps images encoded (Material.h SceneImage). No GL. */
+/** @file A material's image decoded to 8-bit RGBA, only when a pass that runs samples it: the loader keeps images
+ *  encoded (Material.h SceneImage). PNG through libpng and JPEG through libjpeg-turbo (codecs/), each row by row into
+ *  the one RGBA buffer; the other formats stb_image reads (BMP, TGA, GIF, PSD, HDR, PIC, PNM) through stb. No GL. */
 
 #include "scene/Material.h"
 
@@ -13,7 +14,7 @@ namespace inkgraph {
 struct DecodedImage {
     int width = 0;
     int height = 0;
-    /** width x height x 4 bytes, rows top to bottom, sRGB-encoded colour and linear alpha: stb_image's own buffer,
+    /** width x height x 4 bytes, rows top to bottom, sRGB-encoded colour and linear alpha: the decoder's own buffer,
      *  kept rather than copied (a 8192^2 texture is 256 MiB). */
     std::shared_ptr<const unsigned char> rgba;
 };
@@ -24,10 +25,12 @@ std::size_t decodedImageBytes(int width, int height);
 
 /** Decodes `image` (embedded bytes, or its file read now). An external file must be a regular file no larger than
  *  `byteLimit`; the image's size is read from its header before anything is decoded, and an image whose
- *  decodedImageBytes() exceed `byteLimit` is refused. `index` (its place in Scene::images) and its name label it in
+ *  decodedImageBytes(), plus what its decoder allocates of its own (a progressive JPEG's coefficients, stb's
+ *  whole-image buffers), exceed `byteLimit` is refused. A PNG's data is inflated only as far as its header's pixels
+ *  reach, however far it would inflate. `index` (its place in Scene::images) and its name label it in
  *  messages. Throws SceneError "decodeSceneImage(): '<model>' image 2 'skin': <problem>" for a file that is missing,
- * not a regular file, too large or unreadable, a corrupt or unsupported encoding (stb_image's reason quoted) or the
- * limit. */
+ * not a regular file, too large or unreadable, a corrupt, truncated or unsupported encoding (the decoder's reason
+ * quoted) or the limit. */
 DecodedImage decodeSceneImage(const SceneImage& image, std::size_t index, const std::string& modelPath,
                               std::size_t byteLimit);
 

@@ -3,6 +3,7 @@
 #include "scene/TextureImage.h"
 
 #include <glm/gtc/type_ptr.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -40,6 +41,29 @@ int mipmapLevels(int width, int height) {
     return levels;
 }
 
+/** The driver's largest texture side (GL_MAX_TEXTURE_SIZE; at least 16384 on GL 4.5 hardware, as llvmpipe). */
+int maxTextureSide() {
+    GLint side = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &side);
+    return std::max(side, 1);
+}
+
+/** `decoded` shrunk (area-averaged) so that neither side exceeds `maxSide`, keeping its aspect ratio. */
+DecodedImage downscaled(const DecodedImage& decoded, int maxSide) {
+    const double scale = double(maxSide) / double(std::max(decoded.width, decoded.height));
+    DecodedImage smaller;
+    smaller.width = std::clamp(int(std::lround(decoded.width * scale)), 1, maxSide);
+    smaller.height = std::clamp(int(std::lround(decoded.height * scale)), 1, maxSide);
+    auto pixels = std::shared_ptr<unsigned char>(new unsigned char[std::size_t(smaller.width) * smaller.height * 4],
+                                                 std::default_delete<unsigned char[]>());
+    // OpenCV only reads the source; its constructor over external data takes a non-const pointer.
+    const cv::Mat source(decoded.height, decoded.width, CV_8UC4, const_cast<unsigned char*>(decoded.rgba.get()));
+    cv::Mat target(smaller.height, smaller.width, CV_8UC4, pixels.get());
+    cv::resize(source, target, target.size(), 0, 0, cv::INTER_AREA);
+    smaller.rgba = std::move(pixels);
+    return smaller;
+}
+
 } // namespace
 
 SceneMaterials::SceneMaterials(const Scene& scene, std::string modelPath)
@@ -56,7 +80,25 @@ GLuint SceneMaterials::texture(const TextureRef& reference, bool srgb) {
     if (auto found = mTextures.find(key); found != mTextures.end()) return found->second.id();
     const SceneImage& image = mScene.images[std::size_t(reference.image)];
     const std::size_t left = mTextureByteLimit > mTextureBytes ? mTextureByteLimit - mTextureBytes : 0;
-    const DecodedImage decoded = decodeSceneImage(image, std::size_t(reference.image), mModelPath, left);
+    DecodedImage decoded = decodeSceneImage(image, std::size_t(reference.image), mModelPath, left);
+    // A texture the driver cannot hold (a 17000 x 1 strip) is shrunk to fit rather than failing the still: a toon
+    // render needs no more texels than that, and the warning and --stats say so.
+    if (const int maxSide = maxTextureSide(); decoded.width > maxSide || decoded.height > maxSide) {
+        const DecodedImage smaller = downscaled(decoded, maxSide);
+        const std::string name = image.name.empty() ? "" : " '" + image.name + "'";
+        const std::string warning = "image " + std::to_string(reference.image) + name + " is " +
+                                    std::to_string(decoded.width) + "x" + std::to_string(decoded.height) +
+                                    " pixels, more than the driver's largest texture (" + std::to_string(maxSide) +
+                                    " a side): downscaled to " + std::to_string(smaller.width) + "x" +
+                                    std::to_string(smaller.height);
+        // Colour and data uses of one image are two textures; the image is named once.
+        if (std::find(mWarnings.begin(), mWarnings.end(), warning) == mWarnings.end()) mWarnings.push_back(warning);
+        mDownscaled.push_back({{"image", reference.image},
+                               {"name", image.name},
+                               {"decoded", {decoded.width, decoded.height}},
+                               {"uploaded", {smaller.width, smaller.height}}});
+        decoded = smaller;
+    }
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     GlHandle<TextureDeleter> handle(id);
@@ -124,6 +166,7 @@ void SceneMaterials::describe(nlohmann::ordered_json& out) const {
     out["images"] = {{"count", mScene.images.size()},
                      {"decoded", mTextures.size()},
                      {"decoded_bytes", mTextureBytes},
+                     {"downscaled", mDownscaled},
                      {"byte_limit", mTextureByteLimit == std::size_t(-1) ? Json(nullptr) : Json(mTextureByteLimit)}};
 }
 

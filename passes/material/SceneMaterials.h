@@ -58,16 +58,21 @@ public:
     void bind(const GlProgram& program, std::size_t meshIndex, MaterialUse use);
 
     /** For --stats: each distinct material (name, meshes, base colour factor, texture, alpha, sides, unlit, emissive,
-     *  MToon) and the images (count, decoded, bytes). */
+     *  MToon) and the images (count, decoded, bytes, and those downscaled to the driver's largest texture). */
     void describe(nlohmann::ordered_json& out) const;
 
     /** Mesh `meshIndex`'s MToon material when it asks for an outline (a width mode other than none and a width
      *  above 0), else empty. */
     std::optional<MToonMaterial> outlineOf(std::size_t meshIndex) const;
 
+    /** What the textures decoded so far had to warn about: each image wider or taller than the driver's
+     *  GL_MAX_TEXTURE_SIZE, which was downscaled to fit (a toon render needs no more texels than that). */
+    const std::vector<std::string>& warnings() const { return mWarnings; }
+
     /** The material's GL texture for `reference`, decoded and uploaded on the first call with mipmaps, or 0 when
-     *  `reference` names no image. Colour (`srgb`: base colour, emissive, shade) is stored sRGB8_ALPHA8, so sampling
-     *  decodes it to linear; data (the outline width) RGBA8 as is. */
+     *  `reference` names no image. An image larger than the driver takes is downscaled to fit, with a warning. Colour
+     * (`srgb`: base colour, emissive, shade) is stored sRGB8_ALPHA8, so sampling decodes it to linear; data (the
+     * outline width) RGBA8 as is. */
     GLuint texture(const TextureRef& reference, bool srgb = true);
     /** A sampler object with the reference's filters and wraps. */
     GLuint sampler(const TextureSampler& settings);
@@ -77,7 +82,9 @@ private:
     std::string mModelPath;
     std::size_t mTextureByteLimit = std::size_t(-1);
     std::size_t mTextureBytes = 0;
-    std::map<std::pair<int, bool>, GlHandle<TextureDeleter>> mTextures; ///< by Scene::images index and sRGB-ness
+    std::vector<std::string> mWarnings;
+    nlohmann::ordered_json mDownscaled = nlohmann::ordered_json::array(); ///< for --stats: name, file and GL sizes
+    std::map<std::pair<int, bool>, GlHandle<TextureDeleter>> mTextures;   ///< by Scene::images index and sRGB-ness
     std::vector<std::pair<TextureSampler, GlHandle<SamplerDeleter>>> mSamplers;
 };
 

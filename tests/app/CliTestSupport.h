@@ -14,7 +14,9 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace inkgraph::test {
 
@@ -24,7 +26,23 @@ struct CliRun {
     int exitCode = -1;
     std::string out;
     std::string err;
+    double peakMib = 0.0; ///< the largest resident set of the run's processes (the shell and the executable)
 };
+
+/** Runs `command` through /bin/sh as std::system does, and returns its wait status and the peak resident set of it and
+ *  the processes it waited for (wait4's rusage of this one child, not of every child the test has had). */
+inline int runShell(const std::string& command, double& peakMib) {
+    const pid_t child = fork();
+    if (child == 0) {
+        execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    int status = -1;
+    rusage usage{};
+    if (child < 0 || wait4(child, &status, 0, &usage) != child) return -1;
+    peakMib = double(usage.ru_maxrss) / 1024.0;
+    return status;
+}
 
 inline std::string readText(const fs::path& path) {
     std::ifstream file(path);
@@ -51,8 +69,8 @@ protected:
         const std::string command = "cd '" + directory.string() + "' && env LP_NUM_THREADS=1 " + environment + " '" +
                                     INKGRAPH_EXECUTABLE + "' " + arguments + " > '" + outFile.string() + "' 2> '" +
                                     errFile.string() + "' < /dev/null";
-        const int status = std::system(command.c_str());
         CliRun result;
+        const int status = runShell(command, result.peakMib);
         result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
         result.out = readText(outFile);
         result.err = readText(errFile);

@@ -1,4 +1,4 @@
-#include "app/PngChunks.h"
+#include "codecs/PngChunks.h"
 
 #include <array>
 #include <cstdint>

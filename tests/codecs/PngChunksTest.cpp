@@ -1,5 +1,5 @@
 // criticalPngChunks(): what a shade-map PNG is reduced to before libpng sees it.
-#include "app/PngChunks.h"
+#include "codecs/PngChunks.h"
 
 #include <gtest/gtest.h>
 

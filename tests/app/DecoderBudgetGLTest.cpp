@@ -1,0 +1,311 @@
+// Every decoder is bounded by the header and --memory-limit (issue 31), through the real executable: a PNG whose
+// data inflates far beyond its header, a 16-bit PNG, a baseline and a progressive JPEG, a Draco buffer that decodes
+// to millions of triangles, a header declaring 60000 x 60000 pixels. Each run's peak resident set (CliRun::peakMib,
+// wait4's figure for that run) is compared with the limit in the Release suite only
+// (AddressSanitizer's shadow memory is not the program's; MemoryBudgetGLTest says the same). Also here: a texture
+// wider than the driver's largest is downscaled with a warning, and a 5000-byte image path gives a message under
+// 2000 bytes.
+#include "CliTestSupport.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <zlib.h>
+
+#include <cstdio>
+// jpeglib.h needs FILE and size_t declared first.
+#include <jpeglib.h>
+
+#include <cstdint>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+using test::Cli;
+using test::CliRun;
+using test::readText;
+namespace fs = std::filesystem;
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kPeakIsComparable = false;
+#else
+constexpr bool kPeakIsComparable = true;
+#endif
+
+void writeBytes(const fs::path& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+std::string bigEndian32(std::uint32_t value) {
+    std::string bytes;
+    for (int shift = 24; shift >= 0; shift -= 8) bytes.push_back(char((value >> shift) & 0xFF));
+    return bytes;
+}
+
+std::string pngChunk(const std::string& type, const std::string& data) {
+    const std::string body = type + data;
+    const auto crc = std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size())));
+    return bigEndian32(std::uint32_t(data.size())) + body + bigEndian32(crc);
+}
+
+/** A zlib stream of `rawBytes` bytes whose first `head` bytes are given and the rest zeros, deflated in pieces so the
+ *  test never holds the inflated data. */
+std::string deflatedZeros(const std::string& head, std::size_t rawBytes) {
+    z_stream stream{};
+    deflateInit(&stream, Z_BEST_COMPRESSION);
+    std::string out;
+    std::vector<unsigned char> zeros(1 << 20, 0);
+    std::vector<unsigned char> buffer(1 << 16);
+    std::size_t fed = 0;
+    auto feed = [&](const unsigned char* data, std::size_t size, int flush) {
+        stream.next_in = const_cast<unsigned char*>(data);
+        stream.avail_in = uInt(size);
+        do {
+            stream.next_out = buffer.data();
+            stream.avail_out = uInt(buffer.size());
+            deflate(&stream, flush);
+            out.append(reinterpret_cast<const char*>(buffer.data()), buffer.size() - stream.avail_out);
+        } while (stream.avail_out == 0);
+    };
+    feed(reinterpret_cast<const unsigned char*>(head.data()), head.size(), Z_NO_FLUSH);
+    fed = head.size();
+    while (fed < rawBytes) {
+        const std::size_t piece = std::min(zeros.size(), rawBytes - fed);
+        fed += piece;
+        feed(zeros.data(), piece, Z_NO_FLUSH);
+    }
+    feed(nullptr, 0, Z_FINISH);
+    deflateEnd(&stream);
+    return out;
+}
+
+/** A PNG of `width` x `height` (colour type 6, RGBA, `bitDepth` 8 or 16) whose image data is `idat`. */
+std::string pngFile(std::uint32_t width, std::uint32_t height, int bitDepth, const std::string& idat) {
+    const std::string header = bigEndian32(width) + bigEndian32(height) + char(bitDepth) + char(6) + '\0' + '\0' + '\0';
+    return std::string("\x89PNG\r\n\x1a\n", 8) + pngChunk("IHDR", header) + pngChunk("IDAT", idat) +
+           pngChunk("IEND", "");
+}
+
+/** A JPEG of `width` x `height` mid-grey RGB pixels (quality 90), progressive or baseline, through libjpeg. */
+std::string jpegFile(int width, int height, bool progressive) {
+    jpeg_compress_struct info{};
+    jpeg_error_mgr errors{};
+    info.err = jpeg_std_error(&errors);
+    jpeg_create_compress(&info);
+    unsigned char* bytes = nullptr;
+    unsigned long size = 0;
+    jpeg_mem_dest(&info, &bytes, &size);
+    info.image_width = JDIMENSION(width);
+    info.image_height = JDIMENSION(height);
+    info.input_components = 3;
+    info.in_color_space = JCS_RGB;
+    jpeg_set_defaults(&info);
+    jpeg_set_quality(&info, 90, TRUE);
+    if (progressive) jpeg_simple_progression(&info);
+    jpeg_start_compress(&info, TRUE);
+    std::vector<unsigned char> row(std::size_t(width) * 3, 128);
+    while (info.next_scanline < info.image_height) {
+        JSAMPROW pointer = row.data();
+        jpeg_write_scanlines(&info, &pointer, 1);
+    }
+    jpeg_finish_compress(&info);
+    jpeg_destroy_compress(&info);
+    std::string file(reinterpret_cast<const char*>(bytes), size);
+    std::free(bytes);
+    return file;
+}
+
+class DecoderBudget : public Cli {
+protected:
+    /** A textured triangle: tri.obj with tri.mtl naming `texture` as its base colour map. */
+    void writeTexturedTriangle(const std::string& texture) {
+        std::ofstream(directory / "tri.mtl") << "newmtl skin\nmap_Kd " << texture << "\n";
+        std::ofstream(directory / "tri.obj")
+            << "mtllib tri.mtl\nusemtl skin\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+    }
+};
+
+TEST_F(DecoderBudget, APngWhoseDataInflatesFarBeyondItsHeaderCostsOnlyItsPixels) {
+    // 8 x 8 RGBA: 8 rows of a filter byte and 32 bytes, then 512 MiB more zeros in the same stream (about 500 KB of
+    // file). stb_image inflated all of it (1125 MiB resident under --memory-limit 256); libpng stops at the image.
+    std::string rows;
+    for (int row = 0; row < 8; ++row) {
+        rows.push_back('\0'); // no filter
+        rows.append(32, char(200));
+    }
+    writeBytes(directory / "bomb.png", pngFile(8, 8, 8, deflatedZeros(rows, std::size_t(512) << 20)));
+    ASSERT_LT(fs::file_size(directory / "bomb.png"), std::uintmax_t(1) << 20);
+    writeTexturedTriangle("bomb.png");
+    const CliRun result = run("render tri.obj -o out.png --size 64x64 --memory-limit 256 --stats s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+    EXPECT_EQ(stats["scene"]["images"]["decoded"], 1);
+    if (kPeakIsComparable) {
+        EXPECT_LT(result.peakMib, 256.0);
+    }
+}
+
+TEST_F(DecoderBudget, ASixteenBitPngIsDecodedAtEightBitsWithinTheLimit) {
+    // 8192 x 4096 RGBA at 16 bits: stb_image held the 256 MiB of 16-bit samples beside the 8-bit copy, uncharged
+    // (595 MiB resident under --memory-limit 410). Now each row is reduced to 8 bits as libpng inflates it.
+    constexpr std::uint32_t kWidth = 8192, kHeight = 4096;
+    const std::size_t rowBytes = 1 + std::size_t(kWidth) * 8;
+    writeBytes(directory / "deep.png", pngFile(kWidth, kHeight, 16, deflatedZeros("", rowBytes * kHeight)));
+    writeTexturedTriangle("deep.png");
+    const CliRun result = run("render tri.obj -o out.png --size 64x64 --memory-limit 410");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    if (kPeakIsComparable) {
+        EXPECT_LT(result.peakMib, 410.0);
+    }
+}
+
+TEST_F(DecoderBudget, ABaselineJpegIsDecodedRowByRowWithinTheLimit) {
+    // 8192 x 8192: stb_image's component planes came on top of the charged pixels (726 MiB under a limit of 709).
+    writeBytes(directory / "photo.jpg", jpegFile(8192, 8192, false));
+    writeTexturedTriangle("photo.jpg");
+    const CliRun result = run("render tri.obj -o out.png --size 64x64 --memory-limit 709");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    if (kPeakIsComparable) {
+        EXPECT_LT(result.peakMib, 709.0);
+    }
+}
+
+TEST_F(DecoderBudget, AProgressiveJpegsCoefficientsAreChargedBeforeTheyAreAllocated) {
+    // A progressive file is decoded through whole-image coefficient buffers (2 bytes per coefficient): 4096 x 4096
+    // RGB needs 96 MiB of them beside the pixels. Charged from the header, so a limit that holds the pixels but not
+    // them is refused before libjpeg allocates anything, naming the image, the model and --memory-limit.
+    writeBytes(directory / "photo.jpg", jpegFile(4096, 4096, true));
+    writeTexturedTriangle("photo.jpg");
+    const CliRun refused = run("render tri.obj -o out.png --size 64x64 --memory-limit 300");
+    EXPECT_EQ(refused.exitCode, 3) << refused.err;
+    EXPECT_NE(refused.err.find("'tri.obj' image 0 'photo.jpg': 4096x4096 needs"), std::string::npos) << refused.err;
+    // The pixels with their GL copy (7/3 x 4096^2 x 4 = 156,587,349 bytes) and the coefficients of the default 4:2:0
+    // sampling (512^2 luma blocks and 2 x 256^2 chroma blocks of 128 bytes: 50,331,648 bytes).
+    std::smatch needs;
+    ASSERT_TRUE(std::regex_search(refused.err, needs, std::regex("needs ([0-9]+) bytes"))) << refused.err;
+    EXPECT_GE(std::stoull(needs[1]), 156587349ull + 50331648ull) << refused.err;
+    EXPECT_NE(refused.err.find("--memory-limit"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(directory / "out.png"));
+    const CliRun accepted = run("render tri.obj -o out.png --size 64x64 --memory-limit 480");
+    ASSERT_EQ(accepted.exitCode, 0) << accepted.err;
+    if (kPeakIsComparable) {
+        EXPECT_LT(accepted.peakMib, 480.0);
+    }
+}
+
+TEST_F(DecoderBudget, AHeaderOfSixtyThousandPixelsASideIsRefusedNamingItsSizeAndTheLimit) {
+    // Reported as "not a PNG" before: stb_image refuses such a header without saying why.
+    writeBytes(directory / "huge.png", pngFile(60000, 60000, 8, deflatedZeros("", 1000)));
+    writeTexturedTriangle("huge.png");
+    const CliRun result = run("render tri.obj -o out.png --size 64x64 --memory-limit 512");
+    EXPECT_EQ(result.exitCode, 3) << result.err;
+    EXPECT_NE(result.err.find("image 0 'huge.png': 60000x60000 needs 33600000"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("raise --memory-limit"), std::string::npos) << result.err;
+    EXPECT_EQ(result.err.find("not a PNG"), std::string::npos) << result.err;
+}
+
+TEST_F(DecoderBudget, ADracoBufferIsChargedFromItsHeaderBeforeItIsDecoded) {
+    // 1000 x 1000 vertices, 1,996,002 triangles in a few hundred kilobytes. Charged only once decoded before (188 MiB
+    // resident under --memory-limit 150); now the counts are read from the Draco header and refused first.
+    const std::string command =
+        test::shellQuoted(INKGRAPH_MAKE_DRACO_GRID) + " 1000 " + test::shellQuoted(directory / "grid.drc");
+    ASSERT_EQ(std::system(command.c_str()), 0);
+    const auto drcBytes = fs::file_size(directory / "grid.drc");
+    const nlohmann::json gltf = {
+        {"asset", {{"version", "2.0"}}},
+        {"extensionsUsed", {"KHR_draco_mesh_compression"}},
+        {"extensionsRequired", {"KHR_draco_mesh_compression"}},
+        {"buffers", {{{"uri", "grid.drc"}, {"byteLength", drcBytes}}}},
+        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", drcBytes}}}},
+        {"accessors",
+         {{{"componentType", 5126}, {"count", 1000000}, {"type", "VEC3"}, {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
+          {{"componentType", 5125}, {"count", 1996002 * 3}, {"type", "SCALAR"}}}},
+        {"meshes",
+         {{{"primitives",
+            {{{"attributes", {{"POSITION", 0}}},
+              {"indices", 1},
+              {"extensions",
+               {{"KHR_draco_mesh_compression", {{"bufferView", 0}, {"attributes", {{"POSITION", 0}}}}}}}}}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"scene", 0}};
+    std::ofstream(directory / "grid.gltf") << gltf.dump();
+    const CliRun result = run("render grid.gltf -o out.png --size 64x64 --memory-limit 150");
+    EXPECT_EQ(result.exitCode, 3) << result.err;
+    EXPECT_NE(result.err.find("--memory-limit"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("1996002 triangles"), std::string::npos) << result.err;
+    if (kPeakIsComparable) {
+        EXPECT_LT(result.peakMib, 150.0);
+    }
+}
+
+TEST_F(DecoderBudget, ATextureWiderThanTheDriverTakesIsDownscaledWithAWarningAndABatchGoesOn) {
+    // 17000 x 1 is more than llvmpipe's GL_MAX_TEXTURE_SIZE (16384): "internal error", exit 1 before, which also
+    // stopped a batch.
+    std::string row(1, '\0');
+    for (int x = 0; x < 17000; ++x) row += std::string("\xff\x80\x00\xff", 4);
+    writeBytes(directory / "strip.png", pngFile(17000, 1, 8, deflatedZeros(row, row.size())));
+    writeTexturedTriangle("strip.png");
+    const CliRun single = run("render tri.obj -o out.png --size 64x64 --stats s.json");
+    ASSERT_EQ(single.exitCode, 0) << single.err;
+    EXPECT_NE(single.err.find("inkgraph: warning: image 0 'strip.png' is 17000x1 pixels, more than the driver's "
+                              "largest texture (16384 a side): downscaled to 16384x1"),
+              std::string::npos)
+        << single.err;
+    const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+    const auto& downscaled = stats["scene"]["images"]["downscaled"];
+    ASSERT_EQ(downscaled.size(), 1u) << stats["scene"]["images"].dump();
+    EXPECT_EQ(downscaled[0]["decoded"], nlohmann::json::array({17000, 1}));
+    EXPECT_EQ(downscaled[0]["uploaded"], nlohmann::json::array({16384, 1}));
+
+    std::ofstream(directory / "plain.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    fs::create_directories(directory / "out");
+    const CliRun batch = run("render tri.obj plain.obj -o 'out/{name}.png' --size 32x32");
+    EXPECT_EQ(batch.exitCode, 0) << batch.err;
+    EXPECT_TRUE(fs::exists(directory / "out" / "tri.png"));
+    EXPECT_TRUE(fs::exists(directory / "out" / "plain.png"));
+}
+
+TEST_F(DecoderBudget, AFiveThousandByteImagePathGivesAMessageUnderTwoThousandBytes) {
+    // Every message stays under 2000 bytes (app/Messages.h): a glTF image's file that is missing is named by its
+    // path, which keeps its two ends and says its length (5 KB of stderr before).
+    const std::string name = std::string(4990, 'p') + "x.png";
+    std::string buffer;
+    for (float value : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f})
+        buffer.append(reinterpret_cast<const char*>(&value), sizeof value);
+    writeBytes(directory / "tri.bin", buffer);
+    const nlohmann::json gltf = {
+        {"asset", {{"version", "2.0"}}},
+        {"buffers", {{{"uri", "tri.bin"}, {"byteLength", 60}}}},
+        {"bufferViews",
+         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}},
+          {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 24}}}},
+        {"accessors",
+         {{{"bufferView", 0},
+           {"componentType", 5126},
+           {"count", 3},
+           {"type", "VEC3"},
+           {"min", {0, 0, 0}},
+           {"max", {1, 1, 0}}},
+          {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}}}},
+        {"images", {{{"uri", name}}}},
+        {"textures", {{{"source", 0}}}},
+        {"materials", {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}}},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"material", 0}}}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"scene", 0}};
+    std::ofstream(directory / "tri.gltf") << gltf.dump();
+    const CliRun result = run("render tri.gltf -o out.png --size 32x32");
+    EXPECT_EQ(result.exitCode, 3) << result.err.substr(0, 300);
+    EXPECT_LT(result.err.size(), 2000u);
+    EXPECT_NE(result.err.find("cannot be found"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("pppx.png"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find(" bytes)"), std::string::npos) << result.err;
+}
+
+} // namespace
+} // namespace inkgraph

@@ -1,0 +1,46 @@
+// boundedMessage() (app/Messages.h): every message the user reads is at most 2000 bytes, whatever it quotes.
+#include "app/Messages.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace inkgraph {
+namespace {
+
+TEST(Messages, AMessageThatFitsIsUnchanged) {
+    const std::string message = "loadScene(): 'model.obj': line 3: " + std::string(1500, 'x');
+    EXPECT_EQ(boundedMessage(message), message);
+}
+
+TEST(Messages, ALongQuotedPathKeepsItsEndsAndSaysItsLength) {
+    const std::string path = "/models/" + std::string(4980, 'p') + "/skin.png";
+    const std::string bounded =
+        boundedMessage("decodeSceneImage(): 'a.gltf' image 0: its file '" + path + "' cannot be found");
+    EXPECT_LE(bounded.size(), kMessageByteLimit);
+    EXPECT_EQ(bounded, "decodeSceneImage(): 'a.gltf' image 0: its file '/models/" + std::string(72, 'p') + "..." +
+                           std::string(71, 'p') + "/skin.png (4997 bytes)' cannot be found");
+}
+
+TEST(Messages, ShortQuotesStayWholeAndTheRestIsCutAtTheLimit) {
+    // No quoted run to shorten (the long run is not quoted): cut, saying how long the message was.
+    const std::string message = "'short' " + std::string(5000, 'z');
+    const std::string bounded = boundedMessage(message);
+    EXPECT_LE(bounded.size(), kMessageByteLimit);
+    EXPECT_EQ(bounded.rfind("'short' zzz", 0), 0u) << bounded.substr(0, 40);
+    EXPECT_NE(bounded.find("(cut; the message had 5008 bytes)"), std::string::npos);
+}
+
+TEST(Messages, CutsNeverSplitAUtf8Character) {
+    // 2-byte characters (é) from byte 1: any cut at an odd offset would split one.
+    std::string quoted;
+    for (int i = 0; i < 2000; ++i) quoted += "\xc3\xa9";
+    const std::string bounded = boundedMessage("x'" + quoted + "'");
+    ASSERT_LE(bounded.size(), kMessageByteLimit);
+    const std::string inside = bounded.substr(2, bounded.find("...") - 2);
+    EXPECT_EQ(inside.size() % 2, 0u);
+    for (std::size_t i = 0; i < inside.size(); i += 2) EXPECT_EQ(inside.substr(i, 2), "\xc3\xa9");
+}
+
+} // namespace
+} // namespace inkgraph
