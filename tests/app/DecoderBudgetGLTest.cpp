@@ -15,6 +15,7 @@
 // jpeglib.h needs FILE and size_t declared first.
 #include <jpeglib.h>
 
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <regex>
@@ -194,6 +195,28 @@ TEST_F(DecoderBudget, AProgressiveJpegsCoefficientsAreChargedBeforeTheyAreAlloca
     if (kPeakIsComparable) {
         EXPECT_LT(accepted.peakMib, 480.0);
     }
+}
+
+TEST_F(DecoderBudget, StbImagesOwnBufferIsChargedBeforeItIsAllocated) {
+    // The formats stb_image decodes besides PNG and JPEG hold the whole image in their own samples before the 8-bit
+    // conversion, uncharged before: for Radiance HDR, 4 floats a pixel. A 1024 x 1024 file (flat RGBE pixels) given
+    // 20 MiB of texture budget, which holds its 8-bit pixels and GL copy (7/3 x 1024^2 x 4 = 9,786,709 bytes) but not
+    // the floats beside them (16 x 1024^2 = 16,777,216 bytes), is refused before stb decodes it.
+    std::string hdr = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1024 +X 1024\n";
+    for (int i = 0; i < 1024 * 1024; ++i) hdr += "\x80\x80\x80\x80";
+    writeBytes(directory / "sky.hdr", hdr);
+    writeTexturedTriangle("sky.hdr");
+    const CliRun measured = run("render tri.obj -o out.png --size 64x64 --stats s.json");
+    ASSERT_EQ(measured.exitCode, 0) << measured.err;
+    const double estimatedMib =
+        nlohmann::json::parse(readText(directory / "s.json"))["estimated_peak_mib"].get<double>();
+    const int limitMib = int(std::ceil(estimatedMib)) + 20;
+    const CliRun refused = run("render tri.obj -o out.png --size 64x64 --memory-limit " + std::to_string(limitMib));
+    EXPECT_EQ(refused.exitCode, 3) << refused.err;
+    std::smatch needs;
+    ASSERT_TRUE(std::regex_search(refused.err, needs, std::regex("'sky.hdr': 1024x1024 needs ([0-9]+) bytes")))
+        << refused.err;
+    EXPECT_GE(std::stoull(needs[1]), 9786709ull + 16777216ull) << refused.err;
 }
 
 TEST_F(DecoderBudget, AHeaderOfSixtyThousandPixelsASideIsRefusedNamingItsSizeAndTheLimit) {
