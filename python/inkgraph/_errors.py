@@ -27,7 +27,8 @@ class Error(RuntimeError):
 
 
 class UsageError(Error, ValueError):
-    """A bad flag, value, buffer name or camera, or too little memory for the request."""
+    """A bad flag, value, buffer name or camera, too little memory for the request, or a still written over a file
+    its render read."""
 
     kind = "usage"
     default_exit_code = 2
@@ -48,7 +49,7 @@ class ContextError(Error):
 
 
 class OutputError(Error):
-    """A file could not be written."""
+    """A file could not be written, or its place is not a regular file or a new name (a FIFO, a device)."""
 
     kind = "output"
     default_exit_code = 5
