@@ -42,7 +42,7 @@ class InputError(Error):
 
 
 class ContextError(Error):
-    """No OpenGL 4.5 core context through EGL, or the shaders are missing."""
+    """No OpenGL 4.5 core context through EGL, or the shaders are missing or do not compile."""
 
     kind = "context"
     default_exit_code = 4

@@ -50,7 +50,7 @@ public:
          *  written over a file its render read. */
         Usage,
         Input,   ///< an unreadable or invalid model, shade map or texture
-        Context, ///< no OpenGL 4.5 core context through EGL, or the shaders are missing
+        Context, ///< no OpenGL 4.5 core context through EGL, or the shaders are missing or do not compile
         Output,  ///< a file could not be written, or its place is not a regular file or a new name
         Render,  ///< the render itself failed: an internal error
     };
