@@ -1,5 +1,7 @@
 #include "api/Internal.h"
 
+#include "app/ImageFiles.h"
+#include "app/OutputFiles.h"
 #include "app/Render.h"
 #include "app/StillRenderer.h"
 #include "passes/StillGraph.h"
@@ -120,6 +122,7 @@ struct Still::Impl {
     };
     Image picture;
     std::vector<Buffer> buffers;
+    std::vector<RunInput> inputs; ///< the files the render read: write() never replaces one
     std::vector<std::string> warnings;
     double milliseconds = 0.0;
 };
@@ -256,6 +259,10 @@ struct Renderer::Impl {
                 made->buffers.push_back({shownName, resource, imageOf(colour ? straightAlphaOf(image) : image)});
             }
         }
+        // Absolute, as the render saw them: the still may be written after the working folder changed.
+        made->inputs = inputsNamedBy(options);
+        for (RunInput& input : inputsFoundByLoading(options, still->scene())) made->inputs.push_back(std::move(input));
+        for (RunInput& input : made->inputs) input.path = resolvedPath(input.path).string();
         made->warnings = warningsIn(log.str());
         made->milliseconds = millisecondsSince(start);
         return made;
@@ -287,6 +294,13 @@ std::vector<std::string> Still::bufferNames() const {
     std::vector<std::string> names;
     for (const Impl::Buffer& kept : mImpl->buffers) names.push_back(kept.name);
     return names;
+}
+
+void Still::write(const std::string& path) const {
+    translated("Still::write()", [&] {
+        refuseInputAsOutput(path, "'" + path + "'", mImpl->inputs);
+        writeImage(path, matOf(mImpl->picture));
+    });
 }
 
 std::vector<std::string> Still::warnings() const { return mImpl->warnings; }

@@ -9,7 +9,9 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
+#include <linux/fs.h>
 #include <sys/file.h>
+#include <sys/ioctl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -56,7 +58,8 @@ std::optional<std::vector<std::string>> namesIn(const fs::path& folder) {
 }
 
 /** Removes the plain files and links directly inside the folder `folderDescriptor` (never a subfolder, never
- *  anything a link points to), `last` after the others. */
+ *  anything a link points to), `last` after the others and only when they are all gone: `last` is the staging marker,
+ *  which must stay with anything left so that a later run's sweep tries again. */
 void removePlainFilesIn(int folderDescriptor, const std::string& last) {
     const int listing = ::dup(folderDescriptor);
     if (listing < 0) return;
@@ -68,13 +71,29 @@ void removePlainFilesIn(int folderDescriptor, const std::string& last) {
     std::vector<std::string> names;
     while (const dirent* entry = ::readdir(directory)) names.push_back(entry->d_name);
     ::closedir(directory);
+    bool removedAll = true;
     for (const std::string& name : names) {
         struct stat status {};
         if (name == "." || name == ".." || name == last) continue;
         if (::fstatat(folderDescriptor, name.c_str(), &status, AT_SYMLINK_NOFOLLOW) != 0) continue;
-        if (S_ISREG(status.st_mode) || S_ISLNK(status.st_mode)) ::unlinkat(folderDescriptor, name.c_str(), 0);
+        if (!(S_ISREG(status.st_mode) || S_ISLNK(status.st_mode)) || ::unlinkat(folderDescriptor, name.c_str(), 0) != 0)
+            removedAll = false;
     }
-    ::unlinkat(folderDescriptor, last.c_str(), 0);
+    if (removedAll) ::unlinkat(folderDescriptor, last.c_str(), 0);
+}
+
+/** Why a file cannot be removed from its folder, or renamed, whoever asks (root too): its immutable or append-only
+ *  attribute (chattr +i, +a), which must be cleared first. Empty when it has neither, or its attributes cannot be
+ *  read (a file system without them). */
+std::string attributeKeepingInPlace(const fs::path& path) {
+    const int file = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (file < 0) return "";
+    int attributes = 0; // FS_IOC_GETFLAGS fills an int, whatever its declaration says
+    const bool known = ::ioctl(file, FS_IOC_GETFLAGS, &attributes) == 0;
+    ::close(file);
+    if (known && (attributes & FS_IMMUTABLE_FL)) return "immutable (chattr +i)";
+    if (known && (attributes & FS_APPEND_FL)) return "append-only (chattr +a)";
+    return "";
 }
 
 /** The pid in ".inkgraph-dump-<pid>-<n>", or 0. */
@@ -253,6 +272,14 @@ void DumpFolder::check(const std::string& flagValue) {
                  "); give a new or empty folder (each dump replaces the previous one's files)");
         mEarlierFiles = std::move(earlier.files);
     }
+    // The commit removes the earlier dump's files once it is swapped out, and moves the folder itself: a file or a
+    // folder that refuses (found only after the swap, it used to leave a hidden staging folder and exit 0) is said now.
+    if (const std::string why = attributeKeepingInPlace(folder); !why.empty())
+        fail("is " + why + "; a dump replaces the folder, so clear the attribute or give another folder");
+    for (const std::string& name : mEarlierFiles)
+        if (const std::string why = attributeKeepingInPlace(folder / name); !why.empty())
+            fail("holds " + quotedName(name) + ", which is " + why +
+                 ", and a dump removes the earlier dump's files; clear the attribute or give another folder");
 
     mStaging = newStagingName(parent);
     if (::mkdir(mStaging.c_str(), 0700) != 0) fail("cannot be staged: " + std::string(std::strerror(errno)));
@@ -367,8 +394,11 @@ bool DumpFolder::finish() {
     // The earlier dump, swapped out: only the files it was checked to hold, the marker last.
     const int aside = ::open(mAside.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
     if (aside < 0) return false;
-    for (const std::string& name : mEarlierFiles) ::unlinkat(aside, name.c_str(), 0);
-    ::unlinkat(aside, kStagingMarker, 0);
+    bool removedAll = true;
+    for (const std::string& name : mEarlierFiles)
+        if (::unlinkat(aside, name.c_str(), 0) != 0 && errno != ENOENT) removedAll = false;
+    // The marker stays with a file left, so a later run's sweep removes the rest (sweepStaleStagingFolders()).
+    if (removedAll) ::unlinkat(aside, kStagingMarker, 0);
     ::close(aside);
     return ::rmdir(mAside.c_str()) == 0 && clean;
 }

@@ -6,7 +6,8 @@
  *
  *  The staging folder is ".inkgraph-dump-<pid>-<n>" in DIR's parent and holds the marker file ".inkgraph-staging".
  *  A later run removes such a folder only when both hold (its name and its marker) and process <pid> is gone, and
- *  then only the plain files directly inside it: nothing is ever deleted because a file's content says so. An
+ *  then only the plain files directly inside it, the marker last and only once they are all gone (a file that could
+ *  not be removed is tried again by the next run): nothing is ever deleted because a file's content says so. An
  *  earlier dump is recognised by its manifest.json, whose "files" must all be plain names (no separators) of
  *  regular files the folder holds, with nothing else beside them.
  *
@@ -54,7 +55,8 @@ void sweepStaleStagingFolders(const std::filesystem::path& parent);
 class DumpFolder {
 public:
     /** Checks `--dump` `flagValue` (a new name, an empty folder or an earlier dump; its parent writable and on the
-     *  same file system), creates it and its missing parents when needed (removed again on failure), locks it, sweeps
+     *  same file system; neither it nor the earlier dump's files immutable or append-only, which the commit could not
+     *  move or remove), creates it and its missing parents when needed (removed again on failure), locks it, sweeps
      *  stale staging folders beside it and makes this run's. Throws FileError naming --dump and the problem. */
     explicit DumpFolder(const std::string& flagValue);
     ~DumpFolder();

@@ -1,9 +1,10 @@
 #include "app/ImageFiles.h"
 
 #include "app/ImageIoModule.h"
-#include "codecs/PngChunks.h"
+#include "app/OutputPlace.h"
 #include "app/PngFiles.h"
 #include "app/TemporaryFiles.h"
+#include "codecs/PngChunks.h"
 #include "gl/BinaryLocation.h"
 
 #include <dlfcn.h>
@@ -216,6 +217,7 @@ void writeImageTo(const std::filesystem::path& destination, const std::filesyste
 }
 
 void writeImage(const std::filesystem::path& path, const cv::Mat& image) {
+    requireOutputPlace(path, "writeImage()", "'" + path.string() + "'");
     const std::filesystem::path temporary = temporarySibling(path);
     writeImageTo(temporary, path, image);
     renameIntoPlace(temporary, path);
@@ -277,6 +279,7 @@ cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, s
 }
 
 void writeTextFile(const std::filesystem::path& path, const std::string& text) {
+    requireOutputPlace(path, "writeTextFile()", "'" + path.string() + "'");
     const std::filesystem::path temporary = temporarySibling(path);
     writeBytes(temporary, text.data(), text.size(), path.string());
     renameIntoPlace(temporary, path);

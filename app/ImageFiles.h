@@ -44,8 +44,9 @@ void finishImageIoPreload();
 
 /** Writes CV_8UC1/CV_8UC4 as 8-bit sRGB and CV_32FC1/CV_32FC4 as float32 (EXR keeps float; PNG would quantise, so
  *  float images must go to .exr or .tif, and a PNG refuses them); an 8-bit picture written as EXR is converted to
- *  linear float. The format follows the extension. Encoded in memory, written under a temporary name, synced, renamed
- * into place. */
+ *  linear float. The format follows the extension. The place must be a regular file or a new name
+ *  (requireOutputPlace(), app/OutputPlace.h: a device or a FIFO is refused, never replaced). Encoded in memory,
+ *  written under a temporary name, synced, renamed into place. */
 void writeImage(const std::filesystem::path& path, const cv::Mat& image);
 
 /** `image` encoded in memory in the format of `finalPath`'s extension (as writeImage() writes it); thread-safe, so
@@ -84,7 +85,7 @@ cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, s
  *  Through OpenImageIO for every format: only tests and tools ask. */
 std::string imageFilePixelType(const std::filesystem::path& path);
 
-/** Writes text under a temporary name and renames it into place. */
+/** Writes text under a temporary name and renames it into place; the place as writeImage() takes it. */
 void writeTextFile(const std::filesystem::path& path, const std::string& text);
 
 /** 0 when a file can be created in `folder`, else the errno of trying. A probe file is the only reliable test of

@@ -1,6 +1,7 @@
 #include "app/OutputFiles.h"
 
 #include "app/ImageFiles.h"
+#include "app/OutputPlace.h"
 #include "app/TemporaryFiles.h"
 
 #include <fcntl.h>
@@ -18,8 +19,6 @@ namespace inkgraph {
 namespace fs = std::filesystem;
 namespace {
 
-fs::path folderOf(const fs::path& file) { return file.has_parent_path() ? file.parent_path() : fs::path("."); }
-
 bool isInside(const fs::path& path, const fs::path& folder) {
     const fs::path relative = path.lexically_relative(folder);
     return !relative.empty() && *relative.begin() != "..";
@@ -36,53 +35,12 @@ void sweepStaleTemporaries(const fs::path& folder) {
     }
 }
 
-void requireWritableFolder(const fs::path& folder, const std::string& what) {
-    std::error_code error;
-    if (!fs::is_directory(folder, error))
-        throw FileError("checkOutputs(): the folder of " + what + " ('" + folder.string() + "') does not exist" +
-                        (error && error != std::errc::no_such_file_or_directory ? ": " + error.message() : ""));
-    if (const int reason = creationErrorIn(folder))
-        throw FileError("checkOutputs(): cannot write into the folder of " + what + " ('" + folder.string() +
-                        "'): " + std::strerror(reason));
-}
-
 /** One file by two names: the same place once links are resolved, or the same device and inode (a hard link). */
 bool isSameFile(const fs::path& first, const fs::path& second) {
     if (resolvedPath(first) == resolvedPath(second)) return true;
     const auto firstIdentity = fileIdentity(first);
     const auto secondIdentity = fileIdentity(second);
     return firstIdentity && secondIdentity && *firstIdentity == *secondIdentity;
-}
-
-/** What a non-regular file is, for the message that refuses it as an output. */
-std::string kindOf(mode_t mode) {
-    if (S_ISCHR(mode)) return "a character device";
-    if (S_ISBLK(mode)) return "a block device";
-    if (S_ISFIFO(mode)) return "a FIFO";
-    if (S_ISSOCK(mode)) return "a socket";
-    if (S_ISDIR(mode)) return "a folder";
-    return "not a regular file";
-}
-
-/** An output is written under a temporary name and renamed over its place, which would replace a device, FIFO or
- *  socket by a regular file (as root, `--stats /dev/null` would replace the machine's /dev/null). */
-void requireRegularFileOrNewName(const fs::path& path, const std::string& what) {
-    struct stat status {};
-    if (::stat(path.c_str(), &status) != 0) return; // a new name (a dangling link is replaced by the file)
-    if (S_ISDIR(status.st_mode)) throw FileError("checkOutputs(): " + what + " is a folder; give a file name");
-    if (!S_ISREG(status.st_mode))
-        throw FileError("checkOutputs(): " + what + " is " + kindOf(status.st_mode) +
-                        "; outputs are written as new files and renamed into place, which would replace it, so give "
-                        "the name of a regular file or a new one");
-}
-
-/** The rename at the end would fail on a name the file system cannot hold: said now, before any work. */
-void requireNameFits(const fs::path& path, const std::string& what) {
-    const std::string name = path.filename().string();
-    const long limit = ::pathconf(folderOf(path).c_str(), _PC_NAME_MAX);
-    if (limit > 0 && name.size() > std::size_t(limit))
-        throw FileError("checkOutputs(): " + what + ": its file name is " + std::to_string(name.size()) +
-                        " bytes; this file system holds names of at most " + std::to_string(limit));
 }
 
 /** The commit's test hooks: INKGRAPH_TEST_COMMIT_KILL / _FAIL / _INTERRUPT = the step after which to stop the
@@ -146,17 +104,12 @@ OutputSet::OutputSet(const RenderOptions& options) {
             throw UsageError(file.flag + " '" + file.destination.string() + "' lies inside --dump '" +
                              options.dumpDirectory + "', whose contents each dump replaces; write it elsewhere");
     }
-    std::vector<RunInput> inputs = {{options.modelPath, "the model itself"}};
-    if (!options.look.shadeMapPath.empty()) inputs.push_back({options.look.shadeMapPath, "the --shademap itself"});
-    if (!options.stylePath.empty()) inputs.push_back({options.stylePath, "the --style file"});
-    if (!options.listPath.empty() && options.listPath != "-") inputs.push_back({options.listPath, "the --list file"});
+    const std::vector<RunInput> inputs = inputsNamedBy(options);
     refuseInputs(inputs);
 
     for (const Output& file : mOutputs) {
         const std::string what = file.flag + " '" + file.destination.string() + "'";
-        requireRegularFileOrNewName(file.destination, what);
-        requireWritableFolder(folderOf(file.destination), what);
-        requireNameFits(file.destination, what);
+        requireOutputPlace(file.destination, "checkOutputs()", what);
         sweepStaleTemporaries(folderOf(file.destination));
     }
     if (!options.dumpDirectory.empty()) {
@@ -165,15 +118,27 @@ OutputSet::OutputSet(const RenderOptions& options) {
     }
 }
 
+std::vector<RunInput> inputsNamedBy(const RenderOptions& options) {
+    std::vector<RunInput> inputs = {{options.modelPath, "the model itself"}};
+    if (!options.look.shadeMapPath.empty()) inputs.push_back({options.look.shadeMapPath, "the --shademap itself"});
+    if (!options.stylePath.empty()) inputs.push_back({options.stylePath, "the --style file"});
+    if (!options.listPath.empty() && options.listPath != "-") inputs.push_back({options.listPath, "the --list file"});
+    return inputs;
+}
+
+void refuseInputAsOutput(const fs::path& output, const std::string& shownOutput, const std::vector<RunInput>& inputs) {
+    for (const RunInput& input : inputs)
+        if (isSameFile(input.path, output))
+            throw UsageError(shownOutput + " is " + input.what + "; choose another file");
+}
+
 void OutputSet::refuseInputs(const std::vector<RunInput>& inputs) const {
+    for (const Output& file : mOutputs)
+        refuseInputAsOutput(file.destination, file.flag + " '" + file.destination.string() + "'", inputs);
+    if (!mDump) return;
     for (const RunInput& input : inputs) {
-        for (const Output& file : mOutputs) {
-            if (isSameFile(input.path, file.destination))
-                throw UsageError(file.flag + " '" + file.destination.string() + "' is " + input.what +
-                                 "; choose another file");
-        }
         const auto identity = fileIdentity(input.path);
-        if (!mDump || !identity) continue;
+        if (!identity) continue;
         for (const std::string& name : mDump->earlierFiles())
             if (fileIdentity(mDump->folder() / name) == identity)
                 throw UsageError("--dump '" + mDump->shownName() + "' holds '" + name + "', which is " + input.what +

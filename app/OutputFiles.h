@@ -1,11 +1,12 @@
 #pragma once
 /** @file Every output of one run as a transaction. The constructor checks every output place before any work:
- *  outputs are regular files or new names (a device, FIFO or socket is refused), never one another, never a file the
- *  run reads (refuseInputs(), compared by device and inode). Files are then staged under temporary names, the dump
- *  in a staging folder (app/DumpFolder.h), and only commit() puts them in place: all of them, or, when any step
- *  fails, none (the steps done are undone). A run that fails at any point changes none of the user's files, and a
- *  signal removes what was staged (app/TemporaryFiles.h). A crash (kill -9) inside the commit leaves each output
- *  whole, old or new, and the next run sweeps what the crash left.
+ *  outputs are regular files or new names (a device, FIFO or socket is refused: app/OutputPlace.h, whose rule the
+ *  library's writes follow too), never one another, never a file the run reads (refuseInputs(), compared by device
+ *  and inode). Files are then staged under temporary names, the dump in a staging folder (app/DumpFolder.h), and
+ *  only commit() puts them in place: all of them, or, when any step fails, none (the steps done are undone). A run
+ *  that fails at any point changes none of the user's files, and a signal removes what was staged
+ *  (app/TemporaryFiles.h). A crash (kill -9) inside the commit leaves each output whole, old or new, and the next run
+ *  sweeps what the crash left.
  *
  *  Test hooks (tests/app/OutputTransactionGLTest.cpp): INKGRAPH_TEST_COMMIT_KILL=N ends the process with SIGKILL
  *  after the commit's N-th step, INKGRAPH_TEST_COMMIT_FAIL=N fails the commit there (both say on stderr which step it
@@ -28,6 +29,15 @@ struct RunInput {
     std::string path;
     std::string what;
 };
+
+/** The files a render reads that its options name: the model, --shademap, --style and --list (unless "-"). */
+std::vector<RunInput> inputsNamedBy(const RenderOptions& options);
+
+/** Throws UsageError "<shownOutput> is <the input's what>; choose another file" when `output` is one of `inputs`: the
+ *  same place once links are resolved, or the same device and inode (a hard link). The one check of every output
+ *  that must not replace what a render read: the command line's (OutputSet) and the library's (Still::write()). */
+void refuseInputAsOutput(const std::filesystem::path& output, const std::string& shownOutput,
+                         const std::vector<RunInput>& inputs);
 
 class OutputSet {
 public:

@@ -66,8 +66,16 @@ void checkFrameBudget(const Plan& plan, const RenderOptions& options, const Scen
                          " (make the image smaller, lower --supersample, or request or dump fewer buffers)");
 }
 
-/** The files the run read that only loading the model revealed: its buffers and images, and the shade maps its
- *  materials name. No output may be one of them (OutputSet::refuseInputs). */
+} // namespace
+
+void requireStandardOutputWritten(std::ostream& out) {
+    errno = 0;
+    out.flush();
+    if (!out || (&out == &std::cout && (std::fflush(stdout) != 0 || std::ferror(stdout))))
+        throw FileError(std::string("renderStill(): cannot write the standard output") +
+                        (errno ? std::string(": ") + std::strerror(errno) : ""));
+}
+
 std::vector<RunInput> inputsFoundByLoading(const RenderOptions& options, const Scene& scene) {
     // Appended, not "'" + name: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
     std::string model = "'";
@@ -79,16 +87,6 @@ std::vector<RunInput> inputsFoundByLoading(const RenderOptions& options, const S
         if (!mesh.material.shadeMapPath.empty())
             inputs.push_back({mesh.material.shadeMapPath, "the shade map of mesh '" + mesh.name + "' of " + model});
     return inputs;
-}
-
-} // namespace
-
-void requireStandardOutputWritten(std::ostream& out) {
-    errno = 0;
-    out.flush();
-    if (!out || (&out == &std::cout && (std::fflush(stdout) != 0 || std::ferror(stdout))))
-        throw FileError(std::string("renderStill(): cannot write the standard output") +
-                        (errno ? std::string(": ") + std::strerror(errno) : ""));
 }
 
 std::size_t memoryLimitOf(const RenderOptions& options) {

@@ -34,6 +34,11 @@ StillRequest stillRequestOf(const RenderOptions& options);
  *  the textures, decoded during the run, what the estimate leaves of the limit. */
 void budgetStill(PreparedStill& still, const RenderOptions& options);
 
+/** The files a render read that only loading the model revealed: its buffers and images, and the shade maps its
+ *  materials name. No output may be one of them (OutputSet::refuseInputs(), Still::write()); inputsNamedBy() gives
+ *  the others. */
+std::vector<RunInput> inputsFoundByLoading(const RenderOptions& options, const Scene& scene);
+
 /** What one still did, for the batch's progress line. */
 struct StillReport {
     std::size_t triangles = 0;

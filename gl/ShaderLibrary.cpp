@@ -29,6 +29,24 @@ std::string infoLog(GLuint object, GetInteger getInteger, GetLog getLog) {
     return log;
 }
 
+/** `log` as an error quotes it: whole lines up to ShaderLibrary::kMaxQuotedLogBytes, then how much was left out. */
+std::string quotedLog(std::string log) {
+    while (!log.empty() && (log.back() == '\n' || log.back() == '\0' || log.back() == ' ')) log.pop_back();
+    if (log.empty()) return "(the GLSL compiler gave no log)";
+    if (log.size() <= ShaderLibrary::kMaxQuotedLogBytes) return log;
+    std::size_t kept = log.rfind('\n', ShaderLibrary::kMaxQuotedLogBytes);
+    if (kept == std::string::npos || kept == 0) kept = ShaderLibrary::kMaxQuotedLogBytes;
+    return log.substr(0, kept) + "\n... (" + std::to_string(log.size() - kept) + " more bytes of the log)";
+}
+
+/** How to read a compile log's "N:LINE" when the stage has snippets before it (compileStage() numbers them). */
+std::string snippetsLegend(const std::vector<std::string>& snippets) {
+    std::string legend;
+    for (std::size_t i = 0; i < snippets.size(); ++i)
+        legend += (i == 0 ? "" : ", ") + std::to_string(i + 1) + " '" + snippets[i] + "'";
+    return legend.empty() ? "" : "; the log's 0:LINE is a line of that file, N:LINE one of snippet N: " + legend;
+}
+
 const char* stageDefine(GLenum stage) {
     switch (stage) {
     case GL_VERTEX_SHADER: return "#define INKGRAPH_VERTEX_STAGE 1\n";
@@ -90,18 +108,19 @@ const std::string& ShaderLibrary::source(const std::string& relativePath) {
     }
     const std::filesystem::path path = mFolder.path / relativePath;
     std::ifstream file(path, std::ios::binary);
-    if (!file) {
-        if (mFolder.origin == "INKGRAPH_SHADER_DIR")
-            throw ShaderSourceError("ShaderLibrary::source(): cannot read shader '" + path.string() +
-                                    "'; INKGRAPH_SHADER_DIR is '" + mFolder.path.string() +
-                                    "' (set it to inkgraph's shaders/ folder, or unset it to use the installed one)");
-        throw ShaderSourceError("ShaderLibrary::source(): cannot read shader '" + path.string() + "' (the " +
-                                mFolder.origin + " shader folder '" + mFolder.path.string() +
-                                "' is incomplete; set INKGRAPH_SHADER_DIR to inkgraph's shaders/ folder)");
-    }
+    if (!file)
+        throw ShaderSourceError("ShaderLibrary::source(): cannot read shader '" + path.string() + "'" + folderAdvice());
     std::ostringstream text;
     text << file.rdbuf();
     return mSources.emplace(relativePath, text.str()).first->second;
+}
+
+std::string ShaderLibrary::folderAdvice() const {
+    if (mFolder.origin == "INKGRAPH_SHADER_DIR")
+        return "; INKGRAPH_SHADER_DIR is '" + mFolder.path.string() +
+               "' (set it to inkgraph's shaders/ folder, or unset it to use the installed one)";
+    return " (the " + mFolder.origin + " shader folder '" + mFolder.path.string() +
+           "' does not match this inkgraph; set INKGRAPH_SHADER_DIR to inkgraph's shaders/ folder)";
 }
 
 GLuint ShaderLibrary::compileStage(const ProgramDesc& desc, GLenum stage, const std::string& file) {
@@ -109,9 +128,11 @@ GLuint ShaderLibrary::compileStage(const ProgramDesc& desc, GLenum stage, const 
     // Snippets may hold stage-specific code (e.g. the fullscreen-triangle vertex function).
     text += stageDefine(stage);
     for (const std::string& define : desc.defines) text += "#define " + define + "\n";
-    for (const std::string& snippet : desc.snippets) text += source(snippet) + "\n";
-    // Reset line numbers so compiler messages point into the stage file itself.
-    text += "#line 1\n" + source(file);
+    // Each file its own source-string number, so the compiler's "N:LINE" points into the file itself: 0 the stage
+    // file, N the N-th snippet (snippetsLegend() says so in an error).
+    for (std::size_t i = 0; i < desc.snippets.size(); ++i)
+        text += "#line 1 " + std::to_string(i + 1) + "\n" + source(desc.snippets[i]) + "\n";
+    text += "#line 1 0\n" + source(file);
 
     GlHandle<ShaderDeleter> shader(glCreateShader(stage));
     const char* pointer = text.c_str();
@@ -121,8 +142,10 @@ GLuint ShaderLibrary::compileStage(const ProgramDesc& desc, GLenum stage, const 
     glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &compiled);
     if (compiled != GL_TRUE) {
         const std::string log = infoLog(shader.id(), glGetShaderiv, glGetShaderInfoLog);
-        throw std::runtime_error("ShaderLibrary::build(): '" + file + "' failed to compile (program '" + desc.label +
-                                 "', defines: " + joinDefines(desc.defines) + "):\n" + log);
+        throw ShaderSourceError("ShaderLibrary::build(): shader '" + (mFolder.path / file).string() +
+                                "' does not compile (program '" + desc.label +
+                                "', defines: " + joinDefines(desc.defines) + snippetsLegend(desc.snippets) + ")" +
+                                folderAdvice() + ". The GLSL log:\n" + quotedLog(log));
     }
     return shader.release();
 }
@@ -158,11 +181,12 @@ GlProgram ShaderLibrary::compileAndLink(const ProgramDesc& desc) {
     glGetProgramiv(program.id(), GL_LINK_STATUS, &linked);
     if (linked != GL_TRUE) {
         const std::string log = infoLog(program.id(), glGetProgramiv, glGetProgramInfoLog);
-        const std::string stages = "'" + desc.vertexFile + "' + " +
-                                   (hasGeometry ? "'" + desc.geometryFile + "' + " : "") + "'" + desc.fragmentFile +
-                                   "'";
-        throw std::runtime_error("ShaderLibrary::build(): program '" + desc.label + "' (" + stages +
-                                 ", defines: " + joinDefines(desc.defines) + ") failed to link:\n" + log);
+        const auto quoted = [this](const std::string& file) { return "'" + (mFolder.path / file).string() + "'"; };
+        const std::string stages = quoted(desc.vertexFile) + " + " +
+                                   (hasGeometry ? quoted(desc.geometryFile) + " + " : "") + quoted(desc.fragmentFile);
+        throw ShaderSourceError("ShaderLibrary::build(): the shaders " + stages + " do not link (program '" +
+                                desc.label + "', defines: " + joinDefines(desc.defines) + ")" + folderAdvice() +
+                                ". The GLSL log:\n" + quotedLog(log));
     }
     ++mCompiled;
     return program;

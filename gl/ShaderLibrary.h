@@ -14,8 +14,9 @@
 
 namespace inkgraph {
 
-/** A shader file cannot be read: no shader folder was found, the installation is incomplete or INKGRAPH_SHADER_DIR
- *  names the wrong folder. */
+/** The shaders are not this inkgraph's: a file cannot be read (no shader folder was found, the installation is
+ *  incomplete or INKGRAPH_SHADER_DIR names the wrong folder), or a program does not compile or link (a folder of
+ *  another version, or an edited shader). An error of the environment (exit 4), not of the render. */
 class ShaderSourceError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
@@ -53,10 +54,11 @@ public:
     /** The shaders in `directory`. */
     explicit ShaderLibrary(std::filesystem::path directory);
 
-    /** Compiles and links; throws ShaderSourceError for a file that cannot be read, std::runtime_error naming the file,
-     * stage, defines and the info log. With keepPrograms(true), a program of the same files, defines and snippets as an
-     * earlier one is that program again (the label does not matter), so the stills of a batch compile each program
-     * once. */
+    /** Compiles and links; throws ShaderSourceError for a file that cannot be read and for a stage that does not
+     * compile or a program that does not link, naming the files, the defines and the folder, and quoting the GLSL
+     * info log (its first kMaxQuotedLogBytes). With keepPrograms(true), a program of the same files, defines and
+     * snippets as an earlier one is that program again (the label does not matter), so the stills of a batch compile
+     * each program once. */
     GlProgram build(const ProgramDesc& desc);
 
     /** Keep every program built from now on until the library is destroyed (which must then happen while the GL
@@ -70,8 +72,14 @@ public:
     const std::filesystem::path& directory() const { return mFolder.path; }
     const ShaderFolder& folder() const { return mFolder; }
 
+    /** The most of a GLSL info log an error quotes: the first errors say what is wrong, and a shader full of them
+     *  would log kilobytes. */
+    static constexpr std::size_t kMaxQuotedLogBytes = 1000;
+
 private:
     const std::string& source(const std::string& relativePath);
+    /** What to do about a shader folder that is not this inkgraph's, by where the folder came from. */
+    std::string folderAdvice() const;
     GLuint compileStage(const ProgramDesc& desc, GLenum stage, const std::string& file);
     GlProgram compileAndLink(const ProgramDesc& desc);
 

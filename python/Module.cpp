@@ -170,7 +170,7 @@ PYBIND11_MODULE(_inkgraph, m) {
         "path"_a, "image"_a,
         "Writes a uint8 or float32 array (height x width, or height x width x 1 or 4 channels, RGBA) as an image "
         "file; the format follows the extension (PNG; EXR, TIFF, JPEG through OpenImageIO). Raises OutputError "
-        "naming the file.");
+        "naming the file, also for a place that is not a regular file or a new name (a FIFO, a device).");
 
     py::class_<ig::Scene>(m, "Scene", "A model loaded once (OBJ, glTF/GLB, VRM, STL); render it any number of times.")
         .def_static(
@@ -251,7 +251,8 @@ PYBIND11_MODULE(_inkgraph, m) {
         .def(
             "write", [](const ig::Still& still, const std::filesystem::path& path) { still.write(path.string()); },
             "path"_a, py::call_guard<py::gil_scoped_release>(),
-            "Writes the picture; the format follows the extension. Raises OutputError naming the file.")
+            "Writes the picture; the format follows the extension. Raises OutputError naming the file (also for a "
+            "FIFO or a device), UsageError for a file the render read (the model, a shade map, ...).")
         .def_property_readonly("warnings", &ig::Still::warnings,
                                "What the render warned about (a material's shade map this shading does not use, ...).")
         .def_property_readonly("milliseconds", &ig::Still::milliseconds, "Milliseconds the render took.")

@@ -82,7 +82,8 @@ class Result:
         return self.still.milliseconds
 
     def write(self, path: PathLike) -> None:
-        """Writes the picture; the format follows the extension (.png; .exr, .tif, .jpg through OpenImageIO)."""
+        """Writes the picture; the format follows the extension (.png; .exr, .tif, .jpg through OpenImageIO). Raises
+        OutputError for a place that is not a regular file or a new name, UsageError for a file the render read."""
         self.still.write(path)
 
 

@@ -27,7 +27,8 @@ class Error(RuntimeError):
 
 
 class UsageError(Error, ValueError):
-    """A bad flag, value, buffer name or camera, or too little memory for the request."""
+    """A bad flag, value, buffer name or camera, too little memory for the request, or a still written over a file
+    its render read."""
 
     kind = "usage"
     default_exit_code = 2
@@ -41,14 +42,14 @@ class InputError(Error):
 
 
 class ContextError(Error):
-    """No OpenGL 4.5 core context through EGL, or the shaders are missing."""
+    """No OpenGL 4.5 core context through EGL, or the shaders are missing or do not compile."""
 
     kind = "context"
     default_exit_code = 4
 
 
 class OutputError(Error):
-    """A file could not be written."""
+    """A file could not be written, or its place is not a regular file or a new name (a FIFO, a device)."""
 
     kind = "output"
     default_exit_code = 5

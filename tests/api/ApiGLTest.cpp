@@ -252,6 +252,75 @@ TEST_F(ApiRender, MaterialsKeepTheirShadeMapsAsOnTheCommandLine) {
         << lambert.warnings()[0];
 }
 
+/** A glTF triangle whose buffer is the file `bufferName` and whose material names the shade map `shadeMapName`. */
+std::string gltfWithFiles(const std::string& bufferName, const std::string& shadeMapName) {
+    const std::string material = R"({"extras":{"inkgraph":{"shademap":")" + shadeMapName + R"("}}})";
+    const std::string buffer = R"({"byteLength":36,"uri":")" + bufferName + R"("})";
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+           R"("meshes":[{"name":"Triangle","primitives":[{"attributes":{"POSITION":0},"material":0}]}],)"
+           R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",)"
+           R"("min":[0,0,0],"max":[1,1,0]}],"bufferViews":[{"buffer":0,"byteLength":36}],"materials":[)" +
+           material + R"(],"buffers":[)" + buffer + "]}";
+}
+
+// Before, Still::write() replaced any file, the very files its render read among them (the look's shade map, a
+// material's): it refuses them as the command line's -o does, by path, link or hard link, with the CLI's words.
+TEST_F(ApiRender, AStillNeverReplacesAFileItsRenderRead) {
+    const std::filesystem::path shadeMaps = std::filesystem::path(INKGRAPH_SOURCE_ROOT) / "shademaps";
+    const std::filesystem::path model = directory / "model.obj";
+    const std::filesystem::path lookMap = directory / "look.png";
+    const std::filesystem::path style = directory / "look.style";
+    std::filesystem::copy_file(kSuzanne, model);
+    std::filesystem::copy_file(shadeMaps / "duotone-cool.png", lookMap);
+    writeText(style, "shading = comic\nshademap = " + lookMap.string() + "\n");
+    std::filesystem::create_hard_link(lookMap, directory / "alias.png");
+    std::filesystem::create_symlink(model, directory / "link.obj");
+    const std::map<std::string, std::string> before = snapshot(directory);
+
+    ig::Renderer renderer;
+    const ig::Still still =
+        renderer.render(ig::Scene::load(model.string()), ig::Look::fromStyleFile(style.string()), frameOf(32, 32));
+    const auto refusal = [&](const std::filesystem::path& path) {
+        const ig::Error error = errorOf([&] { still.write(path.string()); });
+        EXPECT_EQ(error.kind(), ig::Error::Kind::Usage) << error.what();
+        EXPECT_EQ(error.exitCode(), 2);
+        return std::string(error.what());
+    };
+    EXPECT_EQ(refusal(model), "Still::write(): '" + model.string() + "' is the model itself; choose another file");
+    EXPECT_EQ(refusal(directory / "link.obj"),
+              "Still::write(): '" + (directory / "link.obj").string() + "' is the model itself; choose another file");
+    EXPECT_EQ(refusal(lookMap),
+              "Still::write(): '" + lookMap.string() + "' is the --shademap itself; choose another file");
+    EXPECT_EQ(refusal(directory / "alias.png"), "Still::write(): '" + (directory / "alias.png").string() +
+                                                    "' is the --shademap itself; choose another file");
+    EXPECT_EQ(refusal(style), "Still::write(): '" + style.string() + "' is the --style file; choose another file");
+    EXPECT_EQ(snapshot(directory), before) << "a refused write changed a file";
+    still.write((directory / "new.png").string());
+    EXPECT_EQ(bytesOfFile(directory / "new.png"), still.picture().bytes);
+
+    // What only loading the model revealed: its buffer and the shade map its material names.
+    const std::filesystem::path gltf = directory / "triangle.gltf";
+    std::filesystem::copy_file(shadeMaps / "duotone-warm.png", directory / "material.png");
+    std::string buffer;
+    for (const float value : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f})
+        buffer.append(reinterpret_cast<const char*>(&value), sizeof value);
+    writeText(directory / "triangle.bin", buffer);
+    writeText(gltf, gltfWithFiles("triangle.bin", "material.png"));
+    const std::string materialMap = readText(directory / "material.png");
+    const ig::Still triangle =
+        renderer.render(ig::Scene::load(gltf.string()), ig::Look().set("--shading", "comic"), frameOf(32, 32));
+    const auto triangleRefusal = [&](const std::filesystem::path& path) {
+        return std::string(errorOf([&] { triangle.write(path.string()); }).what());
+    };
+    EXPECT_EQ(triangleRefusal(directory / "triangle.bin"), "Still::write(): '" + (directory / "triangle.bin").string() +
+                                                               "' is a file the model 'triangle.gltf' reads; choose "
+                                                               "another file");
+    EXPECT_EQ(triangleRefusal(directory / "material.png"),
+              "Still::write(): '" + (directory / "material.png").string() +
+                  "' is the shade map of mesh 'Triangle' of 'triangle.gltf'; choose another file");
+    EXPECT_EQ(readText(directory / "material.png"), materialMap);
+}
+
 TEST_F(ApiRender, OneRendererAtATimeHoldsTheContext) {
     ig::Renderer second;
     {

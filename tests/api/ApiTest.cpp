@@ -8,9 +8,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <functional>
+
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
 
 namespace ig = inkgraph::api;
 
@@ -18,11 +24,6 @@ namespace inkgraph::test {
 namespace {
 
 const std::string kModels = std::string(INKGRAPH_SOURCE_ROOT) + "/models/";
-
-void writeText(const std::filesystem::path& path, const std::string& text) {
-    std::ofstream file(path, std::ios::binary);
-    file << text;
-}
 
 using ApiScene = TestFolder;
 
@@ -280,6 +281,70 @@ TEST_F(ApiImage, FailuresNameTheFile) {
     EXPECT_STREQ(errorOf([&] { truncated.write((directory / "t.png").string()); }).what(),
                  "Image::write(): the image holds 15 bytes; 2x2x4 pixels need 16");
     EXPECT_EQ(errorOf([&] { image.floats(); }).kind(), ig::Error::Kind::Usage);
+}
+
+/** lstat's file type of `path` (links not followed), or 0 when it does not exist. */
+mode_t fileTypeOf(const std::filesystem::path& path) {
+    struct stat status {};
+    return ::lstat(path.c_str(), &status) == 0 ? status.st_mode & S_IFMT : 0;
+}
+
+/** The names in `folder`, sorted. */
+std::vector<std::string> namesIn(const std::filesystem::path& folder) {
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) names.push_back(entry.path().filename());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+const std::string kReplaceTail = "; outputs are written as new files and renamed into place, which would replace it, "
+                                 "so give the name of a regular file or a new one";
+
+// Image::write() writes beside its place and renames over it: before, a FIFO, a device or a link to one named *.png
+// was replaced by a regular file (as root, a `mknod x.png c 1 3` became a file). It follows the command line's rule.
+TEST_F(ApiImage, RefusesToReplaceAFifoALinkToADeviceOrAFolder) {
+    const ig::Image image = patterned(2, 2, 4, ig::Image::Type::UInt8);
+    const std::filesystem::path fifo = directory / "fifo.png";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+    const ig::Error fifoError = errorOf([&] { image.write(fifo.string()); });
+    EXPECT_EQ(fifoError.kind(), ig::Error::Kind::Output);
+    EXPECT_EQ(fifoError.exitCode(), 5);
+    EXPECT_EQ(fifoError.what(), "writeImage(): '" + fifo.string() + "' is a FIFO" + kReplaceTail);
+    EXPECT_EQ(fileTypeOf(fifo), mode_t(S_IFIFO));
+
+    const std::filesystem::path toNull = directory / "null.png";
+    std::filesystem::create_symlink("/dev/null", toNull);
+    const ig::Error deviceError = errorOf([&] { image.write(toNull.string()); });
+    EXPECT_EQ(deviceError.kind(), ig::Error::Kind::Output);
+    EXPECT_EQ(deviceError.what(), "writeImage(): '" + toNull.string() + "' is a character device" + kReplaceTail);
+    EXPECT_EQ(fileTypeOf(toNull), mode_t(S_IFLNK));
+    EXPECT_EQ(fileTypeOf("/dev/null"), mode_t(S_IFCHR));
+
+    const std::filesystem::path folder = directory / "folder.png";
+    std::filesystem::create_directory(folder);
+    EXPECT_STREQ(errorOf([&] { image.write(folder.string()); }).what(),
+                 ("writeImage(): '" + folder.string() + "' is a folder; give a file name").c_str());
+    EXPECT_EQ(fileTypeOf(folder), mode_t(S_IFDIR));
+    EXPECT_EQ(namesIn(directory), (std::vector<std::string>{"fifo.png", "folder.png", "null.png"}))
+        << "no temporary file is left";
+
+    // A link to nothing is a new name, as on the command line: the picture replaces the link.
+    const std::filesystem::path dangling = directory / "dangling.png";
+    std::filesystem::create_symlink(directory / "nowhere.png", dangling);
+    image.write(dangling.string());
+    EXPECT_EQ(fileTypeOf(dangling), mode_t(S_IFREG));
+    EXPECT_EQ(bytesReadBack(dangling), image.bytes);
+}
+
+TEST_F(ApiImage, RefusesToReplaceACharacterDevice) {
+    if (::geteuid() != 0) GTEST_SKIP() << "mknod needs root";
+    const ig::Image image = patterned(2, 2, 4, ig::Image::Type::UInt8);
+    const std::filesystem::path device = directory / "x.png";
+    ASSERT_EQ(::mknod(device.c_str(), S_IFCHR | 0666, ::makedev(1, 3)), 0) << std::strerror(errno);
+    const ig::Error error = errorOf([&] { image.write(device.string()); });
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Output);
+    EXPECT_EQ(error.what(), "writeImage(): '" + device.string() + "' is a character device" + kReplaceTail);
+    EXPECT_EQ(fileTypeOf(device), mode_t(S_IFCHR)) << "the device was replaced";
 }
 
 TEST(ApiErrors, KindsKeepTheCommandLinesExitCodes) {

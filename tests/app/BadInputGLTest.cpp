@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -90,6 +91,34 @@ std::string glb(const std::string& json) {
 }
 
 std::string source(const std::string& relative) { return (fs::path(INKGRAPH_SOURCE_ROOT) / relative).string(); }
+
+/** Every file of the source tree's shaders/ as files of a case, under `folder`, with `change` applied to the file
+ *  `broken` (relative to shaders/). */
+std::vector<std::pair<std::string, std::string>> shadersWith(const std::string& folder, const std::string& broken,
+                                                             const std::function<std::string(std::string)>& change) {
+    const fs::path shaders = source("shaders");
+    std::vector<std::pair<std::string, std::string>> files;
+    bool changed = false;
+    for (const auto& entry : fs::recursive_directory_iterator(shaders)) {
+        if (!entry.is_regular_file()) continue;
+        const std::string relative = entry.path().lexically_relative(shaders).string();
+        std::string text = readText(entry.path());
+        if (relative == broken) {
+            text = change(text);
+            changed = true;
+        }
+        files.emplace_back(folder + "/" + relative, text);
+    }
+    EXPECT_TRUE(changed) << "no shader '" << broken << "'";
+    return files;
+}
+
+/** A GLSL function that uses `count` undeclared names: a compile log of one error each, kilobytes in all. */
+std::string undeclaredNames(int count) {
+    std::string body = "\nvoid inkgraphBroken() {\n";
+    for (int i = 0; i < count; ++i) body += "    undeclaredName" + std::to_string(i) + " = 1.0;\n";
+    return body + "}\n";
+}
 
 /** Makes memory run out for the out-of-memory case. AddressSanitizer reserves terabytes of address space, so under it
  *  an address-space limit stops the program before main; its allocator refuses big blocks instead. */
@@ -323,6 +352,30 @@ std::vector<BadInput> badInputs() {
          4,
          {"cannot read shader 'noshaders/", "INKGRAPH_SHADER_DIR is 'noshaders'"},
          "INKGRAPH_SHADER_DIR=noshaders"},
+        // A shader folder whose shaders do not compile or link (another version's, or one edited): before, "internal
+        // error" (exit 1). The message names the file and quotes the GLSL log, at most its first 1000 bytes.
+        {"INKGRAPH_SHADER_DIR with a shader that does not compile",
+         shadersWith("broken", "gbuffer/gbuffer.frag", [](std::string text) { return text + "this is not GLSL\n"; }),
+         spot + " -o out.png --size 16x16",
+         4,
+         {"ShaderLibrary::build(): shader 'broken/gbuffer/gbuffer.frag' does not compile (program 'gbuffer'",
+          "INKGRAPH_SHADER_DIR is 'broken'", "The GLSL log:\n0:", "syntax error"},
+         "INKGRAPH_SHADER_DIR=broken"},
+        {"INKGRAPH_SHADER_DIR with a shader of a thousand errors",
+         shadersWith("broken", "gbuffer/gbuffer.frag", [](std::string text) { return text + undeclaredNames(1000); }),
+         spot + " -o out.png --size 16x16",
+         4,
+         {"shader 'broken/gbuffer/gbuffer.frag' does not compile", "undeclaredName0", "more bytes of the log)"},
+         "INKGRAPH_SHADER_DIR=broken"},
+        {"INKGRAPH_SHADER_DIR with shaders that do not link",
+         shadersWith("broken", "gbuffer/gbuffer.frag",
+                     [](std::string text) { return text.replace(text.find("void main()"), 11, "void notMain()"); }),
+         spot + " -o out.png --size 16x16",
+         4,
+         {"ShaderLibrary::build(): the shaders 'broken/gbuffer/gbuffer.vert' + 'broken/gbuffer/gbuffer.frag' do not "
+          "link (program 'gbuffer'",
+          "INKGRAPH_SHADER_DIR is 'broken'", "main"},
+         "INKGRAPH_SHADER_DIR=broken"},
         // Memory running out below the limit's estimate (here: the address space): at 1.5 GB the driver's texture
         // fails first (6144^2 float RGBA is 576 MiB; on other machines it may be the post stage's OpenCV allocation;
         // both are exit 2). 2048x2048 fit since issue 20 (no OpenImageIO mapped, the suggestive smoothing in rows).

@@ -11,9 +11,14 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include <fcntl.h>
+#include <linux/fs.h>
 #include <sys/file.h>
+#include <sys/ioctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -67,6 +72,14 @@ protected:
 
     Snapshot oldState;
 };
+
+/** A pid that is surely gone: a child that has exited and been reaped (-1 when fork fails). */
+pid_t goneProcess() {
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    if (child > 0) ::waitpid(child, nullptr, 0);
+    return child;
+}
 
 /** Each test runs on this file system's RENAME_EXCHANGE and on the two renames of file systems without it (NFS). */
 const char* const kSwapModes[] = {"", "INKGRAPH_TEST_NO_RENAME_EXCHANGE=1 "};
@@ -247,11 +260,8 @@ TEST_F(OutputTransaction, APlantedManifestNeverDeletesAnything) {
 }
 
 TEST_F(OutputTransaction, StagingFoldersAreSweptOnlyByTheirMarker) {
-    // A pid that is surely gone: a child that has exited and been reaped.
-    const pid_t child = ::fork();
-    if (child == 0) ::_exit(0);
+    const pid_t child = goneProcess();
     ASSERT_GT(child, 0);
-    ::waitpid(child, nullptr, 0);
     const std::string stale = ".inkgraph-dump-" + std::to_string(child) + "-0";
     // Named like a staging folder of a dead run, but without the marker: someone else's, never touched.
     fs::create_directories(directory / (stale + "x"));
@@ -269,6 +279,102 @@ TEST_F(OutputTransaction, StagingFoldersAreSweptOnlyByTheirMarker) {
     EXPECT_FALSE(fs::exists(directory / (".inkgraph-" + std::to_string(child) + "-3.tmp")));
     EXPECT_EQ(readText(directory / (stale + "x") / "notes.txt"), "precious");
     EXPECT_EQ(readText(directory / (".inkgraph-" + std::to_string(child) + "-notes.txt")), "precious");
+}
+
+/** Sets or clears an attribute (FS_IMMUTABLE_FL, FS_APPEND_FL: chattr +i, +a; root only) of the open file `file`;
+ *  false when it cannot (not root, or a file system without attributes). */
+bool setAttribute(int file, int attribute, bool on) {
+    int attributes = 0;
+    if (::ioctl(file, FS_IOC_GETFLAGS, &attributes) != 0) return false;
+    attributes = on ? attributes | attribute : attributes & ~attribute;
+    return ::ioctl(file, FS_IOC_SETFLAGS, &attributes) == 0;
+}
+
+/** Files made immutable or append-only for a test, cleared again when it ends, whatever happens: even root cannot
+ *  remove them otherwise, nor the test's folder. Held open, so the attribute is cleared wherever a run moved them. */
+class KeptInPlace {
+public:
+    KeptInPlace() = default;
+    KeptInPlace(const KeptInPlace&) = delete;
+    KeptInPlace& operator=(const KeptInPlace&) = delete;
+    ~KeptInPlace() { clear(); }
+    bool add(const fs::path& path, int attribute) {
+        const int file = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+        if (file < 0) return false;
+        if (!setAttribute(file, attribute, true)) {
+            ::close(file);
+            return false;
+        }
+        mFiles.emplace_back(file, attribute);
+        return true;
+    }
+    void clear() {
+        for (const auto& [file, attribute] : mFiles) {
+            setAttribute(file, attribute, false);
+            ::close(file);
+        }
+        mFiles.clear();
+    }
+
+private:
+    std::vector<std::pair<int, int>> mFiles; ///< descriptor, attribute
+};
+
+TEST_F(OutputTransaction, AnEarlierDumpsFileThatCannotBeRemovedFailsBeforeAnyChange) {
+    // Before, the commit swapped the new dump in, could not remove the immutable file from the earlier one, exited 0
+    // and left a hidden staging folder no later run removed.
+    makeEarlierOutputs();
+    const fs::path work = directory / "work";
+    for (const auto& [name, attribute, words] :
+         {std::tuple<std::string, int, std::string>{"final.png", FS_IMMUTABLE_FL, "immutable (chattr +i)"},
+          {"manifest.json", FS_APPEND_FL, "append-only (chattr +a)"}}) {
+        SCOPED_TRACE(name);
+        resetWork();
+        KeptInPlace kept;
+        if (!kept.add(work / "d" / name, attribute)) GTEST_SKIP() << "cannot set file attributes (root on ext4 can)";
+        const CliRun result = renderInto(work, 48);
+        EXPECT_EQ(result.exitCode, 5) << result.err;
+        EXPECT_NE(result.err.find("--dump '" + (work / "d").string() + "' holds '" + name + "', which is " + words +
+                                  ", and a dump removes the earlier dump's files; clear the attribute or give another "
+                                  "folder"),
+                  std::string::npos)
+            << result.err;
+        EXPECT_EQ(result.err.find("rendered"), std::string::npos) << "refused before any work";
+        EXPECT_EQ(snapshot(work), oldState) << "no file changed, no staging folder left";
+        kept.clear();
+        EXPECT_EQ(renderInto(work, 48).exitCode, 0) << "once the attribute is cleared, the folder is usable";
+    }
+    // The folder itself: it is swapped out whole.
+    resetWork();
+    KeptInPlace kept;
+    ASSERT_TRUE(kept.add(work / "d", FS_IMMUTABLE_FL));
+    const CliRun folder = renderInto(work, 48);
+    EXPECT_EQ(folder.exitCode, 5) << folder.err;
+    EXPECT_NE(folder.err.find("--dump '" + (work / "d").string() + "' is immutable (chattr +i)"), std::string::npos)
+        << folder.err;
+    EXPECT_EQ(snapshot(work), oldState);
+}
+
+TEST_F(OutputTransaction, AStagingFolderWithAFileLeftIsSweptOnceItCanBe) {
+    // A dead run's staging folder holding a file no one may remove yet: the sweep keeps its marker, so a later run
+    // removes it once the file can go. Before, the sweep removed the marker alone and the folder stayed for good.
+    const pid_t child = goneProcess();
+    ASSERT_GT(child, 0);
+    const fs::path stale = directory / (".inkgraph-dump-" + std::to_string(child) + "-0");
+    fs::create_directories(stale);
+    std::ofstream(stale / ".inkgraph-staging");
+    std::ofstream(stale / "final.png") << "an earlier dump's";
+    std::ofstream(stale / "shading.png") << "an earlier dump's";
+    KeptInPlace kept;
+    if (!kept.add(stale / "final.png", FS_IMMUTABLE_FL)) GTEST_SKIP() << "cannot set file attributes (root can)";
+    const std::string render = "render " + model("spot_c3d.obj") + " --size 16x16 --dump d -o out.png";
+    const CliRun first = run(render);
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    EXPECT_EQ(listFiles(stale), (std::vector<std::string>{".inkgraph-staging", "final.png"}));
+    kept.clear();
+    const CliRun second = run(render);
+    ASSERT_EQ(second.exitCode, 0) << second.err;
+    EXPECT_FALSE(fs::exists(stale));
 }
 
 TEST_F(OutputTransaction, LongNamesFailBeforeRenderingOrNotAtAll) {

@@ -46,11 +46,12 @@ class INKGRAPH_API Error : public std::runtime_error {
 public:
     enum class Kind {
         /** A bad flag, value, buffer name, camera or image; too little memory for the request; a Renderer used while
-         *  another holds the process's GL context, or made before the fork of the process it is used in. */
+         *  another holds the process's GL context, or made before the fork of the process it is used in; a still
+         *  written over a file its render read. */
         Usage,
         Input,   ///< an unreadable or invalid model, shade map or texture
-        Context, ///< no OpenGL 4.5 core context through EGL, or the shaders are missing
-        Output,  ///< a file could not be written
+        Context, ///< no OpenGL 4.5 core context through EGL, or the shaders are missing or do not compile
+        Output,  ///< a file could not be written, or its place is not a regular file or a new name
         Render,  ///< the render itself failed: an internal error
     };
     Error(Kind kind, const std::string& message) : std::runtime_error(message), mKind(kind) {}
@@ -75,7 +76,9 @@ struct INKGRAPH_API Image {
     /** The pixels as floats; throws Error(Usage) unless type is Float32. */
     const float* floats() const;
     /** Writes the image; the format follows the extension (PNG in the process; EXR, TIFF, JPEG through
-     *  OpenImageIO). Float32 is kept by EXR and TIFF. Throws Error(Output) naming the file. */
+     *  OpenImageIO). Float32 is kept by EXR and TIFF. Written under a temporary name beside `path` and renamed over
+     *  it, so `path` must be a regular file or a new name, as the command line's outputs: a device, a FIFO, a socket
+     *  or a folder (also through a link) is refused, never replaced. Throws Error(Output) naming the file. */
     void write(const std::string& path) const;
 };
 
@@ -157,8 +160,10 @@ public:
     std::vector<std::string> bufferNames() const;
     /** What the render warned about (a material's shade map that this shading does not use, ...). */
     std::vector<std::string> warnings() const;
-    /** Writes the picture (Image::write). */
-    void write(const std::string& path) const { picture().write(path); }
+    /** Writes the picture as Image::write() does, but never over a file the render read (the model, its buffers
+     *  and images, the shade maps, the look's --style file), compared as the command line compares its outputs
+     *  with its inputs (links and hard links too): that is Error(Usage), naming the file and what it is. */
+    void write(const std::string& path) const;
     /** Milliseconds the render took (without loading the scene). */
     double milliseconds() const;
 
