@@ -149,6 +149,19 @@ std::string resolveBeside(const std::filesystem::path& folder, const std::string
     return resolve(slashed);
 }
 
+/** What one `newmtl` block said, turned into a Material when the block ends. At namespace scope: clang (14) cannot
+ *  default-construct a nested class with member initializers inside its enclosing class (std::optional::emplace()). */
+struct PendingMaterial {
+    Material material;
+    std::size_t line = 0;
+    std::optional<double> dissolve;     ///< d
+    std::optional<double> transparency; ///< Tr
+    std::optional<MapStatement> diffuseMap;
+    std::size_t diffuseMapLine = 0;
+    std::optional<MapStatement> dissolveMap;
+    std::size_t dissolveMapLine = 0;
+};
+
 class MtlReader {
 public:
     MtlReader(const std::string& path, ObjMaterials& materials, std::vector<std::string>& warnings)
@@ -167,18 +180,6 @@ public:
     }
 
 private:
-    /** What one `newmtl` block said, turned into a Material when the block ends. */
-    struct Pending {
-        Material material;
-        std::size_t line = 0;
-        std::optional<double> dissolve;     ///< d
-        std::optional<double> transparency; ///< Tr
-        std::optional<MapStatement> diffuseMap;
-        std::size_t diffuseMapLine = 0;
-        std::optional<MapStatement> dissolveMap;
-        std::size_t dissolveMapLine = 0;
-    };
-
     void warn(const std::string& problem) {
         mWarnings.push_back("material library '" + mPath + "' line " + std::to_string(mLine) + ": " + problem);
     }
@@ -295,7 +296,7 @@ private:
 
     void finishMaterial() {
         if (!mCurrent) return;
-        Pending& pending = *mCurrent;
+        PendingMaterial& pending = *mCurrent;
         Material& material = pending.material;
         // d is the standard; Tr (= 1 - d) is what some exporters write instead. When both appear, d decides.
         const double alpha = pending.dissolve       ? *pending.dissolve
@@ -342,7 +343,7 @@ private:
     ObjMaterials& mMaterials;
     std::vector<std::string>& mWarnings;
     std::size_t mLine = 0;
-    std::optional<Pending> mCurrent;
+    std::optional<PendingMaterial> mCurrent;
 };
 
 } // namespace
