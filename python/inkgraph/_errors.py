@@ -1,6 +1,6 @@
 """The exceptions of inkgraph: one class per kind of inkgraph::api::Error (inkgraph/inkgraph.h).
 
-The extension (python/Module.cpp) raises the class of the C++ error's kind with the library's message unchanged
+The extension (python/Bindings.cpp) raises the class of the C++ error's kind with the library's message unchanged
 (the function or flag first, names quoted, as the command line prints it) and the exit code the library gives for
 that kind, the one `inkgraph render` exits with (README, "Errors and exit codes").
 """
