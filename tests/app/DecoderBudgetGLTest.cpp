@@ -206,6 +206,19 @@ TEST_F(DecoderBudget, StbImagesOwnBufferIsChargedBeforeItIsAllocated) {
     EXPECT_GE(std::stoull(needs[1]), 9786709ull + 16777216ull) << refused.err;
 }
 
+TEST_F(DecoderBudget, APnmTextureIsRefusedRatherThanReadPastItsBuffer) {
+    // fuzz_texture's finding: a 16-bit binary PNM (maxval above 255) made stb_image read twice the bytes of its
+    // buffer (a heap over-read; a crash for some sizes), and a truncated one decoded to uninitialised pixels.
+    writeBytes(directory / "deep.ppm", "P6\n3 2\n65535\n" + std::string(36, 'x'));
+    writeTexturedTriangle("deep.ppm");
+    const CliRun result = run("render tri.obj -o out.png --size 32x32");
+    EXPECT_EQ(result.exitCode, 3) << result.err;
+    EXPECT_NE(result.err.find("'tri.obj' image 0 'deep.ppm': is a PNM image, which is not read as a texture"),
+              std::string::npos)
+        << result.err;
+    EXPECT_FALSE(fs::exists(directory / "out.png"));
+}
+
 TEST_F(DecoderBudget, AHeaderOfSixtyThousandPixelsASideIsRefusedNamingItsSizeAndTheLimit) {
     // Reported as "not a PNG" before: stb_image refuses such a header without saying why.
     writeBytes(directory / "huge.png", pngFile(60000, 60000, 8, deflatedZeros("", 1000)));
