@@ -86,9 +86,9 @@ struct PixelBuffer {
     }
 };
 
-/** The formats stb_image reads besides PNG and JPEG (BMP, TGA, GIF, PSD, HDR, PIC, PNM). stb allocates a whole image
- *  of its own before converting it to 8-bit RGBA: the file's samples (32-bit float for HDR, up to 16-bit for PSD and
- *  PNM, 4 channels), freed after the conversion, or for a GIF its background and history beside the frame. */
+/** The formats stb_image reads besides PNG and JPEG (BMP, TGA, GIF, PSD, HDR, PIC; not PNM, below). stb allocates a
+ * whole image of its own before converting it to 8-bit RGBA: the file's samples (32-bit float for HDR, up to 16-bit for
+ * PSD, 4 channels), freed after the conversion, or for a GIF its background and history beside the frame. */
 std::size_t stbDecoderBytes(const std::vector<unsigned char>& bytes, int width, int height) {
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const bool floatSamples = stbi_is_hdr_from_memory(bytes.data(), int(bytes.size())) != 0;
@@ -102,9 +102,16 @@ DecodedImage decodeWithStb(const std::vector<unsigned char>& bytes, const std::s
     if (bytes.size() > std::size_t(INT_MAX))
         fail("is " + std::to_string(bytes.size()) + " bytes, more than stb_image reads (2 GiB)");
     const int byteCount = int(bytes.size());
+    // stb_image's PNM reader is not safe on other people's files (fuzz_texture): it converts a 16-bit file's samples
+    // with its 8-bit conversion and then reads twice the bytes that buffer holds, and it leaves the pixels of a
+    // truncated file uninitialised. PNM is no texture format of glTF's or of the tools that write OBJ materials.
+    if (bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == '5' || bytes[1] == '6'))
+        fail("is a PNM image, which is not read as a texture (stb_image's PNM reader over-reads 16-bit files and "
+             "leaves truncated ones undecoded); convert it to PNG" +
+             declared);
     int width = 0, height = 0, channels = 0;
     if (stbi_info_from_memory(bytes.data(), byteCount, &width, &height, &channels) == 0)
-        fail("cannot be decoded: not a PNG, JPEG, BMP, TGA, GIF, PSD, HDR, PIC or PNM image, or one stb_image finds "
+        fail("cannot be decoded: not a PNG, JPEG, BMP, TGA, GIF, PSD, HDR or PIC image, or one stb_image finds "
              "corrupt or too large" +
              declared + " (" + stbReason() + ")");
     admit(std::uint64_t(std::max(width, 0)), std::uint64_t(std::max(height, 0)), stbDecoderBytes(bytes, width, height));

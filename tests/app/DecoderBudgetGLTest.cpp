@@ -6,6 +6,7 @@
 // wider than the driver's largest is downscaled with a warning, and a 5000-byte image path gives a message under
 // 2000 bytes.
 #include "CliTestSupport.h"
+#include "tests/support/PngFixtures.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -38,18 +39,6 @@ constexpr bool kPeakIsComparable = true;
 
 void writeBytes(const fs::path& path, const std::string& bytes) {
     std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
-}
-
-std::string bigEndian32(std::uint32_t value) {
-    std::string bytes;
-    for (int shift = 24; shift >= 0; shift -= 8) bytes.push_back(char((value >> shift) & 0xFF));
-    return bytes;
-}
-
-std::string pngChunk(const std::string& type, const std::string& data) {
-    const std::string body = type + data;
-    const auto crc = std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size())));
-    return bigEndian32(std::uint32_t(data.size())) + body + bigEndian32(crc);
 }
 
 /** A zlib stream of `rawBytes` bytes whose first `head` bytes are given and the rest zeros, deflated in pieces so the
@@ -85,9 +74,7 @@ std::string deflatedZeros(const std::string& head, std::size_t rawBytes) {
 
 /** A PNG of `width` x `height` (colour type 6, RGBA, `bitDepth` 8 or 16) whose image data is `idat`. */
 std::string pngFile(std::uint32_t width, std::uint32_t height, int bitDepth, const std::string& idat) {
-    const std::string header = bigEndian32(width) + bigEndian32(height) + char(bitDepth) + char(6) + '\0' + '\0' + '\0';
-    return std::string("\x89PNG\r\n\x1a\n", 8) + pngChunk("IHDR", header) + pngChunk("IDAT", idat) +
-           pngChunk("IEND", "");
+    return test::pngWithImageData(width, height, bitDepth, 6, idat);
 }
 
 /** A JPEG of `width` x `height` mid-grey RGB pixels (quality 90), progressive or baseline, through libjpeg. */
@@ -176,8 +163,8 @@ TEST_F(DecoderBudget, ABaselineJpegIsDecodedRowByRowWithinTheLimit) {
 
 TEST_F(DecoderBudget, AProgressiveJpegsCoefficientsAreChargedBeforeTheyAreAllocated) {
     // A progressive file is decoded through whole-image coefficient buffers (2 bytes per coefficient): 4096 x 4096
-    // RGB needs 96 MiB of them beside the pixels. Charged from the header, so a limit that holds the pixels but not
-    // them is refused before libjpeg allocates anything, naming the image, the model and --memory-limit.
+    // RGB at 4:2:0 needs 48 MiB of them beside the pixels. Charged from the header, so a limit that holds the pixels
+    // but not them is refused before libjpeg allocates anything, naming the image, the model and --memory-limit.
     writeBytes(directory / "photo.jpg", jpegFile(4096, 4096, true));
     writeTexturedTriangle("photo.jpg");
     const CliRun refused = run("render tri.obj -o out.png --size 64x64 --memory-limit 300");
@@ -217,6 +204,19 @@ TEST_F(DecoderBudget, StbImagesOwnBufferIsChargedBeforeItIsAllocated) {
     ASSERT_TRUE(std::regex_search(refused.err, needs, std::regex("'sky.hdr': 1024x1024 needs ([0-9]+) bytes")))
         << refused.err;
     EXPECT_GE(std::stoull(needs[1]), 9786709ull + 16777216ull) << refused.err;
+}
+
+TEST_F(DecoderBudget, APnmTextureIsRefusedRatherThanReadPastItsBuffer) {
+    // fuzz_texture's finding: a 16-bit binary PNM (maxval above 255) made stb_image read twice the bytes of its
+    // buffer (a heap over-read; a crash for some sizes), and a truncated one decoded to uninitialised pixels.
+    writeBytes(directory / "deep.ppm", "P6\n3 2\n65535\n" + std::string(36, 'x'));
+    writeTexturedTriangle("deep.ppm");
+    const CliRun result = run("render tri.obj -o out.png --size 32x32");
+    EXPECT_EQ(result.exitCode, 3) << result.err;
+    EXPECT_NE(result.err.find("'tri.obj' image 0 'deep.ppm': is a PNM image, which is not read as a texture"),
+              std::string::npos)
+        << result.err;
+    EXPECT_FALSE(fs::exists(directory / "out.png"));
 }
 
 TEST_F(DecoderBudget, AHeaderOfSixtyThousandPixelsASideIsRefusedNamingItsSizeAndTheLimit) {

@@ -5,6 +5,7 @@
 // is not only checked against its own writer.
 #include "app/ImageFiles.h"
 #include "app/ImageIoModule.h"
+#include "tests/support/PngFixtures.h"
 #include "tests/support/TestFolder.h"
 
 #include <gtest/gtest.h>
@@ -24,18 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string bigEndian32(std::uint32_t value) {
-    std::string bytes;
-    for (int shift = 24; shift >= 0; shift -= 8) bytes.push_back(char((value >> shift) & 0xFF));
-    return bytes;
-}
-
-std::string chunk(const std::string& type, const std::string& data) {
-    const std::string body = type + data;
-    const auto crc = std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size())));
-    return bigEndian32(std::uint32_t(data.size())) + body + bigEndian32(crc);
-}
-
 std::string deflated(const std::string& raw) {
     uLongf size = compressBound(uLong(raw.size()));
     std::string out(size, '\0');
@@ -50,10 +39,7 @@ std::string deflated(const std::string& raw) {
  *  tRNS) between IHDR and IDAT. */
 std::string pngFile(std::uint32_t width, std::uint32_t height, int bitDepth, int colorType,
                     const std::string& scanlines, const std::string& extra = "", int interlace = 0) {
-    const std::string header =
-        bigEndian32(width) + bigEndian32(height) + char(bitDepth) + char(colorType) + '\0' + '\0' + char(interlace);
-    return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", header) + extra + chunk("IDAT", deflated(scanlines)) +
-           chunk("IEND", "");
+    return test::pngWithImageData(width, height, bitDepth, colorType, deflated(scanlines), extra, interlace);
 }
 
 /** Rows of samples packed at `bitDepth` (1, 2, 4, 8 or 16 bits, big-endian, first sample in the high bits), each
@@ -185,10 +171,11 @@ std::vector<Fixture> expansionFixtures() {
                 expected.at<cv::Vec4b>(row, col) = cv::Vec4b(uchar(palette[3 * index]), uchar(palette[3 * index + 1]),
                                                              uchar(palette[3 * index + 2]), alpha[index]);
             }
-        fixtures.push_back({"palette-trns.png",
-                            pngFile(5, 2, 2, 3, scanlinesOf(indices, 2),
-                                    chunk("PLTE", palette) + chunk("tRNS", std::string("\x00\x80", 2))),
-                            expected});
+        fixtures.push_back(
+            {"palette-trns.png",
+             pngFile(5, 2, 2, 3, scanlinesOf(indices, 2),
+                     test::pngChunk("PLTE", palette) + test::pngChunk("tRNS", std::string("\x00\x80", 2))),
+             expected});
     }
     // The same palette without tRNS: RGB.
     {
@@ -200,7 +187,7 @@ std::vector<Fixture> expansionFixtures() {
                     cv::Vec3b(uchar(palette[3 * index]), uchar(palette[3 * index + 1]), uchar(palette[3 * index + 2]));
             }
         fixtures.push_back(
-            {"palette.png", pngFile(5, 2, 2, 3, scanlinesOf(indices, 2), chunk("PLTE", palette)), expected});
+            {"palette.png", pngFile(5, 2, 2, 3, scanlinesOf(indices, 2), test::pngChunk("PLTE", palette)), expected});
     }
     // 2-bit and 1-bit grey, scaled up to 8 bits (0, 85, 170, 255; 0, 255), rows not ending on a byte.
     {
@@ -229,9 +216,10 @@ std::vector<Fixture> expansionFixtures() {
         expected.at<cv::Vec2b>(0, 0) = cv::Vec2b(17, 0);
         expected.at<cv::Vec2b>(0, 1) = cv::Vec2b(18, 255);
         expected.at<cv::Vec2b>(0, 2) = cv::Vec2b(17, 0);
-        fixtures.push_back({"grey-trns.png",
-                            pngFile(3, 1, 8, 0, scanlinesOf(samples, 8), chunk("tRNS", std::string("\x00\x11", 2))),
-                            expected});
+        fixtures.push_back(
+            {"grey-trns.png",
+             pngFile(3, 1, 8, 0, scanlinesOf(samples, 8), test::pngChunk("tRNS", std::string("\x00\x11", 2))),
+             expected});
     }
     // Adam7-interlaced 8-bit grey, 10x9: the seven passes' sub-images, each row with its filter byte.
     {
@@ -362,9 +350,9 @@ TEST_F(PngFiles, BrokenFilesAreRefusedNamingTheFile) {
 
 TEST_F(PngFiles, APixelCountAboveTheLimitIsRefusedBeforeAllocating) {
     // 50000 x 50000 16-bit RGBA would be 20 GB: the header alone is judged, with a tiny IDAT behind it.
-    const std::string header = bigEndian32(50000) + bigEndian32(50000) + "\x10\x06" + std::string(3, '\0');
-    const std::string huge = std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", header) +
-                             chunk("IDAT", deflated(std::string(64, '\0'))) + chunk("IEND", "");
+    const std::string header = test::bigEndian32(50000) + test::bigEndian32(50000) + "\x10\x06" + std::string(3, '\0');
+    const std::string huge = std::string("\x89PNG\r\n\x1a\n", 8) + test::pngChunk("IHDR", header) +
+                             test::pngChunk("IDAT", deflated(std::string(64, '\0'))) + test::pngChunk("IEND", "");
     writeFile(directory / "huge.png", huge);
     std::string message = failureOf([&] { readImage(directory / "huge.png"); });
     EXPECT_TRUE(contains(message, "it declares 50000x50000 pixels, more than the 268435456 allowed here")) << message;
