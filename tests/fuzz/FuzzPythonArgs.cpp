@@ -46,14 +46,79 @@ namespace {
 /** Words the flag parser knows, so that values reach past "unknown flag": flags with and without dashes (dict keys
  *  drop them), values of the right shape and of the wrong one, buffer names. */
 const char* const kTokens[] = {
-    "--shading", "shading", "cel", "comic", "flat", "--lines", "lines", "silhouette", "contour", "outline,contour",
-    "suggestive", "none", "--silhouette-width", "silhouette-width", "silhouette_width", "--line-weight", "3", "0",
-    "-1", "0.5", "1e308", "nan", "inf", "--background", "background", "1,0.9,0.8", "--orbit", "orbit", "30,10",
-    "--fov", "fov", "40", "--eye", "--target", "--up", "0,1,0", "--camera", "--frame", "--size", "512x512",
-    "--style", "--egl-platform", "--memory-limit", "1G", "--bands", "--shininess", "--shademap", "--light",
-    "--supersample", "--dump", "-o", "--output", "--", "-", "", "normal", "depth", "lines.contour", "gbuffer.*",
-    "picture", "shade.color", "materialId", "coverage", "view", "--animation", "--time", "--face-orientation",
-    "--front-rule", "--gbuffer-precision", "--min-stroke-length", "--overlapping-lines", "--clip", "--view-vector",
+    "--shading",
+    "shading",
+    "cel",
+    "comic",
+    "flat",
+    "--lines",
+    "lines",
+    "silhouette",
+    "contour",
+    "outline,contour",
+    "suggestive",
+    "none",
+    "--silhouette-width",
+    "silhouette-width",
+    "silhouette_width",
+    "--line-weight",
+    "3",
+    "0",
+    "-1",
+    "0.5",
+    "1e308",
+    "nan",
+    "inf",
+    "--background",
+    "background",
+    "1,0.9,0.8",
+    "--orbit",
+    "orbit",
+    "30,10",
+    "--fov",
+    "fov",
+    "40",
+    "--eye",
+    "--target",
+    "--up",
+    "0,1,0",
+    "--camera",
+    "--frame",
+    "--size",
+    "512x512",
+    "--style",
+    "--egl-platform",
+    "--memory-limit",
+    "1G",
+    "--bands",
+    "--shininess",
+    "--shademap",
+    "--light",
+    "--supersample",
+    "--dump",
+    "-o",
+    "--output",
+    "--",
+    "-",
+    "",
+    "normal",
+    "depth",
+    "lines.contour",
+    "gbuffer.*",
+    "picture",
+    "shade.color",
+    "materialId",
+    "coverage",
+    "view",
+    "--animation",
+    "--time",
+    "--face-orientation",
+    "--front-rule",
+    "--gbuffer-precision",
+    "--min-stroke-length",
+    "--overlapping-lines",
+    "--clip",
+    "--view-vector",
 };
 
 /** Python set up once: the interpreter, the package, a loaded scene and the renderer stand-in. */
@@ -148,8 +213,7 @@ py::object token(inkgraph::fuzz::FuzzBytes& in) { return py::str(in.pick(kTokens
 /** A str of any code points, lone surrogates and NUL included. */
 py::object anyString(inkgraph::fuzz::FuzzBytes& in) {
     std::vector<Py_UCS4> points(std::size_t(in.integer(0, 12)));
-    for (Py_UCS4& point : points)
-        point = Py_UCS4(in.boolean() ? in.integer(0, 0x7f) : in.integer(0, 0x10ffff));
+    for (Py_UCS4& point : points) point = Py_UCS4(in.boolean() ? in.integer(0, 0x7f) : in.integer(0, 0x10ffff));
     return py::reinterpret_steal<py::object>(
         PyUnicode_FromKindAndData(PyUnicode_4BYTE_KIND, points.data(), py::ssize_t(points.size())));
 }
@@ -206,7 +270,7 @@ py::object value(inkgraph::fuzz::FuzzBytes& in, int depth) {
         py::list numbers;
         for (std::size_t n = in.integer(0, 4); n > 0; --n)
             numbers.append(in.boolean() ? py::object(py::int_(std::int32_t(in.signed64())))
-                                            : py::object(py::float_(in.real())));
+                                        : py::object(py::float_(in.real())));
         return h.numpyArray(numbers);
     }
     case 15: return h.look();
