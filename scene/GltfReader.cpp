@@ -7,6 +7,7 @@
 #include "scene/GltfAccessors.h"
 #include "scene/GltfDraco.h"
 #include "scene/GltfPose.h"
+#include "scene/ShaderValues.h"
 #include "scene/VrmMaterials.h"
 
 #include <glm/gtc/constants.hpp>
@@ -588,6 +589,11 @@ private:
         return pair;
     }
 
+    /** "[x, y]", for messages. */
+    static std::string formatPair(const glm::dvec2& pair) {
+        return "[" + formatNumber(pair.x) + ", " + formatNumber(pair.y) + "]";
+    }
+
     /** A material's textureInfo as a TextureRef: the image its texture shows, the coordinate set and sampler, and the
      *  KHR_texture_transform matrix. A texture without a core image (only an extension's, e.g. KHR_texture_basisu or
      *  EXT_texture_webp, which the renderer cannot decode) or on a third coordinate set leaves the material
@@ -616,7 +622,8 @@ private:
                  " out of range (file has " + std::to_string(mModel.images.size()) + " images)");
         }
         double texCoord = info.texCoord;
-        glm::mat3 transform(1.0f);
+        std::optional<glm::dmat3> transform;
+        std::string transformText;
         const auto extension = info.extensions.find("KHR_texture_transform");
         if (extension != info.extensions.end() && extension->second.IsObject()) {
             const tinygltf::Value& object = extension->second;
@@ -631,7 +638,9 @@ private:
             const double s = std::sin(rotation);
             const glm::dmat3 rotationMatrix(c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0);
             const glm::dmat3 scaleMatrix(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
-            transform = glm::mat3(translation * rotationMatrix * scaleMatrix);
+            transform = translation * rotationMatrix * scaleMatrix;
+            transformText = where + " (offset " + formatPair(offset) + ", rotation " + formatNumber(rotation) +
+                            ", scale " + formatPair(scale) + ")";
         }
         if (texCoord != 0.0 && texCoord != 1.0) {
             mOut.warnings.push_back(label + ": texture coordinate set " + formatNumber(texCoord) +
@@ -641,7 +650,13 @@ private:
         ref.image = texture.source;
         ref.texCoord = int(texCoord);
         ref.sampler = readSampler(texture.sampler);
-        ref.transform = transform;
+        if (transform) {
+            // The transform says where the image lies: one the shaders' float cannot follow is refused, not guessed.
+            std::string problem;
+            const std::optional<glm::mat3> forShaders = shaderTextureTransform(*transform, ref.sampler, problem);
+            if (!forShaders) fail(transformText + ": " + problem);
+            ref.transform = *forShaders;
+        }
         return ref;
     }
 
@@ -676,22 +691,26 @@ private:
         const std::string label = materialLabel(materialIndex);
         Material result;
         result.name = source.name;
+        // Factors beyond glTF's ranges are clamped with a warning, as viewers draw them (ShaderValues.h).
         const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
-        if (factor.size() == 4) {
-            result.baseColorFactor = glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
+        for (std::size_t i = 0; i < 4 && factor.size() == 4; ++i) {
+            result.baseColorFactor[int(i)] = shaderValue(
+                factor[i], kUnitRange, label + " baseColorFactor[" + std::to_string(i) + "]", mOut.warnings);
         }
         result.baseColorTexture =
             readTextureRef(source.pbrMetallicRoughness.baseColorTexture, label + " baseColorTexture");
-        if (source.emissiveFactor.size() == 3) {
-            result.emissiveFactor = glm::vec3(float(source.emissiveFactor[0]), float(source.emissiveFactor[1]),
-                                              float(source.emissiveFactor[2]));
+        for (std::size_t i = 0; i < 3 && source.emissiveFactor.size() == 3; ++i) {
+            result.emissiveFactor[int(i)] =
+                shaderValue(source.emissiveFactor[i], kUnitRange, label + " emissiveFactor[" + std::to_string(i) + "]",
+                            mOut.warnings);
         }
         const auto strength = source.extensions.find("KHR_materials_emissive_strength");
         if (strength != source.extensions.end() && strength->second.IsObject()) {
-            const double multiplier =
-                extensionNumber(strength->second, "emissiveStrength", 1.0, label + " KHR_materials_emissive_strength");
+            const std::string where = label + " KHR_materials_emissive_strength";
+            const double multiplier = extensionNumber(strength->second, "emissiveStrength", 1.0, where);
             if (multiplier < 0.0) fail(label + ": emissiveStrength " + formatNumber(multiplier) + " is negative");
-            result.emissiveFactor *= float(multiplier);
+            result.emissiveFactor *=
+                shaderValue(multiplier, kNonNegativeRange, where + " emissiveStrength", mOut.warnings);
         }
         result.emissiveTexture = readTextureRef(source.emissiveTexture, label + " emissiveTexture");
         result.unlit = source.extensions.count("KHR_materials_unlit") > 0;
@@ -704,7 +723,8 @@ private:
                                     "' is not OPAQUE, MASK or BLEND; drawn opaque");
         }
         if (std::isfinite(source.alphaCutoff) && source.alphaCutoff >= 0.0) {
-            result.alphaCutoff = float(source.alphaCutoff);
+            // Above 1 every fragment would be cut out: blank paper.
+            result.alphaCutoff = shaderValue(source.alphaCutoff, kUnitRange, label + " alphaCutoff", mOut.warnings);
         } else {
             mOut.warnings.push_back(label + ": alphaCutoff " + formatNumber(source.alphaCutoff) +
                                     " is not a number >= 0; 0.5 is used");
@@ -740,6 +760,25 @@ private:
             const float* rgba = values.data() + i * std::size_t(components);
             mesh.colors[i] = glm::vec4(rgba[0], rgba[1], rgba[2], rgb ? 1.0f : rgba[3]);
         }
+        // The colours multiply the surface's in the shaders, with the lighting: 1e38 is a float, its products may not
+        // be. Far beyond white, 1e6 draws the same. Reported once, with the first value clamped.
+        std::vector<std::string> clamped;
+        std::size_t clampedCount = 0;
+        // Appended, not "'" + name: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
+        std::string what = "'";
+        what.append(excerptForMessage(name)).append("' COLOR_0 value");
+        for (glm::vec4& colour : mesh.colors) {
+            for (int c = 0; c < 4; ++c) {
+                if (colour[c] >= kNonNegativeRange.min && colour[c] <= kNonNegativeRange.max) continue;
+                // Accessor values are finite: the one message is made for the first only.
+                colour[c] = clampedCount++ == 0 ? shaderValue(colour[c], kNonNegativeRange, what, clamped)
+                            : colour[c] < 0.0f  ? float(kNonNegativeRange.min)
+                                                : float(kNonNegativeRange.max);
+            }
+        }
+        if (clampedCount > 1)
+            clamped.front() += " (and " + std::to_string(clampedCount - 1) + " more values outside it)";
+        mOut.warnings.insert(mOut.warnings.end(), clamped.begin(), clamped.end());
     }
 
     /** "node 3 'wheel'", or "node 3" for an unnamed one. */

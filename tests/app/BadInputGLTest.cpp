@@ -70,6 +70,17 @@ std::string gltfTriangle(const std::string& primitiveExtra = "", float x = 1.0f,
            (uri.empty() ? "data:application/octet-stream;base64," + test::base64(triangleBytes(x)) : uri) + R"("}]})";
 }
 
+/** The bundled textured box with `transform` as its texture's KHR_texture_transform and `wrap` as both its wraps. */
+std::string texturedBox(const nlohmann::json& transform, int wrap = 10497) {
+    return test::editedGlb(fs::path(INKGRAPH_SOURCE_ROOT) / "models/characters/box-textured.glb",
+                           [&](nlohmann::json& gltf) {
+                               gltf["extensionsUsed"] = {"KHR_texture_transform"};
+                               gltf["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+                                   {"KHR_texture_transform", transform}};
+                               gltf["samplers"][0]["wrapS"] = gltf["samplers"][0]["wrapT"] = wrap;
+                           });
+}
+
 std::string source(const std::string& relative) { return (fs::path(INKGRAPH_SOURCE_ROOT) / relative).string(); }
 
 /** Makes memory run out for the out-of-memory case. AddressSanitizer reserves terabytes of address space, so under it
@@ -163,6 +174,19 @@ std::vector<BadInput> badInputs() {
          3,
          {"'far.gltf'", "node 0: its transforms place it 1e+30 units from the world origin",
           "too far to resolve a model 1.41 units across"}},
+        {"KHR_texture_transform scale of 1e300",
+         {{"box.glb", texturedBox({{"scale", {1e300, 1.0}}})}},
+         "box.glb -o out.png",
+         3,
+         {"'box.glb'",
+          "material 0 'Texture' baseColorTexture KHR_texture_transform (offset [0, 0], rotation 0, scale [1e+300, 1])",
+          "stretch texture coordinates 1e+300 times, beyond the 10000"}},
+        {"KHR_texture_transform offset of 1e30 on a clamped texture",
+         {{"box.glb", texturedBox({{"offset", {1e30, 0.0}}}, 33071)}},
+         "box.glb -o out.png",
+         3,
+         {"'box.glb'", "KHR_texture_transform (offset [1e+30, 0], rotation 0, scale [1, 1])",
+          "its offset moves texture coordinates by 1e+30"}},
         {"glTF data URI of 1 MiB, quoted short",
          {{"u.gltf",
            gltfTriangle("", 1.0f, 3, "", "data:application/octet-stream;base64," + std::string(1 << 20, 'A') + "!!")}},

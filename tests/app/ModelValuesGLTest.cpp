@@ -1,6 +1,7 @@
 // Values a model file gives that the renderer's float arithmetic cannot take as they are, run through the real
-// executable (issue 31): a model placed 1e17 units out by a node, a parent or an animation once collapsed to a point
-// or a line; now it renders like itself at the origin.
+// executable (issue 31): a model placed 1e17 units out by a node, a parent or an animation, and texture transforms,
+// material factors and vertex colours beyond float or beyond sense. Each once gave a collapsed, black or blank picture
+// with exit 0; now each renders as the file means it, or says what it changed, or is refused.
 #include "GltfTestFiles.h"
 
 #include "app/ImageFiles.h"
@@ -129,6 +130,161 @@ TEST_F(ModelValues, ASkinnedCharacterTranslatedFarRendersLikeItAtTheOrigin) {
     render(test::shellQuoted(vrm), "near.png");
     render("far.vrm", "far.png");
     EXPECT_EQ(difference("near.png", "far.png"), 0.0);
+}
+
+/** box-textured.glb (its texture repeats) with `edit` applied to its one material. */
+std::string boxWith(const std::function<void(Json& material)>& edit) {
+    return test::editedGlb(sourceModel("characters/box-textured.glb"), [&](Json& gltf) {
+        gltf["extensionsUsed"] = {"KHR_texture_transform", "KHR_materials_emissive_strength"};
+        edit(gltf["materials"][0]);
+    });
+}
+
+Json textureTransform(const Json& transform) { return {{"KHR_texture_transform", transform}}; }
+
+TEST_F(ModelValues, TextureOffsetsFloatCannotHoldRenderAsTheRepeatSays) {
+    // A repeating texture looks the same a whole period on, so an offset is reduced modulo the period in double
+    // before the shaders get it. In float an offset of 1e7 + 0.25 left no fraction to find a texel with (the box
+    // turned one flat colour), and 1e38 or 1e300 reached the shaders as they are or as infinity.
+    write("quarter.glb", boxWith([](Json& material) {
+              material["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] =
+                  textureTransform({{"offset", {0.25, 0.0}}});
+          }));
+    write("far-quarter.glb", boxWith([](Json& material) {
+              material["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] =
+                  textureTransform({{"offset", {1e7 + 0.25, -1e38}}});
+          }));
+    write("whole.glb", boxWith([](Json& material) {
+              material["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] =
+                  textureTransform({{"offset", {1e300, -3e300}}});
+          }));
+    render(test::shellQuoted(sourceModel("characters/box-textured.glb")), "box.png");
+    render("quarter.glb", "quarter.png");
+    EXPECT_GT(difference("box.png", "quarter.png"), 0.0) << "the offset moves the texture";
+    render("far-quarter.glb", "far-quarter.png");
+    EXPECT_EQ(difference("quarter.png", "far-quarter.png"), 0.0);
+    render("whole.glb", "whole.png");
+    EXPECT_EQ(difference("box.png", "whole.png"), 0.0);
+
+    // VRM 0.x's _MainTex offset (UniVRM's scale/offset vector) goes through the same reduction.
+    const fs::path vrm = sourceModel("characters/godette.vrm");
+    const auto withMainTex = [&](const Json& offsetScale) {
+        return test::editedGlb(vrm, [&](Json& gltf) {
+            for (Json& properties : gltf["extensions"]["VRM"]["materialProperties"])
+                properties["vectorProperties"]["_MainTex"] = offsetScale;
+        });
+    };
+    write("far-offset.vrm", withMainTex({1e38, -1e38, 1.0, 1.0}));
+    render(test::shellQuoted(vrm), "godette.png");
+    render("far-offset.vrm", "far-offset.png");
+    EXPECT_EQ(difference("godette.png", "far-offset.png"), 0.0);
+    // A scale float cannot resolve is dropped with a warning naming the material (the VRM reader's policy).
+    write("huge-scale.vrm", withMainTex({0.0, 0.0, 1e38, 1.0}));
+    const std::string warned = render("huge-scale.vrm", "huge-scale.png");
+    EXPECT_NE(warned.find("material 0 'Face': vectorProperties._MainTex: its scale and rotation stretch texture "
+                          "coordinates 1e+38 times"),
+              std::string::npos)
+        << warned;
+    EXPECT_EQ(difference("godette.png", "huge-scale.png"), 0.0);
+
+    // An MTL map's -o goes through the same reduction; a -s float cannot resolve leaves the map out with a warning.
+    fs::copy_file(fs::path(INKGRAPH_SOURCE_ROOT) / "shademaps" / "duotone-warm.png", directory / "tex.png");
+    const std::string quad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                             "usemtl m\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+    for (const auto& [name, options] : std::vector<std::pair<std::string, std::string>>{
+             {"near", "-o 0.25 0"}, {"far", "-o 10000000.25 1e30"}, {"huge", "-s 1e30 1"}}) {
+        write(name + ".mtl", "newmtl m\nmap_Kd " + options + " tex.png\n");
+        write(name + ".obj", "mtllib " + name + ".mtl\n" + quad);
+    }
+    render("near.obj", "near-obj.png");
+    render("far.obj", "far-obj.png");
+    EXPECT_EQ(difference("near-obj.png", "far-obj.png"), 0.0);
+    const std::string dropped = render("huge.obj", "huge-obj.png");
+    EXPECT_NE(dropped.find("huge.mtl' line 2: 'map_Kd' options -s/-o: its scale and rotation stretch texture "
+                           "coordinates 1e+30 times"),
+              std::string::npos)
+        << dropped;
+    EXPECT_GT(difference("near-obj.png", "huge-obj.png"), 0.0) << "the texture shows where it is kept";
+}
+
+TEST_F(ModelValues, MaterialFactorsBeyondTheirRangeAreClampedWithAWarning) {
+    // Each pair renders alike: the factor beyond its range (glTF's [0, 1] for colours and the cutoff, 1e6 for an
+    // emissive strength) and the end of the range it is clamped to. Before, 1e300 reached the shaders as infinity
+    // (red blown out, emissive channels NaN-dark) and a cutoff of 2 cut out the whole box: blank paper, exit 0.
+    struct Pair {
+        std::string name;
+        std::function<void(Json&)> beyond;
+        std::function<void(Json&)> clamped;
+        std::string warning;
+    };
+    const std::vector<Pair> pairs = {
+        {"base colour",
+         [](Json& m) {
+             m["pbrMetallicRoughness"]["baseColorFactor"] = {1e300, 0.5, 1.0, 1.0};
+         },
+         [](Json& m) {
+             m["pbrMetallicRoughness"]["baseColorFactor"] = {1.0, 0.5, 1.0, 1.0};
+         },
+         "material 0 'Texture' baseColorFactor[0] 1e+300 is outside [0, 1]; 1 is used"},
+        {"emissive strength",
+         [](Json& m) {
+             m["emissiveFactor"] = {1.0, 0.0, 0.0};
+             m["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 1e300;
+         },
+         [](Json& m) {
+             m["emissiveFactor"] = {1.0, 0.0, 0.0};
+             m["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 1e6;
+         },
+         "material 0 'Texture' KHR_materials_emissive_strength emissiveStrength 1e+300 is outside [0, 1e+06]; "
+         "1e+06 is used"},
+        {"alpha cutoff",
+         [](Json& m) {
+             m["alphaMode"] = "MASK";
+             m["alphaCutoff"] = 2.0;
+         },
+         [](Json& m) {
+             m["alphaMode"] = "MASK";
+             m["alphaCutoff"] = 1.0;
+         },
+         "material 0 'Texture' alphaCutoff 2 is outside [0, 1]; 1 is used"},
+    };
+    for (const Pair& pair : pairs) {
+        SCOPED_TRACE(pair.name);
+        write("beyond.glb", boxWith(pair.beyond));
+        write("clamped.glb", boxWith(pair.clamped));
+        const std::string warned = render("beyond.glb", "beyond.png");
+        EXPECT_NE(warned.find("inkgraph: warning: " + pair.warning), std::string::npos) << warned;
+        EXPECT_EQ(render("clamped.glb", "clamped.png").find("warning"), std::string::npos);
+        EXPECT_EQ(difference("beyond.png", "clamped.png"), 0.0);
+    }
+    // A VRM 0.x colour is gamma-encoded; 1e38 became infinity converted to linear light.
+    const fs::path vrm = sourceModel("characters/godette.vrm");
+    const auto withColor = [&](double red) {
+        return test::editedGlb(vrm, [&](Json& gltf) {
+            gltf["extensions"]["VRM"]["materialProperties"][0]["vectorProperties"]["_Color"] = {red, 1.0, 1.0, 1.0};
+        });
+    };
+    write("red.vrm", withColor(1e38));
+    write("white.vrm", withColor(1.0));
+    const std::string warned = render("red.vrm", "red.png");
+    EXPECT_NE(warned.find("material 0 'Face': vectorProperties._Color[0] 1e+38 is outside [0, 1]; 1 is used"),
+              std::string::npos)
+        << warned;
+    render("white.vrm", "white.png");
+    EXPECT_EQ(difference("red.png", "white.png"), 0.0);
+
+    // Vertex colours multiply the surface's in the shaders: 1e38 is clamped to 1e6 (both far beyond white).
+    const float hot[4] = {1e38f, 1e38f, 0.5f, 1.0f};
+    const float warm[4] = {1e6f, 1e6f, 0.5f, 1.0f};
+    write("hot.gltf", cubeGltf("[{\"mesh\":0," + kTurned + "}]", "", nullptr, nullptr, hot));
+    write("warm.gltf", cubeGltf("[{\"mesh\":0," + kTurned + "}]", "", nullptr, nullptr, warm));
+    const std::string hotWarning = render("hot.gltf --shading lambert", "hot.png");
+    EXPECT_NE(hotWarning.find("'mesh 0' COLOR_0 value 9.999999680285692e+37 is outside [0, 1e+06]; 1e+06 is used "
+                              "(and 15 more values outside it)"),
+              std::string::npos)
+        << hotWarning;
+    render("warm.gltf --shading lambert", "warm.png");
+    EXPECT_EQ(difference("hot.png", "warm.png"), 0.0);
 }
 
 } // namespace
