@@ -90,6 +90,12 @@ FrameParams frameParamsOf(const Look& look, const Scene& scene, const Camera& ca
     return frame;
 }
 
+void StillLog::warn(const std::string& modelPath, const std::string& warning) const {
+    log << "inkgraph: warning: ";
+    if (!talks) log << "'" << modelPath << "': ";
+    log << warning << "\n";
+}
+
 StillRenderer::StillRenderer() { mShaders.keepPrograms(true); }
 
 StillRenderer::~StillRenderer() = default;
@@ -108,7 +114,6 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     const ShadingModelTraits& shading = traitsOf(look.shading);
     if (!look.shadeMapPath.empty()) still->shadeMap = readShadeMapFile(look.shadeMapPath, shading.oneDimensionalMap);
 
-    const std::string prefix = log.talks ? "" : "'" + req.modelPath + "': ";
     if (req.loadedScene) {
         still->loadedScene = req.loadedScene; // its loader's warnings went to whoever loaded it
     } else {
@@ -119,8 +124,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
         loadOptions.time = req.animationTime;
         still->loadedScene = std::make_shared<const Scene>(loadScene(req.modelPath, loadOptions));
         still->loadMilliseconds = millisecondsSince(loadStart);
-        for (const std::string& warning : still->scene().report.warnings)
-            log.log << "inkgraph: warning: " << prefix << warning << "\n";
+        for (const std::string& warning : still->scene().report.warnings) log.warn(req.modelPath, warning);
     }
     const Scene& scene = still->scene();
     if (log.talks && !log.quiet && !req.loadedScene) {
@@ -132,7 +136,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     // The maps the model's materials name (glTF extras), each file read once; exit 3 like --shademap.
     std::vector<std::string> shadeMapWarnings;
     still->meshShadeMaps = readSceneShadeMaps(scene, look.shading, &shadeMapWarnings);
-    for (const std::string& warning : shadeMapWarnings) log.log << "inkgraph: warning: " << prefix << warning << "\n";
+    for (const std::string& warning : shadeMapWarnings) log.warn(req.modelPath, warning);
     return still;
 }
 
@@ -147,6 +151,8 @@ void StillRenderer::plan(PreparedStill& still) {
     } catch (const std::invalid_argument& error) {
         throw UsageError(error.what()); // the loader has validated the file's camera: what is left is the flags
     }
+    if (const std::optional<std::string> outside = modelOutsideView(still.camera, scene))
+        still.warnings.push_back(*outside);
     still.frame = frameParamsOf(look, scene, still.camera, still.sphere);
     still.gpuScene = std::make_unique<GpuScene>(scene, still.sphere.center);
     StillGraphSetup setup{look, mShaders, scene, still.sphere, *still.gpuScene, still.frame, still.shadeMap};

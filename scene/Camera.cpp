@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -316,6 +317,56 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
         camera.clipSource = "flags";
     }
     return camera;
+}
+
+std::optional<std::string> modelOutsideView(const Camera& camera, const Scene& scene) {
+    // The half-spaces outside the view, in view space (the camera looks down -Z; depth = -z). A model wholly inside one
+    // of them shows nothing. Behind the eye comes first: it is also nearer than the near plane.
+    const double tanY = std::tan(glm::radians(camera.fovYDegrees) / 2.0);
+    const double tanX = tanY * camera.aspect();
+    const std::string clip = camera.clipSource == "flags" ? " (--clip)" : "";
+    struct Side {
+        std::string where;
+        std::function<bool(const glm::dvec3&)> outside;
+    };
+    const std::vector<Side> sides = {
+        {"behind the camera", [](const glm::dvec3& v) { return -v.z <= 0.0; }},
+        {"nearer than the near plane at " + formatNumber(camera.zNear) + clip,
+         [&](const glm::dvec3& v) { return -v.z < camera.zNear; }},
+        {"beyond the far plane at " + formatNumber(camera.zFar) + clip,
+         [&](const glm::dvec3& v) { return -v.z > camera.zFar; }},
+        {"left of the view", [&](const glm::dvec3& v) { return v.x < v.z * tanX; }},
+        {"right of the view", [&](const glm::dvec3& v) { return v.x > -v.z * tanX; }},
+        {"below the view", [&](const glm::dvec3& v) { return v.y < v.z * tanY; }},
+        {"above the view", [&](const glm::dvec3& v) { return v.y > -v.z * tanY; }},
+    };
+    std::vector<bool> allOutside(sides.size(), true);
+    const glm::dmat4 view = camera.viewMatrix();
+    bool anyVertex = false;
+    for (const Mesh& mesh : scene.meshes) {
+        for (const glm::vec3& p : mesh.positions) {
+            anyVertex = true;
+            const glm::dvec3 v(view * glm::dvec4(glm::dvec3(p), 1.0));
+            for (std::size_t i = 0; i < sides.size(); ++i) {
+                if (allOutside[i] && !sides[i].outside(v)) allOutside[i] = false;
+            }
+        }
+    }
+    const auto side = std::ranges::find(allOutside, true);
+    if (!anyVertex || side == allOutside.end()) return std::nullopt;
+    const std::string& where = sides[std::size_t(side - allOutside.begin())].where;
+    std::string who;
+    if (camera.source == "gltf") {
+        who = "the glTF camera" + (scene.camera && !scene.camera->name.empty() ? " (" + scene.camera->name + ")" : "");
+    } else if (camera.source == "flags") {
+        who = "the camera of --eye " + formatVector(camera.worldEye());
+    } else if (camera.source == "orbit") {
+        who = "the --orbit camera";
+    } else {
+        who = "the auto-framed camera";
+    }
+    return who + " sees none of the model: every vertex lies " + where + ", so the picture shows only the background" +
+           (camera.source == "gltf" ? "; --camera auto frames the model instead" : "");
 }
 
 } // namespace inkgraph

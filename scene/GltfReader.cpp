@@ -417,6 +417,7 @@ private:
         }
         const std::string label = cameraLabel(node.camera);
         SceneCamera result;
+        result.name = label;
         result.eye = glm::dvec3(world[3]);
         result.forward = glm::normalize(glm::dvec3(world * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
         result.up = glm::normalize(glm::dvec3(world * glm::dvec4(0.0, 1.0, 0.0, 0.0)));

@@ -1,7 +1,7 @@
 // Values a model file gives that the renderer's float arithmetic cannot take as they are, run through the real
-// executable (issue 31): a model placed 1e17 units out by a node, a parent or an animation, and texture transforms,
-// material factors and vertex colours beyond float or beyond sense. Each once gave a collapsed, black or blank picture
-// with exit 0; now each renders as the file means it, or says what it changed, or is refused.
+// executable (issue 31): a model placed 1e17 units out by a node or an animation, texture transforms and material
+// factors beyond float or beyond sense, and a file camera that sees none of the model. Each once gave a blank, black or
+// collapsed picture with exit 0; now each renders as the file means it, or says what it changed, or is refused.
 #include "GltfTestFiles.h"
 
 #include "app/ImageFiles.h"
@@ -285,6 +285,34 @@ TEST_F(ModelValues, MaterialFactorsBeyondTheirRangeAreClampedWithAWarning) {
         << hotWarning;
     render("warm.gltf --shading lambert", "warm.png");
     EXPECT_EQ(difference("hot.png", "warm.png"), 0.0);
+}
+
+TEST_F(ModelValues, AFileCameraThatSeesNoneOfTheModelIsReported) {
+    // duck.glb's camera turned about its own up looks away from the duck: blank paper, exit 0 and no word before.
+    const fs::path duck = sourceModel("characters/duck.glb");
+    write("away.glb", test::editedGlb(duck, [](Json& gltf) {
+              Json& matrix = gltf["nodes"][1]["matrix"]; // the camera's node: columns x and z negated
+              for (int i : {0, 1, 2, 8, 9, 10}) matrix[i] = -matrix[i].get<double>();
+          }));
+    const std::string seen = render(test::shellQuoted(duck), "duck.png");
+    EXPECT_EQ(seen.find("sees none of the model"), std::string::npos) << seen;
+    const std::string away = render("away.glb", "away.png");
+    EXPECT_NE(away.find("inkgraph: warning: the glTF camera (camera 0 'PerspectiveCamera') sees none of the model: "
+                        "every vertex lies behind the camera, so the picture shows only the background; "
+                        "--camera auto frames the model instead"),
+              std::string::npos)
+        << away;
+    const cv::Mat blank = readImage(directory / "away.png");
+    EXPECT_EQ(cv::countNonZero(blank.reshape(1) != 255), 0) << "paper only";
+    // --camera auto frames it again, without the warning.
+    EXPECT_EQ(render("away.glb --camera auto", "auto.png").find("sees none"), std::string::npos);
+
+    // Clip planes from the flags that leave the model out say so too.
+    const std::string clipped = render(test::shellQuoted(sourceModel("spot_c3d.obj")) + " --clip 100,200", "clip.png");
+    EXPECT_NE(clipped.find("inkgraph: warning: the auto-framed camera sees none of the model: every vertex lies nearer "
+                           "than the near plane at 100 (--clip)"),
+              std::string::npos)
+        << clipped;
 }
 
 } // namespace
