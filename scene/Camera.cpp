@@ -26,6 +26,9 @@ constexpr double kFramingMargin = 1.05;
 constexpr double kMaxOrbitElevationDegrees = 89.9;
 /** A --frame error names at most this many of the scene's nodes. */
 constexpr std::size_t kMaxNamedNodes = 10;
+/** The eye and the target must lie farther apart than this times their distance from the scene's origin (at least
+ *  1): closer, the view direction is lost to rounding. */
+constexpr double kMinViewLength = 1e-12;
 /** Near never drops below far x this, which bounds depth-buffer precision loss when the eye is close or inside. */
 constexpr double kMinNearOverFar = 1e-4;
 
@@ -168,10 +171,11 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     requireFinite(request.eye, "--eye");
     requireFinite(request.target, "--target");
     requireFinite(request.up, "--up");
+    std::string orbitText; // "--orbit AZ,EL[,DIST]" as given, for messages
     if (request.orbit) {
         const Orbit& orbit = *request.orbit;
         // Appended, not "," + text: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
-        std::string orbitText = "--orbit " + formatNumber(orbit.azimuthDegrees);
+        orbitText = "--orbit " + formatNumber(orbit.azimuthDegrees);
         orbitText.append(",").append(formatNumber(orbit.elevationDegrees));
         if (orbit.distance) orbitText.append(",").append(formatNumber(*orbit.distance));
         if (request.eye) {
@@ -283,7 +287,15 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
 
     const glm::dvec3 view = camera.target - camera.eye;
     const double viewLength = glm::length(view);
-    if (!(viewLength > 1e-12 * std::max(1.0, glm::length(camera.eye)))) {
+    // Closer than this, double cannot tell the eye from the target at their distance from the scene's origin.
+    const double minViewLength = kMinViewLength * std::max(1.0, glm::length(camera.eye));
+    if (!(viewLength > minViewLength)) {
+        if (request.orbit && request.orbit->distance && camera.source == "orbit") {
+            // The distance the user typed put the eye there, not the model.
+            invalid(orbitText + ": the distance " + formatNumber(*request.orbit->distance) +
+                    " is too small to set the eye apart from the target; give at least " +
+                    formatNumber(2.0 * kMinViewLength * std::max(1.0, glm::length(camera.target))));
+        }
         invalid(eyeText + " and " + targetText);
     }
     if (glm::length(glm::cross(view / viewLength, glm::normalize(camera.up))) < 1e-6) {

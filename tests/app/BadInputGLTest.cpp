@@ -315,6 +315,11 @@ std::vector<BadInput> badInputs() {
         {"--clip ratio", {}, spot + " -o out.png --clip 1e-16,1e16", 2, {"--clip", "FAR/NEAR at most 1e30"}},
         {"--eye beyond double", {}, spot + " -o out.png --eye 1e300,0,0", 2, {"--eye", "+-1e15", "'1e300,0,0'"}},
         {"--up zero", {}, spot + " -o out.png --up 0,0,0", 2, {"--up", "must not be zero"}},
+        {"--orbit distance below double's resolution",
+         {},
+         spot + " -o out.png --orbit 0,0,1e-300",
+         2,
+         {"--orbit 0,0,1e-300: the distance 1e-300 is too small to set the eye apart from the target"}},
         // The environment.
         {"deleted working folder",
          {},
