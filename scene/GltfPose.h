@@ -54,7 +54,7 @@ public:
      *  `origin` comes out as exactly as a transform near the world origin would. */
     glm::dmat4 relativeTo(const glm::dvec3& origin) const;
     /** The largest magnitude among the terms summed into the translation, in this composition and every one it
-     *  follows: the composition's rounding error is below about 2^-104 of it per step. */
+     *  follows: each step rounds off a few 2^-106 of it at most. */
     double magnitude() const { return mMagnitude; }
     /** How many compositions led here (the steps whose errors add up). */
     std::size_t steps() const { return mSteps; }

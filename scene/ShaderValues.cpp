@@ -2,6 +2,7 @@
 
 #include "scene/FormatReaders.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace inkgraph::detail {

@@ -4,7 +4,7 @@
  *  infinity; one inside it but absurd makes their sums and products overflow (NaN: a black or blank picture), and a
  *  texture offset of 1e7 leaves float no fraction to find a texel with (the texture turns into one flat colour). Every
  *  reader passes each such value through here; whether a value out of range is clamped with a warning or refuses the
- *  file is the reader's policy (docs/robustness.md has the table). Internal to the scene layer. */
+ *  file is the reader's policy (scene/README.md, "Refused or reported input"). Internal to the scene layer. */
 
 #include "scene/Material.h"
 
