@@ -179,6 +179,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     report.triangles = still->scene().triangleCount();
     outputs->refuseInputs(inputsFoundByLoading(options, still->scene()));
     mRenderer.plan(*still);
+    for (const std::string& warning : still->warnings) log.warn(options.modelPath, warning);
 
     const Plan& plan = still->plan;
     if (options.printPlan) {

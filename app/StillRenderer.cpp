@@ -16,11 +16,6 @@
 namespace inkgraph {
 namespace {
 
-/** One warning line, bounded like every message (app/Messages.h). */
-void logWarning(const StillLog& log, const std::string& prefix, const std::string& warning) {
-    log.log << boundedMessage("inkgraph: warning: " + prefix + warning) << "\n";
-}
-
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -97,6 +92,11 @@ FrameParams frameParamsOf(const Look& look, const Scene& scene, const Camera& ca
     return frame;
 }
 
+void StillLog::warn(const std::string& modelPath, const std::string& warning) const {
+    // Bounded like every message (app/Messages.h).
+    log << boundedMessage("inkgraph: warning: " + (talks ? "" : "'" + modelPath + "': ") + warning) << "\n";
+}
+
 StillRenderer::StillRenderer() { mShaders.keepPrograms(true); }
 
 StillRenderer::~StillRenderer() = default;
@@ -115,7 +115,6 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     const ShadingModelTraits& shading = traitsOf(look.shading);
     if (!look.shadeMapPath.empty()) still->shadeMap = readShadeMapFile(look.shadeMapPath, shading.oneDimensionalMap);
 
-    const std::string prefix = log.talks ? "" : "'" + req.modelPath + "': ";
     if (req.loadedScene) {
         still->loadedScene = req.loadedScene; // its loader's warnings went to whoever loaded it
     } else {
@@ -126,7 +125,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
         loadOptions.time = req.animationTime;
         still->loadedScene = std::make_shared<const Scene>(loadScene(req.modelPath, loadOptions));
         still->loadMilliseconds = millisecondsSince(loadStart);
-        for (const std::string& warning : still->scene().report.warnings) logWarning(log, prefix, warning);
+        for (const std::string& warning : still->scene().report.warnings) log.warn(req.modelPath, warning);
     }
     const Scene& scene = still->scene();
     if (log.talks && !log.quiet && !req.loadedScene) {
@@ -138,7 +137,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     // The maps the model's materials name (glTF extras), each file read once; exit 3 like --shademap.
     std::vector<std::string> shadeMapWarnings;
     still->meshShadeMaps = readSceneShadeMaps(scene, look.shading, &shadeMapWarnings);
-    for (const std::string& warning : shadeMapWarnings) logWarning(log, prefix, warning);
+    for (const std::string& warning : shadeMapWarnings) log.warn(req.modelPath, warning);
     return still;
 }
 
@@ -153,6 +152,8 @@ void StillRenderer::plan(PreparedStill& still) {
     } catch (const std::invalid_argument& error) {
         throw UsageError(error.what()); // the loader has validated the file's camera: what is left is the flags
     }
+    if (const std::optional<std::string> outside = modelOutsideView(still.camera, scene))
+        still.warnings.push_back(*outside);
     still.frame = frameParamsOf(look, scene, still.camera, still.sphere);
     still.gpuScene = std::make_unique<GpuScene>(scene, still.sphere.center);
     StillGraphSetup setup{look, mShaders, scene, still.sphere, *still.gpuScene, still.frame, still.shadeMap};
@@ -231,8 +232,7 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
     }
     // What decoding the textures had to say (an image shrunk to the driver's largest texture), as the loader's
     // warnings.
-    const std::string prefix = log.talks ? "" : "'" + still.request.modelPath + "': ";
-    for (const std::string& warning : still.gpuScene->materials().warnings()) logWarning(log, prefix, warning);
+    for (const std::string& warning : still.gpuScene->materials().warnings()) log.warn(still.request.modelPath, warning);
     result.texturesCreated = mTextures.createdCount() - texturesCreatedBefore;
     result.texturesReused = mTextures.reusedCount() - texturesReusedBefore;
     result.programsCompiled = mShaders.compiledCount() - programsCompiledBefore;

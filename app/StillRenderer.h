@@ -70,6 +70,9 @@ struct StillLog {
     std::ostream& log;
     bool talks = true;  ///< per-still lines ("loaded ..."); a batch prints its own line per still instead
     bool quiet = false; ///< nothing but warnings
+
+    /** "inkgraph: warning: <warning>", the model named first when the still does not talk (a batch's line). */
+    void warn(const std::string& modelPath, const std::string& warning) const;
 };
 
 /** A still loaded, framed and planned; nothing executed, no GL touched. Fixed in memory: the graph points at it. */
@@ -85,6 +88,9 @@ struct PreparedStill {
     std::unique_ptr<GpuScene> gpuScene;
     StillGraph graph;
     Plan plan;
+    /** What plan() found worth saying, for the caller to print like the loader's warnings: a camera that sees none
+     *  of the model (modelOutsideView()). */
+    std::vector<std::string> warnings;
 
     PreparedStill() = default;
     PreparedStill(const PreparedStill&) = delete;

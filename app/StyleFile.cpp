@@ -3,6 +3,7 @@
 #include "app/ImageFiles.h"
 #include "app/FlagTable.h"
 #include "app/Options.h"
+#include "scene/FormatReaders.h" // withoutByteOrderMark(), as the model readers skip one
 
 #include <algorithm>
 #include <filesystem>
@@ -46,6 +47,8 @@ SourcedArguments styleArguments(std::string_view text, const std::string& source
     std::set<std::string, std::less<>> seen;
     const std::vector<std::string>& known = styleSettingNames();
     std::size_t lineNumber = 0;
+    // Windows editors may write a UTF-8 byte-order mark first; it would glue itself to the first setting's name.
+    text = detail::withoutByteOrderMark(text);
     while (!text.empty()) {
         ++lineNumber;
         const std::size_t end = std::min(text.find('\n'), text.size());

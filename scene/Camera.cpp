@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -25,6 +26,9 @@ constexpr double kFramingMargin = 1.05;
 constexpr double kMaxOrbitElevationDegrees = 89.9;
 /** A --frame error names at most this many of the scene's nodes. */
 constexpr std::size_t kMaxNamedNodes = 10;
+/** The eye and the target must lie farther apart than this times their distance from the scene's origin (at least
+ *  1): closer, the view direction is lost to rounding. */
+constexpr double kMinViewLength = 1e-12;
 /** Near never drops below far x this, which bounds depth-buffer precision loss when the eye is close or inside. */
 constexpr double kMinNearOverFar = 1e-4;
 
@@ -167,10 +171,11 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     requireFinite(request.eye, "--eye");
     requireFinite(request.target, "--target");
     requireFinite(request.up, "--up");
+    std::string orbitText; // "--orbit AZ,EL[,DIST]" as given, for messages
     if (request.orbit) {
         const Orbit& orbit = *request.orbit;
         // Appended, not "," + text: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
-        std::string orbitText = "--orbit " + formatNumber(orbit.azimuthDegrees);
+        orbitText = "--orbit " + formatNumber(orbit.azimuthDegrees);
         orbitText.append(",").append(formatNumber(orbit.elevationDegrees));
         if (orbit.distance) orbitText.append(",").append(formatNumber(*orbit.distance));
         if (request.eye) {
@@ -282,7 +287,15 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
 
     const glm::dvec3 view = camera.target - camera.eye;
     const double viewLength = glm::length(view);
-    if (!(viewLength > 1e-12 * std::max(1.0, glm::length(camera.eye)))) {
+    // Closer than this, double cannot tell the eye from the target at their distance from the scene's origin.
+    const double minViewLength = kMinViewLength * std::max(1.0, glm::length(camera.eye));
+    if (!(viewLength > minViewLength)) {
+        if (request.orbit && request.orbit->distance && camera.source == "orbit") {
+            // The distance the user typed put the eye there, not the model.
+            invalid(orbitText + ": the distance " + formatNumber(*request.orbit->distance) +
+                    " is too small to set the eye apart from the target; give at least " +
+                    formatNumber(2.0 * kMinViewLength * std::max(1.0, glm::length(camera.target))));
+        }
         invalid(eyeText + " and " + targetText);
     }
     if (glm::length(glm::cross(view / viewLength, glm::normalize(camera.up))) < 1e-6) {
@@ -316,6 +329,56 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
         camera.clipSource = "flags";
     }
     return camera;
+}
+
+std::optional<std::string> modelOutsideView(const Camera& camera, const Scene& scene) {
+    // The half-spaces outside the view, in view space (the camera looks down -Z; depth = -z). A model wholly inside one
+    // of them shows nothing. Behind the eye comes first: it is also nearer than the near plane.
+    const double tanY = std::tan(glm::radians(camera.fovYDegrees) / 2.0);
+    const double tanX = tanY * camera.aspect();
+    const std::string clip = camera.clipSource == "flags" ? " (--clip)" : "";
+    struct Side {
+        std::string where;
+        std::function<bool(const glm::dvec3&)> outside;
+    };
+    const std::vector<Side> sides = {
+        {"behind the camera", [](const glm::dvec3& v) { return -v.z <= 0.0; }},
+        {"nearer than the near plane at " + formatNumber(camera.zNear) + clip,
+         [&](const glm::dvec3& v) { return -v.z < camera.zNear; }},
+        {"beyond the far plane at " + formatNumber(camera.zFar) + clip,
+         [&](const glm::dvec3& v) { return -v.z > camera.zFar; }},
+        {"left of the view", [&](const glm::dvec3& v) { return v.x < v.z * tanX; }},
+        {"right of the view", [&](const glm::dvec3& v) { return v.x > -v.z * tanX; }},
+        {"below the view", [&](const glm::dvec3& v) { return v.y < v.z * tanY; }},
+        {"above the view", [&](const glm::dvec3& v) { return v.y > -v.z * tanY; }},
+    };
+    std::vector<bool> allOutside(sides.size(), true);
+    const glm::dmat4 view = camera.viewMatrix();
+    bool anyVertex = false;
+    for (const Mesh& mesh : scene.meshes) {
+        for (const glm::vec3& p : mesh.positions) {
+            anyVertex = true;
+            const glm::dvec3 v(view * glm::dvec4(glm::dvec3(p), 1.0));
+            for (std::size_t i = 0; i < sides.size(); ++i) {
+                if (allOutside[i] && !sides[i].outside(v)) allOutside[i] = false;
+            }
+        }
+    }
+    const auto side = std::ranges::find(allOutside, true);
+    if (!anyVertex || side == allOutside.end()) return std::nullopt;
+    const std::string& where = sides[std::size_t(side - allOutside.begin())].where;
+    std::string who;
+    if (camera.source == "gltf") {
+        who = "the glTF camera" + (scene.camera && !scene.camera->name.empty() ? " (" + scene.camera->name + ")" : "");
+    } else if (camera.source == "flags") {
+        who = "the camera of --eye " + formatVector(camera.worldEye());
+    } else if (camera.source == "orbit") {
+        who = "the --orbit camera";
+    } else {
+        who = "the auto-framed camera";
+    }
+    return who + " sees none of the model: every vertex lies " + where + ", so the picture shows only the background" +
+           (camera.source == "gltf" ? "; --camera auto frames the model instead" : "");
 }
 
 } // namespace inkgraph

@@ -96,4 +96,11 @@ struct Camera {
  *  up or one parallel to the view direction, fov outside (0, 180), non-finite values, or a non-positive size. */
 Camera resolveCamera(const CameraRequest& request, const Scene& scene);
 
+/** A warning when `camera` shows none of `scene`'s model, which would render blank paper: every vertex lies behind the
+ *  eye, beyond one side of the view (left, right, above or below), nearer than the near plane or beyond the far one.
+ *  It names where the view comes from (the glTF camera by its name, --eye, --orbit, auto-framing; --clip for the
+ *  planes it set). Empty when some of the model may show. A model beside a corner of the view, outside the view but
+ *  on the inner side of each of its planes, is not caught. */
+std::optional<std::string> modelOutsideView(const Camera& camera, const Scene& scene);
+
 } // namespace inkgraph

@@ -23,7 +23,7 @@ struct RawScene {
      *  places it far from the world origin. loadScene() then re-centres on the bounding-box centre (Scene::origin). */
     glm::dvec3 origin{0.0};
     std::vector<RawMesh> meshes;
-    std::optional<SceneCamera> camera; ///< in world coordinates (not relative to `origin`)
+    std::optional<SceneCamera> camera; ///< its eye relative to `origin`, like the positions
     std::optional<DirectionalLight> light;
     std::optional<glm::dvec3> front; ///< as Scene::front
     std::vector<SceneImage> images;  ///< as Scene::images

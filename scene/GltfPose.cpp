@@ -125,7 +125,69 @@ AnimationCurve readCurve(const std::string& path, const tinygltf::Model& model,
     return curve;
 }
 
+/** a + b exactly, as the rounded sum and its rounding error (Knuth's TwoSum). */
+void addExactly(double a, double b, double& sum, double& error) {
+    sum = a + b;
+    const double bPart = sum - a;
+    error = (a - (sum - bPart)) + (b - bPart);
+}
+
 } // namespace
+
+PreciseTransform::PreciseTransform(const glm::dmat4& matrix) {
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) mEntries[column][row].hi = matrix[column][row];
+    }
+    for (int row = 0; row < 3; ++row) mMagnitude = std::max(mMagnitude, std::abs(matrix[3][row]));
+}
+
+PreciseTransform PreciseTransform::operator*(const glm::dmat4& local) const {
+    PreciseTransform result;
+    result.mMagnitude = mMagnitude;
+    result.mSteps = mSteps + 1;
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) {
+            double hi = 0.0;
+            double lo = 0.0;
+            for (int k = 0; k < 4; ++k) {
+                // (a.hi + a.lo) x b: the product's rounding error comes exactly from fma, a.lo x b is far below it.
+                const Sum& a = mEntries[k][row];
+                const double b = local[column][k];
+                const double product = a.hi * b;
+                const double productError = std::fma(a.hi, b, -product) + a.lo * b;
+                if (column == 3 && row < 3) result.mMagnitude = std::max(result.mMagnitude, std::abs(product));
+                double sum = 0.0;
+                double sumError = 0.0;
+                addExactly(hi, product, sum, sumError);
+                lo += sumError + productError;
+                hi = sum;
+            }
+            // Renormalised, so hi is the entry rounded to double and lo what is left.
+            addExactly(hi, lo, result.mEntries[column][row].hi, result.mEntries[column][row].lo);
+        }
+    }
+    return result;
+}
+
+glm::dvec3 PreciseTransform::translation() const { return {mEntries[3][0].hi, mEntries[3][1].hi, mEntries[3][2].hi}; }
+
+glm::dmat4 PreciseTransform::relativeTo(const glm::dvec3& origin) const {
+    glm::dmat4 matrix;
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) matrix[column][row] = mEntries[column][row].hi;
+    }
+    // translate(-origin) x M adds -origin x M's bottom row (0, 0, 0, 1 for every glTF node) to each column.
+    for (int column = 0; column < 4; ++column) {
+        const double w = mEntries[column][3].hi;
+        for (int row = 0; row < 3; ++row) {
+            double sum = 0.0;
+            double error = 0.0;
+            addExactly(mEntries[column][row].hi, -origin[row] * w, sum, error);
+            matrix[column][row] = sum + (error + mEntries[column][row].lo);
+        }
+    }
+    return matrix;
+}
 
 glm::dmat4 NodePose::local() const {
     if (matrix) return *matrix;
@@ -323,8 +385,10 @@ void applyMorphTargets(const std::string& path, const tinygltf::Model& model, co
     }
 }
 
-std::vector<glm::dmat4> jointMatrices(const std::string& path, const tinygltf::Model& model, int skinIndex,
-                                      const std::function<glm::dmat4(int node)>& worldOf, MeshBudget& budget) {
+std::vector<glm::dmat4>
+jointMatrices(const std::string& path, const tinygltf::Model& model, int skinIndex,
+              const std::function<glm::dmat4(int node, const glm::dmat4& inverseBind)>& jointMatrix,
+              MeshBudget& budget) {
     if (skinIndex < 0 || std::size_t(skinIndex) >= model.skins.size()) {
         throwLoadError(path, "skin index " + std::to_string(skinIndex) + " out of range (file has " +
                                  std::to_string(model.skins.size()) + " skins)");
@@ -355,7 +419,7 @@ std::vector<glm::dmat4> jointMatrices(const std::string& path, const tinygltf::M
         }
         const glm::dmat4 bind =
             inverseBind.empty() ? glm::dmat4(1.0) : glm::dmat4(glm::make_mat4(inverseBind.data() + 16 * j));
-        matrices.push_back(worldOf(joint) * bind);
+        matrices.push_back(jointMatrix(joint, bind));
     }
     return matrices;
 }

@@ -37,6 +37,38 @@ struct NodePose {
     glm::dmat4 local() const;
 };
 
+/** A world transform composed in double-double arithmetic (Dekker's error-free products and sums: each entry is an
+ *  unevaluated sum hi + lo, about 32 significant digits), so that translations far larger than the model do not swallow
+ *  it before positions are made relative to the scene's origin: in double 1e17 + 0.5 is 1e17, which collapses a unit
+ *  cube placed there; here the sum is held exactly. Positions are baked with relativeTo() the origin, in double. */
+class PreciseTransform {
+public:
+    PreciseTransform() : PreciseTransform(glm::dmat4(1.0)) {}
+    explicit PreciseTransform(const glm::dmat4& matrix);
+
+    /** This transform followed by `local` (this x local, as matrices), in double-double. */
+    PreciseTransform operator*(const glm::dmat4& local) const;
+    /** The translation, rounded to double. */
+    glm::dvec3 translation() const;
+    /** translate(-origin) x this, rounded to double: the difference is taken before rounding, so a transform near
+     *  `origin` comes out as exactly as a transform near the world origin would. */
+    glm::dmat4 relativeTo(const glm::dvec3& origin) const;
+    /** The largest magnitude among the terms summed into the translation, in this composition and every one it
+     *  follows: each step rounds off a few 2^-106 of it at most. */
+    double magnitude() const { return mMagnitude; }
+    /** How many compositions led here (the steps whose errors add up). */
+    std::size_t steps() const { return mSteps; }
+
+private:
+    struct Sum {
+        double hi = 0.0;
+        double lo = 0.0;
+    };
+    Sum mEntries[4][4]; ///< column-major, as glm
+    double mMagnitude = 0.0;
+    std::size_t mSteps = 0;
+};
+
 /** Every node's rest pose: its own TRS (or matrix) and weights. Rotations are normalised. */
 std::vector<NodePose> restPose(const tinygltf::Model& model);
 
@@ -77,11 +109,14 @@ void applyMorphTargets(const std::string& path, const tinygltf::Model& model, co
                        std::vector<glm::vec3>& normals, const std::string& meshLabel,
                        std::vector<std::string>& warnings);
 
-/** Skin `skinIndex`'s joint matrices: world(joint) * inverseBindMatrix (identity when the skin has none).
- *  `worldOf` gives a node's world matrix. The inverse bind matrices are checked against `budget` before they are
- *  read. Throws for a bad joint index or inverse bind matrix accessor. */
-std::vector<glm::dmat4> jointMatrices(const std::string& path, const tinygltf::Model& model, int skinIndex,
-                                      const std::function<glm::dmat4(int node)>& worldOf, MeshBudget& budget);
+/** Skin `skinIndex`'s joint matrices: world(joint) * inverseBindMatrix (identity when the skin has none), as
+ *  `jointMatrix(joint node, its inverse bind matrix)` composes them (precisely, relative to the scene's origin: the
+ *  reader's PreciseTransform). The inverse bind matrices are checked against `budget` before they are read. Throws for
+ *  a bad joint index or inverse bind matrix accessor. */
+std::vector<glm::dmat4>
+jointMatrices(const std::string& path, const tinygltf::Model& model, int skinIndex,
+              const std::function<glm::dmat4(int node, const glm::dmat4& inverseBind)>& jointMatrix,
+              MeshBudget& budget);
 
 /** The per-vertex skinning of one primitive: JOINTS_n / WEIGHTS_n (n = 0 and 1 when present) blending the skin's
  *  joint matrices. */

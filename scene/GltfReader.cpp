@@ -7,6 +7,7 @@
 #include "scene/GltfAccessors.h"
 #include "scene/GltfDraco.h"
 #include "scene/GltfPose.h"
+#include "scene/ShaderValues.h"
 #include "scene/VrmMaterials.h"
 
 #include <glm/gtc/constants.hpp>
@@ -180,26 +181,34 @@ public:
         posed();
         // Depth-first with an explicit stack (a deep hierarchy must not overflow the call stack), in the order the
         // recursive walk would take: roots and children are pushed in reverse so the first is handled first.
-        std::vector<PendingNode> pending;
+        std::vector<int> pending;
         const std::vector<int> roots = rootNodes();
         for (auto root = roots.rbegin(); root != roots.rend(); ++root) {
             claimRoot(*root);
-            pending.push_back({*root, glm::dmat4(1.0)});
+            pending.push_back(*root);
         }
         // Every world transform first, then the visits: a skinned mesh needs its joints' transforms, wherever they
         // are in the hierarchy.
         std::vector<int> visitOrder;
         while (!pending.empty()) {
-            const PendingNode next = pending.back();
+            const int index = pending.back();
             pending.pop_back();
-            const tinygltf::Node& node = mModel.nodes[std::size_t(next.index)];
-            const glm::dmat4 world = next.parentWorld * mPoses[std::size_t(next.index)].local();
-            mWorlds[std::size_t(next.index)] = world;
-            visitOrder.push_back(next.index);
+            const tinygltf::Node& node = mModel.nodes[std::size_t(index)];
+            const int parent = mParent[std::size_t(index)];
+            mPreciseWorlds[std::size_t(index)] =
+                (parent >= 0 ? *mPreciseWorlds[std::size_t(parent)] : PreciseTransform()) *
+                mPoses[std::size_t(index)].local();
+            visitOrder.push_back(index);
             for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
-                claimChild(next.index, *child);
-                pending.push_back({*child, world});
+                claimChild(index, *child);
+                pending.push_back(*child);
             }
+        }
+        // Everything is baked relative to the scene's origin, taken before rounding to double (PreciseTransform), so a
+        // model placed 1e17 units out keeps the shape it has at the world origin.
+        mOut.origin = placementOrigin(visitOrder);
+        for (const int index : visitOrder) {
+            mWorlds[std::size_t(index)] = mPreciseWorlds[std::size_t(index)]->relativeTo(mOut.origin);
         }
         for (const int index : visitOrder) {
             visit(index, mModel.nodes[std::size_t(index)], *mWorlds[std::size_t(index)]);
@@ -208,10 +217,56 @@ public:
             throwLoadError(mPath, "no triangles: all " + std::to_string(mSkippedPrimitives) +
                                       " primitives are non-triangle (points or lines)");
         }
+        checkPlacementPrecision();
     }
 
 private:
     [[noreturn]] void fail(const std::string& problem) const { throwLoadError(mPath, problem); }
+
+    /** The scene's origin (RawScene::origin): the world translation of the node that places the first mesh (its skin's
+     *  first joint for a skinned one), so that the model's own coordinates stay small whatever its placement. */
+    glm::dvec3 placementOrigin(const std::vector<int>& visitOrder) const {
+        for (const int index : visitOrder) {
+            const tinygltf::Node& node = mModel.nodes[std::size_t(index)];
+            if (node.mesh < 0) continue;
+            if (node.skin >= 0 && std::size_t(node.skin) < mModel.skins.size()) {
+                const std::vector<int>& joints = mModel.skins[std::size_t(node.skin)].joints;
+                if (!joints.empty() && joints[0] >= 0 && std::size_t(joints[0]) < mPreciseWorlds.size() &&
+                    mPreciseWorlds[std::size_t(joints[0])])
+                    return mPreciseWorlds[std::size_t(joints[0])]->translation();
+            }
+            return mPreciseWorlds[std::size_t(index)]->translation();
+        }
+        return glm::dvec3(0.0);
+    }
+
+    /** Records how precisely `placement` (a mesh node's world transform, or a joint's matrix) was composed, for
+     *  checkPlacementPrecision(). */
+    void notePlacement(const PreciseTransform& placement, const std::string& label) {
+        // Each composition step rounds below about 2^-102 of its largest term (a compensated dot product of four).
+        const double error = placement.magnitude() * double(placement.steps() + 1) * std::ldexp(1.0, -100);
+        if (error > mPlacementError) {
+            mPlacementError = error;
+            mPlacementLabel = label;
+            mPlacementMagnitude = placement.magnitude();
+        }
+    }
+
+    /** Refuses a model whose placement the double-double composition could not resolve: translations so much larger
+     *  than the model (about 1e22 times) that even 32 digits leave its positions off by more than float's
+     *  resolution of them, which would draw a distorted model without a word. */
+    void checkPlacementPrecision() const {
+        BoundingBox box;
+        for (const RawMesh& mesh : mOut.meshes)
+            for (const glm::vec3& p : mesh.positions) box.add(glm::dvec3(p));
+        const double resolution = box.diagonal() * std::ldexp(1.0, -24); // float's, for the stored positions
+        if (mPlacementError > resolution) {
+            fail(mPlacementLabel + ": its transforms place it " + formatExtent(mPlacementMagnitude) +
+                 " units from the world origin, too far to resolve a model " + formatExtent(box.diagonal()) +
+                 " units across (positions could be off by " + formatExtent(mPlacementError) +
+                 "); move the model nearer the origin in the file");
+        }
+    }
 
     /** The nodes' local transforms and morph weights: their own, or the animation LoadOptions names at its time. */
     void posed() {
@@ -304,12 +359,6 @@ private:
         return roots;
     }
 
-    /** A node waiting to be visited, with its parent's world transform. */
-    struct PendingNode {
-        int index = 0;
-        glm::dmat4 parentWorld{1.0};
-    };
-
     void checkNodeIndex(int nodeIndex, const std::string& referrer) const {
         if (nodeIndex < 0 || std::size_t(nodeIndex) >= mModel.nodes.size()) {
             fail(referrer + ": node index " + std::to_string(nodeIndex) + " out of range (file has " +
@@ -368,6 +417,7 @@ private:
         }
         const std::string label = cameraLabel(node.camera);
         SceneCamera result;
+        result.name = label;
         result.eye = glm::dvec3(world[3]);
         result.forward = glm::normalize(glm::dvec3(world * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
         result.up = glm::normalize(glm::dvec3(world * glm::dvec4(0.0, 1.0, 0.0, 0.0)));
@@ -540,6 +590,11 @@ private:
         return pair;
     }
 
+    /** "[x, y]", for messages. */
+    static std::string formatPair(const glm::dvec2& pair) {
+        return "[" + formatNumber(pair.x) + ", " + formatNumber(pair.y) + "]";
+    }
+
     /** A material's textureInfo as a TextureRef: the image its texture shows, the coordinate set and sampler, and the
      *  KHR_texture_transform matrix. A texture without a core image (only an extension's, e.g. KHR_texture_basisu or
      *  EXT_texture_webp, which the renderer cannot decode) or on a third coordinate set leaves the material
@@ -568,7 +623,8 @@ private:
                  " out of range (file has " + std::to_string(mModel.images.size()) + " images)");
         }
         double texCoord = info.texCoord;
-        glm::mat3 transform(1.0f);
+        std::optional<glm::dmat3> transform;
+        std::string transformText;
         const auto extension = info.extensions.find("KHR_texture_transform");
         if (extension != info.extensions.end() && extension->second.IsObject()) {
             const tinygltf::Value& object = extension->second;
@@ -583,7 +639,9 @@ private:
             const double s = std::sin(rotation);
             const glm::dmat3 rotationMatrix(c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0);
             const glm::dmat3 scaleMatrix(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
-            transform = glm::mat3(translation * rotationMatrix * scaleMatrix);
+            transform = translation * rotationMatrix * scaleMatrix;
+            transformText = where + " (offset " + formatPair(offset) + ", rotation " + formatNumber(rotation) +
+                            ", scale " + formatPair(scale) + ")";
         }
         if (texCoord != 0.0 && texCoord != 1.0) {
             mOut.warnings.push_back(label + ": texture coordinate set " + formatNumber(texCoord) +
@@ -593,7 +651,13 @@ private:
         ref.image = texture.source;
         ref.texCoord = int(texCoord);
         ref.sampler = readSampler(texture.sampler);
-        ref.transform = transform;
+        if (transform) {
+            // The transform says where the image lies: one the shaders' float cannot follow is refused, not guessed.
+            std::string problem;
+            const std::optional<glm::mat3> forShaders = shaderTextureTransform(*transform, ref.sampler, problem);
+            if (!forShaders) fail(transformText + ": " + problem);
+            ref.transform = *forShaders;
+        }
         return ref;
     }
 
@@ -628,22 +692,26 @@ private:
         const std::string label = materialLabel(materialIndex);
         Material result;
         result.name = source.name;
+        // Factors beyond glTF's ranges are clamped with a warning, as viewers draw them (ShaderValues.h).
         const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
-        if (factor.size() == 4) {
-            result.baseColorFactor = glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
+        for (std::size_t i = 0; i < 4 && factor.size() == 4; ++i) {
+            result.baseColorFactor[int(i)] = shaderValue(
+                factor[i], kUnitRange, label + " baseColorFactor[" + std::to_string(i) + "]", mOut.warnings);
         }
         result.baseColorTexture =
             readTextureRef(source.pbrMetallicRoughness.baseColorTexture, label + " baseColorTexture");
-        if (source.emissiveFactor.size() == 3) {
-            result.emissiveFactor = glm::vec3(float(source.emissiveFactor[0]), float(source.emissiveFactor[1]),
-                                              float(source.emissiveFactor[2]));
+        for (std::size_t i = 0; i < 3 && source.emissiveFactor.size() == 3; ++i) {
+            result.emissiveFactor[int(i)] =
+                shaderValue(source.emissiveFactor[i], kUnitRange, label + " emissiveFactor[" + std::to_string(i) + "]",
+                            mOut.warnings);
         }
         const auto strength = source.extensions.find("KHR_materials_emissive_strength");
         if (strength != source.extensions.end() && strength->second.IsObject()) {
-            const double multiplier =
-                extensionNumber(strength->second, "emissiveStrength", 1.0, label + " KHR_materials_emissive_strength");
+            const std::string where = label + " KHR_materials_emissive_strength";
+            const double multiplier = extensionNumber(strength->second, "emissiveStrength", 1.0, where);
             if (multiplier < 0.0) fail(label + ": emissiveStrength " + formatNumber(multiplier) + " is negative");
-            result.emissiveFactor *= float(multiplier);
+            result.emissiveFactor *=
+                shaderValue(multiplier, kNonNegativeRange, where + " emissiveStrength", mOut.warnings);
         }
         result.emissiveTexture = readTextureRef(source.emissiveTexture, label + " emissiveTexture");
         result.unlit = source.extensions.count("KHR_materials_unlit") > 0;
@@ -656,7 +724,8 @@ private:
                                     "' is not OPAQUE, MASK or BLEND; drawn opaque");
         }
         if (std::isfinite(source.alphaCutoff) && source.alphaCutoff >= 0.0) {
-            result.alphaCutoff = float(source.alphaCutoff);
+            // Above 1 every fragment would be cut out: blank paper.
+            result.alphaCutoff = shaderValue(source.alphaCutoff, kUnitRange, label + " alphaCutoff", mOut.warnings);
         } else {
             mOut.warnings.push_back(label + ": alphaCutoff " + formatNumber(source.alphaCutoff) +
                                     " is not a number >= 0; 0.5 is used");
@@ -692,6 +761,25 @@ private:
             const float* rgba = values.data() + i * std::size_t(components);
             mesh.colors[i] = glm::vec4(rgba[0], rgba[1], rgba[2], rgb ? 1.0f : rgba[3]);
         }
+        // The colours multiply the surface's in the shaders, with the lighting: 1e38 is a float, its products may not
+        // be. Far beyond white, 1e6 draws the same. Reported once, with the first value clamped.
+        std::vector<std::string> clamped;
+        std::size_t clampedCount = 0;
+        // Appended, not "'" + name: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
+        std::string what = "'";
+        what.append(excerptForMessage(name)).append("' COLOR_0 value");
+        for (glm::vec4& colour : mesh.colors) {
+            for (int c = 0; c < 4; ++c) {
+                if (colour[c] >= kNonNegativeRange.min && colour[c] <= kNonNegativeRange.max) continue;
+                // Accessor values are finite: the one message is made for the first only.
+                colour[c] = clampedCount++ == 0 ? shaderValue(colour[c], kNonNegativeRange, what, clamped)
+                            : colour[c] < 0.0f  ? float(kNonNegativeRange.min)
+                                                : float(kNonNegativeRange.max);
+            }
+        }
+        if (clampedCount > 1)
+            clamped.front() += " (and " + std::to_string(clampedCount - 1) + " more values outside it)";
+        mOut.warnings.insert(mOut.warnings.end(), clamped.begin(), clamped.end());
     }
 
     /** "node 3 'wheel'", or "node 3" for an unnamed one. */
@@ -713,15 +801,20 @@ private:
         if (node.skin >= 0) {
             skinJoints = jointMatrices(
                 mPath, mModel, node.skin,
-                [&](int joint) {
-                    const std::optional<glm::dmat4>& jointWorld = mWorlds[std::size_t(joint)];
+                [&](int joint, const glm::dmat4& inverseBind) {
+                    const std::optional<PreciseTransform>& jointWorld = mPreciseWorlds[std::size_t(joint)];
                     if (!jointWorld) {
                         fail(nodeLabel(nodeIndex) + ": skin " + std::to_string(node.skin) + " joint node " +
                              std::to_string(joint) + " is not in the scene");
                     }
-                    return *jointWorld;
+                    const PreciseTransform jointMatrix = *jointWorld * inverseBind;
+                    notePlacement(jointMatrix,
+                                  nodeLabel(joint) + " (a joint of skin " + std::to_string(node.skin) + ")");
+                    return jointMatrix.relativeTo(mOut.origin);
                 },
                 mBudget);
+        } else {
+            notePlacement(*mPreciseWorlds[std::size_t(nodeIndex)], nodeLabel(nodeIndex));
         }
         const PrimitivePose pose{mPoses[std::size_t(nodeIndex)].weights, skinJoints ? &*skinJoints : nullptr};
         const std::vector<std::string> path = nodePath(nodeIndex);
@@ -920,23 +1013,19 @@ private:
         const glm::dmat3 linear(world);
         const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
         std::vector<bool> mirrored; // per vertex of a skinned mesh: its skin matrix turns the winding over
-        // In double until the position is relative to the scene's raw origin (the first world position): rounding
-        // world coordinates of a model 1e7 units out to float would leave it a blocky polyhedron.
+        // The transforms are relative to the scene's origin (the first mesh's node), so these positions are small
+        // wherever the model lies: rounding world coordinates of a model 1e7 units out to float would leave it a
+        // blocky polyhedron.
         for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
             const glm::dmat4 vertexMatrix = skin ? skin->vertexMatrix(v) : world;
-            const glm::dvec3 worldPosition(vertexMatrix * glm::dvec4(glm::dvec3(mesh.positions[v]), 1.0));
-            if (!std::isfinite(worldPosition.x) || !std::isfinite(worldPosition.y) || !std::isfinite(worldPosition.z)) {
+            const glm::dvec3 relative(vertexMatrix * glm::dvec4(glm::dvec3(mesh.positions[v]), 1.0));
+            if (!std::isfinite(relative.x) || !std::isfinite(relative.y) || !std::isfinite(relative.z)) {
                 fail(node + (skin ? ": the skin's joint transforms produce non-finite positions"
                                   : ": the node transform produces non-finite positions"));
             }
-            if (!mHasOrigin) {
-                mOut.origin = worldPosition;
-                mHasOrigin = true;
-            }
-            const glm::dvec3 relative = worldPosition - mOut.origin;
             if (!(std::max({std::abs(relative.x), std::abs(relative.y), std::abs(relative.z)}) <= kMaxModelExtent)) {
                 fail(node + ": after the node transforms a position lies " + formatExtent(glm::length(relative)) +
-                     " units from the first mesh's first vertex, more than the " + formatExtent(kMaxModelExtent) +
+                     " units from the first mesh's node, more than the " + formatExtent(kMaxModelExtent) +
                      " the renderer can hold (a node scale or translation too large?)");
             }
             mesh.positions[v] = glm::vec3(relative);
@@ -971,12 +1060,17 @@ private:
     const LoadOptions& mOptions;
     std::vector<NodePose> mPoses; ///< per node: its local transform and morph weights, animated or not (posed())
     std::vector<bool> mReached;   ///< nodes already reached by the walk; reaching one again is an error
-    std::vector<std::optional<glm::dmat4>> mWorlds; ///< per node reached by the walk: its world transform
+    /** Per node reached by the walk: its world transform, composed precisely, and relative to mOut.origin. */
+    std::vector<std::optional<PreciseTransform>> mPreciseWorlds =
+        std::vector<std::optional<PreciseTransform>>(mModel.nodes.size());
+    std::vector<std::optional<glm::dmat4>> mWorlds;
     std::vector<int> mParent = std::vector<int>(mModel.nodes.size(), -1); ///< each node's parent, -1 for a root
     std::vector<std::optional<std::string>> mMaterialShadeMaps; ///< per material, once read: its shade map or ""
     std::vector<std::optional<Material>> mMaterials;            ///< per material, once read
     std::size_t mSkippedPrimitives = 0;
-    bool mHasOrigin = false; ///< mOut.origin is set (the first world position seen)
+    double mPlacementError = 0.0;     ///< the largest error bound notePlacement() saw
+    double mPlacementMagnitude = 0.0; ///< the largest term of that placement
+    std::string mPlacementLabel;      ///< the node it placed
 };
 
 /** Deepest nesting of arrays and objects in JSON text, outside strings. */

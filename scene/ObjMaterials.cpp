@@ -5,6 +5,7 @@
  *  still worth drawing. */
 
 #include "scene/FormatReaders.h"
+#include "scene/ShaderValues.h"
 
 #include <algorithm>
 #include <cctype>
@@ -127,10 +128,18 @@ std::optional<MapStatement> parseMapStatement(std::string_view rest, std::string
     map.file.assign(tokens[at].data(), std::size_t(line.data() + line.size() - tokens[at].data()));
     // OBJ looks up (u s + o, v s + o) with v pointing up; in the glTF convention the mesh stores (u, 1 - v), so the
     // same lookup is v' = s v + (1 - s - o): a scale and a translation in KHR_texture_transform's matrix.
-    map.transform[0][0] = float(scale.x);
-    map.transform[1][1] = float(scale.y);
-    map.transform[2][0] = float(offset.x);
-    map.transform[2][1] = float(1.0 - scale.y - offset.y);
+    glm::dmat3 transform(1.0);
+    transform[0][0] = scale.x;
+    transform[1][1] = scale.y;
+    transform[2][0] = offset.x;
+    transform[2][1] = 1.0 - scale.y - offset.y;
+    std::string transformProblem;
+    const std::optional<glm::mat3> forShaders = shaderTextureTransform(transform, map.sampler, transformProblem);
+    if (!forShaders) {
+        problem = "options -s/-o: " + transformProblem;
+        return std::nullopt;
+    }
+    map.transform = *forShaders;
     return map;
 }
 
@@ -223,10 +232,10 @@ private:
                      "'; ignored");
                 return;
             }
-            if (*value < 0.0 || *value > 1.0)
-                warn("'" + excerptForMessage(keyword) + "' " + formatNumber(*value) + " is outside [0, 1]; " +
-                     formatNumber(std::clamp(*value, 0.0, 1.0)) + " is used");
-            (sameKeyword(keyword, "d") ? mCurrent->dissolve : mCurrent->transparency) = std::clamp(*value, 0.0, 1.0);
+            std::vector<std::string> problems;
+            (sameKeyword(keyword, "d") ? mCurrent->dissolve : mCurrent->transparency) =
+                shaderValue(*value, kUnitRange, quotedExcerpt(keyword), problems);
+            for (const std::string& problem : problems) warn(problem);
         } else {
             std::string problem;
             std::optional<MapStatement> map = parseMapStatement(rest, problem);

@@ -236,6 +236,7 @@ void recentre(const std::string& path, detail::RawScene& raw, Scene& scene) {
         }
     }
     if (modelBox.empty()) {
+        scene.origin = raw.origin; // what the camera's eye is relative to
         return;
     }
     detail::checkModelExtent(path, modelBox.diagonal());
@@ -247,7 +248,7 @@ void recentre(const std::string& path, detail::RawScene& raw, Scene& scene) {
         }
     }
     if (scene.camera) {
-        scene.camera->eye -= scene.origin;
+        scene.camera->eye -= centre;
     }
 }
 

@@ -58,6 +58,7 @@ struct SceneCamera {
     glm::dvec3 up{0.0, 1.0, 0.0};       ///< unit; the camera's local +Y
     double fovYDegrees = 35.0;
     std::optional<double> aspectRatio; ///< width / height when the file gives one
+    std::string name;                  ///< for messages: "camera 0 'main'", or "camera 0" for an unnamed one
 };
 
 /** A KHR_lights_punctual directional light. */

@@ -5,6 +5,7 @@
 #include "scene/VrmMaterials.h"
 
 #include "scene/FormatReaders.h"
+#include "scene/ShaderValues.h"
 
 #include <tiny_gltf.h>
 
@@ -34,6 +35,9 @@ const char* typeName(const tinygltf::Value& value) {
 constexpr const char* kMToonShader = "VRM/MToon";
 constexpr const char* kGltfShader = "VRM_USE_GLTFSHADER";
 
+/** Every finite float: for properties that are no shader value (enums, a texture coordinate set). */
+constexpr ShaderRange kAnyFloat{-double(std::numeric_limits<float>::max()), double(std::numeric_limits<float>::max())};
+
 /** Reads one material's properties, reporting each bad one as "<material>: <where>.<key> ...; using <default>". */
 class PropertyReader {
 public:
@@ -54,8 +58,10 @@ public:
         return &member;
     }
 
-    /** A finite number, as float: absent, wrong type or out of float's range is `fallback` (the last two reported). */
-    float number(const tinygltf::Value* object, const std::string& key, float fallback, const std::string& where) {
+    /** A finite number, as float: absent, wrong type or out of float's range is `fallback` (the last two reported);
+     *  outside `range` (what the shaders make sense of: ShaderValues.h), the nearest end of it (reported). */
+    float number(const tinygltf::Value* object, const std::string& key, float fallback, const std::string& where,
+                 ShaderRange range = kAnyFloat) {
         if (object == nullptr || !object->IsObject() || !object->Has(key)) return fallback;
         const tinygltf::Value& member = object->Get(key);
         if (!member.IsNumber()) {
@@ -69,12 +75,33 @@ public:
                  formatNumber(fallback));
             return fallback;
         }
-        return float(value);
+        return inRange(value, range, where + "." + excerptForMessage(key));
     }
 
-    /** `count` finite numbers (3 for a VRM 1.0 colour, 4 for a VRM 0.x vector); missing or bad: none. */
-    std::optional<std::vector<float>> numbers(const tinygltf::Value* object, const std::string& key,
+    /** `value` through shaderValue(), its warning reported as this material's. */
+    float inRange(double value, ShaderRange range, const std::string& what) {
+        std::vector<std::string> problems;
+        const float used = shaderValue(value, range, what, problems);
+        for (const std::string& problem : problems) warn(problem);
+        return used;
+    }
+
+    /** A colour of `minCount` to `maxCount` components (numbers()), each clamped to [0, 1] (reported), the range of
+     *  VRM's colours: 0.x's gamma-encoded ones would otherwise overflow their conversion to linear light. */
+    std::optional<std::vector<double>> colour(const tinygltf::Value* object, const std::string& key,
                                               std::size_t minCount, std::size_t maxCount, const std::string& where) {
+        std::optional<std::vector<double>> values = numbers(object, key, minCount, maxCount, where);
+        for (std::size_t i = 0; values && i < values->size(); ++i) {
+            (*values)[i] =
+                inRange((*values)[i], kUnitRange, where + "." + excerptForMessage(key) + "[" + std::to_string(i) + "]");
+        }
+        return values;
+    }
+
+    /** `count` numbers finite in float (3 for a VRM 1.0 colour, 4 for a VRM 0.x vector), as the file writes them;
+     *  missing or bad: none. */
+    std::optional<std::vector<double>> numbers(const tinygltf::Value* object, const std::string& key,
+                                               std::size_t minCount, std::size_t maxCount, const std::string& where) {
         if (object == nullptr || !object->IsObject() || !object->Has(key)) return std::nullopt;
         const tinygltf::Value& member = object->Get(key);
         const std::string expected = minCount == maxCount
@@ -86,7 +113,7 @@ public:
                  "; using the default");
             return std::nullopt;
         }
-        std::vector<float> values;
+        std::vector<double> values;
         for (std::size_t i = 0; i < member.ArrayLen(); ++i) {
             const tinygltf::Value& element = member.Get(int(i));
             const double value = element.IsNumber() ? element.GetNumberAsDouble() : std::nan("");
@@ -97,15 +124,15 @@ public:
                      "; using the default");
                 return std::nullopt;
             }
-            values.push_back(float(value));
+            values.push_back(value);
         }
         return values;
     }
 
     glm::vec3 color3(const tinygltf::Value* object, const std::string& key, glm::vec3 fallback,
                      const std::string& where) {
-        const auto values = numbers(object, key, 3, 3, where);
-        return values ? glm::vec3((*values)[0], (*values)[1], (*values)[2]) : fallback;
+        const auto values = colour(object, key, 3, 3, where);
+        return values ? glm::vec3(glm::dvec3((*values)[0], (*values)[1], (*values)[2])) : fallback;
     }
 
     /** A glTF `textures` index as a file gives it: a whole number in range, or none (reported). */
@@ -212,15 +239,16 @@ MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read
     }
     mtoon.shadeColorFactor = read.color3(fields, "shadeColorFactor", mtoon.shadeColorFactor, where);
     mtoon.shadeMultiplyTexture = read.textureInfo(extension, "shadeMultiplyTexture", where);
-    mtoon.shadingShiftFactor = read.number(fields, "shadingShiftFactor", mtoon.shadingShiftFactor, where);
-    mtoon.shadingToonyFactor = read.number(fields, "shadingToonyFactor", mtoon.shadingToonyFactor, where);
+    mtoon.shadingShiftFactor = read.number(fields, "shadingShiftFactor", mtoon.shadingShiftFactor, where, kSignedRange);
+    mtoon.shadingToonyFactor = read.number(fields, "shadingToonyFactor", mtoon.shadingToonyFactor, where, kUnitRange);
     mtoon.parametricRimColorFactor =
         read.color3(fields, "parametricRimColorFactor", mtoon.parametricRimColorFactor, where);
-    mtoon.parametricRimFresnelPowerFactor =
-        read.number(fields, "parametricRimFresnelPowerFactor", mtoon.parametricRimFresnelPowerFactor, where);
+    mtoon.parametricRimFresnelPowerFactor = read.number(
+        fields, "parametricRimFresnelPowerFactor", mtoon.parametricRimFresnelPowerFactor, where, kNonNegativeRange);
     mtoon.parametricRimLiftFactor =
-        read.number(fields, "parametricRimLiftFactor", mtoon.parametricRimLiftFactor, where);
-    mtoon.rimLightingMixFactor = read.number(fields, "rimLightingMixFactor", mtoon.rimLightingMixFactor, where);
+        read.number(fields, "parametricRimLiftFactor", mtoon.parametricRimLiftFactor, where, kSignedRange);
+    mtoon.rimLightingMixFactor =
+        read.number(fields, "rimLightingMixFactor", mtoon.rimLightingMixFactor, where, kUnitRange);
     mtoon.matcapFactor = read.color3(fields, "matcapFactor", mtoon.matcapFactor, where);
     if (extension.Has("outlineWidthMode")) {
         const tinygltf::Value& mode = extension.Get("outlineWidthMode");
@@ -245,7 +273,7 @@ MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read
     mtoon.outlineWidthMultiplyTexture = read.textureInfo(extension, "outlineWidthMultiplyTexture", where);
     mtoon.outlineColorFactor = read.color3(fields, "outlineColorFactor", mtoon.outlineColorFactor, where);
     mtoon.outlineLightingMixFactor =
-        read.number(fields, "outlineLightingMixFactor", mtoon.outlineLightingMixFactor, where);
+        read.number(fields, "outlineLightingMixFactor", mtoon.outlineLightingMixFactor, where, kUnitRange);
     checkOutlineWidth(mtoon, read);
     std::vector<std::string> undrawn;
     for (const char* key : {"matcapTexture", "rimMultiplyTexture", "shadingShiftTexture"})
@@ -260,36 +288,59 @@ MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read
 /** _MainTex's Unity scale/offset [offsetX, offsetY, scaleX, scaleY] (UniVRM's MigrationMToon reads offsetScale[0..1]
  *  as the offset, [2..3] as the scale) as a glTF uv transform. Unity's v runs up from the image's bottom, glTF's down
  *  from its top (v_gltf = 1 - v_unity), so v_gltf' = 1 - ((1 - v_gltf) * sy + oy) = v_gltf * sy + (1 - sy - oy): the
- *  offset three-vrm's VRMMaterialsV0CompatPlugin (_portTextureTransform) writes into KHR_texture_transform. */
-glm::mat3 mainTexTransform(const std::vector<float>& offsetScale) {
-    glm::mat3 transform(1.0f);
+ *  offset three-vrm's VRMMaterialsV0CompatPlugin (_portTextureTransform) writes into KHR_texture_transform. In double:
+ *  an offset of 1e38 is a whole number of repeats, which shaderTextureTransform() reduces away, but 1 - sy - oy in
+ *  float would lose the fraction of a smaller one. A scale float cannot resolve (shaderTextureTransform()) is dropped
+ *  with a warning, once for the material. */
+std::optional<glm::dmat3> mainTexTransform(const std::vector<double>& offsetScale, PropertyReader& read) {
+    glm::dmat3 transform(1.0);
     transform[0][0] = offsetScale[2];
     transform[1][1] = offsetScale[3];
     transform[2][0] = offsetScale[0];
-    transform[2][1] = 1.0f - offsetScale[3] - offsetScale[1];
+    transform[2][1] = 1.0 - offsetScale[3] - offsetScale[1];
+    // Only the scale is judged here: the offset is reduced by each texture's own wrap (withTransform()).
+    glm::dmat3 scaleOnly = transform;
+    scaleOnly[2] = glm::dvec3(0.0, 0.0, 1.0);
+    std::string problem;
+    if (!shaderTextureTransform(scaleOnly, TextureSampler{}, problem)) {
+        read.warn("vectorProperties._MainTex: " + problem + "; the textures are drawn without it");
+        return std::nullopt;
+    }
     return transform;
 }
 
-TextureRef withTransform(TextureRef texture, const std::optional<glm::mat3>& transform) {
-    if (texture.present() && transform) texture.transform = *transform * texture.transform;
+/** `texture` placed by _MainTex's `transform` as well (after its own KHR_texture_transform); an offset that its wrap
+ *  cannot reduce into float's reach leaves it without (a warning naming `key`). */
+TextureRef withTransform(TextureRef texture, const std::optional<glm::dmat3>& transform, const std::string& key,
+                         PropertyReader& read) {
+    if (!texture.present() || !transform) return texture;
+    std::string problem;
+    const std::optional<glm::mat3> composed =
+        shaderTextureTransform(*transform * glm::dmat3(texture.transform), texture.sampler, problem);
+    if (composed) {
+        texture.transform = *composed;
+    } else {
+        read.warn("vectorProperties._MainTex on textureProperties." + key + ": " + problem +
+                  "; the texture is drawn without it");
+    }
     return texture;
 }
 
 /** VRM 0.x stores Unity colours in gamma space (UniVRM MigrationMToon: ToFloat3(ColorSpace.sRGB, ColorSpace.Linear);
  *  three-vrm: gammaEOTF); 1.0 factors are linear. Alpha is linear in both. */
-glm::vec3 linearFromV0(const std::vector<float>& encoded) {
-    return {srgbToLinear(encoded[0]), srgbToLinear(encoded[1]), srgbToLinear(encoded[2])};
+glm::vec3 linearFromV0(const std::vector<double>& encoded) {
+    return {srgbToLinear(float(encoded[0])), srgbToLinear(float(encoded[1])), srgbToLinear(float(encoded[2]))};
 }
 
 /** The alpha mode, cutoff, double-sidedness, base colour factor and texture a VRM 0.x entry gives (shared by MToon
  *  and the unlit shaders); each only when the entry has it, so the glTF material's stays otherwise. */
 void applyV0Surface(const tinygltf::Value* floats, const tinygltf::Value* vectors, const tinygltf::Value* textures,
-                    const std::optional<glm::mat3>& transform, Material& material, PropertyReader& read) {
-    if (const auto color = read.numbers(vectors, "_Color", 3, 4, "vectorProperties")) {
-        material.baseColorFactor = glm::vec4(linearFromV0(*color), color->size() == 4 ? (*color)[3] : 1.0f);
+                    const std::optional<glm::dmat3>& transform, Material& material, PropertyReader& read) {
+    if (const auto color = read.colour(vectors, "_Color", 3, 4, "vectorProperties")) {
+        material.baseColorFactor = glm::vec4(linearFromV0(*color), color->size() == 4 ? float((*color)[3]) : 1.0f);
     }
     const TextureRef mainTexture = read.textureProperty(textures, "_MainTex", "textureProperties");
-    if (mainTexture.present()) material.baseColorTexture = withTransform(mainTexture, transform);
+    if (mainTexture.present()) material.baseColorTexture = withTransform(mainTexture, transform, "_MainTex", read);
     if (floats != nullptr && floats->Has("_CullMode")) {
         // MToon 0.x's CullMode { Off, Front, Back }; glTF cannot cull front faces, so Front is double-sided as in
         // UniVRM's migration (MigrationMToon).
@@ -313,8 +364,9 @@ MToonMaterial readMToon0(const tinygltf::Value& entry, Material& material, Prope
     const std::string v = "vectorProperties";
     const std::string t = "textureProperties";
 
-    std::optional<glm::mat3> transform;
-    if (const auto offsetScale = read.numbers(vectors, "_MainTex", 4, 4, v)) transform = mainTexTransform(*offsetScale);
+    std::optional<glm::dmat3> transform;
+    if (const auto offsetScale = read.numbers(vectors, "_MainTex", 4, 4, v))
+        transform = mainTexTransform(*offsetScale, read);
     applyV0Surface(floats, vectors, textures, transform, material, read);
 
     if (floats != nullptr && floats->Has("_BlendMode")) {
@@ -332,19 +384,20 @@ MToonMaterial readMToon0(const tinygltf::Value& entry, Material& material, Prope
         }
     }
     if (material.alphaMode == AlphaMode::Mask && floats != nullptr && floats->Has("_Cutoff")) {
-        material.alphaCutoff = read.number(floats, "_Cutoff", material.alphaCutoff, f);
+        material.alphaCutoff = read.number(floats, "_Cutoff", material.alphaCutoff, f, kUnitRange);
     }
 
     MToonMaterial mtoon;
     mtoon.specVersion = "0.x";
     // Defaults where the entry leaves a property out: three-vrm's VRMMaterialsV0CompatPlugin (UniVRM's exporter
     // writes them all).
-    if (const auto shade = read.numbers(vectors, "_ShadeColor", 3, 4, v)) {
+    if (const auto shade = read.colour(vectors, "_ShadeColor", 3, 4, v)) {
         mtoon.shadeColorFactor = linearFromV0(*shade);
     } else {
-        mtoon.shadeColorFactor = linearFromV0({0.97f, 0.81f, 0.86f});
+        mtoon.shadeColorFactor = linearFromV0({0.97f, 0.81f, 0.86f}); // the floats Unity's default holds
     }
-    mtoon.shadeMultiplyTexture = withTransform(read.textureProperty(textures, "_ShadeTexture", t), transform);
+    mtoon.shadeMultiplyTexture =
+        withTransform(read.textureProperty(textures, "_ShadeTexture", t), transform, "_ShadeTexture", read);
 
     // UniVRM's MToon10Migrator: 0.x shades over [shift, lerp(1, shift, toony)] (lerp's t clamped to [0, 1] as Unity's
     // Mathf.Lerp does); 1.0's toony is that range's margin, its shift the range's centre negated.
@@ -355,11 +408,11 @@ MToonMaterial readMToon0(const tinygltf::Value& entry, Material& material, Prope
     mtoon.shadingToonyFactor = std::clamp((2.0f - (rangeMax - rangeMin)) * 0.5f, 0.0f, 1.0f);
     mtoon.shadingShiftFactor = std::clamp(-(rangeMax + rangeMin) * 0.5f, -1.0f, 1.0f);
 
-    if (const auto rim = read.numbers(vectors, "_RimColor", 3, 4, v))
+    if (const auto rim = read.colour(vectors, "_RimColor", 3, 4, v))
         mtoon.parametricRimColorFactor = linearFromV0(*rim);
-    mtoon.parametricRimFresnelPowerFactor = read.number(floats, "_RimFresnelPower", 1.0f, f);
-    mtoon.parametricRimLiftFactor = read.number(floats, "_RimLift", 0.0f, f);
-    mtoon.rimLightingMixFactor = read.number(floats, "_RimLightingMix", 0.0f, f);
+    mtoon.parametricRimFresnelPowerFactor = read.number(floats, "_RimFresnelPower", 1.0f, f, kNonNegativeRange);
+    mtoon.parametricRimLiftFactor = read.number(floats, "_RimLift", 0.0f, f, kSignedRange);
+    mtoon.rimLightingMixFactor = read.number(floats, "_RimLightingMix", 0.0f, f, kUnitRange);
 
     // OutlineWidthMode { None, WorldCoordinates, ScreenCoordinates }; UniVRM reads anything above 2 as None.
     const float widthMode = read.number(floats, "_OutlineWidthMode", 0.0f, f);
@@ -376,14 +429,15 @@ MToonMaterial readMToon0(const tinygltf::Value& entry, Material& material, Prope
     } else if (widthMode != 0.0f) {
         read.warn(f + "._OutlineWidthMode " + formatNumber(widthMode) + " is not 0, 1 or 2; no outline");
     }
-    mtoon.outlineWidthMultiplyTexture =
-        withTransform(read.textureProperty(textures, "_OutlineWidthTexture", t), transform);
-    if (const auto outline = read.numbers(vectors, "_OutlineColor", 3, 4, v)) {
+    mtoon.outlineWidthMultiplyTexture = withTransform(read.textureProperty(textures, "_OutlineWidthTexture", t),
+                                                      transform, "_OutlineWidthTexture", read);
+    if (const auto outline = read.colour(vectors, "_OutlineColor", 3, 4, v)) {
         mtoon.outlineColorFactor = linearFromV0(*outline);
     }
     // OutlineColorMode { FixedColor, MixedLighting }: a fixed colour takes no lighting (UniVRM, three-vrm).
     const float colorMode = read.number(floats, "_OutlineColorMode", 0.0f, f);
-    mtoon.outlineLightingMixFactor = colorMode == 1.0f ? read.number(floats, "_OutlineLightingMix", 1.0f, f) : 0.0f;
+    mtoon.outlineLightingMixFactor =
+        colorMode == 1.0f ? read.number(floats, "_OutlineLightingMix", 1.0f, f, kUnitRange) : 0.0f;
     checkOutlineWidth(mtoon, read);
     std::vector<std::string> undrawn;
     for (const char* key : {"_SphereAdd", "_RimTexture"})
@@ -400,15 +454,15 @@ void readUnlit0(const tinygltf::Value& entry, const std::string& shader, Materia
     const tinygltf::Value* floats = read.object(entry, "floatProperties", "materialProperties");
     const tinygltf::Value* vectors = read.object(entry, "vectorProperties", "materialProperties");
     const tinygltf::Value* textures = read.object(entry, "textureProperties", "materialProperties");
-    std::optional<glm::mat3> transform;
+    std::optional<glm::dmat3> transform;
     if (const auto offsetScale = read.numbers(vectors, "_MainTex", 4, 4, "vectorProperties")) {
-        transform = mainTexTransform(*offsetScale);
+        transform = mainTexTransform(*offsetScale, read);
     }
     applyV0Surface(floats, vectors, textures, transform, material, read);
     material.unlit = true;
     if (shader == "VRM/UnlitCutout") {
         material.alphaMode = AlphaMode::Mask;
-        material.alphaCutoff = read.number(floats, "_Cutoff", 0.5f, "floatProperties");
+        material.alphaCutoff = read.number(floats, "_Cutoff", 0.5f, "floatProperties", kUnitRange);
     } else if (shader == "VRM/UnlitTransparent" || shader == "VRM/UnlitTransparentZWrite") {
         material.alphaMode = AlphaMode::Blend;
     } else {

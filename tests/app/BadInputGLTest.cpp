@@ -2,7 +2,7 @@
 // Each case expects its exit code, a message naming the file (or flag) and the problem, and the folder exactly as it
 // was, byte for byte: an earlier out.png untouched, no new file, not even a temporary one. GL label: the no-EGL case
 // needs the executable to reach the driver; every other case stops before any GL work.
-#include "CliTestSupport.h"
+#include "GltfTestFiles.h"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +18,9 @@ namespace {
 
 using test::Cli;
 using test::CliRun;
+using test::glb;
 using test::readText;
+using test::u32;
 namespace fs = std::filesystem;
 
 constexpr const char* kEarlierPicture = "an earlier render the failed run must not touch";
@@ -31,12 +33,6 @@ struct BadInput {
     std::vector<std::string> messageParts; ///< each must appear in stderr
     std::string environment = "";
 };
-
-std::string u32(std::uint32_t value) {
-    std::string bytes;
-    for (int shift = 0; shift < 32; shift += 8) bytes.push_back(char((value >> shift) & 0xFF));
-    return bytes;
-}
 
 std::string f32(float value) {
     char bytes[4];
@@ -67,27 +63,23 @@ std::string triangleBytes(float x = 1.0f) {
  *  under tinygltf); `uri` replaces the inline buffer. */
 std::string gltfTriangle(const std::string& primitiveExtra = "", float x = 1.0f, std::uint32_t count = 3,
                          const std::string& top = "", const std::string& uri = "") {
-    const std::string buffer = triangleBytes(x);
-    static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string base64;
-    for (std::size_t i = 0; i < buffer.size(); i += 3) {
-        const std::uint32_t chunk = std::uint32_t(std::uint8_t(buffer[i])) << 16 |
-                                    std::uint32_t(std::uint8_t(buffer[i + 1])) << 8 | std::uint8_t(buffer[i + 2]);
-        for (int k = 3; k >= 0; --k) base64 += kAlphabet[(chunk >> (6 * k)) & 63];
-    }
     return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)" + top +
            R"("meshes":[{"primitives":[{"attributes":{"POSITION":0})" + primitiveExtra +
            R"(}]}],"accessors":[{"bufferView":0,"componentType":5126,"count":)" + std::to_string(count) +
            R"(,"type":"VEC3"}],"bufferViews":[{"buffer":0,"byteLength":36}],)"
            R"("buffers":[{"byteLength":36,"uri":")" +
-           (uri.empty() ? "data:application/octet-stream;base64," + base64 : uri) + R"("}]})";
+           (uri.empty() ? "data:application/octet-stream;base64," + test::base64(triangleBytes(x)) : uri) + R"("}]})";
 }
 
-std::string glb(const std::string& json) {
-    std::string padded = json;
-    while (padded.size() % 4) padded += ' ';
-    const std::string body = u32(std::uint32_t(padded.size())) + "JSON" + padded;
-    return "glTF" + u32(2) + u32(std::uint32_t(12 + body.size())) + body;
+/** The bundled textured box with `transform` as its texture's KHR_texture_transform and `wrap` as both its wraps. */
+std::string texturedBox(const nlohmann::json& transform, int wrap = 10497) {
+    return test::editedGlb(fs::path(INKGRAPH_SOURCE_ROOT) / "models/characters/box-textured.glb",
+                           [&](nlohmann::json& gltf) {
+                               gltf["extensionsUsed"] = {"KHR_texture_transform"};
+                               gltf["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+                                   {"KHR_texture_transform", transform}};
+                               gltf["samplers"][0]["wrapS"] = gltf["samplers"][0]["wrapT"] = wrap;
+                           });
 }
 
 std::string source(const std::string& relative) { return (fs::path(INKGRAPH_SOURCE_ROOT) / relative).string(); }
@@ -205,6 +197,25 @@ std::vector<BadInput> badInputs() {
          "n.gltf -o out.png",
          3,
          {"'n.gltf'", "node 0", "more than the 1e+15 the renderer can hold"}},
+        {"glTF node 1e30 from the origin, far beyond its unit triangle",
+         {{"far.gltf", gltfTriangle("", 1.0f, 3, R"("nodes":[{"mesh":0,"translation":[1e30,0,0]}],)")}},
+         "far.gltf -o out.png",
+         3,
+         {"'far.gltf'", "node 0: its transforms place it 1e+30 units from the world origin",
+          "too far to resolve a model 1.41 units across"}},
+        {"KHR_texture_transform scale of 1e300",
+         {{"box.glb", texturedBox({{"scale", {1e300, 1.0}}})}},
+         "box.glb -o out.png",
+         3,
+         {"'box.glb'",
+          "material 0 'Texture' baseColorTexture KHR_texture_transform (offset [0, 0], rotation 0, scale [1e+300, 1])",
+          "stretch texture coordinates 1e+300 times, beyond the 10000"}},
+        {"KHR_texture_transform offset of 1e30 on a clamped texture",
+         {{"box.glb", texturedBox({{"offset", {1e30, 0.0}}}, 33071)}},
+         "box.glb -o out.png",
+         3,
+         {"'box.glb'", "KHR_texture_transform (offset [1e+30, 0], rotation 0, scale [1, 1])",
+          "its offset moves texture coordinates by 1e+30"}},
         {"glTF data URI of 1 MiB, quoted short",
          {{"u.gltf",
            gltfTriangle("", 1.0f, 3, "", "data:application/octet-stream;base64," + std::string(1 << 20, 'A') + "!!")}},
@@ -333,6 +344,11 @@ std::vector<BadInput> badInputs() {
         {"--clip ratio", {}, spot + " -o out.png --clip 1e-16,1e16", 2, {"--clip", "FAR/NEAR at most 1e30"}},
         {"--eye beyond double", {}, spot + " -o out.png --eye 1e300,0,0", 2, {"--eye", "+-1e15", "'1e300,0,0'"}},
         {"--up zero", {}, spot + " -o out.png --up 0,0,0", 2, {"--up", "must not be zero"}},
+        {"--orbit distance below double's resolution",
+         {},
+         spot + " -o out.png --orbit 0,0,1e-300",
+         2,
+         {"--orbit 0,0,1e-300: the distance 1e-300 is too small to set the eye apart from the target"}},
         // The environment.
         {"deleted working folder",
          {},

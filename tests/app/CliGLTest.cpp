@@ -237,6 +237,17 @@ TEST_F(Cli, AByteOrderMarkOrAMissingSolidLineChangesNothing) {
               0.0);
     EXPECT_EQ(cv::norm(readImage(directory / "solid.stl.png"), readImage(directory / "bare.stl.png"), cv::NORM_INF),
               0.0);
+
+    // A style file's mark was glued to its first setting's name: "'\xEF\xBB\xBFshading' is not a style setting".
+    std::ofstream(directory / "plain.style") << "shading = comic\nlines = silhouette\n";
+    std::ofstream(directory / "bom.style") << "\xEF\xBB\xBF"
+                                           << "shading = comic\nlines = silhouette\n";
+    for (const char* style : {"plain.style", "bom.style"}) {
+        const CliRun result = run(std::string("render plain.obj -o ") + style + ".png --size 48x48 --style " + style);
+        ASSERT_EQ(result.exitCode, 0) << style << ": " << result.err;
+    }
+    EXPECT_EQ(cv::norm(readImage(directory / "plain.style.png"), readImage(directory / "bom.style.png"), cv::NORM_INF),
+              0.0);
 }
 
 TEST_F(Cli, AwkwardPathsAndFormats) {

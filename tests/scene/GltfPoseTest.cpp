@@ -1,11 +1,13 @@
 /** Skins, morph targets and animation sampling in the glTF reader, with known answers from files the tests write. */
 
+#include "scene/GltfPose.h"
 #include "scene/Scene.h"
 
 #include "SceneTestSupport.h"
 
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -168,6 +170,23 @@ void expectTopTurnedBy(const Scene& scene, double degrees) {
     // The lower vertices follow bone 0, which has not moved (and the mesh node's translation is ignored).
     EXPECT_TRUE(hasVertexNear(scene, {0, 0, 0})) << describeVertices(scene);
     EXPECT_TRUE(hasVertexNear(scene, {1, 1, 0})) << describeVertices(scene);
+}
+
+TEST(GltfPose, PreciseTransformsHoldWhatDoubleRoundsAway) {
+    // In double 1e17 + 0.5 is 1e17 (its doubles lie 16 apart); composed to 32 digits and made relative to 1e17 before
+    // rounding, the half is kept exactly, and so is the quarter a rotated child adds under it.
+    const glm::dmat4 far = glm::translate(glm::dmat4(1.0), glm::dvec3(1e17, -3e17, 0.0));
+    const glm::dmat4 half = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5, 0.0, 0.25));
+    ASSERT_EQ((far * half)[3][0], 1e17);
+    const detail::PreciseTransform precise = detail::PreciseTransform(far) * half;
+    EXPECT_EQ(precise.relativeTo(glm::dvec3(1e17, -3e17, 0.0))[3], glm::dvec4(0.5, 0.0, 0.25, 1.0));
+    const glm::dmat4 turned = glm::rotate(glm::dmat4(1.0), glm::radians(90.0), glm::dvec3(0.0, 0.0, 1.0));
+    const glm::dvec4 child = (precise * turned * half).relativeTo(glm::dvec3(1e17, -3e17, 0.0))[3];
+    EXPECT_NEAR(child.x, 0.5, 1e-15);
+    EXPECT_NEAR(child.y, 0.5, 1e-15);
+    EXPECT_EQ(child.z, 0.5);
+    EXPECT_EQ(precise.magnitude(), 3e17) << "the largest term summed into a translation";
+    EXPECT_EQ((precise * turned).steps(), 2u);
 }
 
 TEST(GltfPose, SkinRestPoseTurnsTheUpperBone) {
