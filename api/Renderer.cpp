@@ -235,7 +235,7 @@ struct Renderer::Impl {
         const StillLog stillLog{log, false, true};
         const std::unique_ptr<PreparedStill> still = renderer->load(std::move(request), stillLog);
         try {
-            renderer->plan(*still);
+            renderer->plan(*still, stillLog);
         } catch (const UsageError&) {
             refuseUnknownBuffers(still->graph, buffers);
             throw;

@@ -178,8 +178,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     std::unique_ptr<PreparedStill> still = loadWhileMakingContext(stillRequestOf(options), renders, log);
     report.triangles = still->scene().triangleCount();
     outputs->refuseInputs(inputsFoundByLoading(options, still->scene()));
-    mRenderer.plan(*still);
-    for (const std::string& warning : still->warnings) log.warn(options.modelPath, warning);
+    mRenderer.plan(*still, log);
 
     const Plan& plan = still->plan;
     if (options.printPlan) {

@@ -103,7 +103,7 @@ StillRenderer::~StillRenderer() = default;
 
 std::unique_ptr<PreparedStill> StillRenderer::prepare(StillRequest request, const StillLog& log) {
     std::unique_ptr<PreparedStill> still = load(std::move(request), log);
-    plan(*still);
+    plan(*still, log);
     return still;
 }
 
@@ -141,7 +141,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     return still;
 }
 
-void StillRenderer::plan(PreparedStill& still) {
+void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     const StillRequest& req = still.request;
     const Look& look = req.look;
     const Scene& scene = still.scene();
@@ -153,7 +153,7 @@ void StillRenderer::plan(PreparedStill& still) {
         throw UsageError(error.what()); // the loader has validated the file's camera: what is left is the flags
     }
     if (const std::optional<std::string> outside = modelOutsideView(still.camera, scene))
-        still.warnings.push_back(*outside);
+        log.warn(req.modelPath, *outside);
     still.frame = frameParamsOf(look, scene, still.camera, still.sphere);
     still.gpuScene = std::make_unique<GpuScene>(scene, still.sphere.center);
     StillGraphSetup setup{look, mShaders, scene, still.sphere, *still.gpuScene, still.frame, still.shadeMap};
@@ -232,7 +232,8 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
     }
     // What decoding the textures had to say (an image shrunk to the driver's largest texture), as the loader's
     // warnings.
-    for (const std::string& warning : still.gpuScene->materials().warnings()) log.warn(still.request.modelPath, warning);
+    for (const std::string& warning : still.gpuScene->materials().warnings())
+        log.warn(still.request.modelPath, warning);
     result.texturesCreated = mTextures.createdCount() - texturesCreatedBefore;
     result.texturesReused = mTextures.reusedCount() - texturesReusedBefore;
     result.programsCompiled = mShaders.compiledCount() - programsCompiledBefore;

@@ -88,10 +88,6 @@ struct PreparedStill {
     std::unique_ptr<GpuScene> gpuScene;
     StillGraph graph;
     Plan plan;
-    /** What plan() found worth saying, for the caller to print like the loader's warnings: a camera that sees none
-     *  of the model (modelOutsideView()). */
-    std::vector<std::string> warnings;
-
     PreparedStill() = default;
     PreparedStill(const PreparedStill&) = delete;
     PreparedStill& operator=(const PreparedStill&) = delete;
@@ -125,8 +121,9 @@ public:
      *  brings it loaded. Throws SceneError and InputFileError. */
     std::unique_ptr<PreparedStill> load(StillRequest request, const StillLog& log);
     /** Resolves the camera, builds the graph and compiles the plan for the final picture plus what the request keeps.
-     *  Throws UsageError for a request the scene cannot satisfy (a camera, a --request name). No GL. */
-    void plan(PreparedStill& still);
+     *  Warns through `log` of a camera that sees none of the model (modelOutsideView()). Throws UsageError for a
+     *  request the scene cannot satisfy (a camera, a --request name). No GL. */
+    void plan(PreparedStill& still, const StillLog& log);
     /** Makes the process's GL context now, unless it exists: app/Render.cpp calls it while the model loads on another
      *  thread, so the two overlap. Touches nothing load() uses. Throws HeadlessContextError. */
     void makeContext(EglPlatform platform);

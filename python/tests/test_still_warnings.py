@@ -1,5 +1,6 @@
-"""Textures through the Python module (issue 31): one wider than the driver's largest texture is downscaled with a
-warning the still carries, where it raised RenderError before."""
+"""What a still has to say reaches the library's caller as it reaches the command line's (issue 31): a texture wider
+than the driver's largest is downscaled with a warning (it raised RenderError before), and a file camera that sees
+none of the model is named."""
 
 from __future__ import annotations
 
@@ -35,3 +36,28 @@ def test_a_texture_wider_than_the_driver_takes_is_downscaled_with_a_warning(tmp_
     picture = result.picture
     orange = (picture[..., 0] > picture[..., 1]) & (picture[..., 1] > picture[..., 2])
     assert orange.any()
+
+
+def test_a_file_camera_that_sees_none_of_the_model_is_a_warning_of_the_still(tmp_path):
+    # The library says what the command line says (issue 31): the glTF camera 5 units behind the triangle's plane,
+    # looking away from it, renders blank paper, and the still's warnings name the camera.
+    import base64
+    import json
+
+    positions = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+    gltf = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": "data:application/octet-stream;base64," + base64.b64encode(positions).decode(),
+                     "byteLength": 36}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}],
+        "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, -5]}],
+        "scenes": [{"nodes": [0, 1]}],
+        "scene": 0,
+    }
+    (tmp_path / "away.gltf").write_text(json.dumps(gltf))
+    result = inkgraph.render(str(tmp_path / "away.gltf"), size=(SIZE, SIZE))
+    assert any("sees none of the model" in w for w in result.still.warnings), result.still.warnings
