@@ -70,6 +70,7 @@ struct ProgressiveDecode {
     std::exception_ptr refusal; ///< thrown by rowsFor inside a callback, rethrown once libpng has returned
     bool ended = false;         ///< libpng reached IEND
     bool truncated = false;     ///< libpng warned that the image data ended before the last row
+    std::uint32_t rowsDelivered = 0;
 };
 
 /** The header: the expansions, the layout, and the caller's rows. A callback of libpng's: nothing may throw out. */
@@ -113,6 +114,7 @@ void onRow(png_structp png, png_bytep newRow, png_uint_32 rowNumber, int) {
     if (rowNumber >= decode->rows.size()) png_error(png, "a row beyond the image");
     // Interlaced passes fill a row in several visits; a pass that leaves a row alone passes no data.
     png_progressive_combine_row(png, decode->rows[rowNumber], newRow);
+    ++decode->rowsDelivered;
 }
 
 void onEnd(png_structp png, png_infop) { static_cast<ProgressiveDecode*>(png_get_progressive_ptr(png))->ended = true; }
@@ -156,7 +158,13 @@ void decode(PngExpansion expansion, const PngRowProvider& rowsFor,
             throw pngError(reader.failure);
         }
     }
-    if (state.truncated || state.rows.empty())
+    // A zlib stream may end, complete, before the last row: libpng then goes on to IEND and leaves the rest of the
+    // rows as they were. Every row of a plain file must have come, and an interlaced one must have finished its
+    // seventh pass.
+    const bool interlaced = png_get_interlace_type(reader.png, reader.info) != PNG_INTERLACE_NONE;
+    const bool complete =
+        interlaced ? png_get_current_pass_number(reader.png) >= 7 : state.rowsDelivered == state.layout.height;
+    if (state.truncated || state.rows.empty() || !complete)
         throw std::runtime_error("libpng: truncated PNG: the image data ends before the last row");
 }
 

@@ -136,6 +136,24 @@ TEST_F(DecoderBudget, APngWhoseDataInflatesFarBeyondItsHeaderCostsOnlyItsPixels)
     }
 }
 
+TEST_F(DecoderBudget, APngWhoseImageDataEndsBeforeItsLastRowIsRefused) {
+    // A complete zlib stream of 4 of the 8 rows: libpng goes on to IEND without a word, and the other rows would be
+    // whatever the buffer held. The decode counts the rows delivered.
+    std::string rows;
+    for (int row = 0; row < 4; ++row) {
+        rows.push_back('\0'); // no filter
+        rows.append(32, char(200));
+    }
+    writeBytes(directory / "short.png", pngFile(8, 8, 8, deflatedZeros(rows, rows.size())));
+    writeTexturedTriangle("short.png");
+    const CliRun result = run("render tri.obj -o out.png --size 32x32");
+    EXPECT_EQ(result.exitCode, 3) << result.err;
+    EXPECT_NE(result.err.find("'short.png': cannot be decoded: a corrupt or truncated PNG (libpng: truncated PNG: "
+                              "the image data ends before the last row)"),
+              std::string::npos)
+        << result.err;
+}
+
 TEST_F(DecoderBudget, ASixteenBitPngIsDecodedAtEightBitsWithinTheLimit) {
     // 8192 x 4096 RGBA at 16 bits: stb_image held the 256 MiB of 16-bit samples beside the 8-bit copy, uncharged
     // (595 MiB resident under --memory-limit 410). Now each row is reduced to 8 bits as libpng inflates it.
