@@ -350,6 +350,12 @@ TEST_F(ApiRender, ARendererRendersOnAnyThreadAndIsDestroyedOnAnother) {
 }
 
 TEST_F(ApiRender, AForkedChildNeitherRendersWithNorFreesTheParentsContext) {
+#if defined(__SANITIZE_ADDRESS__)
+    // GCC 12's AddressSanitizer takes no lock of its allocator around fork(): a child of this multithreaded process
+    // (llvmpipe's and oneTBB's threads) can inherit it held and hang at its first allocation, as it did once in three
+    // runs of a clean clone's sanitized suite (SIGALRM after 60 s). The Release suite runs this test.
+    GTEST_SKIP() << "fork() of a threaded process under GCC 12's AddressSanitizer (allocator not locked at fork)";
+#endif
     ig::Renderer renderer;
     renderer.render(suzanne, {}, frameOf(32, 32));
     const pid_t child = fork();
