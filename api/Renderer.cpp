@@ -42,14 +42,15 @@ std::string bufferNameOf(const std::string& resource, const StillGraph& graph) {
     return resource;
 }
 
-/** Every resource the graph's passes write, by full name, in registration order. */
+/** Every image resource the graph's passes write (objects without a picture are data, not buffers), by full name, in
+ *  registration order. */
 std::vector<std::string> writtenResources(const StillGraph& graph) {
     std::vector<std::string> resources;
     for (const Pass* pass : graph.view()) {
         PassBuilder builder{std::string(pass->name())};
         pass->declare(builder);
         for (const PassBuilder::Write& write : builder.writes())
-            resources.push_back(builder.passName() + "." + write.field);
+            if (write.isImage()) resources.push_back(builder.passName() + "." + write.field);
     }
     return resources;
 }

@@ -3,7 +3,6 @@
 #include "app/Options.h"
 #include "app/StillOutputs.h"
 #include "graph/Plan.h"
-#include "passes/lines/LineTypes.h"
 #include "scene/Scene.h"
 
 #include <algorithm>
@@ -31,16 +30,6 @@ constexpr std::size_t kBytesPerVertex = 96;
  *  llvmpipe bins per triangle and draw. The bunny (69k triangles) costs 62 MiB over a 4k-triangle model. */
 constexpr std::size_t kBytesPerTriangle = 1024;
 
-/** Per data pixel of a line layer's pass, what lives on after it: the one-pixel skeleton mask (1) and its sub-pixel
- *  points (12 bytes each, at most one per 12 pixels). */
-constexpr std::size_t kSkeletonBytesPerPixel = 2;
-/** Per data pixel, what the stroke stage (passes/lines/StrokesPass) holds while it runs, for one line type at a
- *  time: the pixel strengths and the kept widths (float each), the tracer's padded copies (2), the kept mask (1),
- *  and the stroke canvas and nearest-point ints (9); the chains of every type stay until it ends, within the
- *  skeletons' own bytes. */
-constexpr std::size_t kStrokeStageBytesPerPixel = 20;
-/** The stroke stage's pass (passes/StillGraph.cpp). */
-constexpr const char* kStrokeStage = "strokes";
 /** gl/Readback.cpp moves pixels in bands of at most this many bytes, through one extra buffer. */
 constexpr std::size_t kTransferBandBytes = 64 * kMiB;
 /** Encoding one image: the encoded bytes in a growing vector (up to twice their size) and the writer's own copy. */
@@ -75,8 +64,19 @@ public:
     std::size_t textureBytes(const PlannedResource& resource) const {
         return paddedPixels(resource.desc.scale) * std::size_t(bytesPerPixel(resource.desc.format));
     }
+    /** A texture's CPU image; an object's own bytes as its writer declares them, and its picture. */
     std::size_t imageBytes(const PlannedResource& resource) const {
+        if (resource.kind == ResourceKind::Object)
+            return pixels(resource.object.scale) *
+                   (resource.object.bytesPerPixel +
+                    (resource.object.hasPicture ? cpuBytesPerPixel(resource.object.pictureFormat) : 0));
         return pixels(resource.desc.scale) * cpuBytesPerPixel(resource.desc.format);
+    }
+    /** The working memory `pass` declared (PassBuilder::scratch()). */
+    std::size_t scratchBytes(const PlannedPass& pass) const {
+        std::size_t bytes = 0;
+        for (const PassBuilder::Scratch& scratch : pass.scratch) bytes += scratch.bytesPerPixel * pixels(scratch.scale);
+        return bytes;
     }
     const PlannedResource* resource(const std::string& name) const {
         auto found = mResources.find(name);
@@ -97,26 +97,33 @@ private:
     std::map<std::string, const PlannedResource*> mResources;
 };
 
-/** Passes that read nothing from the graph but a depth (the G-buffer's z-buffer, which never leaves GL) draw the
- *  scene with GL, into a depth attachment of their own or that one (counted as their own: a little high); the others
- *  (line layers, composite) work on the CPU on what they read. */
+/** Passes that write a texture and read nothing from the graph but a depth (the G-buffer's z-buffer, which never leaves
+ *  GL) or objects (the scene's imports) draw the scene with GL, into a depth attachment of their own or that one
+ *  (counted as their own: a little high); the others (line layers, strokes, composite) work on the CPU on what they
+ *  read. */
 bool drawsTheScene(const PlannedPass& pass, const PlanSizes& sizes) {
-    return std::all_of(pass.reads.begin(), pass.reads.end(), [&](const std::string& name) {
-        const PlannedResource* read = sizes.resource(name);
-        return read != nullptr && read->desc.format == Format::Depth32F;
-    });
+    const bool writesTexture =
+        std::any_of(pass.liveWrites.begin(), pass.liveWrites.end(), [&](const std::string& name) {
+            const PlannedResource* written = sizes.resource(name);
+            return written != nullptr && written->kind == ResourceKind::Texture;
+        });
+    return writesTexture && std::all_of(pass.reads.begin(), pass.reads.end(), [&](const std::string& name) {
+               const PlannedResource* read = sizes.resource(name);
+               return read != nullptr && (read->desc.format == Format::Depth32F || read->kind == ResourceKind::Object);
+           });
 }
 
-/** A CPU pass that finds one --lines type's skeleton (it is named after it) and keeps it. */
-bool strokesLines(const PlannedPass& pass, const RenderOptions& options, const PlanSizes& sizes) {
-    return !drawsTheScene(pass, sizes) &&
-           std::find(options.look.lines.begin(), options.look.lines.end(), pass.name) != options.look.lines.end();
+/** A CPU pass that finds a line skeleton (a line layer, named after its --lines type). */
+bool findsSkeleton(const PlannedPass& pass, const PlanSizes& sizes) {
+    return std::any_of(pass.liveWrites.begin(), pass.liveWrites.end(), [&](const std::string& name) {
+        const PlannedResource* written = sizes.resource(name);
+        return written != nullptr && written->kind == ResourceKind::Object && written->object.hasPicture;
+    });
 }
 
 /** What the post stage holds while pass `index` runs (or, for index == passes.size(), while the outputs are
  *  written): the CPU images then alive, the skeletons of the post passes so far, and the pass's working images. */
-std::size_t cpuBytesAt(std::size_t index, const Plan& plan, const RenderOptions& options, const PlanSizes& sizes,
-                       bool keepAll) {
+std::size_t cpuBytesAt(std::size_t index, const Plan& plan, const PlanSizes& sizes, bool keepAll) {
     const bool writing = index == plan.passes.size();
     std::size_t bytes = 0;
     // An image exists on the CPU from the first post pass that reads it (or writes it) to its last use; requested
@@ -133,9 +140,6 @@ std::size_t cpuBytesAt(std::size_t index, const Plan& plan, const RenderOptions&
         const bool alive = keepAll || resource.requested || resource.lastUse >= index;
         if (onCpu && alive) bytes += sizes.imageBytes(resource);
     }
-    for (std::size_t at = 0; at < std::min(index + 1, plan.passes.size()); ++at)
-        if (strokesLines(plan.passes[at], options, sizes))
-            bytes += kSkeletonBytesPerPixel * sizes.pixels(sizes.scaleOf(plan.passes[at]));
 
     std::size_t largestImage = 0;
     for (const PlannedResource& resource : plan.resources)
@@ -148,16 +152,9 @@ std::size_t cpuBytesAt(std::size_t index, const Plan& plan, const RenderOptions&
         return bytes + kEncodeCopies * encoded + std::min(kTransferBandBytes, largestImage);
     }
     const PlannedPass& pass = plan.passes[index];
-    if (drawsTheScene(pass, sizes)) return bytes;
-    if (pass.name == kStrokeStage)
-        return bytes + kStrokeStageBytesPerPixel * sizes.pixels(options.look.supersample) +
-               std::min(kTransferBandBytes, largestImage);
-    // Other CPU passes (the composite) work in the images they read and write, counted above.
-    if (!strokesLines(pass, options, sizes)) return bytes + std::min(kTransferBandBytes, largestImage);
-    std::size_t working = 0;
-    if (const LineType* type = findLineType(pass.name); type && type->workingBytesPerPixel)
-        working += type->workingBytesPerPixel(options.look.lineParameters);
-    return bytes + working * sizes.pixels(sizes.scaleOf(pass)) + std::min(kTransferBandBytes, largestImage);
+    if (drawsTheScene(pass, sizes)) return bytes + sizes.scratchBytes(pass);
+    // A CPU pass works in the images it reads and writes, counted above, and the working memory it declares.
+    return bytes + sizes.scratchBytes(pass) + std::min(kTransferBandBytes, largestImage);
 }
 
 std::string sizeText(std::size_t width, std::size_t height) {
@@ -175,11 +172,12 @@ MemoryEstimate estimateRunMemory(const Plan& plan, const RenderOptions& options,
     estimate.baseline = kBaselineBytes + (outputsUseImageIoModule(options) ? kImageIoModuleBytes : 0);
     estimate.scene = scene.vertices * kBytesPerVertex + scene.triangles * kBytesPerTriangle;
     // The texture pool keeps every texture it made until the still ends, so they all count at once.
-    for (const PlannedResource& resource : plan.resources) estimate.glTargets += sizes.textureBytes(resource);
+    for (const PlannedResource& resource : plan.resources)
+        if (resource.kind == ResourceKind::Texture) estimate.glTargets += sizes.textureBytes(resource);
     for (const PlannedPass& pass : plan.passes)
         if (drawsTheScene(pass, sizes)) estimate.glTargets += sizes.paddedPixels(sizes.scaleOf(pass)) * 4; // DEPTH32F
     for (std::size_t index = 0; index <= plan.passes.size(); ++index)
-        estimate.cpuImages = std::max(estimate.cpuImages, cpuBytesAt(index, plan, options, sizes, keepAll));
+        estimate.cpuImages = std::max(estimate.cpuImages, cpuBytesAt(index, plan, sizes, keepAll));
     return estimate;
 }
 
@@ -191,7 +189,7 @@ std::string memoryDriversText(const Plan& plan, const RenderOptions& options) {
         int count = 0;
         for (const std::string& type : options.look.lines) { // in the order the user gave them
             const PlannedPass* pass = plan.findPass(type);
-            if (pass == nullptr || !strokesLines(*pass, options, sizes)) continue;
+            if (pass == nullptr || !findsSkeleton(*pass, sizes)) continue;
             if (sizes.scaleOf(*pass) < options.look.supersample) continue;
             supersampled += (count++ ? "," : "") + type;
         }

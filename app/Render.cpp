@@ -130,6 +130,7 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     request.camera = cameraRequestOf(options);
     request.extraOutputs = options.extraOutputs;
     request.keepEveryBuffer = keepsEveryBuffer(options);
+    request.keepStrokePaths = !options.svgPath.empty();
     // Per-pass milliseconds are only shown by --stats and --dump's manifest: other stills let passes overlap.
     request.timePasses = !options.statsPath.empty() || !options.dumpDirectory.empty();
     request.memoryLimitBytes = memoryLimitOf(options);

@@ -45,6 +45,12 @@ TileContent tileContentOf(const PlannedResource& resource) {
     return resource.desc.format == Format::R8 ? TileContent::Lines : TileContent::Color;
 }
 
+/** Whether a computed resource can be shown as an image: a texture, or an object with a picture (a skeleton's mask);
+ *  the other objects (the strokes, the scene's imports) are data with no picture. */
+bool hasPicture(const PlannedResource& resource) {
+    return resource.kind == ResourceKind::Texture || resource.object.hasPicture;
+}
+
 std::string lookSummary(const Look& look) {
     std::string lines;
     for (const std::string& type : look.lines) lines += (lines.empty() ? "" : ",") + type;
@@ -60,7 +66,7 @@ std::string modelFileName(const PreparedStill& still) {
 cv::Mat contactSheetOf(const PreparedStill& still, ResourceStore& store) {
     std::vector<ContactTile> tiles;
     for (const PlannedResource& resource : still.plan.resources) {
-        if (!store.contains(resource.name)) continue;
+        if (!store.contains(resource.name) || !hasPicture(resource)) continue;
         const cv::Mat& image = store.image(resource.name);
         tiles.push_back(
             {resource.name, describeImage(image) + " by " + resource.writer, image, tileContentOf(resource)});
@@ -74,10 +80,10 @@ cv::Mat contactSheetOf(const PreparedStill& still, ResourceStore& store) {
 
 /** --svg: each line type's strokes as simplified polylines, the strokes its layer was drawn from
  *  (StillGraph::svgLayers()). */
-std::string svgOf(const RenderOptions& options, const PreparedStill& still) {
+std::string svgOf(const RenderOptions& options, const PreparedStill& still, ResourceStore& store) {
     SvgDocumentOptions document;
     document.title = "inkgraph: '" + modelFileName(still) + "', " + lookSummary(still.request.look);
-    return svgDocument(options.width, options.height, still.graph.svgLayers(options.svgTolerance), document);
+    return svgDocument(options.width, options.height, still.graph.svgLayers(store, options.svgTolerance), document);
 }
 
 /** --dump: every buffer the plan computed, then manifest.json. */
@@ -86,7 +92,7 @@ void stageDump(const RenderOptions& options, const PreparedStill& still, StillRe
     Json files = Json::array();
     std::set<std::string> usedNames;
     for (const PlannedResource& resource : still.plan.resources) {
-        if (!store.contains(resource.name)) continue;
+        if (!store.contains(resource.name) || !hasPicture(resource)) continue;
         const std::string fileName = dumpFileName(resource);
         if (!usedNames.insert(fileName).second)
             throw std::logic_error("stageDump(): two resources dump to '" + fileName + "'");
@@ -184,7 +190,7 @@ void stageStillOutputs(const RenderOptions& options, const PreparedStill& still,
                        OutputSet& outputs) {
     ResourceStore& store = result.store();
     if (!options.contactSheetPath.empty()) outputs.stageContactSheet(contactSheetOf(still, store));
-    if (!options.svgPath.empty()) outputs.stageSvg(svgOf(options, still));
+    if (!options.svgPath.empty()) outputs.stageSvg(svgOf(options, still, store));
     if (!options.dumpDirectory.empty()) stageDump(options, still, result, outputs);
 }
 

@@ -27,8 +27,9 @@ glm::dvec3 defaultLight(const Camera& camera) {
     return glm::normalize(glm::transpose(glm::dmat3(camera.viewMatrix())) * towardLightView);
 }
 
-/** "gbuffer.*" -> every field the pass "gbuffer" declares; other names pass through for compile() to check. Throws
- *  UsageError for a wildcard on a pass the graph does not have. */
+/** "gbuffer.*" -> every image field the pass "gbuffer" declares (objects without a picture are data, not buffers);
+ * other names pass through for compile() to check. Throws UsageError for a wildcard on a pass the graph does not have.
+ */
 std::vector<std::string> expandWildcards(const std::vector<std::string>& requests, const StillGraph& graph) {
     std::vector<std::string> expanded;
     for (const std::string& request : requests) {
@@ -41,7 +42,8 @@ std::vector<std::string> expandWildcards(const std::vector<std::string>& request
         if (pass == nullptr) throw UsageError("--request: no pass named '" + name.pass + "' in this render graph");
         PassBuilder builder{name.pass};
         pass->declare(builder);
-        for (const auto& write : builder.writes()) expanded.push_back(name.pass + "." + write.field);
+        for (const auto& write : builder.writes())
+            if (write.isImage()) expanded.push_back(name.pass + "." + write.field); // not the strokes' data
     }
     return expanded;
 }
@@ -161,10 +163,12 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     still.graph = buildStillGraph(setup);
 
     std::vector<std::string> requested = {still.graph.finalResource};
+    if (req.keepStrokePaths && !still.graph.strokePathsResource().empty())
+        requested.push_back(still.graph.strokePathsResource());
     for (const std::string& extra : expandWildcards(req.extraOutputs, still.graph))
         if (std::find(requested.begin(), requested.end(), extra) == requested.end()) requested.push_back(extra);
     try {
-        still.plan = compile(still.graph.view(), requested);
+        still.plan = compile(still.graph.view(), requested, {still.graph.finalResource});
     } catch (const GraphError& error) {
         // The registered passes are consistent (tests/graph, tests/app); a problem here comes from --request.
         throw UsageError(std::string("--request: ") + error.what());

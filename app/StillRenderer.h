@@ -60,8 +60,10 @@ struct StillRequest {
      *  driver may overlap one pass's drawing with the next pass's submission. */
     bool timePasses = true;
     std::size_t memoryLimitBytes = std::size_t(1) << 30; ///< bounds the model load (scene/Loader.h)
-    std::string animation;                               ///< LoadOptions::animation: the pose to load
-    double animationTime = 0.0;                          ///< LoadOptions::time
+    /** Keep the stroke stage's strokes (StillGraph::strokePathsResource()) for StillGraph::svgLayers() (--svg). */
+    bool keepStrokePaths = false;
+    std::string animation;      ///< LoadOptions::animation: the pose to load
+    double animationTime = 0.0; ///< LoadOptions::time
     EglPlatform eglPlatform = EglPlatform::Any;
 };
 

@@ -83,6 +83,9 @@ public:
         mGraph = buildStillGraph({mLook, mShaders, mScene, mSphere, *mGpuScene, mFrame, std::nullopt});
         std::vector<std::string> resources = {mGraph.finalResource};
         resources.insert(resources.end(), requested.begin(), requested.end());
+        // The skeletons stay in the store for linePoints().
+        for (const std::string& type : mLook.lines)
+            if (mGraph.lineLayer(type) != nullptr) resources.push_back(type + ".skeleton");
         mPlan = compile(mGraph.view(), resources);
     }
 
@@ -151,7 +154,8 @@ Timings timeRuns(WarmRender& render, const std::vector<std::string>& methodPasse
 
 /** The points a line layer found, in output pixels. */
 std::vector<cv::Point2d> linePoints(const WarmRender& render, const std::string& type) {
-    return outputPixelPositions(render.graph().lineLayer(type)->skeleton(), render.look().supersample);
+    return outputPixelPositions(const_cast<WarmRender&>(render).store().object<LineSkeleton>(type + ".skeleton"),
+                                render.look().supersample);
 }
 
 /** Pixels where the shading changes between 4-neighbours that both lie on the model: the band boundaries. */

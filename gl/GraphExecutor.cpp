@@ -80,8 +80,30 @@ const GlTexture& ResourceStore::texture(const std::string& name) {
 
 const cv::Mat& ResourceStore::image(const std::string& name) {
     Entry& source = entry(name);
+    if (source.object) {
+        if (source.image.empty())
+            throw std::logic_error("ResourceStore::image(): '" + name + "' is an object without a picture");
+        return source.image;
+    }
     if (source.image.empty()) source.image = readTexture(*source.texture);
     return source.image;
+}
+
+void ResourceStore::setPicture(const std::string& name, Format format, cv::Mat picture) {
+    Entry& target = entry(name);
+    if (!target.object) throw std::logic_error("ResourceStore::setPicture(): '" + name + "' is not an object");
+    target.format = format;
+    target.width = picture.cols;
+    target.height = picture.rows;
+    target.image = std::move(picture);
+}
+
+std::logic_error ResourceStore::wrongObject(const std::string& name, const std::type_info& wanted) const {
+    const Entry& source = mEntries.at(name);
+    return std::logic_error("ResourceStore::object(): '" + name + "' holds " +
+                            (source.object ? std::string("an object of another type (") + source.objectType.name() + ")"
+                                           : std::string("a texture")) +
+                            ", not " + wanted.name());
 }
 
 std::vector<std::string> ResourceStore::names() const {
@@ -119,6 +141,35 @@ const PlannedResource& GlPassContext::liveOutput(std::string_view field) const {
         throw std::logic_error("GlPassContext::output(): pass '" + mPlanned.name + "' writes '" + resource +
                                "', which is not live in this plan (check isLive() first)");
     return *planned;
+}
+
+const PlannedResource& GlPassContext::liveObjectOutput(std::string_view field) const {
+    const PlannedResource& planned = liveOutput(field);
+    if (planned.kind != ResourceKind::Object)
+        throw std::logic_error("GlPassContext::outputObject(): '" + planned.name + "' is a texture");
+    return planned;
+}
+
+void GlPassContext::outputPicture(std::string_view field, cv::Mat picture) {
+    const PlannedResource& planned = liveObjectOutput(field);
+    if (!planned.object.hasPicture)
+        throw std::logic_error("GlPassContext::outputPicture(): '" + planned.name + "' declares no picture");
+    if (picture.type() != cvTypeOf(planned.object.pictureFormat) ||
+        picture.size() != cv::Size(mFrameWidth * planned.object.scale, mFrameHeight * planned.object.scale))
+        throw std::logic_error("GlPassContext::outputPicture(): '" + planned.name +
+                               "' picture is not of its declared format and size");
+    mStore.setPicture(planned.name, planned.object.pictureFormat, std::move(picture));
+}
+
+void GlPassContext::requireObjectRead(std::string_view resource) const {
+    requireDeclaredRead(resource);
+    const std::string name(resource);
+    if (!mPlan.isObject(name))
+        throw std::logic_error("GlPassContext::inputObject(): pass '" + mPlanned.name + "' reads '" + name +
+                               "', which is not an object");
+    if (!mStore.holdsObject(name))
+        throw std::logic_error("GlPassContext::inputObject(): pass '" + mPlanned.name + "' reads '" + name +
+                               "' before its writer wrote it");
 }
 
 int GlPassContext::widthOf(std::string_view field) const { return mFrameWidth * liveOutput(field).desc.scale; }

@@ -11,7 +11,10 @@
 #include <opencv2/core.hpp>
 
 #include <map>
+#include <memory>
 #include <optional>
+#include <typeindex>
+#include <typeinfo>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,8 +35,34 @@ public:
     cv::Mat& writeImage(const std::string& name, Format format, int width, int height);
     /** The GPU side, uploading the CPU image on first use. */
     const GlTexture& texture(const std::string& name);
-    /** The CPU side (row 0 = top), reading the texture back on first use. */
+    /** The CPU side (row 0 = top), reading the texture back on first use; an object's picture (setPicture()). */
     const cv::Mat& image(const std::string& name);
+
+    /** A typed CPU object (ResourceKind::Object) for a pass to fill, value-initialised; replaces what was there. */
+    template <class T>
+    T& writeObject(const std::string& name) {
+        Entry& target = mEntries[name];
+        if (target.texture) mPool.release(std::move(*target.texture));
+        target = Entry{};
+        auto object = std::make_shared<T>();
+        T& value = *object;
+        target.object = std::move(object);
+        target.objectType = typeid(T);
+        return value;
+    }
+    /** The object `name` holds. Throws std::logic_error when it holds another type or a texture. */
+    template <class T>
+    const T& object(const std::string& name) {
+        Entry& source = entry(name);
+        if (!source.object || source.objectType != typeid(T)) throw wrongObject(name, typeid(T));
+        return *static_cast<const T*>(source.object.get());
+    }
+    /** An object's picture for --dump and the contact sheet (ObjectDesc::hasPicture), row 0 at the top. */
+    void setPicture(const std::string& name, Format format, cv::Mat picture);
+    bool holdsObject(const std::string& name) const {
+        auto found = mEntries.find(name);
+        return found != mEntries.end() && found->second.object != nullptr;
+    }
 
     bool contains(const std::string& name) const { return mEntries.count(name) != 0; }
     std::vector<std::string> names() const;
@@ -46,9 +75,12 @@ private:
         int width = 0;
         int height = 0;
         std::optional<GlTexture> texture;
-        cv::Mat image;
+        cv::Mat image;                ///< a texture's CPU side, or an object's picture
+        std::shared_ptr<void> object; ///< kind Object: the value, of objectType
+        std::type_index objectType = typeid(void);
     };
     Entry& entry(const std::string& name);
+    std::logic_error wrongObject(const std::string& name, const std::type_info& wanted) const;
 
     TexturePool& mPool;
     std::map<std::string, Entry> mEntries;
@@ -81,9 +113,28 @@ public:
     const GlTexture& inputTexture(std::string_view resource);
     const cv::Mat& inputImage(std::string_view resource);
 
+    /** This pass's live object output `field` (ObjectDesc), value-initialised for the pass to fill. An object may be
+     *  written in prepare(): later passes may then read it in theirs (the scene's imports, passes/SceneImportPass.h).
+     *  Throws std::logic_error when the field is not live or not an object. */
+    template <class T>
+    T& outputObject(std::string_view field) {
+        return mStore.writeObject<T>(liveObjectOutput(field).name);
+    }
+    /** The picture of this pass's object output `field` (for --dump), at the object's scale. */
+    void outputPicture(std::string_view field, cv::Mat picture);
+    /** A declared object read by full name. Throws std::logic_error for an undeclared read, a texture, another type, or
+     *  an object not written yet (in prepare(), only objects their writer wrote in its prepare() are there). */
+    template <class T>
+    const T& inputObject(std::string_view resource) {
+        requireObjectRead(resource);
+        return mStore.object<T>(std::string(resource));
+    }
+
 private:
     const PlannedResource& liveOutput(std::string_view field) const;
+    const PlannedResource& liveObjectOutput(std::string_view field) const;
     void requireDeclaredRead(std::string_view resource) const;
+    void requireObjectRead(std::string_view resource) const;
 
     ResourceStore& mStore;
     const PlannedPass& mPlanned;

@@ -33,6 +33,8 @@ bool isValidField(std::string_view field) { return !field.empty() && field.find(
 /** One written resource and everyone who touches it, by registration index. */
 struct ResourceInfo {
     std::string name;
+    ResourceKind kind = ResourceKind::Texture;
+    ObjectDesc object;
     TextureDesc desc;
     Need need = Need::Required;
     Presentation presentation;
@@ -49,13 +51,16 @@ struct DeclaredPass {
     std::vector<std::size_t> readResources; ///< parallel to reads: index into resources, or kNone if nobody writes it
     std::vector<std::size_t> writes;        ///< well-formed writes, declaration order: indices into resources
     std::vector<std::string> allWrites;     ///< every declared write as a full name, for CulledPass
+    std::vector<PassBuilder::Scratch> scratch;
 };
 
 /** Everything compile() derives from the declarations, before liveness. */
 class Declarations {
 public:
-    Declarations(const std::vector<const Pass*>& passList, std::vector<std::string>& problems) : mProblems(problems) {
-        declarePasses(passList);
+    Declarations(const std::vector<const Pass*>& passList, const CompileData& compileData,
+                 std::vector<std::string>& problems)
+        : mProblems(problems) {
+        declarePasses(passList, compileData);
         checkPassNames();
         collectWrites();
         checkWriters();
@@ -75,9 +80,11 @@ public:
 
     /** " (did you mean 'gbuffer.normal'?)" when a written resource looks like `wanted`, else "". */
     std::string suggest(std::string_view wanted) const;
+    /** Whether a pass asked what runs anyway (PassBuilder::runsAnyway()): the compiler then declares again. */
+    bool askedCompileData = false;
 
 private:
-    void declarePasses(const std::vector<const Pass*>& passes);
+    void declarePasses(const std::vector<const Pass*>& passes, const CompileData& compileData);
     void checkPassNames();
     void collectWrites();
     void checkWriters();
@@ -88,7 +95,7 @@ private:
     std::vector<PassBuilder> mBuilders;
 };
 
-void Declarations::declarePasses(const std::vector<const Pass*>& passList) {
+void Declarations::declarePasses(const std::vector<const Pass*>& passList, const CompileData& compileData) {
     passes.resize(passList.size());
     mBuilders.reserve(passList.size());
     for (std::size_t i = 0; i < passList.size(); ++i) {
@@ -100,9 +107,11 @@ void Declarations::declarePasses(const std::vector<const Pass*>& passList) {
             continue;
         }
         declared.name = std::string(declared.pass->name());
-        mBuilders.emplace_back(declared.name);
+        mBuilders.emplace_back(declared.name, &compileData);
         declared.pass->declare(mBuilders.back());
         declared.hasSideEffect = mBuilders.back().hasSideEffect();
+        declared.scratch = mBuilders.back().scratches();
+        askedCompileData = askedCompileData || mBuilders.back().askedCompileData();
     }
 }
 
@@ -154,7 +163,9 @@ void Declarations::collectWrites() {
                 continue;
             }
             auto [it, inserted] = resourceIndex.try_emplace(full, resources.size());
-            if (inserted) resources.push_back({full, write.desc, write.need, write.presentation, {}, {}});
+            if (inserted)
+                resources.push_back(
+                    {full, write.kind, write.object, write.desc, write.need, write.presentation, {}, {}});
             resources[it->second].writers.push_back(i);
             declared.writes.push_back(it->second);
         }
@@ -186,11 +197,25 @@ void Declarations::resolveReads() {
             const std::size_t resource = findResource(read.resource);
             declared.reads.push_back(read.resource);
             declared.readResources.push_back(resource);
-            if (resource == kNone)
+            if (resource == kNone) {
                 mProblems.push_back("pass " + quote(declared.name) + " reads " + quote(read.resource) +
                                     " but no pass writes it" + suggest(read.resource));
-            else
-                resources[resource].readers.push_back(i);
+                continue;
+            }
+            resources[resource].readers.push_back(i);
+            const ResourceInfo& written = resources[resource];
+            if (read.objectType.empty() && written.kind == ResourceKind::Object)
+                mProblems.push_back("pass " + quote(declared.name) + " reads " + quote(read.resource) +
+                                    " as a texture, but it is a " + quote(written.object.type) +
+                                    " object (PassBuilder::readObject())");
+            else if (!read.objectType.empty() && written.kind == ResourceKind::Texture)
+                mProblems.push_back("pass " + quote(declared.name) + " reads " + quote(read.resource) + " as a " +
+                                    quote(read.objectType) + " object, but it is a texture");
+            else if (!read.objectType.empty() && read.objectType != written.object.type)
+                mProblems.push_back("pass " + quote(declared.name) + " reads " + quote(read.resource) + " as a " +
+                                    quote(read.objectType) + " object, but " +
+                                    quote(passes[written.writers.front()].name) + " writes a " +
+                                    quote(written.object.type));
         }
     }
 }
@@ -388,11 +413,13 @@ std::string explainCulled(const Declarations& graph, std::size_t pass, const std
     return reason;
 }
 
-} // namespace
-
-Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::string>& requested) {
+/** One round: declare every pass with `compileData`, check, cull, order. `asked`: whether a pass asked compile
+ *  data. */
+Plan compileRound(const std::vector<const Pass*>& passes, const std::vector<std::string>& requested,
+                  const CompileData& compileData, bool& asked) {
     std::vector<std::string> problems;
-    const Declarations graph(passes, problems);
+    const Declarations graph(passes, compileData, problems);
+    asked = graph.askedCompileData;
     checkRequests(graph, requested, problems);
     checkCycles(graph, problems);
     if (!problems.empty()) throwProblems(std::move(problems));
@@ -455,6 +482,7 @@ Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::stri
         planned.registrationIndex = pass;
         planned.reads = declared.reads;
         planned.hasSideEffect = declared.hasSideEffect;
+        planned.scratch = declared.scratch;
         for (std::size_t resource : declared.writes)
             (resourceLive[resource] ? planned.liveWrites : planned.deadOptionalWrites)
                 .push_back(graph.resources[resource].name);
@@ -476,6 +504,8 @@ Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::stri
         const ResourceInfo& info = graph.resources[resource];
         PlannedResource planned;
         planned.name = info.name;
+        planned.kind = info.kind;
+        planned.object = info.object;
         planned.desc = info.desc;
         planned.presentation = info.presentation;
         planned.writer = graph.passes[info.writers.front()].name;
@@ -497,6 +527,23 @@ Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::stri
         return a.firstUse != b.firstUse ? a.firstUse < b.firstUse : a.name < b.name;
     });
     return plan;
+}
+
+} // namespace
+
+Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::string>& requested,
+             const std::vector<std::string>& decidingRequests) {
+    bool asked = false;
+    const CompileData none;
+    if (decidingRequests.empty() || decidingRequests == requested) {
+        Plan first = compileRound(passes, requested, none, asked);
+        if (!asked) return first;
+        const CompileData data{&first};
+        return compileRound(passes, requested, data, asked);
+    }
+    const Plan first = compileRound(passes, decidingRequests, none, asked);
+    const CompileData data{&first};
+    return compileRound(passes, requested, asked ? data : none, asked);
 }
 
 } // namespace inkgraph

@@ -31,7 +31,15 @@ private:
  *  Then: live = requested + reads of live passes (+ side-effect passes) + the Required writes of live passes
  *  (Optional writes are live only when read by a live pass or requested); a pass is live if it writes a live resource
  *  or has a side effect; culled passes get a reason; order is topological with ties broken by registration order
- *  (Kahn's algorithm picking the smallest index). */
-Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::string>& requested);
+ *  (Kahn's algorithm picking the smallest index). An object read (PassBuilder::readObject()) must name the type its
+ *  writer declares, and a texture read must not name an object.
+ *
+ *  Compile data (after Falcor's reflect with compile data): when a pass asks what runs anyway
+ *  (PassBuilder::runsAnyway(), liveFieldsAnyway()), every pass is declared a second time with the first round's plan,
+ *  and the second round is the plan. The first round is compiled for `decidingRequests` when given (the still graph
+ *  gives its final picture, so that a --request of a G-buffer field does not change how the still is drawn), else for
+ *  `requested`. declare() stays a pure function of its pass and the compile data: no pass is changed between rounds. */
+Plan compile(const std::vector<const Pass*>& passes, const std::vector<std::string>& requested,
+             const std::vector<std::string>& decidingRequests = {});
 
 } // namespace inkgraph

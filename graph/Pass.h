@@ -13,39 +13,79 @@
 
 namespace inkgraph {
 
+struct Plan;
+
+/** What a second round of declarations knows (after Falcor's reflect with compile data): the plan of the first
+ *  round, in which no pass knew anything. */
+struct CompileData {
+    const Plan* firstRound = nullptr;
+};
+
 /** Records one pass's declarations; handed to Pass::declare(). Never touches GL. */
 class PassBuilder {
 public:
     struct Read {
-        std::string resource; ///< full name, "gbuffer.normal"
+        std::string resource;   ///< full name, "gbuffer.normal"
+        std::string objectType; ///< readObject()'s type; empty: a texture
     };
     struct Write {
         std::string field; ///< own field, "normal"; the resource is "<pass>.<field>"
-        TextureDesc desc;
+        TextureDesc desc;  ///< a texture's; an object's picture (ObjectDesc::pictureFormat at its scale)
         Need need = Need::Required;
         Presentation presentation;
+        ResourceKind kind = ResourceKind::Texture;
+        ObjectDesc object; ///< kind Object only
+        /** A texture, or an object with a picture: something a caller can be handed as an image. */
+        bool isImage() const { return kind == ResourceKind::Texture || object.hasPicture; }
+    };
+    /** Working memory a pass holds while it executes and frees before it returns (Falcor's internal resources): not a
+     *  resource, but the memory budget sums it over the plan. */
+    struct Scratch {
+        std::size_t bytesPerPixel = 0; ///< per pixel of the frame at `scale`
+        int scale = 1;
     };
 
-    explicit PassBuilder(std::string passName) : mPassName(std::move(passName)) {}
+    /** `compileData`: what the compiler knows of the plan when it asks a second time (CompileData). */
+    explicit PassBuilder(std::string passName, const CompileData* compileData = nullptr)
+        : mPassName(std::move(passName)), mCompileData(compileData) {}
 
-    /** Reads any resource by its full name. */
+    /** Reads a texture by its full name. */
     void read(std::string_view resource);
-    /** Writes a field in this pass's own namespace. */
+    /** Reads a CPU object by its full name; `type` must be the one its writer declares (ObjectDesc::type). */
+    void readObject(std::string_view resource, std::string_view type);
+    /** Writes a texture field in this pass's own namespace. */
     void write(std::string_view field, const TextureDesc& desc, Need need = Need::Required,
                Presentation presentation = {});
+    /** Writes a CPU object field in this pass's own namespace. */
+    void writeObject(std::string_view field, const ObjectDesc& desc, Need need = Need::Required,
+                     Presentation presentation = {});
+    /** Declares working memory (summed per pass). */
+    void scratch(std::size_t bytesPerPixel, int scale = 1) { mScratch.push_back({bytesPerPixel, scale}); }
     /** Never culled. Use sparingly (nothing in the core pipeline needs it). */
     void markSideEffect() { mSideEffect = true; }
+
+    /** Whether pass `name` runs in the plan of the first round (false in the first round itself). A pass that asks
+     *  makes the compiler declare every pass a second time with the first round's answers (GraphCompiler.h), so a
+     *  pass may read what runs anyway (the G-buffer's fields, its z-buffer) without deciding that it runs. */
+    bool runsAnyway(std::string_view name);
+    /** The live fields of pass `name` in the first round ("normal", "depth"); empty in the first round. */
+    std::vector<std::string> liveFieldsAnyway(std::string_view name);
 
     const std::string& passName() const { return mPassName; }
     const std::vector<Read>& reads() const { return mReads; }
     const std::vector<Write>& writes() const { return mWrites; }
+    const std::vector<Scratch>& scratches() const { return mScratch; }
     bool hasSideEffect() const { return mSideEffect; }
+    bool askedCompileData() const { return mAskedCompileData; }
 
 private:
     std::string mPassName;
+    const CompileData* mCompileData;
     std::vector<Read> mReads;
     std::vector<Write> mWrites;
+    std::vector<Scratch> mScratch;
     bool mSideEffect = false;
+    bool mAskedCompileData = false;
 };
 
 class Pass {

@@ -13,6 +13,14 @@ std::string describeDesc(const TextureDesc& desc) {
     return text;
 }
 
+/** A texture's describeDesc(); an object's type, "line-skeleton x2". */
+std::string describeDesc(const PlannedResource& resource) {
+    if (resource.kind == ResourceKind::Texture) return describeDesc(resource.desc);
+    std::string text = resource.object.type;
+    if (resource.object.scale != 1) text += " x" + std::to_string(resource.object.scale);
+    return text;
+}
+
 std::string joinNames(const std::vector<std::string>& names, std::string_view separator, std::string_view empty) {
     if (names.empty()) return std::string(empty);
     std::string text;
@@ -95,7 +103,7 @@ std::string Plan::describe() const {
         std::vector<std::string> writes;
         for (const std::string& name : pass.liveWrites) {
             const PlannedResource* resource = findResource(name);
-            writes.push_back(resource ? name + "(" + describeDesc(resource->desc) + ")" : name);
+            writes.push_back(resource ? name + "(" + describeDesc(*resource) + ")" : name);
         }
         // Notes share one last column so a row without dead outputs doesn't push "side effect" far right.
         std::vector<std::string> notes;
@@ -117,7 +125,7 @@ std::string Plan::describe() const {
     text += "lifetimes:\n";
     rows.clear();
     for (const PlannedResource& resource : resources) {
-        rows.push_back({resource.name, describeDesc(resource.desc),
+        rows.push_back({resource.name, describeDesc(resource),
                         "passes " + std::to_string(resource.firstUse + 1) + ".." + std::to_string(resource.lastUse + 1),
                         resource.writer + " -> " + joinNames(resource.readers, ", ", "-"),
                         resource.requested ? "(requested)" : ""});
@@ -147,7 +155,7 @@ std::string Plan::graphviz() const {
     std::set<std::string> drawn;
     for (const PlannedResource& resource : resources) {
         drawn.insert(resource.name);
-        const std::string lifetime = describeDesc(resource.desc) + ", passes " + std::to_string(resource.firstUse + 1) +
+        const std::string lifetime = describeDesc(resource) + ", passes " + std::to_string(resource.firstUse + 1) +
                                      ".." + std::to_string(resource.lastUse + 1);
         const std::string label = dotString({resource.name, lifetime});
         dot += "    " + resourceNode(resource.name) + " [shape=ellipse, label=" + label +

@@ -1,6 +1,7 @@
 #pragma once
 /** @file The compiled plan: plain data, printable. */
 
+#include "graph/Pass.h"
 #include "graph/Resource.h"
 
 #include <cstddef>
@@ -16,6 +17,7 @@ struct PlannedPass {
     std::vector<std::string> liveWrites;         ///< full names of the written resources that are live
     std::vector<std::string> deadOptionalWrites; ///< optional outputs nobody needs: not bound, not computed
     bool hasSideEffect = false;                  ///< declared markSideEffect(): live even if nothing reads it
+    std::vector<PassBuilder::Scratch> scratch;   ///< working memory it declared (PassBuilder::scratch())
 };
 
 struct CulledPass {
@@ -27,7 +29,9 @@ struct CulledPass {
 
 struct PlannedResource {
     std::string name; ///< "gbuffer.normal"
-    TextureDesc desc;
+    ResourceKind kind = ResourceKind::Texture;
+    TextureDesc desc;                 ///< a texture's; an object's picture (its format, at the object's scale)
+    ObjectDesc object;                ///< kind Object only
     Presentation presentation;        ///< as its writer declared it
     std::string writer;               ///< pass name
     std::vector<std::string> readers; ///< live readers, in plan order
@@ -44,6 +48,11 @@ struct Plan {
 
     const PlannedResource* findResource(const std::string& name) const;
     const PlannedPass* findPass(const std::string& name) const;
+    /** Whether the live resource `name` is a CPU object (ResourceKind::Object). */
+    bool isObject(const std::string& name) const {
+        const PlannedResource* found = findResource(name);
+        return found && found->kind == ResourceKind::Object;
+    }
     /** Human-readable plan for --print-plan: one line per pass with its reads and live writes, then the culled
      *  passes with reasons, then resource lifetimes. */
     std::string describe() const;

@@ -31,6 +31,23 @@ struct TextureDesc {
     bool operator==(const TextureDesc&) const = default;
 };
 
+/** What a resource holds: a frame-sized texture (its pixels on the GPU, the CPU or both), or a typed CPU object (a
+ *  line skeleton with sub-pixel points, the strokes, scene-derived data) that only its writer's and readers' backend
+ *  knows the C++ type of. */
+enum class ResourceKind { Texture, Object };
+
+/** A CPU object resource as its writer declares it. The compiler checks that every reader names the same `type`;
+ *  the memory budget charges `bytesPerPixel` per pixel of the frame at `scale` while it lives; `picture` is the format
+ *  of the image --dump and the contact sheet show of it (a skeleton's mask), none for data without one. */
+struct ObjectDesc {
+    std::string type;              ///< "line-skeleton": the reader's readObject() must name the same
+    std::size_t bytesPerPixel = 0; ///< its size at most, per pixel at `scale` (0: charged elsewhere, e.g. the scene)
+    int scale = 1;                 ///< the resolution it was made at (a skeleton: the data resolution)
+    bool hasPicture = false;       ///< it has a picture, of `pictureFormat` at `scale` (gl/GraphObject.h)
+    Format pictureFormat = Format::R8;
+    bool operator==(const ObjectDesc&) const = default;
+};
+
 /** What a resource's pixels mean, for the pictures made of it outside the graph (--contact-sheet's tiles). Auto: judged
  *  from the format (8-bit RGBA a colour, 8-bit one channel ink lines, floats data). */
 enum class Appearance { Auto, Color, Lines, Mask, UnitVector, SignedScalar, Depth, Data };

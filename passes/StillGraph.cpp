@@ -142,9 +142,8 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         if (!look.draws(type.name)) continue;
         StrokeInput input;
         input.type = type.name;
-        const auto layer = graph.mLineLayers.find(type.name);
-        input.layer = layer == graph.mLineLayers.end() ? nullptr : layer->second;
-        input.resource = type.name + (input.layer ? ".skeleton" : ".lines");
+        input.skeleton = graph.mLineLayers.count(type.name) != 0;
+        input.resource = type.name + (input.skeleton ? ".skeleton" : ".lines");
         input.widthPixels = float(look.styleOf(type.name).widthPixels);
         const LineTypeStrokeRules rules = type.strokeRules ? type.strokeRules(look) : LineTypeStrokeRules{};
         input.minLength = look.strokes.minLength;
@@ -154,6 +153,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     }
     if (!strokes.inputs.empty()) {
         strokes.weightByDepth = look.strokes.weightByDepth;
+        strokes.depthResource = std::string(kGBufferPass) + "." + GBufferPass::kDepth;
         strokes.weightByStrength = look.strokes.weightByStrength;
         strokes.taperEnds = look.strokes.taperEnds;
         strokes.mergeOverlaps = look.strokes.mergeOverlaps;
@@ -223,14 +223,19 @@ Json StillGraph::describePostStage(const std::vector<PassTiming>& timings) const
     return result;
 }
 
-std::vector<SvgLineLayer> StillGraph::svgLayers(double tolerancePixels) const {
+std::string StillGraph::strokePathsResource() const {
+    return mStrokes ? std::string(kStrokesPass) + "." + kStrokePathsField : std::string();
+}
+
+std::vector<SvgLineLayer> StillGraph::svgLayers(ResourceStore& store, double tolerancePixels) const {
     if (!mStrokes) return {};
+    const DrawnStrokes& drawn = store.object<DrawnStrokes>(strokePathsResource());
     std::vector<std::array<double, 4>> colors;
-    for (const StrokeInput& input : mStrokes->settings().inputs) {
+    for (const StrokeInput& input : drawn.inputs) {
         const glm::dvec4 color = mLook->styleOf(input.type).color;
         colors.push_back({color.r, color.g, color.b, color.a});
     }
-    return mStrokes->svgLayers(tolerancePixels, colors);
+    return svgLayersOf(drawn, tolerancePixels, colors);
 }
 
 const LineLayerPass* StillGraph::lineLayer(const std::string& type) const {

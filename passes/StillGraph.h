@@ -75,9 +75,13 @@ public:
     /** --stats post_stage: what each CPU line layer that ran found and where its time went; "kernels_ms" is the post
      *  stage proper (finding and stroking, without bringing the G-buffer to the CPU), "composite_ms" follows it. */
     nlohmann::ordered_json describePostStage(const std::vector<PassTiming>& timings) const;
+    /** The stroke stage's kept strokes ("strokes.paths", a drawn-strokes object), which --svg requests; empty when no
+     *  line is drawn. */
+    std::string strokePathsResource() const;
     /** --svg: each drawn type's kept strokes as simplified polylines (to within `tolerancePixels` output pixels),
-     *  in composite order: the strokes the line layers were drawn from (StrokesPass). Empty when no line is drawn. */
-    std::vector<SvgLineLayer> svgLayers(double tolerancePixels) const;
+     *  in composite order: the strokes the line layers were drawn from, as `store` holds them after a plan that
+     *  requested strokePathsResource(). Empty when no line is drawn. */
+    std::vector<SvgLineLayer> svgLayers(ResourceStore& store, double tolerancePixels) const;
     /** The stroke stage, or null when no line type is drawn. */
     const StrokesPass* strokes() const { return mStrokes; }
     /** The CPU line layer of `type` (what it found: skeleton(), report(), kernel()), or null for GL-drawn types. */

@@ -62,6 +62,8 @@ public:
     static const std::vector<Field>& fields();
     /** The field that publishes the depth attachment: "zBuffer". */
     static constexpr const char* kZBuffer = "zBuffer";
+    /** The linear depth field, which the stroke stage weighs lines by: "depth". */
+    static constexpr const char* kDepth = "depth";
 
     /** `supersample` >= 1 scales every field; throws std::invalid_argument otherwise. */
     GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,

@@ -25,14 +25,19 @@ LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kerne
 
 void LineLayerPass::declare(PassBuilder& builder) const {
     for (const std::string& input : mKernel->inputs()) builder.read(input);
-    builder.write("skeleton", {Format::R8, mSupersample}, Need::Required,
-                  {"skeleton-" + mName + ".png", Appearance::Lines});
+    for (const LineKernel::ObjectInput& input : mKernel->objectInputs()) builder.readObject(input.resource, input.type);
+    ObjectDesc skeleton;
+    skeleton.type = kLineSkeletonType;
+    skeleton.bytesPerPixel = kLineSkeletonBytesPerPixel;
+    skeleton.scale = mSupersample;
+    skeleton.hasPicture = true;
+    skeleton.pictureFormat = Format::R8;
+    builder.writeObject("skeleton", skeleton, Need::Required, {"skeleton-" + mName + ".png", Appearance::Lines});
+    if (const std::size_t scratch = mKernel->scratchBytesPerPixel(); scratch > 0)
+        builder.scratch(scratch, mSupersample);
 }
 
-void LineLayerPass::prepare(GlPassContext& context) {
-    (void)context;
-    mKernel->prepare();
-}
+void LineLayerPass::prepare(GlPassContext& context) { mKernel->prepare(context); }
 
 void LineLayerPass::execute(GlPassContext& gl) {
     mReport = {};
@@ -45,14 +50,15 @@ void LineLayerPass::execute(GlPassContext& gl) {
     mReport.readbackMilliseconds = millisecondsSince(start);
 
     start = std::chrono::steady_clock::now();
-    mSkeleton = mKernel->find(images);
+    LineSkeleton& skeleton = gl.outputObject<LineSkeleton>("skeleton");
+    skeleton = mKernel->find(images);
     mReport.kernelMilliseconds = millisecondsSince(start);
-    mReport.skeletonPixels = std::size_t(cv::countNonZero(mSkeleton.mask));
-    mReport.points = mSkeleton.points.size();
-    if (mSkeleton.mask.size() != cv::Size(gl.widthOf("skeleton"), gl.heightOf("skeleton")))
+    mReport.skeletonPixels = std::size_t(cv::countNonZero(skeleton.mask));
+    mReport.points = skeleton.points.size();
+    if (skeleton.mask.size() != cv::Size(gl.width() * mSupersample, gl.height() * mSupersample))
         throw std::runtime_error("LineLayerPass::execute(): '" + mName + "' inputs are not " +
                                  std::to_string(mSupersample) + " times the frame size");
-    gl.outputImage("skeleton") = mSkeleton.mask;
+    gl.outputPicture("skeleton", skeleton.mask);
 }
 
 void LineLayerPass::describe(nlohmann::ordered_json& report) const {

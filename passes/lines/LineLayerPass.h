@@ -6,10 +6,12 @@
  *  | resource        | format | need     | content                                                              |
  *  |-----------------|--------|----------|----------------------------------------------------------------------|
  *  | reads           |        |          | the kernel's inputs(), at the data resolution                        |
- *  | <name>.skeleton | r8     | required | the one-pixel skeleton's mask at the data resolution (S x the frame); |
- *  |                 |        |          | its sub-pixel points and strengths are skeleton()                     |
+ *  | <name>.skeleton | object | required | "line-skeleton" (LineSkeleton): the one-pixel skeleton at the data   |
+ *  |                 |        |          | resolution (S x the frame) with its sub-pixel points and strengths;  |
+ *  |                 |        |          | its picture (--dump's skeleton-<name>.png) is the mask, r8           |
  *
- *  The inputs are S times the frame size (--supersample); the kernel runs there. */
+ *  The inputs are S times the frame size (--supersample); the kernel runs there, with the working memory it declares
+ *  (LineKernel::scratchBytesPerPixel()). */
 
 #include "gl/GlPass.h"
 #include "passes/lines/LineKernel.h"
@@ -19,6 +21,12 @@
 #include <string>
 
 namespace inkgraph {
+
+/** The object type of a line skeleton (postfx/LineSkeleton.h) in the graph. */
+inline constexpr const char* kLineSkeletonType = "line-skeleton";
+/** What a skeleton costs per data pixel at most: its mask (1) and its sub-pixel points (12 bytes each, at most one per
+ *  12 pixels). */
+inline constexpr std::size_t kLineSkeletonBytesPerPixel = 2;
 
 /** What the last execute() did, for --stats. */
 struct LineLayerReport {
@@ -46,15 +54,12 @@ public:
     const LineKernel& kernel() const { return *mKernel; }
     LineKernel& kernel() { return *mKernel; }
     const LineLayerReport& report() const { return mReport; }
-    /** The skeleton the last execute() found, at the data resolution (for tests and vector output). */
-    const LineSkeleton& skeleton() const { return mSkeleton; }
 
 private:
     std::string mName;
     std::unique_ptr<LineKernel> mKernel;
     int mSupersample;
     LineLayerReport mReport;
-    LineSkeleton mSkeleton;
 };
 
 } // namespace inkgraph

@@ -96,8 +96,6 @@ struct LineType {
     std::function<void(const LineStatsSource& source, nlohmann::ordered_json& entry)> describe;
     /** Its stroke rules (a seed strength), from the look; not set: the look's rules alone. */
     std::function<LineTypeStrokeRules(const Look& look)> strokeRules;
-    /** Working memory per data pixel beyond the stroke's, for app/MemoryBudget (0 when not set). */
-    std::function<std::size_t(const LineParameterValues& values)> workingBytesPerPixel;
 
     /** Found as a skeleton at the data resolution (so --supersample applies, and --svg traces the skeleton). */
     bool strokedOnCpu() const { return family != LineFamily::GlDrawn; }

@@ -19,6 +19,13 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 /** How far ends may be apart and still continue one another, in output pixels at a 1024-pixel height: scaled with
  *  the height, so a gap closes at every size alike, and never under 2 pixels (a diagonal step and a half). */
 constexpr double kJoinRadiusAt1024 = 2.0;
+/** What the stage holds per data pixel while it runs, for one line type at a time: the pixel strengths and the kept
+ *  widths (float each), the tracer's padded copies (2), the kept mask (1), and the stroke canvas and nearest-point
+ *  ints (9); the chains of every type stay until it ends, within the skeletons' own bytes. */
+constexpr std::size_t kScratchBytesPerPixel = 20;
+/** The kept strokes handed on for --svg: their points, within a skeleton's bytes. */
+constexpr std::size_t kDrawnStrokesBytesPerPixel = 2;
+
 /** Line weight's fixed shapes (docs/lines.md, "Line weight"). */
 constexpr double kFarWidth = 0.5;      ///< the width at the far side of the model, as a share of the near side's
 constexpr double kStrengthShare = 0.5; ///< a line of strength s is (0.5 + 0.5 s) wide
@@ -31,6 +38,8 @@ StrokesPass::StrokesPass(std::string name, StrokesPassSettings settings)
     : mName(std::move(name)), mSettings(std::move(settings)) {
     if (mSettings.inputs.empty()) throw std::invalid_argument("StrokesPass(): '" + mName + "' has no line types");
     if (mSettings.supersample < 1) throw std::invalid_argument("StrokesPass(): 'supersample' must be at least 1");
+    if (mSettings.weightByDepth && mSettings.depthResource.empty())
+        throw std::invalid_argument("StrokesPass(): '" + mName + "' weighs by depth but names no depth resource");
     for (const StrokeInput& input : mSettings.inputs) {
         if (!(std::isfinite(input.widthPixels) && input.widthPixels > 0.0f))
             throw std::invalid_argument("StrokesPass(): '" + input.type + "' width must be positive and finite");
@@ -42,10 +51,21 @@ StrokesPass::StrokesPass(std::string name, StrokesPassSettings settings)
 }
 
 void StrokesPass::declare(PassBuilder& builder) const {
-    for (const StrokeInput& input : mSettings.inputs) builder.read(input.resource);
-    if (mSettings.weightByDepth) builder.read("gbuffer.depth");
+    for (const StrokeInput& input : mSettings.inputs) {
+        if (input.skeleton)
+            builder.readObject(input.resource, kLineSkeletonType);
+        else
+            builder.read(input.resource);
+    }
+    if (mSettings.weightByDepth) builder.read(mSettings.depthResource);
     for (const StrokeInput& input : mSettings.inputs)
         builder.write(input.type, {Format::R8}, Need::Required, {"lines-" + input.type + ".png", Appearance::Lines});
+    ObjectDesc paths;
+    paths.type = kDrawnStrokesType;
+    paths.bytesPerPixel = kDrawnStrokesBytesPerPixel;
+    paths.scale = mSettings.supersample;
+    builder.writeObject(kStrokePathsField, paths, Need::Optional);
+    builder.scratch(kScratchBytesPerPixel, mSettings.supersample);
 }
 
 void StrokesPass::execute(GlPassContext& gl) {
@@ -62,8 +82,8 @@ void StrokesPass::execute(GlPassContext& gl) {
     for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
         const StrokeInput& input = mSettings.inputs[index];
         StrokeLayer layer;
-        if (input.layer) {
-            layer.skeleton = &input.layer->skeleton();
+        if (input.skeleton) {
+            layer.skeleton = &gl.inputObject<LineSkeleton>(input.resource);
         } else {
             thinnedBands[index] = skeletonFromMask(thinToSkeleton(gl.inputImage(input.resource)));
             layer.skeleton = &thinnedBands[index];
@@ -83,11 +103,11 @@ void StrokesPass::execute(GlPassContext& gl) {
     settings.joinRadiusPixels = std::max(2.0, kJoinRadiusAt1024 * gl.height() / 1024.0) * scale;
     settings.directionPixels = 2.0 * settings.joinRadiusPixels;
     settings.absorbPixels = 2.0 * settings.joinRadiusPixels;
-    mStrokes = chainStrokes(layers, settings);
+    Strokes strokes = chainStrokes(layers, settings);
     if (mSettings.mergeOverlaps) {
         std::vector<double> halfWidths;
         for (const StrokeInput& input : mSettings.inputs) halfWidths.push_back(0.5 * input.widthPixels * scale);
-        mergeOverlaps(mStrokes, layers, halfWidths);
+        mergeOverlaps(strokes, layers, halfWidths);
     }
     LineWeightSettings weight;
     if (mSettings.weightByDepth) {
@@ -100,27 +120,44 @@ void StrokesPass::execute(GlPassContext& gl) {
         weight.taperPixels = kTaperLength * heightPixels;
         weight.taperStart = kTaperStart;
     }
-    weighStrokes(mStrokes, weight, mSettings.weightByDepth ? gl.inputImage("gbuffer.depth") : cv::Mat(), dataSize);
+    weighStrokes(strokes, weight, mSettings.weightByDepth ? gl.inputImage(mSettings.depthResource) : cv::Mat(),
+                 dataSize);
     mReport.chainMilliseconds = millisecondsSince(start);
 
     start = std::chrono::steady_clock::now();
     for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
         const StrokeInput& input = mSettings.inputs[index];
-        const LineSkeleton kept = keptSkeleton(mStrokes, layers, int(index));
+        const LineSkeleton kept = keptSkeleton(strokes, layers, int(index));
         gl.outputImage(input.type) = strokeLines(kept, input.widthPixels, scale);
     }
     mReport.strokeMilliseconds = millisecondsSince(start);
 
-    mReport.chains = mStrokes.chains.size();
-    mReport.strokes = mStrokes.strokes.size();
-    mReport.kept = mStrokes.keptStrokes();
-    mReport.droppedShort = mStrokes.droppedShort();
-    mReport.droppedWeak = mStrokes.droppedWeak();
-    mReport.junctionJoins = mStrokes.junctionJoins;
-    mReport.gapJoins = mStrokes.gapJoins;
-    mReport.crossTypeJoins = mStrokes.crossTypeJoins;
-    mReport.absorbedFragments = mStrokes.absorbedFragments;
-    mReport.overlapStrokes = mStrokes.overlapsMerged;
+    mReport.chains = strokes.chains.size();
+    mReport.strokes = strokes.strokes.size();
+    mReport.kept = strokes.keptStrokes();
+    mReport.droppedShort = strokes.droppedShort();
+    mReport.droppedWeak = strokes.droppedWeak();
+    mReport.junctionJoins = strokes.junctionJoins;
+    mReport.gapJoins = strokes.gapJoins;
+    mReport.crossTypeJoins = strokes.crossTypeJoins;
+    mReport.absorbedFragments = strokes.absorbedFragments;
+    mReport.overlapStrokes = strokes.overlapsMerged;
+    mReport.keptPerInput.assign(mSettings.inputs.size(), 0);
+    mReport.lengthPixelsPerInput.assign(mSettings.inputs.size(), 0.0);
+    for (const Stroke& stroke : strokes.strokes)
+        if (stroke.kept && stroke.layer >= 0 && std::size_t(stroke.layer) < mSettings.inputs.size()) {
+            ++mReport.keptPerInput[std::size_t(stroke.layer)];
+            mReport.lengthPixelsPerInput[std::size_t(stroke.layer)] += stroke.lengthPixels;
+        }
+    for (double& length : mReport.lengthPixelsPerInput) length /= scale; // data pixels to output pixels
+
+    if (gl.isLive(kStrokePathsField)) {
+        DrawnStrokes& drawn = gl.outputObject<DrawnStrokes>(kStrokePathsField);
+        drawn.strokes = std::move(strokes);
+        drawn.inputs = mSettings.inputs;
+        drawn.supersample = scale;
+        drawn.weighted = mSettings.weightByDepth || mSettings.weightByStrength || mSettings.taperEnds;
+    }
 }
 
 void StrokesPass::describe(nlohmann::ordered_json& report) const {
@@ -135,39 +172,31 @@ void StrokesPass::describe(nlohmann::ordered_json& report) const {
     report["absorbed_fragments"] = mReport.absorbedFragments;
     report["overlap_strokes_merged"] = mReport.overlapStrokes;
     nlohmann::ordered_json types = nlohmann::ordered_json::object();
-    for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
-        std::size_t kept = 0;
-        double length = 0.0;
-        for (const Stroke& stroke : mStrokes.strokes)
-            if (stroke.kept && stroke.layer == int(index)) {
-                ++kept;
-                length += stroke.lengthPixels;
-            }
-        types[mSettings.inputs[index].type] = {{"strokes_kept", kept},
-                                               {"length_pixels", length / mSettings.supersample}};
-    }
+    for (std::size_t index = 0; index < mSettings.inputs.size(); ++index)
+        types[mSettings.inputs[index].type] = {
+            {"strokes_kept", index < mReport.keptPerInput.size() ? mReport.keptPerInput[index] : 0},
+            {"length_pixels", index < mReport.lengthPixelsPerInput.size() ? mReport.lengthPixelsPerInput[index] : 0.0}};
     report["types"] = types;
     report["thin_ms"] = mReport.thinMilliseconds;
     report["chain_ms"] = mReport.chainMilliseconds;
     report["stroke_ms"] = mReport.strokeMilliseconds;
 }
 
-std::vector<SvgLineLayer> StrokesPass::svgLayers(double tolerancePixels,
-                                                 const std::vector<std::array<double, 4>>& colors) const {
-    if (colors.size() != mSettings.inputs.size())
-        throw std::invalid_argument("StrokesPass::svgLayers(): 'colors' must hold one colour per line type");
-    const bool weighted = mSettings.weightByDepth || mSettings.weightByStrength || mSettings.taperEnds;
+std::vector<SvgLineLayer> svgLayersOf(const DrawnStrokes& drawn, double tolerancePixels,
+                                      const std::vector<std::array<double, 4>>& colors) {
+    if (colors.size() != drawn.inputs.size())
+        throw std::invalid_argument("svgLayersOf(): 'colors' must hold one colour per line type");
     std::vector<SvgLineLayer> layers;
-    for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
-        const StrokeInput& input = mSettings.inputs[index];
+    for (std::size_t index = 0; index < drawn.inputs.size(); ++index) {
+        const StrokeInput& input = drawn.inputs[index];
         SvgLineLayer layer;
         layer.type = input.type;
-        layer.supersample = mSettings.supersample;
+        layer.supersample = drawn.supersample;
         layer.widthPixels = input.widthPixels;
         layer.color = colors[index];
         std::vector<std::vector<float>> shares;
-        layer.polylines = strokePolylines(mStrokes, int(index), tolerancePixels * mSettings.supersample,
-                                          weighted ? &shares : nullptr);
+        layer.polylines = strokePolylines(drawn.strokes, int(index), tolerancePixels * drawn.supersample,
+                                          drawn.weighted ? &shares : nullptr);
         for (const std::vector<float>& vertexShares : shares) {
             std::vector<double> widths;
             for (const float share : vertexShares) widths.push_back(double(share) * input.widthPixels);

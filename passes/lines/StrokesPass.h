@@ -5,10 +5,12 @@
  *
  *  | resource         | format | need     | content                                                           |
  *  |------------------|--------|----------|-------------------------------------------------------------------|
- *  | reads            |        |          | each drawn type's "<type>.skeleton" (CPU types: its LineLayerPass) |
- *  |                  |        |          | or "<type>.lines" (GL-drawn bands, thinned to their middle here)  |
- *  |                  |        |          | "gbuffer.depth", only with line weight by depth                   |
+ *  | reads            |        |          | each drawn type's "<type>.skeleton" (a line-skeleton object, with  |
+ *  |                  |        |          | its sub-pixel points) or "<type>.lines" (GL-drawn bands, r8,       |
+ *  |                  |        |          | thinned to their middle here); the depth, only with line weight    |
+ *  |                  |        |          | by depth (StrokesPassSettings::depthResource)                      |
  *  | <name>.<type>    | r8     | required | the type's line layer, frame-sized, 255 = full line, anti-aliased |
+ *  | <name>.paths     | object | optional | "drawn-strokes" (DrawnStrokes): the kept strokes, for --svg        |
  *
  *  Where two types draw the same line (the contour along the outline's band), the type earlier in the composite's
  *  order draws it and the later one gives way there (mergeOverlaps()) when the look asks for it.
@@ -26,14 +28,16 @@
 
 namespace inkgraph {
 
-class LineLayerPass;
+/** The object type of the stroke stage's strokes in the graph. */
+inline constexpr const char* kDrawnStrokesType = "drawn-strokes";
+/** The stroke stage's output field of its strokes: "<name>.paths". */
+inline constexpr const char* kStrokePathsField = "paths";
 
 /** One drawn type, as the stroke stage takes it. */
 struct StrokeInput {
-    std::string type;     ///< "contour": the output field and --svg layer
-    std::string resource; ///< "contour.skeleton" or, for a GL band, "outline.lines"
-    const LineLayerPass* layer =
-        nullptr;               ///< the CPU layer that found the skeleton (its sub-pixel points); null: a band
+    std::string type;          ///< "contour": the output field and --svg layer
+    std::string resource;      ///< "contour.skeleton" or, for a GL band, "outline.lines"
+    bool skeleton = true;      ///< `resource` is a line-skeleton object (LineLayerPass); false: an r8 band to thin
     float widthPixels = 2.0f;  ///< output pixels
     double minLength = 0.0;    ///< share of the height a chain holding this type needs
     float seedStrength = 0.0f; ///< hysteresis (LineTypeStrokeRules)
@@ -42,7 +46,8 @@ struct StrokeInput {
 struct StrokesPassSettings {
     std::vector<StrokeInput> inputs; ///< in composite order
     int supersample = 1;             ///< the data resolution's scale (Look::supersample)
-    bool weightByDepth = false;      ///< reads "gbuffer.depth"; the width falls to half across the model's depth
+    bool weightByDepth = false;      ///< reads depthResource; the width falls to half across the model's depth
+    std::string depthResource;       ///< the linear depth at the data resolution ("gbuffer.depth"), for weightByDepth
     bool weightByStrength = false;
     bool taperEnds = false;
     bool mergeOverlaps = false;             ///< a later type is not drawn where an earlier one draws the same line
@@ -54,7 +59,23 @@ struct StrokesReport {
     std::size_t chains = 0, strokes = 0, kept = 0, droppedShort = 0, droppedWeak = 0;
     std::size_t junctionJoins = 0, gapJoins = 0, crossTypeJoins = 0, absorbedFragments = 0, overlapStrokes = 0;
     double thinMilliseconds = 0.0, chainMilliseconds = 0.0, strokeMilliseconds = 0.0;
+    std::vector<std::size_t> keptPerInput;    ///< per input, strokes kept
+    std::vector<double> lengthPixelsPerInput; ///< per input, their length in output pixels
 };
+
+/** The kept strokes as the graph hands them on ("<name>.paths"): what --svg traces, so the raster and the vector
+ *  output match. */
+struct DrawnStrokes {
+    Strokes strokes;
+    std::vector<StrokeInput> inputs; ///< in composite order: a stroke's layer indexes it
+    int supersample = 1;
+    bool weighted = false; ///< line weight by depth, strength or tapering: each vertex has its width
+};
+
+/** --svg: each input type's kept strokes as a layer of polylines (in composite order), simplified to within
+ *  `tolerancePixels` output pixels; with line weight, each vertex's width. `colors`: one per input. */
+std::vector<SvgLineLayer> svgLayersOf(const DrawnStrokes& drawn, double tolerancePixels,
+                                      const std::vector<std::array<double, 4>>& colors);
 
 class StrokesPass : public GlPass {
 public:
@@ -69,17 +90,12 @@ public:
      *  kind), lengths in output pixels and milliseconds. */
     void describe(nlohmann::ordered_json& report) const override;
 
-    /** --svg: each input type's kept strokes as a layer of polylines (in composite order), simplified to within
-     *  `tolerancePixels` output pixels; with line weight, each vertex's width. Valid after execute(). */
-    std::vector<SvgLineLayer> svgLayers(double tolerancePixels, const std::vector<std::array<double, 4>>& colors) const;
-    const Strokes& strokes() const { return mStrokes; }
     const StrokesPassSettings& settings() const { return mSettings; }
     const StrokesReport& report() const { return mReport; }
 
 private:
     std::string mName;
     StrokesPassSettings mSettings;
-    Strokes mStrokes;
     StrokesReport mReport;
 };
 

@@ -74,15 +74,17 @@ protected:
         lines = std::make_unique<LineLayerPass>("lines-under-test", kernelFor(settings, *gpuScene, frame), supersample);
         StrokesPassSettings strokeSettings;
         strokeSettings.supersample = supersample;
-        strokeSettings.inputs = {{"lines-under-test", "lines-under-test.skeleton", lines.get(), 2.0f, 0.0, 0.0f}};
+        strokeSettings.inputs = {{"lines-under-test", "lines-under-test.skeleton", true, 2.0f, 0.0, 0.0f}};
         strokes = std::make_unique<StrokesPass>("strokes", strokeSettings);
         const std::vector<const Pass*> passes = {gbuffer.get(), lines.get(), strokes.get()};
-        const Plan plan = compile(passes, {"strokes.lines-under-test", "gbuffer.depth"});
+        const Plan plan = compile(passes, {"strokes.lines-under-test", "gbuffer.depth", "lines-under-test.skeleton"});
         executor.run(plan, {gbuffer.get(), lines.get(), strokes.get()}, {frameSize, frameSize, false});
         return *lines;
     }
 
     const cv::Mat& lineImage() { return executor.store().image("strokes.lines-under-test"); }
+    /** The skeleton the line pass handed on, as the graph holds it. */
+    const LineSkeleton& skeleton() { return executor.store().object<LineSkeleton>("lines-under-test.skeleton"); }
 
     int frameSize = kSize;
     std::unique_ptr<GBufferPass> gbuffer;
@@ -126,8 +128,8 @@ TEST_F(LineLayers, SphereContourSkeletonPointsAreWithinOnePixel) {
     look(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 512, 256), {0.3, -0.2, 4.0});
     // The off-axis sphere's silhouette is the image of the tangent cone: a pixel ray x lies on it iff
     // (x.c)^2 = (|c|^2 - R^2)|x|^2 (docs/accuracy.md). Every skeleton point must have the cone within 1 px.
-    const LineLayerPass& pass = draw(withSource(Source::Contour));
-    ASSERT_GT(pass.skeleton().points.size(), 1000u);
+    draw(withSource(Source::Contour));
+    ASSERT_GT(skeleton().points.size(), 1000u);
     const glm::dmat4 view = frame.camera.viewMatrix();
     const glm::dvec3 center = glm::dvec3(view * glm::dvec4(0.0, 0.0, 0.0, 1.0));
     const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
@@ -136,7 +138,7 @@ TEST_F(LineLayers, SphereContourSkeletonPointsAreWithinOnePixel) {
         return glm::dot(ray, center) * glm::dot(ray, center) - (glm::dot(center, center) - 1.0) * glm::dot(ray, ray);
     };
     int outside = 0;
-    for (const LinePoint& point : pass.skeleton().points) {
+    for (const LinePoint& point : skeleton().points) {
         // Skeleton points put pixel centres at integers; the image point of a pixel centre is col + 0.5.
         const double x = point.position.x + 0.5, y = point.position.y + 0.5;
         const bool positive = coneResidual(x, y) > 0;
@@ -217,14 +219,14 @@ TEST_F(LineLayers, ObjectSpaceSuggestiveContoursMatchTheImageSpaceOnes) {
         look(makeTorus(float(ringRadius), float(tubeRadius), 256, 96), eye, 384);
         LineSettings settings = withSource(Source::Suggestive);
         settings.suggestive.featureSize = float(0.05 * (ringRadius + tubeRadius));
-        const std::vector<LinePoint> imageSpace = draw(settings, supersample).skeleton().points;
+        const std::vector<LinePoint> imageSpace = (draw(settings, supersample), skeleton().points);
         settings.source = Source::SuggestiveObject;
         const LineLayerPass& pass = draw(settings, supersample);
-        const std::vector<LinePoint> objectSpace = pass.skeleton().points;
+        const std::vector<LinePoint> objectSpace = skeleton().points;
         ASSERT_GT(imageSpace.size(), 50u);
         ASSERT_GT(objectSpace.size(), 100u);
         EXPECT_GT(objectReport(pass).segments, 40u);
-        EXPECT_EQ(pass.skeleton().mask.size(), cv::Size(384 * supersample, 384 * supersample));
+        EXPECT_EQ(skeleton().mask.size(), cv::Size(384 * supersample, 384 * supersample));
         EXPECT_GT(cv::countNonZero(lineImage()), 0);
         // Data pixels: the lines are the same set seen two ways, so they lie within a couple of pixels of each other.
         const double radius = 2.0 * supersample;
@@ -258,7 +260,7 @@ TEST_F(LineLayers, ObjectSpaceSuggestiveContoursAreHiddenBehindNearerSurfaces) {
     look(torus, eye, 256);
     const LineLayerPass& alone = draw(settings);
     const std::size_t segments = objectReport(alone).segments;
-    const std::vector<LinePoint> unoccluded = alone.skeleton().points;
+    const std::vector<LinePoint> unoccluded = skeleton().points;
 
     Mesh occluded = torus;
     const Mesh ball = makeUvSphere({1.9f, 0.38f, 1.14f}, 0.3f, 48, 24);
@@ -269,7 +271,7 @@ TEST_F(LineLayers, ObjectSpaceSuggestiveContoursAreHiddenBehindNearerSurfaces) {
     look(occluded, eye, 256);
     const LineLayerPass& behind = draw(settings);
     EXPECT_EQ(objectReport(behind).segments, segments);
-    const std::vector<LinePoint> visible = behind.skeleton().points;
+    const std::vector<LinePoint> visible = skeleton().points;
     // Measured: 273 points alone, 132 behind the ball. Every one kept is one of the unoccluded ones.
     EXPECT_GT(unoccluded.size(), 100u);
     EXPECT_LT(double(visible.size()), 0.7 * double(unoccluded.size()));

@@ -44,10 +44,10 @@ protected:
         look.supersample = supersample;
         StillGraphSetup setup{look, shaders, scene, computeBoundingSphere(scene), *gpuScene, frame, std::nullopt};
         const StillGraph graph = buildStillGraph(setup);
-        const Plan plan = compile(graph.view(), {graph.finalResource});
+        const Plan plan = compile(graph.view(), {graph.finalResource, "material-boundary.skeleton"});
         executor.run(plan, graph.mutableView(), {kSize, kSize, false});
         std::vector<cv::Point2d> points;
-        for (const LinePoint& point : graph.lineLayer("material-boundary")->skeleton().points)
+        for (const LinePoint& point : executor.store().object<LineSkeleton>("material-boundary.skeleton").points)
             points.push_back(
                 {(point.position.x + 0.5) / supersample - 0.5, (point.position.y + 0.5) / supersample - 0.5});
         return points;

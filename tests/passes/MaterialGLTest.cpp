@@ -344,9 +344,9 @@ TEST_F(MaterialPasses, MaskedDiscContourFollowsTheMaskWithinOnePixel) {
     look.lines = {"contour"};
     StillGraphSetup setup{look, shaders, scene, computeBoundingSphere(scene), *gpuScene, frame, std::nullopt};
     const StillGraph graph = buildStillGraph(setup);
-    const Plan plan = compile(graph.view(), {graph.finalResource});
+    const Plan plan = compile(graph.view(), {graph.finalResource, "contour.skeleton"});
     executor.run(plan, graph.mutableView(), {kSize, kSize, false});
-    const std::vector<LinePoint>& points = graph.lineLayer("contour")->skeleton().points;
+    const std::vector<LinePoint> points = executor.store().object<LineSkeleton>("contour.skeleton").points;
     executor.store().clear();
     ASSERT_GT(points.size(), 100u);
     const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);

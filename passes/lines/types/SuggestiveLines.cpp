@@ -120,6 +120,13 @@ void describeShared(const LineStatsSource& source, nlohmann::ordered_json& entry
 
 } // namespace
 
+std::size_t SuggestiveKernel::scratchBytesPerPixel() const {
+    const bool wide = mSettings.stencil == DifferenceStencil::Central5;
+    const std::size_t smoothing =
+        mSettings.smoothing > 0.0f ? kSmoothingBytesPerPixel + (wide ? kSmoothedFieldBytesPerPixel : 0) : 0;
+    return (wide ? kWideStencilBytesPerPixel : 0) + smoothing;
+}
+
 LineSkeleton SuggestiveKernel::find(const std::vector<cv::Mat>& inputs) {
     SuggestiveSettings settings = mSettings;
     // The data image may be supersampled: its own height gives its focal length in pixels.
@@ -128,7 +135,7 @@ LineSkeleton SuggestiveKernel::find(const std::vector<cv::Mat>& inputs) {
     return extractSuggestiveContours(inputs[0], inputs[1], settings);
 }
 
-void ObjectSuggestiveKernel::prepare() {
+void ObjectSuggestiveKernel::prepare(GlPassContext&) {
     mReport.curvatureDerived = false;
     mReport.curvatureMilliseconds = 0.0;
     if (mScene.meshCurvatureComputed(mCurvatureSmoothing)) return;
@@ -249,13 +256,6 @@ LineType suggestiveLineType() {
         entry["min_sin_theta"] = SuggestiveSettings{}.minSinTheta;
         entry["stencil_points"] = source.look.lineParameters.choice(kSuggestiveStencil) == "5" ? 5 : 3;
         entry["smoothing"] = source.look.lineParameters.number(kSuggestiveSmoothing) * source.sphere.radius;
-    };
-    type.workingBytesPerPixel = [](const LineParameterValues& values) {
-        const bool wide = values.choice(kSuggestiveStencil) == "5";
-        const std::size_t smoothing = values.number(kSuggestiveSmoothing) > 0.0
-                                          ? kSmoothingBytesPerPixel + (wide ? kSmoothedFieldBytesPerPixel : 0)
-                                          : 0;
-        return (wide ? kWideStencilBytesPerPixel : 0) + smoothing;
     };
     return type;
 }

@@ -37,6 +37,8 @@ public:
     SuggestiveKernel(std::string gbuffer, SuggestiveSettings settings, const FrameParams& frame)
         : mGBuffer(std::move(gbuffer)), mSettings(settings), mFrame(frame) {}
     std::vector<std::string> inputs() const override { return {mGBuffer + ".radial", mGBuffer + ".depth"}; }
+    /** The wide stencil's and the smoothing's working images. */
+    std::size_t scratchBytesPerPixel() const override;
     LineSkeleton find(const std::vector<cv::Mat>& inputs) override;
 
 private:
@@ -62,7 +64,7 @@ public:
         : mGBuffer(std::move(gbuffer)), mSettings(settings), mCurvatureSmoothing(curvatureSmoothing), mScene(scene),
           mFrame(frame) {}
     std::vector<std::string> inputs() const override { return {mGBuffer + ".depth"}; }
-    void prepare() override;
+    void prepare(GlPassContext& context) override;
     LineSkeleton find(const std::vector<cv::Mat>& inputs) override;
     void describe(nlohmann::ordered_json& entry) const override;
     const ObjectSuggestiveReport& report() const { return mReport; }
