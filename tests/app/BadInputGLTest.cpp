@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <functional>
@@ -441,29 +442,51 @@ std::vector<BadInput> badInputs() {
     };
 }
 
-TEST_F(Cli, BadInputMatrixFailsCleanlyAndTouchesNothing) {
-    for (const BadInput& input : badInputs()) {
-        SCOPED_TRACE(input.name);
-        fs::remove_all(directory);
-        fs::create_directories(directory);
-        std::ofstream(directory / "out.png") << kEarlierPicture;
-        for (const auto& [name, content] : input.files) {
-            fs::create_directories((directory / name).parent_path());
-            std::ofstream(directory / name, std::ios::binary) << content;
+/** A case as GoogleTest prints it (the listing, a failure's report): its name, not its bytes. */
+void PrintTo(const BadInput& input, std::ostream* os) { *os << input.name; }
+
+/** One case of the matrix per test, so each runs and reports alone (ctest lists each by its name). */
+class BadInputMatrix : public Cli, public ::testing::WithParamInterface<BadInput> {};
+
+/** A case's name as a test name: its words joined by '_' ("--size 0x5" -> "size_0x5"). */
+std::string caseName(const ::testing::TestParamInfo<BadInput>& info) {
+    std::string name;
+    bool gap = false;
+    for (const char c : std::string(info.param.name)) {
+        if (std::isalnum(static_cast<unsigned char>(c)) == 0) {
+            gap = !name.empty();
+            continue;
         }
-        const std::map<std::string, std::string> before = snapshot(directory);
-        std::string arguments = input.arguments;
-        if (arguments.rfind("render ", 0) != 0) arguments = "render " + arguments;
-        const CliRun result = run(arguments, input.environment);
-        EXPECT_EQ(result.exitCode, input.exitCode) << result.err;
-        for (const std::string& part : input.messageParts)
-            EXPECT_NE(result.err.find(part), std::string::npos) << "missing '" << part << "' in: " << result.err;
-        EXPECT_LT(result.err.size(), 2000u) << "a message quotes what it names, not the whole of it";
-        EXPECT_EQ(result.err.find("internal error"), std::string::npos) << result.err;
-        EXPECT_EQ(readText(directory / "out.png"), kEarlierPicture);
-        EXPECT_EQ(snapshot(directory), before) << "a failed run changed, removed or left a file";
+        if (gap) name += '_';
+        name += c;
+        gap = false;
     }
+    return name;
 }
+
+TEST_P(BadInputMatrix, FailsCleanlyAndTouchesNothing) {
+    const BadInput& input = GetParam();
+    SCOPED_TRACE(input.name);
+    std::ofstream(directory / "out.png") << kEarlierPicture;
+    for (const auto& [name, content] : input.files) {
+        fs::create_directories((directory / name).parent_path());
+        std::ofstream(directory / name, std::ios::binary) << content;
+    }
+    const std::map<std::string, std::string> before = snapshot(directory);
+    std::string arguments = input.arguments;
+    if (arguments.rfind("render ", 0) != 0) arguments = "render " + arguments;
+    const CliRun result = run(arguments, input.environment);
+    EXPECT_EQ(result.exitCode, input.exitCode) << result.err;
+    for (const std::string& part : input.messageParts)
+        EXPECT_NE(result.err.find(part), std::string::npos) << "missing '" << part << "' in: " << result.err;
+    EXPECT_LT(result.err.size(), 2000u) << "a message quotes what it names, not the whole of it";
+    EXPECT_EQ(result.err.find("internal error"), std::string::npos) << result.err;
+    EXPECT_EQ(readText(directory / "out.png"), kEarlierPicture);
+    EXPECT_EQ(snapshot(directory), before) << "a failed run changed, removed or left a file";
+}
+
+// The cases are built once, when GoogleTest registers the tests (listing them included): a few MB in all.
+INSTANTIATE_TEST_SUITE_P(Case, BadInputMatrix, ::testing::ValuesIn(badInputs()), caseName);
 
 } // namespace
 } // namespace inkgraph

@@ -4,6 +4,7 @@
 #include "CliTestSupport.h"
 
 #include "passes/lines/LineTypes.h"
+#include "passes/shade/ShadingModel.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -618,17 +619,44 @@ TEST_F(Cli, EyeInsideTheModelDrawsNoSilhouettes) {
 }
 
 TEST_F(Cli, EveryShadingModeRendersWithoutNaN) {
-    // Extreme shininess on every specular mode, written as EXR (float) so a NaN would survive to the file.
-    for (const std::string flags :
-         {"--shading flat", "--shading gouraud", "--shading phong --shininess 0", "--shading phong --shininess 1e6",
-          "--shading comic --shininess 0", "--shading comic --shininess 1e6", "--shading cel --bands 2"}) {
-        const CliRun result = run("render " + model("spot_c3d.obj") + " -o a.exr --size 48x48 " + flags);
-        ASSERT_EQ(result.exitCode, 0) << flags << ": " << result.err;
-        const cv::Mat picture = readImage(directory / "a.exr");
-        ASSERT_EQ(picture.depth(), CV_32F);
-        EXPECT_TRUE(cv::checkRange(picture)) << flags << " wrote a NaN or Inf";
-        fs::remove(directory / "a.exr");
+    // Every model of the registry (passes/shade/ShadingModel.h), with extreme shininess on the specular ones and two
+    // bands on the banded ones. The colours are 8-bit (shade.color and composite.final are RGBA8, and an EXR picture
+    // is that converted), so a NaN cannot survive there: the float buffers are checked too, every EXR the dump's
+    // manifest names (the G-buffer fields the deferred models shade from, the z-buffer).
+    int floatBuffersChecked = 0;
+    for (const ShadingModelTraits& traits : shadingModels()) {
+        std::vector<std::string> settings = {""};
+        if (traits.specular) settings = {" --shininess 0", " --shininess 1e6"};
+        if (traits.bands) settings = {" --bands 2"};
+        for (const std::string& setting : settings) {
+            const std::string flags = std::string("--shading ") + traits.name + setting;
+            SCOPED_TRACE(flags);
+            const CliRun result = run("render " + model("spot_c3d.obj") +
+                                      " -o a.exr --size 64x64 --dump d --request 'gbuffer.*' " + flags);
+            ASSERT_EQ(result.exitCode, 0) << flags << ": " << result.err;
+            const cv::Mat picture = readImage(directory / "a.exr");
+            ASSERT_EQ(picture.depth(), CV_32F);
+            EXPECT_TRUE(cv::checkRange(picture)) << flags << " wrote a NaN or Inf";
+            const auto manifest = nlohmann::json::parse(readText(directory / "d" / "manifest.json"));
+            int floatFiles = 0;
+            for (const nlohmann::json& entry : manifest.at("files")) {
+                const std::string file = entry.at("file").get<std::string>();
+                if (fs::path(file).extension() != ".exr") continue;
+                const cv::Mat buffer = readImage(directory / "d" / file);
+                ASSERT_EQ(buffer.depth(), CV_32F) << file;
+                cv::Point at;
+                EXPECT_TRUE(cv::checkRange(buffer, true, &at))
+                    << flags << ": " << file << " holds a NaN or Inf at " << at;
+                ++floatFiles;
+            }
+            // normal, view, w, ndotv, depth, radial, materialid and the z-buffer.
+            EXPECT_GE(floatFiles, 8) << manifest.dump();
+            floatBuffersChecked += floatFiles;
+            fs::remove(directory / "a.exr");
+            fs::remove_all(directory / "d");
+        }
     }
+    EXPECT_GE(floatBuffersChecked, 8 * int(shadingModels().size()));
 }
 
 /** Pixels just off the model: not covered in `coverage` (255 on the model), with a covered 4-neighbour. */

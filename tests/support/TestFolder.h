@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -16,8 +17,11 @@ class TestFolder : public ::testing::Test {
 protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        directory = std::filesystem::temp_directory_path() / ("inkgraph-" + std::string(info->test_suite_name()) + "-" +
-                                                              info->name() + "-" + std::to_string(::getpid()));
+        // A parameterized test's names hold '/' ("Case/Suite", "Test/case"): one folder, not a tree of them.
+        std::string name =
+            "inkgraph-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" + std::to_string(::getpid());
+        std::replace(name.begin(), name.end(), '/', '.');
+        directory = std::filesystem::temp_directory_path() / name;
         std::filesystem::remove_all(directory);
         std::filesystem::create_directories(directory);
     }

@@ -2,7 +2,7 @@
 // --min-stroke-length, --line-weight, --overlapping-lines and --suggestive-seed, checked against --stats, the dumped
 // line layers and the --svg. Needs a GL context (llvmpipe in CI); each case renders at 256x256 or less.
 #include "app/ImageFiles.h"
-#include "CliTestSupport.h"
+#include "tests/app/CliTestSupport.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
