@@ -40,6 +40,9 @@ enum class Appearance { Auto, Color, Lines, Mask, UnitVector, SignedScalar, Dept
 struct Presentation {
     std::string fileName; ///< --dump's file name ("normal.exr"); empty: "<pass>-<field>.exr" (floats) or ".png"
     Appearance appearance = Appearance::Auto;
+    /** What the pixels hold, in a phrase of plain text, for the --dump table of README.md (app/GeneratedDocs.h);
+     *  empty: the table says the format alone. */
+    std::string meaning{};
 };
 
 /** Whether a written field must be produced, or only when something consumes it. */

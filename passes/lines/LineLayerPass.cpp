@@ -26,7 +26,8 @@ LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kerne
 void LineLayerPass::declare(PassBuilder& builder) const {
     for (const std::string& input : mKernel->inputs()) builder.read(input);
     builder.write("skeleton", {Format::R8, mSupersample}, Need::Required,
-                  {"skeleton-" + mName + ".png", Appearance::Lines});
+                  {"skeleton-" + mName + ".png", Appearance::Lines,
+                   "the one-pixel skeleton " + mName + " found, before the stroke stage, at the --supersample size"});
 }
 
 void LineLayerPass::prepare(GlPassContext& context) {

@@ -45,7 +45,10 @@ void StrokesPass::declare(PassBuilder& builder) const {
     for (const StrokeInput& input : mSettings.inputs) builder.read(input.resource);
     if (mSettings.weightByDepth) builder.read("gbuffer.depth");
     for (const StrokeInput& input : mSettings.inputs)
-        builder.write(input.type, {Format::R8}, Need::Required, {"lines-" + input.type + ".png", Appearance::Lines});
+        builder.write(
+            input.type, {Format::R8}, Need::Required,
+            {"lines-" + input.type + ".png", Appearance::Lines,
+             "the " + input.type + " layer as drawn from its kept strokes: coverage, 255 on a full line pixel"});
 }
 
 void StrokesPass::execute(GlPassContext& gl) {
