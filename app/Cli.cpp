@@ -4,6 +4,7 @@
 
 #include "app/BatchRun.h"
 #include "app/CommandLineDocs.h"
+#include "app/GeneratedDocs.h"
 #include "app/ImageFiles.h"
 #include "app/Render.h"
 #include "app/StyleFile.h"
@@ -32,9 +33,30 @@ const CommandInfo& commandNamed(const std::string& name) {
     throw std::logic_error("commandNamed(): no command '" + name + "'");
 }
 
+/** "line-types, dump-files". */
+std::string docSectionNames() {
+    std::string names;
+    for (const std::string& section : generatedDocSections()) names += (names.empty() ? "" : ", ") + section;
+    return names;
+}
+
 /** `inkgraph help [TOPIC]`. */
 int runHelpCommand(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
     const std::string topic = arguments.size() > 1 ? arguments[1] : "";
+    // Hidden: README.md's generated sections (app/GeneratedDocs.h), for scripts/update-docs.sh.
+    if (topic == "--docs") {
+        if (arguments.size() != 3) {
+            err << "inkgraph: help --docs takes one section (" << docSectionNames() << ")\n";
+            return kExitUsage;
+        }
+        try {
+            out << generatedDocSection(arguments[2]);
+        } catch (const std::invalid_argument&) {
+            err << "inkgraph: no generated section '" << arguments[2] << "' (" << docSectionNames() << ")\n";
+            return kExitUsage;
+        }
+        return kExitOk;
+    }
     if (arguments.size() > 2) {
         err << "inkgraph: help takes one topic, got '" << arguments[1] << "' and '" << arguments[2] << "'\n";
         return kExitUsage;

@@ -14,6 +14,11 @@ namespace inkgraph {
 /** The file name --dump gives a planned resource: the one its writer declared ("normal.exr", "shading.png",
  *  "lines-<type>.png"), else "<pass>-<field>.exr" for float formats and ".png" for 8-bit ones. */
 std::string dumpFileName(const PlannedResource& resource);
+/** What --dump's manifest.json holds, for README's --dump table (app/GeneratedDocs.h); stageDump() writes it. */
+inline constexpr const char* kDumpManifestMeaning =
+    "the inkgraph version, model, size, conventions, camera (source, eye, target, up, fov, near, far and whether "
+    "--clip set them, the reversed-Z depth convention, focal length in pixels, view and OpenGL projection matrices "
+    "as rows), the light, the look, each file's resource, writing pass and format, and milliseconds per pass";
 
 /** The camera for --stats and manifest.json: its source, world eye and target, matrices and depth convention. */
 nlohmann::ordered_json describeCamera(const Camera& camera);

@@ -43,7 +43,7 @@ struct ObjectDesc {
     std::string type;              ///< "line-skeleton": the reader's readObject() must name the same
     std::size_t bytesPerPixel = 0; ///< its size at most, per pixel at `scale` (0: charged elsewhere, e.g. the scene)
     int scale = 1;                 ///< the resolution it was made at (a skeleton: the data resolution)
-    bool hasPicture = false;       ///< it has a picture, of `pictureFormat` at `scale` (gl/GraphObject.h)
+    bool hasPicture = false;       ///< it has a picture, of `pictureFormat` at `scale` (GlPassContext::outputPicture())
     Format pictureFormat = Format::R8;
     bool operator==(const ObjectDesc&) const = default;
 };
@@ -57,6 +57,9 @@ enum class Appearance { Auto, Color, Lines, Mask, UnitVector, SignedScalar, Dept
 struct Presentation {
     std::string fileName; ///< --dump's file name ("normal.exr"); empty: "<pass>-<field>.exr" (floats) or ".png"
     Appearance appearance = Appearance::Auto;
+    /** What the pixels hold, in a phrase of plain text, for the --dump table of README.md (app/GeneratedDocs.h);
+     *  empty: the table says the format alone. */
+    std::string meaning{};
 };
 
 /** Whether a written field must be produced, or only when something consumes it. */

@@ -7,7 +7,8 @@
 # Races at process exit (a thread still starting or being torn down while LeakSanitizer stops them all,
 # docs/robustness.md "How a process ends") have two guards: the test exit_threads_are_quiet fails on such a thread
 # whether or not it crashes the check, and every test runs three times (--repeat until-fail:3), so a test that fails
-# once in three runs fails here rather than in a later CI run by chance. About 5 minutes on 2 cores.
+# once in three runs fails here rather than in a later CI run by chance. The sanitized build and its three runs are
+# most of the 29.5 minutes a clean clone's .ci/run took on 2 cores at issue 32 (docs/robustness.md, "Run time").
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build="$root/build-asan"

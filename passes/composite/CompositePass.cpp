@@ -12,7 +12,7 @@ CompositePass::CompositePass(std::string name, const FrameParams& frame, std::st
 void CompositePass::declare(PassBuilder& builder) const {
     if (!mShading.empty()) builder.read(mShading);
     for (const LineInput& line : mLines) builder.read(line.resource);
-    builder.write("final", {Format::RGBA8}, Need::Required, {"final.png", Appearance::Color});
+    builder.write("final", {Format::RGBA8}, Need::Required, {"final.png", Appearance::Color, "the finished picture"});
 }
 
 void CompositePass::execute(GlPassContext& gl) {

@@ -45,7 +45,10 @@ MeshEdgesPass::MeshEdgesPass(std::string name, ShaderLibrary& shaders, GpuScene&
 
 void MeshEdgesPass::declare(PassBuilder& builder) const {
     for (const char* field : kFields)
-        builder.write(field, {Format::R8, mSettings.supersample}, Need::Optional, {"", Appearance::Lines});
+        builder.write(
+            field, {Format::R8, mSettings.supersample}, Need::Optional,
+            {"", Appearance::Lines,
+             std::string("the one-pixel skeleton of the mesh's ") + field + " edges, at the --supersample size"});
 }
 
 void MeshEdgesPass::describe(nlohmann::ordered_json& report) const {

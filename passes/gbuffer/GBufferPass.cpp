@@ -28,15 +28,24 @@ glm::vec2 focalPixels(const glm::mat4& clipFromView, int width, int height) {
 
 const std::vector<GBufferPass::Field>& GBufferPass::fields() {
     static const std::vector<Field> kFields = {
-        {"normal", Format::RGBA32F, "NORMAL", "normal.exr", Appearance::UnitVector},
-        {"view", Format::RGBA32F, "VIEW", "view.exr", Appearance::UnitVector},
-        {"wVec", Format::RGBA32F, "WVEC", "w.exr", Appearance::UnitVector},
-        {"nDotV", Format::R32F, "NDOTV", "ndotv.exr", Appearance::SignedScalar},
-        {"depth", Format::R32F, "DEPTH", "depth.exr", Appearance::Depth},
-        {"coverage", Format::R8, "COVERAGE", "coverage.png", Appearance::Mask},
-        {"baseColor", Format::RGBA8, "BASECOLOR", "basecolor.png", Appearance::Color},
-        {"radial", Format::RGBA32F, "RADIAL", "radial.exr", Appearance::Data},
-        {"materialId", Format::R32F, "MATERIAL_ID", "materialid.exr", Appearance::Data},
+        {"normal", Format::RGBA32F, "NORMAL", "normal.exr", Appearance::UnitVector,
+         "unit view-space normal, turned toward the eye; alpha 1 where covered, 0 elsewhere"},
+        {"view", Format::RGBA32F, "VIEW", "view.exr", Appearance::UnitVector,
+         "unit view vector (surface to eye), view space; alpha 1 where covered"},
+        {"wVec", Format::RGBA32F, "WVEC", "w.exr", Appearance::UnitVector,
+         "w = v − (n·v)n, unnormalised so |w| = sin θ; alpha 1 where covered"},
+        {"nDotV", Format::R32F, "NDOTV", "ndotv.exr", Appearance::SignedScalar, "n·v, in [-1, 1]"},
+        {"depth", Format::R32F, "DEPTH", "depth.exr", Appearance::Depth,
+         "linear view depth (distance along the view axis), 0 off the model"},
+        {"coverage", Format::R8, "COVERAGE", "coverage.png", Appearance::Mask,
+         "255 where the model covers the pixel centre"},
+        {"baseColor", Format::RGBA8, "BASECOLOR", "basecolor.png", Appearance::Color,
+         "the material's textured base colour, sRGB"},
+        {"radial", Format::RGBA32F, "RADIAL", "radial.exr", Appearance::Data,
+         "what suggestive contours read: n·(c − p) with the unnormalised view vector, the image-space direction of w "
+         "(J w, pixels, x right, y down), |w|²"},
+        {"materialId", Format::R32F, "MATERIAL_ID", "materialid.exr", Appearance::Data,
+         "the material's id + 1 as an exact float (equal for meshes of one material), 0 off the model"},
     };
     return kFields;
 }
@@ -61,8 +70,12 @@ Format GBufferPass::formatOf(const Field& field) const {
 
 void GBufferPass::declare(PassBuilder& builder) const {
     for (const Field& field : fields())
-        builder.write(field.name, {formatOf(field), mSupersample}, Need::Optional, {field.fileName, field.appearance});
-    builder.write(kZBuffer, {Format::Depth32F, mSupersample}, Need::Optional, {"zbuffer.exr", Appearance::Data});
+        builder.write(field.name, {formatOf(field), mSupersample}, Need::Optional,
+                      {field.fileName, field.appearance, field.meaning});
+    builder.write(kZBuffer, {Format::Depth32F, mSupersample}, Need::Optional,
+                  {"zbuffer.exr", Appearance::Data,
+                   "the depth test's own buffer: window depth of the nearest face, reversed-Z (1 at near, 0 at far "
+                   "and off the model)"});
 }
 
 bool GBufferPass::zBufferHoldsEveryFace() const {

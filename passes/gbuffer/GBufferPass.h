@@ -57,6 +57,7 @@ public:
         const char* define;    ///< "NORMAL": OUT_NORMAL / LOC_NORMAL in gbuffer.frag
         const char* fileName;  ///< --dump's file name, "normal.exr"
         Appearance appearance; ///< how --contact-sheet shows it
+        const char* meaning;   ///< what it holds, for README's --dump table (Presentation::meaning)
     };
     /** Every field the pass can write, in attachment order (the shader's outputs; the z-buffer is not one). */
     static const std::vector<Field>& fields();

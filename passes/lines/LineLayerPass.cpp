@@ -32,7 +32,10 @@ void LineLayerPass::declare(PassBuilder& builder) const {
     skeleton.scale = mSupersample;
     skeleton.hasPicture = true;
     skeleton.pictureFormat = Format::R8;
-    builder.writeObject("skeleton", skeleton, Need::Required, {"skeleton-" + mName + ".png", Appearance::Lines});
+    builder.writeObject(
+        "skeleton", skeleton, Need::Required,
+        {"skeleton-" + mName + ".png", Appearance::Lines,
+         "the one-pixel skeleton " + mName + " found, before the stroke stage, at the --supersample size"});
     if (const std::size_t scratch = mKernel->scratchBytesPerPixel(); scratch > 0)
         builder.scratch(scratch, mSupersample);
 }

@@ -1,8 +1,8 @@
 #pragma once
 /** @file A line type: one entry of the registry (passes/lines/LineTypes.h) that says everything about it: its name,
- *  family and --help text, its parameters, the passes that draw "<name>.lines", what it reports to --stats, and how
+ *  family and --help text, its parameters, the passes that find its lines, what it reports to --stats, and how
  *  --svg traces it. The command line, style files, the still graph, the composite, the stats and the SVG writer all
- *  iterate the registry, so a new line type is one file in passes/lines/types/ and its registration in
+ *  iterate the registry, so a new line type is one function in passes/lines/types/ and its registration in
  *  LineTypes.cpp (docs/contributing.md). */
 
 #include "gl/GlPass.h"
@@ -89,8 +89,9 @@ struct LineType {
     LineFamily family = LineFamily::ImageSpace;
     std::string help;                             ///< --help, after "<name>: "; '\n' breaks a help line
     std::vector<const LineParameter*> parameters; ///< settings besides width and colour, each --<name> and a style name
-    /** Registers the passes that write "<name>.lines" (r8, frame-sized, 255 = line). Called for every registered type:
-     *  the compiler culls the ones not drawn, and --stats says so. */
+    /** Registers the passes that find its lines: a GL-drawn type's pass writes "<name>.lines" (r8, frame-sized, 255 =
+     *  line), a CPU type's layer (addLayer()) "<name>.skeleton"; the stroke stage draws either as "strokes.<name>".
+     *  Called for every registered type: the compiler culls the ones not drawn, and --stats says so. */
     std::function<void(const std::string& type, LineGraphBuilder& builder)> build;
     /** Adds its settings and what it did to its entry of --stats look.lines (after type, width and colour). */
     std::function<void(const LineStatsSource& source, nlohmann::ordered_json& entry)> describe;

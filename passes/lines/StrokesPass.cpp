@@ -59,7 +59,10 @@ void StrokesPass::declare(PassBuilder& builder) const {
     }
     if (mSettings.weightByDepth) builder.read(mSettings.depthResource);
     for (const StrokeInput& input : mSettings.inputs)
-        builder.write(input.type, {Format::R8}, Need::Required, {"lines-" + input.type + ".png", Appearance::Lines});
+        builder.write(
+            input.type, {Format::R8}, Need::Required,
+            {"lines-" + input.type + ".png", Appearance::Lines,
+             "the " + input.type + " layer as drawn from its kept strokes: coverage, 255 on a full line pixel"});
     ObjectDesc paths;
     paths.type = kDrawnStrokesType;
     paths.bytesPerPixel = kDrawnStrokesBytesPerPixel;

@@ -95,7 +95,9 @@ OutlinePass::OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& sce
 }
 
 void OutlinePass::declare(PassBuilder& builder) const {
-    builder.write("lines", {Format::R8}, Need::Required, {"band-" + mName + ".png", Appearance::Lines});
+    builder.write("lines", {Format::R8}, Need::Required,
+                  {"band-" + mName + ".png", Appearance::Lines,
+                   "the band GL drew for " + mName + ", at the output size, before the stroke stage thins it"});
 }
 
 void OutlinePass::describe(nlohmann::ordered_json& report) const { report["skipped_eye_inside"] = skippedEyeInside(); }

@@ -139,7 +139,8 @@ ShadePass::~ShadePass() = default;
 void ShadePass::declare(PassBuilder& builder) const {
     if (mMode == ShadeMode::Deferred)
         for (const std::string& field : deferredFields()) builder.read(mGBufferName + "." + field);
-    builder.write("color", {Format::RGBA8}, Need::Required, {"shading.png", Appearance::Color});
+    builder.write("color", {Format::RGBA8}, Need::Required,
+                  {"shading.png", Appearance::Color, "the shading layer, sRGB, alpha = coverage"});
 }
 
 std::optional<glm::vec4> ShadePass::sceneBaseColor() const {

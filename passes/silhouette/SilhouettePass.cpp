@@ -32,7 +32,9 @@ SilhouettePass::SilhouettePass(std::string name, ShaderLibrary& shaders, GpuScen
 
 void SilhouettePass::declare(PassBuilder& builder) const {
     if (!mModelDepthResource.empty()) builder.read(mModelDepthResource);
-    builder.write("lines", {Format::R8}, Need::Required, {"band-" + mName + ".png", Appearance::Lines});
+    builder.write("lines", {Format::R8}, Need::Required,
+                  {"band-" + mName + ".png", Appearance::Lines,
+                   "the band GL drew for " + mName + ", at the output size, before the stroke stage thins it"});
 }
 
 void SilhouettePass::describe(nlohmann::ordered_json& report) const {

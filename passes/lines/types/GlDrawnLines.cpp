@@ -1,4 +1,4 @@
-// The two line types GL draws at the output size: Lander's back-face outline and the inflated hull.
+// The two line types GL draws at the output size: the outline (after Lander's back faces) and the inflated hull.
 #include "passes/lines/LineType.h"
 #include "passes/outline/OutlinePass.h"
 #include "passes/silhouette/SilhouettePass.h"
@@ -38,7 +38,8 @@ LineType outlineLineType() {
     LineType type;
     type.name = "outline";
     type.family = LineFamily::GlDrawn;
-    type.help = "Lander's back faces drawn as thick wireframe behind the fill (Lander 2000)";
+    type.help = "the mesh's contour and border edges as wide bands on their outer side, where\n"
+                "the model does not hide them (after Lander 2000's back faces)";
     type.build = [](const std::string& name, LineGraphBuilder& builder) {
         const LineGraphSetup& setup = builder.setup();
         builder.add(std::make_unique<OutlinePass>(name, setup.shaders, setup.scene, setup.frame,
