@@ -87,13 +87,13 @@ ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, 
             if (meshShadeMaps[i]) mMeshMap[i] = slotOf(std::move(*meshShadeMaps[i]));
         for (std::size_t slot : mMeshMap) mMaps[slot].used = true;
     }
-    if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
+    if (usesConstantView()) {
         const glm::dvec3& direction = mSettings.view.constantView;
         const double length = glm::length(direction);
         if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6)
             throw std::invalid_argument("ShadePass(): the constant view vector must be a unit vector");
     }
-    if (mSettings.model == ShadingModel::Comic) {
+    if (traits().specularRowBands) {
         for (MapSlot& slot : mMaps) {
             slot.rowBands = specularRowBands(slot.map, mSettings.shininess);
             // Only maps some mesh draws with decide the program: an unused default must not change the picture.
@@ -158,9 +158,8 @@ std::optional<glm::vec4> ShadePass::sceneBaseColor() const {
 std::vector<std::string> ShadePass::deferredFields() const {
     std::vector<std::string> fields = {"normal"};
     if (!sceneBaseColor()) fields.push_back("baseColor");
-    // Comic's constant view vector is a uniform; phong and comic's exact one is the pixel's.
-    const bool constantView = mSettings.model == ShadingModel::Comic && mSettings.view.constant;
-    if (traitsOf(mSettings.model).specular && !constantView) fields.push_back("view");
+    // A constant view vector (comic's V_c) is a uniform; an exact one (phong, comic) is the pixel's.
+    if (traits().specular && !usesConstantView()) fields.push_back("view");
     return fields;
 }
 
@@ -203,13 +202,11 @@ ShadeMode ShadePass::chooseMode(const GBufferPass& gbuffer, const std::vector<st
     return mMode;
 }
 
-bool ShadePass::drawsOrientationSets() const {
-    return mSettings.model == ShadingModel::Comic && mScene.cpuOrientation() != nullptr;
-}
+bool ShadePass::drawsOrientationSets() const { return traits().orientationSets && mScene.cpuOrientation() != nullptr; }
 
 bool ShadePass::usesSpecularRowBands() const {
     // Maps of one band (no specular rows) have nothing to compare: the generic path reads their single row.
-    return mSettings.model == ShadingModel::Comic && !drawsOrientationSets() && mSpecularBorderCount > 0 &&
+    return traits().specularRowBands && !drawsOrientationSets() && mSpecularBorderCount > 0 &&
            mSpecularBorderCount <= std::size_t(kMaxSpecularRowBands);
 }
 
@@ -230,7 +227,7 @@ std::vector<std::string> ShadePass::defines() const {
     if (drawsOrientationSets()) {
         result.push_back("SHADE_COORDS 1");
         result.push_back("SHADE_COORD_LOCATION " + std::to_string(SceneOrientation::kShadeCoordLocation));
-    } else if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
+    } else if (usesConstantView()) {
         result.push_back("VIEW_CONSTANT 1");
     }
     return result;
@@ -280,7 +277,7 @@ void ShadePass::prepare(GlPassContext&) {
 }
 
 bool ShadePass::drawsMToonOutlines() const {
-    if (mSettings.model != ShadingModel::MToon) return false;
+    if (!traits().materialOutlines) return false;
     for (std::size_t index = 0; index < mScene.meshCount(); ++index)
         if (mScene.materials().outlineOf(index).has_value()) return true;
     return false;
@@ -315,7 +312,7 @@ void ShadePass::setShadingUniforms(const GlProgram& program) const {
     glUniform1f(program.uniform("ambient"), mSettings.ambient);
     glUniform1f(program.uniform("shininess"), float(mSettings.shininess));
     glUniform1f(program.uniform("specularStrength"), mSettings.specularStrength);
-    if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
+    if (usesConstantView()) {
         // V_c is eye -> centre in world space; the shader wants surface -> eye in view space (rotation only).
         const glm::dvec3 towardEye = glm::dmat3(mFrame.camera.viewMatrix()) * -mSettings.view.constantView;
         glUniform3fv(program.uniform("constantTowardEye"), 1, glm::value_ptr(glm::vec3(glm::normalize(towardEye))));

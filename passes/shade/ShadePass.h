@@ -130,7 +130,12 @@ private:
     /** The entry of mMaps holding texels equal to `map`'s, adding one when none does. */
     std::size_t slotOf(ShadeMap map);
 
-    /** Draws the front sets of a CPU face-orientation method (comic only) instead of the whole meshes. */
+    /** The model's row of the trait table: every question about what the pass does for the model asks it. */
+    const ShadingModelTraits& traits() const { return traitsOf(mSettings.model); }
+    /** The model takes a constant view vector (traits().constantView) and the settings give one. */
+    bool usesConstantView() const { return traits().constantView && mSettings.view.constant; }
+    /** Draws the front sets of a CPU face-orientation method (traits().orientationSets: comic) instead of the whole
+     *  meshes. */
     bool drawsOrientationSets() const;
     /** mtoon with a mesh whose MToon material asks for an outline (worldCoordinates or screenCoordinates). */
     bool drawsMToonOutlines() const;
@@ -148,7 +153,8 @@ private:
     void bindShadeMap(const GlProgram& program, const MapSlot& slot) const;
     void executeForward(GlPassContext& gl);
     void executeDeferred(GlPassContext& gl);
-    /** Comic on the GPU with maps of at most kMaxSpecularRowBands + 1 row bands: rows found by comparisons. */
+    /** A model with traits().specularRowBands (comic) on the GPU with maps of at most kMaxSpecularRowBands + 1 row
+     *  bands: rows found by comparisons. */
     bool usesSpecularRowBands() const;
 
     static constexpr int kMaxSpecularRowBands = 8; ///< borders; a map with more falls back to exp(n log(r.v))

@@ -188,5 +188,23 @@ TEST_F(ShadeModeChoice, ForwardWhenTheShadingFieldsWouldMakeTheGBufferDrawTwice)
     EXPECT_EQ(builder.reads()[0].resource, "gbuffer.normal");
 }
 
+TEST(ShadingModelTraits, TheShadePassWorkOfAModelHasTheTraitsItBuildsOn) {
+    // ShadePass asks the traits, never the model, for the work beyond a shader branch; each of those traits only
+    // makes sense with the traits that feed it.
+    for (const ShadingModelTraits& model : shadingModels()) {
+        // The constant view vector and the CPU face-orientation sets come from --view-vector and --face-orientation.
+        if (model.constantView || model.orientationSets) EXPECT_TRUE(model.faceOrientation) << model.name;
+        // Row bands are rows of a 2-D map's specular axis.
+        if (model.specularRowBands)
+            EXPECT_TRUE(model.specular && model.shadeMap && !model.oneDimensionalMap) << model.name;
+        // The materials' outlines go into forward shading: a model that may shade deferred would lose them.
+        if (model.materialOutlines) EXPECT_FALSE(model.perPixel) << model.name;
+    }
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::constantView), "comic");
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::orientationSets), "comic");
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::specularRowBands), "comic");
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::materialOutlines), "mtoon");
+}
+
 } // namespace
 } // namespace inkgraph
