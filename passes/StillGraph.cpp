@@ -6,6 +6,7 @@
 #include "passes/lines/LineLayerPass.h"
 #include "passes/lines/LineTypes.h"
 #include "passes/lines/StrokesPass.h"
+#include "passes/mtoon/MToonOutlinePass.h"
 #include "passes/orientation/SceneOrientation.h"
 #include "passes/shade/ShadePass.h"
 #include "passes/silhouette/SilhouettePass.h"
@@ -21,14 +22,26 @@ cv::Vec4f displayColor(const glm::dvec4& color) {
     return cv::Vec4f(float(color.r), float(color.g), float(color.b), float(color.a));
 }
 
-/** The shading model's pass, when it has one (else null); fills the graph's shading facts. */
-ShadePass* addShading(const StillGraphSetup& setup, StillGraph& graph) {
+/** MToon's outlines as a layer of their own (passes/mtoon/MToonOutlinePass.h), registered whenever the model draws
+ *  the materials' outlines. Returns the layer the shade pass is to read: the pass's name when some material asks
+ *  for an outline, else empty, and the unread pass is culled. */
+std::string addMToonOutline(const StillGraphSetup& setup, StillGraph& graph) {
+    if (!traitsOf(setup.look.shading).materialOutlines) return {};
+    graph.passes.push_back(
+        std::make_unique<MToonOutlinePass>(kMToonOutlinePass, setup.shaders, setup.gpuScene, setup.frame));
+    return MToonOutlinePass::drawsAnyOutline(setup.gpuScene.scene()) ? kMToonOutlinePass : "";
+}
+
+/** The shading model's pass, when it has one (else null), laying in the layer of material outlines `outlines` names
+ *  (addMToonOutline()); fills the graph's shading facts. */
+ShadePass* addShading(const StillGraphSetup& setup, StillGraph& graph, const std::string& outlines) {
     const Look& look = setup.look;
     const ShadingModelTraits& traits = traitsOf(look.shading);
     if (traits.define == nullptr) return nullptr; // none: paper and lines only
     ShadeSettings settings;
     settings.model = look.shading;
     settings.shininess = look.shininess;
+    settings.materialOutlines = outlines;
     if (traits.faceOrientation) {
         settings.view =
             chooseViewVector(look.viewVector, setup.frame.camera.eye, setup.sphere.center, setup.sphere.radius);
@@ -125,7 +138,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
                                                      look.supersample, look.gbufferPrecision);
     const GBufferPass& gbuffer = *gbufferPass;
     graph.passes.push_back(std::move(gbufferPass));
-    ShadePass* shade = addShading(setup, graph);
+    ShadePass* shade = addShading(setup, graph, addMToonOutline(setup, graph));
 
     // Every line type registers its passes, drawn or not: one the composite does not read is culled, and --stats
     // says so.

@@ -170,12 +170,16 @@ void SceneMaterials::describe(nlohmann::ordered_json& out) const {
                      {"byte_limit", mTextureByteLimit == std::size_t(-1) ? Json(nullptr) : Json(mTextureByteLimit)}};
 }
 
-std::optional<MToonMaterial> SceneMaterials::outlineOf(std::size_t meshIndex) const {
-    const std::optional<MToonMaterial>& mtoon = mScene.meshes.at(meshIndex).material.mtoon;
+std::optional<MToonMaterial> outlineOf(const Material& material) {
+    const std::optional<MToonMaterial>& mtoon = material.mtoon;
     if (!mtoon || mtoon->outlineWidthMode == MToonMaterial::OutlineWidthMode::None ||
         !(mtoon->outlineWidthFactor > 0.0f))
         return std::nullopt;
     return mtoon;
+}
+
+std::optional<MToonMaterial> SceneMaterials::outlineOf(std::size_t meshIndex) const {
+    return inkgraph::outlineOf(mScene.meshes.at(meshIndex).material);
 }
 
 GLuint SceneMaterials::sampler(const TextureSampler& settings) {

@@ -37,6 +37,10 @@ inline constexpr float kBlendSolidAlpha = 0.9f;
  *  G-buffer's other fields, the line masks), for which an opaque material's texture is never decoded. */
 enum class MaterialUse { Colour, Coverage };
 
+/** `material`'s MToon material when it asks for an outline (a width mode other than none and a width above 0), else
+ *  empty. No GL: the still graph asks it of the scene before anything is drawn. */
+std::optional<MToonMaterial> outlineOf(const Material& material);
+
 class SceneMaterials {
 public:
     /** Keeps a reference to `scene`; nothing is decoded until a texture is bound. `modelPath` names the model in

@@ -87,13 +87,17 @@ ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, 
             if (meshShadeMaps[i]) mMeshMap[i] = slotOf(std::move(*meshShadeMaps[i]));
         for (std::size_t slot : mMeshMap) mMaps[slot].used = true;
     }
-    if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
+    if (!mSettings.materialOutlines.empty() && !traits().materialOutlines)
+        throw std::invalid_argument("ShadePass(): the '" + model +
+                                    "' model draws no material outlines, got the layer '" + mSettings.materialOutlines +
+                                    "'");
+    if (usesConstantView()) {
         const glm::dvec3& direction = mSettings.view.constantView;
         const double length = glm::length(direction);
         if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6)
             throw std::invalid_argument("ShadePass(): the constant view vector must be a unit vector");
     }
-    if (mSettings.model == ShadingModel::Comic) {
+    if (traits().specularRowBands) {
         for (MapSlot& slot : mMaps) {
             slot.rowBands = specularRowBands(slot.map, mSettings.shininess);
             // Only maps some mesh draws with decide the program: an unused default must not change the picture.
@@ -139,6 +143,8 @@ ShadePass::~ShadePass() = default;
 void ShadePass::declare(PassBuilder& builder) const {
     if (mMode == ShadeMode::Deferred)
         for (const std::string& field : deferredFields()) builder.read(mGBufferName + "." + field);
+    else if (!mSettings.materialOutlines.empty())
+        for (const char* field : {".color", ".depth"}) builder.read(mSettings.materialOutlines + field);
     builder.write("color", {Format::RGBA8}, Need::Required,
                   {"shading.png", Appearance::Color, "the shading layer, sRGB, alpha = coverage"});
 }
@@ -159,9 +165,8 @@ std::optional<glm::vec4> ShadePass::sceneBaseColor() const {
 std::vector<std::string> ShadePass::deferredFields() const {
     std::vector<std::string> fields = {"normal"};
     if (!sceneBaseColor()) fields.push_back("baseColor");
-    // Comic's constant view vector is a uniform; phong and comic's exact one is the pixel's.
-    const bool constantView = mSettings.model == ShadingModel::Comic && mSettings.view.constant;
-    if (traitsOf(mSettings.model).specular && !constantView) fields.push_back("view");
+    // A constant view vector (comic's V_c) is a uniform; an exact one (phong, comic) is the pixel's.
+    if (traits().specular && !usesConstantView()) fields.push_back("view");
     return fields;
 }
 
@@ -204,13 +209,11 @@ ShadeMode ShadePass::chooseMode(const GBufferPass& gbuffer, const std::vector<st
     return mMode;
 }
 
-bool ShadePass::drawsOrientationSets() const {
-    return mSettings.model == ShadingModel::Comic && mScene.cpuOrientation() != nullptr;
-}
+bool ShadePass::drawsOrientationSets() const { return traits().orientationSets && mScene.cpuOrientation() != nullptr; }
 
 bool ShadePass::usesSpecularRowBands() const {
     // Maps of one band (no specular rows) have nothing to compare: the generic path reads their single row.
-    return mSettings.model == ShadingModel::Comic && !drawsOrientationSets() && mSpecularBorderCount > 0 &&
+    return traits().specularRowBands && !drawsOrientationSets() && mSpecularBorderCount > 0 &&
            mSpecularBorderCount <= std::size_t(kMaxSpecularRowBands);
 }
 
@@ -231,7 +234,7 @@ std::vector<std::string> ShadePass::defines() const {
     if (drawsOrientationSets()) {
         result.push_back("SHADE_COORDS 1");
         result.push_back("SHADE_COORD_LOCATION " + std::to_string(SceneOrientation::kShadeCoordLocation));
-    } else if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
+    } else if (usesConstantView()) {
         result.push_back("VIEW_CONSTANT 1");
     }
     return result;
@@ -246,12 +249,12 @@ void ShadePass::prepare(GlPassContext&) {
                             defines(),
                             {"common/fullscreen.glsl", "common/color.glsl", "common/lighting.glsl"}}));
     if (!mProgram)
-        mProgram = std::make_unique<GlProgram>(
-            mShaders.build({mName,
-                            "shade/shade.vert",
-                            "shade/shade.frag",
-                            defines(),
-                            {"common/color.glsl", "common/lighting.glsl", "common/material.glsl"}}));
+        mProgram = std::make_unique<GlProgram>(mShaders.build(
+            {mName,
+             "shade/shade.vert",
+             "shade/shade.frag",
+             defines(),
+             {"common/color.glsl", "common/lighting.glsl", "common/material.glsl", "common/mtoon.glsl"}}));
     for (MapSlot& slot : mMaps) {
         if (!slot.used || slot.texture) continue;
         // Nearest, clamped to the edge (every GlTexture is). uploadImage() turns the image bottom-up, so GL row 0 is
@@ -265,50 +268,31 @@ void ShadePass::prepare(GlPassContext&) {
     }
     if (mMode == ShadeMode::Deferred) return; // the G-buffer has drawn the meshes
     mScene.meshes();
-    if (drawsMToonOutlines() && !mOutlineProgram) {
-        // The outline shells are the inflated hull (silhouette/hull.vert), each mesh's as wide as its material says.
-        std::vector<std::string> outlineDefines = defines();
-        outlineDefines.push_back("MTOON_OUTLINE 1");
-        outlineDefines.push_back("HULL_MATERIAL_WIDTH 1");
-        mOutlineProgram = std::make_unique<GlProgram>(
-            mShaders.build({mName + " mtoon outline",
-                            "silhouette/hull.vert",
-                            "shade/shade.frag",
-                            outlineDefines,
-                            {"common/color.glsl", "common/lighting.glsl", "common/material.glsl"}}));
-        mScene.hullArrays(); // the outline shells are the hulls, made outside the timed execute()
-    }
+    if (!mSettings.materialOutlines.empty() && !mOutlineProgram)
+        mOutlineProgram =
+            std::make_unique<GlProgram>(mShaders.build({mName + " material outlines",
+                                                        "shade/deferred.vert",
+                                                        "shade/outlines.frag",
+                                                        {"OUTLINE_COLOR_UNIT " + std::to_string(kOutlineColorUnit),
+                                                         "OUTLINE_DEPTH_UNIT " + std::to_string(kOutlineDepthUnit)},
+                                                        {"common/fullscreen.glsl"}}));
 }
 
-bool ShadePass::drawsMToonOutlines() const {
-    if (mSettings.model != ShadingModel::MToon) return false;
-    for (std::size_t index = 0; index < mScene.meshCount(); ++index)
-        if (mScene.materials().outlineOf(index).has_value()) return true;
-    return false;
-}
-
-void ShadePass::drawMToonOutlines(const glm::mat4& viewFromModel, const glm::mat3& viewNormalFromModel,
-                                  const glm::mat4& clipFromView, int width, int height) {
+void ShadePass::layMaterialOutlines(GlPassContext& gl) {
     GlProgram& program = *mOutlineProgram;
     program.use();
-    glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
-    glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
-    glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
-    glUniform2f(program.uniform("viewportSize"), float(width), float(height));
-    glUniform3fv(program.uniform("towardLightView"), 1, glm::value_ptr(mFrame.towardLightView()));
+    glBindTextureUnit(kOutlineColorUnit, gl.inputTexture(mSettings.materialOutlines + ".color").id());
+    glBindTextureUnit(kOutlineDepthUnit, gl.inputTexture(mSettings.materialOutlines + ".depth").id());
+    for (const GLuint unit : {kOutlineColorUnit, kOutlineDepthUnit}) glBindSampler(unit, 0); // texelFetch only
     glDisable(GL_BLEND);
-    glDepthMask(GL_TRUE);
-    // Only the shell's back faces: where it sticks out beyond the surface, the outline.
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_FRONT);
-    for (std::size_t index = 0; index < mScene.meshCount(); ++index) {
-        if (!mScene.materials().outlineOf(index)) continue;
-        mScene.bindMaterial(program, index, MaterialUse::Colour);
-        mScene.hullArrays()[index].bind();
-        glDrawElements(GL_TRIANGLES, mScene.meshes()[index].indexCount, GL_UNSIGNED_INT, nullptr);
-    }
-    glCullFace(GL_BACK);
     glDisable(GL_CULL_FACE);
+    glDepthMask(GL_TRUE);
+    // Core profile draws nothing without a vertex array, even when the vertices come from gl_VertexID.
+    GlVertexArray empty(mName + " material outlines");
+    empty.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindTextureUnit(kOutlineColorUnit, 0);
+    glBindTextureUnit(kOutlineDepthUnit, 0);
 }
 
 void ShadePass::setShadingUniforms(const GlProgram& program) const {
@@ -316,7 +300,7 @@ void ShadePass::setShadingUniforms(const GlProgram& program) const {
     glUniform1f(program.uniform("ambient"), mSettings.ambient);
     glUniform1f(program.uniform("shininess"), float(mSettings.shininess));
     glUniform1f(program.uniform("specularStrength"), mSettings.specularStrength);
-    if (mSettings.model == ShadingModel::Comic && mSettings.view.constant) {
+    if (usesConstantView()) {
         // V_c is eye -> centre in world space; the shader wants surface -> eye in view space (rotation only).
         const glm::dvec3 towardEye = glm::dmat3(mFrame.camera.viewMatrix()) * -mSettings.view.constantView;
         glUniform3fv(program.uniform("constantTowardEye"), 1, glm::value_ptr(glm::vec3(glm::normalize(towardEye))));
@@ -420,11 +404,11 @@ void ShadePass::executeForward(GlPassContext& gl) {
             boundSlot = mMeshMap[i];
         }
         if (meshes[i].material->alphaMode == AlphaMode::Blend && !blending) {
-            // MToon's outlines belong to the opaque world: drawn before the blended surfaces, which go over them.
+            // The material outlines belong to the opaque world: laid in before the blended surfaces, which go over
+            // them.
             if (mOutlineProgram) {
-                drawMToonOutlines(viewFromModel, viewNormalFromModel, clipFromView, width, height);
+                layMaterialOutlines(gl);
                 program.use();
-                if (!mMaps.empty() && boundSlot) glBindTextureUnit(0, mMaps[*boundSlot].texture->id());
             }
             outlinesDrawn = true;
             // drawOrder() puts blended meshes last, back to front: each goes over what is behind it, writing no
@@ -449,8 +433,7 @@ void ShadePass::executeForward(GlPassContext& gl) {
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
-    if (mOutlineProgram && !outlinesDrawn)
-        drawMToonOutlines(viewFromModel, viewNormalFromModel, clipFromView, width, height);
+    if (mOutlineProgram && !outlinesDrawn) layMaterialOutlines(gl);
     glBindVertexArray(0);
     if (!mMaps.empty()) glBindTextureUnit(0, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

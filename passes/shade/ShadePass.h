@@ -9,6 +9,8 @@
  *  |---------------|--------|----------|--------------------------------------------------------------------|
  *  | reads         |        |          | forward: nothing from the graph (meshes from GpuScene, sets from    |
  *  |               |        |          | GpuScene::cpuOrientation() for the CPU face-orientation methods)    |
+ *  |               |        |          | but, with ShadeSettings::materialOutlines, <outlines>.color and     |
+ *  |               |        |          | <outlines>.depth (MToonOutlinePass), laid in after the opaque draws |
  *  |               |        |          | deferred: gbuffer.normal (a = coverage); gbuffer.baseColor unless   |
  *  |               |        |          | the scene has one base colour; gbuffer.view for phong and comic     |
  *  |               |        |          | with the exact view vector                                          |
@@ -74,6 +76,10 @@ struct ShadeSettings {
     /** cel and comic: entry i, when present, is GpuScene mesh i's own shade map, checked like the default one (a
      *  missing entry, or a mesh past the end, uses the default map). Ignored by the models without a map. */
     std::vector<std::optional<ShadeMap>> meshShadeMaps{};
+    /** A model with the materialOutlines trait (mtoon): the pass whose layer of material outlines (its `color` and
+     *  `depth`, passes/mtoon/MToonOutlinePass.h) forward shading lays in after the opaque surfaces; empty: none. The
+     *  still graph names it only when some material asks for an outline, so the layer's pass is otherwise culled. */
+    std::string materialOutlines{};
 };
 
 class ShadePass : public GlPass {
@@ -130,14 +136,17 @@ private:
     /** The entry of mMaps holding texels equal to `map`'s, adding one when none does. */
     std::size_t slotOf(ShadeMap map);
 
-    /** Draws the front sets of a CPU face-orientation method (comic only) instead of the whole meshes. */
+    /** The model's row of the trait table: every question about what the pass does for the model asks it. */
+    const ShadingModelTraits& traits() const { return traitsOf(mSettings.model); }
+    /** The model takes a constant view vector (traits().constantView) and the settings give one. */
+    bool usesConstantView() const { return traits().constantView && mSettings.view.constant; }
+    /** Draws the front sets of a CPU face-orientation method (traits().orientationSets: comic) instead of the whole
+     *  meshes. */
     bool drawsOrientationSets() const;
-    /** mtoon with a mesh whose MToon material asks for an outline (worldCoordinates or screenCoordinates). */
-    bool drawsMToonOutlines() const;
-    /** The MToon outline shells, after the opaque surfaces and before the blended ones (silhouette/hull.vert with
-     *  HULL_MATERIAL_WIDTH, shade.frag with MTOON_OUTLINE). */
-    void drawMToonOutlines(const glm::mat4& viewFromModel, const glm::mat3& viewNormalFromModel,
-                           const glm::mat4& clipFromView, int width, int height);
+    /** Lays the material outlines' layer (ShadeSettings::materialOutlines) into the bound target after the opaque
+     *  surfaces: a full-screen triangle writes each shell pixel's colour at its depth (gl_FragDepth) under the
+     *  strictly-nearer test and writes the depth, as the shell drawn here would (shaders/shade/outlines.frag). */
+    void layMaterialOutlines(GlPassContext& gl);
     /** MODEL_* and variant defines for the one program of this pass. */
     std::vector<std::string> defines() const;
     /** Why deferred shading over `gbuffer` would not give the forward picture, or empty when it would. */
@@ -148,7 +157,8 @@ private:
     void bindShadeMap(const GlProgram& program, const MapSlot& slot) const;
     void executeForward(GlPassContext& gl);
     void executeDeferred(GlPassContext& gl);
-    /** Comic on the GPU with maps of at most kMaxSpecularRowBands + 1 row bands: rows found by comparisons. */
+    /** A model with traits().specularRowBands (comic) on the GPU with maps of at most kMaxSpecularRowBands + 1 row
+     *  bands: rows found by comparisons. */
     bool usesSpecularRowBands() const;
 
     static constexpr int kMaxSpecularRowBands = 8; ///< borders; a map with more falls back to exp(n log(r.v))
@@ -156,6 +166,10 @@ private:
     static constexpr GLuint kNormalUnit = 1;
     static constexpr GLuint kBaseColorUnit = 2;
     static constexpr GLuint kViewUnit = 3;
+    /** Forward: the texture units of the material outlines' layer, past the shade map's (0) and the materials' (1-4).
+     */
+    static constexpr GLuint kOutlineColorUnit = 5;
+    static constexpr GLuint kOutlineDepthUnit = 6;
 
     std::string mName;
     ShaderLibrary& mShaders;
@@ -166,7 +180,7 @@ private:
     std::vector<std::size_t> mMeshMap;          ///< cel, comic: per GpuScene mesh, its entry of mMaps
     std::size_t mSpecularBorderCount = 0;       ///< comic: the most row-band borders of a map in use
     std::unique_ptr<GlProgram> mProgram;        ///< the one program of this model and variant
-    std::unique_ptr<GlProgram> mOutlineProgram; ///< mtoon's outline shells, when drawsMToonOutlines()
+    std::unique_ptr<GlProgram> mOutlineProgram; ///< lays the material outlines in, when the settings name a layer
     PassDepthBuffer mDepth;                     ///< the pass's own depth attachment, kept between runs
     ShadeMode mMode = ShadeMode::Forward;
     std::string mForwardReason = "the graph did not choose (ShadePass::chooseMode() was not called)";

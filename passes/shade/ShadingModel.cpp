@@ -5,25 +5,27 @@
 namespace inkgraph {
 
 const std::vector<ShadingModelTraits>& shadingModels() {
-    // model, name, define, specular, shadeMap, oneDimensionalMap, bands, faceOrientation, perPixel, help
+    // model, name, define, specular, shadeMap, oneDimensionalMap, bands, faceOrientation, perPixel,
+    // constantView, orientationSets, specularRowBands, materialOutlines, help
     static const std::vector<ShadingModelTraits> kModels = {
-        {ShadingModel::None, "none", nullptr, false, false, false, false, false, false,
+        {ShadingModel::None, "none", nullptr, false, false, false, false, false, false, false, false, false, false,
          "no shading pass: the paper colour, and the lines"},
-        {ShadingModel::Flat, "flat", "MODEL_FLAT 1", false, false, false, false, false, false,
-         "ambient + diffuse per face"},
-        {ShadingModel::Gouraud, "gouraud", "MODEL_GOURAUD 1", false, false, false, false, false, false,
-         "ambient + diffuse per vertex"},
-        {ShadingModel::Lambert, "lambert", "MODEL_LAMBERT 1", false, false, false, false, false, true,
-         "ambient + diffuse per pixel"},
-        {ShadingModel::Phong, "phong", "MODEL_PHONG 1", true, false, false, false, false, true,
-         "ambient + diffuse + white specular per pixel"},
-        {ShadingModel::Cel, "cel", "MODEL_CEL 1", false, true, true, true, false, true,
+        {ShadingModel::Flat, "flat", "MODEL_FLAT 1", false, false, false, false, false, false, false, false, false,
+         false, "ambient + diffuse per face"},
+        {ShadingModel::Gouraud, "gouraud", "MODEL_GOURAUD 1", false, false, false, false, false, false, false, false,
+         false, false, "ambient + diffuse per vertex"},
+        {ShadingModel::Lambert, "lambert", "MODEL_LAMBERT 1", false, false, false, false, false, true, false, false,
+         false, false, "ambient + diffuse per pixel"},
+        {ShadingModel::Phong, "phong", "MODEL_PHONG 1", true, false, false, false, false, true, false, false, false,
+         false, "ambient + diffuse + white specular per pixel"},
+        {ShadingModel::Cel, "cel", "MODEL_CEL 1", false, true, true, true, false, true, false, false, false, false,
          "1-D shade map indexed by the half-Lambert (n.l + 1)/2; default: Qu, Chen & Zwicker's five\n"
          "     bands {0, .25, .5, .75, 1} x the material colour"},
-        {ShadingModel::Comic, "comic", "MODEL_COMIC 1", true, true, false, false, true, true,
+        {ShadingModel::Comic, "comic", "MODEL_COMIC 1", true, true, false, false, true, true, true, true, true, false,
          "2-D shade map indexed by diffuse max(n.l, 0) (across) and specular\n"
          "     max(r.v, 0)^shininess (up), Winnemöller & Bangay 2002"},
-        {ShadingModel::MToon, "mtoon", "MODEL_MTOON 1", false, false, false, false, false, false,
+        {ShadingModel::MToon, "mtoon", "MODEL_MTOON 1", false, false, false, false, false, false, false, false, false,
+         true,
          "the file's MToon materials (VRM): lit and shade colours, shading shift and toony, rim\n"
          "     (VRMC_materials_mtoon-1.0's formulas, docs/mtoon.md); other materials get a hard band"},
     };

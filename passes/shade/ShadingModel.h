@@ -1,7 +1,7 @@
 #pragma once
 /** @file The shading models: one enum and one trait table. Everything that asks "does this model take a shade map,
- *  a shininess, face-orientation methods, can it shade the G-buffer?" (the flag table, the shade pass, the stats)
- *  reads the table, so a new
+ *  a shininess, face-orientation methods, can it shade the G-buffer, does the shade pass do more than its shader
+ *  branch?" (the flag table, the shade pass, the stats) reads the table, so a new
  *  model is one row here plus its branch in shaders/shade/shade.frag. */
 
 #include <string>
@@ -25,6 +25,16 @@ struct ShadingModelTraits {
      *  G-buffer's fields (deferred) instead of drawing the meshes again; false for a model that needs faces,
      *  vertices or per-material parameters (flat, gouraud, mtoon). ShadePass::chooseMode() decides. */
     bool perPixel;
+    /** The work ShadePass does for the model beyond its shader branch, asked of these traits and never of the model:
+     *  constantView: --view-vector may give Winnemöller & Bangay's constant view vector V_c (checked unit, a uniform,
+     *  VIEW_CONSTANT; deferred then reads no gbuffer.view); orientationSets: with a CPU face-orientation method the
+     *  front sets are drawn with the CPU's per-vertex (s, t) (SHADE_COORDS); specularRowBands: the 2-D map's specular
+     *  rows are found by comparisons (SPECULAR_ROW_BANDS, ShadeMap.h specularRowBands()); materialOutlines: the
+     *  materials' own outlines (MToon) are drawn by the mtoon-outline pass and laid into the shading. */
+    bool constantView;
+    bool orientationSets;
+    bool specularRowBands;
+    bool materialOutlines;
     const char* help; ///< --help's description, lines after the first indented by the help writer
 };
 

@@ -48,12 +48,15 @@ void SilhouettePass::prepare(GlPassContext&) {
                                                                     "silhouette/hull.vert",
                                                                     "common/line_mask.frag",
                                                                     materialAlphaDefines(mScene),
-                                                                    {"common/material.glsl"}}));
+                                                                    {"common/hull.glsl", "common/material.glsl"}}));
     if (!mHullProgram) {
         std::vector<std::string> defines = materialAlphaDefines(mScene);
         defines.push_back(mSettings.objectWidth ? "HULL_OBJECT_WIDTH 1" : "HULL_SCREEN_WIDTH 1");
-        mHullProgram = std::make_unique<GlProgram>(mShaders.build(
-            {mName + " hull", "silhouette/hull.vert", "common/line_mask.frag", defines, {"common/material.glsl"}}));
+        mHullProgram = std::make_unique<GlProgram>(mShaders.build({mName + " hull",
+                                                                   "silhouette/hull.vert",
+                                                                   "common/line_mask.frag",
+                                                                   defines,
+                                                                   {"common/hull.glsl", "common/material.glsl"}}));
     }
     mScene.meshes();
     if (mSettings.weldNormals) mScene.hullArrays(); // made in prepare(), outside the timed execute()

@@ -1,7 +1,7 @@
 // Shading, one model per program (MODEL_* define from ShadePass): flat, gouraud, lambert, phong, cel, comic, mtoon
-// (docs/shading.md, docs/mtoon.md). The base colour is the material's (common/material.glsl: factor x texture x vertex
-// colour). Colour is computed in linear RGB and written sRGB-encoded, with the surface's alpha (1 unless the material
-// blends).
+// (docs/shading.md, docs/mtoon.md; mtoon's colour is common/mtoon.glsl's, which forward programs include). The base
+// colour is the material's (common/material.glsl: factor x texture x vertex colour). Colour is computed in linear RGB
+// and written sRGB-encoded, with the surface's alpha (1 unless the material blends).
 // Forward, the surface comes from the mesh drawn (shade.vert). With SHADE_DEFERRED (lambert, phong, cel, comic; see
 // ShadePass::chooseMode()) it comes from the G-buffer texel of this pixel, computed there by the same expressions:
 // the normal turned toward the viewer (alpha: the coverage) and the view vector; the base colour is a uniform when
@@ -59,58 +59,6 @@ uniform vec3 constantTowardEye; // comic: -V_c in view space, unit (Winnemöller
 layout(binding = 0) uniform sampler2D shadeMap;
 #endif
 
-#ifdef MODEL_MTOON
-// VRMC_materials_mtoon-1.0's parameters of the mesh's material (docs/mtoon.md); a material without MToon gets
-// mtoonPresent 0 and the fallback there.
-uniform int mtoonPresent;
-uniform vec3 mtoonShadeColorFactor;
-uniform int mtoonShadeMultiplyTextured;
-uniform int mtoonShadeMultiplySet;
-uniform mat3 mtoonShadeMultiplyTransform;
-layout(binding = 3) uniform sampler2D mtoonShadeMultiplyTexture;
-uniform float mtoonShadingShiftFactor;
-uniform float mtoonShadingToonyFactor;
-uniform vec3 mtoonRimColorFactor;
-uniform float mtoonRimFresnelPowerFactor;
-uniform float mtoonRimLiftFactor;
-#ifdef MTOON_OUTLINE
-uniform vec3 mtoonOutlineColorFactor; // linear
-uniform float mtoonOutlineLightingMixFactor;
-#endif
-
-// The shade tone of a material without MToon parameters, times its lit colour (docs/mtoon.md).
-const float kMToonFallbackShade = 0.5;
-
-// MToon's linearstep: 0 below a, 1 above b, linear between (the specification's definition).
-float linearstep(float a, float b, float t) {
-    return clamp((t - a) / max(b - a, 1e-6), 0.0, 1.0);
-}
-
-vec3 mtoonColor(vec3 lit, vec3 n, vec3 l, vec3 v) {
-    vec3 shade;
-    float shift, toony;
-    if (mtoonPresent != 0) {
-        shade = mtoonShadeColorFactor;
-        if (mtoonShadeMultiplyTextured != 0)
-            shade *= texture(mtoonShadeMultiplyTexture,
-                             materialTexcoord(mtoonShadeMultiplySet, mtoonShadeMultiplyTransform)).rgb;
-        shift = mtoonShadingShiftFactor;
-        toony = mtoonShadingToonyFactor;
-    } else {
-        // No MToon in the file: the lit colour's own shadow tone, a hard band at n.l = 0 (docs/mtoon.md).
-        shade = lit * kMToonFallbackShade;
-        shift = 0.0;
-        toony = 0.9;
-    }
-    float shading = linearstep(-1.0 + toony, 1.0 - toony, dot(n, l) + shift);
-    vec3 color = mix(shade, lit, shading);
-    if (mtoonPresent != 0) {
-        float rim = pow(clamp(1.0 - dot(n, v) + mtoonRimLiftFactor, 0.0, 1.0), max(mtoonRimFresnelPowerFactor, 1e-5));
-        color += mtoonRimColorFactor * rim;
-    }
-    return color;
-}
-#endif
 
 layout(location = 0) out vec4 outColor;
 
@@ -131,11 +79,7 @@ vec3 towardEye() {
 vec3 shadingNormal() {
     float normalLength = length(viewNormal);
     vec3 n = normalLength > 0.0 ? viewNormal / normalLength : vec3(0.0, 0.0, 1.0);
-#ifdef MTOON_OUTLINE
-    return n; // the outline shell is seen from inside (front faces culled); its normal already points out
-#else
     return gl_FrontFacing ? n : -n;
-#endif
 }
 
 // Unit vector from the surface to the eye (the view-space origin).
@@ -244,14 +188,8 @@ void main() {
 #ifndef SHADE_DEFERRED
     rgb += materialEmissive();
 #endif
-#ifdef MTOON_OUTLINE
-    // The outline's colour takes the surface's lighting as far as the mix factor says (docs/mtoon.md).
-    rgb = mix(mtoonOutlineColorFactor, mtoonOutlineColorFactor * rgb, mtoonOutlineLightingMixFactor);
-#endif
     // Straight alpha for the blend of BLEND surfaces over what is behind them; cut-out and opaque surfaces are 1.
-#ifdef MTOON_OUTLINE
-    outColor = vec4(encodeSrgb(rgb), 1.0); // the outline is opaque, drawn before any blended surface
-#elif defined(SHADE_DEFERRED)
+#if defined(SHADE_DEFERRED)
     outColor = vec4(encodeSrgb(rgb), 1.0); // no blended material (chooseMode())
 #else
     outColor = vec4(encodeSrgb(rgb), materialAlphaMode == 2 ? surface.a : 1.0);

@@ -113,8 +113,8 @@ TEST(DocsComplete, EveryLineTypeIsInTheReadmeAndHasARowInLinesMd) {
 }
 
 TEST(DocsComplete, EveryFlagIsInTheReadme) {
-    // A flag is named by one of its names, in code quotes ("`-o FILE`"); the flags a pattern stands for (--outline-width for --TYPE-width) are
-    // named by the pattern, which is a help-only entry's label.
+    // A flag is named by one of its names, in code quotes ("`-o FILE`"); the flags a pattern stands for
+    // (--outline-width for --TYPE-width) are named by the pattern, which is a help-only entry's label.
     const std::string readme = readDoc("README.md");
     for (const Flag& flag : renderFlags()) {
         std::vector<std::string> names = flag.names;

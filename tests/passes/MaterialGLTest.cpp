@@ -10,6 +10,7 @@
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/outline/OutlinePass.h"
 #include "passes/material/SceneMaterials.h"
+#include "passes/mtoon/MToonOutlinePass.h"
 #include "passes/shade/ShadeMap.h"
 #include "passes/shade/ShadePass.h"
 #include "passes/edges/MeshEdgesPass.h"
@@ -103,9 +104,13 @@ protected:
         settings.model = model;
         std::optional<ShadeMap> map;
         if (model == ShadingModel::Cel) map = makeBandShadeMap(5);
+        // MToon's outlines are a layer of their own, which the shade pass lays in, wired as the still graph does.
+        MToonOutlinePass outlines(kMToonOutlinePass, shaders, *gpuScene, frame);
+        if (traitsOf(model).materialOutlines && MToonOutlinePass::drawsAnyOutline(scene))
+            settings.materialOutlines = kMToonOutlinePass;
         ShadePass pass("shade", shaders, *gpuScene, frame, settings, std::move(map));
-        const Plan plan = compile({&pass}, {"shade.color"});
-        executor.run(plan, {&pass}, {kSize, kSize, false});
+        const Plan plan = compile({&outlines, &pass}, {"shade.color"});
+        executor.run(plan, {&outlines, &pass}, {kSize, kSize, false});
         cv::Mat image = executor.store().image("shade.color").clone();
         executor.store().clear();
         return image;

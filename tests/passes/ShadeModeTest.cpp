@@ -188,5 +188,71 @@ TEST_F(ShadeModeChoice, ForwardWhenTheShadingFieldsWouldMakeTheGBufferDrawTwice)
     EXPECT_EQ(builder.reads()[0].resource, "gbuffer.normal");
 }
 
+TEST_F(ShadeModeChoice, TheMToonOutlineLayerIsReadOnlyWhenAMaterialAsksForAnOutline) {
+    // Registered whenever the look is mtoon; culled, and said so, when no material asks for an outline.
+    const auto compileLook = [&](const Look& look) {
+        CameraRequest request;
+        request.eye = glm::dvec3(0.0, 0.0, 5.0);
+        request.target = glm::dvec3(0.0);
+        request.width = 64;
+        request.height = 64;
+        frame.camera = resolveCamera(request, scene);
+        const BoundingSphere sphere = computeBoundingSphere(scene);
+        gpuScene = std::make_unique<GpuScene>(scene, sphere.center);
+        StillGraphSetup setup{look, shaders, scene, sphere, *gpuScene, frame, std::nullopt};
+        const StillGraph graph = buildStillGraph(setup);
+        return std::make_pair(graph.findPass("mtoon-outline") != nullptr, compile(graph.view(), {graph.finalResource}));
+    };
+    const auto culledReason = [](const Plan& plan) -> std::string {
+        for (const CulledPass& pass : plan.culled)
+            if (pass.name == "mtoon-outline") return pass.reason;
+        return "";
+    };
+
+    // Not mtoon: not registered.
+    EXPECT_FALSE(compileLook(lookOf(ShadingModel::Cel, {})).first);
+
+    // MToon without an outline (width mode none, and a width of 0): registered, unread, culled.
+    MToonMaterial mtoon;
+    scene.meshes[0].material.mtoon = mtoon;
+    auto [registered, plan] = compileLook(lookOf(ShadingModel::MToon, {}));
+    EXPECT_TRUE(registered);
+    EXPECT_EQ(plan.findPass("mtoon-outline"), nullptr);
+    EXPECT_NE(culledReason(plan).find("mtoon-outline.color"), std::string::npos) << culledReason(plan);
+    ASSERT_NE(plan.findPass("shade"), nullptr);
+    EXPECT_TRUE(plan.findPass("shade")->reads.empty());
+    mtoon.outlineWidthMode = MToonMaterial::OutlineWidthMode::WorldCoordinates;
+    scene.meshes[0].material.mtoon = mtoon; // a width of 0 draws nothing
+    EXPECT_EQ(compileLook(lookOf(ShadingModel::MToon, {})).second.findPass("mtoon-outline"), nullptr);
+
+    // With an outline: the shade pass reads the layer's colour and depth, after the layer is drawn.
+    mtoon.outlineWidthFactor = 0.01f;
+    scene.meshes[0].material.mtoon = mtoon;
+    plan = compileLook(lookOf(ShadingModel::MToon, {})).second;
+    const PlannedPass* outline = plan.findPass("mtoon-outline");
+    ASSERT_NE(outline, nullptr);
+    EXPECT_EQ(outline->liveWrites, (Names{"mtoon-outline.color", "mtoon-outline.depth"}));
+    EXPECT_EQ(plan.findPass("shade")->reads, (Names{"mtoon-outline.color", "mtoon-outline.depth"}));
+    EXPECT_TRUE(culledReason(plan).empty());
+}
+
+TEST(ShadingModelTraits, TheShadePassWorkOfAModelHasTheTraitsItBuildsOn) {
+    // ShadePass asks the traits, never the model, for the work beyond a shader branch; each of those traits only
+    // makes sense with the traits that feed it.
+    for (const ShadingModelTraits& model : shadingModels()) {
+        // The constant view vector and the CPU face-orientation sets come from --view-vector and --face-orientation.
+        if (model.constantView || model.orientationSets) EXPECT_TRUE(model.faceOrientation) << model.name;
+        // Row bands are rows of a 2-D map's specular axis.
+        if (model.specularRowBands)
+            EXPECT_TRUE(model.specular && model.shadeMap && !model.oneDimensionalMap) << model.name;
+        // The materials' outlines go into forward shading: a model that may shade deferred would lose them.
+        if (model.materialOutlines) EXPECT_FALSE(model.perPixel) << model.name;
+    }
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::constantView), "comic");
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::orientationSets), "comic");
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::specularRowBands), "comic");
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::materialOutlines), "mtoon");
+}
+
 } // namespace
 } // namespace inkgraph

@@ -1,0 +1,94 @@
+#include "passes/mtoon/MToonOutlinePass.h"
+
+#include "gl/GraphExecutor.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+namespace inkgraph {
+
+MToonOutlinePass::MToonOutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame)
+    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame) {}
+
+bool MToonOutlinePass::drawsAnyOutline(const Scene& scene) {
+    for (const Mesh& mesh : scene.meshes)
+        if (outlineOf(mesh.material)) return true;
+    return false;
+}
+
+void MToonOutlinePass::declare(PassBuilder& builder) const {
+    builder.write("color", {Format::RGBA8}, Need::Required,
+                  {mName + ".png", Appearance::Color,
+                   "MToon's outline shells alone (--shading mtoon, materials that ask for an outline), sRGB"});
+    builder.write("depth", {Format::Depth32F}, Need::Required,
+                  {mName + "-depth.exr", Appearance::Data,
+                   "the outline shells' depth, which the shade pass lays them in by (reversed-Z window depth)"});
+}
+
+void MToonOutlinePass::describe(nlohmann::ordered_json& report) const {
+    report["shells"] = mShellsDrawn;
+    report["triangles"] = mTrianglesDrawn;
+}
+
+void MToonOutlinePass::prepare(GlPassContext&) {
+    // The fragment stage lights the shell as the shade pass lights the surface (common/mtoon.glsl), with the
+    // material's emissive (MATERIAL_EMISSIVE), as forward shading has it.
+    if (!mProgram)
+        mProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName,
+                            "mtoon/outline.vert",
+                            "mtoon/outline.frag",
+                            {"MATERIAL_EMISSIVE 1"},
+                            {"common/color.glsl", "common/hull.glsl", "common/material.glsl", "common/mtoon.glsl"}}));
+    mScene.meshes();
+    mScene.hullArrays(); // the shells are the hulls, made outside the timed execute()
+}
+
+void MToonOutlinePass::execute(GlPassContext& gl) {
+    const int width = gl.widthOf("color");
+    const int height = gl.heightOf("color");
+    GlFramebuffer framebuffer(mName);
+    framebuffer.attachColor(0, gl.outputTexture("color"));
+    framebuffer.attachDepth(gl.outputTexture("depth"));
+    framebuffer.finish({0});
+    framebuffer.bind();
+    glViewport(0, 0, width, height);
+    clearColorAndDepth(1);
+
+    const glm::mat4 viewFromModel = mFrame.viewFromModel();
+    const glm::mat3 viewNormalFromModel = glm::inverseTranspose(glm::mat3(viewFromModel));
+    const glm::mat4 clipFromView = mFrame.clipFromView();
+    GlProgram& program = *mProgram;
+    program.use();
+    glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
+    glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
+    glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    glUniform2f(program.uniform("viewportSize"), float(width), float(height));
+    glUniform3fv(program.uniform("towardLightView"), 1, glm::value_ptr(mFrame.towardLightView()));
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(kDepthNearer);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    // Only the shells' back faces: where a shell sticks out beyond its surface, the outline.
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT);
+    mShellsDrawn = 0;
+    mTrianglesDrawn = 0;
+    const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
+    for (std::size_t index = 0; index < meshes.size(); ++index) {
+        if (!mScene.materials().outlineOf(index)) continue;
+        mScene.bindMaterial(program, index, MaterialUse::Colour);
+        mScene.hullArrays()[index].bind();
+        glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
+        ++mShellsDrawn;
+        mTrianglesDrawn += std::size_t(meshes[index].indexCount) / 3;
+    }
+    glCullFace(GL_BACK);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+} // namespace inkgraph

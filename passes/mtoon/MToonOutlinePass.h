@@ -1,0 +1,66 @@
+#pragma once
+/** @file MToon's outlines (VRMC_materials_mtoon-1.0, docs/mtoon.md): each mesh whose material asks for one drawn
+ *  again as its inflated hull, front faces culled, each as wide as its material says and in its outline colour, lit
+ *  as far as its lighting mix says. A layer of its own, which the shade pass lays into the shading with a depth test.
+ *
+ *  | resource              | format   | need     | content                                                       |
+ *  |-----------------------|----------|----------|---------------------------------------------------------------|
+ *  | reads                 |          |          | nothing from the graph (meshes, hulls, materials from GpuScene) |
+ *  | <name>.color          | rgba8    | required | sRGB outline colour, a = 255 where a shell is drawn, else 0    |
+ *  | <name>.depth          | depth32f | required | window depth of the nearest shell (reversed-Z, gl/GlObjects.h), |
+ *  |                       |          |          | 0 (far) where none is                                         |
+ *
+ *  The shells are the meshes pushed out along GpuScene::hullNormals() (position-welded, so hard edges do not crack
+ *  them): `worldCoordinates` by the width in model units, `screenCoordinates` by the width x the frame height in
+ *  pixels along the normal's screen direction (shaders/mtoon/outline.vert). Only their back faces are drawn (where a
+ *  shell sticks out beyond its surface), with a strictly-nearer depth test among themselves, so at each pixel the
+ *  nearest shell wins and, of equal depths, the first mesh drawn. The shade pass (ShadeSettings::materialOutlines)
+ *  then draws this layer after its opaque surfaces and before its blended ones, testing the depth here against its
+ *  own strictly-nearer: the picture is the one the shells drawn among the surfaces would give, to the bit.
+ *
+ *  The still graph registers the pass whenever the look is mtoon; the shade pass reads it only when some material
+ *  asks for an outline (decided when the graph is built), so otherwise it is culled. */
+
+#include "gl/GlObjects.h"
+#include "gl/GlPass.h"
+#include "gl/ShaderLibrary.h"
+#include "passes/FrameParams.h"
+#include "passes/GpuScene.h"
+
+#include <memory>
+#include <string>
+
+namespace inkgraph {
+
+/** The pass's name in the still graph, and so its resources' namespace: "mtoon-outline.color". */
+inline constexpr const char* kMToonOutlinePass = "mtoon-outline";
+
+class MToonOutlinePass : public GlPass {
+public:
+    MToonOutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame);
+
+    std::string_view name() const override { return mName; }
+    void declare(PassBuilder& builder) const override;
+    void prepare(GlPassContext& context) override;
+    void execute(GlPassContext& context) override;
+    /** For --stats: the meshes whose shells the last run drew and their triangles. */
+    void describe(nlohmann::ordered_json& report) const override;
+
+    /** Whether some mesh's material of `scene` asks for an outline (outlineOf(), passes/material/SceneMaterials.h):
+     *  the one question the still graph asks, when it is built, before it has the shade pass read the layer. */
+    static bool drawsAnyOutline(const Scene& scene);
+
+    std::size_t shellsDrawn() const { return mShellsDrawn; }
+    std::size_t trianglesDrawn() const { return mTrianglesDrawn; }
+
+private:
+    std::string mName;
+    ShaderLibrary& mShaders;
+    GpuScene& mScene;
+    const FrameParams& mFrame;
+    std::unique_ptr<GlProgram> mProgram;
+    std::size_t mShellsDrawn = 0;
+    std::size_t mTrianglesDrawn = 0;
+};
+
+} // namespace inkgraph
