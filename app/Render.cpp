@@ -183,7 +183,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
 
     const Plan& plan = still->plan;
     if (options.printPlan) {
-        mOut << plan.describe() << still->graph.describeShading();
+        mOut << plan.describe() << still->graph.describeShading(plan);
         requireStandardOutputWritten(mOut); // before the commit: a run that fails puts no file in place
     }
     if (!options.graphvizPath.empty()) outputs->stageGraphviz(plan.graphviz());

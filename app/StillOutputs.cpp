@@ -155,8 +155,9 @@ Json describeLook(const PreparedStill& still, const std::string& stylePath) {
     Json json;
     if (!stylePath.empty()) json["style"] = stylePath;
     json["shading"] = shading.name;
-    if (!graph.shadingMode.empty()) json["shading_mode"] = graph.shadingMode;
-    if (!graph.shadingForwardReason.empty()) json["shading_forward_because"] = graph.shadingForwardReason;
+    if (const std::string mode = graph.shadingModeIn(still.plan); !mode.empty()) json["shading_mode"] = mode;
+    if (const std::string reason = graph.shadingForwardReasonIn(still.plan); !reason.empty())
+        json["shading_forward_because"] = reason;
     if (shading.specular) json["shininess"] = look.shininess;
     if (!graph.shadeMapSource.empty()) json["shademap"] = graph.shadeMapSource;
     if (!graph.meshShadeMapSources.empty()) {

@@ -168,7 +168,7 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     for (const std::string& extra : expandWildcards(req.extraOutputs, still.graph))
         if (std::find(requested.begin(), requested.end(), extra) == requested.end()) requested.push_back(extra);
     try {
-        still.plan = compile(still.graph.view(), requested, {still.graph.finalResource});
+        still.plan = still.graph.compilePlan(requested);
     } catch (const GraphError& error) {
         // The registered passes are consistent (tests/graph, tests/app); a problem here comes from --request.
         throw UsageError(std::string("--request: ") + error.what());

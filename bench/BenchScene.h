@@ -46,7 +46,8 @@ struct Bench {
     GraphExecutor executor{pool};
     Plan plan;
 
-    Bench(Scene loaded, Look benchLook, const std::vector<std::string>& requested)
+    /** `allowDeferredShading` false: the shade pass always draws the meshes (StillGraphSetup). */
+    Bench(Scene loaded, Look benchLook, const std::vector<std::string>& requested, bool allowDeferredShading = true)
         : look(std::move(benchLook)), scene(std::move(loaded)) {
         context();
         CameraRequest request;
@@ -57,8 +58,10 @@ struct Bench {
         frame.worldOrigin = sphere.center;
         frame.towardLightWorld = glm::normalize(glm::dvec3(-0.4, 0.5, 0.77));
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
-        graph = buildStillGraph({look, shaders, scene, sphere, *gpuScene, frame, std::nullopt});
-        plan = compile(graph.view(), requested);
+        StillGraphSetup setup{look, shaders, scene, sphere, *gpuScene, frame, std::nullopt};
+        setup.allowDeferredShading = allowDeferredShading;
+        graph = buildStillGraph(setup);
+        plan = graph.compilePlan(requested);
     }
 
     /** Runs the plan; returns the execute() milliseconds of every pass by name. */

@@ -222,15 +222,14 @@ void BM_DeferredShading(benchmark::State& state, ShadingModel model) {
     Look look = comicStillLook();
     look.shading = model;
     Bench deferred(loadScene(kBunnyPath), look, {"composite.final"});
-    Bench forward(loadScene(kBunnyPath), look, {"composite.final"});
-    auto& shade = dynamic_cast<ShadePass&>(*forward.graph.passes.at(1));
-    shade.chooseMode(dynamic_cast<const GBufferPass&>(*forward.graph.passes.at(0)), {});
+    Bench forward(loadScene(kBunnyPath), look, {"composite.final"}, /*allowDeferredShading=*/false);
     std::vector<std::string> requested = lineFields(forward);
     requested.push_back("shade.color");
-    forward.plan = compile(forward.graph.view(), requested);
-    deferred.plan = compile(deferred.graph.view(), requested);
-    if (deferred.graph.shadingMode != "deferred") {
-        state.SkipWithError(("the look shades forward: " + deferred.graph.shadingForwardReason).c_str());
+    forward.plan = forward.graph.compilePlan(requested);
+    deferred.plan = deferred.graph.compilePlan(requested);
+    if (deferred.graph.shadingModeIn(deferred.plan) != "deferred") {
+        state.SkipWithError(
+            ("the look shades forward: " + deferred.graph.shadingForwardReasonIn(deferred.plan)).c_str());
         return;
     }
     timeShading(forward); // warm-up: llvmpipe compiles shader variants on the first draw

@@ -134,6 +134,10 @@ bool GlPassContext::isLive(std::string_view field) const {
     return std::find(mPlanned.liveWrites.begin(), mPlanned.liveWrites.end(), resource) != mPlanned.liveWrites.end();
 }
 
+bool GlPassContext::reads(std::string_view resource) const {
+    return std::find(mPlanned.reads.begin(), mPlanned.reads.end(), resource) != mPlanned.reads.end();
+}
+
 const PlannedResource& GlPassContext::liveOutput(std::string_view field) const {
     const std::string resource = mPlanned.name + "." + std::string(field);
     const PlannedResource* planned = isLive(field) ? mPlan.findResource(resource) : nullptr;

@@ -94,6 +94,8 @@ public:
 
     /** True when this pass's field (e.g. "normal") is consumed or requested in the plan. */
     bool isLive(std::string_view field) const;
+    /** True when the plan has this pass read `resource` (full name): what its declare() chose with compile data. */
+    bool reads(std::string_view resource) const;
     /** The frame size (the output image's size). A field with a scale is larger: see widthOf(). */
     int width() const { return mFrameWidth; }
     int height() const { return mFrameHeight; }

@@ -9,7 +9,6 @@
 #include "passes/mtoon/MToonOutlinePass.h"
 #include "passes/orientation/SceneOrientation.h"
 #include "passes/shade/ShadePass.h"
-#include "passes/silhouette/SilhouettePass.h"
 
 #include <algorithm>
 
@@ -34,7 +33,8 @@ std::string addMToonOutline(const StillGraphSetup& setup, StillGraph& graph) {
 
 /** The shading model's pass, when it has one (else null), laying in the layer of material outlines `outlines` names
  *  (addMToonOutline()); fills the graph's shading facts. */
-ShadePass* addShading(const StillGraphSetup& setup, StillGraph& graph, const std::string& outlines) {
+ShadePass* addShading(const StillGraphSetup& setup, StillGraph& graph, const std::string& outlines,
+                      const GBufferPass& gbuffer) {
     const Look& look = setup.look;
     const ShadingModelTraits& traits = traitsOf(look.shading);
     if (traits.define == nullptr) return nullptr; // none: paper and lines only
@@ -42,6 +42,9 @@ ShadePass* addShading(const StillGraphSetup& setup, StillGraph& graph, const std
     settings.model = look.shading;
     settings.shininess = look.shininess;
     settings.materialOutlines = outlines;
+    // Deferred where the G-buffer runs anyway: the shade pass asks the compiler (ShadePass::forwardReason()).
+    if (setup.allowDeferredShading)
+        settings.deferred = {std::string(gbuffer.name()), gbuffer.supersample(), gbuffer.precision()};
     if (traits.faceOrientation) {
         settings.view =
             chooseViewVector(look.viewVector, setup.frame.camera.eye, setup.sphere.center, setup.sphere.radius);
@@ -64,38 +67,6 @@ ShadePass* addShading(const StillGraphSetup& setup, StillGraph& graph, const std
     graph.passes.push_back(std::move(pass));
     graph.shadingResource = "shade.color";
     return shade;
-}
-
-/** Deferred shading where the G-buffer runs anyway: `registered`, the plan of the look with forward shading (which
- *  reads nothing of the G-buffer), says which G-buffer fields the lines read, and the shade pass decides from them
- *  (ShadePass::chooseMode()). Requests beyond the look (--request 'gbuffer.*') do not count: they are not known
- *  when the graph is built, and a still looks the same with or without them. */
-void chooseShadingMode(StillGraph& graph, ShadePass& shade, const GBufferPass& gbuffer, const Plan& registered) {
-    std::vector<std::string> liveFields;
-    if (const PlannedPass* planned = registered.findPass(std::string(gbuffer.name())))
-        for (const std::string& resource : planned->liveWrites)
-            liveFields.push_back(ResourceName::split(resource).field);
-    shade.chooseMode(gbuffer, liveFields);
-    if (shade.mode() == ShadeMode::Deferred) {
-        graph.shadingMode = "deferred";
-    } else {
-        graph.shadingMode = "forward";
-        graph.shadingForwardReason = shade.forwardReason();
-    }
-}
-
-/** The silhouette's hull is tested against the G-buffer's z-buffer instead of a depth of its own when the G-buffer runs
- *  anyway, at the mask's size (no supersampling), and its z-buffer holds every face the silhouette would draw
- *  (GBufferPass::zBufferHoldsEveryFace()): one draw of the meshes fewer, the same mask (SilhouetteGLTest). The
- *  G-buffer runs anyway when `registered` (the plan chooseShadingMode() reads) runs it: for the lines, which deferred
- *  shading also needs. */
-void shareModelDepth(StillGraph& graph, const GBufferPass& gbuffer, const Plan& registered) {
-    if (gbuffer.supersample() != 1 || !gbuffer.zBufferHoldsEveryFace()) return;
-    if (registered.findPass(std::string(gbuffer.name())) == nullptr) return;
-    for (const auto& pass : graph.passes)
-        if (auto* silhouette = dynamic_cast<SilhouettePass*>(pass.get());
-            silhouette != nullptr && registered.findPass(std::string(silhouette->name())) != nullptr)
-            silhouette->useModelDepth(std::string(gbuffer.name()) + "." + GBufferPass::kZBuffer);
 }
 
 } // namespace
@@ -138,11 +109,17 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
                                                      look.supersample, look.gbufferPrecision);
     const GBufferPass& gbuffer = *gbufferPass;
     graph.passes.push_back(std::move(gbufferPass));
-    ShadePass* shade = addShading(setup, graph, addMToonOutline(setup, graph));
+    graph.mShade = addShading(setup, graph, addMToonOutline(setup, graph), gbuffer);
 
     // Every line type registers its passes, drawn or not: one the composite does not read is culled, and --stats
     // says so.
-    const LineGraphSetup lineSetup{look, setup.shaders, setup.gpuScene, setup.frame, setup.sphere};
+    LineGraphSetup lineSetup{look, setup.shaders, setup.gpuScene, setup.frame, setup.sphere};
+    // The silhouette tests its hull against the G-buffer's z-buffer instead of a depth of its own when the G-buffer
+    // runs anyway (it asks the compiler), at the mask's size (no supersampling), and its z-buffer holds every face the
+    // silhouette would draw (GBufferPass::zBufferHoldsEveryFace()): one draw of the meshes fewer, the same mask
+    // (SilhouetteGLTest).
+    if (gbuffer.supersample() == 1 && gbuffer.zBufferHoldsEveryFace())
+        lineSetup.modelDepth = std::string(gbuffer.name()) + "." + GBufferPass::kZBuffer;
     LineGraphBuilder builder(lineSetup, graph.passes);
     for (const LineType& type : lineTypes()) type.build(type.name, builder);
     graph.mLineLayers = builder.finish();
@@ -179,16 +156,27 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     }
     graph.passes.push_back(
         std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
-    // One plan of the look as registered (forward shading, each pass its own depth) answers both questions.
-    const Plan registered = compile(graph.view(), {graph.finalResource});
-    if (shade) chooseShadingMode(graph, *shade, gbuffer, registered);
-    shareModelDepth(graph, gbuffer, registered);
     return graph;
 }
 
-std::string StillGraph::describeShading() const {
-    if (shadingMode.empty()) return {};
-    return "shading: " + shadingMode + (shadingForwardReason.empty() ? "" : " (" + shadingForwardReason + ")") + "\n";
+Plan StillGraph::compilePlan(const std::vector<std::string>& requested) const {
+    return compile(view(), requested, {finalResource});
+}
+
+std::string StillGraph::shadingModeIn(const Plan& plan) const {
+    if (!mShade) return {};
+    return mShade->modeIn(plan) == ShadeMode::Deferred ? "deferred" : "forward";
+}
+
+std::string StillGraph::shadingForwardReasonIn(const Plan& plan) const {
+    return mShade ? mShade->forwardReasonIn(plan) : std::string();
+}
+
+std::string StillGraph::describeShading(const Plan& plan) const {
+    const std::string mode = shadingModeIn(plan);
+    if (mode.empty()) return {};
+    const std::string reason = shadingForwardReasonIn(plan);
+    return "shading: " + mode + (reason.empty() ? "" : " (" + reason + ")") + "\n";
 }
 
 Json StillGraph::describeLines() const {

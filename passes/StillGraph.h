@@ -2,7 +2,8 @@
 /** @file The passes of one still, registered in a fixed order from a Look: the G-buffer, the shading model's pass,
  *  every line type of the registry (passes/lines/LineTypes.h), the composite. Every pass is registered; the compiler
  *  culls what the request does not need, so --stats can say why a pass did not run. The shade pass shades the
- *  G-buffer instead of the meshes when the look's lines make the G-buffer run anyway (ShadePass::chooseMode()). The
+ *  G-buffer instead of the meshes when the look's lines make the G-buffer run anyway, as one compile decides
+ *  (compilePlan(), ShadePass::forwardReason()). The
  * graph also describes itself for --stats and traces its line layers for --svg, so the app names no pass type. Shared
  * by the renderer (app/StillRenderer.h), the benchmarks and the tests. */
 
@@ -28,6 +29,7 @@
 namespace inkgraph {
 
 class LineLayerPass;
+class ShadePass;
 class StrokesPass;
 
 /** Names of passes whose outputs are named outside the graph (the library's buffer names, api/): the G-buffer's fields
@@ -47,17 +49,16 @@ struct StillGraphSetup {
     /** Per scene mesh, the map it names itself (app/SceneShadeMaps.h); empty entries use `shadeMap`. Only the models
      *  with a shade map use them. */
     std::vector<std::optional<ShadeMap>> meshShadeMaps{};
+    /** Let the shade pass shade the G-buffer when it runs anyway (deferred); off, it always draws the meshes (the
+     *  tests and benchmarks that compare the two). */
+    bool allowDeferredShading = true;
 };
 
 class StillGraph {
 public:
     std::vector<std::unique_ptr<GlPass>> passes;
     std::string shadingResource; ///< the colour the composite reads ("shade.color"), or empty for --shading none
-    /** "deferred" (the shade pass shades the G-buffer the lines need anyway), "forward", or empty for --shading none;
-     *  chosen when the graph is built (ShadePass::chooseMode()). */
-    std::string shadingMode;
-    std::string shadingForwardReason; ///< why forward ("no line type reads the G-buffer"), for --stats
-    std::string shadeMapSource;       ///< the shade map's ShadeMap::source ("builtin:bands-5", a path), or empty
+    std::string shadeMapSource;  ///< the shade map's ShadeMap::source ("builtin:bands-5", a path), or empty
     /** Mesh name -> ShadeMap::source for each mesh drawn with its own map, in scene order, for --stats. */
     std::vector<std::pair<std::string, std::string>> meshShadeMapSources;
     std::string finalResource = "composite.final";
@@ -67,9 +68,18 @@ public:
     /** The registered pass of that name, or null. */
     const Pass* findPass(std::string_view name) const;
 
+    /** Compiles the graph for `requested` (the final picture and what the caller keeps), deciding what depends on
+     *  what runs anyway (deferred shading, the silhouette's depth) for the final picture alone: a --request of a
+     *  G-buffer field does not change how the still is drawn (graph/GraphCompiler.h). */
+    Plan compilePlan(const std::vector<std::string>& requested) const;
+    /** "deferred" (the shade pass shades the G-buffer the lines need anyway, as `plan` has it), "forward", or empty
+     *  for --shading none. */
+    std::string shadingModeIn(const Plan& plan) const;
+    /** Why `plan` shades forward ("no line type reads the G-buffer"), for --stats; empty when deferred. */
+    std::string shadingForwardReasonIn(const Plan& plan) const;
     /** --print-plan's line on shading: "shading: deferred\n", "shading: forward (<why>)\n", or empty without a shade
      *  pass. */
-    std::string describeShading() const;
+    std::string describeShading(const Plan& plan) const;
     /** --stats look.lines: one entry per drawn type in composite order, with its style and what its type reports. */
     nlohmann::ordered_json describeLines() const;
     /** --stats post_stage: what each CPU line layer that ran found and where its time went; "kernels_ms" is the post
@@ -94,6 +104,7 @@ private:
     double mRadialLengthUnit = 1.0;
     std::map<std::string, LineLayerPass*> mLineLayers; ///< the CPU line layers by type
     StrokesPass* mStrokes = nullptr;                   ///< the stroke stage, when a line type is drawn
+    ShadePass* mShade = nullptr;                       ///< the shading model's pass, or null for --shading none
 };
 
 StillGraph buildStillGraph(const StillGraphSetup& setup);

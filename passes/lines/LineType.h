@@ -45,6 +45,9 @@ struct LineGraphSetup {
     const FrameParams& frame;
     BoundingSphere sphere;
     std::string gbuffer = "gbuffer"; ///< the G-buffer pass's name: fields are "<gbuffer>.<field>"
+    /** The model's depth a GL-drawn band may test against instead of drawing its own, when its writer runs anyway
+     *  ("gbuffer.zBuffer"), or empty when the G-buffer's z-buffer cannot stand for it (HullSettings::modelDepth). */
+    std::string modelDepth{};
 };
 
 /** Hands a line type's build() the setup and the graph's pass list. */

@@ -115,6 +115,8 @@ ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, 
                 slot.bandRow[k] = bands.firstRow[k];
         }
     }
+    mSceneBaseColor = sceneBaseColor();
+    mSceneBlocker = sceneBlocker();
 }
 
 std::size_t ShadePass::slotOf(ShadeMap map) {
@@ -141,8 +143,9 @@ std::size_t ShadePass::distinctShadeMapCount() const {
 ShadePass::~ShadePass() = default;
 
 void ShadePass::declare(PassBuilder& builder) const {
-    if (mMode == ShadeMode::Deferred)
-        for (const std::string& field : deferredFields()) builder.read(mGBufferName + "." + field);
+    const std::string& gbuffer = mSettings.deferred.gbuffer;
+    if (!gbuffer.empty() && forwardReason(builder.liveFieldsAnyway(gbuffer)).empty())
+        for (const std::string& field : deferredFields()) builder.read(gbuffer + "." + field);
     else if (!mSettings.materialOutlines.empty())
         for (const char* field : {".color", ".depth"}) builder.read(mSettings.materialOutlines + field);
     builder.write("color", {Format::RGBA8}, Need::Required,
@@ -164,24 +167,22 @@ std::optional<glm::vec4> ShadePass::sceneBaseColor() const {
 
 std::vector<std::string> ShadePass::deferredFields() const {
     std::vector<std::string> fields = {"normal"};
-    if (!sceneBaseColor()) fields.push_back("baseColor");
+    if (!mSceneBaseColor) fields.push_back("baseColor");
     // A constant view vector (comic's V_c) is a uniform; an exact one (phong, comic) is the pixel's.
     if (traits().specular && !usesConstantView()) fields.push_back("view");
     return fields;
 }
 
-std::string ShadePass::deferredBlocker(const GBufferPass& gbuffer, const std::vector<std::string>& liveFields) const {
+std::string ShadePass::sceneBlocker() const {
     const std::string model = modelName(mSettings.model);
-    // First the reason that holds most often: shading alone does not justify a G-buffer.
-    if (liveFields.empty()) return "no line type reads the G-buffer";
     if (!traitsOf(mSettings.model).perPixel)
         return "'" + model + "' shades from more than the pixel's normal, view and base colour";
     if (mSettings.faceOrientation != FaceOrientationMethod::Standard)
         return "'" + model + "' draws the front sets of the CPU face orientation '" +
                faceOrientationMethodName(mSettings.faceOrientation) + "'";
-    if (gbuffer.supersample() != 1)
-        return "the G-buffer is supersampled (" + std::to_string(gbuffer.supersample()) + "x the frame)";
-    if (gbuffer.precision() != GBufferPrecision::Float32) return "the G-buffer stores float16 normals";
+    if (mSettings.deferred.supersample != 1)
+        return "the G-buffer is supersampled (" + std::to_string(mSettings.deferred.supersample) + "x the frame)";
+    if (mSettings.deferred.precision != GBufferPrecision::Float32) return "the G-buffer stores float16 normals";
     const Scene& scene = mScene.scene();
     for (const Mesh& mesh : scene.meshes) {
         const Material& material = mesh.material;
@@ -192,6 +193,14 @@ std::string ShadePass::deferredBlocker(const GBufferPass& gbuffer, const std::ve
     }
     if (distinctShadeMapCount() > 1)
         return "the meshes use " + std::to_string(distinctShadeMapCount()) + " different shade maps";
+    return {};
+}
+
+std::string ShadePass::forwardReason(const std::vector<std::string>& liveFields) const {
+    if (mSettings.deferred.gbuffer.empty()) return "the graph offers no G-buffer to shade";
+    // First the reason that holds most often: shading alone does not justify a G-buffer.
+    if (liveFields.empty()) return "no line type reads the G-buffer";
+    if (!mSceneBlocker.empty()) return mSceneBlocker;
     std::vector<std::string> fields = liveFields;
     for (const std::string& field : deferredFields())
         if (std::find(fields.begin(), fields.end(), field) == fields.end()) fields.push_back(field);
@@ -200,13 +209,23 @@ std::string ShadePass::deferredBlocker(const GBufferPass& gbuffer, const std::ve
     return {};
 }
 
-ShadeMode ShadePass::chooseMode(const GBufferPass& gbuffer, const std::vector<std::string>& liveFields) {
-    if (mProgram)
-        throw std::logic_error("ShadePass::chooseMode(): '" + mName + "' has been prepared; choose before compiling");
-    mForwardReason = deferredBlocker(gbuffer, liveFields);
-    mMode = mForwardReason.empty() ? ShadeMode::Deferred : ShadeMode::Forward;
-    mGBufferName = std::string(gbuffer.name());
-    return mMode;
+ShadeMode ShadePass::modeIn(const Plan& plan) const {
+    const PlannedPass* planned = plan.findPass(mName);
+    const std::string normal = mSettings.deferred.gbuffer + ".normal";
+    const bool deferred = planned != nullptr && !mSettings.deferred.gbuffer.empty() &&
+                          std::find(planned->reads.begin(), planned->reads.end(), normal) != planned->reads.end();
+    return deferred ? ShadeMode::Deferred : ShadeMode::Forward;
+}
+
+std::string ShadePass::forwardReasonIn(const Plan& plan) const {
+    if (modeIn(plan) == ShadeMode::Deferred) return {};
+    std::vector<std::string> liveFields;
+    if (const PlannedPass* gbuffer = plan.findPass(mSettings.deferred.gbuffer))
+        for (const std::string& resource : gbuffer->liveWrites)
+            liveFields.push_back(ResourceName::split(resource).field);
+    const std::string reason = forwardReason(liveFields);
+    // The G-buffer may run for requested buffers alone, which do not decide how the still is drawn.
+    return reason.empty() ? "no line type reads the G-buffer (it runs for the requested buffers only)" : reason;
 }
 
 bool ShadePass::drawsOrientationSets() const { return traits().orientationSets && mScene.cpuOrientation() != nullptr; }
@@ -240,7 +259,13 @@ std::vector<std::string> ShadePass::defines() const {
     return result;
 }
 
-void ShadePass::prepare(GlPassContext&) {
+void ShadePass::prepare(GlPassContext& gl) {
+    // The plan says which: deferred reads the G-buffer's normal (declare()).
+    mMode = !mSettings.deferred.gbuffer.empty() && gl.reads(mSettings.deferred.gbuffer + ".normal")
+                ? ShadeMode::Deferred
+                : ShadeMode::Forward;
+    if (mProgram && mProgramMode != mMode) mProgram.reset();
+    mProgramMode = mMode;
     if (!mProgram && mMode == ShadeMode::Deferred)
         mProgram = std::make_unique<GlProgram>(
             mShaders.build({mName,
@@ -337,7 +362,7 @@ void ShadePass::executeDeferred(GlPassContext& gl) {
     GlProgram& program = *mProgram;
     program.use();
     setShadingUniforms(program);
-    // chooseMode() allows one distinct map: the one every mesh uses.
+    // forwardReason() allows deferred with one distinct map: the one every mesh uses.
     for (const MapSlot& slot : mMaps)
         if (slot.used) bindShadeMap(program, slot);
     const std::vector<std::string> fields = deferredFields();
@@ -345,8 +370,8 @@ void ShadePass::executeDeferred(GlPassContext& gl) {
     const char* names[] = {"normal", "baseColor", "view"};
     for (std::size_t i = 0; i < 3; ++i)
         if (std::find(fields.begin(), fields.end(), names[i]) != fields.end())
-            glBindTextureUnit(units[i], gl.inputTexture(mGBufferName + "." + names[i]).id());
-    if (const std::optional<glm::vec4> base = sceneBaseColor())
+            glBindTextureUnit(units[i], gl.inputTexture(mSettings.deferred.gbuffer + "." + names[i]).id());
+    if (const std::optional<glm::vec4> base = mSceneBaseColor)
         glUniform3fv(program.uniform("sceneBaseColor"), 1, glm::value_ptr(glm::vec3(*base)));
     // Core profile draws nothing without a vertex array, even when the vertices come from gl_VertexID.
     GlVertexArray empty(mName + " fullscreen");

@@ -1,9 +1,10 @@
 #pragma once
 /** @file Shading: every shading model of Winnemöller & Bangay 2002 and Qu, Chen & Zwicker in one pass, chosen at
  *  construction. Forward by default: it draws the meshes itself with its own depth attachment, so a plan without lines
- *  needs no G-buffer. Deferred when chooseMode() finds the G-buffer running for the lines anyway and nothing in the
- *  model or the scene needs more than the per-pixel normal, view vector and base colour: one full-screen triangle
- *  then shades the G-buffer's fields, and the meshes are drawn once instead of twice (docs/shading.md).
+ *  needs no G-buffer. Deferred when the compiler finds the G-buffer running for the lines anyway (declare() asks
+ *  PassBuilder::liveFieldsAnyway(): one compile decides) and nothing in the model or the scene needs more than the
+ *  per-pixel normal, view vector and base colour: one full-screen triangle then shades the G-buffer's fields, and the
+ *  meshes are drawn once instead of twice (docs/shading.md).
  *
  *  | resource      | format | need     | content                                                            |
  *  |---------------|--------|----------|--------------------------------------------------------------------|
@@ -70,8 +71,8 @@ struct ShadeSettings {
     float ambient = 0.15f;         ///< flat, gouraud, lambert, phong
     float specularStrength = 0.5f; ///< phong: white specular weight
     ViewVectorChoice view;         ///< comic: constant or exact (from chooseViewVector())
-    /** comic: the CPU face-orientation method whose front sets are drawn (Standard: the GPU culls), for
-     *  chooseMode(): the sets' per-vertex (s, t) are not in the G-buffer. */
+    /** comic: the CPU face-orientation method whose front sets are drawn (Standard: the GPU culls); deferred shading
+     *  cannot draw them: the sets' per-vertex (s, t) are not in the G-buffer. */
     FaceOrientationMethod faceOrientation = FaceOrientationMethod::Standard;
     /** cel and comic: entry i, when present, is GpuScene mesh i's own shade map, checked like the default one (a
      *  missing entry, or a mesh past the end, uses the default map). Ignored by the models without a map. */
@@ -80,6 +81,13 @@ struct ShadeSettings {
      *  `depth`, passes/mtoon/MToonOutlinePass.h) forward shading lays in after the opaque surfaces; empty: none. The
      *  still graph names it only when some material asks for an outline, so the layer's pass is otherwise culled. */
     std::string materialOutlines{};
+    /** The G-buffer deferred shading may read when it runs anyway: its pass name, supersampling and precision (a
+     *  supersampled or float16 G-buffer would shade other normals than forward). An empty name: always forward. */
+    struct DeferredSource {
+        std::string gbuffer;
+        int supersample = 1;
+        GBufferPrecision precision = GBufferPrecision::Float32;
+    } deferred{};
 };
 
 class ShadePass : public GlPass {
@@ -103,17 +111,18 @@ public:
      *  prepare() uploads. */
     std::size_t distinctShadeMapCount() const;
 
-    /** The one place forward or deferred is decided, when the graph is built and before it is compiled (declare()
-     *  reads the choice). Deferred when `liveFields`, the fields of `gbuffer` the rest of the plan reads, is not empty
-     *  (the G-buffer runs anyway) and none of these holds, else forward with the first that does as the reason:
-     *  the model is not perPixel (flat, gouraud, mtoon); comic draws a CPU face orientation's sets; the G-buffer is
-     *  supersampled or float16 (deferred would shade other normals than forward); a material blends, is emissive or
-     *  unlit (the G-buffer holds none of it); the meshes use more than one distinct shade map; the fields deferred
-     *  reads would make the G-buffer draw the meshes a second time. Returns the mode. */
-    ShadeMode chooseMode(const GBufferPass& gbuffer, const std::vector<std::string>& liveFields);
-    ShadeMode mode() const { return mMode; }
-    /** Why the pass stays forward ("no line type reads the G-buffer"); empty when deferred. */
-    const std::string& forwardReason() const { return mForwardReason; }
+    /** The one rule of forward or deferred: why the pass shades forward when `liveFields` are the fields of the
+     *  G-buffer that run anyway, or empty for deferred. Deferred when settings.deferred names a G-buffer, `liveFields`
+     *  is not empty (the G-buffer runs anyway) and none of these holds, else forward with the first that does as the
+     *  reason: the model is not perPixel (flat, gouraud, mtoon); comic draws a CPU face orientation's sets; the
+     *  G-buffer is supersampled or float16; a material blends, is emissive or unlit (the G-buffer holds none of it);
+     *  the meshes use more than one distinct shade map; the fields deferred reads would make the G-buffer draw the
+     *  meshes a second time. The facts of the scene are taken once, at construction. */
+    std::string forwardReason(const std::vector<std::string>& liveFields) const;
+    /** The mode a compiled plan runs the pass in: deferred when it reads the G-buffer. */
+    ShadeMode modeIn(const Plan& plan) const;
+    /** Why `plan` runs the pass forward (forwardReason() of the G-buffer fields live in it); empty when deferred. */
+    std::string forwardReasonIn(const Plan& plan) const;
     /** The G-buffer fields deferred shading reads: normal (whose alpha is the coverage), baseColor unless
      *  sceneBaseColor() has one, and view for phong and comic with the exact view vector. */
     std::vector<std::string> deferredFields() const;
@@ -149,8 +158,9 @@ private:
     void layMaterialOutlines(GlPassContext& gl);
     /** MODEL_* and variant defines for the one program of this pass. */
     std::vector<std::string> defines() const;
-    /** Why deferred shading over `gbuffer` would not give the forward picture, or empty when it would. */
-    std::string deferredBlocker(const GBufferPass& gbuffer, const std::vector<std::string>& liveFields) const;
+    /** Why deferred shading would not give the forward picture whatever the G-buffer writes (the model, the
+     *  G-buffer's resolution and precision, the materials, the shade maps), or empty; taken at construction. */
+    std::string sceneBlocker() const;
     /** The uniforms both modes share: light, ambient, shininess, specular strength, comic's constant view. */
     void setShadingUniforms(const GlProgram& program) const;
     /** Binds `slot`'s shade map to unit 0 and, for comic's row bands, sets its borders and rows. */
@@ -176,15 +186,16 @@ private:
     GpuScene& mScene;
     const FrameParams& mFrame;
     ShadeSettings mSettings;
-    std::vector<MapSlot> mMaps;                 ///< cel, comic: [0] the default map, then each distinct per-mesh map
-    std::vector<std::size_t> mMeshMap;          ///< cel, comic: per GpuScene mesh, its entry of mMaps
-    std::size_t mSpecularBorderCount = 0;       ///< comic: the most row-band borders of a map in use
-    std::unique_ptr<GlProgram> mProgram;        ///< the one program of this model and variant
-    std::unique_ptr<GlProgram> mOutlineProgram; ///< lays the material outlines in, when the settings name a layer
-    PassDepthBuffer mDepth;                     ///< the pass's own depth attachment, kept between runs
-    ShadeMode mMode = ShadeMode::Forward;
-    std::string mForwardReason = "the graph did not choose (ShadePass::chooseMode() was not called)";
-    std::string mGBufferName; ///< deferred: the G-buffer pass whose fields are read
+    std::vector<MapSlot> mMaps;                  ///< cel, comic: [0] the default map, then each distinct per-mesh map
+    std::vector<std::size_t> mMeshMap;           ///< cel, comic: per GpuScene mesh, its entry of mMaps
+    std::size_t mSpecularBorderCount = 0;        ///< comic: the most row-band borders of a map in use
+    std::unique_ptr<GlProgram> mProgram;         ///< the one program of this model and variant
+    std::unique_ptr<GlProgram> mOutlineProgram;  ///< lays the material outlines in, when the settings name a layer
+    PassDepthBuffer mDepth;                      ///< the pass's own depth attachment, kept between runs
+    ShadeMode mMode = ShadeMode::Forward;        ///< the plan being run's (prepare())
+    ShadeMode mProgramMode = ShadeMode::Forward; ///< the mode mProgram was built for
+    std::optional<glm::vec4> mSceneBaseColor;    ///< sceneBaseColor(), taken at construction
+    std::string mSceneBlocker;                   ///< sceneBlocker(), taken at construction
 };
 
 } // namespace inkgraph

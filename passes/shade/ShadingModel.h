@@ -23,7 +23,7 @@ struct ShadingModelTraits {
     bool faceOrientation;   ///< takes --view-vector, --face-orientation, --front-rule (Winnemöller & Bangay 2002)
     /** Its colour is a function of the pixel's normal, view vector and base colour alone, so it can shade the
      *  G-buffer's fields (deferred) instead of drawing the meshes again; false for a model that needs faces,
-     *  vertices or per-material parameters (flat, gouraud, mtoon). ShadePass::chooseMode() decides. */
+     *  vertices or per-material parameters (flat, gouraud, mtoon). ShadePass::forwardReason() decides. */
     bool perPixel;
     /** The work ShadePass does for the model beyond its shader branch, asked of these traits and never of the model:
      *  constantView: --view-vector may give Winnemöller & Bangay's constant view vector V_c (checked unit, a uniform,

@@ -31,7 +31,8 @@ SilhouettePass::SilhouettePass(std::string name, ShaderLibrary& shaders, GpuScen
 }
 
 void SilhouettePass::declare(PassBuilder& builder) const {
-    if (!mModelDepthResource.empty()) builder.read(mModelDepthResource);
+    const std::string& depth = mSettings.modelDepth;
+    if (!depth.empty() && builder.runsAnyway(ResourceName::split(depth).pass)) builder.read(depth);
     builder.write("lines", {Format::R8}, Need::Required,
                   {"band-" + mName + ".png", Appearance::Lines,
                    "the band GL drew for " + mName + ", at the output size, before the stroke stage thins it"});
@@ -42,7 +43,8 @@ void SilhouettePass::describe(nlohmann::ordered_json& report) const {
     report["model_depth"] = mModelDepthResource.empty() ? "drawn by the pass" : mModelDepthResource;
 }
 
-void SilhouettePass::prepare(GlPassContext&) {
+void SilhouettePass::prepare(GlPassContext& gl) {
+    mModelDepthResource = !mSettings.modelDepth.empty() && gl.reads(mSettings.modelDepth) ? mSettings.modelDepth : "";
     if (!mDepthProgram && mModelDepthResource.empty())
         mDepthProgram = std::make_unique<GlProgram>(mShaders.build({mName + " model depth",
                                                                     "silhouette/hull.vert",

@@ -5,7 +5,7 @@
  *
  *  | resource      | format | need     | content                                          |
  *  |---------------|--------|----------|--------------------------------------------------|
- *  | reads         |        |          | the model's depth when given one (useModelDepth(), |
+ *  | reads         |        |          | HullSettings::modelDepth when it runs anyway,      |
  *  |               |        |          | "gbuffer.zBuffer"); meshes from GpuScene           |
  *  | <name>.lines  | r8     | required | 255 where the hull outline shows, else 0          |
  *
@@ -43,6 +43,11 @@ struct HullSettings {
     /** Offset along GpuScene::hullNormals() (true) or along the mesh's own, possibly split, normals (false). Only
      *  tests turn this off, to show the cracks that welding closes. */
     bool weldNormals = true;
+    /** A Format::Depth32F graph texture of the mask's size holding the depth of every face
+     *  (GBufferPass::zBufferHoldsEveryFace(), "gbuffer.zBuffer") that the hull is tested against instead of a depth
+     *  the pass draws itself, when its writer runs anyway (declare() asks the compiler): one draw of the meshes
+     *  fewer. Empty: the pass always draws its own. */
+    std::string modelDepth{};
 };
 
 class SilhouettePass : public GlPass {
@@ -62,14 +67,6 @@ public:
     /** True when the last execute() left the mask empty because the eye was inside a mesh (for --stats). */
     bool skippedEyeInside() const { return mSkippedEyeInside; }
 
-    /** Tests the hull against `resource`, a Format::Depth32F graph texture of the mask's size holding the depth of
-     *  every face (GBufferPass::zBufferHoldsEveryFace()), instead of drawing the model's depth: one draw of the
-     *  meshes fewer. Empty: the pass draws its own. Set before the graph is compiled (it changes what the pass
-     *  reads). */
-    void useModelDepth(std::string resource) { mModelDepthResource = std::move(resource); }
-    /** The resource set by useModelDepth(), or empty when the pass draws the model's depth itself. */
-    const std::string& modelDepthResource() const { return mModelDepthResource; }
-
 private:
     std::string mName;
     ShaderLibrary& mShaders;
@@ -79,7 +76,7 @@ private:
     std::unique_ptr<GlProgram> mDepthProgram; ///< the model as it is, depth only
     std::unique_ptr<GlProgram> mHullProgram;  ///< the offset hull
     PassDepthBuffer mDepth;                   ///< the pass's own depth attachment, kept between runs
-    std::string mModelDepthResource;          ///< useModelDepth()'s resource, or empty
+    std::string mModelDepthResource;          ///< the plan being run reads HullSettings::modelDepth: it, else empty
     bool mSkippedEyeInside = false;
 };
 

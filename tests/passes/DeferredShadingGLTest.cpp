@@ -45,12 +45,13 @@ protected:
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
 
         StillGraph deferred = buildStillGraph({look, shaders, scene, sphere, *gpuScene, frame, std::nullopt});
-        ASSERT_EQ(deferred.shadingMode, "deferred") << name << ": " << deferred.shadingForwardReason;
-        StillGraph forward = buildStillGraph({look, shaders, scene, sphere, *gpuScene, frame, std::nullopt});
-        auto* shade = dynamic_cast<ShadePass*>(forward.passes.at(1).get());
-        auto* gbuffer = dynamic_cast<const GBufferPass*>(forward.passes.at(0).get());
-        ASSERT_TRUE(shade && gbuffer) << "the still graph registers the G-buffer, then the shade pass";
-        ASSERT_EQ(shade->chooseMode(*gbuffer, {}), ShadeMode::Forward);
+        const Plan decided = deferred.compilePlan({deferred.finalResource});
+        ASSERT_EQ(deferred.shadingModeIn(decided), "deferred")
+            << name << ": " << deferred.shadingForwardReasonIn(decided);
+        StillGraphSetup forwardSetup{look, shaders, scene, sphere, *gpuScene, frame, std::nullopt};
+        forwardSetup.allowDeferredShading = false;
+        StillGraph forward = buildStillGraph(forwardSetup);
+        ASSERT_EQ(forward.shadingModeIn(forward.compilePlan({forward.finalResource})), "forward");
 
         const cv::Mat deferredColor = shadeColor(deferred);
         const cv::Mat forwardColor = shadeColor(forward);
@@ -69,7 +70,8 @@ protected:
     }
 
     cv::Mat shadeColor(const StillGraph& graph) {
-        const Plan plan = compile(graph.view(), {"shade.color"});
+        // The still's decision, for the final picture, then the shading kept.
+        const Plan plan = graph.compilePlan({graph.finalResource, "shade.color"});
         executor.run(plan, graph.mutableView(), {kSize, kSize, false});
         cv::Mat color = executor.store().image("shade.color").clone();
         executor.store().clear();

@@ -1,4 +1,4 @@
-// Forward or deferred shading, as the still graph chooses it when it is built (ShadePass::chooseMode()): one rule per
+// Forward or deferred shading, as one compile of the still graph decides it (ShadePass::forwardReason()): one rule per
 // test, each on a look and a scene, read from the compiled plan (what the shade pass reads) and the graph's facts for
 // --stats. No GL: building and compiling the graph needs no context.
 #include "graph/GraphCompiler.h"
@@ -17,6 +17,20 @@ namespace inkgraph {
 namespace {
 
 using Names = std::vector<std::string>;
+
+/** A line pass in small: reads one G-buffer field, so the G-buffer runs anyway. */
+class FieldReader final : public Pass {
+public:
+    FieldReader(std::string name, std::string field) : mName(std::move(name)), mField(std::move(field)) {}
+    std::string_view name() const override { return mName; }
+    void declare(PassBuilder& builder) const override {
+        builder.read(mField);
+        builder.write("out", {Format::R8});
+    }
+
+private:
+    std::string mName, mField;
+};
 
 /** What the graph chose for one look. */
 struct Choice {
@@ -49,8 +63,8 @@ protected:
         StillGraphSetup setup{look, shaders, scene, sphere, *gpuScene, frame, std::nullopt};
         setup.meshShadeMaps = std::move(meshShadeMaps);
         const StillGraph graph = buildStillGraph(setup);
-        const Plan plan = compile(graph.view(), {graph.finalResource});
-        Choice choice{graph.shadingMode, graph.shadingForwardReason, {}, {}};
+        const Plan plan = graph.compilePlan({graph.finalResource});
+        Choice choice{graph.shadingModeIn(plan), graph.shadingForwardReasonIn(plan), {}, {}};
         if (const PlannedPass* shade = plan.findPass("shade")) choice.reads = shade->reads;
         if (const PlannedPass* gbuffer = plan.findPass("gbuffer")) choice.gbufferWrites = gbuffer->liveWrites;
         return choice;
@@ -173,19 +187,26 @@ TEST_F(ShadeModeChoice, ForwardWhenTheShadingFieldsWouldMakeTheGBufferDrawTwice)
     GBufferPass gbuffer("gbuffer", shaders, meshes, frame);
     ShadeSettings settings;
     settings.model = ShadingModel::Lambert;
+    settings.deferred = {"gbuffer", gbuffer.supersample(), gbuffer.precision()};
     ShadePass shade("shade", shaders, meshes, frame, settings, std::nullopt);
     // Eight fields without the normal: the ninth would need a second draw of the meshes.
     const Names eight = {"view", "wVec", "nDotV", "depth", "coverage", "baseColor", "radial", "materialId"};
-    EXPECT_EQ(shade.chooseMode(gbuffer, eight), ShadeMode::Forward);
-    EXPECT_EQ(shade.forwardReason(), "the G-buffer would draw the meshes a second time for 9 fields");
+    EXPECT_EQ(shade.forwardReason(eight), "the G-buffer would draw the meshes a second time for 9 fields");
     // Seven and the normal still fit one draw.
-    EXPECT_EQ(shade.chooseMode(gbuffer, Names(eight.begin(), eight.end() - 1)), ShadeMode::Deferred);
-    EXPECT_TRUE(shade.forwardReason().empty());
-    // Deferred reads exactly what it declares.
-    PassBuilder builder("shade");
-    shade.declare(builder);
-    ASSERT_EQ(builder.reads().size(), 1u);
-    EXPECT_EQ(builder.reads()[0].resource, "gbuffer.normal");
+    EXPECT_TRUE(shade.forwardReason(Names(eight.begin(), eight.end() - 1)).empty());
+    // Deferred reads exactly what it declares: a plan whose lines read seven fields has it read the normal alone.
+    std::vector<std::unique_ptr<Pass>> readers;
+    for (const std::string& field : Names(eight.begin(), eight.end() - 1))
+        readers.push_back(std::make_unique<FieldReader>("read-" + field, "gbuffer." + field));
+    std::vector<const Pass*> passes = {&gbuffer, &shade};
+    Names requested = {"shade.color"};
+    for (const auto& reader : readers) {
+        passes.push_back(reader.get());
+        requested.push_back(std::string(reader->name()) + ".out");
+    }
+    const Plan plan = compile(passes, requested, requested);
+    EXPECT_EQ(shade.modeIn(plan), ShadeMode::Deferred);
+    EXPECT_EQ(plan.findPass("shade")->reads, Names{"gbuffer.normal"});
 }
 
 TEST_F(ShadeModeChoice, TheMToonOutlineLayerIsReadOnlyWhenAMaterialAsksForAnOutline) {

@@ -282,9 +282,15 @@ TEST_F(HullNormalsOfModels, TheGBuffersZBufferGivesTheMaskOfTheModelsOwnDepth) {
         objectWidth.objectWidth = float(0.01 * sphere.radius);
         for (const HullSettings& settings : {screenWidth, objectWidth}) {
             SilhouettePass own("silhouette", shaders, *gpuScene, frame, settings);
-            SilhouettePass shared("silhouette", shaders, *gpuScene, frame, settings);
-            shared.useModelDepth("gbuffer.zBuffer");
-            const Plan plan = compile({gbuffer.get(), &shared}, {"silhouette.lines"});
+            HullSettings sharing = settings;
+            sharing.modelDepth = "gbuffer.zBuffer";
+            SilhouettePass shared("silhouette", shaders, *gpuScene, frame, sharing);
+            // The z-buffer is read only where the G-buffer runs anyway (here for its coverage).
+            const Plan alone = compile({gbuffer.get(), &shared}, {"silhouette.lines"});
+            ASSERT_NE(alone.findPass("silhouette"), nullptr);
+            EXPECT_TRUE(alone.findPass("silhouette")->reads.empty());
+            EXPECT_EQ(alone.findPass("gbuffer"), nullptr);
+            const Plan plan = compile({gbuffer.get(), &shared}, {"silhouette.lines", "gbuffer.coverage"});
             ASSERT_NE(plan.findPass("silhouette"), nullptr);
             EXPECT_EQ(plan.findPass("silhouette")->reads, std::vector<std::string>{"gbuffer.zBuffer"});
             for (const glm::dvec3& direction : directions) {
@@ -293,7 +299,7 @@ TEST_F(HullNormalsOfModels, TheGBuffersZBufferGivesTheMaskOfTheModelsOwnDepth) {
                              std::to_string(direction.z));
                 lookFrom(centre + direction * (3.0 * sphere.radius), centre, 35.0, 384, 320);
                 const cv::Mat expected = render(own, false).lines;
-                const cv::Mat reused = render(shared, false).lines;
+                const cv::Mat reused = render(shared, true).lines; // with the coverage: the G-buffer runs
                 ASSERT_GT(cv::countNonZero(expected), 500) << "the hull must show";
                 EXPECT_EQ(cv::countNonZero(expected != reused), 0);
             }

@@ -64,6 +64,7 @@ LineType silhouetteLineType() {
         hull.widthPixels = float(setup.look.styleOf(name).widthPixels);
         if (auto width = setup.look.lineParameters.numberIfSet(kSilhouetteObjectWidth))
             hull.objectWidth = float(*width);
+        hull.modelDepth = setup.modelDepth;
         builder.add(std::make_unique<SilhouettePass>(name, setup.shaders, setup.scene, setup.frame, hull));
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
