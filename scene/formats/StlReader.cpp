@@ -1,7 +1,7 @@
 /** @file STL, binary and ASCII. Facet normals are ignored (often wrong or zero in the wild); loadScene() computes
  *  smooth normals after welding the three separate corners each facet carries. */
 
-#include "scene/FormatReaders.h"
+#include "scene/formats/FormatReaders.h"
 
 #include <algorithm>
 #include <bit>

@@ -2,8 +2,9 @@
 /** @file The per-format readers behind loadScene() and the error helpers they share. Internal to the scene layer:
  *  readers produce raw (unwelded) meshes; loadScene() cleans them up with finalizeMesh(). */
 
-#include "scene/MeshOps.h"
+#include "scene/MessageText.h"
 #include "scene/Scene.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <cstddef>
 #include <map>
@@ -64,23 +65,6 @@ private:
     std::size_t mVertices = 0;
     std::size_t mTriangles = 0;
 };
-
-/** Text taken from a file (a name, a URI, a token) as it may appear in a message: at most kMessageExcerptChars
- *  characters, longer text cut with "..." and its byte count, so a 64 MB data: URI or name never fills a terminal
- *  or a log. Every reader quotes file-given text through this one function. */
-std::string excerptForMessage(std::string_view text);
-
-/** Characters of file-given text that excerptForMessage() keeps. */
-inline constexpr std::size_t kMessageExcerptChars = 60;
-
-/** The shortest text that reads back as `value` (e.g. 0.5, 1e+15, 3.1415926535897936, inf), for messages. */
-std::string formatNumber(double value);
-
-/** Three significant digits ("1.73e+16"), for sizes and distances in messages. */
-std::string formatExtent(double value);
-
-/** `content` without a leading UTF-8 byte-order mark (EF BB BF), which some Windows tools write before text. */
-std::string_view withoutByteOrderMark(std::string_view content);
 
 /** Throws SceneError naming the file when a model's extent (bounding-box diagonal) lies outside [kMinModelExtent,
  *  kMaxModelExtent]; zero passes (a model of degenerate triangles is reported as such later). */

@@ -1,11 +1,11 @@
 /** @file Wavefront OBJ: v (with an optional vertex colour), vt, vn and f (v, v/vt, v//vn, v/vt/vn; negative =
- *  relative), polygons fan-triangulated, and the materials of its `mtllib` libraries (scene/ObjMaterials.cpp) that
- *  `usemtl` picks: one mesh per material, named by the first `o` name (or the file stem). Parses the whole file from
- *  memory with std::from_chars; o/g groups and smoothing groups are skipped. A missing library or an undefined
+ *  relative), polygons fan-triangulated, and the materials of its `mtllib` libraries (scene/formats/ObjMaterials.cpp)
+ * that `usemtl` picks: one mesh per material, named by the first `o` name (or the file stem). Parses the whole file
+ * from memory with std::from_chars; o/g groups and smoothing groups are skipped. A missing library or an undefined
  *  `usemtl` material is a warning, and those faces take the default grey: exports often travel without their .mtl,
  *  and refusing them would help nobody. */
 
-#include "scene/FormatReaders.h"
+#include "scene/formats/FormatReaders.h"
 
 #include <algorithm>
 #include <charconv>

@@ -3,12 +3,12 @@
  *  world space and picks up the first perspective camera, the first directional KHR_lights_punctual light and each
  *  material's inkgraph extras (a per-mesh shade map). */
 
-#include "scene/FormatReaders.h"
-#include "scene/GltfAccessors.h"
-#include "scene/GltfDraco.h"
-#include "scene/GltfPose.h"
-#include "scene/ShaderValues.h"
-#include "scene/VrmMaterials.h"
+#include "scene/formats/FormatReaders.h"
+#include "scene/formats/gltf/GltfAccessors.h"
+#include "scene/formats/gltf/GltfDraco.h"
+#include "scene/formats/gltf/GltfPose.h"
+#include "scene/formats/ShaderValues.h"
+#include "scene/formats/gltf/VrmMaterials.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -54,7 +54,7 @@ std::string shadeMapBesideModel(const std::string& modelPath, const std::string&
  *  KHR_mesh_quantization's integer and normalized attributes (GltfAccessors.cpp reads any component type),
  *  KHR_draco_mesh_compression (GltfDraco.cpp), KHR_texture_transform, KHR_materials_unlit,
  *  KHR_materials_emissive_strength, VRM 0.x ("VRM": its front and MToon materialProperties) and 1.0 ("VRMC_vrm": its
- *  front; "VRMC_materials_mtoon"), scene/VrmMaterials.h. */
+ *  front; "VRMC_materials_mtoon"), scene/formats/gltf/VrmMaterials.h. */
 const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual",
                                                        "KHR_mesh_quantization",
                                                        "KHR_draco_mesh_compression",
@@ -661,9 +661,9 @@ private:
         return ref;
     }
 
-    /** A VRM character's MToon (scene/VrmMaterials.h), which may also adjust `material`. Its textures go through
-     *  readTextureRef(), so their samplers and KHR_texture_transform are read as the glTF material's are. Called once
-     *  per material, by material(), so its warnings are reported once. */
+    /** A VRM character's MToon (scene/formats/gltf/VrmMaterials.h), which may also adjust `material`. Its textures go
+     * through readTextureRef(), so their samplers and KHR_texture_transform are read as the glTF material's are. Called
+     * once per material, by material(), so its warnings are reported once. */
     std::optional<MToonMaterial> vrmMaterial(int materialIndex, Material& material) {
         const std::string label = materialLabel(materialIndex) + " MToon texture";
         const VrmTextureResolver resolveTexture = [&](int texture, int texCoord,
