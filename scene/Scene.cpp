@@ -1,47 +1,27 @@
 #include "scene/Scene.h"
 
-#include "scene/formats/FormatReaders.h"
+#include "scene/formats/FormatTable.h"
 #include "scene/mesh/MeshOps.h"
 
 #include <algorithm>
-#include <cctype>
-#include <cstdint>
 #include <cmath>
 #include <filesystem>
-#include <cstdlib>
-#include <cstring>
 #include <fstream>
-#include <iomanip>
-#include <iterator>
-#include <sstream>
 #include <stdexcept>
+#include <string>
 #include <system_error>
 
 namespace inkgraph {
 
 namespace {
 
-enum class FileKind { Gltf, Obj, Stl };
-
-std::string lowercaseExtension(const std::string& path) {
-    std::string extension = std::filesystem::path(path).extension().string();
-    std::ranges::transform(extension, extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return extension;
-}
-
-FileKind kindFromExtension(const std::string& path) {
-    const std::string extension = lowercaseExtension(path);
-    if (extension == ".gltf" || extension == ".glb" || extension == ".vrm") { // a VRM file is a GLB
-        return FileKind::Gltf;
-    }
-    if (extension == ".obj") {
-        return FileKind::Obj;
-    }
-    if (extension == ".stl") {
-        return FileKind::Stl;
-    }
+/** The row of the format table (formats/FormatTable.h) whose extensions hold `path`'s; any other extension is refused
+ *  with the table's list. */
+const detail::FormatReader& readerFor(const std::string& path) {
+    if (const detail::FormatReader* reader = detail::formatReaderFor(path)) return *reader;
+    const std::string extension = detail::lowercaseExtension(path);
     const std::string shown = extension.empty() ? "no extension" : "extension '" + extension + "'";
-    detail::throwLoadError(path, "unsupported file type (" + shown + "); supported: .gltf, .glb, .vrm, .obj, .stl");
+    detail::throwLoadError(path, "unsupported file type (" + shown + "); supported: " + detail::supportedExtensions());
 }
 
 void requireRegularFile(const std::string& path) {
@@ -90,13 +70,9 @@ void checkLoadOptions(const LoadOptions& options) {
 
 detail::RawScene readContent(const std::string& path, std::string_view content, detail::MeshBudget& budget,
                              const LoadOptions& options) {
-    detail::RawScene raw;
-    switch (kindFromExtension(path)) {
-    case FileKind::Gltf: raw = detail::readGltf(path, content, budget, options); break; // the content decides JSON/GLB
-    case FileKind::Obj: raw = detail::readObj(path, content, budget); break;
-    case FileKind::Stl: raw = detail::readStl(path, content, budget); break;
-    }
-    if (!options.animation.empty() && kindFromExtension(path) != FileKind::Gltf) {
+    const detail::FormatReader& reader = readerFor(path);
+    detail::RawScene raw = reader.read(path, content, budget, options);
+    if (!options.animation.empty() && !reader.hasAnimations) {
         raw.warnings.push_back("animation '" + detail::excerptForMessage(options.animation) +
                                "' ignored: " + raw.format + " files have no animations");
     }
@@ -194,7 +170,7 @@ std::size_t Scene::vertexCount() const {
 
 Scene loadScene(const std::string& path, const LoadOptions& options) {
     checkLoadOptions(options);
-    kindFromExtension(path); // an unsupported extension is named before the file is looked at
+    readerFor(path); // an unsupported extension is named before the file is looked at
     requireRegularFile(path);
     detail::MeshBudget budget(path, options.memoryLimitBytes);
     const std::string content = readWholeFile(path, budget);
@@ -211,25 +187,9 @@ Scene loadSceneFromMemory(const std::string& path, std::string_view content, con
 std::vector<std::string> referencedFiles(const std::string& path) {
     std::error_code error;
     if (!std::filesystem::is_regular_file(path, error)) return {}; // a FIFO would block; loading reports the rest
-    const std::string extension = lowercaseExtension(path);
-    std::ifstream file(path, std::ios::binary);
-    std::string content;
-    if (extension == ".glb" || extension == ".vrm") {
-        // The JSON chunk only: the binary chunk after it can be large and names no file.
-        content.resize(20);
-        if (!file.read(content.data(), 20)) return {};
-        std::uint32_t chunkLength = 0;
-        std::memcpy(&chunkLength, content.data() + 12, sizeof chunkLength);
-        const std::uintmax_t size = std::filesystem::file_size(path, error);
-        if (error || chunkLength > size - 20) return {};
-        content.resize(20 + std::size_t(chunkLength));
-        if (!file.read(content.data() + 20, chunkLength)) return {};
-        return detail::gltfReferencedFiles(path, content);
-    }
-    if (extension != ".gltf" && extension != ".obj") return {};
-    content.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
-    return extension == ".gltf" ? detail::gltfReferencedFiles(path, content)
-                                : detail::objReferencedFiles(path, content);
+    const detail::FormatReader* reader = detail::formatReaderFor(path);
+    if (reader == nullptr || reader->referencedFiles == nullptr) return {};
+    return reader->referencedFiles(path);
 }
 
 BoundingSphere computeBoundingSphere(const Scene& scene) {

@@ -153,6 +153,10 @@ Scene loadSceneFromMemory(const std::string& path, std::string_view content, con
  * read names none, and loading it reports why. */
 std::vector<std::string> referencedFiles(const std::string& path);
 
+/** The input formats loadScene() reads, named as the reader table names them, in its order ("glTF, GLB, VRM, OBJ,
+ *  STL"): for help texts, so they list what the loader reads. */
+std::string modelFormatNames();
+
 /** A bounding sphere of every mesh (centre of the bounding box, radius to the farthest vertex), in the scene's local
  *  frame like the positions (add Scene::origin for world coordinates).
  *  Throws SceneError on an empty scene. */

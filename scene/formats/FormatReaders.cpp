@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <fstream>
+#include <iterator>
 
 namespace inkgraph {
 
@@ -90,6 +92,11 @@ void MeshBudget::charge(std::size_t vertices, std::size_t triangles) {
     check(vertices, triangles);
     mVertices += vertices;
     mTriangles += triangles;
+}
+
+std::string wholeFileBestEffort(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
 }
 
 } // namespace detail

@@ -83,20 +83,9 @@ glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> w
 /** Throws SceneError("loadScene(): '<path>' line <line>: <problem>"). */
 [[noreturn]] void throwLoadErrorAtLine(const std::string& path, std::size_t line, std::string_view problem);
 
-/** Wavefront OBJ from the whole file's text. */
-RawScene readObj(const std::string& path, std::string_view content, MeshBudget& budget);
-
-/** STL, binary or ASCII (decided from the content), from the whole file's bytes. */
-RawScene readStl(const std::string& path, std::string_view content, MeshBudget& budget);
-
-/** glTF 2.0 or GLB (the content starts with the "glTF" magic) through tinygltf, from the whole file's bytes;
- *  external buffers are resolved next to `path`. Posed as `options` asks (LoadOptions::animation and time). */
-RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget,
-                  const LoadOptions& options = {});
-
-/** The files a glTF (or GLB: `content` may stop after the JSON chunk) names: external buffers and images, and the
- *  shade maps of its materials, resolved as readGltf() resolves them. Best effort, nothing thrown. */
-std::vector<std::string> gltfReferencedFiles(const std::string& path, std::string_view content);
+/** A regular file's bytes for a referencedFiles() entry of the format table: best effort, what could be read, nothing
+ *  thrown. */
+std::string wholeFileBestEffort(const std::string& path);
 
 /** What an OBJ's material libraries define, gathered by readMtl() over every `mtllib` file of one load. */
 struct ObjMaterials {
@@ -113,9 +102,5 @@ void readMtl(const std::string& path, std::string_view content, ObjMaterials& ma
 
 /** The texture files a material library's map_Kd and map_d lines name, resolved as readMtl() resolves them. */
 std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content);
-
-/** The material libraries an OBJ's `mtllib` lines name, resolved beside it (a name with spaces both whole and split,
- *  as readObj() tries it), and the textures those that exist name (mtlReferencedFiles()). */
-std::vector<std::string> objReferencedFiles(const std::string& path, std::string_view content);
 
 } // namespace inkgraph::detail

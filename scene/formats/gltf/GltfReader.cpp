@@ -3,7 +3,7 @@
  *  world space and picks up the first perspective camera, the first directional KHR_lights_punctual light and each
  *  material's inkgraph extras (a per-mesh shade map). */
 
-#include "scene/formats/FormatReaders.h"
+#include "scene/formats/FormatTable.h"
 #include "scene/formats/gltf/GltfAccessors.h"
 #include "scene/formats/gltf/GltfDraco.h"
 #include "scene/formats/gltf/GltfPose.h"
@@ -1325,8 +1325,6 @@ std::vector<SceneImage> sceneImages(const std::string& path, const tinygltf::Mod
     return images;
 }
 
-} // namespace
-
 RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget, const LoadOptions& options) {
     // A byte-order mark before the JSON needs nothing here: tinygltf's JSON parser (nlohmann) skips it.
     const bool binary = content.size() >= 4 && content.substr(0, 4) == "glTF";
@@ -1401,6 +1399,8 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     return scene;
 }
 
+/** The files a glTF (or GLB: `content` may stop after the JSON chunk) names: external buffers and images, and the
+ *  shade maps of its materials, resolved as readGltf() resolves them. Best effort, nothing thrown. */
 std::vector<std::string> gltfReferencedFiles(const std::string& path, std::string_view content) {
     const bool binary = content.size() >= 4 && content.substr(0, 4) == "glTF";
     const std::string_view json = jsonOf(content, binary);
@@ -1422,6 +1422,42 @@ std::vector<std::string> gltfReferencedFiles(const std::string& path, std::strin
     }
     return files;
 }
+
+/** A GLB's (or VRM's) header and JSON chunk, without the binary chunk after it, which can be large and names no file;
+ *  empty when they cannot be read. */
+std::string glbJsonChunk(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::string content(20, '\0');
+    if (!file.read(content.data(), 20)) return {};
+    std::uint32_t chunkLength = 0;
+    std::memcpy(&chunkLength, content.data() + 12, sizeof chunkLength);
+    std::error_code error;
+    const std::uintmax_t size = std::filesystem::file_size(path, error);
+    if (error || chunkLength > size - 20) return {};
+    content.resize(20 + std::size_t(chunkLength));
+    if (!file.read(content.data() + 20, chunkLength)) return {};
+    return content;
+}
+
+std::vector<std::string> glbReferencedFiles(const std::string& path) {
+    const std::string content = glbJsonChunk(path);
+    return content.empty() ? std::vector<std::string>{} : gltfReferencedFiles(path, content);
+}
+
+} // namespace
+
+// readGltf() reads all three: the content decides JSON or GLB, whatever the extension says.
+FormatReader gltfFormat() {
+    return {"glTF",
+            {".gltf"},
+            readGltf,
+            [](const std::string& path) { return gltfReferencedFiles(path, wholeFileBestEffort(path)); },
+            true};
+}
+
+FormatReader glbFormat() { return {"GLB", {".glb"}, readGltf, glbReferencedFiles, true}; }
+
+FormatReader vrmFormat() { return {"VRM", {".vrm"}, readGltf, glbReferencedFiles, true}; } // a VRM file is a GLB
 
 } // namespace inkgraph::detail
 
