@@ -15,9 +15,11 @@ FormatReader glbFormat();
 FormatReader vrmFormat();
 FormatReader objFormat();
 FormatReader stlFormat();
+FormatReader plyFormat();
 
 std::span<const FormatReader> formatReaders() {
-    static const std::vector<FormatReader> readers{gltfFormat(), glbFormat(), vrmFormat(), objFormat(), stlFormat()};
+    static const std::vector<FormatReader> readers{gltfFormat(), glbFormat(), vrmFormat(),
+                                                   objFormat(),  stlFormat(), plyFormat()};
     return readers;
 }
 

@@ -36,7 +36,7 @@ const FormatReader* formatReaderFor(const std::string& path);
 /** `path`'s extension in lowercase, with its dot (".obj"), or "" for none. */
 std::string lowercaseExtension(const std::string& path);
 
-/** Every extension of every format, in the table's order: ".gltf, .glb, .vrm, .obj, .stl". */
+/** Every extension of every format, in the table's order: ".gltf, .glb, .vrm, .obj, .stl, .ply". */
 std::string supportedExtensions();
 
 } // namespace inkgraph::detail
