@@ -1,4 +1,4 @@
-// scene/ObjectSuggestiveContours: the torus's lines against the analytic zero set of kappa_r (and its strength
+// scene/mesh/ObjectSuggestiveContours: the torus's lines against the analytic zero set of kappa_r (and its strength
 // test), and the negative controls: a sphere (kappa_r > 0 everywhere), a plane seen head-on (w = 0: rtsc's NaN).
 #include "scene/mesh/ObjectSuggestiveContours.h"
 #include "scene/mesh/Procedural.h"
