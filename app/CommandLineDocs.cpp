@@ -5,6 +5,7 @@
 #include "app/FlagTable.h"
 #include "app/ImageIoModule.h"
 #include "gl/BinaryLocation.h"
+#include "scene/Scene.h"
 
 #include <algorithm>
 #include <cctype>
@@ -164,7 +165,8 @@ std::string manPage() {
     for (const CommandInfo& command : commands()) text += ".br\n" + commandSynopsis(command) + "\n";
 
     text += ".SH DESCRIPTION\n" +
-            roffLine("inkgraph renders 3-D models (glTF, GLB, VRM, OBJ, STL) as anime- and comic-style stills: "
+            roffLine("inkgraph renders 3-D models (" + modelFormatNames() +
+                     ") as anime- and comic-style stills: "
                      "shading and line drawings (silhouettes, contours, suggestive contours, creases and more) "
                      "computed by a render graph that runs only the passes the requested outputs need. It needs no "
                      "window or display: OpenGL 4.5 core through EGL, on a GPU's driver or on Mesa's software "

@@ -9,7 +9,7 @@
 #include "passes/StillGraph.h"
 #include "passes/lines/LineTypes.h"
 #include "passes/shade/ShadingModel.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 
 #include <set>
 #include <stdexcept>

@@ -3,7 +3,7 @@
 #include "app/ImageFiles.h"
 #include "app/FlagTable.h"
 #include "app/Options.h"
-#include "scene/FormatReaders.h" // withoutByteOrderMark(), as the model readers skip one
+#include "scene/MessageText.h" // withoutByteOrderMark(), as the model readers skip one
 
 #include <algorithm>
 #include <filesystem>

@@ -7,7 +7,7 @@
 #include "gl/TexturePool.h"
 #include "graph/GraphCompiler.h"
 #include "scene/Camera.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 
 #include <benchmark/benchmark.h>
 

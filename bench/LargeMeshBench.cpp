@@ -6,9 +6,9 @@
 //
 //     ./build/bench/inkgraph_bench --benchmark_filter=Large
 #include "bench/LargeMesh.h"
-#include "scene/EdgeAdjacency.h"
-#include "scene/MeshCurvature.h"
-#include "scene/MeshOps.h"
+#include "scene/mesh/EdgeAdjacency.h"
+#include "scene/mesh/MeshCurvature.h"
+#include "scene/mesh/MeshOps.h"
 #include "scene/Scene.h"
 
 #include <benchmark/benchmark.h>

@@ -3,7 +3,7 @@
 //   inkgraph_make_mesh subdivide K IN OUT.obj            every triangle of IN split into K x K (the same surface,
 //                                                        K^2 times the triangles: a scan at a production density)
 #include "bench/LargeMesh.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 #include "scene/Scene.h"
 
 #include <cmath>

@@ -3,8 +3,8 @@
 // count is there as the reference for one triangle pass. Derived data (face normals, betaMax, adjacency) is built once
 // per size outside the timing, as the paper does at load time; holes are not counted in the timed loop. `reuse:1`
 // passes the same MeshOrientation every iteration, so its lists are allocated once, as in an interactive renderer.
-#include "scene/FaceOrientation.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/FaceOrientation.h"
+#include "scene/mesh/Procedural.h"
 
 #include <benchmark/benchmark.h>
 

@@ -14,7 +14,7 @@
 #include "graph/GraphCompiler.h"
 #include "passes/lines/LineTypes.h"
 #include "scene/Camera.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 #include "tests/support/AnalyticLines.h"
 
 #include <opencv2/imgproc.hpp>

@@ -9,7 +9,7 @@
 set(CPACK_PACKAGE_NAME inkgraph)
 set(CPACK_PACKAGE_VENDOR inkgraph)
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "headless anime- and comic-style renderer")
-set(CPACK_PACKAGE_DESCRIPTION "inkgraph renders 3-D models (glTF, GLB, VRM, OBJ, STL) as anime- and comic-style \
+set(CPACK_PACKAGE_DESCRIPTION "inkgraph renders 3-D models (glTF, GLB, VRM, OBJ, STL, PLY) as anime- and comic-style \
 stills with shading and line drawings, through OpenGL 4.5 core on EGL with no window or display (a GPU's driver, or \
 Mesa's llvmpipe).")
 set(CPACK_PACKAGE_CONTACT "inkgraph maintainers <inkgraph@localhost>")

@@ -2,7 +2,7 @@
 
 #include "passes/orientation/SceneOrientation.h"
 #include "scene/MaterialIds.h"
-#include "scene/MeshOps.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <algorithm>
 #include <stdexcept>

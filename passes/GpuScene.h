@@ -6,9 +6,9 @@
 #include "gl/GlObjects.h"
 #include "passes/material/SceneMaterials.h"
 #include "passes/orientation/OrientationSettings.h"
-#include "scene/EdgeAdjacency.h"
-#include "scene/MeshCurvature.h"
-#include "scene/MeshOps.h"
+#include "scene/mesh/EdgeAdjacency.h"
+#include "scene/mesh/MeshCurvature.h"
+#include "scene/mesh/MeshOps.h"
 #include "scene/Scene.h"
 
 #include <glm/glm.hpp>
@@ -72,14 +72,14 @@ public:
      *  call. */
     const std::vector<GlVertexArray>& hullArrays();
 
-    /** Edge adjacency of mesh `meshIndex` (scene/EdgeAdjacency.h: welded edges, their kinds, face normals and
+    /** Edge adjacency of mesh `meshIndex` (scene/mesh/EdgeAdjacency.h: welded edges, their kinds, face normals and
      *  planes), in world space like the scene, keyed on positionWeld(), so split normals do not turn creases into
      *  borders. CPU data, nothing uploaded. Computed for every mesh the first
      *  time any is asked for (only a pass that runs asks). Throws std::out_of_range for a bad index. */
     const EdgeAdjacency& edgeAdjacency(std::size_t meshIndex);
     bool edgeAdjacencyComputed() const { return !mEdgeAdjacency.empty(); }
 
-    /** Per-vertex curvature of mesh `meshIndex` (scene/MeshCurvature.h: normals, principal curvatures and
+    /** Per-vertex curvature of mesh `meshIndex` (scene/mesh/MeshCurvature.h: normals, principal curvatures and
      *  directions, and their derivative C on position-welded vertices), in world space like the scene, on
      *  positionWeld(). CPU data, nothing uploaded. Computed for every mesh the first time any is
      *  asked for (only a pass that runs asks: the object-space suggestive contours), smoothed over `smoothing` model

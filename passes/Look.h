@@ -7,7 +7,7 @@
 #include "passes/gbuffer/GBufferPrecision.h"
 #include "passes/lines/LineParameter.h"
 #include "passes/shade/ShadingModel.h"
-#include "scene/FaceOrientation.h"
+#include "scene/mesh/FaceOrientation.h"
 
 #include <glm/glm.hpp>
 

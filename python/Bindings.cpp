@@ -177,7 +177,8 @@ void defineModule(py::module_& m) {
         "file; the format follows the extension (PNG; EXR, TIFF, JPEG through OpenImageIO). Raises OutputError "
         "naming the file, also for a place that is not a regular file or a new name (a FIFO, a device).");
 
-    py::class_<ig::Scene>(m, "Scene", "A model loaded once (OBJ, glTF/GLB, VRM, STL); render it any number of times.")
+    py::class_<ig::Scene>(m, "Scene",
+                          "A model loaded once (OBJ, glTF/GLB, VRM, STL, PLY); render it any number of times.")
         .def_static(
             "load",
             [](const std::filesystem::path& path, const std::string& animation, double time,

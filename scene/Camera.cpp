@@ -1,6 +1,7 @@
 #include "scene/Camera.h"
 
-#include "scene/FormatReaders.h"
+#include "scene/MessageText.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

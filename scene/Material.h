@@ -49,7 +49,7 @@ struct TextureRef {
 enum class AlphaMode { Opaque, Mask, Blend };
 
 /** A VRM character's MToon material, in VRMC_materials_mtoon-1.0's terms (VRM 0.x's properties are converted to these
- *  by the reader, scene/VrmMaterials.cpp). docs/mtoon.md sets them beside the specification's formulas. */
+ *  by the reader, scene/formats/gltf/VrmMaterials.cpp). docs/mtoon.md sets them beside the specification's formulas. */
 struct MToonMaterial {
     glm::vec3 shadeColorFactor{0.0f};         ///< linear; the colour of the shaded side
     TextureRef shadeMultiplyTexture;          ///< times shadeColorFactor

@@ -1,167 +1,27 @@
 #include "scene/Scene.h"
 
-#include "scene/FormatReaders.h"
-#include "scene/MeshOps.h"
+#include "scene/formats/FormatTable.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <algorithm>
-#include <cctype>
-#include <cstdint>
 #include <cmath>
 #include <filesystem>
-#include <cstdlib>
-#include <cstring>
 #include <fstream>
-#include <iomanip>
-#include <iterator>
-#include <sstream>
 #include <stdexcept>
+#include <string>
 #include <system_error>
 
 namespace inkgraph {
 
-namespace detail {
-
-std::string excerptForMessage(std::string_view text) {
-    if (text.size() <= kMessageExcerptChars) {
-        return std::string(text);
-    }
-    return std::string(text.substr(0, kMessageExcerptChars)) + "... (" + std::to_string(text.size()) + " bytes)";
-}
-
-std::string formatNumber(double value) {
-    std::string text;
-    for (int precision = 6; precision <= 17; ++precision) {
-        std::ostringstream candidate;
-        candidate << std::setprecision(precision) << value;
-        text = candidate.str();
-        if (!std::isfinite(value) || std::strtod(text.c_str(), nullptr) == value) {
-            break;
-        }
-    }
-    return text;
-}
-
-std::string_view withoutByteOrderMark(std::string_view content) {
-    constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
-    if (content.substr(0, kUtf8ByteOrderMark.size()) == kUtf8ByteOrderMark) {
-        content.remove_prefix(kUtf8ByteOrderMark.size());
-    }
-    return content;
-}
-
-std::string formatExtent(double value) {
-    std::ostringstream text;
-    text << std::setprecision(3) << value;
-    return text.str();
-}
-
-void checkModelExtent(const std::string& path, double extent) {
-    if (!(extent <= kMaxModelExtent)) {
-        throwLoadError(path, "the model is " + formatExtent(extent) +
-                                 " units across (bounding-box diagonal), above the " + formatExtent(kMaxModelExtent) +
-                                 " the renderer can hold (float relative to the model's centre); "
-                                 "check the units or the node scales");
-    }
-    if (extent > 0.0 && extent < kMinModelExtent) {
-        throwLoadError(path, "the model is " + formatExtent(extent) +
-                                 " units across (bounding-box diagonal), below the " + formatExtent(kMinModelExtent) +
-                                 " the renderer can resolve; check the units or the node scales");
-    }
-}
-
-glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> world, std::vector<glm::vec3>& stored) {
-    BoundingBox box;
-    for (const glm::dvec3& p : world) {
-        box.add(p);
-    }
-    const double extent = box.diagonal();
-    checkModelExtent(path, extent);
-    const glm::dvec3 centre = box.empty() ? glm::dvec3(0.0) : box.center();
-    const glm::dvec3 distance = glm::abs(centre);
-    const glm::dvec3 origin = std::max({distance.x, distance.y, distance.z}) <= extent ? glm::dvec3(0.0) : centre;
-    stored.resize(world.size());
-    for (std::size_t i = 0; i < world.size(); ++i) {
-        stored[i] = glm::vec3(world[i] - origin);
-    }
-    return origin;
-}
-
-void throwLoadError(const std::string& path, std::string_view problem) {
-    throw SceneError("loadScene(): '" + path + "': " + std::string(problem));
-}
-
-void throwLoadErrorAtLine(const std::string& path, std::size_t line, std::string_view problem) {
-    throw SceneError("loadScene(): '" + path + "' line " + std::to_string(line) + ": " + std::string(problem));
-}
-
-std::size_t MeshBudget::estimate(std::size_t vertices, std::size_t triangles) const {
-    // Saturating: declared counts may be anything up to 2^64.
-    const auto product = [](std::size_t count, std::size_t bytes) {
-        return count > SIZE_MAX / bytes ? SIZE_MAX : count * bytes;
-    };
-    const auto sum = [](std::size_t a, std::size_t b) { return a > SIZE_MAX - b ? SIZE_MAX : a + b; };
-    const std::size_t allVertices = sum(mVertices, vertices);
-    const std::size_t allTriangles = sum(mTriangles, triangles);
-    return sum(sum(mFileBytes, mOtherBytes),
-               sum(product(allVertices, kBytesPerVertex), product(allTriangles, kBytesPerTriangle)));
-}
-
-void MeshBudget::chargeFile(std::size_t bytes) {
-    mFileBytes = mFileBytes > SIZE_MAX - bytes ? SIZE_MAX : mFileBytes + bytes;
-    if (estimate(0, 0) > mLimitBytes)
-        throwLoadError(mPath, "the file is " + std::to_string(bytes >> 20) + " MiB; the load would hold about " +
-                                  std::to_string(estimate(0, 0) >> 20) + " MiB, above the memory limit of " +
-                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
-}
-
-void MeshBudget::chargeBytes(std::size_t bytes) {
-    mOtherBytes = mOtherBytes > SIZE_MAX - bytes ? SIZE_MAX : mOtherBytes + bytes;
-    if (estimate(0, 0) > mLimitBytes)
-        throwLoadError(mPath, "the load would hold about " + std::to_string(estimate(0, 0) >> 20) +
-                                  " MiB (with the meshes' node paths), above the memory limit of " +
-                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
-}
-
-void MeshBudget::check(std::size_t vertices, std::size_t triangles) const {
-    const std::size_t bytes = estimate(vertices, triangles);
-    if (bytes > mLimitBytes)
-        throwLoadError(mPath, "the mesh would need about " + std::to_string(bytes >> 20) + " MiB (" +
-                                  std::to_string(mVertices + vertices) + " vertices, " +
-                                  std::to_string(mTriangles + triangles) + " triangles), above the memory limit of " +
-                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
-}
-
-void MeshBudget::charge(std::size_t vertices, std::size_t triangles) {
-    check(vertices, triangles);
-    mVertices += vertices;
-    mTriangles += triangles;
-}
-
-} // namespace detail
-
 namespace {
 
-enum class FileKind { Gltf, Obj, Stl };
-
-std::string lowercaseExtension(const std::string& path) {
-    std::string extension = std::filesystem::path(path).extension().string();
-    std::ranges::transform(extension, extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return extension;
-}
-
-FileKind kindFromExtension(const std::string& path) {
-    const std::string extension = lowercaseExtension(path);
-    if (extension == ".gltf" || extension == ".glb" || extension == ".vrm") { // a VRM file is a GLB
-        return FileKind::Gltf;
-    }
-    if (extension == ".obj") {
-        return FileKind::Obj;
-    }
-    if (extension == ".stl") {
-        return FileKind::Stl;
-    }
+/** The row of the format table (formats/FormatTable.h) whose extensions hold `path`'s; any other extension is refused
+ *  with the table's list. */
+const detail::FormatReader& readerFor(const std::string& path) {
+    if (const detail::FormatReader* reader = detail::formatReaderFor(path)) return *reader;
+    const std::string extension = detail::lowercaseExtension(path);
     const std::string shown = extension.empty() ? "no extension" : "extension '" + extension + "'";
-    detail::throwLoadError(path, "unsupported file type (" + shown + "); supported: .gltf, .glb, .vrm, .obj, .stl");
+    detail::throwLoadError(path, "unsupported file type (" + shown + "); supported: " + detail::supportedExtensions());
 }
 
 void requireRegularFile(const std::string& path) {
@@ -210,13 +70,9 @@ void checkLoadOptions(const LoadOptions& options) {
 
 detail::RawScene readContent(const std::string& path, std::string_view content, detail::MeshBudget& budget,
                              const LoadOptions& options) {
-    detail::RawScene raw;
-    switch (kindFromExtension(path)) {
-    case FileKind::Gltf: raw = detail::readGltf(path, content, budget, options); break; // the content decides JSON/GLB
-    case FileKind::Obj: raw = detail::readObj(path, content, budget); break;
-    case FileKind::Stl: raw = detail::readStl(path, content, budget); break;
-    }
-    if (!options.animation.empty() && kindFromExtension(path) != FileKind::Gltf) {
+    const detail::FormatReader& reader = readerFor(path);
+    detail::RawScene raw = reader.read(path, content, budget, options);
+    if (!options.animation.empty() && !reader.hasAnimations) {
         raw.warnings.push_back("animation '" + detail::excerptForMessage(options.animation) +
                                "' ignored: " + raw.format + " files have no animations");
     }
@@ -314,7 +170,7 @@ std::size_t Scene::vertexCount() const {
 
 Scene loadScene(const std::string& path, const LoadOptions& options) {
     checkLoadOptions(options);
-    kindFromExtension(path); // an unsupported extension is named before the file is looked at
+    readerFor(path); // an unsupported extension is named before the file is looked at
     requireRegularFile(path);
     detail::MeshBudget budget(path, options.memoryLimitBytes);
     const std::string content = readWholeFile(path, budget);
@@ -331,25 +187,9 @@ Scene loadSceneFromMemory(const std::string& path, std::string_view content, con
 std::vector<std::string> referencedFiles(const std::string& path) {
     std::error_code error;
     if (!std::filesystem::is_regular_file(path, error)) return {}; // a FIFO would block; loading reports the rest
-    const std::string extension = lowercaseExtension(path);
-    std::ifstream file(path, std::ios::binary);
-    std::string content;
-    if (extension == ".glb" || extension == ".vrm") {
-        // The JSON chunk only: the binary chunk after it can be large and names no file.
-        content.resize(20);
-        if (!file.read(content.data(), 20)) return {};
-        std::uint32_t chunkLength = 0;
-        std::memcpy(&chunkLength, content.data() + 12, sizeof chunkLength);
-        const std::uintmax_t size = std::filesystem::file_size(path, error);
-        if (error || chunkLength > size - 20) return {};
-        content.resize(20 + std::size_t(chunkLength));
-        if (!file.read(content.data() + 20, chunkLength)) return {};
-        return detail::gltfReferencedFiles(path, content);
-    }
-    if (extension != ".gltf" && extension != ".obj") return {};
-    content.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
-    return extension == ".gltf" ? detail::gltfReferencedFiles(path, content)
-                                : detail::objReferencedFiles(path, content);
+    const detail::FormatReader* reader = detail::formatReaderFor(path);
+    if (reader == nullptr || reader->referencedFiles == nullptr) return {};
+    return reader->referencedFiles(path);
 }
 
 BoundingSphere computeBoundingSphere(const Scene& scene) {

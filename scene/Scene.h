@@ -70,7 +70,7 @@ struct DirectionalLight {
 
 /** What the loader did, for --stats and the manifest. */
 struct LoadReport {
-    std::string format;                ///< "obj", "stl-binary", "stl-ascii", "gltf", "glb"
+    std::string format;                ///< "obj", "stl-binary", "stl-ascii", "ply-ascii", "ply-binary", "gltf", "glb"
     std::size_t trianglesRead = 0;     ///< after triangulating polygons, strips and fans
     std::size_t degenerateDropped = 0; ///< zero-area or repeated-index triangles removed
     std::size_t verticesBeforeWeld = 0;
@@ -137,7 +137,8 @@ struct LoadOptions {
     double time = 0.0;
 };
 
-/** Reads .gltf, .glb (and .vrm, a GLB), .obj or .stl (binary or ASCII), chosen by content and extension.
+/** Reads .gltf, .glb (and .vrm, a GLB), .obj, .stl or .ply (binary or ASCII), chosen by extension (the format table)
+ *  and content.
  *  Throws SceneError for a missing or unreadable file, corrupt or truncated content, non-finite
  *  coordinates, out-of-range indices, a model whose extent lies outside [kMinModelExtent, kMaxModelExtent], or a file
  *  with no triangles. */
@@ -152,6 +153,10 @@ Scene loadSceneFromMemory(const std::string& path, std::string_view content, con
  * before any work (a batch's outputs must not replace a file another model reads). Best effort: a file that cannot be
  * read names none, and loading it reports why. */
 std::vector<std::string> referencedFiles(const std::string& path);
+
+/** The input formats loadScene() reads, named as the reader table names them, in its order ("glTF, GLB, VRM, OBJ,
+ *  STL, PLY"): for help texts, so they list what the loader reads. */
+std::string modelFormatNames();
 
 /** A bounding sphere of every mesh (centre of the bounding box, radius to the farthest vertex), in the scene's local
  *  frame like the positions (add Scene::origin for world coordinates).

@@ -1,6 +1,6 @@
 #include "scene/TextureImage.h"
 
-#include "scene/FormatReaders.h"
+#include "scene/MessageText.h"
 #include "scene/Scene.h"
 
 #include "codecs/JpegCodec.h"

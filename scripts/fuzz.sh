@@ -4,14 +4,14 @@
 # build-fuzz/corpus/<target>/; a crash, leak, hang (> 10 s per input) or single allocation above 1 GiB stops that
 # target and leaves its input in build-fuzz/artifacts/<target>/. Copy such an input to tests/fuzz/regressions/<target>/
 # once fixed: the fuzz_replay_<target> ctest test replays it from then on.
-#   scripts/fuzz.sh [SECONDS] [TARGET...]     targets: obj stl gltf shademap style texture mtoon skin referenced
+#   scripts/fuzz.sh [SECONDS] [TARGET...]     targets: obj stl ply gltf shademap style texture mtoon skin referenced
 #                                             python_args (default: all)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-600}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj stl gltf shademap style texture mtoon skin referenced python_args)
+[ ${#targets[@]} -gt 0 ] || targets=(obj stl ply gltf shademap style texture mtoon skin referenced python_args)
 build="$root/build-fuzz"
 
 if ! command -v clang++ >/dev/null || ! dpkg-query -W -f='${Status}' libclang-rt-14-dev 2>/dev/null | grep -q "ok installed"; then

@@ -2,7 +2,7 @@
 
 #include "gl/GraphExecutor.h"
 #include "passes/LineMaskTarget.h"
-#include "scene/EdgeAdjacency.h"
+#include "scene/mesh/EdgeAdjacency.h"
 
 #include <nlohmann/json.hpp>
 

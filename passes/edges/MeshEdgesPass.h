@@ -20,7 +20,7 @@
  *    index list. Inconsistently oriented pairs are re-oriented locally first.
  *  - crease: manifold edges whose faces' normals meet at more than `creaseAngleDegrees` (atan2(|n1 x n2|, n1 . n2):
  *    0 on a flat surface, 90 at a cube's edge), whatever the view, and only those in a chain of crease edges at least
- *    `creaseMinLength` long (scene/EdgeAdjacency.h selectProminentCreaseEdges(): edges joined where they run on
+ *    `creaseMinLength` long (scene/mesh/EdgeAdjacency.h selectProminentCreaseEdges(): edges joined where they run on
  *    straightest, so fur, braids and a scan's facets lose their short creases). Chosen once per pass object.
  *  - border: boundary edges (one face) and non-manifold edges (three or more faces): both are where the surface
  *    stops being a closed two-sided sheet, and neither has a defined silhouette or crease test. Chosen once.

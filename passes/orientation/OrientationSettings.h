@@ -2,7 +2,7 @@
 /** @file The settings of the CPU face orientation, in a header of their own: GpuScene stores them without including
  *  SceneOrientation.h (which includes GpuScene.h). */
 
-#include "scene/FaceOrientation.h"
+#include "scene/mesh/FaceOrientation.h"
 
 namespace inkgraph {
 

@@ -8,7 +8,7 @@
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
 #include "passes/orientation/OrientationSettings.h"
-#include "scene/FaceOrientation.h"
+#include "scene/mesh/FaceOrientation.h"
 #include "scene/Scene.h"
 
 #include <nlohmann/json_fwd.hpp>

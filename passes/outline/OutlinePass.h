@@ -41,7 +41,7 @@
 #include "gl/GlPass.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
-#include "scene/EdgeAdjacency.h"
+#include "scene/mesh/EdgeAdjacency.h"
 
 #include <glm/glm.hpp>
 

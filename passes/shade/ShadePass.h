@@ -53,7 +53,7 @@
 #include "passes/orientation/SceneOrientation.h"
 #include "passes/shade/ShadeMap.h"
 #include "passes/shade/ShadingModel.h"
-#include "scene/FaceOrientation.h"
+#include "scene/mesh/FaceOrientation.h"
 
 #include <memory>
 #include <optional>

@@ -100,7 +100,7 @@ def render(
 ) -> Result:
     """Renders one still of `model` and returns the picture and the buffers asked for.
 
-    model:    a model file (OBJ, glTF/GLB, VRM, STL), loaded for this call, or a Scene loaded once for many calls.
+    model:    a model file (OBJ, glTF/GLB, VRM, STL, PLY), loaded for this call, or a Scene loaded once for many calls.
     look:     None (the command line's default look), a dict of `inkgraph render`'s look and line flags without the
               dashes ({"shading": "cel", "silhouette-width": 3, "background": (1, 0.9, 0.8)}; a list or tuple is
               joined with commas, True gives a flag without a value, False and None leave it out), a list of

@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -249,6 +251,69 @@ TEST_F(Cli, AByteOrderMarkOrAMissingSolidLineChangesNothing) {
     }
     EXPECT_EQ(cv::norm(readImage(directory / "plain.style.png"), readImage(directory / "bom.style.png"), cv::NORM_INF),
               0.0);
+}
+
+TEST_F(Cli, APlyModelRendersLikeTheSameObj) {
+    // A cube of six coloured quads as OBJ (`v x y z r g b`), ASCII PLY with float colours and big-endian binary PLY
+    // with uchar colours (k/255, which OBJ's 17 digits give back exactly): the same picture, bit for bit.
+    std::ostringstream obj;
+    obj.precision(17);
+    std::string ascii = "ply\nformat ascii 1.0\ncomment a cube\nelement vertex 8\nproperty float x\nproperty float y\n"
+                        "property float z\nproperty float red\nproperty float green\nproperty float blue\n"
+                        "element face 6\nproperty list uchar int vertex_indices\nend_header\n";
+    std::string binary = "ply\nformat binary_big_endian 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+                         "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+                         "element face 6\nproperty list uchar uint vertex_indices\nend_header\n";
+    const auto bigEndian = [&](auto value) {
+        char bytes[sizeof value];
+        std::memcpy(bytes, &value, sizeof value);
+        std::reverse(bytes, bytes + sizeof value); // the test machines are little-endian
+        binary.append(bytes, sizeof value);
+    };
+    for (int i = 0; i < 8; ++i) {
+        const float position[3] = {float(i & 1), float((i >> 1) & 1), float(i >> 2)};
+        const int colour[3] = {30 * i, 255 - 30 * i, 51};
+        obj << "v " << position[0] << " " << position[1] << " " << position[2];
+        ascii += std::to_string(int(position[0])) + " " + std::to_string(int(position[1])) + " " +
+                 std::to_string(int(position[2]));
+        for (int c = 0; c < 3; ++c) {
+            obj << " " << colour[c] / 255.0;
+            std::ostringstream component;
+            component.precision(17);
+            component << colour[c] / 255.0;
+            ascii.append(" ").append(component.str()); // not " " + ...: GCC 12's false -Wrestrict (bug 105329)
+        }
+        obj << "\n";
+        ascii += "\n";
+        for (const float p : position) bigEndian(p);
+        for (const int c : colour) binary += char(c);
+    }
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& quad : quads) {
+        obj << "f " << quad[0] + 1 << " " << quad[1] + 1 << " " << quad[2] + 1 << " " << quad[3] + 1 << "\n";
+        ascii += "4 " + std::to_string(quad[0]) + " " + std::to_string(quad[1]) + " " + std::to_string(quad[2]) + " " +
+                 std::to_string(quad[3]) + "\n";
+        binary += char(4);
+        for (const int index : quad) bigEndian(std::uint32_t(index));
+    }
+    std::ofstream(directory / "cube.obj") << obj.str();
+    std::ofstream(directory / "cube.ply") << ascii;
+    std::ofstream(directory / "cube-binary.ply", std::ios::binary) << binary;
+    for (const char* name : {"cube.obj", "cube.ply", "cube-binary.ply"}) {
+        const CliRun result = run(std::string("render ") + name + " -o " + name + ".png --size 64x64 --orbit 30,25" +
+                                  " --lines contour,silhouette --stats " + name + ".json");
+        ASSERT_EQ(result.exitCode, 0) << name << ": " << result.err;
+    }
+    const cv::Mat reference = readImage(directory / "cube.obj.png");
+    EXPECT_EQ(cv::norm(reference, readImage(directory / "cube.ply.png"), cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(reference, readImage(directory / "cube-binary.ply.png"), cv::NORM_INF), 0.0);
+    const auto stats = nlohmann::json::parse(readText(directory / "cube-binary.ply.json"));
+    EXPECT_EQ(stats["scene"]["format"], "ply-binary") << stats["scene"].dump();
+    EXPECT_EQ(stats["scene"]["triangles"], 12) << stats["scene"].dump();
+    // The colours are drawn: the picture is not the grey of a model without them.
+    cv::Mat channels[4];
+    cv::split(reference, channels);
+    EXPECT_GT(cv::norm(channels[0], channels[1], cv::NORM_INF), 50.0);
 }
 
 TEST_F(Cli, AwkwardPathsAndFormats) {

@@ -1,4 +1,5 @@
-// libFuzzer target: the glTF and GLB reader (scene/GltfReader.cpp) and what the line passes derive from its meshes.
+// libFuzzer target: the glTF and GLB reader (scene/formats/gltf/GltfReader.cpp) and what the line passes derive from
+// its meshes.
 #include "tests/fuzz/FuzzSupport.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

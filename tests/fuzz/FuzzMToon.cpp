@@ -1,6 +1,6 @@
-// libFuzzer target: VRM MToon materials (scene/VrmMaterials.cpp): VRM 0.x's root materialProperties and VRM 1.0's
-// VRMC_materials_mtoon, reached through the glTF reader as a .vrm (JSON or GLB; the content decides). A material the
-// reader returns keeps readVrmMaterial()'s promise: a bad value becomes a warning and its default, never a
+// libFuzzer target: VRM MToon materials (scene/formats/gltf/VrmMaterials.cpp): VRM 0.x's root materialProperties and
+// VRM 1.0's VRMC_materials_mtoon, reached through the glTF reader as a .vrm (JSON or GLB; the content decides). A
+// material the reader returns keeps readVrmMaterial()'s promise: a bad value becomes a warning and its default, never a
 // non-finite parameter.
 #include "tests/fuzz/FuzzSupport.h"
 

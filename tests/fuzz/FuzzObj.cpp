@@ -1,4 +1,4 @@
-// libFuzzer target: the OBJ reader (scene/ObjReader.cpp) and what the line passes derive from its meshes.
+// libFuzzer target: the OBJ reader (scene/formats/ObjReader.cpp) and what the line passes derive from its meshes.
 #include "tests/fuzz/FuzzSupport.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,6 +1,6 @@
-// libFuzzer target: glTF skins, morph targets and animation samplers (scene/GltfPose.cpp), through the glTF reader:
-// each input is loaded in its rest pose and posed by its first animation ("0", as --animation 0) at two times, one
-// between keyframes and one past the last (clamped), as --time gives them.
+// libFuzzer target: glTF skins, morph targets and animation samplers (scene/formats/gltf/GltfPose.cpp), through the
+// glTF reader: each input is loaded in its rest pose and posed by its first animation ("0", as --animation 0) at two
+// times, one between keyframes and one past the last (clamped), as --time gives them.
 #include "tests/fuzz/FuzzSupport.h"
 
 #include <cmath>

@@ -1,8 +1,8 @@
 #include "tests/fuzz/FuzzSupport.h"
 
-#include "scene/EdgeAdjacency.h"
-#include "scene/MeshCurvature.h"
-#include "scene/ObjectSuggestiveContours.h"
+#include "scene/mesh/EdgeAdjacency.h"
+#include "scene/mesh/MeshCurvature.h"
+#include "scene/mesh/ObjectSuggestiveContours.h"
 
 #include <cmath>
 #include <stdexcept>

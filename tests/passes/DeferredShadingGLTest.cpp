@@ -7,7 +7,7 @@
 #include "passes/StillGraph.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/shade/ShadePass.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 #include "tests/support/GlTestContext.h"
 #include "tests/support/ImageCompare.h"
 #include "tests/support/PassHarness.h"

@@ -7,7 +7,7 @@
 #include "passes/lines/StrokesPass.h"
 #include "passes/lines/types/ImageEdgeLines.h"
 #include "passes/lines/types/SuggestiveLines.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 #include "tests/support/AnalyticSphere.h"
 #include "tests/support/GlTestContext.h"
 #include "tests/support/PassHarness.h"

@@ -10,7 +10,7 @@
 #include "passes/GpuScene.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "scene/Camera.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 #include "tests/support/GlTestContext.h"
 #include "tests/support/PassHarness.h"
 #include "tests/support/TestCamera.h"

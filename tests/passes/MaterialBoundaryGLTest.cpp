@@ -5,7 +5,7 @@
 #include "graph/GraphCompiler.h"
 #include "passes/StillGraph.h"
 #include "passes/lines/LineLayerPass.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 #include "tests/support/GlTestContext.h"
 #include "tests/support/PassHarness.h"
 #include "tests/support/TestCamera.h"

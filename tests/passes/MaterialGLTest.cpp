@@ -14,7 +14,7 @@
 #include "passes/shade/ShadeMap.h"
 #include "passes/shade/ShadePass.h"
 #include "passes/edges/MeshEdgesPass.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 #include "scene/TextureImage.h"
 #include "tests/support/AnalyticSphere.h"
 #include "tests/support/GlTestContext.h"

@@ -5,7 +5,7 @@
 #include "passes/edges/MeshEdgesPass.h"
 
 #include "LineMaskTestSupport.h"
-#include "scene/EdgeAdjacency.h"
+#include "scene/mesh/EdgeAdjacency.h"
 
 #include <glm/gtc/constants.hpp>
 #include <nlohmann/json.hpp>

@@ -5,8 +5,8 @@
 #include "passes/GpuScene.h"
 #include "passes/orientation/SceneOrientation.h"
 #include "scene/Camera.h"
-#include "scene/FaceOrientation.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/FaceOrientation.h"
+#include "scene/mesh/Procedural.h"
 #include "tests/support/GlTestContext.h"
 
 #include <gtest/gtest.h>

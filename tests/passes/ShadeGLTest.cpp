@@ -12,7 +12,7 @@
 #include "passes/shade/ShadeMap.h"
 #include "passes/shade/ShadePass.h"
 #include "scene/Camera.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 #include "tests/support/GlTestContext.h"
 #include "tests/support/ImageCompare.h"
 #include "tests/support/AnalyticSphere.h"

@@ -5,7 +5,7 @@
 #include "passes/StillGraph.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/shade/ShadePass.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 
 #include <gtest/gtest.h>
 

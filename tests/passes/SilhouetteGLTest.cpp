@@ -3,7 +3,7 @@
 // that welding closes), the eye-inside skip, near-plane clipping, hull normals computed only on demand, and equal to
 // computePositionWeldedNormals() to the bit (a loaded mesh's own smooth normals shared when they are the same).
 #include "passes/silhouette/SilhouettePass.h"
-#include "scene/MeshOps.h"
+#include "scene/mesh/MeshOps.h"
 
 #include "LineMaskTestSupport.h"
 

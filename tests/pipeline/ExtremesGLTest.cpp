@@ -5,8 +5,8 @@
 #include "app/ImageFiles.h"
 #include "app/Cli.h"
 #include "app/Render.h"
-#include "scene/MeshOps.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/MeshOps.h"
+#include "scene/mesh/Procedural.h"
 #include "tests/scene/SceneTestSupport.h"
 #include "tests/support/ImageCompare.h"
 

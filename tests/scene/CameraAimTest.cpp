@@ -3,7 +3,7 @@
 
 #include "scene/Camera.h"
 
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 
 #include "SceneTestSupport.h"
 

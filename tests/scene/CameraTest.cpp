@@ -1,6 +1,6 @@
 #include "scene/Camera.h"
 
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 
 #include "SceneTestSupport.h"
 

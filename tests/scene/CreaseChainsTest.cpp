@@ -2,9 +2,9 @@
 // they run on straightest, and kept by the 3-D length of their chain. Known answers: a cube's 12 edges are 12 chains
 // (three meet at right angles at each corner), a box made of small facets has 12 chains each as long as the box edge,
 // and small bumps on a face make only short chains, dropped while the box's edges stay.
-#include "scene/EdgeAdjacency.h"
-#include "scene/MeshOps.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/EdgeAdjacency.h"
+#include "scene/mesh/MeshOps.h"
+#include "scene/mesh/Procedural.h"
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>

@@ -2,10 +2,10 @@
 // position alone (Mesh::positionsWeldedAt) and when the normals are the smooth ones (Mesh::normalsAreSmooth);
 // weldMeshPositions() then skips the weld, and the hull normals, edge adjacency and curvature built on the shared map
 // equal those built from a weld distance.
-#include "scene/EdgeAdjacency.h"
-#include "scene/MeshCurvature.h"
-#include "scene/MeshOps.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/EdgeAdjacency.h"
+#include "scene/mesh/MeshCurvature.h"
+#include "scene/mesh/MeshOps.h"
+#include "scene/mesh/Procedural.h"
 #include "scene/Scene.h"
 
 #include "SceneTestSupport.h"

@@ -1,9 +1,9 @@
 // Edge adjacency (docs/lines.md): counts by kind on small meshes with known answers, normal angles by atan2,
 // position welding across split normals and triangle soups, inconsistent orientation, degenerate faces, Lander 2000's
 // Templist erratum, and the exact silhouette test with its tie rule.
-#include "scene/EdgeAdjacency.h"
-#include "scene/MeshOps.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/EdgeAdjacency.h"
+#include "scene/mesh/MeshOps.h"
+#include "scene/mesh/Procedural.h"
 
 #include "SceneTestSupport.h"
 

@@ -2,9 +2,9 @@
 // definition: a std::map from the welded pair to the faces using it, edges numbered by first use. On meshes with
 // borders, non-manifold fins, inconsistent orientation, degenerate and collapsed faces, a fan's hub (a bucket sorted by
 // std::stable_sort), a soup welded back together, and the bunny.
-#include "scene/EdgeAdjacency.h"
-#include "scene/MeshOps.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/EdgeAdjacency.h"
+#include "scene/mesh/MeshOps.h"
+#include "scene/mesh/Procedural.h"
 #include "scene/Scene.h"
 
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
 // Winnemöller & Bangay's CPU face orientation against the exact per-face test: no holes for any method, rule or view
 // vector at any distance (with the corrected cut-off), holes with the paper's cut-off, front shares against the
 // analytic sphere, and the per-vertex (s, t) against the textbook form of the specular term.
-#include "scene/FaceOrientation.h"
+#include "scene/mesh/FaceOrientation.h"
 
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 
 #include "SceneTestSupport.h"
 

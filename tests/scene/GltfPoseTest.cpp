@@ -1,6 +1,6 @@
 /** Skins, morph targets and animation sampling in the glTF reader, with known answers from files the tests write. */
 
-#include "scene/GltfPose.h"
+#include "scene/formats/gltf/GltfPose.h"
 #include "scene/Scene.h"
 
 #include "SceneTestSupport.h"

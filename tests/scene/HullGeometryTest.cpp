@@ -1,7 +1,7 @@
 // The CPU geometry behind the inflated hull and the line passes' eye-inside check: position-welded normals across
 // hard edges, and ray-parity containment.
-#include "scene/MeshOps.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/MeshOps.h"
+#include "scene/mesh/Procedural.h"
 #include "scene/Scene.h"
 
 #include "SceneTestSupport.h"

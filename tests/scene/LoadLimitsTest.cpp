@@ -1,6 +1,6 @@
 // The loader's memory bound (LoadOptions::memoryLimitBytes, detail::MeshBudget): refused before allocating, with
 // the file and the numbers in the message; and loadSceneFromMemory(), the fuzz targets' entry.
-#include "scene/FormatReaders.h"
+#include "scene/formats/FormatReaders.h"
 #include "scene/Scene.h"
 
 #include "SceneTestSupport.h"

@@ -1,8 +1,8 @@
-// scene/MeshCurvature against analytic surfaces: a sphere (kappa = 1/R, C = 0), a torus (kappa_v = 1/r along the
+// scene/mesh/MeshCurvature against analytic surfaces: a sphere (kappa = 1/R, C = 0), a torus (kappa_v = 1/r along the
 // tube, kappa_u = cos v / (R + r cos v) around it, and C's one non-zero component d kappa_u / ds_v), degenerate input,
 // and welding (a cube with split normals, a triangle soup).
-#include "scene/MeshCurvature.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/MeshCurvature.h"
+#include "scene/mesh/Procedural.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-// scene/ObjectSuggestiveContours: the torus's lines against the analytic zero set of kappa_r (and its strength
+// scene/mesh/ObjectSuggestiveContours: the torus's lines against the analytic zero set of kappa_r (and its strength
 // test), and the negative controls: a sphere (kappa_r > 0 everywhere), a plane seen head-on (w = 0: rtsc's NaN).
-#include "scene/ObjectSuggestiveContours.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/ObjectSuggestiveContours.h"
+#include "scene/mesh/Procedural.h"
 
 #include <gtest/gtest.h>
 

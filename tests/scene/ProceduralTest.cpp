@@ -1,4 +1,4 @@
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 
 #include "SceneTestSupport.h"
 

@@ -4,7 +4,7 @@
 // unit sphere became a blocky polyhedron.
 
 #include "scene/Camera.h"
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 
 #include "SceneTestSupport.h"
 

@@ -1,6 +1,6 @@
 #include "scene/Scene.h"
 
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 
 #include "SceneTestSupport.h"
 
@@ -15,7 +15,7 @@ namespace {
 using test::TempFile;
 
 TEST(SceneLoad, UnknownExtensionListsTheSupportedOnes) {
-    const TempFile file("model.ply", "ply\n");
+    const TempFile file("model.fbx", "Kaydara FBX Binary\n");
     const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
     EXPECT_EQ(message.rfind("loadScene(): '" + file.path() + "'", 0), 0u) << message;
     for (const char* extension : {".gltf", ".glb", ".obj", ".stl", ".ply"}) {

@@ -1,8 +1,8 @@
-/** VRM MToon materials (scene/VrmMaterials.h) through loadScene(): VRM 1.0's VRMC_materials_mtoon read as written,
- *  VRM 0.x's materialProperties converted to it, known answers from small .vrm files the tests write. */
+/** VRM MToon materials (scene/formats/gltf/VrmMaterials.h) through loadScene(): VRM 1.0's VRMC_materials_mtoon read as
+ * written, VRM 0.x's materialProperties converted to it, known answers from small .vrm files the tests write. */
 
 #include "scene/Scene.h"
-#include "scene/VrmMaterials.h"
+#include "scene/formats/gltf/VrmMaterials.h"
 
 #include "SceneTestSupport.h"
 

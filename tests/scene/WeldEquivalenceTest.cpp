@@ -3,7 +3,7 @@
 // with normals and attribute classes.
 #include "WeldReference.h"
 
-#include "scene/MeshOps.h"
+#include "scene/mesh/MeshOps.h"
 #include "scene/Scene.h"
 
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
  *  vertex comes): the reference weldVertices(), which now makes its lookups ahead and prefetches them, must match map
  *  for map. Test code only. */
 
-#include "scene/MeshOps.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <cstdint>
 #include <span>

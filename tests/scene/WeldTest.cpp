@@ -1,4 +1,4 @@
-#include "scene/MeshOps.h"
+#include "scene/mesh/MeshOps.h"
 #include "scene/Scene.h"
 
 #include "SceneTestSupport.h"

@@ -91,7 +91,7 @@ struct SceneOptions {
     std::size_t memoryLimitBytes = 0;
 };
 
-/** A model loaded once (OBJ with MTL, glTF/GLB, VRM, STL): render it with any number of looks and frames.
+/** A model loaded once (OBJ with MTL, glTF/GLB, VRM, STL, PLY): render it with any number of looks and frames.
  *  Copies share the loaded data. */
 class INKGRAPH_API Scene {
 public:

@@ -3,7 +3,7 @@
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
 #include "passes/lines/LineType.h"
-#include "scene/ObjectSuggestiveContours.h"
+#include "scene/mesh/ObjectSuggestiveContours.h"
 
 #include <algorithm>
 #include <chrono>

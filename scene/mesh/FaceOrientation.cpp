@@ -1,6 +1,6 @@
-#include "scene/FaceOrientation.h"
+#include "scene/mesh/FaceOrientation.h"
 
-#include "scene/FormatReaders.h"
+#include "scene/MessageText.h"
 
 #include <glm/gtc/constants.hpp>
 

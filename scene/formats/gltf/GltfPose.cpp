@@ -1,10 +1,10 @@
 /** @file Node poses, animation sampling, morph targets and skinning for the glTF reader, after the glTF 2.0
  *  specification's "Animations", "Morph Targets" and "Skins" sections and its Appendix C (interpolation). */
 
-#include "scene/GltfPose.h"
+#include "scene/formats/gltf/GltfPose.h"
 
-#include "scene/FormatReaders.h"
-#include "scene/GltfAccessors.h"
+#include "scene/formats/FormatReaders.h"
+#include "scene/formats/gltf/GltfAccessors.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>

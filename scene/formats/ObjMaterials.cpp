@@ -4,8 +4,8 @@
  *  Bad lines are warnings, not refusals: a library that travels with a model is often half-broken, and the model is
  *  still worth drawing. */
 
-#include "scene/FormatReaders.h"
-#include "scene/ShaderValues.h"
+#include "scene/formats/FormatReaders.h"
+#include "scene/formats/ShaderValues.h"
 
 #include <algorithm>
 #include <cctype>

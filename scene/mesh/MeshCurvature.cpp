@@ -1,6 +1,6 @@
-#include "scene/MeshCurvature.h"
+#include "scene/mesh/MeshCurvature.h"
 
-#include "scene/MeshOps.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <algorithm>
 #include <array>

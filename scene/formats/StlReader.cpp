@@ -1,7 +1,7 @@
 /** @file STL, binary and ASCII. Facet normals are ignored (often wrong or zero in the wild); loadScene() computes
  *  smooth normals after welding the three separate corners each facet carries. */
 
-#include "scene/FormatReaders.h"
+#include "scene/formats/FormatTable.h"
 
 #include <algorithm>
 #include <bit>
@@ -242,8 +242,6 @@ bool preambleLooksLikeText(std::string_view content) {
     });
 }
 
-} // namespace
-
 RawScene readStl(const std::string& path, std::string_view content, MeshBudget& budget) {
     const bool hasBinaryPreamble = content.size() >= kBinaryPreambleBytes;
     const std::uint32_t declaredTriangles =
@@ -322,6 +320,15 @@ RawScene readStl(const std::string& path, std::string_view content, MeshBudget& 
         throwLoadError(path, "truncated binary STL: " + binaryClaim);
     }
     return readBinaryWithTrailingBytes("binary STL");
+}
+
+} // namespace
+
+FormatReader stlFormat() {
+    return {
+        "STL", {".stl"}, [](const std::string& path, std::string_view content, MeshBudget& budget, const LoadOptions&) {
+            return readStl(path, content, budget);
+        }};
 }
 
 } // namespace inkgraph::detail

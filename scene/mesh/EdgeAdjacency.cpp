@@ -1,7 +1,7 @@
-#include "scene/EdgeAdjacency.h"
+#include "scene/mesh/EdgeAdjacency.h"
 
-#include "scene/MeshOps.h"
-#include "scene/ParallelRanges.h"
+#include "scene/mesh/MeshOps.h"
+#include "scene/mesh/ParallelRanges.h"
 
 #include <algorithm>
 #include <cmath>

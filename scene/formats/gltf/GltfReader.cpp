@@ -1,14 +1,17 @@
-/** @file glTF 2.0 (.gltf JSON and .glb) through the packaged tinygltf. tinygltf parses and resolves buffers; this file
- *  walks the node hierarchy, bounds-checks every accessor it reads (tinygltf does not), bakes node transforms into
- *  world space and picks up the first perspective camera, the first directional KHR_lights_punctual light and each
- *  material's inkgraph extras (a per-mesh shade map). */
+/** @file glTF 2.0 (.gltf JSON and .glb, and VRM, a GLB) through the packaged tinygltf, and the format table's rows
+ *  for them. tinygltf parses and resolves buffers (through GltfFiles.h's callbacks); this file walks the node
+ *  hierarchy, bakes node transforms (posed by GltfPose.h) into world space, reads each triangle primitive's attributes
+ *  and indices (GltfAccessors.h, or GltfDraco.h when compressed) and picks up the first perspective camera and the
+ *  first directional KHR_lights_punctual light; each primitive's material comes from GltfMaterials.h. */
 
-#include "scene/FormatReaders.h"
-#include "scene/GltfAccessors.h"
-#include "scene/GltfDraco.h"
-#include "scene/GltfPose.h"
-#include "scene/ShaderValues.h"
-#include "scene/VrmMaterials.h"
+#include "scene/formats/FormatTable.h"
+#include "scene/formats/gltf/GltfAccessors.h"
+#include "scene/formats/gltf/GltfDraco.h"
+#include "scene/formats/gltf/GltfFiles.h"
+#include "scene/formats/gltf/GltfMaterials.h"
+#include "scene/formats/gltf/GltfPose.h"
+#include "scene/formats/ShaderValues.h"
+#include "scene/formats/gltf/VrmMaterials.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -26,35 +29,20 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <initializer_list>
-#include <iomanip>
-#include <iterator>
 #include <limits>
 #include <memory>
 #include <optional>
-#include <set>
-#include <sstream>
 #include <string_view>
 
 namespace inkgraph::detail {
 
 namespace {
 
-/** A material's shade map path: relative to the glTF file, like its buffer URIs, so a scene folder can be moved or
- *  rendered from anywhere; lexically normalised. */
-std::string shadeMapBesideModel(const std::string& modelPath, const std::string& named) {
-    const std::filesystem::path path(named);
-    const std::filesystem::path resolved =
-        path.is_absolute() ? path : std::filesystem::path(modelPath).parent_path() / path;
-    return resolved.lexically_normal().string();
-}
-
 /** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light,
  *  KHR_mesh_quantization's integer and normalized attributes (GltfAccessors.cpp reads any component type),
  *  KHR_draco_mesh_compression (GltfDraco.cpp), KHR_texture_transform, KHR_materials_unlit,
  *  KHR_materials_emissive_strength, VRM 0.x ("VRM": its front and MToon materialProperties) and 1.0 ("VRMC_vrm": its
- *  front; "VRMC_materials_mtoon"), scene/VrmMaterials.h. */
+ *  front; "VRMC_materials_mtoon"), scene/formats/gltf/VrmMaterials.h. */
 const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual",
                                                        "KHR_mesh_quantization",
                                                        "KHR_draco_mesh_compression",
@@ -65,37 +53,7 @@ const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual",
                                                        "VRMC_materials_mtoon",
                                                        "VRMC_vrm"};
 
-/** Unsupported required extensions named one by one in the refusal; the rest are counted. */
-constexpr std::size_t kMaxNamedExtensions = 10;
-
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian; add byte swapping");
-
-/** The encoded bytes of the images given as data: URIs, by glTF image index, kept by keepEncodedImage(). */
-struct DataUriImages {
-    MeshBudget& budget;
-    std::vector<std::shared_ptr<const std::vector<unsigned char>>> bytes;
-};
-
-/** tinygltf's image decoder, replaced: images stay encoded until a pass samples them (scene/Material.h). tinygltf
- *  calls it for data: URIs (bytes it decoded itself, the size exact), for external files (our one-byte placeholder:
- *  readExternalFile()) and for buffer-view images, whose window it does not bounds-check: those are copied later by
- *  sceneImages() after checking, so only data: URIs are kept here. */
-bool keepEncodedImage(tinygltf::Image* image, const int imageIndex, std::string* error, std::string*, int, int,
-                      const unsigned char* bytes, int size, void* user) {
-    auto& images = *static_cast<DataUriImages*>(user);
-    if (image->bufferView != -1 || !image->uri.empty() || imageIndex < 0 || size < 0) {
-        return true;
-    }
-    try {
-        images.budget.chargeFile(std::size_t(size));
-    } catch (const SceneError&) {
-        if (error) *error += "image " + std::to_string(imageIndex) + " is above the memory limit\n";
-        return false;
-    }
-    if (images.bytes.size() <= std::size_t(imageIndex)) images.bytes.resize(std::size_t(imageIndex) + 1);
-    images.bytes[std::size_t(imageIndex)] = std::make_shared<const std::vector<unsigned char>>(bytes, bytes + size);
-    return true;
-}
 
 std::vector<std::string> splitLines(const std::string& text) {
     std::vector<std::string> lines;
@@ -171,8 +129,7 @@ public:
     GltfWalker(const std::string& path, const tinygltf::Model& model, RawScene& out, MeshBudget& budget,
                const LoadOptions& options)
         : mPath(path), mModel(model), mOut(out), mBudget(budget), mOptions(options),
-          mReached(model.nodes.size(), false), mWorlds(model.nodes.size()), mMaterialShadeMaps(model.materials.size()),
-          mMaterials(model.materials.size()) {}
+          mReached(model.nodes.size(), false), mWorlds(model.nodes.size()), mMaterials(path, model, out.warnings) {}
 
     void walk() {
         checkRequiredExtensions();
@@ -473,268 +430,6 @@ private:
             fail("light '" + excerptForMessage(light.name) + "' has a degenerate or non-finite node transform");
         }
         mOut.light = result;
-    }
-
-    /** "material 2 'Metal'", or "material 2" for an unnamed one. */
-    std::string materialLabel(int materialIndex) const {
-        const std::string& name = mModel.materials[std::size_t(materialIndex)].name;
-        return "material " + std::to_string(materialIndex) + (name.empty() ? "" : " '" + excerptForMessage(name) + "'");
-    }
-
-    /** The shade map material `materialIndex` names in `"extras": {"inkgraph": {"shademap": PATH}}`, resolved against
-     *  the file's folder; empty when it names none. Read once per material (its warnings too), when a primitive first
-     *  uses it. The original JSON is parsed rather than tinygltf's Value, which drops nulls and empty objects and
-     *  arrays, so `"shademap": null` would pass for "no map" instead of being reported. */
-    const std::string& materialShadeMap(int materialIndex) {
-        std::optional<std::string>& cached = mMaterialShadeMaps[std::size_t(materialIndex)];
-        if (cached) {
-            return *cached;
-        }
-        cached.emplace();
-        const std::string& extrasJson = mModel.materials[std::size_t(materialIndex)].extras_json_string;
-        if (extrasJson.empty()) {
-            return *cached;
-        }
-        const nlohmann::json extras = nlohmann::json::parse(extrasJson, nullptr, false);
-        // Other tools may keep anything in extras; only the "inkgraph" member is ours.
-        if (!extras.is_object() || !extras.contains("inkgraph")) {
-            return *cached;
-        }
-        const std::string label = materialLabel(materialIndex);
-        const nlohmann::json& ours = extras["inkgraph"];
-        if (!ours.is_object()) {
-            fail(label + ": extras.inkgraph must be an object, got " + std::string(ours.type_name()));
-        }
-        for (const auto& [key, value] : ours.items()) {
-            if (key == "shademap") {
-                continue;
-            }
-            // A newer file or a typo ("shadeMap"): the render still works, so say so instead of refusing it.
-            mOut.warnings.push_back(label + ": extras.inkgraph key '" + excerptForMessage(key) +
-                                    "' ignored (known: 'shademap')");
-        }
-        const auto shadeMap = ours.find("shademap");
-        if (shadeMap == ours.end()) {
-            return *cached;
-        }
-        if (!shadeMap->is_string() || shadeMap->get_ref<const std::string&>().empty()) {
-            fail(label + ": extras.inkgraph.shademap must be a non-empty string (a PNG path), got " +
-                 (shadeMap->is_string() ? std::string("an empty string") : std::string(shadeMap->type_name())));
-        }
-        *cached = shadeMapBesideModel(mPath, shadeMap->get_ref<const std::string&>());
-        return *cached;
-    }
-
-    /** "texture 2 'skin'", or "texture 2" for an unnamed one. */
-    std::string textureLabel(int textureIndex) const {
-        const std::string& name = mModel.textures[std::size_t(textureIndex)].name;
-        return "texture " + std::to_string(textureIndex) + (name.empty() ? "" : " '" + excerptForMessage(name) + "'");
-    }
-
-    /** A sampler enum as the file writes it, or `fallback` (with a warning) for a value glTF does not define;
-     *  tinygltf leaves an absent one at -1. */
-    template <typename Enum>
-    Enum samplerValue(int value, std::initializer_list<Enum> allowed, Enum fallback, const std::string& what) {
-        if (value == -1) return fallback;
-        for (Enum candidate : allowed)
-            if (std::uint32_t(candidate) == std::uint32_t(value)) return candidate;
-        mOut.warnings.push_back(what + " " + std::to_string(value) + " is not a glTF value; the default is used");
-        return fallback;
-    }
-
-    TextureSampler readSampler(int samplerIndex) {
-        TextureSampler result;
-        if (samplerIndex == -1) return result; // glTF: repeat, filters up to the renderer
-        if (samplerIndex < 0 || std::size_t(samplerIndex) >= mModel.samplers.size()) {
-            fail("sampler index " + std::to_string(samplerIndex) + " out of range (file has " +
-                 std::to_string(mModel.samplers.size()) + " samplers)");
-        }
-        const tinygltf::Sampler& sampler = mModel.samplers[std::size_t(samplerIndex)];
-        const std::string label = "sampler " + std::to_string(samplerIndex);
-        using F = TextureFilter;
-        using W = TextureWrap;
-        result.magFilter =
-            samplerValue(sampler.magFilter, {F::Nearest, F::Linear}, result.magFilter, label + " magFilter");
-        result.minFilter = samplerValue(sampler.minFilter,
-                                        {F::Nearest, F::Linear, F::NearestMipmapNearest, F::LinearMipmapNearest,
-                                         F::NearestMipmapLinear, F::LinearMipmapLinear},
-                                        result.minFilter, label + " minFilter");
-        const std::initializer_list<W> wraps = {W::Repeat, W::ClampToEdge, W::MirroredRepeat};
-        result.wrapS = samplerValue(sampler.wrapS, wraps, result.wrapS, label + " wrapS");
-        result.wrapT = samplerValue(sampler.wrapT, wraps, result.wrapT, label + " wrapT");
-        return result;
-    }
-
-    /** A number of an extension object, or `fallback` when absent; a present non-number or non-finite one fails. */
-    double extensionNumber(const tinygltf::Value& object, const char* key, double fallback,
-                           const std::string& label) const {
-        if (!object.Has(key)) return fallback;
-        const tinygltf::Value& value = object.Get(key);
-        const double number = value.IsNumber() ? value.GetNumberAsDouble() : std::nan("");
-        if (!std::isfinite(number)) fail(label + ": '" + key + "' must be a finite number");
-        return number;
-    }
-
-    /** An [x, y] array of an extension object, or `fallback` when absent. */
-    glm::dvec2 extensionPair(const tinygltf::Value& object, const char* key, glm::dvec2 fallback,
-                             const std::string& label) const {
-        if (!object.Has(key)) return fallback;
-        const tinygltf::Value& value = object.Get(key);
-        if (!value.IsArray() || value.ArrayLen() != 2) fail(label + ": '" + key + "' must be an array of 2 numbers");
-        glm::dvec2 pair;
-        for (int i = 0; i < 2; ++i) {
-            const tinygltf::Value& item = value.Get(i);
-            pair[i] = item.IsNumber() ? item.GetNumberAsDouble() : std::nan("");
-            if (!std::isfinite(pair[i])) fail(label + ": '" + key + "' must be an array of 2 finite numbers");
-        }
-        return pair;
-    }
-
-    /** "[x, y]", for messages. */
-    static std::string formatPair(const glm::dvec2& pair) {
-        return "[" + formatNumber(pair.x) + ", " + formatNumber(pair.y) + "]";
-    }
-
-    /** A material's textureInfo as a TextureRef: the image its texture shows, the coordinate set and sampler, and the
-     *  KHR_texture_transform matrix. A texture without a core image (only an extension's, e.g. KHR_texture_basisu or
-     *  EXT_texture_webp, which the renderer cannot decode) or on a third coordinate set leaves the material
-     *  untextured, with a warning. */
-    TextureRef readTextureRef(const tinygltf::TextureInfo& info, const std::string& label) {
-        TextureRef ref;
-        if (info.index == -1) return ref;
-        if (info.index < 0 || std::size_t(info.index) >= mModel.textures.size()) {
-            fail(label + ": texture index " + std::to_string(info.index) + " out of range (file has " +
-                 std::to_string(mModel.textures.size()) + " textures)");
-        }
-        const tinygltf::Texture& texture = mModel.textures[std::size_t(info.index)];
-        const std::string textureName = textureLabel(info.index);
-        if (texture.source == -1) {
-            std::string extensions;
-            std::size_t named = 0;
-            for (const auto& [name, value] : texture.extensions)
-                if (++named <= kMaxNamedExtensions)
-                    extensions += (extensions.empty() ? " (it has only '" : "', '") + excerptForMessage(name);
-            mOut.warnings.push_back(label + ": " + textureName + " has no PNG or JPEG source" +
-                                    (extensions.empty() ? "" : extensions + "')") + "; drawn untextured");
-            return ref;
-        }
-        if (texture.source < 0 || std::size_t(texture.source) >= mModel.images.size()) {
-            fail(label + ": " + textureName + ": image index " + std::to_string(texture.source) +
-                 " out of range (file has " + std::to_string(mModel.images.size()) + " images)");
-        }
-        double texCoord = info.texCoord;
-        std::optional<glm::dmat3> transform;
-        std::string transformText;
-        const auto extension = info.extensions.find("KHR_texture_transform");
-        if (extension != info.extensions.end() && extension->second.IsObject()) {
-            const tinygltf::Value& object = extension->second;
-            const std::string where = label + " KHR_texture_transform";
-            const glm::dvec2 offset = extensionPair(object, "offset", glm::dvec2(0.0), where);
-            const double rotation = extensionNumber(object, "rotation", 0.0, where);
-            const glm::dvec2 scale = extensionPair(object, "scale", glm::dvec2(1.0), where);
-            texCoord = extensionNumber(object, "texCoord", texCoord, where);
-            // The extension's matrices, column by column as its GLSL writes them: uv' = T * R * S * (u, v, 1).
-            const glm::dmat3 translation(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, offset.x, offset.y, 1.0);
-            const double c = std::cos(rotation);
-            const double s = std::sin(rotation);
-            const glm::dmat3 rotationMatrix(c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0);
-            const glm::dmat3 scaleMatrix(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
-            transform = translation * rotationMatrix * scaleMatrix;
-            transformText = where + " (offset " + formatPair(offset) + ", rotation " + formatNumber(rotation) +
-                            ", scale " + formatPair(scale) + ")";
-        }
-        if (texCoord != 0.0 && texCoord != 1.0) {
-            mOut.warnings.push_back(label + ": texture coordinate set " + formatNumber(texCoord) +
-                                    " is not read (only TEXCOORD_0 and TEXCOORD_1); drawn untextured");
-            return ref;
-        }
-        ref.image = texture.source;
-        ref.texCoord = int(texCoord);
-        ref.sampler = readSampler(texture.sampler);
-        if (transform) {
-            // The transform says where the image lies: one the shaders' float cannot follow is refused, not guessed.
-            std::string problem;
-            const std::optional<glm::mat3> forShaders = shaderTextureTransform(*transform, ref.sampler, problem);
-            if (!forShaders) fail(transformText + ": " + problem);
-            ref.transform = *forShaders;
-        }
-        return ref;
-    }
-
-    /** A VRM character's MToon (scene/VrmMaterials.h), which may also adjust `material`. Its textures go through
-     *  readTextureRef(), so their samplers and KHR_texture_transform are read as the glTF material's are. Called once
-     *  per material, by material(), so its warnings are reported once. */
-    std::optional<MToonMaterial> vrmMaterial(int materialIndex, Material& material) {
-        const std::string label = materialLabel(materialIndex) + " MToon texture";
-        const VrmTextureResolver resolveTexture = [&](int texture, int texCoord,
-                                                      const tinygltf::Value* textureInfoExtensions) {
-            tinygltf::TextureInfo info;
-            info.index = texture;
-            info.texCoord = texCoord;
-            if (textureInfoExtensions && textureInfoExtensions->IsObject()) {
-                for (const std::string& key : textureInfoExtensions->Keys())
-                    info.extensions[key] = textureInfoExtensions->Get(key);
-            }
-            return readTextureRef(info, label);
-        };
-        std::vector<std::string> warnings;
-        std::optional<MToonMaterial> mtoon = readVrmMaterial(mModel, materialIndex, material, resolveTexture, warnings);
-        mOut.warnings.insert(mOut.warnings.end(), warnings.begin(), warnings.end());
-        return mtoon;
-    }
-
-    /** Material `materialIndex` as the renderer sees it, read once (its warnings too) when a primitive first uses
-     *  it: the glTF material, then a VRM character's MToon (vrmMaterial()). */
-    const Material& material(int materialIndex) {
-        std::optional<Material>& cached = mMaterials[std::size_t(materialIndex)];
-        if (cached) return *cached;
-        const tinygltf::Material& source = mModel.materials[std::size_t(materialIndex)];
-        const std::string label = materialLabel(materialIndex);
-        Material result;
-        result.name = source.name;
-        // Factors beyond glTF's ranges are clamped with a warning, as viewers draw them (ShaderValues.h).
-        const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
-        for (std::size_t i = 0; i < 4 && factor.size() == 4; ++i) {
-            result.baseColorFactor[int(i)] = shaderValue(
-                factor[i], kUnitRange, label + " baseColorFactor[" + std::to_string(i) + "]", mOut.warnings);
-        }
-        result.baseColorTexture =
-            readTextureRef(source.pbrMetallicRoughness.baseColorTexture, label + " baseColorTexture");
-        for (std::size_t i = 0; i < 3 && source.emissiveFactor.size() == 3; ++i) {
-            result.emissiveFactor[int(i)] =
-                shaderValue(source.emissiveFactor[i], kUnitRange, label + " emissiveFactor[" + std::to_string(i) + "]",
-                            mOut.warnings);
-        }
-        const auto strength = source.extensions.find("KHR_materials_emissive_strength");
-        if (strength != source.extensions.end() && strength->second.IsObject()) {
-            const std::string where = label + " KHR_materials_emissive_strength";
-            const double multiplier = extensionNumber(strength->second, "emissiveStrength", 1.0, where);
-            if (multiplier < 0.0) fail(label + ": emissiveStrength " + formatNumber(multiplier) + " is negative");
-            result.emissiveFactor *=
-                shaderValue(multiplier, kNonNegativeRange, where + " emissiveStrength", mOut.warnings);
-        }
-        result.emissiveTexture = readTextureRef(source.emissiveTexture, label + " emissiveTexture");
-        result.unlit = source.extensions.count("KHR_materials_unlit") > 0;
-        if (source.alphaMode == "MASK") {
-            result.alphaMode = AlphaMode::Mask;
-        } else if (source.alphaMode == "BLEND") {
-            result.alphaMode = AlphaMode::Blend;
-        } else if (source.alphaMode != "OPAQUE") {
-            mOut.warnings.push_back(label + ": alphaMode '" + excerptForMessage(source.alphaMode) +
-                                    "' is not OPAQUE, MASK or BLEND; drawn opaque");
-        }
-        if (std::isfinite(source.alphaCutoff) && source.alphaCutoff >= 0.0) {
-            // Above 1 every fragment would be cut out: blank paper.
-            result.alphaCutoff = shaderValue(source.alphaCutoff, kUnitRange, label + " alphaCutoff", mOut.warnings);
-        } else {
-            mOut.warnings.push_back(label + ": alphaCutoff " + formatNumber(source.alphaCutoff) +
-                                    " is not a number >= 0; 0.5 is used");
-        }
-        result.doubleSided = source.doubleSided;
-        result.shadeMapPath = materialShadeMap(materialIndex);
-        result.mtoon = vrmMaterial(materialIndex, result);
-        cached = std::move(result);
-        return *cached;
     }
 
     /** TEXCOORD_0 and TEXCOORD_1, and COLOR_0 (RGB gets alpha 1), as the file gives them. */
@@ -1048,7 +743,7 @@ private:
         }
 
         if (primitive.material >= 0) { // in range: checkMaterialIndices()
-            mesh.material = material(primitive.material);
+            mesh.material = mMaterials.material(primitive.material);
         }
         mOut.meshes.push_back(std::move(mesh));
     }
@@ -1065,265 +760,12 @@ private:
         std::vector<std::optional<PreciseTransform>>(mModel.nodes.size());
     std::vector<std::optional<glm::dmat4>> mWorlds;
     std::vector<int> mParent = std::vector<int>(mModel.nodes.size(), -1); ///< each node's parent, -1 for a root
-    std::vector<std::optional<std::string>> mMaterialShadeMaps; ///< per material, once read: its shade map or ""
-    std::vector<std::optional<Material>> mMaterials;            ///< per material, once read
+    GltfMaterials mMaterials; ///< each material read once, when a primitive first uses it
     std::size_t mSkippedPrimitives = 0;
     double mPlacementError = 0.0;     ///< the largest error bound notePlacement() saw
     double mPlacementMagnitude = 0.0; ///< the largest term of that placement
     std::string mPlacementLabel;      ///< the node it placed
 };
-
-/** Deepest nesting of arrays and objects in JSON text, outside strings. */
-std::size_t jsonNestingDepth(std::string_view text) {
-    std::size_t depth = 0;
-    std::size_t deepest = 0;
-    bool inString = false;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        if (inString) {
-            if (c == '\\')
-                ++i;
-            else if (c == '"')
-                inString = false;
-        } else if (c == '"') {
-            inString = true;
-        } else if (c == '[' || c == '{') {
-            deepest = std::max(deepest, ++depth);
-        } else if ((c == ']' || c == '}') && depth > 0) {
-            --depth;
-        }
-    }
-    return deepest;
-}
-
-/** The JSON text of a .gltf file or of a GLB's JSON chunk (empty when the GLB is too short to have one). */
-std::string_view jsonOf(std::string_view content, bool binary) {
-    if (!binary) return content;
-    if (content.size() < 20) return {};
-    std::uint32_t chunkLength = 0;
-    std::memcpy(&chunkLength, content.data() + 12, sizeof chunkLength);
-    return content.substr(20, chunkLength);
-}
-
-/** The file with "indices" removed from every KHR_draco_mesh_compression primitive, or nothing when no primitive has
- *  the extension (or the JSON does not parse: tinygltf then says why). tinygltf built without Draco refuses an indices
- *  accessor without a buffer view, which is how Draco files write it; the decoded Draco faces replace those indices
- *  (decodeDracoPrimitive()). A GLB is rebuilt around the new JSON chunk with its other chunks as they were. */
-std::optional<std::string> withoutDracoIndices(std::string_view content, bool binary) {
-    const std::string_view json = jsonOf(content, binary);
-    if (json.find(kDracoExtension) == std::string_view::npos) return std::nullopt;
-    nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
-    if (!document.is_object() || !document.contains("meshes") || !document["meshes"].is_array()) return std::nullopt;
-    bool changed = false;
-    for (nlohmann::json& mesh : document["meshes"]) {
-        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
-        for (nlohmann::json& primitive : mesh["primitives"]) {
-            if (primitive.is_object() && primitive.contains("indices") && primitive.contains("extensions") &&
-                primitive["extensions"].is_object() && primitive["extensions"].contains(kDracoExtension)) {
-                primitive.erase("indices");
-                changed = true;
-            }
-        }
-    }
-    if (!changed) return std::nullopt;
-    std::string text = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-    if (!binary) return text;
-    const std::size_t restOffset = 20 + json.size();
-    if (content.size() < restOffset) return std::nullopt;
-    while (text.size() % 4 != 0) text += ' '; // GLB chunks are 4-byte aligned; JSON pads with spaces
-    const auto u32 = [](std::size_t value) {
-        const std::uint32_t little = std::uint32_t(value);
-        return std::string(reinterpret_cast<const char*>(&little), 4);
-    };
-    const std::string_view rest = content.substr(restOffset);
-    return std::string(content.substr(0, 8)) + u32(12 + 8 + text.size() + rest.size()) + u32(text.size()) + "JSON" +
-           text + std::string(rest);
-}
-
-/** tinygltf parses JSON recursively, so absurd nesting would overflow the stack: glTF itself nests a few levels, and
- *  extras rarely more than a dozen. Checked before tinygltf sees the file. */
-void rejectDeepJson(const std::string& path, std::string_view content, bool binary) {
-    constexpr std::size_t kMaxJsonDepth = 256;
-    // GLB: 12-byte header, then the JSON chunk's length, type, and text.
-    const std::string_view json = binary && content.size() < 20 ? content : jsonOf(content, binary);
-    if (jsonNestingDepth(json) > kMaxJsonDepth)
-        throwLoadError(path, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
-}
-
-/** The external (non-data:) URIs of the top-level "buffers" and "images" arrays, collected by a SAX pass over the
- *  JSON before tinygltf reads it, so the file callbacks can tell an image (not read at load time) from a buffer (read).
- */
-class ExternalUriCollector : public nlohmann::json_sax<nlohmann::json> {
-public:
-    std::vector<std::string> bufferUris;
-    std::vector<std::string> imageUris;
-
-    bool null() override { return leaveValue(); }
-    bool boolean(bool) override { return leaveValue(); }
-    bool number_integer(number_integer_t) override { return leaveValue(); }
-    bool number_unsigned(number_unsigned_t) override { return leaveValue(); }
-    bool number_float(number_float_t, const string_t&) override { return leaveValue(); }
-    bool binary(binary_t&) override { return leaveValue(); }
-    bool string(string_t& value) override {
-        // Depth 3: the root object, the "buffers"/"images" array, one element object; the member is "uri".
-        if (mKeys.size() == 3 && mKeys[2] == "uri" && value.rfind("data:", 0) != 0) {
-            if (mKeys[0] == "buffers") bufferUris.push_back(value);
-            if (mKeys[0] == "images") imageUris.push_back(value);
-        }
-        return leaveValue();
-    }
-    bool start_object(std::size_t) override {
-        mKeys.emplace_back();
-        return true;
-    }
-    bool key(string_t& name) override {
-        mKeys.back() = name.size() <= 8 ? name : std::string(); // only "buffers", "images" and "uri" matter
-        return true;
-    }
-    bool end_object() override {
-        mKeys.pop_back();
-        return leaveValue();
-    }
-    bool start_array(std::size_t) override {
-        mKeys.emplace_back(); // arrays have no keys; the placeholder keeps depths aligned with objects
-        return true;
-    }
-    bool end_array() override {
-        mKeys.pop_back();
-        return leaveValue();
-    }
-    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
-        return false; // tinygltf reports the error in its own words
-    }
-
-private:
-    bool leaveValue() { return true; }
-
-    std::vector<std::string> mKeys; ///< per open container: the member being read ("" in arrays)
-};
-
-/** A URI as tinygltf turns it into a file name: '+' becomes a space and %XX the byte XX (a non-hex digit counts as 0,
- *  as tinygltf does), so the names match the ones its file callbacks receive. */
-std::string decodeUri(std::string_view uri) {
-    const auto hexValue = [](char c) -> unsigned {
-        if (c >= '0' && c <= '9') return unsigned(c - '0');
-        if (c >= 'a' && c <= 'f') return unsigned(c - 'a' + 10);
-        if (c >= 'A' && c <= 'F') return unsigned(c - 'A' + 10);
-        return 0;
-    };
-    std::string decoded;
-    for (std::size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '+') {
-            decoded += ' ';
-        } else if (uri[i] == '%' && i + 2 < uri.size()) {
-            decoded += char((hexValue(uri[i + 1]) << 4) | hexValue(uri[i + 2]));
-            i += 2;
-        } else {
-            decoded += uri[i];
-        }
-    }
-    return decoded;
-}
-
-/** The path tinygltf asks its callbacks for first: the model's folder joined with the decoded URI. */
-std::string pathBesideModel(const std::string& baseDirectory, std::string_view uri) {
-    const std::string decoded = decodeUri(uri);
-    if (baseDirectory.empty()) return decoded;
-    return baseDirectory + (baseDirectory.back() == '/' ? "" : "/") + decoded;
-}
-
-/** What tinygltf's file callbacks work with: the load's budget, the external files the JSON names, and the record of
- *  what was opened (LoadReport::inputFiles). */
-struct ExternalFiles {
-    MeshBudget& budget;
-    std::set<std::string> bufferPaths;
-    std::set<std::string> imagePaths;
-    std::vector<std::string> opened;
-};
-
-/** Only the files the JSON names, beside the model: tinygltf would otherwise fall back to the current folder and read a
- *  file of the same name there. Asks the file system rather than opening (tinygltf's own test blocks on a FIFO). An
- *  image counts as present even when missing: it is not read at load time (only when a pass decodes it, which reports a
- *  missing one then), so loading must not fail or warn for it. */
-bool externalFileExists(const std::string& path, void* user) {
-    const auto& files = *static_cast<const ExternalFiles*>(user);
-    if (files.imagePaths.count(path) > 0) {
-        return true;
-    }
-    std::error_code error;
-    return files.bufferPaths.count(path) > 0 && std::filesystem::exists(path, error);
-}
-
-/** tinygltf's file reading. An image gets a one-byte placeholder without being opened (SceneImage keeps its path, read
- *  when decoded, so a 1 GiB texture is not held by every load); a buffer must be a regular file, and its size is
- * charged to the load's memory budget before it is read. A refusal comes back to tinygltf as a read error with the
- * reason. */
-bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
-    auto& files = *static_cast<ExternalFiles*>(user);
-    if (files.bufferPaths.count(path) == 0 && files.imagePaths.count(path) > 0) {
-        out->assign(1, 0); // tinygltf refuses an empty image; keepEncodedImage() ignores the byte
-        return true;
-    }
-    // A FIFO or device ("/dev/stdin", "/dev/zero") as a buffer URI would block or never end: files only.
-    std::error_code typeError;
-    if (!std::filesystem::is_regular_file(path, typeError)) {
-        if (error) *error += "external file '" + excerptForMessage(path) + "' is not a regular file\n";
-        return false;
-    }
-    std::error_code sizeError;
-    const std::uintmax_t size = std::filesystem::file_size(path, sizeError);
-    if (sizeError) {
-        if (error) *error += "cannot read '" + excerptForMessage(path) + "': " + sizeError.message() + "\n";
-        return false;
-    }
-    try {
-        files.budget.chargeFile(std::size_t(size));
-    } catch (const SceneError&) {
-        if (error)
-            *error += "external file '" + excerptForMessage(path) + "' is " + std::to_string(size >> 20) +
-                      " MiB, above the memory limit of " + std::to_string(files.budget.limitBytes() >> 20) + " MiB\n";
-        return false;
-    }
-    files.opened.push_back(path);
-    return tinygltf::ReadWholeFile(out, error, path, nullptr);
-}
-
-/** The file's images in its order (a texture's `source` indexes them): embedded ones with their encoded bytes, external
- *  ones with their path beside the model, not read here. */
-std::vector<SceneImage> sceneImages(const std::string& path, const tinygltf::Model& model,
-                                    const std::string& baseDirectory, const DataUriImages& dataUriImages,
-                                    MeshBudget& budget) {
-    std::vector<SceneImage> images;
-    images.reserve(model.images.size());
-    for (std::size_t i = 0; i < model.images.size(); ++i) {
-        const tinygltf::Image& image = model.images[i];
-        SceneImage result;
-        result.name = image.name.empty() ? excerptForMessage(image.uri) : image.name;
-        result.mimeType = image.mimeType;
-        if (image.bufferView >= 0) {
-            // tinygltf checked only that the view and its buffer exist.
-            const tinygltf::BufferView& view = model.bufferViews[std::size_t(image.bufferView)];
-            const std::vector<unsigned char>& buffer = model.buffers[std::size_t(view.buffer)].data;
-            if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
-                throwLoadError(path, "image " + std::to_string(i) + ": buffer view " +
-                                         std::to_string(image.bufferView) + " (offset " +
-                                         std::to_string(view.byteOffset) + ", length " +
-                                         std::to_string(view.byteLength) + ") exceeds its buffer of " +
-                                         std::to_string(buffer.size()) + " bytes");
-            }
-            budget.chargeFile(view.byteLength);
-            const auto first = buffer.begin() + std::ptrdiff_t(view.byteOffset);
-            result.encoded =
-                std::make_shared<const std::vector<unsigned char>>(first, first + std::ptrdiff_t(view.byteLength));
-        } else if (!image.uri.empty()) {
-            result.path = pathBesideModel(baseDirectory, image.uri);
-        } else if (i < dataUriImages.bytes.size()) {
-            result.encoded = dataUriImages.bytes[i];
-        }
-        images.push_back(std::move(result));
-    }
-    return images;
-}
 
 } // namespace
 
@@ -1342,9 +784,7 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
         content = *dracoReady;
     }
     const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
-    ExternalUriCollector uris;
-    const std::string_view json = jsonOf(content, binary);
-    nlohmann::json::sax_parse(json.begin(), json.end(), &uris, nlohmann::json::input_format_t::json, false);
+    const ExternalUris uris = externalUris(jsonOf(content, binary));
     ExternalFiles files{budget, {}, {}, {}};
     for (const std::string& uri : uris.bufferUris) files.bufferPaths.insert(pathBesideModel(baseDirectory, uri));
     for (const std::string& uri : uris.imageUris) files.imagePaths.insert(pathBesideModel(baseDirectory, uri));
@@ -1352,7 +792,7 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     tinygltf::TinyGLTF loader;
     DataUriImages dataUriImages{budget, {}};
     loader.SetImageLoader(&keepEncodedImage, &dataUriImages);
-    // Keeps each extras object as JSON text, so materialShadeMap() sees the types as written (GltfWalker).
+    // Keeps each extras object as JSON text, so GltfMaterials sees the shade-map extra's types as written.
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
     loader.SetFsCallbacks(
         {&externalFileExists, &tinygltf::ExpandFilePath, &readExternalFile, &tinygltf::WriteWholeFile, &files});
@@ -1401,27 +841,18 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     return scene;
 }
 
-std::vector<std::string> gltfReferencedFiles(const std::string& path, std::string_view content) {
-    const bool binary = content.size() >= 4 && content.substr(0, 4) == "glTF";
-    const std::string_view json = jsonOf(content, binary);
-    const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
-    std::vector<std::string> files;
-    ExternalUriCollector uris; // whatever it collected before a syntax error still counts
-    nlohmann::json::sax_parse(json.begin(), json.end(), &uris, nlohmann::json::input_format_t::json, false);
-    for (const auto* list : {&uris.bufferUris, &uris.imageUris})
-        for (const std::string& uri : *list) files.push_back(pathBesideModel(baseDirectory, uri));
-    constexpr std::size_t kMaxJsonDepth = 256; // as rejectDeepJson()
-    if (jsonNestingDepth(json) > kMaxJsonDepth) return files;
-    const nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
-    if (!document.is_object() || !document.contains("materials") || !document["materials"].is_array()) return files;
-    for (const nlohmann::json& material : document["materials"]) {
-        const nlohmann::json::json_pointer where("/extras/inkgraph/shademap");
-        if (material.is_object() && material.contains(where) && material[where].is_string() &&
-            !material[where].get_ref<const std::string&>().empty())
-            files.push_back(shadeMapBesideModel(path, material[where].get_ref<const std::string&>()));
-    }
-    return files;
+// readGltf() reads all three: the content decides JSON or GLB, whatever the extension says.
+FormatReader gltfFormat() {
+    return {"glTF",
+            {".gltf"},
+            readGltf,
+            [](const std::string& path) { return gltfReferencedFiles(path, wholeFileBestEffort(path)); },
+            true};
 }
+
+FormatReader glbFormat() { return {"GLB", {".glb"}, readGltf, glbReferencedFiles, true}; }
+
+FormatReader vrmFormat() { return {"VRM", {".vrm"}, readGltf, glbReferencedFiles, true}; } // a VRM file is a GLB
 
 } // namespace inkgraph::detail
 

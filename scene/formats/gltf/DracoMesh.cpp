@@ -1,7 +1,7 @@
 /** @file decodeDracoMesh() (DracoMesh.h) through libdraco's decoder; every index Draco hands back is checked before it
  *  is used. */
 
-#include "scene/DracoMesh.h"
+#include "scene/formats/gltf/DracoMesh.h"
 
 #include <draco/compression/config/compression_shared.h>
 #include <draco/compression/decode.h>

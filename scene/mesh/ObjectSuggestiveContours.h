@@ -8,7 +8,7 @@
  *  `--suggestive-fade` mean the same for both line types: q = fs^2 tan(theta) D_w^ kappa_r, kept where q > T,
  *  drawn with alpha (q - T) / (q - T + F). */
 
-#include "scene/MeshCurvature.h"
+#include "scene/mesh/MeshCurvature.h"
 
 #include <glm/glm.hpp>
 

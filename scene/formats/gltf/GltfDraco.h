@@ -3,7 +3,7 @@
  *  checked as every other glTF read is (tinygltf's own Draco path trusts the file's indices and offsets, so it is not
  *  compiled in). Internal to the scene layer. */
 
-#include "scene/FormatReaders.h"
+#include "scene/formats/FormatReaders.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,11 +1,11 @@
 /** @file Wavefront OBJ: v (with an optional vertex colour), vt, vn and f (v, v/vt, v//vn, v/vt/vn; negative =
- *  relative), polygons fan-triangulated, and the materials of its `mtllib` libraries (scene/ObjMaterials.cpp) that
- *  `usemtl` picks: one mesh per material, named by the first `o` name (or the file stem). Parses the whole file from
- *  memory with std::from_chars; o/g groups and smoothing groups are skipped. A missing library or an undefined
+ *  relative), polygons fan-triangulated, and the materials of its `mtllib` libraries (scene/formats/ObjMaterials.cpp)
+ * that `usemtl` picks: one mesh per material, named by the first `o` name (or the file stem). Parses the whole file
+ * from memory with std::from_chars; o/g groups and smoothing groups are skipped. A missing library or an undefined
  *  `usemtl` material is a warning, and those faces take the default grey: exports often travel without their .mtl,
  *  and refusing them would help nobody. */
 
-#include "scene/FormatReaders.h"
+#include "scene/formats/FormatTable.h"
 
 #include <algorithm>
 #include <charconv>
@@ -665,12 +665,8 @@ private:
     std::size_t mNonFiniteTexcoords = 0;
 };
 
-} // namespace
-
-RawScene readObj(const std::string& path, std::string_view content, MeshBudget& budget) {
-    return ObjParser(path, content, budget).parse();
-}
-
+/** The material libraries an OBJ's `mtllib` lines name, resolved beside it (a name with spaces both whole and split,
+ *  as the parser tries it), and the textures those that exist name (mtlReferencedFiles()). */
 std::vector<std::string> objReferencedFiles(const std::string& path, std::string_view content) {
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     const auto beside = [&](std::string_view name) {
@@ -714,6 +710,17 @@ std::vector<std::string> objReferencedFiles(const std::string& path, std::string
         }
     }
     return files;
+}
+
+} // namespace
+
+FormatReader objFormat() {
+    return {"OBJ",
+            {".obj"},
+            [](const std::string& path, std::string_view content, MeshBudget& budget, const LoadOptions&) {
+                return ObjParser(path, content, budget).parse();
+            },
+            [](const std::string& path) { return objReferencedFiles(path, wholeFileBestEffort(path)); }};
 }
 
 } // namespace inkgraph::detail

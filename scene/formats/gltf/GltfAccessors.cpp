@@ -1,9 +1,9 @@
 /** @file glTF accessor reading (GltfAccessors.h): one bounds-checked path for plain, strided, quantized, normalized
  *  and sparse accessors, so a file's declared counts and offsets can never make a read leave its buffer. */
 
-#include "scene/GltfAccessors.h"
+#include "scene/formats/gltf/GltfAccessors.h"
 
-#include "scene/FormatReaders.h"
+#include "scene/formats/FormatReaders.h"
 
 #include <tiny_gltf.h>
 

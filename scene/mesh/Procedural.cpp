@@ -1,6 +1,6 @@
-#include "scene/Procedural.h"
+#include "scene/mesh/Procedural.h"
 
-#include "scene/MeshOps.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <glm/gtc/constants.hpp>
 

@@ -2,8 +2,9 @@
 /** @file The per-format readers behind loadScene() and the error helpers they share. Internal to the scene layer:
  *  readers produce raw (unwelded) meshes; loadScene() cleans them up with finalizeMesh(). */
 
-#include "scene/MeshOps.h"
+#include "scene/MessageText.h"
 #include "scene/Scene.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <cstddef>
 #include <map>
@@ -65,23 +66,6 @@ private:
     std::size_t mTriangles = 0;
 };
 
-/** Text taken from a file (a name, a URI, a token) as it may appear in a message: at most kMessageExcerptChars
- *  characters, longer text cut with "..." and its byte count, so a 64 MB data: URI or name never fills a terminal
- *  or a log. Every reader quotes file-given text through this one function. */
-std::string excerptForMessage(std::string_view text);
-
-/** Characters of file-given text that excerptForMessage() keeps. */
-inline constexpr std::size_t kMessageExcerptChars = 60;
-
-/** The shortest text that reads back as `value` (e.g. 0.5, 1e+15, 3.1415926535897936, inf), for messages. */
-std::string formatNumber(double value);
-
-/** Three significant digits ("1.73e+16"), for sizes and distances in messages. */
-std::string formatExtent(double value);
-
-/** `content` without a leading UTF-8 byte-order mark (EF BB BF), which some Windows tools write before text. */
-std::string_view withoutByteOrderMark(std::string_view content);
-
 /** Throws SceneError naming the file when a model's extent (bounding-box diagonal) lies outside [kMinModelExtent,
  *  kMaxModelExtent]; zero passes (a model of degenerate triangles is reported as such later). */
 void checkModelExtent(const std::string& path, double extent);
@@ -99,20 +83,9 @@ glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> w
 /** Throws SceneError("loadScene(): '<path>' line <line>: <problem>"). */
 [[noreturn]] void throwLoadErrorAtLine(const std::string& path, std::size_t line, std::string_view problem);
 
-/** Wavefront OBJ from the whole file's text. */
-RawScene readObj(const std::string& path, std::string_view content, MeshBudget& budget);
-
-/** STL, binary or ASCII (decided from the content), from the whole file's bytes. */
-RawScene readStl(const std::string& path, std::string_view content, MeshBudget& budget);
-
-/** glTF 2.0 or GLB (the content starts with the "glTF" magic) through tinygltf, from the whole file's bytes;
- *  external buffers are resolved next to `path`. Posed as `options` asks (LoadOptions::animation and time). */
-RawScene readGltf(const std::string& path, std::string_view content, MeshBudget& budget,
-                  const LoadOptions& options = {});
-
-/** The files a glTF (or GLB: `content` may stop after the JSON chunk) names: external buffers and images, and the
- *  shade maps of its materials, resolved as readGltf() resolves them. Best effort, nothing thrown. */
-std::vector<std::string> gltfReferencedFiles(const std::string& path, std::string_view content);
+/** A regular file's bytes for a referencedFiles() entry of the format table: best effort, what could be read, nothing
+ *  thrown. */
+std::string wholeFileBestEffort(const std::string& path);
 
 /** What an OBJ's material libraries define, gathered by readMtl() over every `mtllib` file of one load. */
 struct ObjMaterials {
@@ -129,9 +102,5 @@ void readMtl(const std::string& path, std::string_view content, ObjMaterials& ma
 
 /** The texture files a material library's map_Kd and map_d lines name, resolved as readMtl() resolves them. */
 std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content);
-
-/** The material libraries an OBJ's `mtllib` lines name, resolved beside it (a name with spaces both whole and split,
- *  as readObj() tries it), and the textures those that exist name (mtlReferencedFiles()). */
-std::vector<std::string> objReferencedFiles(const std::string& path, std::string_view content);
 
 } // namespace inkgraph::detail

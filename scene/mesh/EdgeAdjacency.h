@@ -7,7 +7,7 @@
  *  per distinct normal, so a hard edge (a cube's, a flat-shaded model's) has two copies of each end, and keyed on
  *  those copies every crease would read as two borders. */
 
-#include "scene/MeshOps.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <glm/glm.hpp>
 

@@ -8,7 +8,7 @@
  *  with no neighbours across an edge. Sign convention: curvature is positive where the surface bends away from its
  *  normal (a sphere with outward normals has kappa = +1/R). */
 
-#include "scene/MeshOps.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <glm/glm.hpp>
 

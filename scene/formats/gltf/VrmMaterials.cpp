@@ -2,10 +2,10 @@
  *  Every conversion names its source; docs/mtoon.md has the table. Lenient like the viewers: a bad value is a warning
  *  and its default, never a refused file. */
 
-#include "scene/VrmMaterials.h"
+#include "scene/formats/gltf/VrmMaterials.h"
 
-#include "scene/FormatReaders.h"
-#include "scene/ShaderValues.h"
+#include "scene/formats/FormatReaders.h"
+#include "scene/formats/ShaderValues.h"
 
 #include <tiny_gltf.h>
 

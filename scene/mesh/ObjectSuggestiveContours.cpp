@@ -1,4 +1,4 @@
-#include "scene/ObjectSuggestiveContours.h"
+#include "scene/mesh/ObjectSuggestiveContours.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
-#include "scene/ShaderValues.h"
+#include "scene/formats/ShaderValues.h"
 
-#include "scene/FormatReaders.h"
+#include "scene/formats/FormatReaders.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #pragma once
 /** @file The pose of a glTF model: nodes' local transforms (their own TRS, or an animation sampled at a time), world
  *  matrices, morph targets at their weights and skins blended by their joints. Internal to the glTF reader
- *  (scene/GltfReader.cpp), which bakes the posed positions into world space. */
+ *  (scene/formats/gltf/GltfReader.cpp), which bakes the posed positions into world space. */
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>

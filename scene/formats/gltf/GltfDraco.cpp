@@ -2,10 +2,10 @@
  *  mesh and, per glTF attribute, the Draco attribute's unique id; the primitive's accessors keep their type, component
  *  type and normalization but have no data of their own. */
 
-#include "scene/GltfDraco.h"
+#include "scene/formats/gltf/GltfDraco.h"
 
-#include "scene/DracoMesh.h"
-#include "scene/GltfAccessors.h"
+#include "scene/formats/gltf/DracoMesh.h"
+#include "scene/formats/gltf/GltfAccessors.h"
 
 #include <tiny_gltf.h>
 

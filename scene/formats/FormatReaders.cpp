@@ -1,0 +1,104 @@
+/** @file What the readers share (FormatReaders.h): the load's memory budget, the placement of coordinates read in
+ *  double, and the messages that name the file. */
+
+#include "scene/formats/FormatReaders.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+
+namespace inkgraph {
+
+namespace detail {
+
+void checkModelExtent(const std::string& path, double extent) {
+    if (!(extent <= kMaxModelExtent)) {
+        throwLoadError(path, "the model is " + formatExtent(extent) +
+                                 " units across (bounding-box diagonal), above the " + formatExtent(kMaxModelExtent) +
+                                 " the renderer can hold (float relative to the model's centre); "
+                                 "check the units or the node scales");
+    }
+    if (extent > 0.0 && extent < kMinModelExtent) {
+        throwLoadError(path, "the model is " + formatExtent(extent) +
+                                 " units across (bounding-box diagonal), below the " + formatExtent(kMinModelExtent) +
+                                 " the renderer can resolve; check the units or the node scales");
+    }
+}
+
+glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> world, std::vector<glm::vec3>& stored) {
+    BoundingBox box;
+    for (const glm::dvec3& p : world) {
+        box.add(p);
+    }
+    const double extent = box.diagonal();
+    checkModelExtent(path, extent);
+    const glm::dvec3 centre = box.empty() ? glm::dvec3(0.0) : box.center();
+    const glm::dvec3 distance = glm::abs(centre);
+    const glm::dvec3 origin = std::max({distance.x, distance.y, distance.z}) <= extent ? glm::dvec3(0.0) : centre;
+    stored.resize(world.size());
+    for (std::size_t i = 0; i < world.size(); ++i) {
+        stored[i] = glm::vec3(world[i] - origin);
+    }
+    return origin;
+}
+
+void throwLoadError(const std::string& path, std::string_view problem) {
+    throw SceneError("loadScene(): '" + path + "': " + std::string(problem));
+}
+
+void throwLoadErrorAtLine(const std::string& path, std::size_t line, std::string_view problem) {
+    throw SceneError("loadScene(): '" + path + "' line " + std::to_string(line) + ": " + std::string(problem));
+}
+
+std::size_t MeshBudget::estimate(std::size_t vertices, std::size_t triangles) const {
+    // Saturating: declared counts may be anything up to 2^64.
+    const auto product = [](std::size_t count, std::size_t bytes) {
+        return count > SIZE_MAX / bytes ? SIZE_MAX : count * bytes;
+    };
+    const auto sum = [](std::size_t a, std::size_t b) { return a > SIZE_MAX - b ? SIZE_MAX : a + b; };
+    const std::size_t allVertices = sum(mVertices, vertices);
+    const std::size_t allTriangles = sum(mTriangles, triangles);
+    return sum(sum(mFileBytes, mOtherBytes),
+               sum(product(allVertices, kBytesPerVertex), product(allTriangles, kBytesPerTriangle)));
+}
+
+void MeshBudget::chargeFile(std::size_t bytes) {
+    mFileBytes = mFileBytes > SIZE_MAX - bytes ? SIZE_MAX : mFileBytes + bytes;
+    if (estimate(0, 0) > mLimitBytes)
+        throwLoadError(mPath, "the file is " + std::to_string(bytes >> 20) + " MiB; the load would hold about " +
+                                  std::to_string(estimate(0, 0) >> 20) + " MiB, above the memory limit of " +
+                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
+}
+
+void MeshBudget::chargeBytes(std::size_t bytes) {
+    mOtherBytes = mOtherBytes > SIZE_MAX - bytes ? SIZE_MAX : mOtherBytes + bytes;
+    if (estimate(0, 0) > mLimitBytes)
+        throwLoadError(mPath, "the load would hold about " + std::to_string(estimate(0, 0) >> 20) +
+                                  " MiB (with the meshes' node paths), above the memory limit of " +
+                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
+}
+
+void MeshBudget::check(std::size_t vertices, std::size_t triangles) const {
+    const std::size_t bytes = estimate(vertices, triangles);
+    if (bytes > mLimitBytes)
+        throwLoadError(mPath, "the mesh would need about " + std::to_string(bytes >> 20) + " MiB (" +
+                                  std::to_string(mVertices + vertices) + " vertices, " +
+                                  std::to_string(mTriangles + triangles) + " triangles), above the memory limit of " +
+                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
+}
+
+void MeshBudget::charge(std::size_t vertices, std::size_t triangles) {
+    check(vertices, triangles);
+    mVertices += vertices;
+    mTriangles += triangles;
+}
+
+std::string wholeFileBestEffort(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+}
+
+} // namespace detail
+
+} // namespace inkgraph

@@ -1,0 +1,349 @@
+/** @file A glTF file and the files it names (GltfFiles.h). */
+
+#include "scene/formats/gltf/GltfFiles.h"
+
+#include "scene/formats/gltf/GltfDraco.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+namespace inkgraph::detail {
+
+namespace {
+
+/** Deepest nesting of arrays and objects in JSON text, outside strings. */
+std::size_t jsonNestingDepth(std::string_view text) {
+    std::size_t depth = 0;
+    std::size_t deepest = 0;
+    bool inString = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (inString) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+/** The external (non-data:) URIs of the top-level "buffers" and "images" arrays, collected by a SAX pass over the
+ *  JSON before tinygltf reads it, so the file callbacks can tell an image (not read at load time) from a buffer (read).
+ */
+class ExternalUriCollector : public nlohmann::json_sax<nlohmann::json> {
+public:
+    std::vector<std::string> bufferUris;
+    std::vector<std::string> imageUris;
+
+    bool null() override { return leaveValue(); }
+    bool boolean(bool) override { return leaveValue(); }
+    bool number_integer(number_integer_t) override { return leaveValue(); }
+    bool number_unsigned(number_unsigned_t) override { return leaveValue(); }
+    bool number_float(number_float_t, const string_t&) override { return leaveValue(); }
+    bool binary(binary_t&) override { return leaveValue(); }
+    bool string(string_t& value) override {
+        // Depth 3: the root object, the "buffers"/"images" array, one element object; the member is "uri".
+        if (mKeys.size() == 3 && mKeys[2] == "uri" && value.rfind("data:", 0) != 0) {
+            if (mKeys[0] == "buffers") bufferUris.push_back(value);
+            if (mKeys[0] == "images") imageUris.push_back(value);
+        }
+        return leaveValue();
+    }
+    bool start_object(std::size_t) override {
+        mKeys.emplace_back();
+        return true;
+    }
+    bool key(string_t& name) override {
+        mKeys.back() = name.size() <= 8 ? name : std::string(); // only "buffers", "images" and "uri" matter
+        return true;
+    }
+    bool end_object() override {
+        mKeys.pop_back();
+        return leaveValue();
+    }
+    bool start_array(std::size_t) override {
+        mKeys.emplace_back(); // arrays have no keys; the placeholder keeps depths aligned with objects
+        return true;
+    }
+    bool end_array() override {
+        mKeys.pop_back();
+        return leaveValue();
+    }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false; // tinygltf reports the error in its own words
+    }
+
+private:
+    bool leaveValue() { return true; }
+
+    std::vector<std::string> mKeys; ///< per open container: the member being read ("" in arrays)
+};
+
+/** A URI as tinygltf turns it into a file name: '+' becomes a space and %XX the byte XX (a non-hex digit counts as 0,
+ *  as tinygltf does), so the names match the ones its file callbacks receive. */
+std::string decodeUri(std::string_view uri) {
+    const auto hexValue = [](char c) -> unsigned {
+        if (c >= '0' && c <= '9') return unsigned(c - '0');
+        if (c >= 'a' && c <= 'f') return unsigned(c - 'a' + 10);
+        if (c >= 'A' && c <= 'F') return unsigned(c - 'A' + 10);
+        return 0;
+    };
+    std::string decoded;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '+') {
+            decoded += ' ';
+        } else if (uri[i] == '%' && i + 2 < uri.size()) {
+            decoded += char((hexValue(uri[i + 1]) << 4) | hexValue(uri[i + 2]));
+            i += 2;
+        } else {
+            decoded += uri[i];
+        }
+    }
+    return decoded;
+}
+
+} // namespace
+
+/** A material's shade map path: relative to the glTF file, like its buffer URIs, so a scene folder can be moved or
+ *  rendered from anywhere; lexically normalised. */
+std::string shadeMapBesideModel(const std::string& modelPath, const std::string& named) {
+    const std::filesystem::path path(named);
+    const std::filesystem::path resolved =
+        path.is_absolute() ? path : std::filesystem::path(modelPath).parent_path() / path;
+    return resolved.lexically_normal().string();
+}
+
+/** The JSON text of a .gltf file or of a GLB's JSON chunk (empty when the GLB is too short to have one). */
+std::string_view jsonOf(std::string_view content, bool binary) {
+    if (!binary) return content;
+    if (content.size() < 20) return {};
+    std::uint32_t chunkLength = 0;
+    std::memcpy(&chunkLength, content.data() + 12, sizeof chunkLength);
+    return content.substr(20, chunkLength);
+}
+
+/** The file with "indices" removed from every KHR_draco_mesh_compression primitive, or nothing when no primitive has
+ *  the extension (or the JSON does not parse: tinygltf then says why). tinygltf built without Draco refuses an indices
+ *  accessor without a buffer view, which is how Draco files write it; the decoded Draco faces replace those indices
+ *  (decodeDracoPrimitive()). A GLB is rebuilt around the new JSON chunk with its other chunks as they were. */
+std::optional<std::string> withoutDracoIndices(std::string_view content, bool binary) {
+    const std::string_view json = jsonOf(content, binary);
+    if (json.find(kDracoExtension) == std::string_view::npos) return std::nullopt;
+    nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
+    if (!document.is_object() || !document.contains("meshes") || !document["meshes"].is_array()) return std::nullopt;
+    bool changed = false;
+    for (nlohmann::json& mesh : document["meshes"]) {
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+        for (nlohmann::json& primitive : mesh["primitives"]) {
+            if (primitive.is_object() && primitive.contains("indices") && primitive.contains("extensions") &&
+                primitive["extensions"].is_object() && primitive["extensions"].contains(kDracoExtension)) {
+                primitive.erase("indices");
+                changed = true;
+            }
+        }
+    }
+    if (!changed) return std::nullopt;
+    std::string text = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    if (!binary) return text;
+    const std::size_t restOffset = 20 + json.size();
+    if (content.size() < restOffset) return std::nullopt;
+    while (text.size() % 4 != 0) text += ' '; // GLB chunks are 4-byte aligned; JSON pads with spaces
+    const auto u32 = [](std::size_t value) {
+        const std::uint32_t little = std::uint32_t(value);
+        return std::string(reinterpret_cast<const char*>(&little), 4);
+    };
+    const std::string_view rest = content.substr(restOffset);
+    return std::string(content.substr(0, 8)) + u32(12 + 8 + text.size() + rest.size()) + u32(text.size()) + "JSON" +
+           text + std::string(rest);
+}
+
+/** tinygltf parses JSON recursively, so absurd nesting would overflow the stack: glTF itself nests a few levels, and
+ *  extras rarely more than a dozen. Checked before tinygltf sees the file. */
+void rejectDeepJson(const std::string& path, std::string_view content, bool binary) {
+    constexpr std::size_t kMaxJsonDepth = 256;
+    // GLB: 12-byte header, then the JSON chunk's length, type, and text.
+    const std::string_view json = binary && content.size() < 20 ? content : jsonOf(content, binary);
+    if (jsonNestingDepth(json) > kMaxJsonDepth)
+        throwLoadError(path, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+}
+
+/** The path tinygltf asks its callbacks for first: the model's folder joined with the decoded URI. */
+std::string pathBesideModel(const std::string& baseDirectory, std::string_view uri) {
+    const std::string decoded = decodeUri(uri);
+    if (baseDirectory.empty()) return decoded;
+    return baseDirectory + (baseDirectory.back() == '/' ? "" : "/") + decoded;
+}
+
+/** Only the files the JSON names, beside the model: tinygltf would otherwise fall back to the current folder and read a
+ *  file of the same name there. Asks the file system rather than opening (tinygltf's own test blocks on a FIFO). An
+ *  image counts as present even when missing: it is not read at load time (only when a pass decodes it, which reports a
+ *  missing one then), so loading must not fail or warn for it. */
+bool externalFileExists(const std::string& path, void* user) {
+    const auto& files = *static_cast<const ExternalFiles*>(user);
+    if (files.imagePaths.count(path) > 0) {
+        return true;
+    }
+    std::error_code error;
+    return files.bufferPaths.count(path) > 0 && std::filesystem::exists(path, error);
+}
+
+/** tinygltf's file reading. An image gets a one-byte placeholder without being opened (SceneImage keeps its path, read
+ *  when decoded, so a 1 GiB texture is not held by every load); a buffer must be a regular file, and its size is
+ * charged to the load's memory budget before it is read. A refusal comes back to tinygltf as a read error with the
+ * reason. */
+bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
+    auto& files = *static_cast<ExternalFiles*>(user);
+    if (files.bufferPaths.count(path) == 0 && files.imagePaths.count(path) > 0) {
+        out->assign(1, 0); // tinygltf refuses an empty image; keepEncodedImage() ignores the byte
+        return true;
+    }
+    // A FIFO or device ("/dev/stdin", "/dev/zero") as a buffer URI would block or never end: files only.
+    std::error_code typeError;
+    if (!std::filesystem::is_regular_file(path, typeError)) {
+        if (error) *error += "external file '" + excerptForMessage(path) + "' is not a regular file\n";
+        return false;
+    }
+    std::error_code sizeError;
+    const std::uintmax_t size = std::filesystem::file_size(path, sizeError);
+    if (sizeError) {
+        if (error) *error += "cannot read '" + excerptForMessage(path) + "': " + sizeError.message() + "\n";
+        return false;
+    }
+    try {
+        files.budget.chargeFile(std::size_t(size));
+    } catch (const SceneError&) {
+        if (error)
+            *error += "external file '" + excerptForMessage(path) + "' is " + std::to_string(size >> 20) +
+                      " MiB, above the memory limit of " + std::to_string(files.budget.limitBytes() >> 20) + " MiB\n";
+        return false;
+    }
+    files.opened.push_back(path);
+    return tinygltf::ReadWholeFile(out, error, path, nullptr);
+}
+
+/** The file's images in its order (a texture's `source` indexes them): embedded ones with their encoded bytes, external
+ *  ones with their path beside the model, not read here. */
+std::vector<SceneImage> sceneImages(const std::string& path, const tinygltf::Model& model,
+                                    const std::string& baseDirectory, const DataUriImages& dataUriImages,
+                                    MeshBudget& budget) {
+    std::vector<SceneImage> images;
+    images.reserve(model.images.size());
+    for (std::size_t i = 0; i < model.images.size(); ++i) {
+        const tinygltf::Image& image = model.images[i];
+        SceneImage result;
+        result.name = image.name.empty() ? excerptForMessage(image.uri) : image.name;
+        result.mimeType = image.mimeType;
+        if (image.bufferView >= 0) {
+            // tinygltf checked only that the view and its buffer exist.
+            const tinygltf::BufferView& view = model.bufferViews[std::size_t(image.bufferView)];
+            const std::vector<unsigned char>& buffer = model.buffers[std::size_t(view.buffer)].data;
+            if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
+                throwLoadError(path, "image " + std::to_string(i) + ": buffer view " +
+                                         std::to_string(image.bufferView) + " (offset " +
+                                         std::to_string(view.byteOffset) + ", length " +
+                                         std::to_string(view.byteLength) + ") exceeds its buffer of " +
+                                         std::to_string(buffer.size()) + " bytes");
+            }
+            budget.chargeFile(view.byteLength);
+            const auto first = buffer.begin() + std::ptrdiff_t(view.byteOffset);
+            result.encoded =
+                std::make_shared<const std::vector<unsigned char>>(first, first + std::ptrdiff_t(view.byteLength));
+        } else if (!image.uri.empty()) {
+            result.path = pathBesideModel(baseDirectory, image.uri);
+        } else if (i < dataUriImages.bytes.size()) {
+            result.encoded = dataUriImages.bytes[i];
+        }
+        images.push_back(std::move(result));
+    }
+    return images;
+}
+
+ExternalUris externalUris(std::string_view json) {
+    ExternalUriCollector collector; // whatever it collected before a syntax error still counts
+    nlohmann::json::sax_parse(json.begin(), json.end(), &collector, nlohmann::json::input_format_t::json, false);
+    return {std::move(collector.bufferUris), std::move(collector.imageUris)};
+}
+
+/** tinygltf's image decoder, replaced: images stay encoded until a pass samples them (scene/Material.h). tinygltf
+ *  calls it for data: URIs (bytes it decoded itself, the size exact), for external files (our one-byte placeholder:
+ *  readExternalFile()) and for buffer-view images, whose window it does not bounds-check: those are copied later by
+ *  sceneImages() after checking, so only data: URIs are kept here. */
+bool keepEncodedImage(tinygltf::Image* image, const int imageIndex, std::string* error, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* user) {
+    auto& images = *static_cast<DataUriImages*>(user);
+    if (image->bufferView != -1 || !image->uri.empty() || imageIndex < 0 || size < 0) {
+        return true;
+    }
+    try {
+        images.budget.chargeFile(std::size_t(size));
+    } catch (const SceneError&) {
+        if (error) *error += "image " + std::to_string(imageIndex) + " is above the memory limit\n";
+        return false;
+    }
+    if (images.bytes.size() <= std::size_t(imageIndex)) images.bytes.resize(std::size_t(imageIndex) + 1);
+    images.bytes[std::size_t(imageIndex)] = std::make_shared<const std::vector<unsigned char>>(bytes, bytes + size);
+    return true;
+}
+
+/** The files a glTF (or GLB: `content` may stop after the JSON chunk) names: external buffers and images, and the
+ *  shade maps of its materials, resolved as readGltf() resolves them. Best effort, nothing thrown. */
+std::vector<std::string> gltfReferencedFiles(const std::string& path, std::string_view content) {
+    const bool binary = content.size() >= 4 && content.substr(0, 4) == "glTF";
+    const std::string_view json = jsonOf(content, binary);
+    const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
+    std::vector<std::string> files;
+    ExternalUriCollector uris; // whatever it collected before a syntax error still counts
+    nlohmann::json::sax_parse(json.begin(), json.end(), &uris, nlohmann::json::input_format_t::json, false);
+    for (const auto* list : {&uris.bufferUris, &uris.imageUris})
+        for (const std::string& uri : *list) files.push_back(pathBesideModel(baseDirectory, uri));
+    constexpr std::size_t kMaxJsonDepth = 256; // as rejectDeepJson()
+    if (jsonNestingDepth(json) > kMaxJsonDepth) return files;
+    const nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
+    if (!document.is_object() || !document.contains("materials") || !document["materials"].is_array()) return files;
+    for (const nlohmann::json& material : document["materials"]) {
+        const nlohmann::json::json_pointer where("/extras/inkgraph/shademap");
+        if (material.is_object() && material.contains(where) && material[where].is_string() &&
+            !material[where].get_ref<const std::string&>().empty())
+            files.push_back(shadeMapBesideModel(path, material[where].get_ref<const std::string&>()));
+    }
+    return files;
+}
+
+/** A GLB's (or VRM's) header and JSON chunk, without the binary chunk after it, which can be large and names no file;
+ *  empty when they cannot be read. */
+namespace {
+
+std::string glbJsonChunk(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::string content(20, '\0');
+    if (!file.read(content.data(), 20)) return {};
+    std::uint32_t chunkLength = 0;
+    std::memcpy(&chunkLength, content.data() + 12, sizeof chunkLength);
+    std::error_code error;
+    const std::uintmax_t size = std::filesystem::file_size(path, error);
+    if (error || chunkLength > size - 20) return {};
+    content.resize(20 + std::size_t(chunkLength));
+    if (!file.read(content.data() + 20, chunkLength)) return {};
+    return content;
+}
+
+} // namespace
+
+std::vector<std::string> glbReferencedFiles(const std::string& path) {
+    const std::string content = glbJsonChunk(path);
+    return content.empty() ? std::vector<std::string>{} : gltfReferencedFiles(path, content);
+}
+
+} // namespace inkgraph::detail

@@ -1,0 +1,85 @@
+#pragma once
+/** @file A glTF file and the files it names, around tinygltf's parse: the checks of the JSON before tinygltf sees it
+ *  (nesting depth; the `indices` of Draco primitives dropped), the external URIs a SAX pass collects, tinygltf's file
+ *  callbacks (buffers only beside the model, regular files only, charged to the budget; images answered with a
+ *  placeholder and never read at load time), its image callback (data: URIs kept encoded), the file's images in its
+ *  order, shade-map paths, and the files a model names without loading it (referencedFiles()). Internal to the glTF
+ *  reader. */
+
+#include "scene/formats/FormatReaders.h"
+
+#include <tiny_gltf.h>
+
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace inkgraph::detail {
+
+/** The JSON text of a .gltf file or of a GLB's JSON chunk (empty when the GLB is too short to have one). */
+std::string_view jsonOf(std::string_view content, bool binary);
+
+/** The file with "indices" removed from every KHR_draco_mesh_compression primitive, or nothing when no primitive has
+ *  the extension (tinygltf built without Draco refuses an indices accessor without a buffer view). */
+std::optional<std::string> withoutDracoIndices(std::string_view content, bool binary);
+
+/** Refuses JSON nested deeper than tinygltf's recursive parser can take, before tinygltf sees the file. */
+void rejectDeepJson(const std::string& path, std::string_view content, bool binary);
+
+/** The external (non-data:) URIs of the top-level "buffers" and "images" arrays, as written. */
+struct ExternalUris {
+    std::vector<std::string> bufferUris;
+    std::vector<std::string> imageUris;
+};
+
+/** externalUris() by a SAX pass over `json`: what it collected before a syntax error still counts. */
+ExternalUris externalUris(std::string_view json);
+
+/** The path tinygltf asks its callbacks for first: the model's folder joined with the decoded URI. */
+std::string pathBesideModel(const std::string& baseDirectory, std::string_view uri);
+
+/** A material's shade map path, resolved against the glTF file's folder and lexically normalised. */
+std::string shadeMapBesideModel(const std::string& modelPath, const std::string& named);
+
+/** What tinygltf's file callbacks work with: the load's budget, the external files the JSON names, and the record of
+ *  what was opened (LoadReport::inputFiles). */
+struct ExternalFiles {
+    MeshBudget& budget;
+    std::set<std::string> bufferPaths;
+    std::set<std::string> imagePaths;
+    std::vector<std::string> opened;
+};
+
+/** tinygltf's FsCallbacks::FileExists over an ExternalFiles (`user`). */
+bool externalFileExists(const std::string& path, void* user);
+
+/** tinygltf's FsCallbacks::ReadWholeFile over an ExternalFiles (`user`). */
+bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user);
+
+/** The encoded bytes of the images given as data: URIs, by glTF image index, kept by keepEncodedImage(). */
+struct DataUriImages {
+    MeshBudget& budget;
+    std::vector<std::shared_ptr<const std::vector<unsigned char>>> bytes;
+};
+
+/** tinygltf's image loader over a DataUriImages (`user`): images stay encoded. */
+bool keepEncodedImage(tinygltf::Image* image, int imageIndex, std::string* error, std::string* warning, int, int,
+                      const unsigned char* bytes, int size, void* user);
+
+/** The file's images in its order (Scene::images): embedded ones with their encoded bytes (charged to the budget),
+ *  external ones with their path beside the model, not read here. */
+std::vector<SceneImage> sceneImages(const std::string& path, const tinygltf::Model& model,
+                                    const std::string& baseDirectory, const DataUriImages& dataUriImages,
+                                    MeshBudget& budget);
+
+/** The files a glTF (or GLB: `content` may stop after the JSON chunk) names: external buffers and images, and the
+ *  shade maps of its materials. Best effort, nothing thrown. */
+std::vector<std::string> gltfReferencedFiles(const std::string& path, std::string_view content);
+
+/** gltfReferencedFiles() of a GLB (or VRM) file, reading its JSON chunk alone. */
+std::vector<std::string> glbReferencedFiles(const std::string& path);
+
+} // namespace inkgraph::detail
