@@ -49,6 +49,10 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
     stats["look"] = describeLook(still, options.stylePath);
     if (traitsOf(still.request.look.shading).faceOrientation)
         stats["face_orientation"] = still.gpuScene->orientation()->describe();
+    // The scene data the passes imported (PassBuilder::import()), derived before any pass prepared.
+    Json imports = Json::object();
+    for (const auto& [name, milliseconds] : result.executor->importMilliseconds()) imports[name] = milliseconds;
+    stats["imports_ms"] = imports;
     stats["passes"] = describeTimings(result.timings);
     stats["post_stage"] = still.graph.describePostStage(result.timings);
     stats["culled"] = culled;

@@ -157,7 +157,7 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     if (const std::optional<std::string> outside = modelOutsideView(still.camera, scene))
         log.warn(req.modelPath, *outside);
     still.frame = frameParamsOf(look, scene, still.camera, still.sphere);
-    still.gpuScene = std::make_unique<GpuScene>(scene, still.sphere.center);
+    still.gpuScene = makeSceneImport(scene, still.sphere.center, still.frame, look);
     StillGraphSetup setup{look, mShaders, scene, still.sphere, *still.gpuScene, still.frame, still.shadeMap};
     setup.meshShadeMaps = still.meshShadeMaps;
     still.graph = buildStillGraph(setup);
@@ -213,6 +213,9 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
     executeOptions.frameHeight = camera.height;
     executeOptions.keepAllResources = still.request.keepEveryBuffer;
     executeOptions.waitForEachPass = still.request.timePasses;
+    // The scene data the live passes import is derived once, before they prepare (passes/GpuScene.h).
+    GpuScene& gpuScene = *still.gpuScene;
+    executeOptions.importData = [&gpuScene](const std::string& name) { gpuScene.importDerived(name); };
     const std::string size = "--size " + std::to_string(camera.width) + "x" + std::to_string(camera.height);
     try {
         result.timings = result.executor->run(still.plan, still.graph.mutableView(), executeOptions);

@@ -57,7 +57,7 @@ struct Bench {
         sphere = computeBoundingSphere(scene);
         frame.worldOrigin = sphere.center;
         frame.towardLightWorld = glm::normalize(glm::dvec3(-0.4, 0.5, 0.77));
-        gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+        gpuScene = makeSceneImport(scene, frame.worldOrigin, frame, look);
         StillGraphSetup setup{look, shaders, scene, sphere, *gpuScene, frame, std::nullopt};
         setup.allowDeferredShading = allowDeferredShading;
         graph = buildStillGraph(setup);

@@ -79,7 +79,7 @@ public:
         : mScene(scene), mLook(std::move(look)), mSize(view.size) {
         mSphere = computeBoundingSphere(mScene);
         mFrame = frameParamsOf(mLook, mScene, resolveCamera(view.request(), mScene), mSphere);
-        mGpuScene = std::make_unique<GpuScene>(mScene, mFrame.worldOrigin);
+        mGpuScene = makeSceneImport(mScene, mFrame.worldOrigin, mFrame, mLook);
         mGraph = buildStillGraph({mLook, mShaders, mScene, mSphere, *mGpuScene, mFrame, std::nullopt});
         std::vector<std::string> resources = {mGraph.finalResource};
         resources.insert(resources.end(), requested.begin(), requested.end());

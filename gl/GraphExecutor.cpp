@@ -5,6 +5,7 @@
 #include "gl/ShaderLibrary.h"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 namespace inkgraph {
@@ -276,6 +277,18 @@ private:
 std::vector<PassTiming> GraphExecutor::run(const Plan& plan, const std::vector<GlPass*>& passes,
                                            const ExecuteOptions& options) {
     mStore.clear();
+    mImportMilliseconds.clear();
+    if (options.importData)
+        for (const std::string& name : plan.imports()) {
+            const auto start = std::chrono::steady_clock::now();
+            try {
+                options.importData(name);
+            } catch (const std::bad_alloc&) {
+                throw OutOfMemoryError("GraphExecutor::run(): importing '" + name + "' ran out of memory");
+            }
+            mImportMilliseconds.emplace_back(
+                name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        }
     std::vector<std::string_view> names;
     for (const GlPass* pass : passes) names.push_back(pass->name());
     GlBackend backend(mStore, plan, passes, options);

@@ -10,6 +10,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -154,6 +155,9 @@ struct ExecuteOptions {
      *  benchmarks). Off, a pass's timing counts only what it submitted, and the driver may still be drawing it while
      *  the next pass submits (llvmpipe rasterises on its own threads): a still without stats ends sooner. */
     bool waitForEachPass = true;
+    /** Derives one scene import (PassBuilder::import()) before any pass prepares; not set: the passes' data is
+     *  derived on demand (passes/GpuScene.h). */
+    std::function<void(const std::string& name)> importData;
 };
 
 class GlPass;
@@ -171,9 +175,12 @@ public:
 
     /** Resources kept after run(): the requested ones, or every computed one with keepAllResources. */
     ResourceStore& store() { return mStore; }
+    /** What the last run() spent deriving the plan's imports (ExecuteOptions::importData), by name. */
+    const std::vector<std::pair<std::string, double>>& importMilliseconds() const { return mImportMilliseconds; }
 
 private:
     ResourceStore mStore;
+    std::vector<std::pair<std::string, double>> mImportMilliseconds;
 };
 
 } // namespace inkgraph

@@ -52,6 +52,7 @@ struct DeclaredPass {
     std::vector<std::size_t> writes;        ///< well-formed writes, declaration order: indices into resources
     std::vector<std::string> allWrites;     ///< every declared write as a full name, for CulledPass
     std::vector<PassBuilder::Scratch> scratch;
+    std::vector<std::string> imports; ///< each once, declaration order
 };
 
 /** Everything compile() derives from the declarations, before liveness. */
@@ -111,6 +112,9 @@ void Declarations::declarePasses(const std::vector<const Pass*>& passList, const
         declared.pass->declare(mBuilders.back());
         declared.hasSideEffect = mBuilders.back().hasSideEffect();
         declared.scratch = mBuilders.back().scratches();
+        for (const std::string& name : mBuilders.back().imports())
+            if (std::find(declared.imports.begin(), declared.imports.end(), name) == declared.imports.end())
+                declared.imports.push_back(name);
         askedCompileData = askedCompileData || mBuilders.back().askedCompileData();
     }
 }
@@ -483,6 +487,7 @@ Plan compileRound(const std::vector<const Pass*>& passes, const std::vector<std:
         planned.reads = declared.reads;
         planned.hasSideEffect = declared.hasSideEffect;
         planned.scratch = declared.scratch;
+        planned.imports = declared.imports;
         for (std::size_t resource : declared.writes)
             (resourceLive[resource] ? planned.liveWrites : planned.deadOptionalWrites)
                 .push_back(graph.resources[resource].name);

@@ -59,6 +59,10 @@ public:
     /** Writes a CPU object field in this pass's own namespace. */
     void writeObject(std::string_view field, const ObjectDesc& desc, Need need = Need::Required,
                      Presentation presentation = {});
+    /** Declares scene data the pass takes from outside the graph ("scene.edge-adjacency"): the plan lists it, and
+     *  the executor's importer derives what the live passes import once, before any pass prepares
+     *  (ExecuteOptions::importData), so no pass derives shared data itself. */
+    void import(std::string_view name) { mImports.emplace_back(name); }
     /** Declares working memory (summed per pass). */
     void scratch(std::size_t bytesPerPixel, int scale = 1) { mScratch.push_back({bytesPerPixel, scale}); }
     /** Never culled. Use sparingly (nothing in the core pipeline needs it). */
@@ -75,6 +79,7 @@ public:
     const std::vector<Read>& reads() const { return mReads; }
     const std::vector<Write>& writes() const { return mWrites; }
     const std::vector<Scratch>& scratches() const { return mScratch; }
+    const std::vector<std::string>& imports() const { return mImports; }
     bool hasSideEffect() const { return mSideEffect; }
     bool askedCompileData() const { return mAskedCompileData; }
 
@@ -84,6 +89,7 @@ private:
     std::vector<Read> mReads;
     std::vector<Write> mWrites;
     std::vector<Scratch> mScratch;
+    std::vector<std::string> mImports;
     bool mSideEffect = false;
     bool mAskedCompileData = false;
 };

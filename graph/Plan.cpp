@@ -89,6 +89,14 @@ const PlannedPass* Plan::findPass(const std::string& name) const {
     return it == passes.end() ? nullptr : &*it;
 }
 
+std::vector<std::string> Plan::imports() const {
+    std::vector<std::string> names;
+    for (const PlannedPass& pass : passes)
+        for (const std::string& name : pass.imports)
+            if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    return names;
+}
+
 std::string Plan::describe() const {
     std::string text = "plan: " + describePassCount(passes.size()) + " run, " + std::to_string(culled.size()) +
                        " culled; requested: " + quoteNames(requested) + "\n";
@@ -109,6 +117,7 @@ std::string Plan::describe() const {
         std::vector<std::string> notes;
         if (!pass.deadOptionalWrites.empty())
             notes.push_back("not computed: " + joinNames(pass.deadOptionalWrites, " ", ""));
+        if (!pass.imports.empty()) notes.push_back("imports: " + joinNames(pass.imports, " ", ""));
         if (pass.hasSideEffect) notes.push_back("side effect");
         rows.push_back({number + " " + pass.name, "reads: " + joinNames(pass.reads, " ", "-"),
                         "writes: " + joinNames(writes, " ", "-"), joinNames(notes, "; ", "")});

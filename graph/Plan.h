@@ -18,6 +18,7 @@ struct PlannedPass {
     std::vector<std::string> deadOptionalWrites; ///< optional outputs nobody needs: not bound, not computed
     bool hasSideEffect = false;                  ///< declared markSideEffect(): live even if nothing reads it
     std::vector<PassBuilder::Scratch> scratch;   ///< working memory it declared (PassBuilder::scratch())
+    std::vector<std::string> imports;            ///< scene data it declared (PassBuilder::import()), each once
 };
 
 struct CulledPass {
@@ -48,6 +49,9 @@ struct Plan {
 
     const PlannedResource* findResource(const std::string& name) const;
     const PlannedPass* findPass(const std::string& name) const;
+    /** Every import of the live passes, each once, in plan order: what the importer derives before the passes
+     *  prepare. */
+    std::vector<std::string> imports() const;
     /** Whether the live resource `name` is a CPU object (ResourceKind::Object). */
     bool isObject(const std::string& name) const {
         const PlannedResource* found = findResource(name);

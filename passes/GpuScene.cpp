@@ -208,4 +208,18 @@ bool GpuScene::containsPoint(glm::dvec3 worldPoint) {
     return mContainsPoint;
 }
 
+void GpuScene::importDerived(const std::string& name) {
+    if (name == SceneImport::kMeshes) {
+        meshes();
+    } else if (name == SceneImport::kHulls) {
+        hullArrays();
+    } else if (name == SceneImport::kEdgeAdjacency) {
+        for (std::size_t mesh = 0; mesh < meshCount(); ++mesh) edgeAdjacency(mesh);
+    } else if (name == SceneImport::kFaceOrientation) {
+        cpuOrientation();
+    } else if (name != SceneImport::kCurvature) { // derived by its reader, at the smoothing it asks for
+        throw std::logic_error("GpuScene::importDerived(): no scene import '" + name + "'");
+    }
+}
+
 } // namespace inkgraph

@@ -23,6 +23,17 @@ namespace inkgraph {
 struct FrameParams;
 class SceneOrientation;
 
+/** The scene data passes import (PassBuilder::import()): declared by the passes that use it, derived once by
+ *  GpuScene::importDerived() before any pass prepares when the renderer runs the plan. */
+namespace SceneImport {
+inline constexpr const char* kMeshes = "scene.meshes";                    ///< meshes(): the meshes uploaded
+inline constexpr const char* kHulls = "scene.hulls";                      ///< hullArrays(): welded hull normals
+inline constexpr const char* kEdgeAdjacency = "scene.edge-adjacency";     ///< edgeAdjacency() of every mesh
+inline constexpr const char* kFaceOrientation = "scene.face-orientation"; ///< cpuOrientation()
+/** meshCurvature(): declared by the object-space suggestive contours, derived by them at their smoothing. */
+inline constexpr const char* kCurvature = "scene.curvature";
+} // namespace SceneImport
+
 class GpuScene {
 public:
     struct DrawMesh {
@@ -127,6 +138,10 @@ public:
     bool containsPoint(glm::dvec3 worldPoint);
 
     glm::dvec3 worldOrigin() const { return mWorldOrigin; }
+
+    /** Derives the import `name` (SceneImport): the executor's importer (ExecuteOptions::importData). Throws
+     *  std::logic_error for a name it does not know. */
+    void importDerived(const std::string& name);
 
 private:
     /** The loader's default relative weld tolerance times the whole scene's bounding-box diagonal: relative to the

@@ -71,6 +71,24 @@ ShadePass* addShading(const StillGraphSetup& setup, StillGraph& graph, const std
 
 } // namespace
 
+OrientationSettings orientationSettingsOf(const Look& look) {
+    // The face-orientation methods (Winnemöller & Bangay 2002) are comic's; the others draw with GPU culling.
+    OrientationSettings orientation;
+    orientation.method =
+        traitsOf(look.shading).faceOrientation ? look.faceOrientation : FaceOrientationMethod::Standard;
+    orientation.viewVector = look.viewVector;
+    orientation.frontRule = look.frontRule;
+    orientation.shininess = look.shininess;
+    return orientation;
+}
+
+std::unique_ptr<GpuScene> makeSceneImport(const Scene& scene, glm::dvec3 worldOrigin, const FrameParams& frame,
+                                          const Look& look) {
+    auto gpuScene = std::make_unique<GpuScene>(scene, worldOrigin);
+    gpuScene->setOrientation(frame, orientationSettingsOf(look));
+    return gpuScene;
+}
+
 std::vector<const Pass*> StillGraph::view() const {
     std::vector<const Pass*> result;
     for (const auto& pass : passes) result.push_back(pass.get());
@@ -95,15 +113,6 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     graph.mLook = &look;
     graph.mSphere = setup.sphere;
     graph.mRadialLengthUnit = setup.frame.radialLengthUnit;
-
-    // The face-orientation methods (Winnemöller & Bangay 2002) are comic's; the others draw with GPU culling.
-    OrientationSettings orientation;
-    orientation.method =
-        traitsOf(look.shading).faceOrientation ? look.faceOrientation : FaceOrientationMethod::Standard;
-    orientation.viewVector = look.viewVector;
-    orientation.frontRule = look.frontRule;
-    orientation.shininess = look.shininess;
-    setup.gpuScene.setOrientation(setup.frame, orientation);
 
     auto gbufferPass = std::make_unique<GBufferPass>(kGBufferPass, setup.shaders, setup.gpuScene, setup.frame,
                                                      look.supersample, look.gbufferPrecision);

@@ -107,6 +107,15 @@ private:
     ShadePass* mShade = nullptr;                       ///< the shading model's pass, or null for --shading none
 };
 
+/** Builds the passes of `setup.look`. Changes nothing of `setup.gpuScene`: the scene data the passes import is
+ *  configured where the GpuScene is made (makeSceneImport()) and derived by the executor's importer. */
 StillGraph buildStillGraph(const StillGraphSetup& setup);
+
+/** The face orientation `look` draws with: comic's CPU methods (Winnemöller & Bangay 2002), Standard for the others. */
+OrientationSettings orientationSettingsOf(const Look& look);
+/** The scene import of one still: its meshes and the data derived from them as `look` asks (its face orientation);
+ *  `frame` must outlive it. Throws std::invalid_argument for orientation settings out of range. */
+std::unique_ptr<GpuScene> makeSceneImport(const Scene& scene, glm::dvec3 worldOrigin, const FrameParams& frame,
+                                          const Look& look);
 
 } // namespace inkgraph

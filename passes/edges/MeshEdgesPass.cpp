@@ -44,6 +44,8 @@ MeshEdgesPass::MeshEdgesPass(std::string name, ShaderLibrary& shaders, GpuScene&
 }
 
 void MeshEdgesPass::declare(PassBuilder& builder) const {
+    builder.import(SceneImport::kMeshes);
+    builder.import(SceneImport::kEdgeAdjacency);
     for (const char* field : kFields)
         builder.write(
             field, {Format::R8, mSettings.supersample}, Need::Optional,

@@ -69,6 +69,7 @@ Format GBufferPass::formatOf(const Field& field) const {
 }
 
 void GBufferPass::declare(PassBuilder& builder) const {
+    builder.import(SceneImport::kMeshes);
     for (const Field& field : fields())
         builder.write(field.name, {formatOf(field), mSupersample}, Need::Optional,
                       {field.fileName, field.appearance, field.meaning});

@@ -3,7 +3,6 @@
  *  skeleton mask, or the mesh itself. LineLayerPass reads the kernel's inputs from the graph, runs it, and hands its
  *  skeleton on; a kernel knows nothing of the graph but the names of what it reads, and the memory it works in. */
 
-#include "gl/GraphExecutor.h"
 #include "postfx/LineSkeleton.h"
 
 #include <nlohmann/json.hpp>
@@ -20,17 +19,12 @@ public:
     /** Full names of the graph resources it reads, in the order find() receives them ("gbuffer.nDotV"). At least one:
      *  the first one's scale is the data resolution the skeleton is found at. */
     virtual std::vector<std::string> inputs() const = 0;
-    /** A typed object it reads (scene-derived data, passes/SceneImportPass.h), by full name and object type. */
-    struct ObjectInput {
-        std::string resource;
-        std::string type;
-    };
-    /** The objects it reads; prepare() gets them through the context (GlPassContext::inputObject()). */
-    virtual std::vector<ObjectInput> objectInputs() const { return {}; }
+    /** The scene data it takes from outside the graph (passes/GpuScene.h SceneImport), declared by its layer. */
+    virtual std::vector<std::string> sceneImports() const { return {}; }
     /** Working memory per data pixel while find() runs, beyond its inputs and its skeleton (for the memory budget). */
     virtual std::size_t scratchBytesPerPixel() const { return 0; }
-    /** Once per run, before the timed find(): take what it needs of its objectInputs() (only kernels that run). */
-    virtual void prepare(GlPassContext& context) { (void)context; }
+    /** Once per run, before the timed find(): derive what it needs of its sceneImports() (only kernels that run). */
+    virtual void prepare() {}
     /** The skeleton, at the inputs' resolution; `inputs` as inputs() names them, read back to the CPU. */
     virtual LineSkeleton find(const std::vector<cv::Mat>& inputs) = 0;
     /** Adds what the last run found beyond the skeleton to the layer's --stats entry (post_stage.lines). */

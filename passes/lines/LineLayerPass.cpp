@@ -25,7 +25,7 @@ LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kerne
 
 void LineLayerPass::declare(PassBuilder& builder) const {
     for (const std::string& input : mKernel->inputs()) builder.read(input);
-    for (const LineKernel::ObjectInput& input : mKernel->objectInputs()) builder.readObject(input.resource, input.type);
+    for (const std::string& name : mKernel->sceneImports()) builder.import(name);
     ObjectDesc skeleton;
     skeleton.type = kLineSkeletonType;
     skeleton.bytesPerPixel = kLineSkeletonBytesPerPixel;
@@ -40,7 +40,10 @@ void LineLayerPass::declare(PassBuilder& builder) const {
         builder.scratch(scratch, mSupersample);
 }
 
-void LineLayerPass::prepare(GlPassContext& context) { mKernel->prepare(context); }
+void LineLayerPass::prepare(GlPassContext& context) {
+    (void)context;
+    mKernel->prepare();
+}
 
 void LineLayerPass::execute(GlPassContext& gl) {
     mReport = {};

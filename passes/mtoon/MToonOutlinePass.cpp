@@ -18,6 +18,8 @@ bool MToonOutlinePass::drawsAnyOutline(const Scene& scene) {
 }
 
 void MToonOutlinePass::declare(PassBuilder& builder) const {
+    builder.import(SceneImport::kMeshes);
+    builder.import(SceneImport::kHulls); // the shells are the hulls
     builder.write("color", {Format::RGBA8}, Need::Required,
                   {mName + ".png", Appearance::Color,
                    "MToon's outline shells alone (--shading mtoon, materials that ask for an outline), sRGB"});

@@ -95,6 +95,8 @@ OutlinePass::OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& sce
 }
 
 void OutlinePass::declare(PassBuilder& builder) const {
+    builder.import(SceneImport::kMeshes);
+    builder.import(SceneImport::kEdgeAdjacency); // the contour and border edges it chooses among
     builder.write("lines", {Format::R8}, Need::Required,
                   {"band-" + mName + ".png", Appearance::Lines,
                    "the band GL drew for " + mName + ", at the output size, before the stroke stage thins it"});

@@ -144,10 +144,17 @@ ShadePass::~ShadePass() = default;
 
 void ShadePass::declare(PassBuilder& builder) const {
     const std::string& gbuffer = mSettings.deferred.gbuffer;
-    if (!gbuffer.empty() && forwardReason(builder.liveFieldsAnyway(gbuffer)).empty())
+    const bool deferred = !gbuffer.empty() && forwardReason(builder.liveFieldsAnyway(gbuffer)).empty();
+    if (deferred) {
         for (const std::string& field : deferredFields()) builder.read(gbuffer + "." + field);
-    else if (!mSettings.materialOutlines.empty())
-        for (const char* field : {".color", ".depth"}) builder.read(mSettings.materialOutlines + field);
+    } else {
+        builder.import(SceneImport::kMeshes); // forward draws the meshes
+        // Comic's CPU face orientation (Winnemöller & Bangay 2002): the front sets it draws.
+        if (traits().orientationSets && mSettings.faceOrientation != FaceOrientationMethod::Standard)
+            builder.import(SceneImport::kFaceOrientation);
+        if (!mSettings.materialOutlines.empty())
+            for (const char* field : {".color", ".depth"}) builder.read(mSettings.materialOutlines + field);
+    }
     builder.write("color", {Format::RGBA8}, Need::Required,
                   {"shading.png", Appearance::Color, "the shading layer, sRGB, alpha = coverage"});
 }

@@ -31,6 +31,8 @@ SilhouettePass::SilhouettePass(std::string name, ShaderLibrary& shaders, GpuScen
 }
 
 void SilhouettePass::declare(PassBuilder& builder) const {
+    builder.import(SceneImport::kMeshes);
+    if (mSettings.weldNormals) builder.import(SceneImport::kHulls);
     const std::string& depth = mSettings.modelDepth;
     if (!depth.empty() && builder.runsAnyway(ResourceName::split(depth).pass)) builder.read(depth);
     builder.write("lines", {Format::R8}, Need::Required,

@@ -105,6 +105,11 @@ TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
     EXPECT_EQ(stats["passes"][0]["name"], "gbuffer");
     EXPECT_GT(stats["passes"][0]["ms"].get<double>(), 0.0);
     EXPECT_EQ(stats["scene"]["triangles"], 5856);
+    // The scene data the passes that ran imported, derived once before they prepared: the meshes alone here (no line
+    // pass runs, so no edge adjacency or hull).
+    ASSERT_TRUE(stats["imports_ms"].is_object());
+    EXPECT_EQ(stats["imports_ms"].size(), 1u) << stats["imports_ms"].dump();
+    EXPECT_TRUE(stats["imports_ms"].contains("scene.meshes")) << stats["imports_ms"].dump();
     // Only the line passes no --lines asked for are culled.
     std::set<std::string> culledNames;
     for (const auto& pass : stats["culled"]) culledNames.insert(pass["name"].get<std::string>());

@@ -176,3 +176,31 @@ TEST(CompileData, LiveFieldsAnywayNameTheFirstRoundsLiveFields) {
 
 } // namespace
 } // namespace inkgraph::test
+
+namespace inkgraph::test {
+namespace {
+
+TEST(SceneImports, OnlyTheLivePassesImportsAreInThePlanEachOnce) {
+    LambdaPass gbuffer("gbuffer", [](PassBuilder& b) {
+        b.import("scene.meshes");
+        b.write("depth", {Format::R32F});
+    });
+    LambdaPass edges("mesh-edges", [](PassBuilder& b) {
+        b.import("scene.meshes");
+        b.import("scene.edge-adjacency");
+        b.import("scene.edge-adjacency"); // declared twice, listed once
+        b.write("crease", {Format::R8});
+    });
+    LambdaPass hull("silhouette", [](PassBuilder& b) {
+        b.import("scene.hulls");
+        b.write("lines", {Format::R8});
+    });
+    const Plan plan = compile({&gbuffer, &edges, &hull}, {"gbuffer.depth", "mesh-edges.crease"});
+    EXPECT_EQ(plan.findPass("mesh-edges")->imports, (std::vector<std::string>{"scene.meshes", "scene.edge-adjacency"}));
+    // The culled silhouette's hulls are not derived.
+    EXPECT_EQ(plan.imports(), (std::vector<std::string>{"scene.meshes", "scene.edge-adjacency"}));
+    EXPECT_NE(plan.describe().find("imports: scene.meshes scene.edge-adjacency"), std::string::npos) << plan.describe();
+}
+
+} // namespace
+} // namespace inkgraph::test

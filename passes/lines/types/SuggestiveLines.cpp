@@ -135,7 +135,7 @@ LineSkeleton SuggestiveKernel::find(const std::vector<cv::Mat>& inputs) {
     return extractSuggestiveContours(inputs[0], inputs[1], settings);
 }
 
-void ObjectSuggestiveKernel::prepare(GlPassContext&) {
+void ObjectSuggestiveKernel::prepare() {
     mReport.curvatureDerived = false;
     mReport.curvatureMilliseconds = 0.0;
     if (mScene.meshCurvatureComputed(mCurvatureSmoothing)) return;

@@ -14,6 +14,7 @@
  *  mesh (GpuScene::meshCurvature()) is derived in prepare() the first time the kernel runs, so a plan that culls the
  *  layer derives nothing. */
 
+#include "passes/GpuScene.h"
 #include "passes/lines/LineKernel.h"
 #include "postfx/SuggestiveContours.h"
 
@@ -64,7 +65,9 @@ public:
         : mGBuffer(std::move(gbuffer)), mSettings(settings), mCurvatureSmoothing(curvatureSmoothing), mScene(scene),
           mFrame(frame) {}
     std::vector<std::string> inputs() const override { return {mGBuffer + ".depth"}; }
-    void prepare(GlPassContext& context) override;
+    /** The meshes' curvature (SceneImport::kCurvature), derived here at this kernel's smoothing. */
+    std::vector<std::string> sceneImports() const override { return {SceneImport::kCurvature}; }
+    void prepare() override;
     LineSkeleton find(const std::vector<cv::Mat>& inputs) override;
     void describe(nlohmann::ordered_json& entry) const override;
     const ObjectSuggestiveReport& report() const { return mReport; }
