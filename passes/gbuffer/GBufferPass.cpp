@@ -1,5 +1,7 @@
 #include "passes/gbuffer/GBufferPass.h"
 
+#include "passes/ViewUniforms.h"
+
 #include "gl/GraphExecutor.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -161,12 +163,9 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
     glDepthFunc(kDepthNearer);
     glDisable(GL_BLEND);
     const glm::mat4 viewFromModel = mFrame.viewFromModel();
-    const glm::mat3 viewNormalFromModel = glm::inverseTranspose(glm::mat3(viewFromModel));
     const glm::mat4 clipFromView = mFrame.clipFromView();
     program.use();
-    glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
-    glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
-    glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    setViewUniforms(program, mFrame);
     if (std::any_of(group.begin(), group.end(),
                     [](const Field* field) { return std::string_view(field->name) == "radial"; })) {
         glUniform2fv(program.uniform("focalPixels"), 1, glm::value_ptr(focalPixels(clipFromView, width, height)));

@@ -1,5 +1,7 @@
 #include "passes/mtoon/MToonOutlinePass.h"
 
+#include "passes/ViewUniforms.h"
+
 #include "gl/GraphExecutor.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -58,14 +60,9 @@ void MToonOutlinePass::execute(GlPassContext& gl) {
     glViewport(0, 0, width, height);
     clearColorAndDepth(1);
 
-    const glm::mat4 viewFromModel = mFrame.viewFromModel();
-    const glm::mat3 viewNormalFromModel = glm::inverseTranspose(glm::mat3(viewFromModel));
-    const glm::mat4 clipFromView = mFrame.clipFromView();
     GlProgram& program = *mProgram;
     program.use();
-    glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
-    glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
-    glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    setViewUniforms(program, mFrame);
     glUniform2f(program.uniform("viewportSize"), float(width), float(height));
     glUniform3fv(program.uniform("towardLightView"), 1, glm::value_ptr(mFrame.towardLightView()));
     glEnable(GL_DEPTH_TEST);

@@ -1,5 +1,7 @@
 #include "passes/shade/ShadePass.h"
 
+#include "passes/ViewUniforms.h"
+
 #include "gl/GraphExecutor.h"
 #include "gl/Readback.h"
 
@@ -417,13 +419,9 @@ void ShadePass::executeForward(GlPassContext& gl) {
     glDisable(GL_BLEND);
 
     const glm::mat4 viewFromModel = mFrame.viewFromModel();
-    const glm::mat3 viewNormalFromModel = glm::inverseTranspose(glm::mat3(viewFromModel));
-    const glm::mat4 clipFromView = mFrame.clipFromView();
     GlProgram& program = *mProgram;
     program.use();
-    glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
-    glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
-    glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    setViewUniforms(program, mFrame);
     setShadingUniforms(program);
 
     std::optional<std::size_t> boundSlot;
