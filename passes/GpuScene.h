@@ -1,7 +1,8 @@
 #pragma once
-/** @file The scene's meshes on the GPU, uploaded the first time a pass that runs asks for them, and the data derived
- *  from them (hull normals, edge adjacency, curvature, the CPU face orientation), each made the first time a pass
- *  that runs asks: the one lazy cache every pass reads derived scene data from. */
+/** @file The scene's meshes on the GPU and the data derived from them (hull normals, edge adjacency, curvature, the
+ *  CPU face orientation). Passes declare what they take as imports (SceneImport, PassBuilder::import()); the
+ *  renderer derives the imports of the passes that run once, before any prepares (importDerived()). Each getter also
+ *  derives on its first call, so a pass run without an importer (the tests) gets the same data. */
 
 #include "gl/GlObjects.h"
 #include "passes/material/SceneMaterials.h"

@@ -94,7 +94,8 @@ public:
     std::vector<SvgLineLayer> svgLayers(ResourceStore& store, double tolerancePixels) const;
     /** The stroke stage, or null when no line type is drawn. */
     const StrokesPass* strokes() const { return mStrokes; }
-    /** The CPU line layer of `type` (what it found: skeleton(), report(), kernel()), or null for GL-drawn types. */
+    /** The CPU line layer of `type` (what its last run did: report(), kernel(); its skeleton is the graph's
+     *  "<type>.skeleton"), or null for GL-drawn types. */
     const LineLayerPass* lineLayer(const std::string& type) const;
 
 private:

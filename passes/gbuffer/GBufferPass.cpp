@@ -162,7 +162,6 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(kDepthNearer);
     glDisable(GL_BLEND);
-    const glm::mat4 viewFromModel = mFrame.viewFromModel();
     const glm::mat4 clipFromView = mFrame.clipFromView();
     program.use();
     setViewUniforms(program, mFrame);

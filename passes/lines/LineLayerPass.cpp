@@ -40,10 +40,7 @@ void LineLayerPass::declare(PassBuilder& builder) const {
         builder.scratch(scratch, mSupersample);
 }
 
-void LineLayerPass::prepare(GlPassContext& context) {
-    (void)context;
-    mKernel->prepare();
-}
+void LineLayerPass::prepare(GlPassContext&) { mKernel->prepare(); }
 
 void LineLayerPass::execute(GlPassContext& gl) {
     mReport = {};

@@ -1,7 +1,8 @@
 #pragma once
 /** @file The stroke stage: every drawn line type's lines chained into strokes together (postfx/Strokes.h), the
  *  length rule and the hysteresis applied, line weight set, and each type's layer drawn from its kept strokes. The
- *  --svg paths come from the same strokes (strokes(), layers()), so the raster and the vector output match.
+ *  --svg paths come from the same strokes (handed on as "<name>.paths", svgLayersOf()), so the raster and the vector
+ * output match.
  *
  *  | resource         | format | need     | content                                                           |
  *  |------------------|--------|----------|-------------------------------------------------------------------|

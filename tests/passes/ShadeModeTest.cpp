@@ -50,7 +50,8 @@ protected:
 
     /** Builds the still graph of `look` over `scene` (the eye 5 radii away: comic's constant view vector applies) and
      *  compiles it for the final picture. */
-    Choice choose(const Look& look, std::vector<std::optional<ShadeMap>> meshShadeMaps = {}) {
+    /** Frames `scene` from 5 radii away at 64x64 and makes its GpuScene; returns its bounding sphere. */
+    BoundingSphere frameScene() {
         CameraRequest request;
         request.eye = glm::dvec3(0.0, 0.0, 5.0);
         request.target = glm::dvec3(0.0);
@@ -60,6 +61,11 @@ protected:
         const BoundingSphere sphere = computeBoundingSphere(scene);
         frame.worldOrigin = sphere.center;
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+        return sphere;
+    }
+
+    Choice choose(const Look& look, std::vector<std::optional<ShadeMap>> meshShadeMaps = {}) {
+        const BoundingSphere sphere = frameScene();
         StillGraphSetup setup{look, shaders, scene, sphere, *gpuScene, frame, std::nullopt};
         setup.meshShadeMaps = std::move(meshShadeMaps);
         const StillGraph graph = buildStillGraph(setup);
@@ -212,14 +218,7 @@ TEST_F(ShadeModeChoice, ForwardWhenTheShadingFieldsWouldMakeTheGBufferDrawTwice)
 TEST_F(ShadeModeChoice, TheMToonOutlineLayerIsReadOnlyWhenAMaterialAsksForAnOutline) {
     // Registered whenever the look is mtoon; culled, and said so, when no material asks for an outline.
     const auto compileLook = [&](const Look& look) {
-        CameraRequest request;
-        request.eye = glm::dvec3(0.0, 0.0, 5.0);
-        request.target = glm::dvec3(0.0);
-        request.width = 64;
-        request.height = 64;
-        frame.camera = resolveCamera(request, scene);
-        const BoundingSphere sphere = computeBoundingSphere(scene);
-        gpuScene = std::make_unique<GpuScene>(scene, sphere.center);
+        const BoundingSphere sphere = frameScene();
         StillGraphSetup setup{look, shaders, scene, sphere, *gpuScene, frame, std::nullopt};
         const StillGraph graph = buildStillGraph(setup);
         return std::make_pair(graph.findPass("mtoon-outline") != nullptr, compile(graph.view(), {graph.finalResource}));
@@ -262,12 +261,17 @@ TEST(ShadingModelTraits, TheShadePassWorkOfAModelHasTheTraitsItBuildsOn) {
     // makes sense with the traits that feed it.
     for (const ShadingModelTraits& model : shadingModels()) {
         // The constant view vector and the CPU face-orientation sets come from --view-vector and --face-orientation.
-        if (model.constantView || model.orientationSets) EXPECT_TRUE(model.faceOrientation) << model.name;
+        if (model.constantView || model.orientationSets) {
+            EXPECT_TRUE(model.faceOrientation) << model.name;
+        }
         // Row bands are rows of a 2-D map's specular axis.
-        if (model.specularRowBands)
+        if (model.specularRowBands) {
             EXPECT_TRUE(model.specular && model.shadeMap && !model.oneDimensionalMap) << model.name;
+        }
         // The materials' outlines go into forward shading: a model that may shade deferred would lose them.
-        if (model.materialOutlines) EXPECT_FALSE(model.perPixel) << model.name;
+        if (model.materialOutlines) {
+            EXPECT_FALSE(model.perPixel) << model.name;
+        }
     }
     EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::constantView), "comic");
     EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::orientationSets), "comic");
