@@ -1,6 +1,6 @@
 #include "api/Internal.h"
 
-#include "app/Cli.h"
+#include "render/ErrorReport.h"
 
 namespace inkgraph::api {
 namespace {

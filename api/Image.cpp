@@ -1,6 +1,6 @@
 #include "api/Internal.h"
 
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 
 #include <cstring>
 #include <stdexcept>

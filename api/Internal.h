@@ -5,8 +5,8 @@
 
 #include "inkgraph/inkgraph.h"
 
-#include "app/Options.h"
-#include "app/StyleFile.h"
+#include "flags/Options.h"
+#include "flags/StyleFile.h"
 #include "scene/Scene.h"
 
 #include <opencv2/core.hpp>
@@ -24,7 +24,8 @@ struct Scene::Impl {
     std::shared_ptr<const inkgraph::Scene> scene;
 };
 
-/** `error` as the command line reports it (app/Cli.h reportOf()): its message, and the kind of its exit code. */
+/** `error` as the command line reports it (render/ErrorReport.h reportOf()): its message, and the kind of its exit
+ * code. */
 Error errorOf(const std::exception_ptr& error);
 
 /** Runs `body`; every exception leaves as Error. A UsageError's message, which starts with the flag, gets `function`

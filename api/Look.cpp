@@ -1,6 +1,6 @@
 #include "api/Internal.h"
 
-#include "app/FlagTable.h"
+#include "flags/FlagTable.h"
 
 #include <algorithm>
 

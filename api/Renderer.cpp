@@ -1,9 +1,9 @@
 #include "api/Internal.h"
 
-#include "app/ImageFiles.h"
-#include "app/OutputFiles.h"
-#include "app/Render.h"
-#include "app/StillRenderer.h"
+#include "render/ImageFiles.h"
+#include "render/InputFiles.h"
+#include "render/MemoryBudget.h"
+#include "render/StillRenderer.h"
 #include "passes/StillGraph.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineTypes.h"
@@ -104,6 +104,25 @@ std::vector<std::string> warningsIn(const std::string& log) {
     for (std::string line; std::getline(lines, line);)
         if (startsWith(line, marker)) warnings.push_back(line.substr(marker.size()));
     return warnings;
+}
+
+/** The camera the flags ask for (cameraRequestOf() of the command line, app/Render.h). */
+CameraRequest cameraRequestOf(const RenderOptions& options) {
+    CameraRequest request;
+    request.eye = options.eye;
+    request.orbit = options.orbit;
+    request.target = options.target;
+    request.frameNodes = options.frameNodes;
+    request.up = options.up;
+    request.fovYDegrees = options.fovYDegrees;
+    request.ignoreFileCamera = options.autoCamera;
+    if (options.clipRange) {
+        request.zNear = options.clipRange->x;
+        request.zFar = options.clipRange->y;
+    }
+    request.width = options.width;
+    request.height = options.height;
+    return request;
 }
 
 /** The renderer whose StillRenderer holds the process's GL context, or null (Renderer's comment says why one). */
@@ -228,7 +247,15 @@ struct Renderer::Impl {
                 options.extraOutputs.end())
                 options.extraOutputs.push_back(resource);
         }
-        StillRequest request = stillRequestOf(options);
+        StillRequest request;
+        request.modelPath = options.modelPath;
+        request.look = options.look;
+        request.camera = cameraRequestOf(options);
+        request.extraOutputs = options.extraOutputs;
+        request.memoryLimitBytes = options.memoryLimitBytes ? *options.memoryLimitBytes : defaultMemoryLimit();
+        request.memoryLimitGiven = options.memoryLimitBytes.has_value();
+        if (options.eglPlatform == "device") request.eglPlatform = EglPlatform::Device;
+        if (options.eglPlatform == "surfaceless") request.eglPlatform = EglPlatform::Surfaceless;
         request.loadedScene = scene.impl().scene;
         request.timePasses = false; // no per-pass timings to report: passes may overlap
 
@@ -241,7 +268,7 @@ struct Renderer::Impl {
             refuseUnknownBuffers(still->graph, buffers);
             throw;
         }
-        budgetStill(*still, options);
+        budgetStill(*still);
         holdContext();
         StillResult result = renderer->execute(*still, stillLog);
 
@@ -261,8 +288,12 @@ struct Renderer::Impl {
             }
         }
         // Absolute, as the render saw them: the still may be written after the working folder changed.
-        made->inputs = inputsNamedBy(options);
-        for (RunInput& input : inputsFoundByLoading(options, still->scene())) made->inputs.push_back(std::move(input));
+        made->inputs = {{options.modelPath, "the model itself"}};
+        if (!options.look.shadeMapPath.empty())
+            made->inputs.push_back({options.look.shadeMapPath, "the --shademap itself"});
+        if (!options.stylePath.empty()) made->inputs.push_back({options.stylePath, "the --style file"});
+        for (RunInput& input : inputsFoundByLoading(options.modelPath, still->scene()))
+            made->inputs.push_back(std::move(input));
         for (RunInput& input : made->inputs) input.path = resolvedPath(input.path).string();
         made->warnings = warningsIn(log.str());
         made->milliseconds = millisecondsSince(start);

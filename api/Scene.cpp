@@ -1,6 +1,6 @@
 #include "api/Internal.h"
 
-#include "app/Render.h"
+#include "render/MemoryBudget.h"
 
 #include <charconv>
 
@@ -26,7 +26,7 @@ Scene Scene::load(const std::string& path, const SceneOptions& options) {
         if (options.memoryLimitBytes != 0) pose.memoryLimitBytes = options.memoryLimitBytes;
 
         LoadOptions load;
-        load.memoryLimitBytes = memoryLimitOf(pose);
+        load.memoryLimitBytes = pose.memoryLimitBytes ? *pose.memoryLimitBytes : defaultMemoryLimit();
         load.animation = pose.animation;
         load.time = pose.animationTime;
         auto impl = std::make_shared<Impl>();

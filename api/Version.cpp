@@ -1,6 +1,6 @@
 #include "inkgraph/inkgraph.h"
 
-#include "app/BuildInfo.h"
+#include "render/BuildInfo.h"
 
 namespace inkgraph::api {
 

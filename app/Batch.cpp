@@ -1,6 +1,6 @@
 #include "app/Batch.h"
 
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "app/OutputFiles.h"
 #include "scene/Scene.h"
 

@@ -7,7 +7,7 @@
  *  without its extension) and `{index}` (its 1-based position in the whole list, zero-padded to the list's width);
  *  when there is more than one model, each given output path must hold one of them. */
 
-#include "app/Options.h"
+#include "flags/Options.h"
 
 #include <cstddef>
 #include <iosfwd>

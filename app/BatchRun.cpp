@@ -1,6 +1,6 @@
 #include "app/BatchRun.h"
 
-#include "app/Messages.h"
+#include "render/Messages.h"
 
 #include "app/Batch.h"
 #include "app/Cli.h"

@@ -1,7 +1,7 @@
 #pragma once
 /** @file Running every model of `inkgraph render` (app/Batch.h says which) in one RenderSession. */
 
-#include "app/Options.h"
+#include "flags/Options.h"
 
 #include <iosfwd>
 

@@ -1,14 +1,14 @@
 #include "app/Cli.h"
 
-#include "app/Messages.h"
+#include "render/Messages.h"
 
 #include "app/BatchRun.h"
 #include "app/CommandLineDocs.h"
 #include "app/GeneratedDocs.h"
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "app/Render.h"
-#include "app/StyleFile.h"
-#include "app/TemporaryFiles.h"
+#include "flags/StyleFile.h"
+#include "render/TemporaryFiles.h"
 #include "app/Version.h"
 #include "gl/GraphExecutor.h"
 #include "gl/HeadlessContext.h"
@@ -115,18 +115,6 @@ int runRenderCommand(const std::vector<std::string>& arguments, std::ostream& ou
 
 } // namespace
 
-const std::vector<ExitCodeMeaning>& exitCodeMeanings() {
-    static const std::vector<ExitCodeMeaning> kMeanings = {
-        {kExitOk, "done"},
-        {kExitUsage, "bad command line"},
-        {kExitBadInput, "unreadable or invalid model"},
-        {kExitNoGl, "no OpenGL/EGL or no shaders"},
-        {kExitOutput, "an output could not be written"},
-        {kExitInternal, "anything else"},
-    };
-    return kMeanings;
-}
-
 const std::vector<CommandInfo>& commands() {
     // runCommandLine() dispatches on these names; runHelpCommand() takes its topics from help's words.
     static const std::vector<CommandInfo> kCommands = {
@@ -157,44 +145,6 @@ std::string mainHelp() {
         text += usage + "\n";
     }
     return text;
-}
-
-namespace {
-
-ErrorReport unboundedReportOf(const std::exception_ptr& error) {
-    const std::string outOfMemory = "make the image smaller (--size, --supersample) or request and dump fewer buffers";
-    try {
-        std::rethrow_exception(error);
-    } catch (const UsageError& usage) {
-        return {kExitUsage, usage.what(), true};
-    } catch (const SceneError& input) {
-        return {kExitBadInput, input.what(), false};
-    } catch (const InputFileError& input) {
-        return {kExitBadInput, input.what(), false};
-    } catch (const HeadlessContextError& context) {
-        return {kExitNoGl, context.what(), false};
-    } catch (const FileError& output) {
-        return {kExitOutput, output.what(), false};
-    } catch (const ShaderSourceError& shaders) {
-        return {kExitNoGl, shaders.what(), false};
-    } catch (const std::bad_alloc&) {
-        return {kExitUsage, "out of memory; " + outOfMemory, true};
-    } catch (const cv::Exception& opencv) {
-        if (opencv.code != cv::Error::StsNoMem) return {kExitInternal, std::string("internal error: ") + opencv.what()};
-        return {kExitUsage, "out of memory (" + opencv.err + "); " + outOfMemory, true};
-    } catch (const std::exception& other) {
-        return {kExitInternal, std::string("internal error: ") + other.what()};
-    } catch (...) {
-        return {kExitInternal, "internal error: an exception that is not a std::exception"};
-    }
-}
-
-} // namespace
-
-ErrorReport reportOf(const std::exception_ptr& error) {
-    ErrorReport report = unboundedReportOf(error);
-    report.message = boundedMessage(report.message);
-    return report;
 }
 
 int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {

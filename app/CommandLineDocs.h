@@ -1,6 +1,6 @@
 #pragma once
 /** @file The man page and the bash completion of `inkgraph`, generated from the commands (app/Cli.h) and the flag
- *  table (app/FlagTable.h), so neither lists a flag of its own. `inkgraph help --man` and `inkgraph help
+ *  table (flags/FlagTable.h), so neither lists a flag of its own. `inkgraph help --man` and `inkgraph help
  *  --bash-completion` print them; the build writes them into build/share/ for the install (docs/install.md). */
 
 #include <string>

@@ -1,7 +1,7 @@
 #include "app/DumpFolder.h"
 
-#include "app/ImageFiles.h"
-#include "app/TemporaryFiles.h"
+#include "render/ImageFiles.h"
+#include "render/TemporaryFiles.h"
 
 #include <nlohmann/json.hpp>
 
@@ -121,12 +121,6 @@ bool exchangeIsUnsupported() {
 }
 
 } // namespace
-
-std::optional<FileIdentity> fileIdentity(const fs::path& path) {
-    struct stat status {};
-    if (::stat(path.c_str(), &status) != 0) return std::nullopt;
-    return FileIdentity{status.st_dev, status.st_ino};
-}
 
 EarlierDump readEarlierDump(const fs::path& folder) {
     EarlierDump dump;

@@ -14,6 +14,8 @@
  *  DIR is locked (flock) from the check until the commit ends: a second run on the same folder is refused at once,
  *  naming it, instead of mixing its files in. */
 
+#include "render/InputFiles.h"
+
 #include <sys/types.h>
 
 #include <filesystem>
@@ -26,19 +28,6 @@ namespace inkgraph {
 /** The marker of a staging folder (app/DumpFolder.h). Tolerated inside a dump: a crash between the swap and its
  *  removal leaves it there. */
 inline constexpr const char* kStagingMarker = ".inkgraph-staging";
-
-/** Device and inode: how two spellings, links or hard links of one file compare equal. */
-struct FileIdentity {
-    dev_t device = 0;
-    ino_t inode = 0;
-    bool operator==(const FileIdentity& other) const { return device == other.device && inode == other.inode; }
-    bool operator<(const FileIdentity& other) const {
-        return device != other.device ? device < other.device : inode < other.inode;
-    }
-};
-
-/** The identity of what `path` names (links followed), or nothing when it does not exist or cannot be reached. */
-std::optional<FileIdentity> fileIdentity(const std::filesystem::path& path);
 
 /** The files of an earlier dump in `folder` (manifest.json included), or why `folder` is not one: every entry of
  *  the manifest's "files" must be a plain file name (no '/', not "." or "..") of a regular file in `folder`, and

@@ -1,7 +1,7 @@
 #include "app/GeneratedDocs.h"
 
 #include "app/StillOutputs.h"
-#include "app/StillRenderer.h"
+#include "render/StillRenderer.h"
 #include "gl/ShaderLibrary.h"
 #include "graph/Pass.h"
 #include "graph/Plan.h"

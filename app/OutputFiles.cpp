@@ -1,8 +1,8 @@
 #include "app/OutputFiles.h"
 
-#include "app/ImageFiles.h"
-#include "app/OutputPlace.h"
-#include "app/TemporaryFiles.h"
+#include "render/ImageFiles.h"
+#include "render/OutputPlace.h"
+#include "render/TemporaryFiles.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -33,14 +33,6 @@ void sweepStaleTemporaries(const fs::path& folder) {
         struct stat status {};
         if (::lstat(it->path().c_str(), &status) == 0 && S_ISREG(status.st_mode)) ::unlink(it->path().c_str());
     }
-}
-
-/** One file by two names: the same place once links are resolved, or the same device and inode (a hard link). */
-bool isSameFile(const fs::path& first, const fs::path& second) {
-    if (resolvedPath(first) == resolvedPath(second)) return true;
-    const auto firstIdentity = fileIdentity(first);
-    const auto secondIdentity = fileIdentity(second);
-    return firstIdentity && secondIdentity && *firstIdentity == *secondIdentity;
 }
 
 /** The commit's test hooks: INKGRAPH_TEST_COMMIT_KILL / _FAIL / _INTERRUPT = the step after which to stop the
@@ -82,12 +74,6 @@ private:
 
 } // namespace
 
-fs::path resolvedPath(const fs::path& path) {
-    std::error_code error;
-    fs::path result = fs::weakly_canonical(fs::absolute(path, error), error);
-    return error ? fs::absolute(path).lexically_normal() : result;
-}
-
 OutputSet::OutputSet(const RenderOptions& options) {
     for (const auto& [flag, field] : outputPathFlags())
         if (flag != "--dump" && !(options.*field).empty()) mOutputs.push_back({flag, options.*field, {}, {}, false});
@@ -124,12 +110,6 @@ std::vector<RunInput> inputsNamedBy(const RenderOptions& options) {
     if (!options.stylePath.empty()) inputs.push_back({options.stylePath, "the --style file"});
     if (!options.listPath.empty() && options.listPath != "-") inputs.push_back({options.listPath, "the --list file"});
     return inputs;
-}
-
-void refuseInputAsOutput(const fs::path& output, const std::string& shownOutput, const std::vector<RunInput>& inputs) {
-    for (const RunInput& input : inputs)
-        if (isSameFile(input.path, output))
-            throw UsageError(shownOutput + " is " + input.what + "; choose another file");
 }
 
 void OutputSet::refuseInputs(const std::vector<RunInput>& inputs) const {

@@ -1,19 +1,20 @@
 #pragma once
 /** @file Every output of one run as a transaction. The constructor checks every output place before any work:
- *  outputs are regular files or new names (a device, FIFO or socket is refused: app/OutputPlace.h, whose rule the
+ *  outputs are regular files or new names (a device, FIFO or socket is refused: render/OutputPlace.h, whose rule the
  *  library's writes follow too), never one another, never a file the run reads (refuseInputs(), compared by device
  *  and inode). Files are then staged under temporary names, the dump in a staging folder (app/DumpFolder.h), and
  *  only commit() puts them in place: all of them, or, when any step fails, none (the steps done are undone). A run
  *  that fails at any point changes none of the user's files, and a signal removes what was staged
- *  (app/TemporaryFiles.h). A crash (kill -9) inside the commit leaves each output whole, old or new, and the next run
- *  sweeps what the crash left.
+ *  (render/TemporaryFiles.h). A crash (kill -9) inside the commit leaves each output whole, old or new, and the next
+ * run sweeps what the crash left.
  *
  *  Test hooks (tests/app/OutputTransactionGLTest.cpp): INKGRAPH_TEST_COMMIT_KILL=N ends the process with SIGKILL
  *  after the commit's N-th step, INKGRAPH_TEST_COMMIT_FAIL=N fails the commit there (both say on stderr which step it
  *  was), INKGRAPH_TEST_COMMIT_INTERRUPT=N sends the process SIGINT there (it must land after the commit). */
 
 #include "app/DumpFolder.h"
-#include "app/Options.h"
+#include "flags/Options.h"
+#include "render/InputFiles.h"
 
 #include <opencv2/core.hpp>
 
@@ -24,20 +25,8 @@
 
 namespace inkgraph {
 
-/** A file the run reads, for refuseInputs(): `what` completes "-o 'x' is ..." (e.g. "the model itself"). */
-struct RunInput {
-    std::string path;
-    std::string what;
-};
-
 /** The files a render reads that its options name: the model, --shademap, --style and --list (unless "-"). */
 std::vector<RunInput> inputsNamedBy(const RenderOptions& options);
-
-/** Throws UsageError "<shownOutput> is <the input's what>; choose another file" when `output` is one of `inputs`: the
- *  same place once links are resolved, or the same device and inode (a hard link). The one check of every output
- *  that must not replace what a render read: the command line's (OutputSet) and the library's (Still::write()). */
-void refuseInputAsOutput(const std::filesystem::path& output, const std::string& shownOutput,
-                         const std::vector<RunInput>& inputs);
 
 class OutputSet {
 public:
@@ -81,9 +70,5 @@ private:
     std::optional<DumpFolder> mDump;
     bool mCommitted = false;
 };
-
-/** The place a path names, for comparing outputs and inputs: absolute, with the links that exist resolved (two
- *  spellings of one file compare equal); lexically normalised where it cannot be resolved. */
-std::filesystem::path resolvedPath(const std::filesystem::path& path);
 
 } // namespace inkgraph

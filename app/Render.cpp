@@ -1,7 +1,8 @@
 #include "app/Render.h"
 
-#include "app/ImageFiles.h"
-#include "app/MemoryBudget.h"
+#include "render/ImageFiles.h"
+#include "render/InputFiles.h"
+#include "render/MemoryBudget.h"
 #include "app/OutputFiles.h"
 #include "app/StillOutputs.h"
 
@@ -23,49 +24,6 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-/** The whole run's peak for the plan, as an upper bound (app/MemoryBudget.h): the process, the scene, every GL target
- *  as llvmpipe stores it, and the post stage's read-backs, working images and encoders at their largest moment.
- *  Without the scene (not loaded yet) its meshes add nothing. */
-std::size_t estimatePlanBytes(const Plan& plan, const RenderOptions& options, const Scene* scene) {
-    return estimateRunMemory(plan, options, scene ? sceneSizeOf(*scene) : SceneSize{}).total();
-}
-
-/** --dump and --contact-sheet show every buffer the plan computed, so the executor keeps them all. */
-bool keepsEveryBuffer(const RenderOptions& options) {
-    return !options.dumpDirectory.empty() || !options.contactSheetPath.empty();
-}
-
-/** llvmpipe stores textures in 64x64 tiles, so a side is rounded up before its size is judged. */
-std::size_t paddedSide(int side) { return (std::size_t(side) + 63) / 64 * 64; }
-
-/** Refuses sizes that would fail deep inside the driver or outgrow the process's memory: one texture of 2 GiB or more
- *  (GL's byte counts are 32-bit), or a whole run estimated above the memory limit. Both name every flag that makes
- *  the buffers that large (--size, and --supersample for the supersampled ones), not only --size. */
-void checkFrameBudget(const Plan& plan, const RenderOptions& options, const Scene* scene = nullptr) {
-    for (const PlannedResource& resource : plan.resources) {
-        const std::size_t textureBytes = paddedSide(options.width * resource.desc.scale) *
-                                         paddedSide(options.height * resource.desc.scale) *
-                                         std::size_t(bytesPerPixel(resource.desc.format));
-        if (textureBytes < kMaxTextureBytes) continue;
-        const std::string size = "--size " + std::to_string(options.width) + "x" + std::to_string(options.height);
-        const std::string cause = resource.desc.scale > 1
-                                      ? size + " with --supersample " + std::to_string(resource.desc.scale) + " (" +
-                                            std::to_string(options.width * resource.desc.scale) + "x" +
-                                            std::to_string(options.height * resource.desc.scale) + ")"
-                                      : size;
-        throw UsageError(cause + " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
-                         " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
-    }
-    const std::size_t needed = estimatePlanBytes(plan, options, scene);
-    const std::size_t bound = memoryLimitOf(options);
-    const std::size_t neededMib = (needed + (1 << 20) - 1) >> 20; // rounded up: "needs 600" never fits a 600 limit
-    if (needed > bound)
-        throw UsageError(memoryDriversText(plan, options) + " needs about " + std::to_string(neededMib) +
-                         " MiB for the whole run; the memory limit is " + std::to_string(bound >> 20) + " MiB" +
-                         (options.memoryLimitBytes ? " (--memory-limit)" : ", half this machine's memory") +
-                         " (make the image smaller, lower --supersample, or request or dump fewer buffers)");
-}
-
 } // namespace
 
 void requireStandardOutputWritten(std::ostream& out) {
@@ -76,25 +34,8 @@ void requireStandardOutputWritten(std::ostream& out) {
                         (errno ? std::string(": ") + std::strerror(errno) : ""));
 }
 
-std::vector<RunInput> inputsFoundByLoading(const RenderOptions& options, const Scene& scene) {
-    // Appended, not "'" + name: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
-    std::string model = "'";
-    model.append(std::filesystem::path(options.modelPath).filename().string()).append("'");
-    std::vector<RunInput> inputs;
-    for (const std::string& file : scene.report.inputFiles)
-        inputs.push_back({file, "a file the model " + model + " reads"});
-    for (const Mesh& mesh : scene.meshes)
-        if (!mesh.material.shadeMapPath.empty())
-            inputs.push_back({mesh.material.shadeMapPath, "the shade map of mesh '" + mesh.name + "' of " + model});
-    return inputs;
-}
-
 std::size_t memoryLimitOf(const RenderOptions& options) {
-    if (options.memoryLimitBytes) return *options.memoryLimitBytes;
-    const long pages = ::sysconf(_SC_PHYS_PAGES);
-    const long pageSize = ::sysconf(_SC_PAGE_SIZE);
-    const std::size_t physical = pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : 0;
-    return std::max<std::size_t>(physical / 2, std::size_t(1) << 30);
+    return options.memoryLimitBytes ? *options.memoryLimitBytes : defaultMemoryLimit();
 }
 
 CameraRequest cameraRequestOf(const RenderOptions& options) {
@@ -115,25 +56,22 @@ CameraRequest cameraRequestOf(const RenderOptions& options) {
     return request;
 }
 
-void budgetStill(PreparedStill& still, const RenderOptions& options) {
-    checkFrameBudget(still.plan, options, &still.scene());
-    // The textures are decoded during the run, only those a pass samples: they get what the estimate leaves.
-    const std::size_t estimated = estimatePlanBytes(still.plan, options, &still.scene());
-    const std::size_t limit = memoryLimitOf(options);
-    still.gpuScene->materials().setTextureMemoryLimit(limit > estimated ? limit - estimated : 0);
-}
-
 StillRequest stillRequestOf(const RenderOptions& options) {
     StillRequest request;
     request.modelPath = options.modelPath;
     request.look = options.look;
     request.camera = cameraRequestOf(options);
     request.extraOutputs = options.extraOutputs;
-    request.keepEveryBuffer = keepsEveryBuffer(options);
+    // --dump and --contact-sheet show every buffer the plan computed, so the executor keeps them all.
+    if (!options.dumpDirectory.empty()) request.keepEveryBufferFor.push_back("--dump");
+    if (!options.contactSheetPath.empty()) request.keepEveryBufferFor.push_back("--contact-sheet");
+    request.keepEveryBuffer = !request.keepEveryBufferFor.empty();
     request.keepStrokePaths = !options.svgPath.empty();
     // Per-pass milliseconds are only shown by --stats and --dump's manifest: other stills let passes overlap.
     request.timePasses = !options.statsPath.empty() || !options.dumpDirectory.empty();
     request.memoryLimitBytes = memoryLimitOf(options);
+    request.memoryLimitGiven = options.memoryLimitBytes.has_value();
+    request.loadsImageIo = outputsUseImageIoModule(options);
     request.animation = options.animation;
     request.animationTime = options.animationTime;
     if (options.eglPlatform == "device") request.eglPlatform = EglPlatform::Device;
@@ -178,7 +116,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     auto outputs = std::make_unique<OutputSet>(options);
     std::unique_ptr<PreparedStill> still = loadWhileMakingContext(stillRequestOf(options), renders, log);
     report.triangles = still->scene().triangleCount();
-    outputs->refuseInputs(inputsFoundByLoading(options, still->scene()));
+    outputs->refuseInputs(inputsFoundByLoading(options.modelPath, still->scene()));
     mRenderer.plan(*still, log);
 
     const Plan& plan = still->plan;
@@ -191,7 +129,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
         outputs->commit();
         return report;
     }
-    budgetStill(*still, options);
+    budgetStill(*still);
 
     StillResult result = mRenderer.execute(*still, log);
     // The previous still of a batch is finished now: its picture was encoded while this one loaded and rendered.
@@ -211,7 +149,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     }
     if (!options.statsPath.empty()) {
         StatsContext context{options, batch};
-        context.estimatedPeakBytes = estimatePlanBytes(plan, options, &still->scene());
+        context.estimatedPeakBytes = estimatedStillBytes(*still);
         pending->stats = statsDocument(context, mRenderer, *still, result);
     }
     pending->outputs = std::move(outputs);

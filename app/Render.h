@@ -1,11 +1,11 @@
 #pragma once
 /** @file One still of `inkgraph render` from its command line: every output place checked before any work, the
- *  still prepared and executed by the renderer (app/StillRenderer.h), its outputs and stats staged
+ *  still prepared and executed by the renderer (render/StillRenderer.h), its outputs and stats staged
  *  (app/StillOutputs.h, app/Stats.h) and committed all or none (app/OutputFiles.h). */
 
-#include "app/Options.h"
+#include "flags/Options.h"
 #include "app/Stats.h"
-#include "app/StillRenderer.h"
+#include "render/StillRenderer.h"
 
 #include "app/OutputFiles.h"
 
@@ -19,8 +19,8 @@
 
 namespace inkgraph {
 
-/** --memory-limit, else half the machine's memory (at least 1 GiB): the bound on one model load (checked before
- *  allocating, from the file's declared counts) and on the whole run's estimated peak (checked before any GL work). */
+/** --memory-limit, else defaultMemoryLimit(): the bound on one model load (checked before allocating, from the file's
+ *  declared counts) and on the whole run's estimated peak (checked before any GL work). */
 std::size_t memoryLimitOf(const RenderOptions& options);
 
 /** The camera the flags ask for (--eye, --target, --up, --fov, --clip, --size); resolveCamera() fills the rest. */
@@ -28,16 +28,6 @@ CameraRequest cameraRequestOf(const RenderOptions& options);
 
 /** What the renderer is asked for by the options of one still. */
 StillRequest stillRequestOf(const RenderOptions& options);
-
-/** Between plan and execute: refuses a still whose buffers would not fit (one texture of 2 GiB or more, or the whole
- *  run's estimated peak above memoryLimitOf(options)), naming the flags that make them large (UsageError), then gives
- *  the textures, decoded during the run, what the estimate leaves of the limit. */
-void budgetStill(PreparedStill& still, const RenderOptions& options);
-
-/** The files a render read that only loading the model revealed: its buffers and images, and the shade maps its
- *  materials name. No output may be one of them (OutputSet::refuseInputs(), Still::write()); inputsNamedBy() gives
- *  the others. */
-std::vector<RunInput> inputsFoundByLoading(const RenderOptions& options, const Scene& scene);
 
 /** What one still did, for the batch's progress line. */
 struct StillReport {

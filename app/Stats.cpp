@@ -1,7 +1,7 @@
 #include "app/Stats.h"
 
-#include "app/ImageFiles.h"
-#include "app/MemoryBudget.h"
+#include "render/ImageFiles.h"
+#include "render/MemoryBudget.h"
 #include "app/StillOutputs.h"
 #include "passes/orientation/SceneOrientation.h"
 
@@ -57,7 +57,7 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
     stats["post_stage"] = still.graph.describePostStage(result.timings);
     stats["culled"] = culled;
     stats["write_ms"] = 0.0; // finishedStatsText()
-    // Whether this process loaded OpenImageIO (~0.2 s): only formats other than PNG need it (app/ImageFiles.h).
+    // Whether this process loaded OpenImageIO (~0.2 s): only formats other than PNG need it (render/ImageFiles.h).
     stats["image_io_module"] = imageIoModuleState();
     stats["textures_created"] = result.texturesCreated;
     stats["textures_reused"] = result.texturesReused;

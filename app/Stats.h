@@ -2,8 +2,8 @@
 /** @file --stats: what one still did, as JSON: the scene, the camera, the GL context, the look, every pass's time,
  *  the post stage, the culled passes with reasons, the memory estimate and the measured peak. */
 
-#include "app/Options.h"
-#include "app/StillRenderer.h"
+#include "flags/Options.h"
+#include "render/StillRenderer.h"
 
 #include <nlohmann/json.hpp>
 

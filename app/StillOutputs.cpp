@@ -1,7 +1,7 @@
 #include "app/StillOutputs.h"
 
-#include "app/BuildInfo.h"
-#include "app/ImageFiles.h"
+#include "render/BuildInfo.h"
+#include "render/ImageFiles.h"
 
 #include "postfx/Composite.h"
 #include "postfx/ContactSheet.h"

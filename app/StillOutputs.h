@@ -3,7 +3,7 @@
  *  manifest, each staged into the run's OutputSet (app/OutputFiles.h), which puts them all in place or none. */
 
 #include "app/OutputFiles.h"
-#include "app/StillRenderer.h"
+#include "render/StillRenderer.h"
 
 #include <nlohmann/json.hpp>
 
@@ -27,7 +27,7 @@ nlohmann::ordered_json describeLook(const PreparedStill& still, const std::strin
 /** The passes' timings for --stats and manifest.json. */
 nlohmann::ordered_json describeTimings(const std::vector<PassTiming>& timings);
 
-/** Whether the images `options` asks for need the OpenImageIO module (app/ImageIoModule.h), so that a run loads it
+/** Whether the images `options` asks for need the OpenImageIO module (render/ImageIoModule.h), so that a run loads it
  *  only then: -o or --contact-sheet in a format other than PNG, or --dump (its float buffers are EXR files). */
 bool outputsUseImageIoModule(const RenderOptions& options);
 

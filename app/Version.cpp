@@ -1,8 +1,8 @@
 #include "app/Version.h"
 
-#include "app/BuildInfo.h"
+#include "render/BuildInfo.h"
 #include "app/Cli.h"
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "gl/BinaryLocation.h"
 #include "gl/HeadlessContext.h"
 #include "gl/ShaderLibrary.h"

@@ -1,4 +1,4 @@
-#include "app/BackgroundThreads.h"
+#include "render/BackgroundThreads.h"
 #include "app/Cli.h"
 
 #include <cstdio>
@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
 #endif
     const int exitCode = inkgraph::runCommandLine(argc, argv, std::cout, std::cerr);
     // Every output is closed and renamed by now. Leaving without static destructors means an early error does not
-    // wait for the OpenImageIO module that may still be loading on its background thread (app/ImageIoModule.h).
+    // wait for the OpenImageIO module that may still be loading on its background thread (render/ImageIoModule.h).
     std::cout.flush();
     std::cerr.flush();
     std::fflush(nullptr);

@@ -1,5 +1,5 @@
 // The benchmarks of bench/*Bench.cpp in one program: inkgraph_bench --benchmark_filter=REGEX
-#include "app/BackgroundThreads.h"
+#include "render/BackgroundThreads.h"
 
 #include <benchmark/benchmark.h>
 
@@ -8,7 +8,7 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
-    // The end every inkgraph process shares (app/BackgroundThreads.h).
+    // The end every inkgraph process shares (render/BackgroundThreads.h).
     inkgraph::finishProcess();
     return 0;
 }

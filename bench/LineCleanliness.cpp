@@ -1,7 +1,7 @@
 // inkgraph_line_cleanliness: how clean one model's lines are in one look (issue 19), measured by running an inkgraph
 // binary (any build: the same tool measures the one before a change and the one after) and reading its dumps.
-#include "app/BackgroundThreads.h"
-#include "app/ImageFiles.h"
+#include "render/BackgroundThreads.h"
+#include "render/ImageFiles.h"
 #include "bench/LineCleanlinessMetrics.h"
 #include "tests/support/SvgPaths.h"
 
@@ -408,7 +408,7 @@ int main(int argc, char** argv) {
         std::cerr << "inkgraph_line_cleanliness: " << error.what() << "\n";
         exitCode = 1;
     }
-    // The end every inkgraph process shares (app/BackgroundThreads.h).
+    // The end every inkgraph process shares (render/BackgroundThreads.h).
     inkgraph::finishProcess();
     return exitCode;
 }

@@ -2,7 +2,7 @@
 
 #include "bench/Median.h"
 
-#include "app/StillRenderer.h"
+#include "render/StillRenderer.h"
 #include "passes/StillGraph.h"
 #include "passes/lines/LineLayerPass.h"
 #include "passes/lines/types/SuggestiveLines.h"

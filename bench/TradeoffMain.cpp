@@ -1,6 +1,6 @@
 // inkgraph_tradeoff: the speed/accuracy sweep of bench/Tradeoff.h, written as a CSV, a markdown table and a plot.
-#include "app/BackgroundThreads.h"
-#include "app/ImageFiles.h"
+#include "render/BackgroundThreads.h"
+#include "render/ImageFiles.h"
 #include "bench/Tradeoff.h"
 
 #include <opencv2/imgproc.hpp>
@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
         std::cerr << "inkgraph_tradeoff: " << error.what() << "\n";
         exitCode = 1;
     }
-    // The end every inkgraph process shares (app/BackgroundThreads.h).
+    // The end every inkgraph process shares (render/BackgroundThreads.h).
     inkgraph::finishProcess();
     return exitCode;
 }

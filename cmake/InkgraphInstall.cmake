@@ -5,7 +5,7 @@
 install(TARGETS inkgraph RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 inkgraph_set_install_rpath(inkgraph ${CMAKE_INSTALL_BINDIR})
 
-# Private libraries: the OpenImageIO module (loaded with dlopen, app/ImageIoModule.h) and the Draco decoder the
+# Private libraries: the OpenImageIO module (loaded with dlopen, render/ImageIoModule.h) and the Draco decoder the
 # program links (scene/CMakeLists.txt says why it is a shared library of its own).
 install(TARGETS inkgraph_imageio LIBRARY DESTINATION ${INKGRAPH_INSTALL_PRIVATE_LIBDIR} COMPONENT runtime)
 install(TARGETS inkgraph_draco LIBRARY DESTINATION ${INKGRAPH_INSTALL_PRIVATE_LIBDIR} COMPONENT runtime)

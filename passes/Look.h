@@ -1,7 +1,7 @@
 #pragma once
 /** @file What a still looks like, as plain data: the shading model and its settings, the line types drawn and theirs,
- *  the data resolution and precision, the paper and the light. The renderer (app/StillRenderer.h) and the graph of
- *  one still (passes/StillGraph.h) take this; the command line (app/Options.h) fills it from flags and style files,
+ *  the data resolution and precision, the paper and the light. The renderer (render/StillRenderer.h) and the graph of
+ *  one still (passes/StillGraph.h) take this; the command line (flags/Options.h) fills it from flags and style files,
  *  and benchmarks and tests build it directly. */
 
 #include "passes/gbuffer/GBufferPrecision.h"

@@ -5,7 +5,7 @@
  *  G-buffer instead of the meshes when the look's lines make the G-buffer run anyway, as one compile decides
  *  (compilePlan(), ShadePass::forwardReason()). The
  * graph also describes itself for --stats and traces its line layers for --svg, so the app names no pass type. Shared
- * by the renderer (app/StillRenderer.h), the benchmarks and the tests. */
+ * by the renderer (render/StillRenderer.h), the benchmarks and the tests. */
 
 #include "gl/GraphExecutor.h"
 #include "gl/ShaderLibrary.h"
@@ -46,7 +46,7 @@ struct StillGraphSetup {
     GpuScene& gpuScene;
     const FrameParams& frame;
     std::optional<ShadeMap> shadeMap; ///< --shademap as read; empty: the built-in map of the model
-    /** Per scene mesh, the map it names itself (app/SceneShadeMaps.h); empty entries use `shadeMap`. Only the models
+    /** Per scene mesh, the map it names itself (render/SceneShadeMaps.h); empty entries use `shadeMap`. Only the models
      *  with a shade map use them. */
     std::vector<std::optional<ShadeMap>> meshShadeMaps{};
     /** Let the shade pass shade the G-buffer when it runs anyway (deferred); off, it always draws the meshes (the

@@ -2,7 +2,7 @@
 /** @file The settings of the line types besides width and colour: each one flag (`--<name>`) and one style-file
  *  name (`<name>`), declared once here or in the room of the only type that uses it, and listed by every line type it
  *  applies to (passes/lines/LineType.h). The command line, --help, style files, range checks and the "has no effect"
- *  refusals are all generated from these declarations (app/FlagTable.cpp). */
+ *  refusals are all generated from these declarations (flags/FlagTable.cpp). */
 
 #include <map>
 #include <optional>

@@ -4,7 +4,7 @@
 //   s in [0,1] across (diffuse: half-Lambert q for one-row cel maps, max(n.l, 0) for comic maps),
 //   t in [0,1] up (specular max(r.v, 0)^n; the bottom row is t = 0).
 // Colours are display sRGB in [0,1]; every map is multiplied with the material colour when used.
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 
 #include <opencv2/core.hpp>
 

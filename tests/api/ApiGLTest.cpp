@@ -2,7 +2,7 @@
 // and what they hold, one renderer and one scene used more than once, and the picture the command line writes.
 #include <inkgraph/inkgraph.h>
 
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "tests/api/ApiTestSupport.h"
 #include "tests/app/CliTestSupport.h"
 

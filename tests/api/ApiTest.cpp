@@ -2,7 +2,7 @@
 // scenes, describing looks and frames, buffer names, images written and read back (app/ImageFiles), error kinds.
 #include <inkgraph/inkgraph.h>
 
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "tests/api/ApiTestSupport.h"
 #include "tests/support/TestFolder.h"
 

@@ -1,10 +1,10 @@
 // --animation and --time: parsed into RenderOptions, carried to the still's load, refused when they cannot apply.
 #include "tests/app/OptionsTestSupport.h"
 #include "app/Cli.h"
-#include "app/FlagTable.h"
-#include "app/Options.h"
+#include "flags/FlagTable.h"
+#include "flags/Options.h"
 #include "app/Render.h"
-#include "app/StyleFile.h"
+#include "flags/StyleFile.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // app/BackgroundThreads: the threads that OpenCV's parallel loops and the OpenImageIO module's loader run are joined
 // when asked, so no process ends while one of them is being created or torn down (docs/robustness.md).
-#include "app/BackgroundThreads.h"
+#include "render/BackgroundThreads.h"
 
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 
 #include <gtest/gtest.h>
 #include <oneapi/tbb/global_control.h>

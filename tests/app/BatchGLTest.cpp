@@ -1,7 +1,7 @@
 // A batch run by the real `inkgraph` executable: several models in one process give the same pictures as one
 // process each, make one GL context and compile each program once, report a line per model, and keep going past
 // a bad model. Needs a GL context (llvmpipe in CI).
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "CliTestSupport.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // The flags that aim the camera: --orbit and --frame parsed into the camera request, and their refusals. No GL.
-#include "app/Options.h"
+#include "flags/Options.h"
 #include "app/Render.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // The real `inkgraph` executable as a user runs it: dump and read back, stats, exit codes, messages, and no
 // half-written files. Needs a GL context (llvmpipe in CI) for the rendering cases.
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "CliTestSupport.h"
 
 #include "passes/lines/LineTypes.h"

@@ -3,8 +3,8 @@
 // is asked as the shell asks it (COMP_WORDS, COMP_CWORD) and must answer from the table. Needs bash and groff.
 #include "app/Cli.h"
 #include "app/CommandLineDocs.h"
-#include "app/FlagTable.h"
-#include "app/Options.h"
+#include "flags/FlagTable.h"
+#include "flags/Options.h"
 #include "tests/support/TestFolder.h"
 
 #include <gtest/gtest.h>

@@ -311,7 +311,7 @@ TEST_F(DecoderBudget, ATextureWiderThanTheDriverTakesIsDownscaledWithAWarningAnd
 }
 
 TEST_F(DecoderBudget, AFiveThousandByteImagePathGivesAMessageUnderTwoThousandBytes) {
-    // Every message stays under 2000 bytes (app/Messages.h): a glTF image's file that is missing is named by its
+    // Every message stays under 2000 bytes (render/Messages.h): a glTF image's file that is missing is named by its
     // path, which keeps its two ends and says its length (5 KB of stderr before).
     const std::string name = std::string(4990, 'p') + "x.png";
     std::string buffer;

@@ -1,7 +1,7 @@
 // examples/still-life/still-life.gltf through the real `inkgraph` executable: the file's camera and light are used,
 // each material's shade map reaches the shading (--stats), and maps that do not fit the mode are reported naming the
 // mesh, its material and the file. Needs a GL context (llvmpipe in CI).
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "CliTestSupport.h"
 
 #include <gtest/gtest.h>

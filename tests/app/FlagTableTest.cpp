@@ -1,9 +1,9 @@
 // The flag table and the registries it is generated from: every registered line type, line parameter and shading
 // model gets its flags, style names, help and refusals without code of its own in app/.
 #include "tests/app/OptionsTestSupport.h"
-#include "app/FlagTable.h"
-#include "app/Options.h"
-#include "app/StyleFile.h"
+#include "flags/FlagTable.h"
+#include "flags/Options.h"
+#include "flags/StyleFile.h"
 #include "passes/lines/LineTypes.h"
 #include "passes/shade/ShadingModel.h"
 

@@ -1,7 +1,7 @@
 // Docs that cannot drift (issue 32): README.md's generated sections are what the code generates now
 // (app/GeneratedDocs.h), and every registered line type, flag, shading model, G-buffer field and dump file is named
 // in the doc that lists it. A failure names the section or the missing name, and the fix.
-#include "app/FlagTable.h"
+#include "flags/FlagTable.h"
 #include "app/GeneratedDocs.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineTypes.h"
@@ -127,7 +127,7 @@ TEST(DocsComplete, EveryFlagIsInTheReadme) {
         std::string all;
         for (const std::string& name : names) all += (all.empty() ? "" : " or ") + name;
         EXPECT_TRUE(named) << "README.md does not name the render flag " << all
-                           << " (app/FlagTable.cpp; the Rendering table lists every flag)";
+                           << " (flags/FlagTable.cpp; the Rendering table lists every flag)";
     }
 }
 

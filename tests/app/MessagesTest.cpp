@@ -1,5 +1,5 @@
-// boundedMessage() (app/Messages.h): every message the user reads is at most 2000 bytes, whatever it quotes.
-#include "app/Messages.h"
+// boundedMessage() (render/Messages.h): every message the user reads is at most 2000 bytes, whatever it quotes.
+#include "render/Messages.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 // collapsed picture with exit 0; now each renders as the file means it, or says what it changed, or is refused.
 #include "GltfTestFiles.h"
 
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,6 +1,6 @@
 // Command-line parsing: defaults, values, and a clear UsageError for every malformed flag. No GL.
 #include "tests/app/OptionsTestSupport.h"
-#include "app/Options.h"
+#include "flags/Options.h"
 #include "app/Cli.h"
 #include "app/Render.h"
 #include "app/StillOutputs.h"

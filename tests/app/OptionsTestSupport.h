@@ -1,7 +1,7 @@
 #pragma once
 /** @file What the option tests share: the message a command line is refused with. */
 
-#include "app/Options.h"
+#include "flags/Options.h"
 
 #include <string>
 #include <vector>

@@ -1,10 +1,10 @@
-// PNG through libpng (app/PngFiles.h) behind writeImage/readImage/readPngImage (app/ImageFiles.h): round trips with
-// analytic pixels, the expansions OpenImageIO made (16-bit, palette, low bit depths, tRNS, grey and alpha, Adam7),
+// PNG through libpng (render/PngFiles.h) behind writeImage/readImage/readPngImage (render/ImageFiles.h): round trips
+// with analytic pixels, the expansions OpenImageIO made (16-bit, palette, low bit depths, tRNS, grey and alpha, Adam7),
 // checked against the OpenImageIO module itself, and broken files refused with the file named, never a crash.
 // The fixtures are built byte by byte here (zlib for the deflate stream and the CRCs), not by libpng, so the reader
 // is not only checked against its own writer.
-#include "app/ImageFiles.h"
-#include "app/ImageIoModule.h"
+#include "render/ImageFiles.h"
+#include "render/ImageIoModule.h"
 #include "tests/support/PngFixtures.h"
 #include "tests/support/TestFolder.h"
 

@@ -1,7 +1,7 @@
 // readSceneShadeMaps(): the shade maps a scene's meshes name, read once per file, with errors that name the mesh.
-#include "app/SceneShadeMaps.h"
+#include "render/SceneShadeMaps.h"
 
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "app/Render.h"
 
 #include "tests/support/TestFolder.h"

@@ -1,6 +1,6 @@
-// Style files (app/StyleFile.h): parsing, their place before the command line, and messages naming file and line.
-#include "app/Options.h"
-#include "app/StyleFile.h"
+// Style files (flags/StyleFile.h): parsing, their place before the command line, and messages naming file and line.
+#include "flags/Options.h"
+#include "flags/StyleFile.h"
 
 #include "tests/support/TestFolder.h"
 

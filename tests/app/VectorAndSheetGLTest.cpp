@@ -1,7 +1,7 @@
 // --svg and --contact-sheet from the real `inkgraph` executable: the SVG parses back (tests/support/SvgPaths.h) into
 // one group per line type whose paths lie on that type's line mask, and the contact sheet holds exactly the buffers
 // the plan computed, laid out as postfx/ContactSheet.h says. Needs a GL context (llvmpipe in CI).
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "CliTestSupport.h"
 #include "postfx/ContactSheet.h"
 #include "tests/support/SvgPaths.h"

@@ -2,7 +2,7 @@
 // build tree. --verbose makes a GL context (llvmpipe in CI).
 #include "CliTestSupport.h"
 
-#include "app/BuildInfo.h"
+#include "render/BuildInfo.h"
 #include "app/CommandLineDocs.h"
 
 #include <gtest/gtest.h>

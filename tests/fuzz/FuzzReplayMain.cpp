@@ -1,7 +1,7 @@
 // Replays inputs through a fuzz target without libFuzzer: the ctest side of tests/fuzz. Every file under the given
 // files or folders is one input. Exits 1 when no input was found (a test that ran nothing must not pass); a failing
 // input aborts (an escaped exception) or is reported by a sanitizer in the sanitized build.
-#include "app/BackgroundThreads.h"
+#include "render/BackgroundThreads.h"
 
 #include <cstdint>
 #include <cstdio>

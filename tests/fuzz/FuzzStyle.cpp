@@ -1,6 +1,6 @@
 // libFuzzer target: style files (app/StyleFile) and, through them, the parser of every look flag they may set.
-#include "app/Options.h"
-#include "app/StyleFile.h"
+#include "flags/Options.h"
+#include "flags/StyleFile.h"
 
 #include <cstdint>
 #include <string_view>

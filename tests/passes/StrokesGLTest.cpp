@@ -1,7 +1,7 @@
 // The stroke stage of issue 19 (postfx/Strokes.h, passes/lines/StrokesPass.h) from the real `inkgraph` executable:
 // --min-stroke-length, --line-weight, --overlapping-lines and --suggestive-seed, checked against --stats, the dumped
 // line layers and the --svg. Needs a GL context (llvmpipe in CI); each case renders at 256x256 or less.
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "tests/app/CliTestSupport.h"
 
 #include <gtest/gtest.h>

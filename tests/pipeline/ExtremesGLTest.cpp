@@ -2,7 +2,7 @@
 // function (runCommandLine) with every G-buffer field requested, a broad set of line types and --dump, then checks
 // that every float intermediate is finite everywhere, that every file the manifest lists exists, and what the case
 // itself promises. Small images keep the suite fast on llvmpipe.
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "app/Cli.h"
 #include "app/Render.h"
 #include "scene/mesh/MeshOps.h"

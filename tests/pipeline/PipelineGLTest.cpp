@@ -4,7 +4,7 @@
 // or pass output cannot be written and never compared.
 // Regenerate after an intended change with:
 //   INKGRAPH_UPDATE_GOLDEN=1 ./build/tests/pipeline/pipeline_gl_tests
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "app/Cli.h"
 #include "app/Render.h"
 #include "tests/support/ImageCompare.h"

@@ -1,6 +1,6 @@
 #include "tests/support/ImageCompare.h"
 
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 
 #include <opencv2/imgproc.hpp>
 

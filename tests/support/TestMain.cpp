@@ -1,7 +1,7 @@
 // main() of the test binaries (tests/CMakeLists.txt, inkgraph_add_test): GoogleTest's, then the end that every
-// inkgraph process shares (app/BackgroundThreads.h): the background threads joined and, in sanitized builds,
+// inkgraph process shares (render/BackgroundThreads.h): the background threads joined and, in sanitized builds,
 // LeakSanitizer's check run before any library's static teardown starts ending its own threads.
-#include "app/BackgroundThreads.h"
+#include "render/BackgroundThreads.h"
 
 #include <gtest/gtest.h>
 

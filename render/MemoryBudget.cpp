@@ -1,14 +1,15 @@
-#include "app/MemoryBudget.h"
+#include "render/MemoryBudget.h"
 
-#include "app/Options.h"
-#include "app/StillOutputs.h"
 #include "graph/Plan.h"
+#include "render/StillRenderer.h"
+#include "render/UsageError.h"
 #include "scene/Scene.h"
 
 #include <algorithm>
 #include <map>
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 namespace inkgraph {
 namespace {
@@ -21,7 +22,7 @@ constexpr std::size_t kMiB = std::size_t(1) << 20;
 /** The process at a 64x64 still of a 4k-triangle model with every line type, written as PNG: 100 MiB (libraries,
  *  llvmpipe and LLVM, the compiled shaders), with room for the run-to-run spread. */
 constexpr std::size_t kBaselineBytes = 108 * kMiB;
-/** What the OpenImageIO module adds once loaded (app/ImageIoModule.h), for a run that writes another format than PNG
+/** What the OpenImageIO module adds once loaded (render/ImageIoModule.h), for a run that writes another format than PNG
  *  or a dump: the same still as .exr peaked at 213-218 MiB. */
 constexpr std::size_t kImageIoModuleBytes = 116 * kMiB;
 /** Per vertex: the loader's own bound (detail::MeshBudget), which covers the mesh and its vertex buffers. */
@@ -50,16 +51,17 @@ std::size_t cpuBytesPerPixel(Format format) {
 
 class PlanSizes {
 public:
-    PlanSizes(const Plan& plan, const RenderOptions& options) : mPlan(plan), mOptions(options) {
+    PlanSizes(const Plan& plan, const StillRequest& request)
+        : mPlan(plan), mWidth(request.camera.width), mHeight(request.camera.height) {
         for (const PlannedResource& resource : plan.resources) mResources[resource.name] = &resource;
     }
 
     std::size_t pixels(int scale) const {
-        return std::size_t(mOptions.width) * std::size_t(scale) * std::size_t(mOptions.height) * std::size_t(scale);
+        return std::size_t(mWidth) * std::size_t(scale) * std::size_t(mHeight) * std::size_t(scale);
     }
     std::size_t paddedPixels(int scale) const {
-        return paddedTextureSide(std::size_t(mOptions.width) * std::size_t(scale)) *
-               paddedTextureSide(std::size_t(mOptions.height) * std::size_t(scale));
+        return paddedTextureSide(std::size_t(mWidth) * std::size_t(scale)) *
+               paddedTextureSide(std::size_t(mHeight) * std::size_t(scale));
     }
     std::size_t textureBytes(const PlannedResource& resource) const {
         return paddedPixels(resource.desc.scale) * std::size_t(bytesPerPixel(resource.desc.format));
@@ -93,7 +95,8 @@ public:
 
 private:
     const Plan& mPlan;
-    const RenderOptions& mOptions;
+    int mWidth = 0;
+    int mHeight = 0;
     std::map<std::string, const PlannedResource*> mResources;
 };
 
@@ -165,11 +168,11 @@ std::string sizeText(std::size_t width, std::size_t height) {
 
 SceneSize sceneSizeOf(const Scene& scene) { return {scene.vertexCount(), scene.triangleCount()}; }
 
-MemoryEstimate estimateRunMemory(const Plan& plan, const RenderOptions& options, const SceneSize& scene) {
-    const PlanSizes sizes(plan, options);
-    const bool keepAll = !options.dumpDirectory.empty() || !options.contactSheetPath.empty();
+MemoryEstimate estimateRunMemory(const Plan& plan, const StillRequest& request, const SceneSize& scene) {
+    const PlanSizes sizes(plan, request);
+    const bool keepAll = request.keepEveryBuffer;
     MemoryEstimate estimate;
-    estimate.baseline = kBaselineBytes + (outputsUseImageIoModule(options) ? kImageIoModuleBytes : 0);
+    estimate.baseline = kBaselineBytes + (request.loadsImageIo ? kImageIoModuleBytes : 0);
     estimate.scene = scene.vertices * kBytesPerVertex + scene.triangles * kBytesPerTriangle;
     // The texture pool keeps every texture it made until the still ends, so they all count at once.
     for (const PlannedResource& resource : plan.resources)
@@ -181,29 +184,73 @@ MemoryEstimate estimateRunMemory(const Plan& plan, const RenderOptions& options,
     return estimate;
 }
 
-std::string memoryDriversText(const Plan& plan, const RenderOptions& options) {
-    std::string text = "--size " + sizeText(std::size_t(options.width), std::size_t(options.height));
-    if (options.look.supersample > 1) {
-        const PlanSizes sizes(plan, options);
+std::string memoryDriversText(const Plan& plan, const StillRequest& request) {
+    const int width = request.camera.width;
+    const int height = request.camera.height;
+    const Look& look = request.look;
+    std::string text = "--size " + sizeText(std::size_t(width), std::size_t(height));
+    if (look.supersample > 1) {
+        const PlanSizes sizes(plan, request);
         std::string supersampled;
         int count = 0;
-        for (const std::string& type : options.look.lines) { // in the order the user gave them
+        for (const std::string& type : look.lines) { // in the order the user gave them
             const PlannedPass* pass = plan.findPass(type);
             if (pass == nullptr || !findsSkeleton(*pass, sizes)) continue;
-            if (sizes.scaleOf(*pass) < options.look.supersample) continue;
+            if (sizes.scaleOf(*pass) < look.supersample) continue;
             supersampled += (count++ ? "," : "") + type;
         }
-        text += " with --supersample " + std::to_string(options.look.supersample);
+        text += " with --supersample " + std::to_string(look.supersample);
         if (count > 0)
             text += " (--lines " + supersampled + (count == 1 ? " works" : " work") + " at " +
-                    sizeText(std::size_t(options.width) * options.look.supersample,
-                             std::size_t(options.height) * options.look.supersample) +
-                    ")";
+                    sizeText(std::size_t(width) * look.supersample, std::size_t(height) * look.supersample) + ")";
     }
-    if (!options.dumpDirectory.empty()) text += " and --dump";
-    if (!options.contactSheetPath.empty()) text += " and --contact-sheet";
-    if (!options.dumpDirectory.empty() || !options.contactSheetPath.empty()) text += " (every buffer is kept)";
+    for (const std::string& keeper : request.keepEveryBufferFor) text += " and " + keeper;
+    if (!request.keepEveryBufferFor.empty()) text += " (every buffer is kept)";
     return text;
+}
+
+std::size_t defaultMemoryLimit() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES);
+    const long pageSize = ::sysconf(_SC_PAGE_SIZE);
+    const std::size_t physical = pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : 0;
+    return std::max<std::size_t>(physical / 2, std::size_t(1) << 30);
+}
+
+std::size_t estimatedStillBytes(const PreparedStill& still) {
+    return estimateRunMemory(still.plan, still.request, sceneSizeOf(still.scene())).total();
+}
+
+void budgetStill(PreparedStill& still) {
+    const StillRequest& request = still.request;
+    const int width = request.camera.width;
+    const int height = request.camera.height;
+    // One texture of 2 GiB or more fails deep inside the driver (GL's byte counts are 32-bit); the message names
+    // every flag that makes the buffer that large (--size, and --supersample for the supersampled ones).
+    for (const PlannedResource& resource : still.plan.resources) {
+        const std::size_t textureBytes = paddedTextureSide(std::size_t(width) * resource.desc.scale) *
+                                         paddedTextureSide(std::size_t(height) * resource.desc.scale) *
+                                         std::size_t(bytesPerPixel(resource.desc.format));
+        if (textureBytes < kMaxTextureBytes) continue;
+        const std::string size = "--size " + sizeText(std::size_t(width), std::size_t(height));
+        const std::string cause =
+            resource.desc.scale > 1
+                ? size + " with --supersample " + std::to_string(resource.desc.scale) + " (" +
+                      sizeText(std::size_t(width) * resource.desc.scale, std::size_t(height) * resource.desc.scale) +
+                      ")"
+                : size;
+        throw UsageError(cause + " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
+                         " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
+    }
+    const std::size_t needed = estimatedStillBytes(still);
+    const std::size_t bound = request.memoryLimitBytes;
+    const std::size_t neededMib = (needed + kMiB - 1) / kMiB; // rounded up: "needs 600" never fits a 600 limit
+    if (needed > bound)
+        throw UsageError(memoryDriversText(still.plan, request) + " needs about " + std::to_string(neededMib) +
+                         " MiB for the whole run; the memory limit is " + std::to_string(bound >> 20) + " MiB" +
+                         (request.memoryLimitGiven ? " (--memory-limit)" : ", half this machine's memory") +
+                         " (make the image smaller, lower --supersample, or request or dump fewer buffers)");
+    // The textures are decoded during the run, only those a pass samples: they get what the estimate leaves.
+    still.gpuScene->materials().setTextureMemoryLimit(bound > needed ? bound - needed : 0);
 }
 
 std::size_t peakResidentBytes() {

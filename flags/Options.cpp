@@ -1,7 +1,7 @@
-#include "app/Options.h"
+#include "flags/Options.h"
 
-#include "app/Cli.h"
-#include "app/FlagTable.h"
+#include "render/ErrorReport.h"
+#include "flags/FlagTable.h"
 
 #include <algorithm>
 

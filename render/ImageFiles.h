@@ -2,9 +2,9 @@
 /** @file Image and text files, each written under a temporary name in the target folder and renamed into place, so a
  *  failed run never leaves a half-written file.
  *  Images are cv::Mat with row 0 at the top and channels in RGBA order (not OpenCV's BGR). The format follows the
- *  extension: PNG, which nearly every run writes, is encoded and decoded in the process by libpng (app/PngFiles.h);
+ *  extension: PNG, which nearly every run writes, is encoded and decoded in the process by libpng (render/PngFiles.h);
  *  every other format (EXR, TIFF, JPEG, ...) and imageFilePixelType() go through OpenImageIO, a module loaded only
- *  when a run needs it (app/ImageIoModule.h), because loading it costs ~0.2 s. */
+ *  when a run needs it (render/ImageIoModule.h), because loading it costs ~0.2 s. */
 
 #include <opencv2/core.hpp>
 
@@ -24,7 +24,7 @@ public:
 /** Whether reading or writing `path` goes through the OpenImageIO module: every extension but .png (in any case). */
 bool usesImageIoModule(const std::filesystem::path& path);
 
-/** Starts loading the OpenImageIO module on a background thread (see app/ImageIoModule.h), so its ~0.2 s of
+/** Starts loading the OpenImageIO module on a background thread (see render/ImageIoModule.h), so its ~0.2 s of
  *  dynamic linking overlaps other work. Only for a run that will use it (usesImageIoModule()): the load is never
  *  undone. Optional: every function below that needs the module loads it on first use anyway. */
 void preloadImageIo();
@@ -39,13 +39,13 @@ std::string imageIoModuleState();
 std::string imageIoLibrary();
 
 /** Waits until a load that preloadImageIo() (or a first use) started has finished, successfully or not; returns at
- *  once when none was started. After it the loader thread has ended: app/BackgroundThreads.h. */
+ *  once when none was started. After it the loader thread has ended: render/BackgroundThreads.h. */
 void finishImageIoPreload();
 
 /** Writes CV_8UC1/CV_8UC4 as 8-bit sRGB and CV_32FC1/CV_32FC4 as float32 (EXR keeps float; PNG would quantise, so
  *  float images must go to .exr or .tif, and a PNG refuses them); an 8-bit picture written as EXR is converted to
  *  linear float. The format follows the extension. The place must be a regular file or a new name
- *  (requireOutputPlace(), app/OutputPlace.h: a device or a FIFO is refused, never replaced). Encoded in memory,
+ *  (requireOutputPlace(), render/OutputPlace.h: a device or a FIFO is refused, never replaced). Encoded in memory,
  *  written under a temporary name, synced, renamed into place. */
 void writeImage(const std::filesystem::path& path, const cv::Mat& image);
 

@@ -2,8 +2,8 @@
 /** @file The shade maps a scene's meshes name themselves (Mesh::shadeMapPath, from glTF material extras), read for
  *  the shading pass (ShadeSettings::meshShadeMaps). */
 
-#include "app/Options.h"
 #include "passes/shade/ShadeMap.h"
+#include "passes/shade/ShadingModel.h"
 #include "scene/Scene.h"
 
 #include <optional>

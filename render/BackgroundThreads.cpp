@@ -1,6 +1,6 @@
-#include "app/BackgroundThreads.h"
+#include "render/BackgroundThreads.h"
 
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 
 #include <oneapi/tbb/global_control.h>
 #include <opencv2/core/utility.hpp>

@@ -1,4 +1,4 @@
-#include "app/Messages.h"
+#include "render/Messages.h"
 
 namespace inkgraph {
 namespace {

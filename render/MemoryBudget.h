@@ -1,8 +1,9 @@
 #pragma once
 /** @file The whole run's peak memory for one still, estimated before any GL work from what the plan declares (its
- *  resources with formats and scales, its passes and what they read) and the options (size, supersampling, dumps),
- *  so --memory-limit bounds the process and not only the plan's textures. docs/batch.md ("Memory") gives the model,
- *  the measurements it was calibrated on (peak resident set on llvmpipe) and how to size a batch task from it.
+ *  resources with formats and scales, its passes and what they read) and the request (size, supersampling, dumps),
+ *  so the memory limit (--memory-limit) bounds the process and not only the plan's textures. docs/batch.md ("Memory")
+ * gives the model, the measurements it was calibrated on (peak resident set on llvmpipe) and how to size a batch task
+ * from it.
  *
  *  The estimate is a bound: every term is what the run holds at its worst (llvmpipe keeps textures in process
  *  memory; the texture pool keeps every texture it made until the still ends; a stroke may take the
@@ -14,7 +15,8 @@
 namespace inkgraph {
 
 struct Plan;
-struct RenderOptions;
+struct StillRequest;
+struct PreparedStill;
 struct Scene;
 
 /** What the meshes cost, by count: the loaded scene, its GPU copy, and what llvmpipe bins per triangle. */
@@ -36,12 +38,24 @@ struct MemoryEstimate {
     std::size_t total() const { return baseline + scene + glTargets + cpuImages; }
 };
 
-/** The estimate for `plan` rendered with `options`; `scene` may be {} when not known yet (it then adds nothing). */
-MemoryEstimate estimateRunMemory(const Plan& plan, const RenderOptions& options, const SceneSize& scene);
+/** The estimate for `plan` rendered as `request` asks (its size, look, kept buffers, image module); `scene` may be {}
+ * when not known yet (it then adds nothing). */
+MemoryEstimate estimateRunMemory(const Plan& plan, const StillRequest& request, const SceneSize& scene);
 
 /** The flags that make the buffers as large as they are, for messages: "--size 2048x2048", then
  *  " with --supersample 8 (--lines suggestive works at 16384x16384)", " and --dump (every buffer is kept)". */
-std::string memoryDriversText(const Plan& plan, const RenderOptions& options);
+std::string memoryDriversText(const Plan& plan, const StillRequest& request);
+
+/** Half this machine's memory, at least 1 GiB: the memory limit when none is given. */
+std::size_t defaultMemoryLimit();
+
+/** Between plan and execute: refuses a still whose buffers would not fit (one texture of 2 GiB or more, or the whole
+ *  run's estimated peak above the request's memoryLimitBytes), naming the flags that make them large (UsageError),
+ *  then gives the textures, decoded during the run, what the estimate leaves of the limit. */
+void budgetStill(PreparedStill& still);
+
+/** The whole run's estimated peak for `still` (estimateRunMemory() with its scene), in bytes. */
+std::size_t estimatedStillBytes(const PreparedStill& still);
 
 /** The process's peak resident set so far (getrusage's ru_maxrss), in bytes. */
 std::size_t peakResidentBytes();

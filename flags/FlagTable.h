@@ -1,12 +1,12 @@
 #pragma once
 /** @file The flags of `inkgraph render`, declared once each: names, value, help section and text, whether a style
  *  file may set it, how its value is checked and stored, and when it has no effect with the rest of the command line.
- *  Parsing (app/Options.cpp), `--help`, the style files' setting names (app/StyleFile.h), the range checks and the
+ *  Parsing (flags/Options.cpp), `--help`, the style files' setting names (flags/StyleFile.h), the range checks and the
  *  "has no effect" refusals are all generated from this table. The line types' width, colour and parameter flags
  *  come from the line-type registry (passes/lines/LineTypes.h), the shading models' from their trait table
  *  (passes/shade/ShadingModel.h). */
 
-#include "app/Options.h"
+#include "flags/Options.h"
 
 #include <functional>
 #include <string>

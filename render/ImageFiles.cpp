@@ -1,9 +1,9 @@
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 
-#include "app/ImageIoModule.h"
-#include "app/OutputPlace.h"
-#include "app/PngFiles.h"
-#include "app/TemporaryFiles.h"
+#include "render/ImageIoModule.h"
+#include "render/OutputPlace.h"
+#include "render/PngFiles.h"
+#include "render/TemporaryFiles.h"
 #include "codecs/PngChunks.h"
 #include "gl/BinaryLocation.h"
 

@@ -1,4 +1,4 @@
-#include "app/PngFiles.h"
+#include "render/PngFiles.h"
 
 #include "codecs/PngCodec.h"
 

@@ -1,6 +1,6 @@
-#include "app/OutputPlace.h"
+#include "render/OutputPlace.h"
 
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 
 #include <sys/stat.h>
 #include <unistd.h>

@@ -1,9 +1,9 @@
 #pragma once
 /** @file The renderer of one still, as a library: a model path, a Look and a camera request in, the scene, the plan
  *  and every computed buffer out. No command line and no files written: app/Render.h turns flags into a
- *  StillRequest and the result into files (app/StillOutputs.h, app/Stats.h). One StillRenderer keeps one GL context
- *  (made by the first still that executes) and one ShaderLibrary that keeps every program, so a batch makes the
- *  context once and compiles each program once. */
+ *  StillRequest (the library, api/, turns its typed looks and frames into one) and the result into files
+ * (app/StillOutputs.h, app/Stats.h). One StillRenderer keeps one GL context (made by the first still that executes) and
+ * one ShaderLibrary that keeps every program, so a batch makes the context once and compiles each program once. */
 
 #include "gl/GraphExecutor.h"
 #include "gl/HeadlessContext.h"
@@ -56,10 +56,15 @@ struct StillRequest {
     CameraRequest camera;                  ///< what the caller fixes; resolveCamera() fills the rest from the file
     std::vector<std::string> extraOutputs; ///< more resources to compute and keep ("gbuffer.*" expands)
     bool keepEveryBuffer = false;          ///< keep every computed buffer (dumps, contact sheets)
+    /** What keeps every buffer, for the memory budget's messages ("--dump", "--contact-sheet"). */
+    std::vector<std::string> keepEveryBufferFor;
     /** Wait for each pass to finish so its milliseconds are its own (--stats, --dump's manifest); without, the
      *  driver may overlap one pass's drawing with the next pass's submission. */
     bool timePasses = true;
-    std::size_t memoryLimitBytes = std::size_t(1) << 30; ///< bounds the model load (scene/Loader.h)
+    /** Bounds the model load (scene/Scene.h) and the still's estimated peak (render/MemoryBudget.h budgetStill()). */
+    std::size_t memoryLimitBytes = std::size_t(1) << 30;
+    bool memoryLimitGiven = false; ///< the limit was asked for (--memory-limit), not the machine's default
+    bool loadsImageIo = false;     ///< the outputs load the OpenImageIO module (its libraries count in the budget)
     /** Keep the stroke stage's strokes (StillGraph::strokePathsResource()) for StillGraph::svgLayers() (--svg). */
     bool keepStrokePaths = false;
     std::string animation;      ///< LoadOptions::animation: the pose to load

@@ -1,5 +1,5 @@
-// The OpenImageIO side of app/ImageIoModule.h, built as the module libinkgraph_imageio.so.
-#include "app/ImageIoModule.h"
+// The OpenImageIO side of render/ImageIoModule.h, built as the module libinkgraph_imageio.so.
+#include "render/ImageIoModule.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>

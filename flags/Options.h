@@ -1,8 +1,10 @@
 #pragma once
 /** @file The `inkgraph render` command line: what the flags fill, parsed and explained by the flag table
- *  (app/FlagTable.h). No GL, no files touched. */
+ *  (flags/FlagTable.h). No GL, no files touched. */
 
 #include "passes/Look.h"
+#include "render/DefaultLook.h"
+#include "render/UsageError.h"
 #include "scene/Camera.h"
 
 #include <glm/glm.hpp>
@@ -16,29 +18,11 @@
 
 namespace inkgraph {
 
-/** A wrong flag or value. The CLI prints it with a hint to --help and exits with 2. */
-class UsageError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
-
 /** --shard K/N: this process renders the models whose 0-based list position p has p mod N == K. */
 struct Shard {
     int index = 0; ///< K, 0 <= K < N (Slurm's SLURM_ARRAY_TASK_ID with --array=0-(N-1))
     int count = 1; ///< N
 };
-
-/** The line types drawn when neither --lines nor a style file names any: the silhouette (the inflated hull, bold around
- *  the figure) and the contour (n.v zero crossings and the model's ends, one pixel), which also edges a flat card seen
- *  face-on, where the hull has no width. */
-inline const std::vector<std::string> kDefaultLines = {"silhouette", "contour"};
-
-/** A Look with the command line's defaults: Look{} with kDefaultLines. */
-inline Look defaultLook() {
-    Look look;
-    look.lines = kDefaultLines;
-    return look;
-}
 
 /** The command line of `inkgraph render`: the models, the camera, the Look, the outputs and the run's settings. The
  *  renderer takes the parts (Look, CameraRequest); this struct is only what the flags fill. */
@@ -60,9 +44,8 @@ struct RenderOptions {
     bool autoCamera = false;             ///< --camera auto: never the file's camera
     std::string animation;               ///< --animation: a glTF animation's name or index; empty: the rest pose
     double animationTime = 0.0;          ///< --time: seconds into `animation`
-    /** Shading, lines, supersampling, precision, paper, light. The command line's default draws lines
-     *  (kDefaultLines), so no model is white on white: a white or untextured model's lit band is the paper's
-     *  colour, and its lines still set it apart. */
+    /** Shading, lines, supersampling, precision, paper, light; the default look (render/DefaultLook.h) draws
+     *  lines. */
     Look look = defaultLook();
     std::vector<std::string> extraOutputs; ///< --request: extra graph resources kept and dumped ("gbuffer.*")
     std::string dumpDirectory;
@@ -90,7 +73,7 @@ bool rendersImages(const RenderOptions& options);
  *  --help (or -h) where a flag may stand stops parsing and sets `help`; as the value of a flag it is just a value. */
 RenderOptions parseRenderOptions(const std::vector<std::string>& arguments);
 
-/** The same, with each argument's origin (app/StyleFile.h): a problem with an argument from a style file is reported
+/** The same, with each argument's origin (flags/StyleFile.h): a problem with an argument from a style file is reported
  *  with the file and line first. `origins` is empty or as long as `arguments`. */
 RenderOptions parseRenderOptions(const std::vector<std::string>& arguments, const std::vector<std::string>& origins);
 

@@ -1,4 +1,4 @@
-#include "app/FlagTable.h"
+#include "flags/FlagTable.h"
 
 #include "graph/Resource.h"
 #include "passes/lines/LineTypes.h"

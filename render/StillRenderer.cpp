@@ -1,10 +1,10 @@
-#include "app/StillRenderer.h"
+#include "render/StillRenderer.h"
 
-#include "app/Messages.h"
+#include "render/Messages.h"
 
-#include "app/ImageFiles.h"
-#include "app/Options.h"
-#include "app/SceneShadeMaps.h"
+#include "render/ImageFiles.h"
+#include "render/UsageError.h"
+#include "render/SceneShadeMaps.h"
 #include "graph/GraphCompiler.h"
 #include "scene/Scene.h"
 
@@ -95,7 +95,7 @@ FrameParams frameParamsOf(const Look& look, const Scene& scene, const Camera& ca
 }
 
 void StillLog::warn(const std::string& modelPath, const std::string& warning) const {
-    // Bounded like every message (app/Messages.h).
+    // Bounded like every message (render/Messages.h).
     log << boundedMessage("inkgraph: warning: " + (talks ? "" : "'" + modelPath + "': ") + warning) << "\n";
 }
 

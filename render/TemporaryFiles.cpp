@@ -1,4 +1,4 @@
-#include "app/TemporaryFiles.h"
+#include "render/TemporaryFiles.h"
 
 #include <signal.h>
 #include <unistd.h>
@@ -82,7 +82,7 @@ SignalsDeferred::~SignalsDeferred() {
 }
 
 bool isStaleTemporary(const std::string& name) {
-    // Exactly ".inkgraph-<pid>-<n>.tmp" (app/ImageFiles.h temporarySibling): a user's ".inkgraph-1234-notes.txt" is
+    // Exactly ".inkgraph-<pid>-<n>.tmp" (render/ImageFiles.h temporarySibling): a user's ".inkgraph-1234-notes.txt" is
     // not ours, whatever its name suggests.
     constexpr const char* kPrefix = ".inkgraph-";
     constexpr const char* kSuffix = ".tmp";

@@ -1,6 +1,6 @@
-#include "app/SceneShadeMaps.h"
+#include "render/SceneShadeMaps.h"
 
-#include "app/Render.h"
+#include "render/StillRenderer.h"
 
 #include <map>
 #include <string_view>

@@ -3,7 +3,7 @@
  *
  *  Two kinds start on their own: OpenCV runs its parallel loops on oneTBB's worker pool (Debian's build), which
  *  starts workers lazily and asynchronously and, at exit, lets them finish on their own time; and the OpenImageIO
- *  module is loaded on a thread of ours (app/ImageIoModule.h), whose dlopen starts yet more pools (log4cplus's, by
+ *  module is loaded on a thread of ours (render/ImageIoModule.h), whose dlopen starts yet more pools (log4cplus's, by
  *  way of OpenVDB). A process that ends while one of these threads is being created or torn down breaks
  *  LeakSanitizer's check at exit, which stops every thread and reads its stack and thread-local storage ("Tracer
  *  caught signal 11"). So every inkgraph process ends the same way: the executable's main (app/main.cpp) and every
@@ -17,7 +17,7 @@ namespace inkgraph {
  *  (another user of oneTBB still holds it). */
 void stopParallelWorkers();
 
-/** Waits for the OpenImageIO module's loader if it was started (app/ImageFiles.h), then stopParallelWorkers():
+/** Waits for the OpenImageIO module's loader if it was started (render/ImageFiles.h), then stopParallelWorkers():
  *  afterwards no thread that inkgraph started is being created or torn down, and none of ours is left running. */
 void joinBackgroundThreads();
 

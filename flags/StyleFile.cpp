@@ -1,8 +1,8 @@
-#include "app/StyleFile.h"
+#include "flags/StyleFile.h"
 
-#include "app/ImageFiles.h"
-#include "app/FlagTable.h"
-#include "app/Options.h"
+#include "render/ImageFiles.h"
+#include "flags/FlagTable.h"
+#include "flags/Options.h"
 #include "scene/MessageText.h" // withoutByteOrderMark(), as the model readers skip one
 
 #include <algorithm>
