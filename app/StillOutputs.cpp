@@ -16,11 +16,13 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json matrixRows(const glm::dmat4& matrix) {
+/** A glm matrix of any shape as JSON rows: glm is column-major, so matrix[col][row]. */
+template <glm::length_t Columns, glm::length_t Rows>
+Json matrixRows(const glm::mat<Columns, Rows, double>& matrix) {
     Json rows = Json::array();
-    for (int row = 0; row < 4; ++row) {
+    for (glm::length_t row = 0; row < Rows; ++row) {
         Json values = Json::array();
-        for (int col = 0; col < 4; ++col) values.push_back(matrix[col][row]); // glm is column-major
+        for (glm::length_t col = 0; col < Columns; ++col) values.push_back(matrix[col][row]);
         rows.push_back(values);
     }
     return rows;
@@ -145,7 +147,14 @@ Json describeCamera(const Camera& camera) {
                       "projection_matrix is OpenGL's standard one"},
             {"focal_pixels", camera.focalPixels()},
             {"view_matrix", matrixRows(camera.worldViewMatrix())},
-            {"projection_matrix", matrixRows(camera.projectionMatrix())}};
+            {"projection_matrix", matrixRows(camera.projectionMatrix())},
+            {"opencv",
+             "intrinsics K and extrinsics [R|t] as OpenCV takes them: [R|t] maps world points to x right, y "
+             "down, z forward (the view space with y and z negated), z being the linear view depth; pixel "
+             "centres at (col, row), so K's centre is (width/2 - 0.5, height/2 - 0.5); a buffer S times the size "
+             "(--supersample) has S fx, S fy and centre (S width/2 - 0.5, S height/2 - 0.5)"},
+            {"intrinsics", matrixRows(camera.openCvIntrinsics())},
+            {"extrinsics", matrixRows(camera.openCvExtrinsics())}};
 }
 
 Json describeLook(const PreparedStill& still, const std::string& stylePath) {

@@ -159,6 +159,30 @@ glm::dmat4 Camera::projectionMatrix() const {
 
 double Camera::focalPixels() const { return (double(height) / 2.0) / std::tan(glm::radians(fovYDegrees) / 2.0); }
 
+glm::dmat3 Camera::openCvIntrinsics() const {
+    const double focal = focalPixels();
+    glm::dmat3 k(0.0);
+    k[0][0] = focal;
+    k[1][1] = focal;
+    k[2] = glm::dvec3(double(width) / 2.0 - 0.5, double(height) / 2.0 - 0.5, 1.0);
+    return k;
+}
+
+glm::dmat4x3 Camera::openCvExtrinsics() const {
+    // The view matrix's rotation is the same in the local and the world frame (they differ by a translation), so it
+    // comes from the local viewMatrix(), whose numbers are small; only t sees the world's large coordinates.
+    const glm::dmat3 viewRotation(viewMatrix());
+    glm::dmat3 rotation = viewRotation;
+    for (int column = 0; column < 3; ++column) {
+        rotation[column][1] = -viewRotation[column][1];
+        rotation[column][2] = -viewRotation[column][2];
+    }
+    glm::dmat4x3 extrinsics(0.0);
+    for (int column = 0; column < 3; ++column) extrinsics[column] = rotation[column];
+    extrinsics[3] = -(rotation * worldEye());
+    return extrinsics;
+}
+
 Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     if (request.width <= 0 || request.height <= 0) {
         invalid("the image size " + std::to_string(request.width) + "x" + std::to_string(request.height) +

@@ -75,6 +75,19 @@ struct Camera {
     glm::dmat4 projectionMatrix() const; ///< glm::perspective(fovY, aspect, zNear, zFar)
     /** Focal length in pixels along y: (height/2) / tan(fovY/2). */
     double focalPixels() const;
+    /** OpenCV's intrinsic matrix K, for pixel coordinates (u, v) with u right, v down and the centre of pixel (col,
+     *  row), row 0 at the top, at (col, row) (the manifest's and OpenGL's convention puts it at (col + 0.5, row +
+     *  0.5), hence the half pixel): fx = fy = focalPixels(), cx = width/2 - 0.5, cy = height/2 - 0.5, no skew.
+     *  glm is column-major: K[column][row], so K[2] = (cx, cy, 1) and K[2][0] = cx. With openCvExtrinsics() [R|t],
+     *  a world point X lands on (u, v) = (x/z, y/z) for (x, y, z) = K (R X + t), where z is the linear view depth
+     *  gbuffer.depth holds; so X = R^T (depth K^-1 (u, v, 1) - t). */
+    glm::dmat3 openCvIntrinsics() const;
+    /** OpenCV's extrinsics [R|t]: world coordinates (origin + local) to OpenCV's camera frame, x right, y down, z
+     *  forward, which is view space (viewMatrix()) with y and z negated. glm's 4 columns of 3: columns 0 to 2 are R
+     *  (R[column][row]), column 3 is t. R is viewMatrix()'s rotation with its second and third rows negated; t =
+     *  -R worldEye(), from the world eye in double rather than from worldViewMatrix(), so an origin of 1e7 costs t
+     *  no more than double rounding (about 1e-9 there). */
+    glm::dmat4x3 openCvExtrinsics() const;
 };
 
 /** Resolves a camera in the scene's local frame. The request's eye and target are world coordinates; scene.origin is

@@ -93,6 +93,21 @@ TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
     EXPECT_EQ(manifest["size"], nlohmann::json::array({96, 64}));
     EXPECT_EQ(manifest["camera"]["source"], "auto-framed");
     EXPECT_EQ(manifest["camera"]["view_matrix"].size(), 4u);
+    // OpenCV's K: the focal length, and the centre half a pixel less (OpenCV puts pixel (0, 0)'s centre at (0, 0)).
+    const auto& camera = manifest["camera"];
+    const double focal = camera["focal_pixels"].get<double>();
+    EXPECT_EQ(camera["intrinsics"], nlohmann::json::array({{focal, 0.0, 47.5}, {0.0, focal, 31.5}, {0.0, 0.0, 1.0}}))
+        << camera["intrinsics"].dump();
+    // [R|t] is the view matrix with y and z negated (OpenCV's y down, z forward).
+    ASSERT_EQ(camera["extrinsics"].size(), 3u);
+    for (int row = 0; row < 3; ++row) {
+        ASSERT_EQ(camera["extrinsics"][row].size(), 4u);
+        const double sign = row == 0 ? 1.0 : -1.0;
+        for (int col = 0; col < 4; ++col)
+            EXPECT_NEAR(camera["extrinsics"][row][col].get<double>(),
+                        sign * camera["view_matrix"][row][col].get<double>(), 1e-12)
+                << "row " << row << ", column " << col;
+    }
     std::map<std::string, std::string> fileToResource;
     for (const auto& file : manifest["files"]) fileToResource[file["file"]] = file["resource"];
     EXPECT_EQ(fileToResource["normal.exr"], "gbuffer.normal");
@@ -224,6 +239,14 @@ TEST_F(Cli, AModelFarFromTheOriginRendersLikeTheSameModelAtIt) {
     ASSERT_EQ(run("render far.obj --size 16x16 --dump e --eye 10000003,-30000000,20000000").exitCode, 0);
     const auto manifest = nlohmann::json::parse(readText(directory / "e" / "manifest.json"));
     EXPECT_EQ(manifest["camera"]["eye"], nlohmann::json::array({10000003.0, -30000000.0, 20000000.0}));
+    // [R|t] takes that eye to the camera centre to double rounding of 3e7 (about 4e-9), not float's 2 units.
+    const auto& extrinsics = manifest["camera"]["extrinsics"];
+    const double eye[3] = {10000003.0, -30000000.0, 20000000.0};
+    for (int row = 0; row < 3; ++row) {
+        double centre = extrinsics[row][3].get<double>();
+        for (int col = 0; col < 3; ++col) centre += extrinsics[row][col].get<double>() * eye[col];
+        EXPECT_NEAR(centre, 0.0, 1e-7) << "row " << row;
+    }
 }
 
 TEST_F(Cli, AByteOrderMarkOrAMissingSolidLineChangesNothing) {
