@@ -41,6 +41,10 @@ const std::string& Scene::path() const { return mImpl->path; }
 std::size_t Scene::triangleCount() const { return mImpl->scene->triangleCount(); }
 std::size_t Scene::vertexCount() const { return mImpl->scene->vertexCount(); }
 std::size_t Scene::meshCount() const { return mImpl->scene->meshes.size(); }
-std::vector<std::string> Scene::warnings() const { return mImpl->scene->report.warnings; }
+std::vector<std::string> Scene::warnings() const {
+    std::vector<std::string> messages;
+    for (const inkgraph::Warning& warning : mImpl->scene->report.warnings) messages.push_back(warning.message);
+    return messages;
+}
 
 } // namespace inkgraph::api

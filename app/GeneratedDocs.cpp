@@ -9,6 +9,7 @@
 #include "passes/StillGraph.h"
 #include "passes/lines/LineTypes.h"
 #include "passes/shade/ShadingModel.h"
+#include "scene/Warning.h"
 #include "scene/mesh/Procedural.h"
 
 #include <set>
@@ -77,16 +78,28 @@ std::string dumpFilesSection() {
     return text;
 }
 
+std::string warningCodesSection() {
+    std::string text = "| code | meaning |\n|---|---|\n";
+    for (const WarningCode& row : warningCodes())
+        text += "| " + code(std::string(row.code)) + " | " + cell(std::string(row.meaning)) + " |\n";
+    return text;
+}
+
 } // namespace
 
 const std::vector<std::string>& generatedDocSections() {
-    static const std::vector<std::string> kSections = {"line-types", "dump-files"};
+    static const std::vector<std::string> kSections = {"line-types", "dump-files", "warning-codes"};
     return kSections;
+}
+
+std::string generatedDocPath(const std::string& name) {
+    return name == "warning-codes" ? "docs/robustness.md" : "README.md";
 }
 
 std::string generatedDocSection(const std::string& name) {
     if (name == "line-types") return lineTypesSection();
     if (name == "dump-files") return dumpFilesSection();
+    if (name == "warning-codes") return warningCodesSection();
     std::string names;
     for (const std::string& section : generatedDocSections()) names += (names.empty() ? "" : ", ") + section;
     throw std::invalid_argument("generatedDocSection(): no section '" + name + "' (sections: " + names + ")");

@@ -1,7 +1,8 @@
 #pragma once
-/** @file The parts of README.md that list what the registries hold, generated from them as the man page is
- *  (app/CommandLineDocs.h): the line types (passes/lines/LineTypes.h) and the files `--dump` can write (each pass's
- *  declared Presentation, graph/Resource.h). In the Markdown each section sits between
+/** @file The parts of the docs that list what the registries hold, generated from them as the man page is
+ *  (app/CommandLineDocs.h): README.md's line types (passes/lines/LineTypes.h) and files `--dump` can write (each
+ *  pass's declared Presentation, graph/Resource.h), docs/robustness.md's warning codes (scene/Warning.h). In the
+ *  Markdown each section sits between
  *  `<!-- generated: NAME -->` and `<!-- end generated -->`; `inkgraph help --docs NAME` prints it and
  *  scripts/update-docs.sh rewrites the regions. tests/app/GeneratedDocsTest.cpp fails when a region differs from what
  *  the code generates, and when a registered line type, flag, shading model, G-buffer field or dump file is missing
@@ -12,8 +13,12 @@
 
 namespace inkgraph {
 
-/** The names of the generated sections, in the order README.md has them: "line-types", "dump-files". */
+/** The names of the generated sections, in the order their docs have them: "line-types", "dump-files" (README.md),
+ *  "warning-codes" (docs/robustness.md). */
 const std::vector<std::string>& generatedDocSections();
+
+/** The doc that holds section `name`, relative to the source root: "README.md" or "docs/robustness.md". */
+std::string generatedDocPath(const std::string& name);
 
 /** The Markdown of section `name`, ending in a newline. Throws std::invalid_argument for an unknown name. */
 std::string generatedDocSection(const std::string& name);

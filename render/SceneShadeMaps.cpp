@@ -17,7 +17,7 @@ std::string meshLabel(const Mesh& mesh) {
 } // namespace
 
 std::vector<std::optional<ShadeMap>> readSceneShadeMaps(const Scene& scene, ShadingModel shading,
-                                                        std::vector<std::string>* warnings) {
+                                                        std::vector<Warning>* warnings) {
     std::vector<std::optional<ShadeMap>> maps(scene.meshes.size());
     const bool usesMaps = traitsOf(shading).shadeMap;
     if (!usesMaps) {
@@ -26,11 +26,12 @@ std::vector<std::optional<ShadeMap>> readSceneShadeMaps(const Scene& scene, Shad
         for (const Mesh& mesh : scene.meshes)
             if (!mesh.material.shadeMapPath.empty()) ++naming;
         if (naming > 0 && warnings)
-            warnings->push_back(naming == 1
-                                    ? "1 mesh names a shade map, which only --shading " +
-                                          shadingModelsWith(&ShadingModelTraits::shadeMap) + " use"
-                                    : std::to_string(naming) + " meshes name shade maps, which only --shading " +
-                                          shadingModelsWith(&ShadingModelTraits::shadeMap) + " use");
+            warnings->push_back(
+                makeWarning(WarningKind::ShadeMapUnused,
+                            naming == 1 ? "1 mesh names a shade map, which only --shading " +
+                                              shadingModelsWith(&ShadingModelTraits::shadeMap) + " use"
+                                        : std::to_string(naming) + " meshes name shade maps, which only --shading " +
+                                              shadingModelsWith(&ShadingModelTraits::shadeMap) + " use"));
         return maps;
     }
 

@@ -60,6 +60,13 @@ void checkDriverLimits(int width, int height) {
                          " exceeds this driver's largest render target side, " + std::to_string(limit));
 }
 
+/** Keeps `warning` with the still and prints it; one without a file is about the model. */
+void warnOf(PreparedStill& still, Warning warning, const StillLog& log) {
+    if (warning.file.empty()) warning.file = still.request.modelPath;
+    log.warn(still.request.modelPath, warning.message);
+    still.warnings.push_back(std::move(warning));
+}
+
 } // namespace
 
 ShadeMap readShadeMapFile(const std::string& path, bool oneDimensional) {
@@ -127,8 +134,9 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
         loadOptions.time = req.animationTime;
         still->loadedScene = std::make_shared<const Scene>(loadScene(req.modelPath, loadOptions));
         still->loadMilliseconds = millisecondsSince(loadStart);
-        for (const std::string& warning : still->scene().report.warnings) log.warn(req.modelPath, warning);
+        for (const Warning& warning : still->scene().report.warnings) log.warn(req.modelPath, warning.message);
     }
+    still->warnings = still->scene().report.warnings;
     const Scene& scene = still->scene();
     if (log.talks && !log.quiet && !req.loadedScene) {
         log.log << std::fixed << std::setprecision(1) << "inkgraph: loaded '" << req.modelPath
@@ -137,9 +145,9 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     }
 
     // The maps the model's materials name (glTF extras), each file read once; exit 3 like --shademap.
-    std::vector<std::string> shadeMapWarnings;
+    std::vector<Warning> shadeMapWarnings;
     still->meshShadeMaps = readSceneShadeMaps(scene, look.shading, &shadeMapWarnings);
-    for (const std::string& warning : shadeMapWarnings) log.warn(req.modelPath, warning);
+    for (Warning& warning : shadeMapWarnings) warnOf(*still, std::move(warning), log);
     return still;
 }
 
@@ -154,8 +162,7 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     } catch (const std::invalid_argument& error) {
         throw UsageError(error.what()); // the loader has validated the file's camera: what is left is the flags
     }
-    if (const std::optional<std::string> outside = modelOutsideView(still.camera, scene))
-        log.warn(req.modelPath, *outside);
+    if (std::optional<Warning> outside = modelOutsideView(still.camera, scene)) warnOf(still, std::move(*outside), log);
     still.frame = frameParamsOf(look, scene, still.camera, still.sphere);
     still.gpuScene = makeSceneImport(scene, still.sphere.center, still.frame, look);
     StillGraphSetup setup{look, mShaders, scene, still.sphere, *still.gpuScene, still.frame, still.shadeMap};
@@ -239,8 +246,7 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
     }
     // What decoding the textures had to say (an image shrunk to the driver's largest texture), as the loader's
     // warnings.
-    for (const std::string& warning : still.gpuScene->materials().warnings())
-        log.warn(still.request.modelPath, warning);
+    for (const Warning& warning : still.gpuScene->materials().warnings()) warnOf(still, warning, log);
     result.texturesCreated = mTextures.createdCount() - texturesCreatedBefore;
     result.texturesReused = mTextures.reusedCount() - texturesReusedBefore;
     result.programsCompiled = mShaders.compiledCount() - programsCompiledBefore;

@@ -93,6 +93,9 @@ struct PreparedStill {
     std::optional<ShadeMap> shadeMap;                   ///< the request's shade map, read
     std::vector<std::optional<ShadeMap>> meshShadeMaps; ///< per mesh, the map its material names
     std::unique_ptr<GpuScene> gpuScene;
+    /** Every warning of this still, as StillLog printed it: the loader's (a loaded scene's too, which its loader
+     *  printed), the shade maps', the camera's, and after execute() the textures' decoding. */
+    std::vector<Warning> warnings;
     StillGraph graph;
     Plan plan;
     PreparedStill() = default;

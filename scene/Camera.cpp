@@ -356,7 +356,7 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     return camera;
 }
 
-std::optional<std::string> modelOutsideView(const Camera& camera, const Scene& scene) {
+std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene) {
     // The half-spaces outside the view, in view space (the camera looks down -Z; depth = -z). A model wholly inside one
     // of them shows nothing. Behind the eye comes first: it is also nearer than the near plane.
     const double tanY = std::tan(glm::radians(camera.fovYDegrees) / 2.0);
@@ -402,8 +402,10 @@ std::optional<std::string> modelOutsideView(const Camera& camera, const Scene& s
     } else {
         who = "the auto-framed camera";
     }
-    return who + " sees none of the model: every vertex lies " + where + ", so the picture shows only the background" +
-           (camera.source == "gltf" ? "; --camera auto frames the model instead" : "");
+    return makeWarning(WarningKind::ModelOutsideView,
+                       who + " sees none of the model: every vertex lies " + where +
+                           ", so the picture shows only the background" +
+                           (camera.source == "gltf" ? "; --camera auto frames the model instead" : ""));
 }
 
 } // namespace inkgraph

@@ -113,7 +113,8 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene);
  *  eye, beyond one side of the view (left, right, above or below), nearer than the near plane or beyond the far one.
  *  It names where the view comes from (the glTF camera by its name, --eye, --orbit, auto-framing; --clip for the
  *  planes it set). Empty when some of the model may show. A model beside a corner of the view, outside the view but
- *  on the inner side of each of its planes, is not caught. */
-std::optional<std::string> modelOutsideView(const Camera& camera, const Scene& scene);
+ *  on the inner side of each of its planes, is not caught. A model-outside-view warning without a file: the camera
+ *  does not know it. */
+std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene);
 
 } // namespace inkgraph

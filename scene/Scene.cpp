@@ -73,8 +73,9 @@ detail::RawScene readContent(const std::string& path, std::string_view content, 
     const detail::FormatReader& reader = readerFor(path);
     detail::RawScene raw = reader.read(path, content, budget, options);
     if (!options.animation.empty() && !reader.hasAnimations) {
-        raw.warnings.push_back("animation '" + detail::excerptForMessage(options.animation) +
-                               "' ignored: " + raw.format + " files have no animations");
+        raw.warnings.push_back(
+            makeWarning(WarningKind::AnimationIgnored, "animation '" + detail::excerptForMessage(options.animation) +
+                                                           "' ignored: " + raw.format + " files have no animations"));
     }
     // The model first, then what the reader opened beside it.
     raw.inputFiles.insert(raw.inputFiles.begin(), path);
@@ -135,9 +136,11 @@ Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOpt
         if (!mesh.triangles.empty()) {
             scene.meshes.push_back(std::move(mesh));
         } else if (trianglesBefore > 0) {
-            scene.report.warnings.push_back("mesh '" + detail::excerptForMessage(name) + "': all " +
-                                            std::to_string(trianglesBefore) +
-                                            " triangles are degenerate; mesh skipped");
+            scene.report.warnings.push_back(makeWarning(WarningKind::MeshDegenerate,
+                                                        "mesh '" + detail::excerptForMessage(name) + "': all " +
+                                                            std::to_string(trianglesBefore) +
+                                                            " triangles are degenerate; mesh skipped",
+                                                        "", name));
         }
     }
     if (scene.meshes.empty()) {
@@ -147,6 +150,9 @@ Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOpt
         detail::throwLoadError(path, "no triangles left: all " + std::to_string(scene.report.trianglesRead) +
                                          " triangles are degenerate");
     }
+    // A warning about the model as a whole names the model's file; a reader names another (a texture, a library).
+    for (Warning& warning : scene.report.warnings)
+        if (warning.file.empty()) warning.file = path;
     return scene;
 }
 

@@ -3,6 +3,7 @@
  *  No GL here; passes upload what they need. */
 
 #include "scene/Material.h"
+#include "scene/Warning.h"
 
 #include <glm/glm.hpp>
 
@@ -76,7 +77,7 @@ struct LoadReport {
     std::size_t verticesBeforeWeld = 0;
     std::size_t verticesAfterWeld = 0;
     bool normalsComputed = false;        ///< true when some mesh had no normals in the file
-    std::vector<std::string> warnings;   ///< e.g. skipped POINTS primitives, ignored orthographic cameras
+    std::vector<Warning> warnings;       ///< e.g. skipped POINTS primitives, ignored orthographic cameras
     std::vector<std::string> inputFiles; ///< every file this load read: the model, glTF external buffers and images
                                          ///< (paths as opened, resolved against the model's folder)
 };

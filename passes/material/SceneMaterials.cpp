@@ -92,7 +92,10 @@ GLuint SceneMaterials::texture(const TextureRef& reference, bool srgb) {
                                     " a side): downscaled to " + std::to_string(smaller.width) + "x" +
                                     std::to_string(smaller.height);
         // Colour and data uses of one image are two textures; the image is named once.
-        if (std::find(mWarnings.begin(), mWarnings.end(), warning) == mWarnings.end()) mWarnings.push_back(warning);
+        if (std::ranges::find(mWarnings, warning, &Warning::message) == mWarnings.end())
+            mWarnings.push_back(makeWarning(WarningKind::TextureDownscaled, warning,
+                                            image.path.empty() ? mModelPath : image.path,
+                                            "image " + std::to_string(reference.image) + name));
         mDownscaled.push_back({{"image", reference.image},
                                {"name", image.name},
                                {"decoded", {decoded.width, decoded.height}},

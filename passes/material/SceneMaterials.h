@@ -70,8 +70,9 @@ public:
     std::optional<MToonMaterial> outlineOf(std::size_t meshIndex) const;
 
     /** What the textures decoded so far had to warn about: each image wider or taller than the driver's
-     *  GL_MAX_TEXTURE_SIZE, which was downscaled to fit (a toon render needs no more texels than that). */
-    const std::vector<std::string>& warnings() const { return mWarnings; }
+     *  GL_MAX_TEXTURE_SIZE, which was downscaled to fit (a toon render needs no more texels than that): a
+     *  texture-downscaled warning about the image's file (the model's for an embedded image) and the image. */
+    const std::vector<Warning>& warnings() const { return mWarnings; }
 
     /** The material's GL texture for `reference`, decoded and uploaded on the first call with mipmaps, or 0 when
      *  `reference` names no image. An image larger than the driver takes is downscaled to fit, with a warning. Colour
@@ -86,7 +87,7 @@ private:
     std::string mModelPath;
     std::size_t mTextureByteLimit = std::size_t(-1);
     std::size_t mTextureBytes = 0;
-    std::vector<std::string> mWarnings;
+    std::vector<Warning> mWarnings;
     nlohmann::ordered_json mDownscaled = nlohmann::ordered_json::array(); ///< for --stats: name, file and GL sizes
     std::map<std::pair<int, bool>, GlHandle<TextureDeleter>> mTextures;   ///< by Scene::images index and sRGB-ness
     std::vector<std::pair<TextureSampler, GlHandle<SamplerDeleter>>> mSamplers;

@@ -26,9 +26,9 @@ struct RawScene {
     std::vector<RawMesh> meshes;
     std::optional<SceneCamera> camera; ///< its eye relative to `origin`, like the positions
     std::optional<DirectionalLight> light;
-    std::optional<glm::dvec3> front; ///< as Scene::front
-    std::vector<SceneImage> images;  ///< as Scene::images
-    std::vector<std::string> warnings;
+    std::optional<glm::dvec3> front;     ///< as Scene::front
+    std::vector<SceneImage> images;      ///< as Scene::images
+    std::vector<Warning> warnings;       ///< `file` empty for the model: loadScene() names it
     std::vector<std::string> inputFiles; ///< as LoadReport::inputFiles
 };
 
@@ -98,7 +98,7 @@ struct ObjMaterials {
  *  and a map_d cut-out; texture names are resolved beside `path`. Bad lines, missing textures and unsupported
  *  statements become warnings naming the library and the line; nothing is thrown. */
 void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials,
-             std::vector<std::string>& warnings);
+             std::vector<Warning>& warnings);
 
 /** The texture files a material library's map_Kd and map_d lines name, resolved as readMtl() resolves them. */
 std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content);

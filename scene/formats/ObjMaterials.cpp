@@ -173,7 +173,7 @@ struct PendingMaterial {
 
 class MtlReader {
 public:
-    MtlReader(const std::string& path, ObjMaterials& materials, std::vector<std::string>& warnings)
+    MtlReader(const std::string& path, ObjMaterials& materials, std::vector<Warning>& warnings)
         : mPath(path), mFolder(std::filesystem::path(path).parent_path()), mMaterials(materials), mWarnings(warnings) {}
 
     void read(std::string_view content) {
@@ -189,8 +189,11 @@ public:
     }
 
 private:
-    void warn(const std::string& problem) {
-        mWarnings.push_back("material library '" + mPath + "' line " + std::to_string(mLine) + ": " + problem);
+    /** A statement of the library that cannot be read: the warning names the library's file. */
+    void warn(const std::string& problem, WarningKind kind = WarningKind::MaterialStatementIgnored) {
+        mWarnings.push_back(
+            makeWarning(kind, "material library '" + mPath + "' line " + std::to_string(mLine) + ": " + problem, mPath,
+                        mCurrent ? mCurrent->material.name : std::string()));
     }
 
     void readLine(std::string_view line) {
@@ -232,10 +235,10 @@ private:
                      "'; ignored");
                 return;
             }
-            std::vector<std::string> problems;
+            std::vector<Warning> problems;
             (sameKeyword(keyword, "d") ? mCurrent->dissolve : mCurrent->transparency) =
                 shaderValue(*value, kUnitRange, quotedExcerpt(keyword), problems);
-            for (const std::string& problem : problems) warn(problem);
+            for (const Warning& problem : problems) warn(problem.message, WarningKind::ValueOutOfRange);
         } else {
             std::string problem;
             std::optional<MapStatement> map = parseMapStatement(rest, problem);
@@ -290,10 +293,13 @@ private:
         std::error_code error;
         // A FIFO or device would block when decoded: only regular files are images.
         if (!std::filesystem::is_regular_file(path, error)) {
-            mWarnings.push_back("material library '" + mPath + "' line " + std::to_string(line) + ": " +
-                                std::string(keyword) + " '" + excerptForMessage(map.file) + "': '" +
-                                excerptForMessage(path) + "' is missing or not a regular file; material '" +
-                                excerptForMessage(mCurrent->material.name) + "' is drawn without it");
+            mWarnings.push_back(makeWarning(WarningKind::TextureMissing,
+                                            "material library '" + mPath + "' line " + std::to_string(line) + ": " +
+                                                std::string(keyword) + " '" + excerptForMessage(map.file) + "': '" +
+                                                excerptForMessage(path) +
+                                                "' is missing or not a regular file; material '" +
+                                                excerptForMessage(mCurrent->material.name) + "' is drawn without it",
+                                            path, mCurrent->material.name));
             return -1;
         }
         SceneImage image;
@@ -333,16 +339,21 @@ private:
                     material.alphaCutoff = 0.5f;
                 }
             } else {
-                mWarnings.push_back("material library '" + mPath + "' line " + std::to_string(pending.dissolveMapLine) +
-                                    ": map_d '" + excerptForMessage(pending.dissolveMap->file) +
-                                    "' is not the material's map_Kd image; only the map_Kd image's own alpha can cut "
-                                    "out, so it is ignored");
+                mWarnings.push_back(makeWarning(WarningKind::MaskIgnored,
+                                                "material library '" + mPath + "' line " +
+                                                    std::to_string(pending.dissolveMapLine) + ": map_d '" +
+                                                    excerptForMessage(pending.dissolveMap->file) +
+                                                    "' is not the material's map_Kd image; only the map_Kd image's "
+                                                    "own alpha can cut out, so it is ignored",
+                                                mPath, material.name));
             }
         }
         if (!mMaterials.byName.try_emplace(material.name, material).second) {
-            mWarnings.push_back("material library '" + mPath + "' line " + std::to_string(pending.line) +
-                                ": material '" + excerptForMessage(material.name) +
-                                "' is defined again; the first definition is kept");
+            mWarnings.push_back(makeWarning(WarningKind::MaterialRedefined,
+                                            "material library '" + mPath + "' line " + std::to_string(pending.line) +
+                                                ": material '" + excerptForMessage(material.name) +
+                                                "' is defined again; the first definition is kept",
+                                            mPath, material.name));
         }
         mCurrent.reset();
     }
@@ -350,7 +361,7 @@ private:
     const std::string& mPath;
     std::filesystem::path mFolder;
     ObjMaterials& mMaterials;
-    std::vector<std::string>& mWarnings;
+    std::vector<Warning>& mWarnings;
     std::size_t mLine = 0;
     std::optional<PendingMaterial> mCurrent;
 };
@@ -358,7 +369,7 @@ private:
 } // namespace
 
 void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials,
-             std::vector<std::string>& warnings) {
+             std::vector<Warning>& warnings) {
     MtlReader(path, materials, warnings).read(content);
 }
 

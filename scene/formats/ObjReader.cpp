@@ -307,9 +307,11 @@ private:
         // A FIFO or device would block or never end: only regular files are opened.
         if (!std::filesystem::is_regular_file(resolved, error)) {
             if (warnIfMissing) {
-                mWarnings.push_back(shown + ": '" + excerptForMessage(resolved.string()) +
-                                    "' is missing or not a regular file; its materials are drawn in the default "
-                                    "grey");
+                mWarnings.push_back(makeWarning(WarningKind::MaterialLibraryMissing,
+                                                shown + ": '" + excerptForMessage(resolved.string()) +
+                                                    "' is missing or not a regular file; its materials are drawn in "
+                                                    "the default grey",
+                                                resolved.string()));
                 mMissingLibrary = true;
             }
             return false;
@@ -318,7 +320,9 @@ private:
         std::ifstream file(resolved, std::ios::binary);
         if (error || !file) {
             if (warnIfMissing) {
-                mWarnings.push_back(shown + ": cannot read '" + excerptForMessage(resolved.string()) + "'");
+                mWarnings.push_back(makeWarning(WarningKind::MaterialLibraryMissing,
+                                                shown + ": cannot read '" + excerptForMessage(resolved.string()) + "'",
+                                                resolved.string()));
                 mMissingLibrary = true;
             }
             return false;
@@ -368,8 +372,9 @@ private:
             list += " and " + std::to_string(undefinedCount - undefined.size()) + " more";
         }
         const std::string where = !mInputFiles.empty() ? "in its mtllib files" : "(the file has no mtllib)";
-        mWarnings.push_back("usemtl names materials not defined " + where + ": " + list +
-                            "; their faces are drawn in the default grey");
+        mWarnings.push_back(
+            makeWarning(WarningKind::MaterialUndefined, "usemtl names materials not defined " + where + ": " + list +
+                                                            "; their faces are drawn in the default grey"));
     }
 
     /** Three finite coordinates; a fourth (w, or vertex colours after them) is ignored. */
@@ -586,26 +591,34 @@ private:
             scene.meshes.push_back(std::move(mesh));
         }
         if (mUnreadVertexExtras > 0) {
-            scene.warnings.push_back(std::to_string(mUnreadVertexExtras) +
-                                     " 'v' lines have values after x y z that are neither w nor a colour r g b [a] of "
-                                     "finite numbers; ignored (those vertices are white where others are coloured)");
+            scene.warnings.push_back(makeWarning(
+                WarningKind::VertexValuesIgnored,
+                std::to_string(mUnreadVertexExtras) +
+                    " 'v' lines have values after x y z that are neither w nor a colour r g b [a] of finite numbers; "
+                    "ignored (those vertices are white where others are coloured)"));
         }
         if (facesWithoutNormals > 0) {
-            scene.warnings.push_back(std::to_string(facesWithoutNormals) +
-                                     " faces have no normals; all normals recomputed" +
-                                     (groupsWithFaces > 1 ? " in their meshes" : ""));
+            scene.warnings.push_back(
+                makeWarning(WarningKind::NormalsMissing, std::to_string(facesWithoutNormals) +
+                                                             " faces have no normals; all normals recomputed" +
+                                                             (groupsWithFaces > 1 ? " in their meshes" : "")));
         }
         if (facesWithoutTexcoords > 0) {
-            scene.warnings.push_back(std::to_string(facesWithoutTexcoords) +
-                                     " faces have no texture coordinates (vt) in a mesh whose other faces have them; "
-                                     "their corners take (0, 0)");
+            scene.warnings.push_back(makeWarning(WarningKind::TexcoordsMissing,
+                                                 std::to_string(facesWithoutTexcoords) +
+                                                     " faces have no texture coordinates (vt) in a mesh whose other "
+                                                     "faces have them; their corners take (0, 0)"));
         }
         if (mNonFiniteTexcoords > 0) {
-            scene.warnings.push_back(std::to_string(mNonFiniteTexcoords) +
-                                     " texture coordinates (vt) are not finite in float; they read as (0, 0)");
+            scene.warnings.push_back(makeWarning(WarningKind::TexcoordsNonFinite,
+                                                 std::to_string(mNonFiniteTexcoords) +
+                                                     " texture coordinates (vt) are not finite in float; they read as "
+                                                     "(0, 0)"));
         }
         if (mSkippedNonFaces > 0) {
-            scene.warnings.push_back(std::to_string(mSkippedNonFaces) + " line/point elements (l, p) skipped");
+            scene.warnings.push_back(
+                makeWarning(WarningKind::ElementsSkipped,
+                            std::to_string(mSkippedNonFaces) + " line/point elements (l, p) skipped"));
         }
         return scene;
     }
@@ -645,7 +658,7 @@ private:
     std::size_t mLine = 0;
     std::string mMeshName;
     std::vector<std::string> mInputFiles; ///< the mtllib files read
-    std::vector<std::string> mWarnings;
+    std::vector<Warning> mWarnings;
     std::map<std::string, std::size_t> mUsedMaterials; ///< usemtl name -> first line using it
     ObjMaterials mMaterials;                           ///< of every library read
     bool mMissingLibrary = false;

@@ -678,20 +678,25 @@ RawScene readPly(const std::string& path, std::string_view content, MeshBudget& 
         AsciiSource source(body, header.bodyLine);
         BodyReader<false>(path, source, body.size(), budget).read(header, model);
         if (const std::string_view rest = source.token(); !rest.empty()) {
-            scene.warnings.push_back("text after the last element ignored (line " + std::to_string(source.line()) +
-                                     ": '" + excerptForMessage(rest) + "')");
+            scene.warnings.push_back(
+                makeWarning(WarningKind::TrailingDataIgnored, "text after the last element ignored (line " +
+                                                                  std::to_string(source.line()) + ": '" +
+                                                                  excerptForMessage(rest) + "')"));
         }
     } else {
         scene.format = "ply-binary";
         BinarySource source(body, header.encoding == Encoding::BinaryBigEndian);
         BodyReader<true>(path, source, body.size(), budget).read(header, model);
         if (source.remaining() > 0) {
-            scene.warnings.push_back(std::to_string(source.remaining()) + " bytes after the last element ignored");
+            scene.warnings.push_back(
+                makeWarning(WarningKind::TrailingDataIgnored,
+                            std::to_string(source.remaining()) + " bytes after the last element ignored"));
         }
     }
     if (model.nonFiniteColours > 0) {
-        scene.warnings.push_back(std::to_string(model.nonFiniteColours) +
-                                 " vertex colour components are not finite; read as 1");
+        scene.warnings.push_back(
+            makeWarning(WarningKind::ColoursNonFinite, std::to_string(model.nonFiniteColours) +
+                                                           " vertex colour components are not finite; read as 1"));
     }
 
     RawMesh mesh;

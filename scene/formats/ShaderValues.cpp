@@ -7,11 +7,14 @@
 
 namespace inkgraph::detail {
 
-float shaderValue(double value, ShaderRange range, const std::string& what, std::vector<std::string>& warnings) {
+float shaderValue(double value, ShaderRange range, const std::string& what, std::vector<Warning>& warnings,
+                  const std::string& item) {
     if (value >= range.min && value <= range.max) return float(value);
     const double used = value > range.max ? range.max : range.min;
-    warnings.push_back(what + " " + formatNumber(value) + " is outside [" + formatNumber(range.min) + ", " +
-                       formatNumber(range.max) + "]; " + formatNumber(used) + " is used");
+    warnings.push_back(makeWarning(WarningKind::ValueOutOfRange,
+                                   what + " " + formatNumber(value) + " is outside [" + formatNumber(range.min) + ", " +
+                                       formatNumber(range.max) + "]; " + formatNumber(used) + " is used",
+                                   "", item));
     return float(used);
 }
 

@@ -7,6 +7,7 @@
  *  file is the reader's policy (scene/README.md, "Refused or reported input"). Internal to the scene layer. */
 
 #include "scene/Material.h"
+#include "scene/Warning.h"
 
 #include <glm/glm.hpp>
 
@@ -32,8 +33,10 @@ inline constexpr ShaderRange kNonNegativeRange{0.0, kMaxShaderFactor};
 inline constexpr ShaderRange kSignedRange{-kMaxShaderFactor, kMaxShaderFactor};
 
 /** `value` as the float the shaders get: as it is inside `range`; else the nearest end of the range (NaN: the lower
- *  end), and `warnings` gets "<what> <value> is outside [<min>, <max>]; <used> is used". */
-float shaderValue(double value, ShaderRange range, const std::string& what, std::vector<std::string>& warnings);
+ *  end), and `warnings` gets "<what> <value> is outside [<min>, <max>]; <used> is used" (value-out-of-range, about
+ *  `item`). */
+float shaderValue(double value, ShaderRange range, const std::string& what, std::vector<Warning>& warnings,
+                  const std::string& item = "");
 
 /** The largest entry a texture transform may have once its offsets are reduced: texture coordinates in [0, 1] then
  *  stay below 1e4 (2^13.3), where float still resolves 2^-10 of the image, a texel of a 1024-texel one. Beyond it,

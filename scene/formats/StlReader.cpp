@@ -128,7 +128,7 @@ bool equalsIgnoringCase(std::string_view a, std::string_view b) {
  *  first `facet` (some exporters drop the `solid` line). Positions are read in double into `positions` (one per loop
  *  corner); `mesh` gets the triangles. */
 std::optional<AsciiFailure> parseAscii(std::string_view content, bool withoutSolid, RawMesh& mesh,
-                                       std::vector<glm::dvec3>& positions, std::vector<std::string>& warnings,
+                                       std::vector<glm::dvec3>& positions, std::vector<Warning>& warnings,
                                        const MeshBudget& budget) {
     // Text never holds NUL bytes while binary STL nearly always does (zero floats, zero attribute words): this
     // catches a binary file whose header starts with "solid" before its bytes are misread as tokens.
@@ -209,7 +209,8 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, bool withoutSol
     }
     if (state == State::InSolid) {
         if (!withoutSolid) {
-            warnings.push_back("ASCII STL ends without 'endsolid' (truncated?)");
+            warnings.push_back(
+                makeWarning(WarningKind::StlSolidIncomplete, "ASCII STL ends without 'endsolid' (truncated?)"));
         }
     } else if (state != State::OutsideSolid) {
         return failure("unexpected end of file inside a facet");
@@ -254,8 +255,9 @@ RawScene readStl(const std::string& path, std::string_view content, MeshBudget& 
                                     std::to_string(content.size()) + " bytes";
     const auto readBinaryWithTrailingBytes = [&](const std::string& what) {
         RawScene scene = readBinary(path, content, declaredTriangles, budget);
-        scene.warnings.push_back(what + ": " + std::to_string(content.size() - binarySize) +
-                                 " bytes after the last triangle ignored");
+        scene.warnings.push_back(
+            makeWarning(WarningKind::TrailingDataIgnored, what + ": " + std::to_string(content.size() - binarySize) +
+                                                              " bytes after the last triangle ignored"));
         return scene;
     };
 
@@ -279,7 +281,7 @@ RawScene readStl(const std::string& path, std::string_view content, MeshBudget& 
     };
     if (startsWithKeyword(text, "facet", true)) {
         RawScene scene;
-        scene.warnings.push_back("ASCII STL without a 'solid' line");
+        scene.warnings.push_back(makeWarning(WarningKind::StlSolidIncomplete, "ASCII STL without a 'solid' line"));
         if (const std::optional<AsciiFailure> failure = parseAsText(true, scene)) {
             throwLoadErrorAtLine(path, failure->line,
                                  "invalid ASCII STL (it has no 'solid' line): " + failure->problem);

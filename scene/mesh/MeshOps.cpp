@@ -411,9 +411,11 @@ namespace {
 void dropTexturesWithoutCoordinates(RawMesh& raw, LoadReport& report) {
     auto check = [&](TextureRef& texture, const char* role) {
         if (!texture.present() || !raw.texcoords[texture.texCoord == 1 ? 1 : 0].empty()) return;
-        report.warnings.push_back("mesh '" + raw.name + "': its " + role + " reads TEXCOORD_" +
-                                  std::to_string(texture.texCoord) +
-                                  ", which the mesh does not have; drawn without that texture");
+        report.warnings.push_back(makeWarning(WarningKind::TextureCoordinatesMissing,
+                                              "mesh '" + raw.name + "': its " + role + " reads TEXCOORD_" +
+                                                  std::to_string(texture.texCoord) +
+                                                  ", which the mesh does not have; drawn without that texture",
+                                              "", raw.name));
         texture = TextureRef{};
     };
     check(raw.material.baseColorTexture, "base colour texture");

@@ -3,9 +3,10 @@
 // to millions of triangles, a header declaring 60000 x 60000 pixels. Each run's peak resident set (CliRun::peakMib,
 // wait4's figure for that run) is compared with the limit in the Release suite only
 // (AddressSanitizer's shadow memory is not the program's; MemoryBudgetGLTest says the same). Also here: a texture
-// wider than the driver's largest is downscaled with a warning, and a 5000-byte image path gives a message under
-// 2000 bytes.
+// wider than the driver's largest is downscaled with a warning (PreparedStill::warnings holds it too), and a 5000-byte
+// image path gives a message under 2000 bytes.
 #include "CliTestSupport.h"
+#include "render/StillRenderer.h"
 #include "tests/support/PngFixtures.h"
 
 #include <gtest/gtest.h>
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <sstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -308,6 +310,30 @@ TEST_F(DecoderBudget, ATextureWiderThanTheDriverTakesIsDownscaledWithAWarningAnd
     EXPECT_EQ(batch.exitCode, 0) << batch.err;
     EXPECT_TRUE(fs::exists(directory / "out" / "tri.png"));
     EXPECT_TRUE(fs::exists(directory / "out" / "plain.png"));
+}
+
+TEST_F(DecoderBudget, ADownscaledTextureIsAWarningOfTheStill) {
+    // In process: the record a library returns (PreparedStill::warnings), filled when execute() decodes the texture.
+    std::string row(1, '\0');
+    for (int x = 0; x < 17000; ++x) row += std::string("\xff\x80\x00\xff", 4);
+    writeBytes(directory / "strip.png", pngFile(17000, 1, 8, deflatedZeros(row, row.size())));
+    writeTexturedTriangle("strip.png");
+    StillRequest request;
+    request.modelPath = (directory / "tri.obj").string();
+    request.camera.width = 32;
+    request.camera.height = 32;
+    std::ostringstream log;
+    StillRenderer renderer;
+    const std::unique_ptr<PreparedStill> still = renderer.prepare(request, StillLog{log});
+    EXPECT_TRUE(still->warnings.empty()) << ::testing::PrintToString(still->warnings);
+    renderer.execute(*still, StillLog{log});
+    ASSERT_EQ(still->scene().images.size(), 1u);
+    const Warning expected{"texture-downscaled",
+                           "image 0 'strip.png' is 17000x1 pixels, more than the driver's largest texture (16384 a "
+                           "side): downscaled to 16384x1",
+                           still->scene().images[0].path, "image 0 'strip.png'"};
+    EXPECT_EQ(still->warnings, std::vector<Warning>{expected});
+    EXPECT_NE(log.str().find("inkgraph: warning: " + expected.message + "\n"), std::string::npos) << log.str();
 }
 
 TEST_F(DecoderBudget, AFiveThousandByteImagePathGivesAMessageUnderTwoThousandBytes) {

@@ -1,6 +1,6 @@
-// Docs that cannot drift (issue 32): README.md's generated sections are what the code generates now
-// (app/GeneratedDocs.h), and every registered line type, flag, shading model, G-buffer field and dump file is named
-// in the doc that lists it. A failure names the section or the missing name, and the fix.
+// Docs that cannot drift (issue 32): the generated sections of README.md and docs/robustness.md are what the code
+// generates now (app/GeneratedDocs.h), and every registered line type, flag, shading model, G-buffer field and dump
+// file is named in the doc that lists it. A failure names the section or the missing name, and the fix.
 #include "flags/FlagTable.h"
 #include "app/GeneratedDocs.h"
 #include "passes/gbuffer/GBufferPass.h"
@@ -83,16 +83,16 @@ bool namesToken(const std::string& doc, const std::string& name) {
 }
 
 TEST(GeneratedDocs, ReadmeSectionsAreWhatTheCodeGenerates) {
-    const std::string readme = readDoc("README.md");
     for (const std::string& section : generatedDocSections()) {
-        const Region region = regionOf(readme, section);
+        const std::string path = generatedDocPath(section);
+        const Region region = regionOf(readDoc(path), section);
         if (!region.found) {
-            ADD_FAILURE() << "README.md: generated section '" << section << "': " << region.problem;
+            ADD_FAILURE() << path << ": generated section '" << section << "': " << region.problem;
             continue;
         }
         const std::string generated = generatedDocSection(section);
         EXPECT_TRUE(region.text == generated)
-            << "README.md: generated section '" << section << "' differs from what the code generates; run "
+            << path << ": generated section '" << section << "' differs from what the code generates; run "
             << "scripts/update-docs.sh (it rewrites the section from 'inkgraph help --docs " << section << "'). "
             << firstDifference(generated, region.text);
     }

@@ -1,7 +1,7 @@
 // The camera a still reports, checked against what it drew: an off-centre sphere rendered from an --orbit, its dumped
 // linear depth back-projected through the manifest's OpenCV intrinsics K and extrinsics [R|t], lands on the sphere.
 // Needs a GL context (llvmpipe in CI).
-#include "app/ImageFiles.h"
+#include "render/ImageFiles.h"
 #include "CliTestSupport.h"
 
 #include "scene/mesh/Procedural.h"

@@ -53,7 +53,7 @@ TEST_F(SceneShadeMaps, DistinctFilesAreReadOnceAndShared) {
     Scene scene;
     scene.meshes = {meshNaming("Spot", warm), meshNaming("Teapot", cool), meshNaming("Suzanne", warm),
                     meshNaming("Ground", "")};
-    std::vector<std::string> warnings;
+    std::vector<Warning> warnings;
     const std::vector<std::optional<ShadeMap>> maps = readSceneShadeMaps(scene, ShadingModel::Comic, &warnings);
     EXPECT_TRUE(warnings.empty());
     ASSERT_EQ(maps.size(), 4u);
@@ -106,18 +106,21 @@ TEST_F(SceneShadeMaps, ModesWithoutMapsReadNothingAndWarn) {
                     meshNaming("Suzanne", (directory / "b.png").string())};
     for (ShadingModel mode :
          {ShadingModel::None, ShadingModel::Flat, ShadingModel::Gouraud, ShadingModel::Lambert, ShadingModel::Phong}) {
-        std::vector<std::string> warnings;
+        std::vector<Warning> warnings;
         const std::vector<std::optional<ShadeMap>> maps = readSceneShadeMaps(scene, mode, &warnings);
         ASSERT_EQ(maps.size(), 3u);
         for (const std::optional<ShadeMap>& map : maps) EXPECT_FALSE(map);
         EXPECT_EQ(warnings,
-                  std::vector<std::string>{"2 meshes name shade maps, which only --shading cel and comic use"})
+                  std::vector<Warning>{makeWarning(WarningKind::ShadeMapUnused,
+                                                   "2 meshes name shade maps, which only --shading cel and comic use")})
             << traitsOf(mode).name;
     }
-    std::vector<std::string> warnings;
+    std::vector<Warning> warnings;
     scene.meshes.pop_back();
     readSceneShadeMaps(scene, ShadingModel::Phong, &warnings);
-    EXPECT_EQ(warnings, std::vector<std::string>{"1 mesh names a shade map, which only --shading cel and comic use"});
+    EXPECT_EQ(warnings, std::vector<Warning>{makeWarning(WarningKind::ShadeMapUnused,
+                                                         "1 mesh names a shade map, which only --shading cel and "
+                                                         "comic use")});
     // No warnings list: nothing to say it to, still no error.
     EXPECT_EQ(readSceneShadeMaps(scene, ShadingModel::Lambert, nullptr).size(), 2u);
     // Nothing named, nothing said.

@@ -224,7 +224,7 @@ TEST(GltfLoader, MaterialShadeMapSharedByPrimitivesWarnsOnceAboutUnknownKeys) {
     EXPECT_EQ(scene.meshes[0].material.shadeMapPath, expected);
     EXPECT_EQ(scene.meshes[1].material.shadeMapPath, expected);
     ASSERT_EQ(scene.report.warnings.size(), 1u);
-    EXPECT_EQ(scene.report.warnings[0],
+    EXPECT_EQ(scene.report.warnings[0].message,
               "material 0 'Metal': extras.inkgraph key 'shadeMap' ignored (known: 'shademap')");
 }
 
@@ -286,7 +286,7 @@ TEST(GltfLoader, PerspectiveCameraIsRead) {
     EXPECT_DOUBLE_EQ(*scene.camera->aspectRatio, 1.5);
     const bool warnedAboutOrthographic =
         std::any_of(scene.report.warnings.begin(), scene.report.warnings.end(),
-                    [](const std::string& warning) { return warning.find("orthographic") != std::string::npos; });
+                    [](const Warning& warning) { return warning.message.find("orthographic") != std::string::npos; });
     EXPECT_TRUE(warnedAboutOrthographic);
 
     const Camera camera = resolveCamera({}, scene);
@@ -354,7 +354,7 @@ TEST(GltfLoader, NonTrianglePrimitivesBesideTrianglesAreSkippedWithAWarning) {
     const Scene scene = loadScene(file.path());
     EXPECT_EQ(scene.triangleCount(), 1u);
     ASSERT_EQ(scene.report.warnings.size(), 1u);
-    EXPECT_NE(scene.report.warnings[0].find("non-triangle primitive"), std::string::npos);
+    EXPECT_NE(scene.report.warnings[0].message.find("non-triangle primitive"), std::string::npos);
 }
 
 TEST(GltfLoader, TruncatedGlbNamesTheFile) {
@@ -531,8 +531,8 @@ TEST(GltfLoader, InvalidCameraAspectRatioIsIgnoredWithAWarning) {
     ASSERT_TRUE(scene.camera.has_value());
     EXPECT_FALSE(scene.camera->aspectRatio.has_value());
     const bool warned = std::any_of(scene.report.warnings.begin(), scene.report.warnings.end(), [](const auto& w) {
-        return w.find("camera 0 'lens'") != std::string::npos &&
-               w.find("aspectRatio -1.5 ignored") != std::string::npos;
+        return w.message.find("camera 0 'lens'") != std::string::npos &&
+               w.message.find("aspectRatio -1.5 ignored") != std::string::npos;
     });
     EXPECT_TRUE(warned);
 

@@ -337,7 +337,8 @@ TEST(GltfMaterials, ATextureOnACoordinateSetTheMeshLacksIsDroppedWithAWarning) {
     const Scene scene = loadScene(file.path());
     EXPECT_FALSE(scene.meshes.at(0).material.baseColorTexture.present());
     ASSERT_EQ(scene.report.warnings.size(), 1u);
-    EXPECT_NE(scene.report.warnings[0].find("reads TEXCOORD_1, which the mesh does not have"), std::string::npos)
+    EXPECT_NE(scene.report.warnings[0].message.find("reads TEXCOORD_1, which the mesh does not have"),
+              std::string::npos)
         << scene.report.warnings[0];
 }
 
@@ -390,6 +391,25 @@ TEST(GltfMaterials, TextureSourceOutOfRangeIsRefused) {
     EXPECT_NE(message.find("texture 0: image index 2 out of range (file has 2 images)"), std::string::npos) << message;
 }
 
+TEST(GltfMaterials, KtxOnlyTextureIsARecordNamingTheModelTheMaterialAndTheTexture) {
+    // A texture whose only source is KHR_texture_basisu's KTX2 image: nothing the renderer decodes.
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const std::string body =
+        singlePrimitive("\"POSITION\": " + std::to_string(position), ", \"material\": 0") +
+        ", \"materials\": [{\"name\": \"coat\", \"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}}],"
+        " \"textures\": [{\"name\": \"skin\", \"extensions\": {\"KHR_texture_basisu\": {\"source\": 0}}}], \"images\": "
+        "[{\"uri\": \"skin.ktx2\", \"mimeType\": \"image/ktx2\"}], \"extensionsUsed\": [\"KHR_texture_basisu\"]";
+    const TempFile file("basisu.gltf", gltf.gltf(body));
+    const Scene scene = loadScene(file.path());
+    EXPECT_FALSE(scene.meshes.at(0).material.textured());
+    const Warning expected{"texture-without-core-image",
+                           "material 0 'coat' baseColorTexture: texture 0 'skin' has no PNG or JPEG source (it has "
+                           "only 'KHR_texture_basisu'); drawn untextured",
+                           file.path(), "texture 0 'skin'"};
+    EXPECT_EQ(scene.report.warnings, std::vector<Warning>{expected});
+}
+
 TEST(GltfMaterials, TextureWithOnlyAnExtensionImageIsDrawnUntexturedWithAWarning) {
     RawGltf gltf;
     const int position = addTrianglePositions(gltf);
@@ -401,10 +421,10 @@ TEST(GltfMaterials, TextureWithOnlyAnExtensionImageIsDrawnUntexturedWithAWarning
     const Scene scene = loadScene(file.path());
     EXPECT_FALSE(scene.meshes.at(0).material.textured());
     const auto& warnings = scene.report.warnings;
-    EXPECT_TRUE(std::ranges::any_of(warnings, [](const std::string& warning) {
-        return warning.find("texture 0 has no PNG or JPEG source (it has only 'EXT_texture_webp')") !=
+    EXPECT_TRUE(std::ranges::any_of(warnings, [](const Warning& warning) {
+        return warning.message.find("texture 0 has no PNG or JPEG source (it has only 'EXT_texture_webp')") !=
                std::string::npos;
-    })) << (warnings.empty() ? "no warnings" : warnings.front());
+    })) << ::testing::PrintToString(warnings);
 }
 
 /** A unit quad as two non-indexed triangles (6 vertices): corners (0,0) and (1,1) appear in both. `secondUvs` are the

@@ -28,7 +28,7 @@ const std::string kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 bool anyWarningContains(const Scene& scene, const std::string& part) {
-    return std::ranges::any_of(scene.report.warnings, [&](const std::string& w) { return contains(w, part); });
+    return std::ranges::any_of(scene.report.warnings, [&](const Warning& w) { return contains(w.message, part); });
 }
 
 /** One unit right triangle in one mesh on one node, with `primitiveExtra` and `nodeExtra` spliced into the mesh's
@@ -229,7 +229,9 @@ TEST(LoaderInputChecks, AsciiStlWithoutSolidIsReadAsAscii) {
     EXPECT_EQ(scene.report.format, "stl-ascii");
     EXPECT_EQ(scene.triangleCount(), 3u);
     // Without 'solid' there is no 'endsolid' to miss: one warning, not two.
-    EXPECT_EQ(scene.report.warnings, std::vector<std::string>{"ASCII STL without a 'solid' line"});
+    ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.warnings[0].message, "ASCII STL without a 'solid' line");
+    EXPECT_EQ(scene.report.warnings[0].code, "stl-solid-incomplete");
 }
 
 TEST(LoaderInputChecks, TextThatIsNotStlSaysSo) {

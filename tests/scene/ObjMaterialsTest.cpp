@@ -22,7 +22,7 @@ using test::TempFolder;
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 bool anyWarningContains(const Scene& scene, const std::string& part) {
-    return std::ranges::any_of(scene.report.warnings, [&](const std::string& w) { return contains(w, part); });
+    return std::ranges::any_of(scene.report.warnings, [&](const Warning& w) { return contains(w.message, part); });
 }
 
 const Mesh& meshWithMaterial(const Scene& scene, const std::string& materialName) {
@@ -179,6 +179,18 @@ TEST(ObjMaterials, MissingTextureIsAWarningAndTheMaterialKeepsItsColour) {
     EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, library, folder.path("skin.png")}));
 }
 
+TEST(ObjMaterials, MissingTextureIsARecordNamingTheTextureAndTheMaterial) {
+    const TempFolder folder;
+    const std::string library = folder.write("gone.mtl", "newmtl skin\nKd 0.5 0.25 0\nmap_Kd skin.png\n");
+    const std::string model = folder.write("gone.obj", "mtllib gone.mtl\nusemtl skin\n" + kTriangle);
+    const Scene scene = loadScene(model);
+    const Warning expected{"texture-missing",
+                           "material library '" + library + "' line 3: map_Kd 'skin.png': '" + folder.path("skin.png") +
+                               "' is missing or not a regular file; material 'skin' is drawn without it",
+                           folder.path("skin.png"), "skin"};
+    EXPECT_EQ(scene.report.warnings, std::vector<Warning>{expected});
+}
+
 TEST(ObjMaterials, MapDOfTheMapKdImageCutsOutAndAnotherImageIsIgnored) {
     const TempFolder folder;
     folder.write("leaf.png", "png");
@@ -285,7 +297,7 @@ TEST(ObjMaterials, FaceWithoutTextureCoordinatesInATexturedMeshTakesZeroAndWarns
     EXPECT_EQ(mesh.texcoords[0][vertexAt(scene, mesh, {1, 1, 0})], glm::vec2(0.0f, 0.0f));
     EXPECT_EQ(mesh.texcoords[0][vertexAt(scene, mesh, {0, 0, 0})], glm::vec2(0.5f, 0.5f));
     EXPECT_EQ(std::ranges::count_if(scene.report.warnings,
-                                    [](const std::string& w) { return contains(w, "texture coordinates"); }),
+                                    [](const Warning& w) { return contains(w.message, "texture coordinates"); }),
               1);
     EXPECT_TRUE(anyWarningContains(scene, "2 faces have no texture coordinates (vt)"))
         << ::testing::PrintToString(scene.report.warnings);
@@ -345,7 +357,8 @@ TEST(ObjMaterials, VertexValuesThatAreNeitherWNorAColourAreSaidOnce) {
     const std::string model = folder.write("odd.obj", "v 0 0 0 1 0 0 1 1\nv 1 0 0 nan 0 0\nv 0 1 0 0 1 0\nf 1 2 3\n");
     const Scene scene = loadScene(model);
     ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
-    EXPECT_EQ(scene.report.warnings[0].rfind("2 'v' lines have values after x y z", 0), 0u) << scene.report.warnings[0];
+    EXPECT_EQ(scene.report.warnings[0].message.rfind("2 'v' lines have values after x y z", 0), 0u)
+        << scene.report.warnings[0];
     EXPECT_EQ(scene.meshes.at(0).colors.size(), 3u) << "the good colour keeps the others white";
 }
 
@@ -354,7 +367,7 @@ TEST(ObjMaterials, DissolveOutsideZeroToOneIsClampedWithAWarning) {
     folder.write("d.mtl", "newmtl glass\nd -5\n");
     const Scene scene = loadScene(folder.write("d.obj", "mtllib d.mtl\nusemtl glass\n" + kTriangle));
     ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
-    EXPECT_NE(scene.report.warnings[0].find("'d' -5 is outside [0, 1]; 0 is used"), std::string::npos)
+    EXPECT_NE(scene.report.warnings[0].message.find("'d' -5 is outside [0, 1]; 0 is used"), std::string::npos)
         << scene.report.warnings[0];
 }
 

@@ -319,10 +319,10 @@ TEST(PlyReader, UnknownElementsAndPropertiesAreSkipped) {
 TEST(PlyReader, BytesAfterTheLastElementAreAWarning) {
     const Scene binary = loadPly(tetrahedron(Encoding::LittleEndian) + "abc");
     ASSERT_EQ(binary.report.warnings.size(), 1u);
-    EXPECT_EQ(binary.report.warnings[0], "3 bytes after the last element ignored");
+    EXPECT_EQ(binary.report.warnings[0].message, "3 bytes after the last element ignored");
     const Scene ascii = loadPly(tetrahedron(Encoding::Ascii) + "\n\n7 8\n");
     ASSERT_EQ(ascii.report.warnings.size(), 1u);
-    EXPECT_EQ(ascii.report.warnings[0], "text after the last element ignored (line 22: '7')");
+    EXPECT_EQ(ascii.report.warnings[0].message, "text after the last element ignored (line 22: '7')");
 }
 
 TEST(PlyReader, CrLfHeaderLinesAreRead) {
@@ -552,7 +552,7 @@ TEST(PlyReader, AnAnimationIsAWarning) {
     const TempFile file("tetra.ply", tetrahedron(Encoding::BigEndian));
     const Scene scene = loadScene(file.path(), options);
     ASSERT_EQ(scene.report.warnings.size(), 1u);
-    EXPECT_EQ(scene.report.warnings[0], "animation 'walk' ignored: ply-binary files have no animations");
+    EXPECT_EQ(scene.report.warnings[0].message, "animation 'walk' ignored: ply-binary files have no animations");
 }
 
 } // namespace

@@ -122,7 +122,7 @@ TEST(StlLoader, TrailingBytesAfterBinaryTrianglesAreIgnoredWithAWarning) {
     const Scene scene = loadScene(file.path());
     EXPECT_EQ(scene.triangleCount(), 12u);
     ASSERT_EQ(scene.report.warnings.size(), 1u);
-    EXPECT_NE(scene.report.warnings[0].find("16 bytes"), std::string::npos);
+    EXPECT_NE(scene.report.warnings[0].message.find("16 bytes"), std::string::npos);
 }
 
 TEST(StlLoader, TrailingBytesAfterBinaryWithSolidHeaderAreIgnoredLikeAnyBinary) {
@@ -134,7 +134,7 @@ TEST(StlLoader, TrailingBytesAfterBinaryWithSolidHeaderAreIgnoredLikeAnyBinary) 
         EXPECT_EQ(scene.report.format, "stl-binary");
         expectWeldedCube(scene);
         ASSERT_EQ(scene.report.warnings.size(), 1u);
-        EXPECT_NE(scene.report.warnings[0].find("16 bytes after the last triangle ignored"), std::string::npos)
+        EXPECT_NE(scene.report.warnings[0].message.find("16 bytes after the last triangle ignored"), std::string::npos)
             << scene.report.warnings[0];
     }
 }

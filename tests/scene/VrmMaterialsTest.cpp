@@ -59,7 +59,7 @@ const Material& materialNamed(const Scene& scene, const std::string& name) {
 
 std::size_t warningsMentioning(const Scene& scene, const std::string& text) {
     std::size_t count = 0;
-    for (const std::string& warning : scene.report.warnings) count += warning.find(text) != std::string::npos;
+    for (const Warning& warning : scene.report.warnings) count += warning.message.find(text) != std::string::npos;
     return count;
 }
 

@@ -18,7 +18,7 @@
 namespace inkgraph::detail {
 
 struct GltfMaterials::Reader {
-    Reader(const std::string& path, const tinygltf::Model& model, std::vector<std::string>& warnings)
+    Reader(const std::string& path, const tinygltf::Model& model, std::vector<Warning>& warnings)
         : mPath(path), mModel(model), mWarnings(warnings), mMaterialShadeMaps(model.materials.size()),
           mMaterials(model.materials.size()) {}
 
@@ -59,8 +59,10 @@ struct GltfMaterials::Reader {
                 continue;
             }
             // A newer file or a typo ("shadeMap"): the render still works, so say so instead of refusing it.
-            mWarnings.push_back(label + ": extras.inkgraph key '" + excerptForMessage(key) +
-                                "' ignored (known: 'shademap')");
+            mWarnings.push_back(makeWarning(WarningKind::ExtrasKeyIgnored,
+                                            label + ": extras.inkgraph key '" + excerptForMessage(key) +
+                                                "' ignored (known: 'shademap')",
+                                            "", label));
         }
         const auto shadeMap = ours.find("shademap");
         if (shadeMap == ours.end()) {
@@ -87,7 +89,10 @@ struct GltfMaterials::Reader {
         if (value == -1) return fallback;
         for (Enum candidate : allowed)
             if (std::uint32_t(candidate) == std::uint32_t(value)) return candidate;
-        mWarnings.push_back(what + " " + std::to_string(value) + " is not a glTF value; the default is used");
+        mWarnings.push_back(
+            makeWarning(WarningKind::MaterialValueInvalid,
+                        what + " " + std::to_string(value) + " is not a glTF value; the default is used", "",
+                        what.substr(0, what.rfind(' '))));
         return fallback;
     }
 
@@ -166,8 +171,10 @@ struct GltfMaterials::Reader {
             for (const auto& [name, value] : texture.extensions)
                 if (++named <= kMaxNamedExtensions)
                     extensions += (extensions.empty() ? " (it has only '" : "', '") + excerptForMessage(name);
-            mWarnings.push_back(label + ": " + textureName + " has no PNG or JPEG source" +
-                                (extensions.empty() ? "" : extensions + "')") + "; drawn untextured");
+            mWarnings.push_back(makeWarning(WarningKind::TextureWithoutCoreImage,
+                                            label + ": " + textureName + " has no PNG or JPEG source" +
+                                                (extensions.empty() ? "" : extensions + "')") + "; drawn untextured",
+                                            "", textureName));
             return ref;
         }
         if (texture.source < 0 || std::size_t(texture.source) >= mModel.images.size()) {
@@ -196,8 +203,10 @@ struct GltfMaterials::Reader {
                             ", scale " + formatPair(scale) + ")";
         }
         if (texCoord != 0.0 && texCoord != 1.0) {
-            mWarnings.push_back(label + ": texture coordinate set " + formatNumber(texCoord) +
-                                " is not read (only TEXCOORD_0 and TEXCOORD_1); drawn untextured");
+            mWarnings.push_back(makeWarning(WarningKind::TextureCoordinateSetUnsupported,
+                                            label + ": texture coordinate set " + formatNumber(texCoord) +
+                                                " is not read (only TEXCOORD_0 and TEXCOORD_1); drawn untextured",
+                                            "", textureName));
             return ref;
         }
         ref.image = texture.source;
@@ -229,7 +238,7 @@ struct GltfMaterials::Reader {
             }
             return readTextureRef(info, label);
         };
-        std::vector<std::string> warnings;
+        std::vector<Warning> warnings;
         std::optional<MToonMaterial> mtoon = readVrmMaterial(mModel, materialIndex, material, resolveTexture, warnings);
         mWarnings.insert(mWarnings.end(), warnings.begin(), warnings.end());
         return mtoon;
@@ -247,21 +256,23 @@ struct GltfMaterials::Reader {
         // Factors beyond glTF's ranges are clamped with a warning, as viewers draw them (ShaderValues.h).
         const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
         for (std::size_t i = 0; i < 4 && factor.size() == 4; ++i) {
-            result.baseColorFactor[int(i)] =
-                shaderValue(factor[i], kUnitRange, label + " baseColorFactor[" + std::to_string(i) + "]", mWarnings);
+            result.baseColorFactor[int(i)] = shaderValue(
+                factor[i], kUnitRange, label + " baseColorFactor[" + std::to_string(i) + "]", mWarnings, label);
         }
         result.baseColorTexture =
             readTextureRef(source.pbrMetallicRoughness.baseColorTexture, label + " baseColorTexture");
         for (std::size_t i = 0; i < 3 && source.emissiveFactor.size() == 3; ++i) {
-            result.emissiveFactor[int(i)] = shaderValue(
-                source.emissiveFactor[i], kUnitRange, label + " emissiveFactor[" + std::to_string(i) + "]", mWarnings);
+            result.emissiveFactor[int(i)] =
+                shaderValue(source.emissiveFactor[i], kUnitRange, label + " emissiveFactor[" + std::to_string(i) + "]",
+                            mWarnings, label);
         }
         const auto strength = source.extensions.find("KHR_materials_emissive_strength");
         if (strength != source.extensions.end() && strength->second.IsObject()) {
             const std::string where = label + " KHR_materials_emissive_strength";
             const double multiplier = extensionNumber(strength->second, "emissiveStrength", 1.0, where);
             if (multiplier < 0.0) fail(label + ": emissiveStrength " + formatNumber(multiplier) + " is negative");
-            result.emissiveFactor *= shaderValue(multiplier, kNonNegativeRange, where + " emissiveStrength", mWarnings);
+            result.emissiveFactor *=
+                shaderValue(multiplier, kNonNegativeRange, where + " emissiveStrength", mWarnings, label);
         }
         result.emissiveTexture = readTextureRef(source.emissiveTexture, label + " emissiveTexture");
         result.unlit = source.extensions.count("KHR_materials_unlit") > 0;
@@ -270,15 +281,19 @@ struct GltfMaterials::Reader {
         } else if (source.alphaMode == "BLEND") {
             result.alphaMode = AlphaMode::Blend;
         } else if (source.alphaMode != "OPAQUE") {
-            mWarnings.push_back(label + ": alphaMode '" + excerptForMessage(source.alphaMode) +
-                                "' is not OPAQUE, MASK or BLEND; drawn opaque");
+            mWarnings.push_back(makeWarning(WarningKind::MaterialValueInvalid,
+                                            label + ": alphaMode '" + excerptForMessage(source.alphaMode) +
+                                                "' is not OPAQUE, MASK or BLEND; drawn opaque",
+                                            "", label));
         }
         if (std::isfinite(source.alphaCutoff) && source.alphaCutoff >= 0.0) {
             // Above 1 every fragment would be cut out: blank paper.
-            result.alphaCutoff = shaderValue(source.alphaCutoff, kUnitRange, label + " alphaCutoff", mWarnings);
+            result.alphaCutoff = shaderValue(source.alphaCutoff, kUnitRange, label + " alphaCutoff", mWarnings, label);
         } else {
-            mWarnings.push_back(label + ": alphaCutoff " + formatNumber(source.alphaCutoff) +
-                                " is not a number >= 0; 0.5 is used");
+            mWarnings.push_back(makeWarning(WarningKind::MaterialValueInvalid,
+                                            label + ": alphaCutoff " + formatNumber(source.alphaCutoff) +
+                                                " is not a number >= 0; 0.5 is used",
+                                            "", label));
         }
         result.doubleSided = source.doubleSided;
         result.shadeMapPath = materialShadeMap(materialIndex);
@@ -289,12 +304,12 @@ struct GltfMaterials::Reader {
 
     const std::string& mPath;
     const tinygltf::Model& mModel;
-    std::vector<std::string>& mWarnings;
+    std::vector<Warning>& mWarnings;
     std::vector<std::optional<std::string>> mMaterialShadeMaps; ///< per material, once read: its shade map or ""
     std::vector<std::optional<Material>> mMaterials;            ///< per material, once read
 };
 
-GltfMaterials::GltfMaterials(const std::string& path, const tinygltf::Model& model, std::vector<std::string>& warnings)
+GltfMaterials::GltfMaterials(const std::string& path, const tinygltf::Model& model, std::vector<Warning>& warnings)
     : mReader(std::make_unique<Reader>(path, model, warnings)) {}
 
 GltfMaterials::~GltfMaterials() = default;

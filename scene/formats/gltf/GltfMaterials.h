@@ -20,7 +20,7 @@ inline constexpr std::size_t kMaxNamedExtensions = 10;
 class GltfMaterials {
 public:
     /** `warnings` (RawScene::warnings) receives each material's warnings, once. */
-    GltfMaterials(const std::string& path, const tinygltf::Model& model, std::vector<std::string>& warnings);
+    GltfMaterials(const std::string& path, const tinygltf::Model& model, std::vector<Warning>& warnings);
     ~GltfMaterials();
     GltfMaterials(const GltfMaterials&) = delete;
     GltfMaterials& operator=(const GltfMaterials&) = delete;

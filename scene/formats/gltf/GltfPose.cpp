@@ -281,7 +281,7 @@ std::vector<double> sampleCurve(const AnimationCurve& curve, double time) {
 }
 
 void applyAnimation(const std::string& path, const tinygltf::Model& model, std::size_t animationIndex, double time,
-                    std::vector<NodePose>& poses, MeshBudget& budget, std::vector<std::string>& warnings) {
+                    std::vector<NodePose>& poses, MeshBudget& budget, std::vector<Warning>& warnings) {
     const tinygltf::Animation& animation = model.animations[animationIndex];
     const std::string label = animationLabel(model, animationIndex);
     for (std::size_t c = 0; c < animation.channels.size(); ++c) {
@@ -294,7 +294,9 @@ void applyAnimation(const std::string& path, const tinygltf::Model& model, std::
         }
         const std::string& target = channel.target_path;
         if (target != "translation" && target != "rotation" && target != "scale" && target != "weights") {
-            warnings.push_back(channelLabel + ": target path '" + excerptForMessage(target) + "' ignored");
+            warnings.push_back(makeWarning(WarningKind::AnimationChannelIgnored,
+                                           channelLabel + ": target path '" + excerptForMessage(target) + "' ignored",
+                                           "", channelLabel));
             continue;
         }
         if (channel.target_node < 0) {
@@ -307,8 +309,11 @@ void applyAnimation(const std::string& path, const tinygltf::Model& model, std::
         const tinygltf::Node& node = model.nodes[std::size_t(channel.target_node)];
         NodePose& pose = poses[std::size_t(channel.target_node)];
         if (pose.matrix && target != "weights") {
-            warnings.push_back(channelLabel + ": node " + std::to_string(channel.target_node) +
-                               " has a matrix, which glTF does not let an animation target; channel ignored");
+            warnings.push_back(makeWarning(WarningKind::AnimationChannelIgnored,
+                                           channelLabel + ": node " + std::to_string(channel.target_node) +
+                                               " has a matrix, which glTF does not let an animation target; channel "
+                                               "ignored",
+                                           "", channelLabel));
             continue;
         }
         const tinygltf::AnimationSampler& sampler = animation.samplers[std::size_t(channel.sampler)];
@@ -316,8 +321,10 @@ void applyAnimation(const std::string& path, const tinygltf::Model& model, std::
         if (target == "weights") {
             const std::size_t targets = morphTargetCount(model, node);
             if (targets == 0) {
-                warnings.push_back(channelLabel + ": node " + std::to_string(channel.target_node) +
-                                   " has no morph targets; weights channel ignored");
+                warnings.push_back(makeWarning(WarningKind::AnimationChannelIgnored,
+                                               channelLabel + ": node " + std::to_string(channel.target_node) +
+                                                   " has no morph targets; weights channel ignored",
+                                               "", channelLabel));
                 continue;
             }
             pose.weights = sampleCurve(
@@ -337,8 +344,7 @@ void applyAnimation(const std::string& path, const tinygltf::Model& model, std::
 
 void applyMorphTargets(const std::string& path, const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                        const std::vector<double>& weights, std::vector<glm::vec3>& positions,
-                       std::vector<glm::vec3>& normals, const std::string& meshLabel,
-                       std::vector<std::string>& warnings) {
+                       std::vector<glm::vec3>& normals, const std::string& meshLabel, std::vector<Warning>& warnings) {
     bool warnedOtherAttributes = false;
     bool movedNormals = false;
     for (std::size_t t = 0; t < primitive.targets.size() && t < weights.size(); ++t) {
@@ -350,9 +356,11 @@ void applyMorphTargets(const std::string& path, const tinygltf::Model& model, co
             if (!isPosition && !isNormal) {
                 // Tangents are not used; texture coordinate and colour targets would be, but are not applied yet.
                 if (attribute != "TANGENT" && !warnedOtherAttributes) {
-                    warnings.push_back(quoted(meshLabel) + ": morph target " + std::to_string(t) + " moves " +
-                                       excerptForMessage(attribute) +
-                                       ", which is not applied (only POSITION and NORMAL are)");
+                    warnings.push_back(makeWarning(WarningKind::MorphAttributeIgnored,
+                                                   quoted(meshLabel) + ": morph target " + std::to_string(t) +
+                                                       " moves " + excerptForMessage(attribute) +
+                                                       ", which is not applied (only POSITION and NORMAL are)",
+                                                   "", meshLabel));
                     warnedOtherAttributes = true;
                 }
                 continue;

@@ -3,6 +3,8 @@
  *  matrices, morph targets at their weights and skins blended by their joints. Internal to the glTF reader
  *  (scene/formats/gltf/GltfReader.cpp), which bakes the posed positions into world space. */
 
+#include "scene/Warning.h"
+
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -98,7 +100,7 @@ std::vector<double> sampleCurve(const AnimationCurve& curve, double time);
  *  cannot apply (a node given as a matrix, a "pointer" path) are skipped with a
  *  warning; bad accessors and indices throw. */
 void applyAnimation(const std::string& path, const tinygltf::Model& model, std::size_t animationIndex, double time,
-                    std::vector<NodePose>& poses, MeshBudget& budget, std::vector<std::string>& warnings);
+                    std::vector<NodePose>& poses, MeshBudget& budget, std::vector<Warning>& warnings);
 
 /** Adds the morph targets of `primitive` at `weights` to its positions and normals (renormalised), in place. Only
  *  targets of non-zero weight are read, one at a time, each exactly as long as the positions (already charged). Targets
@@ -106,8 +108,7 @@ void applyAnimation(const std::string& path, const tinygltf::Model& model, std::
  * non-zero weight. */
 void applyMorphTargets(const std::string& path, const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                        const std::vector<double>& weights, std::vector<glm::vec3>& positions,
-                       std::vector<glm::vec3>& normals, const std::string& meshLabel,
-                       std::vector<std::string>& warnings);
+                       std::vector<glm::vec3>& normals, const std::string& meshLabel, std::vector<Warning>& warnings);
 
 /** Skin `skinIndex`'s joint matrices: world(joint) * inverseBindMatrix (identity when the skin has none), as
  *  `jointMatrix(joint node, its inverse bind matrix)` composes them (precisely, relative to the scene's origin: the

@@ -365,8 +365,11 @@ private:
         }
         const tinygltf::Camera& camera = mModel.cameras[std::size_t(node.camera)];
         if (camera.type != "perspective") {
-            mOut.warnings.push_back(cameraLabel(node.camera) + " of type '" + excerptForMessage(camera.type) +
-                                    "' ignored (only perspective cameras are used)");
+            mOut.warnings.push_back(makeWarning(WarningKind::CameraIgnored,
+                                                cameraLabel(node.camera) + " of type '" +
+                                                    excerptForMessage(camera.type) +
+                                                    "' ignored (only perspective cameras are used)",
+                                                "", cameraLabel(node.camera)));
             return;
         }
         if (mOut.camera) {
@@ -389,8 +392,9 @@ private:
         if (std::isfinite(aspectRatio) && aspectRatio > 0.0) {
             result.aspectRatio = aspectRatio;
         } else if (aspectRatio != 0.0) {
-            mOut.warnings.push_back(label + ": aspectRatio " + formatNumber(aspectRatio) +
-                                    " ignored (must be finite and > 0)");
+            mOut.warnings.push_back(makeWarning(
+                WarningKind::CameraAspectIgnored,
+                label + ": aspectRatio " + formatNumber(aspectRatio) + " ignored (must be finite and > 0)", "", label));
         }
         if (!std::isfinite(result.eye.x + result.eye.y + result.eye.z) ||
             !std::isfinite(result.forward.x + result.forward.y + result.forward.z) ||
@@ -412,8 +416,11 @@ private:
         }
         const tinygltf::Light& light = mModel.lights[std::size_t(lightIndex)];
         if (light.type != "directional") {
-            mOut.warnings.push_back("KHR_lights_punctual " + excerptForMessage(light.type) + " light '" +
-                                    excerptForMessage(light.name) + "' ignored (only directional lights are used)");
+            mOut.warnings.push_back(makeWarning(WarningKind::LightIgnored,
+                                                "KHR_lights_punctual " + excerptForMessage(light.type) + " light '" +
+                                                    excerptForMessage(light.name) +
+                                                    "' ignored (only directional lights are used)",
+                                                "", "light '" + excerptForMessage(light.name) + "'"));
             return;
         }
         if (mOut.light) {
@@ -458,7 +465,7 @@ private:
         }
         // The colours multiply the surface's in the shaders, with the lighting: 1e38 is a float, its products may not
         // be. Far beyond white, 1e6 draws the same. Reported once, with the first value clamped.
-        std::vector<std::string> clamped;
+        std::vector<Warning> clamped;
         std::size_t clampedCount = 0;
         // Appended, not "'" + name: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
         std::string what = "'";
@@ -467,13 +474,13 @@ private:
             for (int c = 0; c < 4; ++c) {
                 if (colour[c] >= kNonNegativeRange.min && colour[c] <= kNonNegativeRange.max) continue;
                 // Accessor values are finite: the one message is made for the first only.
-                colour[c] = clampedCount++ == 0 ? shaderValue(colour[c], kNonNegativeRange, what, clamped)
+                colour[c] = clampedCount++ == 0 ? shaderValue(colour[c], kNonNegativeRange, what, clamped, name)
                             : colour[c] < 0.0f  ? float(kNonNegativeRange.min)
                                                 : float(kNonNegativeRange.max);
             }
         }
         if (clampedCount > 1)
-            clamped.front() += " (and " + std::to_string(clampedCount - 1) + " more values outside it)";
+            clamped.front().message += " (and " + std::to_string(clampedCount - 1) + " more values outside it)";
         mOut.warnings.insert(mOut.warnings.end(), clamped.begin(), clamped.end());
     }
 
@@ -604,8 +611,10 @@ private:
         const std::size_t n = v.size();
         if (mode == TINYGLTF_MODE_TRIANGLES) {
             if (n % 3 != 0) {
-                mOut.warnings.push_back("'" + excerptForMessage(name) + "': " + std::to_string(n % 3) +
-                                        " trailing indices of an incomplete triangle ignored");
+                mOut.warnings.push_back(makeWarning(WarningKind::IndicesIncomplete,
+                                                    "'" + excerptForMessage(name) + "': " + std::to_string(n % 3) +
+                                                        " trailing indices of an incomplete triangle ignored",
+                                                    "", name));
             }
             triangles.reserve(n / 3);
             for (std::size_t i = 0; i + 2 < n; i += 3) {
@@ -634,13 +643,17 @@ private:
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
             ++mSkippedPrimitives;
-            mOut.warnings.push_back("'" + excerptForMessage(name) + "': non-triangle primitive (mode " +
-                                    std::to_string(mode) + ", " + modeName(mode) + ") skipped");
+            mOut.warnings.push_back(makeWarning(WarningKind::PrimitiveSkipped,
+                                                "'" + excerptForMessage(name) + "': non-triangle primitive (mode " +
+                                                    std::to_string(mode) + ", " + modeName(mode) + ") skipped",
+                                                "", name));
             return;
         }
         const auto positionAttribute = primitive.attributes.find("POSITION");
         if (positionAttribute == primitive.attributes.end()) {
-            mOut.warnings.push_back("'" + excerptForMessage(name) + "': primitive without POSITION skipped");
+            mOut.warnings.push_back(makeWarning(WarningKind::PrimitiveSkipped,
+                                                "'" + excerptForMessage(name) + "': primitive without POSITION skipped",
+                                                "", name));
             return;
         }
 
@@ -822,7 +835,7 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     // tinygltf also reports recoverable problems (e.g. chunk padding) through `error` while still succeeding.
     for (const std::string* messages : {&warning, &error}) {
         for (const std::string& line : splitLines(*messages)) {
-            scene.warnings.push_back("tinygltf: " + shortenWords(line));
+            scene.warnings.push_back(makeWarning(WarningKind::GltfParserMessage, "tinygltf: " + shortenWords(line)));
         }
     }
     scene.inputFiles = std::move(files.opened);

@@ -42,10 +42,13 @@ constexpr ShaderRange kAnyFloat{-double(std::numeric_limits<float>::max()), doub
 class PropertyReader {
 public:
     PropertyReader(const tinygltf::Model& model, std::string label, const VrmTextureResolver& resolveTexture,
-                   std::vector<std::string>& warnings)
+                   std::vector<Warning>& warnings)
         : mModel(model), mLabel(std::move(label)), mResolveTexture(resolveTexture), mWarnings(warnings) {}
 
-    void warn(const std::string& problem) { mWarnings.push_back(mLabel + ": " + problem); }
+    void warn(const std::string& problem) { warn(WarningKind::VrmPropertyInvalid, problem); }
+    void warn(WarningKind kind, const std::string& problem) {
+        mWarnings.push_back(makeWarning(kind, mLabel + ": " + problem, "", mLabel));
+    }
 
     /** The object `object[key]`, or null when absent; another type is reported and read as absent. */
     const tinygltf::Value* object(const tinygltf::Value& object, const std::string& key, const std::string& where) {
@@ -80,9 +83,9 @@ public:
 
     /** `value` through shaderValue(), its warning reported as this material's. */
     float inRange(double value, ShaderRange range, const std::string& what) {
-        std::vector<std::string> problems;
+        std::vector<Warning> problems;
         const float used = shaderValue(value, range, what, problems);
-        for (const std::string& problem : problems) warn(problem);
+        for (const Warning& problem : problems) warn(WarningKind::ValueOutOfRange, problem.message);
         return used;
     }
 
@@ -161,7 +164,8 @@ public:
         // Mesh::texcoords holds TEXCOORD_0 and TEXCOORD_1.
         const float texCoord = number(info, "texCoord", 0.0f, infoWhere);
         if (texCoord != 0.0f && texCoord != 1.0f) {
-            warn(infoWhere + ".texCoord " + formatNumber(texCoord) + " is not 0 or 1 (the sets read); no texture");
+            warn(WarningKind::TextureCoordinateSetUnsupported,
+                 infoWhere + ".texCoord " + formatNumber(texCoord) + " is not 0 or 1 (the sets read); no texture");
             return {};
         }
         const tinygltf::Value* extensions =
@@ -180,7 +184,7 @@ private:
     const tinygltf::Model& mModel;
     std::string mLabel;
     const VrmTextureResolver& mResolveTexture;
-    std::vector<std::string>& mWarnings;
+    std::vector<Warning>& mWarnings;
 };
 
 /** One warning naming the MToon features a material uses that inkgraph does not draw (docs/mtoon.md "Not supported"),
@@ -190,8 +194,8 @@ void warnUndrawn(const std::vector<std::string>& features, PropertyReader& read)
     std::string list;
     for (std::size_t i = 0; i < features.size(); ++i)
         list += (i == 0 ? "" : i + 1 == features.size() ? " and " : ", ") + features[i];
-    read.warn("MToon's " + list + (features.size() == 1 ? " is" : " are") +
-              " not drawn by inkgraph (docs/mtoon.md, \"Not supported\")");
+    read.warn(WarningKind::MToonFeatureNotDrawn, "MToon's " + list + (features.size() == 1 ? " is" : " are") +
+                                                     " not drawn by inkgraph (docs/mtoon.md, \"Not supported\")");
 }
 
 /** Outline widths a file may well hold by mistake (a 0.x width of 1e30 "cm"): a screen width above 5 % of the picture's
@@ -200,12 +204,13 @@ void warnUndrawn(const std::vector<std::string>& features, PropertyReader& read)
 void checkOutlineWidth(MToonMaterial& mtoon, PropertyReader& read) {
     using Mode = MToonMaterial::OutlineWidthMode;
     if (mtoon.outlineWidthMode == Mode::ScreenCoordinates && mtoon.outlineWidthFactor > 0.05f) {
-        read.warn("MToon outline width " + formatNumber(mtoon.outlineWidthFactor) +
-                  " of the screen height is more than 5 %: the outline may cover most of the picture");
+        read.warn(WarningKind::MToonOutlineWidth,
+                  "MToon outline width " + formatNumber(mtoon.outlineWidthFactor) +
+                      " of the screen height is more than 5 %: the outline may cover most of the picture");
     } else if (mtoon.outlineWidthMode == Mode::WorldCoordinates &&
                !(double(mtoon.outlineWidthFactor) <= kMaxModelExtent)) {
-        read.warn("MToon outline width " + formatNumber(mtoon.outlineWidthFactor) +
-                  " model units is more than the renderer can place; no outline");
+        read.warn(WarningKind::MToonOutlineWidth, "MToon outline width " + formatNumber(mtoon.outlineWidthFactor) +
+                                                      " model units is more than the renderer can place; no outline");
         mtoon.outlineWidthMode = Mode::None;
         mtoon.outlineWidthFactor = 0.0f;
     }
@@ -303,7 +308,8 @@ std::optional<glm::dmat3> mainTexTransform(const std::vector<double>& offsetScal
     scaleOnly[2] = glm::dvec3(0.0, 0.0, 1.0);
     std::string problem;
     if (!shaderTextureTransform(scaleOnly, TextureSampler{}, problem)) {
-        read.warn("vectorProperties._MainTex: " + problem + "; the textures are drawn without it");
+        read.warn(WarningKind::TextureTransformDropped,
+                  "vectorProperties._MainTex: " + problem + "; the textures are drawn without it");
         return std::nullopt;
     }
     return transform;
@@ -320,8 +326,8 @@ TextureRef withTransform(TextureRef texture, const std::optional<glm::dmat3>& tr
     if (composed) {
         texture.transform = *composed;
     } else {
-        read.warn("vectorProperties._MainTex on textureProperties." + key + ": " + problem +
-                  "; the texture is drawn without it");
+        read.warn(WarningKind::TextureTransformDropped, "vectorProperties._MainTex on textureProperties." + key + ": " +
+                                                            problem + "; the texture is drawn without it");
     }
     return texture;
 }
@@ -473,8 +479,7 @@ void readUnlit0(const tinygltf::Value& entry, const std::string& shader, Materia
 } // namespace
 
 std::optional<MToonMaterial> readVrmMaterial(const tinygltf::Model& model, int materialIndex, Material& material,
-                                             const VrmTextureResolver& resolveTexture,
-                                             std::vector<std::string>& warnings) {
+                                             const VrmTextureResolver& resolveTexture, std::vector<Warning>& warnings) {
     const tinygltf::Material& gltfMaterial = model.materials[std::size_t(materialIndex)];
     PropertyReader read(model,
                         "material " + std::to_string(materialIndex) +

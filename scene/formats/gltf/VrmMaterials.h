@@ -5,6 +5,7 @@
  *  Internal to the scene layer: only the glTF reader calls it. */
 
 #include "scene/Material.h"
+#include "scene/Warning.h"
 
 #include <functional>
 #include <optional>
@@ -34,8 +35,7 @@ using VrmTextureResolver =
  *  `warnings` (naming the file's material) and its default used; a texture index out of range leaves the texture
  *  out. */
 std::optional<MToonMaterial> readVrmMaterial(const tinygltf::Model& model, int materialIndex, Material& material,
-                                             const VrmTextureResolver& resolveTexture,
-                                             std::vector<std::string>& warnings);
+                                             const VrmTextureResolver& resolveTexture, std::vector<Warning>& warnings);
 
 /** The sRGB transfer function's inverse (IEC 61966-2-1): an sRGB-encoded component in [0, 1] as a linear one. VRM
  *  0.x stores its colours as Unity's gamma-space values. */

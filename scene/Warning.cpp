@@ -1,0 +1,88 @@
+#include "scene/Warning.h"
+
+#include <stdexcept>
+
+namespace inkgraph {
+
+const std::vector<WarningCode>& warningCodes() {
+    using K = WarningKind;
+    // One line of meaning each: docs/robustness.md prints it as is.
+    static const std::vector<WarningCode> kCodes = {
+        {K::TextureMissing, "texture-missing",
+         "a texture file the model names is missing or not a regular file; the material is drawn without it"},
+        {K::TextureWithoutCoreImage, "texture-without-core-image",
+         "a glTF texture has no PNG or JPEG source (only an extension's, e.g. KHR_texture_basisu's KTX2); drawn "
+         "untextured"},
+        {K::TextureCoordinateSetUnsupported, "texture-coordinate-set-unsupported",
+         "a texture reads a coordinate set other than TEXCOORD_0 and TEXCOORD_1; drawn untextured"},
+        {K::TextureCoordinatesMissing, "texture-coordinates-missing",
+         "a mesh's texture reads a TEXCOORD set the mesh does not have; drawn without that texture"},
+        {K::TextureTransformDropped, "texture-transform-dropped",
+         "a VRM _MainTex scale or offset the shaders' float cannot follow; the textures are drawn without it"},
+        {K::TextureDownscaled, "texture-downscaled",
+         "an image larger than the driver's largest texture; downscaled to fit"},
+        {K::MaskIgnored, "mask-ignored", "an MTL map_d that is not the map_Kd image; ignored"},
+        {K::ValueOutOfRange, "value-out-of-range", "a material or colour value outside its range; clamped into it"},
+        {K::MaterialValueInvalid, "material-value-invalid",
+         "a glTF alpha mode, alpha cutoff or sampler value the specification does not define; the default is used"},
+        {K::ExtrasKeyIgnored, "extras-key-ignored", "a key of a material's extras.inkgraph other than 'shademap'"},
+        {K::VrmPropertyInvalid, "vrm-property-invalid",
+         "a VRM material property of the wrong type or value; its default is used or it is ignored"},
+        {K::MToonFeatureNotDrawn, "mtoon-feature-not-drawn", "MToon features the material uses that are not drawn"},
+        {K::MToonOutlineWidth, "mtoon-outline-width",
+         "an MToon outline width that covers most of the picture, or too large to place (no outline)"},
+        {K::MaterialLibraryMissing, "material-library-missing",
+         "an OBJ mtllib that is missing or cannot be read; its materials are drawn in the default grey"},
+        {K::MaterialStatementIgnored, "material-statement-ignored", "an MTL statement that cannot be read; ignored"},
+        {K::MaterialRedefined, "material-redefined", "an MTL material defined again; the first definition is kept"},
+        {K::MaterialUndefined, "material-undefined",
+         "OBJ usemtl names materials no library defines; their faces are drawn in the default grey"},
+        {K::PrimitiveSkipped, "primitive-skipped", "a glTF primitive of points or lines, or without POSITION; skipped"},
+        {K::IndicesIncomplete, "indices-incomplete", "trailing indices of an incomplete triangle; ignored"},
+        {K::MeshDegenerate, "mesh-degenerate", "a mesh whose triangles are all degenerate; skipped"},
+        {K::VertexValuesIgnored, "vertex-values-ignored",
+         "OBJ 'v' lines with values after x y z that are neither w nor a colour; ignored"},
+        {K::NormalsMissing, "normals-missing", "OBJ faces without normals; the normals are recomputed"},
+        {K::TexcoordsMissing, "texcoords-missing",
+         "OBJ faces without texture coordinates in a mesh whose other faces have them; their corners take (0, 0)"},
+        {K::TexcoordsNonFinite, "texcoords-non-finite", "texture coordinates not finite in float; read as (0, 0)"},
+        {K::ColoursNonFinite, "colours-non-finite", "vertex colour components not finite; read as 1"},
+        {K::ElementsSkipped, "elements-skipped", "OBJ line and point elements (l, p); skipped"},
+        {K::TrailingDataIgnored, "trailing-data-ignored", "bytes or text after a PLY's or STL's last element; ignored"},
+        {K::StlSolidIncomplete, "stl-solid-incomplete", "an ASCII STL without its 'solid' or 'endsolid' line"},
+        {K::CameraIgnored, "camera-ignored", "a glTF camera that is not perspective; ignored"},
+        {K::CameraAspectIgnored, "camera-aspect-ignored", "a glTF camera's aspectRatio that is not finite and > 0"},
+        {K::LightIgnored, "light-ignored", "a KHR_lights_punctual light that is not directional; ignored"},
+        {K::AnimationIgnored, "animation-ignored", "an animation asked of a format that has none"},
+        {K::AnimationChannelIgnored, "animation-channel-ignored",
+         "a glTF animation channel that cannot be applied (its path, a node with a matrix or without morph targets)"},
+        {K::MorphAttributeIgnored, "morph-attribute-ignored",
+         "a morph target moves an attribute other than POSITION and NORMAL, which is not applied"},
+        {K::GltfParserMessage, "gltf-parser-message", "what tinygltf reported about a file it still read"},
+        {K::ShadeMapUnused, "shade-map-unused", "meshes name shade maps, which the --shading model does not use"},
+        {K::ModelOutsideView, "model-outside-view", "the camera sees none of the model: the picture is blank paper"},
+    };
+    return kCodes;
+}
+
+std::string_view warningCode(WarningKind kind) {
+    const std::vector<WarningCode>& codes = warningCodes();
+    const auto index = std::size_t(kind);
+    // The table is in WarningKind's order (WarningTest checks); a kind past it is a missing row.
+    if (index >= codes.size() || codes[index].kind != kind)
+        throw std::logic_error("warningCode(): kind " + std::to_string(index) + " has no row in warningCodes()");
+    return codes[index].code;
+}
+
+Warning makeWarning(WarningKind kind, std::string message, std::string file, std::string item) {
+    return {std::string(warningCode(kind)), std::move(message), std::move(file), std::move(item)};
+}
+
+std::ostream& operator<<(std::ostream& out, const Warning& warning) {
+    out << "[" << warning.code << "] " << warning.message;
+    if (!warning.file.empty() || !warning.item.empty())
+        out << " (file '" << warning.file << "', item '" << warning.item << "')";
+    return out;
+}
+
+} // namespace inkgraph
