@@ -58,16 +58,6 @@ std::string readWholeFile(const std::string& path, detail::MeshBudget& budget) {
     return content;
 }
 
-void checkLoadOptions(const LoadOptions& options) {
-    if (!std::isfinite(options.weldTolerance) || options.weldTolerance < 0.0) {
-        throw std::invalid_argument("loadScene(): weldTolerance must be finite and >= 0, got " +
-                                    std::to_string(options.weldTolerance));
-    }
-    if (!std::isfinite(options.time) || options.time < 0.0) {
-        throw std::invalid_argument("loadScene(): time must be finite and >= 0, got " + std::to_string(options.time));
-    }
-}
-
 detail::RawScene readContent(const std::string& path, std::string_view content, detail::MeshBudget& budget,
                              const LoadOptions& options) {
     const detail::FormatReader& reader = readerFor(path);
@@ -82,9 +72,26 @@ detail::RawScene readContent(const std::string& path, std::string_view content, 
     return raw;
 }
 
+} // namespace
+
+namespace detail {
+
+void checkLoadOptions(const LoadOptions& options, std::string_view function) {
+    if (!std::isfinite(options.weldTolerance) || options.weldTolerance < 0.0) {
+        throw std::invalid_argument(std::string(function) + ": weldTolerance must be finite and >= 0, got " +
+                                    std::to_string(options.weldTolerance));
+    }
+    if (!std::isfinite(options.time) || options.time < 0.0) {
+        throw std::invalid_argument(std::string(function) + ": time must be finite and >= 0, got " +
+                                    std::to_string(options.time));
+    }
+}
+
+namespace {
+
 /** Moves every raw position (relative to the reader's origin) to be relative to the model's bounding-box centre, in
  *  double before rounding, and sets scene.origin; refuses a model too large or too small for float rendering. */
-void recentre(const std::string& path, detail::RawScene& raw, Scene& scene) {
+void recentre(const std::string& path, RawScene& raw, Scene& scene, std::string_view function) {
     // Zero extent is a model whose triangles are all degenerate, reported as such by finalizeScene().
     BoundingBox modelBox;
     for (const RawMesh& mesh : raw.meshes) {
@@ -96,7 +103,7 @@ void recentre(const std::string& path, detail::RawScene& raw, Scene& scene) {
         scene.origin = raw.origin; // what the camera's eye is relative to
         return;
     }
-    detail::checkModelExtent(path, modelBox.diagonal());
+    checkModelExtent(path, modelBox.diagonal(), function);
     const glm::dvec3 centre = modelBox.center();
     scene.origin = raw.origin + centre;
     for (RawMesh& mesh : raw.meshes) {
@@ -109,7 +116,9 @@ void recentre(const std::string& path, detail::RawScene& raw, Scene& scene) {
     }
 }
 
-Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOptions& options) {
+} // namespace
+
+Scene finalizeScene(const std::string& path, RawScene raw, const LoadOptions& options, std::string_view function) {
     Scene scene;
     scene.camera = raw.camera;
     scene.light = raw.light;
@@ -118,7 +127,7 @@ Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOpt
     scene.report.format = raw.format;
     scene.report.warnings = std::move(raw.warnings);
     scene.report.inputFiles = std::move(raw.inputFiles);
-    recentre(path, raw, scene);
+    recentre(path, raw, scene, function);
 
     // One model size for every mesh, so the weld and degenerate thresholds follow the file's units, not each part's.
     BoundingBox modelBox;
@@ -137,7 +146,7 @@ Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOpt
             scene.meshes.push_back(std::move(mesh));
         } else if (trianglesBefore > 0) {
             scene.report.warnings.push_back(makeWarning(WarningKind::MeshDegenerate,
-                                                        "mesh '" + detail::excerptForMessage(name) + "': all " +
+                                                        "mesh '" + excerptForMessage(name) + "': all " +
                                                             std::to_string(trianglesBefore) +
                                                             " triangles are degenerate; mesh skipped",
                                                         "", name));
@@ -145,10 +154,11 @@ Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOpt
     }
     if (scene.meshes.empty()) {
         if (scene.report.trianglesRead == 0) {
-            detail::throwLoadError(path, "no triangles in the file");
+            throwLoadError(path, "no triangles in the file", function);
         }
-        detail::throwLoadError(path, "no triangles left: all " + std::to_string(scene.report.trianglesRead) +
-                                         " triangles are degenerate");
+        throwLoadError(
+            path, "no triangles left: all " + std::to_string(scene.report.trianglesRead) + " triangles are degenerate",
+            function);
     }
     // A warning about the model as a whole names the model's file; a reader names another (a texture, a library).
     for (Warning& warning : scene.report.warnings)
@@ -156,7 +166,7 @@ Scene finalizeScene(const std::string& path, detail::RawScene raw, const LoadOpt
     return scene;
 }
 
-} // namespace
+} // namespace detail
 
 std::size_t Scene::triangleCount() const {
     std::size_t count = 0;
@@ -175,19 +185,19 @@ std::size_t Scene::vertexCount() const {
 }
 
 Scene loadScene(const std::string& path, const LoadOptions& options) {
-    checkLoadOptions(options);
+    detail::checkLoadOptions(options);
     readerFor(path); // an unsupported extension is named before the file is looked at
     requireRegularFile(path);
     detail::MeshBudget budget(path, options.memoryLimitBytes);
     const std::string content = readWholeFile(path, budget);
-    return finalizeScene(path, readContent(path, content, budget, options), options);
+    return detail::finalizeScene(path, readContent(path, content, budget, options), options);
 }
 
 Scene loadSceneFromMemory(const std::string& path, std::string_view content, const LoadOptions& options) {
-    checkLoadOptions(options);
+    detail::checkLoadOptions(options);
     detail::MeshBudget budget(path, options.memoryLimitBytes);
     budget.chargeFile(content.size());
-    return finalizeScene(path, readContent(path, content, budget, options), options);
+    return detail::finalizeScene(path, readContent(path, content, budget, options), options);
 }
 
 std::vector<std::string> referencedFiles(const std::string& path) {

@@ -71,7 +71,8 @@ struct DirectionalLight {
 
 /** What the loader did, for --stats and the manifest. */
 struct LoadReport {
-    std::string format;                ///< "obj", "stl-binary", "stl-ascii", "ply-ascii", "ply-binary", "gltf", "glb"
+    /** "obj", "stl-binary", "stl-ascii", "ply-ascii", "ply-binary", "gltf", "glb"; "arrays" for sceneFromArrays() */
+    std::string format;
     std::size_t trianglesRead = 0;     ///< after triangulating polygons, strips and fans
     std::size_t degenerateDropped = 0; ///< zero-area or repeated-index triangles removed
     std::size_t verticesBeforeWeld = 0;

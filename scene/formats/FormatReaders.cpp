@@ -12,27 +12,32 @@ namespace inkgraph {
 
 namespace detail {
 
-void checkModelExtent(const std::string& path, double extent) {
+void checkModelExtent(const std::string& path, double extent, std::string_view function) {
     if (!(extent <= kMaxModelExtent)) {
-        throwLoadError(path, "the model is " + formatExtent(extent) +
-                                 " units across (bounding-box diagonal), above the " + formatExtent(kMaxModelExtent) +
-                                 " the renderer can hold (float relative to the model's centre); "
-                                 "check the units or the node scales");
+        throwLoadError(path,
+                       "the model is " + formatExtent(extent) + " units across (bounding-box diagonal), above the " +
+                           formatExtent(kMaxModelExtent) +
+                           " the renderer can hold (float relative to the model's centre); "
+                           "check the units or the node scales",
+                       function);
     }
     if (extent > 0.0 && extent < kMinModelExtent) {
-        throwLoadError(path, "the model is " + formatExtent(extent) +
-                                 " units across (bounding-box diagonal), below the " + formatExtent(kMinModelExtent) +
-                                 " the renderer can resolve; check the units or the node scales");
+        throwLoadError(path,
+                       "the model is " + formatExtent(extent) + " units across (bounding-box diagonal), below the " +
+                           formatExtent(kMinModelExtent) +
+                           " the renderer can resolve; check the units or the node scales",
+                       function);
     }
 }
 
-glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> world, std::vector<glm::vec3>& stored) {
+glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> world, std::vector<glm::vec3>& stored,
+                          std::string_view function) {
     BoundingBox box;
     for (const glm::dvec3& p : world) {
         box.add(p);
     }
     const double extent = box.diagonal();
-    checkModelExtent(path, extent);
+    checkModelExtent(path, extent, function);
     const glm::dvec3 centre = box.empty() ? glm::dvec3(0.0) : box.center();
     const glm::dvec3 distance = glm::abs(centre);
     const glm::dvec3 origin = std::max({distance.x, distance.y, distance.z}) <= extent ? glm::dvec3(0.0) : centre;
@@ -43,8 +48,8 @@ glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> w
     return origin;
 }
 
-void throwLoadError(const std::string& path, std::string_view problem) {
-    throw SceneError("loadScene(): '" + path + "': " + std::string(problem));
+void throwLoadError(const std::string& path, std::string_view problem, std::string_view function) {
+    throw SceneError(std::string(function) + ": '" + path + "': " + std::string(problem));
 }
 
 void throwLoadErrorAtLine(const std::string& path, std::size_t line, std::string_view problem) {
@@ -66,26 +71,32 @@ std::size_t MeshBudget::estimate(std::size_t vertices, std::size_t triangles) co
 void MeshBudget::chargeFile(std::size_t bytes) {
     mFileBytes = mFileBytes > SIZE_MAX - bytes ? SIZE_MAX : mFileBytes + bytes;
     if (estimate(0, 0) > mLimitBytes)
-        throwLoadError(mPath, "the file is " + std::to_string(bytes >> 20) + " MiB; the load would hold about " +
-                                  std::to_string(estimate(0, 0) >> 20) + " MiB, above the memory limit of " +
-                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
+        throwLoadError(mPath,
+                       "the file is " + std::to_string(bytes >> 20) + " MiB; the load would hold about " +
+                           std::to_string(estimate(0, 0) >> 20) + " MiB, above the memory limit of " +
+                           std::to_string(mLimitBytes >> 20) + " MiB (" + mLimitName + ")",
+                       mFunction);
 }
 
 void MeshBudget::chargeBytes(std::size_t bytes) {
     mOtherBytes = mOtherBytes > SIZE_MAX - bytes ? SIZE_MAX : mOtherBytes + bytes;
     if (estimate(0, 0) > mLimitBytes)
-        throwLoadError(mPath, "the load would hold about " + std::to_string(estimate(0, 0) >> 20) +
-                                  " MiB (with the meshes' node paths), above the memory limit of " +
-                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
+        throwLoadError(mPath,
+                       "the load would hold about " + std::to_string(estimate(0, 0) >> 20) +
+                           " MiB (with the meshes' node paths), above the memory limit of " +
+                           std::to_string(mLimitBytes >> 20) + " MiB (" + mLimitName + ")",
+                       mFunction);
 }
 
 void MeshBudget::check(std::size_t vertices, std::size_t triangles) const {
     const std::size_t bytes = estimate(vertices, triangles);
     if (bytes > mLimitBytes)
-        throwLoadError(mPath, "the mesh would need about " + std::to_string(bytes >> 20) + " MiB (" +
-                                  std::to_string(mVertices + vertices) + " vertices, " +
-                                  std::to_string(mTriangles + triangles) + " triangles), above the memory limit of " +
-                                  std::to_string(mLimitBytes >> 20) + " MiB (--memory-limit)");
+        throwLoadError(mPath,
+                       "the mesh would need about " + std::to_string(bytes >> 20) + " MiB (" +
+                           std::to_string(mVertices + vertices) + " vertices, " +
+                           std::to_string(mTriangles + triangles) + " triangles), above the memory limit of " +
+                           std::to_string(mLimitBytes >> 20) + " MiB (" + mLimitName + ")",
+                       mFunction);
 }
 
 void MeshBudget::charge(std::size_t vertices, std::size_t triangles) {

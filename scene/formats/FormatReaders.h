@@ -1,6 +1,8 @@
 #pragma once
 /** @file The per-format readers behind loadScene() and the error helpers they share. Internal to the scene layer:
- *  readers produce raw (unwelded) meshes; loadScene() cleans them up with finalizeMesh(). */
+ *  readers produce raw (unwelded) meshes; loadScene() cleans them up with finalizeScene(). sceneFromArrays()
+ *  (scene/MeshArrays.h) builds its raw mesh from memory and shares the rest; it passes its own name as `function`, the
+ *  name every message of these helpers starts with. */
 
 #include "scene/MessageText.h"
 #include "scene/Scene.h"
@@ -40,7 +42,10 @@ public:
     static constexpr std::size_t kBytesPerVertex = 96;
     static constexpr std::size_t kBytesPerTriangle = 64;
 
-    MeshBudget(const std::string& path, std::size_t limitBytes) : mPath(path), mLimitBytes(limitBytes) {}
+    /** `function` starts the messages, `limitName` says where the limit is set. */
+    MeshBudget(const std::string& path, std::size_t limitBytes, std::string_view function = "loadScene()",
+               std::string_view limitName = "--memory-limit")
+        : mPath(path), mLimitBytes(limitBytes), mFunction(function), mLimitName(limitName) {}
 
     /** A file's bytes, held in memory while it is read (called once per file: glTF's external buffers add theirs).
      *  Throws SceneError naming the file above the limit. */
@@ -60,6 +65,8 @@ private:
 
     std::string mPath;
     std::size_t mLimitBytes;
+    std::string mFunction;
+    std::string mLimitName;
     std::size_t mFileBytes = 0;
     std::size_t mOtherBytes = 0; ///< chargeBytes()
     std::size_t mVertices = 0;
@@ -68,17 +75,28 @@ private:
 
 /** Throws SceneError naming the file when a model's extent (bounding-box diagonal) lies outside [kMinModelExtent,
  *  kMaxModelExtent]; zero passes (a model of degenerate triangles is reported as such later). */
-void checkModelExtent(const std::string& path, double extent);
+void checkModelExtent(const std::string& path, double extent, std::string_view function = "loadScene()");
 
 /** Float positions for coordinates read in double: rounded directly (origin 0) when the model is about as large as
  *  its distance from the world origin, where that loses nothing and keeps every float the file wrote exact (scaling
  *  such a model by a power of two scales its stored positions exactly); otherwise relative to the bounding-box centre,
  *  the difference taken in double, so a model 1e7 units out keeps its detail. Returns the origin they are relative
  *  to. Throws (checkModelExtent()) for a model too large to render. */
-glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> world, std::vector<glm::vec3>& stored);
+glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> world, std::vector<glm::vec3>& stored,
+                          std::string_view function = "loadScene()");
 
-/** Throws SceneError("loadScene(): '<path>': <problem>"). */
-[[noreturn]] void throwLoadError(const std::string& path, std::string_view problem);
+/** Throws SceneError("<function>: '<path>': <problem>"). */
+[[noreturn]] void throwLoadError(const std::string& path, std::string_view problem,
+                                 std::string_view function = "loadScene()");
+
+/** Throws std::invalid_argument("<function>: ...") for a weld tolerance or a time that is not finite and >= 0. */
+void checkLoadOptions(const LoadOptions& options, std::string_view function = "loadScene()");
+
+/** What a reader found made into the Scene every load returns: re-centred on the model's bounding-box centre
+ *  (Scene::origin; checkModelExtent()), each mesh cleaned up by finalizeMesh() against the whole model's size, meshes
+ *  left without triangles skipped with a warning. Throws SceneError naming `path` when no triangle is left. */
+Scene finalizeScene(const std::string& path, RawScene raw, const LoadOptions& options,
+                    std::string_view function = "loadScene()");
 
 /** Throws SceneError("loadScene(): '<path>' line <line>: <problem>"). */
 [[noreturn]] void throwLoadErrorAtLine(const std::string& path, std::size_t line, std::string_view problem);

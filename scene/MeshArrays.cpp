@@ -1,0 +1,195 @@
+/** @file sceneFromArrays(): the arrays checked with the file readers' limits, then turned into the raw mesh the OBJ
+ *  reader makes of the same `v`, `vn`, `vt` and `f` lines, and finished by the readers' own finalizeScene(). */
+
+#include "scene/MeshArrays.h"
+
+#include "scene/formats/FormatReaders.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+namespace inkgraph {
+
+namespace {
+
+constexpr std::string_view kFunction = "sceneFromArrays()";
+
+/** The first-use numbering's mark for a vertex no triangle has used yet. */
+constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
+
+class ArraysReader {
+public:
+    ArraysReader(const MeshArrays& arrays, const LoadOptions& options)
+        : mArrays(arrays), mName(detail::excerptForMessage(arrays.name.empty() ? "arrays" : arrays.name)),
+          mBudget(mName, options.memoryLimitBytes, kFunction, "LoadOptions::memoryLimitBytes") {}
+
+    detail::RawScene read() {
+        checkCounts();
+        // Charged like a file's vertices and triangles, before any copy is made.
+        mBudget.charge(mArrays.vertexCount, mArrays.triangleCount);
+        checkIndices();
+        checkFinite(mArrays.positions, "xyz", "positions");
+        checkFinite(mArrays.normals, "xyz", "normals");
+        checkFinite(mArrays.uvs, "uv", "uvs");
+        checkFinite(mArrays.colors, std::string_view("rgba").substr(0, std::size_t(mArrays.colorChannels)), "colors");
+        return buildScene();
+    }
+
+    /** The mesh's name as messages quote it. */
+    const std::string& name() const { return mName; }
+
+private:
+    [[noreturn]] void fail(const std::string& problem) const { detail::throwLoadError(mName, problem, kFunction); }
+
+    void checkCounts() const {
+        if (mArrays.positions == nullptr && mArrays.vertexCount > 0) {
+            fail("positions is null but vertexCount is " + std::to_string(mArrays.vertexCount));
+        }
+        if (mArrays.triangles == nullptr && mArrays.triangleCount > 0) {
+            fail("triangles is null but triangleCount is " + std::to_string(mArrays.triangleCount));
+        }
+        if (mArrays.triangleCount == 0) {
+            fail("no triangles: triangleCount is 0");
+        }
+        // Mesh indices are 32-bit, and the weld keeps the largest value as its "no vertex" mark (as OBJ's reader
+        // refuses an index beyond it).
+        if (mArrays.vertexCount > std::numeric_limits<std::uint32_t>::max()) {
+            fail("vertexCount " + std::to_string(mArrays.vertexCount) + " is more than the " +
+                 std::to_string(std::numeric_limits<std::uint32_t>::max()) + " vertices 32-bit indices reach");
+        }
+        if (mArrays.triangleCount > std::numeric_limits<std::size_t>::max() / (3 * sizeof(std::uint32_t))) {
+            fail("triangleCount " + std::to_string(mArrays.triangleCount) +
+                 " overflows: its 3 indices a triangle would need more bytes than memory can address");
+        }
+        if (mArrays.colors != nullptr && mArrays.colorChannels != 3 && mArrays.colorChannels != 4) {
+            fail("colorChannels is " + std::to_string(mArrays.colorChannels) +
+                 "; colors need 3 (RGB) or 4 (RGBA) values per vertex");
+        }
+    }
+
+    void checkIndices() const {
+        for (std::size_t t = 0; t < mArrays.triangleCount; ++t) {
+            for (std::size_t corner = 0; corner < 3; ++corner) {
+                const std::uint32_t index = mArrays.triangles[3 * t + corner];
+                if (index >= mArrays.vertexCount) {
+                    fail("triangle " + std::to_string(t) + ": vertex index " + std::to_string(index) +
+                         " out of range (positions has " + std::to_string(mArrays.vertexCount) + " vertices)");
+                }
+            }
+        }
+    }
+
+    /** Every value of an optional per-vertex array finite (`components` names a row's values): a NaN or infinity
+     *  would reach the renderer's buffers. */
+    void checkFinite(const float* values, std::string_view components, std::string_view array) const {
+        if (values == nullptr) {
+            return;
+        }
+        const std::size_t perVertex = components.size();
+        for (std::size_t vertex = 0; vertex < mArrays.vertexCount; ++vertex) {
+            for (std::size_t i = 0; i < perVertex; ++i) {
+                const float value = values[perVertex * vertex + i];
+                if (!std::isfinite(value)) {
+                    fail(std::string(array) + ": vertex " + std::to_string(vertex) + ": " + components[i] +
+                         " is not finite (" + detail::formatNumber(value) + ")");
+                }
+            }
+        }
+    }
+
+    glm::vec4 colour(std::size_t vertex) const {
+        // As OBJ's `v x y z r g b [a]`: clamped to [0, 1], alpha 1 when not given.
+        glm::vec4 colour(1.0f);
+        const std::size_t channels = std::size_t(mArrays.colorChannels);
+        for (std::size_t i = 0; i < channels; ++i) {
+            colour[int(i)] = std::clamp(mArrays.colors[channels * vertex + i], 0.0f, 1.0f);
+        }
+        return colour;
+    }
+
+    /** The OBJ reader's raw scene for the same lines (ObjReader.cpp buildScene()). */
+    detail::RawScene buildScene() const {
+        detail::RawScene scene;
+        scene.format = "arrays";
+        std::vector<glm::vec3> positions;
+        {
+            // In double, as OBJ reads its `v` lines, so storeNearModel() places the model as it places the file's.
+            std::vector<glm::dvec3> world(mArrays.vertexCount);
+            for (std::size_t v = 0; v < mArrays.vertexCount; ++v) {
+                world[v] =
+                    glm::dvec3(mArrays.positions[3 * v], mArrays.positions[3 * v + 1], mArrays.positions[3 * v + 2]);
+            }
+            scene.origin = detail::storeNearModel(mName, world, positions, kFunction);
+        }
+        RawMesh mesh;
+        mesh.name = mArrays.name.empty() ? "arrays" : mArrays.name;
+        if (!mArrays.name.empty()) mesh.nodePath = {mArrays.name};
+        if (mArrays.colors != nullptr) {
+            // The base colour multiplies the vertex colours (glTF's rule): white shows them as given.
+            mesh.material.baseColorFactor = glm::vec4(1.0f);
+        }
+        mesh.triangles.resize(mArrays.triangleCount);
+        if (mArrays.normals == nullptr && mArrays.uvs == nullptr) {
+            // OBJ with positions (and colours) alone: every vertex as it is, in its order; finalizeMesh() drops the
+            // ones no triangle uses.
+            mesh.positions = std::move(positions);
+            if (mArrays.colors != nullptr) {
+                mesh.colors.resize(mArrays.vertexCount);
+                for (std::size_t v = 0; v < mArrays.vertexCount; ++v) mesh.colors[v] = colour(v);
+            }
+            for (std::size_t t = 0; t < mArrays.triangleCount; ++t) {
+                mesh.triangles[t] =
+                    glm::uvec3(mArrays.triangles[3 * t], mArrays.triangles[3 * t + 1], mArrays.triangles[3 * t + 2]);
+            }
+        } else {
+            // OBJ with `vn` or `vt`: one vertex per distinct corner, numbered in the order the faces first use them.
+            // Each array's row is its vertex's, so a corner is its position index.
+            std::vector<std::uint32_t> vertexOf(mArrays.vertexCount, kUnused);
+            for (std::size_t c = 0; c < 3 * mArrays.triangleCount; ++c) {
+                const std::uint32_t input = mArrays.triangles[c];
+                if (vertexOf[input] == kUnused) {
+                    vertexOf[input] = std::uint32_t(mesh.positions.size());
+                    mesh.positions.push_back(positions[input]);
+                    if (mArrays.normals != nullptr) {
+                        const float* normal = mArrays.normals + 3 * std::size_t(input);
+                        mesh.normals.emplace_back(normal[0], normal[1], normal[2]);
+                    }
+                    if (mArrays.uvs != nullptr) {
+                        const float* uv = mArrays.uvs + 2 * std::size_t(input);
+                        mesh.texcoords[0].emplace_back(uv[0], float(1.0 - double(uv[1])));
+                    }
+                    if (mArrays.colors != nullptr) {
+                        mesh.colors.push_back(colour(input));
+                    }
+                }
+                mesh.triangles[c / 3][int(c % 3)] = vertexOf[input];
+            }
+        }
+        scene.meshes.push_back(std::move(mesh));
+        return scene;
+    }
+
+    const MeshArrays& mArrays;
+    std::string mName; ///< as messages quote it
+    detail::MeshBudget mBudget;
+};
+
+} // namespace
+
+Scene sceneFromArrays(const MeshArrays& arrays, const LoadOptions& options) {
+    detail::checkLoadOptions(options, kFunction);
+    ArraysReader reader(arrays, options);
+    detail::RawScene raw = reader.read();
+    if (!options.animation.empty()) {
+        raw.warnings.push_back(
+            makeWarning(WarningKind::AnimationIgnored, "animation '" + detail::excerptForMessage(options.animation) +
+                                                           "' ignored: arrays have no animations"));
+    }
+    return detail::finalizeScene(reader.name(), std::move(raw), options, kFunction);
+}
+
+} // namespace inkgraph
