@@ -3,6 +3,7 @@
 #include "render/ErrorReport.h"
 
 namespace inkgraph::api {
+inline namespace INKGRAPH_ABI_NAMESPACE {
 namespace {
 
 Error::Kind kindOf(ExitCode exitCode) {
@@ -35,4 +36,5 @@ Error errorOf(const std::exception_ptr& error) {
     return Error(kindOf(report.exitCode), report.message);
 }
 
+} // namespace INKGRAPH_ABI_NAMESPACE
 } // namespace inkgraph::api

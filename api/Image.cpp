@@ -2,54 +2,76 @@
 
 #include "render/ImageFiles.h"
 
-#include <cstring>
 #include <stdexcept>
 
 namespace inkgraph::api {
+inline namespace INKGRAPH_ABI_NAMESPACE {
+namespace {
+
+/** UsageError unless the fields describe an image: at least 1x1, 1 or 4 channels. */
+void checkShape(int width, int height, int channels) {
+    if (width < 1 || height < 1 || (channels != 1 && channels != 4))
+        throw UsageError("an image of " + std::to_string(width) + "x" + std::to_string(height) + " pixels and " +
+                         std::to_string(channels) + " channels (at least 1x1, 1 or 4 channels)");
+}
+
+} // namespace
+
+Image::Image(int width, int height, int channels, Type type, std::vector<std::uint8_t> bytes)
+    : mWidth(width), mHeight(height), mChannels(channels), mType(type) {
+    mRowBytes = packedRowBytes();
+    translated("Image()", [&] {
+        checkShape(width, height, channels);
+        if (bytes.size() != byteCount())
+            throw UsageError("the image holds " + std::to_string(bytes.size()) + " bytes; " + std::to_string(width) +
+                             "x" + std::to_string(height) + "x" + std::to_string(channels) + " pixels need " +
+                             std::to_string(byteCount()));
+    });
+    auto owned = std::make_shared<std::vector<std::uint8_t>>(std::move(bytes));
+    mData = owned->data();
+    mOwner = std::move(owned);
+}
+
+Image::Image(int width, int height, int channels, Type type, const std::uint8_t* data, std::size_t rowBytes,
+             std::shared_ptr<const void> owner)
+    : mWidth(width), mHeight(height), mChannels(channels), mType(type), mRowBytes(rowBytes), mData(data),
+      mOwner(std::move(owner)) {}
 
 Image imageOf(const cv::Mat& mat) {
-    Image image;
-    image.width = mat.cols;
-    image.height = mat.rows;
-    image.channels = mat.channels();
-    if (mat.depth() == CV_8U)
-        image.type = Image::Type::UInt8;
-    else if (mat.depth() == CV_32F)
-        image.type = Image::Type::Float32;
-    else
+    Image::Type type = Image::Type::UInt8;
+    if (mat.depth() == CV_32F)
+        type = Image::Type::Float32;
+    else if (mat.depth() != CV_8U)
         throw std::logic_error("imageOf(): a buffer of OpenCV depth " + std::to_string(mat.depth()) +
                                " (8-bit and float32 only)");
-    if (image.channels != 1 && image.channels != 4)
-        throw std::logic_error("imageOf(): a buffer of " + std::to_string(image.channels) + " channels (1 or 4 only)");
-    const std::size_t rowBytes = std::size_t(mat.cols) * mat.elemSize();
-    image.bytes.resize(rowBytes * std::size_t(mat.rows));
-    for (int row = 0; row < mat.rows; ++row) std::memcpy(image.bytes.data() + row * rowBytes, mat.ptr(row), rowBytes);
-    return image;
+    if (mat.channels() != 1 && mat.channels() != 4)
+        throw std::logic_error("imageOf(): a buffer of " + std::to_string(mat.channels()) + " channels (1 or 4 only)");
+    // The image shares the buffer's pixels: OpenCV counts the references, so they live as long as the image.
+    auto kept = std::make_shared<cv::Mat>(mat);
+    const std::uint8_t* data = kept->ptr();
+    const std::size_t rowBytes = kept->step[0];
+    const int width = kept->cols;
+    const int height = kept->rows;
+    const int channels = kept->channels();
+    return Image(width, height, channels, type, data, rowBytes, std::move(kept));
 }
 
 cv::Mat matOf(const Image& image) {
-    if (image.width < 1 || image.height < 1 || (image.channels != 1 && image.channels != 4))
-        throw UsageError("an image of " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-                         " pixels and " + std::to_string(image.channels) + " channels (at least 1x1, 1 or 4 channels)");
-    const std::size_t expected =
-        std::size_t(image.width) * std::size_t(image.height) * std::size_t(image.channels) * image.bytesPerChannel();
-    if (image.bytes.size() != expected)
-        throw UsageError("the image holds " + std::to_string(image.bytes.size()) + " bytes; " +
-                         std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
-                         std::to_string(image.channels) + " pixels need " + std::to_string(expected));
-    const int type = CV_MAKETYPE(image.type == Image::Type::Float32 ? CV_32F : CV_8U, image.channels);
+    checkShape(image.width(), image.height(), image.channels());
+    const int type = CV_MAKETYPE(image.type() == Image::Type::Float32 ? CV_32F : CV_8U, image.channels());
     // cv::Mat's constructor over external data takes a non-const pointer; the image is only read.
-    return cv::Mat(image.height, image.width, type, const_cast<std::uint8_t*>(image.bytes.data()));
+    return cv::Mat(image.height(), image.width(), type, const_cast<std::uint8_t*>(image.data()), image.rowBytes());
 }
 
 const float* Image::floats() const {
-    if (type != Type::Float32)
-        throw Error(Error::Kind::Usage, "Image::floats(): the image holds 8-bit pixels; read them from bytes");
-    return reinterpret_cast<const float*>(bytes.data());
+    if (mType != Type::Float32)
+        throw Error(Error::Kind::Usage, "Image::floats(): the image holds 8-bit pixels; read them from data()");
+    return reinterpret_cast<const float*>(mData);
 }
 
 void Image::write(const std::string& path) const {
     translated("Image::write()", [&] { writeImage(path, matOf(*this)); });
 }
 
+} // namespace INKGRAPH_ABI_NAMESPACE
 } // namespace inkgraph::api

@@ -1,7 +1,7 @@
 #pragma once
 /** @file What the library's sources share, not installed: the data behind the public classes, the one way every
- *  exception leaves the library (as Error, by the command line's own mapping), the checks of which flags a Look and a
- *  Frame take, and the conversions between cv::Mat and Image. */
+ *  exception leaves the library (as Error, by the core's report: render/ErrorReport.h), the checks of which flags a
+ *  Look and a Frame take, the command-line names of the public enums, and the conversions between cv::Mat and Image. */
 
 #include "inkgraph/inkgraph.h"
 
@@ -11,21 +11,44 @@
 
 #include <opencv2/core.hpp>
 
+#include <charconv>
 #include <exception>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace inkgraph::api {
+inline namespace INKGRAPH_ABI_NAMESPACE {
 
 struct Scene::Impl {
-    std::string path;
+    std::string path; ///< "" for arrays
     SceneOptions options;
     std::shared_ptr<const inkgraph::Scene> scene;
 };
 
-/** `error` as the command line reports it (render/ErrorReport.h reportOf()): its message, and the kind of its exit
- * code. */
+/** The library's way into a Scene's data, which the public header keeps private. */
+struct SceneAccess {
+    static const Scene::Impl& impl(const Scene& scene) { return *scene.mImpl; }
+    static Scene make(std::shared_ptr<const Scene::Impl> impl) { return Scene(std::move(impl)); }
+};
+
+/** A look as the flags that give it, in order (each with its origin: a style file's line, or ""), and those flags
+ *  parsed (each value checked; the rules between them wait for the render). */
+struct Look::Impl {
+    std::vector<std::string> arguments;
+    std::vector<std::string> origins;
+    RenderOptions parsed;
+
+    /** The flags given, by their first name, in order. */
+    std::vector<std::string> givenFlags() const;
+};
+
+/** The library's way into a Look's data. */
+struct LookAccess {
+    static const Look::Impl& impl(const Look& look) { return *look.mImpl; }
+};
+
+/** `error` as the command line reports it (render/ErrorReport.h): its message, and the kind of its exit code. */
 Error errorOf(const std::exception_ptr& error);
 
 /** Runs `body`; every exception leaves as Error. A UsageError's message, which starts with the flag, gets `function`
@@ -43,18 +66,31 @@ decltype(auto) translated(const std::string& function, Body&& body) {
     }
 }
 
-/** Whose flags a list holds: a Look's (the Look and Lines sections of the flag table) or a Frame's camera (the Camera
- *  section but --animation and --time, which are SceneOptions). */
-enum class FlagOwner { Look, Camera };
+/** Whose flags a list holds: a Look's (the Look and Lines sections of the flag table) or a Frame's (the Camera
+ *  section and --size). */
+enum class FlagOwner { Look, Frame };
 
 /** Throws UsageError at the first flag of `arguments` that `owner` does not take, naming it and where the library
  *  takes it instead. Values are skipped; an unknown flag or a stray value stops the check, for parseRenderFlags() to
  *  refuse in the command line's words. */
 void refuseOtherFlags(const SourcedArguments& arguments, FlagOwner owner);
 
-/** An 8-bit or float image of 1 or 4 channels as Image (a copy); std::logic_error for another type. */
+/** The shortest text that reads back as `value`: how a typed number becomes its flag's value. */
+inline std::string exactText(double value) {
+    char text[64];
+    const auto [end, error] = std::to_chars(text, text + sizeof text, value);
+    return std::string(text, error == std::errc() ? end : text);
+}
+
+/** "X,Y,Z" and "R,G,B,A" as the flags take them. */
+std::string vectorText(const Vec3& vector);
+std::string colorText(const Color& color);
+
+/** An 8-bit or float image of 1 or 4 channels as an Image that shares its pixels;
+ *  std::logic_error for another type. */
 Image imageOf(const cv::Mat& mat);
-/** The image's pixels as a cv::Mat header (no copy); UsageError for an image whose fields do not agree. */
+/** The image's pixels as a cv::Mat header (no copy); UsageError for an empty image. */
 cv::Mat matOf(const Image& image);
 
+} // namespace INKGRAPH_ABI_NAMESPACE
 } // namespace inkgraph::api

@@ -1,21 +1,17 @@
 #include "api/Internal.h"
 
 #include "flags/FlagTable.h"
+#include "passes/lines/LineTypes.h"
 
 #include <algorithm>
 
 namespace inkgraph::api {
+inline namespace INKGRAPH_ABI_NAMESPACE {
 namespace {
-
-/** The flags of the Camera section that pose the scene as it loads: SceneOptions, not a Frame's. */
-bool posesScene(const Flag& flag) {
-    const std::string& name = flag.names.back();
-    return name == "--animation" || name == "--time";
-}
 
 bool takes(FlagOwner owner, const Flag& flag) {
     if (owner == FlagOwner::Look) return flag.section == HelpSection::Look || flag.section == HelpSection::Lines;
-    return flag.section == HelpSection::Camera && !posesScene(flag);
+    return flag.section == HelpSection::Camera || flag.names.back() == "--size";
 }
 
 /** Where the library takes what `flag` sets, for the refusal of a flag given in the wrong place. */
@@ -24,9 +20,7 @@ std::string whereInLibrary(const Flag& flag) {
     switch (flag.section) {
     case HelpSection::Look:
     case HelpSection::Lines: return "give it to the Look";
-    case HelpSection::Camera:
-        return posesScene(flag) ? "it poses the scene as it loads: SceneOptions, given to Scene::load()"
-                                : "give it in Frame::camera";
+    case HelpSection::Camera: return "give it to the Frame";
     case HelpSection::Output:
         return name == "--size" ? "give Frame::width and height"
                                 : "the library returns images: Still::buffer(), Still::write(), Image::write()";
@@ -38,10 +32,32 @@ std::string whereInLibrary(const Flag& flag) {
     return "";
 }
 
-/** parseRenderFlags() with the Look's own refusals first. */
-RenderOptions parseLook(const SourcedArguments& arguments) {
-    refuseOtherFlags(arguments, FlagOwner::Look);
-    return parseRenderFlags(arguments.arguments, arguments.origins);
+/** The flag an argument names, or null for a value or an unknown flag. */
+const Flag* flagOf(const std::string& argument) {
+    const Flag* flag = findFlag(argument);
+    return flag != nullptr && flag->apply ? flag : nullptr;
+}
+
+/** The look of `expanded` flags, checked as the command line checks them: each value, then the rules between them
+ *  (the Look's own refusals first). */
+Look::Impl lookOf(SourcedArguments expanded) {
+    refuseOtherFlags(expanded, FlagOwner::Look);
+    Look::Impl impl;
+    if (expanded.origins.empty()) expanded.origins.assign(expanded.arguments.size(), "");
+    impl.parsed = parseRenderFlags(expanded.arguments, expanded.origins);
+    impl.arguments = std::move(expanded.arguments);
+    impl.origins = std::move(expanded.origins);
+    return impl;
+}
+
+/** The line parameter named `name` (any line type's), or UsageError naming the ones there are. */
+const LineParameter& lineParameterNamed(const std::string& name) {
+    std::string names;
+    for (const LineParameter* parameter : lineParameters()) {
+        if (parameter->name == name) return *parameter;
+        names += (names.empty() ? "" : ", ") + parameter->name;
+    }
+    throw UsageError("no line parameter '" + name + "' (there are: " + names + ")");
 }
 
 } // namespace
@@ -49,36 +65,51 @@ RenderOptions parseLook(const SourcedArguments& arguments) {
 void refuseOtherFlags(const SourcedArguments& arguments, FlagOwner owner) {
     const std::vector<std::string>& items = arguments.arguments;
     for (std::size_t i = 0; i < items.size(); ++i) {
-        const Flag* flag = findFlag(items[i]);
-        if (flag == nullptr || !flag->apply) return;
+        const Flag* flag = flagOf(items[i]);
+        if (flag == nullptr) return;
         if (!takes(owner, *flag)) {
             const std::string origin = arguments.origins.empty() ? "" : arguments.origins[i];
             throw UsageError((origin.empty() ? "" : origin + ": ") + "'" + items[i] + "' is not a " +
-                             (owner == FlagOwner::Look ? "look" : "camera") + " flag (" + whereInLibrary(*flag) + ")");
+                             (owner == FlagOwner::Look ? "look" : "frame") + " flag (" + whereInLibrary(*flag) + ")");
         }
         if (!flag->valueName.empty()) ++i;
     }
 }
 
-Look::Look() = default;
+std::vector<std::string> Look::Impl::givenFlags() const {
+    std::vector<std::string> given;
+    for (std::size_t i = 0; i < arguments.size(); ++i) {
+        const Flag* flag = flagOf(arguments[i]);
+        if (flag == nullptr) continue;
+        given.push_back(flag->names.back());
+        if (!flag->valueName.empty()) ++i;
+    }
+    return given;
+}
+
+Look::Look() : mImpl(std::make_unique<Impl>()) { mImpl->parsed = parseRenderFlags({}); }
+Look::~Look() = default;
+Look::Look(const Look& other) : mImpl(std::make_unique<Impl>(*other.mImpl)) {}
+Look& Look::operator=(const Look& other) {
+    if (this != &other) mImpl = std::make_unique<Impl>(*other.mImpl);
+    return *this;
+}
+Look::Look(Look&&) noexcept = default;
+Look& Look::operator=(Look&&) noexcept = default;
 
 Look Look::fromArguments(const std::vector<std::string>& arguments) {
     return translated("Look::fromArguments()", [&] {
         // A --style file's settings go first, as on the command line; its messages name the file and line.
-        const SourcedArguments expanded = expandStyleFile(arguments);
-        parseLook(expanded);
         Look look;
-        look.mArguments = expanded.arguments;
+        *look.mImpl = lookOf(expandStyleFile(arguments));
         return look;
     });
 }
 
 Look Look::fromStyleFile(const std::string& path) {
     return translated("Look::fromStyleFile()", [&] {
-        const SourcedArguments expanded = expandStyleFile({"--style", path});
-        parseLook(expanded);
         Look look;
-        look.mArguments = expanded.arguments;
+        *look.mImpl = lookOf(expandStyleFile({"--style", path}));
         return look;
     });
 }
@@ -92,13 +123,226 @@ Look& Look::set(const std::string& flag, const std::string& value) {
             arguments.push_back(value);
         else if (!value.empty())
             throw UsageError(flag + ": takes no value, got '" + value + "'");
-        const SourcedArguments expanded = expandStyleFile(arguments);
-        refuseOtherFlags(expanded, FlagOwner::Look);
-        // The flag's own checks; the rules between flags wait for the whole look (render()).
-        parseRenderFlags(expanded.arguments, expanded.origins, FlagChecks::Values);
-        mArguments.insert(mArguments.end(), expanded.arguments.begin(), expanded.arguments.end());
+        SourcedArguments added = expandStyleFile(arguments);
+        refuseOtherFlags(added, FlagOwner::Look);
+        if (added.origins.empty()) added.origins.assign(added.arguments.size(), "");
+        // The flags set again lose their earlier values; the new ones' values are checked as the parse goes.
+        Impl next = *mImpl;
+        for (std::size_t i = 0; i < added.arguments.size(); ++i) {
+            const Flag* replaced = flagOf(added.arguments[i]);
+            if (replaced == nullptr) continue;
+            for (std::size_t j = 0; j < next.arguments.size();) {
+                const Flag* existing = flagOf(next.arguments[j]);
+                const std::size_t span = existing != nullptr && !existing->valueName.empty() ? 2 : 1;
+                if (existing == replaced) {
+                    next.arguments.erase(next.arguments.begin() + long(j), next.arguments.begin() + long(j + span));
+                    next.origins.erase(next.origins.begin() + long(j), next.origins.begin() + long(j + span));
+                } else {
+                    j += span;
+                }
+            }
+            if (!replaced->valueName.empty()) ++i;
+        }
+        next.arguments.insert(next.arguments.end(), added.arguments.begin(), added.arguments.end());
+        next.origins.insert(next.origins.end(), added.origins.begin(), added.origins.end());
+        next.parsed = parseRenderFlags(next.arguments, next.origins, FlagChecks::Values);
+        *mImpl = std::move(next);
     });
     return *this;
 }
 
+std::vector<std::string> Look::arguments() const { return mImpl->arguments; }
+
+namespace {
+
+/** Sets one flag for a typed setter: its messages name the setter first. */
+void setFlag(Look& look, const std::string& setter, const std::string& flag, const std::string& value) {
+    try {
+        look.set(flag, value);
+    } catch (const Error& error) {
+        const std::string prefix = "Look::set(): ";
+        const std::string message = error.what();
+        throw Error(error.kind(),
+                    setter + ": " + (message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message));
+    }
+}
+
+} // namespace
+
+Shading Look::shading() const { return static_cast<Shading>(mImpl->parsed.look.shading); }
+Look& Look::setShading(Shading shading) {
+    setFlag(*this, "Look::setShading()", "--shading", nameOf(shading));
+    return *this;
+}
+
+double Look::shininess() const { return mImpl->parsed.look.shininess; }
+Look& Look::setShininess(double exponent) {
+    setFlag(*this, "Look::setShininess()", "--shininess", exactText(exponent));
+    return *this;
+}
+
+std::optional<int> Look::bands() const { return mImpl->parsed.look.bands; }
+Look& Look::setBands(int bands) {
+    setFlag(*this, "Look::setBands()", "--bands", std::to_string(bands));
+    return *this;
+}
+
+std::string Look::shadeMap() const { return mImpl->parsed.look.shadeMapPath; }
+Look& Look::setShadeMap(const std::string& path) {
+    setFlag(*this, "Look::setShadeMap()", "--shademap", path);
+    return *this;
+}
+
+ViewVector Look::viewVector() const { return static_cast<ViewVector>(mImpl->parsed.look.viewVector); }
+Look& Look::setViewVector(ViewVector mode) {
+    setFlag(*this, "Look::setViewVector()", "--view-vector", nameOf(mode));
+    return *this;
+}
+
+FaceOrientation Look::faceOrientation() const {
+    return static_cast<FaceOrientation>(mImpl->parsed.look.faceOrientation);
+}
+Look& Look::setFaceOrientation(FaceOrientation method) {
+    setFlag(*this, "Look::setFaceOrientation()", "--face-orientation", nameOf(method));
+    return *this;
+}
+
+int Look::frontRule() const { return mImpl->parsed.look.frontRule; }
+Look& Look::setFrontRule(int rule) {
+    setFlag(*this, "Look::setFrontRule()", "--front-rule", std::to_string(rule));
+    return *this;
+}
+
+std::optional<Vec3> Look::light() const {
+    const std::optional<glm::dvec3>& light = mImpl->parsed.look.towardLight;
+    if (!light) return std::nullopt;
+    return Vec3{light->x, light->y, light->z};
+}
+Look& Look::setLight(const Vec3& towardLight) {
+    setFlag(*this, "Look::setLight()", "--light", vectorText(towardLight));
+    return *this;
+}
+
+Color Look::paper() const {
+    const glm::dvec3& paper = mImpl->parsed.look.background;
+    return {paper.r, paper.g, paper.b, 1.0};
+}
+Look& Look::setPaper(const Color& color) {
+    if (color.a != 1.0)
+        throw Error(Error::Kind::Usage,
+                    "Look::setPaper(): the paper is opaque: alpha must be 1, got " + exactText(color.a));
+    setFlag(*this, "Look::setPaper()", "--background",
+            exactText(color.r) + "," + exactText(color.g) + "," + exactText(color.b));
+    return *this;
+}
+
+int Look::supersample() const { return mImpl->parsed.look.supersample; }
+Look& Look::setSupersample(int factor) {
+    setFlag(*this, "Look::setSupersample()", "--supersample", std::to_string(factor));
+    return *this;
+}
+
+Precision Look::gbufferPrecision() const { return static_cast<Precision>(mImpl->parsed.look.gbufferPrecision); }
+Look& Look::setGbufferPrecision(Precision precision) {
+    setFlag(*this, "Look::setGbufferPrecision()", "--gbuffer-precision", nameOf(precision));
+    return *this;
+}
+
+std::vector<LineType> Look::lines() const {
+    std::vector<LineType> types;
+    for (const std::string& name : mImpl->parsed.look.lines) types.push_back(lineTypeNamed(name));
+    return types;
+}
+Look& Look::setLines(const std::vector<LineType>& types) {
+    std::string list;
+    for (LineType type : types) list += (list.empty() ? "" : ",") + nameOf(type);
+    setFlag(*this, "Look::setLines()", "--lines", list.empty() ? "none" : list);
+    return *this;
+}
+
+LineStyle Look::lineStyle(LineType type) const {
+    const inkgraph::LineStyle style = mImpl->parsed.look.styleOf(nameOf(type));
+    return {style.widthPixels, {style.color.r, style.color.g, style.color.b, style.color.a}};
+}
+Look& Look::setLineStyle(LineType type, const LineStyle& style) {
+    // Only what changes is given, so a style set whole does not give a flag that the rules would find without effect.
+    const LineStyle current = lineStyle(type);
+    const std::string name = nameOf(type);
+    if (style.width != current.width)
+        setFlag(*this, "Look::setLineStyle()", "--" + name + "-width", exactText(style.width));
+    const Color& color = style.color;
+    if (color.r != current.color.r || color.g != current.color.g || color.b != current.color.b ||
+        color.a != current.color.a)
+        setFlag(*this, "Look::setLineStyle()", "--" + name + "-color", colorText(color));
+    return *this;
+}
+
+std::vector<std::string> Look::lineParameterNames(LineType type) {
+    const inkgraph::LineType* info = findLineType(nameOf(type));
+    std::vector<std::string> names;
+    if (info != nullptr)
+        for (const LineParameter* parameter : info->parameters) names.push_back(parameter->name);
+    return names;
+}
+
+double Look::lineParameter(const std::string& name) const {
+    return translated("Look::lineParameter()", [&] {
+        const LineParameter& parameter = lineParameterNamed(name);
+        if (parameter.isChoice()) throw UsageError("'" + name + "' is a choice: read it with lineChoice()");
+        const std::optional<double> value = mImpl->parsed.look.lineParameters.numberIfSet(parameter);
+        if (!value) throw UsageError("'" + name + "' has no default and was not set");
+        return *value;
+    });
+}
+
+std::string Look::lineChoice(const std::string& name) const {
+    return translated("Look::lineChoice()", [&] {
+        const LineParameter& parameter = lineParameterNamed(name);
+        if (!parameter.isChoice()) throw UsageError("'" + name + "' is a number: read it with lineParameter()");
+        return mImpl->parsed.look.lineParameters.choice(parameter);
+    });
+}
+
+Look& Look::setLineParameter(const std::string& name, double value) {
+    translated("Look::setLineParameter()", [&] {
+        if (lineParameterNamed(name).isChoice())
+            throw UsageError("'" + name + "' is a choice: set it with setLineChoice()");
+    });
+    setFlag(*this, "Look::setLineParameter()", "--" + name, exactText(value));
+    return *this;
+}
+
+Look& Look::setLineChoice(const std::string& name, const std::string& value) {
+    translated("Look::setLineChoice()", [&] {
+        if (!lineParameterNamed(name).isChoice())
+            throw UsageError("'" + name + "' is a number: set it with setLineParameter()");
+    });
+    setFlag(*this, "Look::setLineChoice()", "--" + name, value);
+    return *this;
+}
+
+StrokeSettings Look::strokes() const {
+    const StrokeStyle& strokes = mImpl->parsed.look.strokes;
+    return {strokes.minLength, strokes.weightByDepth, strokes.weightByStrength, strokes.taperEnds,
+            strokes.mergeOverlaps};
+}
+Look& Look::setStrokes(const StrokeSettings& strokes) {
+    // As setLineStyle(): only the flags whose value changes are given.
+    const StrokeSettings current = this->strokes();
+    if (strokes.minLength != current.minLength)
+        setFlag(*this, "Look::setStrokes()", "--min-stroke-length", exactText(strokes.minLength));
+    if (strokes.weightByDepth != current.weightByDepth || strokes.weightByStrength != current.weightByStrength ||
+        strokes.taperEnds != current.taperEnds) {
+        std::string weights;
+        if (strokes.weightByDepth) weights += "depth";
+        if (strokes.weightByStrength) weights += std::string(weights.empty() ? "" : ",") + "strength";
+        if (strokes.taperEnds) weights += std::string(weights.empty() ? "" : ",") + "taper";
+        setFlag(*this, "Look::setStrokes()", "--line-weight", weights.empty() ? "none" : weights);
+    }
+    if (strokes.mergeOverlaps != current.mergeOverlaps)
+        setFlag(*this, "Look::setStrokes()", "--overlapping-lines", strokes.mergeOverlaps ? "merge" : "draw");
+    return *this;
+}
+
+} // namespace INKGRAPH_ABI_NAMESPACE
 } // namespace inkgraph::api

@@ -1,3 +1,4 @@
+#include "api/Frame.h"
 #include "api/Internal.h"
 
 #include "render/ImageFiles.h"
@@ -13,17 +14,28 @@
 #include <atomic>
 #include <chrono>
 #include <optional>
-#include <sstream>
 #include <mutex>
+#include <sstream>
 
 #include <unistd.h>
 
 namespace inkgraph::api {
+inline namespace INKGRAPH_ABI_NAMESPACE {
 namespace {
 
 const std::string kLinesPrefix = "lines.";
 
 bool startsWith(const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; }
+
+/** The graph resource a buffer name stands for: "normal" -> "gbuffer.normal", "lines.contour" -> the strokes' layer
+ *  "strokes.contour", "picture" -> "composite.final"; a graph resource's own name as it is. */
+std::string bufferResourceName(const std::string& name) {
+    if (name == "picture") return StillGraph{}.finalResource;
+    if (startsWith(name, kLinesPrefix)) return std::string(kStrokesPass) + "." + name.substr(kLinesPrefix.size());
+    for (const GBufferPass::Field& field : GBufferPass::fields())
+        if (name == field.name) return std::string(kGBufferPass) + "." + name;
+    return name;
+}
 
 std::string joined(const std::vector<std::string>& names) {
     std::string text;
@@ -96,33 +108,37 @@ std::vector<std::string> resourcesAskedBy(const std::string& name, const Prepare
     return fields;
 }
 
-/** The warnings a still's log holds ("inkgraph: warning: " lines: StillRenderer::load()). */
-std::vector<std::string> warningsIn(const std::string& log) {
-    const std::string marker = "inkgraph: warning: ";
-    std::vector<std::string> warnings;
-    std::istringstream lines(log);
-    for (std::string line; std::getline(lines, line);)
-        if (startsWith(line, marker)) warnings.push_back(line.substr(marker.size()));
-    return warnings;
+template <int Columns, int Rows>
+std::array<std::array<double, Columns>, Rows> rowsOf(const glm::mat<Columns, Rows, double>& matrix) {
+    std::array<std::array<double, Columns>, Rows> rows{};
+    for (int row = 0; row < Rows; ++row)
+        for (int column = 0; column < Columns; ++column) rows[row][column] = matrix[column][row]; // glm: [column][row]
+    return rows;
 }
 
-/** The camera the flags ask for (cameraRequestOf() of the command line, app/Render.h). */
-CameraRequest cameraRequestOf(const RenderOptions& options) {
-    CameraRequest request;
-    request.eye = options.eye;
-    request.orbit = options.orbit;
-    request.target = options.target;
-    request.frameNodes = options.frameNodes;
-    request.up = options.up;
-    request.fovYDegrees = options.fovYDegrees;
-    request.ignoreFileCamera = options.autoCamera;
-    if (options.clipRange) {
-        request.zNear = options.clipRange->x;
-        request.zFar = options.clipRange->y;
-    }
-    request.width = options.width;
-    request.height = options.height;
-    return request;
+Vec3 vec3Of(const glm::dvec3& vector) { return {vector.x, vector.y, vector.z}; }
+
+/** The camera a still was drawn with, in world coordinates (Camera keeps the scene's local frame). */
+StillCamera stillCameraOf(const Camera& camera) {
+    StillCamera still;
+    still.view = rowsOf(camera.worldViewMatrix());
+    still.projection = rowsOf(camera.projectionMatrix());
+    still.intrinsics = rowsOf(camera.openCvIntrinsics());
+    still.extrinsics = rowsOf(camera.openCvExtrinsics());
+    still.eye = vec3Of(camera.worldEye());
+    still.target = vec3Of(camera.worldTarget());
+    still.up = vec3Of(camera.up);
+    still.fovY = camera.fovYDegrees;
+    still.near = camera.zNear;
+    still.far = camera.zFar;
+    still.clipGiven = camera.clipSource == "flags";
+    still.width = camera.width;
+    still.height = camera.height;
+    still.source = camera.source == "gltf"    ? CameraSource::File
+                   : camera.source == "orbit" ? CameraSource::Orbit
+                   : camera.source == "flags" ? CameraSource::Eye
+                                              : CameraSource::Auto;
+    return still;
 }
 
 /** The renderer whose StillRenderer holds the process's GL context, or null (Renderer's comment says why one). */
@@ -143,18 +159,19 @@ struct Still::Impl {
     Image picture;
     std::vector<Buffer> buffers;
     std::vector<RunInput> inputs; ///< the files the render read: write() never replaces one
-    std::vector<std::string> warnings;
+    StillCamera camera;
+    std::vector<Warning> warnings;
     double milliseconds = 0.0;
 };
 
 struct Renderer::Impl {
-    std::string eglPlatform;
+    EglPlatform eglPlatform;
     /** Held by pointer so that a child forked after the context was made can leave it alone: freeing it would call
      *  into a driver whose threads exist only in the parent. */
     std::unique_ptr<StillRenderer> renderer = std::make_unique<StillRenderer>();
     std::mutex rendering; ///< one render at a time; any thread, since each render releases the context at its end
 
-    explicit Impl(std::string platform) : eglPlatform(std::move(platform)) {}
+    explicit Impl(EglPlatform platform) : eglPlatform(platform) {}
     ~Impl() {
         if (HeadlessContext* context = renderer->context()) {
             if (context->owningProcess() != int(getpid())) {
@@ -200,38 +217,49 @@ struct Renderer::Impl {
             context->releaseThread();
     }
 
-    /** The command line's options for this still: the look's flags, the frame's camera flags and size, checked
-     *  together as the command line checks them. */
-    RenderOptions optionsOf(const Scene& scene, const Look& look, const Frame& frame) const {
-        const SourcedArguments camera{frame.camera, {}};
-        try {
-            refuseOtherFlags(camera, FlagOwner::Camera);
-            // Alone first: a flag at the end without its value would otherwise take the "--size" appended below.
-            parseRenderFlags(frame.camera, {}, FlagChecks::Values);
-        } catch (const UsageError& error) {
-            throw UsageError(std::string("Frame::camera: ") + error.what());
+    /** The still's request: the look's flags and the frame's fields as the command line's options, checked together
+     *  as the command line checks them, and the scene posed as the frame asks. */
+    StillRequest requestOf(const Scene& scene, const Look& look, const Frame& frame,
+                           const std::vector<std::string>& buffers) const {
+        const Look::Impl& lookImpl = LookAccess::impl(look);
+        RenderOptions options = lookImpl.parsed;
+        std::vector<std::string> given = lookImpl.givenFlags();
+        applyFrame(frame, options, given);
+        checkFlagRules(options, given);
+
+        const Scene::Impl& sceneImpl = SceneAccess::impl(scene);
+        StillRequest request;
+        request.modelPath = sceneImpl.path.empty() ? "arrays" : sceneImpl.path;
+        request.loadedScene = sceneImpl.scene;
+        request.look = options.look;
+        request.camera = cameraRequestOf(options);
+        request.memoryLimitBytes =
+            sceneImpl.options.memoryLimitBytes != 0 ? sceneImpl.options.memoryLimitBytes : defaultMemoryLimit();
+        request.memoryLimitGiven = sceneImpl.options.memoryLimitBytes != 0;
+        request.eglPlatform = eglPlatform;
+        request.timePasses = false; // no per-pass timings to report: passes may overlap
+        for (const std::string& name : buffers) {
+            const std::string resource = bufferResourceName(name);
+            if (std::find(request.extraOutputs.begin(), request.extraOutputs.end(), resource) ==
+                request.extraOutputs.end())
+                request.extraOutputs.push_back(resource);
         }
-        const std::string size = std::to_string(frame.width) + "x" + std::to_string(frame.height);
-        try {
-            parseRenderFlags({"--size", size});
-        } catch (const UsageError& error) {
-            throw UsageError(std::string("Frame::width and height: ") + error.what());
+        const bool posed = !frame.animation.empty() || frame.time.has_value();
+        if (posed &&
+            (frame.animation != sceneImpl.options.animation || frame.time.value_or(0.0) != sceneImpl.options.time)) {
+            if (sceneImpl.path.empty())
+                throw UsageError("Frame::animation and time: a scene made from arrays has no animations");
+            // Another pose than the scene's: the file is loaded again in it, by the renderer's own load.
+            request.loadedScene.reset();
+            request.animation = options.animation;
+            request.animationTime = options.animationTime;
         }
-        std::vector<std::string> arguments = look.arguments();
-        arguments.insert(arguments.end(), frame.camera.begin(), frame.camera.end());
-        arguments.insert(arguments.end(), {"--size", size, "--egl-platform", eglPlatform});
-        RenderOptions options = parseRenderFlags(arguments);
-        const SceneOptions& sceneOptions = scene.impl().options;
-        options.modelPath = scene.path();
-        options.modelPaths = {scene.path()};
-        options.animation = sceneOptions.animation;
-        options.animationTime = sceneOptions.time;
-        if (sceneOptions.memoryLimitBytes != 0) options.memoryLimitBytes = sceneOptions.memoryLimitBytes;
-        return options;
+        return request;
     }
 
     std::shared_ptr<Still::Impl> render(const Scene& scene, const Look& look, const Frame& frame,
-                                        const std::vector<std::string>& buffers) {
+                                        const std::vector<std::string>& buffers, std::uint8_t* pictureOut,
+                                        std::size_t pictureRowBytes) {
         const std::lock_guard<std::mutex> oneAtATime(rendering);
         // Declared first, so it runs last: after the still's GL objects have gone back to the pool on this thread.
         struct ReleaseAtEnd {
@@ -240,26 +268,13 @@ struct Renderer::Impl {
         } releaseAtEnd{*this};
         const auto start = std::chrono::steady_clock::now();
         refuseForkedContext();
-        RenderOptions options = optionsOf(scene, look, frame);
-        for (const std::string& name : buffers) {
-            const std::string resource = bufferResourceName(name);
-            if (std::find(options.extraOutputs.begin(), options.extraOutputs.end(), resource) ==
-                options.extraOutputs.end())
-                options.extraOutputs.push_back(resource);
-        }
-        StillRequest request;
-        request.modelPath = options.modelPath;
-        request.look = options.look;
-        request.camera = cameraRequestOf(options);
-        request.extraOutputs = options.extraOutputs;
-        request.memoryLimitBytes = options.memoryLimitBytes ? *options.memoryLimitBytes : defaultMemoryLimit();
-        request.memoryLimitGiven = options.memoryLimitBytes.has_value();
-        if (options.eglPlatform == "device") request.eglPlatform = EglPlatform::Device;
-        if (options.eglPlatform == "surfaceless") request.eglPlatform = EglPlatform::Surfaceless;
-        request.loadedScene = scene.impl().scene;
-        request.timePasses = false; // no per-pass timings to report: passes may overlap
+        if (pictureOut != nullptr && pictureRowBytes < std::size_t(std::max(frame.width, 0)) * 4)
+            throw UsageError("the picture's rows are " + std::to_string(pictureRowBytes) + " bytes apart; " +
+                             std::to_string(frame.width) + " RGBA8 pixels need " + std::to_string(frame.width * 4));
+        StillRequest request = requestOf(scene, look, frame, buffers);
+        const std::string modelPath = request.modelPath;
 
-        std::ostringstream log;
+        std::ostringstream log; // the command line's lines; the library returns the warnings as records
         const StillLog stillLog{log, false, true};
         const std::unique_ptr<PreparedStill> still = renderer->load(std::move(request), stillLog);
         try {
@@ -274,8 +289,17 @@ struct Renderer::Impl {
 
         auto made = std::make_shared<Still::Impl>();
         ResourceStore& store = result.store();
-        // The picture as -o writes it; the buffers as --dump does (colour with straight alpha).
-        made->picture = imageOf(store.image(still->graph.finalResource));
+        // The picture as -o writes it; the buffers as --dump does (colour with straight alpha). Each image shares the
+        // store's pixels, which the store gives up when the result goes.
+        const cv::Mat& picture = store.image(still->graph.finalResource);
+        if (pictureOut != nullptr) {
+            cv::Mat target(picture.rows, picture.cols, picture.type(), pictureOut, pictureRowBytes);
+            picture.copyTo(target);
+            made->picture = Image(picture.cols, picture.rows, picture.channels(), Image::Type::UInt8, pictureOut,
+                                  pictureRowBytes, nullptr);
+        } else {
+            made->picture = imageOf(picture);
+        }
         for (const std::string& name : buffers) {
             for (const std::string& resource : resourcesAskedBy(name, *still)) {
                 const auto same = [&](const Still::Impl::Buffer& kept) { return kept.resource == resource; };
@@ -283,31 +307,28 @@ struct Renderer::Impl {
                 const PlannedResource* planned = plannedResource(still->plan, resource);
                 const bool colour = planned != nullptr && planned->presentation.appearance == Appearance::Color;
                 const cv::Mat& image = store.image(resource);
-                const std::string shownName = bufferResourceName(name) == resource ? name : resource;
+                const std::string shownName =
+                    bufferResourceName(name) == resource ? name : bufferNameOf(resource, still->graph);
                 made->buffers.push_back({shownName, resource, imageOf(colour ? straightAlphaOf(image) : image)});
             }
         }
         // Absolute, as the render saw them: the still may be written after the working folder changed.
-        made->inputs = {{options.modelPath, "the model itself"}};
-        if (!options.look.shadeMapPath.empty())
-            made->inputs.push_back({options.look.shadeMapPath, "the --shademap itself"});
-        if (!options.stylePath.empty()) made->inputs.push_back({options.stylePath, "the --style file"});
-        for (RunInput& input : inputsFoundByLoading(options.modelPath, still->scene()))
+        const Look::Impl& lookImpl = LookAccess::impl(look);
+        if (!SceneAccess::impl(scene).path.empty()) made->inputs.push_back({modelPath, "the model itself"});
+        if (!lookImpl.parsed.look.shadeMapPath.empty())
+            made->inputs.push_back({lookImpl.parsed.look.shadeMapPath, "the look's shade map"});
+        if (!lookImpl.parsed.stylePath.empty())
+            made->inputs.push_back({lookImpl.parsed.stylePath, "the look's style file"});
+        for (RunInput& input : inputsFoundByLoading(modelPath, still->scene()))
             made->inputs.push_back(std::move(input));
         for (RunInput& input : made->inputs) input.path = resolvedPath(input.path).string();
-        made->warnings = warningsIn(log.str());
+        made->camera = stillCameraOf(still->camera);
+        for (const inkgraph::Warning& warning : still->warnings)
+            made->warnings.push_back({warning.code, warning.message, warning.file, warning.item});
         made->milliseconds = millisecondsSince(start);
         return made;
     }
 };
-
-std::string bufferResourceName(const std::string& name) {
-    if (name == "picture") return StillGraph{}.finalResource;
-    if (startsWith(name, kLinesPrefix)) return std::string(kStrokesPass) + "." + name.substr(kLinesPrefix.size());
-    for (const GBufferPass::Field& field : GBufferPass::fields())
-        if (name == field.name) return std::string(kGBufferPass) + "." + name;
-    return name;
-}
 
 const Image& Still::picture() const { return mImpl->picture; }
 
@@ -335,16 +356,16 @@ void Still::write(const std::string& path) const {
     });
 }
 
-std::vector<std::string> Still::warnings() const { return mImpl->warnings; }
+const StillCamera& Still::camera() const { return mImpl->camera; }
+
+const std::vector<Warning>& Still::warnings() const { return mImpl->warnings; }
 
 double Still::milliseconds() const { return mImpl->milliseconds; }
 
-Renderer::Renderer(const std::string& eglPlatform) {
-    translated("Renderer()", [&] {
-        parseRenderFlags({"--egl-platform", eglPlatform});
-        mImpl = std::make_unique<Impl>(eglPlatform);
-    });
-}
+Renderer::Renderer(Platform platform)
+    : mImpl(std::make_unique<Impl>(platform == Platform::Device        ? EglPlatform::Device
+                                   : platform == Platform::Surfaceless ? EglPlatform::Surfaceless
+                                                                       : EglPlatform::Any)) {}
 
 Renderer::~Renderer() = default;
 Renderer::Renderer(Renderer&&) noexcept = default;
@@ -354,8 +375,27 @@ Still Renderer::render(const Scene& scene, const Look& look, const Frame& frame,
                        const std::vector<std::string>& buffers) {
     return translated("Renderer::render()", [&] {
         if (!mImpl) throw UsageError("a Renderer moved from");
-        return Still(mImpl->render(scene, look, frame, buffers));
+        return Still(mImpl->render(scene, look, frame, buffers, nullptr, 0));
     });
+}
+
+Still Renderer::renderInto(std::uint8_t* picture, std::size_t rowBytes, const Scene& scene, const Look& look,
+                           const Frame& frame, const std::vector<std::string>& buffers) {
+    return translated("Renderer::renderInto()", [&] {
+        if (!mImpl) throw UsageError("a Renderer moved from");
+        if (picture == nullptr) throw UsageError("no picture buffer (null)");
+        return Still(mImpl->render(scene, look, frame, buffers, picture, rowBytes));
+    });
+}
+
+std::vector<std::string> bufferNames(const Look& look) {
+    std::vector<std::string> names;
+    for (const GBufferPass::Field& field : GBufferPass::fields()) names.push_back(field.name);
+    names.push_back("gbuffer.*");
+    for (const std::string& type : LookAccess::impl(look).parsed.look.lines) names.push_back(kLinesPrefix + type);
+    names.push_back("lines.*");
+    names.push_back("picture");
+    return names;
 }
 
 std::string Renderer::glDescription() const {
@@ -363,4 +403,5 @@ std::string Renderer::glDescription() const {
     return context != nullptr ? context->describe() : "";
 }
 
+} // namespace INKGRAPH_ABI_NAMESPACE
 } // namespace inkgraph::api

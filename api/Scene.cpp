@@ -1,38 +1,54 @@
 #include "api/Internal.h"
 
 #include "render/MemoryBudget.h"
-
-#include <charconv>
+#include "scene/MeshArrays.h"
 
 namespace inkgraph::api {
+inline namespace INKGRAPH_ABI_NAMESPACE {
 namespace {
 
-/** The shortest text that reads back as `value` (what --time would be given). */
-std::string exactText(double value) {
-    char text[64];
-    const auto [end, error] = std::to_chars(text, text + sizeof text, value);
-    return std::string(text, error == std::errc() ? end : text);
+/** The loader's options for `options`, checked by --animation's and --time's own rules and messages. */
+LoadOptions loadOptionsOf(const SceneOptions& options) {
+    std::vector<std::string> flags;
+    if (!options.animation.empty()) flags.insert(flags.end(), {"--animation", options.animation});
+    if (options.time != 0.0) flags.insert(flags.end(), {"--time", exactText(options.time)});
+    const RenderOptions pose = parseRenderFlags(flags);
+    LoadOptions load;
+    load.memoryLimitBytes = options.memoryLimitBytes != 0 ? options.memoryLimitBytes : defaultMemoryLimit();
+    load.animation = pose.animation;
+    load.time = pose.animationTime;
+    return load;
 }
 
 } // namespace
 
 Scene Scene::load(const std::string& path, const SceneOptions& options) {
     return translated("Scene::load()", [&] {
-        // --animation and --time's own checks and messages.
-        std::vector<std::string> flags;
-        if (!options.animation.empty()) flags.insert(flags.end(), {"--animation", options.animation});
-        if (options.time != 0.0) flags.insert(flags.end(), {"--time", exactText(options.time)});
-        RenderOptions pose = parseRenderFlags(flags);
-        if (options.memoryLimitBytes != 0) pose.memoryLimitBytes = options.memoryLimitBytes;
-
-        LoadOptions load;
-        load.memoryLimitBytes = pose.memoryLimitBytes ? *pose.memoryLimitBytes : defaultMemoryLimit();
-        load.animation = pose.animation;
-        load.time = pose.animationTime;
         auto impl = std::make_shared<Impl>();
         impl->path = path;
         impl->options = options;
-        impl->scene = std::make_shared<const inkgraph::Scene>(loadScene(path, load));
+        impl->scene = std::make_shared<const inkgraph::Scene>(loadScene(path, loadOptionsOf(options)));
+        return Scene(std::move(impl));
+    });
+}
+
+Scene Scene::fromArrays(const MeshArrays& arrays, const std::string& name, const SceneOptions& options) {
+    return translated("Scene::fromArrays()", [&] {
+        if (!options.animation.empty() || options.time != 0.0)
+            throw UsageError("SceneOptions::animation and time: a scene made from arrays has no animations");
+        inkgraph::MeshArrays mesh;
+        mesh.positions = arrays.vertices;
+        mesh.vertexCount = arrays.vertexCount;
+        mesh.triangles = arrays.faces;
+        mesh.triangleCount = arrays.faceCount;
+        mesh.normals = arrays.normals;
+        mesh.uvs = arrays.uvs;
+        mesh.colors = arrays.colors;
+        mesh.colorChannels = arrays.colorChannels;
+        mesh.name = name;
+        auto impl = std::make_shared<Impl>();
+        impl->options = options;
+        impl->scene = std::make_shared<const inkgraph::Scene>(sceneFromArrays(mesh, loadOptionsOf(options)));
         return Scene(std::move(impl));
     });
 }
@@ -41,10 +57,13 @@ const std::string& Scene::path() const { return mImpl->path; }
 std::size_t Scene::triangleCount() const { return mImpl->scene->triangleCount(); }
 std::size_t Scene::vertexCount() const { return mImpl->scene->vertexCount(); }
 std::size_t Scene::meshCount() const { return mImpl->scene->meshes.size(); }
-std::vector<std::string> Scene::warnings() const {
-    std::vector<std::string> messages;
-    for (const inkgraph::Warning& warning : mImpl->scene->report.warnings) messages.push_back(warning.message);
-    return messages;
+
+std::vector<Warning> Scene::warnings() const {
+    std::vector<Warning> warnings;
+    for (const inkgraph::Warning& warning : mImpl->scene->report.warnings)
+        warnings.push_back({warning.code, warning.message, warning.file, warning.item});
+    return warnings;
 }
 
+} // namespace INKGRAPH_ABI_NAMESPACE
 } // namespace inkgraph::api

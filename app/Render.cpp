@@ -38,24 +38,6 @@ std::size_t memoryLimitOf(const RenderOptions& options) {
     return options.memoryLimitBytes ? *options.memoryLimitBytes : defaultMemoryLimit();
 }
 
-CameraRequest cameraRequestOf(const RenderOptions& options) {
-    CameraRequest request;
-    request.eye = options.eye;
-    request.orbit = options.orbit;
-    request.target = options.target;
-    request.frameNodes = options.frameNodes;
-    request.up = options.up;
-    request.fovYDegrees = options.fovYDegrees;
-    request.ignoreFileCamera = options.autoCamera;
-    if (options.clipRange) {
-        request.zNear = options.clipRange->x;
-        request.zFar = options.clipRange->y;
-    }
-    request.width = options.width;
-    request.height = options.height;
-    return request;
-}
-
 StillRequest stillRequestOf(const RenderOptions& options) {
     StillRequest request;
     request.modelPath = options.modelPath;

@@ -23,9 +23,6 @@ namespace inkgraph {
  *  declared counts) and on the whole run's estimated peak (checked before any GL work). */
 std::size_t memoryLimitOf(const RenderOptions& options);
 
-/** The camera the flags ask for (--eye, --target, --up, --fov, --clip, --size); resolveCamera() fills the rest. */
-CameraRequest cameraRequestOf(const RenderOptions& options);
-
 /** What the renderer is asked for by the options of one still. */
 StillRequest stillRequestOf(const RenderOptions& options);
 

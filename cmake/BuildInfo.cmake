@@ -1,7 +1,7 @@
 # Writes OUTPUT, the source of render/BuildInfo.h's functions: VERSION and the short commit of the git checkout at
 # SOURCE_DIR ("unknown" outside one, or without git). Run at every build (app/CMakeLists.txt); the file is rewritten
 # only when its text changes, so an unchanged commit rebuilds nothing.
-#   cmake -DSOURCE_DIR=... -DVERSION=0.1.0 -DOUTPUT=.../BuildInfo.cpp -P BuildInfo.cmake
+#   cmake -DSOURCE_DIR=... -DVERSION=0.2.0 -DOUTPUT=.../BuildInfo.cpp -P BuildInfo.cmake
 execute_process(COMMAND git -C "${SOURCE_DIR}" rev-parse --short HEAD
     OUTPUT_VARIABLE commit RESULT_VARIABLE result ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE)
 if(NOT result EQUAL 0 OR NOT commit MATCHES "^[0-9a-f]+$")

@@ -136,6 +136,34 @@ RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const 
     return parse(arguments, origins, true, checks);
 }
 
+void checkFlagRules(const RenderOptions& options, const std::vector<std::string>& given) {
+    std::vector<const Flag*> flags;
+    for (const std::string& name : given) {
+        const Flag* flag = findFlag(name);
+        if (flag == nullptr) throw std::logic_error("checkFlagRules(): no flag '" + name + "'");
+        if (std::find(flags.begin(), flags.end(), flag) == flags.end()) flags.push_back(flag);
+    }
+    checkGivenFlags(options, flags, true);
+}
+
+CameraRequest cameraRequestOf(const RenderOptions& options) {
+    CameraRequest request;
+    request.eye = options.eye;
+    request.orbit = options.orbit;
+    request.target = options.target;
+    request.frameNodes = options.frameNodes;
+    request.up = options.up;
+    request.fovYDegrees = options.fovYDegrees;
+    request.ignoreFileCamera = options.autoCamera;
+    if (options.clipRange) {
+        request.zNear = options.clipRange->x;
+        request.zFar = options.clipRange->y;
+    }
+    request.width = options.width;
+    request.height = options.height;
+    return request;
+}
+
 std::string renderHelp() {
     constexpr std::size_t kLineWidth = 100;
     std::string exitCodes = "Exit codes:";

@@ -88,6 +88,14 @@ enum class FlagChecks { Values, ValuesAndRules };
 RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const std::vector<std::string>& origins = {},
                                FlagChecks checks = FlagChecks::ValuesAndRules);
 
+/** The rules between flags that parseRenderFlags() applies with FlagChecks::ValuesAndRules, for options built flag by
+ *  flag (the library's typed looks and frames): `given` names each flag given ("--bands"). Throws UsageError. */
+void checkFlagRules(const RenderOptions& options, const std::vector<std::string>& given);
+
+/** The camera the flags ask for (--eye, --orbit, --target, --up, --fov, --clip, --camera, --frame, --size);
+ *  resolveCamera() fills the rest. */
+CameraRequest cameraRequestOf(const RenderOptions& options);
+
 /** The text of `inkgraph render --help`. */
 std::string renderHelp();
 

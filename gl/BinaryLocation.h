@@ -3,7 +3,7 @@
  *  The binary is the executable or the shared library this code is linked into (the installed libinkgraph.so loaded
  *  by a Python interpreter finds its own files, not the interpreter's), so an installed tree can move: nothing here
  *  depends on the install prefix the build was configured with. No GL: the OpenImageIO module's lookup
- *  (app/ImageFiles) uses it too. */
+ *  (render/ImageFiles) uses it too. */
 
 #include <filesystem>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 /** @file The boundary between inkgraph and OpenImageIO. Debian's OpenImageIO links about 260 libraries, and the
  *  dynamic loader spends ~0.2 s resolving their symbols: more than rendering the default model takes. So the OIIO
- *  code lives in a module (libinkgraph_imageio.so) that app/ImageFiles loads with dlopen only for the formats libpng
+ *  code lives in a module (libinkgraph_imageio.so) that render/ImageFiles loads with dlopen only for the formats libpng
  *  does not serve (EXR, TIFF, JPEG, ...; PNG is render/PngFiles.h, in the process): a run that writes only PNG never
  *  loads it, one that needs it loads it on a background thread while the scene loads. The boundary is plain: no
  *  exception crosses it, errors come back as text. */

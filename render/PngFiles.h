@@ -1,9 +1,10 @@
 #pragma once
 /** @file PNG through libpng (codecs/PngCodec.h), in the process. Every still writes a PNG, and OpenImageIO's ~0.2 s of
  * dynamic linking (render/ImageIoModule.h) was most of a small still's run; libpng is one small library beside zlib,
- * which the process links anyway. app/ImageFiles sends every .png here and every other format to OpenImageIO. Images
+ * which the process links anyway. render/ImageFiles sends every .png here and every other format to OpenImageIO. Images
  * are cv::Mat with row 0 at the top and channels in RGBA order, as everywhere in inkgraph. Encoding stays in memory:
- * the caller writes the bytes (app/ImageFiles' writeBytes), so the output transaction is the same for every format. */
+ * the caller writes the bytes (render/ImageFiles' writeBytes), so the output transaction is the same for every format.
+ */
 
 #include <opencv2/core.hpp>
 

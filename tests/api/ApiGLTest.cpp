@@ -23,14 +23,23 @@ namespace {
 const std::string kSuzanne = std::string(INKGRAPH_SOURCE_ROOT) + "/models/suzanne_npm_4k.obj";
 
 float floatAt(const ig::Image& image, std::size_t pixel, int channel) {
-    return image.floats()[pixel * std::size_t(image.channels) + std::size_t(channel)];
+    return image.floats()[pixel * std::size_t(image.channels()) + std::size_t(channel)];
 }
 
 std::uint8_t byteAt(const ig::Image& image, std::size_t pixel, int channel) {
-    return image.bytes[pixel * std::size_t(image.channels) + std::size_t(channel)];
+    return image.data()[pixel * std::size_t(image.channels()) + std::size_t(channel)];
 }
 
-std::size_t pixelCount(const ig::Image& image) { return std::size_t(image.width) * std::size_t(image.height); }
+std::size_t pixelCount(const ig::Image& image) { return std::size_t(image.width()) * std::size_t(image.height()); }
+
+/** The image's pixels, rows packed. */
+std::vector<std::uint8_t> bytesOf(const ig::Image& image) {
+    std::vector<std::uint8_t> bytes;
+    for (int row = 0; row < image.height(); ++row)
+        bytes.insert(bytes.end(), image.data() + row * image.rowBytes(),
+                     image.data() + row * image.rowBytes() + image.packedRowBytes());
+    return bytes;
+}
 
 /** The image's pixels as one of our own files holds them, read back by the command line's reader. */
 std::vector<std::uint8_t> bytesOfFile(const std::filesystem::path& path) {
@@ -45,7 +54,13 @@ protected:
         ig::Frame frame;
         frame.width = width;
         frame.height = height;
-        frame.camera = std::move(camera);
+        if (!camera.empty()) {
+            const ig::Frame placed = ig::Frame::fromArguments(camera);
+            frame.eye = placed.eye;
+            frame.orbit = placed.orbit;
+            frame.target = placed.target;
+            frame.fov = placed.fov;
+        }
         return frame;
     }
 
@@ -58,11 +73,11 @@ TEST_F(ApiRender, ThePictureHasTheFramesSizeAndInkOnPaper) {
     const ig::Look look = ig::Look::fromArguments({"--shading", "cel", "--lines", "silhouette,contour"});
     const ig::Still still = renderer.render(suzanne, look, frameOf(128, 96));
     const ig::Image& picture = still.picture();
-    EXPECT_EQ(picture.width, 128);
-    EXPECT_EQ(picture.height, 96);
-    EXPECT_EQ(picture.channels, 4);
-    EXPECT_EQ(picture.type, ig::Image::Type::UInt8);
-    ASSERT_EQ(picture.bytes.size(), 128u * 96u * 4u);
+    EXPECT_EQ(picture.width(), 128);
+    EXPECT_EQ(picture.height(), 96);
+    EXPECT_EQ(picture.channels(), 4);
+    EXPECT_EQ(picture.type(), ig::Image::Type::UInt8);
+    ASSERT_EQ(picture.byteCount(), 128u * 96u * 4u);
     // The model is framed in the middle: the corners are paper, and the silhouette puts black ink around it.
     for (const std::size_t corner :
          {std::size_t(0), std::size_t(127), std::size_t(95 * 128), std::size_t(96 * 128 - 1)})
@@ -87,15 +102,15 @@ TEST_F(ApiRender, TheGBuffersFieldsAreWhatTheyMean) {
     const ig::Image& coverage = still.buffer("coverage");
     EXPECT_EQ(still.bufferNames(), (std::vector<std::string>{"normal", "view", "nDotV", "depth", "coverage"}));
     for (const ig::Image* image : {&normal, &view, &nDotV, &depth, &coverage}) {
-        EXPECT_EQ(image->width, 128);
-        EXPECT_EQ(image->height, 128);
+        EXPECT_EQ(image->width(), 128);
+        EXPECT_EQ(image->height(), 128);
     }
-    ASSERT_EQ(normal.type, ig::Image::Type::Float32);
-    ASSERT_EQ(normal.channels, 4);
-    ASSERT_EQ(nDotV.channels, 1);
-    ASSERT_EQ(depth.channels, 1);
-    ASSERT_EQ(coverage.type, ig::Image::Type::UInt8);
-    ASSERT_EQ(coverage.channels, 1);
+    ASSERT_EQ(normal.type(), ig::Image::Type::Float32);
+    ASSERT_EQ(normal.channels(), 4);
+    ASSERT_EQ(nDotV.channels(), 1);
+    ASSERT_EQ(depth.channels(), 1);
+    ASSERT_EQ(coverage.type(), ig::Image::Type::UInt8);
+    ASSERT_EQ(coverage.channels(), 1);
 
     std::size_t covered = 0;
     for (std::size_t pixel = 0; pixel < pixelCount(normal); ++pixel) {
@@ -130,9 +145,9 @@ TEST_F(ApiRender, ALineLayerIsAMaskOfTheInkInThePicture) {
     const ig::Still still = renderer.render(suzanne, look, frameOf(128, 128), {"lines.contour"});
     const ig::Image& mask = still.buffer("lines.contour");
     const ig::Image& picture = still.picture();
-    ASSERT_EQ(mask.type, ig::Image::Type::UInt8);
-    ASSERT_EQ(mask.channels, 1);
-    ASSERT_EQ(mask.width, 128);
+    ASSERT_EQ(mask.type(), ig::Image::Type::UInt8);
+    ASSERT_EQ(mask.channels(), 1);
+    ASSERT_EQ(mask.width(), 128);
     std::size_t line = 0;
     for (std::size_t pixel = 0; pixel < pixelCount(mask); ++pixel) {
         const std::uint8_t value = byteAt(mask, pixel, 0);
@@ -148,24 +163,25 @@ TEST_F(ApiRender, SupersampledFieldsAreLargerThanTheFrame) {
     ig::Renderer renderer;
     const ig::Look look = ig::Look::fromArguments({"--lines", "contour", "--supersample", "2"});
     const ig::Still still = renderer.render(suzanne, look, frameOf(96, 64), {"normal", "lines.contour"});
-    EXPECT_EQ(still.picture().width, 96);
-    EXPECT_EQ(still.buffer("normal").width, 192);
-    EXPECT_EQ(still.buffer("normal").height, 128);
-    EXPECT_EQ(still.buffer("lines.contour").width, 96);
-    EXPECT_EQ(still.buffer("lines.contour").height, 64);
+    EXPECT_EQ(still.picture().width(), 96);
+    EXPECT_EQ(still.buffer("normal").width(), 192);
+    EXPECT_EQ(still.buffer("normal").height(), 128);
+    EXPECT_EQ(still.buffer("lines.contour").width(), 96);
+    EXPECT_EQ(still.buffer("lines.contour").height(), 64);
 }
 
-TEST_F(ApiRender, WildcardsGiveEveryFieldByItsFullName) {
+TEST_F(ApiRender, WildcardsGiveEveryFieldByTheLibrarysNames) {
     ig::Renderer renderer;
     const ig::Look look = ig::Look::fromArguments({"--lines", "silhouette,contour"});
     const ig::Still still = renderer.render(suzanne, look, frameOf(64, 64), {"gbuffer.*", "lines.*"});
     const std::vector<std::string> names = still.bufferNames();
     ASSERT_GE(names.size(), 4u);
-    EXPECT_EQ(names.front(), "gbuffer.normal");
+    EXPECT_EQ(names.front(), "normal");
     EXPECT_EQ(std::vector<std::string>(names.end() - 2, names.end()),
-              (std::vector<std::string>{"strokes.silhouette", "strokes.contour"}));
-    EXPECT_NE(std::find(names.begin(), names.end(), "gbuffer.depth"), names.end());
-    // Any name of a resource finds it.
+              (std::vector<std::string>{"lines.silhouette", "lines.contour"}));
+    EXPECT_NE(std::find(names.begin(), names.end(), "depth"), names.end());
+    for (const std::string& name : names) EXPECT_EQ(name.find("strokes"), std::string::npos) << name;
+    // Any name of a buffer finds it, the graph's too.
     EXPECT_EQ(&still.buffer("normal"), &still.buffer("gbuffer.normal"));
     EXPECT_EQ(&still.buffer("lines.contour"), &still.buffer("strokes.contour"));
 }
@@ -188,8 +204,8 @@ TEST_F(ApiRender, ARendererRendersAgainTheSame) {
     const std::string context = renderer.glDescription();
     const ig::Still second = renderer.render(suzanne, look, frameOf(128, 128), {"depth"});
     EXPECT_EQ(renderer.glDescription(), context);
-    EXPECT_EQ(first.picture().bytes, second.picture().bytes);
-    EXPECT_EQ(first.buffer("depth").bytes, second.buffer("depth").bytes);
+    EXPECT_EQ(bytesOf(first.picture()), bytesOf(second.picture()));
+    EXPECT_EQ(bytesOf(first.buffer("depth")), bytesOf(second.buffer("depth")));
 }
 
 TEST_F(ApiRender, OneSceneRendersWithTwoLooksWithoutItsFile) {
@@ -202,7 +218,7 @@ TEST_F(ApiRender, OneSceneRendersWithTwoLooksWithoutItsFile) {
     const ig::Look lined = ig::Look::fromArguments({"--shading", "cel", "--lines", "contour"});
     const ig::Still unlined = renderer.render(scene, plain, frameOf(96, 96));
     const ig::Still contoured = renderer.render(scene, lined, frameOf(96, 96), {"lines.contour"});
-    EXPECT_NE(unlined.picture().bytes, contoured.picture().bytes);
+    EXPECT_NE(bytesOf(unlined.picture()), bytesOf(contoured.picture()));
     // Where the contour layer has no ink the two looks agree; where it is solid the lined look is darker.
     const ig::Image& mask = contoured.buffer("lines.contour");
     std::size_t darker = 0;
@@ -228,10 +244,10 @@ TEST_F(ApiRender, ThePictureIsTheCommandLines) {
     ig::Renderer renderer;
     const ig::Look look = ig::Look::fromArguments({"--shading", "comic", "--lines", "silhouette,contour"});
     const ig::Still still = renderer.render(suzanne, look, frameOf(120, 90, {"--orbit", "30,10"}));
-    EXPECT_EQ(still.picture().bytes, bytesOfFile(directory / "cli.png"));
+    EXPECT_EQ(bytesOf(still.picture()), bytesOfFile(directory / "cli.png"));
     // The API writes the same picture the command line does.
     still.write((directory / "api.png").string());
-    EXPECT_EQ(bytesOfFile(directory / "api.png"), still.picture().bytes);
+    EXPECT_EQ(bytesOfFile(directory / "api.png"), bytesOf(still.picture()));
 }
 
 TEST_F(ApiRender, MaterialsKeepTheirShadeMapsAsOnTheCommandLine) {
@@ -243,13 +259,17 @@ TEST_F(ApiRender, MaterialsKeepTheirShadeMapsAsOnTheCommandLine) {
     const ig::Scene scene = ig::Scene::load(stillLife);
     const ig::Look comic = ig::Look::fromArguments({"--shading", "comic", "--lines", "contour"});
     const ig::Still still = renderer.render(scene, comic, frameOf(160, 100));
-    EXPECT_EQ(still.picture().bytes, bytesOfFile(directory / "cli.png"));
+    EXPECT_EQ(bytesOf(still.picture()), bytesOfFile(directory / "cli.png"));
     EXPECT_TRUE(still.warnings().empty());
     // A shading without maps draws the scene and says the materials' maps went unused.
     const ig::Still lambert = renderer.render(scene, ig::Look().set("--shading", "lambert"), frameOf(160, 100));
     ASSERT_EQ(lambert.warnings().size(), 1u);
-    EXPECT_NE(lambert.warnings()[0].find("4 meshes name shade maps, which only --shading"), std::string::npos)
-        << lambert.warnings()[0];
+    const ig::Warning& unused = lambert.warnings()[0];
+    EXPECT_EQ(unused.code, "shade-map-unused");
+    EXPECT_EQ(unused.file, std::filesystem::absolute(stillLife).lexically_normal().string() == unused.file ? unused.file
+                                                                                                           : stillLife);
+    EXPECT_NE(unused.message.find("4 meshes name shade maps, which only --shading"), std::string::npos)
+        << unused.message;
 }
 
 /** A glTF triangle whose buffer is the file `bufferName` and whose material names the shade map `shadeMapName`. */
@@ -290,13 +310,13 @@ TEST_F(ApiRender, AStillNeverReplacesAFileItsRenderRead) {
     EXPECT_EQ(refusal(directory / "link.obj"),
               "Still::write(): '" + (directory / "link.obj").string() + "' is the model itself; choose another file");
     EXPECT_EQ(refusal(lookMap),
-              "Still::write(): '" + lookMap.string() + "' is the --shademap itself; choose another file");
+              "Still::write(): '" + lookMap.string() + "' is the look's shade map; choose another file");
     EXPECT_EQ(refusal(directory / "alias.png"), "Still::write(): '" + (directory / "alias.png").string() +
-                                                    "' is the --shademap itself; choose another file");
-    EXPECT_EQ(refusal(style), "Still::write(): '" + style.string() + "' is the --style file; choose another file");
+                                                    "' is the look's shade map; choose another file");
+    EXPECT_EQ(refusal(style), "Still::write(): '" + style.string() + "' is the look's style file; choose another file");
     EXPECT_EQ(snapshot(directory), before) << "a refused write changed a file";
     still.write((directory / "new.png").string());
-    EXPECT_EQ(bytesOfFile(directory / "new.png"), still.picture().bytes);
+    EXPECT_EQ(bytesOfFile(directory / "new.png"), bytesOf(still.picture()));
 
     // What only loading the model revealed: its buffer and the shade map its material names.
     const std::filesystem::path gltf = directory / "triangle.gltf";
@@ -331,22 +351,22 @@ TEST_F(ApiRender, OneRendererAtATimeHoldsTheContext) {
         EXPECT_STREQ(error.what(), "Renderer::render(): another Renderer of this process holds the GL context (EGL "
                                    "shares one display per process); render with that one, or destroy it first");
     }
-    EXPECT_EQ(second.render(suzanne, {}, frameOf(32, 32)).picture().width, 32);
+    EXPECT_EQ(second.render(suzanne, {}, frameOf(32, 32)).picture().width(), 32);
 }
 
 TEST_F(ApiRender, ARendererRendersOnAnyThreadAndIsDestroyedOnAnother) {
     // Each render releases the context at its end, so a worker thread may render next and a third may destroy the
     // renderer (its GL objects are freed there): before, the destruction away from the render thread aborted.
     auto renderer = std::make_unique<ig::Renderer>();
-    const std::vector<std::uint8_t> here = renderer->render(suzanne, {}, frameOf(32, 32)).picture().bytes;
+    const std::vector<std::uint8_t> here = bytesOf(renderer->render(suzanne, {}, frameOf(32, 32)).picture());
     std::vector<std::uint8_t> there;
-    std::thread worker([&] { there = renderer->render(suzanne, {}, frameOf(32, 32)).picture().bytes; });
+    std::thread worker([&] { there = bytesOf(renderer->render(suzanne, {}, frameOf(32, 32)).picture()); });
     worker.join();
     EXPECT_EQ(there, here);
     std::thread destroyer([&] { renderer.reset(); });
     destroyer.join();
     ig::Renderer next; // the context was given back: a new renderer takes it
-    EXPECT_EQ(next.render(suzanne, {}, frameOf(32, 32)).picture().bytes, here);
+    EXPECT_EQ(bytesOf(next.render(suzanne, {}, frameOf(32, 32)).picture()), here);
 }
 
 TEST_F(ApiRender, AForkedChildNeitherRendersWithNorFreesTheParentsContext) {
@@ -391,7 +411,7 @@ TEST_F(ApiRender, AForkedChildNeitherRendersWithNorFreesTheParentsContext) {
     ASSERT_EQ(waitpid(child, &status, 0), child);
     ASSERT_TRUE(WIFEXITED(status)) << "the child ended by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
     EXPECT_EQ(WEXITSTATUS(status), 0) << "10/12: a render succeeded; 11/13: another error than expected";
-    EXPECT_EQ(renderer.render(suzanne, {}, frameOf(32, 32)).picture().width, 32); // the parent's is untouched
+    EXPECT_EQ(renderer.render(suzanne, {}, frameOf(32, 32)).picture().width(), 32); // the parent's is untouched
 }
 
 } // namespace

@@ -70,12 +70,11 @@ TEST(ApiLook, RefusesAFlagThatIsNotTheLooksNamingItsPlace) {
     const ig::Error camera = errorOf([] { ig::Look::fromArguments({"--shading", "cel", "--eye", "0,0,5"}); });
     EXPECT_EQ(camera.kind(), ig::Error::Kind::Usage);
     EXPECT_EQ(camera.exitCode(), 2);
-    EXPECT_STREQ(camera.what(), "Look::fromArguments(): '--eye' is not a look flag (give it in Frame::camera)");
+    EXPECT_STREQ(camera.what(), "Look::fromArguments(): '--eye' is not a look flag (give it to the Frame)");
     EXPECT_STREQ(errorOf([] { ig::Look().set("--size", "64x64"); }).what(),
                  "Look::set(): '--size' is not a look flag (give Frame::width and height)");
     EXPECT_STREQ(errorOf([] { ig::Look().set("--animation", "Walk"); }).what(),
-                 "Look::set(): '--animation' is not a look flag (it poses the scene as it loads: SceneOptions, given "
-                 "to Scene::load())");
+                 "Look::set(): '--animation' is not a look flag (give it to the Frame)");
     EXPECT_STREQ(errorOf([] { ig::Look::fromArguments({"--frobnicate"}); }).what(),
                  "Look::fromArguments(): unknown option '--frobnicate'");
     EXPECT_STREQ(errorOf([] { ig::Look::fromArguments({"bunny.obj"}); }).what(),
@@ -130,15 +129,17 @@ TEST_F(ApiStyle, AMissingStyleFileIsNamed) {
     EXPECT_NE(std::string(error.what()).find("absent.style"), std::string::npos) << error.what();
 }
 
-TEST(ApiBufferNames, ShortNamesStandForTheGraphsResources) {
-    EXPECT_EQ(ig::bufferResourceName("normal"), "gbuffer.normal");
-    EXPECT_EQ(ig::bufferResourceName("nDotV"), "gbuffer.nDotV");
-    EXPECT_EQ(ig::bufferResourceName("materialId"), "gbuffer.materialId");
-    EXPECT_EQ(ig::bufferResourceName("lines.contour"), "strokes.contour");
-    EXPECT_EQ(ig::bufferResourceName("lines.*"), "strokes.*");
-    EXPECT_EQ(ig::bufferResourceName("picture"), "composite.final");
-    EXPECT_EQ(ig::bufferResourceName("shade.color"), "shade.color");
-    EXPECT_EQ(ig::bufferResourceName("gbuffer.depth"), "gbuffer.depth");
+TEST(ApiBufferNames, AreTheLooksWithoutTheGraphsNames) {
+    const std::vector<std::string> names =
+        ig::bufferNames(ig::Look().setLines({ig::LineType::Contour, ig::LineType::Crease}));
+    for (const std::string name :
+         {"normal", "nDotV", "depth", "materialId", "gbuffer.*", "lines.contour", "lines.crease", "lines.*", "picture"})
+        EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+    for (const std::string& name : names) {
+        EXPECT_EQ(name.find("strokes"), std::string::npos) << name;
+        EXPECT_EQ(name.find("composite"), std::string::npos) << name;
+    }
+    EXPECT_EQ(std::find(names.begin(), names.end(), "lines.silhouette"), names.end());
 }
 
 /** What fails before a still executes needs no GL: the frame, the buffer names, the look's files. */
@@ -150,24 +151,64 @@ protected:
     const ig::Scene scene = ig::Scene::load(kModels + "suzanne_npm_4k.obj");
 };
 
-TEST_F(ApiRenderRefusal, AFrameTakesCameraFlagsOnly) {
+TEST_F(ApiRenderRefusal, AFrameIsCheckedByItsFlagsRules) {
+    EXPECT_STREQ(errorOf([] {
+                     ig::Frame::fromArguments({"--orbit", "30,10", "--lines", "contour"});
+                 }).what(),
+                 "Frame::fromArguments(): '--lines' is not a frame flag (give it to the Look)");
+    EXPECT_STREQ(errorOf([] { ig::Frame::fromArguments({"--orbit"}); }).what(),
+                 "Frame::fromArguments(): --orbit: missing value");
     ig::Frame frame;
-    frame.camera = {"--orbit", "30,10", "--lines", "contour"};
-    EXPECT_STREQ(renderError({}, frame).what(),
-                 "Renderer::render(): Frame::camera: '--lines' is not a camera flag (give it to the Look)");
-    frame.camera = {"--time", "2"};
-    EXPECT_STREQ(renderError({}, frame).what(),
-                 "Renderer::render(): Frame::camera: '--time' is not a camera flag (it poses the scene as it loads: "
-                 "SceneOptions, given to Scene::load())");
-    frame.camera = {"--orbit", "30,95"};
+    frame.orbit = ig::Orbit{30.0, 95.0};
     const ig::Error elevation = renderError({}, frame);
     EXPECT_EQ(elevation.kind(), ig::Error::Kind::Usage);
-    EXPECT_NE(std::string(elevation.what()).find("--orbit: the elevation must lie in [-89.9, 89.9]"), std::string::npos)
+    EXPECT_EQ(std::string(elevation.what())
+                  .rfind("Renderer::render(): Frame::orbit: --orbit: the elevation must lie "
+                         "in [-89.9, 89.9]",
+                         0),
+              0u)
         << elevation.what();
-    frame.camera = {"--orbit"}; // without its value: not the "--size" the renderer appends
-    EXPECT_STREQ(renderError({}, frame).what(), "Renderer::render(): Frame::camera: --orbit: missing value");
-    frame.camera = {"--eye", "0,0,5", "--orbit", "30,10"};
+    frame.orbit = ig::Orbit{30.0, 10.0};
+    frame.eye = ig::Vec3{0.0, 0.0, 5.0};
     EXPECT_STREQ(renderError({}, frame).what(), "Renderer::render(): --orbit and --eye both place the eye: give one");
+    frame = {};
+    frame.fov = 180.0;
+    EXPECT_STREQ(renderError({}, frame).what(),
+                 "Renderer::render(): Frame::fov: --fov: degrees must lie in [0.01, 179], got 180");
+    frame = {};
+    frame.time = 2.0;
+    const std::string time = renderError({}, frame).what();
+    EXPECT_NE(time.find("--time"), std::string::npos) << time;
+}
+
+TEST(ApiFrame, FromArgumentsFillsTheTypedFields) {
+    const ig::Frame frame =
+        ig::Frame::fromArguments({"--size", "640x480", "--orbit", "30,10,4", "--target", "1,2,3", "--fov", "40",
+                                  "--clip", "0.5,50", "--camera", "auto", "--up", "0,0,2"});
+    EXPECT_EQ(frame.width, 640);
+    EXPECT_EQ(frame.height, 480);
+    ASSERT_TRUE(frame.orbit.has_value());
+    EXPECT_EQ(frame.orbit->azimuth, 30.0);
+    EXPECT_EQ(frame.orbit->elevation, 10.0);
+    EXPECT_EQ(frame.orbit->distance, 4.0);
+    ASSERT_TRUE(frame.target.has_value());
+    EXPECT_EQ(frame.target->z, 3.0);
+    ASSERT_TRUE(frame.up.has_value());
+    EXPECT_EQ(frame.up->z, 1.0) << "--up is a direction, made unit length";
+    EXPECT_EQ(frame.fov, 40.0);
+    ASSERT_TRUE(frame.clip.has_value());
+    EXPECT_EQ(frame.clip->near, 0.5);
+    EXPECT_EQ(frame.clip->far, 50.0);
+    EXPECT_EQ(frame.placement, ig::CameraPlacement::Auto);
+    EXPECT_EQ(ig::Frame::fromArguments({"--frame", "Head,Hand"}).frameNodes,
+              (std::vector<std::string>{"Head", "Hand"}));
+    const ig::Frame eye = ig::Frame::fromArguments({"--eye", "0,1,5", "--animation", "Walk", "--time", "0"});
+    ASSERT_TRUE(eye.eye.has_value());
+    EXPECT_EQ(eye.eye->y, 1.0);
+    EXPECT_EQ(eye.animation, "Walk");
+    EXPECT_EQ(eye.time, 0.0) << "--time given as 0 stays given";
+    EXPECT_FALSE(frame.eye.has_value());
+    EXPECT_FALSE(frame.time.has_value());
 }
 
 TEST_F(ApiRenderRefusal, AFrameSizeIsCheckedAsSize) {
@@ -178,7 +219,7 @@ TEST_F(ApiRenderRefusal, AFrameSizeIsCheckedAsSize) {
                  "to 16384, got '0x1024'");
     frame.width = 4096;
     frame.height = 4096;
-    EXPECT_STREQ(renderError(ig::Look().set("--supersample", "8"), frame).what(),
+    EXPECT_STREQ(renderError(ig::Look().setSupersample(8), frame).what(),
                  "Renderer::render(): --supersample: 8 x --size 4096x4096 exceeds the largest buffer side, 16384");
 }
 
@@ -211,32 +252,30 @@ TEST_F(ApiRenderRefusal, AMissingShadeMapIsAnInputError) {
     EXPECT_NE(std::string(error.what()).find(map), std::string::npos) << error.what();
 }
 
-TEST(ApiRenderer, RefusesAnUnknownEglPlatform) {
-    const ig::Error error = errorOf([] { ig::Renderer renderer("wayland"); });
-    EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
-    EXPECT_STREQ(error.what(), "Renderer(): --egl-platform: 'wayland' is not one of auto, device, surfaceless");
-}
-
 using ApiImage = TestFolder;
 
 /** A `width` x `height` image of `channels` whose every byte differs from its neighbours'. */
 ig::Image patterned(int width, int height, int channels, ig::Image::Type type) {
-    ig::Image image;
-    image.width = width;
-    image.height = height;
-    image.channels = channels;
-    image.type = type;
     const std::size_t values = std::size_t(width) * height * channels;
-    image.bytes.resize(values * image.bytesPerChannel());
+    std::vector<std::uint8_t> bytes(values * (type == ig::Image::Type::Float32 ? 4 : 1));
     for (std::size_t i = 0; i < values; ++i) {
         if (type == ig::Image::Type::UInt8) {
-            image.bytes[i] = std::uint8_t((i * 37 + 11) % 256);
+            bytes[i] = std::uint8_t((i * 37 + 11) % 256);
         } else {
             const float value = float(i) * 0.125f - 3.0f;
-            std::memcpy(image.bytes.data() + 4 * i, &value, 4);
+            std::memcpy(bytes.data() + 4 * i, &value, 4);
         }
     }
-    return image;
+    return ig::Image(width, height, channels, type, std::move(bytes));
+}
+
+/** The image's pixels, rows packed. */
+std::vector<std::uint8_t> bytesOf(const ig::Image& image) {
+    std::vector<std::uint8_t> bytes;
+    for (int row = 0; row < image.height(); ++row)
+        bytes.insert(bytes.end(), image.data() + row * image.rowBytes(),
+                     image.data() + row * image.rowBytes() + image.packedRowBytes());
+    return bytes;
 }
 
 /** The image's bytes as written, read back by the command line's own reader. */
@@ -255,7 +294,7 @@ TEST_F(ApiImage, WritesPngThatReadsBackTheSame) {
         EXPECT_EQ(read.cols, 5);
         EXPECT_EQ(read.rows, 3);
         EXPECT_EQ(read.channels(), channels);
-        EXPECT_EQ(bytesReadBack(path), image.bytes) << channels << " channels";
+        EXPECT_EQ(bytesReadBack(path), bytesOf(image)) << channels << " channels";
     }
 }
 
@@ -264,7 +303,7 @@ TEST_F(ApiImage, WritesFloatsToExrExactly) {
     const std::filesystem::path path = directory / "image.exr";
     image.write(path.string());
     EXPECT_EQ(readImage(path).type(), CV_32FC4);
-    EXPECT_EQ(bytesReadBack(path), image.bytes);
+    EXPECT_EQ(bytesReadBack(path), bytesOf(image));
     EXPECT_EQ(image.floats()[5], 5 * 0.125f - 3.0f);
 }
 
@@ -276,10 +315,10 @@ TEST_F(ApiImage, FailuresNameTheFile) {
     EXPECT_EQ(output.exitCode(), 5);
     EXPECT_NE(std::string(output.what()).find(unwritable), std::string::npos) << output.what();
 
-    ig::Image truncated = image;
-    truncated.bytes.pop_back();
-    EXPECT_STREQ(errorOf([&] { truncated.write((directory / "t.png").string()); }).what(),
-                 "Image::write(): the image holds 15 bytes; 2x2x4 pixels need 16");
+    EXPECT_STREQ(errorOf([&] { ig::Image(2, 2, 4, ig::Image::Type::UInt8, std::vector<std::uint8_t>(15)); }).what(),
+                 "Image(): the image holds 15 bytes; 2x2x4 pixels need 16");
+    EXPECT_STREQ(errorOf([&] { ig::Image(2, 0, 4, ig::Image::Type::UInt8, {}); }).what(),
+                 "Image(): an image of 2x0 pixels and 4 channels (at least 1x1, 1 or 4 channels)");
     EXPECT_EQ(errorOf([&] { image.floats(); }).kind(), ig::Error::Kind::Usage);
 }
 
@@ -333,7 +372,7 @@ TEST_F(ApiImage, RefusesToReplaceAFifoALinkToADeviceOrAFolder) {
     std::filesystem::create_symlink(directory / "nowhere.png", dangling);
     image.write(dangling.string());
     EXPECT_EQ(fileTypeOf(dangling), mode_t(S_IFREG));
-    EXPECT_EQ(bytesReadBack(dangling), image.bytes);
+    EXPECT_EQ(bytesReadBack(dangling), bytesOf(image));
 }
 
 TEST_F(ApiImage, RefusesToReplaceACharacterDevice) {
@@ -358,6 +397,16 @@ TEST(ApiErrors, KindsKeepTheCommandLinesExitCodes) {
 TEST(ApiVersion, IsTheProjects) {
     EXPECT_EQ(ig::version(), INKGRAPH_PROJECT_VERSION);
     EXPECT_FALSE(ig::gitCommit().empty());
+}
+
+TEST(ApiVersion, TheHeadersMacrosAreTheLibrarysVersion) {
+    EXPECT_EQ(ig::version(), std::to_string(INKGRAPH_VERSION_MAJOR) + "." + std::to_string(INKGRAPH_VERSION_MINOR) +
+                                 "." + std::to_string(INKGRAPH_VERSION_PATCH));
+    // The ABI namespace is the minor's: v<MAJOR>_<MINOR>.
+#define INKGRAPH_TEST_STRING(x) #x
+#define INKGRAPH_TEST_EXPANDED(x) INKGRAPH_TEST_STRING(x)
+    EXPECT_EQ(std::string(INKGRAPH_TEST_EXPANDED(INKGRAPH_ABI_NAMESPACE)),
+              "v" + std::to_string(INKGRAPH_VERSION_MAJOR) + "_" + std::to_string(INKGRAPH_VERSION_MINOR));
 }
 
 } // namespace

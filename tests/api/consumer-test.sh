@@ -23,7 +23,7 @@ cmake --build "$work/build" > "$work/build.log" 2>&1 || fail "building the consu
 consumer=$work/build/inkgraph-consumer
 
 # The library it runs with is the installed one.
-library=$(ldd "$consumer" | awk '$1 == "libinkgraph.so.0" { print $3 }')
+library=$(ldd "$consumer" | awk '$1 == "libinkgraph.so.0.2" { print $3 }')
 [[ "$library" == "$prefix"/* ]] || fail "the consumer links '$library', not the installed library under $prefix"
 
 (cd "$work" && "$consumer" "$source/models/suzanne_npm_4k.obj" out > stdout.txt 2> stderr.txt) ||
@@ -43,5 +43,5 @@ contour=$(pixelsSet lines.contour "512x384x1 uint8")
 covered=$(pixelsSet normal "512x384x4 float32")
 [ -n "$contour" ] && [ "$contour" -gt 200 ] || fail "the contour layer: $(cat "$work/stdout.txt")"
 [ -n "$covered" ] && [ "$covered" -gt $((512 * 384 / 8)) ] || fail "the normals: $(cat "$work/stdout.txt")"
-grep -q "^inkgraph 0.1.0 (git " "$work/stdout.txt" || fail "no version line: $(cat "$work/stdout.txt")"
+grep -q "^inkgraph 0.2.0 (git " "$work/stdout.txt" || fail "no version line: $(cat "$work/stdout.txt")"
 echo "consumer-test: built against $prefix, rendered: $(tr '\n' ';' < "$work/stdout.txt")"

@@ -1,4 +1,4 @@
-// PreparedStill::warnings (app/StillRenderer.h): every warning a still printed, as records, for a library to return;
+// PreparedStill::warnings (render/StillRenderer.h): every warning a still printed, as records, for a library to return;
 // and the command line's text unchanged. No GL: load() and plan() touch none.
 #include "render/StillRenderer.h"
 #include "scene/Scene.h"

@@ -37,7 +37,7 @@ std::map<std::string, std::string> facts(const std::string& text) {
 TEST_F(Cli, VersionNamesTheVersionAndTheCommit) {
     const CliRun result = run("--version");
     ASSERT_EQ(result.exitCode, 0) << result.err;
-    EXPECT_EQ(result.out, std::string("inkgraph 0.1.0 (git ") + inkgraphGitCommit() + ")\n");
+    EXPECT_EQ(result.out, std::string("inkgraph 0.2.0 (git ") + inkgraphGitCommit() + ")\n");
     EXPECT_TRUE(std::regex_match(std::string(inkgraphGitCommit()), std::regex("[0-9a-f]{7,40}|unknown")))
         << inkgraphGitCommit();
     EXPECT_EQ(result.err, "");
@@ -47,7 +47,7 @@ TEST_F(Cli, VerboseVersionTellsWhatTheProgramRunsOn) {
     const CliRun result = run("--version --verbose");
     ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
     EXPECT_EQ(result.out.substr(0, result.out.find('\n')),
-              std::string("inkgraph 0.1.0 (git ") + inkgraphGitCommit() + ")");
+              std::string("inkgraph 0.2.0 (git ") + inkgraphGitCommit() + ")");
     const std::map<std::string, std::string> found = facts(result.out);
     EXPECT_EQ(found.at("binary"), fs::weakly_canonical(INKGRAPH_EXECUTABLE).string());
     // A binary of the build tree, with no installed shaders beside it, reads the source tree's.

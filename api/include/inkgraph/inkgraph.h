@@ -1,31 +1,45 @@
 #pragma once
-/** @file inkgraph's public C++ API: load a scene, describe a look and a frame, render, get named buffers as images,
- *  write outputs. This header is the whole contract: it includes only the standard library, so a program that links
- *  `inkgraph::inkgraph` (find_package(inkgraph)) needs none of inkgraph's dependencies' headers.
+/** @file inkgraph's public C++ API: load a scene (a file, or arrays in memory), describe a look and a frame with typed
+ *  fields, render, get the picture, named buffers, the camera it was drawn with and its warnings. This header is the
+ *  whole contract: it includes only the standard library, so a program that links `inkgraph::inkgraph`
+ *  (find_package(inkgraph)) needs none of inkgraph's dependencies' headers.
  *
  *      #include <inkgraph/inkgraph.h>
  *      namespace ig = inkgraph::api;
  *
  *      ig::Renderer renderer;                                  // one GL context, kept for every render
  *      const ig::Scene bunny = ig::Scene::load("bunny.obj");
- *      ig::Look look = ig::Look::fromArguments({"--shading", "cel", "--lines", "silhouette,contour"});
+ *      ig::Look look;                                          // the command line's default look
+ *      look.setShading(ig::Shading::Cel).setLines({ig::LineType::Silhouette, ig::LineType::Contour});
  *      ig::Frame frame;
  *      frame.width = frame.height = 512;
- *      const ig::Still still = renderer.render(bunny, look, frame, {"gbuffer.normal", "lines.contour"});
+ *      frame.orbit = ig::Orbit{30.0, 10.0};
+ *      const ig::Still still = renderer.render(bunny, look, frame, {"depth", "lines.contour"});
  *      still.write("bunny.png");                                // the picture, format from the extension
- *      const ig::Image& normal = still.buffer("gbuffer.normal"); // 512 x 512 x 4 float32
+ *      const ig::StillCamera& camera = still.camera();          // K, [R|t], view, projection
  *
- *  The look and the frame are described with the names and values of `inkgraph render`'s flags (`inkgraph help
- *  render`), checked by the same code, so every look the command line can draw the library can too, and their
- *  errors read the same. Errors are ig::Error, whose message is the command line's (a flag's with the API's function
- *  in front) and quotes the names. docs/api.md describes it all. */
+ *  Every typed field is checked by the same rules, with the same messages, as `inkgraph render`'s flag that sets it
+ *  (`inkgraph help render`); Look::fromArguments() and Frame::fromArguments() take those flags as strings, so style
+ *  files and command lines carry over. Errors are ig::Error, whose message starts with the API's function and quotes
+ *  the names. docs/api.md describes it all, and its "Versions and ABI" section what a version promises. */
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+/** The library's version, as the header knows it; version() gives the library's own at run time. */
+#define INKGRAPH_VERSION_MAJOR 0
+#define INKGRAPH_VERSION_MINOR 2
+#define INKGRAPH_VERSION_PATCH 0
+
+/** The ABI's namespace: one per 0.x minor (the soname is libinkgraph.so.0.MINOR), so a program built against another
+ *  minor fails to link instead of calling into a changed layout. */
+#define INKGRAPH_ABI_NAMESPACE v0_2
 
 /** What the shared library exports: this header's classes and functions, nothing else (api/CMakeLists.txt). */
 #if defined(__GNUC__)
@@ -35,8 +49,9 @@
 #endif
 
 namespace inkgraph::api {
+inline namespace INKGRAPH_ABI_NAMESPACE {
 
-/** "0.1.0". */
+/** "0.2.0": the library's version (INKGRAPH_VERSION_* are the header's). */
 INKGRAPH_API std::string version();
 /** The git commit the library was built from ("unknown" outside a git checkout). */
 INKGRAPH_API std::string gitCommit();
@@ -45,11 +60,11 @@ INKGRAPH_API std::string gitCommit();
 class INKGRAPH_API Error : public std::runtime_error {
 public:
     enum class Kind {
-        /** A bad flag, value, buffer name, camera or image; too little memory for the request; a Renderer used while
+        /** A bad value, buffer name, camera or image; too little memory for the request; a Renderer used while
          *  another holds the process's GL context, or made before the fork of the process it is used in; a still
          *  written over a file its render read. */
         Usage,
-        Input,   ///< an unreadable or invalid model, shade map or texture
+        Input,   ///< an unreadable or invalid model, mesh arrays, shade map or texture
         Context, ///< no OpenGL 4.5 core context through EGL, or the shaders are missing or do not compile
         Output,  ///< a file could not be written, or its place is not a regular file or a new name
         Render,  ///< the render itself failed: an internal error
@@ -63,91 +78,326 @@ private:
     Kind mKind;
 };
 
-/** An image: rows top first, tightly packed, channels interleaved (R, G, B, A order). */
-struct INKGRAPH_API Image {
-    enum class Type { UInt8, Float32 };
-    int width = 0;
-    int height = 0;
-    int channels = 0; ///< 1 or 4
-    Type type = Type::UInt8;
-    std::vector<std::uint8_t> bytes; ///< width * height * channels * bytesPerChannel()
+/** Something a load or a render warns about, as a record: a texture it could not read, a camera that sees none of the
+ *  model, a shade map this shading does not use. docs/robustness.md ("Warning codes") lists every code. */
+struct Warning {
+    std::string code;    ///< stable, kebab-case: "texture-missing"
+    std::string message; ///< as the command line prints it after "inkgraph: warning: "
+    std::string file;    ///< the file it concerns (a texture, a shade map, the model), or ""
+    std::string item;    ///< the thing in the model it concerns (a material, mesh, texture or node), or ""
+};
 
-    std::size_t bytesPerChannel() const { return type == Type::Float32 ? 4 : 1; }
-    /** The pixels as floats; throws Error(Usage) unless type is Float32. */
+/** An image: rows top first, rowBytes() apart (tightly packed but in a caller's buffer: Renderer::renderInto()),
+ *  channels interleaved (R, G, B, A order). A rendered image views the render's own pixels (no copy); copies of an
+ *  Image share them, and they never change. */
+class INKGRAPH_API Image {
+public:
+    enum class Type { UInt8, Float32 };
+    Image() = default;
+    /** An image of your own pixels (to write() it): `bytes` holds width * height * channels * bytesPerChannel()
+     *  bytes. Throws Error(Usage) for fields that do not agree (a side below 1, channels not 1 or 4, a byte count
+     *  that does not fit). */
+    Image(int width, int height, int channels, Type type, std::vector<std::uint8_t> bytes);
+
+    int width() const { return mWidth; }
+    int height() const { return mHeight; }
+    int channels() const { return mChannels; } ///< 1 or 4
+    Type type() const { return mType; }
+    std::size_t bytesPerChannel() const { return mType == Type::Float32 ? 4 : 1; }
+    /** Bytes from one row's start to the next's: width * channels * bytesPerChannel() unless the pixels are a
+     *  caller's (renderInto()). */
+    std::size_t rowBytes() const { return mRowBytes; }
+    /** Bytes from the first pixel to the end of the last row. */
+    std::size_t byteCount() const { return mHeight < 1 ? 0 : mRowBytes * std::size_t(mHeight - 1) + packedRowBytes(); }
+    std::size_t packedRowBytes() const { return std::size_t(mWidth) * std::size_t(mChannels) * bytesPerChannel(); }
+    /** The pixels, byteCount() bytes; null for an empty Image. */
+    const std::uint8_t* data() const { return mData; }
+    /** The pixels as floats, rows rowBytes() apart; throws Error(Usage) unless type() is Float32. */
     const float* floats() const;
     /** Writes the image; the format follows the extension (PNG in the process; EXR, TIFF, JPEG through
      *  OpenImageIO). Float32 is kept by EXR and TIFF. Written under a temporary name beside `path` and renamed over
-     *  it, so `path` must be a regular file or a new name, as the command line's outputs: a device, a FIFO, a socket
-     *  or a folder (also through a link) is refused, never replaced. Throws Error(Output) naming the file. */
+     *  it, so `path` must be a regular file or a new name: a device, a FIFO, a socket or a folder (also through a
+     *  link) is refused, never replaced. Throws Error(Output) naming the file. */
     void write(const std::string& path) const;
+
+    /** Internal: an image over pixels that `owner` keeps alive (null: the caller's, kept by the caller). */
+    Image(int width, int height, int channels, Type type, const std::uint8_t* data, std::size_t rowBytes,
+          std::shared_ptr<const void> owner);
+
+private:
+    int mWidth = 0;
+    int mHeight = 0;
+    int mChannels = 0;
+    Type mType = Type::UInt8;
+    std::size_t mRowBytes = 0;
+    const std::uint8_t* mData = nullptr;
+    std::shared_ptr<const void> mOwner;
 };
 
-/** What Scene::load() takes besides the path (the command line's --animation, --time, --memory-limit). */
+/** What Scene::load() and Scene::fromArrays() take besides the model. */
 struct SceneOptions {
-    std::string animation; ///< a glTF animation's name or index; empty: the rest pose
-    double time = 0.0;     ///< seconds into `animation`
-    /** The load refuses files that would need more, and so does each render of the scene (its buffers at the
+    std::string animation; ///< a glTF animation's name or index; empty: the rest pose (files only)
+    double time = 0.0;     ///< seconds into `animation`, >= 0
+    /** The load refuses models that would need more, and so does each render of the scene (its buffers at the
      *  frame's size); 0: the command line's default, half this machine's memory but at least 1 GiB. */
     std::size_t memoryLimitBytes = 0;
 };
 
-/** A model loaded once (OBJ with MTL, glTF/GLB, VRM, STL, PLY): render it with any number of looks and frames.
- *  Copies share the loaded data. */
+/** A mesh in memory, for Scene::fromArrays(): rows tightly packed, the pointers borrowed only for the call. */
+struct MeshArrays {
+    const float* vertices = nullptr; ///< vertexCount x 3: x, y, z
+    std::size_t vertexCount = 0;
+    const std::uint32_t* faces = nullptr; ///< faceCount x 3 vertex indices, counter-clockwise seen from the front
+    std::size_t faceCount = 0;
+    const float* normals = nullptr; ///< vertexCount x 3, or null: computed as for an OBJ without normals
+    const float* uvs = nullptr;     ///< vertexCount x 2, or null
+    const float* colors = nullptr;  ///< vertexCount x colorChannels in [0, 1], or null
+    int colorChannels = 0;          ///< 3 or 4 when `colors` is given
+};
+
+struct SceneAccess;
+struct LookAccess;
+
+/** A model loaded once (OBJ with MTL, glTF/GLB, VRM, STL, PLY, or arrays): render it with any number of looks and
+ *  frames. Copies share the loaded data. */
 class INKGRAPH_API Scene {
 public:
     /** Throws Error(Input) naming the file and the problem. */
     static Scene load(const std::string& path, const SceneOptions& options = {});
+    /** A scene of one mesh given as arrays, checked as the file readers check theirs (indices in range, finite values,
+     *  the same size limits) and prepared as an OBJ with the same vertices and faces is, so it renders the same.
+     *  Throws Error(Input) naming the array and the problem. `name` names the mesh in messages. */
+    static Scene fromArrays(const MeshArrays& arrays, const std::string& name = "arrays",
+                            const SceneOptions& options = {});
+    /** The file, or "" for arrays. */
     const std::string& path() const;
     std::size_t triangleCount() const;
     std::size_t vertexCount() const;
     std::size_t meshCount() const;
     /** The loader's warnings (a texture it could not read, a skipped primitive, ...). */
-    std::vector<std::string> warnings() const;
+    std::vector<Warning> warnings() const;
 
-    struct Impl;
-    const Impl& impl() const { return *mImpl; }
+    struct Impl; ///< opaque: the library's own
 
 private:
+    friend struct SceneAccess;
+    struct LookAccess;
     explicit Scene(std::shared_ptr<const Impl> impl) : mImpl(std::move(impl)) {}
     std::shared_ptr<const Impl> mImpl;
 };
 
-/** The look: shading, shade map, lines and their widths and colours, paper, light, supersampling, ... as
- *  `inkgraph render`'s flags of those kinds (the "Look" and "Lines" sections of `inkgraph help render`, --style
- *  included). The default is the command line's default look. */
+/** A direction or a point, in the model's world units. */
+struct Vec3 {
+    double x = 0.0;
+    double y = 0.0;
+    double z = 0.0;
+};
+
+/** A colour, display RGBA, channels in [0, 1]. */
+struct Color {
+    double r = 0.0;
+    double g = 0.0;
+    double b = 0.0;
+    double a = 1.0;
+};
+
+/** `--shading`: how surfaces are shaded (docs/shading.md). */
+enum class Shading { None, Flat, Gouraud, Lambert, Phong, Cel, Comic, MToon };
+/** The line types, in the order the composite draws them (`--lines`; docs/lines.md). */
+enum class LineType {
+    Outline,
+    Silhouette,
+    NormalEdge,
+    DepthEdge,
+    Crease,
+    Border,
+    MaterialBoundary,
+    Suggestive,
+    SuggestiveObject,
+    Contour,
+    MeshSilhouette,
+};
+/** `--view-vector` (comic). */
+enum class ViewVector { Exact, Constant };
+/** `--face-orientation` (comic). */
+enum class FaceOrientation { Standard, DuringTriangles, DuringVertices, AfterVertices };
+/** `--gbuffer-precision`. */
+enum class Precision { Float32, Float16 };
+
+/** The command line's name of each: "mtoon", "normal-edge", "during-vertices", "half". */
+INKGRAPH_API std::string nameOf(Shading shading);
+INKGRAPH_API std::string nameOf(LineType type);
+INKGRAPH_API std::string nameOf(ViewVector mode);
+INKGRAPH_API std::string nameOf(FaceOrientation method);
+INKGRAPH_API std::string nameOf(Precision precision);
+/** The line type named `name`; Error(Usage) naming the types there are. */
+INKGRAPH_API LineType lineTypeNamed(const std::string& name);
+
+/** How one line type is drawn (`--TYPE-width`, `--TYPE-color`). */
+struct LineStyle {
+    double width = 2.0; ///< pixels, above 0 up to 256
+    Color color;
+};
+
+/** How line pixels become strokes, for every type (docs/strokes.md). */
+struct StrokeSettings {
+    double minLength = 0.01;       ///< --min-stroke-length: a share of the picture's height, 0 to 1
+    bool weightByDepth = false;    ///< --line-weight depth
+    bool weightByStrength = false; ///< --line-weight strength
+    bool taperEnds = false;        ///< --line-weight taper
+    bool mergeOverlaps = false;    ///< --overlapping-lines merge
+};
+
+/** The look: shading and its settings, the line types with their styles and parameters, strokes, paper, light and
+ *  supersampling. Look() is the command line's default (cel shading, silhouette and contour). Each setter checks
+ *  its value at once, as the flag it stands for does, and throws Error(Usage) with that flag's message after the
+ *  setter's name ("Look::setBands(): --bands: ..."); what depends on the other settings (a setting that has no
+ *  effect with the rest, such as bands with Phong shading) is checked when the look renders. */
 class INKGRAPH_API Look {
 public:
     Look();
-    /** Flags and values as on the command line: {"--shading", "comic", "--lines", "outline,contour"}. Throws
+    ~Look();
+    Look(const Look&);
+    Look& operator=(const Look&);
+    Look(Look&&) noexcept;
+    Look& operator=(Look&&) noexcept;
+
+    /** The adapter from the command line's words: {"--shading", "comic", "--lines", "outline,contour"}, as
+     *  `inkgraph render` takes them (the Look and Lines sections of `inkgraph help render`, --style included). Throws
      *  Error(Usage) for a flag that is not a look flag (a camera, an output) or a bad value, with the CLI's message. */
     static Look fromArguments(const std::vector<std::string>& arguments);
-    /** A style file (`inkgraph render --style FILE`): fromArguments({"--style", path}). Throws Error(Usage) naming
-     *  the file (and the line) as the command line does, also for a setting that is not the look's (size, fov: the
-     *  Frame's). */
+    /** A style file (`inkgraph render --style FILE`). Throws Error(Usage) naming the file (and the line) as the
+     *  command line does, also for a setting that is not the look's (size, fov: the Frame's). */
     static Look fromStyleFile(const std::string& path);
-    /** One flag: set("--lines", "contour,suggestive"), set("--silhouette-width", "3"); a flag without a value
-     *  takes "". The flag and its value are checked at once; what depends on the other flags (a flag that has no
-     *  effect with the rest, such as --bands with --shading phong) when the look renders. */
+    /** One flag as a string: set("--silhouette-width", "3"); a flag without a value takes "". */
     Look& set(const std::string& flag, const std::string& value = "");
-    /** Every flag given so far, in order. */
-    const std::vector<std::string>& arguments() const { return mArguments; }
+    /** The flags that give this look, in the order they were set (a setter replaces its flag's earlier value):
+     *  fromArguments(look.arguments()) is the same look. */
+    std::vector<std::string> arguments() const;
+
+    Shading shading() const;
+    Look& setShading(Shading shading);
+    double shininess() const; ///< phong and comic
+    Look& setShininess(double exponent);
+    std::optional<int> bands() const; ///< cel; unset: Qu, Chen & Zwicker's five uneven bands
+    Look& setBands(int bands);
+    std::string shadeMap() const; ///< cel or comic: a PNG; "" is the built-in map
+    Look& setShadeMap(const std::string& path);
+    ViewVector viewVector() const;
+    Look& setViewVector(ViewVector mode);
+    FaceOrientation faceOrientation() const;
+    Look& setFaceOrientation(FaceOrientation method);
+    int frontRule() const; ///< comic with during-vertices or after-vertices: 1, 2 or 3
+    Look& setFrontRule(int rule);
+    std::optional<Vec3> light() const; ///< world direction toward the light; unset: the file's, else a key light
+    Look& setLight(const Vec3& towardLight);
+    Color paper() const; ///< --background (alpha is 1)
+    Look& setPaper(const Color& color);
+    int supersample() const; ///< 1 to 8
+    Look& setSupersample(int factor);
+    Precision gbufferPrecision() const;
+    Look& setGbufferPrecision(Precision precision);
+
+    /** The line types drawn, in composite order; empty: none. */
+    std::vector<LineType> lines() const;
+    Look& setLines(const std::vector<LineType>& types);
+    LineStyle lineStyle(LineType type) const;
+    Look& setLineStyle(LineType type, const LineStyle& style);
+    /** The names of the parameters `type` takes besides width and colour ("depth-jump", "crease-angle"); a parameter
+     *  may serve several types, and is then one value for all of them. */
+    static std::vector<std::string> lineParameterNames(LineType type);
+    /** A number parameter's value (given or default); Error(Usage) for a name no line type takes, a choice, or a
+     *  parameter with no default that was not set. */
+    double lineParameter(const std::string& name) const;
+    /** A choice parameter's value ("5" of --suggestive-stencil). */
+    std::string lineChoice(const std::string& name) const;
+    Look& setLineParameter(const std::string& name, double value);
+    Look& setLineChoice(const std::string& name, const std::string& value);
+    StrokeSettings strokes() const;
+    Look& setStrokes(const StrokeSettings& strokes);
+
+    struct Impl;
 
 private:
-    std::vector<std::string> mArguments;
+    friend struct LookAccess;
+    std::unique_ptr<Impl> mImpl;
 };
 
-/** The frame: size and camera. Unset fields take the command line's defaults (the file's camera, else framed to fit
- *  the model at 35 degrees from the front, slightly above). */
-struct Frame {
-    int width = 1024; ///< --size's width and height: 1 to 16384
+/** --orbit: the eye on a sphere around the target, angles from the model's front. */
+struct Orbit {
+    double azimuth = 0.0;           ///< degrees about up, [-360, 360]; 90 looks from the front view's right
+    double elevation = 0.0;         ///< degrees above the horizontal, [-89.9, 89.9]
+    std::optional<double> distance; ///< world units; unset: the auto-framing distance
+};
+
+/** --clip NEAR,FAR. */
+struct Clip {
+    double near = 0.0;
+    double far = 0.0;
+};
+
+/** Where the view comes from when eye, orbit and frameNodes leave it open: the file's camera when it has one, or
+ *  always auto-framing (--camera auto). */
+enum class CameraPlacement { FileOrAuto, Auto };
+
+/** The frame: size, camera and pose. Unset fields take the command line's defaults (the file's camera, else framed to
+ *  fit the model at 35 degrees from the front, slightly above). Checked when it renders, by the rules of the flag
+ *  each field stands for, with its message after the field's name ("Frame::fov: --fov: ..."). */
+struct INKGRAPH_API Frame {
+    int width = 1024; ///< --size, 1 to 16384
     int height = 1024;
-    /** Camera flags as on the command line: {"--orbit", "30,10"}, {"--eye", "0,1,5", "--target", "0,0,0"}, {"--fov",
-     *  "40"}, {"--clip", "0.1,100"}, {"--camera", "auto"}, {"--frame", "Head"}. Not --animation and --time: they
-     *  pose the scene as it loads (SceneOptions). */
-    std::vector<std::string> camera;
+    std::optional<Vec3> eye; ///< --eye (world)
+    std::optional<Orbit> orbit;
+    std::optional<Vec3> target; ///< --target (world)
+    std::optional<Vec3> up;     ///< --up
+    std::optional<double> fov;  ///< --fov: vertical degrees, 0.01 to 179
+    std::optional<Clip> clip;
+    CameraPlacement placement = CameraPlacement::FileOrAuto;
+    std::vector<std::string> frameNodes; ///< --frame: fit the view to the meshes under these nodes
+    /** A pose other than the scene's own (SceneOptions), for this render: the scene's file is loaded again in that
+     *  pose (a scene made from arrays has none). Empty with time unset: the scene as loaded. */
+    std::string animation;
+    std::optional<double> time;
+
+    /** The adapter from the command line's Camera flags: {"--orbit", "30,10", "--fov", "40", "--size", "640x480"}.
+     *  Throws Error(Usage) for a flag that is not the frame's, or a bad value, with the CLI's message. */
+    static Frame fromArguments(const std::vector<std::string>& arguments);
 };
 
-/** One rendered still: the picture and every buffer asked for. */
+/** Where a still's view came from. */
+enum class CameraSource {
+    File,  ///< the model's own camera (glTF)
+    Auto,  ///< auto-framed
+    Orbit, ///< Frame::orbit
+    Eye,   ///< Frame::eye
+};
+
+/** The camera a still was drawn with, in world coordinates. Matrices are row-major: m[row][column]. */
+struct StillCamera {
+    /** OpenGL's view matrix: world points to view space (x right, y up, looking down -z). */
+    std::array<std::array<double, 4>, 4> view{};
+    /** OpenGL's projection matrix (perspective, clip space with z in [-w, w]). */
+    std::array<std::array<double, 4>, 4> projection{};
+    /** OpenCV's camera matrix K: fx = fy = (height / 2) / tan(fovY / 2), cx = width / 2 - 0.5, cy = height / 2 - 0.5
+     *  (x right, y down, the centre of pixel (0, 0) at (0, 0)), for the picture's size. A buffer at S x the size
+     *  (supersampling) scales fx, fy by S and has its centre at S x width / 2 - 0.5. */
+    std::array<std::array<double, 3>, 3> intrinsics{};
+    /** OpenCV's [R|t]: world points to the OpenCV camera frame (x right, y down, z forward). With the `depth` buffer
+     *  (view depth, 0 off the model): X_cam = depth * K^-1 [u v 1]^T, X_world = R^T (X_cam - t). */
+    std::array<std::array<double, 4>, 3> extrinsics{};
+    Vec3 eye;
+    Vec3 target;
+    Vec3 up;
+    double fovY = 0.0; ///< degrees
+    double near = 0.0;
+    double far = 0.0;
+    bool clipGiven = false; ///< near and far were Frame::clip; else fitted to the model's bounding sphere
+    int width = 0;
+    int height = 0;
+    CameraSource source = CameraSource::Auto;
+};
+
+/** One rendered still: the picture, every buffer asked for, the camera and the warnings. */
 class INKGRAPH_API Still {
 public:
     /** The final picture, RGBA8 (the command line's -o). */
@@ -155,13 +405,15 @@ public:
     /** A buffer asked for in render(), by the name it was asked with; throws Error(Usage) naming the buffers there
      *  are. */
     const Image& buffer(const std::string& name) const;
-    /** The buffers, each by the first name it was asked with, in that order ("gbuffer.*" gives each field's full
-     *  name); buffer() also answers any name of the same resource ("normal" for "gbuffer.normal"). */
+    /** The buffers, each by the first name it was asked with, in that order ("gbuffer.*" gives each field's short
+     *  name, "lines.*" each line type's "lines.<type>"); buffer() also answers any name of the same buffer. */
     std::vector<std::string> bufferNames() const;
-    /** What the render warned about (a material's shade map that this shading does not use, ...). */
-    std::vector<std::string> warnings() const;
+    /** The camera it was drawn with. */
+    const StillCamera& camera() const;
+    /** What the load (for a still that posed its scene) and the render warned about. */
+    const std::vector<Warning>& warnings() const;
     /** Writes the picture as Image::write() does, but never over a file the render read (the model, its buffers
-     *  and images, the shade maps, the look's --style file), compared as the command line compares its outputs
+     *  and images, the shade maps, the look's style file), compared as the command line compares its outputs
      *  with its inputs (links and hard links too): that is Error(Usage), naming the file and what it is. */
     void write(const std::string& path) const;
     /** Milliseconds the render took (without loading the scene). */
@@ -175,11 +427,11 @@ private:
     std::shared_ptr<const Impl> mImpl;
 };
 
-/** Graph resource names of the buffers render() can return, for the short names people use: "normal", "view",
- *  "wVec", "nDotV", "depth", "coverage", "baseColor", "radial", "materialId" -> "gbuffer.<name>"; "lines.<type>" ->
- *  the drawn layer of a line type ("lines.contour" -> "strokes.contour", the line's coverage from 0 off the line to
- *  255 on it); "picture" -> "composite.final". A full resource name ("shade.color") is returned as it is. */
-INKGRAPH_API std::string bufferResourceName(const std::string& name);
+/** The buffers render() can return: "normal", "view", "wVec", "nDotV", "depth", "coverage", "baseColor", "radial",
+ *  "materialId" (the G-buffer's fields), "gbuffer.*" (every field the look computes), "lines.<type>" (the drawn
+ *  layer of a line type, its coverage from 0 off the line to 255 on it), "lines.*" (every drawn type), "picture".
+ *  Names that are not these are refused (Error(Usage), naming them). */
+INKGRAPH_API std::vector<std::string> bufferNames(const Look& look);
 
 /** Renders stills. One GL context (EGL, no display) is made by the first render and kept, with every compiled
  *  program, for the renderer's life: a batch pays start-up once. One renderer renders at a time per process (EGL
@@ -190,20 +442,27 @@ INKGRAPH_API std::string bufferResourceName(const std::string& name);
  *  so. Scenes and looks may be shared across threads (they are read only). */
 class INKGRAPH_API Renderer {
 public:
-    /** `eglPlatform`: "auto" (default), "device" or "surfaceless", as --egl-platform. Nothing is made yet. */
-    explicit Renderer(const std::string& eglPlatform = "auto");
+    /** How the GL context is reached: `--egl-platform`. */
+    enum class Platform { Auto, Device, Surfaceless };
+    /** Nothing is made yet. */
+    explicit Renderer(Platform platform = Platform::Auto);
     ~Renderer();
     Renderer(Renderer&&) noexcept;
     Renderer& operator=(Renderer&&) noexcept;
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    /** Renders `scene` with `look` in `frame`, keeping `buffers` (names as bufferResourceName() takes them; "gbuffer.*"
-     *  and "lines.*" expand). Only the passes the picture and those buffers need run. Buffers come as the graph holds
-     *  them: G-buffer fields at the look's --supersample times the frame's size, line layers at the frame's size.
-     *  Throws Error; an unknown buffer name is Error(Usage) naming the buffers this look has. */
+    /** Renders `scene` with `look` in `frame`, keeping `buffers` (bufferNames()). Only the passes the picture and those
+     *  buffers need run. Buffers come as the graph holds them: G-buffer fields at the look's supersample times the
+     *  frame's size, line layers at the frame's size. Throws Error; an unknown buffer name is Error(Usage) naming the
+     *  buffers this look has. */
     Still render(const Scene& scene, const Look& look, const Frame& frame,
                  const std::vector<std::string>& buffers = {});
+    /** The same, with the picture written into `picture` (frame.height rows of frame.width RGBA8 pixels, `rowBytes`
+     *  apart, at least width * 4) instead of memory of the still's own; the still's picture() then views it, so
+     *  `picture` must outlive the still's use of it. */
+    Still renderInto(std::uint8_t* picture, std::size_t rowBytes, const Scene& scene, const Look& look,
+                     const Frame& frame, const std::vector<std::string>& buffers = {});
     /** The GL renderer, version and vendor in use and the EGL platform ("llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Core
      *  Profile) Mesa 22.3.6 (Mesa/X.org) via EGL device platform"), or "" before the first render. */
     std::string glDescription() const;
@@ -214,4 +473,5 @@ private:
     std::unique_ptr<Impl> mImpl;
 };
 
+} // namespace INKGRAPH_ABI_NAMESPACE
 } // namespace inkgraph::api

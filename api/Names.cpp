@@ -1,0 +1,57 @@
+#include "api/Internal.h"
+
+#include "passes/gbuffer/GBufferPrecision.h"
+#include "passes/lines/LineTypes.h"
+#include "passes/shade/ShadingModel.h"
+
+#include <iterator>
+
+namespace inkgraph::api {
+inline namespace INKGRAPH_ABI_NAMESPACE {
+namespace {
+
+/** The line types' names in LineType's order, which is the registry's (tests/api/ApiTest.cpp checks both). */
+const char* const kLineTypeNames[] = {
+    "outline",           "silhouette", "normal-edge",       "depth-edge", "crease",         "border",
+    "material-boundary", "suggestive", "suggestive-object", "contour",    "mesh-silhouette"};
+static_assert(std::size(kLineTypeNames) == std::size_t(LineType::MeshSilhouette) + 1);
+
+} // namespace
+
+std::string nameOf(Shading shading) { return traitsOf(static_cast<ShadingModel>(shading)).name; }
+
+std::string nameOf(LineType type) { return kLineTypeNames[static_cast<int>(type)]; }
+
+std::string nameOf(ViewVector mode) { return mode == ViewVector::Exact ? "exact" : "constant"; }
+
+std::string nameOf(FaceOrientation method) {
+    switch (method) {
+    case FaceOrientation::Standard: return "standard";
+    case FaceOrientation::DuringTriangles: return "during-triangles";
+    case FaceOrientation::DuringVertices: return "during-vertices";
+    case FaceOrientation::AfterVertices: return "after-vertices";
+    }
+    return "standard";
+}
+
+std::string nameOf(Precision precision) { return precision == Precision::Float32 ? "float" : "half"; }
+
+LineType lineTypeNamed(const std::string& name) {
+    std::string names;
+    for (std::size_t index = 0; index < std::size(kLineTypeNames); ++index) {
+        if (name == kLineTypeNames[index]) return static_cast<LineType>(index);
+        names += (names.empty() ? "" : ", ") + std::string(kLineTypeNames[index]);
+    }
+    throw Error(Error::Kind::Usage, "lineTypeNamed(): no line type '" + name + "' (there are: " + names + ")");
+}
+
+std::string vectorText(const Vec3& vector) {
+    return exactText(vector.x) + "," + exactText(vector.y) + "," + exactText(vector.z);
+}
+
+std::string colorText(const Color& color) {
+    return exactText(color.r) + "," + exactText(color.g) + "," + exactText(color.b) + "," + exactText(color.a);
+}
+
+} // namespace INKGRAPH_ABI_NAMESPACE
+} // namespace inkgraph::api
