@@ -23,15 +23,6 @@ const std::string kSuzanne = kRoot + "models/suzanne_npm_4k.obj";
 const std::string kStillLife = kRoot + "examples/still-life/still-life.gltf";
 const std::string kFox = kRoot + "models/characters/fox.glb";
 
-/** The image's pixels, rows packed. */
-std::vector<std::uint8_t> bytesOf(const ig::Image& image) {
-    std::vector<std::uint8_t> bytes;
-    for (int row = 0; row < image.height(); ++row)
-        bytes.insert(bytes.end(), image.data() + row * image.rowBytes(),
-                     image.data() + row * image.rowBytes() + image.packedRowBytes());
-    return bytes;
-}
-
 /** The renderer every test of this file shares: one GL context for the binary. */
 ig::Renderer& renderer() {
     static ig::Renderer shared;
