@@ -1,11 +1,20 @@
 /** @file The bindings of `inkgraph._inkgraph` (Bindings.h): the public C++ API (api/include/inkgraph/inkgraph.h) for
  *  Python, one class per API class under its own name, members in Python's spelling (Look.from_arguments,
- *  Still.buffer_names). The Pythonic front (inkgraph.render(), looks as dicts, the default renderer) is
- *  python/inkgraph/__init__.py; the exception classes are python/inkgraph/_errors.py, and every inkgraph::api::Error
- *  reaches Python as the one of its kind.
+ *  Still.buffer_names, Frame.frame_nodes), enum members in Python's constant spelling (Shading.CEL,
+ *  LineType.NORMAL_EDGE), each also named by its command-line word (LineType.from_name("normal-edge"), .cli_name),
+ *  and that word accepted wherever the enum is. The Pythonic front (inkgraph.render(), looks as dicts, the default
+ *  renderer) is python/inkgraph/__init__.py; the exception classes are python/inkgraph/_errors.py, and every
+ *  inkgraph::api::Error reaches Python as the one of its kind; a warning record is an inkgraph.InkgraphWarning
+ *  (python/inkgraph/_warnings.py), issued through Python's warnings module when a load or a render makes it.
+ *
+ *  The small value types (Vec3, Color, Orbit, Clip, LineStyle, StrokeSettings) are immutable in Python: a Look's and a
+ *  Frame's getters return copies, so `frame.eye.x = 1` on a mutable copy would change nothing and say nothing;
+ *  `replace()` gives a changed copy to assign back.
  *
  *  Images reach Python without a copy: a buffer's array points into the Still's pixels and keeps the Still alive as
- *  its base object; the arrays are read-only, since a Still's images are shared and never change. */
+ *  its base object; the arrays are read-only, since a Still's images are shared and never change. Mesh arrays reach
+ *  Scene.from_arrays() without a copy when they are float32 (uint32 faces) and C-contiguous; the C++ call copies them
+ *  into its own mesh. */
 
 #include "Bindings.h"
 
@@ -16,12 +25,16 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <initializer_list>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace py = pybind11;
@@ -51,20 +64,244 @@ void raisePythonError(const ig::Error& error) {
     PyErr_SetObject(type.ptr(), value.ptr());
 }
 
-/** `image` as a NumPy array over its own pixels (height x width, and x channels unless 1), read-only, keeping
- *  `owner` (the Python Still that holds the image) alive. */
+[[noreturn]] void failUsage(const std::string& message) { throw ig::Error(ig::Error::Kind::Usage, message); }
+[[noreturn]] void failInput(const std::string& message) { throw ig::Error(ig::Error::Kind::Input, message); }
+
+/** A str as UTF-8, lone surrogates (as os.fsdecode leaves undecodable bytes) escaped rather than refused. */
+std::string utf8Of(py::handle text) {
+    return py::reinterpret_borrow<py::str>(text).attr("encode")("utf-8", "backslashreplace").cast<std::string>();
+}
+
+std::string reprOf(py::handle value) { return utf8Of(py::repr(value)); }
+
+// ---- Warnings ------------------------------------------------------------------------------------------------------
+
+/** The records as inkgraph.InkgraphWarning objects: a Warning category of its own, so that Python's warnings filters
+ *  can select them, with the record's fields as attributes. */
+py::list warningObjects(const std::vector<ig::Warning>& warnings) {
+    const py::object type = py::module_::import("inkgraph._warnings").attr("InkgraphWarning");
+    py::list objects;
+    for (const ig::Warning& warning : warnings)
+        objects.append(
+            type(warning.message, "code"_a = warning.code, "file"_a = warning.file, "item"_a = warning.item));
+    return objects;
+}
+
+/** Issues each record through warnings.warn(), attributed to the first caller outside the package (_warnings.py
+ *  finds it). Under an "error" filter the first raises, and so does the call that made them. */
+void issueWarnings(const py::list& objects) {
+    if (!objects.empty()) py::module_::import("inkgraph._warnings").attr("issue")(objects);
+}
+
+// ---- Enums ---------------------------------------------------------------------------------------------------------
+
+std::string cliName(ig::Shading value) { return ig::nameOf(value); }
+std::string cliName(ig::LineType value) { return ig::nameOf(value); }
+std::string cliName(ig::ViewVector value) { return ig::nameOf(value); }
+std::string cliName(ig::FaceOrientation value) { return ig::nameOf(value); }
+std::string cliName(ig::Precision value) { return ig::nameOf(value); }
+// The API names these three nowhere: the words of --camera and --egl-platform, and CameraSource's members lowercased
+// (it has no flag).
+std::string cliName(ig::CameraPlacement value) { return value == ig::CameraPlacement::Auto ? "auto" : "file"; }
+std::string cliName(ig::CameraSource value) {
+    switch (value) {
+    case ig::CameraSource::File: return "file";
+    case ig::CameraSource::Auto: return "auto";
+    case ig::CameraSource::Orbit: return "orbit";
+    case ig::CameraSource::Eye: return "eye";
+    }
+    return "auto";
+}
+std::string cliName(ig::Renderer::Platform value) {
+    switch (value) {
+    case ig::Renderer::Platform::Auto: return "auto";
+    case ig::Renderer::Platform::Device: return "device";
+    case ig::Renderer::Platform::Surfaceless: return "surfaceless";
+    }
+    return "auto";
+}
+
+/** Every member of an enum as Python has it, in declaration order, and what the enum is called in messages. */
+template <typename Enum>
+struct EnumMembers {
+    static inline std::vector<Enum> values;
+    static inline std::string className;
+    static inline std::string what; ///< "shading", "line type"
+};
+
+template <typename Enum>
+std::string availableNames() {
+    std::string names;
+    for (const Enum value : EnumMembers<Enum>::values) names += (names.empty() ? "" : ", ") + cliName(value);
+    return names;
+}
+
+template <typename Enum>
+Enum enumNamed(const std::string& name, const std::string& where) {
+    for (const Enum value : EnumMembers<Enum>::values)
+        if (cliName(value) == name) return value;
+    failUsage(where + ": unknown " + EnumMembers<Enum>::what + " '" + name + "' (available: " + availableNames<Enum>() +
+              ")");
+}
+
+/** `value` as the enum: a member, or its command-line word ("normal-edge"). */
+template <typename Enum>
+Enum enumArgument(py::handle value, const std::string& where) {
+    if (py::isinstance<Enum>(value)) return value.cast<Enum>();
+    if (py::isinstance<py::str>(value)) return enumNamed<Enum>(utf8Of(value), where);
+    throw py::type_error(where + ": expected a " + EnumMembers<Enum>::className + " or its name (" +
+                         availableNames<Enum>() + "), got " + reprOf(value));
+}
+
+template <typename Enum, typename Scope>
+py::enum_<Enum> defineEnum(Scope& scope, const char* className, const char* what, const char* doc,
+                           std::initializer_list<std::pair<const char*, Enum>> members) {
+    py::enum_<Enum> type(scope, className, doc);
+    EnumMembers<Enum>::className = className;
+    EnumMembers<Enum>::what = what;
+    for (const auto& [name, value] : members) {
+        type.value(name, value);
+        EnumMembers<Enum>::values.push_back(value);
+    }
+    type.def(py::init([](const std::string& name) { return enumNamed<Enum>(name, EnumMembers<Enum>::className); }),
+             "name"_a, "The member named by its command-line word, as from_name().");
+    type.def_static(
+        "from_name", [](const std::string& name) { return enumNamed<Enum>(name, EnumMembers<Enum>::className); },
+        "name"_a, "The member named by its command-line word; UsageError naming the words there are.");
+    type.def_property_readonly(
+        "cli_name", [](Enum value) { return cliName(value); }, "The command line's word for this member.");
+    return type;
+}
+
+// ---- Numbers and the small value types -----------------------------------------------------------------------------
+
+/** A real number (an int, a float, a NumPy scalar; not a str, not a bool), else TypeError naming `where`. */
+double realNumber(py::handle value, const std::string& where) {
+    if (!PyNumber_Check(value.ptr()) || PyBool_Check(value.ptr()) || PyComplex_Check(value.ptr()))
+        throw py::type_error(where + ": expected a number, got " + reprOf(value));
+    const double number = PyFloat_AsDouble(value.ptr());
+    if (number == -1.0 && PyErr_Occurred()) {
+        PyErr_Clear();
+        throw py::value_error(where + ": " + reprOf(value) + " is not a number a double holds");
+    }
+    return number;
+}
+
+/** The numbers of a tuple, list or 1-D array of `counts` numbers, else TypeError naming `where` and `expected`. */
+std::vector<double> realNumbers(py::handle value, std::initializer_list<std::size_t> counts, const std::string& where,
+                                const std::string& expected) {
+    const auto fail = [&] { throw py::type_error(where + ": expected " + expected + ", got " + reprOf(value)); };
+    if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value))
+        fail();
+    const auto sequence = py::reinterpret_borrow<py::sequence>(value);
+    const std::size_t count = py::len(sequence);
+    bool countFits = false;
+    for (const std::size_t allowed : counts) countFits = countFits || count == allowed;
+    if (!countFits) fail();
+    std::vector<double> numbers;
+    // Each item held as an object: a sequence's items may be made on access (a NumPy array's scalars), and a handle
+    // would outlive them.
+    for (const py::object item : sequence) numbers.push_back(realNumber(item, where));
+    return numbers;
+}
+
+ig::Vec3 vec3Argument(py::handle value, const std::string& where) {
+    if (py::isinstance<ig::Vec3>(value)) return value.cast<ig::Vec3>();
+    const std::vector<double> xyz = realNumbers(value, {3}, where, "a Vec3 or (x, y, z)");
+    return ig::Vec3{xyz[0], xyz[1], xyz[2]};
+}
+
+ig::Color colorArgument(py::handle value, const std::string& where) {
+    if (py::isinstance<ig::Color>(value)) return value.cast<ig::Color>();
+    const std::vector<double> rgba = realNumbers(value, {3, 4}, where, "a Color, (r, g, b) or (r, g, b, a)");
+    return ig::Color{rgba[0], rgba[1], rgba[2], rgba.size() == 4 ? rgba[3] : 1.0};
+}
+
+ig::Orbit orbitArgument(py::handle value, const std::string& where) {
+    if (py::isinstance<ig::Orbit>(value)) return value.cast<ig::Orbit>();
+    const std::vector<double> numbers =
+        realNumbers(value, {2, 3}, where, "an Orbit, (azimuth, elevation) or (azimuth, elevation, distance)");
+    ig::Orbit orbit{numbers[0], numbers[1], std::nullopt};
+    if (numbers.size() == 3) orbit.distance = numbers[2];
+    return orbit;
+}
+
+ig::Clip clipArgument(py::handle value, const std::string& where) {
+    if (py::isinstance<ig::Clip>(value)) return value.cast<ig::Clip>();
+    const std::vector<double> numbers = realNumbers(value, {2}, where, "a Clip or (near, far)");
+    return ig::Clip{numbers[0], numbers[1]};
+}
+
+template <typename Value>
+std::optional<Value> optionalArgument(py::handle value, Value (*convert)(py::handle, const std::string&),
+                                      const std::string& where) {
+    if (value.is_none()) return std::nullopt;
+    return convert(value, where);
+}
+
+/** What every small value type has: equality and a hash by its fields, a repr that constructs it again, and
+ *  replace(**changes), a copy with some fields changed. */
+template <typename Class>
+void addValueProtocol(Class& type, std::vector<std::string> fields) {
+    const auto fieldTuple = [fields](py::handle self) {
+        py::list values;
+        for (const std::string& field : fields) values.append(self.attr(field.c_str()));
+        return py::tuple(values);
+    };
+    type.def("__eq__", [fieldTuple](py::handle self, py::handle other) -> py::object {
+        if (!py::type::of(self).is(py::type::of(other))) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+        return py::bool_(fieldTuple(self).equal(fieldTuple(other)));
+    });
+    type.def("__hash__", [fieldTuple](py::handle self) { return py::hash(fieldTuple(self)); });
+    type.def("__repr__", [fields](py::handle self) {
+        std::string text = py::type::of(self).attr("__name__").cast<std::string>() + "(";
+        for (std::size_t i = 0; i < fields.size(); ++i)
+            text += (i == 0 ? "" : ", ") + fields[i] + "=" + reprOf(self.attr(fields[i].c_str()));
+        return text + ")";
+    });
+    type.def(
+        "replace",
+        [fields](py::handle self, const py::kwargs& changes) {
+            py::dict values;
+            for (const std::string& field : fields) values[field.c_str()] = self.attr(field.c_str());
+            for (const auto& [name, value] : changes) {
+                if (!values.contains(name))
+                    throw py::type_error("replace(): " + reprOf(name) + " is not a field of " +
+                                         py::type::of(self).attr("__name__").cast<std::string>());
+                values[name] = value;
+            }
+            return py::type::of(self)(**values);
+        },
+        "A copy with the fields given changed.");
+}
+
+/** The fields of tuple-like value types unpack: `x, y, z = frame.eye`. */
+template <typename Class>
+void addIteration(Class& type, std::vector<std::string> fields) {
+    type.def("__iter__", [fields](py::handle self) {
+        py::list values;
+        for (const std::string& field : fields) values.append(self.attr(field.c_str()));
+        return py::iter(values);
+    });
+    type.def("__len__", [size = fields.size()](py::handle) { return size; });
+}
+
+// ---- Images --------------------------------------------------------------------------------------------------------
+
+/** `image` as a NumPy array over its own pixels (height x width, and x channels unless 1, rows rowBytes() apart),
+ *  read-only, keeping `owner` (the Python Still that holds the image, and the array it was drawn into) alive. */
 py::array imageArray(const ig::Image& image, py::handle owner) {
     const auto itemSize = static_cast<py::ssize_t>(image.bytesPerChannel());
-    const py::ssize_t channels = image.channels;
-    std::vector<py::ssize_t> shape{image.height, image.width};
-    std::vector<py::ssize_t> strides{image.width * channels * itemSize, channels * itemSize};
+    const py::ssize_t channels = image.channels();
+    std::vector<py::ssize_t> shape{image.height(), image.width()};
+    std::vector<py::ssize_t> strides{static_cast<py::ssize_t>(image.rowBytes()), channels * itemSize};
     if (channels != 1) {
         shape.push_back(channels);
         strides.push_back(itemSize);
     }
     const py::dtype dtype =
-        image.type == ig::Image::Type::Float32 ? py::dtype::of<float>() : py::dtype::of<std::uint8_t>();
-    py::array array(dtype, shape, strides, image.bytes.data(), owner);
+        image.type() == ig::Image::Type::Float32 ? py::dtype::of<float>() : py::dtype::of<std::uint8_t>();
+    py::array array(dtype, shape, strides, image.data(), owner);
     array.attr("flags").attr("writeable") = false;
     return array;
 }
@@ -80,41 +317,146 @@ std::vector<std::uint8_t> pixelBytes(const py::array& array) {
 
 /** A copy of `array` as an ig::Image: uint8 or float32, height x width or height x width x 1 or 4. */
 ig::Image imageFromArray(const py::array& array) {
-    const auto fail = [](const std::string& problem) {
-        throw ig::Error(ig::Error::Kind::Usage, "write_image(): " + problem);
-    };
+    const auto fail = [](const std::string& problem) { failUsage("write_image(): " + problem); };
     const py::ssize_t dimensions = array.ndim();
     if (dimensions != 2 && dimensions != 3)
         fail("expected a height x width [x channels] array, got " + std::to_string(dimensions) + " dimensions");
     const py::ssize_t channels = dimensions == 3 ? array.shape(2) : 1;
     if (channels != 1 && channels != 4) fail("expected 1 or 4 channels, got " + std::to_string(channels));
-    ig::Image image;
-    image.height = static_cast<int>(array.shape(0));
-    image.width = static_cast<int>(array.shape(1));
-    image.channels = static_cast<int>(channels);
-    if (py::isinstance<py::array_t<std::uint8_t>>(array)) {
-        image.type = ig::Image::Type::UInt8;
-        image.bytes = pixelBytes<std::uint8_t>(array);
-    } else if (py::isinstance<py::array_t<float>>(array)) {
-        image.type = ig::Image::Type::Float32;
-        image.bytes = pixelBytes<float>(array);
-    } else {
-        fail("expected a uint8 or float32 array, got " + py::str(array.dtype()).cast<std::string>());
-    }
-    return image;
+    const auto height = static_cast<int>(array.shape(0));
+    const auto width = static_cast<int>(array.shape(1));
+    if (py::isinstance<py::array_t<std::uint8_t>>(array))
+        return ig::Image(width, height, int(channels), ig::Image::Type::UInt8, pixelBytes<std::uint8_t>(array));
+    if (py::isinstance<py::array_t<float>>(array))
+        return ig::Image(width, height, int(channels), ig::Image::Type::Float32, pixelBytes<float>(array));
+    fail("expected a uint8 or float32 array, got " + py::str(array.dtype()).cast<std::string>());
+    return {};
 }
+
+/** A row-major C++ matrix as a float64 NumPy array of its own. */
+template <std::size_t Rows, std::size_t Columns>
+py::array_t<double> matrixArray(const std::array<std::array<double, Columns>, Rows>& matrix) {
+    py::array_t<double> array({py::ssize_t(Rows), py::ssize_t(Columns)});
+    auto cells = array.template mutable_unchecked<2>();
+    for (std::size_t row = 0; row < Rows; ++row)
+        for (std::size_t column = 0; column < Columns; ++column)
+            cells(py::ssize_t(row), py::ssize_t(column)) = matrix[row][column];
+    return array;
+}
+
+py::object vec3List(const ig::Vec3& v) { return py::cast(std::vector<double>{v.x, v.y, v.z}); }
+
+// ---- Mesh arrays ---------------------------------------------------------------------------------------------------
+
+std::string shapeText(const py::array& array) {
+    std::string text = "(";
+    for (py::ssize_t axis = 0; axis < array.ndim(); ++axis)
+        text += (axis == 0 ? "" : ", ") + std::to_string(array.shape(axis));
+    return text + (array.ndim() == 1 ? ",)" : ")");
+}
+
+/** Mesh arrays as the C++ call reads them: C order, converted to the element type when they are not. */
+using FloatRows = py::array_t<float, py::array::c_style | py::array::forcecast>;
+using FaceRows = py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>;
+
+/** A 2-D array of `columns` (one of them) numbers a row, as float32 in C order: the caller's own memory when it is
+ *  that already, else a converted copy. `rows`, when given, is the count it must have (one per vertex). */
+FloatRows floatRows(py::handle value, const std::string& name, std::initializer_list<py::ssize_t> columns,
+                    std::optional<py::ssize_t> rows) {
+    const std::string where = "Scene.from_arrays(): " + name + ": ";
+    std::string expected = "expected an (N, ";
+    for (const py::ssize_t count : columns)
+        expected += (expected.back() == ' ' ? "" : " or (N, ") + std::to_string(count) + ")";
+    expected += " array of numbers";
+    const py::array array = py::module_::import("numpy").attr("asarray")(value);
+    const char kind = array.dtype().kind();
+    if (kind != 'f' && kind != 'i' && kind != 'u')
+        failInput(where + expected + ", got dtype " + py::str(array.dtype()).cast<std::string>());
+    bool columnsFit = false;
+    for (const py::ssize_t count : columns) columnsFit = columnsFit || (array.ndim() == 2 && array.shape(1) == count);
+    if (!columnsFit) failInput(where + expected + ", got shape " + shapeText(array));
+    if (rows && array.shape(0) != *rows)
+        failInput(where + "expected " + std::to_string(*rows) + " rows (one per vertex), got " +
+                  std::to_string(array.shape(0)));
+    FloatRows converted = FloatRows::ensure(array);
+    if (!converted) failInput(where + "cannot be converted to float32");
+    return converted;
+}
+
+/** The faces as uint32 in C order: the caller's memory when it is that already; other integers are converted after
+ *  checking that every index fits (a negative one would wrap to a large valid-looking one). */
+FaceRows faceRows(py::handle value) {
+    const std::string where = "Scene.from_arrays(): faces: ";
+    const std::string expected = "expected an (M, 3) array of integer vertex indices";
+    const py::array array = py::module_::import("numpy").attr("asarray")(value);
+    const char kind = array.dtype().kind();
+    if (kind != 'i' && kind != 'u')
+        failInput(where + expected + ", got dtype " + py::str(array.dtype()).cast<std::string>());
+    if (array.ndim() != 2 || array.shape(1) != 3) failInput(where + expected + ", got shape " + shapeText(array));
+    if (!py::isinstance<py::array_t<std::uint32_t>>(array) && array.size() > 0) {
+        const py::int_ smallest = array.attr("min")();
+        const py::int_ largest = array.attr("max")();
+        if (smallest < py::int_(0)) failInput(where + "index " + reprOf(smallest) + " is negative");
+        if (largest > py::int_(std::uint32_t(-1)))
+            failInput(where + "index " + reprOf(largest) + " does not fit in 32 bits");
+    }
+    FaceRows converted = FaceRows::ensure(array);
+    if (!converted) failInput(where + "cannot be converted to uint32");
+    return converted;
+}
+
+/** Refuses a value that is NaN or infinite, naming the argument, its row and column: the library refuses them too,
+ *  but names its own arrays ("positions"), not the Python arguments. */
+void requireFinite(const FloatRows& array, const std::string& name) {
+    const py::module_ numpy = py::module_::import("numpy");
+    const py::object finite = numpy.attr("isfinite")(array);
+    if (finite.attr("all")().cast<bool>()) return;
+    const py::object where = numpy.attr("argwhere")(numpy.attr("logical_not")(finite))[py::int_(0)];
+    const py::object row = where[py::int_(0)];
+    const py::object column = where[py::int_(1)];
+    failInput("Scene.from_arrays(): " + name + ": row " + reprOf(py::int_(row)) + ", column " +
+              reprOf(py::int_(column)) + " is not finite (" +
+              reprOf(py::float_(array.attr("__getitem__")(py::make_tuple(row, column)))) + ")");
+}
+
+/** Refuses an empty mesh and a face index past the last vertex, naming the argument and the face. */
+void requireFacesInRange(const FaceRows& faces, py::ssize_t vertexCount) {
+    const std::string where = "Scene.from_arrays(): ";
+    if (vertexCount == 0) failInput(where + "vertices: no vertices (shape (0, 3))");
+    if (faces.shape(0) == 0) failInput(where + "faces: no faces (shape (0, 3))");
+    const py::module_ numpy = py::module_::import("numpy");
+    const py::object beyond = numpy.attr("greater_equal")(faces, py::int_(vertexCount));
+    if (!beyond.attr("any")().cast<bool>()) return;
+    const py::object first = numpy.attr("argwhere")(beyond)[py::int_(0)];
+    const py::object row = first[py::int_(0)];
+    failInput(where + "faces: row " + reprOf(py::int_(row)) + " has index " +
+              reprOf(py::int_(faces.attr("__getitem__")(py::make_tuple(row, first[py::int_(1)])))) +
+              ", out of range for " + std::to_string(vertexCount) + " vertices");
+}
+
+// ---- Stills and the renderer ---------------------------------------------------------------------------------------
+
+/** A still for Python: the C++ still and, when it was rendered into an array of the caller's (render(out=...)), that
+ *  array, which the still's picture views and so must outlive it (the picture's arrays keep the still alive). */
+struct PythonStill {
+    ig::Still still;
+    py::object out;
+};
 
 /** One ig::Renderer for Python: its calls run without the GIL, one at a time (the C++ renderer is not
  *  thread-safe, and Python threads may share the object), and close() gives the GL context back at once. */
 class PythonRenderer {
 public:
-    explicit PythonRenderer(const std::string& eglPlatform) : mRenderer(std::in_place, eglPlatform) {}
+    explicit PythonRenderer(ig::Renderer::Platform platform) : mRenderer(std::in_place, platform) {}
 
     // The look and the frame by value: the render runs without the GIL, while another Python thread may change the
     // objects it was given.
-    ig::Still render(const ig::Scene& scene, ig::Look look, ig::Frame frame, std::vector<std::string> buffers) {
+    ig::Still render(const ig::Scene& scene, const ig::Look& look, const ig::Frame& frame,
+                     const std::vector<std::string>& buffers, std::uint8_t* out, std::size_t rowBytes) {
         const std::lock_guard lock(mMutex);
-        return open("Renderer.render()").render(scene, look, frame, buffers);
+        ig::Renderer& renderer = open("Renderer.render()");
+        return out ? renderer.renderInto(out, rowBytes, scene, look, frame, buffers)
+                   : renderer.render(scene, look, frame, buffers);
     }
     std::string glDescription() {
         const std::lock_guard lock(mMutex);
@@ -131,7 +473,7 @@ public:
 
 private:
     ig::Renderer& open(const std::string& function) {
-        if (!mRenderer) throw ig::Error(ig::Error::Kind::Usage, function + ": the renderer is closed");
+        if (!mRenderer) failUsage(function + ": the renderer is closed");
         return *mRenderer;
     }
 
@@ -139,15 +481,642 @@ private:
     std::optional<ig::Renderer> mRenderer;
 };
 
-std::string quotedList(const std::vector<std::string>& items) {
-    std::string text;
-    for (const std::string& item : items) text += (text.empty() ? "'" : ", '") + item + "'";
-    return "[" + text + "]";
+/** `out` checked as the picture of `frame`: a writable uint8 (height, width, 4) array whose pixels are packed (4
+ *  bytes apart, channels 1 apart) and whose rows lie at least width * 4 bytes apart. */
+std::size_t pictureRowBytes(const py::handle& out, const ig::Frame& frame) {
+    const std::string where = "Renderer.render(): out: ";
+    const std::string expected = "expected a writable uint8 array of shape (" + std::to_string(frame.height) + ", " +
+                                 std::to_string(frame.width) + ", 4), the frame's height x width x RGBA";
+    if (!py::isinstance<py::array>(out)) throw py::type_error(where + expected + ", got " + reprOf(out));
+    const auto array = py::reinterpret_borrow<py::array>(out);
+    if (!py::isinstance<py::array_t<std::uint8_t>>(array))
+        failUsage(where + expected + ", got dtype " + py::str(array.dtype()).cast<std::string>());
+    if (array.ndim() != 3 || array.shape(0) != frame.height || array.shape(1) != frame.width || array.shape(2) != 4)
+        failUsage(where + expected + ", got shape " + shapeText(array));
+    if (!array.writeable()) failUsage(where + expected + ", got a read-only array");
+    if (array.strides(2) != 1 || array.strides(1) != 4 || array.strides(0) < py::ssize_t(frame.width) * 4)
+        failUsage(where +
+                  "the pixels of a row must be packed (strides (row, 4, 1) with row >= width * 4), got strides (" +
+                  std::to_string(array.strides(0)) + ", " + std::to_string(array.strides(1)) + ", " +
+                  std::to_string(array.strides(2)) + ")");
+    return std::size_t(array.strides(0));
 }
 
 } // namespace
 
 namespace inkgraph::python {
+
+namespace {
+
+void defineValueTypes(py::module_& m) {
+    py::class_<ig::Vec3> vec3(m, "Vec3",
+                              "A direction or a point, in the model's world units. Immutable; a tuple "
+                              "(x, y, z) is taken wherever a Vec3 is.");
+    vec3.def(py::init([](double x, double y, double z) {
+                 return ig::Vec3{x, y, z};
+             }),
+             "x"_a = 0.0, "y"_a = 0.0, "z"_a = 0.0)
+        .def_readonly("x", &ig::Vec3::x)
+        .def_readonly("y", &ig::Vec3::y)
+        .def_readonly("z", &ig::Vec3::z);
+    addValueProtocol(vec3, {"x", "y", "z"});
+    addIteration(vec3, {"x", "y", "z"});
+
+    py::class_<ig::Color> color(m, "Color",
+                                "A colour, display RGBA, channels in [0, 1]. Immutable; a tuple (r, g, b) "
+                                "or (r, g, b, a) is taken wherever a Color is.");
+    color
+        .def(py::init([](double r, double g, double b, double a) {
+                 return ig::Color{r, g, b, a};
+             }),
+             "r"_a = 0.0, "g"_a = 0.0, "b"_a = 0.0, "a"_a = 1.0)
+        .def_readonly("r", &ig::Color::r)
+        .def_readonly("g", &ig::Color::g)
+        .def_readonly("b", &ig::Color::b)
+        .def_readonly("a", &ig::Color::a);
+    addValueProtocol(color, {"r", "g", "b", "a"});
+    addIteration(color, {"r", "g", "b", "a"});
+
+    py::class_<ig::Orbit> orbit(m, "Orbit",
+                                "--orbit: the eye on a sphere around the target, angles in degrees from the model's "
+                                "front; distance None is the auto-framing distance. Immutable; a tuple (azimuth, "
+                                "elevation[, distance]) is taken wherever an Orbit is.");
+    orbit
+        .def(py::init([](double azimuth, double elevation, std::optional<double> distance) {
+                 return ig::Orbit{azimuth, elevation, distance};
+             }),
+             "azimuth"_a = 0.0, "elevation"_a = 0.0, "distance"_a = py::none())
+        .def_readonly("azimuth", &ig::Orbit::azimuth)
+        .def_readonly("elevation", &ig::Orbit::elevation)
+        .def_readonly("distance", &ig::Orbit::distance);
+    addValueProtocol(orbit, {"azimuth", "elevation", "distance"});
+    addIteration(orbit, {"azimuth", "elevation", "distance"});
+
+    py::class_<ig::Clip> clip(m, "Clip",
+                              "--clip NEAR,FAR. Immutable; a tuple (near, far) is taken wherever a Clip is.");
+    clip.def(py::init([](double nearPlane, double farPlane) {
+                 return ig::Clip{nearPlane, farPlane};
+             }),
+             "near"_a, "far"_a)
+        .def_readonly("near", &ig::Clip::near)
+        .def_readonly("far", &ig::Clip::far);
+    addValueProtocol(clip, {"near", "far"});
+    addIteration(clip, {"near", "far"});
+
+    py::class_<ig::LineStyle> lineStyle(m, "LineStyle",
+                                        "How one line type is drawn (--TYPE-width in pixels, --TYPE-color). Immutable; "
+                                        "replace() gives a changed copy.");
+    lineStyle
+        .def(py::init([](double width, py::handle lineColor) {
+                 return ig::LineStyle{width, colorArgument(lineColor, "LineStyle.color")};
+             }),
+             "width"_a = ig::LineStyle{}.width, "color"_a = ig::Color{})
+        .def_readonly("width", &ig::LineStyle::width)
+        .def_readonly("color", &ig::LineStyle::color);
+    addValueProtocol(lineStyle, {"width", "color"});
+
+    py::class_<ig::StrokeSettings> strokes(m, "StrokeSettings",
+                                           "How line pixels become strokes, for every type (docs/strokes.md): "
+                                           "--min-stroke-length, --line-weight depth/strength/taper, "
+                                           "--overlapping-lines merge. Immutable; replace() gives a changed copy.");
+    const ig::StrokeSettings defaults;
+    strokes
+        .def(py::init(
+                 [](double minLength, bool weightByDepth, bool weightByStrength, bool taperEnds, bool mergeOverlaps) {
+                     return ig::StrokeSettings{minLength, weightByDepth, weightByStrength, taperEnds, mergeOverlaps};
+                 }),
+             "min_length"_a = defaults.minLength, "weight_by_depth"_a = defaults.weightByDepth,
+             "weight_by_strength"_a = defaults.weightByStrength, "taper_ends"_a = defaults.taperEnds,
+             "merge_overlaps"_a = defaults.mergeOverlaps)
+        .def_readonly("min_length", &ig::StrokeSettings::minLength)
+        .def_readonly("weight_by_depth", &ig::StrokeSettings::weightByDepth)
+        .def_readonly("weight_by_strength", &ig::StrokeSettings::weightByStrength)
+        .def_readonly("taper_ends", &ig::StrokeSettings::taperEnds)
+        .def_readonly("merge_overlaps", &ig::StrokeSettings::mergeOverlaps);
+    addValueProtocol(strokes, {"min_length", "weight_by_depth", "weight_by_strength", "taper_ends", "merge_overlaps"});
+}
+
+void defineEnums(py::module_& m) {
+    using S = ig::Shading;
+    defineEnum<S>(m, "Shading", "shading", "--shading: how surfaces are shaded (docs/shading.md).",
+                  {{"NONE", S::None},
+                   {"FLAT", S::Flat},
+                   {"GOURAUD", S::Gouraud},
+                   {"LAMBERT", S::Lambert},
+                   {"PHONG", S::Phong},
+                   {"CEL", S::Cel},
+                   {"COMIC", S::Comic},
+                   {"MTOON", S::MToon}});
+    using L = ig::LineType;
+    defineEnum<L>(m, "LineType", "line type",
+                  "The line types, in the order the composite draws them (--lines; docs/lines.md).",
+                  {{"OUTLINE", L::Outline},
+                   {"SILHOUETTE", L::Silhouette},
+                   {"NORMAL_EDGE", L::NormalEdge},
+                   {"DEPTH_EDGE", L::DepthEdge},
+                   {"CREASE", L::Crease},
+                   {"BORDER", L::Border},
+                   {"MATERIAL_BOUNDARY", L::MaterialBoundary},
+                   {"SUGGESTIVE", L::Suggestive},
+                   {"SUGGESTIVE_OBJECT", L::SuggestiveObject},
+                   {"CONTOUR", L::Contour},
+                   {"MESH_SILHOUETTE", L::MeshSilhouette}});
+    defineEnum<ig::ViewVector>(m, "ViewVector", "view vector", "--view-vector (comic).",
+                               {{"EXACT", ig::ViewVector::Exact}, {"CONSTANT", ig::ViewVector::Constant}});
+    using F = ig::FaceOrientation;
+    defineEnum<F>(m, "FaceOrientation", "face orientation", "--face-orientation (comic).",
+                  {{"STANDARD", F::Standard},
+                   {"DURING_TRIANGLES", F::DuringTriangles},
+                   {"DURING_VERTICES", F::DuringVertices},
+                   {"AFTER_VERTICES", F::AfterVertices}});
+    defineEnum<ig::Precision>(m, "Precision", "precision", "--gbuffer-precision.",
+                              {{"FLOAT32", ig::Precision::Float32}, {"FLOAT16", ig::Precision::Float16}});
+    defineEnum<ig::CameraPlacement>(
+        m, "CameraPlacement", "camera placement",
+        "Where the view comes from when eye, orbit and frame_nodes leave it open: the "
+        "file's camera when it has one, or always auto-framing (--camera auto).",
+        {{"FILE_OR_AUTO", ig::CameraPlacement::FileOrAuto}, {"AUTO", ig::CameraPlacement::Auto}});
+    using C = ig::CameraSource;
+    defineEnum<C>(m, "CameraSource", "camera source", "Where a still's view came from.",
+                  {{"FILE", C::File}, {"AUTO", C::Auto}, {"ORBIT", C::Orbit}, {"EYE", C::Eye}});
+}
+
+/** The names Look(**fields) and Frame(**fields) take: the settable properties. */
+const std::vector<std::string> kLookFields{"shading",           "shininess",  "bands",  "shade_map", "view_vector",
+                                           "face_orientation",  "front_rule", "light",  "paper",     "supersample",
+                                           "gbuffer_precision", "lines",      "strokes"};
+const std::vector<std::string> kFrameFields{"eye",  "orbit",     "target",      "up",        "fov",
+                                            "clip", "placement", "frame_nodes", "animation", "time"};
+
+/** Sets the keyword arguments of a constructor as the properties they name, refusing other names. */
+void setFields(py::handle object, const py::kwargs& fields, const std::vector<std::string>& allowed,
+               const std::string& className) {
+    for (const auto& [name, value] : fields) {
+        const std::string key = utf8Of(name);
+        if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+            std::string names;
+            for (const std::string& field : allowed) names += (names.empty() ? "" : ", ") + field;
+            throw py::type_error(className + "(): unexpected keyword argument '" + key + "' (fields: " + names + ")");
+        }
+        py::setattr(object, name, value);
+    }
+}
+
+void defineLook(py::module_& m) {
+    py::class_<ig::Look> look(m, "Look",
+                              "The look: shading and its settings, the line types with their styles and parameters, "
+                              "strokes, paper, light and supersampling. Look() is the command line's default look; "
+                              "each field may be given as a keyword (Look(shading='comic', lines=['outline'])). Every "
+                              "setter checks its value as the flag it stands for does (UsageError with its message).");
+    look.def(py::init([](const py::kwargs& fields) {
+                 py::object made = py::cast(ig::Look());
+                 setFields(made, fields, kLookFields, "Look");
+                 return made.cast<ig::Look>();
+             }),
+             "Look(**fields): the command line's default look, with the fields given set in turn.")
+        .def_static("from_arguments", &ig::Look::fromArguments, "arguments"_a,
+                    "Flags and values as on the command line: ['--shading', 'comic', '--lines', 'outline,contour']. "
+                    "Raises UsageError with the command line's message for a bad flag or value.")
+        .def_static(
+            "from_style_file", [](const std::filesystem::path& path) { return ig::Look::fromStyleFile(path.string()); },
+            "path"_a, "A style file (`inkgraph render --style FILE`). Raises UsageError naming the file and line.")
+        .def(
+            "set",
+            [](py::object self, const std::string& flag, const std::string& value) {
+                self.cast<ig::Look&>().set(flag, value);
+                return self;
+            },
+            "flag"_a, "value"_a = "",
+            "Sets one flag, checked at once: look.set('--silhouette-width', '3'). Returns the look.")
+        .def_property_readonly("arguments", &ig::Look::arguments,
+                               "The flags that give this look, in the order they were set: "
+                               "Look.from_arguments(look.arguments) is the same look.")
+        .def("__copy__", [](const ig::Look& self) { return ig::Look(self); })
+        .def(
+            "__deepcopy__", [](const ig::Look& self, py::handle) { return ig::Look(self); }, "memo"_a)
+        .def("__repr__", [](const ig::Look& self) {
+            return "inkgraph.Look.from_arguments(" + reprOf(py::cast(self.arguments())) + ")";
+        });
+
+    look.def_property(
+            "shading", &ig::Look::shading,
+            [](ig::Look& self, py::handle value) { self.setShading(enumArgument<ig::Shading>(value, "Look.shading")); },
+            "Shading (or its name): --shading.")
+        .def_property(
+            "shininess", &ig::Look::shininess,
+            [](ig::Look& self, py::handle value) { self.setShininess(realNumber(value, "Look.shininess")); },
+            "--shininess (phong and comic).")
+        .def_property(
+            "bands", &ig::Look::bands, [](ig::Look& self, int bands) { self.setBands(bands); },
+            "--bands (cel); None: Qu, Chen & Zwicker's five uneven bands.")
+        .def_property(
+            "shade_map", &ig::Look::shadeMap,
+            [](ig::Look& self, const std::filesystem::path& path) { self.setShadeMap(path.string()); },
+            "--shademap (cel, comic): a PNG; '' is the built-in map.")
+        .def_property(
+            "view_vector", &ig::Look::viewVector,
+            [](ig::Look& self, py::handle value) {
+                self.setViewVector(enumArgument<ig::ViewVector>(value, "Look.view_vector"));
+            },
+            "--view-vector (comic).")
+        .def_property(
+            "face_orientation", &ig::Look::faceOrientation,
+            [](ig::Look& self, py::handle value) {
+                self.setFaceOrientation(enumArgument<ig::FaceOrientation>(value, "Look.face_orientation"));
+            },
+            "--face-orientation (comic).")
+        .def_property(
+            "front_rule", &ig::Look::frontRule, [](ig::Look& self, int rule) { self.setFrontRule(rule); },
+            "--front-rule (comic with during-vertices or after-vertices): 1, 2 or 3.")
+        .def_property(
+            "light", &ig::Look::light,
+            [](ig::Look& self, py::handle value) { self.setLight(vec3Argument(value, "Look.light")); },
+            "--light: the world direction toward the light (a Vec3 or (x, y, z)); None: the file's, else a key light.")
+        .def_property(
+            "paper", &ig::Look::paper,
+            [](ig::Look& self, py::handle value) { self.setPaper(colorArgument(value, "Look.paper")); },
+            "--background: the paper's colour (a Color or (r, g, b)).")
+        .def_property(
+            "supersample", &ig::Look::supersample, [](ig::Look& self, int factor) { self.setSupersample(factor); },
+            "--supersample: 1 to 8.")
+        .def_property(
+            "gbuffer_precision", &ig::Look::gbufferPrecision,
+            [](ig::Look& self, py::handle value) {
+                self.setGbufferPrecision(enumArgument<ig::Precision>(value, "Look.gbuffer_precision"));
+            },
+            "--gbuffer-precision.")
+        .def_property(
+            "lines", &ig::Look::lines,
+            [](ig::Look& self, py::handle value) {
+                if (py::isinstance<py::str>(value) || !py::isinstance<py::iterable>(value))
+                    throw py::type_error("Look.lines: expected a list of LineType or their names, got " +
+                                         reprOf(value));
+                std::vector<ig::LineType> types;
+                for (const py::handle item : value) types.push_back(enumArgument<ig::LineType>(item, "Look.lines"));
+                self.setLines(types);
+            },
+            "The line types drawn (--lines), in composite order: a list of LineType or their names; [] draws none.")
+        .def_property(
+            "strokes", &ig::Look::strokes,
+            [](ig::Look& self, const ig::StrokeSettings& strokes) { self.setStrokes(strokes); },
+            "StrokeSettings for every line type.")
+        .def(
+            "line_style",
+            [](const ig::Look& self, py::handle type) {
+                return self.lineStyle(enumArgument<ig::LineType>(type, "Look.line_style()"));
+            },
+            "type"_a, "How `type` is drawn: its LineStyle (--TYPE-width, --TYPE-color).")
+        .def(
+            "set_line_style",
+            [](py::object self, py::handle type, const ig::LineStyle& style) {
+                self.cast<ig::Look&>().setLineStyle(enumArgument<ig::LineType>(type, "Look.set_line_style()"), style);
+                return self;
+            },
+            "type"_a, "style"_a, "Sets how `type` is drawn. Returns the look.")
+        .def_static(
+            "line_parameter_names",
+            [](py::handle type) {
+                return ig::Look::lineParameterNames(enumArgument<ig::LineType>(type, "Look.line_parameter_names()"));
+            },
+            "type"_a,
+            "The parameters `type` takes besides width and colour ('depth-jump', 'crease-angle'); one parameter may "
+            "serve several types, and is then one value for all of them.")
+        .def("line_parameter", &ig::Look::lineParameter, "name"_a, "A number parameter's value (given or default).")
+        .def("line_choice", &ig::Look::lineChoice, "name"_a, "A choice parameter's value ('5' of suggestive-stencil).")
+        .def(
+            "set_line_parameter",
+            [](py::object self, const std::string& name, py::handle value) {
+                self.cast<ig::Look&>().setLineParameter(name, realNumber(value, "Look.set_line_parameter()"));
+                return self;
+            },
+            "name"_a, "value"_a, "Sets a number parameter ('crease-angle'). Returns the look.")
+        .def(
+            "set_line_choice",
+            [](py::object self, const std::string& name, const std::string& value) {
+                self.cast<ig::Look&>().setLineChoice(name, value);
+                return self;
+            },
+            "name"_a, "value"_a, "Sets a choice parameter. Returns the look.");
+}
+
+void defineFrame(py::module_& m) {
+    py::class_<ig::Frame> frame(m, "Frame",
+                                "The frame: size and camera. Unset fields (None) take the command line's defaults (the "
+                                "file's camera, else framed to fit the model at 35 degrees from the front). Checked "
+                                "when it renders, by the rules of the flag each field stands for.");
+    frame
+        .def(py::init([](int width, int height, const py::kwargs& fields) {
+                 ig::Frame made;
+                 made.width = width;
+                 made.height = height;
+                 py::object object = py::cast(made);
+                 setFields(object, fields, kFrameFields, "Frame");
+                 return object.cast<ig::Frame>();
+             }),
+             "width"_a = ig::Frame{}.width, "height"_a = ig::Frame{}.height,
+             "Frame(width=1024, height=1024, **fields): fields as keywords (orbit=(30, 10), fov=40).")
+        .def_static("from_arguments", &ig::Frame::fromArguments, "arguments"_a,
+                    "The command line's camera flags: ['--orbit', '30,10', '--fov', '40', '--size', '640x480']. "
+                    "Raises UsageError with the command line's message for a flag that is not the frame's or a bad "
+                    "value.")
+        .def_readwrite("width", &ig::Frame::width, "--size: pixels, 1 to 16384.")
+        .def_readwrite("height", &ig::Frame::height)
+        .def_property(
+            "eye", [](const ig::Frame& self) { return self.eye; },
+            [](ig::Frame& self, py::handle value) { self.eye = optionalArgument(value, vec3Argument, "Frame.eye"); },
+            "--eye: the eye in world coordinates (a Vec3 or (x, y, z)), or None.")
+        .def_property(
+            "orbit", [](const ig::Frame& self) { return self.orbit; },
+            [](ig::Frame& self, py::handle value) {
+                self.orbit = optionalArgument(value, orbitArgument, "Frame.orbit");
+            },
+            "--orbit: an Orbit or (azimuth, elevation[, distance]), or None.")
+        .def_property(
+            "target", [](const ig::Frame& self) { return self.target; },
+            [](ig::Frame& self, py::handle value) {
+                self.target = optionalArgument(value, vec3Argument, "Frame.target");
+            },
+            "--target (world), or None.")
+        .def_property(
+            "up", [](const ig::Frame& self) { return self.up; },
+            [](ig::Frame& self, py::handle value) { self.up = optionalArgument(value, vec3Argument, "Frame.up"); },
+            "--up, or None.")
+        .def_readwrite("fov", &ig::Frame::fov, "--fov: vertical degrees, 0.01 to 179, or None.")
+        .def_property(
+            "clip", [](const ig::Frame& self) { return self.clip; },
+            [](ig::Frame& self, py::handle value) { self.clip = optionalArgument(value, clipArgument, "Frame.clip"); },
+            "--clip: a Clip or (near, far), or None (fitted to the model).")
+        .def_property(
+            "placement", [](const ig::Frame& self) { return self.placement; },
+            [](ig::Frame& self, py::handle value) {
+                self.placement = enumArgument<ig::CameraPlacement>(value, "Frame.placement");
+            },
+            "CameraPlacement (--camera auto is AUTO).")
+        .def_readwrite("frame_nodes", &ig::Frame::frameNodes,
+                       "--frame: fit the view to the meshes under these nodes (assign a whole list; a copy is "
+                       "returned).")
+        .def_readwrite("animation", &ig::Frame::animation,
+                       "A glTF animation (name or index) to pose the scene in for this render; '' with time None: the "
+                       "scene as loaded.")
+        .def_readwrite("time", &ig::Frame::time, "Seconds into the animation, or None.")
+        .def("__copy__", [](const ig::Frame& self) { return self; })
+        .def(
+            "__deepcopy__", [](const ig::Frame& self, py::handle) { return self; }, "memo"_a)
+        .def("__repr__", [](py::handle self) {
+            const auto& value = self.cast<const ig::Frame&>();
+            std::string text = "inkgraph.Frame(" + std::to_string(value.width) + ", " + std::to_string(value.height);
+            const ig::Frame defaults;
+            for (const std::string& field : kFrameFields) {
+                const py::object fieldValue = self.attr(field.c_str());
+                const py::object defaultValue = py::cast(defaults).attr(field.c_str());
+                if (!fieldValue.equal(defaultValue)) text += ", " + field + "=" + reprOf(fieldValue);
+            }
+            return text + ")";
+        });
+}
+
+void defineStill(py::module_& m) {
+    py::class_<ig::StillCamera>(m, "StillCamera",
+                                "The camera a still was drawn with, in world coordinates. The matrices are float64 "
+                                "NumPy arrays of their own, row-major.")
+        .def_property_readonly(
+            "intrinsics", [](const ig::StillCamera& c) { return matrixArray(c.intrinsics); },
+            "OpenCV's K (3 x 3): fx = fy = (height / 2) / tan(fov_y / 2), cx = width / 2 - 0.5, cy = height / 2 - 0.5 "
+            "(x right, y down, the centre of pixel (0, 0) at (0, 0)), for the picture's size.")
+        .def_property_readonly(
+            "extrinsics", [](const ig::StillCamera& c) { return matrixArray(c.extrinsics); },
+            "OpenCV's [R|t] (3 x 4): world points to the OpenCV camera frame (x right, y down, z forward). With the "
+            "depth buffer: X_cam = depth * K^-1 [u v 1], X_world = R^T (X_cam - t).")
+        .def_property_readonly(
+            "view", [](const ig::StillCamera& c) { return matrixArray(c.view); },
+            "OpenGL's view matrix (4 x 4): world points to view space (x right, y up, looking down -z).")
+        .def_property_readonly(
+            "projection", [](const ig::StillCamera& c) { return matrixArray(c.projection); },
+            "OpenGL's projection matrix (4 x 4, clip space z in [-w, w]).")
+        .def_readonly("eye", &ig::StillCamera::eye)
+        .def_readonly("target", &ig::StillCamera::target)
+        .def_readonly("up", &ig::StillCamera::up)
+        .def_readonly("fov_y", &ig::StillCamera::fovY, "Vertical field of view, degrees.")
+        .def_readonly("near", &ig::StillCamera::near)
+        .def_readonly("far", &ig::StillCamera::far)
+        .def_readonly("clip_given", &ig::StillCamera::clipGiven,
+                      "near and far were Frame.clip; else fitted to the model's bounding sphere.")
+        .def_readonly("width", &ig::StillCamera::width)
+        .def_readonly("height", &ig::StillCamera::height)
+        .def_readonly("source", &ig::StillCamera::source)
+        .def(
+            "as_dict",
+            [](const ig::StillCamera& c) {
+                py::dict d;
+                d["width"] = c.width;
+                d["height"] = c.height;
+                d["source"] = cliName(c.source);
+                d["intrinsics"] = matrixArray(c.intrinsics).attr("tolist")();
+                d["extrinsics"] = matrixArray(c.extrinsics).attr("tolist")();
+                d["view"] = matrixArray(c.view).attr("tolist")();
+                d["projection"] = matrixArray(c.projection).attr("tolist")();
+                d["eye"] = vec3List(c.eye);
+                d["target"] = vec3List(c.target);
+                d["up"] = vec3List(c.up);
+                d["fov_y"] = c.fovY;
+                d["near"] = c.near;
+                d["far"] = c.far;
+                d["clip_given"] = c.clipGiven;
+                return d;
+            },
+            "The camera as plain lists and numbers (for JSON): the matrices as lists of rows, source by its name.")
+        .def("__repr__", [](const ig::StillCamera& c) {
+            return "<inkgraph.StillCamera " + std::to_string(c.width) + "x" + std::to_string(c.height) + ", " +
+                   cliName(c.source) + ", fov_y " + reprOf(py::float_(c.fovY)) + ">";
+        });
+
+    py::class_<PythonStill>(m, "Still",
+                            "One rendered still: the picture and the buffers asked for, as read-only NumPy arrays "
+                            "that share the still's pixels (copy one to change it), the camera and the warnings.")
+        .def_property_readonly(
+            "picture",
+            [](const py::object& self) { return imageArray(self.cast<const PythonStill&>().still.picture(), self); },
+            "The final picture: height x width x 4 uint8 (RGBA); with render(out=...), a read-only view of out's "
+            "pixels.")
+        .def(
+            "buffer",
+            [](const py::object& self, const std::string& name) {
+                return imageArray(self.cast<const PythonStill&>().still.buffer(name), self);
+            },
+            "name"_a,
+            "A buffer asked for in render(), by a name it was asked with: float32 or uint8, height x width (one "
+            "channel) or height x width x 4. Raises UsageError naming the buffers there are.")
+        .def_property_readonly(
+            "buffer_names", [](const PythonStill& self) { return self.still.bufferNames(); },
+            "The buffers, each by the first name it was asked with, in that order ('gbuffer.*' and 'lines.*' give "
+            "each buffer's own name).")
+        .def_property_readonly(
+            "camera", [](const PythonStill& self) { return self.still.camera(); }, "The StillCamera it was drawn with.")
+        .def_property_readonly(
+            "warnings", [](const PythonStill& self) { return warningObjects(self.still.warnings()); },
+            "What the load (for a still that posed its scene) and the render warned about, as InkgraphWarning "
+            "records (render() has issued them through the warnings module).")
+        .def(
+            "write",
+            [](const PythonStill& self, const std::filesystem::path& path) {
+                const py::gil_scoped_release release;
+                self.still.write(path.string());
+            },
+            "path"_a,
+            "Writes the picture; the format follows the extension. Raises OutputError naming the file (also for a "
+            "FIFO or a device), UsageError for a file the render read (the model, a shade map, ...).")
+        .def_property_readonly(
+            "milliseconds", [](const PythonStill& self) { return self.still.milliseconds(); },
+            "Milliseconds the render took (without loading the scene).")
+        .def("__repr__", [](const PythonStill& self) {
+            const ig::StillCamera& camera = self.still.camera();
+            return "<inkgraph.Still " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
+                   ", buffers " + reprOf(py::cast(self.still.bufferNames())) + ">";
+        });
+}
+
+void defineScene(py::module_& m) {
+    py::class_<ig::Scene>(m, "Scene",
+                          "A model loaded once (OBJ with MTL, glTF/GLB, VRM, STL, PLY) or made from arrays; render it "
+                          "with any number of looks and frames.")
+        .def_static(
+            "load",
+            [](const std::filesystem::path& path, const std::string& animation, double time, std::size_t memoryLimit) {
+                ig::SceneOptions options;
+                options.animation = animation;
+                options.time = time;
+                options.memoryLimitBytes = memoryLimit;
+                std::optional<ig::Scene> scene;
+                {
+                    const py::gil_scoped_release release;
+                    scene.emplace(ig::Scene::load(path.string(), options));
+                }
+                issueWarnings(warningObjects(scene->warnings()));
+                return *scene;
+            },
+            "path"_a, "animation"_a = "", "time"_a = 0.0, "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
+            "Loads a model; `animation` (a glTF animation's name or index) and `time` (seconds) pose it, as "
+            "--animation and --time; `memory_limit` (bytes) bounds the load and each render of the scene as "
+            "--memory-limit (0: the command line's default). Issues the loader's warnings (InkgraphWarning). Raises "
+            "InputError naming the file and the problem.")
+        .def_static(
+            "from_arrays",
+            [](py::handle vertices, py::handle faces, py::handle normals, py::handle uvs, py::handle colors,
+               const std::string& name, std::size_t memoryLimit) {
+                const auto vertexArray = floatRows(vertices, "vertices", {3}, std::nullopt);
+                const py::ssize_t vertexCount = vertexArray.shape(0);
+                const auto faceArray = faceRows(faces);
+                std::optional<FloatRows> normalArray, uvArray, colorArray;
+                if (!normals.is_none()) normalArray = floatRows(normals, "normals", {3}, vertexCount);
+                if (!uvs.is_none()) uvArray = floatRows(uvs, "uvs", {2}, vertexCount);
+                if (!colors.is_none()) colorArray = floatRows(colors, "colors", {3, 4}, vertexCount);
+                requireFinite(vertexArray, "vertices");
+                requireFacesInRange(faceArray, vertexCount);
+                if (normalArray) requireFinite(*normalArray, "normals");
+                if (uvArray) requireFinite(*uvArray, "uvs");
+                if (colorArray) requireFinite(*colorArray, "colors");
+                ig::MeshArrays arrays;
+                arrays.vertices = vertexArray.data();
+                arrays.vertexCount = std::size_t(vertexCount);
+                arrays.faces = faceArray.data();
+                arrays.faceCount = std::size_t(faceArray.shape(0));
+                if (normalArray) arrays.normals = normalArray->data();
+                if (uvArray) arrays.uvs = uvArray->data();
+                if (colorArray) {
+                    arrays.colors = colorArray->data();
+                    arrays.colorChannels = int(colorArray->shape(1));
+                }
+                ig::SceneOptions options;
+                options.memoryLimitBytes = memoryLimit;
+                std::optional<ig::Scene> scene;
+                {
+                    const py::gil_scoped_release release;
+                    scene.emplace(ig::Scene::fromArrays(arrays, name, options));
+                }
+                issueWarnings(warningObjects(scene->warnings()));
+                return *scene;
+            },
+            "vertices"_a, "faces"_a, "normals"_a = py::none(), "uvs"_a = py::none(), "colors"_a = py::none(),
+            "name"_a = "arrays", "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
+            "A scene of one mesh from NumPy arrays (or anything numpy.asarray takes): vertices (N, 3), faces (M, 3) "
+            "vertex indices counter-clockwise seen from the front, and optionally normals (N, 3), uvs (N, 2) and "
+            "colors (N, 3) or (N, 4) in [0, 1]. float32 C-contiguous arrays (uint32 faces) are read where they are; "
+            "others are converted (integer faces after checking every index fits in uint32). Renders as an OBJ with "
+            "the same vertices and faces does. Raises InputError naming the argument and the problem (a shape, a "
+            "dtype, a value that is not finite, an index out of range).")
+        .def_property_readonly("path", &ig::Scene::path, "The file, or '' for arrays.")
+        .def_property_readonly("triangle_count", &ig::Scene::triangleCount)
+        .def_property_readonly("vertex_count", &ig::Scene::vertexCount)
+        .def_property_readonly("mesh_count", &ig::Scene::meshCount)
+        .def_property_readonly(
+            "warnings", [](const ig::Scene& self) { return warningObjects(self.warnings()); },
+            "The loader's warnings, as InkgraphWarning records.")
+        .def("__repr__", [](const ig::Scene& scene) {
+            const std::string counts = "  # " + std::to_string(scene.triangleCount()) + " triangles";
+            if (scene.path().empty()) return "<inkgraph.Scene from arrays>" + counts;
+            return "inkgraph.Scene.load(" + reprOf(py::str(scene.path())) + ")" + counts;
+        });
+}
+
+void defineRenderer(py::module_& m) {
+    py::class_<PythonRenderer> renderer(m, "Renderer",
+                                        "Renders stills. The first render makes one GL context (EGL, no display), kept "
+                                        "with every compiled program until close() or the renderer's end: a batch pays "
+                                        "start-up once. One renderer at a time holds the process's context (render() "
+                                        "refuses others with UsageError until that one is closed); any thread may "
+                                        "render, one render at a time.");
+    defineEnum<ig::Renderer::Platform>(renderer, "Platform", "EGL platform",
+                                       "How the GL context is reached: --egl-platform.",
+                                       {{"AUTO", ig::Renderer::Platform::Auto},
+                                        {"DEVICE", ig::Renderer::Platform::Device},
+                                        {"SURFACELESS", ig::Renderer::Platform::Surfaceless}});
+    renderer
+        .def(py::init([](py::handle platform) {
+                 return std::make_unique<PythonRenderer>(
+                     enumArgument<ig::Renderer::Platform>(platform, "Renderer(): platform"));
+             }),
+             "platform"_a = ig::Renderer::Platform::Auto,
+             "`platform`: Renderer.Platform or its name ('auto', 'device', 'surfaceless'), as --egl-platform. Makes "
+             "nothing yet.")
+        .def(
+            "render",
+            [](PythonRenderer& self, const ig::Scene& scene, const std::optional<ig::Look>& look,
+               const std::optional<ig::Frame>& frame, const std::vector<std::string>& buffers, const py::object& out) {
+                const ig::Look lookValue = look.value_or(ig::Look());
+                const ig::Frame frameValue = frame.value_or(ig::Frame());
+                std::uint8_t* pixels = nullptr;
+                std::size_t rowBytes = 0;
+                if (!out.is_none()) {
+                    rowBytes = pictureRowBytes(out, frameValue);
+                    pixels = static_cast<std::uint8_t*>(py::reinterpret_borrow<py::array>(out).mutable_data());
+                }
+                std::optional<ig::Still> still;
+                {
+                    const py::gil_scoped_release release;
+                    still.emplace(self.render(scene, lookValue, frameValue, buffers, pixels, rowBytes));
+                }
+                issueWarnings(warningObjects(still->warnings()));
+                return PythonStill{std::move(*still), out};
+            },
+            "scene"_a, "look"_a = py::none(), "frame"_a = py::none(), "buffers"_a = std::vector<std::string>{},
+            "out"_a = py::none(),
+            "Renders `scene` with `look` in `frame` (None: the defaults), keeping `buffers` (buffer_names(look); "
+            "'gbuffer.*' and 'lines.*' expand). With `out`, a writable uint8 (height, width, 4) array whose pixel rows "
+            "are packed (a row stride of its own is fine), the picture is drawn into it and the still's picture views "
+            "it. Runs without the GIL; issues the still's warnings (InkgraphWarning). Raises an inkgraph.Error.")
+        .def_property_readonly("gl_description", &PythonRenderer::glDescription,
+                               "The GL renderer, version and EGL platform in use, or '' before the first render.")
+        .def("close", &PythonRenderer::close, py::call_guard<py::gil_scoped_release>(),
+             "Gives the GL context back now; render() then raises UsageError.")
+        .def_property_readonly("closed", &PythonRenderer::closed)
+        .def("__enter__", [](const py::object& self) { return self; })
+        .def("__exit__", [](PythonRenderer& self, const py::args&) {
+            const py::gil_scoped_release release;
+            self.close();
+        });
+}
+
+} // namespace
 
 void defineModule(py::module_& m) {
     m.doc() = "inkgraph's public C++ API (inkgraph/inkgraph.h) for Python; use the package `inkgraph`, whose "
@@ -160,11 +1129,20 @@ void defineModule(py::module_& m) {
         }
     });
 
-    m.def("version", &ig::version, "The library's version, \"0.1.0\".");
+    m.def("version", &ig::version, "The library's version, \"0.2.0\".");
     m.def("git_commit", &ig::gitCommit, "The git commit the library was built from (\"unknown\" outside a checkout).");
-    m.def("buffer_resource_name", &ig::bufferResourceName, "name"_a,
-          "The graph resource name of a buffer: \"normal\" -> \"gbuffer.normal\", \"lines.contour\" -> "
-          "\"strokes.contour\", \"picture\" -> \"composite.final\"; a full resource name stays as it is.");
+
+    defineValueTypes(m);
+    defineEnums(m);
+    defineLook(m);
+    defineFrame(m);
+    defineStill(m);
+    defineScene(m);
+    defineRenderer(m);
+
+    m.def("buffer_names", &ig::bufferNames, "look"_a,
+          "The buffers render() can return with `look`: the G-buffer's fields ('normal', 'depth', ...), "
+          "'gbuffer.*', 'lines.<type>' of the look's line types, 'lines.*', 'picture'.");
     m.def(
         "write_image",
         [](const std::filesystem::path& path, const py::array& array) {
@@ -176,119 +1154,6 @@ void defineModule(py::module_& m) {
         "Writes a uint8 or float32 array (height x width, or height x width x 1 or 4 channels, RGBA) as an image "
         "file; the format follows the extension (PNG; EXR, TIFF, JPEG through OpenImageIO). Raises OutputError "
         "naming the file, also for a place that is not a regular file or a new name (a FIFO, a device).");
-
-    py::class_<ig::Scene>(m, "Scene",
-                          "A model loaded once (OBJ, glTF/GLB, VRM, STL, PLY); render it any number of times.")
-        .def_static(
-            "load",
-            [](const std::filesystem::path& path, const std::string& animation, double time,
-               std::size_t memoryLimitBytes) {
-                ig::SceneOptions options;
-                options.animation = animation;
-                options.time = time;
-                options.memoryLimitBytes = memoryLimitBytes;
-                return ig::Scene::load(path.string(), options);
-            },
-            "path"_a, "animation"_a = "", "time"_a = 0.0, "memory_limit_bytes"_a = ig::SceneOptions{}.memoryLimitBytes,
-            py::call_guard<py::gil_scoped_release>(),
-            "Loads a model; `animation` (a glTF animation's name or index) and `time` (seconds) pose it, as "
-            "--animation and --time; `memory_limit_bytes` bounds the load and each render of the scene as "
-            "--memory-limit (0: the command line's default). Raises InputError naming the file and the problem.")
-        .def_property_readonly("path", &ig::Scene::path)
-        .def_property_readonly("triangle_count", &ig::Scene::triangleCount)
-        .def_property_readonly("vertex_count", &ig::Scene::vertexCount)
-        .def_property_readonly("mesh_count", &ig::Scene::meshCount)
-        .def_property_readonly("warnings", &ig::Scene::warnings, "The loader's warnings.")
-        .def("__repr__", [](const ig::Scene& scene) {
-            return "inkgraph.Scene.load('" + scene.path() + "')  # " + std::to_string(scene.triangleCount()) +
-                   " triangles";
-        });
-
-    py::class_<ig::Look>(m, "Look",
-                         "The look as `inkgraph render`'s look and line flags (`inkgraph help render`); the default "
-                         "is the command line's default look.")
-        .def(py::init<>())
-        .def_static("from_arguments", &ig::Look::fromArguments, "arguments"_a,
-                    "Flags and values as on the command line: ['--shading', 'comic', '--lines', 'outline,contour']. "
-                    "Raises UsageError with the command line's message for a bad flag or value.")
-        .def_static(
-            "from_style_file", [](const std::filesystem::path& path) { return ig::Look::fromStyleFile(path.string()); },
-            "path"_a, "A style file (`inkgraph render --style FILE`). Raises UsageError naming the file and line.")
-        .def("set", &ig::Look::set, "flag"_a, "value"_a = "", py::return_value_policy::reference_internal,
-             "Sets one flag, checked at once: look.set('--silhouette-width', '3'). Returns the look.")
-        .def_property_readonly("arguments", &ig::Look::arguments, "Every flag given so far, in order.")
-        .def("__repr__",
-             [](const ig::Look& look) { return "inkgraph.Look.from_arguments(" + quotedList(look.arguments()) + ")"; });
-
-    py::class_<ig::Frame>(m, "Frame",
-                          "The frame: size in pixels and camera flags as on the command line (['--orbit', '30,10']).")
-        .def(py::init([](int width, int height, std::vector<std::string> camera) {
-                 ig::Frame frame;
-                 frame.width = width;
-                 frame.height = height;
-                 frame.camera = std::move(camera);
-                 return frame;
-             }),
-             "width"_a = ig::Frame{}.width, "height"_a = ig::Frame{}.height, "camera"_a = std::vector<std::string>{})
-        .def_readwrite("width", &ig::Frame::width)
-        .def_readwrite("height", &ig::Frame::height)
-        .def_readwrite("camera", &ig::Frame::camera, "Camera flags; assign a whole list (a copy is returned).")
-        .def("__repr__", [](const ig::Frame& frame) {
-            return "inkgraph.Frame(" + std::to_string(frame.width) + ", " + std::to_string(frame.height) + ", " +
-                   quotedList(frame.camera) + ")";
-        });
-
-    py::class_<ig::Still>(m, "Still",
-                          "One rendered still: the picture and the buffers asked for, as read-only NumPy arrays that "
-                          "share the still's pixels (copy one to change it).")
-        .def_property_readonly(
-            "picture", [](const py::object& self) { return imageArray(self.cast<const ig::Still&>().picture(), self); },
-            "The final picture: height x width x 4 uint8 (RGBA).")
-        .def(
-            "buffer",
-            [](const py::object& self, const std::string& name) {
-                return imageArray(self.cast<const ig::Still&>().buffer(name), self);
-            },
-            "name"_a,
-            "A buffer asked for in render(), by the name it was asked with: float32 or uint8, height x width (one "
-            "channel) or height x width x 4. Raises UsageError naming the buffers there are.")
-        .def_property_readonly("buffer_names", &ig::Still::bufferNames,
-                               "The names buffer() answers, in the order they were asked for.")
-        .def(
-            "write", [](const ig::Still& still, const std::filesystem::path& path) { still.write(path.string()); },
-            "path"_a, py::call_guard<py::gil_scoped_release>(),
-            "Writes the picture; the format follows the extension. Raises OutputError naming the file (also for a "
-            "FIFO or a device), UsageError for a file the render read (the model, a shade map, ...).")
-        .def_property_readonly("warnings", &ig::Still::warnings,
-                               "What the render warned about (a material's shade map this shading does not use, ...).")
-        .def_property_readonly("milliseconds", &ig::Still::milliseconds, "Milliseconds the render took.")
-        .def("__repr__", [](const ig::Still& still) {
-            const ig::Image& picture = still.picture();
-            return "<inkgraph.Still " + std::to_string(picture.width) + "x" + std::to_string(picture.height) +
-                   ", buffers " + quotedList(still.bufferNames()) + ">";
-        });
-
-    py::class_<PythonRenderer>(m, "Renderer",
-                               "Renders stills. The first render makes one GL context (EGL, no display), kept with "
-                               "every compiled program until close() or the renderer's end: a batch pays start-up "
-                               "once. One renderer at a time holds the process's context (render() refuses others with "
-                               "UsageError until that one is closed); any thread may render, one render at a time.")
-        .def(py::init<const std::string&>(), "egl_platform"_a = "auto",
-             "`egl_platform`: 'auto', 'device' or 'surfaceless', as --egl-platform. Makes nothing yet.")
-        .def("render", &PythonRenderer::render, "scene"_a, "look"_a, "frame"_a,
-             "buffers"_a = std::vector<std::string>{}, py::call_guard<py::gil_scoped_release>(),
-             "Renders `scene` with `look` in `frame`, keeping `buffers` (names as buffer_resource_name() takes them; "
-             "'gbuffer.*' expands). Runs without the GIL. Raises an inkgraph.Error.")
-        .def_property_readonly("gl_description", &PythonRenderer::glDescription,
-                               "The GL renderer and version in use, or '' before the first render.")
-        .def("close", &PythonRenderer::close, py::call_guard<py::gil_scoped_release>(),
-             "Gives the GL context back now; render() then raises UsageError.")
-        .def_property_readonly("closed", &PythonRenderer::closed)
-        .def("__enter__", [](const py::object& self) { return self; })
-        .def("__exit__", [](PythonRenderer& self, const py::args&) {
-            const py::gil_scoped_release release;
-            self.close();
-        });
 }
 
 } // namespace inkgraph::python

@@ -107,16 +107,14 @@ def test_arrays_share_the_still_read_only_and_keep_it_alive(suzanne):
     assert np.array_equal(depth, copy)
 
 
-def test_gbuffer_star_gives_every_gbuffer_buffer(suzanne):
-    result = inkgraph.render(suzanne, size=SIZE, buffers=["gbuffer.*"])
+def test_wildcards_give_every_buffer_by_its_own_name(suzanne):
+    result = inkgraph.render(suzanne, size=SIZE, buffers=["gbuffer.*", "lines.*"])
     names = set(result.buffers)
-    assert {"gbuffer.normal", "gbuffer.depth", "gbuffer.nDotV"} <= names, names
+    assert {"normal", "depth", "nDotV", "lines.silhouette", "lines.contour"} <= names, names
 
 
-def test_full_resource_names_and_short_names_are_the_same_buffer(suzanne):
-    result = inkgraph.render(suzanne, size=SIZE, buffers=["depth", "gbuffer.depth", "lines.contour"])
-    assert np.array_equal(result.buffers["depth"], result.buffers["gbuffer.depth"])
-    assert inkgraph.buffer_resource_name("depth") == "gbuffer.depth"
-    assert inkgraph.buffer_resource_name("lines.contour") == "strokes.contour"
-    assert inkgraph.buffer_resource_name("picture") == "composite.final"
-    assert inkgraph.buffer_resource_name("shade.color") == "shade.color"
+def test_buffer_names_lists_what_a_look_can_return():
+    names = inkgraph.buffer_names(inkgraph.Look(lines=["silhouette", "contour"]))
+    for name in ("normal", "depth", "nDotV", "lines.contour", "lines.silhouette", "picture"):
+        assert name in names, names
+    assert "lines.crease" not in names

@@ -60,15 +60,30 @@ def test_look_as_dict_arguments_look_and_style_file_render_the_same(suzanne, tmp
 def test_dict_keys_take_underscores_and_values_as_the_command_line_writes_them():
     look = inkgraph.make_look({"silhouette_width": 3.5, "shading": "cel", "contour-width": None, "bands": False})
     assert look.arguments == ["--silhouette-width", "3.5", "--shading", "cel"]
-    frame = inkgraph.make_frame(64, {"orbit": (30, np.float32(10.5)), "fov": 40, "flagged": True, "left-out": False})
-    assert frame.camera == ["--orbit", "30,10.5", "--fov", "40", "--flagged"]
+    frame = inkgraph.make_frame(64, {"orbit": (30, np.float32(10.5)), "fov": 40, "left-out": False})
+    assert frame.orbit == inkgraph.Orbit(30, 10.5) and frame.fov == 40
     assert (frame.width, frame.height) == (64, 64)
+    # Enum members and the small value types are written as the command line writes them.
+    assert inkgraph.make_look({"shading": inkgraph.Shading.COMIC}).arguments == ["--shading", "comic"]
+    assert inkgraph.make_frame(64, {"orbit": inkgraph.Orbit(30, 10)}).orbit == inkgraph.Orbit(30, 10)
+
+
+def test_a_frame_as_camera_or_frame_and_size_over_it():
+    frame = inkgraph.Frame(64, 48, orbit=(30, 10))
+    assert inkgraph.make_frame(None, frame).orbit == inkgraph.Orbit(30, 10)
+    resized = inkgraph.make_frame((32, 16), frame)
+    assert (resized.width, resized.height, frame.width) == (32, 16, 64)  # the caller's frame is not changed
+    with pytest.raises(TypeError):
+        inkgraph.render("model.obj", camera=frame, frame=frame)
 
 
 def test_shading_and_lines_arguments_win_over_the_look():
     look = inkgraph.make_look({"shading": "cel", "lines": "contour"}, shading="flat", lines=["silhouette"])
-    assert look.arguments == ["--shading", "cel", "--lines", "contour", "--shading", "flat", "--lines", "silhouette"]
-    assert inkgraph.make_look(lines=[]).arguments == ["--lines", "none"]
+    assert look.shading == inkgraph.Shading.FLAT
+    assert look.lines == [inkgraph.LineType.SILHOUETTE]
+    assert inkgraph.make_look(lines=[]).lines == []
+    assert inkgraph.make_look(lines="outline,contour").lines == [inkgraph.LineType.OUTLINE, inkgraph.LineType.CONTOUR]
+    assert inkgraph.make_look(shading=inkgraph.Shading.COMIC).shading == inkgraph.Shading.COMIC
 
 
 def test_the_callers_look_is_not_changed(suzanne):

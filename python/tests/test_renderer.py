@@ -142,7 +142,7 @@ def test_a_closed_renderer_refuses_and_the_default_one_is_replaced(suzanne, own_
 
 def test_the_low_level_api_renders_as_render_does(suzanne):
     look = inkgraph.Look().set("--shading", "cel").set("--lines", "silhouette")
-    frame = inkgraph.Frame(SIZE, SIZE, ["--orbit", "30,10"])
+    frame = inkgraph.Frame(SIZE, SIZE, orbit=(30, 10))
     still = inkgraph.default_renderer().render(suzanne, look, frame, ["depth"])
     assert still.buffer_names == ["depth"]
     expected = inkgraph.render(suzanne, look={"shading": "cel"}, lines=["silhouette"], size=SIZE,

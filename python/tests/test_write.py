@@ -84,7 +84,7 @@ def test_a_still_is_never_written_over_a_file_its_render_read(repo, tmp_path, su
     shutil.copyfile(repo / "shademaps" / "duotone-cool.png", shade_map)
     originals = {path: path.read_bytes() for path in (model, shade_map)}
     result = inkgraph.render(model, look={"shading": "comic", "shademap": str(shade_map)}, size=SIZE)
-    for path, what in ((model, "the model itself"), (shade_map, "the --shademap itself")):
+    for path, what in ((model, "the model itself"), (shade_map, "the look's shade map")):
         with pytest.raises(inkgraph.UsageError) as caught:
             result.write(path)
         error = caught.value

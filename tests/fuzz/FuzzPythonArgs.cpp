@@ -3,8 +3,9 @@
 // python3, but an instrumented program can embed it), imports the package from python/inkgraph/, and calls its entry
 // points with Python values the fuzz bytes build: None, bools, ints (up to 512 bits), floats (nan, inf, 1e308, ...),
 // str (any code point: NUL, lone surrogates), bytes, paths, NumPy arrays, Looks, and nested lists, tuples and dicts of
-// them. The calls: make_look(), make_frame(), Look() and Look.set(), Look.from_arguments(), Look.from_style_file(),
-// Frame() and its attributes, buffer_resource_name(), and render() with every argument, drawing a loaded tetrahedron
+// them. The calls: make_look(), make_frame(), Look() with its typed fields and Look.set(), Look.from_arguments(),
+// Look.from_style_file(), Frame() and its typed fields, Frame.from_arguments(), buffer_names(), Scene.from_arrays(),
+// and render() with every argument, drawing a loaded tetrahedron
 // with a renderer that checks what it is handed and stops before GL (the C++ Renderer::render() takes the GL context;
 // its flag checks are the command line's, fuzzed by `style`).
 //
@@ -190,8 +191,6 @@ class StopBeforeGl:
                 and all(isinstance(name, str) for name in buffers)):
             raise AssertionError(f"render() handed the renderer {scene!r}, {look!r}, {frame!r}, {buffers!r}")
         inkgraph.Look.from_arguments(look.arguments)  # the look it made is one the library accepts again
-        for name in buffers:
-            inkgraph.buffer_resource_name(name)
         raise ReachedRenderer()
 )",
                  globals);
@@ -288,16 +287,22 @@ py::dict keywords(inkgraph::fuzz::FuzzBytes& in, std::initializer_list<const cha
 
 void call(inkgraph::fuzz::FuzzBytes& in) {
     Harness& h = harness();
-    switch (in.below(9)) {
+    const char* const lookFields[] = {"shading",           "shininess",  "bands",  "shade_map", "view_vector",
+                                      "face_orientation",  "front_rule", "light",  "paper",     "supersample",
+                                      "gbuffer_precision", "lines",      "strokes"};
+    const char* const frameFields[] = {"width", "height", "eye",       "orbit",       "target",    "up",
+                                       "fov",   "clip",   "placement", "frame_nodes", "animation", "time"};
+    switch (in.below(11)) {
     case 0: h.inkgraph.attr("make_look")(value(in, 3), **keywords(in, {"shading", "lines"})); break;
     case 1: h.inkgraph.attr("make_frame")(**keywords(in, {"size", "camera"})); break;
     case 2: {
         py::object look = h.look();
         for (std::size_t n = in.integer(1, 3); n > 0; --n) {
-            if (in.boolean())
-                look.attr("set")(value(in, 1));
-            else
-                look.attr("set")(value(in, 1), value(in, 1));
+            switch (in.below(3)) {
+            case 0: look.attr("set")(value(in, 1)); break;
+            case 1: look.attr("set")(value(in, 1), value(in, 1)); break;
+            default: py::setattr(look, in.pick(lookFields), value(in, 2)); break;
+            }
         }
         py::repr(look);
         break;
@@ -305,13 +310,14 @@ void call(inkgraph::fuzz::FuzzBytes& in) {
     case 3: py::repr(h.look.attr("from_arguments")(value(in, 2))); break;
     case 4: h.look.attr("from_style_file")(value(in, 1)); break;
     case 5: {
-        py::object frame = h.frame(**keywords(in, {"width", "height", "camera"}));
-        const char* const attributes[] = {"width", "height", "camera"};
-        if (in.boolean()) py::setattr(frame, in.pick(attributes), value(in, 2));
+        py::object frame = h.frame(**keywords(in, {"width", "height", "eye", "orbit", "fov", "clip", "placement"}));
+        if (in.boolean()) py::setattr(frame, in.pick(frameFields), value(in, 2));
         py::repr(frame);
         break;
     }
-    case 6: h.inkgraph.attr("buffer_resource_name")(value(in, 1)); break;
+    case 6: h.inkgraph.attr("buffer_names")(in.boolean() ? h.look() : value(in, 1)); break;
+    case 7: py::repr(h.frame.attr("from_arguments")(value(in, 2))); break;
+    case 8: h.inkgraph.attr("Scene").attr("from_arrays")(value(in, 2), value(in, 2)); break;
     default: {
         py::dict kwargs = keywords(in, {"look", "size", "lines", "buffers", "camera", "shading"});
         kwargs["renderer"] = h.stopBeforeGl;
