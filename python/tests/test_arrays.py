@@ -1,0 +1,199 @@
+"""NumPy in and out: Scene.from_arrays() renders as the OBJ of the same mesh, takes other dtypes and layouts by
+converting them, and refuses what is not a mesh with errors naming the argument; render(out=...) draws into the
+caller's array."""
+
+from __future__ import annotations
+
+import gc
+
+import numpy as np
+import pytest
+
+import inkgraph
+
+SIZE = 96
+
+
+def read_obj(path: str) -> tuple[np.ndarray, np.ndarray]:
+    """The vertices and triangles of an OBJ of 'v' lines and triangular or polygonal 'f' lines (fanned)."""
+    vertices, faces = [], []
+    with open(path) as obj:
+        for line in obj:
+            words = line.split()
+            if words and words[0] == "v":
+                vertices.append([float(value) for value in words[1:4]])
+            elif words and words[0] == "f":
+                corners = [int(word.split("/")[0]) - 1 for word in words[1:]]
+                faces.extend([corners[0], corners[i], corners[i + 1]] for i in range(1, len(corners) - 1))
+    return np.array(vertices, np.float32), np.array(faces, np.uint32)
+
+
+@pytest.fixture(scope="module")
+def mesh(suzanne_path):
+    return read_obj(suzanne_path)
+
+
+@pytest.fixture(scope="module")
+def mesh_obj(mesh, tmp_path_factory):
+    """Suzanne's vertices and faces alone, as an OBJ (no normals: both sides compute them the same way)."""
+    vertices, faces = mesh
+    path = tmp_path_factory.mktemp("arrays") / "mesh.obj"
+    lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in vertices.tolist()]
+    lines += [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in faces.tolist()]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def picture(scene: inkgraph.Scene) -> np.ndarray:
+    return inkgraph.render(scene, size=SIZE, look={"shading": "cel"}).picture
+
+
+@pytest.mark.filterwarnings("ignore::inkgraph.InkgraphWarning")  # the OBJ has no normals: a warning of its load
+def test_arrays_render_as_the_obj_of_the_same_mesh(mesh, mesh_obj):
+    vertices, faces = mesh
+    from_arrays = inkgraph.Scene.from_arrays(vertices, faces, name="suzanne")
+    assert from_arrays.path == "" and from_arrays.triangle_count == len(faces)
+    assert from_arrays.vertex_count > 0 and from_arrays.mesh_count == 1
+    expected = picture(inkgraph.Scene.load(mesh_obj))
+    assert np.array_equal(picture(from_arrays), expected)
+    # Other dtypes and layouts are converted: float64 vertices, int64 faces, a Fortran-order and a strided view.
+    converted = inkgraph.Scene.from_arrays(vertices.astype(np.float64), faces.astype(np.int64))
+    assert np.array_equal(picture(converted), expected)
+    fortran = inkgraph.Scene.from_arrays(np.asfortranarray(vertices), np.asfortranarray(faces.astype(np.int32)))
+    assert np.array_equal(picture(fortran), expected)
+    padded = np.zeros((len(vertices), 5), np.float32)
+    padded[:, 1:4] = vertices
+    strided = padded[:, 1:4]
+    assert not strided.flags.c_contiguous
+    assert np.array_equal(picture(inkgraph.Scene.from_arrays(strided, faces.tolist())), expected)
+
+
+def test_the_scene_owns_its_copy_of_the_arrays(mesh):
+    vertices, faces = mesh
+    vertices, faces = vertices.copy(), faces.copy()
+    scene = inkgraph.Scene.from_arrays(vertices, faces)
+    before = picture(scene)
+    vertices[:] = 0  # the caller's arrays change and go away; the scene keeps what it was made from
+    del vertices, faces
+    gc.collect()
+    assert np.array_equal(picture(scene), before)
+
+
+def test_normals_uvs_and_colours_are_taken(mesh):
+    vertices, faces = mesh
+    normals = np.tile(np.array([[0, 0, 1]], np.float32), (len(vertices), 1))  # every vertex facing +z: flat light
+    uvs = vertices[:, :2]
+    red = np.tile(np.array([[1, 0, 0]], np.float32), (len(vertices), 1))
+    plain = picture(inkgraph.Scene.from_arrays(vertices, faces))
+    with_all = inkgraph.Scene.from_arrays(vertices, faces, normals=normals, uvs=uvs, colors=red)
+    assert not np.array_equal(picture(with_all), plain)
+    rgba = np.concatenate([red, np.ones((len(vertices), 1), np.float32)], axis=1)
+    assert inkgraph.Scene.from_arrays(vertices, faces, colors=rgba).triangle_count == len(faces)
+
+
+TRIANGLE = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32)
+FACE = np.array([[0, 1, 2]], np.uint32)
+BAD_ARRAYS = [
+    ("vertices (N, 2)", dict(vertices=np.zeros((5, 2), np.float32)),
+     "Scene.from_arrays(): vertices: expected an (N, 3) array of numbers, got shape (5, 2)"),
+    ("vertices 1-D", dict(vertices=np.zeros(9, np.float32)), "vertices: expected an (N, 3) array of numbers, got "
+                                                             "shape (9,)"),
+    ("vertices complex", dict(vertices=TRIANGLE.astype(np.complex64)), "vertices: expected an (N, 3) array of "
+                                                                       "numbers, got dtype complex64"),
+    ("vertices strings", dict(vertices=[["a", "b", "c"]] * 3), "vertices: expected an (N, 3) array of numbers, got "
+                                                               "dtype <U1"),
+    ("vertices objects", dict(vertices=np.array([[None] * 3] * 3, dtype=object)), "vertices: expected an (N, 3) "
+                                                                                   "array of numbers, got dtype object"),
+    ("faces float", dict(faces=FACE.astype(np.float64)), "faces: expected an (M, 3) array of integer vertex indices, "
+                                                         "got dtype float64"),
+    ("faces (M, 4)", dict(faces=np.zeros((2, 4), np.uint32)), "faces: expected an (M, 3) array of integer vertex "
+                                                              "indices, got shape (2, 4)"),
+    ("faces negative", dict(faces=np.array([[0, -1, 2]])), "faces: index -1 is negative"),
+    ("faces beyond 32 bits", dict(faces=np.array([[0, 1, 2**32]], np.int64)), "faces: index 4294967296 does not fit"),
+    ("normals rows", dict(normals=np.zeros((2, 3), np.float32)), "normals: expected 3 rows (one per vertex), got 2"),
+    ("uvs (N, 3)", dict(uvs=np.zeros((3, 3), np.float32)), "uvs: expected an (N, 2) array of numbers, got shape "
+                                                           "(3, 3)"),
+    ("colors (N, 2)", dict(colors=np.zeros((3, 2), np.float32)), "colors: expected an (N, 3) or (N, 4) array of "
+                                                                 "numbers, got shape (3, 2)"),
+]
+
+
+@pytest.mark.parametrize("name, arguments, message", BAD_ARRAYS, ids=[case[0] for case in BAD_ARRAYS])
+def test_what_is_not_a_mesh_is_refused_naming_the_argument(name, arguments, message):
+    given = {"vertices": TRIANGLE, "faces": FACE, **arguments}
+    with pytest.raises(inkgraph.InputError) as caught:
+        inkgraph.Scene.from_arrays(**given)
+    assert message in str(caught.value), str(caught.value)
+    assert str(caught.value).startswith("Scene.from_arrays(): ") or "Scene::fromArrays" in str(caught.value)
+
+
+BAD_VALUES = [
+    ("NaN vertex", dict(vertices=np.array([[0, 0, 0], [1, np.nan, 0], [0, 1, 0]], np.float32)),
+     "Scene.from_arrays(): vertices: row 1, column 1 is not finite (nan)"),
+    ("infinite vertex", dict(vertices=np.array([[0, 0, 0], [1, 0, 0], [0, 0, -np.inf]])),
+     "Scene.from_arrays(): vertices: row 2, column 2 is not finite (-inf)"),
+    ("float64 beyond float32", dict(vertices=np.array([[0, 0, 0], [1e39, 0, 0], [0, 1, 0]])),
+     "Scene.from_arrays(): vertices: row 1, column 0 is not finite (inf)"),
+    ("NaN normal", dict(normals=np.full((3, 3), np.nan, np.float32)),
+     "Scene.from_arrays(): normals: row 0, column 0 is not finite (nan)"),
+    ("index out of range", dict(faces=np.array([[0, 1, 2], [0, 2, 3]], np.uint32)),
+     "Scene.from_arrays(): faces: row 1 has index 3, out of range for 3 vertices"),
+    ("no faces", dict(faces=np.zeros((0, 3), np.uint32)), "Scene.from_arrays(): faces: no faces (shape (0, 3))"),
+    ("no vertices", dict(vertices=np.zeros((0, 3), np.float32)),
+     "Scene.from_arrays(): vertices: no vertices (shape (0, 3))"),
+]
+
+
+@pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")  # NumPy's, converting 1e39 to float32
+@pytest.mark.parametrize("name, arguments, message", BAD_VALUES, ids=[case[0] for case in BAD_VALUES])
+def test_values_that_are_not_a_mesh_are_refused_naming_the_argument(name, arguments, message):
+    with pytest.raises(inkgraph.InputError) as caught:
+        inkgraph.Scene.from_arrays(**{"vertices": TRIANGLE, "faces": FACE, **arguments})
+    assert str(caught.value) == message
+
+
+def test_the_librarys_own_checks_stay_behind_them():
+    # A value the binding passes (a colour far outside [0, 1] is the library's to judge): not a crash, an answer.
+    colors = np.full((3, 3), 2.0, np.float32)
+    try:
+        scene = inkgraph.Scene.from_arrays(TRIANGLE, FACE, colors=colors)
+    except inkgraph.InputError as error:
+        assert "colors" in str(error) or "colours" in str(error), str(error)
+    else:
+        assert scene.triangle_count == 1
+
+
+def test_render_into_the_callers_array(suzanne):
+    expected = inkgraph.render(suzanne, size=(SIZE, 64)).picture
+    out = np.zeros((64, SIZE, 4), np.uint8)
+    result = inkgraph.render(suzanne, size=(SIZE, 64), out=out)
+    assert np.array_equal(out, expected)
+    assert np.shares_memory(result.picture, out) and np.array_equal(result.picture, expected)
+    assert not result.picture.flags.writeable and out.flags.writeable
+    # Rows further apart than the picture is wide: a window of a larger canvas, the rest of it untouched.
+    canvas = np.full((80, SIZE + 40, 4), 7, np.uint8)
+    window = canvas[8:72, 20:20 + SIZE]
+    still = inkgraph.default_renderer().render(suzanne, inkgraph.Look(), inkgraph.Frame(SIZE, 64), out=window)
+    assert np.array_equal(window, expected) and np.shares_memory(still.picture, canvas)
+    assert (canvas[:8] == 7).all() and (canvas[:, :20] == 7).all() and (canvas[:, 20 + SIZE:] == 7).all()
+    # The still keeps the array it drew into alive.
+    del canvas, window
+    gc.collect()
+    assert np.array_equal(still.picture, expected)
+
+
+@pytest.mark.parametrize("name, out, problem", [
+    ("wrong shape", np.zeros((SIZE, SIZE, 4), np.uint8), "got shape (96, 96, 4)"),
+    ("wrong dtype", np.zeros((64, SIZE, 4), np.float32), "got dtype float32"),
+    ("read-only", np.zeros((64, SIZE, 4), np.uint8)[...].view(), "got a read-only array"),
+    ("channels apart", np.zeros((64, SIZE, 8), np.uint8)[:, :, ::2], "must be packed"),
+])
+def test_a_bad_out_array_is_refused(suzanne, name, out, problem):
+    if name == "read-only":
+        out.flags.writeable = False
+    with pytest.raises(inkgraph.UsageError) as caught:
+        inkgraph.render(suzanne, size=(SIZE, 64), out=out)
+    message = str(caught.value)
+    assert message.startswith("Renderer.render(): out: ") and problem in message, message
+    with pytest.raises(TypeError):
+        inkgraph.render(suzanne, size=(SIZE, 64), out=[[0]])  # type: ignore[arg-type]
