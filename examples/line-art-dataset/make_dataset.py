@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Builds a small line-art data set from the bundled models with the inkgraph Python module: for each model and view,
 the picture and one mask per line type (the coverage of that type's drawn lines: 255 on a line, 0 off it, partial
-along antialiased edges), and manifest.json listing every file with its model, view and the ink pixels of each type
-(those at least half covered). README.md in this folder says more.
+along antialiased edges), and manifest.json listing every file with its model, its camera (OpenCV's intrinsics K and
+extrinsics [R|t]) and the ink pixels of each type (those at least half covered). README.md in this folder says
+more.
 
     PYTHONPATH=build/python /usr/bin/python3 examples/line-art-dataset/make_dataset.py --output out/line-art
 """
@@ -13,6 +14,7 @@ import argparse
 import json
 import pathlib
 import sys
+from typing import Any
 
 import numpy as np
 
@@ -23,7 +25,7 @@ INK = 128  # a mask's pixel counts as ink from half coverage up (masks are antia
 
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
     parser.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/examples/line-art-dataset"),
                         help="folder to write into (made if missing; default: %(default)s)")
     parser.add_argument("--models", type=pathlib.Path, default=REPOSITORY / "examples" / "batch" / "models.txt",
@@ -53,12 +55,13 @@ def model_list(path: pathlib.Path, limit: int) -> list[str]:
 
 def main(argv: list[str]) -> int:
     arguments = parse_arguments(argv)
-    line_types = [name for name in arguments.lines.split(",") if name]
-    look = inkgraph.make_look({"shading": arguments.shading}, lines=line_types)
-    masks = [f"lines.{name}" for name in line_types]
-    output = arguments.output
+    line_types = [inkgraph.LineType.from_name(name) for name in arguments.lines.split(",") if name]
+    look = inkgraph.Look(shading=inkgraph.Shading.from_name(arguments.shading), lines=line_types)
+    masks = [f"lines.{line_type.cli_name}" for line_type in line_types]
+    output: pathlib.Path = arguments.output
     output.mkdir(parents=True, exist_ok=True)
-    items, failures = [], []
+    items: list[dict[str, Any]] = []
+    failures: list[dict[str, str]] = []
     # One renderer for the whole set: one GL context, each shader program compiled once; each model loaded once.
     with inkgraph.Renderer() as renderer:
         for model in model_list(arguments.models, arguments.limit):
@@ -72,23 +75,33 @@ def main(argv: list[str]) -> int:
             (output / name).mkdir(exist_ok=True)
             for view in range(arguments.views):
                 azimuth = round(360.0 * view / arguments.views, 6)
-                frame = inkgraph.make_frame(arguments.size, ["--orbit", f"{azimuth},{arguments.elevation}"])
+                frame = inkgraph.Frame(arguments.size, arguments.size,
+                                       orbit=inkgraph.Orbit(azimuth, arguments.elevation))
                 still = renderer.render(scene, look, frame, masks)
                 picture = f"{name}/view-{view}.png"
                 still.write(output / picture)
-                item = {"model": model, "view": {"index": view, "azimuth": azimuth, "elevation": arguments.elevation},
-                        "picture": picture, "masks": {}, "ink_pixels": {}}
+                camera = still.camera
+                mask_files: dict[str, str] = {}
+                ink_pixels: dict[str, int] = {}
                 for line_type, mask_name in zip(line_types, masks):
                     mask = still.buffer(mask_name)
-                    file = f"{name}/view-{view}-{line_type}.png"
+                    file = f"{name}/view-{view}-{line_type.cli_name}.png"
                     inkgraph.write_image(output / file, mask)
-                    item["masks"][line_type] = file
-                    item["ink_pixels"][line_type] = int(np.count_nonzero(mask >= INK))
+                    mask_files[line_type.cli_name] = file
+                    ink_pixels[line_type.cli_name] = int(np.count_nonzero(mask >= INK))
+                # The camera as numbers, not as the orbit that placed it: K and [R|t] take a pixel to its ray and a
+                # world point to its pixel without knowing how inkgraph frames an orbit.
+                item: dict[str, Any] = {
+                    "model": model, "view": view, "picture": picture,
+                    "camera": {"intrinsics": camera.intrinsics.tolist(), "extrinsics": camera.extrinsics.tolist(),
+                               "width": camera.width, "height": camera.height},
+                    "masks": mask_files, "ink_pixels": ink_pixels}
                 items.append(item)
-                counts = ", ".join(f"{line_type} {count}" for line_type, count in item["ink_pixels"].items())
+                counts = ", ".join(f"{line_type} {count}" for line_type, count in ink_pixels.items())
                 print(f"make_dataset: {picture} (ink pixels: {counts})", file=sys.stderr)
     manifest = {"inkgraph": inkgraph.__version__, "size": [arguments.size, arguments.size],
-                "shading": arguments.shading, "lines": line_types, "items": items, "failures": failures}
+                "shading": arguments.shading, "lines": [line_type.cli_name for line_type in line_types], "items": items,
+                "failures": failures}
     (output / "manifest.json").write_text(json.dumps(manifest, indent=2) + "\n")
     print(f"make_dataset: {len(items)} pictures in {output}, manifest.json lists them", file=sys.stderr)
     return 1 if failures else 0

@@ -1,6 +1,6 @@
 """examples/line-art-dataset/make_dataset.py run small (ctest python_line_art_dataset): two models, one view; the
-manifest lists every file it wrote, each file holds exactly what inkgraph.render() gives for that model and view,
-and the ink counts are the masks'."""
+manifest lists every file it wrote and the camera of each picture, each file holds exactly what inkgraph.render()
+gives for that model and view, and the ink counts are the masks'."""
 
 from __future__ import annotations
 
@@ -43,9 +43,14 @@ def test_two_models_one_view(repo, tmp_path):
     assert written == named and len(written) == 2 * 3
 
     for item in manifest["items"]:
-        assert item["view"] == {"index": 0, "azimuth": 0.0, "elevation": 15.0}
+        assert item["view"] == 0
         expected = inkgraph.render(repo / item["model"], look={"shading": "cel"}, size=SIZE, lines=manifest["lines"],
                                    camera=["--orbit", "0,15"], buffers=[f"lines.{t}" for t in manifest["lines"]])
+        # The camera as the render reports it: K and [R|t] as lists of rows, the picture's size.
+        camera = item["camera"]
+        assert camera["intrinsics"] == expected.camera.intrinsics.tolist()
+        assert camera["extrinsics"] == expected.camera.extrinsics.tolist()
+        assert (camera["width"], camera["height"]) == (SIZE, SIZE)
         assert np.array_equal(read_png(output / item["picture"]), expected.picture), item["picture"]
         for line_type, file in item["masks"].items():
             mask = read_png(output / file)
