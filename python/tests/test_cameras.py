@@ -1,15 +1,19 @@
 """Still.camera: the depth buffer of an off-centre sphere back-projects through K and [R|t] onto the sphere; the OpenCV
-and OpenGL matrices agree."""
+and OpenGL matrices agree; examples/orbit-cameras/orbit_cameras.py writes each picture with its camera."""
 
 from __future__ import annotations
 
 import json
 import math
+import os
 import pathlib
+import subprocess
+import sys
 
 import numpy as np
 
 import inkgraph
+from pngread import read_png
 
 CENTRE = np.array([0.7, -0.3, 0.4])
 RADIUS = 0.5
@@ -82,3 +86,30 @@ def test_the_opencv_and_opengl_matrices_agree(suzanne):
     record = camera.as_dict()
     assert record["intrinsics"] == K.tolist() and record["source"] == "orbit" and record["width"] == 160
     json.dumps(record)
+
+
+def test_the_orbit_cameras_example_writes_each_picture_with_its_camera(repo, tmp_path):
+    output = tmp_path / "orbits"
+    script = repo / "examples" / "orbit-cameras" / "orbit_cameras.py"
+    package_parent = str(pathlib.Path(inkgraph.__file__).resolve().parents[1])
+    environment = dict(os.environ, PYTHONPATH=os.pathsep.join([package_parent, os.environ.get("PYTHONPATH", "")]))
+    run = subprocess.run([sys.executable, str(script), "--output", str(output), "--views", "4", "--width", "64",
+                          "--height", "80"], capture_output=True, text=True, env=environment, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    cameras = json.loads((output / "cameras.json").read_text())
+    assert len(cameras["views"]) == 4
+    eyes = []
+    for view in cameras["views"]:
+        assert json.loads((output / f"view-{view['index']}.json").read_text()) == view
+        picture = read_png(output / view["picture"])
+        camera = view["camera"]
+        assert picture.shape == (80, 64, 4) and (camera["width"], camera["height"]) == (64, 80)
+        assert camera["source"] == "orbit" and view["orbit"]["azimuth"] == 90.0 * view["index"]
+        extrinsics = np.array(camera["extrinsics"])
+        eye = -extrinsics[:, :3].T @ extrinsics[:, 3]
+        assert np.allclose(eye, camera["eye"])
+        eyes.append(eye)
+    # Four views around the model: the eyes are different places at one distance from the target.
+    target = np.array(cameras["views"][0]["camera"]["target"])
+    distances = [np.linalg.norm(eye - target) for eye in eyes]
+    assert np.allclose(distances, distances[0]) and len({tuple(np.round(eye, 6)) for eye in eyes}) == 4
