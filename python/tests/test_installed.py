@@ -1,6 +1,7 @@
 """The package as `cmake --install` lays it out (ctest python_installed): the runtime and python components in a
 scratch prefix, imported from there by Debian's python3 in a folder outside the repository, finding the installed
-libinkgraph.so (and through it the installed shaders) by its RPATH, and drawing what the build tree draws."""
+libinkgraph.so (and through it the installed shaders) by its RPATH, and drawing what the build tree draws; its type
+stubs and py.typed installed beside it."""
 
 from __future__ import annotations
 
@@ -35,6 +36,11 @@ def test_the_installed_package_renders_with_the_installed_library(suzanne_path, 
                        check=True, capture_output=True)
     site = prefix / "lib" / "python3" / "dist-packages"
     assert (site / "inkgraph" / "__init__.py").is_file()
+    # Typed (PEP 561): the marker and the extension's stubs beside it, as the source tree has them, so a user's type
+    # checker sees the installed package's types.
+    source = pathlib.Path(__file__).resolve().parents[1] / "inkgraph"
+    for typing_file in ("py.typed", "_inkgraph.pyi"):
+        assert (site / "inkgraph" / typing_file).read_bytes() == (source / typing_file).read_bytes(), typing_file
 
     folder = tmp_path / "elsewhere"
     folder.mkdir()

@@ -1,14 +1,17 @@
 """The typed API (issue 33): every typed field of Look and Frame draws the picture its command-line flags draw, byte
-for byte; enums by their command-line words; the small value types; the package's namespace."""
+for byte; enums by their command-line words; the small value types; the package's namespace; the typed smoke file."""
 
 from __future__ import annotations
 
 import copy
+import pathlib
+import warnings
 
 import numpy as np
 import pytest
 
 import inkgraph
+import typed_api_smoke
 from conftest import REPO
 
 SIZE = 96
@@ -248,3 +251,19 @@ def test_the_namespace_is_the_api():
         assert getattr(inkgraph, name) is not None
     for private in ("np", "numpy", "os", "typing", "threading", "atexit", "annotations", "Any", "Union"):
         assert private not in public
+
+
+def test_the_packaged_stubs_and_marker(repo):
+    package = pathlib.Path(inkgraph.__file__).parent
+    assert (package / "py.typed").is_file() and (package / "_inkgraph.pyi").is_file()
+    stubs = (package / "_inkgraph.pyi").read_text()
+    extension = inkgraph._inkgraph
+    for name in dir(extension):
+        if not name.startswith("_"):
+            assert f"class {name}" in stubs or f"def {name}(" in stubs, f"{name} is missing from the stubs"
+
+
+def test_the_typed_smoke_file_runs(suzanne_path):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", inkgraph.InkgraphWarning)
+        assert typed_api_smoke.main(pathlib.Path(suzanne_path), 64) == []
