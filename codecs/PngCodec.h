@@ -1,5 +1,5 @@
 #pragma once
-/** @file PNG through libpng, on plain buffers (no OpenCV, no GL): the one place that drives libpng. app/PngFiles
+/** @file PNG through libpng, on plain buffers (no OpenCV, no GL): the one place that drives libpng. render/PngFiles
  *  adapts it to cv::Mat for the pictures inkgraph writes and reads back, scene/TextureImage to the RGBA8 a texture
  *  upload takes. Decoding is bounded by the header alone: libpng inflates the image data row by row into the rows
  *  the caller provides and stops at the bytes the declared image holds, so a small file whose data would inflate to

@@ -32,15 +32,6 @@ std::uint8_t byteAt(const ig::Image& image, std::size_t pixel, int channel) {
 
 std::size_t pixelCount(const ig::Image& image) { return std::size_t(image.width()) * std::size_t(image.height()); }
 
-/** The image's pixels, rows packed. */
-std::vector<std::uint8_t> bytesOf(const ig::Image& image) {
-    std::vector<std::uint8_t> bytes;
-    for (int row = 0; row < image.height(); ++row)
-        bytes.insert(bytes.end(), image.data() + row * image.rowBytes(),
-                     image.data() + row * image.rowBytes() + image.packedRowBytes());
-    return bytes;
-}
-
 /** The image's pixels as one of our own files holds them, read back by the command line's reader. */
 std::vector<std::uint8_t> bytesOfFile(const std::filesystem::path& path) {
     const cv::Mat read = readImage(path);

@@ -269,15 +269,6 @@ ig::Image patterned(int width, int height, int channels, ig::Image::Type type) {
     return ig::Image(width, height, channels, type, std::move(bytes));
 }
 
-/** The image's pixels, rows packed. */
-std::vector<std::uint8_t> bytesOf(const ig::Image& image) {
-    std::vector<std::uint8_t> bytes;
-    for (int row = 0; row < image.height(); ++row)
-        bytes.insert(bytes.end(), image.data() + row * image.rowBytes(),
-                     image.data() + row * image.rowBytes() + image.packedRowBytes());
-    return bytes;
-}
-
 /** The image's bytes as written, read back by the command line's own reader. */
 std::vector<std::uint8_t> bytesReadBack(const std::filesystem::path& path) {
     const cv::Mat read = readImage(path);

@@ -1,4 +1,4 @@
-// app/BackgroundThreads: the threads that OpenCV's parallel loops and the OpenImageIO module's loader run are joined
+// render/BackgroundThreads: the threads that OpenCV's parallel loops and the OpenImageIO module's loader run are joined
 // when asked, so no process ends while one of them is being created or torn down (docs/robustness.md).
 #include "render/BackgroundThreads.h"
 

@@ -2,7 +2,7 @@
  *  from its OBJ file: the still renderer draws the file by path and the arrays' Scene as StillRequest::loadedScene,
  *  with the same flags and the auto-framed camera. */
 
-#include "app/Options.h"
+#include "flags/Options.h"
 #include "app/Render.h"
 #include "render/StillRenderer.h"
 #include "scene/MeshArrays.h"

@@ -1,4 +1,4 @@
-// libFuzzer target: style files (app/StyleFile) and, through them, the parser of every look flag they may set.
+// libFuzzer target: style files (flags/StyleFile) and, through them, the parser of every look flag they may set.
 #include "flags/Options.h"
 #include "flags/StyleFile.h"
 

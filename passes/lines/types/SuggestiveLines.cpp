@@ -36,7 +36,7 @@ const LineParameter kSuggestiveStencil{
     false,
     ""};
 
-/** Per data pixel, the smoothing's working memory for app/MemoryBudget (postfx/SuggestiveContours.cpp): the scanner
+/** Per data pixel, the smoothing's working memory for render/MemoryBudget (postfx/SuggestiveContours.cpp): the scanner
  *  smooths rows as it reads them, so only rings of rows around each band's current row are held, about a byte per
  *  pixel. Measured: +2 MiB at 2048^2 data pixels at the default smoothing, +4 MiB at 0.02. The 5-point stencil
  *  differentiates the whole smoothed field (smoothRadialField()), 4 floats per pixel more. */
@@ -77,7 +77,7 @@ const LineParameter kSuggestiveObjectSmoothing{
     "expected a fraction of the bounding radius from 0 to 1"};
 
 /** Per data pixel, the 5-point stencil's maps (postfx/SuggestiveContours.cpp: dw, dwdw and the normal distance as
- *  float, two byte masks): working memory beyond the stroke's, for app/MemoryBudget. */
+ *  float, two byte masks): working memory beyond the stroke's, for render/MemoryBudget. */
 constexpr std::size_t kWideStencilBytesPerPixel = 14;
 
 /** The settings both types share; featureSize in model units. */
