@@ -53,7 +53,7 @@ Image imageOf(const cv::Mat& mat) {
     const int width = kept->cols;
     const int height = kept->rows;
     const int channels = kept->channels();
-    return Image(width, height, channels, type, data, rowBytes, std::move(kept));
+    return ImageAccess::view(width, height, channels, type, data, rowBytes, std::move(kept));
 }
 
 cv::Mat matOf(const Image& image) {

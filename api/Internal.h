@@ -43,6 +43,14 @@ struct Look::Impl {
     std::vector<std::string> givenFlags() const;
 };
 
+/** The library's way to make an Image over pixels it does not own. */
+struct ImageAccess {
+    static Image view(int width, int height, int channels, Image::Type type, const std::uint8_t* data,
+                      std::size_t rowBytes, std::shared_ptr<const void> owner) {
+        return Image(width, height, channels, type, data, rowBytes, std::move(owner));
+    }
+};
+
 /** The library's way into a Look's data. */
 struct LookAccess {
     static const Look::Impl& impl(const Look& look) { return *look.mImpl; }

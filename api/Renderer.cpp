@@ -295,8 +295,8 @@ struct Renderer::Impl {
         if (pictureOut != nullptr) {
             cv::Mat target(picture.rows, picture.cols, picture.type(), pictureOut, pictureRowBytes);
             picture.copyTo(target);
-            made->picture = Image(picture.cols, picture.rows, picture.channels(), Image::Type::UInt8, pictureOut,
-                                  pictureRowBytes, nullptr);
+            made->picture = ImageAccess::view(picture.cols, picture.rows, picture.channels(), Image::Type::UInt8,
+                                              pictureOut, pictureRowBytes, nullptr);
         } else {
             made->picture = imageOf(picture);
         }

@@ -37,15 +37,16 @@ Scene Scene::fromArrays(const MeshArrays& arrays, const std::string& name, const
         if (!options.animation.empty() || options.time != 0.0)
             throw UsageError("SceneOptions::animation and time: a scene made from arrays has no animations");
         inkgraph::MeshArrays mesh;
-        mesh.positions = arrays.vertices;
+        mesh.vertices = arrays.vertices;
         mesh.vertexCount = arrays.vertexCount;
-        mesh.triangles = arrays.faces;
-        mesh.triangleCount = arrays.faceCount;
+        mesh.faces = arrays.faces;
+        mesh.faceCount = arrays.faceCount;
         mesh.normals = arrays.normals;
         mesh.uvs = arrays.uvs;
         mesh.colors = arrays.colors;
         mesh.colorChannels = arrays.colorChannels;
         mesh.name = name;
+        mesh.caller = "Scene::fromArrays()";
         auto impl = std::make_shared<Impl>();
         impl->options = options;
         impl->scene = std::make_shared<const inkgraph::Scene>(sceneFromArrays(mesh, loadOptionsOf(options)));

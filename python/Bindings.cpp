@@ -405,35 +405,6 @@ FaceRows faceRows(py::handle value) {
     return converted;
 }
 
-/** Refuses a value that is NaN or infinite, naming the argument, its row and column: the library refuses them too,
- *  but names its own arrays ("positions"), not the Python arguments. */
-void requireFinite(const FloatRows& array, const std::string& name) {
-    const py::module_ numpy = py::module_::import("numpy");
-    const py::object finite = numpy.attr("isfinite")(array);
-    if (finite.attr("all")().cast<bool>()) return;
-    const py::object where = numpy.attr("argwhere")(numpy.attr("logical_not")(finite))[py::int_(0)];
-    const py::object row = where[py::int_(0)];
-    const py::object column = where[py::int_(1)];
-    failInput("Scene.from_arrays(): " + name + ": row " + reprOf(py::int_(row)) + ", column " +
-              reprOf(py::int_(column)) + " is not finite (" +
-              reprOf(py::float_(array.attr("__getitem__")(py::make_tuple(row, column)))) + ")");
-}
-
-/** Refuses an empty mesh and a face index past the last vertex, naming the argument and the face. */
-void requireFacesInRange(const FaceRows& faces, py::ssize_t vertexCount) {
-    const std::string where = "Scene.from_arrays(): ";
-    if (vertexCount == 0) failInput(where + "vertices: no vertices (shape (0, 3))");
-    if (faces.shape(0) == 0) failInput(where + "faces: no faces (shape (0, 3))");
-    const py::module_ numpy = py::module_::import("numpy");
-    const py::object beyond = numpy.attr("greater_equal")(faces, py::int_(vertexCount));
-    if (!beyond.attr("any")().cast<bool>()) return;
-    const py::object first = numpy.attr("argwhere")(beyond)[py::int_(0)];
-    const py::object row = first[py::int_(0)];
-    failInput(where + "faces: row " + reprOf(py::int_(row)) + " has index " +
-              reprOf(py::int_(faces.attr("__getitem__")(py::make_tuple(row, first[py::int_(1)])))) +
-              ", out of range for " + std::to_string(vertexCount) + " vertices");
-}
-
 // ---- Stills and the renderer ---------------------------------------------------------------------------------------
 
 /** A still for Python: the C++ still and, when it was rendered into an array of the caller's (render(out=...)), that
@@ -1010,11 +981,6 @@ void defineScene(py::module_& m) {
                 if (!normals.is_none()) normalArray = floatRows(normals, "normals", {3}, vertexCount);
                 if (!uvs.is_none()) uvArray = floatRows(uvs, "uvs", {2}, vertexCount);
                 if (!colors.is_none()) colorArray = floatRows(colors, "colors", {3, 4}, vertexCount);
-                requireFinite(vertexArray, "vertices");
-                requireFacesInRange(faceArray, vertexCount);
-                if (normalArray) requireFinite(*normalArray, "normals");
-                if (uvArray) requireFinite(*uvArray, "uvs");
-                if (colorArray) requireFinite(*colorArray, "colors");
                 ig::MeshArrays arrays;
                 arrays.vertices = vertexArray.data();
                 arrays.vertexCount = std::size_t(vertexCount);
@@ -1029,9 +995,16 @@ void defineScene(py::module_& m) {
                 ig::SceneOptions options;
                 options.memoryLimitBytes = memoryLimit;
                 std::optional<ig::Scene> scene;
-                {
+                // The library checks the values (finite, indices in range, the limits) and names its arrays as the
+                // arguments are named; only the function is spelt Python's way.
+                try {
                     const py::gil_scoped_release release;
                     scene.emplace(ig::Scene::fromArrays(arrays, name, options));
+                } catch (const ig::Error& error) {
+                    const std::string cpp = "Scene::fromArrays()";
+                    std::string message = error.what();
+                    if (message.rfind(cpp, 0) == 0) message = "Scene.from_arrays()" + message.substr(cpp.size());
+                    throw ig::Error(error.kind(), message);
                 }
                 issueWarnings(warningObjects(scene->warnings()));
                 return *scene;

@@ -16,8 +16,6 @@ namespace inkgraph {
 
 namespace {
 
-constexpr std::string_view kFunction = "sceneFromArrays()";
-
 /** The first-use numbering's mark for a vertex no triangle has used yet. */
 constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
 
@@ -25,14 +23,14 @@ class ArraysReader {
 public:
     ArraysReader(const MeshArrays& arrays, const LoadOptions& options)
         : mArrays(arrays), mName(detail::excerptForMessage(arrays.name.empty() ? "arrays" : arrays.name)),
-          mBudget(mName, options.memoryLimitBytes, kFunction, "LoadOptions::memoryLimitBytes") {}
+          mBudget(mName, options.memoryLimitBytes, arrays.caller, "LoadOptions::memoryLimitBytes") {}
 
     detail::RawScene read() {
         checkCounts();
         // Charged like a file's vertices and triangles, before any copy is made.
-        mBudget.charge(mArrays.vertexCount, mArrays.triangleCount);
+        mBudget.charge(mArrays.vertexCount, mArrays.faceCount);
         checkIndices();
-        checkFinite(mArrays.positions, "xyz", "positions");
+        checkFinite(mArrays.vertices, "xyz", "vertices");
         checkFinite(mArrays.normals, "xyz", "normals");
         checkFinite(mArrays.uvs, "uv", "uvs");
         checkFinite(mArrays.colors, std::string_view("rgba").substr(0, std::size_t(mArrays.colorChannels)), "colors");
@@ -43,17 +41,17 @@ public:
     const std::string& name() const { return mName; }
 
 private:
-    [[noreturn]] void fail(const std::string& problem) const { detail::throwLoadError(mName, problem, kFunction); }
+    [[noreturn]] void fail(const std::string& problem) const { detail::throwLoadError(mName, problem, mArrays.caller); }
 
     void checkCounts() const {
-        if (mArrays.positions == nullptr && mArrays.vertexCount > 0) {
-            fail("positions is null but vertexCount is " + std::to_string(mArrays.vertexCount));
+        if (mArrays.vertices == nullptr && mArrays.vertexCount > 0) {
+            fail("vertices is null but vertexCount is " + std::to_string(mArrays.vertexCount));
         }
-        if (mArrays.triangles == nullptr && mArrays.triangleCount > 0) {
-            fail("triangles is null but triangleCount is " + std::to_string(mArrays.triangleCount));
+        if (mArrays.faces == nullptr && mArrays.faceCount > 0) {
+            fail("faces is null but faceCount is " + std::to_string(mArrays.faceCount));
         }
-        if (mArrays.triangleCount == 0) {
-            fail("no triangles: triangleCount is 0");
+        if (mArrays.faceCount == 0) {
+            fail("no faces: faceCount is 0");
         }
         // Mesh indices are 32-bit, and the weld keeps the largest value as its "no vertex" mark (as OBJ's reader
         // refuses an index beyond it).
@@ -61,9 +59,9 @@ private:
             fail("vertexCount " + std::to_string(mArrays.vertexCount) + " is more than the " +
                  std::to_string(std::numeric_limits<std::uint32_t>::max()) + " vertices 32-bit indices reach");
         }
-        if (mArrays.triangleCount > std::numeric_limits<std::size_t>::max() / (3 * sizeof(std::uint32_t))) {
-            fail("triangleCount " + std::to_string(mArrays.triangleCount) +
-                 " overflows: its 3 indices a triangle would need more bytes than memory can address");
+        if (mArrays.faceCount > std::numeric_limits<std::size_t>::max() / (3 * sizeof(std::uint32_t))) {
+            fail("faceCount " + std::to_string(mArrays.faceCount) +
+                 " overflows: its 3 indices a face would need more bytes than memory can address");
         }
         if (mArrays.colors != nullptr && mArrays.colorChannels != 3 && mArrays.colorChannels != 4) {
             fail("colorChannels is " + std::to_string(mArrays.colorChannels) +
@@ -72,12 +70,12 @@ private:
     }
 
     void checkIndices() const {
-        for (std::size_t t = 0; t < mArrays.triangleCount; ++t) {
+        for (std::size_t t = 0; t < mArrays.faceCount; ++t) {
             for (std::size_t corner = 0; corner < 3; ++corner) {
-                const std::uint32_t index = mArrays.triangles[3 * t + corner];
+                const std::uint32_t index = mArrays.faces[3 * t + corner];
                 if (index >= mArrays.vertexCount) {
-                    fail("triangle " + std::to_string(t) + ": vertex index " + std::to_string(index) +
-                         " out of range (positions has " + std::to_string(mArrays.vertexCount) + " vertices)");
+                    fail("face " + std::to_string(t) + ": vertex index " + std::to_string(index) +
+                         " out of range (vertices has " + std::to_string(mArrays.vertexCount) + " rows)");
                 }
             }
         }
@@ -121,9 +119,9 @@ private:
             std::vector<glm::dvec3> world(mArrays.vertexCount);
             for (std::size_t v = 0; v < mArrays.vertexCount; ++v) {
                 world[v] =
-                    glm::dvec3(mArrays.positions[3 * v], mArrays.positions[3 * v + 1], mArrays.positions[3 * v + 2]);
+                    glm::dvec3(mArrays.vertices[3 * v], mArrays.vertices[3 * v + 1], mArrays.vertices[3 * v + 2]);
             }
-            scene.origin = detail::storeNearModel(mName, world, positions, kFunction);
+            scene.origin = detail::storeNearModel(mName, world, positions, mArrays.caller);
         }
         RawMesh mesh;
         mesh.name = mArrays.name.empty() ? "arrays" : mArrays.name;
@@ -132,7 +130,7 @@ private:
             // The base colour multiplies the vertex colours (glTF's rule): white shows them as given.
             mesh.material.baseColorFactor = glm::vec4(1.0f);
         }
-        mesh.triangles.resize(mArrays.triangleCount);
+        mesh.triangles.resize(mArrays.faceCount);
         if (mArrays.normals == nullptr && mArrays.uvs == nullptr) {
             // OBJ with positions (and colours) alone: every vertex as it is, in its order; finalizeMesh() drops the
             // ones no triangle uses.
@@ -141,16 +139,16 @@ private:
                 mesh.colors.resize(mArrays.vertexCount);
                 for (std::size_t v = 0; v < mArrays.vertexCount; ++v) mesh.colors[v] = colour(v);
             }
-            for (std::size_t t = 0; t < mArrays.triangleCount; ++t) {
+            for (std::size_t t = 0; t < mArrays.faceCount; ++t) {
                 mesh.triangles[t] =
-                    glm::uvec3(mArrays.triangles[3 * t], mArrays.triangles[3 * t + 1], mArrays.triangles[3 * t + 2]);
+                    glm::uvec3(mArrays.faces[3 * t], mArrays.faces[3 * t + 1], mArrays.faces[3 * t + 2]);
             }
         } else {
             // OBJ with `vn` or `vt`: one vertex per distinct corner, numbered in the order the faces first use them.
             // Each array's row is its vertex's, so a corner is its position index.
             std::vector<std::uint32_t> vertexOf(mArrays.vertexCount, kUnused);
-            for (std::size_t c = 0; c < 3 * mArrays.triangleCount; ++c) {
-                const std::uint32_t input = mArrays.triangles[c];
+            for (std::size_t c = 0; c < 3 * mArrays.faceCount; ++c) {
+                const std::uint32_t input = mArrays.faces[c];
                 if (vertexOf[input] == kUnused) {
                     vertexOf[input] = std::uint32_t(mesh.positions.size());
                     mesh.positions.push_back(positions[input]);
@@ -181,7 +179,7 @@ private:
 } // namespace
 
 Scene sceneFromArrays(const MeshArrays& arrays, const LoadOptions& options) {
-    detail::checkLoadOptions(options, kFunction);
+    detail::checkLoadOptions(options, arrays.caller);
     ArraysReader reader(arrays, options);
     detail::RawScene raw = reader.read();
     if (!options.animation.empty()) {
@@ -189,7 +187,7 @@ Scene sceneFromArrays(const MeshArrays& arrays, const LoadOptions& options) {
             makeWarning(WarningKind::AnimationIgnored, "animation '" + detail::excerptForMessage(options.animation) +
                                                            "' ignored: arrays have no animations"));
     }
-    return detail::finalizeScene(reader.name(), std::move(raw), options, kFunction);
+    return detail::finalizeScene(reader.name(), std::move(raw), options, arrays.caller);
 }
 
 } // namespace inkgraph

@@ -12,13 +12,13 @@
 namespace inkgraph {
 
 /** One triangle mesh as caller-owned arrays of tightly packed rows, read only during sceneFromArrays(). Every array
- *  but `triangles` has one row per vertex. */
+ *  but `faces` has one row per vertex. */
 struct MeshArrays {
-    const float* positions = nullptr; ///< x y z per vertex, in the model's units
+    const float* vertices = nullptr; ///< x y z per vertex, in the model's units
     std::size_t vertexCount = 0;
-    /** Three 0-based vertex indices per triangle, counter-clockwise seen from the front (outward normals). */
-    const std::uint32_t* triangles = nullptr;
-    std::size_t triangleCount = 0;
+    /** Three 0-based vertex indices per face (a triangle), counter-clockwise seen from the front (outward normals). */
+    const std::uint32_t* faces = nullptr;
+    std::size_t faceCount = 0;
     const float* normals = nullptr; ///< nx ny nz per vertex (normalised on reading; zero ones are computed), or null
     /** u v per vertex with v up from the image's bottom, as OBJ's `vt` (and OpenGL, trimesh, Open3D) write it; stored
      *  as (u, 1 - v) like `vt` (Mesh::texcoords keeps glTF's top-left origin). Or null. */
@@ -31,6 +31,9 @@ struct MeshArrays {
     /** The mesh's name (Mesh::name) and its one-node path (Mesh::nodePath, what --frame selects), as an OBJ's `o`
      *  line names its mesh; it also names the mesh in messages. Empty: "arrays", without a node path. */
     std::string name = "arrays";
+    /** The function messages start with: the caller's own, when it is not sceneFromArrays() (the library's
+     *  Scene::fromArrays()), so they name what its user called. */
+    std::string caller = "sceneFromArrays()";
 };
 
 /** The Scene of one mesh given as arrays: the Scene that loadScene() gives for the OBJ file holding `o <name>`, a
@@ -48,9 +51,9 @@ struct MeshArrays {
  *  memory bound (LoadOptions::memoryLimitBytes, charged like a file's vertices and triangles, detail::MeshBudget),
  *  indices out of range, any non-finite value in any array (a file's reader refuses non-finite coordinates; arrays
  *  have no reason to hold one, so unlike OBJ's `vt` and PLY's colours they are refused too); then the model's extent
- *  (kMinModelExtent, kMaxModelExtent). Throws SceneError whose message starts with `sceneFromArrays(): '<name>': `
- *  and names the array, the vertex or triangle and the value, e.g.
- *  `sceneFromArrays(): 'arrays': triangle 3: vertex index 7 out of range (positions has 4 vertices)`; and
+ *  (kMinModelExtent, kMaxModelExtent). Throws SceneError whose message starts with `<caller>: '<name>': `
+ *  and names the array, the vertex or face and the value, e.g.
+ *  `sceneFromArrays(): 'arrays': face 3: vertex index 7 out of range (vertices has 4 rows)`; and
  *  std::invalid_argument for options that loadScene() refuses. The Scene owns its memory: the arrays may be freed on
  *  return. */
 Scene sceneFromArrays(const MeshArrays& arrays, const LoadOptions& options = {});

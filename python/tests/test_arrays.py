@@ -129,18 +129,18 @@ def test_what_is_not_a_mesh_is_refused_naming_the_argument(name, arguments, mess
 
 BAD_VALUES = [
     ("NaN vertex", dict(vertices=np.array([[0, 0, 0], [1, np.nan, 0], [0, 1, 0]], np.float32)),
-     "Scene.from_arrays(): vertices: row 1, column 1 is not finite (nan)"),
+     "Scene.from_arrays(): 'arrays': vertices: vertex 1: y is not finite (nan)"),
     ("infinite vertex", dict(vertices=np.array([[0, 0, 0], [1, 0, 0], [0, 0, -np.inf]])),
-     "Scene.from_arrays(): vertices: row 2, column 2 is not finite (-inf)"),
+     "Scene.from_arrays(): 'arrays': vertices: vertex 2: z is not finite (-inf)"),
     ("float64 beyond float32", dict(vertices=np.array([[0, 0, 0], [1e39, 0, 0], [0, 1, 0]])),
-     "Scene.from_arrays(): vertices: row 1, column 0 is not finite (inf)"),
+     "Scene.from_arrays(): 'arrays': vertices: vertex 1: x is not finite (inf)"),
     ("NaN normal", dict(normals=np.full((3, 3), np.nan, np.float32)),
-     "Scene.from_arrays(): normals: row 0, column 0 is not finite (nan)"),
+     "Scene.from_arrays(): 'arrays': normals: vertex 0: x is not finite (nan)"),
     ("index out of range", dict(faces=np.array([[0, 1, 2], [0, 2, 3]], np.uint32)),
-     "Scene.from_arrays(): faces: row 1 has index 3, out of range for 3 vertices"),
-    ("no faces", dict(faces=np.zeros((0, 3), np.uint32)), "Scene.from_arrays(): faces: no faces (shape (0, 3))"),
+     "Scene.from_arrays(): 'arrays': face 1: vertex index 3 out of range (vertices has 3 rows)"),
+    ("no faces", dict(faces=np.zeros((0, 3), np.uint32)), "Scene.from_arrays(): 'arrays': no faces: faceCount is 0"),
     ("no vertices", dict(vertices=np.zeros((0, 3), np.float32)),
-     "Scene.from_arrays(): vertices: no vertices (shape (0, 3))"),
+     "Scene.from_arrays(): 'arrays': face 0: vertex index 0 out of range (vertices has 0 rows)"),
 ]
 
 

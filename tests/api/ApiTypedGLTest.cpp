@@ -339,13 +339,13 @@ TEST(ApiTyped, BadArraysAreInputErrorsNamingTheArray) {
     sphere.vertices[7] = std::numeric_limits<float>::quiet_NaN();
     const ig::Error nan = errorOf([&] { ig::Scene::fromArrays(arraysOf(sphere), "ball"); });
     EXPECT_EQ(nan.kind(), ig::Error::Kind::Input);
-    EXPECT_STREQ(nan.what(), "sceneFromArrays(): 'ball': positions: vertex 2: y is not finite (nan)");
+    EXPECT_STREQ(nan.what(), "Scene::fromArrays(): 'ball': vertices: vertex 2: y is not finite (nan)");
     sphere = uvSphere({0, 0, 0}, 1.0, 4, 8);
     sphere.faces[4] = 1000;
     const ig::Error range = errorOf([&] { ig::Scene::fromArrays(arraysOf(sphere), "ball"); });
     EXPECT_EQ(range.kind(), ig::Error::Kind::Input);
     EXPECT_STREQ(range.what(),
-                 "sceneFromArrays(): 'ball': triangle 1: vertex index 1000 out of range (positions has 45 vertices)");
+                 "Scene::fromArrays(): 'ball': face 1: vertex index 1000 out of range (vertices has 45 rows)");
     ig::MeshArrays none;
     none.vertexCount = 3;
     EXPECT_EQ(errorOf([&] { ig::Scene::fromArrays(none); }).kind(), ig::Error::Kind::Input);

@@ -85,12 +85,12 @@ TEST_F(SceneFromArraysGL, AModelFileAndItsArraysRenderTheSamePicture) {
         }
     }
     MeshArrays arrays;
-    arrays.positions = positions.data();
+    arrays.vertices = positions.data();
     arrays.vertexCount = positions.size() / 3;
-    arrays.triangles = triangles.data();
-    arrays.triangleCount = triangles.size() / 3;
+    arrays.faces = triangles.data();
+    arrays.faceCount = triangles.size() / 3;
     arrays.name = "torusknot_open3d";
-    ASSERT_EQ(arrays.triangleCount, 2880u);
+    ASSERT_EQ(arrays.faceCount, 2880u);
     const auto scene = std::make_shared<const Scene>(sceneFromArrays(arrays));
 
     const std::vector<std::string> flags = {"--size", "160x120"};
@@ -132,10 +132,10 @@ TEST_F(SceneFromArraysGL, NormalsUvsAndColoursRenderTheSamePictureAsTheirObj) {
     std::ofstream(path) << obj.str();
 
     MeshArrays arrays;
-    arrays.positions = positions.data();
+    arrays.vertices = positions.data();
     arrays.vertexCount = positions.size() / 3;
-    arrays.triangles = triangles.data();
-    arrays.triangleCount = triangles.size() / 3;
+    arrays.faces = triangles.data();
+    arrays.faceCount = triangles.size() / 3;
     arrays.normals = normals.data();
     arrays.uvs = uvs.data();
     arrays.colors = colors.data();

@@ -34,10 +34,10 @@ struct OwnedArrays {
 
     MeshArrays view() const {
         MeshArrays arrays;
-        arrays.positions = positions.data();
+        arrays.vertices = positions.data();
         arrays.vertexCount = positions.size() / 3;
-        arrays.triangles = triangles.data();
-        arrays.triangleCount = triangles.size() / 3;
+        arrays.faces = triangles.data();
+        arrays.faceCount = triangles.size() / 3;
         arrays.normals = normals.empty() ? nullptr : normals.data();
         arrays.uvs = uvs.empty() ? nullptr : uvs.data();
         arrays.colors = colors.empty() ? nullptr : colors.data();
@@ -318,7 +318,7 @@ TEST(SceneFromArrays, NamesTheMeshAndItsNodePath) {
 TEST(SceneFromArrays, RefusesNonFiniteValuesNamingTheArrayAndTheVertex) {
     OwnedArrays mesh = cube();
     mesh.positions[3 * 5 + 1] = std::numeric_limits<float>::quiet_NaN();
-    EXPECT_EQ(arraysError(mesh), "sceneFromArrays(): 'arrays': positions: vertex 5: y is not finite (nan)");
+    EXPECT_EQ(arraysError(mesh), "sceneFromArrays(): 'arrays': vertices: vertex 5: y is not finite (nan)");
 
     mesh = arraysOf(makeCube(glm::vec3(0.0f), 1.0f), true);
     mesh.name = "box";
@@ -341,25 +341,25 @@ TEST(SceneFromArrays, RefusesIndicesOutOfRangeNamingTheTriangle) {
     OwnedArrays mesh = cube();
     mesh.triangles[3 * 4 + 2] = 24;
     EXPECT_EQ(arraysError(mesh),
-              "sceneFromArrays(): 'arrays': triangle 4: vertex index 24 out of range (positions has 24 vertices)");
+              "sceneFromArrays(): 'arrays': face 4: vertex index 24 out of range (vertices has 24 rows)");
 }
 
 TEST(SceneFromArrays, RefusesMissingArraysAndCounts) {
     OwnedArrays mesh = cube();
     MeshArrays arrays = mesh.view();
-    arrays.triangleCount = 0;
+    arrays.faceCount = 0;
     EXPECT_EQ(test::sceneErrorMessage([&] { sceneFromArrays(arrays); }),
-              "sceneFromArrays(): 'arrays': no triangles: triangleCount is 0");
+              "sceneFromArrays(): 'arrays': no faces: faceCount is 0");
 
     arrays = mesh.view();
-    arrays.positions = nullptr;
+    arrays.vertices = nullptr;
     EXPECT_EQ(test::sceneErrorMessage([&] { sceneFromArrays(arrays); }),
-              "sceneFromArrays(): 'arrays': positions is null but vertexCount is 24");
+              "sceneFromArrays(): 'arrays': vertices is null but vertexCount is 24");
 
     arrays = mesh.view();
-    arrays.triangles = nullptr;
+    arrays.faces = nullptr;
     EXPECT_EQ(test::sceneErrorMessage([&] { sceneFromArrays(arrays); }),
-              "sceneFromArrays(): 'arrays': triangles is null but triangleCount is 12");
+              "sceneFromArrays(): 'arrays': faces is null but faceCount is 12");
 
     // Counts no array can hold are refused before any row is read.
     arrays = mesh.view();
@@ -368,9 +368,9 @@ TEST(SceneFromArrays, RefusesMissingArraysAndCounts) {
               "sceneFromArrays(): 'arrays': vertexCount 8589934592 is more than the 4294967295 vertices 32-bit "
               "indices reach");
     arrays = mesh.view();
-    arrays.triangleCount = std::numeric_limits<std::size_t>::max() / 6;
+    arrays.faceCount = std::numeric_limits<std::size_t>::max() / 6;
     EXPECT_EQ(test::sceneErrorMessage([&] { sceneFromArrays(arrays); }),
-              "sceneFromArrays(): 'arrays': triangleCount 3074457345618258602 overflows: its 3 indices a triangle "
+              "sceneFromArrays(): 'arrays': faceCount 3074457345618258602 overflows: its 3 indices a face "
               "would need more bytes than memory can address");
 }
 

@@ -89,7 +89,8 @@ struct Warning {
 
 /** An image: rows top first, rowBytes() apart (tightly packed but in a caller's buffer: Renderer::renderInto()),
  *  channels interleaved (R, G, B, A order). A rendered image views the render's own pixels (no copy); copies of an
- *  Image share them, and they never change. */
+ *  Image share them, and the library never changes them (a picture drawn into a caller's buffer changes when the
+ *  caller writes there, or renders into it again). */
 class INKGRAPH_API Image {
 public:
     enum class Type { UInt8, Float32 };
@@ -120,11 +121,12 @@ public:
      *  link) is refused, never replaced. Throws Error(Output) naming the file. */
     void write(const std::string& path) const;
 
-    /** Internal: an image over pixels that `owner` keeps alive (null: the caller's, kept by the caller). */
+private:
+    friend struct ImageAccess;
+    /** An image over pixels that `owner` keeps alive (null: the caller's, kept by the caller). */
     Image(int width, int height, int channels, Type type, const std::uint8_t* data, std::size_t rowBytes,
           std::shared_ptr<const void> owner);
 
-private:
     int mWidth = 0;
     int mHeight = 0;
     int mChannels = 0;
@@ -157,6 +159,7 @@ struct MeshArrays {
 
 struct SceneAccess;
 struct LookAccess;
+struct ImageAccess;
 
 /** A model loaded once (OBJ with MTL, glTF/GLB, VRM, STL, PLY, or arrays): render it with any number of looks and
  *  frames. Copies share the loaded data. */
@@ -181,7 +184,6 @@ public:
 
 private:
     friend struct SceneAccess;
-    struct LookAccess;
     explicit Scene(std::shared_ptr<const Impl> impl) : mImpl(std::move(impl)) {}
     std::shared_ptr<const Impl> mImpl;
 };
@@ -298,7 +300,8 @@ public:
     Precision gbufferPrecision() const;
     Look& setGbufferPrecision(Precision precision);
 
-    /** The line types drawn, in composite order; empty: none. */
+    /** The line types drawn, in the order they were given (the composite draws them in LineType's order); empty:
+     *  none. */
     std::vector<LineType> lines() const;
     Look& setLines(const std::vector<LineType>& types);
     LineStyle lineStyle(LineType type) const;
@@ -367,7 +370,7 @@ struct INKGRAPH_API Frame {
 /** Where a still's view came from. */
 enum class CameraSource {
     File,  ///< the model's own camera (glTF)
-    Auto,  ///< auto-framed
+    Auto,  ///< auto-framed (Frame::frameNodes included)
     Orbit, ///< Frame::orbit
     Eye,   ///< Frame::eye
 };
@@ -416,7 +419,7 @@ public:
      *  and images, the shade maps, the look's style file), compared as the command line compares its outputs
      *  with its inputs (links and hard links too): that is Error(Usage), naming the file and what it is. */
     void write(const std::string& path) const;
-    /** Milliseconds the render took (without loading the scene). */
+    /** Milliseconds the render took: without loading the scene, but with loading it again for a frame's own pose. */
     double milliseconds() const;
 
     struct Impl;
@@ -430,7 +433,8 @@ private:
 /** The buffers render() can return: "normal", "view", "wVec", "nDotV", "depth", "coverage", "baseColor", "radial",
  *  "materialId" (the G-buffer's fields), "gbuffer.*" (every field the look computes), "lines.<type>" (the drawn
  *  layer of a line type, its coverage from 0 off the line to 255 on it), "lines.*" (every drawn type), "picture".
- *  Names that are not these are refused (Error(Usage), naming them). */
+ *  render() also takes the graph's own name of any image it computes (`inkgraph render --print-plan`: "shade.color",
+ *  "gbuffer.zBuffer"); a name that is neither is refused (Error(Usage), naming the buffers the look has). */
 INKGRAPH_API std::vector<std::string> bufferNames(const Look& look);
 
 /** Renders stills. One GL context (EGL, no display) is made by the first render and kept, with every compiled
