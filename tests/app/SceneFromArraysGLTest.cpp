@@ -6,6 +6,7 @@
 #include "app/Render.h"
 #include "render/StillRenderer.h"
 #include "scene/MeshArrays.h"
+#include "tests/support/MeshArraysFixtures.h"
 #include "scene/mesh/Procedural.h"
 #include "tests/support/TestFolder.h"
 
@@ -25,6 +26,8 @@
 
 namespace inkgraph {
 namespace {
+
+using test::exact;
 
 class SceneFromArraysGL : public test::TestFolder {};
 
@@ -59,37 +62,11 @@ void expectSamePicture(const cv::Mat& fromFile, const cv::Mat& fromArrays) {
     EXPECT_GT(drawn, fromFile.total() / 20) << "the picture is almost one colour: nothing was drawn";
 }
 
-std::string exact(float value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.17g", double(value)); // the float's value itself (scene/MeshArrays.h)
-    return text;
-}
-
 TEST_F(SceneFromArraysGL, AModelFileAndItsArraysRenderTheSamePicture) {
     const std::string path = std::string(INKGRAPH_SOURCE_ROOT) + "/models/torusknot_open3d.obj";
-    std::vector<float> positions;
-    std::vector<std::uint32_t> triangles;
-    std::ifstream file(path);
-    for (std::string line; std::getline(file, line);) {
-        std::istringstream words(line);
-        std::string keyword;
-        words >> keyword;
-        if (keyword == "v") {
-            float x = 0, y = 0, z = 0;
-            words >> x >> y >> z;
-            positions.insert(positions.end(), {x, y, z});
-        } else if (keyword == "f") {
-            std::uint32_t a = 0, b = 0, c = 0;
-            words >> a >> b >> c;
-            triangles.insert(triangles.end(), {a - 1, b - 1, c - 1});
-        }
-    }
-    MeshArrays arrays;
-    arrays.vertices = positions.data();
-    arrays.vertexCount = positions.size() / 3;
-    arrays.faces = triangles.data();
-    arrays.faceCount = triangles.size() / 3;
-    arrays.name = "torusknot_open3d";
+    test::OwnedArrays owned = test::readObjTriangles(path);
+    owned.name = "torusknot_open3d";
+    const MeshArrays arrays = owned.view();
     ASSERT_EQ(arrays.faceCount, 2880u);
     const auto scene = std::make_shared<const Scene>(sceneFromArrays(arrays));
 
