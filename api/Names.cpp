@@ -10,7 +10,7 @@ namespace inkgraph::api {
 inline namespace INKGRAPH_ABI_NAMESPACE {
 namespace {
 
-/** The line types' names in LineType's order, which is the registry's (tests/api/ApiTest.cpp checks both). */
+/** The line types' names in LineType's order, which is the registry's (tests/api/ApiTest.cpp checks the two agree). */
 const char* const kLineTypeNames[] = {
     "outline",           "silhouette", "normal-edge",       "depth-edge", "crease",         "border",
     "material-boundary", "suggestive", "suggestive-object", "contour",    "mesh-silhouette"};

@@ -129,6 +129,40 @@ TEST_F(ApiStyle, AMissingStyleFileIsNamed) {
     EXPECT_NE(std::string(error.what()).find("absent.style"), std::string::npos) << error.what();
 }
 
+/** The names a flag's refusal of `value` lists as available, in its order. */
+std::vector<std::string> availableNames(const std::string& flag) {
+    const std::string message = errorOf([&] { ig::Look().set(flag, "bogus"); }).what();
+    const std::size_t start = message.find("(available: ");
+    const std::size_t end = message.find_first_of(";)", start);
+    std::vector<std::string> names;
+    std::string list = message.substr(start + 12, end - start - 12);
+    for (std::size_t comma; (comma = list.find(", ")) != std::string::npos; list.erase(0, comma + 2))
+        names.push_back(list.substr(0, comma));
+    names.push_back(list);
+    return names;
+}
+
+// The public enums are written out in the header, which includes nothing of the registries: their names, in order,
+// must be the registries' (a line type or shading model added there and not here fails this).
+TEST(ApiNames, TheEnumsAreTheRegistriesInTheirOrder) {
+    std::vector<std::string> lineTypes;
+    for (int type = 0; type <= int(ig::LineType::MeshSilhouette); ++type)
+        lineTypes.push_back(ig::nameOf(static_cast<ig::LineType>(type)));
+    EXPECT_EQ(lineTypes, availableNames("--lines"));
+    std::vector<std::string> shadings;
+    for (int shading = 0; shading <= int(ig::Shading::MToon); ++shading)
+        shadings.push_back(ig::nameOf(static_cast<ig::Shading>(shading)));
+    EXPECT_EQ(shadings, availableNames("--shading"));
+    std::vector<std::string> orientations;
+    for (int method = 0; method <= int(ig::FaceOrientation::AfterVertices); ++method)
+        orientations.push_back(ig::nameOf(static_cast<ig::FaceOrientation>(method)));
+    EXPECT_EQ(orientations, availableNames("--face-orientation"));
+    for (const std::string& name : lineTypes) EXPECT_EQ(ig::nameOf(ig::lineTypeNamed(name)), name);
+    EXPECT_STREQ(errorOf([] { ig::lineTypeNamed("sketchy"); }).what(),
+                 "lineTypeNamed(): no line type 'sketchy' (there are: outline, silhouette, normal-edge, depth-edge, "
+                 "crease, border, material-boundary, suggestive, suggestive-object, contour, mesh-silhouette)");
+}
+
 TEST(ApiBufferNames, AreTheLooksWithoutTheGraphsNames) {
     const std::vector<std::string> names =
         ig::bufferNames(ig::Look().setLines({ig::LineType::Contour, ig::LineType::Crease}));
