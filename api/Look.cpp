@@ -223,6 +223,20 @@ Look& Look::setLight(const Vec3& towardLight) {
     return *this;
 }
 
+std::optional<Color> Look::ambient() const {
+    const std::optional<glm::dvec3>& ambient = mImpl->parsed.look.ambient;
+    if (!ambient) return std::nullopt;
+    return Color{ambient->r, ambient->g, ambient->b, 1.0};
+}
+Look& Look::setAmbient(const Color& linearRgb) {
+    if (linearRgb.a != 1.0)
+        throw Error(Error::Kind::Usage,
+                    "Look::setAmbient(): a light has no alpha: alpha must be 1, got " + exactText(linearRgb.a));
+    setFlag(*this, "Look::setAmbient()", "--ambient",
+            exactText(linearRgb.r) + "," + exactText(linearRgb.g) + "," + exactText(linearRgb.b));
+    return *this;
+}
+
 Color Look::paper() const {
     const glm::dvec3& paper = mImpl->parsed.look.background;
     return {paper.r, paper.g, paper.b, 1.0};

@@ -164,6 +164,8 @@ Json describeLook(const PreparedStill& still, const std::string& stylePath) {
     Json json;
     if (!stylePath.empty()) json["style"] = stylePath;
     json["shading"] = shading.name;
+    // auto is each material's model; on a scene without MToon it runs cel.
+    if (graph.shadingModel != look.shading) json["shading_model"] = traitsOf(graph.shadingModel).name;
     if (const std::string mode = graph.shadingModeIn(still.plan); !mode.empty()) json["shading_mode"] = mode;
     if (const std::string reason = graph.shadingForwardReasonIn(still.plan); !reason.empty())
         json["shading_forward_because"] = reason;

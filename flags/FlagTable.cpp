@@ -590,6 +590,27 @@ std::vector<Flag> makeFlags() {
                                    [](const std::string& value, RenderOptions& options) {
                                        options.look.towardLight = parseDirection("--light", value);
                                    })));
+    Flag ambient = styleFlag(
+        flag({"--ambient"}, "R,G,B", S::Look,
+             "the uniform ambient light, linear, channels in [0,1] (one number: grey), for " +
+                 shadingModelsWith(&ShadingModelTraits::ambient) +
+                 ":\nflat to phong light base x (ambient + (1 - ambient) max(n.l, 0)) (default 0.15); mtoon and auto\n"
+                 "add MToon's global illumination ambient x lit colour (default 0.05, the MToon conformance scene's)",
+             [](const std::string& value, RenderOptions& options) {
+                 const std::vector<std::string> parts = splitList(value, ',');
+                 if (parts.size() != 1 && parts.size() != 3)
+                     throw UsageError("--ambient: expected R,G,B or one grey value with channels in [0,1], got '" +
+                                      value + "'");
+                 glm::dvec3 color(parseNumber("--ambient", parts[0]));
+                 for (std::size_t channel = 1; channel < parts.size(); ++channel)
+                     color[int(channel)] = parseNumber("--ambient", parts[channel]);
+                 for (int c = 0; c < 3; ++c)
+                     if (color[c] < 0.0 || color[c] > 1.0)
+                         throw UsageError("--ambient: channels must lie in [0, 1], got '" + value + "'");
+                 options.look.ambient = color;
+             }));
+    ambient.noEffect = onlyWithModels("--ambient", &ShadingModelTraits::ambient);
+    flags.push_back(ambient);
     flags.push_back(
         styleFlag(flag({"--background"}, "R,G,B", S::Look, "paper colour, channels in [0,1] (default 1,1,1)",
                        [](const std::string& value, RenderOptions& options) {

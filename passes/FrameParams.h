@@ -13,7 +13,10 @@ struct FrameParams {
     /** World centre that GPU positions are stored relative to (the bounding-sphere centre), so view transforms of
      *  far-from-origin models are computed in double and not lost to float cancellation. */
     glm::dvec3 worldOrigin{0.0};
-    glm::dvec3 towardLightWorld{0.0, 0.0, 1.0};   ///< unit
+    glm::dvec3 towardLightWorld{0.0, 0.0, 1.0}; ///< unit
+    /** Linear RGB of the uniform ambient light, for the shading models with an ambient term (ShadingModelTraits::
+     *  ambient): the passes that light a surface (shade, MToon outlines) read it. */
+    glm::vec3 ambientLight{0.15f};
     glm::vec4 background{1.0f, 1.0f, 1.0f, 1.0f}; ///< display RGBA of the paper behind the model
     /** The length `gbuffer.radial` is measured in (the app passes the bounding radius): its values are then of
      *  order 1 at any model scale, so they neither overflow nor underflow a float16 buffer, and a model scaled by

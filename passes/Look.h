@@ -40,7 +40,8 @@ struct StrokeStyle {
 };
 
 struct Look {
-    ShadingModel shading = ShadingModel::Cel;
+    /** auto: each material its own model (MToon where it has it, else cel); shadingModelFor() resolves it. */
+    ShadingModel shading = ShadingModel::Auto;
     double shininess = 32.0;                           ///< phong and comic, [0, 1e6]
     std::optional<int> bands;                          ///< cel: N even bands (default: Qu, Chen & Zwicker's five)
     std::string shadeMapPath;                          ///< cel (one row) or comic (2-D) PNG; empty = built-in map
@@ -55,6 +56,9 @@ struct Look {
     GBufferPrecision gbufferPrecision = GBufferPrecision::Float32; ///< the G-buffer's direction fields
     glm::dvec3 background{1.0, 1.0, 1.0};
     std::optional<glm::dvec3> towardLight; ///< world direction toward the light; default: the file's, else a key light
+    /** Linear RGB of the uniform ambient light (--ambient), for the models with an ambient term; default: the model's
+     *  (ShadingModelTraits::defaultAmbient). */
+    std::optional<glm::dvec3> ambient;
 
     bool draws(const std::string& type) const { return std::find(lines.begin(), lines.end(), type) != lines.end(); }
     LineStyle styleOf(const std::string& type) const {

@@ -25,7 +25,7 @@ cv::Vec4f displayColor(const glm::dvec4& color) {
  *  the materials' outlines. Returns the layer the shade pass is to read: the pass's name when some material asks
  *  for an outline, else empty, and the unread pass is culled. */
 std::string addMToonOutline(const StillGraphSetup& setup, StillGraph& graph) {
-    if (!traitsOf(setup.look.shading).materialOutlines) return {};
+    if (!traitsOf(graph.shadingModel).materialOutlines) return {};
     graph.passes.push_back(
         std::make_unique<MToonOutlinePass>(kMToonOutlinePass, setup.shaders, setup.gpuScene, setup.frame));
     return MToonOutlinePass::drawsAnyOutline(setup.gpuScene.scene()) ? kMToonOutlinePass : "";
@@ -36,10 +36,10 @@ std::string addMToonOutline(const StillGraphSetup& setup, StillGraph& graph) {
 ShadePass* addShading(const StillGraphSetup& setup, StillGraph& graph, const std::string& outlines,
                       const GBufferPass& gbuffer) {
     const Look& look = setup.look;
-    const ShadingModelTraits& traits = traitsOf(look.shading);
+    const ShadingModelTraits& traits = traitsOf(graph.shadingModel);
     if (traits.define == nullptr) return nullptr; // none: paper and lines only
     ShadeSettings settings;
-    settings.model = look.shading;
+    settings.model = graph.shadingModel;
     settings.shininess = look.shininess;
     settings.materialOutlines = outlines;
     // Deferred where the G-buffer runs anyway: the shade pass asks the compiler (ShadePass::forwardReason()).
@@ -113,6 +113,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     graph.mLook = &look;
     graph.mSphere = setup.sphere;
     graph.mRadialLengthUnit = setup.frame.radialLengthUnit;
+    graph.shadingModel = shadingModelFor(look.shading, setup.scene);
 
     auto gbufferPass = std::make_unique<GBufferPass>(kGBufferPass, setup.shaders, setup.gpuScene, setup.frame,
                                                      look.supersample, look.gbufferPrecision);

@@ -59,6 +59,8 @@ public:
     std::vector<std::unique_ptr<GlPass>> passes;
     std::string shadingResource; ///< the colour the composite reads ("shade.color"), or empty for --shading none
     std::string shadeMapSource;  ///< the shade map's ShadeMap::source ("builtin:bands-5", a path), or empty
+    /** The model the shade pass runs: the look's, with auto resolved for the scene (shadingModelFor()). */
+    ShadingModel shadingModel = ShadingModel::None;
     /** Mesh name -> ShadeMap::source for each mesh drawn with its own map, in scene order, for --stats. */
     std::vector<std::pair<std::string, std::string>> meshShadeMapSources;
     std::string finalResource = "composite.final";

@@ -577,7 +577,8 @@ void defineEnums(py::module_& m) {
                    {"PHONG", S::Phong},
                    {"CEL", S::Cel},
                    {"COMIC", S::Comic},
-                   {"MTOON", S::MToon}});
+                   {"MTOON", S::MToon},
+                   {"AUTO", S::Auto}});
     using L = ig::LineType;
     defineEnum<L>(m, "LineType", "line type",
                   "The line types, in the order the composite draws them (--lines; docs/lines.md).",
@@ -613,9 +614,9 @@ void defineEnums(py::module_& m) {
 }
 
 /** The names Look(**fields) and Frame(**fields) take: the settable properties. */
-const std::vector<std::string> kLookFields{"shading",           "shininess",  "bands",  "shade_map", "view_vector",
-                                           "face_orientation",  "front_rule", "light",  "paper",     "supersample",
-                                           "gbuffer_precision", "lines",      "strokes"};
+const std::vector<std::string> kLookFields{"shading",          "shininess",         "bands", "shade_map", "view_vector",
+                                           "face_orientation", "front_rule",        "light", "ambient",   "paper",
+                                           "supersample",      "gbuffer_precision", "lines", "strokes"};
 const std::vector<std::string> kFrameFields{"eye",  "orbit",     "target",      "up",        "fov",
                                             "clip", "placement", "frame_nodes", "animation", "time"};
 
@@ -703,6 +704,10 @@ void defineLook(py::module_& m) {
             "light", &ig::Look::light,
             [](ig::Look& self, py::handle value) { self.setLight(vec3Argument(value, "Look.light")); },
             "--light: the world direction toward the light (a Vec3 or (x, y, z)); None: the file's, else a key light.")
+        .def_property(
+            "ambient", &ig::Look::ambient,
+            [](ig::Look& self, py::handle value) { self.setAmbient(colorArgument(value, "Look.ambient")); },
+            "--ambient: the uniform ambient light, linear (a Color or (r, g, b)); None: the shading model's default.")
         .def_property(
             "paper", &ig::Look::paper,
             [](ig::Look& self, py::handle value) { self.setPaper(colorArgument(value, "Look.paper")); },

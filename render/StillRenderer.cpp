@@ -96,6 +96,8 @@ FrameParams frameParamsOf(const Look& look, const Scene& scene, const Camera& ca
                              : scene.light    ? scene.light->towardLight
                                               : defaultLight(camera);
     frame.background = glm::vec4(glm::vec3(look.background), 1.0f);
+    frame.ambientLight = look.ambient ? glm::vec3(*look.ambient)
+                                      : glm::vec3(traitsOf(shadingModelFor(look.shading, scene)).defaultAmbient);
     // A point (or empty) model has no radius; 1 keeps the radial field finite there.
     frame.radialLengthUnit = sphere.radius > 0.0 ? sphere.radius : 1.0;
     return frame;

@@ -43,7 +43,7 @@ inline constexpr std::size_t kMaxTextureBytes = std::size_t(2) << 30;
 ShadeMap readShadeMapFile(const std::string& path, bool oneDimensional);
 
 /** The per-still parameters of `camera` for the look (its light, else the file's light, else the default key light;
- *  its background) and the model's bounding sphere. */
+ *  its ambient light, else the model's default; its background) and the model's bounding sphere. */
 FrameParams frameParamsOf(const Look& look, const Scene& scene, const Camera& camera, const BoundingSphere& sphere);
 
 /** What to render. */

@@ -78,7 +78,9 @@ struct Material {
     TextureRef baseColorTexture;                       ///< sRGB image, times baseColorFactor
     glm::vec3 emissiveFactor{0.0f};                    ///< linear, added after lighting
     TextureRef emissiveTexture;                        ///< sRGB image, times emissiveFactor
-    bool unlit = false;                                ///< KHR_materials_unlit: the base colour as is
+    /** KHR_materials_unlit: the base colour as is. False for a material with MToon, whose unlit flag is the VRM
+     *  exporters' fallback for viewers without MToon (the glTF reader clears it). */
+    bool unlit = false;
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f; ///< Mask: a fragment whose alpha is below this is cut out
     /** true: both sides drawn, a back face lit with the flipped normal (meshes without a glTF material: OBJ, STL);

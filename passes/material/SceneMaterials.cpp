@@ -228,6 +228,7 @@ void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex, Mater
     glUniform3fv(program.uniform("mtoonRimColorFactor"), 1, glm::value_ptr(mtoon.parametricRimColorFactor));
     glUniform1f(program.uniform("mtoonRimFresnelPowerFactor"), mtoon.parametricRimFresnelPowerFactor);
     glUniform1f(program.uniform("mtoonRimLiftFactor"), mtoon.parametricRimLiftFactor);
+    glUniform1f(program.uniform("mtoonRimLightingMixFactor"), mtoon.rimLightingMixFactor);
     if (colour && program.uniform("mtoonShadeMultiplyTextured") >= 0)
         bindTexture(*this, program, mtoon.shadeMultiplyTexture, kShadeMultiplyTextureUnit, "mtoonShadeMultiply");
     if (program.uniform("mtoonOutlineMode") >= 0) {

@@ -44,7 +44,8 @@ void MToonOutlinePass::prepare(GlPassContext&) {
                             "mtoon/outline.vert",
                             "mtoon/outline.frag",
                             {"MATERIAL_EMISSIVE 1"},
-                            {"common/color.glsl", "common/hull.glsl", "common/material.glsl", "common/mtoon.glsl"}}));
+                            {"common/color.glsl", "common/hull.glsl", "common/material.glsl", "common/lighting.glsl",
+                             "common/mtoon.glsl"}}));
     mScene.meshes();
     mScene.hullArrays(); // the shells are the hulls, made outside the timed execute()
 }
@@ -65,6 +66,7 @@ void MToonOutlinePass::execute(GlPassContext& gl) {
     setViewUniforms(program, mFrame);
     glUniform2f(program.uniform("viewportSize"), float(width), float(height));
     glUniform3fv(program.uniform("towardLightView"), 1, glm::value_ptr(mFrame.towardLightView()));
+    glUniform3fv(program.uniform("ambientLight"), 1, glm::value_ptr(mFrame.ambientLight));
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(kDepthNearer);
     glDepthMask(GL_TRUE);

@@ -53,9 +53,6 @@ ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, 
     if (!std::isfinite(mSettings.shininess) || mSettings.shininess < 0.0)
         throw std::invalid_argument("ShadePass(): shininess must be finite and >= 0, got " +
                                     std::to_string(mSettings.shininess));
-    if (!std::isfinite(mSettings.ambient) || mSettings.ambient < 0.0f || mSettings.ambient > 1.0f)
-        throw std::invalid_argument("ShadePass(): ambient must be within [0, 1], got " +
-                                    std::to_string(mSettings.ambient));
     if (!std::isfinite(mSettings.specularStrength) || mSettings.specularStrength < 0.0f)
         throw std::invalid_argument("ShadePass(): specular strength must be finite and >= 0, got " +
                                     std::to_string(mSettings.specularStrength));
@@ -331,7 +328,7 @@ void ShadePass::layMaterialOutlines(GlPassContext& gl) {
 
 void ShadePass::setShadingUniforms(const GlProgram& program) const {
     glUniform3fv(program.uniform("towardLightView"), 1, glm::value_ptr(mFrame.towardLightView()));
-    glUniform1f(program.uniform("ambient"), mSettings.ambient);
+    glUniform3fv(program.uniform("ambientLight"), 1, glm::value_ptr(mFrame.ambientLight));
     glUniform1f(program.uniform("shininess"), float(mSettings.shininess));
     glUniform1f(program.uniform("specularStrength"), mSettings.specularStrength);
     if (usesConstantView()) {

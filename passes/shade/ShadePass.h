@@ -23,6 +23,8 @@
  *  - lambert: ambient + diffuse per fragment, interpolated normals
  *  - phong:   ambient + diffuse + specular max(r.v, 0)^n per fragment, specular 0 where n.l <= 0
  *  - cel:     1-D shade map indexed by the half-Lambert q = (n.l + 1)/2 per fragment
+ *  - mtoon:   the materials' MToon (common/mtoon.glsl, docs/mtoon.md)
+ *  - auto:    mtoon's colour for the materials with MToon, cel's for the others
  *  - comic:   2-D shade map indexed by (max(n.l, 0), max(r.v, 0)^n) per fragment, specular 0 where n.l <= 0;
  *             with a constant view vector the specular term uses V_c; with a CPU face-orientation method the
  *             front sets are drawn with the per-vertex (s, t) the CPU computed (Winnemöller & Bangay 2002, Listing 1)
@@ -37,12 +39,12 @@
  *  Only when some map has more than kMaxSpecularRowBands borders do all meshes take the generic exp(n log(r.v)) path
  *  (one program per pass), which can differ from the comparisons by one row at a band border.
  *
- *  Ambient + diffuse is base x (ambient + (1 - ambient) max(n.l, 0)); phong adds specularStrength x specular in white;
- *  cel and comic multiply the decoded texel with the base colour. Light: FrameParams::towardLightView(). No culling,
- *  a nearer depth test (GL_GREATER: reversed-Z, gl/GlObjects.h): seen from behind (open meshes, holes),
- *  interpolated and flat normals turn toward the viewer; gouraud lights the vertex normal as stored, so back faces
- *  show the lighting of their front side. The flat normal is turned toward the eye by geometry (dot with -p), so it
- *  does not depend on the render target's y direction. */
+ *  Ambient + diffuse is base x (ambient + (1 - ambient) max(n.l, 0)), per channel of FrameParams::ambientLight;
+ *  phong adds specularStrength x specular in white; cel and comic multiply the decoded texel with the base colour.
+ * Light: FrameParams::towardLightView(). No culling, a nearer depth test (GL_GREATER: reversed-Z, gl/GlObjects.h): seen
+ * from behind (open meshes, holes), interpolated and flat normals turn toward the viewer; gouraud lights the vertex
+ * normal as stored, so back faces show the lighting of their front side. The flat normal is turned toward the eye by
+ * geometry (dot with -p), so it does not depend on the render target's y direction. */
 
 #include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
@@ -68,7 +70,6 @@ enum class ShadeMode { Forward, Deferred };
 struct ShadeSettings {
     ShadingModel model = ShadingModel::Cel;
     double shininess = 32.0;       ///< phong and comic; >= 0
-    float ambient = 0.15f;         ///< flat, gouraud, lambert, phong
     float specularStrength = 0.5f; ///< phong: white specular weight
     ViewVectorChoice view;         ///< comic: constant or exact (from chooseViewVector())
     /** comic: the CPU face-orientation method whose front sets are drawn (Standard: the GPU culls); deferred shading
@@ -96,7 +97,7 @@ public:
      *  without one of their own in `settings.meshShadeMaps`. Comic draws the front sets of `scene.cpuOrientation()`
      *  when the scene has one (asked when the pass runs). Throws std::invalid_argument for a missing map, a cel map
      *  (default or per mesh) of more than one row, a map that is not CV_8UC4, more per-mesh maps than the scene has
-     *  meshes, a negative or non-finite shininess or specular strength, an ambient outside [0, 1], or a comic constant
+     *  meshes, a negative or non-finite shininess or specular strength, or a comic constant
      *  view vector that is not unit. */
     ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
               ShadeSettings settings, std::optional<ShadeMap> shadeMap);

@@ -10,7 +10,9 @@
 
 namespace inkgraph {
 
-enum class ShadingModel { None, Flat, Gouraud, Lambert, Phong, Cel, Comic, MToon };
+struct Scene;
+
+enum class ShadingModel { None, Flat, Gouraud, Lambert, Phong, Cel, Comic, MToon, Auto };
 
 struct ShadingModelTraits {
     ShadingModel model;
@@ -35,6 +37,14 @@ struct ShadingModelTraits {
     bool orientationSets;
     bool specularRowBands;
     bool materialOutlines;
+    /** It has an ambient term, which --ambient sets (FrameParams::ambientLight): flat, gouraud, lambert and phong
+     *  light base x (ambient + (1 - ambient) max(n.l, 0)); mtoon (and auto's MToon materials) add MToon's global
+     *  illumination ambient x lit colour, and mtoon's metallic-roughness materials ambient x diffuse colour. */
+    bool ambient;
+    /** The ambient light when --ambient is not given (grey). The normalised models' 0.15 keeps the lit side at the
+     *  base colour; the MToon family's 0.05 is the reference scene of the MToon conformance suite (three.js ambient
+     *  light 0.5 x 0.3, i.e. 0.15 / pi of irradiance), where the lit side adds it. 0 for the models without one. */
+    float defaultAmbient;
     const char* help; ///< --help's description, lines after the first indented by the help writer
 };
 
@@ -44,6 +54,9 @@ const std::vector<ShadingModelTraits>& shadingModels();
 const ShadingModelTraits& traitsOf(ShadingModel model);
 /** The row named `name`, or null. */
 const ShadingModelTraits* findShadingModel(std::string_view name);
+/** The model a still of `scene` runs for `requested`: auto stays auto where some material has MToon and is cel where
+ *  none has (the same picture, and cel may then shade the G-buffer); every other model is itself. */
+ShadingModel shadingModelFor(ShadingModel requested, const Scene& scene);
 /** "phong and comic": the names of the models whose trait `has` holds, for messages. */
 std::string shadingModelsWith(bool ShadingModelTraits::*has);
 

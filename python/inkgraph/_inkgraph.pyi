@@ -150,6 +150,7 @@ class Shading(_Enum):
     CEL: ClassVar[Shading]
     COMIC: ClassVar[Shading]
     MTOON: ClassVar[Shading]
+    AUTO: ClassVar[Shading]
     __members__: ClassVar[dict[str, Shading]]
     @staticmethod
     def from_name(name: str) -> Shading: ...
@@ -223,6 +224,7 @@ class Look:
         face_orientation: FaceOrientation | str = ...,
         front_rule: int = ...,
         light: _Vec3Like = ...,
+        ambient: _ColorLike = ...,
         paper: _ColorLike = ...,
         supersample: int = ...,
         gbuffer_precision: Precision | str = ...,
@@ -244,6 +246,7 @@ class Look:
     face_orientation: FaceOrientation
     front_rule: int
     light: Vec3 | None
+    ambient: Color | None
     paper: Color
     supersample: int
     gbuffer_precision: Precision

@@ -1,8 +1,12 @@
 // Lighting terms shared by the shading passes (docs/shading.md). Every vector is unit and in
 // view space: n the normal, l surface -> light, v surface -> eye, r = reflect(-l, n) (the incident direction is -l).
 
+// The uniform ambient light, linear RGB (FrameParams::ambientLight, --ambient): the ambient term of flat, gouraud,
+// lambert and phong, and MToon's global illumination (common/mtoon.glsl).
+uniform vec3 ambientLight;
+
 // Ambient plus Lambert diffuse, the factor the base colour is multiplied with.
-float diffuseLighting(vec3 n, vec3 l, float ambient) {
+vec3 diffuseLighting(vec3 n, vec3 l, vec3 ambient) {
     return ambient + (1.0 - ambient) * max(dot(n, l), 0.0);
 }
 

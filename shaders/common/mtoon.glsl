@@ -14,6 +14,7 @@ uniform float mtoonShadingToonyFactor;
 uniform vec3 mtoonRimColorFactor;
 uniform float mtoonRimFresnelPowerFactor;
 uniform float mtoonRimLiftFactor;
+uniform float mtoonRimLightingMixFactor;
 
 // The shade tone of a material without MToon parameters, times its lit colour (docs/mtoon.md).
 const float kMToonFallbackShade = 0.5;
@@ -40,10 +41,16 @@ vec3 mtoonColor(vec3 lit, vec3 n, vec3 l, vec3 v) {
         toony = 0.9;
     }
     float shading = linearstep(-1.0 + toony, 1.0 - toony, dot(n, l) + shift);
+    // The direct light is white of intensity 1: its colour multiplies nothing.
     vec3 color = mix(shade, lit, shading);
+    // Global illumination: the ambient light is uniform, so rawGi(n) is the same in every direction and the
+    // specification's equalization between it and (rawGi(up) + rawGi(down)) / 2 changes nothing: gi = ambientLight.
+    vec3 gi = ambientLight;
+    color += gi * lit;
     if (mtoonPresent != 0) {
         float rim = pow(clamp(1.0 - dot(n, v) + mtoonRimLiftFactor, 0.0, 1.0), max(mtoonRimFresnelPowerFactor, 1e-5));
-        color += mtoonRimColorFactor * rim;
+        // The rim takes the lighting (direct 1 + gi) as far as rimLightingMixFactor says; 0 is like emission.
+        color += mtoonRimColorFactor * rim * mix(vec3(1.0), vec3(1.0) + gi, mtoonRimLightingMixFactor);
     }
     return color;
 }

@@ -20,8 +20,6 @@ void main() {
     float distanceToEye = length(viewPosition);
     vec3 v = distanceToEye > 0.0 ? -viewPosition / distanceToEye : vec3(0.0, 0.0, 1.0);
     vec3 rgb = mtoonColor(base, n, l, v);
-    // KHR_materials_unlit applies only to a material without MToon (MToon wins, docs/mtoon.md).
-    if (materialUnlit != 0 && mtoonPresent == 0) rgb = base;
     rgb += materialEmissive();
     rgb = mix(mtoonOutlineColorFactor, mtoonOutlineColorFactor * rgb, mtoonOutlineLightingMixFactor);
     outColor = vec4(encodeSrgb(rgb), 1.0);

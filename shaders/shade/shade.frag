@@ -1,4 +1,5 @@
-// Shading, one model per program (MODEL_* define from ShadePass): flat, gouraud, lambert, phong, cel, comic, mtoon
+// Shading, one model per program (MODEL_* define from ShadePass): flat, gouraud, lambert, phong, cel, comic, mtoon,
+// auto (mtoon's colour for the materials with MToon, cel's for the others)
 // (docs/shading.md, docs/mtoon.md; mtoon's colour is common/mtoon.glsl's, which forward programs include). The base
 // colour is the material's (common/material.glsl: factor x texture x vertex colour). Colour is computed in linear RGB
 // and written sRGB-encoded, with the surface's alpha (1 unless the material blends).
@@ -8,7 +9,7 @@
 // the scene has one (ShadePass::sceneBaseColor()), else the G-buffer's sRGB8 copy (hence up to a code of difference
 // from forward).
 #ifdef SHADE_DEFERRED
-#if defined(MODEL_FLAT) || defined(MODEL_GOURAUD) || defined(MODEL_MTOON) || defined(SHADE_COORDS)
+#if defined(MODEL_FLAT) || defined(MODEL_GOURAUD) || defined(MODEL_MTOON) || defined(MODEL_AUTO) || defined(SHADE_COORDS)
 #error "deferred shading needs a model that shades from the pixel's normal, view and base colour"
 #endif
 layout(binding = GBUFFER_NORMAL_UNIT) uniform sampler2D gbufferNormal;
@@ -32,14 +33,13 @@ in vec3 viewPosition;
 in vec3 viewNormal;
 #endif
 #ifdef MODEL_GOURAUD
-in float vertexLight;
+in vec3 vertexLight;
 #endif
 #ifdef SHADE_COORDS
 in vec2 shadeCoord;
 #endif
 
 uniform vec3 towardLightView; // unit, view space
-uniform float ambient;          // flat, gouraud, lambert, phong
 uniform float shininess;        // phong, comic
 uniform float specularStrength; // phong: weight of the white specular
 #ifdef SPECULAR_ROW_BANDS
@@ -53,7 +53,7 @@ uniform int specularBandRow[SPECULAR_ROW_BANDS + 1];
 #ifdef VIEW_CONSTANT
 uniform vec3 constantTowardEye; // comic: -V_c in view space, unit (Winnemöller & Bangay 2002 §3.5)
 #endif
-#if defined(MODEL_CEL) || defined(MODEL_COMIC)
+#if defined(MODEL_CEL) || defined(MODEL_COMIC) || defined(MODEL_AUTO)
 // Linear texels (ShadePass decodes the map's sRGB once), nearest, clamped; GL row 0 is the map image's bottom row
 // (t = 0). Cel maps have one row.
 layout(binding = 0) uniform sampler2D shadeMap;
@@ -89,7 +89,7 @@ vec3 towardEye() {
 }
 #endif
 
-#if defined(MODEL_CEL) || defined(MODEL_COMIC)
+#if defined(MODEL_CEL) || defined(MODEL_COMIC) || defined(MODEL_AUTO)
 // Texel i = min(floor(u N), N - 1) of an axis of N texels; u = 1 stays on the last texel.
 int shadeMapIndex(float u, int count) {
     return clamp(int(floor(u * float(count))), 0, count - 1);
@@ -134,16 +134,16 @@ void main() {
     float faceNormalLength = length(faceNormal);
     vec3 n = faceNormalLength > 0.0 ? faceNormal / faceNormalLength : vec3(0.0, 0.0, 1.0);
     if (dot(n, -viewPosition) < 0.0) n = -n;
-    rgb = base * diffuseLighting(n, l, ambient);
+    rgb = base * diffuseLighting(n, l, ambientLight);
 #elif defined(MODEL_GOURAUD)
     rgb = base * vertexLight;
 #elif defined(MODEL_LAMBERT)
-    rgb = base * diffuseLighting(shadingNormal(), l, ambient);
+    rgb = base * diffuseLighting(shadingNormal(), l, ambientLight);
 #elif defined(MODEL_PHONG)
     vec3 n = shadingNormal();
     float nDotL = dot(n, l);
     float specular = nDotL > 0.0 ? specularTerm(reflect(-l, n), towardEye(), shininess) : 0.0;
-    rgb = base * diffuseLighting(n, l, ambient) + vec3(specularStrength * specular);
+    rgb = base * diffuseLighting(n, l, ambientLight) + vec3(specularStrength * specular);
 #elif defined(MODEL_CEL)
     rgb = shadeMapColor(vec2(halfLambert(shadingNormal(), l), 0.0)) * base;
 #elif defined(MODEL_COMIC)
@@ -175,14 +175,19 @@ void main() {
 #endif
 #elif defined(MODEL_MTOON)
     rgb = mtoonColor(base, shadingNormal(), l, towardEye());
+#elif defined(MODEL_AUTO)
+    // Each material its own model: its MToon where it has one, else cel's band (as MODEL_CEL).
+    if (mtoonPresent != 0)
+        rgb = mtoonColor(base, shadingNormal(), l, towardEye());
+    else
+        rgb = shadeMapColor(vec2(halfLambert(shadingNormal(), l), 0.0)) * base;
 #else
 #error "shade.frag needs one MODEL_* define"
 #endif
-    // KHR_materials_unlit: no lighting at all. A VRM material that also has MToon keeps MToon (unlit is its
-    // fallback for viewers without MToon). Deferred shading has neither (chooseMode() keeps such scenes forward).
-#ifdef MODEL_MTOON
-    if (materialUnlit != 0 && mtoonPresent == 0) rgb = base;
-#elif !defined(SHADE_DEFERRED)
+    // KHR_materials_unlit: no lighting at all, in every model. A VRM material that also has MToon is not unlit (the
+    // reader clears the flag: exporters write it as MToon's fallback for viewers without MToon, docs/mtoon.md).
+    // Deferred shading has no unlit material (forwardReason() keeps such scenes forward).
+#ifndef SHADE_DEFERRED
     if (materialUnlit != 0) rgb = base;
 #endif
 #ifndef SHADE_DEFERRED

@@ -17,8 +17,7 @@ out vec3 viewNormal;
 
 #ifdef MODEL_GOURAUD
 uniform vec3 towardLightView; // unit
-uniform float ambient;
-out float vertexLight;        // the lighting factor, interpolated; the fragment multiplies the base colour
+out vec3 vertexLight;         // the lighting factor, interpolated; the fragment multiplies the base colour
 #endif
 
 void main() {
@@ -35,6 +34,6 @@ void main() {
     // faces seen from behind (through holes of open meshes) show the lighting of their front side.
     float normalLength = length(viewNormal);
     vec3 n = normalLength > 0.0 ? viewNormal / normalLength : vec3(0.0, 0.0, 1.0);
-    vertexLight = diffuseLighting(n, towardLightView, ambient);
+    vertexLight = diffuseLighting(n, towardLightView, ambientLight);
 #endif
 }

@@ -97,7 +97,7 @@ TEST(ApiLook, RulesBetweenFlagsWaitForTheWholeLook) {
     EXPECT_STREQ(errorOf([] {
                      ig::Look::fromArguments({"--shading", "phong", "--bands", "4"});
                  }).what(),
-                 "Look::fromArguments(): --bands has no effect with --shading phong (it applies to cel)");
+                 "Look::fromArguments(): --bands has no effect with --shading phong (it applies to cel and auto)");
     // set() checks one flag; the shading that makes --shininess count may come next.
     ig::Look look;
     look.set("--shininess", "8").set("--shading", "phong");
@@ -150,7 +150,7 @@ TEST(ApiNames, TheEnumsAreTheRegistriesInTheirOrder) {
         lineTypes.push_back(ig::nameOf(static_cast<ig::LineType>(type)));
     EXPECT_EQ(lineTypes, availableNames("--lines"));
     std::vector<std::string> shadings;
-    for (int shading = 0; shading <= int(ig::Shading::MToon); ++shading)
+    for (int shading = 0; shading <= int(ig::Shading::Auto); ++shading)
         shadings.push_back(ig::nameOf(static_cast<ig::Shading>(shading)));
     EXPECT_EQ(shadings, availableNames("--shading"));
     std::vector<std::string> orientations;

@@ -71,6 +71,11 @@ TEST(ApiTyped, EveryLookFieldDrawsWhatItsFlagDraws) {
              look.setLight({1.0, 0.25, 0.5});
          },
          {"--light", "1,0.25,0.5"}},
+        {"ambient",
+         [](ig::Look& look) {
+             look.setShading(ig::Shading::Lambert).setAmbient({0.3, 0.2, 0.1, 1.0});
+         },
+         {"--shading", "lambert", "--ambient", "0.3,0.2,0.1"}},
         {"paper",
          [](ig::Look& look) {
              look.setPaper({0.9, 0.85, 0.7, 1.0});
@@ -128,7 +133,8 @@ TEST(ApiTyped, EveryLookFieldDrawsWhatItsFlagDraws) {
 
 TEST(ApiTyped, TheLookReadsBackItsFields) {
     ig::Look look;
-    EXPECT_EQ(look.shading(), ig::Shading::Cel);
+    EXPECT_EQ(look.shading(), ig::Shading::Auto);
+    EXPECT_FALSE(look.ambient().has_value());
     EXPECT_EQ(look.lines(), (std::vector<ig::LineType>{ig::LineType::Silhouette, ig::LineType::Contour}));
     EXPECT_FALSE(look.bands().has_value());
     look.setShading(ig::Shading::Comic).setShininess(8).setLineStyle(ig::LineType::Contour, {1.5, {0, 0, 1, 1}});
@@ -141,6 +147,16 @@ TEST(ApiTyped, TheLookReadsBackItsFields) {
     EXPECT_EQ(look.lineChoice("suggestive-stencil"), "3");
     const std::vector<std::string> crease = ig::Look::lineParameterNames(ig::LineType::Crease);
     EXPECT_NE(std::find(crease.begin(), crease.end(), "crease-angle"), crease.end());
+    look.setAmbient({0.25, 0.5, 0.75, 1.0});
+    EXPECT_EQ(look.ambient()->g, 0.5);
+    EXPECT_STREQ(errorOf([&] {
+                     look.setAmbient({0.1, 0.1, 0.1, 0.5});
+                 }).what(),
+                 "Look::setAmbient(): a light has no alpha: alpha must be 1, got 0.5");
+    EXPECT_STREQ(errorOf([&] {
+                     look.setAmbient({1.5, 0.1, 0.1, 1.0});
+                 }).what(),
+                 "Look::setAmbient(): --ambient: channels must lie in [0, 1], got '1.5,0.1,0.1'");
     // A setter's value is checked at once, with its flag's message after the setter's name.
     EXPECT_STREQ(errorOf([&] { look.setBands(1); }).what(),
                  "Look::setBands(): --bands: expected a whole number from 2 to 256, got '1'");

@@ -487,7 +487,9 @@ TEST_F(Cli, LineTypesDumpTheirMasksAndComposite) {
     // Most of the hull lies outside the model; the rest outlines parts in front of others (the head over the body).
     EXPECT_GT(outsideModel, linePixels * 3 / 4);
     const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
-    EXPECT_EQ(stats["look"]["shading"], "cel");
+    // The default look, auto, runs cel on a model without MToon materials, and says so.
+    EXPECT_EQ(stats["look"]["shading"], "auto");
+    EXPECT_EQ(stats["look"]["shading_model"], "cel");
     EXPECT_EQ(stats["look"]["shademap"], "builtin:bands-5");
     ASSERT_EQ(stats["look"]["lines"].size(), 2u);
     EXPECT_EQ(stats["look"]["lines"][0]["type"], "outline");

@@ -42,7 +42,8 @@ TEST_F(Cli, StillLifeUsesItsCameraLightAndAShadeMapPerMaterial) {
     // Shading without maps reads none of them, and says so.
     const CliRun plain = run("render " + stillLife() + " --shading phong --size 160x100 -o p.png");
     ASSERT_EQ(plain.exitCode, 0) << plain.err;
-    EXPECT_NE(plain.err.find("4 meshes name shade maps, which only --shading cel and comic use"), std::string::npos)
+    EXPECT_NE(plain.err.find("4 meshes name shade maps, which only --shading cel, comic and auto use"),
+              std::string::npos)
         << plain.err;
 }
 

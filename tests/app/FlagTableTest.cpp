@@ -97,7 +97,7 @@ TEST(FlagTable, ShadingFlagsFollowTheTraitTable) {
                                    " (it applies to phong and comic)");
         EXPECT_NE(renderHelp().find(model.name), std::string::npos);
     }
-    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::shadeMap), "cel and comic");
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::shadeMap), "cel, comic and auto");
     EXPECT_EQ(findShadingModel("comic")->model, ShadingModel::Comic);
     EXPECT_EQ(findShadingModel("toon"), nullptr);
 }

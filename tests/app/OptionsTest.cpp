@@ -43,7 +43,8 @@ TEST(Options, Defaults) {
     EXPECT_EQ(options.height, 1024);
     EXPECT_FALSE(options.up.has_value());
     EXPECT_FALSE(options.fovYDegrees.has_value());
-    EXPECT_EQ(options.look.shading, ShadingModel::Cel) << "cel is the default look";
+    EXPECT_EQ(options.look.shading, ShadingModel::Auto) << "auto is the default look";
+    EXPECT_FALSE(options.look.ambient.has_value()) << "the model's own ambient by default";
     EXPECT_EQ(options.look.shininess, 32.0);
     EXPECT_FALSE(options.look.bands.has_value());
     EXPECT_EQ(options.look.viewVector, ViewVectorMode::Exact);
@@ -71,13 +72,13 @@ TEST(Options, ShadingModesAndTheirFlags) {
     EXPECT_EQ(comic.look.frontRule, 1);
     EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--shading", "phong", "--shininess", "1e6"}).look.shininess, 1e6);
     EXPECT_EQ(*parse({"m.obj", "-o", "x.png", "--bands", "3"}).look.bands, 3)
-        << "cel is the default, so --bands applies";
+        << "auto is the default and draws cel where a material has no MToon, so --bands applies";
 }
 
 TEST(Options, ShadingFlagsWithoutEffectAreRefused) {
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shininess", "8"})
                   .find("--shininess has no effect with "
-                        "--shading cel"),
+                        "--shading auto"),
               std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--shading", "comic", "--bands", "4"}).find("--bands"),
               std::string::npos);

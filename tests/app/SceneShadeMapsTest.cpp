@@ -110,17 +110,17 @@ TEST_F(SceneShadeMaps, ModesWithoutMapsReadNothingAndWarn) {
         const std::vector<std::optional<ShadeMap>> maps = readSceneShadeMaps(scene, mode, &warnings);
         ASSERT_EQ(maps.size(), 3u);
         for (const std::optional<ShadeMap>& map : maps) EXPECT_FALSE(map);
-        EXPECT_EQ(warnings,
-                  std::vector<Warning>{makeWarning(WarningKind::ShadeMapUnused,
-                                                   "2 meshes name shade maps, which only --shading cel and comic use")})
+        EXPECT_EQ(warnings, std::vector<Warning>{makeWarning(
+                                WarningKind::ShadeMapUnused,
+                                "2 meshes name shade maps, which only --shading cel, comic and auto use")})
             << traitsOf(mode).name;
     }
     std::vector<Warning> warnings;
     scene.meshes.pop_back();
     readSceneShadeMaps(scene, ShadingModel::Phong, &warnings);
     EXPECT_EQ(warnings, std::vector<Warning>{makeWarning(WarningKind::ShadeMapUnused,
-                                                         "1 mesh names a shade map, which only --shading cel and "
-                                                         "comic use")});
+                                                         "1 mesh names a shade map, which only --shading cel, comic "
+                                                         "and auto use")});
     // No warnings list: nothing to say it to, still no error.
     EXPECT_EQ(readSceneShadeMaps(scene, ShadingModel::Lambert, nullptr).size(), 2u);
     // Nothing named, nothing said.

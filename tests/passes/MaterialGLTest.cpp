@@ -449,6 +449,9 @@ TEST_F(MaterialPasses, MToonBandIsLinearstepOfNDotLPlusShift) {
     sphere.material.mtoon = mtoon;
     useScene(makeScene(std::move(sphere)));
     frame.towardLightWorld = glm::normalize(glm::dvec3(1.0, 0.0, 0.3));
+    // MToon's global illumination adds ambient x lit colour (the ambient light is uniform: no equalization).
+    const glm::dvec3 ambient(0.1, 0.05, 0.02);
+    frame.ambientLight = glm::vec3(ambient);
     const cv::Mat color = shade(ShadingModel::MToon);
     const test::AnalyticSphereView view{kSize, 1.0, kDistance, kFovDegrees};
     const glm::dvec3 light = frame.towardLightWorld; // the camera only translates: view = world directions
@@ -459,7 +462,8 @@ TEST_F(MaterialPasses, MToonBandIsLinearstepOfNDotLPlusShift) {
             const std::optional<test::SphereHit> hit = view.castPixel(col, row);
             if (!hit || glm::dot(hit->normal, hit->towardEye) < 0.3) continue; // away from the polygonal rim
             const double t = std::clamp((glm::dot(hit->normal, light) - 0.2 - (-0.5)) / (0.5 - (-0.5)), 0.0, 1.0);
-            const glm::dvec3 expected = glm::mix(glm::dvec3(0.2, 0.1, 0.3), glm::dvec3(0.9, 0.8, 0.7), t);
+            const glm::dvec3 lit(0.9, 0.8, 0.7);
+            const glm::dvec3 expected = glm::mix(glm::dvec3(0.2, 0.1, 0.3), lit, t) + ambient * lit;
             const cv::Vec4b actual = color.at<cv::Vec4b>(row, col);
             for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(linearOf(actual[c]) - expected[c]));
             ++compared;
@@ -469,6 +473,30 @@ TEST_F(MaterialPasses, MToonBandIsLinearstepOfNDotLPlusShift) {
     // The mesh's interpolated normals differ from the sphere's by well under a degree at this tessellation; 8-bit
     // codes add half a step.
     EXPECT_LT(worst, 0.02);
+}
+
+TEST_F(MaterialPasses, MToonRimTakesTheLightingAndGiAsFarAsItsMixFactorSays) {
+    // Black lit and shade colours leave the rim alone; a lift of 1 makes the rim's shape 1 at every pixel, so the
+    // colour is rimColor x mix(1, 1 + gi, rimLightingMixFactor) (VRMC_materials_mtoon-1.0, Rim Lighting).
+    const glm::dvec3 rimColor(0.2, 0.3, 0.1);
+    const glm::dvec3 gi(0.5, 0.25, 1.0);
+    for (const float mixFactor : {0.0f, 0.5f, 1.0f}) {
+        Mesh sphere = makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 64, 32);
+        sphere.material.baseColorFactor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+        MToonMaterial mtoon;
+        mtoon.parametricRimColorFactor = glm::vec3(rimColor);
+        mtoon.parametricRimLiftFactor = 1.0f;
+        mtoon.parametricRimFresnelPowerFactor = 3.0f;
+        mtoon.rimLightingMixFactor = mixFactor;
+        sphere.material.mtoon = mtoon;
+        useScene(makeScene(std::move(sphere)));
+        frame.ambientLight = glm::vec3(gi);
+        const cv::Mat color = shade(ShadingModel::MToon);
+        const glm::dvec3 expected = rimColor * glm::mix(glm::dvec3(1.0), glm::dvec3(1.0) + gi, double(mixFactor));
+        const cv::Vec4b centre = at(color, cv::Point(kSize / 2, kSize / 2));
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(linearOf(centre[c]), expected[c], 0.01) << "channel " << c << ", mix " << mixFactor;
+    }
 }
 
 TEST_F(MaterialPasses, MToonScreenOutlineIsItsShareOfTheScreenHeight) {

@@ -495,7 +495,8 @@ TEST_F(ShadeSphere, PhongShininessZeroAndHuge) {
             if (!hit || kSphere.pixelsFromSilhouette(col, row) <= 1.5) continue;
             const double nDotL = glm::dot(hit->normal, l);
             if (std::abs(nDotL) < 0.01) continue;
-            const double diffuse = zeroSettings.ambient + (1.0 - zeroSettings.ambient) * std::max(nDotL, 0.0);
+            const double diffuse =
+                double(frame.ambientLight.g) + (1.0 - double(frame.ambientLight.g)) * std::max(nDotL, 0.0);
             const double expected = kDarkBase.g * diffuse + (nDotL > 0.0 ? zeroSettings.specularStrength : 0.0);
             largestError = std::max(largestError, std::abs(int(pixelAt(zero, col, row)[1]) - srgbCode(expected)));
             ++compared;
@@ -529,7 +530,8 @@ TEST_F(ShadeSphere, PhongShininessZeroAndHuge) {
             const std::optional<test::SphereHit> hit = kSphere.castPixel(col, row);
             if (!hit || kSphere.pixelsFromSilhouette(col, row) <= 1.5) continue;
             const double nDotL = glm::dot(hit->normal, l);
-            const double diffuse = zeroSettings.ambient + (1.0 - zeroSettings.ambient) * std::max(nDotL, 0.0);
+            const double diffuse =
+                double(frame.ambientLight.g) + (1.0 - double(frame.ambientLight.g)) * std::max(nDotL, 0.0);
             const double expected = kDarkBase.g * diffuse + zeroSettings.specularStrength *
                                                                 specularReference(hit->normal, l, hit->towardEye, 1e6);
             hugeError = std::max(hugeError, std::abs(int(pixelAt(huge, col, row)[1]) - srgbCode(expected)));
@@ -801,8 +803,8 @@ TEST_F(ShadeSphere, FlatShadesEveryFaceWithOneColour) {
             for (int k = 0; k < 3; ++k) p[k] = glm::dvec3(viewFromModel * glm::dvec4(mesh.positions[t[k]], 1.0));
             glm::dvec3 n = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
             if (glm::dot(n, -p[0]) < 0.0) n = -n;
-            const double expected =
-                base.g * (settings.ambient + (1.0 - settings.ambient) * std::max(glm::dot(n, l), 0.0));
+            const double expected = base.g * (double(frame.ambientLight.g) +
+                                              (1.0 - double(frame.ambientLight.g)) * std::max(glm::dot(n, l), 0.0));
             largestError = std::max(largestError, std::abs(int(pixel[1]) - srgbCode(expected)));
             ++compared;
         }
@@ -858,10 +860,11 @@ TEST_F(ShadeSphere, GouraudDiffersFromLambertOnACoarseSphereOnly) {
     std::printf("  gouraud vs lambert: largest difference %d codes on 8 x 6 segments, %d on 512 x 256\n", coarse, fine);
 }
 
-TEST_F(ShadeSphere, LambertMatchesItsFormula) {
+TEST_F(ShadeSphere, LambertMatchesItsFormulaPerChannelOfTheAmbientLight) {
     const glm::vec4 base(0.9f, 0.6f, 0.3f, 1.0f);
     useSphere(512, 256, base);
     setLight({-0.4, 0.6, 0.7});
+    frame.ambientLight = glm::vec3(0.3f, 0.15f, 0.05f); // --ambient: each channel its own ambient term
     const glm::dvec3 l = lightView();
     const ShadeSettings settings = settingsFor(ShadingModel::Lambert);
     const cv::Mat image = render(settings);
@@ -879,10 +882,11 @@ TEST_F(ShadeSphere, LambertMatchesItsFormula) {
                 continue;
             }
             if (!hit || kSphere.pixelsFromSilhouette(col, row) <= 1.5) continue;
-            const double diffuse =
-                settings.ambient + (1.0 - settings.ambient) * std::max(glm::dot(hit->normal, l), 0.0);
-            for (int c = 0; c < 3; ++c)
+            for (int c = 0; c < 3; ++c) {
+                const double ambient = frame.ambientLight[c];
+                const double diffuse = ambient + (1.0 - ambient) * std::max(glm::dot(hit->normal, l), 0.0);
                 largestError = std::max(largestError, std::abs(int(pixel[c]) - srgbCode(double(base[c]) * diffuse)));
+            }
             ++compared;
         }
     }

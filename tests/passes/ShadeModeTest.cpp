@@ -276,7 +276,8 @@ TEST(ShadingModelTraits, TheShadePassWorkOfAModelHasTheTraitsItBuildsOn) {
     EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::constantView), "comic");
     EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::orientationSets), "comic");
     EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::specularRowBands), "comic");
-    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::materialOutlines), "mtoon");
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::materialOutlines), "mtoon and auto");
+    EXPECT_EQ(shadingModelsWith(&ShadingModelTraits::ambient), "flat, gouraud, lambert, phong, mtoon and auto");
 }
 
 } // namespace

@@ -203,8 +203,9 @@ struct Color {
     double a = 1.0;
 };
 
-/** `--shading`: how surfaces are shaded (docs/shading.md). */
-enum class Shading { None, Flat, Gouraud, Lambert, Phong, Cel, Comic, MToon };
+/** `--shading`: how surfaces are shaded (docs/shading.md). Auto (the default): each material its own model, MToon
+ *  where it has one, cel elsewhere. */
+enum class Shading { None, Flat, Gouraud, Lambert, Phong, Cel, Comic, MToon, Auto };
 /** The line types, in the order the composite draws them (`--lines`; docs/lines.md). */
 enum class LineType {
     Outline,
@@ -293,6 +294,10 @@ public:
     Look& setFrontRule(int rule);
     std::optional<Vec3> light() const; ///< world direction toward the light; unset: the file's, else a key light
     Look& setLight(const Vec3& towardLight);
+    /** --ambient: the uniform ambient light, linear RGB (alpha 1); unset: the shading model's default (0.15 for
+     *  flat to phong, 0.05 for mtoon and auto). */
+    std::optional<Color> ambient() const;
+    Look& setAmbient(const Color& linearRgb);
     Color paper() const; ///< --background (alpha is 1)
     Look& setPaper(const Color& color);
     int supersample() const; ///< 1 to 8

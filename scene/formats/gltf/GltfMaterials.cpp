@@ -298,6 +298,9 @@ struct GltfMaterials::Reader {
         result.doubleSided = source.doubleSided;
         result.shadeMapPath = materialShadeMap(materialIndex);
         result.mtoon = vrmMaterial(materialIndex, result);
+        // VRM exporters (UniVRM, VRoid, the Blender add-on) write KHR_materials_unlit beside MToon as the fallback of
+        // viewers without MToon: not a request for unlit shading, so every look lights such a material.
+        if (result.mtoon) result.unlit = false;
         cached = std::move(result);
         return *cached;
     }
