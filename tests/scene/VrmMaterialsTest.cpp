@@ -123,6 +123,31 @@ TEST(VrmMaterials, Vrm10ReadsEveryParameter) {
     EXPECT_TRUE(scene.report.warnings.empty()) << scene.report.warnings.front();
 }
 
+TEST(VrmMaterials, Vrm0EmissionIsTheSrgbDecodedPropertyOverTheGltfFactor) {
+    // _EmissionColor is a gamma-space Unity colour like the others: sRGB 0.5 is linear 0.214, taken over the glTF
+    // emissiveFactor (which UniVRM 0.106/0.107 wrote unconverted, drawing code 188 where 128 was meant); _EmissionMap
+    // is placed by _MainTex. An entry without them keeps the glTF material's.
+    const Scene scene =
+        loadVrm({R"({"name": "Glow", "emissiveFactor": [0.5, 0.5, 0.5]})",
+                 R"({"name": "Kept", "emissiveFactor": [0.25, 0.5, 1], "emissiveTexture": {"index": 2}})"},
+                vrm0(R"({"name": "Glow", "shader": "VRM/MToon",
+        "vectorProperties": {"_EmissionColor": [0.5, 0.5, 0.5, 1], "_MainTex": [0.5, 0, 2, 1]},
+        "textureProperties": {"_EmissionMap": 0}},
+        {"name": "Kept", "shader": "VRM/MToon"})"));
+    const Material& glow = materialNamed(scene, "Glow");
+    const float half = 0.2140411f;
+    expectVec3Near(glow.emissiveFactor, {half, half, half});
+    EXPECT_EQ(glow.emissiveTexture.image, 0);
+    glm::mat3 mainTex(1.0f);
+    mainTex[0][0] = 2.0f;
+    mainTex[2][0] = 0.5f;
+    EXPECT_EQ(glow.emissiveTexture.transform, mainTex);
+    const Material& kept = materialNamed(scene, "Kept");
+    EXPECT_EQ(kept.emissiveFactor, glm::vec3(0.25f, 0.5f, 1.0f));
+    EXPECT_EQ(kept.emissiveTexture.image, 2);
+    EXPECT_TRUE(scene.report.warnings.empty()) << scene.report.warnings.front();
+}
+
 TEST(VrmMaterials, Vrm10DefaultsAreTheSpecifications) {
     const Scene scene =
         loadVrm({R"({"name": "Plain", "extensions": {"VRMC_materials_mtoon": {"specVersion": "1.0"}}})"});

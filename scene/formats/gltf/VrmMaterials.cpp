@@ -445,6 +445,13 @@ MToonMaterial readMToon0(const tinygltf::Value& entry, Material& material, Prope
     mtoon.outlineLightingMixFactor =
         colorMode == 1.0f ? read.number(floats, "_OutlineLightingMix", 1.0f, f, kUnitRange) : 0.0f;
     checkOutlineWidth(mtoon, read);
+
+    // Emission as the other 0.x colours: a Unity colour in gamma space (UniVRM, three-vrm). UniVRM 0.106 and 0.107
+    // wrote the glTF emissiveFactor without converting it, so the property is taken over the glTF material's.
+    if (const auto emission = read.colour(vectors, "_EmissionColor", 3, 4, v))
+        material.emissiveFactor = linearFromV0(*emission);
+    if (const TextureRef map = read.textureProperty(textures, "_EmissionMap", t); map.present())
+        material.emissiveTexture = withTransform(map, transform, "_EmissionMap", read);
     std::vector<std::string> undrawn;
     for (const char* key : {"_SphereAdd", "_RimTexture"})
         if (hasKey(textures, key)) undrawn.push_back(key);
