@@ -429,7 +429,8 @@ MToonMaterial readMToon0(const tinygltf::Value& entry, Material& material, Prope
     } else if (widthMode == 2.0f) {
         // The 0.x shader moves a vertex 0.01 * width * w in clip space, i.e. width percent of half the screen height
         // (NDC spans 2); 1.0's factor is a share of the whole height, so 0.005 keeps the drawn width. UniVRM's
-        // MigrationMToon and three-vrm use 0.01, doubling it (docs/mtoon.md).
+        // MigrationMToon uses 0.01, doubling it under its 1.0 shader; three-vrm also uses 0.01 but draws 1.0's
+        // factor as a share of half the height, so its 0.x widths agree with these (docs/mtoon.md).
         mtoon.outlineWidthMode = MToonMaterial::OutlineWidthMode::ScreenCoordinates;
         mtoon.outlineWidthFactor = width * 0.005f;
     } else if (widthMode != 0.0f) {
