@@ -12,6 +12,9 @@ void setViewUniforms(const GlProgram& program, const FrameParams& frame) {
     glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
     glUniformMatrix3fv(program.uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
     glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
+    // Model space is world space moved to worldOrigin: the view's rotation is the world's.
+    const glm::mat3 worldFromView = glm::inverse(glm::mat3(viewFromModel));
+    glUniformMatrix3fv(program.uniform("worldFromView"), 1, GL_FALSE, glm::value_ptr(worldFromView));
 }
 
 } // namespace inkgraph

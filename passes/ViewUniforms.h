@@ -9,7 +9,8 @@
 namespace inkgraph {
 
 /** Sets `program`'s (in use) viewFromModel, viewNormalFromModel (the inverse transpose of its 3x3) and clipFromView
- *  from `frame`. */
+ *  from `frame`; also, where the program has it, worldFromView (the view's rotation undone: MToon's matcap works in
+ *  world directions). */
 void setViewUniforms(const GlProgram& program, const FrameParams& frame);
 
 } // namespace inkgraph

@@ -59,7 +59,14 @@ struct MToonMaterial {
     float parametricRimFresnelPowerFactor = 5.0f;
     float parametricRimLiftFactor = 0.0f;
     float rimLightingMixFactor = 1.0f; ///< how much the rim takes the surface's lighting (0: like emission)
-    glm::vec3 matcapFactor{1.0f};      ///< unused by inkgraph (no matcap), kept for --stats
+    /** R channel (linear data) times `shadingShiftTextureScale`, added to the shading shift per pixel. */
+    TextureRef shadingShiftTexture;
+    float shadingShiftTextureScale = 1.0f; ///< shadingShiftTexture.scale
+    glm::vec3 matcapFactor{1.0f};          ///< linear; times the matcap texture
+    /** sRGB image sampled by the view-space normal (the specification's matcap uv), added to the rim; none: no matcap
+     *  (the factor alone adds nothing). */
+    TextureRef matcapTexture;
+    TextureRef rimMultiplyTexture; ///< sRGB image; multiplies the rim (matcap + parametric rim)
     enum class OutlineWidthMode { None, WorldCoordinates, ScreenCoordinates };
     OutlineWidthMode outlineWidthMode = OutlineWidthMode::None;
     /** World: metres (model units); screen: a share of the screen height. */
@@ -78,6 +85,9 @@ struct Material {
     TextureRef baseColorTexture;                       ///< sRGB image, times baseColorFactor
     glm::vec3 emissiveFactor{0.0f};                    ///< linear, added after lighting
     TextureRef emissiveTexture;                        ///< sRGB image, times emissiveFactor
+    /** glTF's tangent-space normal map (linear data, xyz = 2 rgb - 1); drawn by MToon materials only. */
+    TextureRef normalTexture;
+    float normalScale = 1.0f; ///< normalTexture.scale: multiplies the map's x and y
     /** KHR_materials_unlit: the base colour as is. False for a material with MToon, whose unlit flag is the VRM
      *  exporters' fallback for viewers without MToon (the glTF reader clears it). */
     bool unlit = false;

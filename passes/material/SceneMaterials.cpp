@@ -231,6 +231,20 @@ void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex, Mater
     glUniform1f(program.uniform("mtoonRimLightingMixFactor"), mtoon.rimLightingMixFactor);
     if (colour && program.uniform("mtoonShadeMultiplyTextured") >= 0)
         bindTexture(*this, program, mtoon.shadeMultiplyTexture, kShadeMultiplyTextureUnit, "mtoonShadeMultiply");
+    glUniform1f(program.uniform("mtoonShadingShiftTextureScale"), mtoon.shadingShiftTextureScale);
+    glUniform3fv(program.uniform("mtoonMatcapFactor"), 1, glm::value_ptr(mtoon.matcapFactor));
+    if (colour && program.uniform("mtoonShadingShiftTextured") >= 0)
+        bindTexture(*this, program, mtoon.shadingShiftTexture, kShadingShiftTextureUnit, "mtoonShadingShift",
+                    /*srgb=*/false);
+    if (colour && program.uniform("mtoonMatcapTextured") >= 0)
+        bindTexture(*this, program, mtoon.matcapTexture, kMatcapTextureUnit, "mtoonMatcap");
+    if (colour && program.uniform("mtoonRimMultiplyTextured") >= 0)
+        bindTexture(*this, program, mtoon.rimMultiplyTexture, kRimMultiplyTextureUnit, "mtoonRimMultiply");
+    // Only MToon draws normal maps (docs/mtoon.md).
+    glUniform1f(program.uniform("materialNormalScale"), material.normalScale);
+    if (colour && program.uniform("materialNormalTextured") >= 0)
+        bindTexture(*this, program, material.mtoon ? material.normalTexture : TextureRef{}, kNormalTextureUnit,
+                    "materialNormal", /*srgb=*/false);
     if (program.uniform("mtoonOutlineMode") >= 0) {
         const int mode = mtoon.outlineWidthMode == MToonMaterial::OutlineWidthMode::WorldCoordinates    ? 1
                          : mtoon.outlineWidthMode == MToonMaterial::OutlineWidthMode::ScreenCoordinates ? 2

@@ -22,6 +22,10 @@ inline constexpr GLuint kBaseColorTextureUnit = 1;
 inline constexpr GLuint kEmissiveTextureUnit = 2;
 inline constexpr GLuint kShadeMultiplyTextureUnit = 3;
 inline constexpr GLuint kOutlineWidthTextureUnit = 4;
+inline constexpr GLuint kMatcapTextureUnit = 7;
+inline constexpr GLuint kRimMultiplyTextureUnit = 8;
+inline constexpr GLuint kShadingShiftTextureUnit = 9;
+inline constexpr GLuint kNormalTextureUnit = 10;
 
 /** Vertex attribute locations of the material snippet (positions and normals are 0 and 1). */
 inline constexpr GLuint kTexcoord0Location = 2;

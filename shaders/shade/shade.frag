@@ -174,11 +174,11 @@ void main() {
 #endif
 #endif
 #elif defined(MODEL_MTOON)
-    rgb = mtoonColor(base, shadingNormal(), l, towardEye());
+    rgb = mtoonColor(base, mtoonShadingNormal(shadingNormal(), viewPosition), l, towardEye());
 #elif defined(MODEL_AUTO)
     // Each material its own model: its MToon where it has one, else cel's band (as MODEL_CEL).
     if (mtoonPresent != 0)
-        rgb = mtoonColor(base, shadingNormal(), l, towardEye());
+        rgb = mtoonColor(base, mtoonShadingNormal(shadingNormal(), viewPosition), l, towardEye());
     else
         rgb = shadeMapColor(vec2(halfLambert(shadingNormal(), l), 0.0)) * base;
 #else

@@ -2,8 +2,9 @@
 // colours, KHR_texture_transform picking one texel, vertex colours interpolated in linear light, emissive and unlit,
 // an alpha-masked disc whose G-buffer coverage follows the mask to within a pixel (and whose mesh edges are cut
 // with it), a blended quad over an opaque one (the blend in the shading, the G-buffer seeing through), single- and
-// double-sided faces seen from behind, MToon's band (linearstep of n.l + shift) on a sphere against ray casting, and
-// textures decoded only when a pass samples them. Needs a GL context (llvmpipe in CI).
+// double-sided faces seen from behind, MToon's band (linearstep of n.l + shift) on a sphere against ray casting,
+// MToon's shading shift texture, matcap, rim multiply texture, normal map, UV animation and outline width texture
+// against their closed forms, and textures decoded only when a pass samples them. Needs a GL context (llvmpipe in CI).
 #include "graph/GraphCompiler.h"
 #include "passes/StillGraph.h"
 #include "passes/lines/LineLayerPass.h"
@@ -532,6 +533,184 @@ TEST_F(MaterialPasses, MToonScreenOutlineIsItsShareOfTheScreenHeight) {
     EXPECT_EQ(outside, samples) << "nothing beyond the ring's width";
     // The surface itself is not covered by its outline: the centre is the lit white.
     expectColor(at(color, cv::Point(kSize / 2, kSize / 2)), {255, 255, 255}, 255, 1, "centre");
+}
+
+/** A row of `texels` (RGBA) as an image one texel high. */
+cv::Mat texelRow(const std::vector<cv::Vec4b>& texels) {
+    cv::Mat row(1, int(texels.size()), CV_8UC4);
+    for (std::size_t i = 0; i < texels.size(); ++i) row.at<cv::Vec4b>(0, int(i)) = texels[i];
+    return row;
+}
+
+/** The pixel that sees the point of square(1, 0) at texture coordinates (u, v). */
+cv::Point pixelOfUv(double u, double v) {
+    const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
+    const double scale = focal / kDistance;
+    return {int(std::floor(kSize / 2.0 + (2.0 * u - 1.0) * scale)),
+            int(std::floor(kSize / 2.0 - (1.0 - 2.0 * v) * scale))};
+}
+
+void expectLinear(const cv::Vec4b& actual, glm::dvec3 expected, double tolerance, const std::string& where) {
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(linearOf(actual[c]), expected[c], tolerance)
+            << where << " channel " << c << " code " << int(actual[c]);
+}
+
+TEST_F(MaterialPasses, MToonShadingShiftTextureAddsItsRedChannelTimesTheScale) {
+    // n.l = 0 (light along the square), toony 0.5: the band is linearstep(-0.5, 0.5, shift + R x scale) with R read as
+    // linear data (code 128 is 0.502, not sRGB's 0.216); the green and blue channels are not read.
+    Mesh mesh = square(1.0f, 0.0f);
+    mesh.material.baseColorFactor = glm::vec4(0.9f, 0.8f, 0.7f, 1.0f);
+    MToonMaterial mtoon;
+    mtoon.shadeColorFactor = glm::vec3(0.1f, 0.2f, 0.3f);
+    mtoon.shadingToonyFactor = 0.5f;
+    mtoon.shadingShiftFactor = -0.1f;
+    mtoon.shadingShiftTexture = nearestTexture(0);
+    mtoon.shadingShiftTextureScale = 0.5f;
+    mesh.material.mtoon = mtoon;
+    Scene built = makeScene(std::move(mesh));
+    built.images.push_back(pngImage(texelRow({{128, 255, 255, 255}, {0, 255, 255, 255}}), "shift"));
+    useScene(std::move(built));
+    frame.ambientLight = glm::vec3(0.0f); // the feature alone, without the global illumination term
+    frame.towardLightWorld = glm::dvec3(1.0, 0.0, 0.0);
+    const cv::Mat color = shade(ShadingModel::MToon);
+    const glm::dvec3 shadeColor(0.1, 0.2, 0.3), lit(0.9, 0.8, 0.7);
+    for (const auto& [u, red] : std::vector<std::pair<double, double>>{{0.25, 128.0 / 255.0}, {0.75, 0.0}}) {
+        const double shading = std::clamp(-0.1 + red * 0.5 + 0.5, 0.0, 1.0);
+        expectLinear(at(color, pixelOfUv(u, 0.5)), glm::mix(shadeColor, lit, shading), 0.006, "u " + std::to_string(u));
+    }
+}
+
+TEST_F(MaterialPasses, MToonRimMultiplyTextureMultipliesTheMatcapAndTheParametricRim) {
+    // Lift 1 makes the parametric rim its colour everywhere (saturate(1 - n.v + 1) = 1); a one-texel matcap adds its
+    // sRGB-decoded colour times the factor; the rim multiply texture (sRGB) scales the sum; all on the lit colour.
+    Mesh mesh = square(1.0f, 0.0f);
+    mesh.material.baseColorFactor = glm::vec4(0.1f, 0.1f, 0.1f, 1.0f);
+    MToonMaterial mtoon;
+    mtoon.parametricRimColorFactor = glm::vec3(0.25f, 0.0f, 0.0f);
+    mtoon.parametricRimLiftFactor = 1.0f;
+    mtoon.matcapTexture = nearestTexture(0);
+    mtoon.matcapFactor = glm::vec3(1.0f, 0.5f, 1.0f);
+    mtoon.rimMultiplyTexture = nearestTexture(1);
+    mesh.material.mtoon = mtoon;
+    Scene built = makeScene(std::move(mesh));
+    built.images.push_back(pngImage(texelRow({{0, 188, 128, 255}}), "matcap"));
+    built.images.push_back(pngImage(texelRow({{255, 255, 0, 255}, {128, 0, 255, 255}}), "rim multiply"));
+    useScene(std::move(built));
+    frame.ambientLight = glm::vec3(0.0f); // the feature alone, without the global illumination term
+    const cv::Mat color = shade(ShadingModel::MToon);
+    const glm::dvec3 rim =
+        glm::dvec3(0.25, 0.0, 0.0) + glm::dvec3(1.0, 0.5, 1.0) * glm::dvec3(0.0, linearOf(188), linearOf(128));
+    expectLinear(at(color, pixelOfUv(0.25, 0.5)), glm::dvec3(0.1) + rim * glm::dvec3(1.0, 1.0, 0.0), 0.006, "left");
+    expectLinear(at(color, pixelOfUv(0.75, 0.5)), glm::dvec3(0.1) + rim * glm::dvec3(linearOf(128), 0.0, 1.0), 0.006,
+                 "right");
+}
+
+TEST_F(MaterialPasses, MToonMatcapIsReadAtTheSpecificationsUvWithTheImageTopUp) {
+    // A sphere, black but for its matcap: each pixel shows the quadrant of a 2x2 matcap that the specification's uv
+    // (x = dot(normalize(v.z, 0, -v.x), n), y = dot(v x that, n), times 0.495, plus 0.5) falls in, with a normal
+    // facing up reading the image's top row.
+    Mesh sphere = makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 256, 128);
+    sphere.material.baseColorFactor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    MToonMaterial mtoon;
+    mtoon.matcapTexture = nearestTexture(0);
+    mtoon.matcapFactor = glm::vec3(1.0f, 0.5f, 1.0f);
+    sphere.material.mtoon = mtoon;
+    cv::Mat matcap(2, 2, CV_8UC4);
+    matcap.at<cv::Vec4b>(0, 0) = {255, 0, 0, 255};     // top left: red
+    matcap.at<cv::Vec4b>(0, 1) = {0, 255, 0, 255};     // top right: green
+    matcap.at<cv::Vec4b>(1, 0) = {0, 0, 255, 255};     // bottom left: blue
+    matcap.at<cv::Vec4b>(1, 1) = {255, 255, 255, 255}; // bottom right: white
+    Scene built = makeScene(std::move(sphere));
+    built.images.push_back(pngImage(matcap, "matcap"));
+    useScene(std::move(built));
+    frame.ambientLight = glm::vec3(0.0f); // the feature alone, without the global illumination term
+    const cv::Mat color = shade(ShadingModel::MToon);
+    const test::AnalyticSphereView view{kSize, 1.0, kDistance, kFovDegrees};
+    const glm::dvec3 quadrants[2][2] = {{{1, 0, 0}, {0, 1, 0}}, {{0, 0, 1}, {1, 1, 1}}}; // [row from top][column]
+    int compared = 0;
+    for (int row = 0; row < kSize; row += 2) {
+        for (int col = 0; col < kSize; col += 2) {
+            const std::optional<test::SphereHit> hit = view.castPixel(col, row);
+            if (!hit || glm::dot(hit->normal, hit->towardEye) < 0.2) continue;
+            const glm::dvec3 v = hit->towardEye; // the camera only translates: view = world directions
+            const glm::dvec3 across = glm::normalize(glm::dvec3(v.z, 0.0, -v.x));
+            const glm::dvec3 up = glm::cross(v, across);
+            const double x = glm::dot(across, hit->normal), y = glm::dot(up, hit->normal);
+            if (std::abs(x) < 0.05 || std::abs(y) < 0.05) continue; // a quadrant's border: the mesh's normal decides
+            const glm::dvec3 expected = quadrants[y > 0.0 ? 0 : 1][x > 0.0 ? 1 : 0] * glm::dvec3(1.0, 0.5, 1.0);
+            expectLinear(color.at<cv::Vec4b>(row, col), expected, 0.006,
+                         "pixel " + std::to_string(col) + ", " + std::to_string(row));
+            ++compared;
+        }
+    }
+    EXPECT_GT(compared, 500);
+}
+
+TEST_F(MaterialPasses, MToonNormalMapBendsTheNormalInTheSurfacesUvFrame) {
+    // A square (u along +x, v down the picture) whose normal map holds a texel bent toward +u on the left and one bent
+    // up the image (glTF's +y, against v) on the right; toony 0 makes the band linear, (n.l + 1) / 2 from shade black
+    // to lit white, so each half shows the bent normal's n.l for the light (0.6, 0.8, 0). The scale halves x and y.
+    for (const float scale : {1.0f, 0.5f}) {
+        Mesh mesh = square(1.0f, 0.0f);
+        mesh.material.baseColorFactor = glm::vec4(1.0f);
+        mesh.material.normalTexture = nearestTexture(0);
+        mesh.material.normalScale = scale;
+        MToonMaterial mtoon;
+        mtoon.shadingToonyFactor = 0.0f;
+        mesh.material.mtoon = mtoon;
+        Scene built = makeScene(std::move(mesh));
+        const cv::Vec4b towardU(204, 128, 230, 255), upTheImage(128, 230, 204, 255);
+        built.images.push_back(pngImage(texelRow({towardU, upTheImage}), "normals"));
+        useScene(std::move(built));
+        frame.ambientLight = glm::vec3(0.0f); // the feature alone, without the global illumination term
+        const glm::dvec3 light(0.6, 0.8, 0.0);
+        frame.towardLightWorld = light;
+        const cv::Mat color = shade(ShadingModel::MToon);
+        for (const auto& [u, texel] : std::vector<std::pair<double, cv::Vec4b>>{{0.25, towardU}, {0.75, upTheImage}}) {
+            const glm::dvec3 tangentSpace = glm::dvec3(texel[0], texel[1], texel[2]) * (2.0 / 255.0) - 1.0;
+            const glm::dvec3 bent =
+                glm::normalize(glm::dvec3(tangentSpace.x * scale, tangentSpace.y * scale, tangentSpace.z));
+            const double shading = (glm::dot(bent, light) + 1.0) / 2.0;
+            expectLinear(at(color, pixelOfUv(u, 0.5)), glm::dvec3(shading), 0.006,
+                         "scale " + std::to_string(scale) + " u " + std::to_string(u));
+        }
+    }
+}
+
+TEST_F(MaterialPasses, MToonOutlineWidthTextureScalesTheWidthByItsGreenChannel) {
+    // The screen outline of MToonScreenOutlineIsItsShareOfTheScreenHeight with a width texture of green 128 (read as
+    // linear data, 0.502) and red 255: the ring is half as wide; red would leave it whole.
+    Mesh sphere = makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 256, 128);
+    sphere.material.baseColorFactor = glm::vec4(1.0f);
+    MToonMaterial mtoon;
+    mtoon.shadeColorFactor = glm::vec3(1.0f);
+    mtoon.outlineWidthMode = MToonMaterial::OutlineWidthMode::ScreenCoordinates;
+    mtoon.outlineWidthFactor = 0.06f; // 7.68 pixels of 128 at full width
+    mtoon.outlineWidthMultiplyTexture = nearestTexture(0);
+    mtoon.outlineColorFactor = glm::vec3(0.0f, 0.0f, 1.0f);
+    mtoon.outlineLightingMixFactor = 0.0f;
+    sphere.material.mtoon = mtoon;
+    Scene built = makeScene(std::move(sphere));
+    built.images.push_back(pngImage(texelRow({{255, 128, 0, 255}}), "width"));
+    useScene(std::move(built));
+    const cv::Mat color = shade(ShadingModel::MToon);
+    const double focal = (kSize / 2.0) / std::tan(glm::radians(kFovDegrees) / 2.0);
+    const double silhouette = focal * std::tan(std::asin(1.0 / kDistance));
+    const double width = 0.06 * kSize * 128.0 / 255.0;
+    int inRing = 0, outside = 0;
+    const int samples = 64;
+    for (int step = 0; step < samples; ++step) {
+        const double angle = step * 2.0 * 3.14159265358979 / samples;
+        auto pixelAtRadius = [&](double radius) {
+            return cv::Point(int(std::floor(kSize / 2.0 + radius * std::cos(angle))),
+                             int(std::floor(kSize / 2.0 - radius * std::sin(angle))));
+        };
+        if (at(color, pixelAtRadius(silhouette + width / 2.0)) == cv::Vec4b(0, 0, 255, 255)) ++inRing;
+        if (at(color, pixelAtRadius(silhouette + width + 1.5))[3] == 0) ++outside;
+    }
+    EXPECT_EQ(inRing, samples) << "the outline colour halfway across the narrowed ring";
+    EXPECT_EQ(outside, samples) << "nothing beyond the narrowed ring, where the whole width would still draw";
 }
 
 TEST_F(MaterialPasses, TexturesAreDecodedOnlyWhenAPassSamplesThem) {

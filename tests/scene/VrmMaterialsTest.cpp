@@ -98,7 +98,11 @@ TEST(VrmMaterials, Vrm10ReadsEveryParameter) {
         "outlineWidthFactor": 0.002,
         "outlineWidthMultiplyTexture": {"index": 2},
         "outlineColorFactor": [0.9, 0.8, 0.7],
-        "outlineLightingMixFactor": 0.6}}})"},
+        "outlineLightingMixFactor": 0.6,
+        "shadingShiftTexture": {"index": 0, "scale": -0.5},
+        "matcapTexture": {"index": 1},
+        "rimMultiplyTexture": {"index": 2, "texCoord": 1}}},
+        "normalTexture": {"index": 0, "scale": 0.75}})"},
                                 "\"extensionsUsed\": [\"VRMC_vrm\", \"VRMC_materials_mtoon\"], ");
     const Material& material = materialNamed(scene, "Skin");
     ASSERT_TRUE(material.mtoon.has_value());
@@ -120,7 +124,27 @@ TEST(VrmMaterials, Vrm10ReadsEveryParameter) {
     EXPECT_EQ(mtoon.outlineWidthMultiplyTexture.texCoord, 0);
     EXPECT_EQ(mtoon.outlineColorFactor, glm::vec3(0.9f, 0.8f, 0.7f));
     EXPECT_FLOAT_EQ(mtoon.outlineLightingMixFactor, 0.6f);
+    EXPECT_EQ(mtoon.shadingShiftTexture.image, 0);
+    EXPECT_FLOAT_EQ(mtoon.shadingShiftTextureScale, -0.5f);
+    EXPECT_EQ(mtoon.matcapTexture.image, 1);
+    EXPECT_EQ(mtoon.rimMultiplyTexture.image, 2);
+    EXPECT_EQ(mtoon.rimMultiplyTexture.texCoord, 1);
+    // glTF's own normal map, which MToon uses.
+    EXPECT_EQ(material.normalTexture.image, 0);
+    EXPECT_FLOAT_EQ(material.normalScale, 0.75f);
     EXPECT_TRUE(scene.report.warnings.empty()) << scene.report.warnings.front();
+}
+
+TEST(VrmMaterials, Vrm10ShadingShiftTextureScaleDefaultsToOne) {
+    const Scene scene = loadVrm({R"({"name": "Shifted", "normalTexture": {"index": 1},
+        "extensions": {"VRMC_materials_mtoon": {"specVersion": "1.0", "shadingShiftTexture": {"index": 2}}}})",
+                                 R"({"name": "Plain", "normalTexture": {"index": 1}})"});
+    const Material& shifted = materialNamed(scene, "Shifted");
+    EXPECT_EQ(shifted.mtoon->shadingShiftTexture.image, 2);
+    EXPECT_EQ(shifted.mtoon->shadingShiftTextureScale, 1.0f);
+    EXPECT_EQ(shifted.normalTexture.image, 1);
+    EXPECT_EQ(shifted.normalScale, 1.0f);
+    EXPECT_FALSE(materialNamed(scene, "Plain").normalTexture.present()) << "only MToon draws normal maps";
 }
 
 TEST(VrmMaterials, Vrm0EmissionIsTheSrgbDecodedPropertyOverTheGltfFactor) {
@@ -145,6 +169,34 @@ TEST(VrmMaterials, Vrm0EmissionIsTheSrgbDecodedPropertyOverTheGltfFactor) {
     const Material& kept = materialNamed(scene, "Kept");
     EXPECT_EQ(kept.emissiveFactor, glm::vec3(0.25f, 0.5f, 1.0f));
     EXPECT_EQ(kept.emissiveTexture.image, 2);
+    EXPECT_TRUE(scene.report.warnings.empty()) << scene.report.warnings.front();
+}
+
+TEST(VrmMaterials, Vrm0SphereRimAndBumpMapsAreRead) {
+    // The sphere map is 1.0's matcap at factor 1, placed by the normal (not by _MainTex); the rim texture multiplies
+    // the rim and the bump map is the normal map, both placed by _MainTex; an entry without a bump map keeps the glTF
+    // material's normal map.
+    const Scene scene = loadVrm({R"({"name": "Shiny"})", R"({"name": "Kept", "normalTexture": {"index": 0}})"},
+                                vrm0(R"({"name": "Shiny", "shader": "VRM/MToon",
+        "floatProperties": {"_BumpScale": 0.5},
+        "vectorProperties": {"_MainTex": [0.5, 0, 2, 1]},
+        "textureProperties": {"_SphereAdd": 1, "_RimTexture": 2, "_BumpMap": 1}},
+        {"name": "Kept", "shader": "VRM/MToon"})"));
+    const Material& shiny = materialNamed(scene, "Shiny");
+    glm::mat3 mainTex(1.0f);
+    mainTex[0][0] = 2.0f;
+    mainTex[2][0] = 0.5f;
+    EXPECT_EQ(shiny.mtoon->matcapTexture.image, 1);
+    EXPECT_EQ(shiny.mtoon->matcapTexture.transform, glm::mat3(1.0f)) << "the normal places the sphere map";
+    EXPECT_EQ(shiny.mtoon->matcapFactor, glm::vec3(1.0f));
+    EXPECT_EQ(shiny.mtoon->rimMultiplyTexture.image, 2);
+    EXPECT_EQ(shiny.mtoon->rimMultiplyTexture.transform, mainTex);
+    EXPECT_EQ(shiny.normalTexture.image, 1);
+    EXPECT_EQ(shiny.normalTexture.transform, mainTex);
+    EXPECT_FLOAT_EQ(shiny.normalScale, 0.5f);
+    const Material& kept = materialNamed(scene, "Kept");
+    EXPECT_EQ(kept.normalTexture.image, 0);
+    EXPECT_FLOAT_EQ(kept.normalScale, 1.0f);
     EXPECT_TRUE(scene.report.warnings.empty()) << scene.report.warnings.front();
 }
 
@@ -280,7 +332,7 @@ TEST(VrmMaterials, Vrm0MapsEveryProperty) {
 
 TEST(VrmMaterials, OutlandishOutlineWidthsAndUndrawnFeaturesAreSaid) {
     // A 0.x width of 1e30 "percent": drawn as written but said; a world width beyond the renderer's range: dropped and
-    // said; matcap and UV animation: read, not drawn, and said once per material.
+    // said; 0.x's UV animation: read, not drawn, and said once per material.
     const auto entry = [](const std::string& name, const std::string& floats, const std::string& textures) {
         return "{\"name\": \"" + name + "\", \"shader\": \"VRM/MToon\", \"floatProperties\": {" + floats +
                "}, \"textureProperties\": {" + textures + "}}";
@@ -295,7 +347,7 @@ TEST(VrmMaterials, OutlandishOutlineWidthsAndUndrawnFeaturesAreSaid) {
     EXPECT_EQ(materialNamed(scene, "Wide").mtoon->outlineWidthMode, OutlineWidthMode::ScreenCoordinates);
     EXPECT_NE(warnings.find("more than the renderer can place; no outline"), std::string::npos) << warnings;
     EXPECT_EQ(materialNamed(scene, "Far").mtoon->outlineWidthMode, OutlineWidthMode::None);
-    EXPECT_NE(warnings.find("MToon's _SphereAdd and _UvAnimScrollX are not drawn"), std::string::npos) << warnings;
+    EXPECT_NE(warnings.find("MToon's _UvAnimScrollX is not drawn"), std::string::npos) << warnings;
 }
 
 TEST(VrmMaterials, Vrm0OutlineWidthModesAndColourModes) {

@@ -301,6 +301,16 @@ struct GltfMaterials::Reader {
         // VRM exporters (UniVRM, VRoid, the Blender add-on) write KHR_materials_unlit beside MToon as the fallback of
         // viewers without MToon: not a request for unlit shading, so every look lights such a material.
         if (result.mtoon) result.unlit = false;
+        // Only MToon draws normal maps (docs/mtoon.md); a VRM 0.x material's _BumpMap, read above, comes first.
+        if (result.mtoon && !result.normalTexture.present() && source.normalTexture.index != -1) {
+            tinygltf::TextureInfo normalInfo;
+            normalInfo.index = source.normalTexture.index;
+            normalInfo.texCoord = source.normalTexture.texCoord;
+            normalInfo.extensions = source.normalTexture.extensions;
+            result.normalTexture = readTextureRef(normalInfo, label + " normalTexture");
+            result.normalScale =
+                shaderValue(source.normalTexture.scale, kSignedRange, label + " normalTexture.scale", mWarnings, label);
+        }
         cached = std::move(result);
         return *cached;
     }

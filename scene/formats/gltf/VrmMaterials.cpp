@@ -223,11 +223,6 @@ bool nonZeroNumber(const tinygltf::Value* object, const char* key) {
     return value.IsNumber() && value.GetNumberAsDouble() != 0.0;
 }
 
-/** Whether `object` has `key` at all. */
-bool hasKey(const tinygltf::Value* object, const char* key) {
-    return object != nullptr && object->IsObject() && object->Has(key);
-}
-
 MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read) {
     const std::string where = "VRMC_materials_mtoon";
     const tinygltf::Value* fields = &extension;
@@ -254,7 +249,14 @@ MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read
         read.number(fields, "parametricRimLiftFactor", mtoon.parametricRimLiftFactor, where, kSignedRange);
     mtoon.rimLightingMixFactor =
         read.number(fields, "rimLightingMixFactor", mtoon.rimLightingMixFactor, where, kUnitRange);
+    if (const tinygltf::Value* shift = read.object(extension, "shadingShiftTexture", where)) {
+        mtoon.shadingShiftTexture = read.textureInfo(extension, "shadingShiftTexture", where);
+        mtoon.shadingShiftTextureScale =
+            read.number(shift, "scale", mtoon.shadingShiftTextureScale, where + ".shadingShiftTexture", kSignedRange);
+    }
     mtoon.matcapFactor = read.color3(fields, "matcapFactor", mtoon.matcapFactor, where);
+    mtoon.matcapTexture = read.textureInfo(extension, "matcapTexture", where);
+    mtoon.rimMultiplyTexture = read.textureInfo(extension, "rimMultiplyTexture", where);
     if (extension.Has("outlineWidthMode")) {
         const tinygltf::Value& mode = extension.Get("outlineWidthMode");
         const std::string name = mode.IsString() ? mode.Get<std::string>() : std::string();
@@ -281,8 +283,6 @@ MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read
         read.number(fields, "outlineLightingMixFactor", mtoon.outlineLightingMixFactor, where, kUnitRange);
     checkOutlineWidth(mtoon, read);
     std::vector<std::string> undrawn;
-    for (const char* key : {"matcapTexture", "rimMultiplyTexture", "shadingShiftTexture"})
-        if (hasKey(fields, key)) undrawn.push_back(key);
     for (const char* key :
          {"uvAnimationScrollXSpeedFactor", "uvAnimationScrollYSpeedFactor", "uvAnimationRotationSpeedFactor"})
         if (nonZeroNumber(fields, key)) undrawn.push_back(key);
@@ -447,6 +447,15 @@ MToonMaterial readMToon0(const tinygltf::Value& entry, Material& material, Prope
         colorMode == 1.0f ? read.number(floats, "_OutlineLightingMix", 1.0f, f, kUnitRange) : 0.0f;
     checkOutlineWidth(mtoon, read);
 
+    // The additive sphere map is 1.0's matcap at factor 1, sampled by the normal, so without _MainTex's placement;
+    // the rim texture multiplies the rim as 1.0's does (UniVRM MigrationMToon, three-vrm).
+    mtoon.matcapTexture = read.textureProperty(textures, "_SphereAdd", t);
+    mtoon.rimMultiplyTexture =
+        withTransform(read.textureProperty(textures, "_RimTexture", t), transform, "_RimTexture", read);
+    if (const TextureRef bump = read.textureProperty(textures, "_BumpMap", t); bump.present()) {
+        material.normalTexture = withTransform(bump, transform, "_BumpMap", read);
+        material.normalScale = read.number(floats, "_BumpScale", 1.0f, f, kSignedRange);
+    }
     // Emission as the other 0.x colours: a Unity colour in gamma space (UniVRM, three-vrm). UniVRM 0.106 and 0.107
     // wrote the glTF emissiveFactor without converting it, so the property is taken over the glTF material's.
     if (const auto emission = read.colour(vectors, "_EmissionColor", 3, 4, v))
@@ -454,8 +463,6 @@ MToonMaterial readMToon0(const tinygltf::Value& entry, Material& material, Prope
     if (const TextureRef map = read.textureProperty(textures, "_EmissionMap", t); map.present())
         material.emissiveTexture = withTransform(map, transform, "_EmissionMap", read);
     std::vector<std::string> undrawn;
-    for (const char* key : {"_SphereAdd", "_RimTexture"})
-        if (hasKey(textures, key)) undrawn.push_back(key);
     for (const char* key : {"_UvAnimScrollX", "_UvAnimScrollY", "_UvAnimRotation"})
         if (nonZeroNumber(floats, key)) undrawn.push_back(key);
     warnUndrawn(undrawn, read);
