@@ -244,7 +244,9 @@ struct Renderer::Impl {
                 request.extraOutputs.end())
                 request.extraOutputs.push_back(resource);
         }
-        const bool posed = !frame.animation.empty() || frame.time.has_value();
+        // The frame's time is the UV animation's clock (FrameParams::time); it poses the scene only with an animation.
+        request.animationTime = frame.time.value_or(sceneImpl.options.time);
+        const bool posed = !frame.animation.empty();
         if (posed &&
             (frame.animation != sceneImpl.options.animation || frame.time.value_or(0.0) != sceneImpl.options.time)) {
             if (sceneImpl.path.empty())

@@ -12,6 +12,8 @@ LoadOptions loadOptionsOf(const SceneOptions& options) {
     std::vector<std::string> flags;
     if (!options.animation.empty()) flags.insert(flags.end(), {"--animation", options.animation});
     if (options.time != 0.0) flags.insert(flags.end(), {"--time", exactText(options.time)});
+    // A scene's time is its pose's (the UV animation's clock is the frame's): without an animation it poses nothing.
+    if (options.animation.empty() && options.time != 0.0) throw UsageError("--time has no effect without --animation");
     const RenderOptions pose = parseRenderFlags(flags);
     LoadOptions load;
     load.memoryLimitBytes = options.memoryLimitBytes != 0 ? options.memoryLimitBytes : defaultMemoryLimit();

@@ -394,16 +394,14 @@ std::vector<Flag> makeFlags() {
                          }));
     Flag animationTime = flag({"--time"}, "SECONDS", S::Camera,
                               "seconds into --animation (default 0); each channel holds its first or last keyframe\n"
-                              "outside its keyframe times",
+                              "outside its keyframe times. Also the clock of MToon's UV animation (--shading mtoon),\n"
+                              "with or without --animation",
                               [](const std::string& value, RenderOptions& options) {
                                   const double seconds = parseNumber("--time", value);
                                   if (seconds < 0.0)
                                       throw UsageError("--time: expected seconds >= 0, got '" + value + "'");
                                   options.animationTime = seconds;
                               });
-    animationTime.noEffect = [](const RenderOptions& options) -> std::string {
-        return options.animation.empty() ? "--time has no effect without --animation" : "";
-    };
     flags.push_back(animationTime);
     flags.push_back(flag({"--camera"}, "C", S::Camera,
                          "file (default: the glTF file's camera when it has one: its place, up and field of view;\n"

@@ -22,6 +22,10 @@ struct FrameParams {
      *  order 1 at any model scale, so they neither overflow nor underflow a float16 buffer, and a model scaled by
      *  1e-4 gives the same numbers as at scale 1. */
     double radialLengthUnit = 1.0;
+    /** The render's time in seconds (--time): the clock of MToon's UV animation, which every pass that binds a
+     *  material reads (makeSceneImport() hands it to SceneMaterials::setTime()). A posed model's animation is already
+     *  applied to the scene. */
+    double time = 0.0;
 
     /** View matrix for positions stored relative to worldOrigin, computed in double then rounded. */
     glm::mat4 viewFromModel() const;

@@ -86,6 +86,7 @@ std::unique_ptr<GpuScene> makeSceneImport(const Scene& scene, glm::dvec3 worldOr
                                           const Look& look) {
     auto gpuScene = std::make_unique<GpuScene>(scene, worldOrigin);
     gpuScene->setOrientation(frame, orientationSettingsOf(look));
+    gpuScene->materials().setTime(frame.time);
     return gpuScene;
 }
 

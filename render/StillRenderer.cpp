@@ -166,6 +166,7 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     }
     if (std::optional<Warning> outside = modelOutsideView(still.camera, scene)) warnOf(still, std::move(*outside), log);
     still.frame = frameParamsOf(look, scene, still.camera, still.sphere);
+    still.frame.time = req.animationTime; // the pose's time is the UV animation's too
     still.gpuScene = makeSceneImport(scene, still.sphere.center, still.frame, look);
     StillGraphSetup setup{look, mShaders, scene, still.sphere, *still.gpuScene, still.frame, still.shadeMap};
     setup.meshShadeMaps = still.meshShadeMaps;

@@ -67,8 +67,10 @@ struct StillRequest {
     bool loadsImageIo = false;     ///< the outputs load the OpenImageIO module (its libraries count in the budget)
     /** Keep the stroke stage's strokes (StillGraph::strokePathsResource()) for StillGraph::svgLayers() (--svg). */
     bool keepStrokePaths = false;
-    std::string animation;      ///< LoadOptions::animation: the pose to load
-    double animationTime = 0.0; ///< LoadOptions::time
+    std::string animation; ///< LoadOptions::animation: the pose to load
+    /** LoadOptions::time, and the render's time (FrameParams::time: MToon's UV animation), even without an
+     *  animation. */
+    double animationTime = 0.0;
     EglPlatform eglPlatform = EglPlatform::Any;
 };
 

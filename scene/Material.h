@@ -74,7 +74,12 @@ struct MToonMaterial {
     TextureRef outlineWidthMultiplyTexture; ///< its green channel scales the width
     glm::vec3 outlineColorFactor{0.0f};     ///< linear
     float outlineLightingMixFactor = 1.0f;  ///< how much the outline takes the surface's lighting (0: flat colour)
-    std::string specVersion;                ///< "0.x" or "1.0": where the parameters came from
+    /** B channel (linear data) scales the UV animation's speeds per texel; none: 1. */
+    TextureRef uvAnimationMaskTexture;
+    float uvAnimationScrollXSpeedFactor = 0.0f;  ///< uv units per second, +u
+    float uvAnimationScrollYSpeedFactor = 0.0f;  ///< uv units per second, +v (down the image)
+    float uvAnimationRotationSpeedFactor = 0.0f; ///< radians per second about uv (0.5, 0.5)
+    std::string specVersion;                     ///< "0.x" or "1.0": where the parameters came from
 
     bool operator==(const MToonMaterial&) const = default;
 };

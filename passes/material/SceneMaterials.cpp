@@ -245,6 +245,15 @@ void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex, Mater
     if (colour && program.uniform("materialNormalTextured") >= 0)
         bindTexture(*this, program, material.mtoon ? material.normalTexture : TextureRef{}, kNormalTextureUnit,
                     "materialNormal", /*srgb=*/false);
+    // UV animation moves every texture a pass samples, so it is set for every use; the mask is decoded only when the
+    // material animates.
+    const glm::vec3 uvAnimationSpeed(mtoon.uvAnimationScrollXSpeedFactor, mtoon.uvAnimationScrollYSpeedFactor,
+                                     mtoon.uvAnimationRotationSpeedFactor);
+    glUniform3fv(program.uniform("materialUvAnimationSpeed"), 1, glm::value_ptr(uvAnimationSpeed));
+    glUniform1f(program.uniform("frameTime"), float(mTime));
+    if (program.uniform("materialUvAnimationMaskTextured") >= 0)
+        bindTexture(*this, program, uvAnimationSpeed != glm::vec3(0.0f) ? mtoon.uvAnimationMaskTexture : TextureRef{},
+                    kUvAnimationMaskTextureUnit, "materialUvAnimationMask", /*srgb=*/false);
     if (program.uniform("mtoonOutlineMode") >= 0) {
         const int mode = mtoon.outlineWidthMode == MToonMaterial::OutlineWidthMode::WorldCoordinates    ? 1
                          : mtoon.outlineWidthMode == MToonMaterial::OutlineWidthMode::ScreenCoordinates ? 2

@@ -26,6 +26,7 @@ inline constexpr GLuint kMatcapTextureUnit = 7;
 inline constexpr GLuint kRimMultiplyTextureUnit = 8;
 inline constexpr GLuint kShadingShiftTextureUnit = 9;
 inline constexpr GLuint kNormalTextureUnit = 10;
+inline constexpr GLuint kUvAnimationMaskTextureUnit = 11;
 
 /** Vertex attribute locations of the material snippet (positions and normals are 0 and 1). */
 inline constexpr GLuint kTexcoord0Location = 2;
@@ -58,6 +59,9 @@ public:
      *  that would go beyond it is refused with a SceneError that names the image and --memory-limit. */
     void setTextureMemoryLimit(std::size_t bytes) { mTextureByteLimit = bytes; }
     std::size_t textureBytes() const { return mTextureBytes; }
+    /** The render's time in seconds (FrameParams::time), which bind() hands every program as `frameTime`: the clock
+     *  of MToon's UV animation (shaders/common/material.glsl), the same in every pass that draws the surface. */
+    void setTime(double seconds) { mTime = seconds; }
     std::size_t texturesDecoded() const { return mTextures.size(); }
 
     /** Sets the material uniforms of `program` (in use) for mesh `meshIndex` and binds the textures `use` needs,
@@ -91,6 +95,7 @@ private:
     std::string mModelPath;
     std::size_t mTextureByteLimit = std::size_t(-1);
     std::size_t mTextureBytes = 0;
+    double mTime = 0.0;
     std::vector<Warning> mWarnings;
     nlohmann::ordered_json mDownscaled = nlohmann::ordered_json::array(); ///< for --stats: name, file and GL sizes
     std::map<std::pair<int, bool>, GlHandle<TextureDeleter>> mTextures;   ///< by Scene::images index and sRGB-ness

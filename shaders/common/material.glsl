@@ -8,6 +8,32 @@ vec2 materialTransformed(vec2 uv, mat3 transform) {
     return (transform * vec3(uv, 1.0)).xy;
 }
 
+// MToon's UV animation (VRMC_materials_mtoon-1.0 "UV Animation", docs/mtoon.md): the material's speeds (u and v scroll
+// in uv units per second, rotation in radians per second about (0.5, 0.5)) times the render's time, each texel's share
+// of it the mask texture's blue channel. It moves every texture of the material but the matcap, before the texture's
+// own KHR_texture_transform, in every pass that draws the surface, so cut-outs move with the colour. Speeds of zero
+// (every material without MToon) leave the coordinates as they are.
+uniform float frameTime;                // seconds (--time): SceneMaterials::setTime()
+uniform vec3 materialUvAnimationSpeed;  // (scroll u, scroll v, rotation)
+uniform int materialUvAnimationMaskTextured;
+uniform int materialUvAnimationMaskSet;
+uniform mat3 materialUvAnimationMaskTransform;
+layout(binding = 11) uniform sampler2D materialUvAnimationMaskTexture; // linear data: its blue channel
+
+// `uv` animated with the mask value `mask`: the specification's transform order, scroll(t) x rotation(t) about the
+// centre, with its rotation matrix [cos sin; -sin cos] (counter-clockwise in u-right, v-down space).
+vec2 materialAnimated(vec2 uv, float mask) {
+    vec3 phase = materialUvAnimationSpeed * (frameTime * mask);
+    float c = cos(phase.z);
+    float s = sin(phase.z);
+    vec2 centred = uv - 0.5;
+    return vec2(c * centred.x + s * centred.y, c * centred.y - s * centred.x) + 0.5 + phase.xy;
+}
+
+bool materialAnimates() {
+    return materialUvAnimationSpeed != vec3(0.0);
+}
+
 #ifdef INKGRAPH_VERTEX_STAGE
 layout(location = 2) in vec2 inTexcoord0;
 layout(location = 3) in vec2 inTexcoord1;
@@ -24,9 +50,20 @@ void passMaterialAttributes() {
     materialOut.vertexColor = inVertexColor;
 }
 
-// The vertex's texture coordinates of set `set` (TEXCOORD_0 or _1) through `transform`.
+// The vertex's texture coordinates of set `set` (TEXCOORD_0 or _1), animated, through `transform`.
 vec2 materialVertexTexcoord(int set, mat3 transform) {
-    return materialTransformed(set == 1 ? inTexcoord1 : inTexcoord0, transform);
+    vec2 uv = set == 1 ? inTexcoord1 : inTexcoord0;
+    if (materialAnimates()) {
+        float mask = 1.0;
+        if (materialUvAnimationMaskTextured != 0)
+            mask = textureLod(materialUvAnimationMaskTexture,
+                              materialTransformed(materialUvAnimationMaskSet == 1 ? inTexcoord1 : inTexcoord0,
+                                                  materialUvAnimationMaskTransform),
+                              0.0)
+                       .b;
+        uv = materialAnimated(uv, mask);
+    }
+    return materialTransformed(uv, transform);
 }
 #endif
 
@@ -48,8 +85,20 @@ uniform int materialUsesVertexColor;     // 0 for MToon materials, which ignore 
 // sRGB8_ALPHA8 storage: texture() returns linear colour.
 layout(binding = 1) uniform sampler2D materialBaseColorTexture;
 
+// The fragment's texture coordinates of set `set` (TEXCOORD_0 or _1), animated, through `transform`.
 vec2 materialTexcoord(int set, mat3 transform) {
-    return materialTransformed(set == 1 ? materialIn.texcoord1 : materialIn.texcoord0, transform);
+    vec2 uv = set == 1 ? materialIn.texcoord1 : materialIn.texcoord0;
+    if (materialAnimates()) {
+        float mask = 1.0;
+        if (materialUvAnimationMaskTextured != 0)
+            mask = texture(materialUvAnimationMaskTexture,
+                           materialTransformed(materialUvAnimationMaskSet == 1 ? materialIn.texcoord1
+                                                                               : materialIn.texcoord0,
+                                               materialUvAnimationMaskTransform))
+                       .b;
+        uv = materialAnimated(uv, mask);
+    }
+    return materialTransformed(uv, transform);
 }
 
 // Linear RGBA: factor x texture, without the vertex colour.

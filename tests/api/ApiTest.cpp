@@ -209,10 +209,6 @@ TEST_F(ApiRenderRefusal, AFrameIsCheckedByItsFlagsRules) {
     frame.fov = 180.0;
     EXPECT_STREQ(renderError({}, frame).what(),
                  "Renderer::render(): Frame::fov: --fov: degrees must lie in [0.01, 179], got 180");
-    frame = {};
-    frame.time = 2.0;
-    const std::string time = renderError({}, frame).what();
-    EXPECT_NE(time.find("--time"), std::string::npos) << time;
 }
 
 TEST(ApiFrame, FromArgumentsFillsTheTypedFields) {

@@ -32,8 +32,11 @@ TEST(AnimationFlags, NameAndTimeReachTheStillRequest) {
     EXPECT_EQ(request.animationTime, 1.25);
 }
 
-TEST(AnimationFlags, TimeWithoutAnimationHasNoEffect) {
-    EXPECT_EQ(usageMessage({"m.glb", "-o", "x.png", "--time", "2"}), "--time has no effect without --animation");
+TEST(AnimationFlags, TimeWithoutAnimationIsTheUvAnimationsClock) {
+    // MToon's UV animation runs on --time in a file without animations (models/characters/mtoon-uv-animation-test.vrm).
+    const RenderOptions options = parseRenderOptions({"m.glb", "-o", "x.png", "--time", "2"});
+    EXPECT_TRUE(options.animation.empty());
+    EXPECT_EQ(stillRequestOf(options).animationTime, 2.0);
 }
 
 TEST(AnimationFlags, NegativeOrNonFiniteTimeIsRefused) {

@@ -23,6 +23,7 @@
 #include "tests/support/Srgb.h"
 #include "tests/support/TestCamera.h"
 
+#include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
@@ -674,6 +675,65 @@ TEST_F(MaterialPasses, MToonNormalMapBendsTheNormalInTheSurfacesUvFrame) {
             const double shading = (glm::dot(bent, light) + 1.0) / 2.0;
             expectLinear(at(color, pixelOfUv(u, 0.5)), glm::dvec3(shading), 0.006,
                          "scale " + std::to_string(scale) + " u " + std::to_string(u));
+        }
+    }
+}
+
+TEST_F(MaterialPasses, MToonUvAnimationScrollsAndTurnsTheTexturesAtTheRendersTime) {
+    // Lit MToon (n.l = 1): each pixel shows its base colour texel. A 4-texel row scrolled 0.25 in u per second shows,
+    // at time 1, the next texel (wrapping); a mask whose blue is 0 on the right half keeps that half still. A 2x2
+    // texture turned pi/2 per second is, at time 1, the specification's (u, v) -> (v, 1 - u).
+    const std::vector<cv::Vec4b> row = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}, {255, 255, 0, 255}};
+    Mesh scrolled = square(1.0f, 0.0f);
+    scrolled.material.baseColorFactor = glm::vec4(1.0f);
+    scrolled.material.baseColorTexture = nearestTexture(0);
+    scrolled.material.baseColorTexture.sampler.wrapS = TextureWrap::Repeat;
+    MToonMaterial mtoon;
+    mtoon.uvAnimationScrollXSpeedFactor = 0.25f;
+    mtoon.uvAnimationMaskTexture = nearestTexture(1);
+    scrolled.material.mtoon = mtoon;
+    Scene built = makeScene(std::move(scrolled));
+    built.images.push_back(pngImage(texelRow(row), "row"));
+    built.images.push_back(pngImage(texelRow({{0, 0, 255, 255}, {255, 255, 0, 255}}), "mask"));
+    useScene(std::move(built));
+    frame.ambientLight = glm::vec3(0.0f); // the feature alone, without the global illumination term
+    const auto texelColour = [](const cv::Vec4b& texel) { return cv::Vec3i(texel[0], texel[1], texel[2]); };
+    gpuScene->materials().setTime(1.0);
+    const cv::Mat moved = shade(ShadingModel::MToon);
+    for (int texel = 0; texel < 4; ++texel) {
+        const int shown = texel < 2 ? (texel + 1) % 4 : texel; // the left half moves, the masked right half not
+        expectColor(at(moved, pixelOfUv((texel + 0.5) / 4.0, 0.5)), texelColour(row[std::size_t(shown)]), 255, 1,
+                    "texel " + std::to_string(texel));
+    }
+    gpuScene->materials().setTime(0.0);
+    const cv::Mat still = shade(ShadingModel::MToon);
+    for (int texel = 0; texel < 4; ++texel)
+        expectColor(at(still, pixelOfUv((texel + 0.5) / 4.0, 0.5)), texelColour(row[std::size_t(texel)]), 255, 1,
+                    "time 0, texel " + std::to_string(texel));
+
+    Mesh turned = square(1.0f, 0.0f);
+    turned.material.baseColorFactor = glm::vec4(1.0f);
+    turned.material.baseColorTexture = nearestTexture(0);
+    MToonMaterial turning;
+    turning.uvAnimationRotationSpeedFactor = float(glm::half_pi<double>());
+    turned.material.mtoon = turning;
+    cv::Mat quadrants(2, 2, CV_8UC4);
+    quadrants.at<cv::Vec4b>(0, 0) = {255, 0, 0, 255};     // uv (0.25, 0.25)
+    quadrants.at<cv::Vec4b>(0, 1) = {0, 255, 0, 255};     // uv (0.75, 0.25)
+    quadrants.at<cv::Vec4b>(1, 0) = {0, 0, 255, 255};     // uv (0.25, 0.75)
+    quadrants.at<cv::Vec4b>(1, 1) = {255, 255, 255, 255}; // uv (0.75, 0.75)
+    Scene turnedScene = makeScene(std::move(turned));
+    turnedScene.images.push_back(pngImage(quadrants, "quadrants"));
+    useScene(std::move(turnedScene));
+    frame.ambientLight = glm::vec3(0.0f);
+    gpuScene->materials().setTime(1.0);
+    const cv::Mat quarter = shade(ShadingModel::MToon);
+    for (const double u : {0.25, 0.75}) {
+        for (const double v : {0.25, 0.75}) {
+            // (u, v) shows the texel at (v, 1 - u).
+            const cv::Vec4b texel = quadrants.at<cv::Vec4b>(1 - int(u * 2.0), int(v * 2.0));
+            expectColor(at(quarter, pixelOfUv(u, v)), texelColour(texel), 255, 1,
+                        "turned, uv " + std::to_string(u) + ", " + std::to_string(v));
         }
     }
 }

@@ -101,7 +101,11 @@ TEST(VrmMaterials, Vrm10ReadsEveryParameter) {
         "outlineLightingMixFactor": 0.6,
         "shadingShiftTexture": {"index": 0, "scale": -0.5},
         "matcapTexture": {"index": 1},
-        "rimMultiplyTexture": {"index": 2, "texCoord": 1}}},
+        "rimMultiplyTexture": {"index": 2, "texCoord": 1},
+        "uvAnimationMaskTexture": {"index": 2},
+        "uvAnimationScrollXSpeedFactor": 0.25,
+        "uvAnimationScrollYSpeedFactor": -0.5,
+        "uvAnimationRotationSpeedFactor": 1.5}},
         "normalTexture": {"index": 0, "scale": 0.75}})"},
                                 "\"extensionsUsed\": [\"VRMC_vrm\", \"VRMC_materials_mtoon\"], ");
     const Material& material = materialNamed(scene, "Skin");
@@ -129,6 +133,10 @@ TEST(VrmMaterials, Vrm10ReadsEveryParameter) {
     EXPECT_EQ(mtoon.matcapTexture.image, 1);
     EXPECT_EQ(mtoon.rimMultiplyTexture.image, 2);
     EXPECT_EQ(mtoon.rimMultiplyTexture.texCoord, 1);
+    EXPECT_EQ(mtoon.uvAnimationMaskTexture.image, 2);
+    EXPECT_FLOAT_EQ(mtoon.uvAnimationScrollXSpeedFactor, 0.25f);
+    EXPECT_FLOAT_EQ(mtoon.uvAnimationScrollYSpeedFactor, -0.5f);
+    EXPECT_FLOAT_EQ(mtoon.uvAnimationRotationSpeedFactor, 1.5f);
     // glTF's own normal map, which MToon uses.
     EXPECT_EQ(material.normalTexture.image, 0);
     EXPECT_FLOAT_EQ(material.normalScale, 0.75f);

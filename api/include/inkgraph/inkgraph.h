@@ -365,6 +365,8 @@ struct INKGRAPH_API Frame {
     /** A pose other than the scene's own (SceneOptions), for this render: the scene's file is loaded again in that
      *  pose (a scene made from arrays has none). Empty with time unset: the scene as loaded. */
     std::string animation;
+    /** Seconds into `animation`; also the clock of MToon's UV animation (--time), so it may be given without an
+     *  animation, which poses nothing. Unset: the scene's SceneOptions::time. */
     std::optional<double> time;
 
     /** The adapter from the command line's Camera flags: {"--orbit", "30,10", "--fov", "40", "--size", "640x480"}.

@@ -282,11 +282,13 @@ MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read
     mtoon.outlineLightingMixFactor =
         read.number(fields, "outlineLightingMixFactor", mtoon.outlineLightingMixFactor, where, kUnitRange);
     checkOutlineWidth(mtoon, read);
-    std::vector<std::string> undrawn;
-    for (const char* key :
-         {"uvAnimationScrollXSpeedFactor", "uvAnimationScrollYSpeedFactor", "uvAnimationRotationSpeedFactor"})
-        if (nonZeroNumber(fields, key)) undrawn.push_back(key);
-    warnUndrawn(undrawn, read);
+    mtoon.uvAnimationMaskTexture = read.textureInfo(extension, "uvAnimationMaskTexture", where);
+    mtoon.uvAnimationScrollXSpeedFactor =
+        read.number(fields, "uvAnimationScrollXSpeedFactor", mtoon.uvAnimationScrollXSpeedFactor, where, kSignedRange);
+    mtoon.uvAnimationScrollYSpeedFactor =
+        read.number(fields, "uvAnimationScrollYSpeedFactor", mtoon.uvAnimationScrollYSpeedFactor, where, kSignedRange);
+    mtoon.uvAnimationRotationSpeedFactor = read.number(fields, "uvAnimationRotationSpeedFactor",
+                                                       mtoon.uvAnimationRotationSpeedFactor, where, kSignedRange);
     return mtoon;
 }
 
