@@ -1,8 +1,8 @@
 #pragma once
 /** @file What a surface looks like, as the file says: glTF 2.0's metallic-roughness material reduced to what a toon
- *  renderer uses (base colour factor and texture, emissive, alpha, double-sidedness), KHR_materials_unlit, an OBJ
- *  material library's Kd/map_Kd/d, and a VRM character's MToon parameters. Plain data, no GL: the images stay
- *  encoded here and are decoded only when a pass that runs samples them (scene/TextureImage.h). */
+ *  renderer uses (base colour factor and texture, metallic and roughness, emissive, alpha, double-sidedness),
+ *  KHR_materials_unlit, an OBJ material library's Kd/map_Kd/d, and a VRM character's MToon parameters. Plain data, no
+ *  GL: the images stay encoded here and are decoded only when a pass that runs samples them (scene/TextureImage.h). */
 
 #include <glm/glm.hpp>
 
@@ -88,8 +88,15 @@ struct Material {
     std::string name; ///< the file's material name, for messages and --stats; empty without one
     glm::vec4 baseColorFactor{0.8f, 0.8f, 0.8f, 1.0f}; ///< linear RGBA; a model without materials is light grey
     TextureRef baseColorTexture;                       ///< sRGB image, times baseColorFactor
-    glm::vec3 emissiveFactor{0.0f};                    ///< linear, added after lighting
-    TextureRef emissiveTexture;                        ///< sRGB image, times emissiveFactor
+    /** glTF's pbrMetallicRoughness, which `--shading mtoon` draws a material without MToon with (docs/mtoon.md). The
+     *  glTF reader writes the file's values (glTF's defaults: metallic 1, roughness 1); a material that does not come
+     *  from a glTF material (OBJ, STL, PLY, a glTF primitive without one, arrays) keeps these: a rough dielectric,
+     *  since metallic 1 with no environment light would draw it black. */
+    float metallicFactor = 0.0f;
+    float roughnessFactor = 1.0f;
+    TextureRef metallicRoughnessTexture; ///< linear data: B times metallicFactor, G times roughnessFactor
+    glm::vec3 emissiveFactor{0.0f};      ///< linear, added after lighting
+    TextureRef emissiveTexture;          ///< sRGB image, times emissiveFactor
     /** glTF's tangent-space normal map (linear data, xyz = 2 rgb - 1); drawn by MToon materials only. */
     TextureRef normalTexture;
     float normalScale = 1.0f; ///< normalTexture.scale: multiplies the map's x and y

@@ -184,6 +184,63 @@ TEST(GltfMaterials, UnlitBlendAndEmissiveStrength) {
     EXPECT_TRUE(scene.images.empty());
 }
 
+TEST(GltfMaterials, MetallicRoughnessIsReadWithGltfsDefaultsAndClamped) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const int uv0 = gltf.floats({0, 0, 1, 0, 0, 1}, "VEC2", 3);
+    // Four primitives: factors and a texture; no pbrMetallicRoughness; factors outside [0, 1]; no material at all.
+    std::string primitives;
+    for (const char* material : {", \"material\": 0", ", \"material\": 1", ", \"material\": 2", ""})
+        primitives += std::string(primitives.empty() ? "" : ", ") +
+                      "{\"attributes\": {\"POSITION\": " + std::to_string(position) +
+                      ", \"TEXCOORD_0\": " + std::to_string(uv0) + "}" + material + "}";
+    const std::string body =
+        "\"meshes\": [{\"primitives\": [" + primitives +
+        "]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], \"scene\": 0,"
+        " \"materials\": [{\"pbrMetallicRoughness\": {\"metallicFactor\": 0.25, \"roughnessFactor\": 0.75,"
+        " \"metallicRoughnessTexture\": {\"index\": 0}}}, {\"name\": \"plain\"},"
+        " {\"name\": \"wild\", \"pbrMetallicRoughness\": {\"metallicFactor\": 2, \"roughnessFactor\": -1}}],"
+        " \"textures\": [{\"source\": 1}], " +
+        imagesOfTwoDataUris();
+    const TempFile file("metallic.gltf", gltf.gltf(body));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 4u);
+    // Materials 0 and "none" are unnamed: material 0 is the one with the texture.
+    auto materialWhere = [&](auto&& predicate) -> const Material& {
+        const auto found =
+            std::ranges::find_if(scene.meshes, [&](const Mesh& mesh) { return predicate(mesh.material); });
+        EXPECT_NE(found, scene.meshes.end());
+        return found == scene.meshes.end() ? scene.meshes[0].material : found->material;
+    };
+    auto named = [&](const std::string& name) {
+        return materialWhere([&](const Material& material) { return material.name == name; });
+    };
+    const Material& textured =
+        materialWhere([](const Material& material) { return material.metallicRoughnessTexture.present(); });
+    EXPECT_FLOAT_EQ(textured.metallicFactor, 0.25f);
+    EXPECT_FLOAT_EQ(textured.roughnessFactor, 0.75f);
+    EXPECT_EQ(textured.metallicRoughnessTexture.image, 1);
+    EXPECT_EQ(textured.metallicRoughnessTexture.texCoord, 0);
+    // glTF's defaults when the material leaves them out: metallic 1, roughness 1.
+    const Material& plain = named("plain");
+    EXPECT_EQ(plain.metallicFactor, 1.0f);
+    EXPECT_EQ(plain.roughnessFactor, 1.0f);
+    EXPECT_FALSE(plain.metallicRoughnessTexture.present());
+    const Material& wild = named("wild");
+    EXPECT_EQ(wild.metallicFactor, 1.0f);
+    EXPECT_EQ(wild.roughnessFactor, 0.0f);
+    EXPECT_EQ(scene.report.warnings.size(), 2u) << ::testing::PrintToString(scene.report.warnings);
+    for (const char* factor : {"metallicFactor 2 is outside [0, 1]", "roughnessFactor -1 is outside [0, 1]"})
+        EXPECT_TRUE(std::ranges::any_of(scene.report.warnings, [&](const Warning& warning) {
+            return warning.message.find(factor) != std::string::npos;
+        })) << factor;
+    // A primitive without a material is drawn with inkgraph's own default, a dielectric, not glTF's default material.
+    const Material& none = materialWhere(
+        [](const Material& material) { return material.name.empty() && !material.metallicRoughnessTexture.present(); });
+    EXPECT_EQ(none.metallicFactor, 0.0f);
+    EXPECT_EQ(none.roughnessFactor, 1.0f);
+}
+
 TEST(GltfMaterials, SupportedExtensionsListTheMaterialAndGeometryOnes) {
     for (const char* name : {"KHR_lights_punctual", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
                              "KHR_texture_transform", "KHR_materials_unlit", "KHR_materials_emissive_strength"})

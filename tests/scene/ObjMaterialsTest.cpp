@@ -68,6 +68,10 @@ TEST(ObjMaterials, KdColourPerUsemtlGroupGivesOneMeshPerMaterial) {
     EXPECT_EQ(red.material.alphaMode, AlphaMode::Opaque);
     EXPECT_EQ(red.material.emissiveFactor, glm::vec3(0.0f));
     EXPECT_FALSE(red.material.textured());
+    // An OBJ material is a rough dielectric (not glTF's metallic default), so --shading mtoon does not draw it black.
+    EXPECT_EQ(red.material.metallicFactor, 0.0f);
+    EXPECT_EQ(red.material.roughnessFactor, 1.0f);
+    EXPECT_FALSE(red.material.metallicRoughnessTexture.present());
     for (const glm::vec3& p : red.positions) EXPECT_EQ(test::worldPosition(scene, p).z, 0.0);
 
     const Mesh& blue = meshWithMaterial(scene, "dark blue");

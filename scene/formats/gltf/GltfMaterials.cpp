@@ -1,6 +1,6 @@
-/** @file A glTF material as the renderer sees it (GltfMaterials.h): factors clamped into their ranges, textures with
- *  their image, coordinate set, sampler and KHR_texture_transform, the inkgraph shade-map extra, then a VRM
- *  character's MToon (VrmMaterials.h). */
+/** @file A glTF material as the renderer sees it (GltfMaterials.h): factors (base colour, metallic, roughness,
+ *  emissive) clamped into their ranges, textures with their image, coordinate set, sampler and KHR_texture_transform,
+ *  the inkgraph shade-map extra, then a VRM character's MToon (VrmMaterials.h). */
 
 #include "scene/formats/gltf/GltfMaterials.h"
 
@@ -261,6 +261,14 @@ struct GltfMaterials::Reader {
         }
         result.baseColorTexture =
             readTextureRef(source.pbrMetallicRoughness.baseColorTexture, label + " baseColorTexture");
+        // tinygltf fills in glTF's defaults (1, 1) for absent factors, so a glTF material is metallic unless it says
+        // not.
+        result.metallicFactor = shaderValue(source.pbrMetallicRoughness.metallicFactor, kUnitRange,
+                                            label + " metallicFactor", mWarnings, label);
+        result.roughnessFactor = shaderValue(source.pbrMetallicRoughness.roughnessFactor, kUnitRange,
+                                             label + " roughnessFactor", mWarnings, label);
+        result.metallicRoughnessTexture =
+            readTextureRef(source.pbrMetallicRoughness.metallicRoughnessTexture, label + " metallicRoughnessTexture");
         for (std::size_t i = 0; i < 3 && source.emissiveFactor.size() == 3; ++i) {
             result.emissiveFactor[int(i)] =
                 shaderValue(source.emissiveFactor[i], kUnitRange, label + " emissiveFactor[" + std::to_string(i) + "]",
