@@ -220,6 +220,12 @@ void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex, Mater
     }
     if (colour && program.uniform("materialEmissiveTextured") >= 0)
         bindTexture(*this, program, material.emissiveTexture, kEmissiveTextureUnit, "materialEmissive");
+    // glTF's metallic-roughness, which only shading draws (common/pbr.glsl): its texture is data, not colour.
+    glUniform1f(program.uniform("materialMetallicFactor"), material.metallicFactor);
+    glUniform1f(program.uniform("materialRoughnessFactor"), material.roughnessFactor);
+    if (colour && program.uniform("materialMetallicRoughnessTextured") >= 0)
+        bindTexture(*this, program, material.metallicRoughnessTexture, kMetallicRoughnessTextureUnit,
+                    "materialMetallicRoughness", /*srgb=*/false);
     const MToonMaterial mtoon = material.mtoon.value_or(MToonMaterial{});
     glUniform1i(program.uniform("mtoonPresent"), material.mtoon ? 1 : 0);
     glUniform3fv(program.uniform("mtoonShadeColorFactor"), 1, glm::value_ptr(mtoon.shadeColorFactor));

@@ -2,7 +2,7 @@
 /** @file The materials of the scene on the GPU: their images decoded (scene/TextureImage.h) and uploaded the first
  *  time a draw samples them, their samplers, and one call that binds a mesh's material for a program that includes
  *  shaders/common/material.glsl. Every pass that draws the surface binds through here, so base colour, vertex
- *  colours, alpha cut-outs and MToon parameters mean the same in each. */
+ *  colours, alpha cut-outs, metallic-roughness and MToon parameters mean the same in each. */
 
 #include "gl/GlObjects.h"
 #include "scene/Scene.h"
@@ -27,6 +27,7 @@ inline constexpr GLuint kRimMultiplyTextureUnit = 8;
 inline constexpr GLuint kShadingShiftTextureUnit = 9;
 inline constexpr GLuint kNormalTextureUnit = 10;
 inline constexpr GLuint kUvAnimationMaskTextureUnit = 11;
+inline constexpr GLuint kMetallicRoughnessTextureUnit = 13; ///< shaders/common/pbr.glsl
 
 /** Vertex attribute locations of the material snippet (positions and normals are 0 and 1). */
 inline constexpr GLuint kTexcoord0Location = 2;
@@ -85,7 +86,7 @@ public:
     /** The material's GL texture for `reference`, decoded and uploaded on the first call with mipmaps, or 0 when
      *  `reference` names no image. An image larger than the driver takes is downscaled to fit, with a warning. Colour
      * (`srgb`: base colour, emissive, shade) is stored sRGB8_ALPHA8, so sampling decodes it to linear; data (the
-     * outline width) RGBA8 as is. */
+     * outline width, metallic-roughness) RGBA8 as is. */
     GLuint texture(const TextureRef& reference, bool srgb = true);
     /** A sampler object with the reference's filters and wraps. */
     GLuint sampler(const TextureSampler& settings);

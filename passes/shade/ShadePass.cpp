@@ -280,12 +280,13 @@ void ShadePass::prepare(GlPassContext& gl) {
                             defines(),
                             {"common/fullscreen.glsl", "common/color.glsl", "common/lighting.glsl"}}));
     if (!mProgram)
-        mProgram = std::make_unique<GlProgram>(mShaders.build(
-            {mName,
-             "shade/shade.vert",
-             "shade/shade.frag",
-             defines(),
-             {"common/color.glsl", "common/lighting.glsl", "common/material.glsl", "common/mtoon.glsl"}}));
+        mProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName,
+                            "shade/shade.vert",
+                            "shade/shade.frag",
+                            defines(),
+                            {"common/color.glsl", "common/lighting.glsl", "common/material.glsl", "common/mtoon.glsl",
+                             "common/pbr.glsl"}}));
     for (MapSlot& slot : mMaps) {
         if (!slot.used || slot.texture) continue;
         // Nearest, clamped to the edge (every GlTexture is). uploadImage() turns the image bottom-up, so GL row 0 is

@@ -32,7 +32,8 @@ const std::vector<ShadingModelTraits>& shadingModels() {
         {ShadingModel::MToon, "mtoon", "MODEL_MTOON 1", false, false, false, false, false, false, false, false, false,
          true, true, 0.05f,
          "the file's MToon materials (VRM): lit and shade colours, shading shift and toony, rim\n"
-         "     (VRMC_materials_mtoon-1.0's formulas, docs/mtoon.md); other materials get a hard band"},
+         "     (VRMC_materials_mtoon-1.0's formulas, docs/mtoon.md); other materials: glTF's\n"
+         "     metallic-roughness"},
         {ShadingModel::Auto, "auto", "MODEL_AUTO 1", false, true, true, true, false, false, false, false, false, true,
          true, 0.05f,
          "each material its own model, as VRM viewers show the file: MToon where the material has\n"

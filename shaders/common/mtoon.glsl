@@ -2,7 +2,7 @@
 // passes/material/SceneMaterials binds: the shade pass shades the surface with it (shade/shade.frag, MODEL_MTOON) and
 // the mtoon-outline pass lights its shells with it (mtoon/outline.frag). Needs common/material.glsl before it.
 #ifdef INKGRAPH_FRAGMENT_STAGE
-// A material without MToon gets mtoonPresent 0 and the fallback below.
+// A material without MToon gets mtoonPresent 0, and shading draws it with common/pbr.glsl instead.
 uniform int mtoonPresent;
 uniform vec3 mtoonShadeColorFactor;
 uniform int mtoonShadeMultiplyTextured;
@@ -35,9 +35,6 @@ uniform mat3 materialNormalTransform;
 uniform float materialNormalScale;
 layout(binding = 10) uniform sampler2D materialNormalTexture; // linear data: xyz = 2 rgb - 1, tangent space
 uniform mat3 worldFromView; // the view's rotation undone (passes/ViewUniforms.h)
-
-// The shade tone of a material without MToon parameters, times its lit colour (docs/mtoon.md).
-const float kMToonFallbackShade = 0.5;
 
 // MToon's linearstep: 0 below a, 1 above b, linear between (the specification's definition).
 float linearstep(float a, float b, float t) {
@@ -105,11 +102,6 @@ vec3 mtoonColor(vec3 lit, vec3 n, vec3 l, vec3 v) {
                              materialTexcoord(mtoonShadingShiftSet, mtoonShadingShiftTransform)).r *
                      mtoonShadingShiftTextureScale;
         toony = mtoonShadingToonyFactor;
-    } else {
-        // No MToon in the file: the lit colour's own shadow tone, a hard band at n.l = 0 (docs/mtoon.md).
-        shade = lit * kMToonFallbackShade;
-        shift = 0.0;
-        toony = 0.9;
     }
     float shading = linearstep(-1.0 + toony, 1.0 - toony, dot(n, l) + shift);
     // The direct light is white of intensity 1: its colour multiplies nothing.

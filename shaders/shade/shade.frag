@@ -1,8 +1,9 @@
 // Shading, one model per program (MODEL_* define from ShadePass): flat, gouraud, lambert, phong, cel, comic, mtoon,
 // auto (mtoon's colour for the materials with MToon, cel's for the others)
-// (docs/shading.md, docs/mtoon.md; mtoon's colour is common/mtoon.glsl's, which forward programs include). The base
-// colour is the material's (common/material.glsl: factor x texture x vertex colour). Colour is computed in linear RGB
-// and written sRGB-encoded, with the surface's alpha (1 unless the material blends).
+// (docs/shading.md, docs/mtoon.md; mtoon's colour is common/mtoon.glsl's for MToon materials, common/pbr.glsl's for the
+// others, which forward programs include). The base colour is the material's (common/material.glsl: factor x texture x
+// vertex colour). Colour is computed in linear RGB and written sRGB-encoded, with the surface's alpha (1 unless the
+// material blends).
 // Forward, the surface comes from the mesh drawn (shade.vert). With SHADE_DEFERRED (lambert, phong, cel, comic; see
 // ShadePass::chooseMode()) it comes from the G-buffer texel of this pixel, computed there by the same expressions:
 // the normal turned toward the viewer (alpha: the coverage) and the view vector; the base colour is a uniform when
@@ -174,7 +175,12 @@ void main() {
 #endif
 #endif
 #elif defined(MODEL_MTOON)
-    rgb = mtoonColor(base, mtoonShadingNormal(shadingNormal(), viewPosition), l, towardEye());
+    // A material without MToon (a VRM's other materials, any glTF, OBJ, ...) is glTF's metallic-roughness, as three-vrm
+    // draws it (common/pbr.glsl).
+    if (mtoonPresent != 0)
+        rgb = mtoonColor(base, mtoonShadingNormal(shadingNormal(), viewPosition), l, towardEye());
+    else
+        rgb = pbrColor(base, shadingNormal(), l, towardEye());
 #elif defined(MODEL_AUTO)
     // Each material its own model: its MToon where it has one, else cel's band (as MODEL_CEL).
     if (mtoonPresent != 0)

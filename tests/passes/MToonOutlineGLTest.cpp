@@ -141,6 +141,7 @@ TEST_F(MToonOutline, ANearerSurfaceHidesTheOutlineBehindIt) {
     const glm::dvec3 blockerView(ring * 2.0 / focal(), 0.0, -2.0);
     Mesh blocker = makeUvSphere({float(blockerView.x), 0.0f, float(kDistance + blockerView.z)}, 0.2f, 64, 32);
     blocker.material.baseColorFactor = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f);
+    blocker.material.unlit = true; // pure green: lit, a dielectric's white specular would add some red
     scene.meshes.push_back(std::move(blocker));
     // Near and far fitted again: the blocker is nearer than the first sphere's near plane.
     frame.camera = test::lookingAt(scene, glm::dvec3(0.0, 0.0, kDistance), glm::dvec3(0.0), kFovDegrees, kSize, kSize);
