@@ -147,7 +147,10 @@ void SceneMaterials::describe(nlohmann::ordered_json& out) const {
                       {"base_color_texture", imageName(material.baseColorTexture)},
                       {"alpha_mode", kAlphaModes[alphaModeCode(material.alphaMode)]},
                       {"double_sided", material.doubleSided},
-                      {"unlit", material.unlit}};
+                      {"unlit", material.unlit},
+                      {"metallic_factor", material.metallicFactor},
+                      {"roughness_factor", material.roughnessFactor},
+                      {"metallic_roughness_texture", imageName(material.metallicRoughnessTexture)}};
         if (material.alphaMode == AlphaMode::Mask) entry["alpha_cutoff"] = material.alphaCutoff;
         if (material.emissiveFactor != glm::vec3(0.0f))
             entry["emissive_factor"] = {material.emissiveFactor.r, material.emissiveFactor.g,
@@ -220,12 +223,17 @@ void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex, Mater
     }
     if (colour && program.uniform("materialEmissiveTextured") >= 0)
         bindTexture(*this, program, material.emissiveTexture, kEmissiveTextureUnit, "materialEmissive");
-    // glTF's metallic-roughness, which only shading draws (common/pbr.glsl): its texture is data, not colour.
+    // glTF's metallic-roughness, which only shading draws (common/pbr.glsl): its texture is data, not colour, and an
+    // MToon or unlit material never reads it, so it is not decoded for one.
     glUniform1f(program.uniform("materialMetallicFactor"), material.metallicFactor);
     glUniform1f(program.uniform("materialRoughnessFactor"), material.roughnessFactor);
-    if (colour && program.uniform("materialMetallicRoughnessTextured") >= 0)
-        bindTexture(*this, program, material.metallicRoughnessTexture, kMetallicRoughnessTextureUnit,
-                    "materialMetallicRoughness", /*srgb=*/false);
+    if (program.uniform("materialMetallicRoughnessTextured") >= 0) {
+        if (colour && !material.mtoon && !material.unlit)
+            bindTexture(*this, program, material.metallicRoughnessTexture, kMetallicRoughnessTextureUnit,
+                        "materialMetallicRoughness", /*srgb=*/false);
+        else
+            glUniform1i(program.uniform("materialMetallicRoughnessTextured"), 0);
+    }
     const MToonMaterial mtoon = material.mtoon.value_or(MToonMaterial{});
     glUniform1i(program.uniform("mtoonPresent"), material.mtoon ? 1 : 0);
     glUniform3fv(program.uniform("mtoonShadeColorFactor"), 1, glm::value_ptr(mtoon.shadeColorFactor));

@@ -70,8 +70,9 @@ public:
      *  coordinates or colours reads. */
     void bind(const GlProgram& program, std::size_t meshIndex, MaterialUse use);
 
-    /** For --stats: each distinct material (name, meshes, base colour factor, texture, alpha, sides, unlit, emissive,
-     *  MToon) and the images (count, decoded, bytes, and those downscaled to the driver's largest texture). */
+    /** For --stats: each distinct material (name, meshes, base colour factor, texture, alpha, sides, unlit,
+     *  metallic-roughness, emissive, MToon) and the images (count, decoded, bytes, and those downscaled to the
+     *  driver's largest texture). */
     void describe(nlohmann::ordered_json& out) const;
 
     /** Mesh `meshIndex`'s MToon material when it asks for an outline (a width mode other than none and a width

@@ -818,6 +818,9 @@ TEST_F(Cli, StatsListMaterialsAndTextures) {
     EXPECT_EQ(materials[0]["name"], "fox_material");
     EXPECT_EQ(materials[0]["alpha_mode"], "opaque");
     EXPECT_FALSE(materials[0]["base_color_texture"].is_null());
+    EXPECT_EQ(materials[0]["metallic_factor"], 0.0); // the file's
+    EXPECT_NEAR(materials[0]["roughness_factor"].get<double>(), 0.58, 1e-6);
+    EXPECT_TRUE(materials[0]["metallic_roughness_texture"].is_null());
     EXPECT_EQ(stats["scene"]["images"]["count"], 1);
     EXPECT_EQ(stats["scene"]["images"]["decoded"], 1) << "the cel shading samples the texture";
     EXPECT_GT(stats["scene"]["images"]["decoded_bytes"].get<double>(), 0.0);

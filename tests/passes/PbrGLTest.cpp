@@ -315,6 +315,26 @@ TEST_F(MetallicRoughness, TextureBlueIsMetalnessAndGreenRoughnessAsLinearData) {
     EXPECT_LE(codeError(scaled.at<cv::Vec4b>(kSize / 2, kSize * 3 / 4), expected), 1);
 }
 
+TEST_F(MetallicRoughness, TheTextureIsDecodedOnlyForAMaterialThatDrawsIt) {
+    // The same texture on an MToon material and an unlit one: neither reads it, so under mtoon neither decodes it.
+    Mesh square = unitSquare();
+    square.material.metallicRoughnessTexture.image = 0;
+    square.material.mtoon = MToonMaterial{};
+    Scene built = makeScene(square);
+    built.meshes[0].material.mtoon.reset();
+    built.meshes[0].material.unlit = true;
+    built.meshes.push_back(square);
+    built.images.push_back(pngRow({{0, 128, 255, 255}}));
+    useScene(built, {0.0, 0.0, 1.0});
+    shadeMToon();
+    EXPECT_EQ(gpuScene->materials().texturesDecoded(), 0u);
+
+    built.meshes[0].material.unlit = false;
+    useScene(built, {0.0, 0.0, 1.0});
+    shadeMToon();
+    EXPECT_EQ(gpuScene->materials().texturesDecoded(), 1u) << "a lit material without MToon reads it";
+}
+
 TEST_F(MetallicRoughness, UnlitMaterialWithoutMToonStaysUnlit) {
     Mesh square = unitSquare();
     square.material.baseColorFactor = glm::vec4(0.3f, 0.5f, 0.7f, 1.0f);
