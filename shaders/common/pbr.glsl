@@ -18,8 +18,8 @@ const float kPbrPi = 3.14159265358979;
 const float kPbrLightIrradiance = kPbrPi;
 // The reflectance of a dielectric at normal incidence (glTF: an index of refraction of 1.5).
 const float kPbrDielectricF0 = 0.04;
-// Roughness floor, three.js' own: below it the GGX lobe of a light that is a single direction shrinks under a pixel
-// and its peak, 1 / (pi alpha^2), runs to infinity (alpha = 0 would be 0 / 0).
+// The least roughness, three.js' own floor: the GGX peak 1 / (pi alpha^2) runs to infinity as roughness goes to 0
+// (at 0 it is 0 / 0), a highlight of a single light direction that no pixel would resolve.
 const float kPbrMinRoughness = 0.0525;
 
 // Trowbridge-Reitz (GGX) normal distribution D for the half-vector cosine n.h and alpha = roughness^2.

@@ -1,8 +1,9 @@
 // glTF's metallic-roughness under --shading mtoon (shaders/common/pbr.glsl, docs/mtoon.md), for materials without
 // MToon, against closed forms per pixel: a rough dielectric facing the light shows its base colour (plus its 4%
 // specular), a metal has no diffuse (dark away from its highlight), the GGX highlight peaks where the normal bisects
-// the light and the eye with the value of D V F worked out by hand, and the metallic-roughness texture's blue channel
-// is the metalness and its green the roughness, as linear data. Needs a GL context (llvmpipe in CI).
+// the light and the eye with the value of D V F worked out by hand, roughness 0 takes three.js' floor, the
+// metallic-roughness texture's blue channel is the metalness and its green the roughness, as linear data, decoded only
+// for a material that reads it, and an unlit material stays unlit. Needs a GL context (llvmpipe in CI).
 #include "codecs/PngCodec.h"
 #include "graph/GraphCompiler.h"
 #include "passes/shade/ShadePass.h"
@@ -313,6 +314,38 @@ TEST_F(MetallicRoughness, TextureBlueIsMetalnessAndGreenRoughnessAsLinearData) {
     const glm::dvec3 point = planePoint(kSize * 3 / 4, kSize / 2);
     const glm::dvec3 expected = metallicRoughness(base, 0.5, 0.5 * roughRight, n, n, towardEyeFrom(point));
     EXPECT_LE(codeError(scaled.at<cv::Vec4b>(kSize / 2, kSize * 3 / 4), expected), 1);
+}
+
+TEST_F(MetallicRoughness, RoughnessZeroTakesThreeJsFloor) {
+    // A mirror-smooth metal facing the light: roughness is raised to 0.0525 (alpha 0.00276), so the highlight is
+    // finite: white where the normal bisects light and eye, and the floor's own falloff farther out, where the eye is
+    // a few degrees off the mirror direction (a floor of 0.04 would give a third of it there).
+    Mesh square = unitSquare();
+    const glm::dvec3 base(0.5, 0.5, 0.5);
+    square.material.baseColorFactor = glm::vec4(glm::vec3(base), 1.0f);
+    square.material.metallicFactor = 1.0f;
+    square.material.roughnessFactor = 0.0f;
+    useScene(makeScene(std::move(square)), {0.0, 0.0, 1.0});
+    const cv::Mat color = shadeMToon();
+    EXPECT_EQ(color.at<cv::Vec4b>(kSize / 2, kSize / 2), cv::Vec4b(255, 255, 255, 255));
+    const glm::dvec3 n(0.0, 0.0, 1.0);
+    int compared = 0, worst = 0;
+    for (int row = 0; row < kSize; row += 2) {
+        for (int col = 0; col < kSize; col += 2) {
+            const glm::dvec3 point = planePoint(col, row);
+            const double fromCentre = std::hypot(col + 0.5 - kSize / 2.0, row + 0.5 - kSize / 2.0);
+            if (std::max(std::abs(point.x), std::abs(point.y)) > 0.95 || fromCentre < 24.0) continue;
+            const glm::dvec3 expected = metallicRoughness(base, 1.0, 0.0, n, n, towardEyeFrom(point));
+            worst = std::max(worst, codeError(color.at<cv::Vec4b>(row, col), expected));
+            ++compared;
+        }
+    }
+    EXPECT_GT(compared, 1000);
+    EXPECT_LE(worst, 1);
+    // The floor matters at the sampled distances: at 24 pixels from the centre the expected value is well above black.
+    const glm::dvec3 near =
+        metallicRoughness(base, 1.0, 0.0, n, n, towardEyeFrom(planePoint(kSize / 2 + 24, kSize / 2)));
+    EXPECT_GT(near.r, 0.05);
 }
 
 TEST_F(MetallicRoughness, TheTextureIsDecodedOnlyForAMaterialThatDrawsIt) {
