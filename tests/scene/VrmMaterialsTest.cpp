@@ -340,7 +340,7 @@ TEST(VrmMaterials, Vrm0MapsEveryProperty) {
 
 TEST(VrmMaterials, OutlandishOutlineWidthsAndUndrawnFeaturesAreSaid) {
     // A 0.x width of 1e30 "percent": drawn as written but said; a world width beyond the renderer's range: dropped and
-    // said; 0.x's UV animation: read, not drawn, and said once per material.
+    // said; 0.x's shading grade texture: read, not drawn, and said once per material.
     const auto entry = [](const std::string& name, const std::string& floats, const std::string& textures) {
         return "{\"name\": \"" + name + "\", \"shader\": \"VRM/MToon\", \"floatProperties\": {" + floats +
                "}, \"textureProperties\": {" + textures + "}}";
@@ -348,14 +348,29 @@ TEST(VrmMaterials, OutlandishOutlineWidthsAndUndrawnFeaturesAreSaid) {
     const Scene scene = loadVrm({R"({"name": "Wide"})", R"({"name": "Far"})", R"({"name": "Shiny"})"},
                                 vrm0(entry("Wide", "\"_OutlineWidthMode\": 2, \"_OutlineWidth\": 1e30", "") + ", " +
                                      entry("Far", "\"_OutlineWidthMode\": 1, \"_OutlineWidth\": 1e38", "") + ", " +
-                                     entry("Shiny", "\"_UvAnimScrollX\": 0.5", "\"_SphereAdd\": 1")));
+                                     entry("Shiny", "\"_UvAnimScrollX\": 0.5", "\"_ShadingGradeTexture\": 1")));
     const std::string warnings = ::testing::PrintToString(scene.report.warnings);
     EXPECT_EQ(scene.report.warnings.size(), 3u) << warnings;
     EXPECT_NE(warnings.find("more than 5 %"), std::string::npos) << warnings;
     EXPECT_EQ(materialNamed(scene, "Wide").mtoon->outlineWidthMode, OutlineWidthMode::ScreenCoordinates);
     EXPECT_NE(warnings.find("more than the renderer can place; no outline"), std::string::npos) << warnings;
     EXPECT_EQ(materialNamed(scene, "Far").mtoon->outlineWidthMode, OutlineWidthMode::None);
-    EXPECT_NE(warnings.find("MToon's _UvAnimScrollX is not drawn"), std::string::npos) << warnings;
+    EXPECT_NE(warnings.find("MToon's _ShadingGradeTexture is not drawn"), std::string::npos) << warnings;
+    // The UV animation is drawn: converted as three-vrm converts it, the vertical scroll negated.
+    EXPECT_FLOAT_EQ(materialNamed(scene, "Shiny").mtoon->uvAnimationScrollXSpeedFactor, 0.5f);
+}
+
+TEST(VrmMaterials, Vrm0UvAnimationIsTheSameSpeedsWithTheVerticalScrollNegated) {
+    const Scene scene = loadVrm({R"({"name": "Scroll"})"},
+                                vrm0("{\"name\": \"Scroll\", \"shader\": \"VRM/MToon\", \"floatProperties\": "
+                                     "{\"_UvAnimScrollX\": 0.25, \"_UvAnimScrollY\": 0.1, \"_UvAnimRotation\": 0.2}, "
+                                     "\"textureProperties\": {\"_UvAnimMaskTexture\": 0}}"));
+    const MToonMaterial& mtoon = *materialNamed(scene, "Scroll").mtoon;
+    EXPECT_FLOAT_EQ(mtoon.uvAnimationScrollXSpeedFactor, 0.25f);
+    EXPECT_FLOAT_EQ(mtoon.uvAnimationScrollYSpeedFactor, -0.1f) << "0.x's v points up the image, 1.0's down";
+    EXPECT_FLOAT_EQ(mtoon.uvAnimationRotationSpeedFactor, 0.2f);
+    EXPECT_TRUE(mtoon.uvAnimationMaskTexture.present());
+    EXPECT_TRUE(scene.report.warnings.empty()) << scene.report.warnings.front();
 }
 
 TEST(VrmMaterials, Vrm0OutlineWidthModesAndColourModes) {

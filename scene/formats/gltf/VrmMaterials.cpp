@@ -464,9 +464,17 @@ MToonMaterial readMToon0(const tinygltf::Value& entry, Material& material, Prope
         material.emissiveFactor = linearFromV0(*emission);
     if (const TextureRef map = read.textureProperty(textures, "_EmissionMap", t); map.present())
         material.emissiveTexture = withTransform(map, transform, "_EmissionMap", read);
+    // UV animation as three-vrm's VRMMaterialsV0CompatPlugin migrates it: the same speeds, but the vertical scroll
+    // negated (0.x scrolls Unity's v, which points up the image; 1.0's v points down it), the mask placed by _MainTex
+    // like the other textures (1.0 reads its B channel).
+    mtoon.uvAnimationMaskTexture =
+        withTransform(read.textureProperty(textures, "_UvAnimMaskTexture", t), transform, "_UvAnimMaskTexture", read);
+    mtoon.uvAnimationScrollXSpeedFactor = read.number(floats, "_UvAnimScrollX", 0.0f, f, kSignedRange);
+    mtoon.uvAnimationScrollYSpeedFactor = -read.number(floats, "_UvAnimScrollY", 0.0f, f, kSignedRange);
+    mtoon.uvAnimationRotationSpeedFactor = read.number(floats, "_UvAnimRotation", 0.0f, f, kSignedRange);
     std::vector<std::string> undrawn;
-    for (const char* key : {"_UvAnimScrollX", "_UvAnimScrollY", "_UvAnimRotation"})
-        if (nonZeroNumber(floats, key)) undrawn.push_back(key);
+    if (textures != nullptr && textures->IsObject() && textures->Has("_ShadingGradeTexture"))
+        undrawn.push_back("_ShadingGradeTexture");
     warnUndrawn(undrawn, read);
     return mtoon;
 }
