@@ -21,6 +21,9 @@ for file in fox.glb box-textured.glb duck.glb mtoon-uv-animation-test.vrm godett
     "$inkgraph" render "$models/$file" --size "$size" --shading mtoon "${paper[@]}" -o "$out/$name-mtoon.png"
 done
 
+# Godette in the comic look: her MToon materials are lit by every look (their KHR_materials_unlit is the exporter's
+# fallback), so Winnemöller & Bangay's 2-D shade map shades her too.
+"$inkgraph" render "$models/godette.vrm" --size "$size" --shading comic -o "$out/godette-comic.png"
 # Godette's face: --frame fits the camera to the meshes under the node 'Face'.
 "$inkgraph" render "$models/godette.vrm" --size "$size" --frame Face --shading mtoon -o "$out/godette-face.png"
 # Turned 35 degrees to her left, 10 above the horizontal, with the inflated-hull silhouette and the contours.
