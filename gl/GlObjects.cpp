@@ -53,16 +53,25 @@ GlFormat glFormatOf(Format format) {
     throw std::logic_error("glFormatOf(): unknown format");
 }
 
-GlTexture::GlTexture(Format format, int width, int height, std::string_view label)
-    : mFormat(format), mWidth(width), mHeight(height), mLabel(label) {
+GlTexture::GlTexture(Format format, int width, int height, std::string_view label, int samples)
+    : mFormat(format), mWidth(width), mHeight(height), mSamples(samples), mLabel(label) {
+    const std::string what = std::to_string(width) + "x" + std::to_string(height) + " " +
+                             std::string(formatName(format)) + " texture '" + std::string(label) + "'";
     GLuint id = 0;
+    if (samples > 1) {
+        glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &id);
+        mHandle = GlHandle<TextureDeleter>(id);
+        // Fixed sample locations: every texture of the same count samples the same points, so a layer drawn by one
+        // pass lines up sample for sample with the target another lays it into.
+        glTextureStorage2DMultisample(id, samples, glFormatOf(format).internalFormat, width, height, GL_TRUE);
+        checkAllocation("GlTexture()", what + " of " + std::to_string(samples) + " samples", glGetError());
+        labelObject(GL_TEXTURE, id, label);
+        return; // read by texelFetch per sample: a multisampled texture has no filtering or wrapping
+    }
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     mHandle = GlHandle<TextureDeleter>(id);
     glTextureStorage2D(id, 1, glFormatOf(format).internalFormat, width, height);
-    checkAllocation("GlTexture()",
-                    std::to_string(width) + "x" + std::to_string(height) + " " + std::string(formatName(format)) +
-                        " texture '" + std::string(label) + "'",
-                    glGetError());
+    checkAllocation("GlTexture()", what, glGetError());
     // Data textures are sampled texel-exactly: never blend a normal or a depth with its neighbour.
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -76,14 +85,17 @@ void GlTexture::relabel(std::string_view label) {
     labelObject(GL_TEXTURE, id(), label);
 }
 
-GlDepthTexture::GlDepthTexture(int width, int height, std::string_view label) {
+GlDepthTexture::GlDepthTexture(int width, int height, std::string_view label, int samples) {
     GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    glCreateTextures(samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D, 1, &id);
     mHandle = GlHandle<TextureDeleter>(id);
-    glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, width, height);
+    if (samples > 1)
+        glTextureStorage2DMultisample(id, samples, GL_DEPTH_COMPONENT32F, width, height, GL_TRUE);
+    else
+        glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, width, height);
     checkAllocation("GlDepthTexture()",
                     std::to_string(width) + "x" + std::to_string(height) + " depth texture '" + std::string(label) +
-                        "'",
+                        "'" + (samples > 1 ? " of " + std::to_string(samples) + " samples" : std::string()),
                     glGetError());
     labelObject(GL_TEXTURE, id, label);
 }
@@ -176,14 +188,25 @@ GLint GlProgram::uniform(const char* name) const {
     return mLocations->emplace(std::string(key), glGetUniformLocation(id(), name)).first->second;
 }
 
-const GlDepthTexture& PassDepthBuffer::sized(int width, int height) {
-    if (!mDepth || mWidth != width || mHeight != height) {
+const GlDepthTexture& PassDepthBuffer::sized(int width, int height, int samples) {
+    if (!mDepth || mWidth != width || mHeight != height || mSamples != samples) {
         mDepth.reset(); // the old one goes first, so two never exist at once
-        mDepth = std::make_unique<GlDepthTexture>(width, height, mLabel);
+        mDepth = std::make_unique<GlDepthTexture>(width, height, mLabel, samples);
         mWidth = width;
         mHeight = height;
+        mSamples = samples;
     }
     return *mDepth;
+}
+
+int maxSamples() {
+    GLint most = 0;
+    GLint color = 0;
+    GLint depth = 0;
+    glGetIntegerv(GL_MAX_SAMPLES, &most);
+    glGetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &color);
+    glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &depth);
+    return std::min({most, color, depth});
 }
 
 void clearColorAndDepth(int colorSlots) {

@@ -32,15 +32,18 @@ struct GlFormat {
 };
 GlFormat glFormatOf(Format format);
 
-/** An immutable-storage 2-D texture, one level, nearest filtering, clamped to the edge. */
+/** An immutable-storage 2-D texture, one level, nearest filtering, clamped to the edge; with `samples` above 1 a
+ *  multisampled one (GL_TEXTURE_2D_MULTISAMPLE, fixed sample locations), which shaders read per sample and
+ *  readTexture() resolves. */
 class GlTexture {
 public:
-    GlTexture(Format format, int width, int height, std::string_view label);
+    GlTexture(Format format, int width, int height, std::string_view label, int samples = 1);
 
     GLuint id() const { return mHandle.id(); }
     Format format() const { return mFormat; }
     int width() const { return mWidth; }
     int height() const { return mHeight; }
+    int samples() const { return mSamples; }
     const std::string& label() const { return mLabel; }
     /** Re-labels a pooled texture for the resource now using it. */
     void relabel(std::string_view label);
@@ -50,13 +53,14 @@ private:
     Format mFormat = Format::RGBA8;
     int mWidth = 0;
     int mHeight = 0;
+    int mSamples = 1;
     std::string mLabel;
 };
 
-/** A depth attachment private to a pass (never a graph resource). */
+/** A depth attachment private to a pass (never a graph resource); multisampled with `samples` above 1. */
 class GlDepthTexture {
 public:
-    GlDepthTexture(int width, int height, std::string_view label);
+    GlDepthTexture(int width, int height, std::string_view label, int samples = 1);
     GLuint id() const { return mHandle.id(); }
 
 private:
@@ -68,15 +72,20 @@ private:
 class PassDepthBuffer {
 public:
     explicit PassDepthBuffer(std::string label) : mLabel(std::move(label)) {}
-    /** The depth texture of this size, made on first use or when the size changed. */
-    const GlDepthTexture& sized(int width, int height);
+    /** The depth texture of this size and sample count, made on first use or when either changed. */
+    const GlDepthTexture& sized(int width, int height, int samples = 1);
 
 private:
     std::string mLabel;
     std::unique_ptr<GlDepthTexture> mDepth;
     int mWidth = 0;
     int mHeight = 0;
+    int mSamples = 1;
 };
+
+/** The most samples a multisampled colour or depth texture may have in the current context: the least of
+ *  GL_MAX_SAMPLES, GL_MAX_COLOR_TEXTURE_SAMPLES and GL_MAX_DEPTH_TEXTURE_SAMPLES. */
+int maxSamples();
 
 /** Depth convention of every pass: reversed-Z (docs/stability.md, "far/near ratio"). The projection maps the near
  *  plane to window depth 1 and the far plane to 0 (FrameParams::clipFromView), glClipControl(GL_LOWER_LEFT,

@@ -44,16 +44,18 @@ ResourceStore::Entry& ResourceStore::entry(const std::string& name) {
     return found->second;
 }
 
-GlTexture& ResourceStore::writeTexture(const std::string& name, Format format, int width, int height) {
+GlTexture& ResourceStore::writeTexture(const std::string& name, Format format, int width, int height, int samples) {
     Entry& target = mEntries[name];
     target.image.release();
-    if (!target.texture || target.format != format || target.width != width || target.height != height) {
+    if (!target.texture || target.format != format || target.width != width || target.height != height ||
+        target.samples != samples) {
         if (target.texture) mPool.release(std::move(*target.texture));
-        target.texture.emplace(mPool.acquire(format, width, height, name));
+        target.texture.emplace(mPool.acquire(format, width, height, name, samples));
     }
     target.format = format;
     target.width = width;
     target.height = height;
+    target.samples = samples;
     return *target.texture;
 }
 
@@ -66,6 +68,7 @@ cv::Mat& ResourceStore::writeImage(const std::string& name, Format format, int w
     target.format = format;
     target.width = width;
     target.height = height;
+    target.samples = 1;
     target.image = cv::Mat::zeros(height, width, cvTypeOf(format));
     return target.image;
 }
@@ -180,25 +183,36 @@ void GlPassContext::requireObjectRead(std::string_view resource) const {
 int GlPassContext::widthOf(std::string_view field) const { return mFrameWidth * liveOutput(field).desc.scale; }
 int GlPassContext::heightOf(std::string_view field) const { return mFrameHeight * liveOutput(field).desc.scale; }
 
-int GlPassContext::scaleOf(std::string_view resource) const {
+const PlannedResource& GlPassContext::readOrLiveWrite(std::string_view resource, const char* function) const {
     const bool declaredRead = std::find(mPlanned.reads.begin(), mPlanned.reads.end(), resource) != mPlanned.reads.end();
     const bool ownOutput =
         std::find(mPlanned.liveWrites.begin(), mPlanned.liveWrites.end(), resource) != mPlanned.liveWrites.end();
     const PlannedResource* planned = declaredRead || ownOutput ? mPlan.findResource(std::string(resource)) : nullptr;
     if (planned == nullptr)
-        throw std::logic_error("GlPassContext::scaleOf(): pass '" + mPlanned.name + "' neither reads '" +
+        throw std::logic_error(std::string(function) + ": pass '" + mPlanned.name + "' neither reads '" +
                                std::string(resource) + "' nor writes it as a live output");
-    return planned->desc.scale;
+    return *planned;
+}
+
+int GlPassContext::scaleOf(std::string_view resource) const {
+    return readOrLiveWrite(resource, "GlPassContext::scaleOf()").desc.scale;
+}
+
+int GlPassContext::samplesOf(std::string_view resource) const {
+    return readOrLiveWrite(resource, "GlPassContext::samplesOf()").desc.samples;
 }
 
 GlTexture& GlPassContext::outputTexture(std::string_view field) {
     const PlannedResource& planned = liveOutput(field);
     return mStore.writeTexture(planned.name, planned.desc.format, mFrameWidth * planned.desc.scale,
-                               mFrameHeight * planned.desc.scale);
+                               mFrameHeight * planned.desc.scale, planned.desc.samples);
 }
 
 cv::Mat& GlPassContext::outputImage(std::string_view field) {
     const PlannedResource& planned = liveOutput(field);
+    if (planned.desc.samples != 1)
+        throw std::logic_error("GlPassContext::outputImage(): '" + planned.name + "' is multisampled (" +
+                               std::to_string(planned.desc.samples) + " samples); only GL draws it");
     return mStore.writeImage(planned.name, planned.desc.format, mFrameWidth * planned.desc.scale,
                              mFrameHeight * planned.desc.scale);
 }

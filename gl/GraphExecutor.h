@@ -30,8 +30,9 @@ public:
     ResourceStore(const ResourceStore&) = delete;
     ResourceStore& operator=(const ResourceStore&) = delete;
 
-    /** A GPU target for a pass to render into; the CPU copy, if any, is discarded. */
-    GlTexture& writeTexture(const std::string& name, Format format, int width, int height);
+    /** A GPU target for a pass to render into (multisampled with `samples` above 1); the CPU copy, if any, is
+     *  discarded. */
+    GlTexture& writeTexture(const std::string& name, Format format, int width, int height, int samples = 1);
     /** A CPU image for a pass to fill; the GPU copy, if any, is discarded. */
     cv::Mat& writeImage(const std::string& name, Format format, int width, int height);
     /** The GPU side, uploading the CPU image on first use. */
@@ -75,6 +76,7 @@ private:
         Format format = Format::RGBA8;
         int width = 0;
         int height = 0;
+        int samples = 1;
         std::optional<GlTexture> texture;
         cv::Mat image;                ///< a texture's CPU side, or an object's picture
         std::shared_ptr<void> object; ///< kind Object: the value, of objectType
@@ -108,8 +110,12 @@ public:
      *  live output (full name, "mesh-edges.crease"), so a reader need not be told how large its inputs are. Throws
      *  std::logic_error for any other resource. */
     int scaleOf(std::string_view resource) const;
+    /** The planned sample count (TextureDesc::samples) of a declared read or of this pass's own live output, as
+     *  scaleOf(): a reader of a multisampled texture reads it per sample. */
+    int samplesOf(std::string_view resource) const;
 
-    /** This pass's live output `field` as a GPU target or a CPU image. Throws if the field is not live. */
+    /** This pass's live output `field` as a GPU target (multisampled when its TextureDesc says so) or a CPU image.
+     *  Throws if the field is not live, and outputImage() for a multisampled field (only GL draws samples). */
     GlTexture& outputTexture(std::string_view field);
     cv::Mat& outputImage(std::string_view field);
     /** A declared input by full name. Throws on a read the pass did not declare. */
@@ -136,6 +142,8 @@ public:
 private:
     const PlannedResource& liveOutput(std::string_view field) const;
     const PlannedResource& liveObjectOutput(std::string_view field) const;
+    /** The planned resource `resource` when the pass reads it or writes it live; throws naming `function` otherwise. */
+    const PlannedResource& readOrLiveWrite(std::string_view resource, const char* function) const;
     void requireDeclaredRead(std::string_view resource) const;
     void requireObjectRead(std::string_view resource) const;
 

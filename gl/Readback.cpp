@@ -65,9 +65,31 @@ void mapPagesAhead(cv::Mat& image) {
 #endif
 }
 
+/** A multisampled texture resolved into a single-sample one of the same format and size by GL's blit: colour is the
+ *  average of a pixel's samples, depth (which GL does not average) one of them. */
+GlTexture resolved(const GlTexture& texture) {
+    GlTexture single(texture.format(), texture.width(), texture.height(), texture.label() + " resolved");
+    const bool depth = texture.format() == Format::Depth32F;
+    const GLenum attachment = depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0;
+    GlFramebuffer source(texture.label() + " multisampled");
+    GlFramebuffer target(texture.label() + " resolved");
+    glNamedFramebufferTexture(source.id(), attachment, texture.id(), 0);
+    glNamedFramebufferTexture(target.id(), attachment, single.id(), 0);
+    if (!depth) {
+        glNamedFramebufferReadBuffer(source.id(), GL_COLOR_ATTACHMENT0);
+        glNamedFramebufferDrawBuffer(target.id(), GL_COLOR_ATTACHMENT0);
+    }
+    glBlitNamedFramebuffer(source.id(), target.id(), 0, 0, texture.width(), texture.height(), 0, 0, texture.width(),
+                           texture.height(), depth ? GL_DEPTH_BUFFER_BIT : GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    throwOnGlError("readTexture()", texture);
+    return single;
+}
+
 } // namespace
 
 cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip) {
+    // GL reads no multisampled texture back; --dump and the caller's buffers take one value per pixel.
+    if (texture.samples() > 1) return readTexture(resolved(texture), flip);
     const GlFormat glFormat = glFormatOf(texture.format());
     cv::Mat image(texture.height(), texture.width(), cvTypeOf(texture.format()));
     mapPagesAhead(image);
@@ -92,6 +114,9 @@ cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip) {
 }
 
 void uploadImage(GlTexture& texture, const cv::Mat& image) {
+    if (texture.samples() > 1)
+        throw std::invalid_argument("uploadImage(): texture '" + texture.label() + "' is multisampled (" +
+                                    std::to_string(texture.samples()) + " samples); only a pass can draw it");
     if (image.cols != texture.width() || image.rows != texture.height() || image.type() != cvTypeOf(texture.format()))
         throw std::invalid_argument("uploadImage(): image of " + std::to_string(image.cols) + "x" +
                                     std::to_string(image.rows) + " does not match texture '" + texture.label() + "'");

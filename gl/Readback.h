@@ -17,10 +17,12 @@ enum class ReadbackFlip {
     Cpu,     ///< always the CPU, as on drivers without the extension (for tests)
 };
 
-/** Reads the whole texture; row 0 of the result is the TOP row of the image. */
+/** Reads the whole texture; row 0 of the result is the TOP row of the image. A multisampled texture is resolved
+ *  first: a colour pixel is the average of its samples, a depth pixel one of them (GL's blit). */
 cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip = ReadbackFlip::Fastest);
 
-/** Uploads `image` (row 0 = top) into a texture of the same size and matching type. Throws on a mismatch. */
+/** Uploads `image` (row 0 = top) into a texture of the same size and matching type. Throws on a mismatch and for a
+ *  multisampled texture. */
 void uploadImage(GlTexture& texture, const cv::Mat& image);
 
 } // namespace inkgraph

@@ -2,9 +2,9 @@
 
 namespace inkgraph {
 
-GlTexture TexturePool::acquire(Format format, int width, int height, std::string_view label) {
+GlTexture TexturePool::acquire(Format format, int width, int height, std::string_view label, int samples) {
     for (auto it = mFree.begin(); it != mFree.end(); ++it) {
-        if (it->format() == format && it->width() == width && it->height() == height) {
+        if (it->format() == format && it->width() == width && it->height() == height && it->samples() == samples) {
             GlTexture texture = std::move(*it);
             mFree.erase(it);
             texture.relabel(label);
@@ -13,7 +13,7 @@ GlTexture TexturePool::acquire(Format format, int width, int height, std::string
         }
     }
     ++mCreatedCount;
-    return GlTexture(format, width, height, label);
+    return GlTexture(format, width, height, label, samples);
 }
 
 void TexturePool::release(GlTexture texture) { mFree.push_back(std::move(texture)); }

@@ -1,5 +1,5 @@
 #pragma once
-/** @file Reuses textures between resources whose lifetimes do not overlap (keyed on format and size), the only
+/** @file Reuses textures between resources whose lifetimes do not overlap (keyed on format, size and samples), the only
  *  aliasing an offline renderer needs. */
 
 #include "gl/GlObjects.h"
@@ -11,8 +11,9 @@ namespace inkgraph {
 
 class TexturePool {
 public:
-    /** A texture of this format and size, re-labelled for its new user; reuses a released one when it can. */
-    GlTexture acquire(Format format, int width, int height, std::string_view label);
+    /** A texture of this format, size and sample count, re-labelled for its new user; reuses a released one when it
+     *  can. */
+    GlTexture acquire(Format format, int width, int height, std::string_view label, int samples = 1);
     void release(GlTexture texture);
     /** Deletes the released textures (those in use stay with their users). */
     void dropFree() { mFree.clear(); }

@@ -6,10 +6,11 @@
 namespace inkgraph {
 namespace {
 
-/** "rgba32f", or "rgba32f x2" for supersampled buffers. */
+/** "rgba32f", "rgba32f x2" for supersampled buffers, "rgba8 msaa4" for multisampled ones. */
 std::string describeDesc(const TextureDesc& desc) {
     std::string text(formatName(desc.format));
     if (desc.scale != 1) text += " x" + std::to_string(desc.scale);
+    if (desc.samples != 1) text += " msaa" + std::to_string(desc.samples);
     return text;
 }
 

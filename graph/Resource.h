@@ -24,10 +24,13 @@ std::string_view formatName(Format format);
 /** True for the float formats (32- and 16-bit): their images are float32 on the CPU and dump as EXR. */
 bool isFloatFormat(Format format);
 
-/** Every graph texture is frame-sized, scaled by `scale` (supersampling renders data buffers larger). */
+/** Every graph texture is frame-sized, scaled by `scale` (supersampling renders data buffers larger). `samples` above
+ *  1 makes it multisampled (--msaa): each pixel holds that many samples, which a reader takes one by one (GLSL's
+ *  sampler2DMS) and a read-back resolves to one value per pixel. */
 struct TextureDesc {
     Format format = Format::RGBA32F;
     int scale = 1;
+    int samples = 1;
     bool operator==(const TextureDesc&) const = default;
 };
 

@@ -64,7 +64,8 @@ public:
                paddedTextureSide(std::size_t(mHeight) * std::size_t(scale));
     }
     std::size_t textureBytes(const PlannedResource& resource) const {
-        return paddedPixels(resource.desc.scale) * std::size_t(bytesPerPixel(resource.desc.format));
+        return paddedPixels(resource.desc.scale) * std::size_t(bytesPerPixel(resource.desc.format)) *
+               std::size_t(resource.desc.samples);
     }
     /** A texture's CPU image; an object's own bytes as its writer declares them, and its picture. */
     std::size_t imageBytes(const PlannedResource& resource) const {
@@ -229,15 +230,17 @@ void budgetStill(PreparedStill& still) {
     for (const PlannedResource& resource : still.plan.resources) {
         const std::size_t textureBytes = paddedTextureSide(std::size_t(width) * resource.desc.scale) *
                                          paddedTextureSide(std::size_t(height) * resource.desc.scale) *
-                                         std::size_t(bytesPerPixel(resource.desc.format));
+                                         std::size_t(bytesPerPixel(resource.desc.format)) *
+                                         std::size_t(resource.desc.samples);
         if (textureBytes < kMaxTextureBytes) continue;
         const std::string size = "--size " + sizeText(std::size_t(width), std::size_t(height));
         const std::string cause =
-            resource.desc.scale > 1
-                ? size + " with --supersample " + std::to_string(resource.desc.scale) + " (" +
-                      sizeText(std::size_t(width) * resource.desc.scale, std::size_t(height) * resource.desc.scale) +
-                      ")"
-                : size;
+            (resource.desc.scale > 1
+                 ? size + " with --supersample " + std::to_string(resource.desc.scale) + " (" +
+                       sizeText(std::size_t(width) * resource.desc.scale, std::size_t(height) * resource.desc.scale) +
+                       ")"
+                 : size) +
+            (resource.desc.samples > 1 ? " and --msaa " + std::to_string(resource.desc.samples) : std::string());
         throw UsageError(cause + " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
                          " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
     }
