@@ -169,6 +169,7 @@ Json describeLook(const PreparedStill& still, const std::string& stylePath) {
     if (const std::string mode = graph.shadingModeIn(still.plan); !mode.empty()) json["shading_mode"] = mode;
     if (const std::string reason = graph.shadingForwardReasonIn(still.plan); !reason.empty())
         json["shading_forward_because"] = reason;
+    if (shading.define != nullptr) json["msaa"] = look.msaa;
     if (shading.specular) json["shininess"] = look.shininess;
     if (!graph.shadeMapSource.empty()) json["shademap"] = graph.shadeMapSource;
     if (!graph.meshShadeMapSources.empty()) {

@@ -53,6 +53,7 @@ struct Look {
     LineParameterValues lineParameters;          ///< the line types' other settings (passes/lines/LineParameter.h)
     StrokeStyle strokes;                         ///< how line pixels become strokes, for every type
     int supersample = 1;                         ///< data buffers and edge skeletons at S x the size
+    int msaa = 1; ///< samples per pixel of the colour passes (shading, MToon's outline shells): 1, 2, 4 or 8
     GBufferPrecision gbufferPrecision = GBufferPrecision::Float32; ///< the G-buffer's direction fields
     glm::dvec3 background{1.0, 1.0, 1.0};
     std::optional<glm::dvec3> towardLight; ///< world direction toward the light; default: the file's, else a key light

@@ -26,8 +26,8 @@ cv::Vec4f displayColor(const glm::dvec4& color) {
  *  for an outline, else empty, and the unread pass is culled. */
 std::string addMToonOutline(const StillGraphSetup& setup, StillGraph& graph) {
     if (!traitsOf(graph.shadingModel).materialOutlines) return {};
-    graph.passes.push_back(
-        std::make_unique<MToonOutlinePass>(kMToonOutlinePass, setup.shaders, setup.gpuScene, setup.frame));
+    graph.passes.push_back(std::make_unique<MToonOutlinePass>(kMToonOutlinePass, setup.shaders, setup.gpuScene,
+                                                              setup.frame, setup.look.msaa));
     return MToonOutlinePass::drawsAnyOutline(setup.gpuScene.scene()) ? kMToonOutlinePass : "";
 }
 
@@ -42,6 +42,7 @@ ShadePass* addShading(const StillGraphSetup& setup, StillGraph& graph, const std
     settings.model = graph.shadingModel;
     settings.shininess = look.shininess;
     settings.materialOutlines = outlines;
+    settings.msaa = look.msaa;
     // Deferred where the G-buffer runs anyway: the shade pass asks the compiler (ShadePass::forwardReason()).
     if (setup.allowDeferredShading)
         settings.deferred = {std::string(gbuffer.name()), gbuffer.supersample(), gbuffer.precision()};

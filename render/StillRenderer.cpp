@@ -48,8 +48,12 @@ std::vector<std::string> expandWildcards(const std::vector<std::string>& request
     return expanded;
 }
 
-/** Checks the frame against what the driver can allocate. */
-void checkDriverLimits(int width, int height) {
+/** Checks the frame, and the samples per pixel --msaa asks for, against what the driver can allocate. */
+void checkDriverLimits(int width, int height, int msaa, const std::string& driver) {
+    // The flag takes 1, 2, 4 or 8; what the driver draws is known only now that there is a context.
+    if (msaa > 1 && msaa > maxSamples())
+        throw UsageError("--msaa " + std::to_string(msaa) + ": this driver ('" + driver + "') draws at most " +
+                         std::to_string(maxSamples()) + " samples per pixel (GL_MAX_SAMPLES)");
     GLint maxTextureSize = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
     GLint maxViewport[2] = {0, 0};
@@ -206,7 +210,7 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
         if (!log.quiet) log.log << "inkgraph: " << mContext->describe() << "\n";
     }
     const CameraRequest& camera = still.request.camera;
-    checkDriverLimits(camera.width, camera.height);
+    checkDriverLimits(camera.width, camera.height, still.request.look.msaa, mContext->renderer());
     const std::size_t programsCompiledBefore = mShaders.compiledCount();
     const std::size_t programsReusedBefore = mShaders.reusedCount();
 

@@ -8,10 +8,16 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
+#include <stdexcept>
+
 namespace inkgraph {
 
-MToonOutlinePass::MToonOutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame)
-    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame) {}
+MToonOutlinePass::MToonOutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
+                                   int samples)
+    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSamples(samples) {
+    if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
+        throw std::invalid_argument("MToonOutlinePass(): samples must be 1, 2, 4 or 8, got " + std::to_string(samples));
+}
 
 bool MToonOutlinePass::drawsAnyOutline(const Scene& scene) {
     for (const Mesh& mesh : scene.meshes)
@@ -22,10 +28,10 @@ bool MToonOutlinePass::drawsAnyOutline(const Scene& scene) {
 void MToonOutlinePass::declare(PassBuilder& builder) const {
     builder.import(SceneImport::kMeshes);
     builder.import(SceneImport::kHulls); // the shells are the hulls
-    builder.write("color", {Format::RGBA8}, Need::Required,
+    builder.write("color", {Format::RGBA8, 1, mSamples}, Need::Required,
                   {mName + ".png", Appearance::Color,
                    "MToon's outline shells alone (--shading mtoon, materials that ask for an outline), sRGB"});
-    builder.write("depth", {Format::Depth32F}, Need::Required,
+    builder.write("depth", {Format::Depth32F, 1, mSamples}, Need::Required,
                   {mName + "-depth.exr", Appearance::Data,
                    "the outline shells' depth, which the shade pass lays them in by (reversed-Z window depth)"});
 }

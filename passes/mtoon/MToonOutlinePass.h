@@ -6,7 +6,8 @@
  *  | resource              | format   | need     | content                                                       |
  *  |-----------------------|----------|----------|---------------------------------------------------------------|
  *  | reads                 |          |          | nothing from the graph (meshes, hulls, materials from GpuScene) |
- *  | <name>.color          | rgba8    | required | sRGB outline colour, a = 255 where a shell is drawn, else 0    |
+ *  | <name>.color          | rgba8    | required | sRGB outline colour, a = 255 where a shell is drawn, else 0;   |
+ *  |                       |          |          | with samples > 1, per sample                                  |
  *  | <name>.depth          | depth32f | required | window depth of the nearest shell (reversed-Z, gl/GlObjects.h), |
  *  |                       |          |          | 0 (far) where none is                                         |
  *
@@ -17,6 +18,14 @@
  *  nearest shell wins and, of equal depths, the first mesh drawn. The shade pass (ShadeSettings::materialOutlines)
  *  then draws this layer after its opaque surfaces and before its blended ones, testing the depth here against its
  *  own strictly-nearer: the picture is the one the shells drawn among the surfaces would give, to the bit.
+ *
+ *  With samples above 1 (--msaa) both fields are multisampled graph textures, drawn with the samples of the shade
+ *  pass's target and read by it sample by sample, so the shells' edges are anti-aliased as the surfaces' are and the
+ *  picture stays the one the shells drawn among the surfaces would give. The layer goes through the graph as
+ *  multisampled textures rather than being resolved here: a resolved colour and one depth per pixel could not be
+ *  laid in at an edge where a shell's samples meet a surface's, and drawing the shells inside the shade pass would
+ *  hide a layer the plan, --stats and --dump show. --dump writes the colour resolved (the samples' average) and one
+ *  sample's depth.
  *
  *  The still graph registers the pass whenever the look is mtoon; the shade pass reads it only when some material
  *  asks for an outline (decided when the graph is built), so otherwise it is culled. */
@@ -37,7 +46,10 @@ inline constexpr const char* kMToonOutlinePass = "mtoon-outline";
 
 class MToonOutlinePass : public GlPass {
 public:
-    MToonOutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame);
+    /** `samples`: per pixel of both fields, the shade pass's (ShadeSettings::msaa): 1, 2, 4 or 8; std::invalid_argument
+     *  otherwise. */
+    MToonOutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
+                     int samples = 1);
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
@@ -58,6 +70,7 @@ private:
     ShaderLibrary& mShaders;
     GpuScene& mScene;
     const FrameParams& mFrame;
+    int mSamples = 1;
     std::unique_ptr<GlProgram> mProgram;
     std::size_t mShellsDrawn = 0;
     std::size_t mTrianglesDrawn = 0;

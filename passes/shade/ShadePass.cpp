@@ -86,6 +86,9 @@ ShadePass::ShadePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, 
             if (meshShadeMaps[i]) mMeshMap[i] = slotOf(std::move(*meshShadeMaps[i]));
         for (std::size_t slot : mMeshMap) mMaps[slot].used = true;
     }
+    if (mSettings.msaa != 1 && mSettings.msaa != 2 && mSettings.msaa != 4 && mSettings.msaa != 8)
+        throw std::invalid_argument("ShadePass(): msaa must be 1, 2, 4 or 8 samples, got " +
+                                    std::to_string(mSettings.msaa));
     if (!mSettings.materialOutlines.empty() && !traits().materialOutlines)
         throw std::invalid_argument("ShadePass(): the '" + model +
                                     "' model draws no material outlines, got the layer '" + mSettings.materialOutlines +
@@ -148,6 +151,8 @@ void ShadePass::declare(PassBuilder& builder) const {
         for (const std::string& field : deferredFields()) builder.read(gbuffer + "." + field);
     } else {
         builder.import(SceneImport::kMeshes); // forward draws the meshes
+        // The multisampled target, colour (rgba8) and depth (float32), which the pass keeps between runs.
+        if (mSettings.msaa > 1) builder.scratch(std::size_t(8) * std::size_t(mSettings.msaa));
         // Comic's CPU face orientation (Winnemöller & Bangay 2002): the front sets it draws.
         if (traits().orientationSets && mSettings.faceOrientation != FaceOrientationMethod::Standard)
             builder.import(SceneImport::kFaceOrientation);
@@ -186,6 +191,9 @@ std::string ShadePass::sceneBlocker() const {
     if (mSettings.faceOrientation != FaceOrientationMethod::Standard)
         return "'" + model + "' draws the front sets of the CPU face orientation '" +
                faceOrientationMethodName(mSettings.faceOrientation) + "'";
+    if (mSettings.msaa > 1)
+        return "the shading is multisampled (--msaa " + std::to_string(mSettings.msaa) +
+               ") and the G-buffer holds one sample per pixel";
     if (mSettings.deferred.supersample != 1)
         return "the G-buffer is supersampled (" + std::to_string(mSettings.deferred.supersample) + "x the frame)";
     if (mSettings.deferred.precision != GBufferPrecision::Float32) return "the G-buffer stores float16 normals";
@@ -300,14 +308,31 @@ void ShadePass::prepare(GlPassContext& gl) {
     }
     if (mMode == ShadeMode::Deferred) return; // the G-buffer has drawn the meshes
     mScene.meshes();
-    if (!mSettings.materialOutlines.empty() && !mOutlineProgram)
-        mOutlineProgram =
-            std::make_unique<GlProgram>(mShaders.build({mName + " material outlines",
-                                                        "shade/deferred.vert",
-                                                        "shade/outlines.frag",
-                                                        {"OUTLINE_COLOR_UNIT " + std::to_string(kOutlineColorUnit),
-                                                         "OUTLINE_DEPTH_UNIT " + std::to_string(kOutlineDepthUnit)},
-                                                        {"common/fullscreen.glsl"}}));
+    if (mSettings.materialOutlines.empty() || mOutlineProgram) return;
+    // The layer is laid in sample by sample, so it must have the samples of the target it goes into.
+    const std::string layerColor = mSettings.materialOutlines + ".color";
+    for (const std::string& layer : {layerColor, mSettings.materialOutlines + ".depth"})
+        if (gl.samplesOf(layer) != mSettings.msaa)
+            throw std::logic_error("ShadePass::prepare(): '" + layer + "' has " + std::to_string(gl.samplesOf(layer)) +
+                                   " samples per pixel, the shading " + std::to_string(mSettings.msaa));
+    std::vector<std::string> outlineDefines = {"OUTLINE_COLOR_UNIT " + std::to_string(kOutlineColorUnit),
+                                               "OUTLINE_DEPTH_UNIT " + std::to_string(kOutlineDepthUnit)};
+    if (mSettings.msaa > 1) outlineDefines.push_back("OUTLINE_MULTISAMPLED 1");
+    mOutlineProgram = std::make_unique<GlProgram>(mShaders.build({mName + " material outlines",
+                                                                  "shade/deferred.vert",
+                                                                  "shade/outlines.frag",
+                                                                  outlineDefines,
+                                                                  {"common/fullscreen.glsl"}}));
+}
+
+const GlTexture& ShadePass::multisampledColor(int width, int height) {
+    if (!mMultisampledColor || mMultisampledColor->width() != width || mMultisampledColor->height() != height ||
+        mMultisampledColor->samples() != mSettings.msaa) {
+        mMultisampledColor.reset(); // the old one goes first, so two never exist at once
+        mMultisampledColor =
+            std::make_unique<GlTexture>(Format::RGBA8, width, height, mName + " multisampled", mSettings.msaa);
+    }
+    return *mMultisampledColor;
 }
 
 void ShadePass::layMaterialOutlines(GlPassContext& gl) {
@@ -392,9 +417,14 @@ void ShadePass::executeDeferred(GlPassContext& gl) {
 void ShadePass::executeForward(GlPassContext& gl) {
     const int width = gl.widthOf("color");
     const int height = gl.heightOf("color");
+    // With msaa the surfaces are drawn into a multisampled target of the pass's own, resolved into the output at the
+    // end; the fragment shader still runs once per pixel and triangle (at the pixel's centre, so a pixel inside a
+    // surface gets the colour it has without msaa), but each sample keeps its own coverage and depth.
+    const bool multisampled = mSettings.msaa > 1;
+    GlTexture& output = gl.outputTexture("color");
     GlFramebuffer framebuffer(mName);
-    framebuffer.attachColor(0, gl.outputTexture("color"));
-    framebuffer.attachDepth(mDepth.sized(width, height));
+    framebuffer.attachColor(0, multisampled ? multisampledColor(width, height) : output);
+    framebuffer.attachDepth(mDepth.sized(width, height, mSettings.msaa));
     framebuffer.finish({0});
 
     // CPU face orientation (comic only): marked, lit and uploaded on the first call, so it counts as this pass's
@@ -466,6 +496,17 @@ void ShadePass::executeForward(GlPassContext& gl) {
     if (!mMaps.empty()) glBindTextureUnit(0, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_DEPTH_TEST);
+    if (multisampled) {
+        // The resolve averages each pixel's samples. They hold premultiplied colour with alpha (blending keeps
+        // them so, and the background's samples are transparent black), so an edge pixel is its covered share of
+        // the surface over nothing, which the composite lays over the paper as it lays any partly covered pixel.
+        GlFramebuffer resolved(mName + " resolved");
+        resolved.attachColor(0, output);
+        resolved.finish({0});
+        glNamedFramebufferReadBuffer(framebuffer.id(), GL_COLOR_ATTACHMENT0);
+        glBlitNamedFramebuffer(framebuffer.id(), resolved.id(), 0, 0, width, height, 0, 0, width, height,
+                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
 }
 
 } // namespace inkgraph

@@ -15,7 +15,8 @@
  *  |               |        |          | deferred: gbuffer.normal (a = coverage); gbuffer.baseColor unless   |
  *  |               |        |          | the scene has one base colour; gbuffer.view for phong and comic     |
  *  |               |        |          | with the exact view vector                                          |
- *  | <name>.color  | rgba8  | required | sRGB colour, a = coverage (0 off the model)                        |
+ *  | <name>.color  | rgba8  | required | sRGB colour, a = coverage (0 off the model); with msaa, the average |
+ *  |               |        |          | of each pixel's samples: edges take a share of fill and background  |
  *
  *  Models (docs/shading.md; n, l, v unit, v surface -> eye, r = reflect(-l, n)):
  *  - flat:    face normal from the derivatives of the view position, ambient + diffuse
@@ -82,6 +83,11 @@ struct ShadeSettings {
      *  `depth`, passes/mtoon/MToonOutlinePass.h) forward shading lays in after the opaque surfaces; empty: none. The
      *  still graph names it only when some material asks for an outline, so the layer's pass is otherwise culled. */
     std::string materialOutlines{};
+    /** Samples per pixel of forward shading (--msaa: 1, 2, 4 or 8). Above 1 the pass draws into a multisampled
+     *  colour and depth target of its own and resolves it into `<name>.color` (the average of each pixel's samples);
+     *  the material outlines' layer then has as many samples, laid in sample by sample. Deferred shading cannot
+     *  multisample (the G-buffer is single-sample), so it is a reason to shade forward. */
+    int msaa = 1;
     /** The G-buffer deferred shading may read when it runs anyway: its pass name, supersampling and precision (a
      *  supersampled or float16 G-buffer would shade other normals than forward). An empty name: always forward. */
     struct DeferredSource {
@@ -116,9 +122,9 @@ public:
      *  G-buffer that run anyway, or empty for deferred. Deferred when settings.deferred names a G-buffer, `liveFields`
      *  is not empty (the G-buffer runs anyway) and none of these holds, else forward with the first that does as the
      *  reason: the model is not perPixel (flat, gouraud, mtoon); comic draws a CPU face orientation's sets; the
-     *  G-buffer is supersampled or float16; a material blends, is emissive or unlit (the G-buffer holds none of it);
-     *  the meshes use more than one distinct shade map; the fields deferred reads would make the G-buffer draw the
-     *  meshes a second time. The facts of the scene are taken once, at construction. */
+     *  shading is multisampled (msaa); the G-buffer is supersampled or float16; a material blends, is emissive or unlit
+     * (the G-buffer holds none of it); the meshes use more than one distinct shade map; the fields deferred reads would
+     * make the G-buffer draw the meshes a second time. The facts of the scene are taken once, at construction. */
     std::string forwardReason(const std::vector<std::string>& liveFields) const;
     /** The mode a compiled plan runs the pass in: deferred when it reads the G-buffer. */
     ShadeMode modeIn(const Plan& plan) const;
@@ -160,13 +166,16 @@ private:
     /** MODEL_* and variant defines for the one program of this pass. */
     std::vector<std::string> defines() const;
     /** Why deferred shading would not give the forward picture whatever the G-buffer writes (the model, the
-     *  G-buffer's resolution and precision, the materials, the shade maps), or empty; taken at construction. */
+     *  shading's samples, the G-buffer's resolution and precision, the materials, the shade maps), or empty; taken at
+     *  construction. */
     std::string sceneBlocker() const;
     /** The uniforms both modes share: light, ambient, shininess, specular strength, comic's constant view. */
     void setShadingUniforms(const GlProgram& program) const;
     /** Binds `slot`'s shade map to unit 0 and, for comic's row bands, sets its borders and rows. */
     void bindShadeMap(const GlProgram& program, const MapSlot& slot) const;
     void executeForward(GlPassContext& gl);
+    /** The multisampled colour target forward shading draws into with msaa, kept between runs of the same size. */
+    const GlTexture& multisampledColor(int width, int height);
     void executeDeferred(GlPassContext& gl);
     /** A model with traits().specularRowBands (comic) on the GPU with maps of at most kMaxSpecularRowBands + 1 row
      *  bands: rows found by comparisons. */
@@ -187,16 +196,17 @@ private:
     GpuScene& mScene;
     const FrameParams& mFrame;
     ShadeSettings mSettings;
-    std::vector<MapSlot> mMaps;                  ///< cel, comic: [0] the default map, then each distinct per-mesh map
-    std::vector<std::size_t> mMeshMap;           ///< cel, comic: per GpuScene mesh, its entry of mMaps
-    std::size_t mSpecularBorderCount = 0;        ///< comic: the most row-band borders of a map in use
-    std::unique_ptr<GlProgram> mProgram;         ///< the one program of this model and variant
-    std::unique_ptr<GlProgram> mOutlineProgram;  ///< lays the material outlines in, when the settings name a layer
-    PassDepthBuffer mDepth;                      ///< the pass's own depth attachment, kept between runs
-    ShadeMode mMode = ShadeMode::Forward;        ///< the plan being run's (prepare())
-    ShadeMode mProgramMode = ShadeMode::Forward; ///< the mode mProgram was built for
-    std::optional<glm::vec4> mSceneBaseColor;    ///< sceneBaseColor(), taken at construction
-    std::string mSceneBlocker;                   ///< sceneBlocker(), taken at construction
+    std::vector<MapSlot> mMaps;                    ///< cel, comic: [0] the default map, then each distinct per-mesh map
+    std::vector<std::size_t> mMeshMap;             ///< cel, comic: per GpuScene mesh, its entry of mMaps
+    std::size_t mSpecularBorderCount = 0;          ///< comic: the most row-band borders of a map in use
+    std::unique_ptr<GlProgram> mProgram;           ///< the one program of this model and variant
+    std::unique_ptr<GlProgram> mOutlineProgram;    ///< lays the material outlines in, when the settings name a layer
+    PassDepthBuffer mDepth;                        ///< the pass's own depth attachment, kept between runs
+    std::unique_ptr<GlTexture> mMultisampledColor; ///< msaa > 1: what forward shading draws, resolved into color
+    ShadeMode mMode = ShadeMode::Forward;          ///< the plan being run's (prepare())
+    ShadeMode mProgramMode = ShadeMode::Forward;   ///< the mode mProgram was built for
+    std::optional<glm::vec4> mSceneBaseColor;      ///< sceneBaseColor(), taken at construction
+    std::string mSceneBlocker;                     ///< sceneBlocker(), taken at construction
 };
 
 } // namespace inkgraph

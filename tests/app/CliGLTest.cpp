@@ -854,5 +854,32 @@ TEST_F(Cli, AnUndecodableTextureIsBadInputAndABatchGoesOn) {
     EXPECT_EQ(readText(directory / "bad.png"), "this is not a PNG") << "the model's own texture is untouched";
 }
 
+TEST_F(Cli, MsaaShadesForwardSaysSoAndIsCappedAtTheDriversSamples) {
+    const std::string suzanne = model("suzanne_npm_4k.obj");
+    ASSERT_EQ(run("render " + suzanne + " -o four.png --size 48x48 --msaa 4 --stats four.json").exitCode, 0);
+    const auto stats = nlohmann::json::parse(readText(directory / "four.json"));
+    EXPECT_EQ(stats["look"]["msaa"], 4);
+    EXPECT_EQ(stats["look"]["shading_mode"], "forward");
+    EXPECT_EQ(stats["look"]["shading_forward_because"],
+              "the shading is multisampled (--msaa 4) and the G-buffer holds one sample per pixel");
+    ASSERT_EQ(run("render " + suzanne + " -o one.png --size 48x48 --stats one.json").exitCode, 0);
+    EXPECT_EQ(nlohmann::json::parse(readText(directory / "one.json"))["look"]["msaa"], 1);
+    ASSERT_EQ(run("render " + suzanne + " -o none.png --size 48x48 --shading none --stats none.json").exitCode, 0);
+    EXPECT_FALSE(nlohmann::json::parse(readText(directory / "none.json"))["look"].contains("msaa"));
+
+    // What the driver draws is known once there is a context: beyond it, a usage error that names the limit, and no
+    // picture. llvmpipe draws 4; a driver that draws 8 renders.
+    const CliRun eight = run("render " + suzanne + " -o eight.png --size 48x48 --msaa 8");
+    if (eight.exitCode == 0) {
+        EXPECT_TRUE(fs::exists(directory / "eight.png"));
+    } else {
+        EXPECT_EQ(eight.exitCode, 2) << eight.err;
+        const std::regex refusal("inkgraph: --msaa 8: this driver \\('[^']+'\\) draws at most [124] samples per pixel "
+                                 "\\(GL_MAX_SAMPLES\\)\n");
+        EXPECT_TRUE(std::regex_search(eight.err, refusal)) << eight.err;
+        EXPECT_FALSE(fs::exists(directory / "eight.png"));
+    }
+}
+
 } // namespace
 } // namespace inkgraph

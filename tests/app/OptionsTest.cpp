@@ -191,6 +191,17 @@ TEST(Options, PostStageLineTypesAndTheirFlags) {
               std::string::npos);
 }
 
+TEST(Options, MsaaTakesOneTwoFourOrEightSamplesAndNeedsAShadingPass) {
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png"}).look.msaa, 1);
+    for (const int samples : {1, 2, 4, 8})
+        EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--msaa", std::to_string(samples)}).look.msaa, samples);
+    for (const char* value : {"0", "3", "16", "4.0", "-4", "four"})
+        EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--msaa", value}),
+                  std::string("--msaa: expected 1 (off), 2, 4 or 8 samples per pixel, got '") + value + "'");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--shading", "none", "--msaa", "4"}),
+              "--msaa has no effect with --shading none (only the shading is multisampled)");
+}
+
 TEST(Options, GBufferPrecision) {
     EXPECT_EQ(parse({"m.obj", "-o", "x.png"}).look.gbufferPrecision, GBufferPrecision::Float32);
     EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--gbuffer-precision", "half"}).look.gbufferPrecision,

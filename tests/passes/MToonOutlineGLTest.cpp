@@ -49,11 +49,13 @@ protected:
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
     }
 
-    /** Runs the layer and the mtoon shade pass that lays it in; keeps shade.color and the layer. */
-    void run(MToonOutlinePass& outline) {
+    /** Runs the layer and the mtoon shade pass that lays it in, with `msaa` samples per pixel (the layer's own);
+     *  keeps shade.color and the layer (resolved). */
+    void run(MToonOutlinePass& outline, int msaa = 1) {
         ShadeSettings settings;
         settings.model = ShadingModel::MToon;
         settings.materialOutlines = std::string(outline.name());
+        settings.msaa = msaa;
         ShadePass shade("shade", shaders, *gpuScene, frame, settings, std::nullopt);
         const Plan plan = compile({&outline, &shade}, {"shade.color", "mtoon-outline.color", "mtoon-outline.depth"});
         executor.run(plan, {&outline, &shade}, {kSize, kSize, false});
@@ -130,6 +132,63 @@ TEST_F(MToonOutline, WorldWidthShellIsTheClosedFormCircleWithinAPixel) {
     outline.describe(report);
     EXPECT_EQ(report["shells"], 1);
     EXPECT_EQ(report["triangles"], scene.triangleCount());
+}
+
+TEST_F(MToonOutline, WithFourSamplesTheShellsEdgesAreAntiAliasedOnBothSides) {
+    // The ring's outer edge meets nothing: a share of red over transparent (premultiplied). Its inner edge meets the
+    // white sphere: the layer laid in sample by sample gives a pixel of red and white samples, pink, at full alpha.
+    // With one sample neither exists.
+    useSphere(0.15f);
+    const auto edges = [](const cv::Mat& image, int& outer, int& inner) {
+        outer = inner = 0;
+        for (int y = 0; y < image.rows; ++y)
+            for (int x = 0; x < image.cols; ++x) {
+                const cv::Vec4b pixel = image.at<cv::Vec4b>(y, x); // RGBA
+                if (pixel[3] > 0 && pixel[3] < 255) {
+                    ++outer;
+                    EXPECT_NEAR(pixel[0], pixel[3], 1) << "(" << x << ", " << y << ")"; // premultiplied red
+                    EXPECT_EQ(pixel[1], 0) << "(" << x << ", " << y << ")";
+                    EXPECT_EQ(pixel[2], 0) << "(" << x << ", " << y << ")";
+                }
+                if (pixel[3] == 255 && pixel[0] == 255 && pixel[1] > 2 && pixel[1] < 252) ++inner;
+            }
+    };
+    int outer = 0;
+    int inner = 0;
+    MToonOutlinePass single(kMToonOutlinePass, shaders, *gpuScene, frame);
+    run(single);
+    edges(color, outer, inner);
+    EXPECT_EQ(outer, 0);
+    EXPECT_EQ(inner, 0);
+    // The ring's edges, circles of radius 52 and 61 px, cross about 330 and 380 pixels; most have 1 to 3 of their 4
+    // samples on each side.
+    MToonOutlinePass multi(kMToonOutlinePass, shaders, *gpuScene, frame, 4);
+    run(multi, 4);
+    edges(color, outer, inner);
+    EXPECT_GT(outer, 200);
+    EXPECT_GT(inner, 200);
+    // The layer read back is resolved: its own silhouette is anti-aliased too, and its middle is the outline colour.
+    int layerEdge = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            if (const int alpha = layer.at<cv::Vec4b>(y, x)[3]; alpha > 0 && alpha < 255) ++layerEdge;
+    EXPECT_GT(layerEdge, 200);
+    EXPECT_EQ(layer.at<cv::Vec4b>(pixelAt((silhouetteOf(1.0) + silhouetteOf(1.15)) / 2.0, 0.0)),
+              cv::Vec4b(255, 0, 0, 255));
+}
+
+TEST_F(MToonOutline, ALayerOfOtherSamplesThanTheShadingIsRefused) {
+    useSphere(0.15f);
+    MToonOutlinePass outline(kMToonOutlinePass, shaders, *gpuScene, frame, 4);
+    try {
+        run(outline, 2);
+        FAIL() << "a 4-sample layer laid into 2-sample shading was accepted";
+    } catch (const std::exception& error) {
+        EXPECT_NE(std::string(error.what()).find("'mtoon-outline.color' has 4 samples per pixel, the shading 2"),
+                  std::string::npos)
+            << error.what();
+    }
+    executor.store().clear();
 }
 
 TEST_F(MToonOutline, ANearerSurfaceHidesTheOutlineBehindIt) {

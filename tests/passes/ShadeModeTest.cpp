@@ -160,6 +160,38 @@ TEST_F(ShadeModeChoice, GBuffersThatWouldShadeOtherNormalsKeepItForward) {
     EXPECT_EQ(choose(half).reason, "the G-buffer stores float16 normals");
 }
 
+TEST_F(ShadeModeChoice, MultisampledShadingIsForwardAndItsOutlineLayerHasItsSamples) {
+    // Deferred would shade the single-sample G-buffer: with --msaa the pass draws the meshes itself, into a target it
+    // declares as working memory (colour and depth, 8 bytes a sample).
+    Look look = lookOf(ShadingModel::Cel);
+    EXPECT_EQ(choose(look).mode, "deferred");
+    look.msaa = 4;
+    const Choice choice = choose(look);
+    EXPECT_EQ(choice.mode, "forward");
+    EXPECT_EQ(choice.reason, "the shading is multisampled (--msaa 4) and the G-buffer holds one sample per pixel");
+    EXPECT_TRUE(choice.reads.empty());
+
+    MToonMaterial mtoon;
+    mtoon.outlineWidthMode = MToonMaterial::OutlineWidthMode::WorldCoordinates;
+    mtoon.outlineWidthFactor = 0.01f;
+    scene.meshes[0].material.mtoon = mtoon;
+    look.shading = ShadingModel::MToon;
+    const BoundingSphere sphere = frameScene();
+    StillGraphSetup setup{look, shaders, scene, sphere, *gpuScene, frame, std::nullopt};
+    const StillGraph graph = buildStillGraph(setup);
+    const Plan plan = graph.compilePlan({graph.finalResource});
+    for (const char* layer : {"mtoon-outline.color", "mtoon-outline.depth"}) {
+        ASSERT_NE(plan.findResource(layer), nullptr) << layer;
+        EXPECT_EQ(plan.findResource(layer)->desc.samples, 4) << layer;
+    }
+    EXPECT_EQ(plan.findResource("shade.color")->desc.samples, 1); // resolved for the composite
+    const PlannedPass* shade = plan.findPass("shade");
+    ASSERT_NE(shade, nullptr);
+    ASSERT_EQ(shade->scratch.size(), 1u);
+    EXPECT_EQ(shade->scratch[0].bytesPerPixel, 32u);
+    EXPECT_NE(plan.describe().find("mtoon-outline.color(rgba8 msaa4)"), std::string::npos) << plan.describe();
+}
+
 TEST_F(ShadeModeChoice, MaterialsTheGBufferDoesNotHoldKeepItForward) {
     scene.meshes[0].material.alphaMode = AlphaMode::Blend;
     EXPECT_EQ(choose(lookOf(ShadingModel::Cel)).reason, "material 'paint' of mesh 'sphere' blends");
