@@ -256,6 +256,12 @@ Look& Look::setSupersample(int factor) {
     return *this;
 }
 
+int Look::msaa() const { return mImpl->parsed.look.msaa; }
+Look& Look::setMsaa(int samples) {
+    setFlag(*this, "Look::setMsaa()", "--msaa", std::to_string(samples));
+    return *this;
+}
+
 Precision Look::gbufferPrecision() const { return static_cast<Precision>(mImpl->parsed.look.gbufferPrecision); }
 Look& Look::setGbufferPrecision(Precision precision) {
     setFlag(*this, "Look::setGbufferPrecision()", "--gbuffer-precision", nameOf(precision));

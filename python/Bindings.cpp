@@ -614,9 +614,10 @@ void defineEnums(py::module_& m) {
 }
 
 /** The names Look(**fields) and Frame(**fields) take: the settable properties. */
-const std::vector<std::string> kLookFields{"shading",          "shininess",         "bands", "shade_map", "view_vector",
-                                           "face_orientation", "front_rule",        "light", "ambient",   "paper",
-                                           "supersample",      "gbuffer_precision", "lines", "strokes"};
+const std::vector<std::string> kLookFields{
+    "shading",           "shininess", "bands",   "shade_map", "view_vector", "face_orientation",
+    "front_rule",        "light",     "ambient", "paper",     "supersample", "msaa",
+    "gbuffer_precision", "lines",     "strokes"};
 const std::vector<std::string> kFrameFields{"eye",  "orbit",     "target",      "up",        "fov",
                                             "clip", "placement", "frame_nodes", "animation", "time"};
 
@@ -715,6 +716,9 @@ void defineLook(py::module_& m) {
         .def_property(
             "supersample", &ig::Look::supersample, [](ig::Look& self, int factor) { self.setSupersample(factor); },
             "--supersample: 1 to 8.")
+        .def_property(
+            "msaa", &ig::Look::msaa, [](ig::Look& self, int samples) { self.setMsaa(samples); },
+            "--msaa: samples per pixel of the shading and MToon's outline shells, 1 (off), 2, 4 or 8.")
         .def_property(
             "gbuffer_precision", &ig::Look::gbufferPrecision,
             [](ig::Look& self, py::handle value) {

@@ -227,6 +227,7 @@ class Look:
         ambient: _ColorLike = ...,
         paper: _ColorLike = ...,
         supersample: int = ...,
+        msaa: int = ...,
         gbuffer_precision: Precision | str = ...,
         lines: Iterable[LineType | str] = ...,
         strokes: StrokeSettings = ...,
@@ -249,6 +250,7 @@ class Look:
     ambient: Color | None
     paper: Color
     supersample: int
+    msaa: int
     gbuffer_precision: Precision
     lines: list[LineType]
     strokes: StrokeSettings

@@ -36,6 +36,7 @@ LOOK_CASES = [
     ("paper", lambda: inkgraph.Look(paper=inkgraph.Color(0, 0, 1)), ["--background", "0,0,1"]),
     ("paper as a tuple", lambda: inkgraph.Look(paper=(1, 0.9, 0.8)), ["--background", "1,0.9,0.8"]),
     ("supersample", lambda: inkgraph.Look(supersample=2), ["--supersample", "2"]),
+    ("msaa", lambda: inkgraph.Look(msaa=4), ["--msaa", "4"]),
     ("gbuffer_precision", lambda: inkgraph.Look(gbuffer_precision=inkgraph.Precision.FLOAT16),
      ["--gbuffer-precision", "half"]),
     ("lines", lambda: inkgraph.Look(lines=[LT.OUTLINE, LT.CONTOUR]), ["--lines", "outline,contour"]),
@@ -117,13 +118,14 @@ def test_a_typed_frame_field_of_a_character_renders_as_its_flags(name, model, ty
 
 def test_look_fields_read_back_what_was_set():
     look = inkgraph.Look(shading="comic", shininess=7.5, view_vector="constant", face_orientation="after-vertices",
-                         front_rule=3, light=(0, 1, 0), paper=(0.5, 0.5, 0.5), supersample=3,
+                         front_rule=3, light=(0, 1, 0), paper=(0.5, 0.5, 0.5), supersample=3, msaa=2,
                          gbuffer_precision="half", lines=["outline", LT.CREASE])
     assert look.shading == inkgraph.Shading.COMIC and look.shininess == 7.5
     assert look.view_vector == inkgraph.ViewVector.CONSTANT
     assert look.face_orientation == inkgraph.FaceOrientation.AFTER_VERTICES and look.front_rule == 3
     assert look.light == inkgraph.Vec3(0, 1, 0) and look.paper == inkgraph.Color(0.5, 0.5, 0.5, 1)
     assert look.supersample == 3 and look.gbuffer_precision == inkgraph.Precision.FLOAT16
+    assert look.msaa == 2 and inkgraph.Look().msaa == 1
     assert look.lines == [LT.OUTLINE, LT.CREASE]
     assert inkgraph.Look().bands is None and inkgraph.Look(bands=4).bands == 4
     assert inkgraph.Look().light is None and inkgraph.Look().shade_map == ""
@@ -171,6 +173,8 @@ def test_bad_values_are_refused_with_the_flags_message_or_a_type_error():
         inkgraph.Look(bands=0)
     with pytest.raises(inkgraph.UsageError, match="--supersample"):
         inkgraph.Look().supersample = 9
+    with pytest.raises(inkgraph.UsageError, match=r"Look::setMsaa\(\): --msaa: expected 1 \(off\), 2, 4 or 8"):
+        inkgraph.Look().msaa = 3
     with pytest.raises(inkgraph.UsageError, match="watercolour"):
         inkgraph.Look(shading="watercolour")
     with pytest.raises(TypeError, match="Look.light"):

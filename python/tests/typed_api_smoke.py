@@ -19,6 +19,7 @@ def typed_look() -> inkgraph.Look:
     look.paper = inkgraph.Color(1.0, 0.95, 0.9)
     look.light = inkgraph.Vec3(0.0, 1.0, 1.0)
     look.supersample = 2
+    look.msaa = 4
     look.gbuffer_precision = inkgraph.Precision.from_name("half")
     look.strokes = look.strokes.replace(taper_ends=True)
     look.set_line_style(inkgraph.LineType.CONTOUR, inkgraph.LineStyle(width=3.0, color=(0.2, 0.1, 0.0)))

@@ -82,6 +82,7 @@ TEST(ApiTyped, EveryLookFieldDrawsWhatItsFlagDraws) {
          },
          {"--background", "0.9,0.85,0.7"}},
         {"supersample", [](ig::Look& look) { look.setSupersample(2); }, {"--supersample", "2"}},
+        {"msaa", [](ig::Look& look) { look.setMsaa(4); }, {"--msaa", "4"}},
         {"precision",
          [](ig::Look& look) { look.setGbufferPrecision(ig::Precision::Float16); },
          {"--gbuffer-precision", "half"},
@@ -168,6 +169,11 @@ TEST(ApiTyped, TheLookReadsBackItsFields) {
     const std::string sheen = errorOf([&] { look.lineParameter("sheen"); }).what();
     EXPECT_EQ(sheen.rfind("Look::lineParameter(): no line parameter 'sheen' (there are: ", 0), 0u) << sheen;
     EXPECT_NE(sheen.find("crease-angle"), std::string::npos) << sheen;
+    EXPECT_EQ(look.msaa(), 1);
+    EXPECT_EQ(look.setMsaa(4).msaa(), 4);
+    EXPECT_STREQ(errorOf([&] { look.setMsaa(3); }).what(),
+                 "Look::setMsaa(): --msaa: expected 1 (off), 2, 4 or 8 samples per pixel, got '3'");
+    EXPECT_EQ(look.msaa(), 4) << "a refused value changes nothing";
     EXPECT_EQ(look.shading(), ig::Shading::Comic) << "a refused value changes nothing";
     for (const ig::LineType type : look.lines()) EXPECT_EQ(ig::lineTypeNamed(ig::nameOf(type)), type);
 }

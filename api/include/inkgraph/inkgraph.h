@@ -302,6 +302,8 @@ public:
     Look& setPaper(const Color& color);
     int supersample() const; ///< 1 to 8
     Look& setSupersample(int factor);
+    int msaa() const; ///< --msaa: samples per pixel of the shading and MToon's outline shells, 1 (off), 2, 4 or 8
+    Look& setMsaa(int samples);
     Precision gbufferPrecision() const;
     Look& setGbufferPrecision(Precision precision);
 
