@@ -418,8 +418,8 @@ void ShadePass::executeForward(GlPassContext& gl) {
     const int width = gl.widthOf("color");
     const int height = gl.heightOf("color");
     // With msaa the surfaces are drawn into a multisampled target of the pass's own, resolved into the output at the
-    // end; the fragment shader still runs once per pixel and triangle (at the pixel's centre, so a pixel inside a
-    // surface gets the colour it has without msaa), but each sample keeps its own coverage and depth.
+    // end. shade.frag asks for no per-sample shading, so GL may shade a pixel once per triangle (a pixel inside a
+    // surface keeps the colour it has without msaa), while each sample keeps its own coverage and depth.
     const bool multisampled = mSettings.msaa > 1;
     GlTexture& output = gl.outputTexture("color");
     GlFramebuffer framebuffer(mName);
