@@ -107,24 +107,11 @@ TEST(MToonConformance, EveryCaseScoresAtLeastItsThreshold) {
     fs::create_directories(kOutput / "renders");
     fs::create_directories(kOutput / "differences");
 
-    // Flags other branches add are passed once the executable lists them, so the suite runs before and after.
-    std::string common = "render --shading mtoon --size 512x512 --target 0,1.4,0 --fov 30 --light 0.3,0.6,0.7 "
-                         "--background 1,1,1 --lines none -q";
+    // The reference's scene: its camera, light and ambient term, 4x multisampling.
+    const std::string common = "render --shading mtoon --size 512x512 --target 0,1.4,0 --fov 30 --light 0.3,0.6,0.7 "
+                               "--background 1,1,1 --lines none -q --ambient " +
+                               std::string(kAmbient) + " --msaa 4";
     std::vector<std::string> notes;
-    const fs::path helpFile = kOutput / "help.txt";
-    double peakMib = 0.0;
-    const int helpStatus =
-        runShell(shellQuoted(executable()) + " help render > " + shellQuoted(helpFile) + " 2>&1", peakMib);
-    const std::string help = readText(helpFile);
-    ASSERT_TRUE(WIFEXITED(helpStatus) && WEXITSTATUS(helpStatus) == 0) << help;
-    if (help.find("--ambient") != std::string::npos)
-        common += std::string(" --ambient ") + kAmbient;
-    else
-        notes.push_back("no --ambient yet: rendered without the ambient term");
-    if (help.find("--msaa") != std::string::npos)
-        common += " --msaa 4";
-    else
-        notes.push_back("no --msaa yet: rendered without multisampling");
 
     // One process per view and time: a batch shares the context and the compiled programs.
     std::map<std::pair<std::string, double>, std::vector<const Picture*>> batches;
@@ -138,21 +125,12 @@ TEST(MToonConformance, EveryCaseScoresAtLeastItsThreshold) {
         }
         std::string arguments = common + " --eye " + kEyes.at(view) + " --list " + shellQuoted(list) + " -o " +
                                 shellQuoted(kOutput / "renders" / ("{name}-" + view + ".png"));
-        InkgraphRun run;
         if (time > 0.0) {
             std::ostringstream timeFlag;
-            timeFlag << " --time " << time;
-            run = runInkgraph(arguments + timeFlag.str());
-            // UV animation over --time arrives with another branch; until then --time is refused without an
-            // animation, and the still shows the texture unscrolled.
-            if (run.exitCode != 0 && run.err.find("--time") != std::string::npos) {
-                notes.push_back("--time refused (" + run.err.substr(0, run.err.find('\n')) +
-                                "): UV animation rendered at 0 s");
-                run = runInkgraph(arguments);
-            }
-        } else {
-            run = runInkgraph(arguments);
+            timeFlag << " --time " << time; // MToon's UV animation clock
+            arguments += timeFlag.str();
         }
+        const InkgraphRun run = runInkgraph(arguments);
         ASSERT_EQ(run.exitCode, 0) << run.err;
     }
 
