@@ -236,6 +236,7 @@ struct Renderer::Impl {
         request.memoryLimitBytes =
             sceneImpl.options.memoryLimitBytes != 0 ? sceneImpl.options.memoryLimitBytes : defaultMemoryLimit();
         request.memoryLimitGiven = sceneImpl.options.memoryLimitBytes != 0;
+        request.strict = sceneImpl.options.strict;
         request.eglPlatform = eglPlatform;
         request.timePasses = false; // no per-pass timings to report: passes may overlap
         for (const std::string& name : buffers) {

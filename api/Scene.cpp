@@ -30,6 +30,10 @@ Scene Scene::load(const std::string& path, const SceneOptions& options) {
         impl->path = path;
         impl->options = options;
         impl->scene = std::make_shared<const inkgraph::Scene>(loadScene(path, loadOptionsOf(options)));
+        const std::vector<inkgraph::Warning>& warnings = impl->scene->report.warnings;
+        if (options.strict && !warnings.empty())
+            throw SceneError("SceneOptions::strict: '" + path + "': " + warnings.front().message +
+                             (warnings.size() > 1 ? " (and " + std::to_string(warnings.size() - 1) + " more)" : ""));
         return Scene(std::move(impl));
     });
 }

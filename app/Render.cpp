@@ -56,6 +56,7 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     request.loadsImageIo = outputsUseImageIoModule(options);
     request.animation = options.animation;
     request.animationTime = options.animationTime;
+    request.strict = options.strict;
     if (options.eglPlatform == "device") request.eglPlatform = EglPlatform::Device;
     if (options.eglPlatform == "surfaceless") request.eglPlatform = EglPlatform::Surfaceless;
     return request;

@@ -764,6 +764,11 @@ std::vector<Flag> makeFlags() {
                              options.eglPlatform = value;
                          }));
     flags.back().choices = {"auto", "device", "surfaceless"};
+    flags.push_back(flag({"--strict"}, "", S::System,
+                         "make every warning an error: the still fails with exit 3 and writes nothing (a missing\n"
+                         "or undecodable texture, a value clamped into range, the model outside the view, ...).\n"
+                         "Without it a warning is printed and the still is drawn as the warning says",
+                         [](const std::string&, RenderOptions& options) { options.strict = true; }));
     flags.push_back(flag({"--memory-limit"}, "MIB", S::System,
                          "the most memory the process may take for one still, 64 and up (default: half this\n"
                          "machine's memory, at least 1024). Checked before allocating: the model load from the\n"

@@ -59,7 +59,8 @@ struct RenderOptions {
     std::optional<std::size_t> memoryLimitBytes; ///< --memory-limit; default: half the machine's memory, >= 1 GiB
     std::string stylePath;                       ///< --style, for the stats (its settings are already in the options)
     bool quiet = false;
-    bool help = false; ///< --help or -h in a flag's place: print help, do nothing else
+    bool strict = false; ///< --strict: every warning about the model or the view fails the still (exit 3)
+    bool help = false;   ///< --help or -h in a flag's place: print help, do nothing else
 };
 
 /** Every flag that names an output path, with its field, in --help's order: -o, --dump, --stats, --graphviz,

@@ -961,11 +961,13 @@ void defineScene(py::module_& m) {
                           "with any number of looks and frames.")
         .def_static(
             "load",
-            [](const std::filesystem::path& path, const std::string& animation, double time, std::size_t memoryLimit) {
+            [](const std::filesystem::path& path, const std::string& animation, double time, std::size_t memoryLimit,
+               bool strict) {
                 ig::SceneOptions options;
                 options.animation = animation;
                 options.time = time;
                 options.memoryLimitBytes = memoryLimit;
+                options.strict = strict;
                 std::optional<ig::Scene> scene;
                 {
                     const py::gil_scoped_release release;
@@ -975,9 +977,11 @@ void defineScene(py::module_& m) {
                 return *scene;
             },
             "path"_a, "animation"_a = "", "time"_a = 0.0, "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
+            "strict"_a = false,
             "Loads a model; `animation` (a glTF animation's name or index) and `time` (seconds) pose it, as "
             "--animation and --time; `memory_limit` (bytes) bounds the load and each render of the scene as "
-            "--memory-limit (0: the command line's default). Issues the loader's warnings (InkgraphWarning). Raises "
+            "--memory-limit (0: the command line's default); `strict` makes every warning of the load and of each "
+            "render an InputError, as --strict. Issues the loader's warnings (InkgraphWarning). Raises "
             "InputError naming the file and the problem.")
         .def_static(
             "from_arrays",

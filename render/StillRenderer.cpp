@@ -71,6 +71,15 @@ void warnOf(PreparedStill& still, Warning warning, const StillLog& log) {
     still.warnings.push_back(std::move(warning));
 }
 
+/** --strict: the still's first warning (printed already) as the error that fails it, before anything is written. */
+void failIfStrict(const PreparedStill& still) {
+    if (!still.request.strict || still.warnings.empty()) return;
+    const std::size_t more = still.warnings.size() - 1;
+    throw SceneError(
+        "--strict: '" + still.request.modelPath + "': " + still.warnings.front().message +
+        (more > 0 ? " (and " + std::to_string(more) + " more warning" + (more > 1 ? "s" : "") + ")" : std::string()));
+}
+
 } // namespace
 
 ShadeMap readShadeMapFile(const std::string& path, bool oneDimensional) {
@@ -154,6 +163,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     std::vector<Warning> shadeMapWarnings;
     still->meshShadeMaps = readSceneShadeMaps(scene, look.shading, &shadeMapWarnings);
     for (Warning& warning : shadeMapWarnings) warnOf(*still, std::move(warning), log);
+    failIfStrict(*still);
     return still;
 }
 
@@ -169,6 +179,7 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
         throw UsageError(error.what()); // the loader has validated the file's camera: what is left is the flags
     }
     if (std::optional<Warning> outside = modelOutsideView(still.camera, scene)) warnOf(still, std::move(*outside), log);
+    failIfStrict(still);
     still.frame = frameParamsOf(look, scene, still.camera, still.sphere);
     still.frame.time = req.animationTime; // the pose's time is the UV animation's too
     still.gpuScene = makeSceneImport(scene, still.sphere.center, still.frame, look);
@@ -254,6 +265,7 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
     // What decoding the textures had to say (an image shrunk to the driver's largest texture), as the loader's
     // warnings.
     for (const Warning& warning : still.gpuScene->materials().warnings()) warnOf(still, warning, log);
+    failIfStrict(still);
     result.texturesCreated = mTextures.createdCount() - texturesCreatedBefore;
     result.texturesReused = mTextures.reusedCount() - texturesReusedBefore;
     result.programsCompiled = mShaders.compiledCount() - programsCompiledBefore;

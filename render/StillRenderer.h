@@ -71,6 +71,9 @@ struct StillRequest {
     /** LoadOptions::time, and the render's time (FrameParams::time: MToon's UV animation), even without an
      *  animation. */
     double animationTime = 0.0;
+    /** Every warning fails the still (--strict): a SceneError once the warning is printed, before anything is
+     *  written. */
+    bool strict = false;
     EglPlatform eglPlatform = EglPlatform::Any;
 };
 

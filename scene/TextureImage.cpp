@@ -28,8 +28,19 @@ struct Failure {
     const std::string& label;
     const std::string& modelPath;
 
+    /** The image cannot be used at all (corrupt, truncated, unsupported, empty): the caller may draw without it. */
     [[noreturn]] void operator()(const std::string& problem) const {
-        throw SceneError("decodeSceneImage(): '" + modelPath + "' " + label + ": " + problem);
+        throw ImageUnusableError(message(problem), problem, ImageUnusableError::Reason::Undecodable);
+    }
+    /** Its file is not there to read. */
+    [[noreturn]] void missing(const std::string& problem) const {
+        throw ImageUnusableError(message(problem), problem, ImageUnusableError::Reason::Missing);
+    }
+    /** The image is fine but the memory limit cannot hold it: an error of the run's size, not of the model. */
+    [[noreturn]] void overLimit(const std::string& problem) const { throw SceneError(message(problem)); }
+
+    std::string message(const std::string& problem) const {
+        return "decodeSceneImage(): '" + modelPath + "' " + label + ": " + problem;
     }
 };
 
@@ -46,13 +57,13 @@ std::vector<unsigned char> readImageFile(const SceneImage& image, std::size_t by
     std::error_code error;
     const std::filesystem::file_status status = std::filesystem::status(image.path, error);
     if (error || !std::filesystem::exists(status))
-        fail("its file '" + image.path + "' cannot be found" + (error ? " (" + error.message() + ")" : ""));
-    if (!std::filesystem::is_regular_file(status)) fail("its file '" + image.path + "' is not a regular file");
+        fail.missing("its file '" + image.path + "' cannot be found" + (error ? " (" + error.message() + ")" : ""));
+    if (!std::filesystem::is_regular_file(status)) fail.missing("its file '" + image.path + "' is not a regular file");
     const std::uintmax_t size = std::filesystem::file_size(image.path, error);
     if (error) fail("cannot read the size of '" + image.path + "' (" + error.message() + ")");
     if (size > byteLimit)
-        fail("its file '" + image.path + "' is " + std::to_string(size) + " bytes, more than the " +
-             limitText(byteLimit));
+        fail.overLimit("its file '" + image.path + "' is " + std::to_string(size) + " bytes, more than the " +
+                       limitText(byteLimit));
     std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
     std::ifstream file(image.path, std::ios::binary);
     if (!file) fail("cannot open '" + image.path + "' (" + std::strerror(errno) + ")");
@@ -161,12 +172,12 @@ DecodedImage decodeSceneImage(const SceneImage& image, std::size_t index, const 
         const auto size = std::to_string(width) + "x" + std::to_string(height);
         if (width > std::uint64_t(INT_MAX) || height > std::uint64_t(INT_MAX) ||
             width * height > std::uint64_t(SIZE_MAX) / 32)
-            fail(size + " pixels declared, far more than the " + limitText(byteLimit));
+            fail.overLimit(size + " pixels declared, far more than the " + limitText(byteLimit));
         // An external file's bytes are held while it decodes; embedded ones were charged with the model.
         const std::size_t needed = decodedImageBytes(int(width), int(height)) + decoderBytes + fromFile.size();
         if (needed > byteLimit)
-            fail(size + " needs " + std::to_string(needed) +
-                 " bytes to decode and upload with its mipmaps, more than the " + limitText(byteLimit));
+            fail.overLimit(size + " needs " + std::to_string(needed) +
+                           " bytes to decode and upload with its mipmaps, more than the " + limitText(byteLimit));
     };
     DecodedImage decoded;
     PixelBuffer buffer;

@@ -5,10 +5,12 @@
  *  PNM, which stb does not read safely, is refused. No GL. */
 
 #include "scene/Material.h"
+#include "scene/Scene.h"
 
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
 
 namespace inkgraph {
 
@@ -18,6 +20,23 @@ struct DecodedImage {
     /** width x height x 4 bytes, rows top to bottom, sRGB-encoded colour and linear alpha: the decoder's own buffer,
      *  kept rather than copied (a 8192^2 texture is 256 MiB). */
     std::shared_ptr<const unsigned char> rgba;
+};
+
+/** decodeSceneImage()'s error for an image that cannot be used whatever the limits: its file is missing, or its bytes
+ *  are corrupt, truncated, empty or of an unsupported format. A renderer draws the material without it and warns
+ *  (--strict makes that an error); an image refused by the memory limit is a plain SceneError. */
+class ImageUnusableError : public SceneError {
+public:
+    enum class Reason { Missing, Undecodable };
+    ImageUnusableError(const std::string& message, std::string problem, Reason reason)
+        : SceneError(message), mProblem(std::move(problem)), mReason(reason) {}
+    /** What is wrong, without the function, model and image the message starts with. */
+    const std::string& problem() const { return mProblem; }
+    Reason reason() const { return mReason; }
+
+private:
+    std::string mProblem;
+    Reason mReason;
 };
 
 /** What one texture costs at its peak, charged to the memory limit: the decoded pixels (4 bytes each) while they are

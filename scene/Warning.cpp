@@ -10,6 +10,9 @@ const std::vector<WarningCode>& warningCodes() {
     static const std::vector<WarningCode> kCodes = {
         {K::TextureMissing, "texture-missing",
          "a texture file the model names is missing or not a regular file; the material is drawn without it"},
+        {K::TextureUndecodable, "texture-undecodable",
+         "a texture image that is corrupt, truncated, empty or of a format not read; the material is drawn without "
+         "it"},
         {K::TextureWithoutCoreImage, "texture-without-core-image",
          "a glTF texture has no PNG or JPEG source (only an extension's, e.g. KHR_texture_basisu's KTX2); drawn "
          "untextured"},

@@ -16,6 +16,7 @@ namespace inkgraph {
 /** Every kind of warning, in the order of warningCodes(): a new kind is a value here and its row there. */
 enum class WarningKind {
     TextureMissing,
+    TextureUndecodable,
     TextureWithoutCoreImage,
     TextureCoordinateSetUnsupported,
     TextureCoordinatesMissing,

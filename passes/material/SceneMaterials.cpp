@@ -1,5 +1,6 @@
 #include "passes/material/SceneMaterials.h"
 
+#include "scene/MessageText.h"
 #include "scene/TextureImage.h"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -78,9 +79,28 @@ GLuint SceneMaterials::texture(const TextureRef& reference, bool srgb) {
                          " out of range (the model has " + std::to_string(mScene.images.size()) + ")");
     const std::pair<int, bool> key(reference.image, srgb);
     if (auto found = mTextures.find(key); found != mTextures.end()) return found->second.id();
+    if (mUnusableImages.contains(reference.image)) return 0;
     const SceneImage& image = mScene.images[std::size_t(reference.image)];
     const std::size_t left = mTextureByteLimit > mTextureBytes ? mTextureByteLimit - mTextureBytes : 0;
-    DecodedImage decoded = decodeSceneImage(image, std::size_t(reference.image), mModelPath, left);
+    DecodedImage decoded;
+    try {
+        decoded = decodeSceneImage(image, std::size_t(reference.image), mModelPath, left);
+    } catch (const ImageUnusableError& error) {
+        // As an OBJ's missing map is: the materials are drawn without the image rather than failing the still (a
+        // model with one broken texture still gives its lines and shading), and the warning says so; --strict
+        // makes it an error for pipelines that want one.
+        mUnusableImages.insert(reference.image);
+        const bool missing = error.reason() == ImageUnusableError::Reason::Missing;
+        const std::string name = image.name.empty() ? "" : " '" + detail::excerptForMessage(image.name) + "'";
+        mWarnings.push_back(makeWarning(missing ? WarningKind::TextureMissing : WarningKind::TextureUndecodable,
+                                        "image " + std::to_string(reference.image) + name + ": " + error.problem() +
+                                            "; the materials that use it are drawn without it",
+                                        image.path.empty() ? mModelPath : image.path,
+                                        "image " + std::to_string(reference.image) + name));
+        mDescribedUnusable.push_back(
+            {{"image", reference.image}, {"name", image.name}, {"reason", missing ? "missing" : "undecodable"}});
+        return 0;
+    }
     // A texture the driver cannot hold (a 17000 x 1 strip) is shrunk to fit rather than failing the still: a toon
     // render needs no more texels than that, and the warning and --stats say so.
     if (const int maxSide = maxTextureSide(); decoded.width > maxSide || decoded.height > maxSide) {
@@ -173,6 +193,7 @@ void SceneMaterials::describe(nlohmann::ordered_json& out) const {
                      {"decoded", mTextures.size()},
                      {"decoded_bytes", mTextureBytes},
                      {"downscaled", mDownscaled},
+                     {"unusable", mDescribedUnusable},
                      {"byte_limit", mTextureByteLimit == std::size_t(-1) ? Json(nullptr) : Json(mTextureByteLimit)}};
 }
 

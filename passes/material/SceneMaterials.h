@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <map>
+#include <set>
 #include <optional>
 #include <string>
 #include <vector>
@@ -81,11 +82,15 @@ public:
 
     /** What the textures decoded so far had to warn about: each image wider or taller than the driver's
      *  GL_MAX_TEXTURE_SIZE, which was downscaled to fit (a toon render needs no more texels than that): a
-     *  texture-downscaled warning about the image's file (the model's for an embedded image) and the image. */
+     *  texture-downscaled warning about the image's file (the model's for an embedded image) and the image; each image
+     *  whose file is missing (texture-missing) or whose bytes cannot be decoded (texture-undecodable), which the
+     *  materials that name it are drawn without. */
     const std::vector<Warning>& warnings() const { return mWarnings; }
 
     /** The material's GL texture for `reference`, decoded and uploaded on the first call with mipmaps, or 0 when
-     *  `reference` names no image. An image larger than the driver takes is downscaled to fit, with a warning. Colour
+     *  `reference` names no image or an image that cannot be used (missing or undecodable: warned once, as every file
+     *  of an OBJ's material library that is missing). An image larger than the driver takes is downscaled to fit,
+     *  with a warning. The memory limit's refusal is a SceneError. Colour
      * (`srgb`: base colour, emissive, shade) is stored sRGB8_ALPHA8, so sampling decodes it to linear; data (the
      * outline width, metallic-roughness) RGBA8 as is. */
     GLuint texture(const TextureRef& reference, bool srgb = true);
@@ -101,6 +106,8 @@ private:
     std::vector<Warning> mWarnings;
     nlohmann::ordered_json mDownscaled = nlohmann::ordered_json::array(); ///< for --stats: name, file and GL sizes
     std::map<std::pair<int, bool>, GlHandle<TextureDeleter>> mTextures;   ///< by Scene::images index and sRGB-ness
+    std::set<int> mUnusableImages;                                        ///< Scene::images indices warned about
+    nlohmann::ordered_json mDescribedUnusable = nlohmann::ordered_json::array(); ///< for --stats: image, name, reason
     std::vector<std::pair<TextureSampler, GlHandle<SamplerDeleter>>> mSamplers;
 };
 

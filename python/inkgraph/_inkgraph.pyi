@@ -303,7 +303,9 @@ class Frame:
 
 class Scene:
     @staticmethod
-    def load(path: _PathLike, animation: str = "", time: float = 0.0, memory_limit: int = 0) -> Scene: ...
+    def load(
+        path: _PathLike, animation: str = "", time: float = 0.0, memory_limit: int = 0, strict: bool = False
+    ) -> Scene: ...
     @staticmethod
     def from_arrays(
         vertices: _ArrayLike,

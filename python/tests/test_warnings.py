@@ -133,3 +133,29 @@ def test_records_compare_and_pickle():
     copy = pickle.loads(pickle.dumps(record))
     assert copy == record and (copy.code, copy.file, copy.item) == ("texture-missing", "a.png", "skin")
     assert "code='texture-missing'" in repr(record)
+
+
+def test_an_undecodable_texture_is_a_record_of_the_still_and_strict_makes_it_an_input_error(tmp_path):
+    # Issue 35: a texture whose bytes cannot be decoded no longer fails the render; the still's records say so with
+    # texture-undecodable, and a scene loaded strict fails its render (InputError) as --strict fails the command.
+    (tmp_path / "skin.mtl").write_text("newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd skin.png\n")
+    (tmp_path / "skin.png").write_bytes(b"this is not a PNG")
+    model = tmp_path / "tri.obj"
+    model.write_text("mtllib skin.mtl\nusemtl skin\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                     "f 1/1/1 2/2/1 3/3/1\n")
+    with warnings.catch_warnings(record=True):
+        warnings.simplefilter("always")
+        result = inkgraph.render(model, size=SIZE)
+    assert "texture-undecodable" in [w.code for w in result.still.warnings], result.still.warnings
+
+    strict = inkgraph.Scene.load(model, strict=True)  # the load itself has nothing to say
+    with pytest.raises(inkgraph.InputError) as caught:
+        inkgraph.render(strict, size=SIZE)
+    assert "--strict" in str(caught.value) and "skin.png" in str(caught.value)
+
+
+def test_strict_load_refuses_a_model_with_load_warnings(tmp_path):
+    model = write_missing_texture_obj(tmp_path)
+    with pytest.raises(inkgraph.InputError) as caught:
+        inkgraph.Scene.load(model, strict=True)
+    assert "SceneOptions::strict" in str(caught.value) and "missing.png" in str(caught.value), caught.value

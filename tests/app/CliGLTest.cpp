@@ -2,6 +2,7 @@
 // half-written files. Needs a GL context (llvmpipe in CI) for the rendering cases.
 #include "render/ImageFiles.h"
 #include "CliTestSupport.h"
+#include "GltfTestFiles.h"
 
 #include "passes/lines/LineTypes.h"
 #include "passes/shade/ShadingModel.h"
@@ -831,27 +832,75 @@ TEST_F(Cli, StatsListMaterialsAndTextures) {
     EXPECT_EQ(none["scene"]["images"]["decoded"], 0);
 }
 
-TEST_F(Cli, AnUndecodableTextureIsBadInputAndABatchGoesOn) {
-    // The texture is decoded only while rendering (the pass that samples it), yet it fails like a model that cannot
-    // be read: exit 3 with the decoder's message naming the model and the image, and the batch's other model renders.
+TEST_F(Cli, AnUndecodableTextureIsAWarningAndStrictMakesItBadInput) {
+    // The texture is decoded only while rendering (the pass that samples it). Without --strict the material is drawn
+    // without it and the warning names the model and the image; with --strict the still fails like a model that
+    // cannot be read (exit 3, nothing written) and a batch's other model renders.
     auto writeText = [](const fs::path& path, const std::string& text) { std::ofstream(path) << text; };
     const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
-    writeText(directory / "bad.mtl", "newmtl skin\nmap_Kd bad.png\n");
+    writeText(directory / "bad.mtl", "newmtl skin\nKd 1 0 0\nmap_Kd bad.png\n");
     writeText(directory / "bad.png", "this is not a PNG");
     writeText(directory / "bad.obj", "mtllib bad.mtl\nusemtl skin\n" + triangle);
     writeText(directory / "good.obj", triangle);
-    const CliRun single = run("render bad.obj -o bad.png.out.png --size 32x32");
+    const CliRun lenient = run("render bad.obj -o lenient.png --size 32x32 --stats lenient.json");
+    EXPECT_EQ(lenient.exitCode, 0) << lenient.err;
+    EXPECT_NE(lenient.err.find("inkgraph: warning: image 0 'bad.png': cannot be decoded"), std::string::npos)
+        << lenient.err;
+    EXPECT_NE(lenient.err.find("drawn without it"), std::string::npos) << lenient.err;
+    const auto stats = nlohmann::json::parse(readText(directory / "lenient.json"));
+    EXPECT_EQ(stats["scene"]["images"]["unusable"][0]["reason"], "undecodable") << stats["scene"]["images"];
+    // Drawn with its Kd alone: the triangle's pixels are red (the default comic look shades it, red stays ahead).
+    const cv::Mat picture = readImage(directory / "lenient.png");
+    int red = 0;
+    for (int y = 0; y < picture.rows; ++y)
+        for (int x = 0; x < picture.cols; ++x) {
+            const cv::Vec3b bgr = picture.at<cv::Vec3b>(y, x);
+            if (bgr[2] > 100 && bgr[1] < 60 && bgr[0] < 60) ++red;
+        }
+    EXPECT_GT(red, 20) << "the material keeps its colour without the texture";
+
+    const CliRun single = run("render bad.obj -o bad.png.out.png --size 32x32 --strict");
     EXPECT_EQ(single.exitCode, 3) << single.err;
-    EXPECT_NE(single.err.find("inkgraph: decodeSceneImage(): '"), std::string::npos) << single.err;
-    EXPECT_NE(single.err.find("bad.obj' image 0 'bad.png': cannot be decoded"), std::string::npos) << single.err;
+    EXPECT_NE(single.err.find("inkgraph: --strict: '"), std::string::npos) << single.err;
+    EXPECT_NE(single.err.find("bad.obj': image 0 'bad.png': cannot be decoded"), std::string::npos) << single.err;
     EXPECT_EQ(single.err.find("internal error"), std::string::npos) << single.err;
+    EXPECT_FALSE(fs::exists(directory / "bad.png.out.png"));
 
     fs::create_directories(directory / "out");
-    const CliRun batch = run("render bad.obj good.obj -o 'out/{name}.png' --size 32x32");
+    const CliRun batch = run("render bad.obj good.obj -o 'out/{name}.png' --size 32x32 --strict");
     EXPECT_EQ(batch.exitCode, 3) << batch.err;
     EXPECT_TRUE(fs::exists(directory / "out" / "good.png")) << batch.err;
     EXPECT_FALSE(fs::exists(directory / "out" / "bad.png"));
     EXPECT_EQ(readText(directory / "bad.png"), "this is not a PNG") << "the model's own texture is untouched";
+}
+
+TEST_F(Cli, AMissingGltfTextureIsAWarningAsAnObjOneIs) {
+    // The Khronos textured box with its image made an external file that is not there and its base colour factor
+    // blue: drawn with the factor alone, with a texture-missing warning naming the image; --strict refuses it with
+    // exit 3 and writes nothing.
+    std::ofstream(directory / "missing.glb", std::ios::binary) << test::editedGlb(
+        fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "characters" / "box-textured.glb", [](nlohmann::json& gltf) {
+            gltf["images"][0] = {{"uri", "gone.png"}};
+            gltf["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {0.0, 0.0, 1.0, 1.0};
+        });
+    const CliRun lenient = run("render missing.glb -o lenient.png --size 32x32 --stats lenient.json --orbit 30,30");
+    EXPECT_EQ(lenient.exitCode, 0) << lenient.err;
+    EXPECT_NE(lenient.err.find("warning: image 0 'gone.png': its file '"), std::string::npos) << lenient.err;
+    const auto stats = nlohmann::json::parse(readText(directory / "lenient.json"));
+    EXPECT_EQ(stats["scene"]["images"]["unusable"][0]["reason"], "missing") << stats["scene"]["images"];
+    const cv::Mat picture = readImage(directory / "lenient.png");
+    int blue = 0;
+    for (int y = 0; y < picture.rows; ++y)
+        for (int x = 0; x < picture.cols; ++x) {
+            const cv::Vec3b bgr = picture.at<cv::Vec3b>(y, x);
+            if (bgr[0] > 100 && bgr[1] < 60 && bgr[2] < 60) ++blue;
+        }
+    EXPECT_GT(blue, 20) << "drawn with its base colour factor";
+
+    const CliRun strict = run("render missing.glb -o strict.png --size 32x32 --orbit 30,30 --strict");
+    EXPECT_EQ(strict.exitCode, 3) << strict.err;
+    EXPECT_NE(strict.err.find("inkgraph: --strict: '"), std::string::npos) << strict.err;
+    EXPECT_FALSE(fs::exists(directory / "strict.png"));
 }
 
 TEST_F(Cli, MsaaShadesForwardSaysSoAndIsCappedAtTheDriversSamples) {

@@ -90,6 +90,37 @@ TEST(TextureImage, AboveTheLimitIsRefusedBeforeDecoding) {
     EXPECT_NE(message.find("--memory-limit"), std::string::npos) << message;
 }
 
+/** The kind of error decodeSceneImage() throws for `image`: "missing" or "undecodable" (ImageUnusableError: the
+ *  renderer warns and draws without it), "limit" (a plain SceneError: the run's size, not the model), or "none". */
+std::string refusalKind(const SceneImage& image, std::size_t limit = kPlenty) {
+    try {
+        decodeSceneImage(image, 0, "model.glb", limit);
+    } catch (const ImageUnusableError& error) {
+        return error.reason() == ImageUnusableError::Reason::Missing ? "missing" : "undecodable";
+    } catch (const SceneError&) {
+        return "limit";
+    }
+    return "none";
+}
+
+TEST(TextureImage, MissingAndUndecodableImagesAreUnusableWhileTheLimitIsAnError) {
+    EXPECT_EQ(refusalKind(external("/nonexistent/inkgraph/skin.png")), "missing");
+    EXPECT_EQ(refusalKind(external("/dev/zero")), "missing") << "not a regular file: nothing to read";
+    EXPECT_EQ(refusalKind(embedded({'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'})), "undecodable");
+    EXPECT_EQ(refusalKind(embedded({})), "undecodable");
+    std::vector<unsigned char> truncated = smallPng();
+    truncated.resize(40);
+    EXPECT_EQ(refusalKind(embedded(truncated)), "undecodable");
+    EXPECT_EQ(refusalKind(embedded(smallPng()), decodedImageBytes(3, 2) - 1), "limit");
+    EXPECT_EQ(refusalKind(embedded(smallPng())), "none");
+    try {
+        decodeSceneImage(embedded({'x'}), 3, "model.glb", kPlenty);
+        FAIL() << "one byte decoded";
+    } catch (const ImageUnusableError& error) {
+        EXPECT_EQ(error.problem().rfind("cannot be decoded", 0), 0u) << "the problem alone: " << error.problem();
+    }
+}
+
 TEST(TextureImage, ExternalFilesMustBeRegularAndWithinTheLimit) {
     const std::filesystem::path folder =
         std::filesystem::temp_directory_path() / ("inkgraph_texture_" + std::to_string(::getpid()));

@@ -143,6 +143,9 @@ struct SceneOptions {
     /** The load refuses models that would need more, and so does each render of the scene (its buffers at the
      *  frame's size); 0: the command line's default, half this machine's memory but at least 1 GiB. */
     std::size_t memoryLimitBytes = 0;
+    /** --strict: every warning fails: the load's with Error(Input) from Scene::load(), and each render's (a
+     *  missing or undecodable texture, the model outside the view) with Error(Input) from Renderer::render(). */
+    bool strict = false;
 };
 
 /** A mesh in memory, for Scene::fromArrays(): rows tightly packed, the pointers borrowed only for the call. */
