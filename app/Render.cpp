@@ -132,7 +132,9 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     }
     if (!options.statsPath.empty()) {
         StatsContext context{options, batch};
-        context.estimatedPeakBytes = estimatedStillBytes(*still);
+        const MemoryEstimate estimate = estimateStill(*still);
+        context.estimatedPeakBytes = estimate.total();
+        context.estimatedTextureBytes = estimate.textures;
         pending->stats = statsDocument(context, mRenderer, *still, result);
     }
     pending->outputs = std::move(outputs);

@@ -62,6 +62,7 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
     stats["textures_created"] = result.texturesCreated;
     stats["textures_reused"] = result.texturesReused;
     stats["estimated_peak_mib"] = double(context.estimatedPeakBytes) / (1 << 20);
+    stats["estimated_textures_mib"] = double(context.estimatedTextureBytes) / (1 << 20);
     stats["peak_rss_mib"] = 0.0; // finishedStatsText()
     stats["total_ms"] = 0.0;
     return stats;

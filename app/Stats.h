@@ -23,6 +23,7 @@ struct StatsContext {
     const RenderOptions& options;
     const StillBatchPosition* batch = nullptr;
     std::size_t estimatedPeakBytes = 0;
+    std::size_t estimatedTextureBytes = 0; ///< the part of estimatedPeakBytes that is the model's textures
 };
 
 /** The --stats document of a still that executed with `renderer`, but for what only writing its outputs tells:

@@ -4,6 +4,7 @@
 #include "render/StillRenderer.h"
 #include "render/UsageError.h"
 #include "scene/Scene.h"
+#include "scene/TextureImage.h"
 
 #include <algorithm>
 #include <map>
@@ -167,7 +168,9 @@ std::string sizeText(std::size_t width, std::size_t height) {
 
 } // namespace
 
-SceneSize sceneSizeOf(const Scene& scene) { return {scene.vertexCount(), scene.triangleCount()}; }
+SceneSize sceneSizeOf(const Scene& scene) {
+    return {scene.vertexCount(), scene.triangleCount(), estimatedTextureBytes(scene)};
+}
 
 MemoryEstimate estimateRunMemory(const Plan& plan, const StillRequest& request, const SceneSize& scene) {
     const PlanSizes sizes(plan, request);
@@ -175,6 +178,7 @@ MemoryEstimate estimateRunMemory(const Plan& plan, const StillRequest& request, 
     MemoryEstimate estimate;
     estimate.baseline = kBaselineBytes + (request.loadsImageIo ? kImageIoModuleBytes : 0);
     estimate.scene = scene.vertices * kBytesPerVertex + scene.triangles * kBytesPerTriangle;
+    estimate.textures = scene.textureBytes;
     // The texture pool keeps every texture it made until the still ends, so they all count at once.
     for (const PlannedResource& resource : plan.resources)
         if (resource.kind == ResourceKind::Texture) estimate.glTargets += sizes.textureBytes(resource);
@@ -217,8 +221,8 @@ std::size_t defaultMemoryLimit() {
     return std::max<std::size_t>(physical / 2, std::size_t(1) << 30);
 }
 
-std::size_t estimatedStillBytes(const PreparedStill& still) {
-    return estimateRunMemory(still.plan, still.request, sceneSizeOf(still.scene())).total();
+MemoryEstimate estimateStill(const PreparedStill& still) {
+    return estimateRunMemory(still.plan, still.request, sceneSizeOf(still.scene()));
 }
 
 void budgetStill(PreparedStill& still) {
@@ -244,7 +248,10 @@ void budgetStill(PreparedStill& still) {
         throw UsageError(cause + " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
                          " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
     }
-    const std::size_t needed = estimatedStillBytes(still);
+    // The textures are left out here: each is refused by name when it is decoded (decodeSceneImage()), which says
+    // more than "the run needs N MiB" would.
+    const MemoryEstimate estimate = estimateStill(still);
+    const std::size_t needed = estimate.total() - estimate.textures;
     const std::size_t bound = request.memoryLimitBytes;
     const std::size_t neededMib = (needed + kMiB - 1) / kMiB; // rounded up: "needs 600" never fits a 600 limit
     if (needed > bound)

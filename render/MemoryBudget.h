@@ -23,6 +23,7 @@ struct Scene;
 struct SceneSize {
     std::size_t vertices = 0;
     std::size_t triangles = 0;
+    std::size_t textureBytes = 0; ///< scene/TextureImage.h estimatedTextureBytes(): every image decoded at its peak
 };
 
 SceneSize sceneSizeOf(const Scene& scene);
@@ -35,7 +36,11 @@ struct MemoryEstimate {
     std::size_t glTargets = 0; ///< every texture of the plan and each drawing pass's depth attachment
     std::size_t cpuImages = 0; ///< at the post stage's (or the output's) largest moment: read-backs, the line
                                ///< kernels' working images and skeletons, the composite, encoder buffers
-    std::size_t total() const { return baseline + scene + glTargets + cpuImages; }
+    /** The model's textures, decoded and uploaded with their mipmaps (llvmpipe keeps them in process memory). Not
+     *  part of what budgetStill() refuses the still for: each texture is charged, and refused naming it, as it is
+     *  decoded, against what the rest leaves of the limit. */
+    std::size_t textures = 0;
+    std::size_t total() const { return baseline + scene + glTargets + cpuImages + textures; }
 };
 
 /** The estimate for `plan` rendered as `request` asks (its size, look, kept buffers, image module); `scene` may be {}
@@ -54,8 +59,8 @@ std::size_t defaultMemoryLimit();
  *  then gives the textures, decoded during the run, what the estimate leaves of the limit. */
 void budgetStill(PreparedStill& still);
 
-/** The whole run's estimated peak for `still` (estimateRunMemory() with its scene), in bytes. */
-std::size_t estimatedStillBytes(const PreparedStill& still);
+/** The whole run's estimated peak for `still`: estimateRunMemory() with its scene, textures included. */
+MemoryEstimate estimateStill(const PreparedStill& still);
 
 /** The process's peak resident set so far (getrusage's ru_maxrss), in bytes. */
 std::size_t peakResidentBytes();

@@ -117,6 +117,20 @@ struct Material {
     bool operator==(const Material&) const = default;
 };
 
+/** Every texture `material` may sample, present or not: the one list of a material's TextureRef fields, for what counts
+ *  them (the memory estimate, scene/TextureImage.h); a new texture field is added here. */
+inline std::vector<const TextureRef*> textureRefsOf(const Material& material) {
+    std::vector<const TextureRef*> refs = {&material.baseColorTexture, &material.metallicRoughnessTexture,
+                                           &material.emissiveTexture, &material.normalTexture};
+    if (material.mtoon) {
+        const MToonMaterial& mtoon = *material.mtoon;
+        refs.insert(refs.end(),
+                    {&mtoon.shadeMultiplyTexture, &mtoon.shadingShiftTexture, &mtoon.matcapTexture,
+                     &mtoon.rimMultiplyTexture, &mtoon.outlineWidthMultiplyTexture, &mtoon.uvAnimationMaskTexture});
+    }
+    return refs;
+}
+
 /** One image a material refers to, still encoded (PNG, JPEG, ...): its bytes when the file embeds it, else the path
  *  of the file it lives in (read when decoded). Shared, because scenes are copied and images are large. */
 struct SceneImage {

@@ -18,6 +18,7 @@
 #include <fstream>
 #include <functional>
 #include <new>
+#include <set>
 #include <string_view>
 #include <vector>
 
@@ -217,6 +218,45 @@ DecodedImage decodeSceneImage(const SceneImage& image, std::size_t index, const 
     }
     decoded.rgba = std::move(buffer.pixels);
     return decoded;
+}
+
+namespace {
+
+/** The bytes a header says the image takes to decode, or 0 when there is no header to read. */
+std::size_t headerBytes(const SceneImage& image) {
+    int width = 0, height = 0, channels = 0;
+    std::vector<unsigned char> head;
+    const std::vector<unsigned char>* bytes = image.encoded.get();
+    if (bytes == nullptr) {
+        std::error_code error;
+        if (image.path.empty() || !std::filesystem::is_regular_file(image.path, error)) return 0;
+        // A JPEG's frame header may follow its metadata (an EXIF thumbnail, an ICC profile); 256 KiB reaches it in
+        // the files cameras and painting programs write without reading a whole texture.
+        std::ifstream file(image.path, std::ios::binary);
+        head.resize(std::size_t(256) << 10);
+        file.read(reinterpret_cast<char*>(head.data()), std::streamsize(head.size()));
+        head.resize(std::size_t(std::max<std::streamsize>(file.gcount(), 0)));
+        bytes = &head;
+    }
+    if (bytes->empty() || bytes->size() > std::size_t(INT_MAX)) return 0;
+    if (stbi_info_from_memory(bytes->data(), int(bytes->size()), &width, &height, &channels) == 0 || width <= 0 ||
+        height <= 0)
+        return 0;
+    const bool ownDecoder = startsWith(*bytes, kPngSignature) || startsWith(*bytes, kJpegSignature);
+    return decodedImageBytes(width, height) + (ownDecoder ? 0 : stbDecoderBytes(*bytes, width, height));
+}
+
+} // namespace
+
+std::size_t estimatedTextureBytes(const Scene& scene) {
+    std::set<int> named;
+    for (const Mesh& mesh : scene.meshes)
+        for (const TextureRef* reference : textureRefsOf(mesh.material))
+            if (reference->present() && std::size_t(reference->image) < scene.images.size())
+                named.insert(reference->image);
+    std::size_t bytes = 0;
+    for (const int index : named) bytes += headerBytes(scene.images[std::size_t(index)]);
+    return bytes;
 }
 
 } // namespace inkgraph

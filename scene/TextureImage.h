@@ -54,4 +54,11 @@ std::size_t decodedImageBytes(int width, int height);
 DecodedImage decodeSceneImage(const SceneImage& image, std::size_t index, const std::string& modelPath,
                               std::size_t byteLimit);
 
+/** What decoding every image the scene's materials name (textureRefsOf(), each image once) would take at its peak,
+ *  without decoding any: each image's size read from its header (embedded bytes, or the first bytes of its file),
+ *  charged decodedImageBytes() plus what stb_image allocates of its own for the formats it decodes, as
+ *  decodeSceneImage() charges them. An image whose header cannot be read (missing, corrupt) counts nothing: it is not
+ *  decoded either. For the run's memory estimate (render/MemoryBudget.h), so a batch can be sized before it runs. */
+std::size_t estimatedTextureBytes(const Scene& scene);
+
 } // namespace inkgraph
