@@ -78,13 +78,13 @@ void MeshBudget::chargeFile(std::size_t bytes) {
                        mFunction);
 }
 
-void MeshBudget::chargeBytes(std::size_t bytes) {
+void MeshBudget::chargeBytes(std::size_t bytes, std::string_view what) {
     mOtherBytes = mOtherBytes > SIZE_MAX - bytes ? SIZE_MAX : mOtherBytes + bytes;
     if (estimate(0, 0) > mLimitBytes)
         throwLoadError(mPath,
-                       "the load would hold about " + std::to_string(estimate(0, 0) >> 20) +
-                           " MiB (with the meshes' node paths), above the memory limit of " +
-                           std::to_string(mLimitBytes >> 20) + " MiB (" + mLimitName + ")",
+                       "the load would hold about " + std::to_string(estimate(0, 0) >> 20) + " MiB (with " +
+                           std::string(what) + "), above the memory limit of " + std::to_string(mLimitBytes >> 20) +
+                           " MiB (" + mLimitName + ")",
                        mFunction);
 }
 

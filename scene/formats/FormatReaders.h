@@ -54,9 +54,9 @@ public:
     void check(std::size_t vertices, std::size_t triangles) const;
     /** check(), then counts them for good (one glTF mesh may be instanced by many nodes). */
     void charge(std::size_t vertices, std::size_t triangles);
-    /** Other memory a reader keeps that grows with the file's declarations (each mesh's node path), counted for good;
-     *  throws SceneError naming the file above the limit. */
-    void chargeBytes(std::size_t bytes);
+    /** Other memory a reader keeps that grows with the file's declarations (`what`: each mesh's node path, decoded
+     *  buffers), counted for good; throws SceneError naming the file above the limit. */
+    void chargeBytes(std::size_t bytes, std::string_view what = "the meshes' node paths");
 
     std::size_t limitBytes() const { return mLimitBytes; }
 

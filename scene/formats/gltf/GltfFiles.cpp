@@ -3,6 +3,7 @@
 #include "scene/formats/gltf/GltfFiles.h"
 
 #include "scene/formats/gltf/GltfDraco.h"
+#include "scene/formats/gltf/GltfMeshopt.h"
 
 #include <nlohmann/json.hpp>
 
@@ -134,39 +135,52 @@ std::string_view jsonOf(std::string_view content, bool binary) {
     return content.substr(20, chunkLength);
 }
 
-/** The file with "indices" removed from every KHR_draco_mesh_compression primitive, or nothing when no primitive has
- *  the extension (or the JSON does not parse: tinygltf then says why). tinygltf built without Draco refuses an indices
- *  accessor without a buffer view, which is how Draco files write it; the decoded Draco faces replace those indices
- *  (decodeDracoPrimitive()). A GLB is rebuilt around the new JSON chunk with its other chunks as they were. */
-std::optional<std::string> withoutDracoIndices(std::string_view content, bool binary) {
+/** The file as tinygltf can take it (TinygltfInput), or nothing rewritten when the JSON names neither extension or
+ *  does not parse (tinygltf then says why). The decoded Draco faces replace the dropped indices
+ *  (decodeDracoPrimitive()), the decoded meshopt views the placeholders (decodeMeshoptBufferViews()). A GLB is rebuilt
+ *  around the new JSON chunk with its other chunks as they were. */
+TinygltfInput forTinygltf(std::string_view content, bool binary) {
+    TinygltfInput input;
     const std::string_view json = jsonOf(content, binary);
-    if (json.find(kDracoExtension) == std::string_view::npos) return std::nullopt;
+    const bool draco = json.find(kDracoExtension) != std::string_view::npos;
+    const bool meshopt = json.find(kMeshoptExtension) != std::string_view::npos;
+    if (!draco && !meshopt) return input;
     nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
-    if (!document.is_object() || !document.contains("meshes") || !document["meshes"].is_array()) return std::nullopt;
+    if (!document.is_object()) return input;
     bool changed = false;
-    for (nlohmann::json& mesh : document["meshes"]) {
-        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
-        for (nlohmann::json& primitive : mesh["primitives"]) {
-            if (primitive.is_object() && primitive.contains("indices") && primitive.contains("extensions") &&
-                primitive["extensions"].is_object() && primitive["extensions"].contains(kDracoExtension)) {
-                primitive.erase("indices");
-                changed = true;
+    if (draco && document.contains("meshes") && document["meshes"].is_array()) {
+        for (nlohmann::json& mesh : document["meshes"]) {
+            if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+            for (nlohmann::json& primitive : mesh["primitives"]) {
+                if (primitive.is_object() && primitive.contains("indices") && primitive.contains("extensions") &&
+                    primitive["extensions"].is_object() && primitive["extensions"].contains(kDracoExtension)) {
+                    primitive.erase("indices");
+                    changed = true;
+                }
             }
         }
     }
-    if (!changed) return std::nullopt;
+    if (meshopt) {
+        input.meshoptPlaceholders = stubMeshoptPlaceholders(document, binary);
+        changed = changed || !input.meshoptPlaceholders.empty();
+    }
+    if (!changed) return input;
     std::string text = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-    if (!binary) return text;
+    if (!binary) {
+        input.rewritten = std::move(text);
+        return input;
+    }
     const std::size_t restOffset = 20 + json.size();
-    if (content.size() < restOffset) return std::nullopt;
+    if (content.size() < restOffset) return TinygltfInput{};
     while (text.size() % 4 != 0) text += ' '; // GLB chunks are 4-byte aligned; JSON pads with spaces
     const auto u32 = [](std::size_t value) {
         const std::uint32_t little = std::uint32_t(value);
         return std::string(reinterpret_cast<const char*>(&little), 4);
     };
     const std::string_view rest = content.substr(restOffset);
-    return std::string(content.substr(0, 8)) + u32(12 + 8 + text.size() + rest.size()) + u32(text.size()) + "JSON" +
-           text + std::string(rest);
+    input.rewritten = std::string(content.substr(0, 8)) + u32(12 + 8 + text.size() + rest.size()) + u32(text.size()) +
+                      "JSON" + text + std::string(rest);
+    return input;
 }
 
 /** tinygltf parses JSON recursively, so absurd nesting would overflow the stack: glTF itself nests a few levels, and

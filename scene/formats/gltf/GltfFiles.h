@@ -22,9 +22,17 @@ namespace inkgraph::detail {
 /** The JSON text of a .gltf file or of a GLB's JSON chunk (empty when the GLB is too short to have one). */
 std::string_view jsonOf(std::string_view content, bool binary);
 
-/** The file with "indices" removed from every KHR_draco_mesh_compression primitive, or nothing when no primitive has
- *  the extension (tinygltf built without Draco refuses an indices accessor without a buffer view). */
-std::optional<std::string> withoutDracoIndices(std::string_view content, bool binary);
+/** What tinygltf is given in place of a file it cannot take as written. */
+struct TinygltfInput {
+    /** The file with "indices" removed from every KHR_draco_mesh_compression primitive (tinygltf built without Draco
+     *  refuses an indices accessor without a buffer view) and EXT_meshopt_compression's placeholder buffers stubbed
+     *  (stubMeshoptPlaceholders()); nothing when neither applies. */
+    std::optional<std::string> rewritten;
+    std::vector<std::size_t> meshoptPlaceholders; ///< the buffers stubbed
+};
+
+/** The file as tinygltf can take it: TinygltfInput. */
+TinygltfInput forTinygltf(std::string_view content, bool binary);
 
 /** Refuses JSON nested deeper than tinygltf's recursive parser can take, before tinygltf sees the file. */
 void rejectDeepJson(const std::string& path, std::string_view content, bool binary);

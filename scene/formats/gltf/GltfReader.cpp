@@ -9,6 +9,7 @@
 #include "scene/formats/gltf/GltfDraco.h"
 #include "scene/formats/gltf/GltfFiles.h"
 #include "scene/formats/gltf/GltfMaterials.h"
+#include "scene/formats/gltf/GltfMeshopt.h"
 #include "scene/formats/gltf/GltfPose.h"
 #include "scene/formats/ShaderValues.h"
 #include "scene/formats/gltf/VrmMaterials.h"
@@ -40,12 +41,13 @@ namespace {
 
 /** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light,
  *  KHR_mesh_quantization's integer and normalized attributes (GltfAccessors.cpp reads any component type),
- *  KHR_draco_mesh_compression (GltfDraco.cpp), KHR_texture_transform, KHR_materials_unlit,
- *  KHR_materials_emissive_strength, VRM 0.x ("VRM": its front and MToon materialProperties) and 1.0 ("VRMC_vrm": its
- *  front; "VRMC_materials_mtoon"), scene/formats/gltf/VrmMaterials.h. */
+ *  KHR_draco_mesh_compression (GltfDraco.cpp), EXT_meshopt_compression (GltfMeshopt.cpp), KHR_texture_transform,
+ * KHR_materials_unlit, KHR_materials_emissive_strength, VRM 0.x ("VRM": its front and MToon materialProperties) and 1.0
+ * ("VRMC_vrm": its front; "VRMC_materials_mtoon"), scene/formats/gltf/VrmMaterials.h. */
 const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual",
                                                        "KHR_mesh_quantization",
                                                        "KHR_draco_mesh_compression",
+                                                       "EXT_meshopt_compression",
                                                        "KHR_texture_transform",
                                                        "KHR_materials_unlit",
                                                        "KHR_materials_emissive_strength",
@@ -791,10 +793,10 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
         throwLoadError(path, "glTF files above 4 GiB are not supported");
     // tinygltf keeps its own copy of every buffer it decodes (the GLB's BIN chunk, data URIs): at most the file again.
     budget.chargeFile(content.size());
-    const std::optional<std::string> dracoReady = withoutDracoIndices(content, binary);
-    if (dracoReady) {
-        budget.chargeFile(dracoReady->size());
-        content = *dracoReady;
+    const TinygltfInput prepared = forTinygltf(content, binary);
+    if (prepared.rewritten) {
+        budget.chargeFile(prepared.rewritten->size());
+        content = *prepared.rewritten;
     }
     const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
     const ExternalUris uris = externalUris(jsonOf(content, binary));
@@ -846,6 +848,7 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
             scene.inputFiles.push_back(imagePath);
         }
     }
+    decodeMeshoptBufferViews(path, model, prepared.meshoptPlaceholders, budget); // before anything reads a view
     scene.images = sceneImages(path, model, baseDirectory, dataUriImages, budget);
     GltfWalker(path, model, scene, budget, options).walk();
     if (scene.meshes.empty()) {
