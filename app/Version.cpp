@@ -10,6 +10,7 @@
 #include <draco/core/draco_version.h>
 #include <epoxy/egl.h>
 #include <glm/glm.hpp>
+#include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 #include <oneapi/tbb/version.h>
 #include <opencv2/core/utility.hpp>
@@ -36,7 +37,8 @@ std::string eglString(int name) {
 }
 
 /** The libraries inkgraph runs with: the shared libraries' own answer at run time where they have one, else the
- *  version of the headers (GLM, nlohmann_json, Draco, which are compiled in) or of the package the build found. */
+ *  version of the headers (GLM, nlohmann_json, Draco, meshoptimizer, which are compiled in or say no version at run
+ * time) or of the package the build found. */
 std::vector<std::pair<std::string, std::string>> libraryVersions() {
     return {
         {"OpenCV", cv::getVersionString()},
@@ -45,6 +47,10 @@ std::vector<std::pair<std::string, std::string>> libraryVersions() {
         {"oneTBB", TBB_runtime_version()},
         {"tinygltf", INKGRAPH_TINYGLTF_VERSION},
         {"Draco", draco::kDracoVersion},
+        // MESHOPTIMIZER_VERSION is major * 1000 + minor * 10 + patch (180: 0.18.0).
+        {"meshoptimizer", std::to_string(MESHOPTIMIZER_VERSION / 1000) + "." +
+                              std::to_string(MESHOPTIMIZER_VERSION % 1000 / 10) + "." +
+                              std::to_string(MESHOPTIMIZER_VERSION % 10)},
         {"GLM", std::to_string(GLM_VERSION_MAJOR) + "." + std::to_string(GLM_VERSION_MINOR) + "." +
                     std::to_string(GLM_VERSION_PATCH) + "." + std::to_string(GLM_VERSION_REVISION)},
         {"libepoxy", INKGRAPH_EPOXY_VERSION},

@@ -83,6 +83,13 @@ std::string texturedBox(const nlohmann::json& transform, int wrap = 10497) {
                            });
 }
 
+/** gltfpack's BoxMeshopt.glb with `edit` applied to its first buffer view's EXT_meshopt_compression object. */
+std::string meshoptBox(const std::function<void(nlohmann::json&)>& edit) {
+    return test::editedGlb(
+        fs::path(INKGRAPH_SOURCE_ROOT) / "tests/scene/data/BoxMeshopt.glb",
+        [&](nlohmann::json& gltf) { edit(gltf["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]); });
+}
+
 std::string source(const std::string& relative) { return (fs::path(INKGRAPH_SOURCE_ROOT) / relative).string(); }
 
 /** Every file of the source tree's shaders/ as files of a case, under `folder`, with `change` applied to the file
@@ -151,6 +158,26 @@ std::vector<BadInput> badInputs() {
          "'" + source("tests/fuzz/regressions/gltf/glb-empty-buffer-tinygltf-range-check.glb") + "' -o out.png",
          3,
          {"glb-empty-buffer-tinygltf-range-check.glb'", "invalid GLB: tinygltf failed"}},
+        {"meshopt stream cut short",
+         {{"cut.glb", meshoptBox([](nlohmann::json& extension) { extension["byteLength"] = 20; })}},
+         "cut.glb -o out.png",
+         3,
+         {"'cut.glb'", "buffer view 0: EXT_meshopt_compression: meshoptimizer cannot decode its 20 bytes"}},
+        {"meshopt count x stride overflowing",
+         {{"overflow.glb", meshoptBox([](nlohmann::json& extension) { extension["count"] = 1ull << 62; })}},
+         "overflow.glb -o out.png",
+         3,
+         {"'overflow.glb'", "buffer view 0: EXT_meshopt_compression: count 4611686018427387904 x byteStride 4"}},
+        {"meshopt bytes past their buffer",
+         {{"offset.glb", meshoptBox([](nlohmann::json& extension) { extension["byteOffset"] = 1u << 30; })}},
+         "offset.glb -o out.png",
+         3,
+         {"'offset.glb'", "the compressed bytes (offset 1073741824, length 71) exceed buffer 0 of 172 bytes"}},
+        {"meshopt mode unknown",
+         {{"mode.glb", meshoptBox([](nlohmann::json& extension) { extension["mode"] = "STRIPS"; })}},
+         "mode.glb -o out.png",
+         3,
+         {"'mode.glb'", "mode 'STRIPS' is not 'ATTRIBUTES', 'TRIANGLES' or 'INDICES'"}},
         {"truncated GLB",
          {{"half.glb", triangleGlb.substr(0, triangleGlb.size() / 2)}},
          "half.glb -o out.png",

@@ -60,8 +60,8 @@ TEST_F(Cli, VerboseVersionTellsWhatTheProgramRunsOn) {
     EXPECT_NE(found.at("OpenImageIO").find("'" + std::string(INKGRAPH_BINARY_ROOT) + "/libinkgraph_imageio.so'"),
               std::string::npos)
         << found.at("OpenImageIO");
-    for (const char* library :
-         {"OpenCV", "libpng", "zlib", "oneTBB", "tinygltf", "Draco", "GLM", "libepoxy", "nlohmann_json"}) {
+    for (const char* library : {"OpenCV", "libpng", "zlib", "oneTBB", "tinygltf", "Draco", "meshoptimizer", "GLM",
+                                "libepoxy", "nlohmann_json"}) {
         ASSERT_TRUE(found.count(library)) << library << " missing from:\n" << result.out;
         EXPECT_TRUE(std::regex_match(found.at(library), std::regex(R"([0-9]+(\.[0-9]+)+)")))
             << library << ": " << found.at(library);
