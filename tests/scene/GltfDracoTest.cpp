@@ -1,8 +1,9 @@
 /** @file KHR_draco_mesh_compression: a quad compressed with libdraco's encoder (tests/scene/data/draco-quad.bin, made
- *  by make-draco-quad.cpp there) loads with the positions, texture coordinates and colours put in; broken Draco data
- *  is refused naming the extension, and so are morph targets of a compressed primitive at a non-zero weight. */
+ *  by make-draco-quad.cpp there) loads with the positions, texture coordinates and colours put in, and a morph target
+ *  moves each decoded point by its own offset; broken Draco data is refused naming the extension. */
 
 #include "scene/Scene.h"
+#include "scene/formats/gltf/DracoMesh.h"
 
 #include "SceneTestSupport.h"
 
@@ -91,31 +92,76 @@ TEST(GltfDraco, CompressedQuadLoadsWithItsAttributes) {
     for (const glm::uvec3& triangle : mesh.triangles) EXPECT_GT(test::triangleCross(mesh, triangle).z, 0.0);
 }
 
-/** The quad with one morph target moving POSITION at `weight`: Draco reorders vertices, so the target's uncompressed
- *  accessor would not line up with them; a non-zero weight is refused, a zero one changes nothing and loads. */
-std::string dracoGltfWithMorphTarget(const CompressedQuad& quad, const std::string& weight) {
+/** The quad with one morph target at `weight`, its POSITION offsets `offsets` (one per decoded point, in Draco's
+ *  order) as a plain accessor in a second buffer, as the extension's files carry targets. */
+std::string dracoGltfWithMorphTarget(const CompressedQuad& quad, const std::vector<glm::vec3>& offsets,
+                                     const std::string& weight) {
     std::string json = dracoGltf(quad.bytes, quad);
     const auto replace = [&](const std::string& from, const std::string& to) {
         const std::size_t at = json.find(from);
         if (at == std::string::npos) throw std::runtime_error("dracoGltf() changed: no '" + from + "'");
         json.replace(at, from.size(), to);
     };
+    const std::string bytes(reinterpret_cast<const char*>(offsets.data()), offsets.size() * sizeof(glm::vec3));
+    const std::string length = std::to_string(bytes.size());
+    replace("\"buffers\": [{", "\"buffers\": [{\"uri\": \"data:application/octet-stream;base64," + test::base64(bytes) +
+                                   "\", \"byteLength\": " + length + "}, {");
+    replace("\"bufferViews\": [{\"buffer\": 0,",
+            "\"bufferViews\": [{\"buffer\": 0, \"byteLength\": " + length + "}, {\"buffer\": 1,");
+    replace("\"extensions\": {\"KHR_draco_mesh_compression\": {\"bufferView\": 0,",
+            "\"extensions\": {\"KHR_draco_mesh_compression\": {\"bufferView\": 1,");
     replace("\"type\": \"SCALAR\"}]",
-            "\"type\": \"SCALAR\"}, {\"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\"}]");
+            "\"type\": \"SCALAR\"}, {\"bufferView\": 0, \"componentType\": 5126, \"count\": " +
+                std::to_string(offsets.size()) + ", \"type\": \"VEC3\"}]");
     replace("\"indices\": 3,", "\"indices\": 3, \"targets\": [{\"POSITION\": 4}],");
     replace("\"meshes\": [{", "\"meshes\": [{\"weights\": [" + weight + "], ");
     return json;
 }
 
-TEST(GltfDraco, MorphTargetsOfACompressedPrimitiveAreRefusedWhenWeighted) {
+/** The decoded quad's points in Draco's order, as a generator following the extension's implementation note reads
+ *  them back to write the uncompressed data (here the morph target) in that order. */
+std::vector<glm::vec3> decodedPoints(const CompressedQuad& quad) {
+    const detail::DracoMesh mesh = detail::decodeDracoMesh(reinterpret_cast<const unsigned char*>(quad.bytes.data()),
+                                                           quad.bytes.size(), [](std::size_t, std::size_t) {});
+    EXPECT_EQ(mesh.error, "");
+    const std::vector<float>& values = mesh.attributes.at(quad.positionId).values;
+    std::vector<glm::vec3> points;
+    for (std::size_t i = 0; i + 2 < values.size(); i += 3) points.emplace_back(values[i], values[i + 1], values[i + 2]);
+    return points;
+}
+
+TEST(GltfDraco, MorphTargetOfACompressedPrimitiveMovesEachDecodedPoint) {
     const CompressedQuad quad = compressedQuad();
-    const TempFile weighted("draco-morph.gltf", dracoGltfWithMorphTarget(quad, "0.5"));
-    const std::string message = test::sceneErrorMessage([&] { loadScene(weighted.path()); });
-    EXPECT_NE(message.find("morph targets of a Draco-compressed primitive are not supported (target 0 has weight 0.5)"),
-              std::string::npos)
-        << message;
-    const TempFile rest("draco-morph-rest.gltf", dracoGltfWithMorphTarget(quad, "0"));
-    EXPECT_EQ(loadScene(rest.path()).triangleCount(), 2u);
+    const std::vector<glm::vec3> points = decodedPoints(quad);
+    ASSERT_EQ(points.size(), 4u);
+    // Each point's offset depends on where it is, so a target applied in any other order puts some corner wrong:
+    // corner (x, y, 0) moves by (0, 0, x + 2y + 1), which weight 0.5 halves.
+    std::vector<glm::vec3> offsets;
+    for (const glm::vec3& p : points) offsets.emplace_back(0.0f, 0.0f, p.x + 2.0f * p.y + 1.0f);
+    const TempFile weighted("draco-morph.gltf", dracoGltfWithMorphTarget(quad, offsets, "0.5"));
+    const Scene scene = loadScene(weighted.path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    const Mesh& mesh = scene.meshes[0];
+    ASSERT_EQ(mesh.positions.size(), 4u);
+    for (const auto& corner : kCorners) {
+        const glm::dvec3 expected(corner[0], corner[1], 0.5 * (corner[0] + 2.0 * corner[1] + 1.0));
+        std::size_t found = 0;
+        for (const glm::vec3& p : mesh.positions)
+            if (glm::length(test::worldPosition(scene, p) - expected) < 1e-6) ++found;
+        EXPECT_EQ(found, 1u) << "corner " << corner[0] << ", " << corner[1] << " not at z " << expected.z;
+    }
+    // At weight 0 the quad stays flat.
+    const TempFile rest("draco-morph-rest.gltf", dracoGltfWithMorphTarget(quad, offsets, "0"));
+    const Scene flat = loadScene(rest.path());
+    for (const glm::vec3& p : flat.meshes[0].positions) EXPECT_EQ(test::worldPosition(flat, p).z, 0.0);
+}
+
+TEST(GltfDraco, MorphTargetCountingOtherThanTheDecodedPointsIsRefused) {
+    const CompressedQuad quad = compressedQuad();
+    const TempFile file("draco-morph-short.gltf",
+                        dracoGltfWithMorphTarget(quad, std::vector<glm::vec3>(3, glm::vec3(0, 0, 1)), "1"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("morph target 0 POSITION has 3 elements but POSITION has 4"), std::string::npos) << message;
 }
 
 /** `json` and `binary` as a GLB container. */

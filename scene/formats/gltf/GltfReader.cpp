@@ -681,16 +681,11 @@ private:
             mesh.normals = toVec3(attributeFloats(primitive, draco, "NORMAL", TINYGLTF_TYPE_VEC3, vertexCount, name));
         }
 
-        if (draco) {
-            // Draco reorders and merges vertices, so a target's uncompressed accessor no longer lines up with them.
-            for (std::size_t t = 0; t < primitive.targets.size() && t < pose.morphWeights.size(); ++t) {
-                if (pose.morphWeights[t] != 0.0 && std::isfinite(pose.morphWeights[t])) { // as applyMorphTargets()
-                    fail("'" + excerptForMessage(name) +
-                         "': morph targets of a Draco-compressed primitive are not supported (target " +
-                         std::to_string(t) + " has weight " + formatNumber(pose.morphWeights[t]) + ")");
-                }
-            }
-        }
+        // A Draco primitive's morph targets are plain accessors, one element per decoded point in Draco's order: the
+        // extension compresses no target, and its implementation note has generators write the uncompressed data
+        // from the decoded mesh (Khronos' MorphPrimitivesTest glTF-Draco sample carries its targets so; Blender's
+        // encoder keeps the point order for primitives with targets).
+        // applyMorphTargets() refuses a target whose count is not the decoded points'.
         applyMorphTargets(mPath, mModel, primitive, pose.morphWeights, mesh.positions, mesh.normals, name,
                           mOut.warnings);
         std::optional<SkinBlend> skin;
