@@ -164,21 +164,9 @@ TEST(GltfDraco, MorphTargetCountingOtherThanTheDecodedPointsIsRefused) {
     EXPECT_NE(message.find("morph target 0 POSITION has 3 elements but POSITION has 4"), std::string::npos) << message;
 }
 
-/** `json` and `binary` as a GLB container. */
-std::string glb(std::string json, std::string binary) {
-    while (json.size() % 4 != 0) json += ' ';
-    while (binary.size() % 4 != 0) binary += '\0';
-    const auto u32 = [](std::size_t value) {
-        const std::uint32_t little = std::uint32_t(value);
-        return std::string(reinterpret_cast<const char*>(&little), 4);
-    };
-    return "glTF" + u32(2) + u32(12 + 8 + json.size() + 8 + binary.size()) + u32(json.size()) + "JSON" + json +
-           u32(binary.size()) + std::string("BIN\0", 4) + binary;
-}
-
 TEST(GltfDraco, CompressedQuadLoadsFromAGlb) {
     const CompressedQuad quad = compressedQuad();
-    const TempFile file("draco.glb", glb(dracoGltf(quad.bytes, quad, true, true), quad.bytes));
+    const TempFile file("draco.glb", test::glb(dracoGltf(quad.bytes, quad, true, true), quad.bytes));
     const Scene scene = loadScene(file.path());
     ASSERT_EQ(scene.meshes.size(), 1u);
     EXPECT_EQ(scene.meshes[0].triangleCount(), 2u);

@@ -124,14 +124,7 @@ public:
     std::string glb() const {
         json file = document;
         file["buffers"] = {{{"byteLength", compressed.size()}}, placeholder()};
-        std::string text = file.dump();
-        while (text.size() % 4 != 0) text += ' ';
-        const auto u32 = [](std::size_t value) {
-            const std::uint32_t little = std::uint32_t(value);
-            return std::string(reinterpret_cast<const char*>(&little), 4);
-        };
-        return "glTF" + u32(2) + u32(12 + 8 + text.size() + 8 + compressed.size()) + u32(text.size()) + "JSON" + text +
-               u32(compressed.size()) + std::string("BIN\0", 4) + compressed;
+        return test::glb(file.dump(), compressed);
     }
 
 private:

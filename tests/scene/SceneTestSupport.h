@@ -184,6 +184,18 @@ inline std::string base64(std::string_view bytes) {
     return out;
 }
 
+/** `json` and `binary` as a GLB container, each chunk padded to 4 bytes (JSON with spaces, the binary with zeros). */
+inline std::string glb(std::string json, std::string binary) {
+    while (json.size() % 4 != 0) json += ' ';
+    while (binary.size() % 4 != 0) binary += '\0';
+    const auto u32 = [](std::size_t value) {
+        const std::uint32_t little = std::uint32_t(value);
+        return std::string(reinterpret_cast<const char*>(&little), 4);
+    };
+    return "glTF" + u32(2) + u32(12 + 8 + json.size() + 8 + binary.size()) + u32(json.size()) + "JSON" + json +
+           u32(binary.size()) + std::string("BIN\0", 4) + binary;
+}
+
 /** Writes the buffer part of a glTF file (one buffer, one view per accessor) and wraps a hand-written remainder
  *  (meshes, nodes, scenes, ...) into .gltf JSON or a .glb container. */
 class GltfWriter {
@@ -225,36 +237,11 @@ public:
 
     const std::string& binary() const { return mBinary; }
 
-    std::string glb(const std::string& body) const {
-        std::string jsonChunk = json(body, "");
-        while (jsonChunk.size() % 4 != 0) {
-            jsonChunk += ' ';
-        }
-        std::string binChunk = mBinary;
-        while (binChunk.size() % 4 != 0) {
-            binChunk += '\0';
-        }
-        std::string file = "glTF";
-        appendU32(file, 2);
-        appendU32(file, std::uint32_t(12 + 8 + jsonChunk.size() + 8 + binChunk.size()));
-        appendU32(file, std::uint32_t(jsonChunk.size()));
-        file += "JSON";
-        file += jsonChunk;
-        appendU32(file, std::uint32_t(binChunk.size()));
-        file += std::string("BIN\0", 4);
-        file += binChunk;
-        return file;
-    }
+    std::string glb(const std::string& body) const { return test::glb(json(body, ""), mBinary); }
 
 private:
     static std::string bytesOf(const void* data, std::size_t size) {
         return std::string(static_cast<const char*>(data), size);
-    }
-
-    static void appendU32(std::string& out, std::uint32_t value) {
-        char little[4];
-        std::memcpy(little, &value, 4);
-        out.append(little, 4);
     }
 
     int addAccessor(const std::string& bytes, std::size_t count, const char* type, int componentType) {
