@@ -11,10 +11,12 @@
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace inkgraph {
@@ -144,11 +146,12 @@ TEST(GltfMaterials, EveryFieldOfACoreMaterialIsRead) {
     EXPECT_EQ(material.emissiveTexture.image, 0);
     EXPECT_EQ(material.emissiveTexture.texCoord, 1);               // the transform's override of the default 0
     EXPECT_EQ(material.emissiveTexture.sampler, TextureSampler{}); // no sampler: repeat, trilinear
-    // T * R * S with offset (0.5, 0.25), a quarter turn and scale (2, 3): u maps to (0, 2), v to (-3, 0).
-    expectNear(material.emissiveTexture.transform, glm::mat3(0, 2, 0, -3, 0, 0, 0.5f, 0.25f, 1));
+    // T * R * S with offset (0.5, 0.25), a quarter turn counter-clockwise in UV space (v down) and scale (2, 3): u
+    // maps to (0, -2), v to (3, 0).
+    expectNear(material.emissiveTexture.transform, glm::mat3(0, -2, 0, 3, 0, 0, 0.5f, 0.25f, 1));
     const glm::vec3 corner = material.emissiveTexture.transform * glm::vec3(1, 1, 1);
-    EXPECT_NEAR(corner.x, -2.5, 1e-6);
-    EXPECT_NEAR(corner.y, 2.25, 1e-6);
+    EXPECT_NEAR(corner.x, 3.5, 1e-6);
+    EXPECT_NEAR(corner.y, -1.75, 1e-6);
     EXPECT_FALSE(material.unlit);
     EXPECT_EQ(material.alphaMode, AlphaMode::Mask);
     EXPECT_FLOAT_EQ(material.alphaCutoff, 0.3f);
@@ -161,6 +164,49 @@ TEST(GltfMaterials, EveryFieldOfACoreMaterialIsRead) {
     ASSERT_GE(right, 0);
     EXPECT_EQ(scene.meshes[0].texcoords[0][std::size_t(right)], glm::vec2(1, 0));
     EXPECT_EQ(scene.meshes[0].texcoords[1][std::size_t(right)], glm::vec2(0.5f, 0));
+}
+
+/** A material whose base colour texture (clamped to its edges) carries `transformJson` as its KHR_texture_transform;
+ *  its transform, loaded. */
+glm::mat3 loadedTextureTransform(const std::string& transformJson) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const int uv0 = gltf.floats({0, 0, 1, 0, 0, 1}, "VEC2", 3);
+    const std::string body =
+        singlePrimitive("\"POSITION\": " + std::to_string(position) + ", \"TEXCOORD_0\": " + std::to_string(uv0),
+                        ", \"material\": 0") +
+        ", \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0, \"extensions\":"
+        " {\"KHR_texture_transform\": " +
+        transformJson +
+        "}}}}], \"textures\": [{\"source\": 0, \"sampler\": 0}],"
+        // Clamped, as the sample's textures are: a repeating wrap would reduce the offset modulo 1 (ShaderValues.h).
+        " \"samplers\": [{\"wrapS\": 33071, \"wrapT\": 33071}], " +
+        imagesOfTwoDataUris() + ", \"extensionsUsed\": [\"KHR_texture_transform\"]";
+    const TempFile file("transform.gltf", gltf.gltf(body));
+    return loadScene(file.path()).meshes.at(0).material.baseColorTexture.transform;
+}
+
+TEST(GltfMaterials, TextureTransformRotationFollowsTheExtensionsExample) {
+    // KHR_texture_transform's example: offset [0, 1], rotation pi/2, scale [0.5, 0.5] "utilizes only the lower left
+    // quadrant of the source image, rotated clockwise 90 degrees". By hand, (u, v) -> (0.5 v, 1 - 0.5 u): u in [0, 0.5]
+    // (left), v in [0.5, 1] (lower: glTF's v = 0 is the image's top row).
+    const glm::mat3 transform =
+        loadedTextureTransform("{\"offset\": [0, 1], \"rotation\": 1.57079632679, \"scale\": [0.5, 0.5]}");
+    const std::vector<std::pair<glm::vec2, glm::vec2>> expected = {{{0, 0}, {0, 1}},
+                                                                   {{1, 0}, {0, 0.5f}},
+                                                                   {{0, 1}, {0.5f, 1}},
+                                                                   {{1, 1}, {0.5f, 0.5f}},
+                                                                   {{0.5f, 0.25f}, {0.125f, 0.75f}}};
+    for (const auto& [uv, mapped] : expected) {
+        const glm::vec3 actual = transform * glm::vec3(uv, 1.0f);
+        EXPECT_NEAR(actual.x, mapped.x, 1e-6) << "uv " << uv.x << ", " << uv.y;
+        EXPECT_NEAR(actual.y, mapped.y, 1e-6) << "uv " << uv.x << ", " << uv.y;
+    }
+    // TextureTransformTest's Rotation tile: 22.5 degrees alone; (1, 0) turns toward -v, (0, 1) toward +u.
+    const double angle = glm::pi<double>() / 8.0;
+    const glm::mat3 tile = loadedTextureTransform("{\"rotation\": 0.39269908169872414}");
+    expectNear(tile, glm::mat3(float(std::cos(angle)), float(-std::sin(angle)), 0, float(std::sin(angle)),
+                               float(std::cos(angle)), 0, 0, 0, 1));
 }
 
 TEST(GltfMaterials, UnlitBlendAndEmissiveStrength) {

@@ -192,11 +192,15 @@ struct GltfMaterials::Reader {
             const double rotation = extensionNumber(object, "rotation", 0.0, where);
             const glm::dvec2 scale = extensionPair(object, "scale", glm::dvec2(1.0), where);
             texCoord = extensionNumber(object, "texCoord", texCoord, where);
-            // The extension's matrices, column by column as its GLSL writes them: uv' = T * R * S * (u, v, 1).
+            // uv' = T * R * S * (u, v, 1), the extension's order. R is not the matrix its GLSL listing writes (a
+            // counter-clockwise turn with v up) but its transpose: counter-clockwise in glTF's UV space, where v points
+            // down, as the extension's own example (offset [0, 1], a quarter turn, scale [0.5, 0.5] samples the
+            // image's lower left quadrant), Khronos's TextureTransformTest sample, three.js and Babylon.js read it
+            // (KhronosGroup/glTF issue 1563).
             const glm::dmat3 translation(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, offset.x, offset.y, 1.0);
             const double c = std::cos(rotation);
             const double s = std::sin(rotation);
-            const glm::dmat3 rotationMatrix(c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0);
+            const glm::dmat3 rotationMatrix(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);
             const glm::dmat3 scaleMatrix(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
             transform = translation * rotationMatrix * scaleMatrix;
             transformText = where + " (offset " + formatPair(offset) + ", rotation " + formatNumber(rotation) +
