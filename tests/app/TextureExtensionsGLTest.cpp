@@ -1,15 +1,21 @@
 // glTF's texture and material extensions as a user meets them, through the real executable (issue 35):
-// KHR_texture_transform's rotation on Khronos's TextureTransformTest sample (tests/scene/data/TextureTransformTest).
+// KHR_texture_transform's rotation on Khronos's TextureTransformTest sample (tests/scene/data/TextureTransformTest),
+// KHR_materials_pbrSpecularGlossiness's diffuse colour.
 #include "CliTestSupport.h"
+#include "GltfTestFiles.h"
+#include "tests/support/Srgb.h"
 
 #include "render/ImageFiles.h"
 
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -22,7 +28,57 @@ namespace fs = std::filesystem;
 
 fs::path sampleFolder() { return fs::path(INKGRAPH_SOURCE_ROOT) / "tests" / "scene" / "data" / "TextureTransformTest"; }
 
-class TextureExtensions : public Cli {};
+class TextureExtensions : public Cli {
+protected:
+    /** The centre pixel (R, G, B, A: readImage()'s order for PNG) of `arguments` rendered with kQuadView. */
+    cv::Vec4b centrePixel(const std::string& arguments) {
+        const CliRun result = run("render " + arguments + " -o centre.png" + kQuadView);
+        EXPECT_EQ(result.exitCode, 0) << result.err;
+        const cv::Mat picture = readImage(directory / "centre.png");
+        return picture.at<cv::Vec4b>(picture.rows / 2, picture.cols / 2);
+    }
+
+    /** Lit by ambient light 1 alone, so a pixel is its base colour: the quad fills the middle of the picture. */
+    static inline const std::string kQuadView =
+        " --size 32x32 --eye 0,0,3 --target 0,0,0 --fov 45 --shading flat --ambient 1 --lines none -q";
+};
+
+/** A glTF of a square (-1..1 in x and y, facing +Z) with TEXCOORD_0 (0, 0) at its upper left corner, whose material
+ *  is `material`, beside `members` (textures, images, extensionsUsed, ...). */
+std::string quadGltf(const nlohmann::json& material, const nlohmann::json& members) {
+    std::string buffer;
+    const float positions[12] = {-1, 1, 0, 1, 1, 0, 1, -1, 0, -1, -1, 0};
+    const float uvs[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+    const std::uint16_t indices[6] = {0, 3, 2, 0, 2, 1}; // counter-clockwise seen from +Z
+    buffer.append(reinterpret_cast<const char*>(positions), sizeof positions);
+    buffer.append(reinterpret_cast<const char*>(uvs), sizeof uvs);
+    buffer.append(reinterpret_cast<const char*>(indices), sizeof indices);
+    nlohmann::json gltf = {
+        {"asset", {{"version", "2.0"}}},
+        {"buffers",
+         {{{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + test::base64(buffer)}}}},
+        {"bufferViews",
+         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+          {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
+          {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 12}}}},
+        {"accessors",
+         {{{"bufferView", 0},
+           {"componentType", 5126},
+           {"count", 4},
+           {"type", "VEC3"},
+           {"min", {-1, -1, 0}},
+           {"max", {1, 1, 0}}},
+          {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+          {{"bufferView", 2}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
+        {"materials", {material}},
+        {"meshes",
+         {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"scene", 0}};
+    gltf.update(members);
+    return gltf.dump();
+}
 
 /** The sample's camera for these tests: looking down -Z at the origin from 4 units, 45 degrees high, on a square
  *  picture, so a world point (x, y, 0) lies at pixel ((1 + x / h) W / 2, (1 - y / h) W / 2) with h = 4 tan(22.5°). */
@@ -132,6 +188,23 @@ TEST_F(TextureExtensions, TheTextureTransformSamplesArrowsPointAtTheirCorrectMar
         EXPECT_GT(overlap, 0.9);
         EXPECT_LT(overlapTurnedBack, 0.5);
     }
+}
+
+TEST_F(TextureExtensions, ASpecularGlossinessMaterialIsDrawnInItsDiffuseColour) {
+    // Required, so refused before issue 35. Its metallic-roughness fallback (red) is what a viewer without the
+    // extension draws; the diffuse factor is what this one must.
+    const nlohmann::json material = {
+        {"pbrMetallicRoughness", {{"baseColorFactor", {1, 0, 0, 1}}}},
+        {"extensions",
+         {{"KHR_materials_pbrSpecularGlossiness",
+           {{"diffuseFactor", {0.2, 0.5, 0.8, 1}}, {"specularFactor", {1, 1, 1}}, {"glossinessFactor", 0.5}}}}}};
+    const nlohmann::json required = {"KHR_materials_pbrSpecularGlossiness"};
+    std::ofstream(directory / "gloss.gltf")
+        << quadGltf(material, {{"extensionsUsed", required}, {"extensionsRequired", required}});
+    const cv::Vec4b pixel = centrePixel("gloss.gltf");
+    EXPECT_NEAR(pixel[0], test::srgbCode(0.2), 1);
+    EXPECT_NEAR(pixel[1], test::srgbCode(0.5), 1);
+    EXPECT_NEAR(pixel[2], test::srgbCode(0.8), 1);
 }
 
 } // namespace

@@ -287,9 +287,94 @@ TEST(GltfMaterials, MetallicRoughnessIsReadWithGltfsDefaultsAndClamped) {
     EXPECT_EQ(none.roughnessFactor, 1.0f);
 }
 
+/** One triangle with TEXCOORD_0 and _1 whose material 0 is `material` (JSON), with the two images of
+ *  imagesOfTwoDataUris() as textures 0 (image 1) and 1 (image 0), and `extensionsRequired`. */
+std::string triangleWithMaterial(const std::string& material, const std::string& extensionsRequired) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const int uv0 = gltf.floats({0, 0, 1, 0, 0, 1}, "VEC2", 3);
+    const int uv1 = gltf.floats({0, 0, 0.5f, 0, 0, 0.5f}, "VEC2", 3);
+    return gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position) + ", \"TEXCOORD_0\": " +
+                                         std::to_string(uv0) + ", \"TEXCOORD_1\": " + std::to_string(uv1),
+                                     ", \"material\": 0") +
+                     ", \"materials\": [" + material + "], \"textures\": [{\"source\": 1}, {\"source\": 0}], " +
+                     imagesOfTwoDataUris() + ", \"extensionsUsed\": [" + extensionsRequired +
+                     "], \"extensionsRequired\": [" + extensionsRequired + "]");
+}
+
+TEST(GltfMaterials, SpecularGlossinessDiffuseIsTheBaseColour) {
+    // The extension required, with a metallic-roughness fallback that must not be read: the diffuse factor and
+    // texture (its coordinate set and KHR_texture_transform read as a core texture's) become the base colour and
+    // alpha; a non-metal whose roughness is 1 - glossiness.
+    const TempFile file(
+        "specular-glossiness.gltf",
+        triangleWithMaterial(
+            "{\"name\": \"leather\", \"pbrMetallicRoughness\": {\"baseColorFactor\": [1, 0, 0, 1],"
+            " \"baseColorTexture\": {\"index\": 1}, \"metallicFactor\": 1, \"metallicRoughnessTexture\": {\"index\": "
+            "1}},"
+            " \"extensions\": {\"KHR_materials_pbrSpecularGlossiness\": {\"diffuseFactor\": [0.5, 0.25, 0.125, 0.75],"
+            " \"diffuseTexture\": {\"index\": 0, \"texCoord\": 1, \"extensions\": {\"KHR_texture_transform\":"
+            " {\"offset\": [0.5, 0.25]}}}, \"specularFactor\": [0.2, 0.2, 0.2], \"glossinessFactor\": 0.75}}}",
+            "\"KHR_materials_pbrSpecularGlossiness\", \"KHR_texture_transform\""));
+    const Scene scene = loadScene(file.path());
+    const Material& material = scene.meshes.at(0).material;
+    EXPECT_EQ(material.name, "leather");
+    EXPECT_EQ(material.baseColorFactor, glm::vec4(0.5f, 0.25f, 0.125f, 0.75f));
+    EXPECT_EQ(material.baseColorTexture.image, 1); // texture 0's source
+    EXPECT_EQ(material.baseColorTexture.texCoord, 1);
+    expectNear(material.baseColorTexture.transform, glm::mat3(1, 0, 0, 0, 1, 0, 0.5f, 0.25f, 1));
+    EXPECT_EQ(material.metallicFactor, 0.0f);
+    EXPECT_FLOAT_EQ(material.roughnessFactor, 0.25f);
+    EXPECT_FALSE(material.metallicRoughnessTexture.present());
+    EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
+
+    // Without factors or texture: the extension's defaults, white and fully glossy.
+    const TempFile defaults("specular-glossiness-defaults.gltf",
+                            triangleWithMaterial("{\"extensions\": {\"KHR_materials_pbrSpecularGlossiness\": {}}}",
+                                                 "\"KHR_materials_pbrSpecularGlossiness\""));
+    const Material& plain = loadScene(defaults.path()).meshes.at(0).material;
+    EXPECT_EQ(plain.baseColorFactor, glm::vec4(1.0f));
+    EXPECT_FALSE(plain.baseColorTexture.present());
+    EXPECT_EQ(plain.metallicFactor, 0.0f);
+    EXPECT_EQ(plain.roughnessFactor, 0.0f);
+}
+
+TEST(GltfMaterials, SpecularGlossinessOutOfRangeIsClampedAndBrokenIsRefused) {
+    const TempFile clamped("gloss-clamped.gltf",
+                           triangleWithMaterial("{\"extensions\": {\"KHR_materials_pbrSpecularGlossiness\": "
+                                                "{\"diffuseFactor\": [2, 0.5, 0.5, 1], \"glossinessFactor\": -1}}}",
+                                                "\"KHR_materials_pbrSpecularGlossiness\""));
+    const Scene scene = loadScene(clamped.path());
+    EXPECT_EQ(scene.meshes.at(0).material.baseColorFactor, glm::vec4(1.0f, 0.5f, 0.5f, 1.0f));
+    EXPECT_EQ(scene.meshes.at(0).material.roughnessFactor, 1.0f);
+    EXPECT_EQ(scene.report.warnings.size(), 2u) << ::testing::PrintToString(scene.report.warnings);
+
+    const std::vector<std::pair<std::string, std::string>> broken = {
+        {"{\"diffuseFactor\": [1, 1, 1]}",
+         "material 0 KHR_materials_pbrSpecularGlossiness: 'diffuseFactor' must be an array of 4 numbers"},
+        {"{\"diffuseTexture\": {\"texCoord\": 0}}",
+         "material 0 KHR_materials_pbrSpecularGlossiness diffuseTexture has no 'index'"},
+        {"{\"diffuseTexture\": {\"index\": 1.5}}",
+         "material 0 KHR_materials_pbrSpecularGlossiness diffuseTexture: 'index' 1.5 is not a whole number >= 0"},
+        {"{\"diffuseTexture\": {\"index\": 7}}",
+         "material 0 KHR_materials_pbrSpecularGlossiness diffuseTexture: texture index 7 out of range (file has 2 "
+         "textures)"},
+    };
+    for (const auto& [extension, expected] : broken) {
+        const TempFile file(
+            "gloss-broken.gltf",
+            triangleWithMaterial("{\"extensions\": {\"KHR_materials_pbrSpecularGlossiness\": " + extension + "}}",
+                                 "\"KHR_materials_pbrSpecularGlossiness\""));
+        const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+        EXPECT_NE(message.find(expected), std::string::npos) << extension << ": " << message;
+        EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+    }
+}
+
 TEST(GltfMaterials, SupportedExtensionsListTheMaterialAndGeometryOnes) {
-    for (const char* name : {"KHR_lights_punctual", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
-                             "KHR_texture_transform", "KHR_materials_unlit", "KHR_materials_emissive_strength"})
+    for (const char* name :
+         {"KHR_lights_punctual", "KHR_mesh_quantization", "KHR_draco_mesh_compression", "KHR_texture_transform",
+          "KHR_materials_unlit", "KHR_materials_emissive_strength", "KHR_materials_pbrSpecularGlossiness"})
         EXPECT_NE(std::ranges::find(supportedGltfExtensions(), std::string(name)), supportedGltfExtensions().end())
             << name;
 }

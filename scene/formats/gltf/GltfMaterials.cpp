@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
@@ -226,6 +227,66 @@ struct GltfMaterials::Reader {
         return ref;
     }
 
+    /** `object[key]`, a textureInfo inside an extension, as tinygltf's TextureInfo, so readTextureRef() reads it (its
+     *  coordinate set, sampler and KHR_texture_transform) as it reads a core one; absent: no texture (index -1). */
+    tinygltf::TextureInfo extensionTextureInfo(const tinygltf::Value& object, const char* key,
+                                               const std::string& label) const {
+        tinygltf::TextureInfo info;
+        if (!object.Has(key)) return info;
+        const std::string where = label + " " + key;
+        const tinygltf::Value& value = object.Get(key);
+        if (!value.IsObject()) fail(where + " must be an object (a textureInfo)");
+        if (!value.Has("index")) fail(where + " has no 'index'");
+        const auto wholeNumber = [&](const char* member, double fallback) {
+            const double number = extensionNumber(value, member, fallback, where);
+            if (number < 0.0 || number != std::floor(number) || number > double(INT_MAX))
+                fail(where + ": '" + member + "' " + formatNumber(number) + " is not a whole number >= 0");
+            return int(number);
+        };
+        info.index = wholeNumber("index", 0.0);
+        info.texCoord = wholeNumber("texCoord", 0.0);
+        if (value.Has("extensions") && value.Get("extensions").IsObject()) {
+            const tinygltf::Value& extensions = value.Get("extensions");
+            for (const std::string& name : extensions.Keys()) info.extensions[name] = extensions.Get(name);
+        }
+        return info;
+    }
+
+    /** KHR_materials_pbrSpecularGlossiness, when the material has it, instead of its metallic-roughness (which the
+     *  extension keeps only as the fallback of viewers without it): diffuseFactor and diffuseTexture are the base
+     *  colour and alpha. The specular colour and its texture are not drawn (no shading model takes a specular colour);
+     *  glossinessFactor becomes roughness 1 - glossiness on a non-metal, so --shading mtoon's metallic-roughness
+     *  fallback draws a diffuse surface rather than glTF's default metal. Returns false when the material does not have
+     *  it. */
+    bool readSpecularGlossiness(const tinygltf::Material& source, const std::string& label, Material& result) {
+        const auto extension = source.extensions.find("KHR_materials_pbrSpecularGlossiness");
+        if (extension == source.extensions.end()) return false;
+        const std::string where = label + " KHR_materials_pbrSpecularGlossiness";
+        const tinygltf::Value& object = extension->second;
+        if (!object.IsObject()) fail(where + " must be an object");
+        if (object.Has("diffuseFactor")) {
+            const tinygltf::Value& factor = object.Get("diffuseFactor");
+            if (!factor.IsArray() || factor.ArrayLen() != 4)
+                fail(where + ": 'diffuseFactor' must be an array of 4 numbers");
+            for (int i = 0; i < 4; ++i) {
+                const tinygltf::Value& item = factor.Get(i);
+                const double value = item.IsNumber() ? item.GetNumberAsDouble() : std::nan("");
+                if (!std::isfinite(value)) fail(where + ": 'diffuseFactor' must be an array of 4 finite numbers");
+                result.baseColorFactor[i] = shaderValue(
+                    value, kUnitRange, where + " diffuseFactor[" + std::to_string(i) + "]", mWarnings, label);
+            }
+        } else {
+            result.baseColorFactor = glm::vec4(1.0f); // the extension's default
+        }
+        result.baseColorTexture =
+            readTextureRef(extensionTextureInfo(object, "diffuseTexture", where), where + " diffuseTexture");
+        const double glossiness = extensionNumber(object, "glossinessFactor", 1.0, where);
+        result.metallicFactor = 0.0f;
+        result.roughnessFactor =
+            1.0f - shaderValue(glossiness, kUnitRange, where + " glossinessFactor", mWarnings, label);
+        return true;
+    }
+
     /** A VRM character's MToon (scene/formats/gltf/VrmMaterials.h), which may also adjust `material`. Its textures go
      * through readTextureRef(), so their samplers and KHR_texture_transform are read as the glTF material's are. Called
      * once per material, by material(), so its warnings are reported once. */
@@ -257,22 +318,24 @@ struct GltfMaterials::Reader {
         const std::string label = materialLabel(materialIndex);
         Material result;
         result.name = source.name;
-        // Factors beyond glTF's ranges are clamped with a warning, as viewers draw them (ShaderValues.h).
-        const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
-        for (std::size_t i = 0; i < 4 && factor.size() == 4; ++i) {
-            result.baseColorFactor[int(i)] = shaderValue(
-                factor[i], kUnitRange, label + " baseColorFactor[" + std::to_string(i) + "]", mWarnings, label);
+        if (!readSpecularGlossiness(source, label, result)) {
+            // Factors beyond glTF's ranges are clamped with a warning, as viewers draw them (ShaderValues.h).
+            const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
+            for (std::size_t i = 0; i < 4 && factor.size() == 4; ++i) {
+                result.baseColorFactor[int(i)] = shaderValue(
+                    factor[i], kUnitRange, label + " baseColorFactor[" + std::to_string(i) + "]", mWarnings, label);
+            }
+            result.baseColorTexture =
+                readTextureRef(source.pbrMetallicRoughness.baseColorTexture, label + " baseColorTexture");
+            // tinygltf fills in glTF's defaults (1, 1) for absent factors, so a glTF material is metallic unless it
+            // says not.
+            result.metallicFactor = shaderValue(source.pbrMetallicRoughness.metallicFactor, kUnitRange,
+                                                label + " metallicFactor", mWarnings, label);
+            result.roughnessFactor = shaderValue(source.pbrMetallicRoughness.roughnessFactor, kUnitRange,
+                                                 label + " roughnessFactor", mWarnings, label);
+            result.metallicRoughnessTexture = readTextureRef(source.pbrMetallicRoughness.metallicRoughnessTexture,
+                                                             label + " metallicRoughnessTexture");
         }
-        result.baseColorTexture =
-            readTextureRef(source.pbrMetallicRoughness.baseColorTexture, label + " baseColorTexture");
-        // tinygltf fills in glTF's defaults (1, 1) for absent factors, so a glTF material is metallic unless it says
-        // not.
-        result.metallicFactor = shaderValue(source.pbrMetallicRoughness.metallicFactor, kUnitRange,
-                                            label + " metallicFactor", mWarnings, label);
-        result.roughnessFactor = shaderValue(source.pbrMetallicRoughness.roughnessFactor, kUnitRange,
-                                             label + " roughnessFactor", mWarnings, label);
-        result.metallicRoughnessTexture =
-            readTextureRef(source.pbrMetallicRoughness.metallicRoughnessTexture, label + " metallicRoughnessTexture");
         for (std::size_t i = 0; i < 3 && source.emissiveFactor.size() == 3; ++i) {
             result.emissiveFactor[int(i)] =
                 shaderValue(source.emissiveFactor[i], kUnitRange, label + " emissiveFactor[" + std::to_string(i) + "]",

@@ -42,13 +42,15 @@ namespace {
  *  KHR_mesh_quantization's integer and normalized attributes (GltfAccessors.cpp reads any component type),
  *  KHR_draco_mesh_compression (GltfDraco.cpp), KHR_texture_transform, KHR_materials_unlit,
  *  KHR_materials_emissive_strength, VRM 0.x ("VRM": its front and MToon materialProperties) and 1.0 ("VRMC_vrm": its
- *  front; "VRMC_materials_mtoon"), scene/formats/gltf/VrmMaterials.h. */
+ *  front; "VRMC_materials_mtoon"), scene/formats/gltf/VrmMaterials.h; KHR_materials_pbrSpecularGlossiness's diffuse
+ *  colour (GltfMaterials.cpp). */
 const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual",
                                                        "KHR_mesh_quantization",
                                                        "KHR_draco_mesh_compression",
                                                        "KHR_texture_transform",
                                                        "KHR_materials_unlit",
                                                        "KHR_materials_emissive_strength",
+                                                       "KHR_materials_pbrSpecularGlossiness",
                                                        "VRM",
                                                        "VRMC_materials_mtoon",
                                                        "VRMC_vrm"};
