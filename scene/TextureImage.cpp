@@ -6,6 +6,7 @@
 #include "codecs/JpegCodec.h"
 #include "codecs/PngChunks.h"
 #include "codecs/PngCodec.h"
+#include "codecs/WebpCodec.h"
 
 #include <stb/stb_image.h>
 
@@ -210,6 +211,21 @@ DecodedImage decodeSceneImage(const SceneImage& image, std::size_t index, const 
         } catch (const std::runtime_error& problem) {
             if (dynamic_cast<const SceneError*>(&problem) != nullptr) throw;
             fail("cannot be decoded: a corrupt, truncated or unsupported JPEG" + declared + " (" + problem.what() +
+                 ")");
+        }
+    } else if (looksLikeWebp(bytes->data(), bytes->size())) {
+        // EXT_texture_webp's images: libwebp decodes into the buffer; what it holds of its own (a lossless image's
+        // whole ARGB) is judged with the pixels before either is allocated.
+        try {
+            decodeWebpRgba8(bytes->data(), bytes->size(), [&](const WebpLayout& layout) {
+                admit(layout.width, layout.height, layout.decoderBytes);
+                decoded.width = int(layout.width);
+                decoded.height = int(layout.height);
+                return buffer.allocate(layout.width, layout.height).front();
+            });
+        } catch (const std::runtime_error& problem) {
+            if (dynamic_cast<const SceneError*>(&problem) != nullptr) throw;
+            fail("cannot be decoded: a corrupt, truncated or unsupported WebP" + declared + " (" + problem.what() +
                  ")");
         }
     } else {

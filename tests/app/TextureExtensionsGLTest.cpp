@@ -1,6 +1,6 @@
 // glTF's texture and material extensions as a user meets them, through the real executable (issue 35):
 // KHR_texture_transform's rotation on Khronos's TextureTransformTest sample (tests/scene/data/TextureTransformTest),
-// KHR_materials_pbrSpecularGlossiness's diffuse colour.
+// KHR_materials_pbrSpecularGlossiness's diffuse colour, EXT_texture_webp's images (made here by libwebp's encoder).
 #include "CliTestSupport.h"
 #include "GltfTestFiles.h"
 #include "tests/support/Srgb.h"
@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
+#include <webp/encode.h>
+#include <webp/types.h>
 
 #include <algorithm>
 #include <cmath>
@@ -205,6 +207,54 @@ TEST_F(TextureExtensions, ASpecularGlossinessMaterialIsDrawnInItsDiffuseColour) 
     EXPECT_NEAR(pixel[0], test::srgbCode(0.2), 1);
     EXPECT_NEAR(pixel[1], test::srgbCode(0.5), 1);
     EXPECT_NEAR(pixel[2], test::srgbCode(0.8), 1);
+}
+
+/** A `side` x `side` WebP of one colour (RGBA), lossless, through libwebp's encoder. */
+std::string uniformWebp(int side, const std::vector<unsigned char>& rgba) {
+    std::vector<unsigned char> pixels;
+    for (int i = 0; i < side * side; ++i) pixels.insert(pixels.end(), rgba.begin(), rgba.end());
+    unsigned char* encoded = nullptr;
+    const std::size_t size = WebPEncodeLosslessRGBA(pixels.data(), side, side, side * 4, &encoded);
+    std::string bytes(reinterpret_cast<const char*>(encoded), size);
+    WebPFree(encoded);
+    return bytes;
+}
+
+TEST_F(TextureExtensions, AWebpTextureIsDrawnAndABrokenOneIsAWarningNamingIt) {
+    // EXT_texture_webp required, its image an external .webp beside the model; the texture's PNG fallback names a file
+    // that is not there, which a render that used it would refuse.
+    const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}};
+    const nlohmann::json required = {"EXT_texture_webp"};
+    const nlohmann::json members = {
+        {"textures", {{{"source", 0}, {"extensions", {{"EXT_texture_webp", {{"source", 1}}}}}}}},
+        {"images", {{{"uri", "missing.png"}}, {{"uri", "fur.webp"}, {"name", "fur"}}}},
+        {"extensionsUsed", required},
+        {"extensionsRequired", required}};
+    std::ofstream(directory / "webp.gltf") << quadGltf(material, members);
+    const std::string webp = uniformWebp(4, {200, 100, 50, 255});
+    ASSERT_FALSE(webp.empty());
+    std::ofstream(directory / "fur.webp", std::ios::binary) << webp;
+    const cv::Vec4b pixel = centrePixel("webp.gltf");
+    EXPECT_NEAR(pixel[0], 200, 1);
+    EXPECT_NEAR(pixel[1], 100, 1);
+    EXPECT_NEAR(pixel[2], 50, 1);
+
+    // The same file cut short: a texture-undecodable warning naming the model and the image, and the quad drawn in its
+    // factor alone (white); with --strict, exit 3 and nothing written.
+    std::ofstream(directory / "fur.webp", std::ios::binary | std::ios::trunc) << webp.substr(0, webp.size() / 2);
+    const std::string expected =
+        "'webp.gltf': image 1 'fur': cannot be decoded: a corrupt, truncated or unsupported WebP (libwebp header: not "
+        "enough data (truncated))";
+    const CliRun broken = run("render webp.gltf -o centre.png" + kQuadView);
+    EXPECT_EQ(broken.exitCode, 0) << broken.err;
+    EXPECT_NE(broken.err.find("warning: "), std::string::npos) << broken.err;
+    EXPECT_NE(broken.err.find(expected), std::string::npos) << broken.err;
+    const cv::Mat untextured = readImage(directory / "centre.png");
+    EXPECT_EQ(untextured.at<cv::Vec4b>(untextured.rows / 2, untextured.cols / 2), cv::Vec4b(255, 255, 255, 255));
+    const CliRun strict = run("render webp.gltf -o strict.png --strict" + kQuadView);
+    EXPECT_EQ(strict.exitCode, 3) << strict.err;
+    EXPECT_NE(strict.err.find(expected), std::string::npos) << strict.err;
+    EXPECT_FALSE(fs::exists(directory / "strict.png"));
 }
 
 } // namespace

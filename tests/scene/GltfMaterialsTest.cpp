@@ -592,8 +592,8 @@ TEST(GltfMaterials, KtxOnlyTextureIsARecordNamingTheModelTheMaterialAndTheTextur
     const Scene scene = loadScene(file.path());
     EXPECT_FALSE(scene.meshes.at(0).material.textured());
     const Warning expected{"texture-without-core-image",
-                           "material 0 'coat' baseColorTexture: texture 0 'skin' has no PNG or JPEG source (it has "
-                           "only 'KHR_texture_basisu'); drawn untextured",
+                           "material 0 'coat' baseColorTexture: texture 0 'skin' has no PNG, JPEG or WebP source (it "
+                           "has only 'KHR_texture_basisu'); drawn untextured",
                            file.path(), "texture 0 'skin'"};
     EXPECT_EQ(scene.report.warnings, std::vector<Warning>{expected});
 }
@@ -603,14 +603,14 @@ TEST(GltfMaterials, TextureWithOnlyAnExtensionImageIsDrawnUntexturedWithAWarning
     const int position = addTrianglePositions(gltf);
     const std::string body = singlePrimitive("\"POSITION\": " + std::to_string(position), ", \"material\": 0") +
                              ", \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}}],"
-                             " \"textures\": [{\"extensions\": {\"EXT_texture_webp\": {\"source\": 0}}}], " +
-                             imagesOfTwoDataUris() + ", \"extensionsUsed\": [\"EXT_texture_webp\"]";
-    const TempFile file("webp.gltf", gltf.gltf(body));
+                             " \"textures\": [{\"extensions\": {\"EXT_texture_avif\": {\"source\": 0}}}], " +
+                             imagesOfTwoDataUris() + ", \"extensionsUsed\": [\"EXT_texture_avif\"]";
+    const TempFile file("avif.gltf", gltf.gltf(body));
     const Scene scene = loadScene(file.path());
     EXPECT_FALSE(scene.meshes.at(0).material.textured());
     const auto& warnings = scene.report.warnings;
     EXPECT_TRUE(std::ranges::any_of(warnings, [](const Warning& warning) {
-        return warning.message.find("texture 0 has no PNG or JPEG source (it has only 'EXT_texture_webp')") !=
+        return warning.message.find("texture 0 has no PNG, JPEG or WebP source (it has only 'EXT_texture_avif')") !=
                std::string::npos;
     })) << ::testing::PrintToString(warnings);
 }

@@ -157,11 +157,11 @@ TEST(LoaderInputChecks, SupportedRequiredExtensionLoads) {
     const TempFile file("lights.gltf", triangleGltf("", "", top));
     EXPECT_EQ(loadScene(file.path()).triangleCount(), 1u);
     // The whole list, as the refusal names it (GltfMaterialsTest and VrmMaterialsTest load each one's files).
-    EXPECT_EQ(
-        supportedGltfExtensions(),
-        (std::vector<std::string>{"KHR_lights_punctual", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
-                                  "KHR_texture_transform", "KHR_materials_unlit", "KHR_materials_emissive_strength",
-                                  "KHR_materials_pbrSpecularGlossiness", "VRM", "VRMC_materials_mtoon", "VRMC_vrm"}));
+    EXPECT_EQ(supportedGltfExtensions(),
+              (std::vector<std::string>{"KHR_lights_punctual", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
+                                        "KHR_texture_transform", "KHR_materials_unlit",
+                                        "KHR_materials_emissive_strength", "KHR_materials_pbrSpecularGlossiness",
+                                        "EXT_texture_webp", "VRM", "VRMC_materials_mtoon", "VRMC_vrm"}));
 }
 
 // --- 6. extreme extents ---

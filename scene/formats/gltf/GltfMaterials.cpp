@@ -1,6 +1,7 @@
 /** @file A glTF material as the renderer sees it (GltfMaterials.h): factors (base colour, metallic, roughness,
- *  emissive) clamped into their ranges, textures with their image, coordinate set, sampler and KHR_texture_transform,
- *  the inkgraph shade-map extra, then a VRM character's MToon (VrmMaterials.h). */
+ *  emissive) clamped into their ranges, or KHR_materials_pbrSpecularGlossiness's diffuse; textures with their image
+ *  (EXT_texture_webp's first), coordinate set, sampler and KHR_texture_transform, the inkgraph shade-map extra, then a
+ *  VRM character's MToon (VrmMaterials.h). */
 
 #include "scene/formats/gltf/GltfMaterials.h"
 
@@ -153,10 +154,23 @@ struct GltfMaterials::Reader {
         return text;
     }
 
-    /** A material's textureInfo as a TextureRef: the image its texture shows, the coordinate set and sampler, and the
-     *  KHR_texture_transform matrix. A texture without a core image (only an extension's, e.g. KHR_texture_basisu or
-     *  EXT_texture_webp, which the renderer cannot decode) or on a third coordinate set leaves the material
-     *  untextured, with a warning. */
+    /** The image `texture` shows: EXT_texture_webp's source when it names one (the core `source` is then
+     *  the fallback of viewers without WebP), else the core source; -1 when it has neither. */
+    int textureSource(const tinygltf::Texture& texture, const std::string& where) const {
+        const auto webp = texture.extensions.find("EXT_texture_webp");
+        if (webp == texture.extensions.end() || !webp->second.IsObject() || !webp->second.Has("source"))
+            return texture.source;
+        const double source = extensionNumber(webp->second, "source", 0.0, where + " EXT_texture_webp");
+        if (source < 0.0 || source != std::floor(source) || source >= double(mModel.images.size()))
+            fail(where + " EXT_texture_webp: image index " + formatNumber(source) + " out of range (file has " +
+                 std::to_string(mModel.images.size()) + " images)");
+        return int(source);
+    }
+
+    /** A material's textureInfo as a TextureRef: the image its texture shows (textureSource()), the coordinate set and
+     *  sampler, and the KHR_texture_transform matrix. A texture without an image the renderer decodes (only an
+     *  extension's, e.g. KHR_texture_basisu's KTX2) or on a third coordinate set leaves the material untextured, with a
+     *  warning. */
     TextureRef readTextureRef(const tinygltf::TextureInfo& info, const std::string& label) {
         TextureRef ref;
         if (info.index == -1) return ref;
@@ -166,21 +180,22 @@ struct GltfMaterials::Reader {
         }
         const tinygltf::Texture& texture = mModel.textures[std::size_t(info.index)];
         const std::string textureName = textureLabel(info.index);
-        if (texture.source == -1) {
+        const int source = textureSource(texture, label + ": " + textureName);
+        if (source == -1) {
             std::string extensions;
             std::size_t named = 0;
             for (const auto& [name, value] : texture.extensions)
                 if (++named <= kMaxNamedExtensions)
                     extensions += (extensions.empty() ? " (it has only '" : "', '") + excerptForMessage(name);
             mWarnings.push_back(makeWarning(WarningKind::TextureWithoutCoreImage,
-                                            label + ": " + textureName + " has no PNG or JPEG source" +
+                                            label + ": " + textureName + " has no PNG, JPEG or WebP source" +
                                                 (extensions.empty() ? "" : extensions + "')") + "; drawn untextured",
                                             "", textureName));
             return ref;
         }
-        if (texture.source < 0 || std::size_t(texture.source) >= mModel.images.size()) {
-            fail(label + ": " + textureName + ": image index " + std::to_string(texture.source) +
-                 " out of range (file has " + std::to_string(mModel.images.size()) + " images)");
+        if (source < 0 || std::size_t(source) >= mModel.images.size()) {
+            fail(label + ": " + textureName + ": image index " + std::to_string(source) + " out of range (file has " +
+                 std::to_string(mModel.images.size()) + " images)");
         }
         double texCoord = info.texCoord;
         std::optional<glm::dmat3> transform;
@@ -214,7 +229,7 @@ struct GltfMaterials::Reader {
                                             "", textureName));
             return ref;
         }
-        ref.image = texture.source;
+        ref.image = source;
         ref.texCoord = int(texCoord);
         ref.sampler = readSampler(texture.sampler);
         if (transform) {
