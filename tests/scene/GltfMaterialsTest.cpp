@@ -596,6 +596,31 @@ TEST(GltfMaterials, KtxOnlyTextureIsARecordNamingTheModelTheMaterialAndTheTextur
                            "has only 'KHR_texture_basisu'); drawn untextured",
                            file.path(), "texture 0 'skin'"};
     EXPECT_EQ(scene.report.warnings, std::vector<Warning>{expected});
+
+    // With a PNG fallback as the texture's own source (and texture coordinates to draw it with): that image,
+    // silently (docs/materials.md).
+    RawGltf withUvs;
+    const int corners = addTrianglePositions(withUvs);
+    const int uvs = withUvs.floats({0, 0, 1, 0, 0, 1}, "VEC2", 3);
+    const std::string textures =
+        ", \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}}], \"textures\": "
+        "[{\"source\": 1, \"extensions\": {\"KHR_texture_basisu\": {\"source\": 0}}}], \"images\": [{\"uri\": "
+        "\"skin.ktx2\", \"mimeType\": \"image/ktx2\"}, {\"uri\": \"skin.png\"}], \"extensionsUsed\": "
+        "[\"KHR_texture_basisu\"]";
+    const std::string primitive = singlePrimitive(
+        "\"POSITION\": " + std::to_string(corners) + ", \"TEXCOORD_0\": " + std::to_string(uvs), ", \"material\": 0");
+    const TempFile fallback("basisu-fallback.gltf", withUvs.gltf(primitive + textures));
+    const Scene fallbackScene = loadScene(fallback.path());
+    EXPECT_EQ(fallbackScene.meshes.at(0).material.baseColorTexture.image, 1);
+    EXPECT_TRUE(fallbackScene.report.warnings.empty()) << ::testing::PrintToString(fallbackScene.report.warnings);
+
+    // Required: refused, with the list of what is supported.
+    const TempFile required("basisu-required.gltf",
+                            withUvs.gltf(primitive + textures + ", \"extensionsRequired\": [\"KHR_texture_basisu\"]"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(required.path()); });
+    EXPECT_NE(message.find("'KHR_texture_basisu'"), std::string::npos) << message;
+    EXPECT_NE(message.find("unsupported"), std::string::npos) << message;
+    EXPECT_NE(message.find("'EXT_texture_webp'"), std::string::npos) << message;
 }
 
 TEST(GltfMaterials, TextureWithOnlyAnExtensionImageIsDrawnUntexturedWithAWarning) {
