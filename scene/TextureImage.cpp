@@ -6,6 +6,7 @@
 #include "codecs/JpegCodec.h"
 #include "codecs/PngChunks.h"
 #include "codecs/PngCodec.h"
+#include "codecs/WebpCodec.h"
 
 #include <stb/stb_image.h>
 
@@ -213,6 +214,21 @@ DecodedImage decodeSceneImage(const SceneImage& image, std::size_t index, const 
             fail("cannot be decoded: a corrupt, truncated or unsupported JPEG" + declared + " (" + problem.what() +
                  ")");
         }
+    } else if (looksLikeWebp(bytes->data(), bytes->size())) {
+        // EXT_texture_webp's images: libwebp decodes into the buffer; what it holds of its own (a lossless image's
+        // whole ARGB) is judged with the pixels before either is allocated.
+        try {
+            decodeWebpRgba8(bytes->data(), bytes->size(), [&](const WebpLayout& layout) {
+                admit(layout.width, layout.height, layout.decoderBytes);
+                decoded.width = int(layout.width);
+                decoded.height = int(layout.height);
+                return buffer.allocate(layout.width, layout.height).front();
+            });
+        } catch (const std::runtime_error& problem) {
+            if (dynamic_cast<const SceneError*>(&problem) != nullptr) throw;
+            fail("cannot be decoded: a corrupt, truncated or unsupported WebP" + declared + " (" + problem.what() +
+                 ")");
+        }
     } else {
         return decodeWithStb(*bytes, declared, admit, fail);
     }
@@ -239,6 +255,22 @@ std::size_t headerBytes(const SceneImage& image) {
         bytes = &head;
     }
     if (bytes->empty() || bytes->size() > std::size_t(INT_MAX)) return 0;
+    if (looksLikeWebp(bytes->data(), bytes->size())) {
+        // libwebp reads the header and hands its layout to the pixel provider, which stops it there.
+        struct HeaderRead {
+            WebpLayout layout;
+        };
+        try {
+            decodeWebpRgba8(bytes->data(), bytes->size(),
+                            [](const WebpLayout& layout) -> unsigned char* { throw HeaderRead{layout}; });
+        } catch (const HeaderRead& header) {
+            return decodedImageBytes(int(std::min<std::uint32_t>(header.layout.width, INT_MAX)),
+                                     int(std::min<std::uint32_t>(header.layout.height, INT_MAX))) +
+                   header.layout.decoderBytes;
+        } catch (const std::exception&) {
+        }
+        return 0;
+    }
     if (stbi_info_from_memory(bytes->data(), int(bytes->size()), &width, &height, &channels) == 0 || width <= 0 ||
         height <= 0)
         return 0;

@@ -1,7 +1,8 @@
 #pragma once
 /** @file A material's image decoded to 8-bit RGBA, only when a pass that runs samples it: the loader keeps images
  *  encoded (Material.h SceneImage). PNG through libpng and JPEG through libjpeg-turbo (codecs/), each row by row into
- *  the one RGBA buffer; the other formats stb_image reads (BMP, TGA, GIF, PSD, HDR, PIC) through stb;
+ *  the one RGBA buffer, WebP (EXT_texture_webp) through libwebp into it; the other formats stb_image reads (BMP, TGA,
+ *  GIF, PSD, HDR, PIC) through stb;
  *  PNM, which stb does not read safely, is refused. No GL. */
 
 #include "scene/Material.h"

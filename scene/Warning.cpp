@@ -14,7 +14,7 @@ const std::vector<WarningCode>& warningCodes() {
          "a texture image that is corrupt, truncated, empty or of a format not read; the material is drawn without "
          "it"},
         {K::TextureWithoutCoreImage, "texture-without-core-image",
-         "a glTF texture has no PNG or JPEG source (only an extension's, e.g. KHR_texture_basisu's KTX2); drawn "
+         "a glTF texture has no PNG, JPEG or WebP source (only an extension's, e.g. KHR_texture_basisu's KTX2); drawn "
          "untextured"},
         {K::TextureCoordinateSetUnsupported, "texture-coordinate-set-unsupported",
          "a texture reads a coordinate set other than TEXCOORD_0 and TEXCOORD_1; drawn untextured"},

@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
     build-essential cmake pkg-config
     libegl-dev libgl-dev libopengl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libepoxy-dev
-    libglm-dev libopencv-dev libtbb-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev nlohmann-json3-dev libstb-dev libpng-dev libjpeg-dev
+    libglm-dev libopencv-dev libtbb-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev nlohmann-json3-dev libstb-dev libpng-dev libjpeg-dev libwebp-dev
     libopenimageio-dev openimageio-tools
     libgtest-dev libgmock-dev libbenchmark-dev
     pybind11-dev python3-dev python3-numpy python3-pytest python3-mypy

@@ -1,10 +1,10 @@
 // Every decoder is bounded by the header and --memory-limit (issue 31), through the real executable: a PNG whose
 // data inflates far beyond its header, a 16-bit PNG, a baseline and a progressive JPEG, a Draco buffer that decodes
-// to millions of triangles, a header declaring 60000 x 60000 pixels. Each run's peak resident set (CliRun::peakMib,
-// wait4's figure for that run) is compared with the limit in the Release suite only
-// (AddressSanitizer's shadow memory is not the program's; MemoryBudgetGLTest says the same). Also here: a texture
-// wider than the driver's largest is downscaled with a warning (PreparedStill::warnings holds it too), and a 5000-byte
-// image path gives a message under 2000 bytes.
+// to millions of triangles, a header declaring 60000 x 60000 pixels, a lossless WebP whose decoder holds the whole
+// image. Each run's peak resident set (CliRun::peakMib, wait4's figure for that run) is compared with the limit in the
+// Release suite only (AddressSanitizer's shadow memory is not the program's; MemoryBudgetGLTest says the same). Also
+// here: a texture wider than the driver's largest is downscaled with a warning (PreparedStill::warnings holds it too),
+// and a 5000-byte image path gives a message under 2000 bytes.
 #include "CliTestSupport.h"
 #include "render/StillRenderer.h"
 #include "tests/support/PngFixtures.h"
@@ -16,6 +16,8 @@
 #include <cstdio>
 // jpeglib.h needs FILE and size_t declared first.
 #include <jpeglib.h>
+#include <webp/encode.h>
+#include <webp/types.h>
 
 #include <cmath>
 #include <cstdint>
@@ -105,6 +107,23 @@ std::string jpegFile(int width, int height, bool progressive) {
     jpeg_destroy_compress(&info);
     std::string file(reinterpret_cast<const char*>(bytes), size);
     std::free(bytes);
+    return file;
+}
+
+/** A lossless WebP of `side` x `side` opaque pixels of one colour (quick to encode, a few hundred bytes), through
+ *  libwebp. */
+std::string losslessWebpFile(int side) {
+    std::vector<unsigned char> rgba(std::size_t(side) * std::size_t(side) * 4);
+    for (std::size_t i = 0; i < rgba.size(); i += 4) {
+        rgba[i] = 90;
+        rgba[i + 1] = 120;
+        rgba[i + 2] = 150;
+        rgba[i + 3] = 255;
+    }
+    unsigned char* bytes = nullptr;
+    const std::size_t size = WebPEncodeLosslessRGBA(rgba.data(), side, side, side * 4, &bytes);
+    std::string file(reinterpret_cast<const char*>(bytes), size);
+    WebPFree(bytes);
     return file;
 }
 
@@ -228,6 +247,28 @@ TEST_F(DecoderBudget, AProgressiveJpegsCoefficientsAreChargedBeforeTheyAreAlloca
     ASSERT_EQ(accepted.exitCode, 0) << accepted.err;
     if (kPeakIsComparable) {
         EXPECT_LT(accepted.peakMib, 480.0);
+    }
+}
+
+TEST_F(DecoderBudget, ALosslessWebpsWholeImageIsChargedBeforeItIsAllocated) {
+    // libwebp decodes a lossless file whole into 32-bit ARGB before converting it into the texture's RGBA: 4096^2 x 4
+    // bytes beside the pixels and their GL copy (156,587,349 bytes), so a limit that holds those but not it refuses the
+    // image before libwebp allocates anything (issue 35). Measured: 226,071,893 bytes needed besides the file's own;
+    // at --memory-limit 340 it renders with a peak of about 243 MiB (measured on a patterned 4096^2 file).
+    writeBytes(directory / "fur.webp", losslessWebpFile(4096));
+    writeTexturedTriangle("fur.webp");
+    const CliRun refused = run("render tri.obj -o out.png --size 64x64 --memory-limit 300");
+    EXPECT_EQ(refused.exitCode, 3) << refused.err;
+    std::smatch needs;
+    ASSERT_TRUE(std::regex_search(refused.err, needs, std::regex("'fur.webp': 4096x4096 needs ([0-9]+) bytes")))
+        << refused.err;
+    EXPECT_GE(std::stoull(needs[1]), 156587349ull + 67108864ull) << refused.err;
+    EXPECT_FALSE(fs::exists(directory / "out.png"));
+    const CliRun result = run("render tri.obj -o out.png --size 64x64 --memory-limit 340 --stats s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_EQ(nlohmann::json::parse(readText(directory / "s.json"))["scene"]["images"]["decoded"], 1);
+    if (kPeakIsComparable) {
+        EXPECT_LT(result.peakMib, 340.0);
     }
 }
 

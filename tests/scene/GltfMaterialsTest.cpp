@@ -11,10 +11,12 @@
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace inkgraph {
@@ -144,11 +146,12 @@ TEST(GltfMaterials, EveryFieldOfACoreMaterialIsRead) {
     EXPECT_EQ(material.emissiveTexture.image, 0);
     EXPECT_EQ(material.emissiveTexture.texCoord, 1);               // the transform's override of the default 0
     EXPECT_EQ(material.emissiveTexture.sampler, TextureSampler{}); // no sampler: repeat, trilinear
-    // T * R * S with offset (0.5, 0.25), a quarter turn and scale (2, 3): u maps to (0, 2), v to (-3, 0).
-    expectNear(material.emissiveTexture.transform, glm::mat3(0, 2, 0, -3, 0, 0, 0.5f, 0.25f, 1));
+    // T * R * S with offset (0.5, 0.25), a quarter turn counter-clockwise in UV space (v down) and scale (2, 3): u
+    // maps to (0, -2), v to (3, 0).
+    expectNear(material.emissiveTexture.transform, glm::mat3(0, -2, 0, 3, 0, 0, 0.5f, 0.25f, 1));
     const glm::vec3 corner = material.emissiveTexture.transform * glm::vec3(1, 1, 1);
-    EXPECT_NEAR(corner.x, -2.5, 1e-6);
-    EXPECT_NEAR(corner.y, 2.25, 1e-6);
+    EXPECT_NEAR(corner.x, 3.5, 1e-6);
+    EXPECT_NEAR(corner.y, -1.75, 1e-6);
     EXPECT_FALSE(material.unlit);
     EXPECT_EQ(material.alphaMode, AlphaMode::Mask);
     EXPECT_FLOAT_EQ(material.alphaCutoff, 0.3f);
@@ -161,6 +164,49 @@ TEST(GltfMaterials, EveryFieldOfACoreMaterialIsRead) {
     ASSERT_GE(right, 0);
     EXPECT_EQ(scene.meshes[0].texcoords[0][std::size_t(right)], glm::vec2(1, 0));
     EXPECT_EQ(scene.meshes[0].texcoords[1][std::size_t(right)], glm::vec2(0.5f, 0));
+}
+
+/** A material whose base colour texture (clamped to its edges) carries `transformJson` as its KHR_texture_transform;
+ *  its transform, loaded. */
+glm::mat3 loadedTextureTransform(const std::string& transformJson) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const int uv0 = gltf.floats({0, 0, 1, 0, 0, 1}, "VEC2", 3);
+    const std::string body =
+        singlePrimitive("\"POSITION\": " + std::to_string(position) + ", \"TEXCOORD_0\": " + std::to_string(uv0),
+                        ", \"material\": 0") +
+        ", \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0, \"extensions\":"
+        " {\"KHR_texture_transform\": " +
+        transformJson +
+        "}}}}], \"textures\": [{\"source\": 0, \"sampler\": 0}],"
+        // Clamped, as the sample's textures are: a repeating wrap would reduce the offset modulo 1 (ShaderValues.h).
+        " \"samplers\": [{\"wrapS\": 33071, \"wrapT\": 33071}], " +
+        imagesOfTwoDataUris() + ", \"extensionsUsed\": [\"KHR_texture_transform\"]";
+    const TempFile file("transform.gltf", gltf.gltf(body));
+    return loadScene(file.path()).meshes.at(0).material.baseColorTexture.transform;
+}
+
+TEST(GltfMaterials, TextureTransformRotationFollowsTheExtensionsExample) {
+    // KHR_texture_transform's example: offset [0, 1], rotation pi/2, scale [0.5, 0.5] "utilizes only the lower left
+    // quadrant of the source image, rotated clockwise 90 degrees". By hand, (u, v) -> (0.5 v, 1 - 0.5 u): u in [0, 0.5]
+    // (left), v in [0.5, 1] (lower: glTF's v = 0 is the image's top row).
+    const glm::mat3 transform =
+        loadedTextureTransform("{\"offset\": [0, 1], \"rotation\": 1.57079632679, \"scale\": [0.5, 0.5]}");
+    const std::vector<std::pair<glm::vec2, glm::vec2>> expected = {{{0, 0}, {0, 1}},
+                                                                   {{1, 0}, {0, 0.5f}},
+                                                                   {{0, 1}, {0.5f, 1}},
+                                                                   {{1, 1}, {0.5f, 0.5f}},
+                                                                   {{0.5f, 0.25f}, {0.125f, 0.75f}}};
+    for (const auto& [uv, mapped] : expected) {
+        const glm::vec3 actual = transform * glm::vec3(uv, 1.0f);
+        EXPECT_NEAR(actual.x, mapped.x, 1e-6) << "uv " << uv.x << ", " << uv.y;
+        EXPECT_NEAR(actual.y, mapped.y, 1e-6) << "uv " << uv.x << ", " << uv.y;
+    }
+    // TextureTransformTest's Rotation tile: 22.5 degrees alone; (1, 0) turns toward -v, (0, 1) toward +u.
+    const double angle = glm::pi<double>() / 8.0;
+    const glm::mat3 tile = loadedTextureTransform("{\"rotation\": 0.39269908169872414}");
+    expectNear(tile, glm::mat3(float(std::cos(angle)), float(-std::sin(angle)), 0, float(std::sin(angle)),
+                               float(std::cos(angle)), 0, 0, 0, 1));
 }
 
 TEST(GltfMaterials, UnlitBlendAndEmissiveStrength) {
@@ -241,9 +287,94 @@ TEST(GltfMaterials, MetallicRoughnessIsReadWithGltfsDefaultsAndClamped) {
     EXPECT_EQ(none.roughnessFactor, 1.0f);
 }
 
+/** One triangle with TEXCOORD_0 and _1 whose material 0 is `material` (JSON), with the two images of
+ *  imagesOfTwoDataUris() as textures 0 (image 1) and 1 (image 0), and `extensionsRequired`. */
+std::string triangleWithMaterial(const std::string& material, const std::string& extensionsRequired) {
+    RawGltf gltf;
+    const int position = addTrianglePositions(gltf);
+    const int uv0 = gltf.floats({0, 0, 1, 0, 0, 1}, "VEC2", 3);
+    const int uv1 = gltf.floats({0, 0, 0.5f, 0, 0, 0.5f}, "VEC2", 3);
+    return gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position) + ", \"TEXCOORD_0\": " +
+                                         std::to_string(uv0) + ", \"TEXCOORD_1\": " + std::to_string(uv1),
+                                     ", \"material\": 0") +
+                     ", \"materials\": [" + material + "], \"textures\": [{\"source\": 1}, {\"source\": 0}], " +
+                     imagesOfTwoDataUris() + ", \"extensionsUsed\": [" + extensionsRequired +
+                     "], \"extensionsRequired\": [" + extensionsRequired + "]");
+}
+
+TEST(GltfMaterials, SpecularGlossinessDiffuseIsTheBaseColour) {
+    // The extension required, with a metallic-roughness fallback that must not be read: the diffuse factor and
+    // texture (its coordinate set and KHR_texture_transform read as a core texture's) become the base colour and
+    // alpha; a non-metal whose roughness is 1 - glossiness.
+    const TempFile file(
+        "specular-glossiness.gltf",
+        triangleWithMaterial(
+            "{\"name\": \"leather\", \"pbrMetallicRoughness\": {\"baseColorFactor\": [1, 0, 0, 1],"
+            " \"baseColorTexture\": {\"index\": 1}, \"metallicFactor\": 1, \"metallicRoughnessTexture\": {\"index\": "
+            "1}},"
+            " \"extensions\": {\"KHR_materials_pbrSpecularGlossiness\": {\"diffuseFactor\": [0.5, 0.25, 0.125, 0.75],"
+            " \"diffuseTexture\": {\"index\": 0, \"texCoord\": 1, \"extensions\": {\"KHR_texture_transform\":"
+            " {\"offset\": [0.5, 0.25]}}}, \"specularFactor\": [0.2, 0.2, 0.2], \"glossinessFactor\": 0.75}}}",
+            "\"KHR_materials_pbrSpecularGlossiness\", \"KHR_texture_transform\""));
+    const Scene scene = loadScene(file.path());
+    const Material& material = scene.meshes.at(0).material;
+    EXPECT_EQ(material.name, "leather");
+    EXPECT_EQ(material.baseColorFactor, glm::vec4(0.5f, 0.25f, 0.125f, 0.75f));
+    EXPECT_EQ(material.baseColorTexture.image, 1); // texture 0's source
+    EXPECT_EQ(material.baseColorTexture.texCoord, 1);
+    expectNear(material.baseColorTexture.transform, glm::mat3(1, 0, 0, 0, 1, 0, 0.5f, 0.25f, 1));
+    EXPECT_EQ(material.metallicFactor, 0.0f);
+    EXPECT_FLOAT_EQ(material.roughnessFactor, 0.25f);
+    EXPECT_FALSE(material.metallicRoughnessTexture.present());
+    EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
+
+    // Without factors or texture: the extension's defaults, white and fully glossy.
+    const TempFile defaults("specular-glossiness-defaults.gltf",
+                            triangleWithMaterial("{\"extensions\": {\"KHR_materials_pbrSpecularGlossiness\": {}}}",
+                                                 "\"KHR_materials_pbrSpecularGlossiness\""));
+    const Material& plain = loadScene(defaults.path()).meshes.at(0).material;
+    EXPECT_EQ(plain.baseColorFactor, glm::vec4(1.0f));
+    EXPECT_FALSE(plain.baseColorTexture.present());
+    EXPECT_EQ(plain.metallicFactor, 0.0f);
+    EXPECT_EQ(plain.roughnessFactor, 0.0f);
+}
+
+TEST(GltfMaterials, SpecularGlossinessOutOfRangeIsClampedAndBrokenIsRefused) {
+    const TempFile clamped("gloss-clamped.gltf",
+                           triangleWithMaterial("{\"extensions\": {\"KHR_materials_pbrSpecularGlossiness\": "
+                                                "{\"diffuseFactor\": [2, 0.5, 0.5, 1], \"glossinessFactor\": -1}}}",
+                                                "\"KHR_materials_pbrSpecularGlossiness\""));
+    const Scene scene = loadScene(clamped.path());
+    EXPECT_EQ(scene.meshes.at(0).material.baseColorFactor, glm::vec4(1.0f, 0.5f, 0.5f, 1.0f));
+    EXPECT_EQ(scene.meshes.at(0).material.roughnessFactor, 1.0f);
+    EXPECT_EQ(scene.report.warnings.size(), 2u) << ::testing::PrintToString(scene.report.warnings);
+
+    const std::vector<std::pair<std::string, std::string>> broken = {
+        {"{\"diffuseFactor\": [1, 1, 1]}",
+         "material 0 KHR_materials_pbrSpecularGlossiness: 'diffuseFactor' must be an array of 4 numbers"},
+        {"{\"diffuseTexture\": {\"texCoord\": 0}}",
+         "material 0 KHR_materials_pbrSpecularGlossiness diffuseTexture has no 'index'"},
+        {"{\"diffuseTexture\": {\"index\": 1.5}}",
+         "material 0 KHR_materials_pbrSpecularGlossiness diffuseTexture: 'index' 1.5 is not a whole number >= 0"},
+        {"{\"diffuseTexture\": {\"index\": 7}}",
+         "material 0 KHR_materials_pbrSpecularGlossiness diffuseTexture: texture index 7 out of range (file has 2 "
+         "textures)"},
+    };
+    for (const auto& [extension, expected] : broken) {
+        const TempFile file(
+            "gloss-broken.gltf",
+            triangleWithMaterial("{\"extensions\": {\"KHR_materials_pbrSpecularGlossiness\": " + extension + "}}",
+                                 "\"KHR_materials_pbrSpecularGlossiness\""));
+        const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+        EXPECT_NE(message.find(expected), std::string::npos) << extension << ": " << message;
+        EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+    }
+}
+
 TEST(GltfMaterials, SupportedExtensionsListTheMaterialAndGeometryOnes) {
-    for (const char* name : {"KHR_lights_punctual", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
-                             "KHR_texture_transform", "KHR_materials_unlit", "KHR_materials_emissive_strength"})
+    for (const char* name :
+         {"KHR_lights_punctual", "KHR_mesh_quantization", "KHR_draco_mesh_compression", "KHR_texture_transform",
+          "KHR_materials_unlit", "KHR_materials_emissive_strength", "KHR_materials_pbrSpecularGlossiness"})
         EXPECT_NE(std::ranges::find(supportedGltfExtensions(), std::string(name)), supportedGltfExtensions().end())
             << name;
 }
@@ -461,10 +592,35 @@ TEST(GltfMaterials, KtxOnlyTextureIsARecordNamingTheModelTheMaterialAndTheTextur
     const Scene scene = loadScene(file.path());
     EXPECT_FALSE(scene.meshes.at(0).material.textured());
     const Warning expected{"texture-without-core-image",
-                           "material 0 'coat' baseColorTexture: texture 0 'skin' has no PNG or JPEG source (it has "
-                           "only 'KHR_texture_basisu'); drawn untextured",
+                           "material 0 'coat' baseColorTexture: texture 0 'skin' has no PNG, JPEG or WebP source (it "
+                           "has only 'KHR_texture_basisu'); drawn untextured",
                            file.path(), "texture 0 'skin'"};
     EXPECT_EQ(scene.report.warnings, std::vector<Warning>{expected});
+
+    // With a PNG fallback as the texture's own source (and texture coordinates to draw it with): that image,
+    // silently (docs/materials.md).
+    RawGltf withUvs;
+    const int corners = addTrianglePositions(withUvs);
+    const int uvs = withUvs.floats({0, 0, 1, 0, 0, 1}, "VEC2", 3);
+    const std::string textures =
+        ", \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}}], \"textures\": "
+        "[{\"source\": 1, \"extensions\": {\"KHR_texture_basisu\": {\"source\": 0}}}], \"images\": [{\"uri\": "
+        "\"skin.ktx2\", \"mimeType\": \"image/ktx2\"}, {\"uri\": \"skin.png\"}], \"extensionsUsed\": "
+        "[\"KHR_texture_basisu\"]";
+    const std::string primitive = singlePrimitive(
+        "\"POSITION\": " + std::to_string(corners) + ", \"TEXCOORD_0\": " + std::to_string(uvs), ", \"material\": 0");
+    const TempFile fallback("basisu-fallback.gltf", withUvs.gltf(primitive + textures));
+    const Scene fallbackScene = loadScene(fallback.path());
+    EXPECT_EQ(fallbackScene.meshes.at(0).material.baseColorTexture.image, 1);
+    EXPECT_TRUE(fallbackScene.report.warnings.empty()) << ::testing::PrintToString(fallbackScene.report.warnings);
+
+    // Required: refused, with the list of what is supported.
+    const TempFile required("basisu-required.gltf",
+                            withUvs.gltf(primitive + textures + ", \"extensionsRequired\": [\"KHR_texture_basisu\"]"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(required.path()); });
+    EXPECT_NE(message.find("'KHR_texture_basisu'"), std::string::npos) << message;
+    EXPECT_NE(message.find("unsupported"), std::string::npos) << message;
+    EXPECT_NE(message.find("'EXT_texture_webp'"), std::string::npos) << message;
 }
 
 TEST(GltfMaterials, TextureWithOnlyAnExtensionImageIsDrawnUntexturedWithAWarning) {
@@ -472,14 +628,14 @@ TEST(GltfMaterials, TextureWithOnlyAnExtensionImageIsDrawnUntexturedWithAWarning
     const int position = addTrianglePositions(gltf);
     const std::string body = singlePrimitive("\"POSITION\": " + std::to_string(position), ", \"material\": 0") +
                              ", \"materials\": [{\"pbrMetallicRoughness\": {\"baseColorTexture\": {\"index\": 0}}}],"
-                             " \"textures\": [{\"extensions\": {\"EXT_texture_webp\": {\"source\": 0}}}], " +
-                             imagesOfTwoDataUris() + ", \"extensionsUsed\": [\"EXT_texture_webp\"]";
-    const TempFile file("webp.gltf", gltf.gltf(body));
+                             " \"textures\": [{\"extensions\": {\"EXT_texture_avif\": {\"source\": 0}}}], " +
+                             imagesOfTwoDataUris() + ", \"extensionsUsed\": [\"EXT_texture_avif\"]";
+    const TempFile file("avif.gltf", gltf.gltf(body));
     const Scene scene = loadScene(file.path());
     EXPECT_FALSE(scene.meshes.at(0).material.textured());
     const auto& warnings = scene.report.warnings;
     EXPECT_TRUE(std::ranges::any_of(warnings, [](const Warning& warning) {
-        return warning.message.find("texture 0 has no PNG or JPEG source (it has only 'EXT_texture_webp')") !=
+        return warning.message.find("texture 0 has no PNG, JPEG or WebP source (it has only 'EXT_texture_avif')") !=
                std::string::npos;
     })) << ::testing::PrintToString(warnings);
 }

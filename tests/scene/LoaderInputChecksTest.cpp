@@ -158,7 +158,8 @@ TEST(LoaderInputChecks, SupportedRequiredExtensionLoads) {
     EXPECT_EQ(supportedGltfExtensions(),
               (std::vector<std::string>{"KHR_lights_punctual", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
                                         "EXT_meshopt_compression", "KHR_texture_transform", "KHR_materials_unlit",
-                                        "KHR_materials_emissive_strength", "VRM", "VRMC_materials_mtoon", "VRMC_vrm"}));
+                                        "KHR_materials_emissive_strength", "KHR_materials_pbrSpecularGlossiness",
+                                        "EXT_texture_webp", "VRM", "VRMC_materials_mtoon", "VRMC_vrm"}));
 }
 
 // --- 6. extreme extents ---

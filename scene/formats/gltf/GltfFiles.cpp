@@ -47,6 +47,7 @@ class ExternalUriCollector : public nlohmann::json_sax<nlohmann::json> {
 public:
     std::vector<std::string> bufferUris;
     std::vector<std::string> imageUris;
+    std::vector<std::string> imageDataUris; ///< ExternalUris::imageDataUris
 
     bool null() override { return leaveValue(); }
     bool boolean(bool) override { return leaveValue(); }
@@ -59,6 +60,8 @@ public:
         if (mKeys.size() == 3 && mKeys[2] == "uri" && value.rfind("data:", 0) != 0) {
             if (mKeys[0] == "buffers") bufferUris.push_back(value);
             if (mKeys[0] == "images") imageUris.push_back(value);
+        } else if (mKeys.size() == 3 && mKeys[2] == "uri" && mKeys[0] == "images" && !tinygltf::IsDataURI(value)) {
+            imageDataUris.push_back(value);
         }
         return leaveValue();
     }
@@ -247,6 +250,55 @@ bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const
     return tinygltf::ReadWholeFile(out, error, path, nullptr);
 }
 
+namespace {
+
+/** The bytes of RFC 4648 base64 `text` (padding optional), or nothing when a character is not of its alphabet. */
+std::optional<std::vector<unsigned char>> strictBase64(std::string_view text) {
+    while (!text.empty() && text.back() == '=') text.remove_suffix(1);
+    std::vector<unsigned char> bytes;
+    bytes.reserve(text.size() / 4 * 3 + 2);
+    std::uint32_t bits = 0;
+    int bitCount = 0;
+    for (const char c : text) {
+        int value = -1;
+        if (c >= 'A' && c <= 'Z') value = c - 'A';
+        if (c >= 'a' && c <= 'z') value = c - 'a' + 26;
+        if (c >= '0' && c <= '9') value = c - '0' + 52;
+        if (c == '+') value = 62;
+        if (c == '/') value = 63;
+        if (value < 0) return std::nullopt;
+        bits = bits << 6 | std::uint32_t(value);
+        bitCount += 6;
+        if (bitCount >= 8) {
+            bitCount -= 8;
+            bytes.push_back(static_cast<unsigned char>((bits >> bitCount) & 0xFF));
+        }
+    }
+    return bytes;
+}
+
+/** An image given as a data: URI of a media type tinygltf does not decode (image/webp: ExternalUris::imageDataUris),
+ *  decoded here and charged to the budget. Anything but base64 is refused. */
+std::shared_ptr<const std::vector<unsigned char>> dataUriImageBytes(const std::string& path, std::size_t index,
+                                                                    std::string_view uri, MeshBudget& budget) {
+    const std::size_t comma = uri.find(',');
+    const std::string_view header = uri.substr(0, comma);
+    constexpr std::string_view kBase64 = ";base64";
+    if (comma == std::string_view::npos || header.size() < kBase64.size() ||
+        header.substr(header.size() - kBase64.size()) != kBase64)
+        throwLoadError(path, "image " + std::to_string(index) + ": its data: URI '" +
+                                 excerptForMessage(std::string(header)) + "' is not base64");
+    const std::string_view payload = uri.substr(comma + 1);
+    budget.chargeFile(payload.size() / 4 * 3 + 3);
+    std::optional<std::vector<unsigned char>> bytes = strictBase64(payload);
+    if (!bytes)
+        throwLoadError(path, "image " + std::to_string(index) + ": its data: URI '" +
+                                 excerptForMessage(std::string(header)) + "' holds characters that are not base64");
+    return std::make_shared<const std::vector<unsigned char>>(std::move(*bytes));
+}
+
+} // namespace
+
 /** The file's images in its order (a texture's `source` indexes them): embedded ones with their encoded bytes, external
  *  ones with their path beside the model, not read here. */
 std::vector<SceneImage> sceneImages(const std::string& path, const tinygltf::Model& model,
@@ -274,6 +326,9 @@ std::vector<SceneImage> sceneImages(const std::string& path, const tinygltf::Mod
             const auto first = buffer.begin() + std::ptrdiff_t(view.byteOffset);
             result.encoded =
                 std::make_shared<const std::vector<unsigned char>>(first, first + std::ptrdiff_t(view.byteLength));
+        } else if (image.uri.rfind("data:", 0) == 0) {
+            result.name = image.name;
+            result.encoded = dataUriImageBytes(path, i, image.uri, budget);
         } else if (!image.uri.empty()) {
             result.path = pathBesideModel(baseDirectory, image.uri);
         } else if (i < dataUriImages.bytes.size()) {
@@ -287,7 +342,7 @@ std::vector<SceneImage> sceneImages(const std::string& path, const tinygltf::Mod
 ExternalUris externalUris(std::string_view json) {
     ExternalUriCollector collector; // whatever it collected before a syntax error still counts
     nlohmann::json::sax_parse(json.begin(), json.end(), &collector, nlohmann::json::input_format_t::json, false);
-    return {std::move(collector.bufferUris), std::move(collector.imageUris)};
+    return {std::move(collector.bufferUris), std::move(collector.imageUris), std::move(collector.imageDataUris)};
 }
 
 /** tinygltf's image decoder, replaced: images stay encoded until a pass samples them (scene/Material.h). tinygltf

@@ -41,6 +41,9 @@ void rejectDeepJson(const std::string& path, std::string_view content, bool bina
 struct ExternalUris {
     std::vector<std::string> bufferUris;
     std::vector<std::string> imageUris;
+    /** data: URIs of images whose media type tinygltf does not decode (image/webp): it takes them for file names, so
+     *  the file callbacks answer them as images (a placeholder) and sceneImages() decodes them. */
+    std::vector<std::string> imageDataUris;
 };
 
 /** externalUris() by a SAX pass over `json`: what it collected before a syntax error still counts. */

@@ -1,6 +1,7 @@
 /** @file A glTF material as the renderer sees it (GltfMaterials.h): factors (base colour, metallic, roughness,
- *  emissive) clamped into their ranges, textures with their image, coordinate set, sampler and KHR_texture_transform,
- *  the inkgraph shade-map extra, then a VRM character's MToon (VrmMaterials.h). */
+ *  emissive) clamped into their ranges, or KHR_materials_pbrSpecularGlossiness's diffuse; textures with their image
+ *  (EXT_texture_webp's first), coordinate set, sampler and KHR_texture_transform, the inkgraph shade-map extra, then a
+ *  VRM character's MToon (VrmMaterials.h). */
 
 #include "scene/formats/gltf/GltfMaterials.h"
 
@@ -10,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
@@ -152,10 +154,23 @@ struct GltfMaterials::Reader {
         return text;
     }
 
-    /** A material's textureInfo as a TextureRef: the image its texture shows, the coordinate set and sampler, and the
-     *  KHR_texture_transform matrix. A texture without a core image (only an extension's, e.g. KHR_texture_basisu or
-     *  EXT_texture_webp, which the renderer cannot decode) or on a third coordinate set leaves the material
-     *  untextured, with a warning. */
+    /** The image `texture` shows: EXT_texture_webp's source when it names one (the core `source` is then
+     *  the fallback of viewers without WebP), else the core source; -1 when it has neither. */
+    int textureSource(const tinygltf::Texture& texture, const std::string& where) const {
+        const auto webp = texture.extensions.find("EXT_texture_webp");
+        if (webp == texture.extensions.end() || !webp->second.IsObject() || !webp->second.Has("source"))
+            return texture.source;
+        const double source = extensionNumber(webp->second, "source", 0.0, where + " EXT_texture_webp");
+        if (source < 0.0 || source != std::floor(source) || source >= double(mModel.images.size()))
+            fail(where + " EXT_texture_webp: image index " + formatNumber(source) + " out of range (file has " +
+                 std::to_string(mModel.images.size()) + " images)");
+        return int(source);
+    }
+
+    /** A material's textureInfo as a TextureRef: the image its texture shows (textureSource()), the coordinate set and
+     *  sampler, and the KHR_texture_transform matrix. A texture without an image the renderer decodes (only an
+     *  extension's, e.g. KHR_texture_basisu's KTX2) or on a third coordinate set leaves the material untextured, with a
+     *  warning. */
     TextureRef readTextureRef(const tinygltf::TextureInfo& info, const std::string& label) {
         TextureRef ref;
         if (info.index == -1) return ref;
@@ -165,21 +180,22 @@ struct GltfMaterials::Reader {
         }
         const tinygltf::Texture& texture = mModel.textures[std::size_t(info.index)];
         const std::string textureName = textureLabel(info.index);
-        if (texture.source == -1) {
+        const int source = textureSource(texture, label + ": " + textureName);
+        if (source == -1) {
             std::string extensions;
             std::size_t named = 0;
             for (const auto& [name, value] : texture.extensions)
                 if (++named <= kMaxNamedExtensions)
                     extensions += (extensions.empty() ? " (it has only '" : "', '") + excerptForMessage(name);
             mWarnings.push_back(makeWarning(WarningKind::TextureWithoutCoreImage,
-                                            label + ": " + textureName + " has no PNG or JPEG source" +
+                                            label + ": " + textureName + " has no PNG, JPEG or WebP source" +
                                                 (extensions.empty() ? "" : extensions + "')") + "; drawn untextured",
                                             "", textureName));
             return ref;
         }
-        if (texture.source < 0 || std::size_t(texture.source) >= mModel.images.size()) {
-            fail(label + ": " + textureName + ": image index " + std::to_string(texture.source) +
-                 " out of range (file has " + std::to_string(mModel.images.size()) + " images)");
+        if (source < 0 || std::size_t(source) >= mModel.images.size()) {
+            fail(label + ": " + textureName + ": image index " + std::to_string(source) + " out of range (file has " +
+                 std::to_string(mModel.images.size()) + " images)");
         }
         double texCoord = info.texCoord;
         std::optional<glm::dmat3> transform;
@@ -192,11 +208,15 @@ struct GltfMaterials::Reader {
             const double rotation = extensionNumber(object, "rotation", 0.0, where);
             const glm::dvec2 scale = extensionPair(object, "scale", glm::dvec2(1.0), where);
             texCoord = extensionNumber(object, "texCoord", texCoord, where);
-            // The extension's matrices, column by column as its GLSL writes them: uv' = T * R * S * (u, v, 1).
+            // uv' = T * R * S * (u, v, 1), the extension's order. R is not the matrix its GLSL listing writes (a
+            // counter-clockwise turn with v up) but its transpose: counter-clockwise in glTF's UV space, where v points
+            // down, as the extension's own example (offset [0, 1], a quarter turn, scale [0.5, 0.5] samples the
+            // image's lower left quadrant), Khronos's TextureTransformTest sample, three.js and Babylon.js read it
+            // (KhronosGroup/glTF issue 1563).
             const glm::dmat3 translation(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, offset.x, offset.y, 1.0);
             const double c = std::cos(rotation);
             const double s = std::sin(rotation);
-            const glm::dmat3 rotationMatrix(c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0);
+            const glm::dmat3 rotationMatrix(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);
             const glm::dmat3 scaleMatrix(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
             transform = translation * rotationMatrix * scaleMatrix;
             transformText = where + " (offset " + formatPair(offset) + ", rotation " + formatNumber(rotation) +
@@ -209,7 +229,7 @@ struct GltfMaterials::Reader {
                                             "", textureName));
             return ref;
         }
-        ref.image = texture.source;
+        ref.image = source;
         ref.texCoord = int(texCoord);
         ref.sampler = readSampler(texture.sampler);
         if (transform) {
@@ -220,6 +240,66 @@ struct GltfMaterials::Reader {
             ref.transform = *forShaders;
         }
         return ref;
+    }
+
+    /** `object[key]`, a textureInfo inside an extension, as tinygltf's TextureInfo, so readTextureRef() reads it (its
+     *  coordinate set, sampler and KHR_texture_transform) as it reads a core one; absent: no texture (index -1). */
+    tinygltf::TextureInfo extensionTextureInfo(const tinygltf::Value& object, const char* key,
+                                               const std::string& label) const {
+        tinygltf::TextureInfo info;
+        if (!object.Has(key)) return info;
+        const std::string where = label + " " + key;
+        const tinygltf::Value& value = object.Get(key);
+        if (!value.IsObject()) fail(where + " must be an object (a textureInfo)");
+        if (!value.Has("index")) fail(where + " has no 'index'");
+        const auto wholeNumber = [&](const char* member, double fallback) {
+            const double number = extensionNumber(value, member, fallback, where);
+            if (number < 0.0 || number != std::floor(number) || number > double(INT_MAX))
+                fail(where + ": '" + member + "' " + formatNumber(number) + " is not a whole number >= 0");
+            return int(number);
+        };
+        info.index = wholeNumber("index", 0.0);
+        info.texCoord = wholeNumber("texCoord", 0.0);
+        if (value.Has("extensions") && value.Get("extensions").IsObject()) {
+            const tinygltf::Value& extensions = value.Get("extensions");
+            for (const std::string& name : extensions.Keys()) info.extensions[name] = extensions.Get(name);
+        }
+        return info;
+    }
+
+    /** KHR_materials_pbrSpecularGlossiness, when the material has it, instead of its metallic-roughness (which the
+     *  extension keeps only as the fallback of viewers without it): diffuseFactor and diffuseTexture are the base
+     *  colour and alpha. The specular colour and its texture are not drawn (no shading model takes a specular colour);
+     *  glossinessFactor becomes roughness 1 - glossiness on a non-metal, so --shading mtoon's metallic-roughness
+     *  fallback draws a diffuse surface rather than glTF's default metal. Returns false when the material does not have
+     *  it. */
+    bool readSpecularGlossiness(const tinygltf::Material& source, const std::string& label, Material& result) {
+        const auto extension = source.extensions.find("KHR_materials_pbrSpecularGlossiness");
+        if (extension == source.extensions.end()) return false;
+        const std::string where = label + " KHR_materials_pbrSpecularGlossiness";
+        const tinygltf::Value& object = extension->second;
+        if (!object.IsObject()) fail(where + " must be an object");
+        if (object.Has("diffuseFactor")) {
+            const tinygltf::Value& factor = object.Get("diffuseFactor");
+            if (!factor.IsArray() || factor.ArrayLen() != 4)
+                fail(where + ": 'diffuseFactor' must be an array of 4 numbers");
+            for (int i = 0; i < 4; ++i) {
+                const tinygltf::Value& item = factor.Get(i);
+                const double value = item.IsNumber() ? item.GetNumberAsDouble() : std::nan("");
+                if (!std::isfinite(value)) fail(where + ": 'diffuseFactor' must be an array of 4 finite numbers");
+                result.baseColorFactor[i] = shaderValue(
+                    value, kUnitRange, where + " diffuseFactor[" + std::to_string(i) + "]", mWarnings, label);
+            }
+        } else {
+            result.baseColorFactor = glm::vec4(1.0f); // the extension's default
+        }
+        result.baseColorTexture =
+            readTextureRef(extensionTextureInfo(object, "diffuseTexture", where), where + " diffuseTexture");
+        const double glossiness = extensionNumber(object, "glossinessFactor", 1.0, where);
+        result.metallicFactor = 0.0f;
+        result.roughnessFactor =
+            1.0f - shaderValue(glossiness, kUnitRange, where + " glossinessFactor", mWarnings, label);
+        return true;
     }
 
     /** A VRM character's MToon (scene/formats/gltf/VrmMaterials.h), which may also adjust `material`. Its textures go
@@ -253,22 +333,24 @@ struct GltfMaterials::Reader {
         const std::string label = materialLabel(materialIndex);
         Material result;
         result.name = source.name;
-        // Factors beyond glTF's ranges are clamped with a warning, as viewers draw them (ShaderValues.h).
-        const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
-        for (std::size_t i = 0; i < 4 && factor.size() == 4; ++i) {
-            result.baseColorFactor[int(i)] = shaderValue(
-                factor[i], kUnitRange, label + " baseColorFactor[" + std::to_string(i) + "]", mWarnings, label);
+        if (!readSpecularGlossiness(source, label, result)) {
+            // Factors beyond glTF's ranges are clamped with a warning, as viewers draw them (ShaderValues.h).
+            const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
+            for (std::size_t i = 0; i < 4 && factor.size() == 4; ++i) {
+                result.baseColorFactor[int(i)] = shaderValue(
+                    factor[i], kUnitRange, label + " baseColorFactor[" + std::to_string(i) + "]", mWarnings, label);
+            }
+            result.baseColorTexture =
+                readTextureRef(source.pbrMetallicRoughness.baseColorTexture, label + " baseColorTexture");
+            // tinygltf fills in glTF's defaults (1, 1) for absent factors, so a glTF material is metallic unless it
+            // says not.
+            result.metallicFactor = shaderValue(source.pbrMetallicRoughness.metallicFactor, kUnitRange,
+                                                label + " metallicFactor", mWarnings, label);
+            result.roughnessFactor = shaderValue(source.pbrMetallicRoughness.roughnessFactor, kUnitRange,
+                                                 label + " roughnessFactor", mWarnings, label);
+            result.metallicRoughnessTexture = readTextureRef(source.pbrMetallicRoughness.metallicRoughnessTexture,
+                                                             label + " metallicRoughnessTexture");
         }
-        result.baseColorTexture =
-            readTextureRef(source.pbrMetallicRoughness.baseColorTexture, label + " baseColorTexture");
-        // tinygltf fills in glTF's defaults (1, 1) for absent factors, so a glTF material is metallic unless it says
-        // not.
-        result.metallicFactor = shaderValue(source.pbrMetallicRoughness.metallicFactor, kUnitRange,
-                                            label + " metallicFactor", mWarnings, label);
-        result.roughnessFactor = shaderValue(source.pbrMetallicRoughness.roughnessFactor, kUnitRange,
-                                             label + " roughnessFactor", mWarnings, label);
-        result.metallicRoughnessTexture =
-            readTextureRef(source.pbrMetallicRoughness.metallicRoughnessTexture, label + " metallicRoughnessTexture");
         for (std::size_t i = 0; i < 3 && source.emissiveFactor.size() == 3; ++i) {
             result.emissiveFactor[int(i)] =
                 shaderValue(source.emissiveFactor[i], kUnitRange, label + " emissiveFactor[" + std::to_string(i) + "]",

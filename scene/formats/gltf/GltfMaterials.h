@@ -27,7 +27,8 @@ public:
 
     /** Material `materialIndex` (in range: the caller checked it), read on first use: the glTF material (factors
      *  clamped into their ranges with a warning, ShaderValues.h; textures with their image, coordinate set, sampler and
-     *  KHR_texture_transform; KHR_materials_emissive_strength and _unlit; alpha mode and cutoff; double-sidedness; the
+     *  KHR_texture_transform; KHR_materials_pbrSpecularGlossiness's diffuse as the base colour,
+     *  KHR_materials_emissive_strength and _unlit; alpha mode and cutoff; double-sidedness; the
      *  inkgraph shade-map extra), then a VRM character's MToon. Throws SceneError for an index out of range inside it
      *  (a texture, an image, a sampler) or a value it cannot use, naming the material. */
     const Material& material(int materialIndex);

@@ -42,8 +42,10 @@ namespace {
 /** The one list of what this reader implements (supportedGltfExtensions()): KHR_lights_punctual's directional light,
  *  KHR_mesh_quantization's integer and normalized attributes (GltfAccessors.cpp reads any component type),
  *  KHR_draco_mesh_compression (GltfDraco.cpp), EXT_meshopt_compression (GltfMeshopt.cpp), KHR_texture_transform,
- * KHR_materials_unlit, KHR_materials_emissive_strength, VRM 0.x ("VRM": its front and MToon materialProperties) and 1.0
- * ("VRMC_vrm": its front; "VRMC_materials_mtoon"), scene/formats/gltf/VrmMaterials.h. */
+ *  KHR_materials_unlit, KHR_materials_emissive_strength, VRM 0.x ("VRM": its front and MToon materialProperties) and
+ *  1.0 ("VRMC_vrm": its front; "VRMC_materials_mtoon"), scene/formats/gltf/VrmMaterials.h;
+ * KHR_materials_pbrSpecularGlossiness's diffuse colour and EXT_texture_webp's images (GltfMaterials.cpp, decoded by
+ * scene/TextureImage.cpp). */
 const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual",
                                                        "KHR_mesh_quantization",
                                                        "KHR_draco_mesh_compression",
@@ -51,6 +53,8 @@ const std::vector<std::string> kSupportedExtensions = {"KHR_lights_punctual",
                                                        "KHR_texture_transform",
                                                        "KHR_materials_unlit",
                                                        "KHR_materials_emissive_strength",
+                                                       "KHR_materials_pbrSpecularGlossiness",
+                                                       "EXT_texture_webp",
                                                        "VRM",
                                                        "VRMC_materials_mtoon",
                                                        "VRMC_vrm"};
@@ -798,6 +802,7 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     ExternalFiles files{budget, {}, {}, {}};
     for (const std::string& uri : uris.bufferUris) files.bufferPaths.insert(pathBesideModel(baseDirectory, uri));
     for (const std::string& uri : uris.imageUris) files.imagePaths.insert(pathBesideModel(baseDirectory, uri));
+    for (const std::string& uri : uris.imageDataUris) files.imagePaths.insert(pathBesideModel(baseDirectory, uri));
 
     tinygltf::TinyGLTF loader;
     DataUriImages dataUriImages{budget, {}};
