@@ -57,6 +57,7 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     request.animation = options.animation;
     request.animationTime = options.animationTime;
     request.strict = options.strict;
+    request.pose = options.pose;
     if (options.eglPlatform == "device") request.eglPlatform = EglPlatform::Device;
     if (options.eglPlatform == "surfaceless") request.eglPlatform = EglPlatform::Surfaceless;
     return request;

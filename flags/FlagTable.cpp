@@ -403,6 +403,14 @@ std::vector<Flag> makeFlags() {
                                   options.animationTime = seconds;
                               });
     flags.push_back(animationTime);
+    flags.push_back(flag({"--pose"}, "POSE", S::Camera,
+                         "pose a VRM character's humanoid bones (after --animation): a-pose (both upper arms\n"
+                         "lowered 45 degrees from the rest T-pose) or FILE.json, {\"boneName\": [x, y, z, w], ...}:\n"
+                         "each bone's rotation from the T-pose about world axes of a character facing +Z (VRM's\n"
+                         "normalized pose), so one file poses every VRM, 0.x or 1.0, alike. An unknown bone name is\n"
+                         "refused with the list; a bone the model lacks is a warning; a model that is not a VRM is\n"
+                         "refused",
+                         [](const std::string& value, RenderOptions& options) { options.pose = value; }));
     flags.push_back(flag({"--camera"}, "C", S::Camera,
                          "file (default: the glTF file's camera when it has one: its place, up and field of view;\n"
                          "--up and --fov replace their own, --eye, --orbit or --frame all three) | auto (never the\n"
@@ -431,10 +439,12 @@ std::vector<Flag> makeFlags() {
     flags.push_back(orbit);
     Flag frame = flag({"--frame"}, "NODE[,NODE...]", S::Camera,
                       "frame only the meshes under these nodes (a node and all its descendants; glTF node names,\n"
-                      "an OBJ's o name): the default target and the auto-framing and --orbit distance fit their\n"
-                      "bounding sphere, so a character on a large ground fills the picture; the clip planes still\n"
-                      "fit the whole model. The file's camera is not used. A name no mesh lies under is an error\n"
-                      "that lists the model's node names",
+                      "an OBJ's o name), or the posed vertices a skin joint (its node name) or a VRM humanoid bone\n"
+                      "(head, leftHand, ...) and its child joints weight: the default target and the auto-framing\n"
+                      "and --orbit distance fit their bounding sphere, so a character on a large ground fills the\n"
+                      "picture and --frame head a skinned face; the clip planes still fit the whole model. The\n"
+                      "file's camera is not used. A name that is none of these is an error that lists the model's\n"
+                      "node, bone and joint names",
                       [](const std::string& value, RenderOptions& options) {
                           for (const std::string& name : splitList(value, ',')) {
                               if (name.empty()) throw UsageError("--frame: empty node name in '" + value + "'");

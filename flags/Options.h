@@ -44,6 +44,7 @@ struct RenderOptions {
     bool autoCamera = false;             ///< --camera auto: never the file's camera
     std::string animation;               ///< --animation: a glTF animation's name or index; empty: the rest pose
     double animationTime = 0.0;          ///< --time: seconds into `animation`
+    std::string pose;                    ///< --pose: "a-pose" or a pose file (LoadOptions::pose); empty: none
     /** Shading, lines, supersampling, precision, paper, light; the default look (render/DefaultLook.h) draws
      *  lines. */
     Look look = defaultLook();

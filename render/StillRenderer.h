@@ -74,6 +74,7 @@ struct StillRequest {
     /** Every warning fails the still (--strict): a SceneError once the warning is printed, before anything is
      *  written. */
     bool strict = false;
+    std::string pose; ///< LoadOptions::pose: a VRM humanoid pose to load the model in
     EglPlatform eglPlatform = EglPlatform::Any;
 };
 

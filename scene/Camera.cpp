@@ -85,42 +85,64 @@ glm::dvec3 orbitDirection(const glm::dvec3& up, const std::optional<glm::dvec3>&
     return glm::normalize(std::cos(elevation) * horizontal + std::sin(elevation) * u);
 }
 
-/** The bounding sphere of the meshes under the named nodes (any entry of Mesh::nodePath), computed like
- *  computeBoundingSphere(). A name that no mesh lies under is an error naming some of the scene's nodes. */
+/** "'a', 'b' and 3 more": at most kMaxNamedNodes of `names`, quoted. */
+std::string namedList(const std::vector<std::string>& names) {
+    std::string list;
+    for (std::size_t i = 0; i < std::min(names.size(), kMaxNamedNodes); ++i) {
+        list += (list.empty() ? "'" : ", '") + detail::excerptForMessage(names[i]) + "'";
+    }
+    if (names.size() > kMaxNamedNodes) list += " and " + std::to_string(names.size() - kMaxNamedNodes) + " more";
+    return list;
+}
+
+/** The refusal of a --frame name that is no node with meshes under it, joint or humanoid bone, naming some of each. */
+[[noreturn]] void unknownFrameName(const Scene& scene, const std::string& name) {
+    std::vector<std::string> nodes;
+    std::set<std::string> seen;
+    for (const Mesh& mesh : scene.meshes) {
+        for (const std::string& node : mesh.nodePath) {
+            if (!node.empty() && seen.insert(node).second) nodes.push_back(node);
+        }
+    }
+    std::vector<std::string> bones;
+    std::vector<std::string> joints;
+    for (const SceneJoint& joint : scene.joints) {
+        if (!joint.bone.empty()) bones.push_back(joint.bone);
+        if (!joint.node.empty() && seen.insert(joint.node).second) joints.push_back(joint.node);
+    }
+    std::string known = nodes.empty() ? std::string("the model has no named nodes")
+                                      : "the model's nodes with meshes under them: " + namedList(nodes);
+    if (!bones.empty()) known += "; its humanoid bones: " + namedList(bones);
+    if (!joints.empty()) known += "; its joints: " + namedList(joints);
+    invalid("--frame '" + detail::excerptForMessage(name) +
+            "': no mesh lies under a node of that name, and no joint or humanoid bone has it (" + known + ")");
+}
+
+/** The bounding sphere of what the named nodes frame (computed like computeBoundingSphere()): the meshes under them
+ *  (any entry of Mesh::nodePath), and the posed vertices a joint of that node name or humanoid bone name weights,
+ *  with its descendant joints' (SceneJoint's box, whose corners bound the radius). A name that is none of these is
+ *  an error naming some of the scene's nodes, bones and joints. */
 BoundingSphere framedSphere(const Scene& scene, const std::vector<std::string>& nodeNames) {
-    const auto underNamedNode = [&](const Mesh& mesh) {
-        return std::ranges::any_of(mesh.nodePath, [&](const std::string& node) {
-            return std::ranges::find(nodeNames, node) != nodeNames.end();
-        });
-    };
+    // A bone name frames its node, by that node's name, as the node's own name would.
+    std::vector<std::string> framedNodes = nodeNames;
+    std::vector<const SceneJoint*> framedJoints;
     for (const std::string& name : nodeNames) {
-        const bool found = std::ranges::any_of(scene.meshes, [&](const Mesh& mesh) {
+        bool found = std::ranges::any_of(scene.meshes, [&](const Mesh& mesh) {
             return std::ranges::find(mesh.nodePath, name) != mesh.nodePath.end();
         });
-        if (found) {
-            continue;
+        for (const SceneJoint& joint : scene.joints) {
+            if (joint.node != name && joint.bone != name) continue;
+            found = true;
+            framedJoints.push_back(&joint);
+            if (joint.bone == name) framedNodes.push_back(joint.node);
         }
-        std::vector<std::string> known;
-        std::set<std::string> seen;
-        for (const Mesh& mesh : scene.meshes) {
-            for (const std::string& node : mesh.nodePath) {
-                if (!node.empty() && seen.insert(node).second) {
-                    known.push_back(node);
-                }
-            }
-        }
-        std::string list;
-        for (std::size_t i = 0; i < std::min(known.size(), kMaxNamedNodes); ++i) {
-            list += (list.empty() ? "'" : ", '") + detail::excerptForMessage(known[i]) + "'";
-        }
-        if (known.size() > kMaxNamedNodes) {
-            list += " and " + std::to_string(known.size() - kMaxNamedNodes) + " more";
-        }
-        invalid("--frame '" + detail::excerptForMessage(name) + "': no mesh lies under a node of that name (" +
-                (known.empty() ? std::string("the model has no named nodes")
-                               : "the model's nodes with meshes under them: " + list) +
-                ")");
+        if (!found) unknownFrameName(scene, name);
     }
+    const auto underNamedNode = [&](const Mesh& mesh) {
+        return std::ranges::any_of(mesh.nodePath, [&](const std::string& node) {
+            return std::ranges::find(framedNodes, node) != framedNodes.end();
+        });
+    };
     BoundingBox box;
     for (const Mesh& mesh : scene.meshes) {
         if (underNamedNode(mesh)) {
@@ -129,18 +151,31 @@ BoundingSphere framedSphere(const Scene& scene, const std::vector<std::string>& 
             }
         }
     }
+    for (const SceneJoint* joint : framedJoints) {
+        if (joint->lower.x > joint->upper.x) continue; // weights no vertex
+        box.add(joint->lower);
+        box.add(joint->upper);
+    }
     if (box.empty()) {
-        invalid("--frame: the meshes under the named nodes have no vertices");
+        invalid("--frame: the meshes under the named nodes have no vertices, and the named joints weight none");
     }
     BoundingSphere sphere;
     sphere.center = box.center();
     double maxDistanceSquared = 0.0;
+    const auto reach = [&](const glm::dvec3& p) {
+        const glm::dvec3 offset = p - sphere.center;
+        maxDistanceSquared = std::max(maxDistanceSquared, glm::dot(offset, offset));
+    };
     for (const Mesh& mesh : scene.meshes) {
         if (underNamedNode(mesh)) {
-            for (const glm::vec3& p : mesh.positions) {
-                const glm::dvec3 offset = glm::dvec3(p) - sphere.center;
-                maxDistanceSquared = std::max(maxDistanceSquared, glm::dot(offset, offset));
-            }
+            for (const glm::vec3& p : mesh.positions) reach(glm::dvec3(p));
+        }
+    }
+    for (const SceneJoint* joint : framedJoints) {
+        if (joint->lower.x > joint->upper.x) continue;
+        for (int corner = 0; corner < 8; ++corner) {
+            reach(glm::dvec3(corner & 1 ? joint->upper.x : joint->lower.x, corner & 2 ? joint->upper.y : joint->lower.y,
+                             corner & 4 ? joint->upper.z : joint->lower.z));
         }
     }
     sphere.radius = std::sqrt(maxDistanceSquared);

@@ -67,6 +67,11 @@ detail::RawScene readContent(const std::string& path, std::string_view content, 
             makeWarning(WarningKind::AnimationIgnored, "animation '" + detail::excerptForMessage(options.animation) +
                                                            "' ignored: " + raw.format + " files have no animations"));
     }
+    // The glTF reader refuses a glTF without a VRM humanoid; the other formats have no bones at all.
+    if (!options.pose.empty() && raw.format != "gltf" && raw.format != "glb") {
+        detail::throwLoadError(path, "cannot take a humanoid pose: not a VRM model (" + raw.format +
+                                         " files have no humanoid bones)");
+    }
     // The model first, then what the reader opened beside it.
     raw.inputFiles.insert(raw.inputFiles.begin(), path);
     return raw;
@@ -114,6 +119,10 @@ void recentre(const std::string& path, RawScene& raw, Scene& scene, std::string_
     if (scene.camera) {
         scene.camera->eye -= centre;
     }
+    for (SceneJoint& joint : scene.joints) {
+        joint.lower -= centre;
+        joint.upper -= centre;
+    }
 }
 
 } // namespace
@@ -124,6 +133,7 @@ Scene finalizeScene(const std::string& path, RawScene raw, const LoadOptions& op
     scene.light = raw.light;
     scene.front = raw.front;
     scene.images = std::move(raw.images);
+    scene.joints = std::move(raw.joints);
     scene.report.format = raw.format;
     scene.report.warnings = std::move(raw.warnings);
     scene.report.inputFiles = std::move(raw.inputFiles);

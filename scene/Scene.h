@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -83,6 +84,16 @@ struct LoadReport {
                                          ///< (paths as opened, resolved against the model's folder)
 };
 
+/** A skin joint or VRM humanoid bone node, for --frame: the part of a skinned character it moves. */
+struct SceneJoint {
+    std::string node; ///< the node's name ("" for an unnamed one)
+    std::string bone; ///< its VRM humanoid bone name (VRM 1.0's), or ""
+    /** The bounding box of the posed vertices this joint and its descendant joints weight (weight > 0), in the
+     *  scene's local frame like the positions; empty (lower above upper) when they weight none. */
+    glm::dvec3 lower{std::numeric_limits<double>::max()};
+    glm::dvec3 upper{std::numeric_limits<double>::lowest()};
+};
+
 struct Scene {
     /** World = origin + stored position. Positions are computed in double while loading and stored in float relative
      *  to this point (the centre of the model's bounding box), so a model far from the world origin (georeferenced
@@ -96,6 +107,8 @@ struct Scene {
      *  one +Z (their specifications). Auto-framing looks at this side; empty, it looks from +Z. */
     std::optional<glm::dvec3> front;
     std::vector<SceneImage> images; ///< what the materials' TextureRef::image indexes, still encoded
+    /** Every skin joint and VRM humanoid bone node of a glTF model, in node order (--frame by joint or bone). */
+    std::vector<SceneJoint> joints;
     LoadReport report;
 
     std::size_t triangleCount() const;
@@ -137,6 +150,11 @@ struct LoadOptions {
     std::string animation;
     /** Seconds into `animation` (clamped to each channel's keyframes); finite and >= 0. The CLI's --time. */
     double time = 0.0;
+    /** A VRM humanoid pose, applied after `animation`: "a-pose" (both upper arms lowered 45 degrees from the rest
+     *  T-pose), or the path of a pose file, {"boneName": [x, y, z, w], ...} in the VRM normalized pose convention
+     *  (docs/posing.md); empty for none. A model without a VRM humanoid, a bad file or an unknown bone name is a
+     *  SceneError. The CLI's --pose. */
+    std::string pose;
 };
 
 /** Reads .gltf, .glb (and .vrm, a GLB), .obj, .stl or .ply (binary or ASCII), chosen by extension (the format table)

@@ -59,6 +59,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::AnimationIgnored, "animation-ignored", "an animation asked of a format that has none"},
         {K::AnimationChannelIgnored, "animation-channel-ignored",
          "a glTF animation channel that cannot be applied (its path, a node with a matrix or without morph targets)"},
+        {K::PoseBoneMissing, "pose-bone-missing",
+         "a pose turns a humanoid bone the model lacks (or whose node is a matrix); that bone is left as it is"},
         {K::MorphAttributeIgnored, "morph-attribute-ignored",
          "a morph target moves an attribute other than POSITION and NORMAL, which is not applied"},
         {K::GltfParserMessage, "gltf-parser-message", "what tinygltf reported about a file it still read"},

@@ -49,6 +49,7 @@ enum class WarningKind {
     LightIgnored,
     AnimationIgnored,
     AnimationChannelIgnored,
+    PoseBoneMissing,
     MorphAttributeIgnored,
     GltfParserMessage,
     ShadeMapUnused,

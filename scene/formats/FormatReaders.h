@@ -30,6 +30,7 @@ struct RawScene {
     std::optional<DirectionalLight> light;
     std::optional<glm::dvec3> front;     ///< as Scene::front
     std::vector<SceneImage> images;      ///< as Scene::images
+    std::vector<SceneJoint> joints;      ///< as Scene::joints, their boxes relative to `origin`
     std::vector<Warning> warnings;       ///< `file` empty for the model: loadScene() names it
     std::vector<std::string> inputFiles; ///< as LoadReport::inputFiles
 };

@@ -47,11 +47,21 @@ TEST(AnimationFlags, NegativeOrNonFiniteTimeIsRefused) {
     EXPECT_EQ(usageMessage({"m.glb", "-o", "x.png", "--animation", ""}).rfind("--animation: ", 0), 0u);
 }
 
+TEST(AnimationFlags, PoseReachesTheStillRequest) {
+    EXPECT_EQ(parseRenderOptions({"m.vrm", "-o", "x.png"}).pose, "");
+    const RenderOptions options = parseRenderOptions({"m.vrm", "-o", "x.png", "--pose", "a-pose"});
+    EXPECT_EQ(options.pose, "a-pose");
+    EXPECT_EQ(stillRequestOf(options).pose, "a-pose");
+    EXPECT_EQ(stillRequestOf(parseRenderOptions({"m.vrm", "-o", "x.png", "--pose", "sit.json"})).pose, "sit.json");
+    EXPECT_EQ(usageMessage({"m.vrm", "-o", "x.png", "--pose", ""}), "--pose: empty value");
+}
+
 TEST(AnimationFlags, AreNotStyleSettings) {
     // A pose belongs to a model, not to a look shared by many.
     const std::vector<std::string>& names = styleSettingNames();
     EXPECT_EQ(std::find(names.begin(), names.end(), "animation"), names.end());
     EXPECT_EQ(std::find(names.begin(), names.end(), "time"), names.end());
+    EXPECT_EQ(std::find(names.begin(), names.end(), "pose"), names.end());
     EXPECT_NE(renderFlagsHelp().find("--animation NAME"), std::string::npos);
     EXPECT_NE(renderFlagsHelp().find("--time SECONDS"), std::string::npos);
 }

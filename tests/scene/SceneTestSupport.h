@@ -210,6 +210,17 @@ public:
         return addAccessor(bytesOf(values.data(), values.size() * sizeof(glm::vec2)), values.size(), "VEC2", 5126);
     }
 
+    /** A FLOAT accessor of `type` ("SCALAR", "VEC4", "MAT4"), `values` its components in order; returns its index. */
+    int addFloats(const std::vector<float>& values, const char* type, std::size_t components) {
+        return addAccessor(bytesOf(values.data(), values.size() * sizeof(float)), values.size() / components, type,
+                           5126);
+    }
+
+    /** A VEC4 UNSIGNED_BYTE accessor (JOINTS_0); returns its index. */
+    int addJoints(const std::vector<std::uint8_t>& joints) {
+        return addAccessor(bytesOf(joints.data(), joints.size()), joints.size() / 4, "VEC4", 5121);
+    }
+
     /** A SCALAR index accessor of unsigned byte (1), short (2) or int (4) components; returns its index. */
     int addIndices(const std::vector<std::uint32_t>& indices, int bytesPerIndex) {
         std::string bytes;

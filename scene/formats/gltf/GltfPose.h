@@ -133,6 +133,14 @@ public:
 
     /** sum_i weight_i * joint[joint_i] over the vertex's influences, weights normalised to sum 1. */
     glm::dmat4 vertexMatrix(std::size_t vertex) const;
+    /** Calls `visit(joint)` with the index (into the skin's joints) of each influence of non-zero weight at `vertex`.
+     */
+    template <class Visit>
+    void forEachJoint(std::size_t vertex, Visit&& visit) const {
+        for (std::size_t i = 0; i < mInfluences; ++i) {
+            if (mWeightOf[vertex * mInfluences + i] > 0.0f) visit(mJointOf[vertex * mInfluences + i]);
+        }
+    }
 
 private:
     std::vector<glm::dmat4> mJoints;

@@ -12,6 +12,7 @@
 #include "scene/formats/gltf/GltfMeshopt.h"
 #include "scene/formats/gltf/GltfPose.h"
 #include "scene/formats/ShaderValues.h"
+#include "scene/formats/gltf/VrmHumanoid.h"
 #include "scene/formats/gltf/VrmMaterials.h"
 
 #include <glm/gtc/constants.hpp>
@@ -181,9 +182,53 @@ public:
                                       " primitives are non-triangle (points or lines)");
         }
         checkPlacementPrecision();
+        collectJoints(visitOrder);
     }
 
 private:
+    /** Grows the box of each joint node that weights a posed vertex by it (SceneJoint::lower, upper). */
+    void addToJointBoxes(const SkinBlend& blend, int skinIndex, const std::vector<glm::vec3>& positions) {
+        const std::vector<int>& jointNodes = mModel.skins[std::size_t(skinIndex)].joints; // checked: jointMatrices()
+        for (std::size_t v = 0; v < positions.size(); ++v) {
+            blend.forEachJoint(v, [&](std::size_t joint) {
+                mJointBoxes[std::size_t(jointNodes[joint])].add(glm::dvec3(positions[v]));
+            });
+        }
+    }
+
+    /** RawScene::joints: every skin joint and humanoid bone node reached by the walk, each box grown by its
+     *  descendants' (a parent comes before its children in `visitOrder`, so the reverse order sees children first). */
+    void collectJoints(const std::vector<int>& visitOrder) {
+        for (auto node = visitOrder.rbegin(); node != visitOrder.rend(); ++node) {
+            const int parent = mParent[std::size_t(*node)];
+            const BoundingBox& box = mJointBoxes[std::size_t(*node)];
+            if (parent >= 0 && !box.empty()) {
+                mJointBoxes[std::size_t(parent)].add(box.min);
+                mJointBoxes[std::size_t(parent)].add(box.max);
+            }
+        }
+        std::vector<std::string> boneOf(mModel.nodes.size());
+        if (mHumanoid) {
+            for (const auto& [bone, node] : mHumanoid->nodeOfBone) boneOf[std::size_t(node)] = bone;
+        }
+        std::vector<bool> isJoint(mModel.nodes.size(), false);
+        for (const tinygltf::Skin& skin : mModel.skins) {
+            for (const int joint : skin.joints) {
+                if (joint >= 0 && std::size_t(joint) < isJoint.size()) isJoint[std::size_t(joint)] = true;
+            }
+        }
+        for (std::size_t node = 0; node < mModel.nodes.size(); ++node) {
+            if (!mReached[node] || (!isJoint[node] && boneOf[node].empty())) continue;
+            SceneJoint joint;
+            joint.node = mModel.nodes[node].name;
+            joint.bone = boneOf[node];
+            joint.lower = mJointBoxes[node].min;
+            joint.upper = mJointBoxes[node].max;
+            mBudget.chargeBytes(sizeof(SceneJoint) + joint.node.size());
+            mOut.joints.push_back(std::move(joint));
+        }
+    }
+
     [[noreturn]] void fail(const std::string& problem) const { throwLoadError(mPath, problem); }
 
     /** The scene's origin (RawScene::origin): the world translation of the node that places the first mesh (its skin's
@@ -237,6 +282,13 @@ private:
         if (!mOptions.animation.empty()) {
             applyAnimation(mPath, mModel, findAnimation(mPath, mModel, mOptions.animation), mOptions.time, mPoses,
                            mBudget, mOut.warnings);
+        }
+        mHumanoid = readHumanoid(mModel, mOut.warnings);
+        if (!mOptions.pose.empty()) {
+            if (!mHumanoid) fail("cannot take a humanoid pose: not a VRM model (no VRMC_vrm or VRM extension)");
+            const HumanoidPose pose = humanoidPose(mOptions.pose, mBudget);
+            if (mOptions.pose != kAPoseName) mOut.inputFiles.push_back(mOptions.pose);
+            applyHumanoidPose(mModel, *mHumanoid, pose, restPose(mModel), mPoses, mOut.warnings);
         }
     }
 
@@ -524,7 +576,8 @@ private:
         } else {
             notePlacement(*mPreciseWorlds[std::size_t(nodeIndex)], nodeLabel(nodeIndex));
         }
-        const PrimitivePose pose{mPoses[std::size_t(nodeIndex)].weights, skinJoints ? &*skinJoints : nullptr};
+        const PrimitivePose pose{mPoses[std::size_t(nodeIndex)].weights, skinJoints ? &*skinJoints : nullptr,
+                                 skinJoints ? node.skin : -1};
         const std::vector<std::string> path = nodePath(nodeIndex);
         for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
             const std::string name =
@@ -542,6 +595,7 @@ private:
     struct PrimitivePose {
         const std::vector<double>& morphWeights;
         const std::vector<glm::dmat4>* skinJoints = nullptr; ///< null: not skinned
+        int skin = -1;                                       ///< the skin's index, when skinned
     };
 
     /** The node names from the root down to `nodeIndex` (Mesh::nodePath). This one copy lives only while its node
@@ -748,6 +802,8 @@ private:
         }
         if (!skin) {
             for (glm::vec3& normal : mesh.normals) normal = transformNormal(normalMatrix, normal);
+        } else {
+            addToJointBoxes(*skin, pose.skin, mesh.positions);
         }
         // A mirroring transform turns counter-clockwise into clockwise; swap two corners to keep fronts outward.
         for (glm::uvec3& triangle : mesh.triangles) {
@@ -767,8 +823,11 @@ private:
     RawScene& mOut;
     MeshBudget& mBudget;
     const LoadOptions& mOptions;
-    std::vector<NodePose> mPoses; ///< per node: its local transform and morph weights, animated or not (posed())
-    std::vector<bool> mReached;   ///< nodes already reached by the walk; reaching one again is an error
+    std::vector<NodePose> mPoses;      ///< per node: its local transform and morph weights, animated or not (posed())
+    std::optional<Humanoid> mHumanoid; ///< a VRM model's humanoid bones (posed())
+    /** Per node: the posed vertices it weights as a skin joint, then (collectJoints()) its descendants' too. */
+    std::vector<BoundingBox> mJointBoxes = std::vector<BoundingBox>(mModel.nodes.size());
+    std::vector<bool> mReached; ///< nodes already reached by the walk; reaching one again is an error
     /** Per node reached by the walk: its world transform, composed precisely, and relative to mOut.origin. */
     std::vector<std::optional<PreciseTransform>> mPreciseWorlds =
         std::vector<std::optional<PreciseTransform>>(mModel.nodes.size());

@@ -1,0 +1,333 @@
+/** VRM humanoid poses (LoadOptions::pose) and framing by joint and bone, on a humanoid the tests write with known
+ *  joint positions and rest rotations: every expected vertex is worked out by hand from the normalized pose
+ *  convention (a bone's rotation about world axes of a character facing +Z, from the rest T-pose). */
+
+#include "scene/Camera.h"
+#include "scene/Scene.h"
+
+#include "SceneTestSupport.h"
+
+#include <gtest/gtest.h>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+namespace {
+
+using test::TempFile;
+
+glm::dquat turn(double degrees, const glm::dvec3& axis) { return glm::angleAxis(glm::radians(degrees), axis); }
+
+std::string quaternionJson(const glm::dquat& q) {
+    return "[" + std::to_string(q.x) + ", " + std::to_string(q.y) + ", " + std::to_string(q.z) + ", " +
+           std::to_string(q.w) + "]";
+}
+
+const glm::dvec3 kX(1, 0, 0);
+const glm::dvec3 kY(0, 1, 0);
+const glm::dvec3 kZ(0, 0, 1);
+
+/** A character of five joints in a T-pose, facing +Z as VRM 1.0 draws it (hips at y 1, spine 0.2 above, head 0.4
+ *  above the spine, upper arms 0.3 above the spine and 0.2 to each side, each 0.5 long), given as VRM 1.0 or, turned
+ *  half a turn about Y by its root node to face -Z, as VRM 0.x. The spine's rest rotation is a quarter turn about Y
+ *  and the head's and left arm's are tilted, with translations to match, so the rest pose's local frames are not
+ *  the world's: the pose must compose them. Each joint weights one small triangle whose first corner (the anchor)
+ *  lies at the hips (0, 1, 0.1), the spine (0, 1.3, 0.1), the head's top (0, 1.8, 0), the left hand (0.7, 1.5, 0)
+ *  or the right hand (-0.7, 1.5, 0); a sixth node, a thumb under the left arm, is a bone that weights nothing. */
+class TestHumanoid {
+public:
+    explicit TestHumanoid(bool vrm0) : mVrm0(vrm0) {}
+
+    /** Where `point`, given as the 1.0 character has it, lies in the file's world (0.x: turned about Y). */
+    glm::dvec3 world(const glm::dvec3& point) const { return mVrm0 ? glm::dvec3(-point.x, point.y, -point.z) : point; }
+
+    std::string file() const {
+        const glm::dquat root = mVrm0 ? turn(180.0, kY) : glm::dquat(1, 0, 0, 0);
+        const glm::dquat spine = turn(90.0, kY);
+        const glm::dquat head = turn(20.0, kX);
+        const glm::dquat leftArm = turn(37.0, kX);
+        // Local translations: the world offsets from the parent, in the spine's turned frame under the spine.
+        const glm::dvec3 headAt = glm::inverse(spine) * glm::dvec3(0, 0.4, 0);
+        const glm::dvec3 leftAt = glm::inverse(spine) * glm::dvec3(0.2, 0.3, 0);
+        const glm::dvec3 rightAt = glm::inverse(spine) * glm::dvec3(-0.2, 0.3, 0);
+        const auto matrix = [](const glm::dvec3& at, const glm::dquat& rotation) {
+            return glm::translate(glm::dmat4(1.0), at) * glm::mat4_cast(rotation);
+        };
+        const glm::dmat4 rootWorld = matrix({0, 0, 0}, root);
+        const glm::dmat4 hipsWorld = rootWorld * matrix({0, 1, 0}, glm::dquat(1, 0, 0, 0));
+        const glm::dmat4 spineWorld = hipsWorld * matrix({0, 0.2, 0}, spine);
+        const std::vector<glm::dmat4> jointWorlds = {hipsWorld, spineWorld, spineWorld * matrix(headAt, head),
+                                                     spineWorld * matrix(leftAt, leftArm),
+                                                     spineWorld * matrix(rightAt, glm::dquat(1, 0, 0, 0))};
+        const std::vector<glm::dvec3> anchors = {
+            {0, 1, 0.1}, {0, 1.3, 0.1}, {0, 1.8, 0}, {0.7, 1.5, 0}, {-0.7, 1.5, 0}};
+
+        test::GltfWriter writer;
+        std::vector<glm::vec3> positions;
+        std::vector<std::uint8_t> joints;
+        std::vector<float> weights;
+        std::vector<std::uint32_t> indices;
+        for (std::size_t j = 0; j < anchors.size(); ++j) {
+            for (const glm::dvec3& corner : {glm::dvec3(0), glm::dvec3(0.02, 0, 0), glm::dvec3(0, 0.02, 0)}) {
+                indices.push_back(std::uint32_t(positions.size()));
+                positions.push_back(glm::vec3(world(anchors[j] + corner)));
+                joints.insert(joints.end(), {std::uint8_t(j), 0, 0, 0});
+                weights.insert(weights.end(), {1, 0, 0, 0});
+            }
+        }
+        std::vector<float> inverseBinds;
+        for (const glm::dmat4& jointWorld : jointWorlds) {
+            const glm::dmat4 inverse = glm::inverse(jointWorld);
+            for (int column = 0; column < 4; ++column)
+                for (int row = 0; row < 4; ++row) inverseBinds.push_back(float(inverse[column][row]));
+        }
+        const int positionAccessor = writer.addVec3(positions);
+        const int jointAccessor = writer.addJoints(joints);
+        const int weightAccessor = writer.addFloats(weights, "VEC4", 4);
+        const int bindAccessor = writer.addFloats(inverseBinds, "MAT4", 16);
+        const int indexAccessor = writer.addIndices(indices, 2);
+
+        const auto trs = [](const glm::dvec3& at, const glm::dquat& rotation) {
+            return "\"translation\": [" + std::to_string(at.x) + ", " + std::to_string(at.y) + ", " +
+                   std::to_string(at.z) + "], \"rotation\": " + quaternionJson(rotation);
+        };
+        const std::vector<std::pair<std::string, int>> bones = {
+            {"hips", 2},
+            {"spine", 3},
+            {"head", 4},
+            {"leftUpperArm", 5},
+            {"rightUpperArm", 6},
+            // 0.x counts the thumb from its proximal bone: its Intermediate is 1.0's Proximal.
+            {mVrm0 ? "leftThumbIntermediate" : "leftThumbProximal", 7}};
+        std::string humanBones;
+        for (const auto& [bone, node] : bones) {
+            humanBones += humanBones.empty() ? "" : ", ";
+            humanBones += mVrm0 ? "{\"bone\": \"" + bone + "\", \"node\": " + std::to_string(node) + "}"
+                                : "\"" + bone + "\": {\"node\": " + std::to_string(node) + "}";
+        }
+        const std::string extension =
+            mVrm0 ? "\"VRM\": {\"humanoid\": {\"humanBones\": [" + humanBones + "]}}"
+                  : "\"VRMC_vrm\": {\"specVersion\": \"1.0\", \"humanoid\": {\"humanBones\": {" + humanBones + "}}}";
+        return writer.glb(
+            "\"extensionsUsed\": [\"" + std::string(mVrm0 ? "VRM" : "VRMC_vrm") + "\"], \"extensions\": {" + extension +
+            "}, \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positionAccessor) +
+            ", \"JOINTS_0\": " + std::to_string(jointAccessor) + ", \"WEIGHTS_0\": " + std::to_string(weightAccessor) +
+            "}, \"indices\": " + std::to_string(indexAccessor) +
+            "}]}], \"skins\": [{\"joints\": [2, 3, 4, 5, 6], \"inverseBindMatrices\": " + std::to_string(bindAccessor) +
+            "}], \"nodes\": [{\"name\": \"Body\", \"mesh\": 0, \"skin\": 0}, {\"name\": \"Root\", " +
+            trs({0, 0, 0}, root) + ", \"children\": [2]}, {\"name\": \"J_Hips\", \"translation\": [0, 1, 0], " +
+            "\"children\": [3]}, {\"name\": \"J_Spine\", " + trs({0, 0.2, 0}, spine) +
+            ", \"children\": [4, 5, 6]}, {\"name\": \"J_Head\", " + trs(headAt, head) +
+            "}, {\"name\": \"J_LeftArm\", " + trs(leftAt, leftArm) +
+            ", \"children\": [7]}, {\"name\": \"J_RightArm\", " + trs(rightAt, glm::dquat(1, 0, 0, 0)) +
+            "}, {\"name\": \"J_Thumb\", \"translation\": [0.5, 0, 0]}], \"scenes\": [{\"nodes\": [0, 1]}], "
+            "\"scene\": 0");
+    }
+
+private:
+    bool mVrm0;
+};
+
+/** The scene's vertex nearest `expected` (world coordinates), and its distance. */
+double distanceToNearestVertex(const Scene& scene, const glm::dvec3& expected) {
+    double nearest = 1e300;
+    for (const Mesh& mesh : scene.meshes)
+        for (const glm::vec3& position : mesh.positions)
+            nearest = std::min(nearest, glm::length(test::worldPosition(scene, position) - expected));
+    return nearest;
+}
+
+constexpr double kTolerance = 1e-5; // float positions of a model 2 units across
+
+Scene loadPosed(const TempFile& model, const std::string& pose) {
+    LoadOptions options;
+    options.pose = pose;
+    return loadScene(model.path(), options);
+}
+
+class VrmHumanoidPose : public testing::TestWithParam<bool> {};
+
+TEST_P(VrmHumanoidPose, RestPoseIsTheFilesTPose) {
+    const TestHumanoid humanoid(GetParam());
+    const TempFile model("humanoid.vrm", humanoid.file());
+    const Scene scene = loadScene(model.path());
+    for (const glm::dvec3 anchor : {glm::dvec3(0.7, 1.5, 0), glm::dvec3(-0.7, 1.5, 0), glm::dvec3(0, 1.8, 0)})
+        EXPECT_LT(distanceToNearestVertex(scene, humanoid.world(anchor)), kTolerance);
+}
+
+TEST_P(VrmHumanoidPose, APoseLowersBothUpperArmsBy45Degrees) {
+    const TestHumanoid humanoid(GetParam());
+    const TempFile model("humanoid.vrm", humanoid.file());
+    const Scene scene = loadPosed(model, "a-pose");
+    // Each hand turns 45 degrees down about the forward axis around its shoulder (+-0.2, 1.5, 0), 0.5 away.
+    const double down = 0.5 * std::sqrt(0.5);
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({0.2 + down, 1.5 - down, 0})), kTolerance);
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({-0.2 - down, 1.5 - down, 0})), kTolerance);
+    EXPECT_GT(distanceToNearestVertex(scene, humanoid.world({0.7, 1.5, 0})), 0.1);
+    // Nothing else moves.
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({0, 1.8, 0})), kTolerance);
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({0, 1.3, 0.1})), kTolerance);
+    EXPECT_TRUE(scene.report.warnings.empty());
+}
+
+TEST_P(VrmHumanoidPose, PoseFileTurnsBonesAboutWorldAxes) {
+    const TestHumanoid humanoid(GetParam());
+    const TempFile model("humanoid.vrm", humanoid.file());
+    // A quarter turn about +Y swings the left arm (+X) behind the character (-Z); one about +X tips the head's top
+    // (+Y) forward (+Z). Both bones' rest rotations are tilted, and their parent's a quarter turn.
+    const TempFile pose("pose.json", "{\"leftUpperArm\": " + quaternionJson(turn(90, kY)) +
+                                         ", \"head\": " + quaternionJson(turn(90, kX)) + "}");
+    const Scene scene = loadPosed(model, pose.path());
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({0.2, 1.5, -0.5})), kTolerance);
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({0, 1.6, 0.2})), kTolerance);
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({-0.7, 1.5, 0})), kTolerance);
+    EXPECT_NE(std::find(scene.report.inputFiles.begin(), scene.report.inputFiles.end(), pose.path()),
+              scene.report.inputFiles.end())
+        << "the pose file is one of the load's input files";
+}
+
+TEST_P(VrmHumanoidPose, ParentAndChildRotationsCompose) {
+    const TestHumanoid humanoid(GetParam());
+    const TempFile model("humanoid.vrm", humanoid.file());
+    // The spine turns a quarter about +Y and the left arm a quarter about -Z under it: the arm's joint goes from
+    // (0.2, 0.3, 0) above the spine to (0, 0.3, -0.2), the hand hangs 0.5 below it.
+    const TempFile pose("pose.json", "{\"spine\": " + quaternionJson(turn(90, kY)) +
+                                         ", \"leftUpperArm\": " + quaternionJson(turn(90, -kZ)) + "}");
+    const Scene scene = loadPosed(model, pose.path());
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({0, 1.0, -0.2})), kTolerance);
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({0.1, 1.3, 0})), kTolerance) << "the spine's anchor";
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({0, 1.8, 0})), kTolerance) << "the head's top, on the axis";
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({0, 1, 0.1})), kTolerance) << "the hips do not move";
+}
+
+TEST_P(VrmHumanoidPose, ABoneTheModelLacksIsAWarning) {
+    const TestHumanoid humanoid(GetParam());
+    const TempFile model("humanoid.vrm", humanoid.file());
+    const TempFile pose("pose.json", "{\"jaw\": [0, 0, 0.7071068, 0.7071068]}");
+    const Scene scene = loadPosed(model, pose.path());
+    ASSERT_EQ(scene.report.warnings.size(), 1u);
+    EXPECT_EQ(scene.report.warnings[0].code, "pose-bone-missing");
+    EXPECT_EQ(scene.report.warnings[0].message, "the pose turns 'jaw', which the model's humanoid lacks; ignored");
+    EXPECT_LT(distanceToNearestVertex(scene, humanoid.world({0.7, 1.5, 0})), kTolerance);
+}
+
+TEST_P(VrmHumanoidPose, JointsCarryTheBoxesOfWhatTheyWeight) {
+    const TestHumanoid humanoid(GetParam());
+    const TempFile model("humanoid.vrm", humanoid.file());
+    const Scene scene = loadPosed(model, "a-pose");
+    const auto jointNamed = [&](const std::string& node) -> const SceneJoint& {
+        for (const SceneJoint& joint : scene.joints)
+            if (joint.node == node) return joint;
+        throw std::runtime_error("no joint " + node);
+    };
+    const auto worldBox = [&](const SceneJoint& joint) {
+        const glm::dvec3 a = scene.origin + joint.lower;
+        const glm::dvec3 b = scene.origin + joint.upper;
+        return std::pair{glm::min(a, b), glm::max(a, b)};
+    };
+    ASSERT_EQ(scene.joints.size(), 6u) << "five skin joints and the thumb, a bone";
+    EXPECT_EQ(jointNamed("J_Head").bone, "head");
+    EXPECT_EQ(jointNamed("J_Thumb").bone, "leftThumbProximal");
+    EXPECT_GT(jointNamed("J_Thumb").lower.x, jointNamed("J_Thumb").upper.x) << "the thumb weights nothing";
+    // The head weights its triangle alone: (0, 1.8, 0) to (0.02, 1.82, 0), turned with the model.
+    const auto [headLow, headHigh] = worldBox(jointNamed("J_Head"));
+    const glm::dvec3 corner = humanoid.world({0.02, 1.82, 0});
+    EXPECT_LT(glm::length(headLow - glm::min(humanoid.world({0, 1.8, 0}), corner)), kTolerance);
+    EXPECT_LT(glm::length(headHigh - glm::max(humanoid.world({0, 1.8, 0}), corner)), kTolerance);
+    // The spine's box takes its descendants': the posed hands' triangles (turned 45 degrees with the arms, so their
+    // 0.02 legs reach 0.02 sqrt(1/2) out and down) to either side and below, the head's top above.
+    const auto [spineLow, spineHigh] = worldBox(jointNamed("J_Spine"));
+    const double reach = 0.2 + 0.5 * std::sqrt(0.5) + 0.02 * std::sqrt(0.5);
+    EXPECT_NEAR(spineHigh.x - spineLow.x, 2 * reach, kTolerance);
+    EXPECT_NEAR(spineHigh.y, 1.82, kTolerance);
+    EXPECT_NEAR(spineLow.y, 1.5 - 0.5 * std::sqrt(0.5) - 0.02 * std::sqrt(0.5), kTolerance);
+}
+
+TEST_P(VrmHumanoidPose, FrameByBoneFitsWhatTheBoneWeights) {
+    const TestHumanoid humanoid(GetParam());
+    const TempFile model("humanoid.vrm", humanoid.file());
+    const Scene scene = loadScene(model.path());
+    CameraRequest byBone;
+    byBone.frameNodes = {"head"};
+    CameraRequest byJoint;
+    byJoint.frameNodes = {"J_Head"};
+    const Camera bone = resolveCamera(byBone, scene);
+    const glm::dvec3 target = scene.origin + bone.target;
+    EXPECT_LT(glm::length(target - humanoid.world({0.01, 1.81, 0})), kTolerance);
+    EXPECT_LT(glm::length(resolveCamera(byJoint, scene).eye - bone.eye), 1e-9);
+    // The box's half diagonal, 0.01 sqrt 2, is the framed radius: the eye stands 1.05 r / sin(17.5 degrees) away.
+    EXPECT_NEAR(glm::length(bone.eye - bone.target), 1.05 * 0.01 * std::sqrt(2.0) / std::sin(glm::radians(17.5)), 1e-6);
+    const Camera whole = resolveCamera({}, scene);
+    EXPECT_GT(glm::length(whole.eye - whole.target), 10.0 * glm::length(bone.eye - bone.target));
+}
+
+INSTANTIATE_TEST_SUITE_P(Vrm, VrmHumanoidPose, testing::Values(false, true),
+                         [](const testing::TestParamInfo<bool>& info) { return info.param ? "Vrm0x" : "Vrm10"; });
+
+TEST(VrmHumanoid, UnknownFrameNameListsNodesBonesAndJoints) {
+    const TempFile model("humanoid.vrm", TestHumanoid(false).file());
+    const Scene scene = loadScene(model.path());
+    CameraRequest request;
+    request.frameNodes = {"tail"};
+    try {
+        resolveCamera(request, scene);
+        ADD_FAILURE() << "expected a refusal";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_EQ(std::string(error.what()),
+                  "resolveCamera(): --frame 'tail': no mesh lies under a node of that name, and no joint or humanoid "
+                  "bone has it (the model's nodes with meshes under them: 'Body'; its humanoid bones: 'hips', "
+                  "'spine', 'head', 'leftUpperArm', 'rightUpperArm', 'leftThumbProximal'; its joints: 'J_Hips', "
+                  "'J_Spine', 'J_Head', 'J_LeftArm', 'J_RightArm', 'J_Thumb')");
+    }
+}
+
+TEST(VrmHumanoid, BadPoseFilesAreRefusedNamingTheFile) {
+    const TempFile model("humanoid.vrm", TestHumanoid(false).file());
+    const auto refusal = [&](const std::string& content) {
+        const TempFile pose("pose.json", content);
+        const std::string message = test::sceneErrorMessage([&] { loadPosed(model, pose.path()); });
+        const std::string start = "loadScene(): '" + pose.path() + "': ";
+        EXPECT_EQ(message.rfind(start, 0), 0u) << message;
+        return message.substr(std::min(message.size(), start.size()));
+    };
+    EXPECT_EQ(refusal("{\"leftUpperArm\": [0, 0, 0, 1]").rfind("not a pose file: invalid JSON (", 0), 0u);
+    EXPECT_EQ(refusal("[1, 2]"),
+              "not a pose file: expected a JSON object of humanoid bone names to quaternions [x, y, z, w]");
+    EXPECT_EQ(refusal("{\"head\": [0, 0, 1]}"), "'head': expected a quaternion [x, y, z, w] of four numbers");
+    EXPECT_EQ(refusal("{\"head\": [0, 0, \"1\", 0]}"), "'head': expected a quaternion [x, y, z, w] of four numbers");
+    EXPECT_EQ(refusal("{\"head\": [0, 0, 0, 0]}"), "'head': the quaternion must be finite and of non-zero length");
+    const std::string unknown = refusal("{\"tail\": [0, 0, 0, 1]}");
+    EXPECT_EQ(unknown.rfind("unknown humanoid bone 'tail' (VRM's humanoid bones: hips, spine, chest, upperChest, "
+                            "neck, head, leftEye, rightEye, jaw, leftUpperLeg, ",
+                            0),
+              0u)
+        << unknown;
+    EXPECT_NE(unknown.find("leftThumbMetacarpal"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("rightLittleDistal)"), std::string::npos) << unknown;
+
+    const std::string missing = test::sceneErrorMessage([&] { loadPosed(model, model.path() + ".missing.json"); });
+    EXPECT_EQ(missing, "loadScene(): '" + model.path() + ".missing.json': cannot open the pose file for reading");
+}
+
+TEST(VrmHumanoid, AModelWithoutAHumanoidIsRefused) {
+    test::GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const TempFile gltf("plain.gltf", writer.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
+                                                  std::to_string(positions) + "}}]}], \"nodes\": [{\"mesh\": 0}]"));
+    EXPECT_EQ(test::sceneErrorMessage([&] { loadPosed(gltf, "a-pose"); }),
+              "loadScene(): '" + gltf.path() +
+                  "': cannot take a humanoid pose: not a VRM model (no VRMC_vrm or VRM extension)");
+    const TempFile obj("plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_EQ(test::sceneErrorMessage([&] { loadPosed(obj, "a-pose"); }),
+              "loadScene(): '" + obj.path() +
+                  "': cannot take a humanoid pose: not a VRM model (obj files have no humanoid bones)");
+}
+
+} // namespace
+} // namespace inkgraph
