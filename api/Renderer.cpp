@@ -248,14 +248,18 @@ struct Renderer::Impl {
         // The frame's time is the UV animation's clock (FrameParams::time); it poses the scene only with an animation.
         request.animationTime = frame.time.value_or(sceneImpl.options.time);
         const bool posed = !frame.animation.empty();
-        if (posed &&
-            (frame.animation != sceneImpl.options.animation || frame.time.value_or(0.0) != sceneImpl.options.time)) {
+        const bool animated = posed && (frame.animation != sceneImpl.options.animation ||
+                                        frame.time.value_or(0.0) != sceneImpl.options.time);
+        const bool reposed = !frame.pose.empty() && frame.pose != sceneImpl.options.pose;
+        if (animated || reposed) {
             if (sceneImpl.path.empty())
-                throw UsageError("Frame::animation and time: a scene made from arrays has no animations");
+                throw UsageError(animated ? "Frame::animation and time: a scene made from arrays has no animations"
+                                          : "Frame::pose: a scene made from arrays has no humanoid");
             // Another pose than the scene's: the file is loaded again in it, by the renderer's own load.
             request.loadedScene.reset();
-            request.animation = options.animation;
-            request.animationTime = options.animationTime;
+            request.animation = posed ? options.animation : sceneImpl.options.animation;
+            if (posed) request.animationTime = options.animationTime;
+            request.pose = reposed ? options.pose : sceneImpl.options.pose;
         }
         return request;
     }

@@ -12,6 +12,7 @@ LoadOptions loadOptionsOf(const SceneOptions& options) {
     std::vector<std::string> flags;
     if (!options.animation.empty()) flags.insert(flags.end(), {"--animation", options.animation});
     if (options.time != 0.0) flags.insert(flags.end(), {"--time", exactText(options.time)});
+    if (!options.pose.empty()) flags.insert(flags.end(), {"--pose", options.pose});
     // A scene's time is its pose's (the UV animation's clock is the frame's): without an animation it poses nothing.
     if (options.animation.empty() && options.time != 0.0) throw UsageError("--time has no effect without --animation");
     const RenderOptions pose = parseRenderFlags(flags);
@@ -19,6 +20,7 @@ LoadOptions loadOptionsOf(const SceneOptions& options) {
     load.memoryLimitBytes = options.memoryLimitBytes != 0 ? options.memoryLimitBytes : defaultMemoryLimit();
     load.animation = pose.animation;
     load.time = pose.animationTime;
+    load.pose = pose.pose;
     return load;
 }
 
@@ -42,6 +44,7 @@ Scene Scene::fromArrays(const MeshArrays& arrays, const std::string& name, const
     return translated("Scene::fromArrays()", [&] {
         if (!options.animation.empty() || options.time != 0.0)
             throw UsageError("SceneOptions::animation and time: a scene made from arrays has no animations");
+        if (!options.pose.empty()) throw UsageError("SceneOptions::pose: a scene made from arrays has no humanoid");
         inkgraph::MeshArrays mesh;
         mesh.vertices = arrays.vertices;
         mesh.vertexCount = arrays.vertexCount;

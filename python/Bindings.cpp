@@ -618,8 +618,8 @@ const std::vector<std::string> kLookFields{
     "shading",           "shininess", "bands",   "shade_map", "view_vector", "face_orientation",
     "front_rule",        "light",     "ambient", "paper",     "supersample", "msaa",
     "gbuffer_precision", "lines",     "strokes"};
-const std::vector<std::string> kFrameFields{"eye",  "orbit",     "target",      "up",        "fov",
-                                            "clip", "placement", "frame_nodes", "animation", "time"};
+const std::vector<std::string> kFrameFields{"eye",       "orbit",       "target",    "up",   "fov", "clip",
+                                            "placement", "frame_nodes", "animation", "time", "pose"};
 
 /** Sets the keyword arguments of a constructor as the properties they name, refusing other names. */
 void setFields(py::handle object, const py::kwargs& fields, const std::vector<std::string>& allowed,
@@ -839,6 +839,9 @@ void defineFrame(py::module_& m) {
                        "A glTF animation (name or index) to pose the scene in for this render; '' with time None: the "
                        "scene as loaded.")
         .def_readwrite("time", &ig::Frame::time, "Seconds into the animation, or None.")
+        .def_readwrite("pose", &ig::Frame::pose,
+                       "A VRM humanoid pose for this render, as --pose: 'a-pose' or a pose file's path; '': the "
+                       "scene's.")
         .def("__copy__", [](const ig::Frame& self) { return self; })
         .def(
             "__deepcopy__", [](const ig::Frame& self, py::handle) { return self; }, "memo"_a)
@@ -962,10 +965,11 @@ void defineScene(py::module_& m) {
         .def_static(
             "load",
             [](const std::filesystem::path& path, const std::string& animation, double time, std::size_t memoryLimit,
-               bool strict) {
+               bool strict, const std::string& pose) {
                 ig::SceneOptions options;
                 options.animation = animation;
                 options.time = time;
+                options.pose = pose;
                 options.memoryLimitBytes = memoryLimit;
                 options.strict = strict;
                 std::optional<ig::Scene> scene;
@@ -977,11 +981,12 @@ void defineScene(py::module_& m) {
                 return *scene;
             },
             "path"_a, "animation"_a = "", "time"_a = 0.0, "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
-            "strict"_a = false,
+            "strict"_a = false, "pose"_a = "",
             "Loads a model; `animation` (a glTF animation's name or index) and `time` (seconds) pose it, as "
-            "--animation and --time; `memory_limit` (bytes) bounds the load and each render of the scene as "
-            "--memory-limit (0: the command line's default); `strict` makes every warning of the load and of each "
-            "render an InputError, as --strict. Issues the loader's warnings (InkgraphWarning). Raises "
+            "--animation and --time, and `pose` ('a-pose' or a pose file) a VRM's humanoid, as --pose; `memory_limit` "
+            "(bytes) bounds the load and each render of the scene as --memory-limit (0: the command line's default); "
+            "`strict` makes every warning of the load and of each render an InputError, as --strict. Issues the "
+            "loader's warnings (InkgraphWarning). Raises "
             "InputError naming the file and the problem.")
         .def_static(
             "from_arrays",

@@ -281,6 +281,7 @@ class Frame:
         frame_nodes: Sequence[str] = ...,
         animation: str = ...,
         time: float | None = ...,
+        pose: str = ...,
     ) -> None: ...
     @staticmethod
     def from_arguments(arguments: Sequence[str]) -> Frame: ...
@@ -296,6 +297,7 @@ class Frame:
     frame_nodes: list[str]
     animation: str
     time: float | None
+    pose: str
     def __copy__(self) -> Frame: ...
     def __deepcopy__(self, memo: Any) -> Frame: ...
 
@@ -304,7 +306,12 @@ class Frame:
 class Scene:
     @staticmethod
     def load(
-        path: _PathLike, animation: str = "", time: float = 0.0, memory_limit: int = 0, strict: bool = False
+        path: _PathLike,
+        animation: str = "",
+        time: float = 0.0,
+        memory_limit: int = 0,
+        strict: bool = False,
+        pose: str = "",
     ) -> Scene: ...
     @staticmethod
     def from_arrays(

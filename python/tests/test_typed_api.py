@@ -74,6 +74,9 @@ CHARACTER_FRAME_CASES = [
     ("frame_nodes", "godette.vrm", lambda: inkgraph.Frame(SIZE, SIZE, frame_nodes=["Face"]), ["--frame", "Face"]),
     ("animation and time", "fox.glb", lambda: inkgraph.Frame(SIZE, SIZE, animation="Walk", time=0.5),
      ["--animation", "Walk", "--time", "0.5"]),
+    ("pose", "godette.vrm", lambda: inkgraph.Frame(SIZE, SIZE, pose="a-pose"), ["--pose", "a-pose"]),
+    ("frame_nodes by bone", "godette.vrm", lambda: inkgraph.Frame(SIZE, SIZE, frame_nodes=["head"]),
+     ["--frame", "head"]),
 ]
 
 

@@ -237,6 +237,7 @@ TEST(ApiFrame, FromArgumentsFillsTheTypedFields) {
     EXPECT_EQ(eye.eye->y, 1.0);
     EXPECT_EQ(eye.animation, "Walk");
     EXPECT_EQ(eye.time, 0.0) << "--time given as 0 stays given";
+    EXPECT_EQ(ig::Frame::fromArguments({"--pose", "a-pose"}).pose, "a-pose");
     EXPECT_FALSE(frame.eye.has_value());
     EXPECT_FALSE(frame.time.has_value());
 }

@@ -22,6 +22,7 @@ const std::string kRoot = std::string(INKGRAPH_SOURCE_ROOT) + "/";
 const std::string kSuzanne = kRoot + "models/suzanne_npm_4k.obj";
 const std::string kStillLife = kRoot + "examples/still-life/still-life.gltf";
 const std::string kFox = kRoot + "models/characters/fox.glb";
+const std::string kGodette = kRoot + "models/characters/godette.vrm";
 
 /** The renderer every test of this file shares: one GL context for the binary. */
 ig::Renderer& renderer() {
@@ -182,6 +183,7 @@ TEST(ApiTyped, EveryFrameFieldDrawsWhatItsFlagDraws) {
     const ig::Scene suzanne = ig::Scene::load(kSuzanne);
     const ig::Scene stillLife = ig::Scene::load(kStillLife);
     const ig::Scene fox = ig::Scene::load(kFox);
+    const ig::Scene godette = ig::Scene::load(kGodette);
     struct TypedFrame {
         std::string name;
         const ig::Scene* scene;
@@ -227,6 +229,8 @@ TEST(ApiTyped, EveryFrameFieldDrawsWhatItsFlagDraws) {
              frame.time = 0.4;
          },
          {"--animation", "Run", "--time", "0.4"}},
+        {"pose", &godette, [](ig::Frame& frame) { frame.pose = "a-pose"; }, {"--pose", "a-pose"}},
+        {"frame by bone", &godette, [](ig::Frame& frame) { frame.frameNodes = {"head"}; }, {"--frame", "head"}},
     };
     for (const TypedFrame& typed : cases) {
         ig::Frame frame = frameOf(80, 60);
@@ -241,6 +245,13 @@ TEST(ApiTyped, EveryFrameFieldDrawsWhatItsFlagDraws) {
         EXPECT_EQ(bytesOf(byType.picture()), bytesOf(byFlag.picture())) << typed.name;
         EXPECT_NE(bytesOf(byType.picture()), bytesOf(plain.picture())) << typed.name << " changes nothing";
     }
+    // A scene loaded in a pose draws as a frame that poses it.
+    ig::SceneOptions posed;
+    posed.pose = "a-pose";
+    ig::Frame frame = frameOf(80, 60);
+    const ig::Still loadedPosed = renderer().render(ig::Scene::load(kGodette, posed), ig::Look(), frame);
+    frame.pose = "a-pose";
+    EXPECT_EQ(bytesOf(loadedPosed.picture()), bytesOf(renderer().render(godette, ig::Look(), frame).picture()));
 }
 
 /** A UV sphere of `rings` x `segments` quads about `centre`, counter-clockwise from outside. */
@@ -375,6 +386,10 @@ TEST(ApiTyped, BadArraysAreInputErrorsNamingTheArray) {
     posed.animation = "Walk";
     EXPECT_STREQ(errorOf([&] { ig::Scene::fromArrays(arraysOf(sphere), "ball", posed); }).what(),
                  "Scene::fromArrays(): SceneOptions::animation and time: a scene made from arrays has no animations");
+    ig::SceneOptions humanoid;
+    humanoid.pose = "a-pose";
+    EXPECT_STREQ(errorOf([&] { ig::Scene::fromArrays(arraysOf(sphere), "ball", humanoid); }).what(),
+                 "Scene::fromArrays(): SceneOptions::pose: a scene made from arrays has no humanoid");
 }
 
 TEST_F(TestFolder, WarningsAreRecordsWithCodes) {

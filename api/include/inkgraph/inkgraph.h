@@ -140,6 +140,9 @@ private:
 struct SceneOptions {
     std::string animation; ///< a glTF animation's name or index; empty: the rest pose (files only)
     double time = 0.0;     ///< seconds into `animation`, >= 0
+    /** A VRM humanoid pose after `animation` (--pose): "a-pose" or a pose file's path (docs/posing.md); empty: none
+     *  (files only). */
+    std::string pose;
     /** The load refuses models that would need more, and so does each render of the scene (its buffers at the
      *  frame's size); 0: the command line's default, half this machine's memory but at least 1 GiB. */
     std::size_t memoryLimitBytes = 0;
@@ -373,6 +376,9 @@ struct INKGRAPH_API Frame {
     /** Seconds into `animation`; also the clock of MToon's UV animation (--time), so it may be given without an
      *  animation, which poses nothing. Unset: the scene's SceneOptions::time. */
     std::optional<double> time;
+    /** A VRM humanoid pose other than the scene's own (SceneOptions::pose), for this render (--pose): the scene's
+     *  file is loaded again in it. Empty: the scene's pose. */
+    std::string pose;
 
     /** The adapter from the command line's Camera flags: {"--orbit", "30,10", "--fov", "40", "--size", "640x480"}.
      *  Throws Error(Usage) for a flag that is not the frame's, or a bad value, with the CLI's message. */
