@@ -387,7 +387,9 @@ std::vector<Flag> makeFlags() {
                          "pose a glTF model by its animation NAME (or its index, 0 for the first) at --time;\n"
                          "skins, morph weights and node transforms follow, and so does auto-framing (default: the\n"
                          "rest pose, the file's own node transforms and morph weights). A name the file does not\n"
-                         "have is refused with the list of those it has; ignored with a warning for OBJ, STL and PLY",
+                         "have is refused with the list of those it has; ignored with a warning for OBJ, STL and PLY.\n"
+                         "An existing FILE.vrma (VRM Animation) instead poses a VRM character through its humanoid\n"
+                         "bones: rotations retargeted in VRM's normalized pose, the hips scaled by the hips heights",
                          [](const std::string& value, RenderOptions& options) {
                              if (value.empty()) throw UsageError("--animation: expected a name or an index, got ''");
                              options.animation = value;

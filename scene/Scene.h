@@ -146,7 +146,8 @@ struct LoadOptions {
     std::size_t memoryLimitBytes = kDefaultLoadMemoryLimit;
     /** A glTF animation to pose the model by: its name, or its index as text when no animation has that name; empty
      *  for the rest pose (the nodes' own transforms and morph weights). A name the file does not have is a SceneError
-     *  listing the animations it has. The CLI sets it from --animation. */
+     *  listing the animations it has. A path ending in ".vrma" that names an existing file is a VRM Animation instead,
+     *  retargeted onto a VRM model's humanoid bones (docs/posing.md). The CLI sets it from --animation. */
     std::string animation;
     /** Seconds into `animation` (clamped to each channel's keyframes); finite and >= 0. The CLI's --time. */
     double time = 0.0;

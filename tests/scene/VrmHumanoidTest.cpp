@@ -267,6 +267,61 @@ TEST_P(VrmHumanoidPose, FrameByBoneFitsWhatTheBoneWeights) {
     EXPECT_GT(glm::length(whole.eye - whole.target), 10.0 * glm::length(bone.eye - bone.target));
 }
 
+/** A VRM Animation of three bones whose rest pose differs from the model's (hips 0.9 high, a spine tilted 30 degrees
+ *  about X, a left arm rolled 10 degrees about Z), animated over one second: the left arm's raw rotation goes from
+ *  its rest to the one that turns it a quarter about -Z in world axes, the hips 0.09 along +X. */
+std::string vrmaFile() {
+    const glm::dquat spine = turn(30.0, kX);
+    const glm::dquat arm = turn(10.0, kZ);
+    // raw = P^-1 q P R: the normalized quarter turn q expressed in the arm's parent's rest frame P.
+    const glm::dquat turned = glm::inverse(spine) * turn(90.0, -kZ) * spine * arm;
+    test::GltfWriter writer;
+    const int times = writer.addFloats({0.0f, 1.0f}, "SCALAR", 1);
+    const int rotations = writer.addFloats({float(arm.x), float(arm.y), float(arm.z), float(arm.w), float(turned.x),
+                                            float(turned.y), float(turned.z), float(turned.w)},
+                                           "VEC4", 4);
+    const int translations = writer.addFloats({0.0f, 0.9f, 0.0f, 0.09f, 0.9f, 0.0f}, "VEC3", 3);
+    return writer.glb(
+        "\"extensionsUsed\": [\"VRMC_vrm_animation\"], \"extensions\": {\"VRMC_vrm_animation\": {\"specVersion\": "
+        "\"1.0\", \"humanoid\": {\"humanBones\": {\"hips\": {\"node\": 0}, \"spine\": {\"node\": 1}, "
+        "\"leftUpperArm\": {\"node\": 2}}}}}, \"nodes\": [{\"name\": \"hips\", \"translation\": [0, 0.9, 0], "
+        "\"children\": [1]}, {\"name\": \"spine\", \"translation\": [0, 0.2, 0], \"rotation\": " +
+        quaternionJson(spine) +
+        ", \"children\": [2]}, {\"name\": \"arm\", \"translation\": [0.2, 0.3, 0], \"rotation\": " +
+        quaternionJson(arm) +
+        "}], \"scenes\": [{\"nodes\": [0]}], \"animations\": [{\"channels\": [{\"sampler\": 0, \"target\": "
+        "{\"node\": 2, \"path\": \"rotation\"}}, {\"sampler\": 1, \"target\": {\"node\": 0, \"path\": "
+        "\"translation\"}}], \"samplers\": [{\"input\": " +
+        std::to_string(times) + ", \"output\": " + std::to_string(rotations) +
+        "}, {\"input\": " + std::to_string(times) + ", \"output\": " + std::to_string(translations) + "}]}]");
+}
+
+TEST_P(VrmHumanoidPose, VrmAnimationIsRetargetedThroughTheBones) {
+    const TestHumanoid humanoid(GetParam());
+    const TempFile model("humanoid.vrm", humanoid.file());
+    const TempFile animation("wave.vrma", vrmaFile());
+    const auto posedAt = [&](double time) {
+        LoadOptions options;
+        options.animation = animation.path();
+        options.time = time;
+        return loadScene(model.path(), options);
+    };
+    // At 1 s the left arm hangs straight down from its shoulder (0.2, 1.5, 0); the hips (1 high, the .vrma's 0.9)
+    // moved 0.09 x 1 / 0.9 = 0.1 along +X, and everything with them.
+    const Scene end = posedAt(1.0);
+    EXPECT_LT(distanceToNearestVertex(end, humanoid.world({0.3, 1.0, 0})), kTolerance);
+    EXPECT_LT(distanceToNearestVertex(end, humanoid.world({0.1, 1.8, 0})), kTolerance) << "the head, unturned";
+    EXPECT_LT(distanceToNearestVertex(end, humanoid.world({-0.6, 1.5, 0})), kTolerance) << "the right hand";
+    // Half-way the raw rotations slerp, and so does the normalized one: the arm is 45 degrees down, as in a-pose.
+    const Scene half = posedAt(0.5);
+    const double down = 0.5 * std::sqrt(0.5);
+    EXPECT_LT(distanceToNearestVertex(half, humanoid.world({0.25 + down, 1.5 - down, 0})), kTolerance);
+    // At 0 s the .vrma is at its rest: the model's T-pose.
+    EXPECT_LT(distanceToNearestVertex(posedAt(0.0), humanoid.world({0.7, 1.5, 0})), kTolerance);
+    const std::vector<std::string>& inputs = end.report.inputFiles;
+    EXPECT_NE(std::find(inputs.begin(), inputs.end(), animation.path()), inputs.end());
+}
+
 INSTANTIATE_TEST_SUITE_P(Vrm, VrmHumanoidPose, testing::Values(false, true),
                          [](const testing::TestParamInfo<bool>& info) { return info.param ? "Vrm0x" : "Vrm10"; });
 
@@ -313,6 +368,24 @@ TEST(VrmHumanoid, BadPoseFilesAreRefusedNamingTheFile) {
 
     const std::string missing = test::sceneErrorMessage([&] { loadPosed(model, model.path() + ".missing.json"); });
     EXPECT_EQ(missing, "loadScene(): '" + model.path() + ".missing.json': cannot open the pose file for reading");
+}
+
+TEST(VrmHumanoid, AVrmaNeedsItsExtensionAndAHumanoid) {
+    const TempFile model("humanoid.vrm", TestHumanoid(false).file());
+    test::GltfWriter writer;
+    writer.addVec3({{0, 0, 0}});
+    const TempFile bare("bare.vrma", writer.glb("\"nodes\": [{\"name\": \"hips\"}]"));
+    LoadOptions options;
+    options.animation = bare.path();
+    EXPECT_EQ(test::sceneErrorMessage([&] { loadScene(model.path(), options); }),
+              "loadScene(): '" + bare.path() + "': not a VRM Animation file: it has no VRMC_vrm_animation extension");
+    const TempFile animation("wave.vrma", vrmaFile());
+    const TempFile plain("plain.glb", writer.glb("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": "
+                                                 "0}}]}], \"nodes\": [{\"mesh\": 0}]"));
+    options.animation = animation.path();
+    EXPECT_EQ(test::sceneErrorMessage([&] { loadScene(plain.path(), options); }),
+              "loadScene(): '" + plain.path() +
+                  "': cannot take a humanoid animation: not a VRM model (no VRMC_vrm or VRM extension)");
 }
 
 TEST(VrmHumanoid, AModelWithoutAHumanoidIsRefused) {

@@ -12,6 +12,7 @@
 #include "scene/formats/gltf/GltfMeshopt.h"
 #include "scene/formats/gltf/GltfPose.h"
 #include "scene/formats/ShaderValues.h"
+#include "scene/formats/gltf/VrmAnimation.h"
 #include "scene/formats/gltf/VrmHumanoid.h"
 #include "scene/formats/gltf/VrmMaterials.h"
 
@@ -279,13 +280,21 @@ private:
     /** The nodes' local transforms and morph weights: their own, or the animation LoadOptions names at its time. */
     void posed() {
         mPoses = restPose(mModel);
-        if (!mOptions.animation.empty()) {
+        mHumanoid = readHumanoid(mModel, mOut.warnings);
+        const bool vrma = !mOptions.animation.empty() && isVrmAnimationFile(mOptions.animation);
+        if ((vrma || !mOptions.pose.empty()) && !mHumanoid) {
+            fail(std::string("cannot take a humanoid ") + (vrma ? "animation" : "pose") +
+                 ": not a VRM model (no VRMC_vrm or VRM extension)");
+        }
+        if (vrma) {
+            applyVrmAnimation(mOptions.animation, mOptions.time, mModel, *mHumanoid, restPose(mModel), mPoses, mBudget,
+                              mOut.warnings);
+            mOut.inputFiles.push_back(mOptions.animation);
+        } else if (!mOptions.animation.empty()) {
             applyAnimation(mPath, mModel, findAnimation(mPath, mModel, mOptions.animation), mOptions.time, mPoses,
                            mBudget, mOut.warnings);
         }
-        mHumanoid = readHumanoid(mModel, mOut.warnings);
         if (!mOptions.pose.empty()) {
-            if (!mHumanoid) fail("cannot take a humanoid pose: not a VRM model (no VRMC_vrm or VRM extension)");
             const HumanoidPose pose = humanoidPose(mOptions.pose, mBudget);
             if (mOptions.pose != kAPoseName) mOut.inputFiles.push_back(mOptions.pose);
             applyHumanoidPose(mModel, *mHumanoid, pose, restPose(mModel), mPoses, mOut.warnings);

@@ -104,24 +104,29 @@ const std::vector<std::string>& humanoidBoneNames() {
     return kNames;
 }
 
-std::optional<Humanoid> readHumanoid(const tinygltf::Model& model, std::vector<Warning>& warnings) {
+std::optional<Humanoid> readHumanBonesObject(const tinygltf::Model& model, const std::string& extension,
+                                             std::vector<Warning>& warnings) {
+    const auto found = model.extensions.find(extension);
+    if (found == model.extensions.end()) return std::nullopt;
     Humanoid humanoid;
-    if (const auto vrm1 = model.extensions.find("VRMC_vrm"); vrm1 != model.extensions.end()) {
-        const tinygltf::Value& vrm = vrm1->second;
-        const tinygltf::Value& bones = vrm.IsObject() && vrm.Has("humanoid") && vrm.Get("humanoid").IsObject() &&
-                                               vrm.Get("humanoid").Has("humanBones")
-                                           ? vrm.Get("humanoid").Get("humanBones")
-                                           : tinygltf::Value();
-        if (bones.IsObject()) {
-            for (const std::string& bone : bones.Keys()) {
-                const tinygltf::Value& entry = bones.Get(bone);
-                addBone(model, "VRMC_vrm.humanoid.humanBones", bone,
-                        entry.IsObject() && entry.Has("node") ? entry.Get("node") : tinygltf::Value(), humanoid,
-                        warnings);
-            }
+    const tinygltf::Value& root = found->second;
+    const tinygltf::Value& bones = root.IsObject() && root.Has("humanoid") && root.Get("humanoid").IsObject() &&
+                                           root.Get("humanoid").Has("humanBones")
+                                       ? root.Get("humanoid").Get("humanBones")
+                                       : tinygltf::Value();
+    if (bones.IsObject()) {
+        for (const std::string& bone : bones.Keys()) {
+            const tinygltf::Value& entry = bones.Get(bone);
+            addBone(model, extension + ".humanoid.humanBones", bone,
+                    entry.IsObject() && entry.Has("node") ? entry.Get("node") : tinygltf::Value(), humanoid, warnings);
         }
-        return humanoid;
     }
+    return humanoid;
+}
+
+std::optional<Humanoid> readHumanoid(const tinygltf::Model& model, std::vector<Warning>& warnings) {
+    if (std::optional<Humanoid> vrm1 = readHumanBonesObject(model, "VRMC_vrm", warnings)) return vrm1;
+    Humanoid humanoid;
     const auto vrm0 = model.extensions.find("VRM");
     if (vrm0 == model.extensions.end()) return std::nullopt;
     humanoid.facesMinusZ = true;
@@ -189,17 +194,21 @@ HumanoidPose parsePoseFile(const std::string& posePath, const std::string& conte
     return pose;
 }
 
-HumanoidPose humanoidPose(const std::string& pose, MeshBudget& budget) {
-    if (pose == kAPoseName) return aPose();
-    std::ifstream file(pose, std::ios::binary | std::ios::ate);
-    if (!file || std::filesystem::is_directory(pose)) throwLoadError(pose, "cannot open the pose file for reading");
+std::string readSideFile(const std::string& path, const std::string& kind, MeshBudget& budget) {
+    std::ifstream file(path, std::ios::binary | std::ios::ate);
+    if (!file || std::filesystem::is_directory(path)) throwLoadError(path, "cannot open the " + kind + " for reading");
     const std::streamoff size = file.tellg();
-    if (size < 0) throwLoadError(pose, "cannot determine the pose file's size");
+    if (size < 0) throwLoadError(path, "cannot determine the " + kind + "'s size");
     budget.chargeFile(std::size_t(size));
     std::string content(std::size_t(size), '\0');
     file.seekg(0);
-    if (!file.read(content.data(), size)) throwLoadError(pose, "read error");
-    return parsePoseFile(pose, content);
+    if (!file.read(content.data(), size)) throwLoadError(path, "read error");
+    return content;
+}
+
+HumanoidPose humanoidPose(const std::string& pose, MeshBudget& budget) {
+    if (pose == kAPoseName) return aPose();
+    return parsePoseFile(pose, readSideFile(pose, "pose file", budget));
 }
 
 std::vector<int> nodeParents(const tinygltf::Model& model) {
@@ -213,6 +222,15 @@ std::vector<int> nodeParents(const tinygltf::Model& model) {
         }
     }
     return parents;
+}
+
+glm::dmat4 worldMatrix(const std::vector<NodePose>& poses, const std::vector<int>& parents, int node) {
+    glm::dmat4 world(1.0);
+    for (std::size_t steps = 0; node >= 0 && steps < poses.size(); ++steps) { // bounded as worldRotation()
+        world = poses[std::size_t(node)].local() * world;
+        node = parents[std::size_t(node)];
+    }
+    return world;
 }
 
 glm::dquat worldRotation(const std::vector<NodePose>& poses, const std::vector<int>& parents, int node) {

@@ -38,6 +38,11 @@ struct Humanoid {
  *  whose name is not the specification's, whose node index is missing or out of range, is skipped with a warning. */
 std::optional<Humanoid> readHumanoid(const tinygltf::Model& model, std::vector<Warning>& warnings);
 
+/** The humanoid of `extension`.humanoid.humanBones given as VRM 1.0 gives it, {boneName: {node}} (VRMC_vrm, and
+ *  VRMC_vrm_animation in a .vrma), or nullopt when the file has no such extension; bad entries as readHumanoid(). */
+std::optional<Humanoid> readHumanBonesObject(const tinygltf::Model& model, const std::string& extension,
+                                             std::vector<Warning>& warnings);
+
 /** A pose of the humanoid: bone name -> rotation in the VRM normalized pose convention (the rotation of the bone
  *  from the rest T-pose, about world-aligned axes of a character facing +Z, as three-vrm's normalized bones take
  *  it; identity is the rest pose). The same pose poses every VRM alike. */
@@ -57,6 +62,10 @@ HumanoidPose aPose();
  *  numbers of non-zero length, or a bone name outside humanoidBoneNames() (listing them). */
 HumanoidPose parsePoseFile(const std::string& posePath, const std::string& content);
 
+/** The whole of a file the load reads besides the model (a pose file, a VRM Animation), its size charged to `budget`;
+ *  `kind` names it in the refusals ("cannot open the pose file for reading"), which name the file. */
+std::string readSideFile(const std::string& path, const std::string& kind, MeshBudget& budget);
+
 /** LoadOptions::pose: aPose() for kAPoseName, else the pose file at that path, read (its size charged to `budget`)
  *  and parsed by parsePoseFile(). Throws SceneError naming the file when it cannot be read. */
 HumanoidPose humanoidPose(const std::string& pose, MeshBudget& budget);
@@ -70,6 +79,9 @@ void applyHumanoidPose(const tinygltf::Model& model, const Humanoid& humanoid, c
 
 /** Every node's parent (-1 for a root and for a node in a malformed hierarchy, which the reader's walk refuses). */
 std::vector<int> nodeParents(const tinygltf::Model& model);
+
+/** The world matrix of `node` in `poses`: its ancestors' local transforms and its own, composed. */
+glm::dmat4 worldMatrix(const std::vector<NodePose>& poses, const std::vector<int>& parents, int node);
 
 /** The world rotation of `node` in `poses`: its ancestors' local rotations and its own, composed (a node given as a
  *  matrix contributes its matrix's rotation). */
