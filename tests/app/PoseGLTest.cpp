@@ -79,6 +79,21 @@ TEST_F(PoseAndFrame, APoseLowersBothHands) {
     EXPECT_LT(glm::length(view("--frame head --pose a-pose").target - view("--frame head").target), 1e-6);
 }
 
+TEST_F(PoseAndFrame, AVrmAnimationIsRetargetedOntoTheCharacter) {
+    // three-vrm's test.vrma turns its right upper arm by the raw quarter turn (0.7071, 0, 0, 0.7071) at 0.5 s. Its
+    // rest frames are Blender's (the hips turned [0.5, 0.5, -0.5, 0.5]), which make that the normalized quarter
+    // turn about +Z, [0, 0, 0.7071068, 0.7071068] (worked out apart from the code, with numpy): the arm hangs down.
+    const std::string vrma = model("characters/three-vrm-test.vrma");
+    write("arm-down.json", "{\"rightUpperArm\": [0, 0, 0.7071068, 0.7071068]}");
+    const ReportedView rest = view("--frame rightHand");
+    const ReportedView animated = view("--frame rightHand --animation " + vrma + " --time 0.5");
+    const ReportedView posed = view("--frame rightHand --pose arm-down.json");
+    EXPECT_LT(animated.target.y, rest.target.y - 0.2);
+    EXPECT_LT(glm::length(animated.target - posed.target), 1e-4) << "the retargeted arm is the pose file's";
+    // At 0 s the animation is at its rest: the character's T-pose.
+    EXPECT_LT(glm::length(view("--frame rightHand --animation " + vrma + " --time 0").target - rest.target), 1e-6);
+}
+
 TEST_F(PoseAndFrame, UnknownFrameNameListsNodesBonesAndJoints) {
     const CliRun result = run("render " + kGodette + " -o x.png --frame tail");
     EXPECT_EQ(result.exitCode, 2);

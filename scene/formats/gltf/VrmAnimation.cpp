@@ -95,6 +95,12 @@ void applyVrmAnimation(const std::string& vrmaPath, double time, const tinygltf:
     const auto vrmaHips = animated->nodeOfBone.find("hips");
     const auto modelHips = humanoid.nodeOfBone.find("hips");
     if (vrmaHips == animated->nodeOfBone.end() || modelHips == humanoid.nodeOfBone.end()) return;
+    // Only an animation that moves the hips moves them (three-vrm-animation makes a hips track only from one).
+    const bool movesHips = !vrma.animations.empty() &&
+                           std::ranges::any_of(vrma.animations[0].channels, [&](const tinygltf::AnimationChannel& c) {
+                               return c.target_node == vrmaHips->second && c.target_path == "translation";
+                           });
+    if (!movesHips) return;
     const std::vector<int> parents = nodeParents(model);
     const double vrmaHeight = worldMatrix(vrmaRest, vrmaParents, vrmaHips->second)[3].y;
     const double modelHeight = worldMatrix(rest, parents, modelHips->second)[3].y;

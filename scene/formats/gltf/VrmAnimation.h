@@ -25,9 +25,9 @@ bool isVrmAnimationFile(const std::string& animation);
 /** Poses `poses` (the model's nodes, `rest` their own transforms) by the VRM Animation file `vrmaPath` sampled at
  *  `time` seconds (its first animation; none: its rest pose): each humanoid bone both files have turns by the
  *  .vrma's normalized rotation (P * raw * R^-1 * P^-1 with the .vrma's parent rest world rotation P and rest local
- *  rotation R), and the model's hips move to the .vrma's hips world position times (the model's rest hips height /
- *  the .vrma's). Bones the model lacks are skipped. Throws SceneError naming the .vrma for a file that cannot be
- *  read, is not a GLB with VRMC_vrm_animation, or whose animation cannot be sampled. */
+ *  rotation R), and, when the animation moves the .vrma's hips, the model's hips move to their world position times
+ *  (the model's rest hips height / the .vrma's). Bones the model lacks are skipped. Throws SceneError naming the .vrma
+ * for a file that cannot be read, is not a GLB with VRMC_vrm_animation, or whose animation cannot be sampled. */
 void applyVrmAnimation(const std::string& vrmaPath, double time, const tinygltf::Model& model, const Humanoid& humanoid,
                        const std::vector<NodePose>& rest, std::vector<NodePose>& poses, MeshBudget& budget,
                        std::vector<Warning>& warnings);
