@@ -257,6 +257,17 @@ struct Renderer::Impl {
             request.animation = options.animation;
             request.animationTime = options.animationTime;
         }
+        if (!frame.expressions.empty() || frame.lookAt) {
+            if (sceneImpl.path.empty())
+                throw UsageError("Frame::expressions and lookAt: a scene made from arrays has no VRM face");
+            // Another face than the scene's: loaded again with it, in the scene's pose unless the frame gives one.
+            request.loadedScene.reset();
+            if (!posed) request.animation = sceneImpl.options.animation;
+            applyFace(sceneImpl.options.expressions, sceneImpl.options.lookAt, "SceneOptions::", request.expressions,
+                      request.lookAt);
+            if (!options.expressions.empty()) request.expressions = options.expressions;
+            if (options.lookAt) request.lookAt = options.lookAt;
+        }
         return request;
     }
 

@@ -22,6 +22,7 @@ const std::string kRoot = std::string(INKGRAPH_SOURCE_ROOT) + "/";
 const std::string kSuzanne = kRoot + "models/suzanne_npm_4k.obj";
 const std::string kStillLife = kRoot + "examples/still-life/still-life.gltf";
 const std::string kFox = kRoot + "models/characters/fox.glb";
+const std::string kGodette = kRoot + "models/characters/godette.vrm";
 
 /** The renderer every test of this file shares: one GL context for the binary. */
 ig::Renderer& renderer() {
@@ -182,6 +183,7 @@ TEST(ApiTyped, EveryFrameFieldDrawsWhatItsFlagDraws) {
     const ig::Scene suzanne = ig::Scene::load(kSuzanne);
     const ig::Scene stillLife = ig::Scene::load(kStillLife);
     const ig::Scene fox = ig::Scene::load(kFox);
+    const ig::Scene godette = ig::Scene::load(kGodette);
     struct TypedFrame {
         std::string name;
         const ig::Scene* scene;
@@ -227,6 +229,13 @@ TEST(ApiTyped, EveryFrameFieldDrawsWhatItsFlagDraws) {
              frame.time = 0.4;
          },
          {"--animation", "Run", "--time", "0.4"}},
+        {"expressions and look-at",
+         &godette,
+         [](ig::Frame& frame) {
+             frame.expressions = {{"blink", 1.0}, {"aa", 0.5}};
+             frame.lookAt = ig::Vec3{-5.0, 1.3, -2.0};
+         },
+         {"--expression", "blink=1,aa=0.5", "--look-at", "-5,1.3,-2"}},
     };
     for (const TypedFrame& typed : cases) {
         ig::Frame frame = frameOf(80, 60);
