@@ -341,6 +341,19 @@ TEST(VrmLookAt, TheExpressionTypeWeightsLookLeft) {
     EXPECT_TRUE(hasVertex(scene, "LeftGaze", {0.03, 1.05, 1.05}));
 }
 
+TEST(VrmLookAt, TheExpressionTypeWithoutLookExpressionsIsRefused) {
+    try {
+        loadHead(R"({"type": "expression"})", pointAt(10.0));
+        FAIL() << "expected a SceneError";
+    } catch (const SceneError& error) {
+        EXPECT_NE(std::string(error.what())
+                      .find("--look-at: the file's look-at moves the eyes by expressions, but it "
+                            "has none of lookUp, lookDown, lookLeft, lookRight"),
+                  std::string::npos)
+            << error.what();
+    }
+}
+
 TEST(VrmLookAt, AFileWithoutLookAtSettingsIsRefused) {
     const TempFile file("face.vrm", faceVrm(kExpressions));
     LoadOptions options;

@@ -170,6 +170,11 @@ VrmGaze applyVrmLookAt(const std::string& path, const tinygltf::Model& model, co
     const double pitch = gaze.pitchDegrees;
 
     if (!settings->bones) {
+        if (!expressions.has("lookLeft") && !expressions.has("lookRight") && !expressions.has("lookUp") &&
+            !expressions.has("lookDown")) {
+            throwLoadError(path, "--look-at: the file's look-at moves the eyes by expressions, but it has none of "
+                                 "lookUp, lookDown, lookLeft, lookRight");
+        }
         // Only the horizontal outer map drives lookLeft and lookRight: both eyes move in one expression.
         const auto set = [&](const char* name, double weight) {
             if (expressions.has(name)) expressions.setWeight(name, std::clamp(weight, 0.0, 1.0), "--look-at");
