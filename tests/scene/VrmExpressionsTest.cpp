@@ -341,6 +341,22 @@ TEST(VrmLookAt, TheExpressionTypeWeightsLookLeft) {
     EXPECT_TRUE(hasVertex(scene, "LeftGaze", {0.03, 1.05, 1.05}));
 }
 
+TEST(VrmLookAt, ALookExpressionGivenBesideAnExpressionTypeLookAtIsRefused) {
+    const TempFile file("head.vrm", headVrm(R"({"type": "expression"})", R"(, "expressions": {"preset": {
+        "lookLeft": {"morphTargetBinds": [{"node": 3, "index": 0, "weight": 1}]}}})"));
+    LoadOptions options;
+    options.lookAt = pointAt(10.0);
+    options.expressions = {{"lookLeft", 1.0}};
+    try {
+        loadScene(file.path(), options);
+        FAIL() << "expected a SceneError";
+    } catch (const SceneError& error) {
+        EXPECT_NE(std::string(error.what()).find("--expression 'lookLeft' and --look-at both set it"),
+                  std::string::npos)
+            << error.what();
+    }
+}
+
 TEST(VrmLookAt, TheExpressionTypeWithoutLookExpressionsIsRefused) {
     try {
         loadHead(R"({"type": "expression"})", pointAt(10.0));
