@@ -46,6 +46,7 @@ void applyFrame(const Frame& frame, RenderOptions& options, std::vector<std::str
     if (!frame.animation.empty()) applyField("animation", "--animation", frame.animation, options, given);
     if (frame.time) applyField("time", "--time", exactText(*frame.time), options, given);
     if (!frame.pose.empty()) applyField("pose", "--pose", frame.pose, options, given);
+    applyFace(frame.expressions, frame.lookAt, "Frame::", options.expressions, options.lookAt);
 }
 
 Frame Frame::fromArguments(const std::vector<std::string>& arguments) {
@@ -67,6 +68,9 @@ Frame Frame::fromArguments(const std::vector<std::string>& arguments) {
         frame.frameNodes = options.frameNodes;
         frame.animation = options.animation;
         frame.pose = options.pose;
+        for (const ExpressionWeight& expression : options.expressions)
+            frame.expressions[expression.name] = expression.weight;
+        if (options.lookAt) frame.lookAt = vec3Of(*options.lookAt);
         // --time given (even as 0) stays given: it is checked against --animation as on the command line.
         for (const std::string& argument : arguments)
             if (argument == "--time") frame.time = options.animationTime;

@@ -94,6 +94,12 @@ inline std::string exactText(double value) {
 std::string vectorText(const Vec3& vector);
 std::string colorText(const Color& color);
 
+/** A typed face (SceneOptions' or Frame's expressions and lookAt) as the loader takes it, checked by --expression's
+ *  and --look-at's rules and messages after `field` ("SceneOptions::"). */
+void applyFace(const std::map<std::string, double>& expressions, const std::optional<Vec3>& lookAt,
+               const std::string& field, std::vector<ExpressionWeight>& expressionsOut,
+               std::optional<glm::dvec3>& lookAtOut);
+
 /** An 8-bit or float image of 1 or 4 channels as an Image that shares its pixels;
  *  std::logic_error for another type. */
 Image imageOf(const cv::Mat& mat);

@@ -251,15 +251,22 @@ struct Renderer::Impl {
         const bool animated = posed && (frame.animation != sceneImpl.options.animation ||
                                         frame.time.value_or(0.0) != sceneImpl.options.time);
         const bool reposed = !frame.pose.empty() && frame.pose != sceneImpl.options.pose;
-        if (animated || reposed) {
+        const bool refaced = !frame.expressions.empty() || frame.lookAt;
+        if (animated || reposed || refaced) {
             if (sceneImpl.path.empty())
-                throw UsageError(animated ? "Frame::animation and time: a scene made from arrays has no animations"
-                                          : "Frame::pose: a scene made from arrays has no humanoid");
-            // Another pose than the scene's: the file is loaded again in it, by the renderer's own load.
+                throw UsageError(animated  ? "Frame::animation and time: a scene made from arrays has no animations"
+                                 : reposed ? "Frame::pose: a scene made from arrays has no humanoid"
+                                           : "Frame::expressions and lookAt: a scene made from arrays has no VRM face");
+            // Another pose or face than the scene's: the file is loaded again, by the renderer's own load, with what
+            // the frame gives and the scene's own options for the rest.
             request.loadedScene.reset();
             request.animation = posed ? options.animation : sceneImpl.options.animation;
             if (posed) request.animationTime = options.animationTime;
             request.pose = reposed ? options.pose : sceneImpl.options.pose;
+            applyFace(sceneImpl.options.expressions, sceneImpl.options.lookAt, "SceneOptions::", request.expressions,
+                      request.lookAt);
+            if (!options.expressions.empty()) request.expressions = options.expressions;
+            if (options.lookAt) request.lookAt = options.lookAt;
         }
         return request;
     }

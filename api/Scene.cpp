@@ -21,10 +21,31 @@ LoadOptions loadOptionsOf(const SceneOptions& options) {
     load.animation = pose.animation;
     load.time = pose.animationTime;
     load.pose = pose.pose;
+    applyFace(options.expressions, options.lookAt, "SceneOptions::", load.expressions, load.lookAt);
     return load;
 }
 
 } // namespace
+
+void applyFace(const std::map<std::string, double>& expressions, const std::optional<Vec3>& lookAt,
+               const std::string& field, std::vector<ExpressionWeight>& expressionsOut,
+               std::optional<glm::dvec3>& lookAtOut) {
+    // Checked here, not through --expression's parser: a name is taken as it is, which the flag's syntax could not
+    // hold when it has a ','.
+    for (const auto& [name, weight] : expressions) {
+        if (!(weight >= 0.0 && weight <= 1.0))
+            throw UsageError(field + "expressions: the weight of '" + name + "' must lie in [0, 1], got " +
+                             exactText(weight));
+        expressionsOut.push_back({name, weight});
+    }
+    if (lookAt) {
+        try {
+            lookAtOut = parseRenderFlags({"--look-at", vectorText(*lookAt)}).lookAt;
+        } catch (const UsageError& error) {
+            throw UsageError(field + "lookAt: " + error.what());
+        }
+    }
+}
 
 Scene Scene::load(const std::string& path, const SceneOptions& options) {
     return translated("Scene::load()", [&] {
@@ -45,6 +66,8 @@ Scene Scene::fromArrays(const MeshArrays& arrays, const std::string& name, const
         if (!options.animation.empty() || options.time != 0.0)
             throw UsageError("SceneOptions::animation and time: a scene made from arrays has no animations");
         if (!options.pose.empty()) throw UsageError("SceneOptions::pose: a scene made from arrays has no humanoid");
+        if (!options.expressions.empty() || options.lookAt)
+            throw UsageError("SceneOptions::expressions and lookAt: a scene made from arrays has no VRM face");
         inkgraph::MeshArrays mesh;
         mesh.vertices = arrays.vertices;
         mesh.vertexCount = arrays.vertexCount;

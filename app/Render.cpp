@@ -58,6 +58,8 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     request.animationTime = options.animationTime;
     request.strict = options.strict;
     request.pose = options.pose;
+    request.expressions = options.expressions;
+    request.lookAt = options.lookAt;
     if (options.eglPlatform == "device") request.eglPlatform = EglPlatform::Device;
     if (options.eglPlatform == "surfaceless") request.eglPlatform = EglPlatform::Surfaceless;
     return request;

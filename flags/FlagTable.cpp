@@ -413,6 +413,37 @@ std::vector<Flag> makeFlags() {
                          "refused with the list; a bone the model lacks is a warning; a model that is not a VRM is\n"
                          "refused",
                          [](const std::string& value, RenderOptions& options) { options.pose = value; }));
+    flags.push_back(flag(
+        {"--expression"}, "NAME=W[,...]", S::Camera,
+        "a VRM character's expressions at weights W in [0, 1] (e.g. happy=1,blink=0.5): VRM 1.0's presets\n"
+        "(happy, angry, sad, relaxed, surprised, aa, ih, ou, ee, oh, blink, blinkLeft, blinkRight, lookUp,\n"
+        "lookDown, lookLeft, lookRight, neutral) and custom names; a VRM 0.x group by its 1.0 preset name (joy is\n"
+        "happy, a is aa) or its own name. Morph targets, material colours and texture transforms follow,\n"
+        "with isBinary and VRM 1.0's override rules (docs/vrm.md). Names are case-sensitive; one the file\n"
+        "lacks is refused with the list of those it has",
+        [](const std::string& value, RenderOptions& options) {
+            std::vector<ExpressionWeight> expressions;
+            for (const std::string& part : splitList(value, ',')) {
+                const std::size_t equals = part.rfind('=');
+                if (equals == std::string::npos || equals == 0)
+                    throw UsageError("--expression: expected NAME=WEIGHT[,NAME=WEIGHT...], got '" + value + "'");
+                ExpressionWeight expression{part.substr(0, equals),
+                                            parseNumber("--expression", part.substr(equals + 1))};
+                if (expression.weight < 0.0 || expression.weight > 1.0)
+                    throw UsageError("--expression: the weight of '" + expression.name + "' must lie in [0, 1], got '" +
+                                     part.substr(equals + 1) + "'");
+                if (std::ranges::find(expressions, expression.name, &ExpressionWeight::name) != expressions.end())
+                    throw UsageError("--expression: '" + expression.name + "' is given twice");
+                expressions.push_back(std::move(expression));
+            }
+            options.expressions = std::move(expressions);
+        }));
+    flags.push_back(flag(
+        {"--look-at"}, "X,Y,Z", S::Camera,
+        "a VRM character looks at this point (world units of the file, within +-1e15): its eye\n"
+        "bones turn, or its look expressions are weighted, as the file's look-at settings say\n"
+        "(docs/vrm.md); refused for a file without them",
+        [](const std::string& value, RenderOptions& options) { options.lookAt = parsePoint("--look-at", value); }));
     flags.push_back(flag({"--camera"}, "C", S::Camera,
                          "file (default: the glTF file's camera when it has one: its place, up and field of view;\n"
                          "--up and --fov replace their own, --eye, --orbit or --frame all three) | auto (never the\n"

@@ -45,6 +45,10 @@ struct RenderOptions {
     std::string animation;               ///< --animation: a glTF animation's name or index; empty: the rest pose
     double animationTime = 0.0;          ///< --time: seconds into `animation`
     std::string pose;                    ///< --pose: "a-pose" or a pose file (LoadOptions::pose); empty: none
+    /** --expression: VRM expressions and their weights. */
+    std::vector<ExpressionWeight> expressions;
+    /** --look-at: the point a VRM character looks at (world). */
+    std::optional<glm::dvec3> lookAt;
     /** Shading, lines, supersampling, precision, paper, light; the default look (render/DefaultLook.h) draws
      *  lines. */
     Look look = defaultLook();

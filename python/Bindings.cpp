@@ -32,6 +32,7 @@
 #include <filesystem>
 #include <initializer_list>
 #include <mutex>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -618,8 +619,9 @@ const std::vector<std::string> kLookFields{
     "shading",           "shininess", "bands",   "shade_map", "view_vector", "face_orientation",
     "front_rule",        "light",     "ambient", "paper",     "supersample", "msaa",
     "gbuffer_precision", "lines",     "strokes"};
-const std::vector<std::string> kFrameFields{"eye",       "orbit",       "target",    "up",   "fov", "clip",
-                                            "placement", "frame_nodes", "animation", "time", "pose"};
+const std::vector<std::string> kFrameFields{"eye",  "orbit",       "target",      "up",        "fov",
+                                            "clip", "placement",   "frame_nodes", "animation", "time",
+                                            "pose", "expressions", "look_at"};
 
 /** Sets the keyword arguments of a constructor as the properties they name, refusing other names. */
 void setFields(py::handle object, const py::kwargs& fields, const std::vector<std::string>& allowed,
@@ -842,6 +844,15 @@ void defineFrame(py::module_& m) {
         .def_readwrite("pose", &ig::Frame::pose,
                        "A VRM humanoid pose for this render, as --pose: 'a-pose' or a pose file's path; '': the "
                        "scene's.")
+        .def_readwrite("expressions", &ig::Frame::expressions,
+                       "--expression: VRM expressions {name: weight in [0, 1]} for this render (assign a whole dict; a "
+                       "copy is returned); {}: the scene's.")
+        .def_property(
+            "look_at", [](const ig::Frame& self) { return self.lookAt; },
+            [](ig::Frame& self, py::handle value) {
+                self.lookAt = optionalArgument(value, vec3Argument, "Frame.look_at");
+            },
+            "--look-at: the point (world) a VRM character looks at for this render, or None (the scene's).")
         .def("__copy__", [](const ig::Frame& self) { return self; })
         .def(
             "__deepcopy__", [](const ig::Frame& self, py::handle) { return self; }, "memo"_a)
@@ -965,11 +976,14 @@ void defineScene(py::module_& m) {
         .def_static(
             "load",
             [](const std::filesystem::path& path, const std::string& animation, double time, std::size_t memoryLimit,
-               bool strict, const std::string& pose) {
+               bool strict, const std::string& pose, const std::map<std::string, double>& expressions,
+               py::handle lookAt) {
                 ig::SceneOptions options;
                 options.animation = animation;
                 options.time = time;
                 options.pose = pose;
+                options.expressions = expressions;
+                options.lookAt = optionalArgument(lookAt, vec3Argument, "Scene.load(look_at)");
                 options.memoryLimitBytes = memoryLimit;
                 options.strict = strict;
                 std::optional<ig::Scene> scene;
@@ -981,12 +995,14 @@ void defineScene(py::module_& m) {
                 return *scene;
             },
             "path"_a, "animation"_a = "", "time"_a = 0.0, "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
-            "strict"_a = false, "pose"_a = "",
+            "strict"_a = false, "pose"_a = "", "expressions"_a = std::map<std::string, double>{},
+            "look_at"_a = py::none(),
             "Loads a model; `animation` (a glTF animation's name or index) and `time` (seconds) pose it, as "
-            "--animation and --time, and `pose` ('a-pose' or a pose file) a VRM's humanoid, as --pose; `memory_limit` "
-            "(bytes) bounds the load and each render of the scene as --memory-limit (0: the command line's default); "
-            "`strict` makes every warning of the load and of each render an InputError, as --strict. Issues the "
-            "loader's warnings (InkgraphWarning). Raises "
+            "--animation and --time, and `pose` ('a-pose' or a pose file) a VRM's humanoid, as --pose; "
+            "`expressions` ({name: weight}) and `look_at` ((x, y, z) or None) set a VRM character's face, as "
+            "--expression and --look-at; `memory_limit` (bytes) bounds the load and each render of the scene as "
+            "--memory-limit (0: the command line's default); `strict` makes every warning of the load and of each "
+            "render an InputError, as --strict. Issues the loader's warnings (InkgraphWarning). Raises "
             "InputError naming the file and the problem.")
         .def_static(
             "from_arrays",

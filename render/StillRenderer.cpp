@@ -148,6 +148,8 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
         loadOptions.animation = req.animation;
         loadOptions.time = req.animationTime;
         loadOptions.pose = req.pose;
+        loadOptions.expressions = req.expressions;
+        loadOptions.lookAt = req.lookAt;
         still->loadedScene = std::make_shared<const Scene>(loadScene(req.modelPath, loadOptions));
         still->loadMilliseconds = millisecondsSince(loadStart);
         for (const Warning& warning : still->scene().report.warnings) log.warn(req.modelPath, warning.message);

@@ -68,6 +68,9 @@ struct StillRequest {
     /** Keep the stroke stage's strokes (StillGraph::strokePathsResource()) for StillGraph::svgLayers() (--svg). */
     bool keepStrokePaths = false;
     std::string animation; ///< LoadOptions::animation: the pose to load
+    /** LoadOptions::expressions and lookAt: the VRM face to load. */
+    std::vector<ExpressionWeight> expressions;
+    std::optional<glm::dvec3> lookAt;
     /** LoadOptions::time, and the render's time (FrameParams::time: MToon's UV animation), even without an
      *  animation. */
     double animationTime = 0.0;

@@ -72,6 +72,11 @@ detail::RawScene readContent(const std::string& path, std::string_view content, 
         detail::throwLoadError(path, "cannot take a humanoid pose: not a VRM model (" + raw.format +
                                          " files have no humanoid bones)");
     }
+    // VRM is glTF: the other formats have no faces to set.
+    if ((!options.expressions.empty() || options.lookAt) && raw.format != "gltf" && raw.format != "glb") {
+        detail::throwLoadError(path, std::string(options.expressions.empty() ? "--look-at" : "--expression") + ": " +
+                                         raw.format + " files have no VRM expressions or look-at");
+    }
     // The model first, then what the reader opened beside it.
     raw.inputFiles.insert(raw.inputFiles.begin(), path);
     return raw;
@@ -90,6 +95,13 @@ void checkLoadOptions(const LoadOptions& options, std::string_view function) {
         throw std::invalid_argument(std::string(function) + ": time must be finite and >= 0, got " +
                                     std::to_string(options.time));
     }
+    for (const ExpressionWeight& expression : options.expressions) {
+        if (!(expression.weight >= 0.0 && expression.weight <= 1.0))
+            throw std::invalid_argument(std::string(function) + ": expression weights must be in [0, 1], got " +
+                                        std::to_string(expression.weight));
+    }
+    if (options.lookAt && !std::isfinite(options.lookAt->x + options.lookAt->y + options.lookAt->z))
+        throw std::invalid_argument(std::string(function) + ": lookAt must be finite");
 }
 
 namespace {

@@ -135,6 +135,13 @@ const std::vector<std::string>& supportedGltfExtensions();
 /** 8 GiB: a 60-million-triangle mesh. */
 inline constexpr std::size_t kDefaultLoadMemoryLimit = std::size_t(8) << 30;
 
+/** One VRM expression at a weight (--expression NAME=WEIGHT). */
+struct ExpressionWeight {
+    std::string name;    ///< as the file names it, case-sensitive: a VRM 1.0 preset or custom name, or a 0.x group
+    double weight = 0.0; ///< in [0, 1]
+    bool operator==(const ExpressionWeight&) const = default;
+};
+
 /** Options of loadScene(). */
 struct LoadOptions {
     /** Positions closer than weldTolerance x (bounding-box diagonal) are merged. Relative, so the result does
@@ -156,6 +163,15 @@ struct LoadOptions {
      *  (docs/posing.md); empty for none. A model without a VRM humanoid, a bad file or an unknown bone name is a
      *  SceneError. The CLI's --pose. */
     std::string pose;
+    /** VRM expressions to show (VRM 1.0 VRMC_vrm.expressions, 0.x blendShapeMaster), applied after the animation:
+     *  their morph targets, material colours and texture transforms (docs/vrm.md). A name the file does not have,
+     *  or any expression for a file without them, is a SceneError listing the expressions it has. The CLI's
+     *  --expression. */
+    std::vector<ExpressionWeight> expressions;
+    /** A point (world coordinates of the file) the VRM character looks at: its eye bones turned, or its look
+     *  expressions weighted, as the file's lookAt says (docs/vrm.md). A file without VRM look-at data is a
+     *  SceneError. The CLI's --look-at. */
+    std::optional<glm::dvec3> lookAt;
 };
 
 /** Reads .gltf, .glb (and .vrm, a GLB), .obj, .stl or .ply (binary or ASCII), chosen by extension (the format table)

@@ -5,7 +5,7 @@ Frame are typed by what they hold (mypy 1.0, Debian 12's, cannot type a property
 type-checked code assigns the typed values (look.shading = Shading.CEL, frame.eye = Vec3(0, 1, 5))."""
 
 import os
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any, ClassVar, SupportsFloat, SupportsIndex, TypeVar, Union
 
 import numpy as np
@@ -282,6 +282,8 @@ class Frame:
         animation: str = ...,
         time: float | None = ...,
         pose: str = ...,
+        expressions: Mapping[str, float] = ...,
+        look_at: _Vec3Like | None = ...,
     ) -> None: ...
     @staticmethod
     def from_arguments(arguments: Sequence[str]) -> Frame: ...
@@ -298,6 +300,8 @@ class Frame:
     animation: str
     time: float | None
     pose: str
+    expressions: dict[str, float]
+    look_at: Vec3 | None
     def __copy__(self) -> Frame: ...
     def __deepcopy__(self, memo: Any) -> Frame: ...
 
@@ -312,6 +316,8 @@ class Scene:
         memory_limit: int = 0,
         strict: bool = False,
         pose: str = "",
+        expressions: Mapping[str, float] = ...,
+        look_at: _Vec3Like | None = None,
     ) -> Scene: ...
     @staticmethod
     def from_arrays(

@@ -77,6 +77,10 @@ CHARACTER_FRAME_CASES = [
     ("pose", "godette.vrm", lambda: inkgraph.Frame(SIZE, SIZE, pose="a-pose"), ["--pose", "a-pose"]),
     ("frame_nodes by bone", "godette.vrm", lambda: inkgraph.Frame(SIZE, SIZE, frame_nodes=["head"]),
      ["--frame", "head"]),
+    ("expressions and look_at", "godette.vrm",
+     lambda: inkgraph.Frame(SIZE, SIZE, frame_nodes=["Face"], expressions={"blink": 1, "aa": 0.5},
+                            look_at=(-5, 1.3, -2)),
+     ["--frame", "Face", "--expression", "blink=1,aa=0.5", "--look-at", "-5,1.3,-2"]),
 ]
 
 
@@ -156,6 +160,9 @@ def test_frame_fields_read_back_what_was_set():
     assert frame.fov == 40 and frame.clip == inkgraph.Clip(0.1, 50)
     assert frame.placement == inkgraph.CameraPlacement.AUTO
     assert frame.frame_nodes == ["Face"] and frame.animation == "Walk" and frame.time == 0.25
+    frame.expressions = {"blink": 0.5}
+    frame.look_at = (1, 2, 3)
+    assert frame.expressions == {"blink": 0.5} and frame.look_at == inkgraph.Vec3(1, 2, 3)
     frame.eye = None
     frame.orbit = inkgraph.Orbit(10, 5)
     assert frame.eye is None and frame.orbit == inkgraph.Orbit(10, 5) and frame.orbit.distance is None
@@ -274,3 +281,18 @@ def test_the_typed_smoke_file_runs(suzanne_path):
     with warnings.catch_warnings():
         warnings.simplefilter("error", inkgraph.InkgraphWarning)
         assert typed_api_smoke.main(pathlib.Path(suzanne_path), 64) == []
+
+
+def test_scene_load_takes_a_vrm_face_as_its_flags():
+    godette = str(REPO / "models" / "characters" / "godette.vrm")
+    frame = inkgraph.Frame(SIZE, SIZE, frame_nodes=["Face"])
+    renderer = inkgraph.default_renderer()
+    loaded = renderer.render(inkgraph.Scene.load(godette, expressions={"blink": 1}, look_at=(-5, 1.3, -2)),
+                             inkgraph.Look(), frame).picture
+    flags = renderer.render(inkgraph.Scene.load(godette), inkgraph.Look(),
+                            frame_from_arguments(["--frame", "Face", "--expression", "blink=1", "--look-at",
+                                                  "-5,1.3,-2"])).picture
+    assert np.array_equal(loaded, flags)
+    with pytest.raises(inkgraph.InputError, match="no expression 'smile' .*'blink' \\(0.x 'Blink'\\)"):
+        inkgraph.Scene.load(godette, expressions={"smile": 1})
+

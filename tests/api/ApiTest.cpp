@@ -66,6 +66,25 @@ TEST_F(ApiScene, PoseOptionsAreCheckedAsTheirFlags) {
                  "Scene::load(): --time: expected seconds >= 0, got '-1'");
 }
 
+TEST_F(ApiScene, FaceOptionsAreCheckedAsTheirFlags) {
+    ig::SceneOptions options;
+    options.expressions = {{"blink", 1.5}};
+    const ig::Error weight = errorOf([&] { ig::Scene::load(kModels + "suzanne_npm_4k.obj", options); });
+    EXPECT_EQ(weight.kind(), ig::Error::Kind::Usage);
+    EXPECT_STREQ(weight.what(), "Scene::load(): SceneOptions::expressions: the weight of 'blink' must lie in [0, 1], "
+                                "got 1.5");
+    options.expressions = {{"blink", 1.0}};
+    const ig::Error obj = errorOf([&] { ig::Scene::load(kModels + "suzanne_npm_4k.obj", options); });
+    EXPECT_EQ(obj.kind(), ig::Error::Kind::Input) << obj.what();
+    EXPECT_NE(std::string(obj.what()).find("--expression: obj files have no VRM expressions or look-at"),
+              std::string::npos)
+        << obj.what();
+    options.expressions.clear();
+    options.lookAt = ig::Vec3{0.0, std::nan(""), 0.0};
+    EXPECT_STREQ(errorOf([&] { ig::Scene::load(kModels + "suzanne_npm_4k.obj", options); }).what(),
+                 "Scene::load(): SceneOptions::lookAt: --look-at: 'nan' is not a finite number");
+}
+
 TEST(ApiLook, RefusesAFlagThatIsNotTheLooksNamingItsPlace) {
     const ig::Error camera = errorOf([] { ig::Look::fromArguments({"--shading", "cel", "--eye", "0,0,5"}); });
     EXPECT_EQ(camera.kind(), ig::Error::Kind::Usage);

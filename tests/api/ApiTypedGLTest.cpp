@@ -231,6 +231,13 @@ TEST(ApiTyped, EveryFrameFieldDrawsWhatItsFlagDraws) {
          {"--animation", "Run", "--time", "0.4"}},
         {"pose", &godette, [](ig::Frame& frame) { frame.pose = "a-pose"; }, {"--pose", "a-pose"}},
         {"frame by bone", &godette, [](ig::Frame& frame) { frame.frameNodes = {"head"}; }, {"--frame", "head"}},
+        {"expressions and look-at",
+         &godette,
+         [](ig::Frame& frame) {
+             frame.expressions = {{"blink", 1.0}, {"aa", 0.5}};
+             frame.lookAt = ig::Vec3{-5.0, 1.3, -2.0};
+         },
+         {"--expression", "blink=1,aa=0.5", "--look-at", "-5,1.3,-2"}},
     };
     for (const TypedFrame& typed : cases) {
         ig::Frame frame = frameOf(80, 60);

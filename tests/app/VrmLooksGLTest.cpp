@@ -108,5 +108,47 @@ TEST_F(VrmLooks, AWhiteMToonCharacterIsNotWhiteOnWhite) {
     EXPECT_EQ(cv::countNonZero(unlit.reshape(1) != 255), 0) << "an unlit white material is the paper's white";
 }
 
+// --expression and --look-at on a VRM 0.x character (issue 35): godette's Blink and Joy groups move her face's morph
+// targets, her look-at (type BlendShape) weights LookLeft; names are checked against the file's groups.
+TEST_F(VrmLooks, ExpressionsAndLookAtChangeGodettesFace) {
+    const std::string face = " --frame Face";
+    const cv::Mat rest = render(kGodette.string(), face, "rest.png");
+    const cv::Mat blink = render(kGodette.string(), face + " --expression blink=1", "blink.png");
+    const cv::Mat happy = render(kGodette.string(), face + " --expression happy=1", "happy.png");
+    const cv::Mat joy = render(kGodette.string(), face + " --expression Joy=1", "joy.png");
+    // Godette faces -Z: a point far to her left is -X (and the look-at origin is about 1.3 units up).
+    const cv::Mat look = render(kGodette.string(), face + " --look-at -5,1.3,-2", "look.png");
+    const double blinkShare = changedShare(rest, blink);
+    const double happyShare = changedShare(rest, happy);
+    const double lookShare = changedShare(rest, look);
+    std::printf("  godette's face: blink changes %.1f%%, happy %.1f%%, a look to her left %.1f%% of its pixels\n",
+                100.0 * blinkShare, 100.0 * happyShare, 100.0 * lookShare);
+    EXPECT_GE(blinkShare, 0.02);
+    EXPECT_GE(happyShare, 0.005);
+    EXPECT_GE(lookShare, 0.005);
+    EXPECT_EQ(changedShare(happy, joy), 0.0) << "happy is the 0.x group Joy";
+    EXPECT_EQ(changedShare(rest, render(kGodette.string(), face + " --expression blink=0", "blink0.png")), 0.0);
+}
+
+TEST_F(VrmLooks, AnExpressionTheFileLacksExits3ListingItsNames) {
+    const CliRun unknown = run("render " + test::shellQuoted(kGodette) + " -o x.png --expression smile=1");
+    EXPECT_EQ(unknown.exitCode, 3) << unknown.err;
+    EXPECT_NE(unknown.err.find("godette.vrm': --expression: no expression 'smile' (names are case-sensitive; the "
+                               "file has 'neutral' (0.x 'Neutral'), 'aa' (0.x 'A')"),
+              std::string::npos)
+        << unknown.err;
+    const CliRun malformed = run("render " + test::shellQuoted(kGodette) + " -o x.png --expression blink");
+    EXPECT_EQ(malformed.exitCode, 2) << malformed.err;
+    EXPECT_NE(malformed.err.find("--expression: expected NAME=WEIGHT[,NAME=WEIGHT...], got 'blink'"), std::string::npos)
+        << malformed.err;
+    const CliRun heavy = run("render " + test::shellQuoted(kGodette) + " -o x.png --expression blink=1.5");
+    EXPECT_EQ(heavy.exitCode, 2) << heavy.err;
+    const fs::path duck = fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "characters" / "duck.glb";
+    const CliRun plain = run("render " + test::shellQuoted(duck) + " -o x.png --look-at 0,0,1");
+    EXPECT_EQ(plain.exitCode, 3) << plain.err;
+    EXPECT_NE(plain.err.find("--look-at: the file has no VRM look-at settings"), std::string::npos) << plain.err;
+    EXPECT_FALSE(fs::exists(directory / "x.png"));
+}
+
 } // namespace
 } // namespace inkgraph

@@ -26,6 +26,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -136,6 +137,13 @@ private:
     std::shared_ptr<const void> mOwner;
 };
 
+/** A direction or a point, in the model's world units. */
+struct Vec3 {
+    double x = 0.0;
+    double y = 0.0;
+    double z = 0.0;
+};
+
 /** What Scene::load() and Scene::fromArrays() take besides the model. */
 struct SceneOptions {
     std::string animation; ///< a glTF animation's name or index; empty: the rest pose (files only)
@@ -143,6 +151,10 @@ struct SceneOptions {
     /** A VRM humanoid pose after `animation` (--pose): "a-pose" or a pose file's path (docs/posing.md); empty: none
      *  (files only). */
     std::string pose;
+    /** VRM expressions by name (case-sensitive) at weights in [0, 1], as --expression (docs/vrm.md); empty: the
+     *  file's own face (files only). */
+    std::map<std::string, double> expressions;
+    std::optional<Vec3> lookAt; ///< a point (world) a VRM character looks at, as --look-at (files only)
     /** The load refuses models that would need more, and so does each render of the scene (its buffers at the
      *  frame's size); 0: the command line's default, half this machine's memory but at least 1 GiB. */
     std::size_t memoryLimitBytes = 0;
@@ -192,13 +204,6 @@ private:
     friend struct SceneAccess;
     explicit Scene(std::shared_ptr<const Impl> impl) : mImpl(std::move(impl)) {}
     std::shared_ptr<const Impl> mImpl;
-};
-
-/** A direction or a point, in the model's world units. */
-struct Vec3 {
-    double x = 0.0;
-    double y = 0.0;
-    double z = 0.0;
 };
 
 /** A colour, display RGBA, channels in [0, 1]. */
@@ -379,6 +384,10 @@ struct INKGRAPH_API Frame {
     /** A VRM humanoid pose other than the scene's own (SceneOptions::pose), for this render (--pose): the scene's
      *  file is loaded again in it. Empty: the scene's pose. */
     std::string pose;
+    /** A face other than the scene's own (SceneOptions::expressions, lookAt), for this render: the scene's file is
+     *  loaded again with these (each replacing the scene's when given) in the scene's pose at the frame's time. */
+    std::map<std::string, double> expressions;
+    std::optional<Vec3> lookAt;
 
     /** The adapter from the command line's Camera flags: {"--orbit", "30,10", "--fov", "40", "--size", "640x480"}.
      *  Throws Error(Usage) for a flag that is not the frame's, or a bad value, with the CLI's message. */

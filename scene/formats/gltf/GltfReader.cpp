@@ -14,6 +14,8 @@
 #include "scene/formats/ShaderValues.h"
 #include "scene/formats/gltf/VrmAnimation.h"
 #include "scene/formats/gltf/VrmHumanoid.h"
+#include "scene/formats/gltf/VrmExpressions.h"
+#include "scene/formats/gltf/VrmLookAt.h"
 #include "scene/formats/gltf/VrmMaterials.h"
 
 #include <glm/gtc/constants.hpp>
@@ -299,6 +301,29 @@ private:
             if (mOptions.pose != kAPoseName) mOut.inputFiles.push_back(mOptions.pose);
             applyHumanoidPose(mModel, *mHumanoid, pose, restPose(mModel), mPoses, mOut.warnings);
         }
+        applyVrmFace();
+    }
+
+    /** --expression and --look-at, after the animation: the VRM expressions' morph weights and the eye bones onto the
+     *  poses; the expressions' material binds are applied as each material is taken (addPrimitive()). */
+    void applyVrmFace() {
+        if (mOptions.expressions.empty() && !mOptions.lookAt) return;
+        VrmExpressions& expressions = mExpressions.emplace(mPath, mModel, mOut.warnings);
+        if (!mOptions.expressions.empty() && expressions.empty())
+            fail("--expression: the file has no VRM expressions (VRM 1.0 VRMC_vrm.expressions or VRM 0.x "
+                 "blendShapeMaster)");
+        for (const ExpressionWeight& expression : mOptions.expressions)
+            expressions.setWeight(expression.name, expression.weight, "--expression");
+        if (mOptions.lookAt) {
+            const VrmGaze gaze = applyVrmLookAt(mPath, mModel, *mOptions.lookAt, restPose(mModel), mPoses, expressions);
+            for (const ExpressionWeight& expression : mOptions.expressions) {
+                const std::string name = expressions.canonicalName(expression.name);
+                if (gaze.setExpressions && name.starts_with("look"))
+                    fail("--expression '" + excerptForMessage(expression.name) +
+                         "' and --look-at both set it (the file's look-at moves the eyes by expressions)");
+            }
+        }
+        expressions.applyToPoses(mPoses);
     }
 
     /** The glTF 2.0 specification: a loader must refuse a file that requires an extension it does not implement,
@@ -823,6 +848,7 @@ private:
 
         if (primitive.material >= 0) { // in range: checkMaterialIndices()
             mesh.material = mMaterials.material(primitive.material);
+            if (mExpressions) mExpressions->applyToMaterial(primitive.material, mesh.material);
         }
         mOut.meshes.push_back(std::move(mesh));
     }
@@ -836,7 +862,8 @@ private:
     std::optional<Humanoid> mHumanoid; ///< a VRM model's humanoid bones (posed())
     /** Per node: the posed vertices it weights as a skin joint, then (collectJoints()) its descendants' too. */
     std::vector<BoundingBox> mJointBoxes = std::vector<BoundingBox>(mModel.nodes.size());
-    std::vector<bool> mReached; ///< nodes already reached by the walk; reaching one again is an error
+    std::optional<VrmExpressions> mExpressions; ///< the VRM expressions, when --expression or --look-at asks
+    std::vector<bool> mReached;                 ///< nodes already reached by the walk; reaching one again is an error
     /** Per node reached by the walk: its world transform, composed precisely, and relative to mOut.origin. */
     std::vector<std::optional<PreciseTransform>> mPreciseWorlds =
         std::vector<std::optional<PreciseTransform>>(mModel.nodes.size());

@@ -1,0 +1,223 @@
+/** @file VRM look-at after specification/VRMC_vrm-1.0/lookAt.md; VRM 0.x's firstPerson settings read as three-vrm
+ *  reads them (xRange as inputMaxValue, yRange as outputScale, the curve taken as linear, firstPersonBoneOffset with
+ *  Unity's z negated, the face toward -Z). */
+
+#include "scene/formats/gltf/VrmLookAt.h"
+
+#include "scene/formats/FormatReaders.h"
+#include "scene/formats/gltf/GltfPose.h"
+#include "scene/formats/gltf/VrmExpressions.h"
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace inkgraph::detail {
+
+namespace {
+
+/** One of the specification's range maps: |yaw| or |pitch| up to inputMaxValue degrees scaled to outputScale. */
+struct RangeMap {
+    double inputMaxValue = 90.0;
+    double outputScale = 10.0;
+
+    double map(double degrees) const {
+        // The specification's recommendation for inputMaxValue 0: 0 for a value of 0, outputScale otherwise.
+        if (!(inputMaxValue > 0.0)) return degrees == 0.0 ? 0.0 : outputScale;
+        return std::min(std::abs(degrees), inputMaxValue) / inputMaxValue * outputScale;
+    }
+};
+
+struct LookAtSettings {
+    bool bones = true; ///< type bone ("Bone"); false: expression ("BlendShape")
+    glm::dvec3 offsetFromHead{0.0, 0.06, 0.0};
+    bool facesMinusZ = false; ///< VRM 0.x
+    RangeMap horizontalInner, horizontalOuter, verticalDown, verticalUp;
+    int head = -1, leftEye = -1, rightEye = -1;
+};
+
+RangeMap rangeMapOf(const tinygltf::Value* map, const char* inputKey, const char* outputKey, double defaultOutput) {
+    RangeMap result;
+    result.inputMaxValue = std::max(0.0, jsonNumber(jsonMember(map, inputKey)).value_or(90.0));
+    result.outputScale = jsonNumber(jsonMember(map, outputKey)).value_or(defaultOutput);
+    return result;
+}
+
+/** The look-at settings of a VRM 1.0 or 0.x file, or none. */
+std::optional<LookAtSettings> readSettings(const tinygltf::Model& model) {
+    LookAtSettings settings;
+    if (const auto vrm1 = model.extensions.find("VRMC_vrm"); vrm1 != model.extensions.end()) {
+        const tinygltf::Value* lookAt = jsonMember(&vrm1->second, "lookAt");
+        if (lookAt == nullptr) return std::nullopt;
+        settings.bones = jsonString(jsonMember(lookAt, "type")) != "expression";
+        if (const auto offset = jsonNumbers(jsonMember(lookAt, "offsetFromHeadBone"), 3))
+            settings.offsetFromHead = {(*offset)[0], (*offset)[1], (*offset)[2]};
+        // Defaults as three-vrm takes them: 90 degrees to 10 degrees of eye rotation, or to a weight of 1.
+        const double output = settings.bones ? 10.0 : 1.0;
+        settings.horizontalInner =
+            rangeMapOf(jsonMember(lookAt, "rangeMapHorizontalInner"), "inputMaxValue", "outputScale", output);
+        settings.horizontalOuter =
+            rangeMapOf(jsonMember(lookAt, "rangeMapHorizontalOuter"), "inputMaxValue", "outputScale", output);
+        settings.verticalDown =
+            rangeMapOf(jsonMember(lookAt, "rangeMapVerticalDown"), "inputMaxValue", "outputScale", output);
+        settings.verticalUp =
+            rangeMapOf(jsonMember(lookAt, "rangeMapVerticalUp"), "inputMaxValue", "outputScale", output);
+        const tinygltf::Value* bones = jsonMember(jsonMember(&vrm1->second, "humanoid"), "humanBones");
+        const auto boneNode = [&](const char* name) {
+            return jsonIndex(jsonMember(jsonMember(bones, name), "node")).value_or(-1);
+        };
+        settings.head = boneNode("head");
+        settings.leftEye = boneNode("leftEye");
+        settings.rightEye = boneNode("rightEye");
+        return settings;
+    }
+    const auto vrm0 = model.extensions.find("VRM");
+    if (vrm0 == model.extensions.end()) return std::nullopt;
+    const tinygltf::Value* firstPerson = jsonMember(&vrm0->second, "firstPerson");
+    const std::string type = jsonString(jsonMember(firstPerson, "lookAtTypeName"));
+    if (type != "Bone" && type != "BlendShape") return std::nullopt;
+    settings.bones = type == "Bone";
+    settings.facesMinusZ = true;
+    if (const tinygltf::Value* offset = jsonMember(firstPerson, "firstPersonBoneOffset")) {
+        settings.offsetFromHead = {jsonNumber(jsonMember(offset, "x")).value_or(0.0),
+                                   jsonNumber(jsonMember(offset, "y")).value_or(0.06),
+                                   -jsonNumber(jsonMember(offset, "z")).value_or(0.0)};
+    }
+    const double output = settings.bones ? 10.0 : 1.0;
+    settings.horizontalInner = rangeMapOf(jsonMember(firstPerson, "lookAtHorizontalInner"), "xRange", "yRange", output);
+    settings.horizontalOuter = rangeMapOf(jsonMember(firstPerson, "lookAtHorizontalOuter"), "xRange", "yRange", output);
+    settings.verticalDown = rangeMapOf(jsonMember(firstPerson, "lookAtVerticalDown"), "xRange", "yRange", output);
+    settings.verticalUp = rangeMapOf(jsonMember(firstPerson, "lookAtVerticalUp"), "xRange", "yRange", output);
+    const tinygltf::Value* bones = jsonMember(jsonMember(&vrm0->second, "humanoid"), "humanBones");
+    if (bones != nullptr && bones->IsArray()) {
+        for (std::size_t i = 0; i < bones->ArrayLen(); ++i) {
+            const tinygltf::Value& bone = bones->Get(int(i));
+            const std::string name = jsonString(jsonMember(&bone, "bone"));
+            const int node = jsonIndex(jsonMember(&bone, "node")).value_or(-1);
+            if (name == "head") settings.head = node;
+            if (name == "leftEye") settings.leftEye = node;
+            if (name == "rightEye") settings.rightEye = node;
+        }
+    }
+    return settings;
+}
+
+/** Each node's parent (-1 for a root), from the nodes' children; a node listed twice keeps its first parent (the
+ *  walk refuses such a file anyway). */
+std::vector<int> parentsOf(const tinygltf::Model& model) {
+    std::vector<int> parents(model.nodes.size(), -1);
+    for (std::size_t node = 0; node < model.nodes.size(); ++node) {
+        for (const int child : model.nodes[node].children) {
+            if (child >= 0 && std::size_t(child) < parents.size() && parents[std::size_t(child)] < 0)
+                parents[std::size_t(child)] = int(node);
+        }
+    }
+    return parents;
+}
+
+glm::dmat4 worldOf(int node, const std::vector<int>& parents, const std::vector<NodePose>& poses) {
+    glm::dmat4 world(1.0);
+    // Bounded by the node count, so a cycle (refused by the walk later) cannot loop here.
+    for (std::size_t steps = 0; node >= 0 && steps <= poses.size(); ++steps) {
+        world = poses[std::size_t(node)].local() * world;
+        node = parents[std::size_t(node)];
+    }
+    return world;
+}
+
+/** The rotation of a transform without shear (its columns normalised). */
+glm::dquat rotationOf(const glm::dmat4& transform) {
+    glm::dmat3 linear(transform);
+    for (int column = 0; column < 3; ++column) {
+        const double length = glm::length(linear[column]);
+        if (length > 0.0) linear[column] /= length;
+    }
+    return glm::normalize(glm::quat_cast(linear));
+}
+
+} // namespace
+
+VrmGaze applyVrmLookAt(const std::string& path, const tinygltf::Model& model, const glm::dvec3& target,
+                       const std::vector<NodePose>& restPoses, std::vector<NodePose>& poses,
+                       VrmExpressions& expressions) {
+    const std::optional<LookAtSettings> settings = readSettings(model);
+    if (!settings) {
+        throwLoadError(path, "--look-at: the file has no VRM look-at settings (VRM 1.0 VRMC_vrm.lookAt, or VRM 0.x "
+                             "firstPerson.lookAtTypeName 'Bone' or 'BlendShape')");
+    }
+    const auto boneInRange = [&](int node) { return node >= 0 && std::size_t(node) < model.nodes.size(); };
+    if (!boneInRange(settings->head)) throwLoadError(path, "--look-at: the file's humanoid has no head bone");
+    const std::vector<int> parents = parentsOf(model);
+
+    // The look-at space: at offsetFromHeadBone in the head's frame, turned as the head turned from its rest pose (so
+    // at rest its axes are the model's), and for a 0.x character turned round to face -Z.
+    const glm::dmat4 headWorld = worldOf(settings->head, parents, poses);
+    const glm::dquat faceFront = settings->facesMinusZ ? glm::angleAxis(glm::pi<double>(), glm::dvec3(0.0, 1.0, 0.0))
+                                                       : glm::dquat(1.0, 0.0, 0.0, 0.0);
+    const glm::dquat space =
+        rotationOf(headWorld) * glm::inverse(rotationOf(worldOf(settings->head, parents, restPoses))) * faceFront;
+    const glm::dvec3 origin(headWorld * glm::dvec4(settings->offsetFromHead, 1.0));
+    const glm::dvec3 local = glm::inverse(space) * (target - origin);
+    VrmGaze gaze;
+    gaze.yawDegrees = glm::degrees(std::atan2(local.x, local.z));
+    gaze.pitchDegrees = glm::degrees(std::atan2(-local.y, std::hypot(local.x, local.z)));
+    const double yaw = gaze.yawDegrees;
+    const double pitch = gaze.pitchDegrees;
+
+    if (!settings->bones) {
+        if (!expressions.has("lookLeft") && !expressions.has("lookRight") && !expressions.has("lookUp") &&
+            !expressions.has("lookDown")) {
+            throwLoadError(path, "--look-at: the file's look-at moves the eyes by expressions, but it has none of "
+                                 "lookUp, lookDown, lookLeft, lookRight");
+        }
+        // Only the horizontal outer map drives lookLeft and lookRight: both eyes move in one expression.
+        const auto set = [&](const char* name, double weight) {
+            if (expressions.has(name)) expressions.setWeight(name, std::clamp(weight, 0.0, 1.0), "--look-at");
+        };
+        set("lookLeft", yaw > 0.0 ? settings->horizontalOuter.map(yaw) : 0.0);
+        set("lookRight", yaw > 0.0 ? 0.0 : settings->horizontalOuter.map(yaw));
+        set("lookDown", pitch > 0.0 ? settings->verticalDown.map(pitch) : 0.0);
+        set("lookUp", pitch > 0.0 ? 0.0 : settings->verticalUp.map(pitch));
+        gaze.setExpressions = true;
+        return gaze;
+    }
+
+    const double eyePitch = pitch > 0.0 ? settings->verticalDown.map(pitch) : -settings->verticalUp.map(pitch);
+    // Yaw to the left turns the left eye outward and the right eye inward.
+    const double leftYaw = yaw > 0.0 ? settings->horizontalOuter.map(yaw) : -settings->horizontalInner.map(yaw);
+    const double rightYaw = yaw > 0.0 ? settings->horizontalInner.map(yaw) : -settings->horizontalOuter.map(yaw);
+    struct Turn {
+        int node;
+        double yawDegrees;
+    };
+    std::vector<std::pair<int, glm::dquat>> turned;
+    for (const Turn& eye : {Turn{settings->leftEye, leftYaw}, Turn{settings->rightEye, rightYaw}}) {
+        if (!boneInRange(eye.node)) {
+            throwLoadError(path, std::string("--look-at: the file's look-at type is bone but its humanoid has no ") +
+                                     (eye.node == settings->leftEye ? "leftEye" : "rightEye") + " bone");
+        }
+        if (poses[std::size_t(eye.node)].matrix) {
+            throwLoadError(path, "--look-at: eye bone node " + std::to_string(eye.node) +
+                                     " is given as a matrix, which cannot be turned");
+        }
+        // The specification's local rotation, Euler YXZ (yaw about +Y, then pitch about +X), is taken in the look-at
+        // space and applied on top of the eye's present world rotation.
+        const glm::dquat gazeTurn = glm::angleAxis(glm::radians(eye.yawDegrees), glm::dvec3(0.0, 1.0, 0.0)) *
+                                    glm::angleAxis(glm::radians(eyePitch), glm::dvec3(1.0, 0.0, 0.0));
+        const int parent = parents[std::size_t(eye.node)];
+        const glm::dquat parentWorld =
+            parent >= 0 ? rotationOf(worldOf(parent, parents, poses)) : glm::dquat(1, 0, 0, 0);
+        const glm::dquat eyeWorld = parentWorld * poses[std::size_t(eye.node)].rotation;
+        const glm::dquat turnedWorld = space * gazeTurn * glm::inverse(space) * eyeWorld;
+        turned.emplace_back(eye.node, glm::normalize(glm::inverse(parentWorld) * turnedWorld));
+    }
+    for (const auto& [node, rotation] : turned) poses[std::size_t(node)].rotation = rotation;
+    return gaze;
+}
+
+} // namespace inkgraph::detail
