@@ -32,3 +32,10 @@ done
 # The fox half a second into its Walk animation, seen from its right side.
 "$inkgraph" render "$models/fox.glb" --size "$size" --animation Walk --time 0.5 --orbit 90,10 \
     --lines contour -o "$out/fox-walk.png"
+# Godette posed and expressive, her head framed by its humanoid bone (--frame head: the vertices the head bone and
+# its children weight), in the default look: three VRM expressions, then the A-pose seen whole.
+for expression in happy angry blink; do
+    "$inkgraph" render "$models/godette.vrm" --size "$size" --frame head --expression "$expression=1" \
+        -o "$out/godette-$expression.png"
+done
+"$inkgraph" render "$models/godette.vrm" --size "$size" --pose a-pose -o "$out/godette-a-pose.png"

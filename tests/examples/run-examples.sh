@@ -46,7 +46,7 @@ run_example clean-strokes bunny.png armadillo.png lucy.png suzanne.png fox.png g
 grep -q 'stroke="none" d="M' "$work/clean-strokes/bunny-weight.svg" 2>/dev/null ||
     fail "clean-strokes: bunny-weight.svg has no weighted (filled outline) path"
 run_example characters fox-default.png godette-mtoon.png godette-face.png godette-orbit.png fox-walk.png \
-    expressions-binary-overrides-default.png
+    expressions-binary-overrides-default.png godette-happy.png godette-a-pose.png
 run_example batch 1-bunny_c3d_70k.png 5-spot_c3d.png 9-suzanne_npm_4k.png 9-suzanne_npm_4k.json
 
 # The Slurm script, as tasks 1..3 of --array=1-3.
