@@ -315,7 +315,8 @@ private:
         for (const ExpressionWeight& expression : mOptions.expressions)
             expressions.setWeight(expression.name, expression.weight, "--expression");
         if (mOptions.lookAt) {
-            const VrmGaze gaze = applyVrmLookAt(mPath, mModel, *mOptions.lookAt, restPose(mModel), mPoses, expressions);
+            const VrmGaze gaze = applyVrmLookAt(mPath, mModel, mHumanoid ? &*mHumanoid : nullptr, *mOptions.lookAt,
+                                                restPose(mModel), mPoses, expressions);
             for (const ExpressionWeight& expression : mOptions.expressions) {
                 const std::string name = expressions.canonicalName(expression.name);
                 if (gaze.setExpressions && name.starts_with("look"))

@@ -7,6 +7,7 @@
 #include "scene/formats/FormatReaders.h"
 #include "scene/formats/gltf/GltfPose.h"
 #include "scene/formats/gltf/VrmExpressions.h"
+#include "scene/formats/gltf/VrmHumanoid.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -38,7 +39,6 @@ struct LookAtSettings {
     glm::dvec3 offsetFromHead{0.0, 0.06, 0.0};
     bool facesMinusZ = false; ///< VRM 0.x
     RangeMap horizontalInner, horizontalOuter, verticalDown, verticalUp;
-    int head = -1, leftEye = -1, rightEye = -1;
 };
 
 RangeMap rangeMapOf(const tinygltf::Value* map, const char* inputKey, const char* outputKey, double defaultOutput) {
@@ -67,13 +67,6 @@ std::optional<LookAtSettings> readSettings(const tinygltf::Model& model) {
             rangeMapOf(jsonMember(lookAt, "rangeMapVerticalDown"), "inputMaxValue", "outputScale", output);
         settings.verticalUp =
             rangeMapOf(jsonMember(lookAt, "rangeMapVerticalUp"), "inputMaxValue", "outputScale", output);
-        const tinygltf::Value* bones = jsonMember(jsonMember(&vrm1->second, "humanoid"), "humanBones");
-        const auto boneNode = [&](const char* name) {
-            return jsonIndex(jsonMember(jsonMember(bones, name), "node")).value_or(-1);
-        };
-        settings.head = boneNode("head");
-        settings.leftEye = boneNode("leftEye");
-        settings.rightEye = boneNode("rightEye");
         return settings;
     }
     const auto vrm0 = model.extensions.find("VRM");
@@ -93,31 +86,7 @@ std::optional<LookAtSettings> readSettings(const tinygltf::Model& model) {
     settings.horizontalOuter = rangeMapOf(jsonMember(firstPerson, "lookAtHorizontalOuter"), "xRange", "yRange", output);
     settings.verticalDown = rangeMapOf(jsonMember(firstPerson, "lookAtVerticalDown"), "xRange", "yRange", output);
     settings.verticalUp = rangeMapOf(jsonMember(firstPerson, "lookAtVerticalUp"), "xRange", "yRange", output);
-    const tinygltf::Value* bones = jsonMember(jsonMember(&vrm0->second, "humanoid"), "humanBones");
-    if (bones != nullptr && bones->IsArray()) {
-        for (std::size_t i = 0; i < bones->ArrayLen(); ++i) {
-            const tinygltf::Value& bone = bones->Get(int(i));
-            const std::string name = jsonString(jsonMember(&bone, "bone"));
-            const int node = jsonIndex(jsonMember(&bone, "node")).value_or(-1);
-            if (name == "head") settings.head = node;
-            if (name == "leftEye") settings.leftEye = node;
-            if (name == "rightEye") settings.rightEye = node;
-        }
-    }
     return settings;
-}
-
-/** Each node's parent (-1 for a root), from the nodes' children; a node listed twice keeps its first parent (the
- *  walk refuses such a file anyway). */
-std::vector<int> parentsOf(const tinygltf::Model& model) {
-    std::vector<int> parents(model.nodes.size(), -1);
-    for (std::size_t node = 0; node < model.nodes.size(); ++node) {
-        for (const int child : model.nodes[node].children) {
-            if (child >= 0 && std::size_t(child) < parents.size() && parents[std::size_t(child)] < 0)
-                parents[std::size_t(child)] = int(node);
-        }
-    }
-    return parents;
 }
 
 glm::dmat4 worldOf(int node, const std::vector<int>& parents, const std::vector<NodePose>& poses) {
@@ -142,25 +111,33 @@ glm::dquat rotationOf(const glm::dmat4& transform) {
 
 } // namespace
 
-VrmGaze applyVrmLookAt(const std::string& path, const tinygltf::Model& model, const glm::dvec3& target,
-                       const std::vector<NodePose>& restPoses, std::vector<NodePose>& poses,
+VrmGaze applyVrmLookAt(const std::string& path, const tinygltf::Model& model, const Humanoid* humanoid,
+                       const glm::dvec3& target, const std::vector<NodePose>& restPoses, std::vector<NodePose>& poses,
                        VrmExpressions& expressions) {
     const std::optional<LookAtSettings> settings = readSettings(model);
     if (!settings) {
         throwLoadError(path, "--look-at: the file has no VRM look-at settings (VRM 1.0 VRMC_vrm.lookAt, or VRM 0.x "
                              "firstPerson.lookAtTypeName 'Bone' or 'BlendShape')");
     }
-    const auto boneInRange = [&](int node) { return node >= 0 && std::size_t(node) < model.nodes.size(); };
-    if (!boneInRange(settings->head)) throwLoadError(path, "--look-at: the file's humanoid has no head bone");
-    const std::vector<int> parents = parentsOf(model);
+    // readHumanoid() keeps only bones whose nodes are in range.
+    const auto boneNode = [&](const char* bone) {
+        if (humanoid == nullptr) return -1;
+        const auto found = humanoid->nodeOfBone.find(bone);
+        return found == humanoid->nodeOfBone.end() ? -1 : found->second;
+    };
+    const int head = boneNode("head");
+    const int leftEye = boneNode("leftEye");
+    const int rightEye = boneNode("rightEye");
+    if (head < 0) throwLoadError(path, "--look-at: the file's humanoid has no head bone");
+    const std::vector<int> parents = nodeParents(model);
 
     // The look-at space: at offsetFromHeadBone in the head's frame, turned as the head turned from its rest pose (so
     // at rest its axes are the model's), and for a 0.x character turned round to face -Z.
-    const glm::dmat4 headWorld = worldOf(settings->head, parents, poses);
+    const glm::dmat4 headWorld = worldOf(head, parents, poses);
     const glm::dquat faceFront = settings->facesMinusZ ? glm::angleAxis(glm::pi<double>(), glm::dvec3(0.0, 1.0, 0.0))
                                                        : glm::dquat(1.0, 0.0, 0.0, 0.0);
     const glm::dquat space =
-        rotationOf(headWorld) * glm::inverse(rotationOf(worldOf(settings->head, parents, restPoses))) * faceFront;
+        rotationOf(headWorld) * glm::inverse(rotationOf(worldOf(head, parents, restPoses))) * faceFront;
     const glm::dvec3 origin(headWorld * glm::dvec4(settings->offsetFromHead, 1.0));
     const glm::dvec3 local = glm::inverse(space) * (target - origin);
     VrmGaze gaze;
@@ -196,10 +173,10 @@ VrmGaze applyVrmLookAt(const std::string& path, const tinygltf::Model& model, co
         double yawDegrees;
     };
     std::vector<std::pair<int, glm::dquat>> turned;
-    for (const Turn& eye : {Turn{settings->leftEye, leftYaw}, Turn{settings->rightEye, rightYaw}}) {
-        if (!boneInRange(eye.node)) {
+    for (const Turn& eye : {Turn{leftEye, leftYaw}, Turn{rightEye, rightYaw}}) {
+        if (eye.node < 0) {
             throwLoadError(path, std::string("--look-at: the file's look-at type is bone but its humanoid has no ") +
-                                     (eye.node == settings->leftEye ? "leftEye" : "rightEye") + " bone");
+                                     (eye.node == leftEye ? "leftEye" : "rightEye") + " bone");
         }
         if (poses[std::size_t(eye.node)].matrix) {
             throwLoadError(path, "--look-at: eye bone node " + std::to_string(eye.node) +

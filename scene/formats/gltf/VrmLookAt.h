@@ -15,6 +15,7 @@ class Model;
 
 namespace inkgraph::detail {
 
+struct Humanoid;
 struct NodePose;
 class VrmExpressions;
 
@@ -28,11 +29,12 @@ struct VrmGaze {
 
 /** Makes the character of `model` look at `target` (world coordinates of the file): for look-at type bone
  *  ("Bone" in 0.x) the leftEye and rightEye humanoid bones of `poses` are turned; for type expression ("BlendShape")
- *  the weights of lookUp, lookDown, lookLeft and lookRight in `expressions` are set (those the file has). The look-at
- *  space hangs from the head bone as `poses` place it, turned back by its rest rotation (`restPoses`). Throws
- *  SceneError through throwLoadError() for a file without VRM look-at settings or without the bones they need. */
-VrmGaze applyVrmLookAt(const std::string& path, const tinygltf::Model& model, const glm::dvec3& target,
-                       const std::vector<NodePose>& restPoses, std::vector<NodePose>& poses,
+ *  the weights of lookUp, lookDown, lookLeft and lookRight in `expressions` are set (those the file has). The bones
+ *  are `humanoid`'s (VrmHumanoid.h readHumanoid(); null: none). The look-at space hangs from the head bone as `poses`
+ *  place it, turned back by its rest rotation (`restPoses`). Throws SceneError through throwLoadError() for a file
+ *  without VRM look-at settings or without the bones they need. */
+VrmGaze applyVrmLookAt(const std::string& path, const tinygltf::Model& model, const Humanoid* humanoid,
+                       const glm::dvec3& target, const std::vector<NodePose>& restPoses, std::vector<NodePose>& poses,
                        VrmExpressions& expressions);
 
 } // namespace inkgraph::detail
