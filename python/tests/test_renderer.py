@@ -164,13 +164,18 @@ def test_render_lets_other_python_threads_run_while_it_draws(suzanne):
     thread.start()
     # With a switch interval this long the interpreter never takes the GIL from the main thread: the observer, woken
     # by go, gets it only when the main thread gives it up, which render() does while it draws (else the observer
-    # would run at join(), after the render, and see inside False).
+    # would run at join(), after the renders, and see inside False). The OS may not schedule the woken observer during
+    # one short render on a loaded machine (this failed under a parallel ctest), so the main thread renders again,
+    # never giving up the GIL in between, until the observer has run in one.
     interval = sys.getswitchinterval()
     sys.setswitchinterval(1000)
     try:
         state["inside"] = True
         go.set()
-        inkgraph.render(suzanne, size=64)
+        for _ in range(50):
+            inkgraph.render(suzanne, size=64)
+            if state["seen"] is not None:
+                break
         state["inside"] = False
     finally:
         sys.setswitchinterval(interval)
