@@ -332,7 +332,7 @@ TEST(GltfMaterials, SpecularGlossinessDiffuseIsTheBaseColour) {
     const TempFile defaults("specular-glossiness-defaults.gltf",
                             triangleWithMaterial("{\"extensions\": {\"KHR_materials_pbrSpecularGlossiness\": {}}}",
                                                  "\"KHR_materials_pbrSpecularGlossiness\""));
-    const Material& plain = loadScene(defaults.path()).meshes.at(0).material;
+    const Material plain = loadScene(defaults.path()).meshes.at(0).material; // a copy: the scene is a temporary
     EXPECT_EQ(plain.baseColorFactor, glm::vec4(1.0f));
     EXPECT_FALSE(plain.baseColorTexture.present());
     EXPECT_EQ(plain.metallicFactor, 0.0f);
