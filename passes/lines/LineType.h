@@ -101,6 +101,10 @@ struct LineType {
     /** Its stroke rules (a seed strength), from the look; not set: the look's rules alone. */
     std::function<LineTypeStrokeRules(const Look& look)> strokeRules;
 
+    /** Draws the occluded part of another type's lines (`hidden-<type>`, --hidden-lines): its strokes are dashed by
+     *  --hidden-dash, in the raster and in the SVG. */
+    bool hiddenLines = false;
+
     /** Found as a skeleton at the data resolution (so --supersample applies, and --svg traces the skeleton). */
     bool strokedOnCpu() const { return family != LineFamily::GlDrawn; }
 };
