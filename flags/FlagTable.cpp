@@ -774,6 +774,30 @@ std::vector<Flag> makeFlags() {
                      throw UsageError("--gbuffer-precision: expected float or half, got '" + value + "'");
              })));
     flags.back().choices = {"float", "half"};
+    Flag widthMap = styleFlag(
+        flag({"--outline-width-map"}, "SOURCE", S::Lines,
+             "scale the outline, silhouette and MToon outline widths per vertex by a value in [0, 1] (0\n"
+             "hides the line there): color:C, channel C (R, G, B or A) of the vertex colour COLOR_0, or\n"
+             "texture:FILE:C, channel C of an image (PNG or JPEG, relative to the working directory; or the name of\n"
+             "an image of the model when no file is there) at the vertex's TEXCOORD_0, read as data (stored value /\n"
+             "255); none (default) leaves them. Times MToon's width texture. A mesh without the colours or\n"
+             "coordinates keeps its widths, with a warning (docs/lines.md \"Width from the model\")",
+             [](const std::string& value, RenderOptions& options) {
+                 try {
+                     options.look.outlineWidthMap = parseWidthMap(value);
+                 } catch (const std::invalid_argument& error) {
+                     throw UsageError(error.what());
+                 }
+             }));
+    widthMap.noEffect = [](const RenderOptions& options) -> std::string {
+        if (!options.look.outlineWidthMap.enabled() || options.look.draws("outline") ||
+            options.look.draws("silhouette") || traitsOf(options.look.shading).materialOutlines)
+            return "";
+        return "--outline-width-map has no effect: it scales outline and silhouette, neither of which is in --lines, "
+               "and MToon's outlines, which --shading " +
+               std::string(traitsOf(options.look.shading).name) + " does not draw";
+    };
+    flags.push_back(widthMap);
     flags.push_back(helpOnly(
         S::Lines, "",
         "Outline and silhouette draw nothing when the eye is inside the model (they would flood the picture)."));

@@ -7,6 +7,7 @@
 #include "passes/gbuffer/GBufferPrecision.h"
 #include "passes/lines/LineParameter.h"
 #include "passes/shade/ShadingModel.h"
+#include "passes/WidthMap.h"
 #include "scene/mesh/FaceOrientation.h"
 
 #include <glm/glm.hpp>
@@ -60,6 +61,9 @@ struct Look {
     /** Linear RGB of the uniform ambient light (--ambient), for the models with an ambient term; default: the model's
      *  (ShadingModelTraits::defaultAmbient). */
     std::optional<glm::dvec3> ambient;
+    /** --outline-width-map: the outline, silhouette and MToon-outline widths scaled per vertex by a vertex colour or
+     *  texture channel (passes/WidthMap.h); Source::None leaves them as they are. */
+    WidthMap outlineWidthMap;
 
     bool draws(const std::string& type) const { return std::find(lines.begin(), lines.end(), type) != lines.end(); }
     LineStyle styleOf(const std::string& type) const {

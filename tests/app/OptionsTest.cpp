@@ -202,6 +202,41 @@ TEST(Options, MsaaTakesOneTwoFourOrEightSamplesAndNeedsAShadingPass) {
               "--msaa has no effect with --shading none (only the shading is multisampled)");
 }
 
+TEST(Options, OutlineWidthMapTakesAVertexColourOrATextureChannelAndNeedsAnOutline) {
+    EXPECT_FALSE(parse({"m.obj", "-o", "x.png"}).look.outlineWidthMap.enabled());
+    const WidthMap colour = parse({"m.obj", "-o", "x.png", "--outline-width-map", "color:A"}).look.outlineWidthMap;
+    EXPECT_EQ(colour.source, WidthMap::Source::VertexColor);
+    EXPECT_EQ(colour.channel, 3);
+    EXPECT_EQ(colour.text(), "color:A");
+    // The channel is after the last colon, so a name may hold colons; lower case is taken.
+    const WidthMap texture =
+        parse({"m.obj", "-o", "x.png", "--outline-width-map", "texture:maps/a:b.png:g"}).look.outlineWidthMap;
+    EXPECT_EQ(texture.source, WidthMap::Source::Texture);
+    EXPECT_EQ(texture.texture, "maps/a:b.png");
+    EXPECT_EQ(texture.channel, 1);
+    EXPECT_EQ(texture.text(), "texture:maps/a:b.png:G");
+    EXPECT_EQ(parseWidthMap(texture.text()), texture);
+    EXPECT_FALSE(parse({"m.obj", "-o", "x.png", "--outline-width-map", "color:R", "--outline-width-map", "none"})
+                     .look.outlineWidthMap.enabled());
+    // Bad syntax and unknown channels: a usage error (exit 2) naming the flag and quoting the value.
+    for (const char* value : {"color", "color:", "color:X", "color:RG", "colour:R", "texture:a.png", "texture::G",
+                              "texture:a.png:Q", "vertex:R"}) {
+        const std::string message = usageMessage({"m.obj", "-o", "x.png", "--outline-width-map", value});
+        EXPECT_EQ(message.rfind("--outline-width-map: ", 0), 0u) << value << ": " << message;
+        EXPECT_NE(message.find(std::string("got '") + value + "'"), std::string::npos) << message;
+    }
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--outline-width-map", "color:X"}).find("unknown channel 'X'"),
+              std::string::npos);
+    // It scales outline, silhouette and MToon's outlines: with none of them it has no effect.
+    EXPECT_EQ(usageMessage(
+                  {"m.obj", "-o", "x.png", "--shading", "cel", "--lines", "contour", "--outline-width-map", "color:R"}),
+              "--outline-width-map has no effect: it scales outline and silhouette, neither of which is in --lines, "
+              "and MToon's outlines, which --shading cel does not draw");
+    EXPECT_TRUE(
+        parse({"m.obj", "-o", "x.png", "--shading", "mtoon", "--lines", "contour", "--outline-width-map", "color:R"})
+            .look.outlineWidthMap.enabled());
+}
+
 TEST(Options, GBufferPrecision) {
     EXPECT_EQ(parse({"m.obj", "-o", "x.png"}).look.gbufferPrecision, GBufferPrecision::Float32);
     EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--gbuffer-precision", "half"}).look.gbufferPrecision,
