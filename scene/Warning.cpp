@@ -66,6 +66,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::GltfParserMessage, "gltf-parser-message", "what tinygltf reported about a file it still read"},
         {K::ShadeMapUnused, "shade-map-unused", "meshes name shade maps, which the --shading model does not use"},
         {K::ModelOutsideView, "model-outside-view", "the camera sees none of the model: the picture is blank paper"},
+        {K::WidthMapUnread, "width-map-unread",
+         "a mesh lacks the vertex colours or texture coordinates --outline-width-map reads; its widths stay unscaled"},
     };
     return kCodes;
 }

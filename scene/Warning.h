@@ -54,6 +54,7 @@ enum class WarningKind {
     GltfParserMessage,
     ShadeMapUnused,
     ModelOutsideView,
+    WidthMapUnread,
     Count ///< not a kind: the number of them
 };
 

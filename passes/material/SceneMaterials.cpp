@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 namespace inkgraph {
 namespace {
@@ -63,6 +64,23 @@ DecodedImage downscaled(const DecodedImage& decoded, int maxSide) {
     cv::resize(source, target, target.size(), 0, 0, cv::INTER_AREA);
     smaller.rgba = std::move(pixels);
     return smaller;
+}
+
+/** `decoded` as a GL texture with mipmaps: colour (`srgb`: base colour, emissive, shade) in sRGB storage, so the
+ *  sampler decodes to linear before filtering, as glTF's colours need; data (MToon's outline width, a width map) as it
+ *  is. */
+GlHandle<TextureDeleter> uploaded(const DecodedImage& decoded, bool srgb, const std::string& label) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    GlHandle<TextureDeleter> handle(id);
+    glTextureStorage2D(id, mipmapLevels(decoded.width, decoded.height), srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8,
+                       decoded.width, decoded.height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    // Rows top first, as decoded: GL's t = 0 is then the image's top row, which is glTF's v = 0.
+    glTextureSubImage2D(id, 0, 0, 0, decoded.width, decoded.height, GL_RGBA, GL_UNSIGNED_BYTE, decoded.rgba.get());
+    glGenerateTextureMipmap(id);
+    labelObject(GL_TEXTURE, id, label);
+    return handle;
 }
 
 } // namespace
@@ -122,20 +140,75 @@ GLuint SceneMaterials::texture(const TextureRef& reference, bool srgb) {
                                {"uploaded", {smaller.width, smaller.height}}});
         decoded = smaller;
     }
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &id);
-    GlHandle<TextureDeleter> handle(id);
-    // Colour in sRGB storage: the sampler decodes to linear before filtering, as glTF's base colour and emissive need.
-    // Data (MToon's outline width) as it is.
-    glTextureStorage2D(id, mipmapLevels(decoded.width, decoded.height), srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8,
-                       decoded.width, decoded.height);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    // Rows top first, as decoded: GL's t = 0 is then the image's top row, which is glTF's v = 0.
-    glTextureSubImage2D(id, 0, 0, 0, decoded.width, decoded.height, GL_RGBA, GL_UNSIGNED_BYTE, decoded.rgba.get());
-    glGenerateTextureMipmap(id);
-    labelObject(GL_TEXTURE, id, "image " + std::to_string(reference.image));
+    GlHandle<TextureDeleter> handle = uploaded(decoded, srgb, "image " + std::to_string(reference.image));
     mTextureBytes += decodedImageBytes(decoded.width, decoded.height);
     return mTextures.emplace(key, std::move(handle)).first->second.id();
+}
+
+void SceneMaterials::bindWidthMap(const GlProgram& program, std::size_t meshIndex, const WidthMap& map) {
+    const Mesh& mesh = mScene.meshes.at(meshIndex);
+    int source = 0;
+    if (map.source == WidthMap::Source::VertexColor) source = mesh.colors.empty() ? 0 : 1;
+    if (map.source == WidthMap::Source::Texture) source = mesh.texcoords[0].empty() ? 0 : 2;
+    if (map.enabled() && source == 0 && mWidthMapUnreadMeshes.insert(meshIndex).second) {
+        // Warned, not refused: in a batch of characters, one without vertex colours still gets its lines (at the
+        // widths the flags say), and --strict makes it an error for whoever wants one.
+        const std::string lacks = map.source == WidthMap::Source::VertexColor ? "vertex colours (COLOR_0)"
+                                                                              : "texture coordinates (TEXCOORD_0)";
+        mWarnings.push_back(makeWarning(WarningKind::WidthMapUnread,
+                                        "mesh '" + detail::excerptForMessage(mesh.name) + "' has no " + lacks +
+                                            " for --outline-width-map " + map.text() +
+                                            ": its outline widths are left unscaled",
+                                        mModelPath, "mesh '" + detail::excerptForMessage(mesh.name) + "'"));
+    }
+    glUniform1i(program.uniform("outlineWidthMapSource"), source);
+    glUniform1i(program.uniform("outlineWidthMapChannel"), map.channel);
+    if (map.source != WidthMap::Source::Texture) return;
+    // Resolved even when this mesh has no texture coordinates, so a misspelt file is refused whatever the model.
+    if (mWidthMapTexture == 0 || mWidthMapName != map.texture) {
+        mWidthMapFileTexture = {};
+        mWidthMapTexture = 0;
+        const std::string what = "SceneMaterials::bindWidthMap(): --outline-width-map: '" + map.texture + "'";
+        std::error_code error;
+        if (std::filesystem::exists(map.texture, error)) {
+            // A file: decoded as data (its stored values / 255, as MToon's width texture), charged to the limit.
+            const std::size_t left = mTextureByteLimit > mTextureBytes ? mTextureByteLimit - mTextureBytes : 0;
+            DecodedImage decoded;
+            try {
+                decoded = decodeSceneImage(SceneImage{map.texture, map.texture, {}, nullptr}, 0, mModelPath, left);
+            } catch (const ImageUnusableError& unusable) {
+                throw SceneError(what + ": " + unusable.problem());
+            }
+            const int maxSide = maxTextureSide();
+            if (decoded.width > maxSide || decoded.height > maxSide) decoded = downscaled(decoded, maxSide);
+            mWidthMapFileTexture = uploaded(decoded, false, "--outline-width-map " + map.texture);
+            mTextureBytes += decodedImageBytes(decoded.width, decoded.height);
+            mWidthMapTexture = mWidthMapFileTexture.id();
+        } else {
+            std::string names;
+            for (std::size_t image = 0; image < mScene.images.size() && mWidthMapTexture == 0; ++image) {
+                if (mScene.images[image].name == map.texture) {
+                    TextureRef reference;
+                    reference.image = int(image);
+                    mWidthMapTexture = texture(reference, /*srgb=*/false);
+                    if (mWidthMapTexture == 0) // missing or undecodable: texture() has warned; a refusal here
+                        throw SceneError(what + ": the model's image of that name cannot be decoded");
+                }
+                if (!mScene.images[image].name.empty())
+                    names += (names.empty() ? "'" : ", '") + detail::excerptForMessage(mScene.images[image].name) + "'";
+            }
+            if (mWidthMapTexture == 0)
+                throw SceneError(what + " is neither a file nor the name of an image of '" + mModelPath +
+                                 "' (its named images: " + (names.empty() ? "none" : names) + ")");
+        }
+        mWidthMapName = map.texture;
+    }
+    if (source != 2) return;
+    glBindTextureUnit(kWidthMapTextureUnit, mWidthMapTexture);
+    // Clamped to the edge: a map laid over [0, 1] must not blend its two ends (its left edge with its right).
+    TextureSampler clamped;
+    clamped.wrapS = clamped.wrapT = TextureWrap::ClampToEdge;
+    glBindSampler(kWidthMapTextureUnit, sampler(clamped));
 }
 
 void SceneMaterials::describe(nlohmann::ordered_json& out) const {

@@ -5,6 +5,7 @@
  *  colours, alpha cut-outs, metallic-roughness and MToon parameters mean the same in each. */
 
 #include "gl/GlObjects.h"
+#include "passes/WidthMap.h"
 #include "scene/Scene.h"
 
 #include <nlohmann/json.hpp>
@@ -29,6 +30,7 @@ inline constexpr GLuint kShadingShiftTextureUnit = 9;
 inline constexpr GLuint kNormalTextureUnit = 10;
 inline constexpr GLuint kUvAnimationMaskTextureUnit = 11;
 inline constexpr GLuint kMetallicRoughnessTextureUnit = 13; ///< shaders/common/pbr.glsl
+inline constexpr GLuint kWidthMapTextureUnit = 14;          ///< shaders/common/width_map.glsl
 
 /** Vertex attribute locations of the material snippet (positions and normals are 0 and 1). */
 inline constexpr GLuint kTexcoord0Location = 2;
@@ -94,6 +96,15 @@ public:
      * (`srgb`: base colour, emissive, shade) is stored sRGB8_ALPHA8, so sampling decodes it to linear; data (the
      * outline width, metallic-roughness) RGBA8 as is. */
     GLuint texture(const TextureRef& reference, bool srgb = true);
+    /** Sets shaders/common/width_map.glsl's uniforms of `program` (in use) for mesh `meshIndex` and `map`
+     *  (--outline-width-map), binding its texture, decoded and uploaded on the first call of the run (the passes that
+     *  draw a width-scaled band call this; nothing is decoded otherwise). The texture is the file at map.texture when
+     *  one is there, else the model's image of that name. A mesh that lacks what the map reads (COLOR_0 for
+     *  `color:`, TEXCOORD_0 for `texture:`) is drawn unscaled, with a width-map-unread warning (once per mesh).
+     *  Throws SceneError naming --outline-width-map and the file when the file cannot be read or decoded, or when
+     *  neither a file nor a model image has that name; the memory limit's refusal as texture()'s. */
+    void bindWidthMap(const GlProgram& program, std::size_t meshIndex, const WidthMap& map);
+
     /** A sampler object with the reference's filters and wraps. */
     GLuint sampler(const TextureSampler& settings);
 
@@ -109,6 +120,12 @@ private:
     std::set<int> mUnusableImages;                                        ///< Scene::images indices warned about
     nlohmann::ordered_json mDescribedUnusable = nlohmann::ordered_json::array(); ///< for --stats: image, name, reason
     std::vector<std::pair<TextureSampler, GlHandle<SamplerDeleter>>> mSamplers;
+    /** bindWidthMap()'s texture: the name it was made for, and the GL texture (a file's, owned here) or the model
+     *  image's id from mTextures. */
+    std::string mWidthMapName;
+    GlHandle<TextureDeleter> mWidthMapFileTexture;
+    GLuint mWidthMapTexture = 0;
+    std::set<std::size_t> mWidthMapUnreadMeshes; ///< warned about already
 };
 
 /** Back-face culling as the material says: on (GL_BACK, counter-clockwise fronts) for a single-sided glTF material,
