@@ -26,8 +26,8 @@ cv::Vec4f displayColor(const glm::dvec4& color) {
  *  for an outline, else empty, and the unread pass is culled. */
 std::string addMToonOutline(const StillGraphSetup& setup, StillGraph& graph) {
     if (!traitsOf(graph.shadingModel).materialOutlines) return {};
-    graph.passes.push_back(std::make_unique<MToonOutlinePass>(kMToonOutlinePass, setup.shaders, setup.gpuScene,
-                                                              setup.frame, setup.look.msaa));
+    graph.passes.push_back(std::make_unique<MToonOutlinePass>(
+        kMToonOutlinePass, setup.shaders, setup.gpuScene, setup.frame, setup.look.msaa, setup.look.outlineWidthMap));
     return MToonOutlinePass::drawsAnyOutline(setup.gpuScene.scene()) ? kMToonOutlinePass : "";
 }
 

@@ -13,8 +13,9 @@
 namespace inkgraph {
 
 MToonOutlinePass::MToonOutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-                                   int samples)
-    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSamples(samples) {
+                                   int samples, WidthMap widthMap)
+    : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSamples(samples),
+      mWidthMap(std::move(widthMap)) {
     if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
         throw std::invalid_argument("MToonOutlinePass(): samples must be 1, 2, 4 or 8, got " + std::to_string(samples));
 }
@@ -39,6 +40,7 @@ void MToonOutlinePass::declare(PassBuilder& builder) const {
 void MToonOutlinePass::describe(nlohmann::ordered_json& report) const {
     report["shells"] = mShellsDrawn;
     report["triangles"] = mTrianglesDrawn;
+    if (mWidthMap.enabled()) report["width_map"] = mWidthMap.text();
 }
 
 void MToonOutlinePass::prepare(GlPassContext&) {
@@ -51,7 +53,7 @@ void MToonOutlinePass::prepare(GlPassContext&) {
                             "mtoon/outline.frag",
                             {"MATERIAL_EMISSIVE 1"},
                             {"common/color.glsl", "common/hull.glsl", "common/material.glsl", "common/lighting.glsl",
-                             "common/mtoon.glsl"}}));
+                             "common/mtoon.glsl", "common/width_map.glsl"}}));
     mScene.meshes();
     mScene.hullArrays(); // the shells are the hulls, made outside the timed execute()
 }
@@ -86,6 +88,7 @@ void MToonOutlinePass::execute(GlPassContext& gl) {
     for (std::size_t index = 0; index < meshes.size(); ++index) {
         if (!mScene.materials().outlineOf(index)) continue;
         mScene.bindMaterial(program, index, MaterialUse::Colour);
+        mScene.materials().bindWidthMap(program, index, mWidthMap);
         mScene.hullArrays()[index].bind();
         glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
         ++mShellsDrawn;

@@ -35,6 +35,7 @@
 #include "gl/ShaderLibrary.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/WidthMap.h"
 
 #include <memory>
 #include <string>
@@ -47,15 +48,17 @@ inline constexpr const char* kMToonOutlinePass = "mtoon-outline";
 class MToonOutlinePass : public GlPass {
 public:
     /** `samples`: per pixel of both fields, the shade pass's (ShadeSettings::msaa): 1, 2, 4 or 8; std::invalid_argument
-     *  otherwise. */
+     *  otherwise. `widthMap` (--outline-width-map) scales each shell's width per vertex, times the material's own
+     *  width texture (shaders/common/width_map.glsl). */
     MToonOutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-                     int samples = 1);
+                     int samples = 1, WidthMap widthMap = {});
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
     void prepare(GlPassContext& context) override;
     void execute(GlPassContext& context) override;
-    /** For --stats: the meshes whose shells the last run drew and their triangles. */
+    /** For --stats: the meshes whose shells the last run drew and their triangles, and the width map's flag value
+     *  when there is one. */
     void describe(nlohmann::ordered_json& report) const override;
 
     /** Whether some mesh's material of `scene` asks for an outline (outlineOf(), passes/material/SceneMaterials.h):
@@ -71,6 +74,7 @@ private:
     GpuScene& mScene;
     const FrameParams& mFrame;
     int mSamples = 1;
+    WidthMap mWidthMap;
     std::unique_ptr<GlProgram> mProgram;
     std::size_t mShellsDrawn = 0;
     std::size_t mTrianglesDrawn = 0;

@@ -86,9 +86,9 @@ std::vector<std::uint32_t> outlineEdgeIndices(std::span<const glm::vec3> positio
 }
 
 OutlinePass::OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-                         float widthPixels)
+                         float widthPixels, WidthMap widthMap)
     : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mWidthPixels(widthPixels),
-      mDepth(mName + " model depth") {
+      mWidthMap(std::move(widthMap)), mDepth(mName + " model depth") {
     if (!std::isfinite(mWidthPixels) || mWidthPixels < 0.0f)
         throw std::invalid_argument("OutlinePass(): pass '" + mName + "': 'widthPixels' must be finite and >= 0, got " +
                                     std::to_string(mWidthPixels));
@@ -102,21 +102,25 @@ void OutlinePass::declare(PassBuilder& builder) const {
                    "the band GL drew for " + mName + ", at the output size, before the stroke stage thins it"});
 }
 
-void OutlinePass::describe(nlohmann::ordered_json& report) const { report["skipped_eye_inside"] = skippedEyeInside(); }
+void OutlinePass::describe(nlohmann::ordered_json& report) const {
+    report["skipped_eye_inside"] = skippedEyeInside();
+    if (mWidthMap.enabled()) report["width_map"] = mWidthMap.text();
+}
 
 void OutlinePass::prepare(GlPassContext&) {
     if (!mDepthProgram)
-        mDepthProgram = std::make_unique<GlProgram>(mShaders.build({mName + " model depth",
-                                                                    "outline/outline.vert",
-                                                                    "common/line_mask.frag",
-                                                                    materialAlphaDefines(mScene),
-                                                                    {"common/material.glsl"}}));
+        mDepthProgram =
+            std::make_unique<GlProgram>(mShaders.build({mName + " model depth",
+                                                        "outline/outline.vert",
+                                                        "common/line_mask.frag",
+                                                        materialAlphaDefines(mScene),
+                                                        {"common/material.glsl", "common/width_map.glsl"}}));
     if (!mLineProgram)
         mLineProgram = std::make_unique<GlProgram>(mShaders.build({mName + " contour edges",
                                                                    "outline/outline.vert",
                                                                    "common/line_mask.frag",
                                                                    materialAlphaDefines(mScene),
-                                                                   {"common/material.glsl"},
+                                                                   {"common/material.glsl", "common/width_map.glsl"},
                                                                    "outline/outline.geom"}));
     const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
     if (!mEdges.empty()) return;
@@ -169,6 +173,7 @@ void OutlinePass::execute(GlPassContext& gl) {
     for (std::size_t index = 0; index < mEdges.size(); ++index) {
         if (mEdges[index].indexCount == 0) continue;
         if (transparency) mScene.bindMaterial(*mLineProgram, index, MaterialUse::Coverage);
+        mScene.materials().bindWidthMap(*mLineProgram, index, mWidthMap);
         mEdges[index].vertexArray->bind();
         glDrawElements(GL_LINES_ADJACENCY, mEdges[index].indexCount, GL_UNSIGNED_INT, nullptr);
     }

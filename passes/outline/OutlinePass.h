@@ -9,7 +9,9 @@
  *  | reads         |        |          | nothing from the graph (meshes and adjacency from GpuScene) |
  *  | <name>.lines  | r8     | required | 255 where the outline shows, else 0                         |
  *
- *  `widthPixels` is the visible width outside the silhouette.
+ *  `widthPixels` is the visible width outside the silhouette, scaled per vertex by `widthMap` (--outline-width-map,
+ *  shaders/common/width_map.glsl): each edge's band is the width at its two ends, a trapezoid between, and nothing
+ *  where both ends are 0.
  *
  *  Which edges. Lander drew every back face as thick wireframe; that also inks the interior edges of a sheet seen
  *  from behind (a double-sided card's diagonal) and lets wide edge quads of a layer just behind the visible one (a
@@ -41,6 +43,7 @@
 #include "gl/GlPass.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/WidthMap.h"
 #include "scene/mesh/EdgeAdjacency.h"
 
 #include <glm/glm.hpp>
@@ -67,7 +70,8 @@ std::vector<std::uint32_t> outlineEdgeIndices(std::span<const glm::vec3> positio
 class OutlinePass : public GlPass {
 public:
     /** Throws std::invalid_argument for a negative or non-finite width. */
-    OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame, float widthPixels);
+    OutlinePass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame, float widthPixels,
+                WidthMap widthMap = {});
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
@@ -76,7 +80,7 @@ public:
     void prepare(GlPassContext& context) override;
     void execute(GlPassContext& context) override;
 
-    /** "skipped_eye_inside": skippedEyeInside(). */
+    /** "skipped_eye_inside": skippedEyeInside(); "width_map": the width map's flag value, when there is one. */
     void describe(nlohmann::ordered_json& report) const override;
 
     /** True when the last execute() left the mask empty because the eye was inside a mesh (for --stats). */
@@ -95,6 +99,7 @@ private:
     GpuScene& mScene;
     const FrameParams& mFrame;
     float mWidthPixels;
+    WidthMap mWidthMap;
     std::unique_ptr<GlProgram> mDepthProgram; ///< the model, depth only
     std::unique_ptr<GlProgram> mLineProgram;  ///< contour and border edges as quads
     std::vector<EdgeList> mEdges;             ///< one per mesh once prepared, else empty

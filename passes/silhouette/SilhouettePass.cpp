@@ -43,24 +43,27 @@ void SilhouettePass::declare(PassBuilder& builder) const {
 void SilhouettePass::describe(nlohmann::ordered_json& report) const {
     report["skipped_eye_inside"] = skippedEyeInside();
     report["model_depth"] = mModelDepthResource.empty() ? "drawn by the pass" : mModelDepthResource;
+    if (mSettings.widthMap.enabled()) report["width_map"] = mSettings.widthMap.text();
 }
 
 void SilhouettePass::prepare(GlPassContext& gl) {
     mModelDepthResource = !mSettings.modelDepth.empty() && gl.reads(mSettings.modelDepth) ? mSettings.modelDepth : "";
     if (!mDepthProgram && mModelDepthResource.empty())
-        mDepthProgram = std::make_unique<GlProgram>(mShaders.build({mName + " model depth",
-                                                                    "silhouette/hull.vert",
-                                                                    "common/line_mask.frag",
-                                                                    materialAlphaDefines(mScene),
-                                                                    {"common/hull.glsl", "common/material.glsl"}}));
+        mDepthProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName + " model depth",
+                            "silhouette/hull.vert",
+                            "common/line_mask.frag",
+                            materialAlphaDefines(mScene),
+                            {"common/hull.glsl", "common/material.glsl", "common/width_map.glsl"}}));
     if (!mHullProgram) {
         std::vector<std::string> defines = materialAlphaDefines(mScene);
         defines.push_back(mSettings.objectWidth ? "HULL_OBJECT_WIDTH 1" : "HULL_SCREEN_WIDTH 1");
-        mHullProgram = std::make_unique<GlProgram>(mShaders.build({mName + " hull",
-                                                                   "silhouette/hull.vert",
-                                                                   "common/line_mask.frag",
-                                                                   defines,
-                                                                   {"common/hull.glsl", "common/material.glsl"}}));
+        mHullProgram = std::make_unique<GlProgram>(
+            mShaders.build({mName + " hull",
+                            "silhouette/hull.vert",
+                            "common/line_mask.frag",
+                            defines,
+                            {"common/hull.glsl", "common/material.glsl", "common/width_map.glsl"}}));
     }
     mScene.meshes();
     if (mSettings.weldNormals) mScene.hullArrays(); // made in prepare(), outside the timed execute()
@@ -108,6 +111,7 @@ void SilhouettePass::execute(GlPassContext& gl) {
     for (std::size_t index = 0; index < meshes.size(); ++index) {
         // A cut-out's hull is cut where the surface is (its vertices carry the surface's texture coordinates).
         if (transparency) mScene.bindMaterial(*mHullProgram, index, MaterialUse::Coverage);
+        mScene.materials().bindWidthMap(*mHullProgram, index, mSettings.widthMap);
         (mSettings.weldNormals ? mScene.hullArrays()[index] : meshes[index].vertexArray).bind();
         glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
     }

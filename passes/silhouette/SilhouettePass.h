@@ -29,6 +29,7 @@
 #include "gl/GlPass.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/WidthMap.h"
 
 #include <memory>
 #include <optional>
@@ -48,6 +49,9 @@ struct HullSettings {
      *  the pass draws itself, when its writer runs anyway (declare() asks the compiler): one draw of the meshes
      *  fewer. Empty: the pass always draws its own. */
     std::string modelDepth{};
+    /** Scales either width per vertex (--outline-width-map, shaders/common/width_map.glsl): a vertex at 0 stays on
+     *  the surface, and the hull shows nothing there. */
+    WidthMap widthMap{};
 };
 
 class SilhouettePass : public GlPass {

@@ -1,7 +1,7 @@
 // MToon's outline shell (the mtoon-outline pass, docs/mtoon.md): the mesh pushed out along its hull normals by its
 // material's outline width, in model units (worldCoordinates) or as a share of the picture's height
 // (screenCoordinates: the offset is scaled by clip w, so it survives the perspective divide unchanged), times the
-// width texture's green channel.
+// width texture's green channel and --outline-width-map (common/width_map.glsl).
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inHullNormal; // unit, position-welded
 
@@ -28,12 +28,12 @@ void main() {
     vec3 position = inPosition;
     float screenPixels = 0.0;
     passMaterialAttributes();
-    float width = mtoonOutlineWidthFactor;
+    // The material's width texture (its green channel) and --outline-width-map, through the one function
+    // (common/width_map.glsl), multiplied.
+    float width = mtoonOutlineWidthFactor * outlineWidthMapFactor();
     if (mtoonOutlineWidthMultiplyTextured != 0)
-        width *= textureLod(mtoonOutlineWidthMultiplyTexture,
-                            materialVertexTexcoord(mtoonOutlineWidthMultiplySet, mtoonOutlineWidthMultiplyTransform),
-                            0.0)
-                     .g;
+        width *= widthMapFactor(2, 1, mtoonOutlineWidthMultiplyTexture,
+                                materialVertexTexcoord(mtoonOutlineWidthMultiplySet, mtoonOutlineWidthMultiplyTransform));
     if (mtoonOutlineMode == 1) position += width * inHullNormal;
     if (mtoonOutlineMode == 2) screenPixels = width * viewportSize.y; // a share of the picture's height
     vec4 view = viewFromModel * vec4(position, 1.0);

@@ -10,6 +10,7 @@ uniform vec2 viewportSize; // pixels
 uniform float widthPixels;
 
 in vec3 viewPosition[];
+in float widthFactor[]; // --outline-width-map at each vertex (outline.vert)
 // common/material.glsl's attributes, passed on per corner so line_mask.frag cuts the edges a material cuts out
 // (always passed: the fragment stage declares the block whether or not it reads it).
 in MaterialVarying {
@@ -67,6 +68,11 @@ void main() {
     if (!border && (sideFirst * sideSecond < 0.0 || (sideFirst == 0.0 && sideSecond == 0.0))) return;
     float surfaceSide = sideFirst != 0.0 ? sideFirst : sideSecond;
 
+    // The band is widthPixels times the width map at each end, a trapezoid between; nothing where both ends are 0.
+    float widthA = widthPixels * widthFactor[1];
+    float widthB = widthPixels * widthFactor[2];
+    if (widthA <= 0.0 && widthB <= 0.0) return;
+
     vec4 clipA = gl_in[1].gl_Position;
     vec4 clipB = gl_in[2].gl_Position;
     if (!clipToNearPlane(clipA, clipB)) return;
@@ -78,12 +84,11 @@ void main() {
         // Seen end-on (along the line of sight), or with its faces in the plane through the eye: no outer side to
         // choose, so a square around the point, or a band on both sides.
         vec2 direction = edgeLength > 1e-4 ? along / edgeLength : vec2(1.0, 0.0);
-        vec2 lengthwise = direction * widthPixels;
-        vec2 across = vec2(-direction.y, direction.x) * widthPixels;
-        emitCorner(clipA, -lengthwise - across, 1);
-        emitCorner(clipA, -lengthwise + across, 1);
-        emitCorner(clipB, lengthwise - across, 2);
-        emitCorner(clipB, lengthwise + across, 2);
+        vec2 across = vec2(-direction.y, direction.x);
+        emitCorner(clipA, -direction * widthA - across * widthA, 1);
+        emitCorner(clipA, -direction * widthA + across * widthA, 1);
+        emitCorner(clipB, direction * widthB - across * widthB, 2);
+        emitCorner(clipB, direction * widthB + across * widthB, 2);
         EndPrimitive();
         return;
     }
@@ -96,12 +101,10 @@ void main() {
     vec2 towardFaces = surfaceSide * vec2(planeNormal.x / (clipFromView[0][0] * viewportSize.x),
                                           planeNormal.y / (clipFromView[1][1] * viewportSize.y));
     if (dot(across, towardFaces) > 0.0) across = -across;
-    // Square caps widthPixels long close the joins at the chain's convex corners.
-    vec2 lengthwise = direction * widthPixels;
-    across *= widthPixels;
-    emitCorner(clipA, -lengthwise, 1);
-    emitCorner(clipA, -lengthwise + across, 1);
-    emitCorner(clipB, lengthwise, 2);
-    emitCorner(clipB, lengthwise + across, 2);
+    // Square caps as long as the band is wide close the joins at the chain's convex corners.
+    emitCorner(clipA, -direction * widthA, 1);
+    emitCorner(clipA, -direction * widthA + across * widthA, 1);
+    emitCorner(clipB, direction * widthB, 2);
+    emitCorner(clipB, direction * widthB + across * widthB, 2);
     EndPrimitive();
 }

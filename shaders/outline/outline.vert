@@ -6,10 +6,12 @@ uniform mat4 viewFromModel;
 uniform mat4 clipFromView;
 
 out vec3 viewPosition;
+out float widthFactor; // --outline-width-map at this vertex (common/width_map.glsl), for the geometry stage
 
 void main() {
     vec4 position = viewFromModel * vec4(inPosition, 1.0);
     viewPosition = position.xyz;
+    widthFactor = outlineWidthMapFactor();
     gl_Position = clipFromView * position;
 #ifdef MATERIAL_ALPHA
     passMaterialAttributes();

@@ -19,11 +19,13 @@ invariant gl_Position;
 void main() {
     vec3 position = inPosition;
     float screenPixels = 0.0;
+    // Scaled per vertex by --outline-width-map (common/width_map.glsl); 0 leaves the vertex on the surface, where
+    // the strictly-nearer test leaves it out.
 #ifdef HULL_OBJECT_WIDTH
-    position += objectWidth * inHullNormal;
+    position += objectWidth * outlineWidthMapFactor() * inHullNormal;
 #endif
 #ifdef HULL_SCREEN_WIDTH
-    screenPixels = widthPixels;
+    screenPixels = widthPixels * outlineWidthMapFactor();
 #endif
 #ifdef MATERIAL_ALPHA
     passMaterialAttributes();

@@ -14,7 +14,7 @@ void describeSkipped(const LineStatsSource& source, const std::string& passName,
     if (const Pass* pass = source.pass(passName)) {
         nlohmann::ordered_json report;
         pass->describe(report);
-        for (const char* key : {"skipped_eye_inside", "model_depth"})
+        for (const char* key : {"skipped_eye_inside", "model_depth", "width_map"})
             if (report.contains(key)) entry[key] = report[key];
     }
 }
@@ -43,7 +43,8 @@ LineType outlineLineType() {
     type.build = [](const std::string& name, LineGraphBuilder& builder) {
         const LineGraphSetup& setup = builder.setup();
         builder.add(std::make_unique<OutlinePass>(name, setup.shaders, setup.scene, setup.frame,
-                                                  float(setup.look.styleOf(name).widthPixels)));
+                                                  float(setup.look.styleOf(name).widthPixels),
+                                                  setup.look.outlineWidthMap));
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
         describeSkipped(source, "outline", entry);
@@ -65,6 +66,7 @@ LineType silhouetteLineType() {
         if (auto width = setup.look.lineParameters.numberIfSet(kSilhouetteObjectWidth))
             hull.objectWidth = float(*width);
         hull.modelDepth = setup.modelDepth;
+        hull.widthMap = setup.look.outlineWidthMap;
         builder.add(std::make_unique<SilhouettePass>(name, setup.shaders, setup.scene, setup.frame, hull));
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
