@@ -193,6 +193,12 @@ Look& Look::setShadeMap(const std::string& path) {
     return *this;
 }
 
+std::string Look::outlineWidthMap() const { return mImpl->parsed.look.outlineWidthMap.text(); }
+Look& Look::setOutlineWidthMap(const std::string& source) {
+    setFlag(*this, "Look::setOutlineWidthMap()", "--outline-width-map", source);
+    return *this;
+}
+
 ViewVector Look::viewVector() const { return static_cast<ViewVector>(mImpl->parsed.look.viewVector); }
 Look& Look::setViewVector(ViewVector mode) {
     setFlag(*this, "Look::setViewVector()", "--view-vector", nameOf(mode));

@@ -297,6 +297,10 @@ public:
     Look& setBands(int bands);
     std::string shadeMap() const; ///< cel or comic: a PNG; "" is the built-in map
     Look& setShadeMap(const std::string& path);
+    /** --outline-width-map: "none", "color:R" or "texture:FILE:G" (the outline, silhouette and MToon outline widths
+     *  scaled per vertex by a vertex colour or texture channel). */
+    std::string outlineWidthMap() const;
+    Look& setOutlineWidthMap(const std::string& source);
     ViewVector viewVector() const;
     Look& setViewVector(ViewVector mode);
     FaceOrientation faceOrientation() const;
