@@ -616,9 +616,9 @@ void defineEnums(py::module_& m) {
 
 /** The names Look(**fields) and Frame(**fields) take: the settable properties. */
 const std::vector<std::string> kLookFields{
-    "shading",           "shininess", "bands",   "shade_map", "view_vector", "face_orientation",
-    "front_rule",        "light",     "ambient", "paper",     "supersample", "msaa",
-    "gbuffer_precision", "lines",     "strokes"};
+    "shading", "shininess",        "bands", "shade_map",   "view_vector", "face_orientation",  "front_rule",
+    "light",   "ambient",          "paper", "supersample", "msaa",        "gbuffer_precision", "lines",
+    "strokes", "outline_width_map"};
 const std::vector<std::string> kFrameFields{"eye",  "orbit",       "target",      "up",        "fov",
                                             "clip", "placement",   "frame_nodes", "animation", "time",
                                             "pose", "expressions", "look_at"};
@@ -688,6 +688,11 @@ void defineLook(py::module_& m) {
             "shade_map", &ig::Look::shadeMap,
             [](ig::Look& self, const std::filesystem::path& path) { self.setShadeMap(path.string()); },
             "--shademap (cel, comic): a PNG; '' is the built-in map.")
+        .def_property(
+            "outline_width_map", &ig::Look::outlineWidthMap,
+            [](ig::Look& self, const std::string& source) { self.setOutlineWidthMap(source); },
+            "--outline-width-map: 'none', 'color:R' or 'texture:FILE:G' (outline, silhouette and MToon outline widths "
+            "scaled per vertex).")
         .def_property(
             "view_vector", &ig::Look::viewVector,
             [](ig::Look& self, py::handle value) {

@@ -231,6 +231,7 @@ class Look:
         gbuffer_precision: Precision | str = ...,
         lines: Iterable[LineType | str] = ...,
         strokes: StrokeSettings = ...,
+        outline_width_map: str = ...,
     ) -> None: ...
     @staticmethod
     def from_arguments(arguments: Sequence[str]) -> Look: ...
@@ -254,6 +255,7 @@ class Look:
     gbuffer_precision: Precision
     lines: list[LineType]
     strokes: StrokeSettings
+    outline_width_map: str
     def line_style(self, type: LineType | str) -> LineStyle: ...
     def set_line_style(self: _Self, type: LineType | str, style: LineStyle) -> _Self: ...
     @staticmethod
