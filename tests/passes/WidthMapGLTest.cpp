@@ -5,6 +5,7 @@
 // MToon's shell is its width x the map x its own width texture. Needs a GL context (llvmpipe in CI).
 #include "passes/mtoon/MToonOutlinePass.h"
 #include "passes/outline/OutlinePass.h"
+#include "passes/StillGraph.h"
 #include "passes/silhouette/SilhouettePass.h"
 
 #include "LineMaskTestSupport.h"
@@ -251,6 +252,35 @@ TEST_F(WidthMapCylinder, AnUnreadableOrUnknownTextureIsRefusedNamingIt) {
         }
     }
     std::filesystem::remove(corrupt);
+}
+
+/** The look's map reaches both GL-drawn types through the still graph, the silhouette then testing its hull against
+ *  the G-buffer's z-buffer (the G-buffer runs for its coverage): the vertices the map leaves on the surface must land
+ *  on that depth to the bit, or r = 0 would show specks. */
+TEST_F(WidthMapCylinder, TheStillGraphDrawsTheLooksMapForOutlineAndSilhouette) {
+    Look look;
+    look.shading = ShadingModel::None;
+    look.lines = {"outline", "silhouette"};
+    look.lineStyles["outline"].widthPixels = kBandPixels;
+    look.lineStyles["silhouette"].widthPixels = kBandPixels;
+    look.outlineWidthMap = parseWidthMap("color:R");
+    StillGraphSetup setup{look, shaders, scene, computeBoundingSphere(scene), *gpuScene, frame, std::nullopt};
+    const StillGraph graph = buildStillGraph(setup);
+    const Plan plan = compile(graph.view(), {"outline.lines", "silhouette.lines", "gbuffer.coverage"});
+    ASSERT_NE(plan.findPass("silhouette"), nullptr);
+    EXPECT_EQ(plan.findPass("silhouette")->reads, std::vector<std::string>{"gbuffer.zBuffer"});
+    executor.run(plan, graph.mutableView(), {kWidth, kHeight, false});
+    std::ostringstream measured;
+    for (const char* type : {"outline", "silhouette"}) {
+        SCOPED_TRACE(type);
+        test::LineRender render;
+        render.lines = executor.store().image(std::string(type) + ".lines").clone();
+        render.coverage = executor.store().image("gbuffer.coverage").clone();
+        measured << " " << type << ":";
+        expectRampBands(render, measured);
+    }
+    executor.store().clear();
+    std::cout << "still graph bands (above/below) for W = 8 px:" << measured.str() << "\n";
 }
 
 /** MToon's shell on a unit sphere at distance 4, world width w: with the map (every vertex's R = 1/2) and the
