@@ -107,6 +107,9 @@ OutputSet::OutputSet(const RenderOptions& options) {
 std::vector<RunInput> inputsNamedBy(const RenderOptions& options) {
     std::vector<RunInput> inputs = {{options.modelPath, "the model itself"}};
     if (!options.look.shadeMapPath.empty()) inputs.push_back({options.look.shadeMapPath, "the --shademap itself"});
+    // A model image's name is no file: the identity check skips it.
+    if (options.look.outlineWidthMap.source == WidthMap::Source::Texture)
+        inputs.push_back({options.look.outlineWidthMap.texture, "the --outline-width-map image"});
     if (!options.stylePath.empty()) inputs.push_back({options.stylePath, "the --style file"});
     if (!options.listPath.empty() && options.listPath != "-") inputs.push_back({options.listPath, "the --list file"});
     return inputs;

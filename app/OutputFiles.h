@@ -25,7 +25,8 @@
 
 namespace inkgraph {
 
-/** The files a render reads that its options name: the model, --shademap, --style and --list (unless "-"). */
+/** The files a render reads that its options name: the model, --shademap, --outline-width-map's image, --style and
+ *  --list (unless "-"). */
 std::vector<RunInput> inputsNamedBy(const RenderOptions& options);
 
 class OutputSet {

@@ -2,6 +2,7 @@
 #include "tests/app/OptionsTestSupport.h"
 #include "flags/Options.h"
 #include "app/Cli.h"
+#include "app/OutputFiles.h"
 #include "app/Render.h"
 #include "app/StillOutputs.h"
 #include "passes/lines/LineTypes.h"
@@ -235,6 +236,12 @@ TEST(Options, OutlineWidthMapTakesAVertexColourOrATextureChannelAndNeedsAnOutlin
     EXPECT_TRUE(
         parse({"m.obj", "-o", "x.png", "--shading", "mtoon", "--lines", "contour", "--outline-width-map", "color:R"})
             .look.outlineWidthMap.enabled());
+    // Its file is an input, which no output may overwrite (as --shademap's).
+    const std::vector<RunInput> inputs =
+        inputsNamedBy(parse({"m.obj", "-o", "x.png", "--outline-width-map", "texture:ramp.png:G"}));
+    EXPECT_TRUE(std::ranges::any_of(inputs, [](const RunInput& input) {
+        return input.path == "ramp.png" && input.what == "the --outline-width-map image";
+    }));
 }
 
 TEST(Options, GBufferPrecision) {
