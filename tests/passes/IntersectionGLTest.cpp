@@ -34,8 +34,9 @@ class Intersection : public ::testing::Test, protected test::PassHarness {
 protected:
     void SetUp() override { test::sharedGlContext(); }
 
-    /** Renders `meshes` with the two intersection types; fills the skeletons' points (output pixels). */
-    void render(std::vector<Mesh> meshes) {
+    /** Renders `meshes` with the two intersection types (or only `lines`, then fills nothing); fills the skeletons'
+     *  points (output pixels). */
+    void render(std::vector<Mesh> meshes, std::vector<std::string> lines = {"intersection", "hidden-intersection"}) {
         scene = Scene{};
         scene.meshes = std::move(meshes);
         frame.camera = test::lookingAt(scene, eye, glm::dvec3(0.0), 35.0, kSize, kSize);
@@ -43,12 +44,16 @@ protected:
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
         Look look;
         look.shading = ShadingModel::None;
-        look.lines = {"intersection", "hidden-intersection"};
+        look.lines = lines;
+        const bool intersections = lines.size() == 2 && lines[0] == "intersection";
         StillGraphSetup setup{look, shaders, scene, computeBoundingSphere(scene), *gpuScene, frame, std::nullopt};
         const StillGraph graph = buildStillGraph(setup);
         const Plan plan =
-            compile(graph.view(), {graph.finalResource, "intersection.skeleton", "hidden-intersection.skeleton"});
+            intersections
+                ? compile(graph.view(), {graph.finalResource, "intersection.skeleton", "hidden-intersection.skeleton"})
+                : compile(graph.view(), {graph.finalResource});
         executor.run(plan, graph.mutableView(), {kSize, kSize, false});
+        if (!intersections) return;
         visible = pointsOf("intersection.skeleton");
         hidden = pointsOf("hidden-intersection.skeleton");
     }
@@ -147,6 +152,16 @@ TEST_F(Intersection, BoxesTouchingWithoutCrossingDrawNone) {
     EXPECT_GT(gpuScene->meshIntersections().report.pairsTested, 0u);
     EXPECT_TRUE(visible.empty());
     EXPECT_TRUE(hidden.empty());
+}
+
+TEST_F(Intersection, TheSegmentsAreDerivedOnlyWhenAnIntersectionTypeRuns) {
+    render({makeCube({-0.5f, 0.0f, 0.0f}, 0.5f), makeCube({0.2f, 0.1f, 0.0f}, 0.5f)}, {"contour"});
+    EXPECT_FALSE(gpuScene->meshIntersectionsComputed());
+    render({makeCube({-0.5f, 0.0f, 0.0f}, 0.5f), makeCube({0.2f, 0.1f, 0.0f}, 0.5f)});
+    EXPECT_TRUE(gpuScene->meshIntersectionsComputed());
+    // Crossing boxes: their segments are drawn.
+    EXPECT_FALSE(gpuScene->meshIntersections().segments.empty());
+    EXPECT_FALSE(visible.empty());
 }
 
 TEST_F(Intersection, TheTypesAreRegisteredAsObjectSpaceWithTheirHiddenTwin) {
