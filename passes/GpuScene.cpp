@@ -195,6 +195,16 @@ const MeshCurvature& GpuScene::meshCurvature(std::size_t meshIndex, double smoot
     return mMeshCurvature[meshIndex];
 }
 
+const MeshIntersections& GpuScene::meshIntersections() {
+    if (!mMeshIntersections) {
+        std::vector<const WeldMap*> welds;
+        welds.reserve(mScene.meshes.size());
+        for (std::size_t index = 0; index < mScene.meshes.size(); ++index) welds.push_back(&positionWeld(index));
+        mMeshIntersections = findMeshIntersections(mScene.meshes, welds);
+    }
+    return *mMeshIntersections;
+}
+
 bool GpuScene::containsPoint(glm::dvec3 worldPoint) {
     if (mContainmentPoint == worldPoint) return mContainsPoint;
     mContainsPoint = false;
@@ -217,6 +227,8 @@ void GpuScene::importDerived(const std::string& name) {
         for (std::size_t mesh = 0; mesh < meshCount(); ++mesh) edgeAdjacency(mesh);
     } else if (name == SceneImport::kFaceOrientation) {
         cpuOrientation();
+    } else if (name == SceneImport::kIntersections) {
+        meshIntersections();
     } else if (name != SceneImport::kCurvature) { // derived by its reader, at the smoothing it asks for
         throw std::logic_error("GpuScene::importDerived(): no scene import '" + name + "'");
     }

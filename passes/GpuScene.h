@@ -9,6 +9,7 @@
 #include "passes/orientation/OrientationSettings.h"
 #include "scene/mesh/EdgeAdjacency.h"
 #include "scene/mesh/MeshCurvature.h"
+#include "scene/mesh/MeshIntersections.h"
 #include "scene/mesh/MeshOps.h"
 #include "scene/Scene.h"
 
@@ -33,6 +34,8 @@ inline constexpr const char* kEdgeAdjacency = "scene.edge-adjacency";     ///< e
 inline constexpr const char* kFaceOrientation = "scene.face-orientation"; ///< cpuOrientation()
 /** meshCurvature(): declared by the object-space suggestive contours, derived by them at their smoothing. */
 inline constexpr const char* kCurvature = "scene.curvature";
+/** meshIntersections(): declared by the intersection line types (`intersection`, `hidden-intersection`). */
+inline constexpr const char* kIntersections = "scene.intersections";
 } // namespace SceneImport
 
 class GpuScene {
@@ -104,6 +107,12 @@ public:
         return !mMeshCurvature.empty() && mMeshCurvatureSmoothing == smoothing;
     }
 
+    /** Where the scene's surfaces cross (scene/mesh/MeshIntersections.h: segments between meshes and within each, in
+     *  the scene's local frame), on positionWeld() of every mesh. View-independent CPU data, derived once per scene
+     *  the first time it is asked for (only a pass that runs asks: the intersection line types). */
+    const MeshIntersections& meshIntersections();
+    bool meshIntersectionsComputed() const { return mMeshIntersections.has_value(); }
+
     std::size_t meshCount() const { return mScene.meshes.size(); }
     /** The scene the meshes were uploaded from (their CPU triangles, in the same vertex order as meshes()). */
     const Scene& scene() const { return mScene; }
@@ -164,6 +173,7 @@ private:
     std::vector<EdgeAdjacency> mEdgeAdjacency;            ///< one per mesh once computed, else empty
     std::vector<MeshCurvature> mMeshCurvature;            ///< one per mesh once computed, else empty
     double mMeshCurvatureSmoothing = 0.0;                 ///< the smoothing mMeshCurvature was derived with
+    std::optional<MeshIntersections> mMeshIntersections;  ///< once computed
     std::optional<glm::dvec3> mContainmentPoint;          ///< the last point containsPoint() was asked about
     bool mContainsPoint = false;
     const FrameParams* mOrientationFrame = nullptr; ///< set by setOrientation()

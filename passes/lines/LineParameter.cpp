@@ -70,8 +70,8 @@ const LineParameter kDepthJump{
     "depth-jump",
     "R",
     "in the G-buffer, neighbouring pixels whose depths differ by more than R x the nearer depth are different "
-    "surfaces; on the mesh (suggestive-object), a line point more than R x the depth behind the visible surface is "
-    "hidden (default 0.05)",
+    "surfaces; on the mesh (suggestive-object, intersection), a line point more than R x the depth behind the visible "
+    "surface is hidden (default 0.05)",
     {},
     0.05,
     "",

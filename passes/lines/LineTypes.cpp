@@ -18,13 +18,28 @@ LineType suggestiveLineType();
 LineType suggestiveObjectLineType();
 LineType contourLineType();
 LineType meshSilhouetteLineType();
+LineType intersectionLineType();
+LineType hiddenIntersectionLineType();
+LineType hiddenSuggestiveObjectLineType();
 
 const std::vector<LineType>& lineTypes() {
     // The composite order: later types are drawn over earlier ones.
     static const std::vector<LineType> kTypes = {
-        outlineLineType(),          silhouetteLineType(), normalEdgeLineType(),       depthEdgeLineType(),
-        creaseLineType(),           borderLineType(),     materialBoundaryLineType(), suggestiveLineType(),
-        suggestiveObjectLineType(), contourLineType(),    meshSilhouetteLineType(),
+        // Hidden lines first: under every visible line.
+        hiddenIntersectionLineType(),
+        hiddenSuggestiveObjectLineType(),
+        outlineLineType(),
+        silhouetteLineType(),
+        normalEdgeLineType(),
+        depthEdgeLineType(),
+        creaseLineType(),
+        borderLineType(),
+        intersectionLineType(),
+        materialBoundaryLineType(),
+        suggestiveLineType(),
+        suggestiveObjectLineType(),
+        contourLineType(),
+        meshSilhouetteLineType(),
     };
     return kTypes;
 }

@@ -156,12 +156,15 @@ class Shading(_Enum):
     def from_name(name: str) -> Shading: ...
 
 class LineType(_Enum):
+    HIDDEN_INTERSECTION: ClassVar[LineType]
+    HIDDEN_SUGGESTIVE_OBJECT: ClassVar[LineType]
     OUTLINE: ClassVar[LineType]
     SILHOUETTE: ClassVar[LineType]
     NORMAL_EDGE: ClassVar[LineType]
     DEPTH_EDGE: ClassVar[LineType]
     CREASE: ClassVar[LineType]
     BORDER: ClassVar[LineType]
+    INTERSECTION: ClassVar[LineType]
     MATERIAL_BOUNDARY: ClassVar[LineType]
     SUGGESTIVE: ClassVar[LineType]
     SUGGESTIVE_OBJECT: ClassVar[LineType]

@@ -242,9 +242,9 @@ def test_enum_names_are_the_command_lines():
     assert inkgraph.FaceOrientation.DURING_VERTICES.cli_name == "during-vertices"
     assert inkgraph.Precision.FLOAT16.cli_name == "half"
     assert inkgraph.Renderer.Platform.SURFACELESS.cli_name == "surfaceless"
-    # Every line type of the library, in composite order.
-    assert [t.cli_name for t in inkgraph.LineType.__members__.values()][:3] == ["outline", "silhouette",
-                                                                                "normal-edge"]
+    # Every line type of the library, in composite order: the hidden lines first, under every visible one.
+    assert [t.cli_name for t in inkgraph.LineType.__members__.values()][:3] == ["hidden-intersection",
+                                                                                "hidden-suggestive-object", "outline"]
 
 
 def test_value_types_are_immutable_values():

@@ -178,8 +178,9 @@ TEST(ApiNames, TheEnumsAreTheRegistriesInTheirOrder) {
     EXPECT_EQ(orientations, availableNames("--face-orientation"));
     for (const std::string& name : lineTypes) EXPECT_EQ(ig::nameOf(ig::lineTypeNamed(name)), name);
     EXPECT_STREQ(errorOf([] { ig::lineTypeNamed("sketchy"); }).what(),
-                 "lineTypeNamed(): no line type 'sketchy' (there are: outline, silhouette, normal-edge, depth-edge, "
-                 "crease, border, material-boundary, suggestive, suggestive-object, contour, mesh-silhouette)");
+                 "lineTypeNamed(): no line type 'sketchy' (there are: hidden-intersection, hidden-suggestive-object, "
+                 "outline, silhouette, normal-edge, depth-edge, crease, border, intersection, material-boundary, "
+                 "suggestive, suggestive-object, contour, mesh-silhouette)");
 }
 
 TEST(ApiBufferNames, AreTheLooksWithoutTheGraphsNames) {

@@ -27,7 +27,7 @@ namespace {
 constexpr int kSize = 512;
 constexpr double kFovDegrees = 35.0;
 
-enum class Source { Contour, Suggestive, SuggestiveObject, DepthEdge, NormalEdge };
+enum class Source { Contour, Suggestive, SuggestiveObject, HiddenSuggestiveObject, DepthEdge, NormalEdge };
 
 /** Which kernel a layer runs, with the suggestive settings both suggestive kernels take. */
 struct LineSettings {
@@ -44,6 +44,9 @@ std::unique_ptr<LineKernel> kernelFor(const LineSettings& settings, GpuScene& sc
     case Source::Suggestive: return std::make_unique<SuggestiveKernel>("gbuffer", settings.suggestive, frame);
     case Source::SuggestiveObject:
         return std::make_unique<ObjectSuggestiveKernel>("gbuffer", settings.suggestive, 0.0, scene, frame);
+    case Source::HiddenSuggestiveObject:
+        return std::make_unique<ObjectSuggestiveKernel>("gbuffer", settings.suggestive, 0.0, scene, frame,
+                                                        SegmentVisibility::Hidden);
     case Source::DepthEdge: return std::make_unique<DepthEdgeKernel>("gbuffer", DepthEdgeSettings{});
     case Source::NormalEdge: return std::make_unique<NormalEdgeKernel>("gbuffer", NormalEdgeSettings{});
     }
@@ -279,6 +282,46 @@ TEST_F(LineLayers, ObjectSpaceSuggestiveContoursAreHiddenBehindNearerSurfaces) {
     EXPECT_EQ(shareNear(visible, unoccluded, 0.01), 1.0);
     RecordProperty("points_alone", int(unoccluded.size()));
     RecordProperty("points_behind_ball", int(visible.size()));
+}
+
+TEST_F(LineLayers, HiddenObjectSpaceSuggestiveContoursAreTheSamplesTheVisibleOnesDrop) {
+    // The torus and ball of the test above: the hidden layer (hidden-suggestive-object) keeps exactly the samples in
+    // the frame the visible one drops, so with the ball the line behind it moves from one layer to the other.
+    const glm::dvec3 eye = 4.0 * glm::dvec3(std::cos(glm::radians(30.0)), 0.0, std::sin(glm::radians(30.0)));
+    const Mesh torus = makeTorus(1.0f, 0.35f, 256, 96);
+    LineSettings settings = withSource(Source::SuggestiveObject);
+    settings.suggestive.featureSize = 0.0675f;
+    LineSettings hiddenSettings = settings;
+    hiddenSettings.source = Source::HiddenSuggestiveObject;
+    look(torus, eye, 256);
+    draw(settings);
+    const std::vector<LinePoint> visibleAlone = skeleton().points;
+    draw(hiddenSettings);
+    const std::vector<LinePoint> hiddenAlone = skeleton().points;
+
+    Mesh occluded = torus;
+    const Mesh ball = makeUvSphere({1.9f, 0.38f, 1.14f}, 0.3f, 48, 24);
+    const auto offset = std::uint32_t(occluded.positions.size());
+    occluded.positions.insert(occluded.positions.end(), ball.positions.begin(), ball.positions.end());
+    occluded.normals.insert(occluded.normals.end(), ball.normals.begin(), ball.normals.end());
+    for (const glm::uvec3& triangle : ball.triangles) occluded.triangles.push_back(triangle + offset);
+    look(occluded, eye, 256);
+    draw(settings);
+    const std::vector<LinePoint> visible = skeleton().points;
+    draw(hiddenSettings);
+    const std::vector<LinePoint> hidden = skeleton().points;
+
+    // The same samples, split otherwise: the two layers together are the same points with and without the ball.
+    EXPECT_EQ(visible.size() + hidden.size(), visibleAlone.size() + hiddenAlone.size());
+    // The line behind the ball went over: at least 30% of the points (the test above measured 273 -> 132).
+    EXPECT_GE(double(hidden.size()) - double(hiddenAlone.size()), 0.3 * double(visibleAlone.size()));
+    // Every hidden point is one of the lines' points, and none is also drawn visible.
+    std::vector<LinePoint> all = visibleAlone;
+    all.insert(all.end(), hiddenAlone.begin(), hiddenAlone.end());
+    EXPECT_EQ(shareNear(hidden, all, 0.01), 1.0);
+    EXPECT_EQ(shareNear(hidden, visible, 0.001), 0.0);
+    RecordProperty("hidden_alone", int(hiddenAlone.size()));
+    RecordProperty("hidden_behind_ball", int(hidden.size()));
 }
 
 TEST_F(LineLayers, CurvatureIsDerivedOnlyWhenObjectSpaceLinesRun) {

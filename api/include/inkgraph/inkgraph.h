@@ -217,14 +217,18 @@ struct Color {
 /** `--shading`: how surfaces are shaded (docs/shading.md). Auto (the default): each material its own model, MToon
  *  where it has one, cel elsewhere. */
 enum class Shading { None, Flat, Gouraud, Lambert, Phong, Cel, Comic, MToon, Auto };
-/** The line types, in the order the composite draws them (`--lines`; docs/lines.md). */
+/** The line types, in the order the composite draws them (`--lines`; docs/lines.md): the hidden-line types first,
+ *  under every visible line. */
 enum class LineType {
+    HiddenIntersection,
+    HiddenSuggestiveObject,
     Outline,
     Silhouette,
     NormalEdge,
     DepthEdge,
     Crease,
     Border,
+    Intersection,
     MaterialBoundary,
     Suggestive,
     SuggestiveObject,

@@ -17,10 +17,6 @@ using line_parameters::kSuggestiveFade;
 using line_parameters::kSuggestiveSeed;
 using line_parameters::kSuggestiveThreshold;
 
-/** Object-space lines are sampled at most this far apart along the image (data pixels), so the one-pixel skeleton
- *  has no gaps and the stroke's discs overlap. */
-constexpr double kSampleSpacingPixels = 0.5;
-
 /** Points of the image-space central differences: 3 (fast) or 5 (fourth order). */
 const LineParameter kSuggestiveStencil{
     "suggestive-stencil",
@@ -153,83 +149,20 @@ void ObjectSuggestiveKernel::describe(nlohmann::ordered_json& entry) const {
 }
 
 LineSkeleton ObjectSuggestiveKernel::find(const std::vector<cv::Mat>& inputs) {
-    const cv::Mat& depth = inputs[0];
     mReport.segments = 0;
-    const Camera& camera = mFrame.camera;
-    const glm::dmat4 view = camera.viewMatrix();
-    const glm::dmat4 projection = camera.projectionMatrix();
-    const int width = depth.cols, height = depth.rows;
-    const double tolerance = 1.0 + double(mSettings.depthJump);
     ObjectSuggestiveSettings settings;
     settings.featureSize = mSettings.featureSize;
     settings.threshold = mSettings.threshold;
     settings.fade = mSettings.fade;
-
-    LineSkeleton skeleton;
-    skeleton.mask = cv::Mat::zeros(depth.size(), CV_8UC1);
-    // The rule in the header: some surface pixel centre of the 2 x 2 around the point is not nearer than it by more
-    // than the tolerance.
-    auto isVisible = [&](double x, double y, double pointDepth) {
-        const int left = int(std::floor(x)), top = int(std::floor(y));
-        for (int row = top; row <= top + 1; ++row)
-            for (int col = left; col <= left + 1; ++col) {
-                if (row < 0 || col < 0 || row >= height || col >= width) continue;
-                const double surface = depth.at<float>(row, col);
-                if (surface > 0.0 && pointDepth <= surface * tolerance) return true;
-            }
-        return false;
-    };
-    // Pixel coordinates of a clip-space point: x right, y down, pixel centres at integers.
-    auto toPixel = [&](const glm::dvec4& clip) {
-        return glm::dvec2((clip.x / clip.w + 1.0) * 0.5 * width - 0.5, (1.0 - clip.y / clip.w) * 0.5 * height - 0.5);
-    };
-
+    SegmentProjector projector(mFrame.camera, inputs[0], double(mSettings.depthJump), mKeep);
     for (std::size_t mesh = 0; mesh < mScene.meshCount(); ++mesh) {
-        const std::vector<SuggestiveSegment> segments =
-            extractObjectSuggestiveContours(mScene.meshCurvature(mesh, mCurvatureSmoothing), camera.eye, settings);
+        const std::vector<SuggestiveSegment> segments = extractObjectSuggestiveContours(
+            mScene.meshCurvature(mesh, mCurvatureSmoothing), mFrame.camera.eye, settings);
         mReport.segments += segments.size();
-        for (const SuggestiveSegment& segment : segments) {
-            const glm::dvec4 viewA = view * glm::dvec4(segment.ends[0], 1.0);
-            const glm::dvec4 viewB = view * glm::dvec4(segment.ends[1], 1.0);
-            const glm::dvec4 clipA = projection * viewA, clipB = projection * viewB;
-            // Clip to GL's near (z >= -w) and far (z <= w) planes, as the rasteriser does.
-            double from = 0.0, to = 1.0;
-            bool outside = false;
-            for (const double side : {1.0, -1.0}) {
-                const double a = clipA.w + side * clipA.z, b = clipB.w + side * clipB.z;
-                if (a < 0.0 && b < 0.0)
-                    outside = true;
-                else if (a < 0.0)
-                    from = std::max(from, a / (a - b));
-                else if (b < 0.0)
-                    to = std::min(to, a / (a - b));
-            }
-            if (outside || !(to > from)) continue;
-            const glm::dvec2 start = toPixel(clipA + from * (clipB - clipA));
-            const glm::dvec2 end = toPixel(clipA + to * (clipB - clipA));
-            // Linear view depth at the clipped ends; its reciprocal is linear along the image under perspective.
-            const double startDepth = -(viewA.z + from * (viewB.z - viewA.z));
-            const double endDepth = -(viewA.z + to * (viewB.z - viewA.z));
-            const int steps = std::max(1, int(std::ceil(glm::length(end - start) / kSampleSpacingPixels)));
-            for (int step = 0; step <= steps; ++step) {
-                const double s = double(step) / double(steps);
-                const double inverseDepth = (1.0 - s) / startDepth + s / endDepth;
-                const double pointDepth = 1.0 / inverseDepth;
-                // Where along the 3-D segment the sample lies, for the strength (linear there, as extracted).
-                const double along = from + (to - from) * (s / endDepth) / inverseDepth;
-                const double strength =
-                    std::min(1.0, segment.strengths[0] + along * (segment.strengths[1] - segment.strengths[0]));
-                if (!(strength > 0.0)) continue; // a cut end at the threshold: nothing to draw
-                const glm::dvec2 pixel = start + s * (end - start);
-                const int col = int(std::lround(pixel.x)), row = int(std::lround(pixel.y));
-                if (col < 0 || row < 0 || col >= width || row >= height) continue;
-                if (!isVisible(pixel.x, pixel.y, pointDepth)) continue;
-                skeleton.points.push_back({cv::Point2f(float(pixel.x), float(pixel.y)), float(strength)});
-                skeleton.mask.at<uchar>(row, col) = 255;
-            }
-        }
+        for (const SuggestiveSegment& segment : segments)
+            projector.add(segment.ends[0], segment.ends[1], segment.strengths[0], segment.strengths[1]);
     }
-    return skeleton;
+    return projector.take();
 }
 
 LineType suggestiveLineType() {
@@ -260,22 +193,24 @@ LineType suggestiveLineType() {
     return type;
 }
 
-LineType suggestiveObjectLineType() {
+namespace {
+
+/** suggestive-object, or with `keep` Hidden its occluded part (hidden-suggestive-object). */
+LineType objectSuggestiveType(std::string name, std::string help, SegmentVisibility keep) {
     LineType type;
-    type.name = "suggestive-object";
+    type.name = std::move(name);
     type.family = LineFamily::ObjectSpace;
-    type.help = "the same lines found on the mesh (object space): the zero set of\n"
-                "kappa_r from per-vertex curvature (Rusinkiewicz 2004) and rtsc's per-view test,\n"
-                "projected, hidden by the G-buffer depth (within --depth-jump), sub-pixel exact";
+    type.help = std::move(help);
+    type.hiddenLines = keep == SegmentVisibility::Hidden;
     type.strokeRules = seedRules;
     type.parameters = {&kDepthJump, &kSuggestiveThreshold, &kSuggestiveFade, &kSuggestiveSeed,
                        &kSuggestiveObjectSmoothing};
-    type.build = [](const std::string& name, LineGraphBuilder& builder) {
+    type.build = [keep](const std::string& typeName, LineGraphBuilder& builder) {
         const LineGraphSetup& setup = builder.setup();
         const double smoothing = setup.look.lineParameters.number(kSuggestiveObjectSmoothing) * setup.sphere.radius;
-        builder.addLayer(name, std::make_unique<ObjectSuggestiveKernel>(setup.gbuffer,
-                                                                        sharedSettings(setup.look, setup.sphere),
-                                                                        smoothing, setup.scene, setup.frame));
+        builder.addLayer(typeName, std::make_unique<ObjectSuggestiveKernel>(setup.gbuffer,
+                                                                            sharedSettings(setup.look, setup.sphere),
+                                                                            smoothing, setup.scene, setup.frame, keep));
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
         describeShared(source, entry, false);
@@ -283,6 +218,23 @@ LineType suggestiveObjectLineType() {
             source.look.lineParameters.number(kSuggestiveObjectSmoothing) * source.sphere.radius;
     };
     return type;
+}
+
+} // namespace
+
+LineType suggestiveObjectLineType() {
+    return objectSuggestiveType("suggestive-object",
+                                "the same lines found on the mesh (object space): the zero set of\n"
+                                "kappa_r from per-vertex curvature (Rusinkiewicz 2004) and rtsc's per-view test,\n"
+                                "projected, hidden by the G-buffer depth (within --depth-jump), sub-pixel exact",
+                                SegmentVisibility::Visible);
+}
+
+LineType hiddenSuggestiveObjectLineType() {
+    return objectSuggestiveType("hidden-suggestive-object",
+                                "the occluded part of suggestive-object's lines: the same samples,\n"
+                                "kept where the G-buffer depth hides them (beyond --depth-jump)",
+                                SegmentVisibility::Hidden);
 }
 
 } // namespace inkgraph

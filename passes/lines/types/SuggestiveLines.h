@@ -4,18 +4,14 @@
  *  G-buffer depth (object space). Both share one meaning of threshold, fade and feature size: the strength
  *  q = fs^2 tan(theta) D_w kappa_r.
  *
- *  Object space, per frame: the segments seen from the camera's eye are projected with the camera's own view and
- *  projection (in double: the G-buffer's matrices before rounding to float), clipped to the near and far planes, and
- *  sampled along the image every <= 0.5 data pixels (the depth perspective-correct, the strength linear along the 3-D
- *  segment). A sample is visible when one of the four pixel centres around it holds the model (depth > 0) at a linear
- *  depth d with z <= d (1 + depthJump): a point on the surface it lies on passes (its own pixel is at most a pixel's
- *  depth slope away), a point behind a nearer surface fails, background pixels beside a silhouette do not vote, and
- *  visibility is decided to within a pixel of an occluder's outline, as for the mesh edges. The curvature of every
- *  mesh (GpuScene::meshCurvature()) is derived in prepare() the first time the kernel runs, so a plan that culls the
- *  layer derives nothing. */
+ *  Object space, per frame: the segments seen from the camera's eye are projected, clipped, sampled and hidden by the
+ *  G-buffer depth as every object-space line is (passes/lines/ProjectedSegments.h); `hidden-suggestive-object` keeps
+ *  the hidden samples instead. The curvature of every mesh (GpuScene::meshCurvature()) is derived in prepare() the
+ *  first time the kernel runs, so a plan that culls the layer derives nothing. */
 
 #include "passes/GpuScene.h"
 #include "passes/lines/LineKernel.h"
+#include "passes/lines/ProjectedSegments.h"
 #include "postfx/SuggestiveContours.h"
 
 #include <string>
@@ -57,13 +53,13 @@ struct ObjectSuggestiveReport {
 
 /** Object space: reads "<gbuffer>.depth" for visibility; the meshes' curvature comes from `scene`, smoothed over
  *  `curvatureSmoothing` model units. `settings`: featureSize in model units, threshold, fade, and depthJump as the
- *  visibility tolerance. Both references must outlive the kernel. */
+ *  visibility tolerance. `keep`: the visible samples, or the hidden ones. Both references must outlive the kernel. */
 class ObjectSuggestiveKernel : public LineKernel {
 public:
     ObjectSuggestiveKernel(std::string gbuffer, SuggestiveSettings settings, double curvatureSmoothing, GpuScene& scene,
-                           const FrameParams& frame)
+                           const FrameParams& frame, SegmentVisibility keep = SegmentVisibility::Visible)
         : mGBuffer(std::move(gbuffer)), mSettings(settings), mCurvatureSmoothing(curvatureSmoothing), mScene(scene),
-          mFrame(frame) {}
+          mFrame(frame), mKeep(keep) {}
     std::vector<std::string> inputs() const override { return {mGBuffer + ".depth"}; }
     /** The meshes' curvature (SceneImport::kCurvature), derived here at this kernel's smoothing. */
     std::vector<std::string> sceneImports() const override { return {SceneImport::kCurvature}; }
@@ -78,6 +74,7 @@ private:
     double mCurvatureSmoothing;
     GpuScene& mScene;
     const FrameParams& mFrame;
+    SegmentVisibility mKeep;
     ObjectSuggestiveReport mReport;
 };
 
