@@ -12,8 +12,8 @@ namespace {
 
 /** The line types' names in LineType's order, which is the registry's (tests/api/ApiTest.cpp checks the two agree). */
 const char* const kLineTypeNames[] = {
-    "outline",           "silhouette", "normal-edge",       "depth-edge", "crease",         "border",
-    "material-boundary", "suggestive", "suggestive-object", "contour",    "mesh-silhouette"};
+    "outline",           "silhouette",      "normal-edge", "depth-edge",        "crease",  "border",
+    "material-boundary", "object-boundary", "suggestive",  "suggestive-object", "contour", "mesh-silhouette"};
 static_assert(std::size(kLineTypeNames) == std::size_t(LineType::MeshSilhouette) + 1);
 
 } // namespace

@@ -14,6 +14,7 @@ LineType depthEdgeLineType();
 LineType creaseLineType();
 LineType borderLineType();
 LineType materialBoundaryLineType();
+LineType objectBoundaryLineType();
 LineType suggestiveLineType();
 LineType suggestiveObjectLineType();
 LineType contourLineType();
@@ -22,9 +23,9 @@ LineType meshSilhouetteLineType();
 const std::vector<LineType>& lineTypes() {
     // The composite order: later types are drawn over earlier ones.
     static const std::vector<LineType> kTypes = {
-        outlineLineType(),          silhouetteLineType(), normalEdgeLineType(),       depthEdgeLineType(),
-        creaseLineType(),           borderLineType(),     materialBoundaryLineType(), suggestiveLineType(),
-        suggestiveObjectLineType(), contourLineType(),    meshSilhouetteLineType(),
+        outlineLineType(),    silhouetteLineType(),       normalEdgeLineType(),       depthEdgeLineType(),
+        creaseLineType(),     borderLineType(),           materialBoundaryLineType(), objectBoundaryLineType(),
+        suggestiveLineType(), suggestiveObjectLineType(), contourLineType(),          meshSilhouetteLineType(),
     };
     return kTypes;
 }
