@@ -49,8 +49,8 @@ const std::vector<GBufferPass::Field>& GBufferPass::fields() {
         {"materialId", Format::R32F, "MATERIAL_ID", "materialid.exr", Appearance::Data,
          "the material's id + 1 as an exact float (equal for meshes of one material), 0 off the model"},
         {"objectId", Format::R32F, "OBJECT_ID", "objectid.exr", Appearance::Data,
-         "the object's id + 1 as an exact float (one object per node instance; the manifest names them), 0 off the "
-         "model"},
+         "the object's id (its index + 1, one object per node instance, as the manifest lists them) as an exact "
+         "float, 0 off the model"},
     };
     return kFields;
 }
