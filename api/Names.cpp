@@ -11,20 +11,7 @@ inline namespace INKGRAPH_ABI_NAMESPACE {
 namespace {
 
 /** The line types' names in LineType's order, which is the registry's (tests/api/ApiTest.cpp checks the two agree). */
-const char* const kLineTypeNames[] = {"hidden-intersection",
-                                      "hidden-suggestive-object",
-                                      "outline",
-                                      "silhouette",
-                                      "normal-edge",
-                                      "depth-edge",
-                                      "crease",
-                                      "border",
-                                      "intersection",
-                                      "material-boundary",
-                                      "suggestive",
-                                      "suggestive-object",
-                                      "contour",
-                                      "mesh-silhouette"};
+const char* const kLineTypeNames[] = {"hidden-intersection", "hidden-suggestive-object", "outline", "silhouette", "normal-edge", "depth-edge", "crease", "border", "intersection", "material-boundary", "object-boundary", "suggestive", "suggestive-object", "contour", "mesh-silhouette"};
 static_assert(std::size(kLineTypeNames) == std::size_t(LineType::MeshSilhouette) + 1);
 
 } // namespace

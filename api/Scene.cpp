@@ -2,6 +2,7 @@
 
 #include "render/MemoryBudget.h"
 #include "scene/MeshArrays.h"
+#include "scene/ObjectIds.h"
 
 namespace inkgraph::api {
 inline namespace INKGRAPH_ABI_NAMESPACE {
@@ -90,6 +91,19 @@ const std::string& Scene::path() const { return mImpl->path; }
 std::size_t Scene::triangleCount() const { return mImpl->scene->triangleCount(); }
 std::size_t Scene::vertexCount() const { return mImpl->scene->vertexCount(); }
 std::size_t Scene::meshCount() const { return mImpl->scene->meshes.size(); }
+
+std::vector<SceneObject> Scene::objects() const {
+    const inkgraph::Scene& scene = *mImpl->scene;
+    const SceneObjects found = sceneObjects(scene);
+    std::vector<SceneObject> objects;
+    for (std::size_t index = 0; index < found.objects.size(); ++index) {
+        const inkgraph::SceneObject& object = found.objects[index];
+        SceneObject entry{std::uint32_t(index + 1), object.name, object.nodePath, {}};
+        for (const std::size_t mesh : object.meshes) entry.meshes.push_back(scene.meshes[mesh].name);
+        objects.push_back(std::move(entry));
+    }
+    return objects;
+}
 
 std::vector<Warning> Scene::warnings() const {
     std::vector<Warning> warnings;

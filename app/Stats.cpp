@@ -4,6 +4,7 @@
 #include "render/MemoryBudget.h"
 #include "app/StillOutputs.h"
 #include "passes/orientation/SceneOrientation.h"
+#include "scene/ObjectIds.h"
 
 namespace inkgraph {
 
@@ -19,6 +20,7 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
     stats["model"] = still.request.modelPath;
     stats["scene"] = {{"format", scene.report.format},
                       {"meshes", scene.meshes.size()},
+                      {"objects", sceneObjects(scene).objects.size()},
                       {"triangles", scene.triangleCount()},
                       {"vertices", scene.vertexCount()},
                       {"triangles_read", scene.report.trianglesRead},

@@ -6,6 +6,7 @@
 #include "postfx/Composite.h"
 #include "postfx/ContactSheet.h"
 #include "postfx/SvgLines.h"
+#include "scene/ObjectIds.h"
 
 #include <filesystem>
 #include <map>
@@ -88,14 +89,31 @@ std::string svgOf(const RenderOptions& options, const PreparedStill& still, Reso
     return svgDocument(options.width, options.height, still.graph.svgLayers(store, options.svgTolerance), document);
 }
 
+/** The objects the G-buffer's objectId field numbers (scene/ObjectIds.h): id (the field's value), the node's name,
+ *  its path and its meshes' names, for a reader of objectid.exr to tell which pixels belong to which node. */
+Json describeObjects(const Scene& scene) {
+    Json objects = Json::array();
+    const SceneObjects found = sceneObjects(scene);
+    for (std::size_t index = 0; index < found.objects.size(); ++index) {
+        const SceneObject& object = found.objects[index];
+        Json meshes = Json::array();
+        for (const std::size_t mesh : object.meshes) meshes.push_back(scene.meshes[mesh].name);
+        objects.push_back(
+            {{"id", index + 1}, {"name", object.name}, {"node_path", object.nodePath}, {"meshes", meshes}});
+    }
+    return objects;
+}
+
 /** --dump: every buffer the plan computed, then manifest.json. */
 void stageDump(const RenderOptions& options, const PreparedStill& still, StillResult& result, OutputSet& outputs) {
     ResourceStore& store = result.store();
     Json files = Json::array();
     std::set<std::string> usedNames;
+    bool objectIds = false;
     for (const PlannedResource& resource : still.plan.resources) {
         if (!store.contains(resource.name) || !hasPicture(resource)) continue;
         const std::string fileName = dumpFileName(resource);
+        objectIds = objectIds || resource.name == std::string(kGBufferPass) + ".objectId";
         if (!usedNames.insert(fileName).second)
             throw std::logic_error("stageDump(): two resources dump to '" + fileName + "'");
         // Image files hold straight alpha; the shading is premultiplied in memory (postfx/Composite.h).
@@ -120,6 +138,7 @@ void stageDump(const RenderOptions& options, const PreparedStill& still, StillRe
     manifest["toward_light_world"] = vectorJson(still.frame.towardLightWorld);
     manifest["look"] = describeLook(still, options.stylePath);
     manifest["files"] = files;
+    if (objectIds) manifest["objects"] = describeObjects(still.scene());
     manifest["passes"] = describeTimings(result.timings);
     outputs.stageDumpManifest(jsonText(manifest));
 }

@@ -325,9 +325,9 @@ std::vector<Flag> makeFlags() {
              "also write every buffer the plan computed, and manifest.json. What is computed follows\n"
              "from the request: shading reads the G-buffer only where lines do; add --request 'gbuffer.*' for\n"
              "normal.exr, view.exr, w.exr (float32 RGBA, alpha = coverage), ndotv.exr, depth.exr\n"
-             "(float32), coverage.png, basecolor.png, radial.exr, materialid.exr. Also shading.png, final.png,\n"
-             "lines-<type>.png. An earlier dump in DIR is replaced once everything is written; DIR must be new,\n"
-             "empty, or hold exactly an earlier dump",
+             "(float32), coverage.png, basecolor.png, radial.exr, materialid.exr, objectid.exr (the manifest\n"
+             "names the objects). Also shading.png, final.png, lines-<type>.png. An earlier dump in DIR is\n"
+             "replaced once everything is written; DIR must be new, empty, or hold exactly an earlier dump",
              [](const std::string& value, RenderOptions& options) { options.dumpDirectory = value; }));
     flags.push_back(flag({"--request"}, "LIST", S::Output,
                          "compute and keep extra graph outputs, comma-separated: 'gbuffer.wVec', or 'gbuffer.*'\n"

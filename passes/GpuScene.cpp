@@ -2,6 +2,7 @@
 
 #include "passes/orientation/SceneOrientation.h"
 #include "scene/MaterialIds.h"
+#include "scene/ObjectIds.h"
 #include "scene/mesh/MeshOps.h"
 
 #include <algorithm>
@@ -65,6 +66,7 @@ SceneOrientation* GpuScene::cpuOrientation() {
 const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
     if (mUploaded) return mMeshes;
     const std::vector<std::uint32_t> materials = materialIds(mScene);
+    const std::vector<std::uint32_t> objects = sceneObjects(mScene).ofMesh;
     mMeshes.reserve(mScene.meshes.size());
     for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
         const Mesh& mesh = mScene.meshes[index];
@@ -79,6 +81,7 @@ const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
                       static_cast<GLsizei>(mesh.triangles.size() * 3),
                       mesh.material.baseColorFactor,
                       materials[index],
+                      objects[index],
                       {},
                       &mesh.material};
         draw.materialAttributes = uploadMaterialAttributes(mesh, label);

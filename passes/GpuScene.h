@@ -48,6 +48,7 @@ public:
         GLsizei indexCount;
         glm::vec4 baseColor;
         std::uint32_t materialId;                ///< scene/MaterialIds.h: equal exactly for meshes of the same material
+        std::uint32_t objectIndex;               ///< scene/ObjectIds.h: the index of the mesh's object (node instance)
         MeshAttributeBuffers materialAttributes; ///< texture coordinates and colours, in vertexArray too
         const Material* material;                ///< the scene mesh's
     };

@@ -593,6 +593,7 @@ void defineEnums(py::module_& m) {
                    {"BORDER", L::Border},
                    {"INTERSECTION", L::Intersection},
                    {"MATERIAL_BOUNDARY", L::MaterialBoundary},
+                   {"OBJECT_BOUNDARY", L::ObjectBoundary},
                    {"SUGGESTIVE", L::Suggestive},
                    {"SUGGESTIVE_OBJECT", L::SuggestiveObject},
                    {"CONTOUR", L::Contour},
@@ -1063,6 +1064,17 @@ void defineScene(py::module_& m) {
         .def_property_readonly("triangle_count", &ig::Scene::triangleCount)
         .def_property_readonly("vertex_count", &ig::Scene::vertexCount)
         .def_property_readonly("mesh_count", &ig::Scene::meshCount)
+        .def_property_readonly(
+            "objects",
+            [](const ig::Scene& self) {
+                py::list objects;
+                for (const ig::SceneObject& object : self.objects())
+                    objects.append(py::dict("id"_a = object.id, "name"_a = object.name, "node_path"_a = object.nodePath,
+                                            "meshes"_a = object.meshes));
+                return objects;
+            },
+            "Its objects (node instances), as dicts {'id', 'name', 'node_path', 'meshes'}: 'id' is the object's "
+            "value in the 'objectId' buffer (0 there is the background).")
         .def_property_readonly(
             "warnings", [](const ig::Scene& self) { return warningObjects(self.warnings()); },
             "The loader's warnings, as InkgraphWarning records.")

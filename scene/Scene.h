@@ -39,6 +39,10 @@ struct Mesh {
     /** The names of the nodes from the scene's root down to the one holding this mesh (glTF node names, "" for an
      *  unnamed node; an OBJ's `o` name), or empty when the format has no nodes (STL). --frame selects meshes by it. */
     std::vector<std::string> nodePath;
+    /** Which instance of its node path this mesh belongs to, where the path alone cannot tell (two unnamed sibling
+     *  glTF nodes have equal paths): the glTF node's index, 0 for formats without nodes. Meshes with equal nodePath and
+     *  nodeInstance are one object (scene/ObjectIds.h: the G-buffer's objectId, the object-boundary lines). */
+    std::size_t nodeInstance = 0;
     /** What the loader knows about its weld, so data derived later need not weld again (MeshOps weldMeshPositions()):
      *  set when it welded by position alone (no file normals, texture coordinates or colours kept copies of a point
      *  apart), then a position weld (weldVertices() without normals or classes) at this distance or less merges

@@ -48,6 +48,9 @@ const std::vector<GBufferPass::Field>& GBufferPass::fields() {
          "(J w, pixels, x right, y down), |w|²"},
         {"materialId", Format::R32F, "MATERIAL_ID", "materialid.exr", Appearance::Data,
          "the material's id + 1 as an exact float (equal for meshes of one material), 0 off the model"},
+        {"objectId", Format::R32F, "OBJECT_ID", "objectid.exr", Appearance::Data,
+         "the object's id (its index + 1, one object per node instance, as the manifest lists them) as an exact "
+         "float, 0 off the model"},
     };
     return kFields;
 }
@@ -62,9 +65,11 @@ GBufferPass::GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& sce
 }
 
 Format GBufferPass::formatOf(const Field& field) const {
-    // Depth needs float32's range and precision; material ids must stay exact integers (float16 holds only 2048).
+    // Depth needs float32's range and precision; material and object ids must stay exact integers (float16 holds
+    // only 2048).
     const std::string_view name = field.name;
-    if (mPrecision == GBufferPrecision::Float32 || name == "depth" || name == "materialId") return field.format;
+    if (mPrecision == GBufferPrecision::Float32 || name == "depth" || name == "materialId" || name == "objectId")
+        return field.format;
     if (field.format == Format::RGBA32F) return Format::RGBA16F;
     if (field.format == Format::R32F) return Format::R16F;
     return field.format;
@@ -170,7 +175,8 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
         glUniform2fv(program.uniform("focalPixels"), 1, glm::value_ptr(focalPixels(clipFromView, width, height)));
         glUniform1f(program.uniform("radialLengthScale"), float(1.0 / mFrame.radialLengthUnit));
     }
-    const GLint materialIdLocation = program.uniform("materialId"); // -1 unless the field is live: ignored
+    const GLint materialIdLocation = program.uniform("materialId");   // -1 unless the field is live: ignored
+    const GLint objectIndexLocation = program.uniform("objectIndex"); // likewise
     // Colour only for the baseColor field; the others need the material only where it cuts out.
     const MaterialUse use = std::any_of(group.begin(), group.end(),
                                         [](const Field* field) { return std::string_view(field->name) == "baseColor"; })
@@ -181,6 +187,7 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
         const GpuScene::DrawMesh& mesh = meshes[index];
         mScene.bindMaterial(program, index, use);
         glUniform1ui(materialIdLocation, mesh.materialId);
+        glUniform1ui(objectIndexLocation, mesh.objectIndex);
         setFaceCulling(*mesh.material);
         mesh.vertexArray.bind();
         glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);

@@ -15,6 +15,8 @@
  *  |                    |         |          | lengths in units of FrameParams::radialLengthUnit (J w: pixels)   |
  *  | gbuffer.materialId | r32f    | optional | GpuScene's material id + 1 as an exact float (scene/MaterialIds.h:|
  *  |                    |         |          | equal for meshes of one material), 0 off-model                    |
+ *  | gbuffer.objectId   | r32f    | optional | the mesh's object index + 1 as an exact float (scene/ObjectIds.h: |
+ *  |                    |         |          | one object per node instance), 0 off-model                        |
  *  | gbuffer.zBuffer    | depth32f| optional | the depth test's own buffer: window depth of the nearest drawn    |
  *  |                    |         |          | face, reversed-Z (gl/GlObjects.h), far plane 0 off-model          |
  *
@@ -25,7 +27,7 @@
  *  GBufferPrecision::Float16 stores normal, view, wVec, nDotV and radial as rgba16f / r16f instead (read back as
  *  float32): half the memory and bandwidth, about 3 decimal digits. It exists to measure what float32 buys
  *  (bench/TradeoffSweep, docs/accuracy.md). Depth stays r32f: linear depth overflows float16 at 65504 and the
- *  relative depth-break test needs its precision; materialId stays r32f, since ids must be exact.
+ *  relative depth-break test needs its precision; materialId and objectId stay r32f, since ids must be exact.
  *
  *  `radial` is what suggestive contours read (postfx/SuggestiveContours.h): n.v with the unnormalised view vector
  *  (DeCarlo's form, whose zero set of D_w(n.v) is exactly kappa_r = 0), the image-space direction of w as perspective

@@ -14,6 +14,7 @@ LineType depthEdgeLineType();
 LineType creaseLineType();
 LineType borderLineType();
 LineType materialBoundaryLineType();
+LineType objectBoundaryLineType();
 LineType suggestiveLineType();
 LineType suggestiveObjectLineType();
 LineType contourLineType();
@@ -36,6 +37,7 @@ const std::vector<LineType>& lineTypes() {
         borderLineType(),
         intersectionLineType(),
         materialBoundaryLineType(),
+        objectBoundaryLineType(),
         suggestiveLineType(),
         suggestiveObjectLineType(),
         contourLineType(),

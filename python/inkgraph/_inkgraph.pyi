@@ -166,6 +166,7 @@ class LineType(_Enum):
     BORDER: ClassVar[LineType]
     INTERSECTION: ClassVar[LineType]
     MATERIAL_BOUNDARY: ClassVar[LineType]
+    OBJECT_BOUNDARY: ClassVar[LineType]
     SUGGESTIVE: ClassVar[LineType]
     SUGGESTIVE_OBJECT: ClassVar[LineType]
     CONTOUR: ClassVar[LineType]
@@ -342,6 +343,8 @@ class Scene:
     def vertex_count(self) -> int: ...
     @property
     def mesh_count(self) -> int: ...
+    @property
+    def objects(self) -> list[dict[str, Any]]: ...
     @property
     def warnings(self) -> list[InkgraphWarning]: ...
 

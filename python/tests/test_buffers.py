@@ -118,3 +118,19 @@ def test_buffer_names_lists_what_a_look_can_return():
     for name in ("normal", "depth", "nDotV", "lines.contour", "lines.silhouette", "picture"):
         assert name in names, names
     assert "lines.crease" not in names
+
+
+def test_object_ids_are_the_scenes_objects(suzanne, tmp_path):
+    # Issue 36: an OBJ file's `o` objects are its objects; the objectId buffer holds their ids, 0 off the model.
+    (tmp_path / "two.obj").write_text(
+        "v -2 0 0\nv -1 0 0\nv -2 1 0\nv 1 0 0\nv 2 0 0\nv 1 1 0\no left\nf 1 2 3\no right\nf 4 5 6\n"
+    )
+    scene = inkgraph.Scene.load(tmp_path / "two.obj")
+    assert scene.objects == [
+        {"id": 1, "name": "left", "node_path": ["left"], "meshes": ["left"]},
+        {"id": 2, "name": "right", "node_path": ["right"], "meshes": ["right"]},
+    ]
+    ids = inkgraph.render(scene, size=SIZE, camera=["--eye", "0,0.5,8", "--target", "0,0.5,0"], buffers=["objectId"])
+    values = set(np.unique(ids.buffers["objectId"]).tolist())
+    assert values == {0.0, 1.0, 2.0}, values
+    assert [object["name"] for object in suzanne.objects] == ["suzanne_npm_4k"]

@@ -1,7 +1,8 @@
 /** @file Wavefront OBJ: v (with an optional vertex colour), vt, vn and f (v, v/vt, v//vn, v/vt/vn; negative =
  *  relative), polygons fan-triangulated, and the materials of its `mtllib` libraries (scene/formats/ObjMaterials.cpp)
- * that `usemtl` picks: one mesh per material, named by the first `o` name (or the file stem). Parses the whole file
- * from memory with std::from_chars; o/g groups and smoothing groups are skipped. A missing library or an undefined
+ * that `usemtl` picks: one mesh per material of each `o` object, named by the first `o` name (or the file stem) when
+ * the file has faces in one object only. Parses the whole file from memory with std::from_chars; `g` groups and
+ * smoothing groups are skipped. A missing library or an undefined
  *  `usemtl` material is a warning, and those faces take the default grey: exports often travel without their .mtl,
  *  and refusing them would help nobody. */
 
@@ -57,8 +58,9 @@ struct CornerHash {
     }
 };
 
-/** The faces that one `usemtl` material (or none, before the first `usemtl`) covers: one mesh. */
+/** The faces of one `o` object that one `usemtl` material (or none, before the first `usemtl`) covers: one mesh. */
 struct FaceGroup {
+    std::uint32_t object = 0;    ///< index into ObjParser::mObjectNames
     std::string materialName;    ///< as `usemtl` wrote it; empty for the faces before any
     std::vector<Corner> corners; ///< three per triangle
     std::size_t facesWithNormals = 0;
@@ -180,7 +182,7 @@ private:
             mNormals.push_back(parseVector(p, end, "normal"));
         } else if (command == "f") {
             parseFace(p, end);
-        } else if (command == "o" && mMeshName.empty()) {
+        } else if (command == "o") {
             while (p < end && isBlank(*p)) {
                 ++p;
             }
@@ -188,7 +190,12 @@ private:
             while (nameEnd > p && isBlank(nameEnd[-1])) {
                 --nameEnd;
             }
-            mMeshName.assign(p, nameEnd);
+            if (mMeshName.empty()) mMeshName.assign(p, nameEnd);
+            // Each `o` line starts an object (ObjectIds.h: the G-buffer's objectId); the material carries over.
+            mBudget.chargeBytes(sizeof(std::string) + std::size_t(nameEnd - p));
+            mObjectNames.emplace_back(p, nameEnd);
+            mCurrentObject = std::uint32_t(mObjectNames.size() - 1);
+            mCurrentGroup = kAbsent;
         } else if (command == "l" || command == "p") {
             ++mSkippedNonFaces;
         } else if (command == "mtllib") {
@@ -196,6 +203,7 @@ private:
         } else if (command == "usemtl") {
             const std::string name(trimmed(p, end));
             mUsedMaterials.try_emplace(name, mLine);
+            mCurrentMaterial = name;
             mCurrentGroup = groupOf(name);
         }
         // g, s and unknown statements carry nothing this renderer uses.
@@ -492,7 +500,7 @@ private:
             fail("face has " + std::to_string(mCorners.size()) + " vertices (needs at least 3)");
         }
         if (mCurrentGroup == kAbsent) {
-            mCurrentGroup = groupOf("");
+            mCurrentGroup = groupOf(mCurrentMaterial);
         }
         FaceGroup& group = mGroups[mCurrentGroup];
         ++(faceHasNormals ? group.facesWithNormals : group.facesWithoutNormals);
@@ -508,9 +516,12 @@ private:
 
     /** The face group of a material name, made on first use. */
     std::uint32_t groupOf(const std::string& materialName) {
-        const auto [it, inserted] = mGroupOfMaterial.try_emplace(materialName, std::uint32_t(mGroups.size()));
+        const auto [it, inserted] =
+            mGroupOfMaterial.try_emplace({mCurrentObject, materialName}, std::uint32_t(mGroups.size()));
         if (inserted) {
-            mGroups.emplace_back().materialName = materialName;
+            FaceGroup& group = mGroups.emplace_back();
+            group.object = mCurrentObject;
+            group.materialName = materialName;
         }
         return it->second;
     }
@@ -541,9 +552,13 @@ private:
         const std::string baseName = mMeshName.empty() ? std::filesystem::path(mPath).stem().string() : mMeshName;
 
         std::size_t groupsWithFaces = 0;
+        std::vector<std::size_t> groupsOfObject(mObjectNames.size()); // with faces
         for (const FaceGroup& group : mGroups) {
             groupsWithFaces += group.corners.empty() ? 0 : 1;
+            groupsOfObject[group.object] += group.corners.empty() ? 0 : 1;
         }
+        const bool severalObjects =
+            std::count_if(groupsOfObject.begin(), groupsOfObject.end(), [](std::size_t n) { return n > 0; }) > 1;
         std::size_t facesWithoutNormals = 0;
         std::size_t facesWithoutTexcoords = 0;
         for (FaceGroup& group : mGroups) {
@@ -551,9 +566,20 @@ private:
                 continue;
             }
             RawMesh mesh;
-            mesh.name =
-                groupsWithFaces == 1 || group.materialName.empty() ? baseName : baseName + "/" + group.materialName;
-            if (!mMeshName.empty()) mesh.nodePath = {mMeshName}; // the first `o` name: what --frame selects
+            if (!severalObjects) {
+                mesh.name =
+                    groupsWithFaces == 1 || group.materialName.empty() ? baseName : baseName + "/" + group.materialName;
+                if (!mMeshName.empty()) mesh.nodePath = {mMeshName}; // the first `o` name: what --frame selects
+            } else {
+                // Each object its own node (--frame selects it by name), told apart by its index where names repeat.
+                const std::string& objectName = mObjectNames[group.object];
+                const std::string name = objectName.empty() ? std::filesystem::path(mPath).stem().string() : objectName;
+                mesh.name = groupsOfObject[group.object] == 1 || group.materialName.empty()
+                                ? name
+                                : name + "/" + group.materialName;
+                if (!objectName.empty()) mesh.nodePath = {objectName};
+                mesh.nodeInstance = group.object;
+            }
             const auto material = mMaterials.byName.find(group.materialName);
             if (material != mMaterials.byName.end()) {
                 mesh.material = material->second;
@@ -668,11 +694,16 @@ private:
     std::size_t mUnreadVertexExtras = 0; ///< `v` lines whose values after x y z are neither w nor r g b [a]
     std::vector<glm::vec2> mTexcoords;   ///< (u, 1 - v)
     std::vector<glm::vec3> mNormals;
-    std::vector<FaceGroup> mGroups;                        ///< in the order of their first face or usemtl
-    std::map<std::string, std::uint32_t> mGroupOfMaterial; ///< usemtl name -> index in mGroups
-    std::uint32_t mCurrentGroup = kAbsent;                 ///< kAbsent: the faces before any usemtl, made on use
-    std::size_t mCornerCount = 0;                          ///< in all groups
-    std::vector<Corner> mCorners;                          ///< scratch for the current face
+    std::vector<FaceGroup> mGroups; ///< in the order of their first face or usemtl
+    /** (object, usemtl name) -> index in mGroups */
+    std::map<std::pair<std::uint32_t, std::string>, std::uint32_t> mGroupOfMaterial;
+    std::uint32_t mCurrentGroup = kAbsent; ///< kAbsent: none yet for this object and material, made on use
+    /** The `o` names in file order; the faces before any `o` belong to the first, unnamed. */
+    std::vector<std::string> mObjectNames{std::string()};
+    std::uint32_t mCurrentObject = 0;
+    std::string mCurrentMaterial; ///< the last `usemtl` name, "" before any
+    std::size_t mCornerCount = 0; ///< in all groups
+    std::vector<Corner> mCorners; ///< scratch for the current face
     std::vector<ForwardReference> mForwardReferences;
     std::size_t mSkippedNonFaces = 0;
     std::size_t mNonFiniteTexcoords = 0;

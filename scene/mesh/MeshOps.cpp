@@ -523,6 +523,7 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     mesh.name = std::move(raw.name);
     mesh.material = std::move(raw.material);
     mesh.nodePath = std::move(raw.nodePath);
+    mesh.nodeInstance = raw.nodeInstance;
     const bool noAttributes = raw.texcoords[0].empty() && raw.texcoords[1].empty() && raw.colors.empty();
     if (keptAll && noAttributes &&
         std::find(compactIndex.begin(), compactIndex.end(), kNoVertex) == compactIndex.end()) {

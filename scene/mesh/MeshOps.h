@@ -86,6 +86,7 @@ struct RawMesh {
     std::vector<glm::vec4> colors;       ///< as Mesh::colors: empty or one per position
     Material material;
     std::vector<std::string> nodePath; ///< as Mesh::nodePath
+    std::size_t nodeInstance = 0;      ///< as Mesh::nodeInstance
 };
 
 /** Turns a raw mesh into a clean Mesh: welds within options.weldTolerance x modelDiagonal, drops degenerate

@@ -7,6 +7,9 @@ in vec3 viewNormal;
 #ifdef OUT_MATERIAL_ID
 uniform uint materialId; // GpuScene::DrawMesh::materialId, one per draw
 #endif
+#ifdef OUT_OBJECT_ID
+uniform uint objectIndex; // GpuScene::DrawMesh::objectIndex, one per draw
+#endif
 #ifdef OUT_RADIAL
 // (0.5 width clipFromView[0][0], 0.5 height clipFromView[1][1]): the focal lengths in pixels of the perspective
 // projection (GBufferPass checks its form).
@@ -37,6 +40,9 @@ layout(location = LOC_BASECOLOR) out vec4 outBaseColor;
 #endif
 #ifdef OUT_MATERIAL_ID
 layout(location = LOC_MATERIAL_ID) out float outMaterialId;
+#endif
+#ifdef OUT_OBJECT_ID
+layout(location = LOC_OBJECT_ID) out float outObjectId;
 #endif
 #ifdef OUT_RADIAL
 layout(location = LOC_RADIAL) out vec4 outRadial;
@@ -95,6 +101,10 @@ void main() {
 #ifdef OUT_MATERIAL_ID
     // + 1 so the cleared background (0) is no material; exact in float32 below 2^24 materials.
     outMaterialId = float(materialId + 1u);
+#endif
+#ifdef OUT_OBJECT_ID
+    // Likewise: 0 is the background, objects count from 1.
+    outObjectId = float(objectIndex + 1u);
 #endif
 #ifdef OUT_RADIAL
     // DeCarlo's unnormalised view vector v = c - p (c is the view-space origin). J v = 0 (moving along the eye ray

@@ -54,6 +54,39 @@ TEST_F(ApiScene, CountsWhatTheFileHolds) {
     EXPECT_TRUE(scene.warnings().empty());
 }
 
+TEST_F(ApiScene, ObjectsAreTheNodeInstancesInOrder) {
+    // One triangle mesh "tri" instanced by a node "a" and by an unnamed child of node "group": two objects, ids in
+    // the order their meshes come, the unnamed one named by its mesh (issue 36: the "objectId" buffer's values).
+    const std::filesystem::path gltf = directory / "two.gltf";
+    writeText(gltf, R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"name": "a", "mesh": 0}, {"name": "group", "children": [2]},
+                  {"mesh": 0, "translation": [2, 0, 0]}],
+        "meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0}}]}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "buffers": [{"byteLength": 36,
+                     "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})");
+    const std::vector<ig::SceneObject> objects = ig::Scene::load(gltf.string()).objects();
+    ASSERT_EQ(objects.size(), 2u);
+    EXPECT_EQ(objects[0].id, 1u);
+    EXPECT_EQ(objects[0].name, "a");
+    EXPECT_EQ(objects[0].nodePath, std::vector<std::string>{"a"});
+    EXPECT_EQ(objects[0].meshes, std::vector<std::string>{"a"}) << "a mesh is named by its node";
+    EXPECT_EQ(objects[1].id, 2u);
+    EXPECT_EQ(objects[1].name, "tri");
+    EXPECT_EQ(objects[1].nodePath, (std::vector<std::string>{"group", ""}));
+    EXPECT_EQ(objects[1].meshes, std::vector<std::string>{"tri"});
+    // A file without nodes is one object, named by its mesh.
+    const std::filesystem::path stl = directory / "one.stl";
+    writeText(stl, "solid one\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
+                   "endfacet\nendsolid one\n");
+    const std::vector<ig::SceneObject> single = ig::Scene::load(stl.string()).objects();
+    ASSERT_EQ(single.size(), 1u);
+    EXPECT_EQ(single[0].id, 1u);
+    EXPECT_TRUE(single[0].nodePath.empty());
+}
+
 TEST_F(ApiScene, PoseOptionsAreCheckedAsTheirFlags) {
     ig::SceneOptions options;
     options.time = 1.5; // without an animation
@@ -178,9 +211,7 @@ TEST(ApiNames, TheEnumsAreTheRegistriesInTheirOrder) {
     EXPECT_EQ(orientations, availableNames("--face-orientation"));
     for (const std::string& name : lineTypes) EXPECT_EQ(ig::nameOf(ig::lineTypeNamed(name)), name);
     EXPECT_STREQ(errorOf([] { ig::lineTypeNamed("sketchy"); }).what(),
-                 "lineTypeNamed(): no line type 'sketchy' (there are: hidden-intersection, hidden-suggestive-object, "
-                 "outline, silhouette, normal-edge, depth-edge, crease, border, intersection, material-boundary, "
-                 "suggestive, suggestive-object, contour, mesh-silhouette)");
+                 "lineTypeNamed(): no line type 'sketchy' (there are: hidden-intersection, hidden-suggestive-object, outline, silhouette, normal-edge, depth-edge, crease, border, intersection, material-boundary, object-boundary, suggestive, suggestive-object, contour, mesh-silhouette)");
 }
 
 TEST(ApiBufferNames, AreTheLooksWithoutTheGraphsNames) {
@@ -281,7 +312,7 @@ TEST_F(ApiRenderRefusal, AnUnknownBufferNamesTheLooksBuffers) {
     const std::string message = undrawn.what();
     EXPECT_EQ(message.rfind("Renderer::render(): no buffer 'lines.crease' in this look ('crease' is not in the "
                             "look's --lines); it has: normal, view, wVec, nDotV, depth, coverage, baseColor, radial, "
-                            "materialId, gbuffer.zBuffer, ",
+                            "materialId, objectId, gbuffer.zBuffer, ",
                             0),
               0u)
         << message;

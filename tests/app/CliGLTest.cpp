@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -953,6 +954,46 @@ TEST_F(Cli, AMissingGltfTextureIsAWarningAsAnObjOneIs) {
     EXPECT_EQ(strict.exitCode, 3) << strict.err;
     EXPECT_NE(strict.err.find("inkgraph: --strict: '"), std::string::npos) << strict.err;
     EXPECT_FALSE(fs::exists(directory / "strict.png"));
+}
+
+TEST_F(Cli, TheDumpManifestNamesTheObjects) {
+    // Issue 36: the Khronos textured box instanced by two nodes under one unnamed root, touching face to face at
+    // x = 0: a node named "left" and an unnamed one (its object is named by its mesh, "Mesh"). objectid.exr holds
+    // exactly 0, 1 and 2, the manifest maps 1 and 2 to the nodes in the order their meshes come, --stats counts two
+    // objects, and the object-boundary line is drawn between them (one material: material-boundary draws nothing).
+    std::ofstream(directory / "two.glb", std::ios::binary) << test::editedGlb(
+        fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "characters" / "box-textured.glb", [](nlohmann::json& gltf) {
+            gltf["nodes"][0]["children"] = {1, 2};
+            gltf["nodes"][1] = {{"mesh", 0}, {"name", "left"}, {"translation", {-0.5, 0.0, 0.0}}};
+            gltf["nodes"][2] = {{"mesh", 0}, {"translation", {0.5, 0.0, 0.0}}};
+        });
+    const CliRun result = run("render two.glb -o two.png --size 64x64 --orbit 30,30 --lines "
+                              "object-boundary,material-boundary --dump d --request gbuffer.objectId --stats s.json");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const auto manifest = nlohmann::json::parse(readText(directory / "d" / "manifest.json"));
+    const auto expected = nlohmann::json::parse(R"([
+        {"id": 1, "name": "left", "node_path": ["", "left"], "meshes": ["left"]},
+        {"id": 2, "name": "Mesh", "node_path": ["", ""], "meshes": ["Mesh"]}])");
+    EXPECT_EQ(manifest["objects"], expected) << manifest["objects"].dump();
+    const cv::Mat ids = readImage(directory / "d" / "objectid.exr");
+    ASSERT_EQ(ids.type(), CV_32FC1);
+    std::map<float, int> pixelsOfId;
+    for (int row = 0; row < ids.rows; ++row)
+        for (int col = 0; col < ids.cols; ++col) ++pixelsOfId[ids.at<float>(row, col)];
+    ASSERT_EQ(pixelsOfId.size(), 3u) << "ids other than 0, 1 and 2";
+    EXPECT_GT(pixelsOfId[1.0f], 100);
+    EXPECT_GT(pixelsOfId[2.0f], 100);
+    const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+    EXPECT_EQ(stats["scene"]["objects"], 2);
+    EXPECT_EQ(stats["scene"]["meshes"], 2);
+    EXPECT_GT(cv::countNonZero(readImage(directory / "d" / "skeleton-object-boundary.png")), 10);
+    EXPECT_EQ(cv::countNonZero(readImage(directory / "d" / "skeleton-material-boundary.png")), 0);
+
+    // Without objectId in the dump, no list.
+    const CliRun depthOnly =
+        run("render two.glb -o two.png --size 32x32 --lines none --dump e --request gbuffer.depth");
+    ASSERT_EQ(depthOnly.exitCode, 0) << depthOnly.err;
+    EXPECT_FALSE(nlohmann::json::parse(readText(directory / "e" / "manifest.json")).contains("objects"));
 }
 
 TEST_F(Cli, MsaaShadesForwardSaysSoAndIsCappedAtTheDriversSamples) {

@@ -409,9 +409,10 @@ TEST_F(GBufferMaterials, HalfPrecisionKeepsIdsFloat32) {
     EXPECT_EQ(valuesIn(ids, halfOf(coverage, false)), std::vector<float>{2.0f});
 }
 
-TEST_F(GBufferMaterials, AllNineFieldsTakeTwoDrawsThatCoverTheSamePixels) {
-    // Nine live fields exceed the 8 draw buffers GL guarantees, so materialId comes from a second draw with its own
-    // program; the vertex stage is invariant, so both draws rasterise the same fragments, silhouettes included.
+TEST_F(GBufferMaterials, AllTenFieldsTakeTwoDrawsThatCoverTheSamePixels) {
+    // Ten live fields exceed the 8 draw buffers GL guarantees, so materialId and objectId come from a second draw with
+    // its own program; the vertex stage is invariant, so both draws rasterise the same fragments, silhouettes
+    // included.
     Mesh left = makeUvSphere({-1.0f, 0.0f, 0.0f}, 1.1f, 48, 24);
     Mesh right = makeUvSphere({1.0f, 0.2f, -0.5f}, 1.1f, 48, 24);
     left.material.baseColorFactor = kRed;
@@ -424,10 +425,12 @@ TEST_F(GBufferMaterials, AllNineFieldsTakeTwoDrawsThatCoverTheSamePixels) {
     GBufferPass pass("gbuffer", shaders, *gpuScene, frame);
     std::vector<std::string> every;
     for (const GBufferPass::Field& field : GBufferPass::fields()) every.push_back(std::string("gbuffer.") + field.name);
-    ASSERT_EQ(every.size(), 9u);
+    ASSERT_EQ(every.size(), 10u);
     const Plan plan = compile({&pass}, every);
+    EXPECT_EQ(plan.findResource("gbuffer.objectId")->desc.format, Format::R32F) << "ids must stay exact";
     executor.run(plan, {&pass}, {kSize, kSize, false});
     const cv::Mat ids = executor.store().image("gbuffer.materialId");
+    const cv::Mat objects = executor.store().image("gbuffer.objectId");
     const cv::Mat coverage = executor.store().image("gbuffer.coverage");
     const cv::Mat depth = executor.store().image("gbuffer.depth");
     int covered = 0, mismatched = 0;
@@ -435,12 +438,16 @@ TEST_F(GBufferMaterials, AllNineFieldsTakeTwoDrawsThatCoverTheSamePixels) {
         for (int col = 0; col < kSize; ++col) {
             const bool onModel = coverage.at<uchar>(row, col) != 0;
             covered += onModel;
-            if (onModel != (ids.at<float>(row, col) > 0.0f) || onModel != (depth.at<float>(row, col) > 0.0f))
+            if (onModel != (ids.at<float>(row, col) > 0.0f) || onModel != (depth.at<float>(row, col) > 0.0f) ||
+                onModel != (objects.at<float>(row, col) > 0.0f))
                 ++mismatched;
         }
     EXPECT_GT(covered, 1000);
     EXPECT_EQ(mismatched, 0) << "the two draws covered different pixels";
     EXPECT_EQ(valuesIn(ids, coverage), (std::vector<float>{1.0f, 2.0f}));
+    // Meshes without node paths (a file without nodes) are one object.
+    EXPECT_EQ(valuesIn(objects, coverage), std::vector<float>{1.0f});
+    EXPECT_EQ(valuesIn(objects, coverage, true), std::vector<float>{0.0f});
 }
 
 } // namespace

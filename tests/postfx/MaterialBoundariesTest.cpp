@@ -1,5 +1,5 @@
-// Material boundaries on synthetic id images: exact positions, nothing against the background, nothing inside one
-// material, and bad input refused.
+// Material and object boundaries (one kernel over an id field) on synthetic id images: exact positions, nothing
+// against the background, nothing inside one material, and bad input refused naming the field.
 #include "postfx/MaterialBoundaries.h"
 
 #include <gtest/gtest.h>
@@ -51,6 +51,30 @@ TEST(MaterialBoundaries, HorizontalBoundariesLieBetweenRows) {
 TEST(MaterialBoundaries, RefusesWhatIsNotAnIdImage) {
     EXPECT_THROW(extractMaterialBoundaries(cv::Mat()), std::invalid_argument);
     EXPECT_THROW(extractMaterialBoundaries(cv::Mat::zeros(4, 4, CV_8UC1)), std::invalid_argument);
+}
+
+TEST(MaterialBoundaries, ObjectIdsGiveTheSameLinesAndMessagesNameTheirField) {
+    // Object ids (issue 36's object-boundary) go through the same kernel: an L-shaped object 2 inside object 1 gives
+    // a vertical run at x = 5.5 (rows 3..6) and a horizontal one at y = 2.5 (columns 6..9); the background none.
+    cv::Mat ids = cv::Mat::zeros(10, 12, CV_32FC1);
+    ids(cv::Rect(1, 1, 10, 8)).setTo(1.0f);
+    ids(cv::Rect(6, 3, 5, 6)).setTo(2.0f);
+    const LineSkeleton skeleton = extractIdBoundaries(ids, "objectId");
+    std::size_t vertical = 0, horizontal = 0;
+    for (const LinePoint& point : skeleton.points) {
+        if (point.position.x == 5.5f && point.position.y >= 3.0f && point.position.y <= 8.0f) ++vertical;
+        if (point.position.y == 2.5f && point.position.x >= 6.0f && point.position.x <= 10.0f) ++horizontal;
+    }
+    EXPECT_EQ(vertical, 6u);
+    EXPECT_EQ(horizontal, 5u);
+    EXPECT_EQ(skeleton.points.size(), 11u) << "nothing where an object meets the background";
+    EXPECT_EQ(extractMaterialBoundaries(ids).points.size(), skeleton.points.size());
+    try {
+        extractIdBoundaries(cv::Mat(), "objectId");
+        FAIL() << "an empty image was accepted";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_STREQ(error.what(), "extractIdBoundaries(): 'objectId' must be a non-empty CV_32FC1 image");
+    }
 }
 
 } // namespace

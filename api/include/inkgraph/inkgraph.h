@@ -179,6 +179,14 @@ struct SceneAccess;
 struct LookAccess;
 struct ImageAccess;
 
+/** One object of a scene: a node instance (every mesh one glTF node holds; a file without nodes is one object). */
+struct SceneObject {
+    std::uint32_t id = 0;              ///< its value in the "objectId" buffer (0 there is the background)
+    std::string name;                  ///< the node's name, or for an unnamed node its first mesh's name
+    std::vector<std::string> nodePath; ///< the node names from the root down to it ("" for an unnamed node)
+    std::vector<std::string> meshes;   ///< the names of its meshes
+};
+
 /** A model loaded once (OBJ with MTL, glTF/GLB, VRM, STL, PLY, or arrays): render it with any number of looks and
  *  frames. Copies share the loaded data. */
 class INKGRAPH_API Scene {
@@ -197,6 +205,8 @@ public:
     std::size_t meshCount() const;
     /** The loader's warnings (a texture it could not read, a skipped primitive, ...). */
     std::vector<Warning> warnings() const;
+    /** Its objects, by id from 1: what the "objectId" buffer's values (and the object-boundary lines) tell apart. */
+    std::vector<SceneObject> objects() const;
 
     struct Impl; ///< opaque: the library's own
 
@@ -230,6 +240,7 @@ enum class LineType {
     Border,
     Intersection,
     MaterialBoundary,
+    ObjectBoundary,
     Suggestive,
     SuggestiveObject,
     Contour,
@@ -466,10 +477,11 @@ private:
 };
 
 /** The buffers render() can return: "normal", "view", "wVec", "nDotV", "depth", "coverage", "baseColor", "radial",
- *  "materialId" (the G-buffer's fields), "gbuffer.*" (every field the look computes), "lines.<type>" (the drawn
- *  layer of a line type, its coverage from 0 off the line to 255 on it), "lines.*" (every drawn type), "picture".
- *  render() also takes the graph's own name of any image it computes (`inkgraph render --print-plan`: "shade.color",
- *  "gbuffer.zBuffer"); a name that is neither is refused (Error(Usage), naming the buffers the look has). */
+ *  "materialId", "objectId" (the G-buffer's fields; Scene::objects() names the object ids), "gbuffer.*" (every field
+ * the look computes), "lines.<type>" (the drawn layer of a line type, its coverage from 0 off the line to 255 on it),
+ * "lines.*" (every drawn type), "picture". render() also takes the graph's own name of any image it computes (`inkgraph
+ * render --print-plan`: "shade.color", "gbuffer.zBuffer"); a name that is neither is refused (Error(Usage), naming the
+ * buffers the look has). */
 INKGRAPH_API std::vector<std::string> bufferNames(const Look& look);
 
 /** Renders stills. One GL context (EGL, no display) is made by the first render and kept, with every compiled

@@ -622,6 +622,7 @@ private:
             addPrimitive(mesh.primitives[i], name, nodeLabel(nodeIndex), world, pose);
             if (mOut.meshes.size() > meshesBefore) {
                 mOut.meshes.back().nodePath = path;
+                mOut.meshes.back().nodeInstance = std::size_t(nodeIndex); // one object per node (ObjectIds.h)
             }
         }
     }
