@@ -11,9 +11,20 @@ inline namespace INKGRAPH_ABI_NAMESPACE {
 namespace {
 
 /** The line types' names in LineType's order, which is the registry's (tests/api/ApiTest.cpp checks the two agree). */
-const char* const kLineTypeNames[] = {
-    "outline",           "silhouette", "normal-edge",       "depth-edge", "crease",         "border",
-    "material-boundary", "suggestive", "suggestive-object", "contour",    "mesh-silhouette"};
+const char* const kLineTypeNames[] = {"hidden-mesh-silhouette",
+                                      "hidden-crease",
+                                      "hidden-border",
+                                      "outline",
+                                      "silhouette",
+                                      "normal-edge",
+                                      "depth-edge",
+                                      "crease",
+                                      "border",
+                                      "material-boundary",
+                                      "suggestive",
+                                      "suggestive-object",
+                                      "contour",
+                                      "mesh-silhouette"};
 static_assert(std::size(kLineTypeNames) == std::size_t(LineType::MeshSilhouette) + 1);
 
 } // namespace

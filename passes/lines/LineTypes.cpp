@@ -18,13 +18,28 @@ LineType suggestiveLineType();
 LineType suggestiveObjectLineType();
 LineType contourLineType();
 LineType meshSilhouetteLineType();
+LineType hiddenMeshSilhouetteLineType();
+LineType hiddenCreaseLineType();
+LineType hiddenBorderLineType();
 
 const std::vector<LineType>& lineTypes() {
-    // The composite order: later types are drawn over earlier ones.
+    // The composite order: later types are drawn over earlier ones. The hidden-lines types (LineType::hiddenLines)
+    // come first, so every visible line is drawn over the dashed hidden ones (docs/lines.md, "Hidden lines").
     static const std::vector<LineType> kTypes = {
-        outlineLineType(),          silhouetteLineType(), normalEdgeLineType(),       depthEdgeLineType(),
-        creaseLineType(),           borderLineType(),     materialBoundaryLineType(), suggestiveLineType(),
-        suggestiveObjectLineType(), contourLineType(),    meshSilhouetteLineType(),
+        hiddenMeshSilhouetteLineType(),
+        hiddenCreaseLineType(),
+        hiddenBorderLineType(),
+        outlineLineType(),
+        silhouetteLineType(),
+        normalEdgeLineType(),
+        depthEdgeLineType(),
+        creaseLineType(),
+        borderLineType(),
+        materialBoundaryLineType(),
+        suggestiveLineType(),
+        suggestiveObjectLineType(),
+        contourLineType(),
+        meshSilhouetteLineType(),
     };
     return kTypes;
 }

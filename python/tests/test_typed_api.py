@@ -239,8 +239,9 @@ def test_enum_names_are_the_command_lines():
     assert inkgraph.Precision.FLOAT16.cli_name == "half"
     assert inkgraph.Renderer.Platform.SURFACELESS.cli_name == "surfaceless"
     # Every line type of the library, in composite order.
-    assert [t.cli_name for t in inkgraph.LineType.__members__.values()][:3] == ["outline", "silhouette",
-                                                                                "normal-edge"]
+    assert [t.cli_name for t in inkgraph.LineType.__members__.values()][:4] == ["hidden-mesh-silhouette",
+                                                                                "hidden-crease", "hidden-border",
+                                                                                "outline"]
 
 
 def test_value_types_are_immutable_values():

@@ -178,7 +178,8 @@ TEST(ApiNames, TheEnumsAreTheRegistriesInTheirOrder) {
     EXPECT_EQ(orientations, availableNames("--face-orientation"));
     for (const std::string& name : lineTypes) EXPECT_EQ(ig::nameOf(ig::lineTypeNamed(name)), name);
     EXPECT_STREQ(errorOf([] { ig::lineTypeNamed("sketchy"); }).what(),
-                 "lineTypeNamed(): no line type 'sketchy' (there are: outline, silhouette, normal-edge, depth-edge, "
+                 "lineTypeNamed(): no line type 'sketchy' (there are: hidden-mesh-silhouette, hidden-crease, "
+                 "hidden-border, outline, silhouette, normal-edge, depth-edge, "
                  "crease, border, material-boundary, suggestive, suggestive-object, contour, mesh-silhouette)");
 }
 

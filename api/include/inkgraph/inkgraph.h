@@ -219,6 +219,9 @@ struct Color {
 enum class Shading { None, Flat, Gouraud, Lambert, Phong, Cel, Comic, MToon, Auto };
 /** The line types, in the order the composite draws them (`--lines`; docs/lines.md). */
 enum class LineType {
+    HiddenMeshSilhouette, ///< the parts of MeshSilhouette the model hides, dashed (docs/lines.md, "Hidden lines")
+    HiddenCrease,         ///< the parts of Crease the model hides, dashed
+    HiddenBorder,         ///< the parts of Border the model hides, dashed
     Outline,
     Silhouette,
     NormalEdge,
