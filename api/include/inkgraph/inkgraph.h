@@ -219,7 +219,7 @@ struct Color {
 enum class Shading { None, Flat, Gouraud, Lambert, Phong, Cel, Comic, MToon, Auto };
 /** The line types, in the order the composite draws them (`--lines`; docs/lines.md). */
 enum class LineType {
-    HiddenMeshSilhouette, ///< the parts of MeshSilhouette the model hides, dashed (docs/lines.md, "Hidden lines")
+    HiddenMeshSilhouette, ///< the parts of MeshSilhouette the model hides, dashed (StrokeSettings::hiddenDashOn/Off)
     HiddenCrease,         ///< the parts of Crease the model hides, dashed
     HiddenBorder,         ///< the parts of Border the model hides, dashed
     Outline,
@@ -263,6 +263,8 @@ struct StrokeSettings {
     bool weightByStrength = false; ///< --line-weight strength
     bool taperEnds = false;        ///< --line-weight taper
     bool mergeOverlaps = false;    ///< --overlapping-lines merge
+    double hiddenDashOn = 6.0;     ///< --hidden-dash ON,OFF: the hidden-lines types' dashes, output pixels above 0
+    double hiddenDashOff = 4.0;    ///< and their gaps, 0 or more (0: solid)
 };
 
 /** The look: shading and its settings, the line types with their styles and parameters, strokes, paper, light and
