@@ -349,8 +349,8 @@ Look& Look::setLineChoice(const std::string& name, const std::string& value) {
 
 StrokeSettings Look::strokes() const {
     const StrokeStyle& strokes = mImpl->parsed.look.strokes;
-    return {strokes.minLength, strokes.weightByDepth, strokes.weightByStrength, strokes.taperEnds,
-            strokes.mergeOverlaps};
+    return {strokes.minLength,     strokes.weightByDepth, strokes.weightByStrength, strokes.taperEnds,
+            strokes.mergeOverlaps, strokes.hiddenDashOn,  strokes.hiddenDashOff};
 }
 Look& Look::setStrokes(const StrokeSettings& strokes) {
     // As setLineStyle(): only the flags whose value changes are given.
@@ -367,6 +367,9 @@ Look& Look::setStrokes(const StrokeSettings& strokes) {
     }
     if (strokes.mergeOverlaps != current.mergeOverlaps)
         setFlag(*this, "Look::setStrokes()", "--overlapping-lines", strokes.mergeOverlaps ? "merge" : "draw");
+    if (strokes.hiddenDashOn != current.hiddenDashOn || strokes.hiddenDashOff != current.hiddenDashOff)
+        setFlag(*this, "Look::setStrokes()", "--hidden-dash",
+                exactText(strokes.hiddenDashOn) + "," + exactText(strokes.hiddenDashOff));
     return *this;
 }
 

@@ -11,7 +11,24 @@ inline namespace INKGRAPH_ABI_NAMESPACE {
 namespace {
 
 /** The line types' names in LineType's order, which is the registry's (tests/api/ApiTest.cpp checks the two agree). */
-const char* const kLineTypeNames[] = {"hidden-intersection", "hidden-suggestive-object", "outline", "silhouette", "normal-edge", "depth-edge", "crease", "border", "intersection", "material-boundary", "object-boundary", "suggestive", "suggestive-object", "contour", "mesh-silhouette"};
+const char* const kLineTypeNames[] = {"hidden-mesh-silhouette",
+                                      "hidden-crease",
+                                      "hidden-border",
+                                      "hidden-intersection",
+                                      "hidden-suggestive-object",
+                                      "outline",
+                                      "silhouette",
+                                      "normal-edge",
+                                      "depth-edge",
+                                      "crease",
+                                      "border",
+                                      "intersection",
+                                      "material-boundary",
+                                      "object-boundary",
+                                      "suggestive",
+                                      "suggestive-object",
+                                      "contour",
+                                      "mesh-silhouette"};
 static_assert(std::size(kLineTypeNames) == std::size_t(LineType::MeshSilhouette) + 1);
 
 } // namespace

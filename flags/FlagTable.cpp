@@ -171,6 +171,10 @@ const std::vector<std::pair<std::string, FaceOrientationMethod>> kOrientationMet
     {"after-vertices", FaceOrientationMethod::AfterVertices},
 };
 
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 std::string commaJoined(const std::vector<std::string>& names) {
     std::string text;
     for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
@@ -275,6 +279,80 @@ void addLineTypeFlags(std::vector<Flag>& flags) {
         entry.noEffect = onlyWithLineTypes(flagName, types);
         flags.push_back(entry);
     }
+}
+
+/** The types --hidden-lines takes: each registered type T with a registered hidden-lines type "hidden-T". */
+std::vector<std::string> typesWithHiddenLines() {
+    std::vector<std::string> names;
+    for (const LineType& type : lineTypes()) {
+        if (type.hiddenLines) continue;
+        const LineType* hidden = findLineType("hidden-" + type.name);
+        if (hidden && hidden->hiddenLines) names.push_back(type.name);
+    }
+    return names;
+}
+
+/** --hidden-lines and --hidden-dash (docs/lines.md, "Hidden lines"); the types come from the registry. */
+void addHiddenLineFlags(std::vector<Flag>& flags) {
+    const std::vector<std::string> types = typesWithHiddenLines();
+    Flag hiddenLines = styleFlag(
+        flag({"--hidden-lines"}, "LIST", HelpSection::Lines,
+             "none (default) or comma-separated types (" + commaJoined(types) +
+                 "): also draw the parts of\n"
+                 "each that the model hides, as the line type hidden-<type> (its own layer, --hidden-<type>-width\n"
+                 "and -color, lines-hidden-<type>.png), dashed by --hidden-dash and drawn under every visible line",
+             [types](const std::string& value, RenderOptions& options) {
+                 for (const std::string& hidden : options.hiddenLineTypes)
+                     options.look.lines.erase(std::remove(options.look.lines.begin(), options.look.lines.end(), hidden),
+                                              options.look.lines.end());
+                 options.hiddenLineTypes.clear();
+                 if (value == "none") return;
+                 std::vector<std::string> listed;
+                 for (const std::string& type : splitList(value, ',')) {
+                     if (!contains(types, type))
+                         throw UsageError("--hidden-lines: '" + type +
+                                          "' has no hidden lines (available: " + joined(types) + "; or 'none')");
+                     if (contains(listed, type)) throw UsageError("--hidden-lines: '" + type + "' is listed twice");
+                     listed.push_back(type);
+                     const std::string hidden = "hidden-" + type;
+                     if (options.look.draws(hidden)) continue; // --lines named it already
+                     options.look.lines.push_back(hidden);
+                     options.hiddenLineTypes.push_back(hidden);
+                 }
+             }));
+    hiddenLines.choices = {"none"};
+    for (const std::string& type : types) hiddenLines.choices.push_back(type);
+    hiddenLines.commaList = true;
+    flags.push_back(hiddenLines);
+
+    std::vector<std::string> hiddenTypes;
+    for (const LineType& type : lineTypes())
+        if (type.hiddenLines) hiddenTypes.push_back(type.name);
+    Flag dash =
+        styleFlag(flag({"--hidden-dash"}, "ON,OFF", HelpSection::Lines,
+                       "the dash of every hidden-<type> layer: ON output pixels drawn, OFF left out, along each\n"
+                       "stroke from its start (default 6,4; up to 4096 each); OFF 0, or none, draws them solid. The\n"
+                       "picture and the --svg (one path per dash) cut the same dashes",
+                       [](const std::string& value, RenderOptions& options) {
+                           StrokeStyle& strokes = options.look.strokes;
+                           if (value == "none") {
+                               strokes.hiddenDashOff = 0.0;
+                               return;
+                           }
+                           const std::vector<std::string> parts = splitList(value, ',');
+                           const std::string expected =
+                               "--hidden-dash: expected ON,OFF in output pixels (ON above 0, OFF 0 or more, "
+                               "each at most 4096) or none, got '" +
+                               value + "'";
+                           if (parts.size() != 2) throw UsageError(expected);
+                           const double on = parseNumber("--hidden-dash", parts[0]);
+                           const double off = parseNumber("--hidden-dash", parts[1]);
+                           if (!(on > 0.0 && on <= 4096.0 && off >= 0.0 && off <= 4096.0)) throw UsageError(expected);
+                           strokes.hiddenDashOn = on;
+                           strokes.hiddenDashOff = off;
+                       }));
+    dash.noEffect = onlyWithLineTypes("--hidden-dash", hiddenTypes);
+    flags.push_back(dash);
 }
 
 std::string lineTypesHelp() {
@@ -666,6 +744,14 @@ std::vector<Flag> makeFlags() {
     flags.push_back(styleFlag(
         flag({"--lines"}, "LIST", S::Lines, lineTypesHelp(), [](const std::string& value, RenderOptions& options) {
             options.look.lines.clear();
+            // --hidden-lines' types stay, whichever of the two flags comes first; one this list names is its own.
+            const std::vector<std::string> listed =
+                value == "none" ? std::vector<std::string>{} : splitList(value, ',');
+            std::vector<std::string> kept;
+            for (const std::string& hidden : options.hiddenLineTypes)
+                if (!contains(listed, hidden)) kept.push_back(hidden);
+            options.hiddenLineTypes = kept;
+            options.look.lines = kept;
             if (value == "none") return;
             std::vector<std::string> known;
             for (const LineType& type : lineTypes()) known.push_back(type.name);
@@ -760,6 +846,7 @@ std::vector<Flag> makeFlags() {
     overlapping.choices = {"draw", "merge"};
     overlapping.noEffect = onlyWithLineTypes("--overlapping-lines", allLineTypes);
     flags.push_back(overlapping);
+    addHiddenLineFlags(flags);
     flags.push_back(styleFlag(
         flag({"--gbuffer-precision"}, "P", S::Lines,
              "float (default) | half: store the G-buffer's normal, view, w, n.v and radial fields as\n"

@@ -52,6 +52,9 @@ struct RenderOptions {
     /** Shading, lines, supersampling, precision, paper, light; the default look (render/DefaultLook.h) draws
      *  lines. */
     Look look = defaultLook();
+    /** The hidden-<type> entries --hidden-lines put in look.lines (not those --lines named), so a later --lines keeps
+     *  them and a later --hidden-lines replaces them. */
+    std::vector<std::string> hiddenLineTypes;
     std::vector<std::string> extraOutputs; ///< --request: extra graph resources kept and dumped ("gbuffer.*")
     std::string dumpDirectory;
     std::string statsPath;

@@ -38,6 +38,10 @@ struct StrokeStyle {
     /** Where two types draw the same line, only the one earlier in the composite's order (--overlapping-lines merge;
      *  off by default: the type giving way keeps only the pieces where the two part, which change with the view). */
     bool mergeOverlaps = false;
+    /** --hidden-dash ON,OFF: every hidden-lines type's strokes (LineType::hiddenLines) are cut into dashes ON output
+     *  pixels long with gaps OFF long, along their arc length; OFF 0 draws them solid (--hidden-dash none). */
+    double hiddenDashOn = 6.0;
+    double hiddenDashOff = 4.0;
 };
 
 struct Look {

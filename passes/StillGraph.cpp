@@ -150,6 +150,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         const LineTypeStrokeRules rules = type.strokeRules ? type.strokeRules(look) : LineTypeStrokeRules{};
         input.minLength = look.strokes.minLength;
         input.seedStrength = rules.seedStrength;
+        input.dashed = type.hiddenLines;
         strokes.inputs.push_back(input);
         lines.push_back({std::string(kStrokesPass) + "." + type.name, displayColor(look.styleOf(type.name).color)});
     }
@@ -159,6 +160,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         strokes.weightByStrength = look.strokes.weightByStrength;
         strokes.taperEnds = look.strokes.taperEnds;
         strokes.mergeOverlaps = look.strokes.mergeOverlaps;
+        strokes.dash = {look.strokes.hiddenDashOn, look.strokes.hiddenDashOff};
         const double eyeToCentre = glm::length(setup.frame.camera.eye - setup.sphere.center);
         strokes.nearDepth = std::max(eyeToCentre - setup.sphere.radius, 0.0);
         strokes.farDepth = eyeToCentre + setup.sphere.radius;
@@ -202,6 +204,9 @@ Json StillGraph::describeLines() const {
                      {"width_pixels", style.widthPixels},
                      {"color", Json::array({style.color.r, style.color.g, style.color.b, style.color.a})}};
         if (type.describe) type.describe(source, line);
+        // Every hidden-lines type is dashed alike (--hidden-dash; off 0: solid).
+        if (type.hiddenLines)
+            line["dash_pixels"] = {{"on", mLook->strokes.hiddenDashOn}, {"off", mLook->strokes.hiddenDashOff}};
         lines.push_back(line);
     }
     return lines;

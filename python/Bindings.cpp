@@ -583,7 +583,10 @@ void defineEnums(py::module_& m) {
     using L = ig::LineType;
     defineEnum<L>(m, "LineType", "line type",
                   "The line types, in the order the composite draws them (--lines; docs/lines.md).",
-                  {{"HIDDEN_INTERSECTION", L::HiddenIntersection},
+                  {{"HIDDEN_MESH_SILHOUETTE", L::HiddenMeshSilhouette},
+                   {"HIDDEN_CREASE", L::HiddenCrease},
+                   {"HIDDEN_BORDER", L::HiddenBorder},
+                   {"HIDDEN_INTERSECTION", L::HiddenIntersection},
                    {"HIDDEN_SUGGESTIVE_OBJECT", L::HiddenSuggestiveObject},
                    {"OUTLINE", L::Outline},
                    {"SILHOUETTE", L::Silhouette},

@@ -23,6 +23,15 @@ namespace {
 constexpr GLfloat kFillOffsetFactor = -1.0f;
 constexpr GLfloat kFillOffsetUnits = -1.0f;
 
+constexpr const char* kHiddenPrefix = "hidden-";
+
+/** The edge kind an output draws: "crease" for "crease" and "hidden-crease". */
+std::string kindOf(const std::string& field) {
+    return field.rfind(kHiddenPrefix, 0) == 0 ? field.substr(std::string(kHiddenPrefix).size()) : field;
+}
+
+bool isHidden(const std::string& field) { return field.rfind(kHiddenPrefix, 0) == 0; }
+
 } // namespace
 
 MeshEdgesPass::MeshEdgesPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
@@ -47,10 +56,11 @@ void MeshEdgesPass::declare(PassBuilder& builder) const {
     builder.import(SceneImport::kMeshes);
     builder.import(SceneImport::kEdgeAdjacency);
     for (const char* field : kFields)
-        builder.write(
-            field, {Format::R8, mSettings.supersample}, Need::Optional,
-            {"", Appearance::Lines,
-             std::string("the one-pixel skeleton of the mesh's ") + field + " edges, at the --supersample size"});
+        builder.write(field, {Format::R8, mSettings.supersample}, Need::Optional,
+                      {"", Appearance::Lines,
+                       std::string("the one-pixel skeleton of the mesh's ") +
+                           (isHidden(field) ? "hidden " + kindOf(field) : std::string(field)) +
+                           " edges, at the --supersample size"});
 }
 
 void MeshEdgesPass::describe(nlohmann::ordered_json& report) const {
@@ -58,6 +68,9 @@ void MeshEdgesPass::describe(nlohmann::ordered_json& report) const {
     if (mEdgesDrawn.crease) drawn["crease"] = *mEdgesDrawn.crease;
     if (mEdgesDrawn.border) drawn["border"] = *mEdgesDrawn.border;
     if (mEdgesDrawn.silhouette) drawn["silhouette"] = *mEdgesDrawn.silhouette;
+    if (mEdgesDrawn.hiddenCrease) drawn["hidden-crease"] = *mEdgesDrawn.hiddenCrease;
+    if (mEdgesDrawn.hiddenBorder) drawn["hidden-border"] = *mEdgesDrawn.hiddenBorder;
+    if (mEdgesDrawn.hiddenSilhouette) drawn["hidden-silhouette"] = *mEdgesDrawn.hiddenSilhouette;
     report["edges_drawn"] = drawn;
     if (mCreaseCounts)
         report["crease_edges"] = {{"by_angle", mCreaseCounts->edgesByAngle},
@@ -80,14 +93,14 @@ MeshEdgesPass::EdgeLines MeshEdgesPass::uploadEdgeLines(const std::string& outpu
     return lines;
 }
 
-std::size_t MeshEdgesPass::drawEdgeLines(const std::vector<EdgeLines>& lines) {
+std::size_t MeshEdgesPass::drawEdgeLines(const GlProgram& program, const std::vector<EdgeLines>& lines) {
     std::size_t edges = 0;
     const bool transparency = mScene.hasTransparency();
     for (std::size_t index = 0; index < lines.size(); ++index) {
         const EdgeLines& mesh = lines[index];
         if (mesh.indexCount == 0) continue;
         // An edge through what a material cuts out is not drawn (the lines follow the cut-out surface).
-        if (transparency) mScene.bindMaterial(*mLineProgram, index, MaterialUse::Coverage);
+        if (transparency) mScene.bindMaterial(program, index, MaterialUse::Coverage);
         mesh.vertexArray->bind();
         glDrawElements(GL_LINES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
         // GL's diamond-exit rule leaves out a line's last pixel, so two edges of a chain that meet head to head
@@ -111,14 +124,26 @@ void MeshEdgesPass::prepare(GlPassContext& context) {
                                                                    "edges/edges.frag",
                                                                    materialAlphaDefines(mScene),
                                                                    {"common/material.glsl"}}));
+    // A kind's edges are chosen when its visible or its hidden output is live.
+    const auto kindLive = [&](const std::string& kind) {
+        return context.isLive(kind) || context.isLive(kHiddenPrefix + kind);
+    };
+    const bool anyHidden =
+        context.isLive("hidden-silhouette") || context.isLive("hidden-crease") || context.isLive("hidden-border");
+    if (anyHidden && !mHiddenProgram) {
+        std::vector<std::string> defines = materialAlphaDefines(mScene);
+        defines.push_back("HIDDEN 1");
+        mHiddenProgram = std::make_unique<GlProgram>(mShaders.build(
+            {mName + " hidden lines", "edges/edges.vert", "edges/edges.frag", defines, {"common/material.glsl"}}));
+    }
     const std::size_t meshCount = mScene.meshes().size();
-    const bool anyLive = context.isLive("silhouette") || context.isLive("crease") || context.isLive("border");
+    const bool anyLive = kindLive("silhouette") || kindLive("crease") || kindLive("border");
     if (!anyLive) return;
     for (std::size_t mesh = 0; mesh < meshCount; ++mesh) mScene.edgeAdjacency(mesh);
 
     // Creases and borders do not depend on the view: chosen and uploaded once, outside the timed execute().
     const double creaseAngle = double(mSettings.creaseAngleDegrees) * glm::pi<double>() / 180.0;
-    if (context.isLive("crease") && mCreaseLines.empty()) {
+    if (kindLive("crease") && mCreaseLines.empty()) {
         CreaseCounts counts;
         for (std::size_t mesh = 0; mesh < meshCount; ++mesh) {
             const CreaseSelection selection =
@@ -132,7 +157,7 @@ void MeshEdgesPass::prepare(GlPassContext& context) {
         }
         mCreaseCounts = counts;
     }
-    if (context.isLive("border") && mBorderLines.empty())
+    if (kindLive("border") && mBorderLines.empty())
         for (std::size_t mesh = 0; mesh < meshCount; ++mesh)
             mBorderLines.push_back(uploadEdgeLines("border", mesh, selectBorderEdges(mScene.edgeAdjacency(mesh))));
 }
@@ -157,7 +182,7 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
     // The silhouette edges for this eye, chosen before anything is drawn: when no live output has an edge (a smooth
     // scan's creases all shorter than the minimum length, say), the model's depth, a draw of every face, is not
     // needed, and the outputs are only cleared.
-    if (gl.isLive("silhouette")) {
+    if (gl.isLive("silhouette") || gl.isLive("hidden-silhouette")) {
         // The eye in the meshes' frame: the scene's local frame (Scene::origin), where Camera::eye lives too
         // (GpuScene subtracts worldOrigin only for the GPU).
         const glm::dvec3 eye = mFrame.camera.eye;
@@ -167,7 +192,8 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
                 uploadEdgeLines("silhouette", mesh, selectSilhouetteEdges(mScene.edgeAdjacency(mesh), eye)));
     }
     const auto linesOf = [&](const std::string& field) -> const std::vector<EdgeLines>& {
-        return field == "silhouette" ? mSilhouetteLines : field == "crease" ? mCreaseLines : mBorderLines;
+        const std::string kind = kindOf(field);
+        return kind == "silhouette" ? mSilhouetteLines : kind == "crease" ? mCreaseLines : mBorderLines;
     };
     bool anyEdges = false;
     for (const char* field : live)
@@ -203,19 +229,23 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
     lineTarget.finish(slots);
     lineTarget.bind();
     clearColorAndDepth(int(slots.size()));
-    mLineProgram->use();
-    glUniformMatrix4fv(mLineProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
-    glUniformMatrix4fv(mLineProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
     if (anyEdges) glBindTextureUnit(0, mDepth.sized(width, height).id());
     glLineWidth(1.0f);
     glPointSize(1.0f);
     for (std::size_t slot = 0; slot < live.size(); ++slot) {
         const std::string field = live[slot];
+        const GlProgram& program = isHidden(field) ? *mHiddenProgram : *mLineProgram;
+        program.use();
+        glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
+        glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
         lineTarget.finish({int(slot)});
-        const std::size_t drawn = drawEdgeLines(linesOf(field));
-        (field == "silhouette" ? mEdgesDrawn.silhouette
-         : field == "crease"   ? mEdgesDrawn.crease
-                               : mEdgesDrawn.border) = drawn;
+        const std::size_t drawn = drawEdgeLines(program, linesOf(field));
+        (field == "silhouette"          ? mEdgesDrawn.silhouette
+         : field == "crease"            ? mEdgesDrawn.crease
+         : field == "border"            ? mEdgesDrawn.border
+         : field == "hidden-silhouette" ? mEdgesDrawn.hiddenSilhouette
+         : field == "hidden-crease"     ? mEdgesDrawn.hiddenCrease
+                                        : mEdgesDrawn.hiddenBorder) = drawn;
     }
 
     glBindTextureUnit(0, 0);

@@ -9,9 +9,13 @@
  *  | <name>.silhouette   | r8 xS  | optional | 255 on visible silhouette edges (exact perspective test), else 0  |
  *  | <name>.crease       | r8 xS  | optional | 255 on visible edges whose normals meet above the crease angle    |
  *  | <name>.border       | r8 xS  | optional | 255 on visible boundary and non-manifold edges, else 0           |
+ *  | <name>.hidden-silhouette, .hidden-crease, .hidden-border                                                  |
+ *  |                     | r8 xS  | optional | the same edges where the model hides them (--hidden-lines)       |
  *
  *  Every output is `supersample` (S) times the frame size. Only live outputs are computed; a plan that reads none
- *  culls the pass, and then nothing (not even the adjacency) is derived.
+ *  culls the pass, and then nothing (not even the adjacency) is derived. A hidden-<kind> output draws the same edges
+ *  as <kind> with the fragment shader's depth test turned round (HIDDEN in shaders/edges/edges.frag), against the one
+ *  model depth both share: every fragment of an edge lands in exactly one of the two.
  *
  *  Which edges:
  *  - silhouette: manifold edges where exactly one of s_i = n_i . (E - p_a) is > 0, E the eye in model space; exact
@@ -74,7 +78,8 @@ struct MeshEdgesSettings {
 class MeshEdgesPass : public GlPass {
 public:
     /** The outputs' field names, in the order the pass draws them. */
-    static constexpr std::array<const char*, 3> kFields = {"silhouette", "crease", "border"};
+    static constexpr std::array<const char*, 6> kFields = {"silhouette",        "crease",        "border",
+                                                           "hidden-silhouette", "hidden-crease", "hidden-border"};
 
     /** Throws std::invalid_argument for a crease angle outside [0, 180] or not finite, a crease minimum length
      *  negative or not finite, or supersample < 1. */
@@ -94,6 +99,9 @@ public:
         std::optional<std::size_t> silhouette;
         std::optional<std::size_t> crease;
         std::optional<std::size_t> border;
+        std::optional<std::size_t> hiddenSilhouette;
+        std::optional<std::size_t> hiddenCrease;
+        std::optional<std::size_t> hiddenBorder;
     };
     const EdgeCounts& edgesDrawn() const { return mEdgesDrawn; }
     /** Over all meshes, once the crease edges are chosen (prepare() with the crease output live). */
@@ -104,8 +112,9 @@ public:
         std::size_t chainsKept = 0;
     };
     const std::optional<CreaseCounts>& creaseCounts() const { return mCreaseCounts; }
-    /** "edges_drawn": {"crease": n, "border": n, "silhouette": n} for the outputs the last execute() drew, and with
-     *  the crease edges chosen "crease_edges": {"by_angle", "kept", "chains", "chains_kept"}. */
+    /** "edges_drawn": {"crease": n, "border": n, "silhouette": n, "hidden-crease": n, ...} for the outputs the last
+     * execute() drew, and with the crease edges chosen "crease_edges": {"by_angle", "kept", "chains", "chains_kept"}.
+     */
     void describe(nlohmann::ordered_json& report) const override;
 
     const MeshEdgesSettings& settings() const { return mSettings; }
@@ -120,20 +129,21 @@ private:
 
     EdgeLines uploadEdgeLines(const std::string& output, std::size_t meshIndex,
                               const std::vector<std::uint32_t>& indices) const;
-    /** Draws `lines` (one per mesh) as GL_LINES; returns the number of edges. */
-    std::size_t drawEdgeLines(const std::vector<EdgeLines>& lines);
+    /** Draws `lines` (one per mesh) as GL_LINES with `program` (in use); returns the number of edges. */
+    std::size_t drawEdgeLines(const GlProgram& program, const std::vector<EdgeLines>& lines);
 
     std::string mName;
     ShaderLibrary& mShaders;
     GpuScene& mScene;
     const FrameParams& mFrame;
     MeshEdgesSettings mSettings;
-    std::unique_ptr<GlProgram> mDepthProgram; ///< the model's depth
-    std::unique_ptr<GlProgram> mLineProgram;  ///< edges as lines, tested against that depth in the shader
-    std::vector<EdgeLines> mCreaseLines;      ///< one per mesh once uploaded: view-independent
-    std::vector<EdgeLines> mBorderLines;      ///< one per mesh once uploaded: view-independent
-    std::vector<EdgeLines> mSilhouetteLines;  ///< one per mesh, chosen and uploaded every execute()
-    PassDepthBuffer mDepth;                   ///< the pass's own depth attachment, kept between runs
+    std::unique_ptr<GlProgram> mDepthProgram;  ///< the model's depth
+    std::unique_ptr<GlProgram> mLineProgram;   ///< edges as lines, tested against that depth in the shader
+    std::unique_ptr<GlProgram> mHiddenProgram; ///< the same with the test turned round (HIDDEN); built when live
+    std::vector<EdgeLines> mCreaseLines;       ///< one per mesh once uploaded: view-independent
+    std::vector<EdgeLines> mBorderLines;       ///< one per mesh once uploaded: view-independent
+    std::vector<EdgeLines> mSilhouetteLines;   ///< one per mesh, chosen and uploaded every execute()
+    PassDepthBuffer mDepth;                    ///< the pass's own depth attachment, kept between runs
     EdgeCounts mEdgesDrawn;
     std::optional<CreaseCounts> mCreaseCounts;
 };

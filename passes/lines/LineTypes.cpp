@@ -22,11 +22,18 @@ LineType meshSilhouetteLineType();
 LineType intersectionLineType();
 LineType hiddenIntersectionLineType();
 LineType hiddenSuggestiveObjectLineType();
+LineType hiddenMeshSilhouetteLineType();
+LineType hiddenCreaseLineType();
+LineType hiddenBorderLineType();
 
 const std::vector<LineType>& lineTypes() {
-    // The composite order: later types are drawn over earlier ones.
+    // The composite order: later types are drawn over earlier ones. The hidden-lines types (LineType::hiddenLines)
+    // come first, so every visible line is drawn over the dashed hidden ones (docs/lines.md, "Hidden lines").
     static const std::vector<LineType> kTypes = {
         // Hidden lines first: under every visible line.
+        hiddenMeshSilhouetteLineType(),
+        hiddenCreaseLineType(),
+        hiddenBorderLineType(),
         hiddenIntersectionLineType(),
         hiddenSuggestiveObjectLineType(),
         outlineLineType(),

@@ -48,6 +48,10 @@ StrokesPass::StrokesPass(std::string name, StrokesPassSettings settings)
         if (!(input.seedStrength >= 0.0f && input.seedStrength <= 1.0f))
             throw std::invalid_argument("StrokesPass(): '" + input.type + "' seed strength must lie in [0, 1]");
     }
+    const DashPattern& dash = mSettings.dash;
+    if (!(std::isfinite(dash.onPixels) && dash.onPixels > 0.0 && std::isfinite(dash.offPixels) &&
+          dash.offPixels >= 0.0))
+        throw std::invalid_argument("StrokesPass(): 'dash' needs a dash above 0 and a gap of 0 or more pixels");
 }
 
 void StrokesPass::declare(PassBuilder& builder) const {
@@ -107,11 +111,7 @@ void StrokesPass::execute(GlPassContext& gl) {
     settings.directionPixels = 2.0 * settings.joinRadiusPixels;
     settings.absorbPixels = 2.0 * settings.joinRadiusPixels;
     Strokes strokes = chainStrokes(layers, settings);
-    if (mSettings.mergeOverlaps) {
-        std::vector<double> halfWidths;
-        for (const StrokeInput& input : mSettings.inputs) halfWidths.push_back(0.5 * input.widthPixels * scale);
-        mergeOverlaps(strokes, layers, halfWidths);
-    }
+    if (mSettings.mergeOverlaps) mergeOverlapsWithinKind(strokes, layers);
     LineWeightSettings weight;
     if (mSettings.weightByDepth) {
         weight.farWidth = kFarWidth;
@@ -127,7 +127,16 @@ void StrokesPass::execute(GlPassContext& gl) {
                  dataSize);
     mReport.chainMilliseconds = millisecondsSince(start);
 
+    // What was kept, counted before the dashes cut the hidden types' strokes into pieces.
+    reportKept(strokes);
+
     start = std::chrono::steady_clock::now();
+    // The hidden types' strokes cut into dashes by arc length in data pixels (the pattern is in output pixels), so
+    // the layers below and the --svg paths draw the same dashes.
+    mReport.dashesPerInput.assign(mSettings.inputs.size(), 0);
+    const DashPattern dataDash{mSettings.dash.onPixels * scale, mSettings.dash.offPixels * scale};
+    for (std::size_t index = 0; index < mSettings.inputs.size(); ++index)
+        if (mSettings.inputs[index].dashed) mReport.dashesPerInput[index] = dashStrokes(strokes, int(index), dataDash);
     for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
         const StrokeInput& input = mSettings.inputs[index];
         const LineSkeleton kept = keptSkeleton(strokes, layers, int(index));
@@ -135,6 +144,45 @@ void StrokesPass::execute(GlPassContext& gl) {
     }
     mReport.strokeMilliseconds = millisecondsSince(start);
 
+    if (gl.isLive(kStrokePathsField)) {
+        DrawnStrokes& drawn = gl.outputObject<DrawnStrokes>(kStrokePathsField);
+        drawn.strokes = std::move(strokes);
+        drawn.inputs = mSettings.inputs;
+        drawn.supersample = scale;
+        drawn.weighted = mSettings.weightByDepth || mSettings.weightByStrength || mSettings.taperEnds;
+    }
+}
+
+void StrokesPass::mergeOverlapsWithinKind(Strokes& strokes, const std::vector<StrokeLayer>& layers) const {
+    // Hidden lines lie under the visible ones (docs/lines.md, "Hidden lines"): a visible line does not give way to a
+    // dashed one drawn earlier, nor a dashed one to a visible one where the two meet at an occluder's outline. So the
+    // dashed inputs and the others are merged apart, each in composite order: mergeOverlaps() sees only one kind's
+    // layers, renumbered, and every other stroke's layer is out of its range while it runs.
+    const int scale = mSettings.supersample;
+    for (const bool dashed : {true, false}) {
+        std::vector<int> ofKind; // the kind's inputs, in order
+        for (std::size_t index = 0; index < mSettings.inputs.size(); ++index)
+            if (mSettings.inputs[index].dashed == dashed) ofKind.push_back(int(index));
+        if (ofKind.size() < 2) continue;
+        std::vector<StrokeLayer> kindLayers;
+        std::vector<double> halfWidths;
+        std::vector<int> renumbered(mSettings.inputs.size(), -1);
+        for (std::size_t position = 0; position < ofKind.size(); ++position) {
+            kindLayers.push_back(layers[std::size_t(ofKind[position])]);
+            halfWidths.push_back(0.5 * mSettings.inputs[std::size_t(ofKind[position])].widthPixels * scale);
+            renumbered[std::size_t(ofKind[position])] = int(position);
+        }
+        const int outOfRange = int(mSettings.inputs.size());
+        for (Stroke& stroke : strokes.strokes)
+            stroke.layer = renumbered[std::size_t(stroke.layer)] >= 0 ? renumbered[std::size_t(stroke.layer)]
+                                                                      : outOfRange + stroke.layer;
+        mergeOverlaps(strokes, kindLayers, halfWidths);
+        for (Stroke& stroke : strokes.strokes)
+            stroke.layer = stroke.layer >= outOfRange ? stroke.layer - outOfRange : ofKind[std::size_t(stroke.layer)];
+    }
+}
+
+void StrokesPass::reportKept(const Strokes& strokes) {
     mReport.chains = strokes.chains.size();
     mReport.strokes = strokes.strokes.size();
     mReport.kept = strokes.keptStrokes();
@@ -152,15 +200,7 @@ void StrokesPass::execute(GlPassContext& gl) {
             ++mReport.keptPerInput[std::size_t(stroke.layer)];
             mReport.lengthPixelsPerInput[std::size_t(stroke.layer)] += stroke.lengthPixels;
         }
-    for (double& length : mReport.lengthPixelsPerInput) length /= scale; // data pixels to output pixels
-
-    if (gl.isLive(kStrokePathsField)) {
-        DrawnStrokes& drawn = gl.outputObject<DrawnStrokes>(kStrokePathsField);
-        drawn.strokes = std::move(strokes);
-        drawn.inputs = mSettings.inputs;
-        drawn.supersample = scale;
-        drawn.weighted = mSettings.weightByDepth || mSettings.weightByStrength || mSettings.taperEnds;
-    }
+    for (double& length : mReport.lengthPixelsPerInput) length /= mSettings.supersample; // data to output pixels
 }
 
 void StrokesPass::describe(nlohmann::ordered_json& report) const {
@@ -175,10 +215,14 @@ void StrokesPass::describe(nlohmann::ordered_json& report) const {
     report["absorbed_fragments"] = mReport.absorbedFragments;
     report["overlap_strokes_merged"] = mReport.overlapStrokes;
     nlohmann::ordered_json types = nlohmann::ordered_json::object();
-    for (std::size_t index = 0; index < mSettings.inputs.size(); ++index)
-        types[mSettings.inputs[index].type] = {
+    for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
+        nlohmann::ordered_json type = {
             {"strokes_kept", index < mReport.keptPerInput.size() ? mReport.keptPerInput[index] : 0},
             {"length_pixels", index < mReport.lengthPixelsPerInput.size() ? mReport.lengthPixelsPerInput[index] : 0.0}};
+        if (mSettings.inputs[index].dashed)
+            type["dashes"] = index < mReport.dashesPerInput.size() ? mReport.dashesPerInput[index] : 0;
+        types[mSettings.inputs[index].type] = type;
+    }
     report["types"] = types;
     report["thin_ms"] = mReport.thinMilliseconds;
     report["chain_ms"] = mReport.chainMilliseconds;

@@ -21,6 +21,7 @@
  *  area-downsampled, as every CPU line layer always was (strokeLines). */
 
 #include "gl/GlPass.h"
+#include "postfx/StrokeDashes.h"
 #include "postfx/Strokes.h"
 #include "postfx/SvgLines.h"
 
@@ -42,6 +43,9 @@ struct StrokeInput {
     float widthPixels = 2.0f;  ///< output pixels
     double minLength = 0.0;    ///< share of the height a chain holding this type needs
     float seedStrength = 0.0f; ///< hysteresis (LineTypeStrokeRules)
+    /** A hidden-lines type (LineType::hiddenLines): its kept strokes are cut into StrokesPassSettings::dash's dashes,
+     *  in its layer and its --svg paths alike; with mergeOverlaps it gives way only to other dashed types. */
+    bool dashed = false;
 };
 
 struct StrokesPassSettings {
@@ -53,6 +57,8 @@ struct StrokesPassSettings {
     bool taperEnds = false;
     bool mergeOverlaps = false;             ///< a later type is not drawn where an earlier one draws the same line
     double nearDepth = 0.0, farDepth = 0.0; ///< the model's nearest and farthest linear depth (its bounding sphere)
+    /** The dashed inputs' pattern in output pixels (--hidden-dash); scaled to data pixels by `supersample`. */
+    DashPattern dash;
 };
 
 /** What the last execute() did, for --stats. */
@@ -62,6 +68,7 @@ struct StrokesReport {
     double thinMilliseconds = 0.0, chainMilliseconds = 0.0, strokeMilliseconds = 0.0;
     std::vector<std::size_t> keptPerInput;    ///< per input, strokes kept
     std::vector<double> lengthPixelsPerInput; ///< per input, their length in output pixels
+    std::vector<std::size_t> dashesPerInput;  ///< per input, the dashes its kept strokes were cut into (0: solid)
 };
 
 /** The kept strokes as the graph hands them on ("<name>.paths"): what --svg traces, so the raster and the vector
@@ -95,6 +102,11 @@ public:
     const StrokesReport& report() const { return mReport; }
 
 private:
+    /** --overlapping-lines merge: mergeOverlaps() over the dashed inputs and over the others, apart. */
+    void mergeOverlapsWithinKind(Strokes& strokes, const std::vector<StrokeLayer>& layers) const;
+    /** The kept strokes' counts and lengths per input, into mReport. */
+    void reportKept(const Strokes& strokes);
+
     std::string mName;
     StrokesPassSettings mSettings;
     StrokesReport mReport;

@@ -156,6 +156,9 @@ class Shading(_Enum):
     def from_name(name: str) -> Shading: ...
 
 class LineType(_Enum):
+    HIDDEN_MESH_SILHOUETTE: ClassVar[LineType]
+    HIDDEN_CREASE: ClassVar[LineType]
+    HIDDEN_BORDER: ClassVar[LineType]
     HIDDEN_INTERSECTION: ClassVar[LineType]
     HIDDEN_SUGGESTIVE_OBJECT: ClassVar[LineType]
     OUTLINE: ClassVar[LineType]

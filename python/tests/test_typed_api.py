@@ -243,8 +243,9 @@ def test_enum_names_are_the_command_lines():
     assert inkgraph.Precision.FLOAT16.cli_name == "half"
     assert inkgraph.Renderer.Platform.SURFACELESS.cli_name == "surfaceless"
     # Every line type of the library, in composite order: the hidden lines first, under every visible one.
-    assert [t.cli_name for t in inkgraph.LineType.__members__.values()][:3] == ["hidden-intersection",
-                                                                                "hidden-suggestive-object", "outline"]
+    assert [t.cli_name for t in inkgraph.LineType.__members__.values()][:6] == [
+        "hidden-mesh-silhouette", "hidden-crease", "hidden-border", "hidden-intersection", "hidden-suggestive-object",
+        "outline"]
 
 
 def test_value_types_are_immutable_values():

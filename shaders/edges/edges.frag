@@ -5,6 +5,8 @@
 // edge always has, one pixel across it (up or down for a line running more across than up, else left or right), a
 // side whose surface is no nearer than itself. A line behind the surface stays hidden unless it runs within a pixel
 // of the occluder's outline.
+// With HIDDEN (the hidden-* outputs, --hidden-lines) the test is turned round: a fragment is kept exactly where the
+// visible test drops it, so every fragment of an edge lands in one of the two outputs and none in both.
 layout(location = 0) out float outLine;
 
 // Window depth of the model, polygon offset applied, reversed-Z (gl/GlObjects.h): 1 at the near plane, 0 = nothing,
@@ -22,6 +24,10 @@ void main() {
     for (int i = 0; i < 5; ++i) {
         farthest = min(farthest, texelFetch(modelDepth, clamp(pixel + kAround[i], ivec2(0), lastPixel), 0).r);
     }
+#ifdef HIDDEN
+    if (gl_FragCoord.z >= farthest) discard;
+#else
     if (gl_FragCoord.z < farthest) discard;
+#endif
     outLine = 1.0;
 }

@@ -210,8 +210,11 @@ TEST(ApiNames, TheEnumsAreTheRegistriesInTheirOrder) {
         orientations.push_back(ig::nameOf(static_cast<ig::FaceOrientation>(method)));
     EXPECT_EQ(orientations, availableNames("--face-orientation"));
     for (const std::string& name : lineTypes) EXPECT_EQ(ig::nameOf(ig::lineTypeNamed(name)), name);
-    EXPECT_STREQ(errorOf([] { ig::lineTypeNamed("sketchy"); }).what(),
-                 "lineTypeNamed(): no line type 'sketchy' (there are: hidden-intersection, hidden-suggestive-object, outline, silhouette, normal-edge, depth-edge, crease, border, intersection, material-boundary, object-boundary, suggestive, suggestive-object, contour, mesh-silhouette)");
+    EXPECT_STREQ(
+        errorOf([] { ig::lineTypeNamed("sketchy"); }).what(),
+        "lineTypeNamed(): no line type 'sketchy' (there are: hidden-mesh-silhouette, hidden-crease, hidden-border, "
+        "hidden-intersection, hidden-suggestive-object, outline, silhouette, normal-edge, depth-edge, crease, border, "
+        "intersection, material-boundary, object-boundary, suggestive, suggestive-object, contour, mesh-silhouette)");
 }
 
 TEST(ApiBufferNames, AreTheLooksWithoutTheGraphsNames) {

@@ -115,6 +115,15 @@ TEST(ApiTyped, EveryLookFieldDrawsWhatItsFlagDraws) {
              look.setStrokes(strokes);
          },
          {"--min-stroke-length", "0.05", "--line-weight", "depth,taper", "--overlapping-lines", "merge"}},
+        {"hidden lines",
+         [](ig::Look& look) {
+             look.setLines({ig::LineType::Crease, ig::LineType::HiddenCrease});
+             ig::StrokeSettings strokes = look.strokes();
+             strokes.hiddenDashOn = 3.0;
+             strokes.hiddenDashOff = 2.0;
+             look.setStrokes(strokes);
+         },
+         {"--lines", "crease", "--hidden-lines", "crease", "--hidden-dash", "3,2"}},
     };
     const ig::Image plain = renderer().render(scene, ig::Look(), frameOf(72, 64)).picture();
     for (const TypedLook& typed : cases) {

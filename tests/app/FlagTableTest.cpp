@@ -38,7 +38,8 @@ TEST(LineTypeRegistry, ParametersAreListedOnceWithTheTypesThatUseThem) {
     const std::vector<const LineParameter*> parameters = lineParameters();
     std::set<std::string> names;
     for (const LineParameter* parameter : parameters) EXPECT_TRUE(names.insert(parameter->name).second);
-    EXPECT_EQ(lineTypesUsing(&line_parameters::kCreaseAngle), (std::vector<std::string>{"normal-edge", "crease"}));
+    EXPECT_EQ(lineTypesUsing(&line_parameters::kCreaseAngle),
+              (std::vector<std::string>{"hidden-crease", "normal-edge", "crease"}));
     // --supersample applies to every type stroked on the CPU: all but the two GL-drawn ones.
     const std::vector<std::string> supersampled = lineTypesUsing(nullptr);
     EXPECT_EQ(supersampled.size(), lineTypes().size() - 2);

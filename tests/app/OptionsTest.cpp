@@ -349,6 +349,37 @@ TEST(Options, StrokeFlags) {
     }
 }
 
+TEST(Options, HiddenLinesAddTheirTypesWhicheverComesFirst) {
+    using Lines = std::vector<std::string>;
+    auto lines = [](std::vector<std::string> flags) {
+        std::vector<std::string> arguments = {"m.obj", "-o", "x.png"};
+        arguments.insert(arguments.end(), flags.begin(), flags.end());
+        return parse(arguments).look.lines;
+    };
+    EXPECT_EQ(lines({"--lines", "crease", "--hidden-lines", "crease,border"}),
+              (Lines{"crease", "hidden-crease", "hidden-border"}));
+    // --lines after --hidden-lines keeps what --hidden-lines added; a later --hidden-lines replaces it.
+    EXPECT_EQ(lines({"--hidden-lines", "crease", "--lines", "contour"}), (Lines{"hidden-crease", "contour"}));
+    EXPECT_EQ(lines({"--hidden-lines", "crease", "--lines", "none"}), (Lines{"hidden-crease"}));
+    EXPECT_EQ(lines({"--lines", "crease", "--hidden-lines", "crease", "--hidden-lines", "border"}),
+              (Lines{"crease", "hidden-border"}));
+    EXPECT_EQ(lines({"--lines", "crease", "--hidden-lines", "crease", "--hidden-lines", "none"}), (Lines{"crease"}));
+    // Named by --lines too: once, and --lines' own.
+    EXPECT_EQ(lines({"--lines", "hidden-crease", "--hidden-lines", "crease"}), (Lines{"hidden-crease"}));
+    EXPECT_EQ(lines({"--hidden-lines", "crease", "--lines", "hidden-crease", "--hidden-lines", "none"}),
+              (Lines{"hidden-crease"}));
+    const StrokeStyle dash =
+        parse({"m.obj", "-o", "x.png", "--hidden-lines", "crease", "--hidden-dash", "5,2.5"}).look.strokes;
+    EXPECT_EQ(dash.hiddenDashOn, 5.0);
+    EXPECT_EQ(dash.hiddenDashOff, 2.5);
+    EXPECT_EQ(
+        parse({"m.obj", "-o", "x.png", "--hidden-lines", "crease", "--hidden-dash", "none"}).look.strokes.hiddenDashOff,
+        0.0);
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--hidden-lines", "suggestive"}),
+              "--hidden-lines: 'suggestive' has no hidden lines (available: crease, border, mesh-silhouette; or "
+              "'none')");
+}
+
 TEST(Options, StrokeLineParameters) {
     // --suggestive-seed (hysteresis, a strength like --suggestive-threshold) and --crease-min-length (a share of the
     // bounding radius), issue 19.

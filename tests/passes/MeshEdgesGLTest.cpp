@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <optional>
@@ -378,6 +379,47 @@ TEST_F(MeshEdgesCube, CreasesAreTheNineVisibleEdgesAndSilhouetteTheHexagon) {
     RecordProperty("cube", measured.str());
 }
 
+TEST_F(MeshEdgesCube, HiddenCreasesAreTheThreeEdgesTheCubeHides) {
+    // The hidden outputs (--hidden-lines) draw the same edges where the depth test fails: the 3 edges at the far
+    // corner, and none of the 9 visible ones; a convex cube hides none of its silhouette.
+    const glm::dvec3 eye = kNearCorner;
+    lookFrom(eye, glm::dvec3(0.0), 35.0, 256, 256);
+    const CubeEdges cube = classifyCubeEdges(eye);
+    MeshEdgesPass pass("mesh-edges", shaders, *gpuScene, frame);
+    std::map<std::string, cv::Mat> masks = renderEdges(pass, {"crease", "hidden-crease", "hidden-silhouette"});
+    const cv::Mat& hiddenCrease = masks["hidden-crease"];
+    EXPECT_EQ(pass.edgesDrawn().hiddenCrease, std::optional<std::size_t>(12));
+    EXPECT_EQ(pass.edgesDrawn().hiddenSilhouette, std::optional<std::size_t>(6));
+    EXPECT_FALSE(pass.edgesDrawn().silhouette.has_value());
+    nlohmann::ordered_json report;
+    pass.describe(report);
+    EXPECT_EQ(report["edges_drawn"].dump(), R"({"crease":12,"hidden-crease":12,"hidden-silhouette":6})");
+
+    const std::vector<ScreenSegment> hidden = projectAll(cube.hidden);
+    const std::vector<ScreenSegment> visible = projectAll(cube.visible);
+    double leastCovered = 1.0;
+    for (const ScreenSegment& edge : hidden) {
+        const SegmentCoverage coverage = coverageAlong(hiddenCrease, edge, 1.0);
+        EXPECT_GT(coverage.samples, 60);
+        // Within about a pixel of the visible corners it meets, a hidden edge cannot be told from the surface.
+        EXPECT_GE(coverage.fraction(), 0.9);
+        leastCovered = std::min(leastCovered, coverage.fraction());
+    }
+    const double farthest = farthestLinePixelAwayFrom(hiddenCrease, hidden, projectedCorners(frame.camera), 2.0);
+    EXPECT_LE(farthest, 1.0);
+    // Along the visible edges, away from the hidden ones: nothing; and no pixel in both outputs away from the corners.
+    const StrayCheck stray = linesAlongForbidden(hiddenCrease, visible, hidden, 2.5, 1.0);
+    EXPECT_GT(stray.samples, 100);
+    EXPECT_EQ(stray.hits, 0);
+    const int both = cv::countNonZero(hiddenCrease & masks["crease"]);
+    EXPECT_LE(both, 6) << "at most a pixel or two at each of the 3 corners where hidden edges meet visible ones";
+    EXPECT_EQ(cv::countNonZero(masks["hidden-silhouette"]), 0);
+    RecordProperty("hidden", "least covered " + std::to_string(leastCovered) + ", farthest pixel " +
+                                 std::to_string(farthest) + " px, in both outputs " + std::to_string(both) + " px");
+    std::cout << "[ hidden crease ] least covered " << leastCovered << ", farthest " << farthest << " px, both " << both
+              << " px\n";
+}
+
 TEST_F(MeshEdgesCube, CreaseAngleDecidesAndDiagonalsNeverShow) {
     const glm::dvec3 eye = kNearCorner;
     lookFrom(eye, glm::dvec3(0.0), 35.0, 256, 256);
@@ -666,16 +708,18 @@ TEST_F(MeshEdgesCube, NoEdgeToDrawClearsTheOutputsWithoutTheDepth) {
 TEST_F(MeshEdgesCube, TwoRunsGiveIdenticalMasks) {
     lookFrom(kNearCorner, glm::dvec3(0.0), 35.0, 160, 120);
     MeshEdgesPass pass("mesh-edges", shaders, *gpuScene, frame);
-    std::map<std::string, cv::Mat> first = renderEdges(pass, {"silhouette", "crease", "border"});
-    std::map<std::string, cv::Mat> second = renderEdges(pass, {"silhouette", "crease", "border"});
+    const std::vector<std::string> all(MeshEdgesPass::kFields.begin(), MeshEdgesPass::kFields.end());
+    std::map<std::string, cv::Mat> first = renderEdges(pass, all);
+    std::map<std::string, cv::Mat> second = renderEdges(pass, all);
     for (const char* field : MeshEdgesPass::kFields) {
         SCOPED_TRACE(field);
         EXPECT_EQ(cv::countNonZero(first[field] != second[field]), 0);
     }
     EXPECT_GT(cv::countNonZero(first["silhouette"]), 100);
+    EXPECT_GT(cv::countNonZero(first["hidden-crease"]), 50); // 3 edges of some 30 px at 160x120
 }
 
-TEST(MeshEdgesPass, DeclaresThreeOptionalOutputsAtTheSupersampledScale) {
+TEST(MeshEdgesPass, DeclaresSixOptionalOutputsAtTheSupersampledScale) {
     const Scene scene = makeScene(makeCube({0.0f, 0.0f, 0.0f}, 1.0f));
     GpuScene gpuScene(scene, glm::dvec3(0.0));
     ShaderLibrary shaders;
@@ -685,8 +729,8 @@ TEST(MeshEdgesPass, DeclaresThreeOptionalOutputsAtTheSupersampledScale) {
     const MeshEdgesPass pass("mesh-edges", shaders, gpuScene, frame, settings);
     PassBuilder builder("mesh-edges");
     pass.declare(builder);
-    ASSERT_EQ(builder.writes().size(), 3u);
-    for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_EQ(builder.writes().size(), 6u); // each kind visible and hidden
+    for (std::size_t i = 0; i < 6; ++i) {
         EXPECT_EQ(builder.writes()[i].field, MeshEdgesPass::kFields[i]);
         EXPECT_EQ(builder.writes()[i].desc, (TextureDesc{Format::R8, 3}));
         EXPECT_EQ(builder.writes()[i].need, Need::Optional);

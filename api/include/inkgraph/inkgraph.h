@@ -230,8 +230,11 @@ enum class Shading { None, Flat, Gouraud, Lambert, Phong, Cel, Comic, MToon, Aut
 /** The line types, in the order the composite draws them (`--lines`; docs/lines.md): the hidden-line types first,
  *  under every visible line. */
 enum class LineType {
-    HiddenIntersection,
-    HiddenSuggestiveObject,
+    HiddenMeshSilhouette,   ///< the parts of MeshSilhouette the model hides, dashed (StrokeSettings::hiddenDashOn/Off)
+    HiddenCrease,           ///< the parts of Crease the model hides, dashed
+    HiddenBorder,           ///< the parts of Border the model hides, dashed
+    HiddenIntersection,     ///< the parts of Intersection the model hides, dashed
+    HiddenSuggestiveObject, ///< the parts of SuggestiveObject the model hides, dashed
     Outline,
     Silhouette,
     NormalEdge,
@@ -275,6 +278,8 @@ struct StrokeSettings {
     bool weightByStrength = false; ///< --line-weight strength
     bool taperEnds = false;        ///< --line-weight taper
     bool mergeOverlaps = false;    ///< --overlapping-lines merge
+    double hiddenDashOn = 6.0;     ///< --hidden-dash ON,OFF: the hidden-lines types' dashes, output pixels above 0
+    double hiddenDashOff = 4.0;    ///< and their gaps, 0 or more (0: solid)
 };
 
 /** The look: shading and its settings, the line types with their styles and parameters, strokes, paper, light and

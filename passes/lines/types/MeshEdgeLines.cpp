@@ -1,5 +1,6 @@
 // The line types drawn from the mesh's own edges (Lander 2000; docs/lines.md): one GL pass, "mesh-edges",
-// draws each kind's one-pixel skeleton where the model does not hide it; each type strokes its kind.
+// draws each kind's one-pixel skeleton where the model does not hide it; each type strokes its kind. The hidden-*
+// types (--hidden-lines) stroke the same pass's hidden-<kind> outputs: the edges where the model hides them.
 #include "passes/edges/MeshEdgesPass.h"
 #include "passes/lines/LineType.h"
 
@@ -38,10 +39,11 @@ private:
     std::string mResource;
 };
 
-/** A type that strokes the mesh-edges pass's output `kind` ("crease"). */
+/** A type that strokes the mesh-edges pass's output `kind` ("crease", "hidden-crease"). */
 LineType meshEdgeType(std::string name, std::string kind, std::string help,
                       std::vector<const LineParameter*> parameters) {
     LineType type;
+    type.hiddenLines = kind.rfind("hidden-", 0) == 0;
     type.name = std::move(name);
     type.family = LineFamily::MeshEdge;
     type.help = std::move(help);
@@ -59,7 +61,7 @@ LineType meshEdgeType(std::string name, std::string kind, std::string help,
         builder.addLayer(typeName, std::make_unique<SkeletonKernel>(std::string(kMeshEdgesPass) + "." + kind));
     };
     type.describe = [kind](const LineStatsSource& source, nlohmann::ordered_json& entry) {
-        if (kind == "crease") {
+        if (kind == "crease" || kind == "hidden-crease") {
             entry["crease_angle_degrees"] = source.look.lineParameters.number(line_parameters::kCreaseAngle);
             entry["crease_min_length"] = source.look.lineParameters.number(kCreaseMinLength);
         }
@@ -69,7 +71,8 @@ LineType meshEdgeType(std::string name, std::string kind, std::string help,
             pass->describe(report);
             if (report.contains("edges_drawn") && report["edges_drawn"].contains(kind))
                 entry["edges_drawn"] = report["edges_drawn"][kind];
-            if (kind == "crease" && report.contains("crease_edges")) entry["crease_edges"] = report["crease_edges"];
+            if ((kind == "crease" || kind == "hidden-crease") && report.contains("crease_edges"))
+                entry["crease_edges"] = report["crease_edges"];
         }
     };
     return type;
@@ -89,6 +92,26 @@ LineType borderLineType() {
 LineType meshSilhouetteLineType() {
     return meshEdgeType("mesh-silhouette", "silhouette",
                         "mesh edges between a front and a back face (exact perspective test)", {});
+}
+
+// The occluded parts of the three kinds (--hidden-lines; docs/lines.md "Hidden lines"): the same edges, the same
+// parameters, drawn where the fragment shader's depth test fails.
+LineType hiddenCreaseLineType() {
+    return meshEdgeType("hidden-crease", "hidden-crease",
+                        "the parts of crease the model hides (--hidden-lines crease), dashed",
+                        {&line_parameters::kCreaseAngle, &kCreaseMinLength});
+}
+
+LineType hiddenBorderLineType() {
+    return meshEdgeType("hidden-border", "hidden-border",
+                        "the parts of border the model hides (--hidden-lines border), dashed", {});
+}
+
+LineType hiddenMeshSilhouetteLineType() {
+    return meshEdgeType("hidden-mesh-silhouette", "hidden-silhouette",
+                        "the parts of mesh-silhouette the model hides (--hidden-lines\n"
+                        "mesh-silhouette), dashed",
+                        {});
 }
 
 } // namespace inkgraph
