@@ -376,8 +376,8 @@ TEST(Options, HiddenLinesAddTheirTypesWhicheverComesFirst) {
         parse({"m.obj", "-o", "x.png", "--hidden-lines", "crease", "--hidden-dash", "none"}).look.strokes.hiddenDashOff,
         0.0);
     EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--hidden-lines", "suggestive"}),
-              "--hidden-lines: 'suggestive' has no hidden lines (available: crease, border, mesh-silhouette; or "
-              "'none')");
+              "--hidden-lines: 'suggestive' has no hidden lines (available: crease, border, intersection, "
+              "suggestive-object, mesh-silhouette; or 'none')");
 }
 
 TEST(Options, StrokeLineParameters) {
