@@ -16,6 +16,7 @@ examples=(
     "bunny-cel-lines 640x640"
     "teapot-metallic 640x480"
     "fandisk-creases 480x480"
+    "intersections-hidden-lines 480x480"
     "armadillo-suggestive 480x480"
     "still-life 800x500"
     "line-types 256x256"

@@ -37,6 +37,8 @@ run_example default-bunny bunny.png stats.json dump/normal.exr dump/manifest.jso
 run_example bunny-cel-lines bunny.png bunny-sheet.png bunny-lines.svg bunny-stats.json
 run_example teapot-metallic teapot.png teapot-stats.json
 run_example fandisk-creases fandisk.png fandisk-lines.svg teapot-borders.png
+run_example intersections-hidden-lines godette-face.png godette-face.svg godette-objects.png fandisk-hidden.png \
+    fandisk-hidden.svg
 run_example armadillo-suggestive armadillo-object.png armadillo-image.png
 run_example line-types outline.png silhouette.png contour.png suggestive.png suggestive-object.png depth-edge.png \
     normal-edge.png mesh-silhouette.png crease.png border.png together.png
