@@ -6,7 +6,11 @@
 #   bench/line-cleanliness.sh INKGRAPH_BINARY OUT.md [WORK_DIR]
 # TOOL=path/to/inkgraph_line_cleanliness overrides the default build/bench/inkgraph_line_cleanliness.
 # LOOKS="comic default comic-merge" picks the rows (default "comic default"); comic-merge is the comic look with
-# --overlapping-lines merge (issue 19's binaries and later).
+# --overlapping-lines merge (issue 19's binaries and later); pro-lines the types of issue 36 (intersection,
+# object-boundary, hidden mesh silhouettes and intersections, solid so the F1 columns compare lines, not dash phases)
+# over outline and contour.
+# MODELS="models/a.obj ..." measures those models instead of the eight; COLUMNS=TYPE,... names the types given an F1
+# column (inkgraph_line_cleanliness --columns; pro-lines defaults to its own types).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 if [ $# -lt 2 ] || [ $# -gt 3 ]; then
@@ -20,7 +24,7 @@ tool=${TOOL:-$root/build/bench/inkgraph_line_cleanliness}
 [ -x "$binary" ] || { echo "line-cleanliness.sh: '$binary' is not an executable" >&2; exit 2; }
 [ -x "$tool" ] || { echo "line-cleanliness.sh: '$tool' is not built (cmake --build build --target inkgraph_line_cleanliness)" >&2; exit 2; }
 
-models=(
+default_models=(
     models/bunny_c3d_70k.obj
     models/armadillo_cgal_52k.obj
     models/lucy_blendify_15k.obj
@@ -30,7 +34,10 @@ models=(
     models/characters/mtoon-uv-animation-test.vrm
     models/characters/expressions-binary-overrides.vrm
 )
+if [ -n "${MODELS:-}" ]; then read -r -a models <<<"$MODELS"; else models=("${default_models[@]}"); fi
 comic_flags=(--shading comic --lines outline,contour,suggestive,crease)
+pro_flags=(--lines outline,contour,intersection,object-boundary --hidden-lines mesh-silhouette,intersection --hidden-dash none)
+pro_columns=intersection,object-boundary,hidden-mesh-silhouette,hidden-intersection,contour
 looks=(${LOOKS:-comic default})
 
 table=$(mktemp)
@@ -50,10 +57,15 @@ for model in "${models[@]}"; do
         comic) flags=("${comic_flags[@]}") ;;
         comic-merge) flags=("${comic_flags[@]}" --overlapping-lines merge) ;;
         default) flags=() ;;
-        *) echo "line-cleanliness.sh: unknown look '$look' (comic, default, comic-merge)" >&2; exit 2 ;;
+        pro-lines) flags=("${pro_flags[@]}") ;;
+        *) echo "line-cleanliness.sh: unknown look '$look' (comic, default, comic-merge, pro-lines)" >&2; exit 2 ;;
         esac
+        columns=${COLUMNS:-}
+        [ -z "$columns" ] && [ "$look" = pro-lines ] && columns=$pro_columns
+        column_flags=()
+        [ -n "$columns" ] && column_flags=(--columns "$columns")
         echo "line-cleanliness.sh: $name, $look" >&2
-        "$tool" --inkgraph "$binary" --model "$root/$model" --work "$work/$name-$look" --look "$look" $header \
+        "$tool" --inkgraph "$binary" --model "$root/$model" --work "$work/$name-$look" --look "$look" $header "${column_flags[@]}" \
             -- "${flags[@]}" >> "$table"
         header=
     done
