@@ -8,7 +8,7 @@ packages=(
     libglm-dev libopencv-dev libtbb-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev nlohmann-json3-dev libstb-dev libpng-dev libjpeg-dev libwebp-dev
     libopenimageio-dev openimageio-tools
     libgtest-dev libgmock-dev libbenchmark-dev
-    pybind11-dev python3-dev python3-numpy python3-pytest python3-mypy
+    pybind11-dev python3-dev python3-numpy python3-pytest python3-mypy python3-jsonschema
     slurm-wlm munge
     groff-base
     clang-format
