@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <istream>
 #include <map>
@@ -74,6 +75,7 @@ std::vector<std::pair<std::string, std::string>> outputFlags(const RenderOptions
         if (!(options.*field).empty()) flags.emplace_back(flag, options.*field);
     return flags;
 }
+
 } // namespace
 
 BatchList batchList(const RenderOptions& options, std::istream& standardInput) {
@@ -202,17 +204,11 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
     };
     // Place -> the first still writing there (a model listed twice is two stills, each view one).
     std::map<std::filesystem::path, const BatchStill*> writers;
-    // Only where the views are needed: the placeholders and the positions say which still is which.
-    RenderOptions unsampled = options;
-    unsampled.viewsGiven = false;
-    std::vector<BatchStill> stills = batchStills(unsampled, list);
-    if (viewCount > 1) {
-        std::vector<BatchStill> everyView;
-        everyView.reserve(stills.size() * viewCount);
-        for (const BatchStill& still : stills)
-            for (std::size_t view = 0; view < viewCount; ++view) everyView.push_back({still.model, view, std::nullopt});
-        stills = std::move(everyView);
-    }
+    // Every still by its model and view index: the outputs do not depend on the view drawn, so none is sampled here.
+    std::vector<BatchStill> stills;
+    stills.reserve(list.models.size() * viewCount);
+    for (const BatchModel& model : list.models)
+        for (std::size_t view = 0; view < viewCount; ++view) stills.push_back({model, view, std::nullopt});
     for (const BatchStill& still : stills) {
         const BatchModel& model = still.model;
         for (const auto& [flag, pattern] : outputFlags(options)) {

@@ -1014,8 +1014,8 @@ std::vector<Flag> makeFlags() {
     distanceJitter.noEffect = onlyWithViews("--view-distance-jitter");
     flags.push_back(distanceJitter);
     Flag lightJitter = flag({"--light-jitter"}, "DEG", S::Views,
-                            "--views' light: --light's direction turned toward a direction drawn uniformly within\n"
-                            "DEG degrees of it, 0 to 180 (default 0: --light as given). Needs --light: the default\n"
+                            "--views' light: a direction drawn uniformly from those within DEG degrees of --light's\n"
+                            "(a spherical cap), 0 to 180 (default 0: --light as given). Needs --light: the default\n"
                             "light follows the camera and the file",
                             [](const std::string& value, RenderOptions& options) {
                                 options.viewSampling.lightJitterDegrees =

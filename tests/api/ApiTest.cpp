@@ -525,6 +525,12 @@ TEST(ApiViews, SampleViewsDrawsTheCommandLinesViews) {
     const ig::Error elevation = errorOf([&] { ig::sampleViews(2, 0, "a.obj", sampling); });
     EXPECT_NE(std::string(elevation.what()).find("--view-elevation: LOW must not exceed HIGH"), std::string::npos)
         << elevation.what();
+    // --views is the command line's loop; a Frame takes one view.
+    const ig::Error inFrame = errorOf([] { ig::Frame::fromArguments({"--views", "3"}); });
+    EXPECT_EQ(inFrame.kind(), ig::Error::Kind::Usage);
+    EXPECT_NE(std::string(inFrame.what()).find("sampleViews() (Python: sample_views()) draws the views"),
+              std::string::npos)
+        << inFrame.what();
 }
 
 } // namespace

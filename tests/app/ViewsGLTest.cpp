@@ -86,6 +86,37 @@ TEST_F(Cli, ViewsAreSampledRecordedAndReproducedByTheirNumbers) {
     EXPECT_EQ(readText(directory / "again.png"), readText(directory / "a" / "v-1.png"));
 }
 
+TEST_F(Cli, ViewsChooseExpressionsAndPosesThatTheirRecordReproduces) {
+    // Godette (3439 triangles) has VRM expressions. Copied, so the views' key is "g.vrm" wherever the checkout is:
+    // seed 1 gives view 0 no expression in the A-pose and view 1 happy=1 in the rest pose.
+    fs::copy_file(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "characters" / "godette.vrm", directory / "g.vrm");
+    const std::string godette = "g.vrm";
+    const CliRun result = run("render " + godette +
+                              " --views 2 --seed 1 --expressions 'happy=1;none' --poses rest,a-pose --size 64x64 -q"
+                              " -o 'v-{view}.png' --stats 'v-{view}.json' --dump 'd-{view}'" +
+                              kLook);
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    std::set<std::string> expressions, poses;
+    for (int view = 0; view < 2; ++view) {
+        const std::string name = "v-" + std::to_string(view);
+        const nlohmann::json record = nlohmann::json::parse(readText(directory / (name + ".json")))["view"];
+        const nlohmann::json manifest =
+            nlohmann::json::parse(readText(directory / ("d-" + std::to_string(view)) / "manifest.json"));
+        EXPECT_EQ(manifest["view"], record) << "the manifest records the view as --stats does";
+        expressions.insert(record["expression"].get<std::string>());
+        poses.insert(record["pose"].get<std::string>());
+        const std::string expression =
+            record["expression"] == "none" ? "" : " --expression " + record["expression"].get<std::string>();
+        const std::string pose = record["pose"] == "rest" ? "" : " --pose " + record["pose"].get<std::string>();
+        const CliRun again = run("render " + godette + " --orbit " + record["orbit"].get<std::string>() + expression +
+                                 pose + " --size 64x64 -q -o again.png" + kLook);
+        ASSERT_EQ(again.exitCode, 0) << again.err;
+        EXPECT_EQ(readText(directory / "again.png"), readText(directory / (name + ".png"))) << name;
+    }
+    EXPECT_EQ(expressions, std::set<std::string>({"happy=1", "none"}));
+    EXPECT_EQ(poses, std::set<std::string>({"a-pose", "rest"}));
+}
+
 TEST_F(Cli, ViewsOfAShardedListAreTheUnshardedRunsBytes) {
     for (const char* name : {"suzanne_npm_4k", "cow_c3d", "spot_c3d"})
         fs::copy_file(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / (std::string(name) + ".obj"),
