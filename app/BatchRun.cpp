@@ -18,17 +18,30 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-/** Renders every model of the list in `session`, each still's picture encoded while the next renders (the caller
- *  finishes the last). Bad input stops one still, not the batch: its model goes to `failed`. */
-void renderEach(const RenderOptions& options, const BatchList& list, RenderSession& session, std::ostream& log,
-                std::vector<std::string>& failed, int& exitCode) {
-    for (std::size_t i = 0; i < list.models.size(); ++i) {
-        const BatchModel& model = list.models[i];
-        const RenderOptions still = stillOptions(options, model, list.total);
-        const std::string counter =
-            "inkgraph: [" + std::to_string(i + 1) + "/" + std::to_string(list.models.size()) + "] '" + model.path + "'";
+/** "'models/x.vrm'", with --views "'models/x.vrm' view 04": a still in progress lines and the summary. */
+std::string stillLabel(const BatchStill& still, const RenderOptions& options) {
+    std::string label = "'" + still.model.path + "'";
+    if (still.view) {
+        const std::string last = std::to_string(options.viewSampling.count - 1);
+        std::string view = std::to_string(still.viewIndex);
+        if (view.size() < last.size()) view.insert(0, last.size() - view.size(), '0');
+        label += " view " + view;
+    }
+    return label;
+}
+
+/** Renders every still of the list in `session` (each model's views one after the other), each still's picture
+ *  encoded while the next renders (the caller finishes the last). Bad input stops one still, not the batch: its
+ *  label goes to `failed`. */
+void renderEach(const RenderOptions& options, const BatchList& list, const std::vector<BatchStill>& stills,
+                RenderSession& session, std::ostream& log, std::vector<std::string>& failed, int& exitCode) {
+    for (std::size_t i = 0; i < stills.size(); ++i) {
+        const BatchStill& batchStill = stills[i];
+        const RenderOptions still = stillOptions(options, batchStill, list.total);
+        const std::string counter = "inkgraph: [" + std::to_string(i + 1) + "/" + std::to_string(stills.size()) + "] " +
+                                    stillLabel(batchStill, options);
         try {
-            const StillBatchPosition position{model.position, list.total};
+            const StillBatchPosition position{batchStill.model.position, list.total};
             const StillReport report = session.render(still, &position);
             if (!options.quiet) {
                 log << counter;
@@ -37,13 +50,13 @@ void renderEach(const RenderOptions& options, const BatchList& list, RenderSessi
                     << report.milliseconds << " ms\n";
             }
         } catch (const SceneError& error) {
-            // Bad input stops one still, not the batch: the other models' work is not lost.
+            // Bad input stops one still, not the batch: the other stills' work is not lost.
             log << boundedMessage(counter + " failed: " + error.what()) << "\n";
-            failed.push_back(model.path);
+            failed.push_back(stillLabel(batchStill, options));
             if (exitCode == kExitOk) exitCode = kExitBadInput;
         } catch (const InputFileError& error) {
             log << boundedMessage(counter + " failed: " + error.what()) << "\n";
-            failed.push_back(model.path);
+            failed.push_back(stillLabel(batchStill, options));
             if (exitCode == kExitOk) exitCode = kExitBadInput;
         }
     }
@@ -65,15 +78,16 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
         if (!options.quiet) log << "inkgraph: no models in this share" << share << "\n";
         return kExitOk;
     }
+    const std::vector<BatchStill> stills = batchStills(options, list);
     if (!list.isBatch) {
-        session.render(stillOptions(options, list.models.front(), list.total));
+        session.render(stillOptions(options, stills.front(), list.total));
         return kExitOk;
     }
     const auto batchStart = std::chrono::steady_clock::now();
     int exitCode = kExitOk;
     std::vector<std::string> failed;
     try {
-        renderEach(options, list, session, log, failed, exitCode);
+        renderEach(options, list, stills, session, log, failed, exitCode);
         session.finishPending();
     } catch (...) {
         // The batch stops; the still whose picture was still being encoded is finished first, so no completed
@@ -86,11 +100,16 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
         throw;
     }
     if (!options.quiet || !failed.empty()) {
-        log << "inkgraph: rendered " << list.models.size() - failed.size() << " of " << list.models.size() << " models"
-            << share << " in " << std::fixed << std::setprecision(1) << millisecondsSince(batchStart) / 1000.0 << " s";
+        log << "inkgraph: rendered " << stills.size() - failed.size() << " of " << stills.size();
+        if (options.viewsGiven)
+            log << " stills (" << list.models.size() << (list.models.size() == 1 ? " model x " : " models x ")
+                << options.viewSampling.count << (options.viewSampling.count == 1 ? " view)" : " views)");
+        else
+            log << " models";
+        log << share << " in " << std::fixed << std::setprecision(1) << millisecondsSince(batchStart) / 1000.0 << " s";
         if (!failed.empty()) {
             log << "; " << failed.size() << " failed:";
-            for (const std::string& path : failed) log << " '" << path << "'";
+            for (std::size_t i = 0; i < failed.size(); ++i) log << (i == 0 ? " " : ", ") << failed[i];
         }
         log << "\n";
     }
