@@ -315,7 +315,7 @@ TEST_F(ApiRenderRefusal, AnUnknownBufferNamesTheLooksBuffers) {
     const std::string message = undrawn.what();
     EXPECT_EQ(message.rfind("Renderer::render(): no buffer 'lines.crease' in this look ('crease' is not in the "
                             "look's --lines); it has: normal, view, wVec, nDotV, depth, coverage, baseColor, radial, "
-                            "materialId, objectId, gbuffer.zBuffer, ",
+                            "materialId, objectId, meshId, triangleId, barycentric, gbuffer.zBuffer, ",
                             0),
               0u)
         << message;
