@@ -6,12 +6,14 @@
 #include "render/UsageError.h"
 #include "render/SceneShadeMaps.h"
 #include "graph/GraphCompiler.h"
+#include "scene/MeshLabels.h"
 #include "scene/Scene.h"
 
 #include <chrono>
 #include <exception>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 
 namespace inkgraph {
 namespace {
@@ -201,6 +203,10 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
         // The registered passes are consistent (tests/graph, tests/app); a problem here comes from --request.
         throw UsageError(std::string("--request: ") + error.what());
     }
+    if (still.plan.findResource(std::string(kGBufferPass) + ".triangleId") != nullptr)
+        if (std::optional<Warning> inexact = triangleIdWarning(scene.triangleCount()))
+            warnOf(still, std::move(*inexact), log);
+    failIfStrict(still);
 }
 
 void StillRenderer::makeContext(EglPlatform platform) {
