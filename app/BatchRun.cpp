@@ -4,12 +4,14 @@
 
 #include "app/Batch.h"
 #include "app/Cli.h"
+#include "app/Dataset.h"
 #include "app/Render.h"
 #include "scene/Scene.h"
 
 #include <chrono>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
 namespace inkgraph {
 namespace {
@@ -19,17 +21,36 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 /** Renders every model of the list in `session`, each still's picture encoded while the next renders (the caller
- *  finishes the last). Bad input stops one still, not the batch: its model goes to `failed`. */
+ *  finishes the last). Bad input stops one still, not the batch: its model goes to `failed`. With a data set, stills
+ *  --resume finds complete are skipped (counted in `skipped`, no progress line) and each committed one journaled. */
 void renderEach(const RenderOptions& options, const BatchList& list, RenderSession& session, std::ostream& log,
-                std::vector<std::string>& failed, int& exitCode) {
+                DatasetRun* dataset, std::vector<std::string>& failed, std::size_t& skipped, int& exitCode) {
     for (std::size_t i = 0; i < list.models.size(); ++i) {
         const BatchModel& model = list.models[i];
         const RenderOptions still = stillOptions(options, model, list.total);
+        const StillKey key{model.path, model.position, 0};
         const std::string counter =
             "inkgraph: [" + std::to_string(i + 1) + "/" + std::to_string(list.models.size()) + "] '" + model.path + "'";
+        const auto fail = [&](const std::exception& error) {
+            log << boundedMessage(counter + " failed: " + error.what()) << "\n";
+            failed.push_back(model.path);
+            if (dataset) dataset->recordFailed(key, error.what());
+            if (exitCode == kExitOk) exitCode = kExitBadInput;
+        };
         try {
+            CommitListener journal;
+            if (dataset) {
+                const std::string digest = dataset->settingsDigest(key, still);
+                if (dataset->isComplete(key, digest)) {
+                    ++skipped;
+                    continue;
+                }
+                journal = [dataset, key, still, digest](const CommittedStill& committed) {
+                    dataset->recordCommitted(key, still, digest, committed.camera, committed.look);
+                };
+            }
             const StillBatchPosition position{model.position, list.total};
-            const StillReport report = session.render(still, &position);
+            const StillReport report = session.render(still, &position, std::move(journal));
             if (!options.quiet) {
                 log << counter;
                 if (!still.outputPath.empty()) log << " -> '" << still.outputPath << "'";
@@ -38,22 +59,22 @@ void renderEach(const RenderOptions& options, const BatchList& list, RenderSessi
             }
         } catch (const SceneError& error) {
             // Bad input stops one still, not the batch: the other models' work is not lost.
-            log << boundedMessage(counter + " failed: " + error.what()) << "\n";
-            failed.push_back(model.path);
-            if (exitCode == kExitOk) exitCode = kExitBadInput;
+            fail(error);
         } catch (const InputFileError& error) {
-            log << boundedMessage(counter + " failed: " + error.what()) << "\n";
-            failed.push_back(model.path);
-            if (exitCode == kExitOk) exitCode = kExitBadInput;
+            fail(error);
         }
     }
 }
 
 } // namespace
 
-int renderBatch(const RenderOptions& options, std::istream& standardInput, std::ostream& out, std::ostream& log) {
+int renderBatch(const RenderOptions& options, std::istream& standardInput, std::ostream& out, std::ostream& log,
+                const std::vector<std::string>& givenArguments, const std::vector<std::string>& expandedArguments) {
     const BatchList list = batchList(options, standardInput);
     checkBatchOutputs(options, list);
+    std::unique_ptr<DatasetRun> dataset;
+    if (!options.datasetDirectory.empty())
+        dataset = std::make_unique<DatasetRun>(options, list, givenArguments, expandedArguments);
     RenderSession session(out, log);
     const std::string share = options.shard
                                   ? " (shard " + std::to_string(options.shard->index) + "/" +
@@ -63,17 +84,20 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     // shards have nothing to do, which is not an error in an array job.
     if (list.models.empty()) {
         if (!options.quiet) log << "inkgraph: no models in this share" << share << "\n";
+        if (dataset) dataset->finish(log); // an empty index and card: check-dataset then sees every shard
         return kExitOk;
     }
-    if (!list.isBatch) {
+    // A data set's still goes the batch's way even alone: a bad model is recorded as failed in its index.
+    if (!list.isBatch && !dataset) {
         session.render(stillOptions(options, list.models.front(), list.total));
         return kExitOk;
     }
     const auto batchStart = std::chrono::steady_clock::now();
     int exitCode = kExitOk;
     std::vector<std::string> failed;
+    std::size_t skipped = 0;
     try {
-        renderEach(options, list, session, log, failed, exitCode);
+        renderEach(options, list, session, log, dataset.get(), failed, skipped, exitCode);
         session.finishPending();
     } catch (...) {
         // The batch stops; the still whose picture was still being encoded is finished first, so no completed
@@ -85,9 +109,11 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
         }
         throw;
     }
+    if (dataset) dataset->finish(log);
     if (!options.quiet || !failed.empty()) {
-        log << "inkgraph: rendered " << list.models.size() - failed.size() << " of " << list.models.size() << " models"
-            << share << " in " << std::fixed << std::setprecision(1) << millisecondsSince(batchStart) / 1000.0 << " s";
+        log << "inkgraph: rendered " << list.models.size() - failed.size() - skipped << " of " << list.models.size()
+            << " models" << share << " in " << std::fixed << std::setprecision(1)
+            << millisecondsSince(batchStart) / 1000.0 << " s";
         if (!failed.empty()) {
             log << "; " << failed.size() << " failed:";
             for (const std::string& path : failed) log << " '" << path << "'";
