@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -308,8 +309,17 @@ std::string DatasetRun::settingsDigest(const StillKey& key, const RenderOptions&
     for (const auto& [flag, field] : outputPathFlags())
         if (!(still.*field).empty()) add(flag, relativeToDataset(still.*field));
     add("model", fileStamp(key.model));
-    // The files a glTF or OBJ names (buffers, images, material libraries): a changed texture renders again.
-    for (const std::string& file : referencedFiles(key.model)) add("named " + file, fileStamp(file));
+    // The files a .gltf or .obj names (buffers, images, material libraries): a changed texture renders again. Read
+    // once per model (its views share them). A .glb or .vrm holds its resources: finding the rare external one would
+    // read the whole file for every still of a resumed run.
+    std::string extension = fs::path(key.model).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension == ".gltf" || extension == ".obj") {
+        auto named = mNamedFiles.find(key.model);
+        if (named == mNamedFiles.end()) named = mNamedFiles.emplace(key.model, referencedFiles(key.model)).first;
+        for (const std::string& file : named->second) add("named " + file, fileStamp(file));
+    }
     add("view", std::to_string(key.view));
     return hexDigits(fnv1a64(text.data(), text.size()));
 }

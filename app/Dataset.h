@@ -109,6 +109,7 @@ private:
     std::string mSuffix;
     std::vector<std::string> mGivenArguments;
     std::vector<std::pair<std::string, std::string>> mCanonicalSettings; ///< (flag, value), sorted by flag
+    mutable std::map<std::string, std::vector<std::string>> mNamedFiles; ///< each .gltf's or .obj's named files
     std::map<StillKey, nlohmann::ordered_json> mEarlier;                 ///< --resume: journal over index
     std::map<StillKey, nlohmann::ordered_json> mRecords;                 ///< this run's index, by key
     std::size_t mModelCount = 0;                                         ///< this process's share of the list
