@@ -30,6 +30,8 @@ void applyFrame(const Frame& frame, RenderOptions& options, std::vector<std::str
     if (frame.orbit) {
         std::string orbit = exactText(frame.orbit->azimuth) + "," + exactText(frame.orbit->elevation);
         if (frame.orbit->distance) orbit += "," + exactText(*frame.orbit->distance);
+        if (!frame.orbit->distance && frame.orbit->distanceScale != 1.0)
+            orbit += ",x" + exactText(frame.orbit->distanceScale);
         applyField("orbit", "--orbit", orbit, options, given);
     }
     if (frame.target) applyField("target", "--target", vectorText(*frame.target), options, given);
@@ -58,8 +60,8 @@ Frame Frame::fromArguments(const std::vector<std::string>& arguments) {
         frame.height = options.height;
         if (options.eye) frame.eye = vec3Of(*options.eye);
         if (options.orbit)
-            frame.orbit =
-                Orbit{options.orbit->azimuthDegrees, options.orbit->elevationDegrees, options.orbit->distance};
+            frame.orbit = Orbit{options.orbit->azimuthDegrees, options.orbit->elevationDegrees, options.orbit->distance,
+                                options.orbit->distanceScale};
         if (options.target) frame.target = vec3Of(*options.target);
         if (options.up) frame.up = vec3Of(*options.up);
         frame.fov = options.fovYDegrees;

@@ -25,6 +25,7 @@ std::string whereInLibrary(const Flag& flag) {
         return name == "--size" ? "give Frame::width and height"
                                 : "the library returns images: Still::buffer(), Still::write(), Image::write()";
     case HelpSection::Batch: return "render each Scene in a loop";
+    case HelpSection::Views: return "inkgraph::sampleViews() draws the views: put each one's orbit in a Frame";
     case HelpSection::System:
         return name == "--memory-limit" ? "give SceneOptions::memoryLimitBytes to Scene::load()"
                                         : "give it to the Renderer's constructor";

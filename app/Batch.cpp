@@ -4,6 +4,8 @@
 #include "app/OutputFiles.h"
 #include "scene/Scene.h"
 
+#include <glm/glm.hpp>
+
 #include <algorithm>
 #include <filesystem>
 #include <istream>
@@ -42,8 +44,27 @@ std::string trimmed(const std::string& text) {
     return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
 }
 
-bool hasPlaceholder(const std::string& pattern) {
+bool hasModelPlaceholder(const std::string& pattern) {
     return pattern.find("{name}") != std::string::npos || pattern.find("{index}") != std::string::npos;
+}
+
+bool hasViewPlaceholder(const std::string& pattern) { return pattern.find("{view}") != std::string::npos; }
+
+/** Views per model: N with --views N, else 1. */
+std::size_t viewCountOf(const RenderOptions& options) { return options.viewsGiven ? options.viewSampling.count : 1; }
+
+/** `number` in decimal with leading zeros to the width of `widest`. */
+std::string zeroPadded(std::size_t number, std::size_t widest) {
+    std::string text = std::to_string(number);
+    const std::size_t width = std::to_string(widest).size();
+    if (text.size() < width) text.insert(0, width - text.size(), '0');
+    return text;
+}
+
+/** The example of a batch's output path for `flag`, with the placeholders it lacks. */
+std::string examplePath(const std::string& flag, const std::string& pattern, bool views) {
+    const std::string stem = views ? "out/{name}-{view}" : "out/{name}";
+    return flag == "--dump" ? stem + "-dump" : stem + std::filesystem::path(pattern).extension().string();
 }
 
 /** Each output flag given and its value, in --help's order. */
@@ -53,7 +74,6 @@ std::vector<std::pair<std::string, std::string>> outputFlags(const RenderOptions
         if (!(options.*field).empty()) flags.emplace_back(flag, options.*field);
     return flags;
 }
-
 } // namespace
 
 BatchList batchList(const RenderOptions& options, std::istream& standardInput) {
@@ -75,7 +95,7 @@ BatchList batchList(const RenderOptions& options, std::istream& standardInput) {
     }
     BatchList list;
     list.total = paths.size();
-    list.isBatch = paths.size() > 1 || !options.listPath.empty();
+    list.isBatch = paths.size() > 1 || !options.listPath.empty() || viewCountOf(options) > 1;
     for (std::size_t position = 0; position < paths.size(); ++position) {
         if (options.shard && int(position % std::size_t(options.shard->count)) != options.shard->index) continue;
         list.models.push_back({paths[position], position});
@@ -83,10 +103,25 @@ BatchList batchList(const RenderOptions& options, std::istream& standardInput) {
     return list;
 }
 
-std::string expandOutputPattern(const std::string& pattern, const BatchModel& model, std::size_t total) {
-    std::string index = std::to_string(model.position + 1);
-    const std::size_t width = std::to_string(std::max<std::size_t>(total, 1)).size();
-    if (index.size() < width) index.insert(0, width - index.size(), '0');
+std::vector<BatchStill> batchStills(const RenderOptions& options, const BatchList& list) {
+    const ViewSampling sampling = viewSamplingOf(options);
+    std::vector<BatchStill> stills;
+    for (const BatchModel& model : list.models) {
+        if (!options.viewsGiven) {
+            stills.push_back({model, 0, std::nullopt});
+            continue;
+        }
+        // Keyed by the model path as listed: the same list gives the same views in any shard split.
+        for (ViewSample& view : sampleViews(sampling, model.path))
+            stills.push_back({model, view.index, std::move(view)});
+    }
+    return stills;
+}
+
+std::string expandOutputPattern(const std::string& pattern, const BatchModel& model, std::size_t total,
+                                std::size_t viewIndex, std::size_t viewCount) {
+    const std::string index = zeroPadded(model.position + 1, std::max<std::size_t>(total, 1));
+    const std::string view = zeroPadded(viewIndex, std::max<std::size_t>(viewCount, 1) - 1);
     const std::string name = std::filesystem::path(model.path).stem().string();
     std::string expanded;
     for (std::size_t i = 0; i < pattern.size();) {
@@ -96,6 +131,9 @@ std::string expandOutputPattern(const std::string& pattern, const BatchModel& mo
         } else if (pattern.compare(i, 7, "{index}") == 0) {
             expanded += index;
             i += 7;
+        } else if (pattern.compare(i, 6, "{view}") == 0) {
+            expanded += view;
+            i += 6;
         } else {
             expanded += pattern[i++];
         }
@@ -103,23 +141,41 @@ std::string expandOutputPattern(const std::string& pattern, const BatchModel& mo
     return expanded;
 }
 
-RenderOptions stillOptions(const RenderOptions& options, const BatchModel& model, std::size_t total) {
-    RenderOptions still = options;
-    still.modelPath = model.path;
-    for (const auto& [flag, field] : outputPathFlags()) still.*field = expandOutputPattern(still.*field, model, total);
-    return still;
+RenderOptions stillOptions(const RenderOptions& options, const BatchStill& still, std::size_t total) {
+    RenderOptions result = options;
+    result.modelPath = still.model.path;
+    for (const auto& [flag, field] : outputPathFlags())
+        result.*field = expandOutputPattern(result.*field, still.model, total, still.viewIndex, viewCountOf(options));
+    if (!still.view) return result;
+    const ViewSample& view = *still.view;
+    Orbit orbit;
+    orbit.azimuthDegrees = view.azimuthDegrees;
+    orbit.elevationDegrees = view.elevationDegrees;
+    orbit.distanceScale = view.distanceScale;
+    result.orbit = orbit;
+    // As --light makes the recorded direction unit length, so --light with the recorded numbers gives this light.
+    if (view.towardLight) {
+        const glm::dvec3 light = *view.towardLight;
+        result.look.towardLight =
+            glm::normalize(light / std::max({std::abs(light.x), std::abs(light.y), std::abs(light.z)}));
+    }
+    if (view.expressions) result.expressions = *view.expressions;
+    if (view.pose) result.pose = *view.pose == "rest" ? "" : *view.pose;
+    result.view = view;
+    return result;
 }
 
 void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
-    if (list.total > 1)
-        for (const auto& [flag, pattern] : outputFlags(options))
-            if (!hasPlaceholder(pattern))
-                throw UsageError(flag + " '" + pattern + "' would be the same file for all " +
-                                 std::to_string(list.total) + " models; put {name} or {index} in it, e.g. '" +
-                                 (flag == "--dump"
-                                      ? "out/{name}-dump"
-                                      : "out/{name}" + std::filesystem::path(pattern).extension().string()) +
-                                 "'");
+    const std::size_t viewCount = viewCountOf(options);
+    for (const auto& [flag, pattern] : outputFlags(options)) {
+        if (list.total > 1 && !hasModelPlaceholder(pattern))
+            throw UsageError(flag + " '" + pattern + "' would be the same file for all " + std::to_string(list.total) +
+                             " models; put {name} or {index} in it, e.g. '" +
+                             examplePath(flag, pattern, viewCount > 1) + "'");
+        if (viewCount > 1 && !hasViewPlaceholder(pattern))
+            throw UsageError(flag + " '" + pattern + "' would be the same file for all " + std::to_string(viewCount) +
+                             " views of --views; put {view} in it, e.g. '" + examplePath(flag, pattern, true) + "'");
+    }
     // By place and by device and inode: a hard link of a model is that model under another name.
     std::map<std::filesystem::path, const BatchModel*> modelsByPlace;
     std::map<FileIdentity, const BatchModel*> modelsByIdentity;
@@ -144,11 +200,23 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
         const auto found = namedFiles->find(identity);
         return found == namedFiles->end() ? nullptr : &found->second;
     };
-    // Place -> the first still writing there (a model listed twice is two stills).
-    std::map<std::filesystem::path, const BatchModel*> writers;
-    for (const BatchModel& model : list.models) {
+    // Place -> the first still writing there (a model listed twice is two stills, each view one).
+    std::map<std::filesystem::path, const BatchStill*> writers;
+    // Only where the views are needed: the placeholders and the positions say which still is which.
+    RenderOptions unsampled = options;
+    unsampled.viewsGiven = false;
+    std::vector<BatchStill> stills = batchStills(unsampled, list);
+    if (viewCount > 1) {
+        std::vector<BatchStill> everyView;
+        everyView.reserve(stills.size() * viewCount);
+        for (const BatchStill& still : stills)
+            for (std::size_t view = 0; view < viewCount; ++view) everyView.push_back({still.model, view, std::nullopt});
+        stills = std::move(everyView);
+    }
+    for (const BatchStill& still : stills) {
+        const BatchModel& model = still.model;
         for (const auto& [flag, pattern] : outputFlags(options)) {
-            const std::string output = expandOutputPattern(pattern, model, list.total);
+            const std::string output = expandOutputPattern(pattern, model, list.total, still.viewIndex, viewCount);
             const std::filesystem::path place = resolvedPath(output);
             // A still writing over its own model is OutputSet's to report, as for a single model.
             const auto identity = fileIdentity(output);
@@ -165,12 +233,18 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
                     throw UsageError(flag + " '" + output + "' (for '" + model.path + "') would overwrite '" +
                                      named->second + "', which the model '" + named->first->path + "' reads");
             // One still's own outputs colliding with each other are OutputSet's to report.
-            const auto [earlier, inserted] = writers.emplace(place, &model);
-            if (!inserted && earlier->second->position != model.position)
-                throw UsageError(flag + " '" + output + "' is written for both '" + earlier->second->path +
-                                 "' (list position " + std::to_string(earlier->second->position + 1) + ") and '" +
-                                 model.path + "' (position " + std::to_string(model.position + 1) +
-                                 "); models of one name need {index}");
+            const auto [earlier, inserted] = writers.emplace(place, &still);
+            const BatchStill& other = *earlier->second;
+            if (!inserted && (other.model.position != model.position || other.viewIndex != still.viewIndex)) {
+                const auto described = [viewCount](const BatchStill& one) {
+                    return "'" + one.model.path + "' (list position " + std::to_string(one.model.position + 1) +
+                           (viewCount > 1 ? ", view " + zeroPadded(one.viewIndex, viewCount - 1) : std::string()) + ")";
+                };
+                throw UsageError(flag + " '" + output + "' is written for both " + described(other) + " and " +
+                                 described(still) +
+                                 (other.model.position != model.position ? "; models of one name need {index}"
+                                                                         : "; views need {view}"));
+            }
         }
     }
 }

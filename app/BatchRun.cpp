@@ -20,21 +20,35 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-/** Renders every model of the list in `session`, each still's picture encoded while the next renders (the caller
- *  finishes the last). Bad input stops one still, not the batch: its model goes to `failed`. With a data set, stills
- *  --resume finds complete are skipped (counted in `skipped`, no progress line) and each committed one journaled. */
-void renderEach(const RenderOptions& options, const BatchList& list, RenderSession& session, std::ostream& log,
-                DatasetRun* dataset, std::vector<std::string>& failed, std::size_t& skipped, int& exitCode) {
-    for (std::size_t i = 0; i < list.models.size(); ++i) {
-        const BatchModel& model = list.models[i];
-        const RenderOptions still = stillOptions(options, model, list.total);
-        const StillKey key{model.path, model.position, 0};
-        const std::string counter =
-            "inkgraph: [" + std::to_string(i + 1) + "/" + std::to_string(list.models.size()) + "] '" + model.path + "'";
+/** "'models/x.vrm'", with --views "'models/x.vrm' view 04": a still in progress lines and the summary. */
+std::string stillLabel(const BatchStill& still, const RenderOptions& options) {
+    std::string label = "'" + still.model.path + "'";
+    if (still.view) {
+        const std::string last = std::to_string(options.viewSampling.count - 1);
+        std::string view = std::to_string(still.viewIndex);
+        if (view.size() < last.size()) view.insert(0, last.size() - view.size(), '0');
+        label += " view " + view;
+    }
+    return label;
+}
+
+/** Renders every still of the list in `session` (each model's views one after the other), each still's picture
+ *  encoded while the next renders (the caller finishes the last). Bad input stops one still, not the batch: its
+ *  label goes to `failed`. With a data set, stills --resume finds complete are skipped (counted in `skipped`, no
+ *  progress line) and each committed one journaled. */
+void renderEach(const RenderOptions& options, const BatchList& list, const std::vector<BatchStill>& stills,
+                RenderSession& session, std::ostream& log, DatasetRun* dataset, std::vector<std::string>& failed,
+                std::size_t& skipped, int& exitCode) {
+    for (std::size_t i = 0; i < stills.size(); ++i) {
+        const BatchStill& batchStill = stills[i];
+        const RenderOptions still = stillOptions(options, batchStill, list.total);
+        const StillKey key{batchStill.model.path, batchStill.model.position, batchStill.viewIndex};
+        const std::string counter = "inkgraph: [" + std::to_string(i + 1) + "/" + std::to_string(stills.size()) + "] " +
+                                    stillLabel(batchStill, options);
         const auto fail = [&](const std::exception& error) {
             log << boundedMessage(counter + " failed: " + error.what()) << "\n";
-            failed.push_back(model.path);
-            if (dataset) dataset->recordFailed(key, error.what());
+            failed.push_back(stillLabel(batchStill, options));
+            if (dataset) dataset->recordFailed(key, still, error.what());
             if (exitCode == kExitOk) exitCode = kExitBadInput;
         };
         try {
@@ -49,7 +63,7 @@ void renderEach(const RenderOptions& options, const BatchList& list, RenderSessi
                     dataset->recordCommitted(key, still, digest, committed.camera, committed.look);
                 };
             }
-            const StillBatchPosition position{model.position, list.total};
+            const StillBatchPosition position{batchStill.model.position, list.total};
             const StillReport report = session.render(still, &position, std::move(journal));
             if (!options.quiet) {
                 log << counter;
@@ -58,7 +72,7 @@ void renderEach(const RenderOptions& options, const BatchList& list, RenderSessi
                     << report.milliseconds << " ms\n";
             }
         } catch (const SceneError& error) {
-            // Bad input stops one still, not the batch: the other models' work is not lost.
+            // Bad input stops one still, not the batch: the other stills' work is not lost.
             fail(error);
         } catch (const InputFileError& error) {
             fail(error);
@@ -72,9 +86,10 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
                 const std::vector<std::string>& givenArguments, const std::vector<std::string>& expandedArguments) {
     const BatchList list = batchList(options, standardInput);
     checkBatchOutputs(options, list);
+    const std::vector<BatchStill> stills = batchStills(options, list);
     std::unique_ptr<DatasetRun> dataset;
     if (!options.datasetDirectory.empty())
-        dataset = std::make_unique<DatasetRun>(options, list, givenArguments, expandedArguments);
+        dataset = std::make_unique<DatasetRun>(options, list, stills, givenArguments, expandedArguments);
     RenderSession session(out, log);
     const std::string share = options.shard
                                   ? " (shard " + std::to_string(options.shard->index) + "/" +
@@ -89,7 +104,7 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     }
     // A data set's still goes the batch's way even alone: a bad model is recorded as failed in its index.
     if (!list.isBatch && !dataset) {
-        session.render(stillOptions(options, list.models.front(), list.total));
+        session.render(stillOptions(options, stills.front(), list.total));
         return kExitOk;
     }
     const auto batchStart = std::chrono::steady_clock::now();
@@ -97,7 +112,7 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     std::vector<std::string> failed;
     std::size_t skipped = 0;
     try {
-        renderEach(options, list, session, log, dataset.get(), failed, skipped, exitCode);
+        renderEach(options, list, stills, session, log, dataset.get(), failed, skipped, exitCode);
         session.finishPending();
     } catch (...) {
         // The batch stops; the still whose picture was still being encoded is finished first, so no completed
@@ -111,12 +126,16 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     }
     if (dataset) dataset->finish(log);
     if (!options.quiet || !failed.empty()) {
-        log << "inkgraph: rendered " << list.models.size() - failed.size() - skipped << " of " << list.models.size()
-            << " models" << share << " in " << std::fixed << std::setprecision(1)
-            << millisecondsSince(batchStart) / 1000.0 << " s";
+        log << "inkgraph: rendered " << stills.size() - failed.size() - skipped << " of " << stills.size();
+        if (options.viewsGiven)
+            log << " stills (" << list.models.size() << (list.models.size() == 1 ? " model x " : " models x ")
+                << options.viewSampling.count << (options.viewSampling.count == 1 ? " view)" : " views)");
+        else
+            log << " models";
+        log << share << " in " << std::fixed << std::setprecision(1) << millisecondsSince(batchStart) / 1000.0 << " s";
         if (!failed.empty()) {
             log << "; " << failed.size() << " failed:";
-            for (const std::string& path : failed) log << " '" << path << "'";
+            for (std::size_t i = 0; i < failed.size(); ++i) log << (i == 0 ? " " : ", ") << failed[i];
         }
         log << "\n";
     }

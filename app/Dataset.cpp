@@ -1,6 +1,7 @@
 #include "app/Dataset.h"
 
 #include "app/DumpFolder.h"
+#include "app/Stats.h"
 #include "app/Version.h"
 #include "flags/FlagTable.h"
 #include "render/BuildInfo.h"
@@ -111,6 +112,9 @@ std::vector<Json> readRecords(const fs::path& path, bool cutTornTail) {
     return records;
 }
 
+/** --seed with --views, else null. */
+Json seedOf(const RenderOptions& still) { return still.viewsGiven ? Json(still.viewSampling.seed) : Json(nullptr); }
+
 StillKey keyOf(const Json& record) {
     return {record["model"].get<std::string>(), record["position"].get<std::size_t>(),
             record["view"].get<std::size_t>()};
@@ -201,8 +205,8 @@ std::string shellWord(const std::string& argument) {
     return quoted + "'";
 }
 
-DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, std::vector<std::string> givenArguments,
-                       const std::vector<std::string>& expandedArguments)
+DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, const std::vector<BatchStill>& stills,
+                       std::vector<std::string> givenArguments, const std::vector<std::string>& expandedArguments)
     : mOptions(options), mFolder(resolvedPath(options.datasetDirectory)), mSuffix(shardSuffix(options)),
       mGivenArguments(std::move(givenArguments)), mKillBeforeLine(hookFrom("INKGRAPH_TEST_JOURNAL_KILL")),
       mTearLine(hookFrom("INKGRAPH_TEST_JOURNAL_TEAR")) {
@@ -213,8 +217,8 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, std:
 
     // Every output of every still inside DIR, none of them the data set's own files.
     const std::set<fs::path> reserved = {mFolder / kJournalFolder, indexPath(), cardPath()};
-    for (const BatchModel& model : list.models) {
-        const RenderOptions still = stillOptions(options, model, list.total);
+    for (const BatchStill& batchStill : stills) {
+        const RenderOptions still = stillOptions(options, batchStill, list.total);
         for (const auto& [flag, field] : outputPathFlags()) {
             const std::string& value = still.*field;
             if (value.empty()) continue;
@@ -321,6 +325,7 @@ std::string DatasetRun::settingsDigest(const StillKey& key, const RenderOptions&
         for (const std::string& file : named->second) add("named " + file, fileStamp(file));
     }
     add("view", std::to_string(key.view));
+    add("sample", viewRecord(still).dump()); // the view drawn for the seed, the model path and the index
     return hexDigits(fnv1a64(text.data(), text.size()));
 }
 
@@ -350,8 +355,8 @@ void DatasetRun::recordCommitted(const StillKey& key, const RenderOptions& still
     record["model"] = key.model;
     record["position"] = key.position;
     record["view"] = key.view;
-    record["seed"] = nullptr;
-    record["sample"] = nullptr;
+    record["seed"] = seedOf(still);
+    record["sample"] = viewRecord(still);
     record["status"] = "ok";
     record["settings_digest"] = digest;
     record["camera"] = cameraRecord(camera, still);
@@ -398,12 +403,12 @@ void DatasetRun::recordCommitted(const StillKey& key, const RenderOptions& still
     ++mRendered;
 }
 
-void DatasetRun::recordFailed(const StillKey& key, const std::string& error) {
+void DatasetRun::recordFailed(const StillKey& key, const RenderOptions& still, const std::string& error) {
     Json record;
     record["model"] = key.model;
     record["position"] = key.position;
     record["view"] = key.view;
-    record["seed"] = nullptr;
+    record["seed"] = seedOf(still);
     record["status"] = "failed";
     record["error"] = error;
     mRecords[key] = std::move(record);
@@ -467,11 +472,12 @@ std::string DatasetRun::cardText(std::size_t models, std::size_t stills, std::si
     text += "```sh\n" + command + "\n```\n\n";
     text += "## Counts\n\n| what | count |\n| --- | --- |\n";
     text += "| models | " + std::to_string(models) + " |\n";
-    text += "| views per model | 1 |\n";
+    text += "| views per model | " +
+            std::to_string(mOptions.viewsGiven ? mOptions.viewSampling.count : std::size_t(1)) + " |\n";
     text += "| stills in the set | " + std::to_string(stills) + " |\n";
     text += "| failed | " + std::to_string(failed) + " |\n\n";
     text += "## Files per still\n\nPaths relative to this folder ({name}: the model's file name without its extension, "
-            "{index}: its list position from 1):\n\n| flag | path |\n| --- | --- |\n" +
+            "{index}: its list position from 1, {view}: the view from 0):\n\n| flag | path |\n| --- | --- |\n" +
             outputs + "\n";
     text += "`" + index +
             "` lists every still, one JSON object a line: its model, list position, view, camera (OpenCV's "

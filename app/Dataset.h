@@ -67,16 +67,16 @@ std::string shellWord(const std::string& argument);
 /** One --dataset run. */
 class DatasetRun {
 public:
-    /** Checks the run against DIR before any work: every output path of every still of `list` inside DIR (and not
-     *  its .inkgraph folder, index or card), DIR not holding a data set unless --resume (then the journal and the
-     *  index of this shard are read). `givenArguments` are the arguments after "render" as typed (for the card),
+    /** Checks the run against DIR before any work: every output path of every still (`stills` of `list`) inside DIR
+     * (and not its .inkgraph folder, index or card), DIR not holding a data set unless --resume (then the journal and
+     * the index of this shard are read). `givenArguments` are the arguments after "render" as typed (for the card),
      *  `expandedArguments` the same with --style's settings (for the digest). Throws UsageError naming the flag. */
-    DatasetRun(const RenderOptions& options, const BatchList& list, std::vector<std::string> givenArguments,
-               const std::vector<std::string>& expandedArguments);
+    DatasetRun(const RenderOptions& options, const BatchList& list, const std::vector<BatchStill>& stills,
+               std::vector<std::string> givenArguments, const std::vector<std::string>& expandedArguments);
 
     /** The settings digest of one still: the canonical options, the still's outputs relative to DIR, the model's and
-     *  its named files' size and modification time, those of any file a flag names, the view and the seed, and the
-     *  inkgraph version. */
+     *  its named files' size and modification time, those of any file a flag names, the view index and its sampled
+     *  view (--views, --seed and their companions are among the options), and the inkgraph version. */
     std::string settingsDigest(const StillKey& key, const RenderOptions& still) const;
 
     /** Whether --resume may skip the still: an earlier record of `key` with `digest` whose files are all whole.
@@ -88,7 +88,7 @@ public:
                          const nlohmann::ordered_json& camera, const nlohmann::ordered_json& look);
     /** A still that failed (bad input): in the index as "failed" with `error`; not journaled (a resumed run tries it
      *  again and fails the same way). */
-    void recordFailed(const StillKey& key, const std::string& error);
+    void recordFailed(const StillKey& key, const RenderOptions& still, const std::string& error);
 
     /** Every still done: writes the index and the card, removes the journal, sweeps temporaries left under DIR by
      *  killed runs; with --resume tells `log` how many stills were complete and how many rendered. */

@@ -6,7 +6,35 @@
 #include "passes/orientation/SceneOrientation.h"
 #include "scene/ObjectIds.h"
 
+#include <charconv>
+
 namespace inkgraph {
+
+nlohmann::ordered_json viewRecord(const RenderOptions& options) {
+    using Json = nlohmann::ordered_json;
+    if (!options.view) return Json();
+    const ViewSample& view = *options.view;
+    // The shortest text that reads back as the same double, as JSON writes numbers.
+    const auto exact = [](double value) {
+        char text[32];
+        const auto written = std::to_chars(text, text + sizeof text, value);
+        return std::string(text, written.ptr);
+    };
+    Json record;
+    record["index"] = view.index;
+    record["count"] = options.viewSampling.count;
+    record["seed"] = options.viewSampling.seed;
+    record["azimuth"] = view.azimuthDegrees;
+    record["elevation"] = view.elevationDegrees;
+    record["distance_scale"] = view.distanceScale;
+    record["light"] =
+        view.towardLight ? Json::array({view.towardLight->x, view.towardLight->y, view.towardLight->z}) : Json();
+    record["expression"] = view.expressions ? Json(expressionSetText(*view.expressions)) : Json();
+    record["pose"] = view.pose ? Json(*view.pose) : Json();
+    record["orbit"] =
+        exact(view.azimuthDegrees) + "," + exact(view.elevationDegrees) + ",x" + exact(view.distanceScale);
+    return record;
+}
 
 nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRenderer& renderer,
                                      const PreparedStill& still, const StillResult& result) {
@@ -37,6 +65,7 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
                      {"depth", "reversed-z float32"}};
     if (context.batch)
         stats["batch"] = {{"position", context.batch->position + 1}, {"list_length", context.batch->listLength}};
+    if (options.view) stats["view"] = viewRecord(options);
     if (const HeadlessContext* gl = renderer.context())
         stats["gl"] = {{"platform", gl->platform()},
                        {"renderer", gl->renderer()},

@@ -31,6 +31,12 @@ struct StatsContext {
 nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRenderer& renderer,
                                      const PreparedStill& still, const StillResult& result);
 
+/** A still's sampled view (--views), as --stats and --dump's manifest record it: {index, count, seed, azimuth,
+ *  elevation, distance_scale, light (null without --light-jitter), expression (the --expressions alternative as
+ *  --expression writes it, or "none"; null without --expressions), pose (as --poses gives it; null without),
+ *  orbit (the --orbit value that places this view)}. Null for a still without a view. */
+nlohmann::ordered_json viewRecord(const RenderOptions& options);
+
 /** The document's text with "write_ms" (encoding and writing the outputs), "peak_rss_mib" (measured now) and
  *  "total_ms" (the still from its start until its outputs are written) filled in. */
 std::string finishedStatsText(nlohmann::ordered_json stats, double writeMilliseconds, double totalMilliseconds);

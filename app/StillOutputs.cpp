@@ -1,5 +1,7 @@
 #include "app/StillOutputs.h"
 
+#include "app/Stats.h"
+
 #include "render/BuildInfo.h"
 #include "render/ImageFiles.h"
 
@@ -136,6 +138,7 @@ void stageDump(const RenderOptions& options, const PreparedStill& still, StillRe
                               "(col+0.5, row+0.5); matrices as rows; 8-bit images sRGB, float images linear data";
     manifest["camera"] = describeCamera(still.camera);
     manifest["toward_light_world"] = vectorJson(still.frame.towardLightWorld);
+    if (options.view) manifest["view"] = viewRecord(options);
     manifest["look"] = describeLook(still, options.stylePath);
     manifest["files"] = files;
     if (objectIds) manifest["objects"] = describeObjects(still.scene());

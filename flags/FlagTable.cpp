@@ -7,6 +7,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <sstream>
 
@@ -27,6 +28,8 @@ constexpr double kMaxOrbitElevationDegrees = 89.9;
 constexpr double kMaxOrbitAzimuthDegrees = 360.0;
 /** As --eye's coordinates (parsePoint): the eye stays within what double subtracts meaningfully. */
 constexpr double kMaxOrbitDistance = 1e15;
+/** --orbit AZ,EL,xS: a thousand times the framing distance already shows the model as a speck. */
+constexpr double kMaxOrbitDistanceScale = 1000.0;
 const std::vector<std::string> kOutputExtensions = {".png", ".exr", ".tif", ".tiff", ".jpg", ".jpeg"};
 
 std::string lowercaseExtension(const std::string& path) {
@@ -81,7 +84,7 @@ glm::dvec3 parseDirection(const std::string& flag, const std::string& text) {
     return glm::normalize(direction / largest);
 }
 
-/** AZIMUTH,ELEVATION[,DISTANCE]: degrees, degrees, world units. */
+/** AZIMUTH,ELEVATION[,DISTANCE]: degrees, degrees, world units or xS (S times the auto-framing distance). */
 Orbit parseOrbit(const std::string& flag, const std::string& text) {
     const std::vector<std::string> parts = splitList(text, ',');
     if (parts.size() != 2 && parts.size() != 3)
@@ -94,7 +97,12 @@ Orbit parseOrbit(const std::string& flag, const std::string& text) {
     if (std::abs(orbit.elevationDegrees) > kMaxOrbitElevationDegrees)
         throw UsageError(flag + ": the elevation must lie in [-89.9, 89.9] degrees (at +-90 the view is parallel to " +
                          "--up), got '" + text + "'");
-    if (parts.size() == 3) {
+    if (parts.size() == 3 && !parts[2].empty() && parts[2][0] == 'x') {
+        // xS: S times the auto-framing distance, as --views' distance jitter places a view.
+        orbit.distanceScale = parseNumber(flag, parts[2].substr(1));
+        if (!(orbit.distanceScale > 0.0 && orbit.distanceScale <= kMaxOrbitDistanceScale))
+            throw UsageError(flag + ": the distance scale xS must have S above 0 and at most 1000, got '" + text + "'");
+    } else if (parts.size() == 3) {
         orbit.distance = parseNumber(flag, parts[2]);
         if (!(*orbit.distance > 0.0 && *orbit.distance <= kMaxOrbitDistance))
             throw UsageError(flag + ": the distance must be above 0 and at most 1e15, got '" + text + "'");
@@ -148,6 +156,73 @@ Shard parseShard(const std::string& flag, const std::string& text) {
     shard.count = parseWholeNumber(flag, text.substr(slash + 1), 1, 1000000);
     shard.index = parseWholeNumber(flag, text.substr(0, slash), 0, shard.count - 1);
     return shard;
+}
+
+/** NAME=WEIGHT[,NAME=WEIGHT...] with weights in [0, 1] and no name twice (--expression, an --expressions
+ *  alternative). */
+std::vector<ExpressionWeight> parseExpressions(const std::string& flag, const std::string& value) {
+    std::vector<ExpressionWeight> expressions;
+    for (const std::string& part : splitList(value, ',')) {
+        const std::size_t equals = part.rfind('=');
+        if (equals == std::string::npos || equals == 0)
+            throw UsageError(flag + ": expected NAME=WEIGHT[,NAME=WEIGHT...], got '" + value + "'");
+        ExpressionWeight expression{part.substr(0, equals), parseNumber(flag, part.substr(equals + 1))};
+        if (expression.weight < 0.0 || expression.weight > 1.0)
+            throw UsageError(flag + ": the weight of '" + expression.name + "' must lie in [0, 1], got '" +
+                             part.substr(equals + 1) + "'");
+        if (std::ranges::find(expressions, expression.name, &ExpressionWeight::name) != expressions.end())
+            throw UsageError(flag + ": '" + expression.name + "' is given twice");
+        expressions.push_back(std::move(expression));
+    }
+    return expressions;
+}
+
+/** A whole number from 0 to 2^64 - 1, in decimal (--seed). */
+std::uint64_t parseSeed(const std::string& flag, const std::string& text) {
+    std::uint64_t value = 0;
+    const auto [stop, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || stop != text.data() + text.size())
+        throw UsageError(flag + ": expected a whole number from 0 to 18446744073709551615, got '" + text + "'");
+    return value;
+}
+
+/** MEAN,SD[,LOW,HIGH] in degrees (--view-elevation). */
+void parseViewElevation(const std::string& flag, const std::string& text, ViewSampling& sampling) {
+    const std::vector<std::string> parts = splitList(text, ',');
+    if (parts.size() != 2 && parts.size() != 4)
+        throw UsageError(flag + ": expected MEAN,SD or MEAN,SD,LOW,HIGH (degrees), got '" + text + "'");
+    const double mean = parseNumber(flag, parts[0]);
+    const double deviation = parseNumber(flag, parts[1]);
+    const double low = parts.size() == 4 ? parseNumber(flag, parts[2]) : sampling.elevationLow;
+    const double high = parts.size() == 4 ? parseNumber(flag, parts[3]) : sampling.elevationHigh;
+    for (const double degrees : {mean, low, high})
+        if (std::abs(degrees) > kMaxOrbitElevationDegrees)
+            throw UsageError(flag +
+                             ": MEAN, LOW and HIGH must lie in [-89.9, 89.9] degrees (--orbit's elevations), "
+                             "got '" +
+                             text + "'");
+    if (deviation < 0.0 || deviation > 180.0)
+        throw UsageError(flag + ": SD must lie in [0, 180] degrees, got '" + text + "'");
+    if (low > high) throw UsageError(flag + ": LOW must not exceed HIGH, got '" + text + "'");
+    sampling.elevationMean = mean;
+    sampling.elevationDeviation = deviation;
+    sampling.elevationLow = low;
+    sampling.elevationHigh = high;
+}
+
+/** A number from `low` to `high`. */
+double parseNumberIn(const std::string& flag, const std::string& text, double low, double high,
+                     const std::string& what) {
+    const double value = parseNumber(flag, text);
+    if (value < low || value > high) throw UsageError(flag + ": expected " + what + ", got '" + text + "'");
+    return value;
+}
+
+/** A view flag that only --views uses. */
+std::function<std::string(const RenderOptions&)> onlyWithViews(const std::string& flag) {
+    return [flag](const RenderOptions& options) -> std::string {
+        return options.viewsGiven ? "" : flag + " applies to --views N, which is not given";
+    };
 }
 
 /** R,G,B or R,G,B,A with channels in [0, 1]. */
@@ -500,21 +575,7 @@ std::vector<Flag> makeFlags() {
         "with isBinary and VRM 1.0's override rules (docs/vrm.md). Names are case-sensitive; one the file\n"
         "lacks is refused with the list of those it has",
         [](const std::string& value, RenderOptions& options) {
-            std::vector<ExpressionWeight> expressions;
-            for (const std::string& part : splitList(value, ',')) {
-                const std::size_t equals = part.rfind('=');
-                if (equals == std::string::npos || equals == 0)
-                    throw UsageError("--expression: expected NAME=WEIGHT[,NAME=WEIGHT...], got '" + value + "'");
-                ExpressionWeight expression{part.substr(0, equals),
-                                            parseNumber("--expression", part.substr(equals + 1))};
-                if (expression.weight < 0.0 || expression.weight > 1.0)
-                    throw UsageError("--expression: the weight of '" + expression.name + "' must lie in [0, 1], got '" +
-                                     part.substr(equals + 1) + "'");
-                if (std::ranges::find(expressions, expression.name, &ExpressionWeight::name) != expressions.end())
-                    throw UsageError("--expression: '" + expression.name + "' is given twice");
-                expressions.push_back(std::move(expression));
-            }
-            options.expressions = std::move(expressions);
+            options.expressions = parseExpressions("--expression", value);
         }));
     flags.push_back(flag(
         {"--look-at"}, "X,Y,Z", S::Camera,
@@ -536,13 +597,13 @@ std::vector<Flag> makeFlags() {
         flag({"--eye"}, "X,Y,Z", S::Camera, "camera position, in world units (coordinates within +-1e15)",
              [](const std::string& value, RenderOptions& options) { options.eye = parsePoint("--eye", value); }));
     Flag orbit =
-        flag({"--orbit"}, "AZ,EL[,DIST]", S::Camera,
+        flag({"--orbit"}, "AZ,EL[,DIST|,xS]", S::Camera,
              "the eye around the target (default: the framed centre), instead of --eye: AZ degrees about\n"
              "--up from the model's front (the side auto-framing looks from: a VRM character's face, else +Z, or -Y\n"
              "for a Z-up --up), positive toward the front view's right (counter-clockwise seen from above: with up\n"
              "+Y and front +Z, 90 looks from +X), -360 to 360; EL degrees above the horizontal, -89.9 to 89.9;\n"
-             "DIST world units (default: the auto-framing distance). 0,0 looks straight at the front, 180,0 at\n"
-             "the back; the default view is 0,14.04",
+             "DIST world units (default: the auto-framing distance), or xS for S times the auto-framing distance\n"
+             "(x1.1: 10% farther). 0,0 looks straight at the front, 180,0 at the back; the default view is 0,14.04",
              [](const std::string& value, RenderOptions& options) { options.orbit = parseOrbit("--orbit", value); });
     orbit.noEffect = [](const RenderOptions& options) -> std::string {
         return options.eye ? "--orbit and --eye both place the eye: give one" : "";
@@ -926,6 +987,107 @@ std::vector<Flag> makeFlags() {
         "Each model gets a progress line. A model that cannot be read is reported and the others go on; the run then\n"
         "ends with exit 3. Any other error stops the batch; models already done keep their files."));
 
+    // Views
+    Flag views = flag({"--views"}, "N", S::Views,
+                      "render N views of each model, 1 to 100000, each from a sampled orbit: azimuth uniform in\n"
+                      "[0, 360), elevation as --view-elevation, distance the auto-framing distance times\n"
+                      "1 +- --view-distance-jitter; with --light-jitter, --expressions and --poses also a light,\n"
+                      "expressions and a pose. Every output path then holds {view} (the view index, zero-padded to\n"
+                      "the width of N-1) when N > 1. Each still's view is keyed by --seed, the model path as listed\n"
+                      "and the view index alone, so a run, a shard or a rerun draws it alike; --stats and --dump's\n"
+                      "manifest record it (\"view\"). Not with --eye or --orbit: views place the eye",
+                      [](const std::string& value, RenderOptions& options) {
+                          options.viewSampling.count = std::size_t(parseWholeNumber("--views", value, 1, 100000));
+                          options.viewsGiven = true;
+                      });
+    views.noEffect = [](const RenderOptions& options) -> std::string {
+        if (options.eye) return "--views places the eye of each view: it does not go with --eye";
+        if (options.orbit) return "--views places the eye of each view: it does not go with --orbit";
+        return "";
+    };
+    flags.push_back(views);
+    Flag seed = flag({"--seed"}, "S", S::Views,
+                     "the random seed of --views, a whole number from 0 to 2^64-1 (default 0): the same seed\n"
+                     "gives the same views, on any machine and in any --shard split",
+                     [](const std::string& value, RenderOptions& options) {
+                         options.viewSampling.seed = parseSeed("--seed", value);
+                     });
+    seed.noEffect = onlyWithViews("--seed");
+    flags.push_back(seed);
+    Flag elevation = flag({"--view-elevation"}, "MEAN,SD[,LOW,HIGH]", S::Views,
+                          "--views' elevation in degrees: normal about MEAN with standard deviation SD (0 to 180),\n"
+                          "clamped to [LOW, HIGH]; MEAN, LOW and HIGH within -89.9 to 89.9 (default 10,10,-30,60)",
+                          [](const std::string& value, RenderOptions& options) {
+                              parseViewElevation("--view-elevation", value, options.viewSampling);
+                          });
+    elevation.noEffect = onlyWithViews("--view-elevation");
+    flags.push_back(elevation);
+    Flag distanceJitter = flag({"--view-distance-jitter"}, "J", S::Views,
+                               "--views' distance: the auto-framing distance times 1 + J u, u uniform in [-1, 1],\n"
+                               "J from 0 to 0.9 (default 0)",
+                               [](const std::string& value, RenderOptions& options) {
+                                   options.viewSampling.distanceJitter = parseNumberIn(
+                                       "--view-distance-jitter", value, 0.0, 0.9, "a number from 0 to 0.9");
+                               });
+    distanceJitter.noEffect = onlyWithViews("--view-distance-jitter");
+    flags.push_back(distanceJitter);
+    Flag lightJitter = flag({"--light-jitter"}, "DEG", S::Views,
+                            "--views' light: --light's direction turned toward a direction drawn uniformly within\n"
+                            "DEG degrees of it, 0 to 180 (default 0: --light as given). Needs --light: the default\n"
+                            "light follows the camera and the file",
+                            [](const std::string& value, RenderOptions& options) {
+                                options.viewSampling.lightJitterDegrees =
+                                    parseNumberIn("--light-jitter", value, 0.0, 180.0, "degrees from 0 to 180");
+                            });
+    lightJitter.noEffect = [onlyViews = onlyWithViews("--light-jitter")](const RenderOptions& options) {
+        if (std::string refusal = onlyViews(options); !refusal.empty()) return refusal;
+        return options.viewSampling.lightJitterDegrees > 0.0 && !options.look.towardLight
+                   ? std::string("--light-jitter turns --light's direction: give --light X,Y,Z (the default light "
+                                 "follows the camera and the file)")
+                   : std::string();
+    };
+    flags.push_back(lightJitter);
+    Flag expressionChoices =
+        flag({"--expressions"}, "SET;SET...", S::Views,
+             "--views' expressions: each view takes one of these alternatives, drawn uniformly; an\n"
+             "alternative is an --expression set (happy=1,blink=0.5) or none, e.g. 'happy=1;angry=1,blink=0.5;none'.\n"
+             "Not with --expression",
+             [](const std::string& value, RenderOptions& options) {
+                 std::vector<std::vector<ExpressionWeight>> choices;
+                 for (const std::string& alternative : splitList(value, ';')) {
+                     if (alternative.empty())
+                         throw UsageError("--expressions: an empty alternative in '" + value +
+                                          "' (separate alternatives by ';'; write none for no expression)");
+                     choices.push_back(alternative == "none" ? std::vector<ExpressionWeight>{}
+                                                             : parseExpressions("--expressions", alternative));
+                 }
+                 options.viewSampling.expressionChoices = std::move(choices);
+             });
+    expressionChoices.noEffect = [onlyViews = onlyWithViews("--expressions")](const RenderOptions& options) {
+        if (std::string refusal = onlyViews(options); !refusal.empty()) return refusal;
+        return options.expressions.empty() ? std::string()
+                                           : std::string("--expressions chooses each view's expressions: it does not "
+                                                         "go with --expression");
+    };
+    flags.push_back(expressionChoices);
+    Flag poseChoices = flag({"--poses"}, "POSE,POSE...", S::Views,
+                            "--views' poses: each view takes one of these, drawn uniformly: rest (no pose), a-pose or\n"
+                            "a FILE.json as --pose takes it, e.g. rest,a-pose,wave.json. Not with --pose",
+                            [](const std::string& value, RenderOptions& options) {
+                                std::vector<std::string> choices = splitList(value, ',');
+                                for (const std::string& choice : choices)
+                                    if (choice.empty())
+                                        throw UsageError("--poses: an empty alternative in '" + value +
+                                                         "' (rest, a-pose or FILE.json, separated by ',')");
+                                options.viewSampling.poseChoices = std::move(choices);
+                            });
+    poseChoices.noEffect = [onlyViews = onlyWithViews("--poses")](const RenderOptions& options) {
+        if (std::string refusal = onlyViews(options); !refusal.empty()) return refusal;
+        return options.pose.empty() ? std::string()
+                                    : std::string("--poses chooses each view's pose: it does not go with --pose");
+    };
+    flags.push_back(poseChoices);
+
     // System
     flags.push_back(flag({"--egl-platform"}, "P", S::System,
                          "auto | device | surfaceless (default auto: device first, then surfaceless)",
@@ -959,7 +1121,8 @@ std::vector<Flag> makeFlags() {
 
 const std::vector<HelpSection>& helpSections() {
     static const std::vector<HelpSection> kSections = {HelpSection::Output, HelpSection::Camera, HelpSection::Look,
-                                                       HelpSection::Lines,  HelpSection::Batch,  HelpSection::System};
+                                                       HelpSection::Lines,  HelpSection::Batch,  HelpSection::Views,
+                                                       HelpSection::System};
     return kSections;
 }
 
@@ -973,6 +1136,8 @@ const char* helpSectionTitle(HelpSection section) {
         return "Lines (any subset; only the passes the listed types need run: see --stats \"culled\")";
     case HelpSection::Batch:
         return "Batch (several models in one process: one GL context, each shader program compiled once)";
+    case HelpSection::Views:
+        return "Views (data sets: N sampled views of each model, reproducible from --seed; docs/datasets.md)";
     case HelpSection::System: return "System";
     }
     return "";

@@ -14,7 +14,7 @@
 
 namespace inkgraph {
 
-enum class HelpSection { Output, Camera, Look, Lines, Batch, System };
+enum class HelpSection { Output, Camera, Look, Lines, Batch, Views, System };
 
 struct Flag {
     std::vector<std::string> names; ///< "--size", or "-o" and "--output"; empty for a help-only entry

@@ -146,6 +146,12 @@ void checkFlagRules(const RenderOptions& options, const std::vector<std::string>
     checkGivenFlags(options, flags, true);
 }
 
+ViewSampling viewSamplingOf(const RenderOptions& options) {
+    ViewSampling sampling = options.viewSampling;
+    sampling.light = options.look.towardLight;
+    return sampling;
+}
+
 CameraRequest cameraRequestOf(const RenderOptions& options) {
     CameraRequest request;
     request.eye = options.eye;

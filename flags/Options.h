@@ -6,6 +6,7 @@
 #include "render/DefaultLook.h"
 #include "render/UsageError.h"
 #include "scene/Camera.h"
+#include "scene/ViewSampling.h"
 
 #include <glm/glm.hpp>
 
@@ -51,6 +52,13 @@ struct RenderOptions {
     std::vector<ExpressionWeight> expressions;
     /** --look-at: the point a VRM character looks at (world). */
     std::optional<glm::dvec3> lookAt;
+    /** --views N and its companions (--seed, --view-elevation, --view-distance-jitter, --light-jitter,
+     *  --expressions, --poses): count is N. Used only when viewsGiven. */
+    ViewSampling viewSampling;
+    bool viewsGiven = false; ///< --views N: each model renders N sampled views (app/Batch.h)
+    /** The sampled view of this still (set by app/Batch.h stillOptions() with --views, its orbit, light, expressions
+     *  and pose already applied to the fields above), for --stats and the manifest. */
+    std::optional<ViewSample> view;
     /** Shading, lines, supersampling, precision, paper, light; the default look (render/DefaultLook.h) draws
      *  lines. */
     Look look = defaultLook();
@@ -102,6 +110,9 @@ RenderOptions parseRenderFlags(const std::vector<std::string>& arguments, const 
 /** The rules between flags that parseRenderFlags() applies with FlagChecks::ValuesAndRules, for options built flag by
  *  flag (the library's typed looks and frames): `given` names each flag given ("--bands"). Throws UsageError. */
 void checkFlagRules(const RenderOptions& options, const std::vector<std::string>& given);
+
+/** --views' settings (RenderOptions::viewSampling) with --light, the direction the light jitter turns. */
+ViewSampling viewSamplingOf(const RenderOptions& options);
 
 /** The camera the flags ask for (--eye, --orbit, --target, --up, --fov, --clip, --camera, --frame, --size);
  *  resolveCamera() fills the rest. */

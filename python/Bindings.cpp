@@ -514,15 +514,46 @@ void defineValueTypes(py::module_& m) {
                                 "front; distance None is the auto-framing distance. Immutable; a tuple (azimuth, "
                                 "elevation[, distance]) is taken wherever an Orbit is.");
     orbit
-        .def(py::init([](double azimuth, double elevation, std::optional<double> distance) {
-                 return ig::Orbit{azimuth, elevation, distance};
+        .def(py::init([](double azimuth, double elevation, std::optional<double> distance, double distanceScale) {
+                 return ig::Orbit{azimuth, elevation, distance, distanceScale};
              }),
-             "azimuth"_a = 0.0, "elevation"_a = 0.0, "distance"_a = py::none())
+             "azimuth"_a = 0.0, "elevation"_a = 0.0, "distance"_a = py::none(), "distance_scale"_a = 1.0)
         .def_readonly("azimuth", &ig::Orbit::azimuth)
         .def_readonly("elevation", &ig::Orbit::elevation)
-        .def_readonly("distance", &ig::Orbit::distance);
-    addValueProtocol(orbit, {"azimuth", "elevation", "distance"});
+        .def_readonly("distance", &ig::Orbit::distance)
+        .def_readonly("distance_scale", &ig::Orbit::distanceScale,
+                      "With distance None: the eye at this multiple of the auto-framing distance (--orbit AZ,EL,xS).");
+    addValueProtocol(orbit, {"azimuth", "elevation", "distance", "distance_scale"});
+    // Unpacks as the tuple an Orbit is taken as; the scale is a field only.
     addIteration(orbit, {"azimuth", "elevation", "distance"});
+
+    py::class_<ig::ViewSample> viewSample(
+        m, "ViewSample",
+        "One view of --views, as sample_views() draws it and the command line's --stats records it (\"view\"). "
+        "Immutable; orbit() is the Orbit that places it in a Frame, light the direction to give Look.light.");
+    viewSample
+        .def(py::init([](std::size_t index, double azimuth, double elevation, double distanceScale,
+                         const py::object& light, std::optional<std::string> expression,
+                         std::optional<std::string> pose) {
+                 return ig::ViewSample{index,
+                                       azimuth,
+                                       elevation,
+                                       distanceScale,
+                                       optionalArgument(light, vec3Argument, "ViewSample.light"),
+                                       std::move(expression),
+                                       std::move(pose)};
+             }),
+             "index"_a = 0, "azimuth"_a = 0.0, "elevation"_a = 0.0, "distance_scale"_a = 1.0, "light"_a = py::none(),
+             "expression"_a = py::none(), "pose"_a = py::none())
+        .def_readonly("index", &ig::ViewSample::index)
+        .def_readonly("azimuth", &ig::ViewSample::azimuth)
+        .def_readonly("elevation", &ig::ViewSample::elevation)
+        .def_readonly("distance_scale", &ig::ViewSample::distanceScale)
+        .def_readonly("light", &ig::ViewSample::light)
+        .def_readonly("expression", &ig::ViewSample::expression)
+        .def_readonly("pose", &ig::ViewSample::pose)
+        .def("orbit", &ig::ViewSample::orbit, "The Orbit of this view, for Frame.orbit: distance None, its scale.");
+    addValueProtocol(viewSample, {"index", "azimuth", "elevation", "distance_scale", "light", "expression", "pose"});
 
     py::class_<ig::Clip> clip(m, "Clip",
                               "--clip NEAR,FAR. Immutable; a tuple (near, far) is taken wherever a Clip is.");
@@ -1170,6 +1201,36 @@ void defineModule(py::module_& m) {
     defineScene(m);
     defineRenderer(m);
 
+    m.def(
+        "sample_views",
+        [](std::size_t count, std::uint64_t seed, const py::object& modelKey, const py::object& elevation,
+           double distanceJitter, double lightJitter, const py::object& light, std::vector<std::string> expressions,
+           std::vector<std::string> poses) {
+            ig::ViewSampling sampling;
+            const std::vector<double> angles = realNumbers(elevation, {2, 4}, "sample_views(): elevation",
+                                                           "(mean, sd) or (mean, sd, low, high), degrees");
+            sampling.elevationMean = angles[0];
+            sampling.elevationDeviation = angles[1];
+            if (angles.size() == 4) {
+                sampling.elevationLow = angles[2];
+                sampling.elevationHigh = angles[3];
+            }
+            sampling.distanceJitter = distanceJitter;
+            sampling.lightJitter = lightJitter;
+            sampling.light = optionalArgument(light, vec3Argument, "sample_views(): light");
+            sampling.expressions = std::move(expressions);
+            sampling.poses = std::move(poses);
+            // The key is the model path as the command line lists it: a str, or a path as os.fspath() gives it.
+            const std::string key = py::module_::import("os").attr("fspath")(modelKey).cast<std::string>();
+            return ig::sampleViews(count, seed, key, sampling);
+        },
+        "count"_a, "seed"_a, "model_key"_a, py::kw_only(), "elevation"_a = py::make_tuple(10.0, 10.0, -30.0, 60.0),
+        "distance_jitter"_a = 0.0, "light_jitter"_a = 0.0, "light"_a = py::none(),
+        "expressions"_a = std::vector<std::string>{}, "poses"_a = std::vector<std::string>{},
+        "The views the command line's `--views count --seed seed` draws for the model listed as model_key (its path "
+        "as given), with --view-elevation, --view-distance-jitter, --light-jitter, --light, --expressions (each "
+        "alternative in --expression's syntax, or 'none') and --poses ('rest', 'a-pose' or a file). Raises "
+        "UsageError with the flag's message for a setting out of range (docs/datasets.md).");
     m.def("buffer_names", &ig::bufferNames, "look"_a,
           "The buffers render() can return with `look`: the G-buffer's fields ('normal', 'depth', ...), "
           "'gbuffer.*', 'lines.<type>' of the look's line types, 'lines.*', 'picture'.");

@@ -238,6 +238,8 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
         orbitText = "--orbit " + formatNumber(orbit.azimuthDegrees);
         orbitText.append(",").append(formatNumber(orbit.elevationDegrees));
         if (orbit.distance) orbitText.append(",").append(formatNumber(*orbit.distance));
+        if (!orbit.distance && orbit.distanceScale != 1.0)
+            orbitText.append(",x").append(formatNumber(orbit.distanceScale));
         if (request.eye) {
             invalid(orbitText + " and --eye both place the eye: give one");
         }
@@ -250,6 +252,9 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
         }
         if (orbit.distance && !(std::isfinite(*orbit.distance) && *orbit.distance > 0.0)) {
             invalid(orbitText + ": the distance must be finite and above 0");
+        }
+        if (!(std::isfinite(orbit.distanceScale) && orbit.distanceScale > 0.0)) {
+            invalid(orbitText + ": the distance scale must be finite and above 0");
         }
     }
 
@@ -331,8 +336,9 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
         camera.target = requestTarget ? *requestTarget : framed.center;
         const double fittedDistance = framingDistance(radius, glm::radians(camera.fovYDegrees), camera.aspect());
         if (request.orbit) {
-            camera.eye = camera.target + orbitDirection(camera.up, scene.front, *request.orbit) *
-                                             request.orbit->distance.value_or(fittedDistance);
+            camera.eye =
+                camera.target + orbitDirection(camera.up, scene.front, *request.orbit) *
+                                    request.orbit->distance.value_or(fittedDistance * request.orbit->distanceScale);
             camera.source = "orbit";
         } else {
             camera.eye = camera.target + autoFrameDirection(camera.up, scene.front) * fittedDistance;

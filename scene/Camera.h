@@ -21,6 +21,9 @@ struct Orbit {
      *  parallel to the view. */
     double elevationDegrees = 0.0;
     std::optional<double> distance; ///< world units from the target; unset: the auto-framing distance
+    /** With `distance` unset: the eye at this multiple of the auto-framing distance (--orbit AZ,EL,xS; --views'
+     *  distance jitter). Positive and finite. */
+    double distanceScale = 1.0;
 };
 
 /** What the user asked for; every unset field falls back to the glTF camera, then to auto-framing. */
@@ -98,7 +101,8 @@ struct Camera {
  *  front (Scene::front, else world +Z; world -Y when that is within |. u| > 0.9 of up, so Z-up models are seen from
  *  the front as in Blender), i.e. from the front and slightly above; for the default up (0, 1, 0) that is
  *  normalize(0, 0.25, 1), an orbit of azimuth 0 and elevation atan(0.25) = 14.04 degrees. An orbit puts the eye at
- *  target + distance x (cos e (cos a h + sin a (u x h)) + sin e u). A view placed by the request (eye, orbit or
+ *  target + distance x (cos e (cos a h + sin a (u x h)) + sin e u), its distance else the auto-framing distance times
+ *  its distanceScale. A view placed by the request (eye, orbit or
  *  frameNodes) does not use the file camera at all, its field of view included. Near and far are fitted to the whole
  *  bounding sphere: far = distance to the centre + radius (x1.01); near = max(depth of the sphere's front along the
  *  view axis, far x 1e-4) (x0.99), so the sphere is never clipped when the eye is outside it; a requested zNear and

@@ -38,9 +38,11 @@ from ._inkgraph import (
     StillCamera,
     StrokeSettings,
     Vec3,
+    ViewSample,
     ViewVector,
     buffer_names,
     git_commit,
+    sample_views,
     version,
     write_image,
 )
@@ -75,6 +77,7 @@ __all__ = [
     "StrokeSettings",
     "UsageError",
     "Vec3",
+    "ViewSample",
     "ViewVector",
     "buffer_names",
     "default_renderer",
@@ -82,6 +85,7 @@ __all__ = [
     "make_frame",
     "make_look",
     "render",
+    "sample_views",
     "version",
     "write_image",
 ]

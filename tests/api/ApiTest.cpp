@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -483,6 +484,47 @@ TEST(ApiVersion, TheHeadersMacrosAreTheLibrarysVersion) {
 #define INKGRAPH_TEST_EXPANDED(x) INKGRAPH_TEST_STRING(x)
     EXPECT_EQ(std::string(INKGRAPH_TEST_EXPANDED(INKGRAPH_ABI_NAMESPACE)),
               "v" + std::to_string(INKGRAPH_VERSION_MAJOR) + "_" + std::to_string(INKGRAPH_VERSION_MINOR));
+}
+
+// The library's views are the command line's (scene/ViewSampling.h): the golden of tests/scene/ViewSamplingTest.cpp,
+// the choices as given, and the flags' refusals.
+TEST(ApiViews, SampleViewsDrawsTheCommandLinesViews) {
+    ig::ViewSampling sampling;
+    sampling.distanceJitter = 0.1;
+    sampling.expressions = {"none", "happy=1", "sad=1"};
+    sampling.poses = {"rest", "a-pose"};
+    const std::vector<ig::ViewSample> views = ig::sampleViews(3, 1, "models/suzanne_npm_4k.obj", sampling);
+    ASSERT_EQ(views.size(), 3u);
+    EXPECT_EQ(views[0].azimuth, 47.862973);
+    EXPECT_EQ(views[0].elevation, -7.00786);
+    EXPECT_EQ(views[0].distanceScale, 0.952946094);
+    EXPECT_EQ(views[2].azimuth, 153.337869);
+    EXPECT_EQ(views[0].expression, "happy=1");
+    EXPECT_EQ(views[2].expression, "sad=1");
+    EXPECT_EQ(views[2].pose, "a-pose");
+    EXPECT_FALSE(views[0].light);
+    const ig::Orbit orbit = views[1].orbit();
+    EXPECT_EQ(orbit.azimuth, views[1].azimuth);
+    EXPECT_FALSE(orbit.distance);
+    EXPECT_EQ(orbit.distanceScale, views[1].distanceScale);
+
+    sampling = {};
+    sampling.lightJitter = 30.0;
+    const ig::Error noLight = errorOf([&] { ig::sampleViews(2, 0, "a.obj", sampling); });
+    EXPECT_EQ(noLight.kind(), ig::Error::Kind::Usage);
+    EXPECT_EQ(std::string(noLight.what()).rfind("sampleViews(): --light-jitter turns --light's direction", 0), 0u)
+        << noLight.what();
+    sampling.light = ig::Vec3{0.0, 2.0, 0.0};
+    const std::vector<ig::ViewSample> lit = ig::sampleViews(2, 0, "a.obj", sampling);
+    ASSERT_TRUE(lit[0].light);
+    const double length = std::sqrt(lit[0].light->x * lit[0].light->x + lit[0].light->y * lit[0].light->y +
+                                    lit[0].light->z * lit[0].light->z);
+    EXPECT_NEAR(length, 1.0, 2e-9);
+    EXPECT_GE(lit[0].light->y, std::cos(30.0 * 3.14159265358979 / 180.0) - 1e-9) << "within the cap about +y";
+    sampling.elevationLow = 70.0; // above the default high, 60
+    const ig::Error elevation = errorOf([&] { ig::sampleViews(2, 0, "a.obj", sampling); });
+    EXPECT_NE(std::string(elevation.what()).find("--view-elevation: LOW must not exceed HIGH"), std::string::npos)
+        << elevation.what();
 }
 
 } // namespace

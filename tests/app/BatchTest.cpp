@@ -151,7 +151,7 @@ TEST(BatchOutputs, EveryOutputOfAStillIsExpanded) {
     options.graphvizPath = "g/{index}.dot";
     options.contactSheetPath = "c/{name}.png";
     options.svgPath = "v/{name}.svg";
-    const RenderOptions still = stillOptions(options, {"x/b.obj", 1}, 2);
+    const RenderOptions still = stillOptions(options, BatchStill{{"x/b.obj", 1}}, 2);
     EXPECT_EQ(still.modelPath, "x/b.obj");
     EXPECT_EQ(still.outputPath, "out/b.png");
     EXPECT_EQ(still.dumpDirectory, "d/b");

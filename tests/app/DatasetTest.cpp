@@ -43,12 +43,14 @@ protected:
         options = parseRenderOptions(arguments);
         std::istringstream none;
         list = batchList(options, none);
-        return std::make_unique<DatasetRun>(options, list, arguments, arguments);
+        stills = batchStills(options, list);
+        return std::make_unique<DatasetRun>(options, list, stills, arguments, arguments);
     }
     std::string digestOf(const std::vector<std::string>& arguments) {
         auto run = runOf(arguments);
-        const BatchModel& first = list.models.front();
-        return run->settingsDigest({first.path, first.position, 0}, stillOptions(options, first, list.total));
+        const BatchStill& first = stills.front();
+        return run->settingsDigest({first.model.path, first.model.position, first.viewIndex},
+                                   stillOptions(options, first, list.total));
     }
     std::string usageError(const std::vector<std::string>& arguments) {
         try {
@@ -71,6 +73,7 @@ protected:
 
     RenderOptions options;
     BatchList list;
+    std::vector<BatchStill> stills;
     std::string model;
     std::string set;
 };
@@ -99,6 +102,24 @@ TEST_F(Dataset, TheDigestIgnoresFlagOrderAndRunFlagsButNotTheSettings) {
     // A model changed in place (its size and modification time) renders again.
     write(model, "v 0 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\n");
     EXPECT_NE(digestOf(base), digest) << "the model file";
+}
+
+TEST_F(Dataset, TheDigestHoldsTheViewAndItsSeed) {
+    const std::vector<std::string> base = {
+        model, "--views", "2", "--seed", "3", "--dataset", set, "-o", set + "/{name}-{view}.png"};
+    auto run = runOf(base);
+    ASSERT_EQ(stills.size(), 2u);
+    const auto digestOfView = [&](std::size_t view) {
+        const BatchStill& still = stills[view];
+        return run->settingsDigest({still.model.path, still.model.position, still.viewIndex},
+                                   stillOptions(options, still, list.total));
+    };
+    const std::string first = digestOfView(0), second = digestOfView(1);
+    EXPECT_NE(first, second) << "each view is its own still";
+    std::vector<std::string> otherSeed = base;
+    otherSeed[4] = "4";
+    EXPECT_NE(digestOf(otherSeed), first) << "--seed";
+    EXPECT_EQ(digestOf(base), first) << "the same seed, the same digest";
 }
 
 TEST_F(Dataset, OutputsOutsideTheFolderAndItsOwnFilesAreRefused) {

@@ -15,11 +15,11 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/inkgraph-dataset-kill.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 export LP_NUM_THREADS=1
 
-# Six stills (three models, each twice: a run long enough for random kills to land inside it).
+# Six stills: three models, two sampled views each (a run long enough for random kills to land inside it).
 models=("$root/models/spot_c3d.obj" "$root/models/teapot_c3d.obj" "$root/models/suzanne_npm_4k.obj")
-models+=("${models[@]}")
 # Every output but --stats and --dump, whose files hold timings (docs/datasets.md): three files per still.
-flags=(--size 64x64 --dataset . -o '{index}-{name}.png' --svg 'svg/{index}.svg' --graphviz 'plan/{index}.dot')
+flags=(--size 64x64 --views 2 --seed 5 --dataset . -o '{name}-{view}.png' --svg 'svg/{name}-{view}.svg'
+    --graphviz 'plan/{name}-{view}.dot')
 
 fail() {
     echo "FAIL: $*" >&2
@@ -92,9 +92,9 @@ diff -r "$work/A" "$work/C" || fail "C (killed at random moments, resumed) diffe
 
 # D: a copy of A with one file cut short: only that still is rendered again.
 cp -r "$work/A" "$work/D"
-truncate -s 100 "$work/D/2-teapot_c3d.png"
+truncate -s 100 "$work/D/teapot_c3d-1.png"
 "$inkgraph" check-dataset "$work/D" > "$work/check.txt" && fail "check-dataset passes a truncated PNG"
-grep -q "'2-teapot_c3d.png' is a PNG cut short" "$work/check.txt" || fail "check-dataset D: $(cat "$work/check.txt")"
+grep -q "'teapot_c3d-1.png' is a PNG cut short" "$work/check.txt" || fail "check-dataset D: $(cat "$work/check.txt")"
 render "$work/D" --resume || fail "resume D: $(cat "$work/D.log")"
 grep -q "inkgraph: resumed: 5 stills complete, 1 rendered" "$work/D.log" || fail "resume D: $(cat "$work/D.log")"
 diff -r "$work/A" "$work/D" || fail "D (a truncated file, resumed) differs from A"
@@ -104,10 +104,16 @@ render "$work/D" --resume --svg-tolerance 1 || fail "resume D with a new flag: $
 grep -q "inkgraph: resumed: 0 stills complete, 6 rendered" "$work/D.log" || fail "new flag: $(cat "$work/D.log")"
 cmp -s "$work/A/index.jsonl" "$work/D/index.jsonl" && fail "the index did not change with --svg-tolerance 1"
 # The same flags in another order: the same settings, nothing to render.
-flags=(--svg-tolerance 1 -o '{index}-{name}.png' --graphviz 'plan/{index}.dot' --dataset . --svg 'svg/{index}.svg'
-    --size 64x64)
+flags=(--svg-tolerance 1 -o '{name}-{view}.png' --seed 5 --graphviz 'plan/{name}-{view}.dot' --dataset .
+    --svg 'svg/{name}-{view}.svg' --views 2 --size 64x64)
 render "$work/D" --resume || fail "resume D, flags reordered: $(cat "$work/D.log")"
 grep -q "inkgraph: resumed: 6 stills complete, 0 rendered" "$work/D.log" || fail "reordered: $(cat "$work/D.log")"
+
+# Another seed: other views, every still rendered again.
+flags[5]=6 # after --seed
+render "$work/D" --resume || fail "resume D with another seed: $(cat "$work/D.log")"
+grep -q "inkgraph: resumed: 0 stills complete, 6 rendered" "$work/D.log" || fail "another seed: $(cat "$work/D.log")"
+grep -q '"seed":6' "$work/D/index.jsonl" || fail "the index does not record --seed 6"
 
 # Refusals: --resume without --dataset; a data set without --resume (nothing changed).
 status=0

@@ -373,7 +373,44 @@ struct Orbit {
     double azimuth = 0.0;           ///< degrees about up, [-360, 360]; 90 looks from the front view's right
     double elevation = 0.0;         ///< degrees above the horizontal, [-89.9, 89.9]
     std::optional<double> distance; ///< world units; unset: the auto-framing distance
+    /** With distance unset: the eye at this multiple of the auto-framing distance, (0, 1000] (--orbit AZ,EL,xS). */
+    double distanceScale = 1.0;
 };
+
+/** --views' settings besides the count and the seed (docs/datasets.md#views-and-variations): what sampleViews()
+ *  draws each view from. Checked by the flags' rules, with their messages. */
+struct ViewSampling {
+    double elevationMean = 10.0;      ///< --view-elevation MEAN,SD,LOW,HIGH: degrees
+    double elevationDeviation = 10.0; ///< the normal's standard deviation, [0, 180]
+    double elevationLow = -30.0;      ///< the clamp, within [-89.9, 89.9]
+    double elevationHigh = 60.0;
+    double distanceJitter = 0.0; ///< --view-distance-jitter J, [0, 0.9]
+    double lightJitter = 0.0;    ///< --light-jitter DEG, [0, 180]; needs `light`
+    std::optional<Vec3> light;   ///< --light: the direction the jitter turns
+    /** --expressions' alternatives, each in --expression's syntax ("angry=1,blink=0.5") or "none". */
+    std::vector<std::string> expressions;
+    std::vector<std::string> poses; ///< --poses' alternatives: "rest", "a-pose" or a pose file
+};
+
+/** One view, as the command line's --views draws it and records it in --stats ("view"). */
+struct ViewSample {
+    std::size_t index = 0;
+    double azimuth = 0.0;                  ///< degrees, [0, 360)
+    double elevation = 0.0;                ///< degrees
+    double distanceScale = 1.0;            ///< times the auto-framing distance
+    std::optional<Vec3> light;             ///< with a light jitter: Look::setLight() with it
+    std::optional<std::string> expression; ///< with expressions: the alternative, "none" or as --expression writes it
+    std::optional<std::string> pose;       ///< with poses: "rest", "a-pose" or the file
+
+    /** The view's orbit, for Frame::orbit: the command line's view exactly. */
+    Orbit orbit() const { return Orbit{azimuth, elevation, std::nullopt, distanceScale}; }
+};
+
+/** The `count` views (1 to 100000) of the model `modelKey` (its path as the command line lists it) for `seed`, exactly
+ *  the command line's `--views count --seed seed` with `sampling`'s flags. Throws Error(Usage) with the flag's message
+ *  for a setting out of range. */
+INKGRAPH_API std::vector<ViewSample> sampleViews(std::size_t count, std::uint64_t seed, const std::string& modelKey,
+                                                 const ViewSampling& sampling = {});
 
 /** --clip NEAR,FAR. */
 struct Clip {

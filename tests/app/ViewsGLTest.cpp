@@ -1,0 +1,122 @@
+// --views by the real `inkgraph` executable: the stills of each model's sampled views, their records, and the
+// determinism docs/datasets.md promises (the same command twice, any --shard split, and --orbit/--light with the
+// recorded numbers all give the same bytes). Needs a GL context (llvmpipe in CI); the stills are small (64x64 and
+// 40x40) and few.
+#include "scene/ViewSampling.h"
+#include "CliTestSupport.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <set>
+
+namespace inkgraph {
+namespace {
+
+using test::Cli;
+using test::CliRun;
+using test::readText;
+namespace fs = std::filesystem;
+
+const std::string kLook = " --shading comic --lines outline,contour,crease";
+
+/** A JSON number as text that reads back as the same double (JSON writes the shortest such text). */
+std::string numberText(const nlohmann::json& number) { return number.dump(); }
+
+TEST_F(Cli, ViewsAreSampledRecordedAndReproducedByTheirNumbers) {
+    fs::copy_file(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "suzanne_npm_4k.obj", directory / "m.obj");
+    const std::string views = "render m.obj --views 3 --seed 7 --view-distance-jitter 0.2 --light 0.2,1,0.5 "
+                              "--light-jitter 30 --size 64x64" +
+                              kLook;
+    fs::create_directories(directory / "a");
+    fs::create_directories(directory / "b");
+    const CliRun first = run(views + " -o 'a/v-{view}.png' --stats 'a/v-{view}.json'");
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    EXPECT_NE(first.err.find("inkgraph: [2/3] 'm.obj' view 1 -> 'a/v-1.png': "), std::string::npos) << first.err;
+    EXPECT_NE(first.err.find("inkgraph: rendered 3 of 3 stills (1 model x 3 views) in"), std::string::npos)
+        << first.err;
+
+    ViewSampling sampling;
+    sampling.count = 3;
+    sampling.seed = 7;
+    sampling.distanceJitter = 0.2;
+    sampling.lightJitterDegrees = 30.0;
+    sampling.light = glm::dvec3(0.2, 1.0, 0.5);
+    std::set<double> azimuths;
+    std::vector<nlohmann::json> records;
+    for (int view = 0; view < 3; ++view) {
+        const auto stats = nlohmann::json::parse(readText(directory / "a" / ("v-" + std::to_string(view) + ".json")));
+        const nlohmann::json& record = stats["view"];
+        const ViewSample expected = sampleView(sampling, "m.obj", std::size_t(view));
+        EXPECT_EQ(record["index"].get<int>(), view);
+        EXPECT_EQ(record["count"].get<int>(), 3);
+        EXPECT_EQ(record["seed"].get<int>(), 7);
+        EXPECT_EQ(record["azimuth"].get<double>(), expected.azimuthDegrees) << view;
+        EXPECT_EQ(record["elevation"].get<double>(), expected.elevationDegrees) << view;
+        EXPECT_EQ(record["distance_scale"].get<double>(), expected.distanceScale) << view;
+        ASSERT_TRUE(record["light"].is_array());
+        for (int axis = 0; axis < 3; ++axis)
+            EXPECT_EQ(record["light"][axis].get<double>(), (*expected.towardLight)[axis]) << view;
+        EXPECT_TRUE(record["expression"].is_null());
+        EXPECT_TRUE(record["pose"].is_null());
+        EXPECT_EQ(stats["camera_source"], "orbit");
+        azimuths.insert(record["azimuth"].get<double>());
+        records.push_back(record);
+    }
+    EXPECT_EQ(azimuths.size(), 3u) << "three different views";
+    EXPECT_NE(readText(directory / "a" / "v-0.png"), readText(directory / "a" / "v-1.png"));
+    EXPECT_NE(readText(directory / "a" / "v-1.png"), readText(directory / "a" / "v-2.png"));
+
+    // The same command again: the same bytes.
+    const CliRun second = run(views + " -o 'b/v-{view}.png' -q");
+    ASSERT_EQ(second.exitCode, 0) << second.err;
+    for (int view = 0; view < 3; ++view) {
+        const std::string name = "v-" + std::to_string(view) + ".png";
+        EXPECT_EQ(readText(directory / "a" / name), readText(directory / "b" / name)) << name;
+    }
+
+    // View 1 by its recorded numbers, without --views: the same picture.
+    const nlohmann::json& record = records[1];
+    const std::string light =
+        numberText(record["light"][0]) + "," + numberText(record["light"][1]) + "," + numberText(record["light"][2]);
+    const CliRun again = run("render m.obj --orbit " + record["orbit"].get<std::string>() + " --camera auto --light " +
+                             light + " --size 64x64 -o again.png -q" + kLook);
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_EQ(readText(directory / "again.png"), readText(directory / "a" / "v-1.png"));
+}
+
+TEST_F(Cli, ViewsOfAShardedListAreTheUnshardedRunsBytes) {
+    for (const char* name : {"suzanne_npm_4k", "cow_c3d", "spot_c3d"})
+        fs::copy_file(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / (std::string(name) + ".obj"),
+                      directory / (std::string(name) + ".obj"));
+    const std::string models = "suzanne_npm_4k.obj cow_c3d.obj spot_c3d.obj";
+    const std::string views = " --views 2 --seed 3 --view-elevation 20,15 --size 40x40 -q" + kLook;
+    fs::create_directories(directory / "whole");
+    fs::create_directories(directory / "shards");
+    const CliRun whole = run("render " + models + views + " -o 'whole/{index}-{name}-{view}.png'");
+    ASSERT_EQ(whole.exitCode, 0) << whole.err;
+    for (const char* shard : {"0/2", "1/2"}) {
+        const CliRun part =
+            run("render " + models + views + " --shard " + shard + " -o 'shards/{index}-{name}-{view}.png'");
+        ASSERT_EQ(part.exitCode, 0) << part.err;
+    }
+    const std::vector<std::string> names = listFiles(directory / "whole");
+    EXPECT_EQ(names, std::vector<std::string>({"1-suzanne_npm_4k-0.png", "1-suzanne_npm_4k-1.png", "2-cow_c3d-0.png",
+                                               "2-cow_c3d-1.png", "3-spot_c3d-0.png", "3-spot_c3d-1.png"}));
+    EXPECT_EQ(listFiles(directory / "shards"), names);
+    for (const std::string& name : names)
+        EXPECT_EQ(readText(directory / "whole" / name), readText(directory / "shards" / name)) << name;
+}
+
+TEST_F(Cli, ViewsWithoutTheViewPlaceholderWriteNothing) {
+    const CliRun result = run("render " + model("spot_c3d.obj") + " --views 4 -o out.png --size 32x32");
+    EXPECT_EQ(result.exitCode, 2) << result.err;
+    EXPECT_NE(result.err.find("-o 'out.png' would be the same file for all 4 views of --views; put {view} in it"),
+              std::string::npos)
+        << result.err;
+    EXPECT_EQ(listFiles(directory), std::vector<std::string>());
+}
+
+} // namespace
+} // namespace inkgraph
