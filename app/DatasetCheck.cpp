@@ -151,6 +151,12 @@ void checkIndex(const fs::path& folder, const fs::path& index, const fs::path& c
     const auto counts = cardCounts(readAll(card));
     const std::vector<std::pair<std::string, std::size_t>> expected = {
         {"models", positions.size()}, {"stills in the set", stills}, {"failed", failed}};
+    // Every model with each of its views: the index holds models x views lines.
+    if (const auto views = counts.find("views per model");
+        views != counts.end() && positions.size() * views->second != stills + failed)
+        report.errors.push_back(cardName + " says " + std::to_string(positions.size()) + " models x " +
+                                std::to_string(views->second) + " views, " + indexName + " holds " +
+                                std::to_string(stills + failed) + " stills");
     for (const auto& [name, count] : expected) {
         const auto found = counts.find(name);
         if (found == counts.end())

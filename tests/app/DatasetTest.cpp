@@ -200,14 +200,15 @@ TEST_F(Dataset, CheckDatasetFindsEachKindOfProblem) {
     write(folder / "stray.txt", "x");
     write(folder / "sub" / ".inkgraph-99999999-0.tmp", "x");
     write(folder / ".inkgraph" / "journal.jsonl", "");
-    write(folder / "README.md", "| models | 1 |\n| stills in the set | 2 |\n| failed | 0 |\n");
+    write(folder / "README.md", "| models | 1 |\n| views per model | 2 |\n| stills in the set | 2 |\n| failed | 0 |\n");
     write(folder / "a.png", png.substr(0, png.size() - 1));
     report = checkDataset(folder);
-    ASSERT_EQ(report.errors.size(), 4u);
+    ASSERT_EQ(report.errors.size(), 5u);
     EXPECT_EQ(report.errors[0], "'a.png' is a PNG cut short (no IEND last)");
-    EXPECT_EQ(report.errors[1], "README.md says 2 stills in the set, index.jsonl holds 1");
-    EXPECT_EQ(report.errors[2], "'.inkgraph/journal.jsonl': a run that did not finish; run it again with --resume");
-    EXPECT_EQ(report.errors[3],
+    EXPECT_EQ(report.errors[1], "README.md says 1 models x 2 views, index.jsonl holds 1 stills");
+    EXPECT_EQ(report.errors[2], "README.md says 2 stills in the set, index.jsonl holds 1");
+    EXPECT_EQ(report.errors[3], "'.inkgraph/journal.jsonl': a run that did not finish; run it again with --resume");
+    EXPECT_EQ(report.errors[4],
               "'sub/.inkgraph-99999999-0.tmp': a temporary file of a run that was killed or is running");
     ASSERT_EQ(report.warnings.size(), 1u);
     EXPECT_EQ(report.warnings[0], "'stray.txt' is not in the index");
