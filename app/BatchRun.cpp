@@ -4,12 +4,14 @@
 
 #include "app/Batch.h"
 #include "app/Cli.h"
+#include "app/Dataset.h"
 #include "app/Render.h"
 #include "scene/Scene.h"
 
 #include <chrono>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
 namespace inkgraph {
 namespace {
@@ -32,17 +34,37 @@ std::string stillLabel(const BatchStill& still, const RenderOptions& options) {
 
 /** Renders every still of the list in `session` (each model's views one after the other), each still's picture
  *  encoded while the next renders (the caller finishes the last). Bad input stops one still, not the batch: its
- *  label goes to `failed`. */
+ *  label goes to `failed`. With a data set, stills --resume finds complete are skipped (counted in `skipped`, no
+ *  progress line) and each committed one journaled. */
 void renderEach(const RenderOptions& options, const BatchList& list, const std::vector<BatchStill>& stills,
-                RenderSession& session, std::ostream& log, std::vector<std::string>& failed, int& exitCode) {
+                RenderSession& session, std::ostream& log, DatasetRun* dataset, std::vector<std::string>& failed,
+                std::size_t& skipped, int& exitCode) {
     for (std::size_t i = 0; i < stills.size(); ++i) {
         const BatchStill& batchStill = stills[i];
         const RenderOptions still = stillOptions(options, batchStill, list.total);
+        const StillKey key{batchStill.model.path, batchStill.model.position, batchStill.viewIndex};
         const std::string counter = "inkgraph: [" + std::to_string(i + 1) + "/" + std::to_string(stills.size()) + "] " +
                                     stillLabel(batchStill, options);
+        const auto fail = [&](const std::exception& error) {
+            log << boundedMessage(counter + " failed: " + error.what()) << "\n";
+            failed.push_back(stillLabel(batchStill, options));
+            if (dataset) dataset->recordFailed(key, still, error.what());
+            if (exitCode == kExitOk) exitCode = kExitBadInput;
+        };
         try {
+            CommitListener journal;
+            if (dataset) {
+                const std::string digest = dataset->settingsDigest(key, still);
+                if (dataset->isComplete(key, digest)) {
+                    ++skipped;
+                    continue;
+                }
+                journal = [dataset, key, still, digest](const CommittedStill& committed) {
+                    dataset->recordCommitted(key, still, digest, committed.camera, committed.look);
+                };
+            }
             const StillBatchPosition position{batchStill.model.position, list.total};
-            const StillReport report = session.render(still, &position);
+            const StillReport report = session.render(still, &position, std::move(journal));
             if (!options.quiet) {
                 log << counter;
                 if (!still.outputPath.empty()) log << " -> '" << still.outputPath << "'";
@@ -51,22 +73,23 @@ void renderEach(const RenderOptions& options, const BatchList& list, const std::
             }
         } catch (const SceneError& error) {
             // Bad input stops one still, not the batch: the other stills' work is not lost.
-            log << boundedMessage(counter + " failed: " + error.what()) << "\n";
-            failed.push_back(stillLabel(batchStill, options));
-            if (exitCode == kExitOk) exitCode = kExitBadInput;
+            fail(error);
         } catch (const InputFileError& error) {
-            log << boundedMessage(counter + " failed: " + error.what()) << "\n";
-            failed.push_back(stillLabel(batchStill, options));
-            if (exitCode == kExitOk) exitCode = kExitBadInput;
+            fail(error);
         }
     }
 }
 
 } // namespace
 
-int renderBatch(const RenderOptions& options, std::istream& standardInput, std::ostream& out, std::ostream& log) {
+int renderBatch(const RenderOptions& options, std::istream& standardInput, std::ostream& out, std::ostream& log,
+                const std::vector<std::string>& givenArguments, const std::vector<std::string>& expandedArguments) {
     const BatchList list = batchList(options, standardInput);
     checkBatchOutputs(options, list);
+    const std::vector<BatchStill> stills = batchStills(options, list);
+    std::unique_ptr<DatasetRun> dataset;
+    if (!options.datasetDirectory.empty())
+        dataset = std::make_unique<DatasetRun>(options, list, stills, givenArguments, expandedArguments);
     RenderSession session(out, log);
     const std::string share = options.shard
                                   ? " (shard " + std::to_string(options.shard->index) + "/" +
@@ -76,18 +99,20 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     // shards have nothing to do, which is not an error in an array job.
     if (list.models.empty()) {
         if (!options.quiet) log << "inkgraph: no models in this share" << share << "\n";
+        if (dataset) dataset->finish(log); // an empty index and card: check-dataset then sees every shard
         return kExitOk;
     }
-    const std::vector<BatchStill> stills = batchStills(options, list);
-    if (!list.isBatch) {
+    // A data set's still goes the batch's way even alone: a bad model is recorded as failed in its index.
+    if (!list.isBatch && !dataset) {
         session.render(stillOptions(options, stills.front(), list.total));
         return kExitOk;
     }
     const auto batchStart = std::chrono::steady_clock::now();
     int exitCode = kExitOk;
     std::vector<std::string> failed;
+    std::size_t skipped = 0;
     try {
-        renderEach(options, list, stills, session, log, failed, exitCode);
+        renderEach(options, list, stills, session, log, dataset.get(), failed, skipped, exitCode);
         session.finishPending();
     } catch (...) {
         // The batch stops; the still whose picture was still being encoded is finished first, so no completed
@@ -99,8 +124,9 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
         }
         throw;
     }
+    if (dataset) dataset->finish(log);
     if (!options.quiet || !failed.empty()) {
-        log << "inkgraph: rendered " << stills.size() - failed.size() << " of " << stills.size();
+        log << "inkgraph: rendered " << stills.size() - failed.size() - skipped << " of " << stills.size();
         if (options.viewsGiven)
             log << " stills (" << list.models.size() << (list.models.size() == 1 ? " model x " : " models x ")
                 << options.viewSampling.count << (options.viewSampling.count == 1 ? " view)" : " views)");

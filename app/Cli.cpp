@@ -4,6 +4,7 @@
 
 #include "app/BatchRun.h"
 #include "app/CommandLineDocs.h"
+#include "app/DatasetCheck.h"
 #include "app/GeneratedDocs.h"
 #include "render/ImageFiles.h"
 #include "app/Render.h"
@@ -65,6 +66,8 @@ int runHelpCommand(const std::vector<std::string>& arguments, std::ostream& out,
         out << mainHelp();
     else if (topic == "render")
         out << renderHelp();
+    else if (topic == "check-dataset")
+        out << checkDatasetHelp();
     else if (topic == "--man")
         out << manPage();
     else if (topic == "--bash-completion")
@@ -104,7 +107,7 @@ int runRenderCommand(const std::vector<std::string>& arguments, std::ostream& ou
             out << renderHelp();
             return kExitOk;
         }
-        return renderBatch(options, std::cin, out, err);
+        return renderBatch(options, std::cin, out, err, arguments, expanded.arguments);
     } catch (...) {
         const ErrorReport report = reportOf(std::current_exception());
         err << "inkgraph: " << report.message << "\n";
@@ -119,6 +122,12 @@ const std::vector<CommandInfo>& commands() {
     // runCommandLine() dispatches on these names; runHelpCommand() takes its topics from help's words.
     static const std::vector<CommandInfo> kCommands = {
         {{"render"}, "MODEL... -o OUT.png [options]", "render a still of each model (see: inkgraph help render)", {}},
+        {{"check-dataset"},
+         "DIR",
+         "verify a data set made with render --dataset DIR: every still's files\n"
+         "there and whole, no unfinished run; exit 0 whole, 1 not (see: inkgraph\n"
+         "check-dataset --help)",
+         {"--help"}},
         {{"--version"},
          "[--verbose]",
          "print the version and the git commit; --verbose adds the shader folder\n"
@@ -126,10 +135,11 @@ const std::vector<CommandInfo>& commands() {
          "versions, and exits with 4 when there is no context or no shader folder",
          {"--verbose"}},
         {{"help", "--help", "-h"},
-         "[render | --man | --bash-completion]",
-         "this text; render: every flag of inkgraph render; --man: the man page\n"
-         "(roff); --bash-completion: the bash completion script",
-         {"render", "--man", "--bash-completion"}},
+         "[render | check-dataset | --man | --bash-completion]",
+         "this text; render: every flag of inkgraph render; check-dataset: what\n"
+         "it checks; --man: the man page (roff); --bash-completion: the bash\n"
+         "completion script",
+         {"render", "check-dataset", "--man", "--bash-completion"}},
     };
     return kCommands;
 }
@@ -162,6 +172,8 @@ int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::os
         arguments.erase(arguments.begin());
         removeTemporariesOnSignals();
         exitCode = runRenderCommand(arguments, out, err);
+    } else if (named("check-dataset")) {
+        exitCode = runCheckDatasetCommand({arguments.begin() + 1, arguments.end()}, out, err);
     } else if (named("--version")) {
         exitCode = runVersionCommand(arguments, out, err);
     } else if (named("help")) {

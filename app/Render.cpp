@@ -86,7 +86,8 @@ std::unique_ptr<PreparedStill> RenderSession::loadWhileMakingContext(StillReques
     return still;
 }
 
-StillReport RenderSession::render(const RenderOptions& options, const StillBatchPosition* batch) {
+StillReport RenderSession::render(const RenderOptions& options, const StillBatchPosition* batch,
+                                  CommitListener committed) {
     const auto processStart = std::chrono::steady_clock::now();
     const bool renders = rendersImages(options);
     // In a batch the progress line per still replaces the lines of one still.
@@ -113,6 +114,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     if (!options.graphvizPath.empty()) outputs->stageGraphviz(plan.graphviz());
     if (!renders) {
         outputs->commit();
+        if (committed) committed({describeCamera(still->camera), describeLook(*still, options.stylePath)});
         return report;
     }
     budgetStill(*still);
@@ -139,6 +141,10 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
         context.estimatedPeakBytes = estimate.total();
         context.estimatedTextureBytes = estimate.textures;
         pending->stats = statsDocument(context, mRenderer, *still, result);
+    }
+    if (committed) {
+        pending->committed = std::move(committed);
+        pending->description = {describeCamera(still->camera), describeLook(*still, options.stylePath)};
     }
     pending->outputs = std::move(outputs);
     pending->outputPath = options.outputPath;
@@ -173,6 +179,7 @@ void RenderSession::finishPending() {
     if (pending->stats)
         pending->outputs->stageStats(finishedStatsText(*pending->stats, writeMilliseconds, totalMilliseconds));
     pending->outputs->commit();
+    if (pending->committed) pending->committed(pending->description);
     if (pending->talks) {
         mLog << "inkgraph: rendered " << pending->size << " in " << totalMilliseconds << " ms";
         if (!pending->outputPath.empty()) mLog << " -> '" << pending->outputPath << "'";

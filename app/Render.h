@@ -10,6 +10,7 @@
 #include "app/OutputFiles.h"
 
 #include <cstddef>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
@@ -32,6 +33,14 @@ struct StillReport {
     double milliseconds = 0.0;
 };
 
+/** A still whose outputs were just committed, for --dataset's journal (app/Dataset.h). */
+struct CommittedStill {
+    nlohmann::ordered_json camera; ///< describeCamera()
+    nlohmann::ordered_json look;   ///< describeLook()
+};
+/** Called once the still's outputs are all in place (the still's own options are the caller's to keep). */
+using CommitListener = std::function<void(const CommittedStill&)>;
+
 /** The stills of one process, in one StillRenderer (one GL context, every program compiled once). */
 class RenderSession {
 public:
@@ -41,8 +50,10 @@ public:
     /** Renders one still as the options say (the model and outputs of that still: app/Batch.h stillOptions()).
      *  With `batch`, the still's own progress lines are left to the caller. Throws the layer's own exceptions
      *  (SceneError, InputFileError, HeadlessContextError, FileError, UsageError, GraphError); runCommandLine maps
-     *  them to exit codes. */
-    StillReport render(const RenderOptions& options, const StillBatchPosition* batch = nullptr);
+     *  them to exit codes. `committed`, when given, is called after the still's commit (in finishPending() for a
+     *  batch's still). */
+    StillReport render(const RenderOptions& options, const StillBatchPosition* batch = nullptr,
+                       CommitListener committed = {});
 
     /** A batch's still (`batch` given) returns from render() with its picture still being encoded on a second thread,
      *  which overlaps the next still; the next render() finishes it (writes the picture and --stats, commits its
@@ -71,6 +82,8 @@ private:
         bool talks = false;
         double stagedMilliseconds = 0.0;   ///< staging the other outputs
         double renderedMilliseconds = 0.0; ///< from the still's start to the hand-over
+        CommitListener committed;
+        CommittedStill description; ///< for `committed`
     };
 
     std::ostream& mOut;

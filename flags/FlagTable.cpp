@@ -964,6 +964,24 @@ std::vector<Flag> makeFlags() {
              "render only the models at list positions p (from 0) with p mod N = K, 0 <= K < N: one\n"
              "task of an array job (Slurm: --shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT)",
              [](const std::string& value, RenderOptions& options) { options.shard = parseShard("--shard", value); }));
+    flags.push_back(flag({"--dataset"}, "DIR", S::Batch,
+                         "make the run a data set in DIR: every output path must lie inside DIR; each still's\n"
+                         "files are journaled as they are committed, and the run ends by writing DIR/index.jsonl\n"
+                         "(one line per still: model, view, camera, files, checksums) and the card DIR/README.md\n"
+                         "(with --shard K/N: index-K-of-N.jsonl, README-K-of-N.md). A DIR that holds a data set is\n"
+                         "refused without --resume; `inkgraph check-dataset DIR` verifies it (docs/datasets.md)",
+                         [](const std::string& value, RenderOptions& options) { options.datasetDirectory = value; }));
+    flags.back().noEffect = [](const RenderOptions& options) -> std::string {
+        return rendersImages(options) ? "" : "--dataset: nothing is rendered; give -o or --dump inside the data set";
+    };
+    Flag resume = flag({"--resume"}, "", S::Batch,
+                       "with --dataset: skip each still whose recorded settings match and whose files are all\n"
+                       "there with their sizes and checksums; render the rest (an interrupted run, a changed flag)",
+                       [](const std::string&, RenderOptions& options) { options.resume = true; });
+    resume.noEffect = [](const RenderOptions& options) -> std::string {
+        return options.datasetDirectory.empty() ? "--resume: needs --dataset DIR (the data set to resume)" : "";
+    };
+    flags.push_back(resume);
     flags.push_back(helpOnly(
         S::Batch, "",
         "Each model gets a progress line. A model that cannot be read is reported and the others go on; the run then\n"

@@ -32,6 +32,8 @@ struct RenderOptions {
     std::vector<std::string> modelPaths; ///< every MODEL argument, in order; with --list, a batch (app/Batch.h)
     std::string listPath;                ///< --list FILE: more models, one per line ("-": standard input)
     std::optional<Shard> shard;          ///< --shard K/N: this process's share of the models
+    std::string datasetDirectory;        ///< --dataset DIR: the run makes a data set there (app/Dataset.h)
+    bool resume = false;                 ///< --resume: skip the stills of --dataset that are complete
     std::string outputPath;              ///< -o; may be empty with --print-plan only
     int width = 1024;
     int height = 1024;

@@ -3,6 +3,7 @@
 // is asked as the shell asks it (COMP_WORDS, COMP_CWORD) and must answer from the table. Needs bash and groff.
 #include "app/Cli.h"
 #include "app/CommandLineDocs.h"
+#include "app/DatasetCheck.h"
 #include "flags/FlagTable.h"
 #include "flags/Options.h"
 #include "tests/support/TestFolder.h"
@@ -229,14 +230,16 @@ TEST(CommandLineCommands, EveryCommandAndHelpTopicRuns) {
     for (const CommandInfo& command : commands()) {
         for (const std::string& name : command.names) {
             std::vector<const char*> argv = {"inkgraph", name.c_str()};
-            if (name == "render") argv.push_back("--help");
+            if (name == "render" || name == "check-dataset") argv.push_back("--help");
             std::ostringstream out, err;
             EXPECT_EQ(runCommandLine(int(argv.size()), argv.data(), out, err), kExitOk) << name << ": " << err.str();
             EXPECT_FALSE(out.str().empty()) << name;
         }
     }
-    const std::vector<std::pair<std::string, std::string>> topics = {
-        {"render", renderHelp()}, {"--man", manPage()}, {"--bash-completion", bashCompletion()}};
+    const std::vector<std::pair<std::string, std::string>> topics = {{"render", renderHelp()},
+                                                                     {"check-dataset", checkDatasetHelp()},
+                                                                     {"--man", manPage()},
+                                                                     {"--bash-completion", bashCompletion()}};
     for (const auto& [topic, text] : topics) {
         const char* argv[] = {"inkgraph", "help", topic.c_str()};
         std::ostringstream out, err;
@@ -246,7 +249,8 @@ TEST(CommandLineCommands, EveryCommandAndHelpTopicRuns) {
     const char* badTopic[] = {"inkgraph", "help", "--nope"};
     std::ostringstream out, err;
     EXPECT_EQ(runCommandLine(3, badTopic, out, err), kExitUsage);
-    EXPECT_NE(err.str().find("no help on '--nope' (topics: render, --man, --bash-completion)"), std::string::npos)
+    EXPECT_NE(err.str().find("no help on '--nope' (topics: render, check-dataset, --man, --bash-completion)"),
+              std::string::npos)
         << err.str();
     const char* badVersion[] = {"inkgraph", "--version", "--verbos"};
     EXPECT_EQ(runCommandLine(3, badVersion, out, err), kExitUsage);

@@ -1,0 +1,495 @@
+#include "app/Dataset.h"
+
+#include "app/DumpFolder.h"
+#include "app/Stats.h"
+#include "app/Version.h"
+#include "flags/FlagTable.h"
+#include "render/BuildInfo.h"
+#include "render/ErrorReport.h"
+#include "render/ImageFiles.h"
+#include "render/InputFiles.h"
+#include "render/TemporaryFiles.h"
+#include "scene/Scene.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+namespace inkgraph {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+constexpr const char* kJournalFolder = ".inkgraph";
+
+/** "size:mtime-nanoseconds" of a file, or "missing": what the digest knows of an input without reading it. */
+std::string fileStamp(const fs::path& path) {
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0 || !S_ISREG(status.st_mode)) return "missing";
+    return std::to_string(status.st_size) + ":" + std::to_string(status.st_mtim.tv_sec) + "." +
+           std::to_string(status.st_mtim.tv_nsec);
+}
+
+bool isRegularFile(const std::string& path) {
+    struct stat status {};
+    return ::stat(path.c_str(), &status) == 0 && S_ISREG(status.st_mode);
+}
+
+int hookFrom(const char* variable) {
+    const char* value = std::getenv(variable);
+    return value ? std::atoi(value) : 0;
+}
+
+/** Appends `line` to the journal: one write(2) with O_APPEND (so a kill leaves it whole or a torn tail), then
+ *  fdatasync (so a finished line survives the machine too). `tearAt`: the test hook's byte count, else 0. */
+void appendLine(const fs::path& journal, const std::string& line, std::size_t tearAt) {
+    const int descriptor = ::open(journal.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    if (descriptor < 0)
+        throw FileError("DatasetRun::recordCommitted(): cannot open the journal '" + journal.string() +
+                        "': " + std::strerror(errno));
+    const std::size_t length = tearAt > 0 ? tearAt : line.size();
+    std::size_t written = 0;
+    int failure = 0;
+    // One write for the whole line; a short write (a full disk) is continued, leaving a torn line at worst.
+    while (written < length && failure == 0) {
+        const ssize_t result = ::write(descriptor, line.data() + written, length - written);
+        if (result > 0)
+            written += std::size_t(result);
+        else if (result < 0 && errno != EINTR)
+            failure = errno;
+        else if (result == 0)
+            failure = EIO;
+    }
+    if (tearAt > 0) {
+        std::cerr << "inkgraph: test hook: killed in the middle of a journal line" << std::endl;
+        ::kill(::getpid(), SIGKILL);
+    }
+    if (failure == 0 && ::fdatasync(descriptor) != 0) failure = errno;
+    if (::close(descriptor) != 0 && failure == 0) failure = errno;
+    if (failure != 0)
+        throw FileError("DatasetRun::recordCommitted(): cannot write the journal '" + journal.string() +
+                        "': " + std::strerror(failure));
+}
+
+/** The lines of a journal or index that parse as a still's record; a torn tail of the journal is cut off, so the next
+ *  line appended starts on a line of its own. */
+std::vector<Json> readRecords(const fs::path& path, bool cutTornTail) {
+    std::vector<Json> records;
+    std::ifstream file(path, std::ios::binary);
+    if (!file) return records;
+    std::stringstream buffer;
+    buffer << file.rdbuf();
+    const std::string text = buffer.str();
+    const std::size_t lastNewline = text.rfind('\n');
+    const std::size_t whole = lastNewline == std::string::npos ? 0 : lastNewline + 1;
+    if (cutTornTail && whole < text.size()) {
+        if (::truncate(path.c_str(), off_t(whole)) != 0)
+            throw FileError("DatasetRun: cannot cut the torn last line of '" + path.string() +
+                            "': " + std::strerror(errno));
+    }
+    std::istringstream lines(text.substr(0, whole));
+    std::string line;
+    while (std::getline(lines, line)) {
+        Json record = Json::parse(line, nullptr, false);
+        if (record.is_discarded() || !record.is_object() || !record.contains("model") || !record["model"].is_string() ||
+            !record.contains("position") || !record["position"].is_number_unsigned() || !record.contains("view") ||
+            !record["view"].is_number_unsigned() || !record.contains("status"))
+            continue;
+        records.push_back(std::move(record));
+    }
+    return records;
+}
+
+/** --seed with --views, else null. */
+Json seedOf(const RenderOptions& still) { return still.viewsGiven ? Json(still.viewSampling.seed) : Json(nullptr); }
+
+StillKey keyOf(const Json& record) {
+    return {record["model"].get<std::string>(), record["position"].get<std::size_t>(),
+            record["view"].get<std::size_t>()};
+}
+
+/** The camera of an index line: what a consumer needs to project a point (OpenCV's K and [R|t], the size) and
+ *  OpenGL's matrices, without the manifest's prose (docs/datasets.md says it once). */
+Json cameraRecord(const Json& camera, const RenderOptions& still) {
+    Json record;
+    record["width"] = still.width;
+    record["height"] = still.height;
+    for (const char* field : {"intrinsics", "extrinsics", "eye", "target", "up", "fov_y_degrees", "focal_pixels",
+                              "near", "far", "view_matrix", "projection_matrix"})
+        if (camera.contains(field)) record[field] = camera.at(field);
+    return record;
+}
+
+} // namespace
+
+std::uint64_t fnv1a64(const void* data, std::size_t byteCount, std::uint64_t hash) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < byteCount; ++i) {
+        hash ^= bytes[i];
+        hash *= 0x100000001b3ULL;
+    }
+    return hash;
+}
+
+std::string hexDigits(std::uint64_t value) {
+    static const char kDigits[] = "0123456789abcdef";
+    std::string text(16, '0');
+    for (int i = 15; i >= 0; --i, value >>= 4) text[std::size_t(i)] = kDigits[value & 15];
+    return text;
+}
+
+std::optional<FileChecksum> fileChecksum(const fs::path& path) {
+    const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (descriptor < 0) return std::nullopt;
+    struct stat status {};
+    if (::fstat(descriptor, &status) != 0 || !S_ISREG(status.st_mode)) {
+        ::close(descriptor);
+        return std::nullopt;
+    }
+    std::uint64_t hash = fnv1a64(nullptr, 0);
+    std::uintmax_t size = 0;
+    std::vector<char> block(std::size_t(1) << 20);
+    for (;;) {
+        const ssize_t count = ::read(descriptor, block.data(), block.size());
+        if (count < 0 && errno == EINTR) continue;
+        if (count < 0) {
+            ::close(descriptor);
+            return std::nullopt;
+        }
+        if (count == 0) break;
+        hash = fnv1a64(block.data(), std::size_t(count), hash);
+        size += std::uintmax_t(count);
+    }
+    ::close(descriptor);
+    return FileChecksum{size, hexDigits(hash)};
+}
+
+const std::vector<std::string>& flagsOutsideDigest() {
+    // How the run goes, not what a still writes: resuming, progress lines, the share of an array job, the memory
+    // bound (a still either fits or fails), the EGL platform (the same pixels on any), the list (each still's model
+    // is in its key), the data set's folder (outputs are hashed relative to it), the plan on standard output, and
+    // --style (its settings are in the arguments already; its file's stamp would re-render for a comment).
+    static const std::vector<std::string> kFlags = {"--resume",       "-q",     "--shard",   "--memory-limit",
+                                                    "--egl-platform", "--list", "--dataset", "--print-plan",
+                                                    "--style"};
+    return kFlags;
+}
+
+std::string shardSuffix(const RenderOptions& options) {
+    if (!options.shard) return "";
+    std::string suffix = "-";
+    suffix += std::to_string(options.shard->index);
+    suffix += "-of-" + std::to_string(options.shard->count);
+    return suffix;
+}
+
+std::string shellWord(const std::string& argument) {
+    const bool plain = !argument.empty() && std::all_of(argument.begin(), argument.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("-_./=,:+@%", c) != nullptr;
+    });
+    if (plain) return argument;
+    std::string quoted = "'";
+    for (char c : argument) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, const std::vector<BatchStill>& stills,
+                       std::vector<std::string> givenArguments, const std::vector<std::string>& expandedArguments)
+    : mOptions(options), mFolder(resolvedPath(options.datasetDirectory)), mSuffix(shardSuffix(options)),
+      mGivenArguments(std::move(givenArguments)), mKillBeforeLine(hookFrom("INKGRAPH_TEST_JOURNAL_KILL")),
+      mTearLine(hookFrom("INKGRAPH_TEST_JOURNAL_TEAR")) {
+    const std::string shown = "--dataset '" + options.datasetDirectory + "'";
+    std::error_code error;
+    if (fs::exists(mFolder, error) && !fs::is_directory(mFolder, error)) throw UsageError(shown + " is not a folder");
+    mModelCount = list.models.size();
+
+    // Every output of every still inside DIR, none of them the data set's own files.
+    const std::set<fs::path> reserved = {mFolder / kJournalFolder, indexPath(), cardPath()};
+    for (const BatchStill& batchStill : stills) {
+        const RenderOptions still = stillOptions(options, batchStill, list.total);
+        for (const auto& [flag, field] : outputPathFlags()) {
+            const std::string& value = still.*field;
+            if (value.empty()) continue;
+            const fs::path place = resolvedPath(value);
+            const fs::path relative = place.lexically_relative(mFolder);
+            if (relative.empty() || relative == "." || *relative.begin() == "..")
+                throw UsageError(flag + " '" + value + "' lies outside " + shown +
+                                 "; every output of a data set goes inside it, e.g. " + flag + " '" +
+                                 (fs::path(options.datasetDirectory) / fs::path(value).filename()).string() + "'");
+            if (reserved.count(place) != 0 || reserved.count(mFolder / *relative.begin()) != 0)
+                throw UsageError(flag + " '" + value + "' is a file of the data set itself (" +
+                                 relative.begin()->string() + "); choose another name");
+        }
+    }
+
+    // A data set there already: refused unless resumed, so no run replaces an index, a card or a journal by mistake.
+    std::vector<fs::path> existing;
+    for (const fs::path& path : {journalPath(), indexPath(), cardPath()})
+        if (fs::exists(fs::symlink_status(path, error))) existing.push_back(path);
+    // One layout per folder: an unsharded data set's files against a sharded run's, and the other way round.
+    for (const fs::path& path : {mFolder / "index.jsonl", mFolder / kJournalFolder / "journal.jsonl"})
+        if (!mSuffix.empty() && fs::exists(fs::symlink_status(path, error))) existing.push_back(path);
+    if (mSuffix.empty() && fs::is_directory(mFolder, error))
+        for (const auto& entry : fs::directory_iterator(mFolder, error)) {
+            const std::string name = entry.path().filename().string();
+            if (name.rfind("index-", 0) == 0 && entry.path().extension() == ".jsonl") existing.push_back(entry.path());
+        }
+    if (!existing.empty() && !options.resume)
+        throw UsageError(shown + " already holds a data set ('" +
+                         existing.front().lexically_relative(mFolder).string() +
+                         "'); add --resume to complete or update it, or choose a new or empty folder");
+    if (!existing.empty() &&
+        mSuffix.empty() != (existing.front().filename().string().find("-of-") == std::string::npos))
+        throw UsageError(shown + " holds a data set made " + (mSuffix.empty() ? "with" : "without") + " --shard ('" +
+                         existing.front().lexically_relative(mFolder).string() + "'); resume it as it was made");
+
+    // The canonical settings: each flag by its first name with its value, in the table's spelling, stably sorted by
+    // name so that flag order does not matter (a flag given twice keeps its own order: the last one wins).
+    const std::vector<std::string>& outside = flagsOutsideDigest();
+    for (std::size_t i = 0; i < expandedArguments.size(); ++i) {
+        const std::string& argument = expandedArguments[i];
+        if (argument.empty() || argument[0] != '-') continue; // a MODEL: each still's is in its key
+        const Flag* flag = findFlag(argument);
+        if (flag == nullptr) continue;
+        std::string value;
+        if (!flag->valueName.empty() && i + 1 < expandedArguments.size()) value = expandedArguments[++i];
+        const std::string& name = flag->names.front();
+        bool isOutput = false;
+        for (const auto& [outputFlag, field] : outputPathFlags()) isOutput = isOutput || outputFlag == name;
+        if (isOutput || std::find(outside.begin(), outside.end(), name) != outside.end()) continue;
+        mCanonicalSettings.emplace_back(name, value);
+    }
+    std::stable_sort(mCanonicalSettings.begin(), mCanonicalSettings.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+
+    if (options.resume) readEarlierRecords();
+    fs::create_directories(mFolder, error);
+    if (error) throw FileError("DatasetRun: cannot create " + shown + ": " + error.message());
+}
+
+fs::path DatasetRun::journalPath() const { return mFolder / kJournalFolder / ("journal" + mSuffix + ".jsonl"); }
+fs::path DatasetRun::indexPath() const { return mFolder / ("index" + mSuffix + ".jsonl"); }
+fs::path DatasetRun::cardPath() const { return mFolder / ("README" + mSuffix + ".md"); }
+
+std::string DatasetRun::relativeToDataset(const std::string& path) const {
+    return resolvedPath(path).lexically_relative(mFolder).generic_string();
+}
+
+void DatasetRun::readEarlierRecords() {
+    // The index first, then the journal, which is newer: a later record of a key replaces an earlier one.
+    for (const auto& [path, isJournal] : {std::pair{indexPath(), false}, std::pair{journalPath(), true}})
+        for (Json& record : readRecords(path, isJournal)) {
+            if (record["status"] != "ok") continue;
+            const StillKey key = keyOf(record);
+            mEarlier[key] = std::move(record);
+        }
+}
+
+std::string DatasetRun::settingsDigest(const StillKey& key, const RenderOptions& still) const {
+    std::string text;
+    const auto add = [&text](const std::string& name, const std::string& value) {
+        text += name;
+        text += '\0';
+        text += value;
+        text += '\n';
+    };
+    add("version", inkgraphVersion());
+    for (const auto& [flag, value] : mCanonicalSettings) {
+        add(flag, value);
+        if (isRegularFile(value)) add("file", fileStamp(value)); // --pose FILE, --shademap, a .vrma, ...
+    }
+    for (const auto& [flag, field] : outputPathFlags())
+        if (!(still.*field).empty()) add(flag, relativeToDataset(still.*field));
+    add("model", fileStamp(key.model));
+    // The files a .gltf or .obj names (buffers, images, material libraries): a changed texture renders again. Read
+    // once per model (its views share them). A .glb or .vrm holds its resources: finding the rare external one would
+    // read the whole file for every still of a resumed run.
+    std::string extension = fs::path(key.model).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension == ".gltf" || extension == ".obj") {
+        auto named = mNamedFiles.find(key.model);
+        if (named == mNamedFiles.end()) named = mNamedFiles.emplace(key.model, referencedFiles(key.model)).first;
+        for (const std::string& file : named->second) add("named " + file, fileStamp(file));
+    }
+    add("view", std::to_string(key.view));
+    add("sample", viewRecord(still).dump()); // the view drawn for the seed, the model path and the index
+    return hexDigits(fnv1a64(text.data(), text.size()));
+}
+
+bool DatasetRun::isComplete(const StillKey& key, const std::string& digest) {
+    const auto earlier = mEarlier.find(key);
+    if (earlier == mEarlier.end()) return false;
+    const Json& record = earlier->second;
+    if (!record.contains("settings_digest") || record["settings_digest"] != digest || !record.contains("checksums") ||
+        !record["checksums"].is_object() || record["checksums"].empty())
+        return false;
+    // Every recorded file whole: a file is only recorded after its commit, so a size and checksum that match are the
+    // committed bytes, never a half-written file.
+    for (const auto& [relative, expected] : record["checksums"].items()) {
+        const auto found = fileChecksum(mFolder / relative);
+        if (!found || !expected.is_object() || expected.value("size", std::uintmax_t(0)) != found->size ||
+            expected.value("fnv1a64", std::string()) != found->fnv1a64)
+            return false;
+    }
+    mRecords[key] = record;
+    ++mSkipped;
+    return true;
+}
+
+void DatasetRun::recordCommitted(const StillKey& key, const RenderOptions& still, const std::string& digest,
+                                 const Json& camera, const Json& look) {
+    Json record;
+    record["model"] = key.model;
+    record["position"] = key.position;
+    record["view"] = key.view;
+    record["seed"] = seedOf(still);
+    record["sample"] = viewRecord(still);
+    record["status"] = "ok";
+    record["settings_digest"] = digest;
+    record["camera"] = cameraRecord(camera, still);
+    Json files = Json::object();
+    Json checksums = Json::object();
+    const auto addChecksum = [&](const fs::path& path) {
+        const auto checksum = fileChecksum(path);
+        if (!checksum)
+            throw FileError("DatasetRun::recordCommitted(): cannot read back '" + path.string() +
+                            "', committed a moment ago");
+        checksums[path.lexically_relative(mFolder).generic_string()] = {{"size", checksum->size},
+                                                                        {"fnv1a64", checksum->fnv1a64}};
+    };
+    for (const auto& [flag, field] : outputPathFlags()) {
+        const std::string& value = still.*field;
+        if (value.empty()) continue;
+        files[flag] = relativeToDataset(value);
+        const fs::path place = resolvedPath(value);
+        if (flag != "--dump") {
+            addChecksum(place);
+            continue;
+        }
+        std::vector<fs::path> dumped;
+        for (const auto& entry : fs::directory_iterator(place))
+            if (entry.is_regular_file() && entry.path().filename().string().rfind(".inkgraph", 0) != 0)
+                dumped.push_back(entry.path());
+        std::sort(dumped.begin(), dumped.end());
+        for (const fs::path& file : dumped) addChecksum(file);
+    }
+    record["files"] = files;
+    record["checksums"] = checksums;
+    record["look"] = look;
+
+    const std::string line = record.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
+    ++mJournalLines;
+    if (mJournalLines == mKillBeforeLine) {
+        std::cerr << "inkgraph: test hook: killed before journal line " << mJournalLines << std::endl;
+        ::kill(::getpid(), SIGKILL);
+    }
+    std::error_code error;
+    fs::create_directories(journalPath().parent_path(), error);
+    appendLine(journalPath(), line, mJournalLines == mTearLine ? line.size() / 2 : 0);
+    mRecords[key] = std::move(record);
+    ++mRendered;
+}
+
+void DatasetRun::recordFailed(const StillKey& key, const RenderOptions& still, const std::string& error) {
+    Json record;
+    record["model"] = key.model;
+    record["position"] = key.position;
+    record["view"] = key.view;
+    record["seed"] = seedOf(still);
+    record["status"] = "failed";
+    record["error"] = error;
+    mRecords[key] = std::move(record);
+}
+
+void DatasetRun::finish(std::ostream& log) {
+    std::string index;
+    std::size_t stills = 0;
+    std::size_t failed = 0;
+    for (const auto& [key, record] : mRecords) {
+        index += record.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
+        (record["status"] == "ok" ? stills : failed) += 1;
+    }
+    writeTextFile(indexPath(), index);
+    writeTextFile(cardPath(), cardText(mModelCount, stills, failed));
+    // Only now: the index holds everything the journal did.
+    std::error_code error;
+    fs::remove(journalPath(), error);
+    fs::remove(mFolder / kJournalFolder, error); // only when empty: another shard's journal may be in it
+    // What killed runs left under DIR (temporaries of stills that were skipped this time are nobody else's to sweep).
+    std::vector<fs::path> folders = {mFolder};
+    for (auto it = fs::recursive_directory_iterator(mFolder, error); !error && it != fs::recursive_directory_iterator();
+         it.increment(error)) {
+        const fs::path path = it->path();
+        if (it->is_directory(error) && !it->is_symlink(error)) folders.push_back(path);
+        if (it->is_regular_file(error) && isStaleTemporary(path.filename().string())) ::unlink(path.c_str());
+    }
+    for (const fs::path& folder : folders) sweepStaleStagingFolders(folder);
+    // A kill between a dump's swap and its tidying leaves the staging marker in the finished dump; a skipped still's
+    // dump is tidied by nobody else.
+    for (const auto& [key, record] : mRecords)
+        if (record.contains("files") && record["files"].contains("--dump"))
+            ::unlink((mFolder / record["files"]["--dump"].get<std::string>() / kStagingMarker).c_str());
+    if (mOptions.resume && !mOptions.quiet)
+        log << "inkgraph: resumed: " << mSkipped << " stills complete, " << mRendered << " rendered"
+            << (failed > 0 ? ", " + std::to_string(failed) + " failed" : std::string()) << "\n";
+}
+
+std::string DatasetRun::cardText(std::size_t models, std::size_t stills, std::size_t failed) const {
+    std::string command = "inkgraph render";
+    for (const std::string& argument : mGivenArguments)
+        if (argument != "--resume") {
+            command += ' ';
+            command += shellWord(argument);
+        }
+    std::string outputs;
+    for (const auto& [flag, field] : outputPathFlags())
+        if (!(mOptions.*field).empty())
+            outputs += "| `" + flag + "` | `" + relativeToDataset(mOptions.*field) + "` |\n";
+    // The look of the first still that has one (all stills share the flags; a model's own materials may differ).
+    Json look;
+    for (const auto& [key, record] : mRecords)
+        if (record.contains("look")) {
+            look = record["look"];
+            break;
+        }
+    const std::string index = indexPath().filename().string();
+    std::string text;
+    text += "# Data set" + (mSuffix.empty() ? std::string() : " (shard " + mSuffix.substr(1) + ")") + "\n\n";
+    text += "Rendered by " + versionLine() + " with this command (relative paths are from the folder it ran in):\n\n";
+    text += "```sh\n" + command + "\n```\n\n";
+    text += "## Counts\n\n| what | count |\n| --- | --- |\n";
+    text += "| models | " + std::to_string(models) + " |\n";
+    text += "| views per model | " +
+            std::to_string(mOptions.viewsGiven ? mOptions.viewSampling.count : std::size_t(1)) + " |\n";
+    text += "| stills in the set | " + std::to_string(stills) + " |\n";
+    text += "| failed | " + std::to_string(failed) + " |\n\n";
+    text += "## Files per still\n\nPaths relative to this folder ({name}: the model's file name without its extension, "
+            "{index}: its list position from 1, {view}: the view from 0):\n\n| flag | path |\n| --- | --- |\n" +
+            outputs + "\n";
+    text += "`" + index +
+            "` lists every still, one JSON object a line: its model, list position, view, camera (OpenCV's "
+            "intrinsics K and extrinsics [R|t], OpenGL's view and projection matrices, the size), its files with "
+            "their sizes and FNV-1a 64-bit checksums, and its status (`ok`, or `failed` with the error).\n\n";
+    text += "## Look\n\n```json\n" + (look.is_null() ? std::string("null") : look.dump(2)) + "\n```\n\n";
+    text += "## Checking\n\n```sh\ninkgraph check-dataset .\n```\n\nchecks that every still's files are there and "
+            "whole and that no run was left unfinished.\n\n";
+    text += "## Reproducing and citing\n\nThe command above, run with the same inkgraph version on the same models, "
+            "writes the same files byte for byte (--stats files and --dump's manifest.json excepted: they hold "
+            "timings). Cite the data set by this card: the command and the version.\n";
+    return text;
+}
+
+} // namespace inkgraph

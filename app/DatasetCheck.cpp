@@ -1,0 +1,278 @@
+#include "app/DatasetCheck.h"
+
+#include "app/Dataset.h"
+#include "render/ErrorReport.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace inkgraph {
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+namespace {
+
+std::string readAll(const fs::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+/** `text` in single quotes (appended: GCC 12 warns falsely, -Wrestrict bug 105329, on "'" + text inlined). */
+std::string quoted(const std::string& text) {
+    std::string result = "'";
+    result += text;
+    result += "'";
+    return result;
+}
+
+bool endsWith(const std::string& text, const std::string& tail) {
+    return text.size() >= tail.size() && text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+/** Why `bytes` are not a whole file of `path`'s format, or "" when they are (or the format has no check). */
+std::string formatProblem(const fs::path& path, const std::string& bytes) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (extension == ".png") {
+        if (bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0) return "not a PNG (no signature)";
+        // The IEND chunk: length 0, type, CRC 0xAE426082. A file cut short ends before it.
+        if (!endsWith(bytes, std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12))) return "a PNG cut short (no IEND last)";
+    } else if (extension == ".exr") {
+        if (bytes.compare(0, 4, "\x76\x2f\x31\x01") != 0) return "not an OpenEXR file (no magic number)";
+    } else if (extension == ".tif" || extension == ".tiff") {
+        if (bytes.compare(0, 4, std::string("II*\0", 4)) != 0 && bytes.compare(0, 4, std::string("MM\0*", 4)) != 0)
+            return "not a TIFF file (no byte-order mark)";
+    } else if (extension == ".jpg" || extension == ".jpeg") {
+        if (bytes.compare(0, 2, "\xff\xd8") != 0 || !endsWith(bytes, "\xff\xd9"))
+            return "a JPEG without its start or end";
+    } else if (extension == ".json") {
+        if (Json::parse(bytes, nullptr, false).is_discarded()) return "JSON that does not parse";
+    } else if (extension == ".svg") {
+        if (bytes.rfind("</svg>") == std::string::npos || bytes.size() - bytes.rfind("</svg>") > 16)
+            return "an SVG cut short (no closing </svg>)";
+    }
+    return "";
+}
+
+/** The "| name | number |" rows of a card's counts table. */
+std::map<std::string, std::size_t> cardCounts(const std::string& card) {
+    std::map<std::string, std::size_t> counts;
+    static const std::regex kRow(R"(^\| ([a-z ]+) \| ([0-9]+) \|$)");
+    std::istringstream lines(card);
+    std::string line;
+    std::smatch match;
+    while (std::getline(lines, line))
+        if (std::regex_match(line, match, kRow)) counts[match[1]] = std::stoul(match[2]);
+    return counts;
+}
+
+/** One index (and its card): its lines, their files, the counts. */
+void checkIndex(const fs::path& folder, const fs::path& index, const fs::path& card, DatasetReport& report,
+                std::set<std::string>& listed) {
+    const std::string indexName = index.filename().string();
+    std::ifstream file(index, std::ios::binary);
+    std::string line;
+    std::size_t number = 0, stills = 0, failed = 0;
+    std::set<std::size_t> positions;
+    while (std::getline(file, line)) {
+        ++number;
+        const std::string where = indexName + " line " + std::to_string(number);
+        const Json record = Json::parse(line, nullptr, false);
+        if (record.is_discarded() || !record.is_object()) {
+            report.errors.push_back(where + ": not a JSON object");
+            continue;
+        }
+        if (!record.contains("model") || !record["model"].is_string() || !record.contains("position") ||
+            !record["position"].is_number_unsigned() || !record.contains("status") || !record["status"].is_string()) {
+            report.errors.push_back(where + ": lacks its model, position or status");
+            continue;
+        }
+        positions.insert(record["position"].get<std::size_t>());
+        const std::string model = record["model"];
+        if (record["status"] == "failed") {
+            ++failed;
+            report.warnings.push_back(where + ": '" + model + "' failed: " + record.value("error", std::string("?")));
+            continue;
+        }
+        if (record["status"] != "ok") {
+            report.errors.push_back(where + ": status '" + record["status"].get<std::string>() + "'");
+            continue;
+        }
+        ++stills;
+        if (!record.contains("checksums") || !record["checksums"].is_object() || !record.contains("files") ||
+            !record["files"].is_object()) {
+            report.errors.push_back(where + ": '" + model + "' lists no files");
+            continue;
+        }
+        for (const auto& [flag, path] : record["files"].items())
+            if (!path.is_string() || !fs::exists(folder / path.get<std::string>()))
+                report.errors.push_back(where + ": " + flag + " '" + path.dump() + "' is missing");
+        for (const auto& [relative, expected] : record["checksums"].items()) {
+            listed.insert(relative);
+            const fs::path path = folder / relative;
+            ++report.files;
+            if (!fs::is_regular_file(path)) {
+                report.errors.push_back("'" + relative + "' is missing (" + where + ")");
+                continue;
+            }
+            const std::string bytes = readAll(path);
+            if (bytes.empty()) {
+                report.errors.push_back("'" + relative + "' is empty");
+                continue;
+            }
+            if (const std::string problem = formatProblem(path, bytes); !problem.empty()) {
+                report.errors.push_back("'" + relative + "' is " + problem);
+                continue;
+            }
+            const std::string checksum = hexDigits(fnv1a64(bytes.data(), bytes.size()));
+            if (!expected.is_object() || expected.value("size", std::uint64_t(0)) != bytes.size() ||
+                expected.value("fnv1a64", std::string()) != checksum)
+                report.errors.push_back("'" + relative + "' is not the file the index recorded (size " +
+                                        std::to_string(bytes.size()) + ", checksum " + checksum + "; " + where + ")");
+        }
+    }
+    report.stills += stills;
+    report.failed += failed;
+    const std::string cardName = card.filename().string();
+    if (!fs::is_regular_file(card)) {
+        report.errors.push_back("the card '" + cardName + "' is missing");
+        return;
+    }
+    const auto counts = cardCounts(readAll(card));
+    const std::vector<std::pair<std::string, std::size_t>> expected = {
+        {"models", positions.size()}, {"stills in the set", stills}, {"failed", failed}};
+    // Every model with each of its views: the index holds models x views lines.
+    if (const auto views = counts.find("views per model");
+        views != counts.end() && positions.size() * views->second != stills + failed)
+        report.errors.push_back(cardName + " says " + std::to_string(positions.size()) + " models x " +
+                                std::to_string(views->second) + " views, " + indexName + " holds " +
+                                std::to_string(stills + failed) + " stills");
+    for (const auto& [name, count] : expected) {
+        const auto found = counts.find(name);
+        if (found == counts.end())
+            report.errors.push_back(cardName + " does not state the count of " + name);
+        else if (found->second != count)
+            report.errors.push_back(cardName + " says " + std::to_string(found->second) + " " + name + ", " +
+                                    indexName + " holds " + std::to_string(count));
+    }
+}
+
+} // namespace
+
+DatasetReport checkDataset(const fs::path& folder) {
+    DatasetReport report;
+    // The indexes: index.jsonl, or index-K-of-N.jsonl for every K of one N.
+    static const std::regex kShardIndex(R"(index-([0-9]+)-of-([0-9]+)\.jsonl)");
+    std::vector<std::pair<fs::path, fs::path>> indexes; // index, card
+    std::set<std::string> own = {".inkgraph"};
+    std::map<int, std::set<int>> shardsByCount;
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(folder, error)) {
+        const std::string name = entry.path().filename().string();
+        std::smatch match;
+        if (name == "index.jsonl") {
+            indexes.emplace_back(entry.path(), folder / "README.md");
+        } else if (std::regex_match(name, match, kShardIndex)) {
+            indexes.emplace_back(entry.path(), folder / ("README-" + match[1].str() + "-of-" + match[2].str() + ".md"));
+            shardsByCount[std::stoi(match[2])].insert(std::stoi(match[1]));
+        }
+    }
+    std::sort(indexes.begin(), indexes.end());
+    if (indexes.empty()) report.errors.push_back("no index.jsonl (or index-K-of-N.jsonl): not a finished data set");
+    const bool plainIndex = std::any_of(indexes.begin(), indexes.end(),
+                                        [](const auto& index) { return index.first.filename() == "index.jsonl"; });
+    if (shardsByCount.size() > 1 || (plainIndex && !shardsByCount.empty()))
+        report.errors.push_back("indexes of two layouts (index.jsonl and index-K-of-N.jsonl, or two N)");
+    for (const auto& [count, shards] : shardsByCount)
+        for (int shard = 0; shard < count; ++shard)
+            if (shards.count(shard) == 0)
+                report.errors.push_back("shard " + std::to_string(shard) + " of " + std::to_string(count) +
+                                        " is missing (index-" + std::to_string(shard) + "-of-" + std::to_string(count) +
+                                        ".jsonl): that task has not finished");
+    std::set<std::string> listed;
+    for (const auto& [index, card] : indexes) {
+        own.insert(index.filename().string());
+        own.insert(card.filename().string());
+        checkIndex(folder, index, card, report, listed);
+    }
+    // A journal: a run that has not finished (or was killed); --resume finishes it.
+    for (const auto& entry : fs::directory_iterator(folder / ".inkgraph", error))
+        if (entry.path().filename().string().rfind("journal", 0) == 0)
+            report.errors.push_back("'.inkgraph/" + entry.path().filename().string() +
+                                    "': a run that did not finish; run it again with --resume");
+    // Leftovers of killed runs, and files no index lists.
+    for (auto it = fs::recursive_directory_iterator(folder, error); !error && it != fs::recursive_directory_iterator();
+         it.increment(error)) {
+        const fs::path relative = it->path().lexically_relative(folder);
+        const std::string name = it->path().filename().string();
+        if (it.depth() == 0 && own.count(name) != 0) {
+            if (it->is_directory()) it.disable_recursion_pending();
+            continue;
+        }
+        if (name.rfind(".inkgraph-", 0) == 0) {
+            report.errors.push_back(quoted(relative.generic_string()) + ": a temporary " +
+                                    (it->is_directory() ? "folder" : "file") +
+                                    " of a run that was killed or is running");
+            if (it->is_directory()) it.disable_recursion_pending();
+            continue;
+        }
+        if (it->is_regular_file() && listed.count(relative.generic_string()) == 0)
+            report.warnings.push_back(quoted(relative.generic_string()) + " is not in the index");
+    }
+    return report;
+}
+
+std::string checkDatasetHelp() {
+    return "Usage: inkgraph check-dataset DIR\n\n"
+           "Verifies a data set made with inkgraph render --dataset DIR (docs/datasets.md): the index and the card\n"
+           "(README.md; with --shard, index-K-of-N.jsonl and README-K-of-N.md for every K) exist and parse, every\n"
+           "file the index lists is there, non-empty, whole for its format (PNG: signature and IEND; EXR, TIFF,\n"
+           "JPEG: signature; JSON: parses; SVG: closing tag) and has its recorded size and checksum, no journal\n"
+           "is left (a run that did not finish: resume it with --resume), no temporary file of a killed run is\n"
+           "left, and the card's counts match the index. Files the index does not list and failed stills are\n"
+           "warnings.\n\n"
+           "Prints one line per problem (at most " +
+           std::to_string(kShownProblems) +
+           ", then how many more) and a summary.\n\n"
+           "Exit codes: 0 the data set is whole, 1 it is not, 2 bad command line.\n";
+}
+
+int runCheckDatasetCommand(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err) {
+    if (arguments.size() == 1 && (arguments[0] == "--help" || arguments[0] == "-h")) {
+        out << checkDatasetHelp();
+        return kExitOk;
+    }
+    if (arguments.size() != 1 || arguments[0].empty() || arguments[0][0] == '-') {
+        err << "inkgraph: check-dataset takes one folder, the data set (see: inkgraph check-dataset --help)\n";
+        return kExitUsage;
+    }
+    const fs::path folder = arguments[0];
+    std::error_code error;
+    if (!fs::is_directory(folder, error)) {
+        err << "inkgraph: check-dataset: '" << arguments[0] << "' is not a folder\n";
+        return kExitUsage;
+    }
+    const DatasetReport report = checkDataset(folder);
+    std::size_t shown = 0;
+    const std::size_t problems = report.errors.size() + report.warnings.size();
+    for (const auto& [kind, lines] : {std::pair{"error", &report.errors}, std::pair{"warning", &report.warnings}})
+        for (const std::string& line : *lines)
+            if (shown++ < kShownProblems) out << kind << ": " << line << "\n";
+    if (problems > kShownProblems) out << "and " << problems - kShownProblems << " more\n";
+    out << "check-dataset '" << arguments[0] << "': " << report.stills << " stills, " << report.failed << " failed, "
+        << report.files << " files verified; " << report.errors.size() << " errors, " << report.warnings.size()
+        << " warnings: " << (report.errors.empty() ? "whole" : "NOT whole") << "\n";
+    return report.errors.empty() ? kExitOk : 1;
+}
+
+} // namespace inkgraph

@@ -1,0 +1,229 @@
+// app/Dataset and app/DatasetCheck without GL: the checksum, the settings digest (flag order does not matter, what
+// decides a still's files does), the refusals of --dataset, the journal's torn line, and check-dataset on hand-made
+// data sets. The rendering and the kills are tests/app/dataset-kill-test.sh.
+#include "app/Dataset.h"
+#include "app/DatasetCheck.h"
+
+#include "tests/support/TestFolder.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace inkgraph {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(DatasetChecksum, IsFnv1a64) {
+    // The published FNV-1a 64-bit test values.
+    EXPECT_EQ(hexDigits(fnv1a64("", 0)), "cbf29ce484222325");
+    EXPECT_EQ(hexDigits(fnv1a64("a", 1)), "af63dc4c8601ec8c");
+    EXPECT_EQ(hexDigits(fnv1a64("foobar", 6)), "85944171f73967e8");
+    // Continued over pieces, the same as at once.
+    EXPECT_EQ(fnv1a64("bar", 3, fnv1a64("foo", 3)), fnv1a64("foobar", 6));
+}
+
+TEST(DatasetChecksum, ShellWordsQuoteOnlyWhatNeedsIt) {
+    EXPECT_EQ(shellWord("--size"), "--size");
+    EXPECT_EQ(shellWord("out/a-1.png"), "out/a-1.png");
+    EXPECT_EQ(shellWord("{name}.png"), "'{name}.png'");
+    EXPECT_EQ(shellWord("a b"), "'a b'");
+    EXPECT_EQ(shellWord("it's"), "'it'\\''s'");
+    EXPECT_EQ(shellWord(""), "''");
+}
+
+class Dataset : public test::TestFolder {
+protected:
+    /** A run's options and list from `arguments` (after "render"), and its DatasetRun. */
+    std::unique_ptr<DatasetRun> runOf(const std::vector<std::string>& arguments) {
+        options = parseRenderOptions(arguments);
+        std::istringstream none;
+        list = batchList(options, none);
+        stills = batchStills(options, list);
+        return std::make_unique<DatasetRun>(options, list, stills, arguments, arguments);
+    }
+    std::string digestOf(const std::vector<std::string>& arguments) {
+        auto run = runOf(arguments);
+        const BatchStill& first = stills.front();
+        return run->settingsDigest({first.model.path, first.model.position, first.viewIndex},
+                                   stillOptions(options, first, list.total));
+    }
+    std::string usageError(const std::vector<std::string>& arguments) {
+        try {
+            runOf(arguments);
+        } catch (const UsageError& error) {
+            return error.what();
+        }
+        return "";
+    }
+    std::string write(const fs::path& path, const std::string& text) {
+        fs::create_directories(path.parent_path());
+        std::ofstream(path, std::ios::binary) << text;
+        return path.string();
+    }
+    void SetUp() override {
+        TestFolder::SetUp();
+        model = write(directory / "cube.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        set = (directory / "set").string();
+    }
+
+    RenderOptions options;
+    BatchList list;
+    std::vector<BatchStill> stills;
+    std::string model;
+    std::string set;
+};
+
+TEST_F(Dataset, TheDigestIgnoresFlagOrderAndRunFlagsButNotTheSettings) {
+    const std::vector<std::string> base = {model,       "--size", "64x64", "--lines",          "contour",
+                                           "--dataset", set,      "-o",    set + "/{name}.png"};
+    const std::string digest = digestOf(base);
+    EXPECT_EQ(digest.size(), 16u);
+    EXPECT_EQ(digestOf({"--lines", "contour", "-o", set + "/{name}.png", model, "--dataset", set, "--size", "64x64"}),
+              digest)
+        << "flag order";
+    EXPECT_EQ(
+        digestOf({model, "--output", set + "/{name}.png", "--size", "64x64", "--lines", "contour", "--dataset", set}),
+        digest)
+        << "-o and --output are one flag";
+    std::vector<std::string> quiet = base;
+    quiet.insert(quiet.end(), {"-q", "--memory-limit", "2048", "--egl-platform", "surfaceless"});
+    EXPECT_EQ(digestOf(quiet), digest) << "flags that change how the run goes, not what it writes";
+    std::vector<std::string> larger = base;
+    larger[2] = "65x64";
+    EXPECT_NE(digestOf(larger), digest) << "--size";
+    std::vector<std::string> renamed = base;
+    renamed.back() = set + "/{name}-2.png";
+    EXPECT_NE(digestOf(renamed), digest) << "the output path";
+    // A model changed in place (its size and modification time) renders again.
+    write(model, "v 0 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_NE(digestOf(base), digest) << "the model file";
+}
+
+TEST_F(Dataset, TheDigestHoldsTheViewAndItsSeed) {
+    const std::vector<std::string> base = {
+        model, "--views", "2", "--seed", "3", "--dataset", set, "-o", set + "/{name}-{view}.png"};
+    auto run = runOf(base);
+    ASSERT_EQ(stills.size(), 2u);
+    const auto digestOfView = [&](std::size_t view) {
+        const BatchStill& still = stills[view];
+        return run->settingsDigest({still.model.path, still.model.position, still.viewIndex},
+                                   stillOptions(options, still, list.total));
+    };
+    const std::string first = digestOfView(0), second = digestOfView(1);
+    EXPECT_NE(first, second) << "each view is its own still";
+    std::vector<std::string> otherSeed = base;
+    otherSeed[4] = "4";
+    EXPECT_NE(digestOf(otherSeed), first) << "--seed";
+    EXPECT_EQ(digestOf(base), first) << "the same seed, the same digest";
+}
+
+TEST_F(Dataset, OutputsOutsideTheFolderAndItsOwnFilesAreRefused) {
+    EXPECT_NE(usageError({model, "--dataset", set, "-o", (directory / "x.png").string()})
+                  .find("-o '" + (directory / "x.png").string() + "' lies outside --dataset '" + set + "'"),
+              std::string::npos);
+    EXPECT_NE(usageError({model, "--dataset", set, "-o", set + "/a.png", "--stats", set + "/../s.json"})
+                  .find("--stats '" + set + "/../s.json' lies outside"),
+              std::string::npos);
+    EXPECT_NE(usageError({model, "--dataset", set, "-o", set + "/.inkgraph/a.png"})
+                  .find("is a file of the data set itself (.inkgraph)"),
+              std::string::npos);
+    EXPECT_NE(usageError({model, "--dataset", set, "-o", set + "/a.png", "--stats", set + "/index.jsonl"})
+                  .find("--stats '" + set + "/index.jsonl' is a file of the data set itself (index.jsonl)"),
+              std::string::npos);
+    EXPECT_EQ(usageError({model, "--dataset", set, "-o", set + "/a.png"}), "");
+    EXPECT_TRUE(fs::is_directory(set)) << "a new DIR is made";
+}
+
+TEST_F(Dataset, AnExistingDataSetNeedsResume) {
+    for (const std::string name : {"index.jsonl", "README.md", ".inkgraph/journal.jsonl"}) {
+        fs::remove_all(set);
+        write(fs::path(set) / name, "");
+        EXPECT_NE(usageError({model, "--dataset", set, "-o", set + "/a.png"})
+                      .find("already holds a data set ('" + name + "'); add --resume"),
+                  std::string::npos)
+            << name;
+        EXPECT_EQ(usageError({model, "--dataset", set, "-o", set + "/a.png", "--resume"}), "") << name;
+    }
+    // A sharded run into an unsharded data set, resumed or not: one layout per folder.
+    fs::remove_all(set);
+    write(fs::path(set) / "index.jsonl", "");
+    EXPECT_NE(usageError({model, "--dataset", set, "-o", set + "/a.png", "--shard", "0/2", "--resume"})
+                  .find("made without --shard"),
+              std::string::npos);
+    // Another shard's files are that shard's: this one starts afresh beside them.
+    fs::remove_all(set);
+    write(fs::path(set) / "index-1-of-2.jsonl", "");
+    EXPECT_EQ(usageError({model, "--dataset", set, "-o", set + "/a.png", "--shard", "0/2"}), "");
+}
+
+TEST_F(Dataset, ATornJournalLineIsIgnoredAndCutOff) {
+    const std::vector<std::string> arguments = {model, "--dataset", set, "-o", set + "/{name}.png", "--resume"};
+    const std::string digest = digestOf(arguments);
+    write(fs::path(set) / "cube.png", "picture");
+    const std::string good = R"({"model":")" + model + R"(","position":0,"view":0,"status":"ok","settings_digest":")" +
+                             digest + R"(","checksums":{"cube.png":{"size":7,"fnv1a64":")" +
+                             hexDigits(fnv1a64("picture", 7)) + "\"}}}\n";
+    const fs::path journal = fs::path(set) / ".inkgraph" / "journal.jsonl";
+    write(journal, "not json\n" + good + good.substr(0, good.size() / 2));
+    auto run = runOf(arguments);
+    EXPECT_EQ(fs::file_size(journal), std::string("not json\n").size() + good.size()) << "the torn tail cut off";
+    EXPECT_TRUE(run->isComplete({model, 0, 0}, digest));
+    EXPECT_FALSE(run->isComplete({model, 0, 0}, "0000000000000000")) << "another digest";
+    EXPECT_FALSE(run->isComplete({model, 1, 0}, digest)) << "another key";
+    // The file changed since: the still is not complete.
+    write(fs::path(set) / "cube.png", "pictura");
+    auto again = runOf(arguments);
+    EXPECT_FALSE(again->isComplete({model, 0, 0}, digest));
+}
+
+TEST_F(Dataset, CheckDatasetFindsEachKindOfProblem) {
+    const fs::path folder = directory / "made";
+    const std::string png =
+        std::string("\x89PNG\r\n\x1a\n", 8) + "body" + std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+    write(folder / "a.png", png);
+    const std::string line =
+        R"({"model":"a.obj","position":0,"view":0,"seed":null,"status":"ok","files":{"-o":"a.png"},)"
+        R"("checksums":{"a.png":{"size":)" +
+        std::to_string(png.size()) + R"(,"fnv1a64":")" + hexDigits(fnv1a64(png.data(), png.size())) + "\"}}}\n";
+    write(folder / "index.jsonl", line);
+    write(folder / "README.md", "| models | 1 |\n| stills in the set | 1 |\n| failed | 0 |\n");
+    DatasetReport report = checkDataset(folder);
+    EXPECT_TRUE(report.errors.empty()) << report.errors.front();
+    EXPECT_EQ(report.stills, 1u);
+    EXPECT_EQ(report.files, 1u);
+
+    write(folder / "stray.txt", "x");
+    write(folder / "sub" / ".inkgraph-99999999-0.tmp", "x");
+    write(folder / ".inkgraph" / "journal.jsonl", "");
+    write(folder / "README.md", "| models | 1 |\n| views per model | 2 |\n| stills in the set | 2 |\n| failed | 0 |\n");
+    write(folder / "a.png", png.substr(0, png.size() - 1));
+    report = checkDataset(folder);
+    ASSERT_EQ(report.errors.size(), 5u);
+    EXPECT_EQ(report.errors[0], "'a.png' is a PNG cut short (no IEND last)");
+    EXPECT_EQ(report.errors[1], "README.md says 1 models x 2 views, index.jsonl holds 1 stills");
+    EXPECT_EQ(report.errors[2], "README.md says 2 stills in the set, index.jsonl holds 1");
+    EXPECT_EQ(report.errors[3], "'.inkgraph/journal.jsonl': a run that did not finish; run it again with --resume");
+    EXPECT_EQ(report.errors[4],
+              "'sub/.inkgraph-99999999-0.tmp': a temporary file of a run that was killed or is running");
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_EQ(report.warnings[0], "'stray.txt' is not in the index");
+
+    // Sharded: every K of N.
+    const fs::path shards = directory / "shards";
+    write(shards / "index-0-of-3.jsonl", "");
+    write(shards / "README-0-of-3.md", "| models | 0 |\n| stills in the set | 0 |\n| failed | 0 |\n");
+    write(shards / "index-2-of-3.jsonl", "{\n");
+    write(shards / "README-2-of-3.md", "| models | 0 |\n| stills in the set | 0 |\n| failed | 0 |\n");
+    report = checkDataset(shards);
+    ASSERT_EQ(report.errors.size(), 2u);
+    EXPECT_EQ(report.errors[0], "shard 1 of 3 is missing (index-1-of-3.jsonl): that task has not finished");
+    EXPECT_EQ(report.errors[1], "index-2-of-3.jsonl line 1: not a JSON object");
+}
+
+} // namespace
+} // namespace inkgraph
