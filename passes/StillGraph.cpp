@@ -256,6 +256,66 @@ std::vector<SvgLineLayer> StillGraph::svgLayers(ResourceStore& store, double tol
     return svgLayersOf(drawn, tolerancePixels, colors);
 }
 
+namespace {
+
+/** The G-buffer's triangle id field (global triangle index + 1), when the G-buffer has it. */
+std::string triangleIdResource(const StillGraph& graph) {
+    const std::string name = std::string(kGBufferPass) + ".triangleId";
+    const Pass* gbuffer = graph.findPass(kGBufferPass);
+    if (gbuffer == nullptr) return {};
+    PassBuilder builder{std::string(kGBufferPass)};
+    gbuffer->declare(builder);
+    for (const auto& write : builder.writes())
+        if (std::string(kGBufferPass) + "." + write.field == name) return name;
+    return {};
+}
+
+} // namespace
+
+std::vector<std::string> StillGraph::strokePointResources() const {
+    if (!mStrokes) return {};
+    std::vector<std::string> resources = {strokePathsResource(), std::string(kGBufferPass) + "." + GBufferPass::kDepth};
+    if (const std::string triangles = triangleIdResource(*this); !triangles.empty()) resources.push_back(triangles);
+    for (const StrokeInput& input : mStrokes->settings().inputs) {
+        const LineType* type = findLineType(input.type);
+        if (type == nullptr) continue;
+        if (type->family == LineFamily::ObjectSpace) resources.push_back(input.resource);
+        if (!type->strokePointsImage.empty()) resources.push_back(type->strokePointsImage);
+    }
+    return resources;
+}
+
+std::vector<StrokeRecord> StillGraph::strokeRecords(ResourceStore& store, const Camera& camera,
+                                                    const Scene& scene) const {
+    if (!mStrokes) return {};
+    StrokePointSetup setup;
+    setup.drawn = &store.object<DrawnStrokes>(strokePathsResource());
+    setup.camera = &camera;
+    setup.scene = &scene;
+    setup.depth = store.image(std::string(kGBufferPass) + "." + GBufferPass::kDepth);
+    if (const std::string triangles = triangleIdResource(*this); !triangles.empty() && store.contains(triangles))
+        setup.triangleIds = store.image(triangles);
+    std::size_t offset = 0;
+    for (const Mesh& mesh : scene.meshes) {
+        setup.meshTriangleOffsets.push_back(offset);
+        offset += mesh.triangleCount();
+    }
+    for (const StrokeInput& input : setup.drawn->inputs) {
+        const LineType* type = findLineType(input.type);
+        StrokePointInput points;
+        points.visible = type == nullptr || !type->hiddenLines;
+        if (type != nullptr && type->family == LineFamily::ObjectSpace) {
+            points.source = StrokePointSource::Skeleton;
+            points.skeleton = &store.object<LineSkeleton>(input.resource);
+        } else if (type != nullptr && !type->strokePointsImage.empty()) {
+            points.source = StrokePointSource::Image;
+            points.image = store.image(type->strokePointsImage);
+        }
+        setup.inputs.push_back(points);
+    }
+    return inkgraph::strokeRecords(setup);
+}
+
 const LineLayerPass* StillGraph::lineLayer(const std::string& type) const {
     auto found = mLineLayers.find(type);
     return found == mLineLayers.end() ? nullptr : found->second;
