@@ -2,6 +2,7 @@
 
 #include "render/MemoryBudget.h"
 #include "scene/MeshArrays.h"
+#include "scene/MeshLabels.h"
 #include "scene/ObjectIds.h"
 
 namespace inkgraph::api {
@@ -103,6 +104,15 @@ std::vector<SceneObject> Scene::objects() const {
         objects.push_back(std::move(entry));
     }
     return objects;
+}
+
+std::vector<SceneMesh> Scene::meshes() const {
+    const SceneLabels labels = sceneLabels(*mImpl->scene);
+    std::vector<SceneMesh> meshes;
+    for (const MeshLabel& mesh : labels.meshes)
+        meshes.push_back({mesh.id, mesh.name, mesh.nodePath, mesh.objectId, mesh.materialId,
+                          labels.materials.at(mesh.materialId - 1).name, mesh.firstTriangle, mesh.triangleCount});
+    return meshes;
 }
 
 std::vector<Warning> Scene::warnings() const {

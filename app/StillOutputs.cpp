@@ -6,6 +6,7 @@
 #include "postfx/Composite.h"
 #include "postfx/ContactSheet.h"
 #include "postfx/SvgLines.h"
+#include "scene/MeshLabels.h"
 #include "scene/ObjectIds.h"
 
 #include <filesystem>
@@ -111,16 +112,46 @@ Json describeObjects(const Scene& scene) {
     return objects;
 }
 
+/** The meshes the G-buffer's meshId and triangleId fields number (scene/MeshLabels.h): each mesh's id (the meshId
+ *  value), name, node path, object and material ids, and its triangles' range of triangleId values
+ *  (first_triangle + 1 ... first_triangle + triangle_count), so a label can name the mesh, node and material. */
+Json describeMeshes(const SceneLabels& labels) {
+    Json meshes = Json::array();
+    for (const MeshLabel& mesh : labels.meshes)
+        meshes.push_back({{"id", mesh.id},
+                          {"name", mesh.name},
+                          {"node_path", mesh.nodePath},
+                          {"object_id", mesh.objectId},
+                          {"material_id", mesh.materialId},
+                          {"material", labels.materials.at(mesh.materialId - 1).name},
+                          {"first_triangle", mesh.firstTriangle},
+                          {"triangle_count", mesh.triangleCount}});
+    return meshes;
+}
+
+/** The materials the materialId field numbers: id (the field's value) and name ("" for an unnamed material). */
+Json describeMaterials(const SceneLabels& labels) {
+    Json materials = Json::array();
+    for (const MaterialLabel& material : labels.materials)
+        materials.push_back({{"id", material.id}, {"name", material.name}});
+    return materials;
+}
+
 /** --dump: every buffer the plan computed, then manifest.json. */
 void stageDump(const RenderOptions& options, const PreparedStill& still, StillResult& result, OutputSet& outputs) {
     ResourceStore& store = result.store();
     Json files = Json::array();
     std::set<std::string> usedNames;
-    bool objectIds = false;
+    // Which id fields are dumped: the manifest names what their values stand for.
+    bool objectIds = false, materialIds = false, meshLabels = false;
     for (const PlannedResource& resource : still.plan.resources) {
         if (!store.contains(resource.name) || !hasPicture(resource)) continue;
         const std::string fileName = dumpFileName(resource);
-        objectIds = objectIds || resource.name == std::string(kGBufferPass) + ".objectId";
+        const ResourceName parts = ResourceName::split(resource.name);
+        const std::string field = parts.pass == kGBufferPass ? parts.field : std::string();
+        objectIds = objectIds || field == "objectId";
+        materialIds = materialIds || field == "materialId";
+        meshLabels = meshLabels || field == "meshId" || field == "triangleId" || field == "barycentric";
         if (!usedNames.insert(fileName).second)
             throw std::logic_error("stageDump(): two resources dump to '" + fileName + "'");
         // Image files hold straight alpha; the shading is premultiplied in memory (postfx/Composite.h).
@@ -146,6 +177,12 @@ void stageDump(const RenderOptions& options, const PreparedStill& still, StillRe
     manifest["look"] = describeLook(still, options.stylePath);
     manifest["files"] = files;
     if (objectIds) manifest["objects"] = describeObjects(still.scene());
+    if (meshLabels || materialIds) {
+        // The meshes name their materials, so the materials come with them.
+        const SceneLabels labels = sceneLabels(still.scene());
+        if (meshLabels) manifest["meshes"] = describeMeshes(labels);
+        manifest["materials"] = describeMaterials(labels);
+    }
     manifest["passes"] = describeTimings(result.timings);
     outputs.stageDumpManifest(jsonText(manifest));
 }

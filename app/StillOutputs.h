@@ -19,8 +19,10 @@ inline constexpr const char* kDumpManifestMeaning =
     "the inkgraph version, model, size, conventions, camera (source, eye, target, up, fov, near, far and whether "
     "--clip set them, the reversed-Z depth convention, focal length in pixels, view and OpenGL projection matrices "
     "as rows, OpenCV's intrinsics K and extrinsics [R|t] as rows), the light, the look, each file's resource, writing "
-    "pass and format, milliseconds per pass, and with objectid.exr the objects (id, node name, node path, mesh "
-    "names)";
+    "pass and format, milliseconds per pass, with objectid.exr the objects (id, node name, node path, mesh "
+    "names), with meshid.exr, triangleid.exr or barycentric.exr the meshes (id, name, node path, object and material "
+    "ids, material name, first triangle and triangle count), and with those or materialid.exr the materials (id, "
+    "name)";
 
 /** The camera for --stats and manifest.json: its source, world eye and target, matrices and depth convention. */
 nlohmann::ordered_json describeCamera(const Camera& camera);

@@ -1111,6 +1111,21 @@ void defineScene(py::module_& m) {
             "Its objects (node instances), as dicts {'id', 'name', 'node_path', 'meshes'}: 'id' is the object's "
             "value in the 'objectId' buffer (0 there is the background).")
         .def_property_readonly(
+            "meshes",
+            [](const ig::Scene& self) {
+                py::list meshes;
+                for (const ig::SceneMesh& mesh : self.meshes())
+                    meshes.append(py::dict("id"_a = mesh.id, "name"_a = mesh.name, "node_path"_a = mesh.nodePath,
+                                           "object_id"_a = mesh.objectId, "material_id"_a = mesh.materialId,
+                                           "material"_a = mesh.material, "first_triangle"_a = mesh.firstTriangle,
+                                           "triangle_count"_a = mesh.triangleCount));
+                return meshes;
+            },
+            "Its meshes, as dicts {'id', 'name', 'node_path', 'object_id', 'material_id', 'material', "
+            "'first_triangle', 'triangle_count'}, as the --dump manifest's 'meshes': 'id' is the mesh's value in the "
+            "'meshId' buffer, and its triangles have the 'triangleId' values first_triangle + 1 ... first_triangle + "
+            "triangle_count (0 there is the background).")
+        .def_property_readonly(
             "warnings", [](const ig::Scene& self) { return warningObjects(self.warnings()); },
             "The loader's warnings, as InkgraphWarning records.")
         .def("__repr__", [](const ig::Scene& scene) {

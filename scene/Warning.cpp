@@ -68,6 +68,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::ModelOutsideView, "model-outside-view", "the camera sees none of the model: the picture is blank paper"},
         {K::WidthMapUnread, "width-map-unread",
          "a mesh lacks the vertex colours or texture coordinates --outline-width-map reads; its widths stay unscaled"},
+        {K::TriangleIdInexact, "triangle-id-inexact",
+         "the scene has more than 2^24 triangles, and the triangleId field (float32) rounds the ids above 2^24"},
     };
     return kCodes;
 }

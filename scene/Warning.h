@@ -55,6 +55,7 @@ enum class WarningKind {
     ShadeMapUnused,
     ModelOutsideView,
     WidthMapUnread,
+    TriangleIdInexact,
     Count ///< not a kind: the number of them
 };
 

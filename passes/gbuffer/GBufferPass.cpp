@@ -51,6 +51,15 @@ const std::vector<GBufferPass::Field>& GBufferPass::fields() {
         {"objectId", Format::R32F, "OBJECT_ID", "objectid.exr", Appearance::Data,
          "the object's id (its index + 1, one object per node instance, as the manifest lists them) as an exact "
          "float, 0 off the model"},
+        {"meshId", Format::R32F, "MESH_ID", "meshid.exr", Appearance::Data,
+         "the mesh's id (its index + 1 in the scene, as the manifest's meshes list them) as an exact float, 0 off "
+         "the model"},
+        {"triangleId", Format::R32F, "TRIANGLE_ID", "triangleid.exr", Appearance::Data,
+         "the triangle's id: its index + 1 over the scene's meshes in order (the manifest's meshes give each mesh's "
+         "first_triangle), as a float exact below 2^24 triangles, 0 off the model"},
+        {"barycentric", Format::RGBA32F, "BARYCENTRIC", "barycentric.exr", Appearance::Data,
+         "the visible point's perspective-correct barycentric weights in its triangle (rgb: the weights of its 1st, "
+         "2nd and 3rd corner in index order, summing to 1); alpha 1 where covered, all 0 off the model"},
     };
     return kFields;
 }
@@ -65,10 +74,11 @@ GBufferPass::GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& sce
 }
 
 Format GBufferPass::formatOf(const Field& field) const {
-    // Depth needs float32's range and precision; material and object ids must stay exact integers (float16 holds
-    // only 2048).
+    // Depth needs float32's range and precision; material, object, mesh and triangle ids must stay exact integers
+    // (float16 holds only 2048), and barycentric weights are labels a data set is read at full precision.
     const std::string_view name = field.name;
-    if (mPrecision == GBufferPrecision::Float32 || name == "depth" || name == "materialId" || name == "objectId")
+    if (mPrecision == GBufferPrecision::Float32 || name == "depth" || name == "materialId" || name == "objectId" ||
+        name == "meshId" || name == "triangleId" || name == "barycentric")
         return field.format;
     if (field.format == Format::RGBA32F) return Format::RGBA16F;
     if (field.format == Format::R32F) return Format::R16F;
@@ -97,20 +107,32 @@ GlProgram& GBufferPass::programFor(const std::vector<std::string>& defines) {
     std::string key;
     for (const std::string& define : defines) key += define + ";";
     auto& program = mPrograms[key];
-    if (!program)
+    if (!program) {
+        // The barycentric weights come from a geometry stage that gives each triangle's corners unit weights; the
+        // rasteriser's perspective-correct interpolation makes them the visible point's. Only its draw pays for it.
+        const bool barycentric = std::find(defines.begin(), defines.end(), "OUT_BARYCENTRIC 1") != defines.end();
         program = std::make_unique<GlProgram>(mShaders.build({mName,
                                                               "gbuffer/gbuffer.vert",
                                                               "gbuffer/gbuffer.frag",
                                                               defines,
-                                                              {"common/color.glsl", "common/material.glsl"}}));
+                                                              {"common/color.glsl", "common/material.glsl"},
+                                                              barycentric ? "gbuffer/gbuffer.geom" : ""}));
+    }
     return *program;
 }
 
 std::vector<std::vector<const GBufferPass::Field*>> GBufferPass::liveGroups(const GlPassContext& context) {
     std::vector<std::vector<const Field*>> groups;
+    // The barycentric field's geometry stage changes how llvmpipe sets up a triangle (its window depth differs in the
+    // last bits at a few pixels): it gets a draw of its own, first, so every other field and the z-buffer (the last
+    // draw's depth) come from draws without it, bit for bit as without the labels.
+    const auto needsGeometryStage = [](const Field& field) { return std::string_view(field.name) == kBarycentric; };
+    for (const Field& field : fields())
+        if (needsGeometryStage(field) && context.isLive(field.name)) groups.push_back({&field});
+    const std::size_t ownGroups = groups.size();
     for (const Field& field : fields()) {
-        if (!context.isLive(field.name)) continue;
-        if (groups.empty() || groups.back().size() == kMaxDrawBuffers) groups.emplace_back();
+        if (!context.isLive(field.name) || needsGeometryStage(field)) continue;
+        if (groups.size() == ownGroups || groups.back().size() == kMaxDrawBuffers) groups.emplace_back();
         groups.back().push_back(&field);
     }
     if (groups.empty() && context.isLive(kZBuffer)) groups.emplace_back(); // depth only
@@ -177,17 +199,24 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
     }
     const GLint materialIdLocation = program.uniform("materialId");   // -1 unless the field is live: ignored
     const GLint objectIndexLocation = program.uniform("objectIndex"); // likewise
+    const GLint meshIndexLocation = program.uniform("meshIndex");     // likewise
+    const GLint firstTriangleLocation = program.uniform("firstTriangle");
     // Colour only for the baseColor field; the others need the material only where it cuts out.
     const MaterialUse use = std::any_of(group.begin(), group.end(),
                                         [](const Field* field) { return std::string_view(field->name) == "baseColor"; })
                                 ? MaterialUse::Colour
                                 : MaterialUse::Coverage;
     const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
+    // gl_PrimitiveID counts the triangles of one draw: a mesh's first global triangle index makes it the scene's.
+    std::uint32_t firstTriangle = 0;
     for (std::size_t index = 0; index < meshes.size(); ++index) {
         const GpuScene::DrawMesh& mesh = meshes[index];
         mScene.bindMaterial(program, index, use);
         glUniform1ui(materialIdLocation, mesh.materialId);
         glUniform1ui(objectIndexLocation, mesh.objectIndex);
+        glUniform1ui(meshIndexLocation, std::uint32_t(index));
+        glUniform1ui(firstTriangleLocation, firstTriangle);
+        firstTriangle += std::uint32_t(mesh.indexCount / 3);
         setFaceCulling(*mesh.material);
         mesh.vertexArray.bind();
         glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);

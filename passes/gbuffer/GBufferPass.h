@@ -17,6 +17,12 @@
  *  |                    |         |          | equal for meshes of one material), 0 off-model                    |
  *  | gbuffer.objectId   | r32f    | optional | the mesh's object index + 1 as an exact float (scene/ObjectIds.h: |
  *  |                    |         |          | one object per node instance), 0 off-model                        |
+ *  | gbuffer.meshId     | r32f    | optional | the mesh's index in the scene + 1 as an exact float, 0 off-model  |
+ *  | gbuffer.triangleId | r32f    | optional | the global triangle index + 1 (meshes in scene order, each in its |
+ *  |                    |         |          | index order: gl_PrimitiveID + the mesh's first triangle), exact   |
+ *  |                    |         |          | up to 2^24 triangles (the renderer warns above), 0 off-model      |
+ *  | gbuffer.barycentric| rgba32f | optional | perspective-correct barycentric weights of the visible point in   |
+ *  |                    |         |          | its triangle's corners (index order), a = coverage, 0 off-model   |
  *  | gbuffer.zBuffer    | depth32f| optional | the depth test's own buffer: window depth of the nearest drawn    |
  *  |                    |         |          | face, reversed-Z (gl/GlObjects.h), far plane 0 off-model          |
  *
@@ -27,7 +33,14 @@
  *  GBufferPrecision::Float16 stores normal, view, wVec, nDotV and radial as rgba16f / r16f instead (read back as
  *  float32): half the memory and bandwidth, about 3 decimal digits. It exists to measure what float32 buys
  *  (bench/TradeoffSweep, docs/accuracy.md). Depth stays r32f: linear depth overflows float16 at 65504 and the
- *  relative depth-break test needs its precision; materialId and objectId stay r32f, since ids must be exact.
+ *  relative depth-break test needs its precision; the ids (material, object, mesh, triangle) stay r32f, since they
+ *  must be exact, and barycentric stays rgba32f.
+ *
+ *  `barycentric` is drawn with a geometry stage (gbuffer.geom), in a draw of its own before the others (so they and
+ *  the z-buffer are bit for bit what they are without it), that gives each triangle's corners unit weights; the
+ *  rasteriser interpolates them perspective-correctly at the pixel centre (no MSAA here), and the fragment stage
+ *  clamps and renormalises away the interpolation's rounding. The positions are the ones the GPU draws (skinning and
+ *  morphs are applied on the CPU before the upload), so the weights hold for the posed mesh.
  *
  *  `radial` is what suggestive contours read (postfx/SuggestiveContours.h): n.v with the unnormalised view vector
  *  (DeCarlo's form, whose zero set of D_w(n.v) is exactly kappa_r = 0), the image-space direction of w as perspective
@@ -45,9 +58,11 @@
 #include "passes/GpuScene.h"
 #include "passes/gbuffer/GBufferPrecision.h"
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace inkgraph {
 
@@ -67,6 +82,8 @@ public:
     static constexpr const char* kZBuffer = "zBuffer";
     /** The linear depth field, which the stroke stage weighs lines by: "depth". */
     static constexpr const char* kDepth = "depth";
+    /** The field drawn with a geometry stage, in a draw of its own: "barycentric". */
+    static constexpr const char* kBarycentric = "barycentric";
 
     /** `supersample` >= 1 scales every field; throws std::invalid_argument otherwise. */
     GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
@@ -80,9 +97,12 @@ public:
      *  and none is masked or blended. */
     bool zBufferHoldsEveryFace() const;
     GBufferPrecision precision() const { return mPrecision; }
-    /** How many times the pass draws the meshes for `liveFieldCount` live fields: once per kMaxDrawBuffers. */
-    static int drawCount(std::size_t liveFieldCount) {
-        return int((liveFieldCount + kMaxDrawBuffers - 1) / kMaxDrawBuffers);
+    /** How many times the pass draws the meshes for these live fields (short names, "normal"): once per
+     *  kMaxDrawBuffers of them, and once more for barycentric, which has a draw of its own. */
+    static int drawCount(const std::vector<std::string>& liveFields) {
+        const std::size_t own = std::size_t(std::count(liveFields.begin(), liveFields.end(), kBarycentric));
+        const std::size_t shared = liveFields.size() - own;
+        return int(own + (shared + kMaxDrawBuffers - 1) / kMaxDrawBuffers);
     }
 
     std::string_view name() const override { return mName; }
@@ -91,8 +111,8 @@ public:
     void execute(GlPassContext& context) override;
 
 private:
-    /** The live fields in attachment order, in groups of at most kMaxDrawBuffers: one draw each; one empty group when
-     *  only the z-buffer is live. */
+    /** The live fields in attachment order, in groups of at most kMaxDrawBuffers: one draw each, barycentric alone
+     *  first; one empty group when only the z-buffer is live. */
     static std::vector<std::vector<const Field*>> liveGroups(const GlPassContext& context);
     /** OUT_* and LOC_* defines for one group's draw. */
     std::vector<std::string> definesFor(const std::vector<const Field*>& group) const;

@@ -218,7 +218,7 @@ std::string ShadePass::forwardReason(const std::vector<std::string>& liveFields)
     std::vector<std::string> fields = liveFields;
     for (const std::string& field : deferredFields())
         if (std::find(fields.begin(), fields.end(), field) == fields.end()) fields.push_back(field);
-    if (GBufferPass::drawCount(fields.size()) > GBufferPass::drawCount(liveFields.size()))
+    if (GBufferPass::drawCount(fields) > GBufferPass::drawCount(liveFields))
         return "the G-buffer would draw the meshes a second time for " + std::to_string(fields.size()) + " fields";
     return {};
 }

@@ -1,7 +1,9 @@
 // G-buffer: float32 view-space quantities. Only the live outputs are declared (OUT_* and LOC_* defines come from
 // GBufferPass), so nothing is computed or stored for a buffer no pass reads.
-in vec3 viewPosition;
-in vec3 viewNormal;
+in SurfaceVarying {
+    vec3 viewPosition;
+    vec3 viewNormal;
+};
 
 // common/material.glsl: the base colour (OUT_BASECOLOR) and, with MATERIAL_ALPHA, the cut-out that decides coverage.
 #ifdef OUT_MATERIAL_ID
@@ -9,6 +11,15 @@ uniform uint materialId; // GpuScene::DrawMesh::materialId, one per draw
 #endif
 #ifdef OUT_OBJECT_ID
 uniform uint objectIndex; // GpuScene::DrawMesh::objectIndex, one per draw
+#endif
+#ifdef OUT_MESH_ID
+uniform uint meshIndex; // the mesh's index in the scene, one per draw
+#endif
+#ifdef OUT_TRIANGLE_ID
+uniform uint firstTriangle; // the global index of the mesh's first triangle (the meshes before it, in scene order)
+#endif
+#ifdef OUT_BARYCENTRIC
+in vec3 barycentricWeights; // gbuffer.geom: each corner's unit weight, interpolated perspective-correctly
 #endif
 #ifdef OUT_RADIAL
 // (0.5 width clipFromView[0][0], 0.5 height clipFromView[1][1]): the focal lengths in pixels of the perspective
@@ -43,6 +54,15 @@ layout(location = LOC_MATERIAL_ID) out float outMaterialId;
 #endif
 #ifdef OUT_OBJECT_ID
 layout(location = LOC_OBJECT_ID) out float outObjectId;
+#endif
+#ifdef OUT_MESH_ID
+layout(location = LOC_MESH_ID) out float outMeshId;
+#endif
+#ifdef OUT_TRIANGLE_ID
+layout(location = LOC_TRIANGLE_ID) out float outTriangleId;
+#endif
+#ifdef OUT_BARYCENTRIC
+layout(location = LOC_BARYCENTRIC) out vec4 outBarycentric;
 #endif
 #ifdef OUT_RADIAL
 layout(location = LOC_RADIAL) out vec4 outRadial;
@@ -105,6 +125,20 @@ void main() {
 #ifdef OUT_OBJECT_ID
     // Likewise: 0 is the background, objects count from 1.
     outObjectId = float(objectIndex + 1u);
+#endif
+#ifdef OUT_MESH_ID
+    outMeshId = float(meshIndex + 1u);
+#endif
+#ifdef OUT_TRIANGLE_ID
+    // gl_PrimitiveID numbers the draw's triangles in index order; exact in float32 below 2^24 triangles (the renderer
+    // warns above).
+    outTriangleId = float(firstTriangle + uint(gl_PrimitiveID) + 1u);
+#endif
+#ifdef OUT_BARYCENTRIC
+    // The sample lies inside its triangle, so its weights are in [0, 1] and sum to 1: clamping and renormalising
+    // removes only the rasteriser's rounding (llvmpipe's interpolation leaves about 3e-4).
+    vec3 weights = clamp(barycentricWeights, 0.0, 1.0);
+    outBarycentric = vec4(weights / max(weights.x + weights.y + weights.z, 1e-30), 1.0);
 #endif
 #ifdef OUT_RADIAL
     // DeCarlo's unnormalised view vector v = c - p (c is the view-space origin). J v = 0 (moving along the eye ray

@@ -6,8 +6,11 @@ uniform mat4 viewFromModel;
 uniform mat3 viewNormalFromModel; // inverse-transpose of viewFromModel's upper 3x3
 uniform mat4 clipFromView;
 
-out vec3 viewPosition;
-out vec3 viewNormal;
+// A block, so gbuffer.geom (the barycentric field's draw) can pass it on; unnamed, so the members are plain names here.
+out SurfaceVarying {
+    vec3 viewPosition;
+    vec3 viewNormal;
+};
 // The pass draws twice when more fields are live than GL's 8 draw buffers, with two programs: invariance makes both
 // rasterise exactly the same fragments.
 invariant gl_Position;

@@ -54,6 +54,34 @@ TEST_F(ApiScene, CountsWhatTheFileHolds) {
     EXPECT_TRUE(scene.warnings().empty());
 }
 
+TEST_F(ApiScene, MeshesGiveTheirIdsAndTriangleRanges) {
+    // Issue 37: the same two-instance glTF as below, one triangle each: meshes 1 and 2, triangle ids 1 and 2, one
+    // unnamed material (id 1, no name) and the two objects.
+    const std::filesystem::path gltf = directory / "two.gltf";
+    writeText(gltf, R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"name": "a", "mesh": 0}, {"name": "group", "children": [2]},
+                  {"mesh": 0, "translation": [2, 0, 0]}],
+        "meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0}}]}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "buffers": [{"byteLength": 36,
+                     "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})");
+    const std::vector<ig::SceneMesh> meshes = ig::Scene::load(gltf.string()).meshes();
+    ASSERT_EQ(meshes.size(), 2u);
+    for (std::size_t index = 0; index < 2; ++index) {
+        SCOPED_TRACE(index);
+        EXPECT_EQ(meshes[index].id, index + 1);
+        EXPECT_EQ(meshes[index].objectId, index + 1);
+        EXPECT_EQ(meshes[index].materialId, 1u);
+        EXPECT_EQ(meshes[index].material, "");
+        EXPECT_EQ(meshes[index].firstTriangle, index);
+        EXPECT_EQ(meshes[index].triangleCount, 1u);
+    }
+    EXPECT_EQ(meshes[0].name, "a");
+    EXPECT_EQ(meshes[1].nodePath, (std::vector<std::string>{"group", ""}));
+}
+
 TEST_F(ApiScene, ObjectsAreTheNodeInstancesInOrder) {
     // One triangle mesh "tri" instanced by a node "a" and by an unnamed child of node "group": two objects, ids in
     // the order their meshes come, the unnamed one named by its mesh (issue 36: the "objectId" buffer's values).
@@ -315,7 +343,7 @@ TEST_F(ApiRenderRefusal, AnUnknownBufferNamesTheLooksBuffers) {
     const std::string message = undrawn.what();
     EXPECT_EQ(message.rfind("Renderer::render(): no buffer 'lines.crease' in this look ('crease' is not in the "
                             "look's --lines); it has: normal, view, wVec, nDotV, depth, coverage, baseColor, radial, "
-                            "materialId, objectId, gbuffer.zBuffer, ",
+                            "materialId, objectId, meshId, triangleId, barycentric, gbuffer.zBuffer, ",
                             0),
               0u)
         << message;

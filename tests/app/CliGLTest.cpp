@@ -996,6 +996,62 @@ TEST_F(Cli, TheDumpManifestNamesTheObjects) {
     EXPECT_FALSE(nlohmann::json::parse(readText(directory / "e" / "manifest.json")).contains("objects"));
 }
 
+TEST_F(Cli, TheDumpManifestNamesTheMeshesAndMaterialsOfTheLabels) {
+    // Issue 37: two quads of two triangles each, OBJ objects with materials "paint" and "metal"; the second lies
+    // behind the first and half of it is hidden. `--request gbuffer.*` dumps the labels (meshid.exr, triangleid.exr,
+    // barycentric.exr), the manifest's meshes give each mesh's id, object, material and triangle range, its materials
+    // the names; the hidden border has its own mask beside the visible one.
+    std::ofstream(directory / "two.mtl") << "newmtl paint\nKd 0.8 0.2 0.2\nnewmtl metal\nKd 0.2 0.2 0.8\n";
+    std::ofstream(directory / "two.obj") << "mtllib two.mtl\n"
+                                            "v -2.2 -1 0.5\nv -0.2 -1 0.5\nv -0.2 1 0.5\nv -2.2 1 0.5\n"
+                                            "v -1 -0.6 -0.5\nv 1 -0.6 -0.5\nv 1 0.6 -0.5\nv -1 0.6 -0.5\n"
+                                            "o front\nusemtl paint\nf 1 2 3\nf 1 3 4\n"
+                                            "o back\nusemtl metal\nf 5 6 7\nf 5 7 8\n";
+    const CliRun result = run("render two.obj -o two.png --size 96x96 --eye 0,0,7 --target -0.4,0,0 --lines border "
+                              "--hidden-lines border --hidden-dash none --dump d --request 'gbuffer.*'");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const auto manifest = nlohmann::json::parse(readText(directory / "d" / "manifest.json"));
+    const auto meshes = nlohmann::json::parse(R"([
+        {"id": 1, "name": "front", "node_path": ["front"], "object_id": 1, "material_id": 1, "material": "paint",
+         "first_triangle": 0, "triangle_count": 2},
+        {"id": 2, "name": "back", "node_path": ["back"], "object_id": 2, "material_id": 2, "material": "metal",
+         "first_triangle": 2, "triangle_count": 2}])");
+    EXPECT_EQ(manifest["meshes"], meshes) << manifest["meshes"].dump();
+    EXPECT_EQ(manifest["materials"],
+              nlohmann::json::parse(R"([{"id": 1, "name": "paint"}, {"id": 2, "name": "metal"}])"))
+        << manifest["materials"].dump();
+    // The ids in the files are the ones the manifest lists: triangles 1 and 2 on mesh 1, 3 and 4 on mesh 2.
+    const cv::Mat triangles = readImage(directory / "d" / "triangleid.exr");
+    const cv::Mat meshIds = readImage(directory / "d" / "meshid.exr");
+    const cv::Mat weights = readImage(directory / "d" / "barycentric.exr");
+    ASSERT_EQ(triangles.type(), CV_32FC1);
+    ASSERT_EQ(meshIds.type(), CV_32FC1);
+    ASSERT_EQ(weights.channels(), 4);
+    std::map<float, int> pixelsOfTriangle;
+    int wrongMesh = 0;
+    for (int row = 0; row < triangles.rows; ++row)
+        for (int col = 0; col < triangles.cols; ++col) {
+            const float triangle = triangles.at<float>(row, col);
+            ++pixelsOfTriangle[triangle];
+            const float mesh = triangle == 0.0f ? 0.0f : triangle <= 2.0f ? 1.0f : 2.0f;
+            wrongMesh += meshIds.at<float>(row, col) != mesh;
+        }
+    ASSERT_EQ(pixelsOfTriangle.size(), 5u) << "ids other than 0 to 4";
+    for (const float id : {1.0f, 2.0f, 3.0f, 4.0f}) EXPECT_GT(pixelsOfTriangle[id], 50) << id;
+    EXPECT_EQ(wrongMesh, 0) << "pixels whose meshId is not their triangle's mesh";
+    // The hidden part of the back quad's border has a mask of its own, solid with --hidden-dash none.
+    EXPECT_GT(cv::countNonZero(readImage(directory / "d" / "lines-border.png")), 50);
+    EXPECT_GT(cv::countNonZero(readImage(directory / "d" / "lines-hidden-border.png")), 20);
+
+    // Without an id field in the dump, neither list.
+    const CliRun depthOnly =
+        run("render two.obj -o two.png --size 32x32 --lines none --dump e --request gbuffer.depth");
+    ASSERT_EQ(depthOnly.exitCode, 0) << depthOnly.err;
+    const auto plain = nlohmann::json::parse(readText(directory / "e" / "manifest.json"));
+    EXPECT_FALSE(plain.contains("meshes"));
+    EXPECT_FALSE(plain.contains("materials"));
+}
+
 TEST_F(Cli, MsaaShadesForwardSaysSoAndIsCappedAtTheDriversSamples) {
     const std::string suzanne = model("suzanne_npm_4k.obj");
     ASSERT_EQ(run("render " + suzanne + " -o four.png --size 48x48 --msaa 4 --stats four.json").exitCode, 0);

@@ -409,10 +409,10 @@ TEST_F(GBufferMaterials, HalfPrecisionKeepsIdsFloat32) {
     EXPECT_EQ(valuesIn(ids, halfOf(coverage, false)), std::vector<float>{2.0f});
 }
 
-TEST_F(GBufferMaterials, AllTenFieldsTakeTwoDrawsThatCoverTheSamePixels) {
-    // Ten live fields exceed the 8 draw buffers GL guarantees, so materialId and objectId come from a second draw with
-    // its own program; the vertex stage is invariant, so both draws rasterise the same fragments, silhouettes
-    // included.
+TEST_F(GBufferMaterials, AllFieldsTakeTwoDrawsThatCoverTheSamePixels) {
+    // Thirteen live fields: barycentric has a draw of its own (with a geometry stage), and the other twelve exceed the
+    // 8 draw buffers GL guarantees, so materialId, objectId, meshId and triangleId come from a third draw with its own
+    // program; the vertex stage is invariant, so all three draws rasterise the same fragments, silhouettes included.
     Mesh left = makeUvSphere({-1.0f, 0.0f, 0.0f}, 1.1f, 48, 24);
     Mesh right = makeUvSphere({1.0f, 0.2f, -0.5f}, 1.1f, 48, 24);
     left.material.baseColorFactor = kRed;
@@ -425,7 +425,7 @@ TEST_F(GBufferMaterials, AllTenFieldsTakeTwoDrawsThatCoverTheSamePixels) {
     GBufferPass pass("gbuffer", shaders, *gpuScene, frame);
     std::vector<std::string> every;
     for (const GBufferPass::Field& field : GBufferPass::fields()) every.push_back(std::string("gbuffer.") + field.name);
-    ASSERT_EQ(every.size(), 10u);
+    ASSERT_EQ(every.size(), 13u);
     const Plan plan = compile({&pass}, every);
     EXPECT_EQ(plan.findResource("gbuffer.objectId")->desc.format, Format::R32F) << "ids must stay exact";
     executor.run(plan, {&pass}, {kSize, kSize, false});
@@ -433,13 +433,18 @@ TEST_F(GBufferMaterials, AllTenFieldsTakeTwoDrawsThatCoverTheSamePixels) {
     const cv::Mat objects = executor.store().image("gbuffer.objectId");
     const cv::Mat coverage = executor.store().image("gbuffer.coverage");
     const cv::Mat depth = executor.store().image("gbuffer.depth");
+    const cv::Mat meshIds = executor.store().image("gbuffer.meshId");
+    const cv::Mat triangleIds = executor.store().image("gbuffer.triangleId");
+    const cv::Mat barycentric = executor.store().image("gbuffer.barycentric");
     int covered = 0, mismatched = 0;
     for (int row = 0; row < kSize; ++row)
         for (int col = 0; col < kSize; ++col) {
             const bool onModel = coverage.at<uchar>(row, col) != 0;
             covered += onModel;
             if (onModel != (ids.at<float>(row, col) > 0.0f) || onModel != (depth.at<float>(row, col) > 0.0f) ||
-                onModel != (objects.at<float>(row, col) > 0.0f))
+                onModel != (objects.at<float>(row, col) > 0.0f) || onModel != (meshIds.at<float>(row, col) > 0.0f) ||
+                onModel != (triangleIds.at<float>(row, col) > 0.0f) ||
+                onModel != (barycentric.at<cv::Vec4f>(row, col)[3] > 0.0f))
                 ++mismatched;
         }
     EXPECT_GT(covered, 1000);
@@ -448,6 +453,7 @@ TEST_F(GBufferMaterials, AllTenFieldsTakeTwoDrawsThatCoverTheSamePixels) {
     // Meshes without node paths (a file without nodes) are one object.
     EXPECT_EQ(valuesIn(objects, coverage), std::vector<float>{1.0f});
     EXPECT_EQ(valuesIn(objects, coverage, true), std::vector<float>{0.0f});
+    EXPECT_EQ(valuesIn(meshIds, coverage), (std::vector<float>{1.0f, 2.0f}));
 }
 
 } // namespace

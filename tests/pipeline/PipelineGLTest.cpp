@@ -52,6 +52,15 @@ const std::map<std::string, test::ImageTolerance> kTolerances = {
     // The z-buffer is window depth in [0, 1] (reversed-Z: about 0.5 on these models), float32 of the same interpolated
     // position on any driver; a silhouette pixel flipping coverage changes by its whole value, 0.5% giving 2.5e-3.
     {"zbuffer.exr", {1e-6, 1e-2, 0.005}},
+    // Mesh ids (issue 37) as the object ids: one mesh per file, so a flipped silhouette pixel changes by 1.
+    {"meshid.exr", {0.0, 1e-2, 0.005}},
+    // Triangle ids are whole numbers (global index + 1), exact on any driver; a flipped silhouette pixel changes by its
+    // whole id, up to the triangle count (5856 spot, 6320 teapot), so 0.5% of pixels give a mean up to about 30. A tie
+    // on an edge between two triangles would give the neighbour's id: on one Mesa version none flips.
+    {"triangleid.exr", {0.0, 32.0, 0.005}},
+    // Barycentric weights in [0, 1] (alpha coverage), interpolated as the other fields, so 1e-4; a flipped silhouette
+    // pixel changes each of its four channels by up to 1, 0.5% of pixels giving a mean up to 5e-3.
+    {"barycentric.exr", {1e-4, 5e-3, 0.005}},
     {"coverage.png", {0.0, 2.0, 0.005}},
     {"basecolor.png", {0.0, 2.0, 0.005}},
     {"shading.png", {1.0, 2.0, 0.005}},

@@ -187,6 +187,19 @@ struct SceneObject {
     std::vector<std::string> meshes;   ///< the names of its meshes
 };
 
+/** One mesh (primitive) of a scene, with the values it has in the id buffers: what names a pixel of "meshId",
+ *  "triangleId", "objectId" and "materialId". */
+struct SceneMesh {
+    std::uint32_t id = 0;              ///< its value in the "meshId" buffer: its index + 1 (0 there is the background)
+    std::string name;                  ///< the glTF mesh's name ("mesh N" unnamed), the OBJ object's, or the file stem
+    std::vector<std::string> nodePath; ///< the node names from the root down to its node (empty without nodes)
+    std::uint32_t objectId = 0;        ///< its object's value in the "objectId" buffer (Scene::objects())
+    std::uint32_t materialId = 0;      ///< its material's value in the "materialId" buffer
+    std::string material;              ///< its material's name ("" for an unnamed one)
+    std::uint64_t firstTriangle = 0;   ///< how many triangles the meshes before it have
+    std::uint64_t triangleCount = 0;   ///< its triangles are "triangleId" firstTriangle + 1 ... firstTriangle + count
+};
+
 /** A model loaded once (OBJ with MTL, glTF/GLB, VRM, STL, PLY, or arrays): render it with any number of looks and
  *  frames. Copies share the loaded data. */
 class INKGRAPH_API Scene {
@@ -207,6 +220,9 @@ public:
     std::vector<Warning> warnings() const;
     /** Its objects, by id from 1: what the "objectId" buffer's values (and the object-boundary lines) tell apart. */
     std::vector<SceneObject> objects() const;
+    /** Its meshes, by id from 1 (the "meshId" buffer's values), each with its range of "triangleId" values: triangles
+     *  are numbered over the meshes in this order, each mesh's in its index order, from 1. */
+    std::vector<SceneMesh> meshes() const;
 
     struct Impl; ///< opaque: the library's own
 
@@ -502,11 +518,13 @@ private:
 };
 
 /** The buffers render() can return (and "strokes", which asks for Still::strokes() and is no image): "normal", "view",
- * "wVec", "nDotV", "depth", "coverage", "baseColor", "radial", "materialId", "objectId" (the G-buffer's fields;
- * Scene::objects() names the object ids), "gbuffer.*" (every field the look computes), "lines.<type>" (the drawn layer
- * of a line type, its coverage from 0 off the line to 255 on it), "lines.*" (every drawn type), "picture". render()
- * also takes the graph's own name of any image it computes (`inkgraph render --print-plan`: "shade.color",
- * "gbuffer.zBuffer"); a name that is neither is refused (Error(Usage), naming the buffers the look has). */
+ * "wVec", "nDotV", "depth", "coverage", "baseColor", "radial", "materialId", "objectId", "meshId", "triangleId" (the
+ * G-buffer's fields: float32 exact integers, 0 for the background; Scene::objects() and Scene::meshes() name the ids),
+ * "barycentric" (4 x float32: the visible point's weights in its triangle's corners, alpha 1 on the model), "gbuffer.*"
+ * (every field, the labels included), "lines.<type>" (the drawn layer of a line type, its coverage from 0 off the line
+ * to 255 on it), "lines.*" (every drawn type), "picture". render() also takes the graph's own name of any image it
+ * computes (`inkgraph render --print-plan`: "shade.color", "gbuffer.zBuffer"); a name that is neither is refused
+ * (Error(Usage), naming the buffers the look has). */
 INKGRAPH_API std::vector<std::string> bufferNames(const Look& look);
 
 /** Renders stills. One GL context (EGL, no display) is made by the first render and kept, with every compiled

@@ -1,0 +1,45 @@
+#pragma once
+/** @file What a reader of the G-buffer's id fields needs to name them (issue 37): per mesh, the values it has in the
+ *  meshId, objectId, materialId and triangleId fields, and per material its name. The one place that numbers
+ *  triangles over the scene: the triangleId field, the --dump manifest's `meshes`, the library's Scene::meshes() and
+ *  the strokes file all count them this way. No GL. */
+
+#include "scene/Scene.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace inkgraph {
+
+/** One mesh (primitive) of the scene, as the id fields see it. */
+struct MeshLabel {
+    std::uint32_t id = 0;              ///< its index + 1: its value in the meshId field (0 is the background)
+    std::string name;                  ///< Mesh::name
+    std::vector<std::string> nodePath; ///< Mesh::nodePath (empty for a format without nodes)
+    std::uint32_t objectId = 0;        ///< its object's value in the objectId field (scene/ObjectIds.h)
+    std::uint32_t materialId = 0;      ///< its material's value in the materialId field (scene/MaterialIds.h)
+    std::size_t firstTriangle = 0;     ///< the global index of its first triangle: the triangles of the meshes before
+    std::size_t triangleCount = 0;     ///< its triangles have the triangleId values firstTriangle + 1 ... + count
+};
+
+/** One material of the scene (meshes share one exactly when scene/MaterialIds.h says so). */
+struct MaterialLabel {
+    std::uint32_t id = 0; ///< its value in the materialId field
+    std::string name;     ///< Material::name of its first mesh; empty for an unnamed material (STL, OBJ without MTL)
+};
+
+struct SceneLabels {
+    std::vector<MeshLabel> meshes;        ///< in scene order: meshes[i].id == i + 1
+    std::vector<MaterialLabel> materials; ///< by id: materials[i].id == i + 1
+};
+
+/** The labels of `scene`'s meshes and materials. */
+SceneLabels sceneLabels(const Scene& scene);
+
+/** The global index of triangle `triangle` of mesh `meshIndex`: the triangles of the meshes before it, then its own
+ *  in index order. The triangleId field holds this + 1. Throws std::out_of_range for a mesh or triangle that is not
+ *  there. */
+std::size_t globalTriangleIndex(const Scene& scene, std::size_t meshIndex, std::size_t triangle);
+
+} // namespace inkgraph
