@@ -6,6 +6,7 @@
 #include "render/UsageError.h"
 #include "render/SceneShadeMaps.h"
 #include "graph/GraphCompiler.h"
+#include "scene/MeshLabels.h"
 #include "scene/Scene.h"
 
 #include <chrono>
@@ -70,20 +71,6 @@ void warnOf(PreparedStill& still, Warning warning, const StillLog& log) {
     if (warning.file.empty()) warning.file = still.request.modelPath;
     log.warn(still.request.modelPath, warning.message);
     still.warnings.push_back(std::move(warning));
-}
-
-/** The G-buffer's triangleId field holds global triangle indices + 1 in float32 (the graph has no integer format):
- *  exact up to 2^24, so a larger scene's ids round. A warning rather than a refusal: ids of the first 2^24 triangles
- *  are still right, and --strict makes it an error. */
-std::optional<Warning> triangleIdsInexact(const Scene& scene) {
-    constexpr std::size_t kExactTriangles = std::size_t(1) << 24; // float32's 24-bit significand holds 1..2^24
-    std::size_t triangles = 0;
-    for (const Mesh& mesh : scene.meshes) triangles += mesh.triangleCount();
-    if (triangles <= kExactTriangles) return std::nullopt;
-    return makeWarning(WarningKind::TriangleIdInexact,
-                       "the scene has " + std::to_string(triangles) +
-                           " triangles: gbuffer.triangleId (float32) is exact only up to 16777216, so larger ids "
-                           "round to a neighbour's");
 }
 
 /** --strict: the still's first warning (printed already) as the error that fails it, before anything is written. */
@@ -221,7 +208,8 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
         throw UsageError(std::string("--request: ") + error.what());
     }
     if (still.plan.findResource(std::string(kGBufferPass) + ".triangleId") != nullptr)
-        if (std::optional<Warning> inexact = triangleIdsInexact(scene)) warnOf(still, std::move(*inexact), log);
+        if (std::optional<Warning> inexact = triangleIdWarning(scene.triangleCount()))
+            warnOf(still, std::move(*inexact), log);
     failIfStrict(still);
 }
 

@@ -37,4 +37,12 @@ std::size_t globalTriangleIndex(const Scene& scene, std::size_t meshIndex, std::
     return first + triangle;
 }
 
+std::optional<Warning> triangleIdWarning(std::size_t triangleCount) {
+    if (triangleCount <= kExactTriangleIds) return std::nullopt;
+    return makeWarning(WarningKind::TriangleIdInexact, "the scene has " + std::to_string(triangleCount) +
+                                                           " triangles: gbuffer.triangleId (float32) " +
+                                                           "is exact only up to " + std::to_string(kExactTriangleIds) +
+                                                           ", so larger ids round to a neighbour's");
+}
+
 } // namespace inkgraph

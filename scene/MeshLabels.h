@@ -5,8 +5,10 @@
  *  the strokes file all count them this way. No GL. */
 
 #include "scene/Scene.h"
+#include "scene/Warning.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,5 +43,14 @@ SceneLabels sceneLabels(const Scene& scene);
  *  in index order. The triangleId field holds this + 1. Throws std::out_of_range for a mesh or triangle that is not
  *  there. */
 std::size_t globalTriangleIndex(const Scene& scene, std::size_t meshIndex, std::size_t triangle);
+
+/** The most triangles whose ids the G-buffer's triangleId field (float32: the render graph has no integer format)
+ *  holds exactly: every integer up to 2^24 is a float32. */
+inline constexpr std::size_t kExactTriangleIds = std::size_t(1) << 24;
+
+/** The triangle-id-inexact warning for a scene of `triangleCount` triangles when some of its ids exceed
+ *  kExactTriangleIds (they round to a neighbour's), else none. A warning rather than a refusal: the ids of the first
+ *  2^24 triangles are still right, and --strict makes it an error. */
+std::optional<Warning> triangleIdWarning(std::size_t triangleCount);
 
 } // namespace inkgraph

@@ -44,7 +44,7 @@ def quads(tmp_path_factory):
 @pytest.fixture(scope="module")
 def still(quads):
     frame = inkgraph.Frame(SIZE, SIZE, eye=(0.3, 0.4, 6), target=(0, 0, 0))
-    return inkgraph.Renderer().render(
+    return inkgraph.default_renderer().render(
         quads, inkgraph.Look(), frame, buffers=["triangleId", "meshId", "barycentric", "coverage"]
     )
 

@@ -69,5 +69,18 @@ TEST(MeshLabels, AnEmptySceneHasNoLabelsAndBadIndicesAreRefused) {
     EXPECT_THROW(globalTriangleIndex(scene, 1, 0), std::out_of_range);
 }
 
+TEST(MeshLabels, TriangleIdsBeyondFloat32sExactIntegersAreWarnedAbout) {
+    // Ids are index + 1, so 2^24 triangles still have exact ids (the largest, 2^24, is a float32); one more does not.
+    EXPECT_EQ(float(kExactTriangleIds), float(kExactTriangleIds - 1) + 1.0f);
+    EXPECT_EQ(float(kExactTriangleIds + 1), float(kExactTriangleIds)) << "2^24 + 1 rounds: why the warning exists";
+    EXPECT_FALSE(triangleIdWarning(0).has_value());
+    EXPECT_FALSE(triangleIdWarning(kExactTriangleIds).has_value());
+    const std::optional<Warning> warning = triangleIdWarning(kExactTriangleIds + 1);
+    ASSERT_TRUE(warning.has_value());
+    EXPECT_EQ(warning->code, "triangle-id-inexact");
+    EXPECT_EQ(warning->message, "the scene has 16777217 triangles: gbuffer.triangleId (float32) is exact only up to "
+                                "16777216, so larger ids round to a neighbour's");
+}
+
 } // namespace
 } // namespace inkgraph
