@@ -258,24 +258,15 @@ std::vector<SvgLineLayer> StillGraph::svgLayers(ResourceStore& store, double tol
 
 namespace {
 
-/** The G-buffer's triangle id field (global triangle index + 1), when the G-buffer has it. */
-std::string triangleIdResource(const StillGraph& graph) {
-    const std::string name = std::string(kGBufferPass) + ".triangleId";
-    const Pass* gbuffer = graph.findPass(kGBufferPass);
-    if (gbuffer == nullptr) return {};
-    PassBuilder builder{std::string(kGBufferPass)};
-    gbuffer->declare(builder);
-    for (const auto& write : builder.writes())
-        if (std::string(kGBufferPass) + "." + write.field == name) return name;
-    return {};
-}
+/** The G-buffer's triangle id field (global triangle index + 1): the triangle under an image-space stroke point. */
+std::string triangleIdResource() { return std::string(kGBufferPass) + ".triangleId"; }
 
 } // namespace
 
 std::vector<std::string> StillGraph::strokePointResources() const {
     if (!mStrokes) return {};
     std::vector<std::string> resources = {strokePathsResource(), std::string(kGBufferPass) + "." + GBufferPass::kDepth};
-    if (const std::string triangles = triangleIdResource(*this); !triangles.empty()) resources.push_back(triangles);
+    resources.push_back(triangleIdResource());
     for (const StrokeInput& input : mStrokes->settings().inputs) {
         const LineType* type = findLineType(input.type);
         if (type == nullptr) continue;
@@ -293,8 +284,7 @@ std::vector<StrokeRecord> StillGraph::strokeRecords(ResourceStore& store, const 
     setup.camera = &camera;
     setup.scene = &scene;
     setup.depth = store.image(std::string(kGBufferPass) + "." + GBufferPass::kDepth);
-    if (const std::string triangles = triangleIdResource(*this); !triangles.empty() && store.contains(triangles))
-        setup.triangleIds = store.image(triangles);
+    setup.triangleIds = store.image(triangleIdResource());
     std::size_t offset = 0;
     for (const Mesh& mesh : scene.meshes) {
         setup.meshTriangleOffsets.push_back(offset);

@@ -96,7 +96,7 @@ public:
      *  requested strokePathsResource(). Empty when no line is drawn. */
     std::vector<SvgLineLayer> svgLayers(ResourceStore& store, double tolerancePixels) const;
     /** --strokes: what strokeRecords() reads, for the plan to compute and keep: the kept strokes, the G-buffer's depth
-     *  (and triangle ids when the G-buffer has them), each object-space type's skeleton and each mesh-edge type's
+     *  and triangle ids, each object-space type's skeleton and each mesh-edge type's
      *  point image. Empty when no line is drawn. */
     std::vector<std::string> strokePointResources() const;
     /** --strokes: every kept stroke with its points' 3-D points (passes/lines/StrokePoints.h), from `store` after a

@@ -10,7 +10,8 @@
  *    depth jump of the nearest depth: a contour on the rim lies half on the background or on a farther surface) and
  *    of that the pixel nearest to the point gives the linear depth, and the point is put on the camera ray through
  *    (x, y) at that depth: it projects back to (x, y) exactly and lies on the surface within the depth's sampling
- *    error. Its triangle is that pixel's (gbuffer.triangleId, when the look has it). No model pixel there: null. A GL
+ *    error. Its triangle is that pixel's (gbuffer.triangleId, requested with the strokes; the mesh from the triangle's
+ *    range). No model pixel there: null. A GL
  *    band (outline, silhouette) looks as far as half its width plus a pixel, since its middle may lie off the model.
  *  - object space (intersection, suggestive-object and their hidden twins): the 3-D point of the segment sample the
  *    stroke point is (LineSkeleton::surface), with its triangle.

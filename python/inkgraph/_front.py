@@ -93,8 +93,9 @@ def render(
               the look's.
     buffers:  buffers to return besides the picture: "normal", "view", "wVec", "nDotV", "depth", "coverage",
               "baseColor", "radial", "materialId", "objectId", "meshId", "triangleId", "barycentric" (the G-buffer;
-              Scene.objects and Scene.meshes name the ids), "gbuffer.*", "lines.<type>" (the coverage of a line type's lines), "lines.*", "picture"
-              (inkgraph.buffer_names(look) lists them); and "strokes", no image, for Result.strokes().
+              Scene.objects and Scene.meshes name the ids), "gbuffer.*", "lines.<type>" (the coverage of a line
+              type's lines), "lines.*", "picture" (inkgraph.buffer_names(look) lists them); and "strokes", no image,
+              for Result.strokes().
     camera:   a Frame, or camera flags as `look` takes them: ["--orbit", "30,10"] or {"orbit": (30, 10), "fov": 40}.
     shading:  the shading (a Shading or its name), over the look's.
     frame:    a Frame (the same as camera=frame); `size`, when given, overrides its size.

@@ -384,6 +384,8 @@ TEST(ApiTyped, StrokesKnowTheirWorldPoints) {
         EXPECT_TRUE(stroke.visible);
         for (const ig::StillStrokePoint& point : stroke.points) {
             ASSERT_TRUE(point.world.has_value()) << stroke.type;
+            EXPECT_EQ(point.mesh, 1) << stroke.type; // every point has its triangle: one mesh
+            EXPECT_GE(point.triangle, 0) << stroke.type;
             const double world[3] = {point.world->x, point.world->y, point.world->z};
             double camera[3] = {rt[0][3], rt[1][3], rt[2][3]};
             for (int row = 0; row < 3; ++row)
