@@ -118,6 +118,25 @@ std::array<std::array<double, Columns>, Rows> rowsOf(const glm::mat<Columns, Row
 
 Vec3 vec3Of(const glm::dvec3& vector) { return {vector.x, vector.y, vector.z}; }
 
+/** The name in render()'s buffers that asks for Still::strokes(). */
+constexpr const char* kStrokesName = "strokes";
+
+std::vector<StillStroke> stillStrokesOf(const std::vector<StrokeRecord>& records) {
+    std::vector<StillStroke> strokes;
+    strokes.reserve(records.size());
+    for (const StrokeRecord& record : records) {
+        StillStroke stroke{record.type, record.visible, record.closed, {}};
+        stroke.points.reserve(record.points.size());
+        for (const StrokePointRecord& point : record.points) {
+            StillStrokePoint out{point.x, point.y, std::nullopt, point.mesh, point.triangle};
+            if (point.world) out.world = vec3Of(*point.world);
+            stroke.points.push_back(out);
+        }
+        strokes.push_back(std::move(stroke));
+    }
+    return strokes;
+}
+
 /** The camera a still was drawn with, in world coordinates (Camera keeps the scene's local frame). */
 StillCamera stillCameraOf(const Camera& camera) {
     StillCamera still;
@@ -160,6 +179,7 @@ struct Still::Impl {
     std::vector<Buffer> buffers;
     std::vector<RunInput> inputs; ///< the files the render read: write() never replaces one
     StillCamera camera;
+    std::optional<std::vector<StillStroke>> strokes; ///< when asked for ("strokes")
     std::vector<Warning> warnings;
     double milliseconds = 0.0;
 };
@@ -285,7 +305,13 @@ struct Renderer::Impl {
         if (pictureOut != nullptr && pictureRowBytes < std::size_t(std::max(frame.width, 0)) * 4)
             throw UsageError("the picture's rows are " + std::to_string(pictureRowBytes) + " bytes apart; " +
                              std::to_string(frame.width) + " RGBA8 pixels need " + std::to_string(frame.width * 4));
-        StillRequest request = requestOf(scene, look, frame, buffers);
+        // "strokes" is no image: it asks for the strokes' 3-D points (Still::strokes()).
+        std::vector<std::string> images;
+        for (const std::string& name : buffers)
+            if (name != kStrokesName) images.push_back(name);
+        const bool strokes = images.size() != buffers.size();
+        StillRequest request = requestOf(scene, look, frame, images);
+        request.keepStrokePoints = strokes;
         const std::string modelPath = request.modelPath;
 
         std::ostringstream log; // the command line's lines; the library returns the warnings as records
@@ -294,9 +320,11 @@ struct Renderer::Impl {
         try {
             renderer->plan(*still, stillLog);
         } catch (const UsageError&) {
-            refuseUnknownBuffers(still->graph, buffers);
+            refuseUnknownBuffers(still->graph, images);
             throw;
         }
+        if (strokes && still->graph.strokes() == nullptr)
+            throw UsageError("Renderer::render(): 'strokes' needs a look that draws lines (Look::lines)");
         budgetStill(*still);
         holdContext();
         StillResult result = renderer->execute(*still, stillLog);
@@ -314,7 +342,8 @@ struct Renderer::Impl {
         } else {
             made->picture = imageOf(picture);
         }
-        for (const std::string& name : buffers) {
+        if (strokes) made->strokes = stillStrokesOf(still->graph.strokeRecords(store, still->camera, still->scene()));
+        for (const std::string& name : images) {
             for (const std::string& resource : resourcesAskedBy(name, *still)) {
                 const auto same = [&](const Still::Impl::Buffer& kept) { return kept.resource == resource; };
                 if (std::any_of(made->buffers.begin(), made->buffers.end(), same)) continue;
@@ -371,6 +400,13 @@ void Still::write(const std::string& path) const {
 }
 
 const StillCamera& Still::camera() const { return mImpl->camera; }
+
+const std::vector<StillStroke>& Still::strokes() const {
+    if (!mImpl->strokes)
+        throw Error(Error::Kind::Usage, "Still::strokes(): no strokes in this still; ask for \"strokes\" in "
+                                        "Renderer::render()");
+    return *mImpl->strokes;
+}
 
 const std::vector<Warning>& Still::warnings() const { return mImpl->warnings; }
 

@@ -165,6 +165,7 @@ void OutputSet::stageStats(const std::string& json) { stageBytes("--stats", json
 void OutputSet::stageGraphviz(const std::string& dot) { stageBytes("--graphviz", dot.data(), dot.size()); }
 void OutputSet::stageContactSheet(const cv::Mat& image) { stageImage("--contact-sheet", image); }
 void OutputSet::stageSvg(const std::string& svg) { stageBytes("--svg", svg.data(), svg.size()); }
+void OutputSet::stageStrokes(const std::string& json) { stageBytes("--strokes", json.data(), json.size()); }
 
 void OutputSet::stageDumpImage(const std::string& fileName, const cv::Mat& image) {
     writeImageTo(mDump->stage(fileName), mDump->folder() / fileName, image);

@@ -48,6 +48,7 @@ public:
     void stageGraphviz(const std::string& dot);                      ///< --graphviz
     void stageContactSheet(const cv::Mat& image);                    ///< --contact-sheet
     void stageSvg(const std::string& svg);                           ///< --svg
+    void stageStrokes(const std::string& json);                      ///< --strokes
     void stageDumpImage(const std::string& fileName, const cv::Mat& image);
     void stageDumpManifest(const std::string& json);
 

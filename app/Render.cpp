@@ -49,6 +49,7 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     if (!options.contactSheetPath.empty()) request.keepEveryBufferFor.push_back("--contact-sheet");
     request.keepEveryBuffer = !request.keepEveryBufferFor.empty();
     request.keepStrokePaths = !options.svgPath.empty();
+    request.keepStrokePoints = !options.strokesPath.empty();
     // Per-pass milliseconds are only shown by --stats and --dump's manifest: other stills let passes overlap.
     request.timePasses = !options.statsPath.empty() || !options.dumpDirectory.empty();
     request.memoryLimitBytes = memoryLimitOf(options);

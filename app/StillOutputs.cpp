@@ -92,6 +92,13 @@ std::string svgOf(const RenderOptions& options, const PreparedStill& still, Reso
     return svgDocument(options.width, options.height, still.graph.svgLayers(store, options.svgTolerance), document);
 }
 
+/** --strokes: every kept stroke with its points' 3-D points (passes/lines/StrokePoints.h), one line of JSON
+ *  (docs/datasets.md, docs/schemas/strokes.schema.json). */
+std::string strokesOf(const RenderOptions& options, const PreparedStill& still, StillResult& result) {
+    return strokesJson(options.width, options.height, still.camera, still.scene(),
+                       still.graph.strokeRecords(result.store(), still.camera, still.scene()));
+}
+
 /** The objects the G-buffer's objectId field numbers (scene/ObjectIds.h): id (the field's value), the node's name,
  *  its path and its meshes' names, for a reader of objectid.exr to tell which pixels belong to which node. */
 Json describeObjects(const Scene& scene) {
@@ -216,6 +223,30 @@ Json describeCamera(const Camera& camera) {
             {"extrinsics", matrixRows(camera.openCvExtrinsics())}};
 }
 
+std::string strokesJson(int width, int height, const Camera& camera, const Scene& scene,
+                        const std::vector<StrokeRecord>& strokes) {
+    Json meshes = Json::array();
+    for (std::size_t index = 0; index < scene.meshes.size(); ++index)
+        meshes.push_back({{"id", index + 1}, {"name", scene.meshes[index].name}});
+    Json list = Json::array();
+    for (const StrokeRecord& stroke : strokes) {
+        Json points = Json::array();
+        for (const StrokePointRecord& point : stroke.points) {
+            Json entry = {{"x", point.x}, {"y", point.y}};
+            entry["world"] = point.world ? vectorJson(*point.world) : Json(nullptr);
+            entry["mesh"] = point.mesh > 0 ? Json(point.mesh) : Json(nullptr);
+            entry["triangle"] = point.triangle >= 0 ? Json(point.triangle) : Json(nullptr);
+            points.push_back(std::move(entry));
+        }
+        list.push_back(
+            {{"type", stroke.type}, {"visible", stroke.visible}, {"closed", stroke.closed}, {"points", points}});
+    }
+    const Json file = {{"format", "inkgraph-strokes"},     {"version", 1},     {"width", width}, {"height", height},
+                       {"camera", describeCamera(camera)}, {"meshes", meshes}, {"strokes", list}};
+    // One line: a still's strokes run to many thousand points.
+    return file.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
+}
+
 Json describeLook(const PreparedStill& still, const std::string& stylePath) {
     const Look& look = still.request.look;
     const StillGraph& graph = still.graph;
@@ -263,6 +294,7 @@ void stageStillOutputs(const RenderOptions& options, const PreparedStill& still,
     ResourceStore& store = result.store();
     if (!options.contactSheetPath.empty()) outputs.stageContactSheet(contactSheetOf(still, store));
     if (!options.svgPath.empty()) outputs.stageSvg(svgOf(options, still, store));
+    if (!options.strokesPath.empty()) outputs.stageStrokes(strokesOf(options, still, result));
     if (!options.dumpDirectory.empty()) stageDump(options, still, result, outputs);
 }
 

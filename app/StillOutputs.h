@@ -42,5 +42,9 @@ void stageStillOutputs(const RenderOptions& options, const PreparedStill& still,
 
 /** JSON text; a path that is not valid UTF-8 gets U+FFFD in place of the bad bytes rather than failing the run. */
 std::string jsonText(const nlohmann::ordered_json& json);
+/** --strokes' file (docs/datasets.md, "Strokes with their 3-D points"): one line of JSON, the camera as the dump
+ *  manifest's (describeCamera()), the scene's meshes by id, and `strokes`. */
+std::string strokesJson(int width, int height, const Camera& camera, const Scene& scene,
+                        const std::vector<StrokeRecord>& strokes);
 
 } // namespace inkgraph

@@ -519,6 +519,15 @@ std::vector<Flag> makeFlags() {
                              if (lowercaseExtension(value) != ".svg")
                                  throw UsageError("--svg: '" + value + "' must be a .svg file");
                          }));
+    flags.push_back(flag({"--strokes"}, "FILE.json", S::Output,
+                         "every kept stroke of every drawn line type as JSON: its type, whether it is visible,\n"
+                         "and per point the output pixel (x, y), the world point it came from, its mesh and\n"
+                         "triangle (docs/datasets.md, schema docs/schemas/strokes.schema.json)",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.strokesPath = value;
+                             if (lowercaseExtension(value) != ".json")
+                                 throw UsageError("--strokes: '" + value + "' must be a .json file");
+                         }));
     Flag svgTolerance =
         flag({"--svg-tolerance"}, "PX", S::Output,
              "--svg: how far a simplified path may leave the traced pixels, in output pixels\n"

@@ -65,7 +65,8 @@ void checkGivenFlags(const RenderOptions& options, const std::vector<const Flag*
                          " exceeds the largest buffer side, " + std::to_string(kMaxImageSide));
     refuseWithoutEffect(options, given, isStyle);
     if (!flagsOnly && options.outputPath.empty() && !options.printPlan && options.dumpDirectory.empty() &&
-        options.graphvizPath.empty() && options.contactSheetPath.empty() && options.svgPath.empty())
+        options.graphvizPath.empty() && options.contactSheetPath.empty() && options.svgPath.empty() &&
+        options.strokesPath.empty())
         throw UsageError("missing -o OUT.png (or --print-plan / --graphviz to only show the plan)");
     if (options.eye && options.target && *options.eye == *options.target)
         throw UsageError("--eye and --target must differ");
@@ -73,6 +74,8 @@ void checkGivenFlags(const RenderOptions& options, const std::vector<const Flag*
         return flag.section != HelpSection::Look && flag.section != HelpSection::Lines;
     });
     if (!options.svgPath.empty() && look.lines.empty()) throw UsageError("--svg: no line types to write (add --lines)");
+    if (!options.strokesPath.empty() && look.lines.empty())
+        throw UsageError("--strokes: no line types to write (add --lines)");
     if (!options.statsPath.empty() && !rendersImages(options))
         throw UsageError("--stats needs -o or --dump: with --print-plan alone nothing is rendered or timed");
 }
@@ -87,13 +90,14 @@ const std::vector<std::pair<std::string, std::string RenderOptions::*>>& outputP
         {"--graphviz", &RenderOptions::graphvizPath},
         {"--contact-sheet", &RenderOptions::contactSheetPath},
         {"--svg", &RenderOptions::svgPath},
+        {"--strokes", &RenderOptions::strokesPath},
     };
     return kFlags;
 }
 
 bool rendersImages(const RenderOptions& options) {
     return !options.outputPath.empty() || !options.dumpDirectory.empty() || !options.contactSheetPath.empty() ||
-           !options.svgPath.empty();
+           !options.svgPath.empty() || !options.strokesPath.empty();
 }
 
 RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {

@@ -71,6 +71,7 @@ struct RenderOptions {
     std::string graphvizPath;     ///< --graphviz: the plan as DOT
     std::string contactSheetPath; ///< --contact-sheet: every computed buffer in one labelled PNG
     std::string svgPath;          ///< --svg: the line layers as vector paths
+    std::string strokesPath;      ///< --strokes: every kept stroke with its points' 3-D points, JSON
     double svgTolerance = 0.5;    ///< --svg-tolerance: simplification, output pixels
     bool printPlan = false;
     std::string eglPlatform = "auto";            ///< auto, device, surfaceless

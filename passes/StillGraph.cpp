@@ -256,6 +256,56 @@ std::vector<SvgLineLayer> StillGraph::svgLayers(ResourceStore& store, double tol
     return svgLayersOf(drawn, tolerancePixels, colors);
 }
 
+namespace {
+
+/** The G-buffer's triangle id field (global triangle index + 1): the triangle under an image-space stroke point. */
+std::string triangleIdResource() { return std::string(kGBufferPass) + ".triangleId"; }
+
+} // namespace
+
+std::vector<std::string> StillGraph::strokePointResources() const {
+    if (!mStrokes) return {};
+    std::vector<std::string> resources = {strokePathsResource(), std::string(kGBufferPass) + "." + GBufferPass::kDepth};
+    resources.push_back(triangleIdResource());
+    for (const StrokeInput& input : mStrokes->settings().inputs) {
+        const LineType* type = findLineType(input.type);
+        if (type == nullptr) continue;
+        if (type->family == LineFamily::ObjectSpace) resources.push_back(input.resource);
+        if (!type->strokePointsImage.empty()) resources.push_back(type->strokePointsImage);
+    }
+    return resources;
+}
+
+std::vector<StrokeRecord> StillGraph::strokeRecords(ResourceStore& store, const Camera& camera,
+                                                    const Scene& scene) const {
+    if (!mStrokes) return {};
+    StrokePointSetup setup;
+    setup.drawn = &store.object<DrawnStrokes>(strokePathsResource());
+    setup.camera = &camera;
+    setup.scene = &scene;
+    setup.depth = store.image(std::string(kGBufferPass) + "." + GBufferPass::kDepth);
+    setup.triangleIds = store.image(triangleIdResource());
+    std::size_t offset = 0;
+    for (const Mesh& mesh : scene.meshes) {
+        setup.meshTriangleOffsets.push_back(offset);
+        offset += mesh.triangleCount();
+    }
+    for (const StrokeInput& input : setup.drawn->inputs) {
+        const LineType* type = findLineType(input.type);
+        StrokePointInput points;
+        points.visible = type == nullptr || !type->hiddenLines;
+        if (type != nullptr && type->family == LineFamily::ObjectSpace) {
+            points.source = StrokePointSource::Skeleton;
+            points.skeleton = &store.object<LineSkeleton>(input.resource);
+        } else if (type != nullptr && !type->strokePointsImage.empty()) {
+            points.source = StrokePointSource::Image;
+            points.image = store.image(type->strokePointsImage);
+        }
+        setup.inputs.push_back(points);
+    }
+    return inkgraph::strokeRecords(setup);
+}
+
 const LineLayerPass* StillGraph::lineLayer(const std::string& type) const {
     auto found = mLineLayers.find(type);
     return found == mLineLayers.end() ? nullptr : found->second;

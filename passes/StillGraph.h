@@ -13,6 +13,7 @@
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
 #include "passes/Look.h"
+#include "passes/lines/StrokePoints.h"
 #include "passes/shade/ShadeMap.h"
 #include "postfx/SvgLines.h"
 #include "scene/Scene.h"
@@ -94,6 +95,13 @@ public:
      *  in composite order: the strokes the line layers were drawn from, as `store` holds them after a plan that
      *  requested strokePathsResource(). Empty when no line is drawn. */
     std::vector<SvgLineLayer> svgLayers(ResourceStore& store, double tolerancePixels) const;
+    /** --strokes: what strokeRecords() reads, for the plan to compute and keep: the kept strokes, the G-buffer's depth
+     *  and triangle ids, each object-space type's skeleton and each mesh-edge type's
+     *  point image. Empty when no line is drawn. */
+    std::vector<std::string> strokePointResources() const;
+    /** --strokes: every kept stroke with its points' 3-D points (passes/lines/StrokePoints.h), from `store` after a
+     *  plan that requested strokePointResources(). Empty when no line is drawn. */
+    std::vector<StrokeRecord> strokeRecords(ResourceStore& store, const Camera& camera, const Scene& scene) const;
     /** The stroke stage, or null when no line type is drawn. */
     const StrokesPass* strokes() const { return mStrokes; }
     /** The CPU line layer of `type` (what its last run did: report(), kernel(); its skeleton is the graph's

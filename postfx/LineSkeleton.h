@@ -15,10 +15,20 @@ struct LinePoint {
     float width = 1.0f;    ///< the stroke's width here as a share of the layer's width, in (0, 1] (line weight)
 };
 
+/** Where a line sample lies on the mesh, for lines found on the mesh itself (object space): --strokes gives each
+ *  stroke point its own 3-D point (passes/lines/StrokePoints.h). */
+struct SurfacePoint {
+    cv::Point3d position; ///< the scene's local frame (Scene::origin), like the mesh positions
+    int mesh = -1;        ///< index into Scene::meshes, or -1 when not known
+    long triangle = -1;   ///< the mesh's own triangle index, or -1 when not known
+};
+
 /** What a line kernel finds, at the resolution of the buffers it read (the data resolution). */
 struct LineSkeleton {
     cv::Mat mask;                  ///< CV_8UC1, the data size: 255 on each pixel a line passes through, else 0
     std::vector<LinePoint> points; ///< the line's sub-pixel samples; a mask pixel has one or more
+    /** One per point, where the kernel found the line on the mesh (object-space types); else empty. */
+    std::vector<SurfacePoint> surface;
 };
 
 /** A skeleton from a one-pixel mask drawn elsewhere (e.g. GL lines): every non-zero pixel becomes a point at its

@@ -912,6 +912,32 @@ void defineFrame(py::module_& m) {
         });
 }
 
+/** Still.strokes(): the strokes as the --strokes file's "strokes" list holds them (docs/datasets.md). */
+py::list strokeDicts(const std::vector<ig::StillStroke>& strokes) {
+    py::list list;
+    for (const ig::StillStroke& stroke : strokes) {
+        py::list points;
+        for (const ig::StillStrokePoint& point : stroke.points) {
+            py::dict entry;
+            entry["x"] = point.x;
+            entry["y"] = point.y;
+            entry["world"] = point.world
+                                 ? py::object(py::list(py::make_tuple(point.world->x, point.world->y, point.world->z)))
+                                 : py::object(py::none());
+            entry["mesh"] = point.mesh > 0 ? py::object(py::int_(point.mesh)) : py::object(py::none());
+            entry["triangle"] = point.triangle >= 0 ? py::object(py::int_(point.triangle)) : py::object(py::none());
+            points.append(entry);
+        }
+        py::dict entry;
+        entry["type"] = stroke.type;
+        entry["visible"] = stroke.visible;
+        entry["closed"] = stroke.closed;
+        entry["points"] = points;
+        list.append(entry);
+    }
+    return list;
+}
+
 void defineStill(py::module_& m) {
     py::class_<ig::StillCamera>(m, "StillCamera",
                                 "The camera a still was drawn with, in world coordinates. The matrices are float64 "
@@ -989,6 +1015,12 @@ void defineStill(py::module_& m) {
             "each buffer's own name).")
         .def_property_readonly(
             "camera", [](const PythonStill& self) { return self.still.camera(); }, "The StillCamera it was drawn with.")
+        .def(
+            "strokes", [](const PythonStill& self) { return strokeDicts(self.still.strokes()); },
+            "Every kept stroke of every drawn line type, when render() was asked for 'strokes' (else UsageError): a "
+            "list of dicts {'type', 'visible', 'closed', 'points'}, each point {'x', 'y', 'world' ([X, Y, Z] or "
+            "None), 'mesh' (id or None), 'triangle' (global index or None)}: the 'strokes' list of the command "
+            "line's --strokes file, value for value.")
         .def_property_readonly(
             "warnings", [](const PythonStill& self) { return warningObjects(self.still.warnings()); },
             "What the load (for a still that posed its scene) and the render warned about, as InkgraphWarning "

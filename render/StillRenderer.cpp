@@ -195,6 +195,10 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     std::vector<std::string> requested = {still.graph.finalResource};
     if (req.keepStrokePaths && !still.graph.strokePathsResource().empty())
         requested.push_back(still.graph.strokePathsResource());
+    if (req.keepStrokePoints)
+        for (const std::string& resource : still.graph.strokePointResources())
+            if (std::find(requested.begin(), requested.end(), resource) == requested.end())
+                requested.push_back(resource);
     for (const std::string& extra : expandWildcards(req.extraOutputs, still.graph))
         if (std::find(requested.begin(), requested.end(), extra) == requested.end()) requested.push_back(extra);
     try {

@@ -67,6 +67,9 @@ struct StillRequest {
     bool loadsImageIo = false;     ///< the outputs load the OpenImageIO module (its libraries count in the budget)
     /** Keep the stroke stage's strokes (StillGraph::strokePathsResource()) for StillGraph::svgLayers() (--svg). */
     bool keepStrokePaths = false;
+    /** Keep what StillGraph::strokeRecords() reads (StillGraph::strokePointResources(): --strokes, Still::strokes()).
+     */
+    bool keepStrokePoints = false;
     std::string animation; ///< LoadOptions::animation: the pose to load
     /** LoadOptions::expressions and lookAt: the VRM face to load. */
     std::vector<ExpressionWeight> expressions;

@@ -9,8 +9,10 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace inkgraph {
 namespace {
@@ -61,6 +63,12 @@ void MeshEdgesPass::declare(PassBuilder& builder) const {
                        std::string("the one-pixel skeleton of the mesh's ") +
                            (isHidden(field) ? "hidden " + kindOf(field) : std::string(field)) +
                            " edges, at the --supersample size"});
+    for (const char* field : kFields)
+        builder.write(std::string(field) + kPointsSuffix, {Format::RGBA32F, mSettings.supersample}, Need::Optional,
+                      {"", Appearance::Data,
+                       std::string("--strokes: on each line pixel of ") + field +
+                           ", the fragment's view position along its edge and the edge's triangle (global index + "
+                           "1)"});
 }
 
 void MeshEdgesPass::describe(nlohmann::ordered_json& report) const {
@@ -90,7 +98,35 @@ MeshEdgesPass::EdgeLines MeshEdgesPass::uploadEdgeLines(const std::string& outpu
     lines.vertexArray->setIndexBuffer(*lines.indices);
     mScene.meshes()[meshIndex].materialAttributes.attachTo(*lines.vertexArray);
     lines.indexCount = GLsizei(indices.size());
+    if (mPointsWanted) {
+        const std::vector<float> triangles = edgeTriangles(meshIndex, indices);
+        lines.triangles.emplace(triangles.data(), triangles.size() * sizeof(float), label + " triangles");
+    }
     return lines;
+}
+
+std::vector<float> MeshEdgesPass::edgeTriangles(std::size_t meshIndex,
+                                                const std::vector<std::uint32_t>& indices) const {
+    const Scene& scene = mScene.scene();
+    std::size_t offset = 0;
+    for (std::size_t mesh = 0; mesh < meshIndex; ++mesh) offset += scene.meshes[mesh].triangleCount();
+    // The edges' vertex pairs, each to the first triangle (in the mesh's order) that has it.
+    std::unordered_map<std::uint64_t, std::uint32_t> wanted;
+    const auto key = [](std::uint32_t a, std::uint32_t b) {
+        return (std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b));
+    };
+    for (std::size_t edge = 0; edge + 1 < indices.size(); edge += 2)
+        wanted.emplace(key(indices[edge], indices[edge + 1]), 0u);
+    const std::vector<glm::uvec3>& triangles = scene.meshes[meshIndex].triangles;
+    for (std::size_t triangle = triangles.size(); triangle-- > 0;)
+        for (int corner = 0; corner < 3; ++corner) {
+            const auto found = wanted.find(key(triangles[triangle][corner], triangles[triangle][(corner + 1) % 3]));
+            if (found != wanted.end()) found->second = std::uint32_t(offset + triangle + 1);
+        }
+    std::vector<float> perEdge;
+    for (std::size_t edge = 0; edge + 1 < indices.size(); edge += 2)
+        perEdge.push_back(float(wanted[key(indices[edge], indices[edge + 1])]));
+    return perEdge;
 }
 
 std::size_t MeshEdgesPass::drawEdgeLines(const GlProgram& program, const std::vector<EdgeLines>& lines) {
@@ -102,10 +138,20 @@ std::size_t MeshEdgesPass::drawEdgeLines(const GlProgram& program, const std::ve
         // An edge through what a material cuts out is not drawn (the lines follow the cut-out surface).
         if (transparency) mScene.bindMaterial(program, index, MaterialUse::Coverage);
         mesh.vertexArray->bind();
-        glDrawElements(GL_LINES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        // The edge's triangle for the "-points" output: gl_PrimitiveID counts points, two per edge, and lines.
+        // Without a "-points" output the shader reads nothing from it, but a buffer is bound all the same.
+        if (!mesh.triangles && !mNoTriangles) {
+            const float none = 0.0f;
+            mNoTriangles.emplace(&none, sizeof none, mName + " no edge triangles");
+        }
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, mesh.triangles ? mesh.triangles->id() : mNoTriangles->id());
         // GL's diamond-exit rule leaves out a line's last pixel, so two edges of a chain that meet head to head
-        // would leave a one-pixel gap; the end points, drawn as 1-pixel points, close it.
+        // would leave a one-pixel gap; the end points, drawn as 1-pixel points, close it. Drawn first, so where a
+        // line passes over an end point's pixel its point (nearer the pixel centre's ray) is the one kept.
+        glUniform1i(program.uniform("primitivesPerEdge"), 2);
         glDrawElements(GL_POINTS, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        glUniform1i(program.uniform("primitivesPerEdge"), 1);
+        glDrawElements(GL_LINES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
         edges += std::size_t(mesh.indexCount) / 2;
     }
     return edges;
@@ -137,8 +183,18 @@ void MeshEdgesPass::prepare(GlPassContext& context) {
             {mName + " hidden lines", "edges/edges.vert", "edges/edges.frag", defines, {"common/material.glsl"}}));
     }
     const std::size_t meshCount = mScene.meshes().size();
+    mPointsWanted = false;
+    for (const char* field : kFields)
+        mPointsWanted = mPointsWanted || context.isLive(std::string(field) + kPointsSuffix);
     const bool anyLive = kindLive("silhouette") || kindLive("crease") || kindLive("border");
     if (!anyLive) return;
+    // Edge lists uploaded by an earlier run without the edges' triangles are uploaded again with them.
+    const auto lacksTriangles = [](const std::vector<EdgeLines>& meshes) {
+        return std::any_of(meshes.begin(), meshes.end(),
+                           [](const EdgeLines& lines) { return lines.indexCount > 0 && !lines.triangles; });
+    };
+    if (mPointsWanted && lacksTriangles(mCreaseLines)) mCreaseLines.clear();
+    if (mPointsWanted && lacksTriangles(mBorderLines)) mBorderLines.clear();
     for (std::size_t mesh = 0; mesh < meshCount; ++mesh) mScene.edgeAdjacency(mesh);
 
     // Creases and borders do not depend on the view: chosen and uploaded once, outside the timed execute().
@@ -226,6 +282,15 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
         lineTarget.attachColor(int(slot), gl.outputTexture(live[slot]));
         slots.push_back(int(slot));
     }
+    // Each live "-points" output in a slot after the masks, drawn with its field as the shader's second output.
+    std::vector<int> pointSlots(live.size(), -1);
+    for (std::size_t slot = 0; slot < live.size(); ++slot) {
+        const std::string points = std::string(live[slot]) + kPointsSuffix;
+        if (!gl.isLive(points)) continue;
+        pointSlots[slot] = int(slots.size());
+        lineTarget.attachColor(pointSlots[slot], gl.outputTexture(points));
+        slots.push_back(pointSlots[slot]);
+    }
     lineTarget.finish(slots);
     lineTarget.bind();
     clearColorAndDepth(int(slots.size()));
@@ -238,7 +303,11 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
         program.use();
         glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
         glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
-        lineTarget.finish({int(slot)});
+        glUniform1i(program.uniform("writePoints"), pointSlots[slot] >= 0 ? 1 : 0);
+        if (pointSlots[slot] >= 0)
+            lineTarget.finish({int(slot), pointSlots[slot]});
+        else
+            lineTarget.finish({int(slot)});
         const std::size_t drawn = drawEdgeLines(program, linesOf(field));
         (field == "silhouette"          ? mEdgesDrawn.silhouette
          : field == "crease"            ? mEdgesDrawn.crease
@@ -249,6 +318,7 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
     }
 
     glBindTextureUnit(0, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
     glBindVertexArray(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -12,6 +12,10 @@
  *  | <name>.hidden-silhouette, .hidden-crease, .hidden-border                                                  |
  *  |                     | r8 xS  | optional | the same edges where the model hides them (--hidden-lines)       |
  *
+ *  | <name>.<kind>-points | rgba32f xS | optional | --strokes: per line pixel of output <kind>, the fragment's view |
+ *  |                     |        |          | position (interpolated along its edge) and the edge's triangle (global
+ * index + 1)  |
+ *
  *  Every output is `supersample` (S) times the frame size. Only live outputs are computed; a plan that reads none
  *  culls the pass, and then nothing (not even the adjacency) is derived. A hidden-<kind> output draws the same edges
  *  as <kind> with the fragment shader's depth test turned round (HIDDEN in shaders/edges/edges.frag), against the one
@@ -81,6 +85,9 @@ public:
     static constexpr std::array<const char*, 6> kFields = {"silhouette",        "crease",        "border",
                                                            "hidden-silhouette", "hidden-crease", "hidden-border"};
 
+    /** "<kind>-points": the field with each line fragment's 3-D point, drawn with <kind> only when live. */
+    static constexpr const char* kPointsSuffix = "-points";
+
     /** Throws std::invalid_argument for a crease angle outside [0, 180] or not finite, a crease minimum length
      *  negative or not finite, or supersample < 1. */
     MeshEdgesPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
@@ -125,10 +132,15 @@ private:
         std::optional<GlBuffer> indices; ///< empty when the mesh has no such edges (GL refuses empty buffers)
         std::optional<GlVertexArray> vertexArray;
         GLsizei indexCount = 0;
+        /** Per edge, the global index + 1 of a triangle holding it (float), for the "-points" outputs; empty unless
+         *  one is live. */
+        std::optional<GlBuffer> triangles;
     };
 
     EdgeLines uploadEdgeLines(const std::string& output, std::size_t meshIndex,
                               const std::vector<std::uint32_t>& indices) const;
+    /** Per edge of `indices` (vertex pairs of mesh `meshIndex`), the global index + 1 of a triangle holding it. */
+    std::vector<float> edgeTriangles(std::size_t meshIndex, const std::vector<std::uint32_t>& indices) const;
     /** Draws `lines` (one per mesh) as GL_LINES with `program` (in use); returns the number of edges. */
     std::size_t drawEdgeLines(const GlProgram& program, const std::vector<EdgeLines>& lines);
 
@@ -146,6 +158,8 @@ private:
     PassDepthBuffer mDepth;                    ///< the pass's own depth attachment, kept between runs
     EdgeCounts mEdgesDrawn;
     std::optional<CreaseCounts> mCreaseCounts;
+    std::optional<GlBuffer> mNoTriangles; ///< bound for the shader's edge triangles when no "-points" output is live
+    bool mPointsWanted = false;           ///< some "-points" output is live (prepare()): the edge lists carry triangles
 };
 
 } // namespace inkgraph

@@ -105,6 +105,11 @@ struct LineType {
      *  --hidden-dash, in the raster and in the SVG. */
     bool hiddenLines = false;
 
+    /** --strokes (passes/lines/StrokePoints.h): the image of this type's line fragments' view positions and
+     *  triangles its 3-D points come from (the mesh edges' "mesh-edges.<kind>-points"); empty for the others, whose
+     *  family says where (the skeleton's own points in object space, else the G-buffer's depth). */
+    std::string strokePointsImage;
+
     /** Found as a skeleton at the data resolution (so --supersample applies, and --svg traces the skeleton). */
     bool strokedOnCpu() const { return family != LineFamily::GlDrawn; }
 };

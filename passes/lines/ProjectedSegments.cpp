@@ -33,7 +33,8 @@ bool SegmentProjector::isVisible(double x, double y, double pointDepth) const {
     return false;
 }
 
-void SegmentProjector::add(const glm::dvec3& a, const glm::dvec3& b, double strengthA, double strengthB) {
+void SegmentProjector::add(const glm::dvec3& a, const glm::dvec3& b, double strengthA, double strengthB, int mesh,
+                           long triangle) {
     const int width = mDepth.cols, height = mDepth.rows;
     // Pixel coordinates of a clip-space point: x right, y down, pixel centres at integers.
     auto toPixel = [&](const glm::dvec4& clip) {
@@ -74,6 +75,8 @@ void SegmentProjector::add(const glm::dvec3& a, const glm::dvec3& b, double stre
         if (col < 0 || row < 0 || col >= width || row >= height) continue;
         if (isVisible(pixel.x, pixel.y, pointDepth) != keepVisible) continue;
         mSkeleton.points.push_back({cv::Point2f(float(pixel.x), float(pixel.y)), float(strength)});
+        const glm::dvec3 onMesh = a + along * (b - a);
+        mSkeleton.surface.push_back({cv::Point3d(onMesh.x, onMesh.y, onMesh.z), mesh, triangle});
         mSkeleton.mask.at<uchar>(row, col) = 255;
     }
 }

@@ -37,8 +37,11 @@ public:
     SegmentProjector(const Camera& camera, const cv::Mat& depth, double depthJump, SegmentVisibility keep);
 
     /** Samples segment `a`-`b` (the scene's local frame, like the positions); the strength runs linearly from
-     *  `strengthA` to `strengthB` along the 3-D segment, clamped to 1, and samples of strength <= 0 are dropped. */
-    void add(const glm::dvec3& a, const glm::dvec3& b, double strengthA = 1.0, double strengthB = 1.0);
+     *  `strengthA` to `strengthB` along the 3-D segment, clamped to 1, and samples of strength <= 0 are dropped.
+     *  Each sample's 3-D point goes into the skeleton's `surface` with `mesh` and `triangle` (the mesh's own
+     *  index; -1 when not known), for --strokes. */
+    void add(const glm::dvec3& a, const glm::dvec3& b, double strengthA = 1.0, double strengthB = 1.0, int mesh = -1,
+             long triangle = -1);
 
     /** The skeleton so far, moved out. */
     LineSkeleton take() { return std::move(mSkeleton); }

@@ -57,6 +57,11 @@ class Result:
         """Milliseconds the render took (without loading the model)."""
         return self.still.milliseconds
 
+    def strokes(self) -> list[dict[str, Any]]:
+        """Every kept stroke with its points' world points, mesh and triangle (Still.strokes()), when render() was
+        asked for buffers=["strokes"]: the --strokes file's "strokes" list (docs/datasets.md)."""
+        return self.still.strokes()
+
     def write(self, path: PathLike) -> None:
         """Writes the picture; the format follows the extension (.png; .exr, .tif, .jpg through OpenImageIO). Raises
         OutputError for a place that is not a regular file or a new name, UsageError for a file the render read."""
@@ -88,8 +93,9 @@ def render(
               the look's.
     buffers:  buffers to return besides the picture: "normal", "view", "wVec", "nDotV", "depth", "coverage",
               "baseColor", "radial", "materialId", "objectId", "meshId", "triangleId", "barycentric" (the G-buffer;
-              Scene.objects and Scene.meshes name the ids), "gbuffer.*", "lines.<type>" (the coverage of a line type's lines), "lines.*", "picture"
-              (inkgraph.buffer_names(look) lists them).
+              Scene.objects and Scene.meshes name the ids), "gbuffer.*", "lines.<type>" (the coverage of a line
+              type's lines), "lines.*", "picture" (inkgraph.buffer_names(look) lists them); and "strokes", no image,
+              for Result.strokes().
     camera:   a Frame, or camera flags as `look` takes them: ["--orbit", "30,10"] or {"orbit": (30, 10), "fov": 40}.
     shading:  the shading (a Shading or its name), over the look's.
     frame:    a Frame (the same as camera=frame); `size`, when given, overrides its size.
@@ -123,7 +129,7 @@ def render(
     # name of a buffer already there (both "depth" and "gbuffer.depth") as well.
     arrays = {name: still.buffer(name) for name in still.buffer_names}
     for name in buffer_list:
-        if name not in arrays and not name.endswith(".*"):
+        if name not in arrays and not name.endswith(".*") and name != "strokes":
             arrays[name] = still.buffer(name)
     return Result(picture=still.picture, buffers=arrays, still=still, warnings=load_warnings + still.warnings)
 

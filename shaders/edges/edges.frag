@@ -8,6 +8,14 @@
 // With HIDDEN (the hidden-* outputs, --hidden-lines) the test is turned round: a fragment is kept exactly where the
 // visible test drops it, so every fragment of an edge lands in one of the two outputs and none in both.
 layout(location = 0) out float outLine;
+// --strokes (MeshEdgesPass "<kind>-points", when writePoints): the fragment's view position, interpolated along its
+// edge, and the edge's triangle (global index + 1) from the edge list's buffer: gl_PrimitiveID counts the draw's
+// lines, or its points, two per edge.
+layout(location = 1) out vec4 outPoint;
+in vec3 viewPosition;
+layout(std430, binding = 1) readonly buffer EdgeTriangles { float edgeTriangle[]; };
+uniform bool writePoints;
+uniform int primitivesPerEdge;
 
 // Window depth of the model, polygon offset applied, reversed-Z (gl/GlObjects.h): 1 at the near plane, 0 = nothing,
 // so the farthest is the smallest and a fragment is behind it when its depth is smaller.
@@ -30,4 +38,6 @@ void main() {
     if (gl_FragCoord.z < farthest) discard;
 #endif
     outLine = 1.0;
+    outPoint = vec4(0.0);
+    if (writePoints) outPoint = vec4(viewPosition, edgeTriangle[gl_PrimitiveID / primitivesPerEdge]);
 }

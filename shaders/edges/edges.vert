@@ -4,9 +4,12 @@ layout(location = 0) in vec3 inPosition;
 
 uniform mat4 viewFromModel;
 uniform mat4 clipFromView;
+out vec3 viewPosition; // edges.frag's --strokes points
 
 void main() {
-    gl_Position = clipFromView * (viewFromModel * vec4(inPosition, 1.0));
+    vec4 view = viewFromModel * vec4(inPosition, 1.0);
+    viewPosition = view.xyz;
+    gl_Position = clipFromView * view;
 #ifdef MATERIAL_ALPHA
     passMaterialAttributes();
 #endif

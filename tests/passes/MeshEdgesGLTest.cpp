@@ -719,7 +719,7 @@ TEST_F(MeshEdgesCube, TwoRunsGiveIdenticalMasks) {
     EXPECT_GT(cv::countNonZero(first["hidden-crease"]), 50); // 3 edges of some 30 px at 160x120
 }
 
-TEST(MeshEdgesPass, DeclaresSixOptionalOutputsAtTheSupersampledScale) {
+TEST(MeshEdgesPass, DeclaresItsOptionalOutputsAtTheSupersampledScale) {
     const Scene scene = makeScene(makeCube({0.0f, 0.0f, 0.0f}, 1.0f));
     GpuScene gpuScene(scene, glm::dvec3(0.0));
     ShaderLibrary shaders;
@@ -729,11 +729,14 @@ TEST(MeshEdgesPass, DeclaresSixOptionalOutputsAtTheSupersampledScale) {
     const MeshEdgesPass pass("mesh-edges", shaders, gpuScene, frame, settings);
     PassBuilder builder("mesh-edges");
     pass.declare(builder);
-    ASSERT_EQ(builder.writes().size(), 6u); // each kind visible and hidden
+    ASSERT_EQ(builder.writes().size(), 12u); // each kind visible and hidden, and each one's --strokes points
     for (std::size_t i = 0; i < 6; ++i) {
         EXPECT_EQ(builder.writes()[i].field, MeshEdgesPass::kFields[i]);
         EXPECT_EQ(builder.writes()[i].desc, (TextureDesc{Format::R8, 3}));
         EXPECT_EQ(builder.writes()[i].need, Need::Optional);
+        EXPECT_EQ(builder.writes()[i + 6].field, std::string(MeshEdgesPass::kFields[i]) + "-points");
+        EXPECT_EQ(builder.writes()[i + 6].desc, (TextureDesc{Format::RGBA32F, 3}));
+        EXPECT_EQ(builder.writes()[i + 6].need, Need::Optional);
     }
     EXPECT_TRUE(builder.reads().empty());
 }

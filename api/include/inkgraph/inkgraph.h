@@ -504,6 +504,22 @@ struct StillCamera {
     CameraSource source = CameraSource::Auto;
 };
 
+/** One point of a StillStroke (docs/datasets.md, "Strokes with their 3-D points"). */
+struct StillStrokePoint {
+    double x = 0.0, y = 0.0;    ///< output pixels: x right, y down, the centre of pixel (0, 0) at (0, 0) (as K's)
+    std::optional<Vec3> world;  ///< the world point it came from; unset where no surface lies under the point
+    int mesh = 0;               ///< the Scene's mesh index + 1; 0 when not known
+    std::int64_t triangle = -1; ///< global triangle index over the scene's meshes in order; -1 when not known
+};
+
+/** A kept stroke of one drawn line type, as the command line's --strokes writes it. */
+struct StillStroke {
+    std::string type;    ///< "contour", "hidden-crease", ...
+    bool visible = true; ///< false for the hidden-lines types
+    bool closed = false;
+    std::vector<StillStrokePoint> points; ///< in order along the stroke
+};
+
 /** One rendered still: the picture, every buffer asked for, the camera and the warnings. */
 class INKGRAPH_API Still {
 public:
@@ -517,6 +533,10 @@ public:
     std::vector<std::string> bufferNames() const;
     /** The camera it was drawn with. */
     const StillCamera& camera() const;
+    /** Every kept stroke of every drawn line type with its points' world points, mesh and triangle, in the order
+     *  --strokes writes them (values rounded alike: x, y to 1e-4 pixels, world to 7 digits), when render() was asked
+     *  for "strokes"; throws Error(Usage) otherwise. */
+    const std::vector<StillStroke>& strokes() const;
     /** What the load (for a still that posed its scene) and the render warned about. */
     const std::vector<Warning>& warnings() const;
     /** Writes the picture as Image::write() does, but never over a file the render read (the model, its buffers
@@ -534,14 +554,14 @@ private:
     std::shared_ptr<const Impl> mImpl;
 };
 
-/** The buffers render() can return: "normal", "view", "wVec", "nDotV", "depth", "coverage", "baseColor", "radial",
- *  "materialId", "objectId", "meshId", "triangleId" (the G-buffer's fields: float32 exact integers, 0 for the
- *  background; Scene::objects() and Scene::meshes() name the ids), "barycentric" (4 x float32: the visible point's
- *  weights in its triangle's corners, alpha 1 on the model), "gbuffer.*" (every field, the labels included),
- * "lines.<type>" (the drawn layer of a line type, its coverage from 0 off the line to 255 on it), "lines.*" (every
- * drawn type), "picture". render() also takes the graph's own name of any image it computes (`inkgraph render
- * --print-plan`: "shade.color", "gbuffer.zBuffer"); a name that is neither is refused (Error(Usage), naming the buffers
- * the look has). */
+/** The buffers render() can return (and "strokes", which asks for Still::strokes() and is no image): "normal", "view",
+ * "wVec", "nDotV", "depth", "coverage", "baseColor", "radial", "materialId", "objectId", "meshId", "triangleId" (the
+ * G-buffer's fields: float32 exact integers, 0 for the background; Scene::objects() and Scene::meshes() name the ids),
+ * "barycentric" (4 x float32: the visible point's weights in its triangle's corners, alpha 1 on the model), "gbuffer.*"
+ * (every field, the labels included), "lines.<type>" (the drawn layer of a line type, its coverage from 0 off the line
+ * to 255 on it), "lines.*" (every drawn type), "picture". render() also takes the graph's own name of any image it
+ * computes (`inkgraph render --print-plan`: "shade.color", "gbuffer.zBuffer"); a name that is neither is refused
+ * (Error(Usage), naming the buffers the look has). */
 INKGRAPH_API std::vector<std::string> bufferNames(const Look& look);
 
 /** Renders stills. One GL context (EGL, no display) is made by the first render and kept, with every compiled

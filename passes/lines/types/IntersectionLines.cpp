@@ -25,7 +25,8 @@ public:
     LineSkeleton find(const std::vector<cv::Mat>& inputs) override {
         SegmentProjector projector(mFrame.camera, inputs[0], mDepthJump, mKeep);
         for (const IntersectionSegment& segment : mScene.meshIntersections().segments)
-            projector.add(segment.ends[0], segment.ends[1]);
+            projector.add(segment.ends[0], segment.ends[1], 1.0, 1.0, int(segment.meshes[0]),
+                          long(segment.triangles[0]));
         return projector.take();
     }
     void describe(nlohmann::ordered_json& entry) const override {

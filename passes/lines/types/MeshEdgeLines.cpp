@@ -44,6 +44,7 @@ LineType meshEdgeType(std::string name, std::string kind, std::string help,
                       std::vector<const LineParameter*> parameters) {
     LineType type;
     type.hiddenLines = kind.rfind("hidden-", 0) == 0;
+    type.strokePointsImage = std::string(kMeshEdgesPass) + "." + kind + MeshEdgesPass::kPointsSuffix;
     type.name = std::move(name);
     type.family = LineFamily::MeshEdge;
     type.help = std::move(help);

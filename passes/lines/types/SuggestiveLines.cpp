@@ -156,11 +156,13 @@ LineSkeleton ObjectSuggestiveKernel::find(const std::vector<cv::Mat>& inputs) {
     settings.fade = mSettings.fade;
     SegmentProjector projector(mFrame.camera, inputs[0], double(mSettings.depthJump), mKeep);
     for (std::size_t mesh = 0; mesh < mScene.meshCount(); ++mesh) {
-        const std::vector<SuggestiveSegment> segments = extractObjectSuggestiveContours(
-            mScene.meshCurvature(mesh, mCurvatureSmoothing), mFrame.camera.eye, settings);
+        const MeshCurvature& curvature = mScene.meshCurvature(mesh, mCurvatureSmoothing);
+        const std::vector<SuggestiveSegment> segments =
+            extractObjectSuggestiveContours(curvature, mFrame.camera.eye, settings);
         mReport.segments += segments.size();
         for (const SuggestiveSegment& segment : segments)
-            projector.add(segment.ends[0], segment.ends[1], segment.strengths[0], segment.strengths[1]);
+            projector.add(segment.ends[0], segment.ends[1], segment.strengths[0], segment.strengths[1], int(mesh),
+                          long(curvature.sourceFace[segment.face]));
     }
     return projector.take();
 }
