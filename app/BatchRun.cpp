@@ -59,6 +59,7 @@ void renderEach(const RenderOptions& options, const BatchList& list, const std::
                     ++skipped;
                     continue;
                 }
+                dataset->makeOutputFolders(still);
                 journal = [dataset, key, still, digest](const CommittedStill& committed) {
                     dataset->recordCommitted(key, still, digest, committed.camera, committed.look);
                 };

@@ -403,6 +403,20 @@ void DatasetRun::recordCommitted(const StillKey& key, const RenderOptions& still
     ++mRendered;
 }
 
+void DatasetRun::makeOutputFolders(const RenderOptions& still) const {
+    for (const auto& [flag, field] : outputPathFlags()) {
+        if ((still.*field).empty()) continue;
+        // Every output lies inside DIR (checked by the constructor), so this never makes a folder outside it.
+        const fs::path folder = fs::path(still.*field).parent_path();
+        if (folder.empty()) continue;
+        std::error_code error;
+        fs::create_directories(folder, error);
+        if (error)
+            throw FileError("DatasetRun::makeOutputFolders(): cannot make the folder '" + folder.string() + "' of " +
+                            flag + ": " + error.message());
+    }
+}
+
 void DatasetRun::recordFailed(const StillKey& key, const RenderOptions& still, const std::string& error) {
     Json record;
     record["model"] = key.model;

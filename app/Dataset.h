@@ -83,6 +83,11 @@ public:
      *  Counts it, and keeps its record for the index. */
     bool isComplete(const StillKey& key, const std::string& digest);
 
+    /** Makes the folders inside DIR that the still's outputs go into (its -o's folder, --dump's parent, ...), so a
+     *  data set's layout ('{name}/{view}.png') needs no folders made by hand. Only before the still renders, so a
+     *  still that --resume skips makes none. Throws FileError naming the folder. */
+    void makeOutputFolders(const RenderOptions& still) const;
+
     /** After the still's outputs were committed: appends its journal line. Throws FileError. */
     void recordCommitted(const StillKey& key, const RenderOptions& still, const std::string& digest,
                          const nlohmann::ordered_json& camera, const nlohmann::ordered_json& look);
