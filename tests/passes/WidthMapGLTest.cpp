@@ -239,7 +239,7 @@ TEST_F(WidthMapCylinder, AMeshWithoutTheMapsAttributeKeepsItsWidthAndWarnsOnce) 
 TEST_F(WidthMapCylinder, AnUnreadableOrUnknownTextureIsRefusedNamingIt) {
     const std::filesystem::path corrupt = rampFile.string() + ".broken.png";
     std::ofstream(corrupt, std::ios::binary) << "not a png";
-    for (const std::string name : {corrupt.string(), std::string("no-such-image")}) {
+    for (const std::string& name : {corrupt.string(), std::string("no-such-image")}) {
         SCOPED_TRACE(name);
         OutlinePass pass("outline", shaders, *gpuScene, frame, float(kBandPixels),
                          parseWidthMap("texture:" + name + ":G"));
