@@ -22,6 +22,7 @@ examples=(
     "line-types 256x256"
     "characters 384x384"
     "clean-strokes 512x512"
+    "line-art-dataset 256x256"
 )
 for entry in "${examples[@]}"; do
     read -r name size <<<"$entry"

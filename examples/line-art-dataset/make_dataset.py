@@ -34,9 +34,12 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
                         help="the folder the list's relative paths start from (default: the repository)")
     parser.add_argument("--limit", type=int, default=0, help="only the first N models of the list (0: all)")
     parser.add_argument("--views", type=int, default=2,
-                        help="views per model, evenly around it from the front (default: %(default)s)")
-    parser.add_argument("--elevation", type=float, default=15.0,
-                        help="degrees above the horizontal every view looks from (default: %(default)s)")
+                        help="views per model, drawn as `inkgraph render --views N --seed S` draws them: the same "
+                        "views as the command line for the same model path (default: %(default)s)")
+    parser.add_argument("--seed", type=int, default=0, help="the views' seed (default: %(default)s)")
+    parser.add_argument("--elevation", default="10,10,-30,60",
+                        help="MEAN,SD,LOW,HIGH of the views' elevation in degrees, as --view-elevation "
+                        "(default: %(default)s)")
     parser.add_argument("--size", type=int, default=256, help="square picture size in pixels (default: %(default)s)")
     parser.add_argument("--lines", default="silhouette,contour,crease,suggestive",
                         help="the line types drawn, each with its mask (default: %(default)s)")
@@ -44,6 +47,10 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     arguments = parser.parse_args(argv)
     if arguments.views < 1 or arguments.limit < 0:
         parser.error("--views must be at least 1 and --limit at least 0")
+    try:
+        arguments.elevation = [float(value) for value in arguments.elevation.split(",")]
+    except ValueError:
+        parser.error(f"--elevation '{arguments.elevation}': four numbers MEAN,SD,LOW,HIGH")
     return arguments
 
 
@@ -73,13 +80,17 @@ def main(argv: list[str]) -> int:
                 continue
             name = pathlib.PurePath(model).stem
             (output / name).mkdir(exist_ok=True)
-            for view in range(arguments.views):
-                azimuth = round(360.0 * view / arguments.views, 6)
-                frame = inkgraph.Frame(arguments.size, arguments.size,
-                                       orbit=inkgraph.Orbit(azimuth, arguments.elevation))
-                still = renderer.render(scene, look, frame, masks)
+            # The command line's views for this model path (the list's entry, the key the views are drawn by).
+            for sample in inkgraph.sample_views(arguments.views, arguments.seed, model,
+                                                elevation=arguments.elevation):
+                view = sample.index
+                frame = inkgraph.Frame(arguments.size, arguments.size, orbit=sample.orbit())
+                still = renderer.render(scene, look, frame, masks + ["strokes"])
                 picture = f"{name}/view-{view}.png"
                 still.write(output / picture)
+                # Every stroke with its type, visibility, and per point its pixel and the world point it came from.
+                strokes = f"{name}/view-{view}-strokes.json"
+                (output / strokes).write_text(json.dumps(still.strokes()) + "\n")
                 camera = still.camera
                 mask_files: dict[str, str] = {}
                 ink_pixels: dict[str, int] = {}
@@ -92,14 +103,15 @@ def main(argv: list[str]) -> int:
                 # The camera as numbers, not as the orbit that placed it: K and [R|t] take a pixel to its ray and a
                 # world point to its pixel without knowing how inkgraph frames an orbit.
                 item: dict[str, Any] = {
-                    "model": model, "view": view, "picture": picture,
+                    "model": model, "view": view, "picture": picture, "strokes": strokes,
+                    "orbit": [sample.azimuth, sample.elevation, sample.distance_scale],
                     "camera": {"intrinsics": camera.intrinsics.tolist(), "extrinsics": camera.extrinsics.tolist(),
                                "width": camera.width, "height": camera.height},
                     "masks": mask_files, "ink_pixels": ink_pixels}
                 items.append(item)
                 counts = ", ".join(f"{line_type} {count}" for line_type, count in ink_pixels.items())
                 print(f"make_dataset: {picture} (ink pixels: {counts})", file=sys.stderr)
-    manifest = {"inkgraph": inkgraph.__version__, "size": [arguments.size, arguments.size],
+    manifest = {"inkgraph": inkgraph.__version__, "size": [arguments.size, arguments.size], "seed": arguments.seed,
                 "shading": arguments.shading, "lines": [line_type.cli_name for line_type in line_types], "items": items,
                 "failures": failures}
     (output / "manifest.json").write_text(json.dumps(manifest, indent=2) + "\n")

@@ -1,6 +1,7 @@
 """examples/line-art-dataset/make_dataset.py run small (ctest python_line_art_dataset): two models, one view; the
-manifest lists every file it wrote and the camera of each picture, each file holds exactly what inkgraph.render()
-gives for that model and view, and the ink counts are the masks'."""
+manifest lists every file it wrote and the camera of each picture, the views are the command line's (--views 1
+--seed 5), each file holds exactly what inkgraph.render() gives for that model and view, and the ink counts are the
+masks'."""
 
 from __future__ import annotations
 
@@ -26,7 +27,7 @@ def test_two_models_one_view(repo, tmp_path):
     package_parent = str(pathlib.Path(inkgraph.__file__).resolve().parents[1])
     environment = dict(os.environ, PYTHONPATH=os.pathsep.join([package_parent, os.environ.get("PYTHONPATH", "")]))
     run = subprocess.run(
-        [sys.executable, str(script), "--output", str(output), "--limit", "2", "--views", "1", "--size", str(SIZE),
+        [sys.executable, str(script), "--output", str(output), "--limit", "2", "--views", "1", "--seed", "5", "--size", str(SIZE),
          "--lines", "silhouette,contour"],
         capture_output=True, text=True, env=environment, cwd=tmp_path)
     assert run.returncode == 0, run.stderr
@@ -41,11 +42,18 @@ def test_two_models_one_view(repo, tmp_path):
     named = {item["picture"] for item in manifest["items"]}
     named |= {file for item in manifest["items"] for file in item["masks"].values()}
     assert written == named and len(written) == 2 * 3
+    assert manifest["seed"] == 5
 
     for item in manifest["items"]:
         assert item["view"] == 0
+        # The view the command line draws for this model path with --views 1 --seed 5 (and the default elevation).
+        (sample,) = inkgraph.sample_views(1, 5, item["model"], elevation=(10, 10, -30, 60))
+        assert item["orbit"] == [sample.azimuth, sample.elevation, sample.distance_scale]
+        orbit = f"{sample.azimuth},{sample.elevation},x{sample.distance_scale}"
         expected = inkgraph.render(repo / item["model"], look={"shading": "cel"}, size=SIZE, lines=manifest["lines"],
-                                   camera=["--orbit", "0,15"], buffers=[f"lines.{t}" for t in manifest["lines"]])
+                                   camera=["--orbit", orbit],
+                                   buffers=[f"lines.{t}" for t in manifest["lines"]] + ["strokes"])
+        assert json.loads((output / item["strokes"]).read_text()) == expected.strokes()
         # The camera as the render reports it: K and [R|t] as lists of rows, the picture's size.
         camera = item["camera"]
         assert camera["intrinsics"] == expected.camera.intrinsics.tolist()

@@ -49,6 +49,9 @@ grep -q 'stroke="none" d="M' "$work/clean-strokes/bunny-weight.svg" 2>/dev/null 
     fail "clean-strokes: bunny-weight.svg has no weighted (filled outline) path"
 run_example characters fox-default.png godette-mtoon.png godette-face.png godette-orbit.png fox-walk.png \
     expressions-binary-overrides-default.png godette-happy.png godette-a-pose.png
+VIEWS=2 run_example line-art-dataset characters/index.jsonl characters/README.md characters/godette/0.png \
+    characters/fox/1-strokes.json characters/duck/1.svg characters/godette/1-labels/triangleid.exr \
+    godette-expressions/index.jsonl godette-expressions/godette/1.png
 run_example batch 1-bunny_c3d_70k.png 5-spot_c3d.png 9-suzanne_npm_4k.png 9-suzanne_npm_4k.json
 
 # The Slurm script, as tasks 1..3 of --array=1-3.
@@ -63,6 +66,23 @@ for task in 1 2 3; do
 done
 pictures=$(find "$work/slurm" -name '*.png' | wc -l)
 [ "$pictures" -eq "$models" ] || fail "the shares wrote $pictures pictures for $models models"
+
+# The data set's Slurm script, as tasks 0..2 of --array=0-2: one data set, an index and card per task, whole for
+# check-dataset; a task run again resumes and renders nothing.
+for task in 0 1 2; do
+    if ! (cd "$root" && OUT="$work/dataset-slurm" SIZE=64x64 VIEWS=2 SLURM_ARRAY_TASK_ID=$task SLURM_ARRAY_TASK_MIN=0 \
+          SLURM_ARRAY_TASK_COUNT=3 bash examples/line-art-dataset/slurm-array.sbatch > "$work/dataset-$task.log" 2>&1); then
+        fail "line-art-dataset/slurm-array.sbatch task $task exited non-zero:"; cat "$work/dataset-$task.log" >&2
+    fi
+done
+"$INKGRAPH" check-dataset "$work/dataset-slurm" > "$work/dataset-check.log" 2>&1 ||
+    fail "check-dataset of the Slurm data set: $(cat "$work/dataset-check.log")"
+grep -q "6 stills, 0 failed" "$work/dataset-check.log" || fail "the Slurm data set: $(cat "$work/dataset-check.log")"
+(cd "$root" && OUT="$work/dataset-slurm" SIZE=64x64 VIEWS=2 SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_MIN=0 \
+    SLURM_ARRAY_TASK_COUNT=3 bash examples/line-art-dataset/slurm-array.sbatch > "$work/dataset-rerun.log" 2>&1) ||
+    fail "line-art-dataset/slurm-array.sbatch rerun exited non-zero: $(cat "$work/dataset-rerun.log")"
+grep -q "resumed: 2 stills complete, 0 rendered" "$work/dataset-rerun.log" ||
+    fail "the rerun of task 1 did not resume: $(cat "$work/dataset-rerun.log")"
 
 [ "$failures" -eq 0 ] || { echo "$failures failures" >&2; exit 1; }
 echo "every example ran and wrote its files"
