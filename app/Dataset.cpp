@@ -59,19 +59,8 @@ void appendLine(const fs::path& journal, const std::string& line, std::size_t te
     if (descriptor < 0)
         throw FileError("DatasetRun::recordCommitted(): cannot open the journal '" + journal.string() +
                         "': " + std::strerror(errno));
-    const std::size_t length = tearAt > 0 ? tearAt : line.size();
-    std::size_t written = 0;
-    int failure = 0;
     // One write for the whole line; a short write (a full disk) is continued, leaving a torn line at worst.
-    while (written < length && failure == 0) {
-        const ssize_t result = ::write(descriptor, line.data() + written, length - written);
-        if (result > 0)
-            written += std::size_t(result);
-        else if (result < 0 && errno != EINTR)
-            failure = errno;
-        else if (result == 0)
-            failure = EIO;
-    }
+    int failure = writeWhole(descriptor, line.data(), tearAt > 0 ? tearAt : line.size());
     if (tearAt > 0) {
         std::cerr << "inkgraph: test hook: killed in the middle of a journal line" << std::endl;
         ::kill(::getpid(), SIGKILL);

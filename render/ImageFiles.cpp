@@ -167,24 +167,28 @@ int creationErrorIn(const std::filesystem::path& folder) {
     return 0;
 }
 
+int writeWhole(int descriptor, const void* data, std::size_t byteCount) {
+    const auto* bytes = static_cast<const char*>(data);
+    std::size_t written = 0;
+    while (written < byteCount) {
+        const ssize_t result = ::write(descriptor, bytes + written, byteCount - written);
+        if (result > 0)
+            written += std::size_t(result);
+        else if (result == 0)
+            return EIO;
+        else if (errno != EINTR)
+            return errno;
+    }
+    return 0;
+}
+
 void writeBytes(const std::filesystem::path& destination, const void* data, std::size_t byteCount,
                 const std::string& shownName) {
     // O_EXCL: a temporary name that exists is someone else's file, never ours to overwrite.
     const int descriptor = ::open(destination.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (descriptor < 0) throw FileError("writeFile(): cannot create '" + shownName + "': " + std::strerror(errno));
     registerTemporary(destination);
-    const auto* bytes = static_cast<const char*>(data);
-    std::size_t written = 0;
-    int failure = 0;
-    while (written < byteCount && failure == 0) {
-        const ssize_t result = ::write(descriptor, bytes + written, byteCount - written);
-        if (result > 0)
-            written += std::size_t(result);
-        else if (result < 0 && errno != EINTR)
-            failure = errno;
-        else if (result == 0)
-            failure = EIO;
-    }
+    int failure = writeWhole(descriptor, data, byteCount);
     // fsync before the rename: after a crash the final name holds the whole file or the old one, never a prefix.
     if (failure == 0 && ::fsync(descriptor) != 0) failure = errno;
     if (::close(descriptor) != 0 && failure == 0) failure = errno;

@@ -58,6 +58,10 @@ std::vector<unsigned char> encodeImageFile(const std::filesystem::path& finalPat
 void writeImageTo(const std::filesystem::path& destination, const std::filesystem::path& finalPath,
                   const cv::Mat& image);
 
+/** Writes all `byteCount` bytes to an open file, continuing short writes and retrying EINTR. Returns 0, or the errno
+ *  of the failure (EIO for a write that wrote nothing): the caller names the file. */
+int writeWhole(int descriptor, const void* data, std::size_t byteCount);
+
 /** Writes bytes to a new file (O_EXCL), checking every write, then fsync and close; on failure removes it and throws
  *  FileError naming `shownName`. */
 void writeBytes(const std::filesystem::path& destination, const void* data, std::size_t byteCount,
