@@ -26,7 +26,23 @@ namespace {
 
 const std::string kModels = std::string(INKGRAPH_SOURCE_ROOT) + "/models/";
 
-using ApiScene = TestFolder;
+class ApiScene : public TestFolder {
+protected:
+    /** One triangle mesh "tri" instanced by a node "a" and by an unnamed child (moved 2 along x) of a node "group". */
+    std::filesystem::path writeTwoInstanceGltf() const {
+        const std::filesystem::path gltf = directory / "two.gltf";
+        writeText(gltf, R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+            "nodes": [{"name": "a", "mesh": 0}, {"name": "group", "children": [2]},
+                      {"mesh": 0, "translation": [2, 0, 0]}],
+            "meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0}}]}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                           "min": [0, 0, 0], "max": [1, 1, 0]}],
+            "bufferViews": [{"buffer": 0, "byteLength": 36}],
+            "buffers": [{"byteLength": 36,
+                         "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})");
+        return gltf;
+    }
+};
 
 TEST_F(ApiScene, MissingFileIsAnInputErrorNamingTheFile) {
     const ig::Error error = errorOf([&] { ig::Scene::load((directory / "absent.obj").string()); });
@@ -58,16 +74,7 @@ TEST_F(ApiScene, CountsWhatTheFileHolds) {
 TEST_F(ApiScene, MeshesGiveTheirIdsAndTriangleRanges) {
     // Issue 37: the same two-instance glTF as below, one triangle each: meshes 1 and 2, triangle ids 1 and 2, one
     // unnamed material (id 1, no name) and the two objects.
-    const std::filesystem::path gltf = directory / "two.gltf";
-    writeText(gltf, R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
-        "nodes": [{"name": "a", "mesh": 0}, {"name": "group", "children": [2]},
-                  {"mesh": 0, "translation": [2, 0, 0]}],
-        "meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0}}]}],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                       "min": [0, 0, 0], "max": [1, 1, 0]}],
-        "bufferViews": [{"buffer": 0, "byteLength": 36}],
-        "buffers": [{"byteLength": 36,
-                     "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})");
+    const std::filesystem::path gltf = writeTwoInstanceGltf();
     const std::vector<ig::SceneMesh> meshes = ig::Scene::load(gltf.string()).meshes();
     ASSERT_EQ(meshes.size(), 2u);
     for (std::size_t index = 0; index < 2; ++index) {
@@ -86,16 +93,7 @@ TEST_F(ApiScene, MeshesGiveTheirIdsAndTriangleRanges) {
 TEST_F(ApiScene, ObjectsAreTheNodeInstancesInOrder) {
     // One triangle mesh "tri" instanced by a node "a" and by an unnamed child of node "group": two objects, ids in
     // the order their meshes come, the unnamed one named by its mesh (issue 36: the "objectId" buffer's values).
-    const std::filesystem::path gltf = directory / "two.gltf";
-    writeText(gltf, R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
-        "nodes": [{"name": "a", "mesh": 0}, {"name": "group", "children": [2]},
-                  {"mesh": 0, "translation": [2, 0, 0]}],
-        "meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0}}]}],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                       "min": [0, 0, 0], "max": [1, 1, 0]}],
-        "bufferViews": [{"buffer": 0, "byteLength": 36}],
-        "buffers": [{"byteLength": 36,
-                     "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})");
+    const std::filesystem::path gltf = writeTwoInstanceGltf();
     const std::vector<ig::SceneObject> objects = ig::Scene::load(gltf.string()).objects();
     ASSERT_EQ(objects.size(), 2u);
     EXPECT_EQ(objects[0].id, 1u);
