@@ -133,8 +133,9 @@ TEST(ApiTyped, EveryLookFieldDrawsWhatItsFlagDraws) {
         const ig::Still byType = renderer().render(scene, look, frameOf(72, 64));
         const ig::Still byFlag = renderer().render(scene, ig::Look::fromArguments(typed.flags), frameOf(72, 64));
         EXPECT_EQ(bytesOf(byType.picture()), bytesOf(byFlag.picture())) << typed.name;
-        if (typed.changesThePicture)
+        if (typed.changesThePicture) {
             EXPECT_NE(bytesOf(byType.picture()), bytesOf(plain)) << typed.name << " changes nothing: it tests nothing";
+        }
         // The look reads back what was set, and its flags are the same look again.
         EXPECT_EQ(
             bytesOf(renderer().render(scene, ig::Look::fromArguments(look.arguments()), frameOf(72, 64)).picture()),

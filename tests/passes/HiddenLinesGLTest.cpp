@@ -319,8 +319,9 @@ TEST_F(HiddenLines, ACubesHiddenCreasesAreDashedInThePictureAndTheSvg) {
                 inked += ink;
                 runs += ink && !previous;
                 previous = ink;
-                if (!nearVisibleEdge(point))
+                if (!nearVisibleEdge(point)) {
                     EXPECT_LT(coverageAt(visible, point), 32.0) << "the hidden edge at " << point.x << ", " << point.y;
+                }
             }
         }
         ASSERT_GT(samples, 200);
