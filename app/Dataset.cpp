@@ -463,9 +463,14 @@ std::string DatasetRun::cardText(std::size_t models, std::size_t stills, std::si
             outputs += "| `" + flag + "` | `" + relativeToDataset(mOptions.*field) + "` |\n";
     // The look of the first still that has one (all stills share the flags; a model's own materials may differ).
     Json look;
+    std::string lookOf;
     for (const auto& [key, record] : mRecords)
         if (record.contains("look")) {
             look = record["look"];
+            lookOf = " (as the first still, '" + record.value("model", std::string()) + "' view " +
+                     std::to_string(record.value("view", std::size_t(0))) +
+                     ", resolved it: the flags above decide it, a model's materials and edges may add to it; each "
+                     "still's is in the index)";
             break;
         }
     const std::string index = indexPath().filename().string();
@@ -486,7 +491,8 @@ std::string DatasetRun::cardText(std::size_t models, std::size_t stills, std::si
             "` lists every still, one JSON object a line: its model, list position, view, camera (OpenCV's "
             "intrinsics K and extrinsics [R|t], OpenGL's view and projection matrices, the size), its files with "
             "their sizes and FNV-1a 64-bit checksums, and its status (`ok`, or `failed` with the error).\n\n";
-    text += "## Look\n\n```json\n" + (look.is_null() ? std::string("null") : look.dump(2)) + "\n```\n\n";
+    text += "## Look\n\nThe look" + lookOf + ":\n\n```json\n" + (look.is_null() ? std::string("null") : look.dump(2)) +
+            "\n```\n\n";
     text += "## Checking\n\n```sh\ninkgraph check-dataset .\n```\n\nchecks that every still's files are there and "
             "whole and that no run was left unfinished.\n\n";
     text += "## Reproducing and citing\n\nThe command above, run with the same inkgraph version on the same models, "
