@@ -274,40 +274,28 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     }
 
-    // 2. Each output's edges into that output alone. No depth attachment: the fragment shader compares with the
-    // depth above, sampled (a texture cannot be sampled while attached and written).
-    GlFramebuffer lineTarget(mName);
-    std::vector<int> slots;
-    for (std::size_t slot = 0; slot < live.size(); ++slot) {
-        lineTarget.attachColor(int(slot), gl.outputTexture(live[slot]));
-        slots.push_back(int(slot));
-    }
-    // Each live "-points" output in a slot after the masks, drawn with its field as the shader's second output.
-    std::vector<int> pointSlots(live.size(), -1);
-    for (std::size_t slot = 0; slot < live.size(); ++slot) {
-        const std::string points = std::string(live[slot]) + kPointsSuffix;
-        if (!gl.isLive(points)) continue;
-        pointSlots[slot] = int(slots.size());
-        lineTarget.attachColor(pointSlots[slot], gl.outputTexture(points));
-        slots.push_back(pointSlots[slot]);
-    }
-    lineTarget.finish(slots);
-    lineTarget.bind();
-    clearColorAndDepth(int(slots.size()));
+    // 2. Each output's edges into that output alone, and its "-points" output beside it, one framebuffer per output:
+    // all of them at once would need up to twelve colour attachments, and GL guarantees eight. No depth attachment:
+    // the fragment shader compares with the depth above, sampled (a texture cannot be sampled while attached and
+    // written).
     if (anyEdges) glBindTextureUnit(0, mDepth.sized(width, height).id());
     glLineWidth(1.0f);
     glPointSize(1.0f);
     for (std::size_t slot = 0; slot < live.size(); ++slot) {
         const std::string field = live[slot];
+        const std::string points = field + kPointsSuffix;
+        const bool writesPoints = gl.isLive(points);
+        GlFramebuffer lineTarget(mName + " " + field);
+        lineTarget.attachColor(0, gl.outputTexture(field));
+        if (writesPoints) lineTarget.attachColor(1, gl.outputTexture(points));
+        lineTarget.finish(writesPoints ? std::vector<int>{0, 1} : std::vector<int>{0});
+        lineTarget.bind();
+        clearColorAndDepth(writesPoints ? 2 : 1);
         const GlProgram& program = isHidden(field) ? *mHiddenProgram : *mLineProgram;
         program.use();
         glUniformMatrix4fv(program.uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
         glUniformMatrix4fv(program.uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
-        glUniform1i(program.uniform("writePoints"), pointSlots[slot] >= 0 ? 1 : 0);
-        if (pointSlots[slot] >= 0)
-            lineTarget.finish({int(slot), pointSlots[slot]});
-        else
-            lineTarget.finish({int(slot)});
+        glUniform1i(program.uniform("writePoints"), writesPoints ? 1 : 0);
         const std::size_t drawn = drawEdgeLines(program, linesOf(field));
         (field == "silhouette"          ? mEdgesDrawn.silhouette
          : field == "crease"            ? mEdgesDrawn.crease

@@ -13,6 +13,10 @@ namespace {
  *  share of the nearer (the contour's default depth jump, postfx/Contour.h). */
 constexpr double kNearSurfaceJump = 0.05;
 
+/** A mesh edge's point whose projection lies farther than this from its stroke point (in data pixels) belongs to
+ *  another edge: GL puts an edge's end pixel's vertex up to about 0.7 data pixels off the pixel centre. */
+constexpr double kFarEdgePointDataPixels = 1.5;
+
 double roundedPixels(double value) { return std::round(value * 1e4) / 1e4; }
 
 /** 7 significant digits, so the file's shortest round-trip numbers stay short (float precision). */
@@ -20,6 +24,13 @@ double roundedSignificant(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.7g", value);
     return std::strtod(text, nullptr);
+}
+
+/** A world point rounded to 7 significant digits of its offset from the scene origin (near the model), not of its
+ *  world coordinates: a model placed 1e5 or 1e7 units from 0 keeps float precision relative to its own size. */
+glm::dvec3 roundedWorld(const glm::dvec3& world, const glm::dvec3& origin) {
+    const glm::dvec3 local = world - origin;
+    return origin + glm::dvec3(roundedSignificant(local.x), roundedSignificant(local.y), roundedSignificant(local.z));
 }
 
 /** The global triangle index of a mesh's triangle (-1 stays -1). */
@@ -101,6 +112,10 @@ public:
             for (int dy = -ring; dy <= ring; ++dy)
                 for (int dx = -ring; dx <= ring; ++dx) {
                     if (std::max(std::abs(dx), std::abs(dy)) != ring) continue;
+                    // Outside the image a key would wrap to the other side's pixel of the next or previous row.
+                    if (pixel.x + dx < 0 || pixel.x + dx >= cols || pixel.y + dy < 0 ||
+                        pixel.y + dy >= mSkeleton.mask.rows)
+                        continue;
                     const std::int64_t key = std::int64_t(pixel.y + dy) * cols + (pixel.x + dx);
                     auto it = std::lower_bound(mKeyed.begin(), mKeyed.end(), std::make_pair(key, std::size_t(0)));
                     for (; it != mKeyed.end() && it->first == key; ++it) {
@@ -307,8 +322,9 @@ std::vector<StrokeRecord> strokeRecords(const StrokePointSetup& setup) {
         // A GL band (outline, silhouette) is drawn around the model's outline: its middle may lie half its width off
         // the model, where the nearest surface is looked for.
         const StrokeInput& drawnInput = drawn.inputs[std::size_t(stroke.layer)];
+        // Half the band's width and a pixel, both in output pixels, as data pixels.
         const int reach =
-            drawnInput.skeleton ? 1 : int(std::ceil(0.5 * drawnInput.widthPixels * drawn.supersample)) + 1;
+            drawnInput.skeleton ? 1 : int(std::ceil((0.5 * drawnInput.widthPixels + 1.0) * drawn.supersample));
         StrokeRecord record;
         record.type = drawn.inputs[std::size_t(stroke.layer)].type;
         record.visible = input.visible;
@@ -335,6 +351,15 @@ std::vector<StrokeRecord> strokeRecords(const StrokePointSetup& setup) {
                 break;
             case StrokePointSource::Image:
                 if (pixel.x >= 0) point = edgePointAt(setup, projection, input.image, pixel, data);
+                if (point) {
+                    // The drawn pixel may hold another edge than the stroke's (where edges cross or meet within a
+                    // pixel), whose point projects far from (x, y): such a point is left to the bridging below.
+                    clampToTriangle(*point, setup);
+                    const glm::dvec2 output = projection.outputPixel(data);
+                    if (glm::length(projection.toPixel(*point->world) - output) >
+                        kFarEdgePointDataPixels / drawn.supersample)
+                        point.reset();
+                }
                 break;
             }
             StrokePointRecord recordPoint = point.value_or(StrokePointRecord{});
@@ -352,9 +377,7 @@ std::vector<StrokeRecord> strokeRecords(const StrokePointSetup& setup) {
         for (StrokePointRecord& point : record.points) {
             point.x = roundedPixels(point.x);
             point.y = roundedPixels(point.y);
-            if (point.world)
-                point.world = glm::dvec3(roundedSignificant(point.world->x), roundedSignificant(point.world->y),
-                                         roundedSignificant(point.world->z));
+            if (point.world) point.world = roundedWorld(*point.world, setup.camera->origin);
         }
         records.push_back(std::move(record));
     }

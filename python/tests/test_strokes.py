@@ -142,6 +142,34 @@ def test_at_the_default_size_the_bounds_hold_without_supersampling():
         assert (error < 0.5).mean() >= 0.99, (type_name, (error < 0.5).mean())
 
 
+def test_every_mesh_edge_kind_at_once_far_from_the_origin(tmp_path):
+    # All six mesh-edge kinds with their point images (twelve targets, drawn one kind at a time: GL guarantees eight
+    # colour attachments), on a sphere and a cube 1e7 units from the origin (an OBJ, read in double and recentred):
+    # the world points keep their precision relative to the model (rounded as offsets from the scene origin, not to
+    # 7 significant digits of 1e7, which would be whole units), so they lie on the sphere.
+    far = np.array([1e7, 0.0, 0.0])
+    v1, f1 = uv_sphere(FRONT)
+    v2, f2 = cube()
+    vertices = np.vstack([v1.astype(np.float64), v2 * 0.5 + np.array([2.5, 0.0, 0.0])]) + far
+    faces = np.vstack([f1, f2 + len(v1)])
+    path = tmp_path / "far.obj"
+    with open(path, "w", encoding="utf-8") as out:  # every digit: 1e7 + x
+        out.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in vertices.tolist())
+        out.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces.tolist())
+    kinds = ["crease", "border", "mesh-silhouette"]
+    result = inkgraph.render(path, size=192, shading="none", camera={"orbit": (30, 20)}, buffers=["strokes"],
+                             lines=kinds + [f"hidden-{kind}" for kind in kinds],
+                             look={"hidden-lines": ",".join(kinds)})
+    strokes = result.strokes()
+    drawn = {stroke["type"] for stroke in strokes}
+    assert {"crease", "mesh-silhouette", "hidden-crease"} <= drawn, drawn  # all six kinds were drawn, these inked
+    silhouette = points_of(strokes, "mesh-silhouette")
+    on_sphere = silhouette[np.abs(silhouette[:, 2] - far[0]) < 1.5]
+    assert len(on_sphere) > 100
+    radial = np.abs(np.linalg.norm(on_sphere[:, 2:5] - far, axis=1) - R)
+    assert radial.max() < FACETING + 1e-4 * R, radial.max()
+
+
 def distance_to_triangle(point, corners):
     a, b, c = corners
     normal = np.cross(b - a, c - a)
