@@ -15,7 +15,7 @@ uniform uint objectIndex; // GpuScene::DrawMesh::objectIndex, one per draw
 #ifdef OUT_MESH_ID
 uniform uint meshIndex; // the mesh's index in the scene, one per draw
 #endif
-#ifdef OUT_TRIANGLE_ID
+#if defined(OUT_TRIANGLE_ID) || defined(OUT_BARYCENTRIC)
 uniform uint firstTriangle; // the global index of the mesh's first triangle (the meshes before it, in scene order)
 #endif
 #ifdef OUT_BARYCENTRIC
@@ -138,7 +138,11 @@ void main() {
     // The sample lies inside its triangle, so its weights are in [0, 1] and sum to 1: clamping and renormalising
     // removes only the rasteriser's rounding (llvmpipe's interpolation leaves about 3e-4).
     vec3 weights = clamp(barycentricWeights, 0.0, 1.0);
-    outBarycentric = vec4(weights / max(weights.x + weights.y + weights.z, 1e-30), 1.0);
+    // Alpha: the id (global index + 1) of the triangle these weights are of, from this same draw, so a pixel's weights
+    // and their triangle always go together (the triangleId field comes from another draw, which where two surfaces
+    // lie within depth rounding of each other can keep the other one).
+    outBarycentric = vec4(weights / max(weights.x + weights.y + weights.z, 1e-30),
+                          float(firstTriangle + uint(gl_PrimitiveID) + 1u));
 #endif
 #ifdef OUT_RADIAL
     // DeCarlo's unnormalised view vector v = c - p (c is the view-space origin). J v = 0 (moving along the eye ray
