@@ -65,8 +65,15 @@ bool encodeWithOiio(const std::string& formatPath, const cv::Mat& image, std::ve
     if (pixels.channels() == 4) spec.alpha_channel = 3;
     // 8-bit images are display colour (sRGB); float images are linear (light, or data such as normals and depths).
     // Alpha is coverage, never premultiplied, so OIIO must not (un)premultiply it.
-    spec.attribute("oiio:ColorSpace", type == OIIO::TypeDesc::UINT8 ? "sRGB" : "Linear");
+    const bool tiff = std::string(output->format_name()) == "tiff";
+    // OpenImageIO 2.4's TIFF writer puts the colour space into an EXIF directory, which it cannot write through a
+    // memory proxy (the file comes out without its image directory: OpenImageIO pull request 4300); TIFF is read as
+    // sRGB when 8-bit and linear when float without it.
+    if (!tiff) spec.attribute("oiio:ColorSpace", type == OIIO::TypeDesc::UINT8 ? "sRGB" : "Linear");
     spec.attribute("oiio:UnassociatedAlpha", 1);
+    // A fixed time stamp: the writers would stamp the current time (EXR's capDate, TIFF's DateTime), and the same
+    // still must give the same bytes whenever it is rendered (a data set's checksums, --resume).
+    spec.attribute("DateTime", "2000:01:01 00:00:00");
     OIIO::Filesystem::IOVecOutput memory(bytes);
     bytes.clear();
     if (!output->supports("ioproxy") || !output->set_ioproxy(&memory)) {
