@@ -9,10 +9,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <istream>
 #include <map>
 #include <optional>
 #include <sstream>
+#include <tuple>
 
 namespace inkgraph {
 namespace {
@@ -102,6 +104,13 @@ BatchList batchList(const RenderOptions& options, std::istream& standardInput) {
         if (options.shard && int(position % std::size_t(options.shard->count)) != options.shard->index) continue;
         list.models.push_back({paths[position], position});
     }
+    const std::size_t views = viewCountOf(options);
+    if (list.models.size() > kMaxStillsPerProcess / views)
+        throw UsageError(std::to_string(list.models.size()) + " models x " + std::to_string(views) +
+                         " views (--views) are more than the " + std::to_string(kMaxStillsPerProcess) +
+                         " stills one process renders; split the list with --shard K/N (e.g. --shard 0/" +
+                         std::to_string((list.models.size() * views) / kMaxStillsPerProcess + 1) + ")");
+    if (options.shard) list.everyPath = std::move(paths);
     return list;
 }
 
@@ -166,6 +175,59 @@ RenderOptions stillOptions(const RenderOptions& options, const BatchStill& still
     result.view = view;
     return result;
 }
+
+namespace {
+
+/** An output path as absolute and normal text: what two shares compare (no file system access, so a list of a
+ *  million models is checked in seconds; links are not followed). */
+std::string normalPlace(const std::string& path) {
+    return std::filesystem::absolute(std::filesystem::path(path)).lexically_normal().string();
+}
+
+/** With --shard, the other shares write into the same folders (an array job): every still of the whole list is
+ *  expanded, and one of this share that writes what a still of another share writes is refused. Hashes first, the
+ *  paths themselves only for equal hashes. */
+void checkOutputsAcrossShards(const RenderOptions& options, const BatchList& list) {
+    if (!options.shard || list.everyPath.empty()) return;
+    const std::size_t viewCount = viewCountOf(options);
+    if (list.everyPath.size() > kMaxStillsCheckedAcrossShards / viewCount) return;
+    const auto flags = outputFlags(options);
+    struct Written {
+        std::size_t hash, position, view, flag;
+    };
+    std::vector<Written> written;
+    written.reserve(list.everyPath.size() * viewCount * flags.size());
+    const auto placeOf = [&](const Written& one) {
+        return normalPlace(expandOutputPattern(flags[one.flag].second, {list.everyPath[one.position], one.position},
+                                               list.total, one.view, viewCount));
+    };
+    for (std::size_t position = 0; position < list.everyPath.size(); ++position)
+        for (std::size_t view = 0; view < viewCount; ++view)
+            for (std::size_t flag = 0; flag < flags.size(); ++flag) {
+                Written one{0, position, view, flag};
+                one.hash = std::hash<std::string>{}(placeOf(one));
+                written.push_back(one);
+            }
+    std::sort(written.begin(), written.end(), [](const Written& a, const Written& b) {
+        return std::tie(a.hash, a.position, a.view) < std::tie(b.hash, b.position, b.view);
+    });
+    const auto shardOf = [&](std::size_t position) { return int(position % std::size_t(options.shard->count)); };
+    for (std::size_t i = 1; i < written.size(); ++i) {
+        const Written &a = written[i - 1], &b = written[i];
+        if (a.hash != b.hash || shardOf(a.position) == shardOf(b.position)) continue;
+        if (shardOf(a.position) != options.shard->index && shardOf(b.position) != options.shard->index) continue;
+        const std::string place = placeOf(a);
+        if (place != placeOf(b)) continue;
+        throw UsageError(flags[a.flag].first + " '" + place + "' is written for both '" + list.everyPath[a.position] +
+                         "' (list position " + std::to_string(a.position + 1) + ", shard " +
+                         std::to_string(shardOf(a.position)) + "/" + std::to_string(options.shard->count) + ") and '" +
+                         list.everyPath[b.position] + "' (position " + std::to_string(b.position + 1) + ", shard " +
+                         std::to_string(shardOf(b.position)) + "/" + std::to_string(options.shard->count) +
+                         "); models of one name need {index}");
+    }
+}
+
+} // namespace
 
 void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
     const std::size_t viewCount = viewCountOf(options);
@@ -243,6 +305,7 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
             }
         }
     }
+    checkOutputsAcrossShards(options, list);
 }
 
 } // namespace inkgraph

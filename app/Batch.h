@@ -31,6 +31,9 @@ struct BatchModel {
 struct BatchList {
     std::vector<BatchModel> models; ///< this process's share, in list order
     std::size_t total = 0;          ///< the whole list's length
+    /** With --shard: the whole list's paths, in order, so the outputs of the other shares can be checked against
+     *  this share's (array tasks write into one folder). Empty without --shard. */
+    std::vector<std::string> everyPath;
     /** True when the run names several models or a list: then each still gets a progress line. */
     bool isBatch = false;
 };
@@ -47,6 +50,13 @@ struct BatchStill {
  *  is read for `--list -`. Throws UsageError naming --list and the file (and line) for an unreadable list, one over
  *  16 MiB, a line with a NUL byte, or a list of no models. */
 BatchList batchList(const RenderOptions& options, std::istream& standardInput);
+
+/** The most stills one process renders (its share of the models times --views): each is held from the start
+ *  (about 1 KiB with its view and records), so more is refused, pointing to --shard. */
+inline constexpr std::size_t kMaxStillsPerProcess = 1000000;
+/** Up to this many stills in the whole list (all shares times --views), a sharded run checks its outputs against
+ *  every other share's, by their paths; above it, only against its own share's. */
+inline constexpr std::size_t kMaxStillsCheckedAcrossShards = 20000000;
 
 /** Every still of this process's share, in the order they render: each model of `list` in list order, with --views
  *  N its views 0 to N-1 (each sampled), else one still per model. */

@@ -189,6 +189,45 @@ TEST(BatchOutputs, ModelsOfOneNameCollideUnlessIndexed) {
     EXPECT_NE(usageMessage(twice, batchList(twice, none)).find("is written for both"), std::string::npos);
 }
 
+TEST(BatchOutputs, AShareMayNotWriteWhatAnotherShareWrites) {
+    // Array tasks write into one folder: 'x/spot.obj' (shard 0/2) and 'y/spot.obj' (shard 1/2) would both write
+    // out/spot.png, each task alone seeing no collision in its own share. Either task refuses, naming both.
+    std::istringstream none;
+    for (int k = 0; k < 2; ++k) {
+        RenderOptions options = withModels({"x/spot.obj", "y/spot.obj", "z/cow.obj"});
+        options.shard = Shard{k, 2};
+        const BatchList list = batchList(options, none);
+        ASSERT_EQ(list.models.size(), k == 0 ? 2u : 1u);
+        const std::string message = usageMessage(options, list);
+        EXPECT_NE(message.find("is written for both 'x/spot.obj' (list position 1, shard 0/2) and 'y/spot.obj' "
+                               "(position 2, shard 1/2)"),
+                  std::string::npos)
+            << message;
+        options.outputPath = "out/{index}-{name}.png";
+        EXPECT_EQ(usageMessage(options, batchList(options, none)), "");
+    }
+    // Shares that never meet (another folder per model) pass.
+    RenderOptions apart = withModels({"x/spot.obj", "y/cow.obj"});
+    apart.shard = Shard{1, 2};
+    EXPECT_EQ(usageMessage(apart, batchList(apart, none)), "");
+}
+
+TEST(BatchList, MoreStillsThanOneProcessRendersAreRefusedPointingToShard) {
+    std::istringstream none;
+    RenderOptions options = withModels(std::vector<std::string>(11, "a.obj"));
+    options.outputPath = "out/{index}-{view}.png";
+    options.viewsGiven = true;
+    options.viewSampling.count = 100000;
+    try {
+        batchList(options, none);
+        ADD_FAILURE() << "11 models x 100000 views were accepted";
+    } catch (const UsageError& error) {
+        EXPECT_NE(std::string(error.what()).find("--shard K/N (e.g. --shard 0/2)"), std::string::npos) << error.what();
+    }
+    options.shard = Shard{0, 2}; // 6 models x 100000: within the limit
+    EXPECT_EQ(batchList(options, none).models.size(), 6u);
+}
+
 TEST(BatchOutputs, NoStillMayOverwriteAModelOfTheList) {
     std::istringstream none;
     RenderOptions options = withModels({"m/2.obj", "m/a.obj"});
