@@ -82,8 +82,8 @@ SignalsDeferred::~SignalsDeferred() {
     if (const int signalNumber = gDeferredSignal.exchange(0)) removeAll(signalNumber);
 }
 
-const std::string& temporaryTag() {
-    static const std::string kTag = [] {
+std::string temporaryTag() {
+    static const std::string kHost = [] {
         char host[256] = {};
         if (::gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
         std::uint32_t hash = 2166136261u; // FNV-1a, 32 bits
@@ -93,8 +93,8 @@ const std::string& temporaryTag() {
         for (int i = 7; i >= 0; --i, hash >>= 4) tag[std::size_t(i)] = kDigits[hash & 15];
         return tag;
     }();
-    static const std::string kTagWithPid = kTag + "-" + std::to_string(::getpid());
-    return kTagWithPid;
+    // The pid asked each time: a forked child (Python's multiprocessing) has its own.
+    return kHost + "-" + std::to_string(::getpid());
 }
 
 bool isStaleTemporary(const std::string& name) {
@@ -112,7 +112,7 @@ bool isStaleTemporary(const std::string& name) {
 
 long pidOfNumberedName(const std::string& fullText) {
     // "<host>-" first: this machine's tag only (8 hexadecimal digits, so no pid can be taken for it).
-    const std::string& tag = temporaryTag();
+    const std::string tag = temporaryTag();
     const std::size_t hostLength = tag.find('-') + 1;
     if (fullText.size() <= hostLength || fullText.compare(0, hostLength, tag, 0, hostLength) != 0) return 0;
     const std::string text = fullText.substr(hostLength);

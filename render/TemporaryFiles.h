@@ -28,7 +28,7 @@ public:
 /** "<host>-<pid>": what numbers this process's temporary and staging names, <host> being 8 hexadecimal digits of a
  *  hash of the host name. Processes on other machines writing into the same shared folder have other tags, so no
  *  process ever takes another machine's live temporaries for a killed run's (their pids mean nothing here). */
-const std::string& temporaryTag();
+std::string temporaryTag();
 
 /** True when `name` is one of our temporary names (".inkgraph-<host>-<pid>-<n>.tmp"), made on this machine, and that
  *  process no longer runs: left by a killed run. (Staging folders of --dump have their own test: app/DumpFolder.h.) */

@@ -39,6 +39,30 @@ TEST(DatasetChecksum, ShellWordsQuoteOnlyWhatNeedsIt) {
     EXPECT_EQ(shellWord(""), "''");
 }
 
+TEST(DatasetTemporaryTag, IsThisHostAndThisProcessEvenAfterAFork) {
+    const std::string tag = temporaryTag();
+    const std::size_t dash = tag.find('-');
+    ASSERT_EQ(dash, 8u) << tag;
+    EXPECT_EQ(tag.substr(dash + 1), std::to_string(::getpid()));
+    int ends[2];
+    ASSERT_EQ(::pipe(ends), 0);
+    const pid_t child = ::fork();
+    if (child == 0) {
+        const std::string childTag = temporaryTag();
+        (void)!::write(ends[1], childTag.data(), childTag.size());
+        ::_exit(0);
+    }
+    ASSERT_GT(child, 0);
+    ::close(ends[1]);
+    char text[64] = {};
+    const ssize_t count = ::read(ends[0], text, sizeof text - 1);
+    ::close(ends[0]);
+    ::waitpid(child, nullptr, 0);
+    EXPECT_EQ(std::string(text, std::size_t(std::max<ssize_t>(count, 0))),
+              tag.substr(0, dash + 1) + std::to_string(child))
+        << "a forked child (Python's multiprocessing) numbers its temporaries by its own pid";
+}
+
 class Dataset : public test::TestFolder {
 protected:
     /** A run's options and list from `arguments` (after "render"), and its DatasetRun. */
