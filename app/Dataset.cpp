@@ -23,6 +23,8 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <optional>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -45,6 +47,27 @@ std::string fileStamp(const fs::path& path) {
 bool isRegularFile(const std::string& path) {
     struct stat status {};
     return ::stat(path.c_str(), &status) == 0 && S_ISREG(status.st_mode);
+}
+
+/** The files a flag's value names: the value itself when it is a file (--pose FILE, --shademap, a .vrma, ...), and
+ *  each piece of a list that is one (--poses rest,wave.json; a SOURCE:FILE; a NAME=FILE), in the order given. */
+std::vector<std::string> filesNamedBy(const std::string& value) {
+    std::vector<std::string> files;
+    const auto take = [&files](const std::string& piece) {
+        if (!piece.empty() && std::find(files.begin(), files.end(), piece) == files.end() && isRegularFile(piece))
+            files.push_back(piece);
+    };
+    take(value);
+    for (const char* separators : {",", ";", ":", "=", ",;:="}) {
+        std::size_t start = 0;
+        for (;;) {
+            const std::size_t end = value.find_first_of(separators, start);
+            take(value.substr(start, end == std::string::npos ? std::string::npos : end - start));
+            if (end == std::string::npos) break;
+            start = end + 1;
+        }
+    }
+    return files;
 }
 
 int hookFrom(const char* variable) {
@@ -99,6 +122,25 @@ std::vector<Json> readRecords(const fs::path& path, bool cutTornTail) {
         records.push_back(std::move(record));
     }
     return records;
+}
+
+/** True when an "ok" record has what --resume reads of it, each of its type: a settings digest, the checksums (each
+ *  file's size and hash) and the files (each a path). A hand-edited or foreign line that fails this is as good as
+ *  absent: its still renders again. */
+bool isUsableRecord(const Json& record) {
+    if (!record.contains("settings_digest") || !record["settings_digest"].is_string() ||
+        !record.contains("checksums") || !record["checksums"].is_object())
+        return false;
+    for (const auto& [relative, checksum] : record["checksums"].items())
+        if (!checksum.is_object() || !checksum.contains("size") || !checksum["size"].is_number_unsigned() ||
+            !checksum.contains("fnv1a64") || !checksum["fnv1a64"].is_string())
+            return false;
+    if (record.contains("files")) {
+        if (!record["files"].is_object()) return false;
+        for (const auto& [flag, path] : record["files"].items())
+            if (!path.is_string()) return false;
+    }
+    return true;
 }
 
 /** --seed with --views, else null. */
@@ -203,6 +245,7 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
     std::error_code error;
     if (fs::exists(mFolder, error) && !fs::is_directory(mFolder, error)) throw UsageError(shown + " is not a folder");
     mModelCount = list.models.size();
+    mListLength = list.total;
 
     // Every output of every still inside DIR, none of them the data set's own files.
     const std::set<fs::path> reserved = {mFolder / kJournalFolder, indexPath(), cardPath()};
@@ -223,26 +266,56 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
         }
     }
 
-    // A data set there already: refused unless resumed, so no run replaces an index, a card or a journal by mistake.
+    // One layout per folder, resumed or not: every index, shard card and journal there must be of this run's split
+    // (unsharded, or --shard K/N with this N), so no two splits' files ever mix in one data set.
+    const auto layoutOf = [](const std::string& suffix) -> std::string {
+        if (suffix.empty()) return "without --shard";
+        static const std::regex kShard(R"(-([0-9]{1,9})-of-([0-9]{1,9}))");
+        std::smatch match;
+        if (std::regex_match(suffix, match, kShard)) return "with --shard K/" + match[2].str();
+        return "by another run ('" + suffix + "')";
+    };
+    const std::string layout = layoutOf(mSuffix.empty() ? "" : "-0-of-" + std::to_string(options.shard->count));
+    const auto refuseOtherLayout = [&](const fs::path& path, const std::string& suffix) {
+        const std::string theirs = layoutOf(suffix);
+        if (theirs != layout)
+            throw UsageError(shown + " holds a data set made " + theirs + " ('" +
+                             path.lexically_relative(mFolder).generic_string() + "'), this run is " + layout +
+                             "; run it as it was made, or choose a new or empty folder");
+    };
+    const auto suffixBetween = [](const std::string& name, const std::string& prefix,
+                                  const std::string& extension) -> std::optional<std::string> {
+        if (name.size() < prefix.size() + extension.size() || name.rfind(prefix, 0) != 0 ||
+            name.compare(name.size() - extension.size(), extension.size(), extension) != 0)
+            return std::nullopt;
+        return name.substr(prefix.size(), name.size() - prefix.size() - extension.size());
+    };
+    for (const fs::path& folder : {mFolder, mFolder / kJournalFolder}) {
+        if (!fs::is_directory(folder, error)) continue;
+        for (const auto& entry : fs::directory_iterator(folder, error)) {
+            const std::string name = entry.path().filename().string();
+            if (folder == mFolder) {
+                if (const auto suffix = suffixBetween(name, "index", ".jsonl"))
+                    refuseOtherLayout(entry.path(), *suffix);
+                if (const auto suffix = suffixBetween(name, "README-", ".md");
+                    suffix && suffix->find("-of-") != std::string::npos)
+                    refuseOtherLayout(entry.path(), "-" + *suffix);
+            } else if (const auto suffix = suffixBetween(name, "journal", ".jsonl")) {
+                refuseOtherLayout(entry.path(), *suffix);
+            } else if (name.rfind("journal", 0) == 0) {
+                refuseOtherLayout(entry.path(), "?");
+            }
+        }
+    }
+    // A data set of this split there already: refused unless resumed, so no run replaces an index, a card or a
+    // journal by mistake. (Another shard's files of the same split are that shard's: this one starts beside them.)
     std::vector<fs::path> existing;
     for (const fs::path& path : {journalPath(), indexPath(), cardPath()})
         if (fs::exists(fs::symlink_status(path, error))) existing.push_back(path);
-    // One layout per folder: an unsharded data set's files against a sharded run's, and the other way round.
-    for (const fs::path& path : {mFolder / "index.jsonl", mFolder / kJournalFolder / "journal.jsonl"})
-        if (!mSuffix.empty() && fs::exists(fs::symlink_status(path, error))) existing.push_back(path);
-    if (mSuffix.empty() && fs::is_directory(mFolder, error))
-        for (const auto& entry : fs::directory_iterator(mFolder, error)) {
-            const std::string name = entry.path().filename().string();
-            if (name.rfind("index-", 0) == 0 && entry.path().extension() == ".jsonl") existing.push_back(entry.path());
-        }
     if (!existing.empty() && !options.resume)
         throw UsageError(shown + " already holds a data set ('" +
                          existing.front().lexically_relative(mFolder).string() +
                          "'); add --resume to complete or update it, or choose a new or empty folder");
-    if (!existing.empty() &&
-        mSuffix.empty() != (existing.front().filename().string().find("-of-") == std::string::npos))
-        throw UsageError(shown + " holds a data set made " + (mSuffix.empty() ? "with" : "without") + " --shard ('" +
-                         existing.front().lexically_relative(mFolder).string() + "'); resume it as it was made");
 
     // The canonical settings: each flag by its first name with its value, in the table's spelling, stably sorted by
     // name so that flag order does not matter (a flag given twice keeps its own order: the last one wins).
@@ -280,7 +353,7 @@ void DatasetRun::readEarlierRecords() {
     // The index first, then the journal, which is newer: a later record of a key replaces an earlier one.
     for (const auto& [path, isJournal] : {std::pair{indexPath(), false}, std::pair{journalPath(), true}})
         for (Json& record : readRecords(path, isJournal)) {
-            if (record["status"] != "ok") continue;
+            if (record["status"] != "ok" || !isUsableRecord(record)) continue;
             const StillKey key = keyOf(record);
             mEarlier[key] = std::move(record);
         }
@@ -297,7 +370,7 @@ std::string DatasetRun::settingsDigest(const StillKey& key, const RenderOptions&
     add("version", inkgraphVersion());
     for (const auto& [flag, value] : mCanonicalSettings) {
         add(flag, value);
-        if (isRegularFile(value)) add("file", fileStamp(value)); // --pose FILE, --shademap, a .vrma, ...
+        for (const std::string& file : filesNamedBy(value)) add("file " + file, fileStamp(file));
     }
     for (const auto& [flag, field] : outputPathFlags())
         if (!(still.*field).empty()) add(flag, relativeToDataset(still.*field));
@@ -313,6 +386,8 @@ std::string DatasetRun::settingsDigest(const StillKey& key, const RenderOptions&
         if (named == mNamedFiles.end()) named = mNamedFiles.emplace(key.model, referencedFiles(key.model)).first;
         for (const std::string& file : named->second) add("named " + file, fileStamp(file));
     }
+    // The whole list's length: --stats records it (batch.list_length), so a longer list renders every still again.
+    add("list_length", std::to_string(mListLength));
     add("view", std::to_string(key.view));
     add("sample", viewRecord(still).dump()); // the view drawn for the seed, the model path and the index
     return hexDigits(fnv1a64(text.data(), text.size()));
@@ -329,8 +404,9 @@ bool DatasetRun::isComplete(const StillKey& key, const std::string& digest) {
     // committed bytes, never a half-written file.
     for (const auto& [relative, expected] : record["checksums"].items()) {
         const auto found = fileChecksum(mFolder / relative);
-        if (!found || !expected.is_object() || expected.value("size", std::uintmax_t(0)) != found->size ||
-            expected.value("fnv1a64", std::string()) != found->fnv1a64)
+        if (!found || !expected.is_object() || !expected.contains("size") || !expected["size"].is_number_unsigned() ||
+            expected["size"].get<std::uintmax_t>() != found->size || !expected.contains("fnv1a64") ||
+            !expected["fnv1a64"].is_string() || expected["fnv1a64"].get<std::string>() != found->fnv1a64)
             return false;
     }
     mRecords[key] = record;
@@ -443,7 +519,8 @@ void DatasetRun::finish(std::ostream& log) {
     // A kill between a dump's swap and its tidying leaves the staging marker in the finished dump; a skipped still's
     // dump is tidied by nobody else.
     for (const auto& [key, record] : mRecords)
-        if (record.contains("files") && record["files"].contains("--dump"))
+        if (record.contains("files") && record["files"].is_object() && record["files"].contains("--dump") &&
+            record["files"]["--dump"].is_string())
             ::unlink((mFolder / record["files"]["--dump"].get<std::string>() / kStagingMarker).c_str());
     if (mOptions.resume && !mOptions.quiet)
         log << "inkgraph: resumed: " << mSkipped << " stills complete, " << mRendered << " rendered"

@@ -118,6 +118,7 @@ private:
     std::map<StillKey, nlohmann::ordered_json> mEarlier;                 ///< --resume: journal over index
     std::map<StillKey, nlohmann::ordered_json> mRecords;                 ///< this run's index, by key
     std::size_t mModelCount = 0;                                         ///< this process's share of the list
+    std::size_t mListLength = 0; ///< the whole list's length (--stats' batch.list_length): in the digest
     std::size_t mSkipped = 0;
     std::size_t mRendered = 0;
     int mJournalLines = 0;

@@ -6,8 +6,11 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <charconv>
+#include <optional>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <regex>
 #include <set>
@@ -72,7 +75,14 @@ std::map<std::string, std::size_t> cardCounts(const std::string& card) {
     std::string line;
     std::smatch match;
     while (std::getline(lines, line))
-        if (std::regex_match(line, match, kRow)) counts[match[1]] = std::stoul(match[2]);
+        if (std::regex_match(line, match, kRow)) {
+            // A number too large for size_t (a hand-edited card) is a count no index matches, not a crash.
+            std::size_t count = std::numeric_limits<std::size_t>::max();
+            const std::string digits = match[2].str();
+            if (std::from_chars(digits.data(), digits.data() + digits.size(), count).ec != std::errc())
+                count = std::numeric_limits<std::size_t>::max();
+            counts[match[1]] = count;
+        }
     return counts;
 }
 
@@ -167,6 +177,19 @@ void checkIndex(const fs::path& folder, const fs::path& index, const fs::path& c
     }
 }
 
+/** --shard's largest N (flags/FlagTable.cpp parseShard): an index name with a larger one is no run's. */
+constexpr int kMaxShardCount = 1000000;
+
+/** K or N of a shard index's name: decimal digits as inkgraph writes them (no leading zero but for 0 itself), or
+ *  nothing for a number out of range or of another spelling. */
+std::optional<int> shardNumber(const std::string& digits) {
+    if (digits.empty() || digits.size() > 9 || (digits.size() > 1 && digits[0] == '0')) return std::nullopt;
+    int value = 0;
+    const auto [end, failure] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (failure != std::errc() || end != digits.data() + digits.size()) return std::nullopt;
+    return value;
+}
+
 } // namespace
 
 DatasetReport checkDataset(const fs::path& folder) {
@@ -183,8 +206,17 @@ DatasetReport checkDataset(const fs::path& folder) {
         if (name == "index.jsonl") {
             indexes.emplace_back(entry.path(), folder / "README.md");
         } else if (std::regex_match(name, match, kShardIndex)) {
+            const auto index = shardNumber(match[1].str()), count = shardNumber(match[2].str());
+            if (!index || !count || *count < 1 || *count > kMaxShardCount || *index >= *count) {
+                report.errors.push_back(quoted(name) +
+                                        ": not an index inkgraph writes (index-K-of-N.jsonl with 0 <= K "
+                                        "< N <= " +
+                                        std::to_string(kMaxShardCount) + ", as --shard takes them)");
+                own.insert(name);
+                continue;
+            }
             indexes.emplace_back(entry.path(), folder / ("README-" + match[1].str() + "-of-" + match[2].str() + ".md"));
-            shardsByCount[std::stoi(match[2])].insert(std::stoi(match[1]));
+            shardsByCount[*count].insert(*index);
         }
     }
     std::sort(indexes.begin(), indexes.end());
@@ -193,12 +225,22 @@ DatasetReport checkDataset(const fs::path& folder) {
                                         [](const auto& index) { return index.first.filename() == "index.jsonl"; });
     if (shardsByCount.size() > 1 || (plainIndex && !shardsByCount.empty()))
         report.errors.push_back("indexes of two layouts (index.jsonl and index-K-of-N.jsonl, or two N)");
-    for (const auto& [count, shards] : shardsByCount)
-        for (int shard = 0; shard < count; ++shard)
-            if (shards.count(shard) == 0)
+    for (const auto& [count, shards] : shardsByCount) {
+        // Each missing shard by name, the first few of them: N is at most a million, and one line says the rest.
+        constexpr int kNamed = 20;
+        const int missing = count - int(shards.size());
+        int named = 0;
+        for (int shard = 0; shard < count && named < kNamed; ++shard)
+            if (shards.count(shard) == 0) {
                 report.errors.push_back("shard " + std::to_string(shard) + " of " + std::to_string(count) +
                                         " is missing (index-" + std::to_string(shard) + "-of-" + std::to_string(count) +
                                         ".jsonl): that task has not finished");
+                ++named;
+            }
+        if (missing > named)
+            report.errors.push_back("and " + std::to_string(missing - named) + " more shards of " +
+                                    std::to_string(count) + " are missing");
+    }
     std::set<std::string> listed;
     for (const auto& [index, card] : indexes) {
         own.insert(index.filename().string());

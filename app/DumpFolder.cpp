@@ -96,16 +96,16 @@ std::string attributeKeepingInPlace(const fs::path& path) {
     return "";
 }
 
-/** The pid in ".inkgraph-dump-<pid>-<n>", or 0. */
+/** The pid in ".inkgraph-dump-<host>-<pid>-<n>" made on this machine, or 0. */
 long stagingFolderPid(const std::string& name) {
     if (name.rfind(kStagingPrefix, 0) != 0) return 0;
-    // Exactly "<digits>-<digits>" after the prefix, as newStagingName() writes it.
+    // Exactly "<host>-<digits>-<digits>" after the prefix, as newStagingName() writes it.
     return pidOfNumberedName(name.substr(std::strlen(kStagingPrefix)));
 }
 
 fs::path newStagingName(const fs::path& parent) {
     static std::atomic<int> counter{0};
-    return parent / (kStagingPrefix + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    return parent / (kStagingPrefix + temporaryTag() + "-" + std::to_string(counter++));
 }
 
 /** Swaps two names atomically (Linux 3.15 and later; ext4, xfs, btrfs, tmpfs and overlayfs support it). */

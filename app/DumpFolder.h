@@ -4,11 +4,11 @@
  *  either the earlier dump or the new one, whole. (On a file system without RENAME_EXCHANGE, such as NFS, the swap is
  *  two renames: a crash between them leaves no DIR, never a mix.)
  *
- *  The staging folder is ".inkgraph-dump-<pid>-<n>" in DIR's parent and holds the marker file ".inkgraph-staging".
- *  A later run removes such a folder only when both hold (its name and its marker) and process <pid> is gone, and
- *  then only the plain files directly inside it, the marker last and only once they are all gone (a file that could
- *  not be removed is tried again by the next run): nothing is ever deleted because a file's content says so. An
- *  earlier dump is recognised by its manifest.json, whose "files" must all be plain names (no separators) of
+ *  The staging folder is ".inkgraph-dump-<host>-<pid>-<n>" in DIR's parent and holds the marker file
+ * ".inkgraph-staging". A later run removes such a folder only when both hold (its name and its marker) and process
+ * <pid> is gone, and then only the plain files directly inside it, the marker last and only once they are all gone (a
+ * file that could not be removed is tried again by the next run): nothing is ever deleted because a file's content says
+ * so. An earlier dump is recognised by its manifest.json, whose "files" must all be plain names (no separators) of
  *  regular files the folder holds, with nothing else beside them.
  *
  *  DIR is locked (flock) from the check until the commit ends: a second run on the same folder is refused at once,

@@ -24,8 +24,9 @@ bool isInside(const fs::path& path, const fs::path& folder) {
     return !relative.empty() && *relative.begin() != "..";
 }
 
-/** Leftover files of killed runs (".inkgraph-<pid>-..." whose process is gone) are removed when we meet them: plain
- *  files only, never a folder of that name (app/DumpFolder.h sweeps staging folders by their marker). */
+/** Leftover files of killed runs (".inkgraph-<host>-<pid>-..." made here whose process is gone) are removed when we
+ * meet them: plain files only, never a folder of that name (app/DumpFolder.h sweeps staging folders by their marker).
+ */
 void sweepStaleTemporaries(const fs::path& folder) {
     std::error_code error;
     for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {

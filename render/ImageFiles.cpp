@@ -154,7 +154,7 @@ std::filesystem::path temporarySibling(const std::filesystem::path& path) {
     // Short, and without the final name's extension (which may itself be near NAME_MAX): the format follows the
     // final name, never the temporary one.
     static std::atomic<int> counter{0};
-    const std::string name = ".inkgraph-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".tmp";
+    const std::string name = ".inkgraph-" + temporaryTag() + "-" + std::to_string(counter++) + ".tmp";
     return path.parent_path() / name;
 }
 

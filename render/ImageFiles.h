@@ -96,7 +96,8 @@ void writeTextFile(const std::filesystem::path& path, const std::string& text);
  *  writability (permissions, read-only mounts, ACLs). */
 int creationErrorIn(const std::filesystem::path& folder);
 
-/** A short sibling of `path`, unique to this process: "final.png" -> ".inkgraph-1234-0.tmp". */
+/** A short sibling of `path`, unique to this process: "final.png" -> ".inkgraph-<host>-1234-0.tmp"
+ * (render/TemporaryFiles.h temporaryTag()). */
 std::filesystem::path temporarySibling(const std::filesystem::path& path);
 
 } // namespace inkgraph

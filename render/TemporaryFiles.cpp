@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdint>
 #include <cerrno>
 #include <cstring>
 #include <mutex>
@@ -81,9 +82,24 @@ SignalsDeferred::~SignalsDeferred() {
     if (const int signalNumber = gDeferredSignal.exchange(0)) removeAll(signalNumber);
 }
 
+std::string temporaryTag() {
+    static const std::string kHost = [] {
+        char host[256] = {};
+        if (::gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
+        std::uint32_t hash = 2166136261u; // FNV-1a, 32 bits
+        for (const char* c = host; *c != '\0'; ++c) hash = (hash ^ static_cast<unsigned char>(*c)) * 16777619u;
+        static const char kDigits[] = "0123456789abcdef";
+        std::string tag(8, '0');
+        for (int i = 7; i >= 0; --i, hash >>= 4) tag[std::size_t(i)] = kDigits[hash & 15];
+        return tag;
+    }();
+    // The pid asked each time: a forked child (Python's multiprocessing) has its own.
+    return kHost + "-" + std::to_string(::getpid());
+}
+
 bool isStaleTemporary(const std::string& name) {
-    // Exactly ".inkgraph-<pid>-<n>.tmp" (render/ImageFiles.h temporarySibling): a user's ".inkgraph-1234-notes.txt" is
-    // not ours, whatever its name suggests.
+    // Exactly ".inkgraph-<host>-<pid>-<n>.tmp" (render/ImageFiles.h temporarySibling): a user's
+    // ".inkgraph-1234-notes.txt" is not ours, whatever its name suggests.
     constexpr const char* kPrefix = ".inkgraph-";
     constexpr const char* kSuffix = ".tmp";
     const std::size_t prefix = std::strlen(kPrefix), suffix = std::strlen(kSuffix);
@@ -94,7 +110,12 @@ bool isStaleTemporary(const std::string& name) {
     return pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
 }
 
-long pidOfNumberedName(const std::string& text) {
+long pidOfNumberedName(const std::string& fullText) {
+    // "<host>-" first: this machine's tag only (8 hexadecimal digits, so no pid can be taken for it).
+    const std::string tag = temporaryTag();
+    const std::size_t hostLength = tag.find('-') + 1;
+    if (fullText.size() <= hostLength || fullText.compare(0, hostLength, tag, 0, hostLength) != 0) return 0;
+    const std::string text = fullText.substr(hostLength);
     const auto dash = text.find('-');
     const auto allDigits = [](const std::string& part) {
         return !part.empty() && part.size() <= 10 && part.find_first_not_of("0123456789") == std::string::npos;

@@ -25,11 +25,17 @@ public:
     SignalsDeferred& operator=(const SignalsDeferred&) = delete;
 };
 
-/** True when `name` is one of our temporary names (".inkgraph-<pid>-<n>...") and that process no longer runs: left
- *  by a killed run. (Staging folders of --dump have their own test: app/DumpFolder.h.) */
+/** "<host>-<pid>": what numbers this process's temporary and staging names, <host> being 8 hexadecimal digits of a
+ *  hash of the host name. Processes on other machines writing into the same shared folder have other tags, so no
+ *  process ever takes another machine's live temporaries for a killed run's (their pids mean nothing here). */
+std::string temporaryTag();
+
+/** True when `name` is one of our temporary names (".inkgraph-<host>-<pid>-<n>.tmp"), made on this machine, and that
+ *  process no longer runs: left by a killed run. (Staging folders of --dump have their own test: app/DumpFolder.h.) */
 bool isStaleTemporary(const std::string& name);
 
-/** The pid in "<pid>-<n>" (both decimal: how our temporary and staging names are numbered), or 0 for other text. */
+/** The pid in "<host>-<pid>-<n>" (how our temporary and staging names are numbered) when <host> is this machine's
+ *  tag, or 0: for other text and for names another machine made. */
 long pidOfNumberedName(const std::string& text);
 
 } // namespace inkgraph

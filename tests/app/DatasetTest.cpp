@@ -4,9 +4,12 @@
 #include "app/Dataset.h"
 #include "app/DatasetCheck.h"
 
+#include "render/TemporaryFiles.h"
 #include "tests/support/TestFolder.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -34,6 +37,30 @@ TEST(DatasetChecksum, ShellWordsQuoteOnlyWhatNeedsIt) {
     EXPECT_EQ(shellWord("a b"), "'a b'");
     EXPECT_EQ(shellWord("it's"), "'it'\\''s'");
     EXPECT_EQ(shellWord(""), "''");
+}
+
+TEST(DatasetTemporaryTag, IsThisHostAndThisProcessEvenAfterAFork) {
+    const std::string tag = temporaryTag();
+    const std::size_t dash = tag.find('-');
+    ASSERT_EQ(dash, 8u) << tag;
+    EXPECT_EQ(tag.substr(dash + 1), std::to_string(::getpid()));
+    int ends[2];
+    ASSERT_EQ(::pipe(ends), 0);
+    const pid_t child = ::fork();
+    if (child == 0) {
+        const std::string childTag = temporaryTag();
+        (void)!::write(ends[1], childTag.data(), childTag.size());
+        ::_exit(0);
+    }
+    ASSERT_GT(child, 0);
+    ::close(ends[1]);
+    char text[64] = {};
+    const ssize_t count = ::read(ends[0], text, sizeof text - 1);
+    ::close(ends[0]);
+    ::waitpid(child, nullptr, 0);
+    EXPECT_EQ(std::string(text, std::size_t(std::max<ssize_t>(count, 0))),
+              tag.substr(0, dash + 1) + std::to_string(child))
+        << "a forked child (Python's multiprocessing) numbers its temporaries by its own pid";
 }
 
 class Dataset : public test::TestFolder {
@@ -153,12 +180,128 @@ TEST_F(Dataset, AnExistingDataSetNeedsResume) {
     fs::remove_all(set);
     write(fs::path(set) / "index.jsonl", "");
     EXPECT_NE(usageError({model, "--dataset", set, "-o", set + "/a.png", "--shard", "0/2", "--resume"})
-                  .find("made without --shard"),
+                  .find("made without --shard ('index.jsonl'), this run is with --shard K/2"),
               std::string::npos);
     // Another shard's files are that shard's: this one starts afresh beside them.
     fs::remove_all(set);
     write(fs::path(set) / "index-1-of-2.jsonl", "");
     EXPECT_EQ(usageError({model, "--dataset", set, "-o", set + "/a.png", "--shard", "0/2"}), "");
+}
+
+TEST_F(Dataset, AnotherSplitIsRefusedResumedOrNotNamingTheFile) {
+    const struct {
+        std::string file;
+        std::vector<std::string> shard; // this run's
+        std::string message;            // empty: accepted
+    } cases[] = {
+        {"index-1-of-2.jsonl",
+         {"--shard", "0/3"},
+         "made with --shard K/2 ('index-1-of-2.jsonl'), this run is with "
+         "--shard K/3"},
+        {"README-1-of-2.md", {"--shard", "0/3"}, "made with --shard K/2 ('README-1-of-2.md')"},
+        {".inkgraph/journal-1-of-2.jsonl", {"--shard", "0/3"}, "('.inkgraph/journal-1-of-2.jsonl')"},
+        {"README-1-of-2.md", {}, "made with --shard K/2 ('README-1-of-2.md'), this run is without --shard"},
+        {".inkgraph/journal-0-of-2.jsonl", {}, "made with --shard K/2 ('.inkgraph/journal-0-of-2.jsonl')"},
+        {".inkgraph/journal.jsonl", {"--shard", "1/2"}, "made without --shard ('.inkgraph/journal.jsonl')"},
+        {"index-old.jsonl", {}, "made by another run ('-old') ('index-old.jsonl')"},
+        {".inkgraph/journal-1-of-2.jsonl", {"--shard", "0/2"}, ""}, // the same split: another shard's own
+        {"README-notes.md", {}, ""},                                // not a card of any split
+    };
+    for (const auto& test : cases)
+        for (const bool resume : {false, true}) {
+            fs::remove_all(set);
+            write(fs::path(set) / test.file, "");
+            std::vector<std::string> arguments = {model, "--dataset", set, "-o", set + "/a.png"};
+            arguments.insert(arguments.end(), test.shard.begin(), test.shard.end());
+            if (resume) arguments.push_back("--resume");
+            const std::string error = usageError(arguments);
+            if (test.message.empty())
+                EXPECT_EQ(error, "") << test.file;
+            else
+                EXPECT_NE(error.find(test.message), std::string::npos) << test.file << ": " << error;
+        }
+}
+
+TEST_F(Dataset, AnEditedPoseFileOfAListRendersAgain) {
+    const std::string pose = write(directory / "wave.json", R"({"leftUpperArm": [0, 0, 0, 1]})");
+    const std::vector<std::string> arguments = {model,
+                                                "--views",
+                                                "2",
+                                                "--seed",
+                                                "1",
+                                                "--poses",
+                                                "rest," + pose,
+                                                "--dataset",
+                                                set,
+                                                "-o",
+                                                set + "/{name}-{view}.png"};
+    const std::string digest = digestOf(arguments);
+    EXPECT_EQ(digestOf(arguments), digest);
+    write(pose, R"({"leftUpperArm": [0, 0, 0.3826834, 0.9238795]})");
+    EXPECT_NE(digestOf(arguments), digest) << "a file of --poses' list";
+}
+
+TEST_F(Dataset, TheDigestHoldsTheListLength) {
+    const std::string other = write(directory / "other.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string listFile = write(directory / "list.txt", model + "\n");
+    const std::vector<std::string> arguments = {"--list", listFile, "--dataset", set, "-o", set + "/{name}.png"};
+    const std::string digest = digestOf(arguments);
+    write(listFile, model + "\n" + other + "\n");
+    EXPECT_NE(digestOf(arguments), digest) << "--stats' batch.list_length of the first still changed";
+}
+
+TEST_F(Dataset, RecordsOfWrongTypesAreAbsent) {
+    const std::vector<std::string> arguments = {model, "--dataset", set, "-o", set + "/{name}.png", "--resume"};
+    const std::string digest = digestOf(arguments);
+    write(fs::path(set) / "cube.png", "picture");
+    const std::string hash = hexDigits(fnv1a64("picture", 7));
+    const auto line = [&](const std::string& size, const std::string& checksum, const std::string& files) {
+        return R"({"model":")" + model + R"(","position":0,"view":0,"status":"ok","settings_digest":")" + digest +
+               R"(","checksums":{"cube.png":{"size":)" + size + R"(,"fnv1a64":)" + checksum + R"(}},"files":)" + files +
+               "}\n";
+    };
+    const fs::path journal = fs::path(set) / ".inkgraph" / "journal.jsonl";
+    for (const std::string& edited :
+         {line("\"7\"", "\"" + hash + "\"", "{}"), line("7", "7", "{}"), line("-7", "\"" + hash + "\"", "{}"),
+          line("7", "\"" + hash + "\"", R"({"--dump": 5})"), line("7", "\"" + hash + "\"", "[]")}) {
+        write(journal, edited);
+        std::unique_ptr<DatasetRun> run;
+        ASSERT_NO_THROW(run = runOf(arguments)) << edited;
+        EXPECT_FALSE(run->isComplete({model, 0, 0}, digest)) << edited;
+        std::ostringstream log;
+        EXPECT_NO_THROW(run->finish(log)) << edited;
+        fs::remove(fs::path(set) / "index.jsonl");
+        fs::remove(fs::path(set) / "README.md");
+    }
+    // The same line with the right types: complete.
+    write(journal, line("7", "\"" + hash + "\"", "{}"));
+    EXPECT_TRUE(runOf(arguments)->isComplete({model, 0, 0}, digest));
+}
+
+TEST_F(Dataset, FinishSweepsOnlyThisMachinesDeadTemporaries) {
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    ASSERT_GT(child, 0);
+    ASSERT_EQ(::waitpid(child, nullptr, 0), child);
+    const std::string host = temporaryTag().substr(0, temporaryTag().find('-'));
+    const std::string otherHost = host == "00000000" ? "00000001" : "00000000";
+    const fs::path sub = fs::path(set) / "sub";
+    const std::string dead = write(sub / (".inkgraph-" + host + "-" + std::to_string(child) + "-0.tmp"), "x");
+    const std::string live = write(sub / (".inkgraph-" + temporaryTag() + "-0.tmp"), "x");
+    // Another node's (an array task writing into the same DIR): its pid means nothing here, whatever runs here.
+    const std::string remote = write(sub / (".inkgraph-" + otherHost + "-" + std::to_string(child) + "-0.tmp"), "x");
+    const std::string oldName = write(sub / (".inkgraph-" + std::to_string(child) + "-0.tmp"), "x");
+    const fs::path remoteStaging = sub / (".inkgraph-dump-" + otherHost + "-" + std::to_string(child) + "-0");
+    write(remoteStaging / ".inkgraph-staging", "");
+    write(remoteStaging / "final.png", "live");
+    auto run = runOf({model, "--dataset", set, "-o", set + "/{name}.png"});
+    std::ostringstream log;
+    run->finish(log);
+    EXPECT_FALSE(fs::exists(dead)) << "this machine's, of a process that is gone";
+    EXPECT_TRUE(fs::exists(live)) << "this process's own";
+    EXPECT_TRUE(fs::exists(remote));
+    EXPECT_TRUE(fs::exists(oldName)) << "no host: nobody's to sweep";
+    EXPECT_TRUE(fs::exists(remoteStaging / "final.png"));
 }
 
 TEST_F(Dataset, ATornJournalLineIsIgnoredAndCutOff) {
@@ -223,6 +366,31 @@ TEST_F(Dataset, CheckDatasetFindsEachKindOfProblem) {
     ASSERT_EQ(report.errors.size(), 2u);
     EXPECT_EQ(report.errors[0], "shard 1 of 3 is missing (index-1-of-3.jsonl): that task has not finished");
     EXPECT_EQ(report.errors[1], "index-2-of-3.jsonl line 1: not a JSON object");
+
+    // Hostile names: each one error, no crash and no million errors.
+    for (const std::string name :
+         {"index-99999999999-of-2.jsonl", "index-0-of-999999999.jsonl", "index-0-of-1000001.jsonl",
+          "index-2-of-2.jsonl", "index-0-of-0.jsonl", "index-01-of-2.jsonl"}) {
+        const fs::path hostile = directory / ("hostile-" + name);
+        write(hostile / name, "");
+        report = checkDataset(hostile);
+        ASSERT_EQ(report.errors.size(), 2u) << name;
+        EXPECT_EQ(report.errors[0], "'" + name +
+                                        "': not an index inkgraph writes (index-K-of-N.jsonl with 0 <= K < N <= "
+                                        "1000000, as --shard takes them)");
+        EXPECT_EQ(report.errors[1], "no index.jsonl (or index-K-of-N.jsonl): not a finished data set");
+    }
+    // Many shards missing: the first 20 by name, then one line.
+    const fs::path many = directory / "many";
+    write(many / "index-0-of-1000000.jsonl", "");
+    write(many / "README-0-of-1000000.md", "| models | 0 |\n| stills in the set | 0 |\n| failed | 0 |\n");
+    report = checkDataset(many);
+    ASSERT_EQ(report.errors.size(), 21u);
+    EXPECT_EQ(report.errors[0], "shard 1 of 1000000 is missing (index-1-of-1000000.jsonl): that task has not finished");
+    EXPECT_EQ(report.errors[20], "and 999979 more shards of 1000000 are missing");
+    // A card count too large for any integer: a mismatch, not a crash.
+    write(folder / "README.md", "| models | 99999999999999999999999 |\n| stills in the set | 1 |\n| failed | 0 |\n");
+    EXPECT_NO_THROW(report = checkDataset(folder));
 }
 
 } // namespace

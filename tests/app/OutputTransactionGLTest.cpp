@@ -3,6 +3,7 @@
 // step of the commit (test hooks INKGRAPH_TEST_COMMIT_FAIL / _KILL); a crash at any step leaves each output whole, old
 // or new, and the next run recovers; a dump folder in use is refused; a planted manifest never deletes anything.
 #include "CliTestSupport.h"
+#include "render/TemporaryFiles.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -262,7 +263,12 @@ TEST_F(OutputTransaction, APlantedManifestNeverDeletesAnything) {
 TEST_F(OutputTransaction, StagingFoldersAreSweptOnlyByTheirMarker) {
     const pid_t child = goneProcess();
     ASSERT_GT(child, 0);
-    const std::string stale = ".inkgraph-dump-" + std::to_string(child) + "-0";
+    // This machine's tag: the run below is on the same host; a name of another host's tag is never this run's to sweep.
+    const std::string host = temporaryTag().substr(0, temporaryTag().find('-'));
+    const std::string otherHost = host == "00000000" ? "00000001" : "00000000";
+    const std::string dead = host + "-" + std::to_string(child);
+    const std::string stale = ".inkgraph-dump-" + dead + "-0";
+    const std::string otherHosts = ".inkgraph-dump-" + otherHost + "-" + std::to_string(child) + "-0";
     // Named like a staging folder of a dead run, but without the marker: someone else's, never touched.
     fs::create_directories(directory / (stale + "x"));
     std::ofstream(directory / (stale + "x") / "notes.txt") << "precious";
@@ -270,15 +276,24 @@ TEST_F(OutputTransaction, StagingFoldersAreSweptOnlyByTheirMarker) {
     fs::create_directories(directory / stale);
     std::ofstream(directory / stale / ".inkgraph-staging");
     std::ofstream(directory / stale / "final.png") << "half";
-    // Temporary files: exactly ".inkgraph-<dead pid>-<n>.tmp" is a killed run's; anything else of that look is not.
-    std::ofstream(directory / (".inkgraph-" + std::to_string(child) + "-3.tmp")) << "half";
-    std::ofstream(directory / (".inkgraph-" + std::to_string(child) + "-notes.txt")) << "precious";
+    // With the marker, but made on another machine (a shared folder): its pid means nothing here; kept.
+    fs::create_directories(directory / otherHosts);
+    std::ofstream(directory / otherHosts / ".inkgraph-staging");
+    std::ofstream(directory / otherHosts / "final.png") << "live";
+    // Temporary files: exactly ".inkgraph-<host>-<dead pid>-<n>.tmp" is a killed run's; anything else of that look,
+    // or another host's, is not.
+    const std::string otherTemporary = ".inkgraph-" + otherHost + "-" + std::to_string(child) + "-3.tmp";
+    std::ofstream(directory / (".inkgraph-" + dead + "-3.tmp")) << "half";
+    std::ofstream(directory / (".inkgraph-" + dead + "-notes.txt")) << "precious";
+    std::ofstream(directory / otherTemporary) << "live";
     const CliRun result = run("render " + model("spot_c3d.obj") + " --size 16x16 --dump d -o out.png");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     EXPECT_FALSE(fs::exists(directory / stale));
-    EXPECT_FALSE(fs::exists(directory / (".inkgraph-" + std::to_string(child) + "-3.tmp")));
+    EXPECT_FALSE(fs::exists(directory / (".inkgraph-" + dead + "-3.tmp")));
     EXPECT_EQ(readText(directory / (stale + "x") / "notes.txt"), "precious");
-    EXPECT_EQ(readText(directory / (".inkgraph-" + std::to_string(child) + "-notes.txt")), "precious");
+    EXPECT_EQ(readText(directory / (".inkgraph-" + dead + "-notes.txt")), "precious");
+    EXPECT_EQ(readText(directory / otherHosts / "final.png"), "live");
+    EXPECT_EQ(readText(directory / otherTemporary), "live");
 }
 
 /** Sets or clears an attribute (FS_IMMUTABLE_FL, FS_APPEND_FL: chattr +i, +a; root only) of the open file `file`;
@@ -360,7 +375,8 @@ TEST_F(OutputTransaction, AStagingFolderWithAFileLeftIsSweptOnceItCanBe) {
     // removes it once the file can go. Before, the sweep removed the marker alone and the folder stayed for good.
     const pid_t child = goneProcess();
     ASSERT_GT(child, 0);
-    const fs::path stale = directory / (".inkgraph-dump-" + std::to_string(child) + "-0");
+    const fs::path stale = directory / (".inkgraph-dump-" + temporaryTag().substr(0, temporaryTag().find('-')) + "-" +
+                                        std::to_string(child) + "-0");
     fs::create_directories(stale);
     std::ofstream(stale / ".inkgraph-staging");
     std::ofstream(stale / "final.png") << "an earlier dump's";
