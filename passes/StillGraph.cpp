@@ -9,6 +9,7 @@
 #include "passes/mtoon/MToonOutlinePass.h"
 #include "passes/orientation/SceneOrientation.h"
 #include "passes/shade/ShadePass.h"
+#include "scene/MeshLabels.h"
 
 #include <algorithm>
 
@@ -285,11 +286,8 @@ std::vector<StrokeRecord> StillGraph::strokeRecords(ResourceStore& store, const 
     setup.scene = &scene;
     setup.depth = store.image(std::string(kGBufferPass) + "." + GBufferPass::kDepth);
     setup.triangleIds = store.image(triangleIdResource());
-    std::size_t offset = 0;
-    for (const Mesh& mesh : scene.meshes) {
-        setup.meshTriangleOffsets.push_back(offset);
-        offset += mesh.triangleCount();
-    }
+    // The numbering of the triangleId field and the manifest's meshes (scene/MeshLabels.h), the one place it is made.
+    for (const MeshLabel& mesh : sceneLabels(scene).meshes) setup.meshTriangleOffsets.push_back(mesh.firstTriangle);
     for (const StrokeInput& input : setup.drawn->inputs) {
         const LineType* type = findLineType(input.type);
         StrokePointInput points;
