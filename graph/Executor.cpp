@@ -35,39 +35,41 @@ void runPassStep(ExecutorBackend& backend, const std::string& where, const char*
 
 } // namespace
 
-std::vector<PassTiming> executePlan(std::string_view caller, const Plan& plan,
-                                    const std::vector<std::string_view>& passNames, ExecutorBackend& backend,
-                                    bool keepAllResources) {
-    const std::string function(caller);
-    std::vector<std::size_t> objectOf; // plan index -> index into passNames
+PlanRun::PlanRun(std::string_view caller, const Plan& plan, const std::vector<std::string_view>& passNames,
+                 bool keepAllResources)
+    : mCaller(caller), mPlan(plan), mKeepAllResources(keepAllResources), mTimings(plan.passes.size()) {
     for (const PlannedPass& planned : plan.passes) {
         auto found = std::find(passNames.begin(), passNames.end(), planned.name);
         if (found == passNames.end())
-            throw std::logic_error(function + ": the plan names pass '" + planned.name +
+            throw std::logic_error(mCaller + ": the plan names pass '" + planned.name +
                                    "' but no such pass object was given");
-        objectOf.push_back(std::size_t(found - passNames.begin()));
+        mObjectOf.push_back(std::size_t(found - passNames.begin()));
     }
+}
 
+void PlanRun::prepare(ExecutorBackend& backend) {
     // Every prepare before any execute: shader builds and uploads stay out of the executes' times.
-    std::vector<PassTiming> timings(plan.passes.size());
-    for (std::size_t index = 0; index < plan.passes.size(); ++index) {
-        const PlannedPass& planned = plan.passes[index];
-        const std::string where = function + ": pass '" + planned.name + "'";
+    for (std::size_t index = 0; index < mPlan.passes.size(); ++index) {
+        const PlannedPass& planned = mPlan.passes[index];
+        const std::string where = mCaller + ": pass '" + planned.name + "'";
         const double start = nowMilliseconds();
-        runPassStep(backend, where, "failed to prepare", objectOf[index], planned, PassPhase::Prepare);
+        runPassStep(backend, where, "failed to prepare", mObjectOf[index], planned, PassPhase::Prepare);
         backend.finishStep(planned, PassPhase::Prepare);
-        timings[index].pass = planned.name;
-        timings[index].prepareMilliseconds = nowMilliseconds() - start;
+        mTimings[index].pass = planned.name;
+        mTimings[index].prepareMilliseconds = nowMilliseconds() - start;
     }
+}
 
-    for (std::size_t index = 0; index < plan.passes.size(); ++index) {
-        const PlannedPass& planned = plan.passes[index];
-        const std::string where = function + ": pass '" + planned.name + "'";
+void PlanRun::execute(ExecutorBackend& backend, std::size_t end) {
+    for (; mNext < std::min(end, mPlan.passes.size()); ++mNext) {
+        const std::size_t index = mNext;
+        const PlannedPass& planned = mPlan.passes[index];
+        const std::string where = mCaller + ": pass '" + planned.name + "'";
         const double start = nowMilliseconds();
-        runPassStep(backend, where, "failed", objectOf[index], planned, PassPhase::Execute);
+        runPassStep(backend, where, "failed", mObjectOf[index], planned, PassPhase::Execute);
         // Waiting here makes the milliseconds mean the pass's own work, not whatever the backend queued.
         backend.finishStep(planned, PassPhase::Execute);
-        timings[index].milliseconds = nowMilliseconds() - start;
+        mTimings[index].milliseconds = nowMilliseconds() - start;
 
         if (const std::string problem = backend.afterPass(planned); !problem.empty())
             throw std::runtime_error(where + " " + problem);
@@ -75,11 +77,19 @@ std::vector<PassTiming> executePlan(std::string_view caller, const Plan& plan,
             if (!backend.wrote(written))
                 throw std::logic_error(where + " did not write its live output '" + written + "'");
 
-        if (keepAllResources) continue;
-        for (const PlannedResource& resource : plan.resources)
+        if (mKeepAllResources) continue;
+        for (const PlannedResource& resource : mPlan.resources)
             if (!resource.requested && resource.lastUse == index) backend.release(resource.name);
     }
-    return timings;
+}
+
+std::vector<PassTiming> executePlan(std::string_view caller, const Plan& plan,
+                                    const std::vector<std::string_view>& passNames, ExecutorBackend& backend,
+                                    bool keepAllResources) {
+    PlanRun run(caller, plan, passNames, keepAllResources);
+    run.prepare(backend);
+    run.execute(backend, plan.passes.size());
+    return run.timings();
 }
 
 } // namespace inkgraph

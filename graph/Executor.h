@@ -62,12 +62,36 @@ public:
     virtual void release(const std::string& resource) = 0;
 };
 
-/** Runs `plan` on `backend`; `passNames` are the names of the pass objects the backend holds, in its order.
- *  Prepares every planned pass (timed as prepareMilliseconds), then executes each in plan order, releasing every
- *  resource that is not requested after its lastUse unless `keepAllResources`. Messages start with `caller`
- *  ("GraphExecutor::run()"). Throws std::logic_error for a planned pass with no object and for a live output a pass
- *  did not write; std::runtime_error for what afterPass() reports; a failing step's exception is rethrown naming the
- *  pass: OutOfMemoryError for std::bad_alloc, the backend's types (rethrowByCause()), else std::runtime_error. */
+/** One run of a plan, step by step, so its passes may execute on more than one backend: the GPU passes on the
+ *  thread that holds the context, the host tail (Plan::hostTailStart()) afterwards on a worker with a backend that
+ *  needs no context. `passNames` are the names of the pass objects the backends hold, in their order; messages start
+ *  with `caller` ("GraphExecutor::run()"). Throws std::logic_error for a planned pass with no object. */
+class PlanRun {
+public:
+    PlanRun(std::string_view caller, const Plan& plan, const std::vector<std::string_view>& passNames,
+            bool keepAllResources);
+    /** Prepares every planned pass (timed as prepareMilliseconds). Once, first. */
+    void prepare(ExecutorBackend& backend);
+    /** Executes the passes from the next one not yet executed up to (not including) `end`, in plan order, releasing
+     *  every resource that is not requested after its lastUse unless keepAllResources. Throws std::logic_error for a
+     *  live output a pass did not write; std::runtime_error for what afterPass() reports; a failing step's exception
+     *  is rethrown naming the pass: OutOfMemoryError for std::bad_alloc, the backend's types (rethrowByCause()), else
+     *  std::runtime_error. */
+    void execute(ExecutorBackend& backend, std::size_t end);
+    /** The index of the next pass to execute (plan.passes.size() once all have). */
+    std::size_t next() const { return mNext; }
+    const std::vector<PassTiming>& timings() const { return mTimings; }
+
+private:
+    std::string mCaller;
+    const Plan& mPlan;
+    bool mKeepAllResources;
+    std::vector<std::size_t> mObjectOf; ///< plan index -> index into passNames
+    std::vector<PassTiming> mTimings;
+    std::size_t mNext = 0;
+};
+
+/** Runs the whole of `plan` on `backend` (PlanRun: prepare, then execute every pass) and returns its timings. */
 std::vector<PassTiming> executePlan(std::string_view caller, const Plan& plan,
                                     const std::vector<std::string_view>& passNames, ExecutorBackend& backend,
                                     bool keepAllResources);

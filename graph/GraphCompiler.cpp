@@ -47,6 +47,7 @@ struct DeclaredPass {
     const Pass* pass = nullptr;
     std::string name;
     bool hasSideEffect = false;
+    bool runsOnHost = false;
     std::vector<std::string> reads;         ///< declaration order, each once
     std::vector<std::size_t> readResources; ///< parallel to reads: index into resources, or kNone if nobody writes it
     std::vector<std::size_t> writes;        ///< well-formed writes, declaration order: indices into resources
@@ -111,6 +112,7 @@ void Declarations::declarePasses(const std::vector<const Pass*>& passList, const
         mBuilders.emplace_back(declared.name, &compileData);
         declared.pass->declare(mBuilders.back());
         declared.hasSideEffect = mBuilders.back().hasSideEffect();
+        declared.runsOnHost = mBuilders.back().declaredRunsOnHost();
         declared.scratch = mBuilders.back().scratches();
         for (const std::string& name : mBuilders.back().imports())
             if (std::find(declared.imports.begin(), declared.imports.end(), name) == declared.imports.end())
@@ -462,21 +464,25 @@ Plan compileRound(const std::vector<const Pass*>& passes, const std::vector<std:
         markPass(graph.resources[resource].writers.front());
     }
 
-    // Kahn's algorithm over the live passes, always taking the smallest registration index that is ready.
+    // Kahn's algorithm over the live passes, always taking a ready GPU pass before a ready host pass, then the
+    // smallest registration index: the host passes gather at the end, where a batch runs them on a worker thread
+    // while the next still draws (Plan::hostTailStart()).
     std::vector<std::size_t> inDegree(passCount, 0);
     for (std::size_t pass = 0; pass < passCount; ++pass)
         if (passLive[pass])
             for (std::size_t reader : graph.successors[pass])
                 if (passLive[reader]) ++inDegree[reader];
-    std::priority_queue<std::size_t, std::vector<std::size_t>, std::greater<>> ready;
+    const auto readyOrder = [&graph](std::size_t pass) { return std::make_pair(graph.passes[pass].runsOnHost, pass); };
+    using ReadyKey = std::pair<bool, std::size_t>;
+    std::priority_queue<ReadyKey, std::vector<ReadyKey>, std::greater<>> ready;
     for (std::size_t pass = 0; pass < passCount; ++pass)
-        if (passLive[pass] && inDegree[pass] == 0) ready.push(pass);
+        if (passLive[pass] && inDegree[pass] == 0) ready.push(readyOrder(pass));
 
     Plan plan;
     plan.requested = requested;
     std::vector<std::size_t> planIndex(passCount, kNone);
     while (!ready.empty()) {
-        const std::size_t pass = ready.top();
+        const std::size_t pass = ready.top().second;
         ready.pop();
         planIndex[pass] = plan.passes.size();
 
@@ -486,6 +492,7 @@ Plan compileRound(const std::vector<const Pass*>& passes, const std::vector<std:
         planned.registrationIndex = pass;
         planned.reads = declared.reads;
         planned.hasSideEffect = declared.hasSideEffect;
+        planned.runsOnHost = declared.runsOnHost;
         planned.scratch = declared.scratch;
         planned.imports = declared.imports;
         for (std::size_t resource : declared.writes)
@@ -494,7 +501,7 @@ Plan compileRound(const std::vector<const Pass*>& passes, const std::vector<std:
         plan.passes.push_back(std::move(planned));
 
         for (std::size_t reader : graph.successors[pass])
-            if (passLive[reader] && --inDegree[reader] == 0) ready.push(reader);
+            if (passLive[reader] && --inDegree[reader] == 0) ready.push(readyOrder(reader));
     }
 
     for (std::size_t pass = 0; pass < passCount; ++pass) {

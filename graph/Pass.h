@@ -67,6 +67,10 @@ public:
     void scratch(std::size_t bytesPerPixel, int scale = 1) { mScratch.push_back({bytesPerPixel, scale}); }
     /** Never culled. Use sparingly (nothing in the core pipeline needs it). */
     void markSideEffect() { mSideEffect = true; }
+    /** Declares that execute() needs no GPU context: it reads its textures as CPU images and writes only images and
+     *  objects. The plan runs such passes after the GPU ones where their reads allow, and a batch runs that tail of
+     *  host passes on a worker thread while the next still draws (Plan::hostTailStart()). */
+    void runsOnHost() { mRunsOnHost = true; }
 
     /** Whether pass `name` runs in the plan of the first round (false in the first round itself). A pass that asks
      *  makes the compiler declare every pass a second time with the first round's answers (GraphCompiler.h), so a
@@ -81,6 +85,7 @@ public:
     const std::vector<Scratch>& scratches() const { return mScratch; }
     const std::vector<std::string>& imports() const { return mImports; }
     bool hasSideEffect() const { return mSideEffect; }
+    bool declaredRunsOnHost() const { return mRunsOnHost; }
     bool askedCompileData() const { return mAskedCompileData; }
 
 private:
@@ -91,6 +96,7 @@ private:
     std::vector<Scratch> mScratch;
     std::vector<std::string> mImports;
     bool mSideEffect = false;
+    bool mRunsOnHost = false;
     bool mAskedCompileData = false;
 };
 

@@ -90,6 +90,12 @@ const PlannedPass* Plan::findPass(const std::string& name) const {
     return it == passes.end() ? nullptr : &*it;
 }
 
+std::size_t Plan::hostTailStart() const {
+    std::size_t start = passes.size();
+    while (start > 0 && passes[start - 1].runsOnHost) --start;
+    return start;
+}
+
 std::vector<std::string> Plan::imports() const {
     std::vector<std::string> names;
     for (const PlannedPass& pass : passes)

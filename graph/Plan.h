@@ -17,6 +17,7 @@ struct PlannedPass {
     std::vector<std::string> liveWrites;         ///< full names of the written resources that are live
     std::vector<std::string> deadOptionalWrites; ///< optional outputs nobody needs: not bound, not computed
     bool hasSideEffect = false;                  ///< declared markSideEffect(): live even if nothing reads it
+    bool runsOnHost = false;                     ///< declared runsOnHost(): execute() needs no GPU context
     std::vector<PassBuilder::Scratch> scratch;   ///< working memory it declared (PassBuilder::scratch())
     std::vector<std::string> imports;            ///< scene data it declared (PassBuilder::import()), each once
 };
@@ -52,6 +53,9 @@ struct Plan {
     /** Every import of the live passes, each once, in plan order: what the importer derives before the passes
      *  prepare. */
     std::vector<std::string> imports() const;
+    /** The index of the first pass of the plan's host tail: the passes from there to the end all run on the host
+     *  (PlannedPass::runsOnHost), the one before it does not. passes.size() when the last pass needs the GPU. */
+    std::size_t hostTailStart() const;
     /** Whether the live resource `name` is a CPU object (ResourceKind::Object). */
     bool isObject(const std::string& name) const {
         const PlannedResource* found = findResource(name);

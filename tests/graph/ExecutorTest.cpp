@@ -133,6 +133,42 @@ TEST(ExecutorTest, ReleasesEachResourceAfterItsLastReaderAndKeepsRequestedOnes) 
     EXPECT_EQ(backend.written, (std::set<std::string>{"gbuffer.normal", "composite.final"}));
 }
 
+TEST(ExecutorTest, APlanRunInTwoHalvesOnTwoBackendsDoesWhatOneRunDoes) {
+    // The GPU passes on the context's thread, the host tail on a worker's backend (gl/GraphExecutor.h).
+    FakeGraph graph;
+    graph.addPass("gbuffer", {}, {{"normal"}, {"depth"}});
+    graph.addPass("lines", {"gbuffer.depth"}, {{"mask"}}).runOnHost();
+    graph.addPass("shade", {"gbuffer.normal"}, {{"color"}});
+    graph.addPass("composite", {"shade.color", "lines.mask"}, {{"final"}}).runOnHost();
+    const Plan plan = graph.compile({"composite.final"});
+    ASSERT_EQ(plan.hostTailStart(), 2u);
+    const Names names{"gbuffer", "lines", "shade", "composite"};
+
+    RecordingBackend whole(names);
+    const std::vector<PassTiming> wholeTimings = executePlan("run()", plan, whole.names(), whole, false);
+
+    RecordingBackend gpu(names);
+    RecordingBackend host(names);
+    PlanRun run("run()", plan, gpu.names(), false);
+    run.prepare(gpu);
+    run.execute(gpu, plan.hostTailStart());
+    EXPECT_EQ(run.next(), 2u);
+    host.written = gpu.written; // what the hand-off gives the tail
+    run.execute(host, plan.passes.size());
+    EXPECT_EQ(run.next(), plan.passes.size());
+
+    Names halves = gpu.events;
+    halves.insert(halves.end(), host.events.begin(), host.events.end());
+    EXPECT_EQ(halves, whole.events);
+    EXPECT_EQ(eventsStartingWith(host.events, "prepare "), Names{}) << "every prepare runs on the first backend";
+    EXPECT_EQ(eventsStartingWith(host.events, "execute "), (Names{"execute lines", "execute composite"}));
+    EXPECT_EQ(eventsStartingWith(host.events, "release "),
+              (Names{"release gbuffer.depth", "release shade.color", "release lines.mask"}));
+    ASSERT_EQ(run.timings().size(), wholeTimings.size());
+    for (std::size_t i = 0; i < wholeTimings.size(); ++i) EXPECT_EQ(run.timings()[i].pass, wholeTimings[i].pass);
+    EXPECT_EQ(host.written, (std::set<std::string>{"composite.final"}));
+}
+
 TEST(ExecutorTest, KeepAllResourcesReleasesNothing) {
     FakeGraph graph;
     const Plan plan = chainPlan(graph);

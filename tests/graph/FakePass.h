@@ -45,6 +45,13 @@ public:
         for (const std::string& resource : mReads) builder.read(resource);
         for (const FakeWrite& write : mWrites) builder.write(write.field, write.desc, write.need);
         if (mSideEffect) builder.markSideEffect();
+        if (mRunsOnHost) builder.runsOnHost();
+    }
+
+    /** Declares the pass host-only (PassBuilder::runsOnHost()). */
+    FakePass& runOnHost() {
+        mRunsOnHost = true;
+        return *this;
     }
 
     /** What a backend's execute would do: records the run and the fields `planned` makes live. */
@@ -69,6 +76,7 @@ private:
     std::vector<std::string> mReads;
     std::vector<FakeWrite> mWrites;
     bool mSideEffect = false;
+    bool mRunsOnHost = false;
     ExecutionLog* mLog = nullptr;
 };
 

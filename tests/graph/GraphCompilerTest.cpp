@@ -89,6 +89,42 @@ TEST(GraphCompilerTest, DiamondRegisteredInReverseBreaksTiesByRegistrationOrder)
     EXPECT_EQ(passNames(graph.compile({"bottom.out"})), (Names{"top", "right", "left", "bottom"}));
 }
 
+TEST(GraphCompilerTest, HostPassesRunAfterTheGpuPassesTheirReadsAllow) {
+    // Registered as the still graph registers them: a line layer on the host between two GPU passes.
+    FakeGraph graph;
+    graph.addPass("gbuffer", {}, {{"normal"}, {"depth"}});
+    graph.addPass("contour", {"gbuffer.depth"}, {{"skeleton"}}).runOnHost();
+    graph.addPass("shade", {"gbuffer.normal"}, {{"color"}});
+    graph.addPass("silhouette", {"gbuffer.depth"}, {{"lines"}});
+    graph.addPass("composite", {"shade.color", "contour.skeleton", "silhouette.lines"}, {{"final"}}).runOnHost();
+
+    const Plan plan = graph.compile({"composite.final"});
+    EXPECT_EQ(passNames(plan), (Names{"gbuffer", "shade", "silhouette", "contour", "composite"}));
+    EXPECT_EQ(plan.hostTailStart(), 3u);
+    EXPECT_TRUE(plan.passes[3].runsOnHost);
+    EXPECT_FALSE(plan.passes[2].runsOnHost);
+}
+
+TEST(GraphCompilerTest, AHostPassAGpuPassReadsStaysBeforeItAndOutsideTheTail) {
+    FakeGraph graph;
+    graph.addPass("gbuffer", {}, {{"depth"}});
+    graph.addPass("lines", {"gbuffer.depth"}, {{"mask"}}).runOnHost();
+    graph.addPass("outline", {"lines.mask"}, {{"color"}});
+    graph.addPass("composite", {"outline.color"}, {{"final"}}).runOnHost();
+
+    const Plan plan = graph.compile({"composite.final"});
+    EXPECT_EQ(passNames(plan), (Names{"gbuffer", "lines", "outline", "composite"}));
+    EXPECT_EQ(plan.hostTailStart(), 3u) << "only the host passes after the last GPU pass are the tail";
+}
+
+TEST(GraphCompilerTest, APlanEndingOnTheGpuHasNoHostTail) {
+    FakeGraph graph;
+    graph.addPass("gbuffer", {}, {{"depth"}});
+    graph.addPass("shade", {"gbuffer.depth"}, {{"color"}});
+    const Plan plan = graph.compile({"shade.color"});
+    EXPECT_EQ(plan.hostTailStart(), plan.passes.size());
+}
+
 TEST(GraphCompilerTest, IndependentPassesKeepRegistrationOrder) {
     FakeGraph graph;
     graph.addPass("z", {}, {{"out"}});
