@@ -32,10 +32,11 @@ std::string stillLabel(const BatchStill& still, const RenderOptions& options) {
     return label;
 }
 
-/** Renders every still of the list in `session` (each model's views one after the other), each still's picture
- *  encoded while the next renders (the caller finishes the last). Bad input stops one still, not the batch: its
- *  label goes to `failed`. With a data set, stills --resume finds complete are skipped (counted in `skipped`, no
- *  progress line) and each committed one journaled. */
+/** Renders every still of the list in `session` (each model's views one after the other), each still's post stage
+ *  and writing overlapping the next stills' drawing, and finishes them all. Every still's progress line or failure
+ *  is told in list order, when it is finished. Bad input stops one still, not the batch: its label goes to `failed`.
+ *  With a data set, stills --resume finds complete are skipped (counted in `skipped`, no progress line) and each
+ *  committed one journaled. */
 void renderEach(const RenderOptions& options, const BatchList& list, const std::vector<BatchStill>& stills,
                 RenderSession& session, std::ostream& log, DatasetRun* dataset, std::vector<std::string>& failed,
                 std::size_t& skipped, int& exitCode) {
@@ -45,14 +46,15 @@ void renderEach(const RenderOptions& options, const BatchList& list, const std::
         const StillKey key{batchStill.model.path, batchStill.model.position, batchStill.viewIndex};
         const std::string counter = "inkgraph: [" + std::to_string(i + 1) + "/" + std::to_string(stills.size()) + "] " +
                                     stillLabel(batchStill, options);
-        const auto fail = [&](const std::exception& error) {
+        const std::string label = stillLabel(batchStill, options);
+        const auto fail = [&log, &failed, dataset, &exitCode, counter, label, key, still](const std::exception& error) {
             log << boundedMessage(counter + " failed: " + error.what()) << "\n";
-            failed.push_back(stillLabel(batchStill, options));
+            failed.push_back(label);
             if (dataset) dataset->recordFailed(key, still, error.what());
             if (exitCode == kExitOk) exitCode = kExitBadInput;
         };
         try {
-            CommitListener journal;
+            StillCallbacks callbacks;
             if (dataset) {
                 const std::string digest = dataset->settingsDigest(key, still);
                 if (dataset->isComplete(key, digest)) {
@@ -60,25 +62,32 @@ void renderEach(const RenderOptions& options, const BatchList& list, const std::
                     continue;
                 }
                 dataset->makeOutputFolders(still);
-                journal = [dataset, key, still, digest](const CommittedStill& committed) {
+                callbacks.committed = [dataset, key, still, digest](const CommittedStill& committed) {
                     dataset->recordCommitted(key, still, digest, committed.camera, committed.look);
                 };
             }
-            const StillBatchPosition position{batchStill.model.position, list.total};
-            const StillReport report = session.render(still, &position, std::move(journal));
-            if (!options.quiet) {
+            callbacks.finished = [&log, counter, quiet = options.quiet,
+                                  outputPath = still.outputPath](const StillReport& report) {
+                if (quiet) return;
                 log << counter;
-                if (!still.outputPath.empty()) log << " -> '" << still.outputPath << "'";
+                if (!outputPath.empty()) log << " -> '" << outputPath << "'";
                 log << ": " << report.triangles << " triangles, " << std::fixed << std::setprecision(0)
                     << report.milliseconds << " ms\n";
-            }
+            };
+            callbacks.failed = fail;
+            const StillBatchPosition position{batchStill.model.position, list.total};
+            session.render(still, &position, std::move(callbacks));
         } catch (const SceneError& error) {
-            // Bad input stops one still, not the batch: the other stills' work is not lost.
+            // Bad input stops one still, not the batch: the other stills' work is not lost. The stills before it
+            // are told first.
+            session.finishPending();
             fail(error);
         } catch (const InputFileError& error) {
+            session.finishPending();
             fail(error);
         }
     }
+    session.finishPending();
 }
 
 } // namespace
@@ -91,7 +100,7 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     std::unique_ptr<DatasetRun> dataset;
     if (!options.datasetDirectory.empty())
         dataset = std::make_unique<DatasetRun>(options, list, stills, givenArguments, expandedArguments);
-    RenderSession session(out, log);
+    RenderSession session(out, log, options.jobs);
     const std::string share = options.shard
                                   ? " (shard " + std::to_string(options.shard->index) + "/" +
                                         std::to_string(options.shard->count) + " of " + std::to_string(list.total) + ")"
@@ -114,14 +123,16 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     std::size_t skipped = 0;
     try {
         renderEach(options, list, stills, session, log, dataset.get(), failed, skipped, exitCode);
-        session.finishPending();
     } catch (...) {
-        // The batch stops; the still whose picture was still being encoded is finished first, so no completed
-        // still's outputs are lost. Its own failure, if any, is told, and the one that stopped the batch thrown.
-        try {
-            session.finishPending();
-        } catch (const std::exception& error) {
-            log << boundedMessage(std::string("inkgraph: error: ") + error.what()) << "\n";
+        // The batch stops; the stills in flight are finished first, so no completed still's outputs are lost. Their
+        // own failures, if any, are told, and the one that stopped the batch thrown.
+        for (;;) {
+            try {
+                session.finishPending();
+                break;
+            } catch (const std::exception& error) {
+                log << boundedMessage(std::string("inkgraph: error: ") + error.what()) << "\n";
+            }
         }
         throw;
     }

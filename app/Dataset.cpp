@@ -211,10 +211,11 @@ const std::vector<std::string>& flagsOutsideDigest() {
     // How the run goes, not what a still writes: resuming, progress lines, the share of an array job, the memory
     // bound (a still either fits or fails), the EGL platform (the same pixels on any), the list (each still's model
     // is in its key), the data set's folder (outputs are hashed relative to it), the plan on standard output, and
-    // --style (its settings are in the arguments already; its file's stamp would re-render for a comment).
+    // --style (its settings are in the arguments already; its file's stamp would re-render for a comment), and
+    // --jobs (the same bytes with any number of workers).
     static const std::vector<std::string> kFlags = {"--resume",       "-q",     "--shard",   "--memory-limit",
                                                     "--egl-platform", "--list", "--dataset", "--print-plan",
-                                                    "--style"};
+                                                    "--style",        "--jobs"};
     return kFlags;
 }
 

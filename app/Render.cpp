@@ -61,6 +61,8 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     request.pose = options.pose;
     request.expressions = options.expressions;
     request.lookAt = options.lookAt;
+    if (options.readback == "early") request.readback = ReadbackTiming::Early;
+    if (options.readback == "late") request.readback = ReadbackTiming::Late;
     if (options.eglPlatform == "device") request.eglPlatform = EglPlatform::Device;
     if (options.eglPlatform == "surfaceless") request.eglPlatform = EglPlatform::Surfaceless;
     return request;
@@ -87,8 +89,48 @@ std::unique_ptr<PreparedStill> RenderSession::loadWhileMakingContext(StillReques
     return still;
 }
 
+/** What the worker did for one still: its host tail, then its picture encoded when the picture was on the CPU. */
+struct TailOutcome {
+    std::vector<unsigned char> picture; ///< the encoded -o file; empty when not encoded here
+    bool encoded = false;
+    double tailMilliseconds = 0.0;
+    double encodeMilliseconds = 0.0;
+};
+
+/** A still that has drawn: everything it needs until its commit. Made and destroyed on the thread that calls
+ *  render(), which holds the context its GL objects (the scene's buffers, the graph's programs, the store's
+ *  textures) belong to; the worker only runs the host tail and encodes. */
+struct RenderSession::PendingStill {
+    RenderOptions options;
+    std::optional<StillBatchPosition> batch;
+    std::unique_ptr<PreparedStill> still;
+    StillResult result;
+    std::unique_ptr<OutputSet> outputs;
+    StillCallbacks callbacks;
+    StillReport report;
+    bool talks = false;
+    std::size_t estimatedBytes = 0;
+    double drawnMilliseconds = 0.0; ///< from the still's start to the hand-off
+    /** Last, so it is destroyed first: its destructor waits for the worker, which uses the members above. */
+    std::future<TailOutcome> tail;
+};
+
+RenderSession::RenderSession(std::ostream& out, std::ostream& log, int jobs) : mOut(out), mLog(log), mJobs(jobs) {}
+
+RenderSession::~RenderSession() {
+    // A batch stopped by an error: the stills in flight are dropped uncommitted, but their workers must end before
+    // what they use is freed (each future's destructor waits), and their GL objects go while the context lives.
+    mPending.clear();
+}
+
+std::size_t RenderSession::bytesInFlight() const {
+    std::size_t bytes = 0;
+    for (const auto& pending : mPending) bytes += pending->estimatedBytes;
+    return bytes;
+}
+
 StillReport RenderSession::render(const RenderOptions& options, const StillBatchPosition* batch,
-                                  CommitListener committed) {
+                                  StillCallbacks callbacks) {
     const auto processStart = std::chrono::steady_clock::now();
     const bool renders = rendersImages(options);
     // In a batch the progress line per still replaces the lines of one still.
@@ -114,78 +156,118 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     }
     if (!options.graphvizPath.empty()) outputs->stageGraphviz(plan.graphviz());
     if (!renders) {
+        finishPending(); // commits stay in the order of the stills
         outputs->commit();
-        if (committed) committed({describeCamera(still->camera), describeLook(*still, options.stylePath)});
+        if (callbacks.committed)
+            callbacks.committed({describeCamera(still->camera), describeLook(*still, options.stylePath)});
+        report.milliseconds = millisecondsSince(processStart);
+        if (callbacks.finished) callbacks.finished(report);
         return report;
     }
     budgetStill(*still);
+    // The stills in flight hold their memory until they finish: the oldest finish first until this one fits too.
+    const MemoryEstimate estimate = estimateStill(*still);
+    const std::size_t estimatedBytes = estimate.total() - estimate.textures;
+    while (!mPending.empty() && bytesInFlight() + estimatedBytes > still->request.memoryLimitBytes) finishOldest();
 
-    StillResult result = mRenderer.execute(*still, log);
-    // The previous still of a batch is finished now: its picture was encoded while this one loaded and rendered.
-    finishPending();
-    const auto writeStart = std::chrono::steady_clock::now();
+    StillResult result = mRenderer.executeUntilHostTail(*still, log);
     auto pending = std::make_unique<PendingStill>();
-    stageStillOutputs(options, *still, result, *outputs);
-    if (!options.outputPath.empty()) {
-        // The picture is a CPU image the store shares with this thread; encoding it needs nothing else.
-        const cv::Mat picture = result.store().image(still->graph.finalResource);
-        pending->encoding = std::async(std::launch::async, [picture, path = std::filesystem::path(options.outputPath)] {
-            const auto encodeStart = std::chrono::steady_clock::now();
-            EncodedPicture encoded{encodeImageFile(path, picture), 0.0};
-            encoded.milliseconds = millisecondsSince(encodeStart);
-            return encoded;
-        });
-    }
-    if (!options.statsPath.empty()) {
-        StatsContext context{options, batch};
-        const MemoryEstimate estimate = estimateStill(*still);
-        context.estimatedPeakBytes = estimate.total();
-        context.estimatedTextureBytes = estimate.textures;
-        pending->stats = statsDocument(context, mRenderer, *still, result);
-    }
-    if (committed) {
-        pending->committed = std::move(committed);
-        pending->description = {describeCamera(still->camera), describeLook(*still, options.stylePath)};
-    }
+    pending->options = options;
+    if (batch) pending->batch = *batch;
+    pending->still = std::move(still);
+    pending->result = std::move(result);
     pending->outputs = std::move(outputs);
-    pending->outputPath = options.outputPath;
-    pending->size = std::to_string(options.width) + "x" + std::to_string(options.height);
+    pending->callbacks = std::move(callbacks);
+    pending->report = report;
     pending->talks = talks;
-    pending->stagedMilliseconds = millisecondsSince(writeStart);
-    pending->renderedMilliseconds = millisecondsSince(processStart);
-    report.milliseconds = pending->renderedMilliseconds;
-    mPending = std::move(pending);
-    // One still alone is finished at once, once its GL objects and meshes are freed while the picture is encoded; in
-    // a batch the next still finishes it, the caller the last one (finishPending()).
-    if (batch == nullptr) {
-        result = StillResult{};
-        still.reset();
-        finishPending();
+    pending->estimatedBytes = estimatedBytes;
+    pending->drawnMilliseconds = millisecondsSince(processStart);
+    // At most `jobs` stills in their post stage at once: the oldest finish (in order) before this one starts its own.
+    while (!mPending.empty() && mPending.size() >= std::size_t(std::max(mJobs, 1))) finishOldest();
+    PendingStill& handed = *pending;
+    const auto runTail = [&handed] {
+        TailOutcome outcome;
+        const auto tailStart = std::chrono::steady_clock::now();
+        StillRenderer::runHostTail(*handed.still, handed.result);
+        outcome.tailMilliseconds = millisecondsSince(tailStart);
+        const std::string& finalResource = handed.still->graph.finalResource;
+        // A picture the host tail made is encoded here; one still on the GPU is read back by the context's thread.
+        if (!handed.options.outputPath.empty() && !handed.result.store().holdsTexture(finalResource)) {
+            const auto encodeStart = std::chrono::steady_clock::now();
+            outcome.picture = encodeImageFile(handed.options.outputPath, handed.result.store().image(finalResource));
+            outcome.encoded = true;
+            outcome.encodeMilliseconds = millisecondsSince(encodeStart);
+        }
+        return outcome;
+    };
+    if (mJobs > 0 && batch != nullptr) {
+        pending->tail = std::async(std::launch::async, runTail);
+    } else {
+        std::promise<TailOutcome> done; // no worker: the tail runs here, its failure kept for finishOldest()
+        try {
+            done.set_value(runTail());
+        } catch (...) {
+            done.set_exception(std::current_exception());
+        }
+        pending->tail = done.get_future();
     }
+    mPending.push_back(std::move(pending));
+    if (batch == nullptr || mJobs == 0) finishPending();
     return report;
 }
 
 void RenderSession::finishPending() {
-    if (!mPending) return;
-    const std::unique_ptr<PendingStill> pending = std::move(mPending);
-    double writeMilliseconds = pending->stagedMilliseconds;
-    if (pending->encoding.valid()) {
-        const EncodedPicture encoded = pending->encoding.get();
-        const auto stageStart = std::chrono::steady_clock::now();
-        pending->outputs->stageFinalImage(encoded.bytes);
-        writeMilliseconds += encoded.milliseconds + millisecondsSince(stageStart);
+    while (!mPending.empty()) finishOldest();
+}
+
+void RenderSession::finishOldest() {
+    const std::unique_ptr<PendingStill> pending = std::move(mPending.front());
+    mPending.pop_front();
+    TailOutcome outcome;
+    try {
+        outcome = pending->tail.get();
+    } catch (const SceneError& error) {
+        // Bad input found in the post stage is that still's failure, told in its place among the others.
+        if (!pending->callbacks.failed) throw;
+        pending->callbacks.failed(error);
+        return;
+    } catch (const InputFileError& error) {
+        if (!pending->callbacks.failed) throw;
+        pending->callbacks.failed(error);
+        return;
     }
-    // The still's own time: up to the hand-over, plus its writing (not the next still's work it overlapped).
-    const double totalMilliseconds = pending->renderedMilliseconds - pending->stagedMilliseconds + writeMilliseconds;
-    if (pending->stats)
-        pending->outputs->stageStats(finishedStatsText(*pending->stats, writeMilliseconds, totalMilliseconds));
-    pending->outputs->commit();
-    if (pending->committed) pending->committed(pending->description);
+    const RenderOptions& options = pending->options;
+    PreparedStill& still = *pending->still;
+    StillResult& result = pending->result;
+    OutputSet& outputs = *pending->outputs;
+    const auto writeStart = std::chrono::steady_clock::now();
+    stageStillOutputs(options, still, result, outputs);
+    if (!options.outputPath.empty()) {
+        if (!outcome.encoded)
+            outcome.picture = encodeImageFile(options.outputPath, result.store().image(still.graph.finalResource));
+        outputs.stageFinalImage(outcome.picture);
+    }
+    // The still's own time: its drawing, its post stage and its writing, not the other stills' work it overlapped.
+    const double writeMilliseconds = outcome.encodeMilliseconds + millisecondsSince(writeStart);
+    const double totalMilliseconds = pending->drawnMilliseconds + outcome.tailMilliseconds + writeMilliseconds;
+    if (!options.statsPath.empty()) {
+        StatsContext context{options, pending->batch ? &*pending->batch : nullptr};
+        const MemoryEstimate estimate = estimateStill(still);
+        context.estimatedPeakBytes = estimate.total();
+        context.estimatedTextureBytes = estimate.textures;
+        outputs.stageStats(
+            finishedStatsText(statsDocument(context, mRenderer, still, result), writeMilliseconds, totalMilliseconds));
+    }
+    outputs.commit();
+    if (pending->callbacks.committed)
+        pending->callbacks.committed({describeCamera(still.camera), describeLook(still, options.stylePath)});
     if (pending->talks) {
-        mLog << "inkgraph: rendered " << pending->size << " in " << totalMilliseconds << " ms";
-        if (!pending->outputPath.empty()) mLog << " -> '" << pending->outputPath << "'";
+        mLog << "inkgraph: rendered " << options.width << "x" << options.height << " in " << totalMilliseconds << " ms";
+        if (!options.outputPath.empty()) mLog << " -> '" << options.outputPath << "'";
         mLog << "\n";
     }
+    pending->report.milliseconds = totalMilliseconds;
+    if (pending->callbacks.finished) pending->callbacks.finished(pending->report);
 }
 
 } // namespace inkgraph

@@ -10,6 +10,7 @@
 #include "app/OutputFiles.h"
 
 #include <cstddef>
+#include <deque>
 #include <functional>
 #include <future>
 #include <memory>
@@ -41,24 +42,41 @@ struct CommittedStill {
 /** Called once the still's outputs are all in place (the still's own options are the caller's to keep). */
 using CommitListener = std::function<void(const CommittedStill&)>;
 
-/** The stills of one process, in one StillRenderer (one GL context, every program compiled once). */
+/** What a batch hears of one still, on the thread that called render(), in the order the stills were given. */
+struct StillCallbacks {
+    CommitListener committed; ///< after the still's commit, before `finished`
+    /** The still is finished: its outputs are in place (or it wrote none). */
+    std::function<void(const StillReport&)> finished;
+    /** The still's post stage failed on bad input (SceneError, InputFileError) after render() returned; without
+     *  this the error is thrown from whichever call finishes the still. */
+    std::function<void(const std::exception&)> failed;
+};
+
+/** The stills of one process, in one StillRenderer (one GL context, every program compiled once), pipelined: while
+ *  a still's post stage (the plan's host tail: line kernels, strokes, composite) runs and its picture is encoded on a
+ *  worker thread, the next still loads and draws on this one. Outputs are committed in the order of the stills. */
 class RenderSession {
 public:
-    /** `out` receives --print-plan, `log` the progress lines. */
-    RenderSession(std::ostream& out, std::ostream& log) : mOut(out), mLog(log) {}
+    /** `out` receives --print-plan, `log` the progress lines. `jobs`: how many stills may be in their post stage at
+     *  once while the next draws (--jobs); 0 finishes each still before the next starts. */
+    RenderSession(std::ostream& out, std::ostream& log, int jobs = 0);
+    ~RenderSession();
+    RenderSession(const RenderSession&) = delete;
+    RenderSession& operator=(const RenderSession&) = delete;
 
     /** Renders one still as the options say (the model and outputs of that still: app/Batch.h stillOptions()).
-     *  With `batch`, the still's own progress lines are left to the caller. Throws the layer's own exceptions
-     *  (SceneError, InputFileError, HeadlessContextError, FileError, UsageError, GraphError); runCommandLine maps
-     *  them to exit codes. `committed`, when given, is called after the still's commit (in finishPending() for a
-     *  batch's still). */
+     *  With `batch`, the still's own progress lines are left to the caller, and the still may return unfinished
+     *  (its post stage and writing in flight, at most `jobs` of them, and as many as the memory limit allows);
+     *  callbacks.finished tells when it is done. Without, it is finished before render() returns. Throws the layer's
+     *  own exceptions (SceneError, InputFileError, HeadlessContextError, FileError, UsageError, GraphError), for this
+     *  still or for an earlier one it finished (FileError, and bad input without callbacks.failed); runCommandLine
+     *  maps them to exit codes. */
     StillReport render(const RenderOptions& options, const StillBatchPosition* batch = nullptr,
-                       CommitListener committed = {});
+                       StillCallbacks callbacks = {});
 
-    /** A batch's still (`batch` given) returns from render() with its picture still being encoded on a second thread,
-     *  which overlaps the next still; the next render() finishes it (writes the picture and --stats, commits its
-     *  outputs) once that still has executed, and the caller finishes the last one with this. Throws the writing's
-     *  FileError. A still alone is finished before render() returns. */
+    /** Finishes every still in flight, oldest first: waits for its post stage and picture, writes the picture and
+     *  --stats, stages the other outputs, commits. Throws the writing's FileError (the stills after it stay in
+     *  flight: call again, or let the destructor wait for them). */
     void finishPending();
 
 private:
@@ -66,30 +84,17 @@ private:
      *  load's error wins over the context's. */
     std::unique_ptr<PreparedStill> loadWhileMakingContext(StillRequest request, bool renders, const StillLog& log);
 
-    /** A picture encoded in memory, and how long that took. */
-    struct EncodedPicture {
-        std::vector<unsigned char> bytes;
-        double milliseconds = 0.0;
-    };
-    /** A still that executed, its outputs staged but the picture (being encoded) and --stats, none committed. It
-     *  holds no GL object: the still's own are freed on this thread before the next still runs. */
-    struct PendingStill {
-        std::unique_ptr<OutputSet> outputs;
-        std::future<EncodedPicture> encoding;        ///< invalid without -o
-        std::optional<nlohmann::ordered_json> stats; ///< --stats, less the writing's facts
-        std::string outputPath;
-        std::string size; ///< "WxH", for the progress line
-        bool talks = false;
-        double stagedMilliseconds = 0.0;   ///< staging the other outputs
-        double renderedMilliseconds = 0.0; ///< from the still's start to the hand-over
-        CommitListener committed;
-        CommittedStill description; ///< for `committed`
-    };
+    struct PendingStill;
+    /** Finishes the oldest still in flight (finishPending()'s step). */
+    void finishOldest();
+    /** The memory the stills in flight are estimated to hold (MemoryEstimate, less the model's textures). */
+    std::size_t bytesInFlight() const;
 
     std::ostream& mOut;
     std::ostream& mLog;
+    int mJobs = 0;
     StillRenderer mRenderer;
-    std::unique_ptr<PendingStill> mPending;
+    std::deque<std::unique_ptr<PendingStill>> mPending; ///< oldest first
 };
 
 /** Standard output that cannot be written (--print-plan > /dev/full, a closed pipe) fails the run: throws FileError. */

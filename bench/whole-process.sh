@@ -4,7 +4,13 @@
 #   bench/whole-process.sh [RUNS] > table.md        (after scripts/build.sh; docs/performance.md quotes the table)
 # Environment: INKGRAPH (the binary, default build/inkgraph), FREESTYLE=0 skips Blender (it takes ~10 s a run),
 # ROWS="probe tetra bunny freestyle batch large" picks rows (also: singles, the batch's models one process each;
-# unlined, the bunny's still with its cel shading and no lines, the floor under the comic still);
+# unlined, the bunny's still with its cel shading and no lines, the floor under the comic still; comic36, issue 38's
+# batch: the nine bundled models four times in one process, the comic look (--shading cel --lines
+# silhouette,contour,suggestive) at 1024², PNGs written, with the default --jobs; comic36-serial, the same with
+# --jobs 0, the baseline beside it; comic36-pN, N such processes at once, each its own 36 stills: the machine's
+# stills per second);
+# GPU_BUSY=1 samples nvidia-smi's utilization.gpu every 100 ms during the comic36 rows (when nvidia-smi is on PATH)
+# and adds the mean busy share to their note;
 # BEFORE=/path/to/an/older/inkgraph adds each inkgraph row again as ROW@before, run by that binary in the same rounds
 # (from its own checkout's folder, so it finds its shaders).
 # EGL_PROBE and MAKE_MESH replace build/bench/inkgraph_egl_probe and build/bench/inkgraph_make_mesh, GNU_TIME
@@ -26,6 +32,8 @@ if [ -n "${BEFORE:-}" ]; then
 fi
 cd "$root"
 
+for _ in 1 2 3 4; do grep -v '^#' examples/batch/models.txt; done >"$work/comic36.txt"
+for row in $rows; do [[ $row == comic36* ]] && mkdir -p "$work/$row"; done
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >"$work/tetrahedron.obj"
 large="$work/armadillo-1.3m.obj"
 if [[ " $rows " == *" large"* ]] && [ ! -f "$large" ]; then # written whole or not at all
@@ -54,21 +62,42 @@ command_of() { # row -> the command, one word per line
     batch) printf '%s\n' "$inkgraph" render --list examples/batch/models.txt -o "$work/batch/{name}.png" -q ;;
     singles) # one line: the command is read back one word per line
         printf '%s\n' bash -c 'grep -v "^#" examples/batch/models.txt | while read -r m; do "$0" render "$m" -o "$1/$(basename "$m" .obj).png" -q || exit 1; done' "$inkgraph" "$work/batch" ;;
+    comic36 | comic36-serial)
+        jobs=()
+        [ "$1" = comic36-serial ] && jobs=(--jobs 0)
+        printf '%s\n' "$inkgraph" render --list "$work/comic36.txt" -o "$work/$1/{index}.png" "${comic[@]}" \
+            "${jobs[@]}" -q ;;
+    comic36-p*) # one line: the command is read back one word per line
+        printf '%s\n' bash -c 'for p in $(seq "$1"); do mkdir -p "$3/p$p"; "$0" render --list "$2" -o "$3/p$p/{index}.png" --shading cel --lines silhouette,contour,suggestive -q & done; status=0; for p in $(seq "$1"); do wait -n || status=1; done; exit $status' \
+            "$inkgraph" "${1#comic36-p}" "$work/comic36.txt" "$work/$1" ;;
     large) printf '%s\n' "$inkgraph" render "$large" -o "$work/out/large.png" --shading comic \
         --lines silhouette,contour,suggestive,crease -q ;;
     esac
 }
 
-declare -A times memory
+sample_gpu=0
+[ "${GPU_BUSY:-0}" = 1 ] && command -v nvidia-smi >/dev/null && sample_gpu=1
+declare -A times memory busy
 for _ in $(seq "$runs"); do
     for row in $rows; do
         mapfile -t command < <(command_of "$row")
         folder=$root
         [[ $row == *@before ]] && folder=$(cd "$(dirname "$BEFORE")/.." && pwd)
+        sampler=""
+        if [ "$sample_gpu" = 1 ] && [[ $row == comic36* ]]; then
+            nvidia-smi --query-gpu=utilization.gpu --format=csv,noheader,nounits -lms 100 >"$work/busy" 2>/dev/null &
+            sampler=$!
+        fi
         start=$(date +%s%N)
         (cd "$folder" && "$gnu_time" -f %M -o "$work/rss" "${command[@]}" >/dev/null 2>"$work/stderr") ||
             { echo "$row failed:" >&2; cat "$work/stderr" >&2; exit 1; }
         end=$(date +%s%N)
+        if [ -n "$sampler" ]; then
+            kill "$sampler" 2>/dev/null || true
+            wait "$sampler" 2>/dev/null || true
+            busy[$row]+="$(awk '$1 ~ /^[0-9]+$/ {s += $1; n++} END {if (n) printf "%.0f", s / n; else print 0}' \
+                "$work/busy") "
+        fi
         times[$row]+="$(( (end - start) / 1000000 )) "
         memory[$row]+="$(tail -1 "$work/rss") "
     done
@@ -86,12 +115,17 @@ for row in $rows; do
     case $row in
     tetra | tetra@before) note="$(awk -v a="${medians[$row]}" -v b="${medians[probe]:-0}" \
         'BEGIN { if (b > 0) printf "%.2fx the probe", a / b }')" ;;
+    comic36 | comic36-serial) note="$(awk -v t="${medians[$row]}" -v b="${medians[comic36-serial]:-0}" \
+        'BEGIN { printf "36 stills: %.1f stills/s", 36000 / t; if (b > 0) printf "; %.2fx the serial row", b / t }')" ;;
+    comic36-p*) note="$(awk -v t="${medians[$row]}" -v p="${row#comic36-p}" \
+        'BEGIN { printf "%d processes x 36 stills: %.1f stills/s", p, 36000 * p / t }')" ;;
     batch | batch@before | singles) note="$(awk -v t="${medians[$row]}" 'BEGIN { printf "9 stills: %.1f stills/s", 9000 / t }')" ;;
     freestyle) note="$(awk -v a="${medians[freestyle]}" -v b="${medians[bunny]:-0}" \
         'BEGIN { if (b > 0) printf "%.1fx the inkgraph bunny; ", a / b; printf "40x: a still of <= %.0f ms", a / 40 }')" ;;
     unlined) note="$(awk -v a="${medians[unlined]}" -v b="${medians[bunny]:-0}" \
         'BEGIN { if (b > 0) printf "%.0f%% of the bunny with its three line types", 100 * a / b }')" ;;
     esac
+    [ -n "${busy[$row]:-}" ] && note+="; GPU busy $(echo "${busy[$row]}" | median)% (median of rounds)"
     echo "| $row | ${medians[$row]} | $(echo "${times[$row]}" | range) | $rss | $note |"
 done
 echo

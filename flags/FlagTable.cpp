@@ -991,6 +991,15 @@ std::vector<Flag> makeFlags() {
         return options.datasetDirectory.empty() ? "--resume: needs --dataset DIR (the data set to resume)" : "";
     };
     flags.push_back(resume);
+    flags.push_back(flag({"--jobs"}, "N", S::Batch,
+                         "how many stills may be in their post stage (line kernels, strokes, composite) and\n"
+                         "writing at once, on worker threads, while the next still loads and draws: 0 to 64\n"
+                         "(default: the cores this process may use, at most 16; 0 finishes each still before the\n"
+                         "next starts). The files are the same bytes with any N; the memory limit counts every\n"
+                         "still in flight",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.jobs = parseWholeNumber("--jobs", value, 0, 64);
+                         }));
     flags.push_back(helpOnly(
         S::Batch, "",
         "Each model gets a progress line. A model that cannot be read is reported and the others go on; the run then\n"
@@ -1107,6 +1116,18 @@ std::vector<Flag> makeFlags() {
                              options.eglPlatform = value;
                          }));
     flags.back().choices = {"auto", "device", "surfaceless"};
+    flags.push_back(flag({"--readback"}, "WHEN", S::System,
+                         "auto | early | late: when the buffers the CPU post stage reads leave the GPU. early\n"
+                         "starts each copy as soon as the pass writing it has run, while later passes draw\n"
+                         "(pixel-pack buffers and fences); late copies each when the post stage asks for it.\n"
+                         "Default auto: late on software rasterizers (llvmpipe, where early costs 15% more: the\n"
+                         "copy waits on this thread either way), early on GPUs. The pictures are the same",
+                         [](const std::string& value, RenderOptions& options) {
+                             if (value != "auto" && value != "early" && value != "late")
+                                 throw UsageError("--readback: '" + value + "' is not one of auto, early, late");
+                             options.readback = value;
+                         }));
+    flags.back().choices = {"auto", "early", "late"};
     flags.push_back(flag({"--strict"}, "", S::System,
                          "make every warning an error: the still fails with exit 3 and writes nothing (a missing\n"
                          "or undecodable texture, a value clamped into range, the model outside the view, ...).\n"

@@ -4,8 +4,21 @@
 #include "flags/FlagTable.h"
 
 #include <algorithm>
+#include <thread>
+
+#include <sched.h>
 
 namespace inkgraph {
+
+int defaultJobs() {
+    // The cores this process may use (a Slurm task or a container is often given fewer than the machine has).
+    cpu_set_t allowed;
+    CPU_ZERO(&allowed);
+    int cores = sched_getaffinity(0, sizeof(allowed), &allowed) == 0 ? CPU_COUNT(&allowed) : 0;
+    if (cores <= 0) cores = int(std::thread::hardware_concurrency());
+    return std::clamp(cores, 1, 16);
+}
+
 namespace {
 
 constexpr std::size_t kMaxImageSide = 16384;

@@ -27,14 +27,20 @@ struct Shard {
 
 /** The command line of `inkgraph render`: the models, the camera, the Look, the outputs and the run's settings. The
  *  renderer takes the parts (Look, CameraRequest); this struct is only what the flags fill. */
+/** --jobs' default: the cores this process may run on (its CPU affinity), from 1 to 16. */
+int defaultJobs();
+
 struct RenderOptions {
     std::string modelPath;               ///< the model of this still (the first MODEL until a batch assigns it)
     std::vector<std::string> modelPaths; ///< every MODEL argument, in order; with --list, a batch (app/Batch.h)
     std::string listPath;                ///< --list FILE: more models, one per line ("-": standard input)
     std::optional<Shard> shard;          ///< --shard K/N: this process's share of the models
     std::string datasetDirectory;        ///< --dataset DIR: the run makes a data set there (app/Dataset.h)
-    bool resume = false;                 ///< --resume: skip the stills of --dataset that are complete
-    std::string outputPath;              ///< -o; may be empty with --print-plan only
+    /** --jobs N: how many stills of a batch may be in their post stage and writing at once while the next draws;
+     *  0 finishes each still before the next starts. Default: the cores this process may use. */
+    int jobs = defaultJobs();
+    bool resume = false;    ///< --resume: skip the stills of --dataset that are complete
+    std::string outputPath; ///< -o; may be empty with --print-plan only
     int width = 1024;
     int height = 1024;
     std::optional<glm::dvec3> eye;
@@ -75,6 +81,7 @@ struct RenderOptions {
     double svgTolerance = 0.5;    ///< --svg-tolerance: simplification, output pixels
     bool printPlan = false;
     std::string eglPlatform = "auto";            ///< auto, device, surfaceless
+    std::string readback = "auto";               ///< --readback: auto, early, late
     std::optional<std::size_t> memoryLimitBytes; ///< --memory-limit; default: half the machine's memory, >= 1 GiB
     std::string stylePath;                       ///< --style, for the stats (its settings are already in the options)
     bool quiet = false;

@@ -142,6 +142,14 @@ GlBuffer::GlBuffer(const void* data, std::size_t byteCount, std::string_view lab
     labelObject(GL_BUFFER, id, label);
 }
 
+GlBuffer::GlBuffer(std::size_t byteCount, GLbitfield flags, std::string_view label) : mByteCount(byteCount) {
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    mHandle = GlHandle<BufferDeleter>(id);
+    glNamedBufferStorage(id, static_cast<GLsizeiptr>(byteCount), nullptr, flags);
+    labelObject(GL_BUFFER, id, label);
+}
+
 GlVertexArray::GlVertexArray(std::string_view label) {
     GLuint id = 0;
     glCreateVertexArrays(1, &id);

@@ -124,6 +124,8 @@ private:
 class GlBuffer {
 public:
     GlBuffer(const void* data, std::size_t byteCount, std::string_view label);
+    /** Uninitialised storage with glNamedBufferStorage's `flags` (GL_MAP_READ_BIT: a buffer the CPU reads back). */
+    GlBuffer(std::size_t byteCount, GLbitfield flags, std::string_view label);
     GLuint id() const { return mHandle.id(); }
     std::size_t byteCount() const { return mByteCount; }
 

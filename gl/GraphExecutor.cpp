@@ -47,6 +47,7 @@ ResourceStore::Entry& ResourceStore::entry(const std::string& name) {
 GlTexture& ResourceStore::writeTexture(const std::string& name, Format format, int width, int height, int samples) {
     Entry& target = mEntries[name];
     target.image.release();
+    target.readback.reset();
     if (!target.texture || target.format != format || target.width != width || target.height != height ||
         target.samples != samples) {
         if (target.texture) mPool.release(std::move(*target.texture));
@@ -61,6 +62,7 @@ GlTexture& ResourceStore::writeTexture(const std::string& name, Format format, i
 
 cv::Mat& ResourceStore::writeImage(const std::string& name, Format format, int width, int height) {
     Entry& target = mEntries[name];
+    target.readback.reset();
     if (target.texture) {
         mPool.release(std::move(*target.texture));
         target.texture.reset();
@@ -89,8 +91,23 @@ const cv::Mat& ResourceStore::image(const std::string& name) {
             throw std::logic_error("ResourceStore::image(): '" + name + "' is an object without a picture");
         return source.image;
     }
-    if (source.image.empty()) source.image = readTexture(*source.texture);
+    if (source.image.empty()) source.image = source.readback ? source.readback->finish() : readTexture(*source.texture);
+    source.readback.reset();
     return source.image;
+}
+
+void ResourceStore::beginReadback(const std::string& name) {
+    Entry& source = entry(name);
+    if (!source.texture || !source.image.empty() || source.readback || source.texture->samples() > 1) return;
+    source.readback = std::make_unique<PendingReadback>(*source.texture);
+}
+
+void ResourceStore::moveToHost(const std::string& name) {
+    Entry& source = entry(name);
+    if (!source.texture) return;
+    image(name);
+    mPool.release(std::move(*source.texture));
+    source.texture.reset();
 }
 
 void ResourceStore::setPicture(const std::string& name, Format format, cv::Mat picture) {
@@ -237,6 +254,21 @@ const cv::Mat& GlPassContext::inputImage(std::string_view resource) {
 
 namespace {
 
+/** The failures the GL executor reports by cause: the installation (shaders that cannot be read) as it is; memory
+ *  running out, on the GPU or in OpenCV, keeps its type so the caller can say how to fix it. Returns for others. */
+void rethrowGlFailureByCause(const std::exception_ptr& failure, const std::string& where) {
+    try {
+        std::rethrow_exception(failure);
+    } catch (const ShaderSourceError&) {
+        throw;
+    } catch (const GlOutOfMemoryError& error) {
+        throw GlOutOfMemoryError(where + ": " + error.what());
+    } catch (const cv::Exception& error) {
+        if (error.code == cv::Error::StsNoMem) throw OutOfMemoryError(where + " ran out of memory: " + error.err);
+    } catch (...) {
+    }
+}
+
 /** graph/Executor's loop on GL: one GlPassContext per step over the executor's store. */
 class GlBackend final : public ExecutorBackend {
 public:
@@ -255,29 +287,68 @@ public:
         if (mOptions.waitForEachPass) glFinish();
     }
 
-    std::string afterPass(const PlannedPass&) override {
+    std::string afterPass(const PlannedPass& planned) override {
         resetPassState();
+        if (mOptions.readBackEarly) beginHostReadbacks(planned);
         if (const GLenum error = glGetError(); error != GL_NO_ERROR) return "raised " + glErrorName(error);
         return {};
     }
 
     void rethrowByCause(const std::exception_ptr& failure, const std::string& where) const override {
-        // The installation (shaders that cannot be read) is reported as it is; memory running out, on the GPU or in
-        // OpenCV, keeps its type so the caller can say how to fix it.
-        try {
-            std::rethrow_exception(failure);
-        } catch (const ShaderSourceError&) {
-            throw;
-        } catch (const GlOutOfMemoryError& error) {
-            throw GlOutOfMemoryError(where + ": " + error.what());
-        } catch (const cv::Exception& error) {
-            if (error.code == cv::Error::StsNoMem) throw OutOfMemoryError(where + " ran out of memory: " + error.err);
-        } catch (...) {
-        }
+        rethrowGlFailureByCause(failure, where);
     }
 
     bool wrote(const std::string& resource) const override { return mStore.contains(resource); }
     void release(const std::string& resource) override { mStore.release(resource); }
+
+private:
+    /** Starts reading back what `planned` wrote that a host pass will read. */
+    void beginHostReadbacks(const PlannedPass& planned) {
+        for (const std::string& written : planned.liveWrites) {
+            const PlannedResource* resource = mPlan.findResource(written);
+            if (resource == nullptr || resource->kind != ResourceKind::Texture) continue;
+            const bool hostReads =
+                std::any_of(resource->readers.begin(), resource->readers.end(), [this](const std::string& reader) {
+                    const PlannedPass* pass = mPlan.findPass(reader);
+                    return pass != nullptr && pass->runsOnHost;
+                });
+            if (hostReads && mStore.holdsTexture(written)) mStore.beginReadback(written);
+        }
+    }
+
+    ResourceStore& mStore;
+    const Plan& mPlan;
+    const std::vector<GlPass*>& mPasses;
+    const ExecuteOptions& mOptions;
+};
+
+/** The host tail's backend: the GL one's loop without GL (no glFinish, no state to reset, no error to query), for a
+ *  thread that holds no context. Releasing a resource with a GPU side would hand a texture to the pool, which is the
+ *  context thread's: the hand-off left none, so finding one is a bug. */
+class HostBackend final : public ExecutorBackend {
+public:
+    HostBackend(ResourceStore& store, const Plan& plan, const std::vector<GlPass*>& passes,
+                const ExecuteOptions& options)
+        : mStore(store), mPlan(plan), mPasses(passes), mOptions(options) {}
+
+    void runPass(std::size_t passIndex, const PlannedPass& planned, PassPhase phase) override {
+        if (phase == PassPhase::Prepare)
+            throw std::logic_error("HostBackend::runPass(): '" + planned.name + "' prepares on the context's thread");
+        GlPassContext context(mStore, planned, mPlan, mOptions.frameWidth, mOptions.frameHeight);
+        mPasses[passIndex]->execute(context);
+    }
+
+    void rethrowByCause(const std::exception_ptr& failure, const std::string& where) const override {
+        rethrowGlFailureByCause(failure, where);
+    }
+
+    bool wrote(const std::string& resource) const override { return mStore.contains(resource); }
+
+    void release(const std::string& resource) override {
+        if (mStore.holdsTexture(resource))
+            throw std::logic_error("HostBackend::release(): '" + resource + "' still has a texture off the GL thread");
+        mStore.release(resource);
+    }
 
 private:
     ResourceStore& mStore;
@@ -286,12 +357,28 @@ private:
     const ExecuteOptions& mOptions;
 };
 
+std::vector<std::string_view> passNamesOf(const std::vector<GlPass*>& passes) {
+    std::vector<std::string_view> names;
+    for (const GlPass* pass : passes) names.push_back(pass->name());
+    return names;
+}
+
 } // namespace
 
 std::vector<PassTiming> GraphExecutor::run(const Plan& plan, const std::vector<GlPass*>& passes,
                                            const ExecuteOptions& options) {
+    runUntilHostTail(plan, passes, options);
+    return runHostTail();
+}
+
+void GraphExecutor::runUntilHostTail(const Plan& plan, const std::vector<GlPass*>& passes,
+                                     const ExecuteOptions& options) {
     mStore.clear();
     mImportMilliseconds.clear();
+    mTail = std::make_unique<TailRun>();
+    mTail->plan = &plan;
+    mTail->passes = passes;
+    mTail->options = options;
     if (options.importData)
         for (const std::string& name : plan.imports()) {
             const auto start = std::chrono::steady_clock::now();
@@ -303,10 +390,25 @@ std::vector<PassTiming> GraphExecutor::run(const Plan& plan, const std::vector<G
             mImportMilliseconds.emplace_back(
                 name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         }
-    std::vector<std::string_view> names;
-    for (const GlPass* pass : passes) names.push_back(pass->name());
-    GlBackend backend(mStore, plan, passes, options);
-    return executePlan("GraphExecutor::run()", plan, names, backend, options.keepAllResources);
+    PlanRun& run =
+        mTail->run.emplace("GraphExecutor::run()", plan, passNamesOf(mTail->passes), options.keepAllResources);
+    GlBackend backend(mStore, plan, mTail->passes, mTail->options);
+    run.prepare(backend);
+    const std::size_t tailStart = plan.hostTailStart();
+    run.execute(backend, tailStart);
+    // The hand-off: what the tail reads comes to the CPU here, on the context's thread.
+    for (std::size_t index = tailStart; index < plan.passes.size(); ++index)
+        for (const std::string& read : plan.passes[index].reads)
+            if (mStore.holdsTexture(read)) mStore.moveToHost(read);
+}
+
+std::vector<PassTiming> GraphExecutor::runHostTail() {
+    if (!mTail || !mTail->run)
+        throw std::logic_error("GraphExecutor::runHostTail(): no run was begun (runUntilHostTail())");
+    const std::unique_ptr<TailRun> tail = std::move(mTail);
+    HostBackend backend(mStore, *tail->plan, tail->passes, tail->options);
+    tail->run->execute(backend, tail->plan->passes.size());
+    return tail->run->timings();
 }
 
 } // namespace inkgraph

@@ -4,6 +4,7 @@
  *  across only when a pass or the caller asks for the other side, through gl/Readback. */
 
 #include "gl/GlObjects.h"
+#include "gl/Readback.h"
 #include "gl/TexturePool.h"
 #include "graph/Executor.h"
 #include "graph/Plan.h"
@@ -67,6 +68,17 @@ public:
     }
 
     bool contains(const std::string& name) const { return mEntries.count(name) != 0; }
+    /** Whether `name` has a GPU side (a texture) now. */
+    bool holdsTexture(const std::string& name) const {
+        auto found = mEntries.find(name);
+        return found != mEntries.end() && found->second.texture.has_value();
+    }
+    /** Begins reading `name`'s texture back without waiting (PendingReadback), for a later image() to finish; nothing
+     *  when it has a CPU image already, is being read, or is multisampled. */
+    void beginReadback(const std::string& name);
+    /** Keeps only the CPU side of `name`, reading the texture back first if it has no CPU image yet, and hands the
+     *  texture back to the pool: what remains is plain memory any thread may read. */
+    void moveToHost(const std::string& name);
     std::vector<std::string> names() const;
     void release(const std::string& name);
     void clear();
@@ -78,8 +90,9 @@ private:
         int height = 0;
         int samples = 1;
         std::optional<GlTexture> texture;
-        cv::Mat image;                ///< a texture's CPU side, or an object's picture
-        std::shared_ptr<void> object; ///< kind Object: the value, of objectType
+        cv::Mat image;                             ///< a texture's CPU side, or an object's picture
+        std::unique_ptr<PendingReadback> readback; ///< the texture on its way to `image` (beginReadback())
+        std::shared_ptr<void> object;              ///< kind Object: the value, of objectType
         std::type_index objectType = typeid(void);
     };
     Entry& entry(const std::string& name);
@@ -157,6 +170,9 @@ private:
 struct ExecuteOptions {
     int frameWidth = 1024;
     int frameHeight = 1024;
+    /** Begin reading back each texture a host pass reads as soon as the pass writing it has run (PendingReadback),
+     *  instead of when the host pass asks for it. */
+    bool readBackEarly = false;
     /** Keep every computed resource to the end (for --dump). Never changes which passes run. */
     bool keepAllResources = false;
     /** glFinish() at the end of each pass, so its milliseconds are its own work (--stats, --dump's manifest, the
@@ -180,6 +196,14 @@ public:
      *  the pass when a pass fails, leaves a live output unwritten, or raises a GL error; ShaderSourceError,
      *  GlOutOfMemoryError and OutOfMemoryError keep their types. */
     std::vector<PassTiming> run(const Plan& plan, const std::vector<GlPass*>& passes, const ExecuteOptions& options);
+    /** run() in two halves. The first, on the thread that holds the context: the imports, every prepare, the passes
+     *  before the plan's host tail (Plan::hostTailStart()), and then every texture a tail pass reads moved to the CPU
+     *  (ResourceStore::moveToHost()), so the tail touches no GL object. `plan`, `passes` and `options` must outlive
+     *  runHostTail(). */
+    void runUntilHostTail(const Plan& plan, const std::vector<GlPass*>& passes, const ExecuteOptions& options);
+    /** The second half: executes the host tail on the calling thread, which need not hold the context (nothing else
+     *  may use this executor meanwhile), and returns every pass's timing. Throws as run() does. */
+    std::vector<PassTiming> runHostTail();
 
     /** Resources kept after run(): the requested ones, or every computed one with keepAllResources. */
     ResourceStore& store() { return mStore; }
@@ -187,8 +211,17 @@ public:
     const std::vector<std::pair<std::string, double>>& importMilliseconds() const { return mImportMilliseconds; }
 
 private:
+    /** The half-done run between runUntilHostTail() and runHostTail(). */
+    struct TailRun {
+        const Plan* plan = nullptr;
+        std::vector<GlPass*> passes;
+        ExecuteOptions options;
+        std::optional<PlanRun> run;
+    };
+
     ResourceStore mStore;
     std::vector<std::pair<std::string, double>> mImportMilliseconds;
+    std::unique_ptr<TailRun> mTail;
 };
 
 } // namespace inkgraph

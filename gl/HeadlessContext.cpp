@@ -285,4 +285,10 @@ std::string HeadlessContext::describe() const {
     return mRenderer + " / " + mVersion + " (" + mVendor + ") via EGL " + mPlatform + " platform";
 }
 
+bool HeadlessContext::isSoftware() const {
+    for (const char* name : {"llvmpipe", "softpipe", "swrast", "SwiftShader"})
+        if (mRenderer.find(name) != std::string::npos) return true;
+    return false;
+}
+
 } // namespace inkgraph

@@ -37,6 +37,9 @@ public:
     /** GL_VENDOR, GL_RENDERER, GL_VERSION of the current context. */
     const std::string& vendor() const { return mVendor; }
     const std::string& renderer() const { return mRenderer; }
+    /** Whether the renderer rasterises on the CPU (Mesa's llvmpipe, softpipe or swrast, Google's SwiftShader), whose
+     *  "GPU" work competes with ours for the same cores. */
+    bool isSoftware() const;
     const std::string& version() const { return mVersion; }
     /** e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Core Profile) Mesa 22.3.6 via EGL device platform" */
     std::string describe() const;

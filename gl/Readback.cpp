@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <stdexcept>
 
@@ -110,6 +111,50 @@ cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip) {
         throwOnGlError("readTexture()", texture);
         if (!driverFlips) cv::flip(target, target, 0);
     }
+    return image;
+}
+
+PendingReadback::PendingReadback(const GlTexture& texture)
+    : mBuffer(std::size_t(texture.width()) * std::size_t(texture.height()) *
+                  std::size_t(CV_ELEM_SIZE(cvTypeOf(texture.format()))),
+              GL_MAP_READ_BIT, texture.label() + " read-back"),
+      mFormat(texture.format()), mWidth(texture.width()), mHeight(texture.height()), mLabel(texture.label()) {
+    if (texture.samples() > 1)
+        throw std::invalid_argument("PendingReadback(): texture '" + texture.label() + "' is multisampled");
+    const GlFormat glFormat = glFormatOf(texture.format());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, mBuffer.id());
+    // GL's rows, bottom first: finish() turns them over while it copies them out, which costs nothing extra.
+    glGetTextureImage(texture.id(), 0, glFormat.pixelFormat, glFormat.pixelType, GLsizei(mBuffer.byteCount()), nullptr);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    throwOnGlError("PendingReadback()", texture);
+    mFence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+}
+
+PendingReadback::~PendingReadback() {
+    if (mFence != nullptr) glDeleteSync(mFence);
+}
+
+cv::Mat PendingReadback::finish() {
+    if (mFence == nullptr) throw std::logic_error("PendingReadback::finish(): '" + mLabel + "' was finished already");
+    GLenum waited = GL_TIMEOUT_EXPIRED;
+    while (waited == GL_TIMEOUT_EXPIRED)
+        waited = glClientWaitSync(mFence, GL_SYNC_FLUSH_COMMANDS_BIT, GLuint64(1000000000));
+    glDeleteSync(mFence);
+    mFence = nullptr;
+    if (waited == GL_WAIT_FAILED)
+        throw std::runtime_error("PendingReadback::finish(): waiting for the read-back of '" + mLabel + "' failed");
+    const auto* bytes = static_cast<const unsigned char*>(
+        glMapNamedBufferRange(mBuffer.id(), 0, GLsizeiptr(mBuffer.byteCount()), GL_MAP_READ_BIT));
+    if (bytes == nullptr)
+        throw std::runtime_error("PendingReadback::finish(): the driver did not map the read-back of '" + mLabel +
+                                 "' (" + glErrorName(glGetError()) + ")");
+    cv::Mat image(mHeight, mWidth, cvTypeOf(mFormat));
+    mapPagesAhead(image);
+    const std::size_t rowBytes = std::size_t(mWidth) * image.elemSize();
+    for (int row = 0; row < mHeight; ++row)
+        std::memcpy(image.ptr(mHeight - 1 - row), bytes + std::size_t(row) * rowBytes, rowBytes);
+    glUnmapNamedBuffer(mBuffer.id());
     return image;
 }
 

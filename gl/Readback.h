@@ -21,6 +21,28 @@ enum class ReadbackFlip {
  *  first: a colour pixel is the average of its samples, a depth pixel one of them (GL's blit). */
 cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip = ReadbackFlip::Fastest);
 
+/** A texture's read-back begun without waiting: the driver copies it into a pixel-pack buffer behind a fence, after
+ *  the work queued before it, while the caller queues more (on a GPU the copy overlaps later passes). finish() waits
+ *  for the fence and returns the image as readTexture() would. Single-sample textures only. */
+class PendingReadback {
+public:
+    explicit PendingReadback(const GlTexture& texture);
+    ~PendingReadback();
+    PendingReadback(const PendingReadback&) = delete;
+    PendingReadback& operator=(const PendingReadback&) = delete;
+    /** Waits for the copy and returns it, row 0 at the top. Once. Throws std::runtime_error naming the texture when
+     *  the wait or the mapping fails. */
+    cv::Mat finish();
+
+private:
+    GlBuffer mBuffer;
+    GLsync mFence = nullptr;
+    Format mFormat;
+    int mWidth;
+    int mHeight;
+    std::string mLabel;
+};
+
 /** Uploads `image` (row 0 = top) into a texture of the same size and matching type. Throws on a mismatch and for a
  *  multisampled texture. */
 void uploadImage(GlTexture& texture, const cv::Mat& image);

@@ -82,6 +82,33 @@ void failIfStrict(const PreparedStill& still) {
         (more > 0 ? " (and " + std::to_string(more) + " more warning" + (more > 1 ? "s" : "") + ")" : std::string()));
 }
 
+/** Runs `step` (a part of the still's plan), turning what the user can fix into a UsageError: the driver or the
+ *  process out of memory at this --size. A pass that failed on the model's own data (a texture it could not decode)
+ *  is bad input, as a load error is: the executor nests the SceneError under the pass's name, and the SceneError's
+ *  own message names the model and the problem. */
+template <class Step>
+void runMappingFailures(const PreparedStill& still, Step&& step) {
+    const CameraRequest& camera = still.request.camera;
+    const std::string size = "--size " + std::to_string(camera.width) + "x" + std::to_string(camera.height);
+    try {
+        step();
+    } catch (const GlOutOfMemoryError& error) {
+        throw UsageError(size + ": the driver ran out of memory (" + error.what() + "); make the image smaller");
+    } catch (const OutOfMemoryError& error) {
+        throw UsageError(size + " with --supersample " + std::to_string(still.request.look.supersample) +
+                         ": out of memory (" + error.what() +
+                         "); make the image smaller, or give the process more memory");
+    } catch (const std::exception& error) {
+        try {
+            std::rethrow_if_nested(error);
+        } catch (const SceneError&) {
+            throw;
+        } catch (...) {
+        }
+        throw;
+    }
+}
+
 } // namespace
 
 ShadeMap readShadeMapFile(const std::string& path, bool oneDimensional) {
@@ -222,7 +249,7 @@ void StillRenderer::makeContext(EglPlatform platform) {
     mUnreportedContextMilliseconds = millisecondsSince(contextStart);
 }
 
-StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
+StillResult StillRenderer::executeUntilHostTail(PreparedStill& still, const StillLog& log) {
     StillResult result;
     // One context for every still of the process: the first that renders makes it (the platform is the same for all
     // of them), later ones find it current with the programs the earlier ones compiled.
@@ -251,30 +278,16 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
     executeOptions.frameHeight = camera.height;
     executeOptions.keepAllResources = still.request.keepEveryBuffer;
     executeOptions.waitForEachPass = still.request.timePasses;
+    // On llvmpipe a read-back into a pixel-pack buffer waits on this thread as a direct one does, and then costs a
+    // second copy (the comic batch of docs/performance.md: 15% slower); on a GPU the copy overlaps later passes.
+    executeOptions.readBackEarly = still.request.readback == ReadbackTiming::Early ||
+                                   (still.request.readback == ReadbackTiming::Auto && !mContext->isSoftware());
+    result.readBackEarly = executeOptions.readBackEarly;
     // The scene data the live passes import is derived once, before they prepare (passes/GpuScene.h).
     GpuScene& gpuScene = *still.gpuScene;
     executeOptions.importData = [&gpuScene](const std::string& name) { gpuScene.importDerived(name); };
-    const std::string size = "--size " + std::to_string(camera.width) + "x" + std::to_string(camera.height);
-    try {
-        result.timings = result.executor->run(still.plan, still.graph.mutableView(), executeOptions);
-    } catch (const GlOutOfMemoryError& error) {
-        throw UsageError(size + ": the driver ran out of memory (" + error.what() + "); make the image smaller");
-    } catch (const OutOfMemoryError& error) {
-        throw UsageError(size + " with --supersample " + std::to_string(still.request.look.supersample) +
-                         ": out of memory (" + error.what() +
-                         "); make the image smaller, or give the process more memory");
-    } catch (const std::exception& error) {
-        // A pass that failed on the model's own data (a texture it could not decode) is bad input, as a load error
-        // is: the executor nests the SceneError under the pass's name, and the SceneError's own message names the
-        // model and the problem.
-        try {
-            std::rethrow_if_nested(error);
-        } catch (const SceneError&) {
-            throw;
-        } catch (...) {
-        }
-        throw;
-    }
+    runMappingFailures(
+        still, [&] { result.executor->runUntilHostTail(still.plan, still.graph.mutableView(), executeOptions); });
     // What decoding the textures had to say (an image shrunk to the driver's largest texture), as the loader's
     // warnings.
     for (const Warning& warning : still.gpuScene->materials().warnings()) warnOf(still, warning, log);
@@ -284,6 +297,16 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
     result.programsCompiled = mShaders.compiledCount() - programsCompiledBefore;
     result.programsReused = mShaders.reusedCount() - programsReusedBefore;
     return result;
+}
+
+StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
+    StillResult result = executeUntilHostTail(still, log);
+    runHostTail(still, result);
+    return result;
+}
+
+void StillRenderer::runHostTail(PreparedStill& still, StillResult& result) {
+    runMappingFailures(still, [&] { result.timings = result.executor->runHostTail(); });
 }
 
 } // namespace inkgraph

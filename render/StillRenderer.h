@@ -46,6 +46,9 @@ ShadeMap readShadeMapFile(const std::string& path, bool oneDimensional);
  *  its ambient light, else the model's default; its background) and the model's bounding sphere. */
 FrameParams frameParamsOf(const Look& look, const Scene& scene, const Camera& camera, const BoundingSphere& sphere);
 
+/** --readback. */
+enum class ReadbackTiming { Auto, Early, Late };
+
 /** What to render. */
 struct StillRequest {
     std::string modelPath;
@@ -82,6 +85,9 @@ struct StillRequest {
     bool strict = false;
     std::string pose; ///< LoadOptions::pose: a VRM humanoid pose to load the model in
     EglPlatform eglPlatform = EglPlatform::Any;
+    /** When the host passes' inputs leave the GPU (ExecuteOptions::readBackEarly): early, late, or by the renderer
+     *  (late on software rasterizers, early on GPUs). */
+    ReadbackTiming readback = ReadbackTiming::Auto;
 };
 
 /** Where a still's progress lines go. */
@@ -127,6 +133,7 @@ struct StillResult {
     bool contextReused = false;
     std::size_t programsCompiled = 0; ///< by this still
     std::size_t programsReused = 0;   ///< taken from an earlier still of the process
+    bool readBackEarly = false;       ///< ExecuteOptions::readBackEarly, as --readback chose it
     ResourceStore& store() { return executor->store(); }
 };
 
@@ -152,6 +159,14 @@ public:
     /** Makes (unless makeContext() did) or reuses the context, checks the frame against the driver, runs the plan.
      *  Throws HeadlessContextError, UsageError (the driver's limits, out of memory), GraphError. */
     StillResult execute(PreparedStill& still, const StillLog& log);
+    /** execute() in two halves. This one, on the thread that holds the context, runs the plan's GPU part and hands
+     *  its host tail the images it reads (GraphExecutor::runUntilHostTail()); runHostTail() finishes the still on
+     *  any thread. Throws as execute() does. */
+    StillResult executeUntilHostTail(PreparedStill& still, const StillLog& log);
+    /** The second half: runs the still's host tail (its post stage) on the calling thread, which need not hold the
+     *  context, and fills `result.timings`. Touches nothing of the renderer, so it may overlap the next still's
+     *  executeUntilHostTail(). Throws as execute() does. */
+    static void runHostTail(PreparedStill& still, StillResult& result);
 
     /** The context, once a still has executed. */
     const HeadlessContext* context() const { return mContext ? &*mContext : nullptr; }

@@ -10,6 +10,7 @@ CompositePass::CompositePass(std::string name, const FrameParams& frame, std::st
     : mName(std::move(name)), mFrame(frame), mShading(std::move(shading)), mLines(std::move(lines)) {}
 
 void CompositePass::declare(PassBuilder& builder) const {
+    builder.runsOnHost(); // CPU work over read-back images: a batch runs it while the next still draws
     if (!mShading.empty()) builder.read(mShading);
     for (const LineInput& line : mLines) builder.read(line.resource);
     builder.write("final", {Format::RGBA8}, Need::Required, {"final.png", Appearance::Color, "the finished picture"});

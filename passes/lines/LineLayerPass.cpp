@@ -24,6 +24,7 @@ LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kerne
 }
 
 void LineLayerPass::declare(PassBuilder& builder) const {
+    builder.runsOnHost(); // CPU work over read-back images: a batch runs it while the next still draws
     for (const std::string& input : mKernel->inputs()) builder.read(input);
     for (const std::string& name : mKernel->sceneImports()) builder.import(name);
     ObjectDesc skeleton;

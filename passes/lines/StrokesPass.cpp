@@ -55,6 +55,7 @@ StrokesPass::StrokesPass(std::string name, StrokesPassSettings settings)
 }
 
 void StrokesPass::declare(PassBuilder& builder) const {
+    builder.runsOnHost(); // CPU work over read-back images: a batch runs it while the next still draws
     for (const StrokeInput& input : mSettings.inputs) {
         if (input.skeleton)
             builder.readObject(input.resource, kLineSkeletonType);

@@ -9,6 +9,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <regex>
+#include <string>
 
 namespace inkgraph {
 namespace {
@@ -106,6 +109,64 @@ TEST_F(Cli, ABatchStoppedByALaterStillKeepsTheStillsBeforeIt) {
     EXPECT_GT(stats["write_ms"].get<double>(), 0.0);
     EXPECT_GT(stats["total_ms"].get<double>(), stats["write_ms"].get<double>());
     EXPECT_GT(stats["peak_rss_mib"].get<double>(), 0.0);
+}
+
+/** The bytes of every file under `folder` but the dumps' manifests (they hold timings), by relative path. */
+std::map<std::string, std::string> filesUnder(const fs::path& folder) {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::recursive_directory_iterator(folder))
+        if (entry.is_regular_file() && entry.path().filename() != "manifest.json")
+            files[fs::relative(entry.path(), folder).string()] = readText(entry.path());
+    return files;
+}
+
+/** `log` with every number of milliseconds ("123 ms", "in 1.5 s") replaced by "#". */
+std::string withoutTimes(const std::string& log) {
+    return std::regex_replace(std::regex_replace(log, std::regex("[0-9]+ ms"), "# ms"), std::regex("in [0-9.]+ s"),
+                              "in # s");
+}
+
+TEST_F(Cli, AnyNumberOfJobsWritesTheSameBytesAndTellsTheSameLinesInOrder) {
+    // The pipelined batch (app/Render.h): stills in their post stage on workers while the next draws. A bad model in
+    // the middle is told in its place; every file, dumps included (read back after the next still drew), is the same.
+    std::ofstream(directory / "broken.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+    std::ofstream list(directory / "models.txt");
+    for (const char* name :
+         {"spot_c3d.obj", "cow_c3d.obj", "broken.obj", "suzanne_npm_4k.obj", "fandisk_c3d.obj", "teapot_c3d.obj"})
+        list << (std::string(name) == "broken.obj" ? fs::path("broken.obj")
+                                                   : fs::path(INKGRAPH_SOURCE_ROOT) / "models" / name)
+                    .string()
+             << "\n";
+    list.close();
+    std::map<std::string, std::string> firstFiles;
+    std::string firstLog;
+    for (const char* jobs : {"0", "1", "3"}) {
+        const std::string out = std::string("jobs") + jobs;
+        fs::create_directories(directory / out);
+        const CliRun result = run("render --list models.txt -o '" + out + "/{index}.png' --dump '" + out +
+                                  "/dump-{index}' --svg '" + out + "/{index}.svg' --jobs " + jobs + kLook);
+        ASSERT_EQ(result.exitCode, 3) << result.err;
+        const std::size_t second = result.err.find("[2/6]");
+        const std::size_t broken = result.err.find("[3/6] 'broken.obj' failed");
+        const std::size_t fourth = result.err.find("[4/6]");
+        ASSERT_NE(broken, std::string::npos) << result.err;
+        EXPECT_LT(second, broken) << result.err;
+        EXPECT_LT(broken, fourth) << result.err;
+        const std::map<std::string, std::string> files = filesUnder(directory / out);
+        for (const char* picture : {"1.png", "2.png", "4.png", "5.png", "6.png"}) EXPECT_EQ(files.count(picture), 1u);
+        EXPECT_EQ(files.count("3.png"), 0u);
+        if (firstLog.empty()) {
+            firstFiles = files;
+            firstLog = withoutTimes(result.err);
+            EXPECT_GT(files.size(), 20u) << "pictures, SVGs and dumps";
+            continue;
+        }
+        EXPECT_EQ(files, firstFiles) << "--jobs " << jobs;
+        std::string log = withoutTimes(result.err);
+        // The outputs' folders differ by name only.
+        log = std::regex_replace(log, std::regex("jobs[0-9]"), "jobsN");
+        EXPECT_EQ(log, std::regex_replace(firstLog, std::regex("jobs[0-9]"), "jobsN")) << "--jobs " << jobs;
+    }
 }
 
 TEST_F(Cli, ShardsOfAListRenderDisjointSharesThatMakeTheWhole) {
