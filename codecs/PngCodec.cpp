@@ -214,22 +214,24 @@ int pngColorType(int channels) {
 }
 
 // How hard to compress, measured on the comic stills of the batch (bench/PngEncodeSweep.cpp over the nine models'
-// 1024x1024 cel + lines pictures, decoded once; CPU ms to encode one, median of 5, and the nine's bytes; issue 38):
-//   zlib level 3, Up filter, memory level 8 (before)   10.7 ms  737,657 B
-//   level 3, no filter, memory level 8                   9.0 ms  700,836 B
-//   level 3, no filter, memory level 5 (chosen)          7.4 ms  691,759 B
-//   level 1 / 2, no filter, memory level 5              7.3 / 7.2 ms  750,218 / 723,331 B
-//   level 3, Up, memory level 5                          9.3 ms  730,242 B
+// 1024x1024 cel + lines pictures, decoded once; CPU ms to encode one, median of 5, and the nine's bytes; issue 38;
+// docs/performance.md has the table):
+//   zlib level 3, Up filter, memory level 8 (before)     10.7 ms  737,657 B
+//   level 3, no filter, memory level 8                    9.0 ms  700,836 B
+//   level 3, no filter, memory level 5 (chosen)           7.6 ms  691,759 B
+//   level 1 / 2, no filter, memory level 5                7.4 / 7.5 ms  750,218 / 723,331 B
+//   level 3, Up, memory level 5                           9.4 ms  730,242 B
 //   Z_RLE + Up 10.4 ms 832,196 B; Z_FILTERED = default at levels 1-3 (zlib's fast deflate ignores it); Sub and Paeth
-//   11.5 and 15.8 ms; every filter (libpng picks per row) 28.6 ms 729,120 B; stored (level 0) 10.3 ms, 37.8 MB.
+//   11.2 and 16.0 ms; every filter (libpng picks per row) 28.7 ms 729,120 B; stored (level 0) 10.1 ms, 37.8 MB.
 // The time is mostly zlib's bookkeeping, not the search: level 0 costs more than level 3 (it moves 4 MB per still),
 // a smaller window costs far more (each slide rehashes the whole hash table), and the memory level sets the hash
-// table and the block size: 5 (2,048 hash heads, blocks of 2,048 symbols, cache-sized) beats the default 8 in time
-// and size on every picture tried. adler32 over the raw rows (16% of the encode) is the zlib format's and stays.
-// Flat cel shading compresses best unfiltered, gradients (phong, gouraud: 28-46% larger unfiltered) with Up, so
+// table and the block size: 5 (2,048 hash heads, blocks of 2,048 symbols) beats the default 8 in time and size on
+// every picture tried. adler32 over the raw rows (16-19% of the encode) is the zlib format's and stays; a larger
+// compression buffer (png_set_compression_buffer_size) changed nothing measurable.
+// Flat cel shading compresses best unfiltered, gradients (phong, gouraud: 30-46% larger unfiltered) with Up, so
 // the filter is chosen per picture from a sample of its rows (rowFilterFor()). On 1024x1024 pictures of other looks,
-// before -> after (ms, bytes): bunny phong 24.7 / 198,369 -> 23.2 / 196,796 (Up), armadillo gouraud 21.9 / 205,171
-// -> 20.8 / 204,070 (Up), the fox glTF 9.8 / 45,836 -> 6.5 / 45,261, godette MToon 19.1 / 193,398 -> 13.5 / 189,413
+// before -> after (ms, bytes): bunny phong 24.1 / 198,369 -> 23.1 / 196,796 (Up), armadillo gouraud 21.6 / 205,171
+// -> 20.5 / 204,070 (Up), the fox glTF 9.5 / 45,836 -> 6.5 / 45,261, godette MToon 18.7 / 193,398 -> 13.3 / 189,413
 // (none). OpenImageIO's default (level 3, every filter) took 30.2 ms for the cel bunny.
 constexpr int kCompressionLevel = 3;
 constexpr int kMemoryLevel = 5;
