@@ -3,12 +3,15 @@
 // stage of `--lines silhouette,contour,suggestive` (contour and suggestive kernels, their strokes, the composite of
 // three layers) as one number. Suggestive contours unsmoothed (BM_PostfxSuggestive), with the app's default
 // smoothing (BM_PostfxSuggestiveSmoothed, as `--lines suggestive` runs it), and the smoothing alone
-// (BM_PostfxSmoothRadialField). Counters: Mpixel/s of the frame, skeleton points.
+// (BM_PostfxSmoothRadialField). The stroke stage of the three (BM_PostfxStrokes: thinning, chaining, the kept
+// skeletons drawn). Counters: Mpixel/s of the frame, skeleton points (strokes for BM_PostfxStrokes).
 //   ./build/bench/inkgraph_bench --benchmark_filter=Postfx
 #include "postfx/Composite.h"
 #include "postfx/Contour.h"
 #include "postfx/ImageEdges.h"
 #include "postfx/LineSkeleton.h"
+#include "postfx/LineTracing.h"
+#include "postfx/Strokes.h"
 #include "postfx/SuggestiveContours.h"
 #include "tests/support/SyntheticGBuffer.h"
 
@@ -152,6 +155,30 @@ void BM_PostfxStageSilhouetteContourSuggestive(benchmark::State& state) {
     finish(state, size.width, size.height, points);
 }
 
+/** The stroke stage of `--lines silhouette,contour,suggestive` (passes/lines/StrokesPass.cpp, its defaults): the
+ *  silhouette's mask thinned, the three skeletons chained into strokes, and each layer's kept skeleton drawn. */
+void BM_PostfxStrokes(benchmark::State& state) {
+    const cv::Size size(widthOf(state), heightOf(state));
+    const test::SyntheticGBuffer& buffer = torusAt(size.width, size.height);
+    const cv::Mat hull = strokeLines(extractDepthEdges(buffer.depth, {}), 2.0f, 1);
+    const LineSkeleton contour = extractContours(buffer.nDotV, buffer.depth, {});
+    const LineSkeleton suggestive = extractSuggestiveContours(buffer.radial, buffer.depth, suggestiveSettings());
+    StrokeSettings settings;
+    settings.joinRadiusPixels = std::max(2.0, 2.0 * size.height / 1024.0);
+    settings.directionPixels = 2.0 * settings.joinRadiusPixels;
+    settings.absorbPixels = 2.0 * settings.joinRadiusPixels;
+    std::size_t strokes = 0;
+    for (auto _ : state) {
+        const LineSkeleton silhouette = skeletonFromMask(thinToSkeleton(hull));
+        const std::vector<StrokeLayer> layers = {{&silhouette}, {&contour}, {&suggestive}};
+        const Strokes chained = chainStrokes(layers, settings);
+        for (int layer = 0; layer < int(layers.size()); ++layer)
+            benchmark::DoNotOptimize(strokeLines(keptSkeleton(chained, layers, layer), 2.0f, 1));
+        strokes = chained.strokes.size();
+    }
+    finish(state, size.width, size.height, strokes);
+}
+
 void sizes(benchmark::internal::Benchmark* benchmark) {
     benchmark->Args({512, 512})->Args({1024, 1024})->Args({1920, 1080})->Args({4096, 4096});
     benchmark->ArgNames({"w", "h"})->Unit(benchmark::kMillisecond);
@@ -166,6 +193,7 @@ BENCHMARK(BM_PostfxNormalEdge)->Apply(sizes);
 BENCHMARK(BM_PostfxStrokeContour)->Apply(sizes);
 BENCHMARK(BM_PostfxComposite3)->Apply(sizes);
 BENCHMARK(BM_PostfxStageSilhouetteContourSuggestive)->Apply(sizes);
+BENCHMARK(BM_PostfxStrokes)->Apply(sizes);
 
 } // namespace
 } // namespace inkgraph::bench

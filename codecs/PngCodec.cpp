@@ -213,15 +213,70 @@ int pngColorType(int channels) {
     }
 }
 
-// How hard to compress: zlib level 3 with the Up row filter alone. Measured on 1024x1024 pictures (CPU ms to encode,
-// bytes): the cel-shaded bunny (the default look) 12.4 ms / 134,686 B, Phong-shaded 24.8 ms / 259,619 B, the fox
-// glTF 9.3 ms / 45,898 B. libpng's default filtering (every filter tried on each row; level 3, as OpenImageIO was
-// set) took 30.2 / 44.7 / 26.1 ms for 133,401 / 266,207 / 46,679 B: choosing the filters is most of its time. No
-// filter is a little faster and 5% smaller on flat cel shading but 27% larger on gradients; level 1 saves a third
-// of the time on gradients but is 10% larger there; level 4 takes 1.1-1.7x as long for sizes from 7% larger to 36%
-// smaller (the fox); level 6 with every filter takes 3-3.6x as long.
+// How hard to compress, measured on the comic stills of the batch (bench/PngEncodeSweep.cpp over the nine models'
+// 1024x1024 cel + lines pictures, decoded once; CPU ms to encode one, median of 5, and the nine's bytes; issue 38;
+// docs/performance.md has the table):
+//   zlib level 3, Up filter, memory level 8 (before)     10.7 ms  737,657 B
+//   level 3, no filter, memory level 8                    9.0 ms  700,836 B
+//   level 3, no filter, memory level 5 (chosen)           7.6 ms  691,759 B
+//   level 1 / 2, no filter, memory level 5                7.4 / 7.5 ms  750,218 / 723,331 B
+//   level 3, Up, memory level 5                           9.4 ms  730,242 B
+//   Z_RLE + Up 10.4 ms 832,196 B; Z_FILTERED = default at levels 1-3 (zlib's fast deflate ignores it); Sub and Paeth
+//   11.2 and 16.0 ms; every filter (libpng picks per row) 28.7 ms 729,120 B; stored (level 0) 10.1 ms, 37.8 MB.
+// The time is mostly zlib's bookkeeping, not the search: level 0 costs more than level 3 (it moves 4 MB per still),
+// a smaller window costs far more (each slide rehashes the whole hash table), and the memory level sets the hash
+// table and the block size: 5 (2,048 hash heads, blocks of 2,048 symbols) beats the default 8 in time and size on
+// every picture tried. adler32 over the raw rows (16-19% of the encode) is the zlib format's and stays; a larger
+// compression buffer (png_set_compression_buffer_size) changed nothing measurable.
+// Flat cel shading compresses best unfiltered, gradients (phong, gouraud: 30-46% larger unfiltered) with Up, so
+// the filter is chosen per picture from a sample of its rows (rowFilterFor()). On 1024x1024 pictures of other looks,
+// before -> after (ms, bytes): bunny phong 24.1 / 198,369 -> 23.1 / 196,796 (Up), armadillo gouraud 21.6 / 205,171
+// -> 20.5 / 204,070 (Up), the fox glTF 9.5 / 45,836 -> 6.5 / 45,261, godette MToon 18.7 / 193,398 -> 13.3 / 189,413
+// (none). OpenImageIO's default (level 3, every filter) took 30.2 ms for the cel bunny.
 constexpr int kCompressionLevel = 3;
-constexpr int kRowFilters = PNG_FILTER_UP;
+constexpr int kMemoryLevel = 5;
+
+/** Sampled rows for rowFilterFor(): every 16th, enough to tell the looks apart (0.3-3% of a comic still's pixels
+ *  are gradient pixels against 12-15% on phong or gouraud shading, in the sample as in the whole picture). */
+constexpr std::uint32_t kFilterSampleStride = 16;
+
+/** The share of gradient pixels above which rows are Up-filtered: between the comic stills (0.3-3%) and MToon's
+ *  soft shades (5.7%, still smaller unfiltered) below and phong and gouraud (12-15%) above. */
+constexpr double kGradientShareForUp = 0.08;
+
+/** How many pixels of one row differ from both their left and their upper neighbour (a flat area's pixels equal both,
+ *  an edge's one of them), the first pixel left out. A fixed pixel size, so the comparisons unroll. */
+template <std::size_t PixelBytes>
+std::uint64_t gradientPixels(const unsigned char* here, const unsigned char* above, std::uint32_t width) {
+    std::uint64_t gradients = 0;
+    for (std::size_t offset = PixelBytes; offset < std::size_t(width) * PixelBytes; offset += PixelBytes) {
+        bool differsFromLeft = false;
+        bool differsFromAbove = false;
+        for (std::size_t byte = offset; byte < offset + PixelBytes; ++byte) {
+            differsFromLeft |= here[byte] != here[byte - PixelBytes];
+            differsFromAbove |= here[byte] != above[byte];
+        }
+        gradients += differsFromLeft && differsFromAbove ? 1 : 0;
+    }
+    return gradients;
+}
+
+/** PNG_FILTER_UP for pictures of gradients, PNG_FILTER_NONE for flat ones, by the share of gradient pixels in the
+ *  sampled rows, which costs about 0.1 ms on a 1024x1024 still. */
+int rowFilterFor(const PngLayout& layout, const png_bytep* rows) {
+    std::uint64_t sampled = 0;
+    std::uint64_t gradients = 0;
+    for (std::uint32_t row = kFilterSampleStride; row < layout.height; row += kFilterSampleStride) {
+        switch (layout.channels) {
+        case 1: gradients += gradientPixels<1>(rows[row], rows[row - 1], layout.width); break;
+        case 2: gradients += gradientPixels<2>(rows[row], rows[row - 1], layout.width); break;
+        case 3: gradients += gradientPixels<3>(rows[row], rows[row - 1], layout.width); break;
+        default: gradients += gradientPixels<4>(rows[row], rows[row - 1], layout.width); break;
+        }
+        sampled += layout.width - 1;
+    }
+    return double(gradients) > kGradientShareForUp * double(sampled) ? PNG_FILTER_UP : PNG_FILTER_NONE;
+}
 
 bool writeRows(png_structp png, png_infop info, const PngLayout* layout, png_bytepp rows,
                std::vector<unsigned char>* bytes) {
@@ -233,7 +288,8 @@ bool writeRows(png_structp png, png_infop info, const PngLayout* layout, png_byt
     // OpenImageIO wrote them.
     png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_ABSOLUTE);
     png_set_compression_level(png, kCompressionLevel);
-    png_set_filter(png, PNG_FILTER_TYPE_BASE, kRowFilters);
+    png_set_compression_mem_level(png, kMemoryLevel);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, rowFilterFor(*layout, rows));
     png_write_info(png, info);
     png_write_image(png, rows);
     png_write_end(png, nullptr);

@@ -1,6 +1,8 @@
 #include "postfx/Composite.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 
 #include <opencv2/core/utility.hpp>
 
@@ -48,18 +50,28 @@ cv::Mat compositeFinal(const CompositeInputs& inputs) {
     }
 
     const cv::Vec4b paper = toBytes(inputs.paper);
-    cv::Mat result(inputs.size, CV_8UC4, cv::Scalar(paper[0], paper[1], paper[2], paper[3]));
+    // Not filled with the paper first: each row writes every pixel once (the paper where the shading is empty).
+    cv::Mat result(inputs.size, CV_8UC4);
     std::vector<cv::Vec4b> lineColors;
     for (const LineLayer& layer : inputs.lines) lineColors.push_back(toBytes(layer.color));
     // Rows are independent; opaque and empty pixels (most of a frame) skip the blend.
     cv::parallel_for_(cv::Range(0, result.rows), [&](const cv::Range& rows) {
+        // Locals, not the captured references: the byte stores below may alias anything, so the compiler would
+        // reload the width and the paper from memory on every pixel.
+        const int cols = result.cols;
+        const cv::Vec4b paperPixel = paper;
         for (int row = rows.start; row < rows.end; ++row) {
             auto* out = result.ptr<cv::Vec4b>(row);
-            if (!inputs.shading.empty()) {
+            if (inputs.shading.empty()) {
+                std::fill(out, out + cols, paperPixel);
+            } else {
                 const auto* shading = inputs.shading.ptr<cv::Vec4b>(row);
-                for (int col = 0; col < result.cols; ++col) {
+                for (int col = 0; col < cols; ++col) {
                     const int alpha = shading[col][3];
-                    if (alpha == 0) continue;
+                    if (alpha == 0) {
+                        out[col] = paperPixel;
+                        continue;
+                    }
                     if (alpha == 255) {
                         out[col] = shading[col];
                         continue;
@@ -67,14 +79,23 @@ cv::Mat compositeFinal(const CompositeInputs& inputs) {
                     // Premultiplied: a blended surface over nothing holds colour x alpha (the shade pass blends so).
                     for (int channel = 0; channel < 3; ++channel)
                         out[col][channel] = static_cast<uchar>(
-                            std::min(255, shading[col][channel] + (paper[channel] * (255 - alpha) + 127) / 255));
-                    out[col][3] = static_cast<uchar>(alpha + (paper[3] * (255 - alpha) + 127) / 255);
+                            std::min(255, shading[col][channel] + (paperPixel[channel] * (255 - alpha) + 127) / 255));
+                    out[col][3] = static_cast<uchar>(alpha + (paperPixel[3] * (255 - alpha) + 127) / 255);
                 }
             }
             for (std::size_t layer = 0; layer < inputs.lines.size(); ++layer) {
                 const uchar* mask = inputs.lines[layer].mask.ptr<uchar>(row);
                 const cv::Vec4b color = lineColors[layer];
-                for (int col = 0; col < result.cols; ++col) {
+                for (int col = 0; col < cols; ++col) {
+                    // Eight mask bytes at a time: line masks are mostly empty.
+                    if (col + 8 <= cols) {
+                        std::uint64_t word;
+                        std::memcpy(&word, mask + col, sizeof word);
+                        if (word == 0) {
+                            col += 7;
+                            continue;
+                        }
+                    }
                     if (mask[col] == 0) continue;
                     const int alpha = (mask[col] * color[3] + 127) / 255;
                     for (int channel = 0; channel < 3; ++channel)

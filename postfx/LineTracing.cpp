@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace inkgraph {
 namespace {
@@ -326,15 +327,17 @@ std::vector<PixelChain> tracePixelChains(const LineSkeleton& skeleton) {
     std::array<std::ptrdiff_t, 8> step{};
     for (std::size_t direction = 0; direction < 8; ++direction)
         step[direction] = kRowStep[direction] * stride + kColStep[direction];
-    // Each pixel's links from the 0/1 image, written to a second image so the first stays intact while reading.
-    cv::Mat remaining = cv::Mat::zeros(links.size(), CV_8UC1);
-    uchar* const remainingBase = remaining.ptr<uchar>(0);
+    // Each pixel's links from the 0/255 image, all read before any is written over its pixel (the off pixels stay
+    // 0), then copied whole, so neither image is cleared first.
     {
-        const uchar* const onBase = links.ptr<uchar>(0);
-        for (const std::ptrdiff_t offset : onPixels)
-            remainingBase[offset] = kLinks[neighbourhood(onBase + offset, stride)];
+        std::vector<uchar> pixelLinks(onPixels.size());
+        uchar* const onBase = links.ptr<uchar>(0);
+        for (std::size_t index = 0; index < onPixels.size(); ++index)
+            pixelLinks[index] = kLinks[neighbourhood(onBase + onPixels[index], stride)];
+        for (std::size_t index = 0; index < onPixels.size(); ++index) onBase[onPixels[index]] = pixelLinks[index];
     }
-    remaining.copyTo(links); // from here on: every pixel's full links; `remaining`: the links not yet traced
+    cv::Mat remaining = links.clone(); // `links`: every pixel's full links; `remaining`: the links not yet traced
+    uchar* const remainingBase = remaining.ptr<uchar>(0);
     const uchar* const linkBase = links.ptr<uchar>(0);
     auto degree = [&](std::ptrdiff_t offset) { return std::popcount(unsigned(linkBase[offset])); };
     auto pixelOf = [&](std::ptrdiff_t offset) { return cv::Point(int(offset % stride) - 1, int(offset / stride) - 1); };

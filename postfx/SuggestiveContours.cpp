@@ -9,10 +9,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace inkgraph {
@@ -265,22 +265,55 @@ GaussianWindow gaussianWindow(int level) {
     return window;
 }
 
-/** The windows of the levels met so far, built on first use; one per thread, so none is shared. */
+/** The windows of the levels met so far, built on first use; one per thread, so none is shared. Indexed by level from
+ *  the lowest met: an image's levels lie within a few hundred of each other, and a lookup per pixel by hash showed
+ *  in profiles. */
 class GaussianWindows {
 public:
     const GaussianWindow& forLevel(int level) {
-        if (level == mLastLevel && mLast != nullptr) return *mLast;
-        auto found = mWindows.find(level);
-        if (found == mWindows.end()) found = mWindows.emplace(level, gaussianWindow(level)).first;
-        mLastLevel = level;
-        mLast = &found->second;
-        return *mLast;
+        if (mWindows.empty()) mFirstLevel = level;
+        if (level < mFirstLevel) {
+            std::vector<std::unique_ptr<GaussianWindow>> grown(std::size_t(mFirstLevel - level) + mWindows.size());
+            std::move(mWindows.begin(), mWindows.end(), grown.end() - std::ptrdiff_t(mWindows.size()));
+            mWindows = std::move(grown);
+            mFirstLevel = level;
+        }
+        const std::size_t index = std::size_t(level - mFirstLevel);
+        if (index >= mWindows.size()) mWindows.resize(index + 1);
+        std::unique_ptr<GaussianWindow>& window = mWindows[index];
+        if (!window) window = std::make_unique<GaussianWindow>(gaussianWindow(level));
+        return *window;
     }
 
 private:
-    std::unordered_map<int, GaussianWindow> mWindows; // node-based: mLast stays valid as windows are added
-    int mLastLevel = 0;
-    const GaussianWindow* mLast = nullptr;
+    std::vector<std::unique_ptr<GaussianWindow>> mWindows; // mWindows[i]: level mFirstLevel + i, or not built yet
+    int mFirstLevel = 0;
+};
+
+/** sigmaLevel() for runs of pixels of nearly one sigma: the last level with the sigmas well inside its rounding
+ *  interval, where the level is that one without a logarithm. The margin (1e-4 of a level) is far wider than the
+ *  logarithm's rounding error, so every level is the one sigmaLevel() gives. */
+class SigmaLevels {
+public:
+    int16_t levelOf(float sigma) {
+        if (double(sigma) >= mLowest && double(sigma) <= mHighest) return mLevel;
+        mLevel = sigmaLevel(sigma);
+        if (mLevel == std::numeric_limits<int16_t>::max() || mLevel == std::numeric_limits<int16_t>::min()) {
+            mLowest = 1.0; // the extremes are never cached: an empty interval
+            mHighest = 0.0;
+            return mLevel;
+        }
+        constexpr double kMargin = 1e-4;
+        const double logStep = std::log(kSigmaStep);
+        mLowest = std::exp((double(mLevel) - 0.5 + kMargin) * logStep);
+        mHighest = std::exp((double(mLevel) + 0.5 - kMargin) * logStep);
+        return mLevel;
+    }
+
+private:
+    int16_t mLevel = 0;
+    double mLowest = 1.0;
+    double mHighest = 0.0;
 };
 
 /** One pixel of a 1-D pass of smoothRadialField(): the Gaussian-weighted least-squares line through the pixels
@@ -437,8 +470,14 @@ public:
             smoothAlongRow(row);
     }
 
+    /** What next() writes beyond the row's covered span, where the field is not smoothed. */
+    enum class Uncovered {
+        Copied, ///< the input's pixels: `out` holds the whole smoothed row
+        Skipped ///< nothing: for a reader of the span alone (BandScanner), spared copying most of each row
+    };
+
     /** The next row of the smoothed field, written to `out` (cols pixels). */
-    void next(cv::Vec4f* out) {
+    void next(cv::Vec4f* out, Uncovered uncovered = Uncovered::Copied) {
         const int row = mNextRow++;
         if (row + mReach < mRows) smoothAlongRow(row + mReach);
         if (mCounted)
@@ -448,8 +487,10 @@ public:
         mCounted = true;
         const Span span = mSpans[size_t(row)];
         const cv::Vec4f* in = mRadial.ptr<cv::Vec4f>(row);
-        std::copy(in, in + span.begin, out);
-        std::copy(in + span.end, in + mCols, out + span.end);
+        if (uncovered == Uncovered::Copied) {
+            std::copy(in, in + span.begin, out);
+            std::copy(in + span.end, in + mCols, out + span.end);
+        }
         for (int d = -mReach; d <= mReach; ++d)
             mWindowRows[size_t(d + mReach)] = row + d >= 0 && row + d < mRows ? &mRowPass[slotOf(row + d)] : nullptr;
         const cv::Vec4f* const* rows = &mWindowRows[size_t(mReach)];
@@ -480,7 +521,7 @@ private:
                 joinsNext(z[col], z[col + 1], mDepthJump) ? std::min(mRight[size_t(col + 1)] + 1, mReach) : 0;
         for (int col = span.begin; col < span.end; ++col) {
             const float sigma = z[col] > 0.0f ? mSigmaDepth / z[col] : 0.0f;
-            level[col] = sigma > 0.0f ? sigmaLevel(sigma) : kUnsmoothed;
+            level[col] = sigma > 0.0f ? mSigmaLevels.levelOf(sigma) : kUnsmoothed;
         }
         smoothPixels(
             span.begin, span.end, level, mLeft.data(), mRight.data(), [in](int col, int d) { return in[col + d].val; },
@@ -556,6 +597,7 @@ private:
     std::vector<int> mLeft, mRight;  ///< per column, the row pass's run pixels left and right of it (its span)
     std::vector<const cv::Vec4f*> mWindowRows; ///< the rows of mRowPass the current row's windows reach
     GaussianWindows mWindows;
+    SigmaLevels mSigmaLevels;
 };
 
 /** What one band of rows found. Marks in the row above the band belong to the band above, so they wait here until
@@ -612,7 +654,9 @@ private:
     size_t slotOf(int row) const { return size_t(row % kRingRows) * size_t(mCols); }
     Span spanOf(int row) const { return mSpans[size_t(row)]; }
 
-    /** The radial field's row, smoothed or not; rows up to three above the newest loaded one. */
+    /** The radial field's row, smoothed or not; rows up to three above the newest loaded one. Smoothed rows hold
+     *  their covered span only: every read is of a pixel there (split over the span; D_w D_w and the crossings only
+     *  where D_w is defined, which is inside the span). */
     const cv::Vec4f* radialRow(int row) const {
         return mSmoother ? &mSmoothed[slotOf(row)] : mRadial.ptr<cv::Vec4f>(row);
     }
@@ -620,7 +664,7 @@ private:
     void load(int row) {
         const Span span = spanOf(row);
         const size_t slot = slotOf(row);
-        if (mSmoother) mSmoother->next(&mSmoothed[slot]);
+        if (mSmoother) mSmoother->next(&mSmoothed[slot], SurfaceSmoother::Uncovered::Skipped);
         splitRadialRow(radialRow(row), span, &mNormalDistance[slot], &mImageWX[slot], &mImageWY[slot]);
     }
 
