@@ -40,13 +40,33 @@ std::string stillLabel(const BatchStill& still, const RenderOptions& options) {
 void renderEach(const RenderOptions& options, const BatchList& list, const std::vector<BatchStill>& stills,
                 RenderSession& session, std::ostream& log, DatasetRun* dataset, std::vector<std::string>& failed,
                 std::size_t& skipped, int& exitCode) {
+    // What is left to render, known before the first still so each still can name the next (its model then loads
+    // while this one draws).
+    struct Still {
+        std::size_t index = 0; ///< into `stills`
+        RenderOptions options;
+        std::string digest; ///< a data set's settings digest
+    };
+    std::vector<Still> toRender;
     for (std::size_t i = 0; i < stills.size(); ++i) {
-        const BatchStill& batchStill = stills[i];
-        const RenderOptions still = stillOptions(options, batchStill, list.total);
+        Still still{i, stillOptions(options, stills[i], list.total), {}};
+        if (dataset) {
+            const StillKey key{stills[i].model.path, stills[i].model.position, stills[i].viewIndex};
+            still.digest = dataset->settingsDigest(key, still.options);
+            if (dataset->isComplete(key, still.digest)) {
+                ++skipped;
+                continue;
+            }
+        }
+        toRender.push_back(std::move(still));
+    }
+    for (std::size_t k = 0; k < toRender.size(); ++k) {
+        const BatchStill& batchStill = stills[toRender[k].index];
+        const RenderOptions& still = toRender[k].options;
         const StillKey key{batchStill.model.path, batchStill.model.position, batchStill.viewIndex};
-        const std::string counter = "inkgraph: [" + std::to_string(i + 1) + "/" + std::to_string(stills.size()) + "] " +
-                                    stillLabel(batchStill, options);
         const std::string label = stillLabel(batchStill, options);
+        const std::string counter = "inkgraph: [" + std::to_string(toRender[k].index + 1) + "/" +
+                                    std::to_string(stills.size()) + "] " + label;
         const auto fail = [&log, &failed, dataset, &exitCode, counter, label, key, still](const std::exception& error) {
             log << boundedMessage(counter + " failed: " + error.what()) << "\n";
             failed.push_back(label);
@@ -56,14 +76,9 @@ void renderEach(const RenderOptions& options, const BatchList& list, const std::
         try {
             StillCallbacks callbacks;
             if (dataset) {
-                const std::string digest = dataset->settingsDigest(key, still);
-                if (dataset->isComplete(key, digest)) {
-                    ++skipped;
-                    continue;
-                }
                 dataset->makeOutputFolders(still);
-                callbacks.committed = [dataset, key, still, digest](const CommittedStill& committed) {
-                    dataset->recordCommitted(key, still, digest, committed.camera, committed.look);
+                callbacks.committed = [dataset, key, still, digest = toRender[k].digest](const CommittedStill& done) {
+                    dataset->recordCommitted(key, still, digest, done.camera, done.look);
                 };
             }
             callbacks.finished = [&log, counter, quiet = options.quiet,
@@ -76,7 +91,8 @@ void renderEach(const RenderOptions& options, const BatchList& list, const std::
             };
             callbacks.failed = fail;
             const StillBatchPosition position{batchStill.model.position, list.total};
-            session.render(still, &position, std::move(callbacks));
+            session.render(still, &position, std::move(callbacks),
+                           k + 1 < toRender.size() ? &toRender[k + 1].options : nullptr);
         } catch (const SceneError& error) {
             // Bad input stops one still, not the batch: the other stills' work is not lost. The stills before it
             // are told first.

@@ -102,6 +102,8 @@ struct TailOutcome {
  *  textures) belong to; the worker only runs the host tail and encodes. */
 struct RenderSession::PendingStill {
     RenderOptions options;
+    /** A batch's still tells its warnings when it is finished, before its progress line, whatever ran meanwhile. */
+    std::shared_ptr<std::ostringstream> log;
     std::optional<StillBatchPosition> batch;
     std::unique_ptr<PreparedStill> still;
     StillResult result;
@@ -121,6 +123,20 @@ RenderSession::~RenderSession() {
     // A batch stopped by an error: the stills in flight are dropped uncommitted, but their workers must end before
     // what they use is freed (each future's destructor waits), and their GL objects go while the context lives.
     mPending.clear();
+    if (mPrefetch && mPrefetch->still.valid()) mPrefetch->still.wait();
+}
+
+void RenderSession::prefetch(const RenderOptions& next) {
+    if (mPrefetch && mPrefetch->still.valid()) mPrefetch->still.wait(); // one ahead at most; an unused one is dropped
+    mPrefetch.reset();
+    auto log = std::make_shared<std::ostringstream>();
+    StillRequest request = stillRequestOf(next);
+    std::future<std::unique_ptr<PreparedStill>> still =
+        std::async(std::launch::async, [this, log, request = std::move(request), quiet = next.quiet]() mutable {
+            // StillRenderer::load() reads files and builds the scene: nothing the drawing thread touches.
+            return mRenderer.load(std::move(request), StillLog{*log, false, quiet});
+        });
+    mPrefetch = Prefetch{next.modelPath, log, std::move(still)};
 }
 
 std::size_t RenderSession::bytesInFlight() const {
@@ -130,12 +146,36 @@ std::size_t RenderSession::bytesInFlight() const {
 }
 
 StillReport RenderSession::render(const RenderOptions& options, const StillBatchPosition* batch,
-                                  StillCallbacks callbacks) {
+                                  StillCallbacks callbacks, const RenderOptions* next) {
     const auto processStart = std::chrono::steady_clock::now();
-    const bool renders = rendersImages(options);
     // In a batch the progress line per still replaces the lines of one still.
     const bool talks = !options.quiet && batch == nullptr;
-    const StillLog log{mLog, talks, options.quiet};
+    // A batch's still keeps what it has to say until it is finished (PendingStill::log).
+    auto stillLog = batch ? std::make_shared<std::ostringstream>() : nullptr;
+    const StillLog log{stillLog ? *stillLog : mLog, talks, options.quiet};
+    try {
+        return renderStill(options, batch, std::move(callbacks), next, log, stillLog, processStart);
+    } catch (...) {
+        // The stills before it are told first, then what this one had to say; the caller tells its failure.
+        if (stillLog) {
+            try {
+                finishPending();
+            } catch (...) {
+                mLog << stillLog->str();
+                throw;
+            }
+            mLog << stillLog->str();
+        }
+        throw;
+    }
+}
+
+StillReport RenderSession::renderStill(const RenderOptions& options, const StillBatchPosition* batch,
+                                       StillCallbacks callbacks, const RenderOptions* next, const StillLog& log,
+                                       const std::shared_ptr<std::ostringstream>& stillLog,
+                                       std::chrono::steady_clock::time_point processStart) {
+    const bool renders = rendersImages(options);
+    const bool talks = log.talks;
     // Only a run that writes other formats than PNG (or a dump) loads OpenImageIO; its ~0.2 s of dynamic linking then
     // overlaps loading the model and making the context, though Mesa's own library loading waits for the dynamic
     // loader's lock meanwhile, so such runs still pay part of it.
@@ -144,7 +184,17 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
 
     // Every output place is checked before any work; outputs are staged and put in place only at the end.
     auto outputs = std::make_unique<OutputSet>(options);
-    std::unique_ptr<PreparedStill> still = loadWhileMakingContext(stillRequestOf(options), renders, log);
+    std::unique_ptr<PreparedStill> still;
+    if (mPrefetch && mPrefetch->modelPath == options.modelPath && renders && mRenderer.context() != nullptr) {
+        Prefetch prefetched = std::move(*mPrefetch);
+        mPrefetch.reset();
+        log.log << prefetched.log->str(); // its warnings, in this still's place
+        still = prefetched.still.get();
+    } else {
+        still = loadWhileMakingContext(stillRequestOf(options), renders, log);
+    }
+    // The next model loads while this still plans, draws and waits for its read-backs.
+    if (next != nullptr && mJobs > 0 && renders && rendersImages(*next)) prefetch(*next);
     report.triangles = still->scene().triangleCount();
     outputs->refuseInputs(inputsFoundByLoading(options.modelPath, still->scene()));
     mRenderer.plan(*still, log);
@@ -173,6 +223,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     StillResult result = mRenderer.executeUntilHostTail(*still, log);
     auto pending = std::make_unique<PendingStill>();
     pending->options = options;
+    pending->log = stillLog;
     if (batch) pending->batch = *batch;
     pending->still = std::move(still);
     pending->result = std::move(result);
@@ -216,6 +267,12 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     return report;
 }
 
+void RenderSession::tellLog(PendingStill& pending) {
+    if (!pending.log) return;
+    mLog << pending.log->str();
+    pending.log->str(std::string()); // told once, though render() may still tell it on a failure
+}
+
 void RenderSession::finishPending() {
     while (!mPending.empty()) finishOldest();
 }
@@ -228,13 +285,18 @@ void RenderSession::finishOldest() {
         outcome = pending->tail.get();
     } catch (const SceneError& error) {
         // Bad input found in the post stage is that still's failure, told in its place among the others.
+        tellLog(*pending);
         if (!pending->callbacks.failed) throw;
         pending->callbacks.failed(error);
         return;
     } catch (const InputFileError& error) {
+        tellLog(*pending);
         if (!pending->callbacks.failed) throw;
         pending->callbacks.failed(error);
         return;
+    } catch (...) {
+        tellLog(*pending);
+        throw;
     }
     const RenderOptions& options = pending->options;
     PreparedStill& still = *pending->still;
@@ -261,6 +323,7 @@ void RenderSession::finishOldest() {
     outputs.commit();
     if (pending->callbacks.committed)
         pending->callbacks.committed({describeCamera(still.camera), describeLook(still, options.stylePath)});
+    tellLog(*pending);
     if (pending->talks) {
         mLog << "inkgraph: rendered " << options.width << "x" << options.height << " in " << totalMilliseconds << " ms";
         if (!options.outputPath.empty()) mLog << " -> '" << options.outputPath << "'";

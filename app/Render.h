@@ -9,12 +9,14 @@
 
 #include "app/OutputFiles.h"
 
+#include <chrono>
 #include <cstddef>
 #include <deque>
 #include <functional>
 #include <future>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 #include <iosfwd>
@@ -71,8 +73,11 @@ public:
      *  own exceptions (SceneError, InputFileError, HeadlessContextError, FileError, UsageError, GraphError), for this
      *  still or for an earlier one it finished (FileError, and bad input without callbacks.failed); runCommandLine
      *  maps them to exit codes. */
+    /** `next`, in a batch: the still the next render() is for. Its model starts loading (parsed, welded, its shade
+     *  maps read) on a second thread as soon as this still's is loaded, and the next render() takes it; its warnings
+     *  are told with it. */
     StillReport render(const RenderOptions& options, const StillBatchPosition* batch = nullptr,
-                       StillCallbacks callbacks = {});
+                       StillCallbacks callbacks = {}, const RenderOptions* next = nullptr);
 
     /** Finishes every still in flight, oldest first: waits for its post stage and picture, writes the picture and
      *  --stats, stages the other outputs, commits. Throws the writing's FileError (the stills after it stay in
@@ -84,7 +89,23 @@ private:
      *  load's error wins over the context's. */
     std::unique_ptr<PreparedStill> loadWhileMakingContext(StillRequest request, bool renders, const StillLog& log);
 
+    /** render()'s work, telling through `log` (a batch's still: `stillLog`, told when it is finished). */
+    StillReport renderStill(const RenderOptions& options, const StillBatchPosition* batch, StillCallbacks callbacks,
+                            const RenderOptions* next, const StillLog& log,
+                            const std::shared_ptr<std::ostringstream>& stillLog,
+                            std::chrono::steady_clock::time_point processStart);
+    /** Starts loading `next`'s model on a second thread (render()'s `next`). */
+    void prefetch(const RenderOptions& next);
+
     struct PendingStill;
+    /** A model loading ahead (prefetch()). */
+    struct Prefetch {
+        std::string modelPath;
+        std::shared_ptr<std::ostringstream> log;
+        std::future<std::unique_ptr<PreparedStill>> still;
+    };
+    /** Writes what a batch's still had to say (its warnings) to the log, once. */
+    void tellLog(PendingStill& pending);
     /** Finishes the oldest still in flight (finishPending()'s step). */
     void finishOldest();
     /** The memory the stills in flight are estimated to hold (MemoryEstimate, less the model's textures). */
@@ -95,6 +116,7 @@ private:
     int mJobs = 0;
     StillRenderer mRenderer;
     std::deque<std::unique_ptr<PendingStill>> mPending; ///< oldest first
+    std::optional<Prefetch> mPrefetch;
 };
 
 /** Standard output that cannot be written (--print-plan > /dev/full, a closed pipe) fails the run: throws FileError. */

@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # Issue 20's whole-process rows and the G-buffer benchmarks on a GPU machine that has none of our Debian libraries,
 # through the device kit (bench/device-kit.sh, carried as .devicekit/), run from the repository root:
-#   bash bench/device-rows.sh       (results in $OUT, default /tmp/out; under 4 minutes, 9 if every step times out)
+#   bash bench/device-rows.sh       (results in $OUT, default /tmp/out; under 7 minutes, 14 if every step times out)
 # Steps, each under `timeout`: NVIDIA's glvnd vendor file as __EGL_VENDOR_LIBRARY_FILENAMES (when the environment does
 # not set it), and its library's folder (searched in VENDOR_LIB_DIRS, default /usr/local/nvidia/lib64 and lib, then
 # the system's) added to LD_LIBRARY_PATH when the kit's loader would not search it; one bunny still with
 # --egl-platform device and --stats, which must report the device platform and a renderer that is not llvmpipe
 # (ALLOW_LLVMPIPE=1 accepts it: a CPU machine testing the kit); whole-process.sh's rows (ROWS, default "probe tetra
-# bunny batch large", RUNS rounds, default 7) into $OUT/gpu-rows.md; inkgraph_bench, when the kit has it, with
+# bunny batch large comic36 comic36-serial comic36-p4 comic36-p8 comic36-p16", RUNS rounds, default 7, with
+# GPU_BUSY=1: each comic36 row's mean nvidia-smi utilization) into $OUT/gpu-rows.md, then (READBACK_ROWS=1, the
+# default) the comic36 row again with --readback early and late forced, into $OUT/gpu-readback.md; inkgraph_bench, when the kit has it, with
 # BENCH_FILTER (default BM_GBufferVsBareDraw|BM_DeferredShading, one process per |-separated pattern) and
 # BENCH_REPETITIONS (default 5) into $OUT/gpu-bench.txt and gpu-bench-PATTERN.json. A failed still stops the script
 # (its stderr, the probe's output and a loader trace in $OUT); a failed row or benchmark leaves its output in $OUT,
@@ -22,7 +24,7 @@ if [ ! -x "$kit/run/inkgraph" ]; then
 fi
 kit=$(cd "$kit" && pwd)
 out=${OUT:-/tmp/out}
-rows=${ROWS:-"probe tetra bunny batch large"}
+rows=${ROWS:-"probe tetra bunny batch large comic36 comic36-serial comic36-p4 comic36-p8 comic36-p16"}
 runs=${RUNS:-7}
 filter=${BENCH_FILTER:-"BM_GBufferVsBareDraw|BM_DeferredShading"}
 repetitions=${BENCH_REPETITIONS:-5}
@@ -136,16 +138,33 @@ section "whole-process rows: $rows, $runs rounds"
 gnu_time=/usr/bin/time
 [ -x "$gnu_time" ] || gnu_time=$kit/run/time
 echo "GNU time: $gnu_time"
-if FREESTYLE=0 ROWS=$rows INKGRAPH=$kit/run/inkgraph EGL_PROBE=$kit/run/inkgraph_egl_probe \
-    MAKE_MESH=$kit/run/inkgraph_make_mesh GNU_TIME=$gnu_time timeout 240 bash bench/whole-process.sh "$runs" \
+if GPU_BUSY=1 FREESTYLE=0 ROWS=$rows INKGRAPH=$kit/run/inkgraph EGL_PROBE=$kit/run/inkgraph_egl_probe \
+    MAKE_MESH=$kit/run/inkgraph_make_mesh GNU_TIME=$gnu_time timeout 300 bash bench/whole-process.sh "$runs" \
     >"$out/gpu-rows.md"; then
     echo "GL: $renderer ($platform platform); $(command -v nvidia-smi >/dev/null &&
         timeout 20 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | head -1)" >>"$out/gpu-rows.md"
     cat "$out/gpu-rows.md"
 else
-    echo "FAILED (exit $?): bench/whole-process.sh (timeout 240 s)"
+    echo "FAILED (exit $?): bench/whole-process.sh (timeout 300 s)"
     cat "$out/gpu-rows.md"
     failed=1
+fi
+
+if [ "${READBACK_ROWS:-1}" = 1 ]; then
+    section "--readback early vs late: the comic36 row, 3 rounds each"
+    # A wrapper per setting, so whole-process.sh runs the same row with the flag added.
+    for timing in early late; do
+        printf '#!/bin/sh\nexec "%s" "$@" --readback %s\n' "$kit/run/inkgraph" "$timing" >"$out/inkgraph-$timing"
+        chmod +x "$out/inkgraph-$timing"
+        if GPU_BUSY=1 ROWS=comic36 INKGRAPH=$out/inkgraph-$timing GNU_TIME=$gnu_time timeout 120 \
+            bash bench/whole-process.sh 3 >"$out/gpu-readback-$timing.md"; then
+            echo "--readback $timing:"
+            sed -n 3p "$out/gpu-readback-$timing.md"
+        else
+            echo "FAILED (exit $?): --readback $timing"
+            failed=1
+        fi
+    done
 fi
 
 section "inkgraph_bench: $filter"

@@ -130,13 +130,15 @@ TEST_F(Cli, AnyNumberOfJobsWritesTheSameBytesAndTellsTheSameLinesInOrder) {
     // The pipelined batch (app/Render.h): stills in their post stage on workers while the next draws. A bad model in
     // the middle is told in its place; every file, dumps included (read back after the next still drew), is the same.
     std::ofstream(directory / "broken.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+    // A model with a warning: told with its own still, before its progress line, whatever loaded meanwhile.
+    std::ofstream(directory / "warns.obj") << "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                           << "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
     std::ofstream list(directory / "models.txt");
     for (const char* name :
-         {"spot_c3d.obj", "cow_c3d.obj", "broken.obj", "suzanne_npm_4k.obj", "fandisk_c3d.obj", "teapot_c3d.obj"})
-        list << (std::string(name) == "broken.obj" ? fs::path("broken.obj")
-                                                   : fs::path(INKGRAPH_SOURCE_ROOT) / "models" / name)
-                    .string()
-             << "\n";
+         {"spot_c3d.obj", "warns.obj", "broken.obj", "suzanne_npm_4k.obj", "fandisk_c3d.obj", "teapot_c3d.obj"}) {
+        const bool bundled = std::string(name).find('_') != std::string::npos;
+        list << (bundled ? fs::path(INKGRAPH_SOURCE_ROOT) / "models" / name : fs::path(name)).string() << "\n";
+    }
     list.close();
     std::map<std::string, std::string> firstFiles;
     std::string firstLog;
@@ -146,8 +148,12 @@ TEST_F(Cli, AnyNumberOfJobsWritesTheSameBytesAndTellsTheSameLinesInOrder) {
         const CliRun result = run("render --list models.txt -o '" + out + "/{index}.png' --dump '" + out +
                                   "/dump-{index}' --svg '" + out + "/{index}.svg' --jobs " + jobs + kLook);
         ASSERT_EQ(result.exitCode, 3) << result.err;
+        const std::size_t first = result.err.find("[1/6]");
+        const std::size_t warning = result.err.find("warning: 'warns.obj': mtllib 'missing.mtl'");
         const std::size_t second = result.err.find("[2/6]");
         const std::size_t broken = result.err.find("[3/6] 'broken.obj' failed");
+        EXPECT_LT(first, warning) << result.err;
+        EXPECT_LT(warning, second) << result.err;
         const std::size_t fourth = result.err.find("[4/6]");
         ASSERT_NE(broken, std::string::npos) << result.err;
         EXPECT_LT(second, broken) << result.err;
