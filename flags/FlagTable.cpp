@@ -1107,6 +1107,23 @@ std::vector<Flag> makeFlags() {
                              options.eglPlatform = value;
                          }));
     flags.back().choices = {"auto", "device", "surfaceless"};
+    flags.push_back(flag({"--post-stage"}, "D", S::System,
+                         "auto | cpu | gpu: where the image-space line kernels (contour, depth-edge,\n"
+                         "normal-edge) run: on the CPU over read-back G-buffer fields, or as compute shaders\n"
+                         "with only what they find read back; the lines agree within 1e-3 px. Default auto: cpu\n"
+                         "on a software rasterizer (llvmpipe, softpipe, swrast: measured faster there,\n"
+                         "docs/performance.md), gpu otherwise. --stats says which ran (post_stage.device)",
+                         [](const std::string& value, RenderOptions& options) {
+                             if (value == "auto")
+                                 options.look.postStage = PostStageDevice::Auto;
+                             else if (value == "cpu")
+                                 options.look.postStage = PostStageDevice::Cpu;
+                             else if (value == "gpu")
+                                 options.look.postStage = PostStageDevice::Gpu;
+                             else
+                                 throw UsageError("--post-stage: '" + value + "' is not one of auto, cpu, gpu");
+                         }));
+    flags.back().choices = {"auto", "cpu", "gpu"};
     flags.push_back(flag({"--strict"}, "", S::System,
                          "make every warning an error: the still fails with exit 3 and writes nothing (a missing\n"
                          "or undecodable texture, a value clamped into range, the model outside the view, ...).\n"

@@ -190,6 +190,9 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     still.gpuScene = makeSceneImport(scene, still.sphere.center, still.frame, look);
     StillGraphSetup setup{look, mShaders, scene, still.sphere, *still.gpuScene, still.frame, still.shadeMap};
     setup.meshShadeMaps = still.meshShadeMaps;
+    // --post-stage auto decides by the GL renderer: the command line makes the context before it plans a still that
+    // renders; a plan made without one (nothing to render, or the library's first still) takes the CPU kernels.
+    if (mContext) setup.glRenderer = mContext->renderer();
     still.graph = buildStillGraph(setup);
 
     std::vector<std::string> requested = {still.graph.finalResource};
