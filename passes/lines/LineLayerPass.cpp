@@ -47,15 +47,24 @@ void LineLayerPass::execute(GlPassContext& gl) {
     const std::vector<std::string> inputs = mKernel->inputs();
     mReport.supersample = gl.scaleOf(inputs.front());
     // Every input is brought to the CPU before the kernel's clock starts, so kernel times are the post stage alone.
-    auto start = std::chrono::steady_clock::now();
-    std::vector<cv::Mat> images;
-    for (const std::string& input : inputs) images.push_back(gl.inputImage(input));
-    mReport.readbackMilliseconds = millisecondsSince(start);
-
-    start = std::chrono::steady_clock::now();
     LineSkeleton& skeleton = gl.outputObject<LineSkeleton>("skeleton");
-    skeleton = mKernel->find(images);
-    mReport.kernelMilliseconds = millisecondsSince(start);
+    if (mKernel->readsTextures()) {
+        // A GPU kernel reads its inputs where they are; its time includes reading back what it found.
+        std::vector<const GlTexture*> textures;
+        for (const std::string& input : inputs) textures.push_back(&gl.inputTexture(input));
+        const auto start = std::chrono::steady_clock::now();
+        skeleton = mKernel->findInTextures(textures);
+        mReport.kernelMilliseconds = millisecondsSince(start);
+    } else {
+        auto start = std::chrono::steady_clock::now();
+        std::vector<cv::Mat> images;
+        for (const std::string& input : inputs) images.push_back(gl.inputImage(input));
+        mReport.readbackMilliseconds = millisecondsSince(start);
+
+        start = std::chrono::steady_clock::now();
+        skeleton = mKernel->find(images);
+        mReport.kernelMilliseconds = millisecondsSince(start);
+    }
     mReport.skeletonPixels = std::size_t(cv::countNonZero(skeleton.mask));
     mReport.points = skeleton.points.size();
     if (skeleton.mask.size() != cv::Size(gl.width() * mSupersample, gl.height() * mSupersample))
