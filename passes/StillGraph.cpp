@@ -2,6 +2,7 @@
 
 #include "graph/GraphCompiler.h"
 #include "passes/composite/CompositePass.h"
+#include "passes/composite/GpuCompositePass.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineLayerPass.h"
 #include "passes/lines/LineTypes.h"
@@ -171,8 +172,12 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         graph.mStrokes = pass.get();
         graph.passes.push_back(std::move(pass));
     }
-    graph.passes.push_back(
-        std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
+    if (graph.postStageDevice == PostStageDevice::Gpu)
+        graph.passes.push_back(std::make_unique<GpuCompositePass>("composite", setup.shaders, setup.frame,
+                                                                  graph.shadingResource, std::move(lines)));
+    else
+        graph.passes.push_back(
+            std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
     return graph;
 }
 

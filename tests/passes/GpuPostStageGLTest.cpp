@@ -1,7 +1,8 @@
 // The post stage on the GPU (--post-stage gpu, passes/lines/types/GpuImageEdges.h): the compute-shader kernels find
 // what the CPU kernels of postfx/ find, point for point within 1e-3 px, on ray-cast analytic G-buffers uploaded as
 // textures (held to the analytic lines with the tolerances of tests/postfx/AnalyticLinesTest.cpp) and on the G-buffer
-// of rendered models through the still graph; and auto picks the CPU on a software rasterizer.
+// of rendered models through the still graph; the GPU composite (passes/composite/GpuCompositePass.h) makes the CPU
+// composite's picture to the byte; and auto picks the CPU on a software rasterizer.
 #include "gl/Readback.h"
 #include "graph/GraphCompiler.h"
 #include "passes/PostStage.h"
@@ -228,6 +229,48 @@ TEST_F(GpuPostStageStill, CpuAndGpuSkeletonsAgreeOnTheFandisk) {
     frame.camera = resolveCamera(request, scene);
     frame.worldOrigin = computeBoundingSphere(scene).center;
     expectSameOnBothDevices("fandisk");
+}
+
+/** The final picture of `look` with the post stage on `device`. */
+cv::Mat finalPicture(test::PassHarness& harness, Look look, PostStageDevice device) {
+    look.postStage = device;
+    harness.gpuScene = std::make_unique<GpuScene>(harness.scene, harness.frame.worldOrigin);
+    StillGraphSetup setup{
+        look,          harness.shaders, harness.scene, computeBoundingSphere(harness.scene), *harness.gpuScene,
+        harness.frame, std::nullopt};
+    StillGraph graph = buildStillGraph(setup);
+    const Plan plan = compile(graph.view(), {graph.finalResource});
+    ExecuteOptions options;
+    options.frameWidth = harness.frame.camera.width;
+    options.frameHeight = harness.frame.camera.height;
+    harness.executor.run(plan, graph.mutableView(), options);
+    return harness.executor.store().image(graph.finalResource).clone();
+}
+
+TEST_F(GpuPostStageStill, TheGpuCompositeIsTheCpuCompositeToTheByte) {
+    scene = makeScene(makeTorus(1.0f, 0.4f, 96, 48));
+    frame.camera = test::lookingAt(scene, {0.0, -4.3, 2.5}, glm::dvec3(0.0), 35.0, 200, 150);
+    frame.background = glm::vec4(0.9f, 0.85f, 0.7f, 1.0f); // paper that is not white
+    Look look;
+    look.lines = {"silhouette", "contour", "suggestive"};
+    look.lineStyles["contour"].color = {0.8, 0.1, 0.2, 0.5}; // a translucent layer over another
+    look.lineStyles["silhouette"].widthPixels = 5.0;
+    for (const ShadingModel shading : {ShadingModel::Cel, ShadingModel::None}) {
+        look.shading = shading;
+        const cv::Mat cpu = finalPicture(*this, look, PostStageDevice::Cpu);
+        const cv::Mat gpu = finalPicture(*this, look, PostStageDevice::Gpu);
+        ASSERT_EQ(cpu.size(), gpu.size());
+        ASSERT_EQ(cpu.type(), gpu.type());
+        EXPECT_EQ(cv::norm(cpu, gpu, cv::NORM_INF), 0.0) << traitsOf(shading).name;
+    }
+    // --msaa: the shading is multisampled (forward, no line reads the G-buffer); the GPU pass composites it on the
+    // CPU after its resolving read-back.
+    look.shading = ShadingModel::Cel;
+    look.lines = {"silhouette"};
+    look.msaa = 4;
+    EXPECT_EQ(cv::norm(finalPicture(*this, look, PostStageDevice::Cpu), finalPicture(*this, look, PostStageDevice::Gpu),
+                       cv::NORM_INF),
+              0.0);
 }
 
 TEST(PostStageDevice, AutoTakesTheCpuOnSoftwareRasterizersAndWithoutARenderer) {
