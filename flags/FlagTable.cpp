@@ -1109,10 +1109,11 @@ std::vector<Flag> makeFlags() {
     flags.back().choices = {"auto", "device", "surfaceless"};
     flags.push_back(flag({"--post-stage"}, "D", S::System,
                          "auto | cpu | gpu: where the image-space line kernels (contour, depth-edge,\n"
-                         "normal-edge) run: on the CPU over read-back G-buffer fields, or as compute shaders\n"
-                         "with only what they find read back; the lines agree within 1e-3 px. Default auto: cpu\n"
-                         "on a software rasterizer (llvmpipe, softpipe, swrast: measured faster there,\n"
-                         "docs/performance.md), gpu otherwise. --stats says which ran (post_stage.device)",
+                         "normal-edge) and the composite run: on the CPU over read-back G-buffer fields, or as\n"
+                         "compute shaders with only what they find read back; the lines agree within 1e-3 px,\n"
+                         "the composite to the byte. Default auto: cpu on a software rasterizer (llvmpipe,\n"
+                         "softpipe, swrast: measured faster there, docs/performance.md), gpu otherwise. --stats\n"
+                         "says which ran (post_stage.device)",
                          [](const std::string& value, RenderOptions& options) {
                              if (value == "auto")
                                  options.look.postStage = PostStageDevice::Auto;

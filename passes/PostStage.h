@@ -1,9 +1,9 @@
 #pragma once
-/** @file Where the post stage's image-space kernels run (--post-stage): on the CPU over read-back G-buffer fields
- *  (postfx/), or as compute shaders over the G-buffer's textures (passes/lines/types/GpuContourLines.cpp), the CPU
- *  then reading back only what they found. Which is cheaper depends on the device: on a software rasterizer the
- *  "GPU" is the same CPU cores and the CPU kernels stay faster (docs/performance.md "The post stage on the GPU");
- *  on a real GPU the read-backs of the float G-buffer dominate. */
+/** @file Where the post stage's image-space kernels and the composite run (--post-stage): on the CPU over read-back
+ *  G-buffer fields (postfx/), or as compute shaders over the G-buffer's textures (passes/lines/types/GpuImageEdges.h,
+ *  passes/composite/GpuCompositePass.h), the CPU then reading back only what they found. Which is cheaper depends
+ *  on the device: on a software rasterizer the "GPU" is the same CPU cores and the CPU kernels stay faster
+ *  (docs/performance.md "The post stage on the GPU"); on a real GPU the read-backs of the float G-buffer dominate. */
 
 #include <string>
 #include <string_view>

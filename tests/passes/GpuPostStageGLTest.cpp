@@ -21,6 +21,7 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,6 +44,13 @@ void expectSameSkeleton(const LineSkeleton& cpu, const LineSkeleton& gpu, const 
         EXPECT_EQ(cpu.points[i].strength, gpu.points[i].strength);
     }
     EXPECT_LE(worst, kAgreementPixels) << "largest distance between a CPU point and its GPU point";
+}
+
+/** As tests/postfx/AnalyticLinesTest.cpp prints it, for docs/accuracy.md. */
+void printAccuracy(const std::string& what, const LineAccuracy& accuracy) {
+    std::cout << what << ": P " << accuracy.precision << " R " << accuracy.recall << " F1 " << accuracy.f1
+              << "; predicted->truth P95 " << accuracy.predictedToTruthP95 << " max " << accuracy.predictedToTruthMax
+              << "; truth->predicted P95 " << accuracy.truthToPredictedP95 << "\n";
 }
 
 GlTexture uploaded(const cv::Mat& image, Format format, const std::string& label) {
@@ -114,6 +122,7 @@ TEST_F(GpuPostStage, ContoursOfRayCastSpheresMeetTheAnalyticTolerances) {
         const LineSkeleton skeleton = kernel.findInTextures({&nDotV, &depth});
         const auto truth = test::sphereSilhouette(camera, sphereCase.center, sphereCase.radius);
         const LineAccuracy accuracy = scoreLinePoints(outputPixelPositions(skeleton, 1), truth, 1.0);
+        printAccuracy("gpu contour, sphere radius " + std::to_string(sphereCase.radius), accuracy);
         EXPECT_GE(accuracy.f1, 0.99);
         EXPECT_LT(accuracy.predictedToTruthP95, 0.75);
         EXPECT_LT(accuracy.truthToPredictedP95, 0.75);
@@ -130,6 +139,7 @@ TEST_F(GpuPostStage, ContoursOfARayCastTorusMeetTheAnalyticTolerances) {
     const LineSkeleton skeleton = kernel.findInTextures({&nDotV, &depth});
     const LineAccuracy accuracy =
         scoreLinePoints(outputPixelPositions(skeleton, 1), test::torusContours(camera, glm::dvec3(0.0), 1.0, 0.4), 1.0);
+    printAccuracy("gpu contour, torus", accuracy);
     EXPECT_GE(accuracy.f1, 0.99);
     EXPECT_LT(accuracy.predictedToTruthP95, 0.75);
     EXPECT_LT(accuracy.truthToPredictedP95, 0.75);
