@@ -213,11 +213,23 @@ public:
             makeTorus(float(kTorusRing), float(kTorusTube), mConfig.quick ? 256 : 512, mConfig.quick ? 128 : 256));
 
         for (const char* type : {"contour", "suggestive"}) {
+            if (!runs(type)) continue;
             for (int size : sizes) lineRow(torus, type, size);
             for (int supersample : supersamples)
                 lineRow(torus, type, base, [&](Look& look) { look.supersample = supersample; });
             lineRow(torus, type, base, halfPrecision);
         }
+        // The contour's kernel as a compute shader (--post-stage gpu): the same lines to 1e-3 px, another cost.
+        if (runs("contour")) {
+            const auto gpu = [](Look& look) { look.postStage = PostStageDevice::Gpu; };
+            for (int size : sizes) lineRow(torus, "contour", size, gpu);
+            for (int supersample : supersamples)
+                lineRow(torus, "contour", base, [&](Look& look) {
+                    gpu(look);
+                    look.supersample = supersample;
+                });
+        }
+        if (!mConfig.onlyMethod.empty()) return std::move(mRows);
         lineRow(torus, "suggestive", base, fivePointStencil);
         lineRow(torus, "suggestive", base, [&](Look& look) {
             halfPrecision(look);
@@ -251,6 +263,8 @@ public:
     }
 
 private:
+    bool runs(const std::string& method) const { return mConfig.onlyMethod.empty() || mConfig.onlyMethod == method; }
+
     /** Ground truth for the torus at `size`: the contours, or the suggestive contours at `threshold`. */
     const std::vector<LinePolyline>& torusTruth(const std::string& type, int size, double threshold,
                                                 double featureSize) {
@@ -290,6 +304,7 @@ private:
         else
             setting << (look.gbufferPrecision == GBufferPrecision::Float16 ? " half" : " float");
         if (type == "suggestive") setting << " " << stencilPoints(look) << "-point T" << threshold;
+        if (look.postStage == PostStageDevice::Gpu) setting << " gpu";
         row.setting = setting.str();
         row.scene = "torus " + thousands(scene.triangleCount());
         finish(row, size, look.supersample, scene.triangleCount(), timings, points, truth);

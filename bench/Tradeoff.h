@@ -22,7 +22,7 @@ namespace inkgraph::bench {
 /** One method at one setting: its median cost and its accuracy. */
 struct TradeoffRow {
     std::string method;  ///< the series: "contour", "suggestive", "suggestive-object", "mesh-silhouette", "comic"
-    std::string setting; ///< what varies, e.g. "1024 S2 half 5-point T0.01"
+    std::string setting; ///< what varies, e.g. "1024 S2 half 5-point T0.01"; " gpu": --post-stage gpu
     std::string scene;   ///< "torus 262k", "sphere 128"
     int size = 0;        ///< output side in pixels
     int supersample = 1;
@@ -40,6 +40,8 @@ struct TradeoffConfig {
     bool quick = false;           ///< small sizes and few settings: for the test that runs the sweep end to end
     int repetitions = 5;          ///< timed runs per row after one warm-up; the median is reported
     double tolerancePixels = 1.0; ///< k of precision, recall and F1
+    /** Run only the rows of this method ("contour": the torus's contour rows, CPU and GPU); empty: every row. */
+    std::string onlyMethod;
 };
 
 /** Runs every row; `progress` gets one line per row. Needs a GL context (it creates the shared one). */

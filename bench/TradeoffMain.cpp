@@ -25,6 +25,7 @@ largest distances. Writes DIR/tradeoff.csv, DIR/tradeoff.md and DIR/tradeoff.png
   --quick            small images and few settings (about a minute): a smoke run
   --repetitions N    timed runs per setting, 1 to 100 (default 5)
   --tolerance PX     the F1 tolerance in output pixels, above 0 up to 10 (default 1)
+  --only contour     only the torus's contour rows (CPU and --post-stage gpu), to regenerate those
 
 Run it on a quiet machine; LP_NUM_THREADS sets llvmpipe's threads. docs/accuracy.md explains the results.
 )";
@@ -47,6 +48,10 @@ int main(int argc, char** argv) {
             return 0;
         } else if (argument == "--quick") {
             config.quick = true;
+        } else if (argument == "--only" && hasValue) {
+            config.onlyMethod = argv[++i];
+            if (config.onlyMethod != "contour")
+                return usage("--only: the one method that can run alone is 'contour', got '" + config.onlyMethod + "'");
         } else if (argument == "--out" && hasValue) {
             out = argv[++i];
         } else if (argument == "--repetitions" && hasValue) {

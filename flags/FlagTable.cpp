@@ -1128,6 +1128,25 @@ std::vector<Flag> makeFlags() {
                              options.readback = value;
                          }));
     flags.back().choices = {"auto", "early", "late"};
+    flags.push_back(flag({"--post-stage"}, "D", S::System,
+                         "auto | cpu | gpu: where the image-space line kernels (contour, depth-edge,\n"
+                         "normal-edge) and the composite run: on the CPU over read-back G-buffer fields, or as\n"
+                         "compute shaders with only what they find read back; the lines agree within 1e-3 px,\n"
+                         "the composite to the byte. Default auto: cpu on a software rasterizer (llvmpipe,\n"
+                         "softpipe, swrast: measured faster there, docs/performance.md), else gpu for the line\n"
+                         "kernels and cpu for the composite (gpu only when asked: a plan that ends on the GPU\n"
+                         "leaves a batch no post stage to overlap). --stats says which ran (post_stage.device)",
+                         [](const std::string& value, RenderOptions& options) {
+                             if (value == "auto")
+                                 options.look.postStage = PostStageDevice::Auto;
+                             else if (value == "cpu")
+                                 options.look.postStage = PostStageDevice::Cpu;
+                             else if (value == "gpu")
+                                 options.look.postStage = PostStageDevice::Gpu;
+                             else
+                                 throw UsageError("--post-stage: '" + value + "' is not one of auto, cpu, gpu");
+                         }));
+    flags.back().choices = {"auto", "cpu", "gpu"};
     flags.push_back(flag({"--strict"}, "", S::System,
                          "make every warning an error: the still fails with exit 3 and writes nothing (a missing\n"
                          "or undecodable texture, a value clamped into range, the model outside the view, ...).\n"

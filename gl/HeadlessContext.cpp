@@ -5,6 +5,8 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -285,10 +287,15 @@ std::string HeadlessContext::describe() const {
     return mRenderer + " / " + mVersion + " (" + mVendor + ") via EGL " + mPlatform + " platform";
 }
 
-bool HeadlessContext::isSoftware() const {
-    for (const char* name : {"llvmpipe", "softpipe", "swrast", "SwiftShader"})
-        if (mRenderer.find(name) != std::string::npos) return true;
+bool isSoftwareRasterizer(std::string_view glRenderer) {
+    std::string lower(glRenderer);
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (const char* name : {"llvmpipe", "softpipe", "swrast", "swiftshader"})
+        if (lower.find(name) != std::string::npos) return true;
     return false;
 }
+
+bool HeadlessContext::isSoftware() const { return isSoftwareRasterizer(mRenderer); }
 
 } // namespace inkgraph

@@ -5,9 +5,14 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace inkgraph {
+
+/** True for the GL_RENDERER strings of rasterizers that run on the CPU (Mesa's llvmpipe, softpipe and swrast, Google's
+ *  SwiftShader; case-insensitive), whose "GPU" work competes with ours for the same cores. */
+bool isSoftwareRasterizer(std::string_view glRenderer);
 
 /** No display or context could be made. The message names what is missing and how to see more. */
 class HeadlessContextError : public std::runtime_error {
@@ -37,8 +42,7 @@ public:
     /** GL_VENDOR, GL_RENDERER, GL_VERSION of the current context. */
     const std::string& vendor() const { return mVendor; }
     const std::string& renderer() const { return mRenderer; }
-    /** Whether the renderer rasterises on the CPU (Mesa's llvmpipe, softpipe or swrast, Google's SwiftShader), whose
-     *  "GPU" work competes with ours for the same cores. */
+    /** isSoftwareRasterizer() of this context's renderer. */
     bool isSoftware() const;
     const std::string& version() const { return mVersion; }
     /** e.g. "llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Core Profile) Mesa 22.3.6 via EGL device platform" */

@@ -52,6 +52,7 @@ const char* stageDefine(GLenum stage) {
     case GL_VERTEX_SHADER: return "#define INKGRAPH_VERTEX_STAGE 1\n";
     case GL_GEOMETRY_SHADER: return "#define INKGRAPH_GEOMETRY_STAGE 1\n";
     case GL_FRAGMENT_SHADER: return "#define INKGRAPH_FRAGMENT_STAGE 1\n";
+    case GL_COMPUTE_SHADER: return "#define INKGRAPH_COMPUTE_STAGE 1\n";
     }
     throw std::logic_error("stageDefine(): unknown shader stage");
 }
@@ -153,7 +154,7 @@ GLuint ShaderLibrary::compileStage(const ProgramDesc& desc, GLenum stage, const 
 GlProgram ShaderLibrary::build(const ProgramDesc& desc) {
     if (!mKeepPrograms) return compileAndLink(desc);
     // Everything that goes into the source text; '\n' cannot occur in a file name or a define.
-    std::string key = desc.vertexFile + "\n" + desc.geometryFile + "\n" + desc.fragmentFile;
+    std::string key = desc.vertexFile + "\n" + desc.geometryFile + "\n" + desc.fragmentFile + "\n" + desc.computeFile;
     for (const std::string& define : desc.defines) key += "\nD" + define;
     for (const std::string& snippet : desc.snippets) key += "\nS" + snippet;
     if (auto kept = mPrograms.find(key); kept != mPrograms.end()) {
@@ -164,6 +165,7 @@ GlProgram ShaderLibrary::build(const ProgramDesc& desc) {
 }
 
 GlProgram ShaderLibrary::compileAndLink(const ProgramDesc& desc) {
+    if (!desc.computeFile.empty()) return compileAndLinkCompute(desc);
     const bool hasGeometry = !desc.geometryFile.empty();
     GlHandle<ShaderDeleter> vertex(compileStage(desc, GL_VERTEX_SHADER, desc.vertexFile));
     GlHandle<ShaderDeleter> geometry;
@@ -187,6 +189,27 @@ GlProgram ShaderLibrary::compileAndLink(const ProgramDesc& desc) {
         throw ShaderSourceError("ShaderLibrary::build(): the shaders " + stages + " do not link (program '" +
                                 desc.label + "', defines: " + joinDefines(desc.defines) + ")" + folderAdvice() +
                                 ". The GLSL log:\n" + quotedLog(log));
+    }
+    ++mCompiled;
+    return program;
+}
+
+GlProgram ShaderLibrary::compileAndLinkCompute(const ProgramDesc& desc) {
+    if (!desc.vertexFile.empty() || !desc.geometryFile.empty() || !desc.fragmentFile.empty())
+        throw std::invalid_argument("ShaderLibrary::build(): program '" + desc.label +
+                                    "' names a compute file and draw stages; a program is one or the other");
+    GlHandle<ShaderDeleter> compute(compileStage(desc, GL_COMPUTE_SHADER, desc.computeFile));
+    GlProgram program(glCreateProgram(), desc.label);
+    glAttachShader(program.id(), compute.id());
+    glLinkProgram(program.id());
+    glDetachShader(program.id(), compute.id());
+    GLint linked = GL_FALSE;
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &linked);
+    if (linked != GL_TRUE) {
+        const std::string log = infoLog(program.id(), glGetProgramiv, glGetProgramInfoLog);
+        throw ShaderSourceError("ShaderLibrary::build(): the shader '" + (mFolder.path / desc.computeFile).string() +
+                                "' does not link (program '" + desc.label + "', defines: " + joinDefines(desc.defines) +
+                                ")" + folderAdvice() + ". The GLSL log:\n" + quotedLog(log));
     }
     ++mCompiled;
     return program;

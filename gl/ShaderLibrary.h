@@ -1,7 +1,7 @@
 #pragma once
 /** @file Assembles GLSL programs from files under shaders/ (Magnum's addSource style): the #version line, the stage
- *  define (INKGRAPH_VERTEX_STAGE, INKGRAPH_GEOMETRY_STAGE or INKGRAPH_FRAGMENT_STAGE), then generated #defines, then
- *  common/ snippets, then the stage file. Core GLSL has no #include, so each program
+ *  define (INKGRAPH_VERTEX_STAGE, INKGRAPH_GEOMETRY_STAGE, INKGRAPH_FRAGMENT_STAGE or INKGRAPH_COMPUTE_STAGE),
+ *  then generated #defines, then common/ snippets, then the stage file. Core GLSL has no #include, so each program
  *  names its snippets explicitly. */
 
 #include "gl/GlObjects.h"
@@ -29,6 +29,9 @@ struct ProgramDesc {
     std::vector<std::string> defines;  ///< "OUT_NORMAL 1" becomes "#define OUT_NORMAL 1"
     std::vector<std::string> snippets; ///< e.g. "common/fullscreen.glsl", prepended to every stage in order
     std::string geometryFile;          ///< optional, e.g. "outline/outline.geom"; empty: no geometry stage
+    /** Set: a compute program of this one file (e.g. "post/neighbour_pairs.comp"), the vertex, geometry and
+     *  fragment files empty; empty: a draw program. */
+    std::string computeFile;
 };
 
 /** Where a library's shaders come from. */
@@ -82,6 +85,7 @@ private:
     std::string folderAdvice() const;
     GLuint compileStage(const ProgramDesc& desc, GLenum stage, const std::string& file);
     GlProgram compileAndLink(const ProgramDesc& desc);
+    GlProgram compileAndLinkCompute(const ProgramDesc& desc);
 
     ShaderFolder mFolder;
     std::map<std::string, std::string> mSources;

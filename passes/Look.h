@@ -4,6 +4,7 @@
  *  one still (passes/StillGraph.h) take this; the command line (flags/Options.h) fills it from flags and style files,
  *  and benchmarks and tests build it directly. */
 
+#include "passes/PostStage.h"
 #include "passes/gbuffer/GBufferPrecision.h"
 #include "passes/lines/LineParameter.h"
 #include "passes/shade/ShadingModel.h"
@@ -68,6 +69,9 @@ struct Look {
     /** --outline-width-map: the outline, silhouette and MToon-outline widths scaled per vertex by a vertex colour or
      *  texture channel (passes/WidthMap.h); Source::None leaves them as they are. */
     WidthMap outlineWidthMap;
+    /** --post-stage: where the image-space line kernels run (passes/PostStage.h); Auto is resolved against the GL
+     *  renderer when the graph is built (StillGraphSetup::glRenderer). Changes no line beyond 1e-3 px. */
+    PostStageDevice postStage = PostStageDevice::Auto;
 
     bool draws(const std::string& type) const { return std::find(lines.begin(), lines.end(), type) != lines.end(); }
     LineStyle styleOf(const std::string& type) const {

@@ -2,6 +2,7 @@
 
 #include "graph/GraphCompiler.h"
 #include "passes/composite/CompositePass.h"
+#include "passes/composite/GpuCompositePass.h"
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineLayerPass.h"
 #include "passes/lines/LineTypes.h"
@@ -117,6 +118,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     graph.mSphere = setup.sphere;
     graph.mRadialLengthUnit = setup.frame.radialLengthUnit;
     graph.shadingModel = shadingModelFor(look.shading, setup.scene);
+    graph.postStageDevice = resolvePostStage(look.postStage, setup.glRenderer);
 
     auto gbufferPass = std::make_unique<GBufferPass>(kGBufferPass, setup.shaders, setup.gpuScene, setup.frame,
                                                      look.supersample, look.gbufferPrecision);
@@ -127,6 +129,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
     // Every line type registers its passes, drawn or not: one the composite does not read is culled, and --stats
     // says so.
     LineGraphSetup lineSetup{look, setup.shaders, setup.gpuScene, setup.frame, setup.sphere};
+    lineSetup.postStage = graph.postStageDevice;
     // The silhouette tests its hull against the G-buffer's z-buffer instead of a depth of its own when the G-buffer
     // runs anyway (it asks the compiler), at the mask's size (no supersampling), and its z-buffer holds every face the
     // silhouette would draw (GBufferPass::zBufferHoldsEveryFace()): one draw of the meshes fewer, the same mask
@@ -169,8 +172,15 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         graph.mStrokes = pass.get();
         graph.passes.push_back(std::move(pass));
     }
-    graph.passes.push_back(
-        std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
+    // The composite goes to the GPU only when asked for by name: its stroke layers are CPU images and its picture is
+    // read back to be encoded anyway, and a plan that ends on the GPU has no host tail for a batch to run on a worker
+    // while the next still draws (Plan::hostTailStart()).
+    if (setup.look.postStage == PostStageDevice::Gpu)
+        graph.passes.push_back(std::make_unique<GpuCompositePass>("composite", setup.shaders, setup.frame,
+                                                                  graph.shadingResource, std::move(lines)));
+    else
+        graph.passes.push_back(
+            std::make_unique<CompositePass>("composite", setup.frame, graph.shadingResource, std::move(lines)));
     return graph;
 }
 
@@ -227,7 +237,10 @@ Json StillGraph::describePostStage(const std::vector<PassTiming>& timings) const
         kernels += report.kernelMilliseconds;
         readback += report.readbackMilliseconds;
     }
-    Json result = {{"lines", layers}};
+    Json result;
+    result["device"] = postStageDeviceName(postStageDevice);
+    result["requested"] = postStageDeviceName(mLook ? mLook->postStage : postStageDevice);
+    result["lines"] = layers;
     if (mStrokes && std::any_of(timings.begin(), timings.end(),
                                 [](const PassTiming& timing) { return timing.pass == kStrokesPass; })) {
         Json strokes;

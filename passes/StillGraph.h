@@ -53,6 +53,9 @@ struct StillGraphSetup {
     /** Let the shade pass shade the G-buffer when it runs anyway (deferred); off, it always draws the meshes (the
      *  tests and benchmarks that compare the two). */
     bool allowDeferredShading = true;
+    /** The GL context's GL_RENDERER, which --post-stage auto decides by (passes/PostStage.h); empty when the graph is
+     *  built before there is a context (auto then takes the CPU). */
+    std::string glRenderer{};
 };
 
 class StillGraph {
@@ -65,6 +68,8 @@ public:
     /** Mesh name -> ShadeMap::source for each mesh drawn with its own map, in scene order, for --stats. */
     std::vector<std::pair<std::string, std::string>> meshShadeMapSources;
     std::string finalResource = "composite.final";
+    /** Where the image-space line kernels run: the look's --post-stage, auto resolved (resolvePostStage()). */
+    PostStageDevice postStageDevice = PostStageDevice::Cpu;
 
     std::vector<const Pass*> view() const;
     std::vector<GlPass*> mutableView() const;
@@ -85,7 +90,8 @@ public:
     std::string describeShading(const Plan& plan) const;
     /** --stats look.lines: one entry per drawn type in composite order, with its style and what its type reports. */
     nlohmann::ordered_json describeLines() const;
-    /** --stats post_stage: what each CPU line layer that ran found and where its time went; "kernels_ms" is the post
+    /** --stats post_stage: the device the image-space kernels ran on ("device", and "requested": the flag's word),
+     *  what each CPU line layer that ran found and where its time went; "kernels_ms" is the post
      *  stage proper (finding and stroking, without bringing the G-buffer to the CPU), "composite_ms" follows it. */
     nlohmann::ordered_json describePostStage(const std::vector<PassTiming>& timings) const;
     /** The stroke stage's kept strokes ("strokes.paths", a drawn-strokes object), which --svg requests; empty when no

@@ -215,8 +215,22 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     still.frame = frameParamsOf(look, scene, still.camera, still.sphere);
     still.frame.time = req.animationTime; // the pose's time is the UV animation's too
     still.gpuScene = makeSceneImport(scene, still.sphere.center, still.frame, look);
-    StillGraphSetup setup{look, mShaders, scene, still.sphere, *still.gpuScene, still.frame, still.shadeMap};
+    buildGraph(still);
+    if (still.plan.findResource(std::string(kGBufferPass) + ".triangleId") != nullptr)
+        if (std::optional<Warning> inexact = triangleIdWarning(scene.triangleCount()))
+            warnOf(still, std::move(*inexact), log);
+    failIfStrict(still);
+}
+
+void StillRenderer::buildGraph(PreparedStill& still) {
+    const StillRequest& req = still.request;
+    StillGraphSetup setup{req.look,        mShaders,    still.scene(), still.sphere,
+                          *still.gpuScene, still.frame, still.shadeMap};
     setup.meshShadeMaps = still.meshShadeMaps;
+    // --post-stage auto decides by the GL renderer: the command line makes the context before it plans a still that
+    // renders; a plan made without one (nothing to render, or the library's first still) takes the CPU kernels, and
+    // execute() builds it again if the context it makes chooses the GPU.
+    if (mContext) setup.glRenderer = mContext->renderer();
     still.graph = buildStillGraph(setup);
 
     std::vector<std::string> requested = {still.graph.finalResource};
@@ -234,10 +248,6 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
         // The registered passes are consistent (tests/graph, tests/app); a problem here comes from --request.
         throw UsageError(std::string("--request: ") + error.what());
     }
-    if (still.plan.findResource(std::string(kGBufferPass) + ".triangleId") != nullptr)
-        if (std::optional<Warning> inexact = triangleIdWarning(scene.triangleCount()))
-            warnOf(still, std::move(*inexact), log);
-    failIfStrict(still);
 }
 
 void StillRenderer::makeContext(EglPlatform platform) {
@@ -262,6 +272,8 @@ StillResult StillRenderer::executeUntilHostTail(PreparedStill& still, const Stil
     }
     const CameraRequest& camera = still.request.camera;
     checkDriverLimits(camera.width, camera.height, still.request.look.msaa, mContext->renderer());
+    if (resolvePostStage(still.request.look.postStage, mContext->renderer()) != still.graph.postStageDevice)
+        buildGraph(still); // planned before the context: the same passes, the kernels on the device auto now takes
     const std::size_t programsCompiledBefore = mShaders.compiledCount();
     const std::size_t programsReusedBefore = mShaders.reusedCount();
 

@@ -156,8 +156,10 @@ public:
     /** Makes the process's GL context now, unless it exists: app/Render.cpp calls it while the model loads on another
      *  thread, so the two overlap. Touches nothing load() uses. Throws HeadlessContextError. */
     void makeContext(EglPlatform platform);
-    /** Makes (unless makeContext() did) or reuses the context, checks the frame against the driver, runs the plan.
-     *  Throws HeadlessContextError, UsageError (the driver's limits, out of memory), GraphError. */
+    /** Makes (unless makeContext() did) or reuses the context, checks the frame against the driver, runs the plan. A
+     *  plan made before there was a context (the library's first still) with --post-stage auto is built again first
+     *  when the context's renderer chooses the other device (passes/PostStage.h). Throws HeadlessContextError,
+     * UsageError (the driver's limits, out of memory), GraphError. */
     StillResult execute(PreparedStill& still, const StillLog& log);
     /** execute() in two halves. This one, on the thread that holds the context, runs the plan's GPU part and hands
      *  its host tail the images it reads (GraphExecutor::runUntilHostTail()); runHostTail() finishes the still on
@@ -173,6 +175,9 @@ public:
     HeadlessContext* context() { return mContext ? &*mContext : nullptr; }
 
 private:
+    /** plan()'s graph and compile, with --post-stage auto resolved against the context when there is one. */
+    void buildGraph(PreparedStill& still);
+
     std::optional<HeadlessContext> mContext; ///< declared before the programs, so they are deleted first
     /** The stills' buffers, kept from one still to the next: a batch's stills have one size, and a texture made
      *  once is not allocated, page-faulted and cleared by the driver again for every model. */

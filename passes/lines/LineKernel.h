@@ -1,13 +1,17 @@
 #pragma once
 /** @file What finds one line type's one-pixel skeleton on the CPU: a postfx kernel over G-buffer fields, a GL pass's
  *  skeleton mask, or the mesh itself. LineLayerPass reads the kernel's inputs from the graph, runs it, and hands its
- *  skeleton on; a kernel knows nothing of the graph but the names of what it reads, and the memory it works in. */
+ *  skeleton on; a kernel knows nothing of the graph but the names of what it reads, and the memory it works in.
+ *  A GPU kernel (--post-stage gpu, passes/PostStage.h) is handed its inputs as textures instead, and reads back only
+ *  what it found. */
 
+#include "gl/GlObjects.h"
 #include "postfx/LineSkeleton.h"
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -27,6 +31,15 @@ public:
     virtual void prepare() {}
     /** The skeleton, at the inputs' resolution; `inputs` as inputs() names them, read back to the CPU. */
     virtual LineSkeleton find(const std::vector<cv::Mat>& inputs) = 0;
+    /** True for a kernel that runs on the GPU: LineLayerPass then calls findInTextures(), not find(), and reads
+     *  nothing back itself. */
+    virtual bool readsTextures() const { return false; }
+    /** A GPU kernel's skeleton from its inputs as GL textures (bottom row first, as GL has them), in the order of
+     *  inputs(), with the GL context current. Throws std::logic_error unless readsTextures(). */
+    virtual LineSkeleton findInTextures(const std::vector<const GlTexture*>& inputs) {
+        (void)inputs;
+        throw std::logic_error("LineKernel::findInTextures(): this kernel runs on the CPU (find())");
+    }
     /** Adds what the last run found beyond the skeleton to the layer's --stats entry (post_stage.lines). */
     virtual void describe(nlohmann::ordered_json& entry) const { (void)entry; }
 };

@@ -24,7 +24,9 @@ LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kerne
 }
 
 void LineLayerPass::declare(PassBuilder& builder) const {
-    builder.runsOnHost(); // CPU work over read-back images: a batch runs it while the next still draws
+    // A kernel over read-back images is CPU work, which a batch runs while the next still draws; one that reads the
+    // textures (a compute shader: --post-stage gpu) needs the context.
+    if (!mKernel->readsTextures()) builder.runsOnHost();
     for (const std::string& input : mKernel->inputs()) builder.read(input);
     for (const std::string& name : mKernel->sceneImports()) builder.import(name);
     ObjectDesc skeleton;
@@ -48,15 +50,24 @@ void LineLayerPass::execute(GlPassContext& gl) {
     const std::vector<std::string> inputs = mKernel->inputs();
     mReport.supersample = gl.scaleOf(inputs.front());
     // Every input is brought to the CPU before the kernel's clock starts, so kernel times are the post stage alone.
-    auto start = std::chrono::steady_clock::now();
-    std::vector<cv::Mat> images;
-    for (const std::string& input : inputs) images.push_back(gl.inputImage(input));
-    mReport.readbackMilliseconds = millisecondsSince(start);
-
-    start = std::chrono::steady_clock::now();
     LineSkeleton& skeleton = gl.outputObject<LineSkeleton>("skeleton");
-    skeleton = mKernel->find(images);
-    mReport.kernelMilliseconds = millisecondsSince(start);
+    if (mKernel->readsTextures()) {
+        // A GPU kernel reads its inputs where they are; its time includes reading back what it found.
+        std::vector<const GlTexture*> textures;
+        for (const std::string& input : inputs) textures.push_back(&gl.inputTexture(input));
+        const auto start = std::chrono::steady_clock::now();
+        skeleton = mKernel->findInTextures(textures);
+        mReport.kernelMilliseconds = millisecondsSince(start);
+    } else {
+        auto start = std::chrono::steady_clock::now();
+        std::vector<cv::Mat> images;
+        for (const std::string& input : inputs) images.push_back(gl.inputImage(input));
+        mReport.readbackMilliseconds = millisecondsSince(start);
+
+        start = std::chrono::steady_clock::now();
+        skeleton = mKernel->find(images);
+        mReport.kernelMilliseconds = millisecondsSince(start);
+    }
     mReport.skeletonPixels = std::size_t(cv::countNonZero(skeleton.mask));
     mReport.points = skeleton.points.size();
     if (skeleton.mask.size() != cv::Size(gl.width() * mSupersample, gl.height() * mSupersample))

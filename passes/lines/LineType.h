@@ -48,6 +48,9 @@ struct LineGraphSetup {
     /** The model's depth a GL-drawn band may test against instead of drawing its own, when its writer runs anyway
      *  ("gbuffer.zBuffer"), or empty when the G-buffer's z-buffer cannot stand for it (HullSettings::modelDepth). */
     std::string modelDepth{};
+    /** Where the image-space kernels run (Cpu or Gpu, resolved: passes/PostStage.h); a type without a GPU kernel
+     *  runs on the CPU either way. */
+    PostStageDevice postStage = PostStageDevice::Cpu;
 };
 
 /** Hands a line type's build() the setup and the graph's pass list. */

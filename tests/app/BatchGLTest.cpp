@@ -175,6 +175,22 @@ TEST_F(Cli, AnyNumberOfJobsWritesTheSameBytesAndTellsTheSameLinesInOrder) {
     }
 }
 
+TEST_F(Cli, KernelsOnTheGpuStayOnTheContextsThreadInAPipelinedBatch) {
+    // --post-stage gpu: the contour's compute shader needs the context, so its pass is no part of the host tail the
+    // workers run (a worker without the context would fail or crash); the composite on the GPU leaves no tail at all.
+    const std::string models = model("spot_c3d.obj") + " " + model("cow_c3d.obj") + " " + model("teapot_c3d.obj");
+    for (const char* jobs : {"0", "2"}) {
+        const CliRun result = run("render " + models + " -o 'gpu" + std::string(jobs) +
+                                  "-{index}.png' --post-stage gpu --lines contour,depth-edge,suggestive -q --jobs " +
+                                  jobs + kLook.substr(0, kLook.find(" --lines")));
+        ASSERT_EQ(result.exitCode, 0) << result.err;
+    }
+    for (const char* index : {"1", "2", "3"})
+        EXPECT_EQ(readText(directory / ("gpu0-" + std::string(index) + ".png")),
+                  readText(directory / ("gpu2-" + std::string(index) + ".png")))
+            << index;
+}
+
 TEST_F(Cli, ShardsOfAListRenderDisjointSharesThatMakeTheWhole) {
     std::ofstream list(directory / "models.txt");
     for (const char* name : {"spot_c3d", "cow_c3d", "teapot_c3d", "suzanne_npm_4k", "torusknot_open3d"})

@@ -57,6 +57,14 @@ TEST_F(TradeoffSweep, AccuraciesMatchWhatTheKernelTestsMeasure) {
     // contours on ray-cast buffers at 512^2); a wrong camera, a half-pixel shift or a y flip drops F1 toward 0.
     EXPECT_GE(rowOf(*rows, "contour", "256 S1 float").accuracy.f1, 0.98);
     EXPECT_GE(rowOf(*rows, "contour", "256 S2 float").accuracy.f1, 0.98);
+    // --post-stage gpu finds the same points within 1e-3 px: the same scores.
+    for (const std::string setting : {"128 S1 float", "256 S1 float", "256 S2 float"}) {
+        const TradeoffRow& cpu = rowOf(*rows, "contour", setting);
+        const TradeoffRow& gpu = rowOf(*rows, "contour", setting + " gpu");
+        EXPECT_EQ(gpu.accuracy.predictedCount, cpu.accuracy.predictedCount) << setting;
+        EXPECT_NEAR(gpu.accuracy.f1, cpu.accuracy.f1, 1e-9) << setting;
+        EXPECT_NEAR(gpu.accuracy.predictedToTruthP95, cpu.accuracy.predictedToTruthP95, 1e-3) << setting;
+    }
     EXPECT_GE(rowOf(*rows, "contour (sphere)", "256 128 segments").accuracy.f1, 0.98);
     EXPECT_GE(rowOf(*rows, "mesh-silhouette", "256 128 segments").accuracy.f1, 0.98);
     // A 32-segment sphere lies inside its circle by up to R(1 - cos(pi/32)) ~ 0.25 px here: still mostly within 1 px.

@@ -3,12 +3,16 @@
 #include "passes/lines/types/ImageEdgeLines.h"
 
 #include "passes/lines/LineType.h"
+#include "passes/lines/types/GpuImageEdges.h"
 
 namespace inkgraph {
 namespace {
 
 using line_parameters::kCreaseAngle;
 using line_parameters::kDepthJump;
+
+/** --post-stage gpu: the kernels as compute shaders (GpuImageEdges.h), else the postfx kernels on the CPU. */
+bool onGpu(const LineGraphBuilder& builder) { return builder.setup().postStage == PostStageDevice::Gpu; }
 
 float depthJumpOf(const LineGraphBuilder& builder) { return float(builder.look().lineParameters.number(kDepthJump)); }
 
@@ -29,7 +33,11 @@ LineType normalEdgeLineType() {
         NormalEdgeSettings settings;
         settings.creaseAngleDegrees = float(builder.look().lineParameters.number(kCreaseAngle));
         settings.depthJump = depthJumpOf(builder);
-        builder.addLayer(name, std::make_unique<NormalEdgeKernel>(builder.setup().gbuffer, settings));
+        if (onGpu(builder))
+            builder.addLayer(name, std::make_unique<GpuNeighbourPairsKernel>(builder.setup().gbuffer, settings,
+                                                                             builder.setup().shaders));
+        else
+            builder.addLayer(name, std::make_unique<NormalEdgeKernel>(builder.setup().gbuffer, settings));
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
         entry["crease_angle_degrees"] = source.look.lineParameters.number(kCreaseAngle);
@@ -46,7 +54,11 @@ LineType depthEdgeLineType() {
     type.build = [](const std::string& name, LineGraphBuilder& builder) {
         DepthEdgeSettings settings;
         settings.relativeJump = depthJumpOf(builder);
-        builder.addLayer(name, std::make_unique<DepthEdgeKernel>(builder.setup().gbuffer, settings));
+        if (onGpu(builder))
+            builder.addLayer(name, std::make_unique<GpuNeighbourPairsKernel>(builder.setup().gbuffer, settings,
+                                                                             builder.setup().shaders));
+        else
+            builder.addLayer(name, std::make_unique<DepthEdgeKernel>(builder.setup().gbuffer, settings));
     };
     type.describe = describeDepthJump;
     return type;
@@ -61,7 +73,11 @@ LineType contourLineType() {
     type.build = [](const std::string& name, LineGraphBuilder& builder) {
         ContourSettings settings;
         settings.depthJump = depthJumpOf(builder);
-        builder.addLayer(name, std::make_unique<ContourKernel>(builder.setup().gbuffer, settings));
+        if (onGpu(builder))
+            builder.addLayer(name, std::make_unique<GpuNeighbourPairsKernel>(builder.setup().gbuffer, settings,
+                                                                             builder.setup().shaders));
+        else
+            builder.addLayer(name, std::make_unique<ContourKernel>(builder.setup().gbuffer, settings));
     };
     type.describe = describeDepthJump;
     return type;
