@@ -65,8 +65,8 @@ void renderEach(const RenderOptions& options, const BatchList& list, const std::
         const RenderOptions& still = toRender[k].options;
         const StillKey key{batchStill.model.path, batchStill.model.position, batchStill.viewIndex};
         const std::string label = stillLabel(batchStill, options);
-        const std::string counter = "inkgraph: [" + std::to_string(toRender[k].index + 1) + "/" +
-                                    std::to_string(stills.size()) + "] " + label;
+        const std::string counter =
+            "inkgraph: [" + std::to_string(toRender[k].index + 1) + "/" + std::to_string(stills.size()) + "] " + label;
         const auto fail = [&log, &failed, dataset, &exitCode, counter, label, key, still](const std::exception& error) {
             log << boundedMessage(counter + " failed: " + error.what()) << "\n";
             failed.push_back(label);
