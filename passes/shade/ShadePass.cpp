@@ -149,6 +149,8 @@ void ShadePass::declare(PassBuilder& builder) const {
     const bool deferred = !gbuffer.empty() && forwardReason(builder.liveFieldsAnyway(gbuffer)).empty();
     if (deferred) {
         for (const std::string& field : deferredFields()) builder.read(gbuffer + "." + field);
+        // The G-buffer's depth test skips the pixels off the model before they are shaded (executeDeferred()).
+        builder.read(gbuffer + ".zBuffer");
     } else {
         builder.import(SceneImport::kMeshes); // forward draws the meshes
         // The multisampled target, colour (rgba8) and depth (float32), which the pass keeps between runs.
@@ -385,11 +387,18 @@ void ShadePass::executeDeferred(GlPassContext& gl) {
     const int height = gl.heightOf("color");
     GlFramebuffer framebuffer(mName);
     framebuffer.attachColor(0, gl.outputTexture("color"));
+    // The G-buffer's own z-buffer, read only: the full-screen triangle lies at the far plane (window depth 0, reversed
+    // Z), so the early depth test passes exactly the pixels a surface covers (depth > 0) and the rest keep the clear,
+    // the transparent black the shader would write there. On llvmpipe that halves the pass: most of a frame is paper.
+    framebuffer.attachDepth(gl.inputTexture(mSettings.deferred.gbuffer + ".zBuffer"));
     framebuffer.finish({0});
     framebuffer.bind();
-    // Every pixel is written (transparent black off the model), so nothing is cleared.
     glViewport(0, 0, width, height);
-    glDisable(GL_DEPTH_TEST);
+    const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 0, transparent);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_FALSE);
     glDisable(GL_BLEND);
     GlProgram& program = *mProgram;
     program.use();

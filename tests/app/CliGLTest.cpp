@@ -575,11 +575,13 @@ TEST_F(Cli, OnlyThePassesTheRequestedLinesNeedRun) {
     EXPECT_GT(stats["post_stage"]["lines"][0]["points"].get<int>(), 100);
     // The G-buffer computes depth for the lines and the normal for shading, which shades it (deferred) instead of
     // drawing the meshes again; the plan's last line says so.
-    EXPECT_TRUE(std::regex_search(
-        result.out, std::regex("writes: gbuffer\\.normal\\(rgba32f\\) gbuffer\\.depth\\(r32f\\) +not computed:")))
-        << "the G-buffer computes depth and the normal alone\n"
+    EXPECT_TRUE(
+        std::regex_search(result.out, std::regex("writes: gbuffer\\.normal\\(rgba32f\\) gbuffer\\.depth\\(r32f\\) "
+                                                 "gbuffer\\.zBuffer\\(depth32f\\) +not computed:")))
+        << "the G-buffer computes depth and the normal alone, and keeps its z-buffer for the shading\n"
         << result.out;
-    EXPECT_TRUE(std::regex_search(result.out, std::regex("shade +reads: gbuffer\\.normal +writes:"))) << result.out;
+    EXPECT_TRUE(std::regex_search(result.out, std::regex("shade +reads: gbuffer\\.normal gbuffer\\.zBuffer +writes:")))
+        << result.out;
     EXPECT_NE(result.out.find("\nshading: deferred\n"), std::string::npos) << result.out;
     EXPECT_EQ(stats["look"]["shading_mode"], "deferred");
     EXPECT_FALSE(stats["look"].contains("shading_forward_because"));

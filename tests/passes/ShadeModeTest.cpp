@@ -100,12 +100,13 @@ TEST_F(ShadeModeChoice, ForwardWhenNoDrawnLineReadsTheGBuffer) {
 }
 
 TEST_F(ShadeModeChoice, DeferredReadsTheNormalAndTheViewOnlyForSpecularModelsWithTheExactViewVector) {
-    // One untextured material: the base colour is a uniform, so the G-buffer adds only the normal (and the view).
+    // One untextured material: the base colour is a uniform, so the G-buffer adds only the normal (and the view);
+    // its z-buffer, written anyway, tells the shading which pixels to skip.
     const std::vector<std::pair<ShadingModel, Names>> cases = {
-        {ShadingModel::Lambert, {"gbuffer.normal"}},
-        {ShadingModel::Cel, {"gbuffer.normal"}},
-        {ShadingModel::Phong, {"gbuffer.normal", "gbuffer.view"}},
-        {ShadingModel::Comic, {"gbuffer.normal", "gbuffer.view"}},
+        {ShadingModel::Lambert, {"gbuffer.normal", "gbuffer.zBuffer"}},
+        {ShadingModel::Cel, {"gbuffer.normal", "gbuffer.zBuffer"}},
+        {ShadingModel::Phong, {"gbuffer.normal", "gbuffer.view", "gbuffer.zBuffer"}},
+        {ShadingModel::Comic, {"gbuffer.normal", "gbuffer.view", "gbuffer.zBuffer"}},
     };
     for (const auto& [model, reads] : cases) {
         const Choice choice = choose(lookOf(model, {"silhouette", "contour", "suggestive"}));
@@ -118,23 +119,27 @@ TEST_F(ShadeModeChoice, DeferredReadsTheNormalAndTheViewOnlyForSpecularModelsWit
     }
     Look constant = lookOf(ShadingModel::Comic);
     constant.viewVector = ViewVectorMode::Constant;
-    EXPECT_EQ(choose(constant).reads, (Names{"gbuffer.normal"})) << "comic's constant view vector is a uniform";
+    EXPECT_EQ(choose(constant).reads, (Names{"gbuffer.normal", "gbuffer.zBuffer"}))
+        << "comic's constant view vector is a uniform";
 }
 
 TEST_F(ShadeModeChoice, DeferredReadsTheBaseColourWhenItVariesOverTheScene) {
     scene.meshes[0].colors.assign(scene.meshes[0].positions.size(), glm::vec4(1.0f, 0.5f, 0.25f, 1.0f));
-    EXPECT_EQ(choose(lookOf(ShadingModel::Cel)).reads, (Names{"gbuffer.normal", "gbuffer.baseColor"}));
+    EXPECT_EQ(choose(lookOf(ShadingModel::Cel)).reads,
+              (Names{"gbuffer.normal", "gbuffer.baseColor", "gbuffer.zBuffer"}));
 
     SetUp();
     scene.images.push_back({"checker.png", "checker.png", "image/png", nullptr});
     scene.meshes[0].material.baseColorTexture.image = 0;
-    EXPECT_EQ(choose(lookOf(ShadingModel::Lambert)).reads, (Names{"gbuffer.normal", "gbuffer.baseColor"}));
+    EXPECT_EQ(choose(lookOf(ShadingModel::Lambert)).reads,
+              (Names{"gbuffer.normal", "gbuffer.baseColor", "gbuffer.zBuffer"}));
 
     SetUp();
     Mesh second = makeUvSphere({3.0f, 0.0f, 0.0f}, 1.0f, 16, 8);
     second.material.baseColorFactor = glm::vec4(0.2f, 0.4f, 0.8f, 1.0f);
     scene.meshes.push_back(second);
-    EXPECT_EQ(choose(lookOf(ShadingModel::Cel)).reads, (Names{"gbuffer.normal", "gbuffer.baseColor"}));
+    EXPECT_EQ(choose(lookOf(ShadingModel::Cel)).reads,
+              (Names{"gbuffer.normal", "gbuffer.baseColor", "gbuffer.zBuffer"}));
 }
 
 TEST_F(ShadeModeChoice, ModelsThatNeedMoreThanThePixelStayForward) {
@@ -244,7 +249,7 @@ TEST_F(ShadeModeChoice, ForwardWhenTheShadingFieldsWouldMakeTheGBufferDrawTwice)
     }
     const Plan plan = compile(passes, requested, requested);
     EXPECT_EQ(shade.modeIn(plan), ShadeMode::Deferred);
-    EXPECT_EQ(plan.findPass("shade")->reads, Names{"gbuffer.normal"});
+    EXPECT_EQ(plan.findPass("shade")->reads, (Names{"gbuffer.normal", "gbuffer.zBuffer"}));
 }
 
 TEST_F(ShadeModeChoice, TheMToonOutlineLayerIsReadOnlyWhenAMaterialAsksForAnOutline) {
