@@ -191,6 +191,9 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
         log.log << prefetched.log->str(); // its warnings, in this still's place
         still = prefetched.still.get();
     } else {
+        // One load at a time: a model loaded ahead for another still is waited for and dropped.
+        if (mPrefetch && mPrefetch->still.valid()) mPrefetch->still.wait();
+        mPrefetch.reset();
         still = loadWhileMakingContext(stillRequestOf(options), renders, log);
     }
     // The next model loads while this still plans, draws and waits for its read-backs.

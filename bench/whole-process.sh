@@ -12,7 +12,7 @@
 # GPU_BUSY=1 samples nvidia-smi's utilization.gpu every 100 ms during the comic36 rows (when nvidia-smi is on PATH)
 # and adds the mean busy share to their note;
 # BEFORE=/path/to/an/older/inkgraph adds each inkgraph row again as ROW@before, run by that binary in the same rounds
-# (from its own checkout's folder, so it finds its shaders).
+# (from its own checkout's folder, so it finds its shaders): tetra, bunny, batch, large and comic36.
 # EGL_PROBE and MAKE_MESH replace build/bench/inkgraph_egl_probe and build/bench/inkgraph_make_mesh, GNU_TIME
 # /usr/bin/time: a machine without our build runs the device kit's (bench/device-kit.sh, bench/device-rows.sh).
 # Generated inputs (the large row's mesh) go to build/bench-data/, made when missing.
@@ -28,12 +28,12 @@ work="$build/bench-data"
 mkdir -p "$work/out" "$work/batch"
 rows=${ROWS:-"probe tetra bunny freestyle batch large"}
 if [ -n "${BEFORE:-}" ]; then
-    for row in tetra bunny batch large; do [[ " $rows " == *" $row "* ]] && rows+=" $row@before"; done
+    for row in tetra bunny batch large comic36; do [[ " $rows " == *" $row "* ]] && rows+=" $row@before"; done
 fi
 cd "$root"
 
 for _ in 1 2 3 4; do grep -v '^#' examples/batch/models.txt; done >"$work/comic36.txt"
-for row in $rows; do [[ $row == comic36* ]] && mkdir -p "$work/$row"; done
+for row in $rows; do [[ $row == comic36* ]] && mkdir -p "$work/${row/@before/-before}"; done
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >"$work/tetrahedron.obj"
 large="$work/armadillo-1.3m.obj"
 if [[ " $rows " == *" large"* ]] && [ ! -f "$large" ]; then # written whole or not at all
@@ -48,7 +48,8 @@ fi
 comic=(--shading cel --lines silhouette,contour,suggestive)
 command_of() { # row -> the command, one word per line
     if [[ $1 == *@before ]]; then
-        inkgraph=$BEFORE command_of "${1%@before}" | sed "s|/out/\(.*\)\.png$|/out/\1-before.png|"
+        inkgraph=$BEFORE command_of "${1%@before}" | sed -e "s|/out/\(.*\)\.png$|/out/\1-before.png|" \
+            -e "s|/comic36/|/comic36-before/|"
         return
     fi
     case $1 in
@@ -115,8 +116,11 @@ for row in $rows; do
     case $row in
     tetra | tetra@before) note="$(awk -v a="${medians[$row]}" -v b="${medians[probe]:-0}" \
         'BEGIN { if (b > 0) printf "%.2fx the probe", a / b }')" ;;
-    comic36 | comic36-serial) note="$(awk -v t="${medians[$row]}" -v b="${medians[comic36-serial]:-0}" \
-        'BEGIN { printf "36 stills: %.1f stills/s", 36000 / t; if (b > 0) printf "; %.2fx the serial row", b / t }')" ;;
+    comic36 | comic36-serial | comic36@before) note="$(awk -v t="${medians[$row]}" -v row="$row" \
+        -v s="${medians[comic36-serial]:-0}" -v b="${medians[comic36@before]:-0}" 'BEGIN {
+            printf "36 stills: %.1f stills/s", 36000 / t
+            if (row == "comic36" && s > 0) printf "; %.2fx the serial row", s / t
+            if (row != "comic36@before" && b > 0) printf "; %.2fx the before row", b / t }')" ;;
     comic36-p*) note="$(awk -v t="${medians[$row]}" -v p="${row#comic36-p}" \
         'BEGIN { printf "%d processes x 36 stills: %.1f stills/s", p, 36000 * p / t }')" ;;
     batch | batch@before | singles) note="$(awk -v t="${medians[$row]}" 'BEGIN { printf "9 stills: %.1f stills/s", 9000 / t }')" ;;
