@@ -89,17 +89,6 @@ protected:
     }
 };
 
-struct SphereCase {
-    glm::dvec3 eye;
-    glm::dvec3 target;
-    glm::dvec3 center;
-    double radius;
-};
-// tests/postfx/AnalyticLinesTest.cpp's spheres: on axis, d = 4 R; off axis, an ellipse.
-const SphereCase kSphereCases[] = {
-    {{0.0, 0.0, 4.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 1.0},
-    {{0.3, -0.2, 5.0}, {0.0, 0.0, 0.0}, {0.9, -0.6, -0.4}, 0.6},
-};
 
 test::SyntheticCamera torusCamera() {
     test::SyntheticCamera camera;
@@ -111,7 +100,7 @@ test::SyntheticCamera torusCamera() {
 }
 
 TEST_F(GpuPostStage, ContoursOfRayCastSpheresMeetTheAnalyticTolerances) {
-    for (const SphereCase& sphereCase : kSphereCases) {
+    for (const test::SphereCase& sphereCase : test::kSphereCases) {
         test::SyntheticCamera camera;
         camera.eye = sphereCase.eye;
         camera.target = sphereCase.target;
@@ -146,7 +135,7 @@ TEST_F(GpuPostStage, ContoursOfARayCastTorusMeetTheAnalyticTolerances) {
 }
 
 TEST_F(GpuPostStage, KernelsAgreeWithTheCpuKernelsOnAnalyticGBuffers) {
-    for (const SphereCase& sphereCase : kSphereCases) {
+    for (const test::SphereCase& sphereCase : test::kSphereCases) {
         test::SyntheticCamera camera;
         camera.eye = sphereCase.eye;
         camera.target = sphereCase.target;

@@ -42,19 +42,9 @@ void printAccuracy(const std::string& what, const LineAccuracy& accuracy) {
 
 std::vector<cv::Point2d> positionsOf(const LineSkeleton& skeleton) { return outputPixelPositions(skeleton, 1); }
 
-struct SphereCase {
-    glm::dvec3 eye;
-    glm::dvec3 target;
-    glm::dvec3 center;
-    double radius;
-};
-const SphereCase kSphereCases[] = {
-    {{0.0, 0.0, 4.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 1.0},    // on axis, d = 4 R
-    {{0.3, -0.2, 5.0}, {0.0, 0.0, 0.0}, {0.9, -0.6, -0.4}, 0.6}, // off axis: an ellipse
-};
 
 TEST(AnalyticLines, SphereSilhouetteSatisfiesTheConic) {
-    for (const SphereCase& sphereCase : kSphereCases) {
+    for (const test::SphereCase& sphereCase : test::kSphereCases) {
         SyntheticCamera camera;
         camera.eye = sphereCase.eye;
         camera.target = sphereCase.target;
@@ -173,7 +163,7 @@ TEST(AnalyticLines, RejectsWrongInputsNamingThem) {
 }
 
 TEST(LineAccuracyEndToEnd, ContoursOfRayCastSpheres) {
-    for (const SphereCase& sphereCase : kSphereCases) {
+    for (const test::SphereCase& sphereCase : test::kSphereCases) {
         SyntheticCamera camera;
         camera.eye = sphereCase.eye;
         camera.target = sphereCase.target;

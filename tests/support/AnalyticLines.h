@@ -92,4 +92,17 @@ std::vector<TorusCurve> torusSuggestiveContourCurves(const SyntheticCamera& came
                                                      const AnalyticSuggestiveSettings& settings, int uSamples = 4096,
                                                      int vSamples = 1024);
 
+/** A sphere seen from a camera, for the contour's analytic tests (a circle or an ellipse in the image). */
+struct SphereCase {
+    glm::dvec3 eye;
+    glm::dvec3 target;
+    glm::dvec3 center;
+    double radius;
+};
+/** The spheres the contour kernels are scored on, CPU and GPU alike. */
+inline const SphereCase kSphereCases[] = {
+    {{0.0, 0.0, 4.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 1.0},    // on axis, d = 4 R
+    {{0.3, -0.2, 5.0}, {0.0, 0.0, 0.0}, {0.9, -0.6, -0.4}, 0.6}, // off axis: an ellipse
+};
+
 } // namespace inkgraph::test
