@@ -89,7 +89,6 @@ protected:
     }
 };
 
-
 test::SyntheticCamera torusCamera() {
     test::SyntheticCamera camera;
     camera.width = camera.height = 512;

@@ -42,7 +42,6 @@ void printAccuracy(const std::string& what, const LineAccuracy& accuracy) {
 
 std::vector<cv::Point2d> positionsOf(const LineSkeleton& skeleton) { return outputPixelPositions(skeleton, 1); }
 
-
 TEST(AnalyticLines, SphereSilhouetteSatisfiesTheConic) {
     for (const test::SphereCase& sphereCase : test::kSphereCases) {
         SyntheticCamera camera;
