@@ -90,7 +90,7 @@ std::unique_ptr<PreparedStill> RenderSession::loadWhileMakingContext(StillReques
 }
 
 /** What the worker did for one still: its host tail, then its picture encoded when the picture was on the CPU. */
-struct TailOutcome {
+struct RenderSession::TailOutcome {
     std::vector<unsigned char> picture; ///< the encoded -o file; empty when not encoded here
     bool encoded = false;
     double tailMilliseconds = 0.0;
@@ -136,7 +136,7 @@ void RenderSession::prefetch(const RenderOptions& next) {
             // StillRenderer::load() reads files and builds the scene: nothing the drawing thread touches.
             return mRenderer.load(std::move(request), StillLog{*log, false, quiet});
         });
-    mPrefetch = Prefetch{next.modelPath, log, std::move(still)};
+    mPrefetch = Prefetch{&next, next.modelPath, log, std::move(still)};
 }
 
 std::size_t RenderSession::bytesInFlight() const {
@@ -185,7 +185,8 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
     // Every output place is checked before any work; outputs are staged and put in place only at the end.
     auto outputs = std::make_unique<OutputSet>(options);
     std::unique_ptr<PreparedStill> still;
-    if (mPrefetch && mPrefetch->modelPath == options.modelPath && renders && mRenderer.context() != nullptr) {
+    if (mPrefetch && mPrefetch->options == &options && mPrefetch->modelPath == options.modelPath && renders &&
+        mRenderer.context() != nullptr) {
         Prefetch prefetched = std::move(*mPrefetch);
         mPrefetch.reset();
         log.log << prefetched.log->str(); // its warnings, in this still's place
@@ -213,15 +214,25 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
         outputs->commit();
         if (callbacks.committed)
             callbacks.committed({describeCamera(still->camera), describeLook(*still, options.stylePath)});
+        if (stillLog) {
+            mLog << stillLog->str();
+            stillLog->str(std::string());
+        }
         report.milliseconds = millisecondsSince(processStart);
         if (callbacks.finished) callbacks.finished(report);
         return report;
     }
     budgetStill(*still);
-    // The stills in flight hold their memory until they finish: the oldest finish first until this one fits too.
+    // The stills in flight hold their memory until they finish: the oldest finish first until this one fits too. A
+    // still in flight holds its model (meshes and textures) and its CPU images; the process's baseline is counted once
+    // and the GL targets go back to the shared pool at the hand-off, so this still's need is what budgetStill()
+    // judges, and the model loading ahead is counted with the stills in flight.
     const MemoryEstimate estimate = estimateStill(*still);
-    const std::size_t estimatedBytes = estimate.total() - estimate.textures;
-    while (!mPending.empty() && bytesInFlight() + estimatedBytes > still->request.memoryLimitBytes) finishOldest();
+    const std::size_t neededBytes = estimate.total() - estimate.textures;
+    const std::size_t heldBytes = estimate.scene + estimate.cpuImages + estimate.textures;
+    const std::size_t aheadBytes = mPrefetch ? heldBytes : 0; // the next model's size is not known yet: this one's
+    while (!mPending.empty() && bytesInFlight() + aheadBytes + neededBytes > still->request.memoryLimitBytes)
+        finishOldest();
 
     StillResult result = mRenderer.executeUntilHostTail(*still, log);
     auto pending = std::make_unique<PendingStill>();
@@ -234,7 +245,7 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
     pending->callbacks = std::move(callbacks);
     pending->report = report;
     pending->talks = talks;
-    pending->estimatedBytes = estimatedBytes;
+    pending->estimatedBytes = heldBytes;
     pending->drawnMilliseconds = millisecondsSince(processStart);
     // At most `jobs` stills in their post stage at once: the oldest finish (in order) before this one starts its own.
     while (!mPending.empty() && mPending.size() >= std::size_t(std::max(mJobs, 1))) finishOldest();
@@ -301,10 +312,19 @@ void RenderSession::finishOldest() {
         tellLog(*pending);
         throw;
     }
-    const RenderOptions& options = pending->options;
-    PreparedStill& still = *pending->still;
-    StillResult& result = pending->result;
-    OutputSet& outputs = *pending->outputs;
+    try {
+        commitFinished(*pending, outcome);
+    } catch (...) {
+        tellLog(*pending); // its warnings before the error that stops the batch
+        throw;
+    }
+}
+
+void RenderSession::commitFinished(PendingStill& pending, TailOutcome& outcome) {
+    const RenderOptions& options = pending.options;
+    PreparedStill& still = *pending.still;
+    StillResult& result = pending.result;
+    OutputSet& outputs = *pending.outputs;
     const auto writeStart = std::chrono::steady_clock::now();
     stageStillOutputs(options, still, result, outputs);
     if (!options.outputPath.empty()) {
@@ -314,9 +334,9 @@ void RenderSession::finishOldest() {
     }
     // The still's own time: its drawing, its post stage and its writing, not the other stills' work it overlapped.
     const double writeMilliseconds = outcome.encodeMilliseconds + millisecondsSince(writeStart);
-    const double totalMilliseconds = pending->drawnMilliseconds + outcome.tailMilliseconds + writeMilliseconds;
+    const double totalMilliseconds = pending.drawnMilliseconds + outcome.tailMilliseconds + writeMilliseconds;
     if (!options.statsPath.empty()) {
-        StatsContext context{options, pending->batch ? &*pending->batch : nullptr};
+        StatsContext context{options, pending.batch ? &*pending.batch : nullptr};
         const MemoryEstimate estimate = estimateStill(still);
         context.estimatedPeakBytes = estimate.total();
         context.estimatedTextureBytes = estimate.textures;
@@ -324,16 +344,16 @@ void RenderSession::finishOldest() {
             finishedStatsText(statsDocument(context, mRenderer, still, result), writeMilliseconds, totalMilliseconds));
     }
     outputs.commit();
-    if (pending->callbacks.committed)
-        pending->callbacks.committed({describeCamera(still.camera), describeLook(still, options.stylePath)});
-    tellLog(*pending);
-    if (pending->talks) {
+    if (pending.callbacks.committed)
+        pending.callbacks.committed({describeCamera(still.camera), describeLook(still, options.stylePath)});
+    tellLog(pending);
+    if (pending.talks) {
         mLog << "inkgraph: rendered " << options.width << "x" << options.height << " in " << totalMilliseconds << " ms";
         if (!options.outputPath.empty()) mLog << " -> '" << options.outputPath << "'";
         mLog << "\n";
     }
-    pending->report.milliseconds = totalMilliseconds;
-    if (pending->callbacks.finished) pending->callbacks.finished(pending->report);
+    pending.report.milliseconds = totalMilliseconds;
+    if (pending.callbacks.finished) pending.callbacks.finished(pending.report);
 }
 
 } // namespace inkgraph

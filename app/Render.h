@@ -73,7 +73,8 @@ public:
      *  own exceptions (SceneError, InputFileError, HeadlessContextError, FileError, UsageError, GraphError), for this
      *  still or for an earlier one it finished (FileError, and bad input without callbacks.failed); runCommandLine
      *  maps them to exit codes. */
-    /** `next`, in a batch: the still the next render() is for. Its model starts loading (parsed, welded, its shade
+    /** `next`, in a batch: the still the next render() is for (that call passes this same object as its `options`).
+     *  Its model starts loading (parsed, welded, its shade
      *  maps read) on a second thread as soon as this still's is loaded, and the next render() takes it; its warnings
      *  are told with it. */
     StillReport render(const RenderOptions& options, const StillBatchPosition* batch = nullptr,
@@ -98,8 +99,10 @@ private:
     void prefetch(const RenderOptions& next);
 
     struct PendingStill;
+    struct TailOutcome;
     /** A model loading ahead (prefetch()). */
     struct Prefetch {
+        const RenderOptions* options = nullptr; ///< the batch's options object of the still it is for (render()'s next)
         std::string modelPath;
         std::shared_ptr<std::ostringstream> log;
         std::future<std::unique_ptr<PreparedStill>> still;
@@ -108,6 +111,8 @@ private:
     void tellLog(PendingStill& pending);
     /** Finishes the oldest still in flight (finishPending()'s step). */
     void finishOldest();
+    /** finishOldest() once the still's post stage succeeded: stages, writes and commits its outputs, then tells. */
+    void commitFinished(PendingStill& pending, TailOutcome& outcome);
     /** The memory the stills in flight are estimated to hold (MemoryEstimate, less the model's textures). */
     std::size_t bytesInFlight() const;
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <stdexcept>
 
 namespace inkgraph {
@@ -99,6 +100,11 @@ const cv::Mat& ResourceStore::image(const std::string& name) {
 void ResourceStore::beginReadback(const std::string& name) {
     Entry& source = entry(name);
     if (!source.texture || !source.image.empty() || source.readback || source.texture->samples() > 1) return;
+    // One glGetTextureImage takes a 32-bit byte count: larger images (half floats read as floats) are read in bands
+    // when asked for, as readTexture() does.
+    const std::size_t bytes = std::size_t(source.texture->width()) * std::size_t(source.texture->height()) *
+                              std::size_t(CV_ELEM_SIZE(cvTypeOf(source.texture->format())));
+    if (bytes > std::size_t(std::numeric_limits<GLsizei>::max())) return;
     source.readback = std::make_unique<PendingReadback>(*source.texture);
 }
 
@@ -289,8 +295,9 @@ public:
 
     std::string afterPass(const PlannedPass& planned) override {
         resetPassState();
-        if (mOptions.readBackEarly) beginHostReadbacks(planned);
+        // The pass's own error first, so a read-back begun after it is not blamed for it.
         if (const GLenum error = glGetError(); error != GL_NO_ERROR) return "raised " + glErrorName(error);
+        if (mOptions.readBackEarly) beginHostReadbacks(planned);
         return {};
     }
 

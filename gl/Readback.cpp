@@ -127,7 +127,11 @@ PendingReadback::PendingReadback(const GlTexture& texture)
     // GL's rows, bottom first: finish() turns them over while it copies them out, which costs nothing extra.
     glGetTextureImage(texture.id(), 0, glFormat.pixelFormat, glFormat.pixelType, GLsizei(mBuffer.byteCount()), nullptr);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    throwOnGlError("PendingReadback()", texture);
+    if (const GLenum error = glGetError(); error == GL_OUT_OF_MEMORY)
+        throw GlOutOfMemoryError("PendingReadback(): no memory for the read-back of '" + texture.label() + "'");
+    else if (error != GL_NO_ERROR)
+        throw std::runtime_error("PendingReadback(): GL error " + glErrorName(error) + " on texture '" +
+                                 texture.label() + "'");
     mFence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
 }
 

@@ -175,6 +175,16 @@ TEST_F(Cli, AnyNumberOfJobsWritesTheSameBytesAndTellsTheSameLinesInOrder) {
     }
 }
 
+TEST_F(Cli, ABatchThatRendersNothingStillTellsEachStillsWarnings) {
+    // --print-plan alone: no still draws, and each still's buffered warnings are told before its line.
+    std::ofstream(directory / "warns.obj") << "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const CliRun result = run("render warns.obj " + model("spot_c3d.obj") + " --print-plan");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const std::size_t warning = result.err.find("warning: 'warns.obj': mtllib 'missing.mtl'");
+    ASSERT_NE(warning, std::string::npos) << result.err;
+    EXPECT_LT(warning, result.err.find("[1/2] 'warns.obj'")) << result.err;
+}
+
 TEST_F(Cli, KernelsOnTheGpuStayOnTheContextsThreadInAPipelinedBatch) {
     // --post-stage gpu: the contour's compute shader needs the context, so its pass is no part of the host tail the
     // workers run (a worker without the context would fail or crash); the composite on the GPU leaves no tail at all.
