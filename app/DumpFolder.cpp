@@ -174,6 +174,10 @@ void sweepStaleStagingFolders(const fs::path& parent) {
         if (::fstatat(folder, kStagingMarker, &marker, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(marker.st_mode)) {
             removePlainFilesIn(folder, kStagingMarker);
             ::rmdir(path.c_str()); // fails, and leaves it, if anything else is inside
+        } else {
+            // Unmarked but empty: killed between the staging folder's mkdir and its marker, or between the marker's
+            // removal and the rmdir. It holds nothing, so it goes (rmdir fails on anything that is not empty).
+            ::rmdir(path.c_str());
         }
         ::close(folder);
     }

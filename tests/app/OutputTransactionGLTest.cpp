@@ -272,6 +272,12 @@ TEST_F(OutputTransaction, StagingFoldersAreSweptOnlyByTheirMarker) {
     // Named like a staging folder of a dead run, but without the marker: someone else's, never touched.
     fs::create_directories(directory / (stale + "x"));
     std::ofstream(directory / (stale + "x") / "notes.txt") << "precious";
+    // Without the marker but empty (killed between its mkdir and its marker): removed; unmarked with a file: kept.
+    const std::string emptyStale = ".inkgraph-dump-" + dead + "-1";
+    const std::string unmarked = ".inkgraph-dump-" + dead + "-2";
+    fs::create_directories(directory / emptyStale);
+    fs::create_directories(directory / unmarked);
+    std::ofstream(directory / unmarked / "notes.txt") << "precious";
     // With the marker: a crashed run's staging folder, removed by the next run dumping beside it.
     fs::create_directories(directory / stale);
     std::ofstream(directory / stale / ".inkgraph-staging");
@@ -289,6 +295,8 @@ TEST_F(OutputTransaction, StagingFoldersAreSweptOnlyByTheirMarker) {
     const CliRun result = run("render " + model("spot_c3d.obj") + " --size 16x16 --dump d -o out.png");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     EXPECT_FALSE(fs::exists(directory / stale));
+    EXPECT_FALSE(fs::exists(directory / emptyStale));
+    EXPECT_EQ(readText(directory / unmarked / "notes.txt"), "precious");
     EXPECT_FALSE(fs::exists(directory / (".inkgraph-" + dead + "-3.tmp")));
     EXPECT_EQ(readText(directory / (stale + "x") / "notes.txt"), "precious");
     EXPECT_EQ(readText(directory / (".inkgraph-" + dead + "-notes.txt")), "precious");
