@@ -161,10 +161,10 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
             try {
                 finishPending();
             } catch (...) {
-                mLog << stillLog->str();
+                tellLog(stillLog.get());
                 throw;
             }
-            mLog << stillLog->str();
+            tellLog(stillLog.get());
         }
         throw;
     }
@@ -214,10 +214,7 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
         outputs->commit();
         if (callbacks.committed)
             callbacks.committed({describeCamera(still->camera), describeLook(*still, options.stylePath)});
-        if (stillLog) {
-            mLog << stillLog->str();
-            stillLog->str(std::string());
-        }
+        tellLog(stillLog.get());
         report.milliseconds = millisecondsSince(processStart);
         if (callbacks.finished) callbacks.finished(report);
         return report;
@@ -281,10 +278,10 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
     return report;
 }
 
-void RenderSession::tellLog(PendingStill& pending) {
-    if (!pending.log) return;
-    mLog << pending.log->str();
-    pending.log->str(std::string()); // told once, though render() may still tell it on a failure
+void RenderSession::tellLog(std::ostringstream* stillLog) {
+    if (stillLog == nullptr) return;
+    mLog << stillLog->str();
+    stillLog->str(std::string()); // told once, though render() may still tell it on a failure
 }
 
 void RenderSession::finishPending() {
@@ -299,23 +296,23 @@ void RenderSession::finishOldest() {
         outcome = pending->tail.get();
     } catch (const SceneError& error) {
         // Bad input found in the post stage is that still's failure, told in its place among the others.
-        tellLog(*pending);
+        tellLog(pending->log.get());
         if (!pending->callbacks.failed) throw;
         pending->callbacks.failed(error);
         return;
     } catch (const InputFileError& error) {
-        tellLog(*pending);
+        tellLog(pending->log.get());
         if (!pending->callbacks.failed) throw;
         pending->callbacks.failed(error);
         return;
     } catch (...) {
-        tellLog(*pending);
+        tellLog(pending->log.get());
         throw;
     }
     try {
         commitFinished(*pending, outcome);
     } catch (...) {
-        tellLog(*pending); // its warnings before the error that stops the batch
+        tellLog(pending->log.get()); // its warnings before the error that stops the batch
         throw;
     }
 }
@@ -346,7 +343,7 @@ void RenderSession::commitFinished(PendingStill& pending, TailOutcome& outcome) 
     outputs.commit();
     if (pending.callbacks.committed)
         pending.callbacks.committed({describeCamera(still.camera), describeLook(still, options.stylePath)});
-    tellLog(pending);
+    tellLog(pending.log.get());
     if (pending.talks) {
         mLog << "inkgraph: rendered " << options.width << "x" << options.height << " in " << totalMilliseconds << " ms";
         if (!options.outputPath.empty()) mLog << " -> '" << options.outputPath << "'";

@@ -107,8 +107,9 @@ private:
         std::shared_ptr<std::ostringstream> log;
         std::future<std::unique_ptr<PreparedStill>> still;
     };
-    /** Writes what a batch's still had to say (its warnings) to the log, once. */
-    void tellLog(PendingStill& pending);
+    /** Writes what a batch's still had to say (its warnings, buffered in `stillLog`) to the log, once; nothing for a
+     *  still alone (null). */
+    void tellLog(std::ostringstream* stillLog);
     /** Finishes the oldest still in flight (finishPending()'s step). */
     void finishOldest();
     /** finishOldest() once the still's post stage succeeded: stages, writes and commits its outputs, then tells. */
