@@ -7,6 +7,7 @@
 #include "scene/ObjectIds.h"
 
 #include <charconv>
+#include <cstdlib>
 
 namespace inkgraph {
 
@@ -97,7 +98,11 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
     stats["textures_reused"] = result.texturesReused;
     stats["estimated_peak_mib"] = double(context.estimatedPeakBytes) / (1 << 20);
     stats["estimated_textures_mib"] = double(context.estimatedTextureBytes) / (1 << 20);
-    stats["peak_rss_mib"] = 0.0; // finishedStatsText()
+    stats["peak_rss_mib"] = 0.0;   // finishedStatsText()
+    stats["huge_pages_mib"] = 0.0; // finishedStatsText()
+    // What the process runs glibc's malloc with (app/main.cpp sets it for the command line), null where unset.
+    const char* tunables = std::getenv("GLIBC_TUNABLES");
+    stats["glibc_tunables"] = tunables ? Json(tunables) : Json();
     stats["total_ms"] = 0.0;
     return stats;
 }
@@ -106,6 +111,7 @@ std::string finishedStatsText(nlohmann::ordered_json stats, double writeMillisec
     stats["write_ms"] = writeMilliseconds;
     // Measured once the outputs are encoded: what the estimate bounds, to compare.
     stats["peak_rss_mib"] = double(peakResidentBytes()) / (1 << 20);
+    stats["huge_pages_mib"] = double(hugePageResidentBytes()) / (1 << 20);
     stats["total_ms"] = totalMilliseconds;
     return jsonText(stats);
 }

@@ -7,8 +7,44 @@
 
 #include <malloc.h>
 
+#if defined(__GLIBC__)
+#include <sys/auxv.h>
+#include <unistd.h>
+
+namespace {
+
+/** What the command line asks of glibc's malloc: transparent huge pages (madvise(MADV_HUGEPAGE)) for the heap and for
+ *  mapped blocks. A still touches a few hundred MiB of fresh memory (llvmpipe's textures, the read-backs, the post
+ *  stage's images); on the 2-core VM every 4 KiB page costs a page fault of about 7 us, a third of a single still's
+ *  CPU, and the TLB misses of 4 KiB pages slow every pass that sweeps a whole image. With 2 MiB pages the bunny's
+ *  comic still goes 0.58 -> 0.38 s as a whole process and the 36-still comic batch 2.16 -> 1.98 s
+ *  (docs/performance.md, "Huge pages"). Where the kernel has transparent huge pages off, glibc's madvise does nothing.
+ */
+constexpr const char* kMallocTunables = "glibc.malloc.hugetlb=1";
+
+/** glibc reads its tunables only when a process starts, from GLIBC_TUNABLES, so the program runs itself again with
+ *  them (the same process id, arguments and files; about 20 ms). Whoever sets GLIBC_TUNABLES, even empty, keeps
+ *  glibc's own choice: the variable is then left alone, which also ends the second start here. A setuid start
+ *  (AT_SECURE), where glibc would drop the variable, a start through the dynamic loader and a failed exec run on as
+ *  they are. */
+void restartWithMallocTunables(char** argv) {
+    if (std::getenv("GLIBC_TUNABLES") != nullptr || getauxval(AT_SECURE) != 0) return;
+    // Started through the dynamic loader (ld-linux.so PROGRAM ...), /proc/self/exe is the loader, and the kernel
+    // gave it no interpreter (AT_BASE 0): it runs on as it is.
+    if (getauxval(AT_BASE) == 0) return;
+    if (setenv("GLIBC_TUNABLES", kMallocTunables, 1) != 0) return;
+    execv("/proc/self/exe", argv);
+    unsetenv("GLIBC_TUNABLES");
+}
+
+} // namespace
+#endif
+
 int main(int argc, char** argv) {
 #if defined(__GLIBC__)
+#if !defined(__SANITIZE_ADDRESS__) // the sanitizer's allocator replaces glibc's: nothing to tune
+    restartWithMallocTunables(argv);
+#endif
     // Buffers up to 32 MiB (a 1024^2 float image is 16) come from the heap and stay there when freed, instead of being
     // mapped and unmapped each time: the post stage's temporaries then reuse pages already faulted in. On the 2-core VM
     // the bunny's comic still takes about 8,000 page faults fewer (of 43,000) and 5-8 ms less, for 10 MiB more peak

@@ -7,7 +7,10 @@
 #include "scene/TextureImage.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <fstream>
 #include <map>
+#include <string>
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -267,6 +270,16 @@ std::size_t peakResidentBytes() {
     rusage usage{};
     if (::getrusage(RUSAGE_SELF, &usage) != 0) return 0;
     return std::size_t(usage.ru_maxrss) * 1024; // Linux reports kilobytes
+}
+
+std::size_t hugePageResidentBytes() {
+    std::ifstream rollup("/proc/self/smaps_rollup");
+    std::string line;
+    while (std::getline(rollup, line)) {
+        std::size_t kilobytes = 0;
+        if (std::sscanf(line.c_str(), "AnonHugePages: %zu kB", &kilobytes) == 1) return kilobytes * 1024;
+    }
+    return 0;
 }
 
 } // namespace inkgraph

@@ -65,4 +65,8 @@ MemoryEstimate estimateStill(const PreparedStill& still);
 /** The process's peak resident set so far (getrusage's ru_maxrss), in bytes. */
 std::size_t peakResidentBytes();
 
+/** The process's resident memory held in transparent huge pages now (AnonHugePages of /proc/self/smaps_rollup), in
+ *  bytes; 0 where the kernel has none or does not say. */
+std::size_t hugePageResidentBytes();
+
 } // namespace inkgraph

@@ -429,6 +429,30 @@ TEST_F(Cli, OnlyFormatsOtherThanPngLoadTheImageModule) {
     EXPECT_EQ(imageFilePixelType(directory / "A.PNG"), "uint8");
 }
 
+TEST_F(Cli, TheCommandLineRunsWithHugePagesUnlessTheCallerSetsGlibcTunables) {
+    // app/main.cpp starts the program again with glibc.malloc.hugetlb=1 when GLIBC_TUNABLES is unset; a caller's own
+    // value, even empty, is kept. --stats reports what the process ran with.
+    const char* inherited = std::getenv("GLIBC_TUNABLES");
+    const std::string saved = inherited ? inherited : "";
+    unsetenv("GLIBC_TUNABLES");
+    const auto tunablesOfRun = [&](const std::string& environment) {
+        const CliRun result =
+            run("render " + model("spot_c3d.obj") + " --size 16x16 --lines none -o a.png --stats s.json", environment);
+        EXPECT_EQ(result.exitCode, 0) << environment << ": " << result.err;
+        const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
+        EXPECT_GE(stats["huge_pages_mib"].get<double>(), 0.0);
+        return stats["glibc_tunables"].is_null() ? std::string("null") : stats["glibc_tunables"].get<std::string>();
+    };
+#if defined(__SANITIZE_ADDRESS__)
+    EXPECT_EQ(tunablesOfRun(""), "null") << "the sanitizer's allocator has nothing to tune";
+#else
+    EXPECT_EQ(tunablesOfRun(""), "glibc.malloc.hugetlb=1");
+#endif
+    EXPECT_EQ(tunablesOfRun("GLIBC_TUNABLES="), "");
+    EXPECT_EQ(tunablesOfRun("GLIBC_TUNABLES=glibc.malloc.arena_max=2"), "glibc.malloc.arena_max=2");
+    if (inherited) setenv("GLIBC_TUNABLES", saved.c_str(), 1);
+}
+
 TEST_F(Cli, ShadingNoneCullsTheShadingPassWithAReason) {
     const CliRun result =
         run("render " + model("spot_c3d.obj") + " -o a.png --size 32x32 --shading none --lines none --stats s.json");
