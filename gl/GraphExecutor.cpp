@@ -153,8 +153,9 @@ void ResourceStore::clear() {
 // --- GlPassContext -------------------------------------------------------------------------------------------
 
 GlPassContext::GlPassContext(ResourceStore& store, const PlannedPass& planned, const Plan& plan, int frameWidth,
-                             int frameHeight)
-    : mStore(store), mPlanned(planned), mPlan(plan), mFrameWidth(frameWidth), mFrameHeight(frameHeight) {}
+                             int frameHeight, bool everyResourceKept)
+    : mStore(store), mPlanned(planned), mPlan(plan), mFrameWidth(frameWidth), mFrameHeight(frameHeight),
+      mEveryResourceKept(everyResourceKept) {}
 
 bool GlPassContext::isLive(std::string_view field) const {
     const std::string resource = mPlanned.name + "." + std::string(field);
@@ -282,7 +283,8 @@ public:
         : mStore(store), mPlan(plan), mPasses(passes), mOptions(options) {}
 
     void runPass(std::size_t passIndex, const PlannedPass& planned, PassPhase phase) override {
-        GlPassContext context(mStore, planned, mPlan, mOptions.frameWidth, mOptions.frameHeight);
+        GlPassContext context(mStore, planned, mPlan, mOptions.frameWidth, mOptions.frameHeight,
+                              mOptions.keepAllResources);
         if (phase == PassPhase::Prepare)
             mPasses[passIndex]->prepare(context);
         else
@@ -341,7 +343,8 @@ public:
     void runPass(std::size_t passIndex, const PlannedPass& planned, PassPhase phase) override {
         if (phase == PassPhase::Prepare)
             throw std::logic_error("HostBackend::runPass(): '" + planned.name + "' prepares on the context's thread");
-        GlPassContext context(mStore, planned, mPlan, mOptions.frameWidth, mOptions.frameHeight);
+        GlPassContext context(mStore, planned, mPlan, mOptions.frameWidth, mOptions.frameHeight,
+                              mOptions.keepAllResources);
         mPasses[passIndex]->execute(context);
     }
 

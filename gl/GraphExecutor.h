@@ -106,10 +106,18 @@ private:
  *  plan. */
 class GlPassContext {
 public:
-    GlPassContext(ResourceStore& store, const PlannedPass& planned, const Plan& plan, int frameWidth, int frameHeight);
+    /** `everyResourceKept`: ExecuteOptions::keepAllResources (every buffer may be handed out whole: --dump). */
+    GlPassContext(ResourceStore& store, const PlannedPass& planned, const Plan& plan, int frameWidth, int frameHeight,
+                  bool everyResourceKept = false);
 
     /** True when this pass's field (e.g. "normal") is consumed or requested in the plan. */
     bool isLive(std::string_view field) const;
+    /** Whether anything reads the pixels of this pass's live field that the pass does not cover
+     *  (PlannedResource::backgroundRead), or the run keeps every buffer to hand out: when not, the pass need not
+     *  clear them. */
+    bool backgroundIsRead(std::string_view field) const {
+        return mEveryResourceKept || liveOutput(field).backgroundRead;
+    }
     /** True when the plan has this pass read `resource` (full name): what its declare() chose with compile data. */
     bool reads(std::string_view resource) const;
     /** The frame size (the output image's size). A field with a scale is larger: see widthOf(). */
@@ -165,6 +173,7 @@ private:
     const Plan& mPlan;
     int mFrameWidth;
     int mFrameHeight;
+    bool mEveryResourceKept;
 };
 
 struct ExecuteOptions {

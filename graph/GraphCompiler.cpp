@@ -39,7 +39,8 @@ struct ResourceInfo {
     Need need = Need::Required;
     Presentation presentation;
     std::vector<std::size_t> writers;
-    std::vector<std::size_t> readers; ///< registration order, each once
+    std::vector<std::size_t> readers;    ///< registration order, each once
+    std::vector<ReadExtent> readExtents; ///< parallel to readers: the widest extent that reader declared
 };
 
 /** One pass after declare(). */
@@ -199,7 +200,17 @@ void Declarations::resolveReads() {
         DeclaredPass& declared = passes[i];
         std::unordered_set<std::string> seen;
         for (const PassBuilder::Read& read : mBuilders[i].reads()) {
-            if (!seen.insert(read.resource).second) continue;
+            if (!seen.insert(read.resource).second) {
+                // Read twice: the whole image wins over the covered pixels.
+                const std::size_t again = findResource(read.resource);
+                if (again != kNone && read.extent == ReadExtent::WholeImage) {
+                    ResourceInfo& info = resources[again];
+                    const auto reader = std::find(info.readers.begin(), info.readers.end(), i);
+                    if (reader != info.readers.end())
+                        info.readExtents[std::size_t(reader - info.readers.begin())] = ReadExtent::WholeImage;
+                }
+                continue;
+            }
             const std::size_t resource = findResource(read.resource);
             declared.reads.push_back(read.resource);
             declared.readResources.push_back(resource);
@@ -209,6 +220,7 @@ void Declarations::resolveReads() {
                 continue;
             }
             resources[resource].readers.push_back(i);
+            resources[resource].readExtents.push_back(read.extent);
             const ResourceInfo& written = resources[resource];
             if (read.objectType.empty() && written.kind == ResourceKind::Object)
                 mProblems.push_back("pass " + quote(declared.name) + " reads " + quote(read.resource) +
@@ -526,8 +538,12 @@ Plan compileRound(const std::vector<const Pass*>& passes, const std::vector<std:
         planned.requested = resourceRequested[resource];
 
         std::vector<std::size_t> readers;
-        for (std::size_t reader : info.readers)
-            if (passLive[reader]) readers.push_back(planIndex[reader]);
+        planned.backgroundRead = planned.requested;
+        for (std::size_t r = 0; r < info.readers.size(); ++r) {
+            if (!passLive[info.readers[r]]) continue;
+            readers.push_back(planIndex[info.readers[r]]);
+            if (info.readExtents[r] == ReadExtent::WholeImage) planned.backgroundRead = true;
+        }
         std::sort(readers.begin(), readers.end());
         for (std::size_t index : readers) planned.readers.push_back(plan.passes[index].name);
         if (!readers.empty()) planned.lastUse = readers.back();

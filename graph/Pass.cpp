@@ -4,7 +4,9 @@
 
 namespace inkgraph {
 
-void PassBuilder::read(std::string_view resource) { mReads.push_back({std::string(resource), {}}); }
+void PassBuilder::read(std::string_view resource, ReadExtent extent) {
+    mReads.push_back({std::string(resource), {}, extent});
+}
 
 void PassBuilder::readObject(std::string_view resource, std::string_view type) {
     // An empty type is recorded as given: compile() reports it with every other problem.

@@ -25,8 +25,9 @@ struct CompileData {
 class PassBuilder {
 public:
     struct Read {
-        std::string resource;   ///< full name, "gbuffer.normal"
-        std::string objectType; ///< readObject()'s type; empty: a texture
+        std::string resource;                       ///< full name, "gbuffer.normal"
+        std::string objectType;                     ///< readObject()'s type; empty: a texture
+        ReadExtent extent = ReadExtent::WholeImage; ///< a texture's: which of its pixels the pass reads
     };
     struct Write {
         std::string field; ///< own field, "normal"; the resource is "<pass>.<field>"
@@ -49,8 +50,8 @@ public:
     explicit PassBuilder(std::string passName, const CompileData* compileData = nullptr)
         : mPassName(std::move(passName)), mCompileData(compileData) {}
 
-    /** Reads a texture by its full name. */
-    void read(std::string_view resource);
+    /** Reads a texture by its full name; `extent`: which of its pixels (ReadExtent). */
+    void read(std::string_view resource, ReadExtent extent = ReadExtent::WholeImage);
     /** Reads a CPU object by its full name; `type` must be the one its writer declares (ObjectDesc::type). */
     void readObject(std::string_view resource, std::string_view type);
     /** Writes a texture field in this pass's own namespace. */

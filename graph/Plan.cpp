@@ -141,10 +141,14 @@ std::string Plan::describe() const {
     text += "lifetimes:\n";
     rows.clear();
     for (const PlannedResource& resource : resources) {
+        const char* note = "";
+        if (resource.requested)
+            note = "(requested)";
+        else if (!resource.backgroundRead && !resource.readers.empty())
+            note = "(read where covered: not cleared)";
         rows.push_back({resource.name, describeDesc(resource),
                         "passes " + std::to_string(resource.firstUse + 1) + ".." + std::to_string(resource.lastUse + 1),
-                        resource.writer + " -> " + joinNames(resource.readers, ", ", "-"),
-                        resource.requested ? "(requested)" : ""});
+                        resource.writer + " -> " + joinNames(resource.readers, ", ", "-"), note});
     }
     text += formatTable(rows, "  ");
     return text;

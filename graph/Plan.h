@@ -40,6 +40,10 @@ struct PlannedResource {
     std::size_t firstUse = 0;         ///< index into Plan::passes of the writer
     std::size_t lastUse = 0;          ///< index of the last live reader; passes.size()-1 if requested
     bool requested = false;
+    /** Whether anything reads the pixels its writer does not cover: a request (every pixel is handed out), or a live
+     *  reader that reads ReadExtent::WholeImage. False when every live reader reads ReadExtent::CoveredPixels: the
+     *  writer then need not clear the rest. */
+    bool backgroundRead = true;
 };
 
 struct Plan {

@@ -68,6 +68,15 @@ struct Presentation {
 /** Whether a written field must be produced, or only when something consumes it. */
 enum class Need { Required, Optional };
 
+/** Which pixels of a texture a pass reads (PassBuilder::read()). */
+enum class ReadExtent {
+    WholeImage, ///< any pixel, the ones its writer leaves at the clear value included (the default)
+    /** Only where the G-buffer covers the frame (its depth > 0), as the reader tells from a field it reads whole: its
+     *  other pixels never reach what the pass writes. When every reader of a texture says so and nothing requests
+     *  it, the writer may leave those pixels uncleared (PlannedResource::backgroundRead, GBufferPass). */
+    CoveredPixels
+};
+
 /** "gbuffer.normal" -> {"gbuffer", "normal"}; a name without exactly one dot gives empty parts. */
 struct ResourceName {
     std::string pass;

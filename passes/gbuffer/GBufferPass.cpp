@@ -186,7 +186,13 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
     GlProgram& program = programFor(definesFor(group));
     framebuffer.bind();
     glViewport(0, 0, width, height);
-    clearColorAndDepth(int(drawSlots.size()));
+    // A field only read where the model covers the frame (ReadExtent::CoveredPixels: every reader tells the covered
+    // pixels from the depth field or the z-buffer, which are cleared) keeps whatever its texture held there: on
+    // llvmpipe the clears of the comic look's normal and radial fields were a tenth of the G-buffer's time.
+    const float background[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (std::size_t slot = 0; slot < group.size(); ++slot)
+        if (gl.backgroundIsRead(group[slot]->name)) glClearBufferfv(GL_COLOR, GLint(slot), background);
+    glClearBufferfv(GL_DEPTH, 0, &kFarDepth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(kDepthNearer);
     glDisable(GL_BLEND);

@@ -6,6 +6,7 @@
  *  what it found. */
 
 #include "gl/GlObjects.h"
+#include "graph/Resource.h"
 #include "postfx/LineSkeleton.h"
 
 #include <nlohmann/json.hpp>
@@ -23,6 +24,12 @@ public:
     /** Full names of the graph resources it reads, in the order find() receives them ("gbuffer.nDotV"). At least one:
      *  the first one's scale is the data resolution the skeleton is found at. */
     virtual std::vector<std::string> inputs() const = 0;
+    /** Which pixels of inputs()[input] the kernel reads: ReadExtent::CoveredPixels for a field it reads only where
+     *  its depth input says the model covers the frame (the G-buffer may then leave the rest uncleared). */
+    virtual ReadExtent extentOf(std::size_t input) const {
+        (void)input;
+        return ReadExtent::WholeImage;
+    }
     /** The scene data it takes from outside the graph (passes/GpuScene.h SceneImport), declared by its layer. */
     virtual std::vector<std::string> sceneImports() const { return {}; }
     /** Working memory per data pixel while find() runs, beyond its inputs and its skeleton (for the memory budget). */

@@ -27,7 +27,8 @@ void LineLayerPass::declare(PassBuilder& builder) const {
     // A kernel over read-back images is CPU work, which a batch runs while the next still draws; one that reads the
     // textures (a compute shader: --post-stage gpu) needs the context.
     if (!mKernel->readsTextures()) builder.runsOnHost();
-    for (const std::string& input : mKernel->inputs()) builder.read(input);
+    const std::vector<std::string> inputs = mKernel->inputs();
+    for (std::size_t input = 0; input < inputs.size(); ++input) builder.read(inputs[input], mKernel->extentOf(input));
     for (const std::string& name : mKernel->sceneImports()) builder.import(name);
     ObjectDesc skeleton;
     skeleton.type = kLineSkeletonType;

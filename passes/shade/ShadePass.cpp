@@ -148,8 +148,10 @@ void ShadePass::declare(PassBuilder& builder) const {
     const std::string& gbuffer = mSettings.deferred.gbuffer;
     const bool deferred = !gbuffer.empty() && forwardReason(builder.liveFieldsAnyway(gbuffer)).empty();
     if (deferred) {
-        for (const std::string& field : deferredFields()) builder.read(gbuffer + "." + field);
-        // The G-buffer's depth test skips the pixels off the model before they are shaded (executeDeferred()).
+        // The G-buffer's depth test skips the pixels off the model before they are shaded (executeDeferred()), so
+        // its fields are read only where it covers the frame.
+        for (const std::string& field : deferredFields())
+            builder.read(gbuffer + "." + field, ReadExtent::CoveredPixels);
         builder.read(gbuffer + ".zBuffer");
     } else {
         builder.import(SceneImport::kMeshes); // forward draws the meshes

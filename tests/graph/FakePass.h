@@ -42,10 +42,17 @@ public:
     std::string_view name() const override { return mName; }
 
     void declare(PassBuilder& builder) const override {
+        for (const std::string& resource : mCoveredReads) builder.read(resource, ReadExtent::CoveredPixels);
         for (const std::string& resource : mReads) builder.read(resource);
         for (const FakeWrite& write : mWrites) builder.write(write.field, write.desc, write.need);
         if (mSideEffect) builder.markSideEffect();
         if (mRunsOnHost) builder.runsOnHost();
+    }
+
+    /** Also reads `resource` only where it is covered (ReadExtent::CoveredPixels), declared before the other reads. */
+    FakePass& readWhereCovered(std::string resource) {
+        mCoveredReads.push_back(std::move(resource));
+        return *this;
     }
 
     /** Declares the pass host-only (PassBuilder::runsOnHost()). */
@@ -74,6 +81,7 @@ public:
 private:
     std::string mName;
     std::vector<std::string> mReads;
+    std::vector<std::string> mCoveredReads;
     std::vector<FakeWrite> mWrites;
     bool mSideEffect = false;
     bool mRunsOnHost = false;

@@ -37,6 +37,54 @@ const CulledPass* findCulled(const Plan& plan, const std::string& name) {
     return nullptr;
 }
 
+// --- background reads ---------------------------------------------------------------------------------------------
+
+TEST(GraphCompilerTest, AFieldReadOnlyWhereCoveredLeavesItsBackgroundUnread) {
+    const auto build = [](FakeGraph& graph) {
+        graph.addPass("gbuffer", {}, {{"normal", Need::Required, kNormalDesc}, {"depth", Need::Required, kDepthDesc}});
+        graph.addPass("shade", {}, {{"color", Need::Required, kColorDesc}}).readWhereCovered("gbuffer.normal");
+        graph.addPass("contours", {"gbuffer.depth"}, {{"lines", Need::Required, kLinesDesc}})
+            .readWhereCovered("gbuffer.normal");
+    };
+    const auto backgroundRead = [](const Plan& plan, const std::string& name) {
+        const PlannedResource* resource = plan.findResource(name);
+        EXPECT_NE(resource, nullptr) << name;
+        return resource == nullptr || resource->backgroundRead;
+    };
+    {
+        FakeGraph graph;
+        build(graph);
+        graph.addPass("composite", {"shade.color", "contours.lines"}, {{"final", Need::Required, kColorDesc}});
+        const Plan plan = graph.compile({"composite.final"});
+        EXPECT_FALSE(backgroundRead(plan, "gbuffer.normal")) << "both readers read where covered";
+        EXPECT_TRUE(backgroundRead(plan, "gbuffer.depth")) << "the contours read the depth whole";
+        EXPECT_TRUE(backgroundRead(plan, "shade.color"));
+        EXPECT_TRUE(backgroundRead(plan, "composite.final")) << "requested";
+        EXPECT_NE(plan.describe().find("gbuffer -> shade, contours  (read where covered: not cleared)"),
+                  std::string::npos)
+            << plan.describe();
+        // Asked for, every pixel of it is handed out.
+        EXPECT_TRUE(backgroundRead(graph.compile({"composite.final", "gbuffer.normal"}), "gbuffer.normal"));
+    }
+    {
+        // One reader of the whole image is enough; a culled one does not count.
+        FakeGraph graph;
+        build(graph);
+        graph.addPass("edges", {"gbuffer.normal"}, {{"lines", Need::Required, kLinesDesc}});
+        graph.addPass("composite", {"shade.color", "contours.lines"}, {{"final", Need::Required, kColorDesc}});
+        EXPECT_FALSE(backgroundRead(graph.compile({"composite.final"}), "gbuffer.normal")) << "edges is culled";
+        EXPECT_TRUE(backgroundRead(graph.compile({"composite.final", "edges.lines"}), "gbuffer.normal"));
+    }
+    {
+        // A pass that reads a field both ways reads it whole.
+        FakeGraph graph;
+        build(graph);
+        graph.addPass("both", {"gbuffer.normal"}, {{"lines", Need::Required, kLinesDesc}})
+            .readWhereCovered("gbuffer.normal");
+        EXPECT_TRUE(backgroundRead(graph.compile({"both.lines", "shade.color"}), "gbuffer.normal"));
+    }
+}
+
 // --- order -----------------------------------------------------------------------------------------------------------
 
 TEST(GraphCompilerTest, LinearChainCompilesInOrder) {

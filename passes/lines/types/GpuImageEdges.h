@@ -33,6 +33,10 @@ public:
     GpuNeighbourPairsKernel(std::string gbuffer, NormalEdgeSettings settings, ShaderLibrary& shaders);
 
     std::vector<std::string> inputs() const override;
+    /** n.v and the normal only where both pixels of a pair are covered (shaders/post/neighbour_pairs.comp). */
+    ReadExtent extentOf(std::size_t input) const override {
+        return input == 0 && mKind != Kind::DepthEdge ? ReadExtent::CoveredPixels : ReadExtent::WholeImage;
+    }
     /** Builds the compute program (the GL context current). */
     void prepare() override;
     /** The same skeleton by the CPU kernel (postfx/), for a caller that holds the fields as images. */

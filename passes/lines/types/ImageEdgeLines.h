@@ -15,6 +15,11 @@ class ContourKernel : public LineKernel {
 public:
     ContourKernel(std::string gbuffer, ContourSettings settings) : mGBuffer(std::move(gbuffer)), mSettings(settings) {}
     std::vector<std::string> inputs() const override { return {mGBuffer + ".nDotV", mGBuffer + ".depth"}; }
+    /** n.v only where the depth is > 0: a pair is marked only when both its pixels are covered
+     *  (postfx/NeighbourPairs.h classifyPair()). */
+    ReadExtent extentOf(std::size_t input) const override {
+        return input == 0 ? ReadExtent::CoveredPixels : ReadExtent::WholeImage;
+    }
     LineSkeleton find(const std::vector<cv::Mat>& inputs) override {
         return extractContours(inputs[0], inputs[1], mSettings);
     }
@@ -41,6 +46,10 @@ public:
     NormalEdgeKernel(std::string gbuffer, NormalEdgeSettings settings)
         : mGBuffer(std::move(gbuffer)), mSettings(settings) {}
     std::vector<std::string> inputs() const override { return {mGBuffer + ".normal", mGBuffer + ".depth"}; }
+    /** The normal only where the depth is > 0, as the contour's n.v. */
+    ReadExtent extentOf(std::size_t input) const override {
+        return input == 0 ? ReadExtent::CoveredPixels : ReadExtent::WholeImage;
+    }
     LineSkeleton find(const std::vector<cv::Mat>& inputs) override {
         return extractNormalEdges(inputs[0], inputs[1], mSettings);
     }

@@ -34,6 +34,11 @@ public:
     SuggestiveKernel(std::string gbuffer, SuggestiveSettings settings, const FrameParams& frame)
         : mGBuffer(std::move(gbuffer)), mSettings(settings), mFrame(frame) {}
     std::vector<std::string> inputs() const override { return {mGBuffer + ".radial", mGBuffer + ".depth"}; }
+    /** The radial field only where the depth is > 0: the smoothing's windows, the derivatives and the crossings
+     *  keep to runs of covered pixels (postfx/SuggestiveContours.cpp). */
+    ReadExtent extentOf(std::size_t input) const override {
+        return input == 0 ? ReadExtent::CoveredPixels : ReadExtent::WholeImage;
+    }
     /** The wide stencil's and the smoothing's working images. */
     std::size_t scratchBytesPerPixel() const override;
     LineSkeleton find(const std::vector<cv::Mat>& inputs) override;
