@@ -13,6 +13,7 @@
 #include <exception>
 #include <iomanip>
 #include <iostream>
+#include <new>
 #include <optional>
 
 namespace inkgraph {
@@ -90,14 +91,22 @@ template <class Step>
 void runMappingFailures(const PreparedStill& still, Step&& step) {
     const CameraRequest& camera = still.request.camera;
     const std::string size = "--size " + std::to_string(camera.width) + "x" + std::to_string(camera.height);
+    const auto processOutOfMemory = [&](const std::string& what) {
+        return UsageError(size + " with --supersample " + std::to_string(still.request.look.supersample) +
+                          ": out of memory (" + what + "); make the image smaller, or give the process more memory");
+    };
     try {
         step();
     } catch (const GlOutOfMemoryError& error) {
         throw UsageError(size + ": the driver ran out of memory (" + error.what() + "); make the image smaller");
     } catch (const OutOfMemoryError& error) {
-        throw UsageError(size + " with --supersample " + std::to_string(still.request.look.supersample) +
-                         ": out of memory (" + error.what() +
-                         "); make the image smaller, or give the process more memory");
+        throw processOutOfMemory(error.what());
+    } catch (const std::bad_alloc& error) {
+        // An image of the still's size (a read-back, a kernel's working image) that the process could not allocate.
+        throw processOutOfMemory(error.what());
+    } catch (const cv::Exception& error) {
+        if (error.code == cv::Error::StsNoMem) throw processOutOfMemory(error.err);
+        throw;
     } catch (const std::exception& error) {
         try {
             std::rethrow_if_nested(error);

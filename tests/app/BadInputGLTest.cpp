@@ -421,8 +421,9 @@ std::vector<BadInput> badInputs() {
           "INKGRAPH_SHADER_DIR is 'broken'", "main"},
          "INKGRAPH_SHADER_DIR=broken"},
         // Memory running out below the limit's estimate (here: the address space): at 1.5 GB the driver's texture
-        // fails first (6144^2 float RGBA is 576 MiB; on other machines it may be the post stage's OpenCV allocation;
-        // both are exit 2). 2048x2048 fit since issue 20 (no OpenImageIO mapped, the suggestive smoothing in rows).
+        // or a read-back of one fails (6144^2 float RGBA is 576 MiB; which one depends on how the heap grew; both
+        // are exit 2 naming the size). 2048x2048 fit since issue 20 (no OpenImageIO mapped, the suggestive smoothing
+        // in rows).
         {"out of memory",
          {},
          spot + " -o out.png --size 3072x3072 --supersample 2 --lines contour,suggestive "
