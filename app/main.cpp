@@ -13,14 +13,16 @@
 
 namespace {
 
-/** What the command line asks of glibc's malloc: transparent huge pages (madvise(MADV_HUGEPAGE)) for the heap and for
- *  mapped blocks. A still touches a few hundred MiB of fresh memory (llvmpipe's textures, the read-backs, the post
- *  stage's images); on the 2-core VM every 4 KiB page costs a page fault of about 7 us, a third of a single still's
- *  CPU, and the TLB misses of 4 KiB pages slow every pass that sweeps a whole image. With 2 MiB pages the bunny's
- *  comic still goes 0.58 -> 0.38 s as a whole process and the 36-still comic batch 2.16 -> 1.98 s
- *  (docs/performance.md, "Huge pages"). Where the kernel has transparent huge pages off, glibc's madvise does nothing.
- */
-constexpr const char* kMallocTunables = "glibc.malloc.hugetlb=1";
+/** What the command line asks of glibc's malloc (docs/performance.md, "Huge pages"):
+ *  - transparent huge pages (madvise(MADV_HUGEPAGE)) for the heap and for mapped blocks. A still touches a few
+ *    hundred MiB of fresh memory (llvmpipe's textures, the read-backs, the post stage's images); on the 2-core VM
+ *    every 4 KiB page costs a page fault of about 7 us, a third of a single still's CPU, and the TLB misses of 4 KiB
+ *    pages slow every pass that sweeps a whole image. The bunny's comic still 0.58 -> 0.38 s as a whole process, the
+ *    36-still comic batch 2.16 -> 1.98 s. Where the kernel has transparent huge pages off, the madvise does nothing;
+ *  - one arena for every thread. A worker thread's arena grows by heaps of at most 64 MiB and unmaps all but its
+ *    first once a still's images are freed, so each still faulted its post stage's images in again; in the main
+ *    arena they stay (M_TRIM_THRESHOLD below). 7-13% less CPU over the 36-still comic batch. */
+constexpr const char* kMallocTunables = "glibc.malloc.hugetlb=1:glibc.malloc.arena_max=1";
 
 /** glibc reads its tunables only when a process starts, from GLIBC_TUNABLES, so the program runs itself again with
  *  them (the same process id, arguments and files; about 20 ms). Whoever sets GLIBC_TUNABLES, even empty, keeps

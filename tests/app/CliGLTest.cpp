@@ -430,7 +430,7 @@ TEST_F(Cli, OnlyFormatsOtherThanPngLoadTheImageModule) {
 }
 
 TEST_F(Cli, TheCommandLineRunsWithHugePagesUnlessTheCallerSetsGlibcTunables) {
-    // app/main.cpp starts the program again with glibc.malloc.hugetlb=1 when GLIBC_TUNABLES is unset; a caller's own
+    // app/main.cpp starts the program again with its malloc tunables when GLIBC_TUNABLES is unset; a caller's own
     // value, even empty, is kept. --stats reports what the process ran with.
     const char* inherited = std::getenv("GLIBC_TUNABLES");
     const std::string saved = inherited ? inherited : "";
@@ -446,7 +446,7 @@ TEST_F(Cli, TheCommandLineRunsWithHugePagesUnlessTheCallerSetsGlibcTunables) {
 #if defined(__SANITIZE_ADDRESS__)
     EXPECT_EQ(tunablesOfRun(""), "null") << "the sanitizer's allocator has nothing to tune";
 #else
-    EXPECT_EQ(tunablesOfRun(""), "glibc.malloc.hugetlb=1");
+    EXPECT_EQ(tunablesOfRun(""), "glibc.malloc.hugetlb=1:glibc.malloc.arena_max=1");
 #endif
     EXPECT_EQ(tunablesOfRun("GLIBC_TUNABLES="), "");
     EXPECT_EQ(tunablesOfRun("GLIBC_TUNABLES=glibc.malloc.arena_max=2"), "glibc.malloc.arena_max=2");
