@@ -71,9 +71,10 @@ enum class Need { Required, Optional };
 /** Which pixels of a texture a pass reads (PassBuilder::read()). */
 enum class ReadExtent {
     WholeImage, ///< any pixel, the ones its writer leaves at the clear value included (the default)
-    /** Only where the G-buffer covers the frame (its depth > 0), as the reader tells from a field it reads whole: its
-     *  other pixels never reach what the pass writes. When every reader of a texture says so and nothing requests
-     *  it, the writer may leave those pixels uncleared (PlannedResource::backgroundRead, GBufferPass). */
+    /** Only where its writer covered the frame (drew a surface there), as the reader tells from another texture of
+     *  that writer it reads whole (the G-buffer's depth > 0): the other pixels never reach what the pass writes. When
+     *  every reader of a texture says so and nothing requests it, the writer may leave those pixels uncleared
+     *  (PlannedResource::backgroundRead; passes/gbuffer/GBufferPass.cpp does). */
     CoveredPixels
 };
 
