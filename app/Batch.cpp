@@ -13,6 +13,7 @@
 #include <istream>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <tuple>
 
@@ -256,10 +257,12 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
         if (list.models.size() < 2) return nullptr;
         if (!namedFiles) {
             namedFiles.emplace();
+            std::set<std::string> modelsRead; // a model listed many times is read once
             for (const BatchModel& model : list.models)
-                for (const std::string& file : referencedFiles(model.path))
-                    if (const auto named = fileIdentity(file))
-                        namedFiles->emplace(*named, std::make_pair(&model, file));
+                if (modelsRead.insert(model.path).second)
+                    for (const std::string& file : referencedFiles(model.path))
+                        if (const auto named = fileIdentity(file))
+                            namedFiles->emplace(*named, std::make_pair(&model, file));
         }
         const auto found = namedFiles->find(identity);
         return found == namedFiles->end() ? nullptr : &found->second;

@@ -719,11 +719,15 @@ std::vector<std::string> objReferencedFiles(const std::string& path, std::string
     };
     std::vector<std::string> files;
     content = withoutByteOrderMark(content); // as readObj(): a mark must not hide a first-line mtllib
-    for (std::size_t start = 0; start < content.size();) {
-        std::size_t end = content.find('\n', start);
+    // From one occurrence of "mtllib" to the next, not line by line: a batch rerun into existing outputs reads every
+    // model for this (Batch.cpp), and a 70,000-triangle OBJ has 100,000 lines and one mtllib at most.
+    for (std::size_t hit = content.find("mtllib"); hit != std::string_view::npos;) {
+        const std::size_t newlineBefore = hit == 0 ? std::string_view::npos : content.rfind('\n', hit - 1);
+        const std::size_t start = newlineBefore == std::string_view::npos ? 0 : newlineBefore + 1;
+        std::size_t end = content.find('\n', hit);
         if (end == std::string_view::npos) end = content.size();
         std::string_view line = content.substr(start, end - start);
-        start = end + 1;
+        hit = content.find("mtllib", end); // each line once, however often it says mtllib
         while (!line.empty() && isBlank(line.front())) line.remove_prefix(1);
         while (!line.empty() && (isBlank(line.back()) || line.back() == '\r')) line.remove_suffix(1);
         if (line.substr(0, 6) != "mtllib" || line.size() < 8 || !isBlank(line[6])) continue;

@@ -123,6 +123,16 @@ TEST(LoaderInputChecks, ObjMissingMaterialLibraryIsAWarningNamingIt) {
     EXPECT_EQ(scene.report.inputFiles, std::vector<std::string>{file.path()});
 }
 
+TEST(LoaderInputChecks, ReferencedFilesTakeEveryMtllibLineOnceWhereverItStands) {
+    // Only lines whose first word is mtllib name libraries: not a comment or an object that mentions it; a line that
+    // says it twice counts once; indented, CRLF and unterminated last lines count.
+    const TempFolder folder;
+    const std::string model = folder.write("many.obj", "# mtllib commented.mtl\n" + kTriangleObj +
+                                                           "o mtllib_object\n  mtllib mtllib.mtl\r\n" +
+                                                           "v 0 0 0 # mtllib trailing.mtl\nmtllib\nmtllib last.mtl");
+    EXPECT_EQ(referencedFiles(model), (std::vector<std::string>{folder.path("mtllib.mtl"), folder.path("last.mtl")}));
+}
+
 TEST(LoaderInputChecks, ReferencedFilesSeeAMaterialLibraryAfterAByteOrderMark) {
     const TempFolder folder;
     const std::string model = folder.write("bom.obj", kByteOrderMark + "mtllib parts.mtl\n" + kTriangleObj);
