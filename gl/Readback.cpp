@@ -170,7 +170,9 @@ void uploadImage(GlTexture& texture, const cv::Mat& image) {
         throw std::invalid_argument("uploadImage(): image of " + std::to_string(image.cols) + "x" +
                                     std::to_string(image.rows) + " does not match texture '" + texture.label() + "'");
     const GlFormat glFormat = glFormatOf(texture.format());
-    const int band = rowsPerBand(image);
+    // The staging band is no taller than the image: a shade map of a few rows staged in 64 MiB took a fresh mapping
+    // and a cleared huge page for every still.
+    const int band = std::min(rowsPerBand(image), image.rows);
     cv::Mat bottomUpBand(band, image.cols, image.type());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (int glRow = 0; glRow < texture.height(); glRow += band) {
