@@ -95,6 +95,8 @@ private:
                             const RenderOptions* next, const StillLog& log,
                             const std::shared_ptr<std::ostringstream>& stillLog,
                             std::chrono::steady_clock::time_point processStart);
+    /** Whether `next` (render()'s) is loaded ahead: a still after one that renders, with worker threads. */
+    bool prefetches(const RenderOptions* next, bool renders) const;
     /** Starts loading `next`'s model on a second thread (render()'s `next`). */
     void prefetch(const RenderOptions& next);
 
