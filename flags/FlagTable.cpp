@@ -995,8 +995,9 @@ std::vector<Flag> makeFlags() {
                          "how many stills may be in their post stage (line kernels, strokes, composite) and\n"
                          "writing at once, on worker threads, while the next still loads and draws: 0 to 64\n"
                          "(default: the cores this process may use, at most 16; 0 finishes each still before the\n"
-                         "next starts). The files are the same bytes with any N; the memory limit counts every\n"
-                         "still in flight",
+                         "next starts). With N above 0 each still's post stage runs its parallel loops on the\n"
+                         "usable cores / (N + 1) threads, at least 1. The files are the same bytes with any N; the\n"
+                         "memory limit counts every still in flight",
                          [](const std::string& value, RenderOptions& options) {
                              options.jobs = parseWholeNumber("--jobs", value, 0, 64);
                          }));

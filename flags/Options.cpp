@@ -10,14 +10,17 @@
 
 namespace inkgraph {
 
-int defaultJobs() {
-    // The cores this process may use (a Slurm task or a container is often given fewer than the machine has).
+int usableCores() {
     cpu_set_t allowed;
     CPU_ZERO(&allowed);
     int cores = sched_getaffinity(0, sizeof(allowed), &allowed) == 0 ? CPU_COUNT(&allowed) : 0;
     if (cores <= 0) cores = int(std::thread::hardware_concurrency());
-    return std::clamp(cores, 1, 16);
+    return std::max(cores, 1);
 }
+
+int defaultJobs() { return std::min(usableCores(), 16); }
+
+int postStageLoopThreads(int jobs) { return std::max(1, usableCores() / (std::max(jobs, 0) + 1)); }
 
 namespace {
 

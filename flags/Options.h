@@ -27,8 +27,17 @@ struct Shard {
 
 /** The command line of `inkgraph render`: the models, the camera, the Look, the outputs and the run's settings. The
  *  renderer takes the parts (Look, CameraRequest); this struct is only what the flags fill. */
-/** --jobs' default: the cores this process may run on (its CPU affinity), from 1 to 16. */
+/** The cores this process may run on (its CPU affinity; a Slurm task or a container is often given fewer than the
+ *  machine has), at least 1. */
+int usableCores();
+
+/** --jobs' default: usableCores(), at most 16. */
 int defaultJobs();
+
+/** How many threads OpenCV's parallel loops (the line kernels' bands, the composite's rows) get in each still's post
+ *  stage while a batch runs `jobs` of them on workers beside the drawing thread: the usable cores shared among those
+ *  jobs + 1 threads, at least 1. */
+int postStageLoopThreads(int jobs);
 
 struct RenderOptions {
     std::string modelPath;               ///< the model of this still (the first MODEL until a batch assigns it)

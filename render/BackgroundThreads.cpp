@@ -29,6 +29,12 @@ void stopParallelWorkers() {
             "OpenCV); its workers were not joined");
 }
 
+ParallelLoopThreads::ParallelLoopThreads(int threads) : mThreadsBefore(cv::getNumThreads()) {
+    cv::setNumThreads(threads);
+}
+
+ParallelLoopThreads::~ParallelLoopThreads() { cv::setNumThreads(mThreadsBefore); }
+
 void joinBackgroundThreads() {
     // The loader first: a dlopen in progress may still be starting the pools of OpenImageIO's dependencies.
     finishImageIoPreload();

@@ -17,6 +17,19 @@ namespace inkgraph {
  *  (another user of oneTBB still holds it). */
 void stopParallelWorkers();
 
+/** OpenCV's parallel loops on `threads` threads for the object's life (1: in the calling thread), then on as many as
+ *  before. */
+class ParallelLoopThreads {
+public:
+    explicit ParallelLoopThreads(int threads);
+    ~ParallelLoopThreads();
+    ParallelLoopThreads(const ParallelLoopThreads&) = delete;
+    ParallelLoopThreads& operator=(const ParallelLoopThreads&) = delete;
+
+private:
+    int mThreadsBefore;
+};
+
 /** Waits for the OpenImageIO module's loader if it was started (render/ImageFiles.h), then stopParallelWorkers():
  *  afterwards no thread that inkgraph started is being created or torn down, and none of ours is left running. */
 void joinBackgroundThreads();

@@ -114,6 +114,24 @@ TEST(BackgroundThreads, StopParallelWorkersNamesThePoolWhenItIsStillHeld) {
     EXPECT_NO_THROW(stopParallelWorkers()) << "once the arena is gone the pool can be joined";
 }
 
+TEST(BackgroundThreads, ParallelLoopThreadsRunsLoopsInTheCallerOnlyWhileItLives) {
+    // A pipelined batch's post stages take one thread each (app/BatchRun.cpp): OpenCV's loops then run in the worker
+    // that calls them, and afterwards on as many threads as before.
+    const oneapi::tbb::global_control twoThreads(oneapi::tbb::global_control::max_allowed_parallelism, 2);
+    const int threadSetting = cv::getNumThreads();
+    {
+        const ParallelLoopThreads oneEach(1);
+        EXPECT_EQ(cv::getNumThreads(), 1);
+        std::set<std::thread::id> seen;
+        cv::parallel_for_(
+            cv::Range(0, 64), [&](const cv::Range&) { seen.insert(std::this_thread::get_id()); }, 64);
+        EXPECT_EQ(seen, std::set<std::thread::id>{std::this_thread::get_id()});
+    }
+    EXPECT_EQ(cv::getNumThreads(), threadSetting);
+    EXPECT_GE(loopOnTwoThreads(), 2u) << "the loops are parallel again";
+    stopParallelWorkers();
+}
+
 TEST(BackgroundThreads, JoinWaitsForTheImageModuleLoadThatWasStarted) {
     const fs::path module = fs::path(INKGRAPH_BINARY_ROOT) / "libinkgraph_imageio.so";
     ASSERT_TRUE(fs::exists(module)) << module;

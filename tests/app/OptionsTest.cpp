@@ -60,6 +60,17 @@ TEST(Options, Defaults) {
     EXPECT_FALSE(options.printPlan);
 }
 
+TEST(Options, JobsShareTheUsableCoresWithTheDrawingThread) {
+    const int cores = usableCores();
+    ASSERT_GE(cores, 1);
+    EXPECT_EQ(defaultJobs(), std::min(cores, 16));
+    // jobs workers beside the drawing thread: jobs + 1 threads share the cores, each post stage at least one.
+    EXPECT_EQ(postStageLoopThreads(0), cores);
+    EXPECT_EQ(postStageLoopThreads(1), std::max(1, cores / 2));
+    EXPECT_EQ(postStageLoopThreads(cores), 1);
+    EXPECT_EQ(postStageLoopThreads(64), 1);
+}
+
 TEST(Options, ShadingModesAndTheirFlags) {
     for (const char* mode : {"none", "flat", "gouraud", "lambert", "phong", "cel", "comic"})
         EXPECT_EQ(std::string(traitsOf(parse({"m.obj", "-o", "x.png", "--shading", mode}).look.shading).name), mode);
