@@ -91,10 +91,11 @@ std::unique_ptr<PreparedStill> RenderSession::loadWhileMakingContext(StillReques
 
 /** What the worker did for one still: its host tail, then its picture encoded when the picture was on the CPU. */
 struct RenderSession::TailOutcome {
-    std::vector<unsigned char> picture; ///< the encoded -o file; empty when not encoded here
+    std::vector<unsigned char> picture; ///< the encoded -o file; empty when not encoded here or already staged
     bool encoded = false;
+    bool staged = false; ///< the -o file written beside its place (OutputSet::stageFinalImage()) by the worker
     double tailMilliseconds = 0.0;
-    double encodeMilliseconds = 0.0;
+    double encodeMilliseconds = 0.0; ///< encoding and staging
 };
 
 /** A still that has drawn: everything it needs until its commit. Made and destroyed on the thread that calls
@@ -265,6 +266,11 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
             const auto encodeStart = std::chrono::steady_clock::now();
             outcome.picture = encodeImageFile(handed.options.outputPath, handed.result.store().image(finalResource));
             outcome.encoded = true;
+            // Staged here too: its write and fsync (1-2 ms on a VM's disk) then wait on this worker, not on the
+            // drawing thread, which only renames it into place at the commit, in the stills' order.
+            handed.outputs->stageFinalImage(outcome.picture);
+            outcome.staged = true;
+            outcome.picture = {};
             outcome.encodeMilliseconds = millisecondsSince(encodeStart);
         }
         return outcome;
@@ -331,7 +337,7 @@ void RenderSession::commitFinished(PendingStill& pending, TailOutcome& outcome) 
     OutputSet& outputs = *pending.outputs;
     const auto writeStart = std::chrono::steady_clock::now();
     stageStillOutputs(options, still, result, outputs);
-    if (!options.outputPath.empty()) {
+    if (!options.outputPath.empty() && !outcome.staged) {
         if (!outcome.encoded)
             outcome.picture = encodeImageFile(options.outputPath, result.store().image(still.graph.finalResource));
         outputs.stageFinalImage(outcome.picture);

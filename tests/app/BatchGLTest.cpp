@@ -249,6 +249,21 @@ TEST_F(Cli, ShardsOfAListRenderDisjointSharesThatMakeTheWhole) {
     EXPECT_EQ(listFiles(directory / "shard1"), std::vector<std::string>({"2-cow_c3d.png", "4-suzanne_npm_4k.png"}));
 }
 
+TEST_F(Cli, APictureTheWorkerCannotWriteStopsTheBatchAndLeavesNoFile) {
+    // A pipelined batch writes each picture beside its place on the worker that encoded it (app/Render.cpp); with a
+    // 2 KiB file-size limit that write fails there. It is the still's failure, told as a failed write is (exit 5), and
+    // neither a picture nor a temporary file is left, whatever the other stills in flight had written.
+    std::ofstream list(directory / "models.txt");
+    for (const char* name : {"spot_c3d.obj", "suzanne_npm_4k.obj", "teapot_c3d.obj"})
+        list << (fs::path(INKGRAPH_SOURCE_ROOT) / "models" / name).string() << "\n";
+    list.close();
+    const CliRun result = run("render --list models.txt -o '{index}.png' --size 256x256 --jobs 2 --shading cel",
+                              "sh -c 'ulimit -f 4; exec \"$0\" \"$@\"'");
+    EXPECT_EQ(result.exitCode, 5) << result.err;
+    EXPECT_NE(result.err.find("File too large"), std::string::npos) << result.err;
+    EXPECT_EQ(listFiles(directory), std::vector<std::string>{"models.txt"});
+}
+
 TEST_F(Cli, ABatchWhoseOutputsCollideWritesNothing) {
     const CliRun result = run("render " + model("spot_c3d.obj") + " " + model("cow_c3d.obj") +
                               " -o '{name}.png' --stats stats.json --size 32x32");
