@@ -91,9 +91,7 @@ std::unique_ptr<PreparedStill> RenderSession::loadWhileMakingContext(StillReques
 
 /** What the worker did for one still: its host tail, then its picture encoded when the picture was on the CPU. */
 struct RenderSession::TailOutcome {
-    std::vector<unsigned char> picture; ///< the encoded -o file; empty when not encoded here or already staged
-    bool encoded = false;
-    bool staged = false; ///< the -o file written beside its place (OutputSet::stageFinalImage()) by the worker
+    bool staged = false; ///< the -o file encoded and written beside its place (OutputSet::stageFinalImage()) here
     double tailMilliseconds = 0.0;
     double encodeMilliseconds = 0.0; ///< encoding and staging
 };
@@ -264,13 +262,11 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
         // A picture the host tail made is encoded here; one still on the GPU is read back by the context's thread.
         if (!handed.options.outputPath.empty() && !handed.result.store().holdsTexture(finalResource)) {
             const auto encodeStart = std::chrono::steady_clock::now();
-            outcome.picture = encodeImageFile(handed.options.outputPath, handed.result.store().image(finalResource));
-            outcome.encoded = true;
             // Staged here too: its write and fsync (1-2 ms on a VM's disk) then wait on this worker, not on the
             // drawing thread, which only renames it into place at the commit, in the stills' order.
-            handed.outputs->stageFinalImage(outcome.picture);
+            handed.outputs->stageFinalImage(
+                encodeImageFile(handed.options.outputPath, handed.result.store().image(finalResource)));
             outcome.staged = true;
-            outcome.picture = {};
             outcome.encodeMilliseconds = millisecondsSince(encodeStart);
         }
         return outcome;
@@ -337,11 +333,8 @@ void RenderSession::commitFinished(PendingStill& pending, TailOutcome& outcome) 
     OutputSet& outputs = *pending.outputs;
     const auto writeStart = std::chrono::steady_clock::now();
     stageStillOutputs(options, still, result, outputs);
-    if (!options.outputPath.empty() && !outcome.staged) {
-        if (!outcome.encoded)
-            outcome.picture = encodeImageFile(options.outputPath, result.store().image(still.graph.finalResource));
-        outputs.stageFinalImage(outcome.picture);
-    }
+    if (!options.outputPath.empty() && !outcome.staged)
+        outputs.stageFinalImage(encodeImageFile(options.outputPath, result.store().image(still.graph.finalResource)));
     // The still's own time: its drawing, its post stage and its writing, not the other stills' work it overlapped.
     const double writeMilliseconds = outcome.encodeMilliseconds + millisecondsSince(writeStart);
     const double totalMilliseconds = pending.drawnMilliseconds + outcome.tailMilliseconds + writeMilliseconds;
