@@ -78,6 +78,16 @@ enum class ReadExtent {
     CoveredPixels
 };
 
+/** A rectangle of a texture's pixels in GL's window coordinates: x from the left column, y from the BOTTOM row, as
+ *  glScissor() and glGetTextureSubImage() take it. */
+struct PixelRect {
+    int x = 0;
+    int y = 0;
+    int width = 0;
+    int height = 0;
+    bool operator==(const PixelRect&) const = default;
+};
+
 /** "gbuffer.normal" -> {"gbuffer", "normal"}; a name without exactly one dot gives empty parts. */
 struct ResourceName {
     std::string pass;

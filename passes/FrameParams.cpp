@@ -2,6 +2,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 namespace inkgraph {
 
 glm::mat4 FrameParams::viewFromModel() const {
@@ -23,6 +26,44 @@ glm::mat4 FrameParams::clipFromView() const {
 glm::vec3 FrameParams::towardLightView() const {
     const glm::dvec3 view = glm::dmat3(camera.viewMatrix()) * towardLightWorld;
     return glm::vec3(glm::normalize(view));
+}
+
+void FrameParams::boundScene(const Scene& scene) {
+    // Each triangle's image is the convex hull of its corners' images as long as every corner lies in front of the eye
+    // (w > 0); clipping keeps a part of it. A corner at or behind the eye has no image to bound: then the whole frame.
+    const glm::mat4 clipFromModel = clipFromView() * viewFromModel();
+    glm::dvec2 low(INFINITY);
+    glm::dvec2 high(-INFINITY);
+    for (const Mesh& mesh : scene.meshes) {
+        for (const glm::vec3& p : mesh.positions) {
+            const glm::vec4 clip = clipFromModel * glm::vec4(glm::vec3(glm::dvec3(p) - worldOrigin), 1.0f);
+            if (!(clip.w > 0.0f) || !std::isfinite(clip.x) || !std::isfinite(clip.y)) {
+                sceneLow = glm::dvec2(-1.0);
+                sceneHigh = glm::dvec2(1.0);
+                return;
+            }
+            const glm::dvec2 ndc = glm::dvec2(clip.x, clip.y) / double(clip.w);
+            low = glm::min(low, ndc);
+            high = glm::max(high, ndc);
+        }
+    }
+    // Beyond +-1 is outside the frame either way; +-2 keeps the bounds finite and a scene wholly outside apart from
+    // one that touches the border. No vertex: nothing covers the frame.
+    const bool anyVertex = low.x <= high.x;
+    sceneLow = anyVertex ? glm::clamp(low, -2.0, 2.0) : glm::dvec2(-2.0);
+    sceneHigh = anyVertex ? glm::clamp(high, -2.0, 2.0) : glm::dvec2(-2.0);
+}
+
+PixelRect FrameParams::scenePixels(int width, int height) const {
+    // Window coordinates: pixel (i, j) spans [i, i + 1) x [j, j + 1), its samples inside it.
+    const glm::dvec2 size(width, height);
+    const glm::dvec2 low = (sceneLow + 1.0) * 0.5 * size;
+    const glm::dvec2 high = (sceneHigh + 1.0) * 0.5 * size;
+    const int x0 = std::clamp(int(std::floor(low.x)) - 1, 0, width);
+    const int y0 = std::clamp(int(std::floor(low.y)) - 1, 0, height);
+    const int x1 = std::clamp(int(std::ceil(high.x)) + 1, 0, width);
+    const int y1 = std::clamp(int(std::ceil(high.y)) + 1, 0, height);
+    return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
 }
 
 } // namespace inkgraph

@@ -2,7 +2,9 @@
 /** @file Per-still parameters every pass may read: camera, light, background. Owned by the app and referenced by the
  *  passes it constructs; set before the graph executes. */
 
+#include "graph/Resource.h"
 #include "scene/Camera.h"
+#include "scene/Scene.h"
 
 #include <glm/glm.hpp>
 
@@ -26,6 +28,20 @@ struct FrameParams {
      *  material reads (makeSceneImport() hands it to SceneMaterials::setTime()). A posed model's animation is already
      *  applied to the scene. */
     double time = 0.0;
+    /** Where the scene's triangles can cover the frame, in normalized device coordinates (x and y from -1 to 1, y up):
+     *  the bounds of every vertex's projection (boundScene()). Work that matters only where a surface lies keeps to it
+     *  (scenePixels()): deferred shading, and the read-backs of G-buffer fields read only where covered. The whole
+     *  frame until bound, and when a vertex lies at or behind the eye. */
+    glm::dvec2 sceneLow{-1.0};
+    glm::dvec2 sceneHigh{1.0};
+
+    /** Sets sceneLow and sceneHigh from `scene`'s vertices, projected as the G-buffer projects them (viewFromModel()
+     *  and clipFromView(), in float). Call after the camera and worldOrigin are set. */
+    void boundScene(const Scene& scene);
+    /** The pixels of a width x height target (any scale of the frame) that a triangle of the scene can touch: every
+     *  pixel with a sample inside the scene's bounds, and one more on each side for the GPU's rounding; clamped to the
+     *  target. Empty (width or height 0) when the scene projects outside it. */
+    PixelRect scenePixels(int width, int height) const;
 
     /** View matrix for positions stored relative to worldOrigin, computed in double then rounded. */
     glm::mat4 viewFromModel() const;

@@ -151,6 +151,7 @@ FrameParams frameParamsOf(const Look& look, const Scene& scene, const Camera& ca
                                       : glm::vec3(traitsOf(shadingModelFor(look.shading, scene)).defaultAmbient);
     // A point (or empty) model has no radius; 1 keeps the radial field finite there.
     frame.radialLengthUnit = sphere.radius > 0.0 ? sphere.radius : 1.0;
+    frame.boundScene(scene);
     return frame;
 }
 

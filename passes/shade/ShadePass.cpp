@@ -398,6 +398,11 @@ void ShadePass::executeDeferred(GlPassContext& gl) {
     glViewport(0, 0, width, height);
     const GLfloat transparent[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 0, transparent);
+    // Only inside the scene's bounds can the depth test pass: llvmpipe then skips the tiles outside them instead of
+    // testing every pixel of the frame (the bounds are about half of it for an auto-framed model).
+    const PixelRect scene = mFrame.scenePixels(width, height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(scene.x, scene.y, scene.width, scene.height);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_FALSE);
@@ -420,6 +425,7 @@ void ShadePass::executeDeferred(GlPassContext& gl) {
     GlVertexArray empty(mName + " fullscreen");
     empty.bind();
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_SCISSOR_TEST);
     glBindVertexArray(0);
     for (const GLuint unit : {GLuint(0), kNormalUnit, kBaseColorUnit, kViewUnit}) glBindTextureUnit(unit, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -34,14 +34,19 @@ protected:
     void SetUp() override { test::sharedGlContext(); }
 
     /** shade.color of `look` over `scene`, auto-framed: deferred as the graph chooses it, and forced forward. */
-    void expectSamePicture(const Look& look, const std::string& name) {
-        CameraRequest request;
+    void expectSamePicture(const Look& look, const std::string& name, const CameraRequest& camera = {}) {
+        CameraRequest request = camera;
         request.width = kSize;
         request.height = kSize;
         frame.camera = resolveCamera(request, scene);
         const BoundingSphere sphere = computeBoundingSphere(scene);
         frame.worldOrigin = sphere.center;
         frame.towardLightWorld = glm::normalize(glm::dvec3(-0.4, 0.5, 0.77));
+        // As the renderer does: deferred shading keeps to the scene's bounds, so the coverage check below also finds
+        // any covered pixel the bounds would cut off.
+        frame.boundScene(scene);
+        const PixelRect bounds = frame.scenePixels(kSize, kSize);
+        EXPECT_LT(bounds.width * bounds.height, kSize * kSize) << name << ": the bounds should leave some of the frame";
         gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
 
         StillGraph deferred = buildStillGraph({look, shaders, scene, sphere, *gpuScene, frame, std::nullopt});
@@ -117,6 +122,22 @@ TEST_F(DeferredShading, TexturedFoxMatchesForward) {
     scene = loadScene((test::sourceRoot() / "models" / "characters" / "fox.glb").string());
     for (const ShadingModel model : {ShadingModel::Cel, ShadingModel::Phong})
         expectSamePicture(comicStill(model), std::string("fox_") + traitsOf(model).name);
+}
+
+TEST_F(DeferredShading, KeptToTheSceneBoundsItShadesEveryPixelForwardShadingCovers) {
+    // The bunny seen close from an eye off the axis, looking below and left of it: the model runs off the frame's top,
+    // left and right edges, so the bounds are clamped there and tight only below, and every pixel the forward pass
+    // covers must still be shaded (expectSamePicture's coverage check).
+    scene = loadScene((test::sourceRoot() / "models" / "bunny_c3d_70k.obj").string());
+    const BoundingSphere sphere = computeBoundingSphere(scene);
+    CameraRequest close;
+    close.eye = sphere.center + glm::dvec3(0.3, 0.2, 2.2) * sphere.radius;
+    close.target = sphere.center + glm::dvec3(-0.25, -0.2, 0.0) * sphere.radius;
+    expectSamePicture(comicStill(ShadingModel::Cel), "bunny_close_off_axis", close);
+    const PixelRect bounds = frame.scenePixels(kSize, kSize);
+    EXPECT_EQ(bounds.width, kSize) << "the bunny runs off both sides";
+    EXPECT_EQ(bounds.y + bounds.height, kSize) << "and off the top";
+    EXPECT_GT(bounds.y, kSize / 2) << "and stays in the top half";
 }
 
 } // namespace
