@@ -49,6 +49,7 @@ GlTexture& ResourceStore::writeTexture(const std::string& name, Format format, i
     Entry& target = mEntries[name];
     target.image.release();
     target.readback.reset();
+    target.readRegion.reset();
     if (!target.texture || target.format != format || target.width != width || target.height != height ||
         target.samples != samples) {
         if (target.texture) mPool.release(std::move(*target.texture));
@@ -92,9 +93,18 @@ const cv::Mat& ResourceStore::image(const std::string& name) {
             throw std::logic_error("ResourceStore::image(): '" + name + "' is an object without a picture");
         return source.image;
     }
-    if (source.image.empty()) source.image = source.readback ? source.readback->finish() : readTexture(*source.texture);
+    if (source.image.empty())
+        source.image = source.readback ? source.readback->finish()
+                                       : readTexture(*source.texture, ReadbackFlip::Fastest, source.readRegion);
     source.readback.reset();
     return source.image;
+}
+
+void ResourceStore::setReadRegion(const std::string& name, PixelRect region) {
+    Entry& target = entry(name);
+    if (!target.texture)
+        throw std::logic_error("ResourceStore::setReadRegion(): '" + name + "' has no texture to read back");
+    target.readRegion = region;
 }
 
 void ResourceStore::beginReadback(const std::string& name) {
@@ -230,6 +240,14 @@ GlTexture& GlPassContext::outputTexture(std::string_view field) {
     const PlannedResource& planned = liveOutput(field);
     return mStore.writeTexture(planned.name, planned.desc.format, mFrameWidth * planned.desc.scale,
                                mFrameHeight * planned.desc.scale, planned.desc.samples);
+}
+
+void GlPassContext::limitReadback(std::string_view field, PixelRect region) {
+    const PlannedResource& planned = liveOutput(field);
+    if (backgroundIsRead(field))
+        throw std::logic_error("GlPassContext::limitReadback(): '" + planned.name +
+                               "' is read outside what its writer covers (or kept whole): it is read back whole");
+    mStore.setReadRegion(planned.name, region);
 }
 
 cv::Mat& GlPassContext::outputImage(std::string_view field) {

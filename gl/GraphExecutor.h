@@ -38,8 +38,12 @@ public:
     cv::Mat& writeImage(const std::string& name, Format format, int width, int height);
     /** The GPU side, uploading the CPU image on first use. */
     const GlTexture& texture(const std::string& name);
-    /** The CPU side (row 0 = top), reading the texture back on first use; an object's picture (setPicture()). */
+    /** The CPU side (row 0 = top), reading the texture back on first use (only its readRegion() when one is set);
+     *  an object's picture (setPicture()). */
     const cv::Mat& image(const std::string& name);
+    /** Reads only `region` of `name`'s texture back (readTexture()'s region; until the texture is written again):
+     *  its writer drew nothing outside it that anyone reads. A later image() leaves the other pixels unspecified. */
+    void setReadRegion(const std::string& name, PixelRect region);
 
     /** A typed CPU object (ResourceKind::Object) for a pass to fill, value-initialised; replaces what was there. */
     template <class T>
@@ -92,6 +96,7 @@ private:
         std::optional<GlTexture> texture;
         cv::Mat image;                             ///< a texture's CPU side, or an object's picture
         std::unique_ptr<PendingReadback> readback; ///< the texture on its way to `image` (beginReadback())
+        std::optional<PixelRect> readRegion;       ///< what image() reads back (setReadRegion()), else all of it
         std::shared_ptr<void> object;              ///< kind Object: the value, of objectType
         std::type_index objectType = typeid(void);
     };
@@ -139,6 +144,10 @@ public:
      *  Throws if the field is not live, and outputImage() for a multisampled field (only GL draws samples). */
     GlTexture& outputTexture(std::string_view field);
     cv::Mat& outputImage(std::string_view field);
+    /** Tells the executor that this pass's live texture `field` holds nothing outside `region` (GL window coordinates)
+     *  that anyone reads, so a read-back copies the region alone. Only for a field whose background is not read
+     *  (backgroundIsRead() false); throws std::logic_error otherwise. */
+    void limitReadback(std::string_view field, PixelRect region);
     /** A declared input by full name. Throws on a read the pass did not declare. */
     const GlTexture& inputTexture(std::string_view resource);
     const cv::Mat& inputImage(std::string_view resource);

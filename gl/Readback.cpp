@@ -5,6 +5,7 @@
 #include <cstring>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -52,6 +53,16 @@ public:
     PackInverted& operator=(const PackInverted&) = delete;
 };
 
+/** GL_PACK_ROW_LENGTH set for the life of the object, so a region's rows land `rowLength` pixels apart in the image;
+ *  GL's default (0: the rows are as long as the region) again however the read ends. */
+class PackRowLength {
+public:
+    explicit PackRowLength(int rowLength) { glPixelStorei(GL_PACK_ROW_LENGTH, rowLength); }
+    ~PackRowLength() { glPixelStorei(GL_PACK_ROW_LENGTH, 0); }
+    PackRowLength(const PackRowLength&) = delete;
+    PackRowLength& operator=(const PackRowLength&) = delete;
+};
+
 /** Maps the pages of a fresh image in one call (Linux 5.14+) before the driver writes them: on the VM, faulting them
  *  in one by one as the copy first touches them costs about twice as much (a 1024^2 RGBA32F read in a fresh process:
  *  17-26 ms, against 7-16 ms). Where the call is missing or refused, the pages fault in during the copy, as before. */
@@ -88,12 +99,22 @@ GlTexture resolved(const GlTexture& texture) {
 
 } // namespace
 
-cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip) {
+cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip, std::optional<PixelRect> region) {
     // GL reads no multisampled texture back; --dump and the caller's buffers take one value per pixel.
-    if (texture.samples() > 1) return readTexture(resolved(texture), flip);
+    if (texture.samples() > 1) return readTexture(resolved(texture), flip, region);
+    const PixelRect read = region.value_or(PixelRect{0, 0, texture.width(), texture.height()});
+    if (read.x < 0 || read.y < 0 || read.width < 0 || read.height < 0 || read.x + read.width > texture.width() ||
+        read.y + read.height > texture.height())
+        throw std::invalid_argument("readTexture(): the region (" + std::to_string(read.x) + ", " +
+                                    std::to_string(read.y) + ", " + std::to_string(read.width) + " x " +
+                                    std::to_string(read.height) + ") is not within texture '" + texture.label() + "'");
     const GlFormat glFormat = glFormatOf(texture.format());
     cv::Mat image(texture.height(), texture.width(), cvTypeOf(texture.format()));
-    mapPagesAhead(image);
+    if (read.width == 0 || read.height == 0) return image;
+    // GL rows y .. y + h - 1 are image rows height - y - h .. height - 1 - y, reversed.
+    const int topRow = texture.height() - read.y - read.height;
+    cv::Mat readRows = image.rowRange(topRow, topRow + read.height);
+    mapPagesAhead(readRows);
     const int band = rowsPerBand(image);
     // Each band lands in its final rows of the image: no staging copy, so the only memory touched is the result's
     // (first touches of fresh memory cost more than the copy on a VM). GL_MESA_pack_invert (every Mesa driver) has
@@ -101,13 +122,16 @@ cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip) {
     const bool driverFlips = flip == ReadbackFlip::Fastest && epoxy_has_gl_extension("GL_MESA_pack_invert");
     std::optional<PackInverted> inverted;
     if (driverFlips) inverted.emplace();
+    const PackRowLength rowLength(texture.width());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    for (int glRow = 0; glRow < texture.height(); glRow += band) {
-        const int rows = std::min(band, texture.height() - glRow);
-        // GL rows glRow .. glRow + rows - 1 are image rows height - glRow - rows .. height - 1 - glRow, reversed.
-        cv::Mat target = image.rowRange(texture.height() - glRow - rows, texture.height() - glRow);
-        glGetTextureSubImage(texture.id(), 0, 0, glRow, 0, texture.width(), rows, 1, glFormat.pixelFormat,
-                             glFormat.pixelType, GLsizei(std::size_t(rows) * image.step[0]), target.data);
+    for (int glRow = read.y; glRow < read.y + read.height; glRow += band) {
+        const int rows = std::min(band, read.y + read.height - glRow);
+        cv::Mat target = image(cv::Range(texture.height() - glRow - rows, texture.height() - glRow),
+                               cv::Range(read.x, read.x + read.width));
+        // The last row ends where the region does; GL counts the bytes it writes from the band's first pixel.
+        const std::size_t bytes = std::size_t(rows - 1) * image.step[0] + std::size_t(read.width) * image.elemSize();
+        glGetTextureSubImage(texture.id(), 0, read.x, glRow, 0, read.width, rows, 1, glFormat.pixelFormat,
+                             glFormat.pixelType, GLsizei(bytes), target.data);
         throwOnGlError("readTexture()", texture);
         if (!driverFlips) cv::flip(target, target, 0);
     }

@@ -3,8 +3,11 @@
  *  of images and OpenCV (row 0 at the top). Kernels and files never see GL conventions. */
 
 #include "gl/GlObjects.h"
+#include "graph/Resource.h"
 
 #include <opencv2/core.hpp>
+
+#include <optional>
 
 namespace inkgraph {
 
@@ -17,9 +20,12 @@ enum class ReadbackFlip {
     Cpu,     ///< always the CPU, as on drivers without the extension (for tests)
 };
 
-/** Reads the whole texture; row 0 of the result is the TOP row of the image. A multisampled texture is resolved
- *  first: a colour pixel is the average of its samples, a depth pixel one of them (GL's blit). */
-cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip = ReadbackFlip::Fastest);
+/** Reads the texture; row 0 of the result is the TOP row of the image. A multisampled texture is resolved first: a
+ *  colour pixel is the average of its samples, a depth pixel one of them (GL's blit). With `region` (GL window
+ *  coordinates, within the texture) the result is still the texture's size, but only the region's pixels are read:
+ *  the others hold whatever the memory held, for a texture none of whose readers looks outside it. */
+cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip = ReadbackFlip::Fastest,
+                    std::optional<PixelRect> region = std::nullopt);
 
 /** A texture's read-back begun without waiting: the driver copies it into a pixel-pack buffer behind a fence, after
  *  the work queued before it, while the caller queues more (on a GPU the copy overlaps later passes). finish() waits

@@ -228,6 +228,11 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
         mesh.vertexArray.bind();
         glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
     }
+    // What is read only where covered need not come back beyond the scene's bounds: on llvmpipe the read-backs are
+    // copies on this thread, and the bounds are about half the frame for an auto-framed model.
+    const PixelRect scenePixels = mFrame.scenePixels(width, height);
+    for (const Field* field : group)
+        if (!gl.backgroundIsRead(field->name)) gl.limitReadback(field->name, scenePixels);
     glDisable(GL_CULL_FACE);
     glBindVertexArray(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

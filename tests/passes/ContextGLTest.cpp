@@ -57,6 +57,34 @@ TEST(Readback, RowZeroIsTheTopOfTheImage) {
     EXPECT_THROW(uploadImage(texture, cv::Mat(2, 2, CV_32FC1)), std::invalid_argument);
 }
 
+TEST(Readback, ARegionReadsItsPixelsIntoTheirPlaces) {
+    test::sharedGlContext();
+    // 7 x 5 texels, value 10 row + column (row 0 at the top); GL window rows count from the bottom.
+    cv::Mat image(5, 7, CV_32FC1);
+    for (int row = 0; row < image.rows; ++row)
+        for (int col = 0; col < image.cols; ++col) image.at<float>(row, col) = float(10 * row + col);
+    GlTexture texture(Format::R32F, image.cols, image.rows, "region test");
+    uploadImage(texture, image);
+    // Window x 2..5, y 1..3: image columns 2..5, rows 5 - 1 - 3 = 1 .. 3.
+    const PixelRect region{2, 1, 4, 3};
+    const cv::Rect inImage(2, 1, 4, 3);
+    for (const ReadbackFlip flip : {ReadbackFlip::Fastest, ReadbackFlip::Cpu}) {
+        const cv::Mat back = readTexture(texture, flip, region);
+        ASSERT_EQ(back.size(), image.size());
+        EXPECT_EQ(cv::norm(back(inImage), image(inImage), cv::NORM_INF), 0.0) << int(flip);
+        // (Outside the region the result holds whatever its memory held.) A whole read after it is whole again.
+        const cv::Mat whole = readTexture(texture, flip);
+        EXPECT_EQ(cv::norm(whole, image, cv::NORM_INF), 0.0) << "the row length is GL's default again";
+    }
+    EXPECT_EQ(readTexture(texture, ReadbackFlip::Fastest, PixelRect{3, 2, 0, 0}).size(), image.size())
+        << "an empty region reads nothing";
+    for (const PixelRect outside : {PixelRect{5, 0, 3, 1}, PixelRect{0, 4, 1, 2}, PixelRect{-1, 0, 1, 1}})
+        EXPECT_THROW(readTexture(texture, ReadbackFlip::Fastest, outside), std::invalid_argument);
+    GLint rowLength = -1;
+    glGetIntegerv(GL_PACK_ROW_LENGTH, &rowLength);
+    EXPECT_EQ(rowLength, 0);
+}
+
 TEST(Readback, FloatValuesAreUnclamped) {
     test::sharedGlContext();
     cv::Mat image(1, 1, CV_32FC4, cv::Scalar(-3.5, 1e6, 0.125, 42.0));

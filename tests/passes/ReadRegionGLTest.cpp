@@ -1,0 +1,94 @@
+// A pass that covers only part of its target may have its read-backs kept to that part (GlPassContext::
+// limitReadback()): allowed only when every reader reads the texture where covered (ReadExtent::CoveredPixels), and
+// then the pixels inside come back as drawn. Needs a GL context (llvmpipe in CI).
+#include "gl/GlPass.h"
+#include "gl/GraphExecutor.h"
+#include "gl/TexturePool.h"
+#include "graph/GraphCompiler.h"
+#include "tests/support/GlTestContext.h"
+
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace inkgraph {
+namespace {
+
+constexpr int kWidth = 12;
+constexpr int kHeight = 8;
+const PixelRect kCovered{3, 2, 5, 4}; // GL window coordinates: image columns 3..7, rows 8 - 2 - 4 = 2 .. 5
+
+/** Clears `cover.field` (r32f) to 7 inside kCovered alone and limits its read-backs to it. */
+class CoverPass : public GlPass {
+public:
+    std::string_view name() const override { return "cover"; }
+    void declare(PassBuilder& builder) const override { builder.write("field", {Format::R32F}); }
+    void execute(GlPassContext& gl) override {
+        GlFramebuffer framebuffer("cover");
+        framebuffer.attachColor(0, gl.outputTexture("field"));
+        framebuffer.finish({0});
+        framebuffer.bind();
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(kCovered.x, kCovered.y, kCovered.width, kCovered.height);
+        const float seven[4] = {7.0f, 0.0f, 0.0f, 0.0f};
+        glClearBufferfv(GL_COLOR, 0, seven);
+        glDisable(GL_SCISSOR_TEST);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        try {
+            gl.limitReadback("field", kCovered);
+            limited = true;
+        } catch (const std::logic_error& error) {
+            refusal = error.what();
+        }
+    }
+    bool limited = false;
+    std::string refusal;
+};
+
+/** Reads `cover.field` with `extent` on the CPU and keeps a copy. */
+class ReaderPass : public GlPass {
+public:
+    explicit ReaderPass(ReadExtent extent) : mExtent(extent) {}
+    std::string_view name() const override { return "reader"; }
+    void declare(PassBuilder& builder) const override {
+        builder.read("cover.field", mExtent);
+        builder.write("out", {Format::R8});
+    }
+    void execute(GlPassContext& gl) override {
+        seen = gl.inputImage("cover.field").clone();
+        gl.outputImage("out");
+    }
+    cv::Mat seen;
+
+private:
+    ReadExtent mExtent;
+};
+
+TEST(ReadRegion, AFieldReadOnlyWhereCoveredComesBackInsideItsRegion) {
+    test::sharedGlContext();
+    TexturePool pool;
+    CoverPass cover;
+    ReaderPass reader(ReadExtent::CoveredPixels);
+    GraphExecutor executor{pool};
+    executor.run(compile({&cover, &reader}, {"reader.out"}), {&cover, &reader}, {kWidth, kHeight, false});
+    ASSERT_TRUE(cover.limited) << cover.refusal;
+    ASSERT_EQ(reader.seen.size(), cv::Size(kWidth, kHeight));
+    const cv::Mat inside = reader.seen(cv::Rect(3, 2, 5, 4));
+    EXPECT_EQ(cv::countNonZero(inside != 7.0f), 0) << "the covered pixels, in their places (row 0 at the top)";
+}
+
+TEST(ReadRegion, IsRefusedForAFieldReadWhole) {
+    test::sharedGlContext();
+    TexturePool pool;
+    CoverPass cover;
+    ReaderPass reader(ReadExtent::WholeImage);
+    GraphExecutor executor{pool};
+    executor.run(compile({&cover, &reader}, {"reader.out"}), {&cover, &reader}, {kWidth, kHeight, false});
+    EXPECT_FALSE(cover.limited);
+    EXPECT_NE(cover.refusal.find("GlPassContext::limitReadback(): 'cover.field'"), std::string::npos) << cover.refusal;
+}
+
+} // namespace
+} // namespace inkgraph
