@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <stdexcept>
 #include <system_error>
 
 namespace inkgraph {
@@ -131,7 +132,10 @@ void OutputSet::refuseInputs(const std::vector<RunInput>& inputs) const {
 }
 
 OutputSet::~OutputSet() {
-    if (mCommitted) return;
+    if (mCommitted) {
+        removeReplaced();
+        return;
+    }
     for (const Output& file : mOutputs) {
         if (file.temporary.empty()) continue;
         ::unlink(file.temporary.c_str());
@@ -182,13 +186,17 @@ void OutputSet::undo() {
         // one removed where there was none.
         if (file->moved && !file->backup.empty()) {
             if (::rename(file->backup.c_str(), file->destination.c_str()) == 0) {
+                forgetTemporary(file->backup);
                 file->backup.clear();
                 file->moved = false;
             }
         } else if (file->moved && ::unlink(file->destination.c_str()) == 0) {
             file->moved = false;
         }
-        if (!file->backup.empty() && ::unlink(file->backup.c_str()) == 0) file->backup.clear();
+        if (!file->backup.empty() && ::unlink(file->backup.c_str()) == 0) {
+            forgetTemporary(file->backup);
+            file->backup.clear();
+        }
     }
     if (mDump) mDump->undo();
 }
@@ -208,6 +216,8 @@ void OutputSet::commit() {
             const fs::path backup = temporarySibling(file.destination);
             if (::link(file.destination.c_str(), backup.c_str()) == 0) {
                 file.backup = backup;
+                // Until removeReplaced(), which may come after the commit: a signal then removes it with the rest.
+                registerTemporary(backup);
             } else if (errno != EPERM && errno != EOPNOTSUPP && errno != EMLINK) {
                 // (Those three: a file system without hard links. The file is then replaced without a way back.)
                 throw FileError("OutputSet::commit(): cannot keep the earlier " + file.flag + " '" +
@@ -233,13 +243,20 @@ void OutputSet::commit() {
     }
     // Committed. What is left is tidying: a crash here leaves names the next run sweeps.
     mCommitted = true;
-    for (Output& file : mOutputs) {
-        forgetTemporary(file.temporary);
-        if (!file.backup.empty()) ::unlink(file.backup.c_str());
-    }
+    for (Output& file : mOutputs) forgetTemporary(file.temporary);
     if (mDump) {
         mDump->finish();
         steps.doneAfterCommit("dump tidied");
+    }
+}
+
+void OutputSet::removeReplaced() {
+    if (!mCommitted) throw std::logic_error("OutputSet::removeReplaced(): nothing is committed yet");
+    for (Output& file : mOutputs) {
+        if (file.backup.empty()) continue;
+        ::unlink(file.backup.c_str());
+        forgetTemporary(file.backup);
+        file.backup.clear();
     }
 }
 

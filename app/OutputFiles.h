@@ -52,8 +52,12 @@ public:
     void stageDumpImage(const std::string& fileName, const cv::Mat& image);
     void stageDumpManifest(const std::string& json);
 
-    /** Puts everything staged in place, or nothing (throws FileError). */
+    /** Puts everything staged in place, or nothing (throws FileError). The files it replaced keep a second name
+     *  until removeReplaced() or the destructor. */
     void commit();
+    /** After commit(): removes the second names that kept the files it replaced, which frees their data (about half a
+     *  millisecond a file on a VM's disk, so a batch leaves it to another thread: app/Render.cpp). */
+    void removeReplaced();
 
 private:
     struct Output {

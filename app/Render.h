@@ -125,6 +125,8 @@ private:
     StillRenderer mRenderer;
     std::deque<std::unique_ptr<PendingStill>> mPending; ///< oldest first
     std::optional<Prefetch> mPrefetch;
+    /** The last committed still's OutputSet::removeReplaced(), on a thread of its own (commitFinished()). */
+    std::future<void> mTidying;
 };
 
 /** Standard output that cannot be written (--print-plan > /dev/full, a closed pipe) fails the run: throws FileError. */

@@ -107,6 +107,33 @@ TEST_F(OutputTransaction, AFailureAtAnyCommitStepChangesNothing) {
     }
 }
 
+TEST_F(OutputTransaction, ABatchRerunLeavesItsNewPicturesAndNoSecondNames) {
+    // A rerun replaces each picture; the commit keeps the old one under a second name until it is in place, and a
+    // pipelined batch removes those names on another thread (app/Render.cpp): when the run ends they are all gone.
+    const fs::path models = fs::path(INKGRAPH_SOURCE_ROOT) / "models";
+    std::ofstream(directory / "models.txt") << (models / "spot_c3d.obj").string() << "\n"
+                                            << (models / "cow_c3d.obj").string() << "\n"
+                                            << (models / "fandisk_c3d.obj").string() << "\n";
+    for (const char* jobs : {"2", "0"}) {
+        SCOPED_TRACE(std::string("--jobs ") + jobs);
+        const fs::path folder = directory / (std::string("jobs") + jobs);
+        fs::create_directories(folder);
+        for (const int side : {32, 48}) {
+            const std::string size = std::to_string(side) + "x" + std::to_string(side);
+            const CliRun batch = run("render --list models.txt --lines none --size " + size + " -q --jobs " + jobs +
+                                     " -o '" + (folder / "{index}.png").string() + "'");
+            ASSERT_EQ(batch.exitCode, 0) << batch.err;
+        }
+        const Snapshot files = snapshot(folder);
+        ASSERT_EQ(files.size(), 3u) << "only the three pictures: no second name left";
+        for (const auto& [name, entry] : files) {
+            EXPECT_TRUE(name == "1.png" || name == "2.png" || name == "3.png") << name;
+            ASSERT_EQ(entry.rfind("file: ", 0), 0u) << name;
+            EXPECT_EQ(pngSize(entry.substr(6)), std::make_pair(std::uint32_t(48), std::uint32_t(48))) << name;
+        }
+    }
+}
+
 TEST_F(OutputTransaction, ACrashAtAnyCommitStepLeavesEachOutputWholeAndTheNextRunRecovers) {
     makeEarlierOutputs();
     for (const std::string mode : kSwapModes) {
