@@ -66,28 +66,31 @@ private:
     ReadExtent mExtent;
 };
 
-TEST(ReadRegion, AFieldReadOnlyWhereCoveredComesBackInsideItsRegion) {
-    test::sharedGlContext();
+/** What CoverPass and a ReaderPass reading with `extent` leave after one run of the two. */
+struct CoverAndRead {
+    explicit CoverAndRead(ReadExtent extent) : reader(extent) {
+        test::sharedGlContext();
+        GraphExecutor executor{pool};
+        executor.run(compile({&cover, &reader}, {"reader.out"}), {&cover, &reader}, {kWidth, kHeight, false});
+    }
     TexturePool pool;
     CoverPass cover;
-    ReaderPass reader(ReadExtent::CoveredPixels);
-    GraphExecutor executor{pool};
-    executor.run(compile({&cover, &reader}, {"reader.out"}), {&cover, &reader}, {kWidth, kHeight, false});
-    ASSERT_TRUE(cover.limited) << cover.refusal;
-    ASSERT_EQ(reader.seen.size(), cv::Size(kWidth, kHeight));
-    const cv::Mat inside = reader.seen(cv::Rect(3, 2, 5, 4));
+    ReaderPass reader;
+};
+
+TEST(ReadRegion, AFieldReadOnlyWhereCoveredComesBackInsideItsRegion) {
+    const CoverAndRead run(ReadExtent::CoveredPixels);
+    ASSERT_TRUE(run.cover.limited) << run.cover.refusal;
+    ASSERT_EQ(run.reader.seen.size(), cv::Size(kWidth, kHeight));
+    const cv::Mat inside = run.reader.seen(cv::Rect(3, 2, 5, 4));
     EXPECT_EQ(cv::countNonZero(inside != 7.0f), 0) << "the covered pixels, in their places (row 0 at the top)";
 }
 
 TEST(ReadRegion, IsRefusedForAFieldReadWhole) {
-    test::sharedGlContext();
-    TexturePool pool;
-    CoverPass cover;
-    ReaderPass reader(ReadExtent::WholeImage);
-    GraphExecutor executor{pool};
-    executor.run(compile({&cover, &reader}, {"reader.out"}), {&cover, &reader}, {kWidth, kHeight, false});
-    EXPECT_FALSE(cover.limited);
-    EXPECT_NE(cover.refusal.find("GlPassContext::limitReadback(): 'cover.field'"), std::string::npos) << cover.refusal;
+    const CoverAndRead run(ReadExtent::WholeImage);
+    EXPECT_FALSE(run.cover.limited);
+    EXPECT_NE(run.cover.refusal.find("GlPassContext::limitReadback(): 'cover.field'"), std::string::npos)
+        << run.cover.refusal;
 }
 
 } // namespace
