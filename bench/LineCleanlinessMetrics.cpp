@@ -208,6 +208,18 @@ PointSetAgreement comparePointSets(const std::vector<cv::Point2d>& first, const 
                                countWithin(second, first, tolerance));
 }
 
+PointSetAgreement compareAcrossSizes(const std::vector<cv::Point2d>& smaller, const std::vector<cv::Point2d>& larger,
+                                     double factor, double tolerance) {
+    return comparePointSets(smaller, toSmallerImage(larger, factor), tolerance);
+}
+
+double smallestF1(const std::vector<PointSetAgreement>& agreements) {
+    if (agreements.empty()) throw std::invalid_argument("smallestF1(): 'agreements' is empty");
+    double smallest = agreements.front().f1;
+    for (const PointSetAgreement& agreement : agreements) smallest = std::min(smallest, agreement.f1);
+    return smallest;
+}
+
 Reprojection reprojectPoints(const std::vector<cv::Point2d>& points, const cv::Mat& sourceDepth,
                              const PinholeView& source, const cv::Mat& targetDepth, const PinholeView& target,
                              double relativeDepthTolerance, int searchRadius) {
@@ -268,6 +280,21 @@ Reprojection reprojectPoints(const std::vector<cv::Point2d>& points, const cv::M
         }
         result.points.push_back(landed);
     }
+    return result;
+}
+
+ViewAgreement compareAcrossViews(const std::vector<cv::Point2d>& first, const cv::Mat& firstDepth,
+                                 const PinholeView& firstView, const std::vector<cv::Point2d>& second,
+                                 const cv::Mat& secondDepth, const PinholeView& secondView, double tolerance,
+                                 double relativeDepthTolerance, int searchRadius) {
+    ViewAgreement result;
+    result.firstInSecond =
+        reprojectPoints(first, firstDepth, firstView, secondDepth, secondView, relativeDepthTolerance, searchRadius);
+    result.secondInFirst =
+        reprojectPoints(second, secondDepth, secondView, firstDepth, firstView, relativeDepthTolerance, searchRadius);
+    result.agreement = agreementFromCounts(
+        result.firstInSecond.points.size(), countWithin(result.firstInSecond.points, second, tolerance),
+        result.secondInFirst.points.size(), countWithin(result.secondInFirst.points, first, tolerance));
     return result;
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 /** @file The measures of how clean a render's lines are (issue 19), for bench/LineCleanliness.cpp: how much of the
  *  model the ink covers, how many SVG paths are specks, and how stable each line type's skeleton is across
- *  resolution and across a small turn of the camera. Pure functions over cv::Mat and STL: no GL, no file I/O, inputs
- *  never mutated. Point coordinates are those of postfx/LineMetrics.h: x right, y down, pixel (col, row) has its
- *  centre at (col, row).
+ *  resolution and across small turns of the camera (issues 19 and 39). Pure functions over cv::Mat and STL: no GL,
+ *  no file I/O, inputs never mutated. Point coordinates are those of postfx/LineMetrics.h: x right, y down, pixel
+ *  (col, row) has its centre at (col, row).
  *
  *  Agreement of two point sets A and B at a tolerance k (the F1 of postfx/LineMetrics.h, made symmetric because
  *  neither set is the truth): precision = share of A's points within k of a point of B, recall = share of B's points
@@ -83,6 +83,17 @@ PointSetAgreement agreementFromCounts(std::size_t firstCount, std::size_t firstW
 PointSetAgreement comparePointSets(const std::vector<cv::Point2d>& first, const std::vector<cv::Point2d>& second,
                                    double tolerance);
 
+/** One view's skeleton at two sizes, compared at the smaller size's pixel grid: `larger` (points of the image `factor`
+ *  times the size) mapped by toSmallerImage(), then comparePointSets(smaller, mapped, tolerance), so `tolerance` is in
+ *  the smaller image's pixels and precision is the share of the smaller image's points. Throws as toSmallerImage()
+ *  and countWithin() do. */
+PointSetAgreement compareAcrossSizes(const std::vector<cv::Point2d>& smaller, const std::vector<cv::Point2d>& larger,
+                                     double factor, double tolerance);
+
+/** The smallest F1 of `agreements` (the worst of several comparisons). Throws std::invalid_argument naming
+ *  'agreements' when it is empty. */
+double smallestF1(const std::vector<PointSetAgreement>& agreements);
+
 /** A camera as the dump's manifest.json gives it: OpenGL view and projection matrices (rows as written) and the
  *  image size. NDC x = (col + 0.5) / width * 2 - 1, NDC y = 1 - (row + 0.5) / height * 2 (row 0 at the top). */
 struct PinholeView {
@@ -111,5 +122,22 @@ struct Reprojection {
 Reprojection reprojectPoints(const std::vector<cv::Point2d>& points, const cv::Mat& sourceDepth,
                              const PinholeView& source, const cv::Mat& targetDepth, const PinholeView& target,
                              double relativeDepthTolerance = 0.03, int searchRadius = 2);
+
+/** Two views' skeletons compared through reprojection both ways. */
+struct ViewAgreement {
+    PointSetAgreement agreement; ///< first = the first view's points in the second, second = the converse
+    Reprojection firstInSecond;  ///< the first view's points reprojected into the second
+    Reprojection secondInFirst;  ///< the second view's points reprojected into the first
+};
+
+/** `first` (skeleton points of the view `firstView` with depth `firstDepth`) reprojected into the second view and
+ *  `second` into the first (reprojectPoints() with `relativeDepthTolerance` and `searchRadius`); precision = share of
+ *  the first's reprojected points within `tolerance` of `second`, recall = share of the second's reprojected points
+ *  within `tolerance` of `first` (agreementFromCounts()). Points left out by the reprojection count in neither share.
+ *  Throws as reprojectPoints() and countWithin() do. */
+ViewAgreement compareAcrossViews(const std::vector<cv::Point2d>& first, const cv::Mat& firstDepth,
+                                 const PinholeView& firstView, const std::vector<cv::Point2d>& second,
+                                 const cv::Mat& secondDepth, const PinholeView& secondView, double tolerance,
+                                 double relativeDepthTolerance = 0.03, int searchRadius = 2);
 
 } // namespace inkgraph::bench

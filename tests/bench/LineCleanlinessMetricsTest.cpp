@@ -136,6 +136,45 @@ TEST(PointSetAgreement, EmptyCasesFollowLineMetrics) {
     EXPECT_THROW(agreementFromCounts(1, 2, 0, 0), std::invalid_argument);
 }
 
+TEST(CompareAcrossSizes, MapsTheLargerSkeletonOntoTheSmallerGridWithTheToleranceInSmallerPixels) {
+    // A horizontal line at row 5 of the smaller image, drawn at twice the size on row 11 (rows 10 and 11 cover the
+    // smaller row 5; the thinned line may take either): row 11 maps to (11 + 0.5) / 2 - 0.5 = 5.25, x 0..19 to
+    // -0.25..9.25.
+    std::vector<cv::Point2d> smaller;
+    std::vector<cv::Point2d> larger;
+    for (int x = 0; x < 10; ++x) smaller.emplace_back(x, 5);
+    for (int x = 0; x < 20; ++x) larger.emplace_back(x, 11);
+    const PointSetAgreement same = compareAcrossSizes(smaller, larger, 2.0, 1.5);
+    EXPECT_EQ(same.firstCount, 10u); // precision is the smaller image's share
+    EXPECT_EQ(same.secondCount, 20u);
+    EXPECT_DOUBLE_EQ(same.f1, 1.0);
+
+    // The tolerance is in smaller pixels: (21, 13) maps to (10.25, 6.25), exactly 1.5 from (10.25, 4.75) (3 apart in
+    // the larger image's pixels).
+    EXPECT_DOUBLE_EQ(compareAcrossSizes({{10.25, 4.75}}, {{21, 13}}, 2.0, 1.5).f1, 1.0);
+    EXPECT_DOUBLE_EQ(compareAcrossSizes({{10.25, 4.74}}, {{21, 13}}, 2.0, 1.5).f1, 0.0);
+
+    // The line drawn two smaller rows lower at the larger size (row 15 -> 7.25): 2.25 px apart, nothing agrees.
+    std::vector<cv::Point2d> lower;
+    for (int x = 0; x < 20; ++x) lower.emplace_back(x, 15);
+    EXPECT_DOUBLE_EQ(compareAcrossSizes(smaller, lower, 2.0, 1.5).f1, 0.0);
+    // The larger line's right half missing: its points all agree (recall 1), the smaller's only up to x = 5.
+    const std::vector<cv::Point2d> half(larger.begin(), larger.begin() + 10); // x 0..9 -> -0.25..4.25
+    const PointSetAgreement partial = compareAcrossSizes(smaller, half, 2.0, 1.5);
+    EXPECT_EQ(partial.firstWithin, 6u); // x = 0..5: 5 is within 1.5 of (4.25, 5.25) (distance 0.79)
+    EXPECT_EQ(partial.secondWithin, 10u);
+    EXPECT_THROW(compareAcrossSizes(smaller, larger, 0.0, 1.5), std::invalid_argument);
+    EXPECT_THROW(compareAcrossSizes(smaller, larger, 2.0, -1.0), std::invalid_argument);
+}
+
+TEST(SmallestF1, IsTheWorstComparison) {
+    EXPECT_DOUBLE_EQ(
+        smallestF1({agreementFromCounts(4, 4, 4, 4), agreementFromCounts(4, 2, 4, 4), agreementFromCounts(0, 0, 0, 0)}),
+        2.0 * 0.5 / 1.5);
+    EXPECT_DOUBLE_EQ(smallestF1({agreementFromCounts(0, 0, 3, 0)}), 0.0);
+    EXPECT_THROW(smallestF1({}), std::invalid_argument);
+}
+
 /** OpenGL's gluPerspective for a square image, fov 90 degrees: x_ndc = x / -z. */
 cv::Matx44d squarePerspective(double near, double far) {
     return cv::Matx44d(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -(far + near) / (far - near), -2 * far * near / (far - near), 0, 0,
@@ -187,6 +226,50 @@ TEST(Reprojection, DropsPointsWithoutDepthOutsideTheFrameOrHidden) {
     EXPECT_THROW(reprojectPoints({}, cv::Mat(size, CV_8UC1), viewAt(0, size), targetDepth, viewAt(0, size)),
                  std::invalid_argument);
     EXPECT_THROW(reprojectPoints({}, sourceDepth, viewAt(0, size), targetDepth, viewAt(0, size), 0.0),
+                 std::invalid_argument);
+}
+
+TEST(CompareAcrossViews, ReprojectsBothWaysAndLeavesOutWhatLeavesTheFrame) {
+    // A plane at depth 10 in both views; the second view's eye is 0.4 to the right, so a point moves by -2 px.
+    const cv::Size size(100, 100);
+    const cv::Mat depth(size, CV_32FC1, cv::Scalar(10.0f));
+    std::vector<cv::Point2d> first;
+    for (int y = 10; y < 90; ++y) first.emplace_back(50, y);
+    first.emplace_back(1, 50); // lands at x = -1 in the second view: left out, not counted as a miss
+    const auto line = [](double x) {
+        std::vector<cv::Point2d> points;
+        for (int y = 10; y < 90; ++y) points.emplace_back(x, y);
+        return points;
+    };
+    const ViewAgreement exact =
+        compareAcrossViews(first, depth, viewAt(0.0, size), line(48), depth, viewAt(0.4, size), 1.5);
+    EXPECT_EQ(exact.firstInSecond.outsideFrame, 1u);
+    EXPECT_EQ(exact.agreement.firstCount, 80u);
+    EXPECT_EQ(exact.agreement.secondCount, 80u);
+    EXPECT_DOUBLE_EQ(exact.agreement.f1, 1.0);
+    ASSERT_EQ(exact.secondInFirst.points.size(), 80u);
+    EXPECT_NEAR(exact.secondInFirst.points[0].x, 50.0, 1e-9);
+
+    // The second view's line one pixel off where the first's lands (47 against 48): within 1.5 both ways.
+    EXPECT_DOUBLE_EQ(
+        compareAcrossViews(first, depth, viewAt(0.0, size), line(47), depth, viewAt(0.4, size), 1.5).agreement.f1, 1.0);
+    // Two pixels off (46): A's points land at 48, B's at 48 against A's 50, nothing within 1.5 either way.
+    const ViewAgreement apart =
+        compareAcrossViews(first, depth, viewAt(0.0, size), line(46), depth, viewAt(0.4, size), 1.5);
+    EXPECT_EQ(apart.agreement.firstWithin, 0u);
+    EXPECT_EQ(apart.agreement.secondWithin, 0u);
+    EXPECT_DOUBLE_EQ(apart.agreement.f1, 0.0);
+    // At a tolerance of 2 the same two lines agree.
+    EXPECT_DOUBLE_EQ(
+        compareAcrossViews(first, depth, viewAt(0.0, size), line(46), depth, viewAt(0.4, size), 2.0).agreement.f1, 1.0);
+    // The second view drew only half the line (rows 10..49): recall (B's share) is 1, precision (A's share) 41 / 80.
+    std::vector<cv::Point2d> halfLine = line(48);
+    halfLine.resize(40); // rows 10..49
+    const ViewAgreement half =
+        compareAcrossViews(first, depth, viewAt(0.0, size), halfLine, depth, viewAt(0.4, size), 1.5);
+    EXPECT_EQ(half.agreement.firstWithin, 41u); // rows 10..50: 50 is 1 from row 49, 51 is 2
+    EXPECT_DOUBLE_EQ(half.agreement.recall, 1.0);
+    EXPECT_THROW(compareAcrossViews(first, depth, viewAt(0.0, size), line(48), depth, viewAt(0.4, size), -1.0),
                  std::invalid_argument);
 }
 
