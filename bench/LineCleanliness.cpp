@@ -1,5 +1,6 @@
-// inkgraph_line_cleanliness: how clean one model's lines are in one look (issue 19), measured by running an inkgraph
-// binary (any build: the same tool measures the one before a change and the one after) and reading its dumps.
+// inkgraph_line_cleanliness: how clean one model's lines are in one look (issue 19), and how still they hold across
+// sizes and small turns (issue 39), measured by running an inkgraph binary (any build: the same tool measures the one
+// before a change and the one after) and reading its dumps.
 #include "render/BackgroundThreads.h"
 #include "render/ImageFiles.h"
 #include "bench/LineCleanlinessMetrics.h"
@@ -36,17 +37,22 @@ constexpr const char* kHelp =
                                  [--columns TYPE,...] [--depth-tolerance R] [--header] [-- RENDER FLAGS...]
 
 Renders FILE with the inkgraph binary BIN (its environment is passed on: LD_LIBRARY_PATH, INKGRAPH_SHADER_DIR, ...)
-three times, with RENDER FLAGS (the look, e.g. --shading comic --lines outline,contour,suggestive,crease) added:
+seven times, with RENDER FLAGS (the look, e.g. --shading comic --lines outline,contour,suggestive,crease) added:
   view A  --orbit 0,14.04 (the default view) at 1024x1024, with --dump, --svg and --stats;
-  view A  at 2048x2048, with --dump;
-  view B  --orbit 1,14.04 (1 degree around, same distance) at 1024x1024, with --dump.
+  view A  at 512x512 and at 2048x2048, with --dump;
+  views   --orbit 1,14.04, -1,14.04, 5,14.04 and -5,14.04 (1 and 5 degrees either way around the up axis, the
+          same distance) at 1024x1024, with --dump.
 and measures (bench/README.md defines each number):
   ink share       pixels where the largest line layer is >= 128, on the model (coverage > 0) / model pixels,
                   and off the model / model pixels;
   SVG paths       <path> count, share shorter than 3 output pixels, median length;
-  F1 size         per line type, the 1024 skeleton against the 2048 one mapped to 1024 pixels, within 1.5 px;
-  F1 view         per line type, A's skeleton reprojected into B through A's depth against B's, and B's into A
-                  against A's (points that leave the frame or are hidden there are left out), within 1.5 px.
+  F1 size         per line type and size pair, view A's skeleton at the smaller size against the one at twice the
+                  size mapped to the smaller size's pixels, within 1.5 of those pixels: 512/1024 and 1024/2048;
+  F1 view         per line type and turn, A's 1024 skeleton reprojected into the turned view through A's depth
+                  against that view's, and the turned view's into A against A's (points that leave the frame or are
+                  hidden there are left out), within 1.5 px: +1, -1, +5 and -5 degrees.
+The table cell per type is "F1 512/1024, F1 1024/2048 / F1 view +-1, F1 view +-5", each view number the smaller of
+the two turns; the JSON has every comparison and the minima.
 Writes the renders under DIR, the numbers as JSON to FILE (default DIR/line-cleanliness.json), and prints one
 markdown table row (with --header, the header first).
 
@@ -59,6 +65,14 @@ markdown table row (with --header, the header first).
 constexpr double kTolerancePixels = 1.5;
 constexpr int kInkThreshold = 128;
 constexpr double kShortPathPixels = 3.0;
+constexpr const char* kElevation = "14.04";
+
+/** The turned views of the F1 view numbers: azimuth in degrees from view A's 0, and the name of each. */
+struct Turn {
+    int degrees;
+    const char* name; ///< the JSON key and render name: "+1", "-1", ...
+};
+constexpr Turn kTurns[] = {{1, "+1"}, {-1, "-1"}, {5, "+5"}, {-5, "-5"}};
 
 struct Options {
     fs::path inkgraph;
@@ -273,12 +287,24 @@ std::string fixed(double value, int decimals) {
     return text;
 }
 
+nlohmann::json droppedJson(const inkgraph::bench::Reprojection& reprojection) {
+    return {{"without_depth", reprojection.withoutDepth},
+            {"outside_frame", reprojection.outsideFrame},
+            {"hidden", reprojection.hiddenInTarget}};
+}
+
+std::string orbitAt(int degrees) { return std::to_string(degrees) + "," + kElevation; }
+
 int measure(const Options& options) {
     fs::create_directories(options.work);
     // Depth for reprojection and coverage for the ink share: asking for them is what makes the G-buffer keep them.
-    const Render viewA = render(options, "a1024", 1024, "0,14.04", "gbuffer.coverage,gbuffer.depth", true);
-    const Render viewA2048 = render(options, "a2048", 2048, "0,14.04", "", false);
-    const Render viewB = render(options, "b1024", 1024, "1,14.04", "gbuffer.depth", false);
+    const Render viewA = render(options, "a1024", 1024, orbitAt(0), "gbuffer.coverage,gbuffer.depth", true);
+    const Render viewA512 = render(options, "a512", 512, orbitAt(0), "", false);
+    const Render viewA2048 = render(options, "a2048", 2048, orbitAt(0), "", false);
+    std::vector<Render> turned;
+    for (const Turn& turn : kTurns)
+        turned.push_back(render(options, std::string("turn") + turn.name + "-1024", 1024, orbitAt(turn.degrees),
+                                "gbuffer.depth", false));
 
     const std::vector<std::string> types = drawnLineTypes(viewA.manifest);
     nlohmann::json json;
@@ -289,7 +315,8 @@ int measure(const Options& options) {
     json["line_types"] = types;
     json["tolerance_pixels"] = kTolerancePixels;
     json["view_a_distance"] = eyeDistance(viewA.manifest);
-    json["view_b_distance"] = eyeDistance(viewB.manifest);
+    for (std::size_t index = 0; index < turned.size(); ++index)
+        json["turn_distance"][kTurns[index].name] = eyeDistance(turned[index].manifest);
 
     // Ink share at 1024x1024.
     const cv::Mat coverage = readChannel(viewA.dump / "coverage.png", CV_8U);
@@ -327,41 +354,58 @@ int measure(const Options& options) {
                    {"median_length", paths.medianLength},
                    {"per_type", svgTypes}};
 
-    // Skeleton stability per line type: across size, and across a 1 degree turn.
+    // Skeleton stability per line type: across sizes (512/1024, 1024/2048), and across turns of 1 and 5 degrees either
+    // way.
     const PinholeView cameraA = cameraOfDump(viewA.manifest, viewA.dump);
-    const PinholeView cameraB = cameraOfDump(viewB.manifest, viewB.dump);
     const cv::Mat depthA = readChannel(viewA.dump / "depth.exr", CV_32F);
-    const cv::Mat depthB = readChannel(viewB.dump / "depth.exr", CV_32F);
-    // The table cell per type: "size / view", or "empty" when the type drew nothing at either size (both F1s are then 1
-    // by definition, which would read as perfect lines).
+    std::vector<PinholeView> turnedCameras;
+    std::vector<cv::Mat> turnedDepths;
+    for (const Render& view : turned) {
+        turnedCameras.push_back(cameraOfDump(view.manifest, view.dump));
+        turnedDepths.push_back(readChannel(view.dump / "depth.exr", CV_32F));
+    }
+    // The table cell per type: "512/1024, 1024/2048 / +-1, +-5", or "empty" when the type drew nothing in any of the
+    // renders (every F1 is then 1 by definition, which would read as perfect lines).
     std::map<std::string, std::string> cellByType;
     for (const std::string& type : types) {
         const std::string file = "lines-" + type + ".png";
         const auto skeleton = inkgraph::bench::skeletonPoints(layersA[type], kInkThreshold);
-        const auto skeleton2048 = inkgraph::bench::toSmallerImage(
-            inkgraph::bench::skeletonPoints(readChannel(viewA2048.dump / file, CV_8U), kInkThreshold), 2.0);
-        const auto size = inkgraph::bench::comparePointSets(skeleton, skeleton2048, kTolerancePixels);
+        const auto skeleton512 =
+            inkgraph::bench::skeletonPoints(readChannel(viewA512.dump / file, CV_8U), kInkThreshold);
+        const auto skeleton2048 =
+            inkgraph::bench::skeletonPoints(readChannel(viewA2048.dump / file, CV_8U), kInkThreshold);
+        const auto size512To1024 = inkgraph::bench::compareAcrossSizes(skeleton512, skeleton, 2.0, kTolerancePixels);
+        const auto size1024To2048 = inkgraph::bench::compareAcrossSizes(skeleton, skeleton2048, 2.0, kTolerancePixels);
+        const double sizeMin = inkgraph::bench::smallestF1({size512To1024, size1024To2048});
+        bool anyPoints = !skeleton.empty() || !skeleton512.empty() || !skeleton2048.empty();
 
-        const auto skeletonB = inkgraph::bench::skeletonPoints(readChannel(viewB.dump / file, CV_8U), kInkThreshold);
-        const auto aInB =
-            inkgraph::bench::reprojectPoints(skeleton, depthA, cameraA, depthB, cameraB, options.depthTolerance);
-        const auto bInA =
-            inkgraph::bench::reprojectPoints(skeletonB, depthB, cameraB, depthA, cameraA, options.depthTolerance);
-        const auto view = inkgraph::bench::agreementFromCounts(
-            aInB.points.size(), inkgraph::bench::countWithin(aInB.points, skeletonB, kTolerancePixels),
-            bInA.points.size(), inkgraph::bench::countWithin(bInA.points, skeleton, kTolerancePixels));
-        const auto dropped = [](const inkgraph::bench::Reprojection& reprojection) {
-            return nlohmann::json{{"without_depth", reprojection.withoutDepth},
-                                  {"outside_frame", reprojection.outsideFrame},
-                                  {"hidden", reprojection.hiddenInTarget}};
-        };
-        json["types"][type] = {{"f1_size", agreementJson(size)},
-                               {"f1_view", agreementJson(view)},
-                               {"view_dropped_a_to_b", dropped(aInB)},
-                               {"view_dropped_b_to_a", dropped(bInA)}};
-        cellByType[type] = size.firstCount == 0 && size.secondCount == 0
-                               ? std::string("empty")
-                               : fixed(size.f1, 3) + " / " + fixed(view.f1, 3);
+        nlohmann::json views = nlohmann::json::object();
+        std::map<int, std::vector<PointSetAgreement>> byAngle; // |degrees| -> both directions
+        for (std::size_t index = 0; index < turned.size(); ++index) {
+            const auto skeletonTurned =
+                inkgraph::bench::skeletonPoints(readChannel(turned[index].dump / file, CV_8U), kInkThreshold);
+            anyPoints = anyPoints || !skeletonTurned.empty();
+            const auto view =
+                inkgraph::bench::compareAcrossViews(skeleton, depthA, cameraA, skeletonTurned, turnedDepths[index],
+                                                    turnedCameras[index], kTolerancePixels, options.depthTolerance);
+            nlohmann::json entry = agreementJson(view.agreement);
+            entry["dropped_a_to_turn"] = droppedJson(view.firstInSecond);
+            entry["dropped_turn_to_a"] = droppedJson(view.secondInFirst);
+            views[kTurns[index].name] = entry;
+            byAngle[std::abs(kTurns[index].degrees)].push_back(view.agreement);
+        }
+        const double view1Min = inkgraph::bench::smallestF1(byAngle.at(1));
+        const double view5Min = inkgraph::bench::smallestF1(byAngle.at(5));
+        json["types"][type] = {{"f1_size",
+                                {{"512_1024", agreementJson(size512To1024)},
+                                 {"1024_2048", agreementJson(size1024To2048)},
+                                 {"min", sizeMin}}},
+                               {"f1_view", views},
+                               {"f1_view_min_1deg", view1Min},
+                               {"f1_view_min_5deg", view5Min}};
+        cellByType[type] = anyPoints ? fixed(size512To1024.f1, 3) + ", " + fixed(size1024To2048.f1, 3) + " / " +
+                                           fixed(view1Min, 3) + ", " + fixed(view5Min, 3)
+                                     : std::string("empty");
     }
 
     inkgraph::writeTextFile(options.json, json.dump(2) + "\n");
@@ -370,7 +414,7 @@ int measure(const Options& options) {
         std::string header = "| model | look | ink % | ink outside % | SVG paths | % < 3 px | median path px |";
         std::string rule = "|---|---|---:|---:|---:|---:|---:|";
         for (const std::string& column : options.columns) {
-            header += " " + column + " F1 size / view |";
+            header += " " + column + " F1 512/1024, 1024/2048 / ±1°, ±5° |";
             rule += "---|";
         }
         std::cout << header << "\n" << rule << "\n";
