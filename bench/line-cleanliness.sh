@@ -1,15 +1,18 @@
 #!/usr/bin/env bash
-# The line-cleanliness table of issue 19 (bench/README.md): inkgraph_line_cleanliness over eight models in two looks,
-# one markdown table with the machine and date at the top. The inkgraph binary is an argument, so the same sweep
-# measures a build before a change and one after; its environment (LD_LIBRARY_PATH, INKGRAPH_SHADER_DIR,
-# LP_NUM_THREADS) is the caller's. Models run one after another; about 3 minutes on the 2-core CPU machine.
+# The line-cleanliness table of issues 19 and 39 (bench/README.md): inkgraph_line_cleanliness over every bundled model
+# and character (the nine models/*.obj and the seven glTF and VRM files of models/characters/) in two looks, one
+# markdown table with the machine and date at the top. The inkgraph binary is an argument, so the same sweep measures
+# a build before a change and one after; its environment (LD_LIBRARY_PATH, INKGRAPH_SHADER_DIR, LP_NUM_THREADS) is the
+# caller's. Models run one after another, seven renders each (512, 1024 and 2048 px, and turns of +-1 and +-5
+# degrees); about 10 minutes on the 2-core CPU machine (an estimate: 9 s a run for Suzanne, 32 runs, the large models
+# slower; the whole sweep has not been timed since issue 39 added the renders).
 #   bench/line-cleanliness.sh INKGRAPH_BINARY OUT.md [WORK_DIR]
 # TOOL=path/to/inkgraph_line_cleanliness overrides the default build/bench/inkgraph_line_cleanliness.
 # LOOKS="comic default comic-merge" picks the rows (default "comic default"); comic-merge is the comic look with
 # --overlapping-lines merge (issue 19's binaries and later); pro-lines the types of issue 36 (intersection,
 # object-boundary, hidden mesh silhouettes and intersections, solid so the F1 columns compare lines, not dash phases)
 # over outline and contour.
-# MODELS="models/a.obj ..." measures those models instead of the eight; COLUMNS=TYPE,... names the types given an F1
+# MODELS="models/a.obj ..." measures those models instead of the sixteen; COLUMNS=TYPE,... names the types given an F1
 # column (inkgraph_line_cleanliness --columns; pro-lines defaults to its own types).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -24,15 +27,24 @@ tool=${TOOL:-$root/build/bench/inkgraph_line_cleanliness}
 [ -x "$binary" ] || { echo "line-cleanliness.sh: '$binary' is not an executable" >&2; exit 2; }
 [ -x "$tool" ] || { echo "line-cleanliness.sh: '$tool' is not built (cmake --build build --target inkgraph_line_cleanliness)" >&2; exit 2; }
 
+# Every model inkgraph renders in models/ (models/characters/three-vrm-test.vrma is an animation, not a model).
 default_models=(
     models/bunny_c3d_70k.obj
     models/armadillo_cgal_52k.obj
     models/lucy_blendify_15k.obj
     models/suzanne_npm_4k.obj
+    models/cow_c3d.obj
+    models/fandisk_c3d.obj
+    models/spot_c3d.obj
+    models/teapot_c3d.obj
+    models/torusknot_open3d.obj
     models/characters/fox.glb
+    models/characters/box-textured.glb
+    models/characters/duck.glb
     models/characters/godette.vrm
     models/characters/mtoon-uv-animation-test.vrm
     models/characters/expressions-binary-overrides.vrm
+    models/characters/expressions-binary-overridden.vrm
 )
 if [ -n "${MODELS:-}" ]; then read -r -a models <<<"$MODELS"; else models=("${default_models[@]}"); fi
 comic_flags=(--shading comic --lines outline,contour,suggestive,crease)
