@@ -214,9 +214,12 @@ std::optional<Crossing> keptCrossing(float dwA, float dwB, float dwdwA, float dw
     const float strength = rule.featureSizeSquared * dwdw / denominator;
     if (!(strength > rule.threshold)) return std::nullopt;
     // rtsc's fade of the excess over the threshold: a line grows in from nothing as a view change makes it stronger,
-    // instead of popping in at a fixed strength.
+    // instead of popping in at a fixed strength. A denominator that is positive but tiny (a few pixels of a small
+    // model, where w and n.(c - p) nearly vanish together) overflows the strength to infinity, whose fade is 1, not
+    // infinity over infinity.
     const float excess = strength - rule.threshold;
-    return Crossing{t, rule.fade > 0.0f ? excess / (excess + rule.fade) : 1.0f, std::abs(dwA) <= std::abs(dwB)};
+    const float alpha = rule.fade > 0.0f && std::isfinite(excess) ? excess / (excess + rule.fade) : 1.0f;
+    return Crossing{t, alpha, std::abs(dwA) <= std::abs(dwB)};
 }
 
 /** The point of a crossing between (colA, rowA) and its neighbour to the right, or below when `downward`. */

@@ -567,6 +567,32 @@ TEST(SuggestiveContours, PointsAgreeWithTheDerivatives) {
     }
 }
 
+TEST(SuggestiveContours, StrengthsThatOverflowFadeToFullNotNaN) {
+    // A crossing's strength fs^2 D_w D_w(n.v) / (|w|^2 n.v) overflows float where the denominator is tiny but positive
+    // (duck.glb at 64x64 met one); a feature size whose square is beyond float's range overflows every crossing so.
+    // The fade of an infinite excess is 1: without the care, infinity over infinity made the point's strength NaN and
+    // the stroke stage refused the skeleton.
+    const Torus torus;
+    const SyntheticGBuffer buffer =
+        test::renderTorus(torusCamera(256, 50.0, 4.5), glm::dvec3(0.0), torus.ring, torus.tube);
+    SuggestiveSettings faded;
+    faded.threshold = 0.0f;
+    faded.fade = 0.5f;
+    const LineSkeleton ordinary = extractSuggestiveContours(buffer.radial, buffer.depth, faded);
+    ASSERT_GT(ordinary.points.size(), 20u);
+    SuggestiveSettings overflowing = faded;
+    overflowing.featureSize = 1e30f;
+    const LineSkeleton skeleton = extractSuggestiveContours(buffer.radial, buffer.depth, overflowing);
+    // The same crossings (the strength's size decides nothing while every crossing passes the threshold of 0), each
+    // at full strength.
+    ASSERT_EQ(skeleton.points.size(), ordinary.points.size());
+    for (std::size_t index = 0; index < skeleton.points.size(); ++index) {
+        EXPECT_EQ(skeleton.points[index].position, ordinary.points[index].position);
+        EXPECT_EQ(skeleton.points[index].strength, 1.0f) << index;
+        EXPECT_LT(ordinary.points[index].strength, 1.0f) << index;
+    }
+}
+
 TEST(SuggestiveContours, TinyAndEdgeFilledImagesAreHandled) {
     // Covered up to the image's edges, where no pixel has all its neighbours; sizes below the 4-column vector width.
     for (const cv::Size size : {cv::Size(1, 1), cv::Size(2, 3), cv::Size(3, 3), cv::Size(5, 4), cv::Size(7, 130)}) {
