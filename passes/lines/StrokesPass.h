@@ -16,8 +16,9 @@
  *  Where two types draw the same line (the contour along the outline's band), the type earlier in the composite's
  *  order draws it and the later one gives way there (mergeOverlaps()) when the look asks for it.
  *
- *  Everything is chained at the data resolution (--supersample S): a GL band, drawn at the output size, is thinned
- *  there and its middle line mapped up. Each layer is stroked at its type's width in output pixels and then
+ *  Everything is chained at the data resolution (--supersample S) on one-pixel skeletons: a kernel's skeleton is
+ *  thinned where it marked a line two pixels wide, and a GL band, drawn at the output size, is thinned there and
+ *  its middle line mapped up. Each layer is stroked at its type's width in output pixels and then
  *  area-downsampled, as every CPU line layer always was (strokeLines). */
 
 #include "gl/GlPass.h"
