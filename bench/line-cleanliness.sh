@@ -11,7 +11,8 @@
 # LOOKS="comic default comic-merge" picks the rows (default "comic default"); comic-merge is the comic look with
 # --overlapping-lines merge (issue 19's binaries and later); pro-lines the types of issue 36 (intersection,
 # object-boundary, hidden mesh silhouettes and intersections, solid so the F1 columns compare lines, not dash phases)
-# over outline and contour.
+# over outline and contour; comic-object the comic look with the object-space suggestive contours (suggestive-object)
+# in place of the image-space ones, to measure both (issue 39).
 # MODELS="models/a.obj ..." measures those models instead of the sixteen; COLUMNS=TYPE,... names the types given an F1
 # column (inkgraph_line_cleanliness --columns; pro-lines defaults to its own types).
 set -euo pipefail
@@ -68,12 +69,14 @@ for model in "${models[@]}"; do
         case $look in
         comic) flags=("${comic_flags[@]}") ;;
         comic-merge) flags=("${comic_flags[@]}" --overlapping-lines merge) ;;
+        comic-object) flags=(--shading comic --lines outline,contour,suggestive-object,crease) ;;
         default) flags=() ;;
         pro-lines) flags=("${pro_flags[@]}") ;;
-        *) echo "line-cleanliness.sh: unknown look '$look' (comic, default, comic-merge, pro-lines)" >&2; exit 2 ;;
+        *) echo "line-cleanliness.sh: unknown look '$look' (comic, default, comic-merge, comic-object, pro-lines)" >&2; exit 2 ;;
         esac
         columns=${COLUMNS:-}
         [ -z "$columns" ] && [ "$look" = pro-lines ] && columns=$pro_columns
+        [ -z "$columns" ] && [ "$look" = comic-object ] && columns=outline,contour,suggestive-object,crease
         column_flags=()
         [ -n "$columns" ] && column_flags=(--columns "$columns")
         echo "line-cleanliness.sh: $name, $look" >&2
