@@ -21,7 +21,7 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 constexpr double kJoinRadiusAt1024 = 2.0;
 /** What the stage holds per data pixel while it runs, for one line type at a time: the pixel strengths and the kept
  *  widths (float each), the tracer's padded copies (2), the kept mask (1), and the stroke canvas and nearest-point
- *  ints (9); and until it ends, each type's thinned mask (a byte each, four allowed for: the comic look's types);
+ *  ints (9); and until it ends, each type's thinned mask (a byte each; four counted, the comic look's types);
  *  the chains and the thinned skeletons' points stay until it ends, within the skeletons' own bytes. */
 constexpr std::size_t kScratchBytesPerPixel = 24;
 /** The kept strokes handed on for --svg: their points, within a skeleton's bytes. */

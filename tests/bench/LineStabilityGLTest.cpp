@@ -126,7 +126,8 @@ protected:
         return shared;
     }
 
-    /** Renders `mesh` with `lookArguments` at 1024 and 2048 pixels and turned by +-1 degree, and checks every type. */
+    /** Renders `mesh` with the look GetParam() names at 1024 and 2048 pixels and turned by +-1 degree, and checks
+     *  every type it draws. */
     void expectStable(const MeshData& mesh, const char* meshName) {
         ig::MeshArrays arrays;
         arrays.vertices = mesh.vertices.data();
@@ -143,7 +144,7 @@ protected:
             SCOPED_TRACE(std::string(meshName) + ", " + GetParam() + ": " + type);
             // A type that draws nothing here (creases on smooth shapes) has nothing to hold still.
             if (points.empty() && a2048.skeletons.at(type).empty()) continue;
-            ASSERT_GT(points.size(), 50u) << "drawn at 2048 but (almost) not at 1024";
+            ASSERT_GT(points.size(), 50u) << "too few skeleton points at 1024 to measure";
             const PointSetAgreement sizes = compareAcrossSizes(points, a2048.skeletons.at(type), 2.0, kTolerance);
             std::cout << meshName << " " << type << ": F1 1024/2048 " << sizes.f1;
             EXPECT_GE(sizes.f1, kGoal) << "1024/2048: precision " << sizes.precision << ", recall " << sizes.recall;

@@ -1,6 +1,7 @@
 // The stroke stage of issue 19 (postfx/Strokes.h, passes/lines/StrokesPass.h) from the real `inkgraph` executable:
 // --min-stroke-length, --line-weight, --overlapping-lines and --suggestive-seed, checked against --stats, the dumped
-// line layers and the --svg. Needs a GL context (llvmpipe in CI); each case renders at 256x256 or less.
+// line layers and the --svg; and the thinning of kernel skeletons (issue 39). Needs a GL context (llvmpipe in CI);
+// each case renders at 256x256 or less, but the torus knot's at 1024x1024, the size where its contour fell apart.
 #include "render/ImageFiles.h"
 #include "tests/app/CliTestSupport.h"
 
