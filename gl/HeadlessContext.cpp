@@ -173,6 +173,12 @@ HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) : mProce
                         "can be made without a window system. ") +
             kInstallHint);
 
+    // libepoxy resolves an EGL entry point on its first call, by the EGL version of the display current then. Resolve
+    // eglReleaseThread now, while no display is current: a context destroyed at exit (a static's destructor) after
+    // NVIDIA's driver has torn its displays down would otherwise make the first call, and epoxy would find no
+    // provider and abort the process. With no context current the call changes nothing that matters here.
+    if (eglGetCurrentContext() == EGL_NO_CONTEXT) eglReleaseThread();
+
     std::vector<std::string> failures;
     Attempt chosen;
 
