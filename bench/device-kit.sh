@@ -2,8 +2,11 @@
 # The bench's programs with every library they load, for a machine where none of our Debian 12 libraries are
 # installed (a GPU machine's image with only its NVIDIA driver): bench/device-rows.sh runs them there.
 #   bench/device-kit.sh [BUILD_DIR] [KIT_DIR]      (defaults build/ and .devicekit/; after scripts/build.sh)
-# KIT_DIR/bin holds inkgraph, inkgraph_egl_probe, inkgraph_make_mesh, inkgraph_bench (left out when the kit would pass
-# KIT_LIMIT_MB, default 40) and GNU time (whole-process.sh's peak RSS; images often lack /usr/bin/time). KIT_DIR/lib
+# KIT_DIR/bin holds inkgraph, inkgraph_egl_probe, inkgraph_make_mesh, GNU time (whole-process.sh's peak RSS; images
+# often lack /usr/bin/time) and, each left out when the kit would pass KIT_LIMIT_MB, inkgraph_bench and the GL tests
+# named in KIT_TESTS (default tests/passes/passes_post_stage_gl_tests: the GPU post stage against the CPU's).
+# KIT_ARCHIVE=1 also writes KIT_DIR.tar.xz, about a third of the kit, for a device tool that carries at most 64 MiB
+# with the tree (then KIT_LIMIT_MB defaults to 120, not 40); device-rows.sh unpacks it when KIT_DIR is absent. KIT_DIR/lib
 # holds what `ldd` lists for them, under the names it lists (the sonames), glibc and its loader included, plus what is
 # opened at run time and so not listed: glvnd's libEGL.so.1, libOpenGL.so.0 and libGL.so.1 (libepoxy), libtbbmalloc.so.2
 # (libtbb), glibc's small libraries a driver links (libpthread, librt, ...). No GL driver is carried (Mesa's
@@ -15,12 +18,13 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
 kit=${2:-$root/.devicekit}
-limit_mb=${KIT_LIMIT_MB:-40}
+archive=${KIT_ARCHIVE:-0}
+limit_mb=${KIT_LIMIT_MB:-$([ "$archive" = 1 ] && echo 120 || echo 40)}
+read -r -a tests <<<"${KIT_TESTS-tests/passes/passes_post_stage_gl_tests}"
 
 programs=(inkgraph bench/inkgraph_egl_probe bench/inkgraph_make_mesh)
-for program in "${programs[@]}" bench/inkgraph_bench; do
-    [ -x "$build/$program" ] || [ "$program" = bench/inkgraph_bench ] ||
-        { echo "device-kit.sh: $build/$program is missing (build it first)" >&2; exit 1; }
+for program in "${programs[@]}"; do
+    [ -x "$build/$program" ] || { echo "device-kit.sh: $build/$program is missing (build it first)" >&2; exit 1; }
 done
 # Never a folder that is not an earlier kit.
 if [ -e "$kit" ] && [ -n "$(ls -A "$kit")" ] && [ ! -f "$kit/MANIFEST" ]; then
@@ -93,21 +97,25 @@ for library in "$kit"/lib/*; do
 done
 
 size_of() { du -sb "$@" | awk '{s += $1} END {print s}'; }
-if [ -x "$build/bench/inkgraph_bench" ]; then
-    extra=$(size_of "$build/bench/inkgraph_bench")
+add_optional_program() { # path in the build, name in the kit: only while the kit stays under the limit
+    [ -x "$1" ] || { echo "device-kit.sh: $1 is missing: left out" >&2; return 0; }
+    local extra name arrow path _ total
+    extra=$(size_of "$1")
     while read -r name arrow path _; do
         if [ "$arrow" = "=>" ] && [ -f "$path" ] && [ ! -e "$kit/lib/$name" ]; then
             extra=$((extra + $(size_of "$(readlink -f "$path")")))
         fi
-    done < <(ldd "$build/bench/inkgraph_bench")
+    done < <(ldd "$1")
     total=$(($(size_of "$kit") + extra))
     if ((total > limit_mb * 1024 * 1024)); then
-        echo "device-kit.sh: inkgraph_bench left out: the kit would be $((total / 1048576)) MiB," \
+        echo "device-kit.sh: $2 left out: the kit would be $((total / 1048576)) MiB," \
             "over $limit_mb MiB (KIT_LIMIT_MB)" >&2
     else
-        add_program "$build/bench/inkgraph_bench" inkgraph_bench
+        add_program "$1" "$2"
     fi
-fi
+}
+if [ -x "$build/bench/inkgraph_bench" ]; then add_optional_program "$build/bench/inkgraph_bench" inkgraph_bench; fi
+for test in "${tests[@]}"; do add_optional_program "$build/$test" "$(basename "$test")"; done
 
 # The wrappers: POSIX sh (dash where /bin/sh is dash), no subprocess, so a whole-process row pays ~1 ms for them.
 shaders=$(realpath -m --relative-to="$kit" "$root/shaders")
@@ -164,3 +172,9 @@ fi
 
 echo "device kit: $kit: $(ls "$kit/bin" | tr '\n' ' ')+ $(ls "$kit/lib" | wc -l) libraries," \
     "$(awk -v b="$(size_of "$kit")" 'BEGIN { printf "%.1f MiB (%.1f MB)", b / 1048576, b / 1e6 }')"
+if [ "$archive" = 1 ]; then
+    rm -f "$kit.tar.xz"
+    tar -C "$(dirname "$kit")" -cf - "$(basename "$kit")" | xz -T0 -6 >"$kit.tar.xz.tmp"
+    mv "$kit.tar.xz.tmp" "$kit.tar.xz"
+    echo "device kit archive: $kit.tar.xz, $(awk -v b="$(size_of "$kit.tar.xz")" 'BEGIN { printf "%.1f MiB", b / 1048576 }')"
+fi

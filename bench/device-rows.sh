@@ -9,15 +9,26 @@
 # (ALLOW_LLVMPIPE=1 accepts it: a CPU machine testing the kit); whole-process.sh's rows (ROWS, default "probe tetra
 # bunny batch large comic36 comic36-serial comic36-p4 comic36-p8 comic36-p16", RUNS rounds, default 7, with
 # GPU_BUSY=1: each comic36 row's mean nvidia-smi utilization) into $OUT/gpu-rows.md, then (READBACK_ROWS=1, the
-# default) the comic36 row again with --readback early and late forced, into $OUT/gpu-readback.md; inkgraph_bench, when the kit has it, with
-# BENCH_FILTER (default BM_GBufferVsBareDraw|BM_DeferredShading, one process per |-separated pattern) and
-# BENCH_REPETITIONS (default 5) into $OUT/gpu-bench.txt and gpu-bench-PATTERN.json. A failed still stops the script
+# default) the comic36 row again with --readback early and late forced, into $OUT/gpu-readback-*.md, and
+# (POST_STAGE_ROWS=1, the default) with --post-stage cpu and gpu forced, into $OUT/gpu-post-stage-*.md, the 36 PNGs
+# of each compared byte for byte; the medians of --stats' steps over the 36 stills drawn serially, into
+# $OUT/gpu-still-times.md; the kit's GL tests (bin/*_gl_tests, GoogleTest) into $OUT/gpu-gl-tests.txt;
+# inkgraph_bench, when the kit has it, with BENCH_FILTER (default BM_GBufferVsBareDraw|BM_DeferredShading|BM_PostStage,
+# one process per |-separated pattern) and BENCH_REPETITIONS (default 5) into $OUT/gpu-bench.txt and
+# gpu-bench-PATTERN.json. The kit is .devicekit/, unpacked from .devicekit.tar.xz (device-kit.sh's KIT_ARCHIVE=1)
+# when only the archive came. A failed still stops the script
 # (its stderr, the probe's output and a loader trace in $OUT); a failed row or benchmark leaves its output in $OUT,
 # the later steps still run and the exit status is 1. Everything printed is also in $OUT/device-rows.log.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 kit=${KIT:-$root/.devicekit}
+if [ ! -e "$kit" ] && [ -f "$kit.tar.xz" ]; then
+    echo "device-rows.sh: unpacking $kit.tar.xz"
+    tar -C "$(dirname "$kit")" -xJf "$kit.tar.xz" ||
+        python3 -c 'import sys, tarfile; tarfile.open(sys.argv[1]).extractall(sys.argv[2])' "$kit.tar.xz" \
+            "$(dirname "$kit")" || { echo "device-rows.sh: $kit.tar.xz could not be unpacked" >&2; exit 1; }
+fi
 if [ ! -x "$kit/run/inkgraph" ]; then
     echo "device-rows.sh: no device kit in $kit (bench/device-kit.sh makes it)" >&2
     exit 1
@@ -26,7 +37,7 @@ kit=$(cd "$kit" && pwd)
 out=${OUT:-/tmp/out}
 rows=${ROWS:-"probe tetra bunny batch large comic36 comic36-serial comic36-p4 comic36-p8 comic36-p16"}
 runs=${RUNS:-7}
-filter=${BENCH_FILTER:-"BM_GBufferVsBareDraw|BM_DeferredShading"}
+filter=${BENCH_FILTER:-"BM_GBufferVsBareDraw|BM_DeferredShading|BM_PostStage"}
 repetitions=${BENCH_REPETITIONS:-5}
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -95,6 +106,15 @@ if [ -n "$vendor_library" ]; then
     grep -E "not found|version|error" "$out/vendor-libs.txt" || echo "its libraries resolve ($out/vendor-libs.txt)"
 fi
 
+# The bench and the GL tests read models/ and bench/shaders/ from the source tree they were built in
+# (INKGRAPH_SOURCE_ROOT).
+source_root=$(sed -n 's/^source_root=//p' "$kit/MANIFEST")
+if [ -n "$source_root" ] && [ ! -e "$source_root" ]; then
+    mkdir -p "$(dirname "$source_root")"
+    ln -s "$root" "$source_root"
+    echo "made $source_root a link to $root (the build's source root)"
+fi
+
 section "one still: the device platform and the renderer"
 stats=$out/bunny-stats.json
 still=(render models/bunny_c3d_70k.obj -o "$out/bunny.png" --shading cel --lines silhouette,contour,suggestive
@@ -150,32 +170,89 @@ else
     failed=1
 fi
 
-if [ "${READBACK_ROWS:-1}" = 1 ]; then
-    section "--readback early vs late: the comic36 row, 3 rounds each"
-    # A wrapper per setting, so whole-process.sh runs the same row with the flag added.
-    for timing in early late; do
-        printf '#!/bin/sh\nexec "%s" "$@" --readback %s\n' "$kit/run/inkgraph" "$timing" >"$out/inkgraph-$timing"
-        chmod +x "$out/inkgraph-$timing"
-        if GPU_BUSY=1 ROWS=comic36 INKGRAPH=$out/inkgraph-$timing GNU_TIME=$gnu_time timeout 120 \
-            bash bench/whole-process.sh 3 >"$out/gpu-readback-$timing.md"; then
-            echo "--readback $timing:"
-            sed -n 3p "$out/gpu-readback-$timing.md"
+# The comic36 row again with one flag forced to each of its words (a wrapper per word, so whole-process.sh runs the
+# same row with the flag added): FLAG, NAME (the files' stem), the words.
+flag_rows() {
+    local flag=$1 name=$2 word
+    shift 2
+    section "$flag $*: the comic36 row, 3 rounds each"
+    for word in "$@"; do
+        printf '#!/bin/sh\nexec "%s" "$@" %s %s\n' "$kit/run/inkgraph" "$flag" "$word" >"$out/inkgraph-$name-$word"
+        chmod +x "$out/inkgraph-$name-$word"
+        if GPU_BUSY=1 ROWS=comic36 INKGRAPH=$out/inkgraph-$name-$word GNU_TIME=$gnu_time timeout 120 \
+            bash bench/whole-process.sh 3 >"$out/gpu-$name-$word.md"; then
+            echo "$flag $word:"
+            sed -n 3p "$out/gpu-$name-$word.md"
         else
-            echo "FAILED (exit $?): --readback $timing"
+            echo "FAILED (exit $?): $flag $word"
             failed=1
         fi
     done
+}
+if [ "${READBACK_ROWS:-1}" = 1 ]; then flag_rows --readback readback early late; fi
+if [ "${POST_STAGE_ROWS:-1}" = 1 ]; then
+    flag_rows --post-stage post-stage cpu gpu
+    # The same 36 stills from either post stage: byte for byte, and how many pixels differ where they do not.
+    for _ in 1 2 3 4; do grep -v '^#' examples/batch/models.txt; done >"$out/comic36.txt"
+    for device in cpu gpu; do
+        rm -rf "/tmp/post-$device" && mkdir -p "/tmp/post-$device"
+        timeout 60 "$kit/run/inkgraph" render --list "$out/comic36.txt" -o "/tmp/post-$device/{index}.png" \
+            --shading cel --lines silhouette,contour,suggestive --post-stage "$device" -q ||
+            { echo "FAILED (exit $?): the comic36 stills with --post-stage $device"; failed=1; }
+    done
+    same=0 different=""
+    for file in /tmp/post-cpu/*.png; do
+        if cmp -s "$file" "/tmp/post-gpu/$(basename "$file")"; then same=$((same + 1)); else different+=" $(basename "$file")"; fi
+    done
+    echo "--post-stage cpu against gpu: $same of $(ls /tmp/post-cpu | wc -l) PNGs byte-identical${different:+; differ:$different}"
 fi
+
+section "where a comic still's time goes: the comic36 stills, --jobs 0, --stats each"
+# Medians over the 36 stills of --stats' per-pass milliseconds (GL passes to glFinish, the post stage's), loading
+# and writing, serial so that each still's numbers are its own; into $OUT/gpu-still-times.md.
+rm -rf /tmp/still-stats && mkdir -p /tmp/still-stats
+for _ in 1 2 3 4; do grep -v '^#' examples/batch/models.txt; done >"$out/comic36.txt"
+if timeout 90 "$kit/run/inkgraph" render --list "$out/comic36.txt" -o "/tmp/still-stats/{index}.png" --shading cel \
+    --lines silhouette,contour,suggestive --jobs 0 --stats "/tmp/still-stats/{index}.json" -q &&
+    command -v python3 >/dev/null; then
+    python3 - /tmp/still-stats >"$out/gpu-still-times.md" <<'PYTHON'
+import glob, json, statistics, sys
+stills = [json.load(open(f)) for f in sorted(glob.glob(sys.argv[1] + "/*.json"))]
+rows = {}
+for still in stills:
+    for key in ("load_ms", "context_ms", "write_ms", "total_ms"):
+        rows.setdefault(key, []).append(still.get(key, 0) or 0)
+    for stage in still.get("passes", []):
+        rows.setdefault("pass " + stage["name"], []).append(stage["ms"])
+print(f"| step | median ms over {len(stills)} stills | max ms |")
+print("|---|---:|---:|")
+for key, values in rows.items():
+    print(f"| {key} | {statistics.median(values):.2f} | {max(values):.2f} |")
+PYTHON
+    cat "$out/gpu-still-times.md"
+else
+    echo "FAILED or no python3: the comic36 stills with --stats"
+    failed=1
+fi
+
+section "the kit's GL tests"
+tests_found=0
+: >"$out/gpu-gl-tests.txt"
+for test in "$kit"/run/*_gl_tests; do
+    [ -x "$test" ] || continue
+    tests_found=1
+    if timeout 120 "$test" >>"$out/gpu-gl-tests.txt" 2>&1; then
+        echo "$(basename "$test"): passed ($(grep -c '^\[       OK \]' "$out/gpu-gl-tests.txt") tests so far)"
+    else
+        echo "FAILED (exit $?): $(basename "$test") (timeout 120 s)"
+        grep -E '^\[  FAILED  \]|Failure|error' "$out/gpu-gl-tests.txt" | head -20 || true
+        failed=1
+    fi
+done
+[ "$tests_found" = 1 ] || echo "skipped: the kit has no GL tests (KIT_TESTS)"
 
 section "inkgraph_bench: $filter"
 if [ -x "$kit/run/inkgraph_bench" ]; then
-    # The bench reads the bunny and bench/shaders/ from the source tree it was built in (INKGRAPH_SOURCE_ROOT).
-    source_root=$(sed -n 's/^source_root=//p' "$kit/MANIFEST")
-    if [ -n "$source_root" ] && [ ! -e "$source_root" ]; then
-        mkdir -p "$(dirname "$source_root")"
-        ln -s "$root" "$source_root"
-        echo "made $source_root a link to $root (the bench's source root)"
-    fi
     if [ -f "$source_root/models/bunny_c3d_70k.obj" ] && [ -f "$source_root/bench/shaders/bare_draw.vert" ]; then
         : >"$out/gpu-bench.txt"
         for pattern in ${filter//|/ }; do # one process each: a benchmark that aborts loses only its own numbers

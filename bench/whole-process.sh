@@ -69,7 +69,7 @@ command_of() { # row -> the command, one word per line
         printf '%s\n' "$inkgraph" render --list "$work/comic36.txt" -o "$work/$1/{index}.png" "${comic[@]}" \
             "${jobs[@]}" -q ;;
     comic36-p*) # one line: the command is read back one word per line
-        printf '%s\n' bash -c 'for p in $(seq "$1"); do mkdir -p "$3/p$p"; "$0" render --list "$2" -o "$3/p$p/{index}.png" --shading cel --lines silhouette,contour,suggestive -q & done; status=0; for p in $(seq "$1"); do wait -n || status=1; done; exit $status' \
+        printf '%s\n' bash -c 'pids=(); for p in $(seq "$1"); do mkdir -p "$3/p$p"; "$0" render --list "$2" -o "$3/p$p/{index}.png" --shading cel --lines silhouette,contour,suggestive -q & pids+=($!); done; status=0; for pid in "${pids[@]}"; do wait "$pid" || { status=$?; echo "a process of the row exited with status $status" >&2; }; done; exit $status' \
             "$inkgraph" "${1#comic36-p}" "$work/comic36.txt" "$work/$1" ;;
     large) printf '%s\n' "$inkgraph" render "$large" -o "$work/out/large.png" --shading comic \
         --lines silhouette,contour,suggestive,crease -q ;;
@@ -78,9 +78,10 @@ command_of() { # row -> the command, one word per line
 
 sample_gpu=0
 [ "${GPU_BUSY:-0}" = 1 ] && command -v nvidia-smi >/dev/null && sample_gpu=1
-declare -A times memory busy
+declare -A times=() memory=() busy=() failures=()
 for _ in $(seq "$runs"); do
     for row in $rows; do
+        [ -z "${failures[$row]:-}" ] || continue
         mapfile -t command < <(command_of "$row")
         folder=$root
         [[ $row == *@before ]] && folder=$(cd "$(dirname "$BEFORE")/.." && pwd)
@@ -90,9 +91,16 @@ for _ in $(seq "$runs"); do
             sampler=$!
         fi
         start=$(date +%s%N)
-        (cd "$folder" && "$gnu_time" -f %M -o "$work/rss" "${command[@]}" >/dev/null 2>"$work/stderr") ||
-            { echo "$row failed:" >&2; cat "$work/stderr" >&2; exit 1; }
+        (cd "$folder" && "$gnu_time" -f %M -o "$work/rss" "${command[@]}" >/dev/null 2>"$work/stderr") &&
+            status=0 || status=$?
         end=$(date +%s%N)
+        if [ "$status" != 0 ]; then # the row is dropped from the later rounds; the others still run
+            [ -z "$sampler" ] || { kill "$sampler" 2>/dev/null || true; wait "$sampler" 2>/dev/null || true; }
+            echo "$row failed (exit $status):" >&2
+            cat "$work/stderr" "$work/rss" >&2 # GNU time says how the command ended (a signal, a status)
+            failures[$row]="exit $status: $(cat "$work/stderr" "$work/rss" | grep -v '^[[:space:]]*$' | head -1 || true)"
+            continue
+        fi
         if [ -n "$sampler" ]; then
             kill "$sampler" 2>/dev/null || true
             wait "$sampler" 2>/dev/null || true
@@ -109,8 +117,14 @@ range() { tr ' ' '\n' | grep . | sort -n | awk 'NR==1{lo=$1} {hi=$1} END {print 
 declare -A medians
 echo "| row | median ms | range ms | peak RSS MiB (median) | note |"
 echo "|---|---|---|---|---|"
-for row in $rows; do medians[$row]=$(echo "${times[$row]}" | median); done # notes compare rows
+for row in $rows; do # notes compare rows
+    if [ -n "${times[$row]:-}" ]; then medians[$row]=$(echo "${times[$row]}" | median); fi
+done
 for row in $rows; do
+    if [ -n "${failures[$row]:-}" ]; then
+        echo "| $row | failed | | | ${failures[$row]//|/\\|} |"
+        continue
+    fi
     rss=$(( $(echo "${memory[$row]}" | median) / 1024 ))
     note=""
     case $row in
@@ -134,3 +148,4 @@ for row in $rows; do
 done
 echo
 echo "$runs rounds; $(nproc) cores; $(date -u +%Y-%m-%d); LP_NUM_THREADS=${LP_NUM_THREADS:-unset}"
+[ "${#failures[@]}" = 0 ] || exit 1
