@@ -119,8 +119,16 @@ for test in "${tests[@]}"; do add_optional_program "$build/$test" "$(basename "$
 
 # The wrappers: POSIX sh (dash where /bin/sh is dash), no subprocess, so a whole-process row pays ~1 ms for them.
 shaders=$(realpath -m --relative-to="$kit" "$root/shaders")
+# inkgraph starts itself again with its malloc tunables (app/main.cpp), but not when the dynamic loader started it, as
+# the wrapper does: the wrapper sets them instead, as inkgraph would (GLIBC_TUNABLES set by the caller, even empty,
+# is kept), so the GPU rows measure what an installed inkgraph runs with.
+tunables=$(sed -n 's/.*kMallocTunables = "\([^"]*\)";.*/\1/p' "$root/app/main.cpp")
+[ -n "$tunables" ] || { echo "device-kit.sh: no kMallocTunables in $root/app/main.cpp" >&2; exit 1; }
 for program in "$kit"/bin/*; do
     name=$(basename "$program")
+    malloc_tunables=""
+    [ "$name" = inkgraph ] && malloc_tunables="GLIBC_TUNABLES=\${GLIBC_TUNABLES-$tunables}
+export GLIBC_TUNABLES"
     cat >"$kit/run/$name" <<EOF
 #!/bin/sh
 # bin/$name of the device kit (bench/device-kit.sh), through the kit's loader and libraries: Debian's glibc and
@@ -129,6 +137,7 @@ case \$0 in */*) kit=\${0%/*}/.. ;; *) kit=.. ;; esac
 case \$kit in /*) ;; *) kit=\$PWD/\$kit ;; esac
 INKGRAPH_SHADER_DIR=\${INKGRAPH_SHADER_DIR:-\$kit/$shaders}
 export INKGRAPH_SHADER_DIR
+$malloc_tunables
 exec "\$kit/lib/ld-linux-x86-64.so.2" --library-path "\$kit/lib\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}" --argv0 "\$0" \\
     "\$kit/bin/$name" "\$@"
 EOF
