@@ -93,9 +93,12 @@ const cv::Mat& ResourceStore::image(const std::string& name) {
             throw std::logic_error("ResourceStore::image(): '" + name + "' is an object without a picture");
         return source.image;
     }
-    if (source.image.empty())
-        source.image = source.readback ? source.readback->finish()
-                                       : readTexture(*source.texture, ReadbackFlip::Fastest, source.readRegion);
+    if (source.image.empty() && source.readback) {
+        source.image = source.readback->finish();
+        mPool.releaseReadbackBuffer(source.readback->takeBuffer());
+    } else if (source.image.empty()) {
+        source.image = readTexture(*source.texture, ReadbackFlip::Fastest, source.readRegion);
+    }
     source.readback.reset();
     return source.image;
 }
@@ -112,10 +115,12 @@ void ResourceStore::beginReadback(const std::string& name) {
     if (!source.texture || !source.image.empty() || source.readback || source.texture->samples() > 1) return;
     // One glGetTextureImage takes a 32-bit byte count: larger images (half floats read as floats) are read in bands
     // when asked for, as readTexture() does.
-    const std::size_t bytes = std::size_t(source.texture->width()) * std::size_t(source.texture->height()) *
-                              std::size_t(CV_ELEM_SIZE(cvTypeOf(source.texture->format())));
+    const std::size_t bytes = readbackBytesOf(*source.texture);
     if (bytes > std::size_t(std::numeric_limits<GLsizei>::max())) return;
-    source.readback = std::make_unique<PendingReadback>(*source.texture);
+    // Only the region a pass limited it to (GlPassContext::limitReadback(), set while the pass ran), into a pooled
+    // buffer of the whole texture's size, so the next still of this size reuses it.
+    source.readback =
+        std::make_unique<PendingReadback>(*source.texture, mPool.acquireReadbackBuffer(bytes), source.readRegion);
 }
 
 void ResourceStore::moveToHost(const std::string& name) {

@@ -138,19 +138,35 @@ cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip, std::optional<P
     return image;
 }
 
+std::size_t readbackBytesOf(const GlTexture& texture) {
+    return std::size_t(texture.width()) * std::size_t(texture.height()) *
+           std::size_t(CV_ELEM_SIZE(cvTypeOf(texture.format())));
+}
+
 PendingReadback::PendingReadback(const GlTexture& texture)
-    : mBuffer(std::size_t(texture.width()) * std::size_t(texture.height()) *
-                  std::size_t(CV_ELEM_SIZE(cvTypeOf(texture.format()))),
-              GL_MAP_READ_BIT, texture.label() + " read-back"),
-      mFormat(texture.format()), mWidth(texture.width()), mHeight(texture.height()), mLabel(texture.label()) {
+    : PendingReadback(texture, GlBuffer(readbackBytesOf(texture), GL_MAP_READ_BIT, texture.label() + " read-back"),
+                      std::nullopt) {}
+
+PendingReadback::PendingReadback(const GlTexture& texture, GlBuffer buffer, std::optional<PixelRect> region)
+    : mBuffer(std::move(buffer)), mFormat(texture.format()), mWidth(texture.width()), mHeight(texture.height()),
+      mRegion(region.value_or(PixelRect{0, 0, texture.width(), texture.height()})), mLabel(texture.label()) {
     if (texture.samples() > 1)
         throw std::invalid_argument("PendingReadback(): texture '" + texture.label() + "' is multisampled");
+    if (mBuffer.byteCount() < readbackBytesOf(texture))
+        throw std::invalid_argument("PendingReadback(): the buffer of " + std::to_string(mBuffer.byteCount()) +
+                                    " bytes is too small for texture '" + texture.label() + "'");
+    if (mRegion.x < 0 || mRegion.y < 0 || mRegion.width < 0 || mRegion.height < 0 ||
+        mRegion.x + mRegion.width > mWidth || mRegion.y + mRegion.height > mHeight)
+        throw std::invalid_argument("PendingReadback(): the region is not within texture '" + texture.label() + "'");
     const GlFormat glFormat = glFormatOf(texture.format());
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, mBuffer.id());
-    // GL's rows, bottom first: finish() turns them over while it copies them out, which costs nothing extra.
-    glGetTextureImage(texture.id(), 0, glFormat.pixelFormat, glFormat.pixelType, GLsizei(mBuffer.byteCount()), nullptr);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    if (mRegion.width > 0 && mRegion.height > 0) {
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, mBuffer.id());
+        // GL's rows, bottom first: finish() turns them over while it copies them out, which costs nothing extra.
+        glGetTextureSubImage(texture.id(), 0, mRegion.x, mRegion.y, 0, mRegion.width, mRegion.height, 1,
+                             glFormat.pixelFormat, glFormat.pixelType, GLsizei(mBuffer.byteCount()), nullptr);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    }
     if (const GLenum error = glGetError(); error == GL_OUT_OF_MEMORY)
         throw GlOutOfMemoryError("PendingReadback(): no memory for the read-back of '" + texture.label() + "'");
     else if (error != GL_NO_ERROR)
@@ -172,18 +188,32 @@ cv::Mat PendingReadback::finish() {
     mFence = nullptr;
     if (waited == GL_WAIT_FAILED)
         throw std::runtime_error("PendingReadback::finish(): waiting for the read-back of '" + mLabel + "' failed");
+    cv::Mat image(mHeight, mWidth, cvTypeOf(mFormat));
+    mFinished = true;
+    if (mRegion.width == 0 || mRegion.height == 0) return image;
+    const std::size_t regionRowBytes = std::size_t(mRegion.width) * image.elemSize();
+    const std::size_t regionBytes = regionRowBytes * std::size_t(mRegion.height);
     const auto* bytes = static_cast<const unsigned char*>(
-        glMapNamedBufferRange(mBuffer.id(), 0, GLsizeiptr(mBuffer.byteCount()), GL_MAP_READ_BIT));
+        glMapNamedBufferRange(mBuffer.id(), 0, GLsizeiptr(regionBytes), GL_MAP_READ_BIT));
     if (bytes == nullptr)
         throw std::runtime_error("PendingReadback::finish(): the driver did not map the read-back of '" + mLabel +
                                  "' (" + glErrorName(glGetError()) + ")");
-    cv::Mat image(mHeight, mWidth, cvTypeOf(mFormat));
-    mapPagesAhead(image);
-    const std::size_t rowBytes = std::size_t(mWidth) * image.elemSize();
-    for (int row = 0; row < mHeight; ++row)
-        std::memcpy(image.ptr(mHeight - 1 - row), bytes + std::size_t(row) * rowBytes, rowBytes);
+    // GL row y lands in image row height - 1 - y, at the region's columns.
+    const int topRow = mHeight - mRegion.y - mRegion.height;
+    cv::Mat regionRows = image.rowRange(topRow, topRow + mRegion.height);
+    mapPagesAhead(regionRows);
+    const std::size_t columnOffset = std::size_t(mRegion.x) * image.elemSize();
+    for (int row = 0; row < mRegion.height; ++row)
+        std::memcpy(image.ptr(mHeight - 1 - (mRegion.y + row)) + columnOffset,
+                    bytes + std::size_t(row) * regionRowBytes, regionRowBytes);
     glUnmapNamedBuffer(mBuffer.id());
     return image;
+}
+
+GlBuffer PendingReadback::takeBuffer() {
+    if (!mFinished)
+        throw std::logic_error("PendingReadback::takeBuffer(): the read-back of '" + mLabel + "' is not finished");
+    return std::move(mBuffer);
 }
 
 void uploadImage(GlTexture& texture, const cv::Mat& image) {

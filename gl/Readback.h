@@ -27,18 +27,27 @@ enum class ReadbackFlip {
 cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip = ReadbackFlip::Fastest,
                     std::optional<PixelRect> region = std::nullopt);
 
+/** The bytes of a whole texture as a read-back holds them: the size of a PendingReadback's buffer. */
+std::size_t readbackBytesOf(const GlTexture& texture);
+
 /** A texture's read-back begun without waiting: the driver copies it into a pixel-pack buffer behind a fence, after
  *  the work queued before it, while the caller queues more (on a GPU the copy overlaps later passes). finish() waits
- *  for the fence and returns the image as readTexture() would. Single-sample textures only. */
+ *  for the fence and returns the image as readTexture() would, `region` included (only its pixels are copied: the
+ *  others hold whatever the memory held). Single-sample textures only. The buffer, of readbackBytesOf(texture)
+ *  bytes and mapped for reading, is the caller's (TexturePool::acquireReadbackBuffer()), for takeBuffer() to hand back
+ *  once finished. */
 class PendingReadback {
 public:
     explicit PendingReadback(const GlTexture& texture);
+    PendingReadback(const GlTexture& texture, GlBuffer buffer, std::optional<PixelRect> region);
     ~PendingReadback();
     PendingReadback(const PendingReadback&) = delete;
     PendingReadback& operator=(const PendingReadback&) = delete;
     /** Waits for the copy and returns it, row 0 at the top. Once. Throws std::runtime_error naming the texture when
      *  the wait or the mapping fails. */
     cv::Mat finish();
+    /** The buffer, for reuse, once finish() has returned (std::logic_error before). */
+    GlBuffer takeBuffer();
 
 private:
     GlBuffer mBuffer;
@@ -46,7 +55,9 @@ private:
     Format mFormat;
     int mWidth;
     int mHeight;
+    PixelRect mRegion; ///< GL window coordinates; its rows lie tightly packed in the buffer, bottom row first
     std::string mLabel;
+    bool mFinished = false;
 };
 
 /** Uploads `image` (row 0 = top) into a texture of the same size and matching type. Throws on a mismatch and for a

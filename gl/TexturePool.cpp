@@ -18,4 +18,18 @@ GlTexture TexturePool::acquire(Format format, int width, int height, std::string
 
 void TexturePool::release(GlTexture texture) { mFree.push_back(std::move(texture)); }
 
+GlBuffer TexturePool::acquireReadbackBuffer(std::size_t byteCount) {
+    for (auto it = mFreeReadbackBuffers.begin(); it != mFreeReadbackBuffers.end(); ++it) {
+        if (it->byteCount() == byteCount) {
+            GlBuffer buffer = std::move(*it);
+            mFreeReadbackBuffers.erase(it);
+            return buffer;
+        }
+    }
+    ++mReadbackBuffersCreated;
+    return GlBuffer(byteCount, GL_MAP_READ_BIT, "read-back");
+}
+
+void TexturePool::releaseReadbackBuffer(GlBuffer buffer) { mFreeReadbackBuffers.push_back(std::move(buffer)); }
+
 } // namespace inkgraph

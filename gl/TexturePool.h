@@ -1,6 +1,6 @@
 #pragma once
 /** @file Reuses textures between resources whose lifetimes do not overlap (keyed on format, size and samples), the only
- *  aliasing an offline renderer needs. */
+ *  aliasing an offline renderer needs, and the pixel-pack buffers of early read-backs (keyed on size). */
 
 #include "gl/GlObjects.h"
 
@@ -15,16 +15,26 @@ public:
      *  can. */
     GlTexture acquire(Format format, int width, int height, std::string_view label, int samples = 1);
     void release(GlTexture texture);
-    /** Deletes the released textures (those in use stay with their users). */
-    void dropFree() { mFree.clear(); }
+    /** A buffer the CPU maps for reading (GL_MAP_READ_BIT) of `byteCount` bytes; reuses a released one of that size.
+     *  Creating one per read-back costs on a GPU: the driver pins fresh host memory for each, and frees it again. */
+    GlBuffer acquireReadbackBuffer(std::size_t byteCount);
+    void releaseReadbackBuffer(GlBuffer buffer);
+    /** Deletes the released textures and buffers (those in use stay with their users). */
+    void dropFree() {
+        mFree.clear();
+        mFreeReadbackBuffers.clear();
+    }
 
     std::size_t createdCount() const { return mCreatedCount; }
     std::size_t reusedCount() const { return mReusedCount; }
+    std::size_t readbackBuffersCreated() const { return mReadbackBuffersCreated; }
 
 private:
     std::vector<GlTexture> mFree;
+    std::vector<GlBuffer> mFreeReadbackBuffers;
     std::size_t mCreatedCount = 0;
     std::size_t mReusedCount = 0;
+    std::size_t mReadbackBuffersCreated = 0;
 };
 
 } // namespace inkgraph

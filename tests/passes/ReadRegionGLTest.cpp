@@ -1,6 +1,7 @@
 // A pass that covers only part of its target may have its read-backs kept to that part (GlPassContext::
 // limitReadback()): allowed only when every reader reads the texture where covered (ReadExtent::CoveredPixels), and
-// then the pixels inside come back as drawn. Needs a GL context (llvmpipe in CI).
+// then the pixels inside come back as drawn, read back late (when the reader asks) or early (a pixel-pack buffer
+// from the pool, begun after the writer ran). Needs a GL context (llvmpipe in CI).
 #include "gl/GlPass.h"
 #include "gl/GraphExecutor.h"
 #include "gl/TexturePool.h"
@@ -20,7 +21,7 @@ constexpr int kWidth = 12;
 constexpr int kHeight = 8;
 const PixelRect kCovered{3, 2, 5, 4}; // GL window coordinates: image columns 3..7, rows 8 - 2 - 4 = 2 .. 5
 
-/** Clears `cover.field` (r32f) to 7 inside kCovered alone and limits its read-backs to it. */
+/** Clears `cover.field` (r32f) to 0, then to 7 inside kCovered, and limits its read-backs to kCovered. */
 class CoverPass : public GlPass {
 public:
     std::string_view name() const override { return "cover"; }
@@ -30,6 +31,8 @@ public:
         framebuffer.attachColor(0, gl.outputTexture("field"));
         framebuffer.finish({0});
         framebuffer.bind();
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glClearBufferfv(GL_COLOR, 0, zero); // what a whole read sees outside the covered pixels
         glEnable(GL_SCISSOR_TEST);
         glScissor(kCovered.x, kCovered.y, kCovered.width, kCovered.height);
         const float seven[4] = {7.0f, 0.0f, 0.0f, 0.0f};
@@ -47,7 +50,7 @@ public:
     std::string refusal;
 };
 
-/** Reads `cover.field` with `extent` on the CPU and keeps a copy. */
+/** Reads `cover.field` with `extent` on the CPU (a host pass: an early read-back begins for it) and keeps a copy. */
 class ReaderPass : public GlPass {
 public:
     explicit ReaderPass(ReadExtent extent) : mExtent(extent) {}
@@ -55,6 +58,7 @@ public:
     void declare(PassBuilder& builder) const override {
         builder.read("cover.field", mExtent);
         builder.write("out", {Format::R8});
+        builder.runsOnHost();
     }
     void execute(GlPassContext& gl) override {
         seen = gl.inputImage("cover.field").clone();
@@ -66,24 +70,47 @@ private:
     ReadExtent mExtent;
 };
 
-/** What CoverPass and a ReaderPass reading with `extent` leave after one run of the two. */
+/** What CoverPass and a ReaderPass reading with `extent` leave after `runs` runs of the two over one pool. */
 struct CoverAndRead {
-    explicit CoverAndRead(ReadExtent extent) : reader(extent) {
+    explicit CoverAndRead(ReadExtent extent, bool readBackEarly = false, int runs = 1) : reader(extent) {
         test::sharedGlContext();
-        GraphExecutor executor{pool};
-        executor.run(compile({&cover, &reader}, {"reader.out"}), {&cover, &reader}, {kWidth, kHeight, false});
+        for (int run = 0; run < runs; ++run) {
+            GraphExecutor executor{pool};
+            executor.run(compile({&cover, &reader}, {"reader.out"}), {&cover, &reader},
+                         {kWidth, kHeight, readBackEarly});
+        }
     }
     TexturePool pool;
     CoverPass cover;
     ReaderPass reader;
 };
 
-TEST(ReadRegion, AFieldReadOnlyWhereCoveredComesBackInsideItsRegion) {
-    const CoverAndRead run(ReadExtent::CoveredPixels);
+class ReadRegionTiming : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ReadRegionTiming, AFieldReadOnlyWhereCoveredComesBackInsideItsRegion) {
+    const CoverAndRead run(ReadExtent::CoveredPixels, GetParam());
     ASSERT_TRUE(run.cover.limited) << run.cover.refusal;
     ASSERT_EQ(run.reader.seen.size(), cv::Size(kWidth, kHeight));
     const cv::Mat inside = run.reader.seen(cv::Rect(3, 2, 5, 4));
     EXPECT_EQ(cv::countNonZero(inside != 7.0f), 0) << "the covered pixels, in their places (row 0 at the top)";
+}
+
+TEST_P(ReadRegionTiming, AWholeFieldComesBackWhole) {
+    const CoverAndRead run(ReadExtent::WholeImage, GetParam());
+    ASSERT_EQ(run.reader.seen.size(), cv::Size(kWidth, kHeight));
+    EXPECT_EQ(cv::countNonZero(run.reader.seen(cv::Rect(3, 2, 5, 4)) != 7.0f), 0);
+    cv::Mat outside = run.reader.seen.clone();
+    outside(cv::Rect(3, 2, 5, 4)).setTo(0.0f);
+    EXPECT_EQ(cv::countNonZero(outside), 0) << "the cleared pixels around the covered ones";
+}
+
+INSTANTIATE_TEST_SUITE_P(LateAndEarly, ReadRegionTiming, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& timing) { return timing.param ? "Early" : "Late"; });
+
+TEST(ReadRegion, EarlyReadbacksReuseThePoolsBuffer) {
+    const CoverAndRead run(ReadExtent::CoveredPixels, true, 3);
+    EXPECT_EQ(run.pool.readbackBuffersCreated(), 1u) << "one buffer, made for the first run and reused by the others";
+    EXPECT_EQ(cv::countNonZero(run.reader.seen(cv::Rect(3, 2, 5, 4)) != 7.0f), 0);
 }
 
 TEST(ReadRegion, IsRefusedForAFieldReadWhole) {
