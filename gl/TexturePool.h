@@ -15,8 +15,9 @@ public:
      *  can. */
     GlTexture acquire(Format format, int width, int height, std::string_view label, int samples = 1);
     void release(GlTexture texture);
-    /** A buffer the CPU maps for reading (GL_MAP_READ_BIT) of `byteCount` bytes; reuses a released one of that size.
-     *  Creating one per read-back costs on a GPU: the driver pins fresh host memory for each, and frees it again. */
+    /** A buffer the CPU maps for reading (GL_MAP_READ_BIT) of `byteCount` bytes; reuses a released one of that size,
+     *  so a batch does not make and free one per field and still (with region-only copies: 1.04-1.10x on an H200's
+     *  comic batch, docs/performance.md). */
     GlBuffer acquireReadbackBuffer(std::size_t byteCount);
     void releaseReadbackBuffer(GlBuffer buffer);
     /** Deletes the released textures and buffers (those in use stay with their users). */
