@@ -170,6 +170,9 @@ else
     failed=1
 fi
 
+# The 36 stills of the comic36 row (whole-process.sh's list), for the renders below that are not its rows.
+for _ in 1 2 3 4; do grep -v '^#' examples/batch/models.txt; done >"$out/comic36.txt"
+
 # The comic36 row again with one flag forced to each of its words (a wrapper per word, so whole-process.sh runs the
 # same row with the flag added): FLAG, NAME (the files' stem), the words.
 flag_rows() {
@@ -192,8 +195,7 @@ flag_rows() {
 if [ "${READBACK_ROWS:-1}" = 1 ]; then flag_rows --readback readback early late; fi
 if [ "${POST_STAGE_ROWS:-1}" = 1 ]; then
     flag_rows --post-stage post-stage cpu gpu
-    # The same 36 stills from either post stage: byte for byte, and how many pixels differ where they do not.
-    for _ in 1 2 3 4; do grep -v '^#' examples/batch/models.txt; done >"$out/comic36.txt"
+    # The same 36 stills from either post stage, compared byte for byte; the files that differ are named.
     for device in cpu gpu; do
         rm -rf "/tmp/post-$device" && mkdir -p "/tmp/post-$device"
         timeout 60 "$kit/run/inkgraph" render --list "$out/comic36.txt" -o "/tmp/post-$device/{index}.png" \
@@ -211,7 +213,6 @@ section "where a comic still's time goes: the comic36 stills, --jobs 0, --stats 
 # Medians over the 36 stills of --stats' per-pass milliseconds (GL passes to glFinish, the post stage's), loading
 # and writing, serial so that each still's numbers are its own; into $OUT/gpu-still-times.md.
 rm -rf /tmp/still-stats && mkdir -p /tmp/still-stats
-for _ in 1 2 3 4; do grep -v '^#' examples/batch/models.txt; done >"$out/comic36.txt"
 if timeout 90 "$kit/run/inkgraph" render --list "$out/comic36.txt" -o "/tmp/still-stats/{index}.png" --shading cel \
     --lines silhouette,contour,suggestive --jobs 0 --stats "/tmp/still-stats/{index}.json" -q &&
     command -v python3 >/dev/null; then
