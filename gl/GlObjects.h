@@ -96,6 +96,12 @@ int maxSamples();
 inline constexpr GLenum kDepthNearer = GL_GREATER;
 inline constexpr GLenum kDepthNearerOrEqual = GL_GEQUAL;
 inline constexpr float kFarDepth = 0.0f;
+/** glPolygonOffset(kOnePixelFartherFactor, kOnePixelFartherUnits) pushes a face's fragments one pixel of the face's
+ *  own depth slope plus one resolvable depth step away from the eye. Negative: farther is smaller here. For a float
+ *  depth buffer one unit is 2^(e - 23) of the fragment's own exponent e, a relative step, so the push stays a fixed
+ *  fraction of the depth at any far/near. */
+inline constexpr GLfloat kOnePixelFartherFactor = -1.0f;
+inline constexpr GLfloat kOnePixelFartherUnits = -1.0f;
 /** Sets the clip control reversed-Z needs; part of every pass's starting state (GraphExecutor) and of a new context. */
 void useReversedDepthClipControl();
 

@@ -17,14 +17,6 @@
 namespace inkgraph {
 namespace {
 
-// Polygon offset of the depth fill: one pixel of the face's own depth slope plus one resolvable depth step, so a line
-// fragment (whose centre may sit half a pixel off the edge) is not hidden by the face the edge lies on, valleys
-// included, while a surface more than about a pixel's worth of depth in front still hides it. Negative: with
-// reversed-Z (gl/GlObjects.h) farther is smaller. For a float depth buffer one unit is 2^(e - 23) of the
-// fragment's own exponent e, a relative step, so the push stays a fixed fraction of the depth at any far/near.
-constexpr GLfloat kFillOffsetFactor = -1.0f;
-constexpr GLfloat kFillOffsetUnits = -1.0f;
-
 constexpr const char* kHiddenPrefix = "hidden-";
 
 /** The edge kind an output draws: "crease" for "crease" and "hidden-crease". */
@@ -266,7 +258,10 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(kDepthNearer);
         glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(kFillOffsetFactor, kFillOffsetUnits);
+        // The depth fill one pixel of depth farther (gl/GlObjects.h): a line fragment, whose centre may sit half a
+        // pixel off its edge, is not hidden by the face the edge lies on, valleys included, while a surface more
+        // than about a pixel's worth of depth in front still hides it.
+        glPolygonOffset(kOnePixelFartherFactor, kOnePixelFartherUnits);
         drawModelDepth(*mDepthProgram, mScene, viewFromModel, clipFromView);
         glDisable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(0.0f, 0.0f);

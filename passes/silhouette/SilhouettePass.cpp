@@ -94,12 +94,18 @@ void SilhouettePass::execute(GlPassContext& gl) {
         drawModelDepth(*mDepthProgram, mScene, viewFromModel, clipFromView);
     }
 
-    // 2. The hull's back faces where they are nearer than the model (strictly nearer: where the hull meets the model's
-    // own depth, the model wins). The depth stays the model's, so hulls of different meshes never hide each other.
+    // 2. The hull's back faces where they are nearer than the model by more than a pixel of their own depth slope
+    // (gl/GlObjects.h): where the hull meets the model's own depth, or lies as good as on a surface seen at a grazing
+    // angle, the model wins. Without the offset such a hull face and the surface take turns pixel by pixel, dotted
+    // slivers a pixel wide that appear at one size and not at another (docs/strokes.md, "Silhouettes: the hull where it
+    // lies on a grazing surface").
+    // The depth stays the model's, so hulls of different meshes never hide each other.
     glEnable(GL_CULL_FACE);
     glCullFace(GL_FRONT);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_FALSE);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(kOnePixelFartherFactor, kOnePixelFartherUnits);
     mHullProgram->use();
     glUniformMatrix4fv(mHullProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
     glUniformMatrix3fv(mHullProgram->uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
@@ -116,6 +122,8 @@ void SilhouettePass::execute(GlPassContext& gl) {
         glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
     }
 
+    glPolygonOffset(0.0f, 0.0f);
+    glDisable(GL_POLYGON_OFFSET_FILL);
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
     glCullFace(GL_BACK);
