@@ -3,6 +3,7 @@
 // 1 degree apart. The measure is bench/line-cleanliness.sh's (bench/LineCleanlinessMetrics.h: the drawn layer's
 // skeleton, 1.5 px at the smaller size, views compared through depth both ways); the renders go through the public
 // API with each look's defaults, at the default view (--orbit 0,14.04).
+// One case renders a bundled model (Suzanne) where the generated shapes did not show what it checks.
 #include <inkgraph/inkgraph.h>
 
 #include "bench/LineCleanlinessMetrics.h"
@@ -186,7 +187,7 @@ TEST_P(LineStability, BumpySphereHoldsStillAcrossSizesAndViews) { expectStable(b
 // (passes/silhouette/SilhouettePass.cpp) they and the surface took turns pixel by pixel, and at 512^2 the ears drew
 // strokes that 1024^2 did not (F1 0.968). With it: 0.992. A bundled model, not a generated shape: the thin shells
 // tried (slabs, dishes, bent blades) hold at 1.000 with or without the offset.
-TEST(LineStabilityOfScans, SuzannesSilhouetteHoldsFrom512To1024) {
+TEST(LineStabilityOfBundledModels, SuzannesSilhouetteHoldsFrom512To1024) {
     const ig::Scene suzanne = ig::Scene::load(std::string(INKGRAPH_SOURCE_ROOT) + "/models/suzanne_npm_4k.obj");
     const ig::Look look = ig::Look::fromArguments({"--lines", "silhouette"});
     const Render a512 = renderOnce(sharedRenderer(), suzanne, look, 512, 0.0);
