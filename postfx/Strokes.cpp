@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -484,6 +485,33 @@ Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSetting
     }
     for (Stroke& stroke : result.strokes) stroke.kept = result.chains[stroke.chain].kept();
     return result;
+}
+
+StrokesNearLimits strokesNearLimits(const Strokes& strokes, const std::vector<StrokeLayer>& layers, double share) {
+    if (!std::isfinite(share) || share < 0.0 || share >= 1.0)
+        throw std::invalid_argument("strokesNearLimits(): 'share' must be finite and in [0, 1), got " +
+                                    std::to_string(share));
+    // Per chain, the strongest peak over its layer's seed strength; infinite once a stroke's layer always seeds.
+    std::vector<double> seedRatio(strokes.chains.size(), 0.0);
+    for (const Stroke& stroke : strokes.strokes) {
+        if (stroke.layer < 0 || std::size_t(stroke.layer) >= layers.size())
+            throw std::invalid_argument("strokesNearLimits(): stroke layer " + std::to_string(stroke.layer) +
+                                        " is not in 'layers' (" + std::to_string(layers.size()) + ")");
+        const float seed = layers[std::size_t(stroke.layer)].seedStrength;
+        double& ratio = seedRatio[stroke.chain];
+        ratio = std::max(ratio, seed > 0.0f ? double(stroke.peakStrength) / double(seed)
+                                            : std::numeric_limits<double>::infinity());
+    }
+    StrokesNearLimits near{std::vector<std::size_t>(layers.size(), 0), std::vector<std::size_t>(layers.size(), 0)};
+    for (const Stroke& stroke : strokes.strokes) {
+        const StrokeLayer& layer = layers[std::size_t(stroke.layer)];
+        const double limit = layer.minLengthPixels;
+        if (limit > 0.0 && std::abs(strokes.chains[stroke.chain].lengthPixels - limit) <= share * limit)
+            ++near.length[std::size_t(stroke.layer)];
+        if (layer.seedStrength > 0.0f && std::abs(seedRatio[stroke.chain] - 1.0) <= share)
+            ++near.seed[std::size_t(stroke.layer)];
+    }
+    return near;
 }
 
 void mergeOverlaps(Strokes& strokes, const std::vector<StrokeLayer>& layers, const std::vector<double>& halfWidths) {

@@ -97,6 +97,18 @@ struct Strokes {
  *  negative, non-finite or (the angle) above 180. */
 Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSettings& settings = {});
 
+/** Per layer, how many strokes were decided near a rule's limit, where the decision may flip between two sizes or two
+ *  views of one model (issue 39): strokes whose chain's length lies within `share` x the layer's minLengthPixels of
+ *  it, and, where the layer seeds (seedStrength > 0) and no stroke of the chain is of a layer that always seeds,
+ *  strokes whose chain's strongest peak relative to its layer's seedStrength lies within `share` of 1. Counted over
+ *  kept and dropped strokes alike. Throws std::invalid_argument naming 'share' unless it is finite and in [0, 1), and
+ *  naming 'layers' when a stroke's layer is not in it. */
+struct StrokesNearLimits {
+    std::vector<std::size_t> length; ///< per layer
+    std::vector<std::size_t> seed;   ///< per layer
+};
+StrokesNearLimits strokesNearLimits(const Strokes& strokes, const std::vector<StrokeLayer>& layers, double share);
+
 /** One line drawn once: a kept stroke of a later layer with at least half its points within `halfWidths[later] +
  *  the widest earlier half width` (data pixels) of a kept stroke of an earlier layer (the contour along the outline's
  *  band, a crease along a contour) is that line drawn again, and is not drawn. Decided per stroke, so no scattered

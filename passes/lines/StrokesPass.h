@@ -70,6 +70,9 @@ struct StrokesReport {
     std::vector<std::size_t> keptPerInput;    ///< per input, strokes kept
     std::vector<double> lengthPixelsPerInput; ///< per input, their length in output pixels
     std::vector<std::size_t> dashesPerInput;  ///< per input, the dashes its kept strokes were cut into (0: solid)
+    /** Per input, strokes decided within kNearLimitShare of the length rule's or the seed rule's limit
+     *  (strokesNearLimits()): the ones that may flip between sizes or views. */
+    std::vector<std::size_t> nearLengthLimitPerInput, nearSeedLimitPerInput;
 };
 
 /** The kept strokes as the graph hands them on ("<name>.paths"): what --svg traces, so the raster and the vector
@@ -106,7 +109,7 @@ private:
     /** --overlapping-lines merge: mergeOverlaps() over the dashed inputs and over the others, apart. */
     void mergeOverlapsWithinKind(Strokes& strokes, const std::vector<StrokeLayer>& layers) const;
     /** The kept strokes' counts and lengths per input, into mReport. */
-    void reportKept(const Strokes& strokes);
+    void reportKept(const Strokes& strokes, const std::vector<StrokeLayer>& layers);
 
     std::string mName;
     StrokesPassSettings mSettings;

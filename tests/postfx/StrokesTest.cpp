@@ -202,6 +202,35 @@ TEST(StrokesTest, TheLengthRuleDropsSpecksAndKeepsLines) {
     EXPECT_EQ(drawn.mask.at<uchar>(10, 25), 255);
 }
 
+TEST(StrokesTest, StrokesNearARulesLimitAreCountedPerLayer) {
+    // Layer 0 is drawn from 10 pixels and seeds at 0.5; layer 1 has no length rule and always seeds.
+    const LineSkeleton unused;
+    StrokeLayer ruled{&unused};
+    ruled.minLengthPixels = 10.0;
+    ruled.seedStrength = 0.5f;
+    const StrokeLayer free{&unused};
+    Strokes strokes;
+    for (const double length : {9.5, 12.0, 10.05, 10.9}) strokes.chains.push_back(StrokeChain{length});
+    auto add = [&](int layer, std::size_t chain, float peak) {
+        Stroke stroke;
+        stroke.layer = layer;
+        stroke.chain = chain;
+        stroke.peakStrength = peak;
+        strokes.strokes.push_back(stroke);
+    };
+    add(0, 0, 0.52f); // 5% short of the length, 4% over the seed: near both
+    add(0, 1, 0.3f);  // 20% over the length, 40% under the seed: near neither
+    add(0, 2, 0.56f); // 0.5% over the length, 12% over the seed: near the length
+    add(0, 3, 0.5f);  // 9% over the length; its chain also holds layer 1, which always seeds: near the length only
+    add(1, 3, 0.0f);
+    const StrokesNearLimits near = strokesNearLimits(strokes, {ruled, free}, 0.1);
+    EXPECT_EQ(near.length, (std::vector<std::size_t>{3, 0}));
+    EXPECT_EQ(near.seed, (std::vector<std::size_t>{1, 0}));
+    EXPECT_EQ(strokesNearLimits(strokes, {ruled, free}, 0.0).length, (std::vector<std::size_t>{0, 0}));
+    EXPECT_THROW(strokesNearLimits(strokes, {ruled, free}, 1.0), std::invalid_argument);
+    EXPECT_THROW(strokesNearLimits(strokes, {ruled}, 0.1), std::invalid_argument);
+}
+
 TEST(StrokesTest, HysteresisKeepsWeakLinesThatContinueStrongOnes) {
     // Layer 0: a weak line (0.2) whose right half is strong (0.8); and a separate weak line.
     cv::Mat mask = blank();
