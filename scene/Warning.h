@@ -36,6 +36,7 @@ enum class WarningKind {
     PrimitiveSkipped,
     IndicesIncomplete,
     MeshDegenerate,
+    MeshInsideOut,
     VertexValuesIgnored,
     NormalsMissing,
     TexcoordsMissing,

@@ -1,5 +1,9 @@
 #include "scene/mesh/MeshOps.h"
 
+#include "scene/MessageText.h"
+#include "scene/Warning.h"
+#include "scene/mesh/OutwardWinding.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -553,6 +557,21 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         for (glm::uvec3& triangle : mesh.triangles) {
             triangle = glm::uvec3(compactIndex[triangle.x], compactIndex[triangle.y], compactIndex[triangle.z]);
         }
+    }
+
+    // A closed mesh wound inside out is turned outward before its normals are computed from the winding; a one-sided
+    // material's winding is the author's choice of what is culled (a baked inverted-hull outline) and stays.
+    if (mesh.material.doubleSided) {
+        const OutwardTurn turn =
+            orientMeshOutward(mesh.positions, mesh.triangles, mesh.normals, options.weldTolerance * modelDiagonal);
+        if (turn.windingReversed)
+            report.warnings.push_back(makeWarning(WarningKind::MeshInsideOut,
+                                                  "mesh '" + detail::excerptForMessage(mesh.name) +
+                                                      "' is closed and wound inside out (clockwise seen from " +
+                                                      "outside); its winding " +
+                                                      (turn.normalsFlipped ? "and its normals were" : "was") +
+                                                      " reversed so its silhouette and outline are drawn",
+                                                  "", mesh.name));
     }
 
     // Nothing but position decided this weld: the kept vertices are pairwise out of its reach, which derived data

@@ -1,6 +1,7 @@
 // The real `inkgraph` executable as a user runs it: dump and read back, stats, exit codes, messages, and no
 // half-written files. Needs a GL context (llvmpipe in CI) for the rendering cases.
 #include "render/ImageFiles.h"
+#include "scene/mesh/Procedural.h"
 #include "CliTestSupport.h"
 #include "GltfTestFiles.h"
 
@@ -345,6 +346,31 @@ TEST_F(Cli, APlyModelRendersLikeTheSameObj) {
     cv::Mat channels[4];
     cv::split(reference, channels);
     EXPECT_GT(cv::norm(channels[0], channels[1], cv::NORM_INF), 50.0);
+}
+
+TEST_F(Cli, AnInsideOutModelDrawsTheSilhouetteOfItsOutwardCopy) {
+    // A closed OBJ wound clockwise seen from outside lost its whole hull silhouette (the hull shrank inside the model,
+    // scene/mesh/OutwardWinding.h): it is turned outward at load, with a warning, and draws the outward copy's picture.
+    const Mesh torus = makeTorus(1.0f, 0.4f, 64, 32);
+    std::ostringstream vertices;
+    vertices.precision(9);
+    for (const glm::vec3& p : torus.positions) vertices << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    std::ostringstream outward, insideOut;
+    for (const glm::uvec3& t : torus.triangles) {
+        outward << "f " << t.x + 1 << ' ' << t.y + 1 << ' ' << t.z + 1 << '\n';
+        insideOut << "f " << t.x + 1 << ' ' << t.z + 1 << ' ' << t.y + 1 << '\n';
+    }
+    std::ofstream(directory / "outward.obj") << vertices.str() << outward.str();
+    std::ofstream(directory / "inside-out.obj") << vertices.str() << insideOut.str();
+    for (const char* name : {"outward.obj", "inside-out.obj"}) {
+        const CliRun result =
+            run(std::string("render ") + name + " -o " + name + ".png --size 160x160 --orbit 20,40 --lines silhouette");
+        ASSERT_EQ(result.exitCode, 0) << name << ": " << result.err;
+        EXPECT_EQ(result.err.find("inside out") != std::string::npos, std::string(name) == "inside-out.obj")
+            << name << ": " << result.err;
+    }
+    const cv::Mat drawn = readImage(directory / "outward.obj.png");
+    EXPECT_EQ(cv::norm(drawn, readImage(directory / "inside-out.obj.png"), cv::NORM_INF), 0.0);
 }
 
 TEST_F(Cli, AMeshoptCompressedGlbRendersLikeItsDecodedCopy) {

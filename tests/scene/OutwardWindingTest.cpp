@@ -1,0 +1,174 @@
+// Closed meshes wound inside out are turned outward at load (scene/mesh/OutwardWinding.h); open surfaces, flat closed
+// sheets and one-sided materials are left as they are.
+#include "scene/Scene.h"
+#include "scene/Warning.h"
+#include "scene/mesh/MeshOps.h"
+#include "scene/mesh/OutwardWinding.h"
+#include "scene/mesh/Procedural.h"
+
+#include "SceneTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+namespace inkgraph {
+namespace {
+
+constexpr double kWeld = 1e-6;
+
+Mesh insideOut(Mesh mesh) {
+    for (glm::uvec3& triangle : mesh.triangles) std::swap(triangle.y, triangle.z);
+    return mesh;
+}
+
+std::vector<glm::vec3> negated(std::vector<glm::vec3> normals) {
+    for (glm::vec3& normal : normals) normal = -normal;
+    return normals;
+}
+
+/** The upper half of a sphere's triangles (every vertex at or above the equator): an open dish. */
+Mesh upperHalf(Mesh mesh) {
+    std::erase_if(mesh.triangles, [&](const glm::uvec3& triangle) {
+        return mesh.positions[triangle.x].z < -1e-6f || mesh.positions[triangle.y].z < -1e-6f ||
+               mesh.positions[triangle.z].z < -1e-6f;
+    });
+    return mesh;
+}
+
+TEST(OutwardWinding, AClosedSphereWoundInsideOutIsTurnedOutwardWithItsInwardNormals) {
+    const Mesh outward = makeUvSphere(glm::vec3(0.0f), 1.0f, 48, 24);
+    Mesh mesh = insideOut(outward);
+    std::vector<glm::vec3> normals = negated(outward.normals);
+    const OutwardTurn turn = orientMeshOutward(mesh.positions, mesh.triangles, normals, kWeld);
+    EXPECT_TRUE(turn.windingReversed);
+    EXPECT_TRUE(turn.normalsFlipped);
+    EXPECT_EQ(mesh.triangles, outward.triangles);
+    EXPECT_EQ(normals, outward.normals);
+}
+
+TEST(OutwardWinding, OutwardNormalsOnAnInsideOutWindingStayAsTheyAre) {
+    const Mesh outward = makeUvSphere(glm::vec3(0.0f), 1.0f, 48, 24);
+    Mesh mesh = insideOut(outward);
+    std::vector<glm::vec3> normals = outward.normals;
+    const OutwardTurn turn = orientMeshOutward(mesh.positions, mesh.triangles, normals, kWeld);
+    EXPECT_TRUE(turn.windingReversed);
+    EXPECT_FALSE(turn.normalsFlipped);
+    EXPECT_EQ(normals, outward.normals);
+}
+
+TEST(OutwardWinding, AnOutwardMeshIsLeftAsItIs) {
+    const Mesh outward = makeUvSphere(glm::vec3(5.0f, -3.0f, 2.0f), 0.5f, 32, 16);
+    Mesh mesh = outward;
+    std::vector<glm::vec3> normals;
+    const OutwardTurn turn = orientMeshOutward(mesh.positions, mesh.triangles, normals, kWeld);
+    EXPECT_FALSE(turn.windingReversed);
+    EXPECT_EQ(mesh.triangles, outward.triangles);
+}
+
+TEST(OutwardWinding, ACubeOfSplitHardEdgesIsClosedThroughTheWeld) {
+    // makeCube() keeps a vertex per face (its hard edges): closed only with positions welded.
+    const Mesh outward = makeCube(glm::vec3(0.0f), 1.0f);
+    Mesh mesh = insideOut(outward);
+    std::vector<glm::vec3> normals;
+    EXPECT_TRUE(orientMeshOutward(mesh.positions, mesh.triangles, normals, kWeld).windingReversed);
+    test::expectOutwardWinding(mesh, glm::dvec3(0.0));
+}
+
+TEST(OutwardWinding, AnOpenDishWoundEitherWayIsLeftAsItIs) {
+    const Mesh dish = upperHalf(makeUvSphere(glm::vec3(0.0f), 1.0f, 48, 24));
+    for (const Mesh& wound : {dish, insideOut(dish)}) {
+        Mesh mesh = wound;
+        std::vector<glm::vec3> normals;
+        EXPECT_FALSE(orientMeshOutward(mesh.positions, mesh.triangles, normals, kWeld).windingReversed);
+        EXPECT_EQ(mesh.triangles, wound.triangles);
+    }
+}
+
+TEST(OutwardWinding, AFewSmallHolesStillCountAsClosed) {
+    // A scan with holes: two missing triangles leave 6 rim edges, well under 1% of the sphere's edges.
+    Mesh mesh = insideOut(makeUvSphere(glm::vec3(0.0f), 1.0f, 48, 24));
+    mesh.triangles.erase(mesh.triangles.begin() + 700);
+    mesh.triangles.erase(mesh.triangles.begin() + 1500);
+    std::vector<glm::vec3> normals;
+    EXPECT_TRUE(orientMeshOutward(mesh.positions, mesh.triangles, normals, kWeld).windingReversed);
+    test::expectOutwardWinding(mesh, glm::dvec3(0.0));
+}
+
+TEST(OutwardWinding, FacesThatDisagreeAmongThemselvesAreLeftAsTheyAre) {
+    // Inside out but for a band of faces wound outward: reversing every face would turn the band inward, so a mesh
+    // whose faces disagree on more than 1% of their shared edges is not guessed at.
+    const Mesh outward = makeUvSphere(glm::vec3(0.0f), 1.0f, 48, 24);
+    Mesh mesh = insideOut(outward);
+    for (std::size_t face = 0; face < mesh.triangles.size(); ++face) {
+        const glm::uvec3& t = mesh.triangles[face];
+        const float z = (mesh.positions[t.x].z + mesh.positions[t.y].z + mesh.positions[t.z].z) / 3.0f;
+        if (z > 0.3f && z < 0.5f) mesh.triangles[face] = outward.triangles[face];
+    }
+    const std::vector<glm::uvec3> before = mesh.triangles;
+    std::vector<glm::vec3> normals;
+    EXPECT_FALSE(orientMeshOutward(mesh.positions, mesh.triangles, normals, kWeld).windingReversed);
+    EXPECT_EQ(mesh.triangles, before);
+}
+
+TEST(OutwardWinding, AClosedFlatSheetDecidesNothing) {
+    // Two coincident sides of a square, each wound its own way: closed, with no volume.
+    const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    std::vector<glm::uvec3> triangles = {{0, 1, 2}, {0, 2, 3}, {0, 2, 1}, {0, 3, 2}};
+    const std::vector<glm::uvec3> before = triangles;
+    std::vector<glm::vec3> normals;
+    EXPECT_FALSE(orientMeshOutward(positions, triangles, normals, kWeld).windingReversed);
+    EXPECT_EQ(triangles, before);
+}
+
+std::string sphereObj(bool insideOutWinding) {
+    const Mesh sphere = makeUvSphere(glm::vec3(0.0f), 1.0f, 32, 16);
+    std::ostringstream obj;
+    for (const glm::vec3& p : sphere.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (const glm::uvec3& t : sphere.triangles) {
+        const glm::uvec3 corners = insideOutWinding ? glm::uvec3(t.x, t.z, t.y) : t;
+        obj << "f " << corners.x + 1 << ' ' << corners.y + 1 << ' ' << corners.z + 1 << '\n';
+    }
+    return obj.str();
+}
+
+TEST(OutwardWinding, LoadingAnInsideOutObjTurnsItOutwardAndWarnsNamingTheMesh) {
+    const test::TempFile file("inside-out.obj", "o ball\n" + sphereObj(true));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    test::expectOutwardWinding(scene.meshes[0], glm::dvec3(0.0));
+    for (std::size_t i = 0; i < scene.meshes[0].positions.size(); ++i)
+        ASSERT_GT(glm::dot(scene.meshes[0].normals[i], scene.meshes[0].positions[i]), 0.5f) << "vertex " << i;
+    const auto warning = std::find_if(scene.report.warnings.begin(), scene.report.warnings.end(), [](const Warning& w) {
+        return w.code == warningCode(WarningKind::MeshInsideOut);
+    });
+    ASSERT_NE(warning, scene.report.warnings.end());
+    EXPECT_NE(warning->message.find("mesh 'ball'"), std::string::npos) << warning->message;
+    EXPECT_EQ(warning->file, file.path());
+
+    const test::TempFile right("outward.obj", "o ball\n" + sphereObj(false));
+    const Scene outward = loadScene(right.path());
+    EXPECT_TRUE(outward.report.warnings.empty());
+    EXPECT_EQ(outward.meshes[0].triangles, scene.meshes[0].triangles);
+}
+
+TEST(OutwardWinding, AOneSidedMaterialKeepsItsWinding) {
+    // A one-sided glTF material culls by the winding the author chose: an inside-out shell drawn that way is a baked
+    // outline (the inverted hull), not a mistake.
+    Mesh sphere = insideOut(makeUvSphere(glm::vec3(0.0f), 1.0f, 32, 16));
+    RawMesh raw;
+    raw.name = "outline shell";
+    raw.positions = sphere.positions;
+    raw.triangles = sphere.triangles;
+    raw.material.doubleSided = false;
+    LoadReport report;
+    const Mesh mesh = finalizeMesh(std::move(raw), 2.0 * std::sqrt(3.0), LoadOptions{}, report);
+    EXPECT_EQ(mesh.triangles, sphere.triangles);
+    EXPECT_TRUE(report.warnings.empty());
+}
+
+} // namespace
+} // namespace inkgraph
