@@ -102,6 +102,22 @@ inline constexpr float kFarDepth = 0.0f;
  *  fraction of the depth at any far/near. */
 inline constexpr GLfloat kOnePixelFartherFactor = -1.0f;
 inline constexpr GLfloat kOnePixelFartherUnits = -1.0f;
+/** While it lives, filled faces are drawn one pixel farther (glPolygonOffset(kOnePixelFartherFactor,
+ *  kOnePixelFartherUnits)); the offset is off again when it goes, a draw that throws included, so the next pass starts
+ *  without it. */
+class OnePixelFartherFill {
+public:
+    OnePixelFartherFill() {
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(kOnePixelFartherFactor, kOnePixelFartherUnits);
+    }
+    ~OnePixelFartherFill() {
+        glPolygonOffset(0.0f, 0.0f);
+        glDisable(GL_POLYGON_OFFSET_FILL);
+    }
+    OnePixelFartherFill(const OnePixelFartherFill&) = delete;
+    OnePixelFartherFill& operator=(const OnePixelFartherFill&) = delete;
+};
 /** Sets the clip control reversed-Z needs; part of every pass's starting state (GraphExecutor) and of a new context. */
 void useReversedDepthClipControl();
 

@@ -257,14 +257,13 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
         clearColorAndDepth(0);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(kDepthNearer);
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        // The depth fill one pixel of depth farther (gl/GlObjects.h): a line fragment, whose centre may sit half a
-        // pixel off its edge, is not hidden by the face the edge lies on, valleys included, while a surface more
-        // than about a pixel's worth of depth in front still hides it.
-        glPolygonOffset(kOnePixelFartherFactor, kOnePixelFartherUnits);
-        drawModelDepth(*mDepthProgram, mScene, viewFromModel, clipFromView);
-        glDisable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(0.0f, 0.0f);
+        {
+            // The depth fill one pixel of depth farther (gl/GlObjects.h): a line fragment, whose centre may sit half
+            // a pixel off its edge, is not hidden by the face the edge lies on, valleys included, while a surface
+            // more than about a pixel's worth of depth in front still hides it.
+            const OnePixelFartherFill farther;
+            drawModelDepth(*mDepthProgram, mScene, viewFromModel, clipFromView);
+        }
         glDisable(GL_DEPTH_TEST);
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     }

@@ -104,8 +104,6 @@ void SilhouettePass::execute(GlPassContext& gl) {
     glCullFace(GL_FRONT);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_FALSE);
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(kOnePixelFartherFactor, kOnePixelFartherUnits);
     mHullProgram->use();
     glUniformMatrix4fv(mHullProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
     glUniformMatrix3fv(mHullProgram->uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
@@ -114,16 +112,16 @@ void SilhouettePass::execute(GlPassContext& gl) {
     glUniform1f(mHullProgram->uniform("widthPixels"), mSettings.widthPixels);
     glUniform1f(mHullProgram->uniform("objectWidth"), mSettings.objectWidth.value_or(0.0f));
     const bool transparency = mScene.hasTransparency();
-    for (std::size_t index = 0; index < meshes.size(); ++index) {
-        // A cut-out's hull is cut where the surface is (its vertices carry the surface's texture coordinates).
-        if (transparency) mScene.bindMaterial(*mHullProgram, index, MaterialUse::Coverage);
-        mScene.materials().bindWidthMap(*mHullProgram, index, mSettings.widthMap);
-        (mSettings.weldNormals ? mScene.hullArrays()[index] : meshes[index].vertexArray).bind();
-        glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
+    {
+        const OnePixelFartherFill farther;
+        for (std::size_t index = 0; index < meshes.size(); ++index) {
+            // A cut-out's hull is cut where the surface is (its vertices carry the surface's texture coordinates).
+            if (transparency) mScene.bindMaterial(*mHullProgram, index, MaterialUse::Coverage);
+            mScene.materials().bindWidthMap(*mHullProgram, index, mSettings.widthMap);
+            (mSettings.weldNormals ? mScene.hullArrays()[index] : meshes[index].vertexArray).bind();
+            glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
+        }
     }
-
-    glPolygonOffset(0.0f, 0.0f);
-    glDisable(GL_POLYGON_OFFSET_FILL);
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
     glCullFace(GL_BACK);
