@@ -44,8 +44,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::IndicesIncomplete, "indices-incomplete", "trailing indices of an incomplete triangle; ignored"},
         {K::MeshDegenerate, "mesh-degenerate", "a mesh whose triangles are all degenerate; skipped"},
         {K::MeshInsideOut, "mesh-inside-out",
-         "a closed, two-sided mesh wound inside out (clockwise seen from outside); its winding, and its normals where "
-         "they point inward too, reversed so the hull silhouette and the outline are drawn"},
+         "a closed surface of a two-sided mesh wound inside out (clockwise seen from outside); its winding, and its "
+         "normals where they point inward too, reversed so the hull silhouette and the outline are drawn"},
         {K::VertexValuesIgnored, "vertex-values-ignored",
          "OBJ 'v' lines with values after x y z that are neither w nor a colour; ignored"},
         {K::NormalsMissing, "normals-missing", "OBJ faces without normals; the normals are recomputed"},

@@ -559,7 +559,7 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         }
     }
 
-    // A closed mesh wound inside out is turned outward before its normals are computed from the winding; a one-sided
+    // A closed surface wound inside out is turned outward before the normals are computed from the winding; a one-sided
     // material's winding is the author's choice of what is culled (a baked inverted-hull outline) and stays.
     if (mesh.material.doubleSided) {
         const OutwardTurn turn =
@@ -567,7 +567,7 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         if (turn.windingReversed)
             report.warnings.push_back(makeWarning(WarningKind::MeshInsideOut,
                                                   "mesh '" + detail::excerptForMessage(mesh.name) +
-                                                      "' is closed and wound inside out (clockwise seen from " +
+                                                      "': a closed surface wound inside out (clockwise seen from " +
                                                       "outside); its winding " +
                                                       (turn.normalsFlipped ? "and its normals were" : "was") +
                                                       " reversed so its silhouette and outline are drawn",

@@ -3,65 +3,129 @@
 #include "scene/mesh/EdgeAdjacency.h"
 #include "scene/mesh/MeshOps.h"
 
+#include <cstdint>
+#include <numeric>
 #include <utility>
 
 namespace inkgraph {
 namespace {
 
-/** Six times the volume the triangles enclose, positive when they are wound counter-clockwise seen from outside:
- *  the sum of the tetrahedra from `apex` to each triangle (exact for a closed mesh whatever the apex; the box's centre
- *  keeps the terms small). */
-double sixTimesSignedVolume(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
-                            const glm::dvec3& apex) {
-    double sum = 0.0;
-    for (const glm::uvec3& triangle : triangles) {
-        const glm::dvec3 a = glm::dvec3(positions[triangle.x]) - apex;
-        const glm::dvec3 b = glm::dvec3(positions[triangle.y]) - apex;
-        const glm::dvec3 c = glm::dvec3(positions[triangle.z]) - apex;
-        sum += glm::dot(a, glm::cross(b, c));
-    }
-    return sum;
+constexpr double kLooseShare = 0.01;      ///< of a surface's edges: rims and fins it may have and still be closed
+constexpr double kFlatVolumeShare = 1e-9; ///< of the cubed bounding-box diagonal: a volume that decides nothing
+
+/** The tetrahedron from `apex` to the triangle, times six: positive when the triangle is wound counter-clockwise
+ *  seen from the side away from the apex. Summed over a closed surface: six times the volume it encloses, positive
+ *  when it is wound counter-clockwise seen from outside, whatever the apex. */
+double sixTimesTetrahedron(std::span<const glm::vec3> positions, const glm::uvec3& triangle, const glm::dvec3& apex) {
+    const glm::dvec3 a = glm::dvec3(positions[triangle.x]) - apex;
+    const glm::dvec3 b = glm::dvec3(positions[triangle.y]) - apex;
+    const glm::dvec3 c = glm::dvec3(positions[triangle.z]) - apex;
+    return glm::dot(a, glm::cross(b, c));
 }
 
-bool isClosedEnough(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles, double weldDistance) {
-    constexpr double kLooseShare = 0.01;
-    const EdgeAdjacencyCounts counts = buildEdgeAdjacency(positions, triangles, weldDistance).counts;
-    const double edges = double(counts.edges());
-    return edges > 0.0 && double(counts.boundary + counts.nonManifold) <= kLooseShare * edges &&
-           double(counts.inconsistent) <= kLooseShare * double(counts.manifold);
-}
-
-/** Whether the normals agree with the faces' counter-clockwise sides: the sum over corners of n . (b - a) x (c - a). */
-bool normalsPointWithFaces(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
-                           std::span<const glm::vec3> normals) {
-    double agreement = 0.0;
-    for (const glm::uvec3& triangle : triangles) {
-        const glm::dvec3 a(positions[triangle.x]);
-        const glm::dvec3 face =
-            glm::cross(glm::dvec3(positions[triangle.y]) - a, glm::dvec3(positions[triangle.z]) - a);
-        agreement += glm::dot(face, glm::dvec3(normals[triangle.x]) + glm::dvec3(normals[triangle.y]) +
-                                        glm::dvec3(normals[triangle.z]));
+/** Union-find over welded vertex ids, with path halving. */
+class Surfaces {
+public:
+    explicit Surfaces(std::size_t count) : mParent(count) { std::iota(mParent.begin(), mParent.end(), 0u); }
+    std::uint32_t find(std::uint32_t id) {
+        while (mParent[id] != id) id = mParent[id] = mParent[mParent[id]];
+        return id;
     }
-    return agreement >= 0.0;
-}
+    void join(std::uint32_t a, std::uint32_t b) { mParent[find(a)] = find(b); }
+
+private:
+    std::vector<std::uint32_t> mParent;
+};
+
+/** What decides one connected surface. */
+struct SurfaceTally {
+    double sixVolume = 0.0;
+    BoundingBox box;
+    std::size_t edges = 0;
+    std::size_t looseEdges = 0; ///< on a rim or shared by more than two faces
+    std::size_t manifold = 0;
+    std::size_t inconsistent = 0;
+    bool insideOut() const {
+        const double diagonal = box.diagonal();
+        return edges > 0 && double(looseEdges) <= kLooseShare * double(edges) &&
+               double(inconsistent) <= kLooseShare * double(manifold) &&
+               sixVolume < -6.0 * kFlatVolumeShare * diagonal * diagonal * diagonal;
+    }
+};
 
 } // namespace
 
 OutwardTurn orientMeshOutward(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                               std::vector<glm::vec3>& normals, double weldDistance) {
     OutwardTurn turn;
-    const BoundingBox box = computeBoundingBox(positions);
-    const double diagonal = box.diagonal();
-    constexpr double kFlatVolumeShare = 1e-9;
-    // Cheap first: only a mesh that encloses a negative volume pays for the closedness test.
-    if (triangles.empty() || sixTimesSignedVolume(positions, triangles, box.center()) >=
-                                 -6.0 * kFlatVolumeShare * diagonal * diagonal * diagonal)
-        return turn;
-    if (!isClosedEnough(positions, triangles, weldDistance)) return turn;
-    for (glm::uvec3& triangle : triangles) std::swap(triangle.y, triangle.z);
-    turn.windingReversed = true;
-    if (!normals.empty() && !normalsPointWithFaces(positions, triangles, normals)) {
-        for (glm::vec3& normal : normals) normal = -normal;
+    if (triangles.empty()) return turn;
+    // Cheap first: only a mesh whose triangles enclose a negative volume in all pays for the weld and the edges. A
+    // mesh with an inside-out surface and a larger outward one is missed; none is turned wrongly, since each
+    // connected surface is judged alone below (an open floor under a closed figure adds a volume of either sign).
+    const BoundingBox meshBox = computeBoundingBox(positions);
+    double sixVolume = 0.0;
+    for (const glm::uvec3& triangle : triangles)
+        sixVolume += sixTimesTetrahedron(positions, triangle, meshBox.center());
+    const double diagonal = meshBox.diagonal();
+    if (sixVolume >= -6.0 * kFlatVolumeShare * diagonal * diagonal * diagonal) return turn;
+
+    const WeldMap weld = weldVertices(positions, {}, weldDistance);
+    Surfaces surfaces(weld.kept.size());
+    for (const glm::uvec3& triangle : triangles) {
+        surfaces.join(weld.outputOf[triangle.x], weld.outputOf[triangle.y]);
+        surfaces.join(weld.outputOf[triangle.x], weld.outputOf[triangle.z]);
+    }
+    std::vector<std::uint32_t> surfaceOfTriangle(triangles.size());
+    std::vector<std::uint32_t> tallyOfRoot(weld.kept.size(), UINT32_MAX);
+    std::vector<SurfaceTally> tallies;
+    for (std::size_t face = 0; face < triangles.size(); ++face) {
+        const std::uint32_t root = surfaces.find(weld.outputOf[triangles[face].x]);
+        if (tallyOfRoot[root] == UINT32_MAX) {
+            tallyOfRoot[root] = std::uint32_t(tallies.size());
+            tallies.emplace_back();
+        }
+        surfaceOfTriangle[face] = tallyOfRoot[root];
+        SurfaceTally& tally = tallies[tallyOfRoot[root]];
+        for (const std::uint32_t corner : {triangles[face].x, triangles[face].y, triangles[face].z})
+            tally.box.add(glm::dvec3(positions[corner]));
+    }
+    // The volume about each surface's own centre: exact for a closed one, and small terms.
+    for (std::size_t face = 0; face < triangles.size(); ++face) {
+        SurfaceTally& tally = tallies[surfaceOfTriangle[face]];
+        tally.sixVolume += sixTimesTetrahedron(positions, triangles[face], tally.box.center());
+    }
+    const EdgeAdjacency adjacency = buildEdgeAdjacency(positions, triangles, weld);
+    for (const MeshEdge& edge : adjacency.edges) {
+        SurfaceTally& tally = tallies[surfaceOfTriangle[adjacency.faceUses[edge.firstFaceUse].face]];
+        ++tally.edges;
+        if (edge.kind != EdgeKind::Manifold) ++tally.looseEdges;
+        if (edge.kind == EdgeKind::Manifold) ++tally.manifold;
+        if (edge.inconsistentOrientation) ++tally.inconsistent;
+    }
+
+    std::vector<bool> turned(triangles.size(), false);
+    for (std::size_t face = 0; face < triangles.size(); ++face) {
+        if (!tallies[surfaceOfTriangle[face]].insideOut()) continue;
+        std::swap(triangles[face].y, triangles[face].z);
+        turned[face] = true;
+        turn.windingReversed = true;
+    }
+    if (!turn.windingReversed || normals.empty()) return turn;
+    // Given normals that point against the turned faces (the sum over their corners of n . (b - a) x (c - a) is
+    // negative) were inward too: those of the turned surfaces' vertices are negated. A vertex belongs to one surface.
+    double agreement = 0.0;
+    std::vector<bool> onTurned(positions.size(), false);
+    for (std::size_t face = 0; face < triangles.size(); ++face) {
+        if (!turned[face]) continue;
+        const glm::uvec3& t = triangles[face];
+        const glm::dvec3 a(positions[t.x]);
+        const glm::dvec3 side = glm::cross(glm::dvec3(positions[t.y]) - a, glm::dvec3(positions[t.z]) - a);
+        agreement += glm::dot(side, glm::dvec3(normals[t.x]) + glm::dvec3(normals[t.y]) + glm::dvec3(normals[t.z]));
+        onTurned[t.x] = onTurned[t.y] = onTurned[t.z] = true;
+    }
+    if (agreement < 0.0) {
+        for (std::size_t vertex = 0; vertex < normals.size(); ++vertex)
+            if (onTurned[vertex]) normals[vertex] = -normals[vertex];
         turn.normalsFlipped = true;
     }
     return turn;

@@ -18,15 +18,17 @@ struct OutwardTurn {
     bool normalsFlipped = false;  ///< the given normals pointed inward as well and were turned round
 };
 
-/** Turns a closed mesh that is wound inside out outward: when the signed volume its triangles enclose is negative
- *  (clockwise seen from outside) and the mesh is closed, each triangle's last two corners swap; given normals
- *  (`normals`, empty or one per position) that then point against the faces they belong to (the area-weighted sum
- *  of n . face normal over all corners is negative) are negated too. Closed here means, with vertices within
- *  `weldDistance` as one (buildEdgeAdjacency()), at most 1% of the edges on a rim or shared by more than two faces
- *  and at most 1% of the shared edges run the same way by both their faces: a scan with a few small holes counts,
- *  an open surface (a plane, a dish, a cloth), whose inside is a matter of the view, does not, and is left as it
- *  is. A volume within 1e-9 of the cubed bounding-box diagonal (a closed sheet of two coincident sides) decides
- *  nothing either. */
+/** Turns the closed surfaces of a mesh that are wound inside out outward. Each connected surface (the triangles
+ *  joined through shared vertices, those within `weldDistance` counting as one) is judged alone: when the volume its
+ *  triangles enclose is negative (clockwise seen from outside) and it is closed, each of its triangles' last two
+ *  corners swap; given normals (`normals`, empty or one per position) of the turned surfaces' vertices that then point
+ *  against their faces (the area-weighted sum of n . face normal over their corners is negative) are negated too.
+ *  Closed here means at most 1% of the surface's edges on a rim or shared by more than two faces
+ *  (buildEdgeAdjacency()) and at most 1% of its shared edges run the same way by both their faces: a scan with a few
+ *  small holes counts; an open surface (a floor, a dish, a cloth), whose inside is a matter of the view, does not and
+ *  is left as it is, and so is a surface whose volume is within 1e-9 of its cubed bounding-box diagonal (a closed sheet
+ *  of two coincident sides). Only a mesh whose triangles enclose a negative volume in all is looked at surface by
+ *  surface, so the common case costs one pass over the triangles. */
 OutwardTurn orientMeshOutward(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                               std::vector<glm::vec3>& normals, double weldDistance);
 

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 #include <utility>
 
@@ -112,6 +113,32 @@ TEST(OutwardWinding, FacesThatDisagreeAmongThemselvesAreLeftAsTheyAre) {
     std::vector<glm::vec3> normals;
     EXPECT_FALSE(orientMeshOutward(mesh.positions, mesh.triangles, normals, kWeld).windingReversed);
     EXPECT_EQ(mesh.triangles, before);
+}
+
+/** A square floor 2 x half wide at height z, wound counter-clockwise seen from above (facing up). */
+Mesh withFloor(Mesh mesh, float half, float z) {
+    const auto first = std::uint32_t(mesh.positions.size());
+    for (const glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
+        mesh.positions.push_back(glm::vec3(half * corner, z));
+    mesh.triangles.push_back({first, first + 1, first + 2});
+    mesh.triangles.push_back({first, first + 2, first + 3});
+    return mesh;
+}
+
+TEST(OutwardWinding, EachConnectedSurfaceIsJudgedAlone) {
+    // A ball on a wide floor facing up, in one mesh: seen from the middle of the box the floor encloses a negative
+    // volume larger than the ball's, and its four rim edges are too few to call the whole mesh open. The ball is
+    // outward and stays; turned inside out it is turned back; the floor, open, keeps its winding either way.
+    const Mesh ball = makeUvSphere(glm::vec3(0.0f, 0.0f, 1.0f), 0.3f, 48, 24);
+    const Mesh scene = withFloor(ball, 2.0f, 0.0f);
+    Mesh mesh = scene;
+    std::vector<glm::vec3> normals;
+    EXPECT_FALSE(orientMeshOutward(mesh.positions, mesh.triangles, normals, kWeld).windingReversed);
+    EXPECT_EQ(mesh.triangles, scene.triangles);
+
+    Mesh turned = withFloor(insideOut(ball), 2.0f, 0.0f);
+    EXPECT_TRUE(orientMeshOutward(turned.positions, turned.triangles, normals, kWeld).windingReversed);
+    EXPECT_EQ(turned.triangles, scene.triangles);
 }
 
 TEST(OutwardWinding, AClosedFlatSheetDecidesNothing) {
