@@ -46,6 +46,8 @@ void checkInputs(const std::string& function, const cv::Mat& radial, const cv::M
         throw std::invalid_argument(function + ": 'depthJump' must be positive and finite");
     if (!isFiniteAtLeast(settings.smoothing, 0.0f))
         throw std::invalid_argument(function + ": 'smoothing' must be finite and >= 0");
+    if (!isFiniteAtLeast(settings.breakClearance, 0.0f))
+        throw std::invalid_argument(function + ": 'breakClearance' must be finite and >= 0");
     if (settings.smoothing > 0.0f && !(isFiniteAtLeast(settings.focalPixels, 0.0f) && settings.focalPixels > 0.0f))
         throw std::invalid_argument(function + ": 'focalPixels' must be positive and finite when smoothing");
 }
@@ -424,6 +426,44 @@ inline bool joinsNext(float depth, float nextDepth, float depthJump) {
     return depth > 0.0f && joinsNeighbour(depth, nextDepth, depthJump);
 }
 
+/** settings.breakClearance x the smoothing's sigma times the focal length: the band's width in pixels at depth z is
+ *  this over z. 0 without smoothing. */
+float clearanceDepth(const SuggestiveSettings& settings) {
+    return settings.smoothing > 0.0f ? settings.breakClearance * settings.smoothing * settings.focalPixels : 0.0f;
+}
+
+/** Whether the surface ends at pixel (row, col): it is off the image or the model, or a 4-neighbour is, or lies
+ *  across a depth break. */
+bool surfaceEndsAt(const cv::Mat& depth, int row, int col, float depthJump) {
+    if (row < 1 || col < 1 || row + 1 >= depth.rows || col + 1 >= depth.cols) return true;
+    const float z = depth.at<float>(row, col);
+    return !(z > 0.0f) || !joinsNeighbour(z, depth.at<float>(row, col - 1), depthJump) ||
+           !joinsNeighbour(z, depth.at<float>(row, col + 1), depthJump) ||
+           !joinsNeighbour(z, depth.at<float>(row - 1, col), depthJump) ||
+           !joinsNeighbour(z, depth.at<float>(row + 1, col), depthJump);
+}
+
+/** Whether the surface of covered pixel (row, col) ends within the clearance band, clearanceDepth / depth pixels:
+ *  along its row, its column or a diagonal (a diagonal step counts sqrt(2)), a pixel within that distance is one
+ *  where the surface ends (surfaceEndsAt()). A pixel's four neighbours are read, so a fold whose depth breaks only
+ *  every few pixels (a surface turning away at a contour, where neighbouring pixels' depths differ by about the break
+ *  test's limit) ends the surface as a whole break does. The band is capped at kMaxSmoothingReach, as the smoothing's
+ *  window is. */
+bool nearSurfaceEnd(const cv::Mat& depth, int row, int col, float clearanceDepth, float depthJump) {
+    const double clearance =
+        std::min(double(clearanceDepth) / double(depth.at<float>(row, col)), double(kMaxSmoothingReach));
+    for (int rowStep = -1; rowStep <= 1; ++rowStep) {
+        for (int colStep = -1; colStep <= 1; ++colStep) {
+            if (rowStep == 0 && colStep == 0) continue;
+            const double stepLength = rowStep != 0 && colStep != 0 ? std::sqrt(2.0) : 1.0;
+            const int steps = int(clearance / stepLength);
+            for (int step = 1; step <= steps; ++step)
+                if (surfaceEndsAt(depth, row + step * rowStep, col + step * colStep, depthJump)) return true;
+        }
+    }
+    return false;
+}
+
 /** Each row's covered span (coveredSpan()), found once for the smoother, the scanner and the bands. */
 std::vector<Span> coveredSpans(const cv::Mat& depth) {
     std::vector<Span> spans(size_t(depth.rows));
@@ -625,6 +665,7 @@ public:
     BandScanner(const cv::Mat& radial, const cv::Mat& depth, const std::vector<Span>& spans,
                 const SuggestiveSettings& settings, int reach, cv::Mat& mask, int firstRow, int endRow)
         : mRadial(radial), mDepth(depth), mSpans(spans), mMask(mask), mDepthJump(settings.depthJump),
+          mClearanceDepth(clearanceDepth(settings)),
           mMinSinThetaSquared(settings.minSinTheta * settings.minSinTheta), mRule{settings.featureSize *
                                                                                       settings.featureSize,
                                                                                   settings.threshold, settings.fade},
@@ -761,6 +802,7 @@ private:
             keptCrossing(dwA, dwB, *dwdwA, *dwdwB, radialRow(rowA)[colA], radialRow(rowB)[colB], mRule);
         if (!crossing) return;
         const cv::Point marked = crossing->marksA ? cv::Point(colA, rowA) : cv::Point(colB, rowB);
+        if (mClearanceDepth > 0.0f && nearSurfaceEnd(mDepth, marked.y, marked.x, mClearanceDepth, mDepthJump)) return;
         if (marked.y < mFirstRow)
             mResult.marksAboveBand.push_back(marked);
         else
@@ -773,6 +815,7 @@ private:
     const std::vector<Span>& mSpans;
     cv::Mat& mMask;
     float mDepthJump;
+    float mClearanceDepth; ///< clearanceDepth()
     float mMinSinThetaSquared;
     StrengthRule mRule;
     int mRows;
@@ -853,9 +896,10 @@ RadialDerivatives wideRadialDerivatives(const cv::Mat& radial, const cv::Mat& de
 }
 
 /** extractSuggestiveContours() over full-image derivative maps: every pair of valid 4-neighbours. */
-LineSkeleton crossingsOfMaps(const cv::Mat& radial, const RadialDerivatives& derivatives,
+LineSkeleton crossingsOfMaps(const cv::Mat& radial, const cv::Mat& depth, const RadialDerivatives& derivatives,
                              const SuggestiveSettings& settings) {
     const StrengthRule rule{settings.featureSize * settings.featureSize, settings.threshold, settings.fade};
+    const float clearance = clearanceDepth(settings);
     LineSkeleton skeleton;
     skeleton.mask = cv::Mat::zeros(radial.size(), CV_8UC1);
     for (int row = 0; row < radial.rows; ++row) {
@@ -871,6 +915,8 @@ LineSkeleton crossingsOfMaps(const cv::Mat& radial, const RadialDerivatives& der
                                  radial.at<cv::Vec4f>(row, col), radial.at<cv::Vec4f>(rowB, colB), rule);
                 if (!crossing) continue;
                 const cv::Point marked = crossing->marksA ? cv::Point(col, row) : cv::Point(colB, rowB);
+                if (clearance > 0.0f && nearSurfaceEnd(depth, marked.y, marked.x, clearance, settings.depthJump))
+                    continue;
                 skeleton.mask.at<uchar>(marked) = 255;
                 skeleton.points.push_back({crossingPosition(row, col, downward, crossing->t), crossing->alpha});
             }
@@ -983,7 +1029,7 @@ LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& dep
     checkInputs("extractSuggestiveContours()", radial, depth, settings);
     if (settings.stencil == DifferenceStencil::Central5) {
         const cv::Mat field = settings.smoothing > 0.0f ? smoothRadialField(radial, depth, settings) : radial;
-        return crossingsOfMaps(field, wideRadialDerivatives(field, depth, settings), settings);
+        return crossingsOfMaps(field, depth, wideRadialDerivatives(field, depth, settings), settings);
     }
     LineSkeleton skeleton;
     skeleton.mask = cv::Mat::zeros(radial.size(), CV_8UC1);

@@ -41,6 +41,13 @@ struct SuggestiveSettings {
      *  surface, in the depth buffer's length units (the model's), so the derivatives see the surface at that scale,
      *  not its facets and scan noise, alike at every resolution. 0: no smoothing. */
     float smoothing = 0.0f;
+    /** With smoothing > 0: a crossing is dropped where its surface ends (a depth break, the background or the image's
+     *  edge) within this many sigmas of the smoothing, in pixels at the marked pixel's depth, where the smoothing's
+     *  window sees one side only. The band is the same patch of surface at every resolution, where the stencil's own
+     *  margin (two pixels) is half as wide on the surface at 2048^2 as at 1024^2. 0 (the default): no band beyond the
+     *  stencil's. At 2 the lines hold better across sizes and about as well or a little worse across a 1 degree turn
+     *  (docs/strokes.md), so it is a choice, not the default. */
+    float breakClearance = 0.0f;
     /** The camera's focal length in pixels of this image, (height / 2) / tan(fovY / 2): converts `smoothing` to
      *  pixels, smoothing x focalPixels / depth at each pixel. Read only when smoothing > 0; then > 0. */
     float focalPixels = 0.0f;

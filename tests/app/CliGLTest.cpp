@@ -373,6 +373,32 @@ TEST_F(Cli, AnInsideOutModelDrawsTheSilhouetteOfItsOutwardCopy) {
     EXPECT_EQ(cv::norm(drawn, readImage(directory / "inside-out.obj.png"), cv::NORM_INF), 0.0);
 }
 
+TEST_F(Cli, SuggestiveClearanceKeepsLinesOffWhereTheSurfaceEnds) {
+    // A box has no suggestive contours, yet at 2048^2 the smoothing's one-sided windows beside its outline draw a
+    // stroke there (none at 1024^2). --suggestive-clearance 2 drops the crossings within two sigmas of where the
+    // surface ends, so nothing is drawn; --stats reports the setting.
+    const std::string box =
+        test::shellQuoted(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "characters" / "box-textured.glb");
+    for (const char* clearance : {"0", "2"}) {
+        const std::string name = std::string("clearance-") + clearance;
+        const CliRun result = run("render " + box + " -o " + name + ".png --size 2048x2048 --shading none" +
+                                  " --lines suggestive --suggestive-clearance " + clearance + " --dump " + name +
+                                  " --stats " + name + ".json");
+        ASSERT_EQ(result.exitCode, 0) << result.err;
+        double drawn = 0.0;
+        cv::minMaxLoc(readImage(directory / name / "lines-suggestive.png"), nullptr, &drawn);
+        const nlohmann::json stats = nlohmann::json::parse(readText(directory / (name + ".json")));
+        bool reported = false;
+        for (const nlohmann::json& layer : stats["look"]["lines"])
+            if (layer.value("type", "") == "suggestive") reported = layer["clearance"] == std::stod(clearance);
+        EXPECT_TRUE(reported) << name;
+        if (std::string(clearance) == "0")
+            EXPECT_GT(drawn, 128.0) << "the stroke beside the outline (the negative control)";
+        else
+            EXPECT_EQ(drawn, 0.0);
+    }
+}
+
 TEST_F(Cli, AMeshoptCompressedGlbRendersLikeItsDecodedCopy) {
     // gltfpack's BoxMeshopt.glb, and the same file with each compressed view decoded here (by the library the reader
     // uses) into a plain binary chunk and the extension dropped: the reader's placeholder buffer, view redirection and

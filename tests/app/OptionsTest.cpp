@@ -305,6 +305,23 @@ TEST(Options, SuggestiveSmoothing) {
               std::string::npos);
 }
 
+TEST(Options, SuggestiveClearance) {
+    // Sigmas of the smoothing; 0 (the default) draws no band; a negative value or one above 100 is refused, and the
+    // flag without its type has no effect.
+    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "suggestive"}), "suggestive-clearance"), 0.0);
+    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-clearance", "2"}),
+                        "suggestive-clearance"),
+              2.0);
+    for (const char* bad : {"-1", "101", "wide"})
+        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-clearance", bad})
+                      .find("--suggestive-clearance"),
+                  std::string::npos)
+            << bad;
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive-object", "--suggestive-clearance", "2"})
+                  .find("has no effect"),
+              std::string::npos);
+}
+
 TEST(Options, StrokeFlags) {
     // Issue 19: how line pixels become strokes, for every drawn type.
     const RenderOptions defaults = parse({"m.obj", "-o", "x.png", "--lines", "contour"});

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/core/utility.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -403,6 +404,72 @@ TEST(SuggestiveContours, NoLinesAlongOcclusionBoundaries) {
     EXPECT_GT(acrossBoundary, 5u);
 }
 
+/** Per pixel, the Euclidean distance in pixels to the nearest pixel where the surface ends: off the model, or at a
+ *  depth break (SuggestiveSettings::depthJump) with a 4-neighbour. */
+cv::Mat distanceToSurfaceEnds(const cv::Mat& depth, float depthJump) {
+    cv::Mat inside(depth.size(), CV_8UC1, cv::Scalar(0));
+    const auto joined = [&](float z, int row, int col) {
+        if (row < 0 || col < 0 || row >= depth.rows || col >= depth.cols) return false;
+        const float other = depth.at<float>(row, col);
+        return other > 0.0f && std::abs(z - other) <= depthJump * std::min(z, other);
+    };
+    for (int row = 0; row < depth.rows; ++row)
+        for (int col = 0; col < depth.cols; ++col) {
+            const float z = depth.at<float>(row, col);
+            if (z > 0.0f && joined(z, row, col - 1) && joined(z, row, col + 1) && joined(z, row - 1, col) &&
+                joined(z, row + 1, col))
+                inside.at<uchar>(row, col) = 255;
+        }
+    cv::Mat distance;
+    cv::distanceTransform(inside, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    return distance;
+}
+
+/** The smallest distance of a point of `skeleton` to a surface end, in sigmas of the smoothing at its pixel. */
+double nearestSurfaceEndInSigmas(const LineSkeleton& skeleton, const cv::Mat& depth,
+                                 const SuggestiveSettings& settings) {
+    const cv::Mat distance = distanceToSurfaceEnds(depth, settings.depthJump);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const LinePoint& point : skeleton.points) {
+        const cv::Point pixel(int(std::lround(point.position.x)), int(std::lround(point.position.y)));
+        const double sigmaPixels = settings.smoothing * settings.focalPixels / depth.at<float>(pixel);
+        nearest = std::min(nearest, distance.at<float>(pixel) / sigmaPixels);
+    }
+    return nearest;
+}
+
+TEST(SuggestiveContours, SurfaceEndsKeepABandOfTheSmoothingsWidthClear) {
+    // The torus's suggestive contours run up to the inner silhouette, seen from 30 degrees above. With the default
+    // smoothing and a band of 2 sigmas no point lies within the band of the place where its surface ends: the same
+    // band of surface at every resolution. Without the band, the stencil's own margin of two pixels decides, and 2048^2
+    // draws points far nearer, in sigmas, than 512^2 can.
+    const Torus torus;
+    for (const int size : {512, 2048}) {
+        SCOPED_TRACE(std::to_string(size) + "^2");
+        const SyntheticCamera camera = torusCamera(size, 30.0, 5.0);
+        const SyntheticGBuffer buffer = test::renderTorus(camera, glm::dvec3(0.0), torus.ring, torus.tube);
+        SuggestiveSettings settings = smoothed(appSettings(boundingRadius(torus)), boundingRadius(torus), camera);
+        settings.breakClearance = 2.0f; // `--suggestive-clearance 2`; the default is 0
+        SuggestiveSettings unbanded = settings;
+        unbanded.breakClearance = 0.0f;
+        const LineSkeleton banded = extractSuggestiveContours(buffer.radial, buffer.depth, settings);
+        const LineSkeleton unbandedLines = extractSuggestiveContours(buffer.radial, buffer.depth, unbanded);
+        ASSERT_GT(banded.points.size(), 100u);
+        const double bandedNearest = nearestSurfaceEndInSigmas(banded, buffer.depth, settings);
+        const double unbandedNearest = nearestSurfaceEndInSigmas(unbandedLines, buffer.depth, settings);
+        const double sigmaPixels = settings.smoothing * settings.focalPixels / 5.0;
+        std::cout << size << "^2 (sigma about " << sigmaPixels << " px): " << banded.points.size() << " points, "
+                  << unbandedLines.points.size() << " without the band; nearest to a surface end " << bandedNearest
+                  << " sigmas, " << unbandedNearest << " without the band\n";
+        // The band is walked in eight directions, an octagon inside the disc (cos 22.5 = 0.92), and the distance is
+        // to an end pixel's centre, which may lie a pixel nearer than the break itself.
+        EXPECT_GE(bandedNearest, 0.92 * settings.breakClearance - 1.0 / sigmaPixels);
+        if (size == 2048) {
+            EXPECT_LT(unbandedNearest, 0.5 * settings.breakClearance); // the negative control
+        }
+    }
+}
+
 /** Both skeletons hold the same points in the same order and the same mask. */
 void expectSameSkeleton(const LineSkeleton& other, const LineSkeleton& first) {
     ASSERT_EQ(other.points.size(), first.points.size());
@@ -531,7 +598,7 @@ TEST(SuggestiveContours, SmoothingFollowsItsDefinition) {
             }
         }
         // The lines of the field smoothed on the way (the scanner smooths rows as it reads them) are exactly those of
-        // the smoothed field.
+        // the smoothed field (with no band clear of surface ends, the default, which only the smoothing draws).
         SuggestiveSettings unsmoothed = settings;
         unsmoothed.smoothing = 0.0f;
         expectSameSkeleton(extractSuggestiveContours(radial, depth, settings),
