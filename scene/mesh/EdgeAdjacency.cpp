@@ -1,5 +1,6 @@
 #include "scene/mesh/EdgeAdjacency.h"
 
+#include "scene/mesh/DisjointSets.h"
 #include "scene/mesh/MeshOps.h"
 #include "scene/mesh/ParallelRanges.h"
 
@@ -349,24 +350,16 @@ EdgeChains chainEdges(const EdgeAdjacency& adjacency, std::span<const glm::vec3>
     }
 
     // Each edge has at most one partner per end: the chains are the connected runs (union-find over the pairs).
-    std::vector<std::uint32_t> parent(count);
-    for (std::size_t slot = 0; slot < count; ++slot) parent[slot] = std::uint32_t(slot);
-    const auto root = [&parent](std::uint32_t slot) {
-        while (parent[slot] != slot) slot = parent[slot] = parent[parent[slot]];
-        return slot;
-    };
+    DisjointSets runs(count);
     for (std::size_t edgeEnd = 0; edgeEnd < 2 * count; ++edgeEnd)
-        if (partner[edgeEnd] != kNone) {
-            const std::uint32_t a = root(std::uint32_t(edgeEnd / 2)), b = root(partner[edgeEnd] / 2);
-            if (a != b) parent[std::max(a, b)] = std::min(a, b);
-        }
+        if (partner[edgeEnd] != kNone) runs.join(std::uint32_t(edgeEnd / 2), partner[edgeEnd] / 2);
 
     EdgeChains chains;
     chains.edges.assign(edges.begin(), edges.end());
     chains.chainOf.assign(count, kNone);
     std::vector<std::uint32_t> chainOfRoot(count, kNone);
     for (std::size_t slot = 0; slot < count; ++slot) {
-        const std::uint32_t top = root(std::uint32_t(slot));
+        const std::uint32_t top = runs.find(std::uint32_t(slot));
         if (chainOfRoot[top] == kNone) {
             chainOfRoot[top] = std::uint32_t(chains.chainLength.size());
             chains.chainLength.push_back(0.0);

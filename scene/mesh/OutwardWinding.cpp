@@ -1,10 +1,10 @@
 #include "scene/mesh/OutwardWinding.h"
 
+#include "scene/mesh/DisjointSets.h"
 #include "scene/mesh/EdgeAdjacency.h"
 #include "scene/mesh/MeshOps.h"
 
 #include <cstdint>
-#include <numeric>
 #include <utility>
 
 namespace inkgraph {
@@ -22,20 +22,6 @@ double sixTimesTetrahedron(std::span<const glm::vec3> positions, const glm::uvec
     const glm::dvec3 c = glm::dvec3(positions[triangle.z]) - apex;
     return glm::dot(a, glm::cross(b, c));
 }
-
-/** Union-find over welded vertex ids, with path halving. */
-class Surfaces {
-public:
-    explicit Surfaces(std::size_t count) : mParent(count) { std::iota(mParent.begin(), mParent.end(), 0u); }
-    std::uint32_t find(std::uint32_t id) {
-        while (mParent[id] != id) id = mParent[id] = mParent[mParent[id]];
-        return id;
-    }
-    void join(std::uint32_t a, std::uint32_t b) { mParent[find(a)] = find(b); }
-
-private:
-    std::vector<std::uint32_t> mParent;
-};
 
 /** What decides one connected surface. */
 struct SurfaceTally {
@@ -70,7 +56,7 @@ OutwardTurn orientMeshOutward(std::span<const glm::vec3> positions, std::vector<
     if (sixVolume >= -6.0 * kFlatVolumeShare * diagonal * diagonal * diagonal) return turn;
 
     const WeldMap weld = weldVertices(positions, {}, weldDistance);
-    Surfaces surfaces(weld.kept.size());
+    DisjointSets surfaces(weld.kept.size()); // over welded vertex ids
     for (const glm::uvec3& triangle : triangles) {
         surfaces.join(weld.outputOf[triangle.x], weld.outputOf[triangle.y]);
         surfaces.join(weld.outputOf[triangle.x], weld.outputOf[triangle.z]);
