@@ -97,17 +97,24 @@ GlTexture resolved(const GlTexture& texture) {
     return single;
 }
 
+/** `region`, or the whole texture without one. Throws std::invalid_argument starting with `function` unless it lies
+ *  within the texture. */
+PixelRect regionWithin(const GlTexture& texture, const std::optional<PixelRect>& region, const std::string& function) {
+    const PixelRect read = region.value_or(PixelRect{0, 0, texture.width(), texture.height()});
+    if (read.x < 0 || read.y < 0 || read.width < 0 || read.height < 0 || read.x + read.width > texture.width() ||
+        read.y + read.height > texture.height())
+        throw std::invalid_argument(function + ": the region (" + std::to_string(read.x) + ", " +
+                                    std::to_string(read.y) + ", " + std::to_string(read.width) + " x " +
+                                    std::to_string(read.height) + ") is not within texture '" + texture.label() + "'");
+    return read;
+}
+
 } // namespace
 
 cv::Mat readTexture(const GlTexture& texture, ReadbackFlip flip, std::optional<PixelRect> region) {
     // GL reads no multisampled texture back; --dump and the caller's buffers take one value per pixel.
     if (texture.samples() > 1) return readTexture(resolved(texture), flip, region);
-    const PixelRect read = region.value_or(PixelRect{0, 0, texture.width(), texture.height()});
-    if (read.x < 0 || read.y < 0 || read.width < 0 || read.height < 0 || read.x + read.width > texture.width() ||
-        read.y + read.height > texture.height())
-        throw std::invalid_argument("readTexture(): the region (" + std::to_string(read.x) + ", " +
-                                    std::to_string(read.y) + ", " + std::to_string(read.width) + " x " +
-                                    std::to_string(read.height) + ") is not within texture '" + texture.label() + "'");
+    const PixelRect read = regionWithin(texture, region, "readTexture()");
     const GlFormat glFormat = glFormatOf(texture.format());
     cv::Mat image(texture.height(), texture.width(), cvTypeOf(texture.format()));
     if (read.width == 0 || read.height == 0) return image;
@@ -149,15 +156,12 @@ PendingReadback::PendingReadback(const GlTexture& texture)
 
 PendingReadback::PendingReadback(const GlTexture& texture, GlBuffer buffer, std::optional<PixelRect> region)
     : mBuffer(std::move(buffer)), mFormat(texture.format()), mWidth(texture.width()), mHeight(texture.height()),
-      mRegion(region.value_or(PixelRect{0, 0, texture.width(), texture.height()})), mLabel(texture.label()) {
+      mRegion(regionWithin(texture, region, "PendingReadback()")), mLabel(texture.label()) {
     if (texture.samples() > 1)
         throw std::invalid_argument("PendingReadback(): texture '" + texture.label() + "' is multisampled");
     if (mBuffer.byteCount() < readbackBytesOf(texture))
         throw std::invalid_argument("PendingReadback(): the buffer of " + std::to_string(mBuffer.byteCount()) +
                                     " bytes is too small for texture '" + texture.label() + "'");
-    if (mRegion.x < 0 || mRegion.y < 0 || mRegion.width < 0 || mRegion.height < 0 ||
-        mRegion.x + mRegion.width > mWidth || mRegion.y + mRegion.height > mHeight)
-        throw std::invalid_argument("PendingReadback(): the region is not within texture '" + texture.label() + "'");
     const GlFormat glFormat = glFormatOf(texture.format());
     if (mRegion.width > 0 && mRegion.height > 0) {
         glPixelStorei(GL_PACK_ALIGNMENT, 1);

@@ -78,8 +78,25 @@ TEST(Readback, ARegionReadsItsPixelsIntoTheirPlaces) {
     }
     EXPECT_EQ(readTexture(texture, ReadbackFlip::Fastest, PixelRect{3, 2, 0, 0}).size(), image.size())
         << "an empty region reads nothing";
-    for (const PixelRect outside : {PixelRect{5, 0, 3, 1}, PixelRect{0, 4, 1, 2}, PixelRect{-1, 0, 1, 1}})
-        EXPECT_THROW(readTexture(texture, ReadbackFlip::Fastest, outside), std::invalid_argument);
+    // A region outside is refused by both reads, each naming itself, the region and the texture.
+    for (const PixelRect outside : {PixelRect{5, 0, 3, 1}, PixelRect{0, 4, 1, 2}, PixelRect{-1, 0, 1, 1}}) {
+        for (const bool pending : {false, true}) {
+            try {
+                if (pending)
+                    PendingReadback(texture, GlBuffer(readbackBytesOf(texture), GL_MAP_READ_BIT, "region buffer"),
+                                    outside);
+                else
+                    readTexture(texture, ReadbackFlip::Fastest, outside);
+                ADD_FAILURE() << "no refusal of (" << outside.x << ", " << outside.y << ")";
+            } catch (const std::invalid_argument& error) {
+                const std::string message = error.what();
+                EXPECT_EQ(message.rfind(pending ? "PendingReadback(): the region (" : "readTexture(): the region (", 0),
+                          0u)
+                    << message;
+                EXPECT_NE(message.find("'region test'"), std::string::npos) << message;
+            }
+        }
+    }
     GLint rowLength = -1;
     glGetIntegerv(GL_PACK_ROW_LENGTH, &rowLength);
     EXPECT_EQ(rowLength, 0);
