@@ -2,6 +2,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +32,10 @@ bool startLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, bool clearDept
 }
 
 } // namespace
+
+float bandWidthPixels(float widthPixels, int maskRows) {
+    return widthPixels * std::max(1.0f, float(maskRows) / float(kBandReferenceRows));
+}
 
 bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffer& depth, GpuScene& scene,
                    const glm::dvec3& eye) {

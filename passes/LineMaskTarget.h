@@ -23,6 +23,18 @@ bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffe
 bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, const GlTexture& modelDepth, GpuScene& scene,
                    const glm::dvec3& eye);
 
+/** Up to this many rows a band that finds an outline or silhouette is its line's width in pixels; above, it is the
+ *  same share of the mask's height. */
+constexpr int kBandReferenceRows = 1024;
+
+/** The width in mask pixels of the band that finds a line `widthPixels` wide (outline, silhouette): widthPixels up to
+ *  kBandReferenceRows rows, widthPixels x rows / kBandReferenceRows above. The band only finds the line (its middle,
+ *  thinned); the stroke is drawn at the style's width. Fixed in pixels, a band covered half as much surface at 2048²
+ *  as at 1024², so where the model hides part of it (the back faces of a thin wing) or two rims lie close, its middle
+ *  moved and split between the sizes (docs/strokes.md). The masks are drawn at the output size (--supersample does
+ *  not apply to them). */
+float bandWidthPixels(float widthPixels, int maskRows);
+
 /** Draws every face of the scene's meshes into the depth buffer only, colour writes off (they stay off), with
  *  `program`, whose uniforms "viewFromModel" and "clipFromView" are set here. When the scene has cut-out or blended
  *  materials, each mesh's material is bound, so a program built with materialAlphaDefines() leaves the cut-out parts

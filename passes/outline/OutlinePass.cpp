@@ -167,7 +167,7 @@ void OutlinePass::execute(GlPassContext& gl) {
     glUniformMatrix4fv(mLineProgram->uniform("viewFromModel"), 1, GL_FALSE, glm::value_ptr(viewFromModel));
     glUniformMatrix4fv(mLineProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
     glUniform2f(mLineProgram->uniform("viewportSize"), float(width), float(height));
-    glUniform1f(mLineProgram->uniform("widthPixels"), mWidthPixels);
+    glUniform1f(mLineProgram->uniform("widthPixels"), bandWidthPixels(mWidthPixels, height));
     // A cut-out's edges are cut with it (the ends carry the surface's texture coordinates to line_mask.frag).
     const bool transparency = mScene.hasTransparency();
     for (std::size_t index = 0; index < mEdges.size(); ++index) {

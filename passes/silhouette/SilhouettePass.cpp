@@ -109,7 +109,7 @@ void SilhouettePass::execute(GlPassContext& gl) {
     glUniformMatrix3fv(mHullProgram->uniform("viewNormalFromModel"), 1, GL_FALSE, glm::value_ptr(viewNormalFromModel));
     glUniformMatrix4fv(mHullProgram->uniform("clipFromView"), 1, GL_FALSE, glm::value_ptr(clipFromView));
     glUniform2f(mHullProgram->uniform("viewportSize"), float(width), float(height));
-    glUniform1f(mHullProgram->uniform("widthPixels"), mSettings.widthPixels);
+    glUniform1f(mHullProgram->uniform("widthPixels"), bandWidthPixels(mSettings.widthPixels, height));
     glUniform1f(mHullProgram->uniform("objectWidth"), mSettings.objectWidth.value_or(0.0f));
     const bool transparency = mScene.hasTransparency();
     {
