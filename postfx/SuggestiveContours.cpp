@@ -100,6 +100,13 @@ inline bool joinsNeighbour(float depth, float neighbourDepth, float depthJump) {
     return neighbourDepth > 0.0f && std::abs(depth - neighbourDepth) <= depthJump * std::min(depth, neighbourDepth);
 }
 
+/** Whether a pixel of depth `depth` and its four neighbours lie on one surface: it is covered and joins each
+ *  (joinsNeighbour()). Where not, a central difference there would read across the surface's end. */
+inline bool joinsFourNeighbours(float depth, float left, float right, float above, float below, float depthJump) {
+    return depth > 0.0f && joinsNeighbour(depth, left, depthJump) && joinsNeighbour(depth, right, depthJump) &&
+           joinsNeighbour(depth, above, depthJump) && joinsNeighbour(depth, below, depthJump);
+}
+
 #if CV_SIMD128
 inline v_float32x4 joinsNeighbour(const v_float32x4& depth, const v_float32x4& neighbourDepth,
                                   const v_float32x4& depthJump) {
@@ -148,11 +155,8 @@ void differentiateAlongW(const RowInputs& in, int begin, int end, float depthJum
     }
 #endif
     for (; col < end; ++col) {
-        const float z = in.depth[col];
-        const bool onOneSurface = z > 0.0f && joinsNeighbour(z, in.depth[col - 1], depthJump) &&
-                                  joinsNeighbour(z, in.depth[col + 1], depthJump) &&
-                                  joinsNeighbour(z, in.depthAbove[col], depthJump) &&
-                                  joinsNeighbour(z, in.depthBelow[col], depthJump);
+        const bool onOneSurface = joinsFourNeighbours(in.depth[col], in.depth[col - 1], in.depth[col + 1],
+                                                      in.depthAbove[col], in.depthBelow[col], depthJump);
         const float gradientX = in.normalDistance[col + 1] - in.normalDistance[col - 1];
         const float gradientY = in.normalDistanceBelow[col] - in.normalDistanceAbove[col];
         dw[col] = onOneSurface ? 0.5f * (gradientX * in.imageWX[col] + gradientY * in.imageWY[col]) : 0.0f;
@@ -436,11 +440,9 @@ float clearanceDepth(const SuggestiveSettings& settings) {
  *  across a depth break. */
 bool surfaceEndsAt(const cv::Mat& depth, int row, int col, float depthJump) {
     if (row < 1 || col < 1 || row + 1 >= depth.rows || col + 1 >= depth.cols) return true;
-    const float z = depth.at<float>(row, col);
-    return !(z > 0.0f) || !joinsNeighbour(z, depth.at<float>(row, col - 1), depthJump) ||
-           !joinsNeighbour(z, depth.at<float>(row, col + 1), depthJump) ||
-           !joinsNeighbour(z, depth.at<float>(row - 1, col), depthJump) ||
-           !joinsNeighbour(z, depth.at<float>(row + 1, col), depthJump);
+    const float* z = depth.ptr<float>(row);
+    return !joinsFourNeighbours(z[col], z[col - 1], z[col + 1], depth.ptr<float>(row - 1)[col],
+                                depth.ptr<float>(row + 1)[col], depthJump);
 }
 
 /** Whether the surface of covered pixel (row, col) ends within the clearance band, clearanceDepth / depth pixels:
