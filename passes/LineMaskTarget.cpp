@@ -1,6 +1,7 @@
 #include "passes/LineMaskTarget.h"
 
 #include <glm/gtc/type_ptr.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <stdexcept>
@@ -35,6 +36,30 @@ bool startLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, bool clearDept
 
 float bandWidthPixels(float widthPixels, int maskRows) {
     return widthPixels * std::max(1.0f, float(maskRows) / float(kBandReferenceRows));
+}
+
+int bandOpeningPixels(float widthPixels, int maskRows) {
+    const int bySize = maskRows / kBandReferenceRows;
+    const int byWidth = int(bandWidthPixels(widthPixels, maskRows) / 2.0f);
+    return std::max(1, std::min(bySize, byWidth));
+}
+
+cv::Mat openedBand(const cv::Mat& band, float widthPixels) {
+    const int side = bandOpeningPixels(widthPixels, band.rows);
+    if (side <= 1) return band;
+    // Every pixel of a side x side square inside the band: the squares' corners (erode, anchored at the top left),
+    // then each corner's square (dilate, anchored at the bottom right). cv::morphologyEx anchors both steps at the
+    // middle, which for an even side moves the result a pixel down and right.
+    const cv::Mat square = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(side, side));
+    cv::Mat corners, opened;
+    cv::erode(band, corners, square, cv::Point(0, 0), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+    cv::dilate(corners, opened, square, cv::Point(side - 1, side - 1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+    // Where the model hides most of a band, what shows of it can narrow to a pixel between wider stretches (a box's
+    // side seen at a grazing angle); the band's pixels within `side` of what the opening kept stay, so such a
+    // remnant still joins its stretches, while a sliver apart from the band goes.
+    cv::Mat nearKept;
+    cv::dilate(opened, nearKept, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * side + 1, 2 * side + 1)));
+    return band & nearKept;
 }
 
 bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffer& depth, GpuScene& scene,

@@ -7,6 +7,7 @@
 #include "passes/GpuScene.h"
 
 #include <glm/glm.hpp>
+#include <opencv2/core.hpp>
 
 #include <string>
 #include <vector>
@@ -34,6 +35,21 @@ constexpr int kBandReferenceRows = 1024;
  *  moved and split between the sizes (docs/strokes.md). The masks are drawn at the output size (--supersample does
  *  not apply to them). */
 float bandWidthPixels(float widthPixels, int maskRows);
+
+/** The side in mask pixels of the square that opens a band of one width (bandWidthPixels() of `widthPixels`
+ *  everywhere) before the stroke stage thins it: maskRows / kBandReferenceRows pixels, so what is left is what would
+ *  be a pixel wide or more at kBandReferenceRows rows, and at most half the band's width, so the band itself is never
+ *  opened away. 1 (nothing opened) up to 2 x kBandReferenceRows - 1 rows and for bands under 4 pixels. Above, the
+ *  band finds slivers a pixel wide that are under a pixel at the reference size (the inflated hull poking through a
+ *  thin part, Lucy's wings at 2048^2), which the stroke stage chained into strokes drawn at one size and not at the
+ *  other (docs/strokes.md). */
+int bandOpeningPixels(float widthPixels, int maskRows);
+
+/** `band` (CV_8UC1, a band of one width drawn for a line `widthPixels` wide) opened by a square of side
+ *  bandOpeningPixels(widthPixels, band.rows), with the band's pixels within that side of what the opening kept put
+ *  back: what the stroke stage thins. Slivers apart from the band's full-width stretches go; a remnant a pixel wide
+ *  between two of them (where the model hides most of the band) stays. The band itself where the side is 1. */
+cv::Mat openedBand(const cv::Mat& band, float widthPixels);
 
 /** Draws every face of the scene's meshes into the depth buffer only, colour writes off (they stay off), with
  *  `program`, whose uniforms "viewFromModel" and "clipFromView" are set here. When the scene has cut-out or blended

@@ -154,6 +154,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         const LineTypeStrokeRules rules = type.strokeRules ? type.strokeRules(look) : LineTypeStrokeRules{};
         input.minLength = look.strokes.minLength;
         input.seedStrength = rules.seedStrength;
+        input.bandOfOneWidth = !input.skeleton && rules.bandOfOneWidth;
         input.dashed = type.hiddenLines;
         strokes.inputs.push_back(input);
         lines.push_back({std::string(kStrokesPass) + "." + type.name, displayColor(look.styleOf(type.name).color)});

@@ -88,6 +88,9 @@ struct LineStatsSource {
 /** A line type's own stroke rules beyond the look's (postfx/Strokes.h). */
 struct LineTypeStrokeRules {
     float seedStrength = 0.0f; ///< hysteresis: a chain needs a point of this type this strong; 0: every point seeds
+    /** A GL band of one width everywhere (bandWidthPixels() of the type's width; no width map, no width in model
+     *  units): the stroke stage opens away its slivers thinner than bandOpeningPixels() before thinning it. */
+    bool bandOfOneWidth = false;
 };
 
 struct LineType {

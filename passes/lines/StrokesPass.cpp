@@ -1,6 +1,7 @@
 #include "passes/lines/StrokesPass.h"
 
 #include "gl/GraphExecutor.h"
+#include "passes/LineMaskTarget.h"
 #include "passes/lines/LineLayerPass.h"
 #include "postfx/LineTracing.h"
 
@@ -103,7 +104,10 @@ void StrokesPass::execute(GlPassContext& gl) {
             thinned[index].mask = thinToSkeleton(found.mask, 1);
             thinned[index].points = found.points;
         } else {
-            thinned[index] = skeletonFromMask(thinToSkeleton(gl.inputImage(input.resource)));
+            // Slivers narrower than a pixel at the band's reference size go; the band's own width stays.
+            const cv::Mat& band = gl.inputImage(input.resource);
+            thinned[index] =
+                skeletonFromMask(thinToSkeleton(input.bandOfOneWidth ? openedBand(band, input.widthPixels) : band));
             layer.scale = scale / gl.scaleOf(input.resource);
         }
         layer.skeleton = &thinned[index];

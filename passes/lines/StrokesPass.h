@@ -44,6 +44,8 @@ struct StrokeInput {
     float widthPixels = 2.0f;  ///< output pixels
     double minLength = 0.0;    ///< share of the height a chain holding this type needs
     float seedStrength = 0.0f; ///< hysteresis (LineTypeStrokeRules)
+    /** A GL band of one width (LineTypeStrokeRules::bandOfOneWidth): opened by bandOpeningPixels() before thinning. */
+    bool bandOfOneWidth = false;
     /** A hidden-lines type (LineType::hiddenLines): its kept strokes are cut into StrokesPassSettings::dash's dashes,
      *  in its layer and its --svg paths alike; with mergeOverlaps it gives way only to other dashed types. */
     bool dashed = false;

@@ -87,6 +87,15 @@ TEST_F(SilhouetteSphere, ScreenSpaceWidthHoldsAtAnyDistanceFovAndResolution) {
                 holes += distance > 1.0 && distance < band - 1.0 && render.lines.at<uchar>(row, col) != 255;
             }
         EXPECT_EQ(holes, 0);
+        // The stroke stage opens the band (2 x 2 at 2048 rows) before thinning it: the ring stays whole.
+        const cv::Mat opened = openedBand(render.lines, kWidth);
+        int openedHoles = 0;
+        for (int row = 0; row < opened.rows; ++row)
+            for (int col = 0; col < opened.cols; ++col) {
+                const double distance = circle.distance(col, row);
+                openedHoles += distance > 1.0 && distance < band - 1.0 && opened.at<uchar>(row, col) != 255;
+            }
+        EXPECT_EQ(openedHoles, 0);
         EXPECT_FALSE(pass.skippedEyeInside());
     }
     RecordProperty("ring_widths_left_right_top_bottom", measured.str());

@@ -32,6 +32,14 @@ const LineParameter kSilhouetteObjectWidth{
     false,
     "model units must be above 0"};
 
+/** The stroke rules of a band: of one width unless --outline-width-map (or, for the silhouette, a width in model units)
+ *  makes its width vary, where opening it would cut its thin parts. */
+LineTypeStrokeRules bandRules(const Look& look, bool objectWidth) {
+    LineTypeStrokeRules rules;
+    rules.bandOfOneWidth = !look.outlineWidthMap.enabled() && !objectWidth;
+    return rules;
+}
+
 } // namespace
 
 LineType outlineLineType() {
@@ -49,6 +57,7 @@ LineType outlineLineType() {
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
         describeSkipped(source, "outline", entry);
     };
+    type.strokeRules = [](const Look& look) { return bandRules(look, false); };
     return type;
 }
 
@@ -72,6 +81,9 @@ LineType silhouetteLineType() {
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
         if (auto width = source.look.lineParameters.numberIfSet(kSilhouetteObjectWidth)) entry["object_width"] = *width;
         describeSkipped(source, "silhouette", entry);
+    };
+    type.strokeRules = [](const Look& look) {
+        return bandRules(look, look.lineParameters.numberIfSet(kSilhouetteObjectWidth).has_value());
     };
     return type;
 }
