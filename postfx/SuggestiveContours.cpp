@@ -436,6 +436,20 @@ float clearanceDepth(const SuggestiveSettings& settings) {
     return settings.smoothing > 0.0f ? settings.breakClearance * settings.smoothing * settings.focalPixels : 0.0f;
 }
 
+/** Above this many data rows a crossing keeps the second difference's reach at this many rows (two pixels for the
+ *  3-point stencil, four for the 5-point one) from where its surface ends, as the same share of the height. */
+constexpr int kStencilReferenceRows = 1024;
+
+/** The margin from a surface end of an image `rows` high, in pixels: 0 up to kStencilReferenceRows rows, where the
+ *  stencil's own reach is the margin; above, that reach x rows / kStencilReferenceRows. At 2048^2 the stencil alone
+ *  leaves crossings 2-4 pixels from an end, where the smoothing's window sees one side only and that strip of surface
+ *  is as wide as 1-2 pixels at 1024^2: the lines there came and went with the size (docs/strokes.md). */
+float sizeMarginPixels(const SuggestiveSettings& settings, int rows) {
+    if (rows <= kStencilReferenceRows) return 0.0f;
+    const float reach = settings.stencil == DifferenceStencil::Central5 ? 4.0f : 2.0f;
+    return reach * float(rows) / float(kStencilReferenceRows);
+}
+
 /** Whether the surface ends at pixel (row, col): it is off the image or the model, or a 4-neighbour is, or lies
  *  across a depth break. */
 bool surfaceEndsAt(const cv::Mat& depth, int row, int col, float depthJump) {
@@ -445,15 +459,18 @@ bool surfaceEndsAt(const cv::Mat& depth, int row, int col, float depthJump) {
                                 depth.ptr<float>(row + 1)[col], depthJump);
 }
 
-/** Whether the surface of covered pixel (row, col) ends within the clearance band, clearanceDepth / depth pixels:
+/** Whether the surface of covered pixel (row, col) ends within the clearance band, the larger of clearanceDepth / depth
+ *  and minimumPixels pixels:
  *  along its row, its column or a diagonal (a diagonal step counts sqrt(2)), a pixel within that distance is one
  *  where the surface ends (surfaceEndsAt()). A pixel's four neighbours are read, so a fold whose depth breaks only
  *  every few pixels (a surface turning away at a contour, where neighbouring pixels' depths differ by about the break
  *  test's limit) ends the surface as a whole break does. The band is capped at kMaxSmoothingReach, as the smoothing's
  *  window is. */
-bool nearSurfaceEnd(const cv::Mat& depth, int row, int col, float clearanceDepth, float depthJump) {
+bool nearSurfaceEnd(const cv::Mat& depth, int row, int col, float clearanceDepth, float minimumPixels,
+                    float depthJump) {
     const double clearance =
-        std::min(double(clearanceDepth) / double(depth.at<float>(row, col)), double(kMaxSmoothingReach));
+        std::min(std::max(double(clearanceDepth) / double(depth.at<float>(row, col)), double(minimumPixels)),
+                 double(kMaxSmoothingReach));
     for (int rowStep = -1; rowStep <= 1; ++rowStep) {
         for (int colStep = -1; colStep <= 1; ++colStep) {
             if (rowStep == 0 && colStep == 0) continue;
@@ -667,7 +684,7 @@ public:
     BandScanner(const cv::Mat& radial, const cv::Mat& depth, const std::vector<Span>& spans,
                 const SuggestiveSettings& settings, int reach, cv::Mat& mask, int firstRow, int endRow)
         : mRadial(radial), mDepth(depth), mSpans(spans), mMask(mask), mDepthJump(settings.depthJump),
-          mClearanceDepth(clearanceDepth(settings)),
+          mClearanceDepth(clearanceDepth(settings)), mMarginPixels(sizeMarginPixels(settings, radial.rows)),
           mMinSinThetaSquared(settings.minSinTheta * settings.minSinTheta), mRule{settings.featureSize *
                                                                                       settings.featureSize,
                                                                                   settings.threshold, settings.fade},
@@ -804,7 +821,9 @@ private:
             keptCrossing(dwA, dwB, *dwdwA, *dwdwB, radialRow(rowA)[colA], radialRow(rowB)[colB], mRule);
         if (!crossing) return;
         const cv::Point marked = crossing->marksA ? cv::Point(colA, rowA) : cv::Point(colB, rowB);
-        if (mClearanceDepth > 0.0f && nearSurfaceEnd(mDepth, marked.y, marked.x, mClearanceDepth, mDepthJump)) return;
+        if ((mClearanceDepth > 0.0f || mMarginPixels > 0.0f) &&
+            nearSurfaceEnd(mDepth, marked.y, marked.x, mClearanceDepth, mMarginPixels, mDepthJump))
+            return;
         if (marked.y < mFirstRow)
             mResult.marksAboveBand.push_back(marked);
         else
@@ -818,6 +837,7 @@ private:
     cv::Mat& mMask;
     float mDepthJump;
     float mClearanceDepth; ///< clearanceDepth()
+    float mMarginPixels;   ///< sizeMarginPixels()
     float mMinSinThetaSquared;
     StrengthRule mRule;
     int mRows;
@@ -902,6 +922,7 @@ LineSkeleton crossingsOfMaps(const cv::Mat& radial, const cv::Mat& depth, const 
                              const SuggestiveSettings& settings) {
     const StrengthRule rule{settings.featureSize * settings.featureSize, settings.threshold, settings.fade};
     const float clearance = clearanceDepth(settings);
+    const float margin = sizeMarginPixels(settings, radial.rows);
     LineSkeleton skeleton;
     skeleton.mask = cv::Mat::zeros(radial.size(), CV_8UC1);
     for (int row = 0; row < radial.rows; ++row) {
@@ -917,7 +938,8 @@ LineSkeleton crossingsOfMaps(const cv::Mat& radial, const cv::Mat& depth, const 
                                  radial.at<cv::Vec4f>(row, col), radial.at<cv::Vec4f>(rowB, colB), rule);
                 if (!crossing) continue;
                 const cv::Point marked = crossing->marksA ? cv::Point(col, row) : cv::Point(colB, rowB);
-                if (clearance > 0.0f && nearSurfaceEnd(depth, marked.y, marked.x, clearance, settings.depthJump))
+                if ((clearance > 0.0f || margin > 0.0f) &&
+                    nearSurfaceEnd(depth, marked.y, marked.x, clearance, margin, settings.depthJump))
                     continue;
                 skeleton.mask.at<uchar>(marked) = 255;
                 skeleton.points.push_back({crossingPosition(row, col, downward, crossing->t), crossing->alpha});

@@ -43,8 +43,9 @@ struct SuggestiveSettings {
     float smoothing = 0.0f;
     /** With smoothing > 0: a crossing is dropped where its surface ends (a depth break, the background or the image's
      *  edge) within this many sigmas of the smoothing, in pixels at the marked pixel's depth, where the smoothing's
-     *  window sees one side only. The band is the same patch of surface at every resolution, where the stencil's own
-     *  margin (two pixels) is half as wide on the surface at 2048^2 as at 1024^2. 0 (the default): no band beyond the
+     *  window sees one side only. The band is the same patch of surface at every resolution, as the stencil's own
+     *  margin is (two pixels at 1024 rows, the same share of the height above; extractSuggestiveContours()), but
+     *  measured in sigmas, so it reaches as far as the smoothing does. 0 (the default): no band beyond the
      *  stencil's. At 2 the lines hold better across sizes and about as well or a little worse across a 1 degree turn
      *  (docs/strokes.md), so it is a choice, not the default. */
     float breakClearance = 0.0f;
@@ -88,7 +89,9 @@ RadialDerivatives computeRadialDerivatives(const cv::Mat& radial, const cv::Mat&
 /** Zero crossings of D_w(n.v) between valid 4-neighbours (the pixel with the smaller |D_w(n.v)| marked, the point
  *  at the linear crossing, no half-pixel shift), kept where D_w D_w(n.v) > 0 and the strength passes the threshold,
  *  both interpolated to the crossing. The result does not depend on the resolution: J w scales with it and the
- *  differences per pixel inversely. Rows are split into bands over cv::parallel_for_; the result does not depend on
+ *  differences per pixel inversely. Above 1024 rows a crossing keeps the second difference's reach at 1024 rows (2
+ *  pixels, 4 for Central5) from where its surface ends as the same share of the height (4 pixels at 2048 rows), as
+ *  the stencil alone does at 1024 rows. Rows are split into bands over cv::parallel_for_; the result does not depend on
  *  the thread count either. With settings.smoothing > 0 the field is smoothRadialField()'s to the bit, smoothed band
  *  by band as the rows are scanned, so it is never held whole. Throws std::invalid_argument naming the argument for
  *  wrong types, sizes or settings. */

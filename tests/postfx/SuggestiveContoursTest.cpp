@@ -470,6 +470,43 @@ TEST(SuggestiveContours, SurfaceEndsKeepABandOfTheSmoothingsWidthClear) {
     }
 }
 
+/** The smallest distance in pixels of a point of `skeleton` to a surface end (distanceToSurfaceEnds()). */
+double nearestSurfaceEndInPixels(const LineSkeleton& skeleton, const cv::Mat& depth, float depthJump) {
+    const cv::Mat distance = distanceToSurfaceEnds(depth, depthJump);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const LinePoint& point : skeleton.points)
+        nearest = std::min(nearest, double(distance.at<float>(cv::Point(int(std::lround(point.position.x)),
+                                                                        int(std::lround(point.position.y))))));
+    return nearest;
+}
+
+TEST(SuggestiveContours, AboveAThousandRowsTheMarginFromSurfaceEndsGrowsWithTheSize) {
+    // Up to 1024 rows the second difference's own reach (two pixels) keeps crossings off where their surface ends;
+    // above, that reach grows as the same share of the height (4 px at 2048^2, 8 at 4096^2), so the strip of surface
+    // kept clear is the same at every size. Both stencils, the default smoothing, no --suggestive-clearance.
+    const Torus torus;
+    for (const DifferenceStencil stencil : {DifferenceStencil::Central3, DifferenceStencil::Central5}) {
+        const double reach = stencil == DifferenceStencil::Central5 ? 4.0 : 2.0;
+        for (const int size : {1024, 2048}) {
+            SCOPED_TRACE(std::to_string(size) + "^2, " + (reach == 4.0 ? "5" : "3") + "-point");
+            const SyntheticCamera camera = torusCamera(size, 30.0, 5.0);
+            const SyntheticGBuffer buffer = test::renderTorus(camera, glm::dvec3(0.0), torus.ring, torus.tube);
+            SuggestiveSettings settings = smoothed(appSettings(boundingRadius(torus)), boundingRadius(torus), camera);
+            settings.stencil = stencil;
+            const LineSkeleton lines = extractSuggestiveContours(buffer.radial, buffer.depth, settings);
+            ASSERT_GT(lines.points.size(), 100u);
+            const double nearest = nearestSurfaceEndInPixels(lines, buffer.depth, settings.depthJump);
+            std::cout << size << "^2, reach " << reach << ": " << lines.points.size()
+                      << " points, nearest to a surface end " << nearest << " px\n";
+            const double margin = size > 1024 ? reach * size / 1024.0 : reach;
+            // The margin is walked in eight directions, an octagon inside the disc (cos 22.5 = 0.92), and the distance
+            // is to an end pixel's centre, which may lie a pixel nearer than the break itself.
+            EXPECT_GE(nearest, 0.92 * margin - 1.0);
+            if (size == 1024) EXPECT_LT(nearest, 0.92 * 2.0 * reach - 1.0) << "the control: 1024^2 comes nearer";
+        }
+    }
+}
+
 /** Both skeletons hold the same points in the same order and the same mask. */
 void expectSameSkeleton(const LineSkeleton& other, const LineSkeleton& first) {
     ASSERT_EQ(other.points.size(), first.points.size());
