@@ -460,12 +460,11 @@ bool surfaceEndsAt(const cv::Mat& depth, int row, int col, float depthJump) {
 }
 
 /** Whether the surface of covered pixel (row, col) ends within the clearance band, the larger of clearanceDepth / depth
- *  and minimumPixels pixels:
- *  along its row, its column or a diagonal (a diagonal step counts sqrt(2)), a pixel within that distance is one
- *  where the surface ends (surfaceEndsAt()). A pixel's four neighbours are read, so a fold whose depth breaks only
- *  every few pixels (a surface turning away at a contour, where neighbouring pixels' depths differ by about the break
- *  test's limit) ends the surface as a whole break does. The band is capped at kMaxSmoothingReach, as the smoothing's
- *  window is. */
+ *  and minimumPixels pixels: along its row, its column or a diagonal (a diagonal step counts sqrt(2)), a pixel within
+ *  that distance is one where the surface ends (surfaceEndsAt()). A pixel's four neighbours are read, so a fold
+ *  whose depth breaks only every few pixels (a surface turning away at a contour, where neighbouring pixels' depths
+ *  differ by about the break test's limit) ends the surface as a whole break does. The band is capped at
+ *  kMaxSmoothingReach, as the smoothing's window is. */
 bool nearSurfaceEnd(const cv::Mat& depth, int row, int col, float clearanceDepth, float minimumPixels,
                     float depthJump) {
     const double clearance =
