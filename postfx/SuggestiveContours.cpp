@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -373,6 +374,88 @@ void smoothPixel(Neighbour at, int before, int after, const GaussianWindow& wind
     std::copy(value.val, value.val + 4, out);
 }
 
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define INKGRAPH_AVX2_DISPATCH 1
+#endif
+
+/** Eight floats as one value (GCC's vector extension): two pixels of the radial field. Built for the baseline target
+ *  it is two SSE registers; inside an AVX2 function, one. */
+typedef float EightFloats __attribute__((vector_size(32)));
+
+/** The whole-window sums of eight neighbouring pixels of one sigma level: taps[reach + d] points at the first
+ *  pixel's neighbour d along the pass, and the other seven pixels' neighbours follow it, 4 floats each. Every float
+ *  is summed with the operations, in the order, of smoothPixels()'s four-pixel block and of smoothPixel() (the
+ *  centre times its weight, then (ahead + behind) x weight added for d = 1 .. reach, then times 1 / total; no fused
+ *  multiply-add), so the result is the same to the bit whichever block or instruction set computes it. Four
+ *  independent sums of two pixels each keep twice the work in flight that the four-pixel block does. */
+__attribute__((always_inline)) inline void sumEightWholeWindowsBody(const float* const* taps, int reach,
+                                                                    const float* weights, float scale, float* out) {
+    const EightFloats zero = {};
+    const float* centre = taps[reach];
+    EightFloats sum0, sum1, sum2, sum3;
+    std::memcpy(&sum0, centre, sizeof sum0);
+    std::memcpy(&sum1, centre + 8, sizeof sum1);
+    std::memcpy(&sum2, centre + 16, sizeof sum2);
+    std::memcpy(&sum3, centre + 24, sizeof sum3);
+    const EightFloats centreWeight = zero + weights[0];
+    sum0 *= centreWeight;
+    sum1 *= centreWeight;
+    sum2 *= centreWeight;
+    sum3 *= centreWeight;
+    for (int d = 1; d <= reach; ++d) {
+        const float* ahead = taps[reach + d];
+        const float* behind = taps[reach - d];
+        const EightFloats weight = zero + weights[d];
+        EightFloats a0, a1, a2, a3, b0, b1, b2, b3;
+        std::memcpy(&a0, ahead, sizeof a0);
+        std::memcpy(&a1, ahead + 8, sizeof a1);
+        std::memcpy(&a2, ahead + 16, sizeof a2);
+        std::memcpy(&a3, ahead + 24, sizeof a3);
+        std::memcpy(&b0, behind, sizeof b0);
+        std::memcpy(&b1, behind + 8, sizeof b1);
+        std::memcpy(&b2, behind + 16, sizeof b2);
+        std::memcpy(&b3, behind + 24, sizeof b3);
+        sum0 = (a0 + b0) * weight + sum0;
+        sum1 = (a1 + b1) * weight + sum1;
+        sum2 = (a2 + b2) * weight + sum2;
+        sum3 = (a3 + b3) * weight + sum3;
+    }
+    const EightFloats scale8 = zero + scale;
+    sum0 *= scale8;
+    sum1 *= scale8;
+    sum2 *= scale8;
+    sum3 *= scale8;
+    std::memcpy(out, &sum0, sizeof sum0);
+    std::memcpy(out + 8, &sum1, sizeof sum1);
+    std::memcpy(out + 16, &sum2, sizeof sum2);
+    std::memcpy(out + 24, &sum3, sizeof sum3);
+}
+
+void sumEightWholeWindowsBaseline(const float* const* taps, int reach, const float* weights, float scale, float* out) {
+    sumEightWholeWindowsBody(taps, reach, weights, scale, out);
+}
+
+#ifdef INKGRAPH_AVX2_DISPATCH
+// AVX2 without FMA: the target's only new operations are wider registers, so nothing is fused or reordered.
+__attribute__((target("avx2"))) void sumEightWholeWindowsAvx2(const float* const* taps, int reach, const float* weights,
+                                                              float scale, float* out) {
+    sumEightWholeWindowsBody(taps, reach, weights, scale, out);
+}
+#endif
+
+/** sumEightWholeWindowsBody() with the widest registers this CPU has: the smoothing is the largest kernel of a comic
+ *  still (docs/performance.md), and Debian's builds target the baseline x86-64, whose vectors hold one pixel. */
+void sumEightWholeWindows(const float* const* taps, int reach, const float* weights, float scale, float* out) {
+#ifdef INKGRAPH_AVX2_DISPATCH
+    static const bool hasAvx2 = (__builtin_cpu_init(), __builtin_cpu_supports("avx2") != 0);
+    if (hasAvx2) {
+        sumEightWholeWindowsAvx2(taps, reach, weights, scale, out);
+        return;
+    }
+#endif
+    sumEightWholeWindowsBaseline(taps, reach, weights, scale, out);
+}
+
 /** Pixels [begin, end) of one line of a pass: pixel i's neighbour d along the pass is at(i, d) (4 floats), its sigma
  *  level levels[i] (kUnsmoothed: copied), its run before[i] and after[i] pixels either side. Four neighbouring pixels
  *  of one level with whole windows are summed together, each in its own register, so their sums do not wait on each
@@ -388,8 +471,18 @@ void smoothPixels(int begin, int end, const int16_t* levels, const int* before, 
             continue;
         }
         const GaussianWindow& window = windows.forLevel(level);
-#if CV_SIMD128
         const int reach = window.reach;
+        if (i + 8 <= end && std::all_of(levels + i + 1, levels + i + 8, [level](int16_t l) { return l == level; }) &&
+            *std::min_element(before + i, before + i + 8) >= reach &&
+            *std::min_element(after + i, after + i + 8) >= reach) {
+            // at(i + k, d) is at(i, d) + 4 k, as below.
+            std::array<const float*, 2 * kMaxSmoothingReach + 1> taps;
+            for (int d = -reach; d <= reach; ++d) taps[size_t(reach + d)] = at(i, d);
+            sumEightWholeWindows(taps.data(), reach, window.weights.data(), 1.0f / window.total, out[i].val);
+            i += 8;
+            continue;
+        }
+#if CV_SIMD128
         if (i + 4 <= end && levels[i + 1] == level && levels[i + 2] == level && levels[i + 3] == level &&
             std::min({before[i], before[i + 1], before[i + 2], before[i + 3]}) >= reach &&
             std::min({after[i], after[i + 1], after[i + 2], after[i + 3]}) >= reach) {

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <iostream>
 #include <limits>
 #include <string>
@@ -502,7 +503,9 @@ TEST(SuggestiveContours, AboveAThousandRowsTheMarginFromSurfaceEndsGrowsWithTheS
             // The margin is walked in eight directions, an octagon inside the disc (cos 22.5 = 0.92), and the distance
             // is to an end pixel's centre, which may lie a pixel nearer than the break itself.
             EXPECT_GE(nearest, 0.92 * margin - 1.0);
-            if (size == 1024) EXPECT_LT(nearest, 0.92 * 2.0 * reach - 1.0) << "the control: 1024^2 comes nearer";
+            if (size == 1024) {
+                EXPECT_LT(nearest, 0.92 * 2.0 * reach - 1.0) << "the control: 1024^2 comes nearer";
+            }
         }
     }
 }
@@ -640,6 +643,40 @@ TEST(SuggestiveContours, SmoothingFollowsItsDefinition) {
         unsmoothed.smoothing = 0.0f;
         expectSameSkeleton(extractSuggestiveContours(radial, depth, settings),
                            extractSuggestiveContours(smoothed, depth, unsmoothed));
+    }
+}
+
+TEST(SuggestiveContours, SmoothingGivesAPixelTheSameBitsWhicheverBlockSumsIt) {
+    // The whole windows are summed eight pixels at a time (the widest registers the CPU has), then four, then one, so
+    // which block sums a pixel depends on how many whole-window pixels its run has left. A field 46 pixels square
+    // (30 whole-window pixels a line: three blocks of eight, one of four, two alone) and the same field with 1 to 15
+    // more columns and rows: every pixel whose window is whole in both images gets the same float bits in both,
+    // though near the narrower image's right and bottom ends other blocks sum it.
+    constexpr int kSide = 46;
+    cv::RNG random(38);
+    cv::Mat wideRadial(kSide + 15, kSide + 15, CV_32FC4);
+    random.fill(wideRadial, cv::RNG::UNIFORM, cv::Scalar::all(-1.0), cv::Scalar::all(1.0));
+    SuggestiveSettings settings;
+    settings.focalPixels = 100.0f;
+    settings.smoothing = 0.025f; // 2.5 px at depth 1: a reach of 8 px
+    constexpr int kReach = 8;
+    for (int extra = 1; extra <= 15; ++extra) {
+        SCOPED_TRACE(std::to_string(extra) + " more columns and rows");
+        const cv::Mat narrowRadial = wideRadial(cv::Rect(0, 0, kSide, kSide)).clone();
+        const cv::Mat radial = wideRadial(cv::Rect(0, 0, kSide + extra, kSide + extra)).clone();
+        const cv::Mat narrow = smoothRadialField(narrowRadial, cv::Mat(narrowRadial.size(), CV_32FC1, 1.0f), settings);
+        const cv::Mat wide = smoothRadialField(radial, cv::Mat(radial.size(), CV_32FC1, 1.0f), settings);
+        int compared = 0;
+        // Whole windows in the narrower image: kReach pixels from each image edge (which ends the runs).
+        for (int row = kReach; row < kSide - kReach; ++row) {
+            for (int col = kReach; col < kSide - kReach; ++col) {
+                const cv::Vec4f a = narrow.at<cv::Vec4f>(row, col);
+                const cv::Vec4f b = wide.at<cv::Vec4f>(row, col);
+                ASSERT_EQ(std::memcmp(a.val, b.val, sizeof a.val), 0) << "pixel (" << col << ", " << row << ")";
+                ++compared;
+            }
+        }
+        EXPECT_EQ(compared, (kSide - 2 * kReach) * (kSide - 2 * kReach));
     }
 }
 
