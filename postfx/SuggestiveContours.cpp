@@ -239,6 +239,34 @@ struct GaussianWindow {
     std::vector<float> weights;
     int reach = 0;
     float total = 0.0f;
+
+    /** The weights' moments over a cut window d = -low .. high: (sum g, sum g d, sum g d^2), summed in that order of
+     *  d, as smoothPixel() once summed them per pixel. They depend on the cut alone, so a pass reuses them for every
+     *  pixel cut alike: kept for windows up to kMomentTableReach (a table of (reach + 1)^2 cuts, filled as met). */
+    std::array<float, 3> momentsOf(int low, int high) const {
+        if (reach > kMomentTableReach) return sumMoments(low, high);
+        if (mMoments.empty()) mMoments.assign(size_t(reach + 1) * size_t(reach + 1), {-1.0f, 0.0f, 0.0f});
+        std::array<float, 3>& moments = mMoments[size_t(low) * size_t(reach + 1) + size_t(high)];
+        if (moments[0] < 0.0f) moments = sumMoments(low, high);
+        return moments;
+    }
+
+private:
+    static constexpr int kMomentTableReach = 32;
+
+    std::array<float, 3> sumMoments(int low, int high) const {
+        float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f;
+        for (int d = -low; d <= high; ++d) {
+            const float g = weights[size_t(std::abs(d))];
+            const float gd = g * float(d);
+            s0 += g;
+            s1 += gd;
+            s2 += gd * float(d);
+        }
+        return {s0, s1, s2};
+    }
+
+    mutable std::vector<std::array<float, 3>> mMoments; ///< momentsOf()'s table; s0 < 0: not summed yet
 };
 
 /** Sigmas are rounded to levels a 1% step apart: neighbouring pixels see nearly the same depth, so few windows are
@@ -354,24 +382,34 @@ void smoothPixel(Neighbour at, int before, int after, const GaussianWindow& wind
         std::copy(at(0), at(0) + 4, out);
         return;
     }
-    float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f;
+    const auto [s0, s1, s2] = window.momentsOf(low, high);
+    // The line a + b d fitted at d = 0: a = (s2 t0 - s1 t1) / (s0 s2 - s1^2); with a degenerate window the weighted
+    // mean. t0 and t1 are summed per channel as mul then add, in the order of d.
+    const float determinant = s0 * s2 - s1 * s1;
+    const bool fitsALine = determinant > 1e-6f * s0 * s2;
+#if CV_SIMD128
+    v_float32x4 t0 = cv::v_setzero_f32(), t1 = cv::v_setzero_f32();
+    for (int d = -low; d <= high; ++d) {
+        const float g = weights[std::abs(d)];
+        const v_float32x4 v = cv::v_load(at(d));
+        t0 = t0 + cv::v_setall_f32(g) * v;
+        t1 = t1 + cv::v_setall_f32(g * float(d)) * v;
+    }
+    const v_float32x4 value =
+        fitsALine ? (cv::v_setall_f32(s2) * t0 - cv::v_setall_f32(s1) * t1) * cv::v_setall_f32(1.0f / determinant)
+                  : t0 * cv::v_setall_f32(1.0f / s0);
+    cv::v_store(out, value);
+#else
     cv::Vec4f t0 = cv::Vec4f::all(0.0f), t1 = cv::Vec4f::all(0.0f);
     for (int d = -low; d <= high; ++d) {
         const float g = weights[std::abs(d)];
-        const float gd = g * float(d);
-        s0 += g;
-        s1 += gd;
-        s2 += gd * float(d);
         const cv::Vec4f v(at(d));
         t0 += g * v;
-        t1 += gd * v;
+        t1 += (g * float(d)) * v;
     }
-    // The line a + b d fitted at d = 0: a = (s2 t0 - s1 t1) / (s0 s2 - s1^2); with a degenerate window the weighted
-    // mean.
-    const float determinant = s0 * s2 - s1 * s1;
-    const cv::Vec4f value =
-        determinant > 1e-6f * s0 * s2 ? (s2 * t0 - s1 * t1) * (1.0f / determinant) : t0 * (1.0f / s0);
+    const cv::Vec4f value = fitsALine ? (s2 * t0 - s1 * t1) * (1.0f / determinant) : t0 * (1.0f / s0);
     std::copy(value.val, value.val + 4, out);
+#endif
 }
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
