@@ -424,8 +424,9 @@ typedef float EightFloats __attribute__((vector_size(32)));
  *  pixel's neighbour d along the pass, and the other seven pixels' neighbours follow it, 4 floats each. Every float
  *  is summed with the operations, in the order, of smoothPixels()'s four-pixel block and of smoothPixel() (the
  *  centre times its weight, then (ahead + behind) x weight added for d = 1 .. reach, then times 1 / total; no fused
- *  multiply-add), so the result is the same to the bit whichever block or instruction set computes it. Four
- *  independent sums of two pixels each keep twice the work in flight that the four-pixel block does. */
+ *  multiply-add: x86-64's baseline has none, and the AVX2 target below enables none), so on x86-64 the result is the
+ *  same to the bit whichever block or instruction set computes it. Four independent sums of two pixels each keep
+ *  twice the work in flight that the four-pixel block does. */
 __attribute__((always_inline)) inline void sumEightWholeWindowsBody(const float* const* taps, int reach,
                                                                     const float* weights, float scale, float* out) {
     const EightFloats zero = {};
