@@ -95,7 +95,9 @@ TEST_F(Strokes, MinStrokeLengthDropsShortStrokesAndTheSvgHasOnePathPerKeptStroke
             kept += typeKept;
             // Without a length rule no stroke is near its limit; with one, the near ones are among the strokes.
             const int nearLength = stats["types"][type]["near_length_limit"].get<int>();
-            if (std::string(name) == "all") EXPECT_EQ(nearLength, 0) << type;
+            if (std::string(name) == "all") {
+                EXPECT_EQ(nearLength, 0) << type;
+            }
             EXPECT_LE(nearLength, stats["strokes"].get<int>()) << type;
             EXPECT_GE(stats["types"][type]["near_seed_limit"].get<int>(), 0) << type;
         }

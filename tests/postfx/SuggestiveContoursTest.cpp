@@ -666,17 +666,14 @@ TEST(SuggestiveContours, SmoothingGivesAPixelTheSameBitsWhicheverBlockSumsIt) {
         const cv::Mat radial = wideRadial(cv::Rect(0, 0, kSide + extra, kSide + extra)).clone();
         const cv::Mat narrow = smoothRadialField(narrowRadial, cv::Mat(narrowRadial.size(), CV_32FC1, 1.0f), settings);
         const cv::Mat wide = smoothRadialField(radial, cv::Mat(radial.size(), CV_32FC1, 1.0f), settings);
-        int compared = 0;
         // Whole windows in the narrower image: kReach pixels from each image edge (which ends the runs).
         for (int row = kReach; row < kSide - kReach; ++row) {
             for (int col = kReach; col < kSide - kReach; ++col) {
                 const cv::Vec4f a = narrow.at<cv::Vec4f>(row, col);
                 const cv::Vec4f b = wide.at<cv::Vec4f>(row, col);
                 ASSERT_EQ(std::memcmp(a.val, b.val, sizeof a.val), 0) << "pixel (" << col << ", " << row << ")";
-                ++compared;
             }
         }
-        EXPECT_EQ(compared, (kSide - 2 * kReach) * (kSide - 2 * kReach));
     }
 }
 

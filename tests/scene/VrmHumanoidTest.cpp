@@ -323,7 +323,7 @@ TEST_P(VrmHumanoidPose, VrmAnimationIsRetargetedThroughTheBones) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Vrm, VrmHumanoidPose, testing::Values(false, true),
-                         [](const testing::TestParamInfo<bool>& info) { return info.param ? "Vrm0x" : "Vrm10"; });
+                         [](const testing::TestParamInfo<bool>& vrm0x) { return vrm0x.param ? "Vrm0x" : "Vrm10"; });
 
 TEST(VrmHumanoid, UnknownFrameNameListsNodesBonesAndJoints) {
     const TempFile model("humanoid.vrm", TestHumanoid(false).file());

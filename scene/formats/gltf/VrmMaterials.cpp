@@ -216,13 +216,6 @@ void checkOutlineWidth(MToonMaterial& mtoon, PropertyReader& read) {
     }
 }
 
-/** Whether `object` has `key` as a number other than 0. */
-bool nonZeroNumber(const tinygltf::Value* object, const char* key) {
-    if (object == nullptr || !object->IsObject() || !object->Has(key)) return false;
-    const tinygltf::Value& value = object->Get(key);
-    return value.IsNumber() && value.GetNumberAsDouble() != 0.0;
-}
-
 MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read) {
     const std::string where = "VRMC_materials_mtoon";
     const tinygltf::Value* fields = &extension;
