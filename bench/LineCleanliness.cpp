@@ -37,11 +37,11 @@ constexpr const char* kHelp =
                                  [--columns TYPE,...] [--depth-tolerance R] [--header] [-- RENDER FLAGS...]
 
 Renders FILE with the inkgraph binary BIN (its environment is passed on: LD_LIBRARY_PATH, INKGRAPH_SHADER_DIR, ...)
-seven times, with RENDER FLAGS (the look, e.g. --shading comic --lines outline,contour,suggestive,crease) added:
+nine times, with RENDER FLAGS (the look, e.g. --shading comic --lines outline,contour,suggestive,crease) added:
   view A  --orbit 0,14.04 (the default view) at 1024x1024, with --dump, --svg and --stats;
   view A  at 512x512 and at 2048x2048, with --dump;
-  views   --orbit 1,14.04, -1,14.04, 5,14.04 and -5,14.04 (1 and 5 degrees either way around the up axis, the
-          same distance) at 1024x1024, with --dump.
+  views   --orbit 1,14.04, -1,14.04, 5,14.04, -5,14.04, 0.1,14.04 and -0.1,14.04 (1, 5 and 0.1 degrees either
+          way around the up axis, the same distance) at 1024x1024, with --dump.
 and measures (bench/README.md defines each number):
   ink share       pixels where the largest line layer is >= 128, on the model (coverage > 0) / model pixels,
                   and off the model / model pixels;
@@ -50,9 +50,10 @@ and measures (bench/README.md defines each number):
                   size mapped to the smaller size's pixels, within 1.5 of those pixels: 512/1024 and 1024/2048;
   F1 view         per line type and turn, A's 1024 skeleton reprojected into the turned view through A's depth
                   against that view's, and the turned view's into A against A's (points that leave the frame or are
-                  hidden there are left out), within 1.5 px: +1, -1, +5 and -5 degrees.
-The table cell per type is "F1 512/1024, F1 1024/2048 / F1 view +-1, F1 view +-5", each view number the smaller of
-the two turns; the JSON has every comparison and the minima.
+                  hidden there are left out), within 1.5 px: +1, -1, +5, -5, +0.1 and -0.1 degrees. A tenth of a
+                  degree moves the model under a pixel, so what changes there is flicker, not lines moving.
+The table cell per type is "F1 512/1024, F1 1024/2048 / F1 view +-1, F1 view +-5, F1 view +-0.1", each view number
+the smaller of the two turns; the JSON has every comparison and the minima.
 Writes the renders under DIR, the numbers as JSON to FILE (default DIR/line-cleanliness.json), and prints one
 markdown table row (with --header, the header first).
 
@@ -67,12 +68,12 @@ constexpr int kInkThreshold = 128;
 constexpr double kShortPathPixels = 3.0;
 constexpr const char* kElevation = "14.04";
 
-/** The turned views of the F1 view numbers: azimuth in degrees from view A's 0, and the name of each. */
+/** The turned views of the F1 view numbers: azimuth in tenths of a degree from view A's 0, and the name of each. */
 struct Turn {
-    int degrees;
+    int tenths;
     const char* name; ///< the JSON key and render name: "+1", "-1", ...
 };
-constexpr Turn kTurns[] = {{1, "+1"}, {-1, "-1"}, {5, "+5"}, {-5, "-5"}};
+constexpr Turn kTurns[] = {{10, "+1"}, {-10, "-1"}, {50, "+5"}, {-50, "-5"}, {1, "+0.1"}, {-1, "-0.1"}};
 
 struct Options {
     fs::path inkgraph;
@@ -293,7 +294,13 @@ nlohmann::json droppedJson(const inkgraph::bench::Reprojection& reprojection) {
             {"hidden", reprojection.hiddenInTarget}};
 }
 
-std::string orbitAt(int degrees) { return std::to_string(degrees) + "," + kElevation; }
+/** --orbit's value at `tenths` of a degree of azimuth: "5,14.04", "-0.1,14.04". */
+std::string orbitAt(int tenths) {
+    const std::string sign = tenths < 0 ? "-" : "";
+    const int whole = std::abs(tenths) / 10;
+    const int tenth = std::abs(tenths) % 10;
+    return sign + std::to_string(whole) + (tenth != 0 ? "." + std::to_string(tenth) : "") + "," + kElevation;
+}
 
 int measure(const Options& options) {
     fs::create_directories(options.work);
@@ -303,7 +310,7 @@ int measure(const Options& options) {
     const Render viewA2048 = render(options, "a2048", 2048, orbitAt(0), "", false);
     std::vector<Render> turned;
     for (const Turn& turn : kTurns)
-        turned.push_back(render(options, std::string("turn") + turn.name + "-1024", 1024, orbitAt(turn.degrees),
+        turned.push_back(render(options, std::string("turn") + turn.name + "-1024", 1024, orbitAt(turn.tenths),
                                 "gbuffer.depth", false));
 
     const std::vector<std::string> types = drawnLineTypes(viewA.manifest);
@@ -380,7 +387,7 @@ int measure(const Options& options) {
         bool anyPoints = !skeleton.empty() || !skeleton512.empty() || !skeleton2048.empty();
 
         nlohmann::json views = nlohmann::json::object();
-        std::map<int, std::vector<PointSetAgreement>> byAngle; // |degrees| -> both directions
+        std::map<int, std::vector<PointSetAgreement>> byAngle; // |tenths of a degree| -> both directions
         for (std::size_t index = 0; index < turned.size(); ++index) {
             const auto skeletonTurned =
                 inkgraph::bench::skeletonPoints(readChannel(turned[index].dump / file, CV_8U), kInkThreshold);
@@ -392,20 +399,23 @@ int measure(const Options& options) {
             entry["dropped_a_to_turn"] = droppedJson(view.firstInSecond);
             entry["dropped_turn_to_a"] = droppedJson(view.secondInFirst);
             views[kTurns[index].name] = entry;
-            byAngle[std::abs(kTurns[index].degrees)].push_back(view.agreement);
+            byAngle[std::abs(kTurns[index].tenths)].push_back(view.agreement);
         }
-        const double view1Min = inkgraph::bench::smallestF1(byAngle.at(1));
-        const double view5Min = inkgraph::bench::smallestF1(byAngle.at(5));
+        const double view1Min = inkgraph::bench::smallestF1(byAngle.at(10));
+        const double view5Min = inkgraph::bench::smallestF1(byAngle.at(50));
+        const double viewTenthMin = inkgraph::bench::smallestF1(byAngle.at(1));
         json["types"][type] = {{"f1_size",
                                 {{"512_1024", agreementJson(size512To1024)},
                                  {"1024_2048", agreementJson(size1024To2048)},
                                  {"min", sizeMin}}},
                                {"f1_view", views},
                                {"f1_view_min_1deg", view1Min},
-                               {"f1_view_min_5deg", view5Min}};
-        cellByType[type] = anyPoints ? fixed(size512To1024.f1, 3) + ", " + fixed(size1024To2048.f1, 3) + " / " +
-                                           fixed(view1Min, 3) + ", " + fixed(view5Min, 3)
-                                     : std::string("empty");
+                               {"f1_view_min_5deg", view5Min},
+                               {"f1_view_min_tenth_deg", viewTenthMin}};
+        cellByType[type] = anyPoints
+                               ? fixed(size512To1024.f1, 3) + ", " + fixed(size1024To2048.f1, 3) + " / " +
+                                     fixed(view1Min, 3) + ", " + fixed(view5Min, 3) + ", " + fixed(viewTenthMin, 3)
+                               : std::string("empty");
     }
 
     inkgraph::writeTextFile(options.json, json.dump(2) + "\n");
@@ -414,7 +424,7 @@ int measure(const Options& options) {
         std::string header = "| model | look | ink % | ink outside % | SVG paths | % < 3 px | median path px |";
         std::string rule = "|---|---|---:|---:|---:|---:|---:|";
         for (const std::string& column : options.columns) {
-            header += " " + column + " F1 512/1024, 1024/2048 / ±1°, ±5° |";
+            header += " " + column + " F1 512/1024, 1024/2048 / ±1°, ±5°, ±0.1° |";
             rule += "---|";
         }
         std::cout << header << "\n" << rule << "\n";
