@@ -4,8 +4,7 @@
 # markdown table with the machine and date at the top. The inkgraph binary is an argument, so the same sweep measures
 # a build before a change and one after; its environment (LD_LIBRARY_PATH, INKGRAPH_SHADER_DIR, LP_NUM_THREADS) is the
 # caller's. Models run one after another, nine renders each (512, 1024 and 2048 px, and turns of +-1, +-5 and +-0.1
-# degrees); about 5-6 minutes on the 2-core CPU machine for the two default looks (measured 2026-12-01: the comic
-# look about 3 minutes).
+# degrees); about 7 minutes on the 2-core CPU machine for the two default looks (measured 2026-12-01).
 #   bench/line-cleanliness.sh INKGRAPH_BINARY OUT.md [WORK_DIR]
 # TOOL=path/to/inkgraph_line_cleanliness overrides the default build/bench/inkgraph_line_cleanliness.
 # LOOKS="comic default comic-merge" picks the rows (default "comic default"); comic-merge is the comic look with
