@@ -2,7 +2,8 @@
 // 512x512, 1024x1024, 1920x1080 and 4096x4096 (the torus fills about 40% of the frame at every size), and the post
 // stage of `--lines silhouette,contour,suggestive` (contour and suggestive kernels, their strokes, the composite of
 // three layers) as one number. Suggestive contours unsmoothed (BM_PostfxSuggestive), with the app's default
-// smoothing (BM_PostfxSuggestiveSmoothed, as `--lines suggestive` runs it), and the smoothing alone
+// smoothing (BM_PostfxSuggestiveSmoothed, as `--lines suggestive` runs it; BM_PostfxSuggestiveSmoothedSurfaceIds the
+// same with a surface id per pixel, as a scene of several smooth patches runs it), and the smoothing alone
 // (BM_PostfxSmoothRadialField). The stroke stage of the three (BM_PostfxStrokes: thinning, chaining, the kept
 // skeletons drawn). Counters: Mpixel/s of the frame, skeleton points (strokes for BM_PostfxStrokes).
 //   ./build/bench/inkgraph_bench --benchmark_filter=Postfx
@@ -90,6 +91,18 @@ void BM_PostfxSuggestiveSmoothed(benchmark::State& state) {
     const SuggestiveSettings settings = smoothedSettings(widthOf(state), heightOf(state));
     std::size_t points = 0;
     for (auto _ : state) points = extractSuggestiveContours(buffer.radial, buffer.depth, settings).points.size();
+    finish(state, widthOf(state), heightOf(state), points);
+}
+
+void BM_PostfxSuggestiveSmoothedSurfaceIds(benchmark::State& state) {
+    const test::SyntheticGBuffer& buffer = torusAt(widthOf(state), heightOf(state));
+    const SuggestiveSettings settings = smoothedSettings(widthOf(state), heightOf(state));
+    // One id over the whole torus: every comparison is made and none cuts a window, so the lines and the work are
+    // BM_PostfxSuggestiveSmoothed's and the difference is what reading the ids costs.
+    const cv::Mat surface(buffer.depth.size(), CV_32FC1, cv::Scalar::all(1.0));
+    std::size_t points = 0;
+    for (auto _ : state)
+        points = extractSuggestiveContours(buffer.radial, buffer.depth, settings, surface).points.size();
     finish(state, widthOf(state), heightOf(state), points);
 }
 
@@ -187,6 +200,7 @@ void sizes(benchmark::internal::Benchmark* benchmark) {
 BENCHMARK(BM_PostfxContour)->Apply(sizes);
 BENCHMARK(BM_PostfxSuggestive)->Apply(sizes);
 BENCHMARK(BM_PostfxSuggestiveSmoothed)->Apply(sizes);
+BENCHMARK(BM_PostfxSuggestiveSmoothedSurfaceIds)->Apply(sizes);
 BENCHMARK(BM_PostfxSmoothRadialField)->Apply(sizes);
 BENCHMARK(BM_PostfxDepthEdge)->Apply(sizes);
 BENCHMARK(BM_PostfxNormalEdge)->Apply(sizes);

@@ -29,12 +29,14 @@ std::string sizeText(cv::Size size) { return std::to_string(size.width) + "x" + 
 
 bool isFiniteAtLeast(float value, float lowest) { return std::isfinite(value) && value >= lowest; }
 
-void checkInputs(const std::string& function, const cv::Mat& radial, const cv::Mat& depth,
+void checkInputs(const std::string& function, const cv::Mat& radial, const cv::Mat& depth, const cv::Mat& surface,
                  const SuggestiveSettings& settings) {
     if (radial.type() != CV_32FC4 || radial.empty())
         throw std::invalid_argument(function + ": 'radial' must be a non-empty CV_32FC4 image");
     if (depth.type() != CV_32FC1 || depth.size() != radial.size())
         throw std::invalid_argument(function + ": 'depth' must be CV_32FC1 of " + sizeText(radial.size()));
+    if (!surface.empty() && (surface.type() != CV_32FC1 || surface.size() != radial.size()))
+        throw std::invalid_argument(function + ": 'surface' must be empty or CV_32FC1 of " + sizeText(radial.size()));
     if (!(isFiniteAtLeast(settings.minSinTheta, 0.0f) && settings.minSinTheta < 1.0f))
         throw std::invalid_argument(function + ": 'minSinTheta' must lie in [0, 1)");
     if (!(isFiniteAtLeast(settings.featureSize, 0.0f) && settings.featureSize > 0.0f))
@@ -116,12 +118,26 @@ inline v_float32x4 joinsNeighbour(const v_float32x4& depth, const v_float32x4& n
 }
 #endif
 
+/** Row `row` of the surface ids, or null without ids (every pixel then of one surface as far as ids tell). */
+inline const float* surfaceRow(const cv::Mat& surface, int row) {
+    return surface.empty() ? nullptr : surface.ptr<float>(row);
+}
+
+/** Whether two pixels carry the same surface id: rows from surfaceRow(), both null or neither. */
+inline bool sameSurfaceId(const float* idsA, int colA, const float* idsB, int colB) {
+    return idsA == nullptr || idsA[colA] == idsB[colB];
+}
+
 /** One row's inputs to differentiateAlongW(): linear depth of the row and its neighbours, n.(c - p) likewise, and
  *  J w of the row, each indexed by column. */
 struct RowInputs {
     const float* depthAbove;
     const float* depth;
     const float* depthBelow;
+    /** The surface ids of the same rows (surfaceRow()), or all three null. */
+    const float* surfaceAbove;
+    const float* surface;
+    const float* surfaceBelow;
     const float* normalDistanceAbove;
     const float* normalDistance;
     const float* normalDistanceBelow;
@@ -130,7 +146,8 @@ struct RowInputs {
 };
 
 /** D_w(n.v) over columns [begin, end) of an interior row: the central differences of n.(c - p) dotted with J w,
- *  defined (1) where the pixel and its four neighbours lie on one surface, which keeps background out too; dw = 0
+ *  defined (1) where the pixel and its four neighbours lie on one surface (no depth break, and the same surface id
+ *  where there are ids), which keeps background out too; dw = 0
  *  and defined = 0 elsewhere. Four columns at a time by selects: an entry not selected may have read stale
  *  neighbours, which never reach the result. */
 void differentiateAlongW(const RowInputs& in, int begin, int end, float depthJump, float* dw, float* defined) {
@@ -142,10 +159,17 @@ void differentiateAlongW(const RowInputs& in, int begin, int end, float depthJum
     const v_float32x4 jump = cv::v_setall_f32(depthJump);
     for (; col + 4 <= end; col += 4) {
         const v_float32x4 z = cv::v_load(in.depth + col);
-        const v_float32x4 onOneSurface = (z > zero) & joinsNeighbour(z, cv::v_load(in.depth + col - 1), jump) &
-                                         joinsNeighbour(z, cv::v_load(in.depth + col + 1), jump) &
-                                         joinsNeighbour(z, cv::v_load(in.depthAbove + col), jump) &
-                                         joinsNeighbour(z, cv::v_load(in.depthBelow + col), jump);
+        const v_float32x4 onOneDepthRun = (z > zero) & joinsNeighbour(z, cv::v_load(in.depth + col - 1), jump) &
+                                          joinsNeighbour(z, cv::v_load(in.depth + col + 1), jump) &
+                                          joinsNeighbour(z, cv::v_load(in.depthAbove + col), jump) &
+                                          joinsNeighbour(z, cv::v_load(in.depthBelow + col), jump);
+        v_float32x4 onOneSurface = onOneDepthRun;
+        if (in.surface != nullptr) {
+            const v_float32x4 id = cv::v_load(in.surface + col);
+            onOneSurface = onOneSurface & (id == cv::v_load(in.surface + col - 1)) &
+                           (id == cv::v_load(in.surface + col + 1)) & (id == cv::v_load(in.surfaceAbove + col)) &
+                           (id == cv::v_load(in.surfaceBelow + col));
+        }
         const v_float32x4 gradientX = cv::v_load(in.normalDistance + col + 1) - cv::v_load(in.normalDistance + col - 1);
         const v_float32x4 gradientY =
             cv::v_load(in.normalDistanceBelow + col) - cv::v_load(in.normalDistanceAbove + col);
@@ -156,8 +180,12 @@ void differentiateAlongW(const RowInputs& in, int begin, int end, float depthJum
     }
 #endif
     for (; col < end; ++col) {
-        const bool onOneSurface = joinsFourNeighbours(in.depth[col], in.depth[col - 1], in.depth[col + 1],
-                                                      in.depthAbove[col], in.depthBelow[col], depthJump);
+        const bool onOneSurface =
+            joinsFourNeighbours(in.depth[col], in.depth[col - 1], in.depth[col + 1], in.depthAbove[col],
+                                in.depthBelow[col], depthJump) &&
+            (in.surface == nullptr ||
+             (in.surface[col] == in.surface[col - 1] && in.surface[col] == in.surface[col + 1] &&
+              in.surface[col] == in.surfaceAbove[col] && in.surface[col] == in.surfaceBelow[col]));
         const float gradientX = in.normalDistance[col + 1] - in.normalDistance[col - 1];
         const float gradientY = in.normalDistanceBelow[col] - in.normalDistanceAbove[col];
         dw[col] = onOneSurface ? 0.5f * (gradientX * in.imageWX[col] + gradientY * in.imageWY[col]) : 0.0f;
@@ -583,12 +611,17 @@ float sizeMarginPixels(const SuggestiveSettings& settings, int rows) {
 }
 
 /** Whether the surface ends at pixel (row, col): it is off the image or the model, or a 4-neighbour is, or lies
- *  across a depth break. */
-bool surfaceEndsAt(const cv::Mat& depth, int row, int col, float depthJump) {
+ *  across a depth break or on another surface (`surface`'s ids, when not empty). */
+bool surfaceEndsAt(const cv::Mat& depth, const cv::Mat& surface, int row, int col, float depthJump) {
     if (row < 1 || col < 1 || row + 1 >= depth.rows || col + 1 >= depth.cols) return true;
     const float* z = depth.ptr<float>(row);
-    return !joinsFourNeighbours(z[col], z[col - 1], z[col + 1], depth.ptr<float>(row - 1)[col],
-                                depth.ptr<float>(row + 1)[col], depthJump);
+    if (!joinsFourNeighbours(z[col], z[col - 1], z[col + 1], depth.ptr<float>(row - 1)[col],
+                             depth.ptr<float>(row + 1)[col], depthJump))
+        return true;
+    const float* ids = surfaceRow(surface, row);
+    return !(sameSurfaceId(ids, col, ids, col - 1) && sameSurfaceId(ids, col, ids, col + 1) &&
+             sameSurfaceId(ids, col, surfaceRow(surface, row - 1), col) &&
+             sameSurfaceId(ids, col, surfaceRow(surface, row + 1), col));
 }
 
 /** Whether the surface of covered pixel (row, col) ends within the clearance band, the larger of clearanceDepth / depth
@@ -597,8 +630,8 @@ bool surfaceEndsAt(const cv::Mat& depth, int row, int col, float depthJump) {
  *  whose depth breaks only every few pixels (a surface turning away at a contour, where neighbouring pixels' depths
  *  differ by about the break test's limit) ends the surface as a whole break does. The band is capped at
  *  kMaxSmoothingReach, as the smoothing's window is. */
-bool nearSurfaceEnd(const cv::Mat& depth, int row, int col, float clearanceDepth, float minimumPixels,
-                    float depthJump) {
+bool nearSurfaceEnd(const cv::Mat& depth, const cv::Mat& surface, int row, int col, float clearanceDepth,
+                    float minimumPixels, float depthJump) {
     const double clearance =
         std::min(std::max(double(clearanceDepth) / double(depth.at<float>(row, col)), double(minimumPixels)),
                  double(kMaxSmoothingReach));
@@ -608,7 +641,7 @@ bool nearSurfaceEnd(const cv::Mat& depth, int row, int col, float clearanceDepth
             const double stepLength = rowStep != 0 && colStep != 0 ? std::sqrt(2.0) : 1.0;
             const int steps = int(clearance / stepLength);
             for (int step = 1; step <= steps; ++step)
-                if (surfaceEndsAt(depth, row + step * rowStep, col + step * colStep, depthJump)) return true;
+                if (surfaceEndsAt(depth, surface, row + step * rowStep, col + step * colStep, depthJump)) return true;
         }
     }
     return false;
@@ -652,13 +685,15 @@ int widestReach(const cv::Mat& depth, const std::vector<Span>& spans, float sigm
 class SurfaceSmoother {
 public:
     /** `sigmaDepth`: the smoothing's sigma times the focal length in pixels (a pixel's sigma is this over its depth);
-     *  `spans`: coveredSpans(); `reach`: widestReach(). Rows are then asked for in order from `firstRow`. */
-    SurfaceSmoother(const cv::Mat& radial, const cv::Mat& depth, const std::vector<Span>& spans, float sigmaDepth,
-                    float depthJump, int reach, int firstRow)
-        : mRadial(radial), mDepth(depth), mSpans(spans), mSigmaDepth(sigmaDepth), mDepthJump(depthJump), mReach(reach),
-          mSlots(2 * reach + 1), mRows(radial.rows), mCols(radial.cols), mNextRow(firstRow),
-          mRowPass(size_t(mSlots) * size_t(mCols)), mLevels(size_t(mSlots) * size_t(mCols)), mAbove(size_t(mCols), 0),
-          mBelow(size_t(mCols), 0), mLeft(size_t(mCols), 0), mRight(size_t(mCols), 0), mWindowRows(size_t(mSlots)) {
+     *  `surface`: the surface ids or empty (runs also end where the id changes); `spans`: coveredSpans(); `reach`:
+     *  widestReach(). Rows are then asked for in order from `firstRow`. */
+    SurfaceSmoother(const cv::Mat& radial, const cv::Mat& depth, const cv::Mat& surface, const std::vector<Span>& spans,
+                    float sigmaDepth, float depthJump, int reach, int firstRow)
+        : mRadial(radial), mDepth(depth), mSurface(surface), mSpans(spans), mSigmaDepth(sigmaDepth),
+          mDepthJump(depthJump), mReach(reach), mSlots(2 * reach + 1), mRows(radial.rows), mCols(radial.cols),
+          mNextRow(firstRow), mRowPass(size_t(mSlots) * size_t(mCols)), mLevels(size_t(mSlots) * size_t(mCols)),
+          mAbove(size_t(mCols), 0), mBelow(size_t(mCols), 0), mLeft(size_t(mCols), 0), mRight(size_t(mCols), 0),
+          mWindowRows(size_t(mSlots)) {
         for (int row = std::max(0, firstRow - reach); row < std::min(mRows, firstRow + reach); ++row)
             smoothAlongRow(row);
     }
@@ -695,23 +730,32 @@ public:
 private:
     size_t slotOf(int row) const { return size_t(row % mSlots) * size_t(mCols); }
 
+    /** Whether pixel (upperRow, col) and the one below it are of one run (joinsNext(), and one surface id). */
+    bool joinsBelow(int upperRow, int col) const {
+        return joinsNext(mDepth.ptr<float>(upperRow)[col], mDepth.ptr<float>(upperRow + 1)[col], mDepthJump) &&
+               sameSurfaceId(surfaceRow(mSurface, upperRow), col, surfaceRow(mSurface, upperRow + 1), col);
+    }
+
     /** The row pass of `row`'s span into its slot, with each pixel's sigma level (kUnsmoothed off the model). */
     void smoothAlongRow(int row) {
         const Span span = mSpans[size_t(row)];
         if (span.begin >= span.end) return;
         const float* z = mDepth.ptr<float>(row);
+        const float* ids = surfaceRow(mSurface, row);
         const cv::Vec4f* in = mRadial.ptr<cv::Vec4f>(row);
         cv::Vec4f* out = &mRowPass[slotOf(row)];
         int16_t* level = &mLevels[slotOf(row)];
         // The pixels beyond the span are not covered, so no run crosses its ends.
         mLeft[size_t(span.begin)] = 0;
         for (int col = span.begin + 1; col < span.end; ++col)
-            mLeft[size_t(col)] =
-                joinsNext(z[col], z[col - 1], mDepthJump) ? std::min(mLeft[size_t(col - 1)] + 1, mReach) : 0;
+            mLeft[size_t(col)] = joinsNext(z[col], z[col - 1], mDepthJump) && sameSurfaceId(ids, col, ids, col - 1)
+                                     ? std::min(mLeft[size_t(col - 1)] + 1, mReach)
+                                     : 0;
         mRight[size_t(span.end - 1)] = 0;
         for (int col = span.end - 1; col-- > span.begin;)
-            mRight[size_t(col)] =
-                joinsNext(z[col], z[col + 1], mDepthJump) ? std::min(mRight[size_t(col + 1)] + 1, mReach) : 0;
+            mRight[size_t(col)] = joinsNext(z[col], z[col + 1], mDepthJump) && sameSurfaceId(ids, col, ids, col + 1)
+                                      ? std::min(mRight[size_t(col + 1)] + 1, mReach)
+                                      : 0;
         for (int col = span.begin; col < span.end; ++col) {
             const float sigma = z[col] > 0.0f ? mSigmaDepth / z[col] : 0.0f;
             level[col] = sigma > 0.0f ? mSigmaLevels.levelOf(sigma) : kUnsmoothed;
@@ -724,9 +768,7 @@ private:
     /** Run pixels below (row, col), counted up to the widest reach. */
     int countBelow(int row, int col) const {
         int below = 0;
-        while (below < mReach && row + below + 1 < mRows &&
-               joinsNext(mDepth.ptr<float>(row + below)[col], mDepth.ptr<float>(row + below + 1)[col], mDepthJump))
-            ++below;
+        while (below < mReach && row + below + 1 < mRows && joinsBelow(row + below, col)) ++below;
         return below;
     }
 
@@ -735,9 +777,7 @@ private:
         const Span span = mSpans[size_t(row)];
         for (int col = span.begin; col < span.end; ++col) {
             int above = 0;
-            while (above < mReach && row - above > 0 &&
-                   joinsNext(mDepth.ptr<float>(row - above - 1)[col], mDepth.ptr<float>(row - above)[col], mDepthJump))
-                ++above;
+            while (above < mReach && row - above > 0 && joinsBelow(row - above - 1, col)) ++above;
             mAbove[size_t(col)] = above;
             mBelow[size_t(col)] = countBelow(row, col);
         }
@@ -752,28 +792,38 @@ private:
         const Span spanAbove = mSpans[size_t(row - 1)];
         const float* depthAbove = mDepth.ptr<float>(row - 1);
         const float* depth = mDepth.ptr<float>(row);
+        const float* idsAbove = surfaceRow(mSurface, row - 1);
+        const float* ids = surfaceRow(mSurface, row);
         const int farRow = row + mReach;
         const bool farPairInside = mReach > 0 && farRow < mRows;
         const float* depthFarAbove = farPairInside ? mDepth.ptr<float>(farRow - 1) : nullptr;
         const float* depthFar = farPairInside ? mDepth.ptr<float>(farRow) : nullptr;
+        const float* idsFarAbove = farPairInside ? surfaceRow(mSurface, farRow - 1) : nullptr;
+        const float* idsFar = farPairInside ? surfaceRow(mSurface, farRow) : nullptr;
         for (int col = span.begin; col < span.end; ++col) {
             const bool aboveCounted = col >= spanAbove.begin && col < spanAbove.end;
             const int aboveBefore = aboveCounted ? mAbove[size_t(col)] : 0;
             const int belowBefore = aboveCounted ? mBelow[size_t(col)] : 0;
             int& above = mAbove[size_t(col)];
             int& below = mBelow[size_t(col)];
-            above = joinsNext(depthAbove[col], depth[col], mDepthJump) ? std::min(aboveBefore + 1, mReach) : 0;
+            above = joinsNext(depthAbove[col], depth[col], mDepthJump) && sameSurfaceId(idsAbove, col, ids, col)
+                        ? std::min(aboveBefore + 1, mReach)
+                        : 0;
             if (belowBefore == 0)
                 below = countBelow(row, col);
             else if (belowBefore < mReach)
                 below = belowBefore - 1;
             else
-                below = farPairInside && joinsNext(depthFarAbove[col], depthFar[col], mDepthJump) ? mReach : mReach - 1;
+                below = farPairInside && joinsNext(depthFarAbove[col], depthFar[col], mDepthJump) &&
+                                sameSurfaceId(idsFarAbove, col, idsFar, col)
+                            ? mReach
+                            : mReach - 1;
         }
     }
 
     const cv::Mat& mRadial;
     const cv::Mat& mDepth;
+    const cv::Mat& mSurface;
     const std::vector<Span>& mSpans;
     float mSigmaDepth;
     float mDepthJump;
@@ -812,9 +862,9 @@ class BandScanner {
 public:
     /** `spans`: coveredSpans(). With settings.smoothing > 0 the rows are smoothed on the way in (SurfaceSmoother,
      *  `reach` its widestReach()). */
-    BandScanner(const cv::Mat& radial, const cv::Mat& depth, const std::vector<Span>& spans,
+    BandScanner(const cv::Mat& radial, const cv::Mat& depth, const cv::Mat& surface, const std::vector<Span>& spans,
                 const SuggestiveSettings& settings, int reach, cv::Mat& mask, int firstRow, int endRow)
-        : mRadial(radial), mDepth(depth), mSpans(spans), mMask(mask), mDepthJump(settings.depthJump),
+        : mRadial(radial), mDepth(depth), mSurface(surface), mSpans(spans), mMask(mask), mDepthJump(settings.depthJump),
           mClearanceDepth(clearanceDepth(settings)), mMarginPixels(sizeMarginPixels(settings, radial.rows)),
           mMinSinThetaSquared(settings.minSinTheta * settings.minSinTheta), mRule{settings.featureSize *
                                                                                       settings.featureSize,
@@ -824,8 +874,8 @@ public:
           mImageWX(kRingRows * size_t(mCols), 0.0f), mImageWY(kRingRows * size_t(mCols), 0.0f),
           mDw(kRingRows * size_t(mCols), 0.0f), mDefined(kRingRows * size_t(mCols), 0.0f) {
         if (settings.smoothing > 0.0f) {
-            mSmoother.emplace(radial, depth, spans, settings.smoothing * settings.focalPixels, settings.depthJump,
-                              reach, mFirstLoaded);
+            mSmoother.emplace(radial, depth, surface, spans, settings.smoothing * settings.focalPixels,
+                              settings.depthJump, reach, mFirstLoaded);
             mSmoothed.resize(kRingRows * size_t(mCols));
         }
     }
@@ -885,6 +935,9 @@ private:
         const RowInputs in{mDepth.ptr<float>(row - 1),
                            mDepth.ptr<float>(row),
                            mDepth.ptr<float>(row + 1),
+                           surfaceRow(mSurface, row - 1),
+                           surfaceRow(mSurface, row),
+                           surfaceRow(mSurface, row + 1),
                            &mNormalDistance[slotOf(row - 1)],
                            &mNormalDistance[slot],
                            &mNormalDistance[slotOf(row + 1)],
@@ -953,7 +1006,7 @@ private:
         if (!crossing) return;
         const cv::Point marked = crossing->marksA ? cv::Point(colA, rowA) : cv::Point(colB, rowB);
         if ((mClearanceDepth > 0.0f || mMarginPixels > 0.0f) &&
-            nearSurfaceEnd(mDepth, marked.y, marked.x, mClearanceDepth, mMarginPixels, mDepthJump))
+            nearSurfaceEnd(mDepth, mSurface, marked.y, marked.x, mClearanceDepth, mMarginPixels, mDepthJump))
             return;
         if (marked.y < mFirstRow)
             mResult.marksAboveBand.push_back(marked);
@@ -964,6 +1017,7 @@ private:
 
     const cv::Mat& mRadial;
     const cv::Mat& mDepth;
+    const cv::Mat& mSurface;
     const std::vector<Span>& mSpans;
     cv::Mat& mMask;
     float mDepthJump;
@@ -1007,7 +1061,7 @@ std::optional<float> wideDerivative(const cv::Mat& field, int row, int col, floa
 }
 
 /** computeRadialDerivatives() with DifferenceStencil::Central5: a plain per-pixel loop over full-image maps. */
-RadialDerivatives wideRadialDerivatives(const cv::Mat& radial, const cv::Mat& depth,
+RadialDerivatives wideRadialDerivatives(const cv::Mat& radial, const cv::Mat& depth, const cv::Mat& surface,
                                         const SuggestiveSettings& settings) {
     const int rows = radial.rows;
     const int cols = radial.cols;
@@ -1024,8 +1078,10 @@ RadialDerivatives wideRadialDerivatives(const cv::Mat& radial, const cv::Mat& de
             const float z = depth.at<float>(row, col);
             if (!(z > 0.0f)) continue;
             const cv::Vec4f& here = radial.at<cv::Vec4f>(row, col);
+            const float* ids = surfaceRow(surface, row);
             const auto sameSurface = [&](int r, int c) {
-                return joinsNeighbour(z, depth.at<float>(r, c), settings.depthJump);
+                return joinsNeighbour(z, depth.at<float>(r, c), settings.depthJump) &&
+                       sameSurfaceId(ids, col, surfaceRow(surface, r), c);
             };
             if (const auto dw = wideDerivative(normalDistance, row, col, here[kImageWX], here[kImageWY], sameSurface)) {
                 result.dw.at<float>(row, col) = *dw;
@@ -1049,8 +1105,8 @@ RadialDerivatives wideRadialDerivatives(const cv::Mat& radial, const cv::Mat& de
 }
 
 /** extractSuggestiveContours() over full-image derivative maps: every pair of valid 4-neighbours. */
-LineSkeleton crossingsOfMaps(const cv::Mat& radial, const cv::Mat& depth, const RadialDerivatives& derivatives,
-                             const SuggestiveSettings& settings) {
+LineSkeleton crossingsOfMaps(const cv::Mat& radial, const cv::Mat& depth, const cv::Mat& surface,
+                             const RadialDerivatives& derivatives, const SuggestiveSettings& settings) {
     const StrengthRule rule{settings.featureSize * settings.featureSize, settings.threshold, settings.fade};
     const float clearance = clearanceDepth(settings);
     const float margin = sizeMarginPixels(settings, radial.rows);
@@ -1070,7 +1126,7 @@ LineSkeleton crossingsOfMaps(const cv::Mat& radial, const cv::Mat& depth, const 
                 if (!crossing) continue;
                 const cv::Point marked = crossing->marksA ? cv::Point(col, row) : cv::Point(colB, rowB);
                 if ((clearance > 0.0f || margin > 0.0f) &&
-                    nearSurfaceEnd(depth, marked.y, marked.x, clearance, margin, settings.depthJump))
+                    nearSurfaceEnd(depth, surface, marked.y, marked.x, clearance, margin, settings.depthJump))
                     continue;
                 skeleton.mask.at<uchar>(marked) = 255;
                 skeleton.points.push_back({crossingPosition(row, col, downward, crossing->t), crossing->alpha});
@@ -1120,8 +1176,9 @@ void forEachBand(const std::vector<int>& bounds, Work work) {
 
 } // namespace
 
-cv::Mat smoothRadialField(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings) {
-    checkInputs("smoothRadialField()", radial, depth, settings);
+cv::Mat smoothRadialField(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings,
+                          const cv::Mat& surface) {
+    checkInputs("smoothRadialField()", radial, depth, surface, settings);
     if (!(settings.smoothing > 0.0f)) return radial.clone();
     // The shape's own lines move by O(sigma^2) (on the test torus at 512^2: a mean 0.025 px at 0.5% of the radius,
     // 0.095 px at 1%, 0.40 px at 2%). Twicing, 2 G(sigma) - G(sqrt(2) sigma), cut that to 0.14 px at 2% but made
@@ -1131,17 +1188,18 @@ cv::Mat smoothRadialField(const cv::Mat& radial, const cv::Mat& depth, const Sug
     const int reach = widestReach(depth, spans, sigmaDepth);
     cv::Mat smoothed(radial.size(), CV_32FC4);
     forEachBand(bandBounds(spans), [&](size_t, int firstRow, int endRow) {
-        SurfaceSmoother smoother(radial, depth, spans, sigmaDepth, settings.depthJump, reach, firstRow);
+        SurfaceSmoother smoother(radial, depth, surface, spans, sigmaDepth, settings.depthJump, reach, firstRow);
         for (int row = firstRow; row < endRow; ++row) smoother.next(smoothed.ptr<cv::Vec4f>(row));
     });
     return smoothed;
 }
 
 RadialDerivatives computeRadialDerivatives(const cv::Mat& radialInput, const cv::Mat& depth,
-                                           const SuggestiveSettings& settings) {
-    checkInputs("computeRadialDerivatives()", radialInput, depth, settings);
-    const cv::Mat radial = settings.smoothing > 0.0f ? smoothRadialField(radialInput, depth, settings) : radialInput;
-    if (settings.stencil == DifferenceStencil::Central5) return wideRadialDerivatives(radial, depth, settings);
+                                           const SuggestiveSettings& settings, const cv::Mat& surface) {
+    checkInputs("computeRadialDerivatives()", radialInput, depth, surface, settings);
+    const cv::Mat radial =
+        settings.smoothing > 0.0f ? smoothRadialField(radialInput, depth, settings, surface) : radialInput;
+    if (settings.stencil == DifferenceStencil::Central5) return wideRadialDerivatives(radial, depth, surface, settings);
     const int rows = radial.rows;
     const int cols = radial.cols;
     cv::Mat normalDistance(radial.size(), CV_32FC1);
@@ -1157,10 +1215,17 @@ RadialDerivatives computeRadialDerivatives(const cv::Mat& radialInput, const cv:
     result.valid = cv::Mat::zeros(radial.size(), CV_8UC1);
     cv::Mat defined = cv::Mat::zeros(radial.size(), CV_32FC1);
     for (int row = 1; row + 1 < rows; ++row) {
-        const RowInputs in{depth.ptr<float>(row - 1),      depth.ptr<float>(row),
-                           depth.ptr<float>(row + 1),      normalDistance.ptr<float>(row - 1),
-                           normalDistance.ptr<float>(row), normalDistance.ptr<float>(row + 1),
-                           imageWX.ptr<float>(row),        imageWY.ptr<float>(row)};
+        const RowInputs in{depth.ptr<float>(row - 1),
+                           depth.ptr<float>(row),
+                           depth.ptr<float>(row + 1),
+                           surfaceRow(surface, row - 1),
+                           surfaceRow(surface, row),
+                           surfaceRow(surface, row + 1),
+                           normalDistance.ptr<float>(row - 1),
+                           normalDistance.ptr<float>(row),
+                           normalDistance.ptr<float>(row + 1),
+                           imageWX.ptr<float>(row),
+                           imageWY.ptr<float>(row)};
         differentiateAlongW(in, 1, cols - 1, settings.depthJump, result.dw.ptr<float>(row), defined.ptr<float>(row));
     }
     const float minSinThetaSquared = settings.minSinTheta * settings.minSinTheta;
@@ -1179,12 +1244,12 @@ RadialDerivatives computeRadialDerivatives(const cv::Mat& radialInput, const cv:
     return result;
 }
 
-LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth,
-                                       const SuggestiveSettings& settings) {
-    checkInputs("extractSuggestiveContours()", radial, depth, settings);
+LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings,
+                                       const cv::Mat& surface) {
+    checkInputs("extractSuggestiveContours()", radial, depth, surface, settings);
     if (settings.stencil == DifferenceStencil::Central5) {
-        const cv::Mat field = settings.smoothing > 0.0f ? smoothRadialField(radial, depth, settings) : radial;
-        return crossingsOfMaps(field, depth, wideRadialDerivatives(field, depth, settings), settings);
+        const cv::Mat field = settings.smoothing > 0.0f ? smoothRadialField(radial, depth, settings, surface) : radial;
+        return crossingsOfMaps(field, depth, surface, wideRadialDerivatives(field, depth, surface, settings), settings);
     }
     LineSkeleton skeleton;
     skeleton.mask = cv::Mat::zeros(radial.size(), CV_8UC1);
@@ -1196,7 +1261,8 @@ LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& dep
     const std::vector<int> bounds = bandBounds(spans);
     std::vector<BandResult> bands(bounds.size() - 1);
     forEachBand(bounds, [&](size_t band, int firstRow, int endRow) {
-        bands[band] = BandScanner(radial, depth, spans, settings, reach, skeleton.mask, firstRow, endRow).scan();
+        bands[band] =
+            BandScanner(radial, depth, surface, spans, settings, reach, skeleton.mask, firstRow, endRow).scan();
     });
     for (const BandResult& band : bands) {
         skeleton.points.insert(skeleton.points.end(), band.points.begin(), band.points.end());

@@ -57,11 +57,13 @@ struct SuggestiveSettings {
 /** The radial field smoothed on the surface at the scale settings.smoothing (> 0; 0 returns a copy): per pixel a
  *  Gaussian of sigma = smoothing x focalPixels / depth pixels (the model-space scale seen at that pixel's depth),
  *  rounded to 1% steps, applied along rows then columns, each 1-D pass a Gaussian-weighted least-squares line (local
- *  linear regression) over the pixel's run of one surface: it stops at depth breaks (settings.depthJump) and the
- *  background, and a field linear along the run is kept exactly, so a one-sided window at a silhouette or occlusion
- *  boundary does not bend n.v there. The window reaches 3 sigma, at most kMaxSmoothingReach pixels. All four channels
- *  are smoothed; the background stays 0. Same argument checks as extractSuggestiveContours(). */
-cv::Mat smoothRadialField(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings);
+ *  linear regression) over the pixel's run of one surface: it stops at depth breaks (settings.depthJump), changes of
+ *  `surface` id (computeRadialDerivatives()) and the background, and a field linear along the run is kept exactly, so
+ *  a one-sided window at a silhouette or occlusion boundary does not bend n.v there. The window reaches 3 sigma, at
+ *  most kMaxSmoothingReach pixels. All four channels are smoothed; the background stays 0. Same argument checks as
+ *  extractSuggestiveContours(). */
+cv::Mat smoothRadialField(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings,
+                          const cv::Mat& surface = cv::Mat());
 
 /** The widest reach of smoothRadialField()'s window in pixels, so an eye inside the model's feature scale cannot make
  *  a kernel as wide as the image. */
@@ -81,10 +83,15 @@ struct RadialDerivatives {
 /** `radial`: CV_32FC4 per pixel (n.(c - p) unnormalised, (J w).x, (J w).y, |w|^2), where J is the projection's
  *  Jacobian in pixels (x right, y down) and w = v - (n.v) n with v = c - p; zero off the model.
  *  `depth`: CV_32FC1 linear view depth, 0 = background; same size.
- *  No difference is taken across a depth break or the background; pixels with sin(theta) < minSinTheta or
- *  n.v <= 0 are invalid. With settings.smoothing > 0 the derivatives are those of smoothRadialField(). */
+ *  `surface`: empty, or CV_32FC1 of the same size holding a surface id per covered pixel (any value off the model):
+ *  two pixels of different ids are not of one surface, as if a depth break lay between them. Where the normal field
+ *  steps (a hard edge, two parts meeting) n.v is not differentiable, so a renderer gives each smooth patch its own id
+ *  (passes/GpuScene.h surfacePatches()). The same argument of smoothRadialField() and extractSuggestiveContours().
+ *  No difference is taken across a depth break, a change of surface id or the background; pixels with
+ *  sin(theta) < minSinTheta or n.v <= 0 are invalid. With settings.smoothing > 0 the derivatives are those of
+ *  smoothRadialField(). */
 RadialDerivatives computeRadialDerivatives(const cv::Mat& radial, const cv::Mat& depth,
-                                           const SuggestiveSettings& settings);
+                                           const SuggestiveSettings& settings, const cv::Mat& surface = cv::Mat());
 
 /** Zero crossings of D_w(n.v) between valid 4-neighbours (the pixel with the smaller |D_w(n.v)| marked, the point
  *  at the linear crossing, no half-pixel shift), kept where D_w D_w(n.v) > 0 and the strength passes the threshold,
@@ -95,6 +102,7 @@ RadialDerivatives computeRadialDerivatives(const cv::Mat& radial, const cv::Mat&
  *  the thread count either. With settings.smoothing > 0 the field is smoothRadialField()'s to the bit, smoothed band
  *  by band as the rows are scanned, so it is never held whole. Throws std::invalid_argument naming the argument for
  *  wrong types, sizes or settings. */
-LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings);
+LineSkeleton extractSuggestiveContours(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings,
+                                       const cv::Mat& surface = cv::Mat());
 
 } // namespace inkgraph

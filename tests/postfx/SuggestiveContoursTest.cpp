@@ -383,15 +383,35 @@ TEST(SuggestiveContours, TorusLinesDoNotDependOnResolution) {
     }
 }
 
+/** Two overlapping spheres at 256^2, the near one hiding part of the far one, and which of them each pixel shows
+ *  (1 near, 2 far, 0 background). */
+struct TwoSpheres {
+    SyntheticCamera camera;
+    SyntheticGBuffer scene;
+    cv::Mat which;
+};
+
+TwoSpheres twoOverlappingSpheres() {
+    TwoSpheres spheres;
+    spheres.camera.width = spheres.camera.height = 256;
+    spheres.camera.eye = {0.0, 0.0, 5.0};
+    const SyntheticGBuffer near = test::renderSphere(spheres.camera, {-0.35, 0.1, 0.5}, 0.7);
+    const SyntheticGBuffer far = test::renderSphere(spheres.camera, {0.45, -0.1, -0.6}, 0.9);
+    spheres.scene = nearestOf(near, far);
+    spheres.which = cv::Mat(near.depth.size(), CV_32FC1, cv::Scalar::all(0));
+    for (int row = 0; row < near.depth.rows; ++row) {
+        for (int col = 0; col < near.depth.cols; ++col) {
+            const float z = spheres.scene.depth.at<float>(row, col);
+            if (z > 0.0f) spheres.which.at<float>(row, col) = z == near.depth.at<float>(row, col) ? 1.0f : 2.0f;
+        }
+    }
+    return spheres;
+}
+
 TEST(SuggestiveContours, NoLinesAlongOcclusionBoundaries) {
     // Two overlapping spheres: each alone has none, and no difference may be taken across the boundary where the
     // near one hides the far one.
-    SyntheticCamera camera;
-    camera.width = camera.height = 256;
-    camera.eye = {0.0, 0.0, 5.0};
-    const SyntheticGBuffer near = test::renderSphere(camera, {-0.35, 0.1, 0.5}, 0.7);
-    const SyntheticGBuffer far = test::renderSphere(camera, {0.45, -0.1, -0.6}, 0.9);
-    const SyntheticGBuffer scene = nearestOf(near, far);
+    const SyntheticGBuffer scene = twoOverlappingSpheres().scene;
     const LineSkeleton skeleton = extractSuggestiveContours(scene.radial, scene.depth, untrimmedSettings());
     EXPECT_TRUE(skeleton.points.empty()) << skeleton.points.size() << " points";
 
@@ -403,6 +423,37 @@ TEST(SuggestiveContours, NoLinesAlongOcclusionBoundaries) {
     // Measured: 226 points.
     std::cout << acrossBoundary << " points when differences cross the occlusion boundary\n";
     EXPECT_GT(acrossBoundary, 5u);
+}
+
+TEST(SuggestiveContours, NoLinesAcrossSurfaceSeams) {
+    // The two spheres of NoLinesAlongOcclusionBoundaries with the depth-break test off, so the depth no longer parts
+    // them: what does is a surface id per pixel (which sphere it shows), as the renderer gives one where a mesh's
+    // normals step or meshes meet (GpuScene::surfacePatches()). No difference, smoothing window or crossing may reach
+    // across a change of id, with either stencil, smoothed or not.
+    const TwoSpheres spheres = twoOverlappingSpheres();
+    const SyntheticGBuffer& scene = spheres.scene;
+    const cv::Mat& surface = spheres.which;
+    const SyntheticCamera& camera = spheres.camera;
+    for (const DifferenceStencil stencil : {DifferenceStencil::Central3, DifferenceStencil::Central5}) {
+        for (const bool smoothing : {false, true}) {
+            SuggestiveSettings unbroken = smoothing ? smoothed(untrimmedSettings(), 1.0, camera) : untrimmedSettings();
+            unbroken.depthJump = 1e6f;
+            unbroken.stencil = stencil;
+            SCOPED_TRACE(std::string(stencil == DifferenceStencil::Central5 ? "5" : "3") + "-point stencil" +
+                         (smoothing ? ", smoothed" : ""));
+            const size_t withoutIds = extractSuggestiveContours(scene.radial, scene.depth, unbroken).points.size();
+            const LineSkeleton withIds = extractSuggestiveContours(scene.radial, scene.depth, unbroken, surface);
+            // Measured: 226 points without ids (3-point stencil, unsmoothed); none with them.
+            std::cout << withoutIds << " points across the seam without surface ids, " << withIds.points.size()
+                      << " with\n";
+            EXPECT_GT(withoutIds, 5u);
+            EXPECT_TRUE(withIds.points.empty()) << withIds.points.size() << " points";
+            // One id everywhere parts nothing: the lines are those without ids.
+            const cv::Mat oneSurface(surface.size(), CV_32FC1, cv::Scalar::all(7));
+            EXPECT_EQ(extractSuggestiveContours(scene.radial, scene.depth, unbroken, oneSurface).points.size(),
+                      withoutIds);
+        }
+    }
 }
 
 /** Per pixel, the Euclidean distance in pixels to the nearest pixel where the surface ends: off the model, or at a
@@ -548,9 +599,12 @@ TEST(SuggestiveContours, DeterministicAndIndependentOfThreads) {
  *  replaced by the Gaussian-weighted least-squares line through the pixels of its run of one surface within 3 sigma
  *  (at most kMaxSmoothingReach), at the pixel; sigma = smoothing x focalPixels / depth pixels, rounded to a 1% step
  *  (as the kernel rounds it: 1.01^round(log(sigma) / log(1.01))). */
-cv::Mat referenceSmoothing(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings) {
-    const auto joined = [&](float a, float b) {
-        return a > 0.0f && b > 0.0f && std::abs(a - b) <= settings.depthJump * std::min(a, b);
+cv::Mat referenceSmoothing(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings,
+                           const cv::Mat& surface = cv::Mat()) {
+    const auto joined = [&](cv::Point p, cv::Point q) {
+        const float a = depth.at<float>(p), b = depth.at<float>(q);
+        return a > 0.0f && b > 0.0f && std::abs(a - b) <= settings.depthJump * std::min(a, b) &&
+               (surface.empty() || surface.at<float>(p) == surface.at<float>(q));
     };
     const float sigmaDepth = settings.smoothing * settings.focalPixels;
     const auto pass = [&](const cv::Mat& field, bool alongRows) {
@@ -565,12 +619,8 @@ cv::Mat referenceSmoothing(const cv::Mat& radial, const cv::Mat& depth, const Su
                 const auto at = [&](int d) { return alongRows ? cv::Point(col + d, row) : cv::Point(col, row + d); };
                 const auto inside = [&](int d) { return cv::Rect(0, 0, field.cols, field.rows).contains(at(d)); };
                 int low = 0, high = 0;
-                while (low < reach && inside(-low - 1) &&
-                       joined(depth.at<float>(at(-low - 1)), depth.at<float>(at(-low))))
-                    ++low;
-                while (high < reach && inside(high + 1) &&
-                       joined(depth.at<float>(at(high)), depth.at<float>(at(high + 1))))
-                    ++high;
+                while (low < reach && inside(-low - 1) && joined(at(-low - 1), at(-low))) ++low;
+                while (high < reach && inside(high + 1) && joined(at(high), at(high + 1))) ++high;
                 if (low + high == 0) continue;
                 double s0 = 0.0, s1 = 0.0, s2 = 0.0;
                 cv::Vec4d t0 = cv::Vec4d::all(0.0), t1 = cv::Vec4d::all(0.0);
@@ -615,35 +665,51 @@ TEST(SuggestiveContours, SmoothingFollowsItsDefinition) {
             if (depth.at<float>(row, col) > 0.0f)
                 for (int channel = 0; channel < 4; ++channel)
                     radial.at<cv::Vec4f>(row, col)[channel] = random.uniform(-1.0f, 1.0f);
-    for (const double sigmaPixelsAtDepth4 : {2.0, 10.0, 200.0}) {
-        SCOPED_TRACE("sigma " + std::to_string(sigmaPixelsAtDepth4) + " px at depth 4");
-        SuggestiveSettings settings;
-        settings.focalPixels = float(camera.focalPixels());
-        settings.smoothing = float(sigmaPixelsAtDepth4 * 4.0 / camera.focalPixels());
-        const cv::Mat smoothed = smoothRadialField(radial, depth, settings);
-        const cv::Mat reference = referenceSmoothing(radial, depth, settings);
-        cv::Mat smoothedDouble;
-        smoothed.convertTo(smoothedDouble, CV_64FC4);
-        const double largest = cv::norm(smoothedDouble, reference, cv::NORM_INF);
-        std::cout << "sigma " << sigmaPixelsAtDepth4 << " px: largest difference from the definition " << largest
-                  << " (values in [-1, 1])\n";
-        // Measured: 4.9e-7, 3.1e-7, 7.6e-7: float rounding.
-        EXPECT_LT(largest, 1e-5);
-        // Off the model the field is left as it is.
-        for (int row = 0; row < depth.rows; ++row) {
-            for (int col = 0; col < depth.cols; ++col) {
-                if (!(depth.at<float>(row, col) > 0.0f)) {
-                    ASSERT_EQ(smoothed.at<cv::Vec4f>(row, col), radial.at<cv::Vec4f>(row, col));
+    // Surface ids in blocks of 17 x 23 pixels, three kinds, so runs also end where the id changes (GpuScene's smooth
+    // patches); and none.
+    cv::Mat blocks(depth.size(), CV_32FC1);
+    for (int row = 0; row < depth.rows; ++row)
+        for (int col = 0; col < depth.cols; ++col) blocks.at<float>(row, col) = float((col / 17 + row / 23) % 3);
+    for (const bool ids : {false, true}) {
+        const cv::Mat surface = ids ? blocks : cv::Mat();
+        for (const double sigmaPixelsAtDepth4 : {2.0, 10.0, 200.0}) {
+            SCOPED_TRACE("sigma " + std::to_string(sigmaPixelsAtDepth4) + " px at depth 4" +
+                         (ids ? ", surface ids" : ""));
+            SuggestiveSettings settings;
+            settings.focalPixels = float(camera.focalPixels());
+            settings.smoothing = float(sigmaPixelsAtDepth4 * 4.0 / camera.focalPixels());
+            const cv::Mat smoothed = smoothRadialField(radial, depth, settings, surface);
+            const cv::Mat reference = referenceSmoothing(radial, depth, settings, surface);
+            cv::Mat smoothedDouble;
+            smoothed.convertTo(smoothedDouble, CV_64FC4);
+            const double largest = cv::norm(smoothedDouble, reference, cv::NORM_INF);
+            std::cout << "sigma " << sigmaPixelsAtDepth4 << " px" << (ids ? ", surface ids" : "")
+                      << ": largest difference from the definition " << largest << " (values in [-1, 1])\n";
+            // Measured: 4.9e-7, 3.1e-7, 7.6e-7 without ids: float rounding.
+            EXPECT_LT(largest, 1e-5);
+            // Off the model the field is left as it is.
+            for (int row = 0; row < depth.rows; ++row) {
+                for (int col = 0; col < depth.cols; ++col) {
+                    if (!(depth.at<float>(row, col) > 0.0f)) {
+                        ASSERT_EQ(smoothed.at<cv::Vec4f>(row, col), radial.at<cv::Vec4f>(row, col));
+                    }
                 }
             }
+            // The lines of the field smoothed on the way (the scanner smooths rows as it reads them) are exactly those
+            // of the smoothed field (with no band clear of surface ends, the default, which only the smoothing draws).
+            SuggestiveSettings unsmoothed = settings;
+            unsmoothed.smoothing = 0.0f;
+            expectSameSkeleton(extractSuggestiveContours(radial, depth, settings, surface),
+                               extractSuggestiveContours(smoothed, depth, unsmoothed, surface));
         }
-        // The lines of the field smoothed on the way (the scanner smooths rows as it reads them) are exactly those of
-        // the smoothed field (with no band clear of surface ends, the default, which only the smoothing draws).
-        SuggestiveSettings unsmoothed = settings;
-        unsmoothed.smoothing = 0.0f;
-        expectSameSkeleton(extractSuggestiveContours(radial, depth, settings),
-                           extractSuggestiveContours(smoothed, depth, unsmoothed));
     }
+    // The ids change the smoothing: the test would not notice them ignored.
+    SuggestiveSettings settings;
+    settings.focalPixels = float(camera.focalPixels());
+    settings.smoothing = float(10.0 * 4.0 / camera.focalPixels());
+    EXPECT_GT(cv::norm(smoothRadialField(radial, depth, settings, blocks), smoothRadialField(radial, depth, settings),
+                       cv::NORM_INF),
+              0.1);
 }
 
 TEST(SuggestiveContours, SmoothingGivesAPixelTheSameBitsWhicheverBlockSumsIt) {
@@ -766,14 +832,14 @@ TEST(SuggestiveContours, RejectsWrongInputsNamingThem) {
     const cv::Mat radial(8, 8, CV_32FC4, cv::Scalar::all(0));
     const cv::Mat depth(8, 8, CV_32FC1, cv::Scalar::all(0));
     auto expectRejected = [&](const cv::Mat& radialInput, const cv::Mat& depthInput, const SuggestiveSettings& settings,
-                              const std::string& argument) {
+                              const std::string& argument, const cv::Mat& surface = cv::Mat()) {
         for (const bool derivativesOnly : {false, true}) {
             const std::string function = derivativesOnly ? "computeRadialDerivatives()" : "extractSuggestiveContours()";
             try {
                 if (derivativesOnly)
-                    computeRadialDerivatives(radialInput, depthInput, settings);
+                    computeRadialDerivatives(radialInput, depthInput, settings, surface);
                 else
-                    extractSuggestiveContours(radialInput, depthInput, settings);
+                    extractSuggestiveContours(radialInput, depthInput, settings, surface);
                 ADD_FAILURE() << function << " accepted a wrong '" << argument << "'";
             } catch (const std::invalid_argument& error) {
                 const std::string message = error.what();
@@ -788,6 +854,9 @@ TEST(SuggestiveContours, RejectsWrongInputsNamingThem) {
     expectRejected(cv::Mat(), depth, good, "radial");
     expectRejected(radial, cv::Mat(8, 8, CV_64FC1), good, "depth");
     expectRejected(radial, cv::Mat(8, 9, CV_32FC1), good, "depth");
+    EXPECT_NO_THROW(extractSuggestiveContours(radial, depth, good, cv::Mat(8, 8, CV_32FC1, cv::Scalar::all(1))));
+    expectRejected(radial, depth, good, "surface", cv::Mat(8, 8, CV_32SC1, cv::Scalar::all(1)));
+    expectRejected(radial, depth, good, "surface", cv::Mat(9, 8, CV_32FC1, cv::Scalar::all(1)));
     SuggestiveSettings bad = good;
     bad.minSinTheta = 1.0f;
     expectRejected(radial, depth, bad, "minSinTheta");
