@@ -4,6 +4,7 @@
 #include "scene/MaterialIds.h"
 #include "scene/ObjectIds.h"
 #include "scene/mesh/MeshOps.h"
+#include "scene/mesh/SmoothPatches.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -208,6 +209,35 @@ const MeshIntersections& GpuScene::meshIntersections() {
     return *mMeshIntersections;
 }
 
+const GpuScene::SurfacePatches& GpuScene::surfacePatches() {
+    if (!mSurfacePatches) {
+        SurfacePatches patches;
+        patches.patchOfTriangle.push_back(0.0f); // triangle id 0: off the model
+        std::uint32_t firstTriangle = 0;
+        for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
+            const Mesh& mesh = mScene.meshes[index];
+            const SmoothPatches meshPatches =
+                smoothPatches(mesh.normals, mesh.triangles, positionWeld(index), edgeAdjacency(index));
+            patches.seamEdges += meshPatches.seamEdges;
+            for (const std::uint32_t patch : meshPatches.patchOf)
+                patches.patchOfTriangle.push_back(float(firstTriangle + patch + 1));
+            firstTriangle += std::uint32_t(mesh.triangles.size());
+        }
+        mSurfacePatches = std::move(patches);
+    }
+    return *mSurfacePatches;
+}
+
+bool GpuScene::surfacesMeet() {
+    if (!mSurfacesMeet) {
+        bool meet = mScene.meshes.size() > 1;
+        for (std::size_t index = 0; !meet && index < mScene.meshes.size(); ++index)
+            meet = !isOneSmoothPatch(mScene.meshes[index].normals, mScene.meshes[index].triangles, positionWeld(index));
+        mSurfacesMeet = meet;
+    }
+    return *mSurfacesMeet;
+}
+
 bool GpuScene::containsPoint(glm::dvec3 worldPoint) {
     if (mContainmentPoint == worldPoint) return mContainsPoint;
     mContainsPoint = false;
@@ -232,6 +262,8 @@ void GpuScene::importDerived(const std::string& name) {
         cpuOrientation();
     } else if (name == SceneImport::kIntersections) {
         meshIntersections();
+    } else if (name == SceneImport::kSurfacePatches) {
+        surfacePatches();
     } else if (name != SceneImport::kCurvature) { // derived by its reader, at the smoothing it asks for
         throw std::logic_error("GpuScene::importDerived(): no scene import '" + name + "'");
     }

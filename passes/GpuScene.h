@@ -34,6 +34,8 @@ inline constexpr const char* kEdgeAdjacency = "scene.edge-adjacency";     ///< e
 inline constexpr const char* kFaceOrientation = "scene.face-orientation"; ///< cpuOrientation()
 /** meshCurvature(): declared by the object-space suggestive contours, derived by them at their smoothing. */
 inline constexpr const char* kCurvature = "scene.curvature";
+/** surfacePatches(): declared by the image-space suggestive contours, which differentiate within one patch only. */
+inline constexpr const char* kSurfacePatches = "scene.surface-patches";
 /** meshIntersections(): declared by the intersection line types (`intersection`, `hidden-intersection`). */
 inline constexpr const char* kIntersections = "scene.intersections";
 } // namespace SceneImport
@@ -114,6 +116,24 @@ public:
     const MeshIntersections& meshIntersections();
     bool meshIntersectionsComputed() const { return mMeshIntersections.has_value(); }
 
+    /** The smooth surfaces of the scene as the G-buffer's triangleId numbers triangles (meshes in scene order, each in
+     *  its index order, + 1): entry t of `patchOfTriangle` is the patch of triangle id t, named by the triangleId of
+     *  its first triangle (scene/mesh/SmoothPatches.h: joined across edges where the normals are continuous; meshes
+     *  never join one another), 0 at t = 0 (off the model); floats, exact below 2^24 triangles as triangleId is.
+     *  View-independent CPU data on positionWeld() and edgeAdjacency(), derived once per scene the first time it is
+     *  asked for (only a pass that runs asks: the image-space suggestive contours). */
+    struct SurfacePatches {
+        std::vector<float> patchOfTriangle;
+        std::size_t seamEdges = 0; ///< edges where a mesh's normals step (SmoothPatches::seamEdges), over all meshes
+    };
+    const SurfacePatches& surfacePatches();
+    bool surfacePatchesComputed() const { return mSurfacePatches.has_value(); }
+    /** Whether surfacePatches() can tell surfaces apart that the depth cannot: the scene has several meshes, or a mesh
+     *  that is not one smooth patch (isOneSmoothPatch(), on positionWeld(): its normals step, or it has loose parts,
+     *  such as a teapot's spout meeting its body). False for one mesh smooth and connected everywhere, answered
+     *  without any adjacency. Kept once asked. */
+    bool surfacesMeet();
+
     std::size_t meshCount() const { return mScene.meshes.size(); }
     /** The scene the meshes were uploaded from (their CPU triangles, in the same vertex order as meshes()). */
     const Scene& scene() const { return mScene; }
@@ -175,6 +195,8 @@ private:
     std::vector<MeshCurvature> mMeshCurvature;            ///< one per mesh once computed, else empty
     double mMeshCurvatureSmoothing = 0.0;                 ///< the smoothing mMeshCurvature was derived with
     std::optional<MeshIntersections> mMeshIntersections;  ///< once computed
+    std::optional<SurfacePatches> mSurfacePatches;        ///< once computed
+    std::optional<bool> mSurfacesMeet;                    ///< surfacesMeet(), once asked
     std::optional<glm::dvec3> mContainmentPoint;          ///< the last point containsPoint() was asked about
     bool mContainsPoint = false;
     const FrameParams* mOrientationFrame = nullptr; ///< set by setOrientation()

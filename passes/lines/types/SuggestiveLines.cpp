@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace inkgraph {
 namespace {
@@ -117,6 +119,9 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+/** Per data pixel, the surface ids the kernel makes from the triangle ids (one float). */
+constexpr std::size_t kSurfaceIdBytesPerPixel = 4;
+
 /** The settings both types report; feature_size in model units, as the kernel holds it (in float). */
 void describeShared(const LineStatsSource& source, nlohmann::ordered_json& entry, bool imageSpace) {
     const SuggestiveSettings settings = sharedSettings(source.look, source.sphere);
@@ -130,13 +135,60 @@ void describeShared(const LineStatsSource& source, nlohmann::ordered_json& entry
     entry["feature_size"] = imageSpace ? double(float(featureSize / unit)) * unit : double(float(featureSize));
 }
 
+/** Per covered pixel (depth > 0), the smooth patch of its triangle (`patchOfTriangle`, GpuScene::SurfacePatches);
+ *  0 elsewhere, where the G-buffer may have left the triangle ids uncleared. Each row's work is its covered span (the
+ *  background around it only zeroed): about 1 ms at 1024^2 on one core, which is why it is not split over threads
+ *  (waking OpenCV's pool cost as much). */
+cv::Mat surfaceIdsOf(const cv::Mat& triangleIds, const cv::Mat& depth, const std::vector<float>& patchOfTriangle) {
+    cv::Mat surface(triangleIds.size(), CV_32FC1);
+    const float triangles = float(patchOfTriangle.size());
+    bool outOfRange = false;
+    for (int row = 0; row < triangleIds.rows; ++row) {
+        const float* ids = triangleIds.ptr<float>(row);
+        const float* z = depth.ptr<float>(row);
+        float* out = surface.ptr<float>(row);
+        int begin = 0;
+        int end = triangleIds.cols;
+        while (begin < end && !(z[begin] > 0.0f)) ++begin;
+        while (end > begin && !(z[end - 1] > 0.0f)) --end;
+        std::fill(out, out + begin, 0.0f);
+        std::fill(out + end, out + triangleIds.cols, 0.0f);
+        for (int col = begin; col < end; ++col) {
+            // An id the G-buffer wrote is an exact float in [1, triangles]; anything else is a bug upstream.
+            const float id = z[col] > 0.0f ? ids[col] : 0.0f;
+            outOfRange |= !(id >= 0.0f && id < triangles);
+            out[col] = outOfRange ? 0.0f : patchOfTriangle[std::size_t(id)];
+        }
+    }
+    if (outOfRange)
+        throw std::logic_error("SuggestiveKernel::find(): 'triangleId' holds an id beyond the scene's " +
+                               std::to_string(patchOfTriangle.size() - 1) + " triangles");
+    return surface;
+}
+
 } // namespace
+
+std::vector<std::string> SuggestiveKernel::inputs() const {
+    std::vector<std::string> names{mGBuffer + ".radial", mGBuffer + ".depth"};
+    if (mSurfaces) names.push_back(mGBuffer + ".triangleId");
+    return names;
+}
+
+void SuggestiveKernel::describe(nlohmann::ordered_json& entry) const {
+    entry["surface_ids"] = mSurfaces != nullptr;
+    if (mSurfaces && mSurfaces->surfacePatchesComputed()) entry["seam_edges"] = mSurfaces->surfacePatches().seamEdges;
+}
+
+std::vector<std::string> SuggestiveKernel::sceneImports() const {
+    if (!mSurfaces) return {};
+    return {SceneImport::kSurfacePatches};
+}
 
 std::size_t SuggestiveKernel::scratchBytesPerPixel() const {
     const bool wide = mSettings.stencil == DifferenceStencil::Central5;
     const std::size_t smoothing =
         mSettings.smoothing > 0.0f ? kSmoothingBytesPerPixel + (wide ? kSmoothedFieldBytesPerPixel : 0) : 0;
-    return (wide ? kWideStencilBytesPerPixel : 0) + smoothing;
+    return (wide ? kWideStencilBytesPerPixel : 0) + smoothing + (mSurfaces ? kSurfaceIdBytesPerPixel : 0);
 }
 
 LineSkeleton SuggestiveKernel::find(const std::vector<cv::Mat>& inputs) {
@@ -144,7 +196,9 @@ LineSkeleton SuggestiveKernel::find(const std::vector<cv::Mat>& inputs) {
     // The data image may be supersampled: its own height gives its focal length in pixels.
     settings.focalPixels =
         float(0.5 * double(inputs[1].rows) / std::tan(0.5 * glm::radians(mFrame.camera.fovYDegrees)));
-    return extractSuggestiveContours(inputs[0], inputs[1], settings);
+    if (!mSurfaces) return extractSuggestiveContours(inputs[0], inputs[1], settings);
+    const cv::Mat surface = surfaceIdsOf(inputs[2], inputs[1], mSurfaces->surfacePatches().patchOfTriangle);
+    return extractSuggestiveContours(inputs[0], inputs[1], settings, surface);
 }
 
 void ObjectSuggestiveKernel::prepare() {
@@ -201,7 +255,8 @@ LineType suggestiveLineType() {
         // In model units, like the depth it is converted to pixels with.
         settings.smoothing = float(setup.look.lineParameters.number(kSuggestiveSmoothing) * setup.sphere.radius);
         settings.breakClearance = float(setup.look.lineParameters.number(kSuggestiveClearance));
-        builder.addLayer(name, std::make_unique<SuggestiveKernel>(setup.gbuffer, settings, setup.frame));
+        builder.addLayer(name, std::make_unique<SuggestiveKernel>(setup.gbuffer, settings, setup.frame,
+                                                                  setup.scene.surfacesMeet() ? &setup.scene : nullptr));
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
         describeShared(source, entry, true);

@@ -28,17 +28,28 @@ constexpr double kSuggestiveFeatureSizeFraction = 0.05;
 
 /** Image space: reads "<gbuffer>.radial" and "<gbuffer>.depth" (postfx/SuggestiveContours.h). `settings.smoothing`
  *  is in model units (the depth's); the focal length in pixels is taken from `frame`'s camera and the data image's
- *  height when the kernel runs. `frame` must outlive the kernel. */
+ *  height when the kernel runs. `frame` must outlive the kernel.
+ *
+ *  With `surfaces` (a scene whose surfaces meet: GpuScene::surfacesMeet()) it also reads "<gbuffer>.triangleId" and
+ *  imports the scene's smooth patches (GpuScene::surfacePatches()), and differentiates and smooths within one patch
+ *  only: across a hard edge (a flat-shaded model's facets, a cube's sides) or from one mesh to another the normal
+ *  field steps, and D_w(n.v) there would measure the step, not a curvature; the crease and contour lines draw those
+ *  edges. Without, the depth alone parts the surfaces. `surfaces` must outlive the kernel. */
 class SuggestiveKernel : public LineKernel {
 public:
-    SuggestiveKernel(std::string gbuffer, SuggestiveSettings settings, const FrameParams& frame)
-        : mGBuffer(std::move(gbuffer)), mSettings(settings), mFrame(frame) {}
-    std::vector<std::string> inputs() const override { return {mGBuffer + ".radial", mGBuffer + ".depth"}; }
-    /** The radial field only where the depth is > 0: the smoothing's windows, the derivatives and the crossings
-     *  keep to runs of covered pixels (postfx/SuggestiveContours.cpp). */
+    SuggestiveKernel(std::string gbuffer, SuggestiveSettings settings, const FrameParams& frame,
+                     GpuScene* surfaces = nullptr)
+        : mGBuffer(std::move(gbuffer)), mSettings(settings), mFrame(frame), mSurfaces(surfaces) {}
+    std::vector<std::string> inputs() const override;
+    /** The radial field and the triangle ids only where the depth is > 0: the smoothing's windows, the derivatives
+     *  and the crossings keep to runs of covered pixels (postfx/SuggestiveContours.cpp). */
     ReadExtent extentOf(std::size_t input) const override {
-        return input == 0 ? ReadExtent::CoveredPixels : ReadExtent::WholeImage;
+        return input == 1 ? ReadExtent::WholeImage : ReadExtent::CoveredPixels;
     }
+    std::vector<std::string> sceneImports() const override;
+    /** `surface_ids`: whether it parted the surfaces by their smooth patches (the scene's surfaces meet); with them,
+     *  `seam_edges`: the mesh edges where the normals step (GpuScene::SurfacePatches::seamEdges). */
+    void describe(nlohmann::ordered_json& entry) const override;
     /** The wide stencil's and the smoothing's working images. */
     std::size_t scratchBytesPerPixel() const override;
     LineSkeleton find(const std::vector<cv::Mat>& inputs) override;
@@ -47,6 +58,7 @@ private:
     std::string mGBuffer;
     SuggestiveSettings mSettings;
     const FrameParams& mFrame;
+    GpuScene* mSurfaces;
 };
 
 /** What the object-space kernel did, for --stats. */
