@@ -17,15 +17,26 @@ std::uint32_t cornerAt(const glm::uvec3& triangle, std::uint32_t welded, const W
     throw std::logic_error("smoothPatches(): a face of an edge has no corner at the edge's end");
 }
 
+/** Throws std::invalid_argument, naming `function`, unless the weld and the triangles fit the mesh's normals. */
+void requireMeshArrays(const char* function, std::span<const glm::vec3> normals, std::span<const glm::uvec3> triangles,
+                       const WeldMap& weld) {
+    if (weld.outputOf.size() != normals.size())
+        throw std::invalid_argument(std::string(function) + ": the weld maps " + std::to_string(weld.outputOf.size()) +
+                                    " vertices, the mesh has " + std::to_string(normals.size()) + " normals");
+    for (const glm::uvec3& triangle : triangles)
+        for (int corner = 0; corner < 3; ++corner)
+            if (triangle[corner] >= normals.size())
+                throw std::invalid_argument(std::string(function) + ": a triangle indexes vertex " +
+                                            std::to_string(triangle[corner]) + " of " + std::to_string(normals.size()));
+}
+
 float cosineOf(double degrees) { return float(std::cos(degrees * 3.14159265358979323846 / 180.0)); }
 
 } // namespace
 
 bool isOneSmoothPatch(std::span<const glm::vec3> normals, std::span<const glm::uvec3> triangles, const WeldMap& weld,
                       double normalDegrees) {
-    if (weld.outputOf.size() != normals.size())
-        throw std::invalid_argument("isOneSmoothPatch(): the weld maps " + std::to_string(weld.outputOf.size()) +
-                                    " vertices, the mesh has " + std::to_string(normals.size()) + " normals");
+    requireMeshArrays("isOneSmoothPatch()", normals, triangles, weld);
     const float cosLimit = cosineOf(normalDegrees);
     for (std::size_t vertex = 0; vertex < normals.size(); ++vertex) {
         const std::uint32_t kept = weld.kept[weld.outputOf[vertex]];
@@ -33,10 +44,6 @@ bool isOneSmoothPatch(std::span<const glm::vec3> normals, std::span<const glm::u
     }
     DisjointSets surfaces(weld.kept.size());
     for (const glm::uvec3& triangle : triangles) {
-        for (int corner = 0; corner < 3; ++corner)
-            if (triangle[corner] >= normals.size())
-                throw std::invalid_argument("isOneSmoothPatch(): a triangle indexes vertex " +
-                                            std::to_string(triangle[corner]) + " of " + std::to_string(normals.size()));
         surfaces.join(weld.outputOf[triangle[0]], weld.outputOf[triangle[1]]);
         surfaces.join(weld.outputOf[triangle[0]], weld.outputOf[triangle[2]]);
     }
@@ -48,18 +55,11 @@ bool isOneSmoothPatch(std::span<const glm::vec3> normals, std::span<const glm::u
 
 SmoothPatches smoothPatches(std::span<const glm::vec3> normals, std::span<const glm::uvec3> triangles,
                             const WeldMap& weld, const EdgeAdjacency& adjacency, double normalDegrees) {
-    if (weld.outputOf.size() != normals.size())
-        throw std::invalid_argument("smoothPatches(): the weld maps " + std::to_string(weld.outputOf.size()) +
-                                    " vertices, the mesh has " + std::to_string(normals.size()) + " normals");
+    requireMeshArrays("smoothPatches()", normals, triangles, weld);
     if (adjacency.faceNormals.size() != triangles.size())
         throw std::invalid_argument("smoothPatches(): the adjacency is of " +
                                     std::to_string(adjacency.faceNormals.size()) + " triangles, the mesh has " +
                                     std::to_string(triangles.size()));
-    for (const glm::uvec3& triangle : triangles)
-        for (int corner = 0; corner < 3; ++corner)
-            if (triangle[corner] >= normals.size())
-                throw std::invalid_argument("smoothPatches(): a triangle indexes vertex " +
-                                            std::to_string(triangle[corner]) + " of " + std::to_string(normals.size()));
     const float cosLimit = cosineOf(normalDegrees);
     const auto agree = [&](std::uint32_t a, std::uint32_t b) {
         // The same vertex, or copies whose normals point the same way (loaders store unit normals).
