@@ -15,6 +15,7 @@
 #include <future>
 #include <iostream>
 
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 namespace inkgraph {

@@ -9,6 +9,8 @@
 
 #include "app/OutputFiles.h"
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <cstddef>
 #include <deque>

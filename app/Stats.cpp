@@ -6,6 +6,8 @@
 #include "passes/orientation/SceneOrientation.h"
 #include "scene/ObjectIds.h"
 
+#include <nlohmann/json.hpp>
+
 #include <charconv>
 #include <cstdlib>
 

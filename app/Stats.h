@@ -5,7 +5,7 @@
 #include "flags/Options.h"
 #include "render/StillRenderer.h"
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <cstddef>
 #include <string>

@@ -11,6 +11,8 @@
 #include "scene/MeshLabels.h"
 #include "scene/ObjectIds.h"
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <map>
 #include <set>

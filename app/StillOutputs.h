@@ -5,7 +5,7 @@
 #include "app/OutputFiles.h"
 #include "render/StillRenderer.h"
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <string>
 

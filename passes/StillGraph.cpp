@@ -12,6 +12,8 @@
 #include "passes/shade/ShadePass.h"
 #include "scene/MeshLabels.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 
 namespace inkgraph {

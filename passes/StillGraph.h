@@ -18,7 +18,7 @@
 #include "postfx/SvgLines.h"
 #include "scene/Scene.h"
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <map>
 #include <memory>

@@ -9,7 +9,7 @@
 #include "graph/Resource.h"
 #include "postfx/LineSkeleton.h"
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <opencv2/core.hpp>
 
 #include <stdexcept>

@@ -2,6 +2,8 @@
 
 #include "gl/GraphExecutor.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -12,7 +12,7 @@
 #include "passes/lines/LineParameter.h"
 #include "scene/Camera.h"
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <cstddef>
 #include <functional>

@@ -5,6 +5,8 @@
 #include "passes/lines/LineLayerPass.h"
 #include "postfx/LineTracing.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -4,6 +4,7 @@
 #include "scene/TextureImage.h"
 
 #include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -115,8 +116,7 @@ GLuint SceneMaterials::texture(const TextureRef& reference, bool srgb) {
                                             "; the materials that use it are drawn without it",
                                         image.path.empty() ? mModelPath : image.path,
                                         "image " + std::to_string(reference.image) + name));
-        mDescribedUnusable.push_back(
-            {{"image", reference.image}, {"name", image.name}, {"reason", missing ? "missing" : "undecodable"}});
+        mDescribedUnusable.push_back({reference.image, image.name, missing});
         return 0;
     }
     // A texture the driver cannot hold (a 17000 x 1 strip) is shrunk to fit rather than failing the still: a toon
@@ -134,10 +134,8 @@ GLuint SceneMaterials::texture(const TextureRef& reference, bool srgb) {
             mWarnings.push_back(makeWarning(WarningKind::TextureDownscaled, warning,
                                             image.path.empty() ? mModelPath : image.path,
                                             "image " + std::to_string(reference.image) + name));
-        mDownscaled.push_back({{"image", reference.image},
-                               {"name", image.name},
-                               {"decoded", {decoded.width, decoded.height}},
-                               {"uploaded", {smaller.width, smaller.height}}});
+        mDownscaled.push_back(
+            {reference.image, image.name, decoded.width, decoded.height, smaller.width, smaller.height});
         decoded = smaller;
     }
     GlHandle<TextureDeleter> handle = uploaded(decoded, srgb, "image " + std::to_string(reference.image));
@@ -262,11 +260,21 @@ void SceneMaterials::describe(nlohmann::ordered_json& out) const {
         materials.push_back(std::move(entry));
     }
     out["materials"] = std::move(materials);
+    Json downscaled = Json::array();
+    for (const DownscaledImage& image : mDownscaled)
+        downscaled.push_back({{"image", image.image},
+                              {"name", image.name},
+                              {"decoded", {image.decodedWidth, image.decodedHeight}},
+                              {"uploaded", {image.uploadedWidth, image.uploadedHeight}}});
+    Json unusable = Json::array();
+    for (const UnusableImage& image : mDescribedUnusable)
+        unusable.push_back(
+            {{"image", image.image}, {"name", image.name}, {"reason", image.missing ? "missing" : "undecodable"}});
     out["images"] = {{"count", mScene.images.size()},
                      {"decoded", mTextures.size()},
                      {"decoded_bytes", mTextureBytes},
-                     {"downscaled", mDownscaled},
-                     {"unusable", mDescribedUnusable},
+                     {"downscaled", std::move(downscaled)},
+                     {"unusable", std::move(unusable)},
                      {"byte_limit", mTextureByteLimit == std::size_t(-1) ? Json(nullptr) : Json(mTextureByteLimit)}};
 }
 

@@ -8,7 +8,7 @@
 #include "passes/WidthMap.h"
 #include "scene/Scene.h"
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <cstddef>
 #include <map>
@@ -109,16 +109,29 @@ public:
     GLuint sampler(const TextureSampler& settings);
 
 private:
+    /** An image shrunk to the driver's largest texture (Scene::images index, name, decoded and uploaded sizes). */
+    struct DownscaledImage {
+        int image = 0;
+        std::string name;
+        int decodedWidth = 0, decodedHeight = 0, uploadedWidth = 0, uploadedHeight = 0;
+    };
+    /** An image the materials are drawn without: missing, else undecodable. */
+    struct UnusableImage {
+        int image = 0;
+        std::string name;
+        bool missing = false;
+    };
+
     const Scene& mScene;
     std::string mModelPath;
     std::size_t mTextureByteLimit = std::size_t(-1);
     std::size_t mTextureBytes = 0;
     double mTime = 0.0;
     std::vector<Warning> mWarnings;
-    nlohmann::ordered_json mDownscaled = nlohmann::ordered_json::array(); ///< for --stats: name, file and GL sizes
-    std::map<std::pair<int, bool>, GlHandle<TextureDeleter>> mTextures;   ///< by Scene::images index and sRGB-ness
-    std::set<int> mUnusableImages;                                        ///< Scene::images indices warned about
-    nlohmann::ordered_json mDescribedUnusable = nlohmann::ordered_json::array(); ///< for --stats: image, name, reason
+    std::vector<DownscaledImage> mDownscaled;                           ///< for --stats
+    std::map<std::pair<int, bool>, GlHandle<TextureDeleter>> mTextures; ///< by Scene::images index and sRGB-ness
+    std::set<int> mUnusableImages;                                      ///< Scene::images indices warned about
+    std::vector<UnusableImage> mDescribedUnusable;                      ///< for --stats
     std::vector<std::pair<TextureSampler, GlHandle<SamplerDeleter>>> mSamplers;
     /** bindWidthMap()'s texture: the name it was made for, and the GL texture (a file's, owned here) or the model
      *  image's id from mTextures. */

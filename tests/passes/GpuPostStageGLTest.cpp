@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <iostream>

@@ -3,6 +3,8 @@
 #include "passes/outline/OutlinePass.h"
 #include "passes/silhouette/SilhouettePass.h"
 
+#include <nlohmann/json.hpp>
+
 #include <limits>
 
 namespace inkgraph {

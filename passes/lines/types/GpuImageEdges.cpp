@@ -1,6 +1,7 @@
 #include "passes/lines/types/GpuImageEdges.h"
 
 #include <epoxy/gl.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -5,6 +5,8 @@
 #include "passes/lines/LineType.h"
 #include "passes/lines/types/GpuImageEdges.h"
 
+#include <nlohmann/json.hpp>
+
 namespace inkgraph {
 namespace {
 

@@ -7,6 +7,8 @@
 #include "passes/lines/LineType.h"
 #include "passes/lines/ProjectedSegments.h"
 
+#include <nlohmann/json.hpp>
+
 namespace inkgraph {
 namespace {
 

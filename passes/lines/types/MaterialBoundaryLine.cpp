@@ -4,6 +4,8 @@
 #include "passes/lines/LineType.h"
 #include "postfx/MaterialBoundaries.h"
 
+#include <nlohmann/json.hpp>
+
 namespace inkgraph {
 namespace {
 

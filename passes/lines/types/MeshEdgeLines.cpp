@@ -4,6 +4,8 @@
 #include "passes/edges/MeshEdgesPass.h"
 #include "passes/lines/LineType.h"
 
+#include <nlohmann/json.hpp>
+
 namespace inkgraph {
 namespace {
 

@@ -5,6 +5,8 @@
 #include "passes/lines/LineType.h"
 #include "scene/mesh/ObjectSuggestiveContours.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
