@@ -13,6 +13,8 @@ trap 'rm -rf "$logs"' EXIT
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}:verbosity=1"
 export LSAN_OPTIONS="${LSAN_OPTIONS:-}:log_threads=1"
 export LP_NUM_THREADS=1
+# The test-output folders of these processes are their own, so ctest runs this beside the same tests (not RUN_SERIAL).
+export INKGRAPH_TEST_OUTPUT_ROOT="$logs/output"
 processes=0
 in_flight=0
 for binary in "$@"; do

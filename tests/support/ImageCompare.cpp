@@ -10,7 +10,11 @@
 namespace inkgraph::test {
 
 std::filesystem::path testOutputDirectory(const std::string& testName) {
-    return std::filesystem::path(INKGRAPH_BINARY_ROOT) / "test-output" / testName;
+    // tests/sanitizers/check-exit-threads.sh reruns tests while ctest runs them too: its own root keeps them apart.
+    const char* root = std::getenv("INKGRAPH_TEST_OUTPUT_ROOT");
+    const std::filesystem::path base =
+        root != nullptr && *root != '\0' ? std::filesystem::path(root) : std::filesystem::path(INKGRAPH_BINARY_ROOT);
+    return base / "test-output" / testName;
 }
 
 std::filesystem::path sourceRoot() { return INKGRAPH_SOURCE_ROOT_DIR; }

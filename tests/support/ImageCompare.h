@@ -28,7 +28,8 @@ cv::Mat coverageEdges(const cv::Mat& coverage);
                                       const std::string& testName, const std::string& resourceName,
                                       const cv::Mat& outlierZone = cv::Mat());
 
-/** Folder the failing comparisons write to. */
+/** Folder the failing comparisons write to: <build>/test-output/<test>, or under $INKGRAPH_TEST_OUTPUT_ROOT where
+ *  that is set. */
 std::filesystem::path testOutputDirectory(const std::string& testName);
 
 /** Repo root, for models/ and tests/golden/. */
