@@ -10,7 +10,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include <unistd.h>
 
@@ -22,6 +25,44 @@ namespace {
  *  the driver's state without its threads (llvmpipe's rasterisers), and a context made there would wait for them
  *  forever. */
 pid_t gDriverProcess = 0;
+
+/** How many of this process's contexts hold each display they initialised. EGL initialises a display once for the
+ *  whole process and eglTerminate() ends it for every context made on it, so the last context to let go terminates
+ *  it, not the first (a batch's drawing threads each hold a context: --draw-threads). Guards gDriverProcess too. */
+std::mutex gDisplaysMutex;
+std::vector<std::pair<EGLDisplay, int>> gDisplayHolders;
+
+/** eglInitialize(), counted as one more holder of `display`. */
+bool initializeDisplay(EGLDisplay display) {
+    const std::lock_guard<std::mutex> lock(gDisplaysMutex);
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(display, &major, &minor)) return false;
+    gDriverProcess = getpid();
+    const auto held = std::find_if(gDisplayHolders.begin(), gDisplayHolders.end(),
+                                   [display](const auto& holder) { return holder.first == display; });
+    if (held != gDisplayHolders.end())
+        ++held->second;
+    else
+        gDisplayHolders.emplace_back(display, 1);
+    return true;
+}
+
+/** One holder of `display` lets go; the last terminates it, unless `afterUse` in a sanitized build
+ *  (INKGRAPH_KEEP_EGL_DISPLAYS: terminating unloads Mesa's driver, whose globals are the only roots of its still-used
+ *  caches, and LeakSanitizer would report them as lost from an unmapped library it cannot name; a later context on
+ *  the same display initialises it again at no cost). */
+void releaseDisplay(EGLDisplay display, [[maybe_unused]] bool afterUse) {
+    const std::lock_guard<std::mutex> lock(gDisplaysMutex);
+    const auto held = std::find_if(gDisplayHolders.begin(), gDisplayHolders.end(),
+                                   [display](const auto& holder) { return holder.first == display; });
+    if (held == gDisplayHolders.end() || --held->second > 0) return;
+    gDisplayHolders.erase(held);
+#ifdef INKGRAPH_KEEP_EGL_DISPLAYS
+    if (afterUse) return;
+#endif
+    eglTerminate(display);
+    if (gDisplayHolders.empty()) gDriverProcess = 0;
+}
 
 const char* const kInstallHint =
     "Install Mesa's EGL and drivers (apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri) for CPU rendering, or "
@@ -87,23 +128,19 @@ Attempt tryDisplay(EGLDisplay display, bool debug) {
         attempt.failure = "eglGetPlatformDisplayEXT failed (" + eglErrorName(eglGetError()) + ")";
         return attempt;
     }
-    EGLint major = 0, minor = 0;
-    if (!eglInitialize(display, &major, &minor)) {
+    if (!initializeDisplay(display)) {
         attempt.failure = "eglInitialize failed (" + eglErrorName(eglGetError()) + ")";
         return attempt;
     }
-    gDriverProcess = getpid();
     const char* displayExtensions = eglQueryString(display, EGL_EXTENSIONS);
     if (!hasExtension(displayExtensions, "EGL_KHR_surfaceless_context")) {
         attempt.failure = "the display lacks EGL_KHR_surfaceless_context";
-        eglTerminate(display);
-        gDriverProcess = 0;
+        releaseDisplay(display, false);
         return attempt;
     }
     if (!eglBindAPI(EGL_OPENGL_API)) {
         attempt.failure = "eglBindAPI(EGL_OPENGL_API) failed: the driver has no desktop OpenGL";
-        eglTerminate(display);
-        gDriverProcess = 0;
+        releaseDisplay(display, false);
         return attempt;
     }
     const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0, EGL_NONE};
@@ -112,8 +149,7 @@ Attempt tryDisplay(EGLDisplay display, bool debug) {
     if (!eglChooseConfig(display, configAttributes, &config, 1, &configCount) || configCount == 0) {
         if (!hasExtension(displayExtensions, "EGL_KHR_no_config_context")) {
             attempt.failure = "no EGL config renders desktop OpenGL";
-            eglTerminate(display);
-            gDriverProcess = 0;
+            releaseDisplay(display, false);
             return attempt;
         }
         config = EGL_NO_CONFIG_KHR;
@@ -131,15 +167,13 @@ Attempt tryDisplay(EGLDisplay display, bool debug) {
     EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
     if (context == EGL_NO_CONTEXT) {
         attempt.failure = "eglCreateContext(OpenGL 4.5 core) failed (" + eglErrorName(eglGetError()) + ")";
-        eglTerminate(display);
-        gDriverProcess = 0;
+        releaseDisplay(display, false);
         return attempt;
     }
     if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
         attempt.failure = "eglMakeCurrent without a surface failed (" + eglErrorName(eglGetError()) + ")";
         eglDestroyContext(display, context);
-        eglTerminate(display);
-        gDriverProcess = 0;
+        releaseDisplay(display, false);
         return attempt;
     }
     attempt.display = display;
@@ -154,9 +188,14 @@ bool isSoftwareDevice(EGLDeviceEXT device) {
 } // namespace
 
 HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) : mProcess(int(getpid())) {
-    if (gDriverProcess != 0 && gDriverProcess != getpid())
+    pid_t driverProcess = 0;
+    {
+        const std::lock_guard<std::mutex> lock(gDisplaysMutex);
+        driverProcess = gDriverProcess;
+    }
+    if (driverProcess != 0 && driverProcess != getpid())
         throw HeadlessContextError(
-            "HeadlessContext(): this process was forked from process " + std::to_string(gDriverProcess) +
+            "HeadlessContext(): this process was forked from process " + std::to_string(driverProcess) +
             " after that one started the EGL driver, whose threads do not exist here; start the driver after the "
             "fork (Python: multiprocessing's 'spawn' or 'forkserver', or close every renderer before forking)");
     const EglPlatform platform = platformFromEnvironment(options.platform);
@@ -263,17 +302,12 @@ HeadlessContext::~HeadlessContext() { releaseEgl(); }
 
 void HeadlessContext::releaseEgl() {
     if (mDisplay == nullptr) return;
-    eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    // Another context may be current on this thread (several drawing threads' contexts are each destroyed on their
+    // own thread, but a caller may do otherwise): only this one is let go here.
+    if (eglGetCurrentContext() == mContext) eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     if (mContext != nullptr) eglDestroyContext(mDisplay, mContext);
-#ifndef INKGRAPH_KEEP_EGL_DISPLAYS
-    eglTerminate(mDisplay);
-    gDriverProcess = 0;
-#else
-        // Sanitized builds (INKGRAPH_SANITIZE) keep the display initialized: terminating it unloads Mesa's driver,
-        // whose globals are the only roots of its still-used caches, and LeakSanitizer would then report them as lost
-        // from an unmapped library it cannot name. A later context on the same display initializes it again at no cost.
-#endif
-    eglReleaseThread();
+    releaseDisplay(mDisplay, true);
+    if (eglGetCurrentContext() == EGL_NO_CONTEXT) eglReleaseThread();
     mDisplay = nullptr;
     mContext = nullptr;
 }

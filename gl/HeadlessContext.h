@@ -27,8 +27,9 @@ struct HeadlessContextOptions {
     bool debugOutput = false;                ///< KHR_debug messages to stderr (INKGRAPH_GL_DEBUG=1 also enables)
 };
 
-/** Owns the EGL display and context; make it the first member of an app or fixture so it outlives every GL
- *  object. One at a time per process: EGL displays are shared, and destroying one terminates its display. */
+/** Owns an EGL context and a hold on its display; make it the first member of an app or fixture so it outlives every
+ *  GL object. Several may live at once, each current on its own thread: EGL shares a display across the process, so
+ *  the last context made on it terminates it. */
 class HeadlessContext {
 public:
     /** Creates the context and makes it current on this thread. Throws HeadlessContextError. */

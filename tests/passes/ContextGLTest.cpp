@@ -8,8 +8,13 @@
 
 #include <gtest/gtest.h>
 
+#include <epoxy/egl.h>
+
 #include <filesystem>
 #include <fstream>
+#include <future>
+#include <string>
+#include <thread>
 
 namespace inkgraph {
 namespace {
@@ -34,6 +39,51 @@ TEST(HeadlessContext, SurfacelessPlatformGivesCore45) {
     EXPECT_EQ(context.platform(), "surfaceless");
     EXPECT_GE(epoxy_gl_version(), 45);
     EXPECT_NE(context.describe().find("surfaceless"), std::string::npos);
+}
+
+/** A fresh 4 x 4 float texture cleared to `value` and read back on this thread's context: one of its texels. */
+float clearedAndReadBack(float value) {
+    GlTexture texture(Format::R32F, 4, 4, "thread test");
+    glClearTexImage(texture.id(), 0, GL_RED, GL_FLOAT, &value);
+    return readTexture(texture, ReadbackFlip::Cpu).at<float>(2, 1);
+}
+
+TEST(HeadlessContext, SeveralLiveAtOnceEachOnItsThreadAndTheLastOneEndsTheDisplay) {
+    // A batch's drawing threads (--draw-threads) each hold a context on the one display EGL gives the process: the
+    // first context to go must leave the display to the others (eglTerminate() would end it for all of them).
+    test::releaseSharedGlContext();
+    std::promise<void> firstMade, secondMade, firstGone;
+    std::string secondFailure;
+    float secondBefore = 0.0f, secondAfter = 0.0f;
+    std::thread second([&] {
+        try {
+            firstMade.get_future().wait();
+            HeadlessContext context;
+            secondBefore = clearedAndReadBack(2.0f);
+            secondMade.set_value();
+            firstGone.get_future().wait(); // the first context is destroyed meanwhile, on its own thread
+            context.releaseThread();
+            context.makeCurrent(); // eglMakeCurrent() fails on a terminated display
+            EXPECT_NE(eglQueryString(eglGetCurrentDisplay(), EGL_VERSION), nullptr);
+            secondAfter = clearedAndReadBack(3.0f);
+        } catch (const std::exception& error) {
+            secondFailure = error.what();
+        }
+    });
+    {
+        HeadlessContext context;
+        EXPECT_EQ(clearedAndReadBack(1.0f), 1.0f);
+        firstMade.set_value();
+        secondMade.get_future().wait();
+        EXPECT_EQ(clearedAndReadBack(4.0f), 4.0f); // both current at once, each on its own thread
+    }
+    firstGone.set_value();
+    second.join();
+    EXPECT_EQ(secondFailure, "");
+    EXPECT_EQ(secondBefore, 2.0f);
+    EXPECT_EQ(secondAfter, 3.0f) << "the first context's end must not end the display the second one still uses";
+    HeadlessContext again; // the last one ended the display; a new context starts it again
+    EXPECT_EQ(clearedAndReadBack(5.0f), 5.0f);
 }
 
 TEST(Readback, RowZeroIsTheTopOfTheImage) {
