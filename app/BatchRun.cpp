@@ -9,11 +9,16 @@
 #include "app/Render.h"
 #include "scene/Scene.h"
 
+#include <algorithm>
 #include <chrono>
+#include <exception>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <thread>
+#include <vector>
 
 namespace inkgraph {
 namespace {
@@ -34,24 +39,21 @@ std::string stillLabel(const BatchStill& still, const RenderOptions& options) {
     return label;
 }
 
-/** Renders every still of the list in `session` (each model's views one after the other), each still's post stage
- *  and writing overlapping the next stills' drawing, and finishes them all. Every still's progress line or failure
- *  is told in list order, when it is finished. Bad input stops one still, not the batch: its label goes to `failed`.
- *  With a data set, stills --resume finds complete are skipped (counted in `skipped`, no progress line) and each
- *  committed one journaled. */
-void renderEach(const RenderOptions& options, const BatchList& list, const std::vector<BatchStill>& stills,
-                RenderSession& session, std::ostream& log, DatasetRun* dataset, std::vector<std::string>& failed,
-                std::size_t& skipped, int& exitCode) {
-    // What is left to render, known before the first still so each still can name the next (its model then loads
-    // while this one draws).
-    struct Still {
-        std::size_t index = 0; ///< into `stills`
-        RenderOptions options;
-        std::string digest; ///< a data set's settings digest
-    };
-    std::vector<Still> toRender;
+/** A still left to render, known before the first so each still can name the next (its model then loads while this
+ *  one draws). */
+struct StillToRender {
+    std::size_t index = 0; ///< into the batch's stills
+    RenderOptions options;
+    std::string digest; ///< a data set's settings digest
+};
+
+/** The stills of the list to render: all of them, less those --resume finds complete (counted in `skipped`). */
+std::vector<StillToRender> stillsToRender(const RenderOptions& options, const BatchList& list,
+                                          const std::vector<BatchStill>& stills, DatasetRun* dataset,
+                                          std::size_t& skipped) {
+    std::vector<StillToRender> toRender;
     for (std::size_t i = 0; i < stills.size(); ++i) {
-        Still still{i, stillOptions(options, stills[i], list.total), {}};
+        StillToRender still{i, stillOptions(options, stills[i], list.total), {}};
         if (dataset) {
             const StillKey key{stills[i].model.path, stills[i].model.position, stills[i].viewIndex};
             still.digest = dataset->settingsDigest(key, still.options);
@@ -62,18 +64,67 @@ void renderEach(const RenderOptions& options, const BatchList& list, const std::
         }
         toRender.push_back(std::move(still));
     }
-    for (std::size_t k = 0; k < toRender.size(); ++k) {
-        const BatchStill& batchStill = stills[toRender[k].index];
+    return toRender;
+}
+
+/** What every drawing thread of a batch shares: the stills and where each one's outcome is told. */
+struct BatchShared {
+    const RenderOptions& options;
+    const BatchList& list;
+    const std::vector<BatchStill>& stills;
+    const std::vector<StillToRender>& toRender;
+    std::ostream& log;
+    DatasetRun* dataset;
+    std::vector<std::string>& failed;
+    int& exitCode;
+    StillTurns* turns; ///< several drawing threads: the order the stills are told in; else null
+};
+
+/** An error after the one that stopped the batch, told (one thread at a time: the turns have stopped). */
+void tellError(const BatchShared& batch, std::exception_ptr error) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const std::exception& other) {
+        const StillTurn turn(batch.turns, batch.toRender.size());
+        batch.log << boundedMessage(std::string("inkgraph: error: ") + other.what()) << "\n";
+    } catch (...) {
+    }
+}
+
+/** The stills in flight are finished after an error that stops the batch, so no completed still's outputs are lost.
+ *  Their own failures, if any, are told. */
+void finishAfterError(RenderSession& session, const BatchShared& batch) {
+    for (;;) {
+        try {
+            session.finishPending();
+            break;
+        } catch (const std::exception& error) {
+            const StillTurn turn(batch.turns, batch.toRender.size()); // told one at a time (the batch has stopped)
+            batch.log << boundedMessage(std::string("inkgraph: error: ") + error.what()) << "\n";
+        }
+    }
+}
+
+/** Renders the stills first, first + step, ... of `toRender` in `session` (each model's views one after the other),
+ *  each still's post stage and writing overlapping the next stills' drawing, and finishes them all. Every still's
+ *  progress line or failure is told in list order, when it is finished. Bad input stops one still, not the batch:
+ *  its label goes to `failed`. With a data set each committed still is journaled. */
+void renderShare(const BatchShared& batch, std::size_t first, std::size_t step, RenderSession& session) {
+    const std::vector<StillToRender>& toRender = batch.toRender;
+    DatasetRun* const dataset = batch.dataset;
+    for (std::size_t k = first; k < toRender.size(); k += step) {
+        if (batch.turns && batch.turns->stopped()) break; // another thread's error stops the batch
+        const BatchStill& batchStill = batch.stills[toRender[k].index];
         const RenderOptions& still = toRender[k].options;
         const StillKey key{batchStill.model.path, batchStill.model.position, batchStill.viewIndex};
-        const std::string label = stillLabel(batchStill, options);
-        const std::string counter =
-            "inkgraph: [" + std::to_string(toRender[k].index + 1) + "/" + std::to_string(stills.size()) + "] " + label;
-        const auto fail = [&log, &failed, dataset, &exitCode, counter, label, key, still](const std::exception& error) {
-            log << boundedMessage(counter + " failed: " + error.what()) << "\n";
-            failed.push_back(label);
+        const std::string label = stillLabel(batchStill, batch.options);
+        const std::string counter = "inkgraph: [" + std::to_string(toRender[k].index + 1) + "/" +
+                                    std::to_string(batch.stills.size()) + "] " + label;
+        const auto fail = [&batch, dataset, counter, label, key, still](const std::exception& error) {
+            batch.log << boundedMessage(counter + " failed: " + error.what()) << "\n";
+            batch.failed.push_back(label);
             if (dataset) dataset->recordFailed(key, still, error.what());
-            if (exitCode == kExitOk) exitCode = kExitBadInput;
+            if (batch.exitCode == kExitOk) batch.exitCode = kExitBadInput;
         };
         try {
             StillCallbacks callbacks;
@@ -83,7 +134,7 @@ void renderEach(const RenderOptions& options, const BatchList& list, const std::
                     dataset->recordCommitted(key, still, digest, done.camera, done.look);
                 };
             }
-            callbacks.finished = [&log, counter, quiet = options.quiet,
+            callbacks.finished = [&log = batch.log, counter, quiet = batch.options.quiet,
                                   outputPath = still.outputPath](const StillReport& report) {
                 if (quiet) return;
                 log << counter;
@@ -92,20 +143,70 @@ void renderEach(const RenderOptions& options, const BatchList& list, const std::
                     << report.milliseconds << " ms\n";
             };
             callbacks.failed = fail;
-            const StillBatchPosition position{batchStill.model.position, list.total};
+            callbacks.turns = batch.turns;
+            callbacks.turn = k;
+            const StillBatchPosition position{batchStill.model.position, batch.list.total};
             session.render(still, &position, std::move(callbacks),
-                           k + 1 < toRender.size() ? &toRender[k + 1].options : nullptr);
+                           k + step < toRender.size() ? &toRender[k + step].options : nullptr);
         } catch (const SceneError& error) {
             // Bad input stops one still, not the batch: the other stills' work is not lost. The stills before it
-            // are told first.
+            // are told first; render() returned holding this still's turn.
             session.finishPending();
+            const StillTurn turn(batch.turns, k);
             fail(error);
         } catch (const InputFileError& error) {
             session.finishPending();
+            const StillTurn turn(batch.turns, k);
             fail(error);
+        } catch (...) {
+            if (!batch.turns) throw; // the caller finishes the stills in flight
+            // Any other error stops the batch, on every drawing thread. The first is kept before the turn goes on
+            // (the caller throws it once every thread is done); this thread finishes what it has in flight.
+            const bool first = batch.turns->stop(std::current_exception());
+            batch.turns->leave(k); // render() may have returned holding it
+            if (!first) tellError(batch, std::current_exception());
+            finishAfterError(session, batch);
+            return;
         }
     }
     session.finishPending();
+}
+
+/** --draw-threads N: the stills dealt out in turn to N threads, each drawing in a session of its own (its GL context
+ *  made, used and destroyed on that thread), told and committed in the list's order (StillTurns). The first error
+ *  that stops the batch is thrown once every thread has finished what it had in flight; later ones are told. */
+void renderInThreads(const BatchShared& shared, std::ostream& out, int drawThreads) {
+    StillTurns turns;
+    BatchShared batch = shared;
+    batch.turns = &turns;
+    const int threads = int(std::min<std::size_t>(std::size_t(drawThreads), batch.toRender.size()));
+    const int jobsEach = batch.options.jobs == 0 ? 0 : std::max(1, (batch.options.jobs + threads - 1) / threads);
+    // The batch stops on the first error; any other is told, as the errors of the stills finished after it are.
+    const auto stopBy = [&turns, &batch](std::exception_ptr error) {
+        if (!turns.stop(error)) tellError(batch, error);
+    };
+    const auto draw = [&](std::size_t first) {
+        try {
+            RenderSession session(out, batch.log, jobsEach, SessionShare{int(first), threads});
+            try {
+                renderShare(batch, first, std::size_t(threads), session);
+            } catch (...) {
+                stopBy(std::current_exception());
+                finishAfterError(session, batch);
+            }
+        } catch (...) { // the session's own start or end failed
+            stopBy(std::current_exception());
+        }
+    };
+    std::vector<std::thread> drawers;
+    try {
+        for (int thread = 1; thread < threads; ++thread) drawers.emplace_back(draw, std::size_t(thread));
+    } catch (...) { // no thread to draw a share: the batch stops, and the threads started finish what they began
+        stopBy(std::current_exception());
+    }
+    draw(0);
+    for (std::thread& drawer : drawers) drawer.join();
+    if (const std::exception_ptr error = turns.firstError()) std::rethrow_exception(error);
 }
 
 } // namespace
@@ -144,20 +245,19 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     int exitCode = kExitOk;
     std::vector<std::string> failed;
     std::size_t skipped = 0;
-    try {
-        renderEach(options, list, stills, session, log, dataset.get(), failed, skipped, exitCode);
-    } catch (...) {
-        // The batch stops; the stills in flight are finished first, so no completed still's outputs are lost. Their
-        // own failures, if any, are told, and the one that stopped the batch thrown.
-        for (;;) {
-            try {
-                session.finishPending();
-                break;
-            } catch (const std::exception& error) {
-                log << boundedMessage(std::string("inkgraph: error: ") + error.what()) << "\n";
-            }
+    const std::vector<StillToRender> toRender = stillsToRender(options, list, stills, dataset.get(), skipped);
+    const BatchShared batch{options, list, stills, toRender, log, dataset.get(), failed, exitCode, nullptr};
+    // Several drawing threads only where each still draws: --print-plan's plans go to standard output in order.
+    if (options.drawThreads > 1 && rendersImages(options) && !options.printPlan && toRender.size() > 1) {
+        renderInThreads(batch, out, options.drawThreads);
+    } else {
+        try {
+            renderShare(batch, 0, 1, session);
+        } catch (...) {
+            // The batch stops; the stills in flight are finished first, and the error that stopped it thrown.
+            finishAfterError(session, batch);
+            throw;
         }
-        throw;
     }
     if (dataset) dataset->finish(log);
     if (!options.quiet || !failed.empty()) {

@@ -212,10 +212,10 @@ const std::vector<std::string>& flagsOutsideDigest() {
     // bound (a still either fits or fails), the EGL platform (the same pixels on any), the list (each still's model
     // is in its key), the data set's folder (outputs are hashed relative to it), the plan on standard output, and
     // --style (its settings are in the arguments already; its file's stamp would re-render for a comment), and
-    // --jobs (the same bytes with any number of workers).
-    static const std::vector<std::string> kFlags = {"--resume",       "-q",     "--shard",   "--memory-limit",
-                                                    "--egl-platform", "--list", "--dataset", "--print-plan",
-                                                    "--style",        "--jobs"};
+    // --jobs and --draw-threads (the same bytes with any number of workers and drawing threads).
+    static const std::vector<std::string> kFlags = {"--resume",       "-q",     "--shard",       "--memory-limit",
+                                                    "--egl-platform", "--list", "--dataset",     "--print-plan",
+                                                    "--style",        "--jobs", "--draw-threads"};
     return kFlags;
 }
 

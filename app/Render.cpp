@@ -6,6 +6,7 @@
 #include "app/OutputFiles.h"
 #include "app/StillOutputs.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -117,7 +118,10 @@ struct RenderSession::PendingStill {
     std::future<TailOutcome> tail;
 };
 
-RenderSession::RenderSession(std::ostream& out, std::ostream& log, int jobs) : mOut(out), mLog(log), mJobs(jobs) {}
+RenderSession::RenderSession(std::ostream& out, std::ostream& log, int jobs, SessionShare share)
+    : mOut(out), mLog(log), mJobs(jobs), mShare{share.index, std::max(share.count, 1)} {
+    mRenderer.tellsContext = mShare.index == 0;
+}
 
 RenderSession::~RenderSession() {
     // A batch stopped by an error: the stills in flight are dropped uncommitted, but their workers must end before
@@ -158,17 +162,25 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     // A batch's still keeps what it has to say until it is finished (PendingStill::log).
     auto stillLog = batch ? std::make_shared<std::ostringstream>() : nullptr;
     const StillLog log{stillLog ? *stillLog : mLog, talks, options.quiet};
+    StillTurns* const turns = callbacks.turns;
+    const std::size_t turn = callbacks.turn;
     try {
         return renderStill(options, batch, std::move(callbacks), next, log, stillLog, processStart);
     } catch (...) {
-        // The stills before it are told first, then what this one had to say; the caller tells its failure.
+        // The stills before it are told first, then what this one had to say, in its turn; the caller tells its
+        // failure and leaves the turn.
         if (stillLog) {
             try {
                 finishPending();
             } catch (...) {
+                // An earlier still's commit failed, which stops the batch: the stills in flight here will not take
+                // their turns, so none may wait for them.
+                if (turns) turns->stop();
+                if (turns) turns->enter(turn);
                 tellLog(stillLog.get());
                 throw;
             }
+            if (turns) turns->enter(turn);
             tellLog(stillLog.get());
         }
         throw;
@@ -185,6 +197,7 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
     // overlaps loading the model and making the context, though Mesa's own library loading waits for the dynamic
     // loader's lock meanwhile, so such runs still pay part of it.
     if (outputsUseImageIoModule(options)) preloadImageIo();
+    finishDueStills();
     StillReport report;
 
     // Every output place is checked before any work; outputs are staged and put in place only at the end.
@@ -219,6 +232,7 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
     if (!options.graphvizPath.empty()) outputs->stageGraphviz(plan.graphviz());
     if (!renders) {
         finishPending(); // commits stay in the order of the stills
+        const StillTurn turn(callbacks.turns, callbacks.turn);
         outputs->commit();
         if (callbacks.committed)
             callbacks.committed({describeCamera(still->camera), describeLook(*still, options.stylePath)});
@@ -236,8 +250,8 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
     const std::size_t neededBytes = estimate.total() - estimate.textures;
     const std::size_t heldBytes = estimate.scene + estimate.cpuImages + estimate.textures;
     const std::size_t aheadBytes = mPrefetch ? heldBytes : 0; // the next model's size is not known yet: this one's
-    while (!mPending.empty() && bytesInFlight() + aheadBytes + neededBytes > still->request.memoryLimitBytes)
-        finishOldest();
+    const std::size_t shareBytes = still->request.memoryLimitBytes / std::size_t(mShare.count);
+    while (!mPending.empty() && bytesInFlight() + aheadBytes + neededBytes > shareBytes) finishOldest();
 
     StillResult result = mRenderer.executeUntilHostTail(*still, log);
     auto pending = std::make_unique<PendingStill>();
@@ -300,9 +314,21 @@ void RenderSession::finishPending() {
     if (mTidying.valid()) mTidying.wait(); // the run's files are as the user will find them
 }
 
+void RenderSession::finishDueStills() {
+    while (!mPending.empty()) {
+        const PendingStill& oldest = *mPending.front();
+        if (oldest.callbacks.turns == nullptr || !oldest.callbacks.turns->isDue(oldest.callbacks.turn) ||
+            oldest.tail.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+            return;
+        finishOldest();
+    }
+}
+
 void RenderSession::finishOldest() {
     const std::unique_ptr<PendingStill> pending = std::move(mPending.front());
     mPending.pop_front();
+    // Told and committed in its turn (several drawing threads), after every still before it.
+    const StillTurn turn(pending->callbacks.turns, pending->callbacks.turn);
     TailOutcome outcome;
     try {
         outcome = pending->tail.get();

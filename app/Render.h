@@ -8,6 +8,7 @@
 #include "render/StillRenderer.h"
 
 #include "app/OutputFiles.h"
+#include "app/StillTurns.h"
 
 #include <nlohmann/json.hpp>
 
@@ -54,6 +55,17 @@ struct StillCallbacks {
     /** The still's post stage failed on bad input (SceneError, InputFileError) after render() returned; without
      *  this the error is thrown from whichever call finishes the still. */
     std::function<void(const std::exception&)> failed;
+    /** With several drawing threads (--draw-threads): the turns that keep every still's telling and commit in the
+     *  list's order, and this still's place in it (0-based). When render() throws for a batch's still, it returns
+     *  holding the still's turn (its warnings told): the caller tells the failure and leaves it. */
+    StillTurns* turns = nullptr;
+    std::size_t turn = 0;
+};
+
+/** One of the sessions that draw a batch's stills at once, each on its own thread (--draw-threads). */
+struct SessionShare {
+    int index = 0; ///< the first tells the driver's line ("inkgraph: llvmpipe ..."), once for the process
+    int count = 1; ///< each keeps its stills in flight within 1/count of the memory limit
 };
 
 /** The stills of one process, in one StillRenderer (one GL context, every program compiled once), pipelined: while
@@ -62,8 +74,9 @@ struct StillCallbacks {
 class RenderSession {
 public:
     /** `out` receives --print-plan, `log` the progress lines. `jobs`: how many stills may be in their post stage at
-     *  once while the next draws (--jobs); 0 finishes each still before the next starts. */
-    RenderSession(std::ostream& out, std::ostream& log, int jobs = 0);
+     *  once while the next draws (--jobs); 0 finishes each still before the next starts. `share`: this session's
+     *  place among the sessions that draw at once (--draw-threads). */
+    RenderSession(std::ostream& out, std::ostream& log, int jobs = 0, SessionShare share = {});
     ~RenderSession();
     RenderSession(const RenderSession&) = delete;
     RenderSession& operator=(const RenderSession&) = delete;
@@ -116,6 +129,9 @@ private:
     void tellLog(std::ostringstream* stillLog);
     /** Finishes the oldest still in flight (finishPending()'s step). */
     void finishOldest();
+    /** With turns: finishes the oldest stills in flight while their post stage is done and their turn is due, so the
+     *  other drawing threads' stills after them need not wait for this session's next limit. */
+    void finishDueStills();
     /** finishOldest() once the still's post stage succeeded: stages, writes and commits its outputs, then tells. */
     void commitFinished(PendingStill& pending, TailOutcome& outcome);
     /** The memory the stills in flight are estimated to hold (MemoryEstimate, less the model's textures). */
@@ -124,6 +140,7 @@ private:
     std::ostream& mOut;
     std::ostream& mLog;
     int mJobs = 0;
+    SessionShare mShare;
     StillRenderer mRenderer;
     std::deque<std::unique_ptr<PendingStill>> mPending; ///< oldest first
     std::optional<Prefetch> mPrefetch;

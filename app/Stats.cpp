@@ -89,9 +89,10 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
     stats["imports_ms"] = imports;
     stats["passes"] = describeTimings(result.timings);
     stats["post_stage"] = still.graph.describePostStage(result.timings);
-    // How the still went through the batch's pipeline (--readback, --jobs: app/Render.h).
+    // How the still went through the batch's pipeline (--readback, --jobs, --draw-threads: app/Render.h).
     stats["readback"] = result.readBackEarly ? "early" : "late";
     stats["jobs"] = options.jobs;
+    stats["draw_threads"] = options.drawThreads;
     stats["culled"] = culled;
     stats["write_ms"] = 0.0; // finishedStatsText()
     // Whether this process loaded OpenImageIO (~0.2 s): only formats other than PNG need it (render/ImageFiles.h).

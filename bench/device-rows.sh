@@ -7,8 +7,8 @@
 # the system's) added to LD_LIBRARY_PATH when the kit's loader would not search it; one bunny still with
 # --egl-platform device and --stats, which must report the device platform and a renderer that is not llvmpipe
 # (ALLOW_LLVMPIPE=1 accepts it: a CPU machine testing the kit); whole-process.sh's rows (ROWS, default "probe tetra
-# bunny batch large comic36 comic36-serial comic36-p4 comic36-p8 comic36-p16", RUNS rounds, default 7, with
-# GPU_BUSY=1: each comic36 row's mean nvidia-smi utilization) into $OUT/gpu-rows.md, then (READBACK_ROWS=1, the
+# bunny batch large comic36 comic36-serial comic36-d2 comic36-d4 comic36-d8 comic36-p4 comic36-p8 comic36-p16", RUNS
+# rounds, default 7, with GPU_BUSY=1: each comic36 row's mean nvidia-smi utilization) into $OUT/gpu-rows.md, then (READBACK_ROWS=1, the
 # default) the comic36 row again with --readback early and late forced, into $OUT/gpu-readback-*.md, and
 # (POST_STAGE_ROWS=1, the default) with --post-stage cpu and gpu forced, into $OUT/gpu-post-stage-*.md, the 36 PNGs
 # of each compared byte for byte; the medians of --stats' steps over the 36 stills drawn serially, into
@@ -35,7 +35,8 @@ if [ ! -x "$kit/run/inkgraph" ]; then
 fi
 kit=$(cd "$kit" && pwd)
 out=${OUT:-/tmp/out}
-rows=${ROWS:-"probe tetra bunny batch large comic36 comic36-serial comic36-p4 comic36-p8 comic36-p16"}
+rows=${ROWS:-"probe tetra bunny batch large comic36 comic36-serial comic36-d2 comic36-d4 comic36-d8 comic36-p4
+    comic36-p8 comic36-p16"}
 runs=${RUNS:-7}
 filter=${BENCH_FILTER:-"BM_GBufferVsBareDraw|BM_DeferredShading|BM_PostStage"}
 repetitions=${BENCH_REPETITIONS:-5}

@@ -7,8 +7,8 @@
 # unlined, the bunny's still with its cel shading and no lines, the floor under the comic still; comic36, issue 38's
 # batch: the nine bundled models four times in one process, the comic look (--shading cel --lines
 # silhouette,contour,suggestive) at 1024², PNGs written, with the default --jobs; comic36-serial, the same with
-# --jobs 0, the baseline beside it; comic36-pN, N such processes at once, each its own 36 stills: the machine's
-# stills per second);
+# --jobs 0, the baseline beside it; comic36-dN, the same in one process with --draw-threads N (N drawing threads,
+# a GL context each); comic36-pN, N such processes at once, each its own 36 stills: the machine's stills per second);
 # GPU_BUSY=1 samples nvidia-smi's utilization.gpu every 100 ms during the comic36 rows (when nvidia-smi is on PATH)
 # and adds the mean busy share to their note;
 # BEFORE=/path/to/an/older/inkgraph adds each inkgraph row again as ROW@before, run by that binary in the same rounds
@@ -63,9 +63,10 @@ command_of() { # row -> the command, one word per line
     batch) printf '%s\n' "$inkgraph" render --list examples/batch/models.txt -o "$work/batch/{name}.png" -q ;;
     singles) # one line: the command is read back one word per line
         printf '%s\n' bash -c 'grep -v "^#" examples/batch/models.txt | while read -r m; do "$0" render "$m" -o "$1/$(basename "$m" .obj).png" -q || exit 1; done' "$inkgraph" "$work/batch" ;;
-    comic36 | comic36-serial)
+    comic36 | comic36-serial | comic36-d*)
         jobs=()
         [ "$1" = comic36-serial ] && jobs=(--jobs 0)
+        [[ $1 == comic36-d* ]] && jobs=(--draw-threads "${1#comic36-d}")
         printf '%s\n' "$inkgraph" render --list "$work/comic36.txt" -o "$work/$1/{index}.png" "${comic[@]}" \
             "${jobs[@]}" -q ;;
     comic36-p*) # one line: the command is read back one word per line
@@ -135,6 +136,9 @@ for row in $rows; do
             printf "36 stills: %.1f stills/s", 36000 / t
             if (row == "comic36" && s > 0) printf "; %.2fx the serial row", s / t
             if (row != "comic36@before" && b > 0) printf "; %.2fx the before row", b / t }')" ;;
+    comic36-d*) note="$(awk -v t="${medians[$row]}" -v d="${row#comic36-d}" -v c="${medians[comic36]:-0}" 'BEGIN {
+            printf "36 stills, %d drawing threads: %.1f stills/s", d, 36000 / t
+            if (c > 0) printf "; %.2fx the comic36 row", c / t }')" ;;
     comic36-p*) note="$(awk -v t="${medians[$row]}" -v p="${row#comic36-p}" \
         'BEGIN { printf "%d processes x 36 stills: %.1f stills/s", p, 36000 * p / t }')" ;;
     batch | batch@before | singles) note="$(awk -v t="${medians[$row]}" 'BEGIN { printf "9 stills: %.1f stills/s", 9000 / t }')" ;;

@@ -1001,6 +1001,16 @@ std::vector<Flag> makeFlags() {
                          [](const std::string& value, RenderOptions& options) {
                              options.jobs = parseWholeNumber("--jobs", value, 0, 64);
                          }));
+    flags.push_back(flag({"--draw-threads"}, "N", S::Batch,
+                         "how many threads draw a batch's stills, each with a GL context of its own: 1 to 16\n"
+                         "(default 1). On a GPU one thread leaves the GPU waiting while it plans, reads back\n"
+                         "and hands each still on: more threads draw more stills at once. On llvmpipe, whose\n"
+                         "rasterizers already use every core, more threads are slower. The files, progress lines and\n"
+                         "exit status are the same with any N; --jobs is shared among the threads, and each\n"
+                         "keeps its stills in flight within its share of the memory limit",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.drawThreads = parseWholeNumber("--draw-threads", value, 1, 16);
+                         }));
     flags.push_back(helpOnly(
         S::Batch, "",
         "Each model gets a progress line. A model that cannot be read is reported and the others go on; the run then\n"

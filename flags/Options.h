@@ -48,6 +48,9 @@ struct RenderOptions {
     /** --jobs N: how many stills of a batch may be in their post stage and writing at once while the next draws;
      *  0 finishes each still before the next starts. Default: the cores this process may use. */
     int jobs = defaultJobs();
+    /** --draw-threads N: how many threads draw a batch's stills, each with its own GL context; `jobs` is shared
+     *  among them. */
+    int drawThreads = 1;
     bool resume = false;    ///< --resume: skip the stills of --dataset that are complete
     std::string outputPath; ///< -o; may be empty with --print-plan only
     int width = 1024;

@@ -278,7 +278,7 @@ StillResult StillRenderer::executeUntilHostTail(PreparedStill& still, const Stil
     if (!result.contextReused) {
         result.contextMilliseconds = *mUnreportedContextMilliseconds;
         mUnreportedContextMilliseconds.reset();
-        if (!log.quiet) log.log << "inkgraph: " << mContext->describe() << "\n";
+        if (!log.quiet && tellsContext) log.log << "inkgraph: " << mContext->describe() << "\n";
     }
     const CameraRequest& camera = still.request.camera;
     checkDriverLimits(camera.width, camera.height, still.request.look.msaa, mContext->renderer());

@@ -170,6 +170,10 @@ public:
      *  executeUntilHostTail(). Throws as execute() does. */
     static void runHostTail(PreparedStill& still, StillResult& result);
 
+    /** Whether the first still executed tells the context's driver ("inkgraph: llvmpipe ... via EGL device
+     *  platform"): a process whose batch draws on several renderers tells it once. */
+    bool tellsContext = true;
+
     /** The context, once a still has executed. */
     const HeadlessContext* context() const { return mContext ? &*mContext : nullptr; }
     HeadlessContext* context() { return mContext ? &*mContext : nullptr; }

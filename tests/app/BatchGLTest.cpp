@@ -129,18 +129,45 @@ TEST_F(Cli, ABatchStoppedByALaterStillKeepsTheStillsBeforeIt) {
     // that stops the batch (a usage error, not bad input) must not take the earlier still's outputs with it.
     // --frame names a node only the first model has.
     const std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    // With two drawing threads the second still fails on its own thread, and waits for the first one's commit.
+    for (const char* threads : {"1", "2"}) {
+        SCOPED_TRACE(std::string("--draw-threads ") + threads);
+        fs::remove_all(directory);
+        fs::create_directories(directory);
+        std::ofstream(directory / "named.obj") << "o body\n" << tetrahedron;
+        std::ofstream(directory / "unnamed.obj") << tetrahedron;
+        const CliRun result = run("render named.obj unnamed.obj -o '{name}.png' --stats '{name}.json' --frame body "
+                                  "--size 48x40 --draw-threads " +
+                                  std::string(threads));
+        EXPECT_EQ(result.exitCode, 2) << result.err;
+        EXPECT_NE(result.err.find("--frame 'body'"), std::string::npos) << result.err;
+        EXPECT_EQ(listFiles(directory),
+                  std::vector<std::string>({"named.json", "named.obj", "named.png", "unnamed.obj"}));
+        EXPECT_EQ(readImage(directory / "named.png").size(), cv::Size(48, 40));
+        const auto stats = nlohmann::json::parse(readText(directory / "named.json"));
+        EXPECT_GT(stats["write_ms"].get<double>(), 0.0);
+        EXPECT_GT(stats["total_ms"].get<double>(), stats["write_ms"].get<double>());
+        EXPECT_GT(stats["peak_rss_mib"].get<double>(), 0.0);
+        EXPECT_EQ(stats["draw_threads"], std::stoi(threads));
+    }
+}
+
+TEST_F(Cli, DrawingThreadsThatBothStopTheBatchTellBothErrorsAndKeepTheStillsBeforeThem) {
+    // --draw-threads 2: the second still fails on one thread and, before that thread stops the batch, the third
+    // (already started on the other) fails too. Neither waits for the other for ever; the first still is committed,
+    // the later error is told as an error, and the run exits with the usage error's code.
+    const std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
     std::ofstream(directory / "named.obj") << "o body\n" << tetrahedron;
     std::ofstream(directory / "unnamed.obj") << tetrahedron;
-    const CliRun result =
-        run("render named.obj unnamed.obj -o '{name}.png' --stats '{name}.json' --frame body --size 48x40");
+    std::ofstream(directory / "unnamed2.obj") << tetrahedron;
+    // With --jobs above 0 the first still is still in flight when the third starts: the third always fails too.
+    const CliRun result = run("render named.obj unnamed.obj unnamed2.obj -o '{name}.png' --frame body --size 48x40 "
+                              "--draw-threads 2 --jobs 2");
     EXPECT_EQ(result.exitCode, 2) << result.err;
-    EXPECT_NE(result.err.find("--frame 'body'"), std::string::npos) << result.err;
-    EXPECT_EQ(listFiles(directory), std::vector<std::string>({"named.json", "named.obj", "named.png", "unnamed.obj"}));
-    EXPECT_EQ(readImage(directory / "named.png").size(), cv::Size(48, 40));
-    const auto stats = nlohmann::json::parse(readText(directory / "named.json"));
-    EXPECT_GT(stats["write_ms"].get<double>(), 0.0);
-    EXPECT_GT(stats["total_ms"].get<double>(), stats["write_ms"].get<double>());
-    EXPECT_GT(stats["peak_rss_mib"].get<double>(), 0.0);
+    EXPECT_NE(result.err.find("[1/3] 'named.obj' -> 'named.png'"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("inkgraph: error: resolveCamera(): --frame 'body'"), std::string::npos) << result.err;
+    EXPECT_EQ(listFiles(directory),
+              std::vector<std::string>({"named.obj", "named.png", "unnamed.obj", "unnamed2.obj"}));
 }
 
 /** The bytes of every file under `folder` but the dumps' manifests (they hold timings), by relative path. */
@@ -158,9 +185,11 @@ std::string withoutTimes(const std::string& log) {
                               "in # s");
 }
 
-TEST_F(Cli, AnyNumberOfJobsWritesTheSameBytesAndTellsTheSameLinesInOrder) {
-    // The pipelined batch (app/Render.h): stills in their post stage on workers while the next draws. A bad model in
-    // the middle is told in its place; every file, dumps included (read back after the next still drew), is the same.
+TEST_F(Cli, AnyNumberOfJobsOrDrawingThreadsWritesTheSameBytesAndTellsTheSameLinesInOrder) {
+    // The pipelined batch (app/Render.h): stills in their post stage on workers while the next draws, and with
+    // --draw-threads several threads drawing at once, each in a GL context of its own (app/BatchRun.cpp). A bad model
+    // in the middle is told in its place; every file, dumps included (read back after the next still drew), is the
+    // same.
     std::ofstream(directory / "broken.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
     // A model with a warning: told with its own still, before its progress line, whatever loaded meanwhile.
     std::ofstream(directory / "warns.obj") << "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
@@ -174,11 +203,18 @@ TEST_F(Cli, AnyNumberOfJobsWritesTheSameBytesAndTellsTheSameLinesInOrder) {
     list.close();
     std::map<std::string, std::string> firstFiles;
     std::string firstLog;
-    for (const char* jobs : {"0", "1", "3"}) {
-        const std::string out = std::string("jobs") + jobs;
+    const std::pair<const char*, const char*> runs[] = {{"0", "--jobs 0"},
+                                                        {"1", "--jobs 1"},
+                                                        {"3", "--jobs 3"},
+                                                        {"4", "--jobs 3 --draw-threads 2"},
+                                                        {"5", "--jobs 0 --draw-threads 2"},
+                                                        {"6", "--jobs 1 --draw-threads 4"}};
+    for (const auto& [folder, flags] : runs) {
+        const std::string jobs = flags;
+        const std::string out = std::string("jobs") + folder;
         fs::create_directories(directory / out);
         const CliRun result = run("render --list models.txt -o '" + out + "/{index}.png' --dump '" + out +
-                                  "/dump-{index}' --svg '" + out + "/{index}.svg' --jobs " + jobs + kLook);
+                                  "/dump-{index}' --svg '" + out + "/{index}.svg' " + jobs + kLook);
         ASSERT_EQ(result.exitCode, 3) << result.err;
         const std::size_t first = result.err.find("[1/6]");
         const std::size_t warning = result.err.find("warning: 'warns.obj': mtllib 'missing.mtl'");
@@ -199,11 +235,11 @@ TEST_F(Cli, AnyNumberOfJobsWritesTheSameBytesAndTellsTheSameLinesInOrder) {
             EXPECT_GT(files.size(), 20u) << "pictures, SVGs and dumps";
             continue;
         }
-        EXPECT_EQ(files, firstFiles) << "--jobs " << jobs;
+        EXPECT_EQ(files, firstFiles) << jobs;
         std::string log = withoutTimes(result.err);
         // The outputs' folders differ by name only.
         log = std::regex_replace(log, std::regex("jobs[0-9]"), "jobsN");
-        EXPECT_EQ(log, std::regex_replace(firstLog, std::regex("jobs[0-9]"), "jobsN")) << "--jobs " << jobs;
+        EXPECT_EQ(log, std::regex_replace(firstLog, std::regex("jobs[0-9]"), "jobsN")) << jobs;
     }
 }
 
@@ -257,11 +293,16 @@ TEST_F(Cli, APictureTheWorkerCannotWriteStopsTheBatchAndLeavesNoFile) {
     for (const char* name : {"spot_c3d.obj", "suzanne_npm_4k.obj", "teapot_c3d.obj"})
         list << (fs::path(INKGRAPH_SOURCE_ROOT) / "models" / name).string() << "\n";
     list.close();
-    const CliRun result = run("render --list models.txt -o '{index}.png' --size 256x256 --jobs 2 --shading cel",
-                              "sh -c 'ulimit -f 4; exec \"$0\" \"$@\"'");
-    EXPECT_EQ(result.exitCode, 5) << result.err;
-    EXPECT_NE(result.err.find("File too large"), std::string::npos) << result.err;
-    EXPECT_EQ(listFiles(directory), std::vector<std::string>{"models.txt"});
+    for (const char* threads : {"1", "3"}) {
+        SCOPED_TRACE(std::string("--draw-threads ") + threads);
+        const CliRun result = run("render --list models.txt -o '{index}.png' --size 256x256 --jobs 2 --shading cel "
+                                  "--draw-threads " +
+                                      std::string(threads),
+                                  "sh -c 'ulimit -f 4; exec \"$0\" \"$@\"'");
+        EXPECT_EQ(result.exitCode, 5) << result.err;
+        EXPECT_NE(result.err.find("File too large"), std::string::npos) << result.err;
+        EXPECT_EQ(listFiles(directory), std::vector<std::string>{"models.txt"});
+    }
 }
 
 TEST_F(Cli, ABatchWhoseOutputsCollideWritesNothing) {

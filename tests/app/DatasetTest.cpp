@@ -118,7 +118,8 @@ TEST_F(Dataset, TheDigestIgnoresFlagOrderAndRunFlagsButNotTheSettings) {
         digest)
         << "-o and --output are one flag";
     std::vector<std::string> quiet = base;
-    quiet.insert(quiet.end(), {"-q", "--memory-limit", "2048", "--egl-platform", "surfaceless"});
+    quiet.insert(quiet.end(), {"-q", "--memory-limit", "2048", "--egl-platform", "surfaceless", "--jobs", "3",
+                               "--draw-threads", "2"});
     EXPECT_EQ(digestOf(quiet), digest) << "flags that change how the run goes, not what it writes";
     std::vector<std::string> larger = base;
     larger[2] = "65x64";

@@ -77,6 +77,13 @@ render "$work/A" || fail "the uninterrupted run: $(cat "$work/A.log")"
 grep -q "6 stills, 0 failed, [0-9]* files verified; 0 errors, 0 warnings: whole" "$work/check.txt" ||
     fail "check-dataset A: $(cat "$work/check.txt")"
 
+# E: two drawing threads (--draw-threads, each with its own GL context): the same files as A, every still journaled
+# and indexed in the same order.
+render "$work/E" --draw-threads 2 || fail "the run with two drawing threads: $(cat "$work/E.log")"
+grep -q -- "--request gbuffer.depth,gbuffer.normal --draw-threads 2$" "$work/E/README.md" ||
+    fail "E's card does not give its command: $(cat "$work/E/README.md")"
+sed -i 's/ --draw-threads 2$//' "$work/E/README.md" # the card's command, the one line that may differ
+same_as_A "$work/E" "E (two drawing threads)"
 # B: at each hooked place in turn; each resume starts where the last one was killed.
 killed_by_hook "$work/B" INKGRAPH_TEST_COMMIT_KILL=2                   # still 1: -o moved into place, not --svg
 killed_by_hook "$work/B" INKGRAPH_TEST_COMMIT_KILL=4 --resume          # still 1 again, old files kept as backups
