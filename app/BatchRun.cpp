@@ -98,9 +98,8 @@ void finishAfterError(RenderSession& session, const BatchShared& batch) {
         try {
             session.finishPending();
             break;
-        } catch (const std::exception& error) {
-            const StillTurn turn(batch.turns, batch.toRender.size()); // told one at a time (the batch has stopped)
-            batch.log << boundedMessage(std::string("inkgraph: error: ") + error.what()) << "\n";
+        } catch (const std::exception&) {
+            tellError(batch, std::current_exception());
         }
     }
 }

@@ -175,8 +175,10 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
             } catch (...) {
                 // An earlier still's commit failed, which stops the batch: the stills in flight here will not take
                 // their turns, so none may wait for them.
-                if (turns) turns->stop();
-                if (turns) turns->enter(turn);
+                if (turns) {
+                    turns->stop();
+                    turns->enter(turn);
+                }
                 tellLog(stillLog.get());
                 throw;
             }

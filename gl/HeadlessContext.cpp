@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <mutex>
 #include <sstream>
-#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -30,7 +30,7 @@ pid_t gDriverProcess = 0;
  *  whole process and eglTerminate() ends it for every context made on it, so the last context to let go terminates
  *  it, not the first (a batch's drawing threads each hold a context: --draw-threads). Guards gDriverProcess too. */
 std::mutex gDisplaysMutex;
-std::vector<std::pair<EGLDisplay, int>> gDisplayHolders;
+std::map<EGLDisplay, int> gDisplayHolders;
 
 /** eglInitialize(), counted as one more holder of `display`. */
 bool initializeDisplay(EGLDisplay display) {
@@ -38,12 +38,7 @@ bool initializeDisplay(EGLDisplay display) {
     EGLint major = 0, minor = 0;
     if (!eglInitialize(display, &major, &minor)) return false;
     gDriverProcess = getpid();
-    const auto held = std::find_if(gDisplayHolders.begin(), gDisplayHolders.end(),
-                                   [display](const auto& holder) { return holder.first == display; });
-    if (held != gDisplayHolders.end())
-        ++held->second;
-    else
-        gDisplayHolders.emplace_back(display, 1);
+    ++gDisplayHolders[display];
     return true;
 }
 
@@ -53,8 +48,7 @@ bool initializeDisplay(EGLDisplay display) {
  *  the same display initialises it again at no cost). */
 void releaseDisplay(EGLDisplay display, [[maybe_unused]] bool afterUse) {
     const std::lock_guard<std::mutex> lock(gDisplaysMutex);
-    const auto held = std::find_if(gDisplayHolders.begin(), gDisplayHolders.end(),
-                                   [display](const auto& holder) { return holder.first == display; });
+    const auto held = gDisplayHolders.find(display);
     if (held == gDisplayHolders.end() || --held->second > 0) return;
     gDisplayHolders.erase(held);
 #ifdef INKGRAPH_KEEP_EGL_DISPLAYS
