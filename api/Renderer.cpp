@@ -11,7 +11,6 @@
 #include "postfx/Composite.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <optional>
 #include <mutex>
@@ -160,9 +159,6 @@ StillCamera stillCameraOf(const Camera& camera) {
     return still;
 }
 
-/** The renderer whose StillRenderer holds the process's GL context, or null (Renderer's comment says why one). */
-std::atomic<const void*> gContextHolder{nullptr};
-
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -205,19 +201,13 @@ struct Renderer::Impl {
                 }
             }
         }
-        const void* self = this;
-        gContextHolder.compare_exchange_strong(self, nullptr);
     }
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
-    /** Takes the process's GL context for this renderer and makes it current on this thread; UsageError while another
-     *  renderer holds it, or when the context was made in the process this one was forked from. */
+    /** Makes this renderer's GL context current on this thread (each renderer has its own, so renderers on other
+     *  threads render meanwhile); UsageError when the context was made in the process this one was forked from. */
     void holdContext() {
-        const void* holder = nullptr;
-        if (!gContextHolder.compare_exchange_strong(holder, this) && holder != this)
-            throw UsageError("another Renderer of this process holds the GL context (EGL shares one display per "
-                             "process); render with that one, or destroy it first");
         refuseForkedContext();
         if (HeadlessContext* context = renderer->context()) context->makeCurrent();
     }

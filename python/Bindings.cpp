@@ -416,7 +416,7 @@ struct PythonStill {
 };
 
 /** One ig::Renderer for Python: its calls run without the GIL, one at a time (the C++ renderer is not
- *  thread-safe, and Python threads may share the object), and close() gives the GL context back at once. */
+ *  thread-safe, and Python threads may share the object), and close() ends its GL context at once. */
 class PythonRenderer {
 public:
     explicit PythonRenderer(ig::Renderer::Platform platform) : mRenderer(std::in_place, platform) {}
@@ -1170,9 +1170,9 @@ void defineRenderer(py::module_& m) {
     py::class_<PythonRenderer> renderer(m, "Renderer",
                                         "Renders stills. The first render makes one GL context (EGL, no display), kept "
                                         "with every compiled program until close() or the renderer's end: a batch pays "
-                                        "start-up once. One renderer at a time holds the process's context (render() "
-                                        "refuses others with UsageError until that one is closed); any thread may "
-                                        "render, one render at a time.");
+                                        "start-up once. Each renderer has a context of its own, so renderers on "
+                                        "several threads render at once (render() releases the GIL); a renderer's "
+                                        "own calls run one at a time, from any thread.");
     defineEnum<ig::Renderer::Platform>(renderer, "Platform", "EGL platform",
                                        "How the GL context is reached: --egl-platform.",
                                        {{"AUTO", ig::Renderer::Platform::Auto},

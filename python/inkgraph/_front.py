@@ -205,9 +205,8 @@ def default_renderer() -> Renderer:
     GL context and compiled programs, until closed (the next call then makes a new one) or the interpreter ends.
     A batch of render() calls thus makes one context.
 
-    The C++ library lets one renderer at a time hold the process's GL context (it renders on any thread, one render
-    at a time): to render with a Renderer of your own, close this one first (``inkgraph.default_renderer().close()``);
-    the library's UsageError says so otherwise. A child forked after a render starts without a default renderer;
+    Every renderer has a GL context of its own: Renderers of your own render beside this one, each on its own thread
+    if you like (a renderer's calls run one at a time, from any thread). A child forked after a render starts without a default renderer;
     its GL driver is the parent's, without the parent's threads, so it cannot render (ContextError says why) unless
     every renderer was closed before the fork: use multiprocessing's 'spawn' or 'forkserver' start method."""
     global _default

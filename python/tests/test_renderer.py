@@ -1,4 +1,4 @@
-"""The kept GL context: the default renderer, explicit renderers, the one context a process has, close()."""
+"""The kept GL context: the default renderer, explicit renderers (each with a context of its own), close()."""
 
 from __future__ import annotations
 
@@ -16,8 +16,7 @@ from conftest import SIZE
 
 @pytest.fixture
 def own_renderer():
-    """A Renderer of the test's own: the default one gives the process's GL context back first."""
-    inkgraph.default_renderer().close()
+    """A Renderer of the test's own, beside the default one."""
     with inkgraph.Renderer() as renderer:
         yield renderer
 
@@ -43,15 +42,40 @@ def test_a_renderer_makes_its_context_on_the_first_render_and_keeps_it(suzanne, 
     assert np.array_equal(first.picture, second.picture)
 
 
-def test_one_renderer_holds_the_context_at_a_time(suzanne):
-    inkgraph.render(suzanne, size=64)  # the default renderer holds the context
-    other = inkgraph.Renderer()
-    with pytest.raises(inkgraph.UsageError) as caught:
-        inkgraph.render(suzanne, size=64, renderer=other)
-    assert "another Renderer" in str(caught.value), str(caught.value)
-    inkgraph.default_renderer().close()
-    assert inkgraph.render(suzanne, size=64, renderer=other).picture.shape == (64, 64, 4)
-    other.close()
+def test_several_renderers_render_at_once_each_with_its_own_context(suzanne):
+    # Before, a second renderer raised UsageError while the default one held the process's one context. Each now
+    # makes its own, and render() releases the GIL: the default renderer and two others draw on three threads at once.
+    look = {"shading": "comic", "lines": "silhouette,contour,suggestive"}
+    expected = [inkgraph.render(suzanne, look, size=64, camera={"orbit": (yaw, 10)}).picture for yaw in (0, 40)]
+    assert not np.array_equal(expected[0], expected[1])
+    pictures: dict[int, list] = {}
+    failures: list[BaseException] = []
+    with inkgraph.Renderer() as first, inkgraph.Renderer() as second:
+        start = threading.Barrier(3)
+
+        def draw(slot: int, renderer: inkgraph.Renderer | None) -> None:
+            try:
+                start.wait()
+                pictures[slot] = [inkgraph.render(suzanne, look, size=64, camera={"orbit": (yaw, 10)},
+                                                  renderer=renderer).picture for yaw in (0, 40, 0)]
+            except BaseException as error:  # re-raised below, on the test's thread
+                failures.append(error)
+
+        threads = [threading.Thread(target=draw, args=(slot, renderer))
+                   for slot, renderer in enumerate((None, first, second))]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        if failures:
+            raise failures[0]
+        for slot in range(3):
+            for picture, wanted in zip(pictures[slot], (expected[0], expected[1], expected[0])):
+                assert np.array_equal(picture, wanted), slot
+        first.close()  # its context ends; the others' stay
+        assert np.array_equal(inkgraph.render(suzanne, look, size=64, camera={"orbit": (40, 10)},
+                                              renderer=second).picture, expected[1])
+    assert np.array_equal(inkgraph.render(suzanne, look, size=64, camera={"orbit": (0, 10)}).picture, expected[0])
 
 
 def test_the_default_renderer_renders_on_any_thread(suzanne):

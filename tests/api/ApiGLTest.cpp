@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <thread>
@@ -332,17 +333,52 @@ TEST_F(ApiRender, AStillNeverReplacesAFileItsRenderRead) {
     EXPECT_EQ(readText(directory / "material.png"), materialMap);
 }
 
-TEST_F(ApiRender, OneRendererAtATimeHoldsTheContext) {
-    ig::Renderer second;
+TEST_F(ApiRender, SeveralRenderersRenderAtOnceEachWithItsOwnContext) {
+    // Before, a second live renderer was refused (Usage) while the first held the process's one context. Each now
+    // makes its own: two threads render at once with a scene they share, one thread switches between two renderers,
+    // and destroying one leaves the other's context (and their EGL display) working.
+    const ig::Look look = ig::Look().set("--shading", "comic").set("--lines", "silhouette,contour,suggestive");
+    const ig::Frame front = frameOf(96, 96);
+    const ig::Frame turned = frameOf(96, 96, {"--orbit", "40,15"});
+    std::vector<std::uint8_t> expectedFront, expectedTurned;
     {
-        ig::Renderer first;
-        first.render(suzanne, {}, frameOf(32, 32));
-        const ig::Error error = errorOf([&] { second.render(suzanne, {}, frameOf(32, 32)); });
-        EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
-        EXPECT_STREQ(error.what(), "Renderer::render(): another Renderer of this process holds the GL context (EGL "
-                                   "shares one display per process); render with that one, or destroy it first");
+        ig::Renderer alone;
+        expectedFront = bytesOf(alone.render(suzanne, look, front).picture());
+        expectedTurned = bytesOf(alone.render(suzanne, look, turned).picture());
     }
-    EXPECT_EQ(second.render(suzanne, {}, frameOf(32, 32)).picture().width(), 32);
+    ASSERT_NE(expectedFront, expectedTurned);
+
+    auto first = std::make_unique<ig::Renderer>();
+    ig::Renderer second;
+    constexpr int kStills = 4;
+    std::vector<std::vector<std::uint8_t>> byFirst(kStills), bySecond(kStills);
+    std::atomic<int> ready{0};
+    const auto renderAll = [&](ig::Renderer& renderer, std::vector<std::vector<std::uint8_t>>& pictures) {
+        ++ready;
+        while (ready.load() < 2) std::this_thread::yield(); // both threads start together
+        for (int index = 0; index < kStills; ++index)
+            pictures[std::size_t(index)] =
+                bytesOf(renderer.render(suzanne, look, index % 2 == 0 ? front : turned).picture());
+    };
+    std::thread firstThread([&] { renderAll(*first, byFirst); });
+    std::thread secondThread([&] { renderAll(second, bySecond); });
+    firstThread.join();
+    secondThread.join();
+    for (int index = 0; index < kStills; ++index) {
+        const std::vector<std::uint8_t>& expected = index % 2 == 0 ? expectedFront : expectedTurned;
+        EXPECT_EQ(byFirst[std::size_t(index)], expected) << "the first renderer's still " << index;
+        EXPECT_EQ(bySecond[std::size_t(index)], expected) << "the second renderer's still " << index;
+    }
+
+    // One thread, two renderers in turn: each render makes its own context current and releases it at its end.
+    EXPECT_EQ(bytesOf(second.render(suzanne, look, turned).picture()), expectedTurned);
+    EXPECT_EQ(bytesOf(first->render(suzanne, look, front).picture()), expectedFront);
+    EXPECT_EQ(bytesOf(second.render(suzanne, look, front).picture()), expectedFront);
+
+    first.reset(); // its context ends; the display stays for the second's
+    EXPECT_EQ(bytesOf(second.render(suzanne, look, turned).picture()), expectedTurned);
+    ig::Renderer third; // made while the second lives
+    EXPECT_EQ(bytesOf(third.render(suzanne, look, front).picture()), expectedFront);
 }
 
 TEST_F(ApiRender, ARendererRendersOnAnyThreadAndIsDestroyedOnAnother) {
@@ -356,7 +392,7 @@ TEST_F(ApiRender, ARendererRendersOnAnyThreadAndIsDestroyedOnAnother) {
     EXPECT_EQ(there, here);
     std::thread destroyer([&] { renderer.reset(); });
     destroyer.join();
-    ig::Renderer next; // the context was given back: a new renderer takes it
+    ig::Renderer next;
     EXPECT_EQ(bytesOf(next.render(suzanne, {}, frameOf(32, 32)).picture()), here);
 }
 

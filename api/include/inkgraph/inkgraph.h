@@ -565,12 +565,11 @@ private:
 INKGRAPH_API std::vector<std::string> bufferNames(const Look& look);
 
 /** Renders stills. One GL context (EGL, no display) is made by the first render and kept, with every compiled
- *  program, for the renderer's life: a batch pays start-up once. One renderer renders at a time per process (EGL
- *  shares one display per process, which ending a renderer's context ends): render() refuses while another renderer
- *  holds the context; destroy that one first. Any thread may render or destroy it, one render at a time (each render
- *  makes the context current on its thread and releases it at its end). A process forked after a render can render
- *  neither with it nor with a new one (the driver's threads stay in the parent): Error(Usage) and Error(Context) say
- *  so. Scenes and looks may be shared across threads (they are read only). */
+ *  program, for the renderer's life: a batch pays start-up once. Each renderer has a context of its own, so several
+ *  renderers render at once, each on its own thread. Any thread may render with a renderer or destroy it, one render
+ *  at a time (each render makes the context current on its thread and releases it at its end). A process forked
+ *  after a render can render neither with it nor with a new one (the driver's threads stay in the parent):
+ *  Error(Usage) and Error(Context) say so. Scenes and looks may be shared across threads (they are read only). */
 class INKGRAPH_API Renderer {
 public:
     /** How the GL context is reached: `--egl-platform`. */
