@@ -25,8 +25,11 @@ using test::TempFile;
 glm::dquat turn(double degrees, const glm::dvec3& axis) { return glm::angleAxis(glm::radians(degrees), axis); }
 
 std::string quaternionJson(const glm::dquat& q) {
-    return "[" + std::to_string(q.x) + ", " + std::to_string(q.y) + ", " + std::to_string(q.z) + ", " +
-           std::to_string(q.w) + "]";
+    // Appended, not "[" + ...: GCC 12 -O3 warns falsely (-Wstringop-overflow) on the literal-plus-temporary form.
+    std::string json = "[";
+    for (const double component : {q.x, q.y, q.z, q.w}) json += std::to_string(component) + ", ";
+    json.replace(json.size() - 2, 2, "]");
+    return json;
 }
 
 const glm::dvec3 kX(1, 0, 0);
