@@ -63,7 +63,7 @@ void expectSamePicture(const cv::Mat& fromFile, const cv::Mat& fromArrays) {
 }
 
 TEST_F(SceneFromArraysGL, AModelFileAndItsArraysRenderTheSamePicture) {
-    const std::string path = std::string(INKGRAPH_SOURCE_ROOT) + "/models/torusknot_open3d.obj";
+    const std::string path = INKGRAPH_SOURCE_ROOT "/models/torusknot_open3d.obj";
     test::OwnedArrays owned = test::readObjTriangles(path);
     owned.name = "torusknot_open3d";
     const MeshArrays arrays = owned.view();

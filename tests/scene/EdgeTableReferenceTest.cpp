@@ -167,7 +167,7 @@ TEST(EdgeTableReference, FanHubAndShuffledSoup) {
 }
 
 TEST(EdgeTableReference, BunnyAndSplitCube) {
-    const Scene bunny = loadScene(std::string(INKGRAPH_SOURCE_ROOT) + "/models/bunny_c3d_70k.obj");
+    const Scene bunny = loadScene(INKGRAPH_SOURCE_ROOT "/models/bunny_c3d_70k.obj");
     const Mesh& mesh = bunny.meshes.at(0);
     const double distance = LoadOptions{}.weldTolerance * computeBoundingBox(mesh.positions).diagonal();
     expectReference(mesh.positions, mesh.triangles, distance, "bunny");
