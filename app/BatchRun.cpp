@@ -161,9 +161,9 @@ void renderShare(const BatchShared& batch, std::size_t first, std::size_t step, 
             if (!batch.turns) throw; // the caller finishes the stills in flight
             // Any other error stops the batch, on every drawing thread. The first is kept before the turn goes on
             // (the caller throws it once every thread is done); this thread finishes what it has in flight.
-            const bool first = batch.turns->stop(std::current_exception());
+            const bool firstToStop = batch.turns->stop(std::current_exception());
             batch.turns->leave(k); // render() may have returned holding it
-            if (!first) tellError(batch, std::current_exception());
+            if (!firstToStop) tellError(batch, std::current_exception());
             finishAfterError(session, batch);
             return;
         }

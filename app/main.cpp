@@ -10,7 +10,10 @@
 #if defined(__GLIBC__)
 #include <sys/auxv.h>
 #include <unistd.h>
+#endif
 
+// Not in a sanitized build: its allocator replaces glibc's, so there is nothing to tune.
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
 namespace {
 
 /** What the command line asks of glibc's malloc (docs/performance.md, "Huge pages"):

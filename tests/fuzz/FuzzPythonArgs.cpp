@@ -263,7 +263,7 @@ py::object value(inkgraph::fuzz::FuzzBytes& in, int depth) {
             }
             dict[key] = value(in, depth - 1);
         }
-        return std::move(dict);
+        return dict;
     }
     case 14: { // a NumPy array of numbers (render()'s look values take them)
         py::list numbers;
