@@ -206,9 +206,10 @@ def default_renderer() -> Renderer:
     A batch of render() calls thus makes one context.
 
     Every renderer has a GL context of its own: Renderers of your own render beside this one, each on its own thread
-    if you like (a renderer's calls run one at a time, from any thread). A child forked after a render starts without a default renderer;
-    its GL driver is the parent's, without the parent's threads, so it cannot render (ContextError says why) unless
-    every renderer was closed before the fork: use multiprocessing's 'spawn' or 'forkserver' start method."""
+    if you like (a renderer's calls run one at a time, from any thread). A child forked after a render starts without
+    a default renderer; its GL driver is the parent's, without the parent's threads, so it cannot render
+    (ContextError says why) unless every renderer was closed before the fork: use multiprocessing's 'spawn' or
+    'forkserver' start method."""
     global _default
     with _default_lock:
         if _default is None or _default.closed:
