@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the whole suite with AddressSanitizer and UndefinedBehaviorSanitizer (-DINKGRAPH_SANITIZE=ON, -O1 with line
-# tables) into build-asan/ and runs every test there, GL tests on llvmpipe included. Any sanitizer report fails the
-# test that triggered it (UBSan does not recover; LeakSanitizer runs at the end of each process).
+# tables; the test binaries' own code at -O0, tests/CMakeLists.txt says why) into build-asan/ and runs every test there,
+# GL tests on llvmpipe included. Any sanitizer report fails the test that triggered it (UBSan does not recover;
+# LeakSanitizer runs at the end of each process).
 # tests/sanitizers/lsan.supp lists the leaks of Debian's libraries that are not ours. Run after
 # scripts/install-deps.sh; scripts/test.sh runs it too.
 # Races at process exit (a thread still starting or being torn down while LeakSanitizer stops them all,
