@@ -19,8 +19,6 @@ void applyField(const std::string& field, const std::string& flag, const std::st
     given.push_back(flag);
 }
 
-Vec3 vec3Of(const glm::dvec3& vector) { return {vector.x, vector.y, vector.z}; }
-
 } // namespace
 
 void applyFrame(const Frame& frame, RenderOptions& options, std::vector<std::string>& given) {
@@ -29,9 +27,10 @@ void applyFrame(const Frame& frame, RenderOptions& options, std::vector<std::str
     if (frame.eye) applyField("eye", "--eye", vectorText(*frame.eye), options, given);
     if (frame.orbit) {
         std::string orbit = exactText(frame.orbit->azimuth) + "," + exactText(frame.orbit->elevation);
-        if (frame.orbit->distance) orbit += "," + exactText(*frame.orbit->distance);
+        // Appended piece by piece: a literal prepended to a temporary string draws GCC 12's -Wrestrict false positive.
+        if (frame.orbit->distance) orbit.append(",").append(exactText(*frame.orbit->distance));
         if (!frame.orbit->distance && frame.orbit->distanceScale != 1.0)
-            orbit += ",x" + exactText(frame.orbit->distanceScale);
+            orbit.append(",x").append(exactText(frame.orbit->distanceScale));
         applyField("orbit", "--orbit", orbit, options, given);
     }
     if (frame.target) applyField("target", "--target", vectorText(*frame.target), options, given);

@@ -94,6 +94,9 @@ inline std::string exactText(double value) {
 std::string vectorText(const Vec3& vector);
 std::string colorText(const Color& color);
 
+/** A vector of the renderer core (the scene's and the camera's glm::dvec3) as the API's Vec3. */
+inline Vec3 vec3Of(const glm::dvec3& vector) { return {vector.x, vector.y, vector.z}; }
+
 /** A typed face (SceneOptions' or Frame's expressions and lookAt) as the loader takes it, checked by --expression's
  *  and --look-at's rules and messages after `field` ("SceneOptions::"). */
 void applyFace(const std::map<std::string, double>& expressions, const std::optional<Vec3>& lookAt,

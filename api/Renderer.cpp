@@ -1,5 +1,6 @@
 #include "api/Frame.h"
 #include "api/Internal.h"
+#include "graph/Milliseconds.h"
 
 #include "render/ImageFiles.h"
 #include "render/InputFiles.h"
@@ -115,8 +116,6 @@ std::array<std::array<double, Columns>, Rows> rowsOf(const glm::mat<Columns, Row
     return rows;
 }
 
-Vec3 vec3Of(const glm::dvec3& vector) { return {vector.x, vector.y, vector.z}; }
-
 /** The name in render()'s buffers that asks for Still::strokes(). */
 constexpr const char* kStrokesName = "strokes";
 
@@ -157,10 +156,6 @@ StillCamera stillCameraOf(const Camera& camera) {
                    : camera.source == "flags" ? CameraSource::Eye
                                               : CameraSource::Auto;
     return still;
-}
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 } // namespace

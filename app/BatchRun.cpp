@@ -1,5 +1,6 @@
 #include "app/BatchRun.h"
 
+#include "graph/Milliseconds.h"
 #include "render/BackgroundThreads.h"
 #include "render/Messages.h"
 
@@ -22,10 +23,6 @@
 
 namespace inkgraph {
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 /** "'models/x.vrm'", with --views "'models/x.vrm' view 04": a still in progress lines and the summary. */
 std::string stillLabel(const BatchStill& still, const RenderOptions& options) {

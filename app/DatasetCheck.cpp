@@ -18,7 +18,6 @@
 
 namespace inkgraph {
 namespace fs = std::filesystem;
-using Json = nlohmann::json;
 
 namespace {
 
@@ -59,7 +58,7 @@ std::string formatProblem(const fs::path& path, const std::string& bytes) {
         if (bytes.compare(0, 2, "\xff\xd8") != 0 || !endsWith(bytes, "\xff\xd9"))
             return "a JPEG without its start or end";
     } else if (extension == ".json") {
-        if (Json::parse(bytes, nullptr, false).is_discarded()) return "JSON that does not parse";
+        if (nlohmann::json::parse(bytes, nullptr, false).is_discarded()) return "JSON that does not parse";
     } else if (extension == ".svg") {
         if (bytes.rfind("</svg>") == std::string::npos || bytes.size() - bytes.rfind("</svg>") > 16)
             return "an SVG cut short (no closing </svg>)";
@@ -97,7 +96,7 @@ void checkIndex(const fs::path& folder, const fs::path& index, const fs::path& c
     while (std::getline(file, line)) {
         ++number;
         const std::string where = indexName + " line " + std::to_string(number);
-        const Json record = Json::parse(line, nullptr, false);
+        const nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
         if (record.is_discarded() || !record.is_object()) {
             report.errors.push_back(where + ": not a JSON object");
             continue;

@@ -1,10 +1,11 @@
 #include "app/Render.h"
 
+#include "app/OutputFiles.h"
+#include "app/StillOutputs.h"
+#include "graph/Milliseconds.h"
 #include "render/ImageFiles.h"
 #include "render/InputFiles.h"
 #include "render/MemoryBudget.h"
-#include "app/OutputFiles.h"
-#include "app/StillOutputs.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -20,13 +21,6 @@
 #include <unistd.h>
 
 namespace inkgraph {
-namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-} // namespace
 
 void requireStandardOutputWritten(std::ostream& out) {
     errno = 0;

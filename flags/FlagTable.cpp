@@ -14,7 +14,6 @@
 namespace inkgraph {
 namespace {
 
-constexpr int kMaxImageSide = 16384;
 constexpr double kMinFovDegrees = 0.01;
 constexpr double kMaxFovDegrees = 179.0;
 constexpr double kMaxShininess = 1e6;

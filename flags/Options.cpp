@@ -24,8 +24,6 @@ int postStageLoopThreads(int jobs) { return std::max(1, usableCores() / (std::ma
 
 namespace {
 
-constexpr std::size_t kMaxImageSide = 16384;
-
 /** Applies arguments[i] (and its value: i then points at it) to `options`. Returns false at --help, where parsing
  *  stops. Records each flag given in `given`. */
 bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, RenderOptions& options,
@@ -74,8 +72,8 @@ void checkGivenFlags(const RenderOptions& options, const std::vector<const Flag*
     refuseWithoutEffect(options, given,
                         [&](const Flag& flag) { return flag.section == HelpSection::Lines && !isStyle(flag); });
     const Look& look = options.look;
-    if (std::size_t(options.width) * look.supersample > kMaxImageSide ||
-        std::size_t(options.height) * look.supersample > kMaxImageSide)
+    if (std::size_t(options.width) * look.supersample > std::size_t(kMaxImageSide) ||
+        std::size_t(options.height) * look.supersample > std::size_t(kMaxImageSide))
         throw UsageError("--supersample: " + std::to_string(look.supersample) + " x --size " +
                          std::to_string(options.width) + "x" + std::to_string(options.height) +
                          " exceeds the largest buffer side, " + std::to_string(kMaxImageSide));

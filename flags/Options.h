@@ -39,6 +39,10 @@ int defaultJobs();
  *  jobs + 1 threads, at least 1. */
 int postStageLoopThreads(int jobs);
 
+/** The largest side of any buffer a render makes (the output times the supersampling): --size's bound, and the
+ *  supersampled frame's. */
+inline constexpr int kMaxImageSide = 16384;
+
 struct RenderOptions {
     std::string modelPath;               ///< the model of this still (the first MODEL until a batch assigns it)
     std::vector<std::string> modelPaths; ///< every MODEL argument, in order; with --list, a batch (app/Batch.h)

@@ -1,4 +1,5 @@
 #include "postfx/Composite.h"
+#include "postfx/SizeText.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -23,8 +24,6 @@ cv::Vec4b toBytes(const cv::Vec4f& color) {
     return {cv::saturate_cast<uchar>(color[0] * 255.0f + 0.5f), cv::saturate_cast<uchar>(color[1] * 255.0f + 0.5f),
             cv::saturate_cast<uchar>(color[2] * 255.0f + 0.5f), cv::saturate_cast<uchar>(color[3] * 255.0f + 0.5f)};
 }
-
-std::string sizeText(cv::Size size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
 
 /** "over" in 8 bits with rounding: top x alpha + bottom x (255 - alpha), alpha in 0..255. */
 uchar over(int top, int bottom, int alpha) {

@@ -1,4 +1,5 @@
 #include "postfx/ContactSheet.h"
+#include "postfx/SizeText.h"
 
 #include <opencv2/core/check.hpp>
 #include <opencv2/imgproc.hpp>
@@ -23,8 +24,6 @@ constexpr int kTitleBaseline = 22;           // in the title bar: 8 px above the
 constexpr int kLabelBaseline = 14;           // below the picture
 constexpr int kCaptionBaseline = 30;         // below the picture; descenders end at ~34 of kCaptionHeight's 36
 constexpr std::size_t kMaxShownChars = 1024; // cut before measuring: 4096 px hold ~700 characters at the smallest scale
-
-std::string sizeText(cv::Size size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
 
 bool isFloatDepth(int depth) { return depth == CV_32F || depth == CV_16F; }
 

@@ -11,9 +11,6 @@
 namespace inkgraph {
 namespace {
 
-/** Room for a closed line around a quarter of the frame without reallocating; longer skeletons grow as usual. */
-size_t expectedPointCount(cv::Size size) { return 4 * static_cast<size_t>(size.width + size.height); }
-
 void requireSkeletonMaskFor(const cv::Mat& depth, LineSkeleton& skeleton, const char* function) {
     if (skeleton.mask.empty()) {
         skeleton.mask = cv::Mat::zeros(depth.size(), CV_8UC1);
@@ -90,7 +87,7 @@ LineSkeleton extractContours(const cv::Mat& nDotV, const cv::Mat& depth, const C
 
     LineSkeleton skeleton;
     skeleton.mask = cv::Mat::zeros(depth.size(), CV_8UC1);
-    skeleton.points.reserve(expectedPointCount(depth.size()));
+    skeleton.points.reserve(expectedSkeletonPoints(depth.size()));
     SignChanges signChanges{nDotV};
     detail::markNeighbourPairs(depth, settings.depthJump, detail::DepthBreaks::Mark, skeleton, signChanges);
     return skeleton;
@@ -101,7 +98,7 @@ void appendDepthBreaks(const cv::Mat& depth, float relativeJump, LineSkeleton& s
         throw std::invalid_argument("appendDepthBreaks(): 'depth' must be a non-empty CV_32FC1");
     detail::requireFiniteNonNegative(relativeJump, "appendDepthBreaks", "relativeJump");
     requireSkeletonMaskFor(depth, skeleton, "appendDepthBreaks");
-    if (skeleton.points.capacity() == 0) skeleton.points.reserve(expectedPointCount(depth.size()));
+    if (skeleton.points.capacity() == 0) skeleton.points.reserve(expectedSkeletonPoints(depth.size()));
     detail::NoSurfaceEvents noSurfaceEvents;
     detail::markNeighbourPairs(depth, relativeJump, detail::DepthBreaks::Mark, skeleton, noSurfaceEvents);
 }

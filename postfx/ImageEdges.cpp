@@ -10,8 +10,6 @@
 namespace inkgraph {
 namespace {
 
-size_t expectedPointCount(cv::Size size) { return 4 * static_cast<size_t>(size.width + size.height); }
-
 /** Neighbours whose normals are further apart than the crease angle; the left or upper pixel is marked. */
 struct Creases {
     const cv::Mat& normal;
@@ -111,7 +109,7 @@ LineSkeleton extractDepthEdges(const cv::Mat& depth, const DepthEdgeSettings& se
     detail::requireFiniteNonNegative(settings.relativeJump, "extractDepthEdges", "settings.relativeJump");
     LineSkeleton skeleton;
     skeleton.mask = cv::Mat::zeros(depth.size(), CV_8UC1);
-    skeleton.points.reserve(expectedPointCount(depth.size()));
+    skeleton.points.reserve(expectedSkeletonPoints(depth.size()));
     appendDepthBreaks(depth, settings.relativeJump, skeleton);
     return skeleton;
 }
@@ -132,7 +130,7 @@ LineSkeleton extractNormalEdges(const cv::Mat& normal, const cv::Mat& depth, con
 
     LineSkeleton skeleton;
     skeleton.mask = cv::Mat::zeros(depth.size(), CV_8UC1);
-    skeleton.points.reserve(expectedPointCount(depth.size()));
+    skeleton.points.reserve(expectedSkeletonPoints(depth.size()));
     const float halfSine = static_cast<float>(std::sin(0.5 * crease));
     Creases creases{normal, cosCrease * std::abs(cosCrease), sinCrease * sinCrease, settings.creaseAngleDegrees == 0.0f,
                     4.0f * halfSine * halfSine * 0.999f};

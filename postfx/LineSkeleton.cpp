@@ -1,4 +1,5 @@
 #include "postfx/LineSkeleton.h"
+#include "postfx/SizeText.h"
 
 #include <opencv2/imgproc.hpp>
 
@@ -12,8 +13,6 @@
 
 namespace inkgraph {
 namespace {
-
-std::string sizeText(cv::Size size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
 
 uchar toByte(float coverage) { return static_cast<uchar>(coverage * 255.0f + 0.5f); }
 

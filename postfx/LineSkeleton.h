@@ -4,6 +4,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <cstddef>
 #include <vector>
 
 namespace inkgraph {
@@ -30,6 +31,12 @@ struct LineSkeleton {
     /** One per point, where the kernel found the line on the mesh (object-space types); else empty. */
     std::vector<SurfacePoint> surface;
 };
+
+/** Room for a closed line around a quarter of a frame of `size` without reallocating: what a kernel reserves for a
+ *  skeleton's points; longer skeletons grow as usual. */
+inline std::size_t expectedSkeletonPoints(cv::Size size) {
+    return 4 * static_cast<std::size_t>(size.width + size.height);
+}
 
 /** A skeleton from a one-pixel mask drawn elsewhere (e.g. GL lines): every non-zero pixel becomes a point at its
  *  centre with strength mask/255. Throws std::invalid_argument naming 'mask' unless CV_8UC1. */

@@ -1,4 +1,5 @@
 #include "postfx/SuggestiveContours.h"
+#include "postfx/SizeText.h"
 
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/core.hpp>
@@ -24,8 +25,6 @@ constexpr int kNormalDistance = 0; // n.(c - p)
 constexpr int kImageWX = 1;        // (J w).x
 constexpr int kImageWY = 2;        // (J w).y
 constexpr int kWLengthSquared = 3; // |w|^2
-
-std::string sizeText(cv::Size size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
 
 bool isFiniteAtLeast(float value, float lowest) { return std::isfinite(value) && value >= lowest; }
 

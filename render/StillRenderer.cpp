@@ -1,5 +1,6 @@
 #include "render/StillRenderer.h"
 
+#include "graph/Milliseconds.h"
 #include "render/Messages.h"
 
 #include "render/ImageFiles.h"
@@ -18,10 +19,6 @@
 
 namespace inkgraph {
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 /** Default key light: from the upper left, behind the camera, fixed in view space so every auto-framed still is lit
  *  the same way. */

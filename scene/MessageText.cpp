@@ -14,6 +14,15 @@ std::string excerptForMessage(std::string_view text) {
     return std::string(text.substr(0, kMessageExcerptChars)) + "... (" + std::to_string(text.size()) + " bytes)";
 }
 
+std::string quotedExcerpt(std::string_view text) {
+    // Appended rather than "'" + text: GCC 12 warns (-Wrestrict, a false positive) on a literal prepended to a
+    // temporary string.
+    std::string result = "'";
+    result += excerptForMessage(text);
+    result += "'";
+    return result;
+}
+
 std::string formatNumber(double value) {
     std::string text;
     for (int precision = 6; precision <= 17; ++precision) {

@@ -14,6 +14,9 @@ namespace inkgraph::detail {
  *  or a log. Every reader quotes file-given text through this one function. */
 std::string excerptForMessage(std::string_view text);
 
+/** excerptForMessage(text) in single quotes: how a file-given name appears in a warning or an error. */
+std::string quotedExcerpt(std::string_view text);
+
 /** Characters of file-given text that excerptForMessage() keeps. */
 inline constexpr std::size_t kMessageExcerptChars = 60;
 

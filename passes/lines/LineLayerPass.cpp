@@ -1,6 +1,7 @@
 #include "passes/lines/LineLayerPass.h"
 
 #include "gl/GraphExecutor.h"
+#include "graph/Milliseconds.h"
 
 #include <nlohmann/json.hpp>
 
@@ -10,13 +11,6 @@
 #include <stdexcept>
 
 namespace inkgraph {
-namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-} // namespace
 
 LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kernel, int supersample)
     : mName(std::move(name)), mKernel(std::move(kernel)), mSupersample(supersample) {

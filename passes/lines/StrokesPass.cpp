@@ -1,6 +1,7 @@
 #include "passes/lines/StrokesPass.h"
 
 #include "gl/GraphExecutor.h"
+#include "graph/Milliseconds.h"
 #include "passes/LineMaskTarget.h"
 #include "passes/lines/LineLayerPass.h"
 #include "postfx/LineTracing.h"
@@ -14,10 +15,6 @@
 
 namespace inkgraph {
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 /** How far ends may be apart and still continue one another, in output pixels at a 1024-pixel height: scaled with
  *  the height, so a gap closes at every size alike, and never under 2 pixels (a diagonal step and a half). */

@@ -1,5 +1,7 @@
 #include "passes/orientation/SceneOrientation.h"
 
+#include "graph/Milliseconds.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -12,10 +14,6 @@ namespace inkgraph {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 /** GL refuses zero-sized buffer storage (GL_INVALID_VALUE), and an empty set is normal (no back faces seen from
  *  inside, no front faces when everything faces away). An empty list therefore gets one zeroed element as a

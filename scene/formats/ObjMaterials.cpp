@@ -6,6 +6,7 @@
 
 #include "scene/formats/FormatReaders.h"
 #include "scene/formats/ShaderValues.h"
+#include "scene/formats/TextTokens.h"
 
 #include <algorithm>
 #include <cctype>
@@ -18,26 +19,6 @@
 namespace inkgraph::detail {
 
 namespace {
-
-bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-
-std::string_view trimmed(std::string_view text) {
-    while (!text.empty() && isBlank(text.front())) text.remove_prefix(1);
-    while (!text.empty() && isBlank(text.back())) text.remove_suffix(1);
-    return text;
-}
-
-std::vector<std::string_view> tokensOf(std::string_view text) {
-    std::vector<std::string_view> tokens;
-    std::size_t at = 0;
-    while (at < text.size()) {
-        while (at < text.size() && isBlank(text[at])) ++at;
-        const std::size_t start = at;
-        while (at < text.size() && !isBlank(text[at])) ++at;
-        if (at > start) tokens.push_back(text.substr(start, at - start));
-    }
-    return tokens;
-}
 
 /** MTL keywords are lower- or mixed-case depending on the exporter ("map_Kd", "map_kd"); compared ignoring case. */
 bool sameKeyword(std::string_view a, std::string_view b) {

@@ -7,6 +7,7 @@
  *  and refusing them would help nobody. */
 
 #include "scene/formats/FormatTable.h"
+#include "scene/formats/TextTokens.h"
 
 #include <algorithm>
 #include <charconv>
@@ -25,8 +26,6 @@
 namespace inkgraph::detail {
 
 namespace {
-
-bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
 /** What a face index refers to. */
 enum class IndexKind { Vertex, Texcoord, Normal };
@@ -72,33 +71,6 @@ struct FaceGroup {
 /** Undefined `usemtl` materials named one by one in the warnings; the rest are counted. */
 constexpr std::size_t kMaxNamedMaterials = 10;
 
-std::string_view trimmed(const char* begin, const char* end) {
-    while (begin < end && isBlank(*begin)) {
-        ++begin;
-    }
-    while (end > begin && isBlank(end[-1])) {
-        --end;
-    }
-    return std::string_view(begin, std::size_t(end - begin));
-}
-
-std::vector<std::string_view> tokensOf(const char* p, const char* end) {
-    std::vector<std::string_view> tokens;
-    while (p < end) {
-        while (p < end && isBlank(*p)) {
-            ++p;
-        }
-        const char* start = p;
-        while (p < end && !isBlank(*p)) {
-            ++p;
-        }
-        if (p > start) {
-            tokens.emplace_back(start, std::size_t(p - start));
-        }
-    }
-    return tokens;
-}
-
 /** A finite number filling the whole token (an explicit '+' allowed), else nothing. */
 std::optional<double> finiteNumber(std::string_view token) {
     if (!token.empty() && token.front() == '+') {
@@ -113,7 +85,7 @@ std::optional<double> finiteNumber(std::string_view token) {
 }
 
 /** Lines between memory-budget checks: a line adds at most a few hundred bytes per byte of text. */
-constexpr std::size_t kBudgetCheckInterval = 1 << 14;
+constexpr std::size_t kLinesBetweenBudgetChecks = 1 << 14;
 
 /** A positive index that pointed past the vertices defined so far; legal only if the vertex appears later. */
 struct ForwardReference {
@@ -146,7 +118,7 @@ public:
             }
             parseLine(cursor, lineEnd);
             cursor = lineEnd + 1;
-            if (mLine % kBudgetCheckInterval == 0) {
+            if (mLine % kLinesBetweenBudgetChecks == 0) {
                 mBudget.check(mPositions.size() + mNormals.size() + mTexcoords.size(), mCornerCount / 3);
             }
         }
@@ -199,9 +171,9 @@ private:
         } else if (command == "l" || command == "p") {
             ++mSkippedNonFaces;
         } else if (command == "mtllib") {
-            readMaterialLibraries(trimmed(p, end));
+            readMaterialLibraries(trimmed(std::string_view(p, std::size_t(end - p))));
         } else if (command == "usemtl") {
-            const std::string name(trimmed(p, end));
+            const std::string name(trimmed(std::string_view(p, std::size_t(end - p))));
             mUsedMaterials.try_emplace(name, mLine);
             mCurrentMaterial = name;
             mCurrentGroup = groupOf(name);
@@ -234,7 +206,7 @@ private:
         glm::vec4 colour(1.0f);
         std::size_t count = 0;
         bool allNumbers = true;
-        for (const std::string_view token : tokensOf(p, end)) {
+        for (const std::string_view token : tokensOf(std::string_view(p, std::size_t(end - p)))) {
             const std::optional<double> value = finiteNumber(token);
             allNumbers = allNumbers && value.has_value();
             if (allNumbers && count < 4) colour[int(count)] = float(std::clamp(*value, 0.0, 1.0));

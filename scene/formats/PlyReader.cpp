@@ -9,6 +9,7 @@
  *  are charged to the budget and checked against the file's bytes before anything is reserved. */
 
 #include "scene/formats/FormatTable.h"
+#include "scene/formats/TextTokens.h"
 
 #include <algorithm>
 #include <array>
@@ -126,20 +127,6 @@ struct Header {
     const Element* vertices = nullptr;
     const Element* faces = nullptr;
 };
-
-bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-
-std::vector<std::string_view> tokensOf(std::string_view line) {
-    std::vector<std::string_view> tokens;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && isBlank(line[i])) ++i;
-        const std::size_t start = i;
-        while (i < line.size() && !isBlank(line[i])) ++i;
-        if (i > start) tokens.push_back(line.substr(start, i - start));
-    }
-    return tokens;
-}
 
 std::string typeNames() {
     std::string names;

@@ -21,7 +21,7 @@ namespace {
 constexpr std::size_t kBinaryHeaderBytes = 80;
 constexpr std::size_t kBinaryPreambleBytes = kBinaryHeaderBytes + 4; // header + uint32 triangle count
 constexpr std::size_t kBinaryTriangleBytes = 50;                     // normal, 3 corners, uint16 attribute
-constexpr std::size_t kBudgetCheckInterval = 1 << 16;                // ASCII vertices between memory checks
+constexpr std::size_t kVerticesBetweenBudgetChecks = 1 << 16;        // ASCII vertices between memory checks
 
 template <typename T>
 T readLittleEndian(const char* bytes) {
@@ -191,7 +191,8 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, bool withoutSol
                 return failure("cannot read vertex coordinate (beyond float's range)");
             }
             positions.push_back(position);
-            if (positions.size() % kBudgetCheckInterval == 0) budget.check(positions.size(), mesh.triangles.size());
+            if (positions.size() % kVerticesBetweenBudgetChecks == 0)
+                budget.check(positions.size(), mesh.triangles.size());
         } else if (equalsIgnoringCase(token, "endloop") && state == State::InLoop) {
             const std::size_t loopSize = positions.size() - loopStart;
             if (loopSize < 3) {

@@ -14,10 +14,6 @@
 namespace inkgraph {
 namespace {
 
-/** Relative area at or below which a face counts as degenerate (times the squared bounding-box diagonal): the
- *  loaders' rule (MeshOps finalizeMesh), so a loaded mesh loses nothing more here. */
-constexpr double kDegenerateAreaRelative = 1e-14;
-
 constexpr std::uint32_t kNone = ~std::uint32_t(0);
 
 /** Faces per parallel chunk below which a thread is not worth starting. */

@@ -13,9 +13,6 @@
 namespace inkgraph {
 namespace {
 
-/** Relative area at or below which a face is degenerate (times the squared bounding-box diagonal): the loaders' and
- *  EdgeAdjacency's rule, so a loaded mesh loses nothing more here. */
-constexpr double kDegenerateAreaRelative = 1e-14;
 /** An LDL^T pivot below this times the largest diagonal entry of the normal matrix is singular: the face's edges do
  *  not span the plane well enough to fit anything (a needle), and a fit there would be noise. */
 constexpr double kSingularPivotRelative = 1e-10;

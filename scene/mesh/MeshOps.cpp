@@ -21,9 +21,6 @@ constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
  *  loose enough for text round-off, far tighter than any intended hard edge. */
 constexpr double kNormalMatchDistance = 1e-3;
 
-/** Relative area below which a triangle counts as degenerate (times the squared model diagonal). */
-constexpr double kDegenerateAreaRelative = 1e-14;
-
 /** Grid cell coordinates; the cell size floor in weldVertices() keeps them below 2^31. */
 struct CellKey {
     std::int32_t x = 0;

@@ -72,6 +72,11 @@ std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> p
  *  only as meaningful as parity is. */
 bool isPointInsideMesh(const Mesh& mesh, glm::dvec3 point);
 
+/** Relative area at or below which a triangle counts as degenerate (times the squared bounding-box diagonal): the
+ *  loaders drop such faces (finalizeMesh), and the mesh analyses skip them by the same rule, so a loaded mesh loses
+ *  nothing more there. */
+inline constexpr double kDegenerateAreaRelative = 1e-14;
+
 /** Removes triangles with a repeated index or an area at most `minArea`; returns how many were removed. */
 std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                                     double minArea);

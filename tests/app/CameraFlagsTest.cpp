@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::camera_flags_test {
 namespace {
 
 RenderOptions parse(std::vector<std::string> arguments) {
@@ -74,4 +74,4 @@ TEST(CameraFlags, FrameParsesNodeNames) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::camera_flags_test

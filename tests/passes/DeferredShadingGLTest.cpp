@@ -16,7 +16,7 @@
 
 #include <string>
 
-namespace inkgraph {
+namespace inkgraph::deferred_shading_gl_test {
 namespace {
 
 constexpr int kSize = 256;
@@ -141,4 +141,4 @@ TEST_F(DeferredShading, KeptToTheSceneBoundsItShadesEveryPixelForwardShadingCove
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::deferred_shading_gl_test

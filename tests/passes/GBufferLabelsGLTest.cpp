@@ -20,7 +20,7 @@
 #include <optional>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::gbuffer_labels_gl_test {
 namespace {
 
 constexpr int kSize = 160;
@@ -272,4 +272,4 @@ TEST_F(GBufferLabels, BarycentricWeightsReconstructTheRaysHitPoint) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::gbuffer_labels_gl_test

@@ -17,7 +17,7 @@
 #include <thread>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::host_tail_gl_test {
 namespace {
 
 /** Writes `source.color` (rgba8) on the CPU: a distinct colour per pixel. Not host-only: it runs with the GPU part. */
@@ -98,4 +98,4 @@ TEST_F(HostTailTest, ATailWithoutABeginningIsALogicError) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::host_tail_gl_test

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::intersection_gl_test {
 namespace {
 
 constexpr int kSize = 256;
@@ -176,4 +176,4 @@ TEST_F(Intersection, TheTypesAreRegisteredAsObjectSpaceWithTheirHiddenTwin) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::intersection_gl_test

@@ -18,7 +18,7 @@
 #include <cmath>
 #include <string>
 
-namespace inkgraph {
+namespace inkgraph::mtoon_outline_gl_test {
 namespace {
 
 constexpr int kSize = 128;
@@ -218,4 +218,4 @@ TEST_F(MToonOutline, ANearerSurfaceHidesTheOutlineBehindIt) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::mtoon_outline_gl_test

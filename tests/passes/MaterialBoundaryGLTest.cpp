@@ -18,7 +18,7 @@
 #include <limits>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::material_boundary_gl_test {
 namespace {
 
 constexpr int kSize = 256;
@@ -218,4 +218,4 @@ TEST_F(MaterialBoundary, MeshesOfOneNodeInstanceAreOneObject) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::material_boundary_gl_test

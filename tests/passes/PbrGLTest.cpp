@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::pbr_gl_test {
 namespace {
 
 constexpr int kSize = 128;
@@ -379,4 +379,4 @@ TEST_F(MetallicRoughness, UnlitMaterialWithoutMToonStaysUnlit) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::pbr_gl_test

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::scene_orientation_gl_test {
 namespace {
 
 const glm::vec3 kCenter(1.0f, -2.0f, 0.5f);
@@ -292,4 +292,4 @@ TEST(SceneOrientationSettings, RejectsBadRuleAndShininess) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::scene_orientation_gl_test

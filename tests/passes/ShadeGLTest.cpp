@@ -37,7 +37,7 @@
 #include <string>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::shade_gl_test {
 namespace {
 
 constexpr int kSize = 256;
@@ -1188,4 +1188,4 @@ TEST_F(ShadeTwoSpheres, DistinctMapsAreUploadedOnceAndWrongOnesRefused) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::shade_gl_test

@@ -22,7 +22,7 @@
 #include <sstream>
 #include <unistd.h>
 
-namespace inkgraph {
+namespace inkgraph::width_map_gl_test {
 namespace {
 
 constexpr int kWidth = 256;
@@ -347,4 +347,4 @@ TEST(WidthMapMToon, ShellWidthIsTheMaterialsTimesItsWidthTextureTimesTheMap) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::width_map_gl_test

@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-namespace inkgraph {
+namespace inkgraph::camera_test {
 namespace {
 
 void expectNear(const glm::dvec3& actual, const glm::dvec3& expected, double tolerance = 1e-9) {
@@ -458,4 +458,4 @@ TEST(Camera, RequestedClipRangeReplacesTheFittedOne) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::camera_test

@@ -19,7 +19,7 @@
 #include <tuple>
 #include <utility>
 
-namespace inkgraph {
+namespace inkgraph::edge_adjacency_test {
 namespace {
 
 constexpr double kDegrees = glm::pi<double>() / 180.0;
@@ -322,4 +322,4 @@ TEST(EdgeAdjacency, SilhouetteIsExactUnderPerspective) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::edge_adjacency_test

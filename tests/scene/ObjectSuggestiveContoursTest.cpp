@@ -13,7 +13,7 @@
 #include <optional>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::object_suggestive_contours_test {
 namespace {
 
 /** The torus of makeTorus(), P(u, v) = ((R + r cos v) cos u, (R + r cos v) sin u, r sin v), and its geometry. */
@@ -271,4 +271,4 @@ TEST(ObjectSuggestiveContours, BadSettingsAreAClearError) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::object_suggestive_contours_test

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::vrm_materials_test {
 namespace {
 
 using test::GltfWriter;
@@ -501,4 +501,4 @@ TEST(VrmMaterials, FilesRequiringTheVrmExtensionsLoad) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::vrm_materials_test

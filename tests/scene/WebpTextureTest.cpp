@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::webp_texture_test {
 namespace {
 
 constexpr std::size_t kPlenty = std::size_t(1) << 30;
@@ -202,4 +202,4 @@ TEST(WebpTexture, AWebpSourceOutOfRangeIsRefusedNamingTheMaterialAndTheTexture) 
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::webp_texture_test

@@ -18,11 +18,6 @@ constexpr double kPi = std::numbers::pi;
  *  and a double root moves by ~sqrt(machine epsilon) ~ 1e-8 under rounding. */
 constexpr double kHiddenRelativeGap = 1e-6;
 
-void checkCamera(const char* function, const SyntheticCamera& camera) {
-    if (camera.width <= 0 || camera.height <= 0)
-        throw std::invalid_argument(std::string(function) + ": 'camera' size must be positive");
-}
-
 void checkTorus(const char* function, double ringRadius, double tubeRadius) {
     if (!(tubeRadius > 0.0 && tubeRadius < ringRadius) || !std::isfinite(ringRadius))
         throw std::invalid_argument(std::string(function) +
@@ -168,7 +163,7 @@ double TorusGeometry::radialCurvatureDerivative(const glm::dvec3& eye, double u,
 
 std::vector<LinePolyline> sphereSilhouette(const SyntheticCamera& camera, const glm::dvec3& center, double radius,
                                            int samples) {
-    checkCamera("sphereSilhouette()", camera);
+    camera.check("sphereSilhouette()");
     if (!(radius > 0.0) || !std::isfinite(radius))
         throw std::invalid_argument("sphereSilhouette(): 'radius' must be positive and finite");
     if (samples < 3) throw std::invalid_argument("sphereSilhouette(): 'samples' must be >= 3");
@@ -206,7 +201,7 @@ std::vector<LinePolyline> torusContours(const SyntheticCamera& camera, const glm
 
 std::vector<TorusCurve> torusContourCurves(const SyntheticCamera& camera, const glm::dvec3& center, double ringRadius,
                                            double tubeRadius, int uSamples) {
-    checkCamera("torusContours()", camera);
+    camera.check("torusContours()");
     checkTorus("torusContours()", ringRadius, tubeRadius);
     if (uSamples < 8) throw std::invalid_argument("torusContours(): 'uSamples' must be >= 8");
     const TorusGeometry torus{ringRadius, tubeRadius};
@@ -254,7 +249,7 @@ std::vector<TorusCurve> torusSuggestiveContourCurves(const SyntheticCamera& came
                                                      double ringRadius, double tubeRadius,
                                                      const AnalyticSuggestiveSettings& settings, int uSamples,
                                                      int vSamples) {
-    checkCamera("torusSuggestiveContours()", camera);
+    camera.check("torusSuggestiveContours()");
     checkTorus("torusSuggestiveContours()", ringRadius, tubeRadius);
     if (uSamples < 8) throw std::invalid_argument("torusSuggestiveContours(): 'uSamples' must be >= 8");
     if (vSamples < 8) throw std::invalid_argument("torusSuggestiveContours(): 'vSamples' must be >= 8");

@@ -131,17 +131,6 @@ std::optional<SurfaceHit> hitPlane(const SyntheticRay& ray, const glm::dvec3& pl
     return SurfaceHit{ray.origin + distance * ray.direction, normal};
 }
 
-void checkCamera(const char* function, const SyntheticCamera& camera) {
-    if (camera.width <= 0 || camera.height <= 0)
-        throw std::invalid_argument(std::string(function) + ": 'camera' size must be positive");
-    if (!(camera.fovYDegrees > 0.0 && camera.fovYDegrees < 180.0))
-        throw std::invalid_argument(std::string(function) + ": 'camera' fovYDegrees must lie in (0, 180)");
-    const glm::dvec3 forward = camera.target - camera.eye;
-    if (!(glm::length(forward) > 0.0) || !(glm::length(glm::cross(forward, camera.up)) > 0.0))
-        throw std::invalid_argument(std::string(function) +
-                                    ": 'camera' needs eye != target and 'up' not along the view direction");
-}
-
 /** One ray per pixel centre; the view-space fields from each hit, in double until the final float. */
 template <typename Intersect>
 SyntheticGBuffer renderSurface(const SyntheticCamera& camera, Intersect intersect) {
@@ -207,6 +196,17 @@ glm::dvec2 SyntheticCamera::project(const glm::dvec3& worldPoint) const {
     return {width / 2.0 + focal * point.x / -point.z, height / 2.0 - focal * point.y / -point.z};
 }
 
+void SyntheticCamera::check(const char* function) const {
+    if (width <= 0 || height <= 0)
+        throw std::invalid_argument(std::string(function) + ": 'camera' size must be positive");
+    if (!(fovYDegrees > 0.0 && fovYDegrees < 180.0))
+        throw std::invalid_argument(std::string(function) + ": 'camera' fovYDegrees must lie in (0, 180)");
+    const glm::dvec3 forward = target - eye;
+    if (!(glm::length(forward) > 0.0) || !(glm::length(glm::cross(forward, up)) > 0.0))
+        throw std::invalid_argument(std::string(function) +
+                                    ": 'camera' needs eye != target and 'up' not along the view direction");
+}
+
 std::optional<double> intersectTorus(const SyntheticRay& ray, const glm::dvec3& center, double ringRadius,
                                      double tubeRadius) {
     // Only the part of the ray inside the bounding sphere can hit; starting the polynomial there keeps its
@@ -238,7 +238,7 @@ std::optional<double> intersectTorus(const SyntheticRay& ray, const glm::dvec3& 
 }
 
 SyntheticGBuffer renderSphere(const SyntheticCamera& camera, const glm::dvec3& center, double radius) {
-    checkCamera("renderSphere()", camera);
+    camera.check("renderSphere()");
     if (!(radius > 0.0) || !std::isfinite(radius))
         throw std::invalid_argument("renderSphere(): 'radius' must be positive and finite");
     return renderSurface(camera, [&](const SyntheticRay& ray) { return hitSphere(ray, center, radius); });
@@ -246,7 +246,7 @@ SyntheticGBuffer renderSphere(const SyntheticCamera& camera, const glm::dvec3& c
 
 SyntheticGBuffer renderTorus(const SyntheticCamera& camera, const glm::dvec3& center, double ringRadius,
                              double tubeRadius) {
-    checkCamera("renderTorus()", camera);
+    camera.check("renderTorus()");
     if (!(tubeRadius > 0.0 && tubeRadius < ringRadius) || !std::isfinite(ringRadius))
         throw std::invalid_argument("renderTorus(): need 0 < 'tubeRadius' < 'ringRadius' (a ring torus)");
     return renderSurface(camera,
@@ -254,7 +254,7 @@ SyntheticGBuffer renderTorus(const SyntheticCamera& camera, const glm::dvec3& ce
 }
 
 SyntheticGBuffer renderPlane(const SyntheticCamera& camera, const glm::dvec3& point, const glm::dvec3& normal) {
-    checkCamera("renderPlane()", camera);
+    camera.check("renderPlane()");
     if (!(glm::length(normal) > 0.0)) throw std::invalid_argument("renderPlane(): 'normal' must be non-zero");
     const glm::dvec3 unitNormal = glm::normalize(normal);
     return renderSurface(camera, [&](const SyntheticRay& ray) { return hitPlane(ray, point, unitNormal); });

@@ -33,6 +33,9 @@ struct SyntheticCamera {
     SyntheticRay rayThrough(const glm::dvec2& imagePoint) const;
     /** A world point in front of the camera -> its image point, in the units of rayThrough(). */
     glm::dvec2 project(const glm::dvec3& worldPoint) const;
+    /** Throws std::invalid_argument after "`function`: " unless the size is positive, fovYDegrees lies in (0, 180),
+     *  eye != target and `up` is not along the view direction. */
+    void check(const char* function) const;
 };
 
 /** The fields a post-stage kernel reads, all CV_32F, width x height. */

@@ -1,5 +1,6 @@
 #include "passes/lines/types/SuggestiveLines.h"
 
+#include "graph/Milliseconds.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
 #include "passes/lines/LineType.h"
@@ -115,10 +116,6 @@ LineTypeStrokeRules seedRules(const Look& look) {
     if (seed > threshold)
         rules.seedStrength = fade > 0.0 ? float((seed - threshold) / (seed - threshold + fade)) : 1.0f;
     return rules;
-}
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 /** Per data pixel, the surface ids the kernel makes from the triangle ids (one float). */

@@ -27,15 +27,6 @@ std::string animationLabel(const tinygltf::Model& model, std::size_t index) {
     return "animation " + std::to_string(index) + (name.empty() ? "" : " '" + excerptForMessage(name) + "'");
 }
 
-/** A name from the file in quotes, for messages. Appended rather than "'" + text: GCC 12 warns (-Wrestrict, a false
- *  positive) on a literal prepended to a temporary string. */
-std::string quoted(const std::string& text) {
-    std::string result = "'";
-    result += excerptForMessage(text);
-    result += "'";
-    return result;
-}
-
 /** Animations listed by name in a refusal; the rest are counted. */
 constexpr std::size_t kMaxListedAnimations = 10;
 
@@ -357,7 +348,7 @@ void applyMorphTargets(const std::string& path, const tinygltf::Model& model, co
                 // Tangents are not used; texture coordinate and colour targets would be, but are not applied yet.
                 if (attribute != "TANGENT" && !warnedOtherAttributes) {
                     warnings.push_back(makeWarning(WarningKind::MorphAttributeIgnored,
-                                                   quoted(meshLabel) + ": morph target " + std::to_string(t) +
+                                                   quotedExcerpt(meshLabel) + ": morph target " + std::to_string(t) +
                                                        " moves " + excerptForMessage(attribute) +
                                                        ", which is not applied (only POSITION and NORMAL are)",
                                                    "", meshLabel));
@@ -367,7 +358,7 @@ void applyMorphTargets(const std::string& path, const tinygltf::Model& model, co
             }
             std::vector<glm::vec3>& values = isPosition ? positions : normals;
             if (values.empty()) continue; // a NORMAL target on a primitive without normals: they are computed later
-            const std::string role = quoted(meshLabel) + " morph target " + std::to_string(t) + " " + attribute;
+            const std::string role = quotedExcerpt(meshLabel) + " morph target " + std::to_string(t) + " " + attribute;
             const std::size_t count = accessorCount(path, model, accessor, TINYGLTF_TYPE_VEC3, role);
             if (count != values.size()) {
                 throwLoadError(path, role + " has " + std::to_string(count) + " elements but POSITION has " +
@@ -436,7 +427,7 @@ SkinBlend::SkinBlend(const std::string& path, const tinygltf::Model& model, cons
                      std::size_t vertexCount, std::vector<glm::dmat4> joints, const glm::dmat4& fallback,
                      const std::string& meshLabel, const std::map<std::string, std::vector<float>>* decoded)
     : mJoints(std::move(joints)), mFallback(fallback) {
-    const std::string label = quoted(meshLabel);
+    const std::string label = quotedExcerpt(meshLabel);
     for (int set = 0;; ++set) {
         const auto jointsAttribute = primitive.attributes.find("JOINTS_" + std::to_string(set));
         const auto weightsAttribute = primitive.attributes.find("WEIGHTS_" + std::to_string(set));

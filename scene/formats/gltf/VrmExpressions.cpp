@@ -52,13 +52,6 @@ bool isPreset(const std::string& name) {
     return std::ranges::find(kPresetNames, std::string_view(name)) != kPresetNames.end();
 }
 
-std::string quoted(const std::string& text) {
-    std::string result = "'";
-    result += excerptForMessage(text);
-    result += "'";
-    return result;
-}
-
 std::size_t morphTargetsOfMesh(const tinygltf::Model& model, int mesh) {
     if (mesh < 0 || std::size_t(mesh) >= model.meshes.size()) return 0;
     const tinygltf::Mesh& primitives = model.meshes[std::size_t(mesh)];
@@ -150,7 +143,7 @@ void VrmExpressions::readVrm1(const tinygltf::Model& model, std::vector<Warning>
         if (mode == "block") return Override::Block;
         if (mode == "blend") return Override::Blend;
         if (!mode.empty() && mode != "none")
-            warn(where + "." + key, quoted(mode) + " is not 'none', 'block' or 'blend'");
+            warn(where + "." + key, quotedExcerpt(mode) + " is not 'none', 'block' or 'blend'");
         return Override::None;
     };
     for (const char* section : {"preset", "custom"}) {
@@ -262,7 +255,7 @@ void VrmExpressions::readVrm0(const tinygltf::Model& model, std::vector<Warning>
             continue;
         }
         if (has(expression.name)) {
-            warn(where, "a second group for " + quoted(expression.name));
+            warn(where, "a second group for " + quotedExcerpt(expression.name));
             continue;
         }
         if (expression.groupName == expression.name) expression.groupName.clear();
@@ -303,7 +296,7 @@ void VrmExpressions::readVrm0(const tinygltf::Model& model, std::vector<Warning>
                 const auto color = std::ranges::find(kProperties, std::string_view(property),
                                                      &std::pair<std::string_view, ColorTarget>::first);
                 if (!target || (color == kProperties.end() && property != "_MainTex_ST")) {
-                    warn(at, "property " + quoted(property) +
+                    warn(at, "property " + quotedExcerpt(property) +
                                  " is not applied (only _Color, _EmissionColor, _ShadeColor, _RimColor, "
                                  "_OutlineColor and _MainTex_ST, with a targetValue of 4 numbers)");
                     continue;
@@ -325,7 +318,7 @@ void VrmExpressions::readVrm0(const tinygltf::Model& model, std::vector<Warning>
                         expression.textureBinds.push_back({int(material), {v[0], v[1]}, {v[2], 1.0 - v[3] - v[1]}});
                     }
                 }
-                if (!found) warn(at, "no material named " + quoted(materialName));
+                if (!found) warn(at, "no material named " + quotedExcerpt(materialName));
             }
         }
         mExpressions.push_back(std::move(expression));
@@ -352,8 +345,8 @@ std::string VrmExpressions::listForMessage() const {
     std::string list;
     for (std::size_t i = 0; i < mExpressions.size() && i < kMaxListedExpressions; ++i) {
         const Expression& expression = mExpressions[i];
-        list += (i == 0 ? "" : ", ") + quoted(expression.name);
-        if (!expression.groupName.empty()) list += " (0.x " + quoted(expression.groupName) + ")";
+        list += (i == 0 ? "" : ", ") + quotedExcerpt(expression.name);
+        if (!expression.groupName.empty()) list += " (0.x " + quotedExcerpt(expression.groupName) + ")";
     }
     if (mExpressions.size() > kMaxListedExpressions)
         list += " and " + std::to_string(mExpressions.size() - kMaxListedExpressions) + " more";
@@ -363,8 +356,8 @@ std::string VrmExpressions::listForMessage() const {
 void VrmExpressions::setWeight(const std::string& name, double weight, const std::string& origin) {
     const std::optional<std::size_t> found = indexOf(name);
     if (!found) {
-        throwLoadError(mPath, origin + ": no expression " + quoted(name) + " (names are case-sensitive; the file has " +
-                                  listForMessage() + ")");
+        throwLoadError(mPath, origin + ": no expression " + quotedExcerpt(name) +
+                                  " (names are case-sensitive; the file has " + listForMessage() + ")");
     }
     mExpressions[*found].weight = std::clamp(weight, 0.0, 1.0);
 }
