@@ -283,7 +283,10 @@ std::vector<LineType> Look::lines() const {
 }
 Look& Look::setLines(const std::vector<LineType>& types) {
     std::string list;
-    for (LineType type : types) list += (list.empty() ? "" : ",") + nameOf(type);
+    for (LineType type : types) {
+        if (!list.empty()) list += ",";
+        list += nameOf(type);
+    }
     setFlag(*this, "Look::setLines()", "--lines", list.empty() ? "none" : list);
     return *this;
 }

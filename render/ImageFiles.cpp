@@ -27,6 +27,15 @@
 namespace inkgraph {
 namespace {
 
+/** `path` in single quotes, for messages. Appended rather than "'" + text: GCC 12 warns (-Wrestrict, a false
+ *  positive) on a literal prepended to a temporary string where the call is inlined. */
+std::string quotedPath(const std::filesystem::path& path) {
+    std::string quoted = "'";
+    quoted += path.string();
+    quoted += "'";
+    return quoted;
+}
+
 constexpr const char* kModuleName = kImageIoModuleName;
 
 void renameIntoPlace(const std::filesystem::path& temporary, const std::filesystem::path& path) {
@@ -221,7 +230,7 @@ void writeImageTo(const std::filesystem::path& destination, const std::filesyste
 }
 
 void writeImage(const std::filesystem::path& path, const cv::Mat& image) {
-    requireOutputPlace(path, "writeImage()", "'" + path.string() + "'");
+    requireOutputPlace(path, "writeImage()", quotedPath(path));
     const std::filesystem::path temporary = temporarySibling(path);
     writeImageTo(temporary, path, image);
     renameIntoPlace(temporary, path);
@@ -283,7 +292,7 @@ cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, s
 }
 
 void writeTextFile(const std::filesystem::path& path, const std::string& text) {
-    requireOutputPlace(path, "writeTextFile()", "'" + path.string() + "'");
+    requireOutputPlace(path, "writeTextFile()", quotedPath(path));
     const std::filesystem::path temporary = temporarySibling(path);
     writeBytes(temporary, text.data(), text.size(), path.string());
     renameIntoPlace(temporary, path);

@@ -16,7 +16,7 @@
 
 namespace ig = inkgraph::api;
 
-namespace inkgraph::test {
+namespace inkgraph::test::api_typed_gl_test {
 namespace {
 
 const std::string kRoot = std::string(INKGRAPH_SOURCE_ROOT) + "/";
@@ -532,4 +532,4 @@ TEST(ApiTyped, RenderIntoWritesTheCallersRows) {
 }
 
 } // namespace
-} // namespace inkgraph::test
+} // namespace inkgraph::test::api_typed_gl_test

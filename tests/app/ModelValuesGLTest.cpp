@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace inkgraph {
+namespace inkgraph::model_values_gl_test {
 namespace {
 
 using test::Cli;
@@ -320,4 +320,4 @@ TEST_F(ModelValues, AFileCameraThatSeesNoneOfTheModelIsReported) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::model_values_gl_test

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <set>
 
-namespace inkgraph {
+namespace inkgraph::views_gl_test {
 namespace {
 
 using test::Cli;
@@ -150,4 +150,4 @@ TEST_F(Cli, ViewsWithoutTheViewPlaceholderWriteNothing) {
 }
 
 } // namespace
-} // namespace inkgraph
+} // namespace inkgraph::views_gl_test

@@ -103,14 +103,14 @@ TEST_F(SilhouetteSphere, ScreenSpaceWidthHoldsAtAnyDistanceFovAndResolution) {
 
 TEST_F(SilhouetteSphere, ObjectSpaceWidthFollowsTheProjection) {
     constexpr double kObjectWidth = 0.1;
-    constexpr int kSize = 512;
+    constexpr int kFrameSide = 512;
     HullSettings settings;
     settings.objectWidth = float(kObjectWidth);
     SilhouettePass pass("silhouette", shaders, *gpuScene, frame, settings);
     double meanWidth[2] = {0.0, 0.0};
     const double distances[2] = {4.0, 8.0};
     for (int i = 0; i < 2; ++i) {
-        lookFrom({0.0, 0.0, distances[i]}, glm::dvec3(0.0), 35.0, kSize, kSize);
+        lookFrom({0.0, 0.0, distances[i]}, glm::dvec3(0.0), 35.0, kFrameSide, kFrameSide);
         const LineRender render = this->render(pass);
         // The inflated sphere (radius R + t) projects to f (R + t) / sqrt(d^2 - (R + t)^2); to first order the ring
         // is t f / z at the silhouette's depth z = d - R^2 / d.
