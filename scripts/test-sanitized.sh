@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the whole suite with AddressSanitizer and UndefinedBehaviorSanitizer (-DINKGRAPH_SANITIZE=ON, -O1 with line
-# tables; the test binaries' own code at -O0, tests/CMakeLists.txt says why) into build-asan/ and runs every test there,
+# tables; the test binaries' own code at -O0, tests/CMakeLists.txt says why; a unity build, as scripts/build.sh's) into
+# build-asan/ and runs every test there,
 # GL tests on llvmpipe included. Any sanitizer report fails the test that triggered it (UBSan does not recover;
 # LeakSanitizer runs at the end of each process).
 # tests/sanitizers/lsan.supp lists the leaks of Debian's libraries that are not ours. Run after
@@ -17,7 +18,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build="$root/build-asan"
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
-    -DINKGRAPH_SANITIZE=ON
+    -DINKGRAPH_SANITIZE=ON -DCMAKE_UNITY_BUILD=ON
 cmake --build "$build" -j"$jobs"
 export LP_NUM_THREADS=1
 # intercept_tls_get_addr=0: GCC 12's runtime takes a dynamic TLS block whose address is 16 past a page boundary for
