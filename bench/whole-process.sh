@@ -27,6 +27,18 @@ gnu_time=${GNU_TIME:-/usr/bin/time}
 work="$build/bench-data"
 mkdir -p "$work/out" "$work/batch"
 rows=${ROWS:-"probe tetra bunny freestyle batch large"}
+for row in $rows; do # a misspelt row is refused before any round runs, not run as an empty command
+    case $row in
+    probe | tetra | bunny | unlined | freestyle | batch | singles | large | comic36 | comic36-serial) ;;
+    comic36-d[1-9]* | comic36-p[1-9]*) [[ ${row:9} =~ ^[0-9]+$ ]] || row_unknown=$row ;;
+    *) row_unknown=$row ;;
+    esac
+    if [ -n "${row_unknown:-}" ]; then
+        echo "whole-process.sh: unknown row '$row_unknown' in ROWS (probe, tetra, bunny, unlined, freestyle, batch," \
+            "singles, large, comic36, comic36-serial, comic36-dN, comic36-pN)" >&2
+        exit 2
+    fi
+done
 if [ -n "${BEFORE:-}" ]; then
     for row in tetra bunny batch large comic36; do [[ " $rows " == *" $row "* ]] && rows+=" $row@before"; done
 fi
