@@ -267,6 +267,16 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
         const auto found = namedFiles->find(identity);
         return found == namedFiles->end() ? nullptr : &found->second;
     };
+    // The files every still reads besides its model (--list, --style, --shademap, the width map's image): each known
+    // by place and identity once, so a list of a million stills compares against them without asking the file system.
+    struct RunInputFile {
+        std::filesystem::path place;
+        std::optional<FileIdentity> identity;
+        std::string what;
+    };
+    std::vector<RunInputFile> runInputs;
+    for (const RunInput& input : inputsNamedBesidesModel(options))
+        runInputs.push_back({resolvedPath(input.path), fileIdentity(input.path), input.what});
     // Place -> the first still writing there (a model listed twice is two stills, each view one).
     std::map<std::filesystem::path, const BatchStill*> writers;
     // Every still by its model and view index: the outputs do not depend on the view drawn, so none is sampled here.
@@ -279,14 +289,20 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
         for (const auto& [flag, pattern] : outputFlags(options)) {
             const std::string output = expandOutputPattern(pattern, model, list.total, still.viewIndex, viewCount);
             const std::filesystem::path place = resolvedPath(output);
-            // A still writing over its own model is OutputSet's to report, as for a single model.
+            // Worded as OutputSet words the same clash for one still, which would find it only at this still's turn,
+            // after the stills before it are written.
             const auto identity = fileIdentity(output);
+            for (const RunInputFile& input : runInputs)
+                if (place == input.place || (identity && input.identity && *identity == *input.identity))
+                    throw UsageError(flag + " '" + output + "' is " + input.what + "; choose another file");
             const BatchModel* overwritten = nullptr;
             if (auto input = modelsByPlace.find(place); input != modelsByPlace.end()) overwritten = input->second;
             if (identity)
                 if (auto input = modelsByIdentity.find(*identity); input != modelsByIdentity.end())
                     overwritten = input->second;
-            if (overwritten != nullptr && overwritten->path != model.path)
+            if (overwritten != nullptr && overwritten->path == model.path)
+                throw UsageError(flag + " '" + output + "' is the model itself; choose another file");
+            if (overwritten != nullptr)
                 throw UsageError(flag + " '" + output + "' (for '" + model.path + "') would overwrite the model '" +
                                  overwritten->path + "'");
             if (identity)

@@ -74,8 +74,9 @@ RenderOptions stillOptions(const RenderOptions& options, const BatchStill& still
 
 /** Checks the outputs of every still before any work: with several models, each output path must name `{name}` or
  *  `{index}`, with several views `{view}`; no two stills may write the same place (two models of one name: use
- *  `{index}`), and no still may write over a model of the list. Throws UsageError naming the flag and both
- *  stills. */
+ *  `{index}`), and no still may write over a model of the list, its own included, nor over a file every still reads
+ *  (--list, --style, --shademap, --outline-width-map's image: inputsNamedBesidesModel()). Throws UsageError naming
+ *  the flag and the path, and for two stills both. */
 void checkBatchOutputs(const RenderOptions& options, const BatchList& list);
 
 } // namespace inkgraph

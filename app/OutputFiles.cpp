@@ -108,6 +108,12 @@ OutputSet::OutputSet(const RenderOptions& options) {
 
 std::vector<RunInput> inputsNamedBy(const RenderOptions& options) {
     std::vector<RunInput> inputs = {{options.modelPath, "the model itself"}};
+    for (RunInput& input : inputsNamedBesidesModel(options)) inputs.push_back(std::move(input));
+    return inputs;
+}
+
+std::vector<RunInput> inputsNamedBesidesModel(const RenderOptions& options) {
+    std::vector<RunInput> inputs;
     if (!options.look.shadeMapPath.empty()) inputs.push_back({options.look.shadeMapPath, "the --shademap itself"});
     // A model image's name is no file: the identity check skips it.
     if (options.look.outlineWidthMap.source == WidthMap::Source::Texture)

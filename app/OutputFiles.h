@@ -25,9 +25,11 @@
 
 namespace inkgraph {
 
-/** The files a render reads that its options name: the model, --shademap, --outline-width-map's image, --style and
- *  --list (unless "-"). */
+/** The files a render reads that its options name: the model, then inputsNamedBesidesModel(). */
 std::vector<RunInput> inputsNamedBy(const RenderOptions& options);
+/** The files every still of a run reads, whichever its model: --shademap, --outline-width-map's image, --style and
+ *  --list (unless "-"). */
+std::vector<RunInput> inputsNamedBesidesModel(const RenderOptions& options);
 
 class OutputSet {
 public:

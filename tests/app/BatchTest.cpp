@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -235,6 +236,36 @@ TEST(BatchOutputs, NoStillMayOverwriteAModelOfTheList) {
     const std::string message = usageMessage(options, batchList(options, none));
     EXPECT_NE(message.find("-o 'm/2.obj' (for 'm/a.obj') would overwrite the model 'm/2.obj'"), std::string::npos)
         << message;
+}
+
+TEST_F(BatchListFile, NoStillMayWriteItsOwnModelOrAFileEveryStillReads) {
+    // Found before any work, as for the stills before it: each still alone would find it only at its turn, after
+    // the stills before it had written their files.
+    for (const char* name : {"a.obj", "b.obj", "3.obj", "3.txt", "3.style", "3.png"})
+        write(name, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string models[] = {(directory / "a.obj").string(), (directory / "b.obj").string(),
+                                  (directory / "3.obj").string()};
+    std::istringstream none;
+    const auto messageFor = [&](const std::string& statsExtension, const std::function<void(RenderOptions&)>& set) {
+        RenderOptions options = withModels({models[0], models[1], models[2]});
+        options.outputPath = (directory / "out-{index}.png").string();
+        options.statsPath = (directory / ("{index}" + statsExtension)).string();
+        set(options);
+        return usageMessage(options, batchList(options, none));
+    };
+    const std::string stats = "--stats '" + (directory / "3").string();
+    EXPECT_EQ(messageFor(".obj", [](RenderOptions&) {}), stats + ".obj' is the model itself; choose another file");
+    EXPECT_EQ(messageFor(".txt", [&](RenderOptions& options) { options.listPath = (directory / "3.txt").string(); }),
+              stats + ".txt' is the --list file; choose another file");
+    EXPECT_EQ(
+        messageFor(".style", [&](RenderOptions& options) { options.stylePath = (directory / "3.style").string(); }),
+        stats + ".style' is the --style file; choose another file");
+    EXPECT_EQ(messageFor(".png",
+                         [&](RenderOptions& options) {
+                             options.look.shadeMapPath = (directory / "sub" / ".." / "3.png").string();
+                         }),
+              stats + ".png' is the --shademap itself; choose another file");
+    EXPECT_EQ(messageFor(".json", [&](RenderOptions& options) { options.listPath = "-"; }), "");
 }
 
 TEST(BatchOutputs, AHardLinkOfAModelIsThatModel) {
