@@ -83,7 +83,7 @@ void tellError(const BatchShared& batch, std::exception_ptr error) {
         std::rethrow_exception(error);
     } catch (const std::exception& other) {
         const StillTurn turn(batch.turns, batch.toRender.size());
-        batch.log << boundedMessage(std::string("inkgraph: error: ") + other.what()) << "\n";
+        batch.log << boundedMessage(std::string("inkgraph: error: ") + other.what()) + "\n"; // one write, one line
     } catch (...) {
     }
 }
@@ -117,7 +117,7 @@ void renderShare(const BatchShared& batch, std::size_t first, std::size_t step, 
         const std::string counter = "inkgraph: [" + std::to_string(toRender[k].index + 1) + "/" +
                                     std::to_string(batch.stills.size()) + "] " + label;
         const auto fail = [&batch, dataset, counter, label, key, still](const std::exception& error) {
-            batch.log << boundedMessage(counter + " failed: " + error.what()) << "\n";
+            batch.log << boundedMessage(counter + " failed: " + error.what()) + "\n";
             batch.failed.push_back(label);
             if (dataset) dataset->recordFailed(key, still, error.what());
             if (batch.exitCode == kExitOk) batch.exitCode = kExitBadInput;

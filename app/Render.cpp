@@ -161,6 +161,13 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     try {
         return renderStill(options, batch, std::move(callbacks), next, log, stillLog, processStart);
     } catch (...) {
+        // An earlier still's commit failed, which stops the batch (its turns stopped in finishOldest()): that is the
+        // error, and the stills in flight after it are the caller's to finish and tell, not to throw in its place.
+        if (stillLog && mFinishingFailure && mFinishingFailure == std::current_exception()) {
+            if (turns) turns->enter(turn);
+            tellLog(stillLog.get());
+            throw;
+        }
         // The stills before it are told first, then what this one had to say, in its turn; the caller tells its
         // failure and leaves the turn.
         if (stillLog) {
@@ -341,14 +348,22 @@ void RenderSession::finishOldest() {
         return;
     } catch (...) {
         tellLog(pending->log.get());
+        stopFor(*pending);
         throw;
     }
     try {
         commitFinished(*pending, outcome);
     } catch (...) {
         tellLog(pending->log.get()); // its warnings before the error that stops the batch
+        stopFor(*pending);
         throw;
     }
+}
+
+void RenderSession::stopFor(const PendingStill& pending) {
+    mFinishingFailure = std::current_exception();
+    // Stopped while this still holds its turn, so no still after it takes one first and is taken for the first error.
+    if (pending.callbacks.turns) pending.callbacks.turns->stop(mFinishingFailure);
 }
 
 void RenderSession::commitFinished(PendingStill& pending, TailOutcome& outcome) {

@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cstddef>
 #include <deque>
+#include <exception>
 #include <functional>
 #include <future>
 #include <memory>
@@ -132,6 +133,9 @@ private:
     /** With turns: finishes the oldest stills in flight while their post stage is done and their turn is due, so the
      *  other drawing threads' stills after them need not wait for this session's next limit. */
     void finishDueStills();
+    /** In finishOldest()'s handler of an error that stops the batch: keeps it (mFinishingFailure), and with turns
+     *  stops them while `pending` holds its turn. */
+    void stopFor(const PendingStill& pending);
     /** finishOldest() once the still's post stage succeeded: stages, writes and commits its outputs, then tells. */
     void commitFinished(PendingStill& pending, TailOutcome& outcome);
     /** The memory the stills in flight are estimated to hold (MemoryEstimate, less the model's textures). */
@@ -144,6 +148,9 @@ private:
     StillRenderer mRenderer;
     std::deque<std::unique_ptr<PendingStill>> mPending; ///< oldest first
     std::optional<Prefetch> mPrefetch;
+    /** The error of the last still whose finishing failed (finishOldest()): render() tells it from a failure of its
+     *  own still, which must first finish the stills before it. */
+    std::exception_ptr mFinishingFailure;
     /** The last committed still's OutputSet::removeReplaced(), on a thread of its own (commitFinished()). */
     std::future<void> mTidying;
 };

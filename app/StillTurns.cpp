@@ -4,16 +4,18 @@ namespace inkgraph {
 
 void StillTurns::enter(std::size_t still) {
     std::unique_lock<std::mutex> lock(mMutex);
-    if (mHeld && mHolder == still) return;
+    const std::thread::id self = std::this_thread::get_id();
+    if (mHeld && mHolder == still && mHolderThread == self) return;
     mChanged.wait(lock, [this, still] { return !mHeld && (mStopped || mNext >= still); });
     mHeld = true;
     mHolder = still;
+    mHolderThread = self;
 }
 
 void StillTurns::leave(std::size_t still) {
     {
         const std::lock_guard<std::mutex> lock(mMutex);
-        if (!mHeld || mHolder != still) return;
+        if (!mHeld || mHolder != still || mHolderThread != std::this_thread::get_id()) return;
         mHeld = false;
         if (!mStopped && mNext <= still) mNext = still + 1;
     }
@@ -30,8 +32,8 @@ bool StillTurns::stop(std::exception_ptr error) {
     {
         const std::lock_guard<std::mutex> lock(mMutex);
         mStopped = true;
-        first = error != nullptr && mFirstError == nullptr;
-        if (first) mFirstError = error;
+        if (mFirstError == nullptr) mFirstError = error;
+        first = error != nullptr && error == mFirstError;
     }
     mChanged.notify_all();
     return first;

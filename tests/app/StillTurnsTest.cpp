@@ -71,6 +71,34 @@ TEST(StillTurns, AStopLetsEveryWaiterThroughOneAtATimeAndKeepsTheFirstError) {
     EXPECT_EQ(most, 1) << "one holder at a time, also after the stop";
     EXPECT_TRUE(turns.stopped());
     EXPECT_EQ(turns.firstError(), first);
+    EXPECT_TRUE(turns.stop(first)) << "the kept error given again is still the first";
+}
+
+TEST(StillTurns, TwoThreadsAskingForOneNumberTakeItInTurn) {
+    // After a stop every teller of a later error asks for the same number (BatchRun's tellError()): the second
+    // waits for the first to leave, so their lines never run together.
+    StillTurns turns;
+    turns.stop();
+    constexpr std::size_t kTellers = 99;
+    std::mutex mutex;
+    int inside = 0;
+    int most = 0;
+    std::vector<std::thread> threads;
+    for (int thread = 0; thread < 4; ++thread)
+        threads.emplace_back([&] {
+            for (int told = 0; told < 50; ++told) {
+                const StillTurn turn(&turns, kTellers);
+                {
+                    const std::lock_guard<std::mutex> lock(mutex);
+                    most = std::max(most, ++inside);
+                }
+                std::this_thread::sleep_for(std::chrono::microseconds(200));
+                const std::lock_guard<std::mutex> lock(mutex);
+                --inside;
+            }
+        });
+    for (std::thread& thread : threads) thread.join();
+    EXPECT_EQ(most, 1);
 }
 
 } // namespace
