@@ -1006,7 +1006,8 @@ std::vector<Flag> makeFlags() {
                          "and hands each still on: more threads draw more stills at once. On llvmpipe, whose\n"
                          "rasterizers already use every core, more threads are slower. The files, progress lines and\n"
                          "exit status are the same with any N; --jobs is shared among the threads, and each\n"
-                         "keeps its stills in flight within its share of the memory limit",
+                         "keeps its stills in flight within its share of the memory limit (a still larger than\n"
+                         "its share draws anyway: with one still near the limit, draw with one thread)",
                          [](const std::string& value, RenderOptions& options) {
                              options.drawThreads = parseWholeNumber("--draw-threads", value, 1, 16);
                          }));
