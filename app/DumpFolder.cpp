@@ -213,10 +213,13 @@ void DumpFolder::check(const std::string& flagValue) {
         for (fs::path missing = folder; !missing.empty() && !fs::exists(missing, error);
              missing = missing.parent_path())
             mCreatedFolders.push_back(missing);
-        fs::create_directories(folder, error);
+        {
+            const TemporaryCreation creating;
+            fs::create_directories(folder, error);
+            for (auto created = mCreatedFolders.rbegin(); !error && created != mCreatedFolders.rend(); ++created)
+                registerTemporary(*created); // outermost first: a signal removes the innermost first
+        }
         if (error) fail("cannot be created: " + error.message());
-        for (auto created = mCreatedFolders.rbegin(); created != mCreatedFolders.rend(); ++created)
-            registerTemporary(*created); // outermost first: a signal removes the innermost first
     }
     if (folder == folder.root_path()) fail("is the root folder; give a folder of its own");
     mFolder = folder;
@@ -280,13 +283,21 @@ void DumpFolder::check(const std::string& flagValue) {
                  ", and a dump removes the earlier dump's files; clear the attribute or give another folder");
 
     mStaging = newStagingName(parent);
-    if (::mkdir(mStaging.c_str(), 0700) != 0) fail("cannot be staged: " + std::string(std::strerror(errno)));
-    registerTemporary(mStaging);
     const fs::path marker = mStaging / kStagingMarker;
-    const int markerFile = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (markerFile < 0) fail("cannot be staged: " + std::string(std::strerror(errno)));
+    int markerFile = -1;
+    int markerError = 0;
+    {
+        const TemporaryCreation creating;
+        if (::mkdir(mStaging.c_str(), 0700) != 0) fail("cannot be staged: " + std::string(std::strerror(errno)));
+        registerTemporary(mStaging);
+        markerFile = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+        if (markerFile >= 0)
+            registerTemporary(marker);
+        else
+            markerError = errno;
+    }
+    if (markerFile < 0) fail("cannot be staged: " + std::string(std::strerror(markerError)));
     ::close(markerFile);
-    registerTemporary(marker);
 }
 
 DumpFolder::~DumpFolder() { abandon(); }

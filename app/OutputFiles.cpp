@@ -220,6 +220,7 @@ void OutputSet::commit() {
             if (file.temporary.empty() || !fs::exists(fs::symlink_status(file.destination))) continue;
             // A second name for the file being replaced, so a failure further on can put it back.
             const fs::path backup = temporarySibling(file.destination);
+            const TemporaryCreation creating;
             if (::link(file.destination.c_str(), backup.c_str()) == 0) {
                 file.backup = backup;
                 // Until removeReplaced(), which may come after the commit: a signal then removes it with the rest.

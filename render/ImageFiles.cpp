@@ -169,6 +169,7 @@ std::filesystem::path temporarySibling(const std::filesystem::path& path) {
 
 int creationErrorIn(const std::filesystem::path& folder) {
     const std::filesystem::path probe = temporarySibling(folder / "probe");
+    const TemporaryCreation creating; // a signal's removal waits until the probe is gone again
     const int descriptor = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
     if (descriptor < 0) return errno;
     ::close(descriptor);
@@ -194,9 +195,13 @@ int writeWhole(int descriptor, const void* data, std::size_t byteCount) {
 void writeBytes(const std::filesystem::path& destination, const void* data, std::size_t byteCount,
                 const std::string& shownName) {
     // O_EXCL: a temporary name that exists is someone else's file, never ours to overwrite.
-    const int descriptor = ::open(destination.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (descriptor < 0) throw FileError("writeFile(): cannot create '" + shownName + "': " + std::strerror(errno));
-    registerTemporary(destination);
+    int descriptor = -1;
+    {
+        const TemporaryCreation creating; // created and registered before a signal's removal can look
+        descriptor = ::open(destination.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+        if (descriptor < 0) throw FileError("writeFile(): cannot create '" + shownName + "': " + std::strerror(errno));
+        registerTemporary(destination);
+    }
     int failure = writeWhole(descriptor, data, byteCount);
     // fsync before the rename: after a crash the final name holds the whole file or the old one, never a prefix.
     if (failure == 0 && ::fsync(descriptor) != 0) failure = errno;

@@ -1,5 +1,6 @@
 #include "render/TemporaryFiles.h"
 
+#include <pthread.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -9,6 +10,8 @@
 #include <cstring>
 #include <mutex>
 #include <string>
+#include <system_error>
+#include <thread>
 
 namespace inkgraph {
 namespace {
@@ -25,28 +28,61 @@ struct Entry {
 // registered: initialized at start-up it cost every process, and the restart for the malloc tunables, 256 page faults
 // (about 3 ms).
 constinit Entry gEntries[kMaxEntries];
-std::mutex gRegistryMutex; // writers only; the handler reads without locking (it may interrupt a writer)
+/** Writers, creators (TemporaryCreation: recursive, as a creator registers what it made) and the signal thread's
+ *  removal; a signal handler reads without locking (it may interrupt a writer). */
+std::recursive_mutex gRegistryMutex;
+/** Held by a commit (SignalsDeferred) and by the signal thread's removal, which so waits for the commit to end. */
+std::mutex gCommitMutex;
 
 /** While an output commit runs, a signal only records itself here (any thread may take it: the library threads do
  *  not block signals); SignalsDeferred acts on it once the commit has ended. */
 std::atomic<bool> gDeferring{false};
 std::atomic<int> gDeferredSignal{0};
 
-void removeAll(int signalNumber) {
-    if (gDeferring.load()) {
-        gDeferredSignal.store(signalNumber);
-        return;
-    }
+/** Removes every registered path, newest first, then ends the process as `signalNumber` would (its default action,
+ *  unblocked in the calling thread). Async-signal-safe. */
+[[noreturn]] void sweepAndEnd(int signalNumber) {
     for (int i = kMaxEntries - 1; i >= 0; --i) {
         if (!gEntries[i].used.load()) continue;
         if (::unlink(gEntries[i].path) != 0 && errno == EISDIR) ::rmdir(gEntries[i].path);
         ::rmdir(gEntries[i].path); // folders registered before their files are removed after them
     }
     ::signal(signalNumber, SIG_DFL);
+    sigset_t only;
+    sigemptyset(&only);
+    sigaddset(&only, signalNumber);
+    ::pthread_sigmask(SIG_UNBLOCK, &only, nullptr);
     ::raise(signalNumber);
+    ::_exit(128 + signalNumber); // not reached: the default action of these signals ends the process
+}
+
+/** The handler, for a thread that does not block the signals (one started before removeTemporariesOnSignals()). */
+void removeAll(int signalNumber) {
+    if (gDeferring.load()) {
+        gDeferredSignal.store(signalNumber);
+        return;
+    }
+    sweepAndEnd(signalNumber);
+}
+
+constexpr int kHandledSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
+/** The thread the handled signals go to (every other thread started after the handling was installed blocks them):
+ *  it is no signal handler, so it can wait for the commit and hold the registry while it sweeps. */
+[[noreturn]] void waitForSignals(sigset_t signals) {
+    for (;;) {
+        int signalNumber = 0;
+        if (::sigwait(&signals, &signalNumber) != 0) continue;
+        gCommitMutex.lock();   // a commit runs whole: every output old or every one new
+        gRegistryMutex.lock(); // no temporary half made; none made after the sweep, as the lock is never given back
+        sweepAndEnd(signalNumber);
+    }
 }
 
 } // namespace
+
+TemporaryCreation::TemporaryCreation() { gRegistryMutex.lock(); }
+TemporaryCreation::~TemporaryCreation() { gRegistryMutex.unlock(); }
 
 void registerTemporary(const std::filesystem::path& path) {
     const std::string text = path.string();
@@ -70,18 +106,30 @@ void forgetTemporary(const std::filesystem::path& path) {
 void removeTemporariesOnSignals() {
     static std::once_flag installed;
     std::call_once(installed, [] {
-        for (int signalNumber : {SIGINT, SIGTERM, SIGHUP}) ::signal(signalNumber, removeAll);
+        for (int signalNumber : kHandledSignals) ::signal(signalNumber, removeAll);
         ::signal(SIGXFSZ, SIG_IGN);
+        sigset_t signals;
+        sigemptyset(&signals);
+        for (int signalNumber : kHandledSignals) sigaddset(&signals, signalNumber);
+        // Blocked before the thread starts, so it inherits the mask too; sigwait takes them there.
+        if (::pthread_sigmask(SIG_BLOCK, &signals, nullptr) != 0) return;
+        try {
+            std::thread(waitForSignals, signals).detach();
+        } catch (const std::system_error&) {
+            ::pthread_sigmask(SIG_UNBLOCK, &signals, nullptr); // no thread: the handler takes them, as before
+        }
     });
 }
 
 SignalsDeferred::SignalsDeferred() {
+    gCommitMutex.lock();
     gDeferredSignal.store(0);
     gDeferring.store(true);
 }
 
 SignalsDeferred::~SignalsDeferred() {
     gDeferring.store(false);
+    gCommitMutex.unlock();
     if (const int signalNumber = gDeferredSignal.exchange(0)) removeAll(signalNumber);
 }
 

@@ -11,9 +11,24 @@ namespace inkgraph {
 void registerTemporary(const std::filesystem::path& path);
 /** Forgets it: it was renamed into place or removed. */
 void forgetTemporary(const std::filesystem::path& path);
-/** Installs the handlers (idempotent); a signal then removes what is registered and ends the process as the signal
- *  would have. SIGXFSZ is ignored, so a write past the file-size limit fails with EFBIG and is reported. */
+/** Installs the handling (idempotent): SIGINT, SIGTERM and SIGHUP are blocked in the calling thread and so in every
+ *  thread it starts later, and a thread of their own waits for them (sigwait). A signal then waits for a commit in
+ *  progress (SignalsDeferred) and for a file being created and registered (TemporaryCreation), removes what is
+ *  registered and ends the process as the signal would have, holding the registry so no thread creates a file after
+ *  the sweep. Threads that do not block them (started before the call) have a handler that does the same as well as
+ *  a signal handler can. Call it before the process starts threads (the command line does, first thing). SIGXFSZ is
+ *  ignored, so a write past the file-size limit fails with EFBIG and is reported. */
 void removeTemporariesOnSignals();
+
+/** Held while a temporary file or folder is created and registered (open, link or mkdir, then registerTemporary()): a
+ *  signal's removal waits for it, so a file made just before the signal is never left behind unregistered. */
+class TemporaryCreation {
+public:
+    TemporaryCreation();
+    ~TemporaryCreation();
+    TemporaryCreation(const TemporaryCreation&) = delete;
+    TemporaryCreation& operator=(const TemporaryCreation&) = delete;
+};
 
 /** While one lives, SIGINT, SIGTERM and SIGHUP wait, in whichever thread they land: the output commit runs as a whole,
  *  then a signal that came meanwhile removes what is still registered and ends the process as it would have. */
