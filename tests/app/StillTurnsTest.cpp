@@ -46,29 +46,44 @@ TEST(StillTurns, AStillThatHoldsItsTurnEntersAgainAtOnceAndOnlyItsOwnLeaveCounts
     EXPECT_FALSE(turns.isDue(2));
 }
 
+/** How many threads hold a turn at once, at most: each holder stays `stay` inside. */
+class Holders {
+public:
+    void holdFor(std::chrono::microseconds stay) {
+        {
+            const std::lock_guard<std::mutex> lock(mMutex);
+            mMost = std::max(mMost, ++mInside);
+        }
+        std::this_thread::sleep_for(stay);
+        const std::lock_guard<std::mutex> lock(mMutex);
+        --mInside;
+    }
+    int most() {
+        const std::lock_guard<std::mutex> lock(mMutex);
+        return mMost;
+    }
+
+private:
+    std::mutex mMutex;
+    int mInside = 0;
+    int mMost = 0;
+};
+
 TEST(StillTurns, AStopLetsEveryWaiterThroughOneAtATimeAndKeepsTheFirstError) {
     StillTurns turns;
     std::vector<std::thread> threads;
-    std::mutex mutex;
-    int inside = 0;
-    int most = 0;
+    Holders holders;
     // Stills 3 and 4 wait for still 0, which is never drawn: only the stop lets them through.
     for (const std::size_t still : {3, 4})
         threads.emplace_back([&, still] {
             const StillTurn turn(&turns, still);
-            {
-                const std::lock_guard<std::mutex> lock(mutex);
-                most = std::max(most, ++inside);
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(5));
-            const std::lock_guard<std::mutex> lock(mutex);
-            --inside;
+            holders.holdFor(std::chrono::milliseconds(5));
         });
     const auto first = std::make_exception_ptr(std::runtime_error("first"));
     EXPECT_TRUE(turns.stop(first));
     EXPECT_FALSE(turns.stop(std::make_exception_ptr(std::runtime_error("second"))));
     for (std::thread& thread : threads) thread.join();
-    EXPECT_EQ(most, 1) << "one holder at a time, also after the stop";
+    EXPECT_EQ(holders.most(), 1) << "one holder at a time, also after the stop";
     EXPECT_TRUE(turns.stopped());
     EXPECT_EQ(turns.firstError(), first);
     EXPECT_TRUE(turns.stop(first)) << "the kept error given again is still the first";
@@ -80,25 +95,17 @@ TEST(StillTurns, TwoThreadsAskingForOneNumberTakeItInTurn) {
     StillTurns turns;
     turns.stop();
     constexpr std::size_t kTellers = 99;
-    std::mutex mutex;
-    int inside = 0;
-    int most = 0;
+    Holders holders;
     std::vector<std::thread> threads;
     for (int thread = 0; thread < 4; ++thread)
         threads.emplace_back([&] {
             for (int told = 0; told < 50; ++told) {
                 const StillTurn turn(&turns, kTellers);
-                {
-                    const std::lock_guard<std::mutex> lock(mutex);
-                    most = std::max(most, ++inside);
-                }
-                std::this_thread::sleep_for(std::chrono::microseconds(200));
-                const std::lock_guard<std::mutex> lock(mutex);
-                --inside;
+                holders.holdFor(std::chrono::microseconds(200));
             }
         });
     for (std::thread& thread : threads) thread.join();
-    EXPECT_EQ(most, 1);
+    EXPECT_EQ(holders.most(), 1);
 }
 
 } // namespace
