@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <istream>
 #include <map>
@@ -23,23 +24,33 @@ namespace {
 /** A list is text, one path a line: 16 MiB is some 100 000 models, far more than one process should take. */
 constexpr std::size_t kMaxListBytes = std::size_t(16) << 20;
 
-std::string listText(const std::string& listPath, std::istream& standardInput) {
-    if (listPath != "-") {
-        try {
-            return readInputBytes(listPath, kMaxListBytes, "--list");
-        } catch (const FileError& error) {
-            throw UsageError(error.what());
-        }
-    }
+/** A list read from a stream to its end: at most kMaxListBytes. `shownName`: "standard input" or the quoted path. */
+std::string streamText(std::istream& stream, const std::string& shownName) {
     std::string text;
     char buffer[65536];
-    while (standardInput.read(buffer, sizeof buffer) || standardInput.gcount() > 0) {
-        text.append(buffer, std::size_t(standardInput.gcount()));
+    while (stream.read(buffer, sizeof buffer) || stream.gcount() > 0) {
+        text.append(buffer, std::size_t(stream.gcount()));
         if (text.size() > kMaxListBytes)
-            throw UsageError("--list: standard input holds more than " + std::to_string(kMaxListBytes >> 20) +
+            throw UsageError("--list: " + shownName + " holds more than " + std::to_string(kMaxListBytes >> 20) +
                              " MiB; split the list");
     }
     return text;
+}
+
+std::string listText(const std::string& listPath, std::istream& standardInput) {
+    if (listPath == "-") return streamText(standardInput, "standard input");
+    // A pipe is read as standard input is: the shell's `--list <(find models -name '*.obj')` names one.
+    std::error_code statusError;
+    if (std::filesystem::status(listPath, statusError).type() == std::filesystem::file_type::fifo) {
+        std::ifstream pipe(listPath, std::ios::binary);
+        if (!pipe) throw UsageError("--list: '" + listPath + "': cannot open the pipe for reading");
+        return streamText(pipe, "'" + listPath + "'");
+    }
+    try {
+        return readInputBytes(listPath, kMaxListBytes, "--list");
+    } catch (const FileError& error) {
+        throw UsageError(error.what());
+    }
 }
 
 std::string trimmed(const std::string& text) {

@@ -47,8 +47,8 @@ struct BatchStill {
 
 /** The MODEL arguments, then --list's lines (blank lines and lines starting with '#' skipped, surrounding spaces
  *  trimmed, relative paths taken from the current folder like `tar -T`), then the --shard share. `standardInput`
- *  is read for `--list -`. Throws UsageError naming --list and the file (and line) for an unreadable list, one over
- *  16 MiB, a line with a NUL byte, or a list of no models. */
+ *  is read for `--list -`, a pipe (`--list <(...)`) as it comes. Throws UsageError naming --list and the file (and
+ *  line) for an unreadable list, one over 16 MiB, a line with a NUL byte, or a list of no models. */
 BatchList batchList(const RenderOptions& options, std::istream& standardInput);
 
 /** The most stills one process renders (its share of the models times --views): each is held from the start

@@ -6,11 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
 #include <string>
+#include <thread>
 
 namespace inkgraph {
 namespace {
@@ -68,6 +71,19 @@ TEST_F(BatchListFile, ListLinesFollowTheArgumentsSkippingCommentsAndBlanks) {
     EXPECT_TRUE(list.isBatch);
     EXPECT_EQ(list.total, 4u);
     EXPECT_EQ(pathsOf(list), std::vector<std::string>({"first.obj", "b.obj", "c.stl", "sub dir/e f.glb"}));
+}
+
+TEST_F(BatchListFile, AListFromAPipeIsReadAsStandardInputIs) {
+    // The shell's `--list <(find models -name '*.obj')` names a pipe (/dev/fd/63), not a regular file.
+    const fs::path pipe = directory / "list.fifo";
+    ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+    std::thread writer([&pipe] { std::ofstream(pipe) << "# found\na.obj\nb.glb\n"; });
+    RenderOptions options;
+    options.listPath = pipe.string();
+    std::istringstream none;
+    const BatchList list = batchList(options, none);
+    writer.join();
+    EXPECT_EQ(pathsOf(list), std::vector<std::string>({"a.obj", "b.glb"}));
 }
 
 TEST_F(BatchListFile, AListOfOneModelIsStillABatch) {
