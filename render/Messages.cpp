@@ -30,7 +30,25 @@ std::string shortened(const std::string& quoted) {
 
 } // namespace
 
-std::string boundedMessage(const std::string& message) {
+std::string printableText(const std::string& text) {
+    static const char kDigits[] = "0123456789abcdef";
+    std::string printable;
+    printable.reserve(text.size());
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if ((byte < 0x20 && c != '\n' && c != '\t') || byte == 0x7f) {
+            printable += "\\x";
+            printable += kDigits[byte >> 4];
+            printable += kDigits[byte & 15];
+        } else {
+            printable += c;
+        }
+    }
+    return printable;
+}
+
+std::string boundedMessage(const std::string& text) {
+    const std::string message = printableText(text);
     if (message.size() <= kMessageByteLimit) return message;
     std::string bounded;
     std::size_t position = 0;

@@ -1,4 +1,5 @@
-// boundedMessage() (render/Messages.h): every message the user reads is at most 2000 bytes, whatever it quotes.
+// boundedMessage() (render/Messages.h): every message the user reads is at most 2000 bytes, whatever it quotes, and
+// shows control characters instead of sending them to the terminal.
 #include "render/Messages.h"
 
 #include <gtest/gtest.h>
@@ -7,6 +8,14 @@
 
 namespace inkgraph {
 namespace {
+
+TEST(Messages, ControlCharactersAreShownNotSent) {
+    // A list line or a mesh name with a terminal's escape sequences (clear the screen, red, the bell) is shown as
+    // text; line breaks and tabs, which messages use, stay; UTF-8 stays.
+    EXPECT_EQ(boundedMessage("inkgraph: [1/1] 'x\x1b[2J\x1b[31mred\x07\x7f\r.obj' failed: caf\xc3\xa9\tok\n"),
+              "inkgraph: [1/1] 'x\\x1b[2J\\x1b[31mred\\x07\\x7f\\x0d.obj' failed: caf\xc3\xa9\tok\n");
+    EXPECT_EQ(printableText(std::string("a\0b", 3)), "a\\x00b");
+}
 
 TEST(Messages, AMessageThatFitsIsUnchanged) {
     const std::string message = "loadScene(): 'model.obj': line 3: " + std::string(1500, 'x');
