@@ -18,6 +18,8 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <sstream>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -36,6 +38,19 @@ std::string stillLabel(const BatchStill& still, const RenderOptions& options) {
         label += " view " + view;
     }
     return label;
+}
+
+/** "; 3 failed: 'a.obj', 'b.obj', 'c.obj'" for the summary line, or "" when none failed. A data set's batch may fail
+ *  by the thousand (a folder of broken files): the first kFailedStillsNamed are named, the rest counted, as each
+ *  failure's own line above has named it already. */
+std::string failedStillsText(const std::vector<std::string>& failed) {
+    constexpr std::size_t kFailedStillsNamed = 10;
+    if (failed.empty()) return "";
+    std::string text = "; " + std::to_string(failed.size()) + " failed:";
+    const std::size_t named = std::min(failed.size(), kFailedStillsNamed);
+    for (std::size_t i = 0; i < named; ++i) text += (i == 0 ? " " : ", ") + failed[i];
+    if (failed.size() > named) text += " and " + std::to_string(failed.size() - named) + " more (named above)";
+    return text;
 }
 
 /** A still left to render, known before the first so each still can name the next (its model then loads while this
@@ -259,18 +274,16 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     }
     if (dataset) dataset->finish(log);
     if (!options.quiet || !failed.empty()) {
-        log << "inkgraph: rendered " << stills.size() - failed.size() - skipped << " of " << stills.size();
+        std::ostringstream summary;
+        summary << "inkgraph: rendered " << stills.size() - failed.size() - skipped << " of " << stills.size();
         if (options.viewsGiven)
-            log << " stills (" << list.models.size() << (list.models.size() == 1 ? " model x " : " models x ")
-                << options.viewSampling.count << (options.viewSampling.count == 1 ? " view)" : " views)");
+            summary << " stills (" << list.models.size() << (list.models.size() == 1 ? " model x " : " models x ")
+                    << options.viewSampling.count << (options.viewSampling.count == 1 ? " view)" : " views)");
         else
-            log << " models";
-        log << share << " in " << std::fixed << std::setprecision(1) << millisecondsSince(batchStart) / 1000.0 << " s";
-        if (!failed.empty()) {
-            log << "; " << failed.size() << " failed:";
-            for (std::size_t i = 0; i < failed.size(); ++i) log << (i == 0 ? " " : ", ") << failed[i];
-        }
-        log << "\n";
+            summary << " models";
+        summary << share << " in " << std::fixed << std::setprecision(1) << millisecondsSince(batchStart) / 1000.0
+                << " s" << failedStillsText(failed);
+        log << boundedMessage(summary.str()) + "\n"; // one write, one line
     }
     return exitCode;
 }

@@ -124,6 +124,27 @@ TEST_F(Cli, BatchGoesOnPastABadModelAndExitsWithItsCode) {
     EXPECT_NE(result.err.find("1 failed: 'broken.obj'"), std::string::npos) << result.err;
 }
 
+TEST_F(Cli, TheSummaryNamesTheFirstTenFailedStillsAndCountsTheRest) {
+    // A folder of broken files fails by the thousand: the summary stays one short line, as each failure has its own.
+    std::ofstream list(directory / "models.txt");
+    for (int i = 1; i <= 13; ++i) {
+        const std::string name = "broken-" + std::string(i < 10 ? "0" : "") + std::to_string(i) + ".obj";
+        std::ofstream(directory / name) << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+        list << name << "\n";
+    }
+    list.close();
+    const CliRun result = run("render --list models.txt -o '{name}.png'" + kLook);
+    EXPECT_EQ(result.exitCode, 3) << result.err;
+    EXPECT_NE(result.err.find("[13/13] 'broken-13.obj' failed: loadScene()"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("rendered 0 of 13 models in"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("; 13 failed: 'broken-01.obj', 'broken-02.obj', 'broken-03.obj', 'broken-04.obj', "
+                              "'broken-05.obj', 'broken-06.obj', 'broken-07.obj', 'broken-08.obj', 'broken-09.obj', "
+                              "'broken-10.obj' and 3 more (named above)\n"),
+              std::string::npos)
+        << result.err;
+    EXPECT_EQ(result.err.find("'broken-11.obj' and"), std::string::npos) << result.err;
+}
+
 TEST_F(Cli, ABatchStoppedByALaterStillKeepsTheStillsBeforeIt) {
     // Each still's picture is encoded while the next renders and is committed after it (app/Render.h): a later still
     // that stops the batch (a usage error, not bad input) must not take the earlier still's outputs with it.
