@@ -1,5 +1,7 @@
 #include "render/BackgroundThreads.h"
+#include "render/CrashReport.h"
 #include "app/Cli.h"
+#include "app/Version.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -56,6 +58,9 @@ int main(int argc, char** argv) {
     // memory (docs/performance.md).
     mallopt(M_MMAP_THRESHOLD, 32 << 20);
     mallopt(M_TRIM_THRESHOLD, 256 << 20);
+#endif
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__) // the sanitizers report crashes themselves
+    inkgraph::reportCrashes(inkgraph::versionLine().c_str());
 #endif
     const int exitCode = inkgraph::runCommandLine(argc, argv, std::cout, std::cerr);
     // Every output is closed and renamed by now. Leaving without static destructors means an early error does not

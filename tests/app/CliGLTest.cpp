@@ -1,5 +1,6 @@
 // The real `inkgraph` executable as a user runs it: dump and read back, stats, exit codes, messages, and no
 // half-written files. Needs a GL context (llvmpipe in CI) for the rendering cases.
+#include "app/Version.h"
 #include "render/ImageFiles.h"
 #include "scene/mesh/Procedural.h"
 #include "CliTestSupport.h"
@@ -22,6 +23,8 @@
 #include <set>
 #include <sstream>
 
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace inkgraph {
@@ -1186,6 +1189,40 @@ TEST_F(Cli, MsaaShadesForwardSaysSoAndIsCappedAtTheDriversSamples) {
                                  "\\(GL_MAX_SAMPLES\\)\n");
         EXPECT_TRUE(std::regex_search(eight.err, refusal)) << eight.err;
         EXPECT_FALSE(fs::exists(directory / "eight.png"));
+    }
+}
+
+TEST_F(Cli, ACrashTellsTheSignalTheBuildAndTheStackThenEndsByTheSignal) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "a sanitized build reports crashes through its sanitizer: app/main.cpp installs no report there";
+#endif
+    // No input crashes the program (tests/fuzz, the bad-input matrix), so the signal is sent as a fault would raise
+    // it, while the run waits for its --list on a FIFO: main() has installed the report before it reads anything.
+    ASSERT_EQ(::mkfifo((directory / "list").c_str(), 0600), 0);
+    for (const auto& [signal, name] :
+         {std::pair{"SEGV", "SIGSEGV (segmentation fault)"}, std::pair{"ABRT", "SIGABRT (aborted)"}}) {
+        SCOPED_TRACE(name);
+        // Opening the FIFO to write waits until the run has opened it to read. No core file (ulimit): the test
+        // checks that the run left nothing in its folder.
+        std::ofstream(directory / "crash.sh")
+            << "ulimit -c 0\nLP_NUM_THREADS=1 " << test::shellQuoted(INKGRAPH_EXECUTABLE)
+            << " render --list list -o '{name}.png' 2> err.txt &\npid=$!\nexec 3> list\nkill -" << signal
+            << " $pid\nwait $pid\necho $? > status.txt\n";
+        double peakMib = 0.0;
+        ASSERT_EQ(test::runShell("cd " + test::shellQuoted(directory) + " && timeout 120 bash crash.sh", peakMib), 0);
+        const int expectedStatus = 128 + (std::string(signal) == "SEGV" ? SIGSEGV : SIGABRT);
+        EXPECT_EQ(readText(directory / "status.txt"), std::to_string(expectedStatus) + "\n");
+        const std::string err = readText(directory / "err.txt");
+        EXPECT_NE(err.find("inkgraph: internal error: " + std::string(name) + " in " + versionLine() +
+                           ". This is a bug: please report it with the command that caused it and the lines below.\n"),
+                  std::string::npos)
+            << err;
+        // The stack, as FILE(+OFFSET)[ADDRESS] lines: the handler's frame in the executable, and libc's below it.
+        const std::regex frame(R"(\n[^\n]*inkgraph\(\+0x[0-9a-f]+\)\[0x[0-9a-f]+\]\n)");
+        EXPECT_TRUE(std::regex_search(err, frame)) << err;
+        EXPECT_NE(err.find("libc.so"), std::string::npos) << err;
+        EXPECT_NE(err.find("`addr2line -Cfe FILE OFFSET` names its function)\n"), std::string::npos) << err;
+        EXPECT_EQ(listFiles(directory), (std::vector<std::string>{"crash.sh", "err.txt", "list", "status.txt"}));
     }
 }
 
