@@ -1,5 +1,7 @@
 #include "render/CrashReport.h"
 
+#include "render/TemporaryFiles.h"
+
 #include <execinfo.h>
 #include <signal.h>
 #include <time.h>
@@ -34,22 +36,12 @@ void writeText(const char* text) {
     }
 }
 
-[[noreturn]] void endBy(int signalNumber) {
-    ::signal(signalNumber, SIG_DFL);
-    sigset_t only;
-    sigemptyset(&only);
-    sigaddset(&only, signalNumber);
-    ::pthread_sigmask(SIG_UNBLOCK, &only, nullptr);
-    ::raise(signalNumber);
-    ::_exit(128 + signalNumber); // not reached: the default action of these signals ends the process
-}
-
 void reportAndEnd(int signalNumber) {
     if (gReporting.exchange(true)) {
         // Another thread crashed first and is reporting: its report ends the process (or SIGALRM does).
         const timespec second{1, 0};
         for (unsigned i = 0; i <= kReportSeconds; ++i) ::nanosleep(&second, nullptr);
-        endBy(signalNumber);
+        endBySignal(signalNumber);
     }
     // Unwinding can block for good (a crash inside the dynamic loader holds the lock it needs): SIGALRM's default
     // action ends the process then, so a crash never becomes a hang.
@@ -64,7 +56,7 @@ void reportAndEnd(int signalNumber) {
     const int count = ::backtrace(frames, kMaxFrames);
     ::backtrace_symbols_fd(frames, count, STDERR_FILENO);
     writeText("inkgraph: (each line is FILE(+OFFSET): `addr2line -Cfe FILE OFFSET` names its function)\n");
-    endBy(signalNumber);
+    endBySignal(signalNumber);
 }
 
 } // namespace

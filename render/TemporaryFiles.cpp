@@ -47,13 +47,7 @@ std::atomic<int> gDeferredSignal{0};
         if (::unlink(gEntries[i].path) != 0 && errno == EISDIR) ::rmdir(gEntries[i].path);
         ::rmdir(gEntries[i].path); // folders registered before their files are removed after them
     }
-    ::signal(signalNumber, SIG_DFL);
-    sigset_t only;
-    sigemptyset(&only);
-    sigaddset(&only, signalNumber);
-    ::pthread_sigmask(SIG_UNBLOCK, &only, nullptr);
-    ::raise(signalNumber);
-    ::_exit(128 + signalNumber); // not reached: the default action of these signals ends the process
+    endBySignal(signalNumber);
 }
 
 /** The handler, for a thread that does not block the signals (one started before removeTemporariesOnSignals()). */
@@ -80,6 +74,16 @@ constexpr int kHandledSignals[] = {SIGINT, SIGTERM, SIGHUP};
 }
 
 } // namespace
+
+void endBySignal(int signalNumber) {
+    ::signal(signalNumber, SIG_DFL);
+    sigset_t only;
+    sigemptyset(&only);
+    sigaddset(&only, signalNumber);
+    ::pthread_sigmask(SIG_UNBLOCK, &only, nullptr);
+    ::raise(signalNumber);
+    ::_exit(128 + signalNumber); // not reached: the default action of the signals we take ends the process
+}
 
 TemporaryCreation::TemporaryCreation() { gRegistryMutex.lock(); }
 TemporaryCreation::~TemporaryCreation() { gRegistryMutex.unlock(); }

@@ -20,6 +20,10 @@ void forgetTemporary(const std::filesystem::path& path);
  *  ignored, so a write past the file-size limit fails with EFBIG and is reported. */
 void removeTemporariesOnSignals();
 
+/** Ends the process as `signalNumber`'s default action does (its exit status, its core dump), from a handler or any
+ *  thread: the default restored, the signal unblocked in this thread and raised. Async-signal-safe. */
+[[noreturn]] void endBySignal(int signalNumber);
+
 /** Held while a temporary file or folder is created and registered (open, link or mkdir, then registerTemporary()): a
  *  signal's removal waits for it, so a file made just before the signal is never left behind unregistered. */
 class TemporaryCreation {
