@@ -36,6 +36,17 @@ void writeText(const char* text) {
     }
 }
 
+const char* crashSignalName(int signalNumber) {
+    switch (signalNumber) {
+    case SIGSEGV: return "SIGSEGV (segmentation fault)";
+    case SIGBUS: return "SIGBUS (bus error)";
+    case SIGFPE: return "SIGFPE (arithmetic exception)";
+    case SIGILL: return "SIGILL (illegal instruction)";
+    case SIGABRT: return "SIGABRT (aborted)";
+    default: return "a signal"; // not installed for any other
+    }
+}
+
 void reportAndEnd(int signalNumber) {
     if (gReporting.exchange(true)) {
         // Another thread crashed first and is reporting: its report ends the process (or SIGALRM does).
@@ -46,9 +57,8 @@ void reportAndEnd(int signalNumber) {
     // Unwinding can block for good (a crash inside the dynamic loader holds the lock it needs): SIGALRM's default
     // action ends the process then, so a crash never becomes a hang.
     ::alarm(kReportSeconds);
-    char number[16];
     writeText("\ninkgraph: internal error: ");
-    writeText(crashSignalName(signalNumber, number));
+    writeText(crashSignalName(signalNumber));
     writeText(" in ");
     writeText(gBuild);
     writeText(". This is a bug: please report it with the command that caused it and the lines below.\n");
@@ -60,28 +70,6 @@ void reportAndEnd(int signalNumber) {
 }
 
 } // namespace
-
-const char* crashSignalName(int signalNumber, char* buffer) {
-    switch (signalNumber) {
-    case SIGSEGV: return "SIGSEGV (segmentation fault)";
-    case SIGBUS: return "SIGBUS (bus error)";
-    case SIGFPE: return "SIGFPE (arithmetic exception)";
-    case SIGILL: return "SIGILL (illegal instruction)";
-    case SIGABRT: return "SIGABRT (aborted)";
-    default: break;
-    }
-    char digits[12];
-    int length = 0;
-    unsigned value = signalNumber < 0 ? 0u : unsigned(signalNumber);
-    do {
-        digits[length++] = char('0' + value % 10);
-        value /= 10;
-    } while (value > 0 && length < 11);
-    std::memcpy(buffer, "signal ", 7);
-    for (int i = 0; i < length; ++i) buffer[7 + i] = digits[length - 1 - i];
-    buffer[7 + length] = '\0';
-    return buffer;
-}
 
 void reportCrashes(const char* build) {
     static std::atomic<bool> installed{false};
@@ -96,9 +84,11 @@ void reportCrashes(const char* build) {
     ::sigaltstack(&alternate, nullptr);
     struct sigaction action {};
     action.sa_handler = reportAndEnd;
+    // Every crash signal blocked while a thread reports: a crash inside the report then takes the signal's default
+    // action at once (the kernel does not hold back a fault's signal), while another thread's crash waits.
     sigemptyset(&action.sa_mask);
-    // SA_RESETHAND: a crash inside the report takes the default action at once.
-    action.sa_flags = SA_ONSTACK | SA_RESETHAND;
+    for (const int signalNumber : kCrashSignals) sigaddset(&action.sa_mask, signalNumber);
+    action.sa_flags = SA_ONSTACK;
     for (const int signalNumber : kCrashSignals) ::sigaction(signalNumber, &action, nullptr);
 }
 

@@ -14,8 +14,4 @@ namespace inkgraph {
  *  waits for that report. */
 void reportCrashes(const char* build);
 
-/** "SIGSEGV (segmentation fault)" for the signals reportCrashes() takes, "signal N" otherwise; async-signal-safe
- *  (N is written into `buffer`, which must hold 16 bytes). */
-const char* crashSignalName(int signalNumber, char* buffer);
-
 } // namespace inkgraph
