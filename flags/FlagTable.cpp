@@ -109,11 +109,17 @@ Orbit parseOrbit(const std::string& flag, const std::string& text) {
     return orbit;
 }
 
+/** Decimal digits only: a count written "16.0" or "1e1" is taken for a typing slip, not read as 16 or 10. */
+bool isDigits(const std::string& text) {
+    return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+}
+
 void parseSize(const std::string& text, int& width, int& height) {
     const auto cross = text.find('x');
     if (cross == std::string::npos) throw UsageError("--size: expected WxH such as 1024x768, got '" + text + "'");
-    const double w = parseNumber("--size", text.substr(0, cross));
-    const double h = parseNumber("--size", text.substr(cross + 1));
+    const std::string widthText = text.substr(0, cross), heightText = text.substr(cross + 1);
+    const double w = isDigits(widthText) ? parseNumber("--size", widthText) : std::nan(""); // refused below
+    const double h = isDigits(heightText) ? parseNumber("--size", heightText) : std::nan("");
     if (w != std::floor(w) || h != std::floor(h) || w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
         throw UsageError("--size: width and height must be whole numbers from 1 to " + std::to_string(kMaxImageSide) +
                          ", got '" + text + "'");
@@ -139,8 +145,8 @@ Value parseChoice(const std::string& flag, const std::string& text,
 }
 
 int parseWholeNumber(const std::string& flag, const std::string& text, int low, int high) {
-    const double value = parseNumber(flag, text);
-    if (value != std::floor(value) || value < low || value > high)
+    const double value = isDigits(text) ? parseNumber(flag, text) : std::nan(""); // refused below
+    if (!(value >= low && value <= high) || value != std::floor(value))
         throw UsageError(flag + ": expected a whole number from " + std::to_string(low) + " to " +
                          std::to_string(high) + ", got '" + text + "'");
     return static_cast<int>(value);

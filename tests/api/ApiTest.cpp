@@ -163,7 +163,7 @@ TEST(ApiLook, RefusesAFlagThatIsNotTheLooksNamingItsPlace) {
 TEST(ApiLook, RefusesABadValueInTheCommandLinesWords) {
     const ig::Error error = errorOf([] { ig::Look::fromArguments({"--bands", "many"}); });
     EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
-    EXPECT_STREQ(error.what(), "Look::fromArguments(): --bands: 'many' is not a finite number");
+    EXPECT_STREQ(error.what(), "Look::fromArguments(): --bands: expected a whole number from 2 to 256, got 'many'");
     const std::string lines = errorOf([] { ig::Look().set("--lines", "contour,sketchy"); }).what();
     EXPECT_EQ(lines.rfind("Look::set(): --lines: unknown line type 'sketchy' (available: ", 0), 0u) << lines;
     EXPECT_STREQ(errorOf([] { ig::Look().set("--bands", ""); }).what(), "Look::set(): --bands: empty value");

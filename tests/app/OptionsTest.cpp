@@ -521,6 +521,23 @@ TEST(Options, EveryValue) {
     EXPECT_TRUE(options.quiet);
 }
 
+TEST(Options, WholeNumbersAreWrittenInDigitsOnly) {
+    // "16.0" or "1e1" for a count is a slip (a float pasted from a script), refused rather than read as 16 or 10.
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--size", "1e3x64"}),
+              "--size: width and height must be whole numbers from 1 to 16384, got '1e3x64'");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--size", "64x64.0"}),
+              "--size: width and height must be whole numbers from 1 to 16384, got '64x64.0'");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--size", "+64x64"}),
+              "--size: width and height must be whole numbers from 1 to 16384, got '+64x64'");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--supersample", "2.0"}),
+              "--supersample: expected a whole number from 1 to 8, got '2.0'");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--jobs", "1e1"}),
+              "--jobs: expected a whole number from 0 to 64, got '1e1'");
+    // Digits still read as before, leading zeros too.
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--size", "0064x32", "--supersample", "02"}).look.supersample, 2);
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--size", "0064x32"}).width, 64);
+}
+
 TEST(Options, MalformedValuesNameTheFlag) {
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--size", "100"}).find("--size"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--size", "0x10"}).find("--size"), std::string::npos);
