@@ -301,7 +301,7 @@ struct Renderer::Impl {
 
         std::ostringstream log; // the command line's lines; the library returns the warnings as records
         const StillLog stillLog{log, false, true};
-        const std::unique_ptr<PreparedStill> still = renderer->load(std::move(request), stillLog);
+        std::unique_ptr<PreparedStill> still = renderer->load(std::move(request), stillLog);
         try {
             renderer->plan(*still, stillLog);
         } catch (const UsageError&) {
@@ -312,7 +312,25 @@ struct Renderer::Impl {
             throw UsageError("Renderer::render(): 'strokes' needs a look that draws lines (Look::lines)");
         budgetStill(*still);
         holdContext();
-        StillResult result = renderer->execute(*still, stillLog);
+        StillResult result;
+        try {
+            result = renderer->execute(*still, stillLog);
+        } catch (...) {
+            const std::unique_lock<std::mutex> driver = renderer->driverTurn(); // its GL objects go in a turn too
+            still.reset();
+            throw;
+        }
+        // The read-backs below, and the still's GL objects freed at the end, in a turn at a software driver
+        // (StillRenderer::driverTurn()): llvmpipe is not safe with several renderers' contexts working at once.
+        const std::unique_lock<std::mutex> driver = renderer->driverTurn();
+        struct FreedInTurn {
+            StillResult& result;
+            std::unique_ptr<PreparedStill>& still;
+            ~FreedInTurn() {
+                result = StillResult();
+                still.reset();
+            }
+        } freedInTurn{result, still};
 
         auto made = std::make_shared<Still::Impl>();
         ResourceStore& store = result.store();

@@ -2,11 +2,13 @@
 
 #include "graph/Milliseconds.h"
 #include "render/BackgroundThreads.h"
+#include "render/MemoryBudget.h"
 #include "render/Messages.h"
 
 #include "app/Batch.h"
 #include "app/Cli.h"
 #include "app/Dataset.h"
+#include "app/MemoryLedger.h"
 #include "app/Render.h"
 #include "scene/Scene.h"
 
@@ -91,7 +93,8 @@ struct BatchShared {
     DatasetRun* dataset;
     std::vector<std::string>& failed;
     int& exitCode;
-    StillTurns* turns; ///< several drawing threads: the order the stills are told in; else null
+    StillTurns* turns;    ///< several drawing threads: the order the stills are told in; else null
+    MemoryLedger* ledger; ///< several drawing threads: the memory limit they share; else null
 };
 
 /** An error after the one that stopped the batch, told (one thread at a time: the turns have stopped). */
@@ -117,6 +120,15 @@ void finishAfterError(RenderSession& session, const BatchShared& batch) {
         }
     }
 }
+
+/** MemoryLedger::pass() for a still when render() returns or throws (nothing without a ledger, or once let in). */
+struct PassedOnLeaving {
+    MemoryLedger* ledger;
+    std::size_t still;
+    ~PassedOnLeaving() {
+        if (ledger) ledger->pass(still);
+    }
+};
 
 /** Renders the stills first, first + step, ... of `toRender` in `session` (each model's views one after the other),
  *  each still's post stage and writing overlapping the next stills' drawing, and finishes them all. Every still's
@@ -159,6 +171,8 @@ void renderShare(const BatchShared& batch, std::size_t first, std::size_t step, 
             callbacks.turns = batch.turns;
             callbacks.turn = k;
             const StillBatchPosition position{batchStill.model.position, batch.list.total};
+            // A still that fails before it draws, or draws nothing, lets the stills after it ask for memory.
+            const PassedOnLeaving passed{batch.ledger, k};
             session.render(still, &position, std::move(callbacks),
                            k + step < toRender.size() ? &toRender[k + step].options : nullptr);
         } catch (const SceneError& error) {
@@ -193,6 +207,8 @@ void renderInThreads(const BatchShared& shared, std::ostream& out, int drawThrea
     BatchShared batch = shared;
     batch.turns = &turns;
     const int threads = int(std::min<std::size_t>(std::size_t(drawThreads), batch.toRender.size()));
+    MemoryLedger ledger(memoryLimitOf(batch.options), threads, std::size_t(threads - 1) * extraContextBytes());
+    batch.ledger = &ledger;
     const int jobsEach = batch.options.jobs == 0 ? 0 : std::max(1, (batch.options.jobs + threads - 1) / threads);
     // The batch stops on the first error; any other is told, as the errors of the stills finished after it are.
     const auto stopBy = [&turns, &batch](std::exception_ptr error) {
@@ -200,7 +216,7 @@ void renderInThreads(const BatchShared& shared, std::ostream& out, int drawThrea
     };
     const auto draw = [&](std::size_t first) {
         try {
-            RenderSession session(out, batch.log, jobsEach, SessionShare{int(first), threads});
+            RenderSession session(out, batch.log, jobsEach, SessionShare{int(first), threads, &ledger});
             try {
                 renderShare(batch, first, std::size_t(threads), session);
             } catch (...) {
@@ -259,7 +275,7 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     std::vector<std::string> failed;
     std::size_t skipped = 0;
     const std::vector<StillToRender> toRender = stillsToRender(options, list, stills, dataset.get(), skipped);
-    const BatchShared batch{options, list, stills, toRender, log, dataset.get(), failed, exitCode, nullptr};
+    const BatchShared batch{options, list, stills, toRender, log, dataset.get(), failed, exitCode, nullptr, nullptr};
     // Several drawing threads only where each still draws: --print-plan's plans go to standard output in order.
     if (options.drawThreads > 1 && rendersImages(options) && !options.printPlan && toRender.size() > 1) {
         renderInThreads(batch, out, options.drawThreads);

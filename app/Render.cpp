@@ -86,6 +86,13 @@ std::unique_ptr<PreparedStill> RenderSession::loadWhileMakingContext(StillReques
     return still;
 }
 
+/** Frees what `owned` holds when it leaves its scope: declared after a lock, so the object goes while it is held. */
+template <typename T>
+struct FreedOnLeaving {
+    std::unique_ptr<T>& owned;
+    ~FreedOnLeaving() { owned.reset(); }
+};
+
 /** What the worker did for one still: its host tail, then its picture encoded when the picture was on the CPU. */
 struct RenderSession::TailOutcome {
     bool staged = false; ///< the -o file encoded and written beside its place (OutputSet::stageFinalImage()) here
@@ -114,16 +121,29 @@ struct RenderSession::PendingStill {
 };
 
 RenderSession::RenderSession(std::ostream& out, std::ostream& log, int jobs, SessionShare share)
-    : mOut(out), mLog(log), mJobs(jobs), mShare{share.index, std::max(share.count, 1)} {
+    : mOut(out), mLog(log), mJobs(jobs), mShare{share.index, std::max(share.count, 1), share.ledger} {
     mRenderer.tellsContext = mShare.index == 0;
 }
 
 RenderSession::~RenderSession() {
     // A batch stopped by an error: the stills in flight are dropped uncommitted, but their workers must end before
     // what they use is freed (each future's destructor waits), and their GL objects go while the context lives.
-    mPending.clear();
+    for (const auto& pending : mPending) pending->tail.wait();
+    {
+        const std::unique_lock<std::mutex> driver = mRenderer.driverTurn();
+        mPending.clear();
+    }
     if (mTidying.valid()) mTidying.wait();
     if (mPrefetch && mPrefetch->still.valid()) mPrefetch->still.wait();
+    if (mShare.ledger) {
+        // The other drawing threads' stills may have this session's memory once it is freed.
+        mPrefetch.reset();
+        try {
+            if (mRenderer.context()) mRenderer.dropFreeTextures();
+        } catch (...) { // the context goes with the renderer next, and its textures with it
+        }
+        mShare.ledger->update(mShare.index, {});
+    }
 }
 
 bool RenderSession::prefetches(const RenderOptions* next, bool renders) const {
@@ -162,6 +182,7 @@ StillReport RenderSession::render(const RenderOptions& options, const StillBatch
     try {
         return renderStill(options, batch, std::move(callbacks), next, log, stillLog, processStart);
     } catch (...) {
+        tellHoldings(); // a still let in that failed holds nothing now
         // An earlier still's commit failed, which stops the batch (its turns stopped in finishOldest()): that is the
         // error, and the stills in flight after it are the caller's to finish and tell, not to throw in its place.
         if (stillLog && mFinishingFailure && mFinishingFailure == std::current_exception()) {
@@ -253,11 +274,24 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
     const MemoryEstimate estimate = estimateStill(*still);
     const std::size_t neededBytes = estimate.total() - estimate.textures;
     const std::size_t heldBytes = estimate.scene + estimate.cpuImages + estimate.textures;
-    const std::size_t aheadBytes = mPrefetch ? heldBytes : 0; // the next model's size is not known yet: this one's
-    const std::size_t shareBytes = still->request.memoryLimitBytes / std::size_t(mShare.count);
-    while (!mPending.empty() && bytesInFlight() + aheadBytes + neededBytes > shareBytes) finishOldest();
+    mAheadBytes = mPrefetch ? heldBytes : 0; // the next model's size is not known yet: this one's
+    if (mShare.ledger) {
+        // While it waits it holds its model, loaded (its textures are decoded only when it draws).
+        waitForMemory(callbacks.turn, callbacks.turns, estimate.baseline, neededBytes - estimate.baseline,
+                      estimate.scene);
+    } else {
+        while (!mPending.empty() && bytesInFlight() + mAheadBytes + neededBytes > still->request.memoryLimitBytes)
+            finishOldest();
+    }
 
-    StillResult result = mRenderer.executeUntilHostTail(*still, log);
+    StillResult result;
+    try {
+        result = mRenderer.executeUntilHostTail(*still, log);
+    } catch (...) {
+        const std::unique_lock<std::mutex> driver = mRenderer.driverTurn(); // its GL objects go in a turn too
+        still.reset();
+        throw;
+    }
     auto pending = std::make_unique<PendingStill>();
     pending->options = options;
     pending->log = stillLog;
@@ -303,8 +337,52 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
         pending->tail = done.get_future();
     }
     mPending.push_back(std::move(pending));
+    // Handed over: its GL targets are back in the pool, which keeps them for the next still.
+    mPoolBytes = estimate.glTargets;
+    tellHoldings();
     if (batch == nullptr || mJobs == 0) finishPending();
     return report;
+}
+
+void RenderSession::tellHoldings(std::size_t waitingBytes) {
+    if (mShare.ledger == nullptr) return;
+    MemoryHoldings holdings;
+    holdings.working = bytesInFlight();
+    if (!mPending.empty()) holdings.earliestStill = mPending.front()->callbacks.turn;
+    holdings.sheddable = mPoolBytes + (mPrefetch ? mAheadBytes : 0);
+    holdings.waiting = waitingBytes;
+    mShare.ledger->update(mShare.index, holdings);
+}
+
+void RenderSession::waitForMemory(std::size_t turn, StillTurns* turns, std::size_t baselineBytes,
+                                  std::size_t drawingBytes, std::size_t waitingBytes) {
+    MemoryLedger& ledger = *mShare.ledger;
+    for (;;) {
+        if (turns && turns->stopped()) ledger.stop(); // the stills before this one may never ask
+        tellHoldings(waitingBytes);
+        MemoryHoldings drawing;
+        // This still's need counts its GL targets, which the pool's free textures become, and the model loading ahead.
+        drawing.working = bytesInFlight() + drawingBytes;
+        drawing.earliestStill = mPending.empty() ? turn : std::min(turn, mPending.front()->callbacks.turn);
+        drawing.sheddable = mPrefetch ? mAheadBytes : 0;
+        if (ledger.tryLetIn(turn, mShare.index, drawing, baselineBytes, !mPending.empty())) return;
+        if (!mPending.empty()) {
+            // The oldest of this session's stills comes before this one: it finishes in its turn, which cannot wait
+            // for this still (only stills before it hold memory this one waits for).
+            finishOldest();
+            continue;
+        }
+        if (ledger.shouldShed() && (mPoolBytes > 0 || mPrefetch)) {
+            // Another still before this one needs what this session keeps while it waits: the pool's textures go,
+            // and the model loaded ahead is dropped (its still loads it again when it draws).
+            mRenderer.dropFreeTextures();
+            mPoolBytes = 0;
+            if (mPrefetch && mPrefetch->still.valid()) mPrefetch->still.wait();
+            mPrefetch.reset();
+            continue;
+        }
+        ledger.waitForChange(mShare.index, std::chrono::milliseconds(20));
+    }
 }
 
 void RenderSession::tellLog(std::ostringstream* stillLog) {
@@ -329,10 +407,25 @@ void RenderSession::finishDueStills() {
 }
 
 void RenderSession::finishOldest() {
-    const std::unique_ptr<PendingStill> pending = std::move(mPending.front());
+    try {
+        finishOldestStill();
+    } catch (...) {
+        tellHoldings(); // its memory is freed either way
+        throw;
+    }
+    tellHoldings();
+}
+
+void RenderSession::finishOldestStill() {
+    std::unique_ptr<PendingStill> pending = std::move(mPending.front());
     mPending.pop_front();
     // Told and committed in its turn (several drawing threads), after every still before it.
     const StillTurn turn(pending->callbacks.turns, pending->callbacks.turn);
+    pending->tail.wait(); // its worker uses no GL: waited for before the driver's turn is taken
+    // The commit reads buffers back and the still's GL objects are freed: both in a turn at the driver
+    // (StillRenderer::driverTurn()), the still freed before the turn is let go of.
+    const std::unique_lock<std::mutex> driver = mRenderer.driverTurn();
+    const FreedOnLeaving<PendingStill> freed{pending};
     TailOutcome outcome;
     try {
         outcome = pending->tail.get();

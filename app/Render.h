@@ -8,6 +8,7 @@
 #include "render/StillRenderer.h"
 
 #include "app/OutputFiles.h"
+#include "app/MemoryLedger.h"
 #include "app/StillTurns.h"
 
 #include <nlohmann/json.hpp>
@@ -66,7 +67,10 @@ struct StillCallbacks {
 /** One of the sessions that draw a batch's stills at once, each on its own thread (--draw-threads). */
 struct SessionShare {
     int index = 0; ///< the first tells the driver's line ("inkgraph: llvmpipe ..."), once for the process
-    int count = 1; ///< each keeps its stills in flight within 1/count of the memory limit
+    int count = 1;
+    /** With several: the memory limit they share, each still let in, in the list's order, when it fits beside what
+     *  every session holds; null for one session, which keeps its own stills in flight within the limit. */
+    MemoryLedger* ledger = nullptr;
 };
 
 /** The stills of one process, in one StillRenderer (one GL context, every program compiled once), pipelined: while
@@ -128,8 +132,9 @@ private:
     /** Writes what a batch's still had to say (its warnings, buffered in `stillLog`) to the log, once; nothing for a
      *  still alone (null). */
     void tellLog(std::ostringstream* stillLog);
-    /** Finishes the oldest still in flight (finishPending()'s step). */
+    /** Finishes the oldest still in flight (finishPending()'s step), then tells the ledger what is left. */
     void finishOldest();
+    void finishOldestStill();
     /** With turns: finishes the oldest stills in flight while their post stage is done and their turn is due, so the
      *  other drawing threads' stills after them need not wait for this session's next limit. */
     void finishDueStills();
@@ -140,6 +145,13 @@ private:
     void commitFinished(PendingStill& pending, TailOutcome& outcome);
     /** The memory the stills in flight are estimated to hold (MemoryEstimate, less the model's textures). */
     std::size_t bytesInFlight() const;
+    /** With a ledger (several drawing threads): waits until `turn`'s still may draw, needing `drawingBytes` beyond
+     *  the process's `baselineBytes` and holding `waitingBytes` (its model) meanwhile; finishes this session's stills
+     *  in flight as they come due, and lets go of its pool and loaded-ahead model when a still before it needs them. */
+    void waitForMemory(std::size_t turn, StillTurns* turns, std::size_t baselineBytes, std::size_t drawingBytes,
+                       std::size_t waitingBytes);
+    /** Tells the ledger what this session holds between stills (`waitingBytes`: a loaded model waiting to draw). */
+    void tellHoldings(std::size_t waitingBytes = 0);
 
     std::ostream& mOut;
     std::ostream& mLog;
@@ -153,6 +165,8 @@ private:
     std::exception_ptr mFinishingFailure;
     /** The last committed still's OutputSet::removeReplaced(), on a thread of its own (commitFinished()). */
     std::future<void> mTidying;
+    std::size_t mPoolBytes = 0;  ///< the GL targets the renderer's pool keeps from the last still drawn (estimated)
+    std::size_t mAheadBytes = 0; ///< the model loading ahead (estimated as the still that started it)
 };
 
 /** Standard output that cannot be written (--print-plan > /dev/full, a closed pipe) fails the run: throws FileError. */

@@ -1011,9 +1011,9 @@ std::vector<Flag> makeFlags() {
                          "(default 1). On a GPU one thread leaves the GPU waiting while it plans, reads back\n"
                          "and hands each still on: more threads draw more stills at once. On llvmpipe, whose\n"
                          "rasterizers already use every core, more threads are slower. The files, progress lines and\n"
-                         "exit status are the same with any N; --jobs is shared among the threads, and each\n"
-                         "keeps its stills in flight within its share of the memory limit (a still larger than\n"
-                         "its share draws anyway: with one still near the limit, draw with one thread)",
+                         "exit status are the same with any N; --jobs is shared among the threads, and they\n"
+                         "share the memory limit: a still draws once it fits beside what every thread holds,\n"
+                         "in the list's order when memory is short",
                          [](const std::string& value, RenderOptions& options) {
                              options.drawThreads = parseWholeNumber("--draw-threads", value, 1, 16);
                          }));

@@ -18,6 +18,18 @@ GlTexture TexturePool::acquire(Format format, int width, int height, std::string
 
 void TexturePool::release(GlTexture texture) { mFree.push_back(std::move(texture)); }
 
+void TexturePool::returnFreeMemory() {
+    dropFree();
+    const GlTexture stand(Format::RGBA8, 1, 1, "released targets' stand-in");
+    GlFramebuffer framebuffer("released targets' stand-in");
+    framebuffer.attachColor(0, stand);
+    framebuffer.finish({0});
+    framebuffer.bind();
+    glClear(GL_COLOR_BUFFER_BIT);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glFinish();
+}
+
 GlBuffer TexturePool::acquireReadbackBuffer(std::size_t byteCount) {
     for (auto it = mFreeReadbackBuffers.begin(); it != mFreeReadbackBuffers.end(); ++it) {
         if (it->byteCount() == byteCount) {

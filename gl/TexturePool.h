@@ -25,6 +25,11 @@ public:
         mFree.clear();
         mFreeReadbackBuffers.clear();
     }
+    /** dropFree(), and the driver made to let go of them: Mesa keeps the last framebuffer's attachments referenced in
+     *  its state until something is drawn again, so deleting them frees nothing until then (an idle drawing thread of
+     *  a batch kept about 150 MiB that way at 2048x2048). A 1x1 target is cleared in their place, then the driver
+     *  finishes. On the thread that holds the context. */
+    void returnFreeMemory();
 
     std::size_t createdCount() const { return mCreatedCount; }
     std::size_t reusedCount() const { return mReusedCount; }

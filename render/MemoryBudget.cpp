@@ -29,6 +29,8 @@ constexpr std::size_t kBaselineBytes = 108 * kMiB;
 /** What the OpenImageIO module adds once loaded (render/ImageIoModule.h), for a run that writes another format than PNG
  *  or a dump: the same still as .exr peaked at 213-218 MiB. */
 constexpr std::size_t kImageIoModuleBytes = 116 * kMiB;
+/** Each GL context after the first: 10-11 MiB measured (extraContextBytes()), with room for the spread. */
+constexpr std::size_t kExtraContextBytes = 12 * kMiB;
 /** Per vertex: the loader's own bound (detail::MeshBudget), which covers the mesh and its vertex buffers. */
 constexpr std::size_t kBytesPerVertex = 96;
 /** Per triangle, with every line type: index buffers, the outline's shell, the mesh edges, curvature and what
@@ -170,6 +172,8 @@ std::string sizeText(std::size_t width, std::size_t height) {
 }
 
 } // namespace
+
+std::size_t extraContextBytes() { return kExtraContextBytes; }
 
 SceneSize sceneSizeOf(const Scene& scene) {
     return {scene.vertexCount(), scene.triangleCount(), estimatedTextureBytes(scene)};

@@ -157,9 +157,26 @@ void StillLog::warn(const std::string& modelPath, const std::string& warning) co
     log << boundedMessage("inkgraph: warning: " + (talks ? "" : "'" + modelPath + "': ") + warning) << "\n";
 }
 
+namespace {
+
+/** The one turn at a software driver for every renderer of the process (StillRenderer::driverTurn()). */
+std::mutex& softwareDriverMutex() {
+    static std::mutex mutex;
+    return mutex;
+}
+
+} // namespace
+
 StillRenderer::StillRenderer() { mShaders.keepPrograms(true); }
 
-StillRenderer::~StillRenderer() = default;
+StillRenderer::~StillRenderer() {
+    if (mContext) mTeardownTurn = driverTurn();
+}
+
+std::unique_lock<std::mutex> StillRenderer::driverTurn() const {
+    if (mContext && !mContext->isSoftware()) return {};
+    return std::unique_lock<std::mutex>(softwareDriverMutex());
+}
 
 std::unique_ptr<PreparedStill> StillRenderer::prepare(StillRequest request, const StillLog& log) {
     std::unique_ptr<PreparedStill> still = load(std::move(request), log);
@@ -259,6 +276,7 @@ void StillRenderer::buildGraph(PreparedStill& still) {
 
 void StillRenderer::makeContext(EglPlatform platform) {
     if (mContext) return;
+    const std::lock_guard<std::mutex> turn(softwareDriverMutex()); // the renderer is not known yet
     HeadlessContextOptions contextOptions;
     contextOptions.platform = platform;
     const auto contextStart = std::chrono::steady_clock::now();
@@ -267,6 +285,15 @@ void StillRenderer::makeContext(EglPlatform platform) {
 }
 
 StillResult StillRenderer::executeUntilHostTail(PreparedStill& still, const StillLog& log) {
+    makeContext(still.request.eglPlatform);
+    const std::unique_lock<std::mutex> turn = driverTurn();
+    StillResult result = executeOnContext(still, log);
+    // The rasterizer's threads done too before another renderer takes the turn.
+    if (turn.owns_lock()) glFinish();
+    return result;
+}
+
+StillResult StillRenderer::executeOnContext(PreparedStill& still, const StillLog& log) {
     StillResult result;
     // One context for every still of the process: the first that renders makes it (the platform is the same for all
     // of them), later ones find it current with the programs the earlier ones compiled.
@@ -326,6 +353,11 @@ StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
 
 void StillRenderer::runHostTail(PreparedStill& still, StillResult& result) {
     runMappingFailures(still, [&] { result.timings = result.executor->runHostTail(); });
+}
+
+void StillRenderer::dropFreeTextures() {
+    const std::unique_lock<std::mutex> turn = driverTurn();
+    mTextures.returnFreeMemory();
 }
 
 } // namespace inkgraph

@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <iosfwd>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -170,6 +171,20 @@ public:
      *  executeUntilHostTail(). Throws as execute() does. */
     static void runHostTail(PreparedStill& still, StillResult& result);
 
+    /** A turn at the driver, for GL work of this renderer's stills outside its own calls (a still's GL objects
+     *  freed, buffers read back at its commit): held while the context is software (llvmpipe) or not made yet,
+     *  empty on a GPU. llvmpipe's contexts are not safe to use at once from several threads (a race inside Mesa
+     *  22.3 crashed 3 to 8 of 300 batches of 60 stills on four drawing threads), so on a software renderer the
+     *  renderers of one process take turns: makeContext(), executeUntilHostTail(), execute(), dropFreeTextures()
+     *  and the destructor take it themselves, and the caller takes it around the rest. Never held while waiting
+     *  for another thread. */
+    std::unique_lock<std::mutex> driverTurn() const;
+
+    /** Deletes the textures and read-back buffers kept for the next still (none is in use between stills) and makes
+     *  the driver free them (TexturePool::returnFreeMemory()), so a batch drawing on several threads can give their
+     *  memory to another thread's still. On the thread that holds the context. */
+    void dropFreeTextures();
+
     /** Whether the first still executed tells the context's driver ("inkgraph: llvmpipe ... via EGL device
      *  platform"): a process whose batch draws on several renderers tells it once. */
     bool tellsContext = true;
@@ -179,9 +194,14 @@ public:
     HeadlessContext* context() { return mContext ? &*mContext : nullptr; }
 
 private:
+    /** executeUntilHostTail() once the context is made and the driver's turn taken. */
+    StillResult executeOnContext(PreparedStill& still, const StillLog& log);
     /** plan()'s graph and compile, with --post-stage auto resolved against the context when there is one. */
     void buildGraph(PreparedStill& still);
 
+    /** The driver's turn (driverTurn()) taken by the destructor: declared first, so it is let go of last, once
+     *  the context and everything made in it are gone. */
+    std::unique_lock<std::mutex> mTeardownTurn;
     std::optional<HeadlessContext> mContext; ///< declared before the programs, so they are deleted first
     /** The stills' buffers, kept from one still to the next: a batch's stills have one size, and a texture made
      *  once is not allocated, page-faulted and cleared by the driver again for every model. */

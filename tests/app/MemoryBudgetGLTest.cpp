@@ -94,6 +94,34 @@ TEST_F(MemoryBudget, LimitJustUnderTheEstimateIsRefusedNamingEveryFlagAndJustOve
     }
 }
 
+TEST_F(MemoryBudget, ABatchDrawnOnSeveralThreadsStaysUnderItsOneLimit) {
+    // Six 1024^2 bunnies at --supersample 2, each still estimated at 499 MiB: under a limit of 700 two cannot draw at
+    // once. Four drawing threads used to keep each its own stills within a quarter of the limit but draw a still
+    // above that share alone, all four at once: 1,107 MiB resident for four such stills. They now share the limit
+    // (app/MemoryLedger.h): the stills wait for each other, the waiting threads give back their textures, and the
+    // pictures are those of one thread.
+    const std::string bunny = model("bunny_c3d_70k.obj");
+    std::string list;
+    for (int still = 0; still < 6; ++still) list += bunny + " ";
+    const std::string arguments =
+        "render " + list +
+        "--size 1024x1024 --supersample 2 --shading cel --lines silhouette,contour,suggestive --memory-limit 700 -q ";
+    const CliRun one = run(arguments + "-o 'one-{index}.png' --draw-threads 1");
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    const CliRun four = run(arguments + "-o 'four-{index}.png' --draw-threads 4");
+    ASSERT_EQ(four.exitCode, 0) << four.err;
+    for (int still = 1; still <= 6; ++still) {
+        const std::string index = std::to_string(still);
+        EXPECT_EQ(readText(directory / ("four-" + index + ".png")), readText(directory / ("one-" + index + ".png")))
+            << "still " << index;
+    }
+    EXPECT_GT(four.peakMib, 50.0);
+    if (kPeakIsComparable) {
+        EXPECT_LE(one.peakMib, 700.0);
+        EXPECT_LE(four.peakMib, 700.0);
+    }
+}
+
 TEST_F(MemoryBudget, IssueCaseIsRefusedRatherThanOutgrowingItsLimit) {
     // Accepted before (the plan's textures alone were 525 MiB) and peaked at 1622 MB resident.
     const CliRun result = run("render " + model("bunny_c3d_70k.obj") +
