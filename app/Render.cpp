@@ -150,17 +150,28 @@ bool RenderSession::prefetches(const RenderOptions* next, bool renders) const {
     return next != nullptr && mJobs > 0 && renders && rendersImages(*next);
 }
 
+StillRequest RenderSession::requestTakingRecentModel(const RenderOptions& options,
+                                                     std::optional<RecentModel::Key>& key) {
+    StillRequest request = stillRequestOf(options);
+    key = RecentModel::keyOf(request);
+    request.loadedScene = mRecentModel.find(key);
+    request.reusesEarlierLoad = request.loadedScene != nullptr;
+    if (!request.reusesEarlierLoad) mRecentModel.forget();
+    return request;
+}
+
 void RenderSession::prefetch(const RenderOptions& next) {
     if (mPrefetch && mPrefetch->still.valid()) mPrefetch->still.wait(); // one ahead at most; an unused one is dropped
     mPrefetch.reset();
     auto log = std::make_shared<std::ostringstream>();
-    StillRequest request = stillRequestOf(next);
+    std::optional<RecentModel::Key> key;
+    StillRequest request = requestTakingRecentModel(next, key);
     std::future<std::unique_ptr<PreparedStill>> still =
         std::async(std::launch::async, [this, log, request = std::move(request), quiet = next.quiet]() mutable {
             // StillRenderer::load() reads files and builds the scene: nothing the drawing thread touches.
             return mRenderer.load(std::move(request), StillLog{*log, false, quiet});
         });
-    mPrefetch = Prefetch{&next, next.modelPath, log, std::move(still)};
+    mPrefetch = Prefetch{&next, next.modelPath, std::move(key), log, std::move(still)};
 }
 
 std::size_t RenderSession::bytesInFlight() const {
@@ -228,21 +239,28 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
     // Every output place is checked before any work; outputs are staged and put in place only at the end.
     auto outputs = std::make_unique<OutputSet>(options);
     std::unique_ptr<PreparedStill> still;
+    std::optional<RecentModel::Key> modelKey;
     if (mPrefetch && mPrefetch->options == &options && mPrefetch->modelPath == options.modelPath && renders &&
         mRenderer.context() != nullptr) {
         Prefetch prefetched = std::move(*mPrefetch);
         mPrefetch.reset();
         log.log << prefetched.log->str(); // its warnings, in this still's place
         still = prefetched.still.get();
+        modelKey = std::move(prefetched.modelKey);
     } else {
         // One load at a time: a model loaded ahead for another still is waited for and dropped.
         if (mPrefetch && mPrefetch->still.valid()) mPrefetch->still.wait();
         mPrefetch.reset();
+        StillRequest request = requestTakingRecentModel(options, modelKey);
         // The process's first still: the next model loads too while the context is made, which keeps one core
-        // busy for 80 ms on llvmpipe while this model takes a fraction of that on the other.
-        if (mRenderer.context() == nullptr && prefetches(next, renders)) prefetch(*next);
-        still = loadWhileMakingContext(stillRequestOf(options), renders, log);
+        // busy for 80 ms on llvmpipe while this model takes a fraction of that on the other; the same model (the
+        // next view) is taken from this still's load instead, below.
+        if (mRenderer.context() == nullptr && prefetches(next, renders) &&
+            !(modelKey && RecentModel::keyOf(stillRequestOf(*next)) == modelKey))
+            prefetch(*next);
+        still = loadWhileMakingContext(std::move(request), renders, log);
     }
+    mRecentModel.remember(modelKey, still->loadedScene);
     // The next model loads while this still plans, draws and waits for its read-backs.
     if (prefetches(next, renders) && !(mPrefetch && mPrefetch->options == next)) prefetch(*next);
     report.triangles = still->scene().triangleCount();

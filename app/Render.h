@@ -9,6 +9,7 @@
 
 #include "app/OutputFiles.h"
 #include "app/MemoryLedger.h"
+#include "app/RecentModel.h"
 #include "app/StillTurns.h"
 
 #include <nlohmann/json.hpp>
@@ -119,6 +120,10 @@ private:
     bool prefetches(const RenderOptions* next, bool renders) const;
     /** Starts loading `next`'s model on a second thread (render()'s `next`). */
     void prefetch(const RenderOptions& next);
+    /** What `options` asks the renderer for, taking the model an earlier still loaded when this still loads the same
+     *  file the same way (mRecentModel: --views, a model listed twice in a row); `key` receives its load's key. A
+     *  model it does not take is let go of first, so two models are never held for one still. */
+    StillRequest requestTakingRecentModel(const RenderOptions& options, std::optional<RecentModel::Key>& key);
 
     struct PendingStill;
     struct TailOutcome;
@@ -126,6 +131,7 @@ private:
     struct Prefetch {
         const RenderOptions* options = nullptr; ///< the batch's options object of the still it is for (render()'s next)
         std::string modelPath;
+        std::optional<RecentModel::Key> modelKey;
         std::shared_ptr<std::ostringstream> log;
         std::future<std::unique_ptr<PreparedStill>> still;
     };
@@ -160,6 +166,8 @@ private:
     StillRenderer mRenderer;
     std::deque<std::unique_ptr<PendingStill>> mPending; ///< oldest first
     std::optional<Prefetch> mPrefetch;
+    /** The model of the last still loaded, for the stills after it that load the same file the same way. */
+    RecentModel mRecentModel;
     /** The error of the last still whose finishing failed (finishOldest()): render() tells it from a failure of its
      *  own still, which must first finish the stills before it. */
     std::exception_ptr mFinishingFailure;

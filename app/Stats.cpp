@@ -75,6 +75,7 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
                        {"version", gl->version()},
                        {"vendor", gl->vendor()}};
     stats["load_ms"] = still.loadMilliseconds;
+    stats["model_reused"] = still.request.reusesEarlierLoad;
     stats["context_ms"] = result.contextMilliseconds;
     stats["context_reused"] = result.contextReused;
     // Programs this still compiled, and those it took from an earlier still of the process.

@@ -194,6 +194,8 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
 
     if (req.loadedScene) {
         still->loadedScene = req.loadedScene; // its loader's warnings went to whoever loaded it
+        if (req.reusesEarlierLoad)
+            for (const Warning& warning : still->scene().report.warnings) log.warn(req.modelPath, warning.message);
     } else {
         const auto loadStart = std::chrono::steady_clock::now();
         LoadOptions loadOptions;

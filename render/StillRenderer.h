@@ -56,6 +56,9 @@ struct StillRequest {
     /** The model, loaded already (the library's Scene, api/): load() takes it instead of reading `modelPath` again,
      *  which then only names it in messages, and the stills that share it share its data. */
     std::shared_ptr<const Scene> loadedScene;
+    /** `loadedScene` is what an earlier still of the batch loaded from `modelPath` with the same load options
+     *  (app/RecentModel.h): its warnings are told again, as loading the file would, and --stats says model_reused. */
+    bool reusesEarlierLoad = false;
     Look look;
     CameraRequest camera;                  ///< what the caller fixes; resolveCamera() fills the rest from the file
     std::vector<std::string> extraOutputs; ///< more resources to compute and keep ("gbuffer.*" expands)

@@ -107,6 +107,50 @@ TEST_F(Cli, AStillDoesNotSeeWhatTheStillBeforeItLeftOffItsModel) {
     }
 }
 
+TEST_F(Cli, AStillAfterOneOfTheSameModelTakesItsLoadAndDrawsTheSame) {
+    // app/RecentModel.h: a model listed twice in a row, and the views of --views, are read once. A model with a
+    // warning, so each still tells it as if it had read the file.
+    std::ofstream(directory / "warns.obj") << "mtllib missing.mtl\n"
+                                           << readText(fs::path(INKGRAPH_SOURCE_ROOT) / "models" / "spot_c3d.obj");
+    const std::string spot = model("spot_c3d.obj");
+    for (const char* jobs : {"0", "2"}) {
+        const std::string out = std::string("jobs") + jobs;
+        const CliRun batch = run("render warns.obj warns.obj " + spot + " warns.obj -o '" + out +
+                                 "-{index}.png' --stats '" + out + "-{index}.json' --jobs " + jobs + kLook);
+        ASSERT_EQ(batch.exitCode, 0) << batch.err;
+        const auto reused = [&](int index) {
+            const auto stats =
+                nlohmann::json::parse(readText(directory / (out + "-" + std::to_string(index) + ".json")));
+            EXPECT_EQ(stats["load_ms"].get<double>() == 0.0, stats["model_reused"].get<bool>()) << index;
+            return stats["model_reused"].get<bool>();
+        };
+        EXPECT_FALSE(reused(1)) << jobs;
+        EXPECT_TRUE(reused(2)) << jobs;
+        EXPECT_FALSE(reused(3)) << jobs;
+        EXPECT_FALSE(reused(4)) << jobs << ": another model came between";
+        EXPECT_TRUE(sameImage(directory / (out + "-1.png"), directory / (out + "-2.png"))) << jobs;
+        EXPECT_TRUE(sameImage(directory / (out + "-1.png"), directory / (out + "-4.png"))) << jobs;
+        // Each still of warns.obj tells the warning before its own line.
+        std::size_t from = 0;
+        for (const char* still : {"[1/4]", "[2/4]", "[4/4]"}) {
+            const std::size_t warning = batch.err.find("warning: 'warns.obj': mtllib 'missing.mtl'", from);
+            const std::size_t line = batch.err.find(still, from);
+            ASSERT_NE(line, std::string::npos) << batch.err;
+            EXPECT_LT(warning, line) << still << ": " << batch.err;
+            from = line + 1;
+        }
+    }
+
+    // The views of one model: the first reads it, the others take it.
+    const CliRun views =
+        run("render " + spot + " --views 3 -o 'view-{view}.png' --stats 'view-{view}.json' -q" + kLook);
+    ASSERT_EQ(views.exitCode, 0) << views.err;
+    for (const char* view : {"0", "1", "2"}) {
+        const auto stats = nlohmann::json::parse(readText(directory / ("view-" + std::string(view) + ".json")));
+        EXPECT_EQ(stats["model_reused"].get<bool>(), std::string(view) != "0") << view;
+    }
+}
+
 TEST_F(Cli, BatchGoesOnPastABadModelAndExitsWithItsCode) {
     std::ofstream(directory / "broken.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
     const fs::path models = fs::path(INKGRAPH_SOURCE_ROOT) / "models";

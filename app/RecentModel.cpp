@@ -1,0 +1,54 @@
+#include "app/RecentModel.h"
+
+#include <sys/stat.h>
+
+#include <utility>
+
+namespace inkgraph {
+
+namespace {
+
+std::int64_t nanosecondsOf(const timespec& time) { return std::int64_t(time.tv_sec) * 1000000000 + time.tv_nsec; }
+
+} // namespace
+
+std::optional<RecentModel::Key> RecentModel::keyOf(const StillRequest& request) {
+    struct stat file {};
+    if (::stat(request.modelPath.c_str(), &file) != 0 || !S_ISREG(file.st_mode)) return std::nullopt;
+    Key key;
+    key.modelPath = request.modelPath;
+    key.device = std::uint64_t(file.st_dev);
+    key.inode = std::uint64_t(file.st_ino);
+    key.size = std::int64_t(file.st_size);
+    key.modifiedNanoseconds = nanosecondsOf(file.st_mtim);
+    // The change time moves with every write and rename, also where a writer sets the modification time back.
+    key.changedNanoseconds = nanosecondsOf(file.st_ctim);
+    key.memoryLimitBytes = request.memoryLimitBytes;
+    key.animation = request.animation;
+    key.animationTime = request.animationTime;
+    key.pose = request.pose;
+    key.expressions = request.expressions;
+    key.lookAt = request.lookAt;
+    return key;
+}
+
+std::shared_ptr<const Scene> RecentModel::find(const std::optional<Key>& key) const {
+    if (!key || !mKey || !(*key == *mKey)) return nullptr;
+    return mScene;
+}
+
+void RecentModel::remember(const std::optional<Key>& key, std::shared_ptr<const Scene> scene) {
+    if (!key || !scene) {
+        forget();
+        return;
+    }
+    mKey = key;
+    mScene = std::move(scene);
+}
+
+void RecentModel::forget() {
+    mKey.reset();
+    mScene.reset();
+}
+
+} // namespace inkgraph
