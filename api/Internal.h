@@ -8,6 +8,7 @@
 #include "flags/Options.h"
 #include "flags/StyleFile.h"
 #include "scene/Scene.h"
+#include "scene/SceneDerivedData.h"
 
 #include <opencv2/core.hpp>
 
@@ -24,6 +25,9 @@ struct Scene::Impl {
     std::string path; ///< "" for arrays
     SceneOptions options;
     std::shared_ptr<const inkgraph::Scene> scene;
+    /** What its renders derive from `scene` whatever the view (edge adjacency, curvature, ...), shared by all of them,
+     *  on any thread. */
+    std::shared_ptr<inkgraph::SceneDerivedData> derived;
 };
 
 /** The library's way into a Scene's data, which the public header keeps private. */

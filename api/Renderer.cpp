@@ -236,6 +236,7 @@ struct Renderer::Impl {
         StillRequest request;
         request.modelPath = sceneImpl.path.empty() ? "arrays" : sceneImpl.path;
         request.loadedScene = sceneImpl.scene;
+        request.loadedSceneDerived = sceneImpl.derived;
         request.look = options.look;
         request.camera = cameraRequestOf(options);
         request.memoryLimitBytes =
@@ -265,6 +266,7 @@ struct Renderer::Impl {
             // Another pose or face than the scene's: the file is loaded again, by the renderer's own load, with what
             // the frame gives and the scene's own options for the rest.
             request.loadedScene.reset();
+            request.loadedSceneDerived.reset();
             request.animation = posed ? options.animation : sceneImpl.options.animation;
             if (posed) request.animationTime = options.animationTime;
             request.pose = reposed ? options.pose : sceneImpl.options.pose;

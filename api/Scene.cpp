@@ -55,6 +55,7 @@ Scene Scene::load(const std::string& path, const SceneOptions& options) {
         impl->path = path;
         impl->options = options;
         impl->scene = std::make_shared<const inkgraph::Scene>(loadScene(path, loadOptionsOf(options)));
+        impl->derived = std::make_shared<inkgraph::SceneDerivedData>(*impl->scene);
         const std::vector<inkgraph::Warning>& warnings = impl->scene->report.warnings;
         if (options.strict && !warnings.empty())
             throw SceneError("SceneOptions::strict: '" + path + "': " + warnings.front().message +
@@ -84,6 +85,7 @@ Scene Scene::fromArrays(const MeshArrays& arrays, const std::string& name, const
         auto impl = std::make_shared<Impl>();
         impl->options = options;
         impl->scene = std::make_shared<const inkgraph::Scene>(sceneFromArrays(mesh, loadOptionsOf(options)));
+        impl->derived = std::make_shared<inkgraph::SceneDerivedData>(*impl->scene);
         return Scene(std::move(impl));
     });
 }

@@ -32,23 +32,23 @@ std::optional<RecentModel::Key> RecentModel::keyOf(const StillRequest& request) 
     return key;
 }
 
-std::shared_ptr<const Scene> RecentModel::find(const std::optional<Key>& key) const {
-    if (!key || !mKey || !(*key == *mKey)) return nullptr;
-    return mScene;
+RecentModel::Model RecentModel::find(const std::optional<Key>& key) const {
+    if (!key || !mKey || !(*key == *mKey)) return {};
+    return mModel;
 }
 
-void RecentModel::remember(const std::optional<Key>& key, std::shared_ptr<const Scene> scene) {
-    if (!key || !scene) {
+void RecentModel::remember(const std::optional<Key>& key, Model model) {
+    if (!key || !model.scene) {
         forget();
         return;
     }
     mKey = key;
-    mScene = std::move(scene);
+    mModel = std::move(model);
 }
 
 void RecentModel::forget() {
     mKey.reset();
-    mScene.reset();
+    mModel = {};
 }
 
 } // namespace inkgraph

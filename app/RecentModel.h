@@ -33,19 +33,26 @@ public:
         bool operator==(const Key&) const = default;
     };
 
+    /** A loaded model and what the stills drawing it derived from it whatever the view (the edge adjacency, the
+     *  curvature, ...), which the next still of the model takes too. */
+    struct Model {
+        std::shared_ptr<const Scene> scene;
+        std::shared_ptr<SceneDerivedData> derived;
+    };
+
     /** The key of `request`'s load; none when its file cannot be examined (the load then says why). */
     static std::optional<Key> keyOf(const StillRequest& request);
 
-    /** The model remembered for `key`, or null (no key, or another load). */
-    std::shared_ptr<const Scene> find(const std::optional<Key>& key) const;
-    /** Keeps `scene` as the model loaded for `key`, in place of the one before; nothing without a key. */
-    void remember(const std::optional<Key>& key, std::shared_ptr<const Scene> scene);
+    /** The model remembered for `key`, or an empty one (no key, or another load). */
+    Model find(const std::optional<Key>& key) const;
+    /** Keeps `model` as the one loaded for `key`, in place of the one before; nothing without a key or a scene. */
+    void remember(const std::optional<Key>& key, Model model);
     /** Lets go of the model: the next still loads another, or its memory is wanted. */
     void forget();
 
 private:
     std::optional<Key> mKey;
-    std::shared_ptr<const Scene> mScene;
+    Model mModel;
 };
 
 } // namespace inkgraph

@@ -154,7 +154,9 @@ StillRequest RenderSession::requestTakingRecentModel(const RenderOptions& option
                                                      std::optional<RecentModel::Key>& key) {
     StillRequest request = stillRequestOf(options);
     key = RecentModel::keyOf(request);
-    request.loadedScene = mRecentModel.find(key);
+    RecentModel::Model recent = mRecentModel.find(key);
+    request.loadedScene = std::move(recent.scene);
+    request.loadedSceneDerived = std::move(recent.derived);
     request.reusesEarlierLoad = request.loadedScene != nullptr;
     if (!request.reusesEarlierLoad) mRecentModel.forget();
     return request;
@@ -260,7 +262,7 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
             prefetch(*next);
         still = loadWhileMakingContext(std::move(request), renders, log);
     }
-    mRecentModel.remember(modelKey, still->loadedScene);
+    mRecentModel.remember(modelKey, {still->loadedScene, still->sceneDerived});
     // The next model loads while this still plans, draws and waits for its read-backs.
     if (prefetches(next, renders) && !(mPrefetch && mPrefetch->options == next)) prefetch(*next);
     report.triangles = still->scene().triangleCount();

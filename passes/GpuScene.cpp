@@ -4,17 +4,21 @@
 #include "scene/MaterialIds.h"
 #include "scene/ObjectIds.h"
 #include "scene/mesh/MeshOps.h"
-#include "scene/mesh/SmoothPatches.h"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace inkgraph {
 
-GpuScene::GpuScene(const Scene& scene, glm::dvec3 worldOrigin)
+GpuScene::GpuScene(const Scene& scene, glm::dvec3 worldOrigin, std::shared_ptr<SceneDerivedData> derived)
     : mScene(scene), mWorldOrigin(worldOrigin),
-      mMaterials(scene, scene.report.inputFiles.empty() ? std::string("scene") : scene.report.inputFiles.front()) {}
+      mDerived(derived ? std::move(derived) : std::make_shared<SceneDerivedData>(scene)),
+      mMaterials(scene, scene.report.inputFiles.empty() ? std::string("scene") : scene.report.inputFiles.front()) {
+    if (&mDerived->scene() != &scene)
+        throw std::invalid_argument("GpuScene::GpuScene(): the derived data given is another scene's");
+}
 
 bool GpuScene::hasTransparency() const {
     return std::ranges::any_of(mScene.meshes,
@@ -102,29 +106,6 @@ void GpuScene::requireMeshIndex(const char* function, std::size_t meshIndex) con
                                 " out of range (the scene has " + std::to_string(mScene.meshes.size()) + ")");
 }
 
-double GpuScene::weldDistance() const {
-    // One scene-wide distance, as the loader welds: relative to the whole model, so units do not matter.
-    BoundingBox box;
-    for (const Mesh& mesh : mScene.meshes) {
-        const BoundingBox meshBox = computeBoundingBox(mesh.positions);
-        if (meshBox.empty()) continue;
-        box.add(meshBox.min);
-        box.add(meshBox.max);
-    }
-    return LoadOptions{}.weldTolerance * box.diagonal();
-}
-
-const WeldMap& GpuScene::positionWeld(std::size_t meshIndex) {
-    requireMeshIndex("GpuScene::positionWeld()", meshIndex);
-    if (mPositionWelds.empty()) {
-        mPositionWelds.resize(mScene.meshes.size());
-        mWeldDistance = weldDistance(); // one scene-wide pass over the positions, not one per mesh
-    }
-    std::optional<WeldMap>& weld = mPositionWelds[meshIndex];
-    if (!weld) weld = weldMeshPositions(mScene.meshes[meshIndex], mWeldDistance);
-    return *weld;
-}
-
 const GlBuffer& GpuScene::hullNormals(std::size_t meshIndex) {
     requireMeshIndex("GpuScene::hullNormals()", meshIndex);
     if (mHullNormals.empty()) {
@@ -133,17 +114,13 @@ const GlBuffer& GpuScene::hullNormals(std::size_t meshIndex) {
         own.reserve(mScene.meshes.size()); // never reallocated below: the pointers into it stay valid
         std::vector<const GlBuffer*> buffers;
         for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
-            const Mesh& mesh = mScene.meshes[index];
-            const WeldMap& weld = positionWeld(index);
-            // Nothing welded (kept in order) and smooth normals of their own: computePositionWeldedNormals() would
-            // compute exactly computeSmoothNormals(positions, triangles), which the mesh already holds.
-            if (mesh.normalsAreSmooth && weld.kept.size() == mesh.positions.size()) {
+            const std::vector<glm::vec3>* normals = mDerived->hullNormals(index);
+            if (normals == nullptr) { // the mesh's own normals are the hull's
                 buffers.push_back(&drawMeshes[index].normals);
                 continue;
             }
-            const std::vector<glm::vec3> normals = computePositionWeldedNormals(mesh.positions, mesh.triangles, weld);
-            own.emplace_back(normals.data(), normals.size() * sizeof(glm::vec3),
-                             "mesh '" + mesh.name + "' hull normals");
+            own.emplace_back(normals->data(), normals->size() * sizeof(glm::vec3),
+                             "mesh '" + mScene.meshes[index].name + "' hull normals");
             buffers.push_back(&own.back());
         }
         mOwnHullNormals = std::move(own); // moving the vector keeps its elements where they are
@@ -168,74 +145,6 @@ const std::vector<GlVertexArray>& GpuScene::hullArrays() {
         mHullArrays = std::move(arrays);
     }
     return mHullArrays;
-}
-
-const EdgeAdjacency& GpuScene::edgeAdjacency(std::size_t meshIndex) {
-    requireMeshIndex("GpuScene::edgeAdjacency()", meshIndex);
-    if (mEdgeAdjacency.empty()) {
-        std::vector<EdgeAdjacency> adjacency;
-        adjacency.reserve(mScene.meshes.size());
-        for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
-            const Mesh& mesh = mScene.meshes[index];
-            adjacency.push_back(buildEdgeAdjacency(mesh.positions, mesh.triangles, positionWeld(index)));
-        }
-        mEdgeAdjacency = std::move(adjacency);
-    }
-    return mEdgeAdjacency[meshIndex];
-}
-
-const MeshCurvature& GpuScene::meshCurvature(std::size_t meshIndex, double smoothing) {
-    requireMeshIndex("GpuScene::meshCurvature()", meshIndex);
-    if (!meshCurvatureComputed(smoothing)) {
-        std::vector<MeshCurvature> curvature;
-        curvature.reserve(mScene.meshes.size());
-        for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
-            const Mesh& mesh = mScene.meshes[index];
-            curvature.push_back(computeMeshCurvature(mesh.positions, mesh.triangles, positionWeld(index), smoothing));
-        }
-        mMeshCurvature = std::move(curvature);
-        mMeshCurvatureSmoothing = smoothing;
-    }
-    return mMeshCurvature[meshIndex];
-}
-
-const MeshIntersections& GpuScene::meshIntersections() {
-    if (!mMeshIntersections) {
-        std::vector<const WeldMap*> welds;
-        welds.reserve(mScene.meshes.size());
-        for (std::size_t index = 0; index < mScene.meshes.size(); ++index) welds.push_back(&positionWeld(index));
-        mMeshIntersections = findMeshIntersections(mScene.meshes, welds);
-    }
-    return *mMeshIntersections;
-}
-
-const GpuScene::SurfacePatches& GpuScene::surfacePatches() {
-    if (!mSurfacePatches) {
-        SurfacePatches patches;
-        patches.patchOfTriangle.push_back(0.0f); // triangle id 0: off the model
-        std::uint32_t firstTriangle = 0;
-        for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
-            const Mesh& mesh = mScene.meshes[index];
-            const SmoothPatches meshPatches =
-                smoothPatches(mesh.normals, mesh.triangles, positionWeld(index), edgeAdjacency(index));
-            patches.seamEdges += meshPatches.seamEdges;
-            for (const std::uint32_t patch : meshPatches.patchOf)
-                patches.patchOfTriangle.push_back(float(firstTriangle + patch + 1));
-            firstTriangle += std::uint32_t(mesh.triangles.size());
-        }
-        mSurfacePatches = std::move(patches);
-    }
-    return *mSurfacePatches;
-}
-
-bool GpuScene::surfacesMeet() {
-    if (!mSurfacesMeet) {
-        bool meet = mScene.meshes.size() > 1;
-        for (std::size_t index = 0; !meet && index < mScene.meshes.size(); ++index)
-            meet = !isOneSmoothPatch(mScene.meshes[index].normals, mScene.meshes[index].triangles, positionWeld(index));
-        mSurfacesMeet = meet;
-    }
-    return *mSurfacesMeet;
 }
 
 bool GpuScene::containsPoint(glm::dvec3 worldPoint) {

@@ -2,7 +2,8 @@
 /** @file The scene's meshes on the GPU and the data derived from them (hull normals, edge adjacency, curvature, the
  *  CPU face orientation). Passes declare what they take as imports (SceneImport, PassBuilder::import()); the
  *  renderer derives the imports of the passes that run once, before any prepares (importDerived()). Each getter also
- *  derives on its first call, so a pass run without an importer (the tests) gets the same data. */
+ *  derives on its first call, so a pass run without an importer (the tests) gets the same data. What does not depend
+ *  on the view is the scene's SceneDerivedData, which the stills of one scene share (the views of a model). */
 
 #include "gl/GlObjects.h"
 #include "passes/material/SceneMaterials.h"
@@ -12,6 +13,7 @@
 #include "scene/mesh/MeshIntersections.h"
 #include "scene/mesh/MeshOps.h"
 #include "scene/Scene.h"
+#include "scene/SceneDerivedData.h"
 
 #include <glm/glm.hpp>
 
@@ -58,8 +60,10 @@ public:
     static constexpr GLuint kPositionLocation = 0;
     static constexpr GLuint kNormalLocation = 1;
 
-    /** Keeps references; nothing is uploaded until meshes() is called. */
-    GpuScene(const Scene& scene, glm::dvec3 worldOrigin);
+    /** Keeps references; nothing is uploaded until meshes() is called. `derived`: what other stills of the same
+     *  scene derived already (the views of one model), shared with them; a fresh one without. Throws
+     *  std::invalid_argument when `derived` is another scene's. */
+    GpuScene(const Scene& scene, glm::dvec3 worldOrigin, std::shared_ptr<SceneDerivedData> derived = nullptr);
     ~GpuScene();
     GpuScene(const GpuScene&) = delete;
     GpuScene& operator=(const GpuScene&) = delete;
@@ -68,21 +72,19 @@ public:
     const std::vector<DrawMesh>& meshes();
     bool isUploaded() const { return mUploaded; }
 
-    /** The position weld of mesh `meshIndex` (MeshOps weldMeshPositions(), distance the loader's default relative
-     *  tolerance x the scene's bounding-box diagonal): what the hull normals, the edge adjacency and the curvature are
-     *  built on, made once per mesh the first time one of them is. Nothing is welded when the loader's own weld
-     *  already settles it (Mesh::positionsWeldedAt). Throws std::out_of_range for a bad index. */
-    const WeldMap& positionWeld(std::size_t meshIndex);
-    bool positionWeldComputed(std::size_t meshIndex) const {
-        return meshIndex < mPositionWelds.size() && mPositionWelds[meshIndex].has_value();
-    }
+    /** The view-independent data derived from the scene's meshes (scene/SceneDerivedData.h), shared by every still of
+     *  the scene; the getters below are its, the CPU data derived once for all of them. */
+    SceneDerivedData& derived() { return *mDerived; }
+    const std::shared_ptr<SceneDerivedData>& sharedDerived() const { return mDerived; }
 
-    /** Unit normals for the inflated hull of mesh `meshIndex` (vec3 per vertex, GpuScene's vertex order): smooth
-     *  normals shared by every vertex at the same position (MeshOps computePositionWeldedNormals() on
-     *  positionWeld()), so split normals at hard edges do not tear the hull open. Computed and uploaded for every mesh
-     *  the first time any is asked for (only a pass that runs asks); a mesh whose weld merges nothing and whose own
-     *  normals are the smooth ones (Mesh::normalsAreSmooth) has exactly these already, and its normal buffer (meshes())
-     *  is returned instead. Throws std::out_of_range for a bad index. */
+    /** SceneDerivedData::positionWeld(): what the hull normals, the edge adjacency and the curvature are built on.
+     *  Throws std::out_of_range for a bad index. */
+    const WeldMap& positionWeld(std::size_t meshIndex) { return mDerived->positionWeld(meshIndex); }
+    bool positionWeldComputed(std::size_t meshIndex) const { return mDerived->positionWeldComputed(meshIndex); }
+
+    /** The inflated hull's normals of mesh `meshIndex` on the GPU (SceneDerivedData::hullNormals(), or the mesh's own
+     *  normal buffer from meshes() where those are the same). Uploaded for every mesh the first time any is asked for
+     *  (only a pass that runs asks). Throws std::out_of_range for a bad index. */
     const GlBuffer& hullNormals(std::size_t meshIndex);
     bool hullNormalsComputed() const { return !mHullNormals.empty(); }
     /** One vertex array per mesh for drawing its inflated hull (the silhouette, MToon's outline shell): its
@@ -90,49 +92,30 @@ public:
      *  call. */
     const std::vector<GlVertexArray>& hullArrays();
 
-    /** Edge adjacency of mesh `meshIndex` (scene/mesh/EdgeAdjacency.h: welded edges, their kinds, face normals and
-     *  planes), in world space like the scene, keyed on positionWeld(), so split normals do not turn creases into
-     *  borders. CPU data, nothing uploaded. Computed for every mesh the first
-     *  time any is asked for (only a pass that runs asks). Throws std::out_of_range for a bad index. */
-    const EdgeAdjacency& edgeAdjacency(std::size_t meshIndex);
-    bool edgeAdjacencyComputed() const { return !mEdgeAdjacency.empty(); }
+    /** SceneDerivedData::edgeAdjacency(): welded edges, their kinds, face normals and planes, in the scene's frame. */
+    const EdgeAdjacency& edgeAdjacency(std::size_t meshIndex) { return mDerived->edgeAdjacency(meshIndex); }
+    bool edgeAdjacencyComputed() const { return mDerived->edgeAdjacencyComputed(); }
 
-    /** Per-vertex curvature of mesh `meshIndex` (scene/mesh/MeshCurvature.h: normals, principal curvatures and
-     *  directions, and their derivative C on position-welded vertices), in world space like the scene, on
-     *  positionWeld(). CPU data, nothing uploaded. Computed for every mesh the first time any is
-     *  asked for (only a pass that runs asks: the object-space suggestive contours), smoothed over `smoothing` model
-     *  units (computeMeshCurvature()); asked with another smoothing, it is derived again. Throws std::out_of_range
-     *  for a bad index. */
-    const MeshCurvature& meshCurvature(std::size_t meshIndex, double smoothing = 0.0);
-    bool meshCurvatureComputed() const { return !mMeshCurvature.empty(); }
-    /** Whether meshCurvature() holds the curvature for this smoothing. */
-    bool meshCurvatureComputed(double smoothing) const {
-        return !mMeshCurvature.empty() && mMeshCurvatureSmoothing == smoothing;
+    /** SceneDerivedData::meshCurvature(): per-vertex curvature smoothed over `smoothing` model units, derived for
+     *  every mesh the first time any is asked for at that smoothing (only a pass that runs asks: the object-space
+     *  suggestive contours). */
+    const MeshCurvature& meshCurvature(std::size_t meshIndex, double smoothing = 0.0) {
+        return mDerived->meshCurvature(meshIndex, smoothing);
     }
+    bool meshCurvatureComputed() const { return mDerived->meshCurvatureComputed(); }
+    bool meshCurvatureComputed(double smoothing) const { return mDerived->meshCurvatureComputed(smoothing); }
 
-    /** Where the scene's surfaces cross (scene/mesh/MeshIntersections.h: segments between meshes and within each, in
-     *  the scene's local frame), on positionWeld() of every mesh. View-independent CPU data, derived once per scene
-     *  the first time it is asked for (only a pass that runs asks: the intersection line types). */
-    const MeshIntersections& meshIntersections();
-    bool meshIntersectionsComputed() const { return mMeshIntersections.has_value(); }
+    /** SceneDerivedData::meshIntersections(): where the scene's surfaces cross (the intersection line types). */
+    const MeshIntersections& meshIntersections() { return mDerived->meshIntersections(); }
+    bool meshIntersectionsComputed() const { return mDerived->meshIntersectionsComputed(); }
 
-    /** The smooth surfaces of the scene as the G-buffer's triangleId numbers triangles (meshes in scene order, each in
-     *  its index order, + 1): entry t of `patchOfTriangle` is the patch of triangle id t, named by the triangleId of
-     *  its first triangle (scene/mesh/SmoothPatches.h: joined across edges where the normals are continuous; meshes
-     *  never join one another), 0 at t = 0 (off the model); floats, exact below 2^24 triangles as triangleId is.
-     *  View-independent CPU data on positionWeld() and edgeAdjacency(), derived once per scene the first time it is
-     *  asked for (only a pass that runs asks: the image-space suggestive contours). */
-    struct SurfacePatches {
-        std::vector<float> patchOfTriangle;
-        std::size_t seamEdges = 0; ///< edges where a mesh's normals step (SmoothPatches::seamEdges), over all meshes
-    };
-    const SurfacePatches& surfacePatches();
-    bool surfacePatchesComputed() const { return mSurfacePatches.has_value(); }
-    /** Whether surfacePatches() can tell surfaces apart that the depth cannot: the scene has several meshes, or a mesh
-     *  that is not one smooth patch (isOneSmoothPatch(), on positionWeld(): its normals step, or it has loose parts,
-     *  such as a teapot's spout meeting its body). False for one mesh smooth and connected everywhere, answered
-     *  without any adjacency. Kept once asked. */
-    bool surfacesMeet();
+    /** SceneDerivedData::surfacePatches(): the smooth patch of each triangle id (the image-space suggestive
+     *  contours). */
+    using SurfacePatches = SceneDerivedData::SurfacePatches;
+    const SurfacePatches& surfacePatches() { return mDerived->surfacePatches(); }
+    bool surfacePatchesComputed() const { return mDerived->surfacePatchesComputed(); }
+    /** SceneDerivedData::surfacesMeet(): whether surfacePatches() can tell surfaces apart that the depth cannot. */
+    bool surfacesMeet() { return mDerived->surfacesMeet(); }
 
     std::size_t meshCount() const { return mScene.meshes.size(); }
     /** The scene the meshes were uploaded from (their CPU triangles, in the same vertex order as meshes()). */
@@ -175,28 +158,18 @@ public:
     void importDerived(const std::string& name);
 
 private:
-    /** The loader's default relative weld tolerance times the whole scene's bounding-box diagonal: relative to the
-     *  model as the loader welds, so units do not matter. */
-    double weldDistance() const;
     void requireMeshIndex(const char* function, std::size_t meshIndex) const;
 
     const Scene& mScene;
     glm::dvec3 mWorldOrigin;
+    std::shared_ptr<SceneDerivedData> mDerived;
     SceneMaterials mMaterials;
     std::vector<DrawMesh> mMeshes;
     bool mUploaded = false;
-    std::vector<std::optional<WeldMap>> mPositionWelds;   ///< per mesh, once made
-    double mWeldDistance = 0.0;                           ///< weldDistance(), once mPositionWelds is sized
     std::vector<const GlBuffer*> mHullNormals;            ///< one per mesh once computed (its own or mesh normals)
     std::vector<GlBuffer> mOwnHullNormals;                ///< the hull normals that are not a mesh's own
     std::vector<GlVertexArray> mHullArrays;               ///< one per mesh once made, else empty
     std::vector<std::optional<glm::dvec3>> mBlendCentres; ///< per blended mesh, once drawOrder() needed it
-    std::vector<EdgeAdjacency> mEdgeAdjacency;            ///< one per mesh once computed, else empty
-    std::vector<MeshCurvature> mMeshCurvature;            ///< one per mesh once computed, else empty
-    double mMeshCurvatureSmoothing = 0.0;                 ///< the smoothing mMeshCurvature was derived with
-    std::optional<MeshIntersections> mMeshIntersections;  ///< once computed
-    std::optional<SurfacePatches> mSurfacePatches;        ///< once computed
-    std::optional<bool> mSurfacesMeet;                    ///< surfacesMeet(), once asked
     std::optional<glm::dvec3> mContainmentPoint;          ///< the last point containsPoint() was asked about
     bool mContainsPoint = false;
     const FrameParams* mOrientationFrame = nullptr; ///< set by setOrientation()

@@ -88,8 +88,8 @@ OrientationSettings orientationSettingsOf(const Look& look) {
 }
 
 std::unique_ptr<GpuScene> makeSceneImport(const Scene& scene, glm::dvec3 worldOrigin, const FrameParams& frame,
-                                          const Look& look) {
-    auto gpuScene = std::make_unique<GpuScene>(scene, worldOrigin);
+                                          const Look& look, std::shared_ptr<SceneDerivedData> derived) {
+    auto gpuScene = std::make_unique<GpuScene>(scene, worldOrigin, std::move(derived));
     gpuScene->setOrientation(frame, orientationSettingsOf(look));
     gpuScene->materials().setTime(frame.time);
     return gpuScene;

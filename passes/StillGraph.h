@@ -131,8 +131,9 @@ StillGraph buildStillGraph(const StillGraphSetup& setup);
 /** The face orientation `look` draws with: comic's CPU methods (Winnemöller & Bangay 2002), Standard for the others. */
 OrientationSettings orientationSettingsOf(const Look& look);
 /** The scene import of one still: its meshes and the data derived from them as `look` asks (its face orientation);
- *  `frame` must outlive it. Throws std::invalid_argument for orientation settings out of range. */
+ *  `frame` must outlive it. `derived`: the view-independent data other stills of `scene` derived (GpuScene's
+ *  constructor), or null. Throws std::invalid_argument for orientation settings out of range. */
 std::unique_ptr<GpuScene> makeSceneImport(const Scene& scene, glm::dvec3 worldOrigin, const FrameParams& frame,
-                                          const Look& look);
+                                          const Look& look, std::shared_ptr<SceneDerivedData> derived = nullptr);
 
 } // namespace inkgraph

@@ -211,6 +211,9 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     }
     still->warnings = still->scene().report.warnings;
     const Scene& scene = still->scene();
+    still->sceneDerived = req.loadedSceneDerived && &req.loadedSceneDerived->scene() == &scene
+                              ? req.loadedSceneDerived
+                              : std::make_shared<SceneDerivedData>(scene);
     if (log.talks && !log.quiet && !req.loadedScene) {
         log.log << std::fixed << std::setprecision(1) << "inkgraph: loaded '" << req.modelPath
                 << "': " << scene.triangleCount() << " triangles, " << scene.vertexCount() << " vertices ("
@@ -240,7 +243,7 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     failIfStrict(still);
     still.frame = frameParamsOf(look, scene, still.camera, still.sphere);
     still.frame.time = req.animationTime; // the pose's time is the UV animation's too
-    still.gpuScene = makeSceneImport(scene, still.sphere.center, still.frame, look);
+    still.gpuScene = makeSceneImport(scene, still.sphere.center, still.frame, look, still.sceneDerived);
     buildGraph(still);
     if (still.plan.findResource(std::string(kGBufferPass) + ".triangleId") != nullptr)
         if (std::optional<Warning> inexact = triangleIdWarning(scene.triangleCount()))

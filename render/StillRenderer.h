@@ -17,6 +17,7 @@
 #include "passes/shade/ShadeMap.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
+#include "scene/SceneDerivedData.h"
 
 #include <cstddef>
 #include <iosfwd>
@@ -59,6 +60,9 @@ struct StillRequest {
     /** `loadedScene` is what an earlier still of the batch loaded from `modelPath` with the same load options
      *  (app/RecentModel.h): its warnings are told again, as loading the file would, and --stats says model_reused. */
     bool reusesEarlierLoad = false;
+    /** What earlier stills of `loadedScene` derived from it whatever the view (adjacency, curvature, ...), shared with
+     *  them; null for a fresh one. Ignored unless it is `loadedScene`'s. */
+    std::shared_ptr<SceneDerivedData> loadedSceneDerived;
     Look look;
     CameraRequest camera;                  ///< what the caller fixes; resolveCamera() fills the rest from the file
     std::vector<std::string> extraOutputs; ///< more resources to compute and keep ("gbuffer.*" expands)
@@ -108,7 +112,9 @@ struct StillLog {
 struct PreparedStill {
     StillRequest request;
     std::shared_ptr<const Scene> loadedScene; ///< read by load(), or the request's
-    double loadMilliseconds = 0.0;            ///< 0 for the request's loadedScene
+    /** The scene's view-independent derived data: the request's loadedSceneDerived, or a fresh one. */
+    std::shared_ptr<SceneDerivedData> sceneDerived;
+    double loadMilliseconds = 0.0; ///< 0 for the request's loadedScene
     BoundingSphere sphere;
     Camera camera;
     FrameParams frame;

@@ -141,13 +141,33 @@ TEST_F(Cli, AStillAfterOneOfTheSameModelTakesItsLoadAndDrawsTheSame) {
         }
     }
 
-    // The views of one model: the first reads it, the others take it.
+    // What the lines derive from the mesh goes with it (the object-space suggestive contours' curvature): the first
+    // still of the model derives it, the next takes it and draws the same.
+    const std::string objectLines = " --size 96x80 --shading comic --lines contour,suggestive-object -q";
+    const CliRun twice =
+        run("render " + spot + " " + spot + " -o 'object-{index}.png' --stats 'object-{index}.json'" + objectLines);
+    ASSERT_EQ(twice.exitCode, 0) << twice.err;
+    EXPECT_TRUE(sameImage(directory / "object-1.png", directory / "object-2.png"));
+    EXPECT_GT(cv::countNonZero(readImage(directory / "object-1.png").reshape(1) != 255), 50) << "lines to compare";
+    const auto curvatureDerived = [&](const std::string& stats) {
+        const auto parsed = nlohmann::json::parse(readText(directory / stats));
+        for (const auto& layer : parsed["post_stage"]["lines"])
+            if (layer["type"] == "suggestive-object") return layer["curvature_derived"].get<bool>();
+        ADD_FAILURE() << stats << " has no suggestive-object layer";
+        return false;
+    };
+    EXPECT_TRUE(curvatureDerived("object-1.json"));
+    EXPECT_FALSE(curvatureDerived("object-2.json"));
+
+    // The views of one model: the first reads it, the others take it and what it derived.
     const CliRun views =
-        run("render " + spot + " --views 3 -o 'view-{view}.png' --stats 'view-{view}.json' -q" + kLook);
+        run("render " + spot + " --views 3 -o 'view-{view}.png' --stats 'view-{view}.json'" + objectLines);
     ASSERT_EQ(views.exitCode, 0) << views.err;
     for (const char* view : {"0", "1", "2"}) {
-        const auto stats = nlohmann::json::parse(readText(directory / ("view-" + std::string(view) + ".json")));
-        EXPECT_EQ(stats["model_reused"].get<bool>(), std::string(view) != "0") << view;
+        const std::string stats = "view-" + std::string(view) + ".json";
+        const bool first = std::string(view) == "0";
+        EXPECT_EQ(nlohmann::json::parse(readText(directory / stats))["model_reused"].get<bool>(), !first) << view;
+        EXPECT_EQ(curvatureDerived(stats), first) << view;
     }
 }
 

@@ -31,29 +31,33 @@ protected:
     /** The model remembered for `request`, then looked up for `changed`. */
     std::shared_ptr<const Scene> foundAfter(const std::function<void(StillRequest&)>& change) {
         RecentModel recent;
-        recent.remember(RecentModel::keyOf(request), scene);
+        recent.remember(RecentModel::keyOf(request), {scene, derived});
         StillRequest changed = request;
         change(changed);
-        return recent.find(RecentModel::keyOf(changed));
+        return recent.find(RecentModel::keyOf(changed)).scene;
     }
 
     std::string model;
     StillRequest request;
     std::shared_ptr<const Scene> scene = std::make_shared<const Scene>();
+    std::shared_ptr<SceneDerivedData> derived = std::make_shared<SceneDerivedData>(*scene);
 };
 
 TEST_F(RecentModelTest, TheSameFileLoadedTheSameWayIsTaken) {
     RecentModel recent;
-    EXPECT_EQ(recent.find(RecentModel::keyOf(request)), nullptr) << "nothing remembered yet";
-    recent.remember(RecentModel::keyOf(request), scene);
+    EXPECT_EQ(recent.find(RecentModel::keyOf(request)).scene, nullptr) << "nothing remembered yet";
+    recent.remember(RecentModel::keyOf(request), {scene, derived});
     // The camera, the look and the outputs are no part of the load: another view takes the model.
     StillRequest otherView = request;
     otherView.camera.fovYDegrees = 20.0;
     otherView.look.shading = ShadingModel::Phong;
     otherView.extraOutputs = {"gbuffer.normal"};
-    EXPECT_EQ(recent.find(RecentModel::keyOf(otherView)), scene);
+    const RecentModel::Model found = recent.find(RecentModel::keyOf(otherView));
+    EXPECT_EQ(found.scene, scene);
+    EXPECT_EQ(found.derived, derived) << "what the views derived goes with the model";
     recent.forget();
-    EXPECT_EQ(recent.find(RecentModel::keyOf(request)), nullptr);
+    EXPECT_EQ(recent.find(RecentModel::keyOf(request)).scene, nullptr);
+    EXPECT_EQ(recent.find(RecentModel::keyOf(request)).derived, nullptr);
 }
 
 TEST_F(RecentModelTest, AnyLoadOptionThatDiffersLoadsAgain) {
@@ -77,7 +81,7 @@ TEST_F(RecentModelTest, AFileChangedSinceItsLoadIsReadAgain) {
     const std::optional<RecentModel::Key> before = RecentModel::keyOf(request);
     ASSERT_TRUE(before.has_value());
     RecentModel recent;
-    recent.remember(before, scene);
+    recent.remember(before, {scene, derived});
 
     // Rewritten in place with the same size and its modification time set back: the change time still moves.
     std::ofstream(model) << "v 0 0 0\nv 2 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
@@ -85,14 +89,14 @@ TEST_F(RecentModelTest, AFileChangedSinceItsLoadIsReadAgain) {
     const auto rewrittenKey = RecentModel::keyOf(request);
     ASSERT_TRUE(rewrittenKey.has_value());
     EXPECT_NE(rewrittenKey->changedNanoseconds, before->changedNanoseconds);
-    EXPECT_EQ(recent.find(rewrittenKey), nullptr);
+    EXPECT_EQ(recent.find(rewrittenKey).scene, nullptr);
 
     // Replaced by another file of the same name (a new inode).
-    recent.remember(rewrittenKey, scene);
+    recent.remember(rewrittenKey, {scene, derived});
     const fs::path replacement = directory / "replacement.obj";
     fs::copy_file(model, replacement);
     fs::rename(replacement, model);
-    EXPECT_EQ(recent.find(RecentModel::keyOf(request)), nullptr);
+    EXPECT_EQ(recent.find(RecentModel::keyOf(request)).scene, nullptr);
 }
 
 TEST_F(RecentModelTest, AModelThatCannotBeExaminedIsNeverKept) {
@@ -104,10 +108,10 @@ TEST_F(RecentModelTest, AModelThatCannotBeExaminedIsNeverKept) {
     EXPECT_FALSE(RecentModel::keyOf(folder).has_value());
 
     RecentModel recent;
-    recent.remember(RecentModel::keyOf(request), scene);
-    recent.remember(std::nullopt, scene); // a still without a key replaces the one before, and keeps nothing
-    EXPECT_EQ(recent.find(RecentModel::keyOf(request)), nullptr);
-    EXPECT_EQ(recent.find(std::nullopt), nullptr);
+    recent.remember(RecentModel::keyOf(request), {scene, derived});
+    recent.remember(std::nullopt, {scene, derived}); // a still without a key replaces the one before, keeping nothing
+    EXPECT_EQ(recent.find(RecentModel::keyOf(request)).scene, nullptr);
+    EXPECT_EQ(recent.find(std::nullopt).scene, nullptr);
 }
 
 } // namespace
