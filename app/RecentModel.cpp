@@ -23,12 +23,7 @@ std::optional<RecentModel::Key> RecentModel::keyOf(const StillRequest& request) 
     key.modifiedNanoseconds = nanosecondsOf(file.st_mtim);
     // The change time moves with every write and rename, also where a writer sets the modification time back.
     key.changedNanoseconds = nanosecondsOf(file.st_ctim);
-    key.memoryLimitBytes = request.memoryLimitBytes;
-    key.animation = request.animation;
-    key.animationTime = request.animationTime;
-    key.pose = request.pose;
-    key.expressions = request.expressions;
-    key.lookAt = request.lookAt;
+    key.options = loadOptionsOf(request);
     return key;
 }
 

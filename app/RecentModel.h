@@ -9,7 +9,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <vector>
 
 namespace inkgraph {
 
@@ -24,12 +23,7 @@ public:
         std::int64_t size = 0;
         std::int64_t modifiedNanoseconds = 0;
         std::int64_t changedNanoseconds = 0;
-        std::size_t memoryLimitBytes = 0;
-        std::string animation;
-        double animationTime = 0.0;
-        std::string pose;
-        std::vector<ExpressionWeight> expressions;
-        std::optional<glm::dvec3> lookAt;
+        LoadOptions options; ///< loadOptionsOf() the request
         bool operator==(const Key&) const = default;
     };
 

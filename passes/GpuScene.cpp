@@ -100,14 +100,8 @@ const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
     return mMeshes;
 }
 
-void GpuScene::requireMeshIndex(const char* function, std::size_t meshIndex) const {
-    if (meshIndex >= mScene.meshes.size())
-        throw std::out_of_range(std::string(function) + ": mesh " + std::to_string(meshIndex) +
-                                " out of range (the scene has " + std::to_string(mScene.meshes.size()) + ")");
-}
-
 const GlBuffer& GpuScene::hullNormals(std::size_t meshIndex) {
-    requireMeshIndex("GpuScene::hullNormals()", meshIndex);
+    mDerived->requireMeshIndex("GpuScene::hullNormals()", meshIndex);
     if (mHullNormals.empty()) {
         const std::vector<DrawMesh>& drawMeshes = meshes();
         std::vector<GlBuffer> own;

@@ -158,8 +158,6 @@ public:
     void importDerived(const std::string& name);
 
 private:
-    void requireMeshIndex(const char* function, std::size_t meshIndex) const;
-
     const Scene& mScene;
     glm::dvec3 mWorldOrigin;
     std::shared_ptr<SceneDerivedData> mDerived;

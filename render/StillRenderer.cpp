@@ -184,6 +184,17 @@ std::unique_ptr<PreparedStill> StillRenderer::prepare(StillRequest request, cons
     return still;
 }
 
+LoadOptions loadOptionsOf(const StillRequest& request) {
+    LoadOptions options;
+    options.memoryLimitBytes = request.memoryLimitBytes;
+    options.animation = request.animation;
+    options.time = request.animationTime;
+    options.pose = request.pose;
+    options.expressions = request.expressions;
+    options.lookAt = request.lookAt;
+    return options;
+}
+
 std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const StillLog& log) {
     auto still = std::make_unique<PreparedStill>();
     still->request = std::move(request);
@@ -198,14 +209,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
             for (const Warning& warning : still->scene().report.warnings) log.warn(req.modelPath, warning.message);
     } else {
         const auto loadStart = std::chrono::steady_clock::now();
-        LoadOptions loadOptions;
-        loadOptions.memoryLimitBytes = req.memoryLimitBytes;
-        loadOptions.animation = req.animation;
-        loadOptions.time = req.animationTime;
-        loadOptions.pose = req.pose;
-        loadOptions.expressions = req.expressions;
-        loadOptions.lookAt = req.lookAt;
-        still->loadedScene = std::make_shared<const Scene>(loadScene(req.modelPath, loadOptions));
+        still->loadedScene = std::make_shared<const Scene>(loadScene(req.modelPath, loadOptionsOf(req)));
         still->loadMilliseconds = millisecondsSince(loadStart);
         for (const Warning& warning : still->scene().report.warnings) log.warn(req.modelPath, warning.message);
     }

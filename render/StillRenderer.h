@@ -98,6 +98,9 @@ struct StillRequest {
     ReadbackTiming readback = ReadbackTiming::Auto;
 };
 
+/** The options `request`'s model is loaded with (loadScene()). */
+LoadOptions loadOptionsOf(const StillRequest& request);
+
 /** Where a still's progress lines go. */
 struct StillLog {
     std::ostream& log;

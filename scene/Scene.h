@@ -176,6 +176,7 @@ struct LoadOptions {
      *  expressions weighted, as the file's lookAt says (docs/vrm.md). A file without VRM look-at data is a
      *  SceneError. The CLI's --look-at. */
     std::optional<glm::dvec3> lookAt;
+    bool operator==(const LoadOptions&) const = default;
 };
 
 /** Reads .gltf, .glb (and .vrm, a GLB), .obj, .stl or .ply (binary or ASCII), chosen by extension (the format table)

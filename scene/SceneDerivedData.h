@@ -80,9 +80,10 @@ public:
      *  everywhere, answered without any adjacency. */
     bool surfacesMeet();
 
-private:
+    /** Throws std::out_of_range starting with `function` unless the scene has mesh `meshIndex`. */
     void requireMeshIndex(const char* function, std::size_t meshIndex) const;
 
+private:
     /** One item derived once: `once` guards `value`, and `done` says so without waiting. */
     template <typename T>
     struct Derived {
