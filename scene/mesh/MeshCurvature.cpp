@@ -1,6 +1,7 @@
 #include "scene/mesh/MeshCurvature.h"
 
 #include "scene/mesh/MeshOps.h"
+#include "scene/mesh/ParallelRanges.h"
 
 #include <algorithm>
 #include <array>
@@ -97,13 +98,14 @@ struct FaceFrame {
 
 /** The Gaussian neighbourhoods of the vertices over the mesh's edges: for a vertex, every vertex reached from it by
  *  edges through vertices within 3 sigma of it, with weight exp(-d^2 / (2 sigma^2)) x point area (rtsc's
- *  diffuse_vert_field). A flood rather than a distance query, so a thin part's other side is not averaged in. */
+ *  diffuse_vert_field). A flood rather than a distance query, so a thin part's other side is not averaged in. The
+ *  adjacency is shared; each thread floods with a Flood of its own. */
 class GaussianNeighbourhoods {
 public:
     GaussianNeighbourhoods(const std::vector<glm::dvec3>& positions, const std::vector<glm::uvec3>& triangles,
                            const std::vector<double>& pointAreas, double sigma)
         : mPositions(positions), mPointAreas(pointAreas), mReachSquared(9.0 * sigma * sigma),
-          mInverseTwoSigmaSquared(0.5 / (sigma * sigma)), mMark(positions.size(), kUnmarked) {
+          mInverseTwoSigmaSquared(0.5 / (sigma * sigma)) {
         // Compressed adjacency: each vertex's neighbours across the faces' edges (a neighbour may repeat; the flood
         // marks it once).
         std::vector<std::uint32_t> degree(positions.size() + 1, 0);
@@ -121,37 +123,67 @@ public:
             }
     }
 
-    /** Calls visit(neighbour, weight) for `vertex` itself and every vertex of its neighbourhood. */
-    template <typename Visit>
-    void forEach(std::uint32_t vertex, Visit visit) {
-        const glm::dvec3 centre = mPositions[vertex];
-        mQueue.clear();
-        mQueue.push_back(vertex);
-        mMark[vertex] = vertex;
-        for (std::size_t head = 0; head < mQueue.size(); ++head) {
-            const std::uint32_t current = mQueue[head];
-            const glm::dvec3 offset = mPositions[current] - centre;
-            visit(current, std::exp(-glm::dot(offset, offset) * mInverseTwoSigmaSquared) * mPointAreas[current]);
-            for (std::uint32_t k = mFirst[current]; k < mFirst[current + 1]; ++k) {
-                const std::uint32_t neighbour = mNeighbours[k];
-                if (mMark[neighbour] == vertex) continue;
-                mMark[neighbour] = vertex;
-                const glm::dvec3 away = mPositions[neighbour] - centre;
-                if (glm::dot(away, away) <= mReachSquared) mQueue.push_back(neighbour);
+    /** One thread's floods over the neighbourhoods: its marks and its queue. */
+    class Flood {
+    public:
+        explicit Flood(const GaussianNeighbourhoods& neighbourhoods)
+            : mOwner(neighbourhoods), mMark(neighbourhoods.mPositions.size(), kUnmarked) {}
+
+        /** Calls visit(neighbour, weight) for `vertex` itself and every vertex of its neighbourhood, nearest by edges
+         *  first (the same order on any thread). */
+        template <typename Visit>
+        void forEach(std::uint32_t vertex, Visit visit) {
+            const GaussianNeighbourhoods& n = mOwner;
+            const glm::dvec3 centre = n.mPositions[vertex];
+            mQueue.clear();
+            mQueue.push_back(vertex);
+            mMark[vertex] = vertex;
+            for (std::size_t head = 0; head < mQueue.size(); ++head) {
+                const std::uint32_t current = mQueue[head];
+                const glm::dvec3 offset = n.mPositions[current] - centre;
+                visit(current,
+                      std::exp(-glm::dot(offset, offset) * n.mInverseTwoSigmaSquared) * n.mPointAreas[current]);
+                for (std::uint32_t k = n.mFirst[current]; k < n.mFirst[current + 1]; ++k) {
+                    const std::uint32_t neighbour = n.mNeighbours[k];
+                    if (mMark[neighbour] == vertex) continue;
+                    mMark[neighbour] = vertex;
+                    const glm::dvec3 away = n.mPositions[neighbour] - centre;
+                    if (glm::dot(away, away) <= n.mReachSquared) mQueue.push_back(neighbour);
+                }
             }
         }
+
+    private:
+        static constexpr std::uint32_t kUnmarked = 0xffffffffu;
+        const GaussianNeighbourhoods& mOwner;
+        std::vector<std::uint32_t> mMark; ///< the vertex whose flood last reached it
+        std::vector<std::uint32_t> mQueue;
+    };
+
+    /** Calls perVertex(flood, vertex) for every vertex, split over the cores (parallelRanges()), each thread flooding
+     *  with its own Flood: each vertex's sum is the same whatever the split, as long as perVertex writes its vertex
+     *  only. */
+    template <typename PerVertex>
+    void forEveryVertex(PerVertex perVertex) const {
+        parallelRanges(mPositions.size(), kVerticesPerThreadAtLeast,
+                       [&](std::size_t, std::size_t begin, std::size_t end) {
+                           Flood flood(*this);
+                           for (std::size_t vertex = begin; vertex < end; ++vertex)
+                               perVertex(flood, std::uint32_t(vertex));
+                       });
     }
 
 private:
-    static constexpr std::uint32_t kUnmarked = 0xffffffffu;
+    /** A thread's share of the vertices is worth its start (tens of microseconds) and its marks (4 bytes a vertex)
+     *  only with a few thousand floods in it. */
+    static constexpr std::size_t kVerticesPerThreadAtLeast = 4096;
+
     const std::vector<glm::dvec3>& mPositions;
     const std::vector<double>& mPointAreas;
     double mReachSquared;
     double mInverseTwoSigmaSquared;
     std::vector<std::uint32_t> mFirst;
     std::vector<std::uint32_t> mNeighbours;
-    std::vector<std::uint32_t> mMark; ///< the vertex whose flood last reached it
-    std::vector<std::uint32_t> mQueue;
 };
 
 /** The tangent vectors (x, y) of the frame `to` (unit normal toNormal) expressed in the frame (u, v) of a vertex
@@ -307,13 +339,12 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
         // rtsc's diffuse_normals: curvature is the change of the normal, so the normals' noise is what the fits
         // would turn into curvature noise.
         std::vector<glm::dvec3> smoothed(vertexCount);
-        for (std::uint32_t vertex = 0; vertex < vertexCount; ++vertex) {
+        neighbourhoods->forEveryVertex([&](GaussianNeighbourhoods::Flood& flood, std::uint32_t vertex) {
             glm::dvec3 sum(0.0);
-            neighbourhoods->forEach(vertex,
-                                    [&](std::uint32_t other, double weight) { sum += weight * result.normals[other]; });
+            flood.forEach(vertex, [&](std::uint32_t other, double weight) { sum += weight * result.normals[other]; });
             const double length = glm::length(sum);
             smoothed[vertex] = length > 0.0 && std::isfinite(length) ? sum / length : result.normals[vertex];
-        }
+        });
         result.normals = std::move(smoothed);
     }
 
@@ -388,11 +419,11 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
         // rtsc's diffuse_curv: each neighbour's tensor carried into this vertex's frame. Vertices no fit reached
         // have no tensor and take no part.
         std::vector<Tensor2> smoothed(vertexCount);
-        for (std::uint32_t vertex = 0; vertex < vertexCount; ++vertex) {
-            if (!(tensorWeights[vertex] > 0.0)) continue;
+        neighbourhoods->forEveryVertex([&](GaussianNeighbourhoods::Flood& flood, std::uint32_t vertex) {
+            if (!(tensorWeights[vertex] > 0.0)) return;
             Tensor2 sum;
             double total = 0.0;
-            neighbourhoods->forEach(vertex, [&](std::uint32_t other, double weight) {
+            flood.forEach(vertex, [&](std::uint32_t other, double weight) {
                 if (!(tensorWeights[other] > 0.0) || !(weight > 0.0)) return;
                 const auto [x, y] = frameChange(frameU[other], frameV[other], result.normals[other], frameU[vertex],
                                                 frameV[vertex], result.normals[vertex]);
@@ -403,7 +434,7 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
                 total += weight;
             });
             if (total > 0.0) smoothed[vertex] = {sum.xx / total, sum.xy / total, sum.yy / total};
-        }
+        });
         vertexTensors = std::move(smoothed);
     }
 
@@ -489,11 +520,11 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
     if (neighbourhoods) {
         // rtsc's diffuse_dcurv: each neighbour's C carried into this vertex's principal frame.
         std::vector<glm::dvec4> smoothed(vertexCount, glm::dvec4(0.0));
-        for (std::uint32_t vertex = 0; vertex < vertexCount; ++vertex) {
-            if (!(derivativeWeights[vertex] > 0.0)) continue;
+        neighbourhoods->forEveryVertex([&](GaussianNeighbourhoods::Flood& flood, std::uint32_t vertex) {
+            if (!(derivativeWeights[vertex] > 0.0)) return;
             glm::dvec4 sum(0.0);
             double total = 0.0;
-            neighbourhoods->forEach(vertex, [&](std::uint32_t other, double weight) {
+            flood.forEach(vertex, [&](std::uint32_t other, double weight) {
                 if (!(derivativeWeights[other] > 0.0) || !(weight > 0.0)) return;
                 const auto [p, q] =
                     frameChange(result.direction1[other], result.direction2[other], result.normals[other],
@@ -504,7 +535,7 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
                 total += weight;
             });
             if (total > 0.0) smoothed[vertex] = sum / total;
-        }
+        });
         result.derivative = std::move(smoothed);
     }
     return result;
