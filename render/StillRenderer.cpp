@@ -204,15 +204,15 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     if (!look.shadeMapPath.empty()) still->shadeMap = readShadeMapFile(look.shadeMapPath, shading.oneDimensionalMap);
 
     if (req.loadedScene) {
-        still->loadedScene = req.loadedScene; // its loader's warnings went to whoever loaded it
-        if (req.reusesEarlierLoad)
-            for (const Warning& warning : still->scene().report.warnings) log.warn(req.modelPath, warning.message);
+        still->loadedScene = req.loadedScene;
     } else {
         const auto loadStart = std::chrono::steady_clock::now();
         still->loadedScene = std::make_shared<const Scene>(loadScene(req.modelPath, loadOptionsOf(req)));
         still->loadMilliseconds = millisecondsSince(loadStart);
-        for (const Warning& warning : still->scene().report.warnings) log.warn(req.modelPath, warning.message);
     }
+    // A scene given loaded had its warnings told by whoever loaded it, unless it stands for this still's own load.
+    if (!req.loadedScene || req.reusesEarlierLoad)
+        for (const Warning& warning : still->scene().report.warnings) log.warn(req.modelPath, warning.message);
     still->warnings = still->scene().report.warnings;
     const Scene& scene = still->scene();
     still->sceneDerived = req.loadedSceneDerived && &req.loadedSceneDerived->scene() == &scene
