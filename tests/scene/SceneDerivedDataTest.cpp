@@ -61,8 +61,9 @@ TEST(SceneDerivedData, HullNormalsAreNoneWhereTheMeshsOwnServe) {
     SceneDerivedData derived(scene);
     // The sphere's normals are its smooth ones (its seam welded by the loader's rule or not: then they are computed).
     const std::vector<glm::vec3>* sphere = derived.hullNormals(0);
-    if (scene.meshes[0].normalsAreSmooth && derived.positionWeld(0).kept.size() == scene.meshes[0].positions.size())
+    if (scene.meshes[0].normalsAreSmooth && derived.positionWeld(0).kept.size() == scene.meshes[0].positions.size()) {
         EXPECT_EQ(sphere, nullptr);
+    }
     // The cube's split normals would tear the hull open: its hull normals are its corners' averaged ones.
     const std::vector<glm::vec3>* cube = derived.hullNormals(1);
     ASSERT_NE(cube, nullptr);
