@@ -2,6 +2,7 @@
 #include "api/Internal.h"
 #include "graph/Milliseconds.h"
 
+#include "render/BackgroundThreads.h"
 #include "render/ImageFiles.h"
 #include "render/InputFiles.h"
 #include "render/MemoryBudget.h"
@@ -282,6 +283,7 @@ struct Renderer::Impl {
                                         const std::vector<std::string>& buffers, std::uint8_t* pictureOut,
                                         std::size_t pictureRowBytes) {
         const std::lock_guard<std::mutex> oneAtATime(rendering);
+        const ParallelWork rendersInParallel; // a fork() meanwhile leaves oneTBB's workers alone
         // Declared first, so it runs last: after the still's GL objects have gone back to the pool on this thread.
         struct ReleaseAtEnd {
             Impl& impl;
@@ -420,7 +422,10 @@ double Still::milliseconds() const { return mImpl->milliseconds; }
 Renderer::Renderer(Platform platform)
     : mImpl(std::make_unique<Impl>(platform == Platform::Device        ? EglPlatform::Device
                                    : platform == Platform::Surfaceless ? EglPlatform::Surfaceless
-                                                                       : EglPlatform::Any)) {}
+                                                                       : EglPlatform::Any)) {
+    // A render starts oneTBB's workers; a child forked after it must not inherit them (render/BackgroundThreads.h).
+    stopParallelWorkersAtEachFork();
+}
 
 Renderer::~Renderer() = default;
 Renderer::Renderer(Renderer&&) noexcept = default;

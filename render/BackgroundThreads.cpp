@@ -5,6 +5,9 @@
 #include <oneapi/tbb/global_control.h>
 #include <opencv2/core/utility.hpp>
 
+#include <pthread.h>
+
+#include <mutex>
 #include <new>
 #include <stdexcept>
 
@@ -27,6 +30,40 @@ void stopParallelWorkers() {
             "stopParallelWorkers(): oneTBB's worker pool, which OpenCV's parallel loops run on, is "
             "still held by another user (an initialised task_arena or a task_scheduler_handle outside "
             "OpenCV); its workers were not joined");
+}
+
+namespace {
+
+std::mutex gParallelWorkMutex;
+int gParallelWorkCount = 0; ///< ParallelWork objects alive, under gParallelWorkMutex
+
+/** pthread_atfork()'s prepare handler: in the thread that forks, before the fork. */
+void stopParallelWorkersBeforeFork() {
+    // A ParallelWork being made or ended on another thread holds the mutex only for its count: such a fork leaves
+    // the workers as they are, as one during a render does.
+    const std::unique_lock<std::mutex> gate(gParallelWorkMutex, std::try_to_lock);
+    if (!gate.owns_lock() || gParallelWorkCount > 0) return;
+    try {
+        stopParallelWorkers();
+    } catch (...) { // another user of oneTBB holds the pool: the fork goes on as it would have
+    }
+}
+
+} // namespace
+
+ParallelWork::ParallelWork() {
+    const std::lock_guard<std::mutex> lock(gParallelWorkMutex);
+    ++gParallelWorkCount;
+}
+
+ParallelWork::~ParallelWork() {
+    const std::lock_guard<std::mutex> lock(gParallelWorkMutex);
+    --gParallelWorkCount;
+}
+
+void stopParallelWorkersAtEachFork() {
+    static const int registered = pthread_atfork(stopParallelWorkersBeforeFork, nullptr, nullptr);
+    (void)registered; // ENOMEM: forks then go on as before
 }
 
 ParallelLoopThreads::ParallelLoopThreads(int threads) : mThreadsBefore(cv::getNumThreads()) {

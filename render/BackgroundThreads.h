@@ -17,6 +17,23 @@ namespace inkgraph {
  *  (another user of oneTBB still holds it). */
 void stopParallelWorkers();
 
+/** Marks work that may run OpenCV's parallel loops on oneTBB's workers (a library render) for its life: a fork() while
+ *  one lives leaves the workers alone (stopParallelWorkersAtEachFork()). */
+class ParallelWork {
+public:
+    ParallelWork();
+    ~ParallelWork();
+    ParallelWork(const ParallelWork&) = delete;
+    ParallelWork& operator=(const ParallelWork&) = delete;
+};
+
+/** From its first call on, every fork() of the process first joins oneTBB's workers (stopParallelWorkers()) unless a
+ *  ParallelWork lives. A child inherits no thread but the one that forked, yet oneTBB's state still names the parent's
+ *  workers, and its exit handler detaches them in the child: SIGSEGV when the child exits. Joined before the fork,
+ *  the parent and the child each start new workers when a parallel loop needs them. For the library (api/), whose
+ *  users fork (Python's multiprocessing); the command line never forks. */
+void stopParallelWorkersAtEachFork();
+
 /** OpenCV's parallel loops on `threads` threads for the object's life (1: in the calling thread), then on as many as
  *  before. */
 class ParallelLoopThreads {

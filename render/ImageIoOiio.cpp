@@ -156,5 +156,15 @@ const ImageIoFunctions kFunctions = {kImageIoVersion, encodeWithOiio, readWithOi
 } // namespace inkgraph
 
 extern "C" __attribute__((visibility("default"))) const inkgraph::ImageIoFunctions* inkgraph_image_io_functions() {
+    // OpenImageIO's and OpenEXR's worker pools off: their threads would fan each picture out over every core
+    // while inkgraph already writes pictures on several threads (OpenImageIO's own advice for such callers), and a
+    // process forked after a write inherited the pools without their threads: its next EXR write waited for them
+    // forever. exr_threads -1 is OpenEXR's 0 threads (0 would be the cores'). Once, when the module is first asked.
+    static const bool singleThreaded = [] {
+        OIIO::attribute("threads", 1);
+        OIIO::attribute("exr_threads", -1);
+        return true;
+    }();
+    (void)singleThreaded;
     return &inkgraph::kFunctions;
 }

@@ -150,6 +150,49 @@ print(os.waitstatus_to_exitcode(status))
     assert run.stdout.split("\n")[0] == "0", run.stdout
 
 
+def test_a_child_forked_after_a_render_writes_an_exr_and_exits_cleanly(suzanne_path, tmp_path):
+    # oneTBB's workers (OpenCV's parallel loops) are joined before each fork: a child that inherited the parent's
+    # worker records detached threads it does not have in oneTBB's exit handler, SIGSEGV at sys.exit() (5-8 of 10).
+    code = """
+import os, sys, inkgraph
+with inkgraph.Renderer() as renderer:
+    depth = renderer.render(inkgraph.Scene.load(sys.argv[1]), None, inkgraph.Frame(32, 32), ["depth"]).buffer("depth")
+statuses = []
+for attempt in range(4):
+    child = os.fork()
+    if child == 0:
+        inkgraph.write_image(os.path.join(sys.argv[2], f"child-{attempt}.exr"), depth)
+        sys.exit(0)  # exit handlers and static destructors run, as in a plain forked child
+    statuses.append(os.waitstatus_to_exitcode(os.waitpid(child, 0)[1]))
+print(statuses)
+"""
+    run = _run_python(code, suzanne_path, str(tmp_path))
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split("\n")[0] == "[0, 0, 0, 0]", run.stdout + run.stderr
+    assert sorted(path.name for path in tmp_path.iterdir()) == [f"child-{i}.exr" for i in range(4)]
+
+
+def test_a_pool_forked_after_an_exr_write_writes_exrs(suzanne_path, tmp_path):
+    # OpenEXR's worker pool is off: a child forked after the parent wrote an EXR inherited the pool without its
+    # threads, and its own EXR write waited for them forever (multiprocessing's default 'fork' start method).
+    code = """
+import multiprocessing, os, sys, inkgraph
+def save(index):
+    inkgraph.write_image(os.path.join(sys.argv[2], f"pool-{index}.exr"), depth)
+    return index
+if __name__ == "__main__":
+    depth = inkgraph.render(sys.argv[1], size=32, buffers=["depth"]).buffers["depth"]
+    inkgraph.write_image(os.path.join(sys.argv[2], "parent.exr"), depth)
+    inkgraph.default_renderer().close()
+    with multiprocessing.get_context("fork").Pool(2) as pool:
+        print(sorted(pool.map(save, range(4))))
+"""
+    run = _run_python(code, suzanne_path, str(tmp_path))
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split("\n")[0] == "[0, 1, 2, 3]", run.stdout + run.stderr
+    assert len(list(tmp_path.glob("pool-*.exr"))) == 4
+
+
 def test_a_closed_renderer_refuses_and_the_default_one_is_replaced(suzanne, own_renderer):
     inkgraph.render(suzanne, size=64, renderer=own_renderer)
     own_renderer.close()
