@@ -38,6 +38,9 @@ void applyFrame(const Frame& frame, RenderOptions& options, std::vector<std::str
     if (frame.fov) applyField("fov", "--fov", exactText(*frame.fov), options, given);
     if (frame.clip)
         applyField("clip", "--clip", exactText(frame.clip->near) + "," + exactText(frame.clip->far), options, given);
+    if (frame.placement != CameraPlacement::FileOrAuto && frame.placement != CameraPlacement::Auto)
+        throw UsageError("Frame::placement: no CameraPlacement has the value " +
+                         std::to_string(static_cast<int>(frame.placement)));
     if (frame.placement == CameraPlacement::Auto) applyField("placement", "--camera", "auto", options, given);
     if (!frame.frameNodes.empty()) {
         std::string nodes;

@@ -2,17 +2,25 @@
 
 #include "render/ImageFiles.h"
 
+#include <cstdint>
 #include <stdexcept>
 
 namespace inkgraph::api {
 inline namespace INKGRAPH_ABI_NAMESPACE {
 namespace {
 
-/** UsageError unless the fields describe an image: at least 1x1, 1 or 4 channels. */
+/** The most bytes an Image may describe (128 TiB): far beyond any memory, and small enough that byteCount() cannot
+ *  wrap around (a width and height near INT_MAX would make it a small number that a short buffer then matches). */
+constexpr double kMostImageBytes = double(std::uint64_t(1) << 47);
+
+/** UsageError unless the fields describe an image: at least 1x1, 1 or 4 channels, at most kMostImageBytes. */
 void checkShape(int width, int height, int channels) {
+    const std::string shape = "an image of " + std::to_string(width) + "x" + std::to_string(height) + " pixels and " +
+                              std::to_string(channels) + " channels";
     if (width < 1 || height < 1 || (channels != 1 && channels != 4))
-        throw UsageError("an image of " + std::to_string(width) + "x" + std::to_string(height) + " pixels and " +
-                         std::to_string(channels) + " channels (at least 1x1, 1 or 4 channels)");
+        throw UsageError(shape + " (at least 1x1, 1 or 4 channels)");
+    if (double(width) * double(height) * double(channels) * sizeof(float) > kMostImageBytes)
+        throw UsageError(shape + ": more than 2^47 bytes, which no memory holds");
 }
 
 } // namespace

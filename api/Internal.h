@@ -56,8 +56,16 @@ struct ImageAccess {
 };
 
 /** The library's way into a Look's data. */
+/** Error(Usage) for a Look used after it was moved from: its state went with the move. */
+inline Error lookMovedFrom() {
+    return Error(Error::Kind::Usage, "Look: this Look was moved from; assign it a Look before using it");
+}
+
 struct LookAccess {
-    static const Look::Impl& impl(const Look& look) { return *look.mImpl; }
+    static const Look::Impl& impl(const Look& look) {
+        if (!look.mImpl) throw lookMovedFrom();
+        return *look.mImpl;
+    }
 };
 
 /** `error` as the command line reports it (render/ErrorReport.h): its message, and the kind of its exit code. */

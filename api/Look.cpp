@@ -62,6 +62,13 @@ const LineParameter& lineParameterNamed(const std::string& name) {
     throw UsageError("no line parameter '" + name + "' (there are: " + names + ")");
 }
 
+/** A look's state, or Error(Usage) for a Look moved from: its state went with the move, and using it crashed. */
+template <class ImplPointer>
+auto& stateOf(ImplPointer& impl) {
+    if (!impl) throw lookMovedFrom();
+    return *impl;
+}
+
 } // namespace
 
 void refuseOtherFlags(const SourcedArguments& arguments, FlagOwner owner) {
@@ -91,9 +98,9 @@ std::vector<std::string> Look::Impl::givenFlags() const {
 
 Look::Look() : mImpl(std::make_unique<Impl>()) { mImpl->parsed = parseRenderFlags({}); }
 Look::~Look() = default;
-Look::Look(const Look& other) : mImpl(std::make_unique<Impl>(*other.mImpl)) {}
+Look::Look(const Look& other) : mImpl(std::make_unique<Impl>(stateOf(other.mImpl))) {}
 Look& Look::operator=(const Look& other) {
-    if (this != &other) mImpl = std::make_unique<Impl>(*other.mImpl);
+    if (this != &other) mImpl = std::make_unique<Impl>(stateOf(other.mImpl));
     return *this;
 }
 Look::Look(Look&&) noexcept = default;
@@ -129,7 +136,7 @@ Look& Look::set(const std::string& flag, const std::string& value) {
         refuseOtherFlags(added, FlagOwner::Look);
         if (added.origins.empty()) added.origins.assign(added.arguments.size(), "");
         // The flags set again lose their earlier values; the new ones' values are checked as the parse goes.
-        Impl next = *mImpl;
+        Impl next = stateOf(mImpl);
         for (std::size_t i = 0; i < added.arguments.size(); ++i) {
             const Flag* replaced = flagOf(added.arguments[i]);
             if (replaced == nullptr) continue;
@@ -148,12 +155,12 @@ Look& Look::set(const std::string& flag, const std::string& value) {
         next.arguments.insert(next.arguments.end(), added.arguments.begin(), added.arguments.end());
         next.origins.insert(next.origins.end(), added.origins.begin(), added.origins.end());
         next.parsed = parseRenderFlags(next.arguments, next.origins, FlagChecks::Values);
-        *mImpl = std::move(next);
+        stateOf(mImpl) = std::move(next);
     });
     return *this;
 }
 
-std::vector<std::string> Look::arguments() const { return mImpl->arguments; }
+std::vector<std::string> Look::arguments() const { return stateOf(mImpl).arguments; }
 
 namespace {
 
@@ -171,58 +178,58 @@ void setFlag(Look& look, const std::string& setter, const std::string& flag, con
 
 } // namespace
 
-Shading Look::shading() const { return static_cast<Shading>(mImpl->parsed.look.shading); }
+Shading Look::shading() const { return static_cast<Shading>(stateOf(mImpl).parsed.look.shading); }
 Look& Look::setShading(Shading shading) {
     setFlag(*this, "Look::setShading()", "--shading", nameOf(shading));
     return *this;
 }
 
-double Look::shininess() const { return mImpl->parsed.look.shininess; }
+double Look::shininess() const { return stateOf(mImpl).parsed.look.shininess; }
 Look& Look::setShininess(double exponent) {
     setFlag(*this, "Look::setShininess()", "--shininess", exactText(exponent));
     return *this;
 }
 
-std::optional<int> Look::bands() const { return mImpl->parsed.look.bands; }
+std::optional<int> Look::bands() const { return stateOf(mImpl).parsed.look.bands; }
 Look& Look::setBands(int bands) {
     setFlag(*this, "Look::setBands()", "--bands", std::to_string(bands));
     return *this;
 }
 
-std::string Look::shadeMap() const { return mImpl->parsed.look.shadeMapPath; }
+std::string Look::shadeMap() const { return stateOf(mImpl).parsed.look.shadeMapPath; }
 Look& Look::setShadeMap(const std::string& path) {
     setFlag(*this, "Look::setShadeMap()", "--shademap", path);
     return *this;
 }
 
-std::string Look::outlineWidthMap() const { return mImpl->parsed.look.outlineWidthMap.text(); }
+std::string Look::outlineWidthMap() const { return stateOf(mImpl).parsed.look.outlineWidthMap.text(); }
 Look& Look::setOutlineWidthMap(const std::string& source) {
     setFlag(*this, "Look::setOutlineWidthMap()", "--outline-width-map", source);
     return *this;
 }
 
-ViewVector Look::viewVector() const { return static_cast<ViewVector>(mImpl->parsed.look.viewVector); }
+ViewVector Look::viewVector() const { return static_cast<ViewVector>(stateOf(mImpl).parsed.look.viewVector); }
 Look& Look::setViewVector(ViewVector mode) {
     setFlag(*this, "Look::setViewVector()", "--view-vector", nameOf(mode));
     return *this;
 }
 
 FaceOrientation Look::faceOrientation() const {
-    return static_cast<FaceOrientation>(mImpl->parsed.look.faceOrientation);
+    return static_cast<FaceOrientation>(stateOf(mImpl).parsed.look.faceOrientation);
 }
 Look& Look::setFaceOrientation(FaceOrientation method) {
     setFlag(*this, "Look::setFaceOrientation()", "--face-orientation", nameOf(method));
     return *this;
 }
 
-int Look::frontRule() const { return mImpl->parsed.look.frontRule; }
+int Look::frontRule() const { return stateOf(mImpl).parsed.look.frontRule; }
 Look& Look::setFrontRule(int rule) {
     setFlag(*this, "Look::setFrontRule()", "--front-rule", std::to_string(rule));
     return *this;
 }
 
 std::optional<Vec3> Look::light() const {
-    const std::optional<glm::dvec3>& light = mImpl->parsed.look.towardLight;
+    const std::optional<glm::dvec3>& light = stateOf(mImpl).parsed.look.towardLight;
     if (!light) return std::nullopt;
     return Vec3{light->x, light->y, light->z};
 }
@@ -232,7 +239,7 @@ Look& Look::setLight(const Vec3& towardLight) {
 }
 
 std::optional<Color> Look::ambient() const {
-    const std::optional<glm::dvec3>& ambient = mImpl->parsed.look.ambient;
+    const std::optional<glm::dvec3>& ambient = stateOf(mImpl).parsed.look.ambient;
     if (!ambient) return std::nullopt;
     return Color{ambient->r, ambient->g, ambient->b, 1.0};
 }
@@ -246,7 +253,7 @@ Look& Look::setAmbient(const Color& linearRgb) {
 }
 
 Color Look::paper() const {
-    const glm::dvec3& paper = mImpl->parsed.look.background;
+    const glm::dvec3& paper = stateOf(mImpl).parsed.look.background;
     return {paper.r, paper.g, paper.b, 1.0};
 }
 Look& Look::setPaper(const Color& color) {
@@ -258,19 +265,19 @@ Look& Look::setPaper(const Color& color) {
     return *this;
 }
 
-int Look::supersample() const { return mImpl->parsed.look.supersample; }
+int Look::supersample() const { return stateOf(mImpl).parsed.look.supersample; }
 Look& Look::setSupersample(int factor) {
     setFlag(*this, "Look::setSupersample()", "--supersample", std::to_string(factor));
     return *this;
 }
 
-int Look::msaa() const { return mImpl->parsed.look.msaa; }
+int Look::msaa() const { return stateOf(mImpl).parsed.look.msaa; }
 Look& Look::setMsaa(int samples) {
     setFlag(*this, "Look::setMsaa()", "--msaa", std::to_string(samples));
     return *this;
 }
 
-Precision Look::gbufferPrecision() const { return static_cast<Precision>(mImpl->parsed.look.gbufferPrecision); }
+Precision Look::gbufferPrecision() const { return static_cast<Precision>(stateOf(mImpl).parsed.look.gbufferPrecision); }
 Look& Look::setGbufferPrecision(Precision precision) {
     setFlag(*this, "Look::setGbufferPrecision()", "--gbuffer-precision", nameOf(precision));
     return *this;
@@ -278,7 +285,7 @@ Look& Look::setGbufferPrecision(Precision precision) {
 
 std::vector<LineType> Look::lines() const {
     std::vector<LineType> types;
-    for (const std::string& name : mImpl->parsed.look.lines) types.push_back(lineTypeNamed(name));
+    for (const std::string& name : stateOf(mImpl).parsed.look.lines) types.push_back(lineTypeNamed(name));
     return types;
 }
 Look& Look::setLines(const std::vector<LineType>& types) {
@@ -292,7 +299,7 @@ Look& Look::setLines(const std::vector<LineType>& types) {
 }
 
 LineStyle Look::lineStyle(LineType type) const {
-    const inkgraph::LineStyle style = mImpl->parsed.look.styleOf(nameOf(type));
+    const inkgraph::LineStyle style = stateOf(mImpl).parsed.look.styleOf(nameOf(type));
     return {style.widthPixels, {style.color.r, style.color.g, style.color.b, style.color.a}};
 }
 Look& Look::setLineStyle(LineType type, const LineStyle& style) {
@@ -320,7 +327,7 @@ double Look::lineParameter(const std::string& name) const {
     return translated("Look::lineParameter()", [&] {
         const LineParameter& parameter = lineParameterNamed(name);
         if (parameter.isChoice()) throw UsageError("'" + name + "' is a choice: read it with lineChoice()");
-        const std::optional<double> value = mImpl->parsed.look.lineParameters.numberIfSet(parameter);
+        const std::optional<double> value = stateOf(mImpl).parsed.look.lineParameters.numberIfSet(parameter);
         if (!value) throw UsageError("'" + name + "' has no default and was not set");
         return *value;
     });
@@ -330,7 +337,7 @@ std::string Look::lineChoice(const std::string& name) const {
     return translated("Look::lineChoice()", [&] {
         const LineParameter& parameter = lineParameterNamed(name);
         if (!parameter.isChoice()) throw UsageError("'" + name + "' is a number: read it with lineParameter()");
-        return mImpl->parsed.look.lineParameters.choice(parameter);
+        return stateOf(mImpl).parsed.look.lineParameters.choice(parameter);
     });
 }
 
@@ -353,7 +360,7 @@ Look& Look::setLineChoice(const std::string& name, const std::string& value) {
 }
 
 StrokeSettings Look::strokes() const {
-    const StrokeStyle& strokes = mImpl->parsed.look.strokes;
+    const StrokeStyle& strokes = stateOf(mImpl).parsed.look.strokes;
     return {strokes.minLength,     strokes.weightByDepth, strokes.weightByStrength, strokes.taperEnds,
             strokes.mergeOverlaps, strokes.hiddenDashOn,  strokes.hiddenDashOff};
 }

@@ -31,13 +31,32 @@ const char* const kLineTypeNames[] = {"hidden-mesh-silhouette",
                                       "mesh-silhouette"};
 static_assert(std::size(kLineTypeNames) == std::size_t(LineType::MeshSilhouette) + 1);
 
+/** Error(Usage) for an enum value outside its enumerators (a cast from a number): it names nothing. */
+template <class Enum>
+Error noSuch(const char* enumName, Enum value) {
+    return Error(Error::Kind::Usage, std::string("nameOf(): no ") + enumName + " has the value " +
+                                         std::to_string(static_cast<long long>(value)));
+}
+
 } // namespace
 
-std::string nameOf(Shading shading) { return traitsOf(static_cast<ShadingModel>(shading)).name; }
+std::string nameOf(Shading shading) {
+    if (static_cast<int>(shading) < 0 || shading > Shading::Auto) throw noSuch("Shading", shading);
+    return traitsOf(static_cast<ShadingModel>(shading)).name;
+}
 
-std::string nameOf(LineType type) { return kLineTypeNames[static_cast<int>(type)]; }
+std::string nameOf(LineType type) {
+    if (static_cast<std::size_t>(type) >= std::size(kLineTypeNames)) throw noSuch("LineType", type);
+    return kLineTypeNames[static_cast<std::size_t>(type)];
+}
 
-std::string nameOf(ViewVector mode) { return mode == ViewVector::Exact ? "exact" : "constant"; }
+std::string nameOf(ViewVector mode) {
+    switch (mode) {
+    case ViewVector::Exact: return "exact";
+    case ViewVector::Constant: return "constant";
+    }
+    throw noSuch("ViewVector", mode);
+}
 
 std::string nameOf(FaceOrientation method) {
     switch (method) {
@@ -46,10 +65,16 @@ std::string nameOf(FaceOrientation method) {
     case FaceOrientation::DuringVertices: return "during-vertices";
     case FaceOrientation::AfterVertices: return "after-vertices";
     }
-    return "standard";
+    throw noSuch("FaceOrientation", method);
 }
 
-std::string nameOf(Precision precision) { return precision == Precision::Float32 ? "float" : "half"; }
+std::string nameOf(Precision precision) {
+    switch (precision) {
+    case Precision::Float32: return "float";
+    case Precision::Float16: return "half";
+    }
+    throw noSuch("Precision", precision);
+}
 
 LineType lineTypeNamed(const std::string& name) {
     std::string names;

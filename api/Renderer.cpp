@@ -419,10 +419,22 @@ const std::vector<Warning>& Still::warnings() const { return mImpl->warnings; }
 
 double Still::milliseconds() const { return mImpl->milliseconds; }
 
-Renderer::Renderer(Platform platform)
-    : mImpl(std::make_unique<Impl>(platform == Platform::Device        ? EglPlatform::Device
-                                   : platform == Platform::Surfaceless ? EglPlatform::Surfaceless
-                                                                       : EglPlatform::Any)) {
+namespace {
+
+/** The EGL platform a Renderer asks for; Error(Usage) for a value that names no Platform. */
+EglPlatform eglPlatformOf(Renderer::Platform platform) {
+    switch (platform) {
+    case Renderer::Platform::Auto: return EglPlatform::Any;
+    case Renderer::Platform::Device: return EglPlatform::Device;
+    case Renderer::Platform::Surfaceless: return EglPlatform::Surfaceless;
+    }
+    throw Error(Error::Kind::Usage,
+                "Renderer::Renderer(): no Platform has the value " + std::to_string(static_cast<int>(platform)));
+}
+
+} // namespace
+
+Renderer::Renderer(Platform platform) : mImpl(std::make_unique<Impl>(eglPlatformOf(platform))) {
     // A render starts oneTBB's workers; a child forked after it must not inherit them (render/BackgroundThreads.h).
     stopParallelWorkersAtEachFork();
 }

@@ -17,6 +17,9 @@ namespace {
 constexpr double kMinFovDegrees = 0.01;
 constexpr double kMaxFovDegrees = 179.0;
 constexpr double kMaxShininess = 1e6;
+/** A thousandth of a pixel: no line is seen thinner, and the stroke stage's single floats hold it (a width of 1e-46
+ *  passed the flag as a double and reached the strokes as 0). */
+constexpr double kMinLineWidthPixels = 0.001;
 constexpr double kMaxLineWidthPixels = 256.0;
 constexpr double kMinClipDistance = 1e-30;
 constexpr double kMaxClipDistance = 1e30;
@@ -313,8 +316,8 @@ Flag helpOnly(HelpSection section, std::string label, std::string help) {
 /** The width, colour and parameter flags of every registered line type. */
 void addLineTypeFlags(std::vector<Flag>& flags) {
     flags.push_back(helpOnly(HelpSection::Lines, "--TYPE-width PX",
-                             "line width in pixels, above 0 up to 256 (default 2), constant across distance, field\n"
-                             "of view and resolution (for outline: the width showing outside the silhouette)"));
+                             "line width in pixels, 0.001 to 256 (default 2), constant across distance, field of\n"
+                             "view and resolution (for outline: the width showing outside the silhouette)"));
     flags.push_back(
         helpOnly(HelpSection::Lines, "--TYPE-color R,G,B[,A]", "line colour, channels in [0,1] (default 0,0,0)"));
     for (const LineType& type : lineTypes()) {
@@ -326,15 +329,15 @@ void addLineTypeFlags(std::vector<Flag>& flags) {
                            : flagName + ": the '" + name + "' line type is not drawn (add it to --lines)";
             };
         };
-        Flag width = styleFlag(
-            flag({"--" + name + "-width"}, "PX", HelpSection::Lines, "",
-                 [name](const std::string& value, RenderOptions& options) {
-                     const std::string flagName = "--" + name + "-width";
-                     const double pixels = parseNumber(flagName, value);
-                     if (!(pixels > 0.0 && pixels <= kMaxLineWidthPixels))
-                         throw UsageError(flagName + ": pixels must be above 0 and at most 256, got '" + value + "'");
-                     options.look.lineStyles[name].widthPixels = pixels;
-                 }));
+        Flag width = styleFlag(flag({"--" + name + "-width"}, "PX", HelpSection::Lines, "",
+                                    [name](const std::string& value, RenderOptions& options) {
+                                        const std::string flagName = "--" + name + "-width";
+                                        const double pixels = parseNumber(flagName, value);
+                                        if (!(pixels >= kMinLineWidthPixels && pixels <= kMaxLineWidthPixels))
+                                            throw UsageError(flagName + ": pixels must be from 0.001 to 256, got '" +
+                                                             value + "'");
+                                        options.look.lineStyles[name].widthPixels = pixels;
+                                    }));
         width.noEffect = notDrawn("--" + name + "-width");
         flags.push_back(width);
         Flag color = styleFlag(flag({"--" + name + "-color"}, "R,G,B[,A]", HelpSection::Lines, "",

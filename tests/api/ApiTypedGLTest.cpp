@@ -176,7 +176,7 @@ TEST(ApiTyped, TheLookReadsBackItsFields) {
     EXPECT_STREQ(errorOf([&] {
                      look.setLineStyle(ig::LineType::Contour, {0.0, {}});
                  }).what(),
-                 "Look::setLineStyle(): --contour-width: pixels must be above 0 and at most 256, got '0'");
+                 "Look::setLineStyle(): --contour-width: pixels must be from 0.001 to 256, got '0'");
     EXPECT_EQ(errorOf([&] { look.setLineParameter("crease-angle", 400); }).kind(), ig::Error::Kind::Usage);
     const std::string sheen = errorOf([&] { look.lineParameter("sheen"); }).what();
     EXPECT_EQ(sheen.rfind("Look::lineParameter(): no line parameter 'sheen' (there are: ", 0), 0u) << sheen;
@@ -529,6 +529,53 @@ TEST(ApiTyped, RenderIntoWritesTheCallersRows) {
     EXPECT_STREQ(
         errorOf([&] { renderer().renderInto(buffer.data(), 10, scene, ig::Look(), frameOf(width, height)); }).what(),
         "Renderer::renderInto(): the picture's rows are 10 bytes apart; 50 RGBA8 pixels need 200");
+}
+
+TEST(ApiTyped, ValuesNoTypeHoldsAreUsageErrorsNotCrashes) {
+    // A Look moved from: its state went with the move; every use is refused (it dereferenced null before).
+    ig::Look moved;
+    const ig::Look taken = std::move(moved);
+    const auto refusedAsMovedFrom = [](const std::function<void()>& use) {
+        const ig::Error error = errorOf(use);
+        EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
+        EXPECT_NE(std::string(error.what()).find("Look: this Look was moved from"), std::string::npos) << error.what();
+    };
+    refusedAsMovedFrom([&] { (void)moved.arguments(); });
+    refusedAsMovedFrom([&] { moved.setShading(ig::Shading::Phong); });
+    refusedAsMovedFrom([&] { const ig::Look copy(moved); });
+    refusedAsMovedFrom([&] { (void)ig::bufferNames(moved); });
+    refusedAsMovedFrom([&] { renderer().render(ig::Scene::load(kSuzanne), moved, frameOf(16, 16)); });
+    moved = taken; // assigned, it is a look again
+    EXPECT_EQ(moved.shading(), taken.shading());
+
+    // Enum values cast from numbers that name no enumerator.
+    const auto usage = [](const std::function<void()>& use) { return errorOf(use).kind() == ig::Error::Kind::Usage; };
+    EXPECT_STREQ(errorOf([] { (void)ig::nameOf(static_cast<ig::LineType>(12345)); }).what(),
+                 "nameOf(): no LineType has the value 12345");
+    EXPECT_TRUE(usage([] { (void)ig::nameOf(static_cast<ig::Shading>(999)); }));
+    EXPECT_TRUE(usage([] { (void)ig::nameOf(static_cast<ig::Precision>(7)); }));
+    EXPECT_TRUE(usage([] { (void)ig::nameOf(static_cast<ig::ViewVector>(-1)); }));
+    EXPECT_TRUE(usage([] { (void)ig::nameOf(static_cast<ig::FaceOrientation>(4)); }));
+    ig::Look look;
+    EXPECT_TRUE(usage([&] { look.setShading(static_cast<ig::Shading>(999)); }));
+    EXPECT_TRUE(usage([&] { look.setGbufferPrecision(static_cast<ig::Precision>(7)); }));
+    EXPECT_TRUE(usage([&] { look.setLines({static_cast<ig::LineType>(999)}); }));
+    EXPECT_TRUE(usage([&] { look.setLineStyle(static_cast<ig::LineType>(999), {}); }));
+    EXPECT_TRUE(usage([] { ig::Renderer wrong(static_cast<ig::Renderer::Platform>(9)); }));
+    ig::Frame frame = frameOf(16, 16);
+    frame.placement = static_cast<ig::CameraPlacement>(9);
+    EXPECT_TRUE(usage([&] { renderer().render(ig::Scene::load(kSuzanne), {}, frame); }));
+
+    // A line width a single float cannot hold (it reached the strokes as 0, an internal error).
+    EXPECT_STREQ(errorOf([&] {
+                     look.setLineStyle(ig::LineType::Contour, {1e-46, {}});
+                 }).what(),
+                 "Look::setLineStyle(): --contour-width: pixels must be from 0.001 to 256, got '1e-46'");
+
+    // An image whose byte count would wrap around size_t matched a short buffer.
+    EXPECT_TRUE(
+        usage([] { ig::Image(2147380029, 536896818, 4, ig::Image::Type::Float32, std::vector<uint8_t>(11936)); }));
+    EXPECT_TRUE(usage([] { ig::Image(1 << 30, 1 << 30, 4, ig::Image::Type::Float32, {}); }));
 }
 
 } // namespace

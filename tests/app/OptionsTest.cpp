@@ -144,8 +144,12 @@ TEST(Options, LineTypesAndTheirStyles) {
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "none", "--silhouette-object-width", "1"})
                   .find("--silhouette-object-width"),
               std::string::npos);
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-width", "0"}).find("above 0"),
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-width", "0"}).find("from 0.001"),
               std::string::npos);
+    // A width no single float holds (it reached the stroke stage as 0: an internal error there).
+    EXPECT_NE(
+        usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-width", "1e-46"}).find("from 0.001"),
+        std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-width", "300"}).find("256"),
               std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-color", "1,0"}).find("R,G,B"),

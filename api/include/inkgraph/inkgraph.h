@@ -283,7 +283,7 @@ INKGRAPH_API LineType lineTypeNamed(const std::string& name);
 
 /** How one line type is drawn (`--TYPE-width`, `--TYPE-color`). */
 struct LineStyle {
-    double width = 2.0; ///< pixels, above 0 up to 256
+    double width = 2.0; ///< pixels, 0.001 to 256
     Color color;
 };
 
