@@ -78,10 +78,18 @@ int hookFrom(const char* variable) {
 /** Appends `line` to the journal: one write(2) with O_APPEND (so a kill leaves it whole or a torn tail), then
  *  fdatasync (so a finished line survives the machine too). `tearAt`: the test hook's byte count, else 0. */
 void appendLine(const fs::path& journal, const std::string& line, std::size_t tearAt) {
-    const int descriptor = ::open(journal.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    // Never through a link, never into a FIFO or a device: the journal is the data set's own plain file.
+    const int descriptor =
+        ::open(journal.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
     if (descriptor < 0)
         throw FileError("DatasetRun::recordCommitted(): cannot open the journal '" + journal.string() +
                         "': " + std::strerror(errno));
+    struct stat status {};
+    if (::fstat(descriptor, &status) != 0 || !S_ISREG(status.st_mode)) {
+        ::close(descriptor);
+        throw FileError("DatasetRun::recordCommitted(): the journal '" + journal.string() +
+                        "' is not a plain file; remove it and resume");
+    }
     // One write for the whole line; a short write (a full disk) is continued, leaving a torn line at worst.
     int failure = writeWhole(descriptor, line.data(), tearAt > 0 ? tearAt : line.size());
     if (tearAt > 0) {
@@ -99,11 +107,9 @@ void appendLine(const fs::path& journal, const std::string& line, std::size_t te
  *  line appended starts on a line of its own. */
 std::vector<Json> readRecords(const fs::path& path, bool cutTornTail) {
     std::vector<Json> records;
-    std::ifstream file(path, std::ios::binary);
-    if (!file) return records;
-    std::stringstream buffer;
-    buffer << file.rdbuf();
-    const std::string text = buffer.str();
+    const std::optional<std::string> read = readDatasetFile(path, "DatasetRun");
+    if (!read) return records;
+    const std::string& text = *read;
     const std::size_t lastNewline = text.rfind('\n');
     const std::size_t whole = lastNewline == std::string::npos ? 0 : lastNewline + 1;
     if (cutTornTail && whole < text.size()) {
@@ -181,8 +187,38 @@ std::string hexDigits(std::uint64_t value) {
     return text;
 }
 
+std::optional<std::string> readDatasetFile(const fs::path& path, const std::string& function) {
+    // O_NONBLOCK: opening a FIFO returns at once (and fstat tells it apart) instead of waiting for a writer.
+    const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    if (descriptor < 0 && errno == ENOENT) return std::nullopt;
+    struct stat status {};
+    if (descriptor < 0 || ::fstat(descriptor, &status) != 0 || !S_ISREG(status.st_mode)) {
+        const int cause = descriptor < 0 ? errno : 0;
+        if (descriptor >= 0) ::close(descriptor);
+        throw FileError(function + ": '" + path.string() + "' " +
+                        (cause == ELOOP || cause == 0
+                             ? std::string("is not a plain file (a link, a FIFO, a device or a "
+                                           "folder): a data set's own files are plain files; "
+                                           "remove it")
+                             : std::string("cannot be read: ") + std::strerror(cause)));
+    }
+    std::string text;
+    text.resize(std::size_t(status.st_size));
+    std::size_t done = 0;
+    while (done < text.size()) {
+        const ssize_t count = ::read(descriptor, text.data() + done, text.size() - done);
+        if (count < 0 && errno == EINTR) continue;
+        if (count <= 0) break; // shorter than its size said: what was read
+        done += std::size_t(count);
+    }
+    ::close(descriptor);
+    text.resize(done);
+    return text;
+}
+
 std::optional<FileChecksum> fileChecksum(const fs::path& path) {
-    const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    // O_NONBLOCK: a FIFO in a listed file's place returns at once and is refused below as not a plain file.
+    const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     if (descriptor < 0) return std::nullopt;
     struct stat status {};
     if (::fstat(descriptor, &status) != 0 || !S_ISREG(status.st_mode)) {
@@ -291,6 +327,11 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
             return std::nullopt;
         return name.substr(prefix.size(), name.size() - prefix.size() - extension.size());
     };
+    // The journal's folder is the data set's own: through a link, its journals would be read, cut and removed
+    // elsewhere.
+    if (fs::is_symlink(fs::symlink_status(mFolder / kJournalFolder, error)))
+        throw FileError("DatasetRun: '" + (mFolder / kJournalFolder).string() +
+                        "' is a link: a data set's own files are plain files; remove it");
     for (const fs::path& folder : {mFolder, mFolder / kJournalFolder}) {
         if (!fs::is_directory(folder, error)) continue;
         for (const auto& entry : fs::directory_iterator(folder, error)) {

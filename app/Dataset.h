@@ -55,6 +55,12 @@ struct FileChecksum {
 };
 std::optional<FileChecksum> fileChecksum(const std::filesystem::path& path);
 
+/** The whole text of one of the data set's own files (an index, a journal, a card); nullopt when there is none.
+ *  Throws FileError, naming `function` and the file, for a link, a FIFO, a device or a folder in its place: such a file
+ *  is never the data set's own (a FIFO would block the read forever, /dev/zero fill the memory, and a link lead the
+ *  journal's writes and cuts to a file outside the set). */
+std::optional<std::string> readDatasetFile(const std::filesystem::path& path, const std::string& function);
+
 /** The flags the settings digest leaves out: they change how the run goes, not what a still writes. */
 const std::vector<std::string>& flagsOutsideDigest();
 

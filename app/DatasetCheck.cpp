@@ -2,6 +2,7 @@
 
 #include "app/Dataset.h"
 #include "render/ErrorReport.h"
+#include "render/ImageFiles.h"
 
 #include <nlohmann/json.hpp>
 
@@ -85,69 +86,96 @@ std::map<std::string, std::size_t> cardCounts(const std::string& card) {
     return counts;
 }
 
+/** One line of an index (checkIndex()): its record's fields and files, counted into `positions`, `stills` and
+ *  `failed`. Throws nlohmann::json::exception for a field of the wrong type. */
+void checkIndexLine(const fs::path& folder, const std::string& line, const std::string& where, DatasetReport& report,
+                    std::set<std::string>& listed, std::set<std::size_t>& positions, std::size_t& stills,
+                    std::size_t& failed) {
+    const nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
+    if (record.is_discarded() || !record.is_object()) {
+        report.errors.push_back(where + ": not a JSON object");
+        return;
+    }
+    if (!record.contains("model") || !record["model"].is_string() || !record.contains("position") ||
+        !record["position"].is_number_unsigned() || !record.contains("status") || !record["status"].is_string()) {
+        report.errors.push_back(where + ": lacks its model, position or status");
+        return;
+    }
+    positions.insert(record["position"].get<std::size_t>());
+    const std::string model = record["model"];
+    if (record["status"] == "failed") {
+        ++failed;
+        report.warnings.push_back(where + ": '" + model + "' failed: " + record.value("error", std::string("?")));
+        return;
+    }
+    if (record["status"] != "ok") {
+        report.errors.push_back(where + ": status '" + record["status"].get<std::string>() + "'");
+        return;
+    }
+    ++stills;
+    if (!record.contains("checksums") || !record["checksums"].is_object() || !record.contains("files") ||
+        !record["files"].is_object()) {
+        report.errors.push_back(where + ": '" + model + "' lists no files");
+        return;
+    }
+    for (const auto& [flag, path] : record["files"].items())
+        if (!path.is_string() || !fs::exists(folder / path.get<std::string>()))
+            report.errors.push_back(where + ": " + flag + " '" + path.dump() + "' is missing");
+    for (const auto& [relative, expected] : record["checksums"].items()) {
+        listed.insert(relative);
+        const fs::path path = folder / relative;
+        ++report.files;
+        std::error_code error;
+        const fs::file_status status = fs::symlink_status(path, error);
+        if (!fs::exists(status)) {
+            report.errors.push_back("'" + relative + "' is missing (" + where + ")");
+            continue;
+        }
+        if (!fs::is_regular_file(status)) { // a FIFO would block the read, a link lead out of the set
+            report.errors.push_back("'" + relative + "' is not a plain file (a link, a FIFO, a device or a folder; " +
+                                    where + ")");
+            continue;
+        }
+        const std::string bytes = readAll(path);
+        if (bytes.empty()) {
+            report.errors.push_back("'" + relative + "' is empty");
+            continue;
+        }
+        if (const std::string problem = formatProblem(path, bytes); !problem.empty()) {
+            report.errors.push_back("'" + relative + "' is " + problem);
+            continue;
+        }
+        const std::string checksum = hexDigits(fnv1a64(bytes.data(), bytes.size()));
+        if (!expected.is_object() || expected.value("size", std::uint64_t(0)) != bytes.size() ||
+            expected.value("fnv1a64", std::string()) != checksum)
+            report.errors.push_back("'" + relative + "' is not the file the index recorded (size " +
+                                    std::to_string(bytes.size()) + ", checksum " + checksum + "; " + where + ")");
+    }
+}
+
 /** One index (and its card): its lines, their files, the counts. */
 void checkIndex(const fs::path& folder, const fs::path& index, const fs::path& card, DatasetReport& report,
                 std::set<std::string>& listed) {
     const std::string indexName = index.filename().string();
-    std::ifstream file(index, std::ios::binary);
+    std::optional<std::string> text;
+    try {
+        text = readDatasetFile(index, "check-dataset");
+    } catch (const FileError& error) {
+        report.errors.push_back(error.what());
+        return;
+    }
+    std::istringstream file(text.value_or(std::string()));
     std::string line;
     std::size_t number = 0, stills = 0, failed = 0;
     std::set<std::size_t> positions;
     while (std::getline(file, line)) {
         ++number;
         const std::string where = indexName + " line " + std::to_string(number);
-        const nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
-        if (record.is_discarded() || !record.is_object()) {
-            report.errors.push_back(where + ": not a JSON object");
-            continue;
-        }
-        if (!record.contains("model") || !record["model"].is_string() || !record.contains("position") ||
-            !record["position"].is_number_unsigned() || !record.contains("status") || !record["status"].is_string()) {
-            report.errors.push_back(where + ": lacks its model, position or status");
-            continue;
-        }
-        positions.insert(record["position"].get<std::size_t>());
-        const std::string model = record["model"];
-        if (record["status"] == "failed") {
-            ++failed;
-            report.warnings.push_back(where + ": '" + model + "' failed: " + record.value("error", std::string("?")));
-            continue;
-        }
-        if (record["status"] != "ok") {
-            report.errors.push_back(where + ": status '" + record["status"].get<std::string>() + "'");
-            continue;
-        }
-        ++stills;
-        if (!record.contains("checksums") || !record["checksums"].is_object() || !record.contains("files") ||
-            !record["files"].is_object()) {
-            report.errors.push_back(where + ": '" + model + "' lists no files");
-            continue;
-        }
-        for (const auto& [flag, path] : record["files"].items())
-            if (!path.is_string() || !fs::exists(folder / path.get<std::string>()))
-                report.errors.push_back(where + ": " + flag + " '" + path.dump() + "' is missing");
-        for (const auto& [relative, expected] : record["checksums"].items()) {
-            listed.insert(relative);
-            const fs::path path = folder / relative;
-            ++report.files;
-            if (!fs::is_regular_file(path)) {
-                report.errors.push_back("'" + relative + "' is missing (" + where + ")");
-                continue;
-            }
-            const std::string bytes = readAll(path);
-            if (bytes.empty()) {
-                report.errors.push_back("'" + relative + "' is empty");
-                continue;
-            }
-            if (const std::string problem = formatProblem(path, bytes); !problem.empty()) {
-                report.errors.push_back("'" + relative + "' is " + problem);
-                continue;
-            }
-            const std::string checksum = hexDigits(fnv1a64(bytes.data(), bytes.size()));
-            if (!expected.is_object() || expected.value("size", std::uint64_t(0)) != bytes.size() ||
-                expected.value("fnv1a64", std::string()) != checksum)
-                report.errors.push_back("'" + relative + "' is not the file the index recorded (size " +
-                                        std::to_string(bytes.size()) + ", checksum " + checksum + "; " + where + ")");
+        try {
+            checkIndexLine(folder, line, where, report, listed, positions, stills, failed);
+        } catch (const nlohmann::json::exception& error) {
+            // A field of the wrong type (a size as a string, a number where text belongs): an error of the set.
+            report.errors.push_back(where + ": a field of the wrong type (" + std::string(error.what()) + ")");
         }
     }
     report.stills += stills;
@@ -157,7 +185,14 @@ void checkIndex(const fs::path& folder, const fs::path& index, const fs::path& c
         report.errors.push_back("the card '" + cardName + "' is missing");
         return;
     }
-    const auto counts = cardCounts(readAll(card));
+    std::optional<std::string> cardText;
+    try {
+        cardText = readDatasetFile(card, "check-dataset");
+    } catch (const FileError& error) {
+        report.errors.push_back(error.what());
+        return;
+    }
+    const auto counts = cardCounts(cardText.value_or(std::string()));
     const std::vector<std::pair<std::string, std::size_t>> expected = {
         {"models", positions.size()}, {"stills in the set", stills}, {"failed", failed}};
     // Every model with each of its views: the index holds models x views lines.

@@ -4,10 +4,12 @@
 #include "app/Dataset.h"
 #include "app/DatasetCheck.h"
 
+#include "render/ImageFiles.h"
 #include "render/TemporaryFiles.h"
 #include "tests/support/TestFolder.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -392,6 +394,83 @@ TEST_F(Dataset, CheckDatasetFindsEachKindOfProblem) {
     // A card count too large for any integer: a mismatch, not a crash.
     write(folder / "README.md", "| models | 99999999999999999999999 |\n| stills in the set | 1 |\n| failed | 0 |\n");
     EXPECT_NO_THROW(report = checkDataset(folder));
+}
+
+TEST_F(Dataset, ItsOwnFilesMustBePlainFilesAndLinksLeadNowhere) {
+    const std::vector<std::string> arguments = {model, "--dataset", set, "-o", set + "/{name}.png", "--resume"};
+    const fs::path journalFolder = fs::path(set) / ".inkgraph";
+    const fs::path journalPath = journalFolder / "journal.jsonl";
+    const auto fileError = [&] {
+        try {
+            runOf(arguments);
+        } catch (const FileError& error) {
+            return std::string(error.what());
+        }
+        return std::string();
+    };
+    const auto readText = [](const std::string& path) {
+        std::ostringstream text;
+        text << std::ifstream(path, std::ios::binary).rdbuf();
+        return text.str();
+    };
+    // A FIFO in the journal's or the index's place: refused at once (a read of it waited forever).
+    fs::create_directories(journalPath.parent_path());
+    ASSERT_EQ(::mkfifo(journalPath.c_str(), 0644), 0);
+    EXPECT_NE(fileError().find("journal.jsonl' is not a plain file"), std::string::npos) << fileError();
+    fs::remove(journalPath);
+    const fs::path index = fs::path(set) / "index.jsonl";
+    fs::create_symlink("/dev/zero", index); // read whole, it filled the memory
+    EXPECT_NE(fileError().find("index.jsonl' is not a plain file"), std::string::npos) << fileError();
+    fs::remove(index);
+
+    // A journal linked to a file outside the set: neither cut nor appended to.
+    const std::string victim = write(directory / "victim.txt", "keep\nno newline at the end");
+    fs::create_symlink(victim, journalPath);
+    EXPECT_NE(fileError().find("not a plain file"), std::string::npos);
+    EXPECT_EQ(readText(victim), "keep\nno newline at the end");
+    fs::remove(journalPath);
+    fs::remove(journalFolder);
+
+    // The journal's folder linked to another folder: its journal is neither read nor removed.
+    const fs::path elsewhere = directory / "elsewhere";
+    const std::string theirs = write(elsewhere / "journal.jsonl", "{}\n");
+    fs::create_symlink(elsewhere, journalFolder);
+    EXPECT_NE(fileError().find("/.inkgraph' is a link"), std::string::npos) << fileError();
+    EXPECT_EQ(readText(theirs), "{}\n");
+}
+
+TEST_F(Dataset, CheckDatasetReportsFieldsOfTheWrongTypeAndFilesThatAreNotPlain) {
+    const fs::path folder = directory / "typed";
+    const std::string png =
+        std::string("\x89PNG\r\n\x1a\n", 8) + "body" + std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+    write(folder / "a.png", png);
+    write(folder / "README.md", "| models | 1 |\n| stills in the set | 1 |\n| failed | 0 |\n");
+    // The size as a string: an uncaught type error ended check-dataset with SIGABRT.
+    write(folder / "index.jsonl", R"({"model":"a.obj","position":0,"view":0,"status":"ok","files":{"-o":"a.png"},)"
+                                  R"("checksums":{"a.png":{"size":"7","fnv1a64":"x"}}})"
+                                  "\n");
+    DatasetReport report = checkDataset(folder);
+    ASSERT_FALSE(report.errors.empty());
+    EXPECT_EQ(report.errors[0].rfind("index.jsonl line 1: a field of the wrong type", 0), 0u) << report.errors[0];
+    write(folder / "index.jsonl", R"({"model":"a.obj","position":0,"view":0,"status":"failed","error":5})"
+                                  "\n");
+    EXPECT_NO_THROW(report = checkDataset(folder));
+
+    // A FIFO in a listed file's place: named as such, not read (the read blocked).
+    fs::remove(folder / "a.png");
+    ASSERT_EQ(::mkfifo((folder / "a.png").c_str(), 0644), 0);
+    write(folder / "index.jsonl", R"({"model":"a.obj","position":0,"view":0,"status":"ok","files":{"-o":"a.png"},)"
+                                  R"("checksums":{"a.png":{"size":7,"fnv1a64":"x"}}})"
+                                  "\n");
+    report = checkDataset(folder);
+    ASSERT_FALSE(report.errors.empty());
+    EXPECT_EQ(report.errors[0].rfind("'a.png' is not a plain file", 0), 0u) << report.errors[0];
+    // A FIFO in the index's place.
+    fs::remove(folder / "index.jsonl");
+    ASSERT_EQ(::mkfifo((folder / "index.jsonl").c_str(), 0644), 0);
+    report = checkDataset(folder);
+    ASSERT_FALSE(report.errors.empty());
+    EXPECT_NE(report.errors[0].find("index.jsonl' is not a plain file"), std::string::npos) << report.errors[0];
 }
 
 } // namespace
