@@ -393,16 +393,22 @@ void RenderSession::waitForMemory(std::size_t turn, StillTurns* turns, std::size
             continue;
         }
         if (ledger.shouldShed() && (mPoolBytes > 0 || mPrefetch)) {
-            // Another still before this one needs what this session keeps while it waits: the pool's textures go,
-            // and the model loaded ahead is dropped (its still loads it again when it draws).
-            mRenderer.dropFreeTextures();
-            mPoolBytes = 0;
-            if (mPrefetch && mPrefetch->still.valid()) mPrefetch->still.wait();
-            mPrefetch.reset();
+            // Another still before this one needs what this session keeps while it waits.
+            shedKeptMemory();
             continue;
         }
         ledger.waitForChange(mShare.index, std::chrono::milliseconds(20));
     }
+}
+
+void RenderSession::shedKeptMemory() {
+    if (mPoolBytes == 0 && !mPrefetch) return;
+    // The pool's textures go, and the model loaded ahead is dropped (its still loads it again when it draws).
+    mRenderer.dropFreeTextures();
+    mPoolBytes = 0;
+    if (mPrefetch && mPrefetch->still.valid()) mPrefetch->still.wait();
+    mPrefetch.reset();
+    tellHoldings();
 }
 
 void RenderSession::tellLog(std::ostringstream* stillLog) {
@@ -427,6 +433,12 @@ void RenderSession::finishDueStills() {
 }
 
 void RenderSession::finishOldest() {
+    // Its turn may wait for another drawing thread's still before it, and that still for memory this session only
+    // keeps (its texture pool, a model loaded ahead), which it would never let go of while it waits here: neither
+    // would move (3 of 8 runs of six models on three threads under a tight --memory-limit hung). So it lets go first.
+    const PendingStill& oldest = *mPending.front();
+    if (mShare.ledger && oldest.callbacks.turns && !oldest.callbacks.turns->isDue(oldest.callbacks.turn))
+        shedKeptMemory();
     try {
         finishOldestStill();
     } catch (...) {

@@ -156,6 +156,9 @@ private:
      *  in flight as they come due, and lets go of its pool and loaded-ahead model when a still before it needs them. */
     void waitForMemory(std::size_t turn, StillTurns* turns, std::size_t baselineBytes, std::size_t drawingBytes,
                        std::size_t waitingBytes);
+    /** With a ledger: lets go of what this session only keeps (the pool's free textures, the model loaded ahead) and
+     *  tells the ledger, so a still of another drawing thread that waits for that memory can draw. */
+    void shedKeptMemory();
     /** Tells the ledger what this session holds between stills (`waitingBytes`: a loaded model waiting to draw). */
     void tellHoldings(std::size_t waitingBytes = 0);
 

@@ -255,6 +255,32 @@ TEST_F(Cli, DrawingThreadsThatBothStopTheBatchTellBothErrorsAndKeepTheStillsBefo
               std::vector<std::string>({"named.obj", "named.png", "unnamed.obj", "unnamed2.obj"}));
 }
 
+TEST_F(Cli, DrawingThreadsUnderATightMemoryLimitNeverWaitForEachOtherForEver) {
+    // A thread whose oldest still waits for its turn behind another thread's earlier still, which waits for memory
+    // that only the first thread's texture pool and loaded-ahead model keep, hung both for ever: 3 of 8 runs of this
+    // list (app/Render.cpp, RenderSession::finishOldest()). timeout turns a hang into exit 124.
+    const fs::path models = fs::path(INKGRAPH_SOURCE_ROOT) / "models";
+    std::ofstream(directory / "six.txt") << (models / "armadillo_cgal_52k.obj").string() << "\n"
+                                         << (models / "characters" / "box-textured.glb").string() << "\n"
+                                         << (models / "bunny_c3d_70k.obj").string() << "\n"
+                                         << (models / "cow_c3d.obj").string() << "\n"
+                                         << (models / "characters" / "duck.glb").string() << "\n"
+                                         << (models / "characters" / "expressions-binary-overridden.vrm").string()
+                                         << "\n";
+    const CliRun alone = run("render --list six.txt -o 'alone-{index}.png' --size 256x256 -q");
+    ASSERT_EQ(alone.exitCode, 0) << alone.err;
+    for (int attempt = 0; attempt < 4; ++attempt) {
+        const CliRun result = run("render --list six.txt -o 'threads-{index}.png' --size 256x256 --memory-limit 257 "
+                                  "--draw-threads 3 --jobs 3 -q",
+                                  "timeout 120");
+        ASSERT_EQ(result.exitCode, 0) << "attempt " << attempt << ": " << result.err;
+        for (int still = 1; still <= 6; ++still)
+            EXPECT_TRUE(sameImage(directory / ("alone-" + std::to_string(still) + ".png"),
+                                  directory / ("threads-" + std::to_string(still) + ".png")))
+                << still;
+    }
+}
+
 /** The bytes of every file under `folder` but the dumps' manifests (they hold timings), by relative path. */
 std::map<std::string, std::string> filesUnder(const fs::path& folder) {
     std::map<std::string, std::string> files;
