@@ -207,7 +207,24 @@ void renderInThreads(const BatchShared& shared, std::ostream& out, int drawThrea
     BatchShared batch = shared;
     batch.turns = &turns;
     const int threads = int(std::min<std::size_t>(std::size_t(drawThreads), batch.toRender.size()));
-    MemoryLedger ledger(memoryLimitOf(batch.options), threads, std::size_t(threads - 1) * extraContextBytes());
+    // The process and every GL context after the first are held whatever the stills need: when they alone pass the
+    // limit, no still could keep to it (sixteen threads under --memory-limit 115 peaked at 227 MiB).
+    const std::size_t limit = memoryLimitOf(batch.options);
+    const std::size_t fixedBytes = std::size_t(threads - 1) * extraContextBytes();
+    if (processBaselineBytes() + fixedBytes > limit) {
+        const std::size_t mib = 1024 * 1024;
+        const std::size_t fitting =
+            limit > processBaselineBytes() ? 1 + (limit - processBaselineBytes()) / extraContextBytes() : 1;
+        throw UsageError("--draw-threads " + std::to_string(drawThreads) + ": the process (about " +
+                         std::to_string(processBaselineBytes() / mib) + " MiB) and " + std::to_string(threads - 1) +
+                         (threads == 2 ? " more GL context (about " : " more GL contexts (about ") +
+                         std::to_string(extraContextBytes() / mib) + " MiB each) need about " +
+                         std::to_string((processBaselineBytes() + fixedBytes) / mib) +
+                         " MiB before any still, above the memory limit of " + std::to_string(limit / mib) +
+                         " MiB (--memory-limit); draw on at most " + std::to_string(fitting) +
+                         (fitting == 1 ? " thread" : " threads") + ", or raise the limit");
+    }
+    MemoryLedger ledger(limit, threads, fixedBytes);
     batch.ledger = &ledger;
     const int jobsEach = batch.options.jobs == 0 ? 0 : std::max(1, (batch.options.jobs + threads - 1) / threads);
     // The batch stops on the first error; any other is told, as the errors of the stills finished after it are.

@@ -175,6 +175,8 @@ std::string sizeText(std::size_t width, std::size_t height) {
 
 std::size_t extraContextBytes() { return kExtraContextBytes; }
 
+std::size_t processBaselineBytes() { return kBaselineBytes; }
+
 SceneSize sceneSizeOf(const Scene& scene) {
     return {scene.vertexCount(), scene.triangleCount(), estimatedTextureBytes(scene)};
 }

@@ -56,6 +56,10 @@ std::string memoryDriversText(const Plan& plan, const StillRequest& request);
  *  comic look's 64x64 stills of a 4k-triangle model peaked 10-11 MiB higher per drawing thread (1, 2, 4 and 8). */
 std::size_t extraContextBytes();
 
+/** The process before any still (libraries, llvmpipe, LLVM's compiled shaders), without OpenImageIO's module: the
+ *  least any run holds. */
+std::size_t processBaselineBytes();
+
 /** Half this machine's memory, at least 1 GiB: the memory limit when none is given. */
 std::size_t defaultMemoryLimit();
 

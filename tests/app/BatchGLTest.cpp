@@ -281,6 +281,24 @@ TEST_F(Cli, DrawingThreadsUnderATightMemoryLimitNeverWaitForEachOtherForEver) {
     }
 }
 
+TEST_F(Cli, DrawingThreadsWhoseContextsAlonePassTheMemoryLimitAreRefused) {
+    // Sixteen threads under --memory-limit 115: the process and fifteen more GL contexts need about 288 MiB before any
+    // still, so no still could keep to the limit (they peaked at 227 MiB, each still let in "as one that fits alone").
+    const std::string spot = model("spot_c3d.obj");
+    const CliRun refused =
+        run("render " + spot + " " + spot + " -o 'x-{index}.png' --size 64x64 --draw-threads 16 --memory-limit 115 -q");
+    EXPECT_EQ(refused.exitCode, 2) << refused.err;
+    EXPECT_NE(
+        refused.err.find("--draw-threads 16: the process (about 108 MiB) and 1 more GL context (about 12 MiB each)"),
+        std::string::npos)
+        << "two stills: two threads" << refused.err;
+    EXPECT_NE(refused.err.find("draw on at most 1 thread, or raise the limit"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(directory / "x-1.png"));
+    const CliRun fits =
+        run("render " + spot + " " + spot + " -o 'x-{index}.png' --size 64x64 --draw-threads 2 --memory-limit 150 -q");
+    EXPECT_EQ(fits.exitCode, 0) << fits.err;
+}
+
 /** The bytes of every file under `folder` but the dumps' manifests (they hold timings), by relative path. */
 std::map<std::string, std::string> filesUnder(const fs::path& folder) {
     std::map<std::string, std::string> files;
