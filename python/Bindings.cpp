@@ -56,12 +56,36 @@ const char* errorClassName(ig::Error::Kind kind) {
     return "RenderError";
 }
 
-/** Sets the Python error for `error`: its class by kind, the message exactly as the library wrote it, the exit
+/** Text the library made (a message, a name read from a model file) as a str. Bytes that are not UTF-8 (a Latin-1 or
+ *  Shift-JIS name in an older tool's OBJ or MTL, a path's) are escaped as \xNN instead of refused: pybind11's own
+ *  conversion raised UnicodeDecodeError for the whole call. */
+py::str textOf(const std::string& text) {
+    PyObject* decoded = PyUnicode_DecodeUTF8(text.data(), Py_ssize_t(text.size()), "backslashreplace");
+    if (decoded == nullptr) throw py::error_already_set();
+    return py::reinterpret_steal<py::str>(decoded);
+}
+
+/** Each of `texts` as textOf() makes it. */
+py::list textOf(const std::vector<std::string>& texts) {
+    py::list list;
+    for (const std::string& text : texts) list.append(textOf(text));
+    return list;
+}
+
+/** A file's path as os.fsdecode() makes it: bytes that are not UTF-8 become lone surrogates, which os.fsencode()
+ *  turns back into the same bytes, so the str names the same file. */
+py::str pathTextOf(const std::string& path) {
+    PyObject* decoded = PyUnicode_DecodeUTF8(path.data(), Py_ssize_t(path.size()), "surrogateescape");
+    if (decoded == nullptr) throw py::error_already_set();
+    return py::reinterpret_steal<py::str>(decoded);
+}
+
+/** Sets the Python error for `error`: its class by kind, the message as the library wrote it (textOf()), the exit
  *  code `inkgraph render` would give. Looked up when raised, since _errors.py is imported by the package that
  *  imports this module. */
 void raisePythonError(const ig::Error& error) {
     const py::object type = py::module_::import("inkgraph._errors").attr(errorClassName(error.kind()));
-    const py::object value = type(error.what(), "exit_code"_a = error.exitCode());
+    const py::object value = type(textOf(error.what()), "exit_code"_a = error.exitCode());
     PyErr_SetObject(type.ptr(), value.ptr());
 }
 
@@ -83,8 +107,8 @@ py::list warningObjects(const std::vector<ig::Warning>& warnings) {
     const py::object type = py::module_::import("inkgraph._warnings").attr("InkgraphWarning");
     py::list objects;
     for (const ig::Warning& warning : warnings)
-        objects.append(
-            type(warning.message, "code"_a = warning.code, "file"_a = warning.file, "item"_a = warning.item));
+        objects.append(type(textOf(warning.message), "code"_a = warning.code, "file"_a = pathTextOf(warning.file),
+                            "item"_a = textOf(warning.item)));
     return objects;
 }
 
@@ -1126,7 +1150,8 @@ void defineScene(py::module_& m) {
             "others are converted (integer faces after checking every index fits in uint32). Renders as an OBJ with "
             "the same vertices and faces does. Raises InputError naming the argument and the problem (a shape, a "
             "dtype, a value that is not finite, an index out of range).")
-        .def_property_readonly("path", &ig::Scene::path, "The file, or '' for arrays.")
+        .def_property_readonly(
+            "path", [](const ig::Scene& self) { return pathTextOf(self.path()); }, "The file, or '' for arrays.")
         .def_property_readonly("triangle_count", &ig::Scene::triangleCount)
         .def_property_readonly("vertex_count", &ig::Scene::vertexCount)
         .def_property_readonly("mesh_count", &ig::Scene::meshCount)
@@ -1135,8 +1160,9 @@ void defineScene(py::module_& m) {
             [](const ig::Scene& self) {
                 py::list objects;
                 for (const ig::SceneObject& object : self.objects())
-                    objects.append(py::dict("id"_a = object.id, "name"_a = object.name, "node_path"_a = object.nodePath,
-                                            "meshes"_a = object.meshes));
+                    objects.append(py::dict("id"_a = object.id, "name"_a = textOf(object.name),
+                                            "node_path"_a = textOf(object.nodePath),
+                                            "meshes"_a = textOf(object.meshes)));
                 return objects;
             },
             "Its objects (node instances), as dicts {'id', 'name', 'node_path', 'meshes'}: 'id' is the object's "
@@ -1146,9 +1172,10 @@ void defineScene(py::module_& m) {
             [](const ig::Scene& self) {
                 py::list meshes;
                 for (const ig::SceneMesh& mesh : self.meshes())
-                    meshes.append(py::dict("id"_a = mesh.id, "name"_a = mesh.name, "node_path"_a = mesh.nodePath,
-                                           "object_id"_a = mesh.objectId, "material_id"_a = mesh.materialId,
-                                           "material"_a = mesh.material, "first_triangle"_a = mesh.firstTriangle,
+                    meshes.append(py::dict("id"_a = mesh.id, "name"_a = textOf(mesh.name),
+                                           "node_path"_a = textOf(mesh.nodePath), "object_id"_a = mesh.objectId,
+                                           "material_id"_a = mesh.materialId, "material"_a = textOf(mesh.material),
+                                           "first_triangle"_a = mesh.firstTriangle,
                                            "triangle_count"_a = mesh.triangleCount));
                 return meshes;
             },
@@ -1162,7 +1189,7 @@ void defineScene(py::module_& m) {
         .def("__repr__", [](const ig::Scene& scene) {
             const std::string counts = "  # " + std::to_string(scene.triangleCount()) + " triangles";
             if (scene.path().empty()) return "<inkgraph.Scene from arrays>" + counts;
-            return "inkgraph.Scene.load(" + reprOf(py::str(scene.path())) + ")" + counts;
+            return "inkgraph.Scene.load(" + reprOf(pathTextOf(scene.path())) + ")" + counts;
         });
 }
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import pickle
 import subprocess
 
@@ -127,3 +128,26 @@ def test_the_error_classes_can_be_raised_by_callers_with_the_kinds_exit_codes(su
     expected = {inkgraph.ContextError: 4, inkgraph.OutputError: 5, inkgraph.RenderError: 1, inkgraph.Error: 1}
     assert {cls: cls("x").exit_code for cls in expected} == expected
     assert inkgraph.UsageError("x", 7).exit_code == 7
+
+
+def test_text_that_is_not_utf8_is_escaped_not_refused(tmp_path):
+    # Names from an older tool's OBJ (Latin-1 bytes) and a file name that is not UTF-8: pybind11's conversion raised
+    # UnicodeDecodeError for the whole call (the load, .objects, .meshes, .path, an error's message).
+    triangle = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+    model = tmp_path / "latin1.obj"
+    model.write_bytes(b"o Fl\xe4che\nusemtl ma\xfet\n" + triangle)
+    with pytest.warns(inkgraph.InkgraphWarning) as caught:
+        scene = inkgraph.Scene.load(str(model))
+    assert "ma\\xfet" in str(caught[0].message)
+    assert scene.objects[0]["name"] == "Fl\\xe4che" and scene.objects[0]["meshes"] == ["Fl\\xe4che"]
+    assert scene.meshes[0]["material"] == "ma\\xfet"
+
+    # A path as os.fsdecode() makes it names the same file, and comes back as the same str.
+    odd = os.fsdecode(bytes(tmp_path) + b"/n\xffame.obj")
+    with open(odd, "wb") as file:
+        file.write(triangle)
+    assert inkgraph.Scene.load(odd).path == odd
+    assert "n\\udcffame.obj" in repr(inkgraph.Scene.load(odd))
+    with pytest.raises(inkgraph.InputError) as missing:
+        inkgraph.Scene.load(os.fsdecode(bytes(tmp_path) + b"/missing\xff.obj"))
+    assert "missing\\xff.obj': file not found" in str(missing.value)
