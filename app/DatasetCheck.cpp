@@ -153,18 +153,24 @@ void checkIndexLine(const fs::path& folder, const std::string& line, const std::
     }
 }
 
+/** One of the set's own files (an index, a card), whole ("" when there is none); nullopt, with the error reported,
+ *  when it is not a plain file (readDatasetFile()). */
+std::optional<std::string> readOwnFile(const fs::path& path, DatasetReport& report) {
+    try {
+        return readDatasetFile(path, "check-dataset").value_or(std::string());
+    } catch (const FileError& error) {
+        report.errors.push_back(error.what());
+        return std::nullopt;
+    }
+}
+
 /** One index (and its card): its lines, their files, the counts. */
 void checkIndex(const fs::path& folder, const fs::path& index, const fs::path& card, DatasetReport& report,
                 std::set<std::string>& listed) {
     const std::string indexName = index.filename().string();
-    std::optional<std::string> text;
-    try {
-        text = readDatasetFile(index, "check-dataset");
-    } catch (const FileError& error) {
-        report.errors.push_back(error.what());
-        return;
-    }
-    std::istringstream file(text.value_or(std::string()));
+    const std::optional<std::string> text = readOwnFile(index, report);
+    if (!text) return;
+    std::istringstream file(*text);
     std::string line;
     std::size_t number = 0, stills = 0, failed = 0;
     std::set<std::size_t> positions;
@@ -185,14 +191,9 @@ void checkIndex(const fs::path& folder, const fs::path& index, const fs::path& c
         report.errors.push_back("the card '" + cardName + "' is missing");
         return;
     }
-    std::optional<std::string> cardText;
-    try {
-        cardText = readDatasetFile(card, "check-dataset");
-    } catch (const FileError& error) {
-        report.errors.push_back(error.what());
-        return;
-    }
-    const auto counts = cardCounts(cardText.value_or(std::string()));
+    const std::optional<std::string> cardText = readOwnFile(card, report);
+    if (!cardText) return;
+    const auto counts = cardCounts(*cardText);
     const std::vector<std::pair<std::string, std::size_t>> expected = {
         {"models", positions.size()}, {"stills in the set", stills}, {"failed", failed}};
     // Every model with each of its views: the index holds models x views lines.
