@@ -293,7 +293,8 @@ struct Renderer::Impl {
         refuseForkedContext();
         if (pictureOut != nullptr && pictureRowBytes < std::size_t(std::max(frame.width, 0)) * 4)
             throw UsageError("the picture's rows are " + std::to_string(pictureRowBytes) + " bytes apart; " +
-                             std::to_string(frame.width) + " RGBA8 pixels need " + std::to_string(frame.width * 4));
+                             std::to_string(frame.width) + " RGBA8 pixels need " +
+                             std::to_string(std::size_t(std::max(frame.width, 0)) * 4));
         // "strokes" is no image: it asks for the strokes' 3-D points (Still::strokes()).
         std::vector<std::string> images;
         for (const std::string& name : buffers)
@@ -313,7 +314,7 @@ struct Renderer::Impl {
             throw;
         }
         if (strokes && still->graph.strokes() == nullptr)
-            throw UsageError("Renderer::render(): 'strokes' needs a look that draws lines (Look::lines)");
+            throw UsageError("'strokes' needs a look that draws lines (Look::lines)");
         budgetStill(*still);
         holdContext();
         StillResult result;

@@ -529,6 +529,18 @@ TEST(ApiTyped, RenderIntoWritesTheCallersRows) {
     EXPECT_STREQ(
         errorOf([&] { renderer().renderInto(buffer.data(), 10, scene, ig::Look(), frameOf(width, height)); }).what(),
         "Renderer::renderInto(): the picture's rows are 10 bytes apart; 50 RGBA8 pixels need 200");
+    // The widest frame's row in size_t (int arithmetic overflowed: "need -4").
+    EXPECT_STREQ(errorOf([&] {
+                     renderer().renderInto(buffer.data(), 10, scene, ig::Look(),
+                                           frameOf(std::numeric_limits<int>::max(), height));
+                 }).what(),
+                 "Renderer::renderInto(): the picture's rows are 10 bytes apart; 2147483647 RGBA8 pixels need "
+                 "8589934588");
+    // The function named once (it was twice: "Renderer::render(): Renderer::render(): ...").
+    EXPECT_STREQ(errorOf([&] {
+                     renderer().render(scene, ig::Look::fromArguments({"--lines", "none"}), frameOf(8, 8), {"strokes"});
+                 }).what(),
+                 "Renderer::render(): 'strokes' needs a look that draws lines (Look::lines)");
 }
 
 TEST(ApiTyped, ValuesNoTypeHoldsAreUsageErrorsNotCrashes) {
