@@ -17,6 +17,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._inkgraph import Clip, Color, Frame, LineType, Look, Orbit, Renderer, Scene, Shading, Still, StillCamera, Vec3
+from ._errors import UsageError
 from ._warnings import InkgraphWarning
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -120,11 +121,24 @@ def render(
     buffer_list = [buffers] if isinstance(buffers, str) else _string_list(buffers, "buffers")
     the_look = make_look(look, shading=shading, lines=lines)
     the_frame = make_frame(size, frame if frame is not None else camera)
-    the_renderer = renderer or default_renderer()
-    if out is None:
-        still = the_renderer.render(scene, the_look, the_frame, buffer_list)
+    def draw(with_renderer: Renderer) -> Still:
+        if out is None:
+            return with_renderer.render(scene, the_look, the_frame, buffer_list)
+        return with_renderer.render(scene, the_look, the_frame, buffer_list, out=out)
+
+    if renderer is not None:
+        still = draw(renderer)
     else:
-        still = the_renderer.render(scene, the_look, the_frame, buffer_list, out=out)
+        for attempt in range(_DEFAULT_RENDERER_ATTEMPTS):
+            the_renderer = default_renderer()
+            try:
+                still = draw(the_renderer)
+                break
+            except UsageError:
+                # Another thread closed the default renderer between default_renderer() and the render: the next
+                # default_renderer() makes a new one, as it promises after a close.
+                if not the_renderer.closed or attempt + 1 == _DEFAULT_RENDERER_ATTEMPTS:
+                    raise
     # Each buffer by the name it was asked with: the still's names (a wildcard's by their own names), and a second
     # name of a buffer already there (both "depth" and "gbuffer.depth") as well.
     arrays = {name: still.buffer(name) for name in still.buffer_names}
@@ -198,6 +212,8 @@ def make_frame(size: Size | None = None, camera: Flags | Frame | None = None) ->
 
 _default_lock = threading.Lock()
 _default: Renderer | None = None
+#: render() with the default renderer tries this many times when another thread closes it meanwhile.
+_DEFAULT_RENDERER_ATTEMPTS = 100
 
 
 def default_renderer() -> Renderer:

@@ -193,6 +193,34 @@ if __name__ == "__main__":
     assert len(list(tmp_path.glob("pool-*.exr"))) == 4
 
 
+def test_render_takes_a_new_default_renderer_when_another_thread_closes_it(suzanne):
+    # default_renderer() promises a new renderer after a close: a close between render()'s default_renderer() and
+    # its draw raised "the renderer is closed" (43 of 2,182 calls with three threads rendering, one closing).
+    errors: list[str] = []
+    done = threading.Event()
+
+    def draw() -> None:
+        for _ in range(15):
+            try:
+                inkgraph.render(suzanne, size=32)
+            except Exception as error:  # noqa: BLE001 - every failure is what the test counts
+                errors.append(repr(error))
+
+    def close() -> None:
+        while not done.is_set():
+            inkgraph.default_renderer().close()
+
+    drawers = [threading.Thread(target=draw) for _ in range(3)]
+    closer = threading.Thread(target=close)
+    for thread in [*drawers, closer]:
+        thread.start()
+    for thread in drawers:
+        thread.join()
+    done.set()
+    closer.join()
+    assert errors == []
+
+
 def test_a_closed_renderer_refuses_and_the_default_one_is_replaced(suzanne, own_renderer):
     inkgraph.render(suzanne, size=64, renderer=own_renderer)
     own_renderer.close()
