@@ -303,6 +303,74 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
         }
     }
 
+    // Checked before anything is made (a refused run changes nothing), and again under the lock: a run of this split
+    // that held it until now may have finished meanwhile.
+    refuseOtherRunsFiles();
+
+    // The canonical settings: each flag by its first name with its value, in the table's spelling, stably sorted by
+    // name so that flag order does not matter (a flag given twice keeps its own order: the last one wins).
+    const std::vector<std::string>& outside = flagsOutsideDigest();
+    for (std::size_t i = 0; i < expandedArguments.size(); ++i) {
+        const std::string& argument = expandedArguments[i];
+        if (argument.empty() || argument[0] != '-') continue; // a MODEL: each still's is in its key
+        const Flag* flag = findFlag(argument);
+        if (flag == nullptr) continue;
+        std::string value;
+        if (!flag->valueName.empty() && i + 1 < expandedArguments.size()) value = expandedArguments[++i];
+        const std::string& name = flag->names.front();
+        bool isOutput = false;
+        for (const auto& [outputFlag, field] : outputPathFlags()) isOutput = isOutput || outputFlag == name;
+        if (isOutput || std::find(outside.begin(), outside.end(), name) != outside.end()) continue;
+        mCanonicalSettings.emplace_back(name, value);
+    }
+    std::stable_sort(mCanonicalSettings.begin(), mCanonicalSettings.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+
+    mMadeJournalFolder = !fs::exists(fs::symlink_status(mFolder / kJournalFolder, error));
+    fs::create_directories(mFolder / kJournalFolder, error);
+    if (error) throw FileError("DatasetRun: cannot create " + shown + ": " + error.message());
+    lockThisSplit();
+    try {
+        refuseOtherRunsFiles();
+        if (options.resume) readEarlierRecords();
+    } catch (...) {
+        letGoOfThisSplit(/*finished=*/false); // a constructor that throws runs no destructor
+        throw;
+    }
+}
+
+DatasetRun::~DatasetRun() { letGoOfThisSplit(/*finished=*/false); }
+
+void DatasetRun::lockThisSplit() {
+    // One lock per split (a shard's beside the others', which run at once by design): a second run of the same split
+    // (a requeued array task beside the one it replaces, a command started twice) is refused at once instead of
+    // interleaving its journal, index and outputs with the first one's.
+    const fs::path path = mFolder / kJournalFolder / ("lock" + mSuffix);
+    mLock = FileLock(path, FileLock::Target::LockFile);
+    if (mLock.held()) return;
+    std::error_code error;
+    if (mMadeJournalFolder) fs::remove(path.parent_path(), error); // only when empty
+    const std::string shown = "--dataset '" + mOptions.datasetDirectory + "'";
+    const std::string split = mSuffix.empty() ? "" : " (shard " + mSuffix.substr(1) + ")";
+    if (mLock.error() == EWOULDBLOCK)
+        throw FileError("DatasetRun: " + shown + split +
+                        " is being written by another inkgraph run; wait until it has finished, then --resume");
+    throw FileError("DatasetRun: cannot lock " + shown + split + " ('" + path.string() + "'): " +
+                    (mLock.error() == EINVAL ? std::string("not a plain file") : std::strerror(mLock.error())));
+}
+
+void DatasetRun::letGoOfThisSplit(bool finished) {
+    if (!mLock.held()) return;
+    mLock.release(/*removeLockFile=*/true);
+    // Only when empty (a journal or another shard's lock may be in it), and on a failure only when this run made it.
+    std::error_code error;
+    if (finished || mMadeJournalFolder) fs::remove(mFolder / kJournalFolder, error);
+}
+
+void DatasetRun::refuseOtherRunsFiles() const {
+    const RenderOptions& options = mOptions;
+    const std::string shown = "--dataset '" + options.datasetDirectory + "'";
+    std::error_code error;
     // One layout per folder, resumed or not: every index, shard card and journal there must be of this run's split
     // (unsharded, or --shard K/N with this N), so no two splits' files ever mix in one data set.
     const auto layoutOf = [](const std::string& suffix) -> std::string {
@@ -358,29 +426,6 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
         throw UsageError(shown + " already holds a data set ('" +
                          existing.front().lexically_relative(mFolder).string() +
                          "'); add --resume to complete or update it, or choose a new or empty folder");
-
-    // The canonical settings: each flag by its first name with its value, in the table's spelling, stably sorted by
-    // name so that flag order does not matter (a flag given twice keeps its own order: the last one wins).
-    const std::vector<std::string>& outside = flagsOutsideDigest();
-    for (std::size_t i = 0; i < expandedArguments.size(); ++i) {
-        const std::string& argument = expandedArguments[i];
-        if (argument.empty() || argument[0] != '-') continue; // a MODEL: each still's is in its key
-        const Flag* flag = findFlag(argument);
-        if (flag == nullptr) continue;
-        std::string value;
-        if (!flag->valueName.empty() && i + 1 < expandedArguments.size()) value = expandedArguments[++i];
-        const std::string& name = flag->names.front();
-        bool isOutput = false;
-        for (const auto& [outputFlag, field] : outputPathFlags()) isOutput = isOutput || outputFlag == name;
-        if (isOutput || std::find(outside.begin(), outside.end(), name) != outside.end()) continue;
-        mCanonicalSettings.emplace_back(name, value);
-    }
-    std::stable_sort(mCanonicalSettings.begin(), mCanonicalSettings.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-
-    if (options.resume) readEarlierRecords();
-    fs::create_directories(mFolder, error);
-    if (error) throw FileError("DatasetRun: cannot create " + shown + ": " + error.message());
 }
 
 fs::path DatasetRun::journalPath() const { return mFolder / kJournalFolder / ("journal" + mSuffix + ".jsonl"); }
@@ -548,7 +593,6 @@ void DatasetRun::finish(std::ostream& log) {
     // Only now: the index holds everything the journal did.
     std::error_code error;
     fs::remove(journalPath(), error);
-    fs::remove(mFolder / kJournalFolder, error); // only when empty: another shard's journal may be in it
     // What killed runs left under DIR (temporaries of stills that were skipped this time are nobody else's to sweep).
     std::vector<fs::path> folders = {mFolder};
     for (auto it = fs::recursive_directory_iterator(mFolder, error); !error && it != fs::recursive_directory_iterator();
@@ -567,6 +611,7 @@ void DatasetRun::finish(std::ostream& log) {
     if (mOptions.resume && !mOptions.quiet)
         log << "inkgraph: resumed: " << mSkipped << " stills complete, " << mRendered << " rendered"
             << (failed > 0 ? ", " + std::to_string(failed) + " failed" : std::string()) << "\n";
+    letGoOfThisSplit(/*finished=*/true);
 }
 
 std::string DatasetRun::cardText(std::size_t models, std::size_t stills, std::size_t failed) const {

@@ -18,6 +18,7 @@
  *  writes the first half of the N-th line, then SIGKILL. */
 
 #include "app/Batch.h"
+#include "app/FileLock.h"
 #include "flags/Options.h"
 
 #include <nlohmann/json.hpp>
@@ -79,6 +80,10 @@ public:
      *  `expandedArguments` the same with --style's settings (for the digest). Throws UsageError naming the flag. */
     DatasetRun(const RenderOptions& options, const BatchList& list, const std::vector<BatchStill>& stills,
                std::vector<std::string> givenArguments, const std::vector<std::string>& expandedArguments);
+    /** Lets go of this split's lock (removing its file, and the .inkgraph folder when that leaves it empty). */
+    ~DatasetRun();
+    DatasetRun(const DatasetRun&) = delete;
+    DatasetRun& operator=(const DatasetRun&) = delete;
 
     /** The settings digest of one still: the canonical options, the still's outputs relative to DIR, the model's and
      *  its named files' size and modification time, those of any file a flag names, the view index and its sampled
@@ -113,6 +118,14 @@ private:
     std::filesystem::path cardPath() const;
     std::string relativeToDataset(const std::string& path) const;
     void readEarlierRecords();
+    /** Throws UsageError when DIR holds an index, card or journal of another split, or one of this split without
+     *  --resume. */
+    void refuseOtherRunsFiles() const;
+    /** Takes DIR/.inkgraph/lock[-K-of-N]; throws FileError when another run holds it. */
+    void lockThisSplit();
+    /** Lets go of the lock and removes its file; `finished`: the run wrote its index (else the .inkgraph folder goes
+     *  only when this run made it). */
+    void letGoOfThisSplit(bool finished);
     std::string cardText(std::size_t models, std::size_t stills, std::size_t failed) const;
 
     RenderOptions mOptions;
@@ -130,6 +143,8 @@ private:
     int mJournalLines = 0;
     int mKillBeforeLine = 0;
     int mTearLine = 0;
+    bool mMadeJournalFolder = false; ///< DIR/.inkgraph was made by this run
+    FileLock mLock;                  ///< held from the constructor's checks until finish() or destruction
 };
 
 } // namespace inkgraph

@@ -1,4 +1,5 @@
 #include "app/DatasetCheck.h"
+#include "app/FileLock.h"
 
 #include "app/Dataset.h"
 #include "render/ErrorReport.h"
@@ -282,11 +283,21 @@ DatasetReport checkDataset(const fs::path& folder) {
         own.insert(card.filename().string());
         checkIndex(folder, index, card, report, listed);
     }
-    // A journal: a run that has not finished (or was killed); --resume finishes it.
-    for (const auto& entry : fs::directory_iterator(folder / ".inkgraph", error))
-        if (entry.path().filename().string().rfind("journal", 0) == 0)
-            report.errors.push_back("'.inkgraph/" + entry.path().filename().string() +
-                                    "': a run that did not finish; run it again with --resume");
+    // A split's lock held: its run is writing the set now (its journal is that run's). A journal with no run holding
+    // its lock: a run that did not finish (killed, or failed); --resume finishes it. A lock file no run holds is what a
+    // killed run leaves, and nothing to report.
+    for (const auto& entry : fs::directory_iterator(folder / ".inkgraph", error)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("lock", 0) == 0 && isLockedByAnotherProcess(entry.path())) {
+            report.errors.push_back("'.inkgraph/" + name +
+                                    "': an inkgraph run is writing this data set now; check it when it has finished");
+        } else if (name.rfind("journal", 0) == 0) {
+            const std::string suffix = name.substr(7, name.size() >= 13 ? name.size() - 13 : 0);
+            if (!isLockedByAnotherProcess(folder / ".inkgraph" / ("lock" + suffix)))
+                report.errors.push_back("'.inkgraph/" + name +
+                                        "': a run that did not finish; run it again with --resume");
+        }
+    }
     // Leftovers of killed runs, and files no index lists.
     for (auto it = fs::recursive_directory_iterator(folder, error); !error && it != fs::recursive_directory_iterator();
          it.increment(error)) {

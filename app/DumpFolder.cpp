@@ -1,4 +1,5 @@
 #include "app/DumpFolder.h"
+#include "app/FileLock.h"
 
 #include "render/ImageFiles.h"
 #include "render/TemporaryFiles.h"
@@ -240,27 +241,14 @@ void DumpFolder::check(const std::string& flagValue) {
 
     // Locked until the commit ends. The lock is on the folder's inode, and a commit swaps another inode in under the
     // name, so a lock taken on a folder that was swapped out meanwhile is let go and taken again on the new one.
-    for (int attempt = 0; mLock < 0; ++attempt) {
-        const int lock = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-        if (lock < 0) fail(std::string("cannot be opened: ") + std::strerror(errno));
-        if (::flock(lock, LOCK_EX | LOCK_NB) != 0) {
-            const int reason = errno;
-            ::close(lock);
-            if (reason == EWOULDBLOCK) {
-                mTakenByAnotherRun = true;
-                fail("is being written by another inkgraph run; wait until it has finished, or give another folder");
-            }
-            fail(std::string("cannot be locked: ") + std::strerror(reason));
+    mLock = FileLock(folder, FileLock::Target::Folder);
+    if (!mLock.held()) {
+        if (mLock.error() == EWOULDBLOCK) {
+            mTakenByAnotherRun = true;
+            fail("is being written by another inkgraph run; wait until it has finished, or give another folder");
         }
-        struct stat locked {
-        }, named{};
-        if (::fstat(lock, &locked) == 0 && ::stat(folder.c_str(), &named) == 0 && locked.st_dev == named.st_dev &&
-            locked.st_ino == named.st_ino) {
-            mLock = lock;
-        } else {
-            ::close(lock);
-            if (attempt == 10) fail("keeps being replaced by another run");
-        }
+        if (mLock.error() == ESTALE) fail("keeps being replaced by another run");
+        fail(std::string("cannot be locked: ") + std::strerror(mLock.error()));
     }
 
     sweepStaleStagingFolders(parent);
@@ -320,8 +308,7 @@ void DumpFolder::abandon() {
     for (const fs::path& folder : mCreatedFolders) forgetTemporary(folder);
     mCreatedFolders.clear();
     mStaging.clear();
-    if (mLock >= 0) ::close(mLock);
-    mLock = -1;
+    mLock.release();
 }
 
 fs::path DumpFolder::stage(const std::string& name) {

@@ -14,6 +14,7 @@
  *  DIR is locked (flock) from the check until the commit ends: a second run on the same folder is refused at once,
  *  naming it, instead of mixing its files in. */
 
+#include "app/FileLock.h"
 #include "render/InputFiles.h"
 
 #include <sys/types.h>
@@ -87,7 +88,7 @@ private:
     mode_t mFolderMode = 0;
     uid_t mFolderOwner = 0;
     gid_t mFolderGroup = 0;
-    int mLock = -1;
+    FileLock mLock;
     bool mTakenByAnotherRun = false;                    ///< its lock was held: never remove what this run created of it
     std::vector<std::filesystem::path> mCreatedFolders; ///< innermost first; removed on failure when empty
     bool mMarked = false;

@@ -146,6 +146,7 @@ TEST_F(Dataset, TheDigestHoldsTheViewAndItsSeed) {
     };
     const std::string first = digestOfView(0), second = digestOfView(1);
     EXPECT_NE(first, second) << "each view is its own still";
+    run.reset(); // one run of a split at a time
     std::vector<std::string> otherSeed = base;
     otherSeed[4] = "4";
     EXPECT_NE(digestOf(otherSeed), first) << "--seed";
@@ -223,6 +224,55 @@ TEST_F(Dataset, AnotherSplitIsRefusedResumedOrNotNamingTheFile) {
             else
                 EXPECT_NE(error.find(test.message), std::string::npos) << test.file << ": " << error;
         }
+}
+
+TEST_F(Dataset, ASecondRunOfTheSameSplitIsRefusedWhileTheFirstRuns) {
+    // Two runs of one split at once (a requeued array task beside the one it replaces) interleaved their journals and
+    // left a set check-dataset rejected: the second is refused now, and the first finishes alone.
+    const std::vector<std::string> arguments = {model, "--dataset", set, "-o", set + "/a.png", "--resume"};
+    auto first = runOf(arguments);
+    const fs::path lock = fs::path(set) / ".inkgraph" / "lock";
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(lock)));
+    std::string refusal;
+    try {
+        runOf(arguments);
+    } catch (const FileError& error) {
+        refusal = error.what();
+    }
+    EXPECT_NE(refusal.find("DatasetRun: --dataset '" + set +
+                           "' is being written by another inkgraph run; wait until it has finished, then --resume"),
+              std::string::npos)
+        << refusal;
+    const std::vector<std::string> during = checkDataset(set).errors;
+    EXPECT_NE(
+        std::find(during.begin(), during.end(),
+                  "'.inkgraph/lock': an inkgraph run is writing this data set now; check it when it has finished"),
+        during.end())
+        << ::testing::PrintToString(during);
+    // The shards of one split run at once by design: each has a lock of its own.
+    const std::string shards = (directory / "shards").string();
+    auto shard0 = runOf({model, "--dataset", shards, "-o", shards + "/a.png", "--shard", "0/2"});
+    auto shard1 = runOf({model, "--dataset", shards, "-o", shards + "/b.png", "--shard", "1/2"});
+    EXPECT_THROW(runOf({model, "--dataset", shards, "-o", shards + "/a.png", "--shard", "0/2", "--resume"}), FileError);
+
+    std::ostringstream log;
+    first->finish(log);
+    EXPECT_FALSE(fs::exists(fs::symlink_status(fs::path(set) / ".inkgraph")))
+        << "the lock file, and the emptied .inkgraph folder, go when the run finishes";
+    EXPECT_NO_THROW(runOf(arguments)) << "the first run finished: --resume may continue it";
+    first.reset();
+    shard0.reset();
+    EXPECT_TRUE(fs::is_regular_file(fs::path(shards) / ".inkgraph" / "lock-1-of-2")) << "shard 1's, still running";
+    EXPECT_FALSE(fs::exists(fs::path(shards) / ".inkgraph" / "lock-0-of-2")) << "a run that ends lets go of its lock";
+
+    // What a killed run leaves (its lock file, held by nobody) stops no one, and check-dataset does not mention it.
+    fs::remove_all(set);
+    write(fs::path(set) / ".inkgraph" / "lock", "");
+    EXPECT_NO_THROW(runOf({model, "--dataset", set, "-o", set + "/a.png"}));
+    write(fs::path(set) / ".inkgraph" / "lock", "");
+    EXPECT_NO_THROW(runOf(arguments)->finish(log));
+    for (const std::string& error : checkDataset(set).errors)
+        EXPECT_EQ(error.find(".inkgraph"), std::string::npos) << error; // its index, of no still rendered, has others
 }
 
 TEST_F(Dataset, AnEditedPoseFileOfAListRendersAgain) {
@@ -323,6 +373,7 @@ TEST_F(Dataset, ATornJournalLineIsIgnoredAndCutOff) {
     EXPECT_FALSE(run->isComplete({model, 1, 0}, digest)) << "another key";
     // The file changed since: the still is not complete.
     write(fs::path(set) / "cube.png", "pictura");
+    run.reset(); // one run of a split at a time
     auto again = runOf(arguments);
     EXPECT_FALSE(again->isComplete({model, 0, 0}, digest));
 }

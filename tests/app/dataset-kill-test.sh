@@ -8,6 +8,7 @@
 #      land: the count is reported, never asserted).
 # A, B and C are compared file by file, every byte, except each --dump's manifest.json (timings; the index's checksums
 # of those are masked); the dump's EXR files carry a fixed time stamp, so they are compared as they are.
+# F: a run refused at once while another holds the folder's lock; two runs at once: the set is A's.
 # Then: a truncated file is rendered again, a changed flag renders every still again, --resume needs --dataset, and a
 # data set is not written over without --resume.
 # Usage: dataset-kill-test.sh INKGRAPH SOURCE_ROOT
@@ -113,6 +114,45 @@ resume_until_done "$work/C"
 same_as_A "$work/C" "C (killed at random moments, resumed)"
 "$inkgraph" check-dataset "$work/C" > "$work/check.txt" || fail "check-dataset C: $(cat "$work/check.txt")"
 
+# F: two runs of the same split into one folder at once (a requeued array task beside the one it replaces). While one
+# run holds the split's lock (here flock(1) holds it, as a run does from its checks to its index), another is refused
+# at once, exit 5, and changes nothing; then two runs started together, twice: one is refused or finds every still
+# complete, and the set is A's. Without the lock both ran, their journals, commits and indexes interleaved.
+cp -r "$work/A" "$work/F"
+mkdir -p "$work/F/.inkgraph"
+status=0
+flock "$work/F/.inkgraph/lock" bash -c "cd '$work/F' && exec \"\$0\" render \"\$@\" --resume 2> '$work/F.log'" \
+    "$inkgraph" "${models[@]}" "${flags[@]}" || status=$?
+[ "$status" -eq 5 ] && grep -q "is being written by another inkgraph run; wait until it has finished, then --resume" \
+    "$work/F.log" || fail "F: a run while another holds the lock exited $status: $(cat "$work/F.log")"
+rm "$work/F/.inkgraph/lock"
+rmdir "$work/F/.inkgraph"
+diff -r "$work/A" "$work/F" || fail "F: the refused run changed the data set"
+for attempt in 1 2; do
+    rm -rf "$work/F"
+    mkdir -p "$work/F/svg" "$work/F/plan"
+    pids=()
+    for run in first second; do
+        (cd "$work/F" && exec "$inkgraph" render "${models[@]}" "${flags[@]}" --resume 2> "$work/F-$run.log") &
+        pids+=($!)
+    done
+    finished=0
+    for index in 0 1; do
+        run=$([ "$index" -eq 0 ] && echo first || echo second)
+        status=0
+        wait "${pids[$index]}" || status=$?
+        if [ "$status" -eq 0 ]; then
+            finished=$((finished + 1))
+        elif [ "$status" -ne 5 ] || ! grep -q "is being written by another inkgraph run; wait until it has finished," \
+            "$work/F-$run.log"; then
+            fail "F: the $run run exited $status: $(cat "$work/F-$run.log")"
+        fi
+    done
+    [ "$finished" -ge 1 ] || fail "F: neither run finished: $(cat "$work"/F-*.log)"
+    same_as_A "$work/F" "F (two runs at once, attempt $attempt)"
+    "$inkgraph" check-dataset "$work/F" > "$work/check.txt" || fail "check-dataset F: $(cat "$work/check.txt")"
+done
+
 # D: a copy of A with one file cut short: only that still is rendered again.
 cp -r "$work/A" "$work/D"
 truncate -s 100 "$work/D/teapot_c3d-1.png"
@@ -150,4 +190,4 @@ render "$work/A" || status=$?
     fail "a data set without --resume: $status $(cat "$work/A.log")"
 diff -r "$work/A-before" "$work/A" || fail "a refused run changed the data set"
 echo "dataset kill test: A, B (5 hooked kills), C ($killed of 6 runs killed at random), D (truncated file, changed" \
-    "flag) agree"
+    "flag), F (a run refused while the lock is held, two at once twice) agree"
