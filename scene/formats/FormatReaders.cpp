@@ -14,6 +14,12 @@ namespace inkgraph {
 
 namespace detail {
 
+std::string memoryText(std::size_t bytes) {
+    if (bytes >= (std::size_t(1) << 20)) return std::to_string(bytes >> 20) + " MiB";
+    if (bytes >= 1024) return std::to_string(bytes >> 10) + " KiB";
+    return std::to_string(bytes) + (bytes == 1 ? " byte" : " bytes");
+}
+
 void checkModelExtent(const std::string& path, double extent, std::string_view function) {
     if (!(extent <= kMaxModelExtent)) {
         throwLoadError(path,
@@ -74,9 +80,9 @@ void MeshBudget::chargeFile(std::size_t bytes) {
     mFileBytes = mFileBytes > SIZE_MAX - bytes ? SIZE_MAX : mFileBytes + bytes;
     if (estimate(0, 0) > mLimitBytes)
         throwLoadError(mPath,
-                       "the file is " + std::to_string(bytes >> 20) + " MiB; the load would hold about " +
-                           std::to_string(estimate(0, 0) >> 20) + " MiB, above the memory limit of " +
-                           std::to_string(mLimitBytes >> 20) + " MiB (" + mLimitName + ")",
+                       "the file is " + memoryText(bytes) + "; the load would hold about " +
+                           memoryText(estimate(0, 0)) + ", above the memory limit of " + memoryText(mLimitBytes) +
+                           " (" + mLimitName + ")",
                        mFunction);
 }
 
@@ -84,9 +90,8 @@ void MeshBudget::chargeBytes(std::size_t bytes, std::string_view what) {
     mOtherBytes = mOtherBytes > SIZE_MAX - bytes ? SIZE_MAX : mOtherBytes + bytes;
     if (estimate(0, 0) > mLimitBytes)
         throwLoadError(mPath,
-                       "the load would hold about " + std::to_string(estimate(0, 0) >> 20) + " MiB (with " +
-                           std::string(what) + "), above the memory limit of " + std::to_string(mLimitBytes >> 20) +
-                           " MiB (" + mLimitName + ")",
+                       "the load would hold about " + memoryText(estimate(0, 0)) + " (with " + std::string(what) +
+                           "), above the memory limit of " + memoryText(mLimitBytes) + " (" + mLimitName + ")",
                        mFunction);
 }
 
@@ -94,10 +99,10 @@ void MeshBudget::check(std::size_t vertices, std::size_t triangles) const {
     const std::size_t bytes = estimate(vertices, triangles);
     if (bytes > mLimitBytes)
         throwLoadError(mPath,
-                       "the mesh would need about " + std::to_string(bytes >> 20) + " MiB (" +
-                           std::to_string(mVertices + vertices) + " vertices, " +
-                           std::to_string(mTriangles + triangles) + " triangles), above the memory limit of " +
-                           std::to_string(mLimitBytes >> 20) + " MiB (" + mLimitName + ")",
+                       "the mesh would need about " + memoryText(bytes) + " (" + std::to_string(mVertices + vertices) +
+                           " vertices, " + std::to_string(mTriangles + triangles) +
+                           " triangles), above the memory limit of " + memoryText(mLimitBytes) + " (" + mLimitName +
+                           ")",
                        mFunction);
 }
 

@@ -35,6 +35,10 @@ struct RawScene {
     std::vector<std::string> inputFiles; ///< as LoadReport::inputFiles
 };
 
+/** `bytes` for a message: "N MiB" from 1 MiB up (rounded down), else "N KiB" or "N bytes" (a limit of a few bytes,
+ *  which a library caller can set, read "0 MiB"). */
+std::string memoryText(std::size_t bytes);
+
 /** The memory bound of one load (LoadOptions::memoryLimitBytes), checked before anything of a counted size is
  *  allocated. The estimate is the file's own bytes plus a fixed cost per vertex and per triangle that covers the
  *  reader's copy, welding, the finished mesh and its GPU upload (scene/README.md gives the measured peak). */

@@ -89,6 +89,20 @@ TEST(LoadLimits, FileLargerThanTheLimitIsRefusedBeforeItIsRead) {
         << message;
 }
 
+TEST(LoadLimits, LimitsUnderAMebibyteAreToldInKibibytesOrBytes) {
+    // The library takes any limit in bytes: one of a few bytes read "the memory limit of 0 MiB".
+    const TempFile file("small.obj", std::string(3000, '#'));
+    LoadOptions options;
+    options.memoryLimitBytes = 1;
+    EXPECT_NE(test::sceneErrorMessage([&] {
+                  loadScene(file.path(), options);
+              }).find("the file is 2 KiB; the load would hold about 2 KiB, above the memory limit of 1 byte"),
+              std::string::npos);
+    options.memoryLimitBytes = 1000;
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(file.path(), options); }).find("memory limit of 1000 bytes"),
+              std::string::npos);
+}
+
 TEST(LoadLimits, GlbIsChargedTwiceForTinygltfsCopyOfItsBuffers) {
     GltfWriter writer;
     const std::string body = instancedTriangle(writer, 1);

@@ -242,8 +242,8 @@ bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const
         files.budget.chargeFile(std::size_t(size));
     } catch (const SceneError&) {
         if (error)
-            *error += "external file '" + excerptForMessage(path) + "' is " + std::to_string(size >> 20) +
-                      " MiB, above the memory limit of " + std::to_string(files.budget.limitBytes() >> 20) + " MiB\n";
+            *error += "external file '" + excerptForMessage(path) + "' is " + memoryText(size) +
+                      ", above the memory limit of " + memoryText(files.budget.limitBytes()) + "\n";
         return false;
     }
     files.opened.push_back(path);
