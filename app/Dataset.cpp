@@ -293,6 +293,10 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
             if (value.empty()) continue;
             const fs::path place = resolvedPath(value);
             const fs::path relative = place.lexically_relative(mFolder);
+            if ((relative.empty() || relative == "." || *relative.begin() == "..") &&
+                fs::is_symlink(fs::symlink_status(value, error)))
+                throw UsageError(flag + " '" + value + "' is a link to '" + place.string() + "', outside " + shown +
+                                 "; every output of a data set is a file inside it: remove the link");
             if (relative.empty() || relative == "." || *relative.begin() == "..")
                 throw UsageError(flag + " '" + value + "' lies outside " + shown +
                                  "; every output of a data set goes inside it, e.g. " + flag + " '" +
@@ -332,7 +336,12 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
     lockThisSplit();
     try {
         refuseOtherRunsFiles();
-        if (options.resume) readEarlierRecords();
+        if (options.resume) {
+            readEarlierRecords();
+            // The card is replaced only at the end, after the index: one that is not a plain file is refused now,
+            // before the run changes anything.
+            readDatasetFile(cardPath(), "DatasetRun");
+        }
     } catch (...) {
         letGoOfThisSplit(/*finished=*/false); // a constructor that throws runs no destructor
         throw;

@@ -168,6 +168,12 @@ TEST_F(Dataset, OutputsOutsideTheFolderAndItsOwnFilesAreRefused) {
               std::string::npos);
     EXPECT_EQ(usageError({model, "--dataset", set, "-o", set + "/a.png"}), "");
     EXPECT_TRUE(fs::is_directory(set)) << "a new DIR is made";
+    // An output inside DIR that is a link leading out of it is named as the link it is.
+    fs::create_symlink("/dev/zero", fs::path(set) / "zero.json");
+    EXPECT_NE(usageError({model, "--dataset", set, "-o", set + "/a.png", "--stats", set + "/zero.json"})
+                  .find("--stats '" + set + "/zero.json' is a link to '/dev/zero', outside --dataset '" + set +
+                        "'; every output of a data set is a file inside it: remove the link"),
+              std::string::npos);
 }
 
 TEST_F(Dataset, AnExistingDataSetNeedsResume) {
@@ -472,6 +478,14 @@ TEST_F(Dataset, ItsOwnFilesMustBePlainFilesAndLinksLeadNowhere) {
     const fs::path index = fs::path(set) / "index.jsonl";
     fs::create_symlink("/dev/zero", index); // read whole, it filled the memory
     EXPECT_NE(fileError().find("index.jsonl' is not a plain file"), std::string::npos) << fileError();
+    fs::remove(index);
+    // A FIFO as the card: refused before the run, so the index (written first at the end) is not replaced either.
+    write(index, "earlier index\n");
+    const fs::path card = fs::path(set) / "README.md";
+    ASSERT_EQ(::mkfifo(card.c_str(), 0644), 0);
+    EXPECT_NE(fileError().find("README.md' is not a plain file"), std::string::npos) << fileError();
+    EXPECT_EQ(readText(index.string()), "earlier index\n");
+    fs::remove(card);
     fs::remove(index);
 
     // A journal linked to a file outside the set: neither cut nor appended to.
