@@ -4,6 +4,7 @@
 #include "render/BackgroundThreads.h"
 #include "render/MemoryBudget.h"
 #include "render/Messages.h"
+#include "render/UsageError.h"
 
 #include "app/Batch.h"
 #include "app/Cli.h"
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <exception>
 #include <iomanip>
 #include <iostream>
@@ -108,6 +110,19 @@ void tellError(const BatchShared& batch, std::exception_ptr error) {
     }
 }
 
+/** An error that stops the batch, as it is told: a UsageError (a setting this still cannot be drawn with, above all a
+ *  memory limit, which depends on the model) gets the still's "[k/n] 'model'" in front, so a batch says which still
+ *  it stopped at; any other error is told as it is. */
+std::exception_ptr namingTheStill(std::exception_ptr error, const std::string& still) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const UsageError& usage) {
+        return std::make_exception_ptr(UsageError(still + ": " + usage.what()));
+    } catch (...) {
+    }
+    return error;
+}
+
 /** The stills in flight are finished after an error that stops the batch, so no completed still's outputs are lost.
  *  Their own failures, if any, are told. */
 void finishAfterError(RenderSession& session, const BatchShared& batch) {
@@ -186,12 +201,14 @@ void renderShare(const BatchShared& batch, std::size_t first, std::size_t step, 
             const StillTurn turn(batch.turns, k);
             fail(error);
         } catch (...) {
-            if (!batch.turns) throw; // the caller finishes the stills in flight
+            const std::exception_ptr stop =
+                namingTheStill(std::current_exception(), counter.substr(std::strlen("inkgraph: ")));
+            if (!batch.turns) std::rethrow_exception(stop); // the caller finishes the stills in flight
             // Any other error stops the batch, on every drawing thread. The first is kept before the turn goes on
             // (the caller throws it once every thread is done); this thread finishes what it has in flight.
-            const bool firstToStop = batch.turns->stop(std::current_exception());
+            const bool firstToStop = batch.turns->stop(stop);
             batch.turns->leave(k); // render() may have returned holding it
-            if (!firstToStop) tellError(batch, std::current_exception());
+            if (!firstToStop) tellError(batch, stop);
             finishAfterError(session, batch);
             return;
         }

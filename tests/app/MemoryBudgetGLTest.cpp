@@ -94,6 +94,25 @@ TEST_F(MemoryBudget, LimitJustUnderTheEstimateIsRefusedNamingEveryFlagAndJustOve
     }
 }
 
+TEST_F(MemoryBudget, ABatchStoppedByTheLimitNamesTheStillItStoppedAt) {
+    // What a still needs depends on its model: a batch refused at one of its stills says which (it said only
+    // "--size ... needs about N MiB", and with --draw-threads several such lines, none naming its model).
+    const std::string size = " --size 512x512 --supersample 2";
+    const std::string spot = model("spot_c3d.obj"), bunny = model("bunny_c3d_70k.obj");
+    const int spotNeeds = neededMib(spot + size), bunnyNeeds = neededMib(bunny + size);
+    ASSERT_LT(spotNeeds, bunnyNeeds);
+    for (const char* threads : {"1", "2"}) {
+        const CliRun result = run("render " + spot + " " + bunny + size + " -o 'o{index}.png' -q --memory-limit " +
+                                  std::to_string(spotNeeds) + " --draw-threads " + threads);
+        EXPECT_EQ(result.exitCode, 2) << result.err;
+        EXPECT_TRUE(std::regex_search(result.err,
+                                      std::regex("inkgraph: \\[2/2\\] '[^']*/bunny_c3d_70k.obj': --size 512x512 with")))
+            << result.err;
+        EXPECT_EQ(result.err.find("[1/2]"), std::string::npos) << "the first still fits: " << result.err;
+        EXPECT_TRUE(std::filesystem::exists(directory / "o1.png")) << "the still before it is kept";
+    }
+}
+
 TEST_F(MemoryBudget, ABatchDrawnOnSeveralThreadsStaysUnderItsOneLimit) {
     // Six 1024^2 bunnies at --supersample 2, each still estimated at 499 MiB: under a limit of 700 two cannot draw at
     // once. Four drawing threads used to keep each its own stills within a quarter of the limit but draw a still
