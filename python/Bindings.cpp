@@ -44,6 +44,49 @@ using namespace pybind11::literals;
 
 namespace {
 
+/** Text a caller gives (a flag's value, which may be a path; a name) as the bytes it stands for. A str from
+ *  os.listdir() or os.fsdecode() carries each byte that is not UTF-8 as a lone surrogate (U+DC80-U+DCFF): those become
+ *  the bytes again, as os.fsencode() makes them, so a shade map or pose file of such a name is found. pybind11's
+ *  std::string refused the whole call with TypeError. */
+struct OsText {
+    std::string bytes;
+};
+
+} // namespace
+
+namespace pybind11::detail {
+
+template <>
+struct type_caster<OsText> {
+    PYBIND11_TYPE_CASTER(OsText, const_name("str"));
+
+    bool load(handle source, bool) {
+        if (!PyUnicode_Check(source.ptr())) return false;
+        // Any other lone surrogate names no file: escaped (\udXXX), it is a name like any other, and refused as
+        // unknown by the library.
+        for (const char* errors : {"surrogateescape", "backslashreplace"}) {
+            PyObject* encoded = PyUnicode_AsEncodedString(source.ptr(), "utf-8", errors);
+            if (encoded == nullptr) {
+                PyErr_Clear();
+                continue;
+            }
+            value.bytes.assign(PyBytes_AS_STRING(encoded), std::size_t(PyBytes_GET_SIZE(encoded)));
+            Py_DECREF(encoded);
+            return true;
+        }
+        return false;
+    }
+
+    /** Back to a str as os.fsdecode() makes it (the default values in the signatures). */
+    static handle cast(const OsText& text, return_value_policy, handle) {
+        return PyUnicode_DecodeUTF8(text.bytes.data(), Py_ssize_t(text.bytes.size()), "surrogateescape");
+    }
+};
+
+} // namespace pybind11::detail
+
+namespace {
+
 /** The class of python/inkgraph/_errors.py that stands for `kind`. */
 const char* errorClassName(ig::Error::Kind kind) {
     switch (kind) {
@@ -98,6 +141,13 @@ std::string utf8Of(py::handle text) {
 }
 
 std::string reprOf(py::handle value) { return utf8Of(py::repr(value)); }
+
+std::vector<std::string> bytesOf(const std::vector<OsText>& texts) {
+    std::vector<std::string> bytes;
+    bytes.reserve(texts.size());
+    for (const OsText& text : texts) bytes.push_back(text.bytes);
+    return bytes;
+}
 
 // ---- Warnings ------------------------------------------------------------------------------------------------------
 
@@ -386,6 +436,18 @@ using FaceRows = py::array_t<std::uint32_t, py::array::c_style | py::array::forc
 
 /** A 2-D array of `columns` (one of them) numbers a row, as float32 in C order: the caller's own memory when it is
  *  that already, else a converted copy. `rows`, when given, is the count it must have (one per vertex). */
+/** numpy.asarray(value); a sequence NumPy cannot make an array of (rows of different lengths) is the caller's
+ *  InputError like any other bad array, not NumPy's ValueError. */
+py::array arrayOf(py::handle value, const std::string& where, const std::string& expected) {
+    try {
+        return py::module_::import("numpy").attr("asarray")(value);
+    } catch (py::error_already_set& error) {
+        if (!error.matches(PyExc_ValueError)) throw;
+        failInput(where + expected + ", got a sequence NumPy cannot make an array of (" +
+                  utf8Of(py::str(error.value())) + ")");
+    }
+}
+
 FloatRows floatRows(py::handle value, const std::string& name, std::initializer_list<py::ssize_t> columns,
                     std::optional<py::ssize_t> rows) {
     const std::string where = "Scene.from_arrays(): " + name + ": ";
@@ -393,7 +455,7 @@ FloatRows floatRows(py::handle value, const std::string& name, std::initializer_
     for (const py::ssize_t count : columns)
         expected += (expected.back() == ' ' ? "" : " or (N, ") + std::to_string(count) + ")";
     expected += " array of numbers";
-    const py::array array = py::module_::import("numpy").attr("asarray")(value);
+    const py::array array = arrayOf(value, where, expected);
     const char kind = array.dtype().kind();
     if (kind != 'f' && kind != 'i' && kind != 'u')
         failInput(where + expected + ", got dtype " + py::str(array.dtype()).cast<std::string>());
@@ -413,7 +475,7 @@ FloatRows floatRows(py::handle value, const std::string& name, std::initializer_
 FaceRows faceRows(py::handle value) {
     const std::string where = "Scene.from_arrays(): faces: ";
     const std::string expected = "expected an (M, 3) array of integer vertex indices";
-    const py::array array = py::module_::import("numpy").attr("asarray")(value);
+    const py::array array = arrayOf(value, where, expected);
     const char kind = array.dtype().kind();
     if (kind != 'i' && kind != 'u')
         failInput(where + expected + ", got dtype " + py::str(array.dtype()).cast<std::string>());
@@ -711,16 +773,19 @@ void defineLook(py::module_& m) {
                  return made.cast<ig::Look>();
              }),
              "Look(**fields): the command line's default look, with the fields given set in turn.")
-        .def_static("from_arguments", &ig::Look::fromArguments, "arguments"_a,
-                    "Flags and values as on the command line: ['--shading', 'comic', '--lines', 'outline,contour']. "
-                    "Raises UsageError with the command line's message for a bad flag or value.")
+        .def_static(
+            "from_arguments",
+            [](const std::vector<OsText>& arguments) { return ig::Look::fromArguments(bytesOf(arguments)); },
+            "arguments"_a,
+            "Flags and values as on the command line: ['--shading', 'comic', '--lines', 'outline,contour']. "
+            "Raises UsageError with the command line's message for a bad flag or value.")
         .def_static(
             "from_style_file", [](const std::filesystem::path& path) { return ig::Look::fromStyleFile(path.string()); },
             "path"_a, "A style file (`inkgraph render --style FILE`). Raises UsageError naming the file and line.")
         .def(
             "set",
-            [](py::object self, const std::string& flag, const std::string& value) {
-                self.cast<ig::Look&>().set(flag, value);
+            [](py::object self, const OsText& flag, const OsText& value) {
+                self.cast<ig::Look&>().set(flag.bytes, value.bytes);
                 return self;
             },
             "flag"_a, "value"_a = "",
@@ -841,8 +906,8 @@ void defineLook(py::module_& m) {
             "name"_a, "value"_a, "Sets a number parameter ('crease-angle'). Returns the look.")
         .def(
             "set_line_choice",
-            [](py::object self, const std::string& name, const std::string& value) {
-                self.cast<ig::Look&>().setLineChoice(name, value);
+            [](py::object self, const OsText& name, const OsText& value) {
+                self.cast<ig::Look&>().setLineChoice(name.bytes, value.bytes);
                 return self;
             },
             "name"_a, "value"_a, "Sets a choice parameter. Returns the look.");
@@ -864,10 +929,13 @@ void defineFrame(py::module_& m) {
              }),
              "width"_a = ig::Frame{}.width, "height"_a = ig::Frame{}.height,
              "Frame(width=1024, height=1024, **fields): fields as keywords (orbit=(30, 10), fov=40).")
-        .def_static("from_arguments", &ig::Frame::fromArguments, "arguments"_a,
-                    "The command line's camera flags: ['--orbit', '30,10', '--fov', '40', '--size', '640x480']. "
-                    "Raises UsageError with the command line's message for a flag that is not the frame's or a bad "
-                    "value.")
+        .def_static(
+            "from_arguments",
+            [](const std::vector<OsText>& arguments) { return ig::Frame::fromArguments(bytesOf(arguments)); },
+            "arguments"_a,
+            "The command line's camera flags: ['--orbit', '30,10', '--fov', '40', '--size', '640x480']. "
+            "Raises UsageError with the command line's message for a flag that is not the frame's or a bad "
+            "value.")
         .def_readwrite("width", &ig::Frame::width, "--size: pixels, 1 to 16384.")
         .def_readwrite("height", &ig::Frame::height)
         .def_property(
@@ -1074,13 +1142,12 @@ void defineScene(py::module_& m) {
                           "with any number of looks and frames.")
         .def_static(
             "load",
-            [](const std::filesystem::path& path, const std::string& animation, double time, std::size_t memoryLimit,
-               bool strict, const std::string& pose, const std::map<std::string, double>& expressions,
-               py::handle lookAt) {
+            [](const std::filesystem::path& path, const OsText& animation, double time, std::size_t memoryLimit,
+               bool strict, const OsText& pose, const std::map<std::string, double>& expressions, py::handle lookAt) {
                 ig::SceneOptions options;
-                options.animation = animation;
+                options.animation = animation.bytes;
                 options.time = time;
-                options.pose = pose;
+                options.pose = pose.bytes;
                 options.expressions = expressions;
                 options.lookAt = optionalArgument(lookAt, vec3Argument, "Scene.load(look_at)");
                 options.memoryLimitBytes = memoryLimit;
@@ -1093,8 +1160,8 @@ void defineScene(py::module_& m) {
                 issueWarnings(warningObjects(scene->warnings()));
                 return *scene;
             },
-            "path"_a, "animation"_a = "", "time"_a = 0.0, "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
-            "strict"_a = false, "pose"_a = "", "expressions"_a = std::map<std::string, double>{},
+            "path"_a, "animation"_a = OsText{}, "time"_a = 0.0, "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
+            "strict"_a = false, "pose"_a = OsText{}, "expressions"_a = std::map<std::string, double>{},
             "look_at"_a = py::none(),
             "Loads a model; `animation` (a glTF animation's name or index) and `time` (seconds) pose it, as "
             "--animation and --time, and `pose` ('a-pose' or a pose file) a VRM's humanoid, as --pose; "

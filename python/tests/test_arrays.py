@@ -108,6 +108,11 @@ BAD_ARRAYS = [
                                                          "got dtype float64"),
     ("faces (M, 4)", dict(faces=np.zeros((2, 4), np.uint32)), "faces: expected an (M, 3) array of integer vertex "
                                                               "indices, got shape (2, 4)"),
+    ("vertices ragged", dict(vertices=[[0, 0, 0], [1, 0], [0, 1, 0]]), "vertices: expected an (N, 3) array of "
+                                                                      "numbers, got a sequence NumPy cannot make an "
+                                                                      "array of ("),
+    ("faces ragged", dict(faces=[[0, 1, 2], [0, 1]]), "faces: expected an (M, 3) array of integer vertex indices, got "
+                                                      "a sequence NumPy cannot make an array of ("),
     ("faces negative", dict(faces=np.array([[0, -1, 2]])), "faces: index -1 is negative"),
     ("faces beyond 32 bits", dict(faces=np.array([[0, 1, 2**32]], np.int64)), "faces: index 4294967296 does not fit"),
     ("normals rows", dict(normals=np.zeros((2, 3), np.float32)), "normals: expected 3 rows (one per vertex), got 2"),

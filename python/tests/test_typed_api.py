@@ -4,6 +4,7 @@ for byte; enums by their command-line words; the small value types; the package'
 from __future__ import annotations
 
 import copy
+import os
 import pathlib
 import warnings
 
@@ -102,6 +103,27 @@ def test_a_typed_look_field_renders_as_its_flags(suzanne, name, typed, arguments
     typed_picture = renderer.render(suzanne, typed(), frame).picture
     flags_picture = renderer.render(suzanne, inkgraph.Look.from_arguments(arguments), frame).picture
     assert np.array_equal(typed_picture, flags_picture), name
+
+
+def test_flag_values_from_the_file_system_name_the_same_file(suzanne, tmp_path):
+    # os.listdir() gives a name whose bytes are not UTF-8 as a str with lone surrogates; as a flag's value it was a
+    # TypeError (pybind11 could not encode it). It now names the file whose bytes it decodes.
+    original = REPO / "shademaps" / "duotone-cool.png"
+    (tmp_path / os.fsdecode(b"duot\xf4ne.png")).write_bytes(original.read_bytes())
+    (latin1_name,) = os.listdir(tmp_path)
+    assert "\udcf4" in latin1_name
+    latin1 = str(tmp_path / latin1_name)
+    frame = inkgraph.Frame(SIZE, SIZE)
+    renderer = inkgraph.default_renderer()
+    expected = renderer.render(suzanne, inkgraph.Look(shading="comic", shade_map=original), frame).picture
+    for look in (inkgraph.Look(shading="comic").set("--shademap", latin1),
+                 inkgraph.Look.from_arguments(["--shading", "comic", "--shademap", latin1])):
+        assert np.array_equal(renderer.render(suzanne, look, frame).picture, expected)
+    # A lone surrogate that stands for no byte is a name like any other: unknown, as the flag says.
+    with pytest.raises(inkgraph.UsageError, match="--shading: unknown value"):
+        inkgraph.Look.from_arguments(["--shading", "\ud800"])
+    with pytest.raises(inkgraph.UsageError, match="--orbit: expected"):
+        inkgraph.Frame.from_arguments(["--orbit", "\udcff"])
 
 
 @pytest.mark.parametrize("name, typed, arguments", FRAME_CASES, ids=[case[0] for case in FRAME_CASES])
