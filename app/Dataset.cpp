@@ -332,7 +332,9 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
 
     mMadeJournalFolder = !fs::exists(fs::symlink_status(mFolder / kJournalFolder, error));
     fs::create_directories(mFolder / kJournalFolder, error);
-    if (error) throw FileError("DatasetRun: cannot create " + shown + ": " + error.message());
+    if (error)
+        throw FileError("DatasetRun: cannot create the data set's own folder '" + (mFolder / kJournalFolder).string() +
+                        "': " + error.message());
     lockThisSplit();
     try {
         refuseOtherRunsFiles();

@@ -288,12 +288,12 @@ DatasetReport checkDataset(const fs::path& folder) {
     // killed run leaves, and nothing to report.
     for (const auto& entry : fs::directory_iterator(folder / ".inkgraph", error)) {
         const std::string name = entry.path().filename().string();
-        if (name.rfind("lock", 0) == 0 && isLockedByAnotherProcess(entry.path())) {
+        if (name.rfind("lock", 0) == 0 && isLockHeld(entry.path())) {
             report.errors.push_back("'.inkgraph/" + name +
                                     "': an inkgraph run is writing this data set now; check it when it has finished");
         } else if (name.rfind("journal", 0) == 0) {
             const std::string suffix = name.substr(7, name.size() >= 13 ? name.size() - 13 : 0);
-            if (!isLockedByAnotherProcess(folder / ".inkgraph" / ("lock" + suffix)))
+            if (!isLockHeld(folder / ".inkgraph" / ("lock" + suffix)))
                 report.errors.push_back("'.inkgraph/" + name +
                                         "': a run that did not finish; run it again with --resume");
         }

@@ -79,7 +79,7 @@ void FileLock::release(bool removeLockFile) {
     mDescriptor = -1;
 }
 
-bool isLockedByAnotherProcess(const std::filesystem::path& path) {
+bool isLockHeld(const std::filesystem::path& path) {
     const int descriptor = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
     if (descriptor < 0) return false;
     struct stat status {};

@@ -16,9 +16,9 @@ public:
 
     FileLock() = default;
     /** Takes the lock. held() says whether it was taken; when it was not, error() says why: EWOULDBLOCK when another
-     *  process holds it, ESTALE when the path kept naming another file after each of 10 locks (a holder that replaces
-     * or removes it lets go of an inode that nobody finds by its name any more, so a lock on it guards nothing), else
-     * the errno of open(2) or flock(2). */
+     *  run holds it, EINVAL when a LockFile's path is not a plain file (a FIFO, a device), ESTALE when the path kept
+     *  naming another file after each of 10 locks (a holder that replaces or removes it lets go of an inode that
+     *  nobody finds by its name any more, so a lock on it guards nothing), else the errno of open(2) or flock(2). */
     FileLock(const std::filesystem::path& path, Target target);
     FileLock(FileLock&& other) noexcept;
     FileLock& operator=(FileLock&& other) noexcept;
@@ -39,8 +39,8 @@ private:
     bool mFollowsLinks = false; ///< a Folder: opened, and checked, through links
 };
 
-/** Whether another process holds an exclusive flock(2) on the plain file `path` now (false when it cannot be opened).
- */
-bool isLockedByAnotherProcess(const std::filesystem::path& path);
+/** Whether a run (another process, or another FileLock of this one) holds an exclusive flock(2) on the plain file
+ *  `path` now; false when there is no such file or it cannot be opened. */
+bool isLockHeld(const std::filesystem::path& path);
 
 } // namespace inkgraph

@@ -434,8 +434,6 @@ std::string shapeText(const py::array& array) {
 using FloatRows = py::array_t<float, py::array::c_style | py::array::forcecast>;
 using FaceRows = py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>;
 
-/** A 2-D array of `columns` (one of them) numbers a row, as float32 in C order: the caller's own memory when it is
- *  that already, else a converted copy. `rows`, when given, is the count it must have (one per vertex). */
 /** numpy.asarray(value); a sequence NumPy cannot make an array of (rows of different lengths) is the caller's
  *  InputError like any other bad array, not NumPy's ValueError. */
 py::array arrayOf(py::handle value, const std::string& where, const std::string& expected) {
@@ -448,6 +446,8 @@ py::array arrayOf(py::handle value, const std::string& where, const std::string&
     }
 }
 
+/** A 2-D array of `columns` (one of them) numbers a row, as float32 in C order: the caller's own memory when it is
+ *  that already, else a converted copy. `rows`, when given, is the count it must have (one per vertex). */
 FloatRows floatRows(py::handle value, const std::string& name, std::initializer_list<py::ssize_t> columns,
                     std::optional<py::ssize_t> rows) {
     const std::string where = "Scene.from_arrays(): " + name + ": ";
