@@ -330,11 +330,6 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
     std::stable_sort(mCanonicalSettings.begin(), mCanonicalSettings.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
 
-    mMadeJournalFolder = !fs::exists(fs::symlink_status(mFolder / kJournalFolder, error));
-    fs::create_directories(mFolder / kJournalFolder, error);
-    if (error)
-        throw FileError("DatasetRun: cannot create the data set's own folder '" + (mFolder / kJournalFolder).string() +
-                        "': " + error.message());
     lockThisSplit();
     try {
         refuseOtherRunsFiles();
@@ -357,9 +352,21 @@ void DatasetRun::lockThisSplit() {
     // (a requeued array task beside the one it replaces, a command started twice) is refused at once instead of
     // interleaving its journal, index and outputs with the first one's.
     const fs::path path = mFolder / kJournalFolder / ("lock" + mSuffix);
-    mLock = FileLock(path, FileLock::Target::LockFile);
-    if (mLock.held()) return;
     std::error_code error;
+    // A run of this data set that finishes removes the .inkgraph folder when it leaves it empty, and may do so between
+    // this run's making it and opening the lock inside: made again then (a few times; each such run ends for good).
+    int folderTakenAway = hookFrom("INKGRAPH_TEST_LOCK_FOLDER_REMOVED"); // that many times, as such a run would
+    for (int attempt = 0; attempt < 10; ++attempt) {
+        if (!fs::exists(fs::symlink_status(path.parent_path(), error))) mMadeJournalFolder = true;
+        fs::create_directories(path.parent_path(), error);
+        if (error)
+            throw FileError("DatasetRun: cannot create the data set's own folder '" + path.parent_path().string() +
+                            "': " + error.message());
+        if (folderTakenAway-- > 0) fs::remove(path.parent_path(), error);
+        mLock = FileLock(path, FileLock::Target::LockFile);
+        if (mLock.held()) return;
+        if (mLock.error() != ENOENT) break;
+    }
     if (mMadeJournalFolder) fs::remove(path.parent_path(), error); // only when empty
     const std::string shown = "--dataset '" + mOptions.datasetDirectory + "'";
     const std::string split = mSuffix.empty() ? "" : " (shard " + mSuffix.substr(1) + ")";

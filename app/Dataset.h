@@ -15,7 +15,8 @@
  *
  *  Test hooks (tests/app/dataset-kill-test.sh): INKGRAPH_TEST_JOURNAL_KILL=N ends the process with SIGKILL just before
  *  the N-th journal line of the run is written (its still committed, not journaled); INKGRAPH_TEST_JOURNAL_TEAR=N
- *  writes the first half of the N-th line, then SIGKILL. */
+ *  writes the first half of the N-th line, then SIGKILL; INKGRAPH_TEST_LOCK_FOLDER_REMOVED=N removes DIR/.inkgraph
+ *  between its making and the lock's opening N times, as a run of the data set that finishes then does. */
 
 #include "app/Batch.h"
 #include "app/FileLock.h"

@@ -288,7 +288,11 @@ DatasetReport checkDataset(const fs::path& folder) {
     // killed run leaves, and nothing to report.
     for (const auto& entry : fs::directory_iterator(folder / ".inkgraph", error)) {
         const std::string name = entry.path().filename().string();
-        if (name.rfind("lock", 0) == 0 && isLockHeld(entry.path())) {
+        if (name.rfind("lock", 0) == 0 && !fs::is_regular_file(fs::symlink_status(entry.path(), error))) {
+            report.errors.push_back("'.inkgraph/" + name +
+                                    "': not a plain file (a link, a FIFO, a device or a folder); every run of the set "
+                                    "refuses it: remove it");
+        } else if (name.rfind("lock", 0) == 0 && isLockHeld(entry.path())) {
             report.errors.push_back("'.inkgraph/" + name +
                                     "': an inkgraph run is writing this data set now; check it when it has finished");
         } else if (name.rfind("journal", 0) == 0) {

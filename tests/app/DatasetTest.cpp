@@ -281,6 +281,18 @@ TEST_F(Dataset, ASecondRunOfTheSameSplitIsRefusedWhileTheFirstRuns) {
         EXPECT_EQ(error.find(".inkgraph"), std::string::npos) << error; // its index, of no still rendered, has others
 }
 
+TEST_F(Dataset, ARunThatFinishesJustBeforeTheLockIsTakenStopsNoOne) {
+    // A finishing run removes the emptied .inkgraph folder; when it did so between another run's making it and
+    // opening its lock there, that run failed with "No such file or directory" (exit 5; a shard then went missing).
+    ::setenv("INKGRAPH_TEST_LOCK_FOLDER_REMOVED", "3", 1);
+    std::unique_ptr<DatasetRun> run;
+    EXPECT_NO_THROW(run = runOf({model, "--dataset", set, "-o", set + "/a.png", "--shard", "1/2"}));
+    ::unsetenv("INKGRAPH_TEST_LOCK_FOLDER_REMOVED");
+    EXPECT_TRUE(fs::is_regular_file(fs::path(set) / ".inkgraph" / "lock-1-of-2"));
+    run.reset();
+    EXPECT_FALSE(fs::exists(fs::path(set) / ".inkgraph")) << "made by this run, and empty: removed with its lock";
+}
+
 TEST_F(Dataset, AnEditedPoseFileOfAListRendersAgain) {
     const std::string pose = write(directory / "wave.json", R"({"leftUpperArm": [0, 0, 0, 1]})");
     const std::vector<std::string> arguments = {model,
@@ -536,6 +548,15 @@ TEST_F(Dataset, CheckDatasetReportsFieldsOfTheWrongTypeAndFilesThatAreNotPlain) 
     report = checkDataset(folder);
     ASSERT_FALSE(report.errors.empty());
     EXPECT_NE(report.errors[0].find("index.jsonl' is not a plain file"), std::string::npos) << report.errors[0];
+    // A FIFO as a split's lock: every run of the set refuses it, so the set is not whole.
+    fs::create_directories(folder / ".inkgraph");
+    ASSERT_EQ(::mkfifo((folder / ".inkgraph" / "lock").c_str(), 0644), 0);
+    const std::vector<std::string> errors = checkDataset(folder).errors;
+    EXPECT_NE(std::find(errors.begin(), errors.end(),
+                        "'.inkgraph/lock': not a plain file (a link, a FIFO, a device or a folder); every run of the "
+                        "set refuses it: remove it"),
+              errors.end())
+        << ::testing::PrintToString(errors);
 }
 
 } // namespace
