@@ -72,6 +72,12 @@ struct type_caster<OsText> {
             }
             value.bytes.assign(PyBytes_AS_STRING(encoded), std::size_t(PyBytes_GET_SIZE(encoded)));
             Py_DECREF(encoded);
+            // The library takes C strings for paths: "a.png\0junk" would read a.png, and a message would end at the
+            // NUL. Refused as Python refuses it in a path (open(): "embedded null character").
+            if (const auto nul = value.bytes.find('\0'); nul != std::string::npos)
+                throw ig::Error(ig::Error::Kind::Usage, "inkgraph: a str argument holds a NUL character (at offset " +
+                                                            std::to_string(nul) +
+                                                            "); no flag value, name or path holds one");
             return true;
         }
         return false;
@@ -141,6 +147,14 @@ std::string utf8Of(py::handle text) {
 }
 
 std::string reprOf(py::handle value) { return utf8Of(py::repr(value)); }
+
+/** Text a caller gave back as a list of str, as os.fsdecode() makes them: a value set from a name that is not UTF-8
+ *  reads back as the str it was set from (pybind11's own conversion raised UnicodeDecodeError). */
+py::list osTextsOf(const std::vector<std::string>& texts) {
+    py::list list;
+    for (const std::string& text : texts) list.append(pathTextOf(text));
+    return list;
+}
 
 std::vector<std::string> bytesOf(const std::vector<OsText>& texts) {
     std::vector<std::string> bytes;
@@ -637,7 +651,11 @@ void defineValueTypes(py::module_& m) {
         .def_readonly("distance_scale", &ig::ViewSample::distanceScale)
         .def_readonly("light", &ig::ViewSample::light)
         .def_readonly("expression", &ig::ViewSample::expression)
-        .def_readonly("pose", &ig::ViewSample::pose)
+        .def_property_readonly("pose",
+                               [](const ig::ViewSample& self) -> py::object {
+                                   if (!self.pose) return py::none();
+                                   return pathTextOf(*self.pose);
+                               })
         .def("orbit", &ig::ViewSample::orbit, "The Orbit of this view, for Frame.orbit: distance None, its scale.");
     addValueProtocol(viewSample, {"index", "azimuth", "elevation", "distance_scale", "light", "expression", "pose"});
 
@@ -790,14 +808,15 @@ void defineLook(py::module_& m) {
             },
             "flag"_a, "value"_a = "",
             "Sets one flag, checked at once: look.set('--silhouette-width', '3'). Returns the look.")
-        .def_property_readonly("arguments", &ig::Look::arguments,
-                               "The flags that give this look, in the order they were set: "
-                               "Look.from_arguments(look.arguments) is the same look.")
+        .def_property_readonly(
+            "arguments", [](const ig::Look& self) { return osTextsOf(self.arguments()); },
+            "The flags that give this look, in the order they were set: "
+            "Look.from_arguments(look.arguments) is the same look.")
         .def("__copy__", [](const ig::Look& self) { return ig::Look(self); })
         .def(
             "__deepcopy__", [](const ig::Look& self, py::handle) { return ig::Look(self); }, "memo"_a)
         .def("__repr__", [](const ig::Look& self) {
-            return "inkgraph.Look.from_arguments(" + reprOf(py::cast(self.arguments())) + ")";
+            return "inkgraph.Look.from_arguments(" + reprOf(osTextsOf(self.arguments())) + ")";
         });
 
     look.def_property(
@@ -896,7 +915,10 @@ void defineLook(py::module_& m) {
             "The parameters `type` takes besides width and colour ('depth-jump', 'crease-angle'); one parameter may "
             "serve several types, and is then one value for all of them.")
         .def("line_parameter", &ig::Look::lineParameter, "name"_a, "A number parameter's value (given or default).")
-        .def("line_choice", &ig::Look::lineChoice, "name"_a, "A choice parameter's value ('5' of suggestive-stencil).")
+        .def(
+            "line_choice",
+            [](const ig::Look& self, const OsText& name) { return pathTextOf(self.lineChoice(name.bytes)); }, "name"_a,
+            "A choice parameter's value ('5' of suggestive-stencil).")
         .def(
             "set_line_parameter",
             [](py::object self, const std::string& name, py::handle value) {
@@ -969,16 +991,22 @@ void defineFrame(py::module_& m) {
                 self.placement = enumArgument<ig::CameraPlacement>(value, "Frame.placement");
             },
             "CameraPlacement (--camera auto is AUTO).")
-        .def_readwrite("frame_nodes", &ig::Frame::frameNodes,
-                       "--frame: fit the view to the meshes under these nodes (assign a whole list; a copy is "
-                       "returned).")
-        .def_readwrite("animation", &ig::Frame::animation,
-                       "A glTF animation (name or index) to pose the scene in for this render; '' with time None: the "
-                       "scene as loaded.")
+        .def_property(
+            "frame_nodes", [](const ig::Frame& self) { return osTextsOf(self.frameNodes); },
+            [](ig::Frame& self, const std::vector<OsText>& nodes) { self.frameNodes = bytesOf(nodes); },
+            "--frame: fit the view to the meshes under these nodes (assign a whole list; a copy is "
+            "returned).")
+        .def_property(
+            "animation", [](const ig::Frame& self) { return pathTextOf(self.animation); },
+            [](ig::Frame& self, const OsText& animation) { self.animation = animation.bytes; },
+            "A glTF animation (name or index) to pose the scene in for this render; '' with time None: the "
+            "scene as loaded.")
         .def_readwrite("time", &ig::Frame::time, "Seconds into the animation, or None.")
-        .def_readwrite("pose", &ig::Frame::pose,
-                       "A VRM humanoid pose for this render, as --pose: 'a-pose' or a pose file's path; '': the "
-                       "scene's.")
+        .def_property(
+            "pose", [](const ig::Frame& self) { return pathTextOf(self.pose); },
+            [](ig::Frame& self, const OsText& pose) { self.pose = pose.bytes; },
+            "A VRM humanoid pose for this render, as --pose: 'a-pose' or a pose file's path; '': the "
+            "scene's.")
         .def_readwrite("expressions", &ig::Frame::expressions,
                        "--expression: VRM expressions {name: weight in [0, 1]} for this render (assign a whole dict; a "
                        "copy is returned); {}: the scene's.")
@@ -1173,7 +1201,7 @@ void defineScene(py::module_& m) {
         .def_static(
             "from_arrays",
             [](py::handle vertices, py::handle faces, py::handle normals, py::handle uvs, py::handle colors,
-               const std::string& name, std::size_t memoryLimit) {
+               const OsText& name, std::size_t memoryLimit) {
                 const auto vertexArray = floatRows(vertices, "vertices", {3}, std::nullopt);
                 const py::ssize_t vertexCount = vertexArray.shape(0);
                 const auto faceArray = faceRows(faces);
@@ -1199,7 +1227,7 @@ void defineScene(py::module_& m) {
                 // arguments are named; only the function is spelt Python's way.
                 try {
                     const py::gil_scoped_release release;
-                    scene.emplace(ig::Scene::fromArrays(arrays, name, options));
+                    scene.emplace(ig::Scene::fromArrays(arrays, name.bytes, options));
                 } catch (const ig::Error& error) {
                     const std::string cpp = "Scene::fromArrays()";
                     std::string message = error.what();
@@ -1210,7 +1238,7 @@ void defineScene(py::module_& m) {
                 return *scene;
             },
             "vertices"_a, "faces"_a, "normals"_a = py::none(), "uvs"_a = py::none(), "colors"_a = py::none(),
-            "name"_a = "arrays", "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
+            "name"_a = OsText{"arrays"}, "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
             "A scene of one mesh from NumPy arrays (or anything numpy.asarray takes): vertices (N, 3), faces (M, 3) "
             "vertex indices counter-clockwise seen from the front, and optionally normals (N, 3), uvs (N, 2) and "
             "colors (N, 3) or (N, 4) in [0, 1]. float32 C-contiguous arrays (uint32 faces) are read where they are; "

@@ -119,6 +119,23 @@ def test_flag_values_from_the_file_system_name_the_same_file(suzanne, tmp_path):
     for look in (inkgraph.Look(shading="comic").set("--shademap", latin1),
                  inkgraph.Look.from_arguments(["--shading", "comic", "--shademap", latin1])):
         assert np.array_equal(renderer.render(suzanne, look, frame).picture, expected)
+    # What was set reads back as the str it was set from, so the documented round trip holds (it raised
+    # UnicodeDecodeError).
+    look = inkgraph.Look.from_arguments(["--shademap", latin1])
+    assert look.arguments == ["--shademap", latin1]
+    assert inkgraph.Look.from_arguments(look.arguments).arguments == look.arguments
+    assert eval(repr(look), {"inkgraph": inkgraph}).arguments == look.arguments  # pylint: disable=eval-used
+    frame = inkgraph.Frame.from_arguments(["--frame", "\udcff"])
+    assert frame.frame_nodes == ["\udcff"]
+    frame.pose, frame.animation = latin1, "\udcf4"
+    assert (frame.pose, frame.animation) == (latin1, "\udcf4")
+    # A NUL cut the C string the library takes: "a.png\0junk" read a.png. Refused, as Python refuses it in a path.
+    for call in (lambda: inkgraph.Look().set("--shademap", str(original) + "\0junk"),
+                 lambda: inkgraph.Look.from_arguments(["--shading", "flat\0junk"]),
+                 lambda: inkgraph.Frame.from_arguments(["--frame", "a\0"]),
+                 lambda: inkgraph.Scene.load(str(original), pose="a-pose\0junk")):
+        with pytest.raises(inkgraph.UsageError, match="holds a NUL character"):
+            call()
     # A lone surrogate that stands for no byte is a name like any other: unknown, as the flag says.
     with pytest.raises(inkgraph.UsageError, match="--shading: unknown value"):
         inkgraph.Look.from_arguments(["--shading", "\ud800"])
