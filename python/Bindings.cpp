@@ -252,10 +252,10 @@ py::enum_<Enum> defineEnum(Scope& scope, const char* className, const char* what
         type.value(name, value);
         EnumMembers<Enum>::values.push_back(value);
     }
-    type.def(py::init([](const std::string& name) { return enumNamed<Enum>(name, EnumMembers<Enum>::className); }),
+    type.def(py::init([](const OsText& name) { return enumNamed<Enum>(name.bytes, EnumMembers<Enum>::className); }),
              "name"_a, "The member named by its command-line word, as from_name().");
     type.def_static(
-        "from_name", [](const std::string& name) { return enumNamed<Enum>(name, EnumMembers<Enum>::className); },
+        "from_name", [](const OsText& name) { return enumNamed<Enum>(name.bytes, EnumMembers<Enum>::className); },
         "name"_a, "The member named by its command-line word; UsageError naming the words there are.");
     type.def_property_readonly(
         "cli_name", [](Enum value) { return cliName(value); }, "The command line's word for this member.");
@@ -831,12 +831,12 @@ void defineLook(py::module_& m) {
             "bands", &ig::Look::bands, [](ig::Look& self, int bands) { self.setBands(bands); },
             "--bands (cel); None: Qu, Chen & Zwicker's five uneven bands.")
         .def_property(
-            "shade_map", &ig::Look::shadeMap,
+            "shade_map", [](const ig::Look& self) { return pathTextOf(self.shadeMap()); },
             [](ig::Look& self, const std::filesystem::path& path) { self.setShadeMap(path.string()); },
             "--shademap (cel, comic): a PNG; '' is the built-in map.")
         .def_property(
-            "outline_width_map", &ig::Look::outlineWidthMap,
-            [](ig::Look& self, const std::string& source) { self.setOutlineWidthMap(source); },
+            "outline_width_map", [](const ig::Look& self) { return pathTextOf(self.outlineWidthMap()); },
+            [](ig::Look& self, const OsText& source) { self.setOutlineWidthMap(source.bytes); },
             "--outline-width-map: 'none', 'color:R' or 'texture:FILE:G' (outline, silhouette and MToon outline widths "
             "scaled per vertex).")
         .def_property(
@@ -921,8 +921,8 @@ void defineLook(py::module_& m) {
             "A choice parameter's value ('5' of suggestive-stencil).")
         .def(
             "set_line_parameter",
-            [](py::object self, const std::string& name, py::handle value) {
-                self.cast<ig::Look&>().setLineParameter(name, realNumber(value, "Look.set_line_parameter()"));
+            [](py::object self, const OsText& name, py::handle value) {
+                self.cast<ig::Look&>().setLineParameter(name.bytes, realNumber(value, "Look.set_line_parameter()"));
                 return self;
             },
             "name"_a, "value"_a, "Sets a number parameter ('crease-angle'). Returns the look.")
@@ -1123,8 +1123,8 @@ void defineStill(py::module_& m) {
             "pixels.")
         .def(
             "buffer",
-            [](const py::object& self, const std::string& name) {
-                return imageArray(self.cast<const PythonStill&>().still.buffer(name), self);
+            [](const py::object& self, const OsText& name) {
+                return imageArray(self.cast<const PythonStill&>().still.buffer(name.bytes), self);
             },
             "name"_a,
             "A buffer asked for in render(), by a name it was asked with: float32 or uint8, height x width (one "
@@ -1311,7 +1311,7 @@ void defineRenderer(py::module_& m) {
         .def(
             "render",
             [](PythonRenderer& self, const ig::Scene& scene, const std::optional<ig::Look>& look,
-               const std::optional<ig::Frame>& frame, const std::vector<std::string>& buffers, const py::object& out) {
+               const std::optional<ig::Frame>& frame, const std::vector<OsText>& buffers, const py::object& out) {
                 const ig::Look lookValue = look.value_or(ig::Look());
                 const ig::Frame frameValue = frame.value_or(ig::Frame());
                 std::uint8_t* pixels = nullptr;
@@ -1323,12 +1323,12 @@ void defineRenderer(py::module_& m) {
                 std::optional<ig::Still> still;
                 {
                     const py::gil_scoped_release release;
-                    still.emplace(self.render(scene, lookValue, frameValue, buffers, pixels, rowBytes));
+                    still.emplace(self.render(scene, lookValue, frameValue, bytesOf(buffers), pixels, rowBytes));
                 }
                 issueWarnings(warningObjects(still->warnings()));
                 return PythonStill{std::move(*still), out};
             },
-            "scene"_a, "look"_a = py::none(), "frame"_a = py::none(), "buffers"_a = std::vector<std::string>{},
+            "scene"_a, "look"_a = py::none(), "frame"_a = py::none(), "buffers"_a = std::vector<OsText>{},
             "out"_a = py::none(),
             "Renders `scene` with `look` in `frame` (None: the defaults), keeping `buffers` (buffer_names(look); "
             "'gbuffer.*' and 'lines.*' expand). With `out`, a writable uint8 (height, width, 4) array whose pixel rows "

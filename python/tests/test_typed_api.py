@@ -125,6 +125,11 @@ def test_flag_values_from_the_file_system_name_the_same_file(suzanne, tmp_path):
     assert look.arguments == ["--shademap", latin1]
     assert inkgraph.Look.from_arguments(look.arguments).arguments == look.arguments
     assert eval(repr(look), {"inkgraph": inkgraph}).arguments == look.arguments  # pylint: disable=eval-used
+    assert look.shade_map == latin1
+    look.outline_width_map = f"texture:{latin1}:G"
+    assert look.outline_width_map == f"texture:{latin1}:G"
+    with pytest.raises(inkgraph.UsageError, match="unknown"):
+        inkgraph.Shading.from_name("\udcff")
     frame = inkgraph.Frame.from_arguments(["--frame", "\udcff"])
     assert frame.frame_nodes == ["\udcff"]
     frame.pose, frame.animation = latin1, "\udcf4"
