@@ -9,6 +9,7 @@
 #include "scene/mesh/MeshOps.h"
 
 #include <cstddef>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <span>
@@ -122,6 +123,12 @@ struct ObjMaterials {
  *  statements become warnings naming the library and the line; nothing is thrown. */
 void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials,
              std::vector<Warning>& warnings);
+
+/** A file an OBJ or a material library names (mtllib, map_Kd, map_d), resolved beside it as exporters write names: as
+ *  written (relative to `folder`, or absolute); else with Windows' '\' as '/' and without surrounding quotes; else,
+ *  for a path that leads elsewhere ("C:\Users\me\tex\skin.png" of the exporting machine), the file of its last name
+ *  beside it. The name as written (slashed when it had '\') when none of these exists, for the message. */
+std::string fileBeside(const std::filesystem::path& folder, const std::string& name);
 
 /** The texture files a material library's map_Kd and map_d lines name, resolved as readMtl() resolves them. */
 std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content);

@@ -124,21 +124,6 @@ std::optional<MapStatement> parseMapStatement(std::string_view rest, std::string
     return map;
 }
 
-/** A texture name resolved beside the library. Windows exporters write "maps\wood.png"; when the name as written
- *  is not a file, the same name with '/' is tried. */
-std::string resolveBeside(const std::filesystem::path& folder, const std::string& name) {
-    const auto resolve = [&](const std::string& written) {
-        const std::filesystem::path named{written};
-        return (named.is_absolute() ? named : folder / named).string();
-    };
-    const std::string asWritten = resolve(name);
-    std::error_code error;
-    if (name.find('\\') == std::string::npos || std::filesystem::exists(asWritten, error)) return asWritten;
-    std::string slashed = name;
-    std::replace(slashed.begin(), slashed.end(), '\\', '/');
-    return resolve(slashed);
-}
-
 /** What one `newmtl` block said, turned into a Material when the block ends. At namespace scope: clang (14) cannot
  *  default-construct a nested class with member initializers inside its enclosing class (std::optional::emplace()). */
 struct PendingMaterial {
@@ -265,7 +250,7 @@ private:
     /** The image of a map, appended to the materials' images once per file; -1 when the file is missing (a
      *  warning: the material is drawn without it). Every file named is recorded, found or not. */
     int imageOf(const MapStatement& map, std::string_view keyword, std::size_t line) {
-        const std::string path = resolveBeside(mFolder, map.file);
+        const std::string path = fileBeside(mFolder, map.file);
         if (std::ranges::find(mMaterials.namedFiles, path) == mMaterials.namedFiles.end()) {
             mMaterials.namedFiles.push_back(path);
         }
@@ -308,7 +293,7 @@ private:
         if (pending.dissolveMap) {
             // A cut-out is drawn from the base colour texture's alpha: map_d naming the map_Kd image (a PNG with an
             // alpha channel, as exporters write it) is that. A separate mask image has no place in the material.
-            const std::string maskPath = resolveBeside(mFolder, pending.dissolveMap->file);
+            const std::string maskPath = fileBeside(mFolder, pending.dissolveMap->file);
             if (std::ranges::find(mMaterials.namedFiles, maskPath) == mMaterials.namedFiles.end()) {
                 mMaterials.namedFiles.push_back(maskPath);
             }
@@ -349,6 +334,32 @@ private:
 
 } // namespace
 
+std::string fileBeside(const std::filesystem::path& folder, const std::string& name) {
+    const auto resolve = [&](const std::string& written) {
+        const std::filesystem::path named{written};
+        return (named.is_absolute() ? named : folder / named).string();
+    };
+    const auto exists = [](const std::string& path) {
+        std::error_code error;
+        return std::filesystem::exists(path, error);
+    };
+    const std::string asWritten = resolve(name);
+    if (exists(asWritten)) return asWritten;
+    std::string slashed = name;
+    std::replace(slashed.begin(), slashed.end(), '\\', '/');
+    if (slashed.size() >= 2 && slashed.front() == '"' && slashed.back() == '"')
+        slashed = slashed.substr(1, slashed.size() - 2);
+    if (slashed != name && exists(resolve(slashed))) return resolve(slashed);
+    // A path into the exporting machine's folders ("C:\Users\me\tex\skin.png", "/home/artist/skin.png"), or into a
+    // folder the model was not shipped with: models travel with their textures beside them.
+    const std::size_t slash = slashed.rfind('/');
+    if (slash != std::string::npos && slash + 1 < slashed.size()) {
+        const std::string besideIt = (folder / slashed.substr(slash + 1)).string();
+        if (exists(besideIt)) return besideIt;
+    }
+    return slashed != name && name.find('\\') != std::string::npos ? resolve(slashed) : asWritten;
+}
+
 void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials,
              std::vector<Warning>& warnings) {
     MtlReader(path, materials, warnings).read(content);
@@ -369,7 +380,7 @@ std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string
         }
         std::string problem;
         if (const auto map = parseMapStatement(line.substr(tokens.front().size()), problem)) {
-            const std::string file = resolveBeside(folder, map->file);
+            const std::string file = fileBeside(folder, map->file);
             if (std::ranges::find(files, file) == files.end()) files.push_back(file);
         }
     }

@@ -279,9 +279,8 @@ private:
     /** Reads one library's materials (readMtl()); false (and, when `warnIfMissing`, a warning) when it cannot be
      *  read. */
     bool readMaterialLibrary(std::string_view name, bool warnIfMissing) {
-        const std::filesystem::path named{std::string(name)};
         const std::filesystem::path resolved =
-            named.is_absolute() ? named : std::filesystem::path(mPath).parent_path() / named;
+            fileBeside(std::filesystem::path(mPath).parent_path(), std::string(name));
         const std::string shown = "mtllib '" + excerptForMessage(name) + "' (line " + std::to_string(mLine) + ")";
         std::error_code error;
         // A FIFO or device would block or never end: only regular files are opened.
@@ -685,10 +684,7 @@ private:
  *  as the parser tries it), and the textures those that exist name (mtlReferencedFiles()). */
 std::vector<std::string> objReferencedFiles(const std::string& path, std::string_view content) {
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-    const auto beside = [&](std::string_view name) {
-        const std::filesystem::path named{std::string(name)};
-        return (named.is_absolute() ? named : folder / named).string();
-    };
+    const auto beside = [&](std::string_view name) { return fileBeside(folder, std::string(name)); };
     std::vector<std::string> files;
     content = withoutByteOrderMark(content); // as readObj(): a mark must not hide a first-line mtllib
     // From one occurrence of "mtllib" to the next, not line by line: a batch rerun into existing outputs reads every

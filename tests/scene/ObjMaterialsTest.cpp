@@ -168,6 +168,35 @@ TEST(ObjMaterials, MapKdWithOptionsAndASpaceInItsNameIsAnImageBesideTheLibrary) 
     EXPECT_EQ(referencedFiles(model), (std::vector<std::string>{library, texture}));
 }
 
+TEST(ObjMaterials, PathsOfTheExportingMachineFindTheFilesBesideTheModel) {
+    // 3ds Max, Maya and Blender on Windows write their own folders ("C:\Users\..."), and mtllib with '\' or quotes:
+    // the model was drawn untextured, or all grey, though its files lay beside it.
+    const TempFolder folder;
+    std::filesystem::create_directories(folder.path("mats"));
+    const std::string skin = folder.write("mats/skin.png", "not decoded here"); // beside the library
+    const std::string spaced = folder.write("mats/old wood.png", "not decoded here");
+    const std::string library = folder.write("mats/quad.mtl", "newmtl a\nmap_Kd C:\\Users\\me\\tex\\skin.png\n"
+                                                              "newmtl b\nmap_Kd /home/artist/tex/skin.png\n"
+                                                              "newmtl c\nmap_Kd \"old wood.png\"\n");
+    const std::string model =
+        folder.write("quad.obj", "mtllib mats\\quad.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                 "usemtl a\nf 1/1 2/2 3/3\nusemtl b\nf 1/1 3/3 2/2\nusemtl c\nf 2/2 1/1 3/3\n");
+    const Scene scene = loadScene(model);
+    EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
+    ASSERT_EQ(scene.images.size(), 2u);
+    EXPECT_EQ(scene.images[0].path, skin);
+    EXPECT_EQ(scene.images[1].path, spaced);
+    for (const char* name : {"a", "b"}) EXPECT_EQ(meshWithMaterial(scene, name).material.baseColorTexture.image, 0);
+    EXPECT_EQ(meshWithMaterial(scene, "c").material.baseColorTexture.image, 1);
+    EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, library, skin, spaced}));
+    EXPECT_EQ(referencedFiles(model)[0], library) << "the batch's input files are the ones read";
+    // Quoted mtllib with a space: the name whole, unquoted.
+    const std::string quoted = folder.write("my model.mtl", "newmtl q\nKd 1 0 0\n");
+    const Scene red = loadScene(folder.write("q.obj", "mtllib \"my model.mtl\"\nusemtl q\n" + kTriangle));
+    EXPECT_TRUE(red.report.warnings.empty()) << ::testing::PrintToString(red.report.warnings);
+    EXPECT_EQ(meshWithMaterial(red, "q").material.baseColorFactor, glm::vec4(1, 0, 0, 1));
+}
+
 TEST(ObjMaterials, MissingTextureIsAWarningAndTheMaterialKeepsItsColour) {
     const TempFolder folder;
     const std::string library = folder.write("gone.mtl", "newmtl skin\nKd 0.5 0.25 0\nmap_Kd skin.png\n");
