@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <exception>
 #include <iomanip>
 #include <iostream>
@@ -158,8 +157,9 @@ void renderShare(const BatchShared& batch, std::size_t first, std::size_t step, 
         const RenderOptions& still = toRender[k].options;
         const StillKey key{batchStill.model.path, batchStill.model.position, batchStill.viewIndex};
         const std::string label = stillLabel(batchStill, batch.options);
-        const std::string counter = "inkgraph: [" + std::to_string(toRender[k].index + 1) + "/" +
-                                    std::to_string(batch.stills.size()) + "] " + label;
+        const std::string place =
+            "[" + std::to_string(toRender[k].index + 1) + "/" + std::to_string(batch.stills.size()) + "] " + label;
+        const std::string counter = "inkgraph: " + place;
         const auto fail = [&batch, dataset, counter, label, key, still](const std::exception& error) {
             batch.log << boundedMessage(counter + " failed: " + error.what()) + "\n";
             batch.failed.push_back(label);
@@ -201,8 +201,7 @@ void renderShare(const BatchShared& batch, std::size_t first, std::size_t step, 
             const StillTurn turn(batch.turns, k);
             fail(error);
         } catch (...) {
-            const std::exception_ptr stop =
-                namingTheStill(std::current_exception(), counter.substr(std::strlen("inkgraph: ")));
+            const std::exception_ptr stop = namingTheStill(std::current_exception(), place);
             if (!batch.turns) std::rethrow_exception(stop); // the caller finishes the stills in flight
             // Any other error stops the batch, on every drawing thread. The first is kept before the turn goes on
             // (the caller throws it once every thread is done); this thread finishes what it has in flight.

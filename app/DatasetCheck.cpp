@@ -17,6 +17,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 namespace inkgraph {
 namespace fs = std::filesystem;
@@ -296,7 +297,10 @@ DatasetReport checkDataset(const fs::path& folder) {
             report.errors.push_back("'.inkgraph/" + name +
                                     "': an inkgraph run is writing this data set now; check it when it has finished");
         } else if (name.rfind("journal", 0) == 0) {
-            const std::string suffix = name.substr(7, name.size() >= 13 ? name.size() - 13 : 0);
+            // journal[-K-of-N].jsonl -> lock[-K-of-N]
+            constexpr std::string_view kPrefix = "journal", kExtension = ".jsonl";
+            const std::size_t affixes = kPrefix.size() + kExtension.size();
+            const std::string suffix = name.size() >= affixes ? name.substr(kPrefix.size(), name.size() - affixes) : "";
             if (!isLockHeld(folder / ".inkgraph" / ("lock" + suffix)))
                 report.errors.push_back("'.inkgraph/" + name +
                                         "': a run that did not finish; run it again with --resume");
