@@ -13,6 +13,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -85,6 +87,69 @@ void BM_LargeLoadObj(benchmark::State& state) {
     setTriangleCounters(state, triangles);
 }
 BENCHMARK(BM_LargeLoadObj)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/** A file of polygons written once per machine to the temporary folder: `quads`, a warped height field of 806 x 806
+ *  quads (1,299,272 triangles, like the armadillo's), every quad convex, as subdivision modellers export; or 20,000
+ *  concave polygons of 83 corners each (1,620,000 triangles): combs of 40 teeth, the shape of a text's glyphs. */
+const std::string& polygonObjPath(bool quads) {
+    static std::string paths[2];
+    std::string& path = paths[quads ? 1 : 0];
+    if (path.empty()) {
+        const std::string file = (std::filesystem::temp_directory_path() /
+                                  (quads ? "inkgraph-bench-quads-1.3m.obj" : "inkgraph-bench-combs-20k.obj"))
+                                     .string();
+        if (!std::filesystem::exists(file)) {
+            const std::string partial = file + ".partial";
+            std::FILE* out = std::fopen(partial.c_str(), "w");
+            if (out == nullptr) throw std::runtime_error("polygonObjPath(): cannot write '" + partial + "'");
+            if (quads) {
+                constexpr int kSide = 806;
+                for (int y = 0; y <= kSide; ++y)
+                    for (int x = 0; x <= kSide; ++x)
+                        std::fprintf(out, "v %.7g %.7g %.7g\n", x / double(kSide), y / double(kSide),
+                                     0.05 * std::sin(x * 0.05) * std::cos(y * 0.07));
+                for (int y = 0; y < kSide; ++y)
+                    for (int x = 0; x < kSide; ++x) {
+                        const int corner = y * (kSide + 1) + x + 1;
+                        std::fprintf(out, "f %d %d %d %d\n", corner, corner + 1, corner + kSide + 2,
+                                     corner + kSide + 1);
+                    }
+            } else {
+                // Counter-clockwise: the bottom edge, then up the right side and along the teeth right to left.
+                constexpr int kTeeth = 40;
+                constexpr int kCorners = 2 * kTeeth + 3;
+                for (int comb = 0; comb < 20000; ++comb) {
+                    const double left = comb % 200 * (kTeeth + 1.0), bottom = comb / 200 * 4.0;
+                    std::fprintf(out, "v %.7g %.7g 0\nv %.7g %.7g 0\nv %.7g %.7g 0\n", left, bottom, left + kTeeth,
+                                 bottom, left + kTeeth, bottom + 1.0);
+                    for (int tooth = kTeeth - 1; tooth >= 0; --tooth)
+                        std::fprintf(out, "v %.7g %.7g 0\nv %.7g %.7g 0\n", left + tooth + 0.5, bottom + 3.0,
+                                     left + tooth, bottom + 1.0);
+                    std::fprintf(out, "f");
+                    for (int corner = kCorners; corner >= 1; --corner) std::fprintf(out, " -%d", corner);
+                    std::fprintf(out, "\n");
+                }
+            }
+            if (std::fclose(out) != 0) throw std::runtime_error("polygonObjPath(): cannot write '" + partial + "'");
+            std::filesystem::rename(partial, file);
+        }
+        path = file;
+    }
+    return path;
+}
+
+/** Arg 1: the quads; 0: the concave combs. */
+void BM_LoadObjPolygons(benchmark::State& state) {
+    const std::string& path = polygonObjPath(state.range(0) == 1);
+    std::size_t triangles = 0;
+    for (auto _ : state) {
+        const Scene scene = loadScene(path);
+        triangles = scene.triangleCount();
+        benchmark::DoNotOptimize(scene.meshes.data());
+    }
+    setTriangleCounters(state, triangles);
+}
+BENCHMARK(BM_LoadObjPolygons)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /** 0: the loaded mesh by position alone, as every derived datum welds it (nothing merges); 1: the soup (every point
  *  merges with its copies). */

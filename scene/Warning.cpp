@@ -54,6 +54,9 @@ const std::vector<WarningCode>& warningCodes() {
         {K::TexcoordsNonFinite, "texcoords-non-finite", "texture coordinates not finite in float; read as (0, 0)"},
         {K::ColoursNonFinite, "colours-non-finite", "vertex colour components not finite; read as 1"},
         {K::ElementsSkipped, "elements-skipped", "OBJ line and point elements (l, p); skipped"},
+        {K::PolygonsFanned, "polygons-fanned",
+         "OBJ or PLY polygons that cross themselves (or beyond the work one file may spend cutting concave ones); "
+         "fanned from their first corner, so their outline may be wrong"},
         {K::TrailingDataIgnored, "trailing-data-ignored", "bytes or text after a PLY's or STL's last element; ignored"},
         {K::StlSolidIncomplete, "stl-solid-incomplete", "an ASCII STL without its 'solid' or 'endsolid' line"},
         {K::CameraIgnored, "camera-ignored", "a glTF camera that is not perspective; ignored"},

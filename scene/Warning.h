@@ -43,6 +43,7 @@ enum class WarningKind {
     TexcoordsNonFinite,
     ColoursNonFinite,
     ElementsSkipped,
+    PolygonsFanned,
     TrailingDataIgnored,
     StlSolidIncomplete,
     CameraIgnored,

@@ -131,6 +131,14 @@ std::string wholeFileBestEffort(const std::string& path) {
     }
 }
 
+Warning polygonsFannedWarning(const PolygonTriangulator& triangulator) {
+    const std::size_t count = triangulator.unresolvedPolygons();
+    return makeWarning(WarningKind::PolygonsFanned,
+                       std::to_string(count) + (count == 1 ? " polygon crosses" : " polygons cross") +
+                           " itself or could not be cut into triangles in the work a file may take; fanned from "
+                           "the first corner, so its outline may be drawn wrong");
+}
+
 } // namespace detail
 
 } // namespace inkgraph

@@ -7,6 +7,7 @@
 #include "scene/MessageText.h"
 #include "scene/Scene.h"
 #include "scene/mesh/MeshOps.h"
+#include "scene/mesh/PolygonTriangulation.h"
 
 #include <cstddef>
 #include <filesystem>
@@ -90,6 +91,9 @@ void checkModelExtent(const std::string& path, double extent, std::string_view f
  *  to. Throws (checkModelExtent()) for a model too large to render. */
 glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> world, std::vector<glm::vec3>& stored,
                           std::string_view function = "loadScene()");
+
+/** The warning for the polygons `triangulator` could only fan (PolygonShape::Unresolved); call when there are any. */
+Warning polygonsFannedWarning(const PolygonTriangulator& triangulator);
 
 /** Throws SceneError("<function>: '<path>': <problem>"). */
 [[noreturn]] void throwLoadError(const std::string& path, std::string_view problem,

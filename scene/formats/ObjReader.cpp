@@ -1,10 +1,10 @@
 /** @file Wavefront OBJ: v (with an optional vertex colour), vt, vn and f (v, v/vt, v//vn, v/vt/vn; negative =
- *  relative), polygons fan-triangulated, and the materials of its `mtllib` libraries (scene/formats/ObjMaterials.cpp)
- * that `usemtl` picks: one mesh per material of each `o` object, named by the first `o` name (or the file stem) when
- * the file has faces in one object only. Parses the whole file from memory with std::from_chars; `g` groups and
- * smoothing groups are skipped. A missing library or an undefined
- *  `usemtl` material is a warning, and those faces take the default grey: exports often travel without their .mtl,
- *  and refusing them would help nobody. */
+ *  relative), polygons cut into triangles inside their outline (scene/mesh/PolygonTriangulation.h), and the materials
+ *  of its `mtllib` libraries (scene/formats/ObjMaterials.cpp) that `usemtl` picks: one mesh per material of each `o`
+ *  object, named by the first `o` name (or the file stem) when the file has faces in one object only. Parses the
+ *  whole file from memory with std::from_chars; `g` groups and smoothing groups are skipped. A missing library or an
+ *  undefined `usemtl` material is a warning, and those faces take the default grey: exports often travel without
+ *  their .mtl, and refusing them would help nobody. */
 
 #include "scene/formats/FormatTable.h"
 #include "scene/formats/TextTokens.h"
@@ -94,6 +94,14 @@ struct ForwardReference {
     IndexKind kind = IndexKind::Vertex;
 };
 
+/** A polygon of more than three corners read before one of its vertices was defined (legal, if rare): fanned as it
+ *  was read, its corners from `firstCorner` on in its group, and cut properly once the file is read. */
+struct PolygonNamingLaterVertices {
+    std::uint32_t group = 0;
+    std::size_t firstCorner = 0;
+    std::vector<Corner> corners;
+};
+
 class ObjParser {
 public:
     ObjParser(const std::string& path, std::string_view text, MeshBudget& budget)
@@ -123,6 +131,7 @@ public:
             }
         }
         checkForwardReferences();
+        triangulatePolygonsNamingLaterVertices();
         if (mCornerCount == 0) {
             throwLoadError(mPath, "no triangles: the file has no faces");
         }
@@ -476,13 +485,51 @@ private:
         FaceGroup& group = mGroups[mCurrentGroup];
         ++(faceHasNormals ? group.facesWithNormals : group.facesWithoutNormals);
         ++(faceHasTexcoords ? group.facesWithTexcoords : group.facesWithoutTexcoords);
-        // Fan triangulation keeps the polygon's winding; OBJ polygons are planar and convex in practice.
-        for (std::size_t i = 1; i + 1 < mCorners.size(); ++i) {
-            for (const Corner& corner : {mCorners[0], mCorners[i], mCorners[i + 1]}) {
-                group.corners.push_back(corner);
+        const std::size_t firstCorner = group.corners.size();
+        const bool positionsKnown = std::all_of(mCorners.begin(), mCorners.end(), [&](const Corner& corner) {
+            return corner.position < mPositions.size();
+        });
+        if (mCorners.size() > 3 && positionsKnown) {
+            triangulatePolygon(mCorners);
+        } else {
+            // A triangle; or a polygon naming a vertex defined further down, cut once every position is known.
+            mPolygonTriangles.clear();
+            for (std::uint32_t i = 1; i + 1 < mCorners.size(); ++i) {
+                mPolygonTriangles.emplace_back(0u, i, i + 1);
             }
-            mCornerCount += 3;
+            if (mCorners.size() > 3) {
+                mPolygonsNamingLaterVertices.push_back({mCurrentGroup, firstCorner, mCorners});
+            }
         }
+        for (const glm::uvec3& triangle : mPolygonTriangles) {
+            for (int k = 0; k < 3; ++k) {
+                group.corners.push_back(mCorners[triangle[k]]);
+            }
+        }
+        mCornerCount += 3 * mPolygonTriangles.size();
+    }
+
+    /** mPolygonTriangles: the triangles of the polygon `corners` (scene/mesh/PolygonTriangulation.h). */
+    void triangulatePolygon(std::span<const Corner> corners) {
+        mPolygonPositions.clear();
+        for (const Corner& corner : corners) {
+            mPolygonPositions.push_back(mPositions[corner.position]);
+        }
+        mTriangulator.triangulate(mPolygonPositions, mPolygonTriangles);
+    }
+
+    /** The polygons that named a vertex defined after them were fanned as they were read; cut them now. */
+    void triangulatePolygonsNamingLaterVertices() {
+        for (const PolygonNamingLaterVertices& polygon : mPolygonsNamingLaterVertices) {
+            triangulatePolygon(polygon.corners);
+            std::vector<Corner>& corners = mGroups[polygon.group].corners;
+            for (std::size_t t = 0; t < mPolygonTriangles.size(); ++t) {
+                for (int k = 0; k < 3; ++k) {
+                    corners[polygon.firstCorner + 3 * t + std::size_t(k)] = polygon.corners[mPolygonTriangles[t][k]];
+                }
+            }
+        }
+        mPolygonsNamingLaterVertices = {};
     }
 
     /** The face group of a material name, made on first use. */
@@ -612,6 +659,9 @@ private:
                                                      " texture coordinates (vt) are not finite in float; they read as "
                                                      "(0, 0)"));
         }
+        if (mTriangulator.unresolvedPolygons() > 0) {
+            scene.warnings.push_back(polygonsFannedWarning(mTriangulator));
+        }
         if (mSkippedNonFaces > 0) {
             scene.warnings.push_back(
                 makeWarning(WarningKind::ElementsSkipped,
@@ -675,6 +725,10 @@ private:
     std::string mCurrentMaterial; ///< the last `usemtl` name, "" before any
     std::size_t mCornerCount = 0; ///< in all groups
     std::vector<Corner> mCorners; ///< scratch for the current face
+    PolygonTriangulator mTriangulator;
+    std::vector<glm::dvec3> mPolygonPositions; ///< scratch: the current polygon's corners
+    std::vector<glm::uvec3> mPolygonTriangles; ///< scratch: its triangles, as indices into its corners
+    std::vector<PolygonNamingLaterVertices> mPolygonsNamingLaterVertices;
     std::vector<ForwardReference> mForwardReferences;
     std::size_t mSkippedNonFaces = 0;
     std::size_t mNonFiniteTexcoords = 0;

@@ -4,9 +4,10 @@
  *  uint/uint32, float/float32, double/float64) and list properties (a count, then that many items). Read: `vertex`
  *  x y z (any numeric type, in double until the model is known, storeNearModel()), optional nx ny nz and red green
  *  blue [alpha] (integers scaled by their type's maximum, uchar 255 -> 1, floats as written; as written means linear,
- *  as OBJ's vertex colours are taken); `face` with a list `vertex_indices` (or `vertex_index`), each polygon a fan of
- *  n - 2 triangles. Every other element and property, lists included, is skipped. Counts come from the header, so they
- *  are charged to the budget and checked against the file's bytes before anything is reserved. */
+ *  as OBJ's vertex colours are taken); `face` with a list `vertex_indices` (or `vertex_index`), each polygon cut into
+ *  n - 2 triangles inside its outline (scene/mesh/PolygonTriangulation.h). Every other element and property, lists
+ *  included, is skipped. Counts come from the header, so they are charged to the budget and checked against the
+ *  file's bytes before anything is reserved. */
 
 #include "scene/formats/FormatTable.h"
 #include "scene/formats/TextTokens.h"
@@ -357,6 +358,34 @@ struct Model {
     std::vector<glm::vec4> colors;  ///< empty, or one per position
     std::vector<glm::uvec3> triangles;
     std::size_t nonFiniteColours = 0;
+    PolygonTriangulator triangulator;
+    /** Polygons of more than three corners read before the vertices (a file that puts `face` first): fanned as read,
+     *  from their first triangle on, and cut properly once the positions are known. */
+    std::vector<std::pair<std::size_t, std::vector<std::uint32_t>>> polygonsBeforeVertices;
+
+    /** `polygonTriangles`: the triangles of the polygon whose vertices are `corners`, as indices into `corners`. */
+    void triangulate(std::span<const std::uint32_t> corners, std::vector<glm::uvec3>& polygonTriangles) {
+        polygonPositions.clear();
+        for (const std::uint32_t vertex : corners) {
+            polygonPositions.push_back(positions[vertex]);
+        }
+        triangulator.triangulate(polygonPositions, polygonTriangles);
+    }
+
+    void triangulatePolygonsBeforeVertices() {
+        std::vector<glm::uvec3> polygonTriangles;
+        for (const auto& [firstTriangle, corners] : polygonsBeforeVertices) {
+            triangulate(corners, polygonTriangles);
+            for (std::size_t t = 0; t < polygonTriangles.size(); ++t) {
+                const glm::uvec3& local = polygonTriangles[t];
+                triangles[firstTriangle + t] = glm::uvec3(corners[local.x], corners[local.y], corners[local.z]);
+            }
+        }
+        polygonsBeforeVertices = {};
+    }
+
+private:
+    std::vector<glm::dvec3> polygonPositions; ///< scratch
 };
 
 /** Triangles beyond the faces' count (polygons of more than three corners) are charged in steps of this many. */
@@ -594,30 +623,44 @@ private:
                 if (corners < 3) {
                     fail(instance(element, index) + " has " + std::to_string(corners) + " vertices (needs 3)");
                 }
-                std::uint32_t first = 0;
-                std::uint32_t previous = 0;
+                mCorners.clear();
                 for (std::uint64_t corner = 0; corner < corners; ++corner) {
                     const std::int64_t vertex = integer(element, index, property.type);
                     if (vertex < 0 || std::uint64_t(vertex) >= vertexCount) {
                         fail(instance(element, index) + ": vertex index " + std::to_string(vertex) +
                              " out of range (file has " + std::to_string(vertexCount) + " vertices)");
                     }
-                    const auto current = std::uint32_t(vertex); // the header's count fits 32 bits
-                    if (corner == 0) {
-                        first = current;
-                    } else if (corner >= 2) {
-                        if (model.triangles.size() >= charged) {
-                            mBudget.charge(0, kTriangleChargeStep);
-                            charged += kTriangleChargeStep;
-                        }
-                        model.triangles.emplace_back(first, previous, current);
-                    }
-                    previous = current;
+                    mCorners.push_back(std::uint32_t(vertex)); // the header's count fits 32 bits
                 }
+                while (model.triangles.size() + mCorners.size() - 2 > charged) {
+                    mBudget.charge(0, kTriangleChargeStep);
+                    charged += kTriangleChargeStep;
+                }
+                addPolygon(model);
             }
         }
     }
 
+    /** The triangles of the polygon in mCorners, cut inside its outline (scene/mesh/PolygonTriangulation.h). */
+    void addPolygon(Model& model) {
+        const bool positionsKnown = !model.positions.empty();
+        if (mCorners.size() > 3 && positionsKnown) {
+            model.triangulate(mCorners, mPolygonTriangles);
+            for (const glm::uvec3& local : mPolygonTriangles) {
+                model.triangles.emplace_back(mCorners[local.x], mCorners[local.y], mCorners[local.z]);
+            }
+            return;
+        }
+        if (mCorners.size() > 3) {
+            model.polygonsBeforeVertices.emplace_back(model.triangles.size(), mCorners);
+        }
+        for (std::size_t i = 1; i + 1 < mCorners.size(); ++i) {
+            model.triangles.emplace_back(mCorners[0], mCorners[i], mCorners[i + 1]);
+        }
+    }
+
+    std::vector<std::uint32_t> mCorners;       ///< scratch: the current face's vertices
+    std::vector<glm::uvec3> mPolygonTriangles; ///< scratch: its triangles, as indices into mCorners
     const std::string& mPath;
     Source& mSource;
     std::size_t mBodyBytes;
@@ -679,6 +722,10 @@ RawScene readPly(const std::string& path, std::string_view content, MeshBudget& 
                 makeWarning(WarningKind::TrailingDataIgnored,
                             std::to_string(source.remaining()) + " bytes after the last element ignored"));
         }
+    }
+    model.triangulatePolygonsBeforeVertices();
+    if (model.triangulator.unresolvedPolygons() > 0) {
+        scene.warnings.push_back(polygonsFannedWarning(model.triangulator));
     }
     if (model.nonFiniteColours > 0) {
         scene.warnings.push_back(

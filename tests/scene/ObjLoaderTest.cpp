@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace inkgraph {
@@ -157,6 +158,67 @@ TEST(ObjLoader, PentagonIsFanTriangulated) {
     for (const glm::uvec3& triangle : mesh.triangles) {
         EXPECT_GT(test::triangleCross(mesh, triangle).z, 0.0);
     }
+}
+
+/** The triangles' areas (their normals all along +z, else a failure) add up to `area`: a fan of a concave polygon
+ *  has triangles turned the other way, outside the outline. */
+void expectCoveredWithinOutline(const Mesh& mesh, double area) {
+    double sum = 0.0;
+    for (const glm::uvec3& triangle : mesh.triangles) {
+        const glm::dvec3 cross = test::triangleCross(mesh, triangle);
+        EXPECT_GT(cross.z, 0.0) << mesh.name << ": triangle " << triangle.x << " " << triangle.y << " " << triangle.z;
+        sum += 0.5 * glm::length(cross);
+    }
+    EXPECT_NEAR(sum, area, 1e-5 * area) << mesh.name;
+}
+
+TEST(ObjLoader, ConcavePolygonsAreCutInsideTheirOutline) {
+    // A ten-pointed star and an L-shape as Blender exports n-gons, the L naming vertices defined after it, with
+    // texture coordinates that must stay with their corners.
+    std::ostringstream obj;
+    obj << "o star\n";
+    for (int i = 0; i < 10; ++i) {
+        const double radius = i % 2 == 0 ? 2.0 : 0.75;
+        obj << "v " << radius * std::cos(i * 0.6283185307179586) << ' ' << radius * std::sin(i * 0.6283185307179586)
+            << " 0\n";
+    }
+    obj << "f 1 2 3 4 5 6 7 8 9 10\n";
+    obj << "o ell\nf 11/1 12/2 13/3 14/4 15/5 16/6\n";
+    for (const char* corner : {"0 0", "3 0", "3 1", "1 1", "1 3", "0 3"}) {
+        obj << "v " << corner << " 1\nvt " << corner << "\n";
+    }
+    const TempFile file("concave.obj", obj.str());
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 2u);
+    EXPECT_EQ(scene.meshes[0].triangleCount(), 8u);
+    expectCoveredWithinOutline(scene.meshes[0], 10 * 0.5 * 2.0 * 0.75 * std::sin(0.6283185307179586));
+    const Mesh& ell = scene.meshes[1];
+    EXPECT_EQ(ell.triangleCount(), 4u);
+    expectCoveredWithinOutline(ell, 5.0);
+    ASSERT_EQ(ell.texcoords[0].size(), ell.positions.size());
+    for (std::size_t v = 0; v < ell.positions.size(); ++v) {
+        const glm::dvec3 world = scene.origin + glm::dvec3(ell.positions[v]);
+        EXPECT_NEAR(ell.texcoords[0][v].x, world.x, 1e-5) << v;
+        EXPECT_NEAR(ell.texcoords[0][v].y, 1.0 - world.y, 1e-5) << v;
+    }
+    EXPECT_TRUE(scene.report.warnings.empty());
+}
+
+TEST(ObjLoader, APolygonThatCrossesItselfIsFannedWithAWarning) {
+    std::ostringstream obj;
+    for (int i = 0; i < 5; ++i) {
+        obj << "v " << std::cos(i * 2.5132741228718345) << ' ' << std::sin(i * 2.5132741228718345) << " 0\n";
+    }
+    obj << "f 1 2 3 4 5\n";
+    const TempFile file("pentagram.obj", obj.str());
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.meshes.at(0).triangleCount(), 3u);
+    const auto warning = std::find_if(scene.report.warnings.begin(), scene.report.warnings.end(), [](const Warning& w) {
+        return w.code == warningCode(WarningKind::PolygonsFanned);
+    });
+    ASSERT_NE(warning, scene.report.warnings.end());
+    EXPECT_EQ(warning->message.rfind("1 polygon crosses itself", 0), 0u) << warning->message;
+    EXPECT_EQ(warning->file, file.path());
 }
 
 TEST(ObjLoader, ForwardReferencedVerticesAreAccepted) {

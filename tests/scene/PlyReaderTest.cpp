@@ -197,7 +197,7 @@ TEST(PlyReader, EveryTypeNameReadsCoordinatesAndIndices) {
     }
 }
 
-TEST(PlyReader, PolygonsAreFannedIntoNMinusTwoTriangles) {
+TEST(PlyReader, ConvexPolygonsAreFannedIntoNMinusTwoTriangles) {
     // A cube of six quads (12 triangles), and one planar pentagon and hexagon (3 and 4 triangles).
     for (const Encoding encoding : kEncodings) {
         PlyWriter cube(encoding);
@@ -228,6 +228,72 @@ TEST(PlyReader, PolygonsAreFannedIntoNMinusTwoTriangles) {
         polygons.value("uchar", 6).values("int", {5, 6, 7, 8, 9, 10}).row();
         const Scene fanned = loadPly(polygons.text());
         EXPECT_EQ(fanned.triangleCount(), 3u + 4u) << formatName(encoding);
+    }
+}
+
+/** An L-shape (concave, area 5) and a pentagram (crosses itself) in the z = 0 plane, the faces written before the
+ *  vertices or after them. */
+std::string concavePolygons(Encoding encoding, bool facesFirst) {
+    PlyWriter ply(encoding);
+    const auto declareVertices = [&] {
+        ply.header("element vertex 11")
+            .header("property float x")
+            .header("property float y")
+            .header("property float z");
+    };
+    const auto declareFaces = [&] { ply.header("element face 2").header("property list uchar int vertex_indices"); };
+    const auto writeVertices = [&] {
+        for (const glm::dvec2 corner : {glm::dvec2(0, 0), {3, 0}, {3, 1}, {1, 1}, {1, 3}, {0, 3}}) {
+            ply.values("float", {corner.x, corner.y, 0.0}).row();
+        }
+        for (int i = 0; i < 5; ++i) {
+            ply.values("float", {10.0 + std::cos(i * 4 * M_PI / 5), std::sin(i * 4 * M_PI / 5), 0.0}).row();
+        }
+    };
+    const auto writeFaces = [&] {
+        ply.value("uchar", 6).values("int", {0, 1, 2, 3, 4, 5}).row();
+        ply.value("uchar", 5).values("int", {6, 7, 8, 9, 10}).row();
+    };
+    if (facesFirst) {
+        declareFaces();
+        declareVertices();
+        writeFaces();
+        writeVertices();
+    } else {
+        declareVertices();
+        declareFaces();
+        writeVertices();
+        writeFaces();
+    }
+    return ply.text();
+}
+
+TEST(PlyReader, AConcavePolygonIsCutInsideItsOutlineAndOneThatCrossesItselfWarns) {
+    for (const Encoding encoding : kEncodings) {
+        const Scene scene = loadPly(concavePolygons(encoding, false));
+        ASSERT_EQ(scene.meshes.size(), 1u);
+        const Mesh& mesh = scene.meshes[0];
+        ASSERT_EQ(mesh.triangleCount(), 4u + 3u) << formatName(encoding);
+        double lArea = 0.0;
+        for (const glm::uvec3& triangle : mesh.triangles) {
+            const glm::dvec3 a = scene.origin + glm::dvec3(mesh.positions[triangle.x]);
+            const glm::dvec3 b = scene.origin + glm::dvec3(mesh.positions[triangle.y]);
+            const glm::dvec3 c = scene.origin + glm::dvec3(mesh.positions[triangle.z]);
+            if (a.x < 5.0) { // the L's
+                const double cross = glm::cross(b - a, c - a).z;
+                EXPECT_GT(cross, 0.0) << formatName(encoding) << ": a triangle outside the L";
+                lArea += 0.5 * std::abs(cross);
+            }
+        }
+        EXPECT_NEAR(lArea, 5.0, 1e-6) << formatName(encoding);
+        const auto warning =
+            std::find_if(scene.report.warnings.begin(), scene.report.warnings.end(),
+                         [](const Warning& w) { return w.code == warningCode(WarningKind::PolygonsFanned); });
+        ASSERT_NE(warning, scene.report.warnings.end()) << formatName(encoding);
+        EXPECT_EQ(warning->message.rfind("1 polygon crosses itself", 0), 0u) << warning->message;
+        // Faces before the vertices they name: the same triangles, cut once the positions are read.
+        EXPECT_EQ(worldTriangles(loadPly(concavePolygons(encoding, true))), worldTriangles(scene))
+            << formatName(encoding);
     }
 }
 

@@ -1,0 +1,62 @@
+#pragma once
+/** @file The triangles of a polygon as a file writes it (an OBJ `f` or a PLY `face` of more than three corners).
+ *  Blender exports n-gons by default, and text, logos and floor plans give concave ones: a fan from the first corner
+ *  draws a star or an L-shape with triangles outside it, so a concave polygon is cut into ears instead (ear clipping:
+ *  Meisters, "Polygons have ears", 1975; each ear a corner whose triangle with its two neighbours holds no other
+ *  corner, cut off until three are left, O(n^2)).
+ *
+ *  The polygon is taken in its plane: the plane of its Newell normal (the sum of its edges' cross products, which
+ *  holds for warped polygons too), the corners projected onto it, turning counter-clockwise about the normal. A
+ *  convex polygon, and a flat one (no area: every triangulation is as good), keeps the fan from its first corner, so
+ *  what every reader drew before stays as it was. A polygon that crosses itself has no one right triangulation: it is
+ *  cut into ears as far as that goes and the rest fanned, and counted, so the reader can warn.
+ *
+ *  Written here because Debian 12 packages no triangulator that does not come with GL: GLU's tessellator links
+ *  libOpenGL, which the scene layer must not (docs/architecture.md). */
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace inkgraph {
+
+/** What a polygon turned out to be. */
+enum class PolygonShape {
+    Convex,    ///< or flat, or a triangle: a fan from the first corner
+    Concave,   ///< simple and concave: cut into ears
+    Unresolved ///< crosses itself, or the work budget ran out: fanned where no ear was found, maybe the wrong shape
+};
+
+/** Triangulates the polygons of one file, counting what it found and bounding the work of all of them together: a
+ *  hostile file of many large concave polygons costs at most kWorkBudget corner tests, then the rest are fanned. */
+class PolygonTriangulator {
+public:
+    /** Corner-in-triangle tests for one file: about a second. A real file's concave polygons (a text's glyphs of a
+     *  few hundred corners) take a few thousand tests each. */
+    static constexpr std::size_t kWorkBudget = std::size_t(1) << 28;
+
+    explicit PolygonTriangulator(std::size_t workBudget = kWorkBudget) : mWorkLeft(workBudget) {}
+
+    /** The corners.size() - 2 triangles of the polygon whose corners are `corners`, in order, as indices into
+     *  `corners`, each in the polygon's winding; replaces what `triangles` held. */
+    PolygonShape triangulate(std::span<const glm::dvec3> corners, std::vector<glm::uvec3>& triangles);
+
+    std::size_t concavePolygons() const { return mConcave; }
+    std::size_t unresolvedPolygons() const { return mUnresolved; }
+
+private:
+    PolygonShape clipEars(std::span<const glm::dvec3> corners, const glm::dvec3& normal, double tolerance,
+                          std::vector<glm::uvec3>& triangles);
+
+    std::size_t mWorkLeft;
+    std::size_t mConcave = 0;
+    std::size_t mUnresolved = 0;
+    std::vector<glm::dvec2> mPlane; ///< scratch: the corners in the polygon's plane
+    std::vector<std::uint32_t> mNext, mPrevious;
+    std::vector<char> mMayBlock; ///< scratch: a corner that is not strictly convex, which alone can lie in an ear
+};
+
+} // namespace inkgraph
