@@ -40,6 +40,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::MaterialRedefined, "material-redefined", "an MTL material defined again; the first definition is kept"},
         {K::MaterialUndefined, "material-undefined",
          "OBJ usemtl names materials no library defines; their faces are drawn in the default grey"},
+        {K::MaterialInvisible, "material-invisible",
+         "an MTL material that is fully transparent (d 0, or Tr 1): its faces are not drawn"},
         {K::PrimitiveSkipped, "primitive-skipped", "a glTF primitive of points or lines, or without POSITION; skipped"},
         {K::IndicesIncomplete, "indices-incomplete", "trailing indices of an incomplete triangle; ignored"},
         {K::MeshDegenerate, "mesh-degenerate", "a mesh whose triangles are all degenerate; skipped"},

@@ -33,6 +33,7 @@ enum class WarningKind {
     MaterialStatementIgnored,
     MaterialRedefined,
     MaterialUndefined,
+    MaterialInvisible,
     PrimitiveSkipped,
     IndicesIncomplete,
     MeshDegenerate,

@@ -125,16 +125,21 @@ struct ObjMaterials {
 /** Reads one material library's text into `materials`: Kd, d/Tr, Ke, map_Kd (options skipped but -clamp, -s and -o)
  *  and a map_d cut-out; texture names are resolved beside `path`. Bad lines, missing textures and unsupported
  *  statements become warnings naming the library and the line; nothing is thrown. */
-void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials,
-             std::vector<Warning>& warnings);
+void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials, std::vector<Warning>& warnings,
+             const std::filesystem::path& modelFolder);
 
 /** A file an OBJ or a material library names (mtllib, map_Kd, map_d), resolved beside it as exporters write names: as
  *  written (relative to `folder`, or absolute); else with Windows' '\' as '/' and without surrounding quotes; else,
  *  for a path that leads elsewhere ("C:\Users\me\tex\skin.png" of the exporting machine), the file of its last name
- *  beside it. The name as written (slashed when it had '\') when none of these exists, for the message. */
-std::string fileBeside(const std::filesystem::path& folder, const std::string& name);
+ *  beside it, or for a library's texture the path or the last name beside the model (`modelFolder`, when the library
+ *  lies in a folder of its own); else, for a name from Windows whose case differs from the file's
+ *  ("Textures/Skin.PNG"), the one file that differs in ASCII case alone (a folder's first 10,000 entries searched), in
+ *  those places. The name as written (slashed when it had '\') when none of these exists, for the message. */
+std::string fileBeside(const std::filesystem::path& folder, const std::string& name,
+                       const std::optional<std::filesystem::path>& modelFolder = std::nullopt);
 
 /** The texture files a material library's map_Kd and map_d lines name, resolved as readMtl() resolves them. */
-std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content);
+std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content,
+                                            const std::filesystem::path& modelFolder);
 
 } // namespace inkgraph::detail

@@ -131,6 +131,7 @@ struct PendingMaterial {
     std::size_t line = 0;
     std::optional<double> dissolve;     ///< d
     std::optional<double> transparency; ///< Tr
+    bool diffuseColourGiven = false;    ///< a Kd line was read
     std::optional<MapStatement> diffuseMap;
     std::size_t diffuseMapLine = 0;
     std::optional<MapStatement> dissolveMap;
@@ -139,8 +140,10 @@ struct PendingMaterial {
 
 class MtlReader {
 public:
-    MtlReader(const std::string& path, ObjMaterials& materials, std::vector<Warning>& warnings)
-        : mPath(path), mFolder(std::filesystem::path(path).parent_path()), mMaterials(materials), mWarnings(warnings) {}
+    MtlReader(const std::string& path, const std::filesystem::path& modelFolder, ObjMaterials& materials,
+              std::vector<Warning>& warnings)
+        : mPath(path), mFolder(std::filesystem::path(path).parent_path()), mModelFolder(modelFolder),
+          mMaterials(materials), mWarnings(warnings) {}
 
     void read(std::string_view content) {
         content = withoutByteOrderMark(content);
@@ -189,6 +192,7 @@ private:
         if (sameKeyword(keyword, "Kd")) {
             if (const auto colour = readColour(keyword, rest)) {
                 mCurrent->material.baseColorFactor = glm::vec4(*colour, mCurrent->material.baseColorFactor.a);
+                mCurrent->diffuseColourGiven = true;
             }
         } else if (sameKeyword(keyword, "Ke")) {
             if (const auto colour = readColour(keyword, rest)) mCurrent->material.emissiveFactor = *colour;
@@ -250,7 +254,7 @@ private:
     /** The image of a map, appended to the materials' images once per file; -1 when the file is missing (a
      *  warning: the material is drawn without it). Every file named is recorded, found or not. */
     int imageOf(const MapStatement& map, std::string_view keyword, std::size_t line) {
-        const std::string path = fileBeside(mFolder, map.file);
+        const std::string path = fileBeside(mFolder, map.file, mModelFolder);
         if (std::ranges::find(mMaterials.namedFiles, path) == mMaterials.namedFiles.end()) {
             mMaterials.namedFiles.push_back(path);
         }
@@ -285,6 +289,21 @@ private:
                                                     : 1.0;
         material.baseColorFactor.a = float(alpha);
         if (alpha < 1.0) material.alphaMode = AlphaMode::Blend;
+        if (alpha <= 0.0) {
+            // Said, not changed: exporters disagree on Tr (some write it as opacity), and d 0 may be meant.
+            mWarnings.push_back(makeWarning(
+                WarningKind::MaterialInvisible,
+                "material library '" + mPath + "' line " + std::to_string(pending.line) + ": material '" +
+                    excerptForMessage(material.name) + "' is fully transparent (" +
+                    (pending.dissolve ? "d 0"
+                                      : "Tr 1, read as d 0; some exporters write Tr as opacity, 'd 1' draws it") +
+                    "): its faces are not drawn",
+                mPath, material.name));
+        }
+        if (pending.diffuseMap && !pending.diffuseColourGiven) {
+            // No Kd to multiply the image by: drawn as the image is, not darkened by the 0.8 grey of a bare material.
+            material.baseColorFactor = glm::vec4(glm::vec3(1.0f), material.baseColorFactor.a);
+        }
         if (pending.diffuseMap) {
             material.baseColorTexture.image = imageOf(*pending.diffuseMap, "map_Kd", pending.diffuseMapLine);
             material.baseColorTexture.sampler = pending.diffuseMap->sampler;
@@ -293,7 +312,7 @@ private:
         if (pending.dissolveMap) {
             // A cut-out is drawn from the base colour texture's alpha: map_d naming the map_Kd image (a PNG with an
             // alpha channel, as exporters write it) is that. A separate mask image has no place in the material.
-            const std::string maskPath = fileBeside(mFolder, pending.dissolveMap->file);
+            const std::string maskPath = fileBeside(mFolder, pending.dissolveMap->file, mModelFolder);
             if (std::ranges::find(mMaterials.namedFiles, maskPath) == mMaterials.namedFiles.end()) {
                 mMaterials.namedFiles.push_back(maskPath);
             }
@@ -326,15 +345,54 @@ private:
 
     const std::string& mPath;
     std::filesystem::path mFolder;
+    std::filesystem::path mModelFolder; ///< the OBJ's, where a texture is looked for too
     ObjMaterials& mMaterials;
     std::vector<Warning>& mWarnings;
     std::size_t mLine = 0;
     std::optional<PendingMaterial> mCurrent;
 };
 
+/** Entries of one folder a case-blind lookup reads at most: a name from Windows is looked for among a model's
+ *  textures, not in a folder of a million files. */
+constexpr std::size_t kMaxEntriesSearchedForCase = 10000;
+
+bool sameIgnoringAsciiCase(std::string_view a, std::string_view b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+               return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+           });
+}
+
+/** `relative` below `folder` with each name that does not exist as written matched to the one entry of its folder
+ *  that differs from it in ASCII case alone, as Windows file systems find "Textures/Skin.PNG" for textures/skin.png;
+ *  nothing when a name matches no entry, or several. */
+std::optional<std::string> caseBlindPath(const std::filesystem::path& folder, const std::filesystem::path& relative) {
+    std::filesystem::path found = folder;
+    for (const std::filesystem::path& part : relative) {
+        std::error_code error;
+        if (part == "." || part == ".." || std::filesystem::exists(found / part, error)) {
+            found /= part;
+            continue;
+        }
+        const std::string wanted = part.string();
+        std::optional<std::filesystem::path> match;
+        std::size_t searched = 0;
+        for (std::filesystem::directory_iterator entry(found.empty() ? "." : found, error), end;
+             !error && entry != end && searched < kMaxEntriesSearchedForCase; entry.increment(error), ++searched) {
+            if (sameIgnoringAsciiCase(entry->path().filename().string(), wanted)) {
+                if (match) return std::nullopt; // "Skin.png" and "SKIN.png" both: no one answer
+                match = entry->path().filename();
+            }
+        }
+        if (!match || error) return std::nullopt;
+        found /= *match;
+    }
+    return found.string();
+}
+
 } // namespace
 
-std::string fileBeside(const std::filesystem::path& folder, const std::string& name) {
+std::string fileBeside(const std::filesystem::path& folder, const std::string& name,
+                       const std::optional<std::filesystem::path>& modelFolder) {
     const auto resolve = [&](const std::string& written) {
         const std::filesystem::path named{written};
         return (named.is_absolute() ? named : folder / named).string();
@@ -351,21 +409,41 @@ std::string fileBeside(const std::filesystem::path& folder, const std::string& n
         slashed = slashed.substr(1, slashed.size() - 2);
     if (slashed != name && exists(resolve(slashed))) return resolve(slashed);
     // A path into the exporting machine's folders ("C:\Users\me\tex\skin.png", "/home/artist/skin.png"), or into a
-    // folder the model was not shipped with: models travel with their textures beside them.
+    // folder the model was not shipped with: models travel with their textures beside them (beside the library, or
+    // beside the model when the library lies in a folder of its own).
+    const std::filesystem::path slashedPath{slashed};
+    const bool relative = !slashed.empty() && !slashedPath.is_absolute();
     const std::size_t slash = slashed.rfind('/');
-    if (slash != std::string::npos && slash + 1 < slashed.size()) {
-        const std::string besideIt = (folder / slashed.substr(slash + 1)).string();
-        if (exists(besideIt)) return besideIt;
+    const std::string lastName = slash == std::string::npos ? slashed : slashed.substr(slash + 1);
+    std::vector<std::filesystem::path> folders{folder};
+    if (modelFolder && modelFolder->lexically_normal() != folder.lexically_normal()) folders.push_back(*modelFolder);
+    for (const std::filesystem::path& besideFolder : folders) {
+        if (relative && besideFolder != folder && exists((besideFolder / slashedPath).string()))
+            return (besideFolder / slashedPath).string();
+        if (!lastName.empty() && (slash != std::string::npos || besideFolder != folder) &&
+            exists((besideFolder / lastName).string()))
+            return (besideFolder / lastName).string();
+    }
+    // A name written on Windows, whose file systems ignore case ("Skin.PNG" for skin.png): the file that differs in
+    // case alone, where the path leads or beside the library or the model.
+    for (const std::filesystem::path& besideFolder : folders) {
+        if (relative) {
+            if (const auto found = caseBlindPath(besideFolder, slashedPath)) return *found;
+        }
+        if (!lastName.empty()) {
+            if (const auto found = caseBlindPath(besideFolder, lastName)) return *found;
+        }
     }
     return slashed != name && name.find('\\') != std::string::npos ? resolve(slashed) : asWritten;
 }
 
-void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials,
-             std::vector<Warning>& warnings) {
-    MtlReader(path, materials, warnings).read(content);
+void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials, std::vector<Warning>& warnings,
+             const std::filesystem::path& modelFolder) {
+    MtlReader(path, modelFolder, materials, warnings).read(content);
 }
 
-std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content) {
+std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content,
+                                            const std::filesystem::path& modelFolder) {
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     std::vector<std::string> files;
     content = withoutByteOrderMark(content);
@@ -380,7 +458,7 @@ std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string
         }
         std::string problem;
         if (const auto map = parseMapStatement(line.substr(tokens.front().size()), problem)) {
-            const std::string file = fileBeside(folder, map->file);
+            const std::string file = fileBeside(folder, map->file, modelFolder);
             if (std::ranges::find(files, file) == files.end()) files.push_back(file);
         }
     }

@@ -322,7 +322,7 @@ private:
         std::string text(std::size_t(size), '\0');
         file.read(text.data(), std::streamsize(size));
         text.resize(std::size_t(file.gcount()));
-        readMtl(resolved.string(), text, mMaterials, mWarnings);
+        readMtl(resolved.string(), text, mMaterials, mWarnings, std::filesystem::path(mPath).parent_path());
         // Its textures too, found or not: inputs the app must never overwrite with an output.
         for (const std::string& texture : mMaterials.namedFiles) {
             if (std::find(mInputFiles.begin(), mInputFiles.end(), texture) == mInputFiles.end()) {
@@ -775,7 +775,7 @@ std::vector<std::string> objReferencedFiles(const std::string& path, std::string
         std::string text(std::size_t(size), '\0');
         file.read(text.data(), std::streamsize(size));
         text.resize(std::size_t(file.gcount()));
-        for (std::string& texture : mtlReferencedFiles(files[i], text)) {
+        for (std::string& texture : mtlReferencedFiles(files[i], text, folder)) {
             if (std::ranges::find(files, texture) == files.end()) files.push_back(std::move(texture));
         }
     }

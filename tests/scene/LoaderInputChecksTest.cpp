@@ -346,6 +346,39 @@ TEST(LoaderInputChecks, InputFilesListTheModelBuffersAndImages) {
     EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
 }
 
+TEST(LoaderInputChecks, UrisNameTheFilesTheySpellAndPathsOfTheExportingMachineAreFoundBesideTheModel) {
+    // A '+' and a lone '%' are themselves in a URI (RFC 3986; tinygltf read '+' as a space and "%.p" as a byte, so
+    // the buffer was missing and the images untextured); a Windows path, '\' separators and a file:// URI as
+    // exporters write them take the file of that name beside the model, and a name whose case differs from the
+    // file's (Windows ignores case) takes that file.
+    const TempFolder folder;
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const std::string body =
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+        "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], \"images\": ["
+        "{\"uri\": \"my+skin.png\"}, {\"uri\": \"100%.png\"}, {\"uri\": \"100%25%20done.png\"}, "
+        "{\"uri\": \"C:\\\\Users\\\\me\\\\tex\\\\face.png\"}, {\"uri\": \"textures\\\\wood.png\"}, "
+        "{\"uri\": \"file:///home/artist/eyes.png\"}, {\"uri\": \"Textures/Hair.PNG\"}]";
+    const std::string buffer = folder.write("model+lod0.bin", writer.binary());
+    std::filesystem::create_directories(folder.path("textures"));
+    const std::vector<std::string> images{
+        folder.write("my+skin.png", "not read"),       folder.write("100%.png", "not read"),
+        folder.write("100% done.png", "not read"),     folder.write("face.png", "not read"),
+        folder.write("textures/wood.png", "not read"), folder.write("eyes.png", "not read"),
+        folder.write("textures/hair.png", "not read")};
+    const std::string model = folder.write("model.gltf", writer.gltfWithExternalBuffer(body, "model+lod0.bin"));
+    const Scene scene = loadScene(model);
+    ASSERT_EQ(scene.images.size(), images.size());
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        EXPECT_EQ(scene.images[i].path, images[i]) << i;
+    }
+    std::vector<std::string> expected{model, buffer};
+    expected.insert(expected.end(), images.begin(), images.end());
+    EXPECT_EQ(scene.report.inputFiles, expected);
+    EXPECT_EQ(referencedFiles(model), std::vector<std::string>(expected.begin() + 1, expected.end()));
+}
+
 TEST(LoaderInputChecks, InputFilesOfStl) {
     const TempFile file("one.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
                                    "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n");

@@ -197,6 +197,49 @@ TEST(ObjMaterials, PathsOfTheExportingMachineFindTheFilesBesideTheModel) {
     EXPECT_EQ(meshWithMaterial(red, "q").material.baseColorFactor, glm::vec4(1, 0, 0, 1));
 }
 
+TEST(ObjMaterials, NamesWrittenOnWindowsFindTheFileThatDiffersInCaseAlone) {
+    // Windows file systems ignore case, so exports name "Textures/Skin.PNG" for textures/skin.png and "Model.MTL":
+    // drawn untextured, or grey, on Linux.
+    const TempFolder folder;
+    std::filesystem::create_directories(folder.path("textures"));
+    const std::string skin = folder.write("textures/skin.png", "not decoded here");
+    const std::string eyes = folder.write("eyes.png", "not decoded here");
+    folder.write("hair.png", "not decoded here");
+    folder.write("HAIR.png", "not decoded here");
+    const std::string library = folder.write("model.mtl", "newmtl a\nmap_Kd Textures\\Skin.PNG\n"
+                                                          "newmtl b\nmap_Kd D:\\work\\EYES.png\n"
+                                                          "newmtl c\nmap_Kd Hair.png\n");
+    const std::string model = folder.write("case.obj", "mtllib Model.MTL\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
+                                                       "vt 0 1\nusemtl a\nf 1/1 2/2 3/3\nusemtl b\nf 1/1 3/3 2/2\n"
+                                                       "usemtl c\nf 2/2 1/1 3/3\n");
+    const Scene scene = loadScene(model);
+    ASSERT_EQ(scene.images.size(), 2u);
+    EXPECT_EQ(scene.images[0].path, skin);
+    EXPECT_EQ(scene.images[1].path, eyes);
+    // hair.png and HAIR.png both differ from Hair.png in case alone: neither is taken, the missing one is said.
+    EXPECT_FALSE(meshWithMaterial(scene, "c").material.textured());
+    EXPECT_TRUE(anyWarningContains(scene, "map_Kd 'Hair.png': '" + folder.path("Hair.png") + "' is missing"))
+        << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, library, skin, eyes, folder.path("Hair.png")}));
+    EXPECT_EQ(referencedFiles(model), (std::vector<std::string>{library, skin, eyes, folder.path("Hair.png")}));
+}
+
+TEST(ObjMaterials, ALibraryInAFolderOfItsOwnFindsTexturesBesideTheModel) {
+    // mtllib materials/model.mtl whose map_Kd names skin.png, shipped beside the model rather than the library.
+    const TempFolder folder;
+    std::filesystem::create_directories(folder.path("materials"));
+    const std::string skin = folder.write("skin.png", "not decoded here");
+    const std::string library = folder.write("materials/model.mtl", "newmtl a\nmap_Kd skin.png\n");
+    const std::string model =
+        folder.write("model.obj", "mtllib materials/model.mtl\nusemtl a\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                  "vt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n");
+    const Scene scene = loadScene(model);
+    EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
+    ASSERT_EQ(scene.images.size(), 1u);
+    EXPECT_EQ(scene.images[0].path, skin);
+    EXPECT_EQ(referencedFiles(model), (std::vector<std::string>{library, skin}));
+}
+
 TEST(ObjMaterials, MissingTextureIsAWarningAndTheMaterialKeepsItsColour) {
     const TempFolder folder;
     const std::string library = folder.write("gone.mtl", "newmtl skin\nKd 0.5 0.25 0\nmap_Kd skin.png\n");
@@ -399,9 +442,37 @@ TEST(ObjMaterials, DissolveOutsideZeroToOneIsClampedWithAWarning) {
     const TempFolder folder;
     folder.write("d.mtl", "newmtl glass\nd -5\n");
     const Scene scene = loadScene(folder.write("d.obj", "mtllib d.mtl\nusemtl glass\n" + kTriangle));
-    ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
+    ASSERT_EQ(scene.report.warnings.size(), 2u) << ::testing::PrintToString(scene.report.warnings);
     EXPECT_NE(scene.report.warnings[0].message.find("'d' -5 is outside [0, 1]; 0 is used"), std::string::npos)
         << scene.report.warnings[0];
+    EXPECT_EQ(scene.report.warnings[1].code, "material-invisible");
+}
+
+TEST(ObjMaterials, AFullyTransparentMaterialIsSaidAndAMapWithoutKdIsDrawnAsTheImageIs) {
+    // d 0 and Tr 1 draw nothing: said, since exporters disagree on Tr (some write it as opacity). A map_Kd without
+    // Kd was multiplied by the 0.8 grey of a bare material, 20 % darker than the image.
+    const TempFolder folder;
+    folder.write("skin.png", "not decoded here");
+    folder.write("m.mtl", "newmtl none\nd 0\nnewmtl tr\nTr 1\nnewmtl opaque\nTr 1\nd 1\n"
+                          "newmtl image\nmap_Kd skin.png\nnewmtl tinted\nKd 0.5 0.25 1\nmap_Kd skin.png\n");
+    const std::string model = folder.write(
+        "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl none\nf 1/1 2/2 3/3\n"
+                 "usemtl tr\nf 1/1 3/3 2/2\nusemtl opaque\nf 2/2 1/1 3/3\nusemtl image\nf 2/2 3/3 1/1\n"
+                 "usemtl tinted\nf 3/3 1/1 2/2\n");
+    const Scene scene = loadScene(model);
+    ASSERT_EQ(scene.report.warnings.size(), 2u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.warnings[0].code, "material-invisible");
+    EXPECT_EQ(scene.report.warnings[0].item, "none");
+    EXPECT_NE(scene.report.warnings[0].message.find("line 1: material 'none' is fully transparent (d 0)"),
+              std::string::npos)
+        << scene.report.warnings[0];
+    EXPECT_EQ(scene.report.warnings[1].item, "tr");
+    EXPECT_NE(scene.report.warnings[1].message.find("(Tr 1, read as d 0; some exporters write Tr as opacity"),
+              std::string::npos)
+        << scene.report.warnings[1];
+    EXPECT_EQ(meshWithMaterial(scene, "opaque").material.baseColorFactor.a, 1.0f);
+    EXPECT_EQ(meshWithMaterial(scene, "image").material.baseColorFactor, glm::vec4(1.0f));
+    EXPECT_EQ(meshWithMaterial(scene, "tinted").material.baseColorFactor, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
 }
 
 TEST(ObjMaterials, VertexColoursFollowTheirPositionsIntoEveryMaterialMesh) {

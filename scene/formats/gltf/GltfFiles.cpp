@@ -95,21 +95,39 @@ private:
     std::vector<std::string> mKeys; ///< per open container: the member being read ("" in arrays)
 };
 
-/** A URI as tinygltf turns it into a file name: '+' becomes a space and %XX the byte XX (a non-hex digit counts as 0,
- *  as tinygltf does), so the names match the ones its file callbacks receive. */
-std::string decodeUri(std::string_view uri) {
-    const auto hexValue = [](char c) -> unsigned {
-        if (c >= '0' && c <= '9') return unsigned(c - '0');
-        if (c >= 'a' && c <= 'f') return unsigned(c - 'a' + 10);
-        if (c >= 'A' && c <= 'F') return unsigned(c - 'A' + 10);
-        return 0;
-    };
+int hexDigitValue(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+/** A URI as tinygltf turns it into a file name: '+' becomes a space and '%' with the next two characters the byte
+ *  they spell (a non-hex digit counts as 0), so the names match the ones its file callbacks receive. */
+std::string tinygltfDecodedUri(std::string_view uri) {
     std::string decoded;
     for (std::size_t i = 0; i < uri.size(); ++i) {
         if (uri[i] == '+') {
             decoded += ' ';
         } else if (uri[i] == '%' && i + 2 < uri.size()) {
-            decoded += char((hexValue(uri[i + 1]) << 4) | hexValue(uri[i + 2]));
+            decoded += char((std::max(hexDigitValue(uri[i + 1]), 0) << 4) | std::max(hexDigitValue(uri[i + 2]), 0));
+            i += 2;
+        } else {
+            decoded += uri[i];
+        }
+    }
+    return decoded;
+}
+
+/** The file name a relative URI reference spells (RFC 3986): "%XX" is the byte XX; a '+', and a '%' not followed by
+ *  two hex digits ("100%.png"), are themselves, as every file system and glTF viewer takes them. A "file://" URI,
+ *  which some exporters write, is its path. */
+std::string fileNameOfUri(std::string_view uri) {
+    if (uri.rfind("file://", 0) == 0) uri.remove_prefix(7);
+    std::string decoded;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && hexDigitValue(uri[i + 1]) >= 0 && hexDigitValue(uri[i + 2]) >= 0) {
+            decoded += char(hexDigitValue(uri[i + 1]) << 4 | hexDigitValue(uri[i + 2]));
             i += 2;
         } else {
             decoded += uri[i];
@@ -196,11 +214,27 @@ void rejectDeepJson(const std::string& path, std::string_view content, bool bina
         throwLoadError(path, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
 }
 
-/** The path tinygltf asks its callbacks for first: the model's folder joined with the decoded URI. */
-std::string pathBesideModel(const std::string& baseDirectory, std::string_view uri) {
-    const std::string decoded = decodeUri(uri);
+std::string tinygltfPathBesideModel(const std::string& baseDirectory, std::string_view uri) {
+    const std::string decoded = tinygltfDecodedUri(uri);
     if (baseDirectory.empty()) return decoded;
     return baseDirectory + (baseDirectory.back() == '/' ? "" : "/") + decoded;
+}
+
+std::string pathBesideModel(const std::string& baseDirectory, std::string_view uri) {
+    return fileBeside(baseDirectory, fileNameOfUri(uri));
+}
+
+void ExternalFiles::name(const std::string& baseDirectory, std::string_view uri, bool image) {
+    const std::string asked = tinygltfPathBesideModel(baseDirectory, uri);
+    (image ? imagePaths : bufferPaths).insert(asked);
+    if (uri.rfind("data:", 0) != 0) { // an image's data: URI tinygltf takes for a file name is answered unread
+        fileOf.try_emplace(asked, pathBesideModel(baseDirectory, uri));
+    }
+}
+
+const std::string& ExternalFiles::fileAskedAs(const std::string& path) const {
+    const auto it = fileOf.find(path);
+    return it == fileOf.end() ? path : it->second;
 }
 
 /** Only the files the JSON names, beside the model: tinygltf would otherwise fall back to the current folder and read a
@@ -213,19 +247,20 @@ bool externalFileExists(const std::string& path, void* user) {
         return true;
     }
     std::error_code error;
-    return files.bufferPaths.count(path) > 0 && std::filesystem::exists(path, error);
+    return files.bufferPaths.count(path) > 0 && std::filesystem::exists(files.fileAskedAs(path), error);
 }
 
 /** tinygltf's file reading. An image gets a one-byte placeholder without being opened (SceneImage keeps its path, read
  *  when decoded, so a 1 GiB texture is not held by every load); a buffer must be a regular file, and its size is
  * charged to the load's memory budget before it is read. A refusal comes back to tinygltf as a read error with the
  * reason. */
-bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
+bool readExternalFile(std::vector<unsigned char>* out, std::string* error, const std::string& asked, void* user) {
     auto& files = *static_cast<ExternalFiles*>(user);
-    if (files.bufferPaths.count(path) == 0 && files.imagePaths.count(path) > 0) {
+    if (files.bufferPaths.count(asked) == 0 && files.imagePaths.count(asked) > 0) {
         out->assign(1, 0); // tinygltf refuses an empty image; keepEncodedImage() ignores the byte
         return true;
     }
+    const std::string& path = files.fileAskedAs(asked);
     // A FIFO or device ("/dev/stdin", "/dev/zero") as a buffer URI would block or never end: files only.
     std::error_code typeError;
     if (!std::filesystem::is_regular_file(path, typeError)) {

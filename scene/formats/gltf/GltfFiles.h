@@ -10,6 +10,7 @@
 
 #include <tiny_gltf.h>
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -49,7 +50,13 @@ struct ExternalUris {
 /** externalUris() by a SAX pass over `json`: what it collected before a syntax error still counts. */
 ExternalUris externalUris(std::string_view json);
 
-/** The path tinygltf asks its callbacks for first: the model's folder joined with the decoded URI. */
+/** The path tinygltf asks its callbacks for first: the model's folder joined with the URI decoded its way (a '+' read
+ *  as a space, a '%' always as the start of a byte). */
+std::string tinygltfPathBesideModel(const std::string& baseDirectory, std::string_view uri);
+
+/** The file a buffer's or image's URI names: the URI's path as RFC 3986 decodes it (only "%XX"; "file://" dropped),
+ *  found as fileBeside() finds an OBJ's texture (as written, else with '\' as '/', else the file of its name beside the
+ *  model, as a path of the exporting machine is shipped). */
 std::string pathBesideModel(const std::string& baseDirectory, std::string_view uri);
 
 /** A material's shade map path, resolved against the glTF file's folder and lexically normalised. */
@@ -59,9 +66,17 @@ std::string shadeMapBesideModel(const std::string& modelPath, const std::string&
  *  what was opened (LoadReport::inputFiles). */
 struct ExternalFiles {
     MeshBudget& budget;
-    std::set<std::string> bufferPaths;
-    std::set<std::string> imagePaths;
+    std::set<std::string> bufferPaths; ///< as tinygltf asks for them (tinygltfPathBesideModel())
+    std::set<std::string> imagePaths;  ///< the same
     std::vector<std::string> opened;
+    /** The file each path tinygltf asks for stands for (pathBesideModel()): tinygltf decodes URIs its own way, and
+     *  "model+lod0.bin" reaches the callbacks as "model lod0.bin". Two URIs tinygltf decodes alike keep the first's. */
+    std::map<std::string, std::string> fileOf;
+
+    /** Records the buffer's or image's `uri` of a model in `baseDirectory`. */
+    void name(const std::string& baseDirectory, std::string_view uri, bool image);
+    /** The file tinygltf means by `path`. */
+    const std::string& fileAskedAs(const std::string& path) const;
 };
 
 /** tinygltf's FsCallbacks::FileExists over an ExternalFiles (`user`). */

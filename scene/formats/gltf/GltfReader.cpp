@@ -897,9 +897,9 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
     const ExternalUris uris = externalUris(jsonOf(content, binary));
     ExternalFiles files{budget, {}, {}, {}};
-    for (const std::string& uri : uris.bufferUris) files.bufferPaths.insert(pathBesideModel(baseDirectory, uri));
-    for (const std::string& uri : uris.imageUris) files.imagePaths.insert(pathBesideModel(baseDirectory, uri));
-    for (const std::string& uri : uris.imageDataUris) files.imagePaths.insert(pathBesideModel(baseDirectory, uri));
+    for (const std::string& uri : uris.bufferUris) files.name(baseDirectory, uri, false);
+    for (const std::string& uri : uris.imageUris) files.name(baseDirectory, uri, true);
+    for (const std::string& uri : uris.imageDataUris) files.name(baseDirectory, uri, true);
 
     tinygltf::TinyGLTF loader;
     DataUriImages dataUriImages{budget, {}};
