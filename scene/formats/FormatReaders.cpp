@@ -132,11 +132,21 @@ std::string wholeFileBestEffort(const std::string& path) {
 }
 
 Warning polygonsFannedWarning(const PolygonTriangulator& triangulator) {
-    const std::size_t count = triangulator.unresolvedPolygons();
+    const std::size_t beyondWork = triangulator.polygonsBeyondWork();
+    const std::size_t crossing = triangulator.unresolvedPolygons() - beyondWork;
+    std::string message;
+    if (crossing > 0) {
+        message = crossing == 1 ? "1 polygon crosses itself" : std::to_string(crossing) + " polygons cross themselves";
+    }
+    if (beyondWork > 0) {
+        message += (message.empty() ? "" : ", and ") + std::to_string(beyondWork) + " concave polygon" +
+                   (beyondWork == 1 ? " was" : "s were") + " beyond the work one file may take to cut (" +
+                   std::to_string(PolygonTriangulator::kWorkBudget) + " corner tests)";
+    }
+    const bool one = triangulator.unresolvedPolygons() == 1;
     return makeWarning(WarningKind::PolygonsFanned,
-                       std::to_string(count) + (count == 1 ? " polygon crosses" : " polygons cross") +
-                           " itself or could not be cut into triangles in the work a file may take; fanned from "
-                           "the first corner, so its outline may be drawn wrong");
+                       message + "; fanned from " + (one ? "its" : "their") + " first corner, so " +
+                           (one ? "its outline" : "their outlines") + " may be drawn wrong");
 }
 
 } // namespace detail

@@ -8,8 +8,12 @@
  *  The polygon is taken in its plane: the plane of its Newell normal (the sum of its edges' cross products, which
  *  holds for warped polygons too), the corners projected onto it, turning counter-clockwise about the normal. A
  *  convex polygon, and a flat one (no area: every triangulation is as good), keeps the fan from its first corner, so
- *  what every reader drew before stays as it was. A polygon that crosses itself has no one right triangulation: it is
- *  cut into ears as far as that goes and the rest fanned, and counted, so the reader can warn.
+ *  what every reader drew before stays as it was. Corners written twice in a row and the tips of spikes that go out
+ *  and come back along themselves enclose nothing: they are cut first, as triangles of no area. A polygon that crosses
+ *  itself has no one right triangulation: a star that winds twice round is fanned, and one with no ear left, or whose
+ *  last triangle turns the wrong way, is cut into ears as far as that goes and the rest fanned; each is counted, so
+ *  the reader can warn (not every crossing shows in these tests: one whose ears all turn the right way is cut
+ *  without a word).
  *
  *  Written here because Debian 12 packages no triangulator that does not come with GL: GLU's tessellator links
  *  libOpenGL, which the scene layer must not (docs/architecture.md). */
@@ -45,15 +49,20 @@ public:
     PolygonShape triangulate(std::span<const glm::dvec3> corners, std::vector<glm::uvec3>& triangles);
 
     std::size_t concavePolygons() const { return mConcave; }
-    std::size_t unresolvedPolygons() const { return mUnresolved; }
+    /** PolygonShape::Unresolved, both kinds. */
+    std::size_t unresolvedPolygons() const { return mUnresolved + mBeyondWork; }
+    /** Of them, the concave polygons fanned because the file's work budget was spent. */
+    std::size_t polygonsBeyondWork() const { return mBeyondWork; }
 
 private:
-    PolygonShape clipEars(std::span<const glm::dvec3> corners, const glm::dvec3& normal, double tolerance,
+    /** `noArea`: twice an area that counts as none. */
+    PolygonShape clipEars(std::span<const glm::dvec3> corners, const glm::dvec3& normal, double noArea,
                           std::vector<glm::uvec3>& triangles);
 
     std::size_t mWorkLeft;
     std::size_t mConcave = 0;
-    std::size_t mUnresolved = 0;
+    std::size_t mUnresolved = 0; ///< crossing themselves
+    std::size_t mBeyondWork = 0;
     std::vector<glm::dvec2> mPlane; ///< scratch: the corners in the polygon's plane
     std::vector<std::uint32_t> mNext, mPrevious;
     std::vector<char> mMayBlock; ///< scratch: a corner that is not strictly convex, which alone can lie in an ear

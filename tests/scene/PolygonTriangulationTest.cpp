@@ -156,6 +156,58 @@ TEST(PolygonTriangulation, RandomSimplePolygonsInAnyPlane) {
     }
 }
 
+TEST(PolygonTriangulation, DenseCurvesAndThinFeaturesOfALargePolygonTurn) {
+    // A corner is straight by the sine of its own turn, not by the polygon's size: a crescent of 3,000 corners per
+    // arc, and a ring of 3,000 corners per circle whose hole is joined by a bridge, were fanned whole as convex.
+    constexpr int kArc = 3000;
+    std::vector<glm::dvec2> crescent;
+    for (int i = 0; i < kArc; ++i) {
+        const double angle = glm::radians(-150.0 + 300.0 * i / (kArc - 1));
+        crescent.emplace_back(std::cos(angle), std::sin(angle));
+    }
+    const glm::dvec2 top = crescent.front(), bottom = crescent.back();
+    for (int i = 1; i < kArc - 1; ++i) {
+        crescent.emplace_back(bottom.x + 0.6 * std::sin(glm::pi<double>() * i / (kArc - 1)),
+                              bottom.y + (top.y - bottom.y) * i / (kArc - 1));
+    }
+    std::vector<glm::dvec2> ring;
+    for (int i = 0; i <= kArc; ++i) {
+        const double angle = 2.0 * glm::pi<double>() * i / kArc;
+        ring.emplace_back(std::cos(angle), std::sin(angle));
+    }
+    for (int i = 0; i <= kArc; ++i) { // across the bridge, round the hole clockwise, and back over the bridge
+        const double angle = -2.0 * glm::pi<double>() * i / kArc;
+        ring.emplace_back(0.5 * std::cos(angle), 0.5 * std::sin(angle));
+    }
+    // A notch a millionth wide in a rectangle a thousand long.
+    const std::vector<glm::dvec2> notched{{0, 0},     {1000, 0},       {1000, 1}, {500.000001, 1},
+                                          {500, 0.5}, {499.999999, 1}, {0, 1}};
+    for (const std::vector<glm::dvec2>* polygon :
+         std::initializer_list<const std::vector<glm::dvec2>*>{&crescent, &ring, &notched}) {
+        PolygonTriangulator triangulator;
+        std::vector<glm::uvec3> triangles;
+        const auto corners = inPlane(*polygon, kTilted);
+        EXPECT_EQ(triangulator.triangulate(corners, triangles), PolygonShape::Concave) << polygon->size();
+        expectTiling(corners, triangles, shoelaceArea(*polygon));
+    }
+}
+
+TEST(PolygonTriangulation, SpikesAndSlitsOfNoWidthEncloseNothing) {
+    // A spike out to x = 3 and back along itself: an ear taken across it drew a wedge outside the square. A slit
+    // cut in and back out is the same thing turned inward, taken for a polygon that crosses itself.
+    const std::vector<glm::dvec2> spike{{0, 0}, {1, 0}, {1, 0.5}, {3, 0.5}, {1, 0.5}, {1, 1}, {0, 1}};
+    const std::vector<glm::dvec2> spikeFirst{{3, 0.5}, {1, 0.5}, {1, 1}, {0, 1}, {0, 0}, {1, 0}, {1, 0.5}};
+    const std::vector<glm::dvec2> slit{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 0.3}, {1, 1}, {0, 1}};
+    for (const std::vector<glm::dvec2>* polygon :
+         std::initializer_list<const std::vector<glm::dvec2>*>{&spike, &spikeFirst, &slit}) {
+        PolygonTriangulator triangulator;
+        std::vector<glm::uvec3> triangles;
+        const auto corners = inPlane(*polygon, kTilted);
+        EXPECT_EQ(triangulator.triangulate(corners, triangles), PolygonShape::Concave) << polygon->size();
+        expectTiling(corners, triangles, shoelaceArea(*polygon));
+    }
+}
+
 TEST(PolygonTriangulation, AWarpedConcavePolygonIsCutInItsAveragePlane) {
     std::vector<glm::dvec3> corners = inPlane({{0, 0}, {3, 0}, {3, 1}, {1, 1}, {1, 3}, {0, 3}});
     for (std::size_t i = 0; i < corners.size(); ++i) {
@@ -181,9 +233,14 @@ TEST(PolygonTriangulation, APolygonThatCrossesItselfIsFannedAndCounted) {
     std::vector<glm::uvec3> triangles;
     EXPECT_EQ(triangulator.triangulate(inPlane(pentagram), triangles), PolygonShape::Unresolved);
     EXPECT_EQ(triangles, (std::vector<glm::uvec3>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}}));
+    // A figure eight whose lobes differ: ear clipping runs to its end, and the last triangle turns the wrong way.
+    const std::vector<glm::dvec2> figureEight{{0, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}, {1.5, 2}, {1.5, 0.5}, {0, 0.5}};
+    EXPECT_EQ(triangulator.triangulate(inPlane(figureEight), triangles), PolygonShape::Unresolved);
+    EXPECT_EQ(triangles.size(), figureEight.size() - 2);
     // A bow tie's lobes cancel: no area, nothing to get wrong.
     EXPECT_EQ(triangulator.triangulate(inPlane({{0, 0}, {1, 1}, {1, 0}, {0, 1}}), triangles), PolygonShape::Convex);
-    EXPECT_EQ(triangulator.unresolvedPolygons(), 1u);
+    EXPECT_EQ(triangulator.unresolvedPolygons(), 2u);
+    EXPECT_EQ(triangulator.polygonsBeyondWork(), 0u);
     EXPECT_EQ(triangulator.concavePolygons(), 0u);
 }
 
@@ -203,6 +260,7 @@ TEST(PolygonTriangulation, TheWorkOfAFileIsBoundedThenPolygonsAreFanned) {
     EXPECT_EQ(triangulator.triangulate(inPlane({{0, 0}, {2, 1}, {0.5, 0}, {2, -1}}), triangles),
               PolygonShape::Unresolved);
     EXPECT_EQ(triangulator.unresolvedPolygons(), 2u);
+    EXPECT_EQ(triangulator.polygonsBeyondWork(), 2u);
 }
 
 } // namespace
