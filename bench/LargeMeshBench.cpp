@@ -76,8 +76,8 @@ void setTriangleCounters(benchmark::State& state, std::size_t triangles) {
         benchmark::Counter(double(triangles) * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void BM_LargeLoadObj(benchmark::State& state) {
-    const std::string& path = largeObjPath();
+/** Loads `path` once per iteration. */
+void timeLoading(benchmark::State& state, const std::string& path) {
     std::size_t triangles = 0;
     for (auto _ : state) {
         const Scene scene = loadScene(path);
@@ -86,6 +86,8 @@ void BM_LargeLoadObj(benchmark::State& state) {
     }
     setTriangleCounters(state, triangles);
 }
+
+void BM_LargeLoadObj(benchmark::State& state) { timeLoading(state, largeObjPath()); }
 BENCHMARK(BM_LargeLoadObj)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /** A file of polygons written once per machine to the temporary folder: `quads`, a warped height field of 806 x 806
@@ -139,16 +141,7 @@ const std::string& polygonObjPath(bool quads) {
 }
 
 /** Arg 1: the quads; 0: the concave combs. */
-void BM_LoadObjPolygons(benchmark::State& state) {
-    const std::string& path = polygonObjPath(state.range(0) == 1);
-    std::size_t triangles = 0;
-    for (auto _ : state) {
-        const Scene scene = loadScene(path);
-        triangles = scene.triangleCount();
-        benchmark::DoNotOptimize(scene.meshes.data());
-    }
-    setTriangleCounters(state, triangles);
-}
+void BM_LoadObjPolygons(benchmark::State& state) { timeLoading(state, polygonObjPath(state.range(0) == 1)); }
 BENCHMARK(BM_LoadObjPolygons)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /** 0: the loaded mesh by position alone, as every derived datum welds it (nothing merges); 1: the soup (every point

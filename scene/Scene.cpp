@@ -178,9 +178,16 @@ Scene finalizeScene(const std::string& path, RawScene raw, const LoadOptions& op
         if (scene.report.trianglesRead == 0) {
             throwLoadError(path, "no triangles in the file", function);
         }
-        throwLoadError(
-            path, "no triangles left: all " + std::to_string(scene.report.trianglesRead) + " triangles are degenerate",
-            function);
+        const bool weldedAway = std::ranges::any_of(scene.report.warnings, [](const Warning& warning) {
+            return warning.code == warningCode(WarningKind::DetailsMerged);
+        });
+        throwLoadError(path,
+                       "no triangles left: all " + std::to_string(scene.report.trianglesRead) +
+                           " triangles are degenerate" +
+                           (weldedAway ? " (smaller than the weld distance, " + formatNumber(options.weldTolerance) +
+                                             " of the model's size: parts far apart for their size?)"
+                                       : std::string()),
+                       function);
     }
     // A warning about the model as a whole names the model's file; a reader names another (a texture, a library).
     for (Warning& warning : scene.report.warnings)

@@ -45,6 +45,9 @@ const std::vector<WarningCode>& warningCodes() {
         {K::PrimitiveSkipped, "primitive-skipped", "a glTF primitive of points or lines, or without POSITION; skipped"},
         {K::IndicesIncomplete, "indices-incomplete", "trailing indices of an incomplete triangle; ignored"},
         {K::MeshDegenerate, "mesh-degenerate", "a mesh whose triangles are all degenerate; skipped"},
+        {K::DetailsMerged, "details-merged",
+         "more than 1% of a mesh's triangles are smaller than the weld distance (1e-6 of the model's size) and "
+         "collapsed when their corners merged; dropped"},
         {K::MeshInsideOut, "mesh-inside-out",
          "a closed surface of a two-sided mesh wound inside out (clockwise seen from outside); its winding, and its "
          "normals where they point inward too, reversed so the hull silhouette and the outline are drawn"},

@@ -37,6 +37,7 @@ enum class WarningKind {
     PrimitiveSkipped,
     IndicesIncomplete,
     MeshDegenerate,
+    DetailsMerged,
     MeshInsideOut,
     VertexValuesIgnored,
     NormalsMissing,

@@ -13,6 +13,8 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <mutex>
 #include <optional>
 #include <system_error>
 
@@ -352,14 +354,56 @@ private:
     std::optional<PendingMaterial> mCurrent;
 };
 
-/** Entries of one folder a case-blind lookup reads at most: a name from Windows is looked for among a model's
- *  textures, not in a folder of a million files. */
-constexpr std::size_t kMaxEntriesSearchedForCase = 10000;
+/** Entries of one folder a case-blind lookup reads at most, and of all the folders it remembers. */
+constexpr std::size_t kMaxEntriesPerFolder = 100000;
+constexpr std::size_t kMaxEntriesRemembered = 200000;
 
-bool sameIgnoringAsciiCase(std::string_view a, std::string_view b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-               return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
-           });
+std::string asciiLower(std::string text) {
+    for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return text;
+}
+
+/** The one entry of `folder` whose name differs from `wanted` in ASCII case alone; nothing when none does, or
+ *  several. A folder's names are read once and remembered while its modification time stays (a model naming a
+ *  thousand textures by the wrong case, in a folder of thousands, would read it a thousand times), for every thread
+ *  of a batch. */
+std::optional<std::string> entryIgnoringCase(const std::filesystem::path& folder, const std::string& wanted) {
+    struct Listing {
+        std::filesystem::file_time_type modified;
+        std::multimap<std::string, std::string> byLowerName;
+    };
+    static std::mutex mutex;
+    static std::map<std::string, Listing> listings;
+    static std::size_t entriesRemembered = 0;
+    const std::filesystem::path directory = folder.empty() ? std::filesystem::path(".") : folder;
+    std::error_code error;
+    const std::filesystem::file_time_type modified = std::filesystem::last_write_time(directory, error);
+    if (error) return std::nullopt;
+    const std::lock_guard lock(mutex);
+    auto listing = listings.find(directory.string());
+    if (listing == listings.end() || listing->second.modified != modified) {
+        Listing read{modified, {}};
+        std::size_t entries = 0;
+        for (std::filesystem::directory_iterator entry(directory, error), end;
+             !error && entry != end && entries < kMaxEntriesPerFolder; entry.increment(error), ++entries) {
+            const std::string name = entry->path().filename().string();
+            read.byLowerName.emplace(asciiLower(name), name);
+        }
+        if (error) return std::nullopt;
+        if (listing != listings.end()) {
+            entriesRemembered -= listing->second.byLowerName.size();
+            listings.erase(listing);
+        }
+        if (entriesRemembered + read.byLowerName.size() > kMaxEntriesRemembered) {
+            listings.clear();
+            entriesRemembered = 0;
+        }
+        entriesRemembered += read.byLowerName.size();
+        listing = listings.emplace(directory.string(), std::move(read)).first;
+    }
+    const auto [first, last] = listing->second.byLowerName.equal_range(asciiLower(wanted));
+    if (first == last || std::next(first) != last) return std::nullopt; // none, or "skin.png" and "SKIN.png" both
+    return first->second;
 }
 
 /** `relative` below `folder` with each name that does not exist as written matched to the one entry of its folder
@@ -373,17 +417,8 @@ std::optional<std::string> caseBlindPath(const std::filesystem::path& folder, co
             found /= part;
             continue;
         }
-        const std::string wanted = part.string();
-        std::optional<std::filesystem::path> match;
-        std::size_t searched = 0;
-        for (std::filesystem::directory_iterator entry(found.empty() ? "." : found, error), end;
-             !error && entry != end && searched < kMaxEntriesSearchedForCase; entry.increment(error), ++searched) {
-            if (sameIgnoringAsciiCase(entry->path().filename().string(), wanted)) {
-                if (match) return std::nullopt; // "Skin.png" and "SKIN.png" both: no one answer
-                match = entry->path().filename();
-            }
-        }
-        if (!match || error) return std::nullopt;
+        const std::optional<std::string> match = entryIgnoringCase(found, part.string());
+        if (!match) return std::nullopt;
         found /= *match;
     }
     return found.string();
@@ -401,13 +436,22 @@ std::string fileBeside(const std::filesystem::path& folder, const std::string& n
         std::error_code error;
         return std::filesystem::exists(path, error);
     };
+    if (name.find('\0') != std::string::npos) {
+        // The system would read the name up to its NUL, another file: kept whole, it is missing and said so.
+        std::string shown = name;
+        for (std::size_t at = shown.find('\0'); at != std::string::npos; at = shown.find('\0', at))
+            shown.replace(at, 1, "\\0");
+        return resolve(shown);
+    }
     const std::string asWritten = resolve(name);
     if (exists(asWritten)) return asWritten;
     std::string slashed = name;
     std::replace(slashed.begin(), slashed.end(), '\\', '/');
     if (slashed.size() >= 2 && slashed.front() == '"' && slashed.back() == '"')
         slashed = slashed.substr(1, slashed.size() - 2);
-    if (slashed != name && exists(resolve(slashed))) return resolve(slashed);
+    // "\\server\share\skin.png" names another machine's folder, not "//server/share" here.
+    const bool otherMachine = name.rfind("\\\\", 0) == 0;
+    if (slashed != name && !otherMachine && exists(resolve(slashed))) return resolve(slashed);
     // A path into the exporting machine's folders ("C:\Users\me\tex\skin.png", "/home/artist/skin.png"), or into a
     // folder the model was not shipped with: models travel with their textures beside them (beside the library, or
     // beside the model when the library lies in a folder of its own).
@@ -417,19 +461,19 @@ std::string fileBeside(const std::filesystem::path& folder, const std::string& n
     const std::string lastName = slash == std::string::npos ? slashed : slashed.substr(slash + 1);
     std::vector<std::filesystem::path> folders{folder};
     if (modelFolder && modelFolder->lexically_normal() != folder.lexically_normal()) folders.push_back(*modelFolder);
+    // Beside the model by its last name alone: the library's relative path ("../tex/skin.png") leads from the
+    // library's folder, not from the model's.
     for (const std::filesystem::path& besideFolder : folders) {
-        if (relative && besideFolder != folder && exists((besideFolder / slashedPath).string()))
-            return (besideFolder / slashedPath).string();
         if (!lastName.empty() && (slash != std::string::npos || besideFolder != folder) &&
             exists((besideFolder / lastName).string()))
             return (besideFolder / lastName).string();
     }
     // A name written on Windows, whose file systems ignore case ("Skin.PNG" for skin.png): the file that differs in
     // case alone, where the path leads or beside the library or the model.
+    if (relative && !otherMachine) {
+        if (const auto found = caseBlindPath(folder, slashedPath)) return *found;
+    }
     for (const std::filesystem::path& besideFolder : folders) {
-        if (relative) {
-            if (const auto found = caseBlindPath(besideFolder, slashedPath)) return *found;
-        }
         if (!lastName.empty()) {
             if (const auto found = caseBlindPath(besideFolder, lastName)) return *found;
         }

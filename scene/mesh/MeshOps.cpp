@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 #include <utility>
@@ -505,10 +506,28 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         }
     }
     std::vector<glm::uvec3> triangles = std::move(raw.triangles);
+    std::size_t weldedAway = 0; // triangles of distinct corners that the weld collapsed
     if (!keptAll) {
         for (glm::uvec3& triangle : triangles) {
-            triangle = glm::uvec3(weld.outputOf[triangle.x], weld.outputOf[triangle.y], weld.outputOf[triangle.z]);
+            const glm::uvec3 welded(weld.outputOf[triangle.x], weld.outputOf[triangle.y], weld.outputOf[triangle.z]);
+            if ((welded.x == welded.y || welded.y == welded.z || welded.z == welded.x) &&
+                raw.positions[triangle.x] != raw.positions[triangle.y] &&
+                raw.positions[triangle.y] != raw.positions[triangle.z] &&
+                raw.positions[triangle.z] != raw.positions[triangle.x]) {
+                ++weldedAway;
+            }
+            triangle = welded;
         }
+    }
+    // A few slivers of a scan collapse unseen; a share this large is detail the model's size swallowed (a small part
+    // far from the rest, a character on a ground a thousand times its size).
+    if (weldedAway > 0 && double(weldedAway) > kWeldedAwayShareToWarn * double(triangles.size())) {
+        std::ostringstream message;
+        message << "mesh '" << detail::excerptForMessage(raw.name) << "': " << weldedAway << " of " << triangles.size()
+                << " triangles are smaller than the weld distance (" << options.weldTolerance * modelDiagonal
+                << " units, " << options.weldTolerance
+                << " of the model's size) and were dropped when their corners merged: details that small are lost";
+        report.warnings.push_back(makeWarning(WarningKind::DetailsMerged, message.str(), "", raw.name));
     }
 
     report.degenerateDropped +=

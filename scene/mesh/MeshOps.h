@@ -77,6 +77,9 @@ bool isPointInsideMesh(const Mesh& mesh, glm::dvec3 point);
  *  nothing more there. */
 inline constexpr double kDegenerateAreaRelative = 1e-14;
 
+/** finalizeMesh() warns (details-merged) when the weld collapses more than this share of a mesh's triangles. */
+inline constexpr double kWeldedAwayShareToWarn = 0.01;
+
 /** Removes triangles with a repeated index or an area at most `minArea`; returns how many were removed. */
 std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                                     double minArea);

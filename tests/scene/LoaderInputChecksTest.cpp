@@ -379,6 +379,60 @@ TEST(LoaderInputChecks, UrisNameTheFilesTheySpellAndPathsOfTheExportingMachineAr
     EXPECT_EQ(referencedFiles(model), std::vector<std::string>(expected.begin() + 1, expected.end()));
 }
 
+TEST(LoaderInputChecks, AUriIsNeverReadWhereAnAbsolutePathPointsAndTwoBuffersTinygltfConfusesAreRefused) {
+    // A glTF names its files relative to itself: "/elsewhere/secret.bin", "file:///elsewhere/eyes.png" and a Windows
+    // share are looked for by their last name beside the model, not read where they point (a hostile file read any
+    // file it named). "%00" is no NUL: "t.png%00.jpg" read t.png.
+    const TempFolder folder;
+    std::filesystem::create_directories(folder.path("model"));
+    std::filesystem::create_directories(folder.path("elsewhere"));
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    folder.write("elsewhere/eyes.png", "not read");
+    folder.write("elsewhere/share.png", "not read");
+    folder.write("model/t.png", "not read");
+    std::string windowsShare = folder.path("elsewhere/share.png");
+    std::replace(windowsShare.begin(), windowsShare.end(), '/', '\\');
+    std::string escapedShare; // in JSON
+    for (const char c : "\\" + windowsShare) escapedShare += c == '\\' ? std::string("\\\\") : std::string(1, c);
+    const std::string body =
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+        "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], \"images\": ["
+        "{\"uri\": \"file://" +
+        folder.path("elsewhere/eyes.png") + "\"}, {\"uri\": \"" + escapedShare + "\"}, {\"uri\": \"t.png%00.jpg\"}]";
+    folder.write("model/geometry.bin", writer.binary());
+    const std::string model = folder.write("model/m.gltf", writer.gltfWithExternalBuffer(body, "geometry.bin"));
+    const Scene scene = loadScene(model);
+    ASSERT_EQ(scene.images.size(), 3u);
+    EXPECT_EQ(scene.images[0].path, folder.path("model/eyes.png"));
+    EXPECT_EQ(scene.images[1].path, folder.path("model/share.png"));
+    EXPECT_EQ(scene.images[2].path, folder.path("model/t.png%00.jpg"));
+
+    const std::string secret = folder.write("elsewhere/secret.bin", writer.binary());
+    const std::string absolute = folder.write("model/abs.gltf", writer.gltfWithExternalBuffer(body, secret));
+    const std::string notRead = test::sceneErrorMessage([&] { loadScene(absolute); });
+    EXPECT_NE(notRead.find("not found"), std::string::npos) << notRead;
+    EXPECT_NE(notRead.find("secret.bin"), std::string::npos) << notRead;
+
+    // "a+b.bin" and "a%20b.bin" both reach tinygltf as "a b.bin": one file would be read for both, silently.
+    folder.write("model/a+b.bin", writer.binary());
+    folder.write("model/a b.bin", writer.binary());
+    std::string twoBuffers = writer.gltfWithExternalBuffer(body, "a+b.bin");
+    const std::size_t buffers = twoBuffers.find("\"buffers\"");
+    ASSERT_NE(buffers, std::string::npos);
+    const std::size_t firstBuffer = twoBuffers.find('{', buffers);
+    const std::size_t firstEnd = twoBuffers.find('}', firstBuffer);
+    std::string second = twoBuffers.substr(firstBuffer, firstEnd + 1 - firstBuffer);
+    second.replace(second.find("a+b.bin"), 7, "a%20b.bin");
+    twoBuffers.insert(firstEnd + 1, ", " + second);
+    const std::string collide = folder.write("model/collide.gltf", twoBuffers);
+    const std::string message = test::sceneErrorMessage([&] { loadScene(collide); });
+    EXPECT_NE(message.find("buffers 'a+b.bin' and 'a%20b.bin' name different files that tinygltf reads by one name "
+                           "('a b.bin'), so it cannot read both"),
+              std::string::npos)
+        << message;
+}
+
 TEST(LoaderInputChecks, InputFilesOfStl) {
     const TempFile file("one.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
                                    "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n");

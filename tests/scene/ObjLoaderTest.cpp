@@ -300,6 +300,40 @@ TEST(ObjLoader, DegenerateTrianglesAreDroppedAndCounted) {
     EXPECT_NE(test::sceneErrorMessage([&] { loadScene(allDegenerate.path()); }).find("degenerate"), std::string::npos);
 }
 
+TEST(ObjLoader, DetailsSmallerThanTheWeldDistanceAreSaidWhenTheyVanish) {
+    // The weld merges corners closer than 1e-6 of the model's size: ten half-unit triangles beside one a million
+    // units across vanish (a weld distance of 1.4 units). They were dropped and only counted.
+    std::ostringstream obj;
+    obj << "v 0 0 0\nv 1000000 0 0\nv 0 1000000 0\nf 1 2 3\n";
+    for (int i = 0; i < 10; ++i) {
+        obj << "v " << 10 * i << " -10 0\nv " << 10 * i + 0.5 << " -10 0\nv " << 10 * i << " -9.5 0\nf -3 -2 -1\n";
+    }
+    const TempFile file("details.obj", obj.str());
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.triangleCount(), 1u);
+    EXPECT_EQ(scene.report.degenerateDropped, 10u);
+    ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.warnings[0].code, warningCode(WarningKind::DetailsMerged));
+    EXPECT_NE(scene.report.warnings[0].message.find("details': 10 of 11 triangles are smaller than the weld "
+                                                    "distance (1.4142"),
+              std::string::npos)
+        << scene.report.warnings[0];
+    EXPECT_NE(scene.report.warnings[0].message.find(" units, 1e-06 of the model's size) and were dropped"),
+              std::string::npos)
+        << scene.report.warnings[0];
+    EXPECT_EQ(scene.report.warnings[0].file, file.path());
+
+    // Two unit triangles a million units apart: nothing left, and the message says why.
+    const TempFile apart("apart.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1000000 0 0\nv 1000001 0 0\nv 1000000 1 0\n"
+                                      "f 1 2 3\nf 4 5 6\n");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(apart.path()); });
+    EXPECT_NE(message.find("all 2 triangles are degenerate (smaller than the weld distance, 1e-06 of the model's "
+                           "size: parts far apart for their size?)"),
+              std::string::npos)
+        << message;
+    // A model whose own triangles are fine says nothing: the bunny below, and every mesh of the other tests.
+}
+
 TEST(ObjLoader, StanfordBunnyLoadsWithExactCounts) {
     const std::string path = test::sourcePath("models/bunny_c3d_70k.obj");
     // Its load time is measured by bench/ (BM_LoadBunny), never here.

@@ -240,6 +240,47 @@ TEST(ObjMaterials, ALibraryInAFolderOfItsOwnFindsTexturesBesideTheModel) {
     EXPECT_EQ(referencedFiles(model), (std::vector<std::string>{library, skin}));
 }
 
+TEST(ObjMaterials, TheLookupBesideTheModelNeverLeadsOutOfItNorCutsANameAtANul) {
+    // A library in a folder of its own names "../tex/skin.png": beside the model only "skin.png" is tried, not the
+    // path from the model's folder (it reached a folder above the model). A Windows share ("\\\\host\\...") is another
+    // machine's, not "//host/..." here. A NUL in a name read the file named by what came before it.
+    const TempFolder folder;
+    std::filesystem::create_directories(folder.path("model/mats"));
+    std::filesystem::create_directories(folder.path("tex"));
+    folder.write("tex/skin.png", "not decoded here"); // above the model's folder
+    const std::string beside = folder.write("model/eyes.png", "not decoded here");
+    folder.write("model/t.png", "not decoded here");
+    std::string share = folder.path("eyes.png"); // exists only as model/eyes.png
+    folder.write("eyes.png", "not decoded here");
+    std::replace(share.begin(), share.end(), '/', '\\');
+    const std::string library =
+        folder.write("model/mats/m.mtl", "newmtl a\nmap_Kd ../tex/skin.png\nnewmtl b\nmap_Kd \\" + share +
+                                             "\nnewmtl c\nmap_Kd t.png" + std::string(1, '\0') + ".jpg\n");
+    const std::string model = folder.write("model/m.obj", "mtllib mats/m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
+                                                          "vt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\nusemtl b\n"
+                                                          "f 1/1 3/3 2/2\nusemtl c\nf 2/2 1/1 3/3\n");
+    const Scene scene = loadScene(model);
+    EXPECT_FALSE(meshWithMaterial(scene, "a").material.textured());
+    ASSERT_TRUE(meshWithMaterial(scene, "b").material.textured());
+    EXPECT_EQ(scene.images.at(std::size_t(meshWithMaterial(scene, "b").material.baseColorTexture.image)).path, beside);
+    EXPECT_FALSE(meshWithMaterial(scene, "c").material.textured());
+    EXPECT_TRUE(anyWarningContains(scene, "t.png\\0.jpg")) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(referencedFiles(model).front(), library);
+}
+
+TEST(ObjMaterials, AFileThatAppearsIsFoundByItsNameInAnotherCase) {
+    // The folders a case-blind lookup read are remembered while they stay unchanged: a file added since is seen.
+    const TempFolder folder;
+    const std::string library = folder.write("m.mtl", "newmtl a\nmap_Kd Late.PNG\n");
+    const std::string model = folder.write("m.obj", "mtllib m.mtl\nusemtl a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
+                                                    "vt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n");
+    EXPECT_TRUE(loadScene(model).images.empty());
+    const std::string late = folder.write("late.png", "not decoded here");
+    const Scene scene = loadScene(model);
+    ASSERT_EQ(scene.images.size(), 1u);
+    EXPECT_EQ(scene.images[0].path, late);
+}
+
 TEST(ObjMaterials, MissingTextureIsAWarningAndTheMaterialKeepsItsColour) {
     const TempFolder folder;
     const std::string library = folder.write("gone.mtl", "newmtl skin\nKd 0.5 0.25 0\nmap_Kd skin.png\n");

@@ -126,7 +126,9 @@ std::string fileNameOfUri(std::string_view uri) {
     if (uri.rfind("file://", 0) == 0) uri.remove_prefix(7);
     std::string decoded;
     for (std::size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && hexDigitValue(uri[i + 1]) >= 0 && hexDigitValue(uri[i + 2]) >= 0) {
+        // "%00" stays as written: the system would read the name up to the NUL, another file.
+        if (uri[i] == '%' && i + 2 < uri.size() && hexDigitValue(uri[i + 1]) >= 0 && hexDigitValue(uri[i + 2]) >= 0 &&
+            (uri[i + 1] != '0' || uri[i + 2] != '0')) {
             decoded += char(hexDigitValue(uri[i + 1]) << 4 | hexDigitValue(uri[i + 2]));
             i += 2;
         } else {
@@ -221,15 +223,26 @@ std::string tinygltfPathBesideModel(const std::string& baseDirectory, std::strin
 }
 
 std::string pathBesideModel(const std::string& baseDirectory, std::string_view uri) {
-    return fileBeside(baseDirectory, fileNameOfUri(uri));
+    std::string name = fileNameOfUri(uri);
+    std::string slashed = name;
+    std::replace(slashed.begin(), slashed.end(), '\\', '/');
+    // A glTF names its files relative to itself: an absolute path, a file:// URI or a Windows share is a path of the
+    // exporting machine, looked for by its last name beside the model, never read where it points.
+    if (uri.rfind("file://", 0) == 0 || (!slashed.empty() && slashed.front() == '/')) {
+        name = slashed.substr(slashed.rfind('/') + 1);
+    }
+    return fileBeside(baseDirectory, name);
 }
 
-void ExternalFiles::name(const std::string& baseDirectory, std::string_view uri, bool image) {
+std::optional<std::string> ExternalFiles::name(const std::string& baseDirectory, std::string_view uri, bool image) {
     const std::string asked = tinygltfPathBesideModel(baseDirectory, uri);
     (image ? imagePaths : bufferPaths).insert(asked);
-    if (uri.rfind("data:", 0) != 0) { // an image's data: URI tinygltf takes for a file name is answered unread
-        fileOf.try_emplace(asked, pathBesideModel(baseDirectory, uri));
-    }
+    if (uri.rfind("data:", 0) == 0) return std::nullopt; // an image's data: URI tinygltf takes for a name: unread
+    const std::string file = pathBesideModel(baseDirectory, uri);
+    const auto [known, added] = fileOf.try_emplace(asked, file);
+    const auto [firstUri, uriAdded] = uriOf.try_emplace(asked, std::string(uri));
+    if (!added && known->second != file && !image) return firstUri->second;
+    return std::nullopt;
 }
 
 const std::string& ExternalFiles::fileAskedAs(const std::string& path) const {

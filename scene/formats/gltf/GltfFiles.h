@@ -54,8 +54,9 @@ ExternalUris externalUris(std::string_view json);
  *  as a space, a '%' always as the start of a byte). */
 std::string tinygltfPathBesideModel(const std::string& baseDirectory, std::string_view uri);
 
-/** The file a buffer's or image's URI names: the URI's path as RFC 3986 decodes it (only "%XX"; "file://" dropped),
- *  found as fileBeside() finds an OBJ's texture (as written, else with '\' as '/', else the file of its name beside the
+/** The file a buffer's or image's URI names: the URI's path as RFC 3986 decodes it (only "%XX", and not "%00"); an
+ *  absolute path, a file:// URI or a Windows share by its last name alone, beside the model; found as fileBeside()
+ *  finds an OBJ's texture (as written, else with '\' as '/', else the file of its name beside the
  *  model, as a path of the exporting machine is shipped). */
 std::string pathBesideModel(const std::string& baseDirectory, std::string_view uri);
 
@@ -70,11 +71,14 @@ struct ExternalFiles {
     std::set<std::string> imagePaths;  ///< the same
     std::vector<std::string> opened;
     /** The file each path tinygltf asks for stands for (pathBesideModel()): tinygltf decodes URIs its own way, and
-     *  "model+lod0.bin" reaches the callbacks as "model lod0.bin". Two URIs tinygltf decodes alike keep the first's. */
+     *  "model+lod0.bin" reaches the callbacks as "model lod0.bin". */
     std::map<std::string, std::string> fileOf;
+    std::map<std::string, std::string> uriOf; ///< the first URI that reached each asked path
 
-    /** Records the buffer's or image's `uri` of a model in `baseDirectory`. */
-    void name(const std::string& baseDirectory, std::string_view uri, bool image);
+    /** Records the buffer's or image's `uri` of a model in `baseDirectory`. For a buffer that tinygltf asks for by
+     *  the same name as an earlier URI of another file ("a+b.bin" and "a%20b.bin": both "a b.bin"), that earlier
+     *  URI: tinygltf cannot read both, and the caller refuses the file. */
+    std::optional<std::string> name(const std::string& baseDirectory, std::string_view uri, bool image);
     /** The file tinygltf means by `path`. */
     const std::string& fileAskedAs(const std::string& path) const;
 };

@@ -897,7 +897,14 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     const std::string baseDirectory = std::filesystem::path(path).parent_path().string();
     const ExternalUris uris = externalUris(jsonOf(content, binary));
     ExternalFiles files{budget, {}, {}, {}};
-    for (const std::string& uri : uris.bufferUris) files.name(baseDirectory, uri, false);
+    for (const std::string& uri : uris.bufferUris) {
+        if (const std::optional<std::string> other = files.name(baseDirectory, uri, false)) {
+            throwLoadError(path, "buffers '" + excerptForMessage(*other) + "' and '" + excerptForMessage(uri) +
+                                     "' name different files that tinygltf reads by one name ('" +
+                                     excerptForMessage(tinygltfPathBesideModel({}, uri)) +
+                                     "'), so it cannot read both; rename one of the files and its URI");
+        }
+    }
     for (const std::string& uri : uris.imageUris) files.name(baseDirectory, uri, true);
     for (const std::string& uri : uris.imageDataUris) files.name(baseDirectory, uri, true);
 
