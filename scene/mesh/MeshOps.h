@@ -99,7 +99,8 @@ struct RawMesh {
 
 /** Turns a raw mesh into a clean Mesh: welds within options.weldTolerance x modelDiagonal, drops degenerate
  *  triangles (area <= 1e-14 x modelDiagonal^2) and unreferenced vertices, normalises the file's normals (zero ones
- *  are recomputed) or computes smooth ones. Adds its counts to `report`. The result may have no triangles. */
+ *  are recomputed) or computes smooth ones. Adds its counts to `report`, and the warning details-merged when the weld
+ *  collapsed more than kWeldedAwayShareToWarn of the triangles. The result may have no triangles. */
 Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options, LoadReport& report);
 
 } // namespace inkgraph
