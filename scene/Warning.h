@@ -34,6 +34,7 @@ enum class WarningKind {
     MaterialRedefined,
     MaterialUndefined,
     MaterialInvisible,
+    MaterialEmitsWhite,
     PrimitiveSkipped,
     IndicesIncomplete,
     MeshDegenerate,

@@ -1,5 +1,6 @@
 /** @file Wavefront material libraries (.mtl), for readObj(): per `newmtl`, the diffuse colour (Kd) and its map
- *  (map_Kd with its options), the dissolve (d, or Tr = 1 - d), the emission (Ke) and a cut-out map_d. Everything else
+ *  (map_Kd with its options), the dissolve (d, or Tr = 1 - d), the emission (Ke) and its map (map_Ke) and a cut-out
+ *  map_d. Everything else
  *  (Ka, Ks, Ns, illum, bump, reflection) shapes a photoreal look that a toon render does not use, so it is skipped.
  *  Bad lines are warnings, not refusals: a library that travels with a model is often half-broken, and the model is
  *  still worth drawing. */
@@ -126,6 +127,23 @@ std::optional<MapStatement> parseMapStatement(std::string_view rest, std::string
     return map;
 }
 
+/** `map_Kd skin.png # diffuse`: a comment after the name, as some exporters write it. A name may hold '#' itself,
+ *  so the comment is dropped only when the whole name finds no file and the part before a blank and '#' does. */
+std::string withoutTrailingComment(const std::filesystem::path& folder, const std::string& name,
+                                   const std::filesystem::path& modelFolder) {
+    std::error_code error;
+    if (name.find('#') == std::string::npos ||
+        std::filesystem::is_regular_file(fileBeside(folder, name, modelFolder), error))
+        return name;
+    for (std::size_t hash = name.find('#'); hash != std::string::npos; hash = name.find('#', hash + 1)) {
+        if (hash == 0 || !isBlank(name[hash - 1])) continue;
+        const std::string before(trimmed(std::string_view(name).substr(0, hash)));
+        if (before.empty()) break;
+        if (std::filesystem::is_regular_file(fileBeside(folder, before, modelFolder), error)) return before;
+    }
+    return name;
+}
+
 /** What one `newmtl` block said, turned into a Material when the block ends. At namespace scope: clang (14) cannot
  *  default-construct a nested class with member initializers inside its enclosing class (std::optional::emplace()). */
 struct PendingMaterial {
@@ -134,8 +152,12 @@ struct PendingMaterial {
     std::optional<double> dissolve;     ///< d
     std::optional<double> transparency; ///< Tr
     bool diffuseColourGiven = false;    ///< a Kd line was read
+    bool emissionGiven = false;         ///< a Ke line was read
+    std::size_t emissionLine = 0;
     std::optional<MapStatement> diffuseMap;
     std::size_t diffuseMapLine = 0;
+    std::optional<MapStatement> emissiveMap;
+    std::size_t emissiveMapLine = 0;
     std::optional<MapStatement> dissolveMap;
     std::size_t dissolveMapLine = 0;
 };
@@ -185,25 +207,34 @@ private:
             return;
         }
         const bool used = sameKeyword(keyword, "Kd") || sameKeyword(keyword, "Ke") || sameKeyword(keyword, "d") ||
-                          sameKeyword(keyword, "Tr") || sameKeyword(keyword, "map_Kd") || sameKeyword(keyword, "map_d");
+                          sameKeyword(keyword, "Tr") || sameKeyword(keyword, "map_Kd") ||
+                          sameKeyword(keyword, "map_Ke") || sameKeyword(keyword, "map_d");
         if (!used) return; // Ka, Ks, Ns, illum, bump, ...: not part of a toon render's surface
         if (!mCurrent) {
             warn(quotedExcerpt(keyword) + " before any 'newmtl'; ignored");
             return;
         }
+        const bool mapStatement = keyword.size() > 4 && sameKeyword(keyword.substr(0, 4), "map_");
+        // A comment after the values (`Kd 0.8 0.8 0.8 # grey`, as some exporters write); numbers hold no '#'. A map's
+        // file name may, so a map's comment is told from its name when the file is looked up (mapPath()).
+        const std::string_view values = mapStatement ? rest : trimmed(rest.substr(0, rest.find('#')));
         if (sameKeyword(keyword, "Kd")) {
-            if (const auto colour = readColour(keyword, rest)) {
+            if (const auto colour = readColour(keyword, values)) {
                 mCurrent->material.baseColorFactor = glm::vec4(*colour, mCurrent->material.baseColorFactor.a);
                 mCurrent->diffuseColourGiven = true;
             }
         } else if (sameKeyword(keyword, "Ke")) {
-            if (const auto colour = readColour(keyword, rest)) mCurrent->material.emissiveFactor = *colour;
+            if (const auto colour = readColour(keyword, values)) {
+                mCurrent->material.emissiveFactor = *colour;
+                mCurrent->emissionGiven = true;
+                mCurrent->emissionLine = mLine;
+            }
         } else if (sameKeyword(keyword, "d") || sameKeyword(keyword, "Tr")) {
-            std::vector<std::string_view> tokens = tokensOf(rest);
+            std::vector<std::string_view> tokens = tokensOf(values);
             if (!tokens.empty() && sameKeyword(tokens.front(), "-halo")) tokens.erase(tokens.begin()); // not drawn
             const std::optional<double> value = tokens.size() == 1 ? numberOf(tokens.front()) : std::nullopt;
             if (!value) {
-                warn("cannot read '" + excerptForMessage(keyword) + "' value '" + excerptForMessage(rest) +
+                warn("cannot read '" + excerptForMessage(keyword) + "' value '" + excerptForMessage(values) +
                      "'; ignored");
                 return;
             }
@@ -221,6 +252,9 @@ private:
             if (sameKeyword(keyword, "map_Kd")) {
                 mCurrent->diffuseMap = std::move(map);
                 mCurrent->diffuseMapLine = mLine;
+            } else if (sameKeyword(keyword, "map_Ke")) {
+                mCurrent->emissiveMap = std::move(map);
+                mCurrent->emissiveMapLine = mLine;
             } else {
                 mCurrent->dissolveMap = std::move(map);
                 mCurrent->dissolveMapLine = mLine;
@@ -302,14 +336,39 @@ private:
                     "): its faces are not drawn",
                 mPath, material.name));
         }
-        if (pending.diffuseMap && !pending.diffuseColourGiven) {
+        for (std::optional<MapStatement>* map : {&pending.diffuseMap, &pending.emissiveMap, &pending.dissolveMap})
+            if (*map) (*map)->file = withoutTrailingComment(mFolder, (*map)->file, mModelFolder);
+        const glm::vec3 diffuse(material.baseColorFactor);
+        if (pending.diffuseMap && (!pending.diffuseColourGiven || diffuse == glm::vec3(0.0f))) {
             // No Kd to multiply the image by: drawn as the image is, not darkened by the 0.8 grey of a bare material.
+            // `Kd 0 0 0` beside a map_Kd would draw it black by the MTL rule (Kd times the map); exporters write it
+            // for "the map decides", and Blender's importer lets the map replace it, so the map is drawn as it is.
             material.baseColorFactor = glm::vec4(glm::vec3(1.0f), material.baseColorFactor.a);
         }
         if (pending.diffuseMap) {
             material.baseColorTexture.image = imageOf(*pending.diffuseMap, "map_Kd", pending.diffuseMapLine);
             material.baseColorTexture.sampler = pending.diffuseMap->sampler;
             material.baseColorTexture.transform = pending.diffuseMap->transform;
+        }
+        if (pending.emissiveMap) {
+            // The map times Ke (the MTL rule); without a Ke it is drawn as it is, as a map_Kd without Kd.
+            if (!pending.emissionGiven) material.emissiveFactor = glm::vec3(1.0f);
+            material.emissiveTexture.image = imageOf(*pending.emissiveMap, "map_Ke", pending.emissiveMapLine);
+            material.emissiveTexture.sampler = pending.emissiveMap->sampler;
+            material.emissiveTexture.transform = pending.emissiveMap->transform;
+        } else if (material.emissiveFactor == glm::vec3(1.0f)) {
+            // Drawn as written (the emission is added after the light), but said: tools that keep an emission colour
+            // and its strength apart (Blender's Principled BSDF since 4.0: white at strength 0) write `Ke 1 1 1` for
+            // "no emission", and the whole material then comes out white.
+            mWarnings.push_back(makeWarning(
+                WarningKind::MaterialEmitsWhite,
+                "material library '" + mPath + "' line " + std::to_string(pending.emissionLine) + ": material '" +
+                    excerptForMessage(material.name) +
+                    "' emits white ('Ke 1 1 1') without a map_Ke: it is drawn white over its " +
+                    (pending.diffuseMap ? "map_Kd" : "Kd") +
+                    " (an exporter that drops the emission's strength writes this for none); 'Ke 0 0 0' draws its "
+                    "colour",
+                mPath, material.name));
         }
         if (pending.dissolveMap) {
             // A cut-out is drawn from the base colour texture's alpha: map_d naming the map_Kd image (a PNG with an
@@ -497,12 +556,14 @@ std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string
         const std::string_view line = trimmed(content.substr(start, end - start));
         start = end + 1;
         const std::vector<std::string_view> tokens = tokensOf(line);
-        if (tokens.empty() || !(sameKeyword(tokens.front(), "map_Kd") || sameKeyword(tokens.front(), "map_d"))) {
+        if (tokens.empty() || !(sameKeyword(tokens.front(), "map_Kd") || sameKeyword(tokens.front(), "map_Ke") ||
+                                sameKeyword(tokens.front(), "map_d"))) {
             continue;
         }
         std::string problem;
         if (const auto map = parseMapStatement(line.substr(tokens.front().size()), problem)) {
-            const std::string file = fileBeside(folder, map->file, modelFolder);
+            const std::string file =
+                fileBeside(folder, withoutTrailingComment(folder, map->file, modelFolder), modelFolder);
             if (std::ranges::find(files, file) == files.end()) files.push_back(file);
         }
     }

@@ -124,8 +124,12 @@ public:
             if (lineEnd == nullptr) {
                 lineEnd = end;
             }
-            parseLine(cursor, lineEnd);
-            cursor = lineEnd + 1;
+            if (continuesOnNextLine(cursor, lineEnd)) {
+                cursor = parseContinuedStatement(cursor, lineEnd, end);
+            } else {
+                parseLine(cursor, lineEnd);
+                cursor = lineEnd + 1;
+            }
             if (mLine % kLinesBetweenBudgetChecks == 0) {
                 mBudget.check(mPositions.size() + mNormals.size() + mTexcoords.size(), mCornerCount / 3);
             }
@@ -141,6 +145,39 @@ public:
 
 private:
     [[noreturn]] void fail(std::string_view problem) const { throwLoadErrorAtLine(mPath, mLine, problem); }
+
+    /** The OBJ specification's line continuation: a statement whose line ends in '\\' goes on on the next line
+     *  (long `f` lines of some exporters). A comment does not: Windows paths in comments end in '\\'. */
+    static bool continuesOnNextLine(const char* p, const char* end) {
+        while (end > p && isBlank(end[-1])) --end;
+        if (end == p || end[-1] != '\\') return false;
+        while (p < end && isBlank(*p)) ++p;
+        return *p != '#';
+    }
+
+    /** Joins a statement's continued lines (each '\\' and line break read as a blank) and reads it as one line;
+     *  errors name its first line. Returns where the next statement starts. */
+    const char* parseContinuedStatement(const char* cursor, const char* lineEnd, const char* end) {
+        const std::size_t firstLine = mLine;
+        std::string statement;
+        for (;;) {
+            const char* content = lineEnd;
+            while (content > cursor && isBlank(content[-1])) --content;
+            const bool continues = content > cursor && content[-1] == '\\';
+            statement.append(cursor, continues ? content - 1 : lineEnd);
+            statement += ' ';
+            cursor = lineEnd + 1;
+            if (!continues || cursor >= end) break;
+            ++mLine;
+            lineEnd = static_cast<const char*>(std::memchr(cursor, '\n', std::size_t(end - cursor)));
+            if (lineEnd == nullptr) lineEnd = end;
+        }
+        const std::size_t lastLine = mLine;
+        mLine = firstLine;
+        parseLine(statement.data(), statement.data() + statement.size());
+        mLine = lastLine;
+        return cursor;
+    }
 
     void parseLine(const char* p, const char* end) {
         while (p < end && isBlank(*p)) {

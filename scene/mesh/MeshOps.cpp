@@ -413,9 +413,11 @@ namespace {
 void dropTexturesWithoutCoordinates(RawMesh& raw, LoadReport& report) {
     auto check = [&](TextureRef& texture, const char* role) {
         if (!texture.present() || !raw.texcoords[texture.texCoord == 1 ? 1 : 0].empty()) return;
+        // Said in glTF's words, which the readers map their coordinates to; an OBJ's own name is given too.
+        const std::string coordinatesInOtherFormats = texture.texCoord == 0 ? " (an OBJ's 'vt')" : "";
         report.warnings.push_back(makeWarning(WarningKind::TextureCoordinatesMissing,
                                               "mesh '" + raw.name + "': its " + role + " reads TEXCOORD_" +
-                                                  std::to_string(texture.texCoord) +
+                                                  std::to_string(texture.texCoord) + coordinatesInOtherFormats +
                                                   ", which the mesh does not have; drawn without that texture",
                                               "", raw.name));
         texture = TextureRef{};

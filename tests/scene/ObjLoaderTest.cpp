@@ -151,6 +151,30 @@ TEST(ObjLoader, AcceptsTextureCoordinateFormsCommentsCrlfAndObjectNames) {
     EXPECT_EQ(uvScene.meshes.at(0).normals.at(0), glm::vec3(0, 0, 1));
 }
 
+TEST(ObjLoader, ALineEndingInABackslashGoesOnOnTheNextLine) {
+    // The OBJ specification's continuation (long `f` lines of some exporters) was refused. A comment ending in '\\'
+    // (a Windows folder) does not swallow the next line, and an error names the statement's first line.
+    const TempFile file("continued.obj", "# exported from C:\\models\\\nv 0 0 0\nv 1 0 \\\r\n  0\nv 1 1 0\nv 0 1 0\n"
+                                         "f 1 2 \\\n3 \\ \n 4\nv 5 5 5 \\");
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.meshes[0].triangleCount(), 2u) << "the quad read whole, cut in two";
+    EXPECT_EQ(scene.report.trianglesRead, 2u);
+    const auto atWorld = [&](glm::dvec3 world) {
+        return std::ranges::any_of(scene.meshes[0].positions, [&](const glm::vec3& position) {
+            return glm::length(test::worldPosition(scene, position) - world) < 1e-6;
+        });
+    };
+    EXPECT_TRUE(atWorld({1, 0, 0})) << "'v 1 0 \\' went on to its z on the next line";
+
+    const TempFile bad("continued_bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 \\\n2 \\\nx\nv 1 1 1\n");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(bad.path()); });
+    EXPECT_NE(message.find("line 4"), std::string::npos) << message;
+    const TempFile after("continued_after.obj", "v 0 0 0\nv 1 \\\n0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(after.path()); }).find("line 6"), std::string::npos)
+        << "lines after a continued statement keep their numbers";
+}
+
 TEST(ObjLoader, PentagonIsFanTriangulated) {
     const TempFile file("pentagon.obj", "v 0 0 0\nv 2 0 0\nv 3 1 0\nv 1 2 0\nv -1 1 0\nf 1 2 3 4 5\n");
     const Mesh mesh = loadScene(file.path()).meshes.at(0);

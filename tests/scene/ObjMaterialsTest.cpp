@@ -516,6 +516,82 @@ TEST(ObjMaterials, AFullyTransparentMaterialIsSaidAndAMapWithoutKdIsDrawnAsTheIm
     EXPECT_EQ(meshWithMaterial(scene, "tinted").material.baseColorFactor, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
 }
 
+TEST(ObjMaterials, AMapKeIsTheEmissiveTextureAndAWhiteKeWithoutOneIsSaid) {
+    // map_Ke was ignored, so a material with `Ke 1 1 1` and its glow in a map_Ke was drawn white; now the map is the
+    // emissive texture, times Ke (1 without one). A white Ke without a map is drawn as written, with a warning:
+    // exporters that drop the emission's strength write it for "no emission". Kd 0 0 0 beside a map_Kd (the MTL
+    // rule would draw the map black) lets the map decide, as Blender's importer does; Kd 0 alone stays black.
+    const TempFolder folder;
+    folder.write("skin.png", "not decoded here");
+    folder.write("glow.png", "not decoded here");
+    folder.write("m.mtl", "newmtl glowing\nKe 1 1 1\nmap_Kd skin.png\nmap_Ke -clamp on glow.png\n"
+                          "newmtl dim\nKe 0.5 0.25 0\nmap_Ke glow.png\nnewmtl keOnly\nmap_Ke glow.png\n"
+                          "newmtl white\nKd 0.2 0.4 0.6\nmap_Kd skin.png\nKe 1 1 1\n"
+                          "newmtl blackKd\nKd 0 0 0\nmap_Kd skin.png\nnewmtl black\nKd 0 0 0\n");
+    std::string faces;
+    for (const char* name : {"glowing", "dim", "keOnly", "white", "blackKd", "black"})
+        faces += std::string("usemtl ") + name + "\nf 1/1 2/2 3/3\n";
+    const std::string model = folder.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
+                                                    "vt 0 1\n" +
+                                                        faces);
+    const Scene scene = loadScene(model);
+    ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.warnings[0].code, "material-emits-white");
+    EXPECT_EQ(scene.report.warnings[0].item, "white");
+    EXPECT_TRUE(contains(scene.report.warnings[0].message, "line 13: material 'white' emits white ('Ke 1 1 1') "
+                                                           "without a map_Ke: it is drawn white over its map_Kd"))
+        << scene.report.warnings[0];
+    ASSERT_EQ(scene.images.size(), 2u);
+    EXPECT_EQ(scene.images[1].name, "glow.png");
+
+    const Material& glowing = meshWithMaterial(scene, "glowing").material;
+    EXPECT_EQ(glowing.emissiveFactor, glm::vec3(1.0f));
+    EXPECT_EQ(glowing.emissiveTexture.image, 1);
+    EXPECT_EQ(glowing.emissiveTexture.sampler.wrapS, TextureWrap::ClampToEdge);
+    EXPECT_EQ(glowing.baseColorTexture.image, 0);
+    const Material& dim = meshWithMaterial(scene, "dim").material;
+    EXPECT_EQ(dim.emissiveFactor, glm::vec3(0.5f, 0.25f, 0.0f));
+    EXPECT_EQ(dim.emissiveTexture.image, 1);
+    EXPECT_EQ(meshWithMaterial(scene, "keOnly").material.emissiveFactor, glm::vec3(1.0f));
+    const Material& white = meshWithMaterial(scene, "white").material;
+    EXPECT_EQ(white.emissiveFactor, glm::vec3(1.0f));
+    EXPECT_FALSE(white.emissiveTexture.present());
+    EXPECT_EQ(white.baseColorFactor, glm::vec4(0.2f, 0.4f, 0.6f, 1.0f));
+    EXPECT_EQ(meshWithMaterial(scene, "blackKd").material.baseColorFactor, glm::vec4(1.0f));
+    EXPECT_EQ(meshWithMaterial(scene, "black").material.baseColorFactor, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, folder.path("m.mtl"), folder.path("skin.png"),
+                                                                 folder.path("glow.png")}));
+    EXPECT_EQ(referencedFiles(model),
+              (std::vector<std::string>{folder.path("m.mtl"), folder.path("skin.png"), folder.path("glow.png")}));
+}
+
+TEST(ObjMaterials, CommentsAfterValuesAndAfterAMapsNameAreDropped) {
+    // `Kd 0.8 0.8 0.8 # grey` was a malformed colour (ignored, with a warning) and `map_Kd skin.png # diffuse` a
+    // missing file 'skin.png # diffuse'. A name holding " #" keeps it when such a file exists.
+    const TempFolder folder;
+    folder.write("skin.png", "not decoded here");
+    folder.write("hash #1.png", "not decoded here");
+    folder.write("m.mtl", "newmtl a\nKd 0.5 0.25 1 # tinted\nd 0.5 # half\nmap_Kd skin.png # diffuse map\n"
+                          "newmtl b\nmap_Kd hash #1.png\nnewmtl c\nmap_Kd gone.png # diffuse\n");
+    const std::string model = folder.write(
+        "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n"
+                 "usemtl b\nf 1/1 3/3 2/2\nusemtl c\nf 2/2 1/1 3/3\n");
+    const Scene scene = loadScene(model);
+    ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.warnings[0].code, "texture-missing");
+    EXPECT_TRUE(contains(scene.report.warnings[0].message, "map_Kd 'gone.png # diffuse'")) << scene.report.warnings[0];
+    const Material& a = meshWithMaterial(scene, "a").material;
+    EXPECT_EQ(a.baseColorFactor, glm::vec4(0.5f, 0.25f, 1.0f, 0.5f));
+    ASSERT_EQ(scene.images.size(), 2u);
+    EXPECT_EQ(scene.images[std::size_t(a.baseColorTexture.image)].name, "skin.png");
+    EXPECT_EQ(scene.images[std::size_t(a.baseColorTexture.image)].path, folder.path("skin.png"));
+    const Material& b = meshWithMaterial(scene, "b").material;
+    EXPECT_EQ(scene.images[std::size_t(b.baseColorTexture.image)].path, folder.path("hash #1.png"));
+    EXPECT_EQ(referencedFiles(model),
+              (std::vector<std::string>{folder.path("m.mtl"), folder.path("skin.png"), folder.path("hash #1.png"),
+                                        folder.path("gone.png # diffuse")}));
+}
+
 TEST(ObjMaterials, VertexColoursFollowTheirPositionsIntoEveryMaterialMesh) {
     const TempFolder folder;
     folder.write("m.mtl", "newmtl a\nnewmtl b\n");
