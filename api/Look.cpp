@@ -2,6 +2,7 @@
 
 #include "flags/FlagTable.h"
 #include "passes/lines/LineTypes.h"
+#include "scene/MessageText.h"
 
 #include <algorithm>
 
@@ -123,40 +124,60 @@ Look Look::fromStyleFile(const std::string& path) {
     });
 }
 
+namespace {
+
+/** `message` with each of `texts` it quotes shortened to its start (excerptForMessage()): the library takes strings
+ *  of any length, and a value of megabytes made a message of megabytes. */
+std::string withLongTextsShortened(std::string message, std::initializer_list<std::string_view> texts) {
+    for (const std::string_view text : texts) {
+        if (text.size() <= detail::kMessageExcerptChars) continue;
+        const std::string excerpt = detail::excerptForMessage(text);
+        for (std::size_t at = message.find(text); at != std::string::npos; at = message.find(text, at + excerpt.size()))
+            message.replace(at, text.size(), excerpt);
+    }
+    return message;
+}
+
+} // namespace
+
 Look& Look::set(const std::string& flag, const std::string& value) {
-    translated("Look::set()", [&] {
-        const Flag* entry = findFlag(flag);
-        std::vector<std::string> arguments = {flag};
-        // An unknown flag keeps its value, so the parser names the flag as unknown rather than refusing the value.
-        if ((entry != nullptr && !entry->valueName.empty()) || (entry == nullptr && !value.empty()))
-            arguments.push_back(value);
-        else if (!value.empty())
-            throw UsageError(flag + ": takes no value, got '" + value + "'");
-        SourcedArguments added = expandStyleFile(arguments);
-        refuseOtherFlags(added, FlagOwner::Look);
-        if (added.origins.empty()) added.origins.assign(added.arguments.size(), "");
-        // The flags set again lose their earlier values; the new ones' values are checked as the parse goes.
-        Impl next = stateOf(mImpl);
-        for (std::size_t i = 0; i < added.arguments.size(); ++i) {
-            const Flag* replaced = flagOf(added.arguments[i]);
-            if (replaced == nullptr) continue;
-            for (std::size_t j = 0; j < next.arguments.size();) {
-                const Flag* existing = flagOf(next.arguments[j]);
-                const std::size_t span = existing != nullptr && !existing->valueName.empty() ? 2 : 1;
-                if (existing == replaced) {
-                    next.arguments.erase(next.arguments.begin() + long(j), next.arguments.begin() + long(j + span));
-                    next.origins.erase(next.origins.begin() + long(j), next.origins.begin() + long(j + span));
-                } else {
-                    j += span;
+    try {
+        translated("Look::set()", [&] {
+            const Flag* entry = findFlag(flag);
+            std::vector<std::string> arguments = {flag};
+            // An unknown flag keeps its value, so the parser names the flag as unknown rather than refusing the value.
+            if ((entry != nullptr && !entry->valueName.empty()) || (entry == nullptr && !value.empty()))
+                arguments.push_back(value);
+            else if (!value.empty())
+                throw UsageError(flag + ": takes no value, got '" + value + "'");
+            SourcedArguments added = expandStyleFile(arguments);
+            refuseOtherFlags(added, FlagOwner::Look);
+            if (added.origins.empty()) added.origins.assign(added.arguments.size(), "");
+            // The flags set again lose their earlier values; the new ones' values are checked as the parse goes.
+            Impl next = stateOf(mImpl);
+            for (std::size_t i = 0; i < added.arguments.size(); ++i) {
+                const Flag* replaced = flagOf(added.arguments[i]);
+                if (replaced == nullptr) continue;
+                for (std::size_t j = 0; j < next.arguments.size();) {
+                    const Flag* existing = flagOf(next.arguments[j]);
+                    const std::size_t span = existing != nullptr && !existing->valueName.empty() ? 2 : 1;
+                    if (existing == replaced) {
+                        next.arguments.erase(next.arguments.begin() + long(j), next.arguments.begin() + long(j + span));
+                        next.origins.erase(next.origins.begin() + long(j), next.origins.begin() + long(j + span));
+                    } else {
+                        j += span;
+                    }
                 }
+                if (!replaced->valueName.empty()) ++i;
             }
-            if (!replaced->valueName.empty()) ++i;
-        }
-        next.arguments.insert(next.arguments.end(), added.arguments.begin(), added.arguments.end());
-        next.origins.insert(next.origins.end(), added.origins.begin(), added.origins.end());
-        next.parsed = parseRenderFlags(next.arguments, next.origins, FlagChecks::Values);
-        stateOf(mImpl) = std::move(next);
-    });
+            next.arguments.insert(next.arguments.end(), added.arguments.begin(), added.arguments.end());
+            next.origins.insert(next.origins.end(), added.origins.begin(), added.origins.end());
+            next.parsed = parseRenderFlags(next.arguments, next.origins, FlagChecks::Values);
+            stateOf(mImpl) = std::move(next);
+        });
+    } catch (const Error& error) {
+        throw Error(error.kind(), withLongTextsShortened(error.what(), {flag, value}));
+    }
     return *this;
 }
 

@@ -92,6 +92,11 @@ void checkGivenFlags(const RenderOptions& options, const std::vector<const Flag*
         throw UsageError("--strokes: no line types to write (add --lines)");
     if (!options.statsPath.empty() && !rendersImages(options))
         throw UsageError("--stats needs -o or --dump: with --print-plan alone nothing is rendered or timed");
+    // '-' reads standard input for --list; an output named so was silently a file called '-'.
+    for (const auto& [flag, field] : outputPathFlags())
+        if (options.*field == "-")
+            throw UsageError(flag + " '-': outputs are written to files, not to standard output; name a file (a file "
+                                    "called '-' is './-')");
 }
 
 } // namespace

@@ -171,6 +171,18 @@ TEST(ApiLook, RefusesABadValueInTheCommandLinesWords) {
     EXPECT_STREQ(errorOf([] { ig::Look().set("--shadin", "cel"); }).what(), "Look::set(): unknown option '--shadin'");
 }
 
+TEST(ApiLook, AValueOfMegabytesIsQuotedByItsStart) {
+    // The library takes strings of any length; a megabyte value made a megabyte message.
+    const std::string huge(1 << 20, '7');
+    const std::string bands = errorOf([&] { ig::Look().set("--bands", huge); }).what();
+    EXPECT_EQ(bands, "Look::set(): --bands: '" + huge.substr(0, 60) + "... (1048576 bytes)' is not a finite number");
+    const std::string choice = errorOf([&] { ig::Look().setLineChoice("suggestive-stencil", huge); }).what();
+    EXPECT_LT(choice.size(), 1000u) << choice.substr(0, 1000);
+    EXPECT_NE(choice.find("... (1048576 bytes)"), std::string::npos) << choice.substr(0, 1000);
+    const std::string flag = errorOf([&] { ig::Look().set("--" + huge, "1"); }).what();
+    EXPECT_LT(flag.size(), 1000u) << flag.substr(0, 1000);
+}
+
 TEST(ApiLook, RulesBetweenFlagsWaitForTheWholeLook) {
     // fromArguments() has the whole look: a flag without effect is refused at once.
     EXPECT_STREQ(errorOf([] {

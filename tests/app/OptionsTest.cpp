@@ -525,6 +525,18 @@ TEST(Options, EveryValue) {
     EXPECT_TRUE(options.quiet);
 }
 
+TEST(Options, ADashIsNoOutputFile) {
+    // `--stats -` wrote a file called '-' without a word (for --list, '-' is standard input).
+    // -o, --svg and --strokes refuse it by its extension.
+    for (const char* flag : {"--stats", "--dump", "--graphviz"}) {
+        const std::string message = usageMessage({"m.obj", "-o", "x.png", "--lines", "contour", flag, "-"});
+        EXPECT_NE(message.find(std::string(flag) + " '-': outputs are written to files, not to standard output"),
+                  std::string::npos)
+            << message;
+    }
+    EXPECT_EQ(parseRenderOptions({"m.obj", "-o", "x.png", "--stats", "./-"}).statsPath, "./-");
+}
+
 TEST(Options, WholeNumbersAreWrittenInDigitsOnly) {
     // "16.0" or "1e1" for a count is a slip (a float pasted from a script), refused rather than read as 16 or 10.
     EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--size", "1e3x64"}),
