@@ -431,6 +431,16 @@ TEST(LoaderInputChecks, AUriIsNeverReadWhereAnAbsolutePathPointsAndTwoBuffersTin
                            "('a b.bin'), so it cannot read both"),
               std::string::npos)
         << message;
+    // An image is never read at load time, so an image URI that tinygltf reads by a buffer's name is no clash: the
+    // buffer reads its own file, and the image keeps its own path for when it is decoded.
+    std::string imageFirst = writer.gltfWithExternalBuffer(body, "a+b.bin");
+    const std::string lastImage = "{\"uri\": \"t.png%00.jpg\"}";
+    imageFirst.replace(imageFirst.find(lastImage), lastImage.size(), "{\"uri\": \"a%20b.bin\"}");
+    const Scene shared = loadScene(folder.write("model/shared.gltf", imageFirst));
+    ASSERT_EQ(shared.images.size(), 3u);
+    EXPECT_EQ(shared.images[2].path, folder.path("model/a b.bin"));
+    EXPECT_NE(std::ranges::find(shared.report.inputFiles, folder.path("model/a+b.bin")),
+              shared.report.inputFiles.end());
 }
 
 TEST(LoaderInputChecks, InputFilesOfStl) {

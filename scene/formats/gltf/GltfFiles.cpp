@@ -237,11 +237,13 @@ std::string pathBesideModel(const std::string& baseDirectory, std::string_view u
 std::optional<std::string> ExternalFiles::name(const std::string& baseDirectory, std::string_view uri, bool image) {
     const std::string asked = tinygltfPathBesideModel(baseDirectory, uri);
     (image ? imagePaths : bufferPaths).insert(asked);
-    if (uri.rfind("data:", 0) == 0) return std::nullopt; // an image's data: URI tinygltf takes for a name: unread
+    // An image is answered by a placeholder, never read here (its file is found when it is decoded), so only a
+    // buffer needs its file, and only buffers can clash.
+    if (image || uri.rfind("data:", 0) == 0) return std::nullopt;
     const std::string file = pathBesideModel(baseDirectory, uri);
     const auto [known, added] = fileOf.try_emplace(asked, file);
     const auto [firstUri, uriAdded] = uriOf.try_emplace(asked, std::string(uri));
-    if (!added && known->second != file && !image) return firstUri->second;
+    if (!added && known->second != file) return firstUri->second;
     return std::nullopt;
 }
 

@@ -70,10 +70,10 @@ struct ExternalFiles {
     std::set<std::string> bufferPaths; ///< as tinygltf asks for them (tinygltfPathBesideModel())
     std::set<std::string> imagePaths;  ///< the same
     std::vector<std::string> opened;
-    /** The file each path tinygltf asks for stands for (pathBesideModel()): tinygltf decodes URIs its own way, and
-     *  "model+lod0.bin" reaches the callbacks as "model lod0.bin". */
+    /** The file each buffer path tinygltf asks for stands for (pathBesideModel()): tinygltf decodes URIs its own way,
+     *  and "model+lod0.bin" reaches the callbacks as "model lod0.bin". */
     std::map<std::string, std::string> fileOf;
-    std::map<std::string, std::string> uriOf; ///< the first URI that reached each asked path
+    std::map<std::string, std::string> uriOf; ///< the first buffer URI that reached each asked path
 
     /** Records the buffer's or image's `uri` of a model in `baseDirectory`. For a buffer that tinygltf asks for by
      *  the same name as an earlier URI of another file ("a+b.bin" and "a%20b.bin": both "a b.bin"), that earlier
