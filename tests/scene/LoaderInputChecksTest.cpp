@@ -443,6 +443,23 @@ TEST(LoaderInputChecks, AUriIsNeverReadWhereAnAbsolutePathPointsAndTwoBuffersTin
               shared.report.inputFiles.end());
 }
 
+TEST(LoaderInputChecks, AMissingBufferIsNamedAsTheFileWritesIt) {
+    // tinygltf said "File not found : model lod0.bin" for the URI "model+lod0.bin": its own decoding, without a folder.
+    const TempFolder folder;
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const std::string body =
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+        "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}]";
+    const std::string model = folder.write("m.gltf", writer.gltfWithExternalBuffer(body, "model+lod0.bin"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(model); });
+    EXPECT_NE(message.find("buffer 'model+lod0.bin': file not found: '" + folder.path("model+lod0.bin") + "'"),
+              std::string::npos)
+        << message;
+    folder.write("model+lod0.bin", writer.binary());
+    EXPECT_EQ(loadScene(model).triangleCount(), 1u);
+}
+
 TEST(LoaderInputChecks, InputFilesOfStl) {
     const TempFile file("one.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
                                    "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n");
