@@ -42,8 +42,9 @@ const std::vector<WarningCode>& warningCodes() {
          "OBJ usemtl names materials no library defines; their faces are drawn in the default grey"},
         {K::MaterialInvisible, "material-invisible",
          "an MTL material that is fully transparent (d 0, or Tr 1): its faces are not drawn"},
-        {K::MaterialEmitsWhite, "material-emits-white",
-         "an MTL material whose emission (Ke) is white without a map_Ke: drawn white whatever its Kd and map_Kd"},
+        {K::WhiteEmissionIgnored, "white-emission-ignored",
+         "an MTL 'Ke 1 1 1' without a map_Ke (a white emission colour exporters write at strength 0): read as no "
+         "emission, as Blender's importer reads it"},
         {K::PrimitiveSkipped, "primitive-skipped", "a glTF primitive of points or lines, or without POSITION; skipped"},
         {K::IndicesIncomplete, "indices-incomplete", "trailing indices of an incomplete triangle; ignored"},
         {K::MeshDegenerate, "mesh-degenerate", "a mesh whose triangles are all degenerate; skipped"},

@@ -34,7 +34,7 @@ enum class WarningKind {
     MaterialRedefined,
     MaterialUndefined,
     MaterialInvisible,
-    MaterialEmitsWhite,
+    WhiteEmissionIgnored,
     PrimitiveSkipped,
     IndicesIncomplete,
     MeshDegenerate,

@@ -24,18 +24,20 @@ int alphaModeCode(AlphaMode mode) {
 }
 
 /** Binds `reference`'s texture and sampler to `unit` and sets `<prefix>Textured`, `<prefix>Set` and
- *  `<prefix>Transform`; an absent texture leaves the unit as it is and the flag 0. */
-void bindTexture(SceneMaterials& materials, const GlProgram& program, const TextureRef& reference, GLuint unit,
+ *  `<prefix>Transform`; an absent or unusable texture leaves the unit as it is and the flag 0. Returns whether it
+ *  bound one. */
+bool bindTexture(SceneMaterials& materials, const GlProgram& program, const TextureRef& reference, GLuint unit,
                  const std::string& prefix, bool srgb = true) {
     const GLint textured = program.uniform((prefix + "Textured").c_str());
     const GLuint texture = materials.texture(reference, srgb);
     glUniform1i(textured, texture != 0 ? 1 : 0);
-    if (texture == 0) return;
+    if (texture == 0) return false;
     glBindTextureUnit(unit, texture);
     glBindSampler(unit, materials.sampler(reference.sampler));
     glUniform1i(program.uniform((prefix + "Set").c_str()), reference.texCoord == 1 ? 1 : 0);
     glUniformMatrix3fv(program.uniform((prefix + "Transform").c_str()), 1, GL_FALSE,
                        glm::value_ptr(reference.transform));
+    return true;
 }
 
 int mipmapLevels(int width, int height) {
@@ -246,6 +248,7 @@ void SceneMaterials::describe(nlohmann::ordered_json& out) const {
         if (material.emissiveFactor != glm::vec3(0.0f))
             entry["emissive_factor"] = {material.emissiveFactor.r, material.emissiveFactor.g,
                                         material.emissiveFactor.b};
+        if (material.emissiveTexture.present()) entry["emissive_texture"] = imageName(material.emissiveTexture);
         if (material.mtoon) {
             const MToonMaterial& mtoon = *material.mtoon;
             static const char* const kOutlineModes[] = {"none", "worldCoordinates", "screenCoordinates"};
@@ -323,8 +326,14 @@ void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex, Mater
         else
             glUniform1i(program.uniform("materialBaseColorTextured"), 0);
     }
-    if (colour && program.uniform("materialEmissiveTextured") >= 0)
-        bindTexture(*this, program, material.emissiveTexture, kEmissiveTextureUnit, "materialEmissive");
+    if (colour && program.uniform("materialEmissiveTextured") >= 0 &&
+        !bindTexture(*this, program, material.emissiveTexture, kEmissiveTextureUnit, "materialEmissive") &&
+        material.emissiveTexture.present()) {
+        // An emissive image that cannot be used (missing, undecodable) takes the emission with it: the factor is the
+        // image's multiplier, often 1 1 1, and alone it drew the material white.
+        const glm::vec3 none(0.0f);
+        glUniform3fv(program.uniform("materialEmissiveFactor"), 1, glm::value_ptr(none));
+    }
     // glTF's metallic-roughness, which only shading draws (common/pbr.glsl): its texture is data, not colour, and an
     // MToon or unlit material never reads it, so it is not decoded for one.
     glUniform1f(program.uniform("materialMetallicFactor"), material.metallicFactor);

@@ -127,22 +127,30 @@ std::optional<MapStatement> parseMapStatement(std::string_view rest, std::string
     return map;
 }
 
-/** `map_Kd skin.png # diffuse`: a comment after the name, as some exporters write it. A name may hold '#' itself,
- *  so the comment is dropped only when the whole name finds no file and the part before a blank and '#' does. */
+/** `map_Kd skin.png # diffuse`: a comment after the name, as some exporters write it. A name may hold " #" itself
+ *  (`hash #1.png`), so it is kept whole when a file of exactly that name lies beside the library; else the name ends
+ *  before the first of at most four " #" whose part before names a file (fileBeside()). Only the exact name counts
+ *  for the whole: fileBeside()'s last-name fallback found `green.png` for `red.png # was textures/green.png`. */
 std::string withoutTrailingComment(const std::filesystem::path& folder, const std::string& name,
                                    const std::filesystem::path& modelFolder) {
+    constexpr int kCommentStartsTried = 4; // each try looks at the disk: a line of " #"s must not take minutes
     std::error_code error;
-    if (name.find('#') == std::string::npos ||
-        std::filesystem::is_regular_file(fileBeside(folder, name, modelFolder), error))
-        return name;
-    for (std::size_t hash = name.find('#'); hash != std::string::npos; hash = name.find('#', hash + 1)) {
+    if (name.find('#') == std::string::npos || std::filesystem::is_regular_file(folder / name, error)) return name;
+    int tried = 0;
+    for (std::size_t hash = name.find('#'); hash != std::string::npos && tried < kCommentStartsTried;
+         hash = name.find('#', hash + 1)) {
         if (hash == 0 || !isBlank(name[hash - 1])) continue;
+        ++tried;
         const std::string before(trimmed(std::string_view(name).substr(0, hash)));
         if (before.empty()) break;
         if (std::filesystem::is_regular_file(fileBeside(folder, before, modelFolder), error)) return before;
     }
     return name;
 }
+
+/** A Ke this close to white (in every channel, after clamping to [0, 1]) is white: 1 - 1/512, under half an 8-bit
+ *  step below 1. */
+constexpr float kWhiteEmission = 1.0f - 1.0f / 512.0f;
 
 /** What one `newmtl` block said, turned into a Material when the block ends. At namespace scope: clang (14) cannot
  *  default-construct a nested class with member initializers inside its enclosing class (std::optional::emplace()). */
@@ -338,8 +346,8 @@ private:
         }
         for (std::optional<MapStatement>* map : {&pending.diffuseMap, &pending.emissiveMap, &pending.dissolveMap})
             if (*map) (*map)->file = withoutTrailingComment(mFolder, (*map)->file, mModelFolder);
-        const glm::vec3 diffuse(material.baseColorFactor);
-        if (pending.diffuseMap && (!pending.diffuseColourGiven || diffuse == glm::vec3(0.0f))) {
+        const glm::vec4 colourAsWritten = material.baseColorFactor;
+        if (pending.diffuseMap && (!pending.diffuseColourGiven || glm::vec3(colourAsWritten) == glm::vec3(0.0f))) {
             // No Kd to multiply the image by: drawn as the image is, not darkened by the 0.8 grey of a bare material.
             // `Kd 0 0 0` beside a map_Kd would draw it black by the MTL rule (Kd times the map); exporters write it
             // for "the map decides", and Blender's importer lets the map replace it, so the map is drawn as it is.
@@ -349,25 +357,31 @@ private:
             material.baseColorTexture.image = imageOf(*pending.diffuseMap, "map_Kd", pending.diffuseMapLine);
             material.baseColorTexture.sampler = pending.diffuseMap->sampler;
             material.baseColorTexture.transform = pending.diffuseMap->transform;
+            // A missing map decides nothing: the Kd as written (or the bare grey) is drawn, not white.
+            if (!material.baseColorTexture.present()) material.baseColorFactor = colourAsWritten;
         }
+        const bool whiteEmission = glm::all(glm::greaterThanEqual(material.emissiveFactor, glm::vec3(kWhiteEmission)));
         if (pending.emissiveMap) {
-            // The map times Ke (the MTL rule); without a Ke it is drawn as it is, as a map_Kd without Kd.
+            // The map times Ke (the MTL rule); without a Ke it is drawn as it is, as a map_Kd without Kd. A missing
+            // map takes the emission with it: Ke (often 1 1 1 beside a map) alone would draw the material white.
             if (!pending.emissionGiven) material.emissiveFactor = glm::vec3(1.0f);
             material.emissiveTexture.image = imageOf(*pending.emissiveMap, "map_Ke", pending.emissiveMapLine);
             material.emissiveTexture.sampler = pending.emissiveMap->sampler;
             material.emissiveTexture.transform = pending.emissiveMap->transform;
-        } else if (material.emissiveFactor == glm::vec3(1.0f)) {
-            // Drawn as written (the emission is added after the light), but said: tools that keep an emission colour
-            // and its strength apart (Blender's Principled BSDF since 4.0: white at strength 0) write `Ke 1 1 1` for
-            // "no emission", and the whole material then comes out white.
+            if (!material.emissiveTexture.present()) material.emissiveFactor = glm::vec3(0.0f);
+        } else if (whiteEmission) {
+            // A white emission hides every colour and map under it. Tools that keep an emission colour and its
+            // strength apart write `Ke 1 1 1` for a white colour at strength 0 (Blender's Principled BSDF since 4.0,
+            // scans exported as "Kd 0, Ke 1, map_Kd"), and Blender's importer sets the colour alone, at strength 0
+            // unless a map_Ke is given: so it is read as no emission, and said. A Ke below white is drawn.
+            material.emissiveFactor = glm::vec3(0.0f);
             mWarnings.push_back(makeWarning(
-                WarningKind::MaterialEmitsWhite,
+                WarningKind::WhiteEmissionIgnored,
                 "material library '" + mPath + "' line " + std::to_string(pending.emissionLine) + ": material '" +
                     excerptForMessage(material.name) +
-                    "' emits white ('Ke 1 1 1') without a map_Ke: it is drawn white over its " +
-                    (pending.diffuseMap ? "map_Kd" : "Kd") +
-                    " (an exporter that drops the emission's strength writes this for none); 'Ke 0 0 0' draws its "
-                    "colour",
+                    "': a white 'Ke' without a map_Ke is read as no emission, as Blender's importer reads it "
+                    "(exporters write a white emission colour of strength 0 so); the material is drawn with its " +
+                    (pending.diffuseMap ? "map_Kd" : "Kd") + ", not white",
                 mPath, material.name));
         }
         if (pending.dissolveMap) {

@@ -130,8 +130,9 @@ public:
                 parseLine(cursor, lineEnd);
                 cursor = lineEnd + 1;
             }
-            if (mLine % kLinesBetweenBudgetChecks == 0) {
+            if (mLine >= mNextBudgetCheck) { // >=: a continued statement steps over several lines
                 mBudget.check(mPositions.size() + mNormals.size() + mTexcoords.size(), mCornerCount / 3);
+                mNextBudgetCheck = mLine + kLinesBetweenBudgetChecks;
             }
         }
         checkForwardReferences();
@@ -146,25 +147,52 @@ public:
 private:
     [[noreturn]] void fail(std::string_view problem) const { throwLoadErrorAtLine(mPath, mLine, problem); }
 
-    /** The OBJ specification's line continuation: a statement whose line ends in '\\' goes on on the next line
-     *  (long `f` lines of some exporters). A comment does not: Windows paths in comments end in '\\'. */
+    /** Where a data statement's values end: at a comment (`f 1 2 3 # quad`, as some exporters write). Names (`o`,
+     *  `g`, `usemtl`, `mtllib`) may hold '#', so only the statements of numbers are cut. */
+    static const char* valuesEnd(const char* p, const char* end) {
+        while (p < end && isBlank(*p)) ++p;
+        const char* keyword = p;
+        while (p < end && !isBlank(*p)) ++p;
+        if (!isDataStatement(std::string_view(keyword, std::size_t(p - keyword)))) return end;
+        const char* hash = static_cast<const char*>(std::memchr(p, '#', std::size_t(end - p)));
+        return hash != nullptr ? hash : end;
+    }
+
+    /** The statements of numbers, which the OBJ specification lets go on over lines ending in '\\'. */
+    static bool isDataStatement(std::string_view keyword) {
+        return keyword == "v" || keyword == "vt" || keyword == "vn" || keyword == "vp" || keyword == "f" ||
+               keyword == "fo" || keyword == "l" || keyword == "p";
+    }
+
+    /** The OBJ specification's line continuation: a statement of numbers (`v`, `f`, ...) whose line ends in '\\'
+     *  goes on on the next line (long `f` lines of some exporters). Names and paths never do: a '\\' ends Windows
+     *  folders (`g C:\\models\\`, `mtllib`), and a comment ends the values (`f 1 2 3 # C:\\dir\\`). */
     static bool continuesOnNextLine(const char* p, const char* end) {
+        const char* last = end;
+        while (last > p && isBlank(last[-1])) --last;
+        if (last == p || last[-1] != '\\') return false; // most lines: one look at their end
+        end = valuesEnd(p, end);
         while (end > p && isBlank(end[-1])) --end;
         if (end == p || end[-1] != '\\') return false;
         while (p < end && isBlank(*p)) ++p;
-        return *p != '#';
+        const char* keyword = p;
+        while (p < end && !isBlank(*p)) ++p;
+        return isDataStatement(std::string_view(keyword, std::size_t(p - keyword)));
     }
 
-    /** Joins a statement's continued lines (each '\\' and line break read as a blank) and reads it as one line;
+    /** Joins a statement's continued lines (each '\\' and line break read as one blank) and reads it as one line;
      *  errors name its first line. Returns where the next statement starts. */
     const char* parseContinuedStatement(const char* cursor, const char* lineEnd, const char* end) {
         const std::size_t firstLine = mLine;
         std::string statement;
-        for (;;) {
-            const char* content = lineEnd;
+        for (bool first = true;; first = false) {
+            // The lines after the first hold values alone: a comment on them ends them too.
+            const char* hash =
+                first ? nullptr : static_cast<const char*>(std::memchr(cursor, '#', std::size_t(lineEnd - cursor)));
+            const char* content = first ? valuesEnd(cursor, lineEnd) : hash != nullptr ? hash : lineEnd;
             while (content > cursor && isBlank(content[-1])) --content;
             const bool continues = content > cursor && content[-1] == '\\';
-            statement.append(cursor, continues ? content - 1 : lineEnd);
+            statement.append(cursor, continues ? content - 1 : content);
             statement += ' ';
             cursor = lineEnd + 1;
             if (!continues || cursor >= end) break;
@@ -191,6 +219,7 @@ private:
             ++p;
         }
         const std::string_view command(keyword, std::size_t(p - keyword));
+        if (isDataStatement(command)) end = valuesEnd(keyword, end);
         if (command == "v") {
             mPositions.push_back(parsePosition(p, end));
             readVertexColour(p, end);
@@ -740,6 +769,7 @@ private:
     std::string_view mText;
     MeshBudget& mBudget;
     std::size_t mLine = 0;
+    std::size_t mNextBudgetCheck = kLinesBetweenBudgetChecks; ///< the line at or after which the budget is checked
     std::string mMeshName;
     std::vector<std::string> mInputFiles; ///< the mtllib files read
     std::vector<Warning> mWarnings;

@@ -411,19 +411,22 @@ namespace {
 /** A texture on a coordinate set the mesh does not have would sample one texel everywhere: it is dropped, with a
  *  warning that names the mesh, the texture and the set. */
 void dropTexturesWithoutCoordinates(RawMesh& raw, LoadReport& report) {
-    auto check = [&](TextureRef& texture, const char* role) {
+    auto check = [&](TextureRef& texture, const char* role, glm::vec3* emission = nullptr) {
         if (!texture.present() || !raw.texcoords[texture.texCoord == 1 ? 1 : 0].empty()) return;
         // Said in glTF's words, which the readers map their coordinates to; an OBJ's own name is given too.
         const std::string coordinatesInOtherFormats = texture.texCoord == 0 ? " (an OBJ's 'vt')" : "";
         report.warnings.push_back(makeWarning(WarningKind::TextureCoordinatesMissing,
                                               "mesh '" + raw.name + "': its " + role + " reads TEXCOORD_" +
                                                   std::to_string(texture.texCoord) + coordinatesInOtherFormats +
-                                                  ", which the mesh does not have; drawn without that texture",
+                                                  ", which the mesh does not have; drawn without that texture" +
+                                                  (emission != nullptr ? " and its emission" : ""),
                                               "", raw.name));
         texture = TextureRef{};
+        // The emissive factor multiplies the image, often as 1 1 1: alone it would draw the mesh white.
+        if (emission != nullptr) *emission = glm::vec3(0.0f);
     };
     check(raw.material.baseColorTexture, "base colour texture");
-    check(raw.material.emissiveTexture, "emissive texture");
+    check(raw.material.emissiveTexture, "emissive texture", &raw.material.emissiveFactor);
     if (raw.material.mtoon) {
         check(raw.material.mtoon->shadeMultiplyTexture, "MToon shade texture");
         check(raw.material.mtoon->outlineWidthMultiplyTexture, "MToon outline width texture");

@@ -1047,6 +1047,30 @@ TEST_F(Cli, AnUndecodableTextureIsAWarningAndStrictMakesItBadInput) {
     EXPECT_EQ(readText(directory / "bad.png"), "this is not a PNG") << "the model's own texture is untouched";
 }
 
+TEST_F(Cli, AnEmissiveImageThatCannotBeDecodedTakesTheEmissionWithIt) {
+    // map_Ke without Ke multiplies the image by 1; an undecodable image left that factor alone and drew the triangle
+    // white (unseen on the white paper). Now it is drawn as without the map_Ke line; --stats names the image.
+    auto writeText = [](const fs::path& path, const std::string& text) { std::ofstream(path) << text; };
+    const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+    writeText(directory / "glow.mtl", "newmtl skin\nKd 0.2 0.2 0.2\nmap_Ke glow.png\n");
+    writeText(directory / "plain.mtl", "newmtl skin\nKd 0.2 0.2 0.2\n");
+    writeText(directory / "glow.png", "this is not a PNG");
+    writeText(directory / "glow.obj", "mtllib glow.mtl\nusemtl skin\n" + triangle);
+    writeText(directory / "plain.obj", "mtllib plain.mtl\nusemtl skin\n" + triangle);
+    const std::string flags = " --size 32x32 --shading flat --lines none";
+    const CliRun glow = run("render glow.obj -o glow-out.png --stats glow.json" + flags);
+    EXPECT_EQ(glow.exitCode, 0) << glow.err;
+    EXPECT_NE(glow.err.find("image 0 'glow.png': cannot be decoded"), std::string::npos) << glow.err;
+    ASSERT_EQ(run("render plain.obj -o plain-out.png" + flags).exitCode, 0);
+    const cv::Mat drawn = readImage(directory / "glow-out.png");
+    EXPECT_EQ(cv::norm(drawn, readImage(directory / "plain-out.png"), cv::NORM_INF), 0.0);
+    std::vector<cv::Mat> channels;
+    cv::split(drawn, channels);
+    EXPECT_GT(cv::countNonZero(channels[1] < 128), 20) << "the dark grey triangle is drawn, not white";
+    const auto stats = nlohmann::json::parse(readText(directory / "glow.json"));
+    EXPECT_EQ(stats["scene"]["materials"][0]["emissive_texture"], "glow.png") << stats["scene"]["materials"];
+}
+
 TEST_F(Cli, AMissingGltfTextureIsAWarningAsAnObjOneIs) {
     // The Khronos textured box with its image made an external file that is not there and its base colour factor
     // blue: drawn with the factor alone, with a texture-missing warning naming the image; --strict refuses it with

@@ -79,6 +79,19 @@ TEST(LoadLimits, GrowingObjIsStoppedAtTheLimit) {
     EXPECT_EQ(loadScene(file.path(), options).triangleCount(), 40'000u);
 }
 
+TEST(LoadLimits, ContinuedLinesAreStoppedAtTheLimitToo) {
+    // The limit is checked every 16,384 lines; a face over two lines ended on odd lines only, so the check never ran
+    // and 6 million faces loaded past --memory-limit 256.
+    std::ostringstream obj;
+    obj << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    for (int i = 0; i < 100'000; ++i) obj << "f 1 2 \\\n3\n";
+    const TempFile file("continued.obj", obj.str());
+    LoadOptions options;
+    options.memoryLimitBytes = 4u << 20;
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path(), options); });
+    EXPECT_NE(message.find(file.fileName() + "': the mesh would need about"), std::string::npos) << message;
+}
+
 TEST(LoadLimits, FileLargerThanTheLimitIsRefusedBeforeItIsRead) {
     const TempFile file("large.obj", std::string(3u << 20, '#'));
     LoadOptions options;

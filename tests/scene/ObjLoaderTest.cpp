@@ -152,10 +152,12 @@ TEST(ObjLoader, AcceptsTextureCoordinateFormsCommentsCrlfAndObjectNames) {
 }
 
 TEST(ObjLoader, ALineEndingInABackslashGoesOnOnTheNextLine) {
-    // The OBJ specification's continuation (long `f` lines of some exporters) was refused. A comment ending in '\\'
-    // (a Windows folder) does not swallow the next line, and an error names the statement's first line.
-    const TempFile file("continued.obj", "# exported from C:\\models\\\nv 0 0 0\nv 1 0 \\\r\n  0\nv 1 1 0\nv 0 1 0\n"
-                                         "f 1 2 \\\n3 \\ \n 4\nv 5 5 5 \\");
+    // The OBJ specification's continuation (long `f` lines of some exporters) was refused. Only statements of
+    // numbers continue: a comment, or a name ending in '\\' (a Windows folder: `g C:\models\`, `s 1 \`), does not
+    // swallow the next line, and an error names the statement's first line.
+    const TempFile file("continued.obj",
+                        "# exported from C:\\models\\\ng C:\\models\\\nv 0 0 0\nv 1 0 \\\r\n  0\nv 1 1 0\n"
+                        "v 0 1 0\ns 1 \\\nf 1 2 \\\n3 \\ \n 4\nv 5 5 5 \\");
     const Scene scene = loadScene(file.path());
     ASSERT_EQ(scene.meshes.size(), 1u);
     EXPECT_EQ(scene.meshes[0].triangleCount(), 2u) << "the quad read whole, cut in two";
@@ -173,6 +175,15 @@ TEST(ObjLoader, ALineEndingInABackslashGoesOnOnTheNextLine) {
     const TempFile after("continued_after.obj", "v 0 0 0\nv 1 \\\n0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
     EXPECT_NE(test::sceneErrorMessage([&] { loadScene(after.path()); }).find("line 6"), std::string::npos)
         << "lines after a continued statement keep their numbers";
+}
+
+TEST(ObjLoader, ACommentAfterTheNumbersEndsThem) {
+    // `f 1 2 3 # first` was refused ("cannot read face index in '#'"); a comment ending in '\\' does not continue.
+    const TempFile file("comments.obj", "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nvn 0 0 1 # up\nvt 0 0 #\n"
+                                        "f 1//1 2//1 3//1 # first C:\\dir\\\nf 1//1 3//1 2//1#second\n");
+    const Scene scene = loadScene(file.path());
+    EXPECT_EQ(scene.report.trianglesRead, 2u);
+    EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
 }
 
 TEST(ObjLoader, PentagonIsFanTriangulated) {

@@ -516,30 +516,38 @@ TEST(ObjMaterials, AFullyTransparentMaterialIsSaidAndAMapWithoutKdIsDrawnAsTheIm
     EXPECT_EQ(meshWithMaterial(scene, "tinted").material.baseColorFactor, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
 }
 
-TEST(ObjMaterials, AMapKeIsTheEmissiveTextureAndAWhiteKeWithoutOneIsSaid) {
+TEST(ObjMaterials, AMapKeIsTheEmissiveTextureAndAWhiteKeWithoutOneIsNoEmission) {
     // map_Ke was ignored, so a material with `Ke 1 1 1` and its glow in a map_Ke was drawn white; now the map is the
-    // emissive texture, times Ke (1 without one). A white Ke without a map is drawn as written, with a warning:
-    // exporters that drop the emission's strength write it for "no emission". Kd 0 0 0 beside a map_Kd (the MTL
-    // rule would draw the map black) lets the map decide, as Blender's importer does; Kd 0 alone stays black.
+    // emissive texture, times Ke (1 without one). A white Ke without a map (a white emission colour at strength 0,
+    // as exporters write it: Blender 4's "Kd 0, Ke 1, map_Kd") drew the material white: now it is no emission, with
+    // a warning, as Blender's importer reads it; a coloured Ke stays. Kd 0 0 0 beside a map_Kd (the MTL rule would
+    // draw the map black) lets the map decide, as Blender's importer does; Kd 0 alone stays black.
     const TempFolder folder;
     folder.write("skin.png", "not decoded here");
     folder.write("glow.png", "not decoded here");
     folder.write("m.mtl", "newmtl glowing\nKe 1 1 1\nmap_Kd skin.png\nmap_Ke -clamp on glow.png\n"
                           "newmtl dim\nKe 0.5 0.25 0\nmap_Ke glow.png\nnewmtl keOnly\nmap_Ke glow.png\n"
                           "newmtl white\nKd 0.2 0.4 0.6\nmap_Kd skin.png\nKe 1 1 1\n"
-                          "newmtl blackKd\nKd 0 0 0\nmap_Kd skin.png\nnewmtl black\nKd 0 0 0\n");
+                          "newmtl blackKd\nKd 0 0 0\nmap_Kd skin.png\nnewmtl black\nKd 0 0 0\n"
+                          "newmtl scan\nKd 0 0 0\nKe 1 1 1\nmap_Kd skin.png\nnewmtl lamp\nKe 1 0.5 0\n"
+                          "newmtl gone\nKd 0 0 0\nmap_Kd gone.png\nKe 1 1 1\nmap_Ke gone.png\n"
+                          "newmtl nearly\nKe 0.9995 2 1\n");
     std::string faces;
-    for (const char* name : {"glowing", "dim", "keOnly", "white", "blackKd", "black"})
+    for (const char* name : {"glowing", "dim", "keOnly", "white", "blackKd", "black", "scan", "lamp", "gone", "nearly"})
         faces += std::string("usemtl ") + name + "\nf 1/1 2/2 3/3\n";
     const std::string model = folder.write("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
                                                     "vt 0 1\n" +
                                                         faces);
     const Scene scene = loadScene(model);
-    ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
-    EXPECT_EQ(scene.report.warnings[0].code, "material-emits-white");
+    ASSERT_EQ(scene.report.warnings.size(), 5u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.warnings[0].code, "white-emission-ignored");
+    EXPECT_EQ(scene.report.warnings[1].item, "scan");
+    EXPECT_EQ(scene.report.warnings[2].code, "texture-missing"); // gone's map_Kd
+    EXPECT_EQ(scene.report.warnings[3].code, "texture-missing"); // and its map_Ke
+    EXPECT_EQ(scene.report.warnings[4].item, "nearly");
     EXPECT_EQ(scene.report.warnings[0].item, "white");
-    EXPECT_TRUE(contains(scene.report.warnings[0].message, "line 13: material 'white' emits white ('Ke 1 1 1') "
-                                                           "without a map_Ke: it is drawn white over its map_Kd"))
+    EXPECT_TRUE(contains(scene.report.warnings[0].message, "line 13: material 'white': a white 'Ke' without a map_Ke "
+                                                           "is read as no emission"))
         << scene.report.warnings[0];
     ASSERT_EQ(scene.images.size(), 2u);
     EXPECT_EQ(scene.images[1].name, "glow.png");
@@ -554,15 +562,24 @@ TEST(ObjMaterials, AMapKeIsTheEmissiveTextureAndAWhiteKeWithoutOneIsSaid) {
     EXPECT_EQ(dim.emissiveTexture.image, 1);
     EXPECT_EQ(meshWithMaterial(scene, "keOnly").material.emissiveFactor, glm::vec3(1.0f));
     const Material& white = meshWithMaterial(scene, "white").material;
-    EXPECT_EQ(white.emissiveFactor, glm::vec3(1.0f));
+    EXPECT_EQ(white.emissiveFactor, glm::vec3(0.0f));
     EXPECT_FALSE(white.emissiveTexture.present());
     EXPECT_EQ(white.baseColorFactor, glm::vec4(0.2f, 0.4f, 0.6f, 1.0f));
     EXPECT_EQ(meshWithMaterial(scene, "blackKd").material.baseColorFactor, glm::vec4(1.0f));
     EXPECT_EQ(meshWithMaterial(scene, "black").material.baseColorFactor, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    const Material& scan = meshWithMaterial(scene, "scan").material; // as Blender 4 exports an unlit scan
+    EXPECT_EQ(scan.baseColorFactor, glm::vec4(1.0f));
+    EXPECT_EQ(scan.emissiveFactor, glm::vec3(0.0f));
+    EXPECT_EQ(meshWithMaterial(scene, "lamp").material.emissiveFactor, glm::vec3(1.0f, 0.5f, 0.0f));
+    // A missing map decides nothing: the Kd as written, and no emission (Ke alone would draw it white).
+    const Material& gone = meshWithMaterial(scene, "gone").material;
+    EXPECT_EQ(gone.baseColorFactor, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    EXPECT_EQ(gone.emissiveFactor, glm::vec3(0.0f));
+    EXPECT_EQ(meshWithMaterial(scene, "nearly").material.emissiveFactor, glm::vec3(0.0f));
     EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, folder.path("m.mtl"), folder.path("skin.png"),
-                                                                 folder.path("glow.png")}));
-    EXPECT_EQ(referencedFiles(model),
-              (std::vector<std::string>{folder.path("m.mtl"), folder.path("skin.png"), folder.path("glow.png")}));
+                                                                 folder.path("glow.png"), folder.path("gone.png")}));
+    EXPECT_EQ(referencedFiles(model), (std::vector<std::string>{folder.path("m.mtl"), folder.path("skin.png"),
+                                                                folder.path("glow.png"), folder.path("gone.png")}));
 }
 
 TEST(ObjMaterials, CommentsAfterValuesAndAfterAMapsNameAreDropped) {
@@ -571,11 +588,13 @@ TEST(ObjMaterials, CommentsAfterValuesAndAfterAMapsNameAreDropped) {
     const TempFolder folder;
     folder.write("skin.png", "not decoded here");
     folder.write("hash #1.png", "not decoded here");
+    folder.write("other.png", "not decoded here");
     folder.write("m.mtl", "newmtl a\nKd 0.5 0.25 1 # tinted\nd 0.5 # half\nmap_Kd skin.png # diffuse map\n"
-                          "newmtl b\nmap_Kd hash #1.png\nnewmtl c\nmap_Kd gone.png # diffuse\n");
+                          "newmtl b\nmap_Kd hash #1.png\nnewmtl c\nmap_Kd gone.png # diffuse\n"
+                          "newmtl d\nmap_Kd skin.png # was textures/other.png\n");
     const std::string model = folder.write(
         "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n"
-                 "usemtl b\nf 1/1 3/3 2/2\nusemtl c\nf 2/2 1/1 3/3\n");
+                 "usemtl b\nf 1/1 3/3 2/2\nusemtl c\nf 2/2 1/1 3/3\nusemtl d\nf 3/3 2/2 1/1\n");
     const Scene scene = loadScene(model);
     ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
     EXPECT_EQ(scene.report.warnings[0].code, "texture-missing");
@@ -587,6 +606,9 @@ TEST(ObjMaterials, CommentsAfterValuesAndAfterAMapsNameAreDropped) {
     EXPECT_EQ(scene.images[std::size_t(a.baseColorTexture.image)].path, folder.path("skin.png"));
     const Material& b = meshWithMaterial(scene, "b").material;
     EXPECT_EQ(scene.images[std::size_t(b.baseColorTexture.image)].path, folder.path("hash #1.png"));
+    // The whole name counts as found only as written: its last name, other.png, is no reason to keep the comment.
+    const Material& d = meshWithMaterial(scene, "d").material;
+    EXPECT_EQ(scene.images[std::size_t(d.baseColorTexture.image)].path, folder.path("skin.png"));
     EXPECT_EQ(referencedFiles(model),
               (std::vector<std::string>{folder.path("m.mtl"), folder.path("skin.png"), folder.path("hash #1.png"),
                                         folder.path("gone.png # diffuse")}));
