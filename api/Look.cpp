@@ -60,7 +60,7 @@ const LineParameter& lineParameterNamed(const std::string& name) {
         if (parameter->name == name) return *parameter;
         names += (names.empty() ? "" : ", ") + parameter->name;
     }
-    throw UsageError("no line parameter '" + name + "' (there are: " + names + ")");
+    throw UsageError("no line parameter '" + detail::excerptForMessage(name) + "' (there are: " + names + ")");
 }
 
 /** A look's state, or Error(Usage) for a Look moved from: its state went with the move, and using it crashed. */

@@ -88,6 +88,10 @@ struct Material {
     std::string name; ///< the file's material name, for messages and --stats; empty without one
     glm::vec4 baseColorFactor{0.8f, 0.8f, 0.8f, 1.0f}; ///< linear RGBA; a model without materials is light grey
     TextureRef baseColorTexture;                       ///< sRGB image, times baseColorFactor
+    /** The factor drawn when baseColorTexture cannot be used (missing, undecodable, no texture coordinates), where
+     *  the file's own colour differs from the factor the texture is drawn with: an OBJ map_Kd replaces a `Kd 0 0 0`
+     *  or an absent Kd, and without the map the Kd as written is drawn. Unset: baseColorFactor. */
+    std::optional<glm::vec4> baseColorFactorWithoutTexture;
     /** glTF's pbrMetallicRoughness, which `--shading mtoon` draws a material without MToon with (docs/mtoon.md). The
      *  glTF reader writes the file's values (glTF's defaults: metallic 1, roughness 1); a material that does not come
      *  from a glTF material (OBJ, STL, PLY, a glTF primitive without one, arrays) keeps these: a rough dielectric,

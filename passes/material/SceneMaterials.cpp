@@ -245,7 +245,10 @@ void SceneMaterials::describe(nlohmann::ordered_json& out) const {
                       {"roughness_factor", material.roughnessFactor},
                       {"metallic_roughness_texture", imageName(material.metallicRoughnessTexture)}};
         if (material.alphaMode == AlphaMode::Mask) entry["alpha_cutoff"] = material.alphaCutoff;
-        if (material.emissiveFactor != glm::vec3(0.0f))
+        // As drawn: an emissive image that cannot be used takes the emission with it (bind()).
+        const bool emissionDropped =
+            material.emissiveTexture.present() && mUnusableImages.contains(material.emissiveTexture.image);
+        if (material.emissiveFactor != glm::vec3(0.0f) && !emissionDropped)
             entry["emissive_factor"] = {material.emissiveFactor.r, material.emissiveFactor.g,
                                         material.emissiveFactor.b};
         if (material.emissiveTexture.present()) entry["emissive_texture"] = imageName(material.emissiveTexture);
@@ -321,10 +324,14 @@ void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex, Mater
     // Only programs that sample a texture look its uniforms up, and a draw for coverage samples only a material that
     // cuts out or blends: a pass that never reads colour never decodes an opaque material's texture.
     if (program.uniform("materialBaseColorTextured") >= 0) {
-        if (colour || material.alphaMode != AlphaMode::Opaque)
-            bindTexture(*this, program, material.baseColorTexture, kBaseColorTextureUnit, "materialBaseColor");
-        else
+        if (colour || material.alphaMode != AlphaMode::Opaque) {
+            if (!bindTexture(*this, program, material.baseColorTexture, kBaseColorTextureUnit, "materialBaseColor") &&
+                material.baseColorFactorWithoutTexture) // an image that cannot be used: the file's own colour
+                glUniform4fv(program.uniform("materialBaseColorFactor"), 1,
+                             glm::value_ptr(*material.baseColorFactorWithoutTexture));
+        } else {
             glUniform1i(program.uniform("materialBaseColorTextured"), 0);
+        }
     }
     if (colour && program.uniform("materialEmissiveTextured") >= 0 &&
         !bindTexture(*this, program, material.emissiveTexture, kEmissiveTextureUnit, "materialEmissive") &&

@@ -129,13 +129,15 @@ std::optional<MapStatement> parseMapStatement(std::string_view rest, std::string
 
 /** `map_Kd skin.png # diffuse`: a comment after the name, as some exporters write it. A name may hold " #" itself
  *  (`hash #1.png`), so it is kept whole when a file of exactly that name lies beside the library; else the name ends
- *  before the first of at most four " #" whose part before names a file (fileBeside()). Only the exact name counts
- *  for the whole: fileBeside()'s last-name fallback found `green.png` for `red.png # was textures/green.png`. */
+ *  before the first of at most four " #" whose part before names a file (fileBeside()), or before the first " #"
+ *  when none does (the file is then missing under its own name). Only the exact name counts for the whole:
+ *  fileBeside()'s last-name fallback found `green.png` for `red.png # was textures/green.png`. */
 std::string withoutTrailingComment(const std::filesystem::path& folder, const std::string& name,
                                    const std::filesystem::path& modelFolder) {
     constexpr int kCommentStartsTried = 4; // each try looks at the disk: a line of " #"s must not take minutes
     std::error_code error;
     if (name.find('#') == std::string::npos || std::filesystem::is_regular_file(folder / name, error)) return name;
+    std::optional<std::string> beforeFirstComment;
     int tried = 0;
     for (std::size_t hash = name.find('#'); hash != std::string::npos && tried < kCommentStartsTried;
          hash = name.find('#', hash + 1)) {
@@ -143,9 +145,10 @@ std::string withoutTrailingComment(const std::filesystem::path& folder, const st
         ++tried;
         const std::string before(trimmed(std::string_view(name).substr(0, hash)));
         if (before.empty()) break;
+        if (!beforeFirstComment) beforeFirstComment = before;
         if (std::filesystem::is_regular_file(fileBeside(folder, before, modelFolder), error)) return before;
     }
-    return name;
+    return beforeFirstComment.value_or(name);
 }
 
 /** A Ke this close to white (in every channel, after clamping to [0, 1]) is white: 1 - 1/512, under half an 8-bit
@@ -352,13 +355,17 @@ private:
             // `Kd 0 0 0` beside a map_Kd would draw it black by the MTL rule (Kd times the map); exporters write it
             // for "the map decides", and Blender's importer lets the map replace it, so the map is drawn as it is.
             material.baseColorFactor = glm::vec4(glm::vec3(1.0f), material.baseColorFactor.a);
+            material.baseColorFactorWithoutTexture = colourAsWritten; // drawn if the map cannot be (SceneMaterials)
         }
         if (pending.diffuseMap) {
             material.baseColorTexture.image = imageOf(*pending.diffuseMap, "map_Kd", pending.diffuseMapLine);
             material.baseColorTexture.sampler = pending.diffuseMap->sampler;
             material.baseColorTexture.transform = pending.diffuseMap->transform;
             // A missing map decides nothing: the Kd as written (or the bare grey) is drawn, not white.
-            if (!material.baseColorTexture.present()) material.baseColorFactor = colourAsWritten;
+            if (!material.baseColorTexture.present()) {
+                material.baseColorFactor = colourAsWritten;
+                material.baseColorFactorWithoutTexture.reset();
+            }
         }
         const bool whiteEmission = glm::all(glm::greaterThanEqual(material.emissiveFactor, glm::vec3(kWhiteEmission)));
         if (pending.emissiveMap) {

@@ -170,7 +170,9 @@ private:
     static bool continuesOnNextLine(const char* p, const char* end) {
         const char* last = end;
         while (last > p && isBlank(last[-1])) --last;
-        if (last == p || last[-1] != '\\') return false; // most lines: one look at their end
+        // Most lines: one look at their end. A comment ends the values first (`f 1 2 3 # C:\\dir\\`), on every
+        // line of the statement alike.
+        if (last == p || (last[-1] != '\\' && std::memchr(p, '#', std::size_t(last - p)) == nullptr)) return false;
         end = valuesEnd(p, end);
         while (end > p && isBlank(end[-1])) --end;
         if (end == p || end[-1] != '\\') return false;

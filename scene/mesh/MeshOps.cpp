@@ -426,6 +426,10 @@ void dropTexturesWithoutCoordinates(RawMesh& raw, LoadReport& report) {
         if (emission != nullptr) *emission = glm::vec3(0.0f);
     };
     check(raw.material.baseColorTexture, "base colour texture");
+    if (!raw.material.baseColorTexture.present() && raw.material.baseColorFactorWithoutTexture) {
+        raw.material.baseColorFactor = *raw.material.baseColorFactorWithoutTexture; // the file's colour, not the map's
+        raw.material.baseColorFactorWithoutTexture.reset();
+    }
     check(raw.material.emissiveTexture, "emissive texture", &raw.material.emissiveFactor);
     if (raw.material.mtoon) {
         check(raw.material.mtoon->shadeMultiplyTexture, "MToon shade texture");

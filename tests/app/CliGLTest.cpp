@@ -1069,6 +1069,15 @@ TEST_F(Cli, AnEmissiveImageThatCannotBeDecodedTakesTheEmissionWithIt) {
     EXPECT_GT(cv::countNonZero(channels[1] < 128), 20) << "the dark grey triangle is drawn, not white";
     const auto stats = nlohmann::json::parse(readText(directory / "glow.json"));
     EXPECT_EQ(stats["scene"]["materials"][0]["emissive_texture"], "glow.png") << stats["scene"]["materials"];
+    EXPECT_FALSE(stats["scene"]["materials"][0].contains("emissive_factor")) << "no emission is drawn";
+
+    // `Kd 0 0 0` beside a map_Kd draws the map as it is; an undecodable map leaves the Kd as written, not white.
+    writeText(directory / "black.mtl", "newmtl skin\nKd 0 0 0\nmap_Kd glow.png\n");
+    writeText(directory / "black.obj", "mtllib black.mtl\nusemtl skin\n" + triangle);
+    ASSERT_EQ(run("render black.obj -o black-out.png" + flags).exitCode, 0);
+    std::vector<cv::Mat> black;
+    cv::split(readImage(directory / "black-out.png"), black);
+    EXPECT_GT(cv::countNonZero(black[1] < 60), 20) << "the triangle is drawn black";
 }
 
 TEST_F(Cli, AMissingGltfTextureIsAWarningAsAnObjOneIs) {

@@ -458,6 +458,9 @@ TEST(LoaderInputChecks, AMissingBufferIsNamedAsTheFileWritesIt) {
         << message;
     folder.write("model+lod0.bin", writer.binary());
     EXPECT_EQ(loadScene(model).triangleCount(), 1u);
+    // A GLB may write its BIN chunk's buffer as "uri": "": no file is named, from any folder.
+    const std::string glb = test::glb(writer.gltfWithExternalBuffer(body, ""), writer.binary());
+    EXPECT_EQ(loadSceneFromMemory("bare.glb", glb).triangleCount(), 1u);
 }
 
 TEST(LoaderInputChecks, InputFilesOfStl) {

@@ -178,11 +178,13 @@ TEST(ObjLoader, ALineEndingInABackslashGoesOnOnTheNextLine) {
 }
 
 TEST(ObjLoader, ACommentAfterTheNumbersEndsThem) {
-    // `f 1 2 3 # first` was refused ("cannot read face index in '#'"); a comment ending in '\\' does not continue.
+    // `f 1 2 3 # first` was refused ("cannot read face index in '#'"); a comment ending in '\\' does not continue,
+    // and a '\\' before a comment does, on the first line as on the next.
     const TempFile file("comments.obj", "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nvn 0 0 1 # up\nvt 0 0 #\n"
-                                        "f 1//1 2//1 3//1 # first C:\\dir\\\nf 1//1 3//1 2//1#second\n");
+                                        "f 1//1 2//1 3//1 # first C:\\dir\\\nf 1//1 3//1 2//1#second\n"
+                                        "f 2//1 \\ # third\n1//1 \\ # goes on\n3//1\n");
     const Scene scene = loadScene(file.path());
-    EXPECT_EQ(scene.report.trianglesRead, 2u);
+    EXPECT_EQ(scene.report.trianglesRead, 3u);
     EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
 }
 

@@ -582,6 +582,18 @@ TEST(ObjMaterials, AMapKeIsTheEmissiveTextureAndAWhiteKeWithoutOneIsNoEmission) 
                                                                 folder.path("glow.png"), folder.path("gone.png")}));
 }
 
+TEST(ObjMaterials, AMapThatReplacesKdButCannotBeUsedLeavesTheKdAsWritten) {
+    // `Kd 0 0 0` beside a map_Kd draws the map; on a mesh without `vt` the map is dropped, and the material was then
+    // drawn white (the factor the map is drawn with) instead of its black.
+    const TempFolder folder;
+    folder.write("skin.png", "not decoded here");
+    folder.write("m.mtl", "newmtl black\nKd 0 0 0\nmap_Kd skin.png\n");
+    const Scene scene = loadScene(folder.write("m.obj", "mtllib m.mtl\nusemtl black\n" + kTriangle));
+    const Material& black = meshWithMaterial(scene, "black").material;
+    EXPECT_FALSE(black.baseColorTexture.present());
+    EXPECT_EQ(black.baseColorFactor, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+}
+
 TEST(ObjMaterials, CommentsAfterValuesAndAfterAMapsNameAreDropped) {
     // `Kd 0.8 0.8 0.8 # grey` was a malformed colour (ignored, with a warning) and `map_Kd skin.png # diffuse` a
     // missing file 'skin.png # diffuse'. A name holding " #" keeps it when such a file exists.
@@ -590,7 +602,7 @@ TEST(ObjMaterials, CommentsAfterValuesAndAfterAMapsNameAreDropped) {
     folder.write("hash #1.png", "not decoded here");
     folder.write("other.png", "not decoded here");
     folder.write("m.mtl", "newmtl a\nKd 0.5 0.25 1 # tinted\nd 0.5 # half\nmap_Kd skin.png # diffuse map\n"
-                          "newmtl b\nmap_Kd hash #1.png\nnewmtl c\nmap_Kd gone.png # diffuse\n"
+                          "newmtl b\nmap_Kd hash #1.png\nnewmtl c\nmap_Kd gone.png # was textures/other.png\n"
                           "newmtl d\nmap_Kd skin.png # was textures/other.png\n");
     const std::string model = folder.write(
         "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n"
@@ -598,7 +610,10 @@ TEST(ObjMaterials, CommentsAfterValuesAndAfterAMapsNameAreDropped) {
     const Scene scene = loadScene(model);
     ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
     EXPECT_EQ(scene.report.warnings[0].code, "texture-missing");
-    EXPECT_TRUE(contains(scene.report.warnings[0].message, "map_Kd 'gone.png # diffuse'")) << scene.report.warnings[0];
+    // A comment after a missing file's name is still a comment: the file is missing as gone.png, and other.png (found
+    // by the last name of the whole text) is not drawn instead.
+    EXPECT_TRUE(contains(scene.report.warnings[0].message, "map_Kd 'gone.png': '" + folder.path("gone.png") + "'"))
+        << scene.report.warnings[0];
     const Material& a = meshWithMaterial(scene, "a").material;
     EXPECT_EQ(a.baseColorFactor, glm::vec4(0.5f, 0.25f, 1.0f, 0.5f));
     ASSERT_EQ(scene.images.size(), 2u);
@@ -609,9 +624,8 @@ TEST(ObjMaterials, CommentsAfterValuesAndAfterAMapsNameAreDropped) {
     // The whole name counts as found only as written: its last name, other.png, is no reason to keep the comment.
     const Material& d = meshWithMaterial(scene, "d").material;
     EXPECT_EQ(scene.images[std::size_t(d.baseColorTexture.image)].path, folder.path("skin.png"));
-    EXPECT_EQ(referencedFiles(model),
-              (std::vector<std::string>{folder.path("m.mtl"), folder.path("skin.png"), folder.path("hash #1.png"),
-                                        folder.path("gone.png # diffuse")}));
+    EXPECT_EQ(referencedFiles(model), (std::vector<std::string>{folder.path("m.mtl"), folder.path("skin.png"),
+                                                                folder.path("hash #1.png"), folder.path("gone.png")}));
 }
 
 TEST(ObjMaterials, VertexColoursFollowTheirPositionsIntoEveryMaterialMesh) {
