@@ -246,6 +246,10 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
         mRenderer.context() != nullptr) {
         Prefetch prefetched = std::move(*mPrefetch);
         mPrefetch.reset();
+        // The load ends first: its thread writes the log until then, and read before, a warning it had yet to write
+        // was lost (a data race; a sanitized CI run dropped one still's warning). Told before get() rethrows a
+        // failed load's error, as before.
+        prefetched.still.wait();
         log.log << prefetched.log->str(); // its warnings, in this still's place
         still = prefetched.still.get();
         modelKey = std::move(prefetched.modelKey);
