@@ -149,6 +149,7 @@ Scene finalizeScene(const std::string& path, RawScene raw, const LoadOptions& op
     scene.report.format = raw.format;
     scene.report.warnings = std::move(raw.warnings);
     scene.report.inputFiles = std::move(raw.inputFiles);
+    scene.report.missingImages = std::move(raw.missingImages);
     recentre(path, raw, scene, function);
 
     // One model size for every mesh, so the weld and degenerate thresholds follow the file's units, not each part's.

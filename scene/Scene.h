@@ -86,6 +86,10 @@ struct LoadReport {
     std::vector<Warning> warnings;       ///< e.g. skipped POINTS primitives, ignored orthographic cameras
     std::vector<std::string> inputFiles; ///< every file this load read: the model, glTF external buffers and images
                                          ///< (paths as opened, resolved against the model's folder)
+    /** Texture files a material names that the load already found missing (an OBJ's maps, warned with their library
+     *  and line), by name as written and resolved path; the materials are drawn without them. A glTF's images are
+     *  found or not when drawn (SceneMaterials), so they are never here. */
+    std::vector<SceneImage> missingImages;
 };
 
 /** A skin joint or VRM humanoid bone node, for --frame: the part of a skinned character it moves. */

@@ -276,6 +276,9 @@ void SceneMaterials::describe(nlohmann::ordered_json& out) const {
     for (const UnusableImage& image : mDescribedUnusable)
         unusable.push_back(
             {{"image", image.image}, {"name", image.name}, {"reason", image.missing ? "missing" : "undecodable"}});
+    // Those the load found missing (an OBJ's maps) have no image index: nothing refers to them.
+    for (const SceneImage& image : mScene.report.missingImages)
+        unusable.push_back({{"image", nullptr}, {"name", image.name}, {"reason", "missing"}});
     out["images"] = {{"count", mScene.images.size()},
                      {"decoded", mTextures.size()},
                      {"decoded_bytes", mTextureBytes},

@@ -30,11 +30,12 @@ struct RawScene {
     std::vector<RawMesh> meshes;
     std::optional<SceneCamera> camera; ///< its eye relative to `origin`, like the positions
     std::optional<DirectionalLight> light;
-    std::optional<glm::dvec3> front;     ///< as Scene::front
-    std::vector<SceneImage> images;      ///< as Scene::images
-    std::vector<SceneJoint> joints;      ///< as Scene::joints, their boxes relative to `origin`
-    std::vector<Warning> warnings;       ///< `file` empty for the model: loadScene() names it
-    std::vector<std::string> inputFiles; ///< as LoadReport::inputFiles
+    std::optional<glm::dvec3> front;       ///< as Scene::front
+    std::vector<SceneImage> images;        ///< as Scene::images
+    std::vector<SceneImage> missingImages; ///< as LoadReport::missingImages
+    std::vector<SceneJoint> joints;        ///< as Scene::joints, their boxes relative to `origin`
+    std::vector<Warning> warnings;         ///< `file` empty for the model: loadScene() names it
+    std::vector<std::string> inputFiles;   ///< as LoadReport::inputFiles
 };
 
 /** `bytes` for a message: "N MiB" from 1 MiB up (rounded down), else "N KiB" or "N bytes" (a limit of a few bytes,
@@ -120,6 +121,7 @@ struct ObjMaterials {
     std::map<std::string, Material> byName; ///< `newmtl` name -> material; the first definition of a name wins
     std::vector<SceneImage> images;         ///< what the materials' textures index (RawScene::images)
     std::vector<std::string> namedFiles;    ///< every texture file named (map_Kd, map_d), resolved, found or not
+    std::vector<SceneImage> missingImages;  ///< the maps not found (name as written, resolved path), once per file
 };
 
 /** Reads one material library's text into `materials`: Kd, d/Tr, Ke, map_Kd (options skipped but -clamp, -s and -o)

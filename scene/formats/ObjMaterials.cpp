@@ -317,6 +317,8 @@ private:
                                                 "' is missing or not a regular file; material '" +
                                                 excerptForMessage(mCurrent->material.name) + "' is drawn without it",
                                             path, mCurrent->material.name));
+            if (std::ranges::find(mMaterials.missingImages, path, &SceneImage::path) == mMaterials.missingImages.end())
+                mMaterials.missingImages.push_back(SceneImage{map.file, path, {}, nullptr});
             return -1;
         }
         SceneImage image;

@@ -635,6 +635,7 @@ private:
         scene.inputFiles = std::move(mInputFiles);
         scene.warnings = std::move(mWarnings);
         scene.images = std::move(mMaterials.images);
+        scene.missingImages = std::move(mMaterials.missingImages);
         const std::string baseName = mMeshName.empty() ? std::filesystem::path(mPath).stem().string() : mMeshName;
 
         std::size_t groupsWithFaces = 0;

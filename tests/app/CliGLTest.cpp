@@ -1047,6 +1047,26 @@ TEST_F(Cli, AnUndecodableTextureIsAWarningAndStrictMakesItBadInput) {
     EXPECT_EQ(readText(directory / "bad.png"), "this is not a PNG") << "the model's own texture is untouched";
 }
 
+TEST_F(Cli, AnObjsMissingMapIsListedAmongTheUnusableImagesOnce) {
+    // The MTL reader finds the map missing at load (its warning names the library and the line); --stats lists it
+    // with the images that cannot be used, by its name as written and without an index (the model holds no image of
+    // it), once however many materials name it.
+    auto writeText = [](const fs::path& path, const std::string& text) { std::ofstream(path) << text; };
+    writeText(directory / "gone.mtl", "newmtl skin\nKd 1 0 0\nmap_Kd textures/skin.png\n"
+                                      "newmtl cloth\nKd 0 1 0\nmap_Kd textures/skin.png\n");
+    writeText(directory / "gone.obj", "mtllib gone.mtl\nusemtl skin\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
+                                      "vt 0 1\nf 1/1 2/2 3/3\n");
+    const CliRun lenient = run("render gone.obj -o gone.png --size 32x32 --stats gone.json");
+    EXPECT_EQ(lenient.exitCode, 0) << lenient.err;
+    EXPECT_NE(lenient.err.find("gone.mtl' line 3: map_Kd 'textures/skin.png'"), std::string::npos) << lenient.err;
+    const auto images = nlohmann::json::parse(readText(directory / "gone.json"))["scene"]["images"];
+    ASSERT_EQ(images["unusable"].size(), 1u) << images;
+    EXPECT_TRUE(images["unusable"][0]["image"].is_null()) << images;
+    EXPECT_EQ(images["unusable"][0]["name"], "textures/skin.png") << images;
+    EXPECT_EQ(images["unusable"][0]["reason"], "missing") << images;
+    EXPECT_EQ(images["count"], 0) << images;
+}
+
 TEST_F(Cli, AnEmissiveImageThatCannotBeDecodedTakesTheEmissionWithIt) {
     // map_Ke without Ke multiplies the image by 1; an undecodable image left that factor alone and drew the triangle
     // white (unseen on the white paper). Now it is drawn as without the map_Ke line; --stats names the image.
