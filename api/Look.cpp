@@ -29,8 +29,10 @@ std::string whereInLibrary(const Flag& flag) {
     case HelpSection::Views:
         return "sampleViews() (Python: sample_views()) draws the views: put each one's orbit() in a Frame";
     case HelpSection::System:
-        return name == "--memory-limit" ? "give SceneOptions::memoryLimitBytes to Scene::load()"
-                                        : "give it to the Renderer's constructor";
+        if (name == "--memory-limit") return "give SceneOptions::memoryLimitBytes to Scene::load()";
+        if (name == "--weld-distance") return "give SceneOptions::weldDistance to Scene::load()";
+        if (name == "--strict") return "give SceneOptions::strict to Scene::load()";
+        return "give it to the Renderer's constructor";
     }
     return "";
 }

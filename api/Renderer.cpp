@@ -244,6 +244,7 @@ struct Renderer::Impl {
             sceneImpl.options.memoryLimitBytes != 0 ? sceneImpl.options.memoryLimitBytes : defaultMemoryLimit();
         request.memoryLimitGiven = sceneImpl.options.memoryLimitBytes != 0;
         request.strict = sceneImpl.options.strict;
+        request.weldTolerance = sceneImpl.scene->report.weldTolerance; // as loaded, for a load again (a new pose)
         request.eglPlatform = eglPlatform;
         request.timePasses = false; // no per-pass timings to report: passes may overlap
         for (const std::string& name : buffers) {

@@ -23,6 +23,13 @@ LoadOptions loadOptionsOf(const SceneOptions& options) {
     load.animation = pose.animation;
     load.time = pose.animationTime;
     load.pose = pose.pose;
+    if (options.weldDistance != kDefaultWeldTolerance) { // checked by the flag's rule; the default is no one's text
+        try {
+            load.weldTolerance = parseRenderFlags({"--weld-distance", exactText(options.weldDistance)}).weldTolerance;
+        } catch (const UsageError& error) {
+            throw UsageError(std::string("SceneOptions::weldDistance: ") + error.what());
+        }
+    }
     applyFace(options.expressions, options.lookAt, "SceneOptions::", load.expressions, load.lookAt);
     return load;
 }

@@ -56,6 +56,7 @@ StillRequest stillRequestOf(const RenderOptions& options) {
     request.animationTime = options.animationTime;
     request.strict = options.strict;
     request.pose = options.pose;
+    request.weldTolerance = options.weldTolerance;
     request.expressions = options.expressions;
     request.lookAt = options.lookAt;
     if (options.readback == "early") request.readback = ReadbackTiming::Early;

@@ -25,6 +25,8 @@ constexpr double kMinClipDistance = 1e-30;
 constexpr double kMaxClipDistance = 1e30;
 constexpr double kMaxClipRatio = 1e30;
 constexpr int kMaxMemoryLimitMib = 1 << 24; // 16 TiB
+/** --weld-distance's largest: a hundredth of the model's size already merges whole features of a detailed model. */
+constexpr double kMaxWeldTolerance = 0.01;
 /** At +-90 degrees of --orbit elevation the view would be parallel to up. */
 constexpr double kMaxOrbitElevationDegrees = 89.9;
 constexpr double kMaxOrbitAzimuthDegrees = 360.0;
@@ -1182,6 +1184,16 @@ std::vector<Flag> makeFlags() {
                          [](const std::string& value, RenderOptions& options) {
                              options.memoryLimitBytes =
                                  std::size_t(parseWholeNumber("--memory-limit", value, 64, kMaxMemoryLimitMib)) << 20;
+                         }));
+    flags.push_back(flag({"--weld-distance"}, "R", S::System,
+                         "when loading, merge vertices closer than R x the model's size (its bounding box's\n"
+                         "diagonal), 0 to 0.01 (default 1e-6; 0: only vertices at the same point). Lower it for\n"
+                         "details under a millionth of the model (a part of a survey kilometres wide), which the\n"
+                         "default merges away with the warning details-merged; raise it so that faces written a\n"
+                         "little apart count as joined (no border line along the crack, the hull closed over it)",
+                         [](const std::string& value, RenderOptions& options) {
+                             options.weldTolerance =
+                                 parseNumberIn("--weld-distance", value, 0.0, kMaxWeldTolerance, "0 to 0.01");
                          }));
     return flags;
 }

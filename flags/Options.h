@@ -6,6 +6,7 @@
 #include "render/DefaultLook.h"
 #include "render/UsageError.h"
 #include "scene/Camera.h"
+#include "scene/Scene.h"
 #include "scene/ViewSampling.h"
 
 #include <glm/glm.hpp>
@@ -96,10 +97,11 @@ struct RenderOptions {
     std::string strokesPath;      ///< --strokes: every kept stroke with its points' 3-D points, JSON
     double svgTolerance = 0.5;    ///< --svg-tolerance: simplification, output pixels
     bool printPlan = false;
-    std::string eglPlatform = "auto";            ///< auto, device, surfaceless
-    std::string readback = "auto";               ///< --readback: auto, early, late
-    std::optional<std::size_t> memoryLimitBytes; ///< --memory-limit; default: half the machine's memory, >= 1 GiB
-    std::string stylePath;                       ///< --style, for the stats (its settings are already in the options)
+    std::string eglPlatform = "auto";             ///< auto, device, surfaceless
+    std::string readback = "auto";                ///< --readback: auto, early, late
+    std::optional<std::size_t> memoryLimitBytes;  ///< --memory-limit; default: half the machine's memory, >= 1 GiB
+    double weldTolerance = kDefaultWeldTolerance; ///< --weld-distance: LoadOptions::weldTolerance
+    std::string stylePath;                        ///< --style, for the stats (its settings are already in the options)
     bool quiet = false;
     bool strict = false; ///< --strict: every warning about the model or the view fails the still (exit 3)
     bool help = false;   ///< --help or -h in a flag's place: print help, do nothing else

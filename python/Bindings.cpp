@@ -1171,7 +1171,8 @@ void defineScene(py::module_& m) {
         .def_static(
             "load",
             [](const std::filesystem::path& path, const OsText& animation, double time, std::size_t memoryLimit,
-               bool strict, const OsText& pose, const std::map<std::string, double>& expressions, py::handle lookAt) {
+               bool strict, const OsText& pose, const std::map<std::string, double>& expressions, py::handle lookAt,
+               double weldDistance) {
                 ig::SceneOptions options;
                 options.animation = animation.bytes;
                 options.time = time;
@@ -1180,6 +1181,7 @@ void defineScene(py::module_& m) {
                 options.lookAt = optionalArgument(lookAt, vec3Argument, "Scene.load(look_at)");
                 options.memoryLimitBytes = memoryLimit;
                 options.strict = strict;
+                options.weldDistance = weldDistance;
                 std::optional<ig::Scene> scene;
                 {
                     const py::gil_scoped_release release;
@@ -1190,18 +1192,19 @@ void defineScene(py::module_& m) {
             },
             "path"_a, "animation"_a = OsText{}, "time"_a = 0.0, "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
             "strict"_a = false, "pose"_a = OsText{}, "expressions"_a = std::map<std::string, double>{},
-            "look_at"_a = py::none(),
+            "look_at"_a = py::none(), "weld_distance"_a = ig::SceneOptions{}.weldDistance,
             "Loads a model; `animation` (a glTF animation's name or index) and `time` (seconds) pose it, as "
             "--animation and --time, and `pose` ('a-pose' or a pose file) a VRM's humanoid, as --pose; "
             "`expressions` ({name: weight}) and `look_at` ((x, y, z) or None) set a VRM character's face, as "
             "--expression and --look-at; `memory_limit` (bytes) bounds the load and each render of the scene as "
             "--memory-limit (0: the command line's default); `strict` makes every warning of the load and of each "
-            "render an InputError, as --strict. Issues the loader's warnings (InkgraphWarning). Raises "
+            "render an InputError, as --strict; vertices closer than `weld_distance` x the model's size are merged "
+            "(0 to 0.01), as --weld-distance. Issues the loader's warnings (InkgraphWarning). Raises "
             "InputError naming the file and the problem.")
         .def_static(
             "from_arrays",
             [](py::handle vertices, py::handle faces, py::handle normals, py::handle uvs, py::handle colors,
-               const OsText& name, std::size_t memoryLimit) {
+               const OsText& name, std::size_t memoryLimit, double weldDistance) {
                 const auto vertexArray = floatRows(vertices, "vertices", {3}, std::nullopt);
                 const py::ssize_t vertexCount = vertexArray.shape(0);
                 const auto faceArray = faceRows(faces);
@@ -1222,6 +1225,7 @@ void defineScene(py::module_& m) {
                 }
                 ig::SceneOptions options;
                 options.memoryLimitBytes = memoryLimit;
+                options.weldDistance = weldDistance;
                 std::optional<ig::Scene> scene;
                 // The library checks the values (finite, indices in range, the limits) and names its arrays as the
                 // arguments are named; only the function is spelt Python's way.
@@ -1239,12 +1243,13 @@ void defineScene(py::module_& m) {
             },
             "vertices"_a, "faces"_a, "normals"_a = py::none(), "uvs"_a = py::none(), "colors"_a = py::none(),
             "name"_a = OsText{"arrays"}, "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
+            "weld_distance"_a = ig::SceneOptions{}.weldDistance,
             "A scene of one mesh from NumPy arrays (or anything numpy.asarray takes): vertices (N, 3), faces (M, 3) "
             "vertex indices counter-clockwise seen from the front, and optionally normals (N, 3), uvs (N, 2) and "
             "colors (N, 3) or (N, 4) in [0, 1]. float32 C-contiguous arrays (uint32 faces) are read where they are; "
             "others are converted (integer faces after checking every index fits in uint32). Renders as an OBJ with "
-            "the same vertices and faces does. Raises InputError naming the argument and the problem (a shape, a "
-            "dtype, a value that is not finite, an index out of range).")
+            "the same vertices and faces does (welded as Scene.load's weld_distance says). Raises InputError naming "
+            "the argument and the problem (a shape, a dtype, a value that is not finite, an index out of range).")
         .def_property_readonly(
             "path", [](const ig::Scene& self) { return pathTextOf(self.path()); }, "The file, or '' for arrays.")
         .def_property_readonly("triangle_count", &ig::Scene::triangleCount)

@@ -192,6 +192,7 @@ LoadOptions loadOptionsOf(const StillRequest& request) {
     options.pose = request.pose;
     options.expressions = request.expressions;
     options.lookAt = request.lookAt;
+    options.weldTolerance = request.weldTolerance;
     return options;
 }
 

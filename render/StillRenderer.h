@@ -91,7 +91,8 @@ struct StillRequest {
     /** Every warning fails the still (--strict): a SceneError once the warning is printed, before anything is
      *  written. */
     bool strict = false;
-    std::string pose; ///< LoadOptions::pose: a VRM humanoid pose to load the model in
+    std::string pose;                             ///< LoadOptions::pose: a VRM humanoid pose to load the model in
+    double weldTolerance = kDefaultWeldTolerance; ///< LoadOptions::weldTolerance
     EglPlatform eglPlatform = EglPlatform::Any;
     /** When the host passes' inputs leave the GPU (ExecuteOptions::readBackEarly): early, late, or by the renderer
      *  (late on software rasterizers, early on GPUs). */

@@ -150,6 +150,7 @@ Scene finalizeScene(const std::string& path, RawScene raw, const LoadOptions& op
     scene.report.warnings = std::move(raw.warnings);
     scene.report.inputFiles = std::move(raw.inputFiles);
     scene.report.missingImages = std::move(raw.missingImages);
+    scene.report.weldTolerance = options.weldTolerance;
     recentre(path, raw, scene, function);
 
     // One model size for every mesh, so the weld and degenerate thresholds follow the file's units, not each part's.

@@ -74,6 +74,9 @@ struct DirectionalLight {
     double intensity = 1.0;
 };
 
+/** LoadOptions::weldTolerance's default: positions within a millionth of the model's size are one. */
+inline constexpr double kDefaultWeldTolerance = 1e-6;
+
 /** What the loader did, for --stats and the manifest. */
 struct LoadReport {
     /** "obj", "stl-binary", "stl-ascii", "ply-ascii", "ply-binary", "gltf", "glb"; "arrays" for sceneFromArrays() */
@@ -90,6 +93,9 @@ struct LoadReport {
      *  and line), by name as written and resolved path; the materials are drawn without them. A glTF's images are
      *  found or not when drawn (SceneMaterials), so they are never here. */
     std::vector<SceneImage> missingImages;
+    /** LoadOptions::weldTolerance of this load: what is derived from the scene later (SceneDerivedData's position
+     *  welds for the hull and the edges) welds as the load did. */
+    double weldTolerance = kDefaultWeldTolerance;
 };
 
 /** A skin joint or VRM humanoid bone node, for --frame: the part of a skinned character it moves. */
@@ -153,8 +159,8 @@ struct ExpressionWeight {
 /** Options of loadScene(). */
 struct LoadOptions {
     /** Positions closer than weldTolerance x (bounding-box diagonal) are merged. Relative, so the result does
-     *  not depend on the model's units. */
-    double weldTolerance = 1e-6;
+     *  not depend on the model's units. The CLI sets it from --weld-distance. */
+    double weldTolerance = kDefaultWeldTolerance;
     /** The most memory one load may take, estimated before allocating from the file size and the vertex and
      *  triangle counts the file declares or has reached (detail::MeshBudget); above it loading stops with a
      *  SceneError naming the file. The CLI sets it from --memory-limit. */

@@ -37,7 +37,7 @@ void SceneDerivedData::requireMeshIndex(const char* function, std::size_t meshIn
 
 const WeldMap& SceneDerivedData::positionWeld(std::size_t meshIndex) {
     requireMeshIndex("SceneDerivedData::positionWeld()", meshIndex);
-    // One scene-wide distance, as the loader welds: relative to the whole model, so units do not matter.
+    // One scene-wide distance, the load's: relative to the whole model, so units do not matter.
     const double distance = derivedOnce(mWeldDistance, [&] {
         BoundingBox box;
         for (const Mesh& mesh : mScene.meshes) {
@@ -46,7 +46,7 @@ const WeldMap& SceneDerivedData::positionWeld(std::size_t meshIndex) {
             box.add(meshBox.min);
             box.add(meshBox.max);
         }
-        return LoadOptions{}.weldTolerance * box.diagonal();
+        return mScene.report.weldTolerance * box.diagonal();
     });
     return derivedOnce(*mPositionWelds[meshIndex],
                        [&] { return weldMeshPositions(mScene.meshes[meshIndex], distance); });

@@ -385,6 +385,7 @@ class Scene:
         pose: str = "",
         expressions: Mapping[str, float] = ...,
         look_at: _Vec3Like | None = None,
+        weld_distance: float = 1e-6,
     ) -> Scene: ...
     @staticmethod
     def from_arrays(
@@ -395,6 +396,7 @@ class Scene:
         colors: _ArrayLike | None = None,
         name: str = "arrays",
         memory_limit: int = 0,
+        weld_distance: float = 1e-6,
     ) -> Scene: ...
     @property
     def path(self) -> str: ...

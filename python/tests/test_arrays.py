@@ -202,3 +202,19 @@ def test_a_bad_out_array_is_refused(suzanne, name, out, problem):
     assert message.startswith("Renderer.render(): out: ") and problem in message, message
     with pytest.raises(TypeError):
         inkgraph.render(suzanne, size=(SIZE, 64), out=[[0]])  # type: ignore[arg-type]
+
+
+def test_weld_distance_is_the_loads_from_arrays_and_files(tmp_path):
+    # Triangles of 5e-4 units beside one of 1000: merged away at the default weld distance (1e-6 x 1414 units),
+    # kept at 0; a distance out of 0 to 0.01 is a UsageError naming the argument's flag.
+    vertices = np.array([[0, 0, 0], [1000, 0, 0], [0, 1000, 0], [10, 10, 0], [10.0005, 10, 0], [10, 10.0005, 0]],
+                        np.float32)
+    faces = np.array([[0, 1, 2], [3, 4, 5]], np.uint32)
+    assert inkgraph.Scene.from_arrays(vertices, faces).triangle_count == 1
+    assert inkgraph.Scene.from_arrays(vertices, faces, weld_distance=0.0).triangle_count == 2
+    obj = tmp_path / "tiny.obj"
+    obj.write_text("".join(f"v {x} {y} {z}\n" for x, y, z in vertices.tolist()) + "f 1 2 3\nf 4 5 6\n")
+    assert inkgraph.Scene.load(obj).triangle_count == 1
+    assert inkgraph.Scene.load(obj, weld_distance=0.0).triangle_count == 2
+    with pytest.raises(inkgraph.UsageError, match="--weld-distance: expected 0 to 0.01, got '0.02'"):
+        inkgraph.Scene.load(obj, weld_distance=0.02)

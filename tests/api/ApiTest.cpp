@@ -145,6 +145,40 @@ TEST_F(ApiScene, FaceOptionsAreCheckedAsTheirFlags) {
                  "Scene::load(): SceneOptions::lookAt: --look-at: 'nan' is not a finite number");
 }
 
+TEST_F(ApiScene, WeldDistanceIsTheLoadsAndCheckedAsItsFlag) {
+    // Triangles of 5e-4 units beside one of 1000: merged away at the default distance (1e-6 x 1414 units), kept at 0,
+    // from a file and from arrays alike.
+    const std::filesystem::path obj = directory / "tiny.obj";
+    std::ofstream(obj) << "v 0 0 0\nv 1000 0 0\nv 0 1000 0\nv 10 10 0\nv 10.0005 10 0\nv 10 10.0005 0\n"
+                          "f 1 2 3\nf 4 5 6\n";
+    ig::SceneOptions exact;
+    exact.weldDistance = 0.0;
+    EXPECT_EQ(ig::Scene::load(obj.string()).triangleCount(), 1u);
+    EXPECT_EQ(ig::Scene::load(obj.string(), exact).triangleCount(), 2u);
+    const float vertices[] = {0, 0, 0, 1000, 0, 0, 0, 1000, 0, 10, 10, 0, 10.0005f, 10, 0, 10, 10.0005f, 0};
+    const std::uint32_t faces[] = {0, 1, 2, 3, 4, 5};
+    ig::MeshArrays arrays;
+    arrays.vertices = vertices;
+    arrays.vertexCount = 6;
+    arrays.faces = faces;
+    arrays.faceCount = 2;
+    EXPECT_EQ(ig::Scene::fromArrays(arrays, "tiny", exact).triangleCount(), 2u);
+    EXPECT_EQ(ig::Scene::fromArrays(arrays, "tiny").triangleCount(), 1u);
+
+    ig::SceneOptions coarse;
+    coarse.weldDistance = 0.02;
+    const ig::Error error = errorOf([&] { ig::Scene::load(obj.string(), coarse); });
+    EXPECT_EQ(error.kind(), ig::Error::Kind::Usage);
+    EXPECT_STREQ(error.what(), "Scene::load(): SceneOptions::weldDistance: --weld-distance: expected 0 to 0.01, got "
+                               "'0.02'");
+    coarse.weldDistance = std::nan("");
+    EXPECT_STREQ(errorOf([&] { ig::Scene::fromArrays(arrays, "tiny", coarse); }).what(),
+                 "Scene::fromArrays(): SceneOptions::weldDistance: --weld-distance: 'nan' is not a finite number");
+    const ig::Error look = errorOf([] { ig::Look::fromArguments({"--weld-distance", "0"}); });
+    EXPECT_NE(std::string(look.what()).find("give SceneOptions::weldDistance to Scene::load()"), std::string::npos)
+        << look.what();
+}
+
 TEST(ApiLook, RefusesAFlagThatIsNotTheLooksNamingItsPlace) {
     const ig::Error camera = errorOf([] { ig::Look::fromArguments({"--shading", "cel", "--eye", "0,0,5"}); });
     EXPECT_EQ(camera.kind(), ig::Error::Kind::Usage);

@@ -1047,6 +1047,46 @@ TEST_F(Cli, AnUndecodableTextureIsAWarningAndStrictMakesItBadInput) {
     EXPECT_EQ(readText(directory / "bad.png"), "this is not a PNG") << "the model's own texture is untouched";
 }
 
+TEST_F(Cli, WeldDistanceJoinsFacesWrittenApartAndKeepsTinyDetails) {
+    // A square of two triangles whose shared diagonal is written twice, 1e-4 apart in depth (7e-5 of the model's
+    // size), and with texture coordinates of their own on each side, so only the weld of positions (the edges'
+    // adjacency, derived after the load) can join them: by default the diagonal is two border edges, with
+    // --weld-distance 1e-3 it is none.
+    auto writeText = [](const fs::path& path, const std::string& text) { std::ofstream(path) << text; };
+    writeText(directory / "crack.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 0.0001\nv 1 1 0.0001\nv 0 1 0\n"
+                                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0.5 0\nvt 0.5 0.5\nvt 0 1\n"
+                                       "f 1/1 2/2 3/3\nf 4/4 5/5 6/6\n");
+    const auto borderEdges = [&](const std::string& flags) {
+        const CliRun result = run("render crack.obj -o c.png --size 64x64 --lines border --stats c.json" + flags);
+        EXPECT_EQ(result.exitCode, 0) << result.err;
+        const auto stats = nlohmann::json::parse(readText(directory / "c.json"));
+        return std::make_pair(stats["look"]["lines"][0]["edges_drawn"].get<int>(),
+                              stats["scene"]["weld_distance"].get<double>());
+    };
+    EXPECT_EQ(borderEdges(""), std::make_pair(6, 1e-6));
+    EXPECT_EQ(borderEdges(" --weld-distance 1e-3"), std::make_pair(4, 1e-3));
+
+    // Triangles of 3.5e-7 of the model's size (5e-4 units, some 30 float steps at 500) beside a large one: merged
+    // away by default (the weld distance is 1e-6 x 1414 units), kept with --weld-distance 0.
+    writeText(directory / "tiny.obj", "v 0 0 0\nv 1000 0 0\nv 0 1000 0\nv 10 10 0\nv 10.0005 10 0\nv 10 10.0005 0\n"
+                                      "f 1 2 3\nf 4 5 6\ng apart\nv 500 400 0\nv 500.0005 400 0\nv 500 400.0005 0\n"
+                                      "f 7 8 9\n");
+    const auto triangles = [&](const std::string& flags) {
+        const CliRun result = run("render tiny.obj -o t.png --size 32x32 --stats t.json" + flags);
+        EXPECT_EQ(result.exitCode, 0) << result.err;
+        return nlohmann::json::parse(readText(directory / "t.json"))["scene"]["triangles"].get<int>();
+    };
+    EXPECT_EQ(triangles(""), 1);
+    EXPECT_EQ(triangles(" --weld-distance 0"), 3);
+
+    for (const std::string value : {"-1e-6", "0.02", "nan", "x"}) {
+        const CliRun refused = run("render crack.obj -o r.png --size 16x16 --weld-distance " + value);
+        EXPECT_EQ(refused.exitCode, 2) << value;
+        EXPECT_NE(refused.err.find("--weld-distance: "), std::string::npos) << refused.err;
+        EXPECT_FALSE(fs::exists(directory / "r.png"));
+    }
+}
+
 TEST_F(Cli, AnObjsMissingMapIsListedAmongTheUnusableImagesOnce) {
     // The MTL reader finds the map missing at load (its warning names the library and the line); --stats lists it
     // with the images that cannot be used, by its name as written and without an index (the model holds no image of

@@ -158,6 +158,9 @@ struct SceneOptions {
     /** The load refuses models that would need more, and so does each render of the scene (its buffers at the
      *  frame's size); 0: the command line's default, half this machine's memory but at least 1 GiB. */
     std::size_t memoryLimitBytes = 0;
+    /** Vertices closer than this x the model's size (its bounding box's diagonal) are merged when loading, 0 to 0.01
+     *  (--weld-distance): lower for details under a millionth of the model, higher to join faces written apart. */
+    double weldDistance = 1e-6;
     /** --strict: every warning fails: the load's with Error(Input) from Scene::load(), and each render's (a
      *  missing or undecodable texture, the model outside the view) with Error(Input) from Renderer::render(). */
     bool strict = false;
