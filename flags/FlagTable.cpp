@@ -25,6 +25,9 @@ constexpr double kMinClipDistance = 1e-30;
 constexpr double kMaxClipDistance = 1e30;
 constexpr double kMaxClipRatio = 1e30;
 constexpr int kMaxMemoryLimitMib = 1 << 24; // 16 TiB
+/** --hidden-dash's range for ON and for an OFF that is not 0, in output pixels. */
+constexpr double kMinDashPixels = 1.0;
+constexpr double kMaxDashPixels = 4096.0;
 /** --weld-distance's largest: a hundredth of the model's size already merges whole features of a detailed model. */
 constexpr double kMaxWeldTolerance = 0.01;
 /** At +-90 degrees of --orbit elevation the view would be parallel to up. */
@@ -416,8 +419,9 @@ void addHiddenLineFlags(std::vector<Flag>& flags) {
     Flag dash =
         styleFlag(flag({"--hidden-dash"}, "ON,OFF", HelpSection::Lines,
                        "the dash of every hidden-<type> layer: ON output pixels drawn, OFF left out, along each\n"
-                       "stroke from its start (default 6,4; up to 4096 each); OFF 0, or none, draws them solid. The\n"
-                       "picture and the --svg (one path per dash) cut the same dashes",
+                       "stroke from its start (default 6,4; each 1 to 4096: a dash or gap under a pixel would be\n"
+                       "no dash, only millions of paths); OFF 0, or none, draws them solid. The picture and the --svg\n"
+                       "(one path per dash) cut the same dashes",
                        [](const std::string& value, RenderOptions& options) {
                            StrokeStyle& strokes = options.look.strokes;
                            if (value == "none") {
@@ -426,13 +430,17 @@ void addHiddenLineFlags(std::vector<Flag>& flags) {
                            }
                            const std::vector<std::string> parts = splitList(value, ',');
                            const std::string expected =
-                               "--hidden-dash: expected ON,OFF in output pixels (ON above 0, OFF 0 or more, "
-                               "each at most 4096) or none, got '" +
+                               "--hidden-dash: expected ON,OFF in output pixels (ON 1 to 4096, OFF 0 or 1 to 4096) "
+                               "or none, got '" +
                                value + "'";
                            if (parts.size() != 2) throw UsageError(expected);
                            const double on = parseNumber("--hidden-dash", parts[0]);
                            const double off = parseNumber("--hidden-dash", parts[1]);
-                           if (!(on > 0.0 && on <= 4096.0 && off >= 0.0 && off <= 4096.0)) throw UsageError(expected);
+                           // A pixel at least: the dashes a stroke is cut into are kept as strokes of their own
+                           // (and SVG paths), so 1e-6 px dashes took the machine's memory before any limit.
+                           const bool onInRange = on >= kMinDashPixels && on <= kMaxDashPixels;
+                           const bool offInRange = off == 0.0 || (off >= kMinDashPixels && off <= kMaxDashPixels);
+                           if (!onInRange || !offInRange) throw UsageError(expected);
                            strokes.hiddenDashOn = on;
                            strokes.hiddenDashOff = off;
                        }));

@@ -407,6 +407,16 @@ TEST(Options, HiddenLinesAddTheirTypesWhicheverComesFirst) {
     EXPECT_EQ(
         parse({"m.obj", "-o", "x.png", "--hidden-lines", "crease", "--hidden-dash", "none"}).look.strokes.hiddenDashOff,
         0.0);
+    EXPECT_EQ(
+        parse({"m.obj", "-o", "x.png", "--hidden-lines", "crease", "--hidden-dash", "1,0"}).look.strokes.hiddenDashOn,
+        1.0);
+    // Under a pixel, a dash is no dash: a stroke cut into 1e-6-pixel dashes took all the machine's memory.
+    for (const char* tiny : {"0.99,4", "6,0.5", "1e-6,1e-6", "0,4", "4097,1", "6,-1"})
+        EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--hidden-lines", "crease", "--hidden-dash", tiny}),
+                  std::string("--hidden-dash: expected ON,OFF in output pixels (ON 1 to 4096, OFF 0 or 1 to 4096) or "
+                              "none, got '") +
+                      tiny + "'")
+            << tiny;
     EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--hidden-lines", "suggestive"}),
               "--hidden-lines: 'suggestive' has no hidden lines (available: crease, border, intersection, "
               "suggestive-object, mesh-silhouette; or 'none')");

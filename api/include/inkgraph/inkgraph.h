@@ -297,8 +297,8 @@ struct StrokeSettings {
     bool weightByStrength = false; ///< --line-weight strength
     bool taperEnds = false;        ///< --line-weight taper
     bool mergeOverlaps = false;    ///< --overlapping-lines merge
-    double hiddenDashOn = 6.0;     ///< --hidden-dash ON,OFF: the hidden-lines types' dashes, output pixels above 0
-    double hiddenDashOff = 4.0;    ///< and their gaps, 0 or more (0: solid)
+    double hiddenDashOn = 6.0;     ///< --hidden-dash ON,OFF: the hidden-lines types' dashes, 1 to 4096 output pixels
+    double hiddenDashOff = 4.0;    ///< and their gaps, 0 (solid) or 1 to 4096
 };
 
 /** The look: shading and its settings, the line types with their styles and parameters, strokes, paper, light and
