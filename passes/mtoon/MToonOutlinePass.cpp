@@ -3,6 +3,7 @@
 #include "passes/ViewUniforms.h"
 
 #include "gl/GraphExecutor.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -40,6 +41,7 @@ void MToonOutlinePass::declare(PassBuilder& builder) const {
 void MToonOutlinePass::describe(nlohmann::ordered_json& report) const {
     report["shells"] = mShellsDrawn;
     report["triangles"] = mTrianglesDrawn;
+    report["shells_skipped_eye_inside"] = mShellsSkippedEyeInside;
     if (mWidthMap.enabled()) report["width_map"] = mWidthMap.text();
 }
 
@@ -84,9 +86,19 @@ void MToonOutlinePass::execute(GlPassContext& gl) {
     glCullFace(GL_FRONT);
     mShellsDrawn = 0;
     mTrianglesDrawn = 0;
+    mShellsSkippedEyeInside = 0;
+    // The whole model's answer first, which the outline and silhouette passes share; only then each mesh's own.
+    const glm::dvec3 eye = mFrame.camera.eye;
+    const bool eyeInsideModel = mScene.containsPoint(eye);
     const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
     for (std::size_t index = 0; index < meshes.size(); ++index) {
         if (!mScene.materials().outlineOf(index)) continue;
+        // From inside a mesh every back face of its shell faces the eye, so the shell would flood the picture in
+        // its outline colour (the eye in a character's head): not drawn, as the outline and the silhouette are not.
+        if (eyeInsideModel && isPointInsideMesh(mScene.scene().meshes[index], eye)) {
+            ++mShellsSkippedEyeInside;
+            continue;
+        }
         mScene.bindMaterial(program, index, MaterialUse::Colour);
         mScene.materials().bindWidthMap(program, index, mWidthMap);
         mScene.hullArrays()[index].bind();

@@ -19,6 +19,9 @@
  *  then draws this layer after its opaque surfaces and before its blended ones, testing the depth here against its
  *  own strictly-nearer: the picture is the one the shells drawn among the surfaces would give, to the bit.
  *
+ *  With the eye inside a mesh (a camera in a character's head) that mesh's shell is not drawn: every back face of it
+ *  would face the eye and flood the picture in the outline colour. The other meshes' shells are drawn.
+ *
  *  With samples above 1 (--msaa) both fields are multisampled graph textures, drawn with the samples of the shade
  *  pass's target and read by it sample by sample, so the shells' edges are anti-aliased as the surfaces' are and the
  *  picture stays the one the shells drawn among the surfaces would give. The layer goes through the graph as
@@ -57,8 +60,8 @@ public:
     void declare(PassBuilder& builder) const override;
     void prepare(GlPassContext& context) override;
     void execute(GlPassContext& context) override;
-    /** For --stats: the meshes whose shells the last run drew and their triangles, and the width map's flag value
-     *  when there is one. */
+    /** For --stats: the meshes whose shells the last run drew and their triangles, those not drawn because the eye
+     *  is inside their mesh, and the width map's flag value when there is one. */
     void describe(nlohmann::ordered_json& report) const override;
 
     /** Whether some mesh's material of `scene` asks for an outline (outlineOf(), passes/material/SceneMaterials.h):
@@ -78,6 +81,7 @@ private:
     std::unique_ptr<GlProgram> mProgram;
     std::size_t mShellsDrawn = 0;
     std::size_t mTrianglesDrawn = 0;
+    std::size_t mShellsSkippedEyeInside = 0; ///< meshes whose shell was not drawn: the eye is inside them
 };
 
 } // namespace inkgraph

@@ -134,6 +134,32 @@ TEST_F(MToonOutline, WorldWidthShellIsTheClosedFormCircleWithinAPixel) {
     EXPECT_EQ(report["triangles"], scene.triangleCount());
 }
 
+TEST_F(MToonOutline, TheShellOfAMeshTheEyeIsInsideIsNotDrawn) {
+    // The eye at the centre of one sphere (a camera in a character's head), looking at a second one: every back face
+    // of the first's shell faces the eye and would fill the layer; only the second's shell is drawn, its ring as
+    // from outside.
+    useSphere(0.15f);
+    Mesh around = scene.meshes.front();
+    scene.meshes.push_back(std::move(around));
+    for (glm::vec3& position : scene.meshes.back().positions) position.z += float(kDistance);
+    frame.camera = test::lookingAt(scene, glm::dvec3(0.0, 0.0, kDistance), glm::dvec3(0.0), kFovDegrees, kSize, kSize);
+    gpuScene = std::make_unique<GpuScene>(scene, frame.worldOrigin);
+    MToonOutlinePass outline(kMToonOutlinePass, shaders, *gpuScene, frame);
+    run(outline);
+    nlohmann::ordered_json report;
+    outline.describe(report);
+    EXPECT_EQ(report["shells"], 1);
+    EXPECT_EQ(report["shells_skipped_eye_inside"], 1);
+    // The far sphere's shell is the closed-form ring, and the corners, off both shells, stay clear.
+    const double outer = silhouetteOf(1.0 + 0.15);
+    for (int step = 0; step < 16; ++step) {
+        const double angle = step * 2.0 * kPi / 16.0;
+        EXPECT_NEAR(outerRadius(layer, angle), outer, 1.0) << "angle " << angle;
+    }
+    EXPECT_EQ(layer.at<cv::Vec4b>(0, 0), cv::Vec4b(0, 0, 0, 0));
+    EXPECT_EQ(layer.at<cv::Vec4b>(kSize - 1, kSize - 1), cv::Vec4b(0, 0, 0, 0));
+}
+
 TEST_F(MToonOutline, WithFourSamplesTheShellsEdgesAreAntiAliasedOnBothSides) {
     // The ring's outer edge meets nothing: a share of red over transparent (premultiplied). Its inner edge meets the
     // white sphere: the layer laid in sample by sample gives a pixel of red and white samples, pink, at full alpha.
