@@ -1,5 +1,6 @@
 #include "scene/mesh/MeshCurvature.h"
 
+#include "scene/MessageText.h"
 #include "scene/mesh/MeshOps.h"
 #include "scene/mesh/ParallelRanges.h"
 
@@ -160,6 +161,20 @@ public:
         std::vector<std::uint32_t> mQueue;
     };
 
+    /** About how many vertices the floods of every vertex visit in all: the mean of up to kSampledFloods floods from
+     *  vertices spread evenly over the index range, times the vertex count. What a smoothing costs, known before it
+     *  is spent (a flood of a few percent of a large mesh from each of its vertices runs for hours). */
+    double estimatedVisits() const {
+        const std::size_t count = mPositions.size();
+        if (count == 0) return 0.0;
+        const std::size_t samples = std::min(count, kSampledFloods);
+        Flood flood(*this);
+        double visited = 0.0;
+        for (std::size_t sample = 0; sample < samples; ++sample)
+            flood.forEach(std::uint32_t(sample * count / samples), [&](std::uint32_t, double) { visited += 1.0; });
+        return visited / double(samples) * double(count);
+    }
+
     /** Calls perVertex(flood, vertex) for every vertex, split over the cores (parallelRanges()), each thread flooding
      *  with its own Flood: each vertex's sum is the same whatever the split, as long as perVertex writes its vertex
      *  only. */
@@ -177,6 +192,7 @@ private:
     /** A thread's share of the vertices is worth its start (tens of microseconds) and its marks (4 bytes a vertex)
      *  only with a few thousand floods in it. */
     static constexpr std::size_t kVerticesPerThreadAtLeast = 4096;
+    static constexpr std::size_t kSampledFloods = 64;
 
     const std::vector<glm::dvec3>& mPositions;
     const std::vector<double>& mPointAreas;
@@ -214,6 +230,18 @@ void checkCurvatureInput(std::span<const glm::vec3> positions, std::span<const g
 }
 
 } // namespace
+
+SmoothingTooCostlyError::SmoothingTooCostlyError(double smoothing, double estimatedVisits, std::size_t vertexCount,
+                                                 double smoothingWithinLimit)
+    : SceneError("computeMeshCurvature(): a 'smoothing' of " + detail::formatExtent(smoothing) +
+                 " model units floods about " +
+                 detail::formatNumber(std::round(estimatedVisits / double(std::max<std::size_t>(vertexCount, 1)))) +
+                 " of the mesh's " + std::to_string(vertexCount) + " vertices from each, about " +
+                 detail::formatExtent(estimatedVisits) + " visits, more than the " +
+                 detail::formatExtent(kMaxSmoothingVisits) + " one smoothing may take; about " +
+                 detail::formatExtent(smoothingWithinLimit) + " would not"),
+      mSmoothing(smoothing), mEstimatedVisits(estimatedVisits), mVertexCount(vertexCount),
+      mSmoothingWithinLimit(smoothingWithinLimit) {}
 
 MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
                                    double weldDistance, double smoothing) {
@@ -336,6 +364,19 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
     std::optional<GaussianNeighbourhoods> neighbourhoods;
     if (smoothing > 0.0) {
         neighbourhoods.emplace(result.positions, result.triangles, result.pointAreas, smoothing);
+        // Each of the three smoothings floods as much; a window of a few percent of a large mesh from each of its
+        // vertices would run for hours, so the cost is known, and refused, before any is spent.
+        if (const double visits = neighbourhoods->estimatedVisits(); visits > kMaxSmoothingVisits) {
+            // The largest smoothing within the limit, for the message, by halving the interval on a log scale
+            // (visits grow with the window's area until it holds the whole mesh, so no formula gives it).
+            double within = smoothing * 1e-3, beyond = smoothing;
+            for (int step = 0; step < 12; ++step) {
+                const double middle = std::sqrt(within * beyond);
+                const GaussianNeighbourhoods trial(result.positions, result.triangles, result.pointAreas, middle);
+                (trial.estimatedVisits() > kMaxSmoothingVisits ? beyond : within) = middle;
+            }
+            throw SmoothingTooCostlyError(smoothing, visits, vertexCount, within);
+        }
         // rtsc's diffuse_normals: curvature is the change of the normal, so the normals' noise is what the fits
         // would turn into curvature noise.
         std::vector<glm::dvec3> smoothed(vertexCount);

@@ -33,6 +33,31 @@ struct MeshCurvatureCounts {
     std::size_t isolatedVertices = 0;
 };
 
+/** The most vertex visits one smoothing of computeMeshCurvature() may cost, estimated before it starts (each
+ *  vertex's Gaussian window, flooded over the surface): about 50 s for the three smoothings on the 2-core machine
+ *  (the bunny's 35,000 vertices: 7.8e7 visits in 9 s, 7.6e8 in 79 s, the whole mesh, 1.2e9, in 197 s). The default
+ *  smoothing of the object-space suggestive contours costs under a million on the bundled models and about 3e8 on a
+ *  1.3-million-triangle one, which stays within it. */
+inline constexpr double kMaxSmoothingVisits = 5e8;
+
+/** computeMeshCurvature()'s refusal of a smoothing whose windows would cost more than kMaxSmoothingVisits. */
+class SmoothingTooCostlyError : public SceneError {
+public:
+    SmoothingTooCostlyError(double smoothing, double estimatedVisits, std::size_t vertexCount,
+                            double smoothingWithinLimit);
+    double smoothing() const { return mSmoothing; }
+    double estimatedVisits() const { return mEstimatedVisits; }
+    std::size_t vertexCount() const { return mVertexCount; }
+    /** About the largest smoothing, in the same units, whose estimate is within the limit on this mesh. */
+    double smoothingWithinLimit() const { return mSmoothingWithinLimit; }
+
+private:
+    double mSmoothing;
+    double mEstimatedVisits;
+    std::size_t mVertexCount;
+    double mSmoothingWithinLimit;
+};
+
 /** The curvature of one mesh, per welded vertex. Every value is finite. */
 struct MeshCurvature {
     std::vector<std::uint32_t> weldedOf; ///< per input vertex: its welded vertex
@@ -81,9 +106,10 @@ struct MeshCurvature {
  *  the air), weighted by exp(-d^2 / (2 smoothing^2)) x point area; tensors are re-expressed in the vertex's frame
  *  (rotated into its plane) as in step 4. So curvature is measured at that scale, not at the facets' or a scan's
  *  noise.
- *  Throws std::out_of_range naming 'triangles' for an index past the positions, std::invalid_argument naming
- *  'weldDistance' or 'smoothing' for a negative or non-finite one, and naming 'positions' for a non-finite
- *  coordinate. */
+ *  Throws SmoothingTooCostlyError, before smoothing, when the windows would cost more than kMaxSmoothingVisits
+ *  (estimated from 64 of them). Throws std::out_of_range naming 'triangles' for an index past the positions,
+ * std::invalid_argument naming 'weldDistance' or 'smoothing' for a negative or non-finite one, and naming 'positions'
+ * for a non-finite coordinate. */
 MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
                                    double weldDistance, double smoothing = 0.0);
 /** The same with the position weld given (weldVertices() of `positions` ignoring normals, or weldMeshPositions()).

@@ -1047,6 +1047,23 @@ TEST_F(Cli, AnUndecodableTextureIsAWarningAndStrictMakesItBadInput) {
     EXPECT_EQ(readText(directory / "bad.png"), "this is not a PNG") << "the model's own texture is untouched";
 }
 
+TEST_F(Cli, AnObjectSmoothingTooCostlyForTheModelFailsItsStillAtOnce) {
+    // The bunny smoothed over its whole radius: minutes of flooding, refused before any (exit 3, naming the flag and
+    // a smoothing that fits); in a batch the next model is drawn.
+    const std::string flags = " --size 64x64 --lines suggestive-object --suggestive-object-smoothing 1";
+    const CliRun single = run("render " + model("bunny_c3d_70k.obj") + " -o b.png" + flags);
+    EXPECT_EQ(single.exitCode, 3) << single.err;
+    EXPECT_NE(single.err.find("--suggestive-object-smoothing 1 is too wide for this model"), std::string::npos)
+        << single.err;
+    EXPECT_NE(single.err.find(" or less fits, or 0 for none"), std::string::npos) << single.err;
+    EXPECT_FALSE(fs::exists(directory / "b.png"));
+    const CliRun batch =
+        run("render " + model("bunny_c3d_70k.obj") + " " + model("suzanne_npm_4k.obj") + " -o '{name}.png'" + flags);
+    EXPECT_EQ(batch.exitCode, 3) << batch.err;
+    EXPECT_FALSE(fs::exists(directory / "bunny_c3d_70k.png"));
+    EXPECT_TRUE(fs::exists(directory / "suzanne_npm_4k.png")) << batch.err;
+}
+
 TEST_F(Cli, WeldDistanceJoinsFacesWrittenApartAndKeepsTinyDetails) {
     // A square of two triangles whose shared diagonal is written twice, 1e-4 apart in depth (7e-5 of the model's
     // size), and with texture coordinates of their own on each side, so only the weld of positions (the edges'

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iostream>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -207,6 +208,30 @@ TEST(MeshCurvature, SplitNormalsAndSoupsAreWelded) {
         EXPECT_NEAR(fromSoup.curvature1[a], indexed.curvature1[b], 1e-9);
         EXPECT_NEAR(fromSoup.curvature2[a], indexed.curvature2[b], 1e-9);
     }
+}
+
+TEST(MeshCurvature, ASmoothingTooCostlyIsRefusedBeforeItIsSpent) {
+    // A sphere of 33,000 vertices smoothed over its whole radius: every window floods the whole mesh, about 1.1e9
+    // visits a smoothing (minutes), refused at once with the largest smoothing within the limit; a hundredth of the
+    // radius is a few hundred visits a vertex and runs.
+    const Mesh sphere = makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 256, 128);
+    try {
+        (void)computeMeshCurvature(sphere.positions, sphere.triangles, 1e-6, 1.0);
+        FAIL() << "a smoothing of the whole sphere was not refused";
+    } catch (const SmoothingTooCostlyError& costly) {
+        EXPECT_GT(costly.estimatedVisits(), kMaxSmoothingVisits);
+        EXPECT_EQ(costly.smoothing(), 1.0);
+        EXPECT_GT(costly.vertexCount(), 32000u);
+        // Windows of area pi (3 s)^2 on a surface of 4 pi hold 9 s^2 / 4 of the mesh: within the limit while
+        // N^2 x 9 s^2 / 4 <= 5e8 (s <= 0.45 on a flat patch; the sphere's curve holds a little more).
+        EXPECT_GT(costly.smoothingWithinLimit(), 0.3);
+        EXPECT_LT(costly.smoothingWithinLimit(), 0.5);
+        EXPECT_NE(
+            std::string(costly.what()).find("computeMeshCurvature(): a 'smoothing' of 1 model units floods about"),
+            std::string::npos)
+            << costly.what();
+    }
+    EXPECT_NO_THROW((void)computeMeshCurvature(sphere.positions, sphere.triangles, 1e-6, 0.01));
 }
 
 TEST(MeshCurvature, BadInputIsAClearError) {

@@ -4,6 +4,8 @@
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
 #include "passes/lines/LineType.h"
+#include "scene/MessageText.h"
+#include "scene/mesh/MeshCurvature.h"
 #include "scene/mesh/ObjectSuggestiveContours.h"
 
 #include <nlohmann/json.hpp>
@@ -83,7 +85,9 @@ const LineParameter kSuggestiveObjectSmoothing{
     "S",
     "smooth the mesh's normals, curvature and its derivative over a Gaussian of sigma\n"
     "S x the bounding radius on the surface (rtsc's diffusion) before finding lines\n"
-    "(default 0.01; 0: none)",
+    "(default 0.01; 0: none). One whose windows would take more than about a minute on\n"
+    "the model (each window a large part of a fine mesh) fails the still at once, naming one\n"
+    "that fits",
     {},
     kSuggestiveObjectSmoothingFraction,
     "",
@@ -205,7 +209,21 @@ void ObjectSuggestiveKernel::prepare() {
     mReport.curvatureMilliseconds = 0.0;
     if (mScene.meshCurvatureComputed(mCurvatureSmoothing)) return;
     const auto start = std::chrono::steady_clock::now();
-    for (std::size_t mesh = 0; mesh < mScene.meshCount(); ++mesh) mScene.meshCurvature(mesh, mCurvatureSmoothing);
+    try {
+        for (std::size_t mesh = 0; mesh < mScene.meshCount(); ++mesh) mScene.meshCurvature(mesh, mCurvatureSmoothing);
+    } catch (const SmoothingTooCostlyError& costly) {
+        // The model's fault as much as the flag's (the same smoothing is cheap on a smaller mesh): a failed still,
+        // exit 3, and a batch goes on with its next model.
+        throw SceneError("ObjectSuggestiveKernel::prepare(): --suggestive-object-smoothing " +
+                         detail::formatNumber(mSmoothingShare) +
+                         " is too wide for this model: each vertex's window would " + "hold about " +
+                         detail::formatNumber(std::round(costly.estimatedVisits() / double(costly.vertexCount()))) +
+                         " of its " + std::to_string(costly.vertexCount()) + " vertices (" +
+                         detail::formatExtent(costly.estimatedVisits()) + " visits, over the limit of " +
+                         detail::formatExtent(kMaxSmoothingVisits) + ", about a minute on two cores); about " +
+                         detail::formatExtent(mSmoothingShare * costly.smoothingWithinLimit() / costly.smoothing()) +
+                         " or less fits, or 0 for none");
+    }
     mReport.curvatureDerived = true;
     mReport.curvatureMilliseconds = millisecondsSince(start);
 }
@@ -282,9 +300,10 @@ LineType objectSuggestiveType(std::string name, std::string help, SegmentVisibil
     type.build = [keep](const std::string& typeName, LineGraphBuilder& builder) {
         const LineGraphSetup& setup = builder.setup();
         const double smoothing = setup.look.lineParameters.number(kSuggestiveObjectSmoothing) * setup.sphere.radius;
-        builder.addLayer(typeName, std::make_unique<ObjectSuggestiveKernel>(setup.gbuffer,
-                                                                            sharedSettings(setup.look, setup.sphere),
-                                                                            smoothing, setup.scene, setup.frame, keep));
+        builder.addLayer(typeName,
+                         std::make_unique<ObjectSuggestiveKernel>(
+                             setup.gbuffer, sharedSettings(setup.look, setup.sphere), smoothing, setup.scene,
+                             setup.frame, keep, setup.look.lineParameters.number(kSuggestiveObjectSmoothing)));
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
         describeShared(source, entry, false);

@@ -73,10 +73,13 @@ struct ObjectSuggestiveReport {
  *  visibility tolerance. `keep`: the visible samples, or the hidden ones. Both references must outlive the kernel. */
 class ObjectSuggestiveKernel : public LineKernel {
 public:
+    /** `smoothingShare`: --suggestive-object-smoothing's value, which `curvatureSmoothing` is in model units, for
+     *  the refusal of a smoothing too costly for the model. */
     ObjectSuggestiveKernel(std::string gbuffer, SuggestiveSettings settings, double curvatureSmoothing, GpuScene& scene,
-                           const FrameParams& frame, SegmentVisibility keep = SegmentVisibility::Visible)
+                           const FrameParams& frame, SegmentVisibility keep = SegmentVisibility::Visible,
+                           double smoothingShare = 0.0)
         : mGBuffer(std::move(gbuffer)), mSettings(settings), mCurvatureSmoothing(curvatureSmoothing), mScene(scene),
-          mFrame(frame), mKeep(keep) {}
+          mFrame(frame), mKeep(keep), mSmoothingShare(smoothingShare) {}
     std::vector<std::string> inputs() const override { return {mGBuffer + ".depth"}; }
     /** The meshes' curvature (SceneImport::kCurvature), derived here at this kernel's smoothing. */
     std::vector<std::string> sceneImports() const override { return {SceneImport::kCurvature}; }
@@ -92,6 +95,7 @@ private:
     GpuScene& mScene;
     const FrameParams& mFrame;
     SegmentVisibility mKeep;
+    double mSmoothingShare;
     ObjectSuggestiveReport mReport;
 };
 
