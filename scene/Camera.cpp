@@ -37,6 +37,10 @@ bool isFinite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(
 
 [[noreturn]] void invalid(const std::string& problem) { throw std::invalid_argument("resolveCamera(): " + problem); }
 
+/** A --frame name this model lacks: the model's mismatch with the flags (as --expression on a model without a VRM
+ *  face), so a batch of mixed models fails only this one, exit 3, rather than stopping as for a bad flag. */
+[[noreturn]] void notInModel(const std::string& problem) { throw SceneError("resolveCamera(): " + problem); }
+
 /** "x,y,z", the syntax of the vector flags. */
 std::string formatVector(const glm::dvec3& v) {
     std::ostringstream text;
@@ -114,8 +118,8 @@ std::string namedList(const std::vector<std::string>& names) {
                                       : "the model's nodes with meshes under them: " + namedList(nodes);
     if (!bones.empty()) known += "; its humanoid bones: " + namedList(bones);
     if (!joints.empty()) known += "; its joints: " + namedList(joints);
-    invalid("--frame '" + detail::excerptForMessage(name) +
-            "': no mesh lies under a node of that name, and no joint or humanoid bone has it (" + known + ")");
+    notInModel("--frame '" + detail::excerptForMessage(name) +
+               "': no mesh lies under a node of that name, and no joint or humanoid bone has it (" + known + ")");
 }
 
 /** The bounding sphere of what the named nodes frame (computed like computeBoundingSphere()): the meshes under them
@@ -157,7 +161,7 @@ BoundingSphere framedSphere(const Scene& scene, const std::vector<std::string>& 
         box.add(joint->upper);
     }
     if (box.empty()) {
-        invalid("--frame: the meshes under the named nodes have no vertices, and the named joints weight none");
+        notInModel("--frame: the meshes under the named nodes have no vertices, and the named joints weight none");
     }
     BoundingSphere sphere;
     sphere.center = box.center();

@@ -109,8 +109,10 @@ struct Camera {
  *  zFar replace both (finite, 0 < near < far, else std::invalid_argument naming --clip). Throws
  *  std::invalid_argument, with a message that names the flags involved (--eye, --orbit, --frame, --target, --up,
  *  --fov, --size), for eye == target, an eye with an orbit, an orbit elevation outside [-89.9, 89.9] or a
- *  non-positive distance, a frame node that no mesh lies under (naming up to 10 of the scene's node names), a zero
- *  up or one parallel to the view direction, fov outside (0, 180), non-finite values, or a non-positive size. */
+ *  non-positive distance, a zero up or one parallel to the view direction, fov outside (0, 180), non-finite values,
+ *  or a non-positive size; SceneError for a frame name that no mesh lies under and no joint or bone has (naming up
+ *  to 10 of the scene's node names, bones and joints: the model lacks it), or whose meshes and joints have no
+ *  vertices. */
 Camera resolveCamera(const CameraRequest& request, const Scene& scene);
 
 /** A warning when `camera` shows none of `scene`'s model, which would render blank paper: every vertex lies behind the

@@ -212,20 +212,21 @@ TEST_F(Cli, TheSummaryNamesTheFirstTenFailedStillsAndCountsTheRest) {
 TEST_F(Cli, ABatchStoppedByALaterStillKeepsTheStillsBeforeIt) {
     // Each still's picture is encoded while the next renders and is committed after it (app/Render.h): a later still
     // that stops the batch (a usage error, not bad input) must not take the earlier still's outputs with it.
-    // --frame names a node only the first model has.
+    // --eye 0,0,0 is the second model's centre, where its target is (a usage error at that still alone).
     const std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    const std::string centred = "v -1 -1 -1\nv 1 -1 -1\nv 0 1 -1\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
     // With two drawing threads the second still fails on its own thread, and waits for the first one's commit.
     for (const char* threads : {"1", "2"}) {
         SCOPED_TRACE(std::string("--draw-threads ") + threads);
         fs::remove_all(directory);
         fs::create_directories(directory);
-        std::ofstream(directory / "named.obj") << "o body\n" << tetrahedron;
-        std::ofstream(directory / "unnamed.obj") << tetrahedron;
-        const CliRun result = run("render named.obj unnamed.obj -o '{name}.png' --stats '{name}.json' --frame body "
+        std::ofstream(directory / "named.obj") << tetrahedron;
+        std::ofstream(directory / "unnamed.obj") << centred;
+        const CliRun result = run("render named.obj unnamed.obj -o '{name}.png' --stats '{name}.json' --eye 0,0,0 "
                                   "--size 48x40 --draw-threads " +
                                   std::string(threads));
         EXPECT_EQ(result.exitCode, 2) << result.err;
-        EXPECT_NE(result.err.find("--frame 'body'"), std::string::npos) << result.err;
+        EXPECT_NE(result.err.find("the eye (--eye 0,0,0) and the target"), std::string::npos) << result.err;
         EXPECT_EQ(listFiles(directory),
                   std::vector<std::string>({"named.json", "named.obj", "named.png", "unnamed.obj"}));
         EXPECT_EQ(readImage(directory / "named.png").size(), cv::Size(48, 40));
@@ -237,22 +238,40 @@ TEST_F(Cli, ABatchStoppedByALaterStillKeepsTheStillsBeforeIt) {
     }
 }
 
+TEST_F(Cli, AFrameNameOneModelLacksFailsThatModelAloneAndTheBatchGoesOn) {
+    // --frame names a node only the first and third models have: the second fails (exit 3, its error naming the
+    // name), as --expression on a model without a VRM face does, and the third is drawn.
+    const std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    std::ofstream(directory / "named.obj") << "o body\n" << tetrahedron;
+    std::ofstream(directory / "unnamed.obj") << tetrahedron;
+    std::ofstream(directory / "named2.obj") << "o body\n" << tetrahedron;
+    const CliRun result = run("render named.obj unnamed.obj named2.obj -o '{name}.png' --frame body --size 48x40");
+    EXPECT_EQ(result.exitCode, 3) << result.err;
+    EXPECT_NE(result.err.find("[2/3] 'unnamed.obj' failed: resolveCamera(): --frame 'body': no mesh lies under"),
+              std::string::npos)
+        << result.err;
+    EXPECT_EQ(listFiles(directory),
+              std::vector<std::string>({"named.obj", "named.png", "named2.obj", "named2.png", "unnamed.obj"}));
+}
+
 TEST_F(Cli, DrawingThreadsThatBothStopTheBatchTellBothErrorsAndKeepTheStillsBeforeThem) {
     // --draw-threads 2: the second still fails on one thread and, before that thread stops the batch, the third
     // (already started on the other) fails too. Neither waits for the other for ever; the first still is committed,
     // the later error is told as an error, and the run exits with the usage error's code.
     const std::string tetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
-    std::ofstream(directory / "named.obj") << "o body\n" << tetrahedron;
-    std::ofstream(directory / "unnamed.obj") << tetrahedron;
-    std::ofstream(directory / "unnamed2.obj") << tetrahedron;
+    const std::string centred = "v -1 -1 -1\nv 1 -1 -1\nv 0 1 -1\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    std::ofstream(directory / "named.obj") << tetrahedron;
+    std::ofstream(directory / "unnamed.obj") << centred;
+    std::ofstream(directory / "unnamed2.obj") << centred;
     // With --jobs above 0 the first still is still in flight when the third starts: the third always fails too.
-    const CliRun result = run("render named.obj unnamed.obj unnamed2.obj -o '{name}.png' --frame body --size 48x40 "
+    const CliRun result = run("render named.obj unnamed.obj unnamed2.obj -o '{name}.png' --eye 0,0,0 --size 48x40 "
                               "--draw-threads 2 --jobs 2");
     EXPECT_EQ(result.exitCode, 2) << result.err;
     EXPECT_NE(result.err.find("[1/3] 'named.obj' -> 'named.png'"), std::string::npos) << result.err;
-    // Each error names the still it stopped at (the frame is the model's).
+    // Each error names the still it stopped at (the target is the model's centre).
     EXPECT_TRUE(std::regex_search(
-        result.err, std::regex(R"(inkgraph: error: \[[23]/3\] 'unnamed2?\.obj': resolveCamera\(\): --frame 'body')")))
+        result.err,
+        std::regex(R"(inkgraph: error: \[[23]/3\] 'unnamed2?\.obj': resolveCamera\(\): the eye \(--eye 0,0,0\))")))
         << result.err;
     EXPECT_EQ(listFiles(directory),
               std::vector<std::string>({"named.obj", "named.png", "unnamed.obj", "unnamed2.obj"}));

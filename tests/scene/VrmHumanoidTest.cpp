@@ -336,7 +336,7 @@ TEST(VrmHumanoid, UnknownFrameNameListsNodesBonesAndJoints) {
     try {
         resolveCamera(request, scene);
         ADD_FAILURE() << "expected a refusal";
-    } catch (const std::invalid_argument& error) {
+    } catch (const SceneError& error) {
         EXPECT_EQ(std::string(error.what()),
                   "resolveCamera(): --frame 'tail': no mesh lies under a node of that name, and no joint or humanoid "
                   "bone has it (the model's nodes with meshes under them: 'Body'; its humanoid bones: 'hips', "
