@@ -349,9 +349,13 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
             camera.source = "auto-framed";
         }
         eyeText = "the " + std::string(request.orbit ? "orbit's" : "auto-framed") + " eye (" + world(camera.eye) + ")";
+        // An orbit's scale the user typed (",xS") sets the eye that near, not the model's size.
+        const bool scaled = request.orbit && !request.orbit->distance && request.orbit->distanceScale < 1.0;
         targetText = (request.target ? "the target (--target " + formatVector(*request.target) + ")"
                                      : "the target, " + centreText + ",") +
-                     " coincide: the model is too small for its distance from the origin; set --eye";
+                     (scaled ? " coincide: the orbit's scale x" + formatNumber(request.orbit->distanceScale) +
+                                   " puts the eye too near the target for their distance from the origin; raise it"
+                             : " coincide: the model is too small for its distance from the origin; set --eye");
         viewText = request.orbit ? "the --orbit direction" : "the auto-framing direction";
     }
 

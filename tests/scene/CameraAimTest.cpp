@@ -152,6 +152,14 @@ TEST(CameraAim, OrbitRefusals) {
         EXPECT_NE(message.find("distance must be finite and above 0"), std::string::npos) << message;
     }
     EXPECT_NE(invalidArgumentMessage(orbitRequest(std::nan(""), 0.0), scene).find("finite"), std::string::npos);
+
+    // A scale so small that the eye meets the target: the scale is named, not the model's size.
+    CameraRequest scaled = orbitRequest(0.0, 0.0);
+    scaled.orbit->distanceScale = 1e-15;
+    scaled.target = glm::dvec3(0.0, 1.0, 0.0);
+    const std::string tiny = invalidArgumentMessage(scaled, scene);
+    EXPECT_NE(tiny.find("coincide: the orbit's scale x1e-15 puts the eye too near the target"), std::string::npos)
+        << tiny;
 }
 
 TEST(CameraAim, AViewTheFlagsPlaceTakesTheirLensNotTheFiles) {
