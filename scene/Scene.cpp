@@ -187,7 +187,8 @@ Scene finalizeScene(const std::string& path, RawScene raw, const LoadOptions& op
                        "no triangles left: all " + std::to_string(scene.report.trianglesRead) +
                            " triangles are degenerate" +
                            (weldedAway ? " (smaller than the weld distance, " + formatNumber(options.weldTolerance) +
-                                             " of the model's size: parts far apart for their size?)"
+                                             " of the model's size: parts far apart for their size? --weld-distance 0 "
+                                             "keeps them)"
                                        : std::string()),
                        function);
     }

@@ -175,6 +175,17 @@ public:
         return visited / double(samples) * double(count);
     }
 
+    /** The same for another sigma, on the same adjacency. */
+    double estimatedVisits(double sigma) {
+        const double reach = mReachSquared, inverse = mInverseTwoSigmaSquared;
+        mReachSquared = 9.0 * sigma * sigma;
+        mInverseTwoSigmaSquared = 0.5 / (sigma * sigma);
+        const double visits = estimatedVisits();
+        mReachSquared = reach;
+        mInverseTwoSigmaSquared = inverse;
+        return visits;
+    }
+
     /** Calls perVertex(flood, vertex) for every vertex, split over the cores (parallelRanges()), each thread flooding
      *  with its own Flood: each vertex's sum is the same whatever the split, as long as perVertex writes its vertex
      *  only. */
@@ -230,6 +241,58 @@ void checkCurvatureInput(std::span<const glm::vec3> positions, std::span<const g
 }
 
 } // namespace
+
+namespace {
+
+/** Whether smoothing over a window this wide is refused: costly, and wide for the mesh (not merely a fine mesh). */
+bool refusedSmoothing(double visits, std::size_t vertexCount) {
+    return visits > kMaxSmoothingVisits && visits > double(vertexCount) * double(vertexCount) * kMaxCostlyWindowShare;
+}
+
+/** Throws SmoothingTooCostlyError when smoothing the mesh of `positions` (welded) and `triangles` (welded ids) over
+ *  `smoothing` is refused (refusedSmoothing()), naming the largest smoothing that is not. */
+void requireAffordableSmoothing(const std::vector<glm::dvec3>& positions, const std::vector<glm::uvec3>& triangles,
+                                double smoothing) {
+    if (!(smoothing > 0.0) || positions.empty()) return;
+    const std::vector<double> noAreas(positions.size(), 0.0); // the estimate counts visits, it weighs none
+    GaussianNeighbourhoods neighbourhoods(positions, triangles, noAreas, smoothing);
+    const double visits = neighbourhoods.estimatedVisits();
+    if (!refusedSmoothing(visits, positions.size())) return;
+    // The largest smoothing not refused, for the message, by halving the interval on a log scale (visits grow with
+    // the window's area until it holds the whole mesh, so no formula gives it).
+    double within = smoothing * 1e-3, beyond = smoothing;
+    if (refusedSmoothing(neighbourhoods.estimatedVisits(within), positions.size())) {
+        within = 0.0;
+    } else {
+        for (int step = 0; step < 12; ++step) {
+            const double middle = std::sqrt(within * beyond);
+            (refusedSmoothing(neighbourhoods.estimatedVisits(middle), positions.size()) ? beyond : within) = middle;
+        }
+    }
+    throw SmoothingTooCostlyError(smoothing, visits, positions.size(), within);
+}
+
+} // namespace
+
+void requireAffordableSmoothing(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                const WeldMap& weld, double smoothing) {
+    if (!(smoothing > 0.0)) return;
+    if (weld.outputOf.size() != positions.size())
+        throw std::invalid_argument("requireAffordableSmoothing(): the weld maps " +
+                                    std::to_string(weld.outputOf.size()) + " vertices, not the " +
+                                    std::to_string(positions.size()) + " 'positions'");
+    std::vector<glm::dvec3> welded;
+    welded.reserve(weld.kept.size());
+    for (std::uint32_t input : weld.kept) welded.emplace_back(positions[input]);
+    std::vector<glm::uvec3> faces;
+    faces.reserve(triangles.size());
+    for (const glm::uvec3& t : triangles) {
+        if (t.x >= weld.outputOf.size() || t.y >= weld.outputOf.size() || t.z >= weld.outputOf.size()) continue;
+        const glm::uvec3 face(weld.outputOf[t.x], weld.outputOf[t.y], weld.outputOf[t.z]);
+        if (face.x != face.y && face.y != face.z && face.z != face.x) faces.push_back(face);
+    }
+    requireAffordableSmoothing(welded, faces, smoothing);
+}
 
 SmoothingTooCostlyError::SmoothingTooCostlyError(double smoothing, double estimatedVisits, std::size_t vertexCount,
                                                  double smoothingWithinLimit)
@@ -363,20 +426,8 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
 
     std::optional<GaussianNeighbourhoods> neighbourhoods;
     if (smoothing > 0.0) {
+        requireAffordableSmoothing(result.positions, result.triangles, smoothing);
         neighbourhoods.emplace(result.positions, result.triangles, result.pointAreas, smoothing);
-        // Each of the three smoothings floods as much; a window of a few percent of a large mesh from each of its
-        // vertices would run for hours, so the cost is known, and refused, before any is spent.
-        if (const double visits = neighbourhoods->estimatedVisits(); visits > kMaxSmoothingVisits) {
-            // The largest smoothing within the limit, for the message, by halving the interval on a log scale
-            // (visits grow with the window's area until it holds the whole mesh, so no formula gives it).
-            double within = smoothing * 1e-3, beyond = smoothing;
-            for (int step = 0; step < 12; ++step) {
-                const double middle = std::sqrt(within * beyond);
-                const GaussianNeighbourhoods trial(result.positions, result.triangles, result.pointAreas, middle);
-                (trial.estimatedVisits() > kMaxSmoothingVisits ? beyond : within) = middle;
-            }
-            throw SmoothingTooCostlyError(smoothing, visits, vertexCount, within);
-        }
         // rtsc's diffuse_normals: curvature is the change of the normal, so the normals' noise is what the fits
         // would turn into curvature noise.
         std::vector<glm::dvec3> smoothed(vertexCount);

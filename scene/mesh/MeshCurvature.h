@@ -33,14 +33,17 @@ struct MeshCurvatureCounts {
     std::size_t isolatedVertices = 0;
 };
 
-/** The most vertex visits one smoothing of computeMeshCurvature() may cost, estimated before it starts (each
- *  vertex's Gaussian window, flooded over the surface): about 50 s for the three smoothings on the 2-core machine
- *  (the bunny's 35,000 vertices: 7.8e7 visits in 9 s, 7.6e8 in 79 s, the whole mesh, 1.2e9, in 197 s). The default
- *  smoothing of the object-space suggestive contours costs under a million on the bundled models and about 3e8 on a
- *  1.3-million-triangle one, which stays within it. */
+/** A smoothing of computeMeshCurvature() is refused when, estimated before it starts, its windows (each vertex's
+ *  Gaussian window, flooded over the surface) would cost more than kMaxSmoothingVisits vertex visits, about 50 s for
+ *  the three smoothings on the 2-core machine (the bunny's 35,000 vertices: 7.8e7 visits in 9 s, 7.6e8 in 79 s, the
+ *  whole mesh, 1.2e9, in 197 s), and a mean window would hold more than kMaxCostlyWindowShare of the mesh's vertices.
+ *  The second condition keeps a fine mesh at a narrow smoothing, costly only for its size (a million-vertex scan at
+ *  the default, 0.01 of the radius: about 1.3e9 visits, windows of a thousandth of it), slow as before rather than
+ *  refused: what is refused is a smoothing wide for the model, which blurs its shape away as well. */
 inline constexpr double kMaxSmoothingVisits = 5e8;
+inline constexpr double kMaxCostlyWindowShare = 1.0 / 16.0;
 
-/** computeMeshCurvature()'s refusal of a smoothing whose windows would cost more than kMaxSmoothingVisits. */
+/** The refusal of a smoothing too costly and too wide for its mesh (kMaxSmoothingVisits, kMaxCostlyWindowShare). */
 class SmoothingTooCostlyError : public SceneError {
 public:
     SmoothingTooCostlyError(double smoothing, double estimatedVisits, std::size_t vertexCount,
@@ -48,7 +51,8 @@ public:
     double smoothing() const { return mSmoothing; }
     double estimatedVisits() const { return mEstimatedVisits; }
     std::size_t vertexCount() const { return mVertexCount; }
-    /** About the largest smoothing, in the same units, whose estimate is within the limit on this mesh. */
+    /** About the largest smoothing, in the same units, that this mesh would not refuse; 0 when even a thousandth of
+     *  the smoothing would be refused. */
     double smoothingWithinLimit() const { return mSmoothingWithinLimit; }
 
 private:
@@ -57,6 +61,12 @@ private:
     std::size_t mVertexCount;
     double mSmoothingWithinLimit;
 };
+
+/** Throws SmoothingTooCostlyError when computeMeshCurvature() would refuse `smoothing` (absolute) on this mesh, at
+ *  the cost of 64 of its windows (and a dozen times that to name the largest smoothing that fits when it does), so a
+ *  scene of several meshes can check each before smoothing any. Nothing for a smoothing of 0. */
+void requireAffordableSmoothing(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                const WeldMap& weld, double smoothing);
 
 /** The curvature of one mesh, per welded vertex. Every value is finite. */
 struct MeshCurvature {
@@ -106,8 +116,8 @@ struct MeshCurvature {
  *  the air), weighted by exp(-d^2 / (2 smoothing^2)) x point area; tensors are re-expressed in the vertex's frame
  *  (rotated into its plane) as in step 4. So curvature is measured at that scale, not at the facets' or a scan's
  *  noise.
- *  Throws SmoothingTooCostlyError, before smoothing, when the windows would cost more than kMaxSmoothingVisits
- *  (estimated from 64 of them). Throws std::out_of_range naming 'triangles' for an index past the positions,
+ *  Throws SmoothingTooCostlyError, before smoothing, when the smoothing is too costly and too wide for the mesh
+ *  (requireAffordableSmoothing()). Throws std::out_of_range naming 'triangles' for an index past the positions,
  * std::invalid_argument naming 'weldDistance' or 'smoothing' for a negative or non-finite one, and naming 'positions'
  * for a non-finite coordinate. */
 MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,

@@ -535,7 +535,8 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         message << "mesh '" << detail::excerptForMessage(raw.name) << "': " << weldedAway << " of " << triangles.size()
                 << " triangles are smaller than the weld distance (" << options.weldTolerance * modelDiagonal
                 << " units, " << options.weldTolerance
-                << " of the model's size) and were dropped when their corners merged: details that small are lost";
+                << " of the model's size) and were dropped when their corners merged: details that small are lost "
+                   "(--weld-distance 0 keeps them)";
         report.warnings.push_back(makeWarning(WarningKind::DetailsMerged, message.str(), "", raw.name));
     }
 

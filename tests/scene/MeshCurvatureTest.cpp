@@ -212,7 +212,7 @@ TEST(MeshCurvature, SplitNormalsAndSoupsAreWelded) {
 
 TEST(MeshCurvature, ASmoothingTooCostlyIsRefusedBeforeItIsSpent) {
     // A sphere of 33,000 vertices smoothed over its whole radius: every window floods the whole mesh, about 1.1e9
-    // visits a smoothing (minutes), refused at once with the largest smoothing within the limit; a hundredth of the
+    // visits a smoothing (minutes), refused at once with the largest smoothing not refused; a hundredth of the
     // radius is a few hundred visits a vertex and runs.
     const Mesh sphere = makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 256, 128);
     try {
@@ -232,6 +232,28 @@ TEST(MeshCurvature, ASmoothingTooCostlyIsRefusedBeforeItIsSpent) {
             << costly.what();
     }
     EXPECT_NO_THROW((void)computeMeshCurvature(sphere.positions, sphere.triangles, 1e-6, 0.01));
+}
+
+TEST(MeshCurvature, AFineMeshAtANarrowSmoothingIsSlowNotRefused) {
+    // A flat grid of a million vertices at a hundredth of its half-diagonal (the object-space lines' default): about
+    // 1e3 vertices a window, 1e9 visits, over kMaxSmoothingVisits, but each window a thousandth of the mesh: a fine
+    // mesh, not a wide smoothing, so it is not refused. Ten times wider, each window holds a tenth: refused.
+    constexpr int kSide = 1000;
+    std::vector<glm::vec3> positions;
+    positions.reserve(std::size_t(kSide) * kSide);
+    for (int row = 0; row < kSide; ++row)
+        for (int column = 0; column < kSide; ++column) positions.emplace_back(float(column), float(row), 0.0f);
+    std::vector<glm::uvec3> triangles;
+    for (int row = 0; row + 1 < kSide; ++row)
+        for (int column = 0; column + 1 < kSide; ++column) {
+            const unsigned corner = unsigned(row * kSide + column);
+            triangles.emplace_back(corner, corner + 1, corner + kSide);
+            triangles.emplace_back(corner + 1, corner + kSide + 1, corner + kSide);
+        }
+    const WeldMap weld = weldVertices(positions, {}, 1e-6);
+    const double halfDiagonal = 0.5 * std::sqrt(2.0) * (kSide - 1);
+    EXPECT_NO_THROW(requireAffordableSmoothing(positions, triangles, weld, 0.01 * halfDiagonal));
+    EXPECT_THROW(requireAffordableSmoothing(positions, triangles, weld, 0.1 * halfDiagonal), SmoothingTooCostlyError);
 }
 
 TEST(MeshCurvature, BadInputIsAClearError) {

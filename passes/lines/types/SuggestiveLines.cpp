@@ -85,9 +85,8 @@ const LineParameter kSuggestiveObjectSmoothing{
     "S",
     "smooth the mesh's normals, curvature and its derivative over a Gaussian of sigma\n"
     "S x the bounding radius on the surface (rtsc's diffusion) before finding lines\n"
-    "(default 0.01; 0: none). One whose windows would take more than about a minute on\n"
-    "the model (each window a large part of a fine mesh) fails the still at once, naming one\n"
-    "that fits",
+    "(default 0.01; 0: none). One whose windows would take more than about a minute, each\n"
+    "window over a sixteenth of its mesh, fails the still at once, naming one that fits",
     {},
     kSuggestiveObjectSmoothingFraction,
     "",
@@ -214,15 +213,16 @@ void ObjectSuggestiveKernel::prepare() {
     } catch (const SmoothingTooCostlyError& costly) {
         // The model's fault as much as the flag's (the same smoothing is cheap on a smaller mesh): a failed still,
         // exit 3, and a batch goes on with its next model.
-        throw SceneError("ObjectSuggestiveKernel::prepare(): --suggestive-object-smoothing " +
-                         detail::formatNumber(mSmoothingShare) +
-                         " is too wide for this model: each vertex's window would " + "hold about " +
-                         detail::formatNumber(std::round(costly.estimatedVisits() / double(costly.vertexCount()))) +
-                         " of its " + std::to_string(costly.vertexCount()) + " vertices (" +
-                         detail::formatExtent(costly.estimatedVisits()) + " visits, over the limit of " +
-                         detail::formatExtent(kMaxSmoothingVisits) + ", about a minute on two cores); about " +
-                         detail::formatExtent(mSmoothingShare * costly.smoothingWithinLimit() / costly.smoothing()) +
-                         " or less fits, or 0 for none");
+        const double fits = mSmoothingShare * costly.smoothingWithinLimit() / costly.smoothing();
+        throw SceneError(
+            "ObjectSuggestiveKernel::prepare(): --suggestive-object-smoothing " +
+            detail::formatNumber(mSmoothingShare) +
+            " is too wide for this model: each vertex's window would hold about " +
+            detail::formatNumber(std::round(costly.estimatedVisits() / double(costly.vertexCount()))) +
+            " of a mesh's " + std::to_string(costly.vertexCount()) + " vertices (" +
+            detail::formatExtent(costly.estimatedVisits()) + " visits, over the limit of " +
+            detail::formatExtent(kMaxSmoothingVisits) + ", about a minute on two cores); " +
+            (fits > 0.0 ? "about " + detail::formatExtent(fits) + " or less fits, or 0 for none" : "give 0 for none"));
     }
     mReport.curvatureDerived = true;
     mReport.curvatureMilliseconds = millisecondsSince(start);
