@@ -96,10 +96,12 @@ const MeshCurvature& SceneDerivedData::meshCurvature(std::size_t meshIndex, doub
         entry = slot.get(); // entries are never removed: the pointer stays valid without the lock
     }
     return derivedOnce(*entry, [&] {
-        // Every mesh's cost first: a refusal of the last must not come after the others' minutes of work.
+        // Every mesh's cost first, in all: a refusal must not come after minutes of work on the meshes before, nor
+        // many meshes each within the limit add up to hours.
+        std::vector<MeshToSmooth> meshes;
         for (std::size_t index = 0; index < mScene.meshes.size(); ++index)
-            requireAffordableSmoothing(mScene.meshes[index].positions, mScene.meshes[index].triangles,
-                                       positionWeld(index), smoothing);
+            meshes.push_back({mScene.meshes[index].positions, mScene.meshes[index].triangles, &positionWeld(index)});
+        requireAffordableSmoothing(meshes, smoothing);
         std::vector<MeshCurvature> curvature;
         curvature.reserve(mScene.meshes.size());
         for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {

@@ -8,7 +8,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
@@ -244,65 +246,96 @@ void checkCurvatureInput(std::span<const glm::vec3> positions, std::span<const g
 
 namespace {
 
-/** Whether smoothing over a window this wide is refused: costly, and wide for the mesh (not merely a fine mesh). */
-bool refusedSmoothing(double visits, std::size_t vertexCount) {
-    return visits > kMaxSmoothingVisits && visits > double(vertexCount) * double(vertexCount) * kMaxCostlyWindowShare;
+/** One mesh of an estimate: its welded positions and faces, and the floods over them (which refer to both, so it
+ *  stays where it is made). */
+struct EstimatedMesh {
+    EstimatedMesh(std::vector<glm::dvec3> weldedPositions, std::vector<glm::uvec3> weldedTriangles, double smoothing)
+        : positions(std::move(weldedPositions)), triangles(std::move(weldedTriangles)), noAreas(positions.size(), 0.0),
+          floods(positions, triangles, noAreas, smoothing) {}
+    std::vector<glm::dvec3> positions;
+    std::vector<glm::uvec3> triangles;
+    std::vector<double> noAreas; ///< the estimate counts visits, it weighs none
+    GaussianNeighbourhoods floods;
+};
+
+/** The estimated visits at `sigma` of the meshes whose windows are wide (a mean window over kMaxCostlyWindowShare of
+ *  the mesh), summed, with their vertices: a fine mesh at a narrow smoothing is slow, not refused. */
+std::pair<double, std::size_t> wideVisits(const std::vector<std::unique_ptr<EstimatedMesh>>& meshes, double sigma) {
+    double visits = 0.0;
+    std::size_t vertices = 0;
+    for (const std::unique_ptr<EstimatedMesh>& mesh : meshes) {
+        const double count = double(mesh->positions.size());
+        const double meshVisits = mesh->floods.estimatedVisits(sigma);
+        if (meshVisits > count * count * kMaxCostlyWindowShare) {
+            visits += meshVisits;
+            vertices += mesh->positions.size();
+        }
+    }
+    return {visits, vertices};
 }
 
-/** Throws SmoothingTooCostlyError when smoothing the mesh of `positions` (welded) and `triangles` (welded ids) over
- *  `smoothing` is refused (refusedSmoothing()), naming the largest smoothing that is not. */
-void requireAffordableSmoothing(const std::vector<glm::dvec3>& positions, const std::vector<glm::uvec3>& triangles,
-                                double smoothing) {
-    if (!(smoothing > 0.0) || positions.empty()) return;
-    const std::vector<double> noAreas(positions.size(), 0.0); // the estimate counts visits, it weighs none
-    GaussianNeighbourhoods neighbourhoods(positions, triangles, noAreas, smoothing);
-    const double visits = neighbourhoods.estimatedVisits();
-    if (!refusedSmoothing(visits, positions.size())) return;
+/** Throws SmoothingTooCostlyError when the wide meshes' windows at `smoothing` would cost more than
+ *  kMaxSmoothingVisits in all, naming the largest smoothing that would not. */
+void requireAffordableSmoothing(const std::vector<std::unique_ptr<EstimatedMesh>>& meshes, double smoothing) {
+    const auto [visits, vertices] = wideVisits(meshes, smoothing);
+    if (!(visits > kMaxSmoothingVisits)) return;
     // The largest smoothing not refused, for the message, by halving the interval on a log scale (visits grow with
     // the window's area until it holds the whole mesh, so no formula gives it).
+    const auto refused = [&](double sigma) { return wideVisits(meshes, sigma).first > kMaxSmoothingVisits; };
     double within = smoothing * 1e-3, beyond = smoothing;
-    if (refusedSmoothing(neighbourhoods.estimatedVisits(within), positions.size())) {
+    if (refused(within)) {
         within = 0.0;
     } else {
         for (int step = 0; step < 12; ++step) {
             const double middle = std::sqrt(within * beyond);
-            (refusedSmoothing(neighbourhoods.estimatedVisits(middle), positions.size()) ? beyond : within) = middle;
+            (refused(middle) ? beyond : within) = middle;
         }
     }
-    throw SmoothingTooCostlyError(smoothing, visits, positions.size(), within);
+    throw SmoothingTooCostlyError(smoothing, visits, vertices, within);
 }
 
 } // namespace
 
+void requireAffordableSmoothing(std::span<const MeshToSmooth> meshes, double smoothing) {
+    if (!(smoothing > 0.0)) return;
+    std::vector<std::unique_ptr<EstimatedMesh>> estimated;
+    for (const MeshToSmooth& mesh : meshes) {
+        const WeldMap& weld = *mesh.weld;
+        if (weld.outputOf.size() != mesh.positions.size())
+            throw std::invalid_argument("requireAffordableSmoothing(): the weld maps " +
+                                        std::to_string(weld.outputOf.size()) + " vertices, not the " +
+                                        std::to_string(mesh.positions.size()) + " 'positions'");
+        std::vector<glm::dvec3> welded;
+        welded.reserve(weld.kept.size());
+        for (std::uint32_t input : weld.kept) welded.emplace_back(mesh.positions[input]);
+        std::vector<glm::uvec3> faces;
+        faces.reserve(mesh.triangles.size());
+        for (const glm::uvec3& t : mesh.triangles) {
+            if (t.x >= weld.outputOf.size() || t.y >= weld.outputOf.size() || t.z >= weld.outputOf.size()) continue;
+            const glm::uvec3 face(weld.outputOf[t.x], weld.outputOf[t.y], weld.outputOf[t.z]);
+            if (face.x != face.y && face.y != face.z && face.z != face.x) faces.push_back(face);
+        }
+        if (!welded.empty())
+            estimated.push_back(std::make_unique<EstimatedMesh>(std::move(welded), std::move(faces), smoothing));
+    }
+    requireAffordableSmoothing(estimated, smoothing);
+}
+
 void requireAffordableSmoothing(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
                                 const WeldMap& weld, double smoothing) {
-    if (!(smoothing > 0.0)) return;
-    if (weld.outputOf.size() != positions.size())
-        throw std::invalid_argument("requireAffordableSmoothing(): the weld maps " +
-                                    std::to_string(weld.outputOf.size()) + " vertices, not the " +
-                                    std::to_string(positions.size()) + " 'positions'");
-    std::vector<glm::dvec3> welded;
-    welded.reserve(weld.kept.size());
-    for (std::uint32_t input : weld.kept) welded.emplace_back(positions[input]);
-    std::vector<glm::uvec3> faces;
-    faces.reserve(triangles.size());
-    for (const glm::uvec3& t : triangles) {
-        if (t.x >= weld.outputOf.size() || t.y >= weld.outputOf.size() || t.z >= weld.outputOf.size()) continue;
-        const glm::uvec3 face(weld.outputOf[t.x], weld.outputOf[t.y], weld.outputOf[t.z]);
-        if (face.x != face.y && face.y != face.z && face.z != face.x) faces.push_back(face);
-    }
-    requireAffordableSmoothing(welded, faces, smoothing);
+    const MeshToSmooth mesh{positions, triangles, &weld};
+    requireAffordableSmoothing(std::span<const MeshToSmooth>(&mesh, 1), smoothing);
 }
 
 SmoothingTooCostlyError::SmoothingTooCostlyError(double smoothing, double estimatedVisits, std::size_t vertexCount,
                                                  double smoothingWithinLimit)
-    : SceneError("computeMeshCurvature(): a 'smoothing' of " + detail::formatExtent(smoothing) +
-                 " model units floods about " +
-                 detail::formatNumber(std::round(estimatedVisits / double(std::max<std::size_t>(vertexCount, 1)))) +
-                 " of the mesh's " + std::to_string(vertexCount) + " vertices from each, about " +
-                 detail::formatExtent(estimatedVisits) + " visits, more than the " +
-                 detail::formatExtent(kMaxSmoothingVisits) + " one smoothing may take; about " +
-                 detail::formatExtent(smoothingWithinLimit) + " would not"),
+    : SceneError(
+          "computeMeshCurvature(): a 'smoothing' of " + detail::formatExtent(smoothing) + " model units floods about " +
+          detail::formatNumber(std::round(estimatedVisits / double(std::max<std::size_t>(vertexCount, 1)))) +
+          " vertices from each of " + std::to_string(vertexCount) +
+          " (in meshes whose windows hold over a sixteenth of them), about " + detail::formatExtent(estimatedVisits) +
+          " visits, more than the " + detail::formatExtent(kMaxSmoothingVisits) + " one smoothing may take; about " +
+          detail::formatExtent(smoothingWithinLimit) + " would not"),
       mSmoothing(smoothing), mEstimatedVisits(estimatedVisits), mVertexCount(vertexCount),
       mSmoothingWithinLimit(smoothingWithinLimit) {}
 
@@ -426,7 +459,11 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
 
     std::optional<GaussianNeighbourhoods> neighbourhoods;
     if (smoothing > 0.0) {
-        requireAffordableSmoothing(result.positions, result.triangles, smoothing);
+        {
+            std::vector<std::unique_ptr<EstimatedMesh>> mesh;
+            mesh.push_back(std::make_unique<EstimatedMesh>(result.positions, result.triangles, smoothing));
+            requireAffordableSmoothing(mesh, smoothing);
+        }
         neighbourhoods.emplace(result.positions, result.triangles, result.pointAreas, smoothing);
         // rtsc's diffuse_normals: curvature is the change of the normal, so the normals' noise is what the fits
         // would turn into curvature noise.

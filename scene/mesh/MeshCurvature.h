@@ -33,10 +33,11 @@ struct MeshCurvatureCounts {
     std::size_t isolatedVertices = 0;
 };
 
-/** A smoothing of computeMeshCurvature() is refused when, estimated before it starts, its windows (each vertex's
- *  Gaussian window, flooded over the surface) would cost more than kMaxSmoothingVisits vertex visits, about 50 s for
- *  the three smoothings on the 2-core machine (the bunny's 35,000 vertices: 7.8e7 visits in 9 s, 7.6e8 in 79 s, the
- *  whole mesh, 1.2e9, in 197 s), and a mean window would hold more than kMaxCostlyWindowShare of the mesh's vertices.
+/** A smoothing of computeMeshCurvature() is refused when, estimated before it starts, the windows (each vertex's
+ *  Gaussian window, flooded over the surface) of the meshes where a mean window would hold more than
+ *  kMaxCostlyWindowShare of the mesh's vertices would cost more than kMaxSmoothingVisits vertex visits in all, about
+ *  50 s for the three smoothings on the 2-core machine (the bunny's 35,000 vertices: 7.8e7 visits in 9 s, 7.6e8 in
+ *  79 s, the whole mesh, 1.2e9, in 197 s).
  *  The second condition keeps a fine mesh at a narrow smoothing, costly only for its size (a million-vertex scan at
  *  the default, 0.01 of the radius: about 1.3e9 visits, windows of a thousandth of it), slow as before rather than
  *  refused: what is refused is a smoothing wide for the model, which blurs its shape away as well. */
@@ -62,9 +63,19 @@ private:
     double mSmoothingWithinLimit;
 };
 
-/** Throws SmoothingTooCostlyError when computeMeshCurvature() would refuse `smoothing` (absolute) on this mesh, at
- *  the cost of 64 of its windows (and a dozen times that to name the largest smoothing that fits when it does), so a
- *  scene of several meshes can check each before smoothing any. Nothing for a smoothing of 0. */
+/** A mesh to smooth, for requireAffordableSmoothing(): its positions and triangles and their position weld. */
+struct MeshToSmooth {
+    std::span<const glm::vec3> positions;
+    std::span<const glm::uvec3> triangles;
+    const WeldMap* weld = nullptr;
+};
+
+/** Throws SmoothingTooCostlyError when smoothing these meshes over `smoothing` (absolute) is refused: the meshes
+ *  whose mean window would hold more than kMaxCostlyWindowShare of them would cost more than kMaxSmoothingVisits
+ *  in all. Each mesh's cost is estimated from 64 of its windows (a dozen times more to name the largest smoothing
+ *  not refused, when one is), so a scene checks all of them before smoothing any. Nothing for a smoothing of 0. */
+void requireAffordableSmoothing(std::span<const MeshToSmooth> meshes, double smoothing);
+/** The same for one mesh. */
 void requireAffordableSmoothing(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
                                 const WeldMap& weld, double smoothing);
 

@@ -256,6 +256,25 @@ TEST(MeshCurvature, AFineMeshAtANarrowSmoothingIsSlowNotRefused) {
     EXPECT_THROW(requireAffordableSmoothing(positions, triangles, weld, 0.1 * halfDiagonal), SmoothingTooCostlyError);
 }
 
+TEST(MeshCurvature, ASmoothingIsJudgedOverEveryMeshOfTheModel) {
+    // One sphere of 33,000 vertices at a smoothing of 0.35 of its radius: windows of 9 x 0.35^2 / 4 = 28% of it,
+    // about 3e8 visits, within the limit. Three such meshes make 9e8 in all: refused, though each alone is not.
+    const Mesh sphere = makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 256, 128);
+    const WeldMap weld = weldVertices(sphere.positions, {}, 1e-6);
+    const MeshToSmooth one{sphere.positions, sphere.triangles, &weld};
+    const std::vector<MeshToSmooth> three(3, one);
+    EXPECT_NO_THROW(requireAffordableSmoothing(std::span<const MeshToSmooth>(&one, 1), 0.35));
+    try {
+        requireAffordableSmoothing(three, 0.35);
+        FAIL() << "three meshes of 3e8 visits each were not refused";
+    } catch (const SmoothingTooCostlyError& costly) {
+        EXPECT_GT(costly.estimatedVisits(), kMaxSmoothingVisits);
+        EXPECT_EQ(costly.vertexCount(), 3 * weld.kept.size());
+        EXPECT_GT(costly.smoothingWithinLimit(), 0.1);
+        EXPECT_LT(costly.smoothingWithinLimit(), 0.35);
+    }
+}
+
 TEST(MeshCurvature, BadInputIsAClearError) {
     const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     const std::vector<glm::uvec3> outOfRange = {{0u, 1u, 3u}};

@@ -216,11 +216,10 @@ void ObjectSuggestiveKernel::prepare() {
         const double fits = mSmoothingShare * costly.smoothingWithinLimit() / costly.smoothing();
         throw SceneError(
             "ObjectSuggestiveKernel::prepare(): --suggestive-object-smoothing " +
-            detail::formatNumber(mSmoothingShare) +
-            " is too wide for this model: each vertex's window would hold about " +
+            detail::formatNumber(mSmoothingShare) + " is too wide for this model: its windows would hold about " +
             detail::formatNumber(std::round(costly.estimatedVisits() / double(costly.vertexCount()))) +
-            " of a mesh's " + std::to_string(costly.vertexCount()) + " vertices (" +
-            detail::formatExtent(costly.estimatedVisits()) + " visits, over the limit of " +
+            " vertices each, over a sixteenth of their mesh (" + std::to_string(costly.vertexCount()) +
+            " vertices in all; " + detail::formatExtent(costly.estimatedVisits()) + " visits, over the limit of " +
             detail::formatExtent(kMaxSmoothingVisits) + ", about a minute on two cores); " +
             (fits > 0.0 ? "about " + detail::formatExtent(fits) + " or less fits, or 0 for none" : "give 0 for none"));
     }
