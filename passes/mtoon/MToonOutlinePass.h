@@ -60,7 +60,7 @@ public:
     void declare(PassBuilder& builder) const override;
     void prepare(GlPassContext& context) override;
     void execute(GlPassContext& context) override;
-    /** For --stats: the meshes whose shells the last run drew and their triangles, those not drawn because the eye
+    /** What the last run did: the meshes whose shells it drew and their triangles, those not drawn because the eye
      *  is inside their mesh, and the width map's flag value when there is one. */
     void describe(nlohmann::ordered_json& report) const override;
 

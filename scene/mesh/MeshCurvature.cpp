@@ -177,6 +177,8 @@ public:
         return visited / double(samples) * double(count);
     }
 
+    std::size_t vertexCount() const { return mPositions.size(); }
+
     /** The same for another sigma, on the same adjacency. */
     double estimatedVisits(double sigma) {
         const double reach = mReachSquared, inverse = mInverseTwoSigmaSquared;
@@ -260,15 +262,15 @@ struct EstimatedMesh {
 
 /** The estimated visits at `sigma` of the meshes whose windows are wide (a mean window over kMaxCostlyWindowShare of
  *  the mesh), summed, with their vertices: a fine mesh at a narrow smoothing is slow, not refused. */
-std::pair<double, std::size_t> wideVisits(const std::vector<std::unique_ptr<EstimatedMesh>>& meshes, double sigma) {
+std::pair<double, std::size_t> wideVisits(const std::vector<GaussianNeighbourhoods*>& meshes, double sigma) {
     double visits = 0.0;
     std::size_t vertices = 0;
-    for (const std::unique_ptr<EstimatedMesh>& mesh : meshes) {
-        const double count = double(mesh->positions.size());
-        const double meshVisits = mesh->floods.estimatedVisits(sigma);
+    for (GaussianNeighbourhoods* mesh : meshes) {
+        const double count = double(mesh->vertexCount());
+        const double meshVisits = mesh->estimatedVisits(sigma);
         if (meshVisits > count * count * kMaxCostlyWindowShare) {
             visits += meshVisits;
-            vertices += mesh->positions.size();
+            vertices += mesh->vertexCount();
         }
     }
     return {visits, vertices};
@@ -276,7 +278,7 @@ std::pair<double, std::size_t> wideVisits(const std::vector<std::unique_ptr<Esti
 
 /** Throws SmoothingTooCostlyError when the wide meshes' windows at `smoothing` would cost more than
  *  kMaxSmoothingVisits in all, naming the largest smoothing that would not. */
-void requireAffordableSmoothing(const std::vector<std::unique_ptr<EstimatedMesh>>& meshes, double smoothing) {
+void requireAffordableSmoothing(const std::vector<GaussianNeighbourhoods*>& meshes, double smoothing) {
     const auto [visits, vertices] = wideVisits(meshes, smoothing);
     if (!(visits > kMaxSmoothingVisits)) return;
     // The largest smoothing not refused, for the message, by halving the interval on a log scale (visits grow with
@@ -299,6 +301,7 @@ void requireAffordableSmoothing(const std::vector<std::unique_ptr<EstimatedMesh>
 void requireAffordableSmoothing(std::span<const MeshToSmooth> meshes, double smoothing) {
     if (!(smoothing > 0.0)) return;
     std::vector<std::unique_ptr<EstimatedMesh>> estimated;
+    std::vector<GaussianNeighbourhoods*> floods;
     for (const MeshToSmooth& mesh : meshes) {
         const WeldMap& weld = *mesh.weld;
         if (weld.outputOf.size() != mesh.positions.size())
@@ -315,10 +318,11 @@ void requireAffordableSmoothing(std::span<const MeshToSmooth> meshes, double smo
             const glm::uvec3 face(weld.outputOf[t.x], weld.outputOf[t.y], weld.outputOf[t.z]);
             if (face.x != face.y && face.y != face.z && face.z != face.x) faces.push_back(face);
         }
-        if (!welded.empty())
-            estimated.push_back(std::make_unique<EstimatedMesh>(std::move(welded), std::move(faces), smoothing));
+        if (welded.empty()) continue;
+        estimated.push_back(std::make_unique<EstimatedMesh>(std::move(welded), std::move(faces), smoothing));
+        floods.push_back(&estimated.back()->floods);
     }
-    requireAffordableSmoothing(estimated, smoothing);
+    requireAffordableSmoothing(floods, smoothing);
 }
 
 void requireAffordableSmoothing(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
@@ -459,12 +463,10 @@ MeshCurvature computeMeshCurvature(std::span<const glm::vec3> positions, std::sp
 
     std::optional<GaussianNeighbourhoods> neighbourhoods;
     if (smoothing > 0.0) {
-        {
-            std::vector<std::unique_ptr<EstimatedMesh>> mesh;
-            mesh.push_back(std::make_unique<EstimatedMesh>(result.positions, result.triangles, smoothing));
-            requireAffordableSmoothing(mesh, smoothing);
-        }
         neighbourhoods.emplace(result.positions, result.triangles, result.pointAreas, smoothing);
+        // On the adjacency the smoothing floods: a direct caller is refused as a scene is (SceneDerivedData checks
+        // its meshes together before this).
+        requireAffordableSmoothing({&*neighbourhoods}, smoothing);
         // rtsc's diffuse_normals: curvature is the change of the normal, so the normals' noise is what the fits
         // would turn into curvature noise.
         std::vector<glm::dvec3> smoothed(vertexCount);
