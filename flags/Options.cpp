@@ -143,7 +143,7 @@ RenderOptions parse(const std::vector<std::string>& arguments, const std::vector
         }
     }
     if (!flagsOnly && options.modelPaths.empty() && options.listPath.empty())
-        throw UsageError("missing MODEL (a .gltf, .glb, .vrm, .obj or .stl file, or --list FILE)");
+        throw UsageError("missing MODEL (a " + modelFileExtensions() + " file, or --list FILE)");
     if (checks == FlagChecks::ValuesAndRules) checkGivenFlags(options, given, flagsOnly);
     return options;
 }
@@ -209,8 +209,8 @@ std::string renderHelp() {
         exitCodes += item;
     }
     return "Usage: inkgraph render MODEL... -o OUT.png [options]\n\n"
-           "Renders one still of each MODEL (.gltf, .glb, .vrm, .obj, .stl) with no window or display (EGL).\n" +
-           renderFlagsHelp() + "\n" + exitCodes + "\n";
+           "Renders one still of each MODEL (" +
+           modelFileExtensions() + ") with no window or display (EGL).\n" + renderFlagsHelp() + "\n" + exitCodes + "\n";
 }
 
 } // namespace inkgraph

@@ -210,6 +210,10 @@ std::vector<std::string> referencedFiles(const std::string& path);
  *  STL, PLY"): for help texts, so they list what the loader reads. */
 std::string modelFormatNames();
 
+/** Every file extension loadScene() reads, in the reader table's order (".gltf, .glb, .vrm, .obj, .stl, .ply"): for
+ *  usage texts, so a format added to the table is named there too. */
+std::string modelFileExtensions();
+
 /** A bounding sphere of every mesh (centre of the bounding box, radius to the farthest vertex), in the scene's local
  *  frame like the positions (add Scene::origin for world coordinates).
  *  Throws SceneError on an empty scene. */

@@ -47,6 +47,8 @@ std::string supportedExtensions() {
 
 } // namespace detail
 
+std::string modelFileExtensions() { return detail::supportedExtensions(); }
+
 std::string modelFormatNames() {
     std::string list;
     for (const detail::FormatReader& reader : detail::formatReaders()) {

@@ -593,6 +593,17 @@ TEST(Options, MalformedValuesNameTheFlag) {
               std::string::npos);
 }
 
+TEST(Options, UsageTextsNameEveryFormatTheLoaderReads) {
+    // The help and the missing-MODEL message list the reader table's extensions, so a format added there (PLY was
+    // left out of both) is named without editing them.
+    for (const std::string extension : {".gltf", ".glb", ".vrm", ".obj", ".stl", ".ply"}) {
+        EXPECT_NE(modelFileExtensions().find(extension), std::string::npos) << extension;
+        EXPECT_NE(renderHelp().find(extension), std::string::npos) << extension;
+        EXPECT_NE(usageMessage({"-o", "x.png"}).find(extension), std::string::npos) << extension;
+    }
+    EXPECT_NE(renderHelp().find("MODEL (" + modelFileExtensions() + ")"), std::string::npos);
+}
+
 TEST(Options, ExtremeButFiniteDirectionsKeepTheirDirection) {
     // The length of (1e300, 1e300, 0) overflows and that of (1e-300, 0, 0) underflows in double: scaled first.
     const glm::dvec3 huge = *parse({"m.obj", "-o", "x.png", "--light", "1e300,1e300,0"}).look.towardLight;
