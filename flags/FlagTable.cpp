@@ -1,7 +1,13 @@
 #include "flags/FlagTable.h"
 
+#include "gl/HeadlessContext.h"
 #include "graph/Resource.h"
+#include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineTypes.h"
+#include "render/MemoryBudget.h"
+#include "render/StillRenderer.h"
+#include "scene/MessageText.h"
+#include "scene/TextureImage.h"
 
 #include <algorithm>
 #include <cctype>
@@ -9,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 namespace inkgraph {
@@ -133,6 +140,22 @@ void parseSize(const std::string& text, int& width, int& height) {
                          ", got '" + text + "'");
     width = static_cast<int>(w);
     height = static_cast<int>(h);
+}
+
+/** "a, b or c" (or "a, b and c" with lastJoin " and "): a list for help and messages, from the table that holds it. */
+std::string alternatives(const std::vector<std::string>& items, const char* lastJoin = " or ") {
+    std::string text;
+    for (std::size_t i = 0; i < items.size(); ++i)
+        text += (i == 0 ? "" : i + 1 == items.size() ? lastJoin : ", ") + items[i];
+    return text;
+}
+
+/** --dump's G-buffer files, from the pass's own table: "normal.exr, view.exr, ... and zbuffer.exr". */
+std::string gbufferDumpFiles() {
+    std::vector<std::string> files;
+    for (const GBufferPass::Field& field : GBufferPass::fields()) files.push_back(field.fileName);
+    files.push_back(GBufferPass::kZBufferFile);
+    return alternatives(files, " and ");
 }
 
 std::string joined(const std::vector<std::string>& items) {
@@ -269,6 +292,19 @@ std::string commaJoined(const std::vector<std::string>& names) {
     return text;
 }
 
+/** A number parameter's accepted range for --help, from its declaration: "; R above 0, up to 100". Empty for a
+ *  choice, whose help names its words. */
+std::string acceptedRangeText(const LineParameter& parameter) {
+    if (parameter.isChoice()) return "";
+    const std::string low = detail::formatNumber(parameter.low);
+    const std::string value = "; " + parameter.valueName + " ";
+    if (!(parameter.high < std::numeric_limits<double>::max()))
+        return value + (parameter.lowOpen ? "above " : "at least ") + low;
+    const std::string high = detail::formatNumber(parameter.high);
+    if (parameter.lowOpen) return value + "above " + low + (parameter.highOpen ? " and below " : ", up to ") + high;
+    return value + "from " + low + (parameter.highOpen ? ", below " : " to ") + high;
+}
+
 // --- "has no effect" rules --------------------------------------------------------------------------------------
 
 /** A shading flag that only the models with trait `has` take. */
@@ -356,7 +392,7 @@ void addLineTypeFlags(std::vector<Flag>& flags) {
         const std::vector<std::string> types = lineTypesUsing(parameter);
         const std::string flagName = "--" + parameter->name;
         Flag entry = styleFlag(flag({flagName}, parameter->valueName, HelpSection::Lines,
-                                    commaJoined(types) + ": " + parameter->help,
+                                    commaJoined(types) + ": " + parameter->help + acceptedRangeText(*parameter),
                                     [parameter](const std::string& value, RenderOptions& options) {
                                         try {
                                             options.look.lineParameters.set(*parameter, parameter->parse(value));
@@ -365,6 +401,7 @@ void addLineTypeFlags(std::vector<Flag>& flags) {
                                         }
                                     }));
         entry.noEffect = onlyWithLineTypes(flagName, types);
+        entry.choices = parameter->choices;
         flags.push_back(entry);
     }
 }
@@ -480,25 +517,32 @@ std::vector<Flag> makeFlags() {
     using S = HelpSection;
     std::vector<Flag> flags;
     // Output
-    flags.push_back(flag(
-        {"-o", "--output"}, "FILE", S::Output, "the final picture: .png, .exr, .tif or .jpg",
-        [](const std::string& value, RenderOptions& options) {
-            options.outputPath = value;
-            const std::string extension = lowercaseExtension(value);
-            if (std::find(kOutputExtensions.begin(), kOutputExtensions.end(), extension) == kOutputExtensions.end())
-                throw UsageError("-o: '" + value + "' has no picture extension I write (use .png, .exr, .tif or .jpg)");
-        }));
+    flags.push_back(flag({"-o", "--output"}, "FILE", S::Output, "the final picture: " + alternatives(kOutputExtensions),
+                         [](const std::string& value, RenderOptions& options) {
+                             options.outputPath = value;
+                             const std::string extension = lowercaseExtension(value);
+                             if (std::find(kOutputExtensions.begin(), kOutputExtensions.end(), extension) ==
+                                 kOutputExtensions.end())
+                                 throw UsageError("-o: '" + value + "' has no picture extension I write (use " +
+                                                  alternatives(kOutputExtensions) + ")");
+                         }));
     flags.push_back(styleFlag(flag(
-        {"--size"}, "WxH", S::Output, "image size in pixels (default 1024x1024, at most 16384 a side)",
+        {"--size"}, "WxH", S::Output,
+        "image size in pixels (default 1024x1024, at most " + std::to_string(kMaxImageSide) +
+            " a side; one buffer of the plan at most " + std::to_string(kMaxTextureBytes >> 20) +
+            " MiB, so a float RGBA G-buffer field at most " + std::to_string(largestFloatRgbaSquareSide()) + "x" +
+            std::to_string(largestFloatRgbaSquareSide()) + ", with --supersample)",
         [](const std::string& value, RenderOptions& options) { parseSize(value, options.width, options.height); })));
     flags.push_back(
         flag({"--dump"}, "DIR", S::Output,
              "also write every buffer the plan computed, and manifest.json. What is computed follows\n"
              "from the request: shading reads the G-buffer only where lines do; add --request 'gbuffer.*' for\n"
-             "normal.exr, view.exr, w.exr (float32 RGBA, alpha = coverage), ndotv.exr, depth.exr\n"
-             "(float32), coverage.png, basecolor.png, radial.exr, materialid.exr, objectid.exr (the manifest\n"
-             "names the objects). Also shading.png, final.png, lines-<type>.png. An earlier dump in DIR is\n"
-             "replaced once everything is written; DIR must be new, empty, or hold exactly an earlier dump",
+             "every G-buffer field: " +
+                 gbufferDumpFiles() +
+                 " (the manifest names the objects and meshes). Also shading.png, final.png, lines-<type>.png, and\n"
+                 "what the line stages drew: band-<type>.png, skeleton-<type>.png, mesh-edges-<type>.png (README's\n"
+                 "dump table lists them all). An earlier dump in DIR is replaced once everything is written; DIR\n"
+                 "must be new, empty, or hold exactly an earlier dump",
              [](const std::string& value, RenderOptions& options) { options.dumpDirectory = value; }));
     flags.push_back(flag({"--request"}, "LIST", S::Output,
                          "compute and keep extra graph outputs, comma-separated: 'gbuffer.wVec', or 'gbuffer.*'\n"
@@ -740,8 +784,9 @@ std::vector<Flag> makeFlags() {
     flags.push_back(bands);
     Flag shadeMap =
         styleFlag(flag({"--shademap"}, "FILE", S::Look,
-                       "cel: a one-row image; comic: a 2-D image (left dark -> right lit, bottom no highlight\n"
-                       "-> top full highlight); 8-bit, at most 4096 a side; multiplied with the material colour",
+                       "an 8-bit PNG, at most 4096 a side, for " + shadingModelsWith(&ShadingModelTraits::shadeMap) +
+                           ": cel (and auto's cel materials) read one row; comic a 2-D image (left dark -> right\n"
+                           "lit, bottom no highlight -> top full highlight); multiplied with the material colour",
                        [](const std::string& value, RenderOptions& options) { options.look.shadeMapPath = value; }));
     shadeMap.pathValue = true;
     shadeMap.noEffect = [model = onlyWithModels("--shademap", &ShadingModelTraits::shadeMap)](
@@ -949,21 +994,23 @@ std::vector<Flag> makeFlags() {
                      throw UsageError("--gbuffer-precision: expected float or half, got '" + value + "'");
              })));
     flags.back().choices = {"float", "half"};
-    Flag widthMap = styleFlag(
-        flag({"--outline-width-map"}, "SOURCE", S::Lines,
-             "scale the outline, silhouette and MToon outline widths per vertex by a value in [0, 1] (0\n"
-             "hides the line there): color:C, channel C (R, G, B or A) of the vertex colour COLOR_0, or\n"
-             "texture:FILE:C, channel C of an image (PNG or JPEG, relative to the working directory; or the name of\n"
-             "an image of the model when no file is there) at the vertex's TEXCOORD_0, read as data (stored value /\n"
-             "255); none (default) leaves them. Times MToon's width texture. A mesh without the colours or\n"
-             "coordinates keeps its widths, with a warning (docs/lines.md \"Width from the model\")",
-             [](const std::string& value, RenderOptions& options) {
-                 try {
-                     options.look.outlineWidthMap = parseWidthMap(value);
-                 } catch (const std::invalid_argument& error) {
-                     throw UsageError(error.what());
-                 }
-             }));
+    Flag widthMap = styleFlag(flag(
+        {"--outline-width-map"}, "SOURCE", S::Lines,
+        "scale the outline, silhouette and MToon outline widths per vertex by a value in [0, 1] (0\n"
+        "hides the line there): color:C, channel C (R, G, B or A) of the vertex colour COLOR_0, or\n"
+        "texture:FILE:C, channel C of an image (" +
+            std::string(kTextureFormatNames) +
+            ", relative to the working directory; or the name of\n"
+            "an image of the model when no file is there) at the vertex's TEXCOORD_0, read as data (stored value /\n"
+            "255); none (default) leaves them. Times MToon's width texture. A mesh without the colours or\n"
+            "coordinates keeps its widths, with a warning (docs/lines.md \"Width from the model\")",
+        [](const std::string& value, RenderOptions& options) {
+            try {
+                options.look.outlineWidthMap = parseWidthMap(value);
+            } catch (const std::invalid_argument& error) {
+                throw UsageError(error.what());
+            }
+        }));
     widthMap.noEffect = [](const RenderOptions& options) -> std::string {
         if (!options.look.outlineWidthMap.enabled() || options.look.draws("outline") ||
             options.look.draws("silhouette") || traitsOf(options.look.shading).materialOutlines)
@@ -1162,10 +1209,11 @@ std::vector<Flag> makeFlags() {
                          "auto | cpu | gpu: where the image-space line kernels (contour, depth-edge,\n"
                          "normal-edge) and the composite run: on the CPU over read-back G-buffer fields, or as\n"
                          "compute shaders with only what they find read back; the lines agree within 1e-3 px,\n"
-                         "the composite to the byte. Default auto: cpu on a software rasterizer (llvmpipe,\n"
-                         "softpipe, swrast: measured faster there, docs/performance.md), else gpu for the line\n"
-                         "kernels and cpu for the composite (gpu only when asked: a plan that ends on the GPU\n"
-                         "leaves a batch no post stage to overlap). --stats says which ran (post_stage.device)",
+                         "the composite to the byte. Default auto: cpu on a software rasterizer (" +
+                             commaJoined(softwareRasterizerNames()) +
+                             ": measured faster there, docs/performance.md), else gpu for the line\n"
+                             "kernels and cpu for the composite (gpu only when asked: a plan that ends on the GPU\n"
+                             "leaves a batch no post stage to overlap). --stats says which ran (post_stage.device)",
                          [](const std::string& value, RenderOptions& options) {
                              if (value == "auto")
                                  options.look.postStage = PostStageDevice::Auto;
@@ -1182,17 +1230,19 @@ std::vector<Flag> makeFlags() {
                          "or undecodable texture, a value clamped into range, the model outside the view, ...).\n"
                          "Without it a warning is printed and the still is drawn as the warning says",
                          [](const std::string&, RenderOptions& options) { options.strict = true; }));
-    flags.push_back(flag({"--memory-limit"}, "MIB", S::System,
-                         "the most memory the process may take for one still, 64 and up (default: half this\n"
-                         "machine's memory, at least 1024). Checked before allocating: the model load from the\n"
-                         "file's size and declared counts (exit 3), then the whole run's peak from the plan (the\n"
-                         "process, the scene, every buffer at --size and --supersample, read-backs, encoding; exit\n"
-                         "2), naming the flags that need the memory. --stats reports the estimate\n"
-                         "(estimated_peak_mib) and the measured peak (peak_rss_mib); docs/batch.md sizes a task",
-                         [](const std::string& value, RenderOptions& options) {
-                             options.memoryLimitBytes =
-                                 std::size_t(parseWholeNumber("--memory-limit", value, 64, kMaxMemoryLimitMib)) << 20;
-                         }));
+    flags.push_back(
+        flag({"--memory-limit"}, "MIB", S::System,
+             "the most memory the process may take for one still, 64 to " + std::to_string(kMaxMemoryLimitMib) +
+                 " (default: half this\n"
+                 "machine's memory, at least 1024). Checked before allocating: the model load from the\n"
+                 "file's size and declared counts (exit 3), then the whole run's peak from the plan (the\n"
+                 "process, the scene, every buffer at --size and --supersample, read-backs, encoding; exit\n"
+                 "2), naming the flags that need the memory. --stats reports the estimate\n"
+                 "(estimated_peak_mib) and the measured peak (peak_rss_mib); docs/batch.md sizes a task",
+             [](const std::string& value, RenderOptions& options) {
+                 options.memoryLimitBytes =
+                     std::size_t(parseWholeNumber("--memory-limit", value, 64, kMaxMemoryLimitMib)) << 20;
+             }));
     flags.push_back(flag({"--weld-distance"}, "R", S::System,
                          "when loading, merge vertices closer than R x the model's size (its bounding box's\n"
                          "diagonal), 0 to 0.01 (default 1e-6; 0: only vertices at the same point). Lower it for\n"

@@ -321,11 +321,16 @@ std::string HeadlessContext::describe() const {
     return mRenderer + " / " + mVersion + " (" + mVendor + ") via EGL " + mPlatform + " platform";
 }
 
+const std::vector<std::string>& softwareRasterizerNames() {
+    static const std::vector<std::string> kNames = {"llvmpipe", "softpipe", "swrast", "swiftshader"};
+    return kNames;
+}
+
 bool isSoftwareRasterizer(std::string_view glRenderer) {
     std::string lower(glRenderer);
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    for (const char* name : {"llvmpipe", "softpipe", "swrast", "swiftshader"})
+    for (const std::string& name : softwareRasterizerNames())
         if (lower.find(name) != std::string::npos) return true;
     return false;
 }

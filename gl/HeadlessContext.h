@@ -14,6 +14,9 @@ namespace inkgraph {
  *  SwiftShader; case-insensitive), whose "GPU" work competes with ours for the same cores. */
 bool isSoftwareRasterizer(std::string_view glRenderer);
 
+/** The renderer names isSoftwareRasterizer() knows (matched case-blind within GL_RENDERER): "llvmpipe", ... */
+const std::vector<std::string>& softwareRasterizerNames();
+
 /** No display or context could be made. The message names what is missing and how to see more. */
 class HeadlessContextError : public std::runtime_error {
 public:

@@ -18,8 +18,8 @@ namespace inkgraph {
 const std::vector<ExitCodeMeaning>& exitCodeMeanings() {
     static const std::vector<ExitCodeMeaning> kMeanings = {
         {kExitOk, "done"},
-        {kExitUsage, "bad command line"},
-        {kExitBadInput, "unreadable or invalid model"},
+        {kExitUsage, "bad command line or style file, or a request too big for memory"},
+        {kExitBadInput, "unreadable or invalid model or shade map (in a batch: some model)"},
         {kExitNoGl, "no OpenGL/EGL or no shaders"},
         {kExitOutput, "an output could not be written"},
         {kExitInternal, "anything else"},

@@ -46,6 +46,18 @@ constexpr std::size_t kEncodeCopies = 2;
  *  64-pixel tiles of older versions. */
 std::size_t paddedTextureSide(std::size_t side) { return (side + 63) / 64 * 64; }
 
+} // namespace
+
+int largestFloatRgbaSquareSide() {
+    int side = 64;
+    while (paddedTextureSide(std::size_t(side) + 64) * paddedTextureSide(std::size_t(side) + 64) * 16 <
+           kMaxTextureBytes)
+        side += 64;
+    return side;
+}
+
+namespace {
+
 int channelsOf(Format format) {
     return format == Format::RGBA32F || format == Format::RGBA8 || format == Format::RGBA16F ? 4 : 1;
 }
@@ -255,7 +267,9 @@ void budgetStill(PreparedStill& still) {
                  : size) +
             (resource.desc.samples > 1 ? " and --msaa " + std::to_string(resource.desc.samples) : std::string());
         throw UsageError(cause + " makes '" + resource.name + "' " + std::to_string(textureBytes >> 20) +
-                         " MiB; one buffer must stay under 2048 MiB (at most 11584x11584 for float RGBA)");
+                         " MiB; one buffer must stay under " + std::to_string(kMaxTextureBytes >> 20) +
+                         " MiB (at most " + std::to_string(largestFloatRgbaSquareSide()) + "x" +
+                         std::to_string(largestFloatRgbaSquareSide()) + " for float RGBA)");
     }
     // The textures are left out here: each is refused by name when it is decoded (decodeSceneImage()), which says
     // more than "the run needs N MiB" would.

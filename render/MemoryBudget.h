@@ -63,6 +63,10 @@ std::size_t processBaselineBytes();
 /** Half this machine's memory, at least 1 GiB: the memory limit when none is given. */
 std::size_t defaultMemoryLimit();
 
+/** The largest square side whose float RGBA buffer (16 bytes a pixel, padded as llvmpipe pads) stays under
+ *  kMaxTextureBytes: 11584. For --help and the refusal of a larger buffer. */
+int largestFloatRgbaSquareSide();
+
 /** Between plan and execute: refuses a still whose buffers would not fit (one texture of 2 GiB or more, or the whole
  *  run's estimated peak above the request's memoryLimitBytes), naming the flags that make them large (UsageError),
  *  then gives the textures, decoded during the run, what the estimate leaves of the limit. */

@@ -124,9 +124,8 @@ DecodedImage decodeWithStb(const std::vector<unsigned char>& bytes, const std::s
              declared);
     int width = 0, height = 0, channels = 0;
     if (stbi_info_from_memory(bytes.data(), byteCount, &width, &height, &channels) == 0)
-        fail("cannot be decoded: not a PNG, JPEG, WebP, BMP, TGA, GIF, PSD, HDR or PIC image, or one stb_image finds "
-             "corrupt or too large" +
-             declared + " (" + stbReason() + ")");
+        fail(std::string("cannot be decoded: not a ") + kTextureFormatNames +
+             " image, or one stb_image finds corrupt or too large" + declared + " (" + stbReason() + ")");
     admit(std::uint64_t(std::max(width, 0)), std::uint64_t(std::max(height, 0)), stbDecoderBytes(bytes, width, height));
     int decodedWidth = 0, decodedHeight = 0;
     unsigned char* pixels = stbi_load_from_memory(bytes.data(), byteCount, &decodedWidth, &decodedHeight, &channels, 4);

@@ -15,6 +15,10 @@
 
 namespace inkgraph {
 
+/** The image formats decodeSceneImage() reads, for messages and help texts: "PNG, JPEG, WebP, BMP, TGA, GIF, PSD, HDR
+ *  or PIC". */
+inline constexpr const char* kTextureFormatNames = "PNG, JPEG, WebP, BMP, TGA, GIF, PSD, HDR or PIC";
+
 struct DecodedImage {
     int width = 0;
     int height = 0;

@@ -92,7 +92,7 @@ void GBufferPass::declare(PassBuilder& builder) const {
         builder.write(field.name, {formatOf(field), mSupersample}, Need::Optional,
                       {field.fileName, field.appearance, field.meaning});
     builder.write(kZBuffer, {Format::Depth32F, mSupersample}, Need::Optional,
-                  {"zbuffer.exr", Appearance::Data,
+                  {kZBufferFile, Appearance::Data,
                    "the depth test's own buffer: window depth of the nearest face, reversed-Z (1 at near, 0 at far "
                    "and off the model)"});
 }

@@ -80,6 +80,8 @@ public:
     static const std::vector<Field>& fields();
     /** The field that publishes the depth attachment: "zBuffer". */
     static constexpr const char* kZBuffer = "zBuffer";
+    /** --dump's file of the z-buffer. */
+    static constexpr const char* kZBufferFile = "zbuffer.exr";
     /** The linear depth field, which the stroke stage weighs lines by: "depth". */
     static constexpr const char* kDepth = "depth";
     /** The field drawn with a geometry stage, in a draw of its own: "barycentric". */

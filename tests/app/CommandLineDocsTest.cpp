@@ -6,6 +6,7 @@
 #include "app/DatasetCheck.h"
 #include "flags/FlagTable.h"
 #include "flags/Options.h"
+#include "passes/lines/LineTypes.h"
 #include "tests/support/TestFolder.h"
 
 #include <gtest/gtest.h>
@@ -179,6 +180,12 @@ TEST_F(CommandLineDocs, CompletesTheValuesOfFlagsWithAFixedSet) {
         EXPECT_EQ(complete({"render", entry.names.back(), ""}), choices) << entry.names.back();
     }
     EXPECT_GE(flagsWithChoices, 8u);
+    // A line parameter of words offers them: --suggestive-stencil's 3 and 5 were offered nothing.
+    for (const LineParameter* parameter : lineParameters()) {
+        if (!parameter->isChoice()) continue;
+        const std::set<std::string> words(parameter->choices.begin(), parameter->choices.end());
+        EXPECT_EQ(complete({"render", "--" + parameter->name, ""}), words) << parameter->name;
+    }
     // --shading c: the models starting with c, from the table.
     const Flag* shading = findFlag("--shading");
     std::set<std::string> startingWithC;

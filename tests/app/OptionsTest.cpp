@@ -5,7 +5,12 @@
 #include "app/OutputFiles.h"
 #include "app/Render.h"
 #include "app/StillOutputs.h"
+#include "flags/FlagTable.h"
+#include "gl/HeadlessContext.h"
+#include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineTypes.h"
+#include "render/MemoryBudget.h"
+#include "scene/TextureImage.h"
 
 #include <gtest/gtest.h>
 
@@ -591,6 +596,44 @@ TEST(Options, MalformedValuesNameTheFlag) {
     EXPECT_NE(usageMessage({"m.obj"}).find("-o"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--eye", "1,1,1", "--target", "1,1,1"}).find("differ"),
               std::string::npos);
+}
+
+TEST(Options, HelpTextsAreMadeFromTheTablesTheyDescribe) {
+    // Each flag's own help text, before --help wraps it.
+    const auto helpOf = [](const std::string& name) {
+        const Flag* entry = findFlag(name);
+        return entry ? entry->help : std::string("(no flag " + name + ")");
+    };
+    // -o: every extension the flag takes (.tiff and .jpeg were taken but not named).
+    for (const char* extension : {".png", ".exr", ".tif", ".tiff", ".jpg", ".jpeg"}) {
+        EXPECT_EQ(usageMessage({"m.obj", "-o", std::string("x") + extension}), "(no error)") << extension;
+        EXPECT_NE(helpOf("-o").find(extension), std::string::npos) << extension;
+    }
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.gif"}).find(".tif, .tiff, .jpg or .jpeg"), std::string::npos);
+    // --dump: every G-buffer field's file (meshid, triangleid, barycentric and the z-buffer were left out).
+    for (const GBufferPass::Field& field : GBufferPass::fields())
+        EXPECT_NE(helpOf("--dump").find(field.fileName), std::string::npos) << field.fileName;
+    EXPECT_NE(helpOf("--dump").find(GBufferPass::kZBufferFile), std::string::npos);
+    // --size: the one-buffer limit beside the side's.
+    EXPECT_EQ(largestFloatRgbaSquareSide(), 11584);
+    EXPECT_NE(helpOf("--size").find("at most 11584x11584"), std::string::npos);
+    // A number line parameter's range, from its declaration.
+    EXPECT_NE(helpOf("--depth-jump").find("; R above 0, up to 100"), std::string::npos);
+    EXPECT_NE(helpOf("--crease-angle").find("; DEG above 0 and below 180"), std::string::npos);
+    EXPECT_NE(helpOf("--suggestive-smoothing").find("; S from 0 to 1"), std::string::npos);
+    const std::string objectWidth = helpOf("--silhouette-object-width");
+    EXPECT_NE(objectWidth.find("; D above 0"), std::string::npos); // no upper end: not "up to 1.79e+308"
+    EXPECT_EQ(objectWidth.find("up to"), std::string::npos);
+    for (const LineParameter* parameter : lineParameters())
+        if (!parameter->isChoice())
+            EXPECT_NE(helpOf("--" + parameter->name).find("; " + parameter->valueName + " "), std::string::npos)
+                << parameter->name;
+    // The lists that come from other layers' tables.
+    for (const std::string& name : softwareRasterizerNames())
+        EXPECT_NE(helpOf("--post-stage").find(name), std::string::npos) << name;
+    EXPECT_NE(helpOf("--outline-width-map").find(kTextureFormatNames), std::string::npos);
+    EXPECT_NE(helpOf("--memory-limit").find("64 to 16777216"), std::string::npos);
+    EXPECT_NE(helpOf("--shademap").find("for cel, comic and auto"), std::string::npos); // the models' traits
 }
 
 TEST(Options, UsageTextsNameEveryFormatTheLoaderReads) {

@@ -302,7 +302,8 @@ struct StrokeSettings {
 };
 
 /** The look: shading and its settings, the line types with their styles and parameters, strokes, paper, light and
- *  supersampling. Look() is the command line's default (cel shading, silhouette and contour). Each setter checks
+ *  supersampling. Look() is the command line's default (auto shading: MToon where a material has it, else cel;
+ *  silhouette and contour). Each setter checks
  *  its value at once, as the flag it stands for does, and throws Error(Usage) with that flag's message after the
  *  setter's name ("Look::setBands(): --bands: ..."); what depends on the other settings (a setting that has no
  *  effect with the rest, such as bands with Phong shading) is checked when the look renders. */
@@ -332,9 +333,9 @@ public:
     Look& setShading(Shading shading);
     double shininess() const; ///< phong and comic
     Look& setShininess(double exponent);
-    std::optional<int> bands() const; ///< cel; unset: Qu, Chen & Zwicker's five uneven bands
+    std::optional<int> bands() const; ///< cel and auto; unset: Qu, Chen & Zwicker's five uneven bands
     Look& setBands(int bands);
-    std::string shadeMap() const; ///< cel or comic: a PNG; "" is the built-in map
+    std::string shadeMap() const; ///< cel, comic or auto: a PNG; "" is the built-in map
     Look& setShadeMap(const std::string& path);
     /** --outline-width-map: "none", "color:R" or "texture:FILE:G" (the outline, silhouette and MToon outline widths
      *  scaled per vertex by a vertex colour or texture channel). */
