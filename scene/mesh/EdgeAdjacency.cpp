@@ -29,6 +29,9 @@ struct EdgeEntry {
 /** Sorts one bucket's entries by `high`, keeping their order (face order) among equal ones: an insertion sort, as a
  *  bucket holds a vertex's few edges, except at a fan's hub. */
 void sortBucket(EdgeEntry* begin, EdgeEntry* end) {
+    // Nothing to sort, and `begin + 1` is undefined when there are no entries at all (a null begin: a mesh whose
+    // every face is degenerate once welded; fuzz_obj and fuzz_ply found it).
+    if (end - begin < 2) return;
     if (end - begin > 32) {
         std::stable_sort(begin, end, [](const EdgeEntry& a, const EdgeEntry& b) { return a.high < b.high; });
         return;

@@ -247,6 +247,19 @@ TEST(EdgeAdjacency, DegenerateFacesAreSkipped) {
     EXPECT_EQ(adjacency.faceNormals[3], glm::vec3(0, 0, 1));
 }
 
+TEST(EdgeAdjacency, EveryFaceDegenerateOnceWeldedGivesNoEdges) {
+    // A far vertex makes the model large, so the weld distance (a share of its size) merges the small triangle's
+    // corners: no face is left, and no edge entry to sort (the sort then did arithmetic on a null pointer, which the
+    // sanitized build reports; fuzz_obj and fuzz_ply found it).
+    const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1e7f, 0, 0}};
+    const std::vector<glm::uvec3> triangles = {{0, 1, 2}, {2, 1, 0}};
+    const EdgeAdjacency adjacency = buildEdgeAdjacency(positions, triangles, 10.0);
+    EXPECT_EQ(adjacency.counts.degenerateFaces, 2u);
+    EXPECT_TRUE(adjacency.edges.empty());
+    const EdgeAdjacency none = buildEdgeAdjacency(positions, std::vector<glm::uvec3>{}, 1e-6);
+    EXPECT_TRUE(none.edges.empty());
+}
+
 TEST(EdgeAdjacency, BadInputThrowsNamingTheFunction) {
     const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
     try {
