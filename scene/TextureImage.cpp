@@ -2,6 +2,7 @@
 
 #include "scene/MessageText.h"
 #include "scene/Scene.h"
+#include "scene/formats/FormatReaders.h"
 
 #include "codecs/JpegCodec.h"
 #include "codecs/PngChunks.h"
@@ -58,8 +59,11 @@ std::string limitText(std::size_t byteLimit) {
 std::vector<unsigned char> readImageFile(const SceneImage& image, std::size_t byteLimit, const Failure& fail) {
     std::error_code error;
     const std::filesystem::file_status status = std::filesystem::status(image.path, error);
-    if (error || !std::filesystem::exists(status))
+    if (error || !std::filesystem::exists(status)) {
+        if (const std::optional<std::string> why = detail::whyFileIsMissing(image.path))
+            fail.missing("its file '" + image.path + "' " + *why);
         fail.missing("its file '" + image.path + "' cannot be found" + (error ? " (" + error.message() + ")" : ""));
+    }
     if (!std::filesystem::is_regular_file(status)) fail.missing("its file '" + image.path + "' is not a regular file");
     const std::uintmax_t size = std::filesystem::file_size(image.path, error);
     if (error) fail("cannot read the size of '" + image.path + "' (" + error.message() + ")");

@@ -136,9 +136,17 @@ void readMtl(const std::string& path, std::string_view content, ObjMaterials& ma
  *  beside it, or for a library's texture the path or the last name beside the model (`modelFolder`, when the library
  *  lies in a folder of its own); else, for a name from Windows whose case differs from the file's
  *  ("Textures/Skin.PNG"), the one file that differs in ASCII case alone (a folder's first 10,000 entries searched), in
- *  those places. The name as written (slashed when it had '\') when none of these exists, for the message. */
+ *  those places. The name as written (slashed when it had '\') when none of these exists, for the message
+ *  (whyFileIsMissing() tells more). */
 std::string fileBeside(const std::filesystem::path& folder, const std::string& name,
                        const std::optional<std::filesystem::path>& modelFolder = std::nullopt);
+
+/** What to say of a file fileBeside() gave and no file is at, when more is known than that it is missing: a folder
+ *  on its way cannot be read ("cannot be looked for: the folder '<folder>' cannot be read (Permission denied)"), or
+ *  holds several names that differ from the path's in case alone, none of which fileBeside() takes ("cannot be found:
+ *  the folder '<folder>' holds 'TEX.png' and 'tex.png', which differ from its name in case alone: rename the one meant
+ *  to 'Tex.png'"). Nothing when the file is simply missing (or there). */
+std::optional<std::string> whyFileIsMissing(const std::string& path);
 
 /** The texture files a material library's map_Kd and map_d lines name, resolved as readMtl() resolves them. */
 std::vector<std::string> mtlReferencedFiles(const std::string& path, std::string_view content,

@@ -310,11 +310,11 @@ private:
         std::error_code error;
         // A FIFO or device would block when decoded: only regular files are images.
         if (!std::filesystem::is_regular_file(path, error)) {
+            const std::string why = whyFileIsMissing(path).value_or("is missing or not a regular file");
             mWarnings.push_back(makeWarning(WarningKind::TextureMissing,
                                             "material library '" + mPath + "' line " + std::to_string(line) + ": " +
                                                 std::string(keyword) + " '" + excerptForMessage(map.file) + "': '" +
-                                                excerptForMessage(path) +
-                                                "' is missing or not a regular file; material '" +
+                                                excerptForMessage(path) + "' " + why + "; material '" +
                                                 excerptForMessage(mCurrent->material.name) + "' is drawn without it",
                                             path, mCurrent->material.name));
             if (std::ranges::find(mMaterials.missingImages, path, &SceneImage::path) == mMaterials.missingImages.end())
@@ -445,11 +445,15 @@ std::string asciiLower(std::string text) {
     return text;
 }
 
-/** The one entry of `folder` whose name differs from `wanted` in ASCII case alone; nothing when none does, or
- *  several. A folder's names are read once and remembered while its modification time stays (a model naming a
- *  thousand textures by the wrong case, in a folder of thousands, would read it a thousand times), for every thread
- *  of a batch. */
-std::optional<std::string> entryIgnoringCase(const std::filesystem::path& folder, const std::string& wanted) {
+/** The entries of `folder` whose names differ from `wanted` in ASCII case alone (or not at all), sorted; `error` when
+ *  the folder cannot be read. A folder's names are read once and remembered while its modification time stays (a
+ *  model naming a thousand textures by the wrong case, in a folder of thousands, would read it a thousand times), for
+ *  every thread of a batch. */
+struct CaseBlindEntries {
+    std::vector<std::string> names;
+    std::error_code error;
+};
+CaseBlindEntries entriesIgnoringCase(const std::filesystem::path& folder, const std::string& wanted) {
     struct Listing {
         std::filesystem::file_time_type modified;
         std::multimap<std::string, std::string> byLowerName;
@@ -458,9 +462,10 @@ std::optional<std::string> entryIgnoringCase(const std::filesystem::path& folder
     static std::map<std::string, Listing> listings;
     static std::size_t entriesRemembered = 0;
     const std::filesystem::path directory = folder.empty() ? std::filesystem::path(".") : folder;
-    std::error_code error;
+    CaseBlindEntries found;
+    std::error_code& error = found.error;
     const std::filesystem::file_time_type modified = std::filesystem::last_write_time(directory, error);
-    if (error) return std::nullopt;
+    if (error) return found;
     const std::lock_guard lock(mutex);
     auto listing = listings.find(directory.string());
     if (listing == listings.end() || listing->second.modified != modified) {
@@ -471,7 +476,7 @@ std::optional<std::string> entryIgnoringCase(const std::filesystem::path& folder
             const std::string name = entry->path().filename().string();
             read.byLowerName.emplace(asciiLower(name), name);
         }
-        if (error) return std::nullopt;
+        if (error) return found;
         if (listing != listings.end()) {
             entriesRemembered -= listing->second.byLowerName.size();
             listings.erase(listing);
@@ -484,13 +489,14 @@ std::optional<std::string> entryIgnoringCase(const std::filesystem::path& folder
         listing = listings.emplace(directory.string(), std::move(read)).first;
     }
     const auto [first, last] = listing->second.byLowerName.equal_range(asciiLower(wanted));
-    if (first == last || std::next(first) != last) return std::nullopt; // none, or "skin.png" and "SKIN.png" both
-    return first->second;
+    for (auto entry = first; entry != last; ++entry) found.names.push_back(entry->second);
+    std::ranges::sort(found.names);
+    return found;
 }
 
 /** `relative` below `folder` with each name that does not exist as written matched to the one entry of its folder
  *  that differs from it in ASCII case alone, as Windows file systems find "Textures/Skin.PNG" for textures/skin.png;
- *  nothing when a name matches no entry, or several. */
+ *  nothing when a name matches no entry, or several ("skin.png" and "SKIN.png" both: whyFileIsMissing() says so). */
 std::optional<std::string> caseBlindPath(const std::filesystem::path& folder, const std::filesystem::path& relative) {
     std::filesystem::path found = folder;
     for (const std::filesystem::path& part : relative) {
@@ -499,9 +505,9 @@ std::optional<std::string> caseBlindPath(const std::filesystem::path& folder, co
             found /= part;
             continue;
         }
-        const std::optional<std::string> match = entryIgnoringCase(found, part.string());
-        if (!match) return std::nullopt;
-        found /= *match;
+        const CaseBlindEntries match = entriesIgnoringCase(found, part.string());
+        if (match.names.size() != 1) return std::nullopt;
+        found /= match.names.front();
     }
     return found.string();
 }
@@ -561,6 +567,45 @@ std::string fileBeside(const std::filesystem::path& folder, const std::string& n
         }
     }
     return slashed != name && name.find('\\') != std::string::npos ? resolve(slashed) : asWritten;
+}
+
+std::optional<std::string> whyFileIsMissing(const std::string& path) {
+    // Walked from the top, so the folder named is the first that stops the lookup: the one that cannot be read, or
+    // the one whose names differ from the path's in case alone.
+    const std::filesystem::path whole{path};
+    std::filesystem::path folder = whole.root_path();
+    for (const std::filesystem::path& part : whole.relative_path()) {
+        const std::filesystem::path next = folder / part;
+        std::error_code error;
+        const std::filesystem::file_status status = std::filesystem::status(next, error);
+        const std::string shownFolder = "'" + excerptForMessage(folder.empty() ? "." : folder.string()) + "'";
+        if (error == std::errc::permission_denied || error == std::errc::operation_not_permitted)
+            return "cannot be looked for: the folder " + shownFolder + " cannot be read (" + error.message() + ")";
+        if (error && error != std::errc::no_such_file_or_directory) return std::nullopt; // a file for a folder, ...
+        if (std::filesystem::exists(status)) {
+            folder = next;
+            continue;
+        }
+        if (part == "." || part == "..") return std::nullopt;
+        const CaseBlindEntries entries = entriesIgnoringCase(folder, part.string());
+        if (entries.error)
+            return "cannot be looked for: the folder " + shownFolder + " cannot be read (" + entries.error.message() +
+                   ")";
+        if (entries.names.size() < 2) return std::nullopt;
+        // Named in full up to four ("tex.png", "Tex.PNG", ...: a name has few case variants in one folder).
+        constexpr std::size_t kNamed = 4;
+        std::string names;
+        const std::size_t shown = std::min(entries.names.size(), kNamed);
+        for (std::size_t i = 0; i < shown; ++i) {
+            if (i > 0) names += i + 1 == shown && shown == entries.names.size() ? " and " : ", ";
+            names += "'" + excerptForMessage(entries.names[i]) + "'";
+        }
+        if (shown < entries.names.size()) names += " and " + std::to_string(entries.names.size() - shown) + " more";
+        return "cannot be found: the folder " + shownFolder + " holds " + names +
+               ", which differ from its name in case alone: rename the one meant to '" +
+               excerptForMessage(part.string()) + "'";
+    }
+    return std::nullopt;
 }
 
 void readMtl(const std::string& path, std::string_view content, ObjMaterials& materials, std::vector<Warning>& warnings,

@@ -363,10 +363,11 @@ private:
         // A FIFO or device would block or never end: only regular files are opened.
         if (!std::filesystem::is_regular_file(resolved, error)) {
             if (warnIfMissing) {
+                const std::string why =
+                    whyFileIsMissing(resolved.string()).value_or("is missing or not a regular file");
                 mWarnings.push_back(makeWarning(WarningKind::MaterialLibraryMissing,
-                                                shown + ": '" + excerptForMessage(resolved.string()) +
-                                                    "' is missing or not a regular file; its materials are drawn in "
-                                                    "the default grey",
+                                                shown + ": '" + excerptForMessage(resolved.string()) + "' " + why +
+                                                    "; its materials are drawn in the default grey",
                                                 resolved.string()));
                 mMissingLibrary = true;
             }

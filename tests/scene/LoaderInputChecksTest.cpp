@@ -463,6 +463,26 @@ TEST(LoaderInputChecks, AMissingBufferIsNamedAsTheFileWritesIt) {
     EXPECT_EQ(loadSceneFromMemory("bare.glb", glb).triangleCount(), 1u);
 }
 
+TEST(LoaderInputChecks, ABufferThatTwoFilesMatchInCaseAloneIsRefusedNamingThem) {
+    // "Model.bin" beside model.bin and MODEL.bin: neither is taken, and the refusal said "file not found".
+    const TempFolder folder;
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const std::string body =
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+        "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}]";
+    folder.write("model.bin", writer.binary());
+    folder.write("MODEL.bin", writer.binary());
+    const std::string model = folder.write("m.gltf", writer.gltfWithExternalBuffer(body, "Model.bin"));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(model); });
+    EXPECT_NE(message.find("buffer 'Model.bin': '" + folder.path("Model.bin") + "' cannot be found: the folder '" +
+                           std::filesystem::path(model).parent_path().string() +
+                           "' holds 'MODEL.bin' and 'model.bin', which differ from its name in case alone: rename "
+                           "the one meant to 'Model.bin'"),
+              std::string::npos)
+        << message;
+}
+
 TEST(LoaderInputChecks, InputFilesOfStl) {
     const TempFile file("one.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
                                    "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n");

@@ -3,10 +3,14 @@
 // and the warnings for what is missing or malformed. Every model is written here, beside its .mtl and textures.
 
 #include "scene/Scene.h"
+#include "scene/formats/FormatReaders.h"
 
 #include "SceneTestSupport.h"
 
+#include <dirent.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <set>
@@ -20,6 +24,8 @@ namespace {
 using test::TempFolder;
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+std::string folderOf(const std::string& path) { return std::filesystem::path(path).parent_path().string(); }
 
 bool anyWarningContains(const Scene& scene, const std::string& part) {
     return std::ranges::any_of(scene.report.warnings, [&](const Warning& w) { return contains(w.message, part); });
@@ -216,12 +222,90 @@ TEST(ObjMaterials, NamesWrittenOnWindowsFindTheFileThatDiffersInCaseAlone) {
     ASSERT_EQ(scene.images.size(), 2u);
     EXPECT_EQ(scene.images[0].path, skin);
     EXPECT_EQ(scene.images[1].path, eyes);
-    // hair.png and HAIR.png both differ from Hair.png in case alone: neither is taken, the missing one is said.
+    // hair.png and HAIR.png both differ from Hair.png in case alone: neither is taken, and both are named (the
+    // warning said "is missing", of a file the user saw beside the model).
     EXPECT_FALSE(meshWithMaterial(scene, "c").material.textured());
-    EXPECT_TRUE(anyWarningContains(scene, "map_Kd 'Hair.png': '" + folder.path("Hair.png") + "' is missing"))
+    EXPECT_TRUE(anyWarningContains(scene, "map_Kd 'Hair.png': '" + folder.path("Hair.png") +
+                                              "' cannot be found: the folder '" + folderOf(model) +
+                                              "' holds 'HAIR.png' and 'hair.png', which differ from its name in "
+                                              "case alone: rename the one meant to 'Hair.png'; material 'c' is "
+                                              "drawn without it"))
         << ::testing::PrintToString(scene.report.warnings);
     EXPECT_EQ(scene.report.inputFiles, (std::vector<std::string>{model, library, skin, eyes, folder.path("Hair.png")}));
     EXPECT_EQ(referencedFiles(model), (std::vector<std::string>{library, skin, eyes, folder.path("Hair.png")}));
+}
+
+TEST(ObjMaterials, NamesThatSeveralFilesOrFoldersMatchInCaseAloneAreToldSoNamingThem) {
+    // Each was told as missing: a library, and a texture whose folder is written in a case three folders match.
+    const TempFolder folder;
+    for (const std::string name : {"tex/skin.png", "TEX/skin.png", "Tex/skin.png"}) {
+        std::filesystem::create_directories(std::filesystem::path(folder.path(name)).parent_path());
+        folder.write(name, "not decoded here");
+    }
+    folder.write("m.mtl", "newmtl a\nmap_Kd tEX/skin.png\n");
+    folder.write("M.MTL", "newmtl a\nmap_Kd tEX/skin.png\n");
+    const std::string model = folder.write("m.obj", "mtllib M.mtl\nusemtl a\n" + kTriangle);
+    const std::string shownFolder = folderOf(model);
+    const Scene scene = loadScene(model);
+    EXPECT_TRUE(anyWarningContains(scene, "mtllib 'M.mtl' (line 1): '" + folder.path("M.mtl") +
+                                              "' cannot be found: the folder '" + shownFolder +
+                                              "' holds 'M.MTL' and 'm.mtl', which differ from its name in case "
+                                              "alone: rename the one meant to 'M.mtl'; its materials are drawn in "
+                                              "the default grey"))
+        << ::testing::PrintToString(scene.report.warnings);
+    folder.write("library.mtl", "newmtl a\nmap_Kd tEX/skin.png\n");
+    const Scene textured = loadScene(folder.write("t.obj", "mtllib library.mtl\nusemtl a\n" + kTriangle));
+    EXPECT_TRUE(anyWarningContains(textured, "map_Kd 'tEX/skin.png': '" + folder.path("tEX/skin.png") +
+                                                 "' cannot be found: the folder '" + shownFolder +
+                                                 "' holds 'TEX', 'Tex' and 'tex', which differ from its name in "
+                                                 "case alone: rename the one meant to 'tEX'"))
+        << ::testing::PrintToString(textured.report.warnings);
+    // A name alone in its case is still taken, and a name that matches nothing is missing as before.
+    std::filesystem::remove_all(folder.path("TEX"));
+    std::filesystem::remove_all(folder.path("Tex"));
+    EXPECT_EQ(loadScene(folder.path("t.obj")).images.at(0).path, folder.path("tex/skin.png"));
+    EXPECT_EQ(detail::whyFileIsMissing(folder.path("nothing.png")), std::nullopt);
+}
+
+TEST(ObjMaterials, ATextureInAFolderThatCannotBeReadIsToldSoNotMissing) {
+    // A folder without read permission hides the file differing in case alone; it was told as missing.
+    const TempFolder folder;
+    const std::filesystem::path locked = folder.path("locked");
+    std::filesystem::create_directories(locked);
+    folder.write("locked/skin.png", "not decoded here");
+    const std::string library = folder.write("m.mtl", "newmtl a\nmap_Kd locked/Skin.png\n");
+    const std::string expected = "map_Kd 'locked/Skin.png': '" + folder.path("locked/Skin.png") +
+                                 "' cannot be looked for: the folder '" + locked.string() +
+                                 "' cannot be read (Permission denied); material 'a' is drawn without it";
+    const auto warned = [&] {
+        detail::ObjMaterials materials;
+        std::vector<Warning> warnings;
+        detail::readMtl(library, "newmtl a\nmap_Kd locked/Skin.png\n", materials, warnings, folderOf(library));
+        return std::ranges::any_of(warnings, [&](const Warning& w) { return contains(w.message, expected); });
+    };
+    std::filesystem::permissions(std::filesystem::path(folderOf(library)), std::filesystem::perms(0755));
+    std::filesystem::permissions(locked, std::filesystem::perms::none);
+    DIR* const stillReadable = ::opendir(locked.c_str());
+    if (stillReadable == nullptr) {
+        EXPECT_TRUE(warned()) << expected;
+        std::filesystem::permissions(locked, std::filesystem::perms(0755));
+        return;
+    }
+    ::closedir(stillReadable);
+    // Root reads every folder whatever its permissions: the lookup is made by a child that gives up root for nobody.
+    const pid_t child = ::fork();
+    ASSERT_NE(child, -1);
+    if (child == 0) {
+        ::alarm(60); // a hang ends the child, not the test run
+        if (::setgid(65534) != 0 || ::setuid(65534) != 0) ::_exit(77);
+        ::_exit(warned() ? 0 : 1);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    std::filesystem::permissions(locked, std::filesystem::perms(0755));
+    ASSERT_TRUE(WIFEXITED(status));
+    if (WEXITSTATUS(status) == 77) GTEST_SKIP() << "root reads every folder here, and cannot become another user";
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "no warning: " << expected;
 }
 
 TEST(ObjMaterials, ALibraryInAFolderOfItsOwnFindsTexturesBesideTheModel) {

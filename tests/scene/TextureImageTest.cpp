@@ -132,6 +132,16 @@ TEST(TextureImage, ExternalFilesMustBeRegularAndWithinTheLimit) {
     EXPECT_NE(refusal(external(folder.string())).find("is not a regular file"), std::string::npos);
     EXPECT_NE(refusal(external("/dev/zero")).find("is not a regular file"), std::string::npos);
     EXPECT_NE(refusal(external((folder / "missing.png").string())).find("cannot be found"), std::string::npos);
+    // A glTF's "Skin.png" beside skin.png and SKIN.png: neither is taken, and both are named.
+    for (const std::string name : {"skin.png", "SKIN.png"}) std::ofstream(folder / name) << "not decoded here";
+    EXPECT_NE(refusal(external((folder / "Skin.png").string()))
+                  .find("its file '" + (folder / "Skin.png").string() + "' cannot be found: the folder '" +
+                        folder.string() +
+                        "' holds 'SKIN.png' and 'skin.png', which differ from its name in case "
+                        "alone: rename the one meant to 'Skin.png'"),
+              std::string::npos)
+        << refusal(external((folder / "Skin.png").string()));
+    std::filesystem::remove(folder / "SKIN.png");
 
     const std::string file = (folder / "skin.png").string();
     const std::vector<unsigned char> png = smallPng();

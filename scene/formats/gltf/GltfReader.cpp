@@ -909,11 +909,15 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
         // Said here, in the file's words: tinygltf's own "File not found" names its decoding of the URI
         // ("model lod0.bin" for "model+lod0.bin"), and no folder.
         if (uri.empty() || uri.rfind("data:", 0) == 0) continue; // a GLB's BIN chunk may be written "uri": ""
-        const std::string& file = files.fileAskedAs(tinygltfPathBesideModel(baseDirectory, uri));
+        const std::string file = files.fileAskedAs(tinygltfPathBesideModel(baseDirectory, uri));
         std::error_code error;
-        if (!std::filesystem::exists(file, error))
+        if (!std::filesystem::exists(file, error)) {
+            if (const std::optional<std::string> why = whyFileIsMissing(file))
+                throwLoadError(path,
+                               "buffer '" + excerptForMessage(uri) + "': '" + excerptForMessage(file) + "' " + *why);
             throwLoadError(path, "buffer '" + excerptForMessage(uri) + "': file not found: '" +
                                      excerptForMessage(file) + "' (a glTF's buffers are files beside it)");
+        }
     }
     for (const std::string& uri : uris.imageUris) files.name(baseDirectory, uri, true);
     for (const std::string& uri : uris.imageDataUris) files.name(baseDirectory, uri, true);
