@@ -357,14 +357,24 @@ void DatasetRun::lockThisSplit() {
     // this run's making it and opening the lock inside: made again then (a few times; each such run ends for good).
     int folderTakenAway = hookFrom("INKGRAPH_TEST_LOCK_FOLDER_REMOVED"); // that many times, as such a run would
     for (int attempt = 0; attempt < 10; ++attempt) {
-        if (!fs::exists(fs::symlink_status(path.parent_path(), error))) mMadeJournalFolder = true;
+        if (!fs::exists(fs::symlink_status(path.parent_path(), error))) {
+            mMadeJournalFolder = true;
+            if (!mFolderModifiedBeforeLock) {
+                const fs::file_time_type modified = fs::last_write_time(mFolder, error);
+                if (!error) mFolderModifiedBeforeLock = modified; // none when this run makes DIR too
+            }
+        }
         fs::create_directories(path.parent_path(), error);
         if (error)
             throw FileError("DatasetRun: cannot create the data set's own folder '" + path.parent_path().string() +
                             "': " + error.message());
         if (folderTakenAway-- > 0) fs::remove(path.parent_path(), error);
         mLock = FileLock(path, FileLock::Target::LockFile);
-        if (mLock.held()) return;
+        if (mLock.held()) {
+            const fs::file_time_type modified = fs::last_write_time(mFolder, error);
+            if (!error) mFolderModifiedWithLock = modified;
+            return;
+        }
         if (mLock.error() != ENOENT) break;
     }
     if (mMadeJournalFolder) fs::remove(path.parent_path(), error); // only when empty
@@ -380,9 +390,16 @@ void DatasetRun::lockThisSplit() {
 void DatasetRun::letGoOfThisSplit(bool finished) {
     if (!mLock.held()) return;
     mLock.release(/*removeLockFile=*/true);
-    // Only when empty (a journal or another shard's lock may be in it), and on a failure only when this run made it.
+    // A run refused after taking the lock (a memory limit too low for a still) made .inkgraph and nothing else: DIR's
+    // modification time is put back with it, so the folder reads as untouched (to make, rsync, a backup). Only when no
+    // other entry of DIR changed meanwhile (its time stayed) and nothing was rendered or made into it.
     std::error_code error;
-    if (finished || mMadeJournalFolder) fs::remove(mFolder / kJournalFolder, error);
+    const bool onlyTheJournalFolder = !finished && mMadeJournalFolder && mFolderModifiedBeforeLock &&
+                                      mFolderModifiedWithLock && mRendered == 0 && !mMadeOutputFolder &&
+                                      fs::last_write_time(mFolder, error) == *mFolderModifiedWithLock && !error;
+    // Only when empty (a journal or another shard's lock may be in it), and on a failure only when this run made it.
+    const bool removed = (finished || mMadeJournalFolder) && fs::remove(mFolder / kJournalFolder, error);
+    if (removed && onlyTheJournalFolder) fs::last_write_time(mFolder, *mFolderModifiedBeforeLock, error);
 }
 
 void DatasetRun::refuseOtherRunsFiles() const {
@@ -580,7 +597,7 @@ void DatasetRun::makeOutputFolders(const RenderOptions& still) const {
         const fs::path folder = fs::path(still.*field).parent_path();
         if (folder.empty()) continue;
         std::error_code error;
-        fs::create_directories(folder, error);
+        if (fs::create_directories(folder, error)) mMadeOutputFolder = true;
         if (error)
             throw FileError("DatasetRun::makeOutputFolders(): cannot make the folder '" + folder.string() + "' of " +
                             flag + ": " + error.message());

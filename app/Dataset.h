@@ -125,7 +125,7 @@ private:
     /** Takes DIR/.inkgraph/lock[-K-of-N]; throws FileError when another run holds it. */
     void lockThisSplit();
     /** Lets go of the lock and removes its file; `finished`: the run wrote its index (else the .inkgraph folder goes
-     *  only when this run made it). */
+     *  only when this run made it, and DIR's modification time is put back when nothing else changed it). */
     void letGoOfThisSplit(bool finished);
     std::string cardText(std::size_t models, std::size_t stills, std::size_t failed) const;
 
@@ -144,8 +144,11 @@ private:
     int mJournalLines = 0;
     int mKillBeforeLine = 0;
     int mTearLine = 0;
-    bool mMadeJournalFolder = false; ///< DIR/.inkgraph was made by this run
-    FileLock mLock;                  ///< held from the constructor's checks until finish() or destruction
+    bool mMadeJournalFolder = false;                                          ///< DIR/.inkgraph was made by this run
+    mutable bool mMadeOutputFolder = false;                                   ///< makeOutputFolders() made one
+    std::optional<std::filesystem::file_time_type> mFolderModifiedBeforeLock; ///< DIR's, before .inkgraph was made
+    std::optional<std::filesystem::file_time_type> mFolderModifiedWithLock;   ///< DIR's, once the lock was taken
+    FileLock mLock; ///< held from the constructor's checks until finish() or destruction
 };
 
 } // namespace inkgraph

@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -291,6 +292,32 @@ TEST_F(Dataset, ARunThatFinishesJustBeforeTheLockIsTakenStopsNoOne) {
     EXPECT_TRUE(fs::is_regular_file(fs::path(set) / ".inkgraph" / "lock-1-of-2"));
     run.reset();
     EXPECT_FALSE(fs::exists(fs::path(set) / ".inkgraph")) << "made by this run, and empty: removed with its lock";
+}
+
+TEST_F(Dataset, ARunRefusedAfterTakingTheLockLeavesTheFolderAsItWas) {
+    // A --resume run of a finished data set refused once its lock was taken (a memory limit too low for a still)
+    // made and removed .inkgraph, nothing else, and DIR's modification time said the set had changed.
+    write(fs::path(set) / "index.jsonl", "");
+    write(fs::path(set) / "README.md", "");
+    const std::vector<std::string> arguments = {model, "--dataset", set, "-o", set + "/a.png", "--resume"};
+    const fs::file_time_type before = fs::file_time_type::clock::now() - std::chrono::hours(1);
+    fs::last_write_time(set, before);
+    auto refused = runOf(arguments);
+    EXPECT_TRUE(fs::is_regular_file(fs::path(set) / ".inkgraph" / "lock"));
+    refused.reset(); // let go of without finishing, as a refused run is
+    EXPECT_FALSE(fs::exists(fs::symlink_status(fs::path(set) / ".inkgraph")));
+    EXPECT_EQ(fs::last_write_time(set), before) << "DIR's modification time changed by a run that changed nothing";
+    // A run that changed DIR otherwise, or made a folder of its outputs, leaves DIR's new time.
+    auto writing = runOf(arguments);
+    write(fs::path(set) / "a.png", "");
+    writing.reset();
+    EXPECT_NE(fs::last_write_time(set), before);
+    fs::last_write_time(set, before);
+    auto making = runOf({model, "--dataset", set, "-o", set + "/views/a.png", "--resume"});
+    making->makeOutputFolders(stillOptions(options, stills.front(), list.total));
+    making.reset();
+    EXPECT_TRUE(fs::is_directory(fs::path(set) / "views"));
+    EXPECT_NE(fs::last_write_time(set), before);
 }
 
 TEST_F(Dataset, AnEditedPoseFileOfAListRendersAgain) {
