@@ -15,6 +15,7 @@
 #include <charconv>
 #include <exception>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -71,8 +72,16 @@ struct LookAccess {
 /** `error` as the command line reports it (render/ErrorReport.h): its message, and the kind of its exit code. */
 Error errorOf(const std::exception_ptr& error);
 
+/** A refusal of the library's own of kind Context, said in its caller's name as a UsageError is (a renderer in a child
+ *  forked after the driver started cannot make a context: the message is HeadlessContext()'s without its name). */
+class ContextRefusal : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
 /** Runs `body`; every exception leaves as Error. A UsageError's message, which starts with the flag, gets `function`
- *  in front ("Look::set(): --bands: ..."); the other layers' messages start with their own function already. */
+ *  in front ("Look::set(): --bands: ..."), as a ContextRefusal's; the other layers' messages start with their own
+ *  function already. */
 template <class Body>
 decltype(auto) translated(const std::string& function, Body&& body) {
     try {
@@ -81,6 +90,8 @@ decltype(auto) translated(const std::string& function, Body&& body) {
         throw;
     } catch (const UsageError& usage) {
         throw Error(Error::Kind::Usage, function + ": " + usage.what());
+    } catch (const ContextRefusal& refusal) {
+        throw Error(Error::Kind::Context, function + ": " + refusal.what());
     } catch (...) {
         throw errorOf(std::current_exception());
     }

@@ -208,13 +208,18 @@ struct Renderer::Impl {
         if (HeadlessContext* context = renderer->context()) context->makeCurrent();
     }
 
-    /** UsageError when the context was made in the process this one was forked from. */
+    /** UsageError when the context was made in the process this one was forked from; ContextRefusal when this
+     *  renderer has none yet and this process was forked after another renderer started the driver (refused here,
+     *  not by HeadlessContext(), so that the message starts with the function called, as the first refusal's does). */
     void refuseForkedContext() const {
-        if (const HeadlessContext* context = renderer->context(); context && context->owningProcess() != int(getpid()))
+        const HeadlessContext* context = renderer->context();
+        if (context && context->owningProcess() != int(getpid()))
             throw UsageError("this Renderer's GL context was made in process " +
                              std::to_string(context->owningProcess()) +
                              ", which forked this one; make renderers after the fork (Python: multiprocessing's "
                              "'spawn' or 'forkserver'), or close them before it");
+        const std::string refusal = context == nullptr ? forkedDriverRefusal() : std::string();
+        if (!refusal.empty()) throw ContextRefusal(refusal);
     }
 
     /** Leaves the calling thread without the context at the end of a render, so the next may run on any thread. */

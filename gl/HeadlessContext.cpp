@@ -181,17 +181,21 @@ bool isSoftwareDevice(EGLDeviceEXT device) {
 
 } // namespace
 
-HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) : mProcess(int(getpid())) {
+std::string forkedDriverRefusal() {
     pid_t driverProcess = 0;
     {
         const std::lock_guard<std::mutex> lock(gDisplaysMutex);
         driverProcess = gDriverProcess;
     }
-    if (driverProcess != 0 && driverProcess != getpid())
-        throw HeadlessContextError(
-            "HeadlessContext(): this process was forked from process " + std::to_string(driverProcess) +
-            " after that one started the EGL driver, whose threads do not exist here; start the driver after the "
-            "fork (Python: multiprocessing's 'spawn' or 'forkserver', or close every renderer before forking)");
+    if (driverProcess == 0 || driverProcess == getpid()) return {};
+    return "this process was forked from process " + std::to_string(driverProcess) +
+           " after that one started the EGL driver, whose threads do not exist here; start the driver after the fork "
+           "(Python: multiprocessing's 'spawn' or 'forkserver', or close every renderer before forking)";
+}
+
+HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) : mProcess(int(getpid())) {
+    if (const std::string refusal = forkedDriverRefusal(); !refusal.empty())
+        throw HeadlessContextError("HeadlessContext(): " + refusal);
     const EglPlatform platform = platformFromEnvironment(options.platform);
     const char* debugVariable = std::getenv("INKGRAPH_GL_DEBUG");
     const bool debug = options.debugOutput || (debugVariable != nullptr && std::strcmp(debugVariable, "1") == 0);

@@ -17,6 +17,12 @@ bool isSoftwareRasterizer(std::string_view glRenderer);
 /** The renderer names isSoftwareRasterizer() knows (matched case-blind within GL_RENDERER): "llvmpipe", ... */
 const std::vector<std::string>& softwareRasterizerNames();
 
+/** Why no context can be made in this process, or nothing: it was forked from the process that started the EGL
+ *  driver, whose threads (llvmpipe's rasterisers) do not exist here, so a context would wait for them forever.
+ *  HeadlessContext() refuses with it after its own name; the library's Renderer::render() before making one, after
+ *  its. */
+std::string forkedDriverRefusal();
+
 /** No display or context could be made. The message names what is missing and how to see more. */
 class HeadlessContextError : public std::runtime_error {
 public:

@@ -280,9 +280,10 @@ std::string readInputBytes(const std::filesystem::path& path, std::uintmax_t max
     return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
 }
 
-cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, std::size_t maxFileBytes) {
-    const std::string where = "readPngImage(): '" + path.string() + "'";
-    const std::string bytes = readInputBytes(path, maxFileBytes, "readPngImage()");
+cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, std::size_t maxFileBytes,
+                     const std::string& who) {
+    const std::string where = who + ": '" + path.string() + "'";
+    const std::string bytes = readInputBytes(path, maxFileBytes, who);
     std::vector<unsigned char> png;
     try {
         png = criticalPngChunks(bytes);

@@ -81,9 +81,10 @@ cv::Mat readImage(const std::filesystem::path& path, std::size_t maxPixels = kDe
 std::string readInputBytes(const std::filesystem::path& path, std::uintmax_t maxBytes, const std::string& who);
 
 /** readImage() for a PNG from outside (a user's shade map): a file of at most `maxFileBytes`, reduced to its critical
- *  chunks (app/PngChunks.h) and decoded from memory by libpng alone, whatever the content. Throws FileError naming
- *  the file. */
-cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, std::size_t maxFileBytes);
+ *  chunks (app/PngChunks.h) and decoded from memory by libpng alone, whatever the content. Throws FileError starting
+ *  with `who` (the flag that names the file, as readInputBytes()) and naming the file. */
+cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, std::size_t maxFileBytes,
+                     const std::string& who = "readPngImage()");
 
 /** The pixel type stored in the file itself, e.g. "uint8", "half", "float" (readImage converts, this does not).
  *  Through OpenImageIO for every format: only tests and tools ask. */

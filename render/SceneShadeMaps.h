@@ -19,7 +19,7 @@ namespace inkgraph {
  *  maps, which only --shading cel and comic use" ("1 mesh names a shade map, ..." for one; shade-map-unused, about
  *  no file: the still names the model). Throws InputFileError
  *  naming the first mesh (in scene order) that names an unusable file, its glTF material and the file, e.g.
- *  "mesh 'Teapot' (glTF material 'Metal') shade map: readPngImage(): 'x.png': file not found" (exit code 3). */
+ *  "mesh 'Teapot' (glTF material 'Metal') shade map: 'x.png': file not found" (exit code 3). */
 std::vector<std::optional<ShadeMap>> readSceneShadeMaps(const Scene& scene, ShadingModel shading,
                                                         std::vector<Warning>* warnings);
 

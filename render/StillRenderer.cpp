@@ -118,21 +118,23 @@ void runMappingFailures(const PreparedStill& still, Step&& step) {
 } // namespace
 
 ShadeMap readShadeMapFile(const std::string& path, bool oneDimensional) {
+    // Every message starts with the flag, as --style's and --list's do: the readers are told to speak for it.
+    constexpr const char* kFlag = "--shademap";
     cv::Mat image;
     try {
         // PNG only, by its own reader (fuzz_shademap found OpenEXR allocating 1.6 GB for a 600-byte header), without
         // ancillary chunks (and libpng 1.9 GB for a 342-byte file's tEXt), and the header's size is judged before
         // the pixels are allocated: a map is at most 4096 a side, its file at most 64 MiB (4096² RGBA is 64 MiB raw).
-        image = readPngImage(path, std::size_t(kMaxShadeMapSide) * kMaxShadeMapSide, std::size_t(64) << 20);
+        image = readPngImage(path, std::size_t(kMaxShadeMapSide) * kMaxShadeMapSide, std::size_t(64) << 20, kFlag);
     } catch (const FileError& error) {
-        throw InputFileError(std::string("--shademap: ") + error.what());
+        throw InputFileError(error.what());
     }
     if (image.depth() != CV_8U)
-        throw InputFileError("--shademap: '" + path + "' stores 16-bit pixels; a shade map is an 8-bit PNG");
+        throw InputFileError(std::string(kFlag) + ": '" + path + "' stores 16-bit pixels; a shade map is an 8-bit PNG");
     try {
-        return shadeMapFromImage(image, path, oneDimensional);
+        return shadeMapFromImage(image, path, oneDimensional, kFlag);
     } catch (const std::invalid_argument& error) {
-        throw InputFileError(std::string("--shademap: ") + error.what());
+        throw InputFileError(error.what());
     }
 }
 

@@ -55,8 +55,9 @@ ShadeMap makeDefaultComicShadeMap() {
     return map;
 }
 
-ShadeMap shadeMapFromImage(const cv::Mat& image, const std::string& source, bool requireOneRow) {
-    const std::string where = "shadeMapFromImage(): '" + source + "'";
+ShadeMap shadeMapFromImage(const cv::Mat& image, const std::string& source, bool requireOneRow,
+                           const std::string& who) {
+    const std::string where = who + ": '" + source + "'";
     if (image.empty()) throw std::invalid_argument(where + " is empty");
     if (image.depth() != CV_8U)
         throw std::invalid_argument(where + " is not an 8-bit image (a shade map holds 8-bit sRGB colours)");

@@ -35,9 +35,11 @@ ShadeMap makeBandShadeMap(int bands);
 ShadeMap makeDefaultComicShadeMap();
 
 /** Checks an image read from `source` (any channel count from 1 to 4, 8-bit) and converts it to a ShadeMap:
- *  grey -> rgb, alpha ignored (set to 255). Throws std::invalid_argument naming `source` when it is empty, not
- *  8-bit, has more than 4 channels, is larger than 4096 a side, or (with `requireOneRow`) has more than one row. */
-ShadeMap shadeMapFromImage(const cv::Mat& image, const std::string& source, bool requireOneRow);
+ *  grey -> rgb, alpha ignored (set to 255). Throws std::invalid_argument starting with `who` and naming `source`
+ *  when it is empty, not 8-bit, has more than 4 channels, is larger than 4096 a side, or (with `requireOneRow`) has
+ *  more than one row. */
+ShadeMap shadeMapFromImage(const cv::Mat& image, const std::string& source, bool requireOneRow,
+                           const std::string& who = "shadeMapFromImage()");
 
 /** A 2-D map's rows grouped into bands of identical rows, with the specular term's band borders moved to the
  *  half squared distance x = |r - v|^2 / 2 = 1 - r.v, where the shader can test them without a log or exp:

@@ -3,12 +3,14 @@
 
 #include "render/ImageFiles.h"
 #include "app/Render.h"
+#include "render/StillRenderer.h"
 
 #include "tests/support/TestFolder.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -75,11 +77,32 @@ TEST_F(SceneShadeMaps, MissingFileNamesTheMeshItsMaterialAndTheFile) {
     Scene scene;
     scene.meshes = {meshNaming("Spot", ""), meshNaming("Teapot", missing, "Metal")};
     EXPECT_EQ(errorOf(scene, ShadingModel::Comic),
-              "mesh 'Teapot' (glTF material 'Metal') shade map: readPngImage(): '" + missing + "': file not found");
+              "mesh 'Teapot' (glTF material 'Metal') shade map: '" + missing + "': file not found");
     // Without a material name the mesh alone is named.
     scene.meshes[1].material.name.clear();
-    EXPECT_EQ(errorOf(scene, ShadingModel::Cel),
-              "mesh 'Teapot' shade map: readPngImage(): '" + missing + "': file not found");
+    EXPECT_EQ(errorOf(scene, ShadingModel::Cel), "mesh 'Teapot' shade map: '" + missing + "': file not found");
+}
+
+TEST_F(SceneShadeMaps, TheFlagsMessagesStartWithTheFlagAndTheFile) {
+    // They started "--shademap: readPngImage():" and "--shademap: shadeMapFromImage():"; --style's and --list's name
+    // the flag and the file alone.
+    const std::string missing = (directory / "missing.png").string();
+    const std::string square = writeMap("square.png", 4, 8, {90, 90, 90, 255});
+    const auto refusal = [](const std::string& path, bool oneDimensional) -> std::string {
+        try {
+            readShadeMapFile(path, oneDimensional);
+        } catch (const InputFileError& error) {
+            return error.what();
+        }
+        return "accepted";
+    };
+    EXPECT_EQ(refusal(missing, false), "--shademap: '" + missing + "': file not found");
+    EXPECT_EQ(refusal(square, true), "--shademap: '" + square + "' has 4 rows; a 1-D shade map must be a single row");
+    std::ofstream(directory / "bad.png") << "not a PNG";
+    EXPECT_EQ(refusal((directory / "bad.png").string(), false)
+                  .rfind("--shademap: '" + (directory / "bad.png").string() + "': ", 0),
+              0u)
+        << refusal((directory / "bad.png").string(), false);
 }
 
 TEST_F(SceneShadeMaps, CelRefusesATwoDimensionalMapAndTakesAOneRowMap) {
@@ -87,9 +110,8 @@ TEST_F(SceneShadeMaps, CelRefusesATwoDimensionalMapAndTakesAOneRowMap) {
     const std::string row = writeMap("row.png", 1, 8, {90, 90, 90, 255});
     Scene scene;
     scene.meshes = {meshNaming("Spot", row), meshNaming("Suzanne", square, "Fur")};
-    EXPECT_EQ(errorOf(scene, ShadingModel::Cel),
-              "mesh 'Suzanne' (glTF material 'Fur') shade map: shadeMapFromImage(): '" + square +
-                  "' has 4 rows; a 1-D shade map must be a single row");
+    EXPECT_EQ(errorOf(scene, ShadingModel::Cel), "mesh 'Suzanne' (glTF material 'Fur') shade map: '" + square +
+                                                     "' has 4 rows; a 1-D shade map must be a single row");
     // Comic takes both: a one-row map is a comic map whose specular axis has one texel.
     const std::vector<std::optional<ShadeMap>> maps = readSceneShadeMaps(scene, ShadingModel::Comic, nullptr);
     ASSERT_TRUE(maps[0] && maps[1]);
