@@ -333,11 +333,10 @@ std::string checkDatasetHelp() {
            "Verifies a data set made with inkgraph render --dataset DIR (docs/datasets.md): the index and the card\n"
            "(README.md; with --shard, index-K-of-N.jsonl and README-K-of-N.md for every K) exist and parse, every\n"
            "file the index lists is there, non-empty, whole for its format (PNG: signature and IEND; JPEG: its\n"
-           "start and end markers; EXR, TIFF: signature; JSON: parses; SVG: closing tag) and has its recorded size and "
-           "checksum, no journal\n"
-           "is left (a run that did not finish: resume it with --resume), no temporary file of a killed run is\n"
-           "left, and the card's counts match the index. Files the index does not list and failed stills are\n"
-           "warnings.\n\n"
+           "start and end markers; EXR, TIFF: signature; JSON: parses; SVG: closing tag) and has its recorded\n"
+           "size and checksum, no journal is left (a run that did not finish: resume it with --resume), no\n"
+           "temporary file of a killed run is left, and the card's counts match the index. Files the index does\n"
+           "not list and failed stills are warnings.\n\n"
            "Prints one line per problem (at most " +
            std::to_string(kShownProblems) +
            ", then how many more) and a summary.\n\n"
