@@ -43,6 +43,14 @@ std::string triangleGltf(const std::string& primitiveExtra = "", const std::stri
                        "}], \"scenes\": [{\"nodes\": [0]}]" + top);
 }
 
+/** The body of a one-triangle glTF (mesh, node, scene) with its positions added to `writer`: for tests that choose
+ *  how the writer puts its buffer in the file. */
+std::string triangleBody(GltfWriter& writer) {
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    return "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+           "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}]";
+}
+
 /** A folder under the temp directory, removed with everything in it on destruction. */
 class TempFolder {
 public:
@@ -447,10 +455,7 @@ TEST(LoaderInputChecks, AMissingBufferIsNamedAsTheFileWritesIt) {
     // tinygltf said "File not found : model lod0.bin" for the URI "model+lod0.bin": its own decoding, without a folder.
     const TempFolder folder;
     GltfWriter writer;
-    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    const std::string body =
-        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
-        "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}]";
+    const std::string body = triangleBody(writer);
     const std::string model = folder.write("m.gltf", writer.gltfWithExternalBuffer(body, "model+lod0.bin"));
     const std::string message = test::sceneErrorMessage([&] { loadScene(model); });
     EXPECT_NE(message.find("buffer 'model+lod0.bin': file not found: '" + folder.path("model+lod0.bin") + "'"),
@@ -467,10 +472,7 @@ TEST(LoaderInputChecks, ABufferThatTwoFilesMatchInCaseAloneIsRefusedNamingThem) 
     // "Model.bin" beside model.bin and MODEL.bin: neither is taken, and the refusal said "file not found".
     const TempFolder folder;
     GltfWriter writer;
-    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    const std::string body =
-        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
-        "}}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}]";
+    const std::string body = triangleBody(writer);
     folder.write("model.bin", writer.binary());
     folder.write("MODEL.bin", writer.binary());
     const std::string model = folder.write("m.gltf", writer.gltfWithExternalBuffer(body, "Model.bin"));
