@@ -316,7 +316,9 @@ struct Renderer::Impl {
         try {
             renderer->plan(*still, stillLog);
         } catch (const UsageError&) {
-            refuseUnknownBuffers(still->graph, images);
+            // A buffer the look does not make is the likelier cause, named better than the plan's words; but a
+            // refusal before the graph was built (the camera's up along the view) is the plan's to tell.
+            if (!writtenResources(still->graph).empty()) refuseUnknownBuffers(still->graph, images);
             throw;
         }
         if (strokes && still->graph.strokes() == nullptr)

@@ -12,9 +12,9 @@
  *  `replace()` gives a changed copy to assign back.
  *
  *  Images reach Python without a copy: a buffer's array points into the Still's pixels and keeps the Still alive as
- *  its base object; the arrays are read-only, since a Still's images are shared and never change. Mesh arrays reach
- *  Scene.from_arrays() without a copy when they are float32 (uint32 faces) and C-contiguous; the C++ call copies them
- *  into its own mesh. */
+ *  its base object; the arrays are read-only, since a Still's images are shared and never change. Scene.from_arrays()
+ *  hands the C++ call copies of its own (converted to float32 and uint32 in C order, or copied as they are), since it
+ *  reads them without the GIL while other threads may change the caller's. */
 
 #include "Bindings.h"
 
@@ -31,6 +31,7 @@
 #include <cstring>
 #include <filesystem>
 #include <initializer_list>
+#include <limits>
 #include <mutex>
 #include <map>
 #include <optional>
@@ -395,10 +396,19 @@ py::array imageArray(const ig::Image& image, py::handle owner) {
     return array;
 }
 
+/** Python's MemoryError naming what could not be laid out: pybind11's ensure() clears NumPy's own error when a
+ *  conversion fails, and with the dtype checked first only memory can make it fail. */
+[[noreturn]] void failMemory(const std::string& message) {
+    PyErr_SetString(PyExc_MemoryError, message.c_str());
+    throw py::error_already_set();
+}
+
 /** The pixels of `array`, in C order whatever its strides, as bytes. */
 template <typename Channel>
 std::vector<std::uint8_t> pixelBytes(const py::array& array) {
     const auto contiguous = py::array_t<Channel, py::array::c_style | py::array::forcecast>::ensure(array);
+    if (!contiguous)
+        failMemory("write_image(): no memory to lay out the " + std::to_string(array.size()) + " values of the image");
     std::vector<std::uint8_t> bytes(static_cast<std::size_t>(contiguous.nbytes()));
     if (!bytes.empty()) std::memcpy(bytes.data(), contiguous.data(), bytes.size());
     return bytes;
@@ -412,6 +422,12 @@ ig::Image imageFromArray(const py::array& array) {
         fail("expected a height x width [x channels] array, got " + std::to_string(dimensions) + " dimensions");
     const py::ssize_t channels = dimensions == 3 ? array.shape(2) : 1;
     if (channels != 1 && channels != 4) fail("expected 1 or 4 channels, got " + std::to_string(channels));
+    // Checked before narrowing: a side of 3e9 read as int would be told as a negative size.
+    for (const py::ssize_t side : {array.shape(0), array.shape(1)})
+        if (side > py::ssize_t(std::numeric_limits<int>::max()))
+            fail("an image of " + std::to_string(array.shape(1)) + "x" + std::to_string(array.shape(0)) +
+                 " pixels is larger than an image can be (at most " + std::to_string(std::numeric_limits<int>::max()) +
+                 " a side)");
     const auto height = static_cast<int>(array.shape(0));
     const auto width = static_cast<int>(array.shape(1));
     if (py::isinstance<py::array_t<std::uint8_t>>(array))
@@ -460,8 +476,26 @@ py::array arrayOf(py::handle value, const std::string& where, const std::string&
     }
 }
 
-/** A 2-D array of `columns` (one of them) numbers a row, as float32 in C order: the caller's own memory when it is
- *  that already, else a converted copy. `rows`, when given, is the count it must have (one per vertex). */
+/** `converted` (Rows::ensure() of `array`, numpy.asarray() of the caller's `value`), or a copy of it when it is still
+ *  the caller's memory: the library reads the arrays without the GIL, more than once (its checks, then the mesh), and
+ *  another Python thread may change them in between (an index made out of range after its check read out of bounds).
+ *  A conversion there is no memory for is Python's MemoryError, not a wrong array. */
+template <typename Rows>
+Rows ownedRows(Rows converted, const py::array& array, py::handle value, const std::string& where, const char* type) {
+    if (!converted)
+        failMemory(where + "cannot be converted to " + type + ": no memory for its " + std::to_string(array.size()) +
+                   " values");
+    const bool callersMemory = array.ptr() == value.ptr() || !array.owndata();
+    if (callersMemory && converted.data() == array.data()) {
+        Rows owned = Rows::ensure(py::module_::import("numpy").attr("array")(converted, "copy"_a = true));
+        if (!owned) throw py::error_already_set();
+        return owned;
+    }
+    return converted;
+}
+
+/** A 2-D array of `columns` (one of them) numbers a row, as a float32 array in C order of the binding's own. `rows`,
+ * when given, is the count it must have (one per vertex). */
 FloatRows floatRows(py::handle value, const std::string& name, std::initializer_list<py::ssize_t> columns,
                     std::optional<py::ssize_t> rows) {
     const std::string where = "Scene.from_arrays(): " + name + ": ";
@@ -479,13 +513,11 @@ FloatRows floatRows(py::handle value, const std::string& name, std::initializer_
     if (rows && array.shape(0) != *rows)
         failInput(where + "expected " + std::to_string(*rows) + " rows (one per vertex), got " +
                   std::to_string(array.shape(0)));
-    FloatRows converted = FloatRows::ensure(array);
-    if (!converted) failInput(where + "cannot be converted to float32");
-    return converted;
+    return ownedRows(FloatRows::ensure(array), array, value, where, "float32");
 }
 
-/** The faces as uint32 in C order: the caller's memory when it is that already; other integers are converted after
- *  checking that every index fits (a negative one would wrap to a large valid-looking one). */
+/** The faces as a uint32 array in C order of the binding's own; other integers are converted after checking that every
+ * index fits (a negative one would wrap to a large valid-looking one). */
 FaceRows faceRows(py::handle value) {
     const std::string where = "Scene.from_arrays(): faces: ";
     const std::string expected = "expected an (M, 3) array of integer vertex indices";
@@ -501,9 +533,7 @@ FaceRows faceRows(py::handle value) {
         if (largest > py::int_(std::uint32_t(-1)))
             failInput(where + "index " + reprOf(largest) + " does not fit in 32 bits");
     }
-    FaceRows converted = FaceRows::ensure(array);
-    if (!converted) failInput(where + "cannot be converted to uint32");
-    return converted;
+    return ownedRows(FaceRows::ensure(array), array, value, where, "uint32");
 }
 
 // ---- Stills and the renderer ---------------------------------------------------------------------------------------

@@ -218,3 +218,55 @@ def test_weld_distance_is_the_loads_from_arrays_and_files(tmp_path):
     assert inkgraph.Scene.load(obj, weld_distance=0.0).triangle_count == 2
     with pytest.raises(inkgraph.UsageError, match="--weld-distance: expected 0 to 0.01, got '0.02'"):
         inkgraph.Scene.load(obj, weld_distance=0.02)
+
+
+def test_arrays_changed_by_another_thread_during_the_load_never_reach_it_unchecked():
+    # The load reads its arrays without the GIL, its checks first and then the mesh: an index another thread made out
+    # of range between the two read past the end (a segmentation fault within about a dozen calls). The binding now
+    # hands the library copies of its own, so each call either sees the index and refuses it or never sees it.
+    import threading
+    import time
+
+    count = 200_000
+    generator = np.random.default_rng(7)
+    vertices = generator.random((count, 3), dtype=np.float32)
+    normals = generator.random((count, 3), dtype=np.float32)
+    faces = generator.integers(0, count, (count, 3)).astype(np.uint32)
+    stop = threading.Event()
+
+    def flip():
+        while not stop.is_set():
+            faces[-4:] = 4_000_000_000
+            time.sleep(0.001)
+            faces[-4:] = 0
+            time.sleep(0.001)
+
+    flipper = threading.Thread(target=flip, daemon=True)
+    flipper.start()
+    outcomes = set()
+    try:
+        for _ in range(60):
+            try:
+                inkgraph.Scene.from_arrays(vertices, faces, normals=normals)
+                outcomes.add("loaded")
+            except inkgraph.InputError as error:
+                assert "out of range" in str(error)
+                outcomes.add("refused")
+    finally:
+        stop.set()
+        flipper.join()
+    assert outcomes <= {"loaded", "refused"}
+
+
+def test_an_array_too_large_to_convert_is_a_memory_error_naming_it(tmp_path):
+    # 9e9 float64 values to convert to float32: NumPy has no memory for the copy. It was told as an array that cannot
+    # be converted (InputError), and write_image() of a view too large to lay out crashed.
+    huge = np.broadcast_to(np.zeros(3, np.float64), (3_000_000_000, 3))
+    with pytest.raises(MemoryError, match=r"from_arrays\(\): vertices: .*no memory"):
+        inkgraph.Scene.from_arrays(huge, np.array([[0, 1, 2]]))
+    with pytest.raises(MemoryError, match=r"write_image\(\): no memory"):
+        inkgraph.write_image(tmp_path / "x.png", np.broadcast_to(np.zeros(4, np.uint8), (100_000, 100_000, 4)))
+    # A side beyond int was told as a negative size ("an image of -1294967296x1 pixels").
+    with pytest.raises(inkgraph.UsageError, match="3000000000x1 pixels is larger than an image can be"):
+        inkgraph.write_image(tmp_path / "x.png", np.broadcast_to(np.zeros(1, np.uint8), (1, 3_000_000_000)))
+    assert list(tmp_path.iterdir()) == []

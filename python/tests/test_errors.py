@@ -151,3 +151,13 @@ def test_text_that_is_not_utf8_is_escaped_not_refused(tmp_path):
     with pytest.raises(inkgraph.InputError) as missing:
         inkgraph.Scene.load(os.fsdecode(bytes(tmp_path) + b"/missing\xff.obj"))
     assert "missing\\xff.obj': file not found" in str(missing.value)
+
+
+def test_a_camera_refusal_is_told_as_it_is_when_buffers_are_asked_for_too(suzanne):
+    # With buffers asked for, any refusal of the plan was re-told as "no buffer 'depth' in this look; it has: " with
+    # an empty list; the up vector along the view is refused before the graph is built.
+    frame = inkgraph.Frame(64, 64, eye=(0, 0, 5), target=(0, 0, 0), up=(0, 0, 1))
+    for buffers in ([], ["depth"]):
+        with pytest.raises(inkgraph.UsageError, match="parallel") as refused:
+            inkgraph.Renderer().render(suzanne, None, frame, buffers)
+        assert "no buffer" not in str(refused.value)

@@ -81,6 +81,11 @@ TEST_F(ApiRender, ThePictureHasTheFramesSizeAndInkOnPaper) {
     EXPECT_NE(renderer.glDescription(), "");
     EXPECT_GT(still.milliseconds(), 0.0);
     EXPECT_TRUE(still.bufferNames().empty());
+    // A still moved from is still the still (its calls crashed once the move had emptied it).
+    ig::Still source = still;
+    const ig::Still moved = std::move(source);
+    EXPECT_EQ(source.picture().width(), 128); // NOLINT(bugprone-use-after-move): what is tested
+    EXPECT_EQ(moved.picture().width(), 128);
 }
 
 TEST_F(ApiRender, TheGBuffersFieldsAreWhatTheyMean) {

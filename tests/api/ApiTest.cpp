@@ -71,6 +71,20 @@ TEST_F(ApiScene, CountsWhatTheFileHolds) {
     EXPECT_TRUE(scene.warnings().empty());
 }
 
+TEST_F(ApiScene, AMovedFromSceneIsStillTheScene) {
+    // A move left the source empty, and every later call on it crashed (triangleCount(), rendering it).
+    const std::filesystem::path square = directory / "square.obj";
+    writeText(square, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+    ig::Scene scene = ig::Scene::load(square.string());
+    const ig::Scene moved = std::move(scene);
+    EXPECT_EQ(moved.triangleCount(), 2u);
+    EXPECT_EQ(scene.triangleCount(), 2u); // NOLINT(bugprone-use-after-move): what is tested
+    EXPECT_EQ(scene.path(), square.string());
+    ig::Scene assigned = ig::Scene::load(square.string());
+    assigned = std::move(scene);
+    EXPECT_EQ(scene.meshCount(), 1u); // NOLINT(bugprone-use-after-move)
+}
+
 TEST_F(ApiScene, MeshesGiveTheirIdsAndTriangleRanges) {
     // Issue 37: the same two-instance glTF as below, one triangle each: meshes 1 and 2, triangle ids 1 and 2, one
     // unnamed material (id 1, no name) and the two objects.

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
@@ -290,6 +291,19 @@ TEST(GltfPose, AnimationOnAFileWithoutAnimationsIsRefused) {
     options.animation = "walk";
     const std::string message = test::sceneErrorMessage([&] { loadScene(file.path(), options); });
     EXPECT_NE(message.find("no animation 'walk' (the file has no animations)"), std::string::npos) << message;
+    // A name written as a VRM Animation file that is not there, or not a file, says so too (it read as a name only).
+    options.animation = file.path() + ".missing.vrma";
+    EXPECT_NE(test::sceneErrorMessage([&] {
+                  loadScene(file.path(), options);
+              }).find("(the file has no animations); no VRM Animation file is there either"),
+              std::string::npos);
+    options.animation = file.path() + ".folder.vrma";
+    std::filesystem::create_directories(options.animation);
+    EXPECT_NE(test::sceneErrorMessage([&] {
+                  loadScene(file.path(), options);
+              }).find("; as a VRM Animation file it is not a regular file"),
+              std::string::npos);
+    std::filesystem::remove(options.animation);
 }
 
 TEST(GltfPose, NegativeOrNonFiniteTimeIsRefused) {

@@ -14,8 +14,11 @@
 
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
+
+#include <sys/stat.h>
 
 namespace inkgraph {
 namespace {
@@ -370,7 +373,13 @@ TEST(VrmHumanoid, BadPoseFilesAreRefusedNamingTheFile) {
     EXPECT_NE(unknown.find("rightLittleDistal)"), std::string::npos) << unknown;
 
     const std::string missing = test::sceneErrorMessage([&] { loadPosed(model, model.path() + ".missing.json"); });
-    EXPECT_EQ(missing, "loadScene(): '" + model.path() + ".missing.json': cannot open the pose file for reading");
+    EXPECT_EQ(missing, "loadScene(): '" + model.path() + ".missing.json': the pose file cannot be found");
+    // A FIFO is refused before it is opened: opening one blocks until a writer comes, for ever here.
+    const std::string fifo = model.path() + ".fifo.json";
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    const std::string blocked = test::sceneErrorMessage([&] { loadPosed(model, fifo); });
+    std::filesystem::remove(fifo);
+    EXPECT_EQ(blocked, "loadScene(): '" + fifo + "': the pose file is not a regular file (a folder, FIFO or device)");
 }
 
 TEST(VrmHumanoid, AVrmaNeedsItsExtensionAndAHumanoid) {

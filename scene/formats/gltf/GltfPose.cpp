@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -226,10 +227,19 @@ std::size_t findAnimation(const std::string& path, const tinygltf::Model& model,
     if (model.animations.size() > kMaxListedAnimations) {
         known += " and " + std::to_string(model.animations.size() - kMaxListedAnimations) + " more";
     }
+    // A name written as a VRM Animation file is a file that is not there (or not a file): say so, not only that the
+    // model has no animation of that name.
+    std::string extension = std::filesystem::path(name).extension().string();
+    std::ranges::transform(extension, extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::error_code error;
+    const std::string vrmaNote = extension != ".vrma" ? std::string()
+                                 : std::filesystem::exists(name, error)
+                                     ? "; as a VRM Animation file it is not a regular file"
+                                     : "; no VRM Animation file is there either";
     throwLoadError(
         path, "no animation '" + excerptForMessage(name) + "' (" +
                   (model.animations.empty() ? std::string("the file has no animations") : "the file has " + known) +
-                  ")");
+                  ")" + vrmaNote);
 }
 
 std::vector<double> sampleCurve(const AnimationCurve& curve, double time) {

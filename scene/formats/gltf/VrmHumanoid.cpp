@@ -195,8 +195,14 @@ HumanoidPose parsePoseFile(const std::string& posePath, const std::string& conte
 }
 
 std::string readSideFile(const std::string& path, const std::string& kind, MeshBudget& budget) {
+    // Judged before opening: a FIFO would block the open for ever, and a device has no end.
+    std::error_code error;
+    const std::filesystem::file_status status = std::filesystem::status(path, error);
+    if (!std::filesystem::exists(status)) throwLoadError(path, "the " + kind + " cannot be found");
+    if (!std::filesystem::is_regular_file(status))
+        throwLoadError(path, "the " + kind + " is not a regular file (a folder, FIFO or device)");
     std::ifstream file(path, std::ios::binary | std::ios::ate);
-    if (!file || std::filesystem::is_directory(path)) throwLoadError(path, "cannot open the " + kind + " for reading");
+    if (!file) throwLoadError(path, "cannot open the " + kind + " for reading");
     const std::streamoff size = file.tellg();
     if (size < 0) throwLoadError(path, "cannot determine the " + kind + "'s size");
     budget.chargeFile(std::size_t(size));
