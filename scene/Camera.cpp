@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -429,6 +430,11 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
     std::vector<bool> allOutside(sides.size(), true);
     const glm::dmat4 view = camera.viewMatrix();
     bool anyVertex = false;
+    // The model's extent on the image in pixels, while every vertex lies beyond the near plane: a model seen under a
+    // pixel covers no pixel centre, or one, and the picture is as blank (an eye far away, a field of view near 180).
+    const double focal = camera.focalPixels();
+    bool allInFront = true;
+    glm::dvec2 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
     for (const Mesh& mesh : scene.meshes) {
         for (const glm::vec3& p : mesh.positions) {
             anyVertex = true;
@@ -436,11 +442,34 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
             for (std::size_t i = 0; i < sides.size(); ++i) {
                 if (allOutside[i] && !sides[i].outside(v)) allOutside[i] = false;
             }
+            allInFront = allInFront && -v.z >= camera.zNear;
+            if (allInFront) {
+                const glm::dvec2 onImage = glm::dvec2(v.x, v.y) * (focal / -v.z);
+                low = glm::min(low, onImage);
+                high = glm::max(high, onImage);
+            }
         }
     }
     const auto side = std::ranges::find(allOutside, true);
-    if (!anyVertex || side == allOutside.end()) return std::nullopt;
-    const std::string& where = sides[std::size_t(side - allOutside.begin())].where;
+    if (!anyVertex) return std::nullopt;
+    std::string where;
+    if (side != allOutside.end()) {
+        where = "every vertex lies " + sides[std::size_t(side - allOutside.begin())].where;
+    } else {
+        // Pixel centres lie at half-integers of the image (y down); the model covers none unless its extent holds one
+        // both ways. A model under a pixel that holds one (a 1 x 1 picture) is drawn.
+        const auto holdsACentre = [](double from, double to, int size) {
+            const double first = std::max(std::ceil(from - 0.5), 0.0);
+            return first + 0.5 <= to && first < double(size);
+        };
+        const glm::dvec2 extent = high - low;
+        const glm::dvec2 centre(0.5 * camera.width, 0.5 * camera.height);
+        const bool drawsAPixel = holdsACentre(centre.x + low.x, centre.x + high.x, camera.width) &&
+                                 holdsACentre(centre.y - high.y, centre.y - low.y, camera.height);
+        if (!allInFront || drawsAPixel || !(extent.x < 1.0 && extent.y < 1.0)) return std::nullopt;
+        where = "the model spans " + detail::formatExtent(extent.x) + " x " + detail::formatExtent(extent.y) +
+                " pixels, under a pixel (move the eye nearer or narrow --fov)";
+    }
     std::string who;
     if (camera.source == "gltf") {
         who = "the glTF camera" + (scene.camera && !scene.camera->name.empty() ? " (" + scene.camera->name + ")" : "");
@@ -452,8 +481,7 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
         who = "the auto-framed camera";
     }
     return makeWarning(WarningKind::ModelOutsideView,
-                       who + " sees none of the model: every vertex lies " + where +
-                           ", so the picture shows only the background" +
+                       who + " sees none of the model: " + where + ", so the picture shows only the background" +
                            (camera.source == "gltf" ? "; --camera auto frames the model instead" : ""));
 }
 

@@ -116,7 +116,9 @@ struct Camera {
 Camera resolveCamera(const CameraRequest& request, const Scene& scene);
 
 /** A warning when `camera` shows none of `scene`'s model, which would render blank paper: every vertex lies behind the
- *  eye, beyond one side of the view (left, right, above or below), nearer than the near plane or beyond the far one.
+ *  eye, beyond one side of the view (left, right, above or below), nearer than the near plane or beyond the far one;
+ *  or, every vertex beyond the near plane, the model spans under a pixel both ways and holds no pixel centre (an eye
+ *  far away).
  *  It names where the view comes from (the glTF camera by its name, --eye, --orbit, auto-framing; --clip for the
  *  planes it set). Empty when some of the model may show. A model beside a corner of the view, outside the view but
  *  on the inner side of each of its planes, is not caught. A model-outside-view warning without a file: the camera

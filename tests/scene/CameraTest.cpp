@@ -143,6 +143,33 @@ TEST(Camera, EyeInsideTheSphereGetsATinyNearPlane) {
     EXPECT_DOUBLE_EQ(camera.zNear, camera.zFar * 1e-4);
 }
 
+TEST(Camera, AModelSeenUnderAPixelIsOutsideTheView) {
+    // A unit sphere 10,000 radii away at 128 px: about 0.05 px across, so no pixel shows it. It drew blank paper
+    // without the warning, which judged only the view's planes.
+    const Scene scene = sphereScene({0, 0, 0}, 1.0f);
+    CameraRequest request;
+    request.width = request.height = 128;
+    request.eye = glm::dvec3(0, 0, 1e4);
+    const std::optional<Warning> far = modelOutsideView(resolveCamera(request, scene), scene);
+    ASSERT_TRUE(far.has_value());
+    EXPECT_EQ(far->code, "model-outside-view");
+    EXPECT_NE(far->message.find("the model spans 0.0"), std::string::npos) << far->message;
+    EXPECT_NE(far->message.find("pixels, under a pixel (move the eye nearer or narrow --fov)"), std::string::npos);
+    // A few pixels across is drawn, and not warned about: 100 radii away it spans about 4 pixels, 1,000 about 0.4.
+    request.eye = glm::dvec3(0, 0, 100);
+    EXPECT_FALSE(modelOutsideView(resolveCamera(request, scene), scene).has_value());
+    request.eye = glm::dvec3(0, 0, 1e3);
+    EXPECT_TRUE(modelOutsideView(resolveCamera(request, scene), scene).has_value());
+    // Under a pixel but over a pixel centre: a 1 x 1 picture of the model, or the far sphere in a picture of odd size
+    // (its centre a pixel's centre), draws that pixel.
+    CameraRequest tiny;
+    tiny.width = tiny.height = 1;
+    EXPECT_FALSE(modelOutsideView(resolveCamera(tiny, scene), scene).has_value());
+    request.width = request.height = 127;
+    request.eye = glm::dvec3(0, 0, 1e4);
+    EXPECT_FALSE(modelOutsideView(resolveCamera(request, scene), scene).has_value());
+}
+
 TEST(Camera, RequestedEyeAndTargetAreHonoured) {
     const Scene scene = sphereScene();
     const BoundingSphere sphere = computeBoundingSphere(scene);
