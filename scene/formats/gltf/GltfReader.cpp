@@ -541,7 +541,8 @@ private:
             const std::vector<float> values =
                 attributeFloats(primitive, draco, attribute, TINYGLTF_TYPE_VEC2, vertexCount, name);
             mesh.texcoords[set].resize(vertexCount);
-            std::memcpy(mesh.texcoords[set].data(), values.data(), vertexCount * sizeof(glm::vec2));
+            if (vertexCount > 0)
+                std::memcpy(mesh.texcoords[set].data(), values.data(), vertexCount * sizeof(glm::vec2));
         }
         const auto color = primitive.attributes.find("COLOR_0");
         if (color == primitive.attributes.end()) return;
@@ -656,7 +657,8 @@ private:
     /** VEC3 floats (POSITION, NORMAL) as vectors, in the file's frame. */
     static std::vector<glm::vec3> toVec3(const std::vector<float>& values) {
         std::vector<glm::vec3> vectors(values.size() / 3);
-        std::memcpy(vectors.data(), values.data(), vectors.size() * sizeof(glm::vec3));
+        // Not with no values (an accessor of count 0): memcpy of a null pointer is undefined even for 0 bytes.
+        if (!vectors.empty()) std::memcpy(vectors.data(), values.data(), vectors.size() * sizeof(glm::vec3));
         return vectors;
     }
 
