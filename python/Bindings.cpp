@@ -488,7 +488,7 @@ Rows ownedRows(Rows converted, const py::array& array, py::handle value, const s
     const bool callersMemory = array.ptr() == value.ptr() || !array.owndata();
     if (callersMemory && converted.data() == array.data()) {
         Rows owned = Rows::ensure(py::module_::import("numpy").attr("array")(converted, "copy"_a = true));
-        if (!owned) throw py::error_already_set();
+        if (!owned) failMemory(where + "no memory for a copy of its " + std::to_string(array.size()) + " values");
         return owned;
     }
     return converted;

@@ -431,7 +431,8 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
     const glm::dmat4 view = camera.viewMatrix();
     bool anyVertex = false;
     // The model's extent on the image in pixels, while every vertex lies beyond the near plane: a model seen under a
-    // pixel covers no pixel centre, or one, and the picture is as blank (an eye far away, a field of view near 180).
+    // pixel (an eye far away) covers one pixel centre or none, and with none the picture is as blank. With a vertex
+    // nearer than the near plane the clipped faces' extent is not the vertices', so nothing is said.
     const double focal = camera.focalPixels();
     bool allInFront = true;
     glm::dvec2 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());

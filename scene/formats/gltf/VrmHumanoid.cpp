@@ -198,6 +198,8 @@ std::string readSideFile(const std::string& path, const std::string& kind, MeshB
     // Judged before opening: a FIFO would block the open for ever, and a device has no end.
     std::error_code error;
     const std::filesystem::file_status status = std::filesystem::status(path, error);
+    if (error && error != std::errc::no_such_file_or_directory)
+        throwLoadError(path, "the " + kind + " cannot be looked at (" + error.message() + ")");
     if (!std::filesystem::exists(status)) throwLoadError(path, "the " + kind + " cannot be found");
     if (!std::filesystem::is_regular_file(status))
         throwLoadError(path, "the " + kind + " is not a regular file (a folder, FIFO or device)");
