@@ -227,15 +227,10 @@ public:
      *  are numbered over the meshes in this order, each mesh's in its index order, from 1. */
     std::vector<SceneMesh> meshes() const;
 
-    /** A scene is a shared, unchanging handle: a copy and a move both leave the source a whole scene (a move that
-     *  emptied it made every later call on it crash). */
+    /** A scene is a shared, unchanging handle. Only copying is declared, so a move copies too and leaves the source a
+     *  whole scene (a move that emptied it made every later call on it crash). */
     Scene(const Scene&) = default;
-    Scene(Scene&& other) noexcept : mImpl(other.mImpl) {}
     Scene& operator=(const Scene&) = default;
-    Scene& operator=(Scene&& other) noexcept {
-        mImpl = other.mImpl;
-        return *this;
-    }
 
     struct Impl; ///< opaque: the library's own
 
@@ -560,14 +555,9 @@ public:
     /** Milliseconds the render took: without loading the scene, but with loading it again for a frame's own pose. */
     double milliseconds() const;
 
-    /** A still is a shared, unchanging handle, as a Scene is: a move leaves the source a whole still too. */
+    /** A shared, unchanging handle, as a Scene is: a move copies and leaves the source a whole still too. */
     Still(const Still&) = default;
-    Still(Still&& other) noexcept : mImpl(other.mImpl) {}
     Still& operator=(const Still&) = default;
-    Still& operator=(Still&& other) noexcept {
-        mImpl = other.mImpl;
-        return *this;
-    }
 
     struct Impl;
 
