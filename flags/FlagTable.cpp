@@ -530,8 +530,8 @@ std::vector<Flag> makeFlags() {
         {"--size"}, "WxH", S::Output,
         "image size in pixels (default 1024x1024, at most " + std::to_string(kMaxImageSide) +
             " a side; one buffer of the plan at most " + std::to_string(kMaxTextureBytes >> 20) +
-            " MiB, so a float RGBA G-buffer field at most " + std::to_string(largestFloatRgbaSquareSide()) + "x" +
-            std::to_string(largestFloatRgbaSquareSide()) + ", with --supersample)",
+            " MiB, so a float RGBA G-buffer field, --size times --supersample, at most " +
+            std::to_string(largestFloatRgbaSquareSide()) + "x" + std::to_string(largestFloatRgbaSquareSide()) + ")",
         [](const std::string& value, RenderOptions& options) { parseSize(value, options.width, options.height); })));
     flags.push_back(
         flag({"--dump"}, "DIR", S::Output,
