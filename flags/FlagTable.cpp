@@ -142,6 +142,33 @@ void parseSize(const std::string& text, int& width, int& height) {
     height = static_cast<int>(h);
 }
 
+/** `value` as --help writes a number: the shortest text that reads back as it, exponents without '+' and leading
+ *  zeros (1e-6, 1e6). */
+std::string helpNumber(double value) {
+    std::string text = detail::formatNumber(value);
+    const std::size_t exponent = text.find('e');
+    if (exponent == std::string::npos) return text;
+    std::string digits = text.substr(exponent + 1);
+    const bool negative = !digits.empty() && digits[0] == '-';
+    if (!digits.empty() && (digits[0] == '-' || digits[0] == '+')) digits.erase(0, 1);
+    digits.erase(0, std::min(digits.find_first_not_of('0'), digits.size() - 1));
+    return text.substr(0, exponent) + "e" + (negative ? "-" : "") + digits;
+}
+
+/** A float setting as --help writes it: the shortest text that reads back as the float (0.15, not 0.15000000596). */
+std::string helpNumber(float value) {
+    char text[32];
+    const auto [end, error] = std::to_chars(text, text + sizeof text, value);
+    return error == std::errc() ? std::string(text, end) : helpNumber(double(value));
+}
+
+/** Numbers joined by commas, as a flag takes them ("6,4", "1,1,1"). */
+std::string helpNumbers(const std::vector<double>& values) {
+    std::string text;
+    for (double value : values) text += (text.empty() ? "" : ",") + helpNumber(value);
+    return text;
+}
+
 /** "a, b or c" (or "a, b and c" with lastJoin " and "): a list for help and messages, from the table that holds it. */
 std::string alternatives(const std::vector<std::string>& items, const char* lastJoin = " or ") {
     std::string text;
@@ -164,15 +191,50 @@ std::string joined(const std::vector<std::string>& items) {
     return text.empty() ? "(none in this version)" : text;
 }
 
+/** One word of a flag that takes a fixed set of words: the value it stands for, and what it means for --help (empty:
+ * the word says it). A flag's help list, its completion words and its parser all come from its one table of these, so
+ * the three cannot disagree. */
 template <typename Value>
-Value parseChoice(const std::string& flag, const std::string& text,
-                  const std::vector<std::pair<std::string, Value>>& choices) {
-    std::string names;
-    for (const auto& [name, value] : choices) {
-        if (name == text) return value;
-        names += (names.empty() ? "" : ", ") + name;
-    }
-    throw UsageError(flag + ": unknown value '" + text + "' (available: " + names + ")");
+struct Choice {
+    std::string word;
+    Value value;
+    std::string meaning;
+};
+
+template <typename Value>
+std::vector<std::string> wordsOf(const std::vector<Choice<Value>>& choices) {
+    std::vector<std::string> words;
+    for (const Choice<Value>& choice : choices) words.push_back(choice.word);
+    return words;
+}
+
+/** "a (default) | b | c": the words, the one standing for `defaultValue` marked. */
+template <typename Value>
+std::string choiceListText(const std::vector<Choice<Value>>& choices, const Value& defaultValue) {
+    std::string text;
+    for (const Choice<Value>& choice : choices)
+        text += (text.empty() ? "" : " | ") + choice.word + (choice.value == defaultValue ? " (default)" : "");
+    return text;
+}
+
+/** A list item per word with a meaning ("\n  a: meaning"), which --help hangs under the flag as --shading's models. */
+template <typename Value>
+std::string choiceMeaningsText(const std::vector<Choice<Value>>& choices) {
+    std::string text;
+    for (const Choice<Value>& choice : choices)
+        if (!choice.meaning.empty()) text += "\n  " + choice.word + ": " + choice.meaning;
+    return text;
+}
+
+/** The value word `text` stands for; throws UsageError "<flag>: unknown value '<text>' (available: a, b, c)", as
+ *  --shading refuses a model (the library's tests read the names back from that list). */
+template <typename Value>
+Value parseChoice(const std::string& flag, const std::string& text, const std::vector<Choice<Value>>& choices) {
+    for (const Choice<Value>& choice : choices)
+        if (choice.word == text) return choice.value;
+    std::string words;
+    for (const Choice<Value>& choice : choices) words += (words.empty() ? "" : ", ") + choice.word;
+    throw UsageError(flag + ": unknown value '" + text + "' (available: " + words + ")");
 }
 
 int parseWholeNumber(const std::string& flag, const std::string& text, int low, int high) {
@@ -275,20 +337,21 @@ glm::dvec4 parseColor(const std::string& flag, const std::string& text) {
     return color;
 }
 
-const std::vector<std::pair<std::string, FaceOrientationMethod>> kOrientationMethods = {
-    {"standard", FaceOrientationMethod::Standard},
-    {"during-triangles", FaceOrientationMethod::DuringTriangles},
-    {"during-vertices", FaceOrientationMethod::DuringVertices},
-    {"after-vertices", FaceOrientationMethod::AfterVertices},
+/** --face-orientation's words: the GPU's culling, or Winnemöller & Bangay 2002's CPU marking. */
+const std::vector<Choice<FaceOrientationMethod>> kOrientationMethods = {
+    {"standard", FaceOrientationMethod::Standard, "the GPU culls and lights per pixel"},
+    {"during-triangles", FaceOrientationMethod::DuringTriangles, ""},
+    {"during-vertices", FaceOrientationMethod::DuringVertices, ""},
+    {"after-vertices", FaceOrientationMethod::AfterVertices, ""},
 };
 
 bool contains(const std::vector<std::string>& names, const std::string& name) {
     return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-std::string commaJoined(const std::vector<std::string>& names) {
+std::string commaJoined(const std::vector<std::string>& names, const char* separator = ", ") {
     std::string text;
-    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+    for (const std::string& name : names) text += (text.empty() ? "" : separator) + name;
     return text;
 }
 
@@ -296,13 +359,21 @@ std::string commaJoined(const std::vector<std::string>& names) {
  *  choice, whose help names its words. */
 std::string acceptedRangeText(const LineParameter& parameter) {
     if (parameter.isChoice()) return "";
-    const std::string low = detail::formatNumber(parameter.low);
+    const std::string low = helpNumber(parameter.low);
     const std::string value = "; " + parameter.valueName + " ";
     if (!(parameter.high < std::numeric_limits<double>::max()))
         return value + (parameter.lowOpen ? "above " : "at least ") + low;
-    const std::string high = detail::formatNumber(parameter.high);
+    const std::string high = helpNumber(parameter.high);
     if (parameter.lowOpen) return value + "above " + low + (parameter.highOpen ? " and below " : ", up to ") + high;
     return value + "from " + low + (parameter.highOpen ? ", below " : " to ") + high;
+}
+
+/** The shading models with an ambient term whose default ambient is `model`'s: "flat, gouraud, lambert and phong". */
+std::string modelsWithDefaultAmbientOf(ShadingModel model) {
+    std::vector<std::string> names;
+    for (const ShadingModelTraits& traits : shadingModels())
+        if (traits.ambient && traits.defaultAmbient == traitsOf(model).defaultAmbient) names.push_back(traits.name);
+    return alternatives(names, " and ");
 }
 
 // --- "has no effect" rules --------------------------------------------------------------------------------------
@@ -354,13 +425,35 @@ Flag helpOnly(HelpSection section, std::string label, std::string help) {
     return entry;
 }
 
+/** A flag that takes one word of `choices`: its help is "<before>a (default) | b<after>" and a list item per meaning,
+ *  the word marked default the one standing for `defaultValue` (the code's own default, so the mark cannot drift);
+ *  its completion words and its parser come from the same table, and `store` puts the chosen value into the options. */
+template <typename Value>
+Flag choiceFlag(std::vector<std::string> names, std::string valueName, HelpSection section, const std::string& before,
+                const std::vector<Choice<Value>>& choices, const Value& defaultValue, const std::string& after,
+                std::function<void(const Value&, RenderOptions&)> store) {
+    const std::string flagName = names.back();
+    Flag entry = flag(std::move(names), std::move(valueName), section,
+                      before + choiceListText(choices, defaultValue) + after + choiceMeaningsText(choices),
+                      [flagName, choices, store](const std::string& value, RenderOptions& options) {
+                          store(parseChoice(flagName, value, choices), options);
+                      });
+    entry.choices = wordsOf(choices);
+    return entry;
+}
+
 /** The width, colour and parameter flags of every registered line type. */
 void addLineTypeFlags(std::vector<Flag>& flags) {
+    const LineStyle style;
     flags.push_back(helpOnly(HelpSection::Lines, "--TYPE-width PX",
-                             "line width in pixels, 0.001 to 256 (default 2), constant across distance, field of\n"
-                             "view and resolution (for outline: the width showing outside the silhouette)"));
-    flags.push_back(
-        helpOnly(HelpSection::Lines, "--TYPE-color R,G,B[,A]", "line colour, channels in [0,1] (default 0,0,0)"));
+                             "line width in pixels, " + helpNumber(kMinLineWidthPixels) + " to " +
+                                 helpNumber(kMaxLineWidthPixels) + " (default " + helpNumber(style.widthPixels) +
+                                 "), constant across distance, field of\n"
+                                 "view and resolution, anti-aliased (for outline: the width showing outside the\n"
+                                 "silhouette; outline and silhouette are drawn from their GL band's middle line)"));
+    flags.push_back(helpOnly(HelpSection::Lines, "--TYPE-color R,G,B[,A]",
+                             "line colour, channels in [0,1] (default " +
+                                 helpNumbers({style.color.r, style.color.g, style.color.b}) + ")"));
     for (const LineType& type : lineTypes()) {
         const std::string name = type.name;
         const auto notDrawn = [name](const std::string& flagName) {
@@ -425,7 +518,8 @@ void addHiddenLineFlags(std::vector<Flag>& flags) {
              "none (default) or comma-separated types (" + commaJoined(types) +
                  "): also draw the parts of\n"
                  "each that the model hides, as the line type hidden-<type> (its own layer, --hidden-<type>-width\n"
-                 "and -color, lines-hidden-<type>.png), dashed by --hidden-dash and drawn under every visible line",
+                 "and -color, lines-hidden-<type>.png), dashed by --hidden-dash and drawn under every visible line\n"
+                 "(docs/lines.md)",
              [types](const std::string& value, RenderOptions& options) {
                  for (const std::string& hidden : options.hiddenLineTypes)
                      options.look.lines.erase(std::remove(options.look.lines.begin(), options.look.lines.end(), hidden),
@@ -453,41 +547,45 @@ void addHiddenLineFlags(std::vector<Flag>& flags) {
     std::vector<std::string> hiddenTypes;
     for (const LineType& type : lineTypes())
         if (type.hiddenLines) hiddenTypes.push_back(type.name);
-    Flag dash =
-        styleFlag(flag({"--hidden-dash"}, "ON,OFF", HelpSection::Lines,
-                       "the dash of every hidden-<type> layer: ON output pixels drawn, OFF left out, along each\n"
-                       "stroke from its start (default 6,4; each 1 to 4096: a dash or gap under a pixel would be\n"
-                       "no dash, only millions of paths); OFF 0, or none, draws them solid. The picture and the --svg\n"
-                       "(one path per dash) cut the same dashes",
-                       [](const std::string& value, RenderOptions& options) {
-                           StrokeStyle& strokes = options.look.strokes;
-                           if (value == "none") {
-                               strokes.hiddenDashOff = 0.0;
-                               return;
-                           }
-                           const std::vector<std::string> parts = splitList(value, ',');
-                           const std::string expected =
-                               "--hidden-dash: expected ON,OFF in output pixels (ON 1 to 4096, OFF 0 or 1 to 4096) "
-                               "or none, got '" +
-                               value + "'";
-                           if (parts.size() != 2) throw UsageError(expected);
-                           const double on = parseNumber("--hidden-dash", parts[0]);
-                           const double off = parseNumber("--hidden-dash", parts[1]);
-                           // A pixel at least: the dashes a stroke is cut into are kept as strokes of their own
-                           // (and SVG paths), so 1e-6 px dashes took the machine's memory before any limit.
-                           const bool onInRange = on >= kMinDashPixels && on <= kMaxDashPixels;
-                           const bool offInRange = off == 0.0 || (off >= kMinDashPixels && off <= kMaxDashPixels);
-                           if (!onInRange || !offInRange) throw UsageError(expected);
-                           strokes.hiddenDashOn = on;
-                           strokes.hiddenDashOff = off;
-                       }));
+    Flag dash = styleFlag(
+        flag({"--hidden-dash"}, "ON,OFF", HelpSection::Lines,
+             "the dash of every hidden-<type> layer: ON output pixels drawn, OFF left out, along each\n"
+             "stroke from its start (default " +
+                 helpNumbers({StrokeStyle{}.hiddenDashOn, StrokeStyle{}.hiddenDashOff}) + "; each " +
+                 helpNumber(kMinDashPixels) + " to " + helpNumber(kMaxDashPixels) +
+                 ": a dash or gap under a pixel would be\n"
+                 "no dash, only millions of paths); OFF 0, or none, draws them solid. The picture and the --svg\n"
+                 "(one path per dash) cut the same dashes",
+             [](const std::string& value, RenderOptions& options) {
+                 StrokeStyle& strokes = options.look.strokes;
+                 if (value == "none") {
+                     strokes.hiddenDashOff = 0.0;
+                     return;
+                 }
+                 const std::vector<std::string> parts = splitList(value, ',');
+                 const std::string expected =
+                     "--hidden-dash: expected ON,OFF in output pixels (ON 1 to 4096, OFF 0 or 1 to 4096) "
+                     "or none, got '" +
+                     value + "'";
+                 if (parts.size() != 2) throw UsageError(expected);
+                 const double on = parseNumber("--hidden-dash", parts[0]);
+                 const double off = parseNumber("--hidden-dash", parts[1]);
+                 // A pixel at least: the dashes a stroke is cut into are kept as strokes of their own
+                 // (and SVG paths), so 1e-6 px dashes took the machine's memory before any limit.
+                 const bool onInRange = on >= kMinDashPixels && on <= kMaxDashPixels;
+                 const bool offInRange = off == 0.0 || (off >= kMinDashPixels && off <= kMaxDashPixels);
+                 if (!onInRange || !offInRange) throw UsageError(expected);
+                 strokes.hiddenDashOn = on;
+                 strokes.hiddenDashOff = off;
+             }));
     dash.noEffect = onlyWithLineTypes("--hidden-dash", hiddenTypes);
     flags.push_back(dash);
 }
 
 std::string lineTypesHelp() {
     std::string text =
-        "comma-separated line types, or none (default silhouette,contour: no model white on white), each "
+        "comma-separated line types, or none (default " + commaJoined(kDefaultLines, ",") +
+        ": no model white on white, the contour also around a flat card seen face-on; docs/lines.md), each "
         "written to lines-<type>.png by --dump, "
         "composited in this order:";
     for (const LineType& type : lineTypes()) {
@@ -504,6 +602,8 @@ std::string shadingHelp() {
     for (const ShadingModelTraits& traits : shadingModels())
         text +=
             std::string(text.empty() ? "" : " | ") + traits.name + (traits.model == Look{}.shading ? " (default)" : "");
+    text += ": every model uses the material's textured base colour (docs/materials.md) and lights a VRM's MToon\n"
+            "materials, whose KHR_materials_unlit is only the exporters' fallback (docs/shading.md)";
     for (const ShadingModelTraits& traits : shadingModels()) {
         std::string indented;
         for (const char* c = traits.help; *c; ++c)
@@ -515,6 +615,8 @@ std::string shadingHelp() {
 
 std::vector<Flag> makeFlags() {
     using S = HelpSection;
+    // The code's own defaults: the help states each flag's default from these, so the two cannot disagree.
+    const RenderOptions defaults;
     std::vector<Flag> flags;
     // Output
     flags.push_back(flag({"-o", "--output"}, "FILE", S::Output, "the final picture: " + alternatives(kOutputExtensions),
@@ -528,25 +630,28 @@ std::vector<Flag> makeFlags() {
                          }));
     flags.push_back(styleFlag(flag(
         {"--size"}, "WxH", S::Output,
-        "image size in pixels (default 1024x1024, at most " + std::to_string(kMaxImageSide) +
-            " a side; one buffer of the plan at most " + std::to_string(kMaxTextureBytes >> 20) +
+        "image size in pixels (default " + std::to_string(defaults.width) + "x" + std::to_string(defaults.height) +
+            ", at most " + std::to_string(kMaxImageSide) + " a side; one buffer of the plan at most " +
+            std::to_string(kMaxTextureBytes >> 20) +
             " MiB, so a float RGBA G-buffer field, --size times --supersample, at most " +
             std::to_string(largestFloatRgbaSquareSide()) + "x" + std::to_string(largestFloatRgbaSquareSide()) + ")",
         [](const std::string& value, RenderOptions& options) { parseSize(value, options.width, options.height); })));
-    flags.push_back(
-        flag({"--dump"}, "DIR", S::Output,
-             "also write every buffer the plan computed, and manifest.json. What is computed follows\n"
-             "from the request: shading reads the G-buffer only where lines do; add --request 'gbuffer.*' for\n"
-             "every G-buffer field: " +
-                 gbufferDumpFiles() +
-                 " (the manifest names the objects and meshes). Also shading.png, final.png, lines-<type>.png, and\n"
-                 "what the line stages drew: band-<type>.png, skeleton-<type>.png, mesh-edges-<type>.png (README's\n"
-                 "dump table lists them all). An earlier dump in DIR is replaced once everything is written; DIR\n"
-                 "must be new, empty, or hold exactly an earlier dump",
-             [](const std::string& value, RenderOptions& options) { options.dumpDirectory = value; }));
+    flags.push_back(flag(
+        {"--dump"}, "DIR", S::Output,
+        "also write every buffer the plan computed, and manifest.json. What is computed follows\n"
+        "from the request: shading reads the G-buffer only where lines do; add --request 'gbuffer.*' for\n"
+        "every G-buffer field: " +
+            gbufferDumpFiles() +
+            " (the manifest names the objects and meshes). Also shading.png, final.png, lines-<type>.png, and\n"
+            "what the line stages drew: band-<type>.png, skeleton-<type>.png, mesh-edges-<type>.png (README's\n"
+            "dump table lists them all). An earlier dump in DIR is replaced once everything is written; DIR\n"
+            "must be new, empty, or hold exactly an earlier dump, and its parent writable (the new dump is staged\n"
+            "beside it)",
+        [](const std::string& value, RenderOptions& options) { options.dumpDirectory = value; }));
     flags.push_back(flag({"--request"}, "LIST", S::Output,
                          "compute and keep extra graph outputs, comma-separated: 'gbuffer.wVec', or 'gbuffer.*'\n"
-                         "for all of them (requesting is what makes a pass compute a buffer; dumping never does)",
+                         "for all of them, the data-set labels meshId, triangleId and barycentric included\n"
+                         "(docs/datasets.md); requesting is what makes a pass compute a buffer, dumping never does",
                          [](const std::string& value, RenderOptions& options) {
                              for (const std::string& resource : splitList(value, ',')) {
                                  const ResourceName name = ResourceName::split(resource);
@@ -557,7 +662,12 @@ std::vector<Flag> makeFlags() {
                              }
                          }));
     flags.push_back(flag({"--stats"}, "FILE.json", S::Output,
-                         "timings per pass, culled passes with reasons, scene and GL facts",
+                         "milliseconds per pass (prepare and execute), culled passes with reasons, load, context\n"
+                         "and write times, whether the OpenImageIO module was loaded (image_io_module: only formats\n"
+                         "other than PNG and --dump need it), the estimated peak memory, the peak and huge-page\n"
+                         "resident memory (peak_rss_mib, huge_pages_mib), the malloc tunables the process ran with\n"
+                         "(glibc_tunables), scene and GL facts, the look (shading, shade map, each line type), and\n"
+                         "for comic the face-orientation numbers (front shares, holes, cut-off, marking ms)",
                          [](const std::string& value, RenderOptions& options) { options.statsPath = value; }));
     flags.push_back(flag({"--print-plan"}, "", S::Output,
                          "print the compiled render plan (without -o, print it and stop: no GL needed)",
@@ -567,15 +677,20 @@ std::vector<Flag> makeFlags() {
                          [](const std::string& value, RenderOptions& options) { options.graphvizPath = value; }));
     flags.push_back(flag({"--contact-sheet"}, "FILE.png", S::Output,
                          "every buffer the plan computed (normal, view, w, n.v, depth, each line layer, shading,\n"
-                         "final) side by side in one labelled picture",
+                         "final) side by side in one labelled picture, each shown by what it holds: unit vectors\n"
+                         "as 0.5 + 0.5 x, n.v blue-white-red on a fixed scale, depth normalised over the model, lines\n"
+                         "as ink, colour over a checker; NaN and Inf in magenta",
                          [](const std::string& value, RenderOptions& options) {
                              options.contactSheetPath = value;
                              if (lowercaseExtension(value) != ".png")
                                  throw UsageError("--contact-sheet: '" + value + "' must be a .png file");
                          }));
     flags.push_back(flag({"--svg"}, "FILE.svg", S::Output,
-                         "the line layers as vector paths, one group (an Inkscape layer) per line type, traced\n"
-                         "from the one-pixel line skeletons and simplified, in the lines' widths and colours",
+                         "the line layers as vector paths, one group (an Inkscape layer) per line type in the\n"
+                         "composite's order, in the lines' widths and colours: one path per stroke the picture was\n"
+                         "drawn from, at sub-pixel positions where the kernel found them (outline and silhouette\n"
+                         "bands thinned to their centre lines), simplified within --svg-tolerance; with\n"
+                         "--line-weight, filled outlines",
                          [](const std::string& value, RenderOptions& options) {
                              options.svgPath = value;
                              if (lowercaseExtension(value) != ".svg")
@@ -584,7 +699,9 @@ std::vector<Flag> makeFlags() {
     flags.push_back(flag({"--strokes"}, "FILE.json", S::Output,
                          "every kept stroke of every drawn line type as JSON: its type, whether it is visible,\n"
                          "and per point the output pixel (x, y), the world point it came from, its mesh and\n"
-                         "triangle (docs/datasets.md, schema docs/schemas/strokes.schema.json)",
+                         "triangle, with the still's camera (K, [R|t]), so two views' strokes correspond through\n"
+                         "their cameras (format and accuracy in docs/datasets.md, schema\n"
+                         "docs/schemas/strokes.schema.json)",
                          [](const std::string& value, RenderOptions& options) {
                              options.strokesPath = value;
                              if (lowercaseExtension(value) != ".json")
@@ -593,7 +710,8 @@ std::vector<Flag> makeFlags() {
     Flag svgTolerance =
         flag({"--svg-tolerance"}, "PX", S::Output,
              "--svg: how far a simplified path may leave the traced pixels, in output pixels\n"
-             "(default 0.5; 0 keeps every pixel)",
+             "(default " +
+                 helpNumber(defaults.svgTolerance) + "; 0 keeps every pixel)",
              [](const std::string& value, RenderOptions& options) {
                  options.svgTolerance = parseNumber("--svg-tolerance", value);
                  if (options.svgTolerance < 0.0 || options.svgTolerance > 100.0)
@@ -603,7 +721,8 @@ std::vector<Flag> makeFlags() {
         return options.svgPath.empty() ? "--svg-tolerance: applies to --svg, which is not given" : "";
     };
     flags.push_back(svgTolerance);
-    flags.push_back(flag({"-q", "--quiet"}, "", S::Output, "no progress lines on stderr",
+    flags.push_back(flag({"-q", "--quiet"}, "", S::Output,
+                         "no progress lines on stderr (errors and warnings still go there)",
                          [](const std::string&, RenderOptions& options) { options.quiet = true; }));
 
     // Camera
@@ -613,21 +732,24 @@ std::vector<Flag> makeFlags() {
                          "rest pose, the file's own node transforms and morph weights). A name the file does not\n"
                          "have is refused with the list of those it has; ignored with a warning for OBJ, STL and PLY.\n"
                          "An existing FILE.vrma (VRM Animation) instead poses a VRM character through its humanoid\n"
-                         "bones: rotations retargeted in VRM's normalized pose, the hips scaled by the hips heights",
+                         "bones: rotations retargeted in VRM's normalized pose, the hips scaled by the hips heights\n"
+                         "(docs/posing.md)",
                          [](const std::string& value, RenderOptions& options) {
                              if (value.empty()) throw UsageError("--animation: expected a name or an index, got ''");
                              options.animation = value;
                          }));
-    Flag animationTime = flag({"--time"}, "SECONDS", S::Camera,
-                              "seconds into --animation (default 0); each channel holds its first or last keyframe\n"
-                              "outside its keyframe times. Also the clock of MToon's UV animation (--shading mtoon),\n"
-                              "with or without --animation",
-                              [](const std::string& value, RenderOptions& options) {
-                                  const double seconds = parseNumber("--time", value);
-                                  if (seconds < 0.0)
-                                      throw UsageError("--time: expected seconds >= 0, got '" + value + "'");
-                                  options.animationTime = seconds;
-                              });
+    Flag animationTime =
+        flag({"--time"}, "SECONDS", S::Camera,
+             "seconds into --animation (default " + helpNumber(defaults.animationTime) +
+                 "); each channel holds its first or last keyframe\n"
+                 "outside its keyframe times; LINEAR (quaternions by slerp), STEP and CUBICSPLINE\n"
+                 "keyframes are interpolated. Also the clock of MToon's UV animation (--shading mtoon,\n"
+                 "docs/mtoon.md), with or without --animation",
+             [](const std::string& value, RenderOptions& options) {
+                 const double seconds = parseNumber("--time", value);
+                 if (seconds < 0.0) throw UsageError("--time: expected seconds >= 0, got '" + value + "'");
+                 options.animationTime = seconds;
+             });
     flags.push_back(animationTime);
     flags.push_back(flag({"--pose"}, "POSE", S::Camera,
                          "pose a VRM character's humanoid bones (after --animation): a-pose (both upper arms\n"
@@ -635,7 +757,7 @@ std::vector<Flag> makeFlags() {
                          "each bone's rotation from the T-pose about world axes of a character facing +Z (VRM's\n"
                          "normalized pose), so one file poses every VRM, 0.x or 1.0, alike. An unknown bone name is\n"
                          "refused with the list; a bone the model lacks is a warning; a model that is not a VRM is\n"
-                         "refused",
+                         "refused (docs/posing.md)",
                          [](const std::string& value, RenderOptions& options) { options.pose = value; }));
     flags.push_back(flag(
         {"--expression"}, "NAME=W[,...]", S::Camera,
@@ -654,16 +776,19 @@ std::vector<Flag> makeFlags() {
         "bones turn, or its look expressions are weighted, as the file's look-at settings say\n"
         "(docs/vrm.md); refused for a file without them",
         [](const std::string& value, RenderOptions& options) { options.lookAt = parsePoint("--look-at", value); }));
-    flags.push_back(flag({"--camera"}, "C", S::Camera,
-                         "file (default: the glTF file's camera when it has one: its place, up and field of view;\n"
-                         "--up and --fov replace their own, --eye, --orbit or --frame all three) | auto (never the\n"
-                         "file's camera: auto-framed unless --eye or --orbit places it, field of view 35 unless --fov)",
-                         [](const std::string& value, RenderOptions& options) {
-                             if (value != "file" && value != "auto")
-                                 throw UsageError("--camera: expected file or auto, got '" + value + "'");
-                             options.autoCamera = value == "auto";
-                         }));
-    flags.back().choices = {"file", "auto"};
+    flags.push_back(choiceFlag<bool>(
+        {"--camera"}, "C", S::Camera, "",
+        {{"file", false,
+          "the glTF file's first perspective camera when it has one: its place, up and field of view; --up and --fov "
+          "replace their own, "
+          "and a view that --eye, --orbit or --frame places takes none of the three"},
+         {"auto", true, "never the file's camera: auto-framed unless --eye or --orbit places it"}},
+        defaults.autoCamera,
+        ": whether the file's camera places the view. A view the file's camera does not place has field of view " +
+            helpNumber(Camera{}.fovYDegrees) +
+            " unless --fov. A view that shows none of the model (every vertex behind the camera, beyond one side of "
+            "its view or outside its clip planes) renders the background with a warning naming the camera",
+        [](const bool& autoCamera, RenderOptions& options) { options.autoCamera = autoCamera; }));
     flags.push_back(
         flag({"--eye"}, "X,Y,Z", S::Camera, "camera position, in world units (coordinates within +-1e15)",
              [](const std::string& value, RenderOptions& options) { options.eye = parsePoint("--eye", value); }));
@@ -674,7 +799,9 @@ std::vector<Flag> makeFlags() {
              "for a Z-up --up), positive toward the front view's right (counter-clockwise seen from above: with up\n"
              "+Y and front +Z, 90 looks from +X), -360 to 360; EL degrees above the horizontal, -89.9 to 89.9;\n"
              "DIST world units (default: the auto-framing distance), or xS for S times the auto-framing distance\n"
-             "(x1.1: 10% farther). 0,0 looks straight at the front, 180,0 at the back; the default view is 0,14.04",
+             "(x1.1: 10% farther; what a view of --views records). 0,0 looks straight at the front, 180,0 at the\n"
+             "back (a model that faces the other way); the default view is 0,14.04. --stats reports the camera\n"
+             "source orbit",
              [](const std::string& value, RenderOptions& options) { options.orbit = parseOrbit("--orbit", value); });
     orbit.noEffect = [](const RenderOptions& options) -> std::string {
         return options.eye ? "--orbit and --eye both place the eye: give one" : "";
@@ -686,8 +813,8 @@ std::vector<Flag> makeFlags() {
                       "(head, leftHand, ...) and its child joints weight: the default target and the auto-framing\n"
                       "and --orbit distance fit their bounding sphere, so a character on a large ground fills the\n"
                       "picture and --frame head a skinned face; the clip planes still fit the whole model. The\n"
-                      "file's camera is not used. A name that is none of these is an error that lists the model's\n"
-                      "node, bone and joint names",
+                      "file's camera is not used. A name the model lacks fails its still (exit 3; in a batch the\n"
+                      "other models are drawn), listing the model's node, bone and joint names (docs/posing.md)",
                       [](const std::string& value, RenderOptions& options) {
                           for (const std::string& name : splitList(value, ',')) {
                               if (name.empty()) throw UsageError("--frame: empty node name in '" + value + "'");
@@ -714,8 +841,10 @@ std::vector<Flag> makeFlags() {
              "a model that faces +Y shows its back there: --orbit 180,14.04 turns to its face)",
              [](const std::string& value, RenderOptions& options) { options.up = parseDirection("--up", value); }));
     flags.push_back(styleFlag(flag({"--fov"}, "DEG", S::Camera,
-                                   "vertical field of view in degrees, 0.01 to 179 (default 35, or the glTF\n"
-                                   "camera's when that camera places the view)",
+                                   "vertical field of view in degrees, " + helpNumber(kMinFovDegrees) + " to " +
+                                       helpNumber(kMaxFovDegrees) + " (default " + helpNumber(Camera{}.fovYDegrees) +
+                                       ", or the glTF\n"
+                                       "camera's when that camera places the view)",
                                    [](const std::string& value, RenderOptions& options) {
                                        const double fov = parseNumber("--fov", value);
                                        if (!(fov >= kMinFovDegrees && fov <= kMaxFovDegrees))
@@ -725,9 +854,9 @@ std::vector<Flag> makeFlags() {
     flags.push_back(flag(
         {"--clip"}, "NEAR,FAR", S::Camera,
         "near and far clip distances along the view axis, 0 < NEAR < FAR, both in [1e-30, 1e30],\n"
-        "FAR/NEAR at most 1e30 (default: fitted to the bounding sphere, with far/near at most 1e4);\n"
-        "depth is reversed-Z float, so ratios up to 1e6 and beyond keep about 1e-7 of the distance\n"
-        "apart",
+        "FAR/NEAR at most 1e30 (default: fitted to the bounding sphere's depth along the view axis, so a model off\n"
+        "the axis is not clipped, with far/near at most 1e4); depth is reversed-Z float, so ratios up to 1e6 and\n"
+        "beyond keep about 1e-7 of the distance apart; --stats reports clip (near, far, far_over_near, source)",
         [](const std::string& value, RenderOptions& options) {
             const std::vector<std::string> parts = splitList(value, ',');
             if (parts.size() != 2)
@@ -747,13 +876,15 @@ std::vector<Flag> makeFlags() {
         }));
 
     // Look
-    flags.push_back(flag({"--style"}, "FILE", S::Look,
-                         "settings from a style file, one NAME = VALUE per line (# comments): any flag of this\n"
-                         "section and of Lines, --size and --fov, without the dashes; e.g. \"shading = comic\",\n"
-                         "\"lines = contour, suggestive\". Flags on the command line win over the file's",
-                         [](const std::string& value, RenderOptions& options) {
-                             options.stylePath = value; // its settings were put first by expandStyleFile()
-                         }));
+    flags.push_back(
+        flag({"--style"}, "FILE", S::Look,
+             "settings from a style file, one NAME = VALUE per line (# comments): any flag of this\n"
+             "section and of Lines, --size and --fov, without the dashes; e.g. \"shading = comic\",\n"
+             "\"lines = contour, suggestive\". A relative file (shademap) is found next to the style file;\n"
+             "flags on the command line win over the file's. Problems are reported with the file and line",
+             [](const std::string& value, RenderOptions& options) {
+                 options.stylePath = value; // its settings were put first by expandStyleFile()
+             }));
     flags.push_back(styleFlag(
         flag({"--shading"}, "MODE", S::Look, shadingHelp(), [](const std::string& value, RenderOptions& options) {
             const ShadingModelTraits* traits = findShadingModel(value);
@@ -765,18 +896,21 @@ std::vector<Flag> makeFlags() {
             options.look.shading = traits->model;
         })));
     for (const ShadingModelTraits& model : shadingModels()) flags.back().choices.push_back(model.name);
-    Flag shininess = styleFlag(
-        flag({"--shininess"}, "N", S::Look,
-             "specular exponent for " + shadingModelsWith(&ShadingModelTraits::specular) + ", 0 to 1e6 (default 32)",
-             [](const std::string& value, RenderOptions& options) {
-                 options.look.shininess = parseNumber("--shininess", value);
-                 if (options.look.shininess < 0.0 || options.look.shininess > kMaxShininess)
-                     throw UsageError("--shininess: expected a number from 0 to 1e6, got '" + value + "'");
-             }));
+    Flag shininess =
+        styleFlag(flag({"--shininess"}, "N", S::Look,
+                       "specular exponent for " + shadingModelsWith(&ShadingModelTraits::specular) + ", 0 to " +
+                           helpNumber(kMaxShininess) + " (default " + helpNumber(defaults.look.shininess) +
+                           "; both ends give no NaN and no speckle)",
+                       [](const std::string& value, RenderOptions& options) {
+                           options.look.shininess = parseNumber("--shininess", value);
+                           if (options.look.shininess < 0.0 || options.look.shininess > kMaxShininess)
+                               throw UsageError("--shininess: expected a number from 0 to 1e6, got '" + value + "'");
+                       }));
     shininess.noEffect = onlyWithModels("--shininess", &ShadingModelTraits::specular);
     flags.push_back(shininess);
     Flag bands = styleFlag(flag({"--bands"}, "N", S::Look,
-                                shadingModelsWith(&ShadingModelTraits::bands) + ": N even bands, 2 to 256",
+                                shadingModelsWith(&ShadingModelTraits::bands) +
+                                    ": N even bands, 2 to 256, instead of the default shade map",
                                 [](const std::string& value, RenderOptions& options) {
                                     options.look.bands = parseWholeNumber("--bands", value, 2, 256);
                                 }));
@@ -786,7 +920,8 @@ std::vector<Flag> makeFlags() {
         styleFlag(flag({"--shademap"}, "FILE", S::Look,
                        "an 8-bit PNG, at most 4096 a side, for " + shadingModelsWith(&ShadingModelTraits::shadeMap) +
                            ": cel (and auto's cel materials) read one row; comic a 2-D image (left dark -> right\n"
-                           "lit, bottom no highlight -> top full highlight); multiplied with the material colour",
+                           "lit, bottom no highlight -> top full highlight); multiplied with the material colour.\n"
+                           "inkgraph's own are in shademaps/ (shademaps/README.md)",
                        [](const std::string& value, RenderOptions& options) { options.look.shadeMapPath = value; }));
     shadeMap.pathValue = true;
     shadeMap.noEffect = [model = onlyWithModels("--shademap", &ShadingModelTraits::shadeMap)](
@@ -796,36 +931,36 @@ std::vector<Flag> makeFlags() {
         return options.look.bands ? "--bands and --shademap both choose the cel shade map: give one" : "";
     };
     flags.push_back(shadeMap);
-    Flag viewVector = styleFlag(flag(
-        {"--view-vector"}, "V", S::Look,
-        "comic: exact (default, per pixel) | constant (Winnemöller & Bangay's V_c toward the bounding-sphere\n"
-        "centre; falls back to exact when the eye is inside or within 2 radii of the sphere)",
-        [](const std::string& value, RenderOptions& options) {
-            options.look.viewVector = parseChoice<ViewVectorMode>(
-                "--view-vector", value, {{"exact", ViewVectorMode::Exact}, {"constant", ViewVectorMode::Constant}});
-        }));
-    viewVector.choices = {"exact", "constant"};
+    Flag viewVector = styleFlag(choiceFlag<ViewVectorMode>(
+        {"--view-vector"}, "V", S::Look, "comic: ",
+        {{"exact", ViewVectorMode::Exact, "per pixel"},
+         {"constant", ViewVectorMode::Constant,
+          "Winnemöller & Bangay's V_c toward the bounding-sphere centre; falls back to exact when the eye is inside "
+          "or within 2 radii of the sphere"}},
+        defaults.look.viewVector, "",
+        [](const ViewVectorMode& mode, RenderOptions& options) { options.look.viewVector = mode; }));
     viewVector.noEffect = onlyWithModels("--view-vector", &ShadingModelTraits::faceOrientation);
     flags.push_back(viewVector);
-    Flag faceOrientation = styleFlag(
-        flag({"--face-orientation"}, "M", S::Look,
-             "comic: standard (default: the GPU culls and lights per pixel) | during-triangles |\n"
-             "during-vertices | after-vertices (Winnemöller & Bangay's CPU marking with per-vertex lighting;\n"
-             "--stats reports front shares, holes and milliseconds)",
-             [](const std::string& value, RenderOptions& options) {
-                 options.look.faceOrientation = parseChoice("--face-orientation", value, kOrientationMethods);
-             }));
-    for (const auto& [name, method] : kOrientationMethods) faceOrientation.choices.push_back(name);
+    Flag faceOrientation = styleFlag(choiceFlag<FaceOrientationMethod>(
+        {"--face-orientation"}, "M", S::Look, "comic: ", kOrientationMethods, defaults.look.faceOrientation,
+        ": the GPU's culling, or Winnemöller & Bangay's CPU marking with per-vertex lighting (errata fixed: no "
+        "holes; --stats reports front shares, holes and milliseconds)",
+        [](const FaceOrientationMethod& method, RenderOptions& options) { options.look.faceOrientation = method; }));
     faceOrientation.noEffect = onlyWithModels("--face-orientation", &ShadingModelTraits::faceOrientation);
     flags.push_back(faceOrientation);
+    // The rule's words are its numbers; the parser stays a whole-number one, bounded by the table's first and last.
+    const std::vector<Choice<int>> frontRules = {{"1", 1, "all three of its vertices"},
+                                                 {"2", 2, "at least two of its vertices"},
+                                                 {"3", 3, "at least one of its vertices"}};
     Flag frontRule =
         styleFlag(flag({"--front-rule"}, "R", S::Look,
-                       "during-vertices, after-vertices: a triangle is front when 3 (R=1), 2 (R=2) or 1 (R=3,\n"
-                       "default) of its vertices are front",
-                       [](const std::string& value, RenderOptions& options) {
-                           options.look.frontRule = parseWholeNumber("--front-rule", value, 1, 3);
+                       "during-vertices, after-vertices: " + choiceListText(frontRules, defaults.look.frontRule) +
+                           ": a triangle is front when these are front" + choiceMeaningsText(frontRules),
+                       [low = frontRules.front().value, high = frontRules.back().value](const std::string& value,
+                                                                                        RenderOptions& options) {
+                           options.look.frontRule = parseWholeNumber("--front-rule", value, low, high);
                        }));
-    frontRule.choices = {"1", "2", "3"};
+    frontRule.choices = wordsOf(frontRules);
     frontRule.noEffect = [comic = onlyWithModels("--front-rule", &ShadingModelTraits::faceOrientation)](
                              const RenderOptions& options) -> std::string {
         if (std::string refusal = comic(options); !refusal.empty()) return refusal;
@@ -842,36 +977,42 @@ std::vector<Flag> makeFlags() {
                                    [](const std::string& value, RenderOptions& options) {
                                        options.look.towardLight = parseDirection("--light", value);
                                    })));
-    Flag ambient = styleFlag(
-        flag({"--ambient"}, "R,G,B", S::Look,
-             "the uniform ambient light, linear, channels in [0,1] (one number: grey), for " +
-                 shadingModelsWith(&ShadingModelTraits::ambient) +
-                 ":\nflat to phong light base x (ambient + (1 - ambient) max(n.l, 0)) (default 0.15); mtoon and auto\n"
-                 "add MToon's global illumination ambient x lit colour (default 0.05, the MToon conformance scene's)",
-             [](const std::string& value, RenderOptions& options) {
-                 const std::vector<std::string> parts = splitList(value, ',');
-                 if (parts.size() != 1 && parts.size() != 3)
-                     throw UsageError("--ambient: expected R,G,B or one grey value with channels in [0,1], got '" +
-                                      value + "'");
-                 glm::dvec3 color(parseNumber("--ambient", parts[0]));
-                 for (std::size_t channel = 1; channel < parts.size(); ++channel)
-                     color[int(channel)] = parseNumber("--ambient", parts[channel]);
-                 for (int c = 0; c < 3; ++c)
-                     if (color[c] < 0.0 || color[c] > 1.0)
-                         throw UsageError("--ambient: channels must lie in [0, 1], got '" + value + "'");
-                 options.look.ambient = color;
-             }));
+    Flag ambient = styleFlag(flag(
+        {"--ambient"}, "R,G,B", S::Look,
+        "the uniform ambient light, linear, channels in [0,1] (one number: grey), for " +
+            shadingModelsWith(&ShadingModelTraits::ambient) + ":\n" + modelsWithDefaultAmbientOf(ShadingModel::Flat) +
+            " light base x (ambient + (1 - ambient) max(n.l, 0)) (default " +
+            helpNumber(traitsOf(ShadingModel::Flat).defaultAmbient) + "); " +
+            modelsWithDefaultAmbientOf(ShadingModel::MToon) +
+            " add MToon's global illumination ambient x lit colour (default " +
+            helpNumber(traitsOf(ShadingModel::MToon).defaultAmbient) +
+            ", the MToon conformance scene's; docs/shading.md)",
+        [](const std::string& value, RenderOptions& options) {
+            const std::vector<std::string> parts = splitList(value, ',');
+            if (parts.size() != 1 && parts.size() != 3)
+                throw UsageError("--ambient: expected R,G,B or one grey value with channels in [0,1], got '" + value +
+                                 "'");
+            glm::dvec3 color(parseNumber("--ambient", parts[0]));
+            for (std::size_t channel = 1; channel < parts.size(); ++channel)
+                color[int(channel)] = parseNumber("--ambient", parts[channel]);
+            for (int c = 0; c < 3; ++c)
+                if (color[c] < 0.0 || color[c] > 1.0)
+                    throw UsageError("--ambient: channels must lie in [0, 1], got '" + value + "'");
+            options.look.ambient = color;
+        }));
     ambient.noEffect = onlyWithModels("--ambient", &ShadingModelTraits::ambient);
     flags.push_back(ambient);
-    flags.push_back(
-        styleFlag(flag({"--background"}, "R,G,B", S::Look, "paper colour, channels in [0,1] (default 1,1,1)",
-                       [](const std::string& value, RenderOptions& options) {
-                           const glm::dvec3 color = parseVector("--background", value);
-                           for (int c = 0; c < 3; ++c)
-                               if (color[c] < 0.0 || color[c] > 1.0)
-                                   throw UsageError("--background: channels must lie in [0, 1], got '" + value + "'");
-                           options.look.background = color;
-                       })));
+    flags.push_back(styleFlag(flag(
+        {"--background"}, "R,G,B", S::Look,
+        "paper colour, channels in [0,1] (default " +
+            helpNumbers({defaults.look.background.r, defaults.look.background.g, defaults.look.background.b}) + ")",
+        [](const std::string& value, RenderOptions& options) {
+            const glm::dvec3 color = parseVector("--background", value);
+            for (int c = 0; c < 3; ++c)
+                if (color[c] < 0.0 || color[c] > 1.0)
+                    throw UsageError("--background: channels must lie in [0, 1], got '" + value + "'");
+            options.look.background = color;
+        })));
 
     // Lines
     flags.push_back(styleFlag(
@@ -903,23 +1044,35 @@ std::vector<Flag> makeFlags() {
     Flag supersample =
         styleFlag(flag({"--supersample"}, "S", S::Lines,
                        "find the G-buffer, mesh-edge and object-space lines at S x the size (1 to 8,\n"
-                       "default 1) and area-downsample only the final line images: smoother, better-placed\n"
-                       "lines, S^2 the work. Outline and silhouette are drawn by GL at the output size.",
+                       "default " +
+                           std::to_string(defaults.look.supersample) +
+                           ") and area-downsample only the final line images: smoother, better-placed\n"
+                           "lines, S^2 the work. Outline and silhouette are drawn by GL at the output size.",
                        [](const std::string& value, RenderOptions& options) {
                            options.look.supersample = parseWholeNumber("--supersample", value, 1, 8);
                        }));
     supersample.noEffect = onlyWithLineTypes("--supersample", lineTypesUsing(nullptr));
     flags.push_back(supersample);
-    Flag msaa = styleFlag(flag({"--msaa"}, "N", S::Look,
-                               "N samples per pixel for the shading and MToon's outline shells (1, 2, 4\n"
-                               "or 8; default 1: off): anti-aliased fill edges; forward shading only",
-                               [](const std::string& value, RenderOptions& options) {
-                                   if (value != "1" && value != "2" && value != "4" && value != "8")
-                                       throw UsageError("--msaa: expected 1 (off), 2, 4 or 8 samples per pixel, got '" +
-                                                        value + "'");
-                                   options.look.msaa = std::stoi(value);
-                               }));
-    msaa.choices = {"1", "2", "4", "8"};
+    const std::vector<Choice<int>> msaaSamples = {{"1", 1, "off"}, {"2", 2, ""}, {"4", 4, ""}, {"8", 8, ""}};
+    Flag msaa = styleFlag(choiceFlag<int>(
+        {"--msaa"}, "N", S::Look, "samples per pixel for the shading and MToon's outline shells: ", msaaSamples,
+        defaults.look.msaa,
+        ": anti-aliased fill edges; forward shading only. More than the driver draws is refused (llvmpipe: 4;\n"
+        "docs/shading.md)",
+        [](const int& samples, RenderOptions& options) { options.look.msaa = samples; }));
+    // Its refusal says what the words are, as it did before the table: "expected 1 (off), 2, 4 or 8 samples per
+    // pixel" (the library and the Python module report it to their callers as it is).
+    msaa.apply = [msaaSamples](const std::string& value, RenderOptions& options) {
+        std::vector<std::string> described;
+        for (const Choice<int>& samples : msaaSamples) {
+            if (samples.word == value) {
+                options.look.msaa = samples.value;
+                return;
+            }
+            described.push_back(samples.word + (samples.meaning.empty() ? "" : " (" + samples.meaning + ")"));
+        }
+        throw UsageError("--msaa: expected " + alternatives(described) + " samples per pixel, got '" + value + "'");
+    };
     msaa.noEffect = [](const RenderOptions& options) -> std::string {
         if (traitsOf(options.look.shading).define != nullptr) return "";
         return "--msaa has no effect with --shading none (only the shading is multisampled)";
@@ -931,7 +1084,10 @@ std::vector<Flag> makeFlags() {
         flag({"--min-stroke-length"}, "F", S::Lines,
              "line pixels are chained into strokes through junctions, across small gaps and from one\n"
              "type into the next where they run on; a chain shorter than F x the picture's height is\n"
-             "not drawn, at any size (default 0.01: 10 px at 1024; 0 keeps every speck)",
+             "not drawn, at any size (default " +
+                 helpNumber(defaults.look.strokes.minLength) + ": " +
+                 std::to_string(std::lround(defaults.look.strokes.minLength * defaults.height)) + " px at " +
+                 std::to_string(defaults.height) + "; 0 keeps every speck; docs/strokes.md)",
              [](const std::string& value, RenderOptions& options) {
                  const double share = parseNumber("--min-stroke-length", value);
                  if (!(share >= 0.0 && share <= 1.0))
@@ -941,59 +1097,59 @@ std::vector<Flag> makeFlags() {
              }));
     minStrokeLength.noEffect = onlyWithLineTypes("--min-stroke-length", allLineTypes);
     flags.push_back(minStrokeLength);
+    // Each word of --line-weight turns on one setting of the strokes; none turns them all off.
+    const std::vector<Choice<bool StrokeStyle::*>> lineWeights = {
+        {"depth", &StrokeStyle::weightByDepth, "the width falls to half from the model's near side to its far side"},
+        {"strength", &StrokeStyle::weightByStrength, "faded lines thinner: 0.5 + 0.5 x strength"},
+        {"taper", &StrokeStyle::taperEnds, "stroke ends narrow to a quarter over 3% of the height"}};
+    bool anyWeightByDefault = false;
+    for (const Choice<bool StrokeStyle::*>& weight : lineWeights)
+        anyWeightByDefault = anyWeightByDefault || defaults.look.strokes.*weight.value;
     Flag lineWeight =
         styleFlag(flag({"--line-weight"}, "LIST", S::Lines,
-                       "none (default) or any of: depth (the width falls to half from the model's near side to\n"
-                       "its far side), strength (faded lines thinner: 0.5 + 0.5 x strength), taper (stroke ends\n"
-                       "narrow to a quarter over 3% of the height); in the picture and the --svg alike",
-                       [](const std::string& value, RenderOptions& options) {
+                       std::string(anyWeightByDefault ? "none" : "none (default)") + " or any of " +
+                           alternatives(wordsOf(lineWeights), " and ") +
+                           ", comma-separated; in the picture and the --svg alike" + choiceMeaningsText(lineWeights),
+                       [lineWeights](const std::string& value, RenderOptions& options) {
                            StrokeStyle& strokes = options.look.strokes;
-                           strokes.weightByDepth = strokes.weightByStrength = strokes.taperEnds = false;
+                           for (const Choice<bool StrokeStyle::*>& weight : lineWeights) strokes.*weight.value = false;
                            if (value == "none") return;
                            for (const std::string& item : splitList(value, ',')) {
-                               bool& setting = item == "depth"      ? strokes.weightByDepth
-                                               : item == "strength" ? strokes.weightByStrength
-                                               : item == "taper"
-                                                   ? strokes.taperEnds
-                                                   : throw UsageError("--line-weight: expected none or any of "
-                                                                      "depth, strength, taper; got '" +
-                                                                      item + "'");
+                               const auto weight =
+                                   std::find_if(lineWeights.begin(), lineWeights.end(),
+                                                [&item](const auto& choice) { return choice.word == item; });
+                               if (weight == lineWeights.end())
+                                   throw UsageError("--line-weight: expected none or any of " +
+                                                    commaJoined(wordsOf(lineWeights)) + "; got '" + item + "'");
+                               bool& setting = strokes.*weight->value;
                                if (setting) throw UsageError("--line-weight: '" + item + "' is listed twice");
                                setting = true;
                            }
                        }));
-    lineWeight.choices = {"none", "depth", "strength", "taper"};
+    lineWeight.choices = {"none"};
+    for (const std::string& word : wordsOf(lineWeights)) lineWeight.choices.push_back(word);
     lineWeight.commaList = true;
     lineWeight.noEffect = onlyWithLineTypes("--line-weight", allLineTypes);
     flags.push_back(lineWeight);
-    Flag overlapping =
-        styleFlag(flag({"--overlapping-lines"}, "M", S::Lines,
-                       "draw (default): every type draws its own lines; merge: where two types draw the\n"
-                       "same line (the contour along the outline, a crease along a contour), only the one\n"
-                       "earlier in the composite order below draws it (less ink, one SVG path per line)",
-                       [](const std::string& value, RenderOptions& options) {
-                           if (value != "merge" && value != "draw")
-                               throw UsageError("--overlapping-lines: expected merge or draw, got '" + value + "'");
-                           options.look.strokes.mergeOverlaps = value == "merge";
-                       }));
-    overlapping.choices = {"draw", "merge"};
+    Flag overlapping = styleFlag(choiceFlag<bool>(
+        {"--overlapping-lines"}, "M", S::Lines, "",
+        {{"draw", false, "every type draws its own lines"},
+         {"merge", true,
+          "where two types draw the same line (the contour along the outline, a crease along a contour), only the "
+          "one earlier in the composite order draws it (less ink, one SVG path per line)"}},
+        defaults.look.strokes.mergeOverlaps, "",
+        [](const bool& merge, RenderOptions& options) { options.look.strokes.mergeOverlaps = merge; }));
     overlapping.noEffect = onlyWithLineTypes("--overlapping-lines", allLineTypes);
     flags.push_back(overlapping);
     addHiddenLineFlags(flags);
-    flags.push_back(styleFlag(
-        flag({"--gbuffer-precision"}, "P", S::Lines,
-             "float (default) | half: store the G-buffer's normal, view, w, n.v and radial fields as\n"
-             "16-bit floats (depth and material ids stay 32-bit). Half the memory; the suggestive contours get\n"
-             "noisy (docs/accuracy.md measures it). Also applies to --request 'gbuffer.*'",
-             [](const std::string& value, RenderOptions& options) {
-                 if (value == "float")
-                     options.look.gbufferPrecision = GBufferPrecision::Float32;
-                 else if (value == "half")
-                     options.look.gbufferPrecision = GBufferPrecision::Float16;
-                 else
-                     throw UsageError("--gbuffer-precision: expected float or half, got '" + value + "'");
-             })));
-    flags.back().choices = {"float", "half"};
+    flags.push_back(styleFlag(choiceFlag<GBufferPrecision>(
+        {"--gbuffer-precision"}, "P", S::Lines, "",
+        {{"float", GBufferPrecision::Float32, ""},
+         {"half", GBufferPrecision::Float16,
+          "the G-buffer's normal, view, w, n.v and radial fields as 16-bit floats (depth and material ids stay "
+          "32-bit): half the memory, noisier suggestive contours (docs/accuracy.md measures it)"}},
+        defaults.look.gbufferPrecision, ": the G-buffer's precision, also for --request 'gbuffer.*'",
+        [](const GBufferPrecision& precision, RenderOptions& options) { options.look.gbufferPrecision = precision; })));
     Flag widthMap = styleFlag(flag(
         {"--outline-width-map"}, "SOURCE", S::Lines,
         "scale the outline, silhouette and MToon outline widths per vertex by a value in [0, 1] (0\n"
@@ -1042,6 +1198,7 @@ std::vector<Flag> makeFlags() {
                          "make the run a data set in DIR: every output path must lie inside DIR; each still's\n"
                          "files are journaled as they are committed, and the run ends by writing DIR/index.jsonl\n"
                          "(one line per still: model, view, camera, files, checksums) and the card DIR/README.md\n"
+                         "(command, version, look, counts)\n"
                          "(with --shard K/N: index-K-of-N.jsonl, README-K-of-N.md). A DIR that holds a data set is\n"
                          "refused without --resume; `inkgraph check-dataset DIR` verifies it (docs/datasets.md)",
                          [](const std::string& value, RenderOptions& options) { options.datasetDirectory = value; }));
@@ -1050,33 +1207,40 @@ std::vector<Flag> makeFlags() {
     };
     Flag resume = flag({"--resume"}, "", S::Batch,
                        "with --dataset: skip each still whose recorded settings match and whose files are all\n"
-                       "there with their sizes and checksums; render the rest (an interrupted run, a changed flag)",
+                       "there with their sizes and checksums; render the rest (an interrupted run, a changed flag):\n"
+                       "after a kill -9 at any moment it gives the files of one uninterrupted run",
                        [](const std::string&, RenderOptions& options) { options.resume = true; });
     resume.noEffect = [](const RenderOptions& options) -> std::string {
         return options.datasetDirectory.empty() ? "--resume: needs --dataset DIR (the data set to resume)" : "";
     };
     flags.push_back(resume);
-    flags.push_back(flag({"--jobs"}, "N", S::Batch,
-                         "how many stills may be in their post stage (line kernels, strokes, composite) and\n"
-                         "writing at once, on worker threads, while the next still loads and draws: 0 to 64\n"
-                         "(default: the cores this process may use, at most 16; 0 finishes each still before the\n"
-                         "next starts). With N above 0 each still's post stage runs its parallel loops on the\n"
-                         "usable cores / (N + 1) threads, at least 1. The files are the same bytes with any N; the\n"
-                         "memory limit counts every still in flight",
-                         [](const std::string& value, RenderOptions& options) {
-                             options.jobs = parseWholeNumber("--jobs", value, 0, 64);
-                         }));
-    flags.push_back(flag({"--draw-threads"}, "N", S::Batch,
-                         "how many threads draw a batch's stills, each with a GL context of its own: 1 to 16\n"
-                         "(default 1). On a GPU one thread leaves the GPU waiting while it plans, reads back\n"
-                         "and hands each still on: more threads draw more stills at once. On llvmpipe, whose\n"
-                         "rasterizers already use every core, more threads are slower. The files, progress lines and\n"
-                         "exit status are the same with any N; --jobs is shared among the threads, and they\n"
-                         "share the memory limit: a still draws once it fits beside what every thread holds,\n"
-                         "in the list's order when memory is short",
-                         [](const std::string& value, RenderOptions& options) {
-                             options.drawThreads = parseWholeNumber("--draw-threads", value, 1, 16);
-                         }));
+    flags.push_back(
+        flag({"--jobs"}, "N", S::Batch,
+             "how many stills may be in their post stage (line kernels, strokes, composite) and\n"
+             "writing at once, on worker threads, while the next still loads and draws: 0 to 64\n"
+             "(default: the cores this process may use, at most " +
+                 std::to_string(kMaxDefaultJobs) +
+                 "; 0 finishes each still before the\n"
+                 "next starts). With N above 0 each still's post stage runs its parallel loops on the\n"
+                 "usable cores / (N + 1) threads, at least 1. The files are the same bytes with any N; the\n"
+                 "memory limit counts every still in flight (docs/batch.md)",
+             [](const std::string& value, RenderOptions& options) {
+                 options.jobs = parseWholeNumber("--jobs", value, 0, 64);
+             }));
+    flags.push_back(
+        flag({"--draw-threads"}, "N", S::Batch,
+             "how many threads draw a batch's stills, each with a GL context of its own: 1 to 16\n"
+             "(default " +
+                 std::to_string(defaults.drawThreads) +
+                 "). On a GPU one thread leaves the GPU waiting while it plans, reads back\n"
+                 "and hands each still on: more threads draw more stills at once. On llvmpipe, whose\n"
+                 "rasterizers already use every core, more threads are slower. The files, progress lines and\n"
+                 "exit status are the same with any N; --jobs is shared among the threads, and they\n"
+                 "share the memory limit: a still draws once it fits beside what every thread holds,\n"
+                 "in the list's order when memory is short (docs/batch.md)",
+             [](const std::string& value, RenderOptions& options) {
+                 options.drawThreads = parseWholeNumber("--draw-threads", value, 1, 16);
+             }));
     flags.push_back(helpOnly(
         S::Batch, "",
         "Each model gets a progress line. A model that cannot be read is reported and the others go on; the run then\n"
@@ -1102,24 +1266,32 @@ std::vector<Flag> makeFlags() {
     };
     flags.push_back(views);
     Flag seed = flag({"--seed"}, "S", S::Views,
-                     "the random seed of --views, a whole number from 0 to 2^64-1 (default 0): the same seed\n"
-                     "gives the same views, on any machine and in any --shard split",
+                     "the random seed of --views, a whole number from 0 to 2^64-1 (default " +
+                         std::to_string(defaults.viewSampling.seed) +
+                         "): the same seed\n"
+                         "gives the same views, on any machine and in any --shard split (byte-identical stills with\n"
+                         "the same GL driver)",
                      [](const std::string& value, RenderOptions& options) {
                          options.viewSampling.seed = parseSeed("--seed", value);
                      });
     seed.noEffect = onlyWithViews("--seed");
     flags.push_back(seed);
-    Flag elevation = flag({"--view-elevation"}, "MEAN,SD[,LOW,HIGH]", S::Views,
-                          "--views' elevation in degrees: normal about MEAN with standard deviation SD (0 to 180),\n"
-                          "clamped to [LOW, HIGH]; MEAN, LOW and HIGH within -89.9 to 89.9 (default 10,10,-30,60)",
-                          [](const std::string& value, RenderOptions& options) {
-                              parseViewElevation("--view-elevation", value, options.viewSampling);
-                          });
+    Flag elevation =
+        flag({"--view-elevation"}, "MEAN,SD[,LOW,HIGH]", S::Views,
+             "--views' elevation in degrees: normal about MEAN with standard deviation SD (0 to 180),\n"
+             "clamped to [LOW, HIGH]; MEAN, LOW and HIGH within -89.9 to 89.9 (default " +
+                 helpNumbers({defaults.viewSampling.elevationMean, defaults.viewSampling.elevationDeviation,
+                              defaults.viewSampling.elevationLow, defaults.viewSampling.elevationHigh}) +
+                 ")",
+             [](const std::string& value, RenderOptions& options) {
+                 parseViewElevation("--view-elevation", value, options.viewSampling);
+             });
     elevation.noEffect = onlyWithViews("--view-elevation");
     flags.push_back(elevation);
     Flag distanceJitter = flag({"--view-distance-jitter"}, "J", S::Views,
                                "--views' distance: the auto-framing distance times 1 + J u, u uniform in [-1, 1],\n"
-                               "J from 0 to 0.9 (default 0)",
+                               "J from 0 to 0.9 (default " +
+                                   helpNumber(defaults.viewSampling.distanceJitter) + ")",
                                [](const std::string& value, RenderOptions& options) {
                                    options.viewSampling.distanceJitter = parseNumberIn(
                                        "--view-distance-jitter", value, 0.0, 0.9, "a number from 0 to 0.9");
@@ -1128,8 +1300,10 @@ std::vector<Flag> makeFlags() {
     flags.push_back(distanceJitter);
     Flag lightJitter = flag({"--light-jitter"}, "DEG", S::Views,
                             "--views' light: a direction drawn uniformly from those within DEG degrees of --light's\n"
-                            "(a spherical cap), 0 to 180 (default 0: --light as given). Needs --light: the default\n"
-                            "light follows the camera and the file",
+                            "(a spherical cap), 0 to 180 (default " +
+                                helpNumber(defaults.viewSampling.lightJitterDegrees) +
+                                ": --light as given). Needs --light: the default\n"
+                                "light follows the camera and the file",
                             [](const std::string& value, RenderOptions& options) {
                                 options.viewSampling.lightJitterDegrees =
                                     parseNumberIn("--light-jitter", value, 0.0, 180.0, "degrees from 0 to 180");
@@ -1184,47 +1358,36 @@ std::vector<Flag> makeFlags() {
     flags.push_back(poseChoices);
 
     // System
-    flags.push_back(flag({"--egl-platform"}, "P", S::System,
-                         "auto | device | surfaceless (default auto: device first, then surfaceless)",
-                         [](const std::string& value, RenderOptions& options) {
-                             if (value != "auto" && value != "device" && value != "surfaceless")
-                                 throw UsageError("--egl-platform: '" + value +
-                                                  "' is not one of auto, device, surfaceless");
-                             options.eglPlatform = value;
-                         }));
-    flags.back().choices = {"auto", "device", "surfaceless"};
-    flags.push_back(flag({"--readback"}, "WHEN", S::System,
-                         "auto | early | late: when the buffers the CPU post stage reads leave the GPU. early\n"
-                         "starts each copy as soon as the pass writing it has run, while later passes draw\n"
-                         "(pixel-pack buffers and fences); late copies each when the post stage asks for it.\n"
-                         "Default auto: late on software rasterizers (llvmpipe, where early costs 15% more: the\n"
-                         "copy waits on this thread either way), early on GPUs. The pictures are the same",
-                         [](const std::string& value, RenderOptions& options) {
-                             if (value != "auto" && value != "early" && value != "late")
-                                 throw UsageError("--readback: '" + value + "' is not one of auto, early, late");
-                             options.readback = value;
-                         }));
-    flags.back().choices = {"auto", "early", "late"};
-    flags.push_back(flag({"--post-stage"}, "D", S::System,
-                         "auto | cpu | gpu: where the image-space line kernels (contour, depth-edge,\n"
-                         "normal-edge) and the composite run: on the CPU over read-back G-buffer fields, or as\n"
-                         "compute shaders with only what they find read back; the lines agree within 1e-3 px,\n"
-                         "the composite to the byte. Default auto: cpu on a software rasterizer (" +
-                             commaJoined(softwareRasterizerNames()) +
-                             ": measured faster there, docs/performance.md), else gpu for the line\n"
-                             "kernels and cpu for the composite (gpu only when asked: a plan that ends on the GPU\n"
-                             "leaves a batch no post stage to overlap). --stats says which ran (post_stage.device)",
-                         [](const std::string& value, RenderOptions& options) {
-                             if (value == "auto")
-                                 options.look.postStage = PostStageDevice::Auto;
-                             else if (value == "cpu")
-                                 options.look.postStage = PostStageDevice::Cpu;
-                             else if (value == "gpu")
-                                 options.look.postStage = PostStageDevice::Gpu;
-                             else
-                                 throw UsageError("--post-stage: '" + value + "' is not one of auto, cpu, gpu");
-                         }));
-    flags.back().choices = {"auto", "cpu", "gpu"};
+    flags.push_back(choiceFlag<std::string>(
+        {"--egl-platform"}, "P", S::System, "",
+        {{"auto", "auto", "device first, then surfaceless"},
+         {"device", "device", ""},
+         {"surfaceless", "surfaceless", ""}},
+        defaults.eglPlatform, ": the EGL platform the GL context is made on",
+        [](const std::string& platform, RenderOptions& options) { options.eglPlatform = platform; }));
+    flags.push_back(choiceFlag<std::string>(
+        {"--readback"}, "WHEN", S::System, "",
+        {{"auto", "auto",
+          "late on software rasterizers (llvmpipe, where early costs 15% more: the copy waits on this thread either "
+          "way), early on GPUs"},
+         {"early", "early",
+          "each copy starts as soon as the pass writing it has run, while later passes draw (pixel-pack buffers and "
+          "fences)"},
+         {"late", "late", "each is copied when the post stage asks for it"}},
+        defaults.readback, ": when the buffers the CPU post stage reads leave the GPU. The pictures are the same",
+        [](const std::string& when, RenderOptions& options) { options.readback = when; }));
+    flags.push_back(choiceFlag<PostStageDevice>(
+        {"--post-stage"}, "D", S::System, "",
+        {{"auto", PostStageDevice::Auto,
+          "cpu on a software rasterizer (" + commaJoined(softwareRasterizerNames()) +
+              ": measured faster there, docs/performance.md), else gpu for the line kernels and cpu for the "
+              "composite (gpu only when asked: a plan that ends on the GPU leaves a batch no post stage to overlap)"},
+         {"cpu", PostStageDevice::Cpu, "on the CPU over read-back G-buffer fields"},
+         {"gpu", PostStageDevice::Gpu, "as compute shaders, with only what they find read back"}},
+        defaults.look.postStage,
+        ": where the image-space line kernels (contour, depth-edge, normal-edge) and the composite run; the lines "
+        "agree within 1e-3 px, the composite to the byte. --stats says which ran (post_stage.device)",
+        [](const PostStageDevice& device, RenderOptions& options) { options.look.postStage = device; }));
     flags.push_back(flag({"--strict"}, "", S::System,
                          "make every warning an error: the still fails with exit 3 and writes nothing (a missing\n"
                          "or undecodable texture, a value clamped into range, the model outside the view, ...).\n"
@@ -1245,10 +1408,13 @@ std::vector<Flag> makeFlags() {
              }));
     flags.push_back(flag({"--weld-distance"}, "R", S::System,
                          "when loading, merge vertices closer than R x the model's size (its bounding box's\n"
-                         "diagonal), 0 to 0.01 (default 1e-6; 0: only vertices at the same point). Lower it for\n"
-                         "details under a millionth of the model (a part of a survey kilometres wide), which the\n"
-                         "default merges away with the warning details-merged; raise it so that faces written a\n"
-                         "little apart count as joined (no border line along the crack, the hull closed over it)",
+                         "diagonal), 0 to " +
+                             helpNumber(kMaxWeldTolerance) + " (default " + helpNumber(defaults.weldTolerance) +
+                             "; 0: only vertices at the same point). Lower it for\n"
+                             "details under a millionth of the model (a part of a survey kilometres wide), which the\n"
+                             "default merges away with the warning details-merged; raise it so that faces written a\n"
+                             "little apart count as joined (no border line along the crack, the hull closed over it);\n"
+                             "--stats gives scene.weld_distance",
                          [](const std::string& value, RenderOptions& options) {
                              options.weldTolerance =
                                  parseNumberIn("--weld-distance", value, 0.0, kMaxWeldTolerance, "0 to 0.01");
@@ -1274,7 +1440,8 @@ const char* helpSectionTitle(HelpSection section) {
     case HelpSection::Lines:
         return "Lines (any subset; only the passes the listed types need run: see --stats \"culled\")";
     case HelpSection::Batch:
-        return "Batch (several models in one process: one GL context, each shader program compiled once)";
+        return "Batch (several models in one process: one GL context, each shader program compiled once; "
+               "docs/batch.md)";
     case HelpSection::Views:
         return "Views (data sets: N sampled views of each model, reproducible from --seed; docs/datasets.md)";
     case HelpSection::System: return "System";

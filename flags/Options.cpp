@@ -18,7 +18,7 @@ int usableCores() {
     return std::max(cores, 1);
 }
 
-int defaultJobs() { return std::min(usableCores(), 16); }
+int defaultJobs() { return std::min(usableCores(), kMaxDefaultJobs); }
 
 int postStageLoopThreads(int jobs) { return std::max(1, usableCores() / (std::max(jobs, 0) + 1)); }
 

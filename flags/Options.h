@@ -32,7 +32,10 @@ struct Shard {
  *  machine has), at least 1. */
 int usableCores();
 
-/** --jobs' default: usableCores(), at most 16. */
+/** --jobs' default's ceiling, however many cores there are: every still in flight holds its memory. */
+inline constexpr int kMaxDefaultJobs = 16;
+
+/** --jobs' default: usableCores(), at most kMaxDefaultJobs. */
 int defaultJobs();
 
 /** How many threads OpenCV's parallel loops (the line kernels' bands, the composite's rows) get in each still's post

@@ -37,7 +37,8 @@ const std::vector<ShadingModelTraits>& shadingModels() {
         {ShadingModel::Auto, "auto", "MODEL_AUTO 1", false, true, true, true, false, false, false, false, false, true,
          true, 0.05f,
          "each material its own model, as VRM viewers show the file: MToon where the material has\n"
-         "     it (as mtoon), cel elsewhere (as cel: --bands and --shademap apply)"},
+         "     it (as mtoon), cel elsewhere (as cel: --bands and --shademap apply); a model without MToon is\n"
+         "     exactly cel"},
     };
     return kModels;
 }

@@ -270,7 +270,7 @@ TEST(Options, GBufferPrecision) {
               GBufferPrecision::Float16);
     EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--gbuffer-precision", "float"}).look.gbufferPrecision,
               GBufferPrecision::Float32);
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--gbuffer-precision", "double"}).find("float or half"),
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--gbuffer-precision", "double"}).find("(available: float, half)"),
               std::string::npos);
 }
 
@@ -678,7 +678,8 @@ TEST(Options, CameraFileOrAuto) {
     EXPECT_TRUE(parse({"m.obj", "-o", "x.png", "--camera", "auto"}).autoCamera);
     EXPECT_FALSE(parse({"m.obj", "-o", "x.png", "--camera", "file"}).autoCamera);
     EXPECT_TRUE(cameraRequestOf(parse({"m.obj", "-o", "x.png", "--camera", "auto"})).ignoreFileCamera);
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--camera", "orbit"}).find("--camera: expected file or auto"),
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--camera", "orbit"})
+                  .find("--camera: unknown value 'orbit' (available: file, auto)"),
               std::string::npos);
 }
 
