@@ -1,6 +1,7 @@
 #include "app/GeneratedDocs.h"
 
 #include "app/StillOutputs.h"
+#include "flags/FlagTable.h"
 #include "render/StillRenderer.h"
 #include "gl/ShaderLibrary.h"
 #include "graph/Pass.h"
@@ -12,6 +13,8 @@
 #include "scene/Warning.h"
 #include "scene/mesh/Procedural.h"
 
+#include <cctype>
+#include <cstring>
 #include <set>
 #include <stdexcept>
 
@@ -33,6 +36,100 @@ std::string cell(const std::string& text) {
 }
 
 std::string code(const std::string& text) { return "`" + text + "`"; }
+
+/** `text` with each path of a Markdown doc the help names ("docs/batch.md", "shademaps/README.md") made a link, so the
+ *  README's table leads where --help points. */
+std::string linkedDocPaths(const std::string& text) {
+    const auto partOfPath = [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("_./-", c);
+    };
+    std::string out;
+    std::size_t at = 0;
+    while (at < text.size()) {
+        const bool startsPath = (at == 0 || !partOfPath(text[at - 1])) &&
+                                (text.compare(at, 5, "docs/") == 0 || text.compare(at, 10, "shademaps/") == 0);
+        std::size_t end = at;
+        while (startsPath && end < text.size() && partOfPath(text[end])) ++end;
+        while (end > at && text[end - 1] == '.') --end; // a sentence's full stop is not part of the path
+        const std::string path = text.substr(at, end - at);
+        if (startsPath && path.size() > 3 && path.compare(path.size() - 3, 3, ".md") == 0) {
+            out += "[" + path + "](" + path + ")";
+            at = end;
+        } else {
+            out += text[at++];
+        }
+    }
+    return out;
+}
+
+/** Help text as Markdown table text: a cell, with what Markdown would take for markup escaped ('<' of
+ *  "lines-<type>.png" would open an HTML tag, the '*' of 'gbuffer.*' emphasis). */
+std::string markdownText(const std::string& text) {
+    std::string out;
+    for (char c : cell(text)) {
+        if (c == '<')
+            out += "&lt;";
+        else if (c == '*')
+            out += "\\*";
+        else
+            out += c;
+    }
+    return linkedDocPaths(out);
+}
+
+/** A flag's label as --help writes it, each name in code: "`-o`, `--output FILE`", "`--TYPE-width PX`". */
+std::string flagLabel(const Flag& entry) {
+    if (!entry.helpLabel.empty()) return code(cell(entry.helpLabel));
+    std::string label;
+    for (std::size_t i = 0; i < entry.names.size(); ++i) {
+        const bool last = i + 1 == entry.names.size();
+        // A value name may hold a '|' ("AZ,EL[,DIST|,xS]"), which would end the cell.
+        label += (i == 0 ? "" : ", ") +
+                 code(cell(entry.names[i] + (last && !entry.valueName.empty() ? " " + entry.valueName : "")));
+    }
+    return label;
+}
+
+/** A flag's --help text as one cell: its paragraphs run on, each list item ("  auto: ...") on a line of its own. The
+ *  items of --lines are left out: they are the line types, which the README's line-types table lists below it. */
+std::string flagHelpCell(const Flag& entry) {
+    const bool linesFlag = entry.names == std::vector<std::string>{"--lines"};
+    std::string text;
+    for (const std::string& block : helpBlocks(entry.help)) {
+        if (block.rfind("  ", 0) != 0) {
+            text += (text.empty() ? "" : " ") + markdownText(block);
+            continue;
+        }
+        if (linesFlag) continue;
+        const std::string item = block.substr(2);
+        const std::size_t colon = item.find(": ");
+        text += "<br>" + (colon == std::string::npos
+                              ? markdownText(item)
+                              : code(item.substr(0, colon)) + ": " + markdownText(item.substr(colon + 2)));
+    }
+    if (linesFlag) text += " (the types: [line types](#line-types) below)";
+    return text;
+}
+
+/** The flags of `inkgraph render` as --help lists them, a row each, under a row per help section. */
+std::string renderFlagsTable() {
+    std::string text = "| flag | what it does (`--help`) |\n|---|---|\n";
+    for (HelpSection section : helpSections()) {
+        const std::string title = helpSectionTitle(section);
+        const std::size_t aside = title.find(" (");
+        text +=
+            "| **" + title.substr(0, aside) + "** |" +
+            (aside == std::string::npos ? "" : " " + markdownText(title.substr(aside + 2, title.size() - aside - 3))) +
+            " |\n";
+        for (const Flag& entry : renderFlags()) {
+            if (entry.section != section || entry.help.empty()) continue;
+            // A note of the section (no label) goes in a row of its own, under the flags it speaks of.
+            const std::string label = entry.names.empty() && entry.helpLabel.empty() ? "" : flagLabel(entry);
+            text += "| " + label + " | " + flagHelpCell(entry) + " |\n";
+        }
+    }
+    return text;
+}
 
 const char* familyText(LineFamily family) {
     switch (family) {
@@ -88,7 +185,7 @@ std::string warningCodesSection() {
 } // namespace
 
 const std::vector<std::string>& generatedDocSections() {
-    static const std::vector<std::string> kSections = {"line-types", "dump-files", "warning-codes"};
+    static const std::vector<std::string> kSections = {"render-flags", "line-types", "dump-files", "warning-codes"};
     return kSections;
 }
 
@@ -97,6 +194,7 @@ std::string generatedDocPath(const std::string& name) {
 }
 
 std::string generatedDocSection(const std::string& name) {
+    if (name == "render-flags") return renderFlagsTable();
     if (name == "line-types") return lineTypesSection();
     if (name == "dump-files") return dumpFilesSection();
     if (name == "warning-codes") return warningCodesSection();

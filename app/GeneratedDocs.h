@@ -1,7 +1,8 @@
 #pragma once
 /** @file The parts of the docs that list what the registries hold, generated from them as the man page is
- *  (app/CommandLineDocs.h): README.md's line types (passes/lines/LineTypes.h) and files `--dump` can write (each
- *  pass's declared Presentation, graph/Resource.h), docs/robustness.md's warning codes (scene/Warning.h). In the
+ *  (app/CommandLineDocs.h): README.md's table of `inkgraph render` flags (the flag table, flags/FlagTable.h: --help's
+ *  sections and texts), its line types (passes/lines/LineTypes.h) and files `--dump` can write (each pass's declared
+ *  Presentation, graph/Resource.h), docs/robustness.md's warning codes (scene/Warning.h). In the
  *  Markdown each section sits between
  *  `<!-- generated: NAME -->` and `<!-- end generated -->`; `inkgraph help --docs NAME` prints it and
  *  scripts/update-docs.sh rewrites the regions. tests/app/GeneratedDocsTest.cpp fails when a region differs from what
@@ -13,7 +14,8 @@
 
 namespace inkgraph {
 
-/** The names of the generated sections, in the order their docs have them: "line-types", "dump-files" (README.md),
+/** The names of the generated sections, in the order their docs have them: "render-flags", "line-types",
+ *  "dump-files" (README.md),
  *  "warning-codes" (docs/robustness.md). */
 const std::vector<std::string>& generatedDocSections();
 
