@@ -624,10 +624,11 @@ TEST(Options, HelpTextsAreMadeFromTheTablesTheyDescribe) {
     const std::string objectWidth = helpOf("--silhouette-object-width");
     EXPECT_NE(objectWidth.find("; D above 0"), std::string::npos); // no upper end: not "up to 1.79e+308"
     EXPECT_EQ(objectWidth.find("up to"), std::string::npos);
-    for (const LineParameter* parameter : lineParameters())
-        if (!parameter->isChoice())
-            EXPECT_NE(helpOf("--" + parameter->name).find("; " + parameter->valueName + " "), std::string::npos)
-                << parameter->name;
+    for (const LineParameter* parameter : lineParameters()) {
+        if (parameter->isChoice()) continue;
+        EXPECT_NE(helpOf("--" + parameter->name).find("; " + parameter->valueName + " "), std::string::npos)
+            << parameter->name;
+    }
     // The lists that come from other layers' tables.
     for (const std::string& name : softwareRasterizerNames())
         EXPECT_NE(helpOf("--post-stage").find(name), std::string::npos) << name;
