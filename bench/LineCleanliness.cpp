@@ -34,7 +34,8 @@ using inkgraph::bench::PointSetAgreement;
 
 constexpr const char* kHelp =
     R"(Usage: inkgraph_line_cleanliness --inkgraph BIN --model FILE --work DIR [--look NAME] [--json FILE]
-                                 [--columns TYPE,...] [--depth-tolerance R] [--header] [-- RENDER FLAGS...]
+                                 [--columns TYPE,...] [--depth-tolerance R] [--disagreement DIR] [--header]
+                                 [-- RENDER FLAGS...]
 
 Renders FILE with the inkgraph binary BIN (its environment is passed on: LD_LIBRARY_PATH, INKGRAPH_SHADER_DIR, ...)
 nine times, with RENDER FLAGS (the look, e.g. --shading comic --lines outline,contour,suggestive,crease) added:
@@ -61,6 +62,11 @@ markdown table row (with --header, the header first).
   --columns LIST       the line types given a table column, in order (default outline,silhouette,contour,
                        suggestive,crease); every drawn type is in the JSON
   --depth-tolerance R  F1 view: a reprojected point is visible when within R x the depth there (default 0.03)
+  --disagreement DIR   also write, per type, where two skeletons disagree: TYPE-1024-2048.png (the 2048 skeleton
+                       mapped into 1024 pixels) and TYPE-turn+1.png, TYPE-turn-1.png (the turned view's skeleton
+                       reprojected into view A, both judged there, so a point may read otherwise than in the F1,
+                       which judges A's points in the turned view): view A's 1024 points black where matched
+                       within 1.5 px, red where not; the other's grey where matched, blue where not
 )";
 
 constexpr double kTolerancePixels = 1.5;
@@ -83,6 +89,7 @@ struct Options {
     std::string look;
     std::vector<std::string> columns{"outline", "silhouette", "contour", "suggestive", "crease"};
     double depthTolerance = 0.03;
+    fs::path disagreement; ///< empty: no pictures
     bool header = false;
     std::vector<std::string> renderFlags;
 };
@@ -124,6 +131,8 @@ Options parseOptions(int argc, char** argv) {
             options.json = value;
         } else if (argument == "--look") {
             options.look = value;
+        } else if (argument == "--disagreement") {
+            options.disagreement = value;
         } else if (argument == "--columns") {
             options.columns = splitList(value);
         } else if (argument == "--depth-tolerance") {
@@ -384,6 +393,13 @@ int measure(const Options& options) {
         const auto size512To1024 = inkgraph::bench::compareAcrossSizes(skeleton512, skeleton, 2.0, kTolerancePixels);
         const auto size1024To2048 = inkgraph::bench::compareAcrossSizes(skeleton, skeleton2048, 2.0, kTolerancePixels);
         const double sizeMin = inkgraph::bench::smallestF1({size512To1024, size1024To2048});
+        if (!options.disagreement.empty()) {
+            fs::create_directories(options.disagreement);
+            inkgraph::writeImage(options.disagreement / (type + "-1024-2048.png"),
+                                 inkgraph::bench::disagreementPicture(
+                                     layersA[type].size(), skeleton, inkgraph::bench::toSmallerImage(skeleton2048, 2.0),
+                                     kTolerancePixels));
+        }
         bool anyPoints = !skeleton.empty() || !skeleton512.empty() || !skeleton2048.empty();
 
         nlohmann::json views = nlohmann::json::object();
@@ -399,6 +415,10 @@ int measure(const Options& options) {
             entry["dropped_a_to_turn"] = droppedJson(view.firstInSecond);
             entry["dropped_turn_to_a"] = droppedJson(view.secondInFirst);
             views[kTurns[index].name] = entry;
+            if (!options.disagreement.empty() && std::abs(kTurns[index].tenths) == 10)
+                inkgraph::writeImage(options.disagreement / (type + "-turn" + kTurns[index].name + ".png"),
+                                     inkgraph::bench::disagreementPicture(layersA[type].size(), skeleton,
+                                                                          view.secondInFirst.points, kTolerancePixels));
             byAngle[std::abs(kTurns[index].tenths)].push_back(view.agreement);
         }
         const double view1Min = inkgraph::bench::smallestF1(byAngle.at(10));

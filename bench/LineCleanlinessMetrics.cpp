@@ -298,4 +298,24 @@ ViewAgreement compareAcrossViews(const std::vector<cv::Point2d>& first, const cv
     return result;
 }
 
+cv::Mat disagreementPicture(cv::Size size, const std::vector<cv::Point2d>& first,
+                            const std::vector<cv::Point2d>& second, double tolerance) {
+    if (size.width <= 0 || size.height <= 0)
+        throw std::invalid_argument("disagreementPicture(): 'size' must not be empty");
+    cv::Mat picture(size, CV_8UC4, cv::Scalar(255, 255, 255, 255));
+    const auto paint = [&](const std::vector<cv::Point2d>& points, const std::vector<cv::Point2d>& other,
+                           const cv::Vec4b& matched, const cv::Vec4b& unmatched) {
+        for (const cv::Point2d& point : points) {
+            const bool within = countWithin({point}, other, tolerance) == 1;
+            const double col = std::round(point.x);
+            const double row = std::round(point.y);
+            if (col < 0.0 || row < 0.0 || col >= size.width || row >= size.height) continue;
+            picture.at<cv::Vec4b>(int(row), int(col)) = within ? matched : unmatched;
+        }
+    };
+    paint(second, first, cv::Vec4b(150, 150, 150, 255), cv::Vec4b(0, 0, 255, 255));
+    paint(first, second, cv::Vec4b(0, 0, 0, 255), cv::Vec4b(255, 0, 0, 255));
+    return picture;
+}
+
 } // namespace inkgraph::bench

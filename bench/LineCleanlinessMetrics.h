@@ -140,4 +140,12 @@ ViewAgreement compareAcrossViews(const std::vector<cv::Point2d>& first, const cv
                                  const cv::Mat& secondDepth, const PinholeView& secondView, double tolerance,
                                  double relativeDepthTolerance = 0.03, int searchRadius = 2);
 
+/** Where two point sets of one frame of `size` disagree, for looking at (inkgraph_line_cleanliness --disagreement):
+ *  CV_8UC4, RGBA, opaque white paper; each point of `second` at its nearest pixel, grey (150, 150, 150) where `first`
+ *  has a point within `tolerance` and blue (0, 0, 255) where not; then each point of `first`, black where `second` has
+ *  one within `tolerance` and red (255, 0, 0) where not. Points outside the frame are not drawn. Throws as
+ *  countWithin() does, and std::invalid_argument naming 'size' when it is empty. */
+cv::Mat disagreementPicture(cv::Size size, const std::vector<cv::Point2d>& first,
+                            const std::vector<cv::Point2d>& second, double tolerance);
+
 } // namespace inkgraph::bench

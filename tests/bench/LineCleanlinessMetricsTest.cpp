@@ -273,5 +273,25 @@ TEST(CompareAcrossViews, ReprojectsBothWaysAndLeavesOutWhatLeavesTheFrame) {
                  std::invalid_argument);
 }
 
+TEST(DisagreementPicture, ColoursEachPointByWhetherTheOtherSetHasOneNear) {
+    // first: (2, 2) matched by (3, 2), (8, 1) alone; second: (3, 2) matched, (5, 6) alone, (20, 20) outside.
+    const std::vector<cv::Point2d> first{{2.0, 2.0}, {8.2, 0.9}};
+    const std::vector<cv::Point2d> second{{3.0, 2.0}, {5.0, 6.4}, {20.0, 20.0}};
+    const cv::Mat picture = disagreementPicture(cv::Size(10, 8), first, second, 1.5);
+    ASSERT_EQ(picture.type(), CV_8UC4);
+    ASSERT_EQ(picture.size(), cv::Size(10, 8));
+    EXPECT_EQ(picture.at<cv::Vec4b>(2, 2), cv::Vec4b(0, 0, 0, 255));       // first, matched: black
+    EXPECT_EQ(picture.at<cv::Vec4b>(1, 8), cv::Vec4b(255, 0, 0, 255));     // first, alone: red
+    EXPECT_EQ(picture.at<cv::Vec4b>(2, 3), cv::Vec4b(150, 150, 150, 255)); // second, matched: grey
+    EXPECT_EQ(picture.at<cv::Vec4b>(6, 5), cv::Vec4b(0, 0, 255, 255));     // second, alone: blue
+    // Paper everywhere else: black and grey differ from white in three channels, red and blue in two.
+    EXPECT_EQ(cv::countNonZero(picture.reshape(1) != 255), 3 + 2 + 3 + 2);
+    // A first point over a second one is drawn last.
+    const cv::Mat overlap = disagreementPicture(cv::Size(4, 4), {{1.0, 1.0}}, {{1.0, 1.0}}, 0.5);
+    EXPECT_EQ(overlap.at<cv::Vec4b>(1, 1), cv::Vec4b(0, 0, 0, 255));
+    EXPECT_THROW(disagreementPicture(cv::Size(0, 4), first, second, 1.5), std::invalid_argument);
+    EXPECT_THROW(disagreementPicture(cv::Size(4, 4), first, second, -1.0), std::invalid_argument);
+}
+
 } // namespace
 } // namespace inkgraph::bench
