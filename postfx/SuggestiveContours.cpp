@@ -44,6 +44,8 @@ void checkInputs(const std::string& function, const cv::Mat& radial, const cv::M
         throw std::invalid_argument(function + ": 'threshold' must be finite and >= 0");
     if (!isFiniteAtLeast(settings.fade, 0.0f))
         throw std::invalid_argument(function + ": 'fade' must be finite and >= 0");
+    if (!(isFiniteAtLeast(settings.minAngleToW, 0.0f) && settings.minAngleToW < 90.0f))
+        throw std::invalid_argument(function + ": 'minAngleToW' must be at least 0 and below 90 degrees");
     if (!(isFiniteAtLeast(settings.depthJump, 0.0f) && settings.depthJump > 0.0f))
         throw std::invalid_argument(function + ": 'depthJump' must be positive and finite");
     if (!isFiniteAtLeast(settings.smoothing, 0.0f))
@@ -200,17 +202,41 @@ inline bool facesAwayFromFrontal(const cv::Vec4f& radial, float minSinThetaSquar
     return normalDistance > 0.0f && wSquared >= minSinThetaSquared * (wSquared + normalDistance * normalDistance);
 }
 
+constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+
+/** sin^2 of SuggestiveSettings::minAngleToW, the bound wellConditioned() compares with. */
+float minSinAngleToWSquared(const SuggestiveSettings& settings) {
+    const float sine = float(std::sin(double(settings.minAngleToW) * kRadiansPerDegree));
+    return sine * sine;
+}
+
+/** Whether the sign of D_w D_w(n.v) = gradient . J w, from differences of D_w(n.v), can be trusted: the gradient of
+ *  D_w(n.v) (a line's normal, where D_w(n.v) = 0) is at least the angle asin(sqrt(minSinAngleSquared)) away from
+ *  perpendicular to J w, i.e. a line there crosses w at least at that angle, and D_w D_w(n.v) > 0. Where a line
+ *  runs nearly along w, D_w D_w(n.v) is a small difference of large terms that the differences' error decides: a
+ *  valley of D_w(n.v) two pixels wide flips its sign with the sub-pixel phase at 1024 rows and not at 2048
+ *  (docs/strokes.md). 0 admits every pixel, the plain test of DeCarlo et al. */
+inline bool wellConditioned(float gradientX, float gradientY, float wx, float wy, float minSinAngleSquared) {
+    if (!(minSinAngleSquared > 0.0f)) return true;
+    const float along = gradientX * wx + gradientY * wy;
+    return along > 0.0f &&
+           along * along >= minSinAngleSquared * (gradientX * gradientX + gradientY * gradientY) * (wx * wx + wy * wy);
+}
+
 /** D_w D_w(n.v) at one pixel from the D_w(n.v) rows above, at and below it, or nothing where it is invalid: a
- *  neighbour's D_w undefined (so every difference involved stays on the pixel's surface), n.v <= 0, or sin(theta)
- *  below the cut-off. The caller keeps the pixel off the image's edges. */
+ *  neighbour's D_w undefined (so every difference involved stays on the pixel's surface), n.v <= 0, sin(theta)
+ *  below the cut-off, or its sign not to be trusted (wellConditioned()). The caller keeps the pixel off the image's
+ *  edges. */
 std::optional<float> secondDerivativeAt(const cv::Vec4f& radial, int col, const float* dwAbove, const float* dw,
                                         const float* dwBelow, const float* definedAbove, const float* defined,
-                                        const float* definedBelow, float minSinThetaSquared) {
+                                        const float* definedBelow, float minSinThetaSquared, float minSinAngleSquared) {
     if (!(defined[col - 1] > 0.0f && defined[col + 1] > 0.0f && definedAbove[col] > 0.0f && definedBelow[col] > 0.0f))
         return std::nullopt;
     if (!facesAwayFromFrontal(radial, minSinThetaSquared)) return std::nullopt;
     const float gradientX = dw[col + 1] - dw[col - 1];
     const float gradientY = dwBelow[col] - dwAbove[col];
+    if (!wellConditioned(gradientX, gradientY, radial[kImageWX], radial[kImageWY], minSinAngleSquared))
+        return std::nullopt;
     return 0.5f * (gradientX * radial[kImageWX] + gradientY * radial[kImageWY]);
 }
 
@@ -865,9 +891,9 @@ public:
                 const SuggestiveSettings& settings, int reach, cv::Mat& mask, int firstRow, int endRow)
         : mRadial(radial), mDepth(depth), mSurface(surface), mSpans(spans), mMask(mask), mDepthJump(settings.depthJump),
           mClearanceDepth(clearanceDepth(settings)), mMarginPixels(sizeMarginPixels(settings, radial.rows)),
-          mMinSinThetaSquared(settings.minSinTheta * settings.minSinTheta), mRule{settings.featureSize *
-                                                                                      settings.featureSize,
-                                                                                  settings.threshold, settings.fade},
+          mMinSinThetaSquared(settings.minSinTheta * settings.minSinTheta),
+          mMinSinAngleSquared(minSinAngleToWSquared(settings)), mRule{settings.featureSize * settings.featureSize,
+                                                                      settings.threshold, settings.fade},
           mRows(radial.rows), mCols(radial.cols), mFirstRow(firstRow), mEndRow(endRow),
           mFirstLoaded(std::max(firstRow - 3, 0)), mNormalDistance(kRingRows * size_t(mCols), 0.0f),
           mImageWX(kRingRows * size_t(mCols), 0.0f), mImageWY(kRingRows * size_t(mCols), 0.0f),
@@ -948,7 +974,7 @@ private:
     std::optional<float> secondDerivative(int row, int col) const {
         return secondDerivativeAt(radialRow(row)[col], col, &mDw[slotOf(row - 1)], &mDw[slotOf(row)],
                                   &mDw[slotOf(row + 1)], &mDefined[slotOf(row - 1)], &mDefined[slotOf(row)],
-                                  &mDefined[slotOf(row + 1)], mMinSinThetaSquared);
+                                  &mDefined[slotOf(row + 1)], mMinSinThetaSquared, mMinSinAngleSquared);
     }
 
     /** Crossings of the pairs (row, col)-(row, col + 1) and (row - 1, col)-(row, col), col in the row's span. Crossings
@@ -1023,6 +1049,7 @@ private:
     float mClearanceDepth; ///< clearanceDepth()
     float mMarginPixels;   ///< sizeMarginPixels()
     float mMinSinThetaSquared;
+    float mMinSinAngleSquared; ///< minSinAngleToWSquared(): wellConditioned()'s bound
     StrengthRule mRule;
     int mRows;
     int mCols;
@@ -1044,10 +1071,10 @@ private:
 constexpr std::array<int, 4> kWideOffsets = {-2, -1, 1, 2};
 constexpr std::array<float, 4> kWideWeights = {1.0f / 12.0f, -8.0f / 12.0f, 8.0f / 12.0f, -1.0f / 12.0f};
 
-/** The derivative of `field` along the image vector (wx, wy) at (row, col) by the five-point stencil, or nothing
- *  where a stencil pixel is not `usable`. The caller keeps (row, col) two pixels off the image's edges. */
+/** The gradient of `field` at (row, col) by the five-point stencil, or nothing where a stencil pixel is not
+ *  `usable`. The caller keeps (row, col) two pixels off the image's edges. */
 template <typename Usable>
-std::optional<float> wideDerivative(const cv::Mat& field, int row, int col, float wx, float wy, Usable usable) {
+std::optional<cv::Vec2f> wideGradient(const cv::Mat& field, int row, int col, Usable usable) {
     float gradientX = 0.0f;
     float gradientY = 0.0f;
     for (size_t i = 0; i < kWideOffsets.size(); ++i) {
@@ -1056,7 +1083,7 @@ std::optional<float> wideDerivative(const cv::Mat& field, int row, int col, floa
         gradientX += kWideWeights[i] * field.at<float>(row, col + offset);
         gradientY += kWideWeights[i] * field.at<float>(row + offset, col);
     }
-    return gradientX * wx + gradientY * wy;
+    return cv::Vec2f(gradientX, gradientY);
 }
 
 /** computeRadialDerivatives() with DifferenceStencil::Central5: a plain per-pixel loop over full-image maps. */
@@ -1082,22 +1109,25 @@ RadialDerivatives wideRadialDerivatives(const cv::Mat& radial, const cv::Mat& de
                 return joinsNeighbour(z, depth.at<float>(r, c), settings.depthJump) &&
                        sameSurfaceId(ids, col, surfaceRow(surface, r), c);
             };
-            if (const auto dw = wideDerivative(normalDistance, row, col, here[kImageWX], here[kImageWY], sameSurface)) {
-                result.dw.at<float>(row, col) = *dw;
+            if (const auto gradient = wideGradient(normalDistance, row, col, sameSurface)) {
+                result.dw.at<float>(row, col) = (*gradient)[0] * here[kImageWX] + (*gradient)[1] * here[kImageWY];
                 defined.at<uchar>(row, col) = 1;
             }
         }
     }
     const float minSinThetaSquared = settings.minSinTheta * settings.minSinTheta;
+    const float minSinAngle = minSinAngleToWSquared(settings);
     const auto dwDefined = [&](int r, int c) { return defined.at<uchar>(r, c) != 0; };
     for (int row = kReach; row + kReach < rows; ++row) {
         for (int col = kReach; col + kReach < cols; ++col) {
             const cv::Vec4f& here = radial.at<cv::Vec4f>(row, col);
             if (!dwDefined(row, col) || !facesAwayFromFrontal(here, minSinThetaSquared)) continue;
-            if (const auto dwdw = wideDerivative(result.dw, row, col, here[kImageWX], here[kImageWY], dwDefined)) {
-                result.dwdw.at<float>(row, col) = *dwdw;
-                result.valid.at<uchar>(row, col) = 255;
-            }
+            const auto gradient = wideGradient(result.dw, row, col, dwDefined);
+            if (!gradient ||
+                !wellConditioned((*gradient)[0], (*gradient)[1], here[kImageWX], here[kImageWY], minSinAngle))
+                continue;
+            result.dwdw.at<float>(row, col) = (*gradient)[0] * here[kImageWX] + (*gradient)[1] * here[kImageWY];
+            result.valid.at<uchar>(row, col) = 255;
         }
     }
     return result;
@@ -1228,13 +1258,14 @@ RadialDerivatives computeRadialDerivatives(const cv::Mat& radialInput, const cv:
         differentiateAlongW(in, 1, cols - 1, settings.depthJump, result.dw.ptr<float>(row), defined.ptr<float>(row));
     }
     const float minSinThetaSquared = settings.minSinTheta * settings.minSinTheta;
+    const float minSinAngle = minSinAngleToWSquared(settings);
     for (int row = 1; row + 1 < rows; ++row) {
         const auto* radialRow = radial.ptr<cv::Vec4f>(row);
         for (int col = 1; col + 1 < cols; ++col) {
             const auto dwdw =
                 secondDerivativeAt(radialRow[col], col, result.dw.ptr<float>(row - 1), result.dw.ptr<float>(row),
                                    result.dw.ptr<float>(row + 1), defined.ptr<float>(row - 1), defined.ptr<float>(row),
-                                   defined.ptr<float>(row + 1), minSinThetaSquared);
+                                   defined.ptr<float>(row + 1), minSinThetaSquared, minSinAngle);
             if (!dwdw) continue;
             result.dwdw.at<float>(row, col) = *dwdw;
             result.valid.at<uchar>(row, col) = 255;

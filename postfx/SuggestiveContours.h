@@ -20,6 +20,10 @@ enum class DifferenceStencil {
  *  models (docs/lines.md) it leaves the shape's lines and drops the bumps'. */
 constexpr double kSuggestiveSmoothingFraction = 0.005;
 
+/** The least angle, in degrees, at which a suggestive contour may cross the image's w direction
+ *  (SuggestiveSettings::minAngleToW, `--suggestive-min-angle`). */
+constexpr float kSuggestiveMinAngleToWDegrees = 15.0f;
+
 struct SuggestiveSettings {
     /** Pixels with sin(theta) = |w| / |v| below this are skipped: near-frontal, w has no direction there, and
      *  n.v is at a maximum so no suggestive contour can pass. Noise in n.v makes points there otherwise (a sphere
@@ -35,6 +39,13 @@ struct SuggestiveSettings {
     /** > 0: each point's strength is (q - threshold) / (q - threshold + fade), rtsc's fade, so a line grows in from
      *  nothing instead of popping in; 0: full strength. The default is rtsc's. */
     float fade = 0.03f;
+    /** Degrees: a crossing is kept only where the line it lies on crosses the image's w direction at least at this
+     *  angle (the gradient of D_w(n.v) at least this far from perpendicular to J w at both pixels of the pair).
+     *  D_w D_w(n.v) is the gradient of D_w(n.v) dotted with J w, so where a line runs nearly along w it is a small
+     *  difference of large terms, and the differences' error decides its sign: such lines come and go with the
+     *  sub-pixel phase, so with the size and a small turn of the view (docs/strokes.md). 0: every crossing with
+     *  D_w D_w(n.v) > 0 (the plain test of DeCarlo et al.). */
+    float minAngleToW = kSuggestiveMinAngleToWDegrees;
     float depthJump = 0.05f; ///< no difference is taken across a relative depth jump larger than this
     DifferenceStencil stencil = DifferenceStencil::Central3;
     /** > 0: the radial field is smoothed first (smoothRadialField()) by a Gaussian of this standard deviation on the

@@ -39,11 +39,12 @@ SuggestiveSettings smoothed(SuggestiveSettings settings, double boundingRadius, 
     return settings;
 }
 
-/** Every crossing with D_w D_w(n.v) > 0, unfaded. */
+/** Every crossing with D_w D_w(n.v) > 0, unfaded, at any angle to w. */
 SuggestiveSettings untrimmedSettings() {
     SuggestiveSettings settings;
     settings.threshold = 0.0f;
     settings.fade = 0.0f;
+    settings.minAngleToW = 0.0f;
     return settings;
 }
 
@@ -872,6 +873,68 @@ TEST(SuggestiveContours, RejectsWrongInputsNamingThem) {
     bad = good;
     bad.depthJump = std::numeric_limits<float>::infinity();
     expectRejected(radial, depth, bad, "depthJump");
+    for (const float angle : {-1.0f, 90.0f, std::numeric_limits<float>::quiet_NaN()}) {
+        bad = good;
+        bad.minAngleToW = angle;
+        expectRejected(radial, depth, bad, "minAngleToW");
+    }
+}
+
+/** A flat-depth field whose n.(c - p) is a valley 1 + a u^2 / 2 across the line u = 0, u the distance from it along
+ *  the line's normal, with J w along x: D_w(n.v) = a u cos(beta) (beta the normal's angle to x), zero on the line, and
+ *  D_w D_w(n.v) = a cos^2(beta) > 0, a suggestive contour that crosses w at the angle alpha = 90 - beta. The central
+ *  differences of a quadratic are exact, so the angle the kernel judges is alpha to float precision. */
+struct ValleyField {
+    cv::Mat radial;
+    cv::Mat depth;
+};
+ValleyField valleyCrossingWAt(double alphaDegrees, int size) {
+    const double beta = glm::radians(90.0 - alphaDegrees);
+    const glm::dvec2 normal(std::cos(beta), std::sin(beta));
+    // Off every pixel centre, so no D_w is exactly 0.
+    const glm::dvec2 onLine(0.5 * size + 0.37, 0.5 * size + 0.21);
+    constexpr double a = 1e-3;
+    ValleyField field{cv::Mat(size, size, CV_32FC4), cv::Mat(size, size, CV_32FC1, cv::Scalar::all(5.0))};
+    for (int row = 0; row < size; ++row)
+        for (int col = 0; col < size; ++col) {
+            const double u = glm::dot(glm::dvec2(col, row) - onLine, normal);
+            field.radial.at<cv::Vec4f>(row, col) = cv::Vec4f(float(1.0 + 0.5 * a * u * u), 1.0f, 0.0f, 1.0f);
+        }
+    return field;
+}
+
+TEST(SuggestiveContours, LinesRunningNearlyAlongWAreDroppedBelowTheMinimumAngle) {
+    // The angle test is exact on the valley: a line crossing w at alpha is kept when alpha >= minAngleToW, whole (a
+    // point per row or column it crosses), and dropped whole below; 0 keeps every angle (the plain test).
+    constexpr int kSize = 96;
+    SuggestiveSettings settings = untrimmedSettings();
+    for (const double alpha : {4.0, 9.0, 14.0, 16.0, 25.0, 45.0, 70.0, 90.0}) {
+        const ValleyField field = valleyCrossingWAt(alpha, kSize);
+        for (const float minAngle : {0.0f, kSuggestiveMinAngleToWDegrees, 30.0f}) {
+            settings.minAngleToW = minAngle;
+            const LineSkeleton skeleton = extractSuggestiveContours(field.radial, field.depth, settings);
+            if (alpha >= double(minAngle)) {
+                // The line spans the image (less its one-pixel border) along its longer axis.
+                EXPECT_GE(skeleton.points.size(), std::size_t(kSize - 4)) << alpha << " degrees, at least " << minAngle;
+                for (const LinePoint& point : skeleton.points) {
+                    const glm::dvec2 normal(std::cos(glm::radians(90.0 - alpha)), std::sin(glm::radians(90.0 - alpha)));
+                    const double u = glm::dot(glm::dvec2(point.position.x, point.position.y) -
+                                                  glm::dvec2(0.5 * kSize + 0.37, 0.5 * kSize + 0.21),
+                                              normal);
+                    ASSERT_LT(std::abs(u), 1e-3) << alpha << " degrees";
+                }
+            } else {
+                EXPECT_TRUE(skeleton.points.empty())
+                    << alpha << " degrees, at least " << minAngle << ": " << skeleton.points.size() << " points";
+            }
+            // The same judgement in the derivative maps: a valid pixel is one whose D_w D_w may be trusted.
+            const RadialDerivatives derivatives = computeRadialDerivatives(field.radial, field.depth, settings);
+            EXPECT_EQ(cv::countNonZero(derivatives.valid) > 0, alpha >= double(minAngle)) << alpha << ", " << minAngle;
+        }
+    }
+    // The default lies between the angles above, so both sides of it are exercised.
+    EXPECT_GT(kSuggestiveMinAngleToWDegrees, 14.0f);
+    EXPECT_LT(kSuggestiveMinAngleToWDegrees, 16.0f);
 }
 
 TEST(SuggestiveContours, FivePointStencilIsMoreAccurateOnExactDataAndFindsTheSameLines) {

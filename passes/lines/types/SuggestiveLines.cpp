@@ -79,6 +79,23 @@ const LineParameter kSuggestiveClearance{"suggestive-clearance",
                                          false,
                                          "expected a number of sigmas from 0 to 100"};
 
+/** The least angle between a line and the image's w direction (SuggestiveSettings::minAngleToW). */
+const LineParameter kSuggestiveMinAngle{"suggestive-min-angle",
+                                        "DEG",
+                                        "drop lines where they run within DEG degrees of the view's direction w\n"
+                                        "across the surface: there the sign of D_w D_w(n.v) is a small difference\n"
+                                        "of large ones that the pixel grid decides, so such lines come and go with\n"
+                                        "the size and a small turn (default 15; 0: every line DeCarlo et al.'s\n"
+                                        "test passes)",
+                                        {},
+                                        double(kSuggestiveMinAngleToWDegrees),
+                                        "",
+                                        0.0,
+                                        89.0,
+                                        false,
+                                        false,
+                                        "expected degrees from 0 to 89"};
+
 /** The object-space curvature smoothing's sigma, as a fraction of the bounding radius. */
 const LineParameter kSuggestiveObjectSmoothing{
     "suggestive-object-smoothing",
@@ -259,8 +276,8 @@ LineType suggestiveLineType() {
     type.help = "suggestive contours (DeCarlo et al. 2003): D_w(n.v) = 0 with D_w D_w(n.v) > 0,\n"
                 "in the float G-buffer with v = c - p, so the lines are where kappa_r = 0";
     type.strokeRules = seedRules;
-    type.parameters = {&kDepthJump,         &kSuggestiveThreshold, &kSuggestiveFade,     &kSuggestiveSeed,
-                       &kSuggestiveStencil, &kSuggestiveSmoothing, &kSuggestiveClearance};
+    type.parameters = {&kDepthJump,         &kSuggestiveThreshold, &kSuggestiveFade,      &kSuggestiveSeed,
+                       &kSuggestiveStencil, &kSuggestiveSmoothing, &kSuggestiveClearance, &kSuggestiveMinAngle};
     type.build = [](const std::string& name, LineGraphBuilder& builder) {
         const LineGraphSetup& setup = builder.setup();
         SuggestiveSettings settings = sharedSettings(setup.look, setup.sphere);
@@ -271,6 +288,7 @@ LineType suggestiveLineType() {
         // In model units, like the depth it is converted to pixels with.
         settings.smoothing = float(setup.look.lineParameters.number(kSuggestiveSmoothing) * setup.sphere.radius);
         settings.breakClearance = float(setup.look.lineParameters.number(kSuggestiveClearance));
+        settings.minAngleToW = float(setup.look.lineParameters.number(kSuggestiveMinAngle));
         builder.addLayer(name, std::make_unique<SuggestiveKernel>(setup.gbuffer, settings, setup.frame,
                                                                   setup.scene.surfacesMeet() ? &setup.scene : nullptr));
     };
@@ -278,6 +296,7 @@ LineType suggestiveLineType() {
         describeShared(source, entry, true);
         entry["min_sin_theta"] = SuggestiveSettings{}.minSinTheta;
         entry["clearance"] = source.look.lineParameters.number(kSuggestiveClearance);
+        entry["min_angle_to_w"] = source.look.lineParameters.number(kSuggestiveMinAngle);
         entry["stencil_points"] = source.look.lineParameters.choice(kSuggestiveStencil) == "5" ? 5 : 3;
         entry["smoothing"] = source.look.lineParameters.number(kSuggestiveSmoothing) * source.sphere.radius;
     };
