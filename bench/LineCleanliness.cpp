@@ -63,7 +63,8 @@ markdown table row (with --header, the header first).
                        suggestive,crease); every drawn type is in the JSON
   --depth-tolerance R  F1 view: a reprojected point is visible when within R x the depth there (default 0.03)
   --disagreement DIR   also write, per type, where two skeletons disagree: TYPE-1024-2048.png (the 2048 skeleton
-                       mapped into 1024 pixels) and TYPE-turn+1.png, TYPE-turn-1.png (the turned view's skeleton
+                       mapped into 1024 pixels) and TYPE-turn+1.png, TYPE-turn-1.png, TYPE-turn+0.1.png,
+                       TYPE-turn-0.1.png (the turned view's skeleton
                        reprojected into view A, both judged there, so a point may read otherwise than in the F1,
                        which judges A's points in the turned view): view A's 1024 points black where matched
                        within 1.5 px, red where not; the other's grey where matched, blue where not
@@ -415,7 +416,7 @@ int measure(const Options& options) {
             entry["dropped_a_to_turn"] = droppedJson(view.firstInSecond);
             entry["dropped_turn_to_a"] = droppedJson(view.secondInFirst);
             views[kTurns[index].name] = entry;
-            if (!options.disagreement.empty() && std::abs(kTurns[index].tenths) == 10)
+            if (!options.disagreement.empty() && std::abs(kTurns[index].tenths) != 50)
                 inkgraph::writeImage(options.disagreement / (type + "-turn" + kTurns[index].name + ".png"),
                                      inkgraph::bench::disagreementPicture(layersA[type].size(), skeleton,
                                                                           view.secondInFirst.points, kTolerancePixels));
