@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -430,24 +431,46 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
     std::vector<bool> allOutside(sides.size(), true);
     const glm::dmat4 view = camera.viewMatrix();
     bool anyVertex = false;
-    // The model's extent on the image in pixels, while every vertex lies beyond the near plane: a model seen under a
-    // pixel (an eye far away) covers one pixel centre or none, and with none the picture is as blank. With a vertex
-    // nearer than the near plane the clipped faces' extent is not the vertices', so nothing is said.
+    // The model's extent on the image in pixels, of what lies beyond the near plane: the vertices there, and where an
+    // edge crosses the plane, the crossing (the clipped triangle's corner). A model seen under a pixel (an eye far
+    // away) covers one pixel centre or none, and with none the picture is as blank; so is a model whose vertices
+    // nearer than the plane (behind a wide-angle eye) leave such a speck beyond it.
     const double focal = camera.focalPixels();
-    bool allInFront = true;
     glm::dvec2 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
+    const auto addToExtent = [&](const glm::dvec3& v) {
+        const glm::dvec2 onImage = glm::dvec2(v.x, v.y) * (focal / -v.z);
+        low = glm::min(low, onImage);
+        high = glm::max(high, onImage);
+    };
+    const auto beyondNear = [&](const glm::dvec3& v) { return -v.z >= camera.zNear; };
+    const auto inView = [&](const glm::vec3& p) { return glm::dvec3(view * glm::dvec4(glm::dvec3(p), 1.0)); };
     for (const Mesh& mesh : scene.meshes) {
+        bool someNearer = false;
         for (const glm::vec3& p : mesh.positions) {
             anyVertex = true;
-            const glm::dvec3 v(view * glm::dvec4(glm::dvec3(p), 1.0));
+            const glm::dvec3 v = inView(p);
             for (std::size_t i = 0; i < sides.size(); ++i) {
                 if (allOutside[i] && !sides[i].outside(v)) allOutside[i] = false;
             }
-            allInFront = allInFront && -v.z >= camera.zNear;
-            if (allInFront) {
-                const glm::dvec2 onImage = glm::dvec2(v.x, v.y) * (focal / -v.z);
-                low = glm::min(low, onImage);
-                high = glm::max(high, onImage);
+            if (beyondNear(v)) {
+                addToExtent(v);
+            } else {
+                someNearer = true;
+            }
+        }
+        if (!someNearer) continue; // the usual case: no edge crosses the plane
+        // Each vertex again rather than kept: a copy in double would cost more memory than the mesh.
+        for (const glm::uvec3& triangle : mesh.triangles) {
+            const std::array<glm::dvec3, 3> corners{inView(mesh.positions[triangle[0]]),
+                                                    inView(mesh.positions[triangle[1]]),
+                                                    inView(mesh.positions[triangle[2]])};
+            for (int corner = 0; corner < 3; ++corner) {
+                const glm::dvec3& a = corners[corner];
+                const glm::dvec3& b = corners[(corner + 1) % 3];
+                if (beyondNear(a) == beyondNear(b)) continue;
+                // The point of the edge at depth zNear: between a's depth and b's, so the division is by no zero.
+                const double t = (camera.zNear + a.z) / (a.z - b.z);
+                addToExtent(glm::mix(a, b, t));
             }
         }
     }
@@ -467,7 +490,7 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
         const glm::dvec2 centre(0.5 * camera.width, 0.5 * camera.height);
         const bool drawsAPixel = holdsACentre(centre.x + low.x, centre.x + high.x, camera.width) &&
                                  holdsACentre(centre.y - high.y, centre.y - low.y, camera.height);
-        if (!allInFront || drawsAPixel || !(extent.x < 1.0 && extent.y < 1.0)) return std::nullopt;
+        if (drawsAPixel || !(extent.x < 1.0 && extent.y < 1.0)) return std::nullopt;
         where = "the model spans " + detail::formatExtent(extent.x) + " x " + detail::formatExtent(extent.y) +
                 " pixels, under a pixel (move the eye nearer or narrow --fov)";
     }

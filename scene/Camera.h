@@ -117,8 +117,9 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene);
 
 /** A warning when `camera` shows none of `scene`'s model, which would render blank paper: every vertex lies behind the
  *  eye, beyond one side of the view (left, right, above or below), nearer than the near plane or beyond the far one;
- *  or, every vertex beyond the near plane, the model spans under a pixel both ways and holds no pixel centre (an eye
- *  far away).
+ *  or what lies beyond the near plane (the vertices there and the corners the plane cuts from the triangles) spans
+ *  under a pixel both ways and holds no pixel centre (an eye far away, or a wide view whose eye has the rest of the
+ *  scene behind it).
  *  It names where the view comes from (the glTF camera by its name, --eye, --orbit, auto-framing; --clip for the
  *  planes it set). Empty when some of the model may show. A model beside a corner of the view, outside the view but
  *  on the inner side of each of its planes, is not caught. A model-outside-view warning without a file: the camera

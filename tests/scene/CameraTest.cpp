@@ -170,6 +170,36 @@ TEST(Camera, AModelSeenUnderAPixelIsOutsideTheView) {
     EXPECT_FALSE(modelOutsideView(resolveCamera(request, scene), scene).has_value());
 }
 
+TEST(Camera, AModelSeenUnderAPixelWithTheRestBehindTheEyeIsOutsideTheView) {
+    // --fov 179 puts the eye 1.05 radii from the framed part: under a pixel at 16 px. With another mesh behind the eye
+    // (--frame of one part; here an eye given), some vertex is nearer than the near plane, and the check said nothing
+    // of the blank paper, which it judged only when every vertex lay beyond that plane.
+    Scene scene = makeScene(makeUvSphere({0, 0, 0}, 0.5f, 48, 24));
+    CameraRequest request;
+    request.width = request.height = 16;
+    request.fovYDegrees = 179.0;
+    request.target = glm::dvec3(0, 0, 0);
+    request.eye = glm::dvec3(0, 0, 1.05 * 0.5 / std::sin(glm::radians(89.5)));
+    const std::optional<Warning> alone = modelOutsideView(resolveCamera(request, scene), scene);
+    ASSERT_TRUE(alone.has_value());
+    EXPECT_NE(alone->message.find("under a pixel"), std::string::npos) << alone->message;
+    scene.meshes.push_back(makeUvSphere({0, 0, 50}, 5.0f, 16, 8));
+    const Camera camera = resolveCamera(request, scene);
+    ASSERT_LT(camera.zNear, 0.01); // the eye is inside the whole scene's sphere
+    const std::optional<Warning> behind = modelOutsideView(camera, scene);
+    ASSERT_TRUE(behind.has_value());
+    EXPECT_EQ(behind->code, "model-outside-view");
+    EXPECT_NE(behind->message.find("the model spans 0.4"), std::string::npos) << behind->message;
+    // A triangle from behind the eye to the speck's side is cut by the near plane and drawn across the picture's lower
+    // half: its cut corners count, not its one vertex beyond the plane.
+    Mesh across;
+    across.positions = {{-100, -1, 10}, {100, -1, 10}, {0, -0.01f, -10}};
+    across.normals = {{0, 1, 0}, {0, 1, 0}, {0, 1, 0}};
+    across.triangles = {{0, 1, 2}};
+    scene.meshes.push_back(across);
+    EXPECT_FALSE(modelOutsideView(resolveCamera(request, scene), scene).has_value());
+}
+
 TEST(Camera, RequestedEyeAndTargetAreHonoured) {
     const Scene scene = sphereScene();
     const BoundingSphere sphere = computeBoundingSphere(scene);
