@@ -79,9 +79,17 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/** A refusal of kind Input (the model lacks what the caller asks), said in its caller's name as a UsageError is: the
+ *  loader's refusal of a frame's pose or face, whose message would start with loadScene(), which the caller never
+ *  called. */
+class InputRefusal : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
 /** Runs `body`; every exception leaves as Error. A UsageError's message, which starts with the flag, gets `function`
- *  in front ("Look::set(): --bands: ..."), as a ContextRefusal's; the other layers' messages start with their own
- *  function already. */
+ *  in front ("Look::set(): --bands: ..."), as a ContextRefusal's and an InputRefusal's; the other layers' messages
+ *  start with their own function already. */
 template <class Body>
 decltype(auto) translated(const std::string& function, Body&& body) {
     try {
@@ -92,6 +100,8 @@ decltype(auto) translated(const std::string& function, Body&& body) {
         throw Error(Error::Kind::Usage, function + ": " + usage.what());
     } catch (const ContextRefusal& refusal) {
         throw Error(Error::Kind::Context, function + ": " + refusal.what());
+    } catch (const InputRefusal& refusal) {
+        throw Error(Error::Kind::Input, function + ": " + refusal.what());
     } catch (...) {
         throw errorOf(std::current_exception());
     }

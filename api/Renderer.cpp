@@ -231,7 +231,7 @@ struct Renderer::Impl {
     /** The still's request: the look's flags and the frame's fields as the command line's options, checked together
      *  as the command line checks them, and the scene posed as the frame asks. */
     StillRequest requestOf(const Scene& scene, const Look& look, const Frame& frame,
-                           const std::vector<std::string>& buffers) const {
+                           const std::vector<std::string>& buffers, std::string& reloadedFor) const {
         const Look::Impl& lookImpl = LookAccess::impl(look);
         RenderOptions options = lookImpl.parsed;
         std::vector<std::string> given = lookImpl.givenFlags();
@@ -272,6 +272,12 @@ struct Renderer::Impl {
                                            : "Frame::expressions and lookAt: a scene made from arrays has no VRM face");
             // Another pose or face than the scene's: the file is loaded again, by the renderer's own load, with what
             // the frame gives and the scene's own options for the rest.
+            std::vector<std::string> fields;
+            if (animated) fields.push_back(frame.time ? "Frame::animation and time" : "Frame::animation");
+            if (reposed) fields.push_back("Frame::pose");
+            if (!frame.expressions.empty()) fields.push_back("Frame::expressions");
+            if (frame.lookAt) fields.push_back("Frame::lookAt");
+            reloadedFor = joined(fields);
             request.loadedScene.reset();
             request.loadedSceneDerived.reset();
             request.animation = posed ? options.animation : sceneImpl.options.animation;
@@ -306,13 +312,26 @@ struct Renderer::Impl {
         for (const std::string& name : buffers)
             if (name != kStrokesName) images.push_back(name);
         const bool strokes = images.size() != buffers.size();
-        StillRequest request = requestOf(scene, look, frame, images);
+        std::string reloadedFor; // the frame's fields that load the scene again, when they do
+        StillRequest request = requestOf(scene, look, frame, images, reloadedFor);
         request.keepStrokePoints = strokes;
         const std::string modelPath = request.modelPath;
 
         std::ostringstream log; // the command line's lines; the library returns the warnings as records
         const StillLog stillLog{log, false, true};
-        std::unique_ptr<PreparedStill> still = renderer->load(std::move(request), stillLog);
+        std::unique_ptr<PreparedStill> still;
+        try {
+            still = renderer->load(std::move(request), stillLog);
+        } catch (const SceneError& error) {
+            // The loader's refusal of what the frame asks (an expression or a pose of a model that is not a VRM, an
+            // animation it lacks) is said in the caller's name and the frame's field's, not the loader's: the
+            // caller called no loadScene().
+            if (reloadedFor.empty()) throw;
+            std::string message = error.what();
+            const std::string loader = "loadScene(): ";
+            if (message.rfind(loader, 0) == 0) message.erase(0, loader.size());
+            throw InputRefusal(reloadedFor + ": " + message);
+        }
         try {
             renderer->plan(*still, stillLog);
         } catch (const UsageError&) {

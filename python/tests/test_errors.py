@@ -161,3 +161,17 @@ def test_a_camera_refusal_is_told_as_it_is_when_buffers_are_asked_for_too(suzann
         with pytest.raises(inkgraph.UsageError, match="parallel") as refused:
             inkgraph.Renderer().render(suzanne, None, frame, buffers)
         assert "no buffer" not in str(refused.value)
+
+
+def test_a_frames_pose_or_face_on_an_obj_is_refused_in_the_renderers_name(suzanne, suzanne_path):
+    # The frame's pose and face load the file again; the refusal started with "loadScene():", which the caller never
+    # called, and named the flag rather than the frame's field.
+    renderer = inkgraph.Renderer()
+    cases = [({"expressions": {"happy": 1.0}}, "Frame::expressions: '" + suzanne_path + "': --expression: obj files"),
+             ({"look_at": (0, 0, 1)}, "Frame::lookAt: '" + suzanne_path + "': --look-at: obj files"),
+             ({"pose": "a-pose"}, "Frame::pose: '" + suzanne_path + "': cannot take a humanoid pose: not a VRM")]
+    for fields, words in cases:
+        with pytest.raises(inkgraph.InputError) as refused:
+            renderer.render(suzanne, None, inkgraph.Frame(16, 16, **fields))
+        assert str(refused.value).startswith("Renderer::render(): " + words), str(refused.value)
+        assert refused.value.exit_code == 3

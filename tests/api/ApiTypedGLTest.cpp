@@ -461,6 +461,34 @@ TEST(ApiTyped, BadArraysAreInputErrorsNamingTheArray) {
                  "Scene::fromArrays(): SceneOptions::pose: a scene made from arrays has no humanoid");
 }
 
+TEST_F(TestFolder, AFramesPoseOrFaceTheModelLacksIsRefusedInTheCallersName) {
+    // The frame's pose and face load the file again; the loader's refusal started with "loadScene():", a function the
+    // caller never called, and named the flag rather than the frame's field.
+    writeText(directory / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string path = (directory / "tri.obj").string();
+    const ig::Scene scene = ig::Scene::load(path);
+    ig::Frame face = frameOf(16, 16);
+    face.expressions = {{"happy", 1.0}};
+    const ig::Error expression = errorOf([&] { renderer().render(scene, ig::Look(), face); });
+    EXPECT_EQ(expression.kind(), ig::Error::Kind::Input);
+    EXPECT_EQ(std::string(expression.what()), "Renderer::render(): Frame::expressions: '" + path +
+                                                  "': --expression: obj files have no VRM expressions or look-at");
+    ig::Frame pose = frameOf(16, 16);
+    pose.pose = "a-pose";
+    const ig::Error humanoid = errorOf([&] { renderer().render(scene, ig::Look(), pose); });
+    EXPECT_EQ(humanoid.kind(), ig::Error::Kind::Input);
+    EXPECT_EQ(std::string(humanoid.what()),
+              "Renderer::render(): Frame::pose: '" + path +
+                  "': cannot take a humanoid pose: not a VRM model (obj files have no humanoid bones)");
+    pose.lookAt = ig::Vec3{0.0, 0.0, 1.0};
+    std::vector<std::uint8_t> pixels(16 * 16 * 4);
+    const std::string both =
+        errorOf([&] { renderer().renderInto(pixels.data(), 16 * 4, scene, ig::Look(), pose); }).what();
+    EXPECT_EQ(both.rfind("Renderer::renderInto(): Frame::pose, Frame::lookAt: '" + path + "': ", 0), 0u) << both;
+    // The scene is as it was: the frame without them renders.
+    EXPECT_NO_THROW(renderer().render(scene, ig::Look(), frameOf(16, 16)));
+}
+
 TEST_F(TestFolder, WarningsAreRecordsWithCodes) {
     // An OBJ whose material's texture is missing, and a glTF whose only texture is a KTX2 (KHR_texture_basisu) image.
     writeText(directory / "quad.obj", "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
