@@ -54,6 +54,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::MeshInsideOut, "mesh-inside-out",
          "a closed surface of a two-sided mesh wound inside out (clockwise seen from outside); its winding, and its "
          "normals where they point inward too, reversed so the hull silhouette and the outline are drawn"},
+        {K::NormalsInward, "normals-inward",
+         "a two-sided mesh's given normals point against its faces' winding on over 90% of its area; turned round"},
         {K::VertexValuesIgnored, "vertex-values-ignored",
          "OBJ 'v' lines with values after x y z that are neither w nor a colour; ignored"},
         {K::NormalsMissing, "normals-missing", "OBJ faces without normals; the normals are recomputed"},

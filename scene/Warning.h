@@ -40,6 +40,7 @@ enum class WarningKind {
     MeshDegenerate,
     DetailsMerged,
     MeshInsideOut,
+    NormalsInward,
     VertexValuesIgnored,
     NormalsMissing,
     TexcoordsMissing,

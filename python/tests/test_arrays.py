@@ -270,3 +270,38 @@ def test_an_array_too_large_to_convert_is_a_memory_error_naming_it(tmp_path):
     with pytest.raises(inkgraph.UsageError, match="3000000000x1 pixels is larger than an image can be"):
         inkgraph.write_image(tmp_path / "x.png", np.broadcast_to(np.zeros(1, np.uint8), (1, 3_000_000_000)))
     assert list(tmp_path.iterdir()) == []
+
+
+def uv_sphere(segments: int = 32, rings: int = 16) -> tuple[np.ndarray, np.ndarray]:
+    """A unit sphere's vertices (which are its outward normals) and faces, counter-clockwise seen from outside."""
+    theta = np.linspace(0.0, np.pi, rings + 1)[:, None]
+    phi = np.linspace(0.0, 2.0 * np.pi, segments, endpoint=False)[None, :]
+    vertices = np.stack([np.sin(theta) * np.cos(phi), np.cos(theta) + 0 * phi, np.sin(theta) * np.sin(phi)], axis=-1)
+    vertices = vertices.reshape(-1, 3).astype(np.float32)
+    faces = []
+    for ring in range(rings):
+        for segment in range(segments):
+            a = ring * segments + segment
+            b = ring * segments + (segment + 1) % segments
+            if ring != rings - 1:  # the last ring's first triangle has two corners on the south pole
+                faces.append([a, b + segments, a + segments])
+            if ring != 0:  # the first ring's second one two on the north pole
+                faces.append([a, b, b + segments])
+    return vertices, np.array(faces, np.uint32)
+
+
+@pytest.mark.filterwarnings("ignore::inkgraph.InkgraphWarning")  # the renders tell the load's warning again
+def test_normals_given_inward_are_turned_round_with_a_warning():
+    # The faces wound outward, the caller's normals inward (clockwise cross products): they reached the 'normal'
+    # buffer as given, so the ball's lighting and n . v lines read its front as facing away.
+    vertices, faces = uv_sphere()
+    frame = inkgraph.Frame(48, 48)
+    outward = inkgraph.Scene.from_arrays(vertices, faces, normals=vertices, name="ball")
+    assert not outward.warnings
+    with pytest.warns(inkgraph.InkgraphWarning, match="mesh 'ball': its given normals point against") as issued:
+        inward = inkgraph.Scene.from_arrays(vertices, faces, normals=-vertices, name="ball")
+    assert [warning.message.code for warning in issued] == ["normals-inward"]
+    renderer = inkgraph.Renderer()
+    normal = renderer.render(inward, None, frame, ["normal"]).buffer("normal")
+    expected = renderer.render(outward, None, frame, ["normal"]).buffer("normal")
+    np.testing.assert_allclose(normal, expected, atol=1e-6)

@@ -598,6 +598,15 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
                                                       (turn.normalsFlipped ? "and its normals were" : "was") +
                                                       " reversed so its silhouette and outline are drawn",
                                                   "", mesh.name));
+        // Then normals given against the (outward) winding nearly everywhere are turned along it.
+        if (const std::size_t turned = turnNormalsAlongWinding(mesh.positions, mesh.triangles, mesh.normals))
+            report.warnings.push_back(makeWarning(
+                WarningKind::NormalsInward,
+                "mesh '" + detail::excerptForMessage(mesh.name) + "': its given normals point against its faces' " +
+                    "winding (inward, as the faces are counter-clockwise seen from the front); " +
+                    std::to_string(turned) + " of " + std::to_string(mesh.normals.size()) +
+                    " turned round so lighting and the lines that read n . v see them outward",
+                "", mesh.name));
     }
 
     // Nothing but position decided this weld: the kept vertices are pairwise out of its reach, which derived data

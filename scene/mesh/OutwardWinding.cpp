@@ -117,4 +117,31 @@ OutwardTurn orientMeshOutward(std::span<const glm::vec3> positions, std::vector<
     return turn;
 }
 
+std::size_t turnNormalsAlongWinding(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                    std::vector<glm::vec3>& normals) {
+    if (normals.size() != positions.size()) return 0;
+    double area = 0.0;    // twice the corner area, over every corner
+    double against = 0.0; // of the corners whose normal points against their face
+    std::vector<double> agreement(positions.size(), 0.0);
+    for (const glm::uvec3& t : triangles) {
+        const glm::dvec3 a(positions[t.x]);
+        const glm::dvec3 side = glm::cross(glm::dvec3(positions[t.y]) - a, glm::dvec3(positions[t.z]) - a);
+        const double sideLength = glm::length(side);
+        for (const std::uint32_t corner : {t.x, t.y, t.z}) {
+            const double dot = glm::dot(side, glm::dvec3(normals[corner]));
+            agreement[corner] += dot;
+            area += sideLength;
+            if (dot < 0.0) against += sideLength;
+        }
+    }
+    if (!(against > 0.9 * area)) return 0;
+    std::size_t negated = 0;
+    for (std::size_t vertex = 0; vertex < normals.size(); ++vertex) {
+        if (!(agreement[vertex] < 0.0)) continue;
+        normals[vertex] = -normals[vertex];
+        ++negated;
+    }
+    return negated;
+}
+
 } // namespace inkgraph

@@ -32,4 +32,15 @@ struct OutwardTurn {
 OutwardTurn orientMeshOutward(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                               std::vector<glm::vec3>& normals, double weldDistance);
 
+/** Turns round given normals that point against their faces' winding nearly everywhere: a caller's normals made with
+ *  the other convention (clockwise cross products, normals of the inside), or a mesh whose faces were turned without
+ *  its normals. A vertex's normal points against its faces when the sum over its corners of n . (b - a) x (c - a) is
+ *  negative; when the corners whose own n . (b - a) x (c - a) is negative hold more than 90% of the mesh's corner
+ *  area, the normals of those vertices are negated. The G-buffer turns a back face's normal toward the eye by its
+ *  winding, so a normal against the winding is inward seen from either side: lighting and every n . v line read it
+ *  reversed. Normals that disagree on less of the mesh (a foliage card's normals bent round the tree) are left as
+ *  given. Returns how many normals were negated. */
+std::size_t turnNormalsAlongWinding(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
+                                    std::vector<glm::vec3>& normals);
+
 } // namespace inkgraph

@@ -182,6 +182,64 @@ TEST(OutwardWinding, LoadingAnInsideOutObjTurnsItOutwardAndWarnsNamingTheMesh) {
     EXPECT_EQ(outward.meshes[0].triangles, scene.meshes[0].triangles);
 }
 
+/** A sphere with outward winding and its normals given, outward or inward (a caller's clockwise cross products). */
+std::string sphereObjWithNormals(float normalSign) {
+    const Mesh sphere = makeUvSphere(glm::vec3(0.0f), 1.0f, 32, 16);
+    std::ostringstream obj;
+    for (const glm::vec3& p : sphere.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (const glm::vec3& n : sphere.normals)
+        obj << "vn " << normalSign * n.x << ' ' << normalSign * n.y << ' ' << normalSign * n.z << '\n';
+    for (const glm::uvec3& t : sphere.triangles)
+        obj << "f " << t.x + 1 << "//" << t.x + 1 << ' ' << t.y + 1 << "//" << t.y + 1 << ' ' << t.z + 1 << "//"
+            << t.z + 1 << '\n';
+    return obj.str();
+}
+
+TEST(OutwardWinding, NormalsGivenAgainstTheWindingAreTurnedRoundWithAWarning) {
+    // The winding outward, the normals inward: they reached the G-buffer's normal as given (the shader turns only a
+    // back face's), so lighting and the n . v lines read the front of the ball as facing away.
+    const test::TempFile file("inward-normals.obj", "o ball\n" + sphereObjWithNormals(-1.0f));
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    test::expectOutwardWinding(scene.meshes[0], glm::dvec3(0.0));
+    for (std::size_t i = 0; i < scene.meshes[0].positions.size(); ++i)
+        ASSERT_GT(glm::dot(scene.meshes[0].normals[i], scene.meshes[0].positions[i]), 0.5f) << "vertex " << i;
+    ASSERT_EQ(scene.report.warnings.size(), 1u);
+    const Warning& warning = scene.report.warnings[0];
+    EXPECT_EQ(warning.code, "normals-inward");
+    EXPECT_EQ(warning.item, "ball");
+    EXPECT_NE(warning.message.find("mesh 'ball': its given normals point against its faces' winding"),
+              std::string::npos)
+        << warning.message;
+    EXPECT_NE(warning.message.find(std::to_string(scene.meshes[0].positions.size()) + " of " +
+                                   std::to_string(scene.meshes[0].positions.size()) + " turned round"),
+              std::string::npos)
+        << warning.message;
+    // Outward normals, and normals that disagree on half the ball (all +z), are the author's: kept, no warning.
+    const test::TempFile outward("outward-normals.obj", "o ball\n" + sphereObjWithNormals(1.0f));
+    EXPECT_TRUE(loadScene(outward.path()).report.warnings.empty());
+    Mesh sphere = makeUvSphere(glm::vec3(0.0f), 1.0f, 32, 16);
+    std::vector<glm::vec3> up(sphere.positions.size(), glm::vec3(0, 0, 1));
+    EXPECT_EQ(turnNormalsAlongWinding(sphere.positions, sphere.triangles, up), 0u);
+    EXPECT_EQ(up, std::vector<glm::vec3>(sphere.positions.size(), glm::vec3(0, 0, 1)));
+}
+
+TEST(OutwardWinding, AOneSidedMaterialKeepsItsNormals) {
+    // A baked inverted-hull outline: faces turned inward for culling, normals outward as the body's. Kept as given.
+    Mesh sphere = insideOut(makeUvSphere(glm::vec3(0.0f), 1.0f, 32, 16));
+    RawMesh raw;
+    raw.name = "outline shell";
+    raw.positions = sphere.positions;
+    raw.normals = makeUvSphere(glm::vec3(0.0f), 1.0f, 32, 16).normals;
+    raw.triangles = sphere.triangles;
+    raw.material.doubleSided = false;
+    LoadReport report;
+    const Mesh mesh = finalizeMesh(std::move(raw), 2.0 * std::sqrt(3.0), LoadOptions{}, report);
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+        ASSERT_GT(glm::dot(mesh.normals[i], mesh.positions[i]), 0.5f) << "vertex " << i;
+    EXPECT_TRUE(report.warnings.empty());
+}
+
 TEST(OutwardWinding, AOneSidedMaterialKeepsItsWinding) {
     // A one-sided glTF material culls by the winding the author chose: an inside-out shell drawn that way is a baked
     // outline (the inverted hull), not a mistake.
