@@ -17,6 +17,7 @@
  *  reads them without the GIL while other threads may change the caller's. */
 
 #include "Bindings.h"
+#include "CheckedArguments.h"
 
 #include <inkgraph/inkgraph.h>
 
@@ -42,6 +43,7 @@
 namespace py = pybind11;
 namespace ig = inkgraph::api;
 using namespace pybind11::literals;
+using inkgraph::python::checked;
 
 namespace {
 
@@ -253,10 +255,14 @@ py::enum_<Enum> defineEnum(Scope& scope, const char* className, const char* what
         type.value(name, value);
         EnumMembers<Enum>::values.push_back(value);
     }
-    type.def(py::init([](const OsText& name) { return enumNamed<Enum>(name.bytes, EnumMembers<Enum>::className); }),
-             "name"_a, "The member named by its command-line word, as from_name().");
+    type.def(
+        py::init(checked(std::string(className) + "(): ", {"name"},
+                         [](const OsText& name) { return enumNamed<Enum>(name.bytes, EnumMembers<Enum>::className); })),
+        "name"_a, "The member named by its command-line word, as from_name().");
     type.def_static(
-        "from_name", [](const OsText& name) { return enumNamed<Enum>(name.bytes, EnumMembers<Enum>::className); },
+        "from_name",
+        checked(std::string(className) + ".from_name(): ", {"name"},
+                [](const OsText& name) { return enumNamed<Enum>(name.bytes, EnumMembers<Enum>::className); }),
         "name"_a, "The member named by its command-line word; UsageError naming the words there are.");
     type.def_property_readonly(
         "cli_name", [](Enum value) { return cliName(value); }, "The command line's word for this member.");
@@ -614,9 +620,10 @@ void defineValueTypes(py::module_& m) {
     py::class_<ig::Vec3> vec3(m, "Vec3",
                               "A direction or a point, in the model's world units. Immutable; a tuple "
                               "(x, y, z) is taken wherever a Vec3 is.");
-    vec3.def(py::init([](double x, double y, double z) {
-                 return ig::Vec3{x, y, z};
-             }),
+    vec3.def(py::init(checked("Vec3(): ", {"x", "y", "z"},
+                              [](double x, double y, double z) {
+                                  return ig::Vec3{x, y, z};
+                              })),
              "x"_a = 0.0, "y"_a = 0.0, "z"_a = 0.0)
         .def_readonly("x", &ig::Vec3::x)
         .def_readonly("y", &ig::Vec3::y)
@@ -628,9 +635,10 @@ void defineValueTypes(py::module_& m) {
                                 "A colour, display RGBA, channels in [0, 1]. Immutable; a tuple (r, g, b) "
                                 "or (r, g, b, a) is taken wherever a Color is.");
     color
-        .def(py::init([](double r, double g, double b, double a) {
-                 return ig::Color{r, g, b, a};
-             }),
+        .def(py::init(checked("Color(): ", {"r", "g", "b", "a"},
+                              [](double r, double g, double b, double a) {
+                                  return ig::Color{r, g, b, a};
+                              })),
              "r"_a = 0.0, "g"_a = 0.0, "b"_a = 0.0, "a"_a = 1.0)
         .def_readonly("r", &ig::Color::r)
         .def_readonly("g", &ig::Color::g)
@@ -644,9 +652,11 @@ void defineValueTypes(py::module_& m) {
                                 "front; distance None is the auto-framing distance. Immutable; a tuple (azimuth, "
                                 "elevation[, distance]) is taken wherever an Orbit is.");
     orbit
-        .def(py::init([](double azimuth, double elevation, std::optional<double> distance, double distanceScale) {
-                 return ig::Orbit{azimuth, elevation, distance, distanceScale};
-             }),
+        .def(py::init(
+                 checked("Orbit(): ", {"azimuth", "elevation", "distance", "distance_scale"},
+                         [](double azimuth, double elevation, std::optional<double> distance, double distanceScale) {
+                             return ig::Orbit{azimuth, elevation, distance, distanceScale};
+                         })),
              "azimuth"_a = 0.0, "elevation"_a = 0.0, "distance"_a = py::none(), "distance_scale"_a = 1.0)
         .def_readonly("azimuth", &ig::Orbit::azimuth)
         .def_readonly("elevation", &ig::Orbit::elevation)
@@ -662,17 +672,18 @@ void defineValueTypes(py::module_& m) {
         "One view of --views, as sample_views() draws it and the command line's --stats records it (\"view\"). "
         "Immutable; orbit() is the Orbit that places it in a Frame, light the direction to give Look.light.");
     viewSample
-        .def(py::init([](std::size_t index, double azimuth, double elevation, double distanceScale,
-                         const py::object& light, std::optional<std::string> expression,
-                         std::optional<std::string> pose) {
-                 return ig::ViewSample{index,
-                                       azimuth,
-                                       elevation,
-                                       distanceScale,
-                                       optionalArgument(light, vec3Argument, "ViewSample.light"),
-                                       std::move(expression),
-                                       std::move(pose)};
-             }),
+        .def(py::init(checked(
+                 "ViewSample(): ", {"index", "azimuth", "elevation", "distance_scale", "light", "expression", "pose"},
+                 [](std::size_t index, double azimuth, double elevation, double distanceScale, const py::object& light,
+                    std::optional<std::string> expression, std::optional<std::string> pose) {
+                     return ig::ViewSample{index,
+                                           azimuth,
+                                           elevation,
+                                           distanceScale,
+                                           optionalArgument(light, vec3Argument, "ViewSample.light"),
+                                           std::move(expression),
+                                           std::move(pose)};
+                 })),
              "index"_a = 0, "azimuth"_a = 0.0, "elevation"_a = 0.0, "distance_scale"_a = 1.0, "light"_a = py::none(),
              "expression"_a = py::none(), "pose"_a = py::none())
         .def_readonly("index", &ig::ViewSample::index)
@@ -691,9 +702,10 @@ void defineValueTypes(py::module_& m) {
 
     py::class_<ig::Clip> clip(m, "Clip",
                               "--clip NEAR,FAR. Immutable; a tuple (near, far) is taken wherever a Clip is.");
-    clip.def(py::init([](double nearPlane, double farPlane) {
-                 return ig::Clip{nearPlane, farPlane};
-             }),
+    clip.def(py::init(checked("Clip(): ", {"near", "far"},
+                              [](double nearPlane, double farPlane) {
+                                  return ig::Clip{nearPlane, farPlane};
+                              })),
              "near"_a, "far"_a)
         .def_readonly("near", &ig::Clip::near)
         .def_readonly("far", &ig::Clip::far);
@@ -704,9 +716,10 @@ void defineValueTypes(py::module_& m) {
                                         "How one line type is drawn (--TYPE-width in pixels, --TYPE-color). Immutable; "
                                         "replace() gives a changed copy.");
     lineStyle
-        .def(py::init([](double width, py::handle lineColor) {
-                 return ig::LineStyle{width, colorArgument(lineColor, "LineStyle.color")};
-             }),
+        .def(py::init(checked("LineStyle(): ", {"width", "color"},
+                              [](double width, py::handle lineColor) {
+                                  return ig::LineStyle{width, colorArgument(lineColor, "LineStyle.color")};
+                              })),
              "width"_a = ig::LineStyle{}.width, "color"_a = ig::Color{})
         .def_readonly("width", &ig::LineStyle::width)
         .def_readonly("color", &ig::LineStyle::color);
@@ -718,10 +731,12 @@ void defineValueTypes(py::module_& m) {
                                            "--overlapping-lines merge. Immutable; replace() gives a changed copy.");
     const ig::StrokeSettings defaults;
     strokes
-        .def(py::init(
+        .def(py::init(checked(
+                 "StrokeSettings(): ",
+                 {"min_length", "weight_by_depth", "weight_by_strength", "taper_ends", "merge_overlaps"},
                  [](double minLength, bool weightByDepth, bool weightByStrength, bool taperEnds, bool mergeOverlaps) {
                      return ig::StrokeSettings{minLength, weightByDepth, weightByStrength, taperEnds, mergeOverlaps};
-                 }),
+                 })),
              "min_length"_a = defaults.minLength, "weight_by_depth"_a = defaults.weightByDepth,
              "weight_by_strength"_a = defaults.weightByStrength, "taper_ends"_a = defaults.taperEnds,
              "merge_overlaps"_a = defaults.mergeOverlaps)
@@ -823,21 +838,24 @@ void defineLook(py::module_& m) {
              "Look(**fields): the command line's default look, with the fields given set in turn.")
         .def_static(
             "from_arguments",
-            [](const std::vector<OsText>& arguments) { return ig::Look::fromArguments(bytesOf(arguments)); },
+            checked("Look.from_arguments(): ", {"arguments"},
+                    [](const std::vector<OsText>& arguments) { return ig::Look::fromArguments(bytesOf(arguments)); }),
             "arguments"_a,
             "Flags and values as on the command line: ['--shading', 'comic', '--lines', 'outline,contour']. "
             "Raises UsageError with the command line's message for a bad flag or value.")
-        .def_static(
-            "from_style_file", [](const std::filesystem::path& path) { return ig::Look::fromStyleFile(path.string()); },
-            "path"_a, "A style file (`inkgraph render --style FILE`). Raises UsageError naming the file and line.")
-        .def(
-            "set",
-            [](py::object self, const OsText& flag, const OsText& value) {
-                self.cast<ig::Look&>().set(flag.bytes, value.bytes);
-                return self;
-            },
-            "flag"_a, "value"_a = "",
-            "Sets one flag, checked at once: look.set('--silhouette-width', '3'). Returns the look.")
+        .def_static("from_style_file",
+                    checked("Look.from_style_file(): ", {"path"},
+                            [](const std::filesystem::path& path) { return ig::Look::fromStyleFile(path.string()); }),
+                    "path"_a,
+                    "A style file (`inkgraph render --style FILE`). Raises UsageError naming the file and line.")
+        .def("set",
+             checked("Look.set(): ", {"self", "flag", "value"},
+                     [](py::object self, const OsText& flag, const OsText& value) {
+                         self.cast<ig::Look&>().set(flag.bytes, value.bytes);
+                         return self;
+                     }),
+             "flag"_a, "value"_a = "",
+             "Sets one flag, checked at once: look.set('--silhouette-width', '3'). Returns the look.")
         .def_property_readonly(
             "arguments", [](const ig::Look& self) { return osTextsOf(self.arguments()); },
             "The flags that give this look, in the order they were set: "
@@ -857,16 +875,18 @@ void defineLook(py::module_& m) {
             "shininess", &ig::Look::shininess,
             [](ig::Look& self, py::handle value) { self.setShininess(realNumber(value, "Look.shininess")); },
             "--shininess (phong and comic).")
-        .def_property(
-            "bands", &ig::Look::bands, [](ig::Look& self, int bands) { self.setBands(bands); },
-            "--bands (cel); None: Qu, Chen & Zwicker's five uneven bands.")
+        .def_property("bands", &ig::Look::bands,
+                      checked("Look.bands: ", {"self", ""}, [](ig::Look& self, int bands) { self.setBands(bands); }),
+                      "--bands (cel); None: Qu, Chen & Zwicker's five uneven bands.")
         .def_property(
             "shade_map", [](const ig::Look& self) { return pathTextOf(self.shadeMap()); },
-            [](ig::Look& self, const std::filesystem::path& path) { self.setShadeMap(path.string()); },
+            checked("Look.shade_map: ", {"self", ""},
+                    [](ig::Look& self, const std::filesystem::path& path) { self.setShadeMap(path.string()); }),
             "--shademap (cel, comic): a PNG; '' is the built-in map.")
         .def_property(
             "outline_width_map", [](const ig::Look& self) { return pathTextOf(self.outlineWidthMap()); },
-            [](ig::Look& self, const OsText& source) { self.setOutlineWidthMap(source.bytes); },
+            checked("Look.outline_width_map: ", {"self", ""},
+                    [](ig::Look& self, const OsText& source) { self.setOutlineWidthMap(source.bytes); }),
             "--outline-width-map: 'none', 'color:R' or 'texture:FILE:G' (outline, silhouette and MToon outline widths "
             "scaled per vertex).")
         .def_property(
@@ -882,7 +902,8 @@ void defineLook(py::module_& m) {
             },
             "--face-orientation (comic).")
         .def_property(
-            "front_rule", &ig::Look::frontRule, [](ig::Look& self, int rule) { self.setFrontRule(rule); },
+            "front_rule", &ig::Look::frontRule,
+            checked("Look.front_rule: ", {"self", ""}, [](ig::Look& self, int rule) { self.setFrontRule(rule); }),
             "--front-rule (comic with during-vertices or after-vertices): 1, 2 or 3.")
         .def_property(
             "light", &ig::Look::light,
@@ -896,12 +917,13 @@ void defineLook(py::module_& m) {
             "paper", &ig::Look::paper,
             [](ig::Look& self, py::handle value) { self.setPaper(colorArgument(value, "Look.paper")); },
             "--background: the paper's colour (a Color or (r, g, b)).")
-        .def_property(
-            "supersample", &ig::Look::supersample, [](ig::Look& self, int factor) { self.setSupersample(factor); },
-            "--supersample: 1 to 8.")
-        .def_property(
-            "msaa", &ig::Look::msaa, [](ig::Look& self, int samples) { self.setMsaa(samples); },
-            "--msaa: samples per pixel of the shading and MToon's outline shells, 1 (off), 2, 4 or 8.")
+        .def_property("supersample", &ig::Look::supersample,
+                      checked("Look.supersample: ", {"self", ""},
+                              [](ig::Look& self, int factor) { self.setSupersample(factor); }),
+                      "--supersample: 1 to 8.")
+        .def_property("msaa", &ig::Look::msaa,
+                      checked("Look.msaa: ", {"self", ""}, [](ig::Look& self, int samples) { self.setMsaa(samples); }),
+                      "--msaa: samples per pixel of the shading and MToon's outline shells, 1 (off), 2, 4 or 8.")
         .def_property(
             "gbuffer_precision", &ig::Look::gbufferPrecision,
             [](ig::Look& self, py::handle value) {
@@ -919,23 +941,24 @@ void defineLook(py::module_& m) {
                 self.setLines(types);
             },
             "The line types drawn (--lines), in composite order: a list of LineType or their names; [] draws none.")
-        .def_property(
-            "strokes", &ig::Look::strokes,
-            [](ig::Look& self, const ig::StrokeSettings& strokes) { self.setStrokes(strokes); },
-            "StrokeSettings for every line type.")
+        .def_property("strokes", &ig::Look::strokes,
+                      checked("Look.strokes: ", {"self", ""},
+                              [](ig::Look& self, const ig::StrokeSettings& strokes) { self.setStrokes(strokes); }),
+                      "StrokeSettings for every line type.")
         .def(
             "line_style",
             [](const ig::Look& self, py::handle type) {
                 return self.lineStyle(enumArgument<ig::LineType>(type, "Look.line_style()"));
             },
             "type"_a, "How `type` is drawn: its LineStyle (--TYPE-width, --TYPE-color).")
-        .def(
-            "set_line_style",
-            [](py::object self, py::handle type, const ig::LineStyle& style) {
-                self.cast<ig::Look&>().setLineStyle(enumArgument<ig::LineType>(type, "Look.set_line_style()"), style);
-                return self;
-            },
-            "type"_a, "style"_a, "Sets how `type` is drawn. Returns the look.")
+        .def("set_line_style",
+             checked("Look.set_line_style(): ", {"self", "type", "style"},
+                     [](py::object self, py::handle type, const ig::LineStyle& style) {
+                         self.cast<ig::Look&>().setLineStyle(enumArgument<ig::LineType>(type, "Look.set_line_style()"),
+                                                             style);
+                         return self;
+                     }),
+             "type"_a, "style"_a, "Sets how `type` is drawn. Returns the look.")
         .def_static(
             "line_parameter_names",
             [](py::handle type) {
@@ -944,25 +967,29 @@ void defineLook(py::module_& m) {
             "type"_a,
             "The parameters `type` takes besides width and colour ('depth-jump', 'crease-angle'); one parameter may "
             "serve several types, and is then one value for all of them.")
-        .def("line_parameter", &ig::Look::lineParameter, "name"_a, "A number parameter's value (given or default).")
-        .def(
-            "line_choice",
-            [](const ig::Look& self, const OsText& name) { return pathTextOf(self.lineChoice(name.bytes)); }, "name"_a,
-            "A choice parameter's value ('5' of suggestive-stencil).")
-        .def(
-            "set_line_parameter",
-            [](py::object self, const OsText& name, py::handle value) {
-                self.cast<ig::Look&>().setLineParameter(name.bytes, realNumber(value, "Look.set_line_parameter()"));
-                return self;
-            },
-            "name"_a, "value"_a, "Sets a number parameter ('crease-angle'). Returns the look.")
-        .def(
-            "set_line_choice",
-            [](py::object self, const OsText& name, const OsText& value) {
-                self.cast<ig::Look&>().setLineChoice(name.bytes, value.bytes);
-                return self;
-            },
-            "name"_a, "value"_a, "Sets a choice parameter. Returns the look.");
+        .def("line_parameter",
+             checked("Look.line_parameter(): ", {"self", "name"},
+                     [](const ig::Look& self, const OsText& name) { return self.lineParameter(name.bytes); }),
+             "name"_a, "A number parameter's value (given or default).")
+        .def("line_choice",
+             checked("Look.line_choice(): ", {"self", "name"},
+                     [](const ig::Look& self, const OsText& name) { return pathTextOf(self.lineChoice(name.bytes)); }),
+             "name"_a, "A choice parameter's value ('5' of suggestive-stencil).")
+        .def("set_line_parameter",
+             checked("Look.set_line_parameter(): ", {"self", "name", "value"},
+                     [](py::object self, const OsText& name, py::handle value) {
+                         self.cast<ig::Look&>().setLineParameter(name.bytes,
+                                                                 realNumber(value, "Look.set_line_parameter()"));
+                         return self;
+                     }),
+             "name"_a, "value"_a, "Sets a number parameter ('crease-angle'). Returns the look.")
+        .def("set_line_choice",
+             checked("Look.set_line_choice(): ", {"self", "name", "value"},
+                     [](py::object self, const OsText& name, const OsText& value) {
+                         self.cast<ig::Look&>().setLineChoice(name.bytes, value.bytes);
+                         return self;
+                     }),
+             "name"_a, "value"_a, "Sets a choice parameter. Returns the look.");
 }
 
 void defineFrame(py::module_& m) {
@@ -971,25 +998,32 @@ void defineFrame(py::module_& m) {
                                 "file's camera, else framed to fit the model at 35 degrees from the front). Checked "
                                 "when it renders, by the rules of the flag each field stands for.");
     frame
-        .def(py::init([](int width, int height, const py::kwargs& fields) {
-                 ig::Frame made;
-                 made.width = width;
-                 made.height = height;
-                 py::object object = py::cast(made);
-                 setFields(object, fields, kFrameFields, "Frame");
-                 return object.cast<ig::Frame>();
-             }),
+        .def(py::init(checked("Frame(): ", {"width", "height", ""},
+                              [](int width, int height, const py::kwargs& fields) {
+                                  ig::Frame made;
+                                  made.width = width;
+                                  made.height = height;
+                                  py::object object = py::cast(made);
+                                  setFields(object, fields, kFrameFields, "Frame");
+                                  return object.cast<ig::Frame>();
+                              })),
              "width"_a = ig::Frame{}.width, "height"_a = ig::Frame{}.height,
              "Frame(width=1024, height=1024, **fields): fields as keywords (orbit=(30, 10), fov=40).")
         .def_static(
             "from_arguments",
-            [](const std::vector<OsText>& arguments) { return ig::Frame::fromArguments(bytesOf(arguments)); },
+            checked("Frame.from_arguments(): ", {"arguments"},
+                    [](const std::vector<OsText>& arguments) { return ig::Frame::fromArguments(bytesOf(arguments)); }),
             "arguments"_a,
             "The command line's camera flags: ['--orbit', '30,10', '--fov', '40', '--size', '640x480']. "
             "Raises UsageError with the command line's message for a flag that is not the frame's or a bad "
             "value.")
-        .def_readwrite("width", &ig::Frame::width, "--size: pixels, 1 to 16384.")
-        .def_readwrite("height", &ig::Frame::height)
+        .def_property(
+            "width", [](const ig::Frame& self) { return self.width; },
+            checked("Frame.width: ", {"self", ""}, [](ig::Frame& self, int width) { self.width = width; }),
+            "--size: pixels, 1 to 16384.")
+        .def_property(
+            "height", [](const ig::Frame& self) { return self.height; },
+            checked("Frame.height: ", {"self", ""}, [](ig::Frame& self, int height) { self.height = height; }))
         .def_property(
             "eye", [](const ig::Frame& self) { return self.eye; },
             [](ig::Frame& self, py::handle value) { self.eye = optionalArgument(value, vec3Argument, "Frame.eye"); },
@@ -1010,7 +1044,10 @@ void defineFrame(py::module_& m) {
             "up", [](const ig::Frame& self) { return self.up; },
             [](ig::Frame& self, py::handle value) { self.up = optionalArgument(value, vec3Argument, "Frame.up"); },
             "--up, or None.")
-        .def_readwrite("fov", &ig::Frame::fov, "--fov: vertical degrees, 0.01 to 179, or None.")
+        .def_property(
+            "fov", [](const ig::Frame& self) { return self.fov; },
+            checked("Frame.fov: ", {"self", ""}, [](ig::Frame& self, std::optional<double> fov) { self.fov = fov; }),
+            "--fov: vertical degrees, 0.01 to 179, or None.")
         .def_property(
             "clip", [](const ig::Frame& self) { return self.clip; },
             [](ig::Frame& self, py::handle value) { self.clip = optionalArgument(value, clipArgument, "Frame.clip"); },
@@ -1023,23 +1060,34 @@ void defineFrame(py::module_& m) {
             "CameraPlacement (--camera auto is AUTO).")
         .def_property(
             "frame_nodes", [](const ig::Frame& self) { return osTextsOf(self.frameNodes); },
-            [](ig::Frame& self, const std::vector<OsText>& nodes) { self.frameNodes = bytesOf(nodes); },
+            checked("Frame.frame_nodes: ", {"self", ""},
+                    [](ig::Frame& self, const std::vector<OsText>& nodes) { self.frameNodes = bytesOf(nodes); }),
             "--frame: fit the view to the meshes under these nodes (assign a whole list; a copy is "
             "returned).")
         .def_property(
             "animation", [](const ig::Frame& self) { return pathTextOf(self.animation); },
-            [](ig::Frame& self, const OsText& animation) { self.animation = animation.bytes; },
+            checked("Frame.animation: ", {"self", ""},
+                    [](ig::Frame& self, const OsText& animation) { self.animation = animation.bytes; }),
             "A glTF animation (name or index) to pose the scene in for this render; '' with time None: the "
             "scene as loaded.")
-        .def_readwrite("time", &ig::Frame::time, "Seconds into the animation, or None.")
+        .def_property(
+            "time", [](const ig::Frame& self) { return self.time; },
+            checked("Frame.time: ", {"self", ""},
+                    [](ig::Frame& self, std::optional<double> time) { self.time = time; }),
+            "Seconds into the animation, or None.")
         .def_property(
             "pose", [](const ig::Frame& self) { return pathTextOf(self.pose); },
-            [](ig::Frame& self, const OsText& pose) { self.pose = pose.bytes; },
+            checked("Frame.pose: ", {"self", ""}, [](ig::Frame& self, const OsText& pose) { self.pose = pose.bytes; }),
             "A VRM humanoid pose for this render, as --pose: 'a-pose' or a pose file's path; '': the "
             "scene's.")
-        .def_readwrite("expressions", &ig::Frame::expressions,
-                       "--expression: VRM expressions {name: weight in [0, 1]} for this render (assign a whole dict; a "
-                       "copy is returned); {}: the scene's.")
+        .def_property(
+            "expressions", [](const ig::Frame& self) { return self.expressions; },
+            checked("Frame.expressions: ", {"self", ""},
+                    [](ig::Frame& self, const std::map<std::string, double>& expressions) {
+                        self.expressions = expressions;
+                    }),
+            "--expression: VRM expressions {name: weight in [0, 1]} for this render (assign a whole dict; a "
+            "copy is returned); {}: the scene's.")
         .def_property(
             "look_at", [](const ig::Frame& self) { return self.lookAt; },
             [](ig::Frame& self, py::handle value) {
@@ -1151,14 +1199,14 @@ void defineStill(py::module_& m) {
             [](const py::object& self) { return imageArray(self.cast<const PythonStill&>().still.picture(), self); },
             "The final picture: height x width x 4 uint8 (RGBA); with render(out=...), a read-only view of out's "
             "pixels.")
-        .def(
-            "buffer",
-            [](const py::object& self, const OsText& name) {
-                return imageArray(self.cast<const PythonStill&>().still.buffer(name.bytes), self);
-            },
-            "name"_a,
-            "A buffer asked for in render(), by a name it was asked with: float32 or uint8, height x width (one "
-            "channel) or height x width x 4. Raises UsageError naming the buffers there are.")
+        .def("buffer",
+             checked("Still.buffer(): ", {"self", "name"},
+                     [](const py::object& self, const OsText& name) {
+                         return imageArray(self.cast<const PythonStill&>().still.buffer(name.bytes), self);
+                     }),
+             "name"_a,
+             "A buffer asked for in render(), by a name it was asked with: float32 or uint8, height x width (one "
+             "channel) or height x width x 4. Raises UsageError naming the buffers there are.")
         .def_property_readonly(
             "buffer_names", [](const PythonStill& self) { return self.still.bufferNames(); },
             "The buffers, each by the first name it was asked with, in that order ('gbuffer.*' and 'lines.*' give "
@@ -1175,15 +1223,15 @@ void defineStill(py::module_& m) {
             "warnings", [](const PythonStill& self) { return warningObjects(self.still.warnings()); },
             "What the load (for a still that posed its scene) and the render warned about, as InkgraphWarning "
             "records (render() has issued them through the warnings module).")
-        .def(
-            "write",
-            [](const PythonStill& self, const std::filesystem::path& path) {
-                const py::gil_scoped_release release;
-                self.still.write(path.string());
-            },
-            "path"_a,
-            "Writes the picture; the format follows the extension. Raises OutputError naming the file (also for a "
-            "FIFO or a device), UsageError for a file the render read (the model, a shade map, ...).")
+        .def("write",
+             checked("Still.write(): ", {"self", "path"},
+                     [](const PythonStill& self, const std::filesystem::path& path) {
+                         const py::gil_scoped_release release;
+                         self.still.write(path.string());
+                     }),
+             "path"_a,
+             "Writes the picture; the format follows the extension. Raises OutputError naming the file (also for a "
+             "FIFO or a device), UsageError for a file the render read (the model, a shade map, ...).")
         .def_property_readonly(
             "milliseconds", [](const PythonStill& self) { return self.still.milliseconds(); },
             "Milliseconds the render took (without loading the scene).")
@@ -1200,26 +1248,29 @@ void defineScene(py::module_& m) {
                           "with any number of looks and frames.")
         .def_static(
             "load",
-            [](const std::filesystem::path& path, const OsText& animation, double time, std::size_t memoryLimit,
-               bool strict, const OsText& pose, const std::map<std::string, double>& expressions, py::handle lookAt,
-               double weldDistance) {
-                ig::SceneOptions options;
-                options.animation = animation.bytes;
-                options.time = time;
-                options.pose = pose.bytes;
-                options.expressions = expressions;
-                options.lookAt = optionalArgument(lookAt, vec3Argument, "Scene.load(look_at)");
-                options.memoryLimitBytes = memoryLimit;
-                options.strict = strict;
-                options.weldDistance = weldDistance;
-                std::optional<ig::Scene> scene;
-                {
-                    const py::gil_scoped_release release;
-                    scene.emplace(ig::Scene::load(path.string(), options));
-                }
-                issueWarnings(warningObjects(scene->warnings()));
-                return *scene;
-            },
+            checked("Scene.load(): ",
+                    {"path", "animation", "time", "memory_limit", "strict", "pose", "expressions", "look_at",
+                     "weld_distance"},
+                    [](const std::filesystem::path& path, const OsText& animation, double time, std::size_t memoryLimit,
+                       bool strict, const OsText& pose, const std::map<std::string, double>& expressions,
+                       py::handle lookAt, double weldDistance) {
+                        ig::SceneOptions options;
+                        options.animation = animation.bytes;
+                        options.time = time;
+                        options.pose = pose.bytes;
+                        options.expressions = expressions;
+                        options.lookAt = optionalArgument(lookAt, vec3Argument, "Scene.load(look_at)");
+                        options.memoryLimitBytes = memoryLimit;
+                        options.strict = strict;
+                        options.weldDistance = weldDistance;
+                        std::optional<ig::Scene> scene;
+                        {
+                            const py::gil_scoped_release release;
+                            scene.emplace(ig::Scene::load(path.string(), options));
+                        }
+                        issueWarnings(warningObjects(scene->warnings()));
+                        return *scene;
+                    }),
             "path"_a, "animation"_a = OsText{}, "time"_a = 0.0, "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
             "strict"_a = false, "pose"_a = OsText{}, "expressions"_a = std::map<std::string, double>{},
             "look_at"_a = py::none(), "weld_distance"_a = ig::SceneOptions{}.weldDistance,
@@ -1233,44 +1284,47 @@ void defineScene(py::module_& m) {
             "InputError naming the file and the problem.")
         .def_static(
             "from_arrays",
-            [](py::handle vertices, py::handle faces, py::handle normals, py::handle uvs, py::handle colors,
-               const OsText& name, std::size_t memoryLimit, double weldDistance) {
-                const auto vertexArray = floatRows(vertices, "vertices", {3}, std::nullopt);
-                const py::ssize_t vertexCount = vertexArray.shape(0);
-                const auto faceArray = faceRows(faces);
-                std::optional<FloatRows> normalArray, uvArray, colorArray;
-                if (!normals.is_none()) normalArray = floatRows(normals, "normals", {3}, vertexCount);
-                if (!uvs.is_none()) uvArray = floatRows(uvs, "uvs", {2}, vertexCount);
-                if (!colors.is_none()) colorArray = floatRows(colors, "colors", {3, 4}, vertexCount);
-                ig::MeshArrays arrays;
-                arrays.vertices = vertexArray.data();
-                arrays.vertexCount = std::size_t(vertexCount);
-                arrays.faces = faceArray.data();
-                arrays.faceCount = std::size_t(faceArray.shape(0));
-                if (normalArray) arrays.normals = normalArray->data();
-                if (uvArray) arrays.uvs = uvArray->data();
-                if (colorArray) {
-                    arrays.colors = colorArray->data();
-                    arrays.colorChannels = int(colorArray->shape(1));
-                }
-                ig::SceneOptions options;
-                options.memoryLimitBytes = memoryLimit;
-                options.weldDistance = weldDistance;
-                std::optional<ig::Scene> scene;
-                // The library checks the values (finite, indices in range, the limits) and names its arrays as the
-                // arguments are named; only the function is spelt Python's way.
-                try {
-                    const py::gil_scoped_release release;
-                    scene.emplace(ig::Scene::fromArrays(arrays, name.bytes, options));
-                } catch (const ig::Error& error) {
-                    const std::string cpp = "Scene::fromArrays()";
-                    std::string message = error.what();
-                    if (message.rfind(cpp, 0) == 0) message = "Scene.from_arrays()" + message.substr(cpp.size());
-                    throw ig::Error(error.kind(), message);
-                }
-                issueWarnings(warningObjects(scene->warnings()));
-                return *scene;
-            },
+            checked("Scene.from_arrays(): ",
+                    {"vertices", "faces", "normals", "uvs", "colors", "name", "memory_limit", "weld_distance"},
+                    [](py::handle vertices, py::handle faces, py::handle normals, py::handle uvs, py::handle colors,
+                       const OsText& name, std::size_t memoryLimit, double weldDistance) {
+                        const auto vertexArray = floatRows(vertices, "vertices", {3}, std::nullopt);
+                        const py::ssize_t vertexCount = vertexArray.shape(0);
+                        const auto faceArray = faceRows(faces);
+                        std::optional<FloatRows> normalArray, uvArray, colorArray;
+                        if (!normals.is_none()) normalArray = floatRows(normals, "normals", {3}, vertexCount);
+                        if (!uvs.is_none()) uvArray = floatRows(uvs, "uvs", {2}, vertexCount);
+                        if (!colors.is_none()) colorArray = floatRows(colors, "colors", {3, 4}, vertexCount);
+                        ig::MeshArrays arrays;
+                        arrays.vertices = vertexArray.data();
+                        arrays.vertexCount = std::size_t(vertexCount);
+                        arrays.faces = faceArray.data();
+                        arrays.faceCount = std::size_t(faceArray.shape(0));
+                        if (normalArray) arrays.normals = normalArray->data();
+                        if (uvArray) arrays.uvs = uvArray->data();
+                        if (colorArray) {
+                            arrays.colors = colorArray->data();
+                            arrays.colorChannels = int(colorArray->shape(1));
+                        }
+                        ig::SceneOptions options;
+                        options.memoryLimitBytes = memoryLimit;
+                        options.weldDistance = weldDistance;
+                        std::optional<ig::Scene> scene;
+                        // The library checks the values (finite, indices in range, the limits) and names its arrays as
+                        // the arguments are named; only the function is spelt Python's way.
+                        try {
+                            const py::gil_scoped_release release;
+                            scene.emplace(ig::Scene::fromArrays(arrays, name.bytes, options));
+                        } catch (const ig::Error& error) {
+                            const std::string cpp = "Scene::fromArrays()";
+                            std::string message = error.what();
+                            if (message.rfind(cpp, 0) == 0)
+                                message = "Scene.from_arrays()" + message.substr(cpp.size());
+                            throw ig::Error(error.kind(), message);
+                        }
+                        issueWarnings(warningObjects(scene->warnings()));
+                        return *scene;
+                    }),
             "vertices"_a, "faces"_a, "normals"_a = py::none(), "uvs"_a = py::none(), "colors"_a = py::none(),
             "name"_a = OsText{"arrays"}, "memory_limit"_a = ig::SceneOptions{}.memoryLimitBytes,
             "weld_distance"_a = ig::SceneOptions{}.weldDistance,
@@ -1345,24 +1399,26 @@ void defineRenderer(py::module_& m) {
              "nothing yet.")
         .def(
             "render",
-            [](PythonRenderer& self, const ig::Scene& scene, const std::optional<ig::Look>& look,
-               const std::optional<ig::Frame>& frame, const std::vector<OsText>& buffers, const py::object& out) {
-                const ig::Look lookValue = look.value_or(ig::Look());
-                const ig::Frame frameValue = frame.value_or(ig::Frame());
-                std::uint8_t* pixels = nullptr;
-                std::size_t rowBytes = 0;
-                if (!out.is_none()) {
-                    rowBytes = pictureRowBytes(out, frameValue);
-                    pixels = static_cast<std::uint8_t*>(py::reinterpret_borrow<py::array>(out).mutable_data());
-                }
-                std::optional<ig::Still> still;
-                {
-                    const py::gil_scoped_release release;
-                    still.emplace(self.render(scene, lookValue, frameValue, bytesOf(buffers), pixels, rowBytes));
-                }
-                issueWarnings(warningObjects(still->warnings()));
-                return PythonStill{std::move(*still), out};
-            },
+            checked(
+                "Renderer.render(): ", {"self", "scene", "look", "frame", "buffers", "out"},
+                [](PythonRenderer& self, const ig::Scene& scene, const std::optional<ig::Look>& look,
+                   const std::optional<ig::Frame>& frame, const std::vector<OsText>& buffers, const py::object& out) {
+                    const ig::Look lookValue = look.value_or(ig::Look());
+                    const ig::Frame frameValue = frame.value_or(ig::Frame());
+                    std::uint8_t* pixels = nullptr;
+                    std::size_t rowBytes = 0;
+                    if (!out.is_none()) {
+                        rowBytes = pictureRowBytes(out, frameValue);
+                        pixels = static_cast<std::uint8_t*>(py::reinterpret_borrow<py::array>(out).mutable_data());
+                    }
+                    std::optional<ig::Still> still;
+                    {
+                        const py::gil_scoped_release release;
+                        still.emplace(self.render(scene, lookValue, frameValue, bytesOf(buffers), pixels, rowBytes));
+                    }
+                    issueWarnings(warningObjects(still->warnings()));
+                    return PythonStill{std::move(*still), out};
+                }),
             "scene"_a, "look"_a = py::none(), "frame"_a = py::none(), "buffers"_a = std::vector<OsText>{},
             "out"_a = py::none(),
             "Renders `scene` with `look` in `frame` (None: the defaults), keeping `buffers` (buffer_names(look); "
@@ -1405,50 +1461,54 @@ void defineModule(py::module_& m) {
     defineScene(m);
     defineRenderer(m);
 
-    m.def(
-        "sample_views",
-        [](std::size_t count, std::uint64_t seed, const py::object& modelKey, const py::object& elevation,
-           double distanceJitter, double lightJitter, const py::object& light, std::vector<std::string> expressions,
-           std::vector<std::string> poses) {
-            ig::ViewSampling sampling;
-            const std::vector<double> angles = realNumbers(elevation, {2, 4}, "sample_views(): elevation",
-                                                           "(mean, sd) or (mean, sd, low, high), degrees");
-            sampling.elevationMean = angles[0];
-            sampling.elevationDeviation = angles[1];
-            if (angles.size() == 4) {
-                sampling.elevationLow = angles[2];
-                sampling.elevationHigh = angles[3];
-            }
-            sampling.distanceJitter = distanceJitter;
-            sampling.lightJitter = lightJitter;
-            sampling.light = optionalArgument(light, vec3Argument, "sample_views(): light");
-            sampling.expressions = std::move(expressions);
-            sampling.poses = std::move(poses);
-            // The key is the model path as the command line lists it: a str, or a path as os.fspath() gives it.
-            const std::string key = py::module_::import("os").attr("fspath")(modelKey).cast<std::string>();
-            return ig::sampleViews(count, seed, key, sampling);
-        },
-        "count"_a, "seed"_a, "model_key"_a, py::kw_only(), "elevation"_a = py::make_tuple(10.0, 10.0, -30.0, 60.0),
-        "distance_jitter"_a = 0.0, "light_jitter"_a = 0.0, "light"_a = py::none(),
-        "expressions"_a = std::vector<std::string>{}, "poses"_a = std::vector<std::string>{},
-        "The views the command line's `--views count --seed seed` draws for the model listed as model_key (its path "
-        "as given), with --view-elevation, --view-distance-jitter, --light-jitter, --light, --expressions (each "
-        "alternative in --expression's syntax, or 'none') and --poses ('rest', 'a-pose' or a file). Raises "
-        "UsageError with the flag's message for a setting out of range (docs/datasets.md).");
-    m.def("buffer_names", &ig::bufferNames, "look"_a,
+    m.def("sample_views",
+          checked("sample_views(): ",
+                  {"count", "seed", "model_key", "elevation", "distance_jitter", "light_jitter", "light", "expressions",
+                   "poses"},
+                  [](std::size_t count, std::uint64_t seed, const py::object& modelKey, const py::object& elevation,
+                     double distanceJitter, double lightJitter, const py::object& light,
+                     std::vector<std::string> expressions, std::vector<std::string> poses) {
+                      ig::ViewSampling sampling;
+                      const std::vector<double> angles = realNumbers(elevation, {2, 4}, "sample_views(): elevation",
+                                                                     "(mean, sd) or (mean, sd, low, high), degrees");
+                      sampling.elevationMean = angles[0];
+                      sampling.elevationDeviation = angles[1];
+                      if (angles.size() == 4) {
+                          sampling.elevationLow = angles[2];
+                          sampling.elevationHigh = angles[3];
+                      }
+                      sampling.distanceJitter = distanceJitter;
+                      sampling.lightJitter = lightJitter;
+                      sampling.light = optionalArgument(light, vec3Argument, "sample_views(): light");
+                      sampling.expressions = std::move(expressions);
+                      sampling.poses = std::move(poses);
+                      // The key is the model path as the command line lists it: a str, or a path as os.fspath() gives
+                      // it.
+                      const std::string key = py::module_::import("os").attr("fspath")(modelKey).cast<std::string>();
+                      return ig::sampleViews(count, seed, key, sampling);
+                  }),
+          "count"_a, "seed"_a, "model_key"_a, py::kw_only(), "elevation"_a = py::make_tuple(10.0, 10.0, -30.0, 60.0),
+          "distance_jitter"_a = 0.0, "light_jitter"_a = 0.0, "light"_a = py::none(),
+          "expressions"_a = std::vector<std::string>{}, "poses"_a = std::vector<std::string>{},
+          "The views the command line's `--views count --seed seed` draws for the model listed as model_key (its path "
+          "as given), with --view-elevation, --view-distance-jitter, --light-jitter, --light, --expressions (each "
+          "alternative in --expression's syntax, or 'none') and --poses ('rest', 'a-pose' or a file). Raises "
+          "UsageError with the flag's message for a setting out of range (docs/datasets.md).");
+    m.def("buffer_names",
+          checked("buffer_names(): ", {"look"}, [](const ig::Look& look) { return ig::bufferNames(look); }), "look"_a,
           "The buffers render() can return with `look`: the G-buffer's fields ('normal', 'depth', ...), "
           "'gbuffer.*', 'lines.<type>' of the look's line types, 'lines.*', 'picture'.");
-    m.def(
-        "write_image",
-        [](const std::filesystem::path& path, const py::array& array) {
-            const ig::Image image = imageFromArray(array);
-            const py::gil_scoped_release release;
-            image.write(path.string());
-        },
-        "path"_a, "image"_a,
-        "Writes a uint8 or float32 array (height x width, or height x width x 1 or 4 channels, RGBA) as an image "
-        "file; the format follows the extension (PNG; EXR, TIFF, JPEG through OpenImageIO). Raises OutputError "
-        "naming the file, also for a place that is not a regular file or a new name (a FIFO, a device).");
+    m.def("write_image",
+          checked("write_image(): ", {"path", "image"},
+                  [](const std::filesystem::path& path, const py::array& array) {
+                      const ig::Image image = imageFromArray(array);
+                      const py::gil_scoped_release release;
+                      image.write(path.string());
+                  }),
+          "path"_a, "image"_a,
+          "Writes a uint8 or float32 array (height x width, or height x width x 1 or 4 channels, RGBA) as an image "
+          "file; the format follows the extension (PNG; EXR, TIFF, JPEG through OpenImageIO). Raises OutputError "
+          "naming the file, also for a place that is not a regular file or a new name (a FIFO, a device).");
 }
 
 } // namespace inkgraph::python

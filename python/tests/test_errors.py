@@ -175,3 +175,35 @@ def test_a_frames_pose_or_face_on_an_obj_is_refused_in_the_renderers_name(suzann
             renderer.render(suzanne, None, inkgraph.Frame(16, 16, **fields))
         assert str(refused.value).startswith("Renderer::render(): " + words), str(refused.value)
         assert refused.value.exit_code == 3
+
+
+WRONG_TYPES = [
+    ("Frame width past int", lambda: inkgraph.Frame(2**31, 10),
+     "Frame(): width: expected an int from -2147483648 to 2147483647, got 2147483648"),
+    ("Look.bands a float", lambda: setattr(inkgraph.Look(), "bands", 2.5),
+     "Look.bands: expected an int from -2147483648 to 2147483647, got 2.5"),
+    ("Look.set flag", lambda: inkgraph.Look().set(2, "x"), "Look.set(): flag: expected str, got 2"),
+    ("Vec3 x", lambda: inkgraph.Vec3("a"), "Vec3(): x: expected float, got 'a'"),
+    ("Frame.fov", lambda: setattr(inkgraph.Frame(), "fov", "wide"),
+     "Frame.fov: expected Optional[float], got 'wide'"),
+    ("Frame.expressions", lambda: setattr(inkgraph.Frame(), "expressions", {"happy": "very"}),
+     "Frame.expressions: expected Dict[str, float], got {'happy': 'very'}"),
+    ("Scene.load path", lambda: inkgraph.Scene.load(5),
+     "Scene.load(): path: expected a path (str or os.PathLike), got 5"),
+    ("Scene.load time", lambda: inkgraph.Scene.load("model.obj", time="now"),
+     "Scene.load(): time: expected float, got 'now'"),
+    ("render scene", lambda: inkgraph.Renderer().render(None), "Renderer.render(): scene: expected Scene, got None"),
+    ("sample_views count", lambda: inkgraph.sample_views(-1, 0, "model"),
+     "sample_views(): count: expected an int from 0 to 18446744073709551615, got -1"),
+    ("buffer_names look", lambda: inkgraph.buffer_names(3), "buffer_names(): look: expected Look, got 3"),
+    ("StrokeSettings", lambda: inkgraph.StrokeSettings(min_length="long"),
+     "StrokeSettings(): min_length: expected float, got 'long'"),
+]
+
+
+@pytest.mark.parametrize("name, call, message", WRONG_TYPES, ids=[case[0] for case in WRONG_TYPES])
+def test_a_value_of_the_wrong_type_is_a_type_error_naming_the_argument(name, call, message):
+    # pybind11's own refusal ("incompatible function arguments", every signature and value) named no argument.
+    with pytest.raises(TypeError) as refused:
+        call()
+    assert str(refused.value) == message
