@@ -477,9 +477,12 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
     const auto side = std::ranges::find(allOutside, true);
     if (!anyVertex) return std::nullopt;
     std::string where;
+    std::string consequence = "the picture shows only the background";
     if (side != allOutside.end()) {
         where = "every vertex lies " + sides[std::size_t(side - allOutside.begin())].where;
     } else {
+        // Lines drawn as bands round the model (an outline, a silhouette) may still leave a dot of ink.
+        consequence = "no pixel shows its surface (its lines may leave a dot)";
         // Pixel centres lie at half-integers of the image (y down); the model covers none unless its extent holds one
         // both ways. A model under a pixel that holds one (a 1 x 1 picture) is drawn.
         const auto holdsACentre = [](double from, double to, int size) {
@@ -505,7 +508,7 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
         who = "the auto-framed camera";
     }
     return makeWarning(WarningKind::ModelOutsideView,
-                       who + " sees none of the model: " + where + ", so the picture shows only the background" +
+                       who + " sees none of the model: " + where + ", so " + consequence +
                            (camera.source == "gltf" ? "; --camera auto frames the model instead" : ""));
 }
 
