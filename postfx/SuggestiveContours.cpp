@@ -343,14 +343,26 @@ int16_t sigmaLevel(float sigma) {
     return int16_t(level);
 }
 
-/** The window of one level: 3 sigma wide, at most kMaxSmoothingReach. */
-GaussianWindow gaussianWindow(int level) {
+/** The variance in px^2 of the blur a stencil's first difference adds along its axis: (f(x+1) - f(x-1)) / 2 answers
+ *  a wave of frequency k (radians per pixel) with sin(k) / k = 1 - k^2 / 6 + ..., as a Gaussian of variance 1/3 does;
+ *  the 5-point difference's error has no k^2 term. */
+double differenceVariance(DifferenceStencil stencil) {
+    return stencil == DifferenceStencil::Central3 ? 1.0 / 3.0 : 0.0;
+}
+
+/** The narrowest window smoothRadialField() applies, in px^2 of variance: a quarter pixel's sigma, whose weight a pixel
+ *  away is 3e-4, so a pixel whose sigma is under the differences' own blur is left nearly as it is. */
+constexpr double kLeastWindowVariance = 1.0 / 16.0;
+
+/** The window of one level with `subtractedVariance` px^2 taken off its variance (no less than
+ *  kLeastWindowVariance): 3 of its sigmas wide, at most kMaxSmoothingReach. */
+GaussianWindow gaussianWindow(int level, double subtractedVariance) {
     GaussianWindow window;
-    const double rounded = std::pow(kSigmaStep, double(level));
-    window.reach = int(std::min(double(kMaxSmoothingReach), std::ceil(3.0 * rounded)));
+    const double nominal = std::pow(kSigmaStep, double(level));
+    const double sigma = std::sqrt(std::max(nominal * nominal - subtractedVariance, kLeastWindowVariance));
+    window.reach = int(std::min(double(kMaxSmoothingReach), std::ceil(3.0 * sigma)));
     window.weights.resize(size_t(window.reach) + 1);
-    for (int d = 0; d <= window.reach; ++d)
-        window.weights[size_t(d)] = float(std::exp(-0.5 * d * d / (rounded * rounded)));
+    for (int d = 0; d <= window.reach; ++d) window.weights[size_t(d)] = float(std::exp(-0.5 * d * d / (sigma * sigma)));
     window.total = window.weights[0];
     for (int d = 1; d <= window.reach; ++d) window.total += 2.0f * window.weights[size_t(d)];
     return window;
@@ -361,6 +373,9 @@ GaussianWindow gaussianWindow(int level) {
  *  in profiles. */
 class GaussianWindows {
 public:
+    /** `subtractedVariance`: gaussianWindow()'s. */
+    explicit GaussianWindows(double subtractedVariance) : mSubtractedVariance(subtractedVariance) {}
+
     const GaussianWindow& forLevel(int level) {
         if (mWindows.empty()) mFirstLevel = level;
         if (level < mFirstLevel) {
@@ -372,13 +387,14 @@ public:
         const std::size_t index = std::size_t(level - mFirstLevel);
         if (index >= mWindows.size()) mWindows.resize(index + 1);
         std::unique_ptr<GaussianWindow>& window = mWindows[index];
-        if (!window) window = std::make_unique<GaussianWindow>(gaussianWindow(level));
+        if (!window) window = std::make_unique<GaussianWindow>(gaussianWindow(level, mSubtractedVariance));
         return *window;
     }
 
 private:
     std::vector<std::unique_ptr<GaussianWindow>> mWindows; // mWindows[i]: level mFirstLevel + i, or not built yet
     int mFirstLevel = 0;
+    double mSubtractedVariance;
 };
 
 /** sigmaLevel() for runs of pixels of nearly one sigma: the last level with the sigmas well inside its rounding
@@ -679,7 +695,8 @@ std::vector<Span> coveredSpans(const cv::Mat& depth) {
     return spans;
 }
 
-/** The widest window any pixel of the image gets: that of the nearest covered depth. 0 when nothing is covered. */
+/** The widest window any pixel of the image gets: that of the nearest covered depth, before the differences' variance
+ *  is taken off (so it bounds every window). 0 when nothing is covered. */
 int widestReach(const cv::Mat& depth, const std::vector<Span>& spans, float sigmaDepth) {
     const float infinity = std::numeric_limits<float>::infinity();
     float nearest = infinity;
@@ -699,7 +716,7 @@ int widestReach(const cv::Mat& depth, const std::vector<Span>& spans, float sigm
             if (z[col] > 0.0f) nearest = std::min(nearest, z[col]);
     }
     const float sigma = nearest < infinity ? sigmaDepth / nearest : 0.0f;
-    return sigma > 0.0f ? gaussianWindow(sigmaLevel(sigma)).reach : 0;
+    return sigma > 0.0f ? gaussianWindow(sigmaLevel(sigma), 0.0).reach : 0;
 }
 
 /** smoothRadialField() one row at a time, down a band of rows: the row pass fills a ring of the rows the column pass
@@ -711,14 +728,15 @@ class SurfaceSmoother {
 public:
     /** `sigmaDepth`: the smoothing's sigma times the focal length in pixels (a pixel's sigma is this over its depth);
      *  `surface`: the surface ids or empty (runs also end where the id changes); `spans`: coveredSpans(); `reach`:
-     *  widestReach(). Rows are then asked for in order from `firstRow`. */
+     *  widestReach(); `subtractedVariance`: what each window's variance loses (gaussianWindow()). Rows are then asked
+     *  for in order from `firstRow`. */
     SurfaceSmoother(const cv::Mat& radial, const cv::Mat& depth, const cv::Mat& surface, const std::vector<Span>& spans,
-                    float sigmaDepth, float depthJump, int reach, int firstRow)
+                    float sigmaDepth, float depthJump, int reach, double subtractedVariance, int firstRow)
         : mRadial(radial), mDepth(depth), mSurface(surface), mSpans(spans), mSigmaDepth(sigmaDepth),
           mDepthJump(depthJump), mReach(reach), mSlots(2 * reach + 1), mRows(radial.rows), mCols(radial.cols),
           mNextRow(firstRow), mRowPass(size_t(mSlots) * size_t(mCols)), mLevels(size_t(mSlots) * size_t(mCols)),
           mAbove(size_t(mCols), 0), mBelow(size_t(mCols), 0), mLeft(size_t(mCols), 0), mRight(size_t(mCols), 0),
-          mWindowRows(size_t(mSlots)) {
+          mWindowRows(size_t(mSlots)), mWindows(subtractedVariance) {
         for (int row = std::max(0, firstRow - reach); row < std::min(mRows, firstRow + reach); ++row)
             smoothAlongRow(row);
     }
@@ -900,7 +918,7 @@ public:
           mDw(kRingRows * size_t(mCols), 0.0f), mDefined(kRingRows * size_t(mCols), 0.0f) {
         if (settings.smoothing > 0.0f) {
             mSmoother.emplace(radial, depth, surface, spans, settings.smoothing * settings.focalPixels,
-                              settings.depthJump, reach, mFirstLoaded);
+                              settings.depthJump, reach, differenceVariance(settings.stencil), mFirstLoaded);
             mSmoothed.resize(kRingRows * size_t(mCols));
         }
     }
@@ -1217,7 +1235,8 @@ cv::Mat smoothRadialField(const cv::Mat& radial, const cv::Mat& depth, const Sug
     const int reach = widestReach(depth, spans, sigmaDepth);
     cv::Mat smoothed(radial.size(), CV_32FC4);
     forEachBand(bandBounds(spans), [&](size_t, int firstRow, int endRow) {
-        SurfaceSmoother smoother(radial, depth, surface, spans, sigmaDepth, settings.depthJump, reach, firstRow);
+        SurfaceSmoother smoother(radial, depth, surface, spans, sigmaDepth, settings.depthJump, reach,
+                                 differenceVariance(settings.stencil), firstRow);
         for (int row = firstRow; row < endRow; ++row) smoother.next(smoothed.ptr<cv::Vec4f>(row));
     });
     return smoothed;

@@ -50,7 +50,8 @@ struct SuggestiveSettings {
     DifferenceStencil stencil = DifferenceStencil::Central3;
     /** > 0: the radial field is smoothed first (smoothRadialField()) by a Gaussian of this standard deviation on the
      *  surface, in the depth buffer's length units (the model's), so the derivatives see the surface at that scale,
-     *  not its facets and scan noise, alike at every resolution. 0: no smoothing. */
+     *  not its facets and scan noise, alike at every resolution (the stencil's own blur counted in). 0: no
+     *  smoothing. */
     float smoothing = 0.0f;
     /** With smoothing > 0: a crossing is dropped where its surface ends (a depth break, the background or the image's
      *  edge) within this many sigmas of the smoothing, in pixels at the marked pixel's depth, where the smoothing's
@@ -67,8 +68,12 @@ struct SuggestiveSettings {
 
 /** The radial field smoothed on the surface at the scale settings.smoothing (> 0; 0 returns a copy): per pixel a
  *  Gaussian of sigma = smoothing x focalPixels / depth pixels (the model-space scale seen at that pixel's depth),
- *  rounded to 1% steps, applied along rows then columns, each 1-D pass a Gaussian-weighted least-squares line (local
- *  linear regression) over the pixel's run of one surface: it stops at depth breaks (settings.depthJump), changes of
+ *  rounded to 1% steps, its variance then less the blur settings.stencil's difference adds (1/3 px^2 for Central3,
+ *  whose (f(x+1) - f(x-1)) / 2 answers a wave of k radians a pixel with sin(k) / k = 1 - k^2 / 6 + ..., a Gaussian's
+ *  of that variance; none for Central5) and at least 1/16 px^2, so D_w(n.v), whose zero set is the line, sees sigma
+ *  on the surface at every resolution, not a share of a pixel more where the pixels are coarse (docs/strokes.md);
+ *  applied along rows then columns, each 1-D pass a Gaussian-weighted least-squares line (local linear regression)
+ *  over the pixel's run of one surface: it stops at depth breaks (settings.depthJump), changes of
  *  `surface` id (computeRadialDerivatives()) and the background, and a field linear along the run is kept exactly, so
  *  a one-sided window at a silhouette or occlusion boundary does not bend n.v there. The window reaches 3 sigma, at
  *  most kMaxSmoothingReach pixels. All four channels are smoothed; the background stays 0. Same argument checks as

@@ -599,7 +599,9 @@ TEST(SuggestiveContours, DeterministicAndIndependentOfThreads) {
 /** smoothRadialField()'s definition in double, pixel by pixel and without shortcuts: rows then columns, each pixel
  *  replaced by the Gaussian-weighted least-squares line through the pixels of its run of one surface within 3 sigma
  *  (at most kMaxSmoothingReach), at the pixel; sigma = smoothing x focalPixels / depth pixels, rounded to a 1% step
- *  (as the kernel rounds it: 1.01^round(log(sigma) / log(1.01))). */
+ *  (as the kernel rounds it: 1.01^round(log(sigma) / log(1.01))), then its variance less the blur of the stencil's
+ *  difference: 1/3 px^2 for the 3-point one, whose response sin(k) / k = 1 - k^2 / 6 + ... is a Gaussian's of that
+ *  variance, none for the 5-point one (at least 1/16 px^2 is left). */
 cv::Mat referenceSmoothing(const cv::Mat& radial, const cv::Mat& depth, const SuggestiveSettings& settings,
                            const cv::Mat& surface = cv::Mat()) {
     const auto joined = [&](cv::Point p, cv::Point q) {
@@ -615,7 +617,9 @@ cv::Mat referenceSmoothing(const cv::Mat& radial, const cv::Mat& depth, const Su
                 const float z = depth.at<float>(row, col);
                 const float sigma = z > 0.0f ? sigmaDepth / z : 0.0f;
                 if (!(sigma > 0.0f)) continue;
-                const double rounded = std::pow(1.01, double(std::lround(std::log(sigma) / std::log(1.01))));
+                const double nominal = std::pow(1.01, double(std::lround(std::log(sigma) / std::log(1.01))));
+                const double stencilVariance = settings.stencil == DifferenceStencil::Central3 ? 1.0 / 3.0 : 0.0;
+                const double rounded = std::sqrt(std::max(nominal * nominal - stencilVariance, 1.0 / 16.0));
                 const int reach = std::min(kMaxSmoothingReach, int(std::ceil(3.0 * rounded)));
                 const auto at = [&](int d) { return alongRows ? cv::Point(col + d, row) : cv::Point(col, row + d); };
                 const auto inside = [&](int d) { return cv::Rect(0, 0, field.cols, field.rows).contains(at(d)); };
@@ -671,12 +675,17 @@ TEST(SuggestiveContours, SmoothingFollowsItsDefinition) {
     cv::Mat blocks(depth.size(), CV_32FC1);
     for (int row = 0; row < depth.rows; ++row)
         for (int col = 0; col < depth.cols; ++col) blocks.at<float>(row, col) = float((col / 17 + row / 23) % 3);
+    // Both stencils: each takes its own blur off the smoothing's variance.
     for (const bool ids : {false, true}) {
         const cv::Mat surface = ids ? blocks : cv::Mat();
-        for (const double sigmaPixelsAtDepth4 : {2.0, 10.0, 200.0}) {
+        for (const auto& [sigmaPixelsAtDepth4, stencil] :
+             {std::pair{2.0, DifferenceStencil::Central3}, std::pair{2.0, DifferenceStencil::Central5},
+              std::pair{10.0, DifferenceStencil::Central3}, std::pair{200.0, DifferenceStencil::Central3}}) {
             SCOPED_TRACE("sigma " + std::to_string(sigmaPixelsAtDepth4) + " px at depth 4" +
-                         (ids ? ", surface ids" : ""));
+                         (ids ? ", surface ids" : "") +
+                         (stencil == DifferenceStencil::Central5 ? ", 5-point stencil" : ""));
             SuggestiveSettings settings;
+            settings.stencil = stencil;
             settings.focalPixels = float(camera.focalPixels());
             settings.smoothing = float(sigmaPixelsAtDepth4 * 4.0 / camera.focalPixels());
             const cv::Mat smoothed = smoothRadialField(radial, depth, settings, surface);
@@ -685,6 +694,7 @@ TEST(SuggestiveContours, SmoothingFollowsItsDefinition) {
             smoothed.convertTo(smoothedDouble, CV_64FC4);
             const double largest = cv::norm(smoothedDouble, reference, cv::NORM_INF);
             std::cout << "sigma " << sigmaPixelsAtDepth4 << " px" << (ids ? ", surface ids" : "")
+                      << (stencil == DifferenceStencil::Central5 ? ", 5-point stencil" : "")
                       << ": largest difference from the definition " << largest << " (values in [-1, 1])\n";
             // Measured: 4.9e-7, 3.1e-7, 7.6e-7 without ids: float rounding.
             EXPECT_LT(largest, 1e-5);
