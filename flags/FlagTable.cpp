@@ -1084,7 +1084,8 @@ std::vector<Flag> makeFlags() {
         flag({"--min-stroke-length"}, "F", S::Lines,
              "line pixels are chained into strokes through junctions, across small gaps and from one\n"
              "type into the next where they run on; a chain shorter than F x the picture's height is\n"
-             "not drawn, at any size (default " +
+             "not drawn (from its first pixel to its last; above 1024 rows plus height/1024 - 1 px,\n"
+             "so the same line passes at every size; default " +
                  helpNumber(defaults.look.strokes.minLength) + ": " +
                  std::to_string(std::lround(defaults.look.strokes.minLength * defaults.height)) + " px at " +
                  std::to_string(defaults.height) + "; 0 keeps every speck; docs/strokes.md)",

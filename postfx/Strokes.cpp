@@ -487,6 +487,17 @@ Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSetting
     return result;
 }
 
+double strokeLengthLimitPixels(double share, double heightPixels) {
+    if (!std::isfinite(share) || share < 0.0)
+        throw std::invalid_argument("strokeLengthLimitPixels(): 'share' must be finite and >= 0, got " +
+                                    std::to_string(share));
+    if (!std::isfinite(heightPixels) || heightPixels <= 0.0)
+        throw std::invalid_argument("strokeLengthLimitPixels(): 'heightPixels' must be finite and > 0, got " +
+                                    std::to_string(heightPixels));
+    if (share == 0.0) return 0.0;
+    return share * heightPixels + std::max(0.0, heightPixels / kLengthReferenceRows - 1.0);
+}
+
 StrokesNearLimits strokesNearLimits(const Strokes& strokes, const std::vector<StrokeLayer>& layers, double share) {
     if (!std::isfinite(share) || share < 0.0 || share >= 1.0)
         throw std::invalid_argument("strokesNearLimits(): 'share' must be finite and in [0, 1), got " +

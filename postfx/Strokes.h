@@ -91,6 +91,19 @@ struct Strokes {
     std::size_t droppedWeak() const;
 };
 
+/** The height in pixels at which the length rule is the plain span rule (strokeLengthLimitPixels()). */
+inline constexpr double kLengthReferenceRows = 1024.0;
+
+/** The span a chain needs (StrokeLayer::minLengthPixels) for a rule of `share` x the height, in pixels of a picture
+ *  `heightPixels` high. A chain's length is measured from its first sample to its last, and the line it draws covers
+ *  a pixel more: in pixels of kLengthReferenceRows that is one pixel at 1024 rows and half of one at 2048, so a line
+ *  measured half a pixel (of 1024) longer at 2048 and passed there where it failed at 1024 (issue 39). Above
+ *  kLengthReferenceRows the limit takes that difference back, share x height + height / 1024 - 1, so one line on the
+ *  picture passes or fails at every size alike; at and below it the limit is share x height, so a small picture keeps
+ *  a pair of pixels out as before. 0 for a share of 0, which keeps every chain. Throws std::invalid_argument naming
+ *  the argument unless `share` is finite and >= 0 and `heightPixels` finite and > 0. */
+double strokeLengthLimitPixels(double share, double heightPixels);
+
 /** Chains every layer's skeleton into strokes and decides which are drawn (see the file comment). Throws
  *  std::invalid_argument naming the argument for a null or empty skeleton, a `scale` below 1, layers whose sizes
  *  times their scales differ, a negative or non-finite length, a seed strength outside [0, 1], or settings that are

@@ -113,7 +113,7 @@ void StrokesPass::execute(GlPassContext& gl) {
         if (layer.skeleton->mask.size() * layer.scale != dataSize)
             throw std::runtime_error("StrokesPass::execute(): '" + input.resource + "' is not at the data size " +
                                      std::to_string(dataSize.width) + "x" + std::to_string(dataSize.height));
-        layer.minLengthPixels = input.minLength * heightPixels;
+        layer.minLengthPixels = strokeLengthLimitPixels(input.minLength, heightPixels);
         layer.seedStrength = input.seedStrength;
         layers.push_back(layer);
     }

@@ -202,6 +202,44 @@ TEST(StrokesTest, TheLengthRuleDropsSpecksAndKeepsLines) {
     EXPECT_EQ(drawn.mask.at<uchar>(10, 25), 255);
 }
 
+/** The same straight line on a picture 1024, 2048 and 4096 rows high (extent E px at 1024, its samples one a pixel):
+ *  the length rule keeps it at every size or at none. Measured from its first sample to its last, the line is E - 1 px
+ *  long at 1024 and 2E - 1 at 2048, so under the span alone (0.01 x the height) a line of 11 px at 1024 (span 10,
+ *  under 10.24) was dropped there and kept at 2048 (span 21, over 20.48), as ticks of the torus knot were. */
+TEST(StrokesTest, TheLengthRuleJudgesALineAlikeAtEverySize) {
+    EXPECT_DOUBLE_EQ(strokeLengthLimitPixels(0.01, 512.0), 5.12);
+    EXPECT_DOUBLE_EQ(strokeLengthLimitPixels(0.01, 1024.0), 10.24);
+    EXPECT_DOUBLE_EQ(strokeLengthLimitPixels(0.01, 2048.0), 21.48);
+    EXPECT_DOUBLE_EQ(strokeLengthLimitPixels(0.01, 4096.0), 43.96);
+    EXPECT_EQ(strokeLengthLimitPixels(0.0, 4096.0), 0.0); // 0 keeps a pixel alone at every size
+    for (const int extentAt1024 : {9, 10, 11, 12, 13, 14}) {
+        std::vector<bool> kept;
+        for (const int times : {1, 2, 4}) {
+            cv::Mat mask = blank(80);
+            const int pixels = extentAt1024 * times;
+            drawLine(mask, {5, 10}, {5 + pixels - 1, 10});
+            const LineSkeleton skeleton = skeletonOf(mask);
+            StrokeLayer layer{&skeleton};
+            layer.minLengthPixels = strokeLengthLimitPixels(0.01, 1024.0 * times);
+            const Strokes strokes = chainStrokes({layer});
+            ASSERT_EQ(strokes.strokes.size(), 1u);
+            kept.push_back(strokes.strokes[0].kept);
+        }
+        SCOPED_TRACE("a line of " + std::to_string(extentAt1024) + " px at 1024 rows");
+        EXPECT_EQ(kept[0], extentAt1024 >= 12); // span 11 >= 10.24; 10 < 10.24
+        EXPECT_EQ(kept[1], kept[0]) << "2048 rows";
+        EXPECT_EQ(kept[2], kept[0]) << "4096 rows";
+    }
+    EXPECT_NE(invalidArgumentMessage([] {
+                  strokeLengthLimitPixels(-0.01, 1024.0);
+              }).find("strokeLengthLimitPixels(): 'share'"),
+              std::string::npos);
+    EXPECT_NE(invalidArgumentMessage([] { strokeLengthLimitPixels(0.01, 0.0); }).find("'heightPixels'"),
+              std::string::npos);
+    EXPECT_NE(invalidArgumentMessage([] { strokeLengthLimitPixels(std::nan(""), 1024.0); }).find("'share'"),
+              std::string::npos);
+}
+
 TEST(StrokesTest, StrokesNearARulesLimitAreCountedPerLayer) {
     // Layer 0 is drawn from 10 pixels and seeds at 0.5; layer 1 has no length rule and always seeds.
     const LineSkeleton unused;
