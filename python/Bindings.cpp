@@ -17,6 +17,7 @@
  *  reads them without the GIL while other threads may change the caller's. */
 
 #include "Bindings.h"
+#include "ArgumentRefusals.h"
 #include "CheckedArguments.h"
 
 #include <inkgraph/inkgraph.h>
@@ -358,12 +359,20 @@ void addValueProtocol(Class& type, std::vector<std::string> fields) {
     type.def(
         "replace",
         [fields](py::handle self, const py::kwargs& changes) {
+            using Value = typename Class::type;
+            const std::string typeName = py::type::of<Value>().template attr("__name__").template cast<std::string>();
+            const std::string where = typeName + ".replace(): ";
+            if (!py::isinstance<Value>(self))
+                throw py::type_error(where + "self: expected " + typeName + ", got " + reprOf(self));
             py::dict values;
-            for (const std::string& field : fields) values[field.c_str()] = self.attr(field.c_str());
+            std::string fieldList;
+            for (const std::string& field : fields) {
+                values[field.c_str()] = self.attr(field.c_str());
+                fieldList += (fieldList.empty() ? "" : ", ") + field;
+            }
             for (const auto& [name, value] : changes) {
                 if (!values.contains(name))
-                    throw py::type_error("replace(): " + reprOf(name) + " is not a field of " +
-                                         py::type::of(self).attr("__name__").cast<std::string>());
+                    throw py::type_error(where + reprOf(name) + " is not a field (fields: " + fieldList + ")");
                 values[name] = value;
             }
             return py::type::of(self)(**values);
@@ -1509,6 +1518,8 @@ void defineModule(py::module_& m) {
           "Writes a uint8 or float32 array (height x width, or height x width x 1 or 4 channels, RGBA) as an image "
           "file; the format follows the extension (PNG; EXR, TIFF, JPEG through OpenImageIO). Raises OutputError "
           "naming the file, also for a place that is not a regular file or a new name (a FIFO, a device).");
+
+    nameArgumentRefusals(m);
 }
 
 } // namespace inkgraph::python

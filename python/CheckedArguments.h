@@ -6,7 +6,8 @@
  *  argument through as it is (Loose<T>, named in the signature as T is, so help() and the stubs read as before), and
  *  the wrapper converts each with T's own caster in turn, refusing the first that does not convert. Parameters that
  *  take any object already (py::handle, py::object, py::args, py::kwargs) are passed as they are. Only the types of
- *  the arguments given are checked here: a missing or unknown keyword is still pybind11's refusal. */
+ *  the arguments given are checked here: a missing or unknown keyword, or too many values, is named by
+ *  ArgumentRefusals.h. */
 
 #include <pybind11/pybind11.h>
 

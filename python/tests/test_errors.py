@@ -207,3 +207,92 @@ def test_a_value_of_the_wrong_type_is_a_type_error_naming_the_argument(name, cal
     with pytest.raises(TypeError) as refused:
         call()
     assert str(refused.value) == message
+
+
+# Calls whose arguments fit no parameter list. pybind11 refused them with "incompatible function arguments", the
+# signatures and every value given, naming neither the argument nor the function's class; a keyword that is a lone
+# surrogate aborted the interpreter (the refusal failed to encode it outside pybind11's try).
+MISFITS = [
+    ("missing", lambda: inkgraph.Scene.load(), "Scene.load(): missing required argument 'path'"),
+    ("missing two", lambda: inkgraph.write_image(), "write_image(): missing required arguments 'path', 'image'"),
+    ("missing second", lambda: inkgraph.Clip(1), "Clip(): missing required argument 'far'"),
+    ("missing method argument", lambda: inkgraph.Renderer().render(),
+     "Renderer.render(): missing required argument 'scene'"),
+    ("missing self", lambda: inkgraph.ViewSample.orbit(), "ViewSample.orbit(): missing required argument 'self'"),
+    ("unknown keyword", lambda: inkgraph.Orbit(bogus=1),
+     "Orbit(): unexpected keyword argument 'bogus' (arguments: azimuth, elevation, distance, distance_scale)"),
+    ("keyword of no keywords", lambda: inkgraph.ViewSample().orbit(bogus=1),
+     "ViewSample.orbit(): unexpected keyword argument 'bogus' (it takes no keyword arguments)"),
+    ("surrogate keyword", lambda: inkgraph.Orbit(**{"\udcff": 1}),
+     "Orbit(): unexpected keyword argument '\\udcff' (arguments: azimuth, elevation, distance, distance_scale)"),
+    ("surrogate keyword of an overloaded function", lambda: inkgraph.LineType(**{"\udcff": 1}),
+     "LineType(): unexpected keyword argument '\\udcff'"),
+    ("keyword of every overload", lambda: inkgraph.Shading(bogus=1), "Shading(): unexpected keyword argument 'bogus'"),
+    ("too many", lambda: inkgraph.Orbit(1, 2, 3, 4, 5),
+     "Orbit(): takes at most 4 positional arguments ('azimuth', 'elevation', 'distance', 'distance_scale'), got 5"),
+    ("too many before keywords", lambda: inkgraph.sample_views(1, 2, "m", 3),
+     "sample_views(): takes at most 3 positional arguments ('count', 'seed', 'model_key'), got 4"),
+    ("none taken", lambda: inkgraph.version(1), "version(): takes no arguments, got 1"),
+    ("keywords only", lambda: inkgraph.Vec3().replace(1), "Vec3.replace(): takes keyword arguments only, got 1"),
+    ("twice", lambda: inkgraph.Orbit(1, azimuth=2),
+     "Orbit(): argument 'azimuth' given twice, by position and by keyword"),
+    ("replace field", lambda: inkgraph.Vec3().replace(w=1), "Vec3.replace(): 'w' is not a field (fields: x, y, z)"),
+    ("replace self", lambda: inkgraph.Vec3.replace(None, x=1), "Vec3.replace(): self: expected Vec3, got None"),
+]
+
+
+@pytest.mark.parametrize("name, call, message", MISFITS, ids=[case[0] for case in MISFITS])
+def test_arguments_that_fit_no_parameter_list_are_refused_by_name(name, call, message):
+    with pytest.raises(TypeError) as refused:
+        call()
+    assert str(refused.value) == message
+
+
+def test_a_call_that_fits_is_not_touched():
+    # What a call that fits raises is the function's own; the keyword form of every argument still works.
+    assert inkgraph.Orbit(1, elevation=2, distance_scale=3) == inkgraph.Orbit(1.0, 2.0, None, 3.0)
+    assert inkgraph.Clip(near=1, far=2).far == 2
+    with pytest.raises(TypeError, match=r"^Clip\(\): far: expected float, got None$"):
+        inkgraph.Clip(1, far=None)
+    # An overloaded function whose overloads refuse for different reasons keeps pybind11's list of overloads.
+    with pytest.raises(TypeError, match="incompatible constructor arguments"):
+        inkgraph.LineType(1, 2)
+
+
+def _compiled_calls():
+    """(where, call) for every function, static method, method and constructor of the extension, each called with a
+    keyword none of them takes (a method on None for self)."""
+    module = inkgraph._inkgraph
+    calls = []
+    for name, value in vars(module).items():
+        if not isinstance(value, type):
+            if callable(value):
+                calls.append((f"{name}(): ", lambda f=value: f(no_such_argument=1)))
+            continue
+        for attribute, member in vars(value).items():
+            if attribute.startswith("__") and attribute != "__init__":
+                continue  # operators answer NotImplemented; __repr__ and the like take self only
+            if type(member).__name__ not in ("instancemethod", "staticmethod"):
+                continue  # properties and plain values
+            if attribute == "__init__":
+                calls.append((f"{name}(): ", lambda c=value: c(no_such_argument=1)))
+            elif isinstance(member, staticmethod):
+                calls.append((f"{name}.{attribute}(): ",
+                              lambda c=value, a=attribute: getattr(c, a)(no_such_argument=1)))
+            else:
+                calls.append((f"{name}.{attribute}(): ",
+                              lambda c=value, a=attribute: getattr(c, a)(None, no_such_argument=1)))
+    return calls
+
+
+def test_every_compiled_function_refuses_an_unknown_keyword_by_name():
+    calls = _compiled_calls()
+    assert len(calls) >= 50  # every class's constructor and methods, and the module's functions
+    for where, call in calls:
+        with pytest.raises(TypeError) as refused:
+            call()
+        message = str(refused.value)
+        assert message.startswith(where), message
+        # replace() takes any keyword and names the field it lacks.
+        assert ("unexpected keyword argument 'no_such_argument'" in message or
+                message.endswith("self: expected " + where.split(".")[0] + ", got None")), message
