@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 namespace inkgraph {
 namespace {
@@ -165,7 +166,11 @@ std::string helpNumber(float value) {
 /** Numbers joined by commas, as a flag takes them ("6,4", "1,1,1"). */
 std::string helpNumbers(const std::vector<double>& values) {
     std::string text;
-    for (double value : values) text += (text.empty() ? "" : ",") + helpNumber(value);
+    for (double value : values) {
+        // Appended in two steps: GCC 12 warns (-Wrestrict, a false positive) of "," + a temporary string here.
+        if (!text.empty()) text += ',';
+        text += helpNumber(value);
+    }
     return text;
 }
 
@@ -368,6 +373,20 @@ std::string acceptedRangeText(const LineParameter& parameter) {
     return value + "from " + low + (parameter.highOpen ? ", below " : " to ") + high;
 }
 
+/** A line parameter's help with its default written in where the help says "{default}" (LineParameter::help). */
+std::string lineParameterHelp(const LineParameter& parameter) {
+    static const std::string kPlaceholder = "{default}";
+    std::string help = parameter.help;
+    for (std::size_t at = help.find(kPlaceholder); at != std::string::npos; at = help.find(kPlaceholder, at)) {
+        if (!parameter.isChoice() && !parameter.defaultNumber)
+            throw std::logic_error("lineParameterHelp(): '" + parameter.name + "' states a default it does not have");
+        const std::string value = parameter.isChoice() ? parameter.defaultChoice : helpNumber(*parameter.defaultNumber);
+        help.replace(at, kPlaceholder.size(), value);
+        at += value.size();
+    }
+    return help;
+}
+
 /** The shading models with an ambient term whose default ambient is `model`'s: "flat, gouraud, lambert and phong". */
 std::string modelsWithDefaultAmbientOf(ShadingModel model) {
     std::vector<std::string> names;
@@ -484,15 +503,16 @@ void addLineTypeFlags(std::vector<Flag>& flags) {
     for (const LineParameter* parameter : lineParameters()) {
         const std::vector<std::string> types = lineTypesUsing(parameter);
         const std::string flagName = "--" + parameter->name;
-        Flag entry = styleFlag(flag({flagName}, parameter->valueName, HelpSection::Lines,
-                                    commaJoined(types) + ": " + parameter->help + acceptedRangeText(*parameter),
-                                    [parameter](const std::string& value, RenderOptions& options) {
-                                        try {
-                                            options.look.lineParameters.set(*parameter, parameter->parse(value));
-                                        } catch (const std::invalid_argument& error) {
-                                            throw UsageError(error.what());
-                                        }
-                                    }));
+        Flag entry =
+            styleFlag(flag({flagName}, parameter->valueName, HelpSection::Lines,
+                           commaJoined(types) + ": " + lineParameterHelp(*parameter) + acceptedRangeText(*parameter),
+                           [parameter](const std::string& value, RenderOptions& options) {
+                               try {
+                                   options.look.lineParameters.set(*parameter, parameter->parse(value));
+                               } catch (const std::invalid_argument& error) {
+                                   throw UsageError(error.what());
+                               }
+                           }));
         entry.noEffect = onlyWithLineTypes(flagName, types);
         entry.choices = parameter->choices;
         flags.push_back(entry);

@@ -55,7 +55,7 @@ namespace line_parameters {
 
 const LineParameter kCreaseAngle{"crease-angle",
                                  "DEG",
-                                 "the angle above which an edge is a crease (default 45, about Blender\n"
+                                 "the angle above which an edge is a crease (default {default}, about Blender\n"
                                  "Freestyle's 134.43 degree crease angle: facets of smooth-shaded models stay uninked)",
                                  {},
                                  45.0,
@@ -71,7 +71,7 @@ const LineParameter kDepthJump{
     "R",
     "in the G-buffer, neighbouring pixels whose depths differ by more than R x the nearer depth are different "
     "surfaces; on the mesh (suggestive-object, intersection), a line point more than R x the depth behind the visible "
-    "surface is hidden (default 0.05)",
+    "surface is hidden (default {default})",
     {},
     0.05,
     "",
@@ -84,7 +84,7 @@ const LineParameter kDepthJump{
 const LineParameter kSuggestiveThreshold{"suggestive-threshold",
                                          "T",
                                          "keep lines whose strength q (rtsc's fs^2 tan(theta) D_w kappa_r,\n"
-                                         "fs = 5% of the bounding radius) exceeds T (default 0.01)",
+                                         "fs = 5% of the bounding radius) exceeds T (default {default})",
                                          {},
                                          0.01,
                                          "",
@@ -96,7 +96,7 @@ const LineParameter kSuggestiveThreshold{"suggestive-threshold",
 
 const LineParameter kSuggestiveFade{"suggestive-fade",
                                     "F",
-                                    "draw a kept line with alpha (q - T) / (q - T + F) (default 0.03; 0 draws\n"
+                                    "draw a kept line with alpha (q - T) / (q - T + F) (default {default}; 0 draws\n"
                                     "every kept line in full)",
                                     {},
                                     0.03,
@@ -111,7 +111,7 @@ const LineParameter kSuggestiveSeed{"suggestive-seed",
                                     "Q",
                                     "hysteresis: draw a line only in a stroke that somewhere reaches strength\n"
                                     "Q (a strong seed grows along its weaker continuations down to T, as\n"
-                                    "Canny's edges do; default 0.04; at most T turns it off)",
+                                    "Canny's edges do; default {default}; at most T turns it off)",
                                     {},
                                     0.04,
                                     "",

@@ -13,9 +13,11 @@
 namespace inkgraph {
 
 struct LineParameter {
-    std::string name;                       ///< "depth-jump": the flag --depth-jump and the style setting depth-jump
-    std::string valueName;                  ///< "R", for --help
-    std::string help;                       ///< what it does, after the generated "<types>: "; '\n' breaks a help line
+    std::string name;      ///< "depth-jump": the flag --depth-jump and the style setting depth-jump
+    std::string valueName; ///< "R", for --help
+    /** What it does, after the generated "<types>: "; '\n' breaks a help line. "{default}" stands for the default,
+     *  which --help writes in from defaultNumber or defaultChoice, so that the value is stated once. */
+    std::string help;
     std::vector<std::string> choices;       ///< empty: a number; else the words it takes ("3", "5")
     std::optional<double> defaultNumber;    ///< numbers: the value when not given; nullopt: "not given" means something
     std::string defaultChoice;              ///< choices: the value when not given

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <regex>
 #include <set>
 
 namespace inkgraph {
@@ -85,6 +86,24 @@ TEST(FlagTable, ParametersAreRangeCheckedFromTheirDeclaration) {
             {"m.obj", "-o", "x.png", "--lines", lineTypesUsing(parameter).front(), "--" + parameter->name, low});
         EXPECT_NE(message.find(parameter->rangeText), std::string::npos) << parameter->name << ": " << message;
     }
+}
+
+TEST(FlagTable, ParametersStateTheirDeclaredDefaultInTheHelp) {
+    // The default is written once, in the declaration; the help says "{default}" where --help writes it.
+    const std::regex typedDefault(R"(default [0-9])");
+    std::size_t numbersWithDefaults = 0;
+    for (const LineParameter* parameter : lineParameters()) {
+        EXPECT_FALSE(std::regex_search(parameter->help, typedDefault))
+            << parameter->name << " types its default into its help; write {default}";
+        const Flag* entry = findFlag("--" + parameter->name);
+        ASSERT_NE(entry, nullptr) << parameter->name;
+        EXPECT_EQ(entry->help.find("{default}"), std::string::npos) << parameter->name;
+        if (parameter->isChoice() || !parameter->defaultNumber) continue;
+        ++numbersWithDefaults;
+        EXPECT_NE(parameter->help.find("default {default}"), std::string::npos)
+            << parameter->name << " has a default its help does not state";
+    }
+    EXPECT_GE(numbersWithDefaults, 9u);
 }
 
 TEST(FlagTable, ShadingFlagsFollowTheTraitTable) {

@@ -20,7 +20,7 @@ const LineParameter kCreaseMinLength{"crease-min-length",
                                      "draw a crease only where its mesh edges chain into a line (running on\n"
                                      "through a vertex where they turn least, at most 60 degrees) at least F x the\n"
                                      "model's bounding radius long in 3-D, so fur, braids and facets lose their\n"
-                                     "short creases; the same at every size and view (default 0.1; 0 keeps all)",
+                                     "short creases; the same at every size and view (default {default}; 0 keeps all)",
                                      {},
                                      0.1,
                                      "",

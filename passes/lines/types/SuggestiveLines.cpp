@@ -52,7 +52,7 @@ const LineParameter kSuggestiveSmoothing{
     "S",
     "smooth the surface's n.v and w over a Gaussian of sigma S x the bounding radius\n"
     "(on the surface, not across depth breaks) before differentiating, so the lines\n"
-    "follow the shape, not facets or scan noise, alike at every resolution (default 0.005;\n"
+    "follow the shape, not facets or scan noise, alike at every resolution (default {default};\n"
     "0: none)",
     {},
     kSuggestiveSmoothingFraction,
@@ -64,20 +64,21 @@ const LineParameter kSuggestiveSmoothing{
     "expected a fraction of the bounding radius from 0 to 1"};
 
 /** The band kept clear of surface ends, in sigmas of the image-space smoothing. */
-const LineParameter kSuggestiveClearance{"suggestive-clearance",
-                                         "K",
-                                         "with smoothing, drop lines within K x its sigma of where their surface ends\n"
-                                         "(an outline, an occlusion or the image's edge), where its window sees one\n"
-                                         "side only: the same band of surface at every resolution; lines hold better\n"
-                                         "across sizes, a little worse across small turns (default 0: none; try 2)",
-                                         {},
-                                         double(SuggestiveSettings{}.breakClearance),
-                                         "",
-                                         0.0,
-                                         100.0,
-                                         false,
-                                         false,
-                                         "expected a number of sigmas from 0 to 100"};
+const LineParameter kSuggestiveClearance{
+    "suggestive-clearance",
+    "K",
+    "with smoothing, drop lines within K x its sigma of where their surface ends\n"
+    "(an outline, an occlusion or the image's edge), where its window sees one\n"
+    "side only: the same band of surface at every resolution; lines hold better\n"
+    "across sizes, a little worse across small turns (default {default}: none; try 2)",
+    {},
+    double(SuggestiveSettings{}.breakClearance),
+    "",
+    0.0,
+    100.0,
+    false,
+    false,
+    "expected a number of sigmas from 0 to 100"};
 
 /** The least angle between a line and the image's w direction (SuggestiveSettings::minAngleToW). */
 const LineParameter kSuggestiveMinAngle{"suggestive-min-angle",
@@ -85,7 +86,7 @@ const LineParameter kSuggestiveMinAngle{"suggestive-min-angle",
                                         "drop lines where they run within DEG degrees of the view's direction w\n"
                                         "across the surface: there the sign of D_w D_w(n.v) is a small difference\n"
                                         "of large ones that the pixel grid decides, so such lines come and go with\n"
-                                        "the size and a small turn (default 15; 0: every line DeCarlo et al.'s\n"
+                                        "the size and a small turn (default {default}; 0: every line DeCarlo et al.'s\n"
                                         "test passes)",
                                         {},
                                         double(kSuggestiveMinAngleToWDegrees),
@@ -102,7 +103,7 @@ const LineParameter kSuggestiveObjectSmoothing{
     "S",
     "smooth the mesh's normals, curvature and its derivative over a Gaussian of sigma\n"
     "S x the bounding radius on the surface (rtsc's diffusion) before finding lines\n"
-    "(default 0.01; 0: none). One whose windows would take more than about a minute, each\n"
+    "(default {default}; 0: none). One whose windows would take more than about a minute, each\n"
     "window over a sixteenth of its mesh, fails the still at once, naming one that fits",
     {},
     kSuggestiveObjectSmoothingFraction,
