@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <map>
 #include <new>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,12 +22,18 @@ using FunctionRecord = py::detail::function_record;
 /** pybind11's dispatcher, which every function of the module calls through its PyMethodDef (the same one for all). */
 PyCFunctionWithKeywords pybindDispatcher = nullptr;
 
-/** "Scene.load(): ", "Orbit(): " for a constructor, "sample_views(): " for a function of the module. */
+/** The attribute each property's getter, setter and deleter serves (pybind11 names them ""), by record. */
+std::map<const FunctionRecord*, std::string> accessorNames;
+
+/** "Scene.load(): ", "Orbit(): " for a constructor, "sample_views(): " for a function of the module; a nested class
+ *  by its qualified name ("Renderer.Platform(): "); a property's accessor as a field ("Vec3.x: "). */
 std::string whereOf(const FunctionRecord& function) {
     const std::string name = function.name;
     if (!function.scope || !PyType_Check(function.scope.ptr())) return name + "(): ";
-    const std::string type = py::str(function.scope.attr("__name__"));
+    const std::string type = py::str(function.scope.attr("__qualname__"));
     if (name == "__init__") return type + "(): ";
+    if (const auto accessor = accessorNames.find(&function); name.empty() && accessor != accessorNames.end())
+        return type + "." + accessor->second + ": ";
     return type + "." + name + "(): ";
 }
 
@@ -55,24 +63,25 @@ struct Misfit {
     std::string takes;
 };
 
-/** Why pybind11 found no way to fit the call (`arguments`, `keywords`, self first for a method) to `function`'s
- *  parameter list, in the order it tries: positions, then keywords and defaults. Nothing when the call fits, so that
- *  the refusal came from the function itself. */
+/** Why pybind11 found no way to fit the call (`arguments`, `keywords`; a method's self first, by position or, where
+ *  the method names its parameters, by keyword) to `function`'s parameter list, in the order it tries: positions,
+ *  then keywords and defaults. Nothing when the call fits, so that the refusal came from the function itself. Every
+ *  keyword is a str (not a subclass, whose equality need not be its spelling's). */
 std::optional<Misfit> misfit(const FunctionRecord& function, PyObject* arguments, PyObject* keywords) {
     const std::size_t self = function.is_method ? 1 : 0;
     const auto given = std::size_t(PyTuple_GET_SIZE(arguments));
-    if (given < self) return Misfit{"missing required argument 'self'", ""};
     const std::size_t positional = function.nargs_pos;
     const std::size_t needed = function.nargs - std::size_t(function.has_args) - std::size_t(function.has_kwargs);
+    // The parameters as the caller knows them: self is not counted or listed.
     std::vector<std::string> names;
     for (std::size_t index = self; index < function.args.size(); ++index) {
         const char* name = function.args[index].name;
         names.emplace_back(name != nullptr ? name : "");
     }
+    const std::string got = ", got " + std::to_string(given > self ? given - self : 0);
 
     if (!function.has_args && given > positional) {
         const std::size_t most = positional - self;
-        const std::string got = ", got " + std::to_string(given - self);
         if (needed == self && !function.has_kwargs) return Misfit{"takes no arguments" + got, ""};
         if (most == 0)
             return Misfit{names.empty() ? "takes keyword arguments only" + got
@@ -91,7 +100,7 @@ std::optional<Misfit> misfit(const FunctionRecord& function, PyObject* arguments
         Py_ssize_t position = 0;
         while (PyDict_Next(keywords, &position, &key, &value)) {
             const std::string keyword = py::str(key).attr("encode")("utf-8", "backslashreplace").cast<std::string>();
-            std::size_t index = self;
+            std::size_t index = 0;
             while (index < function.args.size() &&
                    (function.args[index].name == nullptr || keyword != function.args[index].name))
                 ++index;
@@ -109,11 +118,12 @@ std::optional<Misfit> misfit(const FunctionRecord& function, PyObject* arguments
     }
 
     // The positions given fill the parameters before them; the rest come from keywords or defaults.
-    const std::size_t missingFrom = std::max(self, std::min(given, positional));
     std::vector<std::string> missing;
-    for (std::size_t index = missingFrom; index < needed; ++index) {
-        if (index >= function.args.size())
-            return Misfit{"takes " + countOf(needed - self, "argument") + ", got " + std::to_string(given - self), ""};
+    for (std::size_t index = std::min(given, positional); index < needed; ++index) {
+        if (index >= function.args.size()) {
+            if (index < self) return Misfit{"missing required argument 'self'", ""};
+            return Misfit{"takes " + countOf(needed - self, "argument") + got, ""};
+        }
         const py::detail::argument_record& parameter = function.args[index];
         const bool byKeyword = keywords != nullptr && parameter.name != nullptr && index >= function.nargs_pos_only &&
                                PyDict_GetItemString(keywords, parameter.name) != nullptr;
@@ -124,10 +134,26 @@ std::optional<Misfit> misfit(const FunctionRecord& function, PyObject* arguments
     return std::nullopt;
 }
 
+/** Whether every keyword of a call is a str itself, which misfit() can judge by its spelling. */
+bool keywordsAreStrings(PyObject* keywords) {
+    PyObject* key = nullptr;
+    PyObject* value = nullptr;
+    Py_ssize_t position = 0;
+    while (keywords != nullptr && PyDict_Next(keywords, &position, &key, &value))
+        if (!PyUnicode_CheckExact(key)) return false;
+    return true;
+}
+
 /** The refusal of a call to `function` (the head of its overload chain): misfit()'s, for an overloaded function the
  *  reason all its overloads share (a keyword none takes). Nothing when one fits or their reasons differ: pybind11's
  *  refusal, which lists every overload, says more. */
 std::optional<std::string> refusal(const FunctionRecord& function, PyObject* arguments, PyObject* keywords) {
+    if (!keywordsAreStrings(keywords)) return std::nullopt;
+    // pybind11 refuses a constructor called on an object of another class before it matches any argument.
+    if (function.is_constructor &&
+        (PyTuple_GET_SIZE(arguments) == 0 ||
+         !PyObject_TypeCheck(PyTuple_GET_ITEM(arguments, 0), reinterpret_cast<PyTypeObject*>(function.scope.ptr()))))
+        return std::nullopt;
     if (function.next == nullptr) {
         const std::optional<Misfit> only = misfit(function, arguments, keywords);
         if (!only) return std::nullopt;
@@ -155,9 +181,48 @@ std::string unencodableKeyword(PyObject* keywords) {
     throw std::logic_error("unencodableKeyword(): every keyword encodes");
 }
 
-/** Calls pybind11's dispatcher; a TypeError for a call that does not fit the function's one parameter list is
- *  replaced by misfit()'s. Every other result and error passes through as it is. */
+/** The function record `capsule` holds (install() checked that it holds one). */
+const FunctionRecord* recordOf(PyObject* capsule) {
+    return static_cast<const FunctionRecord*>(PyCapsule_GetPointer(capsule, PyCapsule_GetName(capsule)));
+}
+
+/** What is wrong with a method's self that pybind11 would let through: None, which a method bound as a C++ member
+ *  function takes as a null pointer (a crash), and an object of the class whose constructor has not run
+ *  (`Renderer.__new__(Renderer)`), whose fields are uninitialized memory (garbage values, a MemoryError, a hang on a
+ *  mutex). Nothing for a constructor, a function that is not a method, and a self of another class (pybind11
+ *  refuses that itself). */
+std::optional<std::string> selfProblem(const FunctionRecord& function, PyObject* arguments) {
+    if (!function.is_method || function.is_constructor || PyTuple_GET_SIZE(arguments) == 0) return std::nullopt;
+    PyObject* self = PyTuple_GET_ITEM(arguments, 0);
+    auto* type = reinterpret_cast<PyTypeObject*>(function.scope.ptr());
+    if (self == Py_None)
+        return "self: expected " + py::str(function.scope.attr("__qualname__")).cast<std::string>() + ", got None";
+    const py::detail::type_info* info = PyType_Check(type) ? py::detail::get_type_info(type) : nullptr;
+    if (info == nullptr || !PyObject_TypeCheck(self, type)) return std::nullopt;
+    const py::detail::value_and_holder value =
+        reinterpret_cast<py::detail::instance*>(self)->get_value_and_holder(info, false);
+    // pybind11 registers every instance whose value it holds, made by a constructor or handed over from C++ (owned
+    // or not). Not `!value`, which tests the value's pointer: pybind11 allocates that when first asked for, and
+    // never constructs it then.
+    if (value.inst == nullptr || value.instance_registered()) return std::nullopt;
+    const std::string name = py::str(function.scope.attr("__qualname__"));
+    return "self: a " + name + " whose constructor has not run (" + name + ".__new__() without __init__())";
+}
+
+/** Calls pybind11's dispatcher; a TypeError for a call that does not fit the function's parameter list is replaced by
+ *  misfit()'s. A method's self that pybind11 would let through unusable is refused first (selfProblem()). Every
+ *  other result and error passes through as it is. */
 PyObject* dispatchNamingMisfits(PyObject* capsule, PyObject* arguments, PyObject* keywords) {
+    const FunctionRecord* function = recordOf(capsule);
+    if (function == nullptr) return nullptr;
+    if (const std::optional<std::string> problem = selfProblem(*function, arguments)) {
+        try {
+            PyErr_SetString(PyExc_TypeError, (whereOf(*function) + *problem).c_str());
+        } catch (py::error_already_set& error) {
+            error.restore();
+        }
+        return nullptr;
+    }
     PyObject* result = nullptr;
     bool refused = false;
     bool escaped = false;
@@ -166,8 +231,11 @@ PyObject* dispatchNamingMisfits(PyObject* capsule, PyObject* arguments, PyObject
         refused = result == nullptr && PyErr_ExceptionMatches(PyExc_TypeError);
     } catch (py::error_already_set& error) {
         // pybind11 writes its refusal outside its own try: a keyword that is a lone surrogate fails to encode there,
-        // and the exception would leave a C function (std::terminate).
+        // and the exception would leave a C function (std::terminate). Another error there (a keyword's __format__
+        // that raises, an interrupt) is raised as it is.
+        const bool unencodable = error.matches(PyExc_UnicodeError);
         error.restore();
+        if (!unencodable) return nullptr;
         refused = escaped = true;
     } catch (const std::bad_alloc&) {
         return PyErr_NoMemory();
@@ -179,10 +247,8 @@ PyObject* dispatchNamingMisfits(PyObject* capsule, PyObject* arguments, PyObject
     PyErr_Fetch(&type, &value, &traceback);
     std::optional<std::string> message;
     try {
-        const auto record = py::reinterpret_borrow<py::capsule>(capsule);
-        const auto* function = record.get_pointer<FunctionRecord>();
         message = refusal(*function, arguments, keywords);
-        // A call pybind11 refused for another reason (None for self), with such a keyword among its arguments.
+        // A call pybind11 refused for another reason, with such a keyword among its arguments.
         if (!message && escaped)
             message = whereOf(*function) + "no parameter list fits the arguments (keyword " +
                       unencodableKeyword(keywords) + " among them)";
@@ -202,20 +268,36 @@ PyObject* dispatchNamingMisfits(PyObject* capsule, PyObject* arguments, PyObject
     return nullptr;
 }
 
+/** The record of `object` when it is a pybind11 function or a method of one, else null. */
+const FunctionRecord* recordOfFunction(py::handle object) {
+    const py::handle function = py::detail::get_function(object);
+    if (!function || !PyCFunction_Check(function.ptr())) return nullptr;
+    PyObject* self = PyCFunction_GET_SELF(function.ptr());
+    if (self == nullptr || !PyCapsule_CheckExact(self) ||
+        !py::detail::is_function_record_capsule(py::reinterpret_borrow<py::capsule>(self)))
+        return nullptr;
+    return recordOf(self);
+}
+
 PyCFunctionWithKeywords asFunctionWithKeywords(PyCFunction function) {
     return reinterpret_cast<PyCFunctionWithKeywords>(reinterpret_cast<void (*)()>(function));
 }
 
-/** Routes `object`'s calls through dispatchNamingMisfits() if it is a pybind11 function (or a method of one). */
-void install(py::handle object) {
+/** Routes `object`'s calls through dispatchNamingMisfits() if it is a pybind11 function (or a method of one), and
+ *  those of a property's getter, setter and deleter; `attribute` is the name the class gives it. */
+void install(py::handle object, const std::string& attribute) {
+    if (PyObject_TypeCheck(object.ptr(), &PyProperty_Type)) {
+        for (const char* accessor : {"fget", "fset", "fdel"}) {
+            const py::object function = object.attr(accessor);
+            install(function, attribute);
+            if (const FunctionRecord* record = recordOfFunction(function)) accessorNames[record] = attribute;
+        }
+        return;
+    }
     // The function a static method holds (the class's staticmethod keeps it alive).
     if (PyObject_TypeCheck(object.ptr(), &PyStaticMethod_Type)) object = object.attr("__func__");
+    if (recordOfFunction(object) == nullptr) return;
     const py::handle function = py::detail::get_function(object);
-    if (!function || !PyCFunction_Check(function.ptr())) return;
-    PyObject* self = PyCFunction_GET_SELF(function.ptr());
-    if (self == nullptr || !PyCapsule_CheckExact(self) ||
-        !py::detail::is_function_record_capsule(py::reinterpret_borrow<py::capsule>(self)))
-        return;
     PyMethodDef* definition = reinterpret_cast<PyCFunctionObject*>(function.ptr())->m_ml;
     const PyCFunctionWithKeywords current = asFunctionWithKeywords(definition->ml_meth);
     if (current == &dispatchNamingMisfits) return;
@@ -228,14 +310,24 @@ void install(py::handle object) {
 } // namespace
 
 void nameArgumentRefusals(py::module_& m) {
-    for (const auto item : py::reinterpret_borrow<py::dict>(m.attr("__dict__"))) {
-        const py::handle value = item.second;
-        if (!PyType_Check(value.ptr())) {
-            install(value);
-            continue;
+    // The module's functions and classes, and each class's own attributes (its __dict__, a mapping proxy): methods,
+    // static methods, __init__ and the classes nested in it (Renderer.Platform). A class is one of this module's by
+    // its __module__ (not a base class it refers to), and is visited once however often it is named.
+    std::vector<py::handle> scopes{m};
+    std::set<PyObject*> visited;
+    while (!scopes.empty()) {
+        const py::handle scope = scopes.back();
+        scopes.pop_back();
+        // A copy of a class's __dict__ (a mapping proxy) as a dict.
+        const py::dict members(scope.attr("__dict__"));
+        for (const auto [key, member] : members) {
+            if (!PyType_Check(member.ptr())) {
+                install(member, py::str(key));
+            } else if (py::hasattr(member, "__module__") && member.attr("__module__").equal(m.attr("__name__")) &&
+                       visited.insert(member.ptr()).second) {
+                scopes.push_back(member);
+            }
         }
-        // A class's own attributes (its __dict__, a mapping proxy): methods, static methods, __init__.
-        for (const py::handle member : value.attr("__dict__").attr("values")()) install(member);
     }
 }
 

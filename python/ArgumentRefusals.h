@@ -1,21 +1,27 @@
 #pragma once
-/** @file A call whose arguments fit no parameter list refused by name. pybind11 refuses such a call (a missing
- *  argument, an unknown keyword, too many values) with "incompatible function arguments", the signatures and every
- *  value given, and names no argument. After the module is defined, nameArgumentRefusals() puts a step in front of
- *  each of its functions: when pybind11 refuses a call to a function with one parameter list, the step compares the
- *  call with that list as pybind11 matched it and replaces the refusal with a TypeError that starts with the function
- *  and quotes the argument ("Scene.load(): missing required argument 'path'", "Orbit(): unexpected keyword argument
- *  'bogus'; it takes 'azimuth', 'elevation', 'distance', 'distance_scale'"). A call that fits the list is never
- *  touched: its errors are the function's own (checked() names a value of the wrong type, CheckedArguments.h).
- *  Overloaded functions keep pybind11's message, which lists each overload. The functions, their docstrings and
- *  help() are unchanged. */
+/** @file Calls that pybind11 refuses without naming what is wrong, or lets through to a crash, refused by name.
+ *  After the module is defined, nameArgumentRefusals() puts a step in front of each of its functions (the
+ *  PyMethodDef's C function, pybind11's dispatcher behind it):
+ *  - A call whose arguments fit no parameter list (a missing argument, an unknown keyword, too many values, one given
+ *    twice): pybind11 refuses it with "incompatible function arguments", the signatures and every value given. The
+ *    step compares the call with the list as pybind11 matched it and raises a TypeError that starts with the function
+ *    and quotes the argument ("Scene.load(): missing required argument 'path'", "Orbit(): unexpected keyword argument
+ *    'bogus' (arguments: azimuth, elevation, distance, distance_scale)"). An overloaded function keeps pybind11's
+ *    list of overloads unless all refuse for one reason. pybind11 writes its refusal outside its own try, so a
+ *    keyword that is a lone surrogate, which it cannot encode, aborted the interpreter; it is refused the same way.
+ *  - A method's self that pybind11 lets through unusable: None (a method bound as a C++ member function takes it as a
+ *    null pointer: a crash), and an object whose constructor has not run (`Vec3.__new__(Vec3)`: its fields are
+ *    uninitialized memory). Properties' getters and setters included.
+ *  A call that fits, with a usable self, is never touched: its errors are the function's own (checked() names a value
+ *  of the wrong type, CheckedArguments.h). The functions, their docstrings and help() are unchanged. */
 
 #include <pybind11/pybind11.h>
 
 namespace inkgraph::python {
 
-/** Installs the refusal by name on every pybind11 function of `m`: its functions, and the methods, static methods
- *  and constructors of its classes. Call it once, after everything is defined. */
+/** Installs the step on every pybind11 function of `m`: its functions, and the methods, static methods,
+ *  constructors and property accessors of its classes, nested classes included. Call it once, after everything is
+ *  defined. */
 void nameArgumentRefusals(pybind11::module_& m);
 
 } // namespace inkgraph::python

@@ -45,6 +45,7 @@ namespace py = pybind11;
 namespace ig = inkgraph::api;
 using namespace pybind11::literals;
 using inkgraph::python::checked;
+using inkgraph::python::reprText;
 
 namespace {
 
@@ -150,8 +151,6 @@ std::string utf8Of(py::handle text) {
     return py::reinterpret_borrow<py::str>(text).attr("encode")("utf-8", "backslashreplace").cast<std::string>();
 }
 
-std::string reprOf(py::handle value) { return utf8Of(py::repr(value)); }
-
 /** Text a caller gave back as a list of str, as os.fsdecode() makes them: a value set from a name that is not UTF-8
  *  reads back as the str it was set from (pybind11's own conversion raised UnicodeDecodeError). */
 py::list osTextsOf(const std::vector<std::string>& texts) {
@@ -243,13 +242,15 @@ Enum enumArgument(py::handle value, const std::string& where) {
     if (py::isinstance<Enum>(value)) return value.cast<Enum>();
     if (py::isinstance<py::str>(value)) return enumNamed<Enum>(utf8Of(value), where);
     throw py::type_error(where + ": expected a " + EnumMembers<Enum>::className + " or its name (" +
-                         availableNames<Enum>() + "), got " + reprOf(value));
+                         availableNames<Enum>() + "), got " + reprText(value));
 }
 
 template <typename Enum, typename Scope>
 py::enum_<Enum> defineEnum(Scope& scope, const char* className, const char* what, const char* doc,
                            std::initializer_list<std::pair<const char*, Enum>> members) {
     py::enum_<Enum> type(scope, className, doc);
+    // "Renderer.Platform" for one nested in a class, as its refusals name it.
+    const std::string qualifiedName = type.attr("__qualname__").template cast<std::string>();
     EnumMembers<Enum>::className = className;
     EnumMembers<Enum>::what = what;
     for (const auto& [name, value] : members) {
@@ -257,12 +258,12 @@ py::enum_<Enum> defineEnum(Scope& scope, const char* className, const char* what
         EnumMembers<Enum>::values.push_back(value);
     }
     type.def(
-        py::init(checked(std::string(className) + "(): ", {"name"},
+        py::init(checked(qualifiedName + "(): ", {"name"},
                          [](const OsText& name) { return enumNamed<Enum>(name.bytes, EnumMembers<Enum>::className); })),
         "name"_a, "The member named by its command-line word, as from_name().");
     type.def_static(
         "from_name",
-        checked(std::string(className) + ".from_name(): ", {"name"},
+        checked(qualifiedName + ".from_name(): ", {"name"},
                 [](const OsText& name) { return enumNamed<Enum>(name.bytes, EnumMembers<Enum>::className); }),
         "name"_a, "The member named by its command-line word; UsageError naming the words there are.");
     type.def_property_readonly(
@@ -275,11 +276,11 @@ py::enum_<Enum> defineEnum(Scope& scope, const char* className, const char* what
 /** A real number (an int, a float, a NumPy scalar; not a str, not a bool), else TypeError naming `where`. */
 double realNumber(py::handle value, const std::string& where) {
     if (!PyNumber_Check(value.ptr()) || PyBool_Check(value.ptr()) || PyComplex_Check(value.ptr()))
-        throw py::type_error(where + ": expected a number, got " + reprOf(value));
+        throw py::type_error(where + ": expected a number, got " + reprText(value));
     const double number = PyFloat_AsDouble(value.ptr());
     if (number == -1.0 && PyErr_Occurred()) {
         PyErr_Clear();
-        throw py::value_error(where + ": " + reprOf(value) + " is not a number a double holds");
+        throw py::value_error(where + ": " + reprText(value) + " is not a number a double holds");
     }
     return number;
 }
@@ -287,7 +288,7 @@ double realNumber(py::handle value, const std::string& where) {
 /** The numbers of a tuple, list or 1-D array of `counts` numbers, else TypeError naming `where` and `expected`. */
 std::vector<double> realNumbers(py::handle value, std::initializer_list<std::size_t> counts, const std::string& where,
                                 const std::string& expected) {
-    const auto fail = [&] { throw py::type_error(where + ": expected " + expected + ", got " + reprOf(value)); };
+    const auto fail = [&] { throw py::type_error(where + ": expected " + expected + ", got " + reprText(value)); };
     if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value))
         fail();
     const auto sequence = py::reinterpret_borrow<py::sequence>(value);
@@ -350,10 +351,13 @@ void addValueProtocol(Class& type, std::vector<std::string> fields) {
         return py::bool_(fieldTuple(self).equal(fieldTuple(other)));
     });
     type.def("__hash__", [fieldTuple](py::handle self) { return py::hash(fieldTuple(self)); });
+    // Pickled (and copied) as the constructor called with the fields, which it takes in this order.
+    type.def("__reduce__",
+             [fieldTuple](py::handle self) { return py::make_tuple(py::type::of(self), fieldTuple(self)); });
     type.def("__repr__", [fields](py::handle self) {
         std::string text = py::type::of(self).attr("__name__").cast<std::string>() + "(";
         for (std::size_t i = 0; i < fields.size(); ++i)
-            text += (i == 0 ? "" : ", ") + fields[i] + "=" + reprOf(self.attr(fields[i].c_str()));
+            text += (i == 0 ? "" : ", ") + fields[i] + "=" + reprText(self.attr(fields[i].c_str()));
         return text + ")";
     });
     type.def(
@@ -363,7 +367,7 @@ void addValueProtocol(Class& type, std::vector<std::string> fields) {
             const std::string typeName = py::type::of<Value>().template attr("__name__").template cast<std::string>();
             const std::string where = typeName + ".replace(): ";
             if (!py::isinstance<Value>(self))
-                throw py::type_error(where + "self: expected " + typeName + ", got " + reprOf(self));
+                throw py::type_error(where + "self: expected " + typeName + ", got " + reprText(self));
             py::dict values;
             std::string fieldList;
             for (const std::string& field : fields) {
@@ -372,7 +376,7 @@ void addValueProtocol(Class& type, std::vector<std::string> fields) {
             }
             for (const auto& [name, value] : changes) {
                 if (!values.contains(name))
-                    throw py::type_error(where + reprOf(name) + " is not a field (fields: " + fieldList + ")");
+                    throw py::type_error(where + reprText(name) + " is not a field (fields: " + fieldList + ")");
                 values[name] = value;
             }
             return py::type::of(self)(**values);
@@ -544,9 +548,9 @@ FaceRows faceRows(py::handle value) {
     if (!py::isinstance<py::array_t<std::uint32_t>>(array) && array.size() > 0) {
         const py::int_ smallest = array.attr("min")();
         const py::int_ largest = array.attr("max")();
-        if (smallest < py::int_(0)) failInput(where + "index " + reprOf(smallest) + " is negative");
+        if (smallest < py::int_(0)) failInput(where + "index " + reprText(smallest) + " is negative");
         if (largest > py::int_(std::uint32_t(-1)))
-            failInput(where + "index " + reprOf(largest) + " does not fit in 32 bits");
+            failInput(where + "index " + reprText(largest) + " does not fit in 32 bits");
     }
     return ownedRows(FaceRows::ensure(array), array, value, where, "uint32");
 }
@@ -604,7 +608,7 @@ std::size_t pictureRowBytes(const py::handle& out, const ig::Frame& frame) {
     const std::string where = "Renderer.render(): out: ";
     const std::string expected = "expected a writable uint8 array of shape (" + std::to_string(frame.height) + ", " +
                                  std::to_string(frame.width) + ", 4), the frame's height x width x RGBA";
-    if (!py::isinstance<py::array>(out)) throw py::type_error(where + expected + ", got " + reprOf(out));
+    if (!py::isinstance<py::array>(out)) throw py::type_error(where + expected + ", got " + reprText(out));
     const auto array = py::reinterpret_borrow<py::array>(out);
     if (!py::isinstance<py::array_t<std::uint8_t>>(array))
         failUsage(where + expected + ", got dtype " + py::str(array.dtype()).cast<std::string>());
@@ -873,7 +877,7 @@ void defineLook(py::module_& m) {
         .def(
             "__deepcopy__", [](const ig::Look& self, py::handle) { return ig::Look(self); }, "memo"_a)
         .def("__repr__", [](const ig::Look& self) {
-            return "inkgraph.Look.from_arguments(" + reprOf(osTextsOf(self.arguments())) + ")";
+            return "inkgraph.Look.from_arguments(" + reprText(osTextsOf(self.arguments())) + ")";
         });
 
     look.def_property(
@@ -944,7 +948,7 @@ void defineLook(py::module_& m) {
             [](ig::Look& self, py::handle value) {
                 if (py::isinstance<py::str>(value) || !py::isinstance<py::iterable>(value))
                     throw py::type_error("Look.lines: expected a list of LineType or their names, got " +
-                                         reprOf(value));
+                                         reprText(value));
                 std::vector<ig::LineType> types;
                 for (const py::handle item : value) types.push_back(enumArgument<ig::LineType>(item, "Look.lines"));
                 self.setLines(types);
@@ -1113,7 +1117,7 @@ void defineFrame(py::module_& m) {
             for (const std::string& field : kFrameFields) {
                 const py::object fieldValue = self.attr(field.c_str());
                 const py::object defaultValue = py::cast(defaults).attr(field.c_str());
-                if (!fieldValue.equal(defaultValue)) text += ", " + field + "=" + reprOf(fieldValue);
+                if (!fieldValue.equal(defaultValue)) text += ", " + field + "=" + reprText(fieldValue);
             }
             return text + ")";
         });
@@ -1197,7 +1201,7 @@ void defineStill(py::module_& m) {
             "The camera as plain lists and numbers (for JSON): the matrices as lists of rows, source by its name.")
         .def("__repr__", [](const ig::StillCamera& c) {
             return "<inkgraph.StillCamera " + std::to_string(c.width) + "x" + std::to_string(c.height) + ", " +
-                   cliName(c.source) + ", fov_y " + reprOf(py::float_(c.fovY)) + ">";
+                   cliName(c.source) + ", fov_y " + reprText(py::float_(c.fovY)) + ">";
         });
 
     py::class_<PythonStill>(m, "Still",
@@ -1247,7 +1251,7 @@ void defineStill(py::module_& m) {
         .def("__repr__", [](const PythonStill& self) {
             const ig::StillCamera& camera = self.still.camera();
             return "<inkgraph.Still " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
-                   ", buffers " + reprOf(py::cast(self.still.bufferNames())) + ">";
+                   ", buffers " + reprText(py::cast(self.still.bufferNames())) + ">";
         });
 }
 
@@ -1382,7 +1386,7 @@ void defineScene(py::module_& m) {
         .def("__repr__", [](const ig::Scene& scene) {
             const std::string counts = "  # " + std::to_string(scene.triangleCount()) + " triangles";
             if (scene.path().empty()) return "<inkgraph.Scene from arrays>" + counts;
-            return "inkgraph.Scene.load(" + reprOf(pathTextOf(scene.path())) + ")" + counts;
+            return "inkgraph.Scene.load(" + reprText(pathTextOf(scene.path())) + ")" + counts;
         });
 }
 

@@ -88,9 +88,15 @@ std::string expectedText() {
     }
 }
 
-/** repr(value) as UTF-8, lone surrogates escaped. */
+/** repr(value) as UTF-8, lone surrogates escaped; for a value whose __repr__ raises an Exception, its type's name
+ *  (the refusal stays a TypeError). An interrupt or SystemExit there is raised as it is. */
 inline std::string reprText(pybind11::handle value) {
-    return pybind11::repr(value).attr("encode")("utf-8", "backslashreplace").cast<std::string>();
+    try {
+        return pybind11::repr(value).attr("encode")("utf-8", "backslashreplace").cast<std::string>();
+    } catch (pybind11::error_already_set& error) {
+        if (!error.matches(PyExc_Exception)) throw;
+        return std::string("<") + Py_TYPE(value.ptr())->tp_name + " object whose repr() raised>";
+    }
 }
 
 /** A function `f` whose arguments are converted by its own parameters' casters, each refused by name. */

@@ -238,6 +238,18 @@ MISFITS = [
      "Orbit(): argument 'azimuth' given twice, by position and by keyword"),
     ("replace field", lambda: inkgraph.Vec3().replace(w=1), "Vec3.replace(): 'w' is not a field (fields: x, y, z)"),
     ("replace self", lambda: inkgraph.Vec3.replace(None, x=1), "Vec3.replace(): self: expected Vec3, got None"),
+    ("nested class", lambda: inkgraph.Renderer.Platform(bogus=1),
+     "Renderer.Platform(): unexpected keyword argument 'bogus'"),
+    ("nested class surrogate", lambda: inkgraph.Renderer.Platform.from_name(**{"\ud800": 1}),
+     "Renderer.Platform.from_name(): unexpected keyword argument '\\ud800' (arguments: name)"),
+    ("self twice", lambda: inkgraph.Look.set(inkgraph.Look(), "--shading", self=inkgraph.Look()),
+     "Look.set(): argument 'self' given twice, by position and by keyword"),
+    ("unknown beside self by keyword", lambda: inkgraph.Look.set(self=inkgraph.Look(), flag="--shading", bogus=1),
+     "Look.set(): unexpected keyword argument 'bogus' (arguments: flag, value)"),
+    # A method bound as a C++ member function took None for self as a null pointer: a segmentation fault.
+    ("None for self", lambda: inkgraph.ViewSample.orbit(None), "ViewSample.orbit(): self: expected ViewSample, got None"),
+    ("None for a renderer", lambda: inkgraph.Renderer.close(None),
+     "Renderer.close(): self: expected Renderer, got None"),
 ]
 
 
@@ -257,18 +269,64 @@ def test_a_call_that_fits_is_not_touched():
     # An overloaded function whose overloads refuse for different reasons keeps pybind11's list of overloads.
     with pytest.raises(TypeError, match="incompatible constructor arguments"):
         inkgraph.LineType(1, 2)
+    # self given by keyword fits a method that names its parameters: the refusal is the function's own.
+    assert inkgraph.Look.line_parameter(self=inkgraph.Look(), name="crease-angle") == 45
+    with pytest.raises(TypeError, match=r"^Look\.line_parameter\(\): name: expected str, got 5$"):
+        inkgraph.Look.line_parameter(self=inkgraph.Look(), name=5)
+    # A constructor called on an object of another class keeps pybind11's refusal, which says so.
+    with pytest.raises(TypeError, match="invalid or missing `self`"):
+        inkgraph.Vec3.__init__(inkgraph.Color(), 1, 2, 3, 4)
+
+
+class _ReprRaises:
+    def __repr__(self):
+        raise ValueError("no repr")
+
+
+class _FormatInterrupts(str):
+    def __format__(self, spec):
+        raise KeyboardInterrupt
+
+
+class _EqualToX(str):
+    def __hash__(self):
+        return hash("x")
+
+    def __eq__(self, other):
+        return other == "x" or str.__eq__(self, other)
+
+
+def test_odd_arguments_keep_the_refusal_a_type_error_and_interrupts_pass():
+    # A value whose repr raises is named by its type (the refusal was that ValueError).
+    with pytest.raises(TypeError, match=r"^Vec3\(\): x: expected float, got <_ReprRaises object whose repr"):
+        inkgraph.Vec3(_ReprRaises())
+    # An interrupt raised while pybind11 writes its refusal is raised, not turned into a TypeError.
+    with pytest.raises(KeyboardInterrupt):
+        inkgraph.Vec3(**{_FormatInterrupts("bogus"): 1})
+    # A keyword that is a str subclass is judged by pybind11's lookup, not by its spelling: this one is x.
+    with pytest.raises(TypeError, match=r"^Vec3\(\): x: expected float, got 'text'$"):
+        inkgraph.Vec3(**{_EqualToX("y2"): "text"})
+
+
+def _classes(scope):
+    """The extension's classes defined in `scope` (the module or a class), and those nested in them."""
+    for value in vars(scope).values():
+        if isinstance(value, type) and value.__module__ == inkgraph._inkgraph.__name__ and value is not scope:
+            yield value
+            yield from _classes(value)
 
 
 def _compiled_calls():
-    """(where, call) for every function, static method, method and constructor of the extension, each called with a
-    keyword none of them takes (a method on None for self)."""
+    """(where, call) for every function, static method, method and constructor of the extension, nested classes'
+    included, each called with a keyword none of them takes (a method on a plain object for self: only the refusal is
+    wanted)."""
     module = inkgraph._inkgraph
     calls = []
     for name, value in vars(module).items():
-        if not isinstance(value, type):
-            if callable(value):
-                calls.append((f"{name}(): ", lambda f=value: f(no_such_argument=1)))
-            continue
+        if not isinstance(value, type) and callable(value):
+            calls.append((f"{name}(): ", lambda f=value: f(no_such_argument=1)))
+    for value in set(_classes(module)):
+        name = value.__qualname__
         for attribute, member in vars(value).items():
             if attribute.startswith("__") and attribute != "__init__":
                 continue  # operators answer NotImplemented; __repr__ and the like take self only
@@ -281,7 +339,7 @@ def _compiled_calls():
                               lambda c=value, a=attribute: getattr(c, a)(no_such_argument=1)))
             else:
                 calls.append((f"{name}.{attribute}(): ",
-                              lambda c=value, a=attribute: getattr(c, a)(None, no_such_argument=1)))
+                              lambda c=value, a=attribute: getattr(c, a)(object(), no_such_argument=1)))
     return calls
 
 
@@ -293,6 +351,30 @@ def test_every_compiled_function_refuses_an_unknown_keyword_by_name():
             call()
         message = str(refused.value)
         assert message.startswith(where), message
-        # replace() takes any keyword and names the field it lacks.
+        # replace() takes any keyword, and checks self first.
         assert ("unexpected keyword argument 'no_such_argument'" in message or
-                message.endswith("self: expected " + where.split(".")[0] + ", got None")), message
+                message.startswith(where + "self: expected " + where.split(".")[0] + ", got <object object")), message
+
+
+def test_an_object_whose_constructor_has_not_run_is_refused_not_read():
+    # cls.__new__(cls) without __init__ gave an object whose fields are uninitialized memory: reading them gave garbage
+    # (Vec3.x 6.9e-310), a MemoryError (ViewSample.expression), and Renderer.close() waited forever on its mutex.
+    # Each accessor is tried on a fresh object: pybind11 allocates the value on an object's first use.
+    tried = 0
+    for cls in set(_classes(inkgraph._inkgraph)):
+        for name, member in vars(cls).items():
+            if type(member) is property:  # not a static property (an enum's __members__), read on the class
+                call = lambda c=cls, n=name: getattr(c.__new__(c), n)
+            elif type(member).__name__ == "instancemethod" and name not in ("__init__", "__setstate__"):
+                call = lambda c=cls, n=name: getattr(c, n)(c.__new__(c))
+            else:
+                continue
+            with pytest.raises(TypeError) as refused:
+                call()
+            # (an enum's __str__ is refused by the name property it reads)
+            assert str(refused.value).startswith(f"{cls.__qualname__}."), str(refused.value)
+            assert str(refused.value).endswith(
+                f"self: a {cls.__qualname__} whose constructor has not run ({cls.__qualname__}.__new__() without "
+                "__init__())"), str(refused.value)
+            tried += 1
+    assert tried >= 200  # every property and method of every class

@@ -6,6 +6,7 @@ from __future__ import annotations
 import copy
 import os
 import pathlib
+import pickle
 import warnings
 
 import numpy as np
@@ -305,6 +306,20 @@ def test_value_types_are_immutable_values():
     assert inkgraph.StrokeSettings(taper_ends=True).replace(taper_ends=False) == inkgraph.StrokeSettings()
     with pytest.raises(TypeError, match="not a field"):
         eye.replace(w=1)
+
+
+VALUES = [inkgraph.Vec3(1, 2, 3), inkgraph.Color(0.1, 0.2, 0.3, 0.4), inkgraph.Orbit(30, 10),
+          inkgraph.Orbit(30, 10, 5, 2), inkgraph.Clip(0.5, 50), inkgraph.LineStyle(3, (1, 0, 0)),
+          inkgraph.StrokeSettings(min_length=0.02, taper_ends=True),
+          inkgraph.ViewSample(3, 40, 12, 1.5, (0, 1, 0), "happy", "a-pose"), inkgraph.ViewSample()]
+
+
+@pytest.mark.parametrize("value", VALUES, ids=[repr(value) for value in VALUES])
+def test_value_types_copy_and_pickle_as_themselves(value):
+    # They could not be copied or pickled ("cannot pickle 'inkgraph._inkgraph.Vec3' object"), so neither could a
+    # list of views sent to a multiprocessing pool.
+    for twin in (copy.copy(value), copy.deepcopy(value), pickle.loads(pickle.dumps(value))):
+        assert twin == value and type(twin) is type(value) and repr(twin) == repr(value)
 
 
 def test_the_namespace_is_the_api():
