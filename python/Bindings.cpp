@@ -364,7 +364,7 @@ void addValueProtocol(Class& type, std::vector<std::string> fields) {
         "replace",
         [fields](py::handle self, const py::kwargs& changes) {
             using Value = typename Class::type;
-            const std::string typeName = py::type::of<Value>().template attr("__name__").template cast<std::string>();
+            const std::string typeName = py::str(py::type::of<Value>().attr("__name__"));
             const std::string where = typeName + ".replace(): ";
             if (!py::isinstance<Value>(self))
                 throw py::type_error(where + "self: expected " + typeName + ", got " + reprText(self));
