@@ -22,18 +22,25 @@ using FunctionRecord = py::detail::function_record;
 /** pybind11's dispatcher, which every function of the module calls through its PyMethodDef (the same one for all). */
 PyCFunctionWithKeywords pybindDispatcher = nullptr;
 
-/** The attribute each property's getter, setter and deleter serves (pybind11 names them ""), by record. */
-std::map<const FunctionRecord*, std::string> accessorNames;
+/** The attribute a class gives each of its functions, by record, and whether it is a property's (a getter, setter or
+ *  deleter, which pybind11 names ""). pybind11's own names can differ: an enum's __str__ is named "name". */
+struct Attribute {
+    std::string name;
+    bool accessor = false;
+};
+std::map<const FunctionRecord*, Attribute> attributes;
 
 /** "Scene.load(): ", "Orbit(): " for a constructor, "sample_views(): " for a function of the module; a nested class
  *  by its qualified name ("Renderer.Platform(): "); a property's accessor as a field ("Vec3.x: "). */
 std::string whereOf(const FunctionRecord& function) {
-    const std::string name = function.name;
+    std::string name = function.name;
     if (!function.scope || !PyType_Check(function.scope.ptr())) return name + "(): ";
     const std::string type = py::str(function.scope.attr("__qualname__"));
     if (name == "__init__") return type + "(): ";
-    if (const auto accessor = accessorNames.find(&function); name.empty() && accessor != accessorNames.end())
-        return type + "." + accessor->second + ": ";
+    if (const auto attribute = attributes.find(&function); attribute != attributes.end()) {
+        if (attribute->second.accessor) return type + "." + attribute->second.name + ": ";
+        name = attribute->second.name;
+    }
     return type + "." + name + "(): ";
 }
 
@@ -186,42 +193,79 @@ const FunctionRecord* recordOf(PyObject* capsule) {
     return static_cast<const FunctionRecord*>(PyCapsule_GetPointer(capsule, PyCapsule_GetName(capsule)));
 }
 
-/** What is wrong with a method's self that pybind11 would let through: None, which a method bound as a C++ member
- *  function takes as a null pointer (a crash), and an object of the class whose constructor has not run
- *  (`Renderer.__new__(Renderer)`), whose fields are uninitialized memory (garbage values, a MemoryError, a hang on a
- *  mutex). Nothing for a constructor, a function that is not a method, and a self of another class (pybind11
- *  refuses that itself). */
-std::optional<std::string> selfProblem(const FunctionRecord& function, PyObject* arguments) {
-    if (!function.is_method || function.is_constructor || PyTuple_GET_SIZE(arguments) == 0) return std::nullopt;
-    PyObject* self = PyTuple_GET_ITEM(arguments, 0);
-    auto* type = reinterpret_cast<PyTypeObject*>(function.scope.ptr());
-    if (self == Py_None)
-        return "self: expected " + py::str(function.scope.attr("__qualname__")).cast<std::string>() + ", got None";
-    const py::detail::type_info* info = PyType_Check(type) ? py::detail::get_type_info(type) : nullptr;
-    if (info == nullptr || !PyObject_TypeCheck(self, type)) return std::nullopt;
+/** The short name of `object`'s class ("Color"), or "None". */
+std::string classNameOf(PyObject* object) {
+    if (object == Py_None) return "None";
+    const std::string name = Py_TYPE(object)->tp_name;
+    return name.substr(name.rfind('.') + 1);
+}
+
+/** "an X whose constructor has not run" when `argument` is an object of one of pybind11's classes made by
+ *  `cls.__new__(cls)` without `__init__`: its value is uninitialized memory. pybind11 registers every instance whose
+ *  value it holds, made by a constructor or handed over from C++ (owned or not); the value's pointer says nothing, as
+ *  pybind11 allocates it when first asked for and never constructs it then. */
+std::optional<std::string> unconstructed(PyObject* argument) {
+    const py::detail::type_info* info = py::detail::get_type_info(Py_TYPE(argument));
+    if (info == nullptr) return std::nullopt;
     const py::detail::value_and_holder value =
-        reinterpret_cast<py::detail::instance*>(self)->get_value_and_holder(info, false);
-    // pybind11 registers every instance whose value it holds, made by a constructor or handed over from C++ (owned
-    // or not). Not `!value`, which tests the value's pointer: pybind11 allocates that when first asked for, and
-    // never constructs it then.
+        reinterpret_cast<py::detail::instance*>(argument)->get_value_and_holder(info, false);
     if (value.inst == nullptr || value.instance_registered()) return std::nullopt;
-    const std::string name = py::str(function.scope.attr("__qualname__"));
-    return "self: a " + name + " whose constructor has not run (" + name + ".__new__() without __init__())";
+    const std::string name =
+        py::handle(reinterpret_cast<PyObject*>(info->type)).attr("__qualname__").cast<std::string>();
+    return "a " + name + " whose constructor has not run (" + name + ".__new__() without __init__())";
+}
+
+/** What is wrong with an argument that pybind11 would let through unusable: a method's self that is not of its class
+ *  (None, which a method bound as a C++ member function takes as a null pointer: a crash; any object, where self is
+ *  taken as a plain object), and any argument, by position or keyword, whose constructor has not run
+ *  (`Renderer.__new__(Renderer)`: garbage values, a MemoryError, a hang on a mutex). A constructor's own self is
+ *  the object it is making. */
+std::optional<std::string> argumentProblem(const FunctionRecord& function, PyObject* arguments, PyObject* keywords) {
+    const auto given = std::size_t(PyTuple_GET_SIZE(arguments));
+    const std::size_t self = function.is_method ? 1 : 0;
+    if (function.is_method && !function.is_constructor && PyType_Check(function.scope.ptr())) {
+        // Self by position, or by keyword where the method names its parameters.
+        PyObject* object = given > 0             ? PyTuple_GET_ITEM(arguments, 0)
+                           : keywords != nullptr ? PyDict_GetItemString(keywords, "self")
+                                                 : nullptr;
+        if (object != nullptr && !PyObject_TypeCheck(object, reinterpret_cast<PyTypeObject*>(function.scope.ptr())))
+            return "self: expected " + py::str(function.scope.attr("__qualname__")).cast<std::string>() + ", got " +
+                   classNameOf(object);
+    }
+    for (std::size_t index = function.is_constructor ? 1 : 0; index < given; ++index) {
+        if (const auto problem = unconstructed(PyTuple_GET_ITEM(arguments, Py_ssize_t(index)))) {
+            const char* name = index < function.args.size() ? function.args[index].name : nullptr;
+            const std::string label = name != nullptr && name[0] != '\0' ? std::string(name)
+                                      : index < self                     ? "self"
+                                                     : "argument " + std::to_string(index + 1 - self);
+            return label + ": " + *problem;
+        }
+    }
+    PyObject* key = nullptr;
+    PyObject* value = nullptr;
+    Py_ssize_t position = 0;
+    while (keywords != nullptr && PyDict_Next(keywords, &position, &key, &value))
+        if (const auto problem = unconstructed(value))
+            return py::str(key).attr("encode")("utf-8", "backslashreplace").cast<std::string>() + ": " + *problem;
+    return std::nullopt;
 }
 
 /** Calls pybind11's dispatcher; a TypeError for a call that does not fit the function's parameter list is replaced by
- *  misfit()'s. A method's self that pybind11 would let through unusable is refused first (selfProblem()). Every
+ *  misfit()'s. An argument that pybind11 would let through unusable is refused first (argumentProblem()). Every
  *  other result and error passes through as it is. */
 PyObject* dispatchNamingMisfits(PyObject* capsule, PyObject* arguments, PyObject* keywords) {
     const FunctionRecord* function = recordOf(capsule);
     if (function == nullptr) return nullptr;
-    if (const std::optional<std::string> problem = selfProblem(*function, arguments)) {
-        try {
+    try {
+        if (const std::optional<std::string> problem = argumentProblem(*function, arguments, keywords)) {
             PyErr_SetString(PyExc_TypeError, (whereOf(*function) + *problem).c_str());
-        } catch (py::error_already_set& error) {
-            error.restore();
+            return nullptr;
         }
+    } catch (py::error_already_set& error) {
+        error.restore();
         return nullptr;
+    } catch (const std::bad_alloc&) {
+        return PyErr_NoMemory();
     }
     PyObject* result = nullptr;
     bool refused = false;
@@ -285,18 +329,16 @@ PyCFunctionWithKeywords asFunctionWithKeywords(PyCFunction function) {
 
 /** Routes `object`'s calls through dispatchNamingMisfits() if it is a pybind11 function (or a method of one), and
  *  those of a property's getter, setter and deleter; `attribute` is the name the class gives it. */
-void install(py::handle object, const std::string& attribute) {
+void install(py::handle object, const std::string& attribute, bool accessor = false) {
     if (PyObject_TypeCheck(object.ptr(), &PyProperty_Type)) {
-        for (const char* accessor : {"fget", "fset", "fdel"}) {
-            const py::object function = object.attr(accessor);
-            install(function, attribute);
-            if (const FunctionRecord* record = recordOfFunction(function)) accessorNames[record] = attribute;
-        }
+        for (const char* function : {"fget", "fset", "fdel"}) install(object.attr(function), attribute, true);
         return;
     }
     // The function a static method holds (the class's staticmethod keeps it alive).
     if (PyObject_TypeCheck(object.ptr(), &PyStaticMethod_Type)) object = object.attr("__func__");
-    if (recordOfFunction(object) == nullptr) return;
+    const FunctionRecord* record = recordOfFunction(object);
+    if (record == nullptr) return;
+    attributes[record] = Attribute{attribute, accessor};
     const py::handle function = py::detail::get_function(object);
     PyMethodDef* definition = reinterpret_cast<PyCFunctionObject*>(function.ptr())->m_ml;
     const PyCFunctionWithKeywords current = asFunctionWithKeywords(definition->ml_meth);

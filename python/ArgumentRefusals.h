@@ -9,9 +9,10 @@
  *    'bogus' (arguments: azimuth, elevation, distance, distance_scale)"). An overloaded function keeps pybind11's
  *    list of overloads unless all refuse for one reason. pybind11 writes its refusal outside its own try, so a
  *    keyword that is a lone surrogate, which it cannot encode, aborted the interpreter; it is refused the same way.
- *  - A method's self that pybind11 lets through unusable: None (a method bound as a C++ member function takes it as a
- *    null pointer: a crash), and an object whose constructor has not run (`Vec3.__new__(Vec3)`: its fields are
- *    uninitialized memory). Properties' getters and setters included.
+ *  - Arguments that pybind11 lets through unusable: a method's self of another class (None, which a method bound as a
+ *    C++ member function takes as a null pointer: a crash; any object, where self is taken as a plain object), and
+ *    any argument whose constructor has not run (`Vec3.__new__(Vec3)`: its fields are uninitialized memory).
+ *    Properties' getters and setters included.
  *  A call that fits, with a usable self, is never touched: its errors are the function's own (checked() names a value
  *  of the wrong type, CheckedArguments.h). The functions, their docstrings and help() are unchanged. */
 

@@ -268,6 +268,11 @@ py::enum_<Enum> defineEnum(Scope& scope, const char* className, const char* what
         "name"_a, "The member named by its command-line word; UsageError naming the words there are.");
     type.def_property_readonly(
         "cli_name", [](Enum value) { return cliName(value); }, "The command line's word for this member.");
+    // Pickled as the member of its value, by every protocol: pybind11's own pickling of protocols 0 and 1 went through
+    // copyreg to pybind11's base class, whose allocation throws through C (the interpreter aborted).
+    type.def("__reduce__", [](Enum self) {
+        return py::make_tuple(py::type::of<Enum>(), py::make_tuple(static_cast<std::int64_t>(self)));
+    });
     return type;
 }
 
@@ -688,14 +693,19 @@ void defineValueTypes(py::module_& m) {
         .def(py::init(checked(
                  "ViewSample(): ", {"index", "azimuth", "elevation", "distance_scale", "light", "expression", "pose"},
                  [](std::size_t index, double azimuth, double elevation, double distanceScale, const py::object& light,
-                    std::optional<std::string> expression, std::optional<std::string> pose) {
+                    const std::optional<OsText>& expression, const std::optional<OsText>& pose) {
+                     // As the getters give them back (a pose's path as os.fsdecode() makes it), so a view copies and
+                     // pickles as itself: bytes were taken and could not be read back.
+                     const auto bytesOfText = [](const std::optional<OsText>& text) {
+                         return text ? std::optional<std::string>(text->bytes) : std::nullopt;
+                     };
                      return ig::ViewSample{index,
                                            azimuth,
                                            elevation,
                                            distanceScale,
                                            optionalArgument(light, vec3Argument, "ViewSample.light"),
-                                           std::move(expression),
-                                           std::move(pose)};
+                                           bytesOfText(expression),
+                                           bytesOfText(pose)};
                  })),
              "index"_a = 0, "azimuth"_a = 0.0, "elevation"_a = 0.0, "distance_scale"_a = 1.0, "light"_a = py::none(),
              "expression"_a = py::none(), "pose"_a = py::none())
@@ -704,7 +714,11 @@ void defineValueTypes(py::module_& m) {
         .def_readonly("elevation", &ig::ViewSample::elevation)
         .def_readonly("distance_scale", &ig::ViewSample::distanceScale)
         .def_readonly("light", &ig::ViewSample::light)
-        .def_readonly("expression", &ig::ViewSample::expression)
+        .def_property_readonly("expression",
+                               [](const ig::ViewSample& self) -> py::object {
+                                   if (!self.expression) return py::none();
+                                   return textOf(*self.expression);
+                               })
         .def_property_readonly("pose",
                                [](const ig::ViewSample& self) -> py::object {
                                    if (!self.pose) return py::none();
@@ -1452,6 +1466,30 @@ void defineRenderer(py::module_& m) {
 
 } // namespace
 
+/** Gives each class of `m` that does not pickle (the renderer, a scene, a still, a look, a frame: its own __reduce__ is
+ *  not there) a __reduce__ that refuses: pickle's protocols 0 and 1 went through copyreg to pybind11's base class,
+ *  whose allocation throws through C, and the interpreter aborted (`pickle.dumps(Look(), 0)`). Protocols 2 and up
+ *  refused already ("cannot pickle"), as now every protocol does. copy.copy() and deepcopy() of a Look or Frame use
+ *  their __copy__ and __deepcopy__. */
+void refusePicklingOfTheRest(py::module_& m) {
+    std::vector<py::handle> classes;
+    for (const auto [name, value] : py::reinterpret_borrow<py::dict>(m.attr("__dict__"))) {
+        if (!PyType_Check(value.ptr())) continue;
+        classes.push_back(value);
+        for (const auto [nestedName, nested] : py::dict(value.attr("__dict__")))
+            if (PyType_Check(nested.ptr())) classes.push_back(nested);
+    }
+    for (const py::handle type : classes) {
+        if (py::dict(type.attr("__dict__")).contains("__reduce__") ||
+            !type.attr("__module__").equal(m.attr("__name__")))
+            continue;
+        const std::string name = type.attr("__qualname__").cast<std::string>();
+        type.attr("__reduce__") = py::cpp_function(
+            [name](py::handle) -> py::object { throw py::type_error("cannot pickle '" + name + "' object"); },
+            py::name("__reduce__"), py::is_method(type), py::sibling(py::getattr(type, "__reduce__", py::none())));
+    }
+}
+
 void defineModule(py::module_& m) {
     m.doc() = "inkgraph's public C++ API (inkgraph/inkgraph.h) for Python; use the package `inkgraph`, whose "
               "render() is the short way.";
@@ -1480,7 +1518,7 @@ void defineModule(py::module_& m) {
                    "poses"},
                   [](std::size_t count, std::uint64_t seed, const py::object& modelKey, const py::object& elevation,
                      double distanceJitter, double lightJitter, const py::object& light,
-                     std::vector<std::string> expressions, std::vector<std::string> poses) {
+                     const std::vector<OsText>& expressions, const std::vector<OsText>& poses) {
                       ig::ViewSampling sampling;
                       const std::vector<double> angles = realNumbers(elevation, {2, 4}, "sample_views(): elevation",
                                                                      "(mean, sd) or (mean, sd, low, high), degrees");
@@ -1493,8 +1531,8 @@ void defineModule(py::module_& m) {
                       sampling.distanceJitter = distanceJitter;
                       sampling.lightJitter = lightJitter;
                       sampling.light = optionalArgument(light, vec3Argument, "sample_views(): light");
-                      sampling.expressions = std::move(expressions);
-                      sampling.poses = std::move(poses);
+                      sampling.expressions = bytesOf(expressions);
+                      sampling.poses = bytesOf(poses);
                       // The key is the model path as the command line lists it: a str, or a path as os.fspath() gives
                       // it.
                       const std::string key = py::module_::import("os").attr("fspath")(modelKey).cast<std::string>();
@@ -1523,6 +1561,7 @@ void defineModule(py::module_& m) {
           "file; the format follows the extension (PNG; EXR, TIFF, JPEG through OpenImageIO). Raises OutputError "
           "naming the file, also for a place that is not a regular file or a new name (a FIFO, a device).");
 
+    refusePicklingOfTheRest(m);
     nameArgumentRefusals(m);
 }
 

@@ -311,7 +311,11 @@ def test_value_types_are_immutable_values():
 VALUES = [inkgraph.Vec3(1, 2, 3), inkgraph.Color(0.1, 0.2, 0.3, 0.4), inkgraph.Orbit(30, 10),
           inkgraph.Orbit(30, 10, 5, 2), inkgraph.Clip(0.5, 50), inkgraph.LineStyle(3, (1, 0, 0)),
           inkgraph.StrokeSettings(min_length=0.02, taper_ends=True),
-          inkgraph.ViewSample(3, 40, 12, 1.5, (0, 1, 0), "happy", "a-pose"), inkgraph.ViewSample()]
+          inkgraph.ViewSample(3, 40, 12, 1.5, (0, 1, 0), "happy", "a-pose"), inkgraph.ViewSample(),
+          # A pose file whose name is not UTF-8 (as os.fsdecode() gives it) and such an expression name: the view
+          # could be made and not copied (its pose was refused as it read back) nor read (UnicodeDecodeError).
+          inkgraph.ViewSample(pose="/tmp/p\udcff.json", expression="sm\udcffile"),
+          inkgraph.sample_views(1, 1, "x.obj", poses=["/tmp/p\udcff.json"])[0]]
 
 
 @pytest.mark.parametrize("value", VALUES, ids=[repr(value) for value in VALUES])
