@@ -203,16 +203,20 @@ std::string classNameOf(PyObject* object) {
 /** "an X whose constructor has not run" when `argument` is an object of one of pybind11's classes made by
  *  `cls.__new__(cls)` without `__init__`: its value is uninitialized memory. pybind11 registers every instance whose
  *  value it holds, made by a constructor or handed over from C++ (owned or not); the value's pointer says nothing, as
- *  pybind11 allocates it when first asked for and never constructs it then. */
+ *  pybind11 allocates it when first asked for and never constructs it then. Any other object (an int, a str) is
+ *  passed over by one subtype test, without pybind11's type lookup, which would cache every type it is asked about. */
 std::optional<std::string> unconstructed(PyObject* argument) {
-    const py::detail::type_info* info = py::detail::get_type_info(Py_TYPE(argument));
-    if (info == nullptr) return std::nullopt;
-    const py::detail::value_and_holder value =
-        reinterpret_cast<py::detail::instance*>(argument)->get_value_and_holder(info, false);
-    if (value.inst == nullptr || value.instance_registered()) return std::nullopt;
-    const std::string name =
-        py::handle(reinterpret_cast<PyObject*>(info->type)).attr("__qualname__").cast<std::string>();
-    return "a " + name + " whose constructor has not run (" + name + ".__new__() without __init__())";
+    const auto* base = reinterpret_cast<PyTypeObject*>(py::detail::get_internals().instance_base);
+    if (!PyObject_TypeCheck(argument, const_cast<PyTypeObject*>(base))) return std::nullopt;
+    // Each of its pybind11 classes' values (a Python class may derive from several).
+    for (const py::detail::value_and_holder& value :
+         py::detail::values_and_holders(reinterpret_cast<py::detail::instance*>(argument))) {
+        if (value.instance_registered()) continue;
+        const std::string name =
+            py::handle(reinterpret_cast<PyObject*>(value.type->type)).attr("__qualname__").cast<std::string>();
+        return "a " + name + " whose constructor has not run (" + name + ".__new__() without __init__())";
+    }
+    return std::nullopt;
 }
 
 /** What is wrong with an argument that pybind11 would let through unusable: a method's self that is not of its class
@@ -266,6 +270,10 @@ PyObject* dispatchNamingMisfits(PyObject* capsule, PyObject* arguments, PyObject
         return nullptr;
     } catch (const std::bad_alloc&) {
         return PyErr_NoMemory();
+    } catch (const std::exception& error) {
+        // Nothing may leave a C function as a C++ exception (std::terminate).
+        PyErr_SetString(PyExc_RuntimeError, error.what());
+        return nullptr;
     }
     PyObject* result = nullptr;
     bool refused = false;

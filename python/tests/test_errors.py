@@ -393,6 +393,22 @@ def test_a_method_refuses_a_self_of_another_class_and_an_argument_never_construc
         assert str(refused.value) == message
 
 
+class _PointAndColour(inkgraph.Vec3, inkgraph.Color):
+    def __init__(self):
+        inkgraph.Vec3.__init__(self, 1, 2, 3)
+        inkgraph.Color.__init__(self, 0.1, 0.2, 0.3)
+
+
+def test_a_python_class_of_two_of_the_extensions_classes_is_judged_by_both():
+    # pybind11's lookup of the one class of such an object throws a C++ exception, which would end the interpreter.
+    with pytest.raises(TypeError, match=r"^buffer_names\(\): look: a Vec3 whose constructor has not run"):
+        inkgraph.buffer_names(_PointAndColour.__new__(_PointAndColour))
+    made = _PointAndColour()
+    assert (made.x, made.r) == (1, 0.1)
+    with pytest.raises(TypeError, match=r"^buffer_names\(\): look: expected Look, got "):
+        inkgraph.buffer_names(made)
+
+
 @pytest.mark.parametrize("protocol", range(pickle.HIGHEST_PROTOCOL + 1))
 def test_what_does_not_pickle_is_refused_by_every_protocol(suzanne, protocol):
     # Protocols 0 and 1 went through copyreg to pybind11's base class, whose allocation threw through C: the
