@@ -15,6 +15,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 namespace inkgraph {
 namespace fs = std::filesystem;
@@ -37,13 +38,15 @@ void sweepStaleTemporaries(const fs::path& folder) {
     }
 }
 
-/** The commit's test hooks: INKGRAPH_TEST_COMMIT_KILL / _FAIL / _INTERRUPT = the step after which to stop the
- *  process, fail the commit, or send the process SIGINT. */
+/** The commit's test hooks: INKGRAPH_TEST_COMMIT_KILL / _FAIL / _INTERRUPT / _MOVE = the step after which to stop
+ *  the process, fail the commit, send the process SIGINT, or rename the first output's folder to "<folder>.moved" (as a
+ *  user moving it away during a batch). */
 class CommitSteps {
 public:
-    CommitSteps()
+    explicit CommitSteps(fs::path outputFolder)
         : mKillAfter(stepFrom("INKGRAPH_TEST_COMMIT_KILL")), mFailAfter(stepFrom("INKGRAPH_TEST_COMMIT_FAIL")),
-          mInterruptAfter(stepFrom("INKGRAPH_TEST_COMMIT_INTERRUPT")) {}
+          mInterruptAfter(stepFrom("INKGRAPH_TEST_COMMIT_INTERRUPT")),
+          mMoveAfter(stepFrom("INKGRAPH_TEST_COMMIT_MOVE")), mOutputFolder(std::move(outputFolder)) {}
 
     /** A step that can still be undone. */
     void done(const std::string& step) {
@@ -57,6 +60,11 @@ public:
     void doneAfterCommit(const std::string& step) {
         ++mCount;
         if (mCount == mInterruptAfter) ::kill(::getpid(), SIGINT); // to the process: any thread may take it
+        if (mCount == mMoveAfter) {
+            fs::path moved = mOutputFolder;
+            moved += ".moved";
+            ::rename(mOutputFolder.c_str(), moved.c_str());
+        }
         if (mCount == mKillAfter) {
             std::cerr << "inkgraph: test hook: killed after commit step " << mCount << " (" << step << ")" << std::endl;
             ::kill(::getpid(), SIGKILL);
@@ -71,6 +79,8 @@ private:
     int mKillAfter;
     int mFailAfter;
     int mInterruptAfter;
+    int mMoveAfter;
+    fs::path mOutputFolder;
     int mCount = 0;
 };
 
@@ -142,11 +152,8 @@ OutputSet::~OutputSet() {
         removeReplaced();
         return;
     }
-    for (const Output& file : mOutputs) {
-        if (file.temporary.empty()) continue;
-        ::unlink(file.temporary.c_str());
-        forgetTemporary(file.temporary);
-    }
+    for (const Output& file : mOutputs)
+        if (!file.temporary.empty()) removeTemporary(file.temporary);
 }
 
 OutputSet::Output& OutputSet::output(const std::string& flag) {
@@ -189,27 +196,32 @@ void OutputSet::stageDumpManifest(const std::string& json) {
 void OutputSet::undo() {
     for (auto file = mOutputs.rbegin(); file != mOutputs.rend(); ++file) {
         // One step each, so no moment lacks the destination: the old file renamed back over our new one, or our new
-        // one removed where there was none.
+        // one removed where there was none. Each in the folder the files were made in, wherever it is now: a folder
+        // moved during the commit gets its old files back too.
         if (file->moved && !file->backup.empty()) {
-            if (::rename(file->backup.c_str(), file->destination.c_str()) == 0) {
-                forgetTemporary(file->backup);
+            if (renameTemporary(file->backup, file->destination)) {
                 file->backup.clear();
                 file->moved = false;
+            } else {
+                // The backup is the replaced file's only name now: kept (a signal no longer removes it), and told.
+                std::cerr << "inkgraph: the earlier " << file->flag << " '" << file->destination.string()
+                          << "' could not be put back (" << std::strerror(errno) << "); it is kept beside it as '"
+                          << file->backup.filename().string() << "'" << std::endl;
+                forgetTemporary(file->backup);
+                file->backup.clear();
             }
-        } else if (file->moved && ::unlink(file->destination.c_str()) == 0) {
+        } else if (file->moved && removeBesideTemporary(file->temporary, file->destination)) {
             file->moved = false;
         }
-        if (!file->backup.empty() && ::unlink(file->backup.c_str()) == 0) {
-            forgetTemporary(file->backup);
-            file->backup.clear();
-        }
+        if (!file->backup.empty()) removeTemporary(file->backup); // a second name of the file still in place
+        file->backup.clear();
     }
     if (mDump) mDump->undo();
 }
 
 void OutputSet::commit() {
     const SignalsDeferred signalsDeferred; // a Ctrl-C lands after the commit, with every output old or every one new
-    CommitSteps steps;
+    CommitSteps steps(mOutputs.empty() ? fs::path() : mOutputs.front().destination.parent_path());
     try {
         steps.done("everything staged");
         if (mDump) {
@@ -261,8 +273,7 @@ void OutputSet::removeReplaced() {
     if (!mCommitted) throw std::logic_error("OutputSet::removeReplaced(): nothing is committed yet");
     for (Output& file : mOutputs) {
         if (file.backup.empty()) continue;
-        ::unlink(file.backup.c_str());
-        forgetTemporary(file.backup);
+        removeTemporary(file.backup);
         file.backup.clear();
     }
 }

@@ -42,8 +42,7 @@ void renameIntoPlace(const std::filesystem::path& temporary, const std::filesyst
     std::error_code error;
     std::filesystem::rename(temporary, path, error);
     if (error) {
-        std::filesystem::remove(temporary, error);
-        forgetTemporary(temporary);
+        removeTemporary(temporary); // from the folder it was made in, should that have moved
         throw FileError("writeFile(): cannot move the finished file into place as '" + path.string() +
                         "': " + error.message());
     }
@@ -169,11 +168,10 @@ std::filesystem::path temporarySibling(const std::filesystem::path& path) {
 
 int creationErrorIn(const std::filesystem::path& folder) {
     const std::filesystem::path probe = temporarySibling(folder / "probe");
-    const TemporaryCreation creating; // a signal's removal waits until the probe is gone again
-    const int descriptor = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    const int descriptor = createTemporaryFile(probe, 0600);
     if (descriptor < 0) return errno;
     ::close(descriptor);
-    ::unlink(probe.c_str());
+    removeTemporary(probe);
     return 0;
 }
 
@@ -194,21 +192,14 @@ int writeWhole(int descriptor, const void* data, std::size_t byteCount) {
 
 void writeBytes(const std::filesystem::path& destination, const void* data, std::size_t byteCount,
                 const std::string& shownName) {
-    // O_EXCL: a temporary name that exists is someone else's file, never ours to overwrite.
-    int descriptor = -1;
-    {
-        const TemporaryCreation creating; // created and registered before a signal's removal can look
-        descriptor = ::open(destination.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-        if (descriptor < 0) throw FileError("writeFile(): cannot create '" + shownName + "': " + std::strerror(errno));
-        registerTemporary(destination);
-    }
+    const int descriptor = createTemporaryFile(destination, 0644);
+    if (descriptor < 0) throw FileError("writeFile(): cannot create '" + shownName + "': " + std::strerror(errno));
     int failure = writeWhole(descriptor, data, byteCount);
     // fsync before the rename: after a crash the final name holds the whole file or the old one, never a prefix.
     if (failure == 0 && ::fsync(descriptor) != 0) failure = errno;
     if (::close(descriptor) != 0 && failure == 0) failure = errno;
     if (failure != 0) {
-        ::unlink(destination.c_str());
-        forgetTemporary(destination);
+        removeTemporary(destination);
         throw FileError("writeFile(): cannot write '" + shownName + "': " + std::strerror(failure));
     }
 }

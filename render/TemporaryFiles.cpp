@@ -1,5 +1,6 @@
 #include "render/TemporaryFiles.h"
 
+#include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
 #include <unistd.h>
@@ -21,6 +22,12 @@ constexpr std::size_t kMaxPathBytes = 4096;
 
 struct Entry {
     std::atomic<bool> used{false};
+    /** The folder `path` was made in, opened O_PATH, when `holdsFolder`: removal goes through it, so a folder moved
+     *  or renamed meanwhile is still found. (No -1 for "none": an initializer other than zero would put the table in
+     *  the binary's data instead of .bss.) */
+    bool holdsFolder = false;
+    int folder = 0;
+    std::size_t nameAt = 0; ///< where the file name starts in `path`
     char path[kMaxPathBytes]{};
 };
 
@@ -39,15 +46,74 @@ std::mutex gCommitMutex;
 std::atomic<bool> gDeferring{false};
 std::atomic<int> gDeferredSignal{0};
 
+/** Removes `name` (a file, or else an empty folder) from `folder` (a descriptor, or AT_FDCWD for a path).
+ *  Async-signal-safe. */
+bool removeAt(int folder, const char* name) {
+    if (::unlinkat(folder, name, 0) == 0) return true;
+    return errno == EISDIR && ::unlinkat(folder, name, AT_REMOVEDIR) == 0;
+}
+
+/** The descriptor and name through which `entry` is reached: its folder's, or the working directory and its path. */
+int folderOf(const Entry& entry) { return entry.holdsFolder ? entry.folder : AT_FDCWD; }
+const char* nameIn(const Entry& entry) { return entry.holdsFolder ? entry.path + entry.nameAt : entry.path; }
+
 /** Removes every registered path, newest first, then ends the process as `signalNumber` would (its default action,
  *  unblocked in the calling thread). Async-signal-safe. */
 [[noreturn]] void sweepAndEnd(int signalNumber) {
     for (int i = kMaxEntries - 1; i >= 0; --i) {
-        if (!gEntries[i].used.load()) continue;
-        if (::unlink(gEntries[i].path) != 0 && errno == EISDIR) ::rmdir(gEntries[i].path);
-        ::rmdir(gEntries[i].path); // folders registered before their files are removed after them
+        const Entry& entry = gEntries[i];
+        if (!entry.used.load()) continue;
+        if (!removeAt(folderOf(entry), nameIn(entry)))
+            ::unlinkat(folderOf(entry), nameIn(entry), AT_REMOVEDIR); // a folder registered before its files
     }
     endBySignal(signalNumber);
+}
+
+std::size_t nameOffset(const std::string& path) {
+    const std::size_t slash = path.rfind('/');
+    return slash == std::string::npos ? 0 : slash + 1;
+}
+
+/** `path`'s folder opened O_PATH (search permission is all it needs), or -1. */
+int openFolderOf(const std::string& path) {
+    const std::size_t at = nameOffset(path);
+    const std::string folder = at == 0 ? "." : path.substr(0, at); // "a/" and "/" name their folders as they stand
+    return ::open(folder.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
+}
+
+/** Stores `text` with `folder` (-1: none) in a free entry; the registry is locked. False when it cannot be kept (too
+ *  long, the table full): the caller closes `folder` then. */
+bool remember(const std::string& text, int folder) {
+    if (text.size() >= kMaxPathBytes) return false;
+    for (Entry& entry : gEntries) {
+        if (entry.used.load()) continue;
+        std::memcpy(entry.path, text.c_str(), text.size() + 1);
+        entry.nameAt = nameOffset(text);
+        entry.holdsFolder = folder >= 0;
+        entry.folder = folder >= 0 ? folder : 0;
+        entry.used.store(true); // last: a signal handler reading without the lock sees a whole entry
+        return true;
+    }
+    return false;
+}
+
+/** The newest entry for `text`, or null; the registry is locked. */
+Entry* entryOf(const std::string& text) {
+    for (int i = kMaxEntries - 1; i >= 0; --i)
+        if (gEntries[i].used.load() && text == gEntries[i].path) return &gEntries[i];
+    return nullptr;
+}
+
+/** Forgets every entry for `text` and closes their folders; the registry is locked. errno is kept. */
+void forgetLocked(const std::string& text) {
+    const int error = errno;
+    for (Entry& entry : gEntries) {
+        if (!entry.used.load() || text != entry.path) continue;
+        entry.used.store(false); // first: a signal handler no longer reads the folder about to be closed
+        if (entry.holdsFolder) ::close(entry.folder);
+        entry.holdsFolder = false;
+    }
+    errno = error;
 }
 
 /** The handler, for a thread that does not block the signals (one started before removeTemporariesOnSignals()). */
@@ -92,19 +158,58 @@ void registerTemporary(const std::filesystem::path& path) {
     const std::string text = path.string();
     if (text.size() >= kMaxPathBytes) return; // too long to register: it is still removed on ordinary failures
     std::lock_guard lock(gRegistryMutex);
-    for (Entry& entry : gEntries) {
-        if (entry.used.load()) continue;
-        std::memcpy(entry.path, text.c_str(), text.size() + 1);
-        entry.used.store(true);
-        return;
-    }
+    const int folder = openFolderOf(text);
+    if (!remember(text, folder) && folder >= 0) ::close(folder);
 }
 
 void forgetTemporary(const std::filesystem::path& path) {
+    std::lock_guard lock(gRegistryMutex);
+    forgetLocked(path.string());
+}
+
+int createTemporaryFile(const std::filesystem::path& path, unsigned mode) {
+    const std::string text = path.string();
+    constexpr int kFlags = O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC;
+    std::lock_guard lock(gRegistryMutex); // created and registered before a signal's removal can look
+    // The folder first, the file in it: so the folder removal goes through is the one the file was made in.
+    const int folder = text.size() < kMaxPathBytes ? openFolderOf(text) : -1;
+    const int descriptor = folder >= 0 ? ::openat(folder, text.c_str() + nameOffset(text), kFlags, mode_t(mode))
+                                       : ::open(text.c_str(), kFlags, mode_t(mode));
+    if (descriptor < 0) {
+        const int error = errno;
+        if (folder >= 0) ::close(folder);
+        errno = error;
+        return -1;
+    }
+    if (!remember(text, folder) && folder >= 0) ::close(folder);
+    return descriptor;
+}
+
+bool removeTemporary(const std::filesystem::path& path) {
     const std::string text = path.string();
     std::lock_guard lock(gRegistryMutex);
-    for (Entry& entry : gEntries)
-        if (entry.used.load() && text == entry.path) entry.used.store(false);
+    const Entry* entry = entryOf(text);
+    const bool removed = entry ? removeAt(folderOf(*entry), nameIn(*entry)) : removeAt(AT_FDCWD, text.c_str());
+    forgetLocked(text);
+    return removed;
+}
+
+bool renameTemporary(const std::filesystem::path& temporary, const std::filesystem::path& sibling) {
+    const std::string text = temporary.string();
+    std::lock_guard lock(gRegistryMutex);
+    const Entry* entry = entryOf(text);
+    const bool renamed = entry && entry->holdsFolder
+                             ? ::renameat(entry->folder, nameIn(*entry), entry->folder, sibling.filename().c_str()) == 0
+                             : ::rename(text.c_str(), sibling.c_str()) == 0;
+    if (renamed) forgetLocked(text);
+    return renamed;
+}
+
+bool removeBesideTemporary(const std::filesystem::path& temporary, const std::filesystem::path& sibling) {
+    std::lock_guard lock(gRegistryMutex);
+    const Entry* entry = entryOf(temporary.string());
+    return entry && entry->holdsFolder ? ::unlinkat(entry->folder, sibling.filename().c_str(), 0) == 0
+                                       : ::unlink(sibling.c_str()) == 0;
 }
 
 void removeTemporariesOnSignals() {

@@ -7,10 +7,27 @@
 
 namespace inkgraph {
 
-/** Remembers a file or an (eventually empty) folder to remove on a signal. Newer entries are removed first. */
+/** Remembers a file or an (eventually empty) folder to remove on a signal. Newer entries are removed first. Its folder
+ *  is opened (O_PATH) and held while it is remembered, so the functions below, and a signal's removal, find it there
+ *  even if that folder has been moved or renamed since (a user moving the output folder during a batch). */
 void registerTemporary(const std::filesystem::path& path);
 /** Forgets it: it was renamed into place or removed. */
 void forgetTemporary(const std::filesystem::path& path);
+
+/** Creates `path` exclusively (O_EXCL: an existing name is someone else's, never ours to overwrite) for writing, and
+ *  registers it with the folder it was made in (no moment in between). Returns the open descriptor, or -1 with errno
+ *  set. */
+int createTemporaryFile(const std::filesystem::path& path, unsigned mode);
+/** Removes a registered temporary (a file, or an empty folder) from the folder it was made in, wherever that folder
+ *  is now, and forgets it; one not registered (its path too long, the table full) is removed by its path. False, with
+ *  errno set, when nothing was removed. */
+bool removeTemporary(const std::filesystem::path& path);
+/** Renames a registered temporary to `sibling`'s file name in the folder it was made in (and forgets it), wherever that
+ *  folder is now: putting back the file a failed commit replaced. False, with errno set, when it could not. */
+bool renameTemporary(const std::filesystem::path& temporary, const std::filesystem::path& sibling);
+/** Removes `sibling`'s file name from the folder a registered temporary was made in, wherever that folder is now:
+ *  taking back a file a failed commit moved into place beside it. False, with errno set, when nothing was removed. */
+bool removeBesideTemporary(const std::filesystem::path& temporary, const std::filesystem::path& sibling);
 /** Installs the handling (idempotent): SIGINT, SIGTERM and SIGHUP are blocked in the calling thread and so in every
  *  thread it starts later, and a thread of their own waits for them (sigwait). A signal then waits for a commit in
  *  progress (SignalsDeferred) and for a file being created and registered (TemporaryCreation), removes what is

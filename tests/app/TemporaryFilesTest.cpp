@@ -9,11 +9,15 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace inkgraph {
 namespace {
@@ -54,6 +58,121 @@ TEST(TemporaryFilesOnSignals, ASignalWaitsForAFileBeingCreatedThenRemovesIt) {
     EXPECT_TRUE(fs::exists(finished)) << "the process ended while a temporary was half made";
     EXPECT_FALSE(fs::exists(file)) << "the temporary made before the removal was left behind";
     fs::remove_all(folder);
+}
+
+std::string contents(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/** A folder of this test's own, named by the test process (the parent, in a death test's child). */
+fs::path testFolder(const std::string& what) {
+    const bool inChild = !GTEST_FLAG_GET(internal_run_death_test).empty();
+    return fs::temp_directory_path() / ("inkgraph-" + what + "-" + std::to_string(inChild ? ::getppid() : ::getpid()));
+}
+
+/** Makes `file` (registered), moves its folder to `moved`, then stops the process with SIGTERM. */
+[[noreturn]] void moveTheFolderThenStop(const fs::path& file, const fs::path& moved) {
+    removeTemporariesOnSignals();
+    const int descriptor = createTemporaryFile(file, 0644);
+    if (descriptor >= 0) ::close(descriptor);
+    ::rename(file.parent_path().c_str(), moved.c_str());
+    ::kill(::getpid(), SIGTERM);
+    for (;;) std::this_thread::sleep_for(std::chrono::seconds(1)); // the signal ends the process here
+}
+
+TEST(TemporaryFilesOnSignals, ATemporaryIsRemovedFromItsFolderMovedAway) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    const fs::path root = testFolder("moved-on-signal");
+    const bool inChild = !GTEST_FLAG_GET(internal_run_death_test).empty();
+    if (!inChild) {
+        fs::remove_all(root);
+        fs::create_directories(root / "out");
+    }
+    EXPECT_EXIT(moveTheFolderThenStop(root / "out" / ".inkgraph-test.tmp", root / "moved"),
+                ::testing::KilledBySignal(SIGTERM), "");
+    EXPECT_TRUE(fs::exists(root / "moved")) << "the folder was not moved";
+    EXPECT_TRUE(fs::is_empty(root / "moved")) << "the temporary was left in the moved folder";
+    fs::remove_all(root);
+}
+
+class TemporaryFilesInAMovedFolder : public ::testing::Test {
+protected:
+    void SetUp() override {
+        fs::remove_all(root);
+        fs::create_directories(root / "out");
+    }
+    void TearDown() override { fs::remove_all(root); }
+
+    /** Creates `name` in out/ as a registered temporary holding `text`. */
+    fs::path makeTemporary(const std::string& name, const std::string& text) {
+        const fs::path file = root / "out" / name;
+        const int descriptor = createTemporaryFile(file, 0644);
+        EXPECT_GE(descriptor, 0) << std::strerror(errno);
+        if (descriptor >= 0) {
+            EXPECT_EQ(::write(descriptor, text.data(), text.size()), ssize_t(text.size()));
+            ::close(descriptor);
+        }
+        return file;
+    }
+    void moveAway() { fs::rename(root / "out", root / "moved"); }
+
+    const fs::path root = testFolder("moved-folder");
+};
+
+TEST_F(TemporaryFilesInAMovedFolder, CreationIsExclusive) {
+    std::ofstream(root / "out" / "taken") << "someone else's\n";
+    EXPECT_EQ(createTemporaryFile(root / "out" / "taken", 0644), -1);
+    EXPECT_EQ(errno, EEXIST);
+    EXPECT_EQ(contents(root / "out" / "taken"), "someone else's\n");
+    EXPECT_EQ(createTemporaryFile(root / "gone" / "x.tmp", 0644), -1);
+    EXPECT_EQ(errno, ENOENT);
+}
+
+TEST_F(TemporaryFilesInAMovedFolder, ATemporaryIsRemovedWhereItsFolderNowIs) {
+    const fs::path file = makeTemporary(".inkgraph-a.tmp", "a");
+    moveAway();
+    EXPECT_TRUE(removeTemporary(file));
+    EXPECT_TRUE(fs::is_empty(root / "moved"));
+    // Forgotten: a second removal finds nothing, by the path (which names nothing now either).
+    EXPECT_FALSE(removeTemporary(file));
+    EXPECT_EQ(errno, ENOENT);
+}
+
+TEST_F(TemporaryFilesInAMovedFolder, ATemporaryIsRenamedWhereItsFolderNowIs) {
+    const fs::path backup = makeTemporary(".inkgraph-b.tmp", "old");
+    const fs::path placed = makeTemporary(".inkgraph-c.tmp", "new");
+    fs::rename(placed, root / "out" / "final.png"); // the commit's move into place, by path, before the folder moves
+    moveAway();
+    // The undo: the new file taken back beside the placed one's temporary, the old one renamed back over it.
+    EXPECT_TRUE(removeBesideTemporary(placed, root / "out" / "final.png"));
+    EXPECT_FALSE(fs::exists(root / "moved" / "final.png"));
+    EXPECT_TRUE(renameTemporary(backup, root / "out" / "final.png"));
+    EXPECT_EQ(contents(root / "moved" / "final.png"), "old");
+    forgetTemporary(placed);
+    EXPECT_EQ(std::distance(fs::directory_iterator(root / "moved"), fs::directory_iterator()), 1);
+}
+
+TEST_F(TemporaryFilesInAMovedFolder, ATemporaryTheFullTableCannotHoldIsRemovedByItsName) {
+    // The signal's table is fixed (256 entries): a temporary made when it is full is not registered, and is removed by
+    // its path (in the folder at that path: one moved away meanwhile keeps it, as before the folders were held).
+    std::vector<fs::path> fillers;
+    for (int i = 0; i < 256; ++i) {
+        fillers.push_back(root / "out" / ("filler" + std::to_string(i)));
+        registerTemporary(fillers.back());
+    }
+    const fs::path unregistered = makeTemporary(".inkgraph-unregistered.tmp", "x");
+    const fs::path byName = makeTemporary(".inkgraph-by-name.tmp", "x");
+    for (const fs::path& filler : fillers) forgetTemporary(filler);
+    EXPECT_TRUE(removeTemporary(byName));
+    EXPECT_FALSE(fs::exists(byName));
+    const fs::path registered = makeTemporary(".inkgraph-registered.tmp", "x"); // room again
+    moveAway();
+    EXPECT_FALSE(removeTemporary(unregistered)) << "it was registered after all";
+    EXPECT_EQ(errno, ENOENT);
+    EXPECT_TRUE(removeTemporary(registered));
+    EXPECT_EQ(std::distance(fs::directory_iterator(root / "moved"), fs::directory_iterator()), 1);
+    EXPECT_TRUE(fs::exists(root / "moved" / ".inkgraph-unregistered.tmp"));
 }
 
 } // namespace
