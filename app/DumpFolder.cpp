@@ -109,9 +109,10 @@ fs::path newStagingName(const fs::path& parent) {
     return parent / (kStagingPrefix + temporaryTag() + "-" + std::to_string(counter++));
 }
 
-/** Swaps two names atomically (Linux 3.15 and later; ext4, xfs, btrfs, tmpfs and overlayfs support it). */
-int exchangeFolders(const fs::path& first, const fs::path& second) {
-    return ::renameat2(AT_FDCWD, first.c_str(), AT_FDCWD, second.c_str(), RENAME_EXCHANGE);
+/** Swaps two names atomically (Linux 3.15 and later; ext4, xfs, btrfs, tmpfs and overlayfs support it); relative
+ *  names are looked up in `folder`. */
+int exchangeFolders(const fs::path& first, const fs::path& second, int folder = AT_FDCWD) {
+    return ::renameat2(folder, first.c_str(), folder, second.c_str(), RENAME_EXCHANGE);
 }
 
 /** Test hook (tests/app/OutputTransactionGLTest.cpp): INKGRAPH_TEST_NO_RENAME_EXCHANGE=1 takes the path of file
@@ -225,6 +226,10 @@ void DumpFolder::check(const std::string& flagValue) {
     if (folder == folder.root_path()) fail("is the root folder; give a folder of its own");
     mFolder = folder;
     const fs::path parent = folder.parent_path();
+    // Held open: the undo, the tidying and the abandoning of a commit act in the folder the dump was staged in, even if
+    // the user moves it away meanwhile (the forward steps go by name, so nothing lands in a folder moved away).
+    mParent = ::open(parent.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
+    if (mParent < 0) fail("cannot be staged: '" + parent.string() + "': " + std::strerror(errno));
 
     struct stat folderStatus {
     }, parentStatus{};
@@ -292,23 +297,32 @@ DumpFolder::~DumpFolder() { abandon(); }
 
 void DumpFolder::abandon() {
     if (!mSwapped && !mStaging.empty()) {
-        const int staging = ::open(mStaging.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        const int staging =
+            ::openat(mParent, mStaging.filename().c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
         if (staging >= 0) {
             removePlainFilesIn(staging, kStagingMarker);
             ::close(staging);
         }
-        ::rmdir(mStaging.c_str());
+        ::unlinkat(mParent, mStaging.filename().c_str(), AT_REMOVEDIR);
         forgetTemporary(mStaging / kStagingMarker);
         forgetTemporary(mStaging);
     }
     // Innermost first, only if empty, and never one another run has locked: a folder this run created but another
     // run locked first is that run's now.
     if (!mSwapped && !mTakenByAnotherRun)
-        for (const fs::path& folder : mCreatedFolders) ::rmdir(folder.c_str());
+        for (std::size_t i = 0; i < mCreatedFolders.size(); ++i) {
+            // The dump folder itself (the innermost) where it now is; its missing parents, above mParent, by name.
+            if (i == 0 && mParent >= 0)
+                ::unlinkat(mParent, mFolder.filename().c_str(), AT_REMOVEDIR);
+            else
+                ::rmdir(mCreatedFolders[i].c_str());
+        }
     for (const fs::path& folder : mCreatedFolders) forgetTemporary(folder);
     mCreatedFolders.clear();
     mStaging.clear();
     mLock.release();
+    if (mParent >= 0) ::close(mParent);
+    mParent = -1;
 }
 
 fs::path DumpFolder::stage(const std::string& name) {
@@ -368,27 +382,31 @@ void DumpFolder::swapIn() {
 }
 
 void DumpFolder::undo() {
+    // By the names in the folder the dump was staged in, wherever it is now (mParent).
+    const fs::path folder = mFolder.filename(), staging = mStaging.filename(), aside = mAside.filename();
+    const fs::path folderMarker = folder / kStagingMarker;
     if (mSwapped) {
         if (!mHadEarlierDump) {
-            if (::rename(mFolder.c_str(), mStaging.c_str()) == 0) {
-                ::mkdir(mFolder.c_str(), mFolderMode);
+            if (::renameat(mParent, folder.c_str(), mParent, staging.c_str()) == 0) {
+                ::mkdirat(mParent, folder.c_str(), mFolderMode);
                 mSwapped = false;
             }
         } else if (mExchanged) {
-            if (exchangeFolders(mStaging, mFolder) == 0) mSwapped = false;
-        } else if (::rename(mFolder.c_str(), mStaging.c_str()) == 0 && ::rename(mAside.c_str(), mFolder.c_str()) == 0) {
-            ::unlink((mFolder / kStagingMarker).c_str()); // the mark swapIn() gave it once set aside
+            if (exchangeFolders(staging, folder, mParent) == 0) mSwapped = false;
+        } else if (::renameat(mParent, folder.c_str(), mParent, staging.c_str()) == 0 &&
+                   ::renameat(mParent, aside.c_str(), mParent, folder.c_str()) == 0) {
+            ::unlinkat(mParent, folderMarker.c_str(), 0); // the mark swapIn() gave it once set aside
             mSwapped = false;
         }
     }
-    if (mMarked && !mSwapped && ::unlink((mFolder / kStagingMarker).c_str()) == 0) mMarked = false;
+    if (mMarked && !mSwapped && ::unlinkat(mParent, folderMarker.c_str(), 0) == 0) mMarked = false;
 }
 
 bool DumpFolder::finish() {
-    bool clean = ::unlink((mFolder / kStagingMarker).c_str()) == 0;
+    bool clean = ::unlinkat(mParent, (mFolder.filename() / kStagingMarker).c_str(), 0) == 0;
     if (!mHadEarlierDump) return clean;
     // The earlier dump, swapped out: only the files it was checked to hold, the marker last.
-    const int aside = ::open(mAside.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    const int aside = ::openat(mParent, mAside.filename().c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
     if (aside < 0) return false;
     bool removedAll = true;
     for (const std::string& name : mEarlierFiles)
@@ -396,7 +414,7 @@ bool DumpFolder::finish() {
     // The marker stays with a file left, so a later run's sweep removes the rest (sweepStaleStagingFolders()).
     if (removedAll) ::unlinkat(aside, kStagingMarker, 0);
     ::close(aside);
-    return ::rmdir(mAside.c_str()) == 0 && clean;
+    return ::unlinkat(mParent, mAside.filename().c_str(), AT_REMOVEDIR) == 0 && clean;
 }
 
 } // namespace inkgraph

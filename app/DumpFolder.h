@@ -80,6 +80,9 @@ private:
 
     std::string mShownName;
     std::filesystem::path mFolder;
+    /** mFolder's parent (O_PATH), where the staging and set-aside folders lie: held from the check until abandon(), so
+     *  the undo and the tidying act there even if the user moves it away during the commit. */
+    int mParent = -1;
     std::filesystem::path mStaging;
     std::filesystem::path mAside; ///< where the earlier dump is after the swap (mStaging when exchanged)
     std::vector<std::string> mEarlierFiles;
