@@ -214,14 +214,20 @@ void DumpFolder::check(const std::string& flagValue) {
         // Created now (its missing parents too), removed again if the run fails; the commit swaps the dump in for it.
         for (fs::path missing = folder; !missing.empty() && !fs::exists(missing, error);
              missing = missing.parent_path())
-            mCreatedFolders.push_back(missing);
+            mCreatedFolders.push_back({missing});
         {
             const TemporaryCreation creating;
             fs::create_directories(folder, error);
             for (auto created = mCreatedFolders.rbegin(); !error && created != mCreatedFolders.rend(); ++created)
-                registerTemporary(*created); // outermost first: a signal removes the innermost first
+                registerTemporary(created->path);
         }
         if (error) fail("cannot be created: " + error.message());
+        for (CreatedFolder& created : mCreatedFolders) {
+            struct stat identity {};
+            if (::lstat(created.path.c_str(), &identity) != 0) continue; // unknown: never removed
+            created.device = identity.st_dev;
+            created.inode = identity.st_ino;
+        }
     }
     if (folder == folder.root_path()) fail("is the root folder; give a folder of its own");
     mFolder = folder;
@@ -260,6 +266,10 @@ void DumpFolder::check(const std::string& flagValue) {
     const auto names = namesIn(folder);
     mHadEarlierDump = names && !names->empty();
     if (mHadEarlierDump) {
+        mEarlierFolder = ::open(folder.c_str(), O_PATH | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        if (mEarlierFolder < 0) fail(": " + std::string(std::strerror(errno)));
+    }
+    if (mHadEarlierDump) {
         EarlierDump earlier = readEarlierDump(folder);
         if (!earlier.problem.empty())
             fail("holds files that are not an inkgraph dump (" + earlier.problem +
@@ -283,7 +293,9 @@ void DumpFolder::check(const std::string& flagValue) {
         const TemporaryCreation creating;
         if (::mkdir(mStaging.c_str(), 0700) != 0) fail("cannot be staged: " + std::string(std::strerror(errno)));
         registerTemporary(mStaging);
-        markerFile = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+        mStagingFolder = ::openat(mParent, mStaging.filename().c_str(), O_PATH | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+        if (mStagingFolder >= 0)
+            markerFile = ::openat(mStagingFolder, kStagingMarker, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
         if (markerFile >= 0)
             registerTemporary(marker);
         else
@@ -312,17 +324,22 @@ void DumpFolder::abandon() {
     if (!mSwapped && !mTakenByAnotherRun)
         for (std::size_t i = 0; i < mCreatedFolders.size(); ++i) {
             // The dump folder itself (the innermost) where it now is; its missing parents, above mParent, by name.
-            if (i == 0 && mParent >= 0)
-                ::unlinkat(mParent, mFolder.filename().c_str(), AT_REMOVEDIR);
-            else
-                ::rmdir(mCreatedFolders[i].c_str());
+            const bool inParent = i == 0 && mParent >= 0;
+            const int base = inParent ? mParent : AT_FDCWD;
+            const std::string name = inParent ? mFolder.filename().string() : mCreatedFolders[i].path.string();
+            struct stat now {};
+            if (::fstatat(base, name.c_str(), &now, AT_SYMLINK_NOFOLLOW) == 0 &&
+                now.st_dev == mCreatedFolders[i].device && now.st_ino == mCreatedFolders[i].inode)
+                ::unlinkat(base, name.c_str(), AT_REMOVEDIR);
         }
-    for (const fs::path& folder : mCreatedFolders) forgetTemporary(folder);
+    for (const CreatedFolder& created : mCreatedFolders) forgetTemporary(created.path);
     mCreatedFolders.clear();
     mStaging.clear();
     mLock.release();
-    if (mParent >= 0) ::close(mParent);
-    mParent = -1;
+    for (int* descriptor : {&mParent, &mEarlierFolder, &mStagingFolder}) {
+        if (*descriptor >= 0) ::close(*descriptor);
+        *descriptor = -1;
+    }
 }
 
 fs::path DumpFolder::stage(const std::string& name) {
@@ -332,9 +349,9 @@ fs::path DumpFolder::stage(const std::string& name) {
 
 void DumpFolder::markEarlier() {
     if (!mHadEarlierDump) return;
-    const fs::path marker = mFolder / kStagingMarker;
     // Never through a link, never blocking: the check saw a regular file or none, but the folder is the user's.
-    const int file = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+    const int file =
+        ::openat(mEarlierFolder, kStagingMarker, O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
     if (file < 0)
         throw FileError("OutputSet::commit(): cannot mark the earlier dump in --dump '" + mShownName +
                         "': " + std::strerror(errno));
@@ -360,7 +377,7 @@ void DumpFolder::swapIn() {
         // leaves no DIR, the earlier dump set aside (marked) and the new one staged: never a mix.
         // Unmarked first: should the process die before the second rename, the earlier dump stays set aside under
         // this name for the user to rename back, and no later run's sweep deletes it.
-        if (mMarked && ::unlink((mFolder / kStagingMarker).c_str()) == 0) mMarked = false;
+        if (mMarked && ::unlinkat(mEarlierFolder, kStagingMarker, 0) == 0) mMarked = false;
         mAside = newStagingName(mFolder.parent_path());
         if (::rename(mFolder.c_str(), mAside.c_str()) != 0) fail(errno);
         if (::rename(mStaging.c_str(), mFolder.c_str()) != 0) {
@@ -370,8 +387,8 @@ void DumpFolder::swapIn() {
         }
         mExchanged = false;
         // Marked again now that the new dump is in place: from here a crash leaves it for the next run's sweep.
-        const int marker = ::open((mAside / kStagingMarker).c_str(),
-                                  O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+        const int marker = ::openat(mEarlierFolder, kStagingMarker,
+                                    O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
         if (marker >= 0) ::close(marker);
     }
     mSwapped = true;
@@ -382,28 +399,33 @@ void DumpFolder::swapIn() {
 }
 
 void DumpFolder::undo() {
-    // By the names in the folder the dump was staged in, wherever it is now (mParent).
+    // By the names in the folder the dump was staged in, wherever it is now (mParent), and the earlier dump's marker
+    // in that dump wherever it is.
     const fs::path folder = mFolder.filename(), staging = mStaging.filename(), aside = mAside.filename();
-    const fs::path folderMarker = folder / kStagingMarker;
     if (mSwapped) {
         if (!mHadEarlierDump) {
             if (::renameat(mParent, folder.c_str(), mParent, staging.c_str()) == 0) {
-                ::mkdirat(mParent, folder.c_str(), mFolderMode);
+                struct stat made {};
+                if (::mkdirat(mParent, folder.c_str(), mFolderMode) == 0 && !mCreatedFolders.empty() &&
+                    ::fstatat(mParent, folder.c_str(), &made, AT_SYMLINK_NOFOLLOW) == 0) {
+                    mCreatedFolders.front().device = made.st_dev; // the folder made again is this run's to remove
+                    mCreatedFolders.front().inode = made.st_ino;
+                }
                 mSwapped = false;
             }
         } else if (mExchanged) {
             if (exchangeFolders(staging, folder, mParent) == 0) mSwapped = false;
         } else if (::renameat(mParent, folder.c_str(), mParent, staging.c_str()) == 0 &&
                    ::renameat(mParent, aside.c_str(), mParent, folder.c_str()) == 0) {
-            ::unlinkat(mParent, folderMarker.c_str(), 0); // the mark swapIn() gave it once set aside
+            ::unlinkat(mEarlierFolder, kStagingMarker, 0); // the mark swapIn() gave it once set aside
             mSwapped = false;
         }
     }
-    if (mMarked && !mSwapped && ::unlinkat(mParent, folderMarker.c_str(), 0) == 0) mMarked = false;
+    if (mMarked && !mSwapped && ::unlinkat(mEarlierFolder, kStagingMarker, 0) == 0) mMarked = false;
 }
 
 bool DumpFolder::finish() {
-    bool clean = ::unlinkat(mParent, (mFolder.filename() / kStagingMarker).c_str(), 0) == 0;
+    bool clean = ::unlinkat(mStagingFolder, kStagingMarker, 0) == 0; // the new dump's: it was the staging folder
     if (!mHadEarlierDump) return clean;
     // The earlier dump, swapped out: only the files it was checked to hold, the marker last.
     const int aside = ::openat(mParent, mAside.filename().c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);

@@ -83,6 +83,10 @@ private:
     /** mFolder's parent (O_PATH), where the staging and set-aside folders lie: held from the check until abandon(), so
      *  the undo and the tidying act there even if the user moves it away during the commit. */
     int mParent = -1;
+    /** The earlier dump's folder and the staging folder (the new dump), O_PATH: their markers are put and removed
+     *  through these, wherever the user has moved or renamed them. -1 when there is none. */
+    int mEarlierFolder = -1;
+    int mStagingFolder = -1;
     std::filesystem::path mStaging;
     std::filesystem::path mAside; ///< where the earlier dump is after the swap (mStaging when exchanged)
     std::vector<std::string> mEarlierFiles;
@@ -92,8 +96,15 @@ private:
     uid_t mFolderOwner = 0;
     gid_t mFolderGroup = 0;
     FileLock mLock;
-    bool mTakenByAnotherRun = false;                    ///< its lock was held: never remove what this run created of it
-    std::vector<std::filesystem::path> mCreatedFolders; ///< innermost first; removed on failure when empty
+    bool mTakenByAnotherRun = false; ///< its lock was held: never remove what this run created of it
+    /** A folder this run created, and which inode it was: on failure it is removed only if its name still holds
+     *  that one (never a folder the user made at the name after moving this run's away). */
+    struct CreatedFolder {
+        std::filesystem::path path;
+        dev_t device = 0;
+        ino_t inode = 0;
+    };
+    std::vector<CreatedFolder> mCreatedFolders; ///< innermost first; removed on failure when empty
     bool mMarked = false;
     bool mSwapped = false;
     bool mExchanged = true; ///< false: swapped by two renames (no RENAME_EXCHANGE on this file system)

@@ -39,8 +39,8 @@ void sweepStaleTemporaries(const fs::path& folder) {
 }
 
 /** The commit's test hooks: INKGRAPH_TEST_COMMIT_KILL / _FAIL / _INTERRUPT / _MOVE = the step after which to stop
- *  the process, fail the commit, send the process SIGINT, or rename the first output's folder to "<folder>.moved" (as a
- *  user moving it away during a batch). */
+ *  the process, fail the commit, send the process SIGINT, or rename the first output's folder (the --dump folder itself
+ *  when --dump is the only output) to "<folder>.moved", as a user moving it away during a batch. */
 class CommitSteps {
 public:
     explicit CommitSteps(fs::path outputFolder)
@@ -221,7 +221,9 @@ void OutputSet::undo() {
 
 void OutputSet::commit() {
     const SignalsDeferred signalsDeferred; // a Ctrl-C lands after the commit, with every output old or every one new
-    CommitSteps steps(mOutputs.empty() ? fs::path() : mOutputs.front().destination.parent_path());
+    CommitSteps steps(!mOutputs.empty() ? mOutputs.front().destination.parent_path()
+                      : mDump           ? mDump->folder()
+                                        : fs::path());
     try {
         steps.done("everything staged");
         if (mDump) {

@@ -46,8 +46,7 @@ std::mutex gCommitMutex;
 std::atomic<bool> gDeferring{false};
 std::atomic<int> gDeferredSignal{0};
 
-/** Removes `name` (a file, or else an empty folder) from `folder` (a descriptor, or AT_FDCWD for a path).
- *  Async-signal-safe. */
+/** Removes `name` (a file, or else an empty folder) from `folder` (a descriptor, or AT_FDCWD for a path). */
 bool removeAt(int folder, const char* name) {
     if (::unlinkat(folder, name, 0) == 0) return true;
     return errno == EISDIR && ::unlinkat(folder, name, AT_REMOVEDIR) == 0;
@@ -57,14 +56,21 @@ bool removeAt(int folder, const char* name) {
 int folderOf(const Entry& entry) { return entry.holdsFolder ? entry.folder : AT_FDCWD; }
 const char* nameIn(const Entry& entry) { return entry.holdsFolder ? entry.path + entry.nameAt : entry.path; }
 
-/** Removes every registered path, newest first, then ends the process as `signalNumber` would (its default action,
- *  unblocked in the calling thread). Async-signal-safe. */
+/** Removes every registered path, then ends the process as `signalNumber` would (its default action, unblocked in the
+ *  calling thread). Async-signal-safe. Files first, then the folders, again and again while one goes: entries are
+ *  reused, so a folder (a dump's staging) may lie in a later entry than its files, or an earlier one. */
 [[noreturn]] void sweepAndEnd(int signalNumber) {
-    for (int i = kMaxEntries - 1; i >= 0; --i) {
+    bool gone[kMaxEntries] = {};
+    for (int i = 0; i < kMaxEntries; ++i) {
         const Entry& entry = gEntries[i];
-        if (!entry.used.load()) continue;
-        if (!removeAt(folderOf(entry), nameIn(entry)))
-            ::unlinkat(folderOf(entry), nameIn(entry), AT_REMOVEDIR); // a folder registered before its files
+        gone[i] = !entry.used.load() || ::unlinkat(folderOf(entry), nameIn(entry), 0) == 0 || errno == ENOENT;
+    }
+    for (bool removedOne = true; removedOne;) {
+        removedOne = false;
+        for (int i = 0; i < kMaxEntries; ++i) {
+            if (gone[i] || ::unlinkat(folderOf(gEntries[i]), nameIn(gEntries[i]), AT_REMOVEDIR) != 0) continue;
+            gone[i] = removedOne = true;
+        }
     }
     endBySignal(signalNumber);
 }

@@ -7,7 +7,7 @@
 
 namespace inkgraph {
 
-/** Remembers a file or an (eventually empty) folder to remove on a signal. Newer entries are removed first. Its folder
+/** Remembers a file or an (eventually empty) folder to remove on a signal: files first, then folders. Its folder
  *  is opened (O_PATH) and held while it is remembered, so the functions below, and a signal's removal, find it there
  *  even if that folder has been moved or renamed since (a user moving the output folder during a batch). */
 void registerTemporary(const std::filesystem::path& path);

@@ -225,6 +225,39 @@ TEST_F(OutputTransaction, AFolderMovedAwayDuringTheCommitGetsItsFilesBackAndNoTe
         }
 }
 
+TEST_F(OutputTransaction, ADumpFolderRenamedDuringTheCommitKeepsNoMarker) {
+    // The dump folder itself renamed by the user during the commit: its mark goes into the earlier dump and comes out
+    // of it through the folder held open, wherever it is; by name, the mark stayed in the renamed dump.
+    makeEarlierOutputs();
+    const Snapshot earlierDump = snapshot(directory / "old" / "d");
+    for (const std::string mode : kSwapModes) {
+        int failures = 0;
+        for (int step = 1; step < 30; ++step) {
+            SCOPED_TRACE(mode + "renamed after step " + std::to_string(step));
+            const fs::path work = directory / "work";
+            fs::remove_all(work);
+            fs::create_directories(work);
+            fs::copy(directory / "old" / "d", work / "d", fs::copy_options::recursive);
+            const CliRun result = run("render " + model("spot_c3d.obj") + " --lines none --size 48x48 --dump '" +
+                                          (work / "d").string() + "'",
+                                      mode + "INKGRAPH_TEST_COMMIT_MOVE=" + std::to_string(step));
+            ASSERT_TRUE(fs::exists(work / "d.moved")) << "the hook renamed nothing";
+            if (result.exitCode == 0) {
+                // Renamed after the swap: the new dump, tidied, and the earlier one gone.
+                EXPECT_EQ(listFiles(work), (std::vector<std::string>{"d.moved"}));
+                EXPECT_EQ(listFiles(work / "d.moved"),
+                          (std::vector<std::string>{"final.png", "manifest.json", "shading.png"}));
+                break;
+            }
+            ++failures;
+            EXPECT_EQ(result.exitCode, 5) << result.err;
+            EXPECT_EQ(listFiles(work), (std::vector<std::string>{"d.moved"})) << "a staging folder was left";
+            EXPECT_EQ(snapshot(work / "d.moved"), earlierDump) << "the renamed earlier dump changed";
+        }
+        EXPECT_EQ(failures, 2); // renamed after staging and after the mark: the swap by name finds no folder
+    }
+}
+
 TEST_F(OutputTransaction, ACtrlCDuringTheCommitLandsAfterIt) {
     // The signal goes to the process; whichever thread takes it (the libraries' threads block none), the commit ends
     // first: every output new, then the process ends as SIGINT would have it, with nothing left behind.

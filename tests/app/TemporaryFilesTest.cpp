@@ -96,6 +96,37 @@ TEST(TemporaryFilesOnSignals, ATemporaryIsRemovedFromItsFolderMovedAway) {
     fs::remove_all(root);
 }
 
+/** Registers `file` and then its folder (so the folder lies in the later entry, as when a batch's stills reuse the
+ *  entries another still's commit freed), then stops the process with SIGINT. */
+[[noreturn]] void registerAFolderAfterItsFileThenStop(const fs::path& file) {
+    removeTemporariesOnSignals();
+    {
+        const TemporaryCreation creating;
+        fs::create_directories(file.parent_path());
+        registerTemporary(file);
+        registerTemporary(file.parent_path());
+        std::ofstream(file) << "staged\n";
+    }
+    ::kill(::getpid(), SIGINT);
+    for (;;) std::this_thread::sleep_for(std::chrono::seconds(1)); // the signal ends the process here
+}
+
+TEST(TemporaryFilesOnSignals, AFolderRegisteredAfterItsFilesIsRemovedWithThem) {
+    // The sweep went from the newest entry to the oldest, taking a later entry for a newer path: a staging folder
+    // that reused a later entry than its files failed to go (not empty yet), 8 of 73 interrupted --jobs 2 batches.
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    const fs::path root = testFolder("folder-after-files");
+    const bool inChild = !GTEST_FLAG_GET(internal_run_death_test).empty();
+    if (!inChild) {
+        fs::remove_all(root);
+        fs::create_directories(root);
+    }
+    EXPECT_EXIT(registerAFolderAfterItsFileThenStop(root / "staging" / "final.png"), ::testing::KilledBySignal(SIGINT),
+                "");
+    EXPECT_TRUE(fs::is_empty(root)) << "the staging folder or its file was left";
+    fs::remove_all(root);
+}
+
 class TemporaryFilesInAMovedFolder : public ::testing::Test {
 protected:
     void SetUp() override {
