@@ -97,15 +97,16 @@ std::string flagHelpCell(const Flag& entry) {
     std::string text;
     for (const std::string& block : helpBlocks(entry.help)) {
         if (block.rfind("  ", 0) != 0) {
-            text += (text.empty() ? "" : " ") + markdownText(block);
+            if (!text.empty()) text += ' ';
+            text += markdownText(block);
             continue;
         }
         if (linesFlag) continue;
         const std::string item = block.substr(2);
         const std::size_t colon = item.find(": ");
-        text += "<br>" + (colon == std::string::npos
-                              ? markdownText(item)
-                              : code(item.substr(0, colon)) + ": " + markdownText(item.substr(colon + 2)));
+        text += "<br>";
+        text += colon == std::string::npos ? markdownText(item)
+                                           : code(item.substr(0, colon)) + ": " + markdownText(item.substr(colon + 2));
     }
     if (linesFlag) text += " (the types: [line types](#line-types) below)";
     return text;
@@ -117,10 +118,12 @@ std::string renderFlagsTable() {
     for (HelpSection section : helpSections()) {
         const std::string title = helpSectionTitle(section);
         const std::size_t aside = title.find(" (");
-        text +=
-            "| **" + title.substr(0, aside) + "** |" +
-            (aside == std::string::npos ? "" : " " + markdownText(title.substr(aside + 2, title.size() - aside - 3))) +
-            " |\n";
+        text += "| **" + title.substr(0, aside) + "** |";
+        if (aside != std::string::npos) {
+            text += ' ';
+            text += markdownText(title.substr(aside + 2, title.size() - aside - 3));
+        }
+        text += " |\n";
         for (const Flag& entry : renderFlags()) {
             if (entry.section != section || entry.help.empty()) continue;
             // A note of the section (no label) goes in a row of its own, under the flags it speaks of.
@@ -146,8 +149,10 @@ std::string lineTypesSection() {
                        "`--TYPE-color` |\n|---|---|---|---|\n";
     for (const LineType& type : lineTypes()) {
         std::string settings;
-        for (const LineParameter* parameter : type.parameters)
-            settings += (settings.empty() ? "" : " ") + code("--" + parameter->name + " " + parameter->valueName);
+        for (const LineParameter* parameter : type.parameters) {
+            if (!settings.empty()) settings += ' ';
+            settings += code("--" + parameter->name + " " + parameter->valueName);
+        }
         text += "| " + code(type.name) + " | " + familyText(type.family) + " | " + cell(type.help) + " | " +
                 (settings.empty() ? "-" : settings) + " |\n";
     }

@@ -52,13 +52,6 @@ std::string quotedNames(const std::vector<std::string>& names) {
     return text;
 }
 
-/** "azimuth, elevation", as the Python-level functions list the keywords they take. */
-std::string plainNames(const std::vector<std::string>& names) {
-    std::string text;
-    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
-    return text;
-}
-
 std::string countOf(std::size_t count, const char* noun) {
     return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
 }
@@ -106,7 +99,7 @@ std::optional<Misfit> misfit(const FunctionRecord& function, PyObject* arguments
         PyObject* value = nullptr;
         Py_ssize_t position = 0;
         while (PyDict_Next(keywords, &position, &key, &value)) {
-            const std::string keyword = py::str(key).attr("encode")("utf-8", "backslashreplace").cast<std::string>();
+            const std::string keyword = escapedUtf8(py::str(key));
             std::size_t index = 0;
             while (index < function.args.size() &&
                    (function.args[index].name == nullptr || keyword != function.args[index].name))
@@ -115,7 +108,7 @@ std::optional<Misfit> misfit(const FunctionRecord& function, PyObject* arguments
                 if (function.has_kwargs) continue;
                 return Misfit{"unexpected keyword argument " + reprText(key),
                               names.empty() ? " (it takes no keyword arguments)"
-                                            : " (arguments: " + plainNames(names) + ")"};
+                                            : " (arguments: " + commaSeparated(names) + ")"};
             }
             if (index < std::min(given, positional))
                 return Misfit{"argument " + quotedName(keyword) + " given twice, by position and by keyword", ""};

@@ -45,6 +45,8 @@ namespace py = pybind11;
 namespace ig = inkgraph::api;
 using namespace pybind11::literals;
 using inkgraph::python::checked;
+using inkgraph::python::commaSeparated;
+using inkgraph::python::escapedUtf8;
 using inkgraph::python::reprText;
 
 namespace {
@@ -146,11 +148,6 @@ void raisePythonError(const ig::Error& error) {
 [[noreturn]] void failUsage(const std::string& message) { throw ig::Error(ig::Error::Kind::Usage, message); }
 [[noreturn]] void failInput(const std::string& message) { throw ig::Error(ig::Error::Kind::Input, message); }
 
-/** A str as UTF-8, lone surrogates (as os.fsdecode leaves undecodable bytes) escaped rather than refused. */
-std::string utf8Of(py::handle text) {
-    return py::reinterpret_borrow<py::str>(text).attr("encode")("utf-8", "backslashreplace").cast<std::string>();
-}
-
 /** Text a caller gave back as a list of str, as os.fsdecode() makes them: a value set from a name that is not UTF-8
  *  reads back as the str it was set from (pybind11's own conversion raised UnicodeDecodeError). */
 py::list osTextsOf(const std::vector<std::string>& texts) {
@@ -240,7 +237,7 @@ Enum enumNamed(const std::string& name, const std::string& where) {
 template <typename Enum>
 Enum enumArgument(py::handle value, const std::string& where) {
     if (py::isinstance<Enum>(value)) return value.cast<Enum>();
-    if (py::isinstance<py::str>(value)) return enumNamed<Enum>(utf8Of(value), where);
+    if (py::isinstance<py::str>(value)) return enumNamed<Enum>(escapedUtf8(value), where);
     throw py::type_error(where + ": expected a " + EnumMembers<Enum>::className + " or its name (" +
                          availableNames<Enum>() + "), got " + reprText(value));
 }
@@ -374,14 +371,11 @@ void addValueProtocol(Class& type, std::vector<std::string> fields) {
             if (!py::isinstance<Value>(self))
                 throw py::type_error(where + "self: expected " + typeName + ", got " + reprText(self));
             py::dict values;
-            std::string fieldList;
-            for (const std::string& field : fields) {
-                values[field.c_str()] = self.attr(field.c_str());
-                fieldList += (fieldList.empty() ? "" : ", ") + field;
-            }
+            for (const std::string& field : fields) values[field.c_str()] = self.attr(field.c_str());
             for (const auto& [name, value] : changes) {
                 if (!values.contains(name))
-                    throw py::type_error(where + reprText(name) + " is not a field (fields: " + fieldList + ")");
+                    throw py::type_error(where + reprText(name) + " is not a field (fields: " + commaSeparated(fields) +
+                                         ")");
                 values[name] = value;
             }
             return py::type::of(self)(**values);
@@ -496,7 +490,7 @@ py::array arrayOf(py::handle value, const std::string& where, const std::string&
     } catch (py::error_already_set& error) {
         if (!error.matches(PyExc_ValueError)) throw;
         failInput(where + expected + ", got a sequence NumPy cannot make an array of (" +
-                  utf8Of(py::str(error.value())) + ")");
+                  escapedUtf8(py::str(error.value())) + ")");
     }
 }
 
@@ -841,7 +835,7 @@ const std::vector<std::string> kFrameFields{"eye",  "orbit",       "target",    
 void setFields(py::handle object, const py::kwargs& fields, const std::vector<std::string>& allowed,
                const std::string& className) {
     for (const auto& [name, value] : fields) {
-        const std::string key = utf8Of(name);
+        const std::string key = escapedUtf8(name);
         if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
             std::string names;
             for (const std::string& field : allowed) names += (names.empty() ? "" : ", ") + field;

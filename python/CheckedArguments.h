@@ -88,11 +88,28 @@ std::string expectedText() {
     }
 }
 
+/** A str as UTF-8, lone surrogates (as os.fsdecode leaves undecodable bytes) escaped (\udcff) rather than refused. */
+inline std::string escapedUtf8(pybind11::handle text) {
+    return pybind11::reinterpret_borrow<pybind11::str>(text)
+        .attr("encode")("utf-8", "backslashreplace")
+        .cast<std::string>();
+}
+
+/** "a, b, c": names as Python's messages list them. */
+inline std::string commaSeparated(const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names) {
+        if (!text.empty()) text += ", ";
+        text += name;
+    }
+    return text;
+}
+
 /** repr(value) as UTF-8, lone surrogates escaped; for a value whose __repr__ raises an Exception, its type's name
  *  (the refusal stays a TypeError). An interrupt or SystemExit there is raised as it is. */
 inline std::string reprText(pybind11::handle value) {
     try {
-        return pybind11::repr(value).attr("encode")("utf-8", "backslashreplace").cast<std::string>();
+        return escapedUtf8(pybind11::repr(value));
     } catch (pybind11::error_already_set& error) {
         if (!error.matches(PyExc_Exception)) throw;
         return std::string("<") + Py_TYPE(value.ptr())->tp_name + " object whose repr() raised>";
