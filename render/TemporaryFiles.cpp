@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <pthread.h>
+#include <sys/stat.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -87,12 +88,37 @@ int openFolderOf(const std::string& path) {
     return ::open(folder.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
 }
 
-/** Stores `text` with `folder` (-1: none) in a free entry; the registry is locked. False when it cannot be kept (too
- *  long, the table full): the caller closes `folder` then. */
+/** An entry's descriptor for the same folder as `folder` (the same inode, reached by the same text), or -1; the
+ *  registry is locked. Entries in one folder share one descriptor: a dump's twenty files held twenty, which a low
+ *  `ulimit -n` ran out of. */
+int sharedFolder(const std::string& text, int folder) {
+    struct stat wanted {};
+    if (::fstat(folder, &wanted) != 0) return -1;
+    const std::size_t nameAt = nameOffset(text);
+    for (const Entry& entry : gEntries) {
+        if (!entry.used.load() || !entry.holdsFolder || entry.nameAt != nameAt ||
+            text.compare(0, nameAt, entry.path, nameAt) != 0)
+            continue;
+        struct stat held {};
+        if (::fstat(entry.folder, &held) == 0 && held.st_dev == wanted.st_dev && held.st_ino == wanted.st_ino)
+            return entry.folder;
+    }
+    return -1;
+}
+
+/** Stores `text` with `folder` (-1: none) in a free entry, sharing the descriptor of an entry in the same folder
+ *  (`folder` is then closed); the registry is locked. False when it cannot be kept (too long, the table full): the
+ *  caller closes `folder` then. */
 bool remember(const std::string& text, int folder) {
     if (text.size() >= kMaxPathBytes) return false;
     for (Entry& entry : gEntries) {
         if (entry.used.load()) continue;
+        if (folder >= 0) {
+            if (const int shared = sharedFolder(text, folder); shared >= 0) {
+                ::close(folder);
+                folder = shared;
+            }
+        }
         std::memcpy(entry.path, text.c_str(), text.size() + 1);
         entry.nameAt = nameOffset(text);
         entry.holdsFolder = folder >= 0;
@@ -110,13 +136,21 @@ Entry* entryOf(const std::string& text) {
     return nullptr;
 }
 
-/** Forgets every entry for `text` and closes their folders; the registry is locked. errno is kept. */
+/** Whether a remembered entry holds the descriptor `folder`; the registry is locked. */
+bool folderInUse(int folder) {
+    for (const Entry& entry : gEntries)
+        if (entry.used.load() && entry.holdsFolder && entry.folder == folder) return true;
+    return false;
+}
+
+/** Forgets every entry for `text` and closes their folders unless another entry shares one; the registry is
+ *  locked. errno is kept. */
 void forgetLocked(const std::string& text) {
     const int error = errno;
     for (Entry& entry : gEntries) {
         if (!entry.used.load() || text != entry.path) continue;
         entry.used.store(false); // first: a signal handler no longer reads the folder about to be closed
-        if (entry.holdsFolder) ::close(entry.folder);
+        if (entry.holdsFolder && !folderInUse(entry.folder)) ::close(entry.folder);
         entry.holdsFolder = false;
     }
     errno = error;

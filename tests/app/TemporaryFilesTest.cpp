@@ -184,6 +184,22 @@ TEST_F(TemporaryFilesInAMovedFolder, ATemporaryIsRenamedWhereItsFolderNowIs) {
     EXPECT_EQ(std::distance(fs::directory_iterator(root / "moved"), fs::directory_iterator()), 1);
 }
 
+TEST_F(TemporaryFilesInAMovedFolder, TemporariesInOneFolderShareOneDescriptor) {
+    // A dump's twenty files held twenty folder descriptors, so a low `ulimit -n` (16 to 28) refused a still it had
+    // rendered; one folder, one descriptor, closed with the last of its temporaries.
+    const auto openDescriptors = [] {
+        return std::distance(fs::directory_iterator("/proc/self/fd"), fs::directory_iterator());
+    };
+    const auto before = openDescriptors();
+    std::vector<fs::path> files;
+    for (int i = 0; i < 20; ++i) files.push_back(makeTemporary(".inkgraph-" + std::to_string(i) + ".tmp", "x"));
+    EXPECT_EQ(openDescriptors(), before + 1);
+    moveAway();
+    for (const fs::path& file : files) EXPECT_TRUE(removeTemporary(file)) << file;
+    EXPECT_TRUE(fs::is_empty(root / "moved"));
+    EXPECT_EQ(openDescriptors(), before);
+}
+
 TEST_F(TemporaryFilesInAMovedFolder, ATemporaryTheFullTableCannotHoldIsRemovedByItsName) {
     // The signal's table is fixed (256 entries): a temporary made when it is full is not registered, and is removed by
     // its path (in the folder at that path: one moved away meanwhile keeps it, as before the folders were held).
