@@ -203,13 +203,13 @@ void DumpFolder::check(const std::string& flagValue) {
     folder = folder.lexically_normal();
     if (!folder.has_filename()) folder = folder.parent_path(); // "d/" and "d/." name d itself
     const fs::file_status status = fs::status(folder, error);
-    if (error && error != std::errc::no_such_file_or_directory) fail(": " + error.message());
+    if (error && error != std::errc::no_such_file_or_directory) fail("cannot be read: " + error.message());
     if (!fs::exists(status) && fs::is_symlink(fs::symlink_status(folder)))
         fail("is a link to a folder that does not exist ('" + fs::read_symlink(folder).string() + "')");
     if (fs::exists(status)) {
         if (!fs::is_directory(status)) fail("is a file, not a folder");
         folder = fs::canonical(folder, error); // the swap replaces the folder itself, never a link to it
-        if (error) fail(": " + error.message());
+        if (error) fail("cannot be resolved: " + error.message());
     } else {
         // Created now (its missing parents too), removed again if the run fails; the commit swaps the dump in for it.
         for (fs::path missing = folder; !missing.empty() && !fs::exists(missing, error);
@@ -240,7 +240,7 @@ void DumpFolder::check(const std::string& flagValue) {
     struct stat folderStatus {
     }, parentStatus{};
     if (::stat(folder.c_str(), &folderStatus) != 0 || ::stat(parent.c_str(), &parentStatus) != 0)
-        fail(std::string(": ") + std::strerror(errno));
+        fail(std::string("cannot be read: ") + std::strerror(errno));
     if (folderStatus.st_dev != parentStatus.st_dev)
         fail("is a mount point; a dump is staged beside its folder and swapped in, so give a folder inside it");
     mFolderMode = folderStatus.st_mode & 07777;
@@ -267,9 +267,7 @@ void DumpFolder::check(const std::string& flagValue) {
     mHadEarlierDump = names && !names->empty();
     if (mHadEarlierDump) {
         mEarlierFolder = ::open(folder.c_str(), O_PATH | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-        if (mEarlierFolder < 0) fail(": " + std::string(std::strerror(errno)));
-    }
-    if (mHadEarlierDump) {
+        if (mEarlierFolder < 0) fail("cannot be opened: " + std::string(std::strerror(errno)));
         EarlierDump earlier = readEarlierDump(folder);
         if (!earlier.problem.empty())
             fail("holds files that are not an inkgraph dump (" + earlier.problem +
