@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstring>
 #include <mutex>
+#include <new>
 #include <string>
 #include <system_error>
 #include <thread>
@@ -18,7 +19,10 @@
 namespace inkgraph {
 namespace {
 
-constexpr int kMaxEntries = 256;
+constexpr int kEntriesPerChunk = 256;
+/** Chunks after the first are allocated as a run needs them: a batch of 64 jobs with --dump (the most --jobs allows)
+ *  holds about 1,400 temporaries at once, and those past a fixed 256 went unregistered, left behind by a signal. */
+constexpr int kMaxChunks = 16;
 constexpr std::size_t kMaxPathBytes = 4096;
 
 struct Entry {
@@ -35,7 +39,26 @@ struct Entry {
 // Constant-initialized (constinit: the build fails otherwise), so the megabyte lies untouched in .bss until a path is
 // registered: initialized at start-up it cost every process, and the restart for the malloc tunables, 256 page faults
 // (about 3 ms).
-constinit Entry gEntries[kMaxEntries];
+constinit Entry gFirstChunk[kEntriesPerChunk];
+/** The chunks, the first `gChunkCount` of them in use: a chunk is stored before the count grows past it, so a signal
+ *  handler reading without the lock sees only whole chunks. Never freed (the process's lifetime). */
+constinit Entry* gChunks[kMaxChunks] = {gFirstChunk};
+constinit std::atomic<int> gChunkCount{1};
+
+int entryCount() { return gChunkCount.load(std::memory_order_acquire) * kEntriesPerChunk; }
+Entry& entryAt(int index) { return gChunks[index / kEntriesPerChunk][index % kEntriesPerChunk]; }
+
+/** A new chunk's first entry, or null when none can be had (every chunk in use, or no memory); the registry is
+ *  locked. */
+Entry* newChunk() {
+    const int count = gChunkCount.load();
+    if (count == kMaxChunks) return nullptr;
+    Entry* chunk = new (std::nothrow) Entry[kEntriesPerChunk];
+    if (!chunk) return nullptr;
+    gChunks[count] = chunk;
+    gChunkCount.store(count + 1, std::memory_order_release);
+    return chunk;
+}
 /** Writers, creators (TemporaryCreation: recursive, as a creator registers what it made) and the signal thread's
  *  removal; a signal handler reads without locking (it may interrupt a writer). */
 std::recursive_mutex gRegistryMutex;
@@ -46,6 +69,10 @@ std::mutex gCommitMutex;
  *  not block signals); SignalsDeferred acts on it once the commit has ended. */
 std::atomic<bool> gDeferring{false};
 std::atomic<int> gDeferredSignal{0};
+/** Whether the signal thread runs (the handled signals then wait for it, blocked in the threads started after it),
+ *  and whether it has taken a signal, which it acts on once it holds the commit lock. */
+std::atomic<bool> gSignalThreadRuns{false};
+std::atomic<bool> gSignalTaken{false};
 
 /** Removes `name` (a file, or else an empty folder) from `folder` (a descriptor, or AT_FDCWD for a path). */
 bool removeAt(int folder, const char* name) {
@@ -61,15 +88,16 @@ const char* nameIn(const Entry& entry) { return entry.holdsFolder ? entry.path +
  *  calling thread). Async-signal-safe. Files first, then the folders, again and again while one goes: entries are
  *  reused, so a folder (a dump's staging) may lie in a later entry than its files, or an earlier one. */
 [[noreturn]] void sweepAndEnd(int signalNumber) {
-    bool gone[kMaxEntries] = {};
-    for (int i = 0; i < kMaxEntries; ++i) {
-        const Entry& entry = gEntries[i];
+    bool gone[kEntriesPerChunk * kMaxChunks] = {}; // 4 KiB of the stack
+    const int count = entryCount();
+    for (int i = 0; i < count; ++i) {
+        const Entry& entry = entryAt(i);
         gone[i] = !entry.used.load() || ::unlinkat(folderOf(entry), nameIn(entry), 0) == 0 || errno == ENOENT;
     }
     for (bool removedOne = true; removedOne;) {
         removedOne = false;
-        for (int i = 0; i < kMaxEntries; ++i) {
-            if (gone[i] || ::unlinkat(folderOf(gEntries[i]), nameIn(gEntries[i]), AT_REMOVEDIR) != 0) continue;
+        for (int i = 0; i < count; ++i) {
+            if (gone[i] || ::unlinkat(folderOf(entryAt(i)), nameIn(entryAt(i)), AT_REMOVEDIR) != 0) continue;
             gone[i] = removedOne = true;
         }
     }
@@ -95,7 +123,8 @@ int sharedFolder(const std::string& text, int folder) {
     struct stat wanted {};
     if (::fstat(folder, &wanted) != 0) return -1;
     const std::size_t nameAt = nameOffset(text);
-    for (const Entry& entry : gEntries) {
+    for (int i = 0, count = entryCount(); i < count; ++i) {
+        const Entry& entry = entryAt(i);
         if (!entry.used.load() || !entry.holdsFolder || entry.nameAt != nameAt ||
             text.compare(0, nameAt, entry.path, nameAt) != 0)
             continue;
@@ -106,40 +135,46 @@ int sharedFolder(const std::string& text, int folder) {
     return -1;
 }
 
+/** A free entry, in a new chunk when every one is taken, or null; the registry is locked. */
+Entry* freeEntry() {
+    for (int i = 0, count = entryCount(); i < count; ++i)
+        if (!entryAt(i).used.load()) return &entryAt(i);
+    return newChunk();
+}
+
 /** Stores `text` with `folder` (-1: none) in a free entry, sharing the descriptor of an entry in the same folder
  *  (`folder` is then closed); the registry is locked. False when it cannot be kept (too long, the table full): the
  *  caller closes `folder` then. */
 bool remember(const std::string& text, int folder) {
     if (text.size() >= kMaxPathBytes) return false;
-    for (Entry& entry : gEntries) {
-        if (entry.used.load()) continue;
-        if (folder >= 0) {
-            if (const int shared = sharedFolder(text, folder); shared >= 0) {
-                ::close(folder);
-                folder = shared;
-            }
+    Entry* entry = freeEntry();
+    if (!entry) return false;
+    if (folder >= 0) {
+        if (const int shared = sharedFolder(text, folder); shared >= 0) {
+            ::close(folder);
+            folder = shared;
         }
-        std::memcpy(entry.path, text.c_str(), text.size() + 1);
-        entry.nameAt = nameOffset(text);
-        entry.holdsFolder = folder >= 0;
-        entry.folder = folder >= 0 ? folder : 0;
-        entry.used.store(true); // last: a signal handler reading without the lock sees a whole entry
-        return true;
     }
-    return false;
+    std::memcpy(entry->path, text.c_str(), text.size() + 1);
+    entry->nameAt = nameOffset(text);
+    entry->holdsFolder = folder >= 0;
+    entry->folder = folder >= 0 ? folder : 0;
+    entry->used.store(true); // last: a signal handler reading without the lock sees a whole entry
+    return true;
 }
 
 /** The newest entry for `text`, or null; the registry is locked. */
 Entry* entryOf(const std::string& text) {
-    for (int i = kMaxEntries - 1; i >= 0; --i)
-        if (gEntries[i].used.load() && text == gEntries[i].path) return &gEntries[i];
+    for (int i = entryCount() - 1; i >= 0; --i)
+        if (entryAt(i).used.load() && text == entryAt(i).path) return &entryAt(i);
     return nullptr;
 }
 
 /** Whether a remembered entry holds the descriptor `folder`; the registry is locked. */
 bool folderInUse(int folder) {
-    for (const Entry& entry : gEntries)
-        if (entry.used.load() && entry.holdsFolder && entry.folder == folder) return true;
+    for (int i = 0, count = entryCount(); i < count; ++i)
+        if (const Entry& entry = entryAt(i); entry.used.load() && entry.holdsFolder && entry.folder == folder)
+            return true;
     return false;
 }
 
@@ -147,7 +182,8 @@ bool folderInUse(int folder) {
  *  locked. errno is kept. */
 void forgetLocked(const std::string& text) {
     const int error = errno;
-    for (Entry& entry : gEntries) {
+    for (int i = 0, count = entryCount(); i < count; ++i) {
+        Entry& entry = entryAt(i);
         if (!entry.used.load() || text != entry.path) continue;
         entry.used.store(false); // first: a signal handler no longer reads the folder about to be closed
         if (entry.holdsFolder && !folderInUse(entry.folder)) ::close(entry.folder);
@@ -160,7 +196,11 @@ void forgetLocked(const std::string& text) {
 void removeAll(int signalNumber) {
     if (gDeferring.load()) {
         gDeferredSignal.store(signalNumber);
-        return;
+        // The commit may have ended between the test and the store, its SignalsDeferred finding no signal: whichever
+        // of the two takes it back acts on it.
+        if (gDeferring.load()) return;
+        signalNumber = gDeferredSignal.exchange(0);
+        if (signalNumber == 0) return;
     }
     sweepAndEnd(signalNumber);
 }
@@ -173,6 +213,7 @@ constexpr int kHandledSignals[] = {SIGINT, SIGTERM, SIGHUP};
     for (;;) {
         int signalNumber = 0;
         if (::sigwait(&signals, &signalNumber) != 0) continue;
+        gSignalTaken.store(true);
         gCommitMutex.lock();   // a commit runs whole: every output old or every one new
         gRegistryMutex.lock(); // no temporary half made; none made after the sweep, as the lock is never given back
         sweepAndEnd(signalNumber);
@@ -264,6 +305,7 @@ void removeTemporariesOnSignals() {
         if (::pthread_sigmask(SIG_BLOCK, &signals, nullptr) != 0) return;
         try {
             std::thread(waitForSignals, signals).detach();
+            gSignalThreadRuns.store(true);
         } catch (const std::system_error&) {
             ::pthread_sigmask(SIG_UNBLOCK, &signals, nullptr); // no thread: the handler takes them, as before
         }
@@ -276,10 +318,30 @@ SignalsDeferred::SignalsDeferred() {
     gDeferring.store(true);
 }
 
+namespace {
+
+/** Whether a signal for the signal thread has come and is not yet acted on: taken by it, or still pending (sent to
+ *  the process, which leaves it pending while every thread but that one blocks it). */
+bool signalOnItsWay() {
+    if (!gSignalThreadRuns.load()) return false;
+    if (gSignalTaken.load()) return true;
+    sigset_t pending;
+    if (::sigpending(&pending) != 0) return false;
+    for (int signalNumber : kHandledSignals)
+        if (::sigismember(&pending, signalNumber) == 1) return true;
+    return false;
+}
+
+} // namespace
+
 SignalsDeferred::~SignalsDeferred() {
     gDeferring.store(false);
     gCommitMutex.unlock();
     if (const int signalNumber = gDeferredSignal.exchange(0)) removeAll(signalNumber);
+    // A signal that came during the commit ends the process once the signal thread has the commit lock. Until then
+    // this thread waits: going on, it could end the process first (a run whose last commit it was), with status 0.
+    if (signalOnItsWay())
+        for (;;) ::pause();
 }
 
 std::string temporaryTag() {

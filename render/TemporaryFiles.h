@@ -1,7 +1,8 @@
 #pragma once
 /** @file Temporary files and folders of this process, removed if it is interrupted (SIGINT, SIGTERM, SIGHUP), so
- *  that a stopped run leaves nothing behind. Paths are kept in a fixed table so the signal handler can walk it
- *  with async-signal-safe calls only (unlink, rmdir). */
+ *  that a stopped run leaves nothing behind. Paths are kept in a table of fixed-size chunks (256 paths each, up to
+ *  4,096, added as a run needs them) so the signal handler can walk it with async-signal-safe calls only (unlink,
+ *  rmdir). */
 
 #include <filesystem>
 
@@ -19,7 +20,7 @@ void forgetTemporary(const std::filesystem::path& path);
  *  set. */
 int createTemporaryFile(const std::filesystem::path& path, unsigned mode);
 /** Removes a registered temporary (a file, or an empty folder) from the folder it was made in, wherever that folder
- *  is now, and forgets it; one not registered (its path too long, the table full) is removed by its path. False, with
+ *  is now, and forgets it; one not registered (its path too long, or 4,096 held) is removed by its path. False, with
  *  errno set, when nothing was removed. */
 bool removeTemporary(const std::filesystem::path& path);
 /** Renames a registered temporary to `sibling`'s file name in the folder it was made in (and forgets it), wherever that

@@ -127,6 +127,51 @@ TEST(TemporaryFilesOnSignals, AFolderRegisteredAfterItsFilesIsRemovedWithThem) {
     fs::remove_all(root);
 }
 
+/** Creates `count` registered temporaries in `folder`, then stops the process with SIGTERM. */
+[[noreturn]] void createManyThenStop(const fs::path& folder, int count) {
+    removeTemporariesOnSignals();
+    for (int i = 0; i < count; ++i) {
+        const int descriptor = createTemporaryFile(folder / (".inkgraph-many-" + std::to_string(i) + ".tmp"), 0644);
+        if (descriptor < 0) ::_exit(3); // reported as the wrong ending
+        ::close(descriptor);
+    }
+    ::kill(::getpid(), SIGTERM);
+    for (;;) std::this_thread::sleep_for(std::chrono::seconds(1)); // the signal ends the process here
+}
+
+TEST(TemporaryFilesOnSignals, MoreTemporariesThanTheFirstChunkHoldsAreAllRemoved) {
+    // The table held 256 paths: a --jobs 64 batch with --dump (about 1,400 temporaries at once) registered no more,
+    // and a signal left the rest (2 of 8 runs). 1,000 fill four chunks.
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    const fs::path root = testFolder("many-on-signal");
+    const bool inChild = !GTEST_FLAG_GET(internal_run_death_test).empty();
+    if (!inChild) {
+        fs::remove_all(root);
+        fs::create_directories(root);
+    }
+    EXPECT_EXIT(createManyThenStop(root, 1000), ::testing::KilledBySignal(SIGTERM), "");
+    const auto left = std::distance(fs::directory_iterator(root), fs::directory_iterator());
+    EXPECT_EQ(left, 0) << "temporaries were left";
+    fs::remove_all(root);
+}
+
+TEST(TemporaryFiles, ThoseBeyondTheFirstChunkAreFoundByTheirFolderAfterAMove) {
+    const fs::path root = testFolder("many-moved");
+    fs::remove_all(root);
+    fs::create_directories(root / "out");
+    std::vector<fs::path> files;
+    for (int i = 0; i < 600; ++i) {
+        files.push_back(root / "out" / (".inkgraph-many-" + std::to_string(i) + ".tmp"));
+        const int descriptor = createTemporaryFile(files.back(), 0644);
+        ASSERT_GE(descriptor, 0) << std::strerror(errno);
+        ::close(descriptor);
+    }
+    fs::rename(root / "out", root / "moved");
+    for (const fs::path& file : files) EXPECT_TRUE(removeTemporary(file)) << file << ": " << std::strerror(errno);
+    EXPECT_TRUE(fs::is_empty(root / "moved"));
+    fs::remove_all(root);
+}
+
 class TemporaryFilesInAMovedFolder : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -201,10 +246,11 @@ TEST_F(TemporaryFilesInAMovedFolder, TemporariesInOneFolderShareOneDescriptor) {
 }
 
 TEST_F(TemporaryFilesInAMovedFolder, ATemporaryTheFullTableCannotHoldIsRemovedByItsName) {
-    // The signal's table is fixed (256 entries): a temporary made when it is full is not registered, and is removed by
-    // its path (in the folder at that path: one moved away meanwhile keeps it, as before the folders were held).
+    // The signal's table holds 4,096 paths (16 chunks of 256): a temporary made when it is full is not registered,
+    // and is removed by its path (in the folder at that path: one moved away meanwhile keeps it, as before the
+    // folders were held).
     std::vector<fs::path> fillers;
-    for (int i = 0; i < 256; ++i) {
+    for (int i = 0; i < 4096; ++i) {
         fillers.push_back(root / "out" / ("filler" + std::to_string(i)));
         registerTemporary(fillers.back());
     }
