@@ -207,6 +207,18 @@ void removeAll(int signalNumber) {
 
 constexpr int kHandledSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
+/** Whether a signal for the signal thread has come and is not yet acted on: taken by it, or still pending (sent to
+ *  the process, which leaves it pending while every thread but that one blocks it). */
+bool signalOnItsWay() {
+    if (!gSignalThreadRuns.load()) return false;
+    if (gSignalTaken.load()) return true;
+    sigset_t pending;
+    if (::sigpending(&pending) != 0) return false;
+    for (int signalNumber : kHandledSignals)
+        if (::sigismember(&pending, signalNumber) == 1) return true;
+    return false;
+}
+
 /** The thread the handled signals go to (every other thread started after the handling was installed blocks them):
  *  it is no signal handler, so it can wait for the commit and hold the registry while it sweeps. */
 [[noreturn]] void waitForSignals(sigset_t signals) {
@@ -317,22 +329,6 @@ SignalsDeferred::SignalsDeferred() {
     gDeferredSignal.store(0);
     gDeferring.store(true);
 }
-
-namespace {
-
-/** Whether a signal for the signal thread has come and is not yet acted on: taken by it, or still pending (sent to
- *  the process, which leaves it pending while every thread but that one blocks it). */
-bool signalOnItsWay() {
-    if (!gSignalThreadRuns.load()) return false;
-    if (gSignalTaken.load()) return true;
-    sigset_t pending;
-    if (::sigpending(&pending) != 0) return false;
-    for (int signalNumber : kHandledSignals)
-        if (::sigismember(&pending, signalNumber) == 1) return true;
-    return false;
-}
-
-} // namespace
 
 SignalsDeferred::~SignalsDeferred() {
     gDeferring.store(false);
