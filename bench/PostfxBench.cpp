@@ -176,10 +176,7 @@ void BM_PostfxStrokes(benchmark::State& state) {
     const cv::Mat hull = strokeLines(extractDepthEdges(buffer.depth, {}), 2.0f, 1);
     const LineSkeleton contour = extractContours(buffer.nDotV, buffer.depth, {});
     const LineSkeleton suggestive = extractSuggestiveContours(buffer.radial, buffer.depth, suggestiveSettings());
-    StrokeSettings settings;
-    settings.joinRadiusPixels = std::max(2.0, 2.0 * size.height / 1024.0);
-    settings.directionPixels = 2.0 * settings.joinRadiusPixels;
-    settings.absorbPixels = 2.0 * settings.joinRadiusPixels;
+    const StrokeSettings settings = strokeSettingsFor(size.height, 1);
     std::size_t strokes = 0;
     for (auto _ : state) {
         const LineSkeleton silhouette = skeletonFromMask(thinToSkeleton(hull));

@@ -487,6 +487,13 @@ Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSetting
     return result;
 }
 
+double strokeSpanBiasPixels(double heightPixels) {
+    if (!std::isfinite(heightPixels) || heightPixels <= 0.0)
+        throw std::invalid_argument("strokeSpanBiasPixels(): 'heightPixels' must be finite and > 0, got " +
+                                    std::to_string(heightPixels));
+    return std::max(0.0, heightPixels / kLengthReferenceRows - 1.0);
+}
+
 double strokeLengthLimitPixels(double share, double heightPixels) {
     if (!std::isfinite(share) || share < 0.0)
         throw std::invalid_argument("strokeLengthLimitPixels(): 'share' must be finite and >= 0, got " +
@@ -495,7 +502,22 @@ double strokeLengthLimitPixels(double share, double heightPixels) {
         throw std::invalid_argument("strokeLengthLimitPixels(): 'heightPixels' must be finite and > 0, got " +
                                     std::to_string(heightPixels));
     if (share == 0.0) return 0.0;
-    return share * heightPixels + std::max(0.0, heightPixels / kLengthReferenceRows - 1.0);
+    return share * heightPixels + strokeSpanBiasPixels(heightPixels);
+}
+
+StrokeSettings strokeSettingsFor(double outputRows, int supersample) {
+    if (!std::isfinite(outputRows) || outputRows <= 0.0)
+        throw std::invalid_argument("strokeSettingsFor(): 'outputRows' must be finite and > 0, got " +
+                                    std::to_string(outputRows));
+    if (supersample < 1)
+        throw std::invalid_argument("strokeSettingsFor(): 'supersample' must be >= 1, got " +
+                                    std::to_string(supersample));
+    const double scaledRadius = std::max(2.0, kJoinRadiusAt1024 * outputRows / kLengthReferenceRows) * supersample;
+    StrokeSettings settings;
+    settings.joinRadiusPixels = scaledRadius - strokeSpanBiasPixels(outputRows * supersample);
+    settings.directionPixels = 2.0 * scaledRadius;
+    settings.absorbPixels = 2.0 * scaledRadius;
+    return settings;
 }
 
 StrokesNearLimits strokesNearLimits(const Strokes& strokes, const std::vector<StrokeLayer>& layers, double share) {

@@ -91,18 +91,38 @@ struct Strokes {
     std::size_t droppedWeak() const;
 };
 
-/** The height in pixels at which the length rule is the plain span rule (strokeLengthLimitPixels()). */
+/** The height in pixels at and below which the length rule and the join radius are the plain span rules
+ *  (strokeSpanBiasPixels()). */
 inline constexpr double kLengthReferenceRows = 1024.0;
 
+/** What one pixel of sampling is worth at `heightPixels` rows against a picture kLengthReferenceRows high, in pixels of
+ *  `heightPixels`. Spans are measured between samples, one a pixel: the line a chain draws covers a pixel more than
+ *  its first sample to its last, and the gap between two ends a pixel less than between their samples. In pixels of a
+ *  1024-row picture that pixel is one at 1024 rows and half of one at 2048, so a rule counted in a share of the height
+ *  judged the same line half a pixel (of 1024) longer, and the same gap half a pixel wider, at 2048 (issue 39). Above
+ *  kLengthReferenceRows this is height / 1024 - 1, the difference a rule takes back; at and below it 0, so a small
+ *  picture keeps its rules as they were. Throws std::invalid_argument naming 'heightPixels' unless it is finite and
+ *  > 0. */
+double strokeSpanBiasPixels(double heightPixels);
+
 /** The span a chain needs (StrokeLayer::minLengthPixels) for a rule of `share` x the height, in pixels of a picture
- *  `heightPixels` high. A chain's length is measured from its first sample to its last, and the line it draws covers
- *  a pixel more: in pixels of kLengthReferenceRows that is one pixel at 1024 rows and half of one at 2048, so a line
- *  measured half a pixel (of 1024) longer at 2048 and passed there where it failed at 1024 (issue 39). Above
- *  kLengthReferenceRows the limit takes that difference back, share x height + height / 1024 - 1, so one line on the
- *  picture passes or fails at every size alike; at and below it the limit is share x height, so a small picture keeps
- *  a pair of pixels out as before. 0 for a share of 0, which keeps every chain. Throws std::invalid_argument naming
- *  the argument unless `share` is finite and >= 0 and `heightPixels` finite and > 0. */
+ *  `heightPixels` high: share x height + strokeSpanBiasPixels(height), so one line on the picture passes or fails at
+ *  every size alike. 0 for a share of 0, which keeps every chain. Throws std::invalid_argument naming the argument
+ *  unless `share` is finite and >= 0 and `heightPixels` finite and > 0. */
 double strokeLengthLimitPixels(double share, double heightPixels);
+
+/** How far ends may be apart and still continue one another, in output pixels of a 1024-row picture; scaled with the
+ *  height (never under 2 pixels, a diagonal step and a half). */
+inline constexpr double kJoinRadiusAt1024 = 2.0;
+
+/** How ends are joined in a picture `outputRows` high whose lines are found `supersample` times larger (the data
+ *  resolution), in data pixels: the join radius kJoinRadiusAt1024 scaled with the height, less
+ *  strokeSpanBiasPixels() of the data height, so a gap of a given width on the picture is bridged at every size alike
+ *  (at 2048 rows, 3 pixels between two ends' samples, a gap of 2 pixels, as 2 between samples at 1024 are a gap of 1);
+ *  an end's direction and the fragments absorbed are counted over twice the scaled radius, lengths along a line that
+ *  the sampling does not bias. Throws std::invalid_argument naming the argument unless `outputRows` is finite and > 0
+ *  and `supersample` >= 1. */
+StrokeSettings strokeSettingsFor(double outputRows, int supersample);
 
 /** Chains every layer's skeleton into strokes and decides which are drawn (see the file comment). Throws
  *  std::invalid_argument naming the argument for a null or empty skeleton, a `scale` below 1, layers whose sizes

@@ -8,7 +8,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -16,9 +15,6 @@
 namespace inkgraph {
 namespace {
 
-/** How far ends may be apart and still continue one another, in output pixels at a 1024-pixel height: scaled with
- *  the height, so a gap closes at every size alike, and never under 2 pixels (a diagonal step and a half). */
-constexpr double kJoinRadiusAt1024 = 2.0;
 /** --stats counts the strokes decided within this share of a rule's limit (issue 39 asks for 10%). */
 constexpr double kNearLimitShare = 0.1;
 /** What the stage holds per data pixel while it runs, for one line type at a time: the pixel strengths and the kept
@@ -120,11 +116,7 @@ void StrokesPass::execute(GlPassContext& gl) {
     mReport.thinMilliseconds = millisecondsSince(start);
 
     start = std::chrono::steady_clock::now();
-    StrokeSettings settings;
-    settings.joinRadiusPixels = std::max(2.0, kJoinRadiusAt1024 * gl.height() / 1024.0) * scale;
-    settings.directionPixels = 2.0 * settings.joinRadiusPixels;
-    settings.absorbPixels = 2.0 * settings.joinRadiusPixels;
-    Strokes strokes = chainStrokes(layers, settings);
+    Strokes strokes = chainStrokes(layers, strokeSettingsFor(gl.height(), scale));
     if (mSettings.mergeOverlaps) mergeOverlapsWithinKind(strokes, layers);
     LineWeightSettings weight;
     if (mSettings.weightByDepth) {

@@ -240,6 +240,45 @@ TEST(StrokesTest, TheLengthRuleJudgesALineAlikeAtEverySize) {
               std::string::npos);
 }
 
+TEST(StrokesTest, TheJoinRadiusBridgesAGapAlikeAtEverySize) {
+    // Two ends' samples lie a pixel further apart than the gap between the lines they draw, at every size; the radius
+    // takes that pixel back above 1024 rows (strokeSpanBiasPixels()), so a gap of one pixel of a 1024-row picture
+    // is bridged and one of 1.5 is not, at 2048 and 4096 rows as at 1024.
+    EXPECT_DOUBLE_EQ(strokeSpanBiasPixels(512.0), 0.0);
+    EXPECT_DOUBLE_EQ(strokeSpanBiasPixels(1024.0), 0.0);
+    EXPECT_DOUBLE_EQ(strokeSpanBiasPixels(2048.0), 1.0);
+    EXPECT_DOUBLE_EQ(strokeSettingsFor(512.0, 1).joinRadiusPixels, 2.0);
+    EXPECT_DOUBLE_EQ(strokeSettingsFor(1024.0, 1).joinRadiusPixels, 2.0);
+    EXPECT_DOUBLE_EQ(strokeSettingsFor(2048.0, 1).joinRadiusPixels, 3.0);
+    EXPECT_DOUBLE_EQ(strokeSettingsFor(4096.0, 1).joinRadiusPixels, 5.0);
+    EXPECT_DOUBLE_EQ(strokeSettingsFor(1024.0, 2).joinRadiusPixels, 3.0); // data rows 2048, as at 2048 rows
+    EXPECT_DOUBLE_EQ(strokeSettingsFor(512.0, 2).joinRadiusPixels, 4.0);  // data rows 1024: as before
+    EXPECT_DOUBLE_EQ(strokeSettingsFor(2048.0, 1).directionPixels, 8.0);  // lengths along a line keep the scaling
+    EXPECT_DOUBLE_EQ(strokeSettingsFor(2048.0, 1).absorbPixels, 8.0);
+    for (const double gapAt1024 : {0.5, 1.0, 1.5, 2.0}) {
+        for (const int times : {1, 2, 4}) {
+            const double gap = gapAt1024 * times;
+            if (gap != std::floor(gap) || gap < 1.0) continue; // whole empty pixels only
+            cv::Mat mask = blank(128);
+            const int lineLength = 12 * times;
+            drawLine(mask, {2, 20}, {2 + lineLength - 1, 20});
+            const int secondStart = 2 + lineLength + int(gap);
+            drawLine(mask, {secondStart, 20}, {secondStart + lineLength - 1, 20});
+            const LineSkeleton skeleton = skeletonOf(mask);
+            const Strokes strokes = chainStrokes({StrokeLayer{&skeleton}}, strokeSettingsFor(1024.0 * times, 1));
+            SCOPED_TRACE("a gap of " + std::to_string(gapAt1024) + " px at 1024 rows, at " +
+                         std::to_string(1024 * times) + " rows");
+            EXPECT_EQ(strokes.gapJoins, gapAt1024 <= 1.0 ? 1u : 0u);
+            EXPECT_EQ(strokes.chains.size(), gapAt1024 <= 1.0 ? 1u : 2u);
+        }
+    }
+    EXPECT_NE(invalidArgumentMessage([] { strokeSettingsFor(0.0, 1); }).find("strokeSettingsFor(): 'outputRows'"),
+              std::string::npos);
+    EXPECT_NE(invalidArgumentMessage([] { strokeSettingsFor(1024.0, 0); }).find("'supersample'"), std::string::npos);
+    EXPECT_NE(invalidArgumentMessage([] { strokeSpanBiasPixels(std::nan("")); }).find("'heightPixels'"),
+              std::string::npos);
+}
+
 TEST(StrokesTest, StrokesNearARulesLimitAreCountedPerLayer) {
     // Layer 0 is drawn from 10 pixels and seeds at 0.5; layer 1 has no length rule and always seeds.
     const LineSkeleton unused;
