@@ -1529,6 +1529,13 @@ void defineModule(py::module_& m) {
                       sampling.poses = bytesOf(poses);
                       // The key is the model path as the command line lists it: a str, or a path as os.fspath() gives
                       // it.
+                      const bool pathLike = py::isinstance<py::str>(modelKey) || py::isinstance<py::bytes>(modelKey) ||
+                                            py::hasattr(modelKey, "__fspath__");
+                      if (!pathLike) {
+                          throw py::type_error(
+                              "sample_views(): model_key: expected a path (str, bytes or os.PathLike), got " +
+                              reprText(modelKey));
+                      }
                       const std::string key = py::module_::import("os").attr("fspath")(modelKey).cast<std::string>();
                       return ig::sampleViews(count, seed, key, sampling);
                   }),

@@ -195,6 +195,8 @@ WRONG_TYPES = [
     ("render scene", lambda: inkgraph.Renderer().render(None), "Renderer.render(): scene: expected Scene, got None"),
     ("sample_views count", lambda: inkgraph.sample_views(-1, 0, "model"),
      "sample_views(): count: expected an int from 0 to 18446744073709551615, got -1"),
+    ("sample_views model_key", lambda: inkgraph.sample_views(1, 0, None),
+     "sample_views(): model_key: expected a path (str, bytes or os.PathLike), got None"),
     ("buffer_names look", lambda: inkgraph.buffer_names(3), "buffer_names(): look: expected Look, got 3"),
     ("StrokeSettings", lambda: inkgraph.StrokeSettings(min_length="long"),
      "StrokeSettings(): min_length: expected float, got 'long'"),

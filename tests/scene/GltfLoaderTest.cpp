@@ -113,6 +113,29 @@ TEST(GltfLoader, NodeTransformsAreBakedIntoWorldSpace) {
     EXPECT_EQ(test::worldPosition(scene, mesh.positions[2]), glm::dvec3(10, 3, 0));
 }
 
+TEST(GltfLoader, ANodeRotationOfAnyLengthTurnsAsItsUnitOneAndOneOfNoLengthIsAnError) {
+    // glTF asks for unit quaternions; a file's may be scaled. Lengths whose squares overflow or underflow a double
+    // (1e300, 1e-200) turn the mesh as the unit quaternion does: half a turn about x takes (0, 1, 0) to (0, -1, 0).
+    // Before, they were drawn unturned, silently.
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const std::string primitive = "{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}}";
+    for (const std::string rotation : {"1, 0, 0, 0", "1e300, 0, 0, 0", "1e-200, 0, 0, 0", "-3, 0, 0, 0"}) {
+        SCOPED_TRACE("rotation [" + rotation + "]");
+        const TempFile file("rotated.gltf", writer.gltf(singleNode(primitive, ", \"rotation\": [" + rotation + "]")));
+        const Scene scene = loadScene(file.path());
+        const Mesh& mesh = scene.meshes.at(0);
+        ASSERT_EQ(mesh.positions.size(), 3u);
+        expectNear(test::worldPosition(scene, mesh.positions[1]), glm::dvec3(1, 0, 0));
+        expectNear(test::worldPosition(scene, mesh.positions[2]), glm::dvec3(0, -1, 0));
+    }
+    const TempFile file("norotation.gltf", writer.gltf(singleNode(primitive, ", \"rotation\": [0, 0, 0, 0]")));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+    EXPECT_NE(message.find("node 0: rotation [0, 0, 0, 0] must be finite and of non-zero length"), std::string::npos)
+        << message;
+}
+
 TEST(GltfLoader, MatrixTransformAndMirroringKeepFrontFaces) {
     // A column-major matrix mirroring x and translating by (0, 0, 5); the file's +z normals must stay +z and the
     // triangle must still face them.

@@ -27,10 +27,11 @@ using test::TempFile;
 
 glm::dquat turn(double degrees, const glm::dvec3& axis) { return glm::angleAxis(glm::radians(degrees), axis); }
 
-std::string quaternionJson(const glm::dquat& q) {
+/** `q` as [x, y, z, w]; an `exponent` ("e300") is written after each component, scaling the quaternion. */
+std::string quaternionJson(const glm::dquat& q, const std::string& exponent = "") {
     // Appended, not "[" + ...: GCC 12 -O3 warns falsely (-Wstringop-overflow) on the literal-plus-temporary form.
     std::string json = "[";
-    for (const double component : {q.x, q.y, q.z, q.w}) json += std::to_string(component) + ", ";
+    for (const double component : {q.x, q.y, q.z, q.w}) json += std::to_string(component) + exponent + ", ";
     json.replace(json.size() - 2, 2, "]");
     return json;
 }
@@ -196,6 +197,16 @@ TEST_P(VrmHumanoidPose, PoseFileTurnsBonesAboutWorldAxes) {
     EXPECT_NE(std::find(scene.report.inputFiles.begin(), scene.report.inputFiles.end(), pose.path()),
               scene.report.inputFiles.end())
         << "the pose file is one of the load's input files";
+    // Scaled by 1e300 or 1e-200, whose sums of squares overflow or underflow a double, the quaternions turn the bones
+    // alike (such a pose was refused as of length 0 or infinite).
+    for (const std::string exponent : {"e300", "e-200"}) {
+        SCOPED_TRACE(exponent);
+        const TempFile scaled("pose.json", "{\"leftUpperArm\": " + quaternionJson(turn(90, kY), exponent) +
+                                               ", \"head\": " + quaternionJson(turn(90, kX), exponent) + "}");
+        const Scene turned = loadPosed(model, scaled.path());
+        EXPECT_LT(distanceToNearestVertex(turned, humanoid.world({0.2, 1.5, -0.5})), kTolerance);
+        EXPECT_LT(distanceToNearestVertex(turned, humanoid.world({0, 1.6, 0.2})), kTolerance);
+    }
 }
 
 TEST_P(VrmHumanoidPose, ParentAndChildRotationsCompose) {
@@ -363,6 +374,8 @@ TEST(VrmHumanoid, BadPoseFilesAreRefusedNamingTheFile) {
     EXPECT_EQ(refusal("{\"head\": [0, 0, 1]}"), "'head': expected a quaternion [x, y, z, w] of four numbers");
     EXPECT_EQ(refusal("{\"head\": [0, 0, \"1\", 0]}"), "'head': expected a quaternion [x, y, z, w] of four numbers");
     EXPECT_EQ(refusal("{\"head\": [0, 0, 0, 0]}"), "'head': the quaternion must be finite and of non-zero length");
+    EXPECT_EQ(refusal("{\"head\": [0, 0, 0, 1], \"neck\": [0, 0, 0, 1], \"head\": [0, 0, 1, 0]}"),
+              "'head' is given twice (a bone takes one quaternion)");
     const std::string unknown = refusal("{\"tail\": [0, 0, 0, 1]}");
     EXPECT_EQ(unknown.rfind("unknown humanoid bone 'tail' (VRM's humanoid bones: hips, spine, chest, upperChest, "
                             "neck, head, leftEye, rightEye, jaw, leftUpperLeg, ",

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 #include <tuple>
 
 namespace inkgraph::detail {
@@ -54,12 +55,8 @@ std::vector<double> slerpXyzw(const float* a, const float* b, double t) {
 }
 
 void normaliseQuaternion(std::vector<double>& xyzw) {
-    const double length = std::sqrt(xyzw[0] * xyzw[0] + xyzw[1] * xyzw[1] + xyzw[2] * xyzw[2] + xyzw[3] * xyzw[3]);
-    if (length > 0.0 && std::isfinite(length)) {
-        for (double& component : xyzw) component /= length;
-    } else {
-        xyzw = {0.0, 0.0, 0.0, 1.0};
-    }
+    const glm::dquat unit = unitQuaternion(xyzw[0], xyzw[1], xyzw[2], xyzw[3]).value_or(glm::dquat(1.0, 0.0, 0.0, 0.0));
+    xyzw = {unit.x, unit.y, unit.z, unit.w};
 }
 
 Interpolation interpolationOf(const std::string& path, const std::string& label, const std::string& name) {
@@ -187,7 +184,15 @@ glm::dmat4 NodePose::local() const {
     return glm::translate(glm::dmat4(1.0), translation) * glm::mat4_cast(rotation) * glm::scale(glm::dmat4(1.0), scale);
 }
 
-std::vector<NodePose> restPose(const tinygltf::Model& model) {
+std::optional<glm::dquat> unitQuaternion(double x, double y, double z, double w) {
+    if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z) && std::isfinite(w))) return std::nullopt;
+    const double largest = std::max({std::abs(x), std::abs(y), std::abs(z), std::abs(w)});
+    if (largest == 0.0) return std::nullopt;
+    const glm::dquat scaled(w / largest, x / largest, y / largest, z / largest);
+    return scaled / glm::length(scaled);
+}
+
+std::vector<NodePose> restPose(const std::string& path, const tinygltf::Model& model) {
     std::vector<NodePose> poses(model.nodes.size());
     for (std::size_t i = 0; i < model.nodes.size(); ++i) {
         const tinygltf::Node& node = model.nodes[i];
@@ -197,8 +202,16 @@ std::vector<NodePose> restPose(const tinygltf::Model& model) {
         }
         if (node.translation.size() == 3) pose.translation = glm::make_vec3(node.translation.data());
         if (node.rotation.size() == 4) {
-            pose.rotation = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1],
-                                                      node.rotation[2])); // stored x, y, z, w
+            const std::vector<double>& xyzw = node.rotation; // stored x, y, z, w
+            const std::optional<glm::dquat> unit = unitQuaternion(xyzw[0], xyzw[1], xyzw[2], xyzw[3]);
+            if (!unit) {
+                throwLoadError(path, "node " + std::to_string(i) +
+                                         (node.name.empty() ? "" : " '" + excerptForMessage(node.name) + "'") +
+                                         ": rotation [" + formatNumber(xyzw[0]) + ", " + formatNumber(xyzw[1]) + ", " +
+                                         formatNumber(xyzw[2]) + ", " + formatNumber(xyzw[3]) +
+                                         "] must be finite and of non-zero length");
+            }
+            pose.rotation = *unit;
         }
         if (node.scale.size() == 3) pose.scale = glm::make_vec3(node.scale.data());
         if (!node.weights.empty()) {

@@ -71,8 +71,16 @@ private:
     std::size_t mSteps = 0;
 };
 
-/** Every node's rest pose: its own TRS (or matrix) and weights. Rotations are normalised. */
-std::vector<NodePose> restPose(const tinygltf::Model& model);
+/** The unit quaternion along (x, y, z, w), or nullopt when a component is not finite or every one is 0 (no
+ *  rotation). The components are divided by the largest first: the sum of squares of 1e300 overflows a double and
+ *  that of 1e-200 underflows to 0, and glm::normalize() then gives back a quaternion of zeros or the identity, a
+ *  silently lost rotation. */
+std::optional<glm::dquat> unitQuaternion(double x, double y, double z, double w);
+
+/** Every node's rest pose: its own TRS (or matrix) and weights. Rotations are normalised, whatever their length;
+ *  throws SceneError through throwLoadError() naming `path` and the node for a rotation with a component that is not
+ *  finite or of length 0, which is no rotation. */
+std::vector<NodePose> restPose(const std::string& path, const tinygltf::Model& model);
 
 /** The index of the animation `name` (its name, or its index as text when no animation has that name); throws
  *  SceneError through throwLoadError() listing the animations the file has. */

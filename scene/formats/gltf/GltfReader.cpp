@@ -281,7 +281,7 @@ private:
 
     /** The nodes' local transforms and morph weights: their own, or the animation LoadOptions names at its time. */
     void posed() {
-        mPoses = restPose(mModel);
+        mPoses = restPose(mPath, mModel);
         mHumanoid = readHumanoid(mModel, mOut.warnings);
         const bool vrma = !mOptions.animation.empty() && isVrmAnimationFile(mOptions.animation);
         if ((vrma || !mOptions.pose.empty()) && !mHumanoid) {
@@ -289,8 +289,8 @@ private:
                  ": not a VRM model (no VRMC_vrm or VRM extension)");
         }
         if (vrma) {
-            applyVrmAnimation(mOptions.animation, mOptions.time, mModel, *mHumanoid, restPose(mModel), mPoses, mBudget,
-                              mOut.warnings);
+            applyVrmAnimation(mOptions.animation, mOptions.time, mModel, *mHumanoid, restPose(mPath, mModel), mPoses,
+                              mBudget, mOut.warnings);
             mOut.inputFiles.push_back(mOptions.animation);
         } else if (!mOptions.animation.empty()) {
             applyAnimation(mPath, mModel, findAnimation(mPath, mModel, mOptions.animation), mOptions.time, mPoses,
@@ -299,7 +299,7 @@ private:
         if (!mOptions.pose.empty()) {
             const HumanoidPose pose = humanoidPose(mOptions.pose, mBudget);
             if (mOptions.pose != kAPoseName) mOut.inputFiles.push_back(mOptions.pose);
-            applyHumanoidPose(mModel, *mHumanoid, pose, restPose(mModel), mPoses, mOut.warnings);
+            applyHumanoidPose(mModel, *mHumanoid, pose, restPose(mPath, mModel), mPoses, mOut.warnings);
         }
         applyVrmFace();
     }
@@ -316,7 +316,7 @@ private:
             expressions.setWeight(expression.name, expression.weight, "--expression");
         if (mOptions.lookAt) {
             const VrmGaze gaze = applyVrmLookAt(mPath, mModel, mHumanoid ? &*mHumanoid : nullptr, *mOptions.lookAt,
-                                                restPose(mModel), mPoses, expressions);
+                                                restPose(mPath, mModel), mPoses, expressions);
             for (const ExpressionWeight& expression : mOptions.expressions) {
                 const std::string name = expressions.canonicalName(expression.name);
                 if (gaze.setExpressions && name.starts_with("look"))

@@ -67,7 +67,7 @@ void applyVrmAnimation(const std::string& vrmaPath, double time, const tinygltf:
     std::vector<Warning> vrmaWarnings;
     const std::optional<Humanoid> animated = readHumanBonesObject(vrma, "VRMC_vrm_animation", vrmaWarnings);
     if (!animated) throwLoadError(vrmaPath, "not a VRM Animation file: it has no VRMC_vrm_animation extension");
-    const std::vector<NodePose> vrmaRest = restPose(vrma);
+    const std::vector<NodePose> vrmaRest = restPose(vrmaPath, vrma);
     std::vector<NodePose> vrmaPoses = vrmaRest;
     if (!vrma.animations.empty()) applyAnimation(vrmaPath, vrma, 0, time, vrmaPoses, budget, vrmaWarnings);
     for (Warning& warning : vrmaWarnings) {

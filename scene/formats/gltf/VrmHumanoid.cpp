@@ -5,6 +5,7 @@
 #include "scene/formats/gltf/VrmHumanoid.h"
 
 #include "scene/formats/FormatReaders.h"
+#include "scene/formats/gltf/GltfPose.h"
 
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
@@ -13,6 +14,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <set>
 
 namespace inkgraph::detail {
 
@@ -162,12 +165,24 @@ HumanoidPose aPose() {
 
 HumanoidPose parsePoseFile(const std::string& posePath, const std::string& content) {
     nlohmann::json document;
+    // The parsed object keeps a bone's last value only; a bone given twice is found while parsing, as a style file
+    // refuses a setting given twice.
+    std::set<std::string> bones;
+    std::optional<std::string> twice;
+    const auto findTwice = [&](int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+        if (event == nlohmann::json::parse_event_t::key && depth == 1 && !twice &&
+            !bones.insert(parsed.get<std::string>()).second)
+            twice = parsed.get<std::string>();
+        return true;
+    };
     try {
-        document = nlohmann::json::parse(content);
+        document = nlohmann::json::parse(content, findTwice);
     } catch (const nlohmann::json::exception& error) {
         throwLoadError(posePath,
                        std::string("not a pose file: invalid JSON (") + excerptForMessage(error.what()) + ")");
     }
+    if (twice)
+        throwLoadError(posePath, "'" + excerptForMessage(*twice) + "' is given twice (a bone takes one quaternion)");
     if (!document.is_object()) {
         throwLoadError(posePath, "not a pose file: expected a JSON object of humanoid bone names to quaternions "
                                  "[x, y, z, w]");
@@ -183,13 +198,10 @@ HumanoidPose parsePoseFile(const std::string& posePath, const std::string& conte
             !std::ranges::all_of(value, [](const nlohmann::json& number) { return number.is_number(); })) {
             throwLoadError(posePath, where + ": expected a quaternion [x, y, z, w] of four numbers");
         }
-        const glm::dquat rotation(value[3].get<double>(), value[0].get<double>(), value[1].get<double>(),
-                                  value[2].get<double>());
-        const double length = glm::length(rotation);
-        if (!std::isfinite(length) || !(length > 0.0)) {
-            throwLoadError(posePath, where + ": the quaternion must be finite and of non-zero length");
-        }
-        pose[bone] = rotation / length;
+        const std::optional<glm::dquat> rotation = unitQuaternion(value[0].get<double>(), value[1].get<double>(),
+                                                                  value[2].get<double>(), value[3].get<double>());
+        if (!rotation) throwLoadError(posePath, where + ": the quaternion must be finite and of non-zero length");
+        pose[bone] = *rotation;
     }
     return pose;
 }
