@@ -52,6 +52,8 @@ void checkInputs(const std::string& function, const cv::Mat& radial, const cv::M
         throw std::invalid_argument(function + ": 'smoothing' must be finite and >= 0");
     if (!isFiniteAtLeast(settings.breakClearance, 0.0f))
         throw std::invalid_argument(function + ": 'breakClearance' must be finite and >= 0");
+    if (!isFiniteAtLeast(settings.patchClearance, 0.0f))
+        throw std::invalid_argument(function + ": 'patchClearance' must be finite and >= 0");
     if (settings.smoothing > 0.0f && !(isFiniteAtLeast(settings.focalPixels, 0.0f) && settings.focalPixels > 0.0f))
         throw std::invalid_argument(function + ": 'focalPixels' must be positive and finite when smoothing");
 }
@@ -631,11 +633,15 @@ inline bool joinsNext(float depth, float nextDepth, float depthJump) {
     return depth > 0.0f && joinsNeighbour(depth, nextDepth, depthJump);
 }
 
-/** settings.breakClearance x the smoothing's sigma times the focal length: the band's width in pixels at depth z is
- *  this over z. 0 without smoothing. */
-float clearanceDepth(const SuggestiveSettings& settings) {
-    return settings.smoothing > 0.0f ? settings.breakClearance * settings.smoothing * settings.focalPixels : 0.0f;
-}
+/** How far from where its surface ends (`breakDepth`, `marginPixels`) or its smooth patch meets another
+ *  (`patchDepth`) a crossing must lie. A depth is a band's width in pixels times the depth: settings' clearance x the
+ *  smoothing's sigma x the focal length, so the band is `depth / z` pixels at depth z. */
+struct EndBands {
+    float breakDepth = 0.0f;   ///< settings.breakClearance's band; 0 without smoothing
+    float marginPixels = 0.0f; ///< sizeMarginPixels()
+    float patchDepth = 0.0f;   ///< settings.patchClearance's band; 0 without smoothing or surface ids
+    bool any() const { return breakDepth > 0.0f || marginPixels > 0.0f || patchDepth > 0.0f; }
+};
 
 /** Above this many data rows a crossing keeps the second difference's reach at this many rows (two pixels for the
  *  3-point stencil, four for the 5-point one) from where its surface ends, as the same share of the height. */
@@ -649,6 +655,16 @@ float sizeMarginPixels(const SuggestiveSettings& settings, int rows) {
     if (rows <= kStencilReferenceRows) return 0.0f;
     const float reach = settings.stencil == DifferenceStencil::Central5 ? 4.0f : 2.0f;
     return reach * float(rows) / float(kStencilReferenceRows);
+}
+
+/** The bands of an image `rows` high; the patches' only with surface ids. */
+EndBands endBandsOf(const SuggestiveSettings& settings, int rows, const cv::Mat& surface) {
+    EndBands bands;
+    const float sigmaDepth = settings.smoothing > 0.0f ? settings.smoothing * settings.focalPixels : 0.0f;
+    bands.breakDepth = settings.breakClearance * sigmaDepth;
+    bands.marginPixels = sizeMarginPixels(settings, rows);
+    if (!surface.empty()) bands.patchDepth = settings.patchClearance * sigmaDepth;
+    return bands;
 }
 
 /** Whether the surface ends at pixel (row, col): it is off the image or the model, or a 4-neighbour is, or lies
@@ -665,24 +681,42 @@ bool surfaceEndsAt(const cv::Mat& depth, const cv::Mat& surface, int row, int co
              sameSurfaceId(ids, col, surfaceRow(surface, row + 1), col));
 }
 
-/** Whether the surface of covered pixel (row, col) ends within the clearance band, the larger of clearanceDepth / depth
- *  and minimumPixels pixels: along its row, its column or a diagonal (a diagonal step counts sqrt(2)), a pixel within
- *  that distance is one where the surface ends (surfaceEndsAt()). A pixel's four neighbours are read, so a fold
- *  whose depth breaks only every few pixels (a surface turning away at a contour, where neighbouring pixels' depths
- *  differ by about the break test's limit) ends the surface as a whole break does. The band is capped at
- *  kMaxSmoothingReach, as the smoothing's window is. */
-bool nearSurfaceEnd(const cv::Mat& depth, const cv::Mat& surface, int row, int col, float clearanceDepth,
-                    float minimumPixels, float depthJump) {
-    const double clearance =
-        std::min(std::max(double(clearanceDepth) / double(depth.at<float>(row, col)), double(minimumPixels)),
-                 double(kMaxSmoothingReach));
+/** Whether covered pixel (row, col) lies where its smooth patch meets another: a covered 4-neighbour carries
+ *  another surface id. The background and the image's edge are not patches. */
+bool meetsAnotherPatchAt(const cv::Mat& depth, const cv::Mat& surface, int row, int col) {
+    if (row < 1 || col < 1 || row + 1 >= depth.rows || col + 1 >= depth.cols || depth.at<float>(row, col) <= 0.0f)
+        return false;
+    const float* ids = surfaceRow(surface, row);
+    const auto other = [&](int neighbourRow, int neighbourCol) {
+        return depth.at<float>(neighbourRow, neighbourCol) > 0.0f &&
+               !sameSurfaceId(ids, col, surfaceRow(surface, neighbourRow), neighbourCol);
+    };
+    return other(row, col - 1) || other(row, col + 1) || other(row - 1, col) || other(row + 1, col);
+}
+
+/** Whether covered pixel (row, col) lies within a band of where its surface ends or its patch meets another
+ *  (EndBands): along its row, its column or a diagonal (a diagonal step counts sqrt(2)), a pixel within the band's
+ *  distance where the surface ends (surfaceEndsAt(); its band is the larger of breakDepth / depth and marginPixels)
+ *  or where the patch meets another (meetsAnotherPatchAt(); patchDepth / depth). A pixel's four neighbours are read,
+ *  so a fold whose depth breaks only every few pixels (a surface turning away at a contour, where neighbouring
+ *  pixels' depths differ by about the break test's limit) ends the surface as a whole break does. Each band is capped
+ *  at kMaxSmoothingReach, as the smoothing's window is. */
+bool nearSurfaceEnd(const cv::Mat& depth, const cv::Mat& surface, int row, int col, const EndBands& bands,
+                    float depthJump) {
+    const double z = double(depth.at<float>(row, col));
+    const double reach = double(kMaxSmoothingReach);
+    const double endBand = std::min(std::max(double(bands.breakDepth) / z, double(bands.marginPixels)), reach);
+    const double patchBand = std::min(double(bands.patchDepth) / z, reach);
     for (int rowStep = -1; rowStep <= 1; ++rowStep) {
         for (int colStep = -1; colStep <= 1; ++colStep) {
             if (rowStep == 0 && colStep == 0) continue;
             const double stepLength = rowStep != 0 && colStep != 0 ? std::sqrt(2.0) : 1.0;
-            const int steps = int(clearance / stepLength);
-            for (int step = 1; step <= steps; ++step)
-                if (surfaceEndsAt(depth, surface, row + step * rowStep, col + step * colStep, depthJump)) return true;
+            const int endSteps = int(endBand / stepLength), patchSteps = int(patchBand / stepLength);
+            for (int step = 1; step <= std::max(endSteps, patchSteps); ++step) {
+                const int r = row + step * rowStep, c = col + step * colStep;
+                if (step <= endSteps && surfaceEndsAt(depth, surface, r, c, depthJump)) return true;
+                if (step <= patchSteps && meetsAnotherPatchAt(depth, surface, r, c)) return true;
+            }
         }
     }
     return false;
@@ -908,7 +942,7 @@ public:
     BandScanner(const cv::Mat& radial, const cv::Mat& depth, const cv::Mat& surface, const std::vector<Span>& spans,
                 const SuggestiveSettings& settings, int reach, cv::Mat& mask, int firstRow, int endRow)
         : mRadial(radial), mDepth(depth), mSurface(surface), mSpans(spans), mMask(mask), mDepthJump(settings.depthJump),
-          mClearanceDepth(clearanceDepth(settings)), mMarginPixels(sizeMarginPixels(settings, radial.rows)),
+          mEndBands(endBandsOf(settings, radial.rows, surface)),
           mMinSinThetaSquared(settings.minSinTheta * settings.minSinTheta),
           mMinSinAngleSquared(minSinAngleToWSquared(settings)), mRule{settings.featureSize * settings.featureSize,
                                                                       settings.threshold, settings.fade},
@@ -1048,9 +1082,7 @@ private:
             keptCrossing(dwA, dwB, *dwdwA, *dwdwB, radialRow(rowA)[colA], radialRow(rowB)[colB], mRule);
         if (!crossing) return;
         const cv::Point marked = crossing->marksA ? cv::Point(colA, rowA) : cv::Point(colB, rowB);
-        if ((mClearanceDepth > 0.0f || mMarginPixels > 0.0f) &&
-            nearSurfaceEnd(mDepth, mSurface, marked.y, marked.x, mClearanceDepth, mMarginPixels, mDepthJump))
-            return;
+        if (mEndBands.any() && nearSurfaceEnd(mDepth, mSurface, marked.y, marked.x, mEndBands, mDepthJump)) return;
         if (marked.y < mFirstRow)
             mResult.marksAboveBand.push_back(marked);
         else
@@ -1064,8 +1096,7 @@ private:
     const std::vector<Span>& mSpans;
     cv::Mat& mMask;
     float mDepthJump;
-    float mClearanceDepth; ///< clearanceDepth()
-    float mMarginPixels;   ///< sizeMarginPixels()
+    EndBands mEndBands; ///< endBandsOf()
     float mMinSinThetaSquared;
     float mMinSinAngleSquared; ///< minSinAngleToWSquared(): wellConditioned()'s bound
     StrengthRule mRule;
@@ -1155,8 +1186,7 @@ RadialDerivatives wideRadialDerivatives(const cv::Mat& radial, const cv::Mat& de
 LineSkeleton crossingsOfMaps(const cv::Mat& radial, const cv::Mat& depth, const cv::Mat& surface,
                              const RadialDerivatives& derivatives, const SuggestiveSettings& settings) {
     const StrengthRule rule{settings.featureSize * settings.featureSize, settings.threshold, settings.fade};
-    const float clearance = clearanceDepth(settings);
-    const float margin = sizeMarginPixels(settings, radial.rows);
+    const EndBands bands = endBandsOf(settings, radial.rows, surface);
     LineSkeleton skeleton;
     skeleton.mask = cv::Mat::zeros(radial.size(), CV_8UC1);
     for (int row = 0; row < radial.rows; ++row) {
@@ -1172,8 +1202,7 @@ LineSkeleton crossingsOfMaps(const cv::Mat& radial, const cv::Mat& depth, const 
                                  radial.at<cv::Vec4f>(row, col), radial.at<cv::Vec4f>(rowB, colB), rule);
                 if (!crossing) continue;
                 const cv::Point marked = crossing->marksA ? cv::Point(col, row) : cv::Point(colB, rowB);
-                if ((clearance > 0.0f || margin > 0.0f) &&
-                    nearSurfaceEnd(depth, surface, marked.y, marked.x, clearance, margin, settings.depthJump))
+                if (bands.any() && nearSurfaceEnd(depth, surface, marked.y, marked.x, bands, settings.depthJump))
                     continue;
                 skeleton.mask.at<uchar>(marked) = 255;
                 skeleton.points.push_back({crossingPosition(row, col, downward, crossing->t), crossing->alpha});

@@ -61,6 +61,14 @@ struct SuggestiveSettings {
      *  stencil's. At 2 the lines hold better across sizes and about as well or a little worse across a 1 degree turn
      *  (docs/strokes.md), so it is a choice, not the default. */
     float breakClearance = 0.0f;
+    /** With smoothing > 0 and surface ids (extractSuggestiveContours()'s `surface`): a crossing is dropped within this
+     *  many sigmas of the smoothing of where its smooth patch meets another patch (parts that overlap or are set into
+     *  one another, a hard edge), in pixels at the marked pixel's depth. The smoothing and the differences stop
+     *  there, so the window sees one side only, as at any end of a surface; unlike at an outline, where suggestive
+     *  contours run on into the contours they meet, no line runs on into such a seam, so the band takes only pieces
+     *  whose ends the sampling decides: a line along a top's hem over a skirt, drawn whole at 2048^2 and in hooks at
+     *  1024^2 (docs/strokes.md). 0: no band beyond the stencil's. */
+    float patchClearance = 2.0f;
     /** The camera's focal length in pixels of this image, (height / 2) / tan(fovY / 2): converts `smoothing` to
      *  pixels, smoothing x focalPixels / depth at each pixel. Read only when smoothing > 0; then > 0. */
     float focalPixels = 0.0f;

@@ -16,6 +16,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 namespace inkgraph {
 namespace {
@@ -314,21 +316,23 @@ TEST(Options, SuggestiveSmoothing) {
               std::string::npos);
 }
 
-TEST(Options, SuggestiveClearance) {
-    // Sigmas of the smoothing; 0 (the default) draws no band; a negative value or one above 100 is refused, and the
-    // flag without its type has no effect.
-    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "suggestive"}), "suggestive-clearance"), 0.0);
-    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-clearance", "2"}),
-                        "suggestive-clearance"),
-              2.0);
-    for (const char* bad : {"-1", "101", "wide"})
-        EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", "--suggestive-clearance", bad})
-                      .find("--suggestive-clearance"),
-                  std::string::npos)
-            << bad;
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive-object", "--suggestive-clearance", "2"})
-                  .find("has no effect"),
-              std::string::npos);
+TEST(Options, SuggestiveClearances) {
+    // Sigmas of the smoothing, clear of surface ends (default 0: no band) and of where smooth patches meet (default
+    // 2); a negative value or one above 100 is refused, and a flag without its type has no effect.
+    for (const auto& [name, byDefault] : {std::pair<std::string, double>{"suggestive-clearance", 0.0},
+                                          std::pair<std::string, double>{"suggestive-patch-clearance", 2.0}}) {
+        SCOPED_TRACE(name);
+        const std::string flag = "--" + name;
+        EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "suggestive"}), name), byDefault);
+        EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "suggestive", flag, "3"}), name), 3.0);
+        for (const char* bad : {"-1", "101", "wide"})
+            EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive", flag, bad}).find(flag),
+                      std::string::npos)
+                << bad;
+        EXPECT_NE(
+            usageMessage({"m.obj", "-o", "x.png", "--lines", "suggestive-object", flag, "2"}).find("has no effect"),
+            std::string::npos);
+    }
 }
 
 TEST(Options, StrokeFlags) {

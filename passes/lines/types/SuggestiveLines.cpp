@@ -80,6 +80,23 @@ const LineParameter kSuggestiveClearance{
     false,
     "expected a number of sigmas from 0 to 100"};
 
+/** The band kept clear of where a smooth patch meets another, in sigmas of the image-space smoothing. */
+const LineParameter kSuggestivePatchClearance{
+    "suggestive-patch-clearance",
+    "K",
+    "with smoothing, drop lines within K x its sigma of where their smooth patch meets\n"
+    "another (parts that overlap or are set into one another, hard edges), where its\n"
+    "window sees one side only and no line runs on: such pieces came and went with\n"
+    "the size (default {default}; 0: none)",
+    {},
+    double(SuggestiveSettings{}.patchClearance),
+    "",
+    0.0,
+    100.0,
+    false,
+    false,
+    "expected a number of sigmas from 0 to 100"};
+
 /** The least angle between a line and the image's w direction (SuggestiveSettings::minAngleToW). */
 const LineParameter kSuggestiveMinAngle{"suggestive-min-angle",
                                         "DEG",
@@ -277,8 +294,9 @@ LineType suggestiveLineType() {
     type.help = "suggestive contours (DeCarlo et al. 2003): D_w(n.v) = 0 with D_w D_w(n.v) > 0,\n"
                 "in the float G-buffer with v = c - p, so the lines are where kappa_r = 0";
     type.strokeRules = seedRules;
-    type.parameters = {&kDepthJump,         &kSuggestiveThreshold, &kSuggestiveFade,      &kSuggestiveSeed,
-                       &kSuggestiveStencil, &kSuggestiveSmoothing, &kSuggestiveClearance, &kSuggestiveMinAngle};
+    type.parameters = {&kDepthJump,           &kSuggestiveThreshold,      &kSuggestiveFade,
+                       &kSuggestiveSeed,      &kSuggestiveStencil,        &kSuggestiveSmoothing,
+                       &kSuggestiveClearance, &kSuggestivePatchClearance, &kSuggestiveMinAngle};
     type.build = [](const std::string& name, LineGraphBuilder& builder) {
         const LineGraphSetup& setup = builder.setup();
         SuggestiveSettings settings = sharedSettings(setup.look, setup.sphere);
@@ -289,6 +307,7 @@ LineType suggestiveLineType() {
         // In model units, like the depth it is converted to pixels with.
         settings.smoothing = float(setup.look.lineParameters.number(kSuggestiveSmoothing) * setup.sphere.radius);
         settings.breakClearance = float(setup.look.lineParameters.number(kSuggestiveClearance));
+        settings.patchClearance = float(setup.look.lineParameters.number(kSuggestivePatchClearance));
         settings.minAngleToW = float(setup.look.lineParameters.number(kSuggestiveMinAngle));
         builder.addLayer(name, std::make_unique<SuggestiveKernel>(setup.gbuffer, settings, setup.frame,
                                                                   setup.scene.surfacesMeet() ? &setup.scene : nullptr));
@@ -297,6 +316,7 @@ LineType suggestiveLineType() {
         describeShared(source, entry, true);
         entry["min_sin_theta"] = SuggestiveSettings{}.minSinTheta;
         entry["clearance"] = source.look.lineParameters.number(kSuggestiveClearance);
+        entry["patch_clearance"] = source.look.lineParameters.number(kSuggestivePatchClearance);
         entry["min_angle_to_w"] = source.look.lineParameters.number(kSuggestiveMinAngle);
         entry["stencil_points"] = source.look.lineParameters.choice(kSuggestiveStencil) == "5" ? 5 : 3;
         entry["smoothing"] = source.look.lineParameters.number(kSuggestiveSmoothing) * source.sphere.radius;
