@@ -29,7 +29,12 @@ namespace {
 bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, RenderOptions& options,
                    std::vector<const Flag*>& given, bool flagsOnly) {
     const std::string& argument = arguments[i];
-    if (flagsOnly && (argument.empty() || argument[0] != '-')) throw UsageError("'" + argument + "' is not a flag");
+    if (flagsOnly && (argument.empty() || argument[0] != '-')) {
+        // A flag's name without its dashes (Look::set("shading", ...)) is named with them.
+        const Flag* meant = argument.empty() ? nullptr : findFlag("--" + argument);
+        throw UsageError("'" + argument + "' is not a flag" +
+                         (meant != nullptr && meant->apply ? " (did you mean '--" + argument + "'?)" : ""));
+    }
     if (argument == "--help" || argument == "-h") {
         if (flagsOnly) throw UsageError("unknown option '" + argument + "'");
         options.help = true;

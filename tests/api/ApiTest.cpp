@@ -206,6 +206,8 @@ TEST(ApiLook, RefusesAFlagThatIsNotTheLooksNamingItsPlace) {
                  "Look::fromArguments(): unknown option '--frobnicate'");
     EXPECT_STREQ(errorOf([] { ig::Look::fromArguments({"bunny.obj"}); }).what(),
                  "Look::fromArguments(): 'bunny.obj' is not a flag");
+    EXPECT_STREQ(errorOf([] { ig::Look().set("shading", "comic"); }).what(),
+                 "Look::set(): 'shading' is not a flag (did you mean '--shading'?)");
 }
 
 TEST(ApiLook, RefusesABadValueInTheCommandLinesWords) {
