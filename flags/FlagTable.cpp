@@ -73,6 +73,15 @@ std::vector<std::string> splitList(const std::string& text, char separator) {
     return parts;
 }
 
+/** The items of a LIST flag that also takes 'none' alone. 'none' inside a list is refused for what it is: read as an
+ *  item, it was called an unknown type ("--lines outline,none"), which it is not. */
+std::vector<std::string> listItemsBesideNone(const std::string& flag, const std::string& value) {
+    std::vector<std::string> items = splitList(value, ',');
+    if (std::find(items.begin(), items.end(), "none") != items.end())
+        throw UsageError(flag + ": 'none' is given alone, not in a list (got '" + value + "')");
+    return items;
+}
+
 glm::dvec3 parseVector(const std::string& flag, const std::string& text) {
     const std::vector<std::string> parts = splitList(text, ',');
     if (parts.size() != 3)
@@ -547,7 +556,7 @@ void addHiddenLineFlags(std::vector<Flag>& flags) {
                  options.hiddenLineTypes.clear();
                  if (value == "none") return;
                  std::vector<std::string> listed;
-                 for (const std::string& type : splitList(value, ',')) {
+                 for (const std::string& type : listItemsBesideNone("--hidden-lines", value)) {
                      if (!contains(types, type))
                          throw UsageError("--hidden-lines: '" + type +
                                           "' has no hidden lines (available: " + joined(types) + "; or 'none')");
@@ -1049,7 +1058,7 @@ std::vector<Flag> makeFlags() {
             if (value == "none") return;
             std::vector<std::string> known;
             for (const LineType& type : lineTypes()) known.push_back(type.name);
-            for (const std::string& type : splitList(value, ',')) {
+            for (const std::string& type : listItemsBesideNone("--lines", value)) {
                 if (!findLineType(type))
                     throw UsageError("--lines: unknown line type '" + type + "' (available: " + joined(known) +
                                      "; or 'none')");
@@ -1135,7 +1144,7 @@ std::vector<Flag> makeFlags() {
                            StrokeStyle& strokes = options.look.strokes;
                            for (const Choice<bool StrokeStyle::*>& weight : lineWeights) strokes.*weight.value = false;
                            if (value == "none") return;
-                           for (const std::string& item : splitList(value, ',')) {
+                           for (const std::string& item : listItemsBesideNone("--line-weight", value)) {
                                const auto weight =
                                    std::find_if(lineWeights.begin(), lineWeights.end(),
                                                 [&item](const auto& choice) { return choice.word == item; });

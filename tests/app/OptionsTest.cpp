@@ -429,6 +429,12 @@ TEST(Options, HiddenLinesAddTheirTypesWhicheverComesFirst) {
     EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--hidden-lines", "suggestive"}),
               "--hidden-lines: 'suggestive' has no hidden lines (available: crease, border, intersection, "
               "suggestive-object, mesh-silhouette; or 'none')");
+    // 'none' in a list was called a type with no hidden lines, and an unknown line type under --lines.
+    for (const char* flagName : {"--hidden-lines", "--lines", "--line-weight"})
+        for (const char* list : {"none,crease", "crease,none", "none,none"})
+            EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--lines", "crease", flagName, list}),
+                      std::string(flagName) + ": 'none' is given alone, not in a list (got '" + list + "')")
+                << flagName << ' ' << list;
 }
 
 TEST(Options, StrokeLineParameters) {
