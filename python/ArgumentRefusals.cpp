@@ -350,9 +350,45 @@ void install(py::handle object, const std::string& attribute, bool accessor = fa
     definition->ml_meth = reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&dispatchNamingMisfits));
 }
 
+/** pybind11_object's own tp_new, kept by guardTheInstanceBase(). */
+newfunc gInstanceBaseNew = nullptr;
+
+/** pybind11_object's tp_new, refusing a type with no pybind11 class among its bases. pybind11 (2.10, upstream too)
+ *  throws out of its C tp_new for one, which ends the interpreter with std::terminate: `pybind11_object()`, reached
+ *  as `type(inkgraph.Look()).__mro__[1]()`, or a Python class derived from it alone. */
+PyObject* newOfAClassWithAValue(PyTypeObject* type, PyObject* arguments, PyObject* keywords) {
+    if (py::detail::all_type_info(type).empty()) {
+        PyErr_Format(PyExc_TypeError, "%s(): cannot be made: it holds no value of a bound C++ class", type->tp_name);
+        return nullptr;
+    }
+    return gInstanceBaseNew(type, arguments, keywords);
+}
+
+/** Puts newOfAClassWithAValue() in place of pybind11_object's tp_new, once: in the base and in every class that took
+ *  it from the base (each pybind11 class, of this module and of any other sharing the base, and Python classes
+ *  derived from them), since Python refuses `Look.__new__(Look)` as unsafe where a class's tp_new and the base's
+ * differ. Classes made later take the guard from the base. A class with a value reaches pybind11's own tp_new through
+ * it. */
+void guardTheInstanceBase() {
+    auto* base = reinterpret_cast<PyTypeObject*>(py::detail::get_internals().instance_base);
+    if (base->tp_new == newOfAClassWithAValue) return;
+    gInstanceBaseNew = base->tp_new;
+    std::vector<py::handle> classes{py::handle(reinterpret_cast<PyObject*>(base))};
+    std::set<PyObject*> visited;
+    while (!classes.empty()) {
+        const py::handle type = classes.back();
+        classes.pop_back();
+        if (!visited.insert(type.ptr()).second) continue; // a class derived from two of them
+        auto* object = reinterpret_cast<PyTypeObject*>(type.ptr());
+        if (object->tp_new == gInstanceBaseNew) object->tp_new = newOfAClassWithAValue;
+        for (const py::handle subclass : type.attr("__subclasses__")()) classes.push_back(subclass);
+    }
+}
+
 } // namespace
 
 void nameArgumentRefusals(py::module_& m) {
+    guardTheInstanceBase();
     // The module's functions and classes, and each class's own attributes (its __dict__, a mapping proxy): methods,
     // static methods, __init__ and the classes nested in it (Renderer.Platform). A class is one of this module's by
     // its __module__ (not a base class it refers to), and is visited once however often it is named.

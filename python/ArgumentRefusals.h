@@ -13,6 +13,9 @@
  *    C++ member function takes as a null pointer: a crash; any object, where self is taken as a plain object), and
  *    any argument whose constructor has not run (`Vec3.__new__(Vec3)`: its fields are uninitialized memory).
  *    Properties' getters and setters included.
+ *  - pybind11's own base class made directly (`type(inkgraph.Look()).__mro__[1]()`, pybind11_object), or a Python
+ *    class derived from it alone: pybind11 throws out of a C function there, which aborted the interpreter. It is a
+ *    TypeError ("pybind11_object(): cannot be made: it holds no value of a bound C++ class").
  *  A call that fits, with a usable self, is never touched: its errors are the function's own (checked() names a value
  *  of the wrong type, CheckedArguments.h). The functions, their docstrings and help() are unchanged. */
 

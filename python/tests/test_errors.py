@@ -445,3 +445,20 @@ def test_an_object_whose_constructor_has_not_run_is_refused_not_read():
                 "__init__())"), str(refused.value)
             tried += 1
     assert tried >= 200  # every property and method of every class
+
+
+def test_pybind11s_base_class_made_directly_is_refused_not_an_abort():
+    # pybind11 throws out of its C tp_new for a class with no bound C++ class among its bases, which ended the
+    # interpreter (std::terminate): its base class, reached through any object's __mro__, or a class derived from it.
+    base = type(inkgraph.Look()).__mro__[1]
+    derived = type("Derived", (base,), {})
+    for make, name in ((base, base.__name__), (lambda: base.__new__(base), base.__name__), (derived, "Derived"),
+                       (lambda: derived.__new__(derived), "Derived")):
+        with pytest.raises(TypeError) as refused:
+            make()
+        assert str(refused.value) == f"{name}(): cannot be made: it holds no value of a bound C++ class"
+    # Classes with a value are made as before, by their constructor, by __new__, and derived in Python.
+    derived_look = type("DerivedLook", (inkgraph.Look,), {})
+    assert isinstance(derived_look(), inkgraph.Look)
+    assert type(inkgraph.Look.__new__(inkgraph.Look)) is inkgraph.Look
+    assert inkgraph.Vec3(1, 2, 3).y == 2
