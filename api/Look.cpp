@@ -327,14 +327,17 @@ LineStyle Look::lineStyle(LineType type) const {
 }
 Look& Look::setLineStyle(LineType type, const LineStyle& style) {
     // Only what changes is given, so a style set whole does not give a flag that the rules would find without effect.
+    // Set on a copy, so a refused colour does not leave the width set: all or nothing.
     const LineStyle current = lineStyle(type);
     const std::string name = nameOf(type);
+    Look next(*this);
     if (style.width != current.width)
-        setFlag(*this, "Look::setLineStyle()", "--" + name + "-width", exactText(style.width));
+        setFlag(next, "Look::setLineStyle()", "--" + name + "-width", exactText(style.width));
     const Color& color = style.color;
     if (color.r != current.color.r || color.g != current.color.g || color.b != current.color.b ||
         color.a != current.color.a)
-        setFlag(*this, "Look::setLineStyle()", "--" + name + "-color", colorText(color));
+        setFlag(next, "Look::setLineStyle()", "--" + name + "-color", colorText(color));
+    *this = std::move(next);
     return *this;
 }
 
@@ -388,23 +391,25 @@ StrokeSettings Look::strokes() const {
             strokes.mergeOverlaps, strokes.hiddenDashOn,  strokes.hiddenDashOff};
 }
 Look& Look::setStrokes(const StrokeSettings& strokes) {
-    // As setLineStyle(): only the flags whose value changes are given.
+    // As setLineStyle(): only the flags whose value changes are given, on a copy (all or nothing).
     const StrokeSettings current = this->strokes();
+    Look next(*this);
     if (strokes.minLength != current.minLength)
-        setFlag(*this, "Look::setStrokes()", "--min-stroke-length", exactText(strokes.minLength));
+        setFlag(next, "Look::setStrokes()", "--min-stroke-length", exactText(strokes.minLength));
     if (strokes.weightByDepth != current.weightByDepth || strokes.weightByStrength != current.weightByStrength ||
         strokes.taperEnds != current.taperEnds) {
         std::string weights;
         if (strokes.weightByDepth) weights += "depth";
         if (strokes.weightByStrength) weights += std::string(weights.empty() ? "" : ",") + "strength";
         if (strokes.taperEnds) weights += std::string(weights.empty() ? "" : ",") + "taper";
-        setFlag(*this, "Look::setStrokes()", "--line-weight", weights.empty() ? "none" : weights);
+        setFlag(next, "Look::setStrokes()", "--line-weight", weights.empty() ? "none" : weights);
     }
     if (strokes.mergeOverlaps != current.mergeOverlaps)
-        setFlag(*this, "Look::setStrokes()", "--overlapping-lines", strokes.mergeOverlaps ? "merge" : "draw");
+        setFlag(next, "Look::setStrokes()", "--overlapping-lines", strokes.mergeOverlaps ? "merge" : "draw");
     if (strokes.hiddenDashOn != current.hiddenDashOn || strokes.hiddenDashOff != current.hiddenDashOff)
-        setFlag(*this, "Look::setStrokes()", "--hidden-dash",
+        setFlag(next, "Look::setStrokes()", "--hidden-dash",
                 exactText(strokes.hiddenDashOn) + "," + exactText(strokes.hiddenDashOff));
+    *this = std::move(next);
     return *this;
 }
 

@@ -245,6 +245,27 @@ TEST(ApiLook, RulesBetweenFlagsWaitForTheWholeLook) {
     EXPECT_EQ(look.arguments(), (std::vector<std::string>{"--shininess", "8", "--shading", "phong"}));
 }
 
+TEST(ApiLook, ATypedSetterOfSeveralFlagsIsAllOrNothing) {
+    // setLineStyle() gives the width, then the colour: a refused colour left the width set.
+    ig::Look look;
+    const ig::LineStyle before = look.lineStyle(ig::LineType::Contour);
+    EXPECT_STREQ(errorOf([&] {
+                     look.setLineStyle(ig::LineType::Contour, {5.0, {2.0, 0.0, 0.0, 1.0}});
+                 }).what(),
+                 "Look::setLineStyle(): --contour-color: channels must lie in [0, 1], got '2,0,0,1'");
+    EXPECT_TRUE(look.arguments().empty());
+    EXPECT_EQ(look.lineStyle(ig::LineType::Contour).width, before.width);
+    // setStrokes() gives the length first and the dash last.
+    ig::StrokeSettings strokes = look.strokes();
+    strokes.minLength = strokes.minLength + 2.0;
+    strokes.hiddenDashOn = 0.5; // under a pixel
+    EXPECT_THROW(look.setStrokes(strokes), ig::Error);
+    EXPECT_TRUE(look.arguments().empty());
+    // What is accepted is set whole.
+    look.setLineStyle(ig::LineType::Contour, {5.0, {1.0, 0.0, 0.0, 1.0}});
+    EXPECT_EQ(look.arguments(), (std::vector<std::string>{"--contour-width", "5", "--contour-color", "1,0,0,1"}));
+}
+
 using ApiStyle = TestFolder;
 
 TEST_F(ApiStyle, AStyleFileIsTheLooksFlags) {
