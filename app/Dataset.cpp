@@ -284,13 +284,27 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
     mModelCount = list.models.size();
     mListLength = list.total;
 
+    // The index and the card are JSON, which holds UTF-8 text only: a name that is not was recorded with U+FFFD in
+    // place of its bytes, so check-dataset missed the file and --resume rendered it again on every run.
+    const auto refuseUnlessUtf8 = [&shown](const std::string& what, const std::string& text) {
+        try {
+            (void)Json(text).dump();
+        } catch (const Json::type_error&) {
+            throw UsageError(
+                shown + ": " + what + " '" + text +
+                "' is not UTF-8, and the data set's index and card (JSON) hold UTF-8 text only: rename it");
+        }
+    };
+
     // Every output of every still inside DIR, none of them the data set's own files.
     const std::set<fs::path> reserved = {mFolder / kJournalFolder, indexPath(), cardPath()};
     for (const BatchStill& batchStill : stills) {
+        refuseUnlessUtf8("the model", batchStill.model.path);
         const RenderOptions still = stillOptions(options, batchStill, list.total);
         for (const auto& [flag, field] : outputPathFlags()) {
             const std::string& value = still.*field;
             if (value.empty()) continue;
+            refuseUnlessUtf8(flag, value);
             const fs::path place = resolvedPath(value);
             const fs::path relative = place.lexically_relative(mFolder);
             if ((relative.empty() || relative == "." || *relative.begin() == "..") &&
@@ -306,6 +320,8 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
                                  relative.begin()->string() + "); choose another name");
         }
     }
+
+    for (const std::string& argument : mGivenArguments) refuseUnlessUtf8("the argument", argument);
 
     // Checked before anything is made (a refused run changes nothing), and again under the lock: a run of this split
     // that held it until now may have finished meanwhile.

@@ -177,6 +177,24 @@ TEST_F(Dataset, OutputsOutsideTheFolderAndItsOwnFilesAreRefused) {
               std::string::npos);
 }
 
+TEST_F(Dataset, ANameThatIsNotUtf8IsRefusedBeforeAnythingIsMade) {
+    // The index and the card are JSON: such a name was recorded with U+FFFD in place of its bytes, so check-dataset
+    // missed the file and --resume rendered it again on every run.
+    const std::string model8 = write(directory / "bad\xff.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_EQ(usageError({model8, "--dataset", set, "-o", set + "/{name}.png"}),
+              "--dataset '" + set + "': the model '" + model8 +
+                  "' is not UTF-8, and the data set's index and card (JSON) hold UTF-8 text only: rename it");
+    EXPECT_EQ(usageError({model, "--dataset", set, "-o", set + "/a\xfe.png"}),
+              "--dataset '" + set + "': -o '" + set +
+                  "/a\xfe.png' is not UTF-8, and the data set's index and card (JSON) hold UTF-8 text only: rename it");
+    EXPECT_NE(usageError({model, "--dataset", set, "-o", set + "/a.png", "--frame", "x\xc3"})
+                  .find("the argument 'x\xc3' is not UTF-8"),
+              std::string::npos);
+    EXPECT_FALSE(fs::exists(set)) << "a refused run makes no DIR";
+    // UTF-8 beyond ASCII is a name like any other.
+    EXPECT_EQ(usageError({model, "--dataset", set, "-o", set + "/\xc3\xa9t\xc3\xa9.png"}), "");
+}
+
 TEST_F(Dataset, AnExistingDataSetNeedsResume) {
     for (const std::string name : {"index.jsonl", "README.md", ".inkgraph/journal.jsonl"}) {
         fs::remove_all(set);
