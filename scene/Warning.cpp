@@ -21,7 +21,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::TextureCoordinatesMissing, "texture-coordinates-missing",
          "a mesh's texture reads a TEXCOORD set the mesh does not have; drawn without that texture"},
         {K::TextureTransformDropped, "texture-transform-dropped",
-         "a VRM _MainTex scale or offset the shaders' float cannot follow; the textures are drawn without it"},
+         "a VRM _MainTex or expression texture transform the shaders' float cannot follow; the textures are drawn "
+         "without it"},
         {K::TextureDownscaled, "texture-downscaled",
          "an image larger than the driver's largest texture; downscaled to fit"},
         {K::MaskIgnored, "mask-ignored", "an MTL map_d that is not the map_Kd image; ignored"},

@@ -158,6 +158,42 @@ TEST(VrmExpressions, ATextureTransformBindMovesEveryUvTextureOfTheMaterial) {
     EXPECT_NEAR(transform[2][1], 0.125f, 1e-6f);
 }
 
+TEST(VrmExpressions, BindValuesBeyondTheirRangeAreTreatedAsTheFilesOwn) {
+    // A texture transform bind is reduced by the texture's wrap and one float cannot resolve is left out, as a file's
+    // KHR_texture_transform is; a colour bind is clamped into [0, 1]. Both were used as given without a word: a scale
+    // of 1e300 drew the textures black, an offset of 1e7 + 0.875 one flat colour.
+    const std::string extensions = R"("VRMC_vrm": {"specVersion": "1.0", "expressions": {"preset": {
+        "happy": {"textureTransformBinds": [{"material": 0, "scale": [1e300, 1], "offset": [0, 0]}]},
+        "sad": {"textureTransformBinds": [{"material": 0, "scale": [1, 1], "offset": [10000000.875, -3.25]}]},
+        "angry": {"materialColorBinds": [{"material": 0, "type": "color", "targetValue": [1e300, -2, 0.5, 1]}]}}}})";
+    const auto warningsOf = [](const Scene& scene, const std::string& code) {
+        std::vector<std::string> messages;
+        for (const Warning& warning : scene.report.warnings)
+            if (warning.code == code) messages.push_back(warning.message);
+        return messages;
+    };
+    const Scene stretched = loadFace({{"happy", 1.0}}, extensions);
+    EXPECT_EQ(materialNamed(stretched, "Skin").baseColorTexture.transform, glm::mat3(1.0f)) << "left as it was";
+    EXPECT_EQ(
+        warningsOf(stretched, "texture-transform-dropped"),
+        std::vector<std::string>{"the expressions' texture transform on material 'Skin': its scale and rotation "
+                                 "stretch texture coordinates 1e+300 times, beyond the 10000 at which float still "
+                                 "resolves a texel of the image; the textures are drawn without it"});
+
+    const Scene moved = loadFace({{"sad", 1.0}}, extensions);
+    const glm::mat3& transform = materialNamed(moved, "Skin").baseColorTexture.transform;
+    EXPECT_FLOAT_EQ(transform[2][0], 0.875f) << "whole repeats of the default wrap (repeat) taken off";
+    EXPECT_FLOAT_EQ(transform[2][1], -0.25f);
+    EXPECT_TRUE(warningsOf(moved, "texture-transform-dropped").empty());
+
+    const Scene coloured = loadFace({{"angry", 0.5}}, extensions);
+    const glm::vec4 color = materialNamed(coloured, "Skin").baseColorFactor;
+    EXPECT_NEAR(color.r, 0.6f, 1e-6f) << "halfway from 0.2 to 1";
+    EXPECT_NEAR(color.g, 0.2f, 1e-6f) << "halfway from 0.4 to 0";
+    EXPECT_NEAR(color.b, 0.55f, 1e-6f);
+    EXPECT_EQ(warningsOf(coloured, "value-out-of-range").size(), 2u);
+}
+
 TEST(VrmExpressions, ANameTheFileLacksIsRefusedWithTheNamesItHas) {
     try {
         loadFace({{"Happy", 1.0}});

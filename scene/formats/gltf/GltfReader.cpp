@@ -852,7 +852,7 @@ private:
 
         if (primitive.material >= 0) { // in range: checkMaterialIndices()
             mesh.material = mMaterials.material(primitive.material);
-            if (mExpressions) mExpressions->applyToMaterial(primitive.material, mesh.material);
+            if (mExpressions) mExpressions->applyToMaterial(primitive.material, mesh.material, mOut.warnings);
         }
         mOut.meshes.push_back(std::move(mesh));
     }

@@ -8,6 +8,7 @@
 #include "scene/formats/FormatReaders.h"
 #include "scene/formats/gltf/GltfPose.h"
 #include "scene/formats/gltf/VrmMaterials.h"
+#include "scene/formats/ShaderValues.h"
 
 #include <tiny_gltf.h>
 
@@ -81,12 +82,30 @@ UvPlacement placementOf(const glm::mat3& transform) {
     return placement;
 }
 
-glm::mat3 transformOf(const UvPlacement& placement) {
-    glm::mat3 transform(1.0f);
-    transform[0] = glm::vec3(glm::vec2(placement.axisU * placement.scale.x), 0.0f);
-    transform[1] = glm::vec3(glm::vec2(placement.axisV * placement.scale.y), 0.0f);
-    transform[2] = glm::vec3(glm::vec2(placement.offset), 1.0f);
+/** In double: an offset a whole number of repeats away keeps its fraction until the texture's wrap reduces it
+ *  (shaderTextureTransform()). */
+glm::dmat3 transformOf(const UvPlacement& placement) {
+    glm::dmat3 transform(1.0);
+    transform[0] = glm::dvec3(placement.axisU * placement.scale.x, 0.0);
+    transform[1] = glm::dvec3(placement.axisV * placement.scale.y, 0.0);
+    transform[2] = glm::dvec3(placement.offset, 1.0);
     return transform;
+}
+
+/** A bind's target colour with each channel in [0, 1], where the file's own colours are kept (shaderValue()); one
+ *  outside it is clamped with a value-out-of-range warning naming `at`. */
+glm::dvec4 clampedTarget(const std::vector<double>& value, const std::string& at, const std::string& path,
+                         std::vector<Warning>& warnings) {
+    glm::dvec4 target;
+    std::vector<Warning> problems;
+    for (int channel = 0; channel < 4; ++channel)
+        target[channel] = shaderValue(value[std::size_t(channel)], ShaderRange{0.0, 1.0},
+                                      at + ".targetValue[" + std::to_string(channel) + "]", problems);
+    for (Warning& problem : problems) {
+        problem.file = path;
+        warnings.push_back(std::move(problem));
+    }
+    return target;
 }
 
 } // namespace
@@ -206,7 +225,8 @@ void VrmExpressions::readVrm1(const tinygltf::Model& model, std::vector<Warning>
                         continue;
                     }
                     expression.colorBinds.push_back(
-                        {*material, known->second, glm::dvec4((*value)[0], (*value)[1], (*value)[2], (*value)[3])});
+                        {*material, known->second,
+                         clampedTarget(*value, "VRMC_vrm.expressions." + at, mPath, warnings)});
                 }
             }
             if (const tinygltf::Value* binds = jsonMember(&object, "textureTransformBinds");
@@ -308,10 +328,11 @@ void VrmExpressions::readVrm0(const tinygltf::Model& model, std::vector<Warning>
                     const std::vector<double>& v = *target;
                     if (color != kProperties.end()) {
                         // 0.x colours are Unity's gamma-space values, as the 0.x materials read them.
+                        const glm::dvec4 gamma = clampedTarget(v, "VRM.blendShapeMaster." + at, mPath, warnings);
                         expression.colorBinds.push_back(
                             {int(material), color->second,
-                             glm::dvec4(srgbToLinear(float(v[0])), srgbToLinear(float(v[1])), srgbToLinear(float(v[2])),
-                                        v[3])});
+                             glm::dvec4(srgbToLinear(float(gamma[0])), srgbToLinear(float(gamma[1])),
+                                        srgbToLinear(float(gamma[2])), gamma[3])});
                     } else {
                         // Unity's _ST is (scale u, scale v, offset u, offset v) with v up the image; glTF's v runs down
                         // it, so the offset becomes 1 - scale v - offset v (three-vrm's conversion).
@@ -417,7 +438,7 @@ void VrmExpressions::applyToPoses(std::vector<NodePose>& poses) const {
     }
 }
 
-void VrmExpressions::applyToMaterial(int materialIndex, Material& material) const {
+void VrmExpressions::applyToMaterial(int materialIndex, Material& material, std::vector<Warning>& warnings) const {
     const Material own = material;
     std::vector<TextureRef*> uvTextures = {&material.baseColorTexture, &material.metallicRoughnessTexture,
                                            &material.emissiveTexture, &material.normalTexture};
@@ -485,8 +506,26 @@ void VrmExpressions::applyToMaterial(int materialIndex, Material& material) cons
             *factor = glm::max(*factor, 0.0f);
     }
     if (!moved) return;
+    // Each texture's offset reduced by its own wrap, as a file's KHR_texture_transform is; a transform float cannot
+    // resolve leaves the texture where the material puts it, with a warning once for the material (a huge scale drew
+    // the textures black without a word, a repeat offset of 1e7 + 0.875 as one flat colour).
+    std::string dropped;
     for (std::size_t i = 0; i < uvTextures.size(); ++i) {
-        if (uvTextures[i]->present()) uvTextures[i]->transform = transformOf(placements[i]);
+        if (!uvTextures[i]->present()) continue;
+        std::string problem;
+        if (const std::optional<glm::mat3> transform =
+                shaderTextureTransform(transformOf(placements[i]), uvTextures[i]->sampler, problem))
+            uvTextures[i]->transform = *transform;
+        else if (dropped.empty())
+            dropped = problem;
+    }
+    if (!dropped.empty() && mMaterialsWarnedOf.insert(materialIndex).second) {
+        const std::string item = "materials[" + std::to_string(materialIndex) + "]";
+        warnings.push_back(makeWarning(WarningKind::TextureTransformDropped,
+                                       "the expressions' texture transform on material " +
+                                           (material.name.empty() ? item : quotedExcerpt(material.name)) + ": " +
+                                           dropped + "; the textures are drawn without it",
+                                       mPath, item));
     }
 }
 

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -58,8 +59,10 @@ public:
      *  weight (the specification's update algorithm); `poses` are the nodes' (NodePose::weights). */
     void applyToPoses(std::vector<NodePose>& poses) const;
     /** The colour and texture transform binds on glTF material `materialIndex`: each bound value moves from the
-     *  material's own towards the bind's target by the applied weight, the moves of several expressions added. */
-    void applyToMaterial(int materialIndex, Material& material) const;
+     *  material's own towards the bind's target by the applied weight, the moves of several expressions added. A
+     *  texture transform float cannot resolve after the texture's wrap reduces its offset is left out, with a
+     *  texture-transform-dropped warning in `warnings` once for the material. */
+    void applyToMaterial(int materialIndex, Material& material, std::vector<Warning>& warnings) const;
 
     /** "'happy', 'blink' (0.x 'Blink'), ...": the expressions for a message. */
     std::string listForMessage() const;
@@ -105,6 +108,8 @@ private:
 
     std::string mPath;
     std::vector<Expression> mExpressions;
+    /** The materials warned of by applyToMaterial(), which runs once per primitive. */
+    mutable std::set<int> mMaterialsWarnedOf;
 };
 
 } // namespace inkgraph::detail
