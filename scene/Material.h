@@ -121,6 +121,15 @@ struct Material {
     bool operator==(const Material&) const = default;
 };
 
+/** The least base colour alpha a blended material shows at: under half a level of 8-bit colour (1/510), drawing it over
+ *  anything changes no pixel of the picture. */
+inline constexpr float kLeastVisibleAlpha = 1.0f / 510.0f;
+
+/** Why `material` draws nothing at all, or "" when it may draw: MASK with a base colour alpha under its cutoff (the
+ *  texture's and the vertices' alphas only multiply it down, so every fragment is cut out), BLEND with one under
+ *  kLeastVisibleAlpha. For the material-invisible warning, which a model drawn as blank paper would lack otherwise. */
+std::string whyMaterialDrawsNothing(const Material& material);
+
 /** Every texture `material` may sample, present or not: the one list of a material's TextureRef fields, for what counts
  *  them (the memory estimate, scene/TextureImage.h); a new texture field is added here. */
 inline std::vector<const TextureRef*> textureRefsOf(const Material& material) {

@@ -42,7 +42,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::MaterialUndefined, "material-undefined",
          "OBJ usemtl names materials no library defines; their faces are drawn in the default grey"},
         {K::MaterialInvisible, "material-invisible",
-         "an MTL material that is fully transparent (d 0, or Tr 1): its faces are not drawn"},
+         "a material that draws nothing (an MTL d or 1 - Tr under 1/510, a glTF MASK alpha under its cutoff or "
+         "BLEND alpha under 1/510): its faces are not drawn"},
         {K::WhiteEmissionIgnored, "white-emission-ignored",
          "an MTL 'Ke 1 1 1' without a map_Ke (a white emission colour exporters write at strength 0): read as no "
          "emission, as Blender's importer reads it"},

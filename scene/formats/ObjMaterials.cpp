@@ -338,16 +338,18 @@ private:
                                                     : 1.0;
         material.baseColorFactor.a = float(alpha);
         if (alpha < 1.0) material.alphaMode = AlphaMode::Blend;
-        if (alpha <= 0.0) {
-            // Said, not changed: exporters disagree on Tr (some write it as opacity), and d 0 may be meant.
-            mWarnings.push_back(makeWarning(
-                WarningKind::MaterialInvisible,
-                "material library '" + mPath + "' line " + std::to_string(pending.line) + ": material '" +
-                    excerptForMessage(material.name) + "' is fully transparent (" +
-                    (pending.dissolve ? "d 0"
-                                      : "Tr 1, read as d 0; some exporters write Tr as opacity, 'd 1' draws it") +
-                    "): its faces are not drawn",
-                mPath, material.name));
+        if (alpha < kLeastVisibleAlpha) {
+            // Said, not changed: exporters disagree on Tr (some write it as opacity), and d 0 may be meant. Under
+            // half a level of 8-bit colour the faces change no pixel (whyMaterialDrawsNothing()).
+            const std::string written = pending.dissolve ? "d " + formatNumber(alpha)
+                                                         : "Tr " + formatNumber(*pending.transparency) +
+                                                               ", read as d " + formatNumber(alpha) +
+                                                               "; some exporters write Tr as opacity, 'd 1' draws it";
+            mWarnings.push_back(makeWarning(WarningKind::MaterialInvisible,
+                                            "material library '" + mPath + "' line " + std::to_string(pending.line) +
+                                                ": material '" + excerptForMessage(material.name) +
+                                                "' is fully transparent (" + written + "): its faces are not drawn",
+                                            mPath, material.name));
         }
         for (std::optional<MapStatement>* map : {&pending.diffuseMap, &pending.emissiveMap, &pending.dissolveMap})
             if (*map) (*map)->file = withoutTrailingComment(mFolder, (*map)->file, mModelFolder);

@@ -339,6 +339,30 @@ TEST(GltfMaterials, SpecularGlossinessDiffuseIsTheBaseColour) {
     EXPECT_EQ(plain.roughnessFactor, 0.0f);
 }
 
+TEST(GltfMaterials, AMaterialThatDrawsNothingIsSaid) {
+    // A model of such materials alone was blank paper with exit 0, --strict included. MASK cuts out every fragment
+    // when the factor's alpha is under the cutoff (the texture's alpha only multiplies it down); BLEND under half a
+    // level of 8-bit colour changes no pixel. OPAQUE ignores alpha.
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {R"("alphaMode": "MASK", "alphaCutoff": 0.5, "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 0.2]})",
+         "material 0 'm': alphaMode MASK with a base colour alpha of 0.2, under its alphaCutoff 0.5, cuts out every "
+         "fragment: its faces are not drawn"},
+        {R"("alphaMode": "MASK", "alphaCutoff": 0.5, "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 0.5]})", ""},
+        {R"("alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 0]})",
+         "material 0 'm': alphaMode BLEND with a base colour alpha of 0, under half a level of 8-bit colour (1/510), "
+         "changes no pixel: its faces are not drawn"},
+        {R"("alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 0.002]})", ""},
+        {R"("pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 0]})", ""}};
+    for (const auto& [material, expected] : cases) {
+        const TempFile file("invisible.gltf", triangleWithMaterial("{\"name\": \"m\", " + material + "}", ""));
+        const Scene scene = loadScene(file.path());
+        std::vector<std::string> said;
+        for (const Warning& warning : scene.report.warnings)
+            if (warning.code == "material-invisible") said.push_back(warning.message);
+        EXPECT_EQ(said, expected.empty() ? std::vector<std::string>{} : std::vector<std::string>{expected}) << material;
+    }
+}
+
 TEST(GltfMaterials, SpecularGlossinessOutOfRangeIsClampedAndBrokenIsRefused) {
     const TempFile clamped("gloss-clamped.gltf",
                            triangleWithMaterial("{\"extensions\": {\"KHR_materials_pbrSpecularGlossiness\": "

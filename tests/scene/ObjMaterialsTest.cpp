@@ -573,6 +573,22 @@ TEST(ObjMaterials, DissolveOutsideZeroToOneIsClampedWithAWarning) {
     EXPECT_EQ(scene.report.warnings[1].code, "material-invisible");
 }
 
+TEST(ObjMaterials, AMaterialUnderHalfALevelOfColourIsSaidAsInvisible) {
+    // d 1e-7 changes no pixel of an 8-bit picture, and was drawn as blank paper without a word; 1/255 shows.
+    const TempFolder folder;
+    folder.write("m.mtl", "newmtl faint\nd 0.0000001\nnewmtl trace\nTr 0.9999\nnewmtl shows\nd 0.004\n");
+    const Scene scene = loadScene(folder.write("m.obj", "mtllib m.mtl\nusemtl faint\n" + kTriangle + "usemtl trace\n" +
+                                                            kTriangle + "usemtl shows\n" + kTriangle));
+    ASSERT_EQ(scene.report.warnings.size(), 2u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.warnings[0].code, "material-invisible");
+    EXPECT_NE(scene.report.warnings[0].message.find("material 'faint' is fully transparent (d 1"),
+              std::string::npos)
+        << scene.report.warnings[0];
+    EXPECT_NE(scene.report.warnings[1].message.find("material 'trace' is fully transparent (Tr 0.9998"),
+              std::string::npos)
+        << scene.report.warnings[1];
+}
+
 TEST(ObjMaterials, AFullyTransparentMaterialIsSaidAndAMapWithoutKdIsDrawnAsTheImageIs) {
     // d 0 and Tr 1 draw nothing: said, since exporters disagree on Tr (some write it as opacity). A map_Kd without
     // Kd was multiplied by the 0.8 grey of a bare material, 20 % darker than the image.

@@ -401,6 +401,10 @@ struct GltfMaterials::Reader {
             result.normalScale =
                 shaderValue(source.normalTexture.scale, kSignedRange, label + " normalTexture.scale", mWarnings, label);
         }
+        // Said, not changed, as an MTL's d 0 is: a model of such materials alone was blank paper without a word.
+        if (const std::string why = whyMaterialDrawsNothing(result); !why.empty())
+            mWarnings.push_back(makeWarning(WarningKind::MaterialInvisible,
+                                            label + ": " + why + ": its faces are not drawn", "", label));
         cached = std::move(result);
         return *cached;
     }
