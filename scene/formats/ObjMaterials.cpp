@@ -274,7 +274,8 @@ private:
     }
 
     /** `Kd r g b` or `Kd r` (grey). MTL colours carry no colour space; like most renderers, they are taken as
-     *  linear as written (clamped to [0, 1], the range of glTF's factors). */
+     *  linear as written, clamped to [0, 1] (the range of glTF's factors) with a value-out-of-range warning, as d
+     *  and glTF's factors are (Kd -1 -1 -1 and Kd 1e300 0 0 were clamped without a word). */
     std::optional<glm::vec3> readColour(std::string_view keyword, std::string_view rest) {
         const std::vector<std::string_view> tokens = tokensOf(rest);
         if (!tokens.empty() && (sameKeyword(tokens.front(), "spectral") || sameKeyword(tokens.front(), "xyz"))) {
@@ -284,16 +285,21 @@ private:
         }
         glm::dvec3 colour(0.0);
         bool readable = tokens.size() == 1 || tokens.size() == 3;
+        std::vector<double> values;
         for (std::size_t i = 0; readable && i < tokens.size(); ++i) {
             const std::optional<double> value = numberOf(tokens[i]);
             readable = value.has_value();
-            if (readable) colour[int(i)] = std::clamp(*value, 0.0, 1.0);
+            if (readable) values.push_back(*value);
         }
         if (!readable) {
             warn("cannot read '" + excerptForMessage(keyword) + "' colour '" + excerptForMessage(rest) +
                  "' (1 or 3 numbers); ignored");
             return std::nullopt;
         }
+        std::vector<Warning> problems;
+        for (std::size_t i = 0; i < values.size(); ++i)
+            colour[int(i)] = shaderValue(values[i], kUnitRange, quotedExcerpt(keyword), problems);
+        for (const Warning& problem : problems) warn(problem.message, WarningKind::ValueOutOfRange);
         if (tokens.size() == 1) colour = glm::dvec3(colour.x);
         return glm::vec3(colour);
     }

@@ -573,6 +573,21 @@ TEST(ObjMaterials, DissolveOutsideZeroToOneIsClampedWithAWarning) {
     EXPECT_EQ(scene.report.warnings[1].code, "material-invisible");
 }
 
+TEST(ObjMaterials, AColourOutsideZeroToOneIsClampedWithAWarning) {
+    // Kd -1 -1 -1 and Kd 1e300 0 0 were clamped without a word, where d and glTF's factors warn.
+    const TempFolder folder;
+    folder.write("m.mtl", "newmtl dark\nKd -1 0.5 0.5\nnewmtl bright\nKd 1e300 0 0\nnewmtl fine\nKd 0 1 0.5\n");
+    const Scene scene = loadScene(folder.write("m.obj", "mtllib m.mtl\nusemtl dark\n" + kTriangle + "usemtl bright\n" +
+                                                            kTriangle + "usemtl fine\n" + kTriangle));
+    ASSERT_EQ(scene.report.warnings.size(), 2u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.warnings[0].code, "value-out-of-range");
+    EXPECT_NE(scene.report.warnings[0].message.find("line 2: 'Kd' -1 is outside [0, 1]; 0 is used"), std::string::npos)
+        << scene.report.warnings[0];
+    EXPECT_NE(scene.report.warnings[1].message.find("line 4: 'Kd' 1e+300 is outside [0, 1]; 1 is used"),
+              std::string::npos)
+        << scene.report.warnings[1];
+}
+
 TEST(ObjMaterials, AMaterialUnderHalfALevelOfColourIsSaidAsInvisible) {
     // d 1e-7 changes no pixel of an 8-bit picture, and was drawn as blank paper without a word; 1/255 shows.
     const TempFolder folder;
@@ -581,8 +596,7 @@ TEST(ObjMaterials, AMaterialUnderHalfALevelOfColourIsSaidAsInvisible) {
                                                             kTriangle + "usemtl shows\n" + kTriangle));
     ASSERT_EQ(scene.report.warnings.size(), 2u) << ::testing::PrintToString(scene.report.warnings);
     EXPECT_EQ(scene.report.warnings[0].code, "material-invisible");
-    EXPECT_NE(scene.report.warnings[0].message.find("material 'faint' is fully transparent (d 1"),
-              std::string::npos)
+    EXPECT_NE(scene.report.warnings[0].message.find("material 'faint' is fully transparent (d 1"), std::string::npos)
         << scene.report.warnings[0];
     EXPECT_NE(scene.report.warnings[1].message.find("material 'trace' is fully transparent (Tr 0.9998"),
               std::string::npos)
@@ -639,12 +653,13 @@ TEST(ObjMaterials, AMapKeIsTheEmissiveTextureAndAWhiteKeWithoutOneIsNoEmission) 
                                                     "vt 0 1\n" +
                                                         faces);
     const Scene scene = loadScene(model);
-    ASSERT_EQ(scene.report.warnings.size(), 5u) << ::testing::PrintToString(scene.report.warnings);
+    ASSERT_EQ(scene.report.warnings.size(), 6u) << ::testing::PrintToString(scene.report.warnings);
     EXPECT_EQ(scene.report.warnings[0].code, "white-emission-ignored");
     EXPECT_EQ(scene.report.warnings[1].item, "scan");
-    EXPECT_EQ(scene.report.warnings[2].code, "texture-missing"); // gone's map_Kd
-    EXPECT_EQ(scene.report.warnings[3].code, "texture-missing"); // and its map_Ke
-    EXPECT_EQ(scene.report.warnings[4].item, "nearly");
+    EXPECT_EQ(scene.report.warnings[2].code, "texture-missing");    // gone's map_Kd
+    EXPECT_EQ(scene.report.warnings[3].code, "texture-missing");    // and its map_Ke
+    EXPECT_EQ(scene.report.warnings[4].code, "value-out-of-range"); // nearly's Ke 2, clamped to 1
+    EXPECT_EQ(scene.report.warnings[5].item, "nearly");
     EXPECT_EQ(scene.report.warnings[0].item, "white");
     EXPECT_TRUE(contains(scene.report.warnings[0].message, "line 13: material 'white': a white 'Ke' without a map_Ke "
                                                            "is read as no emission"))
