@@ -413,6 +413,43 @@ TEST(VrmHumanoid, AVrmaNeedsItsExtensionAndAHumanoid) {
                   "': cannot take a humanoid animation: not a VRM model (no VRMC_vrm or VRM extension)");
 }
 
+TEST(VrmHumanoid, ABoneGivenTwiceOrTwoBonesOnOneNodeOrHumanBonesOfTheOtherVersionsFormAreSaid) {
+    // A 0.x bone given twice kept the last without a word, two bones on one node loaded silently, and humanBones in
+    // the other version's form (0.x's array, 1.0's object) was told as a humanoid without a head.
+    const auto vrmWith = [](const std::string& extension) {
+        test::GltfWriter writer;
+        const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+        return writer.glb("\"extensions\": {" + extension + "}, \"meshes\": [{\"primitives\": [{\"attributes\": " +
+                          "{\"POSITION\": " + std::to_string(positions) +
+                          "}}]}], \"nodes\": [{\"mesh\": 0}, {\"name\": \"A\"}, {\"name\": \"B\"}], "
+                          "\"scenes\": [{\"nodes\": [0, 1, 2]}]");
+    };
+    const TempFile pose("pose.json", "{\"head\": [0, 0, 0, 1]}");
+    const auto messagesOf = [&](const std::string& extension) {
+        const TempFile model("humanoid.vrm", vrmWith(extension));
+        std::vector<std::string> messages;
+        for (const Warning& warning : loadPosed(model, pose.path()).report.warnings)
+            messages.push_back("[" + warning.code + "] " + warning.message);
+        return messages;
+    };
+    EXPECT_EQ(messagesOf(R"("VRM": {"humanoid": {"humanBones": [{"bone": "head", "node": 1},
+                                      {"bone": "head", "node": 2}, {"bone": "neck", "node": 1}]}})"),
+              (std::vector<std::string>{
+                  "[vrm-property-invalid] VRM.humanoid.humanBones[1] 'head' is given twice (node 1, then node 2); the "
+                  "first is kept",
+                  "[vrm-property-invalid] VRM.humanoid.humanBones[2] 'neck': node 1 is already bone 'head' (a node is "
+                  "one bone); ignored"}));
+    const std::vector<std::string> object = messagesOf(R"("VRM": {"humanoid": {"humanBones": {"head": {"node": 1}}}})");
+    ASSERT_FALSE(object.empty());
+    EXPECT_EQ(object.front(), "[vrm-property-invalid] VRM.humanoid.humanBones is not an array (an object, as VRM "
+                              "1.0's VRMC_vrm writes it); ignored");
+    const std::vector<std::string> array =
+        messagesOf(R"("VRMC_vrm": {"specVersion": "1.0", "humanoid": {"humanBones": [{"bone": "head", "node": 1}]}})");
+    ASSERT_FALSE(array.empty());
+    EXPECT_EQ(array.front(), "[vrm-property-invalid] VRMC_vrm.humanoid.humanBones is not an object (an array, as VRM "
+                             "0.x's VRM writes it); ignored");
+}
+
 TEST(VrmHumanoid, AModelWithoutAHumanoidIsRefused) {
     test::GltfWriter writer;
     const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});

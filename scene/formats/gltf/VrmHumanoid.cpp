@@ -63,6 +63,23 @@ void addBone(const tinygltf::Model& model, const std::string& where, const std::
                                        "", where));
         return;
     }
+    // The first of a bone given twice, or of two bones on one node, is kept, and the second said: the last one
+    // replaced the first without a word.
+    if (const auto given = humanoid.nodeOfBone.find(bone); given != humanoid.nodeOfBone.end()) {
+        warnings.push_back(makeWarning(WarningKind::VrmPropertyInvalid,
+                                       where + " '" + bone + "' is given twice (node " + std::to_string(given->second) +
+                                           ", then node " + std::to_string(index) + "); the first is kept",
+                                       "", where));
+        return;
+    }
+    for (const auto& [other, otherNode] : humanoid.nodeOfBone) {
+        if (otherNode != index) continue;
+        warnings.push_back(makeWarning(WarningKind::VrmPropertyInvalid,
+                                       where + " '" + bone + "': node " + std::to_string(index) + " is already bone '" +
+                                           other + "' (a node is one bone); ignored",
+                                       "", where));
+        return;
+    }
     humanoid.nodeOfBone[bone] = index;
 }
 
@@ -123,6 +140,12 @@ std::optional<Humanoid> readHumanBonesObject(const tinygltf::Model& model, const
             addBone(model, extension + ".humanoid.humanBones", bone,
                     entry.IsObject() && entry.Has("node") ? entry.Get("node") : tinygltf::Value(), humanoid, warnings);
         }
+    } else if (bones.Type() != tinygltf::NULL_TYPE) {
+        warnings.push_back(makeWarning(WarningKind::VrmPropertyInvalid,
+                                       extension + ".humanoid.humanBones is not an object" +
+                                           (bones.IsArray() ? " (an array, as VRM 0.x's VRM writes it)" : "") +
+                                           "; ignored",
+                                       "", extension + ".humanoid.humanBones"));
     }
     return humanoid;
 }
@@ -138,7 +161,16 @@ std::optional<Humanoid> readHumanoid(const tinygltf::Model& model, std::vector<W
         vrm.IsObject() && vrm.Has("humanoid") && vrm.Get("humanoid").IsObject() && vrm.Get("humanoid").Has("humanBones")
             ? vrm.Get("humanoid").Get("humanBones")
             : tinygltf::Value();
-    if (!bones.IsArray()) return humanoid;
+    if (!bones.IsArray()) {
+        // An object is 1.0's form; without this the file was told it has no head bone.
+        if (bones.Type() != tinygltf::NULL_TYPE)
+            warnings.push_back(
+                makeWarning(WarningKind::VrmPropertyInvalid,
+                            std::string("VRM.humanoid.humanBones is not an array") +
+                                (bones.IsObject() ? " (an object, as VRM 1.0's VRMC_vrm writes it)" : "") + "; ignored",
+                            "", "VRM.humanoid.humanBones"));
+        return humanoid;
+    }
     for (std::size_t i = 0; i < bones.ArrayLen(); ++i) {
         const tinygltf::Value& entry = bones.Get(int(i));
         const std::string where = "VRM.humanoid.humanBones[" + std::to_string(i) + "]";
