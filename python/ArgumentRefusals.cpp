@@ -367,8 +367,8 @@ PyObject* newOfAClassWithAValue(PyTypeObject* type, PyObject* arguments, PyObjec
 /** Puts newOfAClassWithAValue() in place of pybind11_object's tp_new, once: in the base and in every class that took
  *  it from the base (each pybind11 class, of this module and of any other sharing the base, and Python classes
  *  derived from them), since Python refuses `Look.__new__(Look)` as unsafe where a class's tp_new and the base's
- * differ. Classes made later take the guard from the base. A class with a value reaches pybind11's own tp_new through
- * it. */
+ *  differ. Classes made later take the guard from the base. A class with a value reaches pybind11's own tp_new
+ *  through it. */
 void guardTheInstanceBase() {
     auto* base = reinterpret_cast<PyTypeObject*>(py::detail::get_internals().instance_base);
     if (base->tp_new == newOfAClassWithAValue) return;
