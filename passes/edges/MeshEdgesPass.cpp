@@ -26,6 +26,12 @@ std::string kindOf(const std::string& field) {
 
 bool isHidden(const std::string& field) { return field.rfind(kHiddenPrefix, 0) == 0; }
 
+/** Whether `field`'s edges are drawn: its skeleton or its "-points" output is live. --request may ask for the points
+ *  alone, without the line type; they were then never written (an internal error). */
+bool drawsField(const GlPassContext& gl, const std::string& field) {
+    return gl.isLive(field) || gl.isLive(field + MeshEdgesPass::kPointsSuffix);
+}
+
 } // namespace
 
 MeshEdgesPass::MeshEdgesPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
@@ -164,10 +170,10 @@ void MeshEdgesPass::prepare(GlPassContext& context) {
                                                                    {"common/material.glsl"}}));
     // A kind's edges are chosen when its visible or its hidden output is live.
     const auto kindLive = [&](const std::string& kind) {
-        return context.isLive(kind) || context.isLive(kHiddenPrefix + kind);
+        return drawsField(context, kind) || drawsField(context, kHiddenPrefix + kind);
     };
-    const bool anyHidden =
-        context.isLive("hidden-silhouette") || context.isLive("hidden-crease") || context.isLive("hidden-border");
+    const bool anyHidden = drawsField(context, "hidden-silhouette") || drawsField(context, "hidden-crease") ||
+                           drawsField(context, "hidden-border");
     if (anyHidden && !mHiddenProgram) {
         std::vector<std::string> defines = materialAlphaDefines(mScene);
         defines.push_back("HIDDEN 1");
@@ -214,12 +220,13 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
     mEdgesDrawn = {};
     std::vector<const char*> live;
     for (const char* field : kFields)
-        if (gl.isLive(field)) live.push_back(field);
+        if (drawsField(gl, field)) live.push_back(field);
     if (live.empty()) return; // only reachable outside a compiled plan: the compiler culls a pass with no live output
 
     // Every output has the same scale, so any gives the size.
-    const int width = gl.widthOf(live.front());
-    const int height = gl.heightOf(live.front());
+    const std::string sized = gl.isLive(live.front()) ? live.front() : live.front() + std::string(kPointsSuffix);
+    const int width = gl.widthOf(sized);
+    const int height = gl.heightOf(sized);
     const glm::mat4 viewFromModel = mFrame.viewFromModel();
     const glm::mat4 clipFromView = mFrame.clipFromView();
     const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
@@ -230,7 +237,7 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
     // The silhouette edges for this eye, chosen before anything is drawn: when no live output has an edge (a smooth
     // scan's creases all shorter than the minimum length, say), the model's depth, a draw of every face, is not
     // needed, and the outputs are only cleared.
-    if (gl.isLive("silhouette") || gl.isLive("hidden-silhouette")) {
+    if (drawsField(gl, "silhouette") || drawsField(gl, "hidden-silhouette")) {
         // The eye in the meshes' frame: the scene's local frame (Scene::origin), where Camera::eye lives too
         // (GpuScene subtracts worldOrigin only for the GPU).
         const glm::dvec3 eye = mFrame.camera.eye;
@@ -280,7 +287,10 @@ void MeshEdgesPass::execute(GlPassContext& gl) {
         const std::string points = field + kPointsSuffix;
         const bool writesPoints = gl.isLive(points);
         GlFramebuffer lineTarget(mName + " " + field);
-        lineTarget.attachColor(0, gl.outputTexture(field));
+        // Points asked for without their skeleton: the shader writes both, the skeleton into a texture of its own.
+        std::optional<GlTexture> unrequested;
+        if (!gl.isLive(field)) unrequested.emplace(Format::R8, width, height, mName + " " + field + " (not requested)");
+        lineTarget.attachColor(0, unrequested ? *unrequested : gl.outputTexture(field));
         if (writesPoints) lineTarget.attachColor(1, gl.outputTexture(points));
         lineTarget.finish(writesPoints ? std::vector<int>{0, 1} : std::vector<int>{0});
         lineTarget.bind();

@@ -688,6 +688,26 @@ TEST_F(MeshEdgesCube, CulledPassDerivesNothingAndOnlyLiveOutputsAreComputed) {
     EXPECT_FALSE(executor.store().contains("mesh-edges.border"));
 }
 
+TEST_F(MeshEdgesCube, PointsRequestedWithoutTheirSkeletonAreTheSame) {
+    // --request mesh-edges.crease-points without the crease line type: the points were never written (an internal
+    // error). They are what the pass writes beside the skeleton, hidden twins included.
+    lookFrom(kNearCorner, glm::dvec3(0.0), 35.0, 96, 96);
+    for (const std::string field : {"crease", "hidden-crease", "silhouette"}) {
+        SCOPED_TRACE(field);
+        const std::string points = field + MeshEdgesPass::kPointsSuffix;
+        MeshEdgesPass alone("mesh-edges", shaders, *gpuScene, frame);
+        const cv::Mat pointsAlone = renderEdges(alone, {points}).at(points);
+        EXPECT_FALSE(executor.store().contains("mesh-edges." + field));
+        MeshEdgesPass both("mesh-edges", shaders, *gpuScene, frame);
+        const cv::Mat pointsBeside = renderEdges(both, {field, points}).at(points);
+        ASSERT_EQ(pointsAlone.type(), CV_32FC4);
+        cv::Mat triangle;
+        cv::extractChannel(pointsAlone, triangle, 3);
+        EXPECT_GT(cv::countNonZero(triangle), 30) << "each line pixel names its edge's triangle";
+        EXPECT_EQ(cv::norm(pointsAlone, pointsBeside, cv::NORM_INF), 0.0);
+    }
+}
+
 TEST_F(MeshEdgesCube, NoEdgeToDrawClearsTheOutputsWithoutTheDepth) {
     // The crease output first with the cube's 12 creases, then, from a pass whose angle no edge exceeds, none: that
     // pass draws no depth (nothing would test against it), yet its output, a pooled texture the first one wrote, is
