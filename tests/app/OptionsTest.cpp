@@ -164,9 +164,16 @@ TEST(Options, LineTypesAndTheirStyles) {
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline", "--outline-color", "1,0,2"}).find("[0, 1]"),
               std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "outline,outline"}).find("twice"), std::string::npos);
-    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--lines", "silhouette", "--silhouette-object-width", "-1"})
-                  .find("above 0"),
-              std::string::npos);
+    // 1e-46 became 0 in the shaders' float (no silhouette, exit 0), 3.5e38 infinity (an internal error).
+    for (const char* width : {"-1", "0", "1e-46", "9e-38", "3.5e38", "1.1e38"})
+        EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--lines", "silhouette", "--silhouette-object-width", width}),
+                  std::string("--silhouette-object-width: model units must lie from 1e-37 to 1e38 (what the shaders' "
+                              "float holds), got '") +
+                      width + "'")
+            << width;
+    EXPECT_EQ(parameter(parse({"m.obj", "-o", "x.png", "--lines", "silhouette", "--silhouette-object-width", "1e38"}),
+                        "silhouette-object-width"),
+              1e38);
 }
 
 TEST(Options, PostStageLineTypesAndTheirFlags) {
@@ -631,9 +638,7 @@ TEST(Options, HelpTextsAreMadeFromTheTablesTheyDescribe) {
     EXPECT_NE(helpOf("--depth-jump").find("; R above 0, up to 100"), std::string::npos);
     EXPECT_NE(helpOf("--crease-angle").find("; DEG above 0 and below 180"), std::string::npos);
     EXPECT_NE(helpOf("--suggestive-smoothing").find("; S from 0 to 1"), std::string::npos);
-    const std::string objectWidth = helpOf("--silhouette-object-width");
-    EXPECT_NE(objectWidth.find("; D above 0"), std::string::npos); // no upper end: not "up to 1.79e+308"
-    EXPECT_EQ(objectWidth.find("up to"), std::string::npos);
+    EXPECT_NE(helpOf("--silhouette-object-width").find("; D from 1e-37 to 1e38"), std::string::npos);
     for (const LineParameter* parameter : lineParameters()) {
         if (parameter->isChoice()) continue;
         EXPECT_NE(helpOf("--" + parameter->name).find("; " + parameter->valueName + " "), std::string::npos)

@@ -28,11 +28,13 @@ const LineParameter kSilhouetteObjectWidth{
     {},
     std::nullopt,
     "",
-    0.0,
-    std::numeric_limits<double>::max(),
-    true,
+    // Inside what the shaders' float holds: 1e-46 became 0 there (no silhouette, without a word) and 3.5e38
+    // infinity (an internal error).
+    1e-37,
+    1e38,
     false,
-    "model units must be above 0"};
+    false,
+    "model units must lie from 1e-37 to 1e38 (what the shaders' float holds)"};
 
 /** The stroke rules of a band: of one width unless --outline-width-map (or, for the silhouette, a width in model units)
  *  makes its width vary, where opening it would cut its thin parts. */
