@@ -154,6 +154,22 @@ bool GpuScene::containsPoint(glm::dvec3 worldPoint) {
     return mContainsPoint;
 }
 
+bool GpuScene::inflatedHullContainsPoint(glm::dvec3 worldPoint, float objectWidth, bool weldedNormals) {
+    for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
+        const Mesh& mesh = mScene.meshes[index];
+        const std::vector<glm::vec3>* welded = weldedNormals ? mDerived->hullNormals(index) : nullptr;
+        const std::vector<glm::vec3>& normals = welded != nullptr ? *welded : mesh.normals;
+        if (normals.size() != mesh.positions.size()) continue;
+        Mesh hull;
+        hull.triangles = mesh.triangles;
+        hull.positions.reserve(mesh.positions.size());
+        for (std::size_t vertex = 0; vertex < mesh.positions.size(); ++vertex)
+            hull.positions.push_back(mesh.positions[vertex] + objectWidth * normals[vertex]);
+        if (isPointInsideMesh(hull, worldPoint)) return true;
+    }
+    return false;
+}
+
 void GpuScene::importDerived(const std::string& name) {
     if (name == SceneImport::kMeshes) {
         meshes();

@@ -150,6 +150,10 @@ public:
     /** Whether `worldPoint` lies inside any mesh (MeshOps isPointInsideMesh, ray parity on the CPU). The answer for
      *  the last point asked is kept, so the line passes of one frame share one computation. */
     bool containsPoint(glm::dvec3 worldPoint);
+    /** Whether `worldPoint` lies inside any mesh's hull inflated by `objectWidth` model units along the hull normals
+     *  (`weldedNormals`, as hullArrays() draws it) or the mesh's own: the silhouette's object-space hull, which from
+     *  inside draws nothing, as the model does. Not kept: only that hull asks. */
+    bool inflatedHullContainsPoint(glm::dvec3 worldPoint, float objectWidth, bool weldedNormals);
 
     glm::dvec3 worldOrigin() const { return mWorldOrigin; }
 

@@ -75,6 +75,13 @@ void SilhouettePass::execute(GlPassContext& gl) {
     mSkippedEyeInside = drawsModelDepth ? !beginLineMask(gl, framebuffer, mDepth, mScene, mFrame.camera.eye)
                                         : !beginLineMask(gl, framebuffer, gl.inputTexture(mModelDepthResource), mScene,
                                                          mFrame.camera.eye);
+    // A hull offset in model units can hold the eye where the model does not (a width of 10 units 5 units away): from
+    // inside it, it draws nothing either, and that is said the same way. A width map only narrows it.
+    if (!mSkippedEyeInside && mSettings.objectWidth && !mSettings.widthMap.enabled() &&
+        mScene.inflatedHullContainsPoint(mFrame.camera.eye, *mSettings.objectWidth, mSettings.weldNormals)) {
+        mSkippedEyeInside = true;
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
     if (mSkippedEyeInside) return;
     const int width = gl.widthOf("lines");
     const int height = gl.heightOf("lines");

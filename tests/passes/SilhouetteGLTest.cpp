@@ -220,6 +220,24 @@ TEST_F(SilhouetteSphere, EyeInsideLeavesAnEmptyMask) {
     EXPECT_GT(cv::countNonZero(outside.lines), 100);
 }
 
+TEST_F(SilhouetteSphere, AnObjectWidthHullHoldingTheEyeIsSaidAsTheEyeInside) {
+    // The unit sphere 1.5 units from the eye, its hull offset by 0.4 and then by 0.6 units: the second holds the eye
+    // (radius 1.6), and from inside it the hull drew nothing, its skippedEyeInside false.
+    lookFrom({0.0, 0.0, 1.5}, glm::dvec3(0.0), 90.0, 128, 128);
+    HullSettings narrow;
+    narrow.objectWidth = 0.4f;
+    SilhouettePass outside("silhouette", shaders, *gpuScene, frame, narrow);
+    const LineRender ring = render(outside, false);
+    EXPECT_FALSE(outside.skippedEyeInside());
+    EXPECT_GT(cv::countNonZero(ring.lines), 100);
+    HullSettings wide;
+    wide.objectWidth = 0.6f;
+    SilhouettePass holding("silhouette", shaders, *gpuScene, frame, wide);
+    const LineRender none = render(holding, false);
+    EXPECT_TRUE(holding.skippedEyeInside());
+    EXPECT_EQ(cv::countNonZero(none.lines), 0);
+}
+
 TEST_F(SilhouetteSphere, SphereBesideAndBehindTheEyeClipsCleanly) {
     // The eye 1.2 radii from the centre, looking past the sphere: it reaches behind the eye, the near plane cuts it
     // and hull vertices have w <= 0. Every visible point has view x > 0, so the left half must stay empty apart from
