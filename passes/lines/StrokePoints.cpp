@@ -374,6 +374,16 @@ std::vector<StrokeRecord> strokeRecords(const StrokePointSetup& setup) {
             slideAlongEdges(record.points, projection);
             for (StrokePointRecord& point : record.points) clampToTriangle(point, setup);
         }
+        // A bridged point whose neighbours' line passes farther from it than a found point may lie is left without
+        // one: a stroke's end that the stroke stage drew on into another type's line took its last point's world, 3-7
+        // px from where it was drawn.
+        for (std::size_t index = 0; index < record.points.size(); ++index) {
+            StrokePointRecord& point = record.points[index];
+            if (found[index] || !point.world) continue;
+            if (glm::length(projection.toPixel(*point.world) - glm::dvec2(point.x, point.y)) >
+                kFarEdgePointDataPixels / drawn.supersample)
+                point = StrokePointRecord{point.x, point.y, std::nullopt, 0, -1};
+        }
         for (StrokePointRecord& point : record.points) {
             point.x = roundedPixels(point.x);
             point.y = roundedPixels(point.y);
