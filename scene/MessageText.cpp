@@ -1,5 +1,6 @@
 #include "scene/MessageText.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iomanip>
@@ -8,10 +9,19 @@
 namespace inkgraph::detail {
 
 std::string excerptForMessage(std::string_view text) {
-    if (text.size() <= kMessageExcerptChars) {
-        return std::string(text);
+    // A NUL byte is written "\x00": a message is read back through what(), a C string, which ended at it (a pose
+    // file's bone name "he\u0000ad" was told as "unknown humanoid bone 'he" and nothing after).
+    const std::string_view kept = text.substr(0, std::min(text.size(), kMessageExcerptChars));
+    std::string excerpt;
+    excerpt.reserve(kept.size());
+    for (const char c : kept) {
+        if (c == '\0')
+            excerpt += "\\x00";
+        else
+            excerpt += c;
     }
-    return std::string(text.substr(0, kMessageExcerptChars)) + "... (" + std::to_string(text.size()) + " bytes)";
+    if (text.size() > kMessageExcerptChars) excerpt += "... (" + std::to_string(text.size()) + " bytes)";
+    return excerpt;
 }
 
 std::string quotedExcerpt(std::string_view text) {

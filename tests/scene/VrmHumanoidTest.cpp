@@ -383,6 +383,12 @@ TEST(VrmHumanoid, BadPoseFilesAreRefusedNamingTheFile) {
               0u)
         << unknown;
     EXPECT_NE(unknown.find("leftThumbMetacarpal"), std::string::npos) << unknown;
+    // A NUL in a name is written out: the message, read through what(), ended at it ("unknown humanoid bone 'he").
+    const std::string nulName = refusal("{\"he\\u0000ad\": [0, 0, 0, 1]}");
+    EXPECT_EQ(nulName.rfind("unknown humanoid bone 'he\\x00ad' (VRM's humanoid bones: hips, ", 0), 0u) << nulName;
+    // A NUL byte after the JSON ended the parser's input: what followed was never read.
+    EXPECT_EQ(refusal(std::string("{\"head\": [0, 0, 0, 1]}\0junk", 27)),
+              "not a pose file: a NUL byte at byte 22 (JSON is text)");
     EXPECT_NE(unknown.find("rightLittleDistal)"), std::string::npos) << unknown;
 
     const std::string missing = test::sceneErrorMessage([&] { loadPosed(model, model.path() + ".missing.json"); });

@@ -207,6 +207,9 @@ HumanoidPose parsePoseFile(const std::string& posePath, const std::string& conte
             twice = parsed.get<std::string>();
         return true;
     };
+    // JSON text holds no NUL byte; the parser took one as the end of the input, so what followed was never read.
+    if (const std::size_t nul = content.find('\0'); nul != std::string::npos)
+        throwLoadError(posePath, "not a pose file: a NUL byte at byte " + std::to_string(nul) + " (JSON is text)");
     try {
         document = nlohmann::json::parse(content, findTwice);
     } catch (const nlohmann::json::exception& error) {
