@@ -61,6 +61,11 @@ SourcedArguments styleArguments(std::string_view text, const std::string& source
             line = line.substr(0, comment);
         line = trimmed(line);
         if (line.empty()) continue;
+        // A CRLF line's CR is trimmed above; one inside joins lines of a file with CR line ends (classic Mac OS),
+        // which read as one setting with a value the file does not hold.
+        if (line.find('\r') != std::string_view::npos)
+            throw UsageError(where + ": a carriage return inside the line (CR line ends?); a style's lines end with "
+                                     "LF or CRLF");
         const std::size_t equals = line.find('=');
         if (equals == std::string_view::npos)
             throw UsageError(where + ": expected NAME = VALUE, got '" + std::string(line.substr(0, 80)) + "'");

@@ -92,6 +92,10 @@ TEST(StyleFile, BadLinesNameTheFileTheLineAndTheProblem) {
     EXPECT_NE(message("shading = cel\nshading = comic\n").find("line 2: 'shading' is set twice"), std::string::npos);
     EXPECT_NE(message("bands =   \n").find("'bands' has no value"), std::string::npos);
     EXPECT_NE(message(std::string("bands = 4\0", 10)).find("NUL"), std::string::npos);
+    // CR line ends (classic Mac OS) joined the lines into one setting: 'comiclines=contour', which the file lacks.
+    EXPECT_EQ(message("shading = comic\rlines = contour\r"),
+              "--style 'look.style' line 1: a carriage return inside the line (CR line ends?); a style's lines end "
+              "with LF or CRLF");
 }
 
 TEST(StyleFile, ValueProblemsFoundByTheFlagParserCarryTheStyleLine) {
