@@ -503,7 +503,8 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
     } else if (camera.source == "flags") {
         who = "the camera of --eye " + formatVector(camera.worldEye());
     } else if (camera.source == "orbit") {
-        who = "the --orbit camera";
+        // --views places each view as an orbit too: "--orbit" named a flag the user may not have given.
+        who = "the orbit camera (--orbit or a --views view)";
     } else {
         who = "the auto-framed camera";
     }

@@ -171,6 +171,14 @@ TEST(Camera, AModelSeenUnderAPixelIsOutsideTheView) {
     request.width = request.height = 127;
     request.eye = glm::dvec3(0, 0, 1e4);
     EXPECT_FALSE(modelOutsideView(resolveCamera(request, scene), scene).has_value());
+    // An orbit is named as one, not as the --orbit flag: --views places its views as orbits too.
+    CameraRequest orbit;
+    orbit.width = orbit.height = 128;
+    orbit.orbit = Orbit{0.0, 0.0, 1e4, 1.0};
+    const std::optional<Warning> orbited = modelOutsideView(resolveCamera(orbit, scene), scene);
+    ASSERT_TRUE(orbited.has_value());
+    EXPECT_EQ(orbited->message.rfind("the orbit camera (--orbit or a --views view) sees none of the model: ", 0), 0u)
+        << orbited->message;
 }
 
 TEST(Camera, AModelSeenUnderAPixelWithTheRestBehindTheEyeIsOutsideTheView) {
