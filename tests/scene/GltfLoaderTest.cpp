@@ -411,6 +411,47 @@ TEST(GltfLoader, AccessorReadingPastItsBufferViewIsAnError) {
     EXPECT_NE(message.find("past the end"), std::string::npos) << message;
 }
 
+/** glTF's data alignment: an accessor that starts between two of its components (its own offset or its view's) is
+ *  refused naming the offset, not read as numbers made of the halves of two. The same file aligned loads, so only the
+ *  offset decides. (A stride that is not a multiple of 4 tinygltf refuses itself.) */
+TEST(GltfLoader, AnAccessorBetweenItsComponentsIsRefusedNamingTheOffset) {
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0}});
+    writer.setAccessorCount(positions, 3); // room for an offset of up to 12 bytes
+    const std::string primitive = "{\"attributes\": {\"POSITION\": " + std::to_string(positions) + "}}";
+    const std::string aligned = writer.gltf(singleNode(primitive));
+    const std::string accessorStart = "{\"bufferView\": 0, ";
+    ASSERT_NE(aligned.find(accessorStart), std::string::npos);
+    const auto withAccessor = [&](const std::string& members) {
+        std::string text = aligned;
+        text.replace(text.find(accessorStart), accessorStart.size(), accessorStart + members);
+        return text;
+    };
+    {
+        const TempFile file("aligned.gltf", withAccessor("\"byteOffset\": 12, "));
+        EXPECT_EQ(loadScene(file.path()).triangleCount(), 1u);
+    }
+    {
+        const TempFile file("offset.gltf", withAccessor("\"byteOffset\": 2, "));
+        const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+        EXPECT_NE(message.find("POSITION accessor 0: byteOffset 2 is not a multiple of its component size (4 bytes)"),
+                  std::string::npos)
+            << message;
+        EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
+    }
+    {
+        std::string text = aligned;
+        const std::string view = "\"byteOffset\": 0, \"byteLength\": 48";
+        ASSERT_NE(text.find(view), std::string::npos);
+        text.replace(text.find(view), view.size(), "\"byteOffset\": 2, \"byteLength\": 46");
+        const TempFile file("view.gltf", text);
+        const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+        EXPECT_NE(message.find("starts at byte 2 of its buffer (buffer view 0's byteOffset 2 plus its own 0)"),
+                  std::string::npos)
+            << message;
+    }
+}
+
 TEST(GltfLoader, IndexOutOfRangeIsAnError) {
     GltfWriter writer;
     const int positions = writer.addVec3(kUnitTriangle);

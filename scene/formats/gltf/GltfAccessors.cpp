@@ -119,6 +119,27 @@ const unsigned char* checkedWindow(const AccessorContext& context, int viewIndex
     return buffer.data() + view.byteOffset + byteOffset;
 }
 
+/** glTF 2.0 ("Data Alignment") requires an accessor's offset into its buffer view and into its buffer to be multiples
+ *  of its component size (a stride that is not a multiple of 4 tinygltf refuses itself). A file that breaks it was
+ * written wrong (three.js cannot even make its arrays): read as written, its numbers would be taken from across the
+ * file's own, a model of garbage such as "3.22e-41 units across", so it is refused naming the offset. Called after
+ * checkedWindow(), which checked the view. */
+void checkAlignment(const AccessorContext& context, const tinygltf::Accessor& accessor) {
+    const std::size_t component = componentBytes(accessor.componentType);
+    const tinygltf::BufferView& view = context.model.bufferViews[std::size_t(accessor.bufferView)];
+    const std::string sizeText = "a multiple of its component size (" + std::to_string(component) + " bytes)";
+    const std::string rule = ", as glTF requires; its values would be read from across the file's numbers";
+    if (accessor.byteOffset % component != 0) {
+        context.fail("byteOffset " + std::to_string(accessor.byteOffset) + " is not " + sizeText + rule);
+    }
+    if ((view.byteOffset + accessor.byteOffset) % component != 0) {
+        context.fail("starts at byte " + std::to_string(view.byteOffset + accessor.byteOffset) +
+                     " of its buffer (buffer view " + std::to_string(accessor.bufferView) + "'s byteOffset " +
+                     std::to_string(view.byteOffset) + " plus its own " + std::to_string(accessor.byteOffset) +
+                     "), which is not " + sizeText + rule);
+    }
+}
+
 /** Where an accessor's own elements lie (not its sparse part): checked as checkedWindow() checks. */
 struct BaseWindow {
     const unsigned char* first = nullptr;
@@ -138,8 +159,10 @@ BaseWindow baseWindow(const AccessorContext& context, const tinygltf::Accessor& 
             stride = declared;
         }
     }
-    return {checkedWindow(context, accessor.bufferView, accessor.byteOffset, accessor.count, elementBytes, stride, ""),
-            stride};
+    const unsigned char* first =
+        checkedWindow(context, accessor.bufferView, accessor.byteOffset, accessor.count, elementBytes, stride, "");
+    checkAlignment(context, accessor);
+    return {first, stride};
 }
 
 template <typename T>
