@@ -31,7 +31,8 @@ const std::vector<WarningCode>& warningCodes() {
          "a glTF alpha mode, alpha cutoff or sampler value the specification does not define; the default is used"},
         {K::ExtrasKeyIgnored, "extras-key-ignored", "a key of a material's extras.inkgraph other than 'shademap'"},
         {K::VrmPropertyInvalid, "vrm-property-invalid",
-         "a VRM material property of the wrong type or value; its default is used or it is ignored"},
+         "a VRM property (a material's, an expression's, the humanoid's, the version) of the wrong type or value; its "
+         "default is used or it is ignored"},
         {K::MToonFeatureNotDrawn, "mtoon-feature-not-drawn", "MToon features the material uses that are not drawn"},
         {K::MToonOutlineWidth, "mtoon-outline-width",
          "an MToon outline width that covers most of the picture, or too large to place (no outline)"},

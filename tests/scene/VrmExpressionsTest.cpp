@@ -158,6 +158,14 @@ TEST(VrmExpressions, ATextureTransformBindMovesEveryUvTextureOfTheMaterial) {
     EXPECT_NEAR(transform[2][1], 0.125f, 1e-6f);
 }
 
+/** The messages of the warnings of `code`. */
+std::vector<std::string> warningsOf(const Scene& scene, const std::string& code) {
+    std::vector<std::string> messages;
+    for (const Warning& warning : scene.report.warnings)
+        if (warning.code == code) messages.push_back(warning.message);
+    return messages;
+}
+
 TEST(VrmExpressions, BindValuesBeyondTheirRangeAreTreatedAsTheFilesOwn) {
     // A texture transform bind is reduced by the texture's wrap and one float cannot resolve is left out, as a file's
     // KHR_texture_transform is; a colour bind is clamped into [0, 1]. Both were used as given without a word: a scale
@@ -166,12 +174,6 @@ TEST(VrmExpressions, BindValuesBeyondTheirRangeAreTreatedAsTheFilesOwn) {
         "happy": {"textureTransformBinds": [{"material": 0, "scale": [1e300, 1], "offset": [0, 0]}]},
         "sad": {"textureTransformBinds": [{"material": 0, "scale": [1, 1], "offset": [10000000.875, -3.25]}]},
         "angry": {"materialColorBinds": [{"material": 0, "type": "color", "targetValue": [1e300, -2, 0.5, 1]}]}}}})";
-    const auto warningsOf = [](const Scene& scene, const std::string& code) {
-        std::vector<std::string> messages;
-        for (const Warning& warning : scene.report.warnings)
-            if (warning.code == code) messages.push_back(warning.message);
-        return messages;
-    };
     const Scene stretched = loadFace({{"happy", 1.0}}, extensions);
     EXPECT_EQ(materialNamed(stretched, "Skin").baseColorTexture.transform, glm::mat3(1.0f)) << "left as it was";
     EXPECT_EQ(
@@ -256,6 +258,48 @@ TEST(VrmExpressions, Vrm0GroupsAnswerToTheirPresetAndTheirOwnNames) {
     EXPECT_TRUE(hasVertex(loadVrm0Face({{"blinkLeft", 0.7}}), "Face", {1, 0, 2})) << "isBinary: 0.7 -> 1";
     EXPECT_TRUE(hasVertex(loadVrm0Face({{"Smirk", 1.0}}), "Face", {1, 0, 0.5})) << "a custom group by its name";
     EXPECT_THROW(loadVrm0Face({{"joy", 1.0}}), SceneError) << "the 0.x preset name is not a name";
+}
+
+TEST(VrmExpressions, AWeightOrIsBinaryOfTheWrongTypeIsReadAsItsDefaultAndSaid) {
+    // Both were taken without a word: a weight "50" as the default, isBinary "yes" as false.
+    const std::string vrm1 = R"("VRMC_vrm": {"specVersion": "1.0", "expressions": {"preset": {
+        "happy": {"isBinary": "yes", "morphTargetBinds": [{"node": 0, "index": 0, "weight": "0.5"}]}}}})";
+    const Scene scene = loadFace({{"happy", 0.4}}, vrm1);
+    EXPECT_TRUE(hasVertex(scene, "Face", {0, 1, 0.4})) << "weight 1, and not snapped as a binary expression";
+    EXPECT_EQ(warningsOf(scene, "vrm-property-invalid"),
+              (std::vector<std::string>{
+                  "VRMC_vrm.expressions.preset.happy.isBinary: a string, not true or false; read as false",
+                  "VRMC_vrm.expressions.preset.happy.morphTargetBinds[0].weight: a string, not a number; read as 1"}));
+
+    const std::string vrm0 = R"("VRM": {"blendShapeMaster": {"blendShapeGroups": [
+        {"name": "Joy", "presetName": "joy", "isBinary": 1, "binds": [{"mesh": 0, "index": 0, "weight": [50]}]}]}})";
+    const TempFile file("face0.vrm", faceVrm(vrm0, "\"VRM\""));
+    LoadOptions options;
+    options.expressions = {{"happy", 0.4}};
+    const Scene scene0 = loadScene(file.path(), options);
+    EXPECT_TRUE(hasVertex(scene0, "Face", {0, 1, 0.4})) << "weight 100 of 100";
+    EXPECT_EQ(warningsOf(scene0, "vrm-property-invalid"),
+              (std::vector<std::string>{
+                  "VRM.blendShapeMaster.blendShapeGroups[0].isBinary: a number, not true or false; read as false",
+                  "VRM.blendShapeMaster.blendShapeGroups[0].binds[0].weight: an array, not a number; read as 100"}));
+}
+
+TEST(VrmExpressions, AVersionOtherThanOnePointZeroIsReadAsItAndSaid) {
+    const auto versionWarnings = [](const std::string& vrm) {
+        std::vector<std::string> said;
+        for (const std::string& message : warningsOf(loadFace({}, vrm), "vrm-property-invalid"))
+            if (message.find("specVersion") != std::string::npos) said.push_back(message);
+        return said;
+    };
+    EXPECT_TRUE(versionWarnings(R"("VRMC_vrm": {"specVersion": "1.0"})").empty());
+    EXPECT_TRUE(versionWarnings(R"("VRMC_vrm": {"specVersion": "1.0-beta"})").empty());
+    EXPECT_EQ(
+        versionWarnings(R"("VRMC_vrm": {"specVersion": "2.0"})"),
+        std::vector<std::string>{"VRMC_vrm.specVersion: '2.0' is not a version this reader knows; read as VRM 1.0"});
+    EXPECT_EQ(versionWarnings(R"("VRMC_vrm": {"specVersion": 1})"),
+              std::vector<std::string>{"VRMC_vrm.specVersion: not a string; read as VRM 1.0"});
+    EXPECT_EQ(versionWarnings(R"("VRMC_vrm": {"humanoid": {}})"),
+              std::vector<std::string>{"VRMC_vrm.specVersion: missing; read as VRM 1.0"});
 }
 
 // The specification's samples: textureTransformBinds move a validation window's texture and two meters.

@@ -145,6 +145,7 @@ public:
         checkRequiredExtensions();
         checkMaterialIndices();
         readVrmFront();
+        checkVrmVersion();
         posed();
         // Depth-first with an explicit stack (a deep hierarchy must not overflow the call stack), in the order the
         // recursive walk would take: roots and children are pushed in reverse so the first is handled first.
@@ -362,6 +363,23 @@ private:
             mOut.front = glm::dvec3(0.0, 0.0, 1.0);
         else if (uses("VRM"))
             mOut.front = glm::dvec3(0.0, 0.0, -1.0);
+    }
+
+    /** VRM 1.0 requires `specVersion` "1.0" (or a pre-release of it, "1.0-beta"). A file that names another version
+     *  (a later one whose meaning may differ) or none is read as 1.0, and said. */
+    void checkVrmVersion() {
+        const auto vrm1 = mModel.extensions.find("VRMC_vrm");
+        if (vrm1 == mModel.extensions.end()) return;
+        const tinygltf::Value* version = jsonMember(&vrm1->second, "specVersion");
+        const bool isString = version != nullptr && version->IsString();
+        const std::string text = isString ? version->Get<std::string>() : std::string();
+        if (text == "1.0" || text.starts_with("1.0-")) return;
+        const std::string problem = version == nullptr ? "missing"
+                                    : isString         ? quotedExcerpt(text) + " is not a version this reader knows"
+                                                       : "not a string";
+        mOut.warnings.push_back(makeWarning(WarningKind::VrmPropertyInvalid,
+                                            "VRMC_vrm.specVersion: " + problem + "; read as VRM 1.0", mPath,
+                                            "specVersion"));
     }
 
     /** A primitive naming a material that does not exist would silently take the default colour and shade map. */

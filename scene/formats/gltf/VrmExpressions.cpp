@@ -108,6 +108,29 @@ glm::dvec4 clampedTarget(const std::vector<double>& value, const std::string& at
     return target;
 }
 
+/** An expression's `isBinary`: absent is false; a value other than true or false is said through `warn(key, problem)`
+ *  and read as false, the specification's default. */
+template <typename Warn>
+bool isBinaryOf(const tinygltf::Value& expression, const Warn& warn) {
+    const tinygltf::Value* value = jsonMember(&expression, "isBinary");
+    if (value == nullptr) return false;
+    if (value->IsBool()) return value->Get<bool>();
+    warn("isBinary", std::string(jsonTypeName(*value)) + ", not true or false; read as false");
+    return false;
+}
+
+/** A bind's `weight`: absent is `fallback`; a value that is not a finite number is said through `warn(key, problem)`
+ *  and read as `fallback` (a string "50" was taken silently as the full weight). */
+template <typename Warn>
+double bindWeightOf(const tinygltf::Value& bind, double fallback, const Warn& warn) {
+    const tinygltf::Value* value = jsonMember(&bind, "weight");
+    if (value == nullptr) return fallback;
+    if (const std::optional<double> weight = jsonNumber(value)) return *weight;
+    warn("weight", (value->IsNumber() ? std::string("not finite") : std::string(jsonTypeName(*value))) +
+                       ", not a number; read as " + formatNumber(fallback));
+    return fallback;
+}
+
 } // namespace
 
 const tinygltf::Value* jsonMember(const tinygltf::Value* object, const char* key) {
@@ -125,6 +148,15 @@ std::optional<int> jsonIndex(const tinygltf::Value* value) {
     const std::optional<double> number = jsonNumber(value);
     if (!number || *number < 0.0 || *number > 1e9 || *number != std::floor(*number)) return std::nullopt;
     return int(*number);
+}
+
+const char* jsonTypeName(const tinygltf::Value& value) {
+    if (value.IsNumber()) return "a number";
+    if (value.IsString()) return "a string";
+    if (value.IsBool()) return "a boolean";
+    if (value.IsArray()) return "an array";
+    if (value.IsObject()) return "an object";
+    return "null";
 }
 
 std::string jsonString(const tinygltf::Value* value) {
@@ -157,6 +189,11 @@ void VrmExpressions::readVrm1(const tinygltf::Model& model, std::vector<Warning>
         warnings.push_back(makeWarning(WarningKind::VrmPropertyInvalid,
                                        "VRMC_vrm.expressions." + where + ": " + problem + "; left out", mPath, where));
     };
+    // A value taken as its default: `problem` says what it was and what it is read as.
+    const auto readAs = [&](const std::string& where, const std::string& problem) {
+        warnings.push_back(makeWarning(WarningKind::VrmPropertyInvalid,
+                                       "VRMC_vrm.expressions." + where + ": " + problem, mPath, where));
+    };
     const auto overrideOf = [&](const tinygltf::Value* object, const char* key, const std::string& where) {
         const std::string mode = jsonString(jsonMember(object, key));
         if (mode == "block") return Override::Block;
@@ -178,8 +215,8 @@ void VrmExpressions::readVrm1(const tinygltf::Model& model, std::vector<Warning>
             const tinygltf::Value& object = group->Get(name);
             Expression expression;
             expression.name = name;
-            const tinygltf::Value* isBinary = jsonMember(&object, "isBinary");
-            expression.isBinary = isBinary != nullptr && isBinary->IsBool() && isBinary->Get<bool>();
+            expression.isBinary = isBinaryOf(
+                object, [&](const char* key, const std::string& problem) { readAs(where + "." + key, problem); });
             expression.overrideBlink = overrideOf(&object, "overrideBlink", where);
             expression.overrideLookAt = overrideOf(&object, "overrideLookAt", where);
             expression.overrideMouth = overrideOf(&object, "overrideMouth", where);
@@ -189,7 +226,6 @@ void VrmExpressions::readVrm1(const tinygltf::Model& model, std::vector<Warning>
                     const std::string at = where + ".morphTargetBinds[" + std::to_string(i) + "]";
                     const std::optional<int> node = jsonIndex(jsonMember(&bind, "node"));
                     const std::optional<int> index = jsonIndex(jsonMember(&bind, "index"));
-                    const std::optional<double> weight = jsonNumber(jsonMember(&bind, "weight"));
                     if (!node || !index || std::size_t(*node) >= model.nodes.size()) {
                         warn(at, "no node of the file and morph target index");
                         continue;
@@ -200,7 +236,10 @@ void VrmExpressions::readVrm1(const tinygltf::Model& model, std::vector<Warning>
                                      " morph targets, not " + std::to_string(*index + 1));
                         continue;
                     }
-                    expression.morphBinds.push_back({*node, std::size_t(*index), weight.value_or(1.0)});
+                    const double weight = bindWeightOf(bind, 1.0, [&](const char* key, const std::string& problem) {
+                        readAs(at + "." + key, problem);
+                    });
+                    expression.morphBinds.push_back({*node, std::size_t(*index), weight});
                 }
             }
             if (const tinygltf::Value* binds = jsonMember(&object, "materialColorBinds"); binds && binds->IsArray()) {
@@ -264,6 +303,10 @@ void VrmExpressions::readVrm0(const tinygltf::Model& model, std::vector<Warning>
             warnings.push_back(makeWarning(WarningKind::VrmPropertyInvalid,
                                            "VRM.blendShapeMaster." + at + ": " + problem + "; left out", mPath, at));
         };
+        const auto readAs = [&](const std::string& at, const std::string& problem) {
+            warnings.push_back(
+                makeWarning(WarningKind::VrmPropertyInvalid, "VRM.blendShapeMaster." + at + ": " + problem, mPath, at));
+        };
         Expression expression;
         expression.groupName = jsonString(jsonMember(&group, "name"));
         const std::string preset = jsonString(jsonMember(&group, "presetName"));
@@ -279,20 +322,24 @@ void VrmExpressions::readVrm0(const tinygltf::Model& model, std::vector<Warning>
             continue;
         }
         if (expression.groupName == expression.name) expression.groupName.clear();
-        const tinygltf::Value* isBinary = jsonMember(&group, "isBinary");
-        expression.isBinary = isBinary != nullptr && isBinary->IsBool() && isBinary->Get<bool>();
+        expression.isBinary =
+            isBinaryOf(group, [&](const char* key, const std::string& problem) { readAs(where + "." + key, problem); });
         if (const tinygltf::Value* binds = jsonMember(&group, "binds"); binds && binds->IsArray()) {
             for (std::size_t i = 0; i < binds->ArrayLen(); ++i) {
                 const tinygltf::Value& bind = binds->Get(int(i));
                 const std::string at = where + ".binds[" + std::to_string(i) + "]";
                 const std::optional<int> mesh = jsonIndex(jsonMember(&bind, "mesh"));
                 const std::optional<int> index = jsonIndex(jsonMember(&bind, "index"));
-                // 0.x weights run to 100 (Unity's blend shape weights).
-                const double weight = jsonNumber(jsonMember(&bind, "weight")).value_or(100.0) / 100.0;
                 if (!mesh || !index || std::size_t(*index) >= morphTargetsOfMesh(model, *mesh)) {
                     warn(at, "no mesh of the file with that morph target");
                     continue;
                 }
+                // 0.x weights run to 100 (Unity's blend shape weights).
+                const double weight = bindWeightOf(bind, 100.0,
+                                                   [&](const char* key, const std::string& problem) {
+                                                       readAs(at + "." + key, problem);
+                                                   }) /
+                                      100.0;
                 // A 0.x bind names the mesh: every node that shows it moves.
                 for (std::size_t node = 0; node < model.nodes.size(); ++node) {
                     if (model.nodes[node].mesh == *mesh)

@@ -31,6 +31,8 @@ const tinygltf::Value* jsonMember(const tinygltf::Value* object, const char* key
 std::optional<double> jsonNumber(const tinygltf::Value* value);
 /** A whole number in [0, 1e9] (an index), or none. */
 std::optional<int> jsonIndex(const tinygltf::Value* value);
+/** What a JSON value is, for messages: "a number", "a string", "a boolean", "an array", "an object" or "null". */
+const char* jsonTypeName(const tinygltf::Value& value);
 /** A string, or "" for anything else. */
 std::string jsonString(const tinygltf::Value* value);
 /** An array of exactly `count` finite numbers, or none. */

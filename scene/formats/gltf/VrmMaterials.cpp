@@ -6,6 +6,7 @@
 
 #include "scene/formats/FormatReaders.h"
 #include "scene/formats/ShaderValues.h"
+#include "scene/formats/gltf/VrmExpressions.h"
 
 #include <tiny_gltf.h>
 
@@ -21,15 +22,6 @@ float srgbToLinear(float encoded) {
 }
 
 namespace {
-
-const char* typeName(const tinygltf::Value& value) {
-    if (value.IsNumber()) return "a number";
-    if (value.IsString()) return "a string";
-    if (value.IsBool()) return "a boolean";
-    if (value.IsArray()) return "an array";
-    if (value.IsObject()) return "an object";
-    return "null";
-}
 
 /** VRM 0.x's shader names (UniVRM's VRM/MToon and its unlit family, glTF's own shading). */
 constexpr const char* kMToonShader = "VRM/MToon";
@@ -55,7 +47,7 @@ public:
         if (!object.IsObject() || !object.Has(key)) return nullptr;
         const tinygltf::Value& member = object.Get(key);
         if (!member.IsObject()) {
-            warn(where + "." + key + " must be an object, got " + typeName(member) + "; ignored");
+            warn(where + "." + key + " must be an object, got " + jsonTypeName(member) + "; ignored");
             return nullptr;
         }
         return &member;
@@ -68,7 +60,7 @@ public:
         if (object == nullptr || !object->IsObject() || !object->Has(key)) return fallback;
         const tinygltf::Value& member = object->Get(key);
         if (!member.IsNumber()) {
-            warn(where + "." + excerptForMessage(key) + " must be a number, got " + typeName(member) + "; using " +
+            warn(where + "." + excerptForMessage(key) + " must be a number, got " + jsonTypeName(member) + "; using " +
                  formatNumber(fallback));
             return fallback;
         }
@@ -112,7 +104,8 @@ public:
                                          : std::to_string(minCount) + " to " + std::to_string(maxCount);
         if (!member.IsArray() || member.ArrayLen() < minCount || member.ArrayLen() > maxCount) {
             warn(where + "." + excerptForMessage(key) + " must be an array of " + expected + " numbers, got " +
-                 (member.IsArray() ? std::to_string(member.ArrayLen()) + " elements" : std::string(typeName(member))) +
+                 (member.IsArray() ? std::to_string(member.ArrayLen()) + " elements"
+                                   : std::string(jsonTypeName(member))) +
                  "; using the default");
             return std::nullopt;
         }
@@ -123,7 +116,7 @@ public:
             if (!std::isfinite(value) || std::abs(value) > double(std::numeric_limits<float>::max())) {
                 warn(where + "." + excerptForMessage(key) + "[" + std::to_string(i) +
                      "] must be a finite number, got " +
-                     (element.IsNumber() ? formatNumber(value) : std::string(typeName(element))) +
+                     (element.IsNumber() ? formatNumber(value) : std::string(jsonTypeName(element))) +
                      "; using the default");
                 return std::nullopt;
             }
@@ -144,7 +137,7 @@ public:
         if (!value.IsNumber() || !(index >= 0.0) || index != std::floor(index) ||
             index >= double(mModel.textures.size())) {
             warn(where + " must be a texture index in [0, " + std::to_string(mModel.textures.size()) + "), got " +
-                 (value.IsNumber() ? formatNumber(index) : std::string(typeName(value))) + "; no texture");
+                 (value.IsNumber() ? formatNumber(index) : std::string(jsonTypeName(value))) + "; no texture");
             return std::nullopt;
         }
         return int(index);
@@ -226,7 +219,7 @@ MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read
         if (!version.IsString() || version.Get<std::string>() != "1.0") {
             read.warn(where + ".specVersion is " +
                       (version.IsString() ? "'" + excerptForMessage(version.Get<std::string>()) + "'"
-                                          : std::string(typeName(version))) +
+                                          : std::string(jsonTypeName(version))) +
                       ", not '1.0'; read as 1.0");
         }
     }
@@ -261,7 +254,7 @@ MToonMaterial readMToon10(const tinygltf::Value& extension, PropertyReader& read
             mtoon.outlineWidthMode = MToonMaterial::OutlineWidthMode::ScreenCoordinates;
         } else {
             read.warn(where + ".outlineWidthMode must be 'none', 'worldCoordinates' or 'screenCoordinates', got " +
-                      (mode.IsString() ? "'" + excerptForMessage(name) + "'" : std::string(typeName(mode))) +
+                      (mode.IsString() ? "'" + excerptForMessage(name) + "'" : std::string(jsonTypeName(mode))) +
                       "; no outline");
         }
     }
@@ -508,7 +501,7 @@ std::optional<MToonMaterial> readVrmMaterial(const tinygltf::Model& model, int m
     if (const auto found = gltfMaterial.extensions.find("VRMC_materials_mtoon");
         found != gltfMaterial.extensions.end()) {
         if (!found->second.IsObject()) {
-            read.warn(std::string("VRMC_materials_mtoon must be an object, got ") + typeName(found->second) +
+            read.warn(std::string("VRMC_materials_mtoon must be an object, got ") + jsonTypeName(found->second) +
                       "; ignored");
             return std::nullopt;
         }
@@ -521,7 +514,7 @@ std::optional<MToonMaterial> readVrmMaterial(const tinygltf::Model& model, int m
     }
     const tinygltf::Value& properties = vrm->second.Get("materialProperties");
     if (!properties.IsArray()) {
-        read.warn(std::string("VRM.materialProperties must be an array, got ") + typeName(properties) +
+        read.warn(std::string("VRM.materialProperties must be an array, got ") + jsonTypeName(properties) +
                   "; its MToon is ignored");
         return std::nullopt;
     }
@@ -530,7 +523,7 @@ std::optional<MToonMaterial> readVrmMaterial(const tinygltf::Model& model, int m
     const tinygltf::Value& entry = properties.Get(materialIndex);
     const std::string where = "VRM.materialProperties[" + std::to_string(materialIndex) + "]";
     if (!entry.IsObject()) {
-        read.warn(where + " must be an object, got " + typeName(entry) + "; ignored");
+        read.warn(where + " must be an object, got " + jsonTypeName(entry) + "; ignored");
         return std::nullopt;
     }
     if (entry.Has("name") && entry.Get("name").IsString() &&
@@ -548,7 +541,7 @@ std::optional<MToonMaterial> readVrmMaterial(const tinygltf::Model& model, int m
     if (shader != kGltfShader) {
         read.warn(
             where + ".shader " +
-            (shaderValue.IsString() ? "'" + excerptForMessage(shader) + "'" : std::string(typeName(shaderValue))) +
+            (shaderValue.IsString() ? "'" + excerptForMessage(shader) + "'" : std::string(jsonTypeName(shaderValue))) +
             " is not VRM/MToon, VRM/Unlit* or VRM_USE_GLTFSHADER; the glTF material is used");
     }
     return std::nullopt;
