@@ -187,6 +187,44 @@ TEST(GltfLoader, BaseColorFactorIsRead) {
               glm::vec4(0.8f, 0.8f, 0.8f, 1.0f)); // no material: the default grey
 }
 
+/** Indices, offsets and counts written as whole numbers with a fraction (3.0, as numpy-based writers write them, and
+ *  as JSON Schema counts integers) read as the integers: tinygltf took them for absent, so the indices were dropped
+ *  (a soup of the vertices) and the material too (grey), without a word. Anything else there is refused by name. */
+TEST(GltfLoader, IntegersWrittenAsWholeNumbersAreTheIntegersAndOtherValuesAreRefused) {
+    GltfWriter writer;
+    const int positions = writer.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}});
+    const int indices = writer.addIndices({0, 1, 2, 2, 1, 3}, 2);
+    const auto body = [&](const std::string& index, const std::string& material, const std::string& node) {
+        return "\"materials\": [{\"pbrMetallicRoughness\": {\"baseColorFactor\": [0.1, 0.2, 0.3, 1.0]}}], "
+               "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
+               std::to_string(positions) + ".0}, \"indices\": " + index + ", \"mode\": 4.0, \"material\": " + material +
+               "}]}], \"nodes\": [{\"mesh\": 0.0}], \"scenes\": [{\"nodes\": [" + node + "]}], \"scene\": 0.0";
+    };
+    writer.addVec3(std::vector<glm::vec3>(400)); // unused: makes the .gltf's data URI long (judged without it)
+    const std::string wholeBody = body(std::to_string(indices) + ".0", "0.0", "0.0");
+    for (const TempFile& whole :
+         {TempFile("whole.glb", writer.glb(wholeBody)), TempFile("whole.gltf", writer.gltf(wholeBody))}) {
+        const Scene scene = loadScene(whole.path());
+        ASSERT_EQ(scene.meshes.size(), 1u) << whole.fileName();
+        EXPECT_EQ(scene.meshes[0].triangles.size(), 2u) << "indexed: two triangles on four vertices";
+        EXPECT_EQ(scene.meshes[0].positions.size(), 4u);
+        EXPECT_EQ(scene.meshes[0].material.baseColorFactor, glm::vec4(0.1f, 0.2f, 0.3f, 1.0f));
+    }
+
+    const TempFile text("text.gltf", writer.gltf(body("\"1\"", "0", "0")));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(text.path()); });
+    EXPECT_NE(message.find(text.fileName() + "': meshes[0].primitives[0].indices is the string '1', not an integer"),
+              std::string::npos)
+        << message;
+    const TempFile fraction("fraction.gltf", writer.gltf(body(std::to_string(indices), "0.5", "true")));
+    const std::string fractionMessage = test::sceneErrorMessage([&] { loadScene(fraction.path()); });
+    EXPECT_NE(fractionMessage.find("meshes[0].primitives[0].material is 0.5, not an integer"), std::string::npos)
+        << fractionMessage;
+    const TempFile flag("flag.gltf", writer.gltf(body(std::to_string(indices), "0", "true")));
+    const std::string flagMessage = test::sceneErrorMessage([&] { loadScene(flag.path()); });
+    EXPECT_NE(flagMessage.find("scenes[0].nodes[0] is true, not an integer"), std::string::npos) << flagMessage;
+}
+
 /** Meshes "a", "b", "c" (one triangle each, one node each), using the materials given as JSON (empty: none). */
 std::string threeMeshesWithMaterials(GltfWriter& writer, const std::string& materials,
                                      const std::vector<int>& materialOfMesh) {

@@ -26,14 +26,16 @@ std::string_view jsonOf(std::string_view content, bool binary);
 /** What tinygltf is given in place of a file it cannot take as written. */
 struct TinygltfInput {
     /** The file with "indices" removed from every KHR_draco_mesh_compression primitive (tinygltf built without Draco
-     *  refuses an indices accessor without a buffer view) and EXT_meshopt_compression's placeholder buffers stubbed
-     *  (stubMeshoptPlaceholders()); nothing when neither applies. */
+     *  refuses an indices accessor without a buffer view), EXT_meshopt_compression's placeholder buffers stubbed
+     *  (stubMeshoptPlaceholders()) and integers written as whole numbers (3.0) written as integers, which tinygltf
+     *  takes for absent; nothing when none applies. */
     std::optional<std::string> rewritten;
     std::vector<std::size_t> meshoptPlaceholders; ///< the buffers stubbed
 };
 
-/** The file as tinygltf can take it: TinygltfInput. */
-TinygltfInput forTinygltf(std::string_view content, bool binary);
+/** The file as tinygltf can take it: TinygltfInput. A place where glTF wants an integer holding something else (3.5,
+ *  "3") is refused naming it, outside extensions and extras. */
+TinygltfInput forTinygltf(const std::string& path, std::string_view content, bool binary);
 
 /** Refuses JSON nested deeper than tinygltf's recursive parser can take, before tinygltf sees the file. */
 void rejectDeepJson(const std::string& path, std::string_view content, bool binary);

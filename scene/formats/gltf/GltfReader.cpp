@@ -909,7 +909,7 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
         throwLoadError(path, "glTF files above 4 GiB are not supported");
     // tinygltf keeps its own copy of every buffer it decodes (the GLB's BIN chunk, data URIs): at most the file again.
     budget.chargeFile(content.size());
-    const TinygltfInput prepared = forTinygltf(content, binary);
+    const TinygltfInput prepared = forTinygltf(path, content, binary);
     if (prepared.rewritten) {
         budget.chargeFile(prepared.rewritten->size());
         content = *prepared.rewritten;
