@@ -56,6 +56,7 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
                       {"vertices", scene.vertexCount()},
                       {"triangles_read", scene.report.trianglesRead},
                       {"degenerate_dropped", scene.report.degenerateDropped},
+                      {"back_to_back_dropped", scene.report.backToBackDropped},
                       {"vertices_before_weld", scene.report.verticesBeforeWeld},
                       {"weld_distance", scene.report.weldTolerance},
                       {"normals_computed", scene.report.normalsComputed}};

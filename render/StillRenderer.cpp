@@ -224,7 +224,12 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     if (log.talks && !log.quiet && !req.loadedScene) {
         log.log << std::fixed << std::setprecision(1) << "inkgraph: loaded '" << req.modelPath
                 << "': " << scene.triangleCount() << " triangles, " << scene.vertexCount() << " vertices ("
-                << scene.report.degenerateDropped << " degenerate dropped) in " << still->loadMilliseconds << " ms\n";
+                << scene.report.degenerateDropped << " degenerate dropped"
+                << (scene.report.backToBackDropped > 0
+                        ? "; " + std::to_string(scene.report.backToBackDropped) +
+                              " back to back with another of a two-sided material dropped"
+                        : std::string())
+                << ") in " << still->loadMilliseconds << " ms\n";
     }
 
     // The maps the model's materials name (glTF extras), each file read once; exit 3 like --shademap.

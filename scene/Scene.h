@@ -83,6 +83,8 @@ struct LoadReport {
     std::string format;
     std::size_t trianglesRead = 0;     ///< after triangulating polygons, strips and fans
     std::size_t degenerateDropped = 0; ///< zero-area or repeated-index triangles removed
+    /** triangles of two-sided materials removed as the back-to-back twin of another (backToBackTwins()) */
+    std::size_t backToBackDropped = 0;
     std::size_t verticesBeforeWeld = 0;
     std::size_t verticesAfterWeld = 0;
     bool normalsComputed = false;        ///< true when some mesh had no normals in the file

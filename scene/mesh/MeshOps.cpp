@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
+#include <tuple>
 #include <utility>
 
 namespace inkgraph {
@@ -17,6 +19,21 @@ namespace inkgraph {
 namespace {
 
 constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
+
+/** Removes the triangles at `ascending` (indices into `triangles`), keeping the others in order. */
+void removeTriangles(std::vector<glm::uvec3>& triangles, std::span<const std::uint32_t> ascending) {
+    if (ascending.empty()) return;
+    std::size_t kept = 0;
+    std::size_t next = 0;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        if (next < ascending.size() && ascending[next] == t) {
+            ++next;
+            continue;
+        }
+        triangles[kept++] = triangles[t];
+    }
+    triangles.resize(kept);
+}
 
 /** Two unit normals closer than this (chord length, ~0.06 degrees) count as the same normal when welding:
  *  loose enough for text round-off, far tighter than any intended hard edge. */
@@ -304,6 +321,83 @@ std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions
     return normals;
 }
 
+std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles) {
+    // Each triangle's corners in ascending order and whether reaching it took an odd number of swaps: two triangles on
+    // the same corners wind opposite ways exactly when their parities differ.
+    struct Corners {
+        glm::uvec3 sorted;
+        bool odd = false;
+    };
+    const auto cornersOf = [](const glm::uvec3& triangle) {
+        Corners corners{triangle, false};
+        const auto order = [&](int i, int j) {
+            if (corners.sorted[j] < corners.sorted[i]) {
+                std::swap(corners.sorted[i], corners.sorted[j]);
+                corners.odd = !corners.odd;
+            }
+        };
+        order(0, 1);
+        order(1, 2);
+        order(0, 1);
+        return corners;
+    };
+    const std::size_t count = triangles.size();
+    if (count < 2) return {};
+    // Triangles bucketed by a hash of their corners (a counting sort, stable: each bucket in triangle order).
+    const std::size_t buckets = std::bit_ceil(count);
+    const auto bucketOf = [&](const glm::uvec3& sorted) {
+        std::uint64_t h = (std::uint64_t(sorted.x) * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t(sorted.y) << 21) ^
+                          (std::uint64_t(sorted.z) * 0xC2B2AE3D27D4EB4Full);
+        h ^= h >> 31;
+        h *= 0xBF58476D1CE4E5B9ull;
+        h ^= h >> 29;
+        return std::uint32_t(h & (buckets - 1));
+    };
+    std::vector<std::uint32_t> bucket(count);
+    std::vector<std::uint32_t> start(buckets + 1, 0);
+    for (std::size_t t = 0; t < count; ++t) {
+        bucket[t] = bucketOf(cornersOf(triangles[t]).sorted);
+        ++start[bucket[t] + 1];
+    }
+    for (std::size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
+    std::vector<std::uint32_t> order(count);
+    {
+        std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+        for (std::size_t t = 0; t < count; ++t) order[next[bucket[t]]++] = std::uint32_t(t);
+    }
+    std::vector<std::uint32_t> twins;
+    std::vector<std::pair<Corners, std::uint32_t>> members;
+    const auto key = [](const std::pair<Corners, std::uint32_t>& member) {
+        return std::tuple(member.first.sorted.x, member.first.sorted.y, member.first.sorted.z, member.second);
+    };
+    for (std::size_t b = 0; b < buckets; ++b) {
+        if (start[b + 1] - start[b] < 2) continue;
+        members.clear();
+        for (std::uint32_t i = start[b]; i < start[b + 1]; ++i)
+            members.emplace_back(cornersOf(triangles[order[i]]), order[i]);
+        // Equal corners side by side, each run in triangle order; in a run, each triangle takes the earliest unmatched
+        // one of the other winding before it, so a hostile file of many repeats costs no more than once each.
+        std::sort(members.begin(), members.end(), [&](const auto& a, const auto& c) { return key(a) < key(c); });
+        for (std::size_t runStart = 0; runStart < members.size();) {
+            std::size_t runEnd = runStart + 1;
+            while (runEnd < members.size() && members[runEnd].first.sorted == members[runStart].first.sorted) ++runEnd;
+            std::size_t waiting[2] = {0, 0}; // unmatched earlier triangles of each winding in this run
+            for (std::size_t m = runStart; m < runEnd; ++m) {
+                const int parity = members[m].first.odd ? 1 : 0;
+                if (waiting[1 - parity] > 0) {
+                    --waiting[1 - parity];
+                    twins.push_back(members[m].second);
+                } else {
+                    ++waiting[parity];
+                }
+            }
+            runStart = runEnd;
+        }
+    }
+    std::sort(twins.begin(), twins.end());
+    return twins;
+}
+
 WeldMap weldMeshPositions(const Mesh& mesh, double distance) {
     if (!mesh.positionsWeldedAt || !(distance <= *mesh.positionsWeldedAt))
         return weldVertices(mesh.positions, {}, distance);
@@ -341,6 +435,8 @@ std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> p
         weldedTriangles[i] =
             glm::uvec3(weld.outputOf[triangle.x], weld.outputOf[triangle.y], weld.outputOf[triangle.z]);
     }
+    // A back-to-back pair's normals cancel (a double-faced card's hull would fold through it): its first face alone.
+    removeTriangles(weldedTriangles, backToBackTwins(weldedTriangles));
     const std::vector<glm::vec3> weldedNormals = computeSmoothNormals(weldedPositions, weldedTriangles);
     std::vector<glm::vec3> normals(positions.size());
     for (std::size_t input = 0; input < positions.size(); ++input) {
@@ -542,6 +638,31 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
 
     report.degenerateDropped +=
         dropDegenerateTriangles(positions, triangles, kDegenerateAreaRelative * modelDiagonal * modelDiagonal);
+    // A two-sided material draws the back of each face, so a face's back-to-back twin adds nothing but harm: the
+    // pair's smooth normals cancel (a double-faced card shaded in black wedges) and both sheets fight for depth.
+    // Twins are found on vertices that differ in position or attributes, not in normal: a card's back sheet carries
+    // the opposite normals, which the material's back face draws anyway.
+    if (raw.material.doubleSided) {
+        std::vector<std::uint32_t> twins;
+        if (!fileHasNormals) {
+            twins = backToBackTwins(triangles);
+        } else {
+            std::vector<std::uint32_t> classes;
+            if (!attributeClasses.empty()) {
+                classes.resize(weld.kept.size());
+                for (std::size_t vertex = 0; vertex < classes.size(); ++vertex)
+                    classes[vertex] = attributeClasses[weld.kept[vertex]];
+            }
+            const WeldMap sameSurface = weldVertices(positions, {}, options.weldTolerance * modelDiagonal, classes);
+            std::vector<glm::uvec3> onSurface(triangles.size());
+            for (std::size_t t = 0; t < triangles.size(); ++t)
+                onSurface[t] = glm::uvec3(sameSurface.outputOf[triangles[t].x], sameSurface.outputOf[triangles[t].y],
+                                          sameSurface.outputOf[triangles[t].z]);
+            twins = backToBackTwins(onSurface);
+        }
+        removeTriangles(triangles, twins);
+        report.backToBackDropped += twins.size();
+    }
 
     // Drop vertices no surviving triangle uses (unreferenced in the file, or only used by degenerate triangles), so
     // bounds and vertex counts describe the visible surface. Survivors keep their order.

@@ -57,7 +57,8 @@ std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions
 
 /** Area-weighted smooth normals in which every vertex within `weldDistance` (absolute) of another shares its normal,
  *  whatever normals the mesh carries: the copies of a vertex that a hard edge splits get one common direction (the
- *  sum over all their faces), so a surface pushed out along these normals stays closed (the inflated hull). Welds
+ *  sum over all their faces, the second of each back-to-back pair left out, which would cancel the first), so a
+ *  surface pushed out along these normals stays closed (the inflated hull). Welds
  *  with weldVertices() ignoring normals; returns one unit normal per input position. */
 std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> positions,
                                                     std::span<const glm::uvec3> triangles, double weldDistance);
@@ -84,6 +85,12 @@ inline constexpr double kWeldedAwayShareToWarn = 0.01;
 std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                                     double minArea);
 
+/** The triangles that lie back to back with an earlier one: on the same three vertices, wound the other way, as
+ *  exporters write a double-faced card, leaf or sheet of paper. Each earlier triangle takes at most one later one, so
+ *  a pair names only its second; ascending. Linear time (hashed buckets), whatever the repeats. By vertex index: run
+ *  on welded vertices, so copies of a corner count as one where the weld merged them. */
+std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles);
+
 /** A mesh as a loader reads it: world-space, not welded, normals optional (empty or one per position). */
 struct RawMesh {
     std::string name;
@@ -98,9 +105,11 @@ struct RawMesh {
 };
 
 /** Turns a raw mesh into a clean Mesh: welds within options.weldTolerance x modelDiagonal, drops degenerate
- *  triangles (area <= 1e-14 x modelDiagonal^2) and unreferenced vertices, normalises the file's normals (zero ones
- *  are recomputed) or computes smooth ones. Adds its counts to `report`, and the warning details-merged when the weld
- *  collapsed more than kWeldedAwayShareToWarn of the triangles. The result may have no triangles. */
+ *  triangles (area <= 1e-14 x modelDiagonal^2), a two-sided material's back-to-back twins (backToBackTwins(): the
+ *  material draws the back of the first, and the pair's smooth normals cancel) and unreferenced vertices, normalises
+ * the file's normals (zero ones are recomputed) or computes smooth ones. Adds its counts to `report`, and the warning
+ * details-merged when the weld collapsed more than kWeldedAwayShareToWarn of the triangles. The result may have no
+ * triangles. */
 Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options, LoadReport& report);
 
 } // namespace inkgraph

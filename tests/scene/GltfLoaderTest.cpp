@@ -490,6 +490,31 @@ TEST(GltfLoader, AnAccessorBetweenItsComponentsIsRefusedNamingTheOffset) {
     }
 }
 
+/** A double-faced card: the square's corners twice, the second sheet wound the other way with -z normals. A
+ *  two-sided material draws the first sheet's back, so the second is dropped as its twin (its normals, though split,
+ *  are the back's own); a one-sided material needs it to be seen from behind, so it stays. */
+TEST(GltfLoader, ADoubleFacedCardOfATwoSidedMaterialKeepsItsFirstSide) {
+    for (const bool doubleSided : {true, false}) {
+        GltfWriter writer;
+        const int positions = writer.addVec3(
+            {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}});
+        const int normals = writer.addVec3(
+            {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, -1}, {0, 0, -1}, {0, 0, -1}, {0, 0, -1}});
+        const int indices = writer.addIndices({0, 1, 2, 0, 2, 3, 7, 6, 4, 6, 5, 4}, 2);
+        const std::string body =
+            std::string("\"materials\": [{\"doubleSided\": ") + (doubleSided ? "true" : "false") + "}], " +
+            singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) + ", \"NORMAL\": " +
+                       std::to_string(normals) + "}, \"indices\": " + std::to_string(indices) + ", \"material\": 0}");
+        const TempFile file("card.glb", writer.glb(body));
+        const Scene scene = loadScene(file.path());
+        ASSERT_EQ(scene.meshes.size(), 1u);
+        EXPECT_EQ(scene.meshes[0].triangleCount(), doubleSided ? 2u : 4u);
+        EXPECT_EQ(scene.report.backToBackDropped, doubleSided ? 2u : 0u);
+        if (doubleSided)
+            for (const glm::vec3& normal : scene.meshes[0].normals) EXPECT_EQ(normal, glm::vec3(0, 0, 1));
+    }
+}
+
 TEST(GltfLoader, IndexOutOfRangeIsAnError) {
     GltfWriter writer;
     const int positions = writer.addVec3(kUnitTriangle);

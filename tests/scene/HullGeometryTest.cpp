@@ -90,6 +90,34 @@ TEST(HullNormals, VerticesFartherThanTheWeldDistanceKeepTheirOwnFaces) {
     EXPECT_NEAR(glm::length(glm::dvec3(welded[0]) - glm::normalize(glm::dvec3(0, -1, 1))), 0.0, 1e-5);
 }
 
+TEST(BackToBackTwins, TheLaterOfTwoTrianglesOnTheSameCornersWoundTheOtherWay) {
+    // 0: front; 1: its twin (any rotation of the reverse); 2: the front again (same winding: no twin of 0);
+    // 3: another twin, taken by 2; 4: other corners.
+    const std::vector<glm::uvec3> triangles = {{0, 1, 2}, {1, 0, 2}, {2, 0, 1}, {0, 2, 1}, {0, 1, 3}};
+    EXPECT_EQ(backToBackTwins(triangles), (std::vector<std::uint32_t>{1, 3}));
+    EXPECT_TRUE(backToBackTwins(std::vector<glm::uvec3>{{0, 1, 2}, {1, 2, 0}, {2, 0, 1}}).empty())
+        << "repeats of one winding are not twins";
+    EXPECT_EQ(backToBackTwins(std::vector<glm::uvec3>{{5, 6, 7}, {5, 6, 7}, {7, 6, 5}, {6, 5, 7}}),
+              (std::vector<std::uint32_t>{2, 3}))
+        << "each earlier triangle takes one later";
+    EXPECT_TRUE(backToBackTwins(std::vector<glm::uvec3>{}).empty());
+    // Many repeats in one place: every other one is a twin, found in one pass.
+    std::vector<glm::uvec3> repeats;
+    for (int i = 0; i < 20000; ++i) repeats.push_back(i % 2 == 0 ? glm::uvec3(0, 1, 2) : glm::uvec3(2, 1, 0));
+    EXPECT_EQ(backToBackTwins(repeats).size(), 10000u);
+}
+
+TEST(HullNormals, ADoubleFacedCardKeepsTheNormalOfItsFirstSide) {
+    // Two sheets on copies of one square's corners, the second wound the other way and carrying -z: welded, every
+    // face of the pair cancelled its twin, leaving the sums pointing either way (a hull folded through the card).
+    const std::vector<glm::vec3> positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0},
+                                              {-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    const std::vector<glm::uvec3> triangles = {{0, 1, 2}, {0, 2, 3}, {7, 6, 4}, {6, 5, 4}};
+    const std::vector<glm::vec3> normals = computePositionWeldedNormals(positions, triangles, 1e-6);
+    ASSERT_EQ(normals.size(), positions.size());
+    for (const glm::vec3& normal : normals) EXPECT_EQ(normal, glm::vec3(0, 0, 1));
+}
+
 TEST(HullNormals, RejectsOutOfRangeIndices) {
     const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     const std::vector<glm::uvec3> triangles = {{0, 1, 3}};

@@ -62,16 +62,16 @@ TEST(ObjLoader, CubeOfQuadsGivesTwelveTrianglesOnEightVertices) {
 }
 
 TEST(ObjLoader, SmoothNormalsAreAreaWeighted) {
-    // Fan triangulation gives corner (-1,-1,-1) both triangles of each of its three faces: a symmetric normal.
-    // Corner (1,1,-1) gets both triangles of the -z face but one each of +y and +x, so area weighting tilts its
-    // normal toward -z: (4, 4, -8) / |.|. An angle-weighted or per-face average would not.
+    // Fans from each face's lowest vertex index give corner (-1,-1,-1) (vertex 1) both triangles of each of its three
+    // faces: a symmetric normal. Corner (1,1,-1) gets both triangles of the -z and +y faces but one of +x, so area
+    // weighting tilts its normal away from +x: (4, 8, -8) / |.|. An angle-weighted or per-face average would not.
     const TempFile file("weighted.obj", cubeObj());
     const Mesh mesh = loadScene(file.path()).meshes.at(0);
 
     const glm::vec3 symmetric = mesh.normals[findVertex(mesh, {-1, -1, -1})];
     const glm::vec3 expectedSymmetric = glm::normalize(glm::vec3(-1, -1, -1));
     const glm::vec3 tilted = mesh.normals[findVertex(mesh, {1, 1, -1})];
-    const glm::vec3 expectedTilted = glm::normalize(glm::vec3(1, 1, -2));
+    const glm::vec3 expectedTilted = glm::normalize(glm::vec3(1, 2, -2));
     for (int axis = 0; axis < 3; ++axis) {
         EXPECT_NEAR(symmetric[axis], expectedSymmetric[axis], 1e-6);
         EXPECT_NEAR(tilted[axis], expectedTilted[axis], 1e-6);
@@ -186,6 +186,34 @@ TEST(ObjLoader, ACommentAfterTheNumbersEndsThem) {
     const Scene scene = loadScene(file.path());
     EXPECT_EQ(scene.report.trianglesRead, 3u);
     EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
+}
+
+/** A double-faced card as exporters write it: a square and the same square in reverse, on the same vertices or on a
+ *  copy of them. Cut from each face's first corner, the two crossed diagonals and the pair's smooth normals pointed
+ *  either way, shading half the card black; now the reverse is cut along the same diagonal and, the material being
+ *  two-sided, dropped as the first's twin: the single square, with +z normals. */
+TEST(ObjLoader, ADoubleFacedCardLoadsAsItsFirstSide) {
+    const std::string square = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n";
+    for (const std::string& faces : {std::string("f 1 2 3 4\nf 4 3 2 1\n"), std::string("f 1 2 3 4\nf 3 2 1 4\n"),
+                                     square + "f 1 2 3 4\nf 8 7 6 5\n"}) {
+        const TempFile file("card.obj", square + faces);
+        const Scene scene = loadScene(file.path());
+        ASSERT_EQ(scene.meshes.size(), 1u);
+        const Mesh& mesh = scene.meshes[0];
+        EXPECT_EQ(mesh.triangleCount(), 2u) << faces;
+        EXPECT_EQ(mesh.positions.size(), 4u) << faces;
+        EXPECT_EQ(scene.report.backToBackDropped, 2u) << faces;
+        for (const glm::vec3& normal : mesh.normals) EXPECT_EQ(normal, glm::vec3(0, 0, 1)) << faces;
+        for (const glm::uvec3& triangle : mesh.triangles) EXPECT_GT(test::triangleCross(mesh, triangle).z, 0.0);
+    }
+    // A polygon is cut from its lowest vertex index on: the same two triangles whichever corner the face starts at.
+    const TempFile rotated("rotated.obj", square + "f 3 4 1 2\n");
+    const Mesh mesh = loadScene(rotated.path()).meshes.at(0);
+    std::vector<std::uint32_t> corners;
+    for (const glm::uvec3& triangle : mesh.triangles)
+        for (int k = 0; k < 3; ++k) corners.push_back(triangle[k]);
+    EXPECT_EQ(std::count(corners.begin(), corners.end(), findVertex(mesh, {-1, -1, 0})), 2)
+        << "the diagonal from vertex 1";
 }
 
 TEST(ObjLoader, PentagonIsFanTriangulated) {
