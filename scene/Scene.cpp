@@ -178,7 +178,7 @@ Scene finalizeScene(const std::string& path, RawScene raw, const LoadOptions& op
     }
     if (scene.meshes.empty()) {
         if (scene.report.trianglesRead == 0) {
-            throwLoadError(path, "no triangles in the file", function);
+            throwLoadError(path, noTrianglesInTheFile(scene.report.warnings), function);
         }
         const bool weldedAway = std::ranges::any_of(scene.report.warnings, [](const Warning& warning) {
             return warning.code == warningCode(WarningKind::DetailsMerged);

@@ -56,6 +56,15 @@ glm::dvec3 storeNearModel(const std::string& path, std::span<const glm::dvec3> w
     return origin;
 }
 
+std::string noTrianglesInTheFile(const std::vector<Warning>& warnings) {
+    constexpr std::size_t kNamed = 3;
+    std::string message = "no triangles in the file";
+    for (std::size_t i = 0; i < std::min(warnings.size(), kNamed); ++i)
+        message += (i == 0 ? "; what the load said: " : "; ") + warnings[i].message;
+    if (warnings.size() > kNamed) message += "; and " + std::to_string(warnings.size() - kNamed) + " more warnings";
+    return message;
+}
+
 void throwLoadError(const std::string& path, std::string_view problem, std::string_view function) {
     throw SceneError(std::string(function) + ": '" + path + "': " + std::string(problem));
 }

@@ -100,6 +100,10 @@ Warning polygonsFannedWarning(const PolygonTriangulator& triangulator);
 [[noreturn]] void throwLoadError(const std::string& path, std::string_view problem,
                                  std::string_view function = "loadScene()");
 
+/** "no triangles in the file", and what the load warned that says why (a primitive skipped for lacking POSITION, a
+ *  mesh whose triangles were all degenerate): the first three messages, and how many more. */
+std::string noTrianglesInTheFile(const std::vector<Warning>& warnings);
+
 /** Throws std::invalid_argument("<function>: ...") for a weld tolerance or a time that is not finite and >= 0. */
 void checkLoadOptions(const LoadOptions& options, std::string_view function = "loadScene()");
 

@@ -515,6 +515,18 @@ TEST(GltfLoader, ADoubleFacedCardOfATwoSidedMaterialKeepsItsFirstSide) {
     }
 }
 
+TEST(GltfLoader, AFileOfNoTrianglesSaysWhatTheLoadWarned) {
+    // Its only primitive spells POSITION in lower case: the refusal said "no triangles" and left out why.
+    GltfWriter writer;
+    const int positions = writer.addVec3(kUnitTriangle);
+    const TempFile file("lower.gltf",
+                        writer.gltf(singleNode("{\"attributes\": {\"position\": " + std::to_string(positions) + "}}")));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("no triangles in the file; what the load said: 'shape': primitive without POSITION skipped"),
+              std::string::npos)
+        << message;
+}
+
 TEST(GltfLoader, IndexOutOfRangeIsAnError) {
     GltfWriter writer;
     const int positions = writer.addVec3(kUnitTriangle);

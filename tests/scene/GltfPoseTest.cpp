@@ -199,6 +199,20 @@ TEST(GltfPose, SkinRestPoseTurnsTheUpperBone) {
     EXPECT_TRUE(hasVertexNear(scene, {-1, 2, 0})) << describeVertices(scene);
 }
 
+TEST(GltfPose, ASkinWithoutInverseBindMatricesIsNotWarnedAbout) {
+    // glTF makes them optional (identity); tinygltf reports them missing, which was passed on as a warning.
+    TwoBoneStrip strip;
+    std::string text = strip.gltf("");
+    const std::string member = ", \"inverseBindMatrices\": " + std::to_string(strip.inverseBind);
+    ASSERT_NE(text.find(member), std::string::npos);
+    text.erase(text.find(member), member.size());
+    const TempFile file("no-inverse-binds.gltf", text);
+    const Scene scene = loadScene(file.path());
+    EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
+    // Both bones bind at the origin, so the upper bone's rest translation moves its vertices up by one.
+    EXPECT_TRUE(hasVertexNear(scene, {0, 3, 0})) << describeVertices(scene);
+}
+
 TEST(GltfPose, SkinTurnsNormalsWithTheirVertices) {
     TwoBoneStrip strip;
     strip.withNormals();

@@ -975,6 +975,8 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     // tinygltf also reports recoverable problems (e.g. chunk padding) through `error` while still succeeding.
     for (const std::string* messages : {&warning, &error}) {
         for (const std::string& line : splitLines(*messages)) {
+            // tinygltf takes a skin's inverseBindMatrices for required; glTF makes it optional (identity matrices).
+            if (line.find("'inverseBindMatrices' property is missing") != std::string::npos) continue;
             scene.warnings.push_back(makeWarning(WarningKind::GltfParserMessage, "tinygltf: " + shortenWords(line)));
         }
     }
@@ -990,7 +992,7 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     scene.images = sceneImages(path, model, baseDirectory, dataUriImages, budget);
     GltfWalker(path, model, scene, budget, options).walk();
     if (scene.meshes.empty()) {
-        throwLoadError(path, "no triangles in the file");
+        throwLoadError(path, noTrianglesInTheFile(scene.warnings));
     }
     return scene;
 }
