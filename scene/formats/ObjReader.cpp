@@ -283,13 +283,23 @@ private:
         glm::vec4 colour(1.0f);
         std::size_t count = 0;
         bool allNumbers = true;
+        bool outOfRange = false;
         for (const std::string_view token : tokensOf(std::string_view(p, std::size_t(end - p)))) {
             const std::optional<double> value = finiteNumber(token);
             allNumbers = allNumbers && value.has_value();
             if (allNumbers && count < 4) colour[int(count)] = float(std::clamp(*value, 0.0, 1.0));
+            if (allNumbers && count < 4 && (*value < 0.0 || *value > 1.0)) {
+                const double outside = *value < 0.0 ? -*value : *value - 1.0;
+                if (outside > mColourDistanceOut) {
+                    mColourDistanceOut = outside;
+                    mColourFarthestOut = *value;
+                }
+                outOfRange = true;
+            }
             ++count;
         }
         const bool coloured = allNumbers && (count == 3 || count == 4);
+        if (coloured && outOfRange) ++mColoursOutOfRange;
         // Neither w nor a colour (two or five numbers, NaN, a word): counted, and said once for the file.
         if (count > 1 && !coloured) ++mUnreadVertexExtras;
         if (coloured && !mHasColors) {
@@ -716,6 +726,13 @@ private:
             group.corners = {};
             scene.meshes.push_back(std::move(mesh));
         }
+        if (mColoursOutOfRange > 0) {
+            scene.warnings.push_back(makeWarning(
+                WarningKind::ValueOutOfRange,
+                std::to_string(mColoursOutOfRange) + (mColoursOutOfRange == 1 ? " 'v' line gives" : " 'v' lines give") +
+                    " a colour outside [0, 1] (as far out as " + formatNumber(mColourFarthestOut) +
+                    (mColourFarthestOut > 1.0 ? "; colours of 0 to 255?" : "") + "); clamped into [0, 1]"));
+        }
         if (mUnreadVertexExtras > 0) {
             scene.warnings.push_back(makeWarning(
                 WarningKind::VertexValuesIgnored,
@@ -796,6 +813,9 @@ private:
     std::vector<glm::vec4> mColors;     ///< one per position once a `v` line had a colour, else empty
     bool mHasColors = false;
     std::size_t mUnreadVertexExtras = 0; ///< `v` lines whose values after x y z are neither w nor r g b [a]
+    std::size_t mColoursOutOfRange = 0;  ///< `v` lines whose colour has a value outside [0, 1], clamped
+    double mColourFarthestOut = 0.0;     ///< of those values, the first one farthest outside [0, 1]
+    double mColourDistanceOut = 0.0;     ///< how far outside [0, 1] that one is
     std::vector<glm::vec2> mTexcoords;   ///< (u, 1 - v)
     std::vector<glm::vec3> mNormals;
     std::vector<FaceGroup> mGroups; ///< in the order of their first face or usemtl

@@ -421,21 +421,34 @@ TEST(GltfMaterials, NormalizedUnsignedShortTexcoordsBecomeFractions) {
 }
 
 TEST(GltfMaterials, NormalizedByteRgbColoursGetAlphaOne) {
-    RawGltf gltf;
-    const int position = addTrianglePositions(gltf);
-    // VEC3 of unsigned bytes, each element padded to 4 bytes as glTF requires of vertex attributes.
-    const int colorView = gltf.view(std::vector<std::uint8_t>{255, 0, 0, 0, 0, 51, 0, 0, 0, 0, 255, 0}, 4);
-    const int color =
-        gltf.accessor("\"bufferView\": " + std::to_string(colorView) +
-                      ", \"componentType\": 5121, \"normalized\": true, \"count\": 3, \"type\": \"VEC3\"");
-    const TempFile file("colour.gltf", gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position) +
-                                                                 ", \"COLOR_0\": " + std::to_string(color))));
-    const Scene scene = loadScene(file.path());
-    const Mesh& mesh = scene.meshes.at(0);
-    ASSERT_EQ(mesh.colors.size(), 3u);
-    EXPECT_EQ(mesh.colors[std::size_t(vertexAt(scene, mesh, {0, 0, 0}))], glm::vec4(1, 0, 0, 1));
-    EXPECT_EQ(mesh.colors[std::size_t(vertexAt(scene, mesh, {1, 0, 0}))], glm::vec4(0, 0.2f, 0, 1));
-    EXPECT_EQ(mesh.colors[std::size_t(vertexAt(scene, mesh, {0, 1, 0}))], glm::vec4(0, 0, 1, 1));
+    // Unmarked (the file breaks glTF's rule that integer colours are normalized), 255 was read as 255 times white;
+    // now as the exporter meant, with a warning.
+    for (const bool normalized : {true, false}) {
+        RawGltf gltf;
+        const int position = addTrianglePositions(gltf);
+        // VEC3 of unsigned bytes, each element padded to 4 bytes as glTF requires of vertex attributes.
+        const int colorView = gltf.view(std::vector<std::uint8_t>{255, 0, 0, 0, 0, 51, 0, 0, 0, 0, 255, 0}, 4);
+        const int color =
+            gltf.accessor("\"bufferView\": " + std::to_string(colorView) +
+                          ", \"componentType\": 5121, \"normalized\": " + (normalized ? "true" : "false") +
+                          ", \"count\": 3, \"type\": \"VEC3\"");
+        const TempFile file("colour.gltf", gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position) +
+                                                                     ", \"COLOR_0\": " + std::to_string(color))));
+        const Scene scene = loadScene(file.path());
+        const Mesh& mesh = scene.meshes.at(0);
+        ASSERT_EQ(mesh.colors.size(), 3u);
+        EXPECT_EQ(mesh.colors[std::size_t(vertexAt(scene, mesh, {0, 0, 0}))], glm::vec4(1, 0, 0, 1));
+        EXPECT_EQ(mesh.colors[std::size_t(vertexAt(scene, mesh, {1, 0, 0}))], glm::vec4(0, 0.2f, 0, 1));
+        EXPECT_EQ(mesh.colors[std::size_t(vertexAt(scene, mesh, {0, 1, 0}))], glm::vec4(0, 0, 1, 1));
+        ASSERT_EQ(scene.report.warnings.size(), normalized ? 0u : 1u)
+            << ::testing::PrintToString(scene.report.warnings);
+        if (!normalized)
+            EXPECT_NE(scene.report.warnings[0].message.find(
+                          "COLOR_0: unsigned bytes not marked normalized, as glTF requires of integer colours; read "
+                          "as normalized (255 is white)"),
+                      std::string::npos)
+                << scene.report.warnings[0].message;
+    }
 }
 
 TEST(GltfMaterials, AttributeCountDifferentFromPositionsIsRefused) {

@@ -542,6 +542,11 @@ TEST(ObjMaterials, VertexColoursAreReadClampedAndUncolouredVerticesAreWhite) {
     EXPECT_EQ(mesh.colors[vertexAt(scene, mesh, {1, 1, 0})], glm::vec4(0.5f, 0.5f, 0.5f, 0.25f));
     // Without a material, the base colour that multiplies them is white, so they show as written.
     EXPECT_EQ(mesh.material.baseColorFactor, glm::vec4(1.0f));
+    // The clamp is said (it was silent; a file of 0-255 colours drew in the wrong colours without a word).
+    ASSERT_EQ(scene.report.warnings.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(scene.report.warnings[0].code, "value-out-of-range");
+    EXPECT_EQ(scene.report.warnings[0].message,
+              "1 'v' line gives a colour outside [0, 1] (as far out as 2; colours of 0 to 255?); clamped into [0, 1]");
 }
 
 TEST(ObjMaterials, AFourthCoordinateIsWNotAColour) {

@@ -570,10 +570,29 @@ private:
         const int components = rgb ? 3 : 4;
         const std::vector<float> values = attributeFloats(
             primitive, draco, "COLOR_0", rgb ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, vertexCount, name);
+        // glTF allows integer colours only normalized; unmarked, 255 would be a colour 255 times white. Read as the
+        // exporter meant, and said.
+        float integerWhite = 1.0f;
+        if (color->second >= 0 && std::size_t(color->second) < mModel.accessors.size()) {
+            const tinygltf::Accessor& accessor = mModel.accessors[std::size_t(color->second)];
+            const int type = accessor.componentType;
+            if (!accessor.normalized &&
+                (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)) {
+                const bool bytes = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+                integerWhite = bytes ? 255.0f : 65535.0f; // divided by, as normalized values are
+                mOut.warnings.push_back(makeWarning(
+                    WarningKind::ValueOutOfRange,
+                    "'" + excerptForMessage(name) + "' COLOR_0: unsigned " + (bytes ? "bytes" : "shorts") +
+                        " not marked normalized, as glTF requires of integer colours; read as normalized (" +
+                        (bytes ? "255" : "65535") + " is white)",
+                    "", name));
+            }
+        }
         mesh.colors.resize(vertexCount);
         for (std::size_t i = 0; i < vertexCount; ++i) {
             const float* rgba = values.data() + i * std::size_t(components);
-            mesh.colors[i] = glm::vec4(rgba[0], rgba[1], rgba[2], rgb ? 1.0f : rgba[3]);
+            mesh.colors[i] = glm::vec4(rgba[0] / integerWhite, rgba[1] / integerWhite, rgba[2] / integerWhite,
+                                       rgb ? 1.0f : rgba[3] / integerWhite);
         }
         // The colours multiply the surface's in the shaders, with the lighting: 1e38 is a float, its products may not
         // be. Far beyond white, 1e6 draws the same. Reported once, with the first value clamped.
