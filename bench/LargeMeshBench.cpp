@@ -168,6 +168,21 @@ void BM_LargeSmoothNormals(benchmark::State& state) {
 }
 BENCHMARK(BM_LargeSmoothNormals)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+/** The back-to-back twin search finalizeMesh() runs on every two-sided mesh (none to find here): its share of a load
+ *  is this over BM_LargeLoadObj. */
+void BM_LargeBackToBackTwins(benchmark::State& state) {
+    const Mesh& mesh = largeMesh();
+    std::size_t twins = 0;
+    for (auto _ : state) {
+        const std::vector<std::uint32_t> found = backToBackTwins(mesh.triangles);
+        twins = found.size();
+        benchmark::DoNotOptimize(found.data());
+    }
+    setTriangleCounters(state, mesh.triangles.size());
+    state.counters["twins"] = double(twins);
+}
+BENCHMARK(BM_LargeBackToBackTwins)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 /** The silhouette hull's normals, weld included. */
 void BM_LargeHullNormals(benchmark::State& state) {
     const Mesh& mesh = largeMesh();

@@ -34,6 +34,8 @@ BoundingBox computeBoundingBox(std::span<const glm::vec3> positions);
 struct WeldMap {
     std::vector<std::uint32_t> kept;     ///< input index of each output vertex, in first-seen order
     std::vector<std::uint32_t> outputOf; ///< output index of each input vertex
+    /** Some vertex stayed apart from one in reach for its normal alone (a hard edge, a double-faced card's sides). */
+    bool splitByNormals = false;
 };
 
 /** Merges vertices closer than `distance` (absolute). When `normals` is not empty (one per position), two vertices

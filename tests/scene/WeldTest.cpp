@@ -91,6 +91,10 @@ TEST(SceneWeld, DifferentNormalsAtOnePositionStaySplit) {
     EXPECT_EQ(map.kept.size(), 2u);
     EXPECT_EQ(map.outputOf[0], map.outputOf[2]);
     EXPECT_NE(map.outputOf[0], map.outputOf[1]);
+    EXPECT_TRUE(map.splitByNormals);
+    // The same normals, or none, split nothing (finalizeMesh() then finds back-to-back twins on the weld's vertices).
+    EXPECT_FALSE(weldVertices(positions, std::vector<glm::vec3>(3, glm::vec3(0, 0, 1)), 1e-3).splitByNormals);
+    EXPECT_FALSE(weldVertices(positions, {}, 1e-3).splitByNormals);
 }
 
 TEST(SceneWeld, ZeroLengthSmoothNormalFallsBackToAFaceNormal) {
