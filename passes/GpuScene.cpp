@@ -128,17 +128,36 @@ const std::vector<GlVertexArray>& GpuScene::hullArrays() {
         const std::vector<DrawMesh>& drawMeshes = meshes();
         std::vector<GlVertexArray> arrays;
         arrays.reserve(drawMeshes.size());
+        std::vector<GLsizei> counts;
+        std::vector<GlBuffer> ownIndices;
+        ownIndices.reserve(drawMeshes.size()); // never reallocated below: the arrays refer to its buffers
         for (std::size_t index = 0; index < drawMeshes.size(); ++index) {
             GlVertexArray array("mesh '" + mScene.meshes[index].name + "' hull");
             array.setVec3Attribute(kPositionLocation, drawMeshes[index].positions);
             array.setVec3Attribute(kNormalLocation, hullNormals(index));
-            array.setIndexBuffer(drawMeshes[index].indices);
+            if (const std::vector<glm::uvec3>* triangles = mDerived->hullTriangles(index)) {
+                ownIndices.emplace_back(triangles->data(), triangles->size() * sizeof(glm::uvec3),
+                                        "mesh '" + mScene.meshes[index].name + "' hull indices");
+                array.setIndexBuffer(ownIndices.back());
+                counts.push_back(GLsizei(triangles->size() * 3));
+            } else {
+                array.setIndexBuffer(drawMeshes[index].indices);
+                counts.push_back(drawMeshes[index].indexCount);
+            }
             drawMeshes[index].materialAttributes.attachTo(array);
             arrays.push_back(std::move(array));
         }
+        mOwnHullIndices = std::move(ownIndices); // moving the vector keeps its elements where they are
+        mHullIndexCounts = std::move(counts);
         mHullArrays = std::move(arrays);
     }
     return mHullArrays;
+}
+
+GLsizei GpuScene::hullIndexCount(std::size_t meshIndex) {
+    mDerived->requireMeshIndex("GpuScene::hullIndexCount()", meshIndex);
+    hullArrays();
+    return mHullIndexCounts[meshIndex];
 }
 
 bool GpuScene::containsPoint(glm::dvec3 worldPoint) {

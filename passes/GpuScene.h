@@ -88,9 +88,12 @@ public:
     const GlBuffer& hullNormals(std::size_t meshIndex);
     bool hullNormalsComputed() const { return !mHullNormals.empty(); }
     /** One vertex array per mesh for drawing its inflated hull (the silhouette, MToon's outline shell): its
-     *  positions, hullNormals() at the normal location, its material attributes and its indices. Made on the first
-     *  call. */
+     *  positions, hullNormals() at the normal location, its material attributes and its indices, or
+     *  SceneDerivedData::hullTriangles()' where a double-faced card's second sheet is left out (draw
+     *  hullIndexCount() of them). Made on the first call. */
     const std::vector<GlVertexArray>& hullArrays();
+    /** How many indices hullArrays()[meshIndex] draws. */
+    GLsizei hullIndexCount(std::size_t meshIndex);
 
     /** SceneDerivedData::edgeAdjacency(): welded edges, their kinds, face normals and planes, in the scene's frame. */
     const EdgeAdjacency& edgeAdjacency(std::size_t meshIndex) { return mDerived->edgeAdjacency(meshIndex); }
@@ -171,6 +174,8 @@ private:
     std::vector<const GlBuffer*> mHullNormals;            ///< one per mesh once computed (its own or mesh normals)
     std::vector<GlBuffer> mOwnHullNormals;                ///< the hull normals that are not a mesh's own
     std::vector<GlVertexArray> mHullArrays;               ///< one per mesh once made, else empty
+    std::vector<GLsizei> mHullIndexCounts;                ///< one per mesh with mHullArrays
+    std::vector<GlBuffer> mOwnHullIndices;                ///< the hull index buffers that are not a mesh's own
     std::vector<std::optional<glm::dvec3>> mBlendCentres; ///< per blended mesh, once drawOrder() needed it
     std::optional<glm::dvec3> mContainmentPoint;          ///< the last point containsPoint() was asked about
     bool mContainsPoint = false;

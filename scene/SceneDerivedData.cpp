@@ -73,6 +73,36 @@ const std::vector<glm::vec3>* SceneDerivedData::hullNormals(std::size_t meshInde
     return normals[meshIndex] ? &*normals[meshIndex] : nullptr;
 }
 
+const std::vector<glm::uvec3>* SceneDerivedData::hullTriangles(std::size_t meshIndex) {
+    requireMeshIndex("SceneDerivedData::hullTriangles()", meshIndex);
+    const auto& triangles = derivedOnce(mHullTriangles, [&] {
+        std::vector<std::optional<std::vector<glm::uvec3>>> perMesh(mScene.meshes.size());
+        for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
+            const Mesh& mesh = mScene.meshes[index];
+            const WeldMap& weld = positionWeld(index);
+            std::vector<glm::uvec3> welded(mesh.triangles.size());
+            for (std::size_t t = 0; t < welded.size(); ++t)
+                welded[t] = glm::uvec3(weld.outputOf[mesh.triangles[t].x], weld.outputOf[mesh.triangles[t].y],
+                                       weld.outputOf[mesh.triangles[t].z]);
+            const std::vector<std::uint32_t> twins = backToBackTwins(welded);
+            if (twins.empty()) continue;
+            std::vector<glm::uvec3> kept;
+            kept.reserve(mesh.triangles.size() - twins.size());
+            std::size_t next = 0;
+            for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+                if (next < twins.size() && twins[next] == t) {
+                    ++next;
+                    continue;
+                }
+                kept.push_back(mesh.triangles[t]);
+            }
+            perMesh[index] = std::move(kept);
+        }
+        return perMesh;
+    });
+    return triangles[meshIndex] ? &*triangles[meshIndex] : nullptr;
+}
+
 const EdgeAdjacency& SceneDerivedData::edgeAdjacency(std::size_t meshIndex) {
     requireMeshIndex("SceneDerivedData::edgeAdjacency()", meshIndex);
     return derivedOnce(mEdgeAdjacency, [&] {

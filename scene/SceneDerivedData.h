@@ -55,6 +55,12 @@ public:
      *  normals are the smooth ones, Mesh::normalsAreSmooth). Derived for every mesh at once. */
     const std::vector<glm::vec3>* hullNormals(std::size_t meshIndex);
 
+    /** The triangles of mesh `meshIndex`'s inflated hull: its own without the later of each back-to-back pair on
+     *  positionWeld() (MeshOps backToBackTwins(): a double-faced card of a one-sided material, whose second sheet's
+     *  hull would lie on the first's and draw lines across it). Null where there is no such pair, the mesh's own
+     *  triangles serving. Derived for every mesh at once. */
+    const std::vector<glm::uvec3>* hullTriangles(std::size_t meshIndex);
+
     /** Edge adjacency of mesh `meshIndex` (scene/mesh/EdgeAdjacency.h), keyed on positionWeld(), so split normals do
      *  not turn creases into borders. Derived for every mesh at once. */
     const EdgeAdjacency& edgeAdjacency(std::size_t meshIndex);
@@ -97,6 +103,8 @@ private:
     std::vector<std::unique_ptr<Derived<WeldMap>>> mPositionWelds; ///< one per mesh
     /** Per mesh: the hull normals, or none where the mesh's own serve. */
     Derived<std::vector<std::optional<std::vector<glm::vec3>>>> mHullNormals;
+    /** Per mesh: the hull's triangles, or none where the mesh's own serve. */
+    Derived<std::vector<std::optional<std::vector<glm::uvec3>>>> mHullTriangles;
     Derived<std::vector<EdgeAdjacency>> mEdgeAdjacency;
     mutable std::mutex mCurvatureMutex; ///< guards the map, not its entries
     std::map<double, std::unique_ptr<Derived<std::vector<MeshCurvature>>>> mCurvature;

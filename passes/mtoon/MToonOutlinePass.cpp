@@ -102,9 +102,9 @@ void MToonOutlinePass::execute(GlPassContext& gl) {
         mScene.bindMaterial(program, index, MaterialUse::Colour);
         mScene.materials().bindWidthMap(program, index, mWidthMap);
         mScene.hullArrays()[index].bind();
-        glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
+        glDrawElements(GL_TRIANGLES, mScene.hullIndexCount(index), GL_UNSIGNED_INT, nullptr);
         ++mShellsDrawn;
-        mTrianglesDrawn += std::size_t(meshes[index].indexCount) / 3;
+        mTrianglesDrawn += std::size_t(mScene.hullIndexCount(index)) / 3;
     }
     glCullFace(GL_BACK);
     glDisable(GL_CULL_FACE);

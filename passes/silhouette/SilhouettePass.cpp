@@ -126,7 +126,9 @@ void SilhouettePass::execute(GlPassContext& gl) {
             if (transparency) mScene.bindMaterial(*mHullProgram, index, MaterialUse::Coverage);
             mScene.materials().bindWidthMap(*mHullProgram, index, mSettings.widthMap);
             (mSettings.weldNormals ? mScene.hullArrays()[index] : meshes[index].vertexArray).bind();
-            glDrawElements(GL_TRIANGLES, meshes[index].indexCount, GL_UNSIGNED_INT, nullptr);
+            glDrawElements(GL_TRIANGLES,
+                           mSettings.weldNormals ? mScene.hullIndexCount(index) : meshes[index].indexCount,
+                           GL_UNSIGNED_INT, nullptr);
         }
     }
     glDepthMask(GL_TRUE);

@@ -207,6 +207,48 @@ TEST_F(SilhouetteFandisk, WeldedHullHasNoGapsAtHardEdges) {
     RecordProperty("split_normal_gap_pixels_per_view", measured.str());
 }
 
+/** A square card of a one-sided material, +z normals; `doubled` adds its back: a copy of its corners with -z normals
+ *  and the two triangles wound the other way, as exporters write a double-faced card. */
+Scene cardScene(bool doubled) {
+    Mesh card;
+    card.name = doubled ? "double-faced card" : "card";
+    card.material.doubleSided = false;
+    const std::vector<glm::vec3> corners = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    for (const glm::vec3& corner : corners) {
+        card.positions.push_back(corner);
+        card.normals.emplace_back(0, 0, 1);
+    }
+    card.triangles = {{0, 1, 2}, {0, 2, 3}};
+    if (doubled) {
+        for (const glm::vec3& corner : corners) {
+            card.positions.push_back(corner);
+            card.normals.emplace_back(0, 0, -1);
+        }
+        card.triangles.insert(card.triangles.end(), {{7, 6, 4}, {6, 5, 4}});
+    }
+    return makeScene(std::move(card));
+}
+
+class SilhouetteCard : public test::LinePassFixture {};
+
+TEST_F(SilhouetteCard, ADoubleFacedCardsHullIsItsFirstSides) {
+    // The second sheet's hull lay on the first's and drew lines across the card (a Y from its corners); left out of
+    // the hull, the card's silhouette is the single card's, to the pixel, from the front.
+    std::vector<cv::Mat> masks;
+    for (const bool doubled : {false, true}) {
+        setScene(cardScene(doubled));
+        ASSERT_EQ(scene.meshes.at(0).triangles.size(), doubled ? 4u : 2u) << "a one-sided card keeps its back";
+        EXPECT_EQ(gpuScene->hullIndexCount(0), 6);
+        SilhouettePass pass("silhouette", shaders, *gpuScene, frame, HullSettings{});
+        lookFrom({0.9, 1.2, 3.0}, glm::dvec3(0.0), 40.0, 256, 256);
+        const LineRender rendered = render(pass);
+        ASSERT_GT(cv::countNonZero(rendered.coverage), 5000);
+        masks.push_back(rendered.lines.clone());
+    }
+    EXPECT_EQ(cv::norm(masks[0], masks[1], cv::NORM_INF), 0.0)
+        << cv::countNonZero(masks[1] != masks[0]) << " pixels differ";
+}
+
 TEST_F(SilhouetteSphere, EyeInsideLeavesAnEmptyMask) {
     SilhouettePass pass("silhouette", shaders, *gpuScene, frame, HullSettings{});
     lookFrom({0.2, 0.1, 0.3}, {0.0, 0.0, -1.0}, 60.0, 128, 128);
