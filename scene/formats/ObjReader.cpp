@@ -589,24 +589,17 @@ private:
     }
 
     /** mPolygonTriangles: the triangles of the polygon `corners` (scene/mesh/PolygonTriangulation.h), cut from the
-     *  corner of the lowest vertex index on. A polygon written again in reverse (the back of a double-faced card, as
-     *  `f 1 2 3 4` and `f 4 3 2 1`, or on a copy of its vertices) then starts from the same corner and is cut along
-     *  the same diagonals, into the back-to-back twins of the first's triangles that finalizeMesh() drops for a
-     *  two-sided material; cut from each one's first corner, their diagonals crossed and the smooth normals of the
-     *  pair pointed either way, shading the card in black wedges. */
+     *  corner of the lowest vertex index on (lowestCornerFirst(): a polygon written again in reverse, the back of a
+     *  double-faced card, is then fanned along the same diagonals, into twins finalizeMesh() drops for a two-sided
+     *  material; from each one's first corner, their diagonals crossed and the card was shaded in black wedges). */
     void triangulatePolygon(std::span<const Corner> corners) {
-        const std::size_t first =
-            std::size_t(std::min_element(corners.begin(), corners.end(),
-                                         [](const Corner& a, const Corner& b) { return a.position < b.position; }) -
-                        corners.begin());
+        const std::size_t first = lowestCornerFirst(corners, [](const Corner& corner) { return corner.position; });
         mPolygonPositions.clear();
         for (std::size_t i = 0; i < corners.size(); ++i) {
             mPolygonPositions.push_back(mPositions[corners[(first + i) % corners.size()].position]);
         }
         mTriangulator.triangulate(mPolygonPositions, mPolygonTriangles);
-        const auto rotated = [&](std::uint32_t i) { return std::uint32_t((first + i) % corners.size()); };
-        for (glm::uvec3& triangle : mPolygonTriangles)
-            triangle = glm::uvec3(rotated(triangle.x), rotated(triangle.y), rotated(triangle.z));
+        rotateTriangles(mPolygonTriangles, first, corners.size());
     }
 
     /** The polygons that named a vertex defined after them were fanned as they were read; cut them now. */

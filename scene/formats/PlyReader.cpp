@@ -363,13 +363,17 @@ struct Model {
      *  from their first triangle on, and cut properly once the positions are known. */
     std::vector<std::pair<std::size_t, std::vector<std::uint32_t>>> polygonsBeforeVertices;
 
-    /** `polygonTriangles`: the triangles of the polygon whose vertices are `corners`, as indices into `corners`. */
+    /** `polygonTriangles`: the triangles of the polygon whose vertices are `corners`, as indices into `corners`, cut
+     *  from the corner of the lowest vertex on, as OBJ's (lowestCornerFirst(): a double-faced card's two sides are
+     *  fanned along the same diagonals). */
     void triangulate(std::span<const std::uint32_t> corners, std::vector<glm::uvec3>& polygonTriangles) {
+        const std::size_t first = lowestCornerFirst(corners, [](std::uint32_t vertex) { return vertex; });
         polygonPositions.clear();
-        for (const std::uint32_t vertex : corners) {
-            polygonPositions.push_back(positions[vertex]);
+        for (std::size_t i = 0; i < corners.size(); ++i) {
+            polygonPositions.push_back(positions[corners[(first + i) % corners.size()]]);
         }
         triangulator.triangulate(polygonPositions, polygonTriangles);
+        rotateTriangles(polygonTriangles, first, corners.size());
     }
 
     void triangulatePolygonsBeforeVertices() {

@@ -221,4 +221,10 @@ PolygonShape PolygonTriangulator::clipEars(std::span<const glm::dvec3> corners, 
     return std::abs(area) <= noArea ? PolygonShape::Concave : PolygonShape::Unresolved;
 }
 
+void rotateTriangles(std::vector<glm::uvec3>& triangles, std::size_t first, std::size_t cornerCount) {
+    const auto rotated = [&](std::uint32_t i) { return std::uint32_t((first + i) % cornerCount); };
+    for (glm::uvec3& triangle : triangles)
+        triangle = glm::uvec3(rotated(triangle.x), rotated(triangle.y), rotated(triangle.z));
+}
+
 } // namespace inkgraph

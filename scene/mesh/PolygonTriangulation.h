@@ -7,8 +7,11 @@
  *
  *  The polygon is taken in its plane: the plane of its Newell normal (the sum of its edges' cross products, which
  *  holds for warped polygons too), the corners projected onto it, turning counter-clockwise about the normal. A
- *  convex polygon, and a flat one (no area: every triangulation is as good), keeps the fan from its first corner, so
- *  what every reader drew before stays as it was. Corners written twice in a row and the tips of spikes that go out
+ *  convex polygon, and a flat one (no area: every triangulation is as good), keeps the fan from its first corner.
+ *  The readers hand a polygon over from the corner of its lowest vertex index (lowestCornerFirst()), so a convex
+ *  polygon written again in reverse (the back of a double-faced card) is fanned from the same corner along the same
+ *  diagonals, into back-to-back twins of the first's triangles (scene/mesh/MeshOps.h); a concave one's ears may
+ *  differ. Corners written twice in a row and the tips of spikes that go out
  *  and come back along themselves enclose nothing: they are cut first, as triangles of no area. A polygon that crosses
  *  itself has no one right triangulation: a star that winds twice round is fanned, and one with no ear left, or whose
  *  last triangle turns the wrong way, is cut into ears as far as that goes and the rest fanned; each is counted, so
@@ -28,6 +31,19 @@
 namespace inkgraph {
 
 /** What a polygon turned out to be. */
+/** Where a polygon is handed to the triangulator from: the corner with the lowest vertex index (`vertexOf(corner)`),
+ *  whichever corner the file wrote first. */
+template <typename Corner, typename VertexOf>
+std::size_t lowestCornerFirst(std::span<const Corner> corners, VertexOf vertexOf) {
+    std::size_t first = 0;
+    for (std::size_t i = 1; i < corners.size(); ++i)
+        if (vertexOf(corners[i]) < vertexOf(corners[first])) first = i;
+    return first;
+}
+
+/** Triangles cut from a polygon's corners taken from `first` on, as indices into its corners in their own order. */
+void rotateTriangles(std::vector<glm::uvec3>& triangles, std::size_t first, std::size_t cornerCount);
+
 enum class PolygonShape {
     Convex,    ///< or flat, or a triangle: a fan from the first corner
     Concave,   ///< simple and concave: cut into ears

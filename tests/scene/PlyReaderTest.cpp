@@ -268,6 +268,28 @@ std::string concavePolygons(Encoding encoding, bool facesFirst) {
     return ply.text();
 }
 
+TEST(PlyReader, ADoubleFacedCardLoadsAsItsFirstSide) {
+    // A square and the same square in reverse: cut from its lowest vertex on, as OBJ's polygons, the reverse gives the
+    // first's triangles wound the other way, which the two-sided material drops (from its first corner, the two
+    // sheets' diagonals crossed and the card was shaded in black wedges).
+    for (const Encoding encoding : kEncodings) {
+        PlyWriter card(encoding);
+        card.header("element vertex 4").header("property float x").header("property float y");
+        card.header("property float z").header("element face 2").header("property list uchar int vertex_indices");
+        for (const glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
+            card.values("float", {corner.x, corner.y, 0.0}).row();
+        for (const auto& face : std::vector<std::vector<int>>{{0, 1, 2, 3}, {3, 2, 1, 0}}) {
+            card.value("uchar", 4);
+            for (const int index : face) card.value("int", index);
+            card.row();
+        }
+        const Scene scene = loadPly(card.text());
+        EXPECT_EQ(scene.triangleCount(), 2u) << formatName(encoding);
+        EXPECT_EQ(scene.report.backToBackDropped, 2u) << formatName(encoding);
+        for (const glm::vec3& normal : scene.meshes.at(0).normals) EXPECT_EQ(normal, glm::vec3(0, 0, 1));
+    }
+}
+
 TEST(PlyReader, AConcavePolygonIsCutInsideItsOutlineAndOneThatCrossesItselfWarns) {
     for (const Encoding encoding : kEncodings) {
         const Scene scene = loadPly(concavePolygons(encoding, false));
