@@ -223,6 +223,15 @@ TEST(GltfLoader, IntegersWrittenAsWholeNumbersAreTheIntegersAndOtherValuesAreRef
     const TempFile flag("flag.gltf", writer.gltf(body(std::to_string(indices), "0", "true")));
     const std::string flagMessage = test::sceneErrorMessage([&] { loadScene(flag.path()); });
     EXPECT_NE(flagMessage.find("scenes[0].nodes[0] is true, not an integer"), std::string::npos) << flagMessage;
+    // An index tinygltf's int cannot hold wrapped (4294967299 read as accessor 3), and -1 read as absent (a soup).
+    for (const std::string& index : {std::string("4294967299.0"), std::string("4294967299"), std::string("-1")}) {
+        const TempFile wide("wide.gltf", writer.gltf(body(index, "0", "0")));
+        const std::string wideMessage = test::sceneErrorMessage([&] { loadScene(wide.path()); });
+        EXPECT_NE(wideMessage.find("meshes[0].primitives[0].indices is " + index +
+                                   ", outside 0 to 2147483647, the indices glTF's reader can hold"),
+                  std::string::npos)
+            << wideMessage;
+    }
 }
 
 /** Meshes "a", "b", "c" (one triangle each, one node each), using the materials given as JSON (empty: none). */

@@ -479,6 +479,25 @@ TEST(GltfMaterials, SparsePositionsAreSubstituted) {
               (std::vector<glm::dvec3>{{0, 0, 0}, {0, 2, 0}, {1, 0, 0}}));
 }
 
+TEST(GltfMaterials, SparseValuesBetweenTheirComponentsAreRefused) {
+    // glTF's data alignment holds for the sparse part too: values 2 bytes into their view are refused by name.
+    RawGltf gltf;
+    const int base = gltf.view(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const int indices = gltf.view(std::vector<std::uint8_t>{2});
+    const int values = gltf.view(std::vector<float>{0, 2, 0, 0});
+    const int position = gltf.accessor(
+        "\"bufferView\": " + std::to_string(base) +
+        ", \"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\", \"sparse\": {\"count\": 1, \"indices\": "
+        "{\"bufferView\": " +
+        std::to_string(indices) + ", \"componentType\": 5121}, \"values\": {\"bufferView\": " + std::to_string(values) +
+        ", \"byteOffset\": 2}}");
+    const TempFile file("sparse.gltf", gltf.gltf(singlePrimitive("\"POSITION\": " + std::to_string(position))));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
+    EXPECT_NE(message.find("sparse values: byteOffset 2 is not a multiple of its component size (4 bytes)"),
+              std::string::npos)
+        << message;
+}
+
 TEST(GltfMaterials, SparseAccessorWithoutBufferViewStartsFromZeros) {
     RawGltf gltf;
     const int indices = gltf.view(std::vector<std::uint16_t>{1, 2});

@@ -119,23 +119,24 @@ const unsigned char* checkedWindow(const AccessorContext& context, int viewIndex
     return buffer.data() + view.byteOffset + byteOffset;
 }
 
-/** glTF 2.0 ("Data Alignment") requires an accessor's offset into its buffer view and into its buffer to be multiples
- *  of its component size (a stride that is not a multiple of 4 tinygltf refuses itself). A file that breaks it was
- * written wrong (three.js cannot even make its arrays): read as written, its numbers would be taken from across the
- * file's own, a model of garbage such as "3.22e-41 units across", so it is refused naming the offset. Called after
- * checkedWindow(), which checked the view. */
-void checkAlignment(const AccessorContext& context, const tinygltf::Accessor& accessor) {
-    const std::size_t component = componentBytes(accessor.componentType);
-    const tinygltf::BufferView& view = context.model.bufferViews[std::size_t(accessor.bufferView)];
+/** glTF 2.0 ("Data Alignment") requires the data of an accessor (and of its sparse indices and values) to start at a
+ *  multiple of its component size, in its buffer view and in its buffer (a stride that is not a multiple of 4
+ *  tinygltf refuses itself). A file that breaks it was written wrong, and readers that map the buffer as typed arrays
+ *  (three.js) cannot load it; read as written, such data was as often garbage (a model "3.22e-41 units across"), so
+ *  it is refused naming the offset. `what` names the part ("", "sparse indices: "); called after checkedWindow(),
+ *  which checked the view. */
+void checkAlignment(const AccessorContext& context, int viewIndex, std::size_t byteOffset, std::size_t component,
+                    const std::string& what) {
+    const tinygltf::BufferView& view = context.model.bufferViews[std::size_t(viewIndex)];
     const std::string sizeText = "a multiple of its component size (" + std::to_string(component) + " bytes)";
-    const std::string rule = ", as glTF requires; its values would be read from across the file's numbers";
-    if (accessor.byteOffset % component != 0) {
-        context.fail("byteOffset " + std::to_string(accessor.byteOffset) + " is not " + sizeText + rule);
+    const std::string rule = ", as glTF requires (readers that map buffers as typed arrays, three.js, refuse it too)";
+    if (byteOffset % component != 0) {
+        context.fail(what + "byteOffset " + std::to_string(byteOffset) + " is not " + sizeText + rule);
     }
-    if ((view.byteOffset + accessor.byteOffset) % component != 0) {
-        context.fail("starts at byte " + std::to_string(view.byteOffset + accessor.byteOffset) +
-                     " of its buffer (buffer view " + std::to_string(accessor.bufferView) + "'s byteOffset " +
-                     std::to_string(view.byteOffset) + " plus its own " + std::to_string(accessor.byteOffset) +
+    if ((view.byteOffset + byteOffset) % component != 0) {
+        context.fail(what + "starts at byte " + std::to_string(view.byteOffset + byteOffset) +
+                     " of its buffer (buffer view " + std::to_string(viewIndex) + "'s byteOffset " +
+                     std::to_string(view.byteOffset) + " plus its own " + std::to_string(byteOffset) +
                      "), which is not " + sizeText + rule);
     }
 }
@@ -161,7 +162,7 @@ BaseWindow baseWindow(const AccessorContext& context, const tinygltf::Accessor& 
     }
     const unsigned char* first =
         checkedWindow(context, accessor.bufferView, accessor.byteOffset, accessor.count, elementBytes, stride, "");
-    checkAlignment(context, accessor);
+    checkAlignment(context, accessor.bufferView, accessor.byteOffset, componentBytes(accessor.componentType), "");
     return {first, stride};
 }
 
@@ -256,9 +257,13 @@ std::vector<Value> readComponents(const AccessorContext& context, const tinygltf
     const unsigned char* indices =
         checkedWindow(context, sparse.indices.bufferView, std::size_t(sparse.indices.byteOffset), substitutions,
                       indexBytes, indexBytes, "sparse indices: ");
+    checkAlignment(context, sparse.indices.bufferView, std::size_t(sparse.indices.byteOffset), indexBytes,
+                   "sparse indices: ");
     const unsigned char* substituted =
         checkedWindow(context, sparse.values.bufferView, std::size_t(sparse.values.byteOffset), substitutions,
                       elementBytes, elementBytes, "sparse values: ");
+    checkAlignment(context, sparse.values.bufferView, std::size_t(sparse.values.byteOffset), perComponent,
+                   "sparse values: ");
     std::size_t previous = 0;
     for (std::size_t s = 0; s < substitutions; ++s) {
         const std::size_t target = unsignedValue(indices + s * indexBytes, indexType);

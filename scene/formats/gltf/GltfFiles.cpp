@@ -182,6 +182,9 @@ constexpr std::array<std::string_view, 29> kIntegerMembers = {
     "node",          "output",     "sampler",    "scene",      "skeleton",   "skin",
     "source",        "target",     "texCoord",   "wrapS",      "wrapT"};
 constexpr std::array<std::string_view, 3> kIntegerArrays = {"children", "joints", "nodes"};
+/** Of them, the sizes (64 bits in tinygltf); the rest are indices and enums, which tinygltf keeps in an int and would
+ *  wrap (4294967299 read as 3). */
+constexpr std::array<std::string_view, 4> kSizeMembers = {"byteLength", "byteOffset", "byteStride", "count"};
 
 /** What `value` becomes where glTF wants an integer: itself when it is one, the integer when it is a number with a
  *  zero fraction (3.0, which JSON Schema counts as an integer and numpy-based writers write), none otherwise. */
@@ -200,10 +203,17 @@ std::optional<nlohmann::json> asInteger(const nlohmann::json& value) {
  *  where it is, for the same reason; an extension's reader judges its own values, and extras are left as written.
  *  `where` is the value's place ("meshes[0].primitives[0]"). Returns whether anything changed. */
 bool integersAsWritten(const std::string& path, nlohmann::json& value, const std::string& where, bool core) {
-    const auto integer = [&](nlohmann::json& member, const std::string& at) {
+    const auto integer = [&](nlohmann::json& member, const std::string& at, bool size) {
         if (member.is_object() || member.is_array()) return integersAsWritten(path, member, at, core);
         const std::optional<nlohmann::json> whole = asInteger(member);
         if (whole) {
+            // Every glTF integer is 0 or more (tinygltf takes -1 for absent: "indices": -1 drew a soup of vertices).
+            const double limit = size ? 9007199254740992.0 : 2147483647.0;
+            const double number = whole->get<double>();
+            if (core && (number < 0.0 || number > limit)) {
+                throwLoadError(path, at + " is " + member.dump() + ", outside 0 to " + formatNumber(limit) +
+                                         (size ? "" : ", the indices glTF's reader can hold"));
+            }
             const bool changed = !member.is_number_integer();
             member = *whole;
             return changed;
@@ -232,12 +242,12 @@ bool integersAsWritten(const std::string& path, nlohmann::json& value, const std
         if (key == "extensions") {
             changed |= integersAsWritten(path, member, at, false);
         } else if (key == "attributes" && member.is_object()) {
-            for (auto& [name, attribute] : member.items()) changed |= integer(attribute, at + "." + name);
+            for (auto& [name, attribute] : member.items()) changed |= integer(attribute, at + "." + name, false);
         } else if (key == "targets" && member.is_array()) {
             for (std::size_t t = 0; t < member.size(); ++t) {
                 if (!member[t].is_object()) continue;
                 for (auto& [name, attribute] : member[t].items())
-                    changed |= integer(attribute, at + "[" + std::to_string(t) + "]." + name);
+                    changed |= integer(attribute, at + "[" + std::to_string(t) + "]." + name, false);
             }
         } else if (std::ranges::find(kIntegerArrays, key) != kIntegerArrays.end() && member.is_array()) {
             for (std::size_t i = 0; i < member.size(); ++i) {
@@ -245,10 +255,10 @@ bool integersAsWritten(const std::string& path, nlohmann::json& value, const std
                 const std::string elementAt = at + "[" + std::to_string(i) + "]";
                 // The top-level "nodes" holds node objects; a scene's holds indices.
                 changed |= element.is_object() ? integersAsWritten(path, element, elementAt, core)
-                                               : integer(element, elementAt);
+                                               : integer(element, elementAt, false);
             }
         } else if (std::ranges::find(kIntegerMembers, key) != kIntegerMembers.end()) {
-            changed |= integer(member, at);
+            changed |= integer(member, at, std::ranges::find(kSizeMembers, key) != kSizeMembers.end());
         } else {
             changed |= integersAsWritten(path, member, at, core);
         }
