@@ -534,6 +534,17 @@ TEST(GltfLoader, AFileOfNoTrianglesSaysWhatTheLoadWarned) {
     EXPECT_NE(message.find("no triangles in the file; what the load said: 'shape': primitive without POSITION skipped"),
               std::string::npos)
         << message;
+    // Beside a primitive of lines: both said (the lines alone were "all 1 primitives are non-triangle").
+    const TempFile mixed("mixed.gltf",
+                         writer.gltf(singleNode("{\"attributes\": {\"position\": " + std::to_string(positions) +
+                                                "}}, {\"attributes\": "
+                                                "{\"POSITION\": " +
+                                                std::to_string(positions) + "}, \"mode\": 1}")));
+    const std::string mixedMessage = test::sceneErrorMessage([&] { loadScene(mixed.path()); });
+    EXPECT_NE(mixedMessage.find("what the load said: 'shape primitive 0': primitive without POSITION skipped; 'shape "
+                                "primitive 1': non-triangle primitive (mode 1, LINES) skipped"),
+              std::string::npos)
+        << mixedMessage;
 }
 
 TEST(GltfLoader, IndexOutOfRangeIsAnError) {

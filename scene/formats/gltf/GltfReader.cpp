@@ -181,10 +181,8 @@ public:
         for (const int index : visitOrder) {
             visit(index, mModel.nodes[std::size_t(index)], *mWorlds[std::size_t(index)]);
         }
-        if (mOut.meshes.empty() && mSkippedPrimitives > 0) {
-            throwLoadError(mPath, "no triangles: all " + std::to_string(mSkippedPrimitives) +
-                                      " primitives are non-triangle (points or lines)");
-        }
+        // Said with the warnings of every primitive left out (points, lines, no POSITION), which say why.
+        if (mOut.meshes.empty() && mSkippedPrimitives > 0) throwLoadError(mPath, noTrianglesInTheFile(mOut.warnings));
         checkPlacementPrecision();
         collectJoints(visitOrder);
     }
