@@ -86,16 +86,8 @@ const std::vector<glm::uvec3>* SceneDerivedData::hullTriangles(std::size_t meshI
                                        weld.outputOf[mesh.triangles[t].z]);
             const std::vector<std::uint32_t> twins = backToBackTwins(welded);
             if (twins.empty()) continue;
-            std::vector<glm::uvec3> kept;
-            kept.reserve(mesh.triangles.size() - twins.size());
-            std::size_t next = 0;
-            for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-                if (next < twins.size() && twins[next] == t) {
-                    ++next;
-                    continue;
-                }
-                kept.push_back(mesh.triangles[t]);
-            }
+            std::vector<glm::uvec3> kept = mesh.triangles;
+            removeTriangles(kept, twins);
             perMesh[index] = std::move(kept);
         }
         return perMesh;

@@ -20,21 +20,6 @@ namespace {
 
 constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
 
-/** Removes the triangles at `ascending` (indices into `triangles`), keeping the others in order. */
-void removeTriangles(std::vector<glm::uvec3>& triangles, std::span<const std::uint32_t> ascending) {
-    if (ascending.empty()) return;
-    std::size_t kept = 0;
-    std::size_t next = 0;
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-        if (next < ascending.size() && ascending[next] == t) {
-            ++next;
-            continue;
-        }
-        triangles[kept++] = triangles[t];
-    }
-    triangles.resize(kept);
-}
-
 /** Two unit normals closer than this (chord length, ~0.06 degrees) count as the same normal when welding:
  *  loose enough for text round-off, far tighter than any intended hard edge. */
 constexpr double kNormalMatchDistance = 1e-3;
@@ -320,6 +305,20 @@ std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions
     for (std::size_t vertex = 0; vertex < positions.size(); ++vertex)
         if (fallback[vertex] == 1) normals[vertex] = glm::vec3(0.0f, 0.0f, 1.0f);
     return normals;
+}
+
+void removeTriangles(std::vector<glm::uvec3>& triangles, std::span<const std::uint32_t> ascending) {
+    if (ascending.empty()) return;
+    std::size_t kept = 0;
+    std::size_t next = 0;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        if (next < ascending.size() && ascending[next] == t) {
+            ++next;
+            continue;
+        }
+        triangles[kept++] = triangles[t];
+    }
+    triangles.resize(kept);
 }
 
 std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles) {

@@ -93,6 +93,10 @@ std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::v
  *  on welded vertices, so copies of a corner count as one where the weld merged them. */
 std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles);
 
+/** Removes the triangles at `ascending` (indices into `triangles`, as backToBackTwins() gives them), keeping the
+ *  others in order. */
+void removeTriangles(std::vector<glm::uvec3>& triangles, std::span<const std::uint32_t> ascending);
+
 /** A mesh as a loader reads it: world-space, not welded, normals optional (empty or one per position). */
 struct RawMesh {
     std::string name;

@@ -199,8 +199,9 @@ std::optional<nlohmann::json> asInteger(const nlohmann::json& value) {
 
 /** Writes glTF's integers given as whole numbers (3.0) as integers; tinygltf reads only an integer token there and
  *  takes 3.0 for an absent member (a primitive's indices dropped: a triangle soup; its material dropped: grey).
- *  Outside extensions and extras, a value there that is not a whole number (3.5, "3", true, null) is refused naming
- *  where it is, for the same reason; an extension's reader judges its own values, and extras are left as written.
+ *  Outside extensions and extras, a value there that is not a whole number from 0 up (3.5, "3", true, -1; null is
+ *  taken as absent, as tinygltf takes it), or an index beyond an int, is refused naming where it is, for the same
+ *  reason; an extension's reader judges its own values, and extras are left as written.
  *  `where` is the value's place ("meshes[0].primitives[0]"). Returns whether anything changed. */
 bool integersAsWritten(const std::string& path, nlohmann::json& value, const std::string& where, bool core) {
     const auto integer = [&](nlohmann::json& member, const std::string& at, bool size) {
