@@ -202,7 +202,8 @@ void GlPassContext::outputPicture(std::string_view field, cv::Mat picture) {
     if (!planned.object.hasPicture)
         throw std::logic_error("GlPassContext::outputPicture(): '" + planned.name + "' declares no picture");
     if (picture.type() != cvTypeOf(planned.object.pictureFormat) ||
-        picture.size() != cv::Size(mFrameWidth * planned.object.scale, mFrameHeight * planned.object.scale))
+        picture.size() != cv::Size(scaledSide(mFrameWidth, planned.object.scale, planned.object.divisor),
+                                   scaledSide(mFrameHeight, planned.object.scale, planned.object.divisor)))
         throw std::logic_error("GlPassContext::outputPicture(): '" + planned.name +
                                "' picture is not of its declared format and size");
     mStore.setPicture(planned.name, planned.object.pictureFormat, std::move(picture));
@@ -219,8 +220,14 @@ void GlPassContext::requireObjectRead(std::string_view resource) const {
                                "' before its writer wrote it");
 }
 
-int GlPassContext::widthOf(std::string_view field) const { return mFrameWidth * liveOutput(field).desc.scale; }
-int GlPassContext::heightOf(std::string_view field) const { return mFrameHeight * liveOutput(field).desc.scale; }
+int GlPassContext::widthOf(std::string_view field) const {
+    const TextureDesc& desc = liveOutput(field).desc;
+    return scaledSide(mFrameWidth, desc.scale, desc.divisor);
+}
+int GlPassContext::heightOf(std::string_view field) const {
+    const TextureDesc& desc = liveOutput(field).desc;
+    return scaledSide(mFrameHeight, desc.scale, desc.divisor);
+}
 
 const PlannedResource& GlPassContext::readOrLiveWrite(std::string_view resource, const char* function) const {
     const bool declaredRead = std::find(mPlanned.reads.begin(), mPlanned.reads.end(), resource) != mPlanned.reads.end();
@@ -237,14 +244,18 @@ int GlPassContext::scaleOf(std::string_view resource) const {
     return readOrLiveWrite(resource, "GlPassContext::scaleOf()").desc.scale;
 }
 
+int GlPassContext::divisorOf(std::string_view resource) const {
+    return readOrLiveWrite(resource, "GlPassContext::divisorOf()").desc.divisor;
+}
+
 int GlPassContext::samplesOf(std::string_view resource) const {
     return readOrLiveWrite(resource, "GlPassContext::samplesOf()").desc.samples;
 }
 
 GlTexture& GlPassContext::outputTexture(std::string_view field) {
     const PlannedResource& planned = liveOutput(field);
-    return mStore.writeTexture(planned.name, planned.desc.format, mFrameWidth * planned.desc.scale,
-                               mFrameHeight * planned.desc.scale, planned.desc.samples);
+    return mStore.writeTexture(planned.name, planned.desc.format, widthOf(field), heightOf(field),
+                               planned.desc.samples);
 }
 
 void GlPassContext::limitReadback(std::string_view field, PixelRect region) {
@@ -260,8 +271,7 @@ cv::Mat& GlPassContext::outputImage(std::string_view field) {
     if (planned.desc.samples != 1)
         throw std::logic_error("GlPassContext::outputImage(): '" + planned.name + "' is multisampled (" +
                                std::to_string(planned.desc.samples) + " samples); only GL draws it");
-    return mStore.writeImage(planned.name, planned.desc.format, mFrameWidth * planned.desc.scale,
-                             mFrameHeight * planned.desc.scale);
+    return mStore.writeImage(planned.name, planned.desc.format, widthOf(field), heightOf(field));
 }
 
 void GlPassContext::requireDeclaredRead(std::string_view resource) const {

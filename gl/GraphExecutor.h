@@ -129,13 +129,16 @@ public:
     int width() const { return mFrameWidth; }
     int height() const { return mFrameHeight; }
 
-    /** Size of one of this pass's live fields (frame size x its scale). */
+    /** Size of one of this pass's live fields (frame size x its scale / its divisor: scaledSide()). */
     int widthOf(std::string_view field) const;
     int heightOf(std::string_view field) const;
     /** The planned scale (TextureDesc::scale) of a declared read (full name, "gbuffer.depth") or of this pass's own
      *  live output (full name, "mesh-edges.crease"), so a reader need not be told how large its inputs are. Throws
      *  std::logic_error for any other resource. */
     int scaleOf(std::string_view resource) const;
+    /** The planned divisor (TextureDesc::divisor) of the same resources as scaleOf(): a field sampled coarser than
+     *  the frame. */
+    int divisorOf(std::string_view resource) const;
     /** The planned sample count (TextureDesc::samples) of a declared read or of this pass's own live output, as
      *  scaleOf(): a reader of a multisampled texture reads it per sample. */
     int samplesOf(std::string_view resource) const;

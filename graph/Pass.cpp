@@ -15,7 +15,7 @@ void PassBuilder::readObject(std::string_view resource, std::string_view type) {
 
 void PassBuilder::writeObject(std::string_view field, const ObjectDesc& desc, Need need, Presentation presentation) {
     mWrites.push_back({std::string(field),
-                       {desc.pictureFormat, desc.scale},
+                       {desc.pictureFormat, desc.scale, 1, desc.divisor},
                        need,
                        std::move(presentation),
                        ResourceKind::Object,

@@ -42,8 +42,9 @@ public:
     /** Working memory a pass holds while it executes and frees before it returns (Falcor's internal resources): not a
      *  resource, but the memory budget sums it over the plan. */
     struct Scratch {
-        std::size_t bytesPerPixel = 0; ///< per pixel of the frame at `scale`
+        std::size_t bytesPerPixel = 0; ///< per pixel of the frame at `scale` / `divisor`
         int scale = 1;
+        int divisor = 1;
     };
 
     /** `compileData`: what the compiler knows of the plan when it asks a second time (CompileData). */
@@ -65,7 +66,9 @@ public:
      *  (ExecuteOptions::importData), so no pass derives shared data itself. */
     void import(std::string_view name) { mImports.emplace_back(name); }
     /** Declares working memory (summed per pass). */
-    void scratch(std::size_t bytesPerPixel, int scale = 1) { mScratch.push_back({bytesPerPixel, scale}); }
+    void scratch(std::size_t bytesPerPixel, int scale = 1, int divisor = 1) {
+        mScratch.push_back({bytesPerPixel, scale, divisor});
+    }
     /** Never culled. Use sparingly (nothing in the core pipeline needs it). */
     void markSideEffect() { mSideEffect = true; }
     /** Declares that execute() needs no GPU context: it reads its textures as CPU images and writes only images and

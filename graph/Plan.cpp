@@ -6,10 +6,18 @@
 namespace inkgraph {
 namespace {
 
-/** "rgba32f", "rgba32f x2" for supersampled buffers, "rgba8 msaa4" for multisampled ones. */
+/** " x2" for a supersampled resource, " /2" for one at half the frame's sides, " x3/2" for both; empty at the frame. */
+std::string describeScale(int scale, int divisor) {
+    std::string text;
+    if (scale != 1) text += " x" + std::to_string(scale);
+    if (divisor != 1) text += (scale != 1 ? "/" : " /") + std::to_string(divisor);
+    return text;
+}
+
+/** "rgba32f", "rgba32f x2" for supersampled buffers, "r32f /2" for coarser ones, "rgba8 msaa4" for multisampled. */
 std::string describeDesc(const TextureDesc& desc) {
     std::string text(formatName(desc.format));
-    if (desc.scale != 1) text += " x" + std::to_string(desc.scale);
+    text += describeScale(desc.scale, desc.divisor);
     if (desc.samples != 1) text += " msaa" + std::to_string(desc.samples);
     return text;
 }
@@ -18,7 +26,7 @@ std::string describeDesc(const TextureDesc& desc) {
 std::string describeDesc(const PlannedResource& resource) {
     if (resource.kind == ResourceKind::Texture) return describeDesc(resource.desc);
     std::string text = resource.object.type;
-    if (resource.object.scale != 1) text += " x" + std::to_string(resource.object.scale);
+    text += describeScale(resource.object.scale, resource.object.divisor);
     return text;
 }
 

@@ -1,6 +1,8 @@
 #include "graph/Resource.h"
 
 #include <cassert>
+#include <stdexcept>
+#include <string>
 
 namespace inkgraph {
 
@@ -30,6 +32,17 @@ std::string_view formatName(Format format) {
     }
     assert(false && "formatName(): unknown Format");
     return "unknown";
+}
+
+int scaledSide(int frameSide, int scale, int divisor) {
+    if (scale < 1 || divisor < 1)
+        throw std::invalid_argument("scaledSide(): 'scale' and 'divisor' must be at least 1, got " +
+                                    std::to_string(scale) + " and " + std::to_string(divisor));
+    const long long side = static_cast<long long>(frameSide) * scale;
+    if (side % divisor != 0)
+        throw std::invalid_argument("scaledSide(): a side of " + std::to_string(side) + " pixels is not a whole " +
+                                    "multiple of the divisor " + std::to_string(divisor));
+    return static_cast<int>(side / divisor);
 }
 
 bool isFloatFormat(Format format) {

@@ -24,15 +24,22 @@ std::string_view formatName(Format format);
 /** True for the float formats (32- and 16-bit): their images are float32 on the CPU and dump as EXR. */
 bool isFloatFormat(Format format);
 
-/** Every graph texture is frame-sized, scaled by `scale` (supersampling renders data buffers larger). `samples` above
- *  1 makes it multisampled (--msaa): each pixel holds that many samples, which a reader takes one by one (GLSL's
+/** Every graph texture is frame-sized, scaled by `scale` (supersampling renders data buffers larger) over `divisor` (a
+ *  field sampled coarser than the picture: the suggestive contours' G-buffer, about 1024 rows at every size). `samples`
+ *  above 1 makes it multisampled (--msaa): each pixel holds that many samples, which a reader takes one by one (GLSL's
  *  sampler2DMS) and a read-back resolves to one value per pixel. */
 struct TextureDesc {
     Format format = Format::RGBA32F;
     int scale = 1;
     int samples = 1;
+    int divisor = 1; ///< the frame's sides times `scale` must be whole multiples of it (scaledSide())
     bool operator==(const TextureDesc&) const = default;
 };
+
+/** A side of a resource at `scale` / `divisor` of a frame side of `frameSide` pixels. Throws std::invalid_argument
+ *  when `scale` or `divisor` is under 1 or `divisor` does not divide frameSide x scale (a pass that samples coarser
+ *  chooses a divisor of the frame: its pixels must cover the frame's exactly). */
+int scaledSide(int frameSide, int scale, int divisor);
 
 /** What a resource holds: a frame-sized texture (its pixels on the GPU, the CPU or both), or a typed CPU object (a
  *  line skeleton with sub-pixel points, the strokes, scene-derived data) that only its writer's and readers' backend
@@ -45,7 +52,8 @@ enum class ResourceKind { Texture, Object };
 struct ObjectDesc {
     std::string type;              ///< "line-skeleton": the reader's readObject() must name the same
     std::size_t bytesPerPixel = 0; ///< its size at most, per pixel at `scale` (0: charged elsewhere, e.g. the scene)
-    int scale = 1;                 ///< the resolution it was made at (a skeleton: the data resolution)
+    int scale = 1;                 ///< the resolution it was made at (a skeleton: the data resolution) ...
+    int divisor = 1;               ///< ... over this (a skeleton found on a coarser field: TextureDesc::divisor)
     bool hasPicture = false;       ///< it has a picture, of `pictureFormat` at `scale` (GlPassContext::outputPicture())
     Format pictureFormat = Format::R8;
     bool operator==(const ObjectDesc&) const = default;

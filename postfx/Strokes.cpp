@@ -136,6 +136,8 @@ void checkInputs(const std::vector<StrokeLayer>& layers, const StrokeSettings& s
             throw std::invalid_argument(name + " 'minLengthPixels' must be finite and >= 0");
         if (!(layer.seedStrength >= 0.0f && layer.seedStrength <= 1.0f))
             throw std::invalid_argument(name + " 'seedStrength' must lie in [0, 1]");
+        if (!std::isfinite(layer.joinAllowancePixels) || layer.joinAllowancePixels < 0.0)
+            throw std::invalid_argument(name + " 'joinAllowancePixels' must be finite and >= 0");
     }
     auto checkLength = [](double value, const char* field) {
         if (!std::isfinite(value) || value < 0.0)
@@ -195,10 +197,15 @@ std::vector<End> endsOf(const std::vector<Branch>& branches, double reach) {
 }
 
 /** Step 2 of the file comment: pairs ends that continue one another, the best candidates first. */
-void joinEnds(std::vector<End>& ends, const std::vector<Branch>& branches, const StrokeSettings& settings) {
-    const double radius = settings.joinRadiusPixels;
+void joinEnds(std::vector<End>& ends, const std::vector<Branch>& branches, const std::vector<StrokeLayer>& layers,
+              const StrokeSettings& settings) {
+    const auto allowanceOf = [&](const End& end) {
+        return layers[std::size_t(branches[end.branch].layer)].joinAllowancePixels;
+    };
+    double widestAllowance = 0.0;
+    for (const StrokeLayer& layer : layers) widestAllowance = std::max(widestAllowance, layer.joinAllowancePixels);
     const double maxTurn = settings.joinAngleDegrees * kDegrees;
-    const double cell = std::max(radius, 1.0);
+    const double cell = std::max(settings.joinRadiusPixels + 2.0 * widestAllowance, 1.0);
     auto key = [&](const cv::Point2d& p) {
         return (std::int64_t(std::floor(p.x / cell)) << 32) ^ (std::int64_t(std::floor(p.y / cell)) & 0xffffffff);
     };
@@ -221,6 +228,7 @@ void joinEnds(std::vector<End>& ends, const std::vector<Branch>& branches, const
                 for (const int other : found->second) {
                     if (other <= int(index)) continue;
                     const End& b = ends[std::size_t(other)];
+                    const double radius = settings.joinRadiusPixels + allowanceOf(a) + allowanceOf(b);
                     const cv::Point2d gap = b.position - a.position;
                     const double distance = cv::norm(gap);
                     if (distance > radius) continue;
@@ -391,7 +399,7 @@ Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSetting
     Strokes result;
     const std::vector<Branch> branches = traceBranches(layers);
     std::vector<End> ends = endsOf(branches, settings.directionPixels);
-    joinEnds(ends, branches, settings);
+    joinEnds(ends, branches, layers, settings);
 
     for (const auto& [steps, closed] : pathsOf(ends, branches)) {
         const std::size_t chainIndex = result.chains.size();
@@ -487,14 +495,27 @@ Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSetting
     return result;
 }
 
-double strokeSpanBiasPixels(double heightPixels) {
+double strokeSpanBiasPixels(double heightPixels) { return strokeSpanBiasPixels(heightPixels, 1.0); }
+
+double strokeSpanBiasPixels(double heightPixels, double samplePixels) {
     if (!std::isfinite(heightPixels) || heightPixels <= 0.0)
         throw std::invalid_argument("strokeSpanBiasPixels(): 'heightPixels' must be finite and > 0, got " +
                                     std::to_string(heightPixels));
-    return std::max(0.0, heightPixels / kLengthReferenceRows - 1.0);
+    if (!std::isfinite(samplePixels) || samplePixels <= 0.0)
+        throw std::invalid_argument("strokeSpanBiasPixels(): 'samplePixels' must be finite and > 0, got " +
+                                    std::to_string(samplePixels));
+    return std::max(0.0, heightPixels / kLengthReferenceRows - samplePixels);
+}
+
+double strokeJoinAllowancePixels(double heightPixels, double samplePixels) {
+    return 0.5 * (strokeSpanBiasPixels(heightPixels) - strokeSpanBiasPixels(heightPixels, samplePixels));
 }
 
 double strokeLengthLimitPixels(double share, double heightPixels) {
+    return strokeLengthLimitPixels(share, heightPixels, 1.0);
+}
+
+double strokeLengthLimitPixels(double share, double heightPixels, double samplePixels) {
     if (!std::isfinite(share) || share < 0.0)
         throw std::invalid_argument("strokeLengthLimitPixels(): 'share' must be finite and >= 0, got " +
                                     std::to_string(share));
@@ -502,7 +523,7 @@ double strokeLengthLimitPixels(double share, double heightPixels) {
         throw std::invalid_argument("strokeLengthLimitPixels(): 'heightPixels' must be finite and > 0, got " +
                                     std::to_string(heightPixels));
     if (share == 0.0) return 0.0;
-    return share * heightPixels + strokeSpanBiasPixels(heightPixels);
+    return share * heightPixels + strokeSpanBiasPixels(heightPixels, samplePixels);
 }
 
 StrokeSettings strokeSettingsFor(double outputRows, int supersample) {

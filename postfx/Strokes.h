@@ -44,6 +44,9 @@ struct StrokeLayer {
     int scale = 1;                          ///< data pixels per pixel of this skeleton (>= 1)
     double minLengthPixels = 0.0;           ///< data pixels: a chain shorter than this is not drawn
     float seedStrength = 0.0f;              ///< a chain needs a point of this layer this strong; 0: every point seeds
+    /** Data pixels each end of this layer adds to the join radius: a layer sampled coarser than the data has its end
+     *  samples further inside its lines (strokeJoinAllowancePixels()). */
+    double joinAllowancePixels = 0.0;
 };
 
 /** How ends are joined; lengths in data pixels. */
@@ -104,12 +107,23 @@ inline constexpr double kLengthReferenceRows = 1024.0;
  *  picture keeps its rules as they were. Throws std::invalid_argument naming 'heightPixels' unless it is finite and
  *  > 0. */
 double strokeSpanBiasPixels(double heightPixels);
+/** The same for a line sampled once every `samplePixels` pixels of a picture `heightPixels` high (a skeleton found on
+ *  a field coarser than the picture, StrokeLayer::scale): height / 1024 - samplePixels, at least 0. A line sampled at
+ *  1024 rows and drawn at 2048 has its samples two pixels apart and needs no bias. Throws std::invalid_argument naming
+ *  the argument unless both are finite and > 0. */
+double strokeSpanBiasPixels(double heightPixels, double samplePixels);
 
 /** The span a chain needs (StrokeLayer::minLengthPixels) for a rule of `share` x the height, in pixels of a picture
  *  `heightPixels` high: share x height + strokeSpanBiasPixels(height), so one line on the picture passes or fails at
  *  every size alike. 0 for a share of 0, which keeps every chain. Throws std::invalid_argument naming the argument
  *  unless `share` is finite and >= 0 and `heightPixels` finite and > 0. */
 double strokeLengthLimitPixels(double share, double heightPixels);
+/** The same for a layer sampled once every `samplePixels` pixels (strokeSpanBiasPixels(height, samplePixels)). */
+double strokeLengthLimitPixels(double share, double heightPixels, double samplePixels);
+/** What each end of a layer sampled once every `samplePixels` pixels of a picture `heightPixels` high adds to the join
+ *  radius of strokeSettingsFor(), which counts ends sampled once a pixel: half the difference of the two biases
+ *  (strokeSpanBiasPixels()), since each end's sample lies half a sample step inside its line. 0 for samplePixels 1. */
+double strokeJoinAllowancePixels(double heightPixels, double samplePixels);
 
 /** How far ends may be apart and still continue one another, in output pixels of a 1024-row picture; scaled with the
  *  height (never under 2 pixels, a diagonal step and a half). */

@@ -74,30 +74,36 @@ public:
         for (const PlannedResource& resource : plan.resources) mResources[resource.name] = &resource;
     }
 
-    std::size_t pixels(int scale) const {
-        return std::size_t(mWidth) * std::size_t(scale) * std::size_t(mHeight) * std::size_t(scale);
+    /** Pixels of a resource at `scale` / `divisor` of the frame (a side rounded up: an estimate never refuses a
+     *  divisor that does not divide; the executor does, scaledSide()). */
+    std::size_t pixels(int scale, int divisor = 1) const {
+        return sideOf(mWidth, scale, divisor) * sideOf(mHeight, scale, divisor);
     }
-    std::size_t paddedPixels(int scale) const {
-        return paddedTextureSide(std::size_t(mWidth) * std::size_t(scale)) *
-               paddedTextureSide(std::size_t(mHeight) * std::size_t(scale));
+    std::size_t paddedPixels(int scale, int divisor = 1) const {
+        return paddedTextureSide(sideOf(mWidth, scale, divisor)) * paddedTextureSide(sideOf(mHeight, scale, divisor));
     }
     std::size_t textureBytes(const PlannedResource& resource) const {
-        return paddedPixels(resource.desc.scale) * std::size_t(bytesPerPixel(resource.desc.format)) *
-               std::size_t(resource.desc.samples);
+        return paddedPixels(resource.desc.scale, resource.desc.divisor) *
+               std::size_t(bytesPerPixel(resource.desc.format)) * std::size_t(resource.desc.samples);
     }
     /** A texture's CPU image; an object's own bytes as its writer declares them, and its picture. */
     std::size_t imageBytes(const PlannedResource& resource) const {
         if (resource.kind == ResourceKind::Object)
-            return pixels(resource.object.scale) *
+            return pixels(resource.object.scale, resource.object.divisor) *
                    (resource.object.bytesPerPixel +
                     (resource.object.hasPicture ? cpuBytesPerPixel(resource.object.pictureFormat) : 0));
-        return pixels(resource.desc.scale) * cpuBytesPerPixel(resource.desc.format);
+        return pixels(resource.desc.scale, resource.desc.divisor) * cpuBytesPerPixel(resource.desc.format);
     }
     /** The working memory `pass` declared (PassBuilder::scratch()). */
     std::size_t scratchBytes(const PlannedPass& pass) const {
         std::size_t bytes = 0;
-        for (const PassBuilder::Scratch& scratch : pass.scratch) bytes += scratch.bytesPerPixel * pixels(scratch.scale);
+        for (const PassBuilder::Scratch& scratch : pass.scratch)
+            bytes += scratch.bytesPerPixel * pixels(scratch.scale, scratch.divisor);
         return bytes;
+    }
+    static std::size_t sideOf(int frameSide, int scale, int divisor) {
+        const std::size_t over = std::size_t(std::max(divisor, 1));
+        return (std::size_t(frameSide) * std::size_t(scale) + over - 1) / over;
     }
     const PlannedResource* resource(const std::string& name) const {
         auto found = mResources.find(name);
@@ -253,10 +259,10 @@ void budgetStill(PreparedStill& still) {
     // One texture of 2 GiB or more fails deep inside the driver (GL's byte counts are 32-bit); the message names
     // every flag that makes the buffer that large (--size, and --supersample for the supersampled ones).
     for (const PlannedResource& resource : still.plan.resources) {
-        const std::size_t textureBytes = paddedTextureSide(std::size_t(width) * resource.desc.scale) *
-                                         paddedTextureSide(std::size_t(height) * resource.desc.scale) *
-                                         std::size_t(bytesPerPixel(resource.desc.format)) *
-                                         std::size_t(resource.desc.samples);
+        const std::size_t textureBytes =
+            paddedTextureSide(PlanSizes::sideOf(width, resource.desc.scale, resource.desc.divisor)) *
+            paddedTextureSide(PlanSizes::sideOf(height, resource.desc.scale, resource.desc.divisor)) *
+            std::size_t(bytesPerPixel(resource.desc.format)) * std::size_t(resource.desc.samples);
         if (textureBytes < kMaxTextureBytes) continue;
         const std::string size = "--size " + sizeText(std::size_t(width), std::size_t(height));
         const std::string cause =

@@ -66,12 +66,14 @@ const std::vector<GBufferPass::Field>& GBufferPass::fields() {
 }
 
 GBufferPass::GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-                         int supersample, GBufferPrecision precision)
+                         int supersample, GBufferPrecision precision, int divisor)
     : mName(std::move(name)), mShaders(shaders), mScene(scene), mFrame(frame), mSupersample(supersample),
-      mPrecision(precision), mDepth(mName + " depth test") {
+      mPrecision(precision), mDivisor(divisor), mDepth(mName + " depth test") {
     if (supersample < 1)
         throw std::invalid_argument("GBufferPass(): 'supersample' must be at least 1, got " +
                                     std::to_string(supersample));
+    if (divisor < 1)
+        throw std::invalid_argument("GBufferPass(): 'divisor' must be at least 1, got " + std::to_string(divisor));
 }
 
 Format GBufferPass::formatOf(const Field& field) const {
@@ -89,12 +91,17 @@ Format GBufferPass::formatOf(const Field& field) const {
 void GBufferPass::declare(PassBuilder& builder) const {
     builder.import(SceneImport::kMeshes);
     for (const Field& field : fields())
-        builder.write(field.name, {formatOf(field), mSupersample}, Need::Optional,
-                      {field.fileName, field.appearance, field.meaning});
-    builder.write(kZBuffer, {Format::Depth32F, mSupersample}, Need::Optional,
-                  {kZBufferFile, Appearance::Data,
+        builder.write(field.name, {formatOf(field), mSupersample, 1, mDivisor}, Need::Optional,
+                      {fileNameOf(field.fileName), field.appearance, field.meaning});
+    builder.write(kZBuffer, {Format::Depth32F, mSupersample, 1, mDivisor}, Need::Optional,
+                  {fileNameOf(kZBufferFile), Appearance::Data,
                    "the depth test's own buffer: window depth of the nearest face, reversed-Z (1 at near, 0 at far "
                    "and off the model)"});
+}
+
+std::string GBufferPass::fileNameOf(const char* fileName) const {
+    // A coarser G-buffer runs beside the picture's own: --dump names its files apart ("suggestive-field-radial.exr").
+    return mDivisor == 1 ? std::string(fileName) : mName + "-" + fileName;
 }
 
 bool GBufferPass::zBufferHoldsEveryFace() const {

@@ -87,13 +87,16 @@ public:
     /** The field drawn with a geometry stage, in a draw of its own: "barycentric". */
     static constexpr const char* kBarycentric = "barycentric";
 
-    /** `supersample` >= 1 scales every field; throws std::invalid_argument otherwise. */
+    /** `supersample` >= 1 scales every field, and `divisor` >= 1 divides it (a field coarser than the frame, for a
+     *  kernel that samples the surface at one size whatever the picture's: TextureDesc::divisor); throws
+     *  std::invalid_argument otherwise. */
     GBufferPass(std::string name, ShaderLibrary& shaders, GpuScene& scene, const FrameParams& frame,
-                int supersample = 1, GBufferPrecision precision = GBufferPrecision::Float32);
+                int supersample = 1, GBufferPrecision precision = GBufferPrecision::Float32, int divisor = 1);
 
     /** The format `field` is stored in at this pass's precision. */
     Format formatOf(const Field& field) const;
     int supersample() const { return mSupersample; }
+    int divisor() const { return mDivisor; }
     /** True when the z-buffer is the depth of every face of every mesh, as a pass that draws the model's depth with
      *  no face culled and no cut-out would make it: no material is single-sided (the G-buffer culls their back faces)
      *  and none is masked or blended. */
@@ -116,6 +119,8 @@ private:
     /** The live fields in attachment order, in groups of at most kMaxDrawBuffers: one draw each, barycentric alone
      *  first; one empty group when only the z-buffer is live. */
     static std::vector<std::vector<const Field*>> liveGroups(const GlPassContext& context);
+    /** --dump's file name of a field: as given, or after the pass's name at a divisor above 1. */
+    std::string fileNameOf(const char* fileName) const;
     /** OUT_* and LOC_* defines for one group's draw. */
     std::vector<std::string> definesFor(const std::vector<const Field*>& group) const;
     void drawGroup(GlPassContext& gl, const std::vector<const Field*>& group);
@@ -129,6 +134,7 @@ private:
     std::map<std::string, std::unique_ptr<GlProgram>> mPrograms; ///< keyed by the live-output defines
     int mSupersample;
     GBufferPrecision mPrecision;
+    int mDivisor;
     PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
 };
 

@@ -12,9 +12,10 @@
 
 namespace inkgraph {
 
-LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kernel, int supersample)
-    : mName(std::move(name)), mKernel(std::move(kernel)), mSupersample(supersample) {
+LineLayerPass::LineLayerPass(std::string name, std::unique_ptr<LineKernel> kernel, int supersample, int divisor)
+    : mName(std::move(name)), mKernel(std::move(kernel)), mSupersample(supersample), mDivisor(divisor) {
     if (mSupersample < 1) throw std::invalid_argument("LineLayerPass(): '" + mName + "' supersample must be >= 1");
+    if (mDivisor < 1) throw std::invalid_argument("LineLayerPass(): '" + mName + "' divisor must be >= 1");
     if (!mKernel) throw std::invalid_argument("LineLayerPass(): '" + mName + "' has no kernel");
     if (mKernel->inputs().empty()) throw std::invalid_argument("LineLayerPass(): '" + mName + "' kernel reads nothing");
 }
@@ -30,6 +31,7 @@ void LineLayerPass::declare(PassBuilder& builder) const {
     skeleton.type = kLineSkeletonType;
     skeleton.bytesPerPixel = kLineSkeletonBytesPerPixel;
     skeleton.scale = mSupersample;
+    skeleton.divisor = mDivisor;
     skeleton.hasPicture = true;
     skeleton.pictureFormat = Format::R8;
     builder.writeObject(
@@ -37,7 +39,7 @@ void LineLayerPass::declare(PassBuilder& builder) const {
         {"skeleton-" + mName + ".png", Appearance::Lines,
          "the one-pixel skeleton " + mName + " found, before the stroke stage, at the --supersample size"});
     if (const std::size_t scratch = mKernel->scratchBytesPerPixel(); scratch > 0)
-        builder.scratch(scratch, mSupersample);
+        builder.scratch(scratch, mSupersample, mDivisor);
 }
 
 void LineLayerPass::prepare(GlPassContext&) { mKernel->prepare(); }
@@ -46,6 +48,7 @@ void LineLayerPass::execute(GlPassContext& gl) {
     mReport = {};
     const std::vector<std::string> inputs = mKernel->inputs();
     mReport.supersample = gl.scaleOf(inputs.front());
+    mReport.divisor = gl.divisorOf(inputs.front());
     // Every input is brought to the CPU before the kernel's clock starts, so kernel times are the post stage alone.
     LineSkeleton& skeleton = gl.outputObject<LineSkeleton>("skeleton");
     if (mKernel->readsTextures()) {
@@ -67,9 +70,11 @@ void LineLayerPass::execute(GlPassContext& gl) {
     }
     mReport.skeletonPixels = std::size_t(cv::countNonZero(skeleton.mask));
     mReport.points = skeleton.points.size();
-    if (skeleton.mask.size() != cv::Size(gl.width() * mSupersample, gl.height() * mSupersample))
+    if (skeleton.mask.size() !=
+        cv::Size(scaledSide(gl.width(), mSupersample, mDivisor), scaledSide(gl.height(), mSupersample, mDivisor)))
         throw std::runtime_error("LineLayerPass::execute(): '" + mName + "' inputs are not " +
-                                 std::to_string(mSupersample) + " times the frame size");
+                                 std::to_string(mSupersample) + "/" + std::to_string(mDivisor) +
+                                 " times the frame size");
     gl.outputPicture("skeleton", skeleton.mask);
 }
 
@@ -77,6 +82,8 @@ void LineLayerPass::describe(nlohmann::ordered_json& report) const {
     report["type"] = mName;
     report["skeleton_pixels"] = mReport.skeletonPixels;
     report["points"] = mReport.points;
+    // The kernel's field at 1/divisor of the data's sides (1: the data size itself).
+    report["field_divisor"] = mReport.divisor;
     report["readback_ms"] = mReport.readbackMilliseconds;
     report["kernel_ms"] = mReport.kernelMilliseconds;
     mKernel->describe(report);

@@ -30,7 +30,8 @@ inline constexpr std::size_t kLineSkeletonBytesPerPixel = 2;
 
 /** What the last execute() did, for --stats. */
 struct LineLayerReport {
-    int supersample = 1;               ///< the inputs' scale
+    int supersample = 1;               ///< the inputs' scale ...
+    int divisor = 1;                   ///< ... over this (a field coarser than the frame)
     std::size_t skeletonPixels = 0;    ///< pixels the kernel marked, at the data resolution
     std::size_t points = 0;            ///< sub-pixel samples stroked
     double readbackMilliseconds = 0.0; ///< bringing the inputs to the CPU (shared with other layers: the first pays)
@@ -39,9 +40,10 @@ struct LineLayerReport {
 
 class LineLayerPass : public GlPass {
 public:
-    /** `supersample`: the data resolution's scale (the kernel's inputs are that many times the frame size). Throws
-     *  std::invalid_argument for a supersample below 1, a null kernel or one that reads nothing. */
-    LineLayerPass(std::string name, std::unique_ptr<LineKernel> kernel, int supersample);
+    /** `supersample`: the data resolution's scale (the kernel's inputs are that many times the frame size), over
+     *  `divisor` where the kernel reads a coarser field (TextureDesc::divisor): its skeleton is at that size. Throws
+     *  std::invalid_argument for a supersample or divisor below 1, a null kernel or one that reads nothing. */
+    LineLayerPass(std::string name, std::unique_ptr<LineKernel> kernel, int supersample, int divisor = 1);
 
     std::string_view name() const override { return mName; }
     void declare(PassBuilder& builder) const override;
@@ -59,6 +61,7 @@ private:
     std::string mName;
     std::unique_ptr<LineKernel> mKernel;
     int mSupersample;
+    int mDivisor;
     LineLayerReport mReport;
 };
 

@@ -64,9 +64,10 @@ public:
     bool has(std::string_view passName) const;
     /** A GL pass, registered at once: every type's GL passes come before every CPU line layer. */
     void add(std::unique_ptr<GlPass> pass);
-    /** The usual ending: a LineLayerPass named `type` that runs `kernel` and strokes its skeleton at the type's width.
+    /** The usual ending: a LineLayerPass named `type` that runs `kernel` and strokes its skeleton at the type's width;
+     *  `divisor` above 1 when the kernel reads a field coarser than the data (TextureDesc::divisor).
      *  Registered by finish(), after the GL passes of every type. */
-    void addLayer(const std::string& type, std::unique_ptr<LineKernel> kernel);
+    void addLayer(const std::string& type, std::unique_ptr<LineKernel> kernel, int divisor = 1);
     /** Registers the layers in the order they were added; returns them by type (for the stats and the SVG). */
     std::map<std::string, LineLayerPass*> finish();
 

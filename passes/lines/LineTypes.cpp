@@ -86,8 +86,8 @@ bool LineGraphBuilder::has(std::string_view passName) const {
 
 void LineGraphBuilder::add(std::unique_ptr<GlPass> pass) { mPasses.push_back(std::move(pass)); }
 
-void LineGraphBuilder::addLayer(const std::string& type, std::unique_ptr<LineKernel> kernel) {
-    mLayers.push_back(std::make_unique<LineLayerPass>(type, std::move(kernel), mSetup.look.supersample));
+void LineGraphBuilder::addLayer(const std::string& type, std::unique_ptr<LineKernel> kernel, int divisor) {
+    mLayers.push_back(std::make_unique<LineLayerPass>(type, std::move(kernel), mSetup.look.supersample, divisor));
 }
 
 std::map<std::string, LineLayerPass*> LineGraphBuilder::finish() {

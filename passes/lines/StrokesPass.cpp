@@ -31,6 +31,19 @@ constexpr double kStrengthShare = 0.5; ///< a line of strength s is (0.5 + 0.5 s
 constexpr double kTaperLength = 0.03;  ///< the taper's length, a share of the height
 constexpr double kTaperStart = 0.25;   ///< the width share at a stroke's very end
 
+/** Data pixels (the frame at `dataScale`, --supersample) per pixel of `resource`, a skeleton or band at its own scale
+ *  and divisor (TextureDesc). A resource whose pixels are not whole blocks of data pixels is a bug upstream. */
+int dataPixelsPerPixelOf(const GlPassContext& gl, const std::string& resource, int dataScale) {
+    const int numerator = dataScale * gl.divisorOf(resource);
+    const int denominator = gl.scaleOf(resource);
+    if (denominator < 1 || numerator % denominator != 0)
+        throw std::logic_error("StrokesPass::execute(): '" + resource + "' is at " + std::to_string(denominator) + "/" +
+                               std::to_string(gl.divisorOf(resource)) +
+                               " of the frame, not a whole fraction of the data size (x" + std::to_string(dataScale) +
+                               ")");
+    return numerator / denominator;
+}
+
 } // namespace
 
 StrokesPass::StrokesPass(std::string name, StrokesPassSettings settings)
@@ -98,18 +111,23 @@ void StrokesPass::execute(GlPassContext& gl) {
             const LineSkeleton& found = gl.inputObject<LineSkeleton>(input.resource);
             thinned[index].mask = thinToSkeleton(found.mask, 1);
             thinned[index].points = found.points;
+            // A kernel may find its lines on a field coarser than the data (the suggestive contours' one sampling
+            // at every size, SuggestiveLines.h): its skeleton's pixels are then whole blocks of data pixels.
+            layer.scale = dataPixelsPerPixelOf(gl, input.resource, scale);
         } else {
             // Slivers narrower than a pixel at the band's reference size go; the band's own width stays.
             const cv::Mat& band = gl.inputImage(input.resource);
             thinned[index] =
                 skeletonFromMask(thinToSkeleton(input.bandOfOneWidth ? openedBand(band, input.widthPixels) : band));
-            layer.scale = scale / gl.scaleOf(input.resource);
+            layer.scale = dataPixelsPerPixelOf(gl, input.resource, scale);
         }
         layer.skeleton = &thinned[index];
         if (layer.skeleton->mask.size() * layer.scale != dataSize)
             throw std::runtime_error("StrokesPass::execute(): '" + input.resource + "' is not at the data size " +
                                      std::to_string(dataSize.width) + "x" + std::to_string(dataSize.height));
-        layer.minLengthPixels = strokeLengthLimitPixels(input.minLength, heightPixels);
+        // A layer sampled coarser measures its lines by samples further apart: its own bias (Strokes.h).
+        layer.minLengthPixels = strokeLengthLimitPixels(input.minLength, heightPixels, layer.scale);
+        layer.joinAllowancePixels = strokeJoinAllowancePixels(heightPixels, layer.scale);
         layer.seedStrength = input.seedStrength;
         layers.push_back(layer);
     }

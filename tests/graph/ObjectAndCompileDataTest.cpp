@@ -72,6 +72,27 @@ TEST(ObjectResources, AreCulledOrderedAndDescribedLikeTextures) {
     EXPECT_NE(plan.describe().find("contour.skeleton(line-skeleton x2)"), std::string::npos) << plan.describe();
 }
 
+TEST(ObjectResources, ACoarserFieldAndItsSkeletonCarryTheirDivisor) {
+    // A kernel's field sampled at half the frame's sides, and the skeleton found on it: the plan keeps the divisor
+    // and says it, so the executor sizes them and the memory budget charges a quarter of the frame.
+    LambdaPass source("coarse", [](PassBuilder& b) { b.write("depth", {Format::R32F, 1, 1, 2}); });
+    LambdaPass layer("suggestive", [](PassBuilder& b) {
+        b.read("coarse.depth");
+        ObjectDesc desc = skeletonDesc();
+        desc.divisor = 2;
+        b.writeObject("skeleton", desc);
+        b.scratch(14, 1, 2);
+    });
+    const Plan plan = compile({&source, &layer}, {"suggestive.skeleton"});
+    ASSERT_EQ(plan.passes.size(), 2u);
+    EXPECT_EQ(plan.findResource("coarse.depth")->desc.divisor, 2);
+    EXPECT_EQ(plan.findResource("suggestive.skeleton")->object.divisor, 2);
+    EXPECT_EQ(plan.findResource("suggestive.skeleton")->desc.divisor, 2) << "its picture is at the same size";
+    EXPECT_EQ(plan.passes[1].scratch[0].divisor, 2);
+    EXPECT_NE(plan.describe().find("coarse.depth(r32f /2)"), std::string::npos) << plan.describe();
+    EXPECT_NE(plan.describe().find("suggestive.skeleton(line-skeleton /2)"), std::string::npos) << plan.describe();
+}
+
 TEST(ObjectResources, AReaderNamingAnotherTypeOrKindIsACompileError) {
     LambdaPass layer("contour", [](PassBuilder& b) { b.writeObject("skeleton", skeletonDesc()); });
     LambdaPass texture("band", [](PassBuilder& b) { b.write("lines", {Format::R8}); });

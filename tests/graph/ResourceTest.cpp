@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+#include <string>
+
 namespace inkgraph {
 namespace {
 
@@ -31,6 +34,27 @@ TEST(GraphResourceTest, TextureDescDefaultsAndEquality) {
     EXPECT_EQ(desc, (TextureDesc{Format::RGBA32F, 1}));
     EXPECT_NE(desc, (TextureDesc{Format::RGBA32F, 2}));
     EXPECT_NE(desc, (TextureDesc{Format::R8, 1}));
+}
+
+TEST(GraphResourceTest, ScaledSideIsTheFrameTimesScaleOverDivisor) {
+    EXPECT_EQ(scaledSide(2048, 1, 1), 2048);
+    EXPECT_EQ(scaledSide(1000, 2, 1), 2000);
+    EXPECT_EQ(scaledSide(2048, 1, 2), 1024);
+    EXPECT_EQ(scaledSide(3000, 1, 2), 1500);
+    EXPECT_EQ(scaledSide(1500, 2, 3), 1000) << "supersampled, then sampled at a third";
+    EXPECT_EQ(TextureDesc{}.divisor, 1);
+    EXPECT_NE((TextureDesc{Format::R32F, 1, 1, 2}), (TextureDesc{Format::R32F, 1, 1, 1}));
+    // A divisor that leaves part of a pixel would not cover the frame exactly: refused, naming both numbers.
+    try {
+        scaledSide(2049, 1, 2);
+        FAIL() << "2049 / 2 accepted";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_NE(std::string(error.what()).find("scaledSide(): a side of 2049 pixels"), std::string::npos)
+            << error.what();
+        EXPECT_NE(std::string(error.what()).find("divisor 2"), std::string::npos) << error.what();
+    }
+    EXPECT_THROW(scaledSide(100, 0, 1), std::invalid_argument);
+    EXPECT_THROW(scaledSide(100, 1, 0), std::invalid_argument);
 }
 
 TEST(GraphResourceTest, SplitAWellFormedName) {

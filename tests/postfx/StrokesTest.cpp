@@ -279,6 +279,56 @@ TEST(StrokesTest, TheJoinRadiusBridgesAGapAlikeAtEverySize) {
               std::string::npos);
 }
 
+TEST(StrokesTest, ALayerSampledAt1024RowsIsJudgedAsAt1024WhereverItIsDrawn) {
+    // A skeleton found on a field of 1024 rows and chained at 2048 (the suggestive contours' one sampling,
+    // StrokeLayer::scale 2) has its samples two data pixels apart: its span needs no bias, and each of its ends adds
+    // half a data pixel to the join radius, so the length rule and the joins decide as a 1024-row picture does.
+    EXPECT_DOUBLE_EQ(strokeSpanBiasPixels(2048.0, 2.0), 0.0);
+    EXPECT_DOUBLE_EQ(strokeSpanBiasPixels(4096.0, 2.0), 2.0);
+    EXPECT_DOUBLE_EQ(strokeSpanBiasPixels(4096.0, 4.0), 0.0);
+    EXPECT_DOUBLE_EQ(strokeSpanBiasPixels(1024.0, 2.0), 0.0) << "never below 0";
+    EXPECT_DOUBLE_EQ(strokeLengthLimitPixels(0.01, 2048.0, 2.0), 20.48);
+    EXPECT_DOUBLE_EQ(strokeJoinAllowancePixels(2048.0, 1.0), 0.0);
+    EXPECT_DOUBLE_EQ(strokeJoinAllowancePixels(2048.0, 2.0), 0.5);
+    EXPECT_DOUBLE_EQ(strokeJoinAllowancePixels(4096.0, 4.0), 1.5);
+    EXPECT_DOUBLE_EQ(strokeJoinAllowancePixels(1024.0, 2.0), 0.0) << "no bias to take back at 1024 data rows";
+    for (const int times : {2, 4}) {
+        const double rows = 1024.0 * times;
+        for (const int extentAt1024 : {9, 10, 11, 12, 13, 14}) {
+            cv::Mat coarse = blank(40);
+            drawLine(coarse, {2, 10}, {2 + extentAt1024 - 1, 10});
+            const LineSkeleton skeleton = skeletonOf(coarse);
+            StrokeLayer layer{&skeleton};
+            layer.scale = times;
+            layer.minLengthPixels = strokeLengthLimitPixels(0.01, rows, times);
+            const Strokes strokes = chainStrokes({layer});
+            ASSERT_EQ(strokes.strokes.size(), 1u);
+            EXPECT_EQ(strokes.strokes[0].kept, extentAt1024 >= 12)
+                << "a line of " << extentAt1024 << " px at 1024 rows, drawn at " << rows;
+        }
+        for (const int gapAt1024 : {1, 2}) {
+            cv::Mat coarse = blank(40);
+            drawLine(coarse, {2, 10}, {13, 10});
+            drawLine(coarse, {14 + gapAt1024, 10}, {25 + gapAt1024, 10});
+            const LineSkeleton skeleton = skeletonOf(coarse);
+            StrokeLayer layer{&skeleton};
+            layer.scale = times;
+            layer.joinAllowancePixels = strokeJoinAllowancePixels(rows, times);
+            const Strokes strokes = chainStrokes({layer}, strokeSettingsFor(rows, 1));
+            EXPECT_EQ(strokes.gapJoins, gapAt1024 == 1 ? 1u : 0u)
+                << "a gap of " << gapAt1024 << " px at 1024 rows, drawn at " << rows;
+        }
+    }
+    cv::Mat mask = blank(8);
+    drawLine(mask, {1, 1}, {5, 1});
+    const LineSkeleton skeleton = skeletonOf(mask);
+    StrokeLayer bad{&skeleton};
+    bad.joinAllowancePixels = -1.0;
+    EXPECT_NE(invalidArgumentMessage([&] { chainStrokes({bad}); }).find("'joinAllowancePixels'"), std::string::npos);
+    EXPECT_NE(invalidArgumentMessage([] { strokeSpanBiasPixels(2048.0, 0.0); }).find("'samplePixels'"),
+              std::string::npos);
+}
+
 TEST(StrokesTest, StrokesNearARulesLimitAreCountedPerLayer) {
     // Layer 0 is drawn from 10 pixels and seeds at 0.5; layer 1 has no length rule and always seeds.
     const LineSkeleton unused;
