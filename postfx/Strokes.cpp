@@ -667,6 +667,21 @@ LineSkeleton keptSkeleton(const Strokes& strokes, const std::vector<StrokeLayer>
     // Written and read on the skeleton's pixels only (zeroOnSetPixels()): a stroke's own pixels are its layer's, and
     // pixelOfPoint() gives set pixels.
     cv::Mat1f widthAt = source.scale == 1 ? zeroOnSetPixels(mask) : cv::Mat1f();
+    // A coarser layer's traced positions lie `scale` data pixels apart: the points between two of them, at most a
+    // data pixel apart, as a layer found at the data size has them.
+    auto fillBetween = [&](const LinePoint& from, const LinePoint& to) {
+        const cv::Point2f step = to.position - from.position;
+        const int parts = int(std::ceil(std::hypot(double(step.x), double(step.y))));
+        for (int part = 1; part < parts; ++part) {
+            const float t = float(part) / float(parts);
+            LinePoint between = from;
+            between.position = from.position + step * t;
+            between.strength = from.strength + (to.strength - from.strength) * t;
+            between.width = from.width + (to.width - from.width) * t;
+            kept.points.push_back(between);
+            mark(between.position);
+        }
+    };
     for (const Stroke& stroke : strokes.strokes) {
         if (!stroke.kept || stroke.layer != layer) continue;
         for (std::size_t index = 0; index < stroke.points.size(); ++index) {
@@ -677,10 +692,13 @@ LineSkeleton keptSkeleton(const Strokes& strokes, const std::vector<StrokeLayer>
                 width = std::max(width, stroke.points[index].width);
             } else {
                 // Bridging points, and a coarser layer's traced positions, are drawn as they are.
+                if (source.scale > 1 && index > 0) fillBetween(stroke.points[index - 1], stroke.points[index]);
                 kept.points.push_back(stroke.points[index]);
                 mark(stroke.points[index].position);
             }
         }
+        if (source.scale > 1 && stroke.closed && stroke.points.size() > 1)
+            fillBetween(stroke.points.back(), stroke.points.front());
     }
     if (source.scale == 1) {
         for (const LinePoint& point : source.skeleton->points) {

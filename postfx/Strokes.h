@@ -190,7 +190,9 @@ void weighStrokes(Strokes& strokes, const LineWeightSettings& weight, const cv::
 /** What strokeLines() draws of layer `layer`: at the data size, the layer's own sub-pixel points on the pixels of its
  *  kept strokes (each with the width share of its pixel's stroke point) and the points bridging their gaps, and a
  *  mask of those pixels. With every stroke kept and no weight this is the layer's skeleton as it was found. A layer
- *  found at a lower resolution is drawn from its traced positions. `layers` as given to chainStrokes(). */
+ *  found at a lower resolution is drawn from its traced positions, filled in to a data pixel apart (a line traced
+ *  every two data pixels and stamped with discs of a data pixel's radius would be beaded, half ink between two
+ *  points). `layers` as given to chainStrokes(). */
 LineSkeleton keptSkeleton(const Strokes& strokes, const std::vector<StrokeLayer>& layers, int layer);
 
 /** Layer `layer`'s kept strokes as polylines (Ramer-Douglas-Peucker with `tolerancePixels`, data pixels), in stroke

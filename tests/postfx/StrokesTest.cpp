@@ -422,6 +422,31 @@ TEST(StrokesTest, ALayerAtALowerResolutionJoinsInDataPixels) {
     EXPECT_FLOAT_EQ(drawn.points.front().position.x, 32.5f);
 }
 
+TEST(StrokesTest, ALayerAtALowerResolutionIsDrawnWhole) {
+    // Traced every two data pixels and stamped with discs of a data pixel's radius (2 px wide at the data size), a
+    // coarse layer's line would be beaded: half ink between two points. Its points are filled in a data pixel apart.
+    cv::Mat coarse = cv::Mat::zeros(32, 32, CV_8UC1);
+    drawLine(coarse, {4, 10}, {24, 10}); // data x 8.5 .. 48.5 at y 20.5
+    const LineSkeleton line = skeletonOf(coarse, 0.8f);
+    StrokeLayer layer{&line};
+    layer.scale = 2;
+    const Strokes strokes = chainStrokes({layer});
+    const LineSkeleton drawn = keptSkeleton(strokes, {layer}, 0);
+    ASSERT_GE(drawn.points.size(), 40u) << "21 traced points and 20 between them";
+    for (std::size_t index = 1; index < drawn.points.size(); ++index)
+        EXPECT_LE(cv::norm(drawn.points[index].position - drawn.points[index - 1].position), 1.0 + 1e-5) << index;
+    // Along the line, the ink is even: no column between two traced points lighter than one on a point.
+    const cv::Mat ink = strokeLines(drawn, 2.0f, 1);
+    int lightest = 255, darkest = 0;
+    for (int col = 10; col <= 46; ++col) {
+        const int column = std::max(ink.at<uchar>(20, col), ink.at<uchar>(21, col));
+        lightest = std::min(lightest, column);
+        darkest = std::max(darkest, column);
+    }
+    EXPECT_LE(darkest - lightest, 3);
+    EXPECT_GE(lightest, int(0.75 * 0.8 * 255));
+}
+
 TEST(StrokesTest, LineWeightTapersEndsAndThinsFarLines) {
     cv::Mat mask = blank();
     drawLine(mask, {4, 10}, {44, 10});
