@@ -9,6 +9,7 @@
 #include "passes/GpuScene.h"
 #include "passes/StillGraph.h"
 #include "passes/lines/LineTypes.h"
+#include "passes/lines/types/SuggestiveLines.h"
 #include "passes/shade/ShadingModel.h"
 #include "scene/Warning.h"
 #include "scene/mesh/Procedural.h"
@@ -211,9 +212,15 @@ std::string generatedDocSection(const std::string& name) {
 std::vector<DumpFileDoc> dumpFileDocs() {
     // A still graph registers every line type's passes and the shading model's; drawing every type and trying each
     // model makes every pass the code has register. Declaring needs no GL: the passes are never prepared or run.
-    const Scene scene = makeScene(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 16, 8));
+    // Two meshes: surfaces that meet, so the kernels that read triangle ids where they do declare it.
+    Scene scene = makeScene(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 16, 8));
+    scene.meshes.push_back(scene.meshes.front());
     const BoundingSphere sphere = computeBoundingSphere(scene);
-    const Camera camera = resolveCamera(CameraRequest{}, scene);
+    // At 2048 rows, so the suggestive contours' own G-buffer registers too, with the fields its kernel reads
+    // (passes/lines/types/SuggestiveLines.h).
+    CameraRequest request;
+    request.width = request.height = 2 * kSuggestiveFieldMinRows;
+    const Camera camera = resolveCamera(request, scene);
     ShaderLibrary shaders;
     std::vector<DumpFileDoc> files;
     std::set<std::string> seen;

@@ -10,6 +10,7 @@
 #include "scene/MeshLabels.h"
 #include "scene/Scene.h"
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <iomanip>
@@ -257,7 +258,12 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     still.frame.time = req.animationTime; // the pose's time is the UV animation's too
     still.gpuScene = makeSceneImport(scene, still.sphere.center, still.frame, look, still.sceneDerived);
     buildGraph(still);
-    if (still.plan.findResource(std::string(kGBufferPass) + ".triangleId") != nullptr)
+    // Any G-buffer's (the picture's, or the coarser one the suggestive contours read at 2048 rows and above).
+    const bool readsTriangleIds =
+        std::any_of(still.plan.resources.begin(), still.plan.resources.end(), [](const PlannedResource& resource) {
+            return ResourceName::split(resource.name).field == "triangleId";
+        });
+    if (readsTriangleIds)
         if (std::optional<Warning> inexact = triangleIdWarning(scene.triangleCount()))
             warnOf(still, std::move(*inexact), log);
     failIfStrict(still);

@@ -88,20 +88,41 @@ Format GBufferPass::formatOf(const Field& field) const {
     return field.format;
 }
 
+void GBufferPass::declareOnly(std::vector<std::string> fieldNames) {
+    for (const std::string& name : fieldNames)
+        if (name != kZBuffer &&
+            std::none_of(fields().begin(), fields().end(), [&](const Field& field) { return name == field.name; }))
+            throw std::invalid_argument("GBufferPass::declareOnly(): '" + mName + "' has no field '" + name + "'");
+    mOnlyFields = std::move(fieldNames);
+}
+
+bool GBufferPass::declares(std::string_view fieldName) const {
+    return mOnlyFields.empty() || std::find(mOnlyFields.begin(), mOnlyFields.end(), fieldName) != mOnlyFields.end();
+}
+
 void GBufferPass::declare(PassBuilder& builder) const {
     builder.import(SceneImport::kMeshes);
     for (const Field& field : fields())
-        builder.write(field.name, {formatOf(field), mSupersample, 1, mDivisor}, Need::Optional,
-                      {fileNameOf(field.fileName), field.appearance, field.meaning});
-    builder.write(kZBuffer, {Format::Depth32F, mSupersample, 1, mDivisor}, Need::Optional,
-                  {fileNameOf(kZBufferFile), Appearance::Data,
-                   "the depth test's own buffer: window depth of the nearest face, reversed-Z (1 at near, 0 at far "
-                   "and off the model)"});
+        if (declares(field.name))
+            builder.write(field.name, {formatOf(field), mSupersample, 1, mDivisor}, Need::Optional,
+                          {fileNameOf(field.fileName), field.appearance, meaningOf(field.fileName, field.meaning)});
+    if (declares(kZBuffer))
+        builder.write(
+            kZBuffer, {Format::Depth32F, mSupersample, 1, mDivisor}, Need::Optional,
+            {fileNameOf(kZBufferFile), Appearance::Data,
+             meaningOf(kZBufferFile, "the depth test's own buffer: window depth of the nearest face, reversed-Z "
+                                     "(1 at near, 0 at far and off the model)")});
 }
 
 std::string GBufferPass::fileNameOf(const char* fileName) const {
     // A coarser G-buffer runs beside the picture's own: --dump names its files apart ("suggestive-field-radial.exr").
     return mDivisor == 1 ? std::string(fileName) : mName + "-" + fileName;
+}
+
+std::string GBufferPass::meaningOf(const char* fileName, const char* meaning) const {
+    if (mDivisor == 1) return meaning;
+    return "as " + std::string(fileName) + ", at the picture's sides over a whole divisor: the G-buffer '" + mName +
+           "', which a line kernel reads at one size whatever the picture's";
 }
 
 bool GBufferPass::zBufferHoldsEveryFace() const {

@@ -62,6 +62,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace inkgraph {
@@ -95,6 +96,9 @@ public:
 
     /** The format `field` is stored in at this pass's precision. */
     Format formatOf(const Field& field) const;
+    /** Declares only these fields (short names, "radial"; kZBuffer for the z-buffer) instead of every one: a G-buffer
+     *  drawn for one kernel, whose other fields no one reads. Throws std::invalid_argument naming an unknown field. */
+    void declareOnly(std::vector<std::string> fieldNames);
     int supersample() const { return mSupersample; }
     int divisor() const { return mDivisor; }
     /** True when the z-buffer is the depth of every face of every mesh, as a pass that draws the model's depth with
@@ -121,6 +125,9 @@ private:
     static std::vector<std::vector<const Field*>> liveGroups(const GlPassContext& context);
     /** --dump's file name of a field: as given, or after the pass's name at a divisor above 1. */
     std::string fileNameOf(const char* fileName) const;
+    bool declares(std::string_view fieldName) const;
+    /** What a field holds, for --dump's table: as given, or at a divisor above 1 the field it repeats coarser. */
+    std::string meaningOf(const char* fileName, const char* meaning) const;
     /** OUT_* and LOC_* defines for one group's draw. */
     std::vector<std::string> definesFor(const std::vector<const Field*>& group) const;
     void drawGroup(GlPassContext& gl, const std::vector<const Field*>& group);
@@ -135,7 +142,8 @@ private:
     int mSupersample;
     GBufferPrecision mPrecision;
     int mDivisor;
-    PassDepthBuffer mDepth; ///< the pass's own depth attachment, kept between runs
+    std::vector<std::string> mOnlyFields; ///< declareOnly()'s; empty: every field
+    PassDepthBuffer mDepth;               ///< the pass's own depth attachment, kept between runs
 };
 
 } // namespace inkgraph

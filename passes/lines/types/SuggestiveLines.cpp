@@ -3,6 +3,7 @@
 #include "graph/Milliseconds.h"
 #include "passes/FrameParams.h"
 #include "passes/GpuScene.h"
+#include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineType.h"
 #include "scene/MessageText.h"
 #include "scene/mesh/MeshCurvature.h"
@@ -205,6 +206,15 @@ cv::Mat surfaceIdsOf(const cv::Mat& triangleIds, const cv::Mat& depth, const std
 
 } // namespace
 
+int suggestiveFieldDivisor(int width, int height) {
+    if (width < 1 || height < 1)
+        throw std::invalid_argument("suggestiveFieldDivisor(): the picture's sides must be at least 1, got " +
+                                    std::to_string(width) + "x" + std::to_string(height));
+    for (int divisor = height / kSuggestiveFieldMinRows; divisor > 1; --divisor)
+        if (height % divisor == 0 && width % divisor == 0) return divisor;
+    return 1;
+}
+
 std::vector<std::string> SuggestiveKernel::inputs() const {
     std::vector<std::string> names{mGBuffer + ".radial", mGBuffer + ".depth"};
     if (mSurfaces) names.push_back(mGBuffer + ".triangleId");
@@ -309,8 +319,23 @@ LineType suggestiveLineType() {
         settings.breakClearance = float(setup.look.lineParameters.number(kSuggestiveClearance));
         settings.patchClearance = float(setup.look.lineParameters.number(kSuggestivePatchClearance));
         settings.minAngleToW = float(setup.look.lineParameters.number(kSuggestiveMinAngle));
-        builder.addLayer(name, std::make_unique<SuggestiveKernel>(setup.gbuffer, settings, setup.frame,
-                                                                  setup.scene.surfacesMeet() ? &setup.scene : nullptr));
+        // Which crossings the kernel finds, and which of its short pieces the stroke rules keep, change with the
+        // sampling of the surface (docs/strokes.md, "one sampling at every size"): from 2048 rows up it samples as at
+        // 1024-2047, on a G-buffer of its own, and the strokes are drawn at the picture's size from its points.
+        const int divisor = suggestiveFieldDivisor(setup.frame.camera.width, setup.frame.camera.height);
+        GpuScene* surfaces = setup.scene.surfacesMeet() ? &setup.scene : nullptr;
+        if (divisor == 1) {
+            builder.addLayer(name, std::make_unique<SuggestiveKernel>(setup.gbuffer, settings, setup.frame, surfaces));
+            return;
+        }
+        auto kernel = std::make_unique<SuggestiveKernel>(kSuggestiveFieldPass, settings, setup.frame, surfaces);
+        auto field = std::make_unique<GBufferPass>(kSuggestiveFieldPass, setup.shaders, setup.scene, setup.frame,
+                                                   setup.look.supersample, setup.look.gbufferPrecision, divisor);
+        std::vector<std::string> read;
+        for (const std::string& input : kernel->inputs()) read.push_back(ResourceName::split(input).field);
+        field->declareOnly(std::move(read));
+        builder.add(std::move(field));
+        builder.addLayer(name, std::move(kernel), divisor);
     };
     type.describe = [](const LineStatsSource& source, nlohmann::ordered_json& entry) {
         describeShared(source, entry, true);

@@ -26,6 +26,19 @@ struct FrameParams;
  *  bound on fs). */
 constexpr double kSuggestiveFeatureSizeFraction = 0.05;
 
+/** The fewest rows the image-space kernel samples the surface at: from twice this up, it reads a G-buffer of its own
+ *  (kSuggestiveFieldPass) at the picture's size over suggestiveFieldDivisor(), so a picture of 2048 or 4096 rows
+ *  finds the lines a picture of 1024 rows finds, drawn at its own size (issue 39). */
+inline constexpr int kSuggestiveFieldMinRows = 1024;
+/** The G-buffer pass the kernel reads from 2 x kSuggestiveFieldMinRows rows up (where a divisor fits). */
+inline constexpr const char* kSuggestiveFieldPass = "suggestive-field";
+
+/** The largest whole divisor of both sides of a `width` x `height` picture that leaves at least
+ *  kSuggestiveFieldMinRows rows: 2 at 2048 x 2048 (a field of 1024 rows), 2 at 3840 x 2160 (1080), 4 at 4096 x 4096;
+ *  1 (the picture's own G-buffer) when none does, as at 1024 rows or at 2049. Throws std::invalid_argument for a
+ *  side under 1. */
+int suggestiveFieldDivisor(int width, int height);
+
 /** Image space: reads "<gbuffer>.radial" and "<gbuffer>.depth" (postfx/SuggestiveContours.h). `settings.smoothing`
  *  is in model units (the depth's); the focal length in pixels is taken from `frame`'s camera and the data image's
  *  height when the kernel runs. `frame` must outlive the kernel.
