@@ -1,6 +1,7 @@
 #include "scene/mesh/FaceOrientation.h"
 
 #include "scene/MessageText.h"
+#include "scene/mesh/MeshOps.h"
 
 #include <glm/gtc/constants.hpp>
 
@@ -40,15 +41,6 @@ constexpr std::uint8_t kAllThreeDeep = 3 * (kFrontStep + kDeepStep);
 }
 
 bool isFinite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-/** Unit vector, or zero when the input is zero or not finite (the eye sitting on a vertex, a degenerate face). */
-glm::dvec3 normalizedOrZero(const glm::dvec3& v) {
-    const double length = glm::length(v);
-    if (!std::isfinite(length) || length <= 0.0) {
-        return glm::dvec3(0.0);
-    }
-    return v / length;
-}
 
 /** n_f.(P - E) < 0 with the unnormalised face normal and P the first vertex, in double. Every exact classification
  *  goes through here so they agree bit for bit. */

@@ -131,7 +131,11 @@ glm::dvec3 faceCross(std::span<const glm::vec3> positions, const glm::uvec3& tri
     return glm::cross(b - a, c - a);
 }
 
-/** Unit vector, or zero when the input is zero or not finite. */
+/** Below this fraction of the summed face weights, a vertex's normal sum is cancellation noise, not a direction. */
+constexpr double kCancelledNormalRelative = 1e-9;
+
+} // namespace
+
 glm::dvec3 normalizedOrZero(const glm::dvec3& v) {
     const double length = glm::length(v);
     if (!std::isfinite(length) || length <= 0.0) {
@@ -139,11 +143,6 @@ glm::dvec3 normalizedOrZero(const glm::dvec3& v) {
     }
     return v / length;
 }
-
-/** Below this fraction of the summed face weights, a vertex's normal sum is cancellation noise, not a direction. */
-constexpr double kCancelledNormalRelative = 1e-9;
-
-} // namespace
 
 BoundingBox computeBoundingBox(std::span<const glm::vec3> positions) {
     BoundingBox box;

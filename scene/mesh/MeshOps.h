@@ -52,6 +52,9 @@ WeldMap weldVertices(std::span<const glm::vec3> positions, std::span<const glm::
  *  normals, edge adjacency, curvature) is built from, so one weld can serve them all. */
 WeldMap weldMeshPositions(const Mesh& mesh, double distance);
 
+/** `v` of unit length, or zero when it is zero or not finite (the eye sitting on a vertex, a degenerate face). */
+glm::dvec3 normalizedOrZero(const glm::dvec3& v);
+
 /** Area-weighted smooth normals: every vertex sums the unnormalised cross products of its triangles. A vertex whose
  *  sum vanishes (e.g. two opposite faces) takes the normal of one incident face, or (0,0,1) if all are degenerate. */
 std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions,
