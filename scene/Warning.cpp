@@ -28,7 +28,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::MaskIgnored, "mask-ignored", "an MTL map_d that is not the map_Kd image; ignored"},
         {K::ValueOutOfRange, "value-out-of-range", "a material or colour value outside its range; clamped into it"},
         {K::MaterialValueInvalid, "material-value-invalid",
-         "a glTF alpha mode, alpha cutoff or sampler value the specification does not define; the default is used"},
+         "a glTF alpha mode, alpha cutoff or sampler value the specification does not define, or a material value of "
+         "the wrong type or length; the default is used"},
         {K::ExtrasKeyIgnored, "extras-key-ignored", "a key of a material's extras.inkgraph other than 'shademap'"},
         {K::VrmPropertyInvalid, "vrm-property-invalid",
          "a VRM property (a material's, an expression's, the humanoid's, the version) of the wrong type or value; its "
@@ -82,6 +83,9 @@ const std::vector<WarningCode>& warningCodes() {
          "a pose turns a humanoid bone the model lacks (or whose node is a matrix); that bone is left as it is"},
         {K::MorphAttributeIgnored, "morph-attribute-ignored",
          "a morph target moves an attribute other than POSITION and NORMAL, which is not applied"},
+        {K::MorphWeightsMismatched, "morph-weights-mismatched",
+         "a glTF mesh's or node's morph weights, fewer or more than its morph targets; a target without one is not "
+         "applied"},
         {K::GltfParserMessage, "gltf-parser-message", "what tinygltf reported about a file it still read"},
         {K::ShadeMapUnused, "shade-map-unused", "meshes name shade maps, which the --shading model does not use"},
         {K::ModelOutsideView, "model-outside-view", "the camera sees none of the model: the picture is blank paper"},

@@ -57,6 +57,7 @@ enum class WarningKind {
     AnimationChannelIgnored,
     PoseBoneMissing,
     MorphAttributeIgnored,
+    MorphWeightsMismatched,
     GltfParserMessage,
     ShadeMapUnused,
     ModelOutsideView,

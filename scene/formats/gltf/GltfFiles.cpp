@@ -5,6 +5,7 @@
 #include "scene/formats/FormatReaders.h"
 #include "scene/formats/gltf/GltfDraco.h"
 #include "scene/formats/gltf/GltfMeshopt.h"
+#include "scene/formats/gltf/GltfValueShapes.h"
 
 #include <nlohmann/json.hpp>
 
@@ -293,17 +294,22 @@ std::string_view jsonOf(std::string_view content, bool binary) {
  *  around the new JSON chunk with its other chunks as they were. */
 TinygltfInput forTinygltf(const std::string& path, std::string_view content, bool binary) {
     TinygltfInput input;
+    if (binary) judgeGlbHeader(path, content);
     const std::string_view json = jsonOf(content, binary);
     const bool draco = json.find(kDracoExtension) != std::string_view::npos;
     const bool meshopt = json.find(kMeshoptExtension) != std::string_view::npos;
     if (!draco && !meshopt) {
         // Judged without the long strings first: the whole document is parsed only when something is rewritten.
         nlohmann::json shortened = nlohmann::json::parse(withLongStringsCut(json), nullptr, false);
-        if (!shortened.is_object() || !integersAsWritten(path, shortened, "", true)) return input;
+        if (!shortened.is_object()) return input;
+        const bool rewrite = integersAsWritten(path, shortened, "", true);
+        input.warnings = judgeValueShapes(path, shortened);
+        if (!rewrite) return input;
     }
     nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
     if (!document.is_object()) return input;
     bool changed = integersAsWritten(path, document, "", true);
+    if (draco || meshopt) input.warnings = judgeValueShapes(path, document);
     if (draco && document.contains("meshes") && document["meshes"].is_array()) {
         for (nlohmann::json& mesh : document["meshes"]) {
             if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;

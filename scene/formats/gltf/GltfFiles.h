@@ -31,10 +31,12 @@ struct TinygltfInput {
      *  takes for absent; nothing when none applies. */
     std::optional<std::string> rewritten;
     std::vector<std::size_t> meshoptPlaceholders; ///< the buffers stubbed
+    std::vector<Warning> warnings;                ///< what judgeValueShapes() said of the file
 };
 
 /** The file as tinygltf can take it: TinygltfInput. A place where glTF wants an integer holding something else (3.5,
- *  "3") is refused naming it, outside extensions and extras. */
+ *  "3") is refused naming it, outside extensions and extras; so are the shapes judgeGlbHeader() and
+ *  judgeValueShapes() refuse, whose warnings come with the input. */
 TinygltfInput forTinygltf(const std::string& path, std::string_view content, bool binary);
 
 /** Refuses JSON nested deeper than tinygltf's recursive parser can take, before tinygltf sees the file. */
