@@ -564,6 +564,78 @@ std::vector<std::uint32_t> vertexAttributeClasses(const RawMesh& raw) {
     return classes;
 }
 
+/** Within this of -1, a face's normal and a vertex's largest face's are opposed: two sheets lie on each other there
+ *  (2.6 degrees from antiparallel; a blade's edge that sharp is better shaded hard too). */
+constexpr double kOpposedSheetsCosine = -0.999;
+
+/** Where sheets that lie on each other share vertices (a double-faced card written on one set of corners, a closed
+ *  mesh a node's scale of 0 flattens onto a plane), a vertex's smooth normal sums opposite faces: nearly nothing, or
+ *  one sheet's direction for both, so one side shades dark or in wedges. Each such vertex gets a copy (same position
+ *  and attributes) for the faces that look against the canonical direction there (its largest face's normal, turned
+ *  so that its largest component is positive, the same for every copy at that place), so each sheet's normals are its
+ *  own. Returns the class of every vertex afterwards, 1 for the copies and 0 for the rest (empty when nothing was
+ *  split), which keeps them apart in a position weld. */
+std::vector<std::uint32_t> splitOpposedSheets(Mesh& mesh) {
+    const std::size_t count = mesh.positions.size();
+    std::vector<double> largestArea(count, 0.0);
+    std::vector<glm::dvec3> reference(count, glm::dvec3(0.0));
+    std::vector<glm::dvec3> faceNormals(mesh.triangles.size());
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const glm::dvec3 cross = faceCross(mesh.positions, mesh.triangles[t]);
+        faceNormals[t] = normalizedOrZero(cross);
+        const double area = glm::length(cross);
+        for (int corner = 0; corner < 3; ++corner) {
+            const std::uint32_t vertex = mesh.triangles[t][corner];
+            if (area > largestArea[vertex]) {
+                largestArea[vertex] = area;
+                reference[vertex] = faceNormals[t];
+            }
+        }
+    }
+    std::vector<std::uint8_t> opposed(count, 0);
+    bool any = false;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        for (int corner = 0; corner < 3; ++corner) {
+            const std::uint32_t vertex = mesh.triangles[t][corner];
+            if (glm::dot(faceNormals[t], reference[vertex]) < kOpposedSheetsCosine) opposed[vertex] = any = true;
+        }
+    }
+    if (!any) return {};
+    for (std::size_t vertex = 0; vertex < count; ++vertex) {
+        if (!opposed[vertex]) continue;
+        const glm::dvec3 magnitude = glm::abs(reference[vertex]);
+        const int axis = magnitude.x >= magnitude.y && magnitude.x >= magnitude.z ? 0
+                         : magnitude.y >= magnitude.z                             ? 1
+                                                                                  : 2;
+        if (reference[vertex][axis] < 0.0) reference[vertex] = -reference[vertex];
+    }
+    std::vector<std::uint32_t> copyOf(count, kNoVertex);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        for (int corner = 0; corner < 3; ++corner) {
+            const std::uint32_t vertex = mesh.triangles[t][corner];
+            if (!opposed[vertex] || glm::dot(faceNormals[t], reference[vertex]) >= 0.0) continue;
+            if (copyOf[vertex] == kNoVertex) {
+                copyOf[vertex] = std::uint32_t(mesh.positions.size());
+                const glm::vec3 position = mesh.positions[vertex];
+                mesh.positions.push_back(position);
+                for (std::vector<glm::vec2>& texcoords : mesh.texcoords) {
+                    if (texcoords.empty()) continue;
+                    const glm::vec2 texcoord = texcoords[vertex];
+                    texcoords.push_back(texcoord);
+                }
+                if (!mesh.colors.empty()) {
+                    const glm::vec4 colour = mesh.colors[vertex];
+                    mesh.colors.push_back(colour);
+                }
+            }
+            mesh.triangles[t][corner] = copyOf[vertex];
+        }
+    }
+    std::vector<std::uint32_t> classes(mesh.positions.size(), 0);
+    std::fill(classes.begin() + std::ptrdiff_t(count), classes.end(), 1u);
+    return classes;
+}
+
 } // namespace
 
 Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options, LoadReport& report) {
@@ -733,15 +805,20 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
                 "", mesh.name));
     }
 
+    const std::vector<std::uint32_t> sheetClasses =
+        fileHasNormals ? std::vector<std::uint32_t>{} : splitOpposedSheets(mesh);
     // Nothing but position decided this weld: the kept vertices are pairwise out of its reach, which derived data
     // welded at the same distance can rely on (weldMeshPositions()).
-    if (!fileHasNormals && attributeClasses.empty()) mesh.positionsWeldedAt = options.weldTolerance * modelDiagonal;
+    if (!fileHasNormals && attributeClasses.empty() && sheetClasses.empty())
+        mesh.positionsWeldedAt = options.weldTolerance * modelDiagonal;
     if (!fileHasNormals) {
         // Smooth across texture seams and colour borders: the copies of a vertex that only its attributes split share
-        // one normal, as they would have without the attributes.
-        mesh.normals = attributeClasses.empty() ? computeSmoothNormals(mesh.positions, mesh.triangles)
-                                                : computePositionWeldedNormals(mesh.positions, mesh.triangles,
-                                                                               options.weldTolerance * modelDiagonal);
+        // one normal, as they would have without the attributes; the copies of opposed sheets keep their own.
+        mesh.normals = attributeClasses.empty()
+                           ? computeSmoothNormals(mesh.positions, mesh.triangles)
+                           : computePositionWeldedNormals(
+                                 mesh.positions, mesh.triangles,
+                                 weldVertices(mesh.positions, {}, options.weldTolerance * modelDiagonal, sheetClasses));
         mesh.normalsAreSmooth = attributeClasses.empty();
         report.normalsComputed = true;
     } else if (someNormalsUnusable) {

@@ -524,6 +524,55 @@ TEST(GltfLoader, ADoubleFacedCardOfATwoSidedMaterialKeepsItsFirstSide) {
     }
 }
 
+/** Every corner's normal of `mesh` points along its triangle's winding normal (within 1 degree). */
+void expectCornerNormalsAlongTheirFaces(const Mesh& mesh, const std::string& what) {
+    for (const glm::uvec3& triangle : mesh.triangles) {
+        const glm::dvec3 face =
+            glm::normalize(glm::cross(glm::dvec3(mesh.positions[triangle.y] - mesh.positions[triangle.x]),
+                                      glm::dvec3(mesh.positions[triangle.z] - mesh.positions[triangle.x])));
+        for (int corner = 0; corner < 3; ++corner)
+            EXPECT_GT(glm::dot(face, glm::dvec3(mesh.normals[triangle[corner]])), std::cos(glm::radians(1.0)))
+                << what << ": a corner's normal against its face";
+    }
+}
+
+TEST(GltfLoader, SheetsThatLieOnEachOtherOnSharedCornersKeepTheirOwnNormals) {
+    // A one-sided double-faced card on one set of corners, without normals: the two sheets' smooth normals summed to
+    // nothing and each corner took one sheet's direction (the back drawn dark, or in wedges). With texture
+    // coordinates the normals are the position-welded ones, which must keep the sheets apart too.
+    for (const bool textured : {false, true}) {
+        GltfWriter writer;
+        const int positions = writer.addVec3({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}});
+        const int texcoords = writer.addVec2({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+        const int indices = writer.addIndices({0, 1, 2, 0, 2, 3, 0, 2, 1, 0, 3, 2}, 2);
+        const std::string body =
+            "\"materials\": [{\"doubleSided\": false}], " +
+            singleNode("{\"attributes\": {\"POSITION\": " + std::to_string(positions) +
+                       (textured ? ", \"TEXCOORD_0\": " + std::to_string(texcoords) : std::string()) +
+                       "}, \"indices\": " + std::to_string(indices) + ", \"material\": 0}");
+        const Scene scene = loadScene(TempFile("card.glb", writer.glb(body)).path());
+        ASSERT_EQ(scene.meshes.size(), 1u);
+        EXPECT_EQ(scene.meshes[0].triangleCount(), 4u) << "a one-sided card keeps both sheets";
+        expectCornerNormalsAlongTheirFaces(scene.meshes[0], textured ? "textured card" : "card");
+    }
+
+    // A cube whose node scales y to 0: its top and bottom lie on one plane, cut along other diagonals.
+    GltfWriter writer;
+    const int positions = writer.addVec3(
+        {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}});
+    const int indices = writer.addIndices(
+        {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 2, 3, 7, 2, 7, 6, 1, 2, 6, 1, 6, 5, 0, 4, 7, 0, 7, 3},
+        2);
+    const std::string body =
+        "\"materials\": [{}], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": " +
+        std::to_string(positions) + "}, \"indices\": " + std::to_string(indices) +
+        ", \"material\": 0}]}], \"nodes\": [{\"mesh\": 0, \"scale\": [1, 0, 1]}], \"scenes\": [{\"nodes\": [0]}]";
+    const Scene flat = loadScene(TempFile("flat.gltf", writer.gltf(body)).path());
+    ASSERT_EQ(flat.meshes.size(), 1u);
+    EXPECT_EQ(flat.meshes[0].triangleCount(), 4u) << "the sides are dropped as degenerate, top and bottom kept";
+    expectCornerNormalsAlongTheirFaces(flat.meshes[0], "flattened cube");
+}
+
 TEST(GltfLoader, AFileOfNoTrianglesSaysWhatTheLoadWarned) {
     // Its only primitive spells POSITION in lower case: the refusal said "no triangles" and left out why.
     GltfWriter writer;
