@@ -104,6 +104,17 @@ void MeshBudget::chargeBytes(std::size_t bytes, std::string_view what) {
                        mFunction);
 }
 
+void MeshBudget::checkBytes(std::size_t bytes, std::string_view what) const {
+    const std::size_t held = estimate(0, 0);
+    const std::size_t total = held > SIZE_MAX - bytes ? SIZE_MAX : held + bytes;
+    if (total > mLimitBytes)
+        throwLoadError(mPath,
+                       std::string(what) + " would need about " + memoryText(bytes) + "; the load would hold about " +
+                           memoryText(total) + ", above the memory limit of " + memoryText(mLimitBytes) + " (" +
+                           mLimitName + ")",
+                       mFunction);
+}
+
 void MeshBudget::check(std::size_t vertices, std::size_t triangles) const {
     const std::size_t bytes = estimate(vertices, triangles);
     if (bytes > mLimitBytes)

@@ -60,6 +60,9 @@ public:
     void chargeFile(std::size_t bytes);
     /** Throws SceneError naming the file when what is charged so far plus these counts exceeds the limit. */
     void check(std::size_t vertices, std::size_t triangles) const;
+    /** Throws SceneError naming the file and `what` ("skin 0 inverseBindMatrices") when what is charged so far plus
+     *  `bytes` a reader holds for a while (a skin's matrices, an animation's keyframes) exceeds the limit. */
+    void checkBytes(std::size_t bytes, std::string_view what) const;
     /** check(), then counts them for good (one glTF mesh may be instanced by many nodes). */
     void charge(std::size_t vertices, std::size_t triangles);
     /** Other memory a reader keeps that grows with the file's declarations (`what`: each mesh's node path, decoded

@@ -54,6 +54,56 @@ TEST(LoadLimits, EveryInstanceOfAGltfMeshIsChargedBeforeItIsCopied) {
     EXPECT_NE(message.find("above the memory limit of 1 MiB (--memory-limit)"), std::string::npos) << message;
 }
 
+/** `gltf` (GltfWriter::gltf()) with `accessors` (JSON objects) put before the writer's, which move up by as many. */
+std::string withAccessorsFirst(std::string gltf, const std::string& accessors) {
+    const std::string list = "\"accessors\": [";
+    gltf.insert(gltf.find(list) + list.size(), accessors + ", ");
+    return gltf;
+}
+
+TEST(LoadLimits, ASkinsOrAnAnimationsAccessorAboveTheLimitIsToldAsItself) {
+    // Accessors without a buffer view hold zeros and may declare any count: a million matrices (122 MiB as doubles),
+    // two million keyframes (30 MiB as floats). Their refusals spoke of "the mesh" and its vertices.
+    const std::string zeros = "{\"componentType\": 5126, \"count\": 1000000, \"type\": ";
+    LoadOptions options;
+    options.memoryLimitBytes = 16u << 20;
+
+    GltfWriter writer; // its accessors are 1, 2 and 3 once the zeros come first
+    writer.addVec3(kTriangle);
+    writer.addJoints({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+    writer.addFloats({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4", 4);
+    const std::string skinned = withAccessorsFirst(
+        writer.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 1, \"JOINTS_0\": 2, "
+                    "\"WEIGHTS_0\": 3}}]}], \"nodes\": [{\"mesh\": 0, \"skin\": 0}, {\"name\": \"bone\"}], "
+                    "\"scenes\": [{\"nodes\": [0, 1]}], \"skins\": [{\"joints\": [1], \"inverseBindMatrices\": 0}]"),
+        zeros + "\"MAT4\"}");
+    const std::string skinMessage =
+        test::sceneErrorMessage([&] { loadScene(TempFile("skin.gltf", skinned).path(), options); });
+    EXPECT_NE(skinMessage.find("skin.gltf': skin 0 inverseBindMatrices would need about 122 MiB; the load would hold "
+                               "about"),
+              std::string::npos)
+        << skinMessage;
+    EXPECT_EQ(skinMessage.find("the mesh"), std::string::npos) << skinMessage;
+
+    const std::string twiceAsMany = "{\"componentType\": 5126, \"count\": 2000000, \"type\": ";
+    GltfWriter animated; // its triangle is accessor 2
+    animated.addVec3(kTriangle);
+    const std::string moving = withAccessorsFirst(
+        animated.gltf("\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 2}}]}], \"nodes\": "
+                      "[{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], \"animations\": [{\"name\": \"walk\", "
+                      "\"channels\": [{\"sampler\": 0, \"target\": {\"node\": 0, \"path\": \"translation\"}}], "
+                      "\"samplers\": [{\"input\": 0, \"output\": 1}]}]"),
+        twiceAsMany + "\"SCALAR\"}, " + twiceAsMany + "\"VEC3\"}");
+    options.animation = "walk";
+    const std::string animationMessage =
+        test::sceneErrorMessage([&] { loadScene(TempFile("walk.gltf", moving).path(), options); });
+    EXPECT_NE(animationMessage.find("walk.gltf': animation 0 'walk' sampler 0's keyframes would need about "
+                                    "30 MiB; the load would hold about"),
+              std::string::npos)
+        << animationMessage;
+    EXPECT_EQ(animationMessage.find("the mesh"), std::string::npos) << animationMessage;
+}
+
 TEST(LoadLimits, BinaryStlDeclaringMoreThanTheLimitIsRefusedFromItsHeader) {
     // 200,000 triangles of zeros, all present: the size check passes, the memory bound does not.
     std::string bytes = binaryStlHeader(200'000);

@@ -102,7 +102,7 @@ AnimationCurve readCurve(const std::string& path, const tinygltf::Model& model,
     }
     // Keyframes are held as floats, input and output together; charged as the vertices they would equal.
     const std::size_t bytes = (keys + outputs * elementComponents) * sizeof(float);
-    budget.check(bytes / MeshBudget::kBytesPerVertex + 1, 0);
+    budget.checkBytes(bytes, label + "'s keyframes");
     curve.times = readAccessorFloats(path, model, sampler.input, TINYGLTF_TYPE_SCALAR, label + " input");
     for (std::size_t i = 1; i < curve.times.size(); ++i) {
         if (curve.times[i] < curve.times[i - 1]) {
@@ -429,7 +429,10 @@ jointMatrices(const std::string& path, const tinygltf::Model& model, int skinInd
         }
         // glTF allows more matrices than joints; all are read, so all are checked (a sparse accessor without a buffer
         // view can declare any count).
-        budget.check((count + skin.joints.size()) * sizeof(glm::dmat4) / MeshBudget::kBytesPerVertex + 1, 0);
+        budget.checkBytes(count > SIZE_MAX / sizeof(glm::dmat4) - skin.joints.size()
+                              ? SIZE_MAX
+                              : (count + skin.joints.size()) * sizeof(glm::dmat4),
+                          role);
         inverseBind = readAccessorFloats(path, model, skin.inverseBindMatrices, TINYGLTF_TYPE_MAT4, role);
     }
     std::vector<glm::dmat4> matrices;

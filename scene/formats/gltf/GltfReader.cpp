@@ -824,8 +824,8 @@ private:
             // SkinBlend holds every JOINTS_n/WEIGHTS_n set for the primitive's vertices while it is baked.
             const auto sets = std::ranges::count_if(
                 primitive.attributes, [](const auto& entry) { return entry.first.starts_with("JOINTS_"); });
-            mBudget.check(vertexCount * std::size_t(sets) * kSkinBytesPerVertexPerSet / MeshBudget::kBytesPerVertex + 1,
-                          0);
+            mBudget.checkBytes(vertexCount * std::size_t(sets) * kSkinBytesPerVertexPerSet,
+                               quotedExcerpt(name) + "'s joints and weights");
             skin.emplace(mPath, mModel, primitive, vertexCount, *pose.skinJoints, world, name,
                          draco ? &draco->attributes : nullptr);
         }
