@@ -129,6 +129,34 @@ TEST(GltfValueShapes, AnotherVersionOrAnExtensionListOfTheWrongTypeIsRefused) {
     EXPECT_NE(header.find("one.glb': GLB header version 1, not 2"), std::string::npos) << header;
 }
 
+TEST(GltfValueShapes, AStrideOrADataUriLengthTinygltfMisnamesIsToldAsItIs) {
+    const Quad quad;
+    std::string strided = quad.writer().gltf(quad.body(""));
+    const std::string view = "\"byteOffset\": 0, ";
+    strided.insert(strided.find(view), "\"byteStride\": 512, ");
+    const std::string stride = refusal("stride.gltf", strided);
+    // tinygltf: "`byteStride' must be the multiple of 4 : 512".
+    EXPECT_NE(stride.find("stride.gltf': bufferViews[0].byteStride is 512, not a multiple of 4 from 4 to 252"),
+              std::string::npos)
+        << stride;
+
+    // tinygltf: "Failed to decode 'uri'", as for a URI that is not base64.
+    std::string longer = quad.writer().gltf(quad.body(""));
+    const std::string length = "\"byteLength\": " + std::to_string(quad.writer().binary().size()) + "}]";
+    longer.replace(longer.find(length), length.size(),
+                   "\"byteLength\": " + std::to_string(quad.writer().binary().size() + 8) + "}]");
+    const std::string message = refusal("long.gltf", longer);
+    EXPECT_NE(message.find("long.gltf': invalid glTF: buffers[0].byteLength is " +
+                           std::to_string(quad.writer().binary().size() + 8) + ", but its data: URI holds " +
+                           std::to_string(quad.writer().binary().size()) + " bytes"),
+              std::string::npos)
+        << message;
+    std::string broken = quad.writer().gltf(quad.body(""));
+    broken.insert(broken.find(";base64,") + 8, "!");
+    const std::string brokenMessage = refusal("broken.gltf", broken);
+    EXPECT_NE(brokenMessage.find("buffers[0].uri's data: URI is not valid base64"), std::string::npos) << brokenMessage;
+}
+
 TEST(GltfValueShapes, AMaterialValueOfTheWrongTypeIsSaidAndItsDefaultUsed) {
     const Quad quad;
     const Scene scene = loadScene(

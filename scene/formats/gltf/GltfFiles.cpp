@@ -555,6 +555,30 @@ bool keepEncodedImage(tinygltf::Image* image, const int imageIndex, std::string*
     return true;
 }
 
+std::optional<std::string> dataUriBufferProblem(std::string_view json) {
+    const nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
+    if (!document.is_object() || !document.contains("buffers") || !document["buffers"].is_array()) return std::nullopt;
+    const nlohmann::json& buffers = document["buffers"];
+    for (std::size_t i = 0; i < buffers.size(); ++i) {
+        const nlohmann::json& buffer = buffers[i];
+        if (!buffer.is_object() || !buffer.contains("uri") || !buffer["uri"].is_string()) continue;
+        const std::string& uri = buffer["uri"].get_ref<const std::string&>();
+        if (uri.rfind("data:", 0) != 0) continue;
+        const std::string at = "buffers[" + std::to_string(i) + "]";
+        const std::size_t comma = uri.find(',');
+        if (comma == std::string::npos || uri.substr(0, comma).find(";base64") == std::string::npos)
+            return at + ".uri is a data: URI without ';base64,' (glTF's data: URIs are base64)";
+        const std::optional<std::vector<unsigned char>> bytes = strictBase64(std::string_view(uri).substr(comma + 1));
+        if (!bytes) return at + ".uri's data: URI is not valid base64";
+        if (buffer.contains("byteLength") && buffer["byteLength"].is_number_unsigned() &&
+            buffer["byteLength"].get<std::uint64_t>() != bytes->size()) {
+            return at + ".byteLength is " + std::to_string(buffer["byteLength"].get<std::uint64_t>()) +
+                   ", but its data: URI holds " + std::to_string(bytes->size()) + " bytes";
+        }
+    }
+    return std::nullopt;
+}
+
 /** The files a glTF (or GLB: `content` may stop after the JSON chunk) names: external buffers and images, and the
  *  shade maps of its materials, resolved as readGltf() resolves them. Best effort, nothing thrown. */
 std::vector<std::string> gltfReferencedFiles(const std::string& path, std::string_view content) {

@@ -86,6 +86,23 @@ void judgeExtensionLists(const std::string& path, const nlohmann::json& document
     }
 }
 
+/** tinygltf refuses a stride outside glTF's range as "must be the multiple of 4", even 512. */
+void judgeBufferViews(const std::string& path, const nlohmann::json& document) {
+    const auto views = document.find("bufferViews");
+    if (views == document.end() || !views->is_array()) return;
+    for (std::size_t i = 0; i < views->size(); ++i) {
+        const nlohmann::json& view = (*views)[i];
+        if (!view.is_object()) continue;
+        const auto stride = view.find("byteStride");
+        if (stride == view.end() || !stride->is_number_unsigned()) continue; // not an integer: refused already
+        const std::uint64_t bytes = stride->get<std::uint64_t>();
+        if (bytes < 4 || bytes > 252 || bytes % 4 != 0) {
+            throwLoadError(path, "bufferViews[" + std::to_string(i) + "].byteStride is " + std::to_string(bytes) +
+                                     ", not a multiple of 4 from 4 to 252 (glTF's strides)");
+        }
+    }
+}
+
 /** The most morph targets any primitive of `mesh` has. */
 std::size_t morphTargetCount(const nlohmann::json& mesh) {
     std::size_t count = 0;
@@ -252,6 +269,7 @@ std::vector<Warning> judgeValueShapes(const std::string& path, const nlohmann::j
     std::vector<Warning> warnings;
     judgeVersions(path, document);
     judgeExtensionLists(path, document);
+    judgeBufferViews(path, document);
     judgeNodes(path, document, warnings);
     judgeMaterials(document, warnings);
     return warnings;

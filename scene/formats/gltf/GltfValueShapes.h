@@ -21,11 +21,12 @@ namespace inkgraph::detail {
 void judgeGlbHeader(const std::string& path, std::string_view content);
 
 /** Refuses (SceneError naming `path` and the value's place, "nodes[3].matrix") an `asset.version` or `asset.minVersion`
- * of another major version than 2, an `extensionsRequired` or `extensionsUsed` that is not an array of strings, and a
- * node `matrix`, `translation`, `rotation` or `scale` that is not 16, 3, 4 or 3 finite numbers, or a `matrix` whose
- * bottom row is not 0 0 0 1 (glTF's nodes are affine). Returns the warnings: a material value of the wrong type or
- * length (MaterialValueInvalid; tinygltf uses the default) and morph weights whose count is not the targets'
- * (MorphWeightsMismatched). `document` is the file's JSON with its integers as integers (forTinygltf()). */
+ * of another major version than 2, an `extensionsRequired` or `extensionsUsed` that is not an array of strings, a
+ * buffer view's `byteStride` other than a multiple of 4 from 4 to 252 (tinygltf told 512 as "must be the multiple of
+ * 4"), and a node `matrix`, `translation`, `rotation` or `scale` that is not 16, 3, 4 or 3 finite numbers, or a
+ * `matrix` whose bottom row is not 0 0 0 1 (glTF's nodes are affine). Returns the warnings: a material value of the
+ * wrong type or length (MaterialValueInvalid; tinygltf uses the default) and morph weights whose count is not the
+ * targets' (MorphWeightsMismatched). `document` is the file's JSON with its integers as integers (forTinygltf()). */
 std::vector<Warning> judgeValueShapes(const std::string& path, const nlohmann::json& document);
 
 } // namespace inkgraph::detail
