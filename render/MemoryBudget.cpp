@@ -258,11 +258,9 @@ void budgetStill(PreparedStill& still) {
     const int height = request.camera.height;
     // One texture of 2 GiB or more fails deep inside the driver (GL's byte counts are 32-bit); the message names
     // every flag that makes the buffer that large (--size, and --supersample for the supersampled ones).
+    const PlanSizes sizes(still.plan, request);
     for (const PlannedResource& resource : still.plan.resources) {
-        const std::size_t textureBytes =
-            paddedTextureSide(PlanSizes::sideOf(width, resource.desc.scale, resource.desc.divisor)) *
-            paddedTextureSide(PlanSizes::sideOf(height, resource.desc.scale, resource.desc.divisor)) *
-            std::size_t(bytesPerPixel(resource.desc.format)) * std::size_t(resource.desc.samples);
+        const std::size_t textureBytes = sizes.textureBytes(resource);
         if (textureBytes < kMaxTextureBytes) continue;
         const std::string size = "--size " + sizeText(std::size_t(width), std::size_t(height));
         const std::string cause =

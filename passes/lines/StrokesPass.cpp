@@ -34,13 +34,13 @@ constexpr double kTaperStart = 0.25;   ///< the width share at a stroke's very e
 /** Data pixels (the frame at `dataScale`, --supersample) per pixel of `resource`, a skeleton or band at its own scale
  *  and divisor (TextureDesc). A resource whose pixels are not whole blocks of data pixels is a bug upstream. */
 int dataPixelsPerPixelOf(const GlPassContext& gl, const std::string& resource, int dataScale) {
-    const int numerator = dataScale * gl.divisorOf(resource);
+    const int divisor = gl.divisorOf(resource);
+    const int numerator = dataScale * divisor;
     const int denominator = gl.scaleOf(resource);
     if (denominator < 1 || numerator % denominator != 0)
         throw std::logic_error("StrokesPass::execute(): '" + resource + "' is at " + std::to_string(denominator) + "/" +
-                               std::to_string(gl.divisorOf(resource)) +
-                               " of the frame, not a whole fraction of the data size (x" + std::to_string(dataScale) +
-                               ")");
+                               std::to_string(divisor) + " of the frame, not a whole fraction of the data size (x" +
+                               std::to_string(dataScale) + ")");
     return numerator / denominator;
 }
 
@@ -111,16 +111,15 @@ void StrokesPass::execute(GlPassContext& gl) {
             const LineSkeleton& found = gl.inputObject<LineSkeleton>(input.resource);
             thinned[index].mask = thinToSkeleton(found.mask, 1);
             thinned[index].points = found.points;
-            // A kernel may find its lines on a field coarser than the data (the suggestive contours' one sampling
-            // at every size, SuggestiveLines.h): its skeleton's pixels are then whole blocks of data pixels.
-            layer.scale = dataPixelsPerPixelOf(gl, input.resource, scale);
         } else {
             // Slivers narrower than a pixel at the band's reference size go; the band's own width stays.
             const cv::Mat& band = gl.inputImage(input.resource);
             thinned[index] =
                 skeletonFromMask(thinToSkeleton(input.bandOfOneWidth ? openedBand(band, input.widthPixels) : band));
-            layer.scale = dataPixelsPerPixelOf(gl, input.resource, scale);
         }
+        // A kernel may find its lines on a field coarser than the data (the suggestive contours' one sampling at
+        // every size, SuggestiveLines.h): its skeleton's pixels are then whole blocks of data pixels.
+        layer.scale = dataPixelsPerPixelOf(gl, input.resource, scale);
         layer.skeleton = &thinned[index];
         if (layer.skeleton->mask.size() * layer.scale != dataSize)
             throw std::runtime_error("StrokesPass::execute(): '" + input.resource + "' is not at the data size " +
