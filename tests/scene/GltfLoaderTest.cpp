@@ -524,18 +524,6 @@ TEST(GltfLoader, ADoubleFacedCardOfATwoSidedMaterialKeepsItsFirstSide) {
     }
 }
 
-/** Every corner's normal of `mesh` points along its triangle's winding normal (within 1 degree). */
-void expectCornerNormalsAlongTheirFaces(const Mesh& mesh, const std::string& what) {
-    for (const glm::uvec3& triangle : mesh.triangles) {
-        const glm::dvec3 face =
-            glm::normalize(glm::cross(glm::dvec3(mesh.positions[triangle.y] - mesh.positions[triangle.x]),
-                                      glm::dvec3(mesh.positions[triangle.z] - mesh.positions[triangle.x])));
-        for (int corner = 0; corner < 3; ++corner)
-            EXPECT_GT(glm::dot(face, glm::dvec3(mesh.normals[triangle[corner]])), std::cos(glm::radians(1.0)))
-                << what << ": a corner's normal against its face";
-    }
-}
-
 TEST(GltfLoader, SheetsThatLieOnEachOtherOnSharedCornersKeepTheirOwnNormals) {
     // A one-sided double-faced card on one set of corners, without normals: the two sheets' smooth normals summed to
     // nothing and each corner took one sheet's direction (the back drawn dark, or in wedges). With texture
@@ -553,7 +541,7 @@ TEST(GltfLoader, SheetsThatLieOnEachOtherOnSharedCornersKeepTheirOwnNormals) {
         const Scene scene = loadScene(TempFile("card.glb", writer.glb(body)).path());
         ASSERT_EQ(scene.meshes.size(), 1u);
         EXPECT_EQ(scene.meshes[0].triangleCount(), 4u) << "a one-sided card keeps both sheets";
-        expectCornerNormalsAlongTheirFaces(scene.meshes[0], textured ? "textured card" : "card");
+        test::expectCornerNormalsAlongTheirFaces(scene.meshes[0], textured ? "textured card" : "card");
     }
 
     // A cube whose node scales y to 0: its top and bottom lie on one plane, cut along other diagonals.
@@ -570,7 +558,7 @@ TEST(GltfLoader, SheetsThatLieOnEachOtherOnSharedCornersKeepTheirOwnNormals) {
     const Scene flat = loadScene(TempFile("flat.gltf", writer.gltf(body)).path());
     ASSERT_EQ(flat.meshes.size(), 1u);
     EXPECT_EQ(flat.meshes[0].triangleCount(), 4u) << "the sides are dropped as degenerate, top and bottom kept";
-    expectCornerNormalsAlongTheirFaces(flat.meshes[0], "flattened cube");
+    test::expectCornerNormalsAlongTheirFaces(flat.meshes[0], "flattened cube");
 }
 
 TEST(GltfLoader, AFileOfNoTrianglesSaysWhatTheLoadWarned) {

@@ -216,6 +216,23 @@ TEST(ObjLoader, ADoubleFacedCardLoadsAsItsFirstSide) {
         << "the diagonal from vertex 1";
 }
 
+TEST(ObjLoader, AConcaveDoubleFacedPolygonShadesAsItsOwnSides) {
+    // A star written again in reverse is cut into other ears, so only some of its triangles pair up as back-to-back
+    // twins; the rest share their corners with the other side, whose smooth normals cancelled: black wedges.
+    std::string star;
+    for (int i = 0; i < 10; ++i) {
+        const double radius = i % 2 == 0 ? 1.0 : 0.4;
+        const double angle = 3.14159265358979 / 2 + i * 3.14159265358979 / 5;
+        star +=
+            "v " + std::to_string(radius * std::cos(angle)) + " " + std::to_string(radius * std::sin(angle)) + " 0\n";
+    }
+    star += "f 1 2 3 4 5 6 7 8 9 10\nf 10 9 8 7 6 5 4 3 2 1\n";
+    const Scene scene = loadScene(TempFile("star.obj", star).path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_LT(scene.report.backToBackDropped, 8u) << "only some of the star's triangles pair up";
+    test::expectCornerNormalsAlongTheirFaces(scene.meshes[0], "star");
+}
+
 TEST(ObjLoader, PentagonIsFanTriangulated) {
     const TempFile file("pentagon.obj", "v 0 0 0\nv 2 0 0\nv 3 1 0\nv 1 2 0\nv -1 1 0\nf 1 2 3 4 5\n");
     const Mesh mesh = loadScene(file.path()).meshes.at(0);

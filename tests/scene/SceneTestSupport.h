@@ -153,6 +153,16 @@ inline void expectOutwardWinding(const Mesh& mesh, glm::dvec3 center) {
     EXPECT_EQ(inward, 0u) << "triangles wound inward in mesh '" << mesh.name << "'";
 }
 
+/** Every corner's normal of `mesh` points along its triangle's winding normal, within 1 degree. */
+inline void expectCornerNormalsAlongTheirFaces(const Mesh& mesh, const std::string& what) {
+    for (const glm::uvec3& triangle : mesh.triangles) {
+        const glm::dvec3 face = glm::normalize(triangleCross(mesh, triangle));
+        for (int corner = 0; corner < 3; ++corner)
+            EXPECT_GT(glm::dot(face, glm::dvec3(mesh.normals[triangle[corner]])), std::cos(3.14159265358979 / 180.0))
+                << what << ": a corner's normal against its face";
+    }
+}
+
 inline void expectUnitNormals(const Mesh& mesh, double tolerance = 1e-5) {
     ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
     std::size_t bad = 0;
