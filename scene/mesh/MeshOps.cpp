@@ -568,52 +568,66 @@ std::vector<std::uint32_t> vertexAttributeClasses(const RawMesh& raw) {
  *  (2.6 degrees from antiparallel; a blade's edge that sharp is better shaded hard too). */
 constexpr double kOpposedSheetsCosine = -0.999;
 
-/** Where sheets that lie on each other share vertices (a double-faced card written on one set of corners, a closed
- *  mesh a node's scale of 0 flattens onto a plane), a vertex's smooth normal sums opposite faces: nearly nothing, or
- *  one sheet's direction for both, so one side shades dark or in wedges. Each such vertex gets a copy (same position
- *  and attributes) for the faces that look against the canonical direction there (its largest face's normal, turned
- *  so that its largest component is positive, the same for every copy at that place), so each sheet's normals are its
- *  own. Returns the class of every vertex afterwards, 1 for the copies and 0 for the rest (empty when nothing was
- *  split), which keeps them apart in a position weld. */
-std::vector<std::uint32_t> splitOpposedSheets(Mesh& mesh) {
+/** Where sheets that lie on each other meet (a double-faced card, a closed mesh a node's scale of 0 flattens onto a
+ *  plane), a smooth normal sums opposite faces: nearly nothing, or one sheet's direction for both, so one side shades
+ *  dark or in wedges. Judged at each place (`positionWeld`'s output vertex, or each vertex when it is null: the
+ *  load's weld was by position): opposed when one of its faces lies within kOpposedSheetsCosine of antiparallel to its
+ *  largest face. There the faces that look against the canonical direction (that largest face's normal, turned so
+ *  that its largest component is positive: the same for every vertex at the place) form the back sheet. A vertex used
+ *  by both sheets gets a copy (same position and attributes) for the back sheet's faces. Returns the class of every
+ *  vertex afterwards, 1 for the back sheet's and 0 for the rest (empty when no place is opposed): in a position weld
+ *  with these classes each sheet sums its own normals. */
+std::vector<std::uint32_t> splitOpposedSheets(Mesh& mesh, const WeldMap* positionWeld) {
     const std::size_t count = mesh.positions.size();
-    std::vector<double> largestArea(count, 0.0);
-    std::vector<glm::dvec3> reference(count, glm::dvec3(0.0));
+    const auto placeOf = [&](std::uint32_t vertex) {
+        return positionWeld != nullptr ? positionWeld->outputOf[vertex] : vertex;
+    };
+    const std::size_t places = positionWeld != nullptr ? positionWeld->kept.size() : count;
+    std::vector<double> largestArea(places, 0.0);
+    std::vector<glm::dvec3> reference(places, glm::dvec3(0.0));
     std::vector<glm::dvec3> faceNormals(mesh.triangles.size());
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const glm::dvec3 cross = faceCross(mesh.positions, mesh.triangles[t]);
         faceNormals[t] = normalizedOrZero(cross);
         const double area = glm::length(cross);
         for (int corner = 0; corner < 3; ++corner) {
-            const std::uint32_t vertex = mesh.triangles[t][corner];
-            if (area > largestArea[vertex]) {
-                largestArea[vertex] = area;
-                reference[vertex] = faceNormals[t];
+            const std::uint32_t place = placeOf(mesh.triangles[t][corner]);
+            if (area > largestArea[place]) {
+                largestArea[place] = area;
+                reference[place] = faceNormals[t];
             }
         }
     }
-    std::vector<std::uint8_t> opposed(count, 0);
+    std::vector<std::uint8_t> opposed(places, 0);
     bool any = false;
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         for (int corner = 0; corner < 3; ++corner) {
-            const std::uint32_t vertex = mesh.triangles[t][corner];
-            if (glm::dot(faceNormals[t], reference[vertex]) < kOpposedSheetsCosine) opposed[vertex] = any = true;
+            const std::uint32_t place = placeOf(mesh.triangles[t][corner]);
+            if (glm::dot(faceNormals[t], reference[place]) < kOpposedSheetsCosine) opposed[place] = any = true;
         }
     }
     if (!any) return {};
-    for (std::size_t vertex = 0; vertex < count; ++vertex) {
-        if (!opposed[vertex]) continue;
-        const glm::dvec3 magnitude = glm::abs(reference[vertex]);
+    for (std::size_t place = 0; place < places; ++place) {
+        if (!opposed[place]) continue;
+        const glm::dvec3 magnitude = glm::abs(reference[place]);
         const int axis = magnitude.x >= magnitude.y && magnitude.x >= magnitude.z ? 0
                          : magnitude.y >= magnitude.z                             ? 1
                                                                                   : 2;
-        if (reference[vertex][axis] < 0.0) reference[vertex] = -reference[vertex];
+        if (reference[place][axis] < 0.0) reference[place] = -reference[place];
     }
+    const auto onBackSheet = [&](std::size_t t, int corner) {
+        const std::uint32_t place = placeOf(mesh.triangles[t][corner]);
+        return opposed[place] && glm::dot(faceNormals[t], reference[place]) < 0.0;
+    };
+    // Per vertex: 1 when a front face uses it, 2 when a back face does.
+    std::vector<std::uint8_t> sheets(count, 0);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+        for (int corner = 0; corner < 3; ++corner) sheets[mesh.triangles[t][corner]] |= onBackSheet(t, corner) ? 2 : 1;
     std::vector<std::uint32_t> copyOf(count, kNoVertex);
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         for (int corner = 0; corner < 3; ++corner) {
             const std::uint32_t vertex = mesh.triangles[t][corner];
-            if (!opposed[vertex] || glm::dot(faceNormals[t], reference[vertex]) >= 0.0) continue;
+            if (sheets[vertex] != 3 || !onBackSheet(t, corner)) continue;
             if (copyOf[vertex] == kNoVertex) {
                 copyOf[vertex] = std::uint32_t(mesh.positions.size());
                 const glm::vec3 position = mesh.positions[vertex];
@@ -632,6 +646,8 @@ std::vector<std::uint32_t> splitOpposedSheets(Mesh& mesh) {
         }
     }
     std::vector<std::uint32_t> classes(mesh.positions.size(), 0);
+    for (std::size_t vertex = 0; vertex < count; ++vertex)
+        if (sheets[vertex] == 2) classes[vertex] = 1;
     std::fill(classes.begin() + std::ptrdiff_t(count), classes.end(), 1u);
     return classes;
 }
@@ -805,20 +821,27 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
                 "", mesh.name));
     }
 
+    // Texture seams and colour borders split vertices the normals weld again by position: the sheets are judged on
+    // that weld. Without attributes the load's weld was by position already.
+    const double weldDistance = options.weldTolerance * modelDiagonal;
+    const bool weldedByPosition = attributeClasses.empty();
+    WeldMap positionWeld;
+    if (!fileHasNormals && !weldedByPosition) positionWeld = weldVertices(mesh.positions, {}, weldDistance);
     const std::vector<std::uint32_t> sheetClasses =
-        fileHasNormals ? std::vector<std::uint32_t>{} : splitOpposedSheets(mesh);
+        fileHasNormals ? std::vector<std::uint32_t>{}
+                       : splitOpposedSheets(mesh, weldedByPosition ? nullptr : &positionWeld);
     // Nothing but position decided this weld: the kept vertices are pairwise out of its reach, which derived data
     // welded at the same distance can rely on (weldMeshPositions()).
-    if (!fileHasNormals && attributeClasses.empty() && sheetClasses.empty())
-        mesh.positionsWeldedAt = options.weldTolerance * modelDiagonal;
+    if (!fileHasNormals && weldedByPosition && sheetClasses.empty()) mesh.positionsWeldedAt = weldDistance;
     if (!fileHasNormals) {
         // Smooth across texture seams and colour borders: the copies of a vertex that only its attributes split share
-        // one normal, as they would have without the attributes; the copies of opposed sheets keep their own.
-        mesh.normals = attributeClasses.empty()
-                           ? computeSmoothNormals(mesh.positions, mesh.triangles)
-                           : computePositionWeldedNormals(
-                                 mesh.positions, mesh.triangles,
-                                 weldVertices(mesh.positions, {}, options.weldTolerance * modelDiagonal, sheetClasses));
+        // one normal, as they would have without the attributes; each of two opposed sheets keeps its own.
+        if (weldedByPosition)
+            mesh.normals = computeSmoothNormals(mesh.positions, mesh.triangles);
+        else
+            mesh.normals = computePositionWeldedNormals(
+                mesh.positions, mesh.triangles,
+                sheetClasses.empty() ? positionWeld : weldVertices(mesh.positions, {}, weldDistance, sheetClasses));
         mesh.normalsAreSmooth = attributeClasses.empty();
         report.normalsComputed = true;
     } else if (someNormalsUnusable) {

@@ -561,6 +561,60 @@ TEST(GltfLoader, SheetsThatLieOnEachOtherOnSharedCornersKeepTheirOwnNormals) {
     test::expectCornerNormalsAlongTheirFaces(flat.meshes[0], "flattened cube");
 }
 
+TEST(GltfLoader, SheetsThatLieOnEachOtherOnTheirOwnCornersKeepTheirOwnNormals) {
+    // With texture coordinates the corners of two sheets at one place are apart (another coordinate on each side),
+    // and the normals were welded by position: the sheets summed to nothing again (a textured box flattened by its
+    // node drew wedges), or the back took the front's normals (a card printed on both sides was dark from behind).
+    const std::vector<glm::vec3> square = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    const std::vector<glm::vec2> uv = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    const std::vector<glm::vec2> mirrored = {{1, 0}, {0, 0}, {0, 1}, {1, 1}};
+    const auto card = [&](const std::vector<glm::vec3>& positions, const std::vector<glm::vec2>& texcoords,
+                          const std::vector<std::uint32_t>& indices, const std::string& node) {
+        GltfWriter writer;
+        const int position = writer.addVec3(positions);
+        const int texcoord = writer.addVec2(texcoords);
+        const int index = writer.addIndices(indices, 2);
+        return writer.glb("\"materials\": [{\"doubleSided\": false}], \"meshes\": [{\"primitives\": "
+                          "[{\"attributes\": {\"POSITION\": " +
+                          std::to_string(position) + ", \"TEXCOORD_0\": " + std::to_string(texcoord) +
+                          "}, \"indices\": " + std::to_string(index) +
+                          ", \"material\": 0}]}], \"nodes\": [{\"mesh\": 0" + node +
+                          "}], \"scenes\": [{\"nodes\": [0]}]");
+    };
+    std::vector<glm::vec3> twoSheets = square;
+    twoSheets.insert(twoSheets.end(), square.begin(), square.end());
+    std::vector<glm::vec2> bothPrints = uv;
+    bothPrints.insert(bothPrints.end(), mirrored.begin(), mirrored.end());
+    // The back on corners of its own; then on two of the front's and two of its own.
+    const Scene separate = loadScene(
+        TempFile("separate.glb", card(twoSheets, bothPrints, {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6}, "")).path());
+    test::expectCornerNormalsAlongTheirFaces(separate.meshes.at(0), "a back on corners of its own");
+    const Scene partly =
+        loadScene(TempFile("partly.glb", card({square[0], square[1], square[2], square[3], square[1], square[3]},
+                                              {uv[0], uv[1], uv[2], uv[3], mirrored[1], mirrored[3]},
+                                              {0, 1, 2, 0, 2, 3, 0, 2, 4, 0, 5, 2}, ""))
+                      .path());
+    test::expectCornerNormalsAlongTheirFaces(partly.meshes.at(0), "a back on two corners of the front's");
+
+    // A textured cube, four corners a face, flattened by its node's scale of 0 in y.
+    std::vector<glm::vec3> corners;
+    std::vector<glm::vec2> texcoords;
+    std::vector<std::uint32_t> indices;
+    for (const glm::uvec4& quad : test::cubeQuads()) {
+        const auto first = std::uint32_t(corners.size());
+        for (int k = 0; k < 4; ++k) {
+            corners.push_back(test::cubeCorners()[quad[k] - 1]); // 1-based
+            texcoords.push_back(uv[std::size_t(k)]);
+        }
+        indices.insert(indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
+    }
+    const Scene flat =
+        loadScene(TempFile("flat.glb", card(corners, texcoords, indices, ", \"scale\": [1, 0, 1]")).path());
+    ASSERT_EQ(flat.meshes.size(), 1u);
+    EXPECT_EQ(flat.meshes[0].triangleCount(), 4u) << "the sides are dropped as degenerate, top and bottom kept";
+    test::expectCornerNormalsAlongTheirFaces(flat.meshes[0], "a flattened textured cube");
+}
+
 TEST(GltfLoader, AFileOfNoTrianglesSaysWhatTheLoadWarned) {
     // Its only primitive spells POSITION in lower case: the refusal said "no triangles" and left out why.
     GltfWriter writer;
