@@ -84,8 +84,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::MorphAttributeIgnored, "morph-attribute-ignored",
          "a morph target moves an attribute other than POSITION and NORMAL, which is not applied"},
         {K::MorphWeightsMismatched, "morph-weights-mismatched",
-         "a glTF mesh's or node's morph weights, fewer or more than its morph targets; a target without one is not "
-         "applied"},
+         "a glTF mesh's or node's morph weights that are not one number per morph target; a target without one is "
+         "not applied"},
         {K::GltfParserMessage, "gltf-parser-message", "what tinygltf reported about a file it still read"},
         {K::ShadeMapUnused, "shade-map-unused", "meshes name shade maps, which the --shading model does not use"},
         {K::ModelOutsideView, "model-outside-view", "the camera sees none of the model: the picture is blank paper"},

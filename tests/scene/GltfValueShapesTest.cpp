@@ -162,7 +162,7 @@ TEST(GltfValueShapes, AMaterialValueOfTheWrongTypeIsSaidAndItsDefaultUsed) {
     const Scene scene = loadScene(
         TempFile("paint.gltf",
                  quad.writer().gltf(quad.body("", ", \"pbrMetallicRoughness\": {\"baseColorFactor\": [1, 0, 0]}, "
-                                                  "\"doubleSided\": \"yes\", \"emissiveFactor\": \"glow\", "
+                                                  "\"doubleSided\": \"yes\", \"emissiveFactor\": [1, 0], "
                                                   "\"alphaMode\": 1, \"normalTexture\": {\"index\": 0, \"scale\": "
                                                   "\"deep\"}")))
             .path());
@@ -173,14 +173,20 @@ TEST(GltfValueShapes, AMaterialValueOfTheWrongTypeIsSaidAndItsDefaultUsed) {
          {std::string("materials[0].pbrMetallicRoughness.baseColorFactor has 3 values, not 4 numbers; the default "
                       "[1, 1, 1, 1] is used"),
           std::string("materials[0].doubleSided is the string 'yes', not true or false; the default false is used"),
-          std::string("materials[0].emissiveFactor is the string 'glow', not 3 numbers; the default [0, 0, 0] is used"),
+          std::string("materials[0].emissiveFactor has 2 values, not 3 numbers; the default [0, 0, 0] is used"),
           std::string("materials[0].alphaMode is 1, not a string; the default OPAQUE is used"),
           std::string("materials[0].normalTexture.scale is the string 'deep', not a number")}) {
         EXPECT_TRUE(warned(scene, WarningKind::MaterialValueInvalid, expected)) << expected;
     }
-    // tinygltf's own word on the base colour's length is not said again.
+    // Dropped before tinygltf reads the file, which warned of the base colour's length and refused the emissive's.
     EXPECT_FALSE(std::ranges::any_of(
         scene.report.warnings, [](const Warning& w) { return w.code == warningCode(WarningKind::GltfParserMessage); }));
+
+    const Scene empty =
+        loadScene(TempFile("null.gltf", quad.writer().gltf(quad.body("", ", \"normalTexture\": null"))).path());
+    EXPECT_TRUE(warned(empty, WarningKind::MaterialValueInvalid,
+                       "materials[0].normalTexture is null, not an object; its defaults are used"));
+    EXPECT_EQ(empty.report.warnings.size(), 1u) << "tinygltf's \"'index' property is missing\" is not said too";
 
     const Scene object = loadScene(
         TempFile("shiny.gltf", quad.writer().gltf(quad.body("", ", \"pbrMetallicRoughness\": \"shiny\""))).path());
@@ -203,6 +209,10 @@ TEST(GltfValueShapes, MorphWeightsOtherThanOnePerTargetAreSaid) {
         loadScene(TempFile("fewer.gltf", quad.writer().gltf(quad.body("\"weights\": [], ", "", "", true))).path());
     EXPECT_TRUE(warned(fewer, WarningKind::MorphWeightsMismatched,
                        "nodes[0].weights has 0 weights for 1 morph targets; the targets without one are not applied"));
+    const Scene text =
+        loadScene(TempFile("text.gltf", quad.writer().gltf(quad.body("", "", ", \"weights\": \"0.5\"", true))).path());
+    EXPECT_TRUE(warned(text, WarningKind::MorphWeightsMismatched,
+                       "meshes[0].weights is the string '0.5', not an array of numbers; read as no weights"));
     const Scene one =
         loadScene(TempFile("one.gltf", quad.writer().gltf(quad.body("", "", ", \"weights\": [1]", true))).path());
     EXPECT_TRUE(one.report.warnings.empty()) << one.report.warnings.front();

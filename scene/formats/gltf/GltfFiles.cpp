@@ -298,18 +298,25 @@ TinygltfInput forTinygltf(const std::string& path, std::string_view content, boo
     const std::string_view json = jsonOf(content, binary);
     const bool draco = json.find(kDracoExtension) != std::string_view::npos;
     const bool meshopt = json.find(kMeshoptExtension) != std::string_view::npos;
+    ValueShapes shapes;
     if (!draco && !meshopt) {
         // Judged without the long strings first: the whole document is parsed only when something is rewritten.
         nlohmann::json shortened = nlohmann::json::parse(withLongStringsCut(json), nullptr, false);
         if (!shortened.is_object()) return input;
         const bool rewrite = integersAsWritten(path, shortened, "", true);
-        input.warnings = judgeValueShapes(path, shortened);
-        if (!rewrite) return input;
+        shapes = judgeValueShapes(path, shortened);
+        input.warnings = shapes.warnings;
+        if (!rewrite && shapes.dropped.empty()) return input;
     }
     nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
     if (!document.is_object()) return input;
     bool changed = integersAsWritten(path, document, "", true);
-    if (draco || meshopt) input.warnings = judgeValueShapes(path, document);
+    if (draco || meshopt) {
+        shapes = judgeValueShapes(path, document);
+        input.warnings = shapes.warnings;
+    }
+    dropValues(document, shapes.dropped);
+    changed = changed || !shapes.dropped.empty();
     if (draco && document.contains("meshes") && document["meshes"].is_array()) {
         for (nlohmann::json& mesh : document["meshes"]) {
             if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;

@@ -103,6 +103,12 @@ void judgeBufferViews(const std::string& path, const nlohmann::json& document) {
     }
 }
 
+/** An object's "name" when it is a string, else "". */
+std::string nameOf(const nlohmann::json& object) {
+    const auto name = object.find("name");
+    return name != object.end() && name->is_string() ? name->get<std::string>() : std::string();
+}
+
 /** The most morph targets any primitive of `mesh` has. */
 std::size_t morphTargetCount(const nlohmann::json& mesh) {
     std::size_t count = 0;
@@ -116,18 +122,30 @@ std::size_t morphTargetCount(const nlohmann::json& mesh) {
     return count;
 }
 
-/** MorphWeightsMismatched when `weights` (at `at`) is an array whose length is not `targets`. */
-void judgeWeights(const nlohmann::json& weights, std::size_t targets, const std::string& at, const std::string& item,
-                  std::vector<Warning>& warnings) {
-    if (!weights.is_array() || weights.size() == targets) return;
-    warnings.push_back(makeWarning(
+/** MorphWeightsMismatched when `weights` (at `at`, its JSON pointer `pointer`) is not `targets` numbers; weights that
+ *  are not an array of numbers are dropped (tinygltf would read them as none). */
+void judgeWeights(const nlohmann::json& weights, std::size_t targets, const std::string& at, const std::string& pointer,
+                  const std::string& item, ValueShapes& shapes) {
+    const bool numbers =
+        weights.is_array() && std::ranges::all_of(weights, [](const nlohmann::json& w) { return w.is_number(); });
+    if (!numbers) {
+        shapes.warnings.push_back(makeWarning(WarningKind::MorphWeightsMismatched,
+                                              at + " is " + valueForMessage(weights) +
+                                                  ", not an array of numbers; read as no weights (the morph targets "
+                                                  "are not applied)",
+                                              "", item));
+        shapes.dropped.push_back(pointer);
+        return;
+    }
+    if (weights.size() == targets) return;
+    shapes.warnings.push_back(makeWarning(
         WarningKind::MorphWeightsMismatched,
         at + " has " + std::to_string(weights.size()) + " weights for " + std::to_string(targets) + " morph targets; " +
             (weights.size() < targets ? "the targets without one are not applied" : "the extra weights are ignored"),
         "", item));
 }
 
-void judgeNodes(const std::string& path, const nlohmann::json& document, std::vector<Warning>& warnings) {
+void judgeNodes(const std::string& path, const nlohmann::json& document, ValueShapes& shapes) {
     const auto nodes = document.find("nodes");
     if (nodes == document.end() || !nodes->is_array()) return;
     const auto meshes = document.find("meshes");
@@ -165,7 +183,8 @@ void judgeNodes(const std::string& path, const nlohmann::json& document, std::ve
             continue;
         const nlohmann::json& meshObject = (*meshes)[mesh->get<std::size_t>()];
         if (meshObject.is_object())
-            judgeWeights(*weights, morphTargetCount(meshObject), at + ".weights", node.value("name", ""), warnings);
+            judgeWeights(*weights, morphTargetCount(meshObject), at + ".weights",
+                         "/nodes/" + std::to_string(i) + "/weights", nameOf(node), shapes);
     }
     if (meshes == document.end() || !meshes->is_array()) return;
     for (std::size_t i = 0; i < meshes->size(); ++i) {
@@ -174,8 +193,7 @@ void judgeNodes(const std::string& path, const nlohmann::json& document, std::ve
         const auto weights = mesh.find("weights");
         if (weights != mesh.end())
             judgeWeights(*weights, morphTargetCount(mesh), "meshes[" + std::to_string(i) + "].weights",
-                         mesh.contains("name") && mesh["name"].is_string() ? mesh["name"].get<std::string>() : "",
-                         warnings);
+                         "/meshes/" + std::to_string(i) + "/weights", nameOf(mesh), shapes);
     }
 }
 
@@ -200,15 +218,15 @@ constexpr MaterialValue kMaterialValues[] = {
     {"", "doubleSided", 0, 'b', "false"},
 };
 
-void judgeMaterials(const nlohmann::json& document, std::vector<Warning>& warnings) {
+void judgeMaterials(const nlohmann::json& document, ValueShapes& shapes) {
     const auto materials = document.find("materials");
     if (materials == document.end() || !materials->is_array()) return;
     for (std::size_t i = 0; i < materials->size(); ++i) {
         const nlohmann::json& material = (*materials)[i];
         if (!material.is_object()) continue;
         const std::string at = "materials[" + std::to_string(i) + "]";
-        const std::string name =
-            material.contains("name") && material["name"].is_string() ? material["name"].get<std::string>() : "";
+        const std::string name = nameOf(material);
+        const std::string pointer = "/materials/" + std::to_string(i) + "/";
         for (const MaterialValue& wanted : kMaterialValues) {
             const nlohmann::json* holder = &material;
             std::string place = at + ".";
@@ -219,11 +237,14 @@ void judgeMaterials(const nlohmann::json& document, std::vector<Warning>& warnin
                     // Said once, at its first value.
                     if (&wanted == &*std::ranges::find_if(kMaterialValues, [&](const MaterialValue& v) {
                             return std::string_view(v.object) == wanted.object;
-                        }))
-                        warnings.push_back(makeWarning(WarningKind::MaterialValueInvalid,
-                                                       place + wanted.object + " is " + valueForMessage(*object) +
-                                                           ", not an object; its defaults are used",
-                                                       "", name));
+                        })) {
+                        shapes.warnings.push_back(makeWarning(WarningKind::MaterialValueInvalid,
+                                                              place + wanted.object + " is " +
+                                                                  valueForMessage(*object) +
+                                                                  ", not an object; its defaults are used",
+                                                              "", name));
+                        shapes.dropped.push_back(pointer + wanted.object);
+                    }
                     continue;
                 }
                 holder = &*object;
@@ -244,9 +265,12 @@ void judgeMaterials(const nlohmann::json& document, std::vector<Warning>& warnin
                 why = " is " + valueForMessage(*value) + ", not true or false";
             }
             if (why) {
-                warnings.push_back(makeWarning(WarningKind::MaterialValueInvalid,
-                                               place + *why + "; the default " + wanted.fallback + " is used", "",
-                                               name));
+                shapes.warnings.push_back(makeWarning(WarningKind::MaterialValueInvalid,
+                                                      place + *why + "; the default " + wanted.fallback + " is used",
+                                                      "", name));
+                // tinygltf reads some such values as absent and refuses others (an emissiveFactor of 2 numbers).
+                shapes.dropped.push_back(pointer + (*wanted.object != '\0' ? std::string(wanted.object) + "/" : "") +
+                                         wanted.member);
             }
         }
     }
@@ -265,14 +289,22 @@ void judgeGlbHeader(const std::string& path, std::string_view content) {
     }
 }
 
-std::vector<Warning> judgeValueShapes(const std::string& path, const nlohmann::json& document) {
-    std::vector<Warning> warnings;
+ValueShapes judgeValueShapes(const std::string& path, const nlohmann::json& document) {
+    ValueShapes shapes;
     judgeVersions(path, document);
     judgeExtensionLists(path, document);
     judgeBufferViews(path, document);
-    judgeNodes(path, document, warnings);
-    judgeMaterials(document, warnings);
-    return warnings;
+    judgeNodes(path, document, shapes);
+    judgeMaterials(document, shapes);
+    return shapes;
+}
+
+void dropValues(nlohmann::json& document, const std::vector<std::string>& pointers) {
+    for (const std::string& text : pointers) {
+        const nlohmann::json::json_pointer pointer(text);
+        if (!document.contains(pointer)) continue;
+        document.at(pointer.parent_pointer()).erase(pointer.back());
+    }
 }
 
 } // namespace inkgraph::detail
