@@ -583,13 +583,15 @@ std::vector<std::uint32_t> splitOpposedSheets(Mesh& mesh, const WeldMap* positio
         return positionWeld != nullptr ? positionWeld->outputOf[vertex] : vertex;
     };
     const std::size_t places = positionWeld != nullptr ? positionWeld->kept.size() : count;
-    std::vector<double> largestArea(places, 0.0);
-    std::vector<glm::dvec3> reference(places, glm::dvec3(0.0));
-    std::vector<glm::dvec3> faceNormals(mesh.triangles.size());
+    // Floats: a load's transient arrays stay within what the load budget charges per triangle and vertex, and the
+    // test against kOpposedSheetsCosine needs no more.
+    std::vector<float> largestArea(places, 0.0f);
+    std::vector<glm::vec3> reference(places, glm::vec3(0.0f));
+    std::vector<glm::vec3> faceNormals(mesh.triangles.size());
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const glm::dvec3 cross = faceCross(mesh.positions, mesh.triangles[t]);
-        faceNormals[t] = normalizedOrZero(cross);
-        const double area = glm::length(cross);
+        faceNormals[t] = glm::vec3(normalizedOrZero(cross));
+        const auto area = float(glm::length(cross));
         for (int corner = 0; corner < 3; ++corner) {
             const std::uint32_t place = placeOf(mesh.triangles[t][corner]);
             if (area > largestArea[place]) {
@@ -609,15 +611,15 @@ std::vector<std::uint32_t> splitOpposedSheets(Mesh& mesh, const WeldMap* positio
     if (!any) return {};
     for (std::size_t place = 0; place < places; ++place) {
         if (!opposed[place]) continue;
-        const glm::dvec3 magnitude = glm::abs(reference[place]);
+        const glm::vec3 magnitude = glm::abs(reference[place]);
         const int axis = magnitude.x >= magnitude.y && magnitude.x >= magnitude.z ? 0
                          : magnitude.y >= magnitude.z                             ? 1
                                                                                   : 2;
-        if (reference[place][axis] < 0.0) reference[place] = -reference[place];
+        if (reference[place][axis] < 0.0f) reference[place] = -reference[place];
     }
     const auto onBackSheet = [&](std::size_t t, int corner) {
         const std::uint32_t place = placeOf(mesh.triangles[t][corner]);
-        return opposed[place] && glm::dot(faceNormals[t], reference[place]) < 0.0;
+        return opposed[place] && glm::dot(faceNormals[t], reference[place]) < 0.0f;
     };
     // Per vertex: 1 when a front face uses it, 2 when a back face does.
     std::vector<std::uint8_t> sheets(count, 0);

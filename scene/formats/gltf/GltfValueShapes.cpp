@@ -227,26 +227,21 @@ void judgeMaterials(const nlohmann::json& document, ValueShapes& shapes) {
         const std::string at = "materials[" + std::to_string(i) + "]";
         const std::string name = nameOf(material);
         const std::string pointer = "/materials/" + std::to_string(i) + "/";
+        for (const char* container : {"pbrMetallicRoughness", "normalTexture", "occlusionTexture"}) {
+            const auto object = material.find(container);
+            if (object == material.end() || object->is_object()) continue;
+            shapes.warnings.push_back(makeWarning(WarningKind::MaterialValueInvalid,
+                                                  at + "." + container + " is " + valueForMessage(*object) +
+                                                      ", not an object; its defaults are used",
+                                                  "", name));
+            shapes.dropped.push_back(pointer + container);
+        }
         for (const MaterialValue& wanted : kMaterialValues) {
             const nlohmann::json* holder = &material;
             std::string place = at + ".";
             if (*wanted.object != '\0') {
                 const auto object = material.find(wanted.object);
-                if (object == material.end()) continue;
-                if (!object->is_object()) {
-                    // Said once, at its first value.
-                    if (&wanted == &*std::ranges::find_if(kMaterialValues, [&](const MaterialValue& v) {
-                            return std::string_view(v.object) == wanted.object;
-                        })) {
-                        shapes.warnings.push_back(makeWarning(WarningKind::MaterialValueInvalid,
-                                                              place + wanted.object + " is " +
-                                                                  valueForMessage(*object) +
-                                                                  ", not an object; its defaults are used",
-                                                              "", name));
-                        shapes.dropped.push_back(pointer + wanted.object);
-                    }
-                    continue;
-                }
+                if (object == material.end() || !object->is_object()) continue; // said above
                 holder = &*object;
                 place += std::string(wanted.object) + ".";
             }
