@@ -281,11 +281,21 @@ void budgetStill(PreparedStill& still) {
     const std::size_t needed = estimate.total() - estimate.textures;
     const std::size_t bound = request.memoryLimitBytes;
     const std::size_t neededMib = (needed + kMiB - 1) / kMiB; // rounded up: "needs 600" never fits a 600 limit
-    if (needed > bound)
-        throw UsageError(memoryDriversText(still.plan, request) + " needs about " + std::to_string(neededMib) +
-                         " MiB for the whole run; the memory limit is " + std::to_string(bound >> 20) + " MiB" +
-                         (request.memoryLimitGiven ? " (--memory-limit)" : ", half this machine's memory") +
-                         " (make the image smaller, lower --supersample, or request or dump fewer buffers)");
+    if (needed > bound) {
+        // A large model at a small size: saying "--size 256x256 needs" and advising a smaller image would mislead.
+        const bool modelDominates = estimate.scene > estimate.glTargets + estimate.cpuImages;
+        const std::string drivers = memoryDriversText(still.plan, request);
+        throw UsageError(
+            (modelDominates ? "the model's " + std::to_string(still.scene().triangleCount()) + " triangles and " +
+                                  std::to_string(still.scene().vertexCount()) + " vertices at " + drivers
+                            : drivers) +
+            " need" + (modelDominates ? "" : "s") + " about " + std::to_string(neededMib) +
+            " MiB for the whole run; the memory limit is " + std::to_string(bound >> 20) + " MiB" +
+            (request.memoryLimitGiven ? " (--memory-limit)" : ", half this machine's memory") +
+            (modelDominates ? " (the estimate counts what every line type keeps per triangle, " +
+                                  std::to_string(kBytesPerTriangle) + " bytes; a model this large needs a higher limit)"
+                            : " (make the image smaller, lower --supersample, or request or dump fewer buffers)"));
+    }
     // The textures are decoded during the run, only those a pass samples: they get what the estimate leaves.
     still.gpuScene->materials().setTextureMemoryLimit(bound > needed ? bound - needed : 0);
 }

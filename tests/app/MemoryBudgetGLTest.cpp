@@ -49,8 +49,8 @@ protected:
         const CliRun result = run("render " + arguments + " -o out.png --memory-limit 64");
         EXPECT_EQ(result.exitCode, 2) << result.err;
         std::smatch match;
-        if (!std::regex_search(result.err, match, std::regex("needs about ([0-9]+) MiB"))) {
-            ADD_FAILURE() << "no 'needs about N MiB' in: " << result.err;
+        if (!std::regex_search(result.err, match, std::regex("needs? about ([0-9]+) MiB"))) {
+            ADD_FAILURE() << "no 'need(s) about N MiB' in: " << result.err;
             return 0;
         }
         return std::stoi(match[1]);
@@ -92,6 +92,20 @@ TEST_F(MemoryBudget, LimitJustUnderTheEstimateIsRefusedNamingEveryFlagAndJustOve
     if (kPeakIsComparable) {
         EXPECT_LE(peak.measuredMib, double(needed));
     }
+}
+
+TEST_F(MemoryBudget, ALargeModelAtASmallSizeIsToldAsTheModelsNeed) {
+    // The bunny at 64x64: its triangles are most of the estimate, which said "--size 64x64 needs about N MiB" and
+    // advised a smaller image.
+    const std::string arguments = model("bunny_c3d_70k.obj") + " --size 64x64";
+    const int needed = neededMib(arguments);
+    const CliRun under = run("render " + arguments + " -o out.png --memory-limit " + std::to_string(needed - 1));
+    EXPECT_EQ(under.exitCode, 2) << under.err;
+    EXPECT_TRUE(std::regex_search(under.err, std::regex("the model's [0-9]+ triangles and [0-9]+ vertices at --size "
+                                                        "64x64 need about [0-9]+ MiB")))
+        << under.err;
+    EXPECT_NE(under.err.find("a model this large needs a higher limit"), std::string::npos) << under.err;
+    EXPECT_EQ(under.err.find("make the image smaller"), std::string::npos) << under.err;
 }
 
 TEST_F(MemoryBudget, ABatchStoppedByTheLimitNamesTheStillItStoppedAt) {
