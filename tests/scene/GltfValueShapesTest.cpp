@@ -113,6 +113,13 @@ TEST(GltfValueShapes, AnotherVersionOrAnExtensionListOfTheWrongTypeIsRefused) {
     EXPECT_EQ(later.meshes.size(), 1u);
     EXPECT_TRUE(later.report.warnings.empty());
 
+    // tinygltf took an object for an empty array: "material index 0 out of range (file has 0 materials)".
+    std::string objectFile = quad.writer().gltf(quad.body(""));
+    const std::string materials = "\"materials\": [{\"name\": \"paint\"}]";
+    objectFile.replace(objectFile.find(materials), materials.size(), "\"materials\": {\"paint\": {}}");
+    const std::string object = refusal("object.gltf", objectFile);
+    EXPECT_NE(object.find("object.gltf': materials is {\"paint\":{}}, not an array"), std::string::npos) << object;
+
     const std::string required =
         refusal("required.gltf",
                 quad.writer().gltf("\"extensionsRequired\": \"KHR_draco_mesh_compression\", " + quad.body("")));
@@ -155,6 +162,18 @@ TEST(GltfValueShapes, AStrideOrADataUriLengthTinygltfMisnamesIsToldAsItIs) {
     broken.insert(broken.find(";base64,") + 8, "!");
     const std::string brokenMessage = refusal("broken.gltf", broken);
     EXPECT_NE(brokenMessage.find("buffers[0].uri's data: URI is not valid base64"), std::string::npos) << brokenMessage;
+    // Taken by tinygltf for file names: "File not found", quoting the URI's decoded bytes.
+    std::string typeless = quad.writer().gltf(quad.body(""));
+    typeless.replace(typeless.find("data:application/octet-stream;"), 30, "data:;");
+    const std::string typelessMessage = refusal("typeless.gltf", typeless);
+    EXPECT_NE(typelessMessage.find("buffers[0].uri's data: URI has the media type '', where a glTF buffer's is "
+                                   "'application/octet-stream' or 'application/gltf-buffer'"),
+              std::string::npos)
+        << typelessMessage;
+    const std::string percent =
+        refusal("percent.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{\"byteLength\": 4, \"uri\": "
+                                "\"data:application/octet-stream,%00%00%80%BF\"}]}");
+    EXPECT_NE(percent.find("buffers[0].uri is a data: URI without ';base64,'"), std::string::npos) << percent;
 }
 
 TEST(GltfValueShapes, AMaterialValueOfTheWrongTypeIsSaidAndItsDefaultUsed) {
@@ -213,6 +232,10 @@ TEST(GltfValueShapes, MorphWeightsOtherThanOnePerTargetAreSaid) {
         loadScene(TempFile("text.gltf", quad.writer().gltf(quad.body("", "", ", \"weights\": \"0.5\"", true))).path());
     EXPECT_TRUE(warned(text, WarningKind::MorphWeightsMismatched,
                        "meshes[0].weights is the string '0.5', not an array of numbers; read as no weights"));
+    const Scene none =
+        loadScene(TempFile("none.gltf", quad.writer().gltf(quad.body("", "", ", \"weights\": \"0.5\"", false))).path());
+    EXPECT_TRUE(warned(none, WarningKind::MorphWeightsMismatched,
+                       "meshes[0].weights is the string '0.5', not an array of numbers; ignored"));
     const Scene one =
         loadScene(TempFile("one.gltf", quad.writer().gltf(quad.body("", "", ", \"weights\": [1]", true))).path());
     EXPECT_TRUE(one.report.warnings.empty()) << one.report.warnings.front();

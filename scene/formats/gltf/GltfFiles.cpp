@@ -575,6 +575,10 @@ std::optional<std::string> dataUriBufferProblem(std::string_view json) {
         const std::size_t comma = uri.find(',');
         if (comma == std::string::npos || uri.substr(0, comma).find(";base64") == std::string::npos)
             return at + ".uri is a data: URI without ';base64,' (glTF's data: URIs are base64)";
+        const std::string mediaType = uri.substr(5, uri.find(';') - 5);
+        if (mediaType != "application/octet-stream" && mediaType != "application/gltf-buffer")
+            return at + ".uri's data: URI has the media type " + quotedExcerpt(mediaType) +
+                   ", where a glTF buffer's is 'application/octet-stream' or 'application/gltf-buffer'";
         const std::optional<std::vector<unsigned char>> bytes = strictBase64(std::string_view(uri).substr(comma + 1));
         if (!bytes) return at + ".uri's data: URI is not valid base64";
         if (buffer.contains("byteLength") && buffer["byteLength"].is_number_unsigned() &&

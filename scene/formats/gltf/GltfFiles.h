@@ -51,9 +51,11 @@ struct ExternalUris {
     std::vector<std::string> imageDataUris;
 };
 
-/** Why tinygltf could not decode a buffer's data: URI ("Failed to decode 'uri'"), said in the file's terms: a URI
- *  that is not base64, or a `byteLength` other than the bytes it holds (`buffers[0].byteLength is 296, but its data:
- *  URI holds 288 bytes`); nothing when every data: buffer is sound. Parses the whole JSON: for the error path. */
+/** Why tinygltf could not decode a buffer's data: URI ("Failed to decode 'uri'", or "File not found" for one it took
+ *  for a file name), said in the file's terms: a URI that is not base64, of a media type other than
+ *  application/octet-stream and application/gltf-buffer, or a `byteLength` other than the bytes it holds
+ * (`buffers[0].byteLength is 296, but its data: URI holds 288 bytes`); nothing when every data: buffer is sound. Parses
+ * the whole JSON: for the error path. */
 std::optional<std::string> dataUriBufferProblem(std::string_view json);
 
 /** externalUris() by a SAX pass over `json`: what it collected before a syntax error still counts. */

@@ -983,8 +983,10 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
                                  shortenWords(thrown.what()) + ")");
     }
     if (!loaded) {
-        // tinygltf says the same of a data: URI that is not base64 and of one whose byteLength is not its size.
-        if (error.find("Failed to decode 'uri'") != std::string::npos)
+        // tinygltf says the same of a data: URI that is not base64 and of one whose byteLength is not its size, and
+        // takes one of another form for a file name ("File not found", quoting its decoded bytes).
+        if (error.find("Failed to decode 'uri'") != std::string::npos ||
+            error.find("File not found : data:") != std::string::npos)
             if (const std::optional<std::string> why = dataUriBufferProblem(jsonOf(content, binary)))
                 throwLoadError(path, std::string(binary ? "invalid GLB" : "invalid glTF") + ": " + *why);
         throwLoadError(path, std::string(binary ? "invalid GLB" : "invalid glTF") + ": " +

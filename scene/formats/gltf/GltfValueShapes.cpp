@@ -74,6 +74,17 @@ void judgeVersions(const std::string& path, const nlohmann::json& document) {
     }
 }
 
+/** tinygltf takes a top-level member that is not an array for an empty one: "materials": {...} was told as "material
+ *  index 0 out of range (file has 0 materials)". */
+void judgeTopLevelArrays(const std::string& path, const nlohmann::json& document) {
+    for (const char* member : {"accessors", "animations", "buffers", "bufferViews", "cameras", "images", "materials",
+                               "meshes", "nodes", "samplers", "scenes", "skins", "textures"}) {
+        const auto value = document.find(member);
+        if (value != document.end() && !value->is_array() && !value->is_null())
+            throwLoadError(path, std::string(member) + " is " + valueForMessage(*value) + ", not an array");
+    }
+}
+
 void judgeExtensionLists(const std::string& path, const nlohmann::json& document) {
     for (const char* member : {"extensionsRequired", "extensionsUsed"}) {
         const auto list = document.find(member);
@@ -129,11 +140,11 @@ void judgeWeights(const nlohmann::json& weights, std::size_t targets, const std:
     const bool numbers =
         weights.is_array() && std::ranges::all_of(weights, [](const nlohmann::json& w) { return w.is_number(); });
     if (!numbers) {
-        shapes.warnings.push_back(makeWarning(WarningKind::MorphWeightsMismatched,
-                                              at + " is " + valueForMessage(weights) +
-                                                  ", not an array of numbers; read as no weights (the morph targets "
-                                                  "are not applied)",
-                                              "", item));
+        shapes.warnings.push_back(
+            makeWarning(WarningKind::MorphWeightsMismatched,
+                        at + " is " + valueForMessage(weights) + ", not an array of numbers; " +
+                            (targets > 0 ? "read as no weights (the morph targets are not applied)" : "ignored"),
+                        "", item));
         shapes.dropped.push_back(pointer);
         return;
     }
@@ -287,6 +298,7 @@ void judgeGlbHeader(const std::string& path, std::string_view content) {
 ValueShapes judgeValueShapes(const std::string& path, const nlohmann::json& document) {
     ValueShapes shapes;
     judgeVersions(path, document);
+    judgeTopLevelArrays(path, document);
     judgeExtensionLists(path, document);
     judgeBufferViews(path, document);
     judgeNodes(path, document, shapes);

@@ -29,7 +29,8 @@ struct ValueShapes {
     std::vector<std::string> dropped;
 };
 
-/** Refuses (SceneError naming `path` and the value's place, "nodes[3].matrix") an `asset.version` or `asset.minVersion`
+/** Refuses (SceneError naming `path` and the value's place, "nodes[3].matrix") a top-level member such as `materials`
+ * that is not an array, an `asset.version` or `asset.minVersion`
  * of another major version than 2, an `extensionsRequired` or `extensionsUsed` that is not an array of strings, a
  * buffer view's `byteStride` other than a multiple of 4 from 4 to 252 (tinygltf told 512 as "must be the multiple of
  * 4"), and a node `matrix`, `translation`, `rotation` or `scale` that is not 16, 3, 4 or 3 finite numbers, or a
