@@ -189,6 +189,29 @@ bool GpuScene::inflatedHullContainsPoint(glm::dvec3 worldPoint, float objectWidt
     return false;
 }
 
+std::size_t SceneImport::bytesPerTriangle(std::string_view name) {
+    // Measured as the peak resident set of `--size 256x256 --lines T` over `--lines none` on a 1.3-million-triangle
+    // mesh of 650,000 vertices (the armadillo subdivided), llvmpipe, one thread: docs/batch.md has the table. Each is
+    // rounded up with a margin of a fifth or more; an import whose cost stayed under the load's peak is charged what
+    // its arrays hold.
+    struct Cost {
+        std::string_view import;
+        std::size_t bytes;
+    };
+    static constexpr Cost kCosts[] = {
+        {kMeshes, 0},           // counted by the load (LoadReport::loadBytes)
+        {kHulls, 32},           // --lines silhouette: +5 MiB (4 bytes a triangle): welded normals, hull indices
+        {kEdgeAdjacency, 128},  // --lines crease: +118 MiB (95): edges, face uses, face planes, the position weld
+        {kFaceOrientation, 96}, // --face-orientation during-vertices: +89 MiB (72): per-vertex lighting, face sets
+        {kCurvature, 384},      // --lines suggestive-object: +389 MiB (314): curvature, its derivative, the lines
+        {kSurfacePatches, 32},  // --lines suggestive: +0 MiB (under the load's peak): a patch per triangle, a weld
+        {kIntersections, 96},   // --lines intersection: +5 MiB; its index (boxes, order, nodes: about 40) is freed
+    };
+    for (const Cost& cost : kCosts)
+        if (cost.import == name) return cost.bytes;
+    throw std::logic_error("SceneImport::bytesPerTriangle(): no scene import '" + std::string(name) + "'");
+}
+
 void GpuScene::importDerived(const std::string& name) {
     if (name == SceneImport::kMeshes) {
         meshes();

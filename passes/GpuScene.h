@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 namespace inkgraph {
@@ -40,6 +41,12 @@ inline constexpr const char* kCurvature = "scene.curvature";
 inline constexpr const char* kSurfacePatches = "scene.surface-patches";
 /** meshIntersections(): declared by the intersection line types (`intersection`, `hidden-intersection`). */
 inline constexpr const char* kIntersections = "scene.intersections";
+
+/** What deriving import `name` adds to the run's peak memory per triangle of the scene, for the still's memory estimate
+ *  (render/MemoryBudget.h): the measured cost with room for the spread, a bound. docs/batch.md ("Memory") gives the
+ *  measurements. The meshes cost nothing here: the estimate counts them and their GPU copies by vertex and triangle.
+ * Throws std::logic_error naming an unknown import. */
+std::size_t bytesPerTriangle(std::string_view name);
 } // namespace SceneImport
 
 class GpuScene {

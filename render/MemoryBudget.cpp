@@ -1,6 +1,7 @@
 #include "render/MemoryBudget.h"
 
 #include "graph/Plan.h"
+#include "passes/GpuScene.h"
 #include "render/StillRenderer.h"
 #include "render/UsageError.h"
 #include "scene/Scene.h"
@@ -11,6 +12,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -31,11 +33,17 @@ constexpr std::size_t kBaselineBytes = 108 * kMiB;
 constexpr std::size_t kImageIoModuleBytes = 116 * kMiB;
 /** Each GL context after the first: 10-11 MiB measured (extraContextBytes()), with room for the spread. */
 constexpr std::size_t kExtraContextBytes = 12 * kMiB;
-/** Per vertex: the loader's own bound (detail::MeshBudget), which covers the mesh and its vertex buffers. */
-constexpr std::size_t kBytesPerVertex = 96;
-/** Per triangle, with every line type: index buffers, the outline's shell, the mesh edges, curvature and what
- *  llvmpipe bins per triangle and draw. The bunny (69k triangles) costs 62 MiB over a 4k-triangle model. */
-constexpr std::size_t kBytesPerTriangle = 1024;
+/** Per vertex and per triangle, whatever the look: the load's peak (an OBJ's text and its parsed corners), the
+ *  meshes and their GPU copies. A 1.3-million-triangle OBJ whose every corner has texture coordinates of its own
+ *  (2.9 million vertices, 160 MB of text) peaked 560 MiB over the process at `--lines none`. What the passes derive
+ *  from the meshes is charged by their imports (SceneImport::bytesPerTriangle()). */
+constexpr std::size_t kBytesPerVertex = 128;
+constexpr std::size_t kBytesPerTriangle = 128;
+/** What llvmpipe bins per triangle drawn until its scenes are full: `--lines none` peaked 70 MiB over the process
+ *  at 208k triangles, 129 at 468k and 147 at 832k (1, 2 and 8 llvmpipe threads alike), the counts' share
+ *  included. docs/batch.md has the table. */
+constexpr std::size_t kBinnedBytesPerTriangle = 320;
+constexpr std::size_t kBinnedBytesAtMost = 112 * kMiB;
 
 /** gl/Readback.cpp moves pixels in bands of at most this many bytes, through one extra buffer. */
 constexpr std::size_t kTransferBandBytes = 64 * kMiB;
@@ -189,6 +197,25 @@ std::string sizeText(std::size_t width, std::size_t height) {
     return std::to_string(width) + "x" + std::to_string(height);
 }
 
+std::string mibText(std::size_t bytes) { return std::to_string((bytes + kMiB - 1) / kMiB) + " MiB"; }
+
+/** The model's part of the estimate, for a refusal it dominates: "its meshes take about 148 MiB, the edge-adjacency
+ *  and curvature the passes derive from them about 148 MiB". */
+std::string modelShareText(const Plan& plan, const MemoryEstimate& estimate) {
+    std::string text = "its meshes take about " + mibText(estimate.scene - estimate.derived);
+    std::vector<std::string> names;
+    for (const std::string& import : plan.imports()) {
+        if (SceneImport::bytesPerTriangle(import) == 0) continue;
+        const std::string_view prefix = "scene.";
+        names.push_back(import.rfind(prefix, 0) == 0 ? import.substr(prefix.size()) : import);
+    }
+    if (names.empty()) return text;
+    text += ", the ";
+    for (std::size_t index = 0; index < names.size(); ++index)
+        text += (index == 0 ? "" : index + 1 == names.size() ? " and " : ", ") + names[index];
+    return text + " the passes derive from them about " + mibText(estimate.derived);
+}
+
 } // namespace
 
 std::size_t extraContextBytes() { return kExtraContextBytes; }
@@ -204,7 +231,12 @@ MemoryEstimate estimateRunMemory(const Plan& plan, const StillRequest& request, 
     const bool keepAll = request.keepEveryBuffer;
     MemoryEstimate estimate;
     estimate.baseline = kBaselineBytes + (request.loadsImageIo ? kImageIoModuleBytes : 0);
-    estimate.scene = scene.vertices * kBytesPerVertex + scene.triangles * kBytesPerTriangle;
+    // Summed with the load's peak, though the load frees its text before anything is derived: the allocator may keep
+    // what was freed, so only the sum bounds the run.
+    for (const std::string& import : plan.imports())
+        estimate.derived += scene.triangles * SceneImport::bytesPerTriangle(import);
+    estimate.scene = scene.vertices * kBytesPerVertex + scene.triangles * kBytesPerTriangle +
+                     std::min(scene.triangles * kBinnedBytesPerTriangle, kBinnedBytesAtMost) + estimate.derived;
     estimate.textures = scene.textureBytes;
     // The texture pool keeps every texture it made until the still ends, so they all count at once.
     for (const PlannedResource& resource : plan.resources)
@@ -292,8 +324,7 @@ void budgetStill(PreparedStill& still) {
             " need" + (modelDominates ? "" : "s") + " about " + std::to_string(neededMib) +
             " MiB for the whole run; the memory limit is " + std::to_string(bound >> 20) + " MiB" +
             (request.memoryLimitGiven ? " (--memory-limit)" : ", half this machine's memory") +
-            (modelDominates ? " (the estimate counts what every line type keeps per triangle, " +
-                                  std::to_string(kBytesPerTriangle) + " bytes; a model this large needs a higher limit)"
+            (modelDominates ? " (" + modelShareText(still.plan, estimate) + "; a model this large needs a higher limit)"
                             : " (make the image smaller, lower --supersample, or request or dump fewer buffers)"));
     }
     // The textures are decoded during the run, only those a pass samples: they get what the estimate leaves.

@@ -19,7 +19,9 @@ struct StillRequest;
 struct PreparedStill;
 struct Scene;
 
-/** What the meshes cost, by count: the loaded scene, its GPU copy, and what llvmpipe bins per triangle. */
+/** What the model costs: its counts (the load's peak, the meshes, their GPU copies, what llvmpipe bins per triangle)
+ *  and its textures. What the plan's passes derive from the meshes is charged per triangle by what they import
+ *  (SceneImport::bytesPerTriangle()). */
 struct SceneSize {
     std::size_t vertices = 0;
     std::size_t triangles = 0;
@@ -32,7 +34,9 @@ SceneSize sceneSizeOf(const Scene& scene);
 struct MemoryEstimate {
     std::size_t baseline = 0;  ///< the process before any buffer: libraries (OpenImageIO's when the run loads it),
                                ///< llvmpipe, LLVM's compiled shaders
-    std::size_t scene = 0;     ///< the meshes, their GPU copies and per-triangle driver data
+    std::size_t scene = 0;     ///< the model's load, meshes, GPU copies and driver data, and what the plan derives
+                               ///< from it (its imports' bytes per triangle: edge adjacency, curvature, ...)
+    std::size_t derived = 0;   ///< of `scene`: what the plan's imports derive
     std::size_t glTargets = 0; ///< every texture of the plan and each drawing pass's depth attachment
     std::size_t cpuImages = 0; ///< at the post stage's (or the output's) largest moment: read-backs, the line
                                ///< kernels' working images and skeletons, the composite, encoder buffers

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <regex>
 #include <string>
 
@@ -76,6 +78,41 @@ TEST_F(MemoryBudget, MeasuredPeakStaysUnderTheEstimateAtEverySupersampling) {
     }
 }
 
+/** Writes a rippled grid of `cells` x `cells` squares (2 cells^2 triangles) as OBJ: a large scan-like mesh. */
+void writeRippledGrid(const std::filesystem::path& path, int cells) {
+    std::ofstream out(path);
+    for (int row = 0; row <= cells; ++row)
+        for (int column = 0; column <= cells; ++column) {
+            const double x = double(column) / cells, y = double(row) / cells;
+            out << "v " << x << ' ' << y << ' ' << 0.05 * std::sin(12.0 * x) * std::cos(9.0 * y) << '\n';
+        }
+    for (int row = 0; row < cells; ++row)
+        for (int column = 0; column < cells; ++column) {
+            const int corner = row * (cells + 1) + column + 1; // OBJ counts from 1
+            out << "f " << corner << ' ' << corner + 1 << ' ' << corner + cells + 2 << '\n'
+                << "f " << corner << ' ' << corner + cells + 2 << ' ' << corner + cells + 1 << '\n';
+        }
+}
+
+TEST_F(MemoryBudget, ALargeMeshIsEstimatedByWhatItsLineTypesDerive) {
+    // A 300k-triangle mesh: the estimate charged 1024 bytes a triangle whatever the lines (every line type's data),
+    // so at the default lines it was 2.1 times the measured peak, and a 2-million-triangle grid 6.5 times. Now the
+    // meshes cost the same in every look and the data the passes derive (edge adjacency, curvature) is charged only
+    // when they run.
+    const std::filesystem::path grid = directory / "grid.obj";
+    writeRippledGrid(grid, 388);
+    const std::string model = grid.string() + " --size 256x256";
+    for (const std::string& lines : {"none", "silhouette,contour", "crease"}) {
+        const Peak peak = renderWithStats(model + " --lines " + lines);
+        EXPECT_GT(peak.measuredMib, 50.0) << lines;
+        if (!kPeakIsComparable) continue;
+        EXPECT_LE(peak.measuredMib, peak.estimatedMib) << lines;
+        EXPECT_LE(peak.estimatedMib, 1.6 * peak.measuredMib) << lines;
+    }
+    // What the passes derive is in the estimate only when they run: crease's edge adjacency, not the default lines'.
+    EXPECT_GT(neededMib(model + " --lines crease"), neededMib(model + " --lines none") + 30);
+}
+
 TEST_F(MemoryBudget, LimitJustUnderTheEstimateIsRefusedNamingEveryFlagAndJustOverItHolds) {
     const std::string arguments = model("spot_c3d.obj") + " --size 512x512 --supersample 4 --lines contour,suggestive";
     const int needed = neededMib(arguments);
@@ -129,7 +166,7 @@ TEST_F(MemoryBudget, ABatchStoppedByTheLimitNamesTheStillItStoppedAt) {
 }
 
 TEST_F(MemoryBudget, ABatchDrawnOnSeveralThreadsStaysUnderItsOneLimit) {
-    // Six 1024^2 bunnies at --supersample 2, each still estimated at 499 MiB: under a limit of 700 two cannot draw at
+    // Six 1024^2 bunnies at --supersample 2, each still estimated at 465 MiB: under a limit of 700 two cannot draw at
     // once. Four drawing threads used to keep each its own stills within a quarter of the limit but draw a still
     // above that share alone, all four at once: 1,107 MiB resident for four such stills. They now share the limit
     // (app/MemoryLedger.h): the stills wait for each other, the waiting threads give back their textures, and the
