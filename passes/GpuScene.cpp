@@ -199,7 +199,7 @@ std::size_t SceneImport::bytesPerTriangle(std::string_view name) {
         std::size_t bytes;
     };
     static constexpr Cost kCosts[] = {
-        {kMeshes, 0},           // counted by the load (LoadReport::loadBytes)
+        {kMeshes, 0},           // the meshes, their GPU copies: the estimate counts them by vertex and triangle
         {kHulls, 32},           // --lines silhouette: +5 MiB (4 bytes a triangle): welded normals, hull indices
         {kEdgeAdjacency, 128},  // --lines crease: +118 MiB (95): edges, face uses, face planes, the position weld
         {kFaceOrientation, 96}, // --face-orientation during-vertices: +89 MiB (72): per-vertex lighting, face sets
