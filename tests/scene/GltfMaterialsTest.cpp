@@ -462,6 +462,40 @@ TEST(GltfMaterials, AttributeCountDifferentFromPositionsIsRefused) {
     EXPECT_NE(message.find(file.fileName()), std::string::npos) << message;
 }
 
+/** Six corners and a primitive of three indices 0 1 2 over a view of 0 1 2 3 4 5 with `byteStride` (0: none), of
+ *  unsigned short (5123) or int (5125) components. */
+std::string stridedIndicesGltf(int byteStride, std::uint32_t componentType) {
+    RawGltf gltf;
+    const int position = gltf.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 0, 0, 0, 2, 0}, "VEC3", 6);
+    const int view = componentType == 5123 ? gltf.view(std::vector<std::uint16_t>{0, 1, 2, 3, 4, 5}, byteStride)
+                                           : gltf.view(std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5}, byteStride);
+    const int indices = gltf.accessor("\"bufferView\": " + std::to_string(view) + ", \"componentType\": " +
+                                      std::to_string(componentType) + ", \"count\": 3, \"type\": \"SCALAR\"");
+    return gltf.gltf(
+        singlePrimitive("\"POSITION\": " + std::to_string(position), ", \"indices\": " + std::to_string(indices)));
+}
+
+TEST(GltfMaterials, IndicesOnAStridedViewAreRefusedUnlessTheStrideIsTheIndexSize) {
+    // glTF forbids byteStride on index data. Read with it, a stride of 4 over 16-bit indices took every other one
+    // (0 2 4 of 0 1 2 3 4 5): another triangle than any reader draws, with no word.
+    const TempFile strided("strided-indices.gltf", stridedIndicesGltf(4, 5123));
+    const std::string message = test::sceneErrorMessage([&] { loadScene(strided.path()); });
+    EXPECT_NE(message.find("index accessor 1: buffer view 1 has byteStride 4, but glTF forbids a stride on indices "
+                           "(they lie packed, 2 bytes each)"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find(strided.fileName()), std::string::npos) << message;
+    // A stride of the index's own size reads the same, as does none: the first three corners, the unit triangle.
+    for (const auto& [byteStride, componentType] : {std::pair<int, std::uint32_t>{4, 5125}, {0, 5123}}) {
+        const TempFile file("packed-indices.gltf", stridedIndicesGltf(byteStride, componentType));
+        const Scene scene = loadScene(file.path());
+        ASSERT_EQ(scene.meshes.size(), 1u);
+        EXPECT_EQ(sortedWorldPositions(scene, scene.meshes[0]),
+                  (std::vector<glm::dvec3>{{0, 0, 0}, {0, 1, 0}, {1, 0, 0}}))
+            << "byteStride " << byteStride;
+    }
+}
+
 TEST(GltfMaterials, SparsePositionsAreSubstituted) {
     RawGltf gltf;
     const int base = gltf.view(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});

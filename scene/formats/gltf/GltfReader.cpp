@@ -728,6 +728,7 @@ private:
     std::vector<std::uint32_t> readIndices(int accessorIndex, std::size_t vertexCount) const {
         std::vector<std::uint32_t> indices =
             readAccessorIntegers(mPath, mModel, accessorIndex, TINYGLTF_TYPE_SCALAR, "index");
+        requirePackedIndices(accessorIndex);
         for (std::size_t i = 0; i < indices.size(); ++i) {
             if (indices[i] >= vertexCount) {
                 fail("index accessor " + std::to_string(accessorIndex) + " element " + std::to_string(i) + ": index " +
@@ -736,6 +737,20 @@ private:
             }
         }
         return indices;
+    }
+
+    /** glTF forbids a byteStride on a buffer view of indices: they lie packed. A stride of the index's own size reads
+     *  the same and is taken (exporters write it); another would read every so many bytes, triangles no other reader
+     *  draws, so it is refused. Checked after the read, which has checked the accessor and its view. */
+    void requirePackedIndices(int accessorIndex) const {
+        const tinygltf::Accessor& accessor = mModel.accessors[std::size_t(accessorIndex)];
+        if (accessor.bufferView < 0) return; // sparse over zeros: no view
+        const tinygltf::BufferView& view = mModel.bufferViews[std::size_t(accessor.bufferView)];
+        const int indexBytes = tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType));
+        if (view.byteStride == 0 || int(view.byteStride) == indexBytes) return;
+        fail("index accessor " + std::to_string(accessorIndex) + ": buffer view " +
+             std::to_string(accessor.bufferView) + " has byteStride " + std::to_string(view.byteStride) +
+             ", but glTF forbids a stride on indices (they lie packed, " + std::to_string(indexBytes) + " bytes each)");
     }
 
     /** Triangles of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN index sequence, all wound like the first. */
