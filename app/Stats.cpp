@@ -104,6 +104,8 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
     stats["textures_reused"] = result.texturesReused;
     stats["estimated_peak_mib"] = double(context.estimatedPeakBytes) / (1 << 20);
     stats["estimated_textures_mib"] = double(context.estimatedTextureBytes) / (1 << 20);
+    stats["estimated_meshes_mib"] = double(context.estimatedMeshBytes) / (1 << 20);
+    stats["estimated_derived_mib"] = double(context.estimatedDerivedBytes) / (1 << 20);
     stats["peak_rss_mib"] = 0.0;   // finishedStatsText()
     stats["huge_pages_mib"] = 0.0; // finishedStatsText()
     // What the process runs glibc's malloc with (app/main.cpp sets it for the command line), null where unset.

@@ -24,6 +24,10 @@ struct StatsContext {
     const StillBatchPosition* batch = nullptr;
     std::size_t estimatedPeakBytes = 0;
     std::size_t estimatedTextureBytes = 0; ///< the part of estimatedPeakBytes that is the model's textures
+    /** The part that is the model's meshes (MemoryEstimate::scene less what is derived) and what the passes derive
+     *  from them (MemoryEstimate::derived): what a larger model of the same look adds in proportion. */
+    std::size_t estimatedMeshBytes = 0;
+    std::size_t estimatedDerivedBytes = 0;
 };
 
 /** The --stats document of a still that executed with `renderer`, but for what only writing its outputs tells:

@@ -693,8 +693,10 @@ std::vector<Flag> makeFlags() {
     flags.push_back(flag({"--stats"}, "FILE.json", S::Output,
                          "milliseconds per pass (prepare and execute), culled passes with reasons, load, context\n"
                          "and write times, whether the OpenImageIO module was loaded (image_io_module: only formats\n"
-                         "other than PNG and --dump need it), the estimated peak memory, the peak and huge-page\n"
-                         "resident memory (peak_rss_mib, huge_pages_mib), the malloc tunables the process ran with\n"
+                         "other than PNG and --dump need it), the estimated peak memory and its model's parts\n"
+                         "(estimated_textures_mib, estimated_meshes_mib, estimated_derived_mib: what the passes\n"
+                         "derive from the meshes), the peak and huge-page resident memory (peak_rss_mib,\n"
+                         "huge_pages_mib), the malloc tunables the process ran with\n"
                          "(glibc_tunables), scene and GL facts, the look (shading, shade map, each line type), and\n"
                          "for comic the face-orientation numbers (front shares, holes, cut-off, marking ms)",
                          [](const std::string& value, RenderOptions& options) { options.statsPath = value; }));

@@ -3,6 +3,7 @@
 // limit just under the estimate is refused naming the flags that make the run that large, and one just over it runs
 // and stays under it. Needs a GL context (llvmpipe in CI); the largest case is about 1.2 GB resident.
 #include "CliTestSupport.h"
+#include "passes/GpuScene.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <regex>
 #include <string>
+#include <vector>
 
 namespace inkgraph {
 namespace {
@@ -34,6 +36,8 @@ protected:
     struct Peak {
         double estimatedMib = 0.0;
         double measuredMib = 0.0;
+        double meshesMib = 0.0;  ///< of the estimate: the model's meshes
+        double derivedMib = 0.0; ///< of the estimate: what the passes derive from them
     };
 
     /** Renders with --stats and returns the two numbers it reports. */
@@ -42,7 +46,8 @@ protected:
         EXPECT_EQ(result.exitCode, 0) << arguments << "\n" << result.err;
         if (result.exitCode != 0) return {};
         const auto stats = nlohmann::json::parse(readText(directory / "stats.json"));
-        return {stats["estimated_peak_mib"].get<double>(), stats["peak_rss_mib"].get<double>()};
+        return {stats["estimated_peak_mib"].get<double>(), stats["peak_rss_mib"].get<double>(),
+                stats["estimated_meshes_mib"].get<double>(), stats["estimated_derived_mib"].get<double>()};
     }
 
     /** The MiB the refusal says the run needs (what --memory-limit is checked against, rounded up), found by asking
@@ -102,14 +107,24 @@ TEST_F(MemoryBudget, ALargeMeshIsEstimatedByWhatItsLineTypesDerive) {
     const std::filesystem::path grid = directory / "grid.obj";
     writeRippledGrid(grid, 388);
     const std::string model = grid.string() + " --size 256x256";
+    std::vector<Peak> peaks;
     for (const std::string& lines : {"none", "silhouette,contour", "crease"}) {
-        const Peak peak = renderWithStats(model + " --lines " + lines);
+        const Peak peak = peaks.emplace_back(renderWithStats(model + " --lines " + lines));
         EXPECT_GT(peak.measuredMib, 50.0) << lines;
         if (!kPeakIsComparable) continue;
         EXPECT_LE(peak.measuredMib, peak.estimatedMib) << lines;
         EXPECT_LE(peak.estimatedMib, 1.6 * peak.measuredMib) << lines;
     }
-    // What the passes derive is in the estimate only when they run: crease's edge adjacency, not the default lines'.
+    // --stats parts the model's share: its meshes, the same in every look, and what the passes derive, only when they
+    // run (the default lines' hull normals, crease's edge adjacency).
+    ASSERT_EQ(peaks.size(), 3u);
+    EXPECT_GT(peaks[0].meshesMib, 0.0);
+    EXPECT_EQ(peaks[1].meshesMib, peaks[0].meshesMib);
+    EXPECT_EQ(peaks[2].meshesMib, peaks[0].meshesMib);
+    EXPECT_EQ(peaks[0].derivedMib, 0.0);
+    EXPECT_GT(peaks[1].derivedMib, 0.0);
+    EXPECT_NEAR(peaks[2].derivedMib,
+                2.0 * 388 * 388 * double(SceneImport::bytesPerTriangle(SceneImport::kEdgeAdjacency)) / 1048576.0, 1e-9);
     EXPECT_GT(neededMib(model + " --lines crease"), neededMib(model + " --lines none") + 30);
 }
 
