@@ -45,6 +45,8 @@ public:
         std::size_t bytesPerPixel = 0; ///< per pixel of the frame at `scale` / `divisor`
         int scale = 1;
         int divisor = 1;
+        /** A target the pass keeps from its first run to the still's end (ownTarget()), not memory it frees. */
+        bool kept = false;
     };
 
     /** `compileData`: what the compiler knows of the plan when it asks a second time (CompileData). */
@@ -67,7 +69,12 @@ public:
     void import(std::string_view name) { mImports.emplace_back(name); }
     /** Declares working memory (summed per pass). */
     void scratch(std::size_t bytesPerPixel, int scale = 1, int divisor = 1) {
-        mScratch.push_back({bytesPerPixel, scale, divisor});
+        mScratch.push_back({bytesPerPixel, scale, divisor, false});
+    }
+    /** Declares a GL target of the pass's own that it keeps between runs (a multisampled colour and depth): not a
+     *  resource, but the memory budget counts it with the plan's textures, which the still holds to its end. */
+    void ownTarget(std::size_t bytesPerPixel, int scale = 1, int divisor = 1) {
+        mScratch.push_back({bytesPerPixel, scale, divisor, true});
     }
     /** Never culled. Use sparingly (nothing in the core pipeline needs it). */
     void markSideEffect() { mSideEffect = true; }

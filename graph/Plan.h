@@ -18,8 +18,8 @@ struct PlannedPass {
     std::vector<std::string> deadOptionalWrites; ///< optional outputs nobody needs: not bound, not computed
     bool hasSideEffect = false;                  ///< declared markSideEffect(): live even if nothing reads it
     bool runsOnHost = false;                     ///< declared runsOnHost(): execute() needs no GPU context
-    std::vector<PassBuilder::Scratch> scratch;   ///< working memory it declared (PassBuilder::scratch())
-    std::vector<std::string> imports;            ///< scene data it declared (PassBuilder::import()), each once
+    std::vector<PassBuilder::Scratch> scratch; ///< working memory and own targets it declared (scratch(), ownTarget())
+    std::vector<std::string> imports;          ///< scene data it declared (PassBuilder::import()), each once
 };
 
 struct CulledPass {

@@ -106,7 +106,14 @@ public:
     std::size_t scratchBytes(const PlannedPass& pass) const {
         std::size_t bytes = 0;
         for (const PassBuilder::Scratch& scratch : pass.scratch)
-            bytes += scratch.bytesPerPixel * pixels(scratch.scale, scratch.divisor);
+            if (!scratch.kept) bytes += scratch.bytesPerPixel * pixels(scratch.scale, scratch.divisor);
+        return bytes;
+    }
+    /** The targets `pass` keeps (PassBuilder::ownTarget()), padded as the driver pads textures. */
+    std::size_t ownTargetBytes(const PlannedPass& pass) const {
+        std::size_t bytes = 0;
+        for (const PassBuilder::Scratch& scratch : pass.scratch)
+            if (scratch.kept) bytes += scratch.bytesPerPixel * paddedPixels(scratch.scale, scratch.divisor);
         return bytes;
     }
     static std::size_t sideOf(int frameSide, int scale, int divisor) {
@@ -241,8 +248,12 @@ MemoryEstimate estimateRunMemory(const Plan& plan, const StillRequest& request, 
     // The texture pool keeps every texture it made until the still ends, so they all count at once.
     for (const PlannedResource& resource : plan.resources)
         if (resource.kind == ResourceKind::Texture) estimate.glTargets += sizes.textureBytes(resource);
-    for (const PlannedPass& pass : plan.passes)
+    for (const PlannedPass& pass : plan.passes) {
         if (drawsTheScene(pass, sizes)) estimate.glTargets += sizes.paddedPixels(sizes.scaleOf(pass)) * 4; // DEPTH32F
+        // Held to the still's end like the pool's textures: counted as working memory at the post stage's largest
+        // moment only, --msaa 4 at 1536x1536 peaked 20 MiB above the estimate.
+        estimate.glTargets += sizes.ownTargetBytes(pass);
+    }
     for (std::size_t index = 0; index <= plan.passes.size(); ++index)
         estimate.cpuImages = std::max(estimate.cpuImages, cpuBytesAt(index, plan, sizes, keepAll));
     return estimate;

@@ -156,7 +156,7 @@ void ShadePass::declare(PassBuilder& builder) const {
     } else {
         builder.import(SceneImport::kMeshes); // forward draws the meshes
         // The multisampled target, colour (rgba8) and depth (float32), which the pass keeps between runs.
-        if (mSettings.msaa > 1) builder.scratch(std::size_t(8) * std::size_t(mSettings.msaa));
+        if (mSettings.msaa > 1) builder.ownTarget(std::size_t(8) * std::size_t(mSettings.msaa));
         // Comic's CPU face orientation (Winnemöller & Bangay 2002): the front sets it draws.
         if (traits().orientationSets && mSettings.faceOrientation != FaceOrientationMethod::Standard)
             builder.import(SceneImport::kFaceOrientation);

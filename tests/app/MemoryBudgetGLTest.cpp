@@ -73,6 +73,9 @@ TEST_F(MemoryBudget, MeasuredPeakStaysUnderTheEstimateAtEverySupersampling) {
              spot + " --size 512x512 --supersample 2 --lines contour --dump dump",
              bunny + " --size 256x256 --supersample 8 --lines suggestive",
              spot + " --size 1024x1024 --supersample 4 --lines contour,suggestive",
+             // The forward shading's multisampled target is kept to the still's end: it was counted only at the
+             // post stage's largest moment, and this still peaked 20 MiB above its estimate (277 against 257 MiB).
+             model("characters/expressions-binary-overrides.vrm") + " --size 1536x1536 --msaa 4 --shading mtoon",
          }) {
         const Peak peak = renderWithStats(arguments);
         EXPECT_GT(peak.measuredMib, 50.0) << arguments; // the process itself: a real measurement, not zero

@@ -73,6 +73,26 @@ TEST(MemoryEstimate, WhatThePassesDeriveIsChargedOnlyWhenImportedAndOnce) {
               SceneImport::bytesPerTriangle(SceneImport::kEdgeAdjacency));
 }
 
+TEST(MemoryEstimate, ATargetAPassKeepsIsCountedWithTheTexturesAndWorkingMemoryAtItsMoment) {
+    // One pass keeps a multisampled colour and depth (8 bytes a sample, 4 samples: ShadePass with --msaa 4), another
+    // declares working memory of the same size: only the kept one is a GL target, padded as the driver pads.
+    const auto planWith = [](bool kept) {
+        Plan plan = planImporting({{}});
+        plan.passes[0].scratch.push_back({32, 1, 1, kept});
+        return plan;
+    };
+    StillRequest request = smallStill();
+    request.camera.width = 100; // padded to 128
+    request.camera.height = 64;
+    const MemoryEstimate none = estimateRunMemory(planImporting({{}}), request, {});
+    const MemoryEstimate kept = estimateRunMemory(planWith(true), request, {});
+    const MemoryEstimate working = estimateRunMemory(planWith(false), request, {});
+    EXPECT_EQ(kept.glTargets, none.glTargets + std::size_t(32) * 128 * 64);
+    EXPECT_EQ(kept.cpuImages, none.cpuImages);
+    EXPECT_EQ(working.glTargets, none.glTargets);
+    EXPECT_EQ(working.cpuImages, none.cpuImages + std::size_t(32) * 100 * 64);
+}
+
 TEST(MemoryEstimate, EveryImportHasACostAndAnUnknownOneIsAnError) {
     for (const char* import : {SceneImport::kHulls, SceneImport::kEdgeAdjacency, SceneImport::kFaceOrientation,
                                SceneImport::kCurvature, SceneImport::kSurfacePatches, SceneImport::kIntersections})
