@@ -250,8 +250,8 @@ MemoryEstimate estimateRunMemory(const Plan& plan, const StillRequest& request, 
         if (resource.kind == ResourceKind::Texture) estimate.glTargets += sizes.textureBytes(resource);
     for (const PlannedPass& pass : plan.passes) {
         if (drawsTheScene(pass, sizes)) estimate.glTargets += sizes.paddedPixels(sizes.scaleOf(pass)) * 4; // DEPTH32F
-        // Held to the still's end like the pool's textures: counted as working memory at the post stage's largest
-        // moment only, --msaa 4 at 1536x1536 peaked 20 MiB above the estimate.
+        // Kept to the still's end like the pool's textures (counted as working memory at the post stage's largest
+        // moment only, a still at --msaa 4 and 1536x1536 peaked 20 MiB above its estimate).
         estimate.glTargets += sizes.ownTargetBytes(pass);
     }
     for (std::size_t index = 0; index <= plan.passes.size(); ++index)

@@ -37,7 +37,8 @@ struct MemoryEstimate {
     std::size_t scene = 0;     ///< the model's load, meshes, GPU copies and driver data, and what the plan derives
                                ///< from it (its imports' bytes per triangle: edge adjacency, curvature, ...)
     std::size_t derived = 0;   ///< of `scene`: what the plan's imports derive
-    std::size_t glTargets = 0; ///< every texture of the plan and each drawing pass's depth attachment
+    std::size_t glTargets = 0; ///< every texture of the plan, each drawing pass's depth attachment and the targets
+                               ///< passes keep of their own (PassBuilder::ownTarget())
     std::size_t cpuImages = 0; ///< at the post stage's (or the output's) largest moment: read-backs, the line
                                ///< kernels' working images and skeletons, the composite, encoder buffers
     /** The model's textures, decoded and uploaded with their mipmaps (llvmpipe keeps them in process memory). Not
