@@ -514,7 +514,7 @@ void RenderSession::commitFinished(PendingStill& pending, TailOutcome& outcome) 
         const MemoryEstimate estimate = estimateStill(still);
         context.estimatedPeakBytes = estimate.total();
         context.estimatedTextureBytes = estimate.textures;
-        context.estimatedMeshBytes = estimate.scene - estimate.derived;
+        context.estimatedMeshBytes = estimate.meshes();
         context.estimatedDerivedBytes = estimate.derived;
         outputs.stageStats(
             finishedStatsText(statsDocument(context, mRenderer, still, result), writeMilliseconds, totalMilliseconds));

@@ -24,7 +24,7 @@ struct StatsContext {
     const StillBatchPosition* batch = nullptr;
     std::size_t estimatedPeakBytes = 0;
     std::size_t estimatedTextureBytes = 0; ///< the part of estimatedPeakBytes that is the model's textures
-    /** The part that is the model's meshes (MemoryEstimate::scene less what is derived) and what the passes derive
+    /** The part that is the model's meshes (MemoryEstimate::meshes()) and what the passes derive
      *  from them (MemoryEstimate::derived): what a larger model of the same look adds in proportion. */
     std::size_t estimatedMeshBytes = 0;
     std::size_t estimatedDerivedBytes = 0;

@@ -209,7 +209,7 @@ std::string mibText(std::size_t bytes) { return std::to_string((bytes + kMiB - 1
 /** The model's part of the estimate, for a refusal it dominates: "its meshes take about 148 MiB, the edge-adjacency
  *  and curvature the passes derive from them about 148 MiB". */
 std::string modelShareText(const Plan& plan, const MemoryEstimate& estimate) {
-    std::string text = "its meshes take about " + mibText(estimate.scene - estimate.derived);
+    std::string text = "its meshes take about " + mibText(estimate.meshes());
     std::vector<std::string> names;
     for (const std::string& import : plan.imports()) {
         if (SceneImport::bytesPerTriangle(import) == 0) continue;

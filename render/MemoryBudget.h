@@ -46,6 +46,8 @@ struct MemoryEstimate {
      *  decoded, against what the rest leaves of the limit. */
     std::size_t textures = 0;
     std::size_t total() const { return baseline + scene + glTargets + cpuImages + textures; }
+    /** Of `scene`: the meshes, the same in every look. */
+    std::size_t meshes() const { return scene - derived; }
 };
 
 /** The estimate for `plan` rendered as `request` asks (its size, look, kept buffers, image module); `scene` may be {}
