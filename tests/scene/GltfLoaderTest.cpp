@@ -224,14 +224,27 @@ TEST(GltfLoader, IntegersWrittenAsWholeNumbersAreTheIntegersAndOtherValuesAreRef
     const std::string flagMessage = test::sceneErrorMessage([&] { loadScene(flag.path()); });
     EXPECT_NE(flagMessage.find("scenes[0].nodes[0] is true, not an integer"), std::string::npos) << flagMessage;
     // An index tinygltf's int cannot hold wrapped (4294967299 read as accessor 3), and -1 read as absent (a soup).
-    for (const std::string& index : {std::string("4294967299.0"), std::string("4294967299"), std::string("-1")}) {
+    const std::pair<std::string, std::string> outOfRange[] = {
+        {"4294967299.0", "4294967299.0, over 2147483647, the largest index glTF's reader can hold"},
+        {"4294967299", "4294967299, over 2147483647, the largest index glTF's reader can hold"},
+        {"-1", "-1, negative: glTF's indices and enums are 0 or more"},
+        {"-1.0", "-1.0, negative: glTF's indices and enums are 0 or more"}};
+    for (const auto& [index, expected] : outOfRange) {
         const TempFile wide("wide.gltf", writer.gltf(body(index, "0", "0")));
         const std::string wideMessage = test::sceneErrorMessage([&] { loadScene(wide.path()); });
-        EXPECT_NE(wideMessage.find("meshes[0].primitives[0].indices is " + index +
-                                   ", outside 0 to 2147483647, the indices glTF's reader can hold"),
-                  std::string::npos)
-            << wideMessage;
+        EXPECT_NE(wideMessage.find("meshes[0].primitives[0].indices is " + expected), std::string::npos) << wideMessage;
     }
+    // A size below 0 is told as negative, not as outside a range of 2^53 (which only a size over it is).
+    std::string negativeStride = writer.gltf(body(std::to_string(indices), "0", "0"));
+    const std::string firstView = "\"bufferViews\": [{";
+    ASSERT_NE(negativeStride.find(firstView), std::string::npos);
+    negativeStride.insert(negativeStride.find(firstView) + firstView.size(), "\"byteStride\": -12, ");
+    const TempFile stride("stride.gltf", negativeStride);
+    const std::string strideMessage = test::sceneErrorMessage([&] { loadScene(stride.path()); });
+    EXPECT_NE(strideMessage.find("stride.gltf': bufferViews[0].byteStride is -12, negative: glTF's offsets, lengths, "
+                                 "strides and counts are 0 or more"),
+              std::string::npos)
+        << strideMessage;
 }
 
 /** Meshes "a", "b", "c" (one triangle each, one node each), using the materials given as JSON (empty: none). */

@@ -108,6 +108,13 @@ TEST(GltfValueShapes, AnotherVersionOrAnExtensionListOfTheWrongTypeIsRefused) {
     EXPECT_NE(
         refusal("number.gltf", withAsset("\"version\": 2.0")).find("asset.version is 2.0, not a string such as '2.0'"),
         std::string::npos);
+    // A version longer than the 4 KiB at which data: URIs are cut before the file is judged is quoted as written:
+    // it was told as '' (every long string was cut to its first printable ASCII bytes, none here).
+    std::string escaped;
+    for (int i = 0; i < 1200; ++i) escaped += "\\u0041";
+    const std::string longVersion = refusal("long.gltf", withAsset("\"version\": \"" + escaped + "\""));
+    EXPECT_NE(longVersion.find("asset.version is 'AAAA"), std::string::npos) << longVersion;
+    EXPECT_NE(longVersion.find("(1200 bytes)"), std::string::npos) << longVersion;
     // A later minor version reads as 2.0: glTF keeps them compatible.
     const Scene later = loadScene(TempFile("later.gltf", withAsset("\"version\": \"2.1\"")).path());
     EXPECT_EQ(later.meshes.size(), 1u);

@@ -142,9 +142,10 @@ std::string fileNameOfUri(std::string_view uri) {
     return decoded;
 }
 
-/** The JSON text with every string longer than 4 KiB (data: URIs) cut to its first printable ASCII bytes, at most 64:
- *  as good as the whole for judging the file's numbers, and parsed in a fraction of the time (a 16 MB .gltf's data
- *  URI took nlohmann 0.2 s). */
+/** The JSON text with every data: URI longer than 4 KiB cut to its first printable ASCII bytes, at most 64 (its media
+ *  type and encoding): as good as the whole for judging the file's numbers, and parsed in a fraction of the time (a 16
+ *  MB .gltf's data URI took nlohmann 0.2 s). Other strings stay whole, however long: a message quotes them as written
+ *  (an asset.version of 5000 escaped characters was told as '' when every long string was cut). */
 std::string withLongStringsCut(std::string_view text) {
     constexpr std::size_t kLongString = 4096;
     constexpr std::size_t kKept = 64;
@@ -158,7 +159,7 @@ std::string withLongStringsCut(std::string_view text) {
         std::size_t end = quote + 1; // past the closing quote, escapes skipped
         while (end < text.size() && text[end] != '"') end += text[end] == '\\' ? 2 : 1;
         const std::string_view inside = text.substr(quote + 1, std::min(end, text.size()) - quote - 1);
-        if (inside.size() <= kLongString) {
+        if (inside.size() <= kLongString || inside.substr(0, 5) != "data:") {
             cut.append(inside);
         } else {
             std::size_t kept = 0;
@@ -212,9 +213,14 @@ bool integersAsWritten(const std::string& path, nlohmann::json& value, const std
             // Every glTF integer is 0 or more (tinygltf takes -1 for absent: "indices": -1 drew a soup of vertices).
             const double limit = size ? 9007199254740992.0 : 2147483647.0;
             const double number = whole->get<double>();
-            if (core && (number < 0.0 || number > limit)) {
-                throwLoadError(path, at + " is " + member.dump() + ", outside 0 to " + formatNumber(limit) +
-                                         (size ? "" : ", the indices glTF's reader can hold"));
+            if (core && number < 0.0) {
+                throwLoadError(path, at + " is " + member.dump() + ", negative: glTF's " +
+                                         (size ? "offsets, lengths, strides and counts" : "indices and enums") +
+                                         " are 0 or more");
+            }
+            if (core && number > limit) {
+                throwLoadError(path, at + " is " + member.dump() + ", over " + formatNumber(limit) +
+                                         (size ? "" : ", the largest index glTF's reader can hold"));
             }
             const bool changed = !member.is_number_integer();
             member = *whole;
