@@ -57,6 +57,7 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
                       {"triangles_read", scene.report.trianglesRead},
                       {"degenerate_dropped", scene.report.degenerateDropped},
                       {"back_to_back_dropped", scene.report.backToBackDropped},
+                      {"back_to_back_one_sided", scene.report.backToBackOneSided},
                       {"vertices_before_weld", scene.report.verticesBeforeWeld},
                       {"weld_distance", scene.report.weldTolerance},
                       {"normals_computed", scene.report.normalsComputed}};

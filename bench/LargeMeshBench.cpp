@@ -6,6 +6,7 @@
 //
 //     ./build/bench/inkgraph_bench --benchmark_filter=Large
 #include "bench/LargeMesh.h"
+#include "scene/mesh/BackToBackSheets.h"
 #include "scene/mesh/EdgeAdjacency.h"
 #include "scene/mesh/MeshCurvature.h"
 #include "scene/mesh/MeshOps.h"
@@ -182,6 +183,36 @@ void BM_LargeBackToBackTwins(benchmark::State& state) {
     state.counters["twins"] = double(twins);
 }
 BENCHMARK(BM_LargeBackToBackTwins)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/** The scene-wide search for sheets back to back with sides of their own (cullBackToBackSheets()), which every load
+ *  of more than one mesh, or of a textured or coloured one, runs after finalizeMesh(): the armadillo with texture
+ *  coordinates, alone (0: the pass over centroids finds no twin for its first triangle, and ends there) or with a
+ *  second mesh holding that triangle's back sheet (1: the whole search, a weld of every vertex, which culls that
+ *  sheet alone: the armadillo's other triangles are uncovered). Nothing changes between iterations. Its share of a
+ *  load is this over BM_LargeLoadObj. */
+void BM_LargeBackToBackSheets(benchmark::State& state) {
+    static const std::vector<Mesh> alone = [] {
+        Mesh mesh = largeMesh();
+        mesh.texcoords[0].assign(mesh.positions.size(), glm::vec2(0.0f));
+        return std::vector<Mesh>{std::move(mesh)};
+    }();
+    std::vector<Mesh> meshes = alone;
+    if (state.range(0) == 1) {
+        const Mesh& armadillo = alone.front();
+        Mesh back;
+        const glm::uvec3 first = armadillo.triangles.front();
+        back.positions = {armadillo.positions[first.x], armadillo.positions[first.z], armadillo.positions[first.y]};
+        back.normals.assign(3, glm::vec3(0.0f, 0.0f, 1.0f));
+        back.triangles = {{0, 1, 2}};
+        meshes.push_back(std::move(back));
+    }
+    const double distance = derivedWeldDistance(alone.front());
+    std::size_t culled = 0;
+    for (auto _ : state) culled = cullBackToBackSheets(meshes, distance);
+    setTriangleCounters(state, alone.front().triangles.size());
+    state.counters["culled"] = double(culled);
+}
+BENCHMARK(BM_LargeBackToBackSheets)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /** The silhouette hull's normals, weld included. */
 void BM_LargeHullNormals(benchmark::State& state) {

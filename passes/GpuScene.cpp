@@ -88,7 +88,8 @@ const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
                       materials[index],
                       objects[index],
                       {},
-                      &mesh.material};
+                      &mesh.material,
+                      mesh.drawsBackFaces()};
         draw.materialAttributes = uploadMaterialAttributes(mesh, label);
         draw.materialAttributes.attachTo(draw.vertexArray);
         draw.vertexArray.setVec3Attribute(kPositionLocation, draw.positions);

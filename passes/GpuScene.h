@@ -62,6 +62,7 @@ public:
         std::uint32_t objectIndex;               ///< scene/ObjectIds.h: the index of the mesh's object (node instance)
         MeshAttributeBuffers materialAttributes; ///< texture coordinates and colours, in vertexArray too
         const Material* material;                ///< the scene mesh's
+        bool drawsBackFaces;                     ///< Mesh::drawsBackFaces(): face culling off
     };
 
     static constexpr GLuint kPositionLocation = 0;

@@ -230,6 +230,10 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
                         ? "; " + std::to_string(scene.report.backToBackDropped) +
                               " back to back with another of a two-sided material dropped"
                         : std::string())
+                << (scene.report.backToBackOneSided > 0
+                        ? "; " + std::to_string(scene.report.backToBackOneSided) +
+                              " back to back with another side of their own drawn from the front only"
+                        : std::string())
                 << ") in " << still->loadMilliseconds << " ms\n";
     }
 

@@ -1,6 +1,7 @@
 #include "scene/Scene.h"
 
 #include "scene/formats/FormatTable.h"
+#include "scene/mesh/BackToBackSheets.h"
 #include "scene/mesh/MeshOps.h"
 
 #include <algorithm>
@@ -176,6 +177,7 @@ Scene finalizeScene(const std::string& path, RawScene raw, const LoadOptions& op
                                                         "", name));
         }
     }
+    scene.report.backToBackOneSided = cullBackToBackSheets(scene.meshes, options.weldTolerance * modelDiagonal);
     if (scene.meshes.empty()) {
         if (scene.report.trianglesRead == 0) {
             throwLoadError(path, noTrianglesInTheFile(scene.report.warnings), function);

@@ -52,8 +52,14 @@ struct Mesh {
      *  file without normals (and without texture seams or colour borders to smooth across), so the inflated hull's
      *  normals are these (GpuScene::hullNormals()). Code that changes positions or triangles must reset it. */
     bool normalsAreSmooth = false;
+    /** Drawn from its front only though its material is two-sided: every triangle lies back to back with another
+     *  sheet's that covers its back (cullBackToBackSheets(): a card printed on both sides). The material stays as the
+     *  file gives it, so material ids and the manifest do not change. */
+    bool backCulled = false;
 
     std::size_t triangleCount() const { return triangles.size(); }
+    /** Whether its back faces are drawn: a two-sided material's, unless backCulled. */
+    bool drawsBackFaces() const { return material.doubleSided && !backCulled; }
 };
 
 /** The first perspective camera of a glTF file, in the scene's frame: `eye` is relative to Scene::origin like the
@@ -85,6 +91,9 @@ struct LoadReport {
     std::size_t degenerateDropped = 0; ///< zero-area or repeated-index triangles removed
     /** triangles of two-sided materials removed as the back-to-back twin of another (backToBackTwins()) */
     std::size_t backToBackDropped = 0;
+    /** triangles of two-sided materials drawn one-sided, each sheet from its own side: back to back with another that
+     *  carries attributes or a material of its own (cullBackToBackSheets()) */
+    std::size_t backToBackOneSided = 0;
     std::size_t verticesBeforeWeld = 0;
     std::size_t verticesAfterWeld = 0;
     bool normalsComputed = false;        ///< true when some mesh had no normals in the file

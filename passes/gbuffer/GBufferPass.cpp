@@ -128,7 +128,7 @@ std::string GBufferPass::meaningOf(const char* fileName, const char* meaning) co
 bool GBufferPass::zBufferHoldsEveryFace() const {
     const std::vector<Mesh>& meshes = mScene.scene().meshes;
     return std::all_of(meshes.begin(), meshes.end(), [](const Mesh& mesh) {
-        return mesh.material.doubleSided && mesh.material.alphaMode == AlphaMode::Opaque;
+        return mesh.drawsBackFaces() && mesh.material.alphaMode == AlphaMode::Opaque;
     });
 }
 
@@ -252,7 +252,7 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
         glUniform1ui(meshIndexLocation, std::uint32_t(index));
         glUniform1ui(firstTriangleLocation, firstTriangle);
         firstTriangle += std::uint32_t(mesh.indexCount / 3);
-        setFaceCulling(*mesh.material);
+        setFaceCulling(mesh.drawsBackFaces);
         mesh.vertexArray.bind();
         glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
     }

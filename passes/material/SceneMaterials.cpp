@@ -406,8 +406,8 @@ void SceneMaterials::bind(const GlProgram& program, std::size_t meshIndex, Mater
     glVertexAttrib4f(kVertexColorLocation, 1.0f, 1.0f, 1.0f, 1.0f);
 }
 
-void setFaceCulling(const Material& material) {
-    if (material.doubleSided) {
+void setFaceCulling(bool drawsBackFaces) {
+    if (drawsBackFaces) {
         glDisable(GL_CULL_FACE);
         return;
     }

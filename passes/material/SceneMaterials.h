@@ -141,9 +141,10 @@ private:
     std::set<std::size_t> mWidthMapUnreadMeshes; ///< warned about already
 };
 
-/** Back-face culling as the material says: on (GL_BACK, counter-clockwise fronts) for a single-sided glTF material,
- *  off for a double-sided one (its back faces are lit with the flipped normal by the shaders). */
-void setFaceCulling(const Material& material);
+/** Back-face culling as the mesh is drawn (GpuScene::DrawMesh::drawsBackFaces): on (GL_BACK, counter-clockwise
+ *  fronts) for a single-sided glTF material or a sheet whose back another covers, off for a double-sided one (its back
+ *  faces are lit with the flipped normal by the shaders). */
+void setFaceCulling(bool drawsBackFaces);
 
 /** A mesh's texture coordinates and colours on the GPU (those it has), at the snippet's attribute locations. */
 struct MeshAttributeBuffers {

@@ -495,7 +495,7 @@ void ShadePass::executeForward(GlPassContext& gl) {
             blending = true;
         }
         mScene.bindMaterial(program, i, MaterialUse::Colour);
-        setFaceCulling(*meshes[i].material);
+        setFaceCulling(meshes[i].drawsBackFaces);
         if (sets) {
             const SceneOrientation::MeshSets& set = (*sets)[i];
             set.frontArray.bind();

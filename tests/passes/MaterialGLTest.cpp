@@ -2,9 +2,10 @@
 // colours, KHR_texture_transform picking one texel, vertex colours interpolated in linear light, emissive and unlit,
 // an alpha-masked disc whose G-buffer coverage follows the mask to within a pixel (and whose mesh edges are cut
 // with it), a blended quad over an opaque one (the blend in the shading, the G-buffer seeing through), single- and
-// double-sided faces seen from behind, MToon's band (linearstep of n.l + shift) on a sphere against ray casting,
-// MToon's shading shift texture, matcap, rim multiply texture, normal map, UV animation and outline width texture
-// against their closed forms, and textures decoded only when a pass samples them. Needs a GL context (llvmpipe in CI).
+// double-sided faces seen from behind, sheets back to back each seen from its own side, MToon's band (linearstep of
+// n.l + shift) on a sphere against ray casting, MToon's shading shift texture, matcap, rim multiply texture, normal
+// map, UV animation and outline width texture against their closed forms, and textures decoded only when a pass
+// samples them. Needs a GL context (llvmpipe in CI).
 #include "graph/GraphCompiler.h"
 #include "passes/StillGraph.h"
 #include "passes/lines/LineLayerPass.h"
@@ -15,6 +16,7 @@
 #include "passes/shade/ShadeMap.h"
 #include "passes/shade/ShadePass.h"
 #include "passes/edges/MeshEdgesPass.h"
+#include "scene/mesh/BackToBackSheets.h"
 #include "scene/mesh/Procedural.h"
 #include "scene/TextureImage.h"
 #include "tests/support/AnalyticSphere.h"
@@ -439,6 +441,43 @@ TEST_F(MaterialPasses, SingleSidedBackFacesAreCulledDoubleSidedOnesLit) {
     const cv::Vec4b lit = at(shade(ShadingModel::Lambert), pixelOf(0.0, 0.0, 0.0));
     EXPECT_EQ(lit[3], 255);
     EXPECT_GT(lit[0], srgbCode(0.4));
+}
+
+TEST_F(MaterialPasses, SheetsBackToBackOfTwoMaterialsShowEachFromItsOwnSide) {
+    // A card printed red on its front and blue on its back, as two sheets on the same corners of two-sided materials:
+    // both drew at one depth, stripes of each from either side. The load marks each sheet's back covered
+    // (cullBackToBackSheets(), Mesh::backCulled), so each side shows its own colour alone.
+    Mesh front = square(1.0f, 0.0f);
+    front.name = "front";
+    front.material.baseColorFactor = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+    front.material.unlit = true;
+    Mesh back = square(1.0f, 0.0f, /*backward=*/true);
+    back.name = "back";
+    back.material.baseColorFactor = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
+    back.material.unlit = true;
+    std::vector<Mesh> sheets{front, back};
+    ASSERT_EQ(cullBackToBackSheets(sheets, 1e-6), 4u);
+    Scene card = makeScene(std::move(sheets[0]));
+    card.meshes.push_back(std::move(sheets[1]));
+    for (const bool behind : {false, true}) {
+        useScene(card);
+        if (behind)
+            frame.camera =
+                test::lookingAt(scene, glm::dvec3(0.0, 0.0, -kDistance), glm::dvec3(0.0), kFovDegrees, kSize, kSize);
+        const cv::Mat color = shade();
+        const cv::Vec4b expected = behind ? cv::Vec4b(0, 0, 255, 255) : cv::Vec4b(255, 0, 0, 255);
+        int covered = 0;
+        int otherColour = 0;
+        for (int row = 0; row < color.rows; ++row)
+            for (int col = 0; col < color.cols; ++col) {
+                const cv::Vec4b pixel = color.at<cv::Vec4b>(row, col);
+                if (pixel[3] != 255) continue;
+                ++covered;
+                otherColour += pixel != expected;
+            }
+        EXPECT_GT(covered, 1000) << (behind ? "from behind" : "from the front");
+        EXPECT_EQ(otherColour, 0) << (behind ? "from behind" : "from the front");
+    }
 }
 
 TEST_F(MaterialPasses, MToonBandIsLinearstepOfNDotLPlusShift) {
