@@ -4,16 +4,18 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <tuple>
 #include <unordered_map>
+#include <utility>
 
 namespace inkgraph {
 namespace {
 
 /** Whether the first triangle of some two-sided mesh may lie back to back with another triangle: one whose centroid is
  *  within twice `weldDistance` of it on every axis, as a twin's is (the weld joins each vertex to a first one within
- *  its reach, so two corners it merges are at most twice that apart). A mesh
- *  is culled only when all its triangles are covered, its first among them, so when none may be, nothing is; this
- *  pass over the centroids costs a fraction of the weld the full search needs. Errs towards yes. */
+ *  its reach, so two corners it merges are at most twice that apart). A mesh is culled only when all its triangles
+ *  are covered, its first among them, so when none may be, nothing is; this pass over the centroids costs a fraction
+ *  of the weld the full search needs. Errs towards yes. */
 bool someFirstTriangleMayHaveATwin(const std::vector<Mesh>& meshes, double weldDistance) {
     if (!(weldDistance > 0.0)) return true;
     const double reachOfTwin = 2.0 * weldDistance;
@@ -39,25 +41,29 @@ bool someFirstTriangleMayHaveATwin(const std::vector<Mesh>& meshes, double weldD
     // Each probe in the cells within half a cell of it (one or two per axis): a centroid within the weld of it lies in
     // one of them.
     std::unordered_multimap<std::uint64_t, std::size_t> cells;
-    // Cells that share a key only make more candidates, each judged on its distance.
-    const auto keyOfCell = [](glm::dvec3 cellIndex) {
-        const glm::i64vec3 index(cellIndex);
+    // The cell of a point, its index held to 2^52 (a weld tiny beside the model's size): cells that then share an
+    // index, or a key, only make more candidates, each judged on its distance.
+    const auto cellOf = [&](glm::dvec3 point) {
+        constexpr double kLargestIndex = 4503599627370496.0;
+        return glm::i64vec3(glm::clamp(glm::floor(point / cell), -kLargestIndex, kLargestIndex));
+    };
+    const auto keyOfCell = [](glm::i64vec3 index) {
         return std::uint64_t(index.x) * 73856093u ^ std::uint64_t(index.y) * 19349663u ^
                std::uint64_t(index.z) * 83492791u;
     };
     for (std::size_t p = 0; p < probes.size(); ++p) {
-        const glm::dvec3 low = glm::floor((probes[p].centroid - 0.5 * cell) / cell);
-        const glm::dvec3 high = glm::floor((probes[p].centroid + 0.5 * cell) / cell);
-        for (double x = low.x; x <= high.x; ++x)
-            for (double y = low.y; y <= high.y; ++y)
-                for (double z = low.z; z <= high.z; ++z) cells.emplace(keyOfCell(glm::dvec3(x, y, z)), p);
+        const glm::i64vec3 low = cellOf(probes[p].centroid - 0.5 * cell);
+        const glm::i64vec3 high = cellOf(probes[p].centroid + 0.5 * cell);
+        for (std::int64_t x = low.x; x <= high.x; ++x)
+            for (std::int64_t y = low.y; y <= high.y; ++y)
+                for (std::int64_t z = low.z; z <= high.z; ++z) cells.emplace(keyOfCell(glm::i64vec3(x, y, z)), p);
     }
     for (std::size_t m = 0; m < meshes.size(); ++m) {
         for (std::size_t t = 0; t < meshes[m].triangles.size(); ++t) {
             const glm::dvec3 centroid = centroidOf(meshes[m], meshes[m].triangles[t]);
             if (glm::any(glm::lessThan(centroid, reach.min)) || glm::any(glm::greaterThan(centroid, reach.max)))
                 continue;
-            const auto [begin, end] = cells.equal_range(keyOfCell(glm::floor(centroid / cell)));
+            const auto [begin, end] = cells.equal_range(keyOfCell(cellOf(centroid)));
             for (auto found = begin; found != end; ++found) {
                 const Probe& probe = probes[found->second];
                 if ((probe.mesh != m || t != 0) &&
@@ -91,22 +97,58 @@ std::size_t cullBackToBackSheets(std::vector<Mesh>& meshes, double weldDistance)
     for (const Mesh& mesh : meshes) positions.insert(positions.end(), mesh.positions.begin(), mesh.positions.end());
     const WeldMap weld = weldVertices(positions, {}, weldDistance);
     positions = {};
-    std::vector<glm::uvec3> welded;
-    welded.reserve(meshOfTriangle.size());
+    // Each triangle as its welded corners in ascending order, and whether ordering them took an odd number of swaps:
+    // triangles on the same corners face opposite ways exactly when their parities differ.
+    struct Placed {
+        glm::uvec3 corners;
+        std::uint32_t triangle;
+        bool odd;
+    };
+    std::vector<Placed> placed;
+    placed.reserve(meshOfTriangle.size());
     for (std::size_t m = 0; m < meshes.size(); ++m) {
         const std::size_t base = firstVertex[m];
-        for (const glm::uvec3& triangle : meshes[m].triangles)
-            welded.emplace_back(weld.outputOf[base + triangle.x], weld.outputOf[base + triangle.y],
-                                weld.outputOf[base + triangle.z]);
+        for (const glm::uvec3& triangle : meshes[m].triangles) {
+            Placed at{glm::uvec3(weld.outputOf[base + triangle.x], weld.outputOf[base + triangle.y],
+                                 weld.outputOf[base + triangle.z]),
+                      std::uint32_t(placed.size()), false};
+            const auto order = [&](int i, int j) {
+                if (at.corners[j] < at.corners[i]) {
+                    std::swap(at.corners[i], at.corners[j]);
+                    at.odd = !at.odd;
+                }
+            };
+            order(0, 1);
+            order(1, 2);
+            order(0, 1);
+            placed.push_back(at);
+        }
     }
-    const auto pairs = backToBackPairs(welded);
-    if (pairs.empty()) return 0;
-    std::vector<bool> covered(welded.size(), false);
-    const auto covers = [&](std::size_t t) { return meshes[meshOfTriangle[t]].material.alphaMode != AlphaMode::Blend; };
-    for (const auto& [first, second] : pairs) {
-        if (covers(second)) covered[first] = true;
-        if (covers(first)) covered[second] = true;
+    const auto cornersBefore = [](const Placed& a, const Placed& b) {
+        return std::tie(a.corners.x, a.corners.y, a.corners.z) < std::tie(b.corners.x, b.corners.y, b.corners.z);
+    };
+    std::sort(placed.begin(), placed.end(), cornersBefore);
+    // A triangle's back is covered when some opaque triangle on its corners faces the other way: a blended one lets
+    // the back behind it show, an alpha-masked one its holes, which need not be the back's own.
+    std::vector<bool> covered(placed.size(), false);
+    bool any = false;
+    for (std::size_t runStart = 0; runStart < placed.size();) {
+        std::size_t runEnd = runStart + 1;
+        while (runEnd < placed.size() && placed[runEnd].corners == placed[runStart].corners) ++runEnd;
+        if (runEnd - runStart > 1) {
+            bool opaque[2] = {false, false}; // an opaque triangle of each facing in the run
+            for (std::size_t i = runStart; i < runEnd; ++i)
+                if (meshes[meshOfTriangle[placed[i].triangle]].material.alphaMode == AlphaMode::Opaque)
+                    opaque[placed[i].odd ? 1 : 0] = true;
+            for (std::size_t i = runStart; i < runEnd; ++i) {
+                const bool backCovered = opaque[placed[i].odd ? 0 : 1];
+                covered[placed[i].triangle] = backCovered;
+                any = any || backCovered;
+            }
+        }
+        runStart = runEnd;
     }
+    if (!any) return 0;
 
     std::size_t culled = 0;
     std::size_t base = 0;

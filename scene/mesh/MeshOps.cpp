@@ -320,7 +320,7 @@ void removeTriangles(std::vector<glm::uvec3>& triangles, std::span<const std::ui
     triangles.resize(kept);
 }
 
-std::vector<std::pair<std::uint32_t, std::uint32_t>> backToBackPairs(std::span<const glm::uvec3> triangles) {
+std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles) {
     // Each triangle's corners in ascending order and whether reaching it took an odd number of swaps: two triangles on
     // the same corners wind opposite ways exactly when their parities differ.
     struct Corners {
@@ -359,9 +359,8 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> backToBackPairs(std::span<c
             order[next[std::min({triangle.x, triangle.y, triangle.z})]++] = std::uint32_t(t);
         }
     }
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    std::vector<std::uint32_t> twins;
     std::vector<std::pair<Corners, std::uint32_t>> members;
-    std::vector<std::uint32_t> waiting[2]; // unmatched earlier triangles of each winding in a run, oldest first
     const auto key = [](const std::pair<Corners, std::uint32_t>& member) {
         return std::tuple(member.first.sorted.y, member.first.sorted.z, member.second);
     };
@@ -384,27 +383,20 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> backToBackPairs(std::span<c
         for (std::size_t runStart = 0; runStart < members.size();) {
             std::size_t runEnd = runStart + 1;
             while (runEnd < members.size() && members[runEnd].first.sorted == members[runStart].first.sorted) ++runEnd;
-            std::size_t oldest[2] = {0, 0}; // the first of waiting[w] still unmatched
-            waiting[0].clear();
-            waiting[1].clear();
+            std::size_t waiting[2] = {0, 0}; // unmatched earlier triangles of each winding in this run
             for (std::size_t m = runStart; m < runEnd; ++m) {
                 const int parity = members[m].first.odd ? 1 : 0;
-                if (oldest[1 - parity] < waiting[1 - parity].size()) {
-                    pairs.emplace_back(waiting[1 - parity][oldest[1 - parity]++], members[m].second);
+                if (waiting[1 - parity] > 0) {
+                    --waiting[1 - parity];
+                    twins.push_back(members[m].second);
                 } else {
-                    waiting[parity].push_back(members[m].second);
+                    ++waiting[parity];
                 }
             }
             runStart = runEnd;
         }
     }
-    std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
-    return pairs;
-}
-
-std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles) {
-    std::vector<std::uint32_t> twins;
-    for (const auto& [first, second] : backToBackPairs(triangles)) twins.push_back(second);
+    std::sort(twins.begin(), twins.end());
     return twins;
 }
 

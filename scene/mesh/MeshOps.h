@@ -10,7 +10,6 @@
 #include <limits>
 #include <span>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace inkgraph {
@@ -96,9 +95,6 @@ std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::v
  *  a pair names only its second; ascending. Linear time (hashed buckets), whatever the repeats. By vertex index: run
  *  on welded vertices, so copies of a corner count as one where the weld merged them. */
 std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles);
-
-/** backToBackTwins() with each twin's partner: (the earlier triangle, its twin), in ascending order of the twin. */
-std::vector<std::pair<std::uint32_t, std::uint32_t>> backToBackPairs(std::span<const glm::uvec3> triangles);
 
 /** Removes the triangles at `ascending` (indices into `triangles`, as backToBackTwins() gives them), keeping the
  *  others in order. */

@@ -1,6 +1,7 @@
 // Sheets that lie back to back on corners of their own (a card printed on both sides: two materials, or texture
-// coordinates or colours per side): a mesh all of whose triangles' backs another sheet covers is drawn from its front
-// only; a blended sheet covers nothing; meshes covered in part, and closed meshes that touch, stay two-sided.
+// coordinates or colours per side): a mesh all of whose triangles' backs an opaque sheet covers is drawn from its front
+// only, whatever the number and order of the sheets; meshes covered in part, and closed meshes that touch, stay
+// two-sided.
 #include "scene/mesh/BackToBackSheets.h"
 #include "scene/MaterialIds.h"
 #include "scene/ObjectIds.h"
@@ -124,24 +125,49 @@ TEST(BackToBackSheets, MeshesCoveredInPartAndClosedMeshesThatTouchStayTwoSided) 
     EXPECT_TRUE(withBody[0].drawsBackFaces());
 }
 
-TEST(BackToBackSheets, ABlendedSheetCoversNothingAMaskedOrOneSidedOneCovers) {
+TEST(BackToBackSheets, OnlyAnOpaqueSheetCoversABack) {
     // The one-sided front culls its back already; the two-sided back sheet drew its back face over the front's.
     std::vector<Mesh> oneSided{sheet(false), sheet(true)};
     oneSided[0].material.doubleSided = false;
     EXPECT_EQ(cullBackToBackSheets(oneSided, 1e-6), 2u);
     EXPECT_FALSE(oneSided[0].backCulled) << "a one-sided material culls its back by itself";
     EXPECT_TRUE(oneSided[1].backCulled);
-    // Behind a blended front the opaque back's own back face shows through it: it is left two-sided, while the
-    // blended front, covered by the opaque back, culls.
-    std::vector<Mesh> blended{sheet(false), sheet(true)};
-    blended[0].material.alphaMode = AlphaMode::Blend;
-    EXPECT_EQ(cullBackToBackSheets(blended, 1e-6), 2u);
-    EXPECT_TRUE(blended[0].backCulled);
-    EXPECT_FALSE(blended[1].backCulled);
-    // Two sides of a leaf cut by one mask cover each other where they are drawn.
-    std::vector<Mesh> masked{sheet(false), sheet(true)};
-    for (Mesh& mesh : masked) mesh.material.alphaMode = AlphaMode::Mask;
-    EXPECT_EQ(cullBackToBackSheets(masked, 1e-6), 4u);
+    // Behind a blended or alpha-masked front the opaque back's own back face shows through it (found by a hostile
+    // pass: a masked back sheet that cut out every fragment made the card vanish from behind): the opaque back stays
+    // two-sided, while the front, covered by the opaque back, culls.
+    for (const AlphaMode seeThrough : {AlphaMode::Blend, AlphaMode::Mask}) {
+        std::vector<Mesh> meshes{sheet(false), sheet(true)};
+        meshes[0].material.alphaMode = seeThrough;
+        EXPECT_EQ(cullBackToBackSheets(meshes, 1e-6), 2u);
+        EXPECT_TRUE(meshes[0].backCulled);
+        EXPECT_FALSE(meshes[1].backCulled);
+    }
+}
+
+TEST(BackToBackSheets, EverySheetOnTheCornersCountsWhateverTheirOrder) {
+    // Red front, then a blended blue back, then an opaque green back: matched one to one, the red front took the
+    // blended sheet and kept both its faces (stripes of red and green from either side); in the other order it came
+    // out clean. Every opaque sheet facing the other way covers.
+    for (const bool blendedFirst : {true, false}) {
+        std::vector<Mesh> meshes{sheet(false), sheet(true), sheet(true)};
+        meshes[blendedFirst ? 1 : 2].material.alphaMode = AlphaMode::Blend;
+        EXPECT_EQ(cullBackToBackSheets(meshes, 1e-6), 6u) << blendedFirst;
+        for (const Mesh& mesh : meshes) EXPECT_TRUE(mesh.backCulled) << blendedFirst;
+    }
+    // A third sheet on the corners (red front, blue and yellow backs in one mesh of per-side colours): each back
+    // faces the front, so all are culled; one to one, the yellow was left out and the mesh stayed two-sided.
+    Mesh three = sheet(false);
+    for (const Mesh& back : {sheet(true), sheet(true)}) {
+        const auto first = std::uint32_t(three.positions.size());
+        three.positions.insert(three.positions.end(), back.positions.begin(), back.positions.end());
+        three.normals.insert(three.normals.end(), back.normals.begin(), back.normals.end());
+        three.texcoords[0].insert(three.texcoords[0].end(), back.texcoords[0].begin(), back.texcoords[0].end());
+        for (const glm::uvec3& triangle : back.triangles) three.triangles.push_back(triangle + first);
+    }
+    three.colors.assign(three.positions.size(), glm::vec4(1.0f));
+    std::vector<Mesh> one{three};
+    EXPECT_EQ(cullBackToBackSheets(one, 1e-6), 6u);
+    EXPECT_TRUE(one[0].backCulled);
     // Sheets within the weld of each other are back to back; apart by more, they are not.
     std::vector<Mesh> near{sheet(false), sheet(true)};
     for (glm::vec3& position : near[1].positions) position.z += 0.9e-6f;

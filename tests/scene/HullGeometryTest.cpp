@@ -107,18 +107,6 @@ TEST(BackToBackTwins, TheLaterOfTwoTrianglesOnTheSameCornersWoundTheOtherWay) {
     EXPECT_EQ(backToBackTwins(repeats).size(), 10000u);
 }
 
-TEST(BackToBackTwins, PairsNameEachTwinWithTheEarliestUnmatchedTriangleItTook) {
-    const std::vector<glm::uvec3> triangles = {{0, 1, 2}, {1, 0, 2}, {2, 0, 1}, {0, 2, 1}, {0, 1, 3}};
-    using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
-    EXPECT_EQ(backToBackPairs(triangles), (Pairs{{0, 1}, {2, 3}}));
-    // Two fronts waiting, then two backs: the first back takes the first front, the second the second.
-    EXPECT_EQ(backToBackPairs(std::vector<glm::uvec3>{{5, 6, 7}, {6, 7, 5}, {7, 6, 5}, {6, 5, 7}, {8, 9, 10}}),
-              (Pairs{{0, 2}, {1, 3}}));
-    // In ascending order of the twin, though the buckets (by lowest corner) find the later pair first.
-    EXPECT_EQ(backToBackPairs(std::vector<glm::uvec3>{{3, 4, 5}, {5, 4, 3}, {0, 1, 2}, {2, 1, 0}}),
-              (Pairs{{0, 1}, {2, 3}}));
-}
-
 TEST(HullNormals, ADoubleFacedCardKeepsTheNormalOfItsFirstSide) {
     // Two sheets on copies of one square's corners, the second wound the other way and carrying -z: welded, every
     // face of the pair cancelled its twin, leaving the sums pointing either way (a hull folded through the card).
