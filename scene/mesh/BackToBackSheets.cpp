@@ -97,8 +97,7 @@ std::size_t cullBackToBackSheets(std::vector<Mesh>& meshes, double weldDistance)
     for (const Mesh& mesh : meshes) positions.insert(positions.end(), mesh.positions.begin(), mesh.positions.end());
     const WeldMap weld = weldVertices(positions, {}, weldDistance);
     positions = {};
-    // Each triangle as its welded corners in ascending order, and whether ordering them took an odd number of swaps:
-    // triangles on the same corners face opposite ways exactly when their parities differ.
+    // Each triangle as its welded corners in ascending order, with the parity of that order (sortedCorners()).
     struct Placed {
         glm::uvec3 corners;
         std::uint32_t triangle;
@@ -109,19 +108,9 @@ std::size_t cullBackToBackSheets(std::vector<Mesh>& meshes, double weldDistance)
     for (std::size_t m = 0; m < meshes.size(); ++m) {
         const std::size_t base = firstVertex[m];
         for (const glm::uvec3& triangle : meshes[m].triangles) {
-            Placed at{glm::uvec3(weld.outputOf[base + triangle.x], weld.outputOf[base + triangle.y],
-                                 weld.outputOf[base + triangle.z]),
-                      std::uint32_t(placed.size()), false};
-            const auto order = [&](int i, int j) {
-                if (at.corners[j] < at.corners[i]) {
-                    std::swap(at.corners[i], at.corners[j]);
-                    at.odd = !at.odd;
-                }
-            };
-            order(0, 1);
-            order(1, 2);
-            order(0, 1);
-            placed.push_back(at);
+            const SortedCorners corners = sortedCorners(glm::uvec3(
+                weld.outputOf[base + triangle.x], weld.outputOf[base + triangle.y], weld.outputOf[base + triangle.z]));
+            placed.push_back({corners.sorted, std::uint32_t(placed.size()), corners.odd});
         }
     }
     const auto cornersBefore = [](const Placed& a, const Placed& b) {

@@ -320,26 +320,21 @@ void removeTriangles(std::vector<glm::uvec3>& triangles, std::span<const std::ui
     triangles.resize(kept);
 }
 
+SortedCorners sortedCorners(const glm::uvec3& triangle) {
+    SortedCorners corners{triangle, false};
+    const auto order = [&](int i, int j) {
+        if (corners.sorted[j] < corners.sorted[i]) {
+            std::swap(corners.sorted[i], corners.sorted[j]);
+            corners.odd = !corners.odd;
+        }
+    };
+    order(0, 1);
+    order(1, 2);
+    order(0, 1);
+    return corners;
+}
+
 std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles) {
-    // Each triangle's corners in ascending order and whether reaching it took an odd number of swaps: two triangles on
-    // the same corners wind opposite ways exactly when their parities differ.
-    struct Corners {
-        glm::uvec3 sorted;
-        bool odd = false;
-    };
-    const auto cornersOf = [](const glm::uvec3& triangle) {
-        Corners corners{triangle, false};
-        const auto order = [&](int i, int j) {
-            if (corners.sorted[j] < corners.sorted[i]) {
-                std::swap(corners.sorted[i], corners.sorted[j]);
-                corners.odd = !corners.odd;
-            }
-        };
-        order(0, 1);
-        order(1, 2);
-        order(0, 1);
-        return corners;
-    };
     const std::size_t count = triangles.size();
     if (count < 2) return {};
     // Triangles bucketed by their lowest vertex (a counting sort, stable: each bucket in triangle order). A file's
@@ -360,15 +355,15 @@ std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles
         }
     }
     std::vector<std::uint32_t> twins;
-    std::vector<std::pair<Corners, std::uint32_t>> members;
-    const auto key = [](const std::pair<Corners, std::uint32_t>& member) {
+    std::vector<std::pair<SortedCorners, std::uint32_t>> members;
+    const auto key = [](const std::pair<SortedCorners, std::uint32_t>& member) {
         return std::tuple(member.first.sorted.y, member.first.sorted.z, member.second);
     };
     for (std::size_t v = 0; v + 1 < start.size(); ++v) {
         if (start[v + 1] - start[v] < 2) continue;
         members.clear();
         for (std::uint32_t i = start[v]; i < start[v + 1]; ++i)
-            members.emplace_back(cornersOf(triangles[order[i]]), order[i]);
+            members.emplace_back(sortedCorners(triangles[order[i]]), order[i]);
         // Most buckets hold a few triangles with no corners in common beyond the lowest: passed over unsorted.
         if (members.size() <= 8) {
             bool repeated = false;

@@ -90,6 +90,14 @@ inline constexpr double kWeldedAwayShareToWarn = 0.01;
 std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                                     double minArea);
 
+/** A triangle's corners in ascending order, and whether reaching that order took an odd number of swaps: two
+ *  triangles on the same corners face opposite ways exactly when their parities differ. */
+struct SortedCorners {
+    glm::uvec3 sorted;
+    bool odd = false;
+};
+SortedCorners sortedCorners(const glm::uvec3& triangle);
+
 /** The triangles that lie back to back with an earlier one: on the same three vertices, wound the other way, as
  *  exporters write a double-faced card, leaf or sheet of paper. Each earlier triangle takes at most one later one, so
  *  a pair names only its second; ascending. Linear time (hashed buckets), whatever the repeats. By vertex index: run

@@ -52,6 +52,15 @@ Mesh sheet(bool back) {
     return mesh;
 }
 
+/** Adds `part`'s vertices (positions, normals, first texture coordinates) and triangles to `mesh`. */
+void append(Mesh& mesh, const Mesh& part) {
+    const auto first = std::uint32_t(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
+    mesh.normals.insert(mesh.normals.end(), part.normals.begin(), part.normals.end());
+    mesh.texcoords[0].insert(mesh.texcoords[0].end(), part.texcoords[0].begin(), part.texcoords[0].end());
+    for (const glm::uvec3& triangle : part.triangles) mesh.triangles.push_back(triangle + first);
+}
+
 TEST(BackToBackSheets, ACardOfTwoMaterialsShowsEachFromItsOwnSide) {
     // Written by a modeller as two sheets, red and blue: both were drawn two-sided at one depth, stripes of each.
     const TempFolder folder;
@@ -113,13 +122,7 @@ TEST(BackToBackSheets, MeshesCoveredInPartAndClosedMeshesThatTouchStayTwoSided) 
 
     // A card whose two sides are one mesh with a cube clear of it: not culled in part (left as it was).
     Mesh body = cube(3.0f);
-    for (const Mesh& part : {sheet(false), sheet(true)}) {
-        const auto first = std::uint32_t(body.positions.size());
-        body.positions.insert(body.positions.end(), part.positions.begin(), part.positions.end());
-        body.normals.insert(body.normals.end(), part.normals.begin(), part.normals.end());
-        body.texcoords[0].insert(body.texcoords[0].end(), part.texcoords[0].begin(), part.texcoords[0].end());
-        for (const glm::uvec3& triangle : part.triangles) body.triangles.push_back(triangle + first);
-    }
+    for (const Mesh& part : {sheet(false), sheet(true)}) append(body, part);
     std::vector<Mesh> withBody{body};
     EXPECT_EQ(cullBackToBackSheets(withBody, 1e-6), 0u);
     EXPECT_TRUE(withBody[0].drawsBackFaces());
@@ -157,13 +160,7 @@ TEST(BackToBackSheets, EverySheetOnTheCornersCountsWhateverTheirOrder) {
     // A third sheet on the corners (red front, blue and yellow backs in one mesh of per-side colours): each back
     // faces the front, so all are culled; one to one, the yellow was left out and the mesh stayed two-sided.
     Mesh three = sheet(false);
-    for (const Mesh& back : {sheet(true), sheet(true)}) {
-        const auto first = std::uint32_t(three.positions.size());
-        three.positions.insert(three.positions.end(), back.positions.begin(), back.positions.end());
-        three.normals.insert(three.normals.end(), back.normals.begin(), back.normals.end());
-        three.texcoords[0].insert(three.texcoords[0].end(), back.texcoords[0].begin(), back.texcoords[0].end());
-        for (const glm::uvec3& triangle : back.triangles) three.triangles.push_back(triangle + first);
-    }
+    for (const Mesh& back : {sheet(true), sheet(true)}) append(three, back);
     three.colors.assign(three.positions.size(), glm::vec4(1.0f));
     std::vector<Mesh> one{three};
     EXPECT_EQ(cullBackToBackSheets(one, 1e-6), 6u);
