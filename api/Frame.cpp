@@ -55,8 +55,10 @@ void applyFrame(const Frame& frame, RenderOptions& options, std::vector<std::str
 
 Frame Frame::fromArguments(const std::vector<std::string>& arguments) {
     return translated("Frame::fromArguments()", [&] {
-        refuseOtherFlags({arguments, {}}, FlagOwner::Frame);
-        const RenderOptions options = parseRenderFlags(arguments);
+        SourcedArguments given{arguments, {}};
+        separateAttachedValues(given.arguments, given.origins); // "--lines=contour" is --lines, not the Frame's
+        refuseOtherFlags(given, FlagOwner::Frame);
+        const RenderOptions options = parseRenderFlags(given.arguments);
         Frame frame;
         frame.width = options.width;
         frame.height = options.height;

@@ -3,6 +3,7 @@
 #include "render/BuildInfo.h"
 #include "app/Cli.h"
 #include "flags/FlagTable.h"
+#include "flags/Options.h"
 #include "render/ImageIoModule.h"
 #include "gl/BinaryLocation.h"
 #include "scene/Scene.h"
@@ -96,9 +97,11 @@ std::string commandSynopsis(const CommandInfo& command) {
 }
 
 std::string renderFlagsSection() {
-    std::string text = ".SH \"RENDER OPTIONS\"\n" + roffLine("The flags of inkgraph render, as inkgraph help render "
-                                                             "lists them. -h or --help in a flag's place prints them "
-                                                             "and does nothing else.");
+    std::string text =
+        ".SH \"RENDER OPTIONS\"\n" + roffLine(std::string("The flags of inkgraph render, as inkgraph help render "
+                                                          "lists them. -h or --help in a flag's place prints them "
+                                                          "and does nothing else. ") +
+                                              kFlagValueForms);
     for (HelpSection section : helpSections()) {
         text += ".SS " + roffQuoted(helpSectionTitle(section)) + "\n";
         std::vector<const Flag*> untold; // flags the section's patterns describe (--TYPE-width: --outline-width, ...)

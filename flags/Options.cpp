@@ -24,6 +24,57 @@ int postStageLoopThreads(int jobs) { return std::max(1, usableCores() / (std::ma
 
 namespace {
 
+/** Whether `argument` names a flag of the table that takes a value (so the argument after it is that value). */
+bool takesValue(const std::string& argument) {
+    const Flag* flag = findFlag(argument);
+    return flag != nullptr && flag->apply && !flag->valueName.empty();
+}
+
+} // namespace
+
+void separateAttachedValues(std::vector<std::string>& arguments, std::vector<std::string>& origins) {
+    std::vector<std::string> apart;
+    std::vector<std::string> apartOrigins;
+    const bool sourced = !origins.empty();
+    auto keep = [&](std::string argument, std::size_t from) {
+        apart.push_back(std::move(argument));
+        if (sourced) apartOrigins.push_back(origins[from]);
+    };
+    for (std::size_t i = 0; i < arguments.size(); ++i) {
+        const std::string& argument = arguments[i];
+        const std::size_t equals = argument.find('=');
+        if (takesValue(argument)) {
+            keep(argument, i);
+            if (i + 1 < arguments.size()) {
+                ++i;
+                keep(arguments[i], i);
+            }
+        } else if (argument.rfind('-', 0) == 0 && equals != std::string::npos) {
+            const std::string name = argument.substr(0, equals);
+            const Flag* flag = findFlag(name);
+            if (flag == nullptr || !flag->apply) {
+                keep(argument, i); // refused by the parser as an unknown option, as typed
+            } else if (flag->valueName.empty()) {
+                throw UsageError(name + ": takes no value, got '" + argument.substr(equals + 1) + "'");
+            } else if (name.rfind("--", 0) != 0) {
+                // As getopt: "-o=x.png" would be the file "=x.png"; the long name takes '='.
+                throw UsageError("'" + argument + "': " + name + " takes its value as the next argument (" + name +
+                                 " " + argument.substr(equals + 1) + ", or " + flag->names.back() + "=" +
+                                 argument.substr(equals + 1) + ")");
+            } else {
+                keep(name, i);
+                keep(argument.substr(equals + 1), i);
+            }
+        } else {
+            keep(argument, i);
+        }
+    }
+    arguments = std::move(apart);
+    if (sourced) origins = std::move(apartOrigins);
+}
+
+namespace {
+
 /** Applies arguments[i] (and its value: i then points at it) to `options`. Returns false at --help, where parsing
  *  stops. Records each flag given in `given`. */
 bool parseArgument(const std::vector<std::string>& arguments, std::size_t& i, RenderOptions& options,
@@ -131,11 +182,12 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
 namespace {
 
 /** parseRenderOptions() and parseRenderFlags(): `flagsOnly` takes flags alone and requires neither MODEL nor output. */
-RenderOptions parse(const std::vector<std::string>& arguments, const std::vector<std::string>& origins, bool flagsOnly,
+RenderOptions parse(std::vector<std::string> arguments, std::vector<std::string> origins, bool flagsOnly,
                     FlagChecks checks) {
     if (!origins.empty() && origins.size() != arguments.size())
         throw std::invalid_argument("parseRenderOptions(): " + std::to_string(origins.size()) + " origins for " +
                                     std::to_string(arguments.size()) + " arguments");
+    separateAttachedValues(arguments, origins);
     RenderOptions options;
     std::vector<const Flag*> given;
     for (std::size_t i = 0; i < arguments.size(); ++i) {
@@ -215,7 +267,8 @@ std::string renderHelp() {
     }
     return "Usage: inkgraph render MODEL... -o OUT.png [options]\n\n"
            "Renders one still of each MODEL (" +
-           modelFileExtensions() + ") with no window or display (EGL).\n" + renderFlagsHelp() + "\n" + exitCodes + "\n";
+           modelFileExtensions() + ") with no window or display (EGL).\n" + kFlagValueForms + "\n" + renderFlagsHelp() +
+           "\n" + exitCodes + "\n";
 }
 
 } // namespace inkgraph

@@ -117,7 +117,18 @@ const std::vector<std::pair<std::string, std::string RenderOptions::*>>& outputP
 /** Whether a run renders (-o, --dump, --contact-sheet or --svg) rather than only showing the plan. */
 bool rendersImages(const RenderOptions& options);
 
-/** Parses the arguments after "render". Throws UsageError with a message naming the flag and the bad value.
+/** Each "--NAME=VALUE" of a flag that takes a value as the two arguments "--NAME" and "VALUE", the long-option form
+ *  getopt_long() takes as well; "--NAME=VALUE" of a flag that takes none is refused (UsageError "--quiet: takes no
+ *  value, got '1'"), and so is "-o=x.png" (a short flag takes its value as the next argument). A flag's own value is
+ * left whole ("-o --a=b.png" writes '--a=b.png'). `origins`, empty or one per argument, are split alongside. */
+void separateAttachedValues(std::vector<std::string>& arguments, std::vector<std::string>& origins);
+
+/** How a flag's value is given, for --help and the man page. */
+inline constexpr const char* kFlagValueForms =
+    "A flag's value is the argument after it or follows '=': --size 512x512 or --size=512x512.";
+
+/** Parses the arguments after "render" (separateAttachedValues() first). Throws UsageError with a message naming the
+ *  flag and the bad value.
  *  --help (or -h) where a flag may stand stops parsing and sets `help`; as the value of a flag it is just a value. */
 RenderOptions parseRenderOptions(const std::vector<std::string>& arguments);
 

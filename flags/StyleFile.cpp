@@ -95,13 +95,14 @@ SourcedArguments styleArguments(std::string_view text, const std::string& source
 SourcedArguments expandStyleFile(const std::vector<std::string>& arguments) {
     // "--style FILE" stays where it is (the options record the file); its settings go first.
     SourcedArguments rest{arguments, std::vector<std::string>(arguments.size())};
+    separateAttachedValues(rest.arguments, rest.origins); // "--style=FILE" is --style too
     std::string stylePath;
-    for (std::size_t i = 0; i < arguments.size(); ++i) {
-        if (arguments[i] != "--style") continue;
-        if (i + 1 >= arguments.size() || arguments[i + 1].empty()) throw UsageError("--style: missing FILE");
+    for (std::size_t i = 0; i < rest.arguments.size(); ++i) {
+        if (rest.arguments[i] != "--style") continue;
+        if (i + 1 >= rest.arguments.size() || rest.arguments[i + 1].empty()) throw UsageError("--style: missing FILE");
         if (!stylePath.empty())
-            throw UsageError("--style: given twice ('" + stylePath + "', '" + arguments[i + 1] + "')");
-        stylePath = arguments[++i];
+            throw UsageError("--style: given twice ('" + stylePath + "', '" + rest.arguments[i + 1] + "')");
+        stylePath = rest.arguments[++i];
     }
     if (stylePath.empty()) return rest;
 

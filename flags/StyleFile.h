@@ -32,8 +32,8 @@ const std::vector<std::string>& styleSettingNames();
  *  source and line for a line that is not `name = value`, an unknown or repeated name, or an empty value. */
 SourcedArguments styleArguments(std::string_view text, const std::string& source, const std::string& directory);
 
-/** Puts the settings of `--style FILE` before every argument (which keep `--style FILE`, so the options record the
- *  file). Throws
+/** The arguments as the parser takes them: each "--NAME=VALUE" apart (separateAttachedValues()), and the settings of
+ *  `--style FILE` before every argument (which keep `--style FILE`, so the options record the file). Throws
  *  UsageError naming the file when it cannot be read, is above 64 KiB, or holds a bad line; at most one --style. */
 SourcedArguments expandStyleFile(const std::vector<std::string>& arguments);
 

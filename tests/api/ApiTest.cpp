@@ -208,6 +208,17 @@ TEST(ApiLook, RefusesAFlagThatIsNotTheLooksNamingItsPlace) {
                  "Look::fromArguments(): 'bunny.obj' is not a flag");
     EXPECT_STREQ(errorOf([] { ig::Look().set("shading", "comic"); }).what(),
                  "Look::set(): 'shading' is not a flag (did you mean '--shading'?)");
+    // The command line's "--NAME=VALUE" is the same flag, refused in the same place.
+    EXPECT_STREQ(errorOf([] {
+                     ig::Look::fromArguments({"--shading=cel", "--eye=0,0,5"});
+                 }).what(),
+                 "Look::fromArguments(): '--eye' is not a look flag (give it to the Frame)");
+    EXPECT_STREQ(errorOf([] {
+                     ig::Frame::fromArguments({"--orbit=30,10", "--lines=contour"});
+                 }).what(),
+                 "Frame::fromArguments(): '--lines' is not a frame flag (give it to the Look)");
+    EXPECT_EQ(ig::Look::fromArguments({"--shading=cel"}).arguments(), (std::vector<std::string>{"--shading", "cel"}));
+    EXPECT_EQ(ig::Frame::fromArguments({"--orbit=30,10"}).orbit->azimuth, 30.0);
 }
 
 TEST(ApiLook, RefusesABadValueInTheCommandLinesWords) {

@@ -3,6 +3,7 @@
 // data sets. The rendering and the kills are tests/app/dataset-kill-test.sh.
 #include "app/Dataset.h"
 #include "app/DatasetCheck.h"
+#include "flags/StyleFile.h"
 
 #include "render/ImageFiles.h"
 #include "render/TemporaryFiles.h"
@@ -70,11 +71,13 @@ class Dataset : public test::TestFolder {
 protected:
     /** A run's options and list from `arguments` (after "render"), and its DatasetRun. */
     std::unique_ptr<DatasetRun> runOf(const std::vector<std::string>& arguments) {
-        options = parseRenderOptions(arguments);
+        // As app/Cli.cpp runs it: the digest reads the arguments as the parser takes them.
+        const SourcedArguments expanded = expandStyleFile(arguments);
+        options = parseRenderOptions(expanded.arguments, expanded.origins);
         std::istringstream none;
         list = batchList(options, none);
         stills = batchStills(options, list);
-        return std::make_unique<DatasetRun>(options, list, stills, arguments, arguments);
+        return std::make_unique<DatasetRun>(options, list, stills, arguments, expanded.arguments);
     }
     std::string digestOf(const std::vector<std::string>& arguments) {
         auto run = runOf(arguments);
@@ -120,6 +123,9 @@ TEST_F(Dataset, TheDigestIgnoresFlagOrderAndRunFlagsButNotTheSettings) {
         digestOf({model, "--output", set + "/{name}.png", "--size", "64x64", "--lines", "contour", "--dataset", set}),
         digest)
         << "-o and --output are one flag";
+    EXPECT_EQ(digestOf({model, "--size=64x64", "--lines=contour", "--dataset=" + set, "-o", set + "/{name}.png"}),
+              digest)
+        << "--size=64x64 is --size 64x64";
     std::vector<std::string> quiet = base;
     quiet.insert(quiet.end(), {"-q", "--memory-limit", "2048", "--egl-platform", "surfaceless", "--jobs", "3",
                                "--draw-threads", "2"});

@@ -615,6 +615,34 @@ TEST(Options, MalformedValuesNameTheFlag) {
               std::string::npos);
 }
 
+TEST(Options, AValueMayFollowItsFlagAfterAnEqualsSign) {
+    // "--size=512x512" was refused as an unknown option '--size=512x512', though getopt_long() takes it everywhere.
+    const RenderOptions options =
+        parse({"m.obj", "--output=x.png", "--size=64x32", "--orbit=-30,10", "--lines=contour,crease"});
+    EXPECT_EQ(options.outputPath, "x.png");
+    EXPECT_EQ(options.width, 64);
+    EXPECT_EQ(options.height, 32);
+    ASSERT_TRUE(options.orbit.has_value());
+    EXPECT_EQ(options.orbit->azimuthDegrees, -30.0) << "a value that starts with a minus sign needs no other form";
+    EXPECT_EQ(options.look.lines.size(), 2u);
+    EXPECT_EQ(parse({"m.obj", "-o", "x.png", "--lines=contour", "--lines", "crease"}).look.lines.size(), 1u)
+        << "the two forms are one flag: the last one given wins";
+    // A flag's own value is left whole, as before: this output is a file called '--size=1x1.png'.
+    EXPECT_EQ(parse({"m.obj", "-o", "--size=1x1.png"}).outputPath, "--size=1x1.png");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--size", "--size=1x1"}),
+              "--size: width and height must be whole numbers from 1 to 16384, got '--size=1x1'");
+    // What the parser refuses in the two-argument form it refuses in this one, in the same words.
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--size=64"}),
+              usageMessage({"m.obj", "-o", "x.png", "--size", "64"}));
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--size="}), "--size: empty value");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--quiet=1"}), "--quiet: takes no value, got '1'");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--bogus=1"}), "unknown option '--bogus=1'");
+    EXPECT_EQ(usageMessage({"m.obj", "-o=x.png"}),
+              "'-o=x.png': -o takes its value as the next argument (-o x.png, or --output=x.png)");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "-q=1"}), "-q: takes no value, got '1'");
+    EXPECT_NE(renderHelp().find("--size=512x512"), std::string::npos) << "--help says so";
+}
+
 TEST(Options, HelpTextsAreMadeFromTheTablesTheyDescribe) {
     // Each flag's own help text, before --help wraps it.
     const auto helpOf = [](const std::string& name) {

@@ -125,6 +125,20 @@ TEST_F(StyleFileOnDisk, ExpandPutsTheSettingsFirstAndKeepsTheFlagForTheRecord) {
     EXPECT_EQ(options.stylePath, path);
 }
 
+TEST_F(StyleFileOnDisk, StyleEqualsFileIsTheStyleFlag) {
+    const std::string path = (directory / "look.style").string();
+    std::ofstream(path) << "shading = flat\n";
+    const SourcedArguments expanded = expandStyleFile({"m.obj", "--style=" + path, "--size=64x64", "-o", "o.png"});
+    EXPECT_EQ(expanded.arguments, (std::vector<std::string>{"--shading", "flat", "m.obj", "--style", path, "--size",
+                                                            "64x64", "-o", "o.png"}));
+    EXPECT_EQ(expanded.origins.size(), expanded.arguments.size());
+    EXPECT_EQ(parseRenderOptions(expanded.arguments, expanded.origins).look.shading, ShadingModel::Flat);
+    EXPECT_EQ(usageErrorOf([&] {
+                  expandStyleFile({"--style=" + path, "--style", path});
+              }),
+              "--style: given twice ('" + path + "', '" + path + "')");
+}
+
 TEST_F(StyleFileOnDisk, UnreadableOversizedOrRepeatedStylesAreUsageErrors) {
     EXPECT_EQ(usageErrorOf([&] {
                   expandStyleFile({"--style", (directory / "none").string()});
