@@ -338,7 +338,8 @@ SheetGeometry sheetGeometry(const char* who, std::int64_t tileCount, cv::Size fi
     columns = std::min(columns, tileCount);
     const std::int64_t rows = (tileCount + columns - 1) / columns;
     const std::int64_t tileHeight =
-        std::max<std::int64_t>(1, std::llround(static_cast<double>(layout.tileWidth) * first.height / first.width));
+        std::clamp<std::int64_t>(std::llround(static_cast<double>(layout.tileWidth) * first.height / first.width), 1,
+                                 std::int64_t(ContactSheetLayout::kMaxTileAspect) * layout.tileWidth);
     const std::int64_t titleHeight = layout.title.empty() ? 0 : ContactSheetLayout::kTitleBarHeight;
     constexpr std::int64_t spacing = ContactSheetLayout::kSpacing;
     const std::int64_t width = spacing + columns * (layout.tileWidth + spacing);

@@ -84,6 +84,9 @@ struct ContactSheetLayout {
     static constexpr int kCaptionHeight = 36;  ///< below each picture: the label line, then the caption line
     static constexpr int kMinTileWidth = 32;
     static constexpr int kMaxTileWidth = 4096;
+    /** A cell's picture is at most this many times as tall as it is wide: a taller first picture (a 16x512 still) is
+     *  letterboxed into it, where the sheet of its aspect would have been over kMaxSide tall. */
+    static constexpr int kMaxTileAspect = 4;
     static constexpr int kMaxSide = 16384; ///< the largest sheet, each side (the largest picture inkgraph writes)
 
     int tileWidth = 256;                             ///< picture width of every cell, kMinTileWidth..kMaxTileWidth
@@ -95,7 +98,8 @@ struct ContactSheetLayout {
 
 /** The size composeContactSheet() gives `tileCount` tiles whose first image is `firstImageSize`, without drawing
  *  anything, so a caller can check an output before any work:
- *  tileHeight = max(1, round(tileWidth x first rows / first cols)), rows = ceil(tileCount / columns),
+ *  tileHeight = clamp(round(tileWidth x first rows / first cols), 1, kMaxTileAspect x tileWidth),
+ *  rows = ceil(tileCount / columns),
  *  width = kSpacing + columns x (tileWidth + kSpacing),
  *  height = (title ? kTitleBarHeight : 0) + kSpacing + rows x (tileHeight + kCaptionHeight + kSpacing).
  *  Throws std::invalid_argument starting "contactSheetSize():" when tileCount < 1, the first size is not positive,
@@ -104,12 +108,12 @@ cv::Size contactSheetSize(int tileCount, cv::Size firstImageSize, const ContactS
 
 /** CV_8UC4 RGBA, opaque (see contactSheetSize() for its size): the title bar (title in ink on the paper), then the
  *  tiles row by row in the given order. Every cell is the tile's picture at tileWidth x tileHeight (tileImage(); the
- *  height follows the first tile's aspect, other aspects are letterboxed), then its label and caption in ink on the
- *  paper, Hershey simplex anti-aliased, left-aligned, each line shrunk to fit the cell width and, below a readable
- *  size, cut with "..." (Hershey fonts draw ASCII only; other characters come out as '?'). Every tile is checked
- *  before anything is drawn. Throws std::invalid_argument starting "composeContactSheet():" when there are no tiles,
- *  a tile is empty or of a type its content does not accept (naming the tile's label in quotes), or for the layout
- *  errors of contactSheetSize(). */
+ *  height follows the first tile's aspect up to kMaxTileAspect, other aspects are letterboxed), then its label and
+ * caption in ink on the paper, Hershey simplex anti-aliased, left-aligned, each line shrunk to fit the cell width and,
+ * below a readable size, cut with "..." (Hershey fonts draw ASCII only; other characters come out as '?'). Every tile
+ * is checked before anything is drawn. Throws std::invalid_argument starting "composeContactSheet():" when there are no
+ * tiles, a tile is empty or of a type its content does not accept (naming the tile's label in quotes), or for the
+ * layout errors of contactSheetSize(). */
 cv::Mat composeContactSheet(const std::vector<ContactTile>& tiles, const ContactSheetLayout& layout);
 
 } // namespace inkgraph

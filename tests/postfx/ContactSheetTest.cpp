@@ -292,6 +292,17 @@ TEST(ContactSheet, SizeFollowsTilesColumnsAndTileWidth) {
     layout.title.clear();
     std::vector<ContactTile> tall = {solidTile("tall", {0, 0, 0, 255}, {33, 100}), solidTile("wide", {0, 0, 0, 255})};
     EXPECT_EQ(composeContactSheet(tall, layout).size(), expected(1, 2, 32, 97, false));
+    // A picture over kMaxTileAspect times as tall as wide gets a cell that tall, letterboxed: the contact sheet of
+    // a 16x512 still's ten buffers was 24748 pixels tall, refused after the whole render.
+    layout = Layout();
+    std::vector<ContactTile> portrait;
+    for (int i = 0; i < 10; ++i) portrait.push_back(solidTile("portrait", {0, 0, 0, 255}, {16, 512}));
+    EXPECT_EQ(contactSheetSize(10, {16, 512}, layout), expected(4, 3, 256, 1024, false));
+    const cv::Mat sheet = composeContactSheet(portrait, layout);
+    EXPECT_EQ(sheet.size(), expected(4, 3, 256, 1024, false));
+    const cv::Point cell(Layout::kSpacing, Layout::kSpacing);
+    EXPECT_EQ(sheet.at<cv::Vec4b>(cell + cv::Point(128, 512)), cv::Vec4b(0, 0, 0, 255)) << "the picture, centred";
+    EXPECT_EQ(sheet.at<cv::Vec4b>(cell + cv::Point(4, 512)), TilePalette::kLetterbox) << "letterboxed beside it";
 }
 
 TEST(ContactSheet, IsOpaqueRgbaOnThePaper) {
@@ -482,12 +493,15 @@ TEST(ContactSheet, RejectsSheetsOverTheSizeLimit) {
                            "composeContactSheet(): the sheet would be 16424x"));
     layout.columns = 3; // 12320 wide: fine in width, and 2 rows of 2048 + 44 are fine in height
     EXPECT_EQ(contactSheetSize(6, {64, 32}, layout), cv::Size(12320, 8 + 2 * (2048 + 36 + 8)));
-    // A thin first tile makes every picture very tall: 256 x 1000 / 1 = 256000 rows.
+    // A thin first tile makes every picture as tall as kMaxTileAspect allows: at 4096 wide, 16384 rows.
     Layout thin;
+    thin.tileWidth = 4096;
     std::vector<ContactTile> tiles = {solidTile("thin", {0, 0, 0, 255}, {1, 1000})};
     EXPECT_TRUE(startsWith(invalidArgumentMessage([&] { composeContactSheet(tiles, thin); }),
-                           "composeContactSheet(): the sheet would be"));
+                           "composeContactSheet(): the sheet would be 4112x16436 pixels"));
     EXPECT_THROW(contactSheetSize(1, {1, 1000}, thin), std::invalid_argument);
+    thin.tileWidth = 256; // 1024 rows: fits
+    EXPECT_EQ(contactSheetSize(1, {1, 1000}, thin), cv::Size(8 + 256 + 8, 8 + 1024 + 36 + 8));
     // Many tiles in automatic columns: 81 tiles -> 9 columns of 4096.
     layout.columns = 0;
     EXPECT_THROW(contactSheetSize(81, {64, 32}, layout), std::invalid_argument);
