@@ -2,6 +2,7 @@
 
 #include "render/ImageFiles.h"
 #include "app/OutputFiles.h"
+#include "scene/MessageText.h" // withoutByteOrderMark()
 #include "scene/Scene.h"
 
 #include <glm/glm.hpp>
@@ -95,7 +96,9 @@ std::vector<std::pair<std::string, std::string>> outputFlags(const RenderOptions
 BatchList batchList(const RenderOptions& options, std::istream& standardInput) {
     std::vector<std::string> paths = options.modelPaths;
     if (!options.listPath.empty()) {
-        const std::string text = listText(options.listPath, standardInput);
+        // Windows editors (Notepad's "UTF-8") write a byte-order mark first: it was glued to the first model's name,
+        // told as "file not found" with the mark invisible in the quoted name. The style and model readers skip it.
+        const std::string text(detail::withoutByteOrderMark(listText(options.listPath, standardInput)));
         const std::string listName = options.listPath == "-" ? "standard input" : "'" + options.listPath + "'";
         std::istringstream lines(text);
         std::string line;

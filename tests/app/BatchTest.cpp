@@ -73,6 +73,20 @@ TEST_F(BatchListFile, ListLinesFollowTheArgumentsSkippingCommentsAndBlanks) {
     EXPECT_EQ(pathsOf(list), std::vector<std::string>({"first.obj", "b.obj", "c.stl", "sub dir/e f.glb"}));
 }
 
+TEST_F(BatchListFile, AByteOrderMarkBeforeTheFirstPathIsSkipped) {
+    RenderOptions options;
+    options.listPath = write("bom.txt", "\xEF\xBB\xBF"
+                                        "a.obj\r\nb.obj\r\n");
+    std::istringstream none;
+    EXPECT_EQ(pathsOf(batchList(options, none)), std::vector<std::string>({"a.obj", "b.obj"}));
+    options.listPath = write("bom-comment.txt", "\xEF\xBB\xBF# models\na.obj\n");
+    EXPECT_EQ(pathsOf(batchList(options, none)), std::vector<std::string>({"a.obj"}));
+    std::istringstream piped("\xEF\xBB\xBF"
+                             "c.obj\n");
+    options.listPath = "-";
+    EXPECT_EQ(pathsOf(batchList(options, piped)), std::vector<std::string>({"c.obj"}));
+}
+
 TEST_F(BatchListFile, AListFromAPipeIsReadAsStandardInputIs) {
     // The shell's `--list <(find models -name '*.obj')` names a pipe (/dev/fd/63), not a regular file.
     const fs::path pipe = directory / "list.fifo";
