@@ -256,7 +256,8 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     } catch (const std::invalid_argument& error) {
         throw UsageError(error.what()); // the loader has validated the file's camera: what is left is the flags
     }
-    if (std::optional<Warning> outside = modelOutsideView(still.camera, scene)) warnOf(still, std::move(*outside), log);
+    if (std::optional<Warning> outside = modelOutsideView(still.camera, scene, look.supersample, look.msaa))
+        warnOf(still, std::move(*outside), log);
     failIfStrict(still);
     still.frame = frameParamsOf(look, scene, still.camera, still.sphere);
     still.frame.time = req.animationTime; // the pose's time is the UV animation's too

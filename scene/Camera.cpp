@@ -407,7 +407,7 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     return camera;
 }
 
-std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene) {
+std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene, int supersample, int msaaSamples) {
     // The half-spaces outside the view, in view space (the camera looks down -Z; depth = -z). A model wholly inside one
     // of them shows nothing. Behind the eye comes first: it is also nearer than the near plane.
     const double tanY = std::tan(glm::radians(camera.fovYDegrees) / 2.0);
@@ -484,18 +484,23 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
         // Lines drawn as bands round the model (an outline, a silhouette) may still leave a dot of ink.
         consequence = "no pixel shows its surface (its lines may leave a dot)";
         // Pixel centres lie at half-integers of the image (y down); the model covers none unless its extent holds one
-        // both ways. A model under a pixel that holds one (a 1 x 1 picture) is drawn.
-        const auto holdsACentre = [](double from, double to, int size) {
-            const double first = std::max(std::ceil(from - 0.5), 0.0);
-            return first + 0.5 <= to && first < double(size);
+        // both ways. A model under a pixel that holds one (a 1 x 1 picture) is drawn. --supersample samples the
+        // centres of its finer grid; --msaa's sample positions lie on a grid of 1/16 pixel, each of its points taken.
+        const double perPixel = double(std::max(supersample, 1)) * (msaaSamples > 1 ? 16.0 : 1.0);
+        const double offset = msaaSamples > 1 ? 0.0 : 0.5;
+        const auto holdsACentre = [&](double from, double to, int size) {
+            const double first = std::max(std::ceil(from * perPixel - offset), 0.0);
+            return first + offset <= to * perPixel && first < double(size) * perPixel;
         };
         const glm::dvec2 extent = high - low;
         const glm::dvec2 centre(0.5 * camera.width, 0.5 * camera.height);
         const bool drawsAPixel = holdsACentre(centre.x + low.x, centre.x + high.x, camera.width) &&
                                  holdsACentre(centre.y - high.y, centre.y - low.y, camera.height);
-        if (drawsAPixel || !(extent.x < 1.0 && extent.y < 1.0)) return std::nullopt;
+        if (drawsAPixel) return std::nullopt;
+        // Over a pixel one way is no better: a sliver under a pixel wide between two columns of centres draws none.
         where = "the model spans " + detail::formatExtent(extent.x) + " x " + detail::formatExtent(extent.y) +
-                " pixels, under a pixel (move the eye nearer or narrow --fov)";
+                " pixels, " + (extent.x < 1.0 && extent.y < 1.0 ? "under a pixel" : "between pixel centres") +
+                " (move the eye nearer or narrow --fov)";
     }
     std::string who;
     if (camera.source == "gltf") {

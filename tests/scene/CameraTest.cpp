@@ -181,6 +181,39 @@ TEST(Camera, AModelSeenUnderAPixelIsOutsideTheView) {
         << orbited->message;
 }
 
+TEST(Camera, ASliverBetweenTwoColumnsOfPixelCentresIsOutsideTheView) {
+    // 0.6 x 10 units 10 away at --fov 90 in 16 x 16 pixels (0.8 px a unit): 0.48 x 8 pixels, from x 7.76 to 8.24,
+    // between the centres 7.5 and 8.5. It drew blank paper without a word: only a model under a pixel both ways was
+    // judged.
+    Mesh sliver;
+    sliver.positions = {{-0.3f, -5, 0}, {0.3f, -5, 0}, {0.3f, 5, 0}, {-0.3f, 5, 0}};
+    sliver.normals.assign(4, {0, 0, 1});
+    sliver.triangles = {{0, 1, 2}, {0, 2, 3}};
+    const Scene scene = makeScene(sliver);
+    CameraRequest request;
+    request.width = request.height = 16;
+    request.fovYDegrees = 90.0;
+    request.eye = glm::dvec3(0, 0, 10);
+    request.target = glm::dvec3(0, 0, 0);
+    const std::optional<Warning> between = modelOutsideView(resolveCamera(request, scene), scene);
+    ASSERT_TRUE(between.has_value());
+    EXPECT_EQ(between->code, "model-outside-view");
+    EXPECT_NE(between->message.find("the model spans 0.48 x 8 pixels, between pixel centres (move the eye nearer"),
+              std::string::npos)
+        << between->message;
+    // Three times the pixels each way (--supersample 3) sample it at x 7.83 and 8.17, and --msaa's sample positions
+    // at 1/16 pixel steps: either draws it. Twice (centres 7.75 and 8.25) still misses it.
+    const Camera camera = resolveCamera(request, scene);
+    EXPECT_FALSE(modelOutsideView(camera, scene, 3).has_value());
+    EXPECT_TRUE(modelOutsideView(camera, scene, 2).has_value());
+    EXPECT_FALSE(modelOutsideView(camera, scene, 1, 4).has_value());
+    EXPECT_TRUE(modelOutsideView(camera, scene, 1, 1).has_value());
+    // Half a pixel to the side it covers the centres at x 8.5, and is drawn.
+    request.eye = glm::dvec3(0.5 / 0.8, 0, 10);
+    request.target = glm::dvec3(0.5 / 0.8, 0, 0);
+    EXPECT_FALSE(modelOutsideView(resolveCamera(request, scene), scene).has_value());
+}
+
 TEST(Camera, AModelSeenUnderAPixelWithTheRestBehindTheEyeIsOutsideTheView) {
     // --fov 179 puts the eye 1.05 radii from the framed part: under a pixel at 16 px. With another mesh behind the eye
     // (--frame of one part; here an eye given), some vertex is nearer than the near plane, and the check said nothing
