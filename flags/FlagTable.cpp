@@ -1208,9 +1208,10 @@ std::vector<Flag> makeFlags() {
                std::string(traitsOf(options.look.shading).name) + " does not draw";
     };
     flags.push_back(widthMap);
-    flags.push_back(helpOnly(
-        S::Lines, "",
-        "Outline and silhouette draw nothing when the eye is inside the model (they would flood the picture)."));
+    flags.push_back(helpOnly(S::Lines, "",
+                             "Outline and silhouette draw nothing when the eye is inside the model (they would flood "
+                             "the picture), and say so "
+                             "(warning lines-skipped)."));
 
     // Batch
     flags.push_back(helpOnly(S::Batch, "MODEL...",

@@ -226,6 +226,21 @@ Json StillGraph::describeLines() const {
     return lines;
 }
 
+std::vector<Warning> StillGraph::lineWarnings() const {
+    std::vector<Warning> warnings;
+    for (const Json& line : describeLines()) {
+        if (!line.value("skipped_eye_inside", false)) continue;
+        const std::string type = line.value("type", std::string());
+        warnings.push_back(makeWarning(
+            WarningKind::LinesSkipped,
+            "the " + type + " lines are not drawn: the eye is inside the model" +
+                (type == "silhouette" ? " or the silhouette's hull" : "") +
+                ", where their bands would cover the whole picture; move the eye out (--eye, --orbit) or draw contour "
+                "lines, which need no outside"));
+    }
+    return warnings;
+}
+
 Json StillGraph::describePostStage(const std::vector<PassTiming>& timings) const {
     Json layers = Json::array();
     double kernels = 0.0, readback = 0.0, composite = 0.0;

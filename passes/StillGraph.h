@@ -90,6 +90,10 @@ public:
     std::string describeShading(const Plan& plan) const;
     /** --stats look.lines: one entry per drawn type in composite order, with its style and what its type reports. */
     nlohmann::ordered_json describeLines() const;
+    /** What the line passes that ran had to say, after a run: a lines-skipped warning for each drawn type that left
+     *  this view out (its describeLines() entry says "skipped_eye_inside"), so neither an empty picture nor --strict
+     *  passes over it in silence. */
+    std::vector<Warning> lineWarnings() const;
     /** --stats post_stage: the device the image-space kernels ran on ("device", and "requested": the flag's word),
      *  what each CPU line layer that ran found and where its time went; "kernels_ms" is the post
      *  stage proper (finding and stroking, without bringing the G-buffer to the CPU), "composite_ms" follows it. */

@@ -365,6 +365,8 @@ StillResult StillRenderer::executeOnContext(PreparedStill& still, const StillLog
     // What decoding the textures had to say (an image shrunk to the driver's largest texture), as the loader's
     // warnings.
     for (const Warning& warning : still.gpuScene->materials().warnings()) warnOf(still, warning, log);
+    // A line type the user asked for that this view left out (the eye inside the model) is said, not just missing.
+    for (Warning& warning : still.graph.lineWarnings()) warnOf(still, std::move(warning), log);
     failIfStrict(still);
     result.texturesCreated = mTextures.createdCount() - texturesCreatedBefore;
     result.texturesReused = mTextures.reusedCount() - texturesReusedBefore;

@@ -93,6 +93,9 @@ const std::vector<WarningCode>& warningCodes() {
          "a mesh lacks the vertex colours or texture coordinates --outline-width-map reads; its widths stay unscaled"},
         {K::TriangleIdInexact, "triangle-id-inexact",
          "the scene has more than 2^24 triangles, and the triangleId field (float32) rounds the ids above 2^24"},
+        {K::LinesSkipped, "lines-skipped",
+         "a line type asked for is not drawn in this view: the eye is inside the model (or the silhouette's hull), "
+         "where its bands would cover the whole picture"},
     };
     return kCodes;
 }

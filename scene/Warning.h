@@ -63,6 +63,7 @@ enum class WarningKind {
     ModelOutsideView,
     WidthMapUnread,
     TriangleIdInexact,
+    LinesSkipped,
     Count ///< not a kind: the number of them
 };
 

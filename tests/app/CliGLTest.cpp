@@ -881,6 +881,23 @@ TEST_F(Cli, EyeInsideTheModelDrawsNoSilhouettes) {
     const auto stats = nlohmann::json::parse(readText(directory / "s.json"));
     EXPECT_EQ(stats["look"]["lines"][0]["skipped_eye_inside"], true);
     EXPECT_EQ(stats["look"]["lines"][1]["skipped_eye_inside"], true);
+    // Said, not only left out: the lines asked for were missing with exit 0 and no word, even under --strict.
+    EXPECT_NE(
+        result.err.find("warning: the outline lines are not drawn: the eye is inside the model, where their bands "
+                        "would cover the whole picture"),
+        std::string::npos)
+        << result.err;
+    EXPECT_NE(result.err.find("warning: the silhouette lines are not drawn: the eye is inside the model or the "
+                              "silhouette's hull"),
+              std::string::npos)
+        << result.err;
+    const CliRun strict = run("render " + model("spot_c3d.obj") +
+                              " -o b.png --size 32x32 --eye 0,0.1,0 --target 1,0.1,0 --lines outline --strict");
+    EXPECT_EQ(strict.exitCode, 3) << strict.err;
+    EXPECT_FALSE(fs::exists(directory / "b.png"));
+    // Outside the model nothing is said.
+    const CliRun outside = run("render " + model("spot_c3d.obj") + " -o c.png --size 32x32 --lines outline --strict");
+    EXPECT_EQ(outside.exitCode, 0) << outside.err;
 }
 
 TEST_F(Cli, EveryShadingModeRendersWithoutNaN) {
