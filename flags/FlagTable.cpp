@@ -869,7 +869,8 @@ std::vector<Flag> makeFlags() {
         flag({"--up"}, "X,Y,Z", S::Camera,
              "up direction (default: the glTF camera's, else 0,1,0); auto-framing looks from the\n"
              "front, slightly above, as this up defines it (for a Z-up up, from -Y as Blender's front view;\n"
-             "a model that faces +Y shows its back there: --orbit 180,14.04 turns to its face)",
+             "a model that faces +Y shows its back there: --orbit 180,14.04 turns to its face); it must lie\n"
+             "at least 0.05 degrees off the view direction (for an eye straight above, give --up 0,0,-1)",
              [](const std::string& value, RenderOptions& options) { options.up = parseDirection("--up", value); }));
     flags.push_back(styleFlag(flag({"--fov"}, "DEG", S::Camera,
                                    "vertical field of view in degrees, " + helpNumber(kMinFovDegrees) + " to " +

@@ -27,6 +27,10 @@ constexpr double kMaxFrontAlongUp = 0.9;
 constexpr double kFramingMargin = 1.05;
 /** --orbit's elevation stops this short of +-90 degrees, where up would be parallel to the view. */
 constexpr double kMaxOrbitElevationDegrees = 89.9;
+/** Up must lie at least this far from the view direction: nearer, the picture's turn about the view follows the
+ *  view's slightest tilt (--target moved by 1e-5 under an eye straight above turned it 180 degrees). Half --orbit's
+ *  margin from +-90, so every orbit passes. */
+constexpr double kMinUpToViewDegrees = 0.05;
 /** A --frame error names at most this many of the scene's nodes. */
 constexpr std::size_t kMaxNamedNodes = 10;
 /** The eye and the target must lie farther apart than this times their distance from the scene's origin (at least
@@ -374,8 +378,13 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
         }
         invalid(eyeText + " and " + targetText);
     }
-    if (glm::length(glm::cross(view / viewLength, glm::normalize(camera.up))) < 1e-6) {
-        invalid("the up vector (" + upText + ") is parallel to the view direction (" + viewText + ")");
+    if (const double sine = glm::length(glm::cross(view / viewLength, glm::normalize(camera.up)));
+        !(sine >= std::sin(glm::radians(kMinUpToViewDegrees)))) {
+        invalid("the up vector (" + upText + ") is parallel to the view direction (" + viewText + ")" +
+                (sine >= 1e-9 ? ", " + formatNumber(glm::degrees(std::asin(sine))) + " degrees off: within " +
+                                    formatNumber(kMinUpToViewDegrees) +
+                                    " degrees the picture's turn about the view would follow its slightest tilt"
+                              : std::string()));
     }
 
     // Fit the clip planes to the bounding sphere so nothing is clipped and depth precision is spent on the model. The

@@ -109,9 +109,9 @@ struct Camera {
  *  zFar replace both (finite, 0 < near < far, else std::invalid_argument naming --clip). Throws
  *  std::invalid_argument, with a message that names the flags involved (--eye, --orbit, --frame, --target, --up,
  *  --fov, --size), for eye == target, an eye with an orbit, an orbit elevation outside [-89.9, 89.9] or a
- *  non-positive distance, a zero up or one parallel to the view direction, fov outside (0, 180), non-finite values,
- *  or a non-positive size; SceneError for a frame name that no mesh lies under and no joint or bone has (naming up
- *  to 10 of the scene's node names, bones and joints: the model lacks it), or whose meshes and joints have no
+ *  non-positive distance, a zero up or one within 0.05 degrees of the view direction, fov outside (0, 180), non-finite
+ * values, or a non-positive size; SceneError for a frame name that no mesh lies under and no joint or bone has (naming
+ * up to 10 of the scene's node names, bones and joints: the model lacks it), or whose meshes and joints have no
  *  vertices. */
 Camera resolveCamera(const CameraRequest& request, const Scene& scene);
 

@@ -477,6 +477,25 @@ TEST(Camera, ErrorMessagesNameTheFlags) {
     EXPECT_NE(message.find("--up"), std::string::npos) << message;
     EXPECT_NE(message.find("parallel to the view direction (from --eye to --target)"), std::string::npos) << message;
 
+    // Nearly straight down: a target 1e-5 to either side of the eye's foot turned the picture 180 degrees.
+    lookingDown.target = glm::dvec3(1e-5, 0, 0);
+    message = invalidArgumentMessage([&] { resolveCamera(lookingDown, scene); });
+    EXPECT_NE(message.find("parallel to the view direction (from --eye to --target), 5.7"), std::string::npos)
+        << message;
+    EXPECT_NE(
+        message.find("degrees off: within 0.05 degrees the picture's turn about the view would follow its slightest "
+                     "tilt"),
+        std::string::npos)
+        << message;
+    lookingDown.target = glm::dvec3(0.01, 0, 0); // 0.057 degrees off: taken
+    EXPECT_NO_THROW(resolveCamera(lookingDown, scene));
+    // Every orbit passes: its elevation stops 0.1 degrees short of up.
+    CameraRequest steepest;
+    steepest.orbit = Orbit{30.0, 89.9, std::nullopt, 1.0};
+    EXPECT_NO_THROW(resolveCamera(steepest, scene));
+    steepest.orbit->elevationDegrees = -89.9;
+    EXPECT_NO_THROW(resolveCamera(steepest, scene));
+
     CameraRequest parallelUp;
     parallelUp.eye = glm::dvec3(3, -2, 20);
     parallelUp.up = glm::dvec3(0, 0, -2);
