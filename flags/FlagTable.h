@@ -50,4 +50,8 @@ const char* helpSectionTitle(HelpSection section);
  *  starts with two spaces and a word, kept with its indent); lines indented deeper continue the item above. */
 std::vector<std::string> helpBlocks(const std::string& help);
 
+/** `line` appended to `text` broken at spaces to fit --help's width with `indent` spaces before it; continuation
+ *  lines get `continuation` more. */
+void appendWrapped(std::string& text, const std::string& line, std::size_t indent, std::size_t continuation);
+
 } // namespace inkgraph

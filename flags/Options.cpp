@@ -265,10 +265,12 @@ std::string renderHelp() {
         }
         exitCodes += item;
     }
+    std::string valueForms;
+    appendWrapped(valueForms, kFlagValueForms, 0, 0);
     return "Usage: inkgraph render MODEL... -o OUT.png [options]\n\n"
            "Renders one still of each MODEL (" +
-           modelFileExtensions() + ") with no window or display (EGL).\n" + kFlagValueForms + "\n" + renderFlagsHelp() +
-           "\n" + exitCodes + "\n";
+           modelFileExtensions() + ") with no window or display (EGL).\n" + valueForms + renderFlagsHelp() + "\n" +
+           exitCodes + "\n";
 }
 
 } // namespace inkgraph

@@ -123,9 +123,10 @@ bool rendersImages(const RenderOptions& options);
  * left whole ("-o --a=b.png" writes '--a=b.png'). `origins`, empty or one per argument, are split alongside. */
 void separateAttachedValues(std::vector<std::string>& arguments, std::vector<std::string>& origins);
 
-/** How a flag's value is given, for --help and the man page. */
+/** How a flag's value is given, and a flag given twice, for --help and the man page. */
 inline constexpr const char* kFlagValueForms =
-    "A flag's value is the argument after it or follows '=': --size 512x512 or --size=512x512.";
+    "A flag's value is the argument after it or follows '=': --size 512x512 or --size=512x512. A flag given twice "
+    "keeps its last value; --request and --frame add to their lists.";
 
 /** Parses the arguments after "render" (separateAttachedValues() first). Throws UsageError with a message naming the
  *  flag and the bad value.

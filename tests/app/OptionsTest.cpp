@@ -643,6 +643,23 @@ TEST(Options, AValueMayFollowItsFlagAfterAnEqualsSign) {
     EXPECT_NE(renderHelp().find("--size=512x512"), std::string::npos) << "--help says so";
 }
 
+TEST(Options, AFlagGivenTwiceKeepsItsLastValueAndTheListsAdd) {
+    // As --help says (kFlagValueForms): a script may append a flag to override what it gave before.
+    const RenderOptions twice =
+        parse({"m.obj",   "-o",      "a.png",     "--output",       "b.png",        "--stats",       "a.json",
+               "--stats", "b.json",  "--size",    "64x64",          "--size=32x16", "--lines",       "contour",
+               "--lines", "crease",  "--request", "gbuffer.normal", "--request",    "gbuffer.depth", "--frame",
+               "head",    "--frame", "hand"});
+    EXPECT_EQ(twice.outputPath, "b.png");
+    EXPECT_EQ(twice.statsPath, "b.json");
+    EXPECT_EQ(twice.width, 32);
+    EXPECT_EQ(twice.look.lines, std::vector<std::string>{"crease"});
+    EXPECT_EQ(twice.extraOutputs, (std::vector<std::string>{"gbuffer.normal", "gbuffer.depth"}));
+    EXPECT_EQ(twice.frameNodes, (std::vector<std::string>{"head", "hand"}));
+    EXPECT_NE(renderHelp().find("A flag given twice keeps its"), std::string::npos);
+    EXPECT_NE(renderHelp().find("--request and --frame add to their lists."), std::string::npos);
+}
+
 TEST(Options, HelpTextsAreMadeFromTheTablesTheyDescribe) {
     // Each flag's own help text, before --help wraps it.
     const auto helpOf = [](const std::string& name) {
