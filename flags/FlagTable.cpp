@@ -1211,8 +1211,7 @@ std::vector<Flag> makeFlags() {
     flags.push_back(widthMap);
     flags.push_back(helpOnly(S::Lines, "",
                              "Outline and silhouette draw nothing when the eye is inside the model (they would flood "
-                             "the picture), and say so "
-                             "(warning lines-skipped)."));
+                             "the picture), and say so (warning lines-skipped)."));
 
     // Batch
     flags.push_back(helpOnly(S::Batch, "MODEL...",

@@ -119,8 +119,8 @@ bool rendersImages(const RenderOptions& options);
 
 /** Each "--NAME=VALUE" of a flag that takes a value as the two arguments "--NAME" and "VALUE", the long-option form
  *  getopt_long() takes as well; "--NAME=VALUE" of a flag that takes none is refused (UsageError "--quiet: takes no
- *  value, got '1'"), and so is "-o=x.png" (a short flag takes its value as the next argument). A flag's own value is
- * left whole ("-o --a=b.png" writes '--a=b.png'). `origins`, empty or one per argument, are split alongside. */
+ *  value, got '1'"), and so is "-o=x.png" (a short flag takes its value as the next argument). A flag's own value
+ *  is left whole ("-o --a=b.png" writes '--a=b.png'). `origins`, empty or one per argument, are split alongside. */
 void separateAttachedValues(std::vector<std::string>& arguments, std::vector<std::string>& origins);
 
 /** How a flag's value is given, and a flag given twice, for --help and the man page. */

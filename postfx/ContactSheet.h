@@ -109,11 +109,11 @@ cv::Size contactSheetSize(int tileCount, cv::Size firstImageSize, const ContactS
 /** CV_8UC4 RGBA, opaque (see contactSheetSize() for its size): the title bar (title in ink on the paper), then the
  *  tiles row by row in the given order. Every cell is the tile's picture at tileWidth x tileHeight (tileImage(); the
  *  height follows the first tile's aspect up to kMaxTileAspect, other aspects are letterboxed), then its label and
- * caption in ink on the paper, Hershey simplex anti-aliased, left-aligned, each line shrunk to fit the cell width and,
- * below a readable size, cut with "..." (Hershey fonts draw ASCII only; other characters come out as '?'). Every tile
- * is checked before anything is drawn. Throws std::invalid_argument starting "composeContactSheet():" when there are no
- * tiles, a tile is empty or of a type its content does not accept (naming the tile's label in quotes), or for the
- * layout errors of contactSheetSize(). */
+ *  caption in ink on the paper, Hershey simplex anti-aliased, left-aligned, each line shrunk to fit the cell width
+ *  and, below a readable size, cut with "..." (Hershey fonts draw ASCII only; other characters come out as '?').
+ *  Every tile is checked before anything is drawn. Throws std::invalid_argument starting "composeContactSheet():"
+ *  when there are no tiles, a tile is empty or of a type its content does not accept (naming the tile's label in
+ *  quotes), or for the layout errors of contactSheetSize(). */
 cv::Mat composeContactSheet(const std::vector<ContactTile>& tiles, const ContactSheetLayout& layout);
 
 } // namespace inkgraph
