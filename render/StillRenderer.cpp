@@ -6,6 +6,8 @@
 #include "render/ImageFiles.h"
 #include "render/UsageError.h"
 #include "render/SceneShadeMaps.h"
+#include "passes/lines/LineTypes.h"
+#include "passes/shade/ShadingModel.h"
 #include "graph/GraphCompiler.h"
 #include "scene/MeshLabels.h"
 #include "scene/Scene.h"
@@ -70,6 +72,21 @@ void warnOf(PreparedStill& still, Warning warning, const StillLog& log) {
     if (warning.file.empty()) warning.file = still.request.modelPath;
     log.warn(still.request.modelPath, warning.message);
     still.warnings.push_back(std::move(warning));
+}
+
+/** Where the still samples its model: the look's buffers, and whether its lines are drawn from the mesh itself. */
+PictureSampling pictureSamplingOf(const Look& look, const Scene& scene) {
+    PictureSampling sampling;
+    sampling.supersample = look.supersample;
+    sampling.msaaSamples = look.msaa;
+    // MToon's outline shells: mtoon, or auto where some material has MToon.
+    const ShadingModel shading = shadingModelFor(look.shading, scene);
+    sampling.linesDrawTheMesh = shading == ShadingModel::MToon || shading == ShadingModel::Auto;
+    for (const std::string& name : look.lines)
+        if (const LineType* type = findLineType(name))
+            sampling.linesDrawTheMesh = sampling.linesDrawTheMesh || type->family == LineFamily::GlDrawn ||
+                                        type->family == LineFamily::MeshEdge;
+    return sampling;
 }
 
 /** --strict: the still's first warning (printed already) as the error that fails it, before anything is written. */
@@ -256,7 +273,7 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     } catch (const std::invalid_argument& error) {
         throw UsageError(error.what()); // the loader has validated the file's camera: what is left is the flags
     }
-    if (std::optional<Warning> outside = modelOutsideView(still.camera, scene, look.supersample, look.msaa))
+    if (std::optional<Warning> outside = modelOutsideView(still.camera, scene, pictureSamplingOf(look, scene)))
         warnOf(still, std::move(*outside), log);
     failIfStrict(still);
     still.frame = frameParamsOf(look, scene, still.camera, still.sphere);

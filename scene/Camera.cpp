@@ -384,7 +384,8 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
                 (sine >= 1e-9 ? ", " + formatNumber(glm::degrees(std::asin(sine))) + " degrees off: within " +
                                     formatNumber(kMinUpToViewDegrees) +
                                     " degrees the picture's turn about the view would follow its slightest tilt"
-                              : std::string()));
+                              : std::string()) +
+                "; give an --up across the view (for an eye straight above, --up 0,0,-1)");
     }
 
     // Fit the clip planes to the bounding sphere so nothing is clipped and depth precision is spent on the model. The
@@ -416,7 +417,7 @@ Camera resolveCamera(const CameraRequest& request, const Scene& scene) {
     return camera;
 }
 
-std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene, int supersample, int msaaSamples) {
+std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene, const PictureSampling& sampling) {
     // The half-spaces outside the view, in view space (the camera looks down -Z; depth = -z). A model wholly inside one
     // of them shows nothing. Behind the eye comes first: it is also nearer than the near plane.
     const double tanY = std::tan(glm::radians(camera.fovYDegrees) / 2.0);
@@ -495,8 +496,9 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
         // Pixel centres lie at half-integers of the image (y down); the model covers none unless its extent holds one
         // both ways. A model under a pixel that holds one (a 1 x 1 picture) is drawn. --supersample samples the
         // centres of its finer grid; --msaa's sample positions lie on a grid of 1/16 pixel, each of its points taken.
-        const double perPixel = double(std::max(supersample, 1)) * (msaaSamples > 1 ? 16.0 : 1.0);
-        const double offset = msaaSamples > 1 ? 0.0 : 0.5;
+        const bool multisampled = sampling.msaaSamples > 1;
+        const double perPixel = double(std::max(sampling.supersample, 1)) * (multisampled ? 16.0 : 1.0);
+        const double offset = multisampled ? 0.0 : 0.5;
         const auto holdsACentre = [&](double from, double to, int size) {
             const double first = std::max(std::ceil(from * perPixel - offset), 0.0);
             return first + offset <= to * perPixel && first < double(size) * perPixel;
@@ -505,10 +507,12 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
         const glm::dvec2 centre(0.5 * camera.width, 0.5 * camera.height);
         const bool drawsAPixel = holdsACentre(centre.x + low.x, centre.x + high.x, camera.width) &&
                                  holdsACentre(centre.y - high.y, centre.y - low.y, camera.height);
-        if (drawsAPixel) return std::nullopt;
-        // Over a pixel one way is no better: a sliver under a pixel wide between two columns of centres draws none.
+        // Over a pixel one way is no better for the surface: a sliver under a pixel wide between two columns of
+        // centres covers none. Lines drawn from the mesh still draw it, as a line of its length.
+        const bool underAPixel = extent.x < 1.0 && extent.y < 1.0;
+        if (drawsAPixel || (sampling.linesDrawTheMesh && !underAPixel)) return std::nullopt;
         where = "the model spans " + detail::formatExtent(extent.x) + " x " + detail::formatExtent(extent.y) +
-                " pixels, " + (extent.x < 1.0 && extent.y < 1.0 ? "under a pixel" : "between pixel centres") +
+                " pixels, " + (underAPixel ? "under a pixel" : "between pixel centres") +
                 " (move the eye nearer or narrow --fov)";
     }
     std::string who;

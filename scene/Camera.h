@@ -109,24 +109,33 @@ struct Camera {
  *  zFar replace both (finite, 0 < near < far, else std::invalid_argument naming --clip). Throws
  *  std::invalid_argument, with a message that names the flags involved (--eye, --orbit, --frame, --target, --up,
  *  --fov, --size), for eye == target, an eye with an orbit, an orbit elevation outside [-89.9, 89.9] or a
- *  non-positive distance, a zero up or one within 0.05 degrees of the view direction, fov outside (0, 180), non-finite
- * values, or a non-positive size; SceneError for a frame name that no mesh lies under and no joint or bone has (naming
- * up to 10 of the scene's node names, bones and joints: the model lacks it), or whose meshes and joints have no
- *  vertices. */
+ *  non-positive distance, a zero up or one within 0.05 degrees of the view direction, fov outside (0, 180),
+ *  non-finite values, or a non-positive size; SceneError for a frame name that no mesh lies under and no joint or
+ *  bone has (naming up to 10 of the scene's node names, bones and joints: the model lacks it), or whose meshes and
+ *  joints have no vertices. */
 Camera resolveCamera(const CameraRequest& request, const Scene& scene);
+
+/** Where a still samples its model, for modelOutsideView(). */
+struct PictureSampling {
+    int supersample = 1; ///< --supersample: the data buffers' pixels per output pixel, each way
+    int msaaSamples = 1; ///< --msaa: the shading's samples per pixel
+    /** Lines drawn from the mesh itself (outline, silhouette, mesh edges, MToon's outline shells) show a model under a
+     *  pixel wide as a line of its length, whatever samples its surface covers. */
+    bool linesDrawTheMesh = false;
+};
 
 /** A warning when `camera` shows none of `scene`'s model, which would render blank paper: every vertex lies behind the
  *  eye, beyond one side of the view (left, right, above or below), nearer than the near plane or beyond the far one;
  *  or what lies beyond the near plane (the vertices there and the corners the plane cuts from the triangles) holds no
- *  place the picture samples (an eye far away, a sliver under a pixel wide between two columns of pixels, or a wide
- * view whose eye has the rest of the scene behind it). The places are the centres of the pixels, `supersample` times as
- *  many each way with --supersample; with --msaa (`msaaSamples` over 1), every point of a grid of 1/16 pixel, where
- *  GL's sample positions lie, so no picture that shows a sample is warned about.
+ *  place the picture samples (an eye far away, a sliver under a pixel wide between two columns of pixels, or a
+ *  wide view whose eye has the rest of the scene behind it). The places are the centres of the pixels,
+ *  `supersample` times as many each way with --supersample; with --msaa (`msaaSamples` over 1), every point of a
+ *  grid of 1/16 pixel, where GL's sample positions lie, so no picture that shows a sample is warned about. With
+ *  `linesDrawTheMesh` only a model under a pixel both ways is judged (a sliver's lines draw it).
  *  It names where the view comes from (the glTF camera by its name, --eye, --orbit, auto-framing; --clip for the
  *  planes it set). Empty when some of the model may show. A model beside a corner of the view, outside the view but
  *  on the inner side of each of its planes, is not caught. A model-outside-view warning without a file: the camera
  *  does not know it. */
-std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene, int supersample = 1,
-                                        int msaaSamples = 1);
+std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene, const PictureSampling& sampling = {});
 
 } // namespace inkgraph
