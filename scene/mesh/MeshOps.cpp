@@ -448,10 +448,13 @@ bool isPointInsideMesh(const Mesh& mesh, glm::dvec3 point) {
         return false;
     }
     // Directions with no simple ratio between their components, so they miss the axis-aligned and diagonal
-    // structure of procedural and CAD meshes (rays through shared edges and vertices) on all but unlucky inputs.
-    const glm::dvec3 directions[3] = {glm::normalize(glm::dvec3(0.5773, 0.3141, 0.7541)),
-                                      glm::normalize(glm::dvec3(-0.6180, 0.7071, -0.2718)),
-                                      glm::normalize(glm::dvec3(0.1414, -0.8660, -0.4472))};
+    // structure of procedural and CAD meshes (rays through shared edges and vertices) on all but unlucky inputs; each
+    // with its opposite, so a point under an open roof (its rays up cross it once, its rays down never) is not
+    // taken for inside.
+    const glm::dvec3 skewed[3] = {glm::normalize(glm::dvec3(0.5773, 0.3141, 0.7541)),
+                                  glm::normalize(glm::dvec3(-0.6180, 0.7071, -0.2718)),
+                                  glm::normalize(glm::dvec3(0.1414, -0.8660, -0.4472))};
+    const glm::dvec3 directions[6] = {skewed[0], -skewed[0], skewed[1], -skewed[1], skewed[2], -skewed[2]};
     int insideVotes = 0;
     for (const glm::dvec3& direction : directions) {
         std::size_t crossings = 0;
@@ -483,7 +486,9 @@ bool isPointInsideMesh(const Mesh& mesh, glm::dvec3 point) {
         }
         insideVotes += int(crossings % 2);
     }
-    return insideVotes >= 2;
+    // Inside a closed mesh every ray crosses it an odd number of times; one that grazes an edge or a vertex
+    // (counted twice, or not at all) may be outvoted.
+    return insideVotes >= 5;
 }
 
 std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,

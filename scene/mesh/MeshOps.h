@@ -73,9 +73,10 @@ std::vector<glm::vec3> computePositionWeldedNormals(std::span<const glm::vec3> p
                                                     std::span<const glm::uvec3> triangles, const WeldMap& weld);
 
 /** Whether `point` (world space, like the mesh) lies inside the closed mesh, by ray parity: a ray from the point
- *  crosses the surface an odd number of times when it starts inside. Three fixed, mutually skewed rays vote, so one
- *  ray grazing an edge or a vertex (counted twice or not at all) cannot decide alone. For an open mesh the answer is
- *  only as meaningful as parity is. */
+ *  crosses the surface an odd number of times when it starts inside. Six fixed rays, three mutually skewed
+ *  directions and their opposites, vote; five must cross an odd number of times, so one ray grazing an edge or a
+ *  vertex (counted twice or not at all) cannot decide alone, and a point that an open mesh covers only on one side
+ *  (under a dome, inside a cup) is outside. */
 bool isPointInsideMesh(const Mesh& mesh, glm::dvec3 point);
 
 /** Relative area at or below which a triangle counts as degenerate (times the squared bounding-box diagonal): the

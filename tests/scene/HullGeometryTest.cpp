@@ -147,6 +147,27 @@ TEST(PointInsideMesh, SphereParityMatchesTheRadius) {
     EXPECT_EQ(checked, 200);
 }
 
+TEST(PointInsideMesh, APointAnOpenMeshCoversOnOneSideIsOutside) {
+    // Under a dome (a sphere's upper half, no floor) two of the three rays pointed up through it, one down past its
+    // rim: parity said inside, and the outline and silhouette of everything in the scene were skipped (the eye under
+    // a roof, an umbrella, a hat's brim). Every ray now has its opposite, and five of the six must say inside.
+    const Mesh sphere = makeUvSphere(glm::vec3(0.0f), 3.0f, 64, 32);
+    Mesh dome = sphere;
+    std::erase_if(dome.triangles, [&](const glm::uvec3& t) {
+        return sphere.positions[t.x].y < 0.0f || sphere.positions[t.y].y < 0.0f || sphere.positions[t.z].y < 0.0f;
+    });
+    ASSERT_LT(dome.triangles.size(), sphere.triangles.size());
+    Mesh cup = sphere; // the lower half: open at the top
+    std::erase_if(cup.triangles, [&](const glm::uvec3& t) {
+        return sphere.positions[t.x].y > 0.0f || sphere.positions[t.y].y > 0.0f || sphere.positions[t.z].y > 0.0f;
+    });
+    for (const glm::dvec3 point : {glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.3, 0.5, -0.7), glm::dvec3(1.0, 0.2, 1.0)}) {
+        EXPECT_TRUE(isPointInsideMesh(sphere, point));
+        EXPECT_FALSE(isPointInsideMesh(dome, point)) << point.x << "," << point.y << "," << point.z;
+        EXPECT_FALSE(isPointInsideMesh(cup, -point)) << point.x << "," << point.y << "," << point.z;
+    }
+}
+
 TEST(PointInsideMesh, HardEdgedCubeAndEmptyMesh) {
     const Mesh cube = splitNormalCube();
     EXPECT_TRUE(isPointInsideMesh(cube, glm::dvec3(0.0)));
