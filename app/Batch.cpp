@@ -96,9 +96,7 @@ std::vector<std::pair<std::string, std::string>> outputFlags(const RenderOptions
 BatchList batchList(const RenderOptions& options, std::istream& standardInput) {
     std::vector<std::string> paths = options.modelPaths;
     if (!options.listPath.empty()) {
-        // Windows editors (Notepad's "UTF-8") write a byte-order mark first: it was glued to the first model's name,
-        // told as "file not found" with the mark invisible in the quoted name. The style and model readers skip it.
-        const std::string text(detail::withoutByteOrderMark(listText(options.listPath, standardInput)));
+        const std::string text = listText(options.listPath, standardInput);
         const std::string listName = options.listPath == "-" ? "standard input" : "'" + options.listPath + "'";
         std::istringstream lines(text);
         std::string line;
@@ -106,7 +104,9 @@ BatchList batchList(const RenderOptions& options, std::istream& standardInput) {
             if (line.find('\0') != std::string::npos)
                 throw UsageError("--list " + listName + " line " + std::to_string(number) +
                                  ": binary data (NUL byte); a list holds one model path per line");
-            const std::string path = trimmed(line);
+            // Windows editors (Notepad's "UTF-8") write a byte-order mark first, and lists joined with cat keep each
+            // one's: it was glued to the model's name, told as "file not found" with the mark invisible in the name.
+            const std::string path = trimmed(std::string(detail::withoutByteOrderMark(line)));
             if (path.empty() || path[0] == '#') continue;
             paths.push_back(path);
         }

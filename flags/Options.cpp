@@ -58,9 +58,9 @@ void separateAttachedValues(std::vector<std::string>& arguments, std::vector<std
                 throw UsageError(name + ": takes no value, got '" + argument.substr(equals + 1) + "'");
             } else if (name.rfind("--", 0) != 0) {
                 // As getopt: "-o=x.png" would be the file "=x.png"; the long name takes '='.
+                const std::string value = equals + 1 < argument.size() ? argument.substr(equals + 1) : flag->valueName;
                 throw UsageError("'" + argument + "': " + name + " takes its value as the next argument (" + name +
-                                 " " + argument.substr(equals + 1) + ", or " + flag->names.back() + "=" +
-                                 argument.substr(equals + 1) + ")");
+                                 " " + value + ", or " + flag->names.back() + "=" + value + ")");
             } else {
                 keep(name, i);
                 keep(argument.substr(equals + 1), i);

@@ -99,7 +99,8 @@ SourcedArguments expandStyleFile(const std::vector<std::string>& arguments) {
     std::string stylePath;
     for (std::size_t i = 0; i < rest.arguments.size(); ++i) {
         if (rest.arguments[i] != "--style") continue;
-        if (i + 1 >= rest.arguments.size() || rest.arguments[i + 1].empty()) throw UsageError("--style: missing FILE");
+        if (i + 1 >= rest.arguments.size()) throw UsageError("--style: missing FILE");
+        if (rest.arguments[i + 1].empty()) throw UsageError("--style: empty value"); // as every flag says it
         if (!stylePath.empty())
             throw UsageError("--style: given twice ('" + stylePath + "', '" + rest.arguments[i + 1] + "')");
         stylePath = rest.arguments[++i];

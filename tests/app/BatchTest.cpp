@@ -73,7 +73,7 @@ TEST_F(BatchListFile, ListLinesFollowTheArgumentsSkippingCommentsAndBlanks) {
     EXPECT_EQ(pathsOf(list), std::vector<std::string>({"first.obj", "b.obj", "c.stl", "sub dir/e f.glb"}));
 }
 
-TEST_F(BatchListFile, AByteOrderMarkBeforeTheFirstPathIsSkipped) {
+TEST_F(BatchListFile, AByteOrderMarkBeforeAPathIsSkipped) {
     RenderOptions options;
     options.listPath = write("bom.txt", "\xEF\xBB\xBF"
                                         "a.obj\r\nb.obj\r\n");
@@ -81,6 +81,11 @@ TEST_F(BatchListFile, AByteOrderMarkBeforeTheFirstPathIsSkipped) {
     EXPECT_EQ(pathsOf(batchList(options, none)), std::vector<std::string>({"a.obj", "b.obj"}));
     options.listPath = write("bom-comment.txt", "\xEF\xBB\xBF# models\na.obj\n");
     EXPECT_EQ(pathsOf(batchList(options, none)), std::vector<std::string>({"a.obj"}));
+    options.listPath = write("joined.txt", "\xEF\xBB\xBF"
+                                           "a.obj\n"
+                                           "\xEF\xBB\xBF"
+                                           "b.obj\n"); // two lists joined with cat
+    EXPECT_EQ(pathsOf(batchList(options, none)), std::vector<std::string>({"a.obj", "b.obj"}));
     std::istringstream piped("\xEF\xBB\xBF"
                              "c.obj\n");
     options.listPath = "-";

@@ -639,6 +639,8 @@ TEST(Options, AValueMayFollowItsFlagAfterAnEqualsSign) {
     EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--bogus=1"}), "unknown option '--bogus=1'");
     EXPECT_EQ(usageMessage({"m.obj", "-o=x.png"}),
               "'-o=x.png': -o takes its value as the next argument (-o x.png, or --output=x.png)");
+    EXPECT_EQ(usageMessage({"m.obj", "-o="}),
+              "'-o=': -o takes its value as the next argument (-o FILE, or --output=FILE)");
     EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "-q=1"}), "-q: takes no value, got '1'");
     EXPECT_NE(renderHelp().find("--size=512x512"), std::string::npos) << "--help says so";
 }

@@ -156,6 +156,7 @@ TEST_F(StyleFileOnDisk, UnreadableOversizedOrRepeatedStylesAreUsageErrors) {
               }).find("given twice"),
               std::string::npos);
     EXPECT_EQ(usageErrorOf([&] { expandStyleFile({"m.obj", "--style"}); }), "--style: missing FILE");
+    EXPECT_EQ(usageErrorOf([&] { expandStyleFile({"m.obj", "--style="}); }), "--style: empty value");
 }
 
 } // namespace
