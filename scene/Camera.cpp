@@ -511,9 +511,17 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
         // centres covers none. Lines drawn from the mesh still draw it, as a line of its length.
         const bool underAPixel = extent.x < 1.0 && extent.y < 1.0;
         if (drawsAPixel || (sampling.linesDrawTheMesh && !underAPixel)) return std::nullopt;
-        where = "the model spans " + detail::formatExtent(extent.x) + " x " + detail::formatExtent(extent.y) +
-                " pixels, " + (underAPixel ? "under a pixel" : "between pixel centres") +
-                " (move the eye nearer or narrow --fov)";
+        // Or no sliver at all: what lies beyond the near plane falls beside the picture (an eye at the model's edge
+        // looking away, where no single side of the view has every vertex beyond it).
+        const bool besideThePicture = centre.x + high.x <= 0.0 || centre.x + low.x >= camera.width ||
+                                      centre.y - low.y <= 0.0 || centre.y - high.y >= camera.height;
+        if (underAPixel || !besideThePicture) {
+            where = "the model spans " + detail::formatExtent(extent.x) + " x " + detail::formatExtent(extent.y) +
+                    " pixels, " + (underAPixel ? "under a pixel" : "between pixel centres") +
+                    " (move the eye nearer or narrow --fov)";
+        } else {
+            where = "what lies before the eye falls beside the picture (aim the view at the model: --target)";
+        }
     }
     std::string who;
     if (camera.source == "gltf") {

@@ -127,15 +127,16 @@ struct PictureSampling {
 /** A warning when `camera` shows none of `scene`'s model, which would render blank paper: every vertex lies behind the
  *  eye, beyond one side of the view (left, right, above or below), nearer than the near plane or beyond the far one;
  *  or what lies beyond the near plane (the vertices there and the corners the plane cuts from the triangles) holds no
- *  place the picture samples (an eye far away, a sliver under a pixel wide between two columns of pixels, or a
- *  wide view whose eye has the rest of the scene behind it). The places are the centres of the pixels,
- *  `supersample` times as many each way with --supersample; with --msaa (`msaaSamples` over 1), every point of a
- *  grid of 1/16 pixel, where GL's sample positions lie, so no picture that shows a sample is warned about. With
- *  `linesDrawTheMesh` only a model under a pixel both ways is judged (a sliver's lines draw it).
+ *  place the picture samples (an eye far away, a sliver under a pixel wide between two columns of pixels, an eye at
+ *  the model's edge looking away with what lies before it beside the picture, or a wide view whose eye has the rest
+ *  of the scene behind it). The places are the centres of the pixels, `supersample` times as many each way with
+ *  --supersample; with --msaa (`msaaSamples` over 1), every point of a grid of 1/16 pixel, where GL's sample
+ *  positions lie, so no picture that shows a sample is warned about. With `linesDrawTheMesh` only a model under a
+ *  pixel both ways is judged (a sliver's lines draw it, and bands beside the picture may reach into it).
  *  It names where the view comes from (the glTF camera by its name, --eye, --orbit, auto-framing; --clip for the
  *  planes it set). Empty when some of the model may show. A model beside a corner of the view, outside the view but
- *  on the inner side of each of its planes, is not caught. A model-outside-view warning without a file: the camera
- *  does not know it. */
+ *  on the inner side of each of its planes, is caught only where its projected box misses every sample. A
+ *  model-outside-view warning without a file: the camera does not know it. */
 std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene, const PictureSampling& sampling = {});
 
 } // namespace inkgraph

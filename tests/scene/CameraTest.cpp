@@ -213,6 +213,23 @@ TEST(Camera, ASliverBetweenTwoColumnsOfPixelCentresIsOutsideTheView) {
     CameraRequest far = request;
     far.eye = glm::dvec3(0, 0, 100);
     EXPECT_TRUE(modelOutsideView(resolveCamera(far, scene), scene, {.linesDrawTheMesh = true}).has_value());
+    // Beside the picture: the eye 0.2 in front of the sliver's middle looking along it (+x) through a narrow view,
+    // what lies before the eye over 50 pixels left of the picture; with a card behind the eye on its right, no one
+    // side of the view holds every vertex. The warning names neither a size nor a sliver.
+    Scene withCardBehind = scene;
+    Mesh card = sliver;
+    for (glm::vec3& position : card.positions) position += glm::vec3(-5, 0, 5);
+    withCardBehind.meshes.push_back(card);
+    CameraRequest away = request;
+    away.eye = glm::dvec3(0, 0, 0.2);
+    away.target = glm::dvec3(1, 0, 0.2);
+    away.fovYDegrees = 10.0;
+    const std::optional<Warning> beside = modelOutsideView(resolveCamera(away, withCardBehind), withCardBehind);
+    ASSERT_TRUE(beside.has_value());
+    EXPECT_NE(beside->message.find("sees none of the model: what lies before the eye falls beside the picture (aim the "
+                                   "view at the model: --target)"),
+              std::string::npos)
+        << beside->message;
     // Half a pixel to the side it covers the centres at x 8.5, and is drawn.
     request.eye = glm::dvec3(0.5 / 0.8, 0, 10);
     request.target = glm::dvec3(0.5 / 0.8, 0, 0);
