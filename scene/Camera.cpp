@@ -499,14 +499,14 @@ std::optional<Warning> modelOutsideView(const Camera& camera, const Scene& scene
         const bool multisampled = sampling.msaaSamples > 1;
         const double perPixel = double(std::max(sampling.supersample, 1)) * (multisampled ? 16.0 : 1.0);
         const double offset = multisampled ? 0.0 : 0.5;
-        const auto holdsACentre = [&](double from, double to, int size) {
+        const auto holdsASample = [&](double from, double to, int size) {
             const double first = std::max(std::ceil(from * perPixel - offset), 0.0);
             return first + offset <= to * perPixel && first < double(size) * perPixel;
         };
         const glm::dvec2 extent = high - low;
         const glm::dvec2 centre(0.5 * camera.width, 0.5 * camera.height);
-        const bool drawsAPixel = holdsACentre(centre.x + low.x, centre.x + high.x, camera.width) &&
-                                 holdsACentre(centre.y - high.y, centre.y - low.y, camera.height);
+        const bool drawsAPixel = holdsASample(centre.x + low.x, centre.x + high.x, camera.width) &&
+                                 holdsASample(centre.y - high.y, centre.y - low.y, camera.height);
         // Over a pixel one way is no better for the surface: a sliver under a pixel wide between two columns of
         // centres covers none. Lines drawn from the mesh still draw it, as a line of its length.
         const bool underAPixel = extent.x < 1.0 && extent.y < 1.0;
