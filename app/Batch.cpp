@@ -2,7 +2,10 @@
 
 #include "render/ImageFiles.h"
 #include "app/OutputFiles.h"
-#include "scene/MessageText.h" // withoutByteOrderMark()
+#include "app/Render.h"                // memoryLimitOf()
+#include "passes/shade/ShadingModel.h" // traitsOf()
+#include "render/StillRenderer.h"      // readShadeMapFile()
+#include "scene/MessageText.h"         // withoutByteOrderMark()
 #include "scene/Scene.h"
 
 #include <glm/glm.hpp>
@@ -186,7 +189,7 @@ RenderOptions stillOptions(const RenderOptions& options, const BatchStill& still
             glm::normalize(light / std::max({std::abs(light.x), std::abs(light.y), std::abs(light.z)}));
     }
     if (view.expressions) result.expressions = *view.expressions;
-    if (view.pose) result.pose = *view.pose == "rest" ? "" : *view.pose;
+    if (view.pose) result.pose = *view.pose == kRestPoseChoice ? "" : *view.pose;
     result.view = view;
     return result;
 }
@@ -243,6 +246,15 @@ void checkOutputsAcrossShards(const RenderOptions& options, const BatchList& lis
 }
 
 } // namespace
+
+void checkBatchInputs(const RenderOptions& options) {
+    if (!options.look.shadeMapPath.empty())
+        (void)readShadeMapFile(options.look.shadeMapPath, traitsOf(options.look.shading).oneDimensionalMap);
+    const std::size_t memoryLimit = memoryLimitOf(options);
+    checkPoseFile(options.pose, memoryLimit, "--pose");
+    for (const std::string& choice : options.viewSampling.poseChoices)
+        if (choice != kRestPoseChoice) checkPoseFile(choice, memoryLimit, "--poses");
+}
 
 void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
     const std::size_t viewCount = viewCountOf(options);

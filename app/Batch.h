@@ -79,4 +79,10 @@ RenderOptions stillOptions(const RenderOptions& options, const BatchStill& still
  *  the flag and the path, and for two stills both. */
 void checkBatchOutputs(const RenderOptions& options, const BatchList& list);
 
+/** Reads, before any work, the files every still reads besides its model and judges them as a still would: the
+ *  --shademap, --pose's pose file and each of --poses' (readShadeMapFile(), checkPoseFile()). A bad one fails the
+ *  run before its first still, where each still would fail alike, and --poses' only in the views drawing it, found
+ *  as the run reaches them. Throws InputFileError or SceneError naming the flag and the file. */
+void checkBatchInputs(const RenderOptions& options);
+
 } // namespace inkgraph

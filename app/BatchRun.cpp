@@ -278,6 +278,8 @@ int renderBatch(const RenderOptions& options, std::istream& standardInput, std::
     const BatchList list = batchList(options, standardInput);
     checkBatchOutputs(options, list);
     const std::vector<BatchStill> stills = batchStills(options, list);
+    // One still reads its files as it loads; checking them first would only read them twice.
+    if (stills.size() > 1) checkBatchInputs(options);
     std::unique_ptr<DatasetRun> dataset;
     if (!options.datasetDirectory.empty())
         dataset = std::make_unique<DatasetRun>(options, list, stills, givenArguments, expandedArguments);

@@ -217,6 +217,14 @@ Scene loadSceneFromMemory(const std::string& path, std::string_view content, con
  * read names none, and loading it reports why. */
 std::vector<std::string> referencedFiles(const std::string& path);
 
+/** Reads and judges a LoadOptions::pose as loadScene() does, without a model: "" and "a-pose" pass; a pose file that
+ *  cannot be read, or that every model would refuse (not JSON, a bone outside VRM's humanoid bones, a bone given
+ *  twice, a quaternion that is not four finite numbers of non-zero length), throws SceneError naming the file and
+ *  starting with `speaker` (a flag, for the command line). Whether the model is a VRM is judged when it loads. A run
+ *  of many stills calls this before the first, where each still drawing the pose would fail alike. */
+void checkPoseFile(const std::string& pose, std::size_t memoryLimitBytes = kDefaultLoadMemoryLimit,
+                   std::string_view speaker = "checkPoseFile()");
+
 /** The input formats loadScene() reads, named as the reader table names them, in its order ("glTF, GLB, VRM, OBJ,
  *  STL, PLY"): for help texts, so they list what the loader reads. */
 std::string modelFormatNames();

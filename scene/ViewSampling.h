@@ -44,6 +44,9 @@ struct ViewSampling {
     std::vector<std::string> poseChoices;
 };
 
+/** The --poses alternative that poses nothing: the model's rest pose. */
+inline constexpr std::string_view kRestPoseChoice = "rest";
+
 /** One still's view. */
 struct ViewSample {
     std::size_t index = 0;         ///< the view index, 0 to count - 1

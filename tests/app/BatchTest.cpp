@@ -264,6 +264,36 @@ TEST(BatchList, MoreStillsThanOneProcessRendersAreRefusedPointingToShard) {
     EXPECT_EQ(batchList(options, none).models.size(), 6u);
 }
 
+TEST_F(BatchListFile, TheFilesEveryStillReadsBesidesItsModelAreJudgedOnceBeforeTheRun) {
+    const std::string good = write("good.json", "{\"head\": [0, 0.1, 0, 1]}");
+    const std::string bad = write("bad.json", "{\"tail\": [0, 0, 0, 1]}");
+    const std::string notPng = write("map.png", "not a PNG");
+    RenderOptions options = withModels({"a.vrm", "b.vrm"});
+    EXPECT_NO_THROW(checkBatchInputs(options));
+    options.pose = "a-pose";
+    options.viewSampling.poseChoices = {"rest", "a-pose", good};
+    EXPECT_NO_THROW(checkBatchInputs(options));
+    const auto message = [&](const RenderOptions& checked) {
+        try {
+            checkBatchInputs(checked);
+        } catch (const std::exception& error) {
+            return std::string(error.what());
+        }
+        return std::string();
+    };
+    options.viewSampling.poseChoices = {"rest", good, bad};
+    EXPECT_EQ(message(options).rfind("--poses: '" + bad + "': unknown humanoid bone 'tail' (VRM's humanoid bones: ", 0),
+              0u)
+        << message(options);
+    options.viewSampling.poseChoices.clear();
+    options.pose = bad + ".missing";
+    EXPECT_EQ(message(options), "--pose: '" + bad + ".missing': the pose file cannot be found");
+    options.pose.clear();
+    options.look.shading = ShadingModel::Cel;
+    options.look.shadeMapPath = notPng;
+    EXPECT_EQ(message(options).rfind("--shademap: '" + notPng + "'", 0), 0u) << message(options);
+}
+
 TEST(BatchOutputs, NoStillMayOverwriteAModelOfTheList) {
     std::istringstream none;
     RenderOptions options = withModels({"m/2.obj", "m/a.obj"});

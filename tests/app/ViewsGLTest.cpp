@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 namespace inkgraph::views_gl_test {
@@ -147,6 +148,27 @@ TEST_F(Cli, ViewsWithoutTheViewPlaceholderWriteNothing) {
               std::string::npos)
         << result.err;
     EXPECT_EQ(listFiles(directory), std::vector<std::string>());
+}
+
+TEST_F(Cli, ABadPoseOrShadeMapFailsTheRunBeforeItsFirstStill) {
+    // Each still read them as it loaded: a bad --poses file failed only the views drawing it, found as the run
+    // reached them (views 0 and 2 of 4 here, after views 1 and 3 were written), a missing --shademap every still.
+    std::ofstream(directory / "bad.json") << "{\"head\": [0, 0, 0, 0]}";
+    const CliRun poses = run("render " + model("spot_c3d.obj") + " " + model("cow_c3d.obj") +
+                             " --views 4 --poses rest,bad.json -o '{name}-{view}.png' --size 32x32");
+    EXPECT_EQ(poses.exitCode, 3) << poses.err;
+    EXPECT_NE(poses.err.find("inkgraph: --poses: 'bad.json': 'head': the quaternion must be finite and of non-zero "
+                             "length"),
+              std::string::npos)
+        << poses.err;
+    EXPECT_EQ(poses.err.find("[1/8]"), std::string::npos) << "no still began: " << poses.err;
+    const CliRun shadeMap = run("render " + model("spot_c3d.obj") + " " + model("cow_c3d.obj") +
+                                " --shading cel --shademap missing.png -o '{name}.png' --size 32x32");
+    EXPECT_EQ(shadeMap.exitCode, 3) << shadeMap.err;
+    EXPECT_NE(shadeMap.err.find("inkgraph: --shademap: 'missing.png': file not found"), std::string::npos)
+        << shadeMap.err;
+    EXPECT_EQ(shadeMap.err.find("[1/2]"), std::string::npos) << "no still began: " << shadeMap.err;
+    EXPECT_EQ(listFiles(directory), std::vector<std::string>({"bad.json"}));
 }
 
 } // namespace

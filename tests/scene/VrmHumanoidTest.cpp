@@ -366,7 +366,11 @@ TEST(VrmHumanoid, BadPoseFilesAreRefusedNamingTheFile) {
         const std::string message = test::sceneErrorMessage([&] { loadPosed(model, pose.path()); });
         const std::string start = "loadScene(): '" + pose.path() + "': ";
         EXPECT_EQ(message.rfind(start, 0), 0u) << message;
-        return message.substr(std::min(message.size(), start.size()));
+        const std::string problem = message.substr(std::min(message.size(), start.size()));
+        // Judged alike without a model, before a run's first still, speaking for the flag that named the file.
+        EXPECT_EQ(test::sceneErrorMessage([&] { checkPoseFile(pose.path(), kDefaultLoadMemoryLimit, "--poses"); }),
+                  "--poses: '" + pose.path() + "': " + problem);
+        return problem;
     };
     EXPECT_EQ(refusal("{\"leftUpperArm\": [0, 0, 0, 1]").rfind("not a pose file: invalid JSON (", 0), 0u);
     EXPECT_EQ(refusal("[1, 2]"),
@@ -397,8 +401,24 @@ TEST(VrmHumanoid, BadPoseFilesAreRefusedNamingTheFile) {
     const std::string fifo = model.path() + ".fifo.json";
     ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
     const std::string blocked = test::sceneErrorMessage([&] { loadPosed(model, fifo); });
+    const std::string checkedFifo = test::sceneErrorMessage([&] { checkPoseFile(fifo); });
     std::filesystem::remove(fifo);
     EXPECT_EQ(blocked, "loadScene(): '" + fifo + "': the pose file is not a regular file (a folder, FIFO or device)");
+    EXPECT_EQ(checkedFifo,
+              "checkPoseFile(): '" + fifo + "': the pose file is not a regular file (a folder, FIFO or device)");
+    EXPECT_EQ(test::sceneErrorMessage([&] { checkPoseFile(model.path() + ".missing.json", 1 << 20, "--pose"); }),
+              "--pose: '" + model.path() + ".missing.json': the pose file cannot be found");
+}
+
+TEST(VrmHumanoid, APoseThatEveryModelWouldTakePassesTheCheckWithoutAModel) {
+    EXPECT_NO_THROW(checkPoseFile(""));
+    EXPECT_NO_THROW(checkPoseFile("a-pose"));
+    const TempFile pose("pose.json", "{\"head\": [0, 0.1, 0, 1], \"leftEye\": [0, 0, 0, 2]}");
+    EXPECT_NO_THROW(checkPoseFile(pose.path()));
+    // The file is charged to the run's memory limit as the load charges it.
+    const std::string message = test::sceneErrorMessage([&] { checkPoseFile(pose.path(), 8, "--pose"); });
+    EXPECT_EQ(message.rfind("--pose: ", 0), 0u) << message;
+    EXPECT_NE(message.find("--memory-limit"), std::string::npos) << message;
 }
 
 TEST(VrmHumanoid, AVrmaNeedsItsExtensionAndAHumanoid) {

@@ -195,7 +195,7 @@ HumanoidPose aPose() {
             {"rightUpperArm", glm::angleAxis(angle, glm::dvec3(0.0, 0.0, 1.0))}};
 }
 
-HumanoidPose parsePoseFile(const std::string& posePath, const std::string& content) {
+HumanoidPose parsePoseFile(const std::string& posePath, const std::string& content, std::string_view function) {
     nlohmann::json document;
     // The parsed object keeps a bone's last value only; a bone given twice is found while parsing, as a style file
     // refuses a setting given twice.
@@ -209,61 +209,69 @@ HumanoidPose parsePoseFile(const std::string& posePath, const std::string& conte
     };
     // JSON text holds no NUL byte; the parser took one as the end of the input, so what followed was never read.
     if (const std::size_t nul = content.find('\0'); nul != std::string::npos)
-        throwLoadError(posePath, "not a pose file: a NUL byte at byte " + std::to_string(nul) + " (JSON is text)");
+        throwLoadError(posePath, "not a pose file: a NUL byte at byte " + std::to_string(nul) + " (JSON is text)",
+                       function);
     try {
         document = nlohmann::json::parse(content, findTwice);
     } catch (const nlohmann::json::exception& error) {
-        throwLoadError(posePath,
-                       std::string("not a pose file: invalid JSON (") + excerptForMessage(error.what()) + ")");
+        throwLoadError(posePath, std::string("not a pose file: invalid JSON (") + excerptForMessage(error.what()) + ")",
+                       function);
     }
     if (twice)
-        throwLoadError(posePath, "'" + excerptForMessage(*twice) + "' is given twice (a bone takes one quaternion)");
+        throwLoadError(posePath, "'" + excerptForMessage(*twice) + "' is given twice (a bone takes one quaternion)",
+                       function);
     if (!document.is_object()) {
-        throwLoadError(posePath, "not a pose file: expected a JSON object of humanoid bone names to quaternions "
-                                 "[x, y, z, w]");
+        throwLoadError(posePath,
+                       "not a pose file: expected a JSON object of humanoid bone names to quaternions "
+                       "[x, y, z, w]",
+                       function);
     }
     HumanoidPose pose;
     for (const auto& [bone, value] : document.items()) {
         if (!isHumanoidBone(bone)) {
-            throwLoadError(posePath, "unknown humanoid bone '" + excerptForMessage(bone) +
-                                         "' (VRM's humanoid bones: " + boneNameList() + ")");
+            throwLoadError(posePath,
+                           "unknown humanoid bone '" + excerptForMessage(bone) +
+                               "' (VRM's humanoid bones: " + boneNameList() + ")",
+                           function);
         }
         const std::string where = "'" + bone + "'";
         if (!value.is_array() || value.size() != 4 ||
             !std::ranges::all_of(value, [](const nlohmann::json& number) { return number.is_number(); })) {
-            throwLoadError(posePath, where + ": expected a quaternion [x, y, z, w] of four numbers");
+            throwLoadError(posePath, where + ": expected a quaternion [x, y, z, w] of four numbers", function);
         }
         const std::optional<glm::dquat> rotation = unitQuaternion(value[0].get<double>(), value[1].get<double>(),
                                                                   value[2].get<double>(), value[3].get<double>());
-        if (!rotation) throwLoadError(posePath, where + ": the quaternion must be finite and of non-zero length");
+        if (!rotation)
+            throwLoadError(posePath, where + ": the quaternion must be finite and of non-zero length", function);
         pose[bone] = *rotation;
     }
     return pose;
 }
 
-std::string readSideFile(const std::string& path, const std::string& kind, MeshBudget& budget) {
+std::string readSideFile(const std::string& path, const std::string& kind, MeshBudget& budget,
+                         std::string_view function) {
     // Judged before opening: a FIFO would block the open for ever, and a device has no end.
     std::error_code error;
     const std::filesystem::file_status status = std::filesystem::status(path, error);
     if (error && error != std::errc::no_such_file_or_directory)
-        throwLoadError(path, "the " + kind + " cannot be looked at (" + error.message() + ")");
-    if (!std::filesystem::exists(status)) throwLoadError(path, "the " + kind + " cannot be found");
+        throwLoadError(path, "the " + kind + " cannot be looked at (" + error.message() + ")", function);
+    if (!std::filesystem::exists(status)) throwLoadError(path, "the " + kind + " cannot be found", function);
     if (!std::filesystem::is_regular_file(status))
-        throwLoadError(path, "the " + kind + " is not a regular file (a folder, FIFO or device)");
+        throwLoadError(path, "the " + kind + " is not a regular file (a folder, FIFO or device)", function);
     std::ifstream file(path, std::ios::binary | std::ios::ate);
-    if (!file) throwLoadError(path, "cannot open the " + kind + " for reading");
+    if (!file) throwLoadError(path, "cannot open the " + kind + " for reading", function);
     const std::streamoff size = file.tellg();
-    if (size < 0) throwLoadError(path, "cannot determine the " + kind + "'s size");
+    if (size < 0) throwLoadError(path, "cannot determine the " + kind + "'s size", function);
     budget.chargeFile(std::size_t(size));
     std::string content(std::size_t(size), '\0');
     file.seekg(0);
-    if (!file.read(content.data(), size)) throwLoadError(path, "read error");
+    if (!file.read(content.data(), size)) throwLoadError(path, "read error", function);
     return content;
 }
 
-HumanoidPose humanoidPose(const std::string& pose, MeshBudget& budget) {
+HumanoidPose humanoidPose(const std::string& pose, MeshBudget& budget, std::string_view function) {
     if (pose == kAPoseName) return aPose();
-    return parsePoseFile(pose, readSideFile(pose, "pose file", budget));
+    return parsePoseFile(pose, readSideFile(pose, "pose file", budget, function), function);
 }
 
 std::vector<int> nodeParents(const tinygltf::Model& model) {
@@ -335,3 +343,13 @@ void applyHumanoidPose(const tinygltf::Model& model, const Humanoid& humanoid, c
 }
 
 } // namespace inkgraph::detail
+
+namespace inkgraph {
+
+void checkPoseFile(const std::string& pose, std::size_t memoryLimitBytes, std::string_view speaker) {
+    if (pose.empty()) return;
+    detail::MeshBudget budget(pose, memoryLimitBytes, speaker);
+    detail::humanoidPose(pose, budget, speaker);
+}
+
+} // namespace inkgraph

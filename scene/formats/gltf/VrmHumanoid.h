@@ -13,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace tinygltf {
@@ -59,16 +60,20 @@ HumanoidPose aPose();
 
 /** A pose file's JSON, `{"boneName": [x, y, z, w], ...}` (unit quaternions; any non-zero length is normalised).
  *  Throws SceneError through throwLoadError() naming `posePath` for malformed JSON, a value that is not four finite
- *  numbers of non-zero length, or a bone name outside humanoidBoneNames() (listing them). */
-HumanoidPose parsePoseFile(const std::string& posePath, const std::string& content);
+ *  numbers of non-zero length, or a bone name outside humanoidBoneNames() (listing them); `function` starts the
+ *  messages. */
+HumanoidPose parsePoseFile(const std::string& posePath, const std::string& content,
+                           std::string_view function = "loadScene()");
 
 /** The whole of a file the load reads besides the model (a pose file, a VRM Animation), its size charged to `budget`;
- *  `kind` names it in the refusals ("cannot open the pose file for reading"), which name the file. */
-std::string readSideFile(const std::string& path, const std::string& kind, MeshBudget& budget);
+ *  `kind` names it in the refusals ("cannot open the pose file for reading"), which name the file and start with
+ *  `function`. */
+std::string readSideFile(const std::string& path, const std::string& kind, MeshBudget& budget,
+                         std::string_view function = "loadScene()");
 
 /** LoadOptions::pose: aPose() for kAPoseName, else the pose file at that path, read (its size charged to `budget`)
  *  and parsed by parsePoseFile(). Throws SceneError naming the file when it cannot be read. */
-HumanoidPose humanoidPose(const std::string& pose, MeshBudget& budget);
+HumanoidPose humanoidPose(const std::string& pose, MeshBudget& budget, std::string_view function = "loadScene()");
 
 /** Sets the local rotation of each posed bone's node in `poses` so the model takes `pose`: the normalized rotation
  *  q, composed with the rest pose (`rest`, the nodes' own transforms) as raw = P^-1 * q * P * R, where P is the world
