@@ -152,7 +152,15 @@ EarlierDump readEarlierDump(const fs::path& folder) {
         const std::string name = entry["file"].get<std::string>();
         if (!isPlainFileName(name))
             return {{}, "its manifest.json names " + quotedName(name) + ", which is not a plain file name"};
-        if (::lstat((folder / name).c_str(), &status) != 0 || !S_ISREG(status.st_mode))
+        if (::lstat((folder / name).c_str(), &status) != 0) {
+            // A file of the dump lost since (deleted, or a copy that stopped short): a damaged dump is still one, so
+            // a run, --resume's included, replaces it; what is there is all the manifest's, nothing of the user's.
+            if (errno == ENOENT) continue;
+            return {{},
+                    "its manifest.json names " + quotedName(name) +
+                        ", which cannot be looked at: " + std::strerror(errno)};
+        }
+        if (!S_ISREG(status.st_mode))
             return {{}, "its manifest.json names " + quotedName(name) + ", which is not a file in it"};
         listed.insert(name);
     }

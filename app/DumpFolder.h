@@ -31,8 +31,9 @@ namespace inkgraph {
 inline constexpr const char* kStagingMarker = ".inkgraph-staging";
 
 /** The files of an earlier dump in `folder` (manifest.json included), or why `folder` is not one: every entry of
- *  the manifest's "files" must be a plain file name (no '/', not "." or "..") of a regular file in `folder`, and
- *  `folder` may hold nothing else but the staging marker. */
+ *  the manifest's "files" must be a plain file name (no '/', not "." or "..") of a regular file in `folder` or of
+ *  none (a file lost since: the dump is damaged, still a dump, and `files` leaves it out), and `folder` may hold
+ *  nothing else but the staging marker. */
 struct EarlierDump {
     std::vector<std::string> files; ///< valid when `problem` is empty
     std::string problem;            ///< e.g. "its manifest.json names '../x', which is not a plain file name"

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace inkgraph {
 namespace {
@@ -46,6 +47,24 @@ TEST_F(DumpFolderUndo, AFailedRunRemovesTheFoldersItMadeAndNoneTheUserMadeAtThei
 TEST_F(DumpFolderUndo, AFailedRunIntoANewFolderRemovesItAndItsStaging) {
     { const DumpFolder dump((root / "a" / "b" / "d").string()); }
     EXPECT_TRUE(fs::is_empty(root)) << "a folder the run made, or its staging folder, was left";
+}
+
+TEST_F(DumpFolderUndo, AnEarlierDumpThatLostAFileIsStillADumpButNotOneNamingAFolderOrHoldingAnother) {
+    const fs::path dump = root / "d";
+    fs::create_directories(dump);
+    std::ofstream(dump / "manifest.json") << R"({"inkgraph":"0","files":[{"file":"depth.exr"},{"file":"final.png"}]})";
+    std::ofstream(dump / "final.png") << "x";
+    // depth.exr deleted since (or a copy that stopped short): replacing the rest loses nothing of the user's.
+    EarlierDump earlier = readEarlierDump(dump);
+    EXPECT_EQ(earlier.problem, "");
+    EXPECT_EQ(earlier.files, std::vector<std::string>({"final.png", "manifest.json"}));
+    fs::create_directories(dump / "depth.exr" / "precious");
+    earlier = readEarlierDump(dump);
+    EXPECT_EQ(earlier.problem, "its manifest.json names 'depth.exr', which is not a file in it");
+    fs::remove_all(dump / "depth.exr");
+    std::ofstream(dump / "notes.txt") << "mine";
+    earlier = readEarlierDump(dump);
+    EXPECT_EQ(earlier.problem, "it holds 'notes.txt', which its manifest.json does not name");
 }
 
 } // namespace

@@ -9,7 +9,7 @@
 # A, B and C are compared file by file, every byte, except each --dump's manifest.json (timings; the index's checksums
 # of those are masked); the dump's EXR files carry a fixed time stamp, so they are compared as they are.
 # F: a run refused at once while another holds the folder's lock; two runs at once: the set is A's.
-# Then: a truncated file is rendered again, a changed flag renders every still again, --resume needs --dataset, and a
+# Then: a truncated file, or a dump's deleted file, is rendered again, a changed flag renders every still again, --resume needs --dataset, and a
 # data set is not written over without --resume.
 # Usage: dataset-kill-test.sh INKGRAPH SOURCE_ROOT
 set -euo pipefail
@@ -162,6 +162,14 @@ render "$work/D" --resume || fail "resume D: $(cat "$work/D.log")"
 grep -q "inkgraph: resumed: 5 stills complete, 1 rendered" "$work/D.log" || fail "resume D: $(cat "$work/D.log")"
 same_as_A "$work/D" "D (a truncated file, resumed)"
 
+# A file of a still's --dump deleted: the damaged dump is still a dump, replaced; only that still is rendered again
+# (the whole run was refused, the folder taken for one that is not a dump).
+rm "$work/D/dump/teapot_c3d-1/depth.exr"
+"$inkgraph" check-dataset "$work/D" > "$work/check.txt" && fail "check-dataset passes a dump that lost a file"
+render "$work/D" --resume || fail "resume D after a dump lost a file: $(cat "$work/D.log")"
+grep -q "inkgraph: resumed: 5 stills complete, 1 rendered" "$work/D.log" || fail "lost dump file: $(cat "$work/D.log")"
+same_as_A "$work/D" "D (a dump's file deleted, resumed)"
+
 # A changed flag: every still rendered again, and the index records the new settings.
 render "$work/D" --resume --svg-tolerance 1 || fail "resume D with a new flag: $(cat "$work/D.log")"
 grep -q "inkgraph: resumed: 0 stills complete, 6 rendered" "$work/D.log" || fail "new flag: $(cat "$work/D.log")"
@@ -189,5 +197,5 @@ render "$work/A" || status=$?
 [ "$status" -eq 2 ] && grep -q "already holds a data set ('index.jsonl'); add --resume" "$work/A.log" ||
     fail "a data set without --resume: $status $(cat "$work/A.log")"
 diff -r "$work/A-before" "$work/A" || fail "a refused run changed the data set"
-echo "dataset kill test: A, B (5 hooked kills), C ($killed of 6 runs killed at random), D (truncated file, changed" \
-    "flag), F (a run refused while the lock is held, two at once twice) agree"
+echo "dataset kill test: A, B (5 hooked kills), C ($killed of 6 runs killed at random), D (truncated file, lost" \
+    "dump file, changed flag), F (a run refused while the lock is held, two at once twice) agree"
