@@ -125,6 +125,8 @@ std::size_t dashStrokes(Strokes& strokes, int layer, const DashPattern& pattern)
     std::size_t made = 0;
     for (Stroke& stroke : strokes.strokes) {
         if (stroke.layer != layer || !stroke.kept || stroke.points.empty() || stroke.lengthPixels <= pattern.onPixels) {
+            // One no longer than a dash is drawn whole: a dash of its own, as the picture and the SVG show it.
+            if (stroke.layer == layer && stroke.kept && !stroke.points.empty()) ++made;
             result.push_back(std::move(stroke));
             continue;
         }

@@ -16,8 +16,9 @@ struct DashPattern {
     bool solid() const { return offPixels == 0.0; }
 };
 
-/** Cuts each kept stroke of layer `layer` into its dashes and returns how many dashes were made; other layers' strokes
- *  and dropped strokes are left as they are. The pattern starts at a stroke's first point (a dash) and runs on along
+/** Cuts each kept stroke of layer `layer` into its dashes and returns how many dashes the layer is drawn as (a stroke
+ *  no longer than `onPixels`, left whole, counts as one); other layers' strokes and dropped strokes are left as they
+ *  are. The pattern starts at a stroke's first point (a dash) and runs on along
  *  its arc length through every point: a point whose arc length s has (s mod (on + off)) < on is drawn, and each dash
  *  ends and begins exactly on the pattern's boundary, at a point placed there on the segment it cuts (its pixel
  *  (-1, -1), as a bridging point; width and strength interpolated). A closed stroke's pattern runs round it from its
