@@ -265,11 +265,14 @@ void fillBridges(std::vector<StrokePointRecord>& points, const std::vector<bool>
  *  an end point's pixel the vertex itself, anywhere in the pixel. A point whose stroke neighbours lie on the same edge
  *  (the same triangle) slides along it (the direction between the neighbours' points) to where it projects nearest
  *  the stroke point, by one Gauss-Newton step, at most half the neighbours' span either way: still on the edge, and
- *  off (x, y) only by the pixel centre's distance across the line. */
-void slideAlongEdges(std::vector<StrokePointRecord>& points, const Projection& projection) {
-    const std::vector<StrokePointRecord> found = points;
+ *  off (x, y) only by the pixel centre's distance across the line. Only neighbours found on the drawn edge count
+ *  (`found`): a bridged one (a dash's cut end) holds a guess, and sliding by it took a point 3-6 px off. */
+void slideAlongEdges(std::vector<StrokePointRecord>& points, const std::vector<bool>& found,
+                     const Projection& projection) {
+    const std::vector<StrokePointRecord> unslid = points;
     for (std::size_t index = 1; index + 1 < points.size(); ++index) {
-        const StrokePointRecord &before = found[index - 1], &after = found[index + 1];
+        if (!found[index - 1] || !found[index + 1]) continue;
+        const StrokePointRecord &before = unslid[index - 1], &after = unslid[index + 1];
         StrokePointRecord& point = points[index];
         if (!before.world || !after.world || !point.world) continue;
         if (point.triangle < 0 || before.triangle != point.triangle || after.triangle != point.triangle) continue;
@@ -371,15 +374,16 @@ std::vector<StrokeRecord> strokeRecords(const StrokePointSetup& setup) {
         }
         if (input.source != StrokePointSource::Surface) fillBridges(record.points, found);
         if (input.source == StrokePointSource::Image) {
-            slideAlongEdges(record.points, projection);
+            slideAlongEdges(record.points, found, projection);
             for (StrokePointRecord& point : record.points) clampToTriangle(point, setup);
         }
-        // A bridged point whose neighbours' line passes farther from it than a found point may lie is left without
-        // one: a stroke's end that the stroke stage drew on into another type's line took its last point's world, 3-7
-        // px from where it was drawn.
+        // A point left farther from (x, y) than a found point may lie is left without one: a bridged point whose
+        // neighbours' line passes far from it (a stroke's end that the stroke stage drew on into another type's line
+        // took its last point's world, 3-7 px from where it was drawn), or a mesh edge's point the steps above moved
+        // there (a skeleton's own points are where their samples are drawn).
         for (std::size_t index = 0; index < record.points.size(); ++index) {
             StrokePointRecord& point = record.points[index];
-            if (found[index] || !point.world) continue;
+            if (!point.world || (found[index] && input.source != StrokePointSource::Image)) continue;
             if (glm::length(projection.toPixel(*point.world) - glm::dvec2(point.x, point.y)) >
                 kFarEdgePointDataPixels / drawn.supersample)
                 point = StrokePointRecord{point.x, point.y, std::nullopt, 0, -1};
