@@ -79,7 +79,8 @@ struct StrokeRecord {
 };
 
 /** Every kept stroke in the stroke stage's order (the dashes of the hidden types each a stroke of their own), values
- *  rounded as the file writes them: x and y to 1e-4 pixels, world to 7 significant digits. Throws
+ *  rounded as the file writes them: x and y to 1e-4 pixels, world to 7 significant digits, and a point equal in all
+ *  of them (and its mesh and triangle) to the one before it written once. Throws
  *  std::invalid_argument naming the argument when `drawn` or `camera` is null, an input is missing what its source
  *  needs, or an image is not at the data size. */
 std::vector<StrokeRecord> strokeRecords(const StrokePointSetup& setup);

@@ -163,6 +163,36 @@ TEST(StrokePointsTest, ObjectSpaceAndMeshEdgePointsAreTheirOwn3DPoints) {
     EXPECT_EQ(crease[1].mesh, 1);
 }
 
+TEST(StrokePointsTest, APointTheStrokeStagePlacedTwiceIsWrittenOnce) {
+    // Two samples at one spot (a sub-pixel contour's two pixels): written twice, a segment of no length, on which a
+    // reader's tangent divides by zero (870 such places in a hostile pass's strokes files).
+    const Camera camera = testCamera();
+    DrawnStrokes drawn;
+    drawn.inputs = {StrokeInput{"intersection", "intersection.skeleton"}};
+    LineSkeleton skeleton;
+    skeleton.mask = cv::Mat::zeros(24, 32, CV_8UC1);
+    skeleton.points = {{{4.2f, 6.1f}, 1.0f}, {{5.1f, 6.3f}, 1.0f}};
+    skeleton.surface = {{{0.1, 0.2, 0.3}, 0, 7}, {{0.2, 0.2, 0.3}, 0, 8}};
+    drawn.strokes.strokes.push_back(
+        strokeOf(0, {{4.2f, 6.1f}, {4.2f, 6.1f}, {5.1f, 6.3f}, {4.2f, 6.1f}}, {{4, 6}, {4, 6}, {5, 6}, {4, 6}}));
+    StrokePointSetup setup;
+    setup.drawn = &drawn;
+    StrokePointInput object;
+    object.source = StrokePointSource::Skeleton;
+    object.skeleton = &skeleton;
+    setup.inputs = {object};
+    setup.depth = cv::Mat(24, 32, CV_32FC1, cv::Scalar(0.0f));
+    setup.camera = &camera;
+    setup.meshTriangleOffsets = {0};
+    const std::vector<StrokeRecord> records = strokeRecords(setup);
+    ASSERT_EQ(records.size(), 1u);
+    const std::vector<StrokePointRecord>& points = records[0].points;
+    ASSERT_EQ(points.size(), 3u) << "the repeated point once; the same spot again after another is kept";
+    EXPECT_EQ(points[0].triangle, 7);
+    EXPECT_EQ(points[1].triangle, 8);
+    EXPECT_EQ(points[2].triangle, 7);
+}
+
 TEST(StrokePointsTest, RefusesMissingInputs) {
     const Camera camera = testCamera();
     DrawnStrokes drawn;
