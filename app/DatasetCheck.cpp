@@ -126,7 +126,6 @@ void checkIndexLine(const fs::path& folder, const std::string& line, const std::
     for (const auto& [relative, expected] : record["checksums"].items()) {
         listed.insert(relative);
         const fs::path path = folder / relative;
-        ++report.files;
         std::error_code error;
         const fs::file_status status = fs::symlink_status(path, error);
         if (!fs::exists(status)) {
@@ -149,9 +148,12 @@ void checkIndexLine(const fs::path& folder, const std::string& line, const std::
         }
         const std::string checksum = hexDigits(fnv1a64(bytes.data(), bytes.size()));
         if (!expected.is_object() || expected.value("size", std::uint64_t(0)) != bytes.size() ||
-            expected.value("fnv1a64", std::string()) != checksum)
+            expected.value("fnv1a64", std::string()) != checksum) {
             report.errors.push_back("'" + relative + "' is not the file the index recorded (size " +
                                     std::to_string(bytes.size()) + ", checksum " + checksum + "; " + where + ")");
+            continue;
+        }
+        ++report.files; // only what passed: a missing or changed file was counted as verified
     }
 }
 

@@ -16,7 +16,7 @@ struct DatasetReport {
     std::vector<std::string> warnings; ///< worth a look, not a defect: a file the index does not list, a failed still
     std::size_t stills = 0;            ///< index lines with status "ok"
     std::size_t failed = 0;            ///< index lines with status "failed"
-    std::size_t files = 0;             ///< files verified (size, checksum, format)
+    std::size_t files = 0;             ///< files verified whole (size, checksum, format); not those in `errors`
 };
 
 /** Verifies the data set in `folder`: the index(es) and card(s) exist and every index line parses; with a sharded

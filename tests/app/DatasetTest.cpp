@@ -478,6 +478,7 @@ TEST_F(Dataset, CheckDatasetFindsEachKindOfProblem) {
               "'sub/.inkgraph-99999999-0.tmp': a temporary file of a run that was killed or is running");
     ASSERT_EQ(report.warnings.size(), 1u);
     EXPECT_EQ(report.warnings[0], "'stray.txt' is not in the index");
+    EXPECT_EQ(report.files, 0u) << "a file cut short is not verified";
 
     // Sharded: every K of N.
     const fs::path shards = directory / "shards";
