@@ -393,8 +393,8 @@ std::vector<StrokeRecord> strokeRecords(const StrokePointSetup& setup) {
             point.y = roundedPixels(point.y);
             if (point.world) point.world = roundedWorld(*point.world, setup.camera->origin);
         }
-        // The stroke stage may place two points at one spot (a sub-pixel contour's two pixels); written twice they
-        // are a segment of no length, on which a reader's tangent or arc length divides by zero.
+        // Two consecutive points may come out the same (two of the stroke stage's points at one spot, or rounded to
+        // one): written twice they are a segment of no length, on which a reader's tangent divides by zero.
         const auto same = [](const StrokePointRecord& a, const StrokePointRecord& b) {
             return a.x == b.x && a.y == b.y && a.world == b.world && a.mesh == b.mesh && a.triangle == b.triangle;
         };

@@ -164,8 +164,8 @@ TEST(StrokePointsTest, ObjectSpaceAndMeshEdgePointsAreTheirOwn3DPoints) {
 }
 
 TEST(StrokePointsTest, APointTheStrokeStagePlacedTwiceIsWrittenOnce) {
-    // Two samples at one spot (a sub-pixel contour's two pixels): written twice, a segment of no length, on which a
-    // reader's tangent divides by zero (870 such places in a hostile pass's strokes files).
+    // Two of the stroke stage's points at one spot: written twice, a segment of no length, on which a reader's tangent
+    // divides by zero (870 such places in a hostile pass's strokes files).
     const Camera camera = testCamera();
     DrawnStrokes drawn;
     drawn.inputs = {StrokeInput{"intersection", "intersection.skeleton"}};
