@@ -124,9 +124,12 @@ std::size_t dashStrokes(Strokes& strokes, int layer, const DashPattern& pattern)
     result.reserve(strokes.strokes.size());
     std::size_t made = 0;
     for (Stroke& stroke : strokes.strokes) {
-        if (stroke.layer != layer || !stroke.kept || stroke.points.empty() || stroke.lengthPixels <= pattern.onPixels) {
-            // One no longer than a dash is drawn whole: a dash of its own, as the picture and the SVG show it.
-            if (stroke.layer == layer && stroke.kept && !stroke.points.empty()) ++made;
+        if (stroke.layer != layer || !stroke.kept || stroke.points.empty()) {
+            result.push_back(std::move(stroke));
+            continue;
+        }
+        if (stroke.lengthPixels <= pattern.onPixels) {
+            ++made; // drawn whole: a dash of its own, as the picture and the SVG show it
             result.push_back(std::move(stroke));
             continue;
         }
