@@ -2,6 +2,7 @@
 
 #include "passes/orientation/SceneOrientation.h"
 #include "scene/MaterialIds.h"
+#include "scene/MeshLabels.h"
 #include "scene/ObjectIds.h"
 #include "scene/mesh/MeshOps.h"
 
@@ -99,6 +100,25 @@ const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
     }
     mUploaded = true;
     return mMeshes;
+}
+
+const GpuScene::TriangleIdMap& GpuScene::triangleIdMap() {
+    if (mTriangleIdMap) return *mTriangleIdMap;
+    const TriangleNumbering numbering(mScene);
+    std::vector<std::uint32_t> firstTriangle, fileTrianglesAt, fileTriangles;
+    for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
+        const Mesh& mesh = mScene.meshes[index];
+        firstTriangle.push_back(std::uint32_t(numbering.firstOfMesh(index)));
+        fileTrianglesAt.push_back(mesh.fileTriangles.empty() ? TriangleIdMap::kAsDrawn
+                                                             : std::uint32_t(fileTriangles.size()));
+        fileTriangles.insert(fileTriangles.end(), mesh.fileTriangles.begin(), mesh.fileTriangles.end());
+    }
+    // A shader's storage block is bound to a buffer even where no mesh reads it.
+    if (fileTriangles.empty()) fileTriangles.push_back(0);
+    mTriangleIdMap.emplace(TriangleIdMap{
+        std::move(firstTriangle), std::move(fileTrianglesAt),
+        GlBuffer(fileTriangles.data(), fileTriangles.size() * sizeof(std::uint32_t), "file triangle indices")});
+    return *mTriangleIdMap;
 }
 
 const GlBuffer& GpuScene::hullNormals(std::size_t meshIndex) {

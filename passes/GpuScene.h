@@ -128,6 +128,18 @@ public:
     /** SceneDerivedData::surfacesMeet(): whether surfacePatches() can tell surfaces apart that the depth cannot. */
     bool surfacesMeet() { return mDerived->surfacesMeet(); }
 
+    /** What the G-buffer's triangle id draws add to gl_PrimitiveID (a mesh's drawn triangle) to give the triangle
+     *  id (scene/MeshLabels.h TriangleNumbering, which counts the triangles the loader dropped too). */
+    struct TriangleIdMap {
+        static constexpr std::uint32_t kAsDrawn = 0xffffffffu; ///< a mesh whose drawn triangles are the file's
+        std::vector<std::uint32_t> firstTriangle;              ///< per mesh the global index of its first
+        /** Per mesh where its Mesh::fileTriangles start in `fileTriangles`, or kAsDrawn where it has none. */
+        std::vector<std::uint32_t> fileTrianglesAt;
+        GlBuffer fileTriangles; ///< every mesh's Mesh::fileTriangles, one after another (a single 0 when none has)
+    };
+    /** Made on the first call (only a G-buffer draw of triangle ids or barycentrics asks). */
+    const TriangleIdMap& triangleIdMap();
+
     std::size_t meshCount() const { return mScene.meshes.size(); }
     /** The scene the meshes were uploaded from (their CPU triangles, in the same vertex order as meshes()). */
     const Scene& scene() const { return mScene; }
@@ -184,6 +196,7 @@ private:
     std::vector<GlVertexArray> mHullArrays;               ///< one per mesh once made, else empty
     std::vector<GLsizei> mHullIndexCounts;                ///< one per mesh with mHullArrays
     std::vector<GlBuffer> mOwnHullIndices;                ///< the hull index buffers that are not a mesh's own
+    std::optional<TriangleIdMap> mTriangleIdMap;          ///< made by the first triangleIdMap()
     std::vector<std::optional<glm::dvec3>> mBlendCentres; ///< per blended mesh, once drawOrder() needed it
     std::optional<glm::dvec3> mContainmentPoint;          ///< the last point containsPoint() was asked about
     bool mContainsPoint = false;

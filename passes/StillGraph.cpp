@@ -318,7 +318,8 @@ std::vector<StrokeRecord> StillGraph::strokeRecords(ResourceStore& store, const 
     setup.depth = store.image(std::string(kGBufferPass) + "." + GBufferPass::kDepth);
     setup.triangleIds = store.image(triangleIdResource());
     // The numbering of the triangleId field and the manifest's meshes (scene/MeshLabels.h), the one place it is made.
-    for (const MeshLabel& mesh : sceneLabels(scene).meshes) setup.meshTriangleOffsets.push_back(mesh.firstTriangle);
+    const TriangleNumbering numbering(scene);
+    setup.numbering = &numbering;
     for (const StrokeInput& input : setup.drawn->inputs) {
         const LineType* type = findLineType(input.type);
         StrokePointInput points;

@@ -1387,7 +1387,8 @@ void defineScene(py::module_& m) {
             "Its meshes, as dicts {'id', 'name', 'node_path', 'object_id', 'material_id', 'material', "
             "'first_triangle', 'triangle_count'}, as the --dump manifest's 'meshes': 'id' is the mesh's value in the "
             "'meshId' buffer, and its triangles have the 'triangleId' values first_triangle + 1 ... first_triangle + "
-            "triangle_count (0 there is the background).")
+            "triangle_count (0 there is the background), numbered as its file gives them: a triangle the loader "
+            "dropped (zero-area, a back-to-back twin) keeps its number, which appears nowhere.")
         .def_property_readonly(
             "warnings", [](const ig::Scene& self) { return warningObjects(self.warnings()); },
             "The loader's warnings, as InkgraphWarning records.")

@@ -280,13 +280,15 @@ void StillRenderer::plan(PreparedStill& still, const StillLog& log) {
     still.frame.time = req.animationTime; // the pose's time is the UV animation's too
     still.gpuScene = makeSceneImport(scene, still.sphere.center, still.frame, look, still.sceneDerived);
     buildGraph(still);
-    // Any G-buffer's (the picture's, or the coarser one the suggestive contours read at 2048 rows and above).
+    // Any G-buffer's (the picture's, or the coarser one the suggestive contours read at 2048 rows and above); the
+    // barycentric field's alpha is a triangle id too.
     const bool readsTriangleIds =
         std::any_of(still.plan.resources.begin(), still.plan.resources.end(), [](const PlannedResource& resource) {
-            return ResourceName::split(resource.name).field == "triangleId";
+            const std::string field = ResourceName::split(resource.name).field;
+            return field == "triangleId" || field == "barycentric";
         });
     if (readsTriangleIds)
-        if (std::optional<Warning> inexact = triangleIdWarning(scene.triangleCount()))
+        if (std::optional<Warning> inexact = triangleIdWarning(TriangleNumbering(scene).total()))
             warnOf(still, std::move(*inexact), log);
     failIfStrict(still);
 }

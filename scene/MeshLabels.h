@@ -21,8 +21,10 @@ struct MeshLabel {
     std::vector<std::string> nodePath; ///< Mesh::nodePath (empty for a format without nodes)
     std::uint32_t objectId = 0;        ///< its object's value in the objectId field (scene/ObjectIds.h)
     std::uint32_t materialId = 0;      ///< its material's value in the materialId field (scene/MaterialIds.h)
-    std::size_t firstTriangle = 0;     ///< the global index of its first triangle: the triangles of the meshes before
-    std::size_t triangleCount = 0;     ///< its triangles have the triangleId values firstTriangle + 1 ... + count
+    std::size_t firstTriangle = 0; ///< the global index of its first triangle: the file triangles of the meshes before
+    /** Its triangles have the triangleId values firstTriangle + 1 ... + count: the file's, the ones the loader dropped
+     *  included (Mesh::numberedTriangleCount(); those numbers appear nowhere). */
+    std::size_t triangleCount = 0;
 };
 
 /** One material of the scene (meshes share one exactly when scene/MaterialIds.h says so). */
@@ -39,10 +41,36 @@ struct SceneLabels {
 /** The labels of `scene`'s meshes and materials. */
 SceneLabels sceneLabels(const Scene& scene);
 
-/** The global index of triangle `triangle` of mesh `meshIndex`: the triangles of the meshes before it, then its own
- *  in index order. The triangleId field holds this + 1. Throws std::out_of_range for a mesh or triangle that is not
- *  there. */
-std::size_t globalTriangleIndex(const Scene& scene, std::size_t meshIndex, std::size_t triangle);
+/** The scene's triangle numbering: the meshes in scene order, each mesh's triangles as its file gives them
+ *  (Mesh::fileTriangles), so the numbers of the triangles the loader dropped go unused and every other triangle
+ *  keeps the number the file gives it. Keeps a reference to the scene. */
+class TriangleNumbering {
+public:
+    explicit TriangleNumbering(const Scene& scene);
+
+    /** The global index of the first file triangle of mesh `meshIndex`: the file triangles of the meshes before it. */
+    std::size_t firstOfMesh(std::size_t meshIndex) const { return mFirst.at(meshIndex); }
+    /** The numbers all meshes take: the file triangles of the scene. */
+    std::size_t total() const { return mFirst.back(); }
+    /** The global index of loaded triangle `triangle` (an index into Mesh::triangles) of mesh `meshIndex`: the
+     *  triangleId field holds this + 1. Throws
+     *  std::out_of_range for a mesh or triangle that is not there. */
+    std::size_t global(std::size_t meshIndex, std::size_t triangle) const;
+
+    /** A global index as the mesh holding it and its loaded triangle there. */
+    struct Loaded {
+        std::size_t mesh = 0;
+        std::size_t triangle = 0;
+    };
+    /** The loaded triangle a global index names; none beyond the scene's numbers or for one the loader dropped. */
+    std::optional<Loaded> loaded(std::size_t global) const;
+    /** The mesh whose numbers hold a global index (a dropped triangle's too); none beyond the scene's numbers. */
+    std::optional<std::size_t> meshOf(std::size_t global) const;
+
+private:
+    const Scene& mScene;
+    std::vector<std::size_t> mFirst; ///< per mesh its first global index, then the total
+};
 
 /** The most triangles whose ids the G-buffer's triangleId field (float32: the render graph has no integer format)
  *  holds exactly: every integer up to 2^24 is a float32. */

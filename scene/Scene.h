@@ -7,7 +7,9 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -56,8 +58,23 @@ struct Mesh {
      *  sheet's that covers its back (cullBackToBackSheets(): a card printed on both sides). The material stays as the
      *  file gives it, so material ids and the manifest do not change. */
     bool backCulled = false;
+    /** Where the loader dropped some of the triangles the file gave this mesh (zero-area or collapsed by the weld, a
+     *  two-sided material's back-to-back twins: finalizeMesh()), each kept triangle's index among the file's (after
+     *  polygons and strips are cut into triangles), ascending; empty when it dropped none, so triangle t is the
+     *  file's t. Triangle ids count the file's triangles (scene/MeshLabels.h), so that they name the same triangle
+     *  as the file does. */
+    std::vector<std::uint32_t> fileTriangles;
+    /** How many triangles the file gave it, the dropped ones included; 0 (a mesh made in code) reads as
+     *  triangles.size(). */
+    std::size_t fileTriangleCount = 0;
 
     std::size_t triangleCount() const { return triangles.size(); }
+    /** How many triangle ids the mesh's triangles take: the file's triangles, the dropped ones included. */
+    std::size_t numberedTriangleCount() const { return std::max(fileTriangleCount, triangles.size()); }
+    /** Triangle `triangle`'s index among the file's triangles (Mesh::fileTriangles). */
+    std::size_t fileTriangleOf(std::size_t triangle) const {
+        return fileTriangles.empty() ? triangle : fileTriangles[triangle];
+    }
     /** Whether its back faces are drawn: a two-sided material's, unless backCulled. */
     bool drawsBackFaces() const { return material.doubleSided && !backCulled; }
 };

@@ -1,5 +1,6 @@
 #include "scene/SceneDerivedData.h"
 
+#include "scene/MeshLabels.h"
 #include "scene/mesh/SmoothPatches.h"
 
 #include <stdexcept>
@@ -159,16 +160,17 @@ const MeshIntersections& SceneDerivedData::meshIntersections() {
 const SceneDerivedData::SurfacePatches& SceneDerivedData::surfacePatches() {
     return derivedOnce(mSurfacePatches, [&] {
         SurfacePatches patches;
-        patches.patchOfTriangle.push_back(0.0f); // triangle id 0: off the model
-        std::uint32_t firstTriangle = 0;
+        const TriangleNumbering numbering(mScene);
+        // Id 0 is off the model; a dropped triangle's id appears nowhere.
+        patches.patchOfTriangle.assign(numbering.total() + 1, 0.0f);
         for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
             const Mesh& mesh = mScene.meshes[index];
             const SmoothPatches meshPatches =
                 smoothPatches(mesh.normals, mesh.triangles, positionWeld(index), edgeAdjacency(index));
             patches.seamEdges += meshPatches.seamEdges;
-            for (const std::uint32_t patch : meshPatches.patchOf)
-                patches.patchOfTriangle.push_back(float(firstTriangle + patch + 1));
-            firstTriangle += std::uint32_t(mesh.triangles.size());
+            for (std::size_t triangle = 0; triangle < meshPatches.patchOf.size(); ++triangle)
+                patches.patchOfTriangle[numbering.global(index, triangle) + 1] =
+                    float(numbering.global(index, meshPatches.patchOf[triangle]) + 1);
         }
         return patches;
     });

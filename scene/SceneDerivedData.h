@@ -27,10 +27,11 @@ namespace inkgraph {
 
 class SceneDerivedData {
 public:
-    /** The smooth surfaces of the scene as the G-buffer's triangleId numbers triangles (meshes in scene order, each in
-     *  its index order, + 1): entry t of `patchOfTriangle` is the patch of triangle id t, named by the triangleId of
+    /** The smooth surfaces of the scene as the G-buffer's triangleId numbers triangles (scene/MeshLabels.h
+     *  TriangleNumbering, + 1): entry t of `patchOfTriangle` is the patch of triangle id t, named by the triangleId of
      *  its first triangle (scene/mesh/SmoothPatches.h: joined across edges where the normals are continuous; meshes
-     *  never join one another), 0 at t = 0 (off the model); floats, exact below 2^24 triangles as triangleId is. */
+     *  never join one another), 0 at t = 0 (off the model) and at the ids of triangles the loader dropped; floats,
+     *  exact below 2^24 triangles as triangleId is. */
     struct SurfacePatches {
         std::vector<float> patchOfTriangle;
         std::size_t seamEdges = 0; ///< edges where a mesh's normals step (SmoothPatches::seamEdges), over all meshes

@@ -2,6 +2,7 @@
 
 #include "gl/GraphExecutor.h"
 #include "passes/LineMaskTarget.h"
+#include "scene/MeshLabels.h"
 #include "scene/mesh/EdgeAdjacency.h"
 
 #include <nlohmann/json.hpp>
@@ -106,8 +107,7 @@ MeshEdgesPass::EdgeLines MeshEdgesPass::uploadEdgeLines(const std::string& outpu
 std::vector<float> MeshEdgesPass::edgeTriangles(std::size_t meshIndex,
                                                 const std::vector<std::uint32_t>& indices) const {
     const Scene& scene = mScene.scene();
-    std::size_t offset = 0;
-    for (std::size_t mesh = 0; mesh < meshIndex; ++mesh) offset += scene.meshes[mesh].triangleCount();
+    const TriangleNumbering numbering(scene);
     // The edges' vertex pairs, each to the first triangle (in the mesh's order) that has it.
     std::unordered_map<std::uint64_t, std::uint32_t> wanted;
     const auto key = [](std::uint32_t a, std::uint32_t b) {
@@ -119,7 +119,7 @@ std::vector<float> MeshEdgesPass::edgeTriangles(std::size_t meshIndex,
     for (std::size_t triangle = triangles.size(); triangle-- > 0;)
         for (int corner = 0; corner < 3; ++corner) {
             const auto found = wanted.find(key(triangles[triangle][corner], triangles[triangle][(corner + 1) % 3]));
-            if (found != wanted.end()) found->second = std::uint32_t(offset + triangle + 1);
+            if (found != wanted.end()) found->second = std::uint32_t(numbering.global(meshIndex, triangle) + 1);
         }
     std::vector<float> perEdge;
     for (std::size_t edge = 0; edge + 1 < indices.size(); edge += 2)

@@ -55,8 +55,9 @@ const std::vector<GBufferPass::Field>& GBufferPass::fields() {
          "the mesh's id (its index + 1 in the scene, as the manifest's meshes list them) as an exact float, 0 off "
          "the model"},
         {"triangleId", Format::R32F, "TRIANGLE_ID", "triangleid.exr", Appearance::Data,
-         "the triangle's id: its index + 1 over the scene's meshes in order (the manifest's meshes give each mesh's "
-         "first_triangle), as a float exact below 2^24 triangles, 0 off the model"},
+         "the triangle's id: its index + 1 over the scene's meshes in order, each mesh's triangles as its file gives "
+         "them (the manifest's meshes give each mesh's first_triangle), as a float exact below 2^24 triangles, 0 off "
+         "the model"},
         {"barycentric", Format::RGBA32F, "BARYCENTRIC", "barycentric.exr", Appearance::Data,
          "the visible point's perspective-correct barycentric weights in its triangle (rgb: the weights of its 1st, "
          "2nd and 3rd corner in index order, summing to 1); alpha the id of the triangle the weights are of (its "
@@ -175,6 +176,7 @@ std::vector<std::string> GBufferPass::definesFor(const std::vector<const Field*>
         defines.push_back(std::string("OUT_") + field->define + " 1");
         defines.push_back(std::string("LOC_") + field->define + " " + std::to_string(slot++));
     }
+    defines.push_back("FILE_TRIANGLES_BINDING " + std::to_string(kFileTrianglesBinding));
     if (mScene.hasTransparency()) {
         defines.push_back("MATERIAL_ALPHA 1");
         defines.push_back("MATERIAL_SOLID_ONLY 1");
@@ -241,17 +243,23 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
                                         [](const Field* field) { return std::string_view(field->name) == "baseColor"; })
                                 ? MaterialUse::Colour
                                 : MaterialUse::Coverage;
+    const GLint fileTrianglesAtLocation = program.uniform("fileTrianglesAt");
     const std::vector<GpuScene::DrawMesh>& meshes = mScene.meshes();
-    // gl_PrimitiveID counts the triangles of one draw: a mesh's first global triangle index makes it the scene's.
-    std::uint32_t firstTriangle = 0;
+    // gl_PrimitiveID counts the triangles of one draw: the mesh's first global index, and its file's numbers where
+    // the loader dropped some of its triangles, make it the scene's triangle id.
+    const GpuScene::TriangleIdMap* triangleIds = firstTriangleLocation >= 0 ? &mScene.triangleIdMap() : nullptr;
+    if (triangleIds != nullptr)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFileTrianglesBinding, triangleIds->fileTriangles.id());
     for (std::size_t index = 0; index < meshes.size(); ++index) {
         const GpuScene::DrawMesh& mesh = meshes[index];
         mScene.bindMaterial(program, index, use);
         glUniform1ui(materialIdLocation, mesh.materialId);
         glUniform1ui(objectIndexLocation, mesh.objectIndex);
         glUniform1ui(meshIndexLocation, std::uint32_t(index));
-        glUniform1ui(firstTriangleLocation, firstTriangle);
-        firstTriangle += std::uint32_t(mesh.indexCount / 3);
+        if (triangleIds != nullptr) {
+            glUniform1ui(firstTriangleLocation, triangleIds->firstTriangle[index]);
+            glUniform1ui(fileTrianglesAtLocation, triangleIds->fileTrianglesAt[index]);
+        }
         setFaceCulling(mesh.drawsBackFaces);
         mesh.vertexArray.bind();
         glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);

@@ -18,9 +18,10 @@
  *  | gbuffer.objectId   | r32f    | optional | the mesh's object index + 1 as an exact float (scene/ObjectIds.h: |
  *  |                    |         |          | one object per node instance), 0 off-model                        |
  *  | gbuffer.meshId     | r32f    | optional | the mesh's index in the scene + 1 as an exact float, 0 off-model  |
- *  | gbuffer.triangleId | r32f    | optional | the global triangle index + 1 (meshes in scene order, each in its |
- *  |                    |         |          | index order: gl_PrimitiveID + the mesh's first triangle), exact   |
- *  |                    |         |          | up to 2^24 triangles (the renderer warns above), 0 off-model      |
+ *  | gbuffer.triangleId | r32f    | optional | the global triangle index + 1 (meshes in scene order, each its    |
+ *  |                    |         |          | file's triangles: scene/MeshLabels.h; gl_PrimitiveID mapped by    |
+ *  |                    |         |          | GpuScene::triangleIdMap()), exact up to 2^24 triangles (the       |
+ *  |                    |         |          | renderer warns above), 0 off-model                                |
  *  | gbuffer.barycentric| rgba32f | optional | perspective-correct barycentric weights of the visible point in   |
  *  |                    |         |          | its triangle's corners (index order), a = coverage, 0 off-model   |
  *  | gbuffer.zBuffer    | depth32f| optional | the depth test's own buffer: window depth of the nearest drawn    |
@@ -132,6 +133,8 @@ private:
     std::vector<std::string> definesFor(const std::vector<const Field*>& group) const;
     void drawGroup(GlPassContext& gl, const std::vector<const Field*>& group);
     static constexpr std::size_t kMaxDrawBuffers = 8; ///< GL 4.5's guaranteed GL_MAX_DRAW_BUFFERS (llvmpipe's 8)
+    /** The storage-buffer binding of GpuScene::TriangleIdMap::fileTriangles (the shader's FILE_TRIANGLES_BINDING). */
+    static constexpr GLuint kFileTrianglesBinding = 0;
     GlProgram& programFor(const std::vector<std::string>& defines);
 
     std::string mName;

@@ -33,18 +33,17 @@ glm::dvec3 roundedWorld(const glm::dvec3& world, const glm::dvec3& origin) {
     return origin + glm::dvec3(roundedSignificant(local.x), roundedSignificant(local.y), roundedSignificant(local.z));
 }
 
-/** The global triangle index of a mesh's triangle (-1 stays -1). */
+/** The global triangle index of a mesh's (loaded) triangle; -1 when either is not known. */
 std::int64_t globalTriangle(const StrokePointSetup& setup, int mesh, long triangle) {
-    if (mesh < 0 || triangle < 0 || std::size_t(mesh) >= setup.meshTriangleOffsets.size()) return -1;
-    return std::int64_t(setup.meshTriangleOffsets[std::size_t(mesh)]) + triangle;
+    if (setup.numbering == nullptr || mesh < 0 || triangle < 0) return -1;
+    return std::int64_t(setup.numbering->global(std::size_t(mesh), std::size_t(triangle)));
 }
 
 /** The mesh (index + 1) a global triangle index lies in, 0 when none. */
 int meshOfTriangle(const StrokePointSetup& setup, std::int64_t triangle) {
-    if (triangle < 0 || setup.meshTriangleOffsets.empty()) return 0;
-    const auto after =
-        std::upper_bound(setup.meshTriangleOffsets.begin(), setup.meshTriangleOffsets.end(), std::size_t(triangle));
-    return int(after - setup.meshTriangleOffsets.begin());
+    if (triangle < 0 || setup.numbering == nullptr) return 0;
+    const std::optional<std::size_t> mesh = setup.numbering->meshOf(std::size_t(triangle));
+    return mesh ? int(*mesh) + 1 : 0;
 }
 
 /** A triangle id image's value (global index + 1, 0 = none) at a pixel, as a global index or -1. */
@@ -201,11 +200,11 @@ glm::dvec3 nearestOnSegment(const glm::dvec3& point, const glm::dvec3& a, const 
 
 /** A mesh edge's point clamped to the nearest side of its triangle (the file comment says why). */
 void clampToTriangle(StrokePointRecord& point, const StrokePointSetup& setup) {
-    if (setup.scene == nullptr || !point.world || point.mesh <= 0 || point.triangle < 0) return;
-    const Mesh& mesh = setup.scene->meshes[std::size_t(point.mesh - 1)];
-    const std::int64_t local = point.triangle - std::int64_t(setup.meshTriangleOffsets[std::size_t(point.mesh - 1)]);
-    if (local < 0 || std::size_t(local) >= mesh.triangles.size()) return;
-    const glm::uvec3 corners = mesh.triangles[std::size_t(local)];
+    if (setup.scene == nullptr || setup.numbering == nullptr || !point.world || point.triangle < 0) return;
+    const std::optional<TriangleNumbering::Loaded> loaded = setup.numbering->loaded(std::size_t(point.triangle));
+    if (!loaded) return;
+    const Mesh& mesh = setup.scene->meshes[loaded->mesh];
+    const glm::uvec3 corners = mesh.triangles[loaded->triangle];
     const glm::dvec3 origin = setup.camera->origin;
     const glm::dvec3 onMesh = *point.world - origin;
     glm::dvec3 best = onMesh;

@@ -26,6 +26,7 @@
 
 #include "passes/lines/StrokesPass.h"
 #include "scene/Camera.h"
+#include "scene/MeshLabels.h"
 
 #include <glm/glm.hpp>
 #include <opencv2/core.hpp>
@@ -53,12 +54,14 @@ struct StrokePointInput {
 };
 
 struct StrokePointSetup {
-    const DrawnStrokes* drawn = nullptr;          ///< the stroke stage's kept strokes
-    std::vector<StrokePointInput> inputs;         ///< one per drawn.inputs
-    cv::Mat depth;                                ///< CV_32FC1 linear view depth at the data size, 0 off the model
-    cv::Mat triangleIds;                          ///< CV_32FC1 or CV_32SC1/CV_32UC1 global triangle index + 1, or empty
-    const Camera* camera = nullptr;               ///< the still's camera (output size)
-    std::vector<std::size_t> meshTriangleOffsets; ///< per mesh of the scene, its first global triangle index
+    const DrawnStrokes* drawn = nullptr;  ///< the stroke stage's kept strokes
+    std::vector<StrokePointInput> inputs; ///< one per drawn.inputs
+    cv::Mat depth;                        ///< CV_32FC1 linear view depth at the data size, 0 off the model
+    cv::Mat triangleIds;                  ///< CV_32FC1 or CV_32SC1/CV_32UC1 global triangle index + 1, or empty
+    const Camera* camera = nullptr;       ///< the still's camera (output size)
+    /** The scene's triangle numbering (scene/MeshLabels.h), which the triangleId field and the mesh-edge point images
+     *  use too; null: no point names its mesh or triangle. */
+    const TriangleNumbering* numbering = nullptr;
     /** The scene: a mesh edge's point is clamped to its triangle's nearest side (see the file comment); null: not. */
     const Scene* scene = nullptr;
 };

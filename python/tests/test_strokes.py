@@ -55,6 +55,16 @@ def cube():
     return corners, np.array(faces, dtype=np.int32)
 
 
+def with_faces_the_loader_drops(faces):
+    """`faces` with faces the loader drops (docs/datasets.md): a face with a repeated corner first and last, and a
+    face's back-to-back twin (the default material is two-sided) in the middle. The strokes' triangle numbers must
+    still index the faces as given."""
+    middle = len(faces) // 2
+    a, b, c = faces[middle - 1]
+    repeated_first, repeated_last = (faces[0][0], faces[0][0], faces[0][1]), (faces[-1][1], faces[-1][2], faces[-1][2])
+    return np.array([repeated_first, *faces[:middle], (a, c, b), *faces[middle:], repeated_last], dtype=np.int32)
+
+
 def points_of(strokes, type_name):
     rows = [(p["x"], p["y"], *(p["world"] or (np.nan,) * 3), p["mesh"] or 0,
              -1 if p["triangle"] is None else p["triangle"], s["visible"])
@@ -76,7 +86,7 @@ def distance_to_segment(point, a, b):
 @pytest.fixture(scope="module")
 def sphere():
     vertices, faces = uv_sphere(FRONT)
-    scene = inkgraph.Scene.from_arrays(vertices, faces, name="sphere")
+    scene = inkgraph.Scene.from_arrays(vertices, with_faces_the_loader_drops(faces), name="sphere")
     # 256 pixels at 4 x supersampling (the sphere about 210 pixels across): the contour is found to an eighth of an
     # output pixel (see below).
     return inkgraph.render(scene, size=256, shading="none", look={"supersample": 4}, lines="contour,mesh-silhouette",
@@ -87,7 +97,7 @@ def sphere():
 def spheres():
     v1, f1 = uv_sphere(FRONT)
     v2, f2 = uv_sphere(BACK)
-    vertices, faces = np.vstack([v1, v2]), np.vstack([f1, f2 + len(v1)])
+    vertices, faces = np.vstack([v1, v2]), with_faces_the_loader_drops(np.vstack([f1, f2 + len(v1)]))
     scene = inkgraph.Scene.from_arrays(vertices, faces, name="spheres")
     # At 2 x supersampling every mesh-edge point projects within half an output pixel (at 1 x, 98.4% on one sphere:
     # an end point's pixel holds the vertex, up to 0.7 pixels off its centre).
@@ -185,6 +195,7 @@ def test_image_space_points_name_the_triangle_under_them(sphere):
     # The triangle of the model pixel whose depth the point took (gbuffer.triangleId): the point lies beside it, off
     # by about that pixel's distance across the ray (up to 1.5 data pixels, 0.3% of R here; 0.098% measured).
     vertices, faces = uv_sphere(FRONT)
+    faces = with_faces_the_loader_drops(faces)
     points = points_of(sphere.strokes(), "contour")
     assert (points[:, 5] == 1).all()
     assert (points[:, 6] >= 0).all() and (points[:, 6] < len(faces)).all()
@@ -221,6 +232,7 @@ def test_mesh_space_points_name_a_triangle_holding_their_edge(spheres):
 @pytest.fixture(scope="module")
 def cube_result():
     vertices, faces = cube()
+    faces = with_faces_the_loader_drops(faces)
     scene = inkgraph.Scene.from_arrays(vertices, faces, name="cube")
     result = inkgraph.render(scene, size=160, shading="none", lines="crease,hidden-crease",
                              camera={"orbit": (30, 20)}, buffers=["strokes"])
@@ -249,6 +261,14 @@ def test_cube_creases_lie_on_its_edges_with_an_adjacent_triangle(cube_result):
     assert (hidden[:, 7] == 0).all()
     assert ((np.isclose(hidden[:, 2:5], -1, atol=1e-4)).sum(axis=1) >= 2).mean() > 0.97
     assert all(s["visible"] for s in strokes if s["type"] == "crease")
+
+
+def test_triangle_numbers_count_the_faces_the_loader_dropped():
+    vertices, faces = cube()
+    given = with_faces_the_loader_drops(faces)
+    scene = inkgraph.Scene.from_arrays(vertices, given, name="cube")
+    assert scene.triangle_count == len(faces)  # the faces drawn
+    assert [(m["first_triangle"], m["triangle_count"]) for m in scene.meshes] == [(0, len(given))]
 
 
 def test_strokes_must_be_asked_for():

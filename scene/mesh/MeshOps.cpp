@@ -8,6 +8,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -306,20 +307,6 @@ std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions
     return normals;
 }
 
-void removeTriangles(std::vector<glm::uvec3>& triangles, std::span<const std::uint32_t> ascending) {
-    if (ascending.empty()) return;
-    std::size_t kept = 0;
-    std::size_t next = 0;
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-        if (next < ascending.size() && ascending[next] == t) {
-            ++next;
-            continue;
-        }
-        triangles[kept++] = triangles[t];
-    }
-    triangles.resize(kept);
-}
-
 SortedCorners sortedCorners(const glm::uvec3& triangle) {
     SortedCorners corners{triangle, false};
     const auto order = [&](int i, int j) {
@@ -491,17 +478,22 @@ bool isPointInsideMesh(const Mesh& mesh, glm::dvec3 point) {
     return insideVotes >= 5;
 }
 
+std::vector<std::uint32_t> degenerateTriangles(std::span<const glm::vec3> positions,
+                                               std::span<const glm::uvec3> triangles, double minArea) {
+    std::vector<std::uint32_t> degenerate;
+    for (std::size_t index = 0; index < triangles.size(); ++index) {
+        const glm::uvec3& t = triangles[index];
+        if (t.x == t.y || t.y == t.z || t.x == t.z || !(0.5 * glm::length(faceCross(positions, t)) > minArea))
+            degenerate.push_back(std::uint32_t(index));
+    }
+    return degenerate;
+}
+
 std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                                     double minArea) {
-    const std::size_t before = triangles.size();
-    std::erase_if(triangles, [&](const glm::uvec3& t) {
-        if (t.x == t.y || t.y == t.z || t.x == t.z) {
-            return true;
-        }
-        const double area = 0.5 * glm::length(faceCross(positions, t));
-        return !(area > minArea);
-    });
-    return before - triangles.size();
+    const std::vector<std::uint32_t> degenerate = degenerateTriangles(positions, triangles, minArea);
+    removeTriangles(triangles, degenerate);
+    return degenerate.size();
 }
 
 namespace {
@@ -728,8 +720,22 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         report.warnings.push_back(makeWarning(WarningKind::DetailsMerged, message.str(), "", raw.name));
     }
 
-    report.degenerateDropped +=
-        dropDegenerateTriangles(positions, triangles, kDegenerateAreaRelative * modelDiagonal * modelDiagonal);
+    // Each kept triangle's index among the file's, so triangle ids can name the file's triangles (Mesh::fileTriangles).
+    const std::size_t fileTriangleCount = triangles.size();
+    std::vector<std::uint32_t> fileTriangles;
+    const auto drop = [&](std::span<const std::uint32_t> ascending) {
+        if (ascending.empty()) return;
+        if (fileTriangles.empty()) {
+            fileTriangles.resize(triangles.size());
+            std::iota(fileTriangles.begin(), fileTriangles.end(), std::uint32_t(0));
+        }
+        removeTriangles(triangles, ascending);
+        removeTriangles(fileTriangles, ascending);
+    };
+    const std::vector<std::uint32_t> degenerate =
+        degenerateTriangles(positions, triangles, kDegenerateAreaRelative * modelDiagonal * modelDiagonal);
+    drop(degenerate);
+    report.degenerateDropped += degenerate.size();
     // A two-sided material draws the back of each face, so a face's back-to-back twin adds nothing but harm: the
     // pair's smooth normals cancel (a double-faced card shaded in black wedges) and both sheets fight for depth.
     // Twins are found on vertices that differ in position or attributes, not in normal: a card's back sheet carries
@@ -753,7 +759,7 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
                                           sameSurface.outputOf[triangles[t].z]);
             twins = backToBackTwins(onSurface);
         }
-        removeTriangles(triangles, twins);
+        drop(twins);
         report.backToBackDropped += twins.size();
     }
 
@@ -768,6 +774,8 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     mesh.material = std::move(raw.material);
     mesh.nodePath = std::move(raw.nodePath);
     mesh.nodeInstance = raw.nodeInstance;
+    mesh.fileTriangles = std::move(fileTriangles);
+    mesh.fileTriangleCount = fileTriangleCount;
     const bool noAttributes = raw.texcoords[0].empty() && raw.texcoords[1].empty() && raw.colors.empty();
     if (keptAll && noAttributes &&
         std::find(compactIndex.begin(), compactIndex.end(), kNoVertex) == compactIndex.end()) {

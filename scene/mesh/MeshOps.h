@@ -87,7 +87,11 @@ inline constexpr double kDegenerateAreaRelative = 1e-14;
 /** finalizeMesh() warns (details-merged) when the weld collapses more than this share of a mesh's triangles. */
 inline constexpr double kWeldedAwayShareToWarn = 0.01;
 
-/** Removes triangles with a repeated index or an area at most `minArea`; returns how many were removed. */
+/** The triangles with a repeated index or an area at most `minArea`, ascending. */
+std::vector<std::uint32_t> degenerateTriangles(std::span<const glm::vec3> positions,
+                                               std::span<const glm::uvec3> triangles, double minArea);
+
+/** Removes degenerateTriangles(); returns how many were removed. */
 std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                                     double minArea);
 
@@ -105,9 +109,22 @@ SortedCorners sortedCorners(const glm::uvec3& triangle);
  *  on welded vertices, so copies of a corner count as one where the weld merged them. */
 std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles);
 
-/** Removes the triangles at `ascending` (indices into `triangles`, as backToBackTwins() gives them), keeping the
- *  others in order. */
-void removeTriangles(std::vector<glm::uvec3>& triangles, std::span<const std::uint32_t> ascending);
+/** Removes the entries of a per-triangle array (the triangles themselves, or anything kept per triangle) at
+ *  `ascending` (triangle indices, as backToBackTwins() gives them), keeping the others in order. */
+template <typename PerTriangle>
+void removeTriangles(std::vector<PerTriangle>& perTriangle, std::span<const std::uint32_t> ascending) {
+    if (ascending.empty()) return;
+    std::size_t kept = 0;
+    std::size_t next = 0;
+    for (std::size_t t = 0; t < perTriangle.size(); ++t) {
+        if (next < ascending.size() && ascending[next] == t) {
+            ++next;
+            continue;
+        }
+        perTriangle[kept++] = perTriangle[t];
+    }
+    perTriangle.resize(kept);
+}
 
 /** A mesh as a loader reads it: world-space, not welded, normals optional (empty or one per position). */
 struct RawMesh {

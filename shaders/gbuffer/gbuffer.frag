@@ -16,7 +16,19 @@ uniform uint objectIndex; // GpuScene::DrawMesh::objectIndex, one per draw
 uniform uint meshIndex; // the mesh's index in the scene, one per draw
 #endif
 #if defined(OUT_TRIANGLE_ID) || defined(OUT_BARYCENTRIC)
-uniform uint firstTriangle; // the global index of the mesh's first triangle (the meshes before it, in scene order)
+uniform uint firstTriangle; // the global index of the mesh's first triangle (GpuScene::TriangleIdMap)
+// Where the loader dropped some of the mesh's triangles, each drawn triangle's index among the file's
+// (Mesh::fileTriangles) from fileTriangle[fileTrianglesAt] on; 0xffffffff where it dropped none.
+uniform uint fileTrianglesAt;
+layout(std430, binding = FILE_TRIANGLES_BINDING) readonly buffer FileTriangles { uint fileTriangle[]; };
+
+// The drawn triangle's id: its global index (scene/MeshLabels.h TriangleNumbering) + 1. Exact in float32 below 2^24
+// triangles (the renderer warns above).
+float triangleId() {
+    uint drawn = uint(gl_PrimitiveID); // the draw's triangles in index order
+    return float(firstTriangle + (fileTrianglesAt == 0xffffffffu ? drawn : fileTriangle[fileTrianglesAt + drawn]) +
+                 1u);
+}
 #endif
 #ifdef OUT_BARYCENTRIC
 in vec3 barycentricWeights; // gbuffer.geom: each corner's unit weight, interpolated perspective-correctly
@@ -130,9 +142,7 @@ void main() {
     outMeshId = float(meshIndex + 1u);
 #endif
 #ifdef OUT_TRIANGLE_ID
-    // gl_PrimitiveID numbers the draw's triangles in index order; exact in float32 below 2^24 triangles (the renderer
-    // warns above).
-    outTriangleId = float(firstTriangle + uint(gl_PrimitiveID) + 1u);
+    outTriangleId = triangleId();
 #endif
 #ifdef OUT_BARYCENTRIC
     // The sample lies inside its triangle, so its weights are in [0, 1] and sum to 1: clamping and renormalising
@@ -141,8 +151,7 @@ void main() {
     // Alpha: the id (global index + 1) of the triangle these weights are of, from this same draw, so a pixel's weights
     // and their triangle always go together (the triangleId field comes from another draw, which where two surfaces
     // lie within depth rounding of each other can keep the other one).
-    outBarycentric = vec4(weights / max(weights.x + weights.y + weights.z, 1e-30),
-                          float(firstTriangle + uint(gl_PrimitiveID) + 1u));
+    outBarycentric = vec4(weights / max(weights.x + weights.y + weights.z, 1e-30), triangleId());
 #endif
 #ifdef OUT_RADIAL
     // DeCarlo's unnormalised view vector v = c - p (c is the view-space origin). J v = 0 (moving along the eye ray

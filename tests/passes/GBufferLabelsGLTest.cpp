@@ -1,11 +1,13 @@
 // The G-buffer's per-pixel labels (issue 37): triangleId, meshId and barycentric, against a brute-force ray cast
 // through every pixel centre on the CPU (double precision, every triangle of both meshes). The scene is a UV sphere
-// with a cube in front of it, seen obliquely, so the cube hides part of the sphere and both show many triangles.
-// Needs a GL context (llvmpipe in CI).
+// with a cube in front of it, seen obliquely, so the cube hides part of the sphere and both show many triangles; and
+// the same as an OBJ file with triangles the loader drops (zero-area, back to back), whose ids must still name the
+// file's triangles. Needs a GL context (llvmpipe in CI).
 #include "gl/GraphExecutor.h"
 #include "graph/GraphCompiler.h"
 #include "passes/GpuScene.h"
 #include "passes/gbuffer/GBufferPass.h"
+#include "scene/MeshLabels.h"
 #include "scene/mesh/Procedural.h"
 #include "tests/support/GlTestContext.h"
 #include "tests/support/PassHarness.h"
@@ -16,9 +18,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <optional>
 #include <vector>
+
+#include <unistd.h>
 
 namespace inkgraph::gbuffer_labels_gl_test {
 namespace {
@@ -33,6 +40,12 @@ struct RayHit {
     glm::dvec3 point{0.0};      ///< world point
 };
 
+/** A mesh's triangles as the ids are to name them: the file's, in its order (in the scene's frame). */
+struct TruthMesh {
+    std::vector<glm::dvec3> positions;
+    std::vector<glm::uvec3> triangles;
+};
+
 class GBufferLabels : public ::testing::Test, protected test::PassHarness {
 protected:
     void SetUp() override {
@@ -40,10 +53,21 @@ protected:
         scene = makeScene(makeUvSphere({0.0f, 0.0f, 0.0f}, 1.0f, 48, 24));
         // In front of the sphere toward the eye, clear of it (its back face at z = 1.15 > the radius).
         scene.meshes.push_back(makeCube({0.35f, -0.25f, 1.6f}, 0.45f));
+        std::vector<TruthMesh> asBuilt;
+        for (const Mesh& mesh : scene.meshes)
+            asBuilt.push_back({std::vector<glm::dvec3>(mesh.positions.begin(), mesh.positions.end()), mesh.triangles});
+        useTruth(std::move(asBuilt));
+    }
+
+    /** The triangles the ids must name, and the camera on the scene. */
+    void useTruth(std::vector<TruthMesh> meshes) {
+        truth = std::move(meshes);
         frame.camera =
             test::lookingAt(scene, glm::dvec3(2.2, 1.6, 4.8), glm::dvec3(0.0, 0.0, 0.4), kFovDegrees, kSize, kSize);
         frame.worldOrigin = glm::dvec3(0.0);
-        for (const Mesh& mesh : scene.meshes) {
+        firstTriangle.clear();
+        triangleCount = 0;
+        for (const TruthMesh& mesh : truth) {
             firstTriangle.push_back(triangleCount);
             triangleCount += mesh.triangles.size();
         }
@@ -74,14 +98,14 @@ protected:
         const auto [origin, direction] = rayThrough(col, row);
         std::optional<RayHit> nearest;
         double nearestT = std::numeric_limits<double>::infinity();
-        for (std::size_t meshIndex = 0; meshIndex < scene.meshes.size(); ++meshIndex) {
-            const Mesh& mesh = scene.meshes[meshIndex];
+        for (std::size_t meshIndex = 0; meshIndex < truth.size(); ++meshIndex) {
+            const TruthMesh& mesh = truth[meshIndex];
             for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
                 const std::array<glm::dvec3, 3> p = corners(meshIndex, index);
                 const glm::dvec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
                 const glm::dvec3 pvec = glm::cross(direction, e2);
                 const double det = glm::dot(e1, pvec);
-                if (std::abs(det) < 1e-300) continue;
+                if (std::abs(det) < 1e-300) continue; // parallel, or a zero-area triangle: no ray meets it
                 const glm::dvec3 tvec = origin - p[0];
                 const double u = glm::dot(tvec, pvec) / det;
                 if (u < 0.0 || u > 1.0) continue;
@@ -89,7 +113,7 @@ protected:
                 const double v = glm::dot(direction, qvec) / det;
                 if (v < 0.0 || u + v > 1.0) continue;
                 const double t = glm::dot(e2, qvec) / det;
-                if (t <= 0.0 || t >= nearestT) continue;
+                if (t <= 0.0 || t >= nearestT) continue; // of two back to back, the earlier: the one kept
                 nearestT = t;
                 nearest = RayHit{std::uint32_t(firstTriangle[meshIndex] + index + 1), std::uint32_t(meshIndex + 1),
                                  origin + t * direction};
@@ -98,17 +122,16 @@ protected:
         return nearest;
     }
 
-    /** The world corners of triangle `index` of mesh `meshIndex`, in index order. */
+    /** The corners of the file's triangle `index` of mesh `meshIndex`, in index order. */
     std::array<glm::dvec3, 3> corners(std::size_t meshIndex, std::size_t index) const {
-        const Mesh& mesh = scene.meshes[meshIndex];
+        const TruthMesh& mesh = truth[meshIndex];
         const glm::uvec3 triangle = mesh.triangles[index];
-        return {glm::dvec3(mesh.positions[triangle.x]), glm::dvec3(mesh.positions[triangle.y]),
-                glm::dvec3(mesh.positions[triangle.z])};
+        return {mesh.positions[triangle.x], mesh.positions[triangle.y], mesh.positions[triangle.z]};
     }
 
     /** The corners of the triangle with global id `id` (index + 1). */
     std::array<glm::dvec3, 3> cornersOfId(std::uint32_t id) const {
-        std::size_t meshIndex = scene.meshes.size() - 1;
+        std::size_t meshIndex = truth.size() - 1;
         while (firstTriangle[meshIndex] >= id) --meshIndex;
         return corners(meshIndex, id - 1 - firstTriangle[meshIndex]);
     }
@@ -132,7 +155,13 @@ protected:
         return best;
     }
 
+    /** Renders the ids and checks them against a ray cast through every pixel centre. */
+    void expectIdsMatchTheRayCast();
+    /** Renders the barycentrics and checks the points they give against the ray cast's. */
+    void expectBarycentricsGiveTheRaysPoints();
+
     std::unique_ptr<GBufferPass> pass;
+    std::vector<TruthMesh> truth;
     std::vector<std::size_t> firstTriangle; ///< per mesh: the global index of its first triangle
     std::size_t triangleCount = 0;
 };
@@ -150,7 +179,7 @@ bool awayFromSilhouette(const std::vector<std::optional<RayHit>>& hits, int col,
     return true;
 }
 
-TEST_F(GBufferLabels, TriangleAndMeshIdsMatchARayCastThroughEveryPixelCentre) {
+void GBufferLabels::expectIdsMatchTheRayCast() {
     const Plan plan = render({"gbuffer.triangleId", "gbuffer.meshId", "gbuffer.coverage"});
     EXPECT_EQ(plan.findResource("gbuffer.triangleId")->desc.format, Format::R32F) << "exact below 2^24 triangles";
     EXPECT_EQ(plan.findResource("gbuffer.meshId")->desc.format, Format::R32F);
@@ -217,7 +246,9 @@ TEST_F(GBufferLabels, TriangleAndMeshIdsMatchARayCastThroughEveryPixelCentre) {
     RecordProperty("worst_edge_distance_px", std::to_string(worstEdgeDistance));
 }
 
-TEST_F(GBufferLabels, BarycentricWeightsReconstructTheRaysHitPoint) {
+TEST_F(GBufferLabels, TriangleAndMeshIdsMatchARayCastThroughEveryPixelCentre) { expectIdsMatchTheRayCast(); }
+
+void GBufferLabels::expectBarycentricsGiveTheRaysPoints() {
     const Plan plan = render({"gbuffer.barycentric", "gbuffer.triangleId", "gbuffer.coverage"});
     EXPECT_EQ(plan.findResource("gbuffer.barycentric")->desc.format, Format::RGBA32F);
     const cv::Mat weights = executor.store().image("gbuffer.barycentric");
@@ -269,6 +300,72 @@ TEST_F(GBufferLabels, BarycentricWeightsReconstructTheRaysHitPoint) {
     RecordProperty("worst_point_error_relative", std::to_string(worstPointError / modelSize));
     RecordProperty("worst_weight_outside", std::to_string(worstOutside));
     RecordProperty("worst_sum_error", std::to_string(worstSumError));
+}
+
+TEST_F(GBufferLabels, BarycentricWeightsReconstructTheRaysHitPoint) { expectBarycentricsGiveTheRaysPoints(); }
+
+/** Writes `meshes` (positions in the file's frame) as an OBJ of one object per mesh, every coordinate float-exact. */
+void writeObj(const std::filesystem::path& path, const std::vector<TruthMesh>& meshes) {
+    std::ofstream file(path);
+    std::size_t firstVertex = 1;
+    for (std::size_t index = 0; index < meshes.size(); ++index) {
+        file << "o part" << index << "\n";
+        char line[128];
+        for (const glm::dvec3& position : meshes[index].positions) {
+            std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", position.x, position.y, position.z);
+            file << line;
+        }
+        for (const glm::uvec3& triangle : meshes[index].triangles)
+            file << "f " << firstVertex + triangle.x << ' ' << firstVertex + triangle.y << ' '
+                 << firstVertex + triangle.z << "\n";
+        firstVertex += meshes[index].positions.size();
+    }
+}
+
+TEST_F(GBufferLabels, IdsNameTheFilesTrianglesWhereTheLoaderDropsSome) {
+    // The fixture's sphere and cube as a file with triangles the loader drops in both: a triangle with a repeated
+    // corner, one whose corner is a second vertex at another's position (the weld collapses it), and a face's back-to-
+    // back twin (the default material is two-sided), in the middle and at each end. The ids must still be the file's
+    // triangle numbers, not the loaded mesh's.
+    std::vector<TruthMesh> file = truth;
+    TruthMesh& sphere = file[0];
+    const std::uint32_t copyOfFirst = std::uint32_t(sphere.positions.size());
+    sphere.positions.push_back(sphere.positions[sphere.triangles[40].x]);
+    const glm::uvec3 twinOf = sphere.triangles[99];
+    sphere.triangles.insert(sphere.triangles.begin() + 300, {twinOf.x, twinOf.z, twinOf.y});
+    sphere.triangles.insert(sphere.triangles.begin() + 41,
+                            {sphere.triangles[40].x, sphere.triangles[40].y, copyOfFirst});
+    sphere.triangles.insert(sphere.triangles.begin(),
+                            {sphere.triangles[7].x, sphere.triangles[7].x, sphere.triangles[7].y});
+    TruthMesh& cube = file[1];
+    cube.triangles.insert(cube.triangles.begin() + 5, {cube.triangles[5].y, cube.triangles[5].y, cube.triangles[5].z});
+    const glm::uvec3 lastFace = cube.triangles.back();
+    cube.triangles.push_back({lastFace.y, lastFace.x, lastFace.z});
+    const std::filesystem::path path =
+        std::filesystem::path(::testing::TempDir()) / ("gbuffer-labels-" + std::to_string(::getpid()) + ".obj");
+    writeObj(path, file);
+    scene = loadScene(path.string());
+    std::filesystem::remove(path);
+    ASSERT_EQ(scene.meshes.size(), 2u);
+    EXPECT_EQ(scene.report.degenerateDropped, 3u);
+    EXPECT_EQ(scene.report.backToBackDropped, 2u);
+    EXPECT_EQ(scene.meshes[0].triangleCount() + 3, sphere.triangles.size());
+    EXPECT_EQ(scene.meshes[1].triangleCount() + 2, cube.triangles.size());
+    // The ids the labels give the meshes cover the file's triangles.
+    const SceneLabels labels = sceneLabels(scene);
+    EXPECT_EQ(labels.meshes[0].triangleCount, sphere.triangles.size());
+    EXPECT_EQ(labels.meshes[1].firstTriangle, sphere.triangles.size());
+    EXPECT_EQ(labels.meshes[1].triangleCount, cube.triangles.size());
+    // The loaded positions are relative to the model's centre (Scene::origin).
+    for (TruthMesh& mesh : file)
+        for (glm::dvec3& position : mesh.positions) position = glm::dvec3(glm::vec3(position - scene.origin));
+    useTruth(std::move(file));
+    {
+        SCOPED_TRACE("triangle and mesh ids");
+        expectIdsMatchTheRayCast();
+    }
+    SCOPED_TRACE("barycentrics");
+    expectBarycentricsGiveTheRaysPoints();
 }
 
 } // namespace

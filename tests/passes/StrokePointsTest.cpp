@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include <numeric>
+
 namespace inkgraph {
 namespace {
 
@@ -35,6 +37,17 @@ cv::Vec4f viewPointAt(const Camera& camera, double col, double row, double depth
     const glm::dmat3 K = camera.openCvIntrinsics();
     return {float((col - K[2][0]) / K[0][0] * depth), float(-(row - K[2][1]) / K[1][1] * depth), float(-depth),
             triangleId};
+}
+
+/** A scene of meshes with these numbers of triangles (indices only: the numbering reads nothing else). */
+Scene sceneOfTriangleCounts(const std::vector<std::size_t>& counts) {
+    Scene scene;
+    for (const std::size_t count : counts) {
+        Mesh mesh;
+        mesh.triangles.assign(count, glm::uvec3(0, 1, 2));
+        scene.meshes.push_back(std::move(mesh));
+    }
+    return scene;
 }
 
 Stroke strokeOf(int layer, const std::vector<cv::Point2f>& positions, const std::vector<cv::Point>& pixels) {
@@ -101,7 +114,14 @@ TEST(StrokePointsTest, TriangleIdsNameTheTriangleAndItsMesh) {
     setup.triangleIds = cv::Mat(24, 32, CV_32FC1, cv::Scalar(0.0f));
     setup.triangleIds.at<float>(5, 5) = 1500.0f + 1.0f; // global triangle 1500 (id = index + 1)
     setup.camera = &camera;
-    setup.meshTriangleOffsets = {0, 1000, 2000}; // 1500 lies in the second mesh
+    // The file gave the first mesh 1000 triangles, of which the loader dropped one: its numbers still end at 999, so
+    // 1500 lies in the second mesh.
+    Scene scene = sceneOfTriangleCounts({999, 1000, 5});
+    scene.meshes[0].fileTriangleCount = 1000;
+    scene.meshes[0].fileTriangles.resize(999);
+    std::iota(scene.meshes[0].fileTriangles.begin(), scene.meshes[0].fileTriangles.end(), 1u);
+    const TriangleNumbering numbering(scene);
+    setup.numbering = &numbering;
     const StrokePointRecord point = strokeRecords(setup).at(0).points.at(0);
     EXPECT_EQ(point.triangle, 1500);
     EXPECT_EQ(point.mesh, 2);
@@ -137,7 +157,12 @@ TEST(StrokePointsTest, ObjectSpaceAndMeshEdgePointsAreTheirOwn3DPoints) {
     setup.inputs = {object, edges};
     setup.depth = cv::Mat(24, 32, CV_32FC1, cv::Scalar(0.0f));
     setup.camera = &camera;
-    setup.meshTriangleOffsets = {0, 100};
+    // The file gave mesh 1 eleven triangles, of which the loader dropped 2 and 5: its triangle 7 is the file's 9.
+    Scene scene = sceneOfTriangleCounts({100, 9});
+    scene.meshes[1].fileTriangles = {0, 1, 3, 4, 6, 7, 8, 9, 10};
+    scene.meshes[1].fileTriangleCount = 11;
+    const TriangleNumbering numbering(scene);
+    setup.numbering = &numbering;
     const std::vector<StrokeRecord> records = strokeRecords(setup);
     ASSERT_EQ(records.size(), 2u);
     EXPECT_FALSE(records[0].visible);
@@ -146,7 +171,8 @@ TEST(StrokePointsTest, ObjectSpaceAndMeshEdgePointsAreTheirOwn3DPoints) {
     EXPECT_NEAR(world.x, 100.2, 1e-4); // the local point plus the origin
     EXPECT_NEAR(world.y, -19.8, 1e-4);
     EXPECT_NEAR(world.z, 5.3, 1e-4);
-    EXPECT_EQ(records[0].points[0].triangle, 107); // mesh 1's triangle 7, after mesh 0's 100
+    EXPECT_EQ(records[0].points[0].triangle, 109); // mesh 1's triangle 7 (the file's 9), after mesh 0's 100
+    EXPECT_EQ(records[0].points[1].triangle, 110); // its 8 (the file's 10)
     EXPECT_EQ(records[0].points[1].mesh, 2);
     // The crease: the image's view positions back in the world, the bridge halfway between them.
     const glm::dmat4 worldFromView = glm::inverse(camera.worldViewMatrix());
@@ -183,7 +209,9 @@ TEST(StrokePointsTest, APointTheStrokeStagePlacedTwiceIsWrittenOnce) {
     setup.inputs = {object};
     setup.depth = cv::Mat(24, 32, CV_32FC1, cv::Scalar(0.0f));
     setup.camera = &camera;
-    setup.meshTriangleOffsets = {0};
+    const Scene scene = sceneOfTriangleCounts({9});
+    const TriangleNumbering numbering(scene);
+    setup.numbering = &numbering;
     const std::vector<StrokeRecord> records = strokeRecords(setup);
     ASSERT_EQ(records.size(), 1u);
     const std::vector<StrokePointRecord>& points = records[0].points;

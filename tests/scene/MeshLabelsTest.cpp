@@ -42,7 +42,7 @@ TEST(MeshLabels, MeshesCountTheirTrianglesInOrderAndNameTheirMaterials) {
         EXPECT_EQ(mesh.triangleCount, scene.meshes[index].triangles.size());
         EXPECT_EQ(mesh.objectId, objects[index]);
         EXPECT_EQ(mesh.materialId, materials[index]);
-        EXPECT_EQ(globalTriangleIndex(scene, index, 0), first[index]);
+        EXPECT_EQ(TriangleNumbering(scene).global(index, 0), first[index]);
     }
     ASSERT_EQ(labels.materials.size(), 3u);
     EXPECT_EQ(labels.materials[0].id, 1u);
@@ -51,7 +51,43 @@ TEST(MeshLabels, MeshesCountTheirTrianglesInOrderAndNameTheirMaterials) {
     EXPECT_EQ(labels.materials[2].id, 3u);
     EXPECT_EQ(labels.materials[2].name, "") << "an unnamed material keeps no name";
     // The last triangle of the last mesh is the scene's last: 3 + 5 + 2 + 4 = 14 triangles.
-    EXPECT_EQ(globalTriangleIndex(scene, 3, 3), 13u);
+    EXPECT_EQ(TriangleNumbering(scene).global(3, 3), 13u);
+    EXPECT_EQ(TriangleNumbering(scene).total(), 14u);
+}
+
+TEST(MeshLabels, TrianglesTheLoaderDroppedKeepTheirNumbersUnused) {
+    Scene scene;
+    // The file gave "first" 5 triangles, of which the loader dropped 1 and 3; "second" 4, of which it dropped the
+    // last; "third" 2 and dropped none.
+    scene.meshes = {meshOf("first", {"a"}, 3, "m"), meshOf("second", {"b"}, 3, "m"), meshOf("third", {"c"}, 2, "m")};
+    scene.meshes[0].fileTriangles = {0, 2, 4};
+    scene.meshes[0].fileTriangleCount = 5;
+    scene.meshes[1].fileTriangles = {0, 1, 2};
+    scene.meshes[1].fileTriangleCount = 4;
+    const SceneLabels labels = sceneLabels(scene);
+    EXPECT_EQ(labels.meshes[0].triangleCount, 5u);
+    EXPECT_EQ(labels.meshes[1].firstTriangle, 5u);
+    EXPECT_EQ(labels.meshes[1].triangleCount, 4u);
+    EXPECT_EQ(labels.meshes[2].firstTriangle, 9u);
+    const TriangleNumbering numbering(scene);
+    EXPECT_EQ(numbering.total(), 11u);
+    const std::vector<std::size_t> global = {numbering.global(0, 0), numbering.global(0, 1), numbering.global(0, 2),
+                                             numbering.global(1, 2), numbering.global(2, 0), numbering.global(2, 1)};
+    EXPECT_EQ(global, (std::vector<std::size_t>{0, 2, 4, 7, 9, 10}));
+    // Back from a number: a kept triangle's, a dropped one's (its mesh known, no triangle), one beyond the scene.
+    for (std::size_t mesh = 0; mesh < 3; ++mesh)
+        for (std::size_t triangle = 0; triangle < scene.meshes[mesh].triangleCount(); ++triangle) {
+            const auto back = numbering.loaded(numbering.global(mesh, triangle));
+            ASSERT_TRUE(back);
+            EXPECT_EQ(back->mesh, mesh);
+            EXPECT_EQ(back->triangle, triangle);
+        }
+    for (const std::size_t dropped : {1u, 3u, 8u}) {
+        EXPECT_FALSE(numbering.loaded(dropped)) << dropped;
+        EXPECT_EQ(numbering.meshOf(dropped), dropped < 5 ? 0u : 1u) << dropped;
+    }
+    EXPECT_FALSE(numbering.loaded(11));
+    EXPECT_FALSE(numbering.meshOf(11));
 }
 
 TEST(MeshLabels, AnEmptySceneHasNoLabelsAndBadIndicesAreRefused) {
@@ -60,13 +96,16 @@ TEST(MeshLabels, AnEmptySceneHasNoLabelsAndBadIndicesAreRefused) {
     EXPECT_TRUE(none.materials.empty());
     Scene scene;
     scene.meshes = {meshOf("only", {}, 2, "m")};
+    const TriangleNumbering numbering(scene);
     try {
-        globalTriangleIndex(scene, 0, 2);
+        numbering.global(0, 2);
         FAIL() << "no triangle 2";
     } catch (const std::out_of_range& error) {
-        EXPECT_STREQ(error.what(), "globalTriangleIndex(): triangle 2 of mesh 0, which has 2");
+        EXPECT_STREQ(error.what(), "TriangleNumbering::global(): triangle 2 of mesh 0, which has 2");
     }
-    EXPECT_THROW(globalTriangleIndex(scene, 1, 0), std::out_of_range);
+    EXPECT_THROW(numbering.global(1, 0), std::out_of_range);
+    EXPECT_EQ(TriangleNumbering(Scene{}).total(), 0u);
+    EXPECT_FALSE(TriangleNumbering(Scene{}).meshOf(0));
 }
 
 TEST(MeshLabels, TriangleIdsBeyondFloat32sExactIntegersAreWarnedAbout) {

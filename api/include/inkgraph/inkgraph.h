@@ -199,8 +199,10 @@ struct SceneMesh {
     std::uint32_t objectId = 0;        ///< its object's value in the "objectId" buffer (Scene::objects())
     std::uint32_t materialId = 0;      ///< its material's value in the "materialId" buffer
     std::string material;              ///< its material's name ("" for an unnamed one)
-    std::uint64_t firstTriangle = 0;   ///< how many triangles the meshes before it have
-    std::uint64_t triangleCount = 0;   ///< its triangles are "triangleId" firstTriangle + 1 ... firstTriangle + count
+    std::uint64_t firstTriangle = 0;   ///< how many triangles the files give the meshes before it
+    /** Its triangles are "triangleId" firstTriangle + 1 ... firstTriangle + count: as many as its file gives it, the
+     *  ones the loader dropped (zero-area, back-to-back twins) included, whose ids appear nowhere. */
+    std::uint64_t triangleCount = 0;
 };
 
 /** A model loaded once (OBJ with MTL, glTF/GLB, VRM, STL, PLY, or arrays): render it with any number of looks and
@@ -224,7 +226,7 @@ public:
     /** Its objects, by id from 1: what the "objectId" buffer's values (and the object-boundary lines) tell apart. */
     std::vector<SceneObject> objects() const;
     /** Its meshes, by id from 1 (the "meshId" buffer's values), each with its range of "triangleId" values: triangles
-     *  are numbered over the meshes in this order, each mesh's in its index order, from 1. */
+     *  are numbered over the meshes in this order, each mesh's as its file gives them, from 1. */
     std::vector<SceneMesh> meshes() const;
 
     /** A scene is a shared, unchanging handle. Only copying is declared, so a move copies too and leaves the source a
