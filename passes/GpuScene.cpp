@@ -109,9 +109,19 @@ const GpuScene::TriangleIdMap& GpuScene::triangleIdMap() {
     for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
         const Mesh& mesh = mScene.meshes[index];
         firstTriangle.push_back(std::uint32_t(numbering.firstOfMesh(index)));
-        fileTrianglesAt.push_back(mesh.fileTriangles.empty() ? TriangleIdMap::kAsDrawn
-                                                             : std::uint32_t(fileTriangles.size()));
-        fileTriangles.insert(fileTriangles.end(), mesh.fileTriangles.begin(), mesh.fileTriangles.end());
+        if (mesh.fileTriangles.empty() && mesh.cornersSwapped.empty()) {
+            fileTrianglesAt.push_back(TriangleIdMap::kAsDrawn);
+            continue;
+        }
+        if (mesh.numberedTriangleCount() >= TriangleIdMap::kCornersSwapped)
+            throw std::invalid_argument("GpuScene::triangleIdMap(): mesh '" + mesh.name + "' has " +
+                                        std::to_string(mesh.numberedTriangleCount()) +
+                                        " triangles, more than its ids can hold");
+        fileTrianglesAt.push_back(std::uint32_t(fileTriangles.size()));
+        for (std::size_t triangle = 0; triangle < mesh.triangleCount(); ++triangle)
+            fileTriangles.push_back(
+                std::uint32_t(mesh.fileTriangleOf(triangle)) |
+                (!mesh.cornersSwapped.empty() && mesh.cornersSwapped[triangle] ? TriangleIdMap::kCornersSwapped : 0u));
     }
     // A shader's storage block is bound to a buffer even where no mesh reads it.
     if (fileTriangles.empty()) fileTriangles.push_back(0);

@@ -128,16 +128,22 @@ public:
     /** SceneDerivedData::surfacesMeet(): whether surfacePatches() can tell surfaces apart that the depth cannot. */
     bool surfacesMeet() { return mDerived->surfacesMeet(); }
 
-    /** What the G-buffer's triangle id draws add to gl_PrimitiveID (a mesh's drawn triangle) to give the triangle
-     *  id (scene/MeshLabels.h TriangleNumbering, which counts the triangles the loader dropped too). */
+    /** What the G-buffer's triangle id and barycentric draws make of gl_PrimitiveID (a mesh's drawn triangle): the
+     *  triangle id (scene/MeshLabels.h TriangleNumbering, which counts the triangles the loader dropped too) and
+     *  whether its corners are swapped from the file's (Mesh::cornersSwapped). */
     struct TriangleIdMap {
-        static constexpr std::uint32_t kAsDrawn = 0xffffffffu; ///< a mesh whose drawn triangles are the file's
-        std::vector<std::uint32_t> firstTriangle;              ///< per mesh the global index of its first
-        /** Per mesh where its Mesh::fileTriangles start in `fileTriangles`, or kAsDrawn where it has none. */
+        /** A mesh whose drawn triangles are the file's, in order, none with swapped corners. */
+        static constexpr std::uint32_t kAsDrawn = 0xffffffffu;
+        static constexpr std::uint32_t kCornersSwapped = 0x80000000u; ///< the flag bit of a fileTriangles entry
+        std::vector<std::uint32_t> firstTriangle;                     ///< per mesh the global index of its first
+        /** Per mesh where its entries start in `fileTriangles`, or kAsDrawn where it needs none. */
         std::vector<std::uint32_t> fileTrianglesAt;
-        GlBuffer fileTriangles; ///< every mesh's Mesh::fileTriangles, one after another (a single 0 when none has)
+        /** Per drawn triangle of those meshes its index among the file's (Mesh::fileTriangleOf()), with
+         *  kCornersSwapped set where Mesh::cornersSwapped is; a single 0 when no mesh needs any. */
+        GlBuffer fileTriangles;
     };
-    /** Made on the first call (only a G-buffer draw of triangle ids or barycentrics asks). */
+    /** Made on the first call (only a G-buffer draw of triangle ids or barycentrics asks). Throws
+     *  std::invalid_argument for a mesh of 2^31 triangles or more, whose indices the flag bit would take. */
     const TriangleIdMap& triangleIdMap();
 
     std::size_t meshCount() const { return mScene.meshes.size(); }

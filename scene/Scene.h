@@ -67,6 +67,10 @@ struct Mesh {
     /** How many triangles the file gave it, the dropped ones included; 0 (a mesh made in code) reads as
      *  triangles.size(). */
     std::size_t fileTriangleCount = 0;
+    /** Per triangle, 1 where its 2nd and 3rd corners are the file's 3rd and 2nd (the loader swapped them to keep the
+     *  front outward: a glTF node's mirroring transform, a closed surface wound inside out); empty when none is. The
+     *  G-buffer's barycentric weights swap them back, so they are the file's corners' weights. */
+    std::vector<std::uint8_t> cornersSwapped;
 
     std::size_t triangleCount() const { return triangles.size(); }
     /** How many triangle ids the mesh's triangles take: the file's triangles, the dropped ones included. */

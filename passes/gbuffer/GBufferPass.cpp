@@ -60,7 +60,7 @@ const std::vector<GBufferPass::Field>& GBufferPass::fields() {
          "the model"},
         {"barycentric", Format::RGBA32F, "BARYCENTRIC", "barycentric.exr", Appearance::Data,
          "the visible point's perspective-correct barycentric weights in its triangle (rgb: the weights of its 1st, "
-         "2nd and 3rd corner in index order, summing to 1); alpha the id of the triangle the weights are of (its "
+         "2nd and 3rd corner in the file's order, summing to 1); alpha the id of the triangle the weights are of (its "
          "global index + 1, as triangleId has it, from the same draw), all 0 off the model"},
     };
     return kFields;

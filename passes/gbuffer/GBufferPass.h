@@ -23,7 +23,7 @@
  *  |                    |         |          | GpuScene::triangleIdMap()), exact up to 2^24 triangles (the       |
  *  |                    |         |          | renderer warns above), 0 off-model                                |
  *  | gbuffer.barycentric| rgba32f | optional | perspective-correct barycentric weights of the visible point in   |
- *  |                    |         |          | its triangle's corners (index order), a = coverage, 0 off-model   |
+ *  |                    |         |          | its triangle's corners (the file's order), a = its id, 0 off-model|
  *  | gbuffer.zBuffer    | depth32f| optional | the depth test's own buffer: window depth of the nearest drawn    |
  *  |                    |         |          | face, reversed-Z (gl/GlObjects.h), far plane 0 off-model          |
  *

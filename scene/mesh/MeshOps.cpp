@@ -671,6 +671,9 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     if (!raw.colors.empty() && raw.colors.size() != raw.positions.size()) {
         throw std::logic_error("finalizeMesh(): colours must be empty or one per position");
     }
+    if (!raw.cornersSwapped.empty() && raw.cornersSwapped.size() != raw.triangles.size()) {
+        throw std::logic_error("finalizeMesh(): swapped corners must be empty or one per triangle");
+    }
     dropTexturesWithoutCoordinates(raw, report);
     // A texture seam or a colour border keeps its split vertices: only vertices with exactly equal attributes weld.
     const std::vector<std::uint32_t> attributeClasses = vertexAttributeClasses(raw);
@@ -723,6 +726,7 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     // Each kept triangle's index among the file's, so triangle ids can name the file's triangles (Mesh::fileTriangles).
     const std::size_t fileTriangleCount = triangles.size();
     std::vector<std::uint32_t> fileTriangles;
+    std::vector<std::uint8_t> cornersSwapped = std::move(raw.cornersSwapped);
     const auto drop = [&](std::span<const std::uint32_t> ascending) {
         if (ascending.empty()) return;
         if (fileTriangles.empty()) {
@@ -731,6 +735,7 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         }
         removeTriangles(triangles, ascending);
         removeTriangles(fileTriangles, ascending);
+        if (!cornersSwapped.empty()) removeTriangles(cornersSwapped, ascending);
     };
     const std::vector<std::uint32_t> degenerate =
         degenerateTriangles(positions, triangles, kDegenerateAreaRelative * modelDiagonal * modelDiagonal);
@@ -776,6 +781,7 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     mesh.nodeInstance = raw.nodeInstance;
     mesh.fileTriangles = std::move(fileTriangles);
     mesh.fileTriangleCount = fileTriangleCount;
+    mesh.cornersSwapped = std::move(cornersSwapped);
     const bool noAttributes = raw.texcoords[0].empty() && raw.texcoords[1].empty() && raw.colors.empty();
     if (keptAll && noAttributes &&
         std::find(compactIndex.begin(), compactIndex.end(), kNoVertex) == compactIndex.end()) {
@@ -812,6 +818,12 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     if (mesh.material.doubleSided) {
         const OutwardTurn turn =
             orientMeshOutward(mesh.positions, mesh.triangles, mesh.normals, options.weldTolerance * modelDiagonal);
+        if (!turn.turnedTriangles.empty() && mesh.cornersSwapped.empty())
+            mesh.cornersSwapped.resize(mesh.triangles.size(), 0);
+        for (const std::uint32_t triangle : turn.turnedTriangles) mesh.cornersSwapped[triangle] ^= 1;
+        // A mirrored surface turned back outward has the file's corners again.
+        if (std::find(mesh.cornersSwapped.begin(), mesh.cornersSwapped.end(), 1) == mesh.cornersSwapped.end())
+            mesh.cornersSwapped.clear();
         if (turn.windingReversed)
             report.warnings.push_back(makeWarning(WarningKind::MeshInsideOut,
                                                   "mesh '" + detail::excerptForMessage(mesh.name) +

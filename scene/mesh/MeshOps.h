@@ -134,6 +134,9 @@ struct RawMesh {
     std::vector<glm::uvec3> triangles;
     std::vector<glm::vec2> texcoords[2]; ///< as Mesh::texcoords: empty or one per position
     std::vector<glm::vec4> colors;       ///< as Mesh::colors: empty or one per position
+    /** Per triangle, 1 where the reader swapped its 2nd and 3rd corners (a mirroring node transform keeps its front
+     *  outward so); empty when it swapped none. As Mesh::cornersSwapped. */
+    std::vector<std::uint8_t> cornersSwapped;
     Material material;
     std::vector<std::string> nodePath; ///< as Mesh::nodePath
     std::size_t nodeInstance = 0;      ///< as Mesh::nodeInstance

@@ -95,6 +95,7 @@ OutwardTurn orientMeshOutward(std::span<const glm::vec3> positions, std::vector<
         std::swap(triangles[face].y, triangles[face].z);
         turned[face] = true;
         turn.windingReversed = true;
+        turn.turnedTriangles.push_back(std::uint32_t(face));
     }
     if (!turn.windingReversed || normals.empty()) return turn;
     // Given normals that point against the turned faces (the sum over their corners of n . (b - a) x (c - a) is

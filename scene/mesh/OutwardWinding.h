@@ -16,6 +16,7 @@ namespace inkgraph {
 struct OutwardTurn {
     bool windingReversed = false; ///< every triangle's winding reversed: the mesh was closed and inside out
     bool normalsFlipped = false;  ///< the given normals pointed inward as well and were turned round
+    std::vector<std::uint32_t> turnedTriangles; ///< the triangles whose last two corners swapped, ascending
 };
 
 /** Turns the closed surfaces of a mesh that are wound inside out outward. Each connected surface (the triangles

@@ -17,17 +17,22 @@ uniform uint meshIndex; // the mesh's index in the scene, one per draw
 #endif
 #if defined(OUT_TRIANGLE_ID) || defined(OUT_BARYCENTRIC)
 uniform uint firstTriangle; // the global index of the mesh's first triangle (GpuScene::TriangleIdMap)
-// Where the loader dropped some of the mesh's triangles, each drawn triangle's index among the file's
-// (Mesh::fileTriangles) from fileTriangle[fileTrianglesAt] on; 0xffffffff where it dropped none.
+// Where the loader dropped some of the mesh's triangles or swapped some triangles' corners, from
+// fileTriangle[fileTrianglesAt] on each drawn triangle's index among the file's, its top bit set where its 2nd and
+// 3rd corners are the file's 3rd and 2nd; 0xffffffff where it did neither.
 uniform uint fileTrianglesAt;
 layout(std430, binding = FILE_TRIANGLES_BINDING) readonly buffer FileTriangles { uint fileTriangle[]; };
+
+// The drawn triangle's entry: its index among the mesh's file triangles, and the swapped-corners bit.
+uint fileTriangleEntry() {
+    uint drawn = uint(gl_PrimitiveID); // the draw's triangles in index order
+    return fileTrianglesAt == 0xffffffffu ? drawn : fileTriangle[fileTrianglesAt + drawn];
+}
 
 // The drawn triangle's id: its global index (scene/MeshLabels.h TriangleNumbering) + 1. Exact in float32 below 2^24
 // triangles (the renderer warns above).
 float triangleId() {
-    uint drawn = uint(gl_PrimitiveID); // the draw's triangles in index order
-    return float(firstTriangle + (fileTrianglesAt == 0xffffffffu ? drawn : fileTriangle[fileTrianglesAt + drawn]) +
-                 1u);
+    return float(firstTriangle + (fileTriangleEntry() & 0x7fffffffu) + 1u);
 }
 #endif
 #ifdef OUT_BARYCENTRIC
@@ -148,6 +153,8 @@ void main() {
     // The sample lies inside its triangle, so its weights are in [0, 1] and sum to 1: clamping and renormalising
     // removes only the rasteriser's rounding (llvmpipe's interpolation leaves about 3e-4).
     vec3 weights = clamp(barycentricWeights, 0.0, 1.0);
+    // In the file's corner order: the loader swapped some triangles' last two corners to turn their front outward.
+    if ((fileTriangleEntry() & 0x80000000u) != 0u) weights = weights.xzy;
     // Alpha: the id (global index + 1) of the triangle these weights are of, from this same draw, so a pixel's weights
     // and their triangle always go together (the triangleId field comes from another draw, which where two surfaces
     // lie within depth rounding of each other can keep the other one).

@@ -322,11 +322,11 @@ void writeObj(const std::filesystem::path& path, const std::vector<TruthMesh>& m
     }
 }
 
-TEST_F(GBufferLabels, IdsNameTheFilesTrianglesWhereTheLoaderDropsSome) {
+TEST_F(GBufferLabels, IdsAndWeightsNameTheFilesTrianglesAndCornersWhereTheLoaderChangedThem) {
     // The fixture's sphere and cube as a file with triangles the loader drops in both: a triangle with a repeated
     // corner, one whose corner is a second vertex at another's position (the weld collapses it), and a face's back-to-
     // back twin (the default material is two-sided), in the middle and at each end. The ids must still be the file's
-    // triangle numbers, not the loaded mesh's.
+    // triangle numbers, not the loaded mesh's, and the weights the file's corners'.
     std::vector<TruthMesh> file = truth;
     TruthMesh& sphere = file[0];
     const std::uint32_t copyOfFirst = std::uint32_t(sphere.positions.size());
@@ -337,7 +337,10 @@ TEST_F(GBufferLabels, IdsNameTheFilesTrianglesWhereTheLoaderDropsSome) {
                             {sphere.triangles[40].x, sphere.triangles[40].y, copyOfFirst});
     sphere.triangles.insert(sphere.triangles.begin(),
                             {sphere.triangles[7].x, sphere.triangles[7].x, sphere.triangles[7].y});
+    // The cube wound inside out: the loader turns it outward, swapping each triangle's last two corners, so its
+    // barycentric weights must be swapped back to be the file's corners'.
     TruthMesh& cube = file[1];
+    for (glm::uvec3& triangle : cube.triangles) triangle = {triangle.x, triangle.z, triangle.y};
     cube.triangles.insert(cube.triangles.begin() + 5, {cube.triangles[5].y, cube.triangles[5].y, cube.triangles[5].z});
     const glm::uvec3 lastFace = cube.triangles.back();
     cube.triangles.push_back({lastFace.y, lastFace.x, lastFace.z});
@@ -351,6 +354,8 @@ TEST_F(GBufferLabels, IdsNameTheFilesTrianglesWhereTheLoaderDropsSome) {
     EXPECT_EQ(scene.report.backToBackDropped, 2u);
     EXPECT_EQ(scene.meshes[0].triangleCount() + 3, sphere.triangles.size());
     EXPECT_EQ(scene.meshes[1].triangleCount() + 2, cube.triangles.size());
+    EXPECT_TRUE(scene.meshes[0].cornersSwapped.empty());
+    EXPECT_EQ(scene.meshes[1].cornersSwapped, std::vector<std::uint8_t>(scene.meshes[1].triangleCount(), 1));
     // The ids the labels give the meshes cover the file's triangles.
     const SceneLabels labels = sceneLabels(scene);
     EXPECT_EQ(labels.meshes[0].triangleCount, sphere.triangles.size());

@@ -154,6 +154,8 @@ TEST(GltfLoader, MatrixTransformAndMirroringKeepFrontFaces) {
         EXPECT_EQ(normal, glm::vec3(0, 0, 1));
     }
     EXPECT_GT(test::triangleCross(mesh, mesh.triangles.at(0)).z, 0.0);
+    // Its last two corners swapped to keep it so: marked, so the barycentric weights can be given in the file's order.
+    EXPECT_EQ(mesh.cornersSwapped, std::vector<std::uint8_t>{1});
 }
 
 TEST(GltfLoader, NonUniformScaleUsesInverseTransposeForNormals) {

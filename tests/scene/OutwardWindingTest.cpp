@@ -255,5 +255,52 @@ TEST(OutwardWinding, AOneSidedMaterialKeepsItsWinding) {
     EXPECT_TRUE(report.warnings.empty());
 }
 
+TEST(OutwardWinding, ATriangleTurnedOutwardOrMirroredByTheReaderSaysItsCornersAreSwapped) {
+    // Two spheres in one mesh: the first inside out (turned by the loader), the second outward but with every other
+    // triangle's corners swapped by the reader (a mirroring transform, as the glTF reader marks it), and a zero-area
+    // triangle first, which the loader drops. Each kept triangle's corners with its swap undone are the file's.
+    // The inward one the larger: only a mesh enclosing a negative volume in all is looked at surface by surface.
+    Mesh inward = insideOut(makeUvSphere(glm::vec3(0.0f), 1.5f, 32, 16));
+    const Mesh outward = makeUvSphere(glm::vec3(4.0f, 0.0f, 0.0f), 1.0f, 32, 16);
+    RawMesh raw;
+    raw.name = "spheres";
+    raw.positions = inward.positions;
+    raw.positions.insert(raw.positions.end(), outward.positions.begin(), outward.positions.end());
+    const auto offset = std::uint32_t(inward.positions.size());
+    raw.triangles = {glm::uvec3(0, 0, 1)};
+    raw.triangles.insert(raw.triangles.end(), inward.triangles.begin(), inward.triangles.end());
+    raw.cornersSwapped.assign(raw.triangles.size(), 0);
+    std::vector<glm::uvec3> file = raw.triangles; // as the file gives them
+    for (std::size_t index = 0; index < outward.triangles.size(); ++index) {
+        const glm::uvec3 triangle = outward.triangles[index] + offset;
+        raw.cornersSwapped.push_back(index % 2);
+        raw.triangles.push_back(triangle);
+        file.push_back(index % 2 ? glm::uvec3(triangle.x, triangle.z, triangle.y) : triangle);
+    }
+    const std::vector<glm::vec3> filePositions = raw.positions;
+    LoadReport report;
+    const Mesh mesh = finalizeMesh(std::move(raw), 8.0, LoadOptions{}, report);
+    EXPECT_EQ(report.degenerateDropped, 1u);
+    ASSERT_EQ(mesh.triangleCount(), file.size() - 1);
+    ASSERT_EQ(mesh.cornersSwapped.size(), mesh.triangleCount());
+    std::size_t swapped = 0;
+    for (std::size_t triangle = 0; triangle < mesh.triangleCount(); ++triangle) {
+        glm::uvec3 corners = mesh.triangles[triangle];
+        swapped += mesh.cornersSwapped[triangle];
+        if (mesh.cornersSwapped[triangle]) std::swap(corners.y, corners.z);
+        const glm::uvec3 given = file[mesh.fileTriangleOf(triangle)];
+        for (int corner = 0; corner < 3; ++corner)
+            ASSERT_EQ(mesh.positions[corners[corner]], filePositions[given[corner]]) << triangle << " " << corner;
+    }
+    // The whole first sphere was turned, and half the second swapped by the reader.
+    EXPECT_EQ(swapped, inward.triangles.size() + outward.triangles.size() / 2);
+    // A mesh with nothing swapped keeps the list empty.
+    RawMesh plain;
+    plain.positions = outward.positions;
+    plain.triangles = outward.triangles;
+    EXPECT_TRUE(finalizeMesh(std::move(plain), 8.0, LoadOptions{}, report).cornersSwapped.empty());
+    EXPECT_TRUE(mesh.fileTriangles.size() == mesh.triangleCount() && mesh.fileTriangles.front() == 1u);
+}
+
 } // namespace
 } // namespace inkgraph

@@ -894,9 +894,12 @@ private:
             addToJointBoxes(*skin, pose.skin, mesh.positions);
         }
         // A mirroring transform turns counter-clockwise into clockwise; swap two corners to keep fronts outward.
-        for (glm::uvec3& triangle : mesh.triangles) {
+        for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
+            glm::uvec3& triangle = mesh.triangles[index];
             if (skin ? bool(mirrored[triangle.x]) : glm::determinant(linear) < 0.0) {
                 std::swap(triangle.y, triangle.z);
+                if (mesh.cornersSwapped.empty()) mesh.cornersSwapped.resize(mesh.triangles.size(), 0);
+                mesh.cornersSwapped[index] = 1;
             }
         }
 
