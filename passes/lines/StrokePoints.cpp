@@ -398,6 +398,11 @@ std::vector<StrokeRecord> strokeRecords(const StrokePointSetup& setup) {
             return a.x == b.x && a.y == b.y && a.world == b.world && a.mesh == b.mesh && a.triangle == b.triangle;
         };
         record.points.erase(std::unique(record.points.begin(), record.points.end(), same), record.points.end());
+        // A closed stroke does not repeat its first point (docs/datasets.md), and one of two points or fewer encloses
+        // nothing: it is the open stroke between them (a reader drawing it closed would go there and back).
+        if (record.closed && record.points.size() > 1 && same(record.points.front(), record.points.back()))
+            record.points.pop_back();
+        record.closed = record.closed && record.points.size() > 2;
         records.push_back(std::move(record));
     }
     return records;

@@ -221,6 +221,45 @@ TEST(StrokePointsTest, APointTheStrokeStagePlacedTwiceIsWrittenOnce) {
     EXPECT_EQ(points[2].triangle, 7);
 }
 
+TEST(StrokePointsTest, AClosedStrokeNeverRepeatsItsFirstPointAndEnclosesSomething) {
+    // Closed strokes as the stroke stage may leave them at tiny sizes: a loop whose last point came out on its first,
+    // and loops of two and of one distinct point. Written closed only where three points or more remain.
+    const Camera camera = testCamera();
+    DrawnStrokes drawn;
+    drawn.inputs = {StrokeInput{"intersection", "intersection.skeleton"}};
+    LineSkeleton skeleton;
+    skeleton.mask = cv::Mat::zeros(24, 32, CV_8UC1);
+    skeleton.points = {{{4.0f, 6.0f}, 1.0f}, {{5.0f, 6.0f}, 1.0f}, {{5.0f, 7.0f}, 1.0f}};
+    skeleton.surface = {{{0.1, 0.2, 0.3}, 0, 1}, {{0.2, 0.2, 0.3}, 0, 2}, {{0.2, 0.3, 0.3}, 0, 3}};
+    const std::vector<std::vector<cv::Point2f>> loops = {{{4.0f, 6.0f}, {5.0f, 6.0f}, {5.0f, 7.0f}, {4.0f, 6.0f}},
+                                                         {{4.0f, 6.0f}, {5.0f, 6.0f}, {4.0f, 6.0f}},
+                                                         {{4.0f, 6.0f}, {5.0f, 6.0f}},
+                                                         {{4.0f, 6.0f}}};
+    for (const std::vector<cv::Point2f>& loop : loops) {
+        std::vector<cv::Point> pixels;
+        for (const cv::Point2f& point : loop) pixels.emplace_back(int(point.x), int(point.y));
+        Stroke stroke = strokeOf(0, loop, pixels);
+        stroke.closed = true;
+        drawn.strokes.strokes.push_back(stroke);
+    }
+    StrokePointSetup setup;
+    setup.drawn = &drawn;
+    StrokePointInput object;
+    object.source = StrokePointSource::Skeleton;
+    object.skeleton = &skeleton;
+    setup.inputs = {object};
+    setup.depth = cv::Mat(24, 32, CV_32FC1, cv::Scalar(0.0f));
+    setup.camera = &camera;
+    const std::vector<StrokeRecord> records = strokeRecords(setup);
+    ASSERT_EQ(records.size(), 4u);
+    EXPECT_TRUE(records[0].closed);
+    EXPECT_EQ(records[0].points.size(), 3u) << "the first point once";
+    for (std::size_t index = 1; index < 4; ++index) {
+        EXPECT_FALSE(records[index].closed) << index;
+        EXPECT_EQ(records[index].points.size(), index == 3 ? 1u : 2u) << index;
+    }
+}
+
 TEST(StrokePointsTest, RefusesMissingInputs) {
     const Camera camera = testCamera();
     DrawnStrokes drawn;
