@@ -317,7 +317,7 @@ std::vector<StrokeRecord> StillGraph::strokeRecords(ResourceStore& store, const 
     setup.scene = &scene;
     setup.depth = store.image(std::string(kGBufferPass) + "." + GBufferPass::kDepth);
     setup.triangleIds = store.image(triangleIdResource());
-    // The numbering of the triangleId field and the manifest's meshes (scene/MeshLabels.h), the one place it is made.
+    // The numbering of the triangleId field and the manifest's meshes (scene/MeshLabels.h), which makes it.
     const TriangleNumbering numbering(scene);
     setup.numbering = &numbering;
     for (const StrokeInput& input : setup.drawn->inputs) {

@@ -65,12 +65,13 @@ std::optional<TriangleNumbering::Loaded> TriangleNumbering::loaded(std::size_t g
     return Loaded{*meshIndex, std::size_t(found - mesh.fileTriangles.begin())};
 }
 
-std::optional<Warning> triangleIdWarning(std::size_t triangleCount) {
-    if (triangleCount <= kExactTriangleIds) return std::nullopt;
-    return makeWarning(WarningKind::TriangleIdInexact, "the scene has " + std::to_string(triangleCount) +
-                                                           " triangles: gbuffer.triangleId (float32) " +
-                                                           "is exact only up to " + std::to_string(kExactTriangleIds) +
-                                                           ", so larger ids round to a neighbour's");
+std::optional<Warning> triangleIdWarning(std::size_t idCount) {
+    if (idCount <= kExactTriangleIds) return std::nullopt;
+    return makeWarning(WarningKind::TriangleIdInexact,
+                       "the scene's files give " + std::to_string(idCount) +
+                           " triangles: the triangle ids of gbuffer.triangleId and gbuffer.barycentric's alpha "
+                           "(float32) are exact only up to " +
+                           std::to_string(kExactTriangleIds) + ", so larger ids round to a neighbour's");
 }
 
 } // namespace inkgraph

@@ -76,9 +76,9 @@ private:
  *  holds exactly: every integer up to 2^24 is a float32. */
 inline constexpr std::size_t kExactTriangleIds = std::size_t(1) << 24;
 
-/** The triangle-id-inexact warning for a scene of `triangleCount` triangles when some of its ids exceed
- *  kExactTriangleIds (they round to a neighbour's), else none. A warning rather than a refusal: the ids of the first
- *  2^24 triangles are still right, and --strict makes it an error. */
-std::optional<Warning> triangleIdWarning(std::size_t triangleCount);
+/** The triangle-id-inexact warning for a scene whose triangle ids run to `idCount` (TriangleNumbering::total())
+ *  when some exceed kExactTriangleIds (they round to a neighbour's), else none. A warning rather than a refusal: the
+ *  ids of the first 2^24 triangles are still right, and --strict makes it an error. */
+std::optional<Warning> triangleIdWarning(std::size_t idCount);
 
 } // namespace inkgraph

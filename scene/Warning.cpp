@@ -92,7 +92,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::WidthMapUnread, "width-map-unread",
          "a mesh lacks the vertex colours or texture coordinates --outline-width-map reads; its widths stay unscaled"},
         {K::TriangleIdInexact, "triangle-id-inexact",
-         "the scene has more than 2^24 triangles, and the triangleId field (float32) rounds the ids above 2^24"},
+         "the scene's files give more than 2^24 triangles, and the triangle ids (float32: the triangleId field, the "
+         "barycentric alpha) round above 2^24"},
         {K::LinesSkipped, "lines-skipped",
          "a line type asked for is not drawn in this view: the eye is inside the model (or the silhouette's hull), "
          "where its bands would cover the whole picture"},

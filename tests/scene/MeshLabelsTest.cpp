@@ -117,8 +117,10 @@ TEST(MeshLabels, TriangleIdsBeyondFloat32sExactIntegersAreWarnedAbout) {
     const std::optional<Warning> warning = triangleIdWarning(kExactTriangleIds + 1);
     ASSERT_TRUE(warning.has_value());
     EXPECT_EQ(warning->code, "triangle-id-inexact");
-    EXPECT_EQ(warning->message, "the scene has 16777217 triangles: gbuffer.triangleId (float32) is exact only up to "
-                                "16777216, so larger ids round to a neighbour's");
+    EXPECT_EQ(
+        warning->message,
+        "the scene's files give 16777217 triangles: the triangle ids of gbuffer.triangleId and "
+        "gbuffer.barycentric's alpha (float32) are exact only up to 16777216, so larger ids round to a neighbour's");
 }
 
 } // namespace
