@@ -189,18 +189,18 @@ TEST(StrokePointsTest, ObjectSpaceAndMeshEdgePointsAreTheirOwn3DPoints) {
     EXPECT_EQ(crease[1].mesh, 1);
 }
 
-TEST(StrokePointsTest, APointTheStrokeStagePlacedTwiceIsWrittenOnce) {
-    // Two of the stroke stage's points at one spot: written twice, a segment of no length, on which a reader's tangent
-    // divides by zero (870 such places in a hostile pass's strokes files).
+/** strokeRecords() of `strokes` of one object-space type (intersection) whose skeleton has the samples `points` at the
+ *  3-D points `surface`, on a scene of one mesh of 9 triangles. */
+std::vector<StrokeRecord> objectSpaceStrokeRecords(std::vector<Stroke> strokes, std::vector<LinePoint> points,
+                                                   std::vector<SurfacePoint> surface) {
     const Camera camera = testCamera();
     DrawnStrokes drawn;
     drawn.inputs = {StrokeInput{"intersection", "intersection.skeleton"}};
+    drawn.strokes.strokes = std::move(strokes);
     LineSkeleton skeleton;
     skeleton.mask = cv::Mat::zeros(24, 32, CV_8UC1);
-    skeleton.points = {{{4.2f, 6.1f}, 1.0f}, {{5.1f, 6.3f}, 1.0f}};
-    skeleton.surface = {{{0.1, 0.2, 0.3}, 0, 7}, {{0.2, 0.2, 0.3}, 0, 8}};
-    drawn.strokes.strokes.push_back(
-        strokeOf(0, {{4.2f, 6.1f}, {4.2f, 6.1f}, {5.1f, 6.3f}, {4.2f, 6.1f}}, {{4, 6}, {4, 6}, {5, 6}, {4, 6}}));
+    skeleton.points = std::move(points);
+    skeleton.surface = std::move(surface);
     StrokePointSetup setup;
     setup.drawn = &drawn;
     StrokePointInput object;
@@ -212,7 +212,15 @@ TEST(StrokePointsTest, APointTheStrokeStagePlacedTwiceIsWrittenOnce) {
     const Scene scene = sceneOfTriangleCounts({9});
     const TriangleNumbering numbering(scene);
     setup.numbering = &numbering;
-    const std::vector<StrokeRecord> records = strokeRecords(setup);
+    return strokeRecords(setup);
+}
+
+TEST(StrokePointsTest, APointTheStrokeStagePlacedTwiceIsWrittenOnce) {
+    // Two of the stroke stage's points at one spot: written twice, a segment of no length, on which a reader's tangent
+    // divides by zero (870 such places in a hostile pass's strokes files).
+    const std::vector<StrokeRecord> records = objectSpaceStrokeRecords(
+        {strokeOf(0, {{4.2f, 6.1f}, {4.2f, 6.1f}, {5.1f, 6.3f}, {4.2f, 6.1f}}, {{4, 6}, {4, 6}, {5, 6}, {4, 6}})},
+        {{{4.2f, 6.1f}, 1.0f}, {{5.1f, 6.3f}, 1.0f}}, {{{0.1, 0.2, 0.3}, 0, 7}, {{0.2, 0.2, 0.3}, 0, 8}});
     ASSERT_EQ(records.size(), 1u);
     const std::vector<StrokePointRecord>& points = records[0].points;
     ASSERT_EQ(points.size(), 3u) << "the repeated point once; the same spot again after another is kept";
@@ -224,33 +232,20 @@ TEST(StrokePointsTest, APointTheStrokeStagePlacedTwiceIsWrittenOnce) {
 TEST(StrokePointsTest, AClosedStrokeNeverRepeatsItsFirstPointAndEnclosesSomething) {
     // Closed strokes as the stroke stage may leave them at tiny sizes: a loop whose last point came out on its first,
     // and loops of two and of one distinct point. Written closed only where three points or more remain.
-    const Camera camera = testCamera();
-    DrawnStrokes drawn;
-    drawn.inputs = {StrokeInput{"intersection", "intersection.skeleton"}};
-    LineSkeleton skeleton;
-    skeleton.mask = cv::Mat::zeros(24, 32, CV_8UC1);
-    skeleton.points = {{{4.0f, 6.0f}, 1.0f}, {{5.0f, 6.0f}, 1.0f}, {{5.0f, 7.0f}, 1.0f}};
-    skeleton.surface = {{{0.1, 0.2, 0.3}, 0, 1}, {{0.2, 0.2, 0.3}, 0, 2}, {{0.2, 0.3, 0.3}, 0, 3}};
     const std::vector<std::vector<cv::Point2f>> loops = {{{4.0f, 6.0f}, {5.0f, 6.0f}, {5.0f, 7.0f}, {4.0f, 6.0f}},
                                                          {{4.0f, 6.0f}, {5.0f, 6.0f}, {4.0f, 6.0f}},
                                                          {{4.0f, 6.0f}, {5.0f, 6.0f}},
                                                          {{4.0f, 6.0f}}};
+    std::vector<Stroke> strokes;
     for (const std::vector<cv::Point2f>& loop : loops) {
         std::vector<cv::Point> pixels;
         for (const cv::Point2f& point : loop) pixels.emplace_back(int(point.x), int(point.y));
-        Stroke stroke = strokeOf(0, loop, pixels);
-        stroke.closed = true;
-        drawn.strokes.strokes.push_back(stroke);
+        strokes.push_back(strokeOf(0, loop, pixels));
+        strokes.back().closed = true;
     }
-    StrokePointSetup setup;
-    setup.drawn = &drawn;
-    StrokePointInput object;
-    object.source = StrokePointSource::Skeleton;
-    object.skeleton = &skeleton;
-    setup.inputs = {object};
-    setup.depth = cv::Mat(24, 32, CV_32FC1, cv::Scalar(0.0f));
-    setup.camera = &camera;
-    const std::vector<StrokeRecord> records = strokeRecords(setup);
+    const std::vector<StrokeRecord> records =
+        objectSpaceStrokeRecords(strokes, {{{4.0f, 6.0f}, 1.0f}, {{5.0f, 6.0f}, 1.0f}, {{5.0f, 7.0f}, 1.0f}},
+                                 {{{0.1, 0.2, 0.3}, 0, 1}, {{0.2, 0.2, 0.3}, 0, 2}, {{0.2, 0.3, 0.3}, 0, 3}});
     ASSERT_EQ(records.size(), 4u);
     EXPECT_TRUE(records[0].closed);
     EXPECT_EQ(records[0].points.size(), 3u) << "the first point once";
