@@ -489,13 +489,6 @@ std::vector<std::uint32_t> degenerateTriangles(std::span<const glm::vec3> positi
     return degenerate;
 }
 
-std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
-                                    double minArea) {
-    const std::vector<std::uint32_t> degenerate = degenerateTriangles(positions, triangles, minArea);
-    removeTriangles(triangles, degenerate);
-    return degenerate.size();
-}
-
 namespace {
 
 /** A texture on a coordinate set the mesh does not have would sample one texel everywhere: it is dropped, with a

@@ -87,13 +87,9 @@ inline constexpr double kDegenerateAreaRelative = 1e-14;
 /** finalizeMesh() warns (details-merged) when the weld collapses more than this share of a mesh's triangles. */
 inline constexpr double kWeldedAwayShareToWarn = 0.01;
 
-/** The triangles with a repeated index or an area at most `minArea`, ascending. */
+/** The triangles with a repeated index or an area at most `minArea`, ascending (finalizeMesh() drops them). */
 std::vector<std::uint32_t> degenerateTriangles(std::span<const glm::vec3> positions,
                                                std::span<const glm::uvec3> triangles, double minArea);
-
-/** Removes degenerateTriangles(); returns how many were removed. */
-std::size_t dropDegenerateTriangles(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
-                                    double minArea);
 
 /** A triangle's corners in ascending order, and whether reaching that order took an odd number of swaps: two
  *  triangles on the same corners face opposite ways exactly when their parities differ. */
