@@ -343,31 +343,43 @@ TEST(VrmExpressions, AnOverriddenBinaryBlinkIsSuppressedByAnyOverride) {
 }
 
 // Look-at: a head at (0, 1, 0) with two eyes, each carrying a triangle whose vertex (0, 0, 1) in the eye's frame
-// shows where the eye looks.
-std::string headVrm(const std::string& lookAt, const std::string& expressions = "") {
+// shows where the eye looks, and hips at the origin. `vrmExtension` is the root's "VRMC_vrm" or "VRM" member.
+std::string headVrmOf(const std::string& vrmExtension, const std::string& extensionName) {
     GltfWriter writer;
     const int positions = writer.addVec3({{0, 0, 0}, {0, 0, 1}, {0.1f, 0, 0}});
     const int lift = writer.addVec3({{0, 0, 0}, {0, 0, 0}, {0, 0, 1}});
-    const std::string body =
-        R"("extensionsUsed": ["VRMC_vrm"], "extensions": {"VRMC_vrm": {"specVersion": "1.0",
-            "humanoid": {"humanBones": {"head": {"node": 0}, "leftEye": {"node": 1}, "rightEye": {"node": 2}}},
-            "lookAt": )" +
-        lookAt + expressions + R"(}},
+    const std::string body = R"("extensionsUsed": [")" + extensionName + R"("], "extensions": {")" + extensionName +
+                             R"(": )" + vrmExtension + R"(},
         "meshes": [{"primitives": [{"attributes": {"POSITION": )" +
-        std::to_string(positions) + R"(}, "targets": [{"POSITION": )" + std::to_string(lift) + R"(}]}]}],
+                             std::to_string(positions) + R"(}, "targets": [{"POSITION": )" + std::to_string(lift) +
+                             R"(}]}]}],
         "nodes": [{"name": "Head", "translation": [0, 1, 0], "children": [1, 2]},
                   {"name": "LeftEye", "translation": [0.03, 0.05, 0.05], "children": [3]},
                   {"name": "RightEye", "translation": [-0.03, 0.05, 0.05], "children": [4]},
-                  {"name": "LeftGaze", "mesh": 0}, {"name": "RightGaze", "mesh": 0}],
-        "scenes": [{"nodes": [0]}])";
+                  {"name": "LeftGaze", "mesh": 0}, {"name": "RightGaze", "mesh": 0}, {"name": "Hips"}],
+        "scenes": [{"nodes": [0, 5]}])";
     return writer.glb(body);
 }
 
-Scene loadHead(const std::string& lookAt, const glm::dvec3& target, const std::string& expressions = "") {
-    const TempFile file("head.vrm", headVrm(lookAt, expressions));
+/** The head of headVrmOf() as VRM 1.0 with look-at settings `lookAt` and `expressions` after them. */
+std::string headVrm(const std::string& lookAt, const std::string& expressions = "") {
+    return headVrmOf(R"({"specVersion": "1.0",
+            "humanoid": {"humanBones": {"hips": {"node": 5}, "head": {"node": 0}, "leftEye": {"node": 1},
+                                        "rightEye": {"node": 2}}},
+            "lookAt": )" +
+                         lookAt + expressions + "}",
+                     "VRMC_vrm");
+}
+
+Scene loadHeadFile(const std::string& content, const glm::dvec3& target) {
+    const TempFile file("head.vrm", content);
     LoadOptions options;
     options.lookAt = target;
     return loadScene(file.path(), options);
+}
+
+Scene loadHead(const std::string& lookAt, const glm::dvec3& target, const std::string& expressions = "") {
+    return loadHeadFile(headVrm(lookAt, expressions), target);
 }
 
 /** A point `degrees` to the character's left (+X, yaw > 0) of the look-at origin, or below it with `down`. */
@@ -404,6 +416,65 @@ TEST(VrmLookAt, ATargetBelowPitchesBothEyesDown) {
 TEST(VrmLookAt, ATargetBeyondTheInputRangeIsClamped) {
     const Scene scene = loadHead(kBoneLookAt, pointAt(60.0));
     const double outer = glm::radians(10.0);
+    EXPECT_TRUE(
+        hasVertex(scene, "LeftGaze", glm::dvec3(0.03, 1.05, 0.05) + glm::dvec3(std::sin(outer), 0.0, std::cos(outer))));
+}
+
+TEST(VrmLookAt, AnOffsetOrATurnBeyondAnyDirectionIsSaidAndItsDefaultUsed) {
+    // An offset of 1e300 put the look-at space out of the world, and the eyes turned to their limit whatever the
+    // target; a bone map's output of 1e300 degrees turned them by rounding noise. Both taken as the file said.
+    const Scene expected = loadHead(kBoneLookAt, pointAt(10.0));
+    for (const auto& [lookAt, where] : {
+             std::pair{R"({"type": "bone", "offsetFromHeadBone": [0, 1e300, 0],
+                 "rangeMapHorizontalOuter": {"inputMaxValue": 20, "outputScale": 10},
+                 "rangeMapHorizontalInner": {"inputMaxValue": 40, "outputScale": 10}})",
+                       "VRMC_vrm.lookAt.offsetFromHeadBone (0, 1e+300, 0) lies 1e+300 from the head, farther than "
+                       "the hips (1); the default (0, 0.06, 0) is used"},
+             std::pair{
+                 R"({"type": "bone", "offsetFromHeadBone": [0, 0.06, 1.5],
+                 "rangeMapHorizontalOuter": {"inputMaxValue": 20, "outputScale": 10},
+                 "rangeMapHorizontalInner": {"inputMaxValue": 40, "outputScale": 10}})",
+                 "VRMC_vrm.lookAt.offsetFromHeadBone (0, 0.06, 1.5) lies 1.5011995203836164 from the head, farther "
+                 "than the hips (1)"},
+             std::pair{R"({"type": "bone", "rangeMapHorizontalOuter": {"inputMaxValue": 20, "outputScale": 1e300},
+                 "rangeMapHorizontalInner": {"inputMaxValue": 40, "outputScale": 10}})",
+                       "VRMC_vrm.lookAt.rangeMapHorizontalOuter.outputScale is 1e+300 degrees of eye turn, beyond 180; "
+                       "the default 10 is used"},
+         }) {
+        const Scene scene = loadHead(lookAt, pointAt(10.0));
+        const std::vector<std::string> said = warningsOf(scene, "vrm-property-invalid");
+        ASSERT_EQ(said.size(), 1u) << lookAt;
+        EXPECT_NE(said[0].find(where), std::string::npos) << said[0];
+        EXPECT_EQ(worldPositions(scene, "LeftGaze"), worldPositions(expected, "LeftGaze")) << lookAt;
+        EXPECT_EQ(worldPositions(scene, "RightGaze"), worldPositions(expected, "RightGaze")) << lookAt;
+    }
+    EXPECT_TRUE(warningsOf(expected, "vrm-property-invalid").empty());
+}
+
+TEST(VrmLookAt, AVrm0FirstPersonBoneOffsetBeyondTheHipsIsSaidAndItsDefaultUsed) {
+    const auto vrm0Head = [](const std::string& offset) {
+        return headVrmOf(R"({"humanoid": {"humanBones": [{"bone": "hips", "node": 5}, {"bone": "head", "node": 0},
+                {"bone": "leftEye", "node": 1}, {"bone": "rightEye", "node": 2}]},
+            "firstPerson": {"lookAtTypeName": "Bone", "firstPersonBoneOffset": )" +
+                             offset + R"(,
+                "lookAtHorizontalOuter": {"xRange": 20, "yRange": 10},
+                "lookAtHorizontalInner": {"xRange": 40, "yRange": 10}}})",
+                         "VRM");
+    };
+    // A 0.x character faces -Z: the target 10 degrees to its left.
+    const glm::dvec3 target = glm::dvec3(0.0, 1.06, 0.0) +
+                              2.0 * glm::dvec3(-std::sin(glm::radians(10.0)), 0.0, -std::cos(glm::radians(10.0)));
+    const Scene expected = loadHeadFile(vrm0Head(R"({"x": 0, "y": 0.06, "z": 0})"), target);
+    EXPECT_TRUE(warningsOf(expected, "vrm-property-invalid").empty());
+    const Scene scene = loadHeadFile(vrm0Head(R"({"x": 0, "y": 1e300, "z": 0})"), target);
+    const std::vector<std::string> said = warningsOf(scene, "vrm-property-invalid");
+    ASSERT_EQ(said.size(), 1u);
+    EXPECT_NE(said[0].find("VRM.firstPerson.firstPersonBoneOffset (0, 1e+300, 0) lies 1e+300 from the head"),
+              std::string::npos)
+        << said[0];
+    EXPECT_EQ(worldPositions(scene, "LeftGaze"), worldPositions(expected, "LeftGaze"));
+    // The left eye turned outward by 5 degrees (10 of 20 -> 5 of 10), away from its rest direction.
+    const double outer = glm::radians(5.0);
     EXPECT_TRUE(
         hasVertex(scene, "LeftGaze", glm::dvec3(0.03, 1.05, 0.05) + glm::dvec3(std::sin(outer), 0.0, std::cos(outer))));
 }

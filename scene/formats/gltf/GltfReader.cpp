@@ -315,7 +315,7 @@ private:
             expressions.setWeight(expression.name, expression.weight, "--expression");
         if (mOptions.lookAt) {
             const VrmGaze gaze = applyVrmLookAt(mPath, mModel, mHumanoid ? &*mHumanoid : nullptr, *mOptions.lookAt,
-                                                restPose(mPath, mModel), mPoses, expressions);
+                                                restPose(mPath, mModel), mPoses, expressions, mOut.warnings);
             for (const ExpressionWeight& expression : mOptions.expressions) {
                 const std::string name = expressions.canonicalName(expression.name);
                 if (gaze.setExpressions && name.starts_with("look"))

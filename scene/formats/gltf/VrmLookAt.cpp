@@ -8,6 +8,7 @@
 #include "scene/formats/gltf/GltfPose.h"
 #include "scene/formats/gltf/VrmExpressions.h"
 #include "scene/formats/gltf/VrmHumanoid.h"
+#include "scene/MessageText.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 namespace inkgraph::detail {
 
@@ -34,39 +36,63 @@ struct RangeMap {
     }
 };
 
+/** The specification's default offsetFromHeadBone: 6 cm above the head bone. */
+constexpr glm::dvec3 kDefaultOffsetFromHead{0.0, 0.06, 0.0};
+
+/** The largest eye turn a bone range map may give, in degrees: an eye turned further looks out of the back of the
+ *  head, and a turn of 1e300 degrees is no direction at all (its sine is rounding noise). */
+constexpr double kMaxEyeTurnDegrees = 180.0;
+
 struct LookAtSettings {
     bool bones = true; ///< type bone ("Bone"); false: expression ("BlendShape")
-    glm::dvec3 offsetFromHead{0.0, 0.06, 0.0};
-    bool facesMinusZ = false; ///< VRM 0.x
+    glm::dvec3 offsetFromHead = kDefaultOffsetFromHead;
+    std::string offsetWhere;    ///< where the file gives the offset, for a warning; empty: the default
+    glm::dvec3 offsetAsGiven{}; ///< the offset in the file's words (0.x: Unity's z), for a warning
+    bool facesMinusZ = false;   ///< VRM 0.x
     RangeMap horizontalInner, horizontalOuter, verticalDown, verticalUp;
 };
 
-RangeMap rangeMapOf(const tinygltf::Value* map, const char* inputKey, const char* outputKey, double defaultOutput) {
+/** A range map `where` (its JSON path) of the file; a bone map's output beyond kMaxEyeTurnDegrees is said and the
+ *  default taken. */
+RangeMap rangeMapOf(const tinygltf::Value* map, const std::string& where, const char* inputKey, const char* outputKey,
+                    bool bones, std::vector<Warning>& warnings) {
+    // Defaults as three-vrm takes them: 90 degrees to 10 degrees of eye rotation, or to a weight of 1.
+    const double defaultOutput = bones ? 10.0 : 1.0;
     RangeMap result;
     result.inputMaxValue = std::max(0.0, jsonNumber(jsonMember(map, inputKey)).value_or(90.0));
     result.outputScale = jsonNumber(jsonMember(map, outputKey)).value_or(defaultOutput);
+    // An expression's weight is clamped to [0, 1] where it is set, whatever the map gives.
+    if (bones && !(std::abs(result.outputScale) <= kMaxEyeTurnDegrees)) {
+        warnings.push_back(makeWarning(WarningKind::VrmPropertyInvalid,
+                                       where + "." + outputKey + " is " + formatNumber(result.outputScale) +
+                                           " degrees of eye turn, beyond " + formatNumber(kMaxEyeTurnDegrees) +
+                                           "; the default " + formatNumber(defaultOutput) + " is used",
+                                       "", where));
+        result.outputScale = defaultOutput;
+    }
     return result;
 }
 
 /** The look-at settings of a VRM 1.0 or 0.x file, or none. */
-std::optional<LookAtSettings> readSettings(const tinygltf::Model& model) {
+std::optional<LookAtSettings> readSettings(const tinygltf::Model& model, std::vector<Warning>& warnings) {
     LookAtSettings settings;
     if (const auto vrm1 = model.extensions.find("VRMC_vrm"); vrm1 != model.extensions.end()) {
         const tinygltf::Value* lookAt = jsonMember(&vrm1->second, "lookAt");
         if (lookAt == nullptr) return std::nullopt;
         settings.bones = jsonString(jsonMember(lookAt, "type")) != "expression";
-        if (const auto offset = jsonNumbers(jsonMember(lookAt, "offsetFromHeadBone"), 3))
+        if (const auto offset = jsonNumbers(jsonMember(lookAt, "offsetFromHeadBone"), 3)) {
             settings.offsetFromHead = {(*offset)[0], (*offset)[1], (*offset)[2]};
-        // Defaults as three-vrm takes them: 90 degrees to 10 degrees of eye rotation, or to a weight of 1.
-        const double output = settings.bones ? 10.0 : 1.0;
-        settings.horizontalInner =
-            rangeMapOf(jsonMember(lookAt, "rangeMapHorizontalInner"), "inputMaxValue", "outputScale", output);
-        settings.horizontalOuter =
-            rangeMapOf(jsonMember(lookAt, "rangeMapHorizontalOuter"), "inputMaxValue", "outputScale", output);
-        settings.verticalDown =
-            rangeMapOf(jsonMember(lookAt, "rangeMapVerticalDown"), "inputMaxValue", "outputScale", output);
-        settings.verticalUp =
-            rangeMapOf(jsonMember(lookAt, "rangeMapVerticalUp"), "inputMaxValue", "outputScale", output);
+            settings.offsetWhere = "VRMC_vrm.lookAt.offsetFromHeadBone";
+            settings.offsetAsGiven = settings.offsetFromHead;
+        }
+        const auto map = [&](const char* name) {
+            return rangeMapOf(jsonMember(lookAt, name), std::string("VRMC_vrm.lookAt.") + name, "inputMaxValue",
+                              "outputScale", settings.bones, warnings);
+        };
+        settings.horizontalInner = map("rangeMapHorizontalInner");
+        settings.horizontalOuter = map("rangeMapHorizontalOuter");
+        settings.verticalDown = map("rangeMapVerticalDown");
+        settings.verticalUp = map("rangeMapVerticalUp");
         return settings;
     }
     const auto vrm0 = model.extensions.find("VRM");
@@ -80,12 +106,17 @@ std::optional<LookAtSettings> readSettings(const tinygltf::Model& model) {
         settings.offsetFromHead = {jsonNumber(jsonMember(offset, "x")).value_or(0.0),
                                    jsonNumber(jsonMember(offset, "y")).value_or(0.06),
                                    -jsonNumber(jsonMember(offset, "z")).value_or(0.0)};
+        settings.offsetWhere = "VRM.firstPerson.firstPersonBoneOffset";
+        settings.offsetAsGiven = settings.offsetFromHead * glm::dvec3(1.0, 1.0, -1.0);
     }
-    const double output = settings.bones ? 10.0 : 1.0;
-    settings.horizontalInner = rangeMapOf(jsonMember(firstPerson, "lookAtHorizontalInner"), "xRange", "yRange", output);
-    settings.horizontalOuter = rangeMapOf(jsonMember(firstPerson, "lookAtHorizontalOuter"), "xRange", "yRange", output);
-    settings.verticalDown = rangeMapOf(jsonMember(firstPerson, "lookAtVerticalDown"), "xRange", "yRange", output);
-    settings.verticalUp = rangeMapOf(jsonMember(firstPerson, "lookAtVerticalUp"), "xRange", "yRange", output);
+    const auto map = [&](const char* name) {
+        return rangeMapOf(jsonMember(firstPerson, name), std::string("VRM.firstPerson.") + name, "xRange", "yRange",
+                          settings.bones, warnings);
+    };
+    settings.horizontalInner = map("lookAtHorizontalInner");
+    settings.horizontalOuter = map("lookAtHorizontalOuter");
+    settings.verticalDown = map("lookAtVerticalDown");
+    settings.verticalUp = map("lookAtVerticalUp");
     return settings;
 }
 
@@ -109,12 +140,39 @@ glm::dquat rotationOf(const glm::dmat4& transform) {
     return glm::normalize(glm::quat_cast(linear));
 }
 
+/** Says an offset from the head that is not a number, or that places the look-at space farther from the head than
+ *  the head is from the hips (outside the head: the file's 1e300 turned the eyes to their limit whatever the target),
+ *  and takes the default instead. Judged in the world, so a rig in centimetres (a head scaled by 0.01) is judged by
+ *  its own size. */
+void checkOffsetFromHead(LookAtSettings& settings, const glm::dmat4& headWorld,
+                         const std::optional<glm::dmat4>& hipsWorld, std::vector<Warning>& warnings) {
+    if (settings.offsetWhere.empty()) return;
+    const glm::dvec3 head(headWorld[3]);
+    // By hypot, which does not overflow where the sum of squares of an offset of 1e300 would.
+    const auto length = [](const glm::dvec3& v) { return std::hypot(v.x, std::hypot(v.y, v.z)); };
+    const double fromHead = length(glm::dvec3(headWorld * glm::dvec4(settings.offsetFromHead, 1.0)) - head);
+    const double headToHips = hipsWorld ? length(glm::dvec3((*hipsWorld)[3]) - head) : 0.0;
+    const bool finite = std::isfinite(fromHead);
+    if (finite && !(hipsWorld && headToHips > 0.0 && fromHead > headToHips)) return;
+    const glm::dvec3& offset = settings.offsetAsGiven;
+    warnings.push_back(
+        makeWarning(WarningKind::VrmPropertyInvalid,
+                    settings.offsetWhere + " (" + formatNumber(offset.x) + ", " + formatNumber(offset.y) + ", " +
+                        formatNumber(offset.z) + ") " +
+                        (finite ? "lies " + formatNumber(fromHead) + " from the head, farther than the hips (" +
+                                      formatNumber(headToHips) + ")"
+                                : std::string("puts the eyes' origin beyond the numbers")) +
+                        "; the default (0, 0.06, 0) is used",
+                    "", settings.offsetWhere));
+    settings.offsetFromHead = kDefaultOffsetFromHead;
+}
+
 } // namespace
 
 VrmGaze applyVrmLookAt(const std::string& path, const tinygltf::Model& model, const Humanoid* humanoid,
                        const glm::dvec3& target, const std::vector<NodePose>& restPoses, std::vector<NodePose>& poses,
-                       VrmExpressions& expressions) {
-    const std::optional<LookAtSettings> settings = readSettings(model);
+                       VrmExpressions& expressions, std::vector<Warning>& warnings) {
+    std::optional<LookAtSettings> settings = readSettings(model, warnings);
     if (!settings) {
         throwLoadError(path, "--look-at: the file has no VRM look-at settings (VRM 1.0 VRMC_vrm.lookAt, or VRM 0.x "
                              "firstPerson.lookAtTypeName 'Bone' or 'BlendShape')");
@@ -134,6 +192,9 @@ VrmGaze applyVrmLookAt(const std::string& path, const tinygltf::Model& model, co
     // The look-at space: at offsetFromHeadBone in the head's frame, turned as the head turned from its rest pose (so
     // at rest its axes are the model's), and for a 0.x character turned round to face -Z.
     const glm::dmat4 headWorld = worldOf(head, parents, poses);
+    checkOffsetFromHead(*settings, headWorld,
+                        boneNode("hips") >= 0 ? std::optional(worldOf(boneNode("hips"), parents, poses)) : std::nullopt,
+                        warnings);
     const glm::dquat faceFront = settings->facesMinusZ ? glm::angleAxis(glm::pi<double>(), glm::dvec3(0.0, 1.0, 0.0))
                                                        : glm::dquat(1.0, 0.0, 0.0, 0.0);
     const glm::dquat space =

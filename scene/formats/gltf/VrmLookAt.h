@@ -4,6 +4,8 @@
  *  range maps, the eye bones' rotation or the look expressions' weights). docs/vrm.md describes it. Internal to the
  *  glTF reader. */
 
+#include "scene/Warning.h"
+
 #include <glm/glm.hpp>
 
 #include <string>
@@ -32,9 +34,11 @@ struct VrmGaze {
  *  the weights of lookUp, lookDown, lookLeft and lookRight in `expressions` are set (those the file has). The bones
  *  are `humanoid`'s (VrmHumanoid.h readHumanoid(); null: none). The look-at space hangs from the head bone as `poses`
  *  place it, turned back by its rest rotation (`restPoses`). Throws SceneError through throwLoadError() for a file
- *  without VRM look-at settings or without the bones they need. */
+ *  without VRM look-at settings or without the bones they need. A setting that would turn the eyes beyond any
+ *  direction (an offset from the head past its hips, a bone map's output past 180 degrees) is said in `warnings`
+ *  (vrm-property-invalid) and its default taken. */
 VrmGaze applyVrmLookAt(const std::string& path, const tinygltf::Model& model, const Humanoid* humanoid,
                        const glm::dvec3& target, const std::vector<NodePose>& restPoses, std::vector<NodePose>& poses,
-                       VrmExpressions& expressions);
+                       VrmExpressions& expressions, std::vector<Warning>& warnings);
 
 } // namespace inkgraph::detail
