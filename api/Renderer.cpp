@@ -11,6 +11,7 @@
 #include "passes/gbuffer/GBufferPass.h"
 #include "passes/lines/LineTypes.h"
 #include "postfx/Composite.h"
+#include "scene/MessageText.h"
 
 #include <algorithm>
 #include <chrono>
@@ -429,7 +430,7 @@ std::vector<std::string> Still::bufferNames() const {
 
 void Still::write(const std::string& path) const {
     translated("Still::write()", [&] {
-        refuseInputAsOutput(path, "'" + path + "'", mImpl->inputs);
+        refuseInputAsOutput(path, detail::quotedFileName(path), mImpl->inputs);
         writeImage(path, matOf(mImpl->picture));
     });
 }

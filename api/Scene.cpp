@@ -4,6 +4,7 @@
 #include "scene/MeshArrays.h"
 #include "scene/MeshLabels.h"
 #include "scene/ObjectIds.h"
+#include "scene/MessageText.h"
 
 namespace inkgraph::api {
 inline namespace INKGRAPH_ABI_NAMESPACE {
@@ -65,7 +66,7 @@ Scene Scene::load(const std::string& path, const SceneOptions& options) {
         impl->derived = std::make_shared<inkgraph::SceneDerivedData>(*impl->scene);
         const std::vector<inkgraph::Warning>& warnings = impl->scene->report.warnings;
         if (options.strict && !warnings.empty())
-            throw SceneError("SceneOptions::strict: '" + path + "': " + warnings.front().message +
+            throw SceneError("SceneOptions::strict: " + detail::quotedFileName(path) + ": " + warnings.front().message +
                              (warnings.size() > 1 ? " (and " + std::to_string(warnings.size() - 1) + " more)" : ""));
         return Scene(std::move(impl));
     });

@@ -5,7 +5,7 @@
 #include "app/Render.h"                // memoryLimitOf()
 #include "passes/shade/ShadingModel.h" // traitsOf()
 #include "render/StillRenderer.h"      // readShadeMapFile()
-#include "scene/MessageText.h"         // withoutByteOrderMark()
+#include "scene/MessageText.h"         // withoutByteOrderMark(), quotedFileName()
 #include "scene/Scene.h"
 
 #include <glm/glm.hpp>
@@ -47,8 +47,9 @@ std::string listText(const std::string& listPath, std::istream& standardInput) {
     std::error_code statusError;
     if (std::filesystem::status(listPath, statusError).type() == std::filesystem::file_type::fifo) {
         std::ifstream pipe(listPath, std::ios::binary);
-        if (!pipe) throw UsageError("--list: '" + listPath + "': cannot open the pipe for reading");
-        return streamText(pipe, "'" + listPath + "'");
+        if (!pipe)
+            throw UsageError("--list: " + detail::quotedFileName(listPath) + ": cannot open the pipe for reading");
+        return streamText(pipe, detail::quotedFileName(listPath));
     }
     try {
         return readInputBytes(listPath, kMaxListBytes, "--list");
@@ -100,7 +101,8 @@ BatchList batchList(const RenderOptions& options, std::istream& standardInput) {
     std::vector<std::string> paths = options.modelPaths;
     if (!options.listPath.empty()) {
         const std::string text = listText(options.listPath, standardInput);
-        const std::string listName = options.listPath == "-" ? "standard input" : "'" + options.listPath + "'";
+        const std::string listName =
+            options.listPath == "-" ? "standard input" : detail::quotedFileName(options.listPath);
         std::istringstream lines(text);
         std::string line;
         for (std::size_t number = 1; std::getline(lines, line); ++number) {
@@ -236,12 +238,13 @@ void checkOutputsAcrossShards(const RenderOptions& options, const BatchList& lis
         if (shardOf(a.position) != options.shard->index && shardOf(b.position) != options.shard->index) continue;
         const std::string place = placeOf(a);
         if (place != placeOf(b)) continue;
-        throw UsageError(flags[a.flag].first + " '" + place + "' is written for both '" + list.everyPath[a.position] +
-                         "' (list position " + std::to_string(a.position + 1) + ", shard " +
-                         std::to_string(shardOf(a.position)) + "/" + std::to_string(options.shard->count) + ") and '" +
-                         list.everyPath[b.position] + "' (position " + std::to_string(b.position + 1) + ", shard " +
-                         std::to_string(shardOf(b.position)) + "/" + std::to_string(options.shard->count) +
-                         "); models of one name need {index}");
+        throw UsageError(flags[a.flag].first + " " + detail::quotedFileName(place) + " is written for both " +
+                         detail::quotedFileName(list.everyPath[a.position]) + " (list position " +
+                         std::to_string(a.position + 1) + ", shard " + std::to_string(shardOf(a.position)) + "/" +
+                         std::to_string(options.shard->count) + ") and " +
+                         detail::quotedFileName(list.everyPath[b.position]) + " (position " +
+                         std::to_string(b.position + 1) + ", shard " + std::to_string(shardOf(b.position)) + "/" +
+                         std::to_string(options.shard->count) + "); models of one name need {index}");
     }
 }
 
@@ -260,12 +263,13 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
     const std::size_t viewCount = viewCountOf(options);
     for (const auto& [flag, pattern] : outputFlags(options)) {
         if (list.total > 1 && !hasModelPlaceholder(pattern))
-            throw UsageError(flag + " '" + pattern + "' would be the same file for all " + std::to_string(list.total) +
-                             " models; put {name} or {index} in it, e.g. '" +
-                             examplePath(flag, pattern, viewCount > 1) + "'");
+            throw UsageError(flag + " " + detail::quotedFileName(pattern) + " would be the same file for all " +
+                             std::to_string(list.total) + " models; put {name} or {index} in it, e.g. " +
+                             detail::quotedFileName(examplePath(flag, pattern, viewCount > 1)));
         if (viewCount > 1 && !hasViewPlaceholder(pattern))
-            throw UsageError(flag + " '" + pattern + "' would be the same file for all " + std::to_string(viewCount) +
-                             " views of --views; put {view} in it, e.g. '" + examplePath(flag, pattern, true) + "'");
+            throw UsageError(flag + " " + detail::quotedFileName(pattern) + " would be the same file for all " +
+                             std::to_string(viewCount) + " views of --views; put {view} in it, e.g. " +
+                             detail::quotedFileName(examplePath(flag, pattern, true)));
     }
     // By place and by device and inode: a hard link of a model is that model under another name.
     std::map<std::filesystem::path, const BatchModel*> modelsByPlace;
@@ -320,31 +324,37 @@ void checkBatchOutputs(const RenderOptions& options, const BatchList& list) {
             const auto identity = fileIdentity(output);
             for (const RunInputFile& input : runInputs)
                 if (place == input.place || (identity && input.identity && *identity == *input.identity))
-                    throw UsageError(flag + " '" + output + "' is " + input.what + "; choose another file");
+                    throw UsageError(flag + " " + detail::quotedFileName(output) + " is " + input.what +
+                                     "; choose another file");
             const BatchModel* overwritten = nullptr;
             if (auto input = modelsByPlace.find(place); input != modelsByPlace.end()) overwritten = input->second;
             if (identity)
                 if (auto input = modelsByIdentity.find(*identity); input != modelsByIdentity.end())
                     overwritten = input->second;
             if (overwritten != nullptr && overwritten->path == model.path)
-                throw UsageError(flag + " '" + output + "' is the model itself; choose another file");
+                throw UsageError(flag + " " + detail::quotedFileName(output) +
+                                 " is the model itself; choose another file");
             if (overwritten != nullptr)
-                throw UsageError(flag + " '" + output + "' (for '" + model.path + "') would overwrite the model '" +
-                                 overwritten->path + "'");
+                throw UsageError(flag + " " + detail::quotedFileName(output) + " (for " +
+                                 detail::quotedFileName(model.path) + ") would overwrite the model " +
+                                 detail::quotedFileName(overwritten->path));
             if (identity)
                 if (const auto* named = modelNaming(*identity))
-                    throw UsageError(flag + " '" + output + "' (for '" + model.path + "') would overwrite '" +
-                                     named->second + "', which the model '" + named->first->path + "' reads");
+                    throw UsageError(flag + " " + detail::quotedFileName(output) + " (for " +
+                                     detail::quotedFileName(model.path) + ") would overwrite " +
+                                     detail::quotedFileName(named->second) + ", which the model " +
+                                     detail::quotedFileName(named->first->path) + " reads");
             // One still's own outputs colliding with each other are OutputSet's to report.
             const auto [earlier, inserted] = writers.emplace(place, &still);
             const BatchStill& other = *earlier->second;
             if (!inserted && (other.model.position != model.position || other.viewIndex != still.viewIndex)) {
                 const auto described = [viewCount](const BatchStill& one) {
-                    return "'" + one.model.path + "' (list position " + std::to_string(one.model.position + 1) +
+                    return detail::quotedFileName(one.model.path) + " (list position " +
+                           std::to_string(one.model.position + 1) +
                            (viewCount > 1 ? ", view " + zeroPadded(one.viewIndex, viewCount - 1) : std::string()) + ")";
                 };
-                throw UsageError(flag + " '" + output + "' is written for both " + described(other) + " and " +
-                                 described(still) +
+                throw UsageError(flag + " " + detail::quotedFileName(output) + " is written for both " +
+                                 described(other) + " and " + described(still) +
                                  (other.model.position != model.position ? "; models of one name need {index}"
                                                                          : "; views need {view}"));
             }

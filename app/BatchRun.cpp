@@ -4,6 +4,7 @@
 #include "render/BackgroundThreads.h"
 #include "render/MemoryBudget.h"
 #include "render/Messages.h"
+#include "scene/MessageText.h"
 #include "render/UsageError.h"
 
 #include "app/Batch.h"
@@ -31,9 +32,7 @@ namespace {
 
 /** "'models/x.vrm'", with --views "'models/x.vrm' view 04": a still in progress lines and the summary. */
 std::string stillLabel(const BatchStill& still, const RenderOptions& options) {
-    // Appended, not "'" + text: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
-    std::string label = "'";
-    label.append(printableText(still.model.path)).append("'");
+    std::string label = detail::quotedFileName(still.model.path);
     if (still.view) {
         const std::string last = std::to_string(options.viewSampling.count - 1);
         std::string view = std::to_string(still.viewIndex);
@@ -178,7 +177,7 @@ void renderShare(const BatchShared& batch, std::size_t first, std::size_t step, 
                                   outputPath = still.outputPath](const StillReport& report) {
                 if (quiet) return;
                 log << counter;
-                if (!outputPath.empty()) log << " -> '" << printableText(outputPath) << "'";
+                if (!outputPath.empty()) log << " -> " << detail::quotedFileName(outputPath);
                 log << ": " << report.triangles << " triangles, " << std::fixed << std::setprecision(0)
                     << report.milliseconds << " ms\n";
             };

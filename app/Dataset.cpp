@@ -10,6 +10,7 @@
 #include "render/InputFiles.h"
 #include "render/TemporaryFiles.h"
 #include "scene/Scene.h"
+#include "scene/MessageText.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -82,13 +83,13 @@ void appendLine(const fs::path& journal, const std::string& line, std::size_t te
     const int descriptor =
         ::open(journal.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
     if (descriptor < 0)
-        throw FileError("DatasetRun::recordCommitted(): cannot open the journal '" + journal.string() +
-                        "': " + std::strerror(errno));
+        throw FileError("DatasetRun::recordCommitted(): cannot open the journal " +
+                        detail::quotedFileName(journal.string()) + ": " + std::strerror(errno));
     struct stat status {};
     if (::fstat(descriptor, &status) != 0 || !S_ISREG(status.st_mode)) {
         ::close(descriptor);
-        throw FileError("DatasetRun::recordCommitted(): the journal '" + journal.string() +
-                        "' is not a plain file; remove it and resume");
+        throw FileError("DatasetRun::recordCommitted(): the journal " + detail::quotedFileName(journal.string()) +
+                        " is not a plain file; remove it and resume");
     }
     // One write for the whole line; a short write (a full disk) is continued, leaving a torn line at worst.
     int failure = writeWhole(descriptor, line.data(), tearAt > 0 ? tearAt : line.size());
@@ -99,8 +100,8 @@ void appendLine(const fs::path& journal, const std::string& line, std::size_t te
     if (failure == 0 && ::fdatasync(descriptor) != 0) failure = errno;
     if (::close(descriptor) != 0 && failure == 0) failure = errno;
     if (failure != 0)
-        throw FileError("DatasetRun::recordCommitted(): cannot write the journal '" + journal.string() +
-                        "': " + std::strerror(failure));
+        throw FileError("DatasetRun::recordCommitted(): cannot write the journal " +
+                        detail::quotedFileName(journal.string()) + ": " + std::strerror(failure));
 }
 
 /** The lines of a journal or index that parse as a still's record; a torn tail of the journal is cut off, so the next
@@ -114,8 +115,8 @@ std::vector<Json> readRecords(const fs::path& path, bool cutTornTail) {
     const std::size_t whole = lastNewline == std::string::npos ? 0 : lastNewline + 1;
     if (cutTornTail && whole < text.size()) {
         if (::truncate(path.c_str(), off_t(whole)) != 0)
-            throw FileError("DatasetRun: cannot cut the torn last line of '" + path.string() +
-                            "': " + std::strerror(errno));
+            throw FileError("DatasetRun: cannot cut the torn last line of " + detail::quotedFileName(path.string()) +
+                            ": " + std::strerror(errno));
     }
     std::istringstream lines(text.substr(0, whole));
     std::string line;
@@ -195,7 +196,7 @@ std::optional<std::string> readDatasetFile(const fs::path& path, const std::stri
     if (descriptor < 0 || ::fstat(descriptor, &status) != 0 || !S_ISREG(status.st_mode)) {
         const int cause = descriptor < 0 ? errno : 0;
         if (descriptor >= 0) ::close(descriptor);
-        throw FileError(function + ": '" + path.string() + "' " +
+        throw FileError(function + ": " + detail::quotedFileName(path.string()) + " " +
                         (cause == ELOOP || cause == 0
                              ? std::string("is not a plain file (a link, a FIFO, a device or a "
                                            "folder): a data set's own files are plain files; "
@@ -278,7 +279,7 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
     : mOptions(options), mFolder(resolvedPath(options.datasetDirectory)), mSuffix(shardSuffix(options)),
       mGivenArguments(std::move(givenArguments)), mKillBeforeLine(hookFrom("INKGRAPH_TEST_JOURNAL_KILL")),
       mTearLine(hookFrom("INKGRAPH_TEST_JOURNAL_TEAR")) {
-    const std::string shown = "--dataset '" + options.datasetDirectory + "'";
+    const std::string shown = "--dataset " + detail::quotedFileName(options.datasetDirectory);
     std::error_code error;
     if (fs::exists(mFolder, error) && !fs::is_directory(mFolder, error)) throw UsageError(shown + " is not a folder");
     mModelCount = list.models.size();
@@ -290,9 +291,8 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
         try {
             (void)Json(text).dump();
         } catch (const Json::type_error&) {
-            throw UsageError(
-                shown + ": " + what + " '" + text +
-                "' is not UTF-8, and the data set's index and card (JSON) hold UTF-8 text only: rename it");
+            throw UsageError(shown + ": " + what + " " + detail::quotedFileName(text) +
+                             " is not UTF-8, and the data set's index and card (JSON) hold UTF-8 text only: rename it");
         }
     };
 
@@ -309,14 +309,15 @@ DatasetRun::DatasetRun(const RenderOptions& options, const BatchList& list, cons
             const fs::path relative = place.lexically_relative(mFolder);
             if ((relative.empty() || relative == "." || *relative.begin() == "..") &&
                 fs::is_symlink(fs::symlink_status(value, error)))
-                throw UsageError(flag + " '" + value + "' is a link to '" + place.string() + "', outside " + shown +
+                throw UsageError(flag + " " + detail::quotedFileName(value) + " is a link to " +
+                                 detail::quotedFileName(place.string()) + ", outside " + shown +
                                  "; every output of a data set is a file inside it: remove the link");
             if (relative.empty() || relative == "." || *relative.begin() == "..")
-                throw UsageError(flag + " '" + value + "' lies outside " + shown +
+                throw UsageError(flag + " " + detail::quotedFileName(value) + " lies outside " + shown +
                                  "; every output of a data set goes inside it, e.g. " + flag + " '" +
                                  (fs::path(options.datasetDirectory) / fs::path(value).filename()).string() + "'");
             if (reserved.count(place) != 0 || reserved.count(mFolder / *relative.begin()) != 0)
-                throw UsageError(flag + " '" + value + "' is a file of the data set itself (" +
+                throw UsageError(flag + " " + detail::quotedFileName(value) + " is a file of the data set itself (" +
                                  relative.begin()->string() + "); choose another name");
         }
     }
@@ -382,8 +383,8 @@ void DatasetRun::lockThisSplit() {
         }
         fs::create_directories(path.parent_path(), error);
         if (error)
-            throw FileError("DatasetRun: cannot create the data set's own folder '" + path.parent_path().string() +
-                            "': " + error.message());
+            throw FileError("DatasetRun: cannot create the data set's own folder " +
+                            detail::quotedFileName(path.parent_path().string()) + ": " + error.message());
         if (folderTakenAway-- > 0) fs::remove(path.parent_path(), error);
         mLock = FileLock(path, FileLock::Target::LockFile);
         if (mLock.held()) {
@@ -394,13 +395,13 @@ void DatasetRun::lockThisSplit() {
         if (mLock.error() != ENOENT) break;
     }
     if (mMadeJournalFolder) fs::remove(path.parent_path(), error); // only when empty
-    const std::string shown = "--dataset '" + mOptions.datasetDirectory + "'";
+    const std::string shown = "--dataset " + detail::quotedFileName(mOptions.datasetDirectory);
     const std::string split = mSuffix.empty() ? "" : " (shard " + mSuffix.substr(1) + ")";
     if (mLock.error() == EWOULDBLOCK)
         throw FileError("DatasetRun: " + shown + split +
                         " is being written by another inkgraph run; wait until it has finished, then --resume");
-    throw FileError("DatasetRun: cannot lock " + shown + split + " ('" + path.string() + "'): " +
-                    (mLock.error() == EINVAL ? std::string("not a plain file") : std::strerror(mLock.error())));
+    throw FileError("DatasetRun: cannot lock " + shown + split + " (" + detail::quotedFileName(path.string()) +
+                    "): " + (mLock.error() == EINVAL ? std::string("not a plain file") : std::strerror(mLock.error())));
 }
 
 void DatasetRun::letGoOfThisSplit(bool finished) {
@@ -420,7 +421,7 @@ void DatasetRun::letGoOfThisSplit(bool finished) {
 
 void DatasetRun::refuseOtherRunsFiles() const {
     const RenderOptions& options = mOptions;
-    const std::string shown = "--dataset '" + options.datasetDirectory + "'";
+    const std::string shown = "--dataset " + detail::quotedFileName(options.datasetDirectory);
     std::error_code error;
     // One layout per folder, resumed or not: every index, shard card and journal there must be of this run's split
     // (unsharded, or --shard K/N with this N), so no two splits' files ever mix in one data set.
@@ -435,9 +436,9 @@ void DatasetRun::refuseOtherRunsFiles() const {
     const auto refuseOtherLayout = [&](const fs::path& path, const std::string& suffix) {
         const std::string theirs = layoutOf(suffix);
         if (theirs != layout)
-            throw UsageError(shown + " holds a data set made " + theirs + " ('" +
-                             path.lexically_relative(mFolder).generic_string() + "'), this run is " + layout +
-                             "; run it as it was made, or choose a new or empty folder");
+            throw UsageError(shown + " holds a data set made " + theirs + " (" +
+                             detail::quotedFileName(path.lexically_relative(mFolder).generic_string()) +
+                             "), this run is " + layout + "; run it as it was made, or choose a new or empty folder");
     };
     const auto suffixBetween = [](const std::string& name, const std::string& prefix,
                                   const std::string& extension) -> std::optional<std::string> {
@@ -474,9 +475,9 @@ void DatasetRun::refuseOtherRunsFiles() const {
     for (const fs::path& path : {journalPath(), indexPath(), cardPath()})
         if (fs::exists(fs::symlink_status(path, error))) existing.push_back(path);
     if (!existing.empty() && !options.resume)
-        throw UsageError(shown + " already holds a data set ('" +
-                         existing.front().lexically_relative(mFolder).string() +
-                         "'); add --resume to complete or update it, or choose a new or empty folder");
+        throw UsageError(shown + " already holds a data set (" +
+                         detail::quotedFileName(existing.front().lexically_relative(mFolder).string()) +
+                         "); add --resume to complete or update it, or choose a new or empty folder");
 }
 
 fs::path DatasetRun::journalPath() const { return mFolder / kJournalFolder / ("journal" + mSuffix + ".jsonl"); }
@@ -568,8 +569,8 @@ void DatasetRun::recordCommitted(const StillKey& key, const RenderOptions& still
     const auto addChecksum = [&](const fs::path& path) {
         const auto checksum = fileChecksum(path);
         if (!checksum)
-            throw FileError("DatasetRun::recordCommitted(): cannot read back '" + path.string() +
-                            "', committed a moment ago");
+            throw FileError("DatasetRun::recordCommitted(): cannot read back " + detail::quotedFileName(path.string()) +
+                            ", committed a moment ago");
         checksums[path.lexically_relative(mFolder).generic_string()] = {{"size", checksum->size},
                                                                         {"fnv1a64", checksum->fnv1a64}};
     };
@@ -615,8 +616,8 @@ void DatasetRun::makeOutputFolders(const RenderOptions& still) const {
         std::error_code error;
         if (fs::create_directories(folder, error)) mMadeOutputFolder = true;
         if (error)
-            throw FileError("DatasetRun::makeOutputFolders(): cannot make the folder '" + folder.string() + "' of " +
-                            flag + ": " + error.message());
+            throw FileError("DatasetRun::makeOutputFolders(): cannot make the folder " +
+                            detail::quotedFileName(folder.string()) + " of " + flag + ": " + error.message());
     }
 }
 

@@ -3,6 +3,7 @@
 
 #include "render/ImageFiles.h"
 #include "render/TemporaryFiles.h"
+#include "scene/MessageText.h"
 
 #include <nlohmann/json.hpp>
 
@@ -36,8 +37,11 @@ constexpr std::uintmax_t kMaxManifestBytes = std::uintmax_t(16) << 20;
 std::string quotedName(const std::string& name) {
     // Appended, not "'" + name: GCC 12 warns falsely (-Wrestrict, bug 105329) on that inlined.
     std::string quoted = "'";
-    if (name.size() <= 80) return quoted.append(name).append("'");
-    return quoted.append(name, 0, 60).append("...' (").append(std::to_string(name.size())).append(" bytes)");
+    if (name.size() <= 80) return quoted.append(detail::oneLineText(name)).append("'");
+    return quoted.append(detail::oneLineText(std::string_view(name).substr(0, 60)))
+        .append("...' (")
+        .append(std::to_string(name.size()))
+        .append(" bytes)");
 }
 
 bool isPlainFileName(const std::string& name) {
@@ -203,7 +207,7 @@ DumpFolder::DumpFolder(const std::string& flagValue) : mShownName(flagValue) {
 }
 
 void DumpFolder::check(const std::string& flagValue) {
-    const std::string what = "--dump '" + flagValue + "'";
+    const std::string what = "--dump " + detail::quotedFileName(flagValue);
     const auto fail = [&](const std::string& problem) { throw FileError("checkOutputs(): " + what + " " + problem); };
     std::error_code error;
     fs::path folder = fs::absolute(flagValue, error);
@@ -213,7 +217,8 @@ void DumpFolder::check(const std::string& flagValue) {
     const fs::file_status status = fs::status(folder, error);
     if (error && error != std::errc::no_such_file_or_directory) fail("cannot be read: " + error.message());
     if (!fs::exists(status) && fs::is_symlink(fs::symlink_status(folder)))
-        fail("is a link to a folder that does not exist ('" + fs::read_symlink(folder).string() + "')");
+        fail("is a link to a folder that does not exist (" + detail::quotedFileName(fs::read_symlink(folder).string()) +
+             ")");
     if (fs::exists(status)) {
         if (!fs::is_directory(status)) fail("is a file, not a folder");
         folder = fs::canonical(folder, error); // the swap replaces the folder itself, never a link to it
@@ -243,7 +248,7 @@ void DumpFolder::check(const std::string& flagValue) {
     // Held open: the undo, the tidying and the abandoning of a commit act in the folder the dump was staged in, even if
     // the user moves it away meanwhile (the forward steps go by name, so nothing lands in a folder moved away).
     mParent = ::open(parent.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
-    if (mParent < 0) fail("cannot be staged: '" + parent.string() + "': " + std::strerror(errno));
+    if (mParent < 0) fail("cannot be staged: " + detail::quotedFileName(parent.string()) + ": " + std::strerror(errno));
 
     struct stat folderStatus {
     }, parentStatus{};
@@ -255,8 +260,8 @@ void DumpFolder::check(const std::string& flagValue) {
     mFolderOwner = folderStatus.st_uid;
     mFolderGroup = folderStatus.st_gid;
     if (const int reason = creationErrorIn(parent))
-        fail("cannot be staged: a dump is written beside its folder, in '" + parent.string() +
-             "', and swapped in whole: " + std::strerror(reason));
+        fail("cannot be staged: a dump is written beside its folder, in " + detail::quotedFileName(parent.string()) +
+             ", and swapped in whole: " + std::strerror(reason));
 
     // Locked until the commit ends. The lock is on the folder's inode, and a commit swaps another inode in under the
     // name, so a lock taken on a folder that was swapped out meanwhile is let go and taken again on the new one.
@@ -359,16 +364,16 @@ void DumpFolder::markEarlier() {
     const int file =
         ::openat(mEarlierFolder, kStagingMarker, O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
     if (file < 0)
-        throw FileError("OutputSet::commit(): cannot mark the earlier dump in --dump '" + mShownName +
-                        "': " + std::strerror(errno));
+        throw FileError("OutputSet::commit(): cannot mark the earlier dump in --dump " +
+                        detail::quotedFileName(mShownName) + ": " + std::strerror(errno));
     ::close(file);
     mMarked = true;
 }
 
 void DumpFolder::swapIn() {
     const auto fail = [&](int reason) {
-        throw FileError("OutputSet::commit(): cannot swap the new dump into --dump '" + mShownName +
-                        "': " + std::strerror(reason));
+        throw FileError("OutputSet::commit(): cannot swap the new dump into --dump " +
+                        detail::quotedFileName(mShownName) + ": " + std::strerror(reason));
     };
     // The folder keeps its permissions and owner (the owner only where this process may give it: root).
     ::chmod(mStaging.c_str(), mFolderMode);

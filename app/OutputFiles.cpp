@@ -3,6 +3,7 @@
 #include "render/ImageFiles.h"
 #include "render/OutputPlace.h"
 #include "render/TemporaryFiles.h"
+#include "scene/MessageText.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -96,17 +97,18 @@ OutputSet::OutputSet(const RenderOptions& options) {
         const fs::path path = resolvedPath(file.destination);
         for (std::size_t j = i + 1; j < mOutputs.size(); ++j)
             if (isSameFile(file.destination, mOutputs[j].destination))
-                throw UsageError(file.flag + " and " + mOutputs[j].flag + " name the same file '" +
-                                 file.destination.string() + "'");
+                throw UsageError(file.flag + " and " + mOutputs[j].flag + " name the same file " +
+                                 detail::quotedFileName(file.destination.string()));
         if (!options.dumpDirectory.empty() && isInside(path, resolvedPath(options.dumpDirectory)))
-            throw UsageError(file.flag + " '" + file.destination.string() + "' lies inside --dump '" +
-                             options.dumpDirectory + "', whose contents each dump replaces; write it elsewhere");
+            throw UsageError(file.flag + " " + detail::quotedFileName(file.destination.string()) +
+                             " lies inside --dump " + detail::quotedFileName(options.dumpDirectory) +
+                             ", whose contents each dump replaces; write it elsewhere");
     }
     const std::vector<RunInput> inputs = inputsNamedBy(options);
     refuseInputs(inputs);
 
     for (const Output& file : mOutputs) {
-        const std::string what = file.flag + " '" + file.destination.string() + "'";
+        const std::string what = file.flag + " " + detail::quotedFileName(file.destination.string());
         requireOutputPlace(file.destination, "checkOutputs()", what);
         sweepStaleTemporaries(folderOf(file.destination));
     }
@@ -135,14 +137,16 @@ std::vector<RunInput> inputsNamedBesidesModel(const RenderOptions& options) {
 
 void OutputSet::refuseInputs(const std::vector<RunInput>& inputs) const {
     for (const Output& file : mOutputs)
-        refuseInputAsOutput(file.destination, file.flag + " '" + file.destination.string() + "'", inputs);
+        refuseInputAsOutput(file.destination, file.flag + " " + detail::quotedFileName(file.destination.string()),
+                            inputs);
     if (!mDump) return;
     for (const RunInput& input : inputs) {
         const auto identity = fileIdentity(input.path);
         if (!identity) continue;
         for (const std::string& name : mDump->earlierFiles())
             if (fileIdentity(mDump->folder() / name) == identity)
-                throw UsageError("--dump '" + mDump->shownName() + "' holds '" + name + "', which is " + input.what +
+                throw UsageError("--dump " + detail::quotedFileName(mDump->shownName()) + " holds " +
+                                 detail::quotedFileName(name) + ", which is " + input.what +
                                  ", and a dump replaces its folder's files; choose another folder");
     }
 }
@@ -241,8 +245,9 @@ void OutputSet::commit() {
                 registerTemporary(backup);
             } else if (errno != EPERM && errno != EOPNOTSUPP && errno != EMLINK) {
                 // (Those three: a file system without hard links. The file is then replaced without a way back.)
-                throw FileError("OutputSet::commit(): cannot keep the earlier " + file.flag + " '" +
-                                file.destination.string() + "' until the commit ends: " + std::strerror(errno));
+                throw FileError("OutputSet::commit(): cannot keep the earlier " + file.flag + " " +
+                                detail::quotedFileName(file.destination.string()) +
+                                " until the commit ends: " + std::strerror(errno));
             }
             steps.done("earlier " + file.flag + " kept");
         }
@@ -253,8 +258,8 @@ void OutputSet::commit() {
         for (Output& file : mOutputs) {
             if (file.temporary.empty()) continue;
             if (::rename(file.temporary.c_str(), file.destination.c_str()) != 0)
-                throw FileError("OutputSet::commit(): cannot move the finished file into place as '" +
-                                file.destination.string() + "': " + std::strerror(errno));
+                throw FileError("OutputSet::commit(): cannot move the finished file into place as " +
+                                detail::quotedFileName(file.destination.string()) + ": " + std::strerror(errno));
             file.moved = true;
             steps.done(file.flag + " moved into place");
         }

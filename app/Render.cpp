@@ -6,7 +6,7 @@
 #include "render/ImageFiles.h"
 #include "render/InputFiles.h"
 #include "render/MemoryBudget.h"
-#include "render/Messages.h"
+#include "scene/MessageText.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -535,7 +535,7 @@ void RenderSession::commitFinished(PendingStill& pending, TailOutcome& outcome) 
     tellLog(pending.log.get());
     if (pending.talks) {
         mLog << "inkgraph: rendered " << options.width << "x" << options.height << " in " << totalMilliseconds << " ms";
-        if (!options.outputPath.empty()) mLog << " -> '" << printableText(options.outputPath) << "'";
+        if (!options.outputPath.empty()) mLog << " -> " << detail::quotedFileName(options.outputPath);
         mLog << "\n";
     }
     pending.report.milliseconds = totalMilliseconds;

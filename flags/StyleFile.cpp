@@ -3,7 +3,7 @@
 #include "render/ImageFiles.h"
 #include "flags/FlagTable.h"
 #include "flags/Options.h"
-#include "scene/MessageText.h" // withoutByteOrderMark(), as the model readers skip one
+#include "scene/MessageText.h" // withoutByteOrderMark(), as the model readers skip one; quotedFileName()
 
 #include <algorithm>
 #include <filesystem>
@@ -54,7 +54,7 @@ SourcedArguments styleArguments(std::string_view text, const std::string& source
         const std::size_t end = std::min(text.find('\n'), text.size());
         std::string_view line = text.substr(0, end);
         text.remove_prefix(std::min(end + 1, text.size()));
-        const std::string where = "--style '" + source + "' line " + std::to_string(lineNumber);
+        const std::string where = "--style " + detail::quotedFileName(source) + " line " + std::to_string(lineNumber);
         if (line.find('\0') != std::string_view::npos)
             throw UsageError(where + ": binary data (NUL byte); a style is text");
         if (const std::size_t comment = line.find('#'); comment != std::string_view::npos)
@@ -102,7 +102,8 @@ SourcedArguments expandStyleFile(const std::vector<std::string>& arguments) {
         if (i + 1 >= rest.arguments.size()) throw UsageError("--style: missing FILE");
         if (rest.arguments[i + 1].empty()) throw UsageError("--style: empty value"); // as every flag says it
         if (!stylePath.empty())
-            throw UsageError("--style: given twice ('" + stylePath + "', '" + rest.arguments[i + 1] + "')");
+            throw UsageError("--style: given twice (" + detail::quotedFileName(stylePath) + ", " +
+                             detail::quotedFileName(rest.arguments[i + 1]) + ")");
         stylePath = rest.arguments[++i];
     }
     if (stylePath.empty()) return rest;

@@ -6,6 +6,7 @@
 #include "render/TemporaryFiles.h"
 #include "codecs/PngChunks.h"
 #include "gl/BinaryLocation.h"
+#include "scene/MessageText.h"
 
 #include <dlfcn.h>
 #include <fcntl.h>
@@ -27,14 +28,8 @@
 namespace inkgraph {
 namespace {
 
-/** `path` in single quotes, for messages. Appended rather than "'" + text: GCC 12 warns (-Wrestrict, a false
- *  positive) on a literal prepended to a temporary string where the call is inlined. */
-std::string quotedPath(const std::filesystem::path& path) {
-    std::string quoted = "'";
-    quoted += path.string();
-    quoted += "'";
-    return quoted;
-}
+/** `path` in single quotes, on one line, for messages. */
+std::string quotedPath(const std::filesystem::path& path) { return detail::quotedFileName(path.string()); }
 
 constexpr const char* kModuleName = kImageIoModuleName;
 
@@ -43,8 +38,8 @@ void renameIntoPlace(const std::filesystem::path& temporary, const std::filesyst
     std::filesystem::rename(temporary, path, error);
     if (error) {
         removeTemporary(temporary); // from the folder it was made in, should that have moved
-        throw FileError("writeFile(): cannot move the finished file into place as '" + path.string() +
-                        "': " + error.message());
+        throw FileError("writeFile(): cannot move the finished file into place as " +
+                        detail::quotedFileName(path.string()) + ": " + error.message());
     }
     forgetTemporary(temporary);
 }
@@ -87,7 +82,8 @@ LoadedModule loadModule() {
         using Entry = const ImageIoFunctions* (*)();
         auto entry = reinterpret_cast<Entry>(dlsym(handle, "inkgraph_image_io_functions"));
         if (entry == nullptr || entry()->version != kImageIoVersion) {
-            loaded.failure += "\n  - '" + candidate.string() + "' is not an inkgraph image module of this version";
+            loaded.failure += "\n  - " + detail::quotedFileName(candidate.string()) +
+                              " is not an inkgraph image module of this version";
             continue;
         }
         loaded.functions = entry();
@@ -150,7 +146,8 @@ std::string imageIoModuleState() {
 
 std::string imageIoLibrary() {
     const LoadedModule& loaded = loadedImageIo();
-    return std::string(loaded.functions->libraryVersion()) + " (module '" + loaded.path.string() + "')";
+    return std::string(loaded.functions->libraryVersion()) + " (module " +
+           detail::quotedFileName(loaded.path.string()) + ")";
 }
 
 void finishImageIoPreload() {
@@ -193,14 +190,17 @@ int writeWhole(int descriptor, const void* data, std::size_t byteCount) {
 void writeBytes(const std::filesystem::path& destination, const void* data, std::size_t byteCount,
                 const std::string& shownName) {
     const int descriptor = createTemporaryFile(destination, 0644);
-    if (descriptor < 0) throw FileError("writeFile(): cannot create '" + shownName + "': " + std::strerror(errno));
+    if (descriptor < 0)
+        throw FileError("writeFile(): cannot create " + detail::quotedFileName(shownName) + ": " +
+                        std::strerror(errno));
     int failure = writeWhole(descriptor, data, byteCount);
     // fsync before the rename: after a crash the final name holds the whole file or the old one, never a prefix.
     if (failure == 0 && ::fsync(descriptor) != 0) failure = errno;
     if (::close(descriptor) != 0 && failure == 0) failure = errno;
     if (failure != 0) {
         removeTemporary(destination);
-        throw FileError("writeFile(): cannot write '" + shownName + "': " + std::strerror(failure));
+        throw FileError("writeFile(): cannot write " + detail::quotedFileName(shownName) + ": " +
+                        std::strerror(failure));
     }
 }
 
@@ -211,10 +211,11 @@ std::vector<unsigned char> encodeImageFile(const std::filesystem::path& finalPat
         try {
             encoded = encodePng(image);
         } catch (const std::runtime_error& failure) {
-            throw FileError("writeImage(): cannot write '" + finalPath.string() + "': " + failure.what());
+            throw FileError("writeImage(): cannot write " + detail::quotedFileName(finalPath.string()) + ": " +
+                            failure.what());
         }
     } else if (!imageIo().encodeImage(finalPath.string(), image, encoded, error)) {
-        throw FileError("writeImage(): cannot write '" + finalPath.string() + "': " + error);
+        throw FileError("writeImage(): cannot write " + detail::quotedFileName(finalPath.string()) + ": " + error);
     }
     return encoded;
 }
@@ -236,7 +237,7 @@ std::string imageFilePixelType(const std::filesystem::path& path) {
     std::string type;
     std::string error;
     if (!imageIo().pixelType(path.string(), type, error))
-        throw FileError("imageFilePixelType(): cannot read '" + path.string() + "': " + error);
+        throw FileError("imageFilePixelType(): cannot read " + detail::quotedFileName(path.string()) + ": " + error);
     return type;
 }
 
@@ -245,18 +246,19 @@ cv::Mat readImage(const std::filesystem::path& path, std::size_t maxPixels) {
         try {
             return readPngFile(path, maxPixels);
         } catch (const std::runtime_error& failure) {
-            throw FileError("readImage(): cannot read '" + path.string() + "': " + failure.what());
+            throw FileError("readImage(): cannot read " + detail::quotedFileName(path.string()) + ": " +
+                            failure.what());
         }
     }
     cv::Mat image;
     std::string error;
     if (!imageIo().readImage(path.string(), maxPixels, image, error))
-        throw FileError("readImage(): cannot read '" + path.string() + "': " + error);
+        throw FileError("readImage(): cannot read " + detail::quotedFileName(path.string()) + ": " + error);
     return image;
 }
 
 std::string readInputBytes(const std::filesystem::path& path, std::uintmax_t maxBytes, const std::string& who) {
-    const std::string where = who + ": '" + path.string() + "'";
+    const std::string where = who + ": " + detail::quotedFileName(path.string());
     std::error_code error;
     const auto status = std::filesystem::status(path, error);
     if (status.type() == std::filesystem::file_type::not_found) throw FileError(where + ": file not found");
@@ -273,7 +275,7 @@ std::string readInputBytes(const std::filesystem::path& path, std::uintmax_t max
 
 cv::Mat readPngImage(const std::filesystem::path& path, std::size_t maxPixels, std::size_t maxFileBytes,
                      const std::string& who) {
-    const std::string where = who + ": '" + path.string() + "'";
+    const std::string where = who + ": " + detail::quotedFileName(path.string());
     const std::string bytes = readInputBytes(path, maxFileBytes, who);
     std::vector<unsigned char> png;
     try {

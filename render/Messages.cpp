@@ -1,5 +1,7 @@
 #include "render/Messages.h"
 
+#include "scene/MessageText.h"
+
 namespace inkgraph {
 namespace {
 
@@ -31,20 +33,7 @@ std::string shortened(const std::string& quoted) {
 } // namespace
 
 std::string printableText(const std::string& text) {
-    static const char kDigits[] = "0123456789abcdef";
-    std::string printable;
-    printable.reserve(text.size());
-    for (const char c : text) {
-        const auto byte = static_cast<unsigned char>(c);
-        if ((byte < 0x20 && c != '\n' && c != '\t') || byte == 0x7f) {
-            printable += "\\x";
-            printable += kDigits[byte >> 4];
-            printable += kDigits[byte & 15];
-        } else {
-            printable += c;
-        }
-    }
-    return printable;
+    return detail::escapedControlCharacters(text, detail::ControlsKept::LineBreaksAndTabs);
 }
 
 std::string boundedMessage(const std::string& text) {

@@ -1,6 +1,7 @@
 #include "render/OutputPlace.h"
 
 #include "render/ImageFiles.h"
+#include "scene/MessageText.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -35,11 +36,12 @@ void requireRegularFileOrNewName(const fs::path& path, const std::string& who, c
 void requireWritableFolder(const fs::path& folder, const std::string& who, const std::string& what) {
     std::error_code error;
     if (!fs::is_directory(folder, error))
-        throw FileError(who + ": the folder of " + what + " ('" + folder.string() + "') does not exist" +
+        throw FileError(who + ": the folder of " + what + " (" + detail::quotedFileName(folder.string()) +
+                        ") does not exist" +
                         (error && error != std::errc::no_such_file_or_directory ? ": " + error.message() : ""));
     if (const int reason = creationErrorIn(folder))
-        throw FileError(who + ": cannot write into the folder of " + what + " ('" + folder.string() +
-                        "'): " + std::strerror(reason));
+        throw FileError(who + ": cannot write into the folder of " + what + " (" +
+                        detail::quotedFileName(folder.string()) + "): " + std::strerror(reason));
 }
 
 /** The rename at the end would fail on a name the file system cannot hold: said now, before any work. */

@@ -2,6 +2,7 @@
 
 #include "graph/Milliseconds.h"
 #include "render/Messages.h"
+#include "scene/MessageText.h"
 
 #include "render/ImageFiles.h"
 #include "render/UsageError.h"
@@ -94,7 +95,7 @@ void failIfStrict(const PreparedStill& still) {
     if (!still.request.strict || still.warnings.empty()) return;
     const std::size_t more = still.warnings.size() - 1;
     throw SceneError(
-        "--strict: '" + still.request.modelPath + "': " + still.warnings.front().message +
+        "--strict: " + detail::quotedFileName(still.request.modelPath) + ": " + still.warnings.front().message +
         (more > 0 ? " (and " + std::to_string(more) + " more warning" + (more > 1 ? "s" : "") + ")" : std::string()));
 }
 
@@ -148,7 +149,8 @@ ShadeMap readShadeMapFile(const std::string& path, bool oneDimensional) {
         throw InputFileError(error.what());
     }
     if (image.depth() != CV_8U)
-        throw InputFileError(std::string(kFlag) + ": '" + path + "' stores 16-bit pixels; a shade map is an 8-bit PNG");
+        throw InputFileError(std::string(kFlag) + ": " + detail::quotedFileName(path) +
+                             " stores 16-bit pixels; a shade map is an 8-bit PNG");
     try {
         return shadeMapFromImage(image, path, oneDimensional, kFlag);
     } catch (const std::invalid_argument& error) {
@@ -174,7 +176,8 @@ FrameParams frameParamsOf(const Look& look, const Scene& scene, const Camera& ca
 
 void StillLog::warn(const std::string& modelPath, const std::string& warning) const {
     // Bounded like every message (render/Messages.h).
-    log << boundedMessage("inkgraph: warning: " + (talks ? "" : "'" + modelPath + "': ") + warning) << "\n";
+    log << boundedMessage("inkgraph: warning: " + (talks ? "" : detail::quotedFileName(modelPath) + ": ") + warning)
+        << "\n";
 }
 
 namespace {
@@ -240,8 +243,8 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
                               ? req.loadedSceneDerived
                               : std::make_shared<SceneDerivedData>(scene);
     if (log.talks && !log.quiet && !req.loadedScene) {
-        log.log << std::fixed << std::setprecision(1) << "inkgraph: loaded '" << req.modelPath
-                << "': " << scene.triangleCount() << " triangles, " << scene.vertexCount() << " vertices ("
+        log.log << std::fixed << std::setprecision(1) << "inkgraph: loaded " << detail::quotedFileName(req.modelPath)
+                << ": " << scene.triangleCount() << " triangles, " << scene.vertexCount() << " vertices ("
                 << scene.report.degenerateDropped << " degenerate dropped"
                 << (scene.report.backToBackDropped > 0
                         ? "; " + std::to_string(scene.report.backToBackDropped) +

@@ -8,20 +8,39 @@
 
 namespace inkgraph::detail {
 
-std::string excerptForMessage(std::string_view text) {
-    // A NUL byte is written "\x00": a message is read back through what(), a C string, which ended at it (a pose
+std::string escapedControlCharacters(std::string_view text, ControlsKept kept) {
+    // A NUL byte is written "\x00" too: a message is read back through what(), a C string, which ended at it (a pose
     // file's bone name "he\u0000ad" was told as "unknown humanoid bone 'he" and nothing after).
-    const std::string_view kept = text.substr(0, std::min(text.size(), kMessageExcerptChars));
-    std::string excerpt;
-    excerpt.reserve(kept.size());
-    for (const char c : kept) {
-        if (c == '\0')
-            excerpt += "\\x00";
-        else
-            excerpt += c;
+    static constexpr char kDigits[] = "0123456789abcdef";
+    std::string line;
+    line.reserve(text.size());
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        const bool keptHere = kept == ControlsKept::LineBreaksAndTabs && (c == '\n' || c == '\t');
+        if ((byte < 0x20 || byte == 0x7f) && !keptHere) {
+            line += "\\x";
+            line += kDigits[byte >> 4];
+            line += kDigits[byte & 15];
+        } else {
+            line += c;
+        }
     }
+    return line;
+}
+
+std::string oneLineText(std::string_view text) { return escapedControlCharacters(text, ControlsKept::None); }
+
+std::string excerptForMessage(std::string_view text) {
+    std::string excerpt = oneLineText(text.substr(0, std::min(text.size(), kMessageExcerptChars)));
     if (text.size() > kMessageExcerptChars) excerpt += "... (" + std::to_string(text.size()) + " bytes)";
     return excerpt;
+}
+
+std::string quotedFileName(std::string_view path) {
+    std::string result = "'";
+    result += oneLineText(path);
+    result += "'";
+    return result;
 }
 
 std::string quotedExcerpt(std::string_view text) {

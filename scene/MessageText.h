@@ -1,7 +1,7 @@
 #pragma once
 /** @file How text from a file and numbers appear in the scene layer's messages: every reader and every scene check
- *  that quotes a file-given name or prints a value uses these. Internal to the scene layer (and the app's style-file
- *  reader, for the byte-order mark). */
+ *  that quotes a file-given name or prints a value uses these. Internal to the scene layer (and the layers above, for
+ *  the byte-order mark and the names of files on progress lines). */
 
 #include <cstddef>
 #include <string>
@@ -9,10 +9,25 @@
 
 namespace inkgraph::detail {
 
-/** Text taken from a file (a name, a URI, a token) as it may appear in a message: at most kMessageExcerptChars
- *  characters, longer text cut with "..." and its byte count, so a 64 MB data: URI or name never fills a terminal
- *  or a log. Every reader quotes file-given text through this one function. */
+/** Which control characters escapedControlCharacters() leaves as they are. */
+enum class ControlsKept { None, LineBreaksAndTabs };
+
+/** `text` with its control characters (bytes 0-31 and 127) but those `kept` written as "\xNN": a file name or a
+ *  name inside a model may hold a terminal's escape sequences, which a message must show, not send. */
+std::string escapedControlCharacters(std::string_view text, ControlsKept kept);
+
+/** `text` with every control character, line breaks and tabs included, written as "\xNN": a name shown on one line
+ *  of a message or a progress report, where a line break in a file's name split the line. */
+std::string oneLineText(std::string_view text);
+
+/** Text taken from a file (a name, a URI, a token) as it may appear in a message: oneLineText() of at most
+ *  kMessageExcerptChars characters, longer text cut with "..." and its byte count, so a 64 MB data: URI or name never
+ *  fills a terminal or a log. Every reader quotes file-given text through this one function. */
 std::string excerptForMessage(std::string_view text);
+
+/** A file's name as the user gave it (a model, an output), in single quotes and on one line (oneLineText()), whole:
+ *  how messages and progress lines name it. */
+std::string quotedFileName(std::string_view path);
 
 /** excerptForMessage(text) in single quotes: how a file-given name appears in a warning or an error. */
 std::string quotedExcerpt(std::string_view text);

@@ -66,11 +66,12 @@ std::string noTrianglesInTheFile(const std::vector<Warning>& warnings) {
 }
 
 void throwLoadError(const std::string& path, std::string_view problem, std::string_view function) {
-    throw SceneError(std::string(function) + ": '" + path + "': " + std::string(problem));
+    throw SceneError(std::string(function) + ": " + quotedFileName(path) + ": " + std::string(problem));
 }
 
 void throwLoadErrorAtLine(const std::string& path, std::size_t line, std::string_view problem) {
-    throw SceneError("loadScene(): '" + path + "' line " + std::to_string(line) + ": " + std::string(problem));
+    throw SceneError("loadScene(): " + quotedFileName(path) + " line " + std::to_string(line) + ": " +
+                     std::string(problem));
 }
 
 std::size_t MeshBudget::estimate(std::size_t vertices, std::size_t triangles) const {

@@ -209,6 +209,26 @@ TEST_F(Cli, TheSummaryNamesTheFirstTenFailedStillsAndCountsTheRest) {
     EXPECT_EQ(result.err.find("'broken-11.obj' and"), std::string::npos) << result.err;
 }
 
+TEST_F(Cli, AFileNamesLineBreaksAndTabsStayOnTheLinesNamingIt) {
+    // Scripts read the progress lines one line per still: a line break in a model's or an output's name split them.
+    const std::string good = "tri\tan\ngle";
+    const std::string bad = "bro\nken";
+    std::ofstream(directory / (good + ".obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::ofstream(directory / (bad + ".obj")) << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+    const CliRun result = run("render " + test::shellQuoted(good + ".obj") + " " + test::shellQuoted(bad + ".obj") +
+                              " -o 'out-{name}.png' --size 32x32 --lines contour");
+    EXPECT_EQ(result.exitCode, 3) << result.err;
+    EXPECT_TRUE(fs::exists(directory / ("out-" + good + ".png"))) << "the file keeps its name";
+    for (const std::string expected :
+         {"inkgraph: [1/2] 'tri\\x09an\\x0agle.obj' -> 'out-tri\\x09an\\x0agle.png': 1 triangles",
+          "inkgraph: [2/2] 'bro\\x0aken.obj' failed: loadScene(): 'bro\\x0aken.obj' line 3",
+          "; 1 failed: 'bro\\x0aken.obj'"})
+        EXPECT_NE(result.err.find(expected), std::string::npos) << expected << " in\n" << result.err;
+    std::istringstream lines(result.err);
+    for (std::string line; std::getline(lines, line);)
+        EXPECT_EQ(line.rfind("inkgraph", 0), 0u) << "a line that is not the program's own: " << line;
+}
+
 TEST_F(Cli, ABatchStoppedByALaterStillKeepsTheStillsBeforeIt) {
     // Each still's picture is encoded while the next renders and is committed after it (app/Render.h): a later still
     // that stops the batch (a usage error, not bad input) must not take the earlier still's outputs with it.

@@ -1,6 +1,7 @@
 // boundedMessage() (render/Messages.h): every message the user reads is at most 2000 bytes, whatever it quotes, and
 // shows control characters instead of sending them to the terminal.
 #include "render/Messages.h"
+#include "scene/MessageText.h"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,16 @@ TEST(Messages, ControlCharactersAreShownNotSent) {
     EXPECT_EQ(boundedMessage("inkgraph: [1/1] 'x\x1b[2J\x1b[31mred\x07\x7f\r.obj' failed: caf\xc3\xa9\tok\n"),
               "inkgraph: [1/1] 'x\\x1b[2J\\x1b[31mred\\x07\\x7f\\x0d.obj' failed: caf\xc3\xa9\tok\n");
     EXPECT_EQ(printableText(std::string("a\0b", 3)), "a\\x00b");
+}
+
+TEST(Messages, AFileNameIsQuotedOnOneLine) {
+    // A line break or a tab in a file's name split the progress line that named it (" -> 'o\tu\nt.png'"); a name is
+    // shown on its line, every control character as its code, where a message's own line breaks stay.
+    EXPECT_EQ(detail::quotedFileName("out/o\tu\nt\r\x1b[2J.png"), "'out/o\\x09u\\x0at\\x0d\\x1b[2J.png'");
+    EXPECT_EQ(detail::quotedFileName(std::string("a\0b", 3)), "'a\\x00b'");
+    EXPECT_EQ(detail::quotedFileName("caf\xc3\xa9 it's.obj"), "'caf\xc3\xa9 it's.obj'") << "UTF-8 and quotes stay";
+    EXPECT_EQ(detail::excerptForMessage("mesh\nname"), "mesh\\x0aname") << "a name inside a model too";
+    EXPECT_EQ(printableText("first\n  - second\tthird\x07"), "first\n  - second\tthird\\x07");
 }
 
 TEST(Messages, AMessageThatFitsIsUnchanged) {
