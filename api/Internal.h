@@ -56,6 +56,11 @@ struct ImageAccess {
     }
 };
 
+/** The objects and the meshes of `scene` as Scene::objects() and Scene::meshes() give them: what a still drawn from
+ *  it names in its id buffers. */
+std::vector<SceneObject> objectsOf(const inkgraph::Scene& scene);
+std::vector<SceneMesh> meshesOf(const inkgraph::Scene& scene);
+
 /** The library's way into a Look's data. */
 /** Error(Usage) for a Look used after it was moved from: its state went with the move. */
 inline Error lookMovedFrom() {

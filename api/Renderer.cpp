@@ -172,6 +172,9 @@ struct Still::Impl {
     std::vector<Buffer> buffers;
     std::vector<RunInput> inputs; ///< the files the render read: write() never replaces one
     StillCamera camera;
+    /** The meshes and objects of the scene it drew: the Scene's, or the frame's pose's where that loaded it again. */
+    std::vector<SceneMesh> meshes;
+    std::vector<SceneObject> objects;
     std::optional<std::vector<StillStroke>> strokes; ///< when asked for ("strokes")
     std::vector<Warning> warnings;
     double milliseconds = 0.0;
@@ -402,6 +405,8 @@ struct Renderer::Impl {
             made->inputs.push_back(std::move(input));
         for (RunInput& input : made->inputs) input.path = resolvedPath(input.path).string();
         made->camera = stillCameraOf(still->camera);
+        made->meshes = meshesOf(still->scene());
+        made->objects = objectsOf(still->scene());
         for (const inkgraph::Warning& warning : still->warnings)
             made->warnings.push_back({warning.code, warning.message, warning.file, warning.item});
         made->milliseconds = millisecondsSince(start);
@@ -436,6 +441,8 @@ void Still::write(const std::string& path) const {
 }
 
 const StillCamera& Still::camera() const { return mImpl->camera; }
+const std::vector<SceneMesh>& Still::meshes() const { return mImpl->meshes; }
+const std::vector<SceneObject>& Still::objects() const { return mImpl->objects; }
 
 const std::vector<StillStroke>& Still::strokes() const {
     if (!mImpl->strokes)

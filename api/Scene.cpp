@@ -103,8 +103,7 @@ std::size_t Scene::triangleCount() const { return mImpl->scene->triangleCount();
 std::size_t Scene::vertexCount() const { return mImpl->scene->vertexCount(); }
 std::size_t Scene::meshCount() const { return mImpl->scene->meshes.size(); }
 
-std::vector<SceneObject> Scene::objects() const {
-    const inkgraph::Scene& scene = *mImpl->scene;
+std::vector<SceneObject> objectsOf(const inkgraph::Scene& scene) {
     const SceneObjects found = sceneObjects(scene);
     std::vector<SceneObject> objects;
     for (std::size_t index = 0; index < found.objects.size(); ++index) {
@@ -116,14 +115,17 @@ std::vector<SceneObject> Scene::objects() const {
     return objects;
 }
 
-std::vector<SceneMesh> Scene::meshes() const {
-    const SceneLabels labels = sceneLabels(*mImpl->scene);
+std::vector<SceneMesh> meshesOf(const inkgraph::Scene& scene) {
+    const SceneLabels labels = sceneLabels(scene);
     std::vector<SceneMesh> meshes;
     for (const MeshLabel& mesh : labels.meshes)
         meshes.push_back({mesh.id, mesh.name, mesh.nodePath, mesh.objectId, mesh.materialId,
                           labels.materials.at(mesh.materialId - 1).name, mesh.firstTriangle, mesh.triangleCount});
     return meshes;
 }
+
+std::vector<SceneObject> Scene::objects() const { return objectsOf(*mImpl->scene); }
+std::vector<SceneMesh> Scene::meshes() const { return meshesOf(*mImpl->scene); }
 
 std::vector<Warning> Scene::warnings() const {
     std::vector<Warning> warnings;

@@ -563,6 +563,26 @@ struct PythonStill {
     py::object out;
 };
 
+/** Scene.objects' and Still.objects' dicts. */
+py::list objectDicts(const std::vector<ig::SceneObject>& found) {
+    py::list objects;
+    for (const ig::SceneObject& object : found)
+        objects.append(py::dict("id"_a = object.id, "name"_a = textOf(object.name),
+                                "node_path"_a = textOf(object.nodePath), "meshes"_a = textOf(object.meshes)));
+    return objects;
+}
+
+/** Scene.meshes' and Still.meshes' dicts, with the --dump manifest's keys. */
+py::list meshDicts(const std::vector<ig::SceneMesh>& found) {
+    py::list meshes;
+    for (const ig::SceneMesh& mesh : found)
+        meshes.append(py::dict("id"_a = mesh.id, "name"_a = textOf(mesh.name), "node_path"_a = textOf(mesh.nodePath),
+                               "object_id"_a = mesh.objectId, "material_id"_a = mesh.materialId,
+                               "material"_a = textOf(mesh.material), "first_triangle"_a = mesh.firstTriangle,
+                               "triangle_count"_a = mesh.triangleCount));
+    return meshes;
+}
+
 /** One ig::Renderer for Python: its calls run without the GIL, one at a time (the C++ renderer is not
  *  thread-safe, and Python threads may share the object), and close() ends its GL context at once. */
 class PythonRenderer {
@@ -1234,6 +1254,15 @@ void defineStill(py::module_& m) {
             "each buffer's own name).")
         .def_property_readonly(
             "camera", [](const PythonStill& self) { return self.still.camera(); }, "The StillCamera it was drawn with.")
+        .def_property_readonly(
+            "meshes", [](const PythonStill& self) { return meshDicts(self.still.meshes()); },
+            "The meshes of the scene it drew, as Scene.meshes gives them: what its 'meshId', 'triangleId' and "
+            "'barycentric' values and its strokes' meshes name. Scene.meshes unless the frame posed the scene again "
+            "(animation, time, pose, expressions, look_at): a pose that collapses a whole mesh (a prop scaled to 0) "
+            "leaves it out, and the meshes after it take the ids one earlier.")
+        .def_property_readonly(
+            "objects", [](const PythonStill& self) { return objectDicts(self.still.objects()); },
+            "Its objects, as Scene.objects gives them: what its 'objectId' values name (likewise the frame's pose's).")
         .def(
             "strokes", [](const PythonStill& self) { return strokeDicts(self.still.strokes()); },
             "Every kept stroke of every drawn line type, when render() was asked for 'strokes' (else UsageError): a "
@@ -1361,29 +1390,11 @@ void defineScene(py::module_& m) {
         .def_property_readonly("vertex_count", &ig::Scene::vertexCount)
         .def_property_readonly("mesh_count", &ig::Scene::meshCount)
         .def_property_readonly(
-            "objects",
-            [](const ig::Scene& self) {
-                py::list objects;
-                for (const ig::SceneObject& object : self.objects())
-                    objects.append(py::dict("id"_a = object.id, "name"_a = textOf(object.name),
-                                            "node_path"_a = textOf(object.nodePath),
-                                            "meshes"_a = textOf(object.meshes)));
-                return objects;
-            },
+            "objects", [](const ig::Scene& self) { return objectDicts(self.objects()); },
             "Its objects (node instances), as dicts {'id', 'name', 'node_path', 'meshes'}: 'id' is the object's "
             "value in the 'objectId' buffer (0 there is the background).")
         .def_property_readonly(
-            "meshes",
-            [](const ig::Scene& self) {
-                py::list meshes;
-                for (const ig::SceneMesh& mesh : self.meshes())
-                    meshes.append(py::dict("id"_a = mesh.id, "name"_a = textOf(mesh.name),
-                                           "node_path"_a = textOf(mesh.nodePath), "object_id"_a = mesh.objectId,
-                                           "material_id"_a = mesh.materialId, "material"_a = textOf(mesh.material),
-                                           "first_triangle"_a = mesh.firstTriangle,
-                                           "triangle_count"_a = mesh.triangleCount));
-                return meshes;
-            },
+            "meshes", [](const ig::Scene& self) { return meshDicts(self.meshes()); },
             "Its meshes, as dicts {'id', 'name', 'node_path', 'object_id', 'material_id', 'material', "
             "'first_triangle', 'triangle_count'}, as the --dump manifest's 'meshes': 'id' is the mesh's value in the "
             "'meshId' buffer, and its triangles have the 'triangleId' values first_triangle + 1 ... first_triangle + "

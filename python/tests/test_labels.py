@@ -115,3 +115,72 @@ def test_the_hidden_lines_come_as_masks_of_their_own(tmp_path):
     assert (visible == 255).sum() > 50 and (hidden == 255).sum() > 20
     # Where one is a full line pixel the other is not: the two masks split the border.
     assert ((visible == 255) & (hidden == 255)).sum() < 0.1 * (hidden == 255).sum()
+
+
+def three_quads_gltf(path):
+    """Three quads side by side, meshes and nodes "A", "Prop" and "C" (materials "a", "p", "c"), and animation 0
+    scaling Prop from 1 at t = 0 to 0 at t = 1: posed at t = 1, the whole mesh Prop collapses."""
+    import base64
+    import json
+    import struct
+
+    corners = [(-0.8, -0.8, 0), (0.8, -0.8, 0), (0.8, 0.8, 0), (-0.8, 0.8, 0)]
+    data = b"".join(struct.pack("<3f", *p) for p in corners)
+    data += struct.pack("<6H", 0, 1, 2, 0, 2, 3)
+    times = struct.pack("<2f", 0.0, 1.0)
+    scales = struct.pack("<6f", 1, 1, 1, 0, 0, 0)
+    data += times + scales
+    gltf = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"byteLength": len(data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                        {"buffer": 0, "byteOffset": 48, "byteLength": 12},
+                        {"buffer": 0, "byteOffset": 60, "byteLength": 8},
+                        {"buffer": 0, "byteOffset": 68, "byteLength": 24}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                       "min": [-0.8, -0.8, 0], "max": [0.8, 0.8, 0]},
+                      {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"},
+                      {"bufferView": 2, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+                      {"bufferView": 3, "componentType": 5126, "count": 2, "type": "VEC3"}],
+        "materials": [{"name": name} for name in ("a", "p", "c")],
+        "meshes": [{"name": name, "primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": m}]}
+                   for m, name in enumerate(("A", "Prop", "C"))],
+        "nodes": [{"name": name, "mesh": m, "translation": [2.0 * (m - 1), 0, 0]}
+                  for m, name in enumerate(("A", "Prop", "C"))],
+        "scenes": [{"nodes": [0, 1, 2]}],
+        "animations": [{"name": "fold",
+                        "samplers": [{"input": 2, "output": 3, "interpolation": "LINEAR"}],
+                        "channels": [{"sampler": 0, "target": {"node": 1, "path": "scale"}}]}],
+    }
+    path.write_text(json.dumps(gltf))
+    return path
+
+
+def test_a_still_names_the_meshes_its_frames_pose_drew(tmp_path):
+    # A frame's animation loads the scene again in its pose: one that collapses a whole mesh (Prop, scaled to 0)
+    # leaves it out and C takes id 2. Scene.meshes is the scene as loaded (A, Prop, C); Still.meshes is what the still
+    # drew, so its names are the ones its meshId and triangleId values mean (Scene.meshes named C's pixels "Prop").
+    scene = inkgraph.Scene.load(three_quads_gltf(tmp_path / "three.gltf"))
+    assert [mesh["name"] for mesh in scene.meshes] == ["A", "Prop", "C"]
+    look = inkgraph.Look()
+    at_rest = inkgraph.Frame(SIZE, SIZE, eye=(0, 0, 9), target=(0, 0, 0))
+    folded = inkgraph.Frame(SIZE, SIZE, eye=(0, 0, 9), target=(0, 0, 0), animation="fold", time=1.0)
+    renderer = inkgraph.default_renderer()
+    rest = renderer.render(scene, look, at_rest, buffers=["meshId", "triangleId", "objectId"])
+    assert rest.meshes == scene.meshes and rest.objects == scene.objects
+    with pytest.warns(inkgraph.InkgraphWarning, match="mesh 'Prop': all 2 triangles are degenerate"):
+        still = renderer.render(scene, look, folded, buffers=["meshId", "triangleId", "objectId"])
+    assert "mesh-degenerate" in [warning.code for warning in still.warnings]
+    assert [(mesh["id"], mesh["name"], mesh["first_triangle"]) for mesh in still.meshes] == [(1, "A", 0), (2, "C", 2)]
+    assert [(obj["id"], obj["name"]) for obj in still.objects] == [(1, "A"), (2, "C")]
+    ids, triangles = still.buffer("meshId"), still.buffer("triangleId")
+    assert set(np.unique(ids).tolist()) == {0.0, 1.0, 2.0}
+    columns = np.nonzero(ids)[1]
+    # Mesh C lies right of the centre, where Prop was in the middle: the still's names say so.
+    named = {mesh["id"]: mesh for mesh in still.meshes}
+    assert named[2]["name"] == "C" and (columns[ids[ids > 0] == 2] > SIZE * 0.6).all()
+    for mesh_id, mesh in named.items():
+        mine = triangles[ids == mesh_id]
+        assert ((mine > mesh["first_triangle"]) & (mine <= mesh["first_triangle"] + mesh["triangle_count"])).all()
+    assert still.buffer("objectId").max() == 2.0

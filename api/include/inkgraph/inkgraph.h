@@ -544,6 +544,13 @@ public:
     std::vector<std::string> bufferNames() const;
     /** The camera it was drawn with. */
     const StillCamera& camera() const;
+    /** The meshes of the scene it drew, as Scene::meshes() gives them: what its "meshId", "triangleId" and
+     *  "barycentric" values and its strokes' meshes name. Scene::meshes() unless the frame posed the scene again
+     *  (Frame::animation, time, pose, expressions, lookAt): a pose that collapses a whole mesh (a prop's node scaled
+     *  to 0) leaves it out, and the meshes after it take the ids one earlier. */
+    const std::vector<SceneMesh>& meshes() const;
+    /** Its objects, as Scene::objects() gives them: what its "objectId" values name (likewise the frame's pose's). */
+    const std::vector<SceneObject>& objects() const;
     /** Every kept stroke of every drawn line type with its points' world points, mesh and triangle, in the order
      *  --strokes writes them (values rounded alike: x, y to 1e-4 pixels, world to 7 digits), when render() was asked
      *  for "strokes"; throws Error(Usage) otherwise. */
