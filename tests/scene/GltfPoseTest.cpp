@@ -241,7 +241,18 @@ TEST(GltfPose, SkinWithoutRotationStaysInBindPose) {
     EXPECT_TRUE(hasVertexNear(scene, {1, 2, 0})) << describeVertices(scene);
 }
 
-/** An animation "bend" turning bone 1 (node 2) about Z: keyframes at `times`, rotations in degrees. */
+/** An animation "bend" turning bone 1 (node 2): keyframes at `times`, `rotations` their quaternions x, y, z, w (for
+ *  CUBICSPLINE in-tangent, value, out-tangent per keyframe). */
+std::string rotationAnimation(PoseGltfWriter& writer, const std::vector<float>& times,
+                              const std::vector<float>& rotations, const std::string& interpolation) {
+    const int input = writer.addFloats(times, "SCALAR");
+    const int output = writer.addFloats(rotations, "VEC4");
+    return ", \"animations\": [{\"name\": \"bend\", \"samplers\": [{\"input\": " + std::to_string(input) +
+           ", \"output\": " + std::to_string(output) + ", \"interpolation\": \"" + interpolation +
+           "\"}], \"channels\": [{\"sampler\": 0, \"target\": {\"node\": 2, \"path\": \"rotation\"}}]}]";
+}
+
+/** rotationAnimation() about Z: keyframes at `times`, rotations in degrees. */
 std::string bendAnimation(PoseGltfWriter& writer, const std::vector<float>& times, const std::vector<double>& degrees,
                           const std::string& interpolation) {
     std::vector<float> rotations;
@@ -249,11 +260,7 @@ std::string bendAnimation(PoseGltfWriter& writer, const std::vector<float>& time
         const double half = angle * std::acos(-1.0) / 360.0;
         rotations.insert(rotations.end(), {0.0f, 0.0f, float(std::sin(half)), float(std::cos(half))});
     }
-    const int input = writer.addFloats(times, "SCALAR");
-    const int output = writer.addFloats(rotations, "VEC4");
-    return ", \"animations\": [{\"name\": \"bend\", \"samplers\": [{\"input\": " + std::to_string(input) +
-           ", \"output\": " + std::to_string(output) + ", \"interpolation\": \"" + interpolation +
-           "\"}], \"channels\": [{\"sampler\": 0, \"target\": {\"node\": 2, \"path\": \"rotation\"}}]}]";
+    return rotationAnimation(writer, times, rotations, interpolation);
 }
 
 TEST(GltfPose, LinearRotationChannelSlerpsHalfway) {
@@ -282,6 +289,35 @@ TEST(GltfPose, StepRotationChannelHoldsUntilTheNextKeyframe) {
     expectTopTurnedBy(loadScene(file.path(), options), 0.0);
     options.time = 1.0;
     expectTopTurnedBy(loadScene(file.path(), options), 90.0);
+}
+
+TEST(GltfPose, ARotationOfZeroLengthIsRefusedNamingItsKeyframe) {
+    // A keyframe [0, 0, 0, 0] was drawn as the identity without a word (a node's rotation so is refused), at any
+    // time the curve reached it; a CUBICSPLINE whose tangents cancel its values passes through zero between keys.
+    TwoBoneStrip strip;
+    const std::string linear = rotationAnimation(strip.writer, {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0, 0, 0}, "LINEAR");
+    const TempFile file("zero.gltf", strip.gltf("", linear));
+    LoadOptions options;
+    options.animation = "bend";
+    options.time = 0.0;
+    EXPECT_NE(test::sceneErrorMessage([&] { loadScene(file.path(), options); })
+                  .find("zero.gltf': animation 0 'bend' sampler 0: keyframe 1 rotation [0, 0, 0, 0] must be finite "
+                        "and of non-zero length"),
+              std::string::npos);
+
+    TwoBoneStrip cubicStrip;
+    // From w = 1 to w = -1 with no tangents: w = 0 and no other component halfway.
+    const std::string cubic =
+        rotationAnimation(cubicStrip.writer, {0.0f, 1.0f},
+                          {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0, 0, 0}, "CUBICSPLINE");
+    const TempFile cubicFile("cubic-zero.gltf", cubicStrip.gltf("", cubic));
+    options.time = 0.5;
+    EXPECT_NE(test::sceneErrorMessage([&] {
+                  loadScene(cubicFile.path(), options);
+              }).find("animation 0 'bend' sampler 0: its CUBICSPLINE rotation passes through zero at --time 0.5"),
+              std::string::npos);
+    options.time = 0.25; // w = 0.5 there: the identity, as the file says
+    expectTopTurnedBy(loadScene(cubicFile.path(), options), 0.0);
 }
 
 TEST(GltfPose, UnknownAnimationIsRefusedWithTheList) {

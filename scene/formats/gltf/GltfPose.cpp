@@ -54,9 +54,10 @@ std::vector<double> slerpXyzw(const float* a, const float* b, double t) {
     return {result.x, result.y, result.z, result.w};
 }
 
+/** `xyzw` as a unit quaternion; emptied where it is of zero length (no rotation at all, not the identity). */
 void normaliseQuaternion(std::vector<double>& xyzw) {
-    const glm::dquat unit = unitQuaternion(xyzw[0], xyzw[1], xyzw[2], xyzw[3]).value_or(glm::dquat(1.0, 0.0, 0.0, 0.0));
-    xyzw = {unit.x, unit.y, unit.z, unit.w};
+    const std::optional<glm::dquat> unit = unitQuaternion(xyzw[0], xyzw[1], xyzw[2], xyzw[3]);
+    xyzw = unit ? std::vector<double>{unit->x, unit->y, unit->z, unit->w} : std::vector<double>();
 }
 
 Interpolation interpolationOf(const std::string& path, const std::string& label, const std::string& name) {
@@ -112,6 +113,16 @@ AnimationCurve readCurve(const std::string& path, const tinygltf::Model& model,
     }
     curve.values = readAccessorFloats(path, model, sampler.output, outputType, label + " output");
     curve.components = elementComponents * elementsPerKey;
+    // A keyframe's rotation of zero length is none: it was drawn as the identity, without a word, where a node's
+    // rotation of zero length is refused.
+    for (std::size_t key = 0; rotation && key < keys; ++key) {
+        const float* q = keyElement(curve, key, perKey == 3 ? 1 : 0);
+        if (!unitQuaternion(q[0], q[1], q[2], q[3])) {
+            throwLoadError(path, label + ": keyframe " + std::to_string(key) + " rotation [" + formatNumber(q[0]) +
+                                     ", " + formatNumber(q[1]) + ", " + formatNumber(q[2]) + ", " + formatNumber(q[3]) +
+                                     "] must be finite and of non-zero length");
+        }
+    }
     return curve;
 }
 
@@ -351,6 +362,10 @@ void applyAnimation(const std::string& path, const tinygltf::Model& model, std::
                                                                 rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
                                                                 rotation ? 4 : 3, rotation, budget),
                                                       time);
+        if (value.empty()) {
+            throwLoadError(path, samplerLabel + ": its CUBICSPLINE rotation passes through zero at --time " +
+                                     formatNumber(time) + ", which is no rotation (its tangents cancel its values)");
+        }
         if (target == "translation") pose.translation = glm::dvec3(value[0], value[1], value[2]);
         if (target == "scale") pose.scale = glm::dvec3(value[0], value[1], value[2]);
         if (rotation) pose.rotation = glm::normalize(glm::dquat(value[3], value[0], value[1], value[2]));

@@ -100,7 +100,8 @@ struct AnimationCurve {
     bool rotation = false; ///< LINEAR quaternions slerp, and every result is normalised
 };
 
-/** The curve's value at `time` (clamped to its first and last keyframe). */
+/** The curve's value at `time` (clamped to its first and last keyframe); for a rotation, empty where a CUBICSPLINE
+ *  passes through a quaternion of zero length (readCurve() refuses a keyframe's). */
 std::vector<double> sampleCurve(const AnimationCurve& curve, double time);
 
 /** Overrides `poses` with animation `animationIndex` sampled at `time` seconds: its translation, rotation, scale and
