@@ -86,6 +86,9 @@ const std::vector<WarningCode>& warningCodes() {
         {K::MorphWeightsMismatched, "morph-weights-mismatched",
          "a glTF mesh's or node's morph weights that are not one number per morph target; a target without one is "
          "not applied"},
+        {K::SkinWeightsUnnormalised, "skin-weights-unnormalised",
+         "a skinned glTF primitive whose vertices' joint weights do not sum to 1 (within 0.02): each vertex's are "
+         "scaled to sum 1, and one whose weights are all 0 follows its mesh's node, unskinned"},
         {K::GltfParserMessage, "gltf-parser-message", "what tinygltf reported about a file it still read"},
         {K::ShadeMapUnused, "shade-map-unused", "meshes name shade maps, which the --shading model does not use"},
         {K::ModelOutsideView, "model-outside-view", "the camera sees none of the model: the picture is blank paper"},

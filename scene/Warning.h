@@ -58,6 +58,7 @@ enum class WarningKind {
     PoseBoneMissing,
     MorphAttributeIgnored,
     MorphWeightsMismatched,
+    SkinWeightsUnnormalised,
     GltfParserMessage,
     ShadeMapUnused,
     ModelOutsideView,

@@ -127,12 +127,13 @@ struct TwoBoneStrip {
     int normals = -1; ///< a NORMAL attribute when set (withNormals())
 
     explicit TwoBoneStrip(std::vector<std::uint8_t> jointIndices = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
-                                                                    0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}) {
+                                                                    0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0},
+                          const std::vector<float>& weightValues = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0,
+                                                                    1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}) {
         positions = writer.addFloats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0, 1, 2, 0}, "VEC3");
         indices = writer.addIndices({0, 1, 3, 0, 3, 2, 2, 3, 5, 2, 5, 4});
         joints = writer.addJoints(jointIndices);
-        weights = writer.addFloats(
-            std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+        weights = writer.addFloats(weightValues, "VEC4");
         // Bone 0 binds at the origin (identity), bone 1 at y = 1 (its inverse: a translation by -1 along Y).
         inverseBind = writer.addFloats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0,  0, 1, // column-major
                                         1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1},
@@ -211,6 +212,27 @@ TEST(GltfPose, ASkinWithoutInverseBindMatricesIsNotWarnedAbout) {
     EXPECT_TRUE(scene.report.warnings.empty()) << ::testing::PrintToString(scene.report.warnings);
     // Both bones bind at the origin, so the upper bone's rest translation moves its vertices up by one.
     EXPECT_TRUE(hasVertexNear(scene, {0, 3, 0})) << describeVertices(scene);
+}
+
+TEST(GltfPose, WeightsThatDoNotSumToOneAreNormalisedAndSaid) {
+    // glTF asks that a vertex's weights sum to 1. The top vertices' sum 0.5 and vertex 0's 0 were used without a
+    // word (normalised, and the node's world for all-zero), so a program skinning the file's weights itself placed
+    // them elsewhere than the picture.
+    TwoBoneStrip strip({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0},
+                       {0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1.005f, 0, 0, 0, 0.5f, 0, 0, 0, 0.5f, 0, 0, 0});
+    const TempFile file("half.gltf", strip.gltf(", \"rotation\": " + quaternionAboutZ(90)));
+    const Scene scene = loadScene(file.path());
+    EXPECT_TRUE(hasVertexNear(scene, {-1, 2, 0})) << "0.5 of bone 1 is all of it: " << describeVertices(scene);
+    EXPECT_TRUE(hasVertexNear(scene, {5, 0, 0})) << "all 0: the mesh node's world: " << describeVertices(scene);
+    std::vector<std::string> said;
+    for (const Warning& warning : scene.report.warnings)
+        if (warning.code == "skin-weights-unnormalised") said.push_back(warning.message);
+    ASSERT_EQ(said.size(), 1u) << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_EQ(said[0], "'strip': 2 vertices' joint weights do not sum to 1 (glTF asks that they do); each vertex's are "
+                       "scaled to sum 1; 1 vertex's weights are all 0: it follows the mesh's node, unskinned "
+                       "(first: vertex 0, weights summing to 0)")
+        << "vertex 3's 1.005 is within the tolerance";
+    EXPECT_TRUE(loadScene(TempFile("whole.gltf", TwoBoneStrip().gltf("")).path()).report.warnings.empty());
 }
 
 TEST(GltfPose, SkinTurnsNormalsWithTheirVertices) {

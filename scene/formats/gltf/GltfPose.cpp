@@ -544,6 +544,22 @@ SkinBlend::SkinBlend(const std::string& path, const tinygltf::Model& model, cons
     }
 }
 
+SkinBlend::WeightSums SkinBlend::weightSums() const {
+    WeightSums sums;
+    const std::size_t vertices = mInfluences == 0 ? 0 : mWeightOf.size() / mInfluences;
+    for (std::size_t v = 0; v < vertices; ++v) {
+        double total = 0.0;
+        for (std::size_t i = 0; i < mInfluences; ++i) total += mWeightOf[v * mInfluences + i];
+        if (std::abs(total - 1.0) <= kWeightSumTolerance) continue;
+        if (sums.unnormalised + sums.zero == 0) {
+            sums.firstVertex = v;
+            sums.firstSum = total;
+        }
+        ++(total > 0.0 ? sums.unnormalised : sums.zero);
+    }
+    return sums;
+}
+
 glm::dmat4 SkinBlend::vertexMatrix(std::size_t vertex) const {
     double total = 0.0;
     for (std::size_t i = 0; i < mInfluences; ++i) total += mWeightOf[vertex * mInfluences + i];

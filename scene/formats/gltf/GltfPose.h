@@ -142,6 +142,19 @@ public:
 
     /** sum_i weight_i * joint[joint_i] over the vertex's influences, weights normalised to sum 1. */
     glm::dmat4 vertexMatrix(std::size_t vertex) const;
+
+    /** The vertices whose weights do not sum to 1 within kWeightSumTolerance (glTF asks that they do), which
+     *  vertexMatrix() normalises, and those whose weights are all 0, which follow the fallback. */
+    struct WeightSums {
+        std::size_t unnormalised = 0; ///< off 1, but not all 0
+        std::size_t zero = 0;         ///< all 0
+        std::size_t firstVertex = 0;  ///< the first vertex of either kind
+        double firstSum = 1.0;        ///< its sum
+    };
+    WeightSums weightSums() const;
+    /** How far a vertex's weights may sum from 1: four unsigned-byte weights, each rounded by up to half of 1/255,
+     *  twice over for JOINTS_1, stay within it. */
+    static constexpr double kWeightSumTolerance = 0.02;
     /** Calls `visit(joint)` with the index (into the skin's joints) of each influence of non-zero weight at `vertex`.
      */
     template <class Visit>

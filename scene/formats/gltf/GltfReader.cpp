@@ -189,6 +189,29 @@ public:
 
 private:
     /** Grows the box of each joint node that weights a posed vertex by it (SceneJoint::lower, upper). */
+    /** Says the vertices of a skinned primitive whose weights vertexMatrix() normalises or cannot use: a program
+     *  skinning the file's weights itself would place them elsewhere than the picture does. */
+    void warnWeightSums(const SkinBlend& skin, const std::string& meshName) {
+        const SkinBlend::WeightSums sums = skin.weightSums();
+        if (sums.unnormalised + sums.zero == 0) return;
+        const auto vertices = [](std::size_t count) {
+            return std::to_string(count) + (count == 1 ? " vertex's" : " vertices'");
+        };
+        std::string what;
+        if (sums.unnormalised > 0)
+            what = vertices(sums.unnormalised) +
+                   " joint weights do not sum to 1 (glTF asks that they do); each vertex's are scaled to sum 1";
+        if (sums.zero > 0)
+            what += (what.empty() ? "" : "; ") + vertices(sums.zero) +
+                    " weights are all 0: " + (sums.zero == 1 ? "it follows" : "they follow") +
+                    " the mesh's node, unskinned";
+        mOut.warnings.push_back(makeWarning(WarningKind::SkinWeightsUnnormalised,
+                                            quotedExcerpt(meshName) + ": " + what + " (first: vertex " +
+                                                std::to_string(sums.firstVertex) + ", weights summing to " +
+                                                formatNumber(sums.firstSum) + ")",
+                                            "", meshName));
+    }
+
     void addToJointBoxes(const SkinBlend& blend, int skinIndex, const std::vector<glm::vec3>& positions) {
         const std::vector<int>& jointNodes = mModel.skins[std::size_t(skinIndex)].joints; // checked: jointMatrices()
         for (std::size_t v = 0; v < positions.size(); ++v) {
@@ -843,6 +866,7 @@ private:
                                quotedExcerpt(name) + "'s joints and weights");
             skin.emplace(mPath, mModel, primitive, vertexCount, *pose.skinJoints, world, name,
                          draco ? &draco->attributes : nullptr);
+            warnWeightSums(*skin, name);
         }
         readSurfaceAttributes(primitive, draco, vertexCount, name, mesh);
 
