@@ -775,7 +775,8 @@ std::vector<Flag> makeFlags() {
                  "); each channel holds its first or last keyframe\n"
                  "outside its keyframe times; LINEAR (quaternions by slerp), STEP and CUBICSPLINE\n"
                  "keyframes are interpolated. Also the clock of MToon's UV animation (--shading mtoon,\n"
-                 "docs/mtoon.md), with or without --animation",
+                 "docs/mtoon.md), with or without --animation; without --animation on a model with no\n"
+                 "UV animation it moves nothing (warning time-unused)",
              [](const std::string& value, RenderOptions& options) {
                  const double seconds = parseNumber("--time", value);
                  if (seconds < 0.0) throw UsageError("--time: expected seconds >= 0, got '" + value + "'");

@@ -75,6 +75,22 @@ void warnOf(PreparedStill& still, Warning warning, const StillLog& log) {
     still.warnings.push_back(std::move(warning));
 }
 
+/** time-unused for a --time that moves nothing: no animation poses the model, and no material has a UV animation
+ *  for it to clock (the command line took it silently, where the library's SceneOptions::time refuses it). */
+std::optional<Warning> unusedTimeWarning(const StillRequest& request, const Scene& scene) {
+    if (!request.animation.empty() || request.animationTime == 0.0) return std::nullopt;
+    const bool uvAnimated = std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& mesh) {
+        const std::optional<MToonMaterial>& mtoon = mesh.material.mtoon;
+        return mtoon && (mtoon->uvAnimationScrollXSpeedFactor != 0.0f || mtoon->uvAnimationScrollYSpeedFactor != 0.0f ||
+                         mtoon->uvAnimationRotationSpeedFactor != 0.0f);
+    });
+    if (uvAnimated) return std::nullopt;
+    return makeWarning(WarningKind::TimeUnused,
+                       "--time " + detail::formatNumber(request.animationTime) +
+                           " moves nothing: without --animation it is only the clock of MToon's UV animation, and no "
+                           "material of the model has one");
+}
+
 /** Where the still samples its model: the look's buffers, and whether its lines are drawn from the mesh itself. */
 PictureSampling pictureSamplingOf(const Look& look, const Scene& scene) {
     PictureSampling sampling;
@@ -261,6 +277,9 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     std::vector<Warning> shadeMapWarnings;
     still->meshShadeMaps = readSceneShadeMaps(scene, look.shading, &shadeMapWarnings);
     for (Warning& warning : shadeMapWarnings) warnOf(*still, std::move(warning), log);
+    // Judged where the still stands for its own load: only then is `animation` the one the scene was loaded with.
+    if (!req.loadedScene || req.reusesEarlierLoad)
+        if (std::optional<Warning> unused = unusedTimeWarning(req, scene)) warnOf(*still, std::move(*unused), log);
     failIfStrict(*still);
     return still;
 }

@@ -89,6 +89,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::SkinWeightsUnnormalised, "skin-weights-unnormalised",
          "a skinned glTF primitive whose vertices' joint weights do not sum to 1 (within 0.02): each vertex's are "
          "scaled to sum 1, and one whose weights are all 0 follows its mesh's node, unskinned"},
+        {K::TimeUnused, "time-unused",
+         "--time without --animation on a model none of whose materials has a MToon UV animation: it moves nothing"},
         {K::GltfParserMessage, "gltf-parser-message", "what tinygltf reported about a file it still read"},
         {K::ShadeMapUnused, "shade-map-unused", "meshes name shade maps, which the --shading model does not use"},
         {K::ModelOutsideView, "model-outside-view", "the camera sees none of the model: the picture is blank paper"},

@@ -59,6 +59,7 @@ enum class WarningKind {
     MorphAttributeIgnored,
     MorphWeightsMismatched,
     SkinWeightsUnnormalised,
+    TimeUnused,
     GltfParserMessage,
     ShadeMapUnused,
     ModelOutsideView,

@@ -132,5 +132,27 @@ TEST_F(PoseAndFrame, ABoneTheModelLacksIsAWarning) {
         << result.err;
 }
 
+TEST_F(PoseAndFrame, ATimeThatMovesNothingIsAWarning) {
+    // --time without --animation is only MToon's UV animation clock: on a model without one it did nothing, silently
+    // (the library's SceneOptions::time refuses it).
+    const std::string unused = "--time 5 moves nothing: without --animation it is only the clock of MToon's UV "
+                               "animation, and no material of the model has one";
+    const std::string fox = model("characters/fox.glb");
+    CliRun result = run("render " + fox + " -o x.png --size 32x32 --time 5");
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_NE(result.err.find("warning: " + unused), std::string::npos) << result.err;
+    result = run("render " + fox + " -o x.png --size 32x32 --time 5 --strict");
+    EXPECT_EQ(result.exitCode, 3) << result.err;
+    for (const std::string& moves :
+         {"render " + fox + " -o x.png --size 32x32 --time 0.5 --animation 0",
+          "render " + model("characters/mtoon-uv-animation-test.vrm") + " -o x.png --size 32x32 --time 5",
+          "render " + fox + " -o x.png --size 32x32 --time 0"}) {
+        result = run(moves);
+        EXPECT_EQ(result.exitCode, 0) << moves << ": " << result.err;
+        EXPECT_EQ(result.err.find("time-unused"), std::string::npos) << moves << ": " << result.err;
+        EXPECT_EQ(result.err.find("moves nothing"), std::string::npos) << moves << ": " << result.err;
+    }
+}
+
 } // namespace
 } // namespace inkgraph
