@@ -124,6 +124,14 @@ std::string namedList(const std::vector<std::string>& names) {
                                       : "the model's nodes with meshes under them: " + namedList(nodes);
     if (!bones.empty()) known += "; its humanoid bones: " + namedList(bones);
     if (!joints.empty()) known += "; its joints: " + namedList(joints);
+    // A mesh the load skipped (a pose that scaled its node to 0) is under no node any more: say it, or the name
+    // that holds it reads as a typing error.
+    std::vector<std::string> skipped;
+    for (const Warning& warning : scene.report.warnings)
+        if (warning.code == warningCode(WarningKind::MeshDegenerate)) skipped.push_back(warning.item);
+    if (!skipped.empty())
+        known +=
+            "; meshes skipped as all degenerate (mesh-degenerate: a pose that collapses them?): " + namedList(skipped);
     notInModel("--frame '" + detail::excerptForMessage(name) +
                "': no mesh lies under a node of that name, and no joint or humanoid bone has it (" + known + ")");
 }

@@ -273,6 +273,16 @@ TEST(CameraAim, UnknownFrameNodeNamesTheNodes) {
 
     message = modelMismatchMessage(request, unitSphereScene());
     EXPECT_NE(message.find("the model has no named nodes"), std::string::npos) << message;
+
+    // A mesh the load skipped (a pose scaled its node to 0) is said, so that its name does not read as a typo.
+    Scene posed = characterOnGround();
+    posed.report.warnings.push_back(makeWarning(
+        WarningKind::MeshDegenerate, "mesh 'hero': all 12 triangles are degenerate; mesh skipped", "", "hero"));
+    message = modelMismatchMessage(request, posed);
+    EXPECT_NE(message.find("'root', 'character', 'ground'; meshes skipped as all degenerate (mesh-degenerate: a pose "
+                           "that collapses them?): 'hero')"),
+              std::string::npos)
+        << message;
 }
 
 TEST(CameraAim, GltfMeshesKnowTheirNodePath) {
