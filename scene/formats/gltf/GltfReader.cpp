@@ -188,7 +188,6 @@ public:
     }
 
 private:
-    /** Grows the box of each joint node that weights a posed vertex by it (SceneJoint::lower, upper). */
     /** Says the vertices of a skinned primitive whose weights vertexMatrix() normalises or cannot use: a program
      *  skinning the file's weights itself would place them elsewhere than the picture does. */
     void warnWeightSums(const SkinBlend& skin, const std::string& meshName) {
@@ -212,6 +211,7 @@ private:
                                             "", meshName));
     }
 
+    /** Grows the box of each joint node that weights a posed vertex by it (SceneJoint::lower, upper). */
     void addToJointBoxes(const SkinBlend& blend, int skinIndex, const std::vector<glm::vec3>& positions) {
         const std::vector<int>& jointNodes = mModel.skins[std::size_t(skinIndex)].joints; // checked: jointMatrices()
         for (std::size_t v = 0; v < positions.size(); ++v) {
