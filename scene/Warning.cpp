@@ -78,7 +78,8 @@ const std::vector<WarningCode>& warningCodes() {
         {K::LightIgnored, "light-ignored", "a KHR_lights_punctual light that is not directional; ignored"},
         {K::AnimationIgnored, "animation-ignored", "an animation asked of a format that has none"},
         {K::AnimationChannelIgnored, "animation-channel-ignored",
-         "a glTF animation channel that cannot be applied (its path, a node with a matrix or without morph targets)"},
+         "a glTF animation channel that cannot be applied (its path, a node with a matrix or without morph targets, a "
+         "target naming no node: KHR_animation_pointer's)"},
         {K::PoseBoneMissing, "pose-bone-missing",
          "a pose turns a humanoid bone the model lacks (or whose node is a matrix); that bone is left as it is"},
         {K::MorphAttributeIgnored, "morph-attribute-ignored",

@@ -248,5 +248,30 @@ TEST(GltfValueShapes, MorphWeightsOtherThanOnePerTargetAreSaid) {
     EXPECT_TRUE(one.report.warnings.empty()) << one.report.warnings.front();
 }
 
+TEST(GltfValueShapes, AChannelWhoseTargetNamesNoNodeIsSaidAsItself) {
+    // KHR_animation_pointer's channels name their target by a pointer, not a node: tinygltf skips them saying only
+    // "'node' property is missing." and "`node` field is missing in animation.channels.target".
+    const Quad quad;
+    GltfWriter writer = quad.writer();
+    const int times = writer.addFloats({0.0f, 1.0f}, "SCALAR", 1);
+    const int values = writer.addVec3({{0, 0, 0}, {1, 0, 0}});
+    const std::string sampler =
+        "\"samplers\": [{\"input\": " + std::to_string(times) + ", \"output\": " + std::to_string(values) + "}]";
+    const std::string animations =
+        ", \"animations\": [{\"channels\": [{\"sampler\": 0, \"target\": {\"node\": 0, \"path\": "
+        "\"translation\"}}, {\"sampler\": 0, \"target\": {\"path\": \"pointer\", \"extensions\": "
+        "{\"KHR_animation_pointer\": {\"pointer\": \"/nodes/0/translation\"}}}}], " +
+        sampler + "}, {\"channels\": [{\"sampler\": 0, \"target\": {\"path\": \"translation\"}}], " + sampler + "}]";
+    const Scene scene = loadScene(TempFile("pointer.gltf", writer.gltf(quad.body("") + animations)).path());
+    EXPECT_TRUE(warned(scene, WarningKind::AnimationChannelIgnored,
+                       "animations[0].channels[1]: its target names no node (a KHR_animation_pointer channel, which "
+                       "this reader does not read); ignored"))
+        << ::testing::PrintToString(scene.report.warnings);
+    EXPECT_TRUE(warned(scene, WarningKind::AnimationChannelIgnored,
+                       "animations[1].channels[0]: its target names no node (another extension's channel); ignored"));
+    EXPECT_EQ(scene.report.warnings.size(), 2u)
+        << "tinygltf's words are not said again: " << ::testing::PrintToString(scene.report.warnings);
+}
+
 } // namespace
 } // namespace inkgraph

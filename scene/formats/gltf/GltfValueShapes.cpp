@@ -282,6 +282,34 @@ void judgeMaterials(const nlohmann::json& document, ValueShapes& shapes) {
     }
 }
 
+/** AnimationChannelIgnored for a channel whose target names no node: KHR_animation_pointer's ("path": "pointer"),
+ *  which this reader does not read, or another extension's. tinygltf skips it, saying only that 'node' is missing. */
+void judgeAnimationChannels(const nlohmann::json& document, ValueShapes& shapes) {
+    const auto animations = document.find("animations");
+    if (animations == document.end() || !animations->is_array()) return;
+    for (std::size_t a = 0; a < animations->size(); ++a) {
+        const nlohmann::json& animation = (*animations)[a];
+        const auto channels = animation.is_object() ? animation.find("channels") : animation.end();
+        if (!animation.is_object() || channels == animation.end() || !channels->is_array()) continue;
+        for (std::size_t c = 0; c < channels->size(); ++c) {
+            const nlohmann::json& channel = (*channels)[c];
+            const auto target = channel.is_object() ? channel.find("target") : channel.end();
+            if (!channel.is_object() || target == channel.end() || !target->is_object() || target->contains("node"))
+                continue;
+            const std::string at = "animations[" + std::to_string(a) + "].channels[" + std::to_string(c) + "]";
+            const bool pointer = target->contains("extensions") && (*target)["extensions"].is_object() &&
+                                 (*target)["extensions"].contains("KHR_animation_pointer");
+            shapes.warnings.push_back(makeWarning(
+                WarningKind::AnimationChannelIgnored,
+                at + ": its target names no node (" +
+                    (pointer ? std::string("a KHR_animation_pointer channel, which this reader does not read")
+                             : std::string("another extension's channel")) +
+                    "); ignored",
+                "", at));
+        }
+    }
+}
+
 } // namespace
 
 void judgeGlbHeader(const std::string& path, std::string_view content) {
@@ -303,6 +331,7 @@ ValueShapes judgeValueShapes(const std::string& path, const nlohmann::json& docu
     judgeBufferViews(path, document);
     judgeNodes(path, document, shapes);
     judgeMaterials(document, shapes);
+    judgeAnimationChannels(document, shapes);
     return shapes;
 }
 
