@@ -226,7 +226,8 @@ public:
     /** Its objects, by id from 1: what the "objectId" buffer's values (and the object-boundary lines) tell apart. */
     std::vector<SceneObject> objects() const;
     /** Its meshes, by id from 1 (the "meshId" buffer's values), each with its range of "triangleId" values: triangles
-     *  are numbered over the meshes in this order, each mesh's as its file gives them, from 1. */
+     *  are numbered over the meshes in this order, each mesh's as its file gives them, from 1. A still whose frame
+     *  poses the scene again names its own: Still::meshes(). */
     std::vector<SceneMesh> meshes() const;
 
     /** A scene is a shared, unchanging handle. Only copying is declared, so a move copies too and leaves the source a
