@@ -1399,7 +1399,9 @@ void defineScene(py::module_& m) {
             "'first_triangle', 'triangle_count'}, as the --dump manifest's 'meshes': 'id' is the mesh's value in the "
             "'meshId' buffer, and its triangles have the 'triangleId' values first_triangle + 1 ... first_triangle + "
             "triangle_count (0 there is the background), numbered as its file gives them: a triangle the loader "
-            "dropped (zero-area, a back-to-back twin) keeps its number, which appears nowhere.")
+            "dropped (zero-area, a back-to-back twin) keeps its number, which appears nowhere. A still whose frame "
+            "poses "
+            "the scene again names its own: Still.meshes.")
         .def_property_readonly(
             "warnings", [](const ig::Scene& self) { return warningObjects(self.warnings()); },
             "The loader's warnings, as InkgraphWarning records.")
