@@ -1041,15 +1041,15 @@ RawScene readGltf(const std::string& path, std::string_view content, MeshBudget&
     // tinygltf also reports recoverable problems (e.g. chunk padding) through `error` while still succeeding.
     // A channel whose target names no node (KHR_animation_pointer's) is said by judgeValueShapes(); tinygltf says
     // only that 'node' is missing, twice.
+    constexpr std::string_view kChannelWithoutNode = "`node` field is missing in animation.channels.target";
     const bool channelWithoutNode =
-        (warning + error).find("`node` field is missing in animation.channels.target") != std::string::npos;
+        warning.find(kChannelWithoutNode) != std::string::npos || error.find(kChannelWithoutNode) != std::string::npos;
     for (const std::string* messages : {&warning, &error}) {
         for (const std::string& line : splitLines(*messages)) {
             // tinygltf takes a skin's inverseBindMatrices for required; glTF makes it optional (identity matrices).
             if (line.find("'inverseBindMatrices' property is missing") != std::string::npos) continue;
             if (channelWithoutNode &&
-                (line.find("`node` field is missing in animation.channels.target") != std::string::npos ||
-                 line == "'node' property is missing."))
+                (line.find(kChannelWithoutNode) != std::string::npos || line == "'node' property is missing."))
                 continue;
             scene.warnings.push_back(makeWarning(WarningKind::GltfParserMessage, "tinygltf: " + shortenWords(line)));
         }
