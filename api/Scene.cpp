@@ -3,6 +3,7 @@
 #include "render/MemoryBudget.h"
 #include "scene/MeshArrays.h"
 #include "scene/MeshLabels.h"
+#include "scene/MeshNumbering.h"
 #include "scene/ObjectIds.h"
 #include "scene/MessageText.h"
 
@@ -105,11 +106,12 @@ std::size_t Scene::meshCount() const { return mImpl->scene->meshes.size(); }
 
 std::vector<SceneObject> objectsOf(const inkgraph::Scene& scene) {
     const SceneObjects found = sceneObjects(scene);
+    const MeshNumbering numbering(scene);
     std::vector<SceneObject> objects;
     for (std::size_t index = 0; index < found.objects.size(); ++index) {
         const inkgraph::SceneObject& object = found.objects[index];
         SceneObject entry{std::uint32_t(index + 1), object.name, object.nodePath, {}};
-        for (const std::size_t mesh : object.meshes) entry.meshes.push_back(scene.meshes[mesh].name);
+        for (const std::size_t mesh : object.meshes) entry.meshes.push_back(numbering.mesh(mesh).name);
         objects.push_back(std::move(entry));
     }
     return objects;
@@ -119,7 +121,7 @@ std::vector<SceneMesh> meshesOf(const inkgraph::Scene& scene) {
     const SceneLabels labels = sceneLabels(scene);
     std::vector<SceneMesh> meshes;
     for (const MeshLabel& mesh : labels.meshes)
-        meshes.push_back({mesh.id, mesh.name, mesh.nodePath, mesh.objectId, mesh.materialId,
+        meshes.push_back({mesh.id, mesh.drawn, mesh.name, mesh.nodePath, mesh.objectId, mesh.materialId,
                           labels.materials.at(mesh.materialId - 1).name, mesh.firstTriangle, mesh.triangleCount});
     return meshes;
 }

@@ -9,6 +9,7 @@
 #include "postfx/ContactSheet.h"
 #include "postfx/SvgLines.h"
 #include "scene/MeshLabels.h"
+#include "scene/MeshNumbering.h"
 #include "scene/ObjectIds.h"
 
 #include <nlohmann/json.hpp>
@@ -106,10 +107,11 @@ std::string strokesOf(const RenderOptions& options, const PreparedStill& still, 
 Json describeObjects(const Scene& scene) {
     Json objects = Json::array();
     const SceneObjects found = sceneObjects(scene);
+    const MeshNumbering numbering(scene);
     for (std::size_t index = 0; index < found.objects.size(); ++index) {
         const SceneObject& object = found.objects[index];
         Json meshes = Json::array();
-        for (const std::size_t mesh : object.meshes) meshes.push_back(scene.meshes[mesh].name);
+        for (const std::size_t mesh : object.meshes) meshes.push_back(numbering.mesh(mesh).name);
         objects.push_back(
             {{"id", index + 1}, {"name", object.name}, {"node_path", object.nodePath}, {"meshes", meshes}});
     }
@@ -123,6 +125,7 @@ Json describeMeshes(const SceneLabels& labels) {
     Json meshes = Json::array();
     for (const MeshLabel& mesh : labels.meshes)
         meshes.push_back({{"id", mesh.id},
+                          {"drawn", mesh.drawn},
                           {"name", mesh.name},
                           {"node_path", mesh.nodePath},
                           {"object_id", mesh.objectId},
@@ -228,8 +231,7 @@ Json describeCamera(const Camera& camera) {
 std::string strokesJson(int width, int height, const Camera& camera, const Scene& scene,
                         const std::vector<StrokeRecord>& strokes) {
     Json meshes = Json::array();
-    for (std::size_t index = 0; index < scene.meshes.size(); ++index)
-        meshes.push_back({{"id", index + 1}, {"name", scene.meshes[index].name}});
+    for (const MeshLabel& mesh : sceneLabels(scene).meshes) meshes.push_back({{"id", mesh.id}, {"name", mesh.name}});
     const auto dumped = [](const Json& json) { return json.dump(-1, ' ', false, Json::error_handler_t::replace); };
     const Json file = {
         {"format", "inkgraph-strokes"},     {"version", 1},     {"width", width},          {"height", height},

@@ -3,6 +3,7 @@
 #include "passes/orientation/SceneOrientation.h"
 #include "scene/MaterialIds.h"
 #include "scene/MeshLabels.h"
+#include "scene/MeshNumbering.h"
 #include "scene/ObjectIds.h"
 #include "scene/mesh/MeshOps.h"
 
@@ -73,9 +74,11 @@ const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
     if (mUploaded) return mMeshes;
     const std::vector<std::uint32_t> materials = materialIds(mScene);
     const std::vector<std::uint32_t> objects = sceneObjects(mScene).ofMesh;
+    const MeshNumbering numbering(mScene);
     mMeshes.reserve(mScene.meshes.size());
     for (std::size_t index = 0; index < mScene.meshes.size(); ++index) {
         const Mesh& mesh = mScene.meshes[index];
+        const std::size_t number = numbering.numberOf(index);
         std::vector<glm::vec3> relative(mesh.positions.size());
         for (std::size_t i = 0; i < relative.size(); ++i)
             relative[i] = glm::vec3(glm::dvec3(mesh.positions[i]) - mWorldOrigin);
@@ -86,8 +89,9 @@ const std::vector<GpuScene::DrawMesh>& GpuScene::meshes() {
                       GlVertexArray(label),
                       static_cast<GLsizei>(mesh.triangles.size() * 3),
                       mesh.material.baseColorFactor,
-                      materials[index],
-                      objects[index],
+                      materials[number],
+                      objects[number],
+                      std::uint32_t(number),
                       {},
                       &mesh.material,
                       mesh.drawsBackFaces()};

@@ -60,6 +60,7 @@ public:
         glm::vec4 baseColor;
         std::uint32_t materialId;                ///< scene/MaterialIds.h: equal exactly for meshes of the same material
         std::uint32_t objectIndex;               ///< scene/ObjectIds.h: the index of the mesh's object (node instance)
+        std::uint32_t meshNumber;                ///< scene/MeshNumbering.h: its meshId - 1, the same in every pose
         MeshAttributeBuffers materialAttributes; ///< texture coordinates and colours, in vertexArray too
         const Material* material;                ///< the scene mesh's
         bool drawsBackFaces;                     ///< Mesh::drawsBackFaces(): face culling off

@@ -576,10 +576,10 @@ py::list objectDicts(const std::vector<ig::SceneObject>& found) {
 py::list meshDicts(const std::vector<ig::SceneMesh>& found) {
     py::list meshes;
     for (const ig::SceneMesh& mesh : found)
-        meshes.append(py::dict("id"_a = mesh.id, "name"_a = textOf(mesh.name), "node_path"_a = textOf(mesh.nodePath),
-                               "object_id"_a = mesh.objectId, "material_id"_a = mesh.materialId,
-                               "material"_a = textOf(mesh.material), "first_triangle"_a = mesh.firstTriangle,
-                               "triangle_count"_a = mesh.triangleCount));
+        meshes.append(py::dict("id"_a = mesh.id, "drawn"_a = mesh.drawn, "name"_a = textOf(mesh.name),
+                               "node_path"_a = textOf(mesh.nodePath), "object_id"_a = mesh.objectId,
+                               "material_id"_a = mesh.materialId, "material"_a = textOf(mesh.material),
+                               "first_triangle"_a = mesh.firstTriangle, "triangle_count"_a = mesh.triangleCount));
     return meshes;
 }
 
@@ -1258,8 +1258,8 @@ void defineStill(py::module_& m) {
             "meshes", [](const PythonStill& self) { return meshDicts(self.still.meshes()); },
             "The meshes of the scene it drew, as Scene.meshes gives them: what its 'meshId', 'triangleId' and "
             "'barycentric' values and its strokes' meshes name. Scene.meshes unless the frame posed the scene again "
-            "(animation, time, pose, expressions, look_at): a pose that collapses a whole mesh (a prop scaled to 0) "
-            "leaves it out, and the meshes after it take the ids one earlier.")
+            "(animation, time, pose, expressions, look_at): a mesh the pose collapses (a prop scaled to 0) draws "
+            "nothing and is 'drawn': False here; every mesh keeps its id.")
         .def_property_readonly(
             "objects", [](const PythonStill& self) { return objectDicts(self.still.objects()); },
             "Its objects, as Scene.objects gives them: what its 'objectId' values name (likewise the frame's pose's).")
@@ -1395,13 +1395,13 @@ void defineScene(py::module_& m) {
             "value in the 'objectId' buffer (0 there is the background).")
         .def_property_readonly(
             "meshes", [](const ig::Scene& self) { return meshDicts(self.meshes()); },
-            "Its meshes, as dicts {'id', 'name', 'node_path', 'object_id', 'material_id', 'material', "
+            "Its meshes, as dicts {'id', 'drawn', 'name', 'node_path', 'object_id', 'material_id', 'material', "
             "'first_triangle', 'triangle_count'}, as the --dump manifest's 'meshes': 'id' is the mesh's value in the "
             "'meshId' buffer, and its triangles have the 'triangleId' values first_triangle + 1 ... first_triangle + "
             "triangle_count (0 there is the background), numbered as its file gives them: a triangle the loader "
-            "dropped (zero-area, a back-to-back twin) keeps its number, which appears nowhere. A still whose frame "
-            "poses "
-            "the scene again names its own: Still.meshes.")
+            "dropped (zero-area, a back-to-back twin) keeps its number, which appears nowhere, and a mesh whose "
+            "triangles are all degenerate ('drawn': False) keeps its id and numbers, so the ids are the same in every "
+            "pose. A still whose frame poses the scene again names its own: Still.meshes.")
         .def_property_readonly(
             "warnings", [](const ig::Scene& self) { return warningObjects(self.warnings()); },
             "The loader's warnings, as InkgraphWarning records.")

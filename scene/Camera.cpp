@@ -124,11 +124,19 @@ std::string namedList(const std::vector<std::string>& names) {
                                       : "the model's nodes with meshes under them: " + namedList(nodes);
     if (!bones.empty()) known += "; its humanoid bones: " + namedList(bones);
     if (!joints.empty()) known += "; its joints: " + namedList(joints);
-    // A mesh the load skipped (a pose that scaled its node to 0) is under no node any more: say it, or the name
-    // that holds it reads as a typing error.
-    std::vector<std::string> skipped;
-    for (const Warning& warning : scene.report.warnings)
-        if (warning.code == warningCode(WarningKind::MeshDegenerate)) skipped.push_back(warning.item);
+    // A mesh the load skipped (a pose that scaled its node to 0) draws nothing: say so, or the name that holds it
+    // reads as a typing error.
+    std::vector<std::string> skipped, skippedUnderName;
+    for (const SkippedMesh& mesh : scene.skippedMeshes) {
+        skipped.push_back(mesh.mesh.name);
+        if (std::ranges::find(mesh.mesh.nodePath, name) != mesh.mesh.nodePath.end())
+            skippedUnderName.push_back(mesh.mesh.name);
+    }
+    if (!skippedUnderName.empty())
+        notInModel("--frame '" + detail::excerptForMessage(name) +
+                   "': the meshes under that node draw nothing, their triangles all degenerate (mesh-degenerate: a "
+                   "pose that collapses them?): " +
+                   namedList(skippedUnderName) + " (" + known + ")");
     if (!skipped.empty())
         known +=
             "; meshes skipped as all degenerate (mesh-degenerate: a pose that collapses them?): " + namedList(skipped);

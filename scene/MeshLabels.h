@@ -4,6 +4,7 @@
  *  triangles over the scene: the triangleId field, the --dump manifest's `meshes`, the library's Scene::meshes() and
  *  the strokes file all count them this way. No GL. */
 
+#include "scene/MeshNumbering.h"
 #include "scene/Scene.h"
 #include "scene/Warning.h"
 
@@ -16,7 +17,9 @@ namespace inkgraph {
 
 /** One mesh (primitive) of the scene, as the id fields see it. */
 struct MeshLabel {
-    std::uint32_t id = 0;              ///< its index + 1: its value in the meshId field (0 is the background)
+    std::uint32_t id = 0; ///< its number + 1 (scene/MeshNumbering.h): its value in the meshId field
+    /** False for a mesh the loader skipped (Scene::skippedMeshes): its id and triangle ids appear nowhere. */
+    bool drawn = true;
     std::string name;                  ///< Mesh::name
     std::vector<std::string> nodePath; ///< Mesh::nodePath (empty for a format without nodes)
     std::uint32_t objectId = 0;        ///< its object's value in the objectId field (scene/ObjectIds.h)
@@ -34,22 +37,26 @@ struct MaterialLabel {
 };
 
 struct SceneLabels {
-    std::vector<MeshLabel> meshes;        ///< in scene order: meshes[i].id == i + 1
+    std::vector<MeshLabel> meshes;        ///< by number, the skipped meshes too: meshes[i].id == i + 1
     std::vector<MaterialLabel> materials; ///< by id: materials[i].id == i + 1
 };
 
 /** The labels of `scene`'s meshes and materials. */
 SceneLabels sceneLabels(const Scene& scene);
 
-/** The scene's triangle numbering: the meshes in scene order, each mesh's triangles as its file gives them
- *  (Mesh::fileTriangles), so the numbers of the triangles the loader dropped go unused and every other triangle
- *  keeps the number the file gives it. Keeps a reference to the scene. */
+/** The scene's triangle numbering: the meshes by number (scene/MeshNumbering.h, the skipped ones too), each mesh's
+ *  triangles as its file gives them (Mesh::fileTriangles), so the numbers of the triangles the loader dropped go
+ *  unused and every other triangle keeps the number the file gives it, in every pose. Keeps a reference to the
+ *  scene. */
 class TriangleNumbering {
 public:
     explicit TriangleNumbering(const Scene& scene);
 
-    /** The global index of the first file triangle of mesh `meshIndex`: the file triangles of the meshes before it. */
-    std::size_t firstOfMesh(std::size_t meshIndex) const { return mFirst.at(meshIndex); }
+    /** The global index of the first file triangle of drawn mesh `meshIndex` (an index into Scene::meshes): the file
+     *  triangles of the meshes numbered before it. */
+    std::size_t firstOfMesh(std::size_t meshIndex) const { return mFirst.at(mMeshes.numberOf(meshIndex)); }
+    /** Likewise of the mesh numbered `number`, drawn or skipped. */
+    std::size_t firstOfNumber(std::size_t number) const { return mFirst.at(number); }
     /** The numbers all meshes take: the file triangles of the scene. */
     std::size_t total() const { return mFirst.back(); }
     /** The global index of loaded triangle `triangle` (an index into Mesh::triangles) of mesh `meshIndex`: the
@@ -59,17 +66,20 @@ public:
 
     /** A global index as the mesh holding it and its loaded triangle there. */
     struct Loaded {
-        std::size_t mesh = 0;
+        std::size_t mesh = 0; ///< an index into Scene::meshes
         std::size_t triangle = 0;
     };
-    /** The loaded triangle a global index names; none beyond the scene's numbers or for one the loader dropped. */
+    /** The loaded triangle a global index names; none beyond the scene's numbers or for one the loader dropped (a
+     *  skipped mesh's too). */
     std::optional<Loaded> loaded(std::size_t global) const;
-    /** The mesh whose numbers hold a global index (a dropped triangle's too); none beyond the scene's numbers. */
-    std::optional<std::size_t> meshOf(std::size_t global) const;
+    /** The number of the mesh whose triangles hold a global index (a dropped triangle's too, or a skipped mesh's);
+     *  none beyond the scene's numbers. */
+    std::optional<std::size_t> meshNumberOf(std::size_t global) const;
 
 private:
     const Scene& mScene;
-    std::vector<std::size_t> mFirst; ///< per mesh its first global index, then the total
+    MeshNumbering mMeshes;
+    std::vector<std::size_t> mFirst; ///< per mesh number its first global index, then the total
 };
 
 /** The most triangles whose ids the G-buffer's triangleId field (float32: the render graph has no integer format)

@@ -1,5 +1,7 @@
 #include "scene/ObjectIds.h"
 
+#include "scene/MeshNumbering.h"
+
 #include <map>
 #include <utility>
 
@@ -7,11 +9,12 @@ namespace inkgraph {
 
 SceneObjects sceneObjects(const Scene& scene) {
     SceneObjects result;
-    result.ofMesh.reserve(scene.meshes.size());
+    const MeshNumbering numbering(scene);
+    result.ofMesh.reserve(numbering.size());
     // Keyed on the instance first: it differs between nodes in glTF, so most lookups compare no path.
     std::map<std::pair<std::size_t, std::vector<std::string>>, std::uint32_t> indexOf;
-    for (std::size_t index = 0; index < scene.meshes.size(); ++index) {
-        const Mesh& mesh = scene.meshes[index];
+    for (std::size_t number = 0; number < numbering.size(); ++number) {
+        const Mesh& mesh = numbering.mesh(number);
         const auto [entry, added] =
             indexOf.try_emplace({mesh.nodeInstance, mesh.nodePath}, std::uint32_t(result.objects.size()));
         if (added) {
@@ -20,7 +23,7 @@ SceneObjects sceneObjects(const Scene& scene) {
             object.nodePath = mesh.nodePath;
             result.objects.push_back(std::move(object));
         }
-        result.objects[entry->second].meshes.push_back(index);
+        result.objects[entry->second].meshes.push_back(number);
         result.ofMesh.push_back(entry->second);
     }
     return result;

@@ -18,17 +18,20 @@ struct SceneObject {
      *  name or "mesh N", the file stem). */
     std::string name;
     std::vector<std::string> nodePath; ///< as Mesh::nodePath (empty for a format without nodes)
-    std::vector<std::size_t> meshes;   ///< indices into Scene::meshes, ascending
+    /** Its meshes' numbers (scene/MeshNumbering.h: meshId - 1; skipped meshes too), ascending. */
+    std::vector<std::size_t> meshes;
 };
 
 struct SceneObjects {
-    std::vector<std::uint32_t> ofMesh; ///< per mesh of the scene, in order: the index of its object in `objects`
-    std::vector<SceneObject> objects;  ///< in the order of each object's first mesh; object id = index + 1
+    /** Per mesh number (scene/MeshNumbering.h), the index of its object in `objects`. */
+    std::vector<std::uint32_t> ofMesh;
+    std::vector<SceneObject> objects; ///< in the order of each object's first mesh; object id = index + 1
 };
 
 /** The objects of `scene`: meshes are one object exactly when their Mesh::nodePath and Mesh::nodeInstance are equal.
- *  Indices are dense from 0, in the order of each object's first appearance in Scene::meshes, so they are
- *  deterministic for a file. */
+ *  Indices are dense from 0, in the order of each object's first mesh by number (the meshes the loader skipped
+ *  included, so a pose that collapses one leaves the others' ids as they are), so they are deterministic for a
+ *  file. */
 SceneObjects sceneObjects(const Scene& scene);
 
 } // namespace inkgraph

@@ -170,6 +170,13 @@ Scene finalizeScene(const std::string& path, RawScene raw, const LoadOptions& op
         if (!mesh.triangles.empty()) {
             scene.meshes.push_back(std::move(mesh));
         } else if (trianglesBefore > 0) {
+            mesh.positions.clear();
+            mesh.normals.clear();
+            mesh.fileTriangles.clear();
+            mesh.cornersSwapped.clear();
+            for (std::vector<glm::vec2>& texcoords : mesh.texcoords) texcoords.clear();
+            mesh.colors.clear();
+            scene.skippedMeshes.push_back({scene.meshes.size(), std::move(mesh)});
             scene.report.warnings.push_back(makeWarning(WarningKind::MeshDegenerate,
                                                         "mesh '" + excerptForMessage(name) + "': all " +
                                                             std::to_string(trianglesBefore) +

@@ -140,13 +140,26 @@ struct SceneJoint {
     glm::dvec3 upper{std::numeric_limits<double>::lowest()};
 };
 
+/** A mesh of the file whose triangles were all degenerate, so the loader skipped it (a pose that scales a part to 0, a
+ *  file's own sliver): what it would have been, kept so that the meshes, objects, materials and triangles after it
+ *  keep their ids in every pose (scene/MeshNumbering.h). */
+struct SkippedMesh {
+    /** Where it stood: the index in Scene::meshes of the first drawn mesh after it (Scene::meshes.size() when none). */
+    std::size_t before = 0;
+    /** Its name, node path and instance, material and Mesh::fileTriangleCount; no vertices or triangles. */
+    Mesh mesh;
+};
+
 struct Scene {
     /** World = origin + stored position. Positions are computed in double while loading and stored in float relative
      *  to this point (the centre of the model's bounding box), so a model far from the world origin (georeferenced
      *  exports at 1e7 units) keeps its detail. Everything positional the scene carries (the glTF camera's eye) is in
      *  the same local frame; resolveCamera() takes world coordinates from the user and subtracts this. */
     glm::dvec3 origin{0.0};
-    std::vector<Mesh> meshes;
+    std::vector<Mesh> meshes; ///< the meshes drawn, in the file's order
+    /** The file's meshes the loader skipped, in the file's order (SkippedMesh::before ascending): they draw nothing
+     *  but keep their numbers (scene/MeshNumbering.h). */
+    std::vector<SkippedMesh> skippedMeshes;
     std::optional<SceneCamera> camera;
     std::optional<DirectionalLight> light;
     /** The direction the model faces when its file says so (unit, world): a VRM 0.x character faces -Z, a VRM 1.0

@@ -52,10 +52,10 @@ const std::vector<GBufferPass::Field>& GBufferPass::fields() {
          "the object's id (its index + 1, one object per node instance, as the manifest lists them) as an exact "
          "float, 0 off the model"},
         {"meshId", Format::R32F, "MESH_ID", "meshid.exr", Appearance::Data,
-         "the mesh's id (its index + 1 in the scene, as the manifest's meshes list them) as an exact float, 0 off "
-         "the model"},
+         "the mesh's id (its index + 1 among the file's meshes, as the manifest's meshes list them; a mesh a pose "
+         "collapses keeps its id, drawing nothing) as an exact float, 0 off the model"},
         {"triangleId", Format::R32F, "TRIANGLE_ID", "triangleid.exr", Appearance::Data,
-         "the triangle's id: its index + 1 over the scene's meshes in order, each mesh's triangles as its file gives "
+         "the triangle's id: its index + 1 over the file's meshes in order, each mesh's triangles as its file gives "
          "them (the manifest's meshes give each mesh's first_triangle), as a float exact below 2^24 triangles, 0 off "
          "the model"},
         {"barycentric", Format::RGBA32F, "BARYCENTRIC", "barycentric.exr", Appearance::Data,
@@ -236,7 +236,7 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
     }
     const GLint materialIdLocation = program.uniform("materialId");   // -1 unless the field is live: ignored
     const GLint objectIndexLocation = program.uniform("objectIndex"); // likewise
-    const GLint meshIndexLocation = program.uniform("meshIndex");     // likewise
+    const GLint meshNumberLocation = program.uniform("meshNumber");   // likewise
     const GLint firstTriangleLocation = program.uniform("firstTriangle");
     // Colour only for the baseColor field; the others need the material only where it cuts out.
     const MaterialUse use = std::any_of(group.begin(), group.end(),
@@ -255,7 +255,7 @@ void GBufferPass::drawGroup(GlPassContext& gl, const std::vector<const Field*>& 
         mScene.bindMaterial(program, index, use);
         glUniform1ui(materialIdLocation, mesh.materialId);
         glUniform1ui(objectIndexLocation, mesh.objectIndex);
-        glUniform1ui(meshIndexLocation, std::uint32_t(index));
+        glUniform1ui(meshNumberLocation, mesh.meshNumber);
         if (triangleIds != nullptr) {
             glUniform1ui(firstTriangleLocation, triangleIds->firstTriangle[index]);
             glUniform1ui(fileTrianglesAtLocation, triangleIds->fileTrianglesAt[index]);

@@ -17,8 +17,9 @@
  *  |                    |         |          | equal for meshes of one material), 0 off-model                    |
  *  | gbuffer.objectId   | r32f    | optional | the mesh's object index + 1 as an exact float (scene/ObjectIds.h: |
  *  |                    |         |          | one object per node instance), 0 off-model                        |
- *  | gbuffer.meshId     | r32f    | optional | the mesh's index in the scene + 1 as an exact float, 0 off-model  |
- *  | gbuffer.triangleId | r32f    | optional | the global triangle index + 1 (meshes in scene order, each its    |
+ *  | gbuffer.meshId     | r32f    | optional | the mesh's number + 1 (scene/MeshNumbering.h: skipped meshes keep |
+ *  |                    |         |          | theirs) as an exact float, 0 off-model                            |
+ *  | gbuffer.triangleId | r32f    | optional | the global triangle index + 1 (meshes by number, each its         |
  *  |                    |         |          | file's triangles: scene/MeshLabels.h; gl_PrimitiveID mapped by    |
  *  |                    |         |          | GpuScene::triangleIdMap()), exact up to 2^24 triangles (the       |
  *  |                    |         |          | renderer warns above), 0 off-model                                |

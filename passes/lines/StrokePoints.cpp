@@ -39,10 +39,10 @@ std::int64_t globalTriangle(const StrokePointSetup& setup, int mesh, long triang
     return std::int64_t(setup.numbering->global(std::size_t(mesh), std::size_t(triangle)));
 }
 
-/** The mesh (index + 1) a global triangle index lies in, 0 when none. */
+/** The mesh id (number + 1, scene/MeshNumbering.h) a global triangle index lies in, 0 when none. */
 int meshOfTriangle(const StrokePointSetup& setup, std::int64_t triangle) {
     if (triangle < 0 || setup.numbering == nullptr) return 0;
-    const std::optional<std::size_t> mesh = setup.numbering->meshOf(std::size_t(triangle));
+    const std::optional<std::size_t> mesh = setup.numbering->meshNumberOf(std::size_t(triangle));
     return mesh ? int(*mesh) + 1 : 0;
 }
 

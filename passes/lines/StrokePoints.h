@@ -70,7 +70,7 @@ struct StrokePointSetup {
 struct StrokePointRecord {
     double x = 0.0, y = 0.0;         ///< output pixels, x right, y down, pixel (0, 0)'s centre at (0, 0)
     std::optional<glm::dvec3> world; ///< world coordinates (Scene::origin added back); none: no surface there
-    int mesh = 0;                    ///< Scene::meshes index + 1, 0 when not known
+    int mesh = 0;                    ///< its mesh id (scene/MeshNumbering.h number + 1), 0 when not known
     std::int64_t triangle = -1;      ///< global triangle index over the meshes in Scene order, -1 when not known
 };
 

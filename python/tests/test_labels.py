@@ -51,10 +51,10 @@ def still(quads):
 
 def test_scene_meshes_name_the_mesh_and_triangle_ids(quads):
     assert quads.meshes == [
-        {"id": 1, "name": "left", "node_path": ["left"], "object_id": 1, "material_id": 1, "material": "paint",
-         "first_triangle": 0, "triangle_count": 2},
-        {"id": 2, "name": "right", "node_path": ["right"], "object_id": 2, "material_id": 2, "material": "metal",
-         "first_triangle": 2, "triangle_count": 2},
+        {"id": 1, "drawn": True, "name": "left", "node_path": ["left"], "object_id": 1, "material_id": 1,
+         "material": "paint", "first_triangle": 0, "triangle_count": 2},
+        {"id": 2, "drawn": True, "name": "right", "node_path": ["right"], "object_id": 2, "material_id": 2,
+         "material": "metal", "first_triangle": 2, "triangle_count": 2},
     ]
 
 
@@ -157,30 +157,40 @@ def three_quads_gltf(path):
     return path
 
 
-def test_a_still_names_the_meshes_its_frames_pose_drew(tmp_path):
-    # A frame's animation loads the scene again in its pose: one that collapses a whole mesh (Prop, scaled to 0)
-    # leaves it out and C takes id 2. Scene.meshes is the scene as loaded (A, Prop, C); Still.meshes is what the still
-    # drew, so its names are the ones its meshId and triangleId values mean (Scene.meshes named C's pixels "Prop").
+def test_a_mesh_a_pose_collapses_keeps_every_id_as_at_rest(tmp_path):
+    # A frame's animation loads the scene again in its pose: one that collapses a whole mesh (Prop, scaled to 0) draws
+    # nothing, and every mesh, object and triangle keeps the id it has at rest, so the labels of an animation's frames
+    # agree. Still.meshes says which meshes the still drew.
     scene = inkgraph.Scene.load(three_quads_gltf(tmp_path / "three.gltf"))
     assert [mesh["name"] for mesh in scene.meshes] == ["A", "Prop", "C"]
+    assert all(mesh["drawn"] for mesh in scene.meshes)
     look = inkgraph.Look()
     at_rest = inkgraph.Frame(SIZE, SIZE, eye=(0, 0, 9), target=(0, 0, 0))
     folded = inkgraph.Frame(SIZE, SIZE, eye=(0, 0, 9), target=(0, 0, 0), animation="fold", time=1.0)
     renderer = inkgraph.default_renderer()
-    rest = renderer.render(scene, look, at_rest, buffers=["meshId", "triangleId", "objectId"])
+    buffers = ["meshId", "triangleId", "objectId"]
+    rest = renderer.render(scene, look, at_rest, buffers=buffers)
     assert rest.meshes == scene.meshes and rest.objects == scene.objects
     with pytest.warns(inkgraph.InkgraphWarning, match="mesh 'Prop': all 2 triangles are degenerate"):
-        still = renderer.render(scene, look, folded, buffers=["meshId", "triangleId", "objectId"])
+        still = renderer.render(scene, look, folded, buffers=buffers)
     assert "mesh-degenerate" in [warning.code for warning in still.warnings]
-    assert [(mesh["id"], mesh["name"], mesh["first_triangle"]) for mesh in still.meshes] == [(1, "A", 0), (2, "C", 2)]
-    assert [(obj["id"], obj["name"]) for obj in still.objects] == [(1, "A"), (2, "C")]
-    ids, triangles = still.buffer("meshId"), still.buffer("triangleId")
-    assert set(np.unique(ids).tolist()) == {0.0, 1.0, 2.0}
+    assert [(mesh["id"], mesh["drawn"], mesh["name"], mesh["first_triangle"]) for mesh in still.meshes] == [
+        (1, True, "A", 0),
+        (2, False, "Prop", 2),
+        (3, True, "C", 4),
+    ]
+    assert still.objects == scene.objects
+    ids, rest_ids = still.buffer("meshId"), rest.buffer("meshId")
+    assert set(np.unique(rest_ids).tolist()) == {0.0, 1.0, 2.0, 3.0}
+    assert set(np.unique(ids).tolist()) == {0.0, 1.0, 3.0}
+    # A and C lie where they lay at rest, so their pixels have the ids, objects and triangles they had at rest.
+    kept = (rest_ids == 1) | (rest_ids == 3)
+    for name in buffers:
+        assert np.array_equal(still.buffer(name)[kept], rest.buffer(name)[kept]), name
     columns = np.nonzero(ids)[1]
-    # Mesh C lies right of the centre, where Prop was in the middle: the still's names say so.
-    named = {mesh["id"]: mesh for mesh in still.meshes}
-    assert named[2]["name"] == "C" and (columns[ids[ids > 0] == 2] > SIZE * 0.6).all()
-    for mesh_id, mesh in named.items():
-        mine = triangles[ids == mesh_id]
+    assert (columns[ids[ids > 0] == 3] > SIZE * 0.6).all()
+    triangles = still.buffer("triangleId")
+    for mesh in still.meshes:
+        mine = triangles[ids == mesh["id"]]
+        assert mine.size > 0 if mesh["drawn"] else mine.size == 0
         assert ((mine > mesh["first_triangle"]) & (mine <= mesh["first_triangle"] + mesh["triangle_count"])).all()
-    assert still.buffer("objectId").max() == 2.0

@@ -13,7 +13,7 @@ uniform uint materialId; // GpuScene::DrawMesh::materialId, one per draw
 uniform uint objectIndex; // GpuScene::DrawMesh::objectIndex, one per draw
 #endif
 #ifdef OUT_MESH_ID
-uniform uint meshIndex; // the mesh's index in the scene, one per draw
+uniform uint meshNumber; // GpuScene::DrawMesh::meshNumber, one per draw
 #endif
 #if defined(OUT_TRIANGLE_ID) || defined(OUT_BARYCENTRIC)
 uniform uint firstTriangle; // the global index of the mesh's first triangle (GpuScene::TriangleIdMap)
@@ -144,7 +144,7 @@ void main() {
     outObjectId = float(objectIndex + 1u);
 #endif
 #ifdef OUT_MESH_ID
-    outMeshId = float(meshIndex + 1u);
+    outMeshId = float(meshNumber + 1u);
 #endif
 #ifdef OUT_TRIANGLE_ID
     outTriangleId = triangleId();

@@ -1257,10 +1257,10 @@ TEST_F(Cli, TheDumpManifestNamesTheMeshesAndMaterialsOfTheLabels) {
     ASSERT_EQ(result.exitCode, 0) << result.err;
     const auto manifest = nlohmann::json::parse(readText(directory / "d" / "manifest.json"));
     const auto meshes = nlohmann::json::parse(R"([
-        {"id": 1, "name": "front", "node_path": ["front"], "object_id": 1, "material_id": 1, "material": "paint",
-         "first_triangle": 0, "triangle_count": 2},
-        {"id": 2, "name": "back", "node_path": ["back"], "object_id": 2, "material_id": 2, "material": "metal",
-         "first_triangle": 2, "triangle_count": 2}])");
+        {"id": 1, "drawn": true, "name": "front", "node_path": ["front"], "object_id": 1, "material_id": 1,
+         "material": "paint", "first_triangle": 0, "triangle_count": 2},
+        {"id": 2, "drawn": true, "name": "back", "node_path": ["back"], "object_id": 2, "material_id": 2,
+         "material": "metal", "first_triangle": 2, "triangle_count": 2}])");
     EXPECT_EQ(manifest["meshes"], meshes) << manifest["meshes"].dump();
     EXPECT_EQ(manifest["materials"],
               nlohmann::json::parse(R"([{"id": 1, "name": "paint"}, {"id": 2, "name": "metal"}])"))

@@ -276,12 +276,22 @@ TEST(CameraAim, UnknownFrameNodeNamesTheNodes) {
 
     // A mesh the load skipped (a pose scaled its node to 0) is said, so that its name does not read as a typo.
     Scene posed = characterOnGround();
-    posed.report.warnings.push_back(makeWarning(
-        WarningKind::MeshDegenerate, "mesh 'hero': all 12 triangles are degenerate; mesh skipped", "", "hero"));
+    SkippedMesh hat{1, {}};
+    hat.mesh.name = "hat";
+    hat.mesh.nodePath = {"root", "character", "hat"};
+    posed.skippedMeshes.push_back(hat);
     message = modelMismatchMessage(request, posed);
     EXPECT_NE(message.find("'root', 'character', 'ground'; meshes skipped as all degenerate (mesh-degenerate: a pose "
-                           "that collapses them?): 'hero')"),
+                           "that collapses them?): 'hat')"),
               std::string::npos)
+        << message;
+    // The node the user named holds it: that is the refusal's first word.
+    request.frameNodes = {"hat"};
+    message = modelMismatchMessage(request, posed);
+    EXPECT_EQ(message.rfind("resolveCamera(): --frame 'hat': the meshes under that node draw nothing, their triangles "
+                            "all degenerate (mesh-degenerate: a pose that collapses them?): 'hat' (",
+                            0),
+              0u)
         << message;
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <tuple>
 
 namespace inkgraph {
 namespace {
@@ -84,10 +85,76 @@ TEST(MeshLabels, TrianglesTheLoaderDroppedKeepTheirNumbersUnused) {
         }
     for (const std::size_t dropped : {1u, 3u, 8u}) {
         EXPECT_FALSE(numbering.loaded(dropped)) << dropped;
-        EXPECT_EQ(numbering.meshOf(dropped), dropped < 5 ? 0u : 1u) << dropped;
+        EXPECT_EQ(numbering.meshNumberOf(dropped), dropped < 5 ? 0u : 1u) << dropped;
     }
     EXPECT_FALSE(numbering.loaded(11));
-    EXPECT_FALSE(numbering.meshOf(11));
+    EXPECT_FALSE(numbering.meshNumberOf(11));
+}
+
+TEST(MeshLabels, AMeshTheLoaderSkippedKeepsItsNumbersSoTheOthersKeepTheirs) {
+    // At rest: a body, a prop (its own node and material), a hat, a prop's second primitive.
+    Scene rest;
+    rest.meshes = {meshOf("body", {"body"}, 3, "skin"), meshOf("prop", {"prop"}, 2, "wood"),
+                   meshOf("hat", {"hat"}, 4, "felt"), meshOf("prop 1", {"prop"}, 5, "wood")};
+    // Posed: the prop scaled to 0, so the loader skipped both its meshes, each where it stood in the file.
+    Scene posed;
+    posed.meshes = {rest.meshes[0], rest.meshes[2]};
+    for (const std::size_t file : {1u, 3u}) {
+        Mesh skipped = rest.meshes[file];
+        skipped.fileTriangleCount = skipped.triangles.size();
+        skipped.triangles.clear();
+        posed.skippedMeshes.push_back({file == 1 ? 1u : 2u, std::move(skipped)});
+    }
+    const MeshNumbering numbering(posed);
+    ASSERT_EQ(numbering.size(), 4u);
+    EXPECT_EQ(numbering.drawnIndex(0), 0u);
+    EXPECT_FALSE(numbering.drawnIndex(1));
+    EXPECT_EQ(numbering.drawnIndex(2), 1u);
+    EXPECT_FALSE(numbering.drawnIndex(3));
+    EXPECT_EQ(numbering.numberOf(1), 2u);
+    EXPECT_EQ(numbering.mesh(3).name, "prop 1");
+
+    const SceneLabels atRest = sceneLabels(rest);
+    const SceneLabels labels = sceneLabels(posed);
+    ASSERT_EQ(labels.meshes.size(), 4u);
+    for (std::size_t number = 0; number < 4; ++number) {
+        SCOPED_TRACE(number);
+        const MeshLabel &mesh = labels.meshes[number], &before = atRest.meshes[number];
+        EXPECT_EQ(mesh.drawn, number % 2 == 0);
+        EXPECT_TRUE(before.drawn);
+        EXPECT_EQ(std::tie(mesh.id, mesh.name, mesh.nodePath, mesh.objectId, mesh.materialId, mesh.firstTriangle,
+                           mesh.triangleCount),
+                  std::tie(before.id, before.name, before.nodePath, before.objectId, before.materialId,
+                           before.firstTriangle, before.triangleCount));
+    }
+    EXPECT_EQ(labels.materials.size(), atRest.materials.size());
+    // The hat's triangles keep the numbers they have at rest; the prop's name none.
+    const TriangleNumbering posedTriangles(posed), restTriangles(rest);
+    EXPECT_EQ(posedTriangles.total(), 14u);
+    for (std::size_t triangle = 0; triangle < 4; ++triangle) {
+        EXPECT_EQ(posedTriangles.global(1, triangle), restTriangles.global(2, triangle));
+        const auto back = posedTriangles.loaded(posedTriangles.global(1, triangle));
+        ASSERT_TRUE(back);
+        EXPECT_EQ(back->mesh, 1u);
+    }
+    EXPECT_EQ(posedTriangles.meshNumberOf(3), 1u);
+    EXPECT_FALSE(posedTriangles.loaded(3)) << "the prop's triangle 0 is drawn nowhere";
+    EXPECT_FALSE(posedTriangles.loaded(13));
+
+    // Skipped meshes out of order are refused, naming the numbering.
+    Scene disordered = posed;
+    std::swap(disordered.skippedMeshes[0], disordered.skippedMeshes[1]);
+    EXPECT_THROW(MeshNumbering{disordered}, std::invalid_argument);
+    disordered.skippedMeshes = {posed.skippedMeshes[0]};
+    disordered.skippedMeshes[0].before = 3;
+    try {
+        MeshNumbering{disordered};
+        FAIL() << "a skipped mesh beyond the two drawn ones";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_STREQ(
+            error.what(),
+            "MeshNumbering(): skipped mesh 0 stands before drawn mesh 3, out of order among the 2 drawn meshes");
+    }
 }
 
 TEST(MeshLabels, AnEmptySceneHasNoLabelsAndBadIndicesAreRefused) {
@@ -105,7 +172,7 @@ TEST(MeshLabels, AnEmptySceneHasNoLabelsAndBadIndicesAreRefused) {
     }
     EXPECT_THROW(numbering.global(1, 0), std::out_of_range);
     EXPECT_EQ(TriangleNumbering(Scene{}).total(), 0u);
-    EXPECT_FALSE(TriangleNumbering(Scene{}).meshOf(0));
+    EXPECT_FALSE(TriangleNumbering(Scene{}).meshNumberOf(0));
 }
 
 TEST(MeshLabels, TriangleIdsBeyondFloat32sExactIntegersAreWarnedAbout) {

@@ -187,13 +187,18 @@ struct SceneObject {
     std::uint32_t id = 0;              ///< its value in the "objectId" buffer (0 there is the background)
     std::string name;                  ///< the node's name, or for an unnamed node its first mesh's name
     std::vector<std::string> nodePath; ///< the node names from the root down to it ("" for an unnamed node)
-    std::vector<std::string> meshes;   ///< the names of its meshes
+    std::vector<std::string> meshes;   ///< the names of its meshes, the skipped ones (SceneMesh::drawn) included
 };
 
 /** One mesh (primitive) of a scene, with the values it has in the id buffers: what names a pixel of "meshId",
  *  "triangleId", "objectId" and "materialId". */
 struct SceneMesh {
-    std::uint32_t id = 0;              ///< its value in the "meshId" buffer: its index + 1 (0 there is the background)
+    /** Its value in the "meshId" buffer (0 there is the background): its index + 1 among the file's meshes, the same
+     *  in every pose and frame. */
+    std::uint32_t id = 0;
+    /** False for a mesh whose triangles are all degenerate (a pose that scales a prop to 0): it draws nothing, and
+     *  keeps its id, object, material and triangle numbers so that the other meshes keep theirs (mesh-degenerate). */
+    bool drawn = true;
     std::string name;                  ///< the glTF mesh's name ("mesh N" unnamed), the OBJ object's, or the file stem
     std::vector<std::string> nodePath; ///< the node names from the root down to its node (empty without nodes)
     std::uint32_t objectId = 0;        ///< its object's value in the "objectId" buffer (Scene::objects())
@@ -220,14 +225,16 @@ public:
     const std::string& path() const;
     std::size_t triangleCount() const;
     std::size_t vertexCount() const;
+    /** The meshes it draws: meshes() less those whose triangles are all degenerate (SceneMesh::drawn false). */
     std::size_t meshCount() const;
     /** The loader's warnings (a texture it could not read, a skipped primitive, ...). */
     std::vector<Warning> warnings() const;
     /** Its objects, by id from 1: what the "objectId" buffer's values (and the object-boundary lines) tell apart. */
     std::vector<SceneObject> objects() const;
     /** Its meshes, by id from 1 (the "meshId" buffer's values), each with its range of "triangleId" values: triangles
-     *  are numbered over the meshes in this order, each mesh's as its file gives them, from 1. A still whose frame
-     *  poses the scene again names its own: Still::meshes(). */
+     *  are numbered over the meshes in this order, each mesh's as its file gives them, from 1. Every mesh of the file,
+     *  one whose triangles are all degenerate too (SceneMesh::drawn false), so the ids are the same in every pose. A
+     *  still whose frame poses the scene again names its own: Still::meshes(). */
     std::vector<SceneMesh> meshes() const;
 
     /** A scene is a shared, unchanging handle. Only copying is declared, so a move copies too and leaves the source a
@@ -547,8 +554,8 @@ public:
     const StillCamera& camera() const;
     /** The meshes of the scene it drew, as Scene::meshes() gives them: what its "meshId", "triangleId" and
      *  "barycentric" values and its strokes' meshes name. Scene::meshes() unless the frame posed the scene again
-     *  (Frame::animation, time, pose, expressions, lookAt): a pose that collapses a whole mesh (a prop's node scaled
-     *  to 0) leaves it out, and the meshes after it take the ids one earlier. */
+     *  (Frame::animation, time, pose, expressions, lookAt): the same ids, and a mesh the pose collapses to nothing (a
+     *  prop's node scaled to 0) has SceneMesh::drawn false. */
     const std::vector<SceneMesh>& meshes() const;
     /** Its objects, as Scene::objects() gives them: what its "objectId" values name (likewise the frame's pose's). */
     const std::vector<SceneObject>& objects() const;
