@@ -914,7 +914,9 @@ std::vector<Flag> makeFlags() {
              "settings from a style file, one NAME = VALUE per line (# comments): any flag of this\n"
              "section and of Lines, --size and --fov, without the dashes; e.g. \"shading = comic\",\n"
              "\"lines = contour, suggestive\". A relative file (shademap) is found next to the style file;\n"
-             "flags on the command line win over the file's. Problems are reported with the file and line",
+             "flags on the command line win over the file's, and a setting the look leaves unused (a width\n"
+             "of a line type not drawn, the shininess of a look without highlights) is left out. Problems\n"
+             "are reported with the file and line",
              [](const std::string& value, RenderOptions& options) {
                  options.stylePath = value; // its settings were put first by expandStyleFile()
              }));

@@ -4,6 +4,7 @@
 #include "flags/FlagTable.h"
 
 #include <algorithm>
+#include <set>
 #include <thread>
 
 #include <sched.h>
@@ -181,6 +182,31 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& arguments) {
 
 namespace {
 
+/** Whether an argument of this origin is a style file's setting (styleArguments() names its file and line). */
+bool fromStyleFile(const std::vector<std::string>& origins, std::size_t index) {
+    return !origins.empty() && origins[index].starts_with("--style ");
+}
+
+/** The style file's settings that the rest of the command line makes moot: each given by the style file alone that
+ *  changes nothing with the options parsed (a width for a line type --lines leaves out, the shininess of a look
+ *  --shading replaced), or that chooses what a flag on the command line chooses (--bands and --shademap). A style is
+ *  a house style, used with many looks: its settings are defaults the command line wins over, not requests. */
+std::set<const Flag*> mootStyleSettings(const RenderOptions& options, const std::vector<const Flag*>& fromStyle,
+                                        const std::vector<const Flag*>& fromCommandLine) {
+    const auto onCommandLine = [&](std::string_view name) {
+        return std::ranges::any_of(fromCommandLine, [&](const Flag* flag) { return flag->names.back() == name; });
+    };
+    std::set<const Flag*> moot;
+    for (const Flag* flag : fromStyle) {
+        if (std::ranges::find(fromCommandLine, flag) != fromCommandLine.end()) continue;
+        const std::string& name = flag->names.back();
+        if ((flag->noEffect && !flag->noEffect(options).empty()) ||
+            (name == "--bands" && onCommandLine("--shademap")) || (name == "--shademap" && onCommandLine("--bands")))
+            moot.insert(flag);
+    }
+    return moot;
+}
+
 /** parseRenderOptions() and parseRenderFlags(): `flagsOnly` takes flags alone and requires neither MODEL nor output. */
 RenderOptions parse(std::vector<std::string> arguments, std::vector<std::string> origins, bool flagsOnly,
                     FlagChecks checks) {
@@ -189,7 +215,7 @@ RenderOptions parse(std::vector<std::string> arguments, std::vector<std::string>
                                     std::to_string(arguments.size()) + " arguments");
     separateAttachedValues(arguments, origins);
     RenderOptions options;
-    std::vector<const Flag*> given;
+    std::vector<const Flag*> given, fromStyle, fromCommandLine;
     for (std::size_t i = 0; i < arguments.size(); ++i) {
         const std::size_t flagIndex = i;
         try {
@@ -198,10 +224,30 @@ RenderOptions parse(std::vector<std::string> arguments, std::vector<std::string>
             if (origins.empty() || origins[flagIndex].empty()) throw;
             throw UsageError(origins[flagIndex] + ": " + error.what());
         }
+        if (const Flag* flag = findFlag(arguments[flagIndex]); flag != nullptr)
+            (fromStyleFile(origins, flagIndex) ? fromStyle : fromCommandLine).push_back(flag);
     }
     if (!flagsOnly && options.modelPaths.empty() && options.listPath.empty())
         throw UsageError("missing MODEL (a " + modelFileExtensions() + " file, or --list FILE)");
-    if (checks == FlagChecks::ValuesAndRules) checkGivenFlags(options, given, flagsOnly);
+    if (checks == FlagChecks::ValuesAndRules) {
+        // Parsed again without them: a moot setting's value may still stand in the options (--bands beside
+        // --shademap). Each round leaves out at least one setting, so this ends.
+        if (const std::set<const Flag*> moot = mootStyleSettings(options, fromStyle, fromCommandLine); !moot.empty()) {
+            std::vector<std::string> keptArguments, keptOrigins;
+            for (std::size_t i = 0; i < arguments.size(); ++i) {
+                // A style's settings come as pairs, the flag and its value (styleArguments()).
+                const std::size_t count = fromStyleFile(origins, i) ? 2 : 1;
+                if (count == 1 || !moot.contains(findFlag(arguments[i])))
+                    for (std::size_t k = i; k < std::min(i + count, arguments.size()); ++k) {
+                        keptArguments.push_back(arguments[k]);
+                        keptOrigins.push_back(origins[k]);
+                    }
+                i += count - 1;
+            }
+            return parse(std::move(keptArguments), std::move(keptOrigins), flagsOnly, checks);
+        }
+        checkGivenFlags(options, given, flagsOnly);
+    }
     return options;
 }
 

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <iterator>
 #include <set>
 
 namespace inkgraph {
@@ -23,11 +22,18 @@ std::string_view trimmed(std::string_view text) {
     return text;
 }
 
-/** "0.1, 0.2, 0.3" -> "0.1,0.2,0.3": lists may be spaced for reading; no setting but a path holds a space. */
-std::string withoutBlanks(std::string_view text) {
+/** "0.1, 0.2, 0.3" -> "0.1,0.2,0.3": lists may be spaced for reading around their commas. Blanks inside an item
+ *  stay, so its flag reads what the file holds: "1 5" is refused as a number, not read as 15, and a file name
+ *  (--outline-width-map's texture) keeps its spaces. */
+std::string withoutBlanksAroundCommas(std::string_view text) {
     std::string compact;
-    std::copy_if(text.begin(), text.end(), std::back_inserter(compact), [](char c) { return !isBlank(c); });
-    return compact;
+    for (;;) {
+        const std::size_t comma = text.find(',');
+        compact += trimmed(text.substr(0, comma));
+        if (comma == std::string_view::npos) return compact;
+        compact += ',';
+        text.remove_prefix(comma + 1);
+    }
 }
 
 } // namespace
@@ -83,7 +89,7 @@ SourcedArguments styleArguments(std::string_view text, const std::string& source
             argument = path.is_relative() && !directory.empty() ? (std::filesystem::path(directory) / path).string()
                                                                 : path.string();
         } else {
-            argument = withoutBlanks(value);
+            argument = withoutBlanksAroundCommas(value);
         }
         result.arguments.push_back("--" + name);
         result.arguments.push_back(std::move(argument));

@@ -75,6 +75,46 @@ TEST(StyleFile, TheCommandLineWinsOverTheStyle) {
     EXPECT_EQ(options.look.shininess, 100.0);
 }
 
+TEST(StyleFile, SettingsTheCommandLineMakesMootAreLeftOut) {
+    // A house style used with another look: the command line's --shading, --lines and --shademap win, and the
+    // style's settings they leave unused (comic's shininess, the crease's width, the cel bands) are left out, where
+    // each was refused as a flag without effect, naming a flag the user never typed.
+    const SourcedArguments style = styleArguments(
+        "shading = comic\nshininess = 8\nlines = contour, crease\ncrease-width = 3\nbands = 4\n", "house.style", "");
+    RenderOptions options = optionsWith(style, {"m.obj", "-o", "o.png", "--shading", "cel", "--lines", "contour"});
+    EXPECT_EQ(options.look.shading, ShadingModel::Cel);
+    EXPECT_EQ(options.look.lines, (std::vector<std::string>{"contour"}));
+    EXPECT_EQ(options.look.bands, 4);
+    options = optionsWith(style, {"m.obj", "-o", "o.png", "--shading", "cel", "--shademap", "map.png"});
+    EXPECT_EQ(options.look.shadeMapPath, "map.png");
+    EXPECT_FALSE(options.look.bands) << "the command line's --shademap wins over the style's bands";
+    EXPECT_EQ(options.look.styleOf("crease").widthPixels, 3.0) << "crease is drawn: its width stays";
+    // A width for a line type the style's own look leaves out is a default for the looks that draw it.
+    EXPECT_NO_THROW(optionsWith(styleArguments("crease-width = 4\n", "s.style", ""), {"m.obj", "-o", "o.png"}));
+    // The same flags on the command line are still refused: there the user asked for them.
+    EXPECT_EQ(usageErrorOf([&] {
+                  optionsWith(style, {"m.obj", "-o", "o.png", "--shading", "cel", "--shininess", "9"});
+              }),
+              "--shininess has no effect with --shading cel (it applies to phong and comic)");
+    EXPECT_NE(
+        usageErrorOf([&] {
+            optionsWith(style, {"m.obj", "-o", "o.png", "--shading", "cel", "--bands", "2", "--shademap", "map.png"});
+        }).find("both choose the cel shade map"),
+        std::string::npos);
+}
+
+TEST(StyleFile, BlanksInsideAValueStay) {
+    // Only the blanks around a list's commas go: "1 5" was read as 15, a texture's "my map.png" as "mymap.png".
+    const SourcedArguments style =
+        styleArguments("contour-width = 1 5\noutline-width-map = texture:maps/my map.png:R\n", "s.style", "");
+    EXPECT_EQ(style.arguments[1], "1 5");
+    EXPECT_EQ(style.arguments[3], "texture:maps/my map.png:R");
+    EXPECT_EQ(usageErrorOf([&] {
+                  optionsWith(style, {"m.obj", "-o", "o.png"});
+              }),
+              "--style 's.style' line 1: --contour-width: '1 5' is not a finite number");
+}
+
 TEST(StyleFile, ShadeMapPathsAreRelativeToTheStyleFileAndKeepTheirSpaces) {
     const SourcedArguments relative = styleArguments("shademap = maps/my map.png\n", "s.style", "looks");
     EXPECT_EQ(relative.arguments[1], "looks/maps/my map.png");
