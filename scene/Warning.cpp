@@ -58,6 +58,9 @@ const std::vector<WarningCode>& warningCodes() {
         {K::MeshInsideOut, "mesh-inside-out",
          "a closed surface of a two-sided mesh wound inside out (clockwise seen from outside); its winding, and its "
          "normals where they point inward too, reversed so the hull silhouette and the outline are drawn"},
+        {K::WindingMixed, "winding-mixed",
+         "a two-sided mesh's faces wound against their neighbours (a flipped patch of a scan); turned to agree with "
+         "the given normals, else with most of their surface"},
         {K::NormalsInward, "normals-inward",
          "a two-sided mesh's given normals point against its faces' winding on over 90% of its area; turned round"},
         {K::VertexValuesIgnored, "vertex-values-ignored",

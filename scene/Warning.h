@@ -40,6 +40,7 @@ enum class WarningKind {
     MeshDegenerate,
     DetailsMerged,
     MeshInsideOut,
+    WindingMixed,
     NormalsInward,
     VertexValuesIgnored,
     NormalsMissing,

@@ -809,10 +809,22 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
     // A closed surface wound inside out is turned outward before the normals are computed from the winding; a one-sided
     // material's winding is the author's choice of what is culled (a baked inverted-hull outline) and stays.
     if (mesh.material.doubleSided) {
+        // First each surface wound one way, so that the inside-out test below sees whole surfaces.
+        const std::vector<std::uint32_t> mixed =
+            turnMixedWinding(mesh.positions, mesh.triangles, mesh.normals, options.weldTolerance * modelDiagonal);
+        if (!mixed.empty())
+            report.warnings.push_back(makeWarning(
+                WarningKind::WindingMixed,
+                "mesh '" + detail::excerptForMessage(mesh.name) + "': " + std::to_string(mixed.size()) + " of " +
+                    std::to_string(mesh.triangles.size()) + " triangles were wound against their neighbours (" +
+                    (fileHasNormals ? "and their given normals" : "and most of their surface") +
+                    "); turned so each surface is wound one way",
+                "", mesh.name));
         const OutwardTurn turn =
             orientMeshOutward(mesh.positions, mesh.triangles, mesh.normals, options.weldTolerance * modelDiagonal);
-        if (!turn.turnedTriangles.empty() && mesh.cornersSwapped.empty())
+        if ((!turn.turnedTriangles.empty() || !mixed.empty()) && mesh.cornersSwapped.empty())
             mesh.cornersSwapped.resize(mesh.triangles.size(), 0);
+        for (const std::uint32_t triangle : mixed) mesh.cornersSwapped[triangle] ^= 1;
         for (const std::uint32_t triangle : turn.turnedTriangles) mesh.cornersSwapped[triangle] ^= 1;
         // A mirrored surface turned back outward has the file's corners again.
         if (std::find(mesh.cornersSwapped.begin(), mesh.cornersSwapped.end(), 1) == mesh.cornersSwapped.end())

@@ -4,6 +4,7 @@
 #include "scene/mesh/EdgeAdjacency.h"
 #include "scene/mesh/MeshOps.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 
@@ -116,6 +117,76 @@ OutwardTurn orientMeshOutward(std::span<const glm::vec3> positions, std::vector<
         turn.normalsFlipped = true;
     }
     return turn;
+}
+
+std::vector<std::uint32_t> turnMixedWinding(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
+                                            std::span<const glm::vec3> normals, double weldDistance) {
+    if (triangles.empty()) return {};
+    const EdgeAdjacency adjacency = buildEdgeAdjacency(positions, triangles, weldDistance);
+    if (adjacency.counts.inconsistent == 0) return {};
+    // Per face its neighbours across manifold edges, and whether the pair runs the edge the same way (disagrees).
+    struct Neighbour {
+        std::uint32_t face;
+        bool disagrees;
+    };
+    std::vector<std::uint32_t> firstOf(triangles.size() + 1, 0);
+    for (const MeshEdge& edge : adjacency.edges)
+        if (edge.kind == EdgeKind::Manifold)
+            for (const EdgeFaceUse& use : adjacency.facesOf(edge)) ++firstOf[use.face + 1];
+    for (std::size_t face = 0; face < triangles.size(); ++face) firstOf[face + 1] += firstOf[face];
+    std::vector<Neighbour> neighbours(firstOf.back());
+    std::vector<std::uint32_t> filled(firstOf.begin(), firstOf.end() - 1);
+    for (const MeshEdge& edge : adjacency.edges) {
+        if (edge.kind != EdgeKind::Manifold) continue;
+        const std::span<const EdgeFaceUse> uses = adjacency.facesOf(edge);
+        const bool disagrees = uses[0].againstKey == uses[1].againstKey;
+        neighbours[filled[uses[0].face]++] = {uses[1].face, disagrees};
+        neighbours[filled[uses[1].face]++] = {uses[0].face, disagrees};
+    }
+
+    // Each surface walked from its first face: `turn` says which faces wind the other way from it.
+    constexpr std::uint8_t kUnseen = 2;
+    std::vector<std::uint8_t> turn(triangles.size(), kUnseen);
+    std::vector<std::uint32_t> surface, queue;
+    std::vector<std::uint32_t> turned;
+    for (std::size_t seed = 0; seed < triangles.size(); ++seed) {
+        if (turn[seed] != kUnseen) continue;
+        surface.clear();
+        queue.assign(1, std::uint32_t(seed));
+        turn[seed] = 0;
+        bool mixed = false;
+        while (!queue.empty()) {
+            const std::uint32_t face = queue.back();
+            queue.pop_back();
+            surface.push_back(face);
+            for (std::uint32_t k = firstOf[face]; k < firstOf[face + 1]; ++k) {
+                const Neighbour& next = neighbours[k];
+                mixed = mixed || next.disagrees;
+                if (turn[next.face] != kUnseen) continue;
+                turn[next.face] = std::uint8_t(turn[face] ^ std::uint8_t(next.disagrees));
+                queue.push_back(next.face);
+            }
+        }
+        if (!mixed) continue;
+        // Which way to wind it: along the given normals where there are some, else as most of its area is.
+        double keptVote = 0.0;
+        for (const std::uint32_t face : surface) {
+            const glm::uvec3& t = triangles[face];
+            const glm::dvec3 a(positions[t.x]);
+            const glm::dvec3 side = glm::cross(glm::dvec3(positions[t.y]) - a, glm::dvec3(positions[t.z]) - a);
+            const double vote =
+                normals.size() == positions.size()
+                    ? glm::dot(side, glm::dvec3(normals[t.x]) + glm::dvec3(normals[t.y]) + glm::dvec3(normals[t.z]))
+                    : glm::length(side);
+            keptVote += turn[face] == 0 ? vote : -vote;
+        }
+        const std::uint8_t turnedWay = keptVote >= 0.0 ? 1 : 0;
+        for (const std::uint32_t face : surface)
+            if (turn[face] == turnedWay) turned.push_back(face);
+    }
+    std::sort(turned.begin(), turned.end());
+    for (const std::uint32_t face : turned) std::swap(triangles[face].y, triangles[face].z);
+    return turned;
 }
 
 std::size_t turnNormalsAlongWinding(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,

@@ -33,6 +33,17 @@ struct OutwardTurn {
 OutwardTurn orientMeshOutward(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
                               std::vector<glm::vec3>& normals, double weldDistance);
 
+/** Turns the faces of a connected surface that are wound against their neighbours (a patch of a scan merged from
+ *  several range images, an exporter's flipped faces), so each surface is wound one way and the G-buffer's front
+ *  faces, the hull and the outline see one side as the outside. Faces are neighbours across manifold edges (two faces,
+ *  vertices within `weldDistance` counting as one: buildEdgeAdjacency()); two that run their shared edge the same
+ *  way disagree. Of the two ways to wind each surface, the one the given normals (`normals`, one per position, or
+ *  empty) agree with is kept, without normals the one most of its area is wound already, so a few faces turn, not the
+ *  rest. A non-orientable surface (a Möbius band) keeps the way found first along each face's first neighbour.
+ *  Returns the triangles whose last two corners it swapped, ascending; none on a mesh wound one way throughout. */
+std::vector<std::uint32_t> turnMixedWinding(std::span<const glm::vec3> positions, std::vector<glm::uvec3>& triangles,
+                                            std::span<const glm::vec3> normals, double weldDistance);
+
 /** Turns round given normals that point against their faces' winding nearly everywhere: a caller's normals made with
  *  the other convention (clockwise cross products, normals of the inside), or a mesh whose faces were turned without
  *  its normals. A vertex's normal points against its faces when the sum over its corners of n . (b - a) x (c - a) is

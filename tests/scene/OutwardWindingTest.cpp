@@ -115,6 +115,77 @@ TEST(OutwardWinding, FacesThatDisagreeAmongThemselvesAreLeftAsTheyAre) {
     EXPECT_EQ(mesh.triangles, before);
 }
 
+/** `mesh` with the faces whose centres lie at heights in (low, high) wound the other way; their indices in `band`. */
+Mesh withBandTurned(Mesh mesh, float low, float high, std::vector<std::uint32_t>* band = nullptr) {
+    for (std::size_t face = 0; face < mesh.triangles.size(); ++face) {
+        glm::uvec3& t = mesh.triangles[face];
+        const float z = (mesh.positions[t.x].z + mesh.positions[t.y].z + mesh.positions[t.z].z) / 3.0f;
+        if (z <= low || z >= high) continue;
+        std::swap(t.y, t.z);
+        if (band != nullptr) band->push_back(std::uint32_t(face));
+    }
+    return mesh;
+}
+
+TEST(OutwardWinding, APatchWoundAgainstItsNeighboursIsTurnedToAgreeWithMostOfTheSurface) {
+    // A scan merged from range images: a band of a sphere's faces wound the other way. Without normals the surface
+    // is wound as most of its area is, so the band turns and nothing else.
+    const Mesh outward = makeUvSphere(glm::vec3(0.0f), 1.0f, 48, 24);
+    std::vector<std::uint32_t> band;
+    Mesh mesh = withBandTurned(outward, 0.3f, 0.5f, &band);
+    ASSERT_FALSE(band.empty());
+    EXPECT_EQ(turnMixedWinding(mesh.positions, mesh.triangles, {}, kWeld), band);
+    EXPECT_EQ(mesh.triangles, outward.triangles);
+    EXPECT_TRUE(turnMixedWinding(mesh.positions, mesh.triangles, {}, kWeld).empty()) << "wound one way now";
+
+    // Inside out but for the band: the band is what turns, and the whole is then inside out, for orientMeshOutward().
+    Mesh inverted = withBandTurned(insideOut(outward), 0.3f, 0.5f);
+    EXPECT_EQ(turnMixedWinding(inverted.positions, inverted.triangles, {}, kWeld), band);
+    EXPECT_EQ(inverted.triangles, insideOut(outward).triangles);
+}
+
+TEST(OutwardWinding, GivenNormalsChooseTheWayAMixedSurfaceIsWound) {
+    // Most of the sphere wound inward, its normals outward: the normals decide, so the larger part turns.
+    const Mesh outward = makeUvSphere(glm::vec3(0.0f), 1.0f, 48, 24);
+    std::vector<std::uint32_t> band;
+    Mesh mesh = withBandTurned(outward, -0.8f, 1.1f, &band);
+    ASSERT_GT(band.size(), outward.triangles.size() / 2);
+    EXPECT_EQ(turnMixedWinding(mesh.positions, mesh.triangles, outward.normals, kWeld), band);
+    EXPECT_EQ(mesh.triangles, outward.triangles);
+    // Without them, most of the area wins: the smaller part turns, leaving the sphere inside out.
+    Mesh unguided = withBandTurned(outward, -0.8f, 1.1f);
+    EXPECT_EQ(turnMixedWinding(unguided.positions, unguided.triangles, {}, kWeld).size(),
+              outward.triangles.size() - band.size());
+    EXPECT_EQ(unguided.triangles, insideOut(outward).triangles);
+}
+
+TEST(OutwardWinding, LoadingAMixedScanTurnsItsPatchWithAWarningAndTheLabelsKeepTheFilesCorners) {
+    const Mesh outward = makeUvSphere(glm::vec3(0.0f), 1.0f, 32, 16);
+    std::vector<std::uint32_t> band;
+    const Mesh mixed = withBandTurned(outward, -0.2f, 0.4f, &band);
+    std::ostringstream obj;
+    obj << "o scan\n";
+    for (const glm::vec3& p : mixed.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (const glm::uvec3& t : mixed.triangles) obj << "f " << t.x + 1 << ' ' << t.y + 1 << ' ' << t.z + 1 << '\n';
+    const test::TempFile file("scan.obj", obj.str());
+    const Scene scene = loadScene(file.path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    const Mesh& mesh = scene.meshes[0];
+    test::expectOutwardWinding(mesh, glm::dvec3(0.0));
+    std::vector<std::uint32_t> swapped;
+    for (std::size_t face = 0; face < mesh.cornersSwapped.size(); ++face)
+        if (mesh.cornersSwapped[face] != 0) swapped.push_back(std::uint32_t(face));
+    EXPECT_EQ(swapped, band) << "the turned faces' barycentric weights are swapped back to the file's corners";
+    const auto warning = std::find_if(scene.report.warnings.begin(), scene.report.warnings.end(), [](const Warning& w) {
+        return w.code == warningCode(WarningKind::WindingMixed);
+    });
+    ASSERT_NE(warning, scene.report.warnings.end());
+    EXPECT_EQ(warning->message, "mesh 'scan': " + std::to_string(band.size()) + " of " +
+                                    std::to_string(mesh.triangles.size()) +
+                                    " triangles were wound against their neighbours (and most of their surface); "
+                                    "turned so each surface is wound one way");
+}
+
 /** A square floor 2 x half wide at height z, wound counter-clockwise seen from above (facing up). */
 Mesh withFloor(Mesh mesh, float half, float z) {
     const auto first = std::uint32_t(mesh.positions.size());
