@@ -63,6 +63,8 @@ const std::vector<WarningCode>& warningCodes() {
          "the given normals, else with most of their surface"},
         {K::NormalsInward, "normals-inward",
          "a two-sided mesh's given normals point against its faces' winding on over 90% of its area; turned round"},
+        {K::TextureIgnored, "texture-ignored",
+         "a PLY file's texture coordinates or TextureFile image; PLY is drawn untextured"},
         {K::VertexValuesIgnored, "vertex-values-ignored",
          "OBJ 'v' lines with values after x y z that are neither w nor a colour; ignored"},
         {K::NormalsMissing, "normals-missing", "OBJ faces without normals; the normals are recomputed"},

@@ -42,6 +42,7 @@ enum class WarningKind {
     MeshInsideOut,
     WindingMixed,
     NormalsInward,
+    TextureIgnored,
     VertexValuesIgnored,
     NormalsMissing,
     TexcoordsMissing,

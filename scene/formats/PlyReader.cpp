@@ -127,7 +127,33 @@ struct Header {
     std::size_t bodyLine = 1;   ///< its line number, for ASCII messages
     const Element* vertices = nullptr;
     const Element* faces = nullptr;
+    std::string textureFile; ///< a `comment TextureFile NAME` line's NAME (MeshLab's convention), or ""
 };
+
+/** What of a texture the file gives and the reader leaves out (it draws a PLY untextured): texture coordinates in
+ *  the vertex element (s t, u v, texture_u texture_v, texture_s texture_t) or a face's texcoord list, and a
+ *  `comment TextureFile` image; "" when none. */
+std::string ignoredTexture(const Header& header) {
+    std::vector<std::string> given;
+    const auto named = [](const Element* element, std::initializer_list<std::string_view> names) -> std::string {
+        if (element == nullptr) return {};
+        for (const Property& property : element->properties)
+            if (std::ranges::find(names, std::string_view(property.name)) != names.end()) return property.name;
+        return {};
+    };
+    if (const std::string name = named(header.vertices, {"s", "u", "texture_u", "texture_s"}); !name.empty())
+        given.push_back("vertex property '" + name + "'");
+    if (const std::string name = named(header.faces, {"texcoord", "texcoords"}); !name.empty())
+        given.push_back("face property '" + name + "'");
+    if (!header.textureFile.empty())
+        given.push_back("the image '" + excerptForMessage(header.textureFile) + "' (comment TextureFile)");
+    if (given.empty()) return {};
+    std::string list;
+    for (std::size_t i = 0; i < given.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == given.size() ? " and " : ", ") + given[i];
+    return "texture coordinates and images are not read from PLY (" + list +
+           "): drawn untextured, in its vertex colours or grey (OBJ with MTL or glTF carry a texture)";
+}
 
 std::string typeNames() {
     std::string names;
@@ -186,6 +212,8 @@ Header readHeader(const std::string& path, std::string_view content) {
         const std::string_view text = content.substr(position, end - position);
         position = end + 1;
         const std::vector<std::string_view> tokens = tokensOf(text);
+        if (tokens.size() >= 3 && tokens[0] == "comment" && tokens[1] == "TextureFile")
+            header.textureFile = std::string(tokens[2]);
         if (tokens.empty() || tokens[0] == "comment" || tokens[0] == "obj_info") continue;
         const std::string_view keyword = tokens[0];
         if (keyword == "end_header") {
@@ -358,6 +386,8 @@ struct Model {
     std::vector<glm::vec4> colors;  ///< empty, or one per position
     std::vector<glm::uvec3> triangles;
     std::size_t nonFiniteColours = 0;
+    std::size_t coloursOutOfRange = 0; ///< float colour components outside [0, 1], clamped
+    double colourFarthestOut = 0.0;    ///< the one farthest outside
     PolygonTriangulator triangulator;
     /** Polygons of more than three corners read before the vertices (a file that puts `face` first): fanned as read,
      *  from their first triangle on, and cut properly once the positions are known. */
@@ -404,6 +434,13 @@ public:
 
     BodyReader(const std::string& path, Source& source, std::size_t bodyBytes, MeshBudget& budget)
         : mPath(path), mSource(source), mBodyBytes(bodyBytes), mBudget(budget) {}
+
+    /** Refuses, before the caller charges the budget, a count the whole body cannot hold even at its smallest: a
+     *  short file that declares a billion vertices is truncated, not too large for --memory-limit. */
+    void checkCountsFit(const Header& header) const {
+        for (const Element& element : header.elements)
+            if (!element.properties.empty() && element.count > 0) checkFits(element);
+    }
 
     void read(const Header& header, Model& model) {
         for (const Element& element : header.elements) {
@@ -582,6 +619,10 @@ private:
                     if (!std::isfinite(component)) {
                         ++model.nonFiniteColours;
                         component = 1.0;
+                    } else if (component < 0.0 || component > 1.0) {
+                        ++model.coloursOutOfRange;
+                        if (std::abs(component - 0.5) > std::abs(model.colourFarthestOut - 0.5))
+                            model.colourFarthestOut = component;
                     }
                     colour[int(property.role) - int(Role::Red)] = float(std::clamp(component, 0.0, 1.0));
                     break;
@@ -694,8 +735,11 @@ RawScene readPly(const std::string& path, std::string_view content, MeshBudget& 
     if (!header.faces->has(Role::Indices)) {
         throwLoadError(path, "element 'face' has no list property 'vertex_indices' (or 'vertex_index')");
     }
-    // Before anything is reserved: each face is a triangle at least; polygons charge the rest as they are read.
-    budget.charge(std::size_t(vertexCount), std::size_t(std::min<std::uint64_t>(faceCount, SIZE_MAX)));
+    // Before anything is reserved, once the counts fit the file: each face is a triangle at least; polygons charge the
+    // rest as they are read.
+    const auto charge = [&] {
+        budget.charge(std::size_t(vertexCount), std::size_t(std::min<std::uint64_t>(faceCount, SIZE_MAX)));
+    };
 
     RawScene scene;
     Model model;
@@ -710,7 +754,10 @@ RawScene readPly(const std::string& path, std::string_view content, MeshBudget& 
                                  "binary data (NUL byte) in an ASCII PLY body (is the file binary?)");
         }
         AsciiSource source(body, header.bodyLine);
-        BodyReader<false>(path, source, body.size(), budget).read(header, model);
+        BodyReader<false> reader(path, source, body.size(), budget);
+        reader.checkCountsFit(header);
+        charge();
+        reader.read(header, model);
         if (const std::string_view rest = source.token(); !rest.empty()) {
             scene.warnings.push_back(
                 makeWarning(WarningKind::TrailingDataIgnored, "text after the last element ignored (line " +
@@ -720,7 +767,10 @@ RawScene readPly(const std::string& path, std::string_view content, MeshBudget& 
     } else {
         scene.format = "ply-binary";
         BinarySource source(body, header.encoding == Encoding::BinaryBigEndian);
-        BodyReader<true>(path, source, body.size(), budget).read(header, model);
+        BodyReader<true> reader(path, source, body.size(), budget);
+        reader.checkCountsFit(header);
+        charge();
+        reader.read(header, model);
         if (source.remaining() > 0) {
             scene.warnings.push_back(
                 makeWarning(WarningKind::TrailingDataIgnored,
@@ -730,6 +780,18 @@ RawScene readPly(const std::string& path, std::string_view content, MeshBudget& 
     model.triangulatePolygonsBeforeVertices();
     if (model.triangulator.unresolvedPolygons() > 0) {
         scene.warnings.push_back(polygonsFannedWarning(model.triangulator));
+    }
+    if (const std::string texture = ignoredTexture(header); !texture.empty())
+        scene.warnings.push_back(makeWarning(WarningKind::TextureIgnored, texture));
+    if (model.coloursOutOfRange > 0) {
+        // A float colour holds [0, 1]; 0 to 255 there is an integer colour written as float.
+        scene.warnings.push_back(
+            makeWarning(WarningKind::ValueOutOfRange,
+                        std::to_string(model.coloursOutOfRange) + " vertex colour component" +
+                            (model.coloursOutOfRange == 1 ? " lies" : "s lie") + " outside [0, 1] (as far out as " +
+                            formatNumber(model.colourFarthestOut) +
+                            (model.colourFarthestOut > 1.0 ? "; colours of 0 to 255 in a float property?" : "") +
+                            "); clamped into [0, 1]"));
     }
     if (model.nonFiniteColours > 0) {
         scene.warnings.push_back(

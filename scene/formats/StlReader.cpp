@@ -123,6 +123,26 @@ bool equalsIgnoringCase(std::string_view a, std::string_view b) {
     return true;
 }
 
+/** Whether `token` is a whole number as an ASCII STL writes one (a leading '+' allowed), read into `value`. */
+bool isNumber(std::string_view token, double& value) {
+    if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+    const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+    return error == std::errc() && end == token.data() + token.size();
+}
+
+/** Whether `token` is how the Microsoft C runtime printed a NaN or an infinity: "1.#IND00", "-1.#QNAN0",
+ * "1.#INF00e+000", "1.#SNAN0". */
+bool isWindowsNonNumber(std::string_view token) {
+    const std::size_t hash = token.find('#');
+    if (hash == std::string_view::npos || hash == 0) return false;
+    std::string_view word = token.substr(hash + 1);
+    for (const std::string_view name : {"IND", "QNAN", "SNAN", "INF"})
+        if (word.size() >= name.size() && equalsIgnoringCase(word.substr(0, name.size()), name)) {
+            return std::isdigit(static_cast<unsigned char>(token[hash - 1])) != 0 || token[hash - 1] == '.';
+        }
+    return false;
+}
+
 /** Parses `solid ... facet normal n n n / outer loop / vertex x y z (3+) / endloop / endfacet ... endsolid`, several
  *  solids allowed. Loops with more than three vertices are fan-triangulated. `withoutSolid`: the text starts at its
  *  first `facet` (some exporters drop the `solid` line). Positions are read in double into `positions` (one per loop
@@ -142,14 +162,7 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, bool withoutSol
     std::size_t loopStart = 0; // index in positions of the current loop's first vertex
 
     auto failure = [&](std::string problem) { return AsciiFailure{tokens.line(), std::move(problem)}; };
-    auto readNumber = [&](double& value) -> bool {
-        std::string_view token = tokens.next();
-        if (!token.empty() && token.front() == '+') {
-            token.remove_prefix(1);
-        }
-        const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-        return error == std::errc() && end == token.data() + token.size();
-    };
+    auto readNumber = [&](double& value) -> bool { return isNumber(tokens.next(), value); };
 
     for (std::string_view token = tokens.next(); !token.empty(); token = tokens.next()) {
         if (equalsIgnoringCase(token, "solid") && state == State::OutsideSolid) {
@@ -162,9 +175,12 @@ std::optional<AsciiFailure> parseAscii(std::string_view content, bool withoutSol
             if (!equalsIgnoringCase(tokens.next(), "normal")) {
                 return failure("expected 'normal' after 'facet'");
             }
-            double ignored = 0.0;
+            // The normal is not used (the winding is); old Windows exporters write a degenerate facet's as the C
+            // runtime spells a NaN or infinity: -1.#IND00e+000, 1.#QNAN0, 1.#INF00.
             for (int axis = 0; axis < 3; ++axis) {
-                if (!readNumber(ignored)) {
+                const std::string_view component = tokens.next();
+                double ignored = 0.0;
+                if (!isNumber(component, ignored) && !isWindowsNonNumber(component)) {
                     return failure("cannot read facet normal");
                 }
             }

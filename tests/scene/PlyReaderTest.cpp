@@ -369,6 +369,32 @@ TEST(PlyReader, VertexColoursAndNormalsAreRead) {
     for (const glm::vec4& colour : scene.meshes.at(0).colors) {
         EXPECT_EQ(colour, glm::vec4(0.25f, 1.0f, 1.0f, 1.0f)); // blue 7 clamped to 1, alpha 1
     }
+    // Clamped with a word, as the OBJ reader says it (a float property holding 0 to 255 was clamped silently).
+    ASSERT_EQ(scene.report.warnings.size(), 1u);
+    EXPECT_EQ(scene.report.warnings[0].code, "value-out-of-range");
+    EXPECT_EQ(scene.report.warnings[0].message, "4 vertex colour components lie outside [0, 1] (as far out as 7; "
+                                                "colours of 0 to 255 in a float property?); clamped into [0, 1]");
+}
+
+TEST(PlyReader, ATextureItCannotReadIsSaid) {
+    // MeshLab's textured PLY: a TextureFile comment and per-vertex s, t. Drawn untextured, which was said nowhere.
+    PlyWriter ply(Encoding::Ascii);
+    ply.header("comment TextureFile scan_0.png");
+    ply.header("element vertex 4").header("property float x").header("property float y").header("property float z");
+    ply.header("property float s").header("property float t");
+    ply.header("element face 4").header("property list uchar int vertex_indices");
+    for (const glm::dvec3& p : kTetrahedron) ply.values("float", {p.x, p.y, p.z, 0.5, 0.5}).row();
+    for (const auto& face : kTetrahedronFaces)
+        ply.value("uchar", 3).values("int", {double(face[0]), double(face[1]), double(face[2])}).row();
+    const Scene scene = loadPly(ply.text());
+    ASSERT_EQ(scene.report.warnings.size(), 1u);
+    EXPECT_EQ(scene.report.warnings[0].code, "texture-ignored");
+    EXPECT_EQ(scene.report.warnings[0].message,
+              "texture coordinates and images are not read from PLY (vertex property 's' and the image 'scan_0.png' "
+              "(comment TextureFile)): drawn untextured, in its vertex colours or grey (OBJ with MTL or glTF carry a "
+              "texture)");
+    // A plain PLY says nothing.
+    EXPECT_TRUE(loadPly(tetrahedron(Encoding::Ascii)).report.warnings.empty());
 }
 
 TEST(PlyReader, UnknownElementsAndPropertiesAreSkipped) {
@@ -400,7 +426,9 @@ TEST(PlyReader, UnknownElementsAndPropertiesAreSkipped) {
         }
         const Scene scene = loadPly(ply.text());
         EXPECT_EQ(worldTriangles(scene), worldTriangles(loadPly(tetrahedron(encoding)))) << formatName(encoding);
-        EXPECT_TRUE(scene.report.warnings.empty()) << scene.report.warnings.front();
+        // Only the face's texcoord list is said: the picture lacks what it would give.
+        ASSERT_EQ(scene.report.warnings.size(), 1u) << scene.report.warnings.back();
+        EXPECT_EQ(scene.report.warnings[0].code, "texture-ignored");
     }
 }
 
@@ -601,19 +629,24 @@ TEST(PlyReader, SkippedListsBeyondTheFileAreTruncation) {
 }
 
 TEST(PlyReader, DeclaredCountsAreChargedToTheMemoryLimitBeforeReading) {
-    // 100,000 vertices and faces need about 15 MiB; with a limit of 4 MiB the header alone refuses the file, before
-    // the (absent) body is looked at.
+    // 100,000 vertices and faces and the file's 1.3 MB need about 16 MiB; with a limit of 4 MiB the header refuses the
+    // file, before the body is read (a body as small as the counts allow: zero vertices and empty faces).
     const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 100000\nproperty float x\n"
                                "property float y\nproperty float z\nelement face 100000\n"
                                "property list uchar int vertex_indices\nend_header\n";
     LoadOptions options;
     options.memoryLimitBytes = std::size_t(4) << 20;
-    const std::string message = test::sceneErrorMessage([&] { loadSceneFromMemory("big.ply", header, options); });
-    EXPECT_EQ(message.rfind("loadScene(): 'big.ply': the mesh would need about 15 MiB (100000 vertices, 100000 "
+    const std::string body(100000 * 12 + 100000, '\0');
+    const std::string message =
+        test::sceneErrorMessage([&] { loadSceneFromMemory("big.ply", header + body, options); });
+    EXPECT_EQ(message.rfind("loadScene(): 'big.ply': the mesh would need about 16 MiB (100000 vertices, 100000 "
                             "triangles), above the memory limit of 4 MiB (--memory-limit)",
                             0),
               0u)
         << message;
+    // A body too short for the counts is truncated whatever the limit: raising --memory-limit would not load it.
+    EXPECT_EQ(test::sceneErrorMessage([&] { loadSceneFromMemory("big.ply", header + "\1\2\3", options); }),
+              "loadScene(): 'big.ply': truncated: the file ends in vertex 0 of 100000");
 
     // Polygons charge their triangles beyond one per face as they are read: one face of 200,000 corners.
     PlyWriter ply(Encoding::LittleEndian);

@@ -178,6 +178,21 @@ TEST(StlLoader, NonFiniteCoordinatesAreErrors) {
     EXPECT_NE(asciiMessage.find("non-finite"), std::string::npos) << asciiMessage;
 }
 
+TEST(StlLoader, AFacetNormalAsTheWindowsRuntimePrintsANaNIsReadAndIgnored) {
+    // Old Windows exporters write a degenerate facet's normal as -1.#IND00e+000 or 1.#QNAN0: the normal is not used,
+    // so the file loads (it was refused as "cannot read facet normal"); a word that is no number still is not.
+    const std::string facets = "solid s\nfacet normal -1.#IND00e+000 1.#QNAN0 1.#INF00\nouter loop\nvertex 0 0 0\n"
+                               "vertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+                               "facet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\n"
+                               "endfacet\nendsolid s\n";
+    const TempFile file("windows.stl", facets);
+    EXPECT_EQ(loadScene(file.path()).triangleCount(), 2u);
+    const TempFile word("word.stl", "solid s\nfacet normal 0 up 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                    "vertex 0 1 0\nendloop\nendfacet\nendsolid s\n");
+    const std::string message = test::sceneErrorMessage([&] { loadScene(word.path()); });
+    EXPECT_NE(message.find("line 2: invalid ASCII STL: cannot read facet normal"), std::string::npos) << message;
+}
+
 TEST(StlLoader, MalformedAsciiNamesTheLine) {
     const TempFile file("broken.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertx 1 0 0\n");
     const std::string message = test::sceneErrorMessage([&] { loadScene(file.path()); });
