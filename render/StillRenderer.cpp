@@ -91,6 +91,26 @@ std::optional<Warning> unusedTimeWarning(const StillRequest& request, const Scen
                            "material of the model has one");
 }
 
+/** --shading auto settles per model (cel without MToon materials, each material its own with them): the look's
+ *  settings the model's materials then leave unused, which the flag checks, not knowing the model, let through. */
+std::vector<Warning> unusedLookSettings(const Look& look, const Scene& scene) {
+    std::vector<Warning> unused;
+    if (look.shading != ShadingModel::Auto) return unused;
+    const auto say = [&](const std::string& setting, const std::string& why) {
+        unused.push_back(makeWarning(WarningKind::LookSettingUnused,
+                                     setting + " changes nothing on this model: --shading auto draws " + why));
+    };
+    const bool allMToon = !scene.meshes.empty() && std::ranges::all_of(scene.meshes, [](const Mesh& mesh) {
+        return mesh.material.mtoon.has_value();
+    });
+    if (shadingModelFor(look.shading, scene) == ShadingModel::Cel && look.ambient)
+        say("--ambient", "it cel-shaded (it has no MToon material), and cel has no ambient term");
+    if (allMToon && look.bands) say("--bands", "every material of it as MToon, which has no cel shade map");
+    if (allMToon && !look.shadeMapPath.empty())
+        say("--shademap", "every material of it as MToon, which has no cel shade map");
+    return unused;
+}
+
 /** Where the still samples its model: the look's buffers, and whether its lines are drawn from the mesh itself. */
 PictureSampling pictureSamplingOf(const Look& look, const Scene& scene) {
     PictureSampling sampling;
@@ -277,6 +297,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     std::vector<Warning> shadeMapWarnings;
     still->meshShadeMaps = readSceneShadeMaps(scene, look.shading, &shadeMapWarnings);
     for (Warning& warning : shadeMapWarnings) warnOf(*still, std::move(warning), log);
+    for (Warning& warning : unusedLookSettings(look, scene)) warnOf(*still, std::move(warning), log);
     // Judged where the still stands for its own load: only then is `animation` the one the scene was loaded with.
     if (!req.loadedScene || req.reusesEarlierLoad)
         if (std::optional<Warning> unused = unusedTimeWarning(req, scene)) warnOf(*still, std::move(*unused), log);

@@ -99,6 +99,8 @@ const std::vector<WarningCode>& warningCodes() {
          "--time without --animation on a model none of whose materials has a MToon UV animation: it moves nothing"},
         {K::GltfParserMessage, "gltf-parser-message", "what tinygltf reported about a file it still read"},
         {K::ShadeMapUnused, "shade-map-unused", "meshes name shade maps, which the --shading model does not use"},
+        {K::LookSettingUnused, "look-setting-unused",
+         "a look setting (--ambient, --bands, --shademap) that --shading auto leaves unused on this model's materials"},
         {K::ModelOutsideView, "model-outside-view", "the camera sees none of the model: the picture is blank paper"},
         {K::WidthMapUnread, "width-map-unread",
          "a mesh lacks the vertex colours or texture coordinates --outline-width-map reads; its widths stay unscaled"},

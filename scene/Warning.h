@@ -64,6 +64,7 @@ enum class WarningKind {
     TimeUnused,
     GltfParserMessage,
     ShadeMapUnused,
+    LookSettingUnused,
     ModelOutsideView,
     WidthMapUnread,
     TriangleIdInexact,

@@ -141,6 +141,35 @@ TEST_F(Cli, DumpWritesEveryComputedBufferAndReadsBack) {
     for (const std::string& name : listFiles(directory)) EXPECT_NE(name.rfind(".inkgraph-", 0), 0u) << name;
 }
 
+TEST_F(Cli, ALookSettingThatAutoLeavesUnusedOnTheModelIsAWarning) {
+    // --shading auto settles per model: a plain OBJ is drawn cel-shaded, which has no ambient term, and a model whose
+    // materials are all MToon reads no cel shade map. Both flags passed the flag checks and changed nothing, silently.
+    const std::string spot = model("spot_c3d.obj");
+    CliRun result = run("render " + spot + " -o x.png --size 32x32 --ambient 0.9");
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_NE(result.err.find("warning: --ambient changes nothing on this model: --shading auto draws it cel-shaded "
+                              "(it has no MToon material), and cel has no ambient term"),
+              std::string::npos)
+        << result.err;
+    EXPECT_EQ(run("render " + spot + " -o x.png --size 32x32 --ambient 0.9 --strict").exitCode, 3);
+    const std::string mtoon = model("characters/mtoon-uv-animation-test.vrm");
+    result = run("render " + mtoon + " -o x.png --size 32x32 --bands 2");
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_NE(result.err.find("warning: --bands changes nothing on this model: --shading auto draws every material of "
+                              "it as MToon, which has no cel shade map"),
+              std::string::npos)
+        << result.err;
+    // Where they do change the picture, nothing is said.
+    for (const std::string& used : {"render " + spot + " -o x.png --size 32x32 --bands 2",
+                                    "render " + mtoon + " -o x.png --size 32x32 --ambient 0.9",
+                                    "render " + spot + " -o x.png --size 32x32 --shading lambert --ambient 0.9"}) {
+        result = run(used);
+        EXPECT_EQ(result.exitCode, 0) << used << ": " << result.err;
+        EXPECT_EQ(result.err.find("look-setting-unused"), std::string::npos) << used << ": " << result.err;
+        EXPECT_EQ(result.err.find("changes nothing"), std::string::npos) << used << ": " << result.err;
+    }
+}
+
 TEST_F(Cli, DumpingNeverChangesWhatRuns) {
     ASSERT_EQ(
         run("render " + model("spot_c3d.obj") + " -o a.png --size 48x48 --lines none --stats plain.json").exitCode, 0);
