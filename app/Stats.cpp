@@ -56,6 +56,7 @@ nlohmann::ordered_json statsDocument(const StatsContext& context, const StillRen
                       {"vertices", scene.vertexCount()},
                       {"triangles_read", scene.report.trianglesRead},
                       {"degenerate_dropped", scene.report.degenerateDropped},
+                      {"repeated_dropped", scene.report.repeatedDropped},
                       {"back_to_back_dropped", scene.report.backToBackDropped},
                       {"back_to_back_one_sided", scene.report.backToBackOneSided},
                       {"vertices_before_weld", scene.report.verticesBeforeWeld},

@@ -1042,6 +1042,10 @@ std::vector<Flag> makeFlags() {
         "paper colour, channels in [0,1] (default " +
             helpNumbers({defaults.look.background.r, defaults.look.background.g, defaults.look.background.b}) + ")",
         [](const std::string& value, RenderOptions& options) {
+            if (splitList(value, ',').size() != 3)
+                throw UsageError("--background: expected R,G,B, three channels in [0,1] (the paper is opaque: the "
+                                 "picture has no alpha channel), got '" +
+                                 value + "'");
             const glm::dvec3 color = parseVector("--background", value);
             for (int c = 0; c < 3; ++c)
                 if (color[c] < 0.0 || color[c] > 1.0)

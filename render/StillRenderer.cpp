@@ -282,6 +282,9 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
         log.log << std::fixed << std::setprecision(1) << "inkgraph: loaded " << detail::quotedFileName(req.modelPath)
                 << ": " << scene.triangleCount() << " triangles, " << scene.vertexCount() << " vertices ("
                 << scene.report.degenerateDropped << " degenerate dropped"
+                << (scene.report.repeatedDropped > 0
+                        ? "; " + std::to_string(scene.report.repeatedDropped) + " given twice dropped"
+                        : std::string())
                 << (scene.report.backToBackDropped > 0
                         ? "; " + std::to_string(scene.report.backToBackDropped) +
                               " back to back with another of a two-sided material dropped"

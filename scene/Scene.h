@@ -110,6 +110,8 @@ struct LoadReport {
     std::string format;
     std::size_t trianglesRead = 0;     ///< after triangulating polygons, strips and fans
     std::size_t degenerateDropped = 0; ///< zero-area or repeated-index triangles removed
+    /** triangles removed as a repeat of another on the same corners, wound the same way (repeatedTriangles()) */
+    std::size_t repeatedDropped = 0;
     /** triangles of two-sided materials removed as the back-to-back twin of another (backToBackTwins()) */
     std::size_t backToBackDropped = 0;
     /** triangles of two-sided materials drawn one-sided, each sheet from its own side: back to back with another that

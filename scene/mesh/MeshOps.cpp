@@ -321,7 +321,13 @@ SortedCorners sortedCorners(const glm::uvec3& triangle) {
     return corners;
 }
 
-std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles) {
+namespace {
+
+/** Which later triangle on the same three vertices as an earlier one is a repeat: one wound the same way (a face the
+ *  file gives twice) or the other way (a back-to-back twin). */
+enum class RepeatWinding { same, opposite };
+
+std::vector<std::uint32_t> laterRepeats(std::span<const glm::uvec3> triangles, RepeatWinding winding) {
     const std::size_t count = triangles.size();
     if (count < 2) return {};
     // Triangles bucketed by their lowest vertex (a counting sort, stable: each bucket in triangle order). A file's
@@ -368,7 +374,13 @@ std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles
             std::size_t waiting[2] = {0, 0}; // unmatched earlier triangles of each winding in this run
             for (std::size_t m = runStart; m < runEnd; ++m) {
                 const int parity = members[m].first.odd ? 1 : 0;
-                if (waiting[1 - parity] > 0) {
+                if (winding == RepeatWinding::same) {
+                    // Every later one of a winding repeats the first of it.
+                    if (waiting[parity] > 0)
+                        twins.push_back(members[m].second);
+                    else
+                        waiting[parity] = 1;
+                } else if (waiting[1 - parity] > 0) {
                     --waiting[1 - parity];
                     twins.push_back(members[m].second);
                 } else {
@@ -380,6 +392,16 @@ std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles
     }
     std::sort(twins.begin(), twins.end());
     return twins;
+}
+
+} // namespace
+
+std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles) {
+    return laterRepeats(triangles, RepeatWinding::opposite);
+}
+
+std::vector<std::uint32_t> repeatedTriangles(std::span<const glm::uvec3> triangles) {
+    return laterRepeats(triangles, RepeatWinding::same);
 }
 
 WeldMap weldMeshPositions(const Mesh& mesh, double distance) {
@@ -734,6 +756,11 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         degenerateTriangles(positions, triangles, kDegenerateAreaRelative * modelDiagonal * modelDiagonal);
     drop(degenerate);
     report.degenerateDropped += degenerate.size();
+    // A face the file gives twice draws nothing the first does not, but it makes each of its edges one of four faces,
+    // so the border and the non-manifold edges would draw every edge of a mesh given twice (a wireframe).
+    const std::vector<std::uint32_t> repeated = repeatedTriangles(triangles);
+    drop(repeated);
+    report.repeatedDropped += repeated.size();
     // A two-sided material draws the back of each face, so a face's back-to-back twin adds nothing but harm: the
     // pair's smooth normals cancel (a double-faced card shaded in black wedges) and both sheets fight for depth.
     // Twins are found on vertices that differ in position or attributes, not in normal: a card's back sheet carries

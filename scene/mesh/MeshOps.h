@@ -105,6 +105,10 @@ SortedCorners sortedCorners(const glm::uvec3& triangle);
  *  on welded vertices, so copies of a corner count as one where the weld merged them. */
 std::vector<std::uint32_t> backToBackTwins(std::span<const glm::uvec3> triangles);
 
+/** The triangles that repeat an earlier one: on the same three vertices, wound the same way (a face the file gives
+ *  twice, whichever corner it starts from). Ascending; linear time, as backToBackTwins(). By vertex index. */
+std::vector<std::uint32_t> repeatedTriangles(std::span<const glm::uvec3> triangles);
+
 /** Removes the entries of a per-triangle array (the triangles themselves, or anything kept per triangle) at
  *  `ascending` (triangle indices, as backToBackTwins() gives them), keeping the others in order. */
 template <typename PerTriangle>
@@ -139,11 +143,11 @@ struct RawMesh {
 };
 
 /** Turns a raw mesh into a clean Mesh: welds within options.weldTolerance x modelDiagonal, drops degenerate
- *  triangles (area <= 1e-14 x modelDiagonal^2), a two-sided material's back-to-back twins (backToBackTwins(): the
- *  material draws the back of the first, and the pair's smooth normals cancel) and unreferenced vertices, normalises
- * the file's normals (zero ones are recomputed) or computes smooth ones. Adds its counts to `report`, and the warning
- * details-merged when the weld collapsed more than kWeldedAwayShareToWarn of the triangles. The result may have no
- * triangles. */
+ *  triangles (area <= 1e-14 x modelDiagonal^2), faces given twice (repeatedTriangles()), a two-sided material's
+ * back-to-back twins (backToBackTwins(): the material draws the back of the first, and the pair's smooth normals
+ * cancel) and unreferenced vertices, normalises the file's normals (zero ones are recomputed) or computes smooth ones.
+ * Adds its counts to `report`, and the warning details-merged when the weld collapsed more than kWeldedAwayShareToWarn
+ * of the triangles. The result may have no triangles. */
 Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options, LoadReport& report);
 
 } // namespace inkgraph

@@ -605,6 +605,9 @@ TEST(Options, MalformedValuesNameTheFlag) {
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--light", "0,0,0"}).find("--light"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--up", "0,0,0"}).find("--up"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--background", "2,0,0"}).find("--background"), std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--background", "1,1,1,0"}).find("expected R,G,B"),
+              std::string::npos)
+        << "a colour, not a point";
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--request", "normal"}).find("--request"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--egl-platform", "x11"}).find("x11"), std::string::npos);
     EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--bogus"}).find("'--bogus'"), std::string::npos);

@@ -107,6 +107,18 @@ TEST(BackToBackTwins, TheLaterOfTwoTrianglesOnTheSameCornersWoundTheOtherWay) {
     EXPECT_EQ(backToBackTwins(repeats).size(), 10000u);
 }
 
+TEST(RepeatedTriangles, EveryLaterTriangleOnTheSameCornersWoundTheSameWay) {
+    // 0: a face; 1 and 2: it again from other corners; 3: its back (not a repeat); 4: the back again; 5: other corners.
+    const std::vector<glm::uvec3> triangles = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}, {1, 0, 2}, {0, 1, 3}};
+    EXPECT_EQ(repeatedTriangles(triangles), (std::vector<std::uint32_t>{1, 2, 4}));
+    EXPECT_TRUE(repeatedTriangles(std::vector<glm::uvec3>{{0, 1, 2}, {2, 1, 0}}).empty()) << "twins are not repeats";
+    EXPECT_TRUE(repeatedTriangles(std::vector<glm::uvec3>{}).empty());
+    // Many repeats in one place, found in one pass: all but the first of each winding.
+    std::vector<glm::uvec3> repeats;
+    for (int i = 0; i < 20000; ++i) repeats.push_back(i % 2 == 0 ? glm::uvec3(0, 1, 2) : glm::uvec3(2, 1, 0));
+    EXPECT_EQ(repeatedTriangles(repeats).size(), 19998u);
+}
+
 TEST(HullNormals, ADoubleFacedCardKeepsTheNormalOfItsFirstSide) {
     // Two sheets on copies of one square's corners, the second wound the other way and carrying -z: welded, every
     // face of the pair cancelled its twin, leaving the sums pointing either way (a hull folded through the card).

@@ -1,4 +1,5 @@
 #include "scene/Scene.h"
+#include "scene/mesh/EdgeAdjacency.h"
 
 #include "SceneTestSupport.h"
 
@@ -214,6 +215,30 @@ TEST(ObjLoader, ADoubleFacedCardLoadsAsItsFirstSide) {
         for (int k = 0; k < 3; ++k) corners.push_back(triangle[k]);
     EXPECT_EQ(std::count(corners.begin(), corners.end(), findVertex(mesh, {-1, -1, 0})), 2)
         << "the diagonal from vertex 1";
+}
+
+/** A closed mesh whose faces the file gives twice (an exporter's merge of two copies of one object, a scan saved
+ *  with its faces appended again) made every edge one of four faces, non-manifold, so `border` drew its wireframe.
+ *  The second copy of each face is dropped, whichever corner it starts at and whether it names the same vertices
+ *  or copies of them at the same places. */
+TEST(ObjLoader, FacesTheFileGivesTwiceLoadOnce) {
+    const std::string cube = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n";
+    const std::string faces = "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    const std::string facesOfTheCopy = "f 9 12 11 10\nf 13 14 15 16\nf 9 10 14 13\nf 10 11 15 14\nf 11 12 16 15\n"
+                                       "f 12 9 13 16\n";
+    const std::string turnedCorners = "f 4 3 2 1\nf 6 7 8 5\nf 2 6 5 1\nf 3 7 6 2\nf 4 8 7 3\nf 1 5 8 4\n";
+    for (const std::string& body :
+         {cube + faces + faces, cube + faces + turnedCorners, cube + cube + faces + facesOfTheCopy}) {
+        const Scene scene = loadScene(TempFile("twice.obj", body).path());
+        ASSERT_EQ(scene.meshes.size(), 1u);
+        const Mesh& mesh = scene.meshes[0];
+        EXPECT_EQ(mesh.triangleCount(), 12u) << body;
+        EXPECT_EQ(scene.report.repeatedDropped, 12u) << body;
+        EXPECT_EQ(scene.report.backToBackDropped, 0u) << body;
+        const EdgeAdjacency adjacency = buildEdgeAdjacency(mesh.positions, mesh.triangles, 0.0);
+        EXPECT_EQ(adjacency.counts.manifold, 18u) << body;
+        EXPECT_EQ(adjacency.counts.boundary + adjacency.counts.nonManifold, 0u) << body;
+    }
 }
 
 TEST(ObjLoader, AConcaveDoubleFacedPolygonShadesAsItsOwnSides) {
