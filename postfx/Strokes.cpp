@@ -715,8 +715,60 @@ LineSkeleton keptSkeleton(const Strokes& strokes, const std::vector<StrokeLayer>
     return kept;
 }
 
+namespace {
+
+/** Adds to `kept` (indices into `stroke`'s points, ascending, the simplified polyline's) the points where the width
+ *  leaves its straight interpolation between kept neighbours (by arc length) by more than `tolerancePixels` on either
+ *  side of the line: half the width's change, at `widthPixels` data pixels per width share. Ramer-Douglas-Peucker on
+ *  the width profile, so a straight stroke keeps its taper. A closed stroke's last span runs back to its first point.
+ */
+std::vector<std::size_t> keepWidthProfile(const Stroke& stroke, std::vector<std::size_t> kept, bool closed,
+                                          double tolerancePixels, double widthPixels) {
+    const std::size_t count = stroke.points.size();
+    if (kept.empty() || count < 3) return kept;
+    // Arc length along the stroke, one entry more for a closed stroke's way back to its start.
+    std::vector<double> along(count + 1, 0.0);
+    for (std::size_t index = 1; index <= count; ++index) {
+        const cv::Point2f step = stroke.points[index % count].position - stroke.points[index - 1].position;
+        along[index] = along[index - 1] + std::hypot(double(step.x), double(step.y));
+    }
+    const auto arcAt = [&](std::size_t index) {
+        return index <= count ? along[index] : along[count] + along[index - count];
+    };
+    const auto widthAt = [&](std::size_t index) { return double(stroke.points[index % count].width); };
+    std::vector<char> keep(count, 0);
+    for (const std::size_t index : kept) keep[index] = 1;
+    std::vector<std::pair<std::size_t, std::size_t>> spans;
+    for (std::size_t k = 0; k + 1 < kept.size(); ++k) spans.emplace_back(kept[k], kept[k + 1]);
+    if (closed) spans.emplace_back(kept.back(), count + kept.front());
+    while (!spans.empty()) {
+        const auto [from, to] = spans.back();
+        spans.pop_back();
+        const double length = arcAt(to) - arcAt(from);
+        std::size_t farthest = 0;
+        double deviation = 0.0;
+        for (std::size_t index = from + 1; index < to; ++index) {
+            const double t = length > 0.0 ? (arcAt(index) - arcAt(from)) / length : 0.0;
+            const double straight = widthAt(from) + t * (widthAt(to) - widthAt(from));
+            const double off = 0.5 * std::abs(widthAt(index) - straight) * widthPixels;
+            if (off > deviation) deviation = off, farthest = index;
+        }
+        // At tolerance 0 a float's rounding is no change of width.
+        if (deviation <= std::max(tolerancePixels, 1e-4)) continue;
+        keep[farthest % count] = 1;
+        spans.emplace_back(from, farthest);
+        spans.emplace_back(farthest, to);
+    }
+    kept.clear();
+    for (std::size_t index = 0; index < count; ++index)
+        if (keep[index]) kept.push_back(index);
+    return kept;
+}
+
+} // namespace
+
 std::vector<Polyline> strokePolylines(const Strokes& strokes, int layer, double tolerancePixels,
-                                      std::vector<std::vector<float>>* widths) {
+                                      std::vector<std::vector<float>>* widths, double widthPixels) {
     std::vector<Polyline> polylines;
     if (widths) widths->clear();
     for (const Stroke& stroke : strokes.strokes) {
@@ -726,12 +778,20 @@ std::vector<Polyline> strokePolylines(const Strokes& strokes, int layer, double 
         for (const LinePoint& point : stroke.points) full.points.push_back(point.position);
         Polyline simplified = simplifyPolyline(full, tolerancePixels, true);
         if (widths) {
-            // The simplified vertices are some of the stroke's own, in order: match them up.
-            std::vector<float> vertexWidths;
+            // The simplified vertices are some of the stroke's own, in order: match them up, then keep the points
+            // the width profile needs.
+            std::vector<std::size_t> kept;
             std::size_t next = 0;
             for (const cv::Point2f& vertex : simplified.points) {
                 while (next + 1 < full.points.size() && full.points[next] != vertex) ++next;
-                vertexWidths.push_back(stroke.points[next].width);
+                kept.push_back(next);
+            }
+            kept = keepWidthProfile(stroke, std::move(kept), simplified.closed, tolerancePixels, widthPixels);
+            simplified.points.clear();
+            std::vector<float> vertexWidths;
+            for (const std::size_t index : kept) {
+                simplified.points.push_back(full.points[index]);
+                vertexWidths.push_back(stroke.points[index].width);
             }
             widths->push_back(std::move(vertexWidths));
         }

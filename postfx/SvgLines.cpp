@@ -204,7 +204,9 @@ void appendWeightedPath(std::string& out, const Polyline& polyline, const std::v
         appendNumber(out, radius, 2);
         out += ' ';
         appendNumber(out, radius, 2);
-        out += " 0 0 1 ";
+        // Sweep 0, toward decreasing angle (y down): from the left side (+normal, the normal being the direction
+        // turned by +90 degrees) the arc passes the end ahead of the line, a cap that bulges out of it.
+        out += " 0 0 0 ";
         appendXY(to);
     };
     out += "    <path " + fill + " d=\"";

@@ -273,7 +273,7 @@ std::vector<SvgLineLayer> svgLayersOf(const DrawnStrokes& drawn, double toleranc
         layer.color = colors[index];
         std::vector<std::vector<float>> shares;
         layer.polylines = strokePolylines(drawn.strokes, int(index), tolerancePixels * drawn.supersample,
-                                          drawn.weighted ? &shares : nullptr);
+                                          drawn.weighted ? &shares : nullptr, input.widthPixels * drawn.supersample);
         for (const std::vector<float>& vertexShares : shares) {
             std::vector<double> widths;
             for (const float share : vertexShares) widths.push_back(double(share) * input.widthPixels);

@@ -470,14 +470,28 @@ TEST(StrokesTest, LineWeightTapersEndsAndThinsFarLines) {
         EXPECT_NEAR(stroke.points[5].width, (0.2f + 0.8f * 0.5f) * scale, 1e-6); // halfway up the taper
         EXPECT_NEAR(stroke.points[20].width, scale, 1e-6);
     }
-    // The polylines carry the widths of the vertices they keep: the ends and the middle of a straight line.
+    // The polylines carry the widths of the vertices they keep. A straight line needs only its ends, but its width
+    // needs the taper's knees too (where it reaches full width, 10 px from each end): drawn 4 px wide, the outline
+    // between the ends alone would cut 1.6 px into the line's middle (the --svg of a short tapered stroke was as
+    // thin as its ends). Drawn 1 px wide, the half width changes by 0.4 px, within the tolerance of 0.5.
     std::vector<std::vector<float>> widths;
-    const std::vector<Polyline> polylines = strokePolylines(strokes, 0, 0.5, &widths);
+    const std::vector<Polyline> polylines = strokePolylines(strokes, 0, 0.5, &widths, 4.0);
     ASSERT_EQ(polylines.size(), 2u);
     ASSERT_EQ(widths.size(), 2u);
-    ASSERT_EQ(widths[0].size(), polylines[0].points.size());
-    EXPECT_EQ(polylines[0].points.size(), 2u);
-    EXPECT_NEAR(widths[0].front(), 0.2f, 1e-6);
+    for (std::size_t line = 0; line < 2; ++line) {
+        ASSERT_EQ(widths[line].size(), polylines[line].points.size());
+        ASSERT_EQ(polylines[line].points.size(), 4u);
+        const float scale = polylines[line].points.front().y < 20.0f ? 1.0f : 0.5f;
+        EXPECT_NEAR(widths[line][0], 0.2f * scale, 1e-6);
+        EXPECT_NEAR(widths[line][1], scale, 1e-6);
+        EXPECT_NEAR(widths[line][2], scale, 1e-6);
+        EXPECT_NEAR(widths[line][3], 0.2f * scale, 1e-6);
+        EXPECT_NEAR(std::abs(polylines[line].points[1].x - polylines[line].points[0].x), 10.0f, 1e-4);
+        EXPECT_NEAR(std::abs(polylines[line].points[3].x - polylines[line].points[2].x), 10.0f, 1e-4);
+    }
+    EXPECT_EQ(strokePolylines(strokes, 0, 0.5, &widths, 1.0)[0].points.size(), 2u);
+    // Without widths the line is its two ends.
+    EXPECT_EQ(strokePolylines(strokes, 0, 0.5)[0].points.size(), 2u);
 }
 
 TEST(StrokesTest, RefusesBadInputNamingIt) {

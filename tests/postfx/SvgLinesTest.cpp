@@ -332,6 +332,21 @@ TEST(SvgLinesTest, AWeightedLineIsAFilledOutlineAtHalfItsWidthFromTheCentreLine)
     for (const PathCommand& command : commands)
         if (command.command != 'Z') corners.insert({command.end().x, command.end().y});
     EXPECT_EQ(corners, (std::set<std::pair<double, double>>{{0.5, -0.5}, {0.5, 1.5}, {10.5, -1.5}, {10.5, 2.5}}));
+    // Each cap bulges out of the line's end, not into the line: a half circle from one side to the other, whose
+    // middle (the start turned a quarter about the centre, the way its sweep flag turns; y points down) lies a
+    // radius beyond the end. Half of the caps bit into the strokes before.
+    for (std::size_t index = 1; index < commands.size(); ++index) {
+        if (commands[index].command != 'A') continue;
+        const cv::Point2d from = commands[index - 1].end(), to = commands[index].end();
+        const cv::Point2d centre = 0.5 * (from + to), start = from - centre;
+        const bool sweep = commands[index].numbers[4] != 0.0;
+        const cv::Point2d middle = centre + (sweep ? cv::Point2d(-start.y, start.x) : cv::Point2d(start.y, -start.x));
+        if (centre.x < 5.0)
+            EXPECT_NEAR(middle.x, 0.5 - 1.0, 1e-9) << "the start's cap: " << d;
+        else
+            EXPECT_NEAR(middle.x, 10.5 + 2.0, 1e-9) << "the end's cap: " << d;
+        EXPECT_NEAR(middle.y, 0.5, 1e-9) << d;
+    }
 }
 
 TEST(SvgLinesTest, AWeightedClosedLineIsARingOfTwoSubpaths) {
@@ -377,7 +392,7 @@ TEST(SvgLinesTest, AWeightedDotIsACircleOfItsWidth) {
     ASSERT_EQ(paths.size(), 1u);
     EXPECT_EQ(attributeOf(paths[0], "stroke"), "none");
     // Centre (7.5, 8.5), radius 1.5: from the left end a half circle to the right end and back.
-    EXPECT_EQ(attributeOf(paths[0], "d"), "M 6 8.5 A 1.5 1.5 0 0 1 9 8.5 A 1.5 1.5 0 0 1 6 8.5 Z");
+    EXPECT_EQ(attributeOf(paths[0], "d"), "M 6 8.5 A 1.5 1.5 0 0 0 9 8.5 A 1.5 1.5 0 0 0 6 8.5 Z");
 }
 
 TEST(SvgLinesTest, WidthsMustMatchThePolylines) {
