@@ -14,6 +14,14 @@
 namespace inkgraph {
 namespace {
 
+/** The token strength of a stroke pixel with no point of its own (bridging a gap): it seeds nothing, and a stroke's
+ *  opacity leaves it out. */
+constexpr float kBridgeStrength = 1e-3f;
+
+} // namespace
+
+namespace {
+
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 constexpr int kNone = -1;
 
@@ -450,7 +458,7 @@ Strokes chainStrokes(const std::vector<StrokeLayer>& layers, const StrokeSetting
                 const std::size_t index = step.forward ? k : count - 1 - k;
                 // A pixel with no point of its own (strength 0) keeps a token strength, so every stroke point is a
                 // valid LinePoint; it seeds nothing.
-                const float strength = std::max(branch.strengths[index], 1e-3f);
+                const float strength = std::max(branch.strengths[index], kBridgeStrength);
                 stroke.points.push_back({cv::Point2f(branch.positions[index]), strength});
                 stroke.pixels.push_back(branch.pixels[index]);
             }
@@ -798,6 +806,19 @@ std::vector<Polyline> strokePolylines(const Strokes& strokes, int layer, double 
         polylines.push_back(std::move(simplified));
     }
     return polylines;
+}
+
+std::vector<float> strokeOpacities(const Strokes& strokes, int layer) {
+    std::vector<float> opacities;
+    for (const Stroke& stroke : strokes.strokes) {
+        if (!stroke.kept || stroke.layer != layer) continue;
+        double sum = 0.0;
+        std::size_t count = 0;
+        for (const LinePoint& point : stroke.points)
+            if (point.strength > kBridgeStrength) sum += point.strength, ++count;
+        opacities.push_back(count > 0 ? float(sum / double(count)) : 1.0f);
+    }
+    return opacities;
 }
 
 } // namespace inkgraph

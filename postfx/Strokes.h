@@ -203,4 +203,9 @@ LineSkeleton keptSkeleton(const Strokes& strokes, const std::vector<StrokeLayer>
 std::vector<Polyline> strokePolylines(const Strokes& strokes, int layer, double tolerancePixels,
                                       std::vector<std::vector<float>>* widths = nullptr, double widthPixels = 1.0);
 
+/** The opacity of each of layer `layer`'s kept strokes, in strokePolylines()' order: the mean strength of its points
+ *  that carry one of their own (a faded line's, e.g. suggestive contours' --suggestive-fade; 1 for a full line),
+ *  leaving out the token strength of pixels that bridge a gap. */
+std::vector<float> strokeOpacities(const Strokes& strokes, int layer);
+
 } // namespace inkgraph

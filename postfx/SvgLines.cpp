@@ -153,6 +153,12 @@ void checkLayer(const SvgLineLayer& layer, std::size_t index, std::set<std::stri
             if (!std::isfinite(point.x) || !std::isfinite(point.y))
                 throw std::invalid_argument("svgDocument(): " + name + " 'polylines' [" + std::to_string(line) +
                                             "] has a non-finite coordinate");
+    if (!layer.opacities.empty() && layer.opacities.size() != layer.polylines.size())
+        throw std::invalid_argument("svgDocument(): " + name + " 'opacities' must be empty or one per polyline");
+    for (const double opacity : layer.opacities)
+        if (!(opacity > 0.0 && opacity <= 1.0))
+            throw std::invalid_argument("svgDocument(): " + name + " 'opacities' must lie in (0, 1], got " +
+                                        std::to_string(opacity));
     if (!layer.widths.empty() && layer.widths.size() != layer.polylines.size())
         throw std::invalid_argument("svgDocument(): " + name + " 'widths' must be empty or one per polyline");
     for (std::size_t line = 0; line < layer.widths.size(); ++line) {
@@ -166,7 +172,7 @@ void checkLayer(const SvgLineLayer& layer, std::size_t index, std::set<std::stri
     }
 }
 
-void appendPath(std::string& out, const Polyline& polyline, double scale) {
+void appendPath(std::string& out, const Polyline& polyline, double scale, const std::string& opacity) {
     if (polyline.points.empty()) return;
     auto appendPoint = [&](const char* command, const cv::Point2f& point) {
         out += command;
@@ -174,7 +180,7 @@ void appendPath(std::string& out, const Polyline& polyline, double scale) {
         out += ' ';
         appendNumber(out, (double(point.y) + 0.5) * scale, 2);
     };
-    out += "    <path d=\"";
+    out += "    <path " + opacity + "d=\"";
     appendPoint("M ", polyline.points.front());
     if (polyline.points.size() == 1) {
         appendPoint(" L ", polyline.points.front()); // zero length: round caps draw a dot
@@ -287,17 +293,23 @@ std::string svgDocument(int width, int height, const std::vector<SvgLineLayer>& 
     for (std::size_t index = 0; index < layers.size(); ++index) {
         const SvgLineLayer& layer = layers[index];
         out += "  <g id=\"lines-" + layer.type + "\" inkscape:groupmode=\"layer\" inkscape:label=\"" + layer.type +
-               "\" fill=\"none\" stroke=\"" + hexColor(layer.color, layerName(index) + " 'color'") +
-               "\" stroke-opacity=\"" + formatNumber(layer.color[3], 3) + "\" stroke-width=\"" +
+               "\" opacity=\"" + formatNumber(layer.color[3], 3) + "\" fill=\"none\" stroke=\"" +
+               hexColor(layer.color, layerName(index) + " 'color'") + "\" stroke-width=\"" +
                formatNumber(layer.widthPixels, 3) + "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
         const double scale = 1.0 / layer.supersample;
-        const std::string fill = "fill=\"" + hexColor(layer.color, layerName(index) + " 'color'") +
-                                 "\" fill-opacity=\"" + formatNumber(layer.color[3], 3) + "\" stroke=\"none\"";
+        const std::string fill =
+            "fill=\"" + hexColor(layer.color, layerName(index) + " 'color'") + "\" stroke=\"none\"";
         for (std::size_t line = 0; line < layer.polylines.size(); ++line) {
+            // Opacities are written to 3 decimals, so one that rounds to 1 is left out.
+            const double opacity = layer.opacities.empty() ? 1.0 : layer.opacities[line];
+            const std::string opacityText = formatNumber(opacity, 3);
+            const bool faded = opacityText != "1";
             if (layer.widths.empty())
-                appendPath(out, layer.polylines[line], scale);
+                appendPath(out, layer.polylines[line], scale,
+                           faded ? "stroke-opacity=\"" + opacityText + "\" " : std::string());
             else
-                appendWeightedPath(out, layer.polylines[line], layer.widths[line], scale, fill);
+                appendWeightedPath(out, layer.polylines[line], layer.widths[line], scale,
+                                   faded ? fill + " fill-opacity=\"" + opacityText + "\"" : fill);
         }
         out += "  </g>\n";
     }

@@ -29,6 +29,9 @@ struct SvgLineLayer {
      *  > 0). A weighted polyline is written as a filled outline (its two sides at half the width from each vertex,
      *  joined by round caps), since an SVG stroke has one width. */
     std::vector<std::vector<double>> widths;
+    /** Optional: empty, or one opacity per polyline in (0, 1], a faded line's (strokeOpacities()), written as the
+     *  path's own stroke-opacity (fill-opacity for a weighted one) under the layer's group opacity. */
+    std::vector<double> opacities;
 };
 
 /** The document around the layers. */
@@ -43,16 +46,20 @@ struct SvgDocumentOptions {
  *    return, and bytes that are not valid UTF-8, replaced by '?' (XML 1.0 cannot hold them);
  *  - with `options.background`: <rect id="background"> covering the image, fill #rrggbb and fill-opacity;
  *  - per layer, in the given order (later layers are drawn on top): <g id="lines-<type>"
- *    inkscape:groupmode="layer" inkscape:label="<type>" fill="none" stroke="#rrggbb" stroke-opacity="A"
- *    stroke-width="W" stroke-linecap="round" stroke-linejoin="round">, an empty group when it has no polylines;
+ *    inkscape:groupmode="layer" inkscape:label="<type>" opacity="A" fill="none" stroke="#rrggbb" stroke-width="W"
+ *    stroke-linecap="round" stroke-linejoin="round">, an empty group when it has no polylines. The colour's alpha A
+ *    is the group's opacity, so the layer is drawn opaque and then laid on at A, as the picture composites it: where
+ *    its paths overlap they do not darken each other;
  *  - per polyline one <path d="M x y L x y ..."/> with absolute commands (with `widths`, a filled outline:
- *    <path fill="#rrggbb" fill-opacity="A" stroke="none" d="M left side A right side A Z"/>), " Z" appended when closed
+ *    <path fill="#rrggbb" stroke="none" d="M left side A right side A Z"/>), with stroke-opacity="O" (fill-opacity
+ *    for a filled outline) where `opacities` gives it an opacity O below 1, " Z" appended when closed
  * (and it has 2 points or more). A 1-point polyline is written as a zero-length segment "M x y L x y", which round caps
  * draw as a dot of the stroke width; a polyline with no points writes nothing. Colours: each channel c becomes
  * round(255 c) in the hex colour; opacity is written with 3 decimals at most. Throws std::invalid_argument naming the
  * argument for a 'width' or 'height' below 1, and in 'layers' for a 'type' that is empty, holds a character outside
  * [A-Za-z0-9_.-] or repeats an earlier one, a 'supersample' below 1, a non-finite or non-positive 'widthPixels', a
- * 'color' channel outside [0, 1] or non-finite, or a non-finite coordinate in 'polylines'; and for an
+ * 'color' channel outside [0, 1] or non-finite, a non-finite coordinate in 'polylines', or 'opacities' not one per
+ * polyline in (0, 1]; and for an
  * 'options.background' channel outside [0, 1]. */
 std::string svgDocument(int width, int height, const std::vector<SvgLineLayer>& layers,
                         const SvgDocumentOptions& options = {});

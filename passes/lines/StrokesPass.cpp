@@ -274,6 +274,7 @@ std::vector<SvgLineLayer> svgLayersOf(const DrawnStrokes& drawn, double toleranc
         std::vector<std::vector<float>> shares;
         layer.polylines = strokePolylines(drawn.strokes, int(index), tolerancePixels * drawn.supersample,
                                           drawn.weighted ? &shares : nullptr, input.widthPixels * drawn.supersample);
+        for (const float opacity : strokeOpacities(drawn.strokes, int(index))) layer.opacities.push_back(opacity);
         for (const std::vector<float>& vertexShares : shares) {
             std::vector<double> widths;
             for (const float share : vertexShares) widths.push_back(double(share) * input.widthPixels);

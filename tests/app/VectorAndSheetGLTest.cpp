@@ -96,7 +96,7 @@ TEST_F(Cli, SvgHasOneGroupPerLineTypeWhosePathsLieOnItsMask) {
         EXPECT_EQ(document.groups[0].strokeWidth, 4.0);
         EXPECT_EQ(document.groups[3].strokeWidth, 2.0);
         EXPECT_EQ(document.groups[2].stroke, "#cc1a1a");
-        EXPECT_DOUBLE_EQ(document.groups[2].strokeOpacity, 0.5);
+        EXPECT_DOUBLE_EQ(document.groups[2].opacity, 0.5);
         for (const test::SvgPathGroup& group : document.groups) {
             const cv::Mat mask = readImage(directory / "dump" / ("lines-" + group.label + ".png"));
             ASSERT_EQ(mask.type(), CV_8UC1) << group.label;

@@ -494,6 +494,26 @@ TEST(StrokesTest, LineWeightTapersEndsAndThinsFarLines) {
     EXPECT_EQ(strokePolylines(strokes, 0, 0.5)[0].points.size(), 2u);
 }
 
+TEST(StrokesTest, AStrokesOpacityIsTheMeanStrengthOfItsPoints) {
+    // Two lines of one layer, one full and one faded to 0.4 (a suggestive contour's --suggestive-fade): --svg draws
+    // each path at its stroke's opacity, as the picture draws each point at its strength.
+    cv::Mat full = blank(), faded = blank();
+    drawLine(full, {4, 10}, {44, 10});
+    drawLine(faded, {4, 40}, {44, 40});
+    LineSkeleton skeleton = skeletonOf(full);
+    const LineSkeleton weak = skeletonOf(faded, 0.4f);
+    skeleton.points.insert(skeleton.points.end(), weak.points.begin(), weak.points.end());
+    skeleton.mask |= weak.mask;
+    const Strokes strokes = chainStrokes({{&skeleton}});
+    const std::vector<Polyline> polylines = strokePolylines(strokes, 0, 0.5);
+    const std::vector<float> opacities = strokeOpacities(strokes, 0);
+    ASSERT_EQ(polylines.size(), 2u);
+    ASSERT_EQ(opacities.size(), 2u);
+    for (std::size_t line = 0; line < 2; ++line)
+        EXPECT_NEAR(opacities[line], polylines[line].points.front().y < 20.0f ? 1.0f : 0.4f, 1e-6) << line;
+    EXPECT_TRUE(strokeOpacities(strokes, 1).empty()) << "no strokes of another layer";
+}
+
 TEST(StrokesTest, RefusesBadInputNamingIt) {
     const LineSkeleton empty;
     EXPECT_NE(invalidArgumentMessage([&] { chainStrokes({{&empty}}); }).find("chainStrokes(): 'layers' [0]"),

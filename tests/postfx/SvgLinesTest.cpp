@@ -89,8 +89,8 @@ TEST(SvgLinesTest, DocumentHeaderIsStandaloneSvgWithInkscapeLayers) {
     EXPECT_NE(svg.find("xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\""), std::string::npos);
     EXPECT_NE(svg.find("width=\"640\" height=\"480\" viewBox=\"0 0 640 480\""), std::string::npos);
     EXPECT_NE(svg.find("<title>bunny</title>"), std::string::npos);
-    EXPECT_NE(svg.find("<g id=\"lines-contour\" inkscape:groupmode=\"layer\" inkscape:label=\"contour\" fill=\"none\" "
-                       "stroke=\"#000000\" stroke-opacity=\"1\" stroke-width=\"2\" stroke-linecap=\"round\" "
+    EXPECT_NE(svg.find("<g id=\"lines-contour\" inkscape:groupmode=\"layer\" inkscape:label=\"contour\" opacity=\"1\" "
+                       "fill=\"none\" stroke=\"#000000\" stroke-width=\"2\" stroke-linecap=\"round\" "
                        "stroke-linejoin=\"round\">"),
               std::string::npos);
     // S = 1: data pixel centres land on output pixel centres, (col + 0.5, row + 0.5).
@@ -127,7 +127,7 @@ TEST(SvgLinesTest, RoundTripThroughTheParser) {
     EXPECT_EQ(first.id, "lines-contour");
     EXPECT_EQ(first.label, "contour");
     EXPECT_EQ(first.stroke, "#ff0000");
-    EXPECT_DOUBLE_EQ(first.strokeOpacity, 1.0);
+    EXPECT_DOUBLE_EQ(first.opacity, 1.0);
     EXPECT_DOUBLE_EQ(first.strokeWidth, 2.0);
     ASSERT_EQ(first.paths.size(), 3u);
     // x + 0.5, y + 0.5, rounded to 2 decimals.
@@ -147,7 +147,7 @@ TEST(SvgLinesTest, RoundTripThroughTheParser) {
     const SvgPathGroup& second = document.groups[1];
     EXPECT_EQ(second.id, "lines-silhouette");
     EXPECT_EQ(second.stroke, "#0033ff"); // 0.2 x 255 = 51
-    EXPECT_DOUBLE_EQ(second.strokeOpacity, 0.5);
+    EXPECT_DOUBLE_EQ(second.opacity, 0.5);
     EXPECT_DOUBLE_EQ(second.strokeWidth, 3.5);
     // S = 2: (x + 0.5) / 2, so data pixels 0 and 1 (output pixel 0) straddle the output centre 0.5.
     ASSERT_EQ(second.paths.size(), 1u);
@@ -155,6 +155,33 @@ TEST(SvgLinesTest, RoundTripThroughTheParser) {
 
     EXPECT_EQ(document.groups[2].id, "lines-suggestive-object"); // an empty layer is still a layer
     EXPECT_TRUE(document.groups[2].paths.empty());
+}
+
+/** The colour's alpha is the layer's group opacity, so paths that overlap do not darken each other (the picture lays
+ *  each layer on once); a faded path's own opacity is its stroke-opacity (a weighted path's fill-opacity). */
+TEST(SvgLinesTest, AFadedLineCarriesItsOwnOpacityUnderTheGroupsOpacity) {
+    SvgLineLayer layer;
+    layer.type = "suggestive";
+    layer.color = {0.0, 0.0, 0.0, 0.4};
+    layer.polylines = {openPolyline({{0, 0}, {9, 0}}), openPolyline({{0, 4}, {9, 4}}), openPolyline({{0, 8}, {9, 8}})};
+    layer.opacities = {1.0, 0.25, 0.9996};
+    const std::string svg = svgDocument(20, 20, {layer});
+    const SvgPathDocument document = parseSvgPathDocument(svg);
+    ASSERT_EQ(document.groups.size(), 1u);
+    EXPECT_DOUBLE_EQ(document.groups[0].opacity, 0.4);
+    EXPECT_EQ(document.groups[0].pathOpacities, (std::vector<double>{1.0, 0.25, 1.0}))
+        << "an opacity that rounds to 1 is left out";
+    layer.widths = {{2.0, 2.0}, {2.0, 3.0}, {1.0, 1.0}};
+    const std::vector<std::string> paths = pathElements(svgDocument(20, 20, {layer}));
+    ASSERT_EQ(paths.size(), 3u);
+    EXPECT_EQ(attributeOf(paths[0], "fill-opacity"), "(absent)");
+    EXPECT_EQ(attributeOf(paths[1], "fill-opacity"), "0.25");
+    layer.opacities = {1.0, 0.0, 1.0};
+    EXPECT_NE(invalidArgumentMessage([&] { svgDocument(20, 20, {layer}); }).find("'opacities' must lie in (0, 1]"),
+              std::string::npos);
+    layer.opacities = {1.0};
+    EXPECT_NE(invalidArgumentMessage([&] { svgDocument(20, 20, {layer}); }).find("'opacities' must be empty or one"),
+              std::string::npos);
 }
 
 TEST(SvgLinesTest, SupersampledTraceMapsToOutputPixels) {
@@ -298,7 +325,7 @@ TEST(SvgLinesTest, AWeightedLineIsAFilledOutlineAtHalfItsWidthFromTheCentreLine)
     const std::vector<std::string> paths = pathElements(svgDocument(20, 10, {layer}));
     ASSERT_EQ(paths.size(), 1u);
     EXPECT_EQ(attributeOf(paths[0], "fill"), "#ff0000");
-    EXPECT_EQ(attributeOf(paths[0], "fill-opacity"), "0.5");
+    EXPECT_EQ(attributeOf(paths[0], "fill-opacity"), "(absent)") << "the colour's alpha is the group's opacity";
     EXPECT_EQ(attributeOf(paths[0], "stroke"), "none");
     const std::string d = attributeOf(paths[0], "d");
     EXPECT_TRUE(startsWith(d, "M 0.5 1.5 ") || startsWith(d, "M 0.5 -0.5 ")) << d;

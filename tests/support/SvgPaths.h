@@ -28,10 +28,11 @@ struct SvgPathGroup {
     std::string id;                              ///< e.g. "lines-contour"
     std::string label;                           ///< inkscape:label, empty when absent
     std::string stroke;                          ///< as written, e.g. "#000000"
-    double strokeOpacity = 1.0;                  ///< 1 when absent
+    double opacity = 1.0;                        ///< the group's opacity (the colour's alpha); 1 when absent
     double strokeWidth = 0.0;                    ///< user units
     std::vector<std::vector<cv::Point2d>> paths; ///< each <path>'s M and L points, in order
     std::vector<bool> closed;                    ///< per path: whether it ended with Z
+    std::vector<double> pathOpacities;           ///< per path: its stroke-opacity, 1 when absent (a faded line's)
 };
 
 /** The whole document. */
@@ -269,8 +270,10 @@ inline SvgPathDocument parseSvgPathDocument(const std::string& svgText) {
             parsed.label = element.optional("inkscape:label").value_or("");
             parsed.stroke = element.required("stroke");
             parsed.strokeWidth = parseNumber(element.required("stroke-width"), "<g> stroke-width", element.at);
-            if (const auto opacity = element.optional("stroke-opacity"))
-                parsed.strokeOpacity = parseNumber(*opacity, "<g> stroke-opacity", element.at);
+            if (element.optional("stroke-opacity"))
+                fail("<g> has stroke-opacity (its opacity is the group's)", element.at);
+            if (const auto opacity = element.optional("opacity"))
+                parsed.opacity = parseNumber(*opacity, "<g> opacity", element.at);
             for (const SvgPathGroup& earlier : document.groups)
                 if (earlier.id == parsed.id) fail("repeated group id '" + parsed.id + "'", element.at);
             document.groups.push_back(std::move(parsed));
@@ -281,6 +284,8 @@ inline SvgPathDocument parseSvgPathDocument(const std::string& svgText) {
             auto [points, closed] = parsePathData(element.required("d"), element.at);
             group->paths.push_back(std::move(points));
             group->closed.push_back(closed);
+            const auto opacity = element.optional("stroke-opacity");
+            group->pathOpacities.push_back(opacity ? parseNumber(*opacity, "<path> stroke-opacity", element.at) : 1.0);
         } else {
             fail("unexpected element <" + element.name + ">", element.at);
         }
