@@ -55,13 +55,11 @@ std::string lowercaseExtension(const std::string& path) {
 }
 
 double parseNumber(const std::string& flag, const std::string& text) {
-    double value = 0.0;
-    const char* begin = text.data();
-    const char* end = begin + text.size();
-    auto [stop, error] = std::from_chars(begin, end, value);
-    if (error != std::errc() || stop != end || !std::isfinite(value))
-        throw UsageError(flag + ": '" + text + "' is not a finite number");
-    return value;
+    try {
+        return parseFlagNumber(flag, text);
+    } catch (const std::invalid_argument& error) {
+        throw UsageError(error.what());
+    }
 }
 
 std::vector<std::string> splitList(const std::string& text, char separator) {

@@ -1,10 +1,29 @@
 #include "passes/lines/LineParameter.h"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace inkgraph {
+
+double parseFlagNumber(const std::string& flag, const std::string& text) {
+    if (!text.empty() && (std::isspace(static_cast<unsigned char>(text.front())) ||
+                          std::isspace(static_cast<unsigned char>(text.back()))))
+        throw std::invalid_argument(flag + ": '" + text + "' has blanks around the number");
+    // from_chars takes no '+', which a number may carry (+2, 1e+3 it reads).
+    const bool plus = text.size() > 1 && text[0] == '+' && text[1] != '-' && text[1] != '+';
+    const char* begin = text.data() + (plus ? 1 : 0);
+    const char* end = text.data() + text.size();
+    double value = 0.0;
+    const auto [stop, error] = std::from_chars(begin, end, value);
+    if (error == std::errc::result_out_of_range && stop == end)
+        throw std::invalid_argument(flag + ": '" + text + "' lies beyond a double's range (about 1e-308 to 1e308)");
+    if (error != std::errc() || stop != end) throw std::invalid_argument(flag + ": '" + text + "' is not a number");
+    if (!std::isfinite(value)) throw std::invalid_argument(flag + ": '" + text + "' is not a finite number");
+    return value;
+}
 
 std::variant<double, std::string> LineParameter::parse(const std::string& text) const {
     const std::string flag = "--" + name;
@@ -16,13 +35,15 @@ std::variant<double, std::string> LineParameter::parse(const std::string& text) 
             names += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
         throw std::invalid_argument(flag + ": expected " + names + ", got '" + text + "'");
     }
-    double value = 0.0;
-    const auto [stop, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (error != std::errc() || stop != text.data() + text.size() || !std::isfinite(value))
-        throw std::invalid_argument(flag + ": '" + text + "' is not a finite number");
+    const double value = parseFlagNumber(flag, text);
     const bool aboveLow = lowOpen ? value > low : value >= low;
     const bool belowHigh = highOpen ? value < high : value <= high;
     if (!(aboveLow && belowHigh)) throw std::invalid_argument(flag + ": " + rangeText + ", got '" + text + "'");
+    // The line kernels take their settings in float: a value in range that float rounds to 0 (or holds only as a
+    // denormal) would reach them as 0, which a range open at 0 refuses, and fail inside the render.
+    if (value != 0.0 && std::abs(value) < double(std::numeric_limits<float>::min()))
+        throw std::invalid_argument(flag + ": '" + text +
+                                    "' is under 1.2e-38, the smallest number the line kernels' float holds");
     return value;
 }
 

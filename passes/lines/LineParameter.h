@@ -31,6 +31,11 @@ struct LineParameter {
     std::variant<double, std::string> parse(const std::string& text) const;
 };
 
+/** The number a flag's value `text` writes: decimal or scientific, with an optional sign. Throws
+ *  std::invalid_argument "<flag>: '<text>' ..." saying what is wrong: blanks around it, not a number, not finite, or
+ *  beyond a double's range (1e-400, 1e400). The command line's flags and the line parameters read numbers so. */
+double parseFlagNumber(const std::string& flag, const std::string& text);
+
 /** The values given for line parameters, by name; a parameter not given has its declared default. */
 class LineParameterValues {
 public:

@@ -88,6 +88,49 @@ TEST(FlagTable, ParametersAreRangeCheckedFromTheirDeclaration) {
     }
 }
 
+/** A value in a parameter's range that the line kernels' float holds only as 0 or a denormal (--depth-jump 1e-46)
+ *  reached them as 0 and failed inside the render with an internal error; it is refused as a usage error. */
+TEST(FlagTable, ParametersRefuseWhatTheKernelsFloatCannotHold) {
+    for (const LineParameter* parameter : lineParameters()) {
+        if (parameter->isChoice() || parameter->low > 0.0 || parameter->high < 1e-40) continue;
+        for (const std::string tiny : {"1e-46", "1e-300", "4e-39"}) {
+            const std::string message = usageMessage(
+                {"m.obj", "-o", "x.png", "--lines", lineTypesUsing(parameter).front(), "--" + parameter->name, tiny});
+            EXPECT_NE(message.find("--" + parameter->name + ": '" + tiny + "' is under 1.2e-38"), std::string::npos)
+                << message;
+        }
+    }
+    const std::string message = usageMessage({"m.obj", "-o", "x.png", "--depth-jump", "1e-30"});
+    EXPECT_EQ(message.find("1.2e-38"), std::string::npos) << "a float holds 1e-30: " << message;
+}
+
+/** What is wrong with a number is said: '+2' is 2, blanks and words are named as such, and 1e-400 as beyond a
+ *  double (all were "not a finite number"). */
+TEST(FlagTable, ANumbersProblemIsNamed) {
+    EXPECT_DOUBLE_EQ(parseFlagNumber("--x", "+2"), 2.0);
+    EXPECT_DOUBLE_EQ(parseFlagNumber("--x", "+.5e+1"), 5.0);
+    EXPECT_DOUBLE_EQ(parseFlagNumber("--x", "-0.25"), -0.25);
+    const auto messageOf = [](const std::string& text) {
+        try {
+            parseFlagNumber("--x", text);
+        } catch (const std::invalid_argument& error) {
+            return std::string(error.what());
+        }
+        return std::string("(accepted)");
+    };
+    EXPECT_EQ(messageOf(" 2"), "--x: ' 2' has blanks around the number");
+    EXPECT_EQ(messageOf("2\t"), "--x: '2\t' has blanks around the number");
+    EXPECT_EQ(messageOf("+-2"), "--x: '+-2' is not a number");
+    EXPECT_EQ(messageOf("++2"), "--x: '++2' is not a number");
+    EXPECT_EQ(messageOf("0x10"), "--x: '0x10' is not a number");
+    EXPECT_EQ(messageOf(""), "--x: '' is not a number");
+    EXPECT_EQ(messageOf("1e-400"), "--x: '1e-400' lies beyond a double's range (about 1e-308 to 1e308)");
+    EXPECT_EQ(messageOf("1e400"), "--x: '1e400' lies beyond a double's range (about 1e-308 to 1e308)");
+    EXPECT_EQ(messageOf("nan"), "--x: 'nan' is not a finite number");
+    EXPECT_EQ(messageOf("-inf"), "--x: '-inf' is not a finite number");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--contour-width", "+3"}), "(no error)");
+}
+
 TEST(FlagTable, ParametersStateTheirDeclaredDefaultInTheHelp) {
     // The default is written once, in the declaration; the help says "{default}" where --help writes it.
     const std::regex typedDefault(R"(default [0-9])");

@@ -112,7 +112,7 @@ TEST(StyleFile, BlanksInsideAValueStay) {
     EXPECT_EQ(usageErrorOf([&] {
                   optionsWith(style, {"m.obj", "-o", "o.png"});
               }),
-              "--style 's.style' line 1: --contour-width: '1 5' is not a finite number");
+              "--style 's.style' line 1: --contour-width: '1 5' is not a number");
 }
 
 TEST(StyleFile, ShadeMapPathsAreRelativeToTheStyleFileAndKeepTheirSpaces) {
@@ -141,7 +141,7 @@ TEST(StyleFile, BadLinesNameTheFileTheLineAndTheProblem) {
 TEST(StyleFile, ValueProblemsFoundByTheFlagParserCarryTheStyleLine) {
     const SourcedArguments style = styleArguments("shading = comic\nshininess = lots\n", "look.style", "");
     const std::string message = usageErrorOf([&] { optionsWith(style, {"m.obj", "-o", "o.png"}); });
-    EXPECT_EQ(message, "--style 'look.style' line 2: --shininess: 'lots' is not a finite number");
+    EXPECT_EQ(message, "--style 'look.style' line 2: --shininess: 'lots' is not a number");
 }
 
 TEST(StyleFile, EveryStyleSettingIsAFlagTheParserKnows) {
