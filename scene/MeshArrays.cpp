@@ -168,7 +168,28 @@ private:
             }
         }
         scene.meshes.push_back(std::move(mesh));
+        warnOfColoursOutOfRange(scene);
         return scene;
+    }
+
+    /** value-out-of-range for colours outside [0, 1], which colour() clamps: 0 to 255 (bytes given as float, a uint8
+     *  array made float) drew every channel above 1/255 at full strength, without a word. */
+    void warnOfColoursOutOfRange(detail::RawScene& scene) const {
+        if (mArrays.colors == nullptr) return;
+        std::size_t outside = 0;
+        float farthest = 0.5f;
+        for (std::size_t i = 0; i < mArrays.vertexCount * std::size_t(mArrays.colorChannels); ++i) {
+            const float value = mArrays.colors[i];
+            if (value >= 0.0f && value <= 1.0f) continue;
+            ++outside;
+            if (std::abs(value - 0.5f) > std::abs(farthest - 0.5f)) farthest = value;
+        }
+        if (outside == 0) return;
+        scene.warnings.push_back(makeWarning(
+            WarningKind::ValueOutOfRange,
+            "colors: " + std::to_string(outside) + " vertex colour component" + (outside == 1 ? " lies" : "s lie") +
+                " outside [0, 1] (as far out as " + detail::formatNumber(farthest) +
+                (farthest > 1.0f ? "; colours of 0 to 255? give them divided by 255" : "") + "); clamped into [0, 1]"));
     }
 
     const MeshArrays& mArrays;

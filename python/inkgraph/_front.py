@@ -270,6 +270,13 @@ def _flag_value(flag: str, value: Any) -> str:
     word, lists, tuples and the small value types (Vec3, Color, Orbit, Clip) joined by commas."""
     if isinstance(value, (str, numbers.Real, os.PathLike)) or hasattr(value, "cli_name"):
         return _scalar_value(flag, value)
+    if isinstance(value, Orbit) and value.distance is None and value.distance_scale != 1.0:
+        # The scale is the command line's xS in place of a distance (an Orbit's items leave it out).
+        return f"{_scalar_value(flag, value.azimuth)},{_scalar_value(flag, value.elevation)}," \
+            f"x{_scalar_value(flag, value.distance_scale)}"
+    if isinstance(value, Color) and value.a == 1.0:
+        # Opaque: R,G,B, which every colour flag takes (--background and --ambient take nothing else).
+        return ",".join(_scalar_value(flag, item) for item in (value.r, value.g, value.b))
     if isinstance(value, (Sequence, np.ndarray, Vec3, Color, Orbit, Clip)):
         return ",".join(_scalar_value(flag, item) for item in value if item is not None)
     raise TypeError(f"{flag}: expected a string, a number or a list of them, got {value!r}")

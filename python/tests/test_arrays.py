@@ -91,6 +91,15 @@ def test_normals_uvs_and_colours_are_taken(mesh):
     assert inkgraph.Scene.from_arrays(vertices, faces, colors=rgba).triangle_count == len(faces)
 
 
+def test_colours_outside_0_to_1_are_clamped_with_a_warning(mesh):
+    # uint8 colours of 0 to 255 (made float) drew every channel above 1/255 at full strength, without a word.
+    vertices, faces = mesh
+    bytes_ = np.tile(np.array([[255, 128, 0]], np.uint8), (len(vertices), 1))
+    with pytest.warns(inkgraph.InkgraphWarning, match="give them divided by 255"):
+        scene = inkgraph.Scene.from_arrays(vertices, faces, colors=bytes_)
+    assert [warning.code for warning in scene.warnings] == ["value-out-of-range"]
+
+
 TRIANGLE = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32)
 FACE = np.array([[0, 1, 2]], np.uint32)
 BAD_ARRAYS = [

@@ -117,6 +117,19 @@ def test_camera_as_list_or_dict_moves_the_view(suzanne):
     assert not np.array_equal(front, back)
 
 
+def test_small_values_in_camera_and_look_dicts_are_the_flags_values(suzanne):
+    # An Orbit's distance scale is the flag's xS (its items leave it out: the scale was dropped, the eye at half the
+    # distance), and an opaque Color is R,G,B (its alpha made '--background 1,0.9,0.8,1', which is refused).
+    orbit = inkgraph.Orbit(30, 10, distance_scale=2)
+    from_frame = inkgraph.render(suzanne, frame=inkgraph.Frame(SIZE, SIZE, orbit=orbit))
+    from_dict = inkgraph.render(suzanne, size=SIZE, camera={"orbit": orbit})
+    assert from_dict.camera.eye == from_frame.camera.eye
+    assert np.array_equal(from_dict.picture, from_frame.picture)
+    paper = inkgraph.Look(paper=(1, 0.9, 0.8)).paper
+    tinted = inkgraph.render(suzanne, {"background": paper}, size=SIZE).picture
+    assert tuple(tinted[0, 0]) == (255, 230, 204, 255)
+
+
 def test_wrong_argument_types_are_type_errors(suzanne):
     with pytest.raises(TypeError):
         inkgraph.render(suzanne, size="big")

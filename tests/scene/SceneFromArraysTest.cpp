@@ -219,6 +219,22 @@ TEST(SceneFromArrays, ColoursMatchObjVertexColours) {
                     glm::all(glm::lessThanEqual(colour, glm::vec4(1.0f))));
         EXPECT_EQ(colour.a, 1.0f);
     }
+    // Said, as OBJ and PLY say it (bytes given as float drew every channel above 1/255 at full strength silently).
+    const auto outOfRange = [](const Scene& loaded) {
+        std::string messages;
+        for (const Warning& warning : loaded.report.warnings)
+            if (warning.code == "value-out-of-range") messages += warning.message;
+        return messages;
+    };
+    EXPECT_EQ(outOfRange(scene), "colors: 13 vertex colour components lie outside [0, 1] (as far out as -0.5); "
+                                 "clamped into [0, 1]");
+    OwnedArrays bytes = cube();
+    bytes.colorChannels = 3;
+    for (std::size_t v = 0; v < bytes.vertexCount(); ++v)
+        bytes.colors.insert(bytes.colors.end(), {255.0f, 128.0f, 0.0f});
+    EXPECT_NE(
+        outOfRange(sceneFromArrays(bytes.view())).find("as far out as 255; colours of 0 to 255? give them divided"),
+        std::string::npos);
     expectSameAsObj(rgb);
 
     OwnedArrays rgba = cube();
