@@ -186,6 +186,7 @@ struct Renderer::Impl {
      *  into a driver whose threads exist only in the parent. */
     std::unique_ptr<StillRenderer> renderer = std::make_unique<StillRenderer>();
     std::mutex rendering; ///< one render at a time; any thread, since each render releases the context at its end
+    const int madeInProcess = int(getpid());
 
     explicit Impl(EglPlatform platform) : eglPlatform(platform) {}
     ~Impl() {
@@ -265,8 +266,14 @@ struct Renderer::Impl {
         // The frame's time is the UV animation's clock (FrameParams::time); it poses the scene only with an animation.
         request.animationTime = frame.time.value_or(sceneImpl.options.time);
         const bool posed = !frame.animation.empty();
-        const bool animated = posed && (frame.animation != sceneImpl.options.animation ||
-                                        frame.time.value_or(0.0) != sceneImpl.options.time);
+        // A time alone moves the scene's own animation to it, as it does with a face or pose given beside it.
+        const bool retimed =
+            !posed && !sceneImpl.options.animation.empty() && frame.time && *frame.time != sceneImpl.options.time;
+        const bool animated = (posed && (frame.animation != sceneImpl.options.animation ||
+                                         frame.time.value_or(0.0) != sceneImpl.options.time)) ||
+                              retimed;
+        // Without an animation the scene's load poses nothing, so a time only clocks the UV animation.
+        request.loadedWithoutAnimation = sceneImpl.options.animation.empty();
         const bool reposed = !frame.pose.empty() && frame.pose != sceneImpl.options.pose;
         const bool refaced = !frame.expressions.empty() || frame.lookAt;
         if (animated || reposed || refaced) {
@@ -277,7 +284,10 @@ struct Renderer::Impl {
             // Another pose or face than the scene's: the file is loaded again, by the renderer's own load, with what
             // the frame gives and the scene's own options for the rest.
             std::vector<std::string> fields;
-            if (animated) fields.push_back(frame.time ? "Frame::animation and time" : "Frame::animation");
+            if (animated)
+                fields.push_back(retimed      ? "Frame::time"
+                                 : frame.time ? "Frame::animation and time"
+                                              : "Frame::animation");
             if (reposed) fields.push_back("Frame::pose");
             if (!frame.expressions.empty()) fields.push_back("Frame::expressions");
             if (frame.lookAt) fields.push_back("Frame::lookAt");
@@ -298,6 +308,8 @@ struct Renderer::Impl {
     std::shared_ptr<Still::Impl> render(const Scene& scene, const Look& look, const Frame& frame,
                                         const std::vector<std::string>& buffers, std::uint8_t* pictureOut,
                                         std::size_t pictureRowBytes) {
+        // A child forked while another thread rendered has `rendering` locked by a thread it lacks: refused first.
+        if (int(getpid()) != madeInProcess) refuseForkedContext();
         const std::lock_guard<std::mutex> oneAtATime(rendering);
         const ParallelWork rendersInParallel; // a fork() meanwhile leaves oneTBB's workers alone
         // Declared first, so it runs last: after the still's GL objects have gone back to the pool on this thread.

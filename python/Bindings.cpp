@@ -19,6 +19,7 @@
 #include "Bindings.h"
 #include "ArgumentRefusals.h"
 #include "CheckedArguments.h"
+#include "WithoutGil.h"
 
 #include <inkgraph/inkgraph.h>
 
@@ -41,6 +42,8 @@
 #include <utility>
 #include <vector>
 
+#include <unistd.h>
+
 namespace py = pybind11;
 namespace ig = inkgraph::api;
 using namespace pybind11::literals;
@@ -48,6 +51,7 @@ using inkgraph::python::checked;
 using inkgraph::python::commaSeparated;
 using inkgraph::python::escapedUtf8;
 using inkgraph::python::reprText;
+using inkgraph::python::withoutGil;
 
 namespace {
 
@@ -593,31 +597,39 @@ public:
     // objects it was given.
     ig::Still render(const ig::Scene& scene, const ig::Look& look, const ig::Frame& frame,
                      const std::vector<std::string>& buffers, std::uint8_t* out, std::size_t rowBytes) {
-        const std::lock_guard lock(mMutex);
+        const std::unique_lock lock = oneAtATime();
         ig::Renderer& renderer = open("Renderer.render()");
         return out ? renderer.renderInto(out, rowBytes, scene, look, frame, buffers)
                    : renderer.render(scene, look, frame, buffers);
     }
     std::string glDescription() {
-        const std::lock_guard lock(mMutex);
+        const std::unique_lock lock = oneAtATime();
         return mRenderer ? mRenderer->glDescription() : "";
     }
     void close() {
-        const std::lock_guard lock(mMutex);
+        const std::unique_lock lock = oneAtATime();
         mRenderer.reset();
     }
     bool closed() {
-        const std::lock_guard lock(mMutex);
+        const std::unique_lock lock = oneAtATime();
         return !mRenderer;
     }
 
 private:
+    /** The lock of this renderer's calls; none in a process forked from the one that made it, which has only the
+     *  thread that forked: the lock may be held by a thread of the parent's that it lacks (a render then refuses, as
+     *  the library refuses a forked context). */
+    std::unique_lock<std::mutex> oneAtATime() {
+        return int(getpid()) == mMadeInProcess ? std::unique_lock(mMutex) : std::unique_lock<std::mutex>();
+    }
+
     ig::Renderer& open(const std::string& function) {
         if (!mRenderer) failUsage(function + ": the renderer is closed");
         return *mRenderer;
     }
 
     std::mutex mMutex;
+    const int mMadeInProcess = int(getpid());
     std::optional<ig::Renderer> mRenderer;
 };
 
@@ -1276,8 +1288,7 @@ void defineStill(py::module_& m) {
         .def("write",
              checked("Still.write(): ", {"self", "path"},
                      [](const PythonStill& self, const std::filesystem::path& path) {
-                         const py::gil_scoped_release release;
-                         self.still.write(path.string());
+                         withoutGil([&] { self.still.write(path.string()); });
                      }),
              "path"_a,
              "Writes the picture; the format follows the extension. Raises OutputError naming the file (also for a "
@@ -1314,10 +1325,7 @@ void defineScene(py::module_& m) {
                         options.strict = strict;
                         options.weldDistance = weldDistance;
                         std::optional<ig::Scene> scene;
-                        {
-                            const py::gil_scoped_release release;
-                            scene.emplace(ig::Scene::load(path.string(), options));
-                        }
+                        withoutGil([&] { scene.emplace(ig::Scene::load(path.string(), options)); });
                         issueWarnings(warningObjects(scene->warnings()));
                         return *scene;
                     }),
@@ -1363,8 +1371,7 @@ void defineScene(py::module_& m) {
                         // The library checks the values (finite, indices in range, the limits) and names its arrays as
                         // the arguments are named; only the function is spelt Python's way.
                         try {
-                            const py::gil_scoped_release release;
-                            scene.emplace(ig::Scene::fromArrays(arrays, name.bytes, options));
+                            withoutGil([&] { scene.emplace(ig::Scene::fromArrays(arrays, name.bytes, options)); });
                         } catch (const ig::Error& error) {
                             const std::string cpp = "Scene::fromArrays()";
                             std::string message = error.what();
@@ -1447,10 +1454,9 @@ void defineRenderer(py::module_& m) {
                         pixels = static_cast<std::uint8_t*>(py::reinterpret_borrow<py::array>(out).mutable_data());
                     }
                     std::optional<ig::Still> still;
-                    {
-                        const py::gil_scoped_release release;
+                    withoutGil([&] {
                         still.emplace(self.render(scene, lookValue, frameValue, bytesOf(buffers), pixels, rowBytes));
-                    }
+                    });
                     issueWarnings(warningObjects(still->warnings()));
                     return PythonStill{std::move(*still), out};
                 }),
@@ -1460,16 +1466,16 @@ void defineRenderer(py::module_& m) {
             "'gbuffer.*' and 'lines.*' expand). With `out`, a writable uint8 (height, width, 4) array whose pixel rows "
             "are packed (a row stride of its own is fine), the picture is drawn into it and the still's picture views "
             "it. Runs without the GIL; issues the still's warnings (InkgraphWarning). Raises an inkgraph.Error.")
-        .def_property_readonly("gl_description", &PythonRenderer::glDescription,
-                               "The GL renderer, version and EGL platform in use, or '' before the first render.")
-        .def("close", &PythonRenderer::close, py::call_guard<py::gil_scoped_release>(),
-             "Gives the GL context back now; render() then raises UsageError.")
-        .def_property_readonly("closed", &PythonRenderer::closed)
+        // Each waits for a render another thread is in, so without the GIL: holding it, every Python thread waited.
+        .def_property_readonly(
+            "gl_description", [](PythonRenderer& self) { return withoutGil([&] { return self.glDescription(); }); },
+            "The GL renderer, version and EGL platform in use, or '' before the first render.")
+        .def(
+            "close", [](PythonRenderer& self) { withoutGil([&] { self.close(); }); },
+            "Gives the GL context back now; render() then raises UsageError.")
+        .def_property_readonly("closed", [](PythonRenderer& self) { return withoutGil([&] { return self.closed(); }); })
         .def("__enter__", [](const py::object& self) { return self; })
-        .def("__exit__", [](PythonRenderer& self, const py::args&) {
-            const py::gil_scoped_release release;
-            self.close();
-        });
+        .def("__exit__", [](PythonRenderer& self, const py::args&) { withoutGil([&] { self.close(); }); });
 }
 
 } // namespace
@@ -1568,8 +1574,7 @@ void defineModule(py::module_& m) {
           checked("write_image(): ", {"path", "image"},
                   [](const std::filesystem::path& path, const py::array& array) {
                       const ig::Image image = imageFromArray(array);
-                      const py::gil_scoped_release release;
-                      image.write(path.string());
+                      withoutGil([&] { image.write(path.string()); });
                   }),
           "path"_a, "image"_a,
           "Writes a uint8 or float32 array (height x width, or height x width x 1 or 4 channels, RGBA) as an image "

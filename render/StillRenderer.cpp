@@ -302,7 +302,7 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
     for (Warning& warning : shadeMapWarnings) warnOf(*still, std::move(warning), log);
     for (Warning& warning : unusedLookSettings(look, scene)) warnOf(*still, std::move(warning), log);
     // Judged where the still stands for its own load: only then is `animation` the one the scene was loaded with.
-    if (!req.loadedScene || req.reusesEarlierLoad)
+    if (!req.loadedScene || req.reusesEarlierLoad || req.loadedWithoutAnimation)
         if (std::optional<Warning> unused = unusedTimeWarning(req, scene)) warnOf(*still, std::move(*unused), log);
     failIfStrict(*still);
     return still;

@@ -60,6 +60,9 @@ struct StillRequest {
     /** `loadedScene` is what an earlier still of the batch loaded from `modelPath` with the same load options
      *  (app/RecentModel.h): its warnings are told again, as loading the file would, and --stats says model_reused. */
     bool reusesEarlierLoad = false;
+    /** `loadedScene` was loaded with no animation (the library's scene), so `animationTime` clocks only MToon's UV
+     *  animation, and time-unused is judged as for a load of the still's own. */
+    bool loadedWithoutAnimation = false;
     /** What earlier stills of `loadedScene` derived from it whatever the view (adjacency, curvature, ...), shared with
      *  them; null for a fresh one. Ignored unless it is `loadedScene`'s. */
     std::shared_ptr<SceneDerivedData> loadedSceneDerived;

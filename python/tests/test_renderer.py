@@ -6,6 +6,7 @@ import os
 import subprocess
 import sys
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -276,3 +277,112 @@ def test_render_lets_other_python_threads_run_while_it_draws(suzanne):
         sys.setswitchinterval(interval)
     thread.join()
     assert state["seen"] is True
+
+
+def test_closed_and_gl_description_let_other_threads_run_while_a_render_holds_the_renderer(suzanne):
+    # Both wait for a render another thread is in; they waited holding the GIL, so every Python thread stood still for
+    # the rest of that render (render() reads the default renderer's closed on every call). As in the test above, the
+    # observer can only run when the main thread gives up the GIL: now inside closed, while the drawer's render holds
+    # the renderer. Before each try the main thread sleeps, so the drawer (which needs the GIL between its renders)
+    # gets into its next render.
+    with inkgraph.Renderer() as renderer:
+        inkgraph.render(suzanne, size=64, renderer=renderer)
+        stop = threading.Event()
+
+        def draw():
+            while not stop.is_set():
+                inkgraph.render(suzanne, size=512, renderer=renderer)
+
+        drawer = threading.Thread(target=draw)
+        drawer.start()
+        try:
+            for read in (lambda: renderer.closed, lambda: renderer.gl_description):
+                seen_inside = False
+                for _ in range(100):
+                    state = {"inside": False, "seen": None}
+                    go = threading.Event()
+
+                    def observer():
+                        go.wait()
+                        state["seen"] = state["inside"]
+
+                    thread = threading.Thread(target=observer)
+                    thread.start()
+                    time.sleep(0.02)
+                    interval = sys.getswitchinterval()
+                    sys.setswitchinterval(1000)
+                    try:
+                        state["inside"] = True
+                        go.set()
+                        read()
+                    finally:
+                        state["inside"] = False
+                        sys.setswitchinterval(interval)
+                    thread.join()
+                    if state["seen"]:
+                        seen_inside = True
+                        break
+                assert seen_inside
+        finally:
+            stop.set()
+            drawer.join()
+
+
+def test_a_child_forked_while_another_thread_renders_gets_a_clear_error_not_a_hang(suzanne_path):
+    # The child inherits the renderer's lock held by a thread it does not have: closed, render() and close() hung.
+    code = """
+import os, sys, threading, inkgraph
+scene = inkgraph.Scene.load(sys.argv[1])
+renderer = inkgraph.Renderer()
+renderer.render(scene, None, inkgraph.Frame(32, 32))
+stop = threading.Event()
+started = threading.Event()
+def draw():
+    while not stop.is_set():
+        started.set()
+        renderer.render(scene, None, inkgraph.Frame(256, 256))
+thread = threading.Thread(target=draw)
+thread.start()
+started.wait()
+child = os.fork()
+if child == 0:
+    try:
+        assert renderer.closed is False
+        try:
+            renderer.render(scene, None, inkgraph.Frame(32, 32))
+            os._exit(10)
+        except inkgraph.UsageError as error:
+            if "which forked this one" not in str(error):
+                os._exit(11)
+        renderer.close()
+        os._exit(0 if renderer.closed else 12)
+    except BaseException:
+        os._exit(13)
+_, status = os.waitpid(child, 0)
+stop.set()
+thread.join()
+print(os.waitstatus_to_exitcode(status))
+"""
+    run = _run_python(code, suzanne_path)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split("\n")[0] == "0", run.stdout
+
+
+def test_the_interpreter_exits_cleanly_while_a_daemon_thread_is_inside_a_call(suzanne_path):
+    # At exit Python 3.11 ends a daemon thread that takes the GIL back with pthread_exit, whose unwind through
+    # pybind11's noexcept GIL guard aborted the process (exit 134) when the thread was inside a load or a render.
+    code = """
+import sys, threading, time, inkgraph
+scene = inkgraph.Scene.load(sys.argv[1])
+def work():
+    while True:
+        inkgraph.Scene.load(sys.argv[1])
+        inkgraph.render(scene, size=128)
+threading.Thread(target=work, daemon=True).start()
+time.sleep(0.3)
+print("leaving")
+"""
+    for _ in range(3):
+        run = _run_python(code, suzanne_path)
+        assert run.returncode == 0, (run.returncode, run.stderr)
+        assert run.stdout.strip() == "leaving"

@@ -364,3 +364,25 @@ def test_scene_load_takes_a_vrm_face_as_its_flags():
     with pytest.raises(inkgraph.InputError, match="no expression 'smile' .*'blink' \\(0.x 'Blink'\\)"):
         inkgraph.Scene.load(godette, expressions={"smile": 1})
 
+
+
+def test_a_frames_time_alone_moves_the_scenes_own_animation(repo):
+    # Load once with an animation, sweep the clock per frame: the frame's time was ignored (the picture stayed the
+    # load's) unless a face or pose in the same frame loaded the scene again.
+    fox = str(repo / "models" / "characters" / "fox.glb")
+    loaded = inkgraph.Scene.load(fox, animation="Walk", time=0.5)
+    at_rest = inkgraph.Scene.load(fox)
+    with inkgraph.Renderer() as renderer:
+        swept = renderer.render(loaded, None, inkgraph.Frame(SIZE, SIZE, orbit=(30, 10), time=0.9)).picture
+        posed = renderer.render(at_rest, None,
+                                inkgraph.Frame(SIZE, SIZE, orbit=(30, 10), animation="Walk", time=0.9)).picture
+        as_loaded = renderer.render(loaded, None, inkgraph.Frame(SIZE, SIZE, orbit=(30, 10))).picture
+    assert np.array_equal(swept, posed)
+    assert not np.array_equal(swept, as_loaded)
+
+
+def test_a_frames_time_that_moves_nothing_is_a_warning_as_on_the_command_line(repo):
+    fox = inkgraph.Scene.load(str(repo / "models" / "characters" / "fox.glb"))
+    with pytest.warns(inkgraph.InkgraphWarning, match="moves nothing"):
+        still = inkgraph.render(fox, frame=inkgraph.Frame(64, 64, time=1))
+    assert [warning.code for warning in still.warnings] == ["time-unused"]

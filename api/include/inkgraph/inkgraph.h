@@ -474,8 +474,10 @@ struct INKGRAPH_API Frame {
     /** A pose other than the scene's own (SceneOptions), for this render: the scene's file is loaded again in that
      *  pose (a scene made from arrays has none). Empty with time unset: the scene as loaded. */
     std::string animation;
-    /** Seconds into `animation`; also the clock of MToon's UV animation (--time), so it may be given without an
-     *  animation, which poses nothing. Unset: the scene's SceneOptions::time. */
+    /** Seconds into `animation`; also the clock of MToon's UV animation (--time). Unset: the scene's
+     *  SceneOptions::time. Given without `animation`, it moves the scene's own animation (SceneOptions::animation)
+     *  to this time, the file loaded again; a scene loaded without one it poses nothing (warning time-unused when
+     *  no material has a UV animation). */
     std::optional<double> time;
     /** A VRM humanoid pose other than the scene's own (SceneOptions::pose), for this render (--pose): the scene's
      *  file is loaded again in it. Empty: the scene's pose. */
