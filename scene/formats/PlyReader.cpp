@@ -193,7 +193,9 @@ Role vertexRole(std::string_view name) {
 Header readHeader(const std::string& path, std::string_view content) {
     const std::size_t firstEnd = content.find('\n');
     std::string_view firstLine = content.substr(0, firstEnd);
-    if (!firstLine.empty() && firstLine.back() == '\r') firstLine.remove_suffix(1);
+    // Blanks after the magic word (a writer's "ply \r\n") leave it the magic word.
+    while (!firstLine.empty() && (firstLine.back() == '\r' || firstLine.back() == ' ' || firstLine.back() == '\t'))
+        firstLine.remove_suffix(1);
     if (firstLine != "ply") {
         throwLoadError(path,
                        "not a PLY file: it starts with '" + excerptForMessage(firstLine) + "', not the line 'ply'");
@@ -386,6 +388,9 @@ struct Model {
     std::vector<glm::vec4> colors;  ///< empty, or one per position
     std::vector<glm::uvec3> triangles;
     std::size_t nonFiniteColours = 0;
+    /** The vertices whose normal is not finite in float, with their line (ASCII; 0 for binary): refused only when a
+     *  face uses one (refuseNonFiniteNormalsInUse()), since a vertex no face uses is dropped. */
+    std::vector<std::pair<std::uint64_t, std::size_t>> nonFiniteNormals;
     std::size_t coloursOutOfRange = 0; ///< float colour components outside [0, 1], clamped
     double colourFarthestOut = 0.0;    ///< the one farthest outside
     PolygonTriangulator triangulator;
@@ -421,6 +426,27 @@ struct Model {
 private:
     std::vector<glm::dvec3> polygonPositions; ///< scratch
 };
+
+/** Refuses the file where a face uses a vertex whose normal is not finite, naming the first such vertex (and its
+ *  line); the normals of vertices no face uses are set aside (finalizeMesh() drops those vertices). */
+void refuseNonFiniteNormalsInUse(const std::string& path, Model& model) {
+    if (model.nonFiniteNormals.empty()) return;
+    std::vector<std::uint8_t> used(model.normals.size(), 0);
+    for (const glm::uvec3& triangle : model.triangles)
+        for (int corner = 0; corner < 3; ++corner) used[triangle[corner]] = 1;
+    for (const auto& [vertex, line] : model.nonFiniteNormals) {
+        const glm::vec3& normal = model.normals[vertex];
+        if (!used[vertex]) {
+            model.normals[vertex] = glm::vec3(0.0f, 0.0f, 1.0f);
+            continue;
+        }
+        const std::string problem = "vertex " + std::to_string(vertex) + ", which a face uses: non-finite normal (" +
+                                    formatNumber(normal.x) + ", " + formatNumber(normal.y) + ", " +
+                                    formatNumber(normal.z) + ")";
+        if (line > 0) throwLoadErrorAtLine(path, line, problem);
+        throwLoadError(path, problem);
+    }
+}
 
 /** Triangles beyond the faces' count (polygons of more than three corners) are charged in steps of this many. */
 constexpr std::size_t kTriangleChargeStep = std::size_t(1) << 16;
@@ -644,8 +670,9 @@ private:
             if (hasNormals) {
                 const glm::vec3 stored(normal);
                 if (!std::isfinite(stored.x) || !std::isfinite(stored.y) || !std::isfinite(stored.z)) {
-                    fail(instance(element, index) + ": non-finite normal (" + formatNumber(normal.x) + ", " +
-                         formatNumber(normal.y) + ", " + formatNumber(normal.z) + ")");
+                    std::size_t line = 0;
+                    if constexpr (!Binary) line = mSource.line();
+                    model.nonFiniteNormals.emplace_back(index, line);
                 }
                 model.normals.push_back(stored);
             }
@@ -778,6 +805,7 @@ RawScene readPly(const std::string& path, std::string_view content, MeshBudget& 
         }
     }
     model.triangulatePolygonsBeforeVertices();
+    refuseNonFiniteNormalsInUse(path, model);
     if (model.triangulator.unresolvedPolygons() > 0) {
         scene.warnings.push_back(polygonsFannedWarning(model.triangulator));
     }

@@ -579,7 +579,13 @@ std::vector<Refusal> refusals() {
         {"BinaryNaN", binaryWithVertex(float(nan)), ": vertex 2: non-finite vertex coordinate (nan)"},
         {"BinaryInfinity", binaryWithVertex(-std::numeric_limits<float>::infinity()),
          ": vertex 2: non-finite vertex coordinate (-inf)"},
-        {"BinaryNonFiniteNormal", nonFiniteNormal.text(), ": vertex 2: non-finite normal (0, 0, nan)"},
+        {"BinaryNonFiniteNormal", nonFiniteNormal.text(),
+         ": vertex 2, which a face uses: non-finite normal (0, 0, nan)"},
+        {"AsciiNonFiniteNormal",
+         asciiWith("element vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\n"
+                   "property float ny\nproperty float nz\nelement face 4\nproperty list uchar int vertex_indices\n",
+                   "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 nan 0 1\n0 0 1 0 0 1\n" + kFaces),
+         " line 15: vertex 2, which a face uses: non-finite normal (nan, 0, 1)"},
         {"VertexCountBeyondIndices",
          "ply\nformat binary_little_endian 1.0\nelement vertex 4294967296\nproperty float x\nproperty float y\n"
          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n",
@@ -590,6 +596,26 @@ std::vector<Refusal> refusals() {
              std::string(24, '\0'),
          ": truncated: the file ends in vertex 2 of 1000"},
     };
+}
+
+TEST(PlyReader, ANonFiniteNormalOfAVertexNoFaceUsesIsSetAside) {
+    // Such a vertex is dropped with its normal; the file was refused for it.
+    const std::string header = "element vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+                               "property float nx\nproperty float ny\nproperty float nz\nelement face 4\n"
+                               "property list uchar int vertex_indices\n";
+    const Scene scene =
+        loadPly(asciiWith(header, "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n0 0 1 0 0 1\n9 9 9 nan inf 1\n" + kFaces));
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.vertexCount(), 4u);
+    for (const glm::vec3& normal : scene.meshes[0].normals)
+        EXPECT_TRUE(std::isfinite(normal.x) && std::isfinite(normal.y) && std::isfinite(normal.z));
+}
+
+TEST(PlyReader, BlanksAfterTheMagicWordLeaveItTheMagicWord) {
+    for (const std::string magic : {"ply \n", "ply\t\n", "ply  \r\n"})
+        EXPECT_EQ(worldTriangles(loadPly(magic + tetrahedron(Encoding::Ascii).substr(4))),
+                  worldTriangles(loadPly(tetrahedron(Encoding::Ascii))))
+            << magic;
 }
 
 TEST(PlyReader, AnUnderflowingCoordinateIsZero) {
