@@ -761,8 +761,9 @@ std::vector<std::size_t> keepWidthProfile(const Stroke& stroke, std::vector<std:
             const double off = 0.5 * std::abs(widthAt(index) - straight) * widthPixels;
             if (off > deviation) deviation = off, farthest = index;
         }
-        // At tolerance 0 a float's rounding is no change of width.
-        if (deviation <= std::max(tolerancePixels, 1e-4)) continue;
+        // Within the tolerance, but never more than an eighth of the full width (a 3 px taper is all within a
+        // tolerance of 2 px, and kept no width at all); at tolerance 0 a float's rounding is no change of width.
+        if (deviation <= std::max(std::min(tolerancePixels, 0.125 * widthPixels), 1e-4)) continue;
         keep[farthest % count] = 1;
         spans.emplace_back(from, farthest);
         spans.emplace_back(farthest, to);

@@ -198,8 +198,8 @@ LineSkeleton keptSkeleton(const Strokes& strokes, const std::vector<StrokeLayer>
 /** Layer `layer`'s kept strokes as polylines (Ramer-Douglas-Peucker with `tolerancePixels`, data pixels), in stroke
  *  order, with each vertex's width share in `widths` (one vector per polyline, when not null). With `widths`, the
  *  polylines also keep the points where a side of the line (half the width, at `widthPixels` data pixels per share)
- *  would leave its straight interpolation between kept neighbours by more than `tolerancePixels`: a straight tapered
- *  stroke keeps its middle. */
+ *  would leave its straight interpolation between kept neighbours by more than `tolerancePixels` or an eighth of
+ *  `widthPixels`, the smaller: a straight tapered stroke keeps its middle. */
 std::vector<Polyline> strokePolylines(const Strokes& strokes, int layer, double tolerancePixels,
                                       std::vector<std::vector<float>>* widths = nullptr, double widthPixels = 1.0);
 
