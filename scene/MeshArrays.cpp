@@ -189,7 +189,7 @@ private:
             WarningKind::ValueOutOfRange,
             "colors: " + std::to_string(outside) + " vertex colour component" + (outside == 1 ? " lies" : "s lie") +
                 " outside [0, 1] (as far out as " + detail::formatNumber(farthest) +
-                (farthest > 1.0f ? "; colours of 0 to 255? give them divided by 255" : "") + "); clamped into [0, 1]"));
+                (farthest > 1.5f ? "; colours of 0 to 255? give them divided by 255" : "") + "); clamped into [0, 1]"));
     }
 
     const MeshArrays& mArrays;

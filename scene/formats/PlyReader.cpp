@@ -818,7 +818,7 @@ RawScene readPly(const std::string& path, std::string_view content, MeshBudget& 
                         std::to_string(model.coloursOutOfRange) + " vertex colour component" +
                             (model.coloursOutOfRange == 1 ? " lies" : "s lie") + " outside [0, 1] (as far out as " +
                             formatNumber(model.colourFarthestOut) +
-                            (model.colourFarthestOut > 1.0 ? "; colours of 0 to 255 in a float property?" : "") +
+                            (model.colourFarthestOut > 1.5 ? "; colours of 0 to 255 in a float property?" : "") +
                             "); clamped into [0, 1]"));
     }
     if (model.nonFiniteColours > 0) {

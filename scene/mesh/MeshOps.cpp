@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -756,34 +757,38 @@ Mesh finalizeMesh(RawMesh raw, double modelDiagonal, const LoadOptions& options,
         degenerateTriangles(positions, triangles, kDegenerateAreaRelative * modelDiagonal * modelDiagonal);
     drop(degenerate);
     report.degenerateDropped += degenerate.size();
-    // A face the file gives twice draws nothing the first does not, but it makes each of its edges one of four faces,
-    // so the border and the non-manifold edges would draw every edge of a mesh given twice (a wireframe).
-    const std::vector<std::uint32_t> repeated = repeatedTriangles(triangles);
-    drop(repeated);
-    report.repeatedDropped += repeated.size();
-    // A two-sided material draws the back of each face, so a face's back-to-back twin adds nothing but harm: the
-    // pair's smooth normals cancel (a double-faced card shaded in black wedges) and both sheets fight for depth.
-    // Twins are found on vertices that differ in position or attributes, not in normal: a card's back sheet carries
-    // the opposite normals, which the material's back face draws anyway.
-    if (raw.material.doubleSided) {
-        std::vector<std::uint32_t> twins;
-        // Unless normals kept some copies of a corner apart, the weld's vertices are the surface's already.
-        if (!weld.splitByNormals) {
-            twins = backToBackTwins(triangles);
-        } else {
+    // The triangles on vertices that differ in position or attributes, not in normal: the surface a face lies on.
+    // Unless normals kept some copies of a corner apart, the weld's vertices are the surface's already.
+    std::optional<WeldMap> sameSurface; // made once, when first needed
+    const auto onSurface = [&]() -> std::vector<glm::uvec3> {
+        if (!weld.splitByNormals) return triangles;
+        if (!sameSurface) {
             std::vector<std::uint32_t> classes;
             if (!attributeClasses.empty()) {
                 classes.resize(weld.kept.size());
                 for (std::size_t vertex = 0; vertex < classes.size(); ++vertex)
                     classes[vertex] = attributeClasses[weld.kept[vertex]];
             }
-            const WeldMap sameSurface = weldVertices(positions, {}, options.weldTolerance * modelDiagonal, classes);
-            std::vector<glm::uvec3> onSurface(triangles.size());
-            for (std::size_t t = 0; t < triangles.size(); ++t)
-                onSurface[t] = glm::uvec3(sameSurface.outputOf[triangles[t].x], sameSurface.outputOf[triangles[t].y],
-                                          sameSurface.outputOf[triangles[t].z]);
-            twins = backToBackTwins(onSurface);
+            sameSurface = weldVertices(positions, {}, options.weldTolerance * modelDiagonal, classes);
         }
+        std::vector<glm::uvec3> surface(triangles.size());
+        for (std::size_t t = 0; t < triangles.size(); ++t)
+            surface[t] = glm::uvec3(sameSurface->outputOf[triangles[t].x], sameSurface->outputOf[triangles[t].y],
+                                    sameSurface->outputOf[triangles[t].z]);
+        return surface;
+    };
+    // A face the file gives twice draws nothing the first does not, but it makes each of its edges one of four faces,
+    // so the border and the non-manifold edges would draw every edge of a mesh given twice (a wireframe). Found on
+    // the surface: a copy with normals of its own (a flat and a smooth copy) is the same face; the first's stay.
+    const std::vector<std::uint32_t> repeated = repeatedTriangles(onSurface());
+    drop(repeated);
+    report.repeatedDropped += repeated.size();
+    // A two-sided material draws the back of each face, so a face's back-to-back twin adds nothing but harm: the
+    // pair's smooth normals cancel (a double-faced card shaded in black wedges) and both sheets fight for depth.
+    // Twins are found on the surface too: a card's back sheet carries the opposite normals, which the material's back
+    // face draws anyway.
+    if (raw.material.doubleSided) {
+        const std::vector<std::uint32_t> twins = backToBackTwins(onSurface());
         drop(twins);
         report.backToBackDropped += twins.size();
     }

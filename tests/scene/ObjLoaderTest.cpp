@@ -241,6 +241,25 @@ TEST(ObjLoader, FacesTheFileGivesTwiceLoadOnce) {
     }
 }
 
+TEST(ObjLoader, AFaceGivenAgainWithNormalsOfItsOwnLoadsOnce) {
+    // A flat copy of a smooth face (or a smooth copy of a flat one) is the same face: found on the surface's
+    // vertices, as back-to-back twins are; the first copy's normals stay.
+    const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nvn 0.6 0 0.8\n";
+    const Scene scene =
+        loadScene(TempFile("copies.obj", square + "f 1//1 2//1 3//1 4//1\nf 1//2 2//2 3//2 4//2\n").path());
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.meshes[0].triangleCount(), 2u);
+    EXPECT_EQ(scene.report.repeatedDropped, 2u);
+    for (const glm::vec3& normal : scene.meshes[0].normals) EXPECT_EQ(normal, glm::vec3(0, 0, 1));
+    const EdgeAdjacency adjacency = buildEdgeAdjacency(scene.meshes[0].positions, scene.meshes[0].triangles, 0.0);
+    EXPECT_EQ(adjacency.counts.boundary, 4u);
+    EXPECT_EQ(adjacency.counts.nonManifold, 0u);
+    // A copy with texture coordinates of its own is a face of its own (another picture on the same place).
+    const std::string textured = square + "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n";
+    const Scene kept = loadScene(TempFile("own.obj", textured + "f 1/1 2/2 3/3 4/4\nf 1/5 2/5 3/5 4/5\n").path());
+    EXPECT_EQ(kept.report.repeatedDropped, 0u);
+}
+
 TEST(ObjLoader, AConcaveDoubleFacedPolygonShadesAsItsOwnSides) {
     // A star written again in reverse is cut into other ears, so only some of its triangles pair up as back-to-back
     // twins; the rest share their corners with the other side, whose smooth normals cancelled: black wedges.
