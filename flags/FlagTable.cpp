@@ -132,9 +132,11 @@ Orbit parseOrbit(const std::string& flag, const std::string& text) {
     return orbit;
 }
 
-/** Decimal digits only: a count written "16.0" or "1e1" is taken for a typing slip, not read as 16 or 10. */
+/** Decimal digits only, after an optional '+' (as every number may carry): a count written "16.0" or "1e1" is taken
+ *  for a typing slip, not read as 16 or 10. */
 bool isDigits(const std::string& text) {
-    return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+    const std::size_t start = text.starts_with('+') ? 1 : 0;
+    return text.size() > start && text.find_first_not_of("0123456789", start) == std::string::npos;
 }
 
 void parseSize(const std::string& text, int& width, int& height) {
@@ -290,8 +292,9 @@ std::vector<ExpressionWeight> parseExpressions(const std::string& flag, const st
 /** A whole number from 0 to 2^64 - 1, in decimal (--seed). */
 std::uint64_t parseSeed(const std::string& flag, const std::string& text) {
     std::uint64_t value = 0;
-    const auto [stop, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (error != std::errc() || stop != text.data() + text.size())
+    const std::size_t start = text.size() > 1 && text[0] == '+' ? 1 : 0; // from_chars takes no '+'
+    const auto [stop, error] = std::from_chars(text.data() + start, text.data() + text.size(), value);
+    if (error != std::errc() || stop != text.data() + text.size() || (start == 1 && text[1] == '-'))
         throw UsageError(flag + ": expected a whole number from 0 to 18446744073709551615, got '" + text + "'");
     return value;
 }

@@ -129,6 +129,19 @@ TEST(FlagTable, ANumbersProblemIsNamed) {
     EXPECT_EQ(messageOf("nan"), "--x: 'nan' is not a finite number");
     EXPECT_EQ(messageOf("-inf"), "--x: '-inf' is not a finite number");
     EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--contour-width", "+3"}), "(no error)");
+    // Whole numbers take the '+' too (and still no point or exponent).
+    const RenderOptions plus = parseRenderOptions(
+        {"m.obj", "-o", "x.png", "--size", "+64x+32", "--supersample", "+2", "--seed", "+7", "--views", "+3"});
+    EXPECT_EQ(plus.width, 64);
+    EXPECT_EQ(plus.height, 32);
+    EXPECT_EQ(plus.look.supersample, 2);
+    EXPECT_EQ(plus.viewSampling.seed, 7u);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--supersample", "+-2"}).find("expected a whole number"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--seed", "+-2"}).find("expected a whole number"),
+              std::string::npos);
+    EXPECT_NE(usageMessage({"m.obj", "-o", "x.png", "--supersample", "+"}).find("expected a whole number"),
+              std::string::npos);
 }
 
 TEST(FlagTable, ParametersStateTheirDeclaredDefaultInTheHelp) {

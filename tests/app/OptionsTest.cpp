@@ -575,8 +575,10 @@ TEST(Options, WholeNumbersAreWrittenInDigitsOnly) {
               "--size: width and height must be whole numbers from 1 to 16384, got '1e3x64'");
     EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--size", "64x64.0"}),
               "--size: width and height must be whole numbers from 1 to 16384, got '64x64.0'");
-    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--size", "+64x64"}),
-              "--size: width and height must be whole numbers from 1 to 16384, got '+64x64'");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--size", "-64x64"}),
+              "--size: width and height must be whole numbers from 1 to 16384, got '-64x64'");
+    EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--size", "+-64x64"}),
+              "--size: width and height must be whole numbers from 1 to 16384, got '+-64x64'");
     EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--supersample", "2.0"}),
               "--supersample: expected a whole number from 1 to 8, got '2.0'");
     EXPECT_EQ(usageMessage({"m.obj", "-o", "x.png", "--jobs", "1e1"}),
