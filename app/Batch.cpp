@@ -251,8 +251,15 @@ void checkOutputsAcrossShards(const RenderOptions& options, const BatchList& lis
 } // namespace
 
 void checkBatchInputs(const RenderOptions& options) {
-    if (!options.look.shadeMapPath.empty())
-        (void)readShadeMapFile(options.look.shadeMapPath, traitsOf(options.look.shading).oneDimensionalMap);
+    if (!options.look.shadeMapPath.empty()) {
+        try {
+            (void)readShadeMapFile(options.look.shadeMapPath, traitsOf(options.look.shading).oneDimensionalMap);
+        } catch (const InputFileError& error) {
+            // A style file's map is named by its line, as the style's other settings are.
+            if (options.shadeMapOrigin.empty()) throw;
+            throw InputFileError(options.shadeMapOrigin + ": " + error.what());
+        }
+    }
     const std::size_t memoryLimit = memoryLimitOf(options);
     checkPoseFile(options.pose, memoryLimit, "--pose");
     for (const std::string& choice : options.viewSampling.poseChoices)

@@ -224,8 +224,11 @@ RenderOptions parse(std::vector<std::string> arguments, std::vector<std::string>
             if (origins.empty() || origins[flagIndex].empty()) throw;
             throw UsageError(origins[flagIndex] + ": " + error.what());
         }
-        if (const Flag* flag = findFlag(arguments[flagIndex]); flag != nullptr)
+        if (const Flag* flag = findFlag(arguments[flagIndex]); flag != nullptr) {
             (fromStyleFile(origins, flagIndex) ? fromStyle : fromCommandLine).push_back(flag);
+            if (flag->names.back() == "--shademap")
+                options.shadeMapOrigin = fromStyleFile(origins, flagIndex) ? origins[flagIndex] : std::string();
+        }
     }
     if (!flagsOnly && options.modelPaths.empty() && options.listPath.empty())
         throw UsageError("missing MODEL (a " + modelFileExtensions() + " file, or --list FILE)");

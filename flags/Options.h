@@ -105,6 +105,9 @@ struct RenderOptions {
     std::optional<std::size_t> memoryLimitBytes;  ///< --memory-limit; default: half the machine's memory, >= 1 GiB
     double weldTolerance = kDefaultWeldTolerance; ///< --weld-distance: LoadOptions::weldTolerance
     std::string stylePath;                        ///< --style, for the stats (its settings are already in the options)
+    /** Where a style file gave --shademap ("--style 'F' line N"), for the messages of a map that cannot be read;
+     *  empty when the command line gave it. */
+    std::string shadeMapOrigin;
     bool quiet = false;
     bool strict = false; ///< --strict: every warning about the model or the view fails the still (exit 3)
     bool help = false;   ///< --help or -h in a flag's place: print help, do nothing else

@@ -1,6 +1,7 @@
 // app/Batch: which models a run renders, how output paths expand, and which batches are refused before any work.
 // No GL: the rendering of a batch is tests/app/BatchGLTest.cpp.
 #include "app/Batch.h"
+#include "flags/StyleFile.h"
 
 #include "tests/support/TestFolder.h"
 
@@ -292,6 +293,14 @@ TEST_F(BatchListFile, TheFilesEveryStillReadsBesidesItsModelAreJudgedOnceBeforeT
     options.look.shading = ShadingModel::Cel;
     options.look.shadeMapPath = notPng;
     EXPECT_EQ(message(options).rfind("--shademap: '" + notPng + "'", 0), 0u) << message(options);
+    // A style file's map is named by the style's line, as its other settings are.
+    const std::string style = write("look.style", "shading = cel\nshademap = map.png\n");
+    const SourcedArguments expanded = expandStyleFile({"a.obj", "--style", style, "-o", "o.png"});
+    const RenderOptions styled = parseRenderOptions(expanded.arguments, expanded.origins);
+    EXPECT_EQ(message(styled).rfind("--style '" + style + "' line 2: --shademap: '", 0), 0u) << message(styled);
+    options.shadeMapOrigin.clear();
+    EXPECT_EQ(parseRenderOptions({"a.obj", "-o", "o.png", "--shading", "cel", "--shademap", notPng}).shadeMapOrigin,
+              "");
 }
 
 TEST(BatchOutputs, NoStillMayOverwriteAModelOfTheList) {
