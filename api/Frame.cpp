@@ -28,6 +28,9 @@ void applyFrame(const Frame& frame, RenderOptions& options, std::vector<std::str
     if (frame.orbit) {
         std::string orbit = exactText(frame.orbit->azimuth) + "," + exactText(frame.orbit->elevation);
         // Appended piece by piece: a literal prepended to a temporary string draws GCC 12's -Wrestrict false positive.
+        if (frame.orbit->distance && frame.orbit->distanceScale != 1.0)
+            throw UsageError("Frame::orbit: a distance and a distanceScale (" + exactText(frame.orbit->distanceScale) +
+                             ") are given; the scale is of the auto-framing distance, so give one of them");
         if (frame.orbit->distance) orbit.append(",").append(exactText(*frame.orbit->distance));
         if (!frame.orbit->distance && frame.orbit->distanceScale != 1.0)
             orbit.append(",x").append(exactText(frame.orbit->distanceScale));

@@ -269,9 +269,11 @@ struct Renderer::Impl {
         // A time alone moves the scene's own animation to it, as it does with a face or pose given beside it.
         const bool retimed =
             !posed && !sceneImpl.options.animation.empty() && frame.time && *frame.time != sceneImpl.options.time;
-        const bool animated = (posed && (frame.animation != sceneImpl.options.animation ||
-                                         frame.time.value_or(0.0) != sceneImpl.options.time)) ||
-                              retimed;
+        // Unset, the frame's time is the scene's, also beside an animation the frame names.
+        const double frameTime = frame.time.value_or(sceneImpl.options.time);
+        const bool animated =
+            (posed && (frame.animation != sceneImpl.options.animation || frameTime != sceneImpl.options.time)) ||
+            retimed;
         // Without an animation the scene's load poses nothing, so a time only clocks the UV animation.
         request.loadedWithoutAnimation = sceneImpl.options.animation.empty();
         const bool reposed = !frame.pose.empty() && frame.pose != sceneImpl.options.pose;
@@ -295,7 +297,7 @@ struct Renderer::Impl {
             request.loadedScene.reset();
             request.loadedSceneDerived.reset();
             request.animation = posed ? options.animation : sceneImpl.options.animation;
-            if (posed) request.animationTime = options.animationTime;
+            request.animationTime = frameTime;
             request.pose = reposed ? options.pose : sceneImpl.options.pose;
             applyFace(sceneImpl.options.expressions, sceneImpl.options.lookAt, "SceneOptions::", request.expressions,
                       request.lookAt);

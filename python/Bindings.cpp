@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -609,11 +610,10 @@ public:
     void close() {
         const std::unique_lock lock = oneAtATime();
         mRenderer.reset();
+        mClosed = true;
     }
-    bool closed() {
-        const std::unique_lock lock = oneAtATime();
-        return !mRenderer;
-    }
+    /** Without the lock: whether it is closed needs no wait for a render another thread is in. */
+    bool closed() const { return mClosed; }
 
 private:
     /** The lock of this renderer's calls; none in a process forked from the one that made it, which has only the
@@ -631,6 +631,7 @@ private:
     std::mutex mMutex;
     const int mMadeInProcess = int(getpid());
     std::optional<ig::Renderer> mRenderer;
+    std::atomic<bool> mClosed{false};
 };
 
 /** `out` checked as the picture of `frame`: a writable uint8 (height, width, 4) array whose pixels are packed (4
@@ -1466,14 +1467,15 @@ void defineRenderer(py::module_& m) {
             "'gbuffer.*' and 'lines.*' expand). With `out`, a writable uint8 (height, width, 4) array whose pixel rows "
             "are packed (a row stride of its own is fine), the picture is drawn into it and the still's picture views "
             "it. Runs without the GIL; issues the still's warnings (InkgraphWarning). Raises an inkgraph.Error.")
-        // Each waits for a render another thread is in, so without the GIL: holding it, every Python thread waited.
+        // Each waits for a render another thread is in, so without the GIL: holding it, every Python thread waited
+        // (closed no longer waits at all).
         .def_property_readonly(
             "gl_description", [](PythonRenderer& self) { return withoutGil([&] { return self.glDescription(); }); },
             "The GL renderer, version and EGL platform in use, or '' before the first render.")
         .def(
             "close", [](PythonRenderer& self) { withoutGil([&] { self.close(); }); },
             "Gives the GL context back now; render() then raises UsageError.")
-        .def_property_readonly("closed", [](PythonRenderer& self) { return withoutGil([&] { return self.closed(); }); })
+        .def_property_readonly("closed", &PythonRenderer::closed)
         .def("__enter__", [](const py::object& self) { return self; })
         .def("__exit__", [](PythonRenderer& self, const py::args&) { withoutGil([&] { self.close(); }); });
 }

@@ -270,6 +270,9 @@ def _flag_value(flag: str, value: Any) -> str:
     word, lists, tuples and the small value types (Vec3, Color, Orbit, Clip) joined by commas."""
     if isinstance(value, (str, numbers.Real, os.PathLike)) or hasattr(value, "cli_name"):
         return _scalar_value(flag, value)
+    if isinstance(value, Orbit) and value.distance is not None and value.distance_scale != 1.0:
+        raise ValueError(f"{flag}: the Orbit gives a distance and a distance_scale ({value.distance_scale}); the "
+                         "scale is of the auto-framing distance, so give one of them")
     if isinstance(value, Orbit) and value.distance is None and value.distance_scale != 1.0:
         # The scale is the command line's xS in place of a distance (an Orbit's items leave it out).
         return f"{_scalar_value(flag, value.azimuth)},{_scalar_value(flag, value.elevation)}," \

@@ -125,6 +125,10 @@ def test_small_values_in_camera_and_look_dicts_are_the_flags_values(suzanne):
     from_dict = inkgraph.render(suzanne, size=SIZE, camera={"orbit": orbit})
     assert from_dict.camera.eye == from_frame.camera.eye
     assert np.array_equal(from_dict.picture, from_frame.picture)
+    with pytest.raises(ValueError, match="gives a distance and a distance_scale"):
+        inkgraph.render(suzanne, size=SIZE, camera={"orbit": inkgraph.Orbit(30, 10, 3, distance_scale=2)})
+    with pytest.raises(inkgraph.UsageError, match="a distance and a distanceScale"):
+        inkgraph.render(suzanne, frame=inkgraph.Frame(SIZE, SIZE, orbit=inkgraph.Orbit(30, 10, 3, distance_scale=2)))
     paper = inkgraph.Look(paper=(1, 0.9, 0.8)).paper
     tinted = inkgraph.render(suzanne, {"background": paper}, size=SIZE).picture
     assert tuple(tinted[0, 0]) == (255, 230, 204, 255)

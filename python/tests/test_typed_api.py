@@ -377,8 +377,11 @@ def test_a_frames_time_alone_moves_the_scenes_own_animation(repo):
         posed = renderer.render(at_rest, None,
                                 inkgraph.Frame(SIZE, SIZE, orbit=(30, 10), animation="Walk", time=0.9)).picture
         as_loaded = renderer.render(loaded, None, inkgraph.Frame(SIZE, SIZE, orbit=(30, 10))).picture
+        # Unset, a frame's time is the scene's, also beside the animation named again (it was 0 there).
+        named = renderer.render(loaded, None, inkgraph.Frame(SIZE, SIZE, orbit=(30, 10), animation="Walk")).picture
     assert np.array_equal(swept, posed)
     assert not np.array_equal(swept, as_loaded)
+    assert np.array_equal(named, as_loaded)
 
 
 def test_a_frames_time_that_moves_nothing_is_a_warning_as_on_the_command_line(repo):

@@ -381,6 +381,12 @@ TEST_F(ApiRenderRefusal, AFrameIsCheckedByItsFlagsRules) {
     frame.orbit = ig::Orbit{30.0, 10.0};
     frame.eye = ig::Vec3{0.0, 0.0, 5.0};
     EXPECT_STREQ(renderError({}, frame).what(), "Renderer::render(): --orbit and --eye both place the eye: give one");
+    // A distance and a scale of the auto-framing distance: the scale was ignored without a word.
+    frame = {};
+    frame.orbit = ig::Orbit{30.0, 10.0, 3.0, 2.0};
+    EXPECT_STREQ(renderError({}, frame).what(),
+                 "Renderer::render(): Frame::orbit: a distance and a distanceScale (2) are given; the scale is of the "
+                 "auto-framing distance, so give one of them");
     frame = {};
     frame.fov = 180.0;
     EXPECT_STREQ(renderError({}, frame).what(),
