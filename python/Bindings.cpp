@@ -48,6 +48,7 @@
 namespace py = pybind11;
 namespace ig = inkgraph::api;
 using namespace pybind11::literals;
+using inkgraph::python::CallsAtExit;
 using inkgraph::python::checked;
 using inkgraph::python::commaSeparated;
 using inkgraph::python::escapedUtf8;
@@ -1289,7 +1290,7 @@ void defineStill(py::module_& m) {
         .def("write",
              checked("Still.write(): ", {"self", "path"},
                      [](const PythonStill& self, const std::filesystem::path& path) {
-                         withoutGil([&] { self.still.write(path.string()); });
+                         CallsAtExit::run([&] { self.still.write(path.string()); });
                      }),
              "path"_a,
              "Writes the picture; the format follows the extension. Raises OutputError naming the file (also for a "
@@ -1326,7 +1327,7 @@ void defineScene(py::module_& m) {
                         options.strict = strict;
                         options.weldDistance = weldDistance;
                         std::optional<ig::Scene> scene;
-                        withoutGil([&] { scene.emplace(ig::Scene::load(path.string(), options)); });
+                        CallsAtExit::run([&] { scene.emplace(ig::Scene::load(path.string(), options)); });
                         issueWarnings(warningObjects(scene->warnings()));
                         return *scene;
                     }),
@@ -1372,7 +1373,8 @@ void defineScene(py::module_& m) {
                         // The library checks the values (finite, indices in range, the limits) and names its arrays as
                         // the arguments are named; only the function is spelt Python's way.
                         try {
-                            withoutGil([&] { scene.emplace(ig::Scene::fromArrays(arrays, name.bytes, options)); });
+                            CallsAtExit::run(
+                                [&] { scene.emplace(ig::Scene::fromArrays(arrays, name.bytes, options)); });
                         } catch (const ig::Error& error) {
                             const std::string cpp = "Scene::fromArrays()";
                             std::string message = error.what();
@@ -1455,7 +1457,7 @@ void defineRenderer(py::module_& m) {
                         pixels = static_cast<std::uint8_t*>(py::reinterpret_borrow<py::array>(out).mutable_data());
                     }
                     std::optional<ig::Still> still;
-                    withoutGil([&] {
+                    CallsAtExit::run([&] {
                         still.emplace(self.render(scene, lookValue, frameValue, bytesOf(buffers), pixels, rowBytes));
                     });
                     issueWarnings(warningObjects(still->warnings()));
@@ -1576,12 +1578,17 @@ void defineModule(py::module_& m) {
           checked("write_image(): ", {"path", "image"},
                   [](const std::filesystem::path& path, const py::array& array) {
                       const ig::Image image = imageFromArray(array);
-                      withoutGil([&] { image.write(path.string()); });
+                      CallsAtExit::run([&] { image.write(path.string()); });
                   }),
           "path"_a, "image"_a,
           "Writes a uint8 or float32 array (height x width, or height x width x 1 or 4 channels, RGBA) as an image "
           "file; the format follows the extension (PNG; EXR, TIFF, JPEG through OpenImageIO). Raises OutputError "
           "naming the file, also for a place that is not a regular file or a new name (a FIFO, a device).");
+
+    m.def(
+        "_stop_calls_for_exit", &CallsAtExit::stopCallsForExit,
+        "At interpreter exit (an atexit handler): waits for the loads, renders and writes in flight and keeps new ones "
+        "from starting, so no daemon thread is inside the library when the process ends.");
 
     refusePicklingOfTheRest(m);
     nameArgumentRefusals(m);

@@ -3,7 +3,11 @@
 
 #include <Python.h>
 
+#include <condition_variable>
+#include <cstddef>
 #include <exception>
+#include <mutex>
+#include <thread>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -51,5 +55,60 @@ auto withoutGil(Work&& work) {
         return std::move(*result);
     }
 }
+
+/** The calls that drive the renderer, the loaders and the writers (not close()), counted, so that the interpreter's
+ *  exit can wait for those in flight and keep new ones from starting: a daemon thread rendering while exit() ran the
+ *  library's and the GL driver's static destructors crashed the process (SIGSEGV). stopCallsForExit() runs from an
+ *  atexit handler (inkgraph/_front.py), before the default renderer is closed; a call another thread starts after it
+ *  waits for the process to end (the exiting thread's own, from atexit handlers that run later, still run). */
+class CallsAtExit {
+public:
+    /** Runs `work` as withoutGil() does, counted; blocks for good once the exit has begun. */
+    template <typename Work>
+    static auto run(Work&& work) {
+        return withoutGil([&] {
+            enter();
+            struct Leave {
+                ~Leave() { leave(); }
+            } leave;
+            return std::forward<Work>(work)();
+        });
+    }
+
+    /** Keeps new calls from starting and waits (without the GIL) for those in flight. */
+    static void stopCallsForExit() {
+        withoutGil([] {
+            std::unique_lock lock(state().mutex);
+            state().exiting = true;
+            state().exitingThread = std::this_thread::get_id();
+            state().idle.wait(lock, [] { return state().inFlight == 0; });
+        });
+    }
+
+private:
+    struct State {
+        std::mutex mutex;
+        std::condition_variable idle;
+        std::size_t inFlight = 0;
+        bool exiting = false;
+        std::thread::id exitingThread; ///< the thread that runs the exit, whose later calls (atexit handlers) still run
+    };
+    static State& state() {
+        static State* const shared = new State(); // never destroyed: threads may still wait on it at exit
+        return *shared;
+    }
+    static void enter() {
+        std::unique_lock lock(state().mutex);
+        if (state().exiting && std::this_thread::get_id() != state().exitingThread) {
+            lock.unlock();
+            for (;;) pause();
+        }
+        ++state().inFlight;
+    }
+    static void leave() {
+        const std::lock_guard lock(state().mutex);
+        if (--state().inFlight == 0) state().idle.notify_all();
+    }
+};
 
 } // namespace inkgraph::python

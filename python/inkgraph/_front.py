@@ -17,6 +17,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._inkgraph import Clip, Color, Frame, LineType, Look, Orbit, Renderer, Scene, Shading, Still, StillCamera, Vec3
+from ._inkgraph import _stop_calls_for_exit
 from ._errors import UsageError
 from ._warnings import InkgraphWarning
 
@@ -249,6 +250,12 @@ def _close_default_renderer() -> None:
     # While the interpreter is whole, rather than whenever module teardown reaches the object.
     if _default is not None:
         _default.close()
+
+
+# Registered after the closing, so it runs first (atexit is last in, first out): no load, render or write is in flight
+# when the default renderer closes, and a daemon thread's later call waits for the process to end (one rendering
+# while exit() tore the driver down crashed the process).
+atexit.register(_stop_calls_for_exit)
 
 
 def _flag_pairs(flags: Mapping[str, Any]) -> list[tuple[str, str | None]]:

@@ -247,36 +247,41 @@ def test_the_low_level_api_renders_as_render_does(suzanne):
     assert np.array_equal(still.buffer("depth"), expected.buffers["depth"])
 
 
+def _an_observer_runs_inside(call, attempts: int, before=lambda: None) -> bool:
+    """Whether another Python thread ran while call() ran, in one of `attempts` tries. With a switch interval this long
+    the interpreter never takes the GIL from the main thread: the observer, woken just before call(), gets it only when
+    the main thread gives it up, which call() must do (else the observer runs at join(), after it, and sees inside
+    False). The OS may not schedule the woken observer during one short call on a loaded machine (this failed under a
+    parallel ctest), so each try has an observer of its own; `before` runs ahead of each."""
+    for _ in range(attempts):
+        before()
+        state = {"inside": False, "seen": None}
+        go = threading.Event()
+
+        def observer():
+            go.wait()
+            state["seen"] = state["inside"]
+
+        thread = threading.Thread(target=observer)
+        thread.start()
+        interval = sys.getswitchinterval()
+        sys.setswitchinterval(1000)
+        try:
+            state["inside"] = True
+            go.set()
+            call()
+        finally:
+            state["inside"] = False
+            sys.setswitchinterval(interval)
+        thread.join()
+        if state["seen"]:
+            return True
+    return False
+
+
 def test_render_lets_other_python_threads_run_while_it_draws(suzanne):
     inkgraph.render(suzanne, size=64)  # the context exists: the next render only draws
-    state = {"inside": False, "seen": None}
-    go = threading.Event()
-
-    def observer():
-        go.wait()
-        state["seen"] = state["inside"]
-
-    thread = threading.Thread(target=observer)
-    thread.start()
-    # With a switch interval this long the interpreter never takes the GIL from the main thread: the observer, woken
-    # by go, gets it only when the main thread gives it up, which render() does while it draws (else the observer
-    # would run at join(), after the renders, and see inside False). The OS may not schedule the woken observer during
-    # one short render on a loaded machine (this failed under a parallel ctest), so the main thread renders again,
-    # never giving up the GIL in between, until the observer has run in one.
-    interval = sys.getswitchinterval()
-    sys.setswitchinterval(1000)
-    try:
-        state["inside"] = True
-        go.set()
-        for _ in range(50):
-            inkgraph.render(suzanne, size=64)
-            if state["seen"] is not None:
-                break
-        state["inside"] = False
-    finally:
-        sys.setswitchinterval(interval)
-    thread.join()
-    assert state["seen"] is True
+    assert _an_observer_runs_inside(lambda: inkgraph.render(suzanne, size=64), 50)
 
 
 def test_gl_description_lets_other_threads_run_while_a_render_holds_the_renderer(suzanne):
@@ -296,35 +301,10 @@ def test_gl_description_lets_other_threads_run_while_a_render_holds_the_renderer
         drawer = threading.Thread(target=draw)
         drawer.start()
         try:
-            # closed answers at once, without the lock; gl_description waits, without the GIL.
+            # closed answers at once, without the lock; gl_description waits, without the GIL. Before each try the
+            # main thread sleeps, so the drawer (which needs the GIL between its renders) gets into its next render.
             assert renderer.closed is False
-            for read in (lambda: renderer.gl_description,):
-                seen_inside = False
-                for _ in range(100):
-                    state = {"inside": False, "seen": None}
-                    go = threading.Event()
-
-                    def observer():
-                        go.wait()
-                        state["seen"] = state["inside"]
-
-                    thread = threading.Thread(target=observer)
-                    thread.start()
-                    time.sleep(0.02)
-                    interval = sys.getswitchinterval()
-                    sys.setswitchinterval(1000)
-                    try:
-                        state["inside"] = True
-                        go.set()
-                        read()
-                    finally:
-                        state["inside"] = False
-                        sys.setswitchinterval(interval)
-                    thread.join()
-                    if state["seen"]:
-                        seen_inside = True
-                        break
-                assert seen_inside
+            assert _an_observer_runs_inside(lambda: renderer.gl_description, 100, lambda: time.sleep(0.02))
         finally:
             stop.set()
             drawer.join()
