@@ -3,6 +3,7 @@
 
 #include <Python.h>
 
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -87,15 +88,24 @@ public:
 
 private:
     struct State {
+        const pid_t process = getpid();
         std::mutex mutex;
         std::condition_variable idle;
         std::size_t inFlight = 0;
         bool exiting = false;
         std::thread::id exitingThread; ///< the thread that runs the exit, whose later calls (atexit handlers) still run
     };
+    /** Never destroyed: threads may still wait on it at exit. A child forked while a thread of the parent was in a
+     *  call takes a fresh one: the parent's count (and maybe its lock) speak of threads the child lacks, and its exit
+     *  waited for them for ever. */
     static State& state() {
-        static State* const shared = new State(); // never destroyed: threads may still wait on it at exit
-        return *shared;
+        static std::atomic<State*> shared{new State()};
+        State* current = shared.load();
+        if (current->process == getpid()) return *current;
+        State* const fresh = new State();
+        if (shared.compare_exchange_strong(current, fresh)) return *fresh;
+        delete fresh; // another thread of the child made it first
+        return *current;
     }
     static void enter() {
         std::unique_lock lock(state().mutex);

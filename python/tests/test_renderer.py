@@ -368,3 +368,32 @@ print("leaving")
         run = _run_python(code, suzanne_path)
         assert run.returncode == 0, (run.returncode, run.stderr)
         assert run.stdout.strip() == "leaving"
+
+
+def test_a_child_forked_during_a_render_exits_through_its_atexit_handlers(suzanne_path):
+    # The exit waits for the calls in flight; a child forked while a parent's thread rendered counted that render as
+    # its own and waited for it for ever at sys.exit().
+    code = """
+import os, sys, threading, time, inkgraph
+scene = inkgraph.Scene.load(sys.argv[1])
+stop = threading.Event()
+started = threading.Event()
+def draw():
+    while not stop.is_set():
+        started.set()
+        inkgraph.render(scene, size=256)
+thread = threading.Thread(target=draw)
+thread.start()
+started.wait()
+time.sleep(0.2)
+child = os.fork()
+if child == 0:
+    sys.exit(0)
+_, status = os.waitpid(child, 0)
+stop.set()
+thread.join()
+print(os.waitstatus_to_exitcode(status))
+"""
+    run = _run_python(code, suzanne_path)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split("\n")[0] == "0", run.stdout
