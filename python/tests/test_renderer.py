@@ -310,10 +310,11 @@ def test_gl_description_lets_other_threads_run_while_a_render_holds_the_renderer
             drawer.join()
 
 
-def test_a_child_forked_while_another_thread_renders_gets_a_clear_error_not_a_hang(suzanne_path):
-    # The child inherits the renderer's lock held by a thread it does not have: closed, render() and close() hung.
-    code = """
-import os, sys, threading, inkgraph
+def _fork_while_a_thread_renders(model_path: str, draw: str, child: str) -> None:
+    """Runs a process whose thread renders (`draw`, a statement on `scene` and `renderer`) while the main thread forks;
+    the child runs `child` (indented Python) and must end with status 0."""
+    code = f"""
+import os, sys, threading, time, inkgraph
 scene = inkgraph.Scene.load(sys.argv[1])
 renderer = inkgraph.Renderer()
 renderer.render(scene, None, inkgraph.Frame(32, 32))
@@ -322,12 +323,27 @@ started = threading.Event()
 def draw():
     while not stop.is_set():
         started.set()
-        renderer.render(scene, None, inkgraph.Frame(256, 256))
+        {draw}
 thread = threading.Thread(target=draw)
 thread.start()
 started.wait()
+time.sleep(0.2)
 child = os.fork()
 if child == 0:
+{child}
+_, status = os.waitpid(child, 0)
+stop.set()
+thread.join()
+print(os.waitstatus_to_exitcode(status))
+"""
+    run = _run_python(code, model_path)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split("\n")[0] == "0", run.stdout
+
+
+def test_a_child_forked_while_another_thread_renders_gets_a_clear_error_not_a_hang(suzanne_path):
+    # The child inherits the renderer's lock held by a thread it does not have: closed, render() and close() hung.
+    _fork_while_a_thread_renders(suzanne_path, "renderer.render(scene, None, inkgraph.Frame(256, 256))", """
     try:
         assert renderer.closed is False
         try:
@@ -339,15 +355,7 @@ if child == 0:
         renderer.close()
         os._exit(0 if renderer.closed else 12)
     except BaseException:
-        os._exit(13)
-_, status = os.waitpid(child, 0)
-stop.set()
-thread.join()
-print(os.waitstatus_to_exitcode(status))
-"""
-    run = _run_python(code, suzanne_path)
-    assert run.returncode == 0, run.stderr
-    assert run.stdout.split("\n")[0] == "0", run.stdout
+        os._exit(13)""")
 
 
 def test_the_interpreter_exits_cleanly_while_a_daemon_thread_is_inside_a_call(suzanne_path):
@@ -373,27 +381,4 @@ print("leaving")
 def test_a_child_forked_during_a_render_exits_through_its_atexit_handlers(suzanne_path):
     # The exit waits for the calls in flight; a child forked while a parent's thread rendered counted that render as
     # its own and waited for it for ever at sys.exit().
-    code = """
-import os, sys, threading, time, inkgraph
-scene = inkgraph.Scene.load(sys.argv[1])
-stop = threading.Event()
-started = threading.Event()
-def draw():
-    while not stop.is_set():
-        started.set()
-        inkgraph.render(scene, size=256)
-thread = threading.Thread(target=draw)
-thread.start()
-started.wait()
-time.sleep(0.2)
-child = os.fork()
-if child == 0:
-    sys.exit(0)
-_, status = os.waitpid(child, 0)
-stop.set()
-thread.join()
-print(os.waitstatus_to_exitcode(status))
-"""
-    run = _run_python(code, suzanne_path)
-    assert run.returncode == 0, run.stderr
-    assert run.stdout.split("\n")[0] == "0", run.stdout
+    _fork_while_a_thread_renders(suzanne_path, "inkgraph.render(scene, size=256)", "    sys.exit(0)")
