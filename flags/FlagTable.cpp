@@ -294,7 +294,7 @@ std::uint64_t parseSeed(const std::string& flag, const std::string& text) {
     std::uint64_t value = 0;
     const std::size_t start = text.size() > 1 && text[0] == '+' ? 1 : 0; // from_chars takes no '+'
     const auto [stop, error] = std::from_chars(text.data() + start, text.data() + text.size(), value);
-    if (error != std::errc() || stop != text.data() + text.size() || (start == 1 && text[1] == '-'))
+    if (error != std::errc() || stop != text.data() + text.size()) // an unsigned reading takes no '-' either
         throw UsageError(flag + ": expected a whole number from 0 to 18446744073709551615, got '" + text + "'");
     return value;
 }
