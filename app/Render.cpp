@@ -332,10 +332,11 @@ StillReport RenderSession::renderStill(const RenderOptions& options, const Still
     // At most `jobs` stills in their post stage at once: the oldest finish (in order) before this one starts its own.
     while (!mPending.empty() && mPending.size() >= std::size_t(std::max(mJobs, 1))) finishOldest();
     PendingStill& handed = *pending;
-    const auto runTail = [&handed] {
+    // The still's own log (a batch's buffered, PendingStill::log keeps it), which only the tail writes while it runs.
+    const auto runTail = [&handed, tailLog = log] {
         TailOutcome outcome;
         const auto tailStart = std::chrono::steady_clock::now();
-        StillRenderer::runHostTail(*handed.still, handed.result);
+        StillRenderer::runHostTail(*handed.still, handed.result, tailLog);
         outcome.tailMilliseconds = millisecondsSince(tailStart);
         const std::string& finalResource = handed.still->graph.finalResource;
         // A picture the host tail made is encoded here; one still on the GPU is read back by the context's thread.

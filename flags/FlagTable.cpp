@@ -1219,7 +1219,9 @@ std::vector<Flag> makeFlags() {
     flags.push_back(widthMap);
     flags.push_back(helpOnly(S::Lines, "",
                              "Outline and silhouette draw nothing when the eye is inside the model (they would flood "
-                             "the picture), and say so (warning lines-skipped)."));
+                             "the picture), and say so (warning lines-skipped). A type the settings given leave "
+                             "without a visible stroke (a transparent colour, a threshold or --min-stroke-length "
+                             "past every line) is said too (warning lines-empty)."));
 
     // Batch
     flags.push_back(helpOnly(S::Batch, "MODEL...",

@@ -11,6 +11,7 @@
 #include "passes/orientation/SceneOrientation.h"
 #include "passes/shade/ShadePass.h"
 #include "scene/MeshLabels.h"
+#include "scene/MessageText.h"
 
 #include <nlohmann/json.hpp>
 
@@ -237,6 +238,45 @@ std::vector<Warning> StillGraph::lineWarnings() const {
                 (type == "silhouette" ? " or the silhouette's hull" : "") +
                 ", where their bands would cover the whole picture; move the eye out (--eye, --orbit) or draw contour "
                 "lines, which need no outside"));
+    }
+    return warnings;
+}
+
+std::vector<Warning> StillGraph::emptyLineWarnings() const {
+    std::vector<Warning> warnings;
+    if (mStrokes == nullptr || mLook == nullptr) return warnings;
+    const std::vector<StrokeInput>& inputs = mStrokes->settings().inputs;
+    const std::vector<std::size_t>& kept = mStrokes->report().keptPerInput;
+    if (kept.size() != inputs.size()) return warnings; // the stroke stage did not run (a plan for buffers alone)
+    const StrokeStyle defaults;
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        const std::string& type = inputs[i].type;
+        const LineStyle style = mLook->styleOf(type);
+        if (style.color.a == 0.0 && kept[i] > 0) {
+            warnings.push_back(
+                makeWarning(WarningKind::LinesEmpty, "the " + type + " lines are drawn transparent: --" + type +
+                                                         "-color has alpha 0, so the picture shows none of their " +
+                                                         std::to_string(kept[i]) + " strokes"));
+            continue;
+        }
+        if (kept[i] > 0) continue;
+        // Without a setting of the user's to blame, an empty type is the model's (a sphere has no creases).
+        std::vector<std::string> given;
+        if (const LineType* lineType = findLineType(type))
+            for (const LineParameter* parameter : lineType->parameters)
+                if (mLook->lineParameters.isGiven(*parameter))
+                    given.push_back("--" + parameter->name + " " +
+                                    (parameter->isChoice()
+                                         ? mLook->lineParameters.choice(*parameter)
+                                         : detail::formatNumber(mLook->lineParameters.number(*parameter))));
+        if (mLook->strokes.minLength != defaults.minLength)
+            given.push_back("--min-stroke-length " + detail::formatNumber(mLook->strokes.minLength));
+        if (given.empty()) continue;
+        std::string settings;
+        for (std::size_t g = 0; g < given.size(); ++g)
+            settings += (g == 0 ? "" : g + 1 == given.size() ? " and " : ", ") + given[g];
+        warnings.push_back(makeWarning(WarningKind::LinesEmpty, "the " + type + " lines drew nothing in this view at " +
+                                                                    settings + "; their defaults may draw some"));
     }
     return warnings;
 }

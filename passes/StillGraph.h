@@ -94,6 +94,10 @@ public:
      *  this view out (its describeLines() entry says "skipped_eye_inside"), so neither an empty picture nor --strict
      *  passes over it in silence. */
     std::vector<Warning> lineWarnings() const;
+    /** After the post stage: a lines-empty warning for each drawn type the picture shows nothing of because of a
+     *  setting the user gave: its colour's alpha is 0, or it kept no stroke with a parameter of its own or
+     *  --min-stroke-length set (an empty type at the defaults is the model's: a sphere has no creases). */
+    std::vector<Warning> emptyLineWarnings() const;
     /** --stats post_stage: the device the image-space kernels ran on ("device", and "requested": the flag's word),
      *  what each CPU line layer that ran found and where its time went; "kernels_ms" is the post
      *  stage proper (finding and stroking, without bringing the G-buffer to the CPU), "composite_ms" follows it. */

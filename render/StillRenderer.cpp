@@ -442,12 +442,15 @@ StillResult StillRenderer::executeOnContext(PreparedStill& still, const StillLog
 
 StillResult StillRenderer::execute(PreparedStill& still, const StillLog& log) {
     StillResult result = executeUntilHostTail(still, log);
-    runHostTail(still, result);
+    runHostTail(still, result, log);
     return result;
 }
 
-void StillRenderer::runHostTail(PreparedStill& still, StillResult& result) {
+void StillRenderer::runHostTail(PreparedStill& still, StillResult& result, const StillLog& log) {
     runMappingFailures(still, [&] { result.timings = result.executor->runHostTail(); });
+    // A line type the user's settings left without a visible stroke is said, not just missing.
+    for (Warning& warning : still.graph.emptyLineWarnings()) warnOf(still, std::move(warning), log);
+    failIfStrict(still);
 }
 
 void StillRenderer::dropFreeTextures() {

@@ -184,8 +184,9 @@ public:
     StillResult executeUntilHostTail(PreparedStill& still, const StillLog& log);
     /** The second half: runs the still's host tail (its post stage) on the calling thread, which need not hold the
      *  context, and fills `result.timings`. Touches nothing of the renderer, so it may overlap the next still's
-     *  executeUntilHostTail(). Throws as execute() does. */
-    static void runHostTail(PreparedStill& still, StillResult& result);
+     *  executeUntilHostTail(). Then says what the post stage found the picture lacks (lines-empty) to `log`, which
+     *  must be the still's own while it runs there. Throws as execute() does. */
+    static void runHostTail(PreparedStill& still, StillResult& result, const StillLog& log);
 
     /** A turn at the driver, for GL work of this renderer's stills outside its own calls (a still's GL objects
      *  freed, buffers read back at its commit): held while the context is software (llvmpipe) or not made yet,

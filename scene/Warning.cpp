@@ -110,6 +110,9 @@ const std::vector<WarningCode>& warningCodes() {
         {K::LinesSkipped, "lines-skipped",
          "a line type asked for is not drawn in this view: the eye is inside the model (or the silhouette's hull), "
          "where its bands would cover the whole picture"},
+        {K::LinesEmpty, "lines-empty",
+         "a line type asked for shows nothing because of a setting given: its colour's alpha is 0, or its own "
+         "threshold or --min-stroke-length left it no stroke in this view"},
     };
     return kCodes;
 }

@@ -69,6 +69,7 @@ enum class WarningKind {
     WidthMapUnread,
     TriangleIdInexact,
     LinesSkipped,
+    LinesEmpty,
     Count ///< not a kind: the number of them
 };
 

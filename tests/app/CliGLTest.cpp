@@ -929,6 +929,48 @@ TEST_F(Cli, EyeInsideTheModelDrawsNoSilhouettes) {
     EXPECT_EQ(outside.exitCode, 0) << outside.err;
 }
 
+TEST_F(Cli, LinesTheSettingsGivenLeaveInvisibleAreSaid) {
+    // A threshold past every line's strength, or a transparent colour, left the type's lines out of the picture with
+    // exit 0 and no word, even under --strict.
+    const std::string spot = model("spot_c3d.obj");
+    CliRun result = run("render " + spot +
+                        " -o a.png --size 96x96 --lines contour,suggestive --suggestive-threshold 1e6"
+                        " --contour-color 0,0,0,0 --dump d");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_EQ(cv::countNonZero(readImage(directory / "d" / "lines-suggestive.png")), 0);
+    EXPECT_NE(result.err.find("warning: the suggestive lines drew nothing in this view at --suggestive-threshold "
+                              "1e+06; their defaults may draw some"),
+              std::string::npos)
+        << result.err;
+    EXPECT_NE(result.err.find("warning: the contour lines are drawn transparent: --contour-color has alpha 0"),
+              std::string::npos)
+        << result.err;
+
+    // Every line dropped by the length rule, and in a batch whose post stage runs on a worker (--jobs 2): each still
+    // says it in its place. The views are the seed's (unseeded, a view whose creases chain longer than the height
+    // keeps a stroke: the test failed once in CI).
+    result =
+        run("render " + spot + " --views 2 --seed 7 -o 'v{view}.png' --size 64x64 --lines crease --crease-angle 10 " +
+            "--min-stroke-length 1 --jobs 2");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const std::string dropped =
+        "the crease lines drew nothing in this view at --crease-angle 10 and --min-stroke-length 1";
+    const std::size_t first = result.err.find(dropped);
+    ASSERT_NE(first, std::string::npos) << result.err;
+    EXPECT_NE(result.err.find(dropped, first + 1), std::string::npos) << result.err;
+
+    const CliRun strict =
+        run("render " + spot + " -o b.png --size 64x64 --lines contour --contour-color 0,0,0,0 --strict");
+    EXPECT_EQ(strict.exitCode, 3) << strict.err;
+    EXPECT_FALSE(fs::exists(directory / "b.png"));
+    // A type empty at its defaults is the model's, not the user's: a flat square has no crease and no suggestive
+    // contour, and nothing is said.
+    std::ofstream(directory / "flat.obj") << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3\nf 1 3 4\n";
+    const CliRun flat = run("render flat.obj -o c.png --size 64x64 --lines suggestive,crease --strict");
+    EXPECT_EQ(flat.exitCode, 0) << flat.err;
+    EXPECT_TRUE(fs::exists(directory / "c.png"));
+}
+
 TEST_F(Cli, EveryShadingModeRendersWithoutNaN) {
     // Every model of the registry (passes/shade/ShadingModel.h), with extreme shininess on the specular ones and two
     // bands on the banded ones. The colours are 8-bit (shade.color and composite.final are RGBA8, and an EXR picture
