@@ -276,6 +276,8 @@ struct Renderer::Impl {
             retimed;
         // Without an animation the scene's load poses nothing, so a time only clocks the UV animation.
         request.loadedWithoutAnimation = sceneImpl.options.animation.empty();
+        request.timeSetting = "Frame::time";
+        request.animationSetting = "SceneOptions::animation or Frame::animation";
         const bool reposed = !frame.pose.empty() && frame.pose != sceneImpl.options.pose;
         const bool refaced = !frame.expressions.empty() || frame.lookAt;
         if (animated || reposed || refaced) {

@@ -86,9 +86,9 @@ std::optional<Warning> unusedTimeWarning(const StillRequest& request, const Scen
     });
     if (uvAnimated) return std::nullopt;
     return makeWarning(WarningKind::TimeUnused,
-                       "--time " + detail::formatNumber(request.animationTime) +
-                           " moves nothing: without --animation it is only the clock of MToon's UV animation, and no "
-                           "material of the model has one");
+                       request.timeSetting + " " + detail::formatNumber(request.animationTime) +
+                           " moves nothing: without " + request.animationSetting +
+                           " it is only the clock of MToon's UV animation, and no material of the model has one");
 }
 
 /** --shading auto settles per model (cel without MToon materials, each material its own with them): the look's

@@ -91,6 +91,10 @@ struct StillRequest {
     /** LoadOptions::time, and the render's time (FrameParams::time: MToon's UV animation), even without an
      *  animation. */
     double animationTime = 0.0;
+    /** How the caller's messages name `animationTime` and `animation` (time-unused): the flags, or the library's
+     *  fields. */
+    std::string timeSetting = "--time";
+    std::string animationSetting = "--animation";
     /** Every warning fails the still (--strict): a SceneError once the warning is printed, before anything is
      *  written. */
     bool strict = false;

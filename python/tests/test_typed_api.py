@@ -389,3 +389,6 @@ def test_a_frames_time_that_moves_nothing_is_a_warning_as_on_the_command_line(re
     with pytest.warns(inkgraph.InkgraphWarning, match="moves nothing"):
         still = inkgraph.render(fox, frame=inkgraph.Frame(64, 64, time=1))
     assert [warning.code for warning in still.warnings] == ["time-unused"]
+    # Named as the library's fields, not the command line's flags the caller never typed.
+    assert still.warnings[0].message.startswith(
+        "Frame::time 1 moves nothing: without SceneOptions::animation or Frame::animation it is only the clock")
