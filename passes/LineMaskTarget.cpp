@@ -62,6 +62,19 @@ cv::Mat openedBand(const cv::Mat& band, float widthPixels) {
     return band & nearKept;
 }
 
+cv::Mat1f bandLocalWidths(const cv::Mat& band) {
+    if (band.empty() || band.type() != CV_8UC1)
+        throw std::invalid_argument("bandLocalWidths(): 'band' must be a non-empty CV_8UC1");
+    // A frame of zeros around it: distanceTransform would otherwise take the picture's edge for more band.
+    cv::Mat framed;
+    cv::copyMakeBorder(band, framed, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+    cv::Mat1f distance;
+    cv::distanceTransform(framed, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+    cv::Mat1f widths = distance(cv::Rect(1, 1, band.cols, band.rows)) * 2.0f + 0.5f;
+    widths.setTo(0.0f, band == 0);
+    return widths;
+}
+
 bool beginLineMask(GlPassContext& gl, GlFramebuffer& framebuffer, PassDepthBuffer& depth, GpuScene& scene,
                    const glm::dvec3& eye) {
     framebuffer.attachDepth(depth.sized(gl.widthOf("lines"), gl.heightOf("lines")));

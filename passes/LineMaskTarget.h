@@ -51,6 +51,14 @@ int bandOpeningPixels(float widthPixels, int maskRows);
  *  between two of them (where the model hides most of the band) stays. The band itself where the side is 1. */
 cv::Mat openedBand(const cv::Mat& band, float widthPixels);
 
+/** `band` (CV_8UC1) as the local width of each of its pixels, in its pixels (CV_32FC1, 0 off the band): twice the
+ *  distance to the nearest pixel off it, plus half a pixel. A band W pixels wide measures W + 0.5 (W even) or W + 1.5
+ *  (odd) on its middle line, where the stroke stage's points lie: a disc that wide on either middle pixel of an even
+ *  band, half a pixel off its middle, still covers both of its edge pixels (three quarters), so no paper shows
+ *  between the model and the line. What a band of varying width (--outline-width-map, --silhouette-object-width) is
+ *  drawn again at, point by point. The picture's edge counts as off the band. */
+cv::Mat1f bandLocalWidths(const cv::Mat& band);
+
 /** Draws every face of the scene's meshes into the depth buffer only, colour writes off (they stay off), with
  *  `program`, whose uniforms "viewFromModel" and "clipFromView" are set here. When the scene has cut-out or blended
  *  materials, each mesh's material is bound, so a program built with materialAlphaDefines() leaves the cut-out parts

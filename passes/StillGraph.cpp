@@ -158,6 +158,7 @@ StillGraph buildStillGraph(const StillGraphSetup& setup) {
         input.minLength = look.strokes.minLength;
         input.seedStrength = rules.seedStrength;
         input.bandOfOneWidth = !input.skeleton && rules.bandOfOneWidth;
+        input.bandWidthInModelUnits = !input.skeleton && rules.bandWidthInModelUnits;
         input.dashed = type.hiddenLines;
         strokes.inputs.push_back(input);
         lines.push_back({std::string(kStrokesPass) + "." + type.name, displayColor(look.styleOf(type.name).color)});

@@ -644,7 +644,7 @@ void weighStrokes(Strokes& strokes, const LineWeightSettings& weight, const cv::
         const double taper = stroke.closed ? 0.0 : std::min(weight.taperPixels, 0.5 * stroke.lengthPixels);
         for (std::size_t index = 0; index < stroke.points.size(); ++index) {
             LinePoint& point = stroke.points[index];
-            double share = 1.0;
+            double share = point.width; // a band of varying width's own (StrokesPass), else 1
             if (byDepth) {
                 const double t = depthSpan > 0.0
                                      ? std::clamp((depthAt(point.position) - weight.nearDepth) / depthSpan, 0.0, 1.0)

@@ -181,7 +181,8 @@ struct LineWeightSettings {
     bool any() const { return farWidth != 1.0 || strengthShare != 0.0 || taperPixels != 0.0; }
 };
 
-/** Sets every point's `width` in the kept strokes by `weight`; `depth` (CV_32FC1 at the data size, linear view
+/** Scales every point's `width` in the kept strokes by `weight` (a point's own width, 1 unless a band of varying
+ *  width set it, times the weight's share; at least 0.02); `depth` (CV_32FC1 at the data size, linear view
  *  depth, 0 = background, may be empty when weight.farWidth is 1) gives each point's depth (off the model: the
  *  nearest surface within 3 pixels, else the far depth). Throws std::invalid_argument naming 'depth' when it is
  *  needed and is not CV_32FC1 or not `dataSize`. */

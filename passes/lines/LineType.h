@@ -92,6 +92,9 @@ struct LineTypeStrokeRules {
     /** A GL band of one width everywhere (bandWidthPixels() of the type's width; no width map, no width in model
      *  units): the stroke stage opens away its slivers thinner than bandOpeningPixels() before thinning it. */
     bool bandOfOneWidth = false;
+    /** A GL band whose width is the line's own, in model units (--silhouette-object-width), not bandWidthPixels() of
+     *  the type's width times a width map: the stroke stage draws it as wide as it is. */
+    bool bandWidthInModelUnits = false;
 };
 
 struct LineType {

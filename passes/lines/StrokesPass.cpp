@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -42,6 +43,30 @@ int dataPixelsPerPixelOf(const GlPassContext& gl, const std::string& resource, i
                                std::to_string(divisor) + " of the frame, not a whole fraction of the data size (x" +
                                std::to_string(dataScale) + ")");
     return numerator / denominator;
+}
+
+/** Each point of a stroke on a band of varying width (`bandWidths[layer]` not empty) takes the band's local width
+ *  there as its share of `drawnWidths[layer]`; a point off the band (a bridge across a gap) keeps the previous
+ *  point's. Whether any stroke lies on such a band. */
+bool takeBandWidths(Strokes& strokes, const std::vector<StrokeLayer>& layers, const std::vector<cv::Mat1f>& bandWidths,
+                    const std::vector<float>& drawnWidths) {
+    bool any = false;
+    for (Stroke& stroke : strokes.strokes) {
+        const std::size_t layer = std::size_t(stroke.layer);
+        if (layer >= bandWidths.size() || bandWidths[layer].empty()) continue;
+        any = true;
+        const cv::Mat1f& widths = bandWidths[layer];
+        const double bandPixel = 1.0 / layers[layer].scale; // a band is at the output size, the points in data pixels
+        float share = 1.0f;
+        for (LinePoint& point : stroke.points) {
+            const int col = int(std::floor((double(point.position.x) + 0.5) * bandPixel));
+            const int row = int(std::floor((double(point.position.y) + 0.5) * bandPixel));
+            if (col >= 0 && row >= 0 && col < widths.cols && row < widths.rows && widths(row, col) > 0.0f)
+                share = std::clamp(widths(row, col) / drawnWidths[layer], 0.02f, 1.0f);
+            point.width = share;
+        }
+    }
+    return any;
 }
 
 } // namespace
@@ -97,6 +122,10 @@ void StrokesPass::execute(GlPassContext& gl) {
     auto start = std::chrono::steady_clock::now();
     // Per input, the skeleton the layer is chained on; the layers point into it while they are chained.
     std::vector<LineSkeleton> thinned(mSettings.inputs.size());
+    // Per input, the width its strokes are drawn at: the type's, or a band of varying width's widest (bandWidths).
+    std::vector<float> drawnWidths(mSettings.inputs.size());
+    // Per input, a band of varying width's local widths (bandLocalWidths()); empty for the others.
+    std::vector<cv::Mat1f> bandWidths(mSettings.inputs.size());
     std::vector<StrokeLayer> layers;
     const double heightPixels = double(gl.height()) * scale;
     for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
@@ -116,6 +145,18 @@ void StrokesPass::execute(GlPassContext& gl) {
             const cv::Mat& band = gl.inputImage(input.resource);
             thinned[index] =
                 skeletonFromMask(thinToSkeleton(input.bandOfOneWidth ? openedBand(band, input.widthPixels) : band));
+            // A band whose width the model sets is drawn again at its own width along its middle line, not at the
+            // type's (which left paper between the model and a --silhouette-object-width line, and lost the map).
+            if (!input.bandOfOneWidth) bandWidths[index] = bandLocalWidths(band);
+            // A width map's band is bandWidthPixels() wide where the map is 1: wider than the line from 1024 rows up.
+            if (!bandWidths[index].empty() && !input.bandWidthInModelUnits)
+                bandWidths[index] *= input.widthPixels / bandWidthPixels(input.widthPixels, band.rows);
+        }
+        drawnWidths[index] = input.widthPixels;
+        if (!bandWidths[index].empty()) {
+            double widest = 0.0;
+            cv::minMaxLoc(bandWidths[index], nullptr, &widest);
+            drawnWidths[index] = std::max(input.widthPixels, float(widest));
         }
         // A kernel may find its lines on a field coarser than the data (the suggestive contours' one sampling at
         // every size, SuggestiveLines.h): its skeleton's pixels are then whole blocks of data pixels.
@@ -134,7 +175,8 @@ void StrokesPass::execute(GlPassContext& gl) {
 
     start = std::chrono::steady_clock::now();
     Strokes strokes = chainStrokes(layers, strokeSettingsFor(gl.height(), scale));
-    if (mSettings.mergeOverlaps) mergeOverlapsWithinKind(strokes, layers);
+    const bool bandsVary = takeBandWidths(strokes, layers, bandWidths, drawnWidths);
+    if (mSettings.mergeOverlaps) mergeOverlapsWithinKind(strokes, layers, drawnWidths);
     LineWeightSettings weight;
     if (mSettings.weightByDepth) {
         weight.farWidth = kFarWidth;
@@ -163,7 +205,7 @@ void StrokesPass::execute(GlPassContext& gl) {
     for (std::size_t index = 0; index < mSettings.inputs.size(); ++index) {
         const StrokeInput& input = mSettings.inputs[index];
         const LineSkeleton kept = keptSkeleton(strokes, layers, int(index));
-        gl.outputImage(input.type) = strokeLines(kept, input.widthPixels, scale);
+        gl.outputImage(input.type) = strokeLines(kept, drawnWidths[index], scale);
     }
     mReport.strokeMilliseconds = millisecondsSince(start);
 
@@ -171,12 +213,15 @@ void StrokesPass::execute(GlPassContext& gl) {
         DrawnStrokes& drawn = gl.outputObject<DrawnStrokes>(kStrokePathsField);
         drawn.strokes = std::move(strokes);
         drawn.inputs = mSettings.inputs;
+        for (std::size_t index = 0; index < drawn.inputs.size(); ++index)
+            drawn.inputs[index].widthPixels = drawnWidths[index];
         drawn.supersample = scale;
-        drawn.weighted = mSettings.weightByDepth || mSettings.weightByStrength || mSettings.taperEnds;
+        drawn.weighted = mSettings.weightByDepth || mSettings.weightByStrength || mSettings.taperEnds || bandsVary;
     }
 }
 
-void StrokesPass::mergeOverlapsWithinKind(Strokes& strokes, const std::vector<StrokeLayer>& layers) const {
+void StrokesPass::mergeOverlapsWithinKind(Strokes& strokes, const std::vector<StrokeLayer>& layers,
+                                          const std::vector<float>& drawnWidths) const {
     // Hidden lines lie under the visible ones (docs/lines.md, "Hidden lines"): a visible line does not give way to a
     // dashed one drawn earlier, nor a dashed one to a visible one where the two meet at an occluder's outline. So the
     // dashed inputs and the others are merged apart, each in composite order: mergeOverlaps() sees only one kind's
@@ -192,7 +237,7 @@ void StrokesPass::mergeOverlapsWithinKind(Strokes& strokes, const std::vector<St
         std::vector<int> renumbered(mSettings.inputs.size(), -1);
         for (std::size_t position = 0; position < ofKind.size(); ++position) {
             kindLayers.push_back(layers[std::size_t(ofKind[position])]);
-            halfWidths.push_back(0.5 * mSettings.inputs[std::size_t(ofKind[position])].widthPixels * scale);
+            halfWidths.push_back(0.5 * drawnWidths[std::size_t(ofKind[position])] * scale);
             renumbered[std::size_t(ofKind[position])] = int(position);
         }
         const int outOfRange = int(mSettings.inputs.size());

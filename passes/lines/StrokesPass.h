@@ -46,6 +46,9 @@ struct StrokeInput {
     float seedStrength = 0.0f; ///< hysteresis (LineTypeStrokeRules)
     /** A GL band of one width (LineTypeStrokeRules::bandOfOneWidth): opened by bandOpeningPixels() before thinning. */
     bool bandOfOneWidth = false;
+    /** A GL band of varying width that is the line's own width (LineTypeStrokeRules::bandWidthInModelUnits); the
+     *  others vary as bandWidthPixels() of `widthPixels` times a width map. */
+    bool bandWidthInModelUnits = false;
     /** A hidden-lines type (LineType::hiddenLines): its kept strokes are cut into StrokesPassSettings::dash's dashes,
      *  in its layer and its --svg paths alike; with mergeOverlaps it gives way only to other dashed types. */
     bool dashed = false;
@@ -109,7 +112,8 @@ public:
 
 private:
     /** --overlapping-lines merge: mergeOverlaps() over the dashed inputs and over the others, apart. */
-    void mergeOverlapsWithinKind(Strokes& strokes, const std::vector<StrokeLayer>& layers) const;
+    void mergeOverlapsWithinKind(Strokes& strokes, const std::vector<StrokeLayer>& layers,
+                                 const std::vector<float>& drawnWidths) const;
     /** The kept strokes' counts and lengths per input, into mReport. */
     void reportKept(const Strokes& strokes, const std::vector<StrokeLayer>& layers);
 

@@ -6,11 +6,13 @@
 #include "passes/mtoon/MToonOutlinePass.h"
 #include "passes/outline/OutlinePass.h"
 #include "passes/StillGraph.h"
+#include "passes/lines/LineTypes.h"
 #include "passes/silhouette/SilhouettePass.h"
 
 #include "LineMaskTestSupport.h"
 
 #include <glm/gtc/constants.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <stb/stb_image_write.h>
 
@@ -281,6 +283,82 @@ TEST_F(WidthMapCylinder, TheStillGraphDrawsTheLooksMapForOutlineAndSilhouette) {
     }
     executor.store().clear();
     std::cout << "still graph bands (above/below) for W = 8 px:" << measured.str() << "\n";
+}
+
+/** The stroke stage draws the GL bands again from their middle lines: a band whose width the model sets is drawn at
+ *  its own width there, point by point, not at the type's. It drew the map's ramp at W all along (the map lost in the
+ *  picture) and a --silhouette-object-width band at the type's 2 px halfway out (paper between it and the model). */
+TEST_F(WidthMapCylinder, TheStrokeStageDrawsABandOfVaryingWidthAtItsOwnWidth) {
+    const auto stroked = [&](const Look& look, const std::string& type) {
+        StillGraphSetup setup{look, shaders, scene, computeBoundingSphere(scene), *gpuScene, frame, std::nullopt};
+        const StillGraph graph = buildStillGraph(setup);
+        const Plan plan = compile(graph.view(), {type + ".lines", "strokes." + type, "gbuffer.coverage"});
+        executor.run(plan, graph.mutableView(), {frame.camera.width, frame.camera.height, false});
+        test::LineRender band, layer;
+        band.lines = executor.store().image(type + ".lines").clone();
+        band.coverage = executor.store().image("gbuffer.coverage").clone();
+        // The layer is anti-aliased coverage: a pixel at least half covered is a line pixel.
+        cv::threshold(executor.store().image("strokes." + type), layer.lines, 127, 255, cv::THRESH_BINARY);
+        layer.coverage = band.coverage;
+        executor.store().clear();
+        return std::make_pair(band, layer);
+    };
+    std::ostringstream measured;
+    for (const char* type : {"outline", "silhouette"}) {
+        SCOPED_TRACE(type);
+        Look look;
+        look.shading = ShadingModel::None;
+        look.lines = {type};
+        look.lineStyles[type].widthPixels = kBandPixels;
+        look.outlineWidthMap = parseWidthMap("color:R");
+        measured << " " << type << ":";
+        expectRampBands(stroked(look, type).second, measured);
+    }
+    // In model units: 0.5 is about 17 px here, the type's width 2 px.
+    Look look;
+    look.shading = ShadingModel::None;
+    look.lines = {"silhouette"};
+    const LineType* silhouette = findLineType("silhouette");
+    ASSERT_NE(silhouette, nullptr);
+    ASSERT_EQ(silhouette->parameters.size(), 1u);
+    look.lineParameters.set(*silhouette->parameters[0], 0.5);
+    const auto [band, layer] = stroked(look, "silhouette");
+    measured << " object-width:";
+    for (const double x : {-1.0, 0.0, 1.0}) {
+        const int col = columnOf(x);
+        SCOPED_TRACE("x " + std::to_string(x));
+        for (const int step : {-1, 1}) {
+            const test::OutsideRun drawn = test::measureOutsideRun(layer, {col, kHeight / 2}, 0, step);
+            const int wide = test::measureOutsideRun(band, {col, kHeight / 2}, 0, step).length;
+            EXPECT_GT(wide, 12);
+            // From the model's edge out (a run measured from the coverage: a gap would make it 0), as wide as the band.
+            EXPECT_NEAR(drawn.length, wide, 1.5);
+            measured << " " << drawn.length << "/" << wide;
+        }
+    }
+    // From 1024 rows up a width map's band is drawn wider than the line (bandWidthPixels(): 2 W at 2048 rows), which
+    // only finds it: the line stays W x the map wide. At x = 0 the map is 1/2.
+    constexpr int kTallRows = 2048;
+    lookFrom({0.0, 0.0, kDistance}, glm::dvec3(0.0), kFovDegrees, kWidth, kTallRows);
+    Look mapped;
+    mapped.shading = ShadingModel::None;
+    mapped.lines = {"outline"};
+    mapped.lineStyles["outline"].widthPixels = kBandPixels;
+    mapped.outlineWidthMap = parseWidthMap("color:R");
+    const auto [tallBand, tallLayer] = stroked(mapped, "outline");
+    measured << " 2048 rows, r0.5:";
+    for (const int step : {-1, 1}) {
+        const int wide = test::measureOutsideRun(tallBand, {kWidth / 2, kTallRows / 2}, 0, step).length;
+        EXPECT_NEAR(wide, 2.0 * kBandPixels * ramp(0.0), 1.0);
+        // The line pixels in the column off the model on this side (the line lies on the band's middle line).
+        int drawn = 0;
+        for (int row = kTallRows / 2; row >= 0 && row < kTallRows; row += step)
+            drawn +=
+                tallLayer.coverage.at<uchar>(row, kWidth / 2) != 255 && tallLayer.lines.at<uchar>(row, kWidth / 2) != 0;
+        EXPECT_NEAR(drawn, kBandPixels * ramp(0.0), 1.0);
+        measured << " " << drawn << "/" << wide;
+    }
+    std::cout << "stroked bands (above/below; object width: stroked/band):" << measured.str() << "\n";
 }
 
 /** MToon's shell on a unit sphere at distance 4, world width w: with the map (every vertex's R = 1/2) and the

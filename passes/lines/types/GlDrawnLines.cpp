@@ -41,6 +41,7 @@ const LineParameter kSilhouetteObjectWidth{
 LineTypeStrokeRules bandRules(const Look& look, bool objectWidth) {
     LineTypeStrokeRules rules;
     rules.bandOfOneWidth = !look.outlineWidthMap.enabled() && !objectWidth;
+    rules.bandWidthInModelUnits = objectWidth;
     return rules;
 }
 
