@@ -13,12 +13,15 @@ namespace {
  *  wrap around (a width and height near INT_MAX would make it a small number that a short buffer then matches). */
 constexpr double kMostImageBytes = double(std::uint64_t(1) << 47);
 
-/** UsageError unless the fields describe an image: at least 1x1, 1 or 4 channels, at most kMostImageBytes. */
-void checkShape(int width, int height, int channels) {
+/** UsageError unless the fields describe an image: at least 1x1, 1 or 4 channels, 8-bit or float32, at most
+ *  kMostImageBytes. */
+void checkShape(int width, int height, int channels, Image::Type type) {
     const std::string shape = "an image of " + std::to_string(width) + "x" + std::to_string(height) + " pixels and " +
                               std::to_string(channels) + " channels";
     if (width < 1 || height < 1 || (channels != 1 && channels != 4))
         throw UsageError(shape + " (at least 1x1, 1 or 4 channels)");
+    if (type != Image::Type::UInt8 && type != Image::Type::Float32)
+        throw UsageError(shape + " of type " + std::to_string(int(type)) + " (Image::Type::UInt8 or Float32)");
     if (double(width) * double(height) * double(channels) * sizeof(float) > kMostImageBytes)
         throw UsageError(shape + ": more than 2^47 bytes, which no memory holds");
 }
@@ -29,7 +32,7 @@ Image::Image(int width, int height, int channels, Type type, std::vector<std::ui
     : mWidth(width), mHeight(height), mChannels(channels), mType(type) {
     mRowBytes = packedRowBytes();
     translated("Image()", [&] {
-        checkShape(width, height, channels);
+        checkShape(width, height, channels, type);
         if (bytes.size() != byteCount())
             throw UsageError("the image holds " + std::to_string(bytes.size()) + " bytes; " + std::to_string(width) +
                              "x" + std::to_string(height) + "x" + std::to_string(channels) + " pixels need " +
@@ -65,7 +68,7 @@ Image imageOf(const cv::Mat& mat) {
 }
 
 cv::Mat matOf(const Image& image) {
-    checkShape(image.width(), image.height(), image.channels());
+    checkShape(image.width(), image.height(), image.channels(), image.type());
     const int type = CV_MAKETYPE(image.type() == Image::Type::Float32 ? CV_32F : CV_8U, image.channels());
     // cv::Mat's constructor over external data takes a non-const pointer; the image is only read.
     return cv::Mat(image.height(), image.width(), type, const_cast<std::uint8_t*>(image.data()), image.rowBytes());

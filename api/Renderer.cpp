@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <optional>
 #include <mutex>
 #include <sstream>
@@ -327,6 +328,12 @@ struct Renderer::Impl {
             throw UsageError("the picture's rows are " + std::to_string(pictureRowBytes) + " bytes apart; " +
                              std::to_string(frame.width) + " RGBA8 pixels need " +
                              std::to_string(std::size_t(std::max(frame.width, 0)) * 4));
+        // The last row's end must be an address: rows farther apart than memory wrapped the offsets around and the
+        // copy wrote before the buffer.
+        if (pictureOut != nullptr && frame.height > 1 &&
+            double(pictureRowBytes) * double(frame.height - 1) + double(frame.width) * 4.0 > double(PTRDIFF_MAX))
+            throw UsageError("the picture's rows are " + std::to_string(pictureRowBytes) +
+                             " bytes apart: " + std::to_string(frame.height) + " of them reach beyond any memory");
         // "strokes" is no image: it asks for the strokes' 3-D points (Still::strokes()).
         std::vector<std::string> images;
         for (const std::string& name : buffers)

@@ -207,6 +207,17 @@ void writeBytes(const std::filesystem::path& destination, const void* data, std:
 std::vector<unsigned char> encodeImageFile(const std::filesystem::path& finalPath, const cv::Mat& image) {
     std::vector<unsigned char> encoded;
     std::string error;
+    // libjpeg ends the process (exit(1)) for a side above its limit instead of returning an error.
+    std::string extension = finalPath.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    constexpr int kLargestJpegSide = 65500;
+    if ((extension == ".jpg" || extension == ".jpeg" || extension == ".jpe" || extension == ".jfif" ||
+         extension == ".jif" || extension == ".jfi") &&
+        std::max(image.cols, image.rows) > kLargestJpegSide)
+        throw FileError("writeImage(): cannot write " + detail::quotedFileName(finalPath.string()) +
+                        ": JPEG holds at most " + std::to_string(kLargestJpegSide) + " pixels a side, the image is " +
+                        std::to_string(image.cols) + "x" + std::to_string(image.rows));
     if (!usesImageIoModule(finalPath)) {
         try {
             encoded = encodePng(image);

@@ -523,7 +523,18 @@ TEST_F(ApiImage, FailuresNameTheFile) {
                  "Image(): the image holds 15 bytes; 2x2x4 pixels need 16");
     EXPECT_STREQ(errorOf([&] { ig::Image(2, 0, 4, ig::Image::Type::UInt8, {}); }).what(),
                  "Image(): an image of 2x0 pixels and 4 channels (at least 1x1, 1 or 4 channels)");
+    EXPECT_STREQ(errorOf([&] { ig::Image(2, 2, 1, ig::Image::Type(7), std::vector<std::uint8_t>(4)); }).what(),
+                 "Image(): an image of 2x2 pixels and 1 channels of type 7 (Image::Type::UInt8 or Float32)");
     EXPECT_EQ(errorOf([&] { image.floats(); }).kind(), ig::Error::Kind::Usage);
+    // Wider than JPEG holds: libjpeg ended the process (exit 1) in Image::write().
+    const ig::Image wide = patterned(65501, 1, 1, ig::Image::Type::UInt8);
+    const std::string jpeg = (directory / "wide.JPG").string();
+    const ig::Error tooWide = errorOf([&] { wide.write(jpeg); });
+    EXPECT_EQ(tooWide.kind(), ig::Error::Kind::Output) << tooWide.what();
+    EXPECT_NE(std::string(tooWide.what()).find("JPEG holds at most 65500 pixels a side, the image is 65501x1"),
+              std::string::npos)
+        << tooWide.what();
+    EXPECT_FALSE(std::filesystem::exists(jpeg));
 }
 
 /** lstat's file type of `path` (links not followed), or 0 when it does not exist. */

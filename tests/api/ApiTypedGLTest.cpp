@@ -564,6 +564,18 @@ TEST(ApiTyped, RenderIntoWritesTheCallersRows) {
                  }).what(),
                  "Renderer::renderInto(): the picture's rows are 10 bytes apart; 2147483647 RGBA8 pixels need "
                  "8589934588");
+    // Rows farther apart than memory: the offsets wrapped around and the copy wrote before the buffer.
+    for (const std::size_t farApart :
+         {std::numeric_limits<std::size_t>::max(), std::numeric_limits<std::size_t>::max() / 63}) {
+        const std::vector<std::uint8_t> before = buffer;
+        EXPECT_STREQ(errorOf([&] {
+                         renderer().renderInto(buffer.data(), farApart, scene, ig::Look(), frameOf(width, height));
+                     }).what(),
+                     ("Renderer::renderInto(): the picture's rows are " + std::to_string(farApart) +
+                      " bytes apart: 40 of them reach beyond any memory")
+                         .c_str());
+        EXPECT_EQ(buffer, before);
+    }
     // The function named once (it was twice: "Renderer::render(): Renderer::render(): ...").
     EXPECT_STREQ(errorOf([&] {
                      renderer().render(scene, ig::Look::fromArguments({"--lines", "none"}), frameOf(8, 8), {"strokes"});

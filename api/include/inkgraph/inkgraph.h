@@ -97,8 +97,8 @@ public:
     enum class Type { UInt8, Float32 };
     Image() = default;
     /** An image of your own pixels (to write() it): `bytes` holds width * height * channels * bytesPerChannel()
-     *  bytes. Throws Error(Usage) for fields that do not agree (a side below 1, channels not 1 or 4, a byte count
-     *  that does not fit). */
+     *  bytes. Throws Error(Usage) for fields that do not agree (a side below 1, channels not 1 or 4, a type not
+     *  of Type, a byte count that does not fit). */
     Image(int width, int height, int channels, Type type, std::vector<std::uint8_t> bytes);
 
     int width() const { return mWidth; }
