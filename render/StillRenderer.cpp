@@ -271,9 +271,12 @@ std::unique_ptr<PreparedStill> StillRenderer::load(StillRequest request, const S
         still->loadMilliseconds = millisecondsSince(loadStart);
     }
     // A scene given loaded had its warnings told by whoever loaded it, unless it stands for this still's own load.
-    if (!req.loadedScene || req.reusesEarlierLoad)
+    // The still carries them likewise: a library's scene carries its own (Scene::warnings()), which every still of
+    // it repeated.
+    if (!req.loadedScene || req.reusesEarlierLoad) {
         for (const Warning& warning : still->scene().report.warnings) log.warn(req.modelPath, warning.message);
-    still->warnings = still->scene().report.warnings;
+        still->warnings = still->scene().report.warnings;
+    }
     const Scene& scene = still->scene();
     still->sceneDerived = req.loadedSceneDerived && &req.loadedSceneDerived->scene() == &scene
                               ? req.loadedSceneDerived

@@ -499,9 +499,10 @@ TEST_F(TestFolder, WarningsAreRecordsWithCodes) {
     EXPECT_EQ(missing.warnings()[0].code, "texture-missing");
     EXPECT_NE(missing.warnings()[0].file.find("absent.png"), std::string::npos) << missing.warnings()[0].file;
     EXPECT_NE(missing.warnings()[0].item.find("paper"), std::string::npos) << missing.warnings()[0].item;
+    // The load's warnings are the scene's: a still that did not pose the scene again repeated them (a program that
+    // prints both said each load warning once per still more).
     const ig::Still still = renderer().render(missing, ig::Look(), frameOf(32, 32));
-    ASSERT_FALSE(still.warnings().empty());
-    EXPECT_EQ(still.warnings()[0].code, "texture-missing") << "the load's warnings are the still's";
+    EXPECT_TRUE(still.warnings().empty()) << still.warnings()[0].code;
 
     writeText(
         directory / "ktx.gltf",

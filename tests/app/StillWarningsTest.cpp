@@ -54,19 +54,25 @@ TEST(StillWarnings, AMissingTextureAndAnEmptyViewAreRecordsAndPrintedAsBefore) {
     EXPECT_LT(first, second) << printed;
 }
 
-TEST(StillWarnings, ALoadedScenesWarningsAreTheStillsButPrintedByItsLoader) {
+TEST(StillWarnings, ALoadedScenesWarningsAreItsLoadersUnlessTheStillStandsForTheLoad) {
     const TempFolder folder;
     folder.write("gone.mtl", "newmtl skin\nmap_Kd skin.png\n");
     const std::string model = folder.write("gone.obj", "mtllib gone.mtl\nusemtl skin\n" + kTriangle);
     StillRequest request;
     request.modelPath = model;
     request.loadedScene = std::make_shared<const Scene>(loadScene(model));
+    ASSERT_EQ(request.loadedScene->report.warnings.size(), 1u);
     std::ostringstream log;
+    // The library's scene: its loader has them (Scene::warnings()); every still of it repeated them.
     const std::unique_ptr<PreparedStill> still = StillRenderer().prepare(request, StillLog{log});
-    EXPECT_EQ(still->warnings, request.loadedScene->report.warnings);
-    ASSERT_EQ(still->warnings.size(), 1u);
-    EXPECT_EQ(still->warnings[0].code, "texture-missing");
+    EXPECT_TRUE(still->warnings.empty());
     EXPECT_EQ(log.str().find("warning"), std::string::npos) << log.str();
+    // A batch's still that reuses an earlier still's load stands for loading the file: told and kept again.
+    request.reusesEarlierLoad = true;
+    const std::unique_ptr<PreparedStill> reused = StillRenderer().prepare(request, StillLog{log});
+    EXPECT_EQ(reused->warnings, request.loadedScene->report.warnings);
+    EXPECT_EQ(reused->warnings[0].code, "texture-missing");
+    EXPECT_NE(log.str().find("warning"), std::string::npos) << log.str();
 }
 
 } // namespace
