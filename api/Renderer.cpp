@@ -70,9 +70,9 @@ std::vector<std::string> writtenResources(const StillGraph& graph) {
     return resources;
 }
 
-/** Throws UsageError for the first of `names` the graph does not write, naming the buffers it has; returns when every
- *  name is one (the failure was another). */
-void refuseUnknownBuffers(const StillGraph& graph, const std::vector<std::string>& names) {
+/** Throws UsageError for the first of `names` the graph does not write, naming the buffers `look` has
+ *  (bufferNames()); returns when every name is one (the failure was another). */
+void refuseUnknownBuffers(const StillGraph& graph, const std::vector<std::string>& names, const Look& look) {
     const std::vector<std::string> resources = writtenResources(graph);
     for (const std::string& name : names) {
         const std::string resource = bufferResourceName(name);
@@ -81,12 +81,15 @@ void refuseUnknownBuffers(const StillGraph& graph, const std::vector<std::string
                                ? graph.findPass(parts.pass) != nullptr
                                : std::find(resources.begin(), resources.end(), resource) != resources.end();
         if (known) continue;
-        std::vector<std::string> available;
-        for (const std::string& written : resources) available.push_back(bufferNameOf(written, graph));
+        // The public names: the graph registers every line type's passes (the plan culls those not drawn), whose
+        // own names listed ran to 2 KB of buffers this look never makes.
+        const std::vector<std::string> available = bufferNames(look);
         std::string why;
         if (startsWith(name, kLinesPrefix) && findLineType(name.substr(kLinesPrefix.size())) != nullptr)
             why = " ('" + name.substr(kLinesPrefix.size()) + "' is not in the look's --lines)";
-        throw UsageError("no buffer '" + name + "' in this look" + why + "; it has: " + joined(available));
+        throw UsageError("no buffer '" + name + "' in this look" + why + "; it has: " + joined(available) +
+                         ", and the images the graph computes for it, by the names `inkgraph render --print-plan` "
+                         "shows");
     }
 }
 
@@ -364,7 +367,7 @@ struct Renderer::Impl {
         } catch (const UsageError&) {
             // A buffer the look does not make is the likelier cause, named better than the plan's words; but a
             // refusal before the graph was built (the camera's up along the view) is the plan's to tell.
-            if (!writtenResources(still->graph).empty()) refuseUnknownBuffers(still->graph, images);
+            if (!writtenResources(still->graph).empty()) refuseUnknownBuffers(still->graph, images, look);
             throw;
         }
         if (strokes && still->graph.strokes() == nullptr)
@@ -523,8 +526,10 @@ std::vector<std::string> bufferNames(const Look& look) {
     std::vector<std::string> names;
     for (const GBufferPass::Field& field : GBufferPass::fields()) names.push_back(field.name);
     names.push_back("gbuffer.*");
-    for (const std::string& type : LookAccess::impl(look).parsed.look.lines) names.push_back(kLinesPrefix + type);
-    names.push_back("lines.*");
+    const std::vector<std::string>& lines = LookAccess::impl(look).parsed.look.lines;
+    for (const std::string& type : lines) names.push_back(kLinesPrefix + type);
+    // A look without lines has no line layer for "lines.*" to stand for (render() refused it).
+    if (!lines.empty()) names.push_back("lines.*");
     names.push_back("picture");
     return names;
 }

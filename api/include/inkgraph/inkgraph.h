@@ -586,14 +586,16 @@ private:
     std::shared_ptr<const Impl> mImpl;
 };
 
-/** The buffers render() can return (and "strokes", which asks for Still::strokes() and is no image): "normal", "view",
+/** The buffers render() can return (it takes "strokes" too, which asks for Still::strokes() and is no image, so not
+ * listed here): "normal", "view",
  * "wVec", "nDotV", "depth", "coverage", "baseColor", "radial", "materialId", "objectId", "meshId", "triangleId" (the
  * G-buffer's fields: float32 exact integers, 0 for the background; Scene::objects() and Scene::meshes() name the ids),
  * "barycentric" (4 x float32: the visible point's weights in its triangle's corners, alpha the id of their triangle, as
  * "triangleId"), "gbuffer.*" (every field, the labels included), "lines.<type>" (the drawn layer of a line type, its
- * coverage from 0 off the line to 255 on it), "lines.*" (every drawn type), "picture". render() also takes the graph's
- * own name of any image it computes (`inkgraph render --print-plan`: "shade.color", "gbuffer.zBuffer"); a name that is
- * neither is refused (Error(Usage), naming the buffers the look has). */
+ * coverage from 0 off the line to 255 on it), "lines.*" (every drawn type; only for a look that draws lines),
+ * "picture". render() also takes the graph's own name of any image it computes (`inkgraph render --print-plan`:
+ * "shade.color", "gbuffer.zBuffer"); a name that is neither is refused (Error(Usage), naming the buffers the look has).
+ */
 INKGRAPH_API std::vector<std::string> bufferNames(const Look& look);
 
 /** Renders stills. One GL context (EGL, no display) is made by the first render and kept, with every compiled
