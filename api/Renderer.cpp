@@ -198,8 +198,11 @@ struct Renderer::Impl {
             if (context->owningProcess() != int(getpid())) {
                 (void)renderer.release(); // a forked child: its copy of the parent's driver state is never touched
             } else {
+                // The caller's own GL context, if any, current again once the renderer and its context are gone.
+                const CallersEglState callersContext;
                 try {
                     context->makeCurrent(); // the GL objects are freed on this thread, maybe not the renderer's last
+                    renderer.reset();
                 } catch (const HeadlessContextError&) {
                     // The context is current on a thread that is still rendering: nothing safe to do but leak it.
                     (void)renderer.release();
@@ -320,6 +323,8 @@ struct Renderer::Impl {
         if (int(getpid()) != madeInProcess) refuseForkedContext();
         const std::lock_guard<std::mutex> oneAtATime(rendering);
         const ParallelWork rendersInParallel; // a fork() meanwhile leaves oneTBB's workers alone
+        // The caller's own GL context, if any, current again once this render has let go of the renderer's.
+        const CallersEglState callersContext;
         // Declared first, so it runs last: after the still's GL objects have gone back to the pool on this thread.
         struct ReleaseAtEnd {
             Impl& impl;

@@ -296,6 +296,17 @@ HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) : mProce
     }
 }
 
+CallersEglState::CallersEglState()
+    : mDisplay(eglGetCurrentDisplay()), mDraw(eglGetCurrentSurface(EGL_DRAW)), mRead(eglGetCurrentSurface(EGL_READ)),
+      mContext(eglGetCurrentContext()), mApi(eglQueryAPI()) {}
+
+CallersEglState::~CallersEglState() {
+    // No exception leaves a destructor: a context the caller had that cannot be made current again stays released.
+    if (mApi != 0 && eglQueryAPI() != EGLenum(mApi)) eglBindAPI(EGLenum(mApi));
+    if (mContext != EGL_NO_CONTEXT && eglGetCurrentContext() != mContext)
+        eglMakeCurrent(mDisplay, mDraw, mRead, mContext);
+}
+
 HeadlessContext::~HeadlessContext() { releaseEgl(); }
 
 void HeadlessContext::releaseEgl() {

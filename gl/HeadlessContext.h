@@ -36,6 +36,24 @@ struct HeadlessContextOptions {
     bool debugOutput = false;                ///< KHR_debug messages to stderr (INKGRAPH_GL_DEBUG=1 also enables)
 };
 
+/** While it lives, a library call may make its own context current on this thread: at its end, the thread's EGL
+ *  state as the caller had it is put back (the context, its display and surfaces, and the bound client API), so a
+ *  program that draws with GL of its own keeps its context across a render. The command line has none to keep. */
+class CallersEglState {
+public:
+    CallersEglState();
+    ~CallersEglState();
+    CallersEglState(const CallersEglState&) = delete;
+    CallersEglState& operator=(const CallersEglState&) = delete;
+
+private:
+    void* mDisplay = nullptr;
+    void* mDraw = nullptr;
+    void* mRead = nullptr;
+    void* mContext = nullptr;
+    unsigned mApi = 0;
+};
+
 /** Owns an EGL context and a hold on its display; make it the first member of an app or fixture so it outlives every
  *  GL object. Several may live at once, each current on its own thread: EGL shares a display across the process, so
  *  the last context made on it terminates it. */

@@ -601,9 +601,12 @@ INKGRAPH_API std::vector<std::string> bufferNames(const Look& look);
 /** Renders stills. One GL context (EGL, no display) is made by the first render and kept, with every compiled
  *  program, for the renderer's life: a batch pays start-up once. Each renderer has a context of its own, so several
  *  renderers render at once, each on its own thread. Any thread may render with a renderer or destroy it, one render
- *  at a time (each render makes the context current on its thread and releases it at its end). A process forked
- *  after a render can render neither with it nor with a new one (the driver's threads stay in the parent):
- *  Error(Usage) and Error(Context) say so. Scenes and looks may be shared across threads (they are read only). */
+ *  at a time (each render makes the context current on its thread and releases it at its end; a GL context of the
+ *  caller's own that was current there, and the bound EGL client API, are current again after the render and after
+ *  the renderer's end). A process forked after a render can render neither with it nor with a new one (the driver's
+ *  threads stay in the parent): Error(Usage) and Error(Context) say so. Scenes and looks may be shared across threads
+ *  (they are read only). Call nothing of the library from static destructors or atexit handlers: its own statics
+ *  (the format readers, the flag table) and the GL driver may be gone by then. */
 class INKGRAPH_API Renderer {
 public:
     /** How the GL context is reached: `--egl-platform`. */
