@@ -247,37 +247,52 @@ std::vector<Warning> StillGraph::emptyLineWarnings() const {
     std::vector<Warning> warnings;
     if (mStrokes == nullptr || mLook == nullptr) return warnings;
     const std::vector<StrokeInput>& inputs = mStrokes->settings().inputs;
-    const std::vector<std::size_t>& kept = mStrokes->report().keptPerInput;
-    if (kept.size() != inputs.size()) return warnings; // the stroke stage did not run (a plan for buffers alone)
+    const StrokesReport& report = mStrokes->report();
+    if (report.keptPerInput.size() != inputs.size()) return warnings; // the stroke stage did not run (buffers alone)
+    const auto say = [&](const std::string& message) {
+        warnings.push_back(makeWarning(WarningKind::LinesEmpty, message));
+    };
     const StrokeStyle defaults;
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         const std::string& type = inputs[i].type;
-        const LineStyle style = mLook->styleOf(type);
-        if (style.color.a == 0.0 && kept[i] > 0) {
-            warnings.push_back(
-                makeWarning(WarningKind::LinesEmpty, "the " + type + " lines are drawn transparent: --" + type +
-                                                         "-color has alpha 0, so the picture shows none of their " +
-                                                         std::to_string(kept[i]) + " strokes"));
+        const std::size_t kept = report.keptPerInput[i], found = report.foundPerInput[i];
+        if (mLook->styleOf(type).color.a == 0.0 && kept > 0) {
+            say("the " + type + " lines are drawn transparent: --" + type +
+                "-color has alpha 0, so the picture shows none of their " + std::to_string(kept) + " strokes");
             continue;
         }
-        if (kept[i] > 0) continue;
-        // Without a setting of the user's to blame, an empty type is the model's (a sphere has no creases).
+        if (kept > 0) continue;
+        // The type's own settings given, each with its default.
         std::vector<std::string> given;
-        if (const LineType* lineType = findLineType(type))
-            for (const LineParameter* parameter : lineType->parameters)
-                if (mLook->lineParameters.isGiven(*parameter))
-                    given.push_back("--" + parameter->name + " " +
-                                    (parameter->isChoice()
-                                         ? mLook->lineParameters.choice(*parameter)
-                                         : detail::formatNumber(mLook->lineParameters.number(*parameter))));
-        if (mLook->strokes.minLength != defaults.minLength)
-            given.push_back("--min-stroke-length " + detail::formatNumber(mLook->strokes.minLength));
-        if (given.empty()) continue;
+        const LineType* lineType = findLineType(type);
+        if (lineType != nullptr)
+            for (const LineParameter* parameter : lineType->parameters) {
+                if (!mLook->lineParameters.isGiven(*parameter)) continue;
+                const bool choice = parameter->isChoice();
+                const std::string value = choice ? mLook->lineParameters.choice(*parameter)
+                                                 : detail::formatNumber(mLook->lineParameters.number(*parameter));
+                const std::string byDefault = choice ? parameter->defaultChoice
+                                              : parameter->defaultNumber
+                                                  ? detail::formatNumber(*parameter->defaultNumber)
+                                                  : std::string();
+                given.push_back("--" + parameter->name + " " + value +
+                                (byDefault.empty() ? "" : " (default " + byDefault + ")"));
+            }
         std::string settings;
         for (std::size_t g = 0; g < given.size(); ++g)
             settings += (g == 0 ? "" : g + 1 == given.size() ? " and " : ", ") + given[g];
-        warnings.push_back(makeWarning(WarningKind::LinesEmpty, "the " + type + " lines drew nothing in this view at " +
-                                                                    settings + "; their defaults may draw some"));
+        const std::string strokes = std::to_string(found) + " stroke" + (found == 1 ? "" : "s");
+        // Only what a setting given did is said: a type empty at its defaults is the model's (a sphere has no
+        // creases), and a hidden-lines type's is the view's (nothing hidden).
+        if (report.droppedShortPerInput[i] == found && found > 0 && mLook->strokes.minLength != defaults.minLength)
+            say("the " + type + " lines drew nothing in this view: --min-stroke-length " +
+                detail::formatNumber(mLook->strokes.minLength) + " (default " +
+                detail::formatNumber(defaults.minLength) + ") dropped all " + strokes + " as too short");
+        else if (report.droppedWeakPerInput[i] > 0 && !given.empty())
+            say("the " + type + " lines drew nothing in this view: at " + settings + " none of their " + strokes +
+                " reaches the seed strength");
+        else if (found == 0 && !given.empty() && !(lineType != nullptr && lineType->hiddenLines))
+            say("the " + type + " lines found none in this view at " + settings);
     }
     return warnings;
 }

@@ -111,8 +111,9 @@ const std::vector<WarningCode>& warningCodes() {
          "a line type asked for is not drawn in this view: the eye is inside the model (or the silhouette's hull), "
          "where its bands would cover the whole picture"},
         {K::LinesEmpty, "lines-empty",
-         "a line type asked for shows nothing because of a setting given: its colour's alpha is 0, or its own "
-         "threshold or --min-stroke-length left it no stroke in this view"},
+         "a line type asked for shows nothing in this view because of a setting given: its colour's alpha is 0, "
+         "--min-stroke-length or its seed setting dropped every stroke it had, or at its own settings given it found "
+         "none"},
     };
     return kCodes;
 }

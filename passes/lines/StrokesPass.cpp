@@ -261,13 +261,26 @@ void StrokesPass::reportKept(const Strokes& strokes, const std::vector<StrokeLay
     mReport.crossTypeJoins = strokes.crossTypeJoins;
     mReport.absorbedFragments = strokes.absorbedFragments;
     mReport.overlapStrokes = strokes.overlapsMerged;
-    mReport.keptPerInput.assign(mSettings.inputs.size(), 0);
-    mReport.lengthPixelsPerInput.assign(mSettings.inputs.size(), 0.0);
-    for (const Stroke& stroke : strokes.strokes)
-        if (stroke.kept && stroke.layer >= 0 && std::size_t(stroke.layer) < mSettings.inputs.size()) {
-            ++mReport.keptPerInput[std::size_t(stroke.layer)];
-            mReport.lengthPixelsPerInput[std::size_t(stroke.layer)] += stroke.lengthPixels;
+    const std::size_t inputs = mSettings.inputs.size();
+    mReport.keptPerInput.assign(inputs, 0);
+    mReport.foundPerInput.assign(inputs, 0);
+    mReport.droppedShortPerInput.assign(inputs, 0);
+    mReport.droppedWeakPerInput.assign(inputs, 0);
+    mReport.lengthPixelsPerInput.assign(inputs, 0.0);
+    for (const Stroke& stroke : strokes.strokes) {
+        if (stroke.layer < 0 || std::size_t(stroke.layer) >= inputs) continue;
+        const std::size_t input = std::size_t(stroke.layer);
+        ++mReport.foundPerInput[input];
+        const StrokeChain& chain = strokes.chains[stroke.chain];
+        if (!chain.longEnough)
+            ++mReport.droppedShortPerInput[input];
+        else if (!chain.seeded)
+            ++mReport.droppedWeakPerInput[input];
+        if (stroke.kept) {
+            ++mReport.keptPerInput[input];
+            mReport.lengthPixelsPerInput[input] += stroke.lengthPixels;
         }
+    }
     for (double& length : mReport.lengthPixelsPerInput) length /= mSettings.supersample; // data to output pixels
     const StrokesNearLimits near = strokesNearLimits(strokes, layers, kNearLimitShare);
     mReport.nearLengthLimitPerInput = near.length;

@@ -72,7 +72,11 @@ struct StrokesReport {
     std::size_t chains = 0, strokes = 0, kept = 0, droppedShort = 0, droppedWeak = 0;
     std::size_t junctionJoins = 0, gapJoins = 0, crossTypeJoins = 0, absorbedFragments = 0, overlapStrokes = 0;
     double thinMilliseconds = 0.0, chainMilliseconds = 0.0, strokeMilliseconds = 0.0;
-    std::vector<std::size_t> keptPerInput;    ///< per input, strokes kept
+    std::vector<std::size_t> keptPerInput;  ///< per input, strokes kept
+    std::vector<std::size_t> foundPerInput; ///< per input, strokes chained, kept or not
+    /** Per input, strokes dropped by the length rule, and (long enough) by the hysteresis: what lines-empty blames on
+     *  --min-stroke-length or a seed setting (StillGraph::emptyLineWarnings()). */
+    std::vector<std::size_t> droppedShortPerInput, droppedWeakPerInput;
     std::vector<double> lengthPixelsPerInput; ///< per input, their length in output pixels
     std::vector<std::size_t> dashesPerInput;  ///< per input, the dashes its kept strokes were cut into (0: solid)
     /** Per input, strokes decided within kNearLimitShare of the length rule's or the seed rule's limit

@@ -938,8 +938,8 @@ TEST_F(Cli, LinesTheSettingsGivenLeaveInvisibleAreSaid) {
                         " --contour-color 0,0,0,0 --dump d");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     EXPECT_EQ(cv::countNonZero(readImage(directory / "d" / "lines-suggestive.png")), 0);
-    EXPECT_NE(result.err.find("warning: the suggestive lines drew nothing in this view at --suggestive-threshold "
-                              "1e+06; their defaults may draw some"),
+    EXPECT_NE(result.err.find("warning: the suggestive lines found none in this view at --suggestive-threshold "
+                              "1e+06 (default 0.01)\n"),
               std::string::npos)
         << result.err;
     EXPECT_NE(result.err.find("warning: the contour lines are drawn transparent: --contour-color has alpha 0"),
@@ -954,19 +954,33 @@ TEST_F(Cli, LinesTheSettingsGivenLeaveInvisibleAreSaid) {
             "--min-stroke-length 1 --jobs 2");
     ASSERT_EQ(result.exitCode, 0) << result.err;
     const std::string dropped =
-        "the crease lines drew nothing in this view at --crease-angle 10 and --min-stroke-length 1";
+        "the crease lines drew nothing in this view: --min-stroke-length 1 (default 0.01) dropped all ";
     const std::size_t first = result.err.find(dropped);
     ASSERT_NE(first, std::string::npos) << result.err;
     EXPECT_NE(result.err.find(dropped, first + 1), std::string::npos) << result.err;
+
+    // A seed no stroke reaches (hysteresis).
+    const CliRun seeded = run("render " + spot + " -o s.png --size 96x96 --lines suggestive --suggestive-seed 50");
+    EXPECT_NE(seeded.err.find("warning: the suggestive lines drew nothing in this view: at --suggestive-seed 50 "
+                              "(default 0.04) none of their "),
+              std::string::npos)
+        << seeded.err;
 
     const CliRun strict =
         run("render " + spot + " -o b.png --size 64x64 --lines contour --contour-color 0,0,0,0 --strict");
     EXPECT_EQ(strict.exitCode, 3) << strict.err;
     EXPECT_FALSE(fs::exists(directory / "b.png"));
     // A type empty at its defaults is the model's, not the user's: a flat square has no crease and no suggestive
-    // contour, and nothing is said.
+    // contour, and nothing is said; nor for a hidden-lines type with nothing hidden.
     std::ofstream(directory / "flat.obj") << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3\nf 1 3 4\n";
     const CliRun flat = run("render flat.obj -o c.png --size 64x64 --lines suggestive,crease --strict");
+    EXPECT_EQ(flat.exitCode, 0) << flat.err;
+    // A roof seen from above: its ridge is a crease at --crease-angle 30, and none of it is hidden.
+    std::ofstream(directory / "roof.obj") << "v -1 0 -1\nv -1 0 1\nv 0 0.6 -1\nv 0 0.6 1\nv 1 0 -1\nv 1 0 1\n"
+                                             "f 1 2 4 3\nf 3 4 6 5\n";
+    const CliRun hidden =
+        run("render roof.obj -o h.png --size 64x64 --lines crease --hidden-lines crease --crease-angle 30 --strict");
+    EXPECT_EQ(hidden.exitCode, 0) << hidden.err;
     EXPECT_EQ(flat.exitCode, 0) << flat.err;
     EXPECT_TRUE(fs::exists(directory / "c.png"));
 }
