@@ -95,8 +95,10 @@ public:
      *  passes over it in silence. */
     std::vector<Warning> lineWarnings() const;
     /** After the post stage: a lines-empty warning for each drawn type the picture shows nothing of because of a
-     *  setting the user gave: its colour's alpha is 0, or it kept no stroke with a parameter of its own or
-     *  --min-stroke-length set (an empty type at the defaults is the model's: a sphere has no creases). */
+     *  setting the user gave: its colour's alpha is 0; --min-stroke-length dropped every stroke it had as too short,
+     *  or its seed setting every one as too weak; or, at parameters of its own given, it found none (not said for a
+     *  hidden-lines type, whose emptiness is the view's). An empty type at the defaults is the model's (a sphere has
+     *  no creases) and is not said. */
     std::vector<Warning> emptyLineWarnings() const;
     /** --stats post_stage: the device the image-space kernels ran on ("device", and "requested": the flag's word),
      *  what each CPU line layer that ran found and where its time went; "kernels_ms" is the post

@@ -45,25 +45,41 @@ int dataPixelsPerPixelOf(const GlPassContext& gl, const std::string& resource, i
     return numerator / denominator;
 }
 
+/** Points either side of a stroke point whose band widths are averaged with its own: the band's edge is GL's
+ *  rasterised trapezoids (the outline) or hull, a pixel ragged, which the widths read along the middle line would
+ *  otherwise draw as blots. */
+constexpr int kBandWidthSmoothingPoints = 3;
+
 /** Each point of a stroke on a band of varying width (`bandWidths[layer]` not empty) takes the band's local width
- *  there as its share of `drawnWidths[layer]`; a point off the band (a bridge across a gap) keeps the previous
- *  point's. Whether any stroke lies on such a band. */
+ *  there, averaged over kBandWidthSmoothingPoints points either side, as its share of `drawnWidths[layer]`; a point
+ *  off the band (a bridge across a gap) takes the previous point's. Whether any stroke lies on such a band. */
 bool takeBandWidths(Strokes& strokes, const std::vector<StrokeLayer>& layers, const std::vector<cv::Mat1f>& bandWidths,
                     const std::vector<float>& drawnWidths) {
     bool any = false;
     for (Stroke& stroke : strokes.strokes) {
         const std::size_t layer = std::size_t(stroke.layer);
-        if (layer >= bandWidths.size() || bandWidths[layer].empty()) continue;
+        if (layer >= bandWidths.size() || bandWidths[layer].empty() || stroke.points.empty()) continue;
         any = true;
         const cv::Mat1f& widths = bandWidths[layer];
         const double bandPixel = 1.0 / layers[layer].scale; // a band is at the output size, the points in data pixels
-        float share = 1.0f;
-        for (LinePoint& point : stroke.points) {
-            const int col = int(std::floor((double(point.position.x) + 0.5) * bandPixel));
-            const int row = int(std::floor((double(point.position.y) + 0.5) * bandPixel));
+        std::vector<float> read(stroke.points.size());
+        float last = drawnWidths[layer];
+        for (std::size_t index = 0; index < stroke.points.size(); ++index) {
+            const cv::Point2f& position = stroke.points[index].position;
+            const int col = int(std::floor((double(position.x) + 0.5) * bandPixel));
+            const int row = int(std::floor((double(position.y) + 0.5) * bandPixel));
             if (col >= 0 && row >= 0 && col < widths.cols && row < widths.rows && widths(row, col) > 0.0f)
-                share = std::clamp(widths(row, col) / drawnWidths[layer], 0.02f, 1.0f);
-            point.width = share;
+                last = widths(row, col);
+            read[index] = last;
+        }
+        const int count = int(read.size());
+        for (int index = 0; index < count; ++index) {
+            const int from = std::max(0, index - kBandWidthSmoothingPoints);
+            const int to = std::min(count - 1, index + kBandWidthSmoothingPoints);
+            float sum = 0.0f;
+            for (int other = from; other <= to; ++other) sum += read[std::size_t(other)];
+            const float width = sum / float(to - from + 1);
+            stroke.points[std::size_t(index)].width = std::clamp(width / drawnWidths[layer], 0.02f, 1.0f);
         }
     }
     return any;
